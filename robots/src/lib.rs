@@ -1,0 +1,53 @@
+//! Robot models for driftbench: forward kinematics of the task point, the 3 x n position
+//! Jacobian and its time derivative, joint limits, and (for the Jaco2) rigid-body dynamics.
+//!
+//! Every quantity uses fixed-size nalgebra types: `SVector<f64, N>` for joint vectors,
+//! `Vector3<f64>` for task-space points and `SMatrix<f64, 3, N>` for Jacobians, so no call in
+//! the simulation's hot path allocates.
+//!
+//! Models (see `shared/spec/robots.md`):
+//! - [`Jaco2::pen`] — the papers' Jaco2 (`jaco2-pen`): D6 = 0.1425, pen tip (0, -0.075, 0) in
+//!   frame 6, base tilt Rx(-0.02) Ry(-0.05).
+//! - [`Jaco2::kinova`] — Kinova's own model (`jaco2`): D6 = 0.16, hand centre, no tilt.
+//! - [`Katana6m180`] — kong2019's eq. (2), 5 joints.
+
+use nalgebra::{SMatrix, SVector, Vector3};
+
+/// Number of task-space coordinates (end-effector position only) in every paper.
+pub const M: usize = 3;
+
+/// Joint-angle and joint-velocity limits, elementwise; `f64::INFINITY` where unlimited.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JointLimits<const N: usize> {
+    pub theta_min: SVector<f64, N>,
+    pub theta_max: SVector<f64, N>,
+    pub thetadot_min: SVector<f64, N>,
+    pub thetadot_max: SVector<f64, N>,
+}
+
+/// A serial arm whose task point is tracked in position (m = 3).
+pub trait Robot<const N: usize>: Send + Sync {
+    /// Model name as used in experiment files (`jaco2-pen`, `jaco2`, `katana6m180`).
+    fn name(&self) -> &'static str;
+    /// Task-point position f(theta) in the world frame.
+    fn position(&self, theta: &SVector<f64, N>) -> Vector3<f64>;
+    /// Position Jacobian J(theta) = df/dtheta.
+    fn jacobian(&self, theta: &SVector<f64, N>) -> SMatrix<f64, 3, N>;
+    /// Time derivative dJ/dt along thetadot.
+    fn jacobian_dot(&self, theta: &SVector<f64, N>, thetadot: &SVector<f64, N>) -> SMatrix<f64, 3, N>;
+    /// Joint limits the papers' schemes use.
+    fn limits(&self) -> JointLimits<N>;
+}
+
+/// Rigid-body dynamics H(theta) thetaddot + c(theta, thetadot) + g(theta) = tau.
+pub trait Dynamics<const N: usize>: Robot<N> {
+    /// Joint-space inertia matrix H(theta) (symmetric positive definite).
+    fn inertia(&self, theta: &SVector<f64, N>) -> SMatrix<f64, N, N>;
+    /// Coriolis and centrifugal vector c(theta, thetadot).
+    fn coriolis(&self, theta: &SVector<f64, N>, thetadot: &SVector<f64, N>) -> SVector<f64, N>;
+    /// A Coriolis matrix C(theta, thetadot) with c = C thetadot and Hdot - 2C skew-symmetric
+    /// (Christoffel symbols of the first kind).
+    fn coriolis_matrix(&self, theta: &SVector<f64, N>, thetadot: &SVector<f64, N>) -> SMatrix<f64, N, N>;
+    /// Gravity vector g(theta) = dU/dtheta.
+    fn gravity(&self, theta: &SVector<f64, N>) -> SVector<f64, N>;
+}
