@@ -3,5 +3,7 @@
 
 pub mod neural;
 pub mod qp;
+pub mod random_qp;
 
 pub use qp::{KktResiduals, Qp, QpDims, QpDuals};
+pub use random_qp::{random_feasible, random_qp, QpShape};
