@@ -1,0 +1,340 @@
+//! Integration of the coupled arm + network ODEs y' = F(t, y) with diffsol.
+//!
+//! The papers' research group integrated everything with MATLAB's `ode15s` (RelTol 1e-6,
+//! AbsTol 1e-8). diffsol's [`Method::Bdf`] is the same family: variable-order BDF with the NDF
+//! modification of Shampine & Reichelt (1997), i.e. ode15s's method. For comparison the
+//! explicit Dormand-Prince 5(4) pair ([`Method::Dopri5`], MATLAB ode45's method) is run through
+//! diffsol's explicit Runge-Kutta driver with the Dormand-Prince tableau (Dormand & Prince 1980,
+//! coefficients in [`dopri5_tableau`]); Tsitouras 5(4), TR-BDF2 and ESDIRK3(4) are diffsol's own.
+//!
+//! Implicit methods need dF/dy. A system gives it densely through [`OdeSystem::jacobian`] when it
+//! can (the projection networks are piecewise linear); otherwise it is formed column by column
+//! from forward differences of F with step sqrt(eps) max(|y_j|, 1). diffsol asks for the
+//! Jacobian as products J v with unit vectors v; the dense matrix is computed once per state and
+//! cached, so a product costs a matrix-vector multiply.
+//!
+//! Every call reports steps, rejected steps, F evaluations (including those spent on
+//! finite-difference Jacobians), Jacobian evaluations and wall time.
+
+use diffsol::{
+    DiffsolError, NalgebraLU, NalgebraMat, OdeBuilder, OdeEquations, OdeSolverMethod, OdeSolverStopReason,
+    Tableau, TableauMat, TableauVec, VectorCommon,
+};
+use nalgebra::{DMatrix, DVector};
+use std::cell::RefCell;
+use std::time::Instant;
+
+/// An ODE y' = F(t, y) of fixed dimension.
+pub trait OdeSystem {
+    fn dim(&self) -> usize;
+    /// dy = F(t, y).
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]);
+    /// Dense dF/dy at (t, y) into `jac`; false to let the integrator use finite differences.
+    fn jacobian(&mut self, _t: f64, _y: &[f64], _jac: &mut DMatrix<f64>) -> bool {
+        false
+    }
+}
+
+/// Integration method.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Method {
+    /// Variable-order BDF/NDF (ode15s's method), stiff.
+    Bdf,
+    /// ESDIRK3(4), stiff, one-step.
+    Esdirk34,
+    /// TR-BDF2, stiff, one-step (ode23tb's method).
+    TrBdf2,
+    /// Dormand-Prince 5(4), explicit (ode45's method).
+    Dopri5,
+    /// Tsitouras 5(4), explicit.
+    Tsit45,
+}
+
+impl Method {
+    pub fn label(self) -> &'static str {
+        match self {
+            Method::Bdf => "bdf",
+            Method::Esdirk34 => "esdirk34",
+            Method::TrBdf2 => "tr-bdf2",
+            Method::Dopri5 => "dopri5",
+            Method::Tsit45 => "tsit45",
+        }
+    }
+    pub fn is_implicit(self) -> bool {
+        matches!(self, Method::Bdf | Method::Esdirk34 | Method::TrBdf2)
+    }
+}
+
+impl std::fmt::Display for Method {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.label())
+    }
+}
+
+/// Method and tolerances (mixed error test |e_i| <= rtol |y_i| + atol).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct IntegratorSettings {
+    pub method: Method,
+    pub rtol: f64,
+    pub atol: f64,
+    /// Accepted steps after which the run is abandoned as diverging.
+    #[serde(default = "default_max_steps")]
+    pub max_steps: usize,
+}
+
+fn default_max_steps() -> usize {
+    2_000_000
+}
+
+impl Default for IntegratorSettings {
+    /// ode15s with the papers' group tolerances (RelTol 1e-6, AbsTol 1e-8).
+    fn default() -> Self {
+        Self { method: Method::Bdf, rtol: 1e-6, atol: 1e-8, max_steps: default_max_steps() }
+    }
+}
+
+/// Cost of one integration.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OdeStats {
+    /// Accepted steps.
+    pub steps: usize,
+    /// Steps rejected by the local error test.
+    pub rejected: usize,
+    /// Evaluations of F (including those spent on finite-difference Jacobians).
+    pub rhs_evals: usize,
+    /// Dense Jacobian evaluations (analytic or finite-difference).
+    pub jac_evals: usize,
+    pub wall_seconds: f64,
+}
+
+/// Why an integration stopped early.
+#[derive(Debug)]
+pub enum OdeError {
+    /// diffsol gave up (step size underflow, Newton failure, ...).
+    Solver { t: f64, message: String },
+    /// The state left the finite numbers: the network diverged.
+    NonFinite { t: f64 },
+    /// More than `max_steps` accepted steps.
+    TooManySteps { t: f64, steps: usize },
+    /// The observer asked to stop.
+    Stopped { t: f64, reason: String },
+}
+
+impl std::fmt::Display for OdeError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            OdeError::Solver { t, message } => write!(f, "integrator failed at t = {t:.6}: {message}"),
+            OdeError::NonFinite { t } => write!(f, "state became non-finite at t = {t:.6} (diverged)"),
+            OdeError::TooManySteps { t, steps } => write!(f, "more than {steps} steps by t = {t:.6} (diverging or too stiff for the method)"),
+            OdeError::Stopped { t, reason } => write!(f, "stopped at t = {t:.6}: {reason}"),
+        }
+    }
+}
+
+impl std::error::Error for OdeError {}
+
+/// What the observer tells the integrator after an accepted step.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Control {
+    Continue,
+    Stop(String),
+}
+
+/// The Dormand-Prince 5(4) tableau (FSAL, 7 stages), with d = b - b_hat for the error estimate.
+pub fn dopri5_tableau() -> Tableau<f64> {
+    let c = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
+    let b = [35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0, 0.0];
+    let b_hat = [
+        5179.0 / 57600.0,
+        0.0,
+        7571.0 / 16695.0,
+        393.0 / 640.0,
+        -92097.0 / 339200.0,
+        187.0 / 2100.0,
+        1.0 / 40.0,
+    ];
+    let rows: [&[f64]; 7] = [
+        &[],
+        &[1.0 / 5.0],
+        &[3.0 / 40.0, 9.0 / 40.0],
+        &[44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0],
+        &[19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0],
+        &[9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0],
+        &b[..6],
+    ];
+    let mut a = TableauMat::zeros(7, 7);
+    for (i, row) in rows.iter().enumerate() {
+        for (j, v) in row.iter().enumerate() {
+            a[(i, j)] = *v;
+        }
+    }
+    let d: Vec<f64> = b.iter().zip(b_hat.iter()).map(|(x, y)| x - y).collect();
+    Tableau::new(a, TableauVec::from_slice(&b), TableauVec::from_slice(&c), TableauVec::from_slice(&d), 4, None)
+}
+
+/// The system plus the cached dense Jacobian and the evaluation counters.
+struct Counted<'s, S: OdeSystem> {
+    sys: &'s mut S,
+    rhs_evals: usize,
+    jac_evals: usize,
+    jac: DMatrix<f64>,
+    jac_at: DVector<f64>,
+    jac_t: f64,
+    jac_valid: bool,
+    f0: Vec<f64>,
+    f1: Vec<f64>,
+    yp: Vec<f64>,
+}
+
+impl<'s, S: OdeSystem> Counted<'s, S> {
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
+        self.rhs_evals += 1;
+        self.sys.rhs(t, y, dy);
+    }
+
+    /// dy = J(t, y) v with J cached per (t, y).
+    fn jac_mul(&mut self, t: f64, y: &[f64], v: &[f64], out: &mut [f64]) {
+        if !(self.jac_valid && self.jac_t == t && self.jac_at.as_slice() == y) {
+            self.refresh_jacobian(t, y);
+        }
+        let n = y.len();
+        for (i, o) in out.iter_mut().enumerate() {
+            let mut s = 0.0;
+            for (j, vj) in v.iter().enumerate().take(n) {
+                s += self.jac[(i, j)] * vj;
+            }
+            *o = s;
+        }
+    }
+
+    fn refresh_jacobian(&mut self, t: f64, y: &[f64]) {
+        self.jac_evals += 1;
+        if !self.sys.jacobian(t, y, &mut self.jac) {
+            let n = y.len();
+            self.rhs_evals += 1;
+            self.sys.rhs(t, y, &mut self.f0);
+            self.yp.copy_from_slice(y);
+            for j in 0..n {
+                let h = f64::EPSILON.sqrt() * y[j].abs().max(1.0);
+                self.yp[j] = y[j] + h;
+                self.rhs_evals += 1;
+                self.sys.rhs(t, &self.yp, &mut self.f1);
+                for i in 0..n {
+                    self.jac[(i, j)] = (self.f1[i] - self.f0[i]) / h;
+                }
+                self.yp[j] = y[j];
+            }
+        }
+        self.jac_at.as_mut_slice().copy_from_slice(y);
+        self.jac_t = t;
+        self.jac_valid = true;
+    }
+}
+
+/// Integrates `sys` from `t0` to `t1` starting at `y0`. `observe(t, y)` is called at t0 and after
+/// every accepted step (the last one at t1) and may stop the run. Returns y(t1).
+pub fn integrate<S: OdeSystem>(
+    sys: &mut S,
+    y0: &[f64],
+    t0: f64,
+    t1: f64,
+    settings: &IntegratorSettings,
+    mut observe: impl FnMut(f64, &[f64]) -> Control,
+) -> Result<(Vec<f64>, OdeStats), OdeError> {
+    let n = sys.dim();
+    assert_eq!(y0.len(), n, "initial state has the wrong dimension");
+    let start = Instant::now();
+    let counted = RefCell::new(Counted {
+        sys,
+        rhs_evals: 0,
+        jac_evals: 0,
+        jac: DMatrix::zeros(n, n),
+        jac_at: DVector::zeros(n),
+        jac_t: f64::NAN,
+        jac_valid: false,
+        f0: vec![0.0; n],
+        f1: vec![0.0; n],
+        yp: vec![0.0; n],
+    });
+    let y0v = y0.to_vec();
+    let problem = OdeBuilder::<NalgebraMat<f64>>::new()
+        .t0(t0)
+        .rtol(settings.rtol)
+        .atol([settings.atol])
+        .rhs_implicit(
+            |y, _p, t, dy| counted.borrow_mut().rhs(t, y, dy),
+            |y, _p, t, v, out| counted.borrow_mut().jac_mul(t, y, v, out),
+        )
+        .init(move |_p, _t, y| y.copy_from_slice(&y0v), n)
+        .build()
+        .map_err(|e| solver_error(t0, e))?;
+    if let Control::Stop(reason) = observe(t0, y0) {
+        return Err(OdeError::Stopped { t: t0, reason });
+    }
+    let solver_err = |e| solver_error(t0, e);
+    let (y, steps, rejected) = match settings.method {
+        Method::Bdf => drive(problem.bdf::<NalgebraLU<f64>>().map_err(solver_err)?, t1, settings.max_steps, &mut observe)?,
+        Method::Esdirk34 => {
+            drive(problem.esdirk34::<NalgebraLU<f64>>().map_err(solver_err)?, t1, settings.max_steps, &mut observe)?
+        }
+        Method::TrBdf2 => {
+            drive(problem.tr_bdf2::<NalgebraLU<f64>>().map_err(solver_err)?, t1, settings.max_steps, &mut observe)?
+        }
+        Method::Tsit45 => drive(problem.tsit45().map_err(solver_err)?, t1, settings.max_steps, &mut observe)?,
+        Method::Dopri5 => {
+            let tableau = dopri5_tableau();
+            let state = problem.rk_state(&tableau).map_err(solver_err)?;
+            drive(problem.explicit_rk_solver(state, tableau).map_err(solver_err)?, t1, settings.max_steps, &mut observe)?
+        }
+    };
+    let c = counted.borrow();
+    let stats = OdeStats {
+        steps,
+        rejected,
+        rhs_evals: c.rhs_evals,
+        jac_evals: c.jac_evals,
+        wall_seconds: start.elapsed().as_secs_f64(),
+    };
+    Ok((y, stats))
+}
+
+fn solver_error(t: f64, e: DiffsolError) -> OdeError {
+    OdeError::Solver { t, message: e.to_string() }
+}
+
+/// Steps `solver` to `t1`, observing every accepted step. Returns (y(t1), steps, rejected).
+fn drive<'a, Eqn, M>(
+    mut solver: M,
+    t1: f64,
+    max_steps: usize,
+    observe: &mut impl FnMut(f64, &[f64]) -> Control,
+) -> Result<(Vec<f64>, usize, usize), OdeError>
+where
+    Eqn: OdeEquations<T = f64, V = diffsol::NalgebraVec<f64>> + 'a,
+    M: OdeSolverMethod<'a, Eqn>,
+{
+    solver.set_stop_time(t1).map_err(|e| solver_error(solver.state().t, e))?;
+    let mut steps = 0usize;
+    loop {
+        let reason = solver.step().map_err(|e| solver_error(solver.state().t, e))?;
+        steps += 1;
+        let state = solver.state();
+        let y = state.y.inner().as_slice();
+        if y.iter().any(|v| !v.is_finite()) {
+            return Err(OdeError::NonFinite { t: state.t });
+        }
+        if let Control::Stop(reason) = observe(state.t, y) {
+            return Err(OdeError::Stopped { t: state.t, reason });
+        }
+        match reason {
+            OdeSolverStopReason::TstopReached => {
+                let rejected = solver.get_statistics().number_of_error_test_failures;
+                return Ok((y.to_vec(), steps, rejected));
+            }
+            _ if steps >= max_steps => return Err(OdeError::TooManySteps { t: state.t, steps }),
+            _ => {}
+        }
+    }
+}
