@@ -2,6 +2,34 @@
 //! (see [`crate::qp::Qp`]). Each network has a state y whose first `nx` entries are the
 //! current estimate of the decision variable x (the joint velocity or acceleration that
 //! drives the arm); the rest are dual (multiplier) states where the network has them.
+//!
+//! | network | paper, equation | state y | file |
+//! |---|---|---|---|
+//! | LVI-PDNN | jia2019 eq. 2.21-2.23 | [x; u; v] (nx + n_eq + n_in) | [`projection`] |
+//! | S-LVI-PDNN | zhong2021 eq. 2.35 | [x; u; v] | [`projection`] |
+//! | VP-RNN-PF | zhong2021 eq. 2.19-2.30 | [x; lambda] (nx + n_eq) | [`vp_rnn_pf`] |
+//! | FP-CDNN / VP-CDNN | zhang2018 eq. 2.15 / 2.11, perturbed 3.2 / 3.1 | [x; lambda] | [`cdnn`], [`zeroing`] |
+//! | FTNN (finite-time) / ZNN | kong2019 eq. 17-20 / its eq. 22 comparison | [x; lambda] | [`znn`], [`zeroing`] |
+//!
+//! Activation functions: [`activation`]. Experiment-file specifications and the factory:
+//! [`spec`]. Every network starts from y = 0 (none of the papers says otherwise).
+
+pub mod activation;
+pub mod cdnn;
+pub mod lu;
+pub mod projection;
+pub mod spec;
+pub mod vp_rnn_pf;
+pub mod zeroing;
+pub mod znn;
+
+pub use activation::{Activation, ActivationKind};
+pub use cdnn::{fp_cdnn, vp_cdnn, ReferencePerturbation};
+pub use projection::{LviPdnn, SLviPdnn};
+pub use spec::{build_solver, SolverSpec};
+pub use vp_rnn_pf::VpRnnPf;
+pub use zeroing::{Gain, ZeroingNetwork};
+pub use znn::{finite_time, znn};
 
 use crate::qp::{Qp, QpDims};
 use nalgebra::DMatrix;
@@ -26,5 +54,9 @@ pub trait NeuralSolver: Send {
     /// Returns false when the network gives no analytic Jacobian.
     fn jacobian(&mut self, _t: f64, _y: &[f64], _qp: &Qp, _qp_dot: Option<&Qp>, _jac: &mut DMatrix<f64>) -> bool {
         false
+    }
+    /// The network's initial state y(0) for QPs of sizes `dims` (zero: no paper says otherwise).
+    fn initial_state(&self, _dims: QpDims, y0: &mut [f64]) {
+        y0.fill(0.0);
     }
 }

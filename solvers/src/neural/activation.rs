@@ -1,0 +1,133 @@
+//! Activation functions of the papers' networks: each unit phi of the processing array
+//! Phi(e) = [phi(e_1), ..., phi(e_k)] is odd and monotonically increasing (zhong2021, text after
+//! eq. 2.26; zhang2018, eq. 2.10), which is all the Lyapunov proofs (e' phi(e) > 0 for e != 0)
+//! need.
+//!
+//! | variant | phi(e) | source |
+//! |---|---|---|
+//! | [`Activation::Linear`] | e | zhong2021 eq. 2.27; zhang2018 ("linear unless stated"); the ZNN |
+//! | [`Activation::Sinh`] | (exp(e) - exp(-e))/2 | zhong2021 eq. 2.28 |
+//! | [`Activation::PowerSigmoid`] | (1+exp(-alpha))(1-exp(-alpha e)) / ((1-exp(-alpha))(1+exp(-alpha e))) for abs(e) <= 1, sgn(e) abs(e)^chi for abs(e) > 1 | zhong2021 eq. 2.29 (alpha >= 2, chi >= 3) |
+//! | [`Activation::SignPower`] | abs(e)^r sgn(e) | kong2019 eq. 6 and 20 (r = the paper's alpha, 0 < r < 1) |
+//!
+//! Power-sigmoid: the paper prints e^chi for abs(e) > 1, which is odd only for odd integer chi;
+//! we write sgn(e) abs(e)^chi, identical for odd chi (the paper's range chi >= 3 with the usual
+//! choice chi = 3) and odd for every chi. The two branches meet at abs(e) = 1 (both give +-1), so
+//! phi is continuous; its derivative jumps there (alpha(1+exp(-alpha))/(... ) vs chi).
+//! Defaults (the paper gives only the ranges): alpha = 4, chi = 3.
+//!
+//! Sign-power with r < 1 has an infinite slope at e = 0 (that is what makes the convergence
+//! finite-time); [`Activation::derivative`] evaluates the slope at max(abs(e), [`SIGN_POWER_MIN_ABS`])
+//! so Jacobians stay finite.
+
+use serde::Deserialize;
+
+/// Default power-sigmoid alpha (zhong2021 eq. 2.29 asks only alpha >= 2).
+pub const POWER_SIGMOID_ALPHA: f64 = 4.0;
+/// Default power-sigmoid chi (zhong2021 eq. 2.29 asks only chi >= 3).
+pub const POWER_SIGMOID_CHI: f64 = 3.0;
+/// Floor on abs(e) where the sign-power slope r abs(e)^(r-1) is evaluated (r < 1 makes it
+/// infinite at 0).
+pub const SIGN_POWER_MIN_ABS: f64 = 1e-12;
+
+/// One activation unit phi (applied elementwise).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Activation {
+    /// phi(e) = e (zhong2021 eq. 2.27).
+    Linear,
+    /// phi(e) = sinh(e) (zhong2021 eq. 2.28).
+    Sinh,
+    /// zhong2021 eq. 2.29 (see the module docs).
+    PowerSigmoid { alpha: f64, chi: f64 },
+    /// phi(e) = abs(e)^r sgn(e) (kong2019 eq. 6, 20).
+    SignPower { r: f64 },
+}
+
+/// The serde name of an activation in experiment files (parameters given beside it).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default, Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ActivationKind {
+    #[default]
+    Linear,
+    Sinh,
+    PowerSigmoid,
+}
+
+impl Activation {
+    /// The zhong2021 power-sigmoid with the default alpha = 4, chi = 3.
+    pub fn power_sigmoid_default() -> Self {
+        Activation::PowerSigmoid { alpha: POWER_SIGMOID_ALPHA, chi: POWER_SIGMOID_CHI }
+    }
+
+    /// Check the papers' parameter ranges.
+    pub fn validate(&self) -> Result<(), String> {
+        match *self {
+            Activation::Linear | Activation::Sinh => Ok(()),
+            Activation::PowerSigmoid { alpha, chi } => {
+                if !(alpha > 0.0 && alpha.is_finite()) || !(chi >= 1.0 && chi.is_finite()) {
+                    Err(format!("power-sigmoid needs alpha > 0 and chi >= 1 (paper: alpha >= 2, chi >= 3), got alpha = {alpha}, chi = {chi}"))
+                } else {
+                    Ok(())
+                }
+            }
+            Activation::SignPower { r } => {
+                if r > 0.0 && r.is_finite() {
+                    Ok(())
+                } else {
+                    Err(format!("sign-power needs an exponent r > 0, got {r}"))
+                }
+            }
+        }
+    }
+
+    /// Short label, e.g. `sinh`.
+    pub fn label(&self) -> String {
+        match *self {
+            Activation::Linear => "linear".into(),
+            Activation::Sinh => "sinh".into(),
+            Activation::PowerSigmoid { alpha, chi } => format!("power-sigmoid(alpha={alpha},chi={chi})"),
+            Activation::SignPower { r } => format!("sign-power(r={r})"),
+        }
+    }
+
+    /// phi(e).
+    #[inline]
+    pub fn value(&self, e: f64) -> f64 {
+        match *self {
+            Activation::Linear => e,
+            Activation::Sinh => e.sinh(),
+            Activation::PowerSigmoid { alpha, chi } => {
+                let a = e.abs();
+                if a <= 1.0 {
+                    let ea = (-alpha).exp();
+                    let ee = (-alpha * e).exp();
+                    (1.0 + ea) * (1.0 - ee) / ((1.0 - ea) * (1.0 + ee))
+                } else {
+                    e.signum() * a.powf(chi)
+                }
+            }
+            Activation::SignPower { r } => e.signum() * e.abs().powf(r),
+        }
+    }
+
+    /// dphi/de (see the module docs for the sign-power floor).
+    #[inline]
+    pub fn derivative(&self, e: f64) -> f64 {
+        match *self {
+            Activation::Linear => 1.0,
+            Activation::Sinh => e.cosh(),
+            Activation::PowerSigmoid { alpha, chi } => {
+                let a = e.abs();
+                if a <= 1.0 {
+                    // d/de (1-z)/(1+z) with z = exp(-alpha e) is 2 alpha z / (1+z)^2.
+                    let ea = (-alpha).exp();
+                    let z = (-alpha * a).exp();
+                    (1.0 + ea) / (1.0 - ea) * 2.0 * alpha * z / ((1.0 + z) * (1.0 + z))
+                } else {
+                    chi * a.powf(chi - 1.0)
+                }
+            }
+            Activation::SignPower { r } => r * e.abs().max(SIGN_POWER_MIN_ABS).powf(r - 1.0),
+        }
+    }
+}

@@ -1,0 +1,302 @@
+//! The projection (primal-dual) networks: LVI-PDNN (jia2019 eq. 2.21-2.23) and its simplified
+//! form S-LVI-PDNN (zhong2021 eq. 2.35). Both share the linear variational inequality built here
+//! from a generic [`Qp`]; they differ only in the factor in front of the projection residual.
+//!
+//! # The LVI (jia2019 eq. 2.21, the map of its QP 2.17-2.20)
+//!
+//! jia2019 writes its QP as min x'Dx/2 + g'x s.t. A x = b, E x <= d, x- <= x <= x+ and
+//! stacks the primal-dual vector y = [x; u; v] (u for the equalities, v for the inequalities),
+//!
+//! ```text
+//!     M = [ D  -A'  E' ]      q = [  g ]      y- = [ x-      ]   y+ = [ x+     ]
+//!         [ A   0   0  ]          [ -b ]           [ -varpi 1 ]        [ varpi 1 ]
+//!         [ -E  0   0  ]          [  d ]           [ 0        ]        [ varpi 1 ]
+//! ```
+//!
+//! For our [`Qp`] (P, q, A, b, G, h, lower, upper) the same map reads D = P, g = q, E = G,
+//! d = h, x- = lower, x+ = upper, so y has nx + n_eq + n_in entries. The paper's varpi ("a
+//! large constant, which is used to replace +inf numerically") is +inf here: the projection is
+//! a clamp, which is exact with infinite limits, so Omega = [lower, upper] x R^n_eq x
+//! [0, +inf)^n_in. (A QP built with a finite varpi, as the scheme may, is projected on that finite
+//! bound unchanged.)
+//!
+//! At a solution of (2.21) the multipliers relate to [`crate::qp::QpDuals`] by lambda = -u and
+//! mu = v (the stationarity row reads P x + q - A'u + G'v in normal cone of the box).
+//!
+//! # The networks
+//!
+//! With e(y) = P_Omega(y - (M y + q)) - y (eq. 2.22, whose zeros are the LVI's solutions):
+//!
+//! * LVI-PDNN (jia2019 eq. 2.23): ydot = gamma (I + M') e(y), gamma = 1e7 in the paper.
+//! * S-LVI-PDNN (zhong2021 eq. 2.35): ydot = beta e(y), beta = 1e7 in the paper.
+//!
+//! Both are piecewise linear in y. With Dz = diag(1 if y_i^- < z_i < y_i^+ else 0) evaluated at
+//! z = y - (M y + q) (the derivative of the clamp; on a kink we take the outside branch), the
+//! Jacobians are de/dy = Dz (I - M) - I, so dF/dy = gamma (I + M')(Dz (I - M) - I) for LVI-PDNN
+//! and beta (Dz (I - M) - I) for S-LVI-PDNN.
+
+use super::NeuralSolver;
+use crate::qp::{Qp, QpDims};
+use nalgebra::DMatrix;
+
+/// Dimension of the primal-dual vector y = [x; u; v] for a QP of these sizes.
+pub fn primal_dual_dim(dims: QpDims) -> usize {
+    dims.nx + dims.n_eq + dims.n_in
+}
+
+/// Omega's limits (y_i^-, y_i^+) for entry i of y (see the module docs).
+#[inline]
+fn omega(qp: &Qp, nx: usize, n_eq: usize, i: usize) -> (f64, f64) {
+    if i < nx {
+        (qp.lower[i], qp.upper[i])
+    } else if i < nx + n_eq {
+        (f64::NEG_INFINITY, f64::INFINITY)
+    } else {
+        (0.0, f64::INFINITY)
+    }
+}
+
+/// The LVI of a QP and the scratch to evaluate its residual without allocating.
+#[derive(Clone, Debug)]
+pub struct LviCore {
+    dims: QpDims,
+    /// e = P_Omega(y - (M y + q)) - y.
+    e: Vec<f64>,
+    /// z = y - (M y + q).
+    z: Vec<f64>,
+    /// M (Jacobian only).
+    m: DMatrix<f64>,
+    /// Dz (I - M) - I (Jacobian only).
+    de: DMatrix<f64>,
+}
+
+impl LviCore {
+    pub fn new(dims: QpDims) -> Self {
+        let n = primal_dual_dim(dims);
+        Self { dims, e: vec![0.0; n], z: vec![0.0; n], m: DMatrix::zeros(n, n), de: DMatrix::zeros(n, n) }
+    }
+
+    pub fn dims(&self) -> QpDims {
+        self.dims
+    }
+
+    fn check(&self, qp: &Qp, y: &[f64]) {
+        debug_assert_eq!(qp.dims(), self.dims, "QP sizes differ from the sizes the network was built for");
+        debug_assert_eq!(y.len(), primal_dual_dim(self.dims));
+    }
+
+    /// z = y - (M y + q), blockwise:
+    /// M y + q = [P x - A'u + G'v + q; A x - b; -G x + h].
+    fn compute_z(&mut self, qp: &Qp, y: &[f64]) {
+        let QpDims { nx, n_eq, n_in } = self.dims;
+        let (x, rest) = y.split_at(nx);
+        let (u, v) = rest.split_at(n_eq);
+        for i in 0..nx {
+            let mut s = qp.q[i];
+            for j in 0..nx {
+                s += qp.p[(i, j)] * x[j];
+            }
+            for k in 0..n_eq {
+                s -= qp.a[(k, i)] * u[k];
+            }
+            for k in 0..n_in {
+                s += qp.g[(k, i)] * v[k];
+            }
+            self.z[i] = x[i] - s;
+        }
+        for k in 0..n_eq {
+            let mut s = -qp.b[k];
+            for j in 0..nx {
+                s += qp.a[(k, j)] * x[j];
+            }
+            self.z[nx + k] = u[k] - s;
+        }
+        for k in 0..n_in {
+            let mut s = qp.h[k];
+            for j in 0..nx {
+                s -= qp.g[(k, j)] * x[j];
+            }
+            self.z[nx + n_eq + k] = v[k] - s;
+        }
+    }
+
+    /// The residual e(y) = P_Omega(y - (M y + q)) - y of eq. 2.22, kept in `self`.
+    pub fn residual(&mut self, qp: &Qp, y: &[f64]) -> &[f64] {
+        self.check(qp, y);
+        self.compute_z(qp, y);
+        let QpDims { nx, n_eq, .. } = self.dims;
+        for i in 0..y.len() {
+            let (lo, hi) = omega(qp, nx, n_eq, i);
+            self.e[i] = self.z[i].max(lo).min(hi) - y[i];
+        }
+        &self.e
+    }
+
+    /// out = scale * (I + M') e with the e of the last [`LviCore::residual`] call:
+    /// M' e = [P' e_x + A' e_u - G' e_v; -A e_x; G e_x].
+    fn i_plus_mt_e(&self, qp: &Qp, scale: f64, out: &mut [f64]) {
+        let QpDims { nx, n_eq, n_in } = self.dims;
+        let e = &self.e;
+        let (ex, rest) = e.split_at(nx);
+        let (eu, ev) = rest.split_at(n_eq);
+        for i in 0..nx {
+            let mut s = ex[i];
+            for j in 0..nx {
+                s += qp.p[(j, i)] * ex[j];
+            }
+            for k in 0..n_eq {
+                s += qp.a[(k, i)] * eu[k];
+            }
+            for k in 0..n_in {
+                s -= qp.g[(k, i)] * ev[k];
+            }
+            out[i] = scale * s;
+        }
+        for k in 0..n_eq {
+            let mut s = eu[k];
+            for j in 0..nx {
+                s -= qp.a[(k, j)] * ex[j];
+            }
+            out[nx + k] = scale * s;
+        }
+        for k in 0..n_in {
+            let mut s = ev[k];
+            for j in 0..nx {
+                s += qp.g[(k, j)] * ex[j];
+            }
+            out[nx + n_eq + k] = scale * s;
+        }
+    }
+
+    /// Assemble M (module docs) into `self.m`.
+    fn assemble_m(&mut self, qp: &Qp) {
+        let QpDims { nx, n_eq, n_in } = self.dims;
+        let m = &mut self.m;
+        m.fill(0.0);
+        for i in 0..nx {
+            for j in 0..nx {
+                m[(i, j)] = qp.p[(i, j)];
+            }
+        }
+        for k in 0..n_eq {
+            for j in 0..nx {
+                m[(j, nx + k)] = -qp.a[(k, j)];
+                m[(nx + k, j)] = qp.a[(k, j)];
+            }
+        }
+        for k in 0..n_in {
+            for j in 0..nx {
+                m[(j, nx + n_eq + k)] = qp.g[(k, j)];
+                m[(nx + n_eq + k, j)] = -qp.g[(k, j)];
+            }
+        }
+    }
+
+    /// de/dy = Dz (I - M) - I into `self.de` (module docs); needs z at y.
+    fn residual_jacobian(&mut self, qp: &Qp, y: &[f64]) {
+        self.check(qp, y);
+        self.compute_z(qp, y);
+        self.assemble_m(qp);
+        let QpDims { nx, n_eq, .. } = self.dims;
+        let n = y.len();
+        for i in 0..n {
+            let (lo, hi) = omega(qp, nx, n_eq, i);
+            let inside = self.z[i] > lo && self.z[i] < hi;
+            for j in 0..n {
+                let id = if i == j { 1.0 } else { 0.0 };
+                let dz = if inside { id - self.m[(i, j)] } else { 0.0 };
+                self.de[(i, j)] = dz - id;
+            }
+        }
+    }
+}
+
+/// LVI-PDNN, jia2019 eq. 2.23: ydot = gamma (I + M') (P_Omega(y - (M y + q)) - y).
+#[derive(Clone, Debug)]
+pub struct LviPdnn {
+    /// Convergence gain gamma (1e7 in jia2019).
+    pub gamma: f64,
+    core: LviCore,
+}
+
+impl LviPdnn {
+    pub fn new(gamma: f64, dims: QpDims) -> Self {
+        Self { gamma, core: LviCore::new(dims) }
+    }
+    /// The residual e(y) of eq. 2.22 (zero exactly at the LVI's solutions).
+    pub fn residual(&mut self, qp: &Qp, y: &[f64]) -> &[f64] {
+        self.core.residual(qp, y)
+    }
+}
+
+impl NeuralSolver for LviPdnn {
+    fn name(&self) -> String {
+        "LVI-PDNN".into()
+    }
+    fn state_dim(&self, dims: QpDims) -> usize {
+        primal_dual_dim(dims)
+    }
+    fn rhs(&mut self, _t: f64, y: &[f64], qp: &Qp, _qp_dot: Option<&Qp>, ydot: &mut [f64]) {
+        self.core.residual(qp, y);
+        self.core.i_plus_mt_e(qp, self.gamma, ydot);
+    }
+    fn jacobian(&mut self, _t: f64, y: &[f64], qp: &Qp, _qp_dot: Option<&Qp>, jac: &mut DMatrix<f64>) -> bool {
+        self.core.residual_jacobian(qp, y);
+        // jac = gamma (I + M') de.
+        let n = y.len();
+        let (m, de) = (&self.core.m, &self.core.de);
+        for i in 0..n {
+            for j in 0..n {
+                let mut s = de[(i, j)];
+                for k in 0..n {
+                    s += m[(k, i)] * de[(k, j)];
+                }
+                jac[(i, j)] = self.gamma * s;
+            }
+        }
+        true
+    }
+}
+
+/// S-LVI-PDNN, zhong2021 eq. 2.35: ydot = beta (P_Omega(y - (M y + q)) - y).
+#[derive(Clone, Debug)]
+pub struct SLviPdnn {
+    /// Convergence gain beta (1e7 in zhong2021).
+    pub beta: f64,
+    core: LviCore,
+}
+
+impl SLviPdnn {
+    pub fn new(beta: f64, dims: QpDims) -> Self {
+        Self { beta, core: LviCore::new(dims) }
+    }
+    /// The residual e(y) of eq. 2.22 (zero exactly at the LVI's solutions).
+    pub fn residual(&mut self, qp: &Qp, y: &[f64]) -> &[f64] {
+        self.core.residual(qp, y)
+    }
+}
+
+impl NeuralSolver for SLviPdnn {
+    fn name(&self) -> String {
+        "S-LVI-PDNN".into()
+    }
+    fn state_dim(&self, dims: QpDims) -> usize {
+        primal_dual_dim(dims)
+    }
+    fn rhs(&mut self, _t: f64, y: &[f64], qp: &Qp, _qp_dot: Option<&Qp>, ydot: &mut [f64]) {
+        let e = self.core.residual(qp, y);
+        for (d, ei) in ydot.iter_mut().zip(e) {
+            *d = self.beta * ei;
+        }
+    }
+    fn jacobian(&mut self, _t: f64, y: &[f64], qp: &Qp, _qp_dot: Option<&Qp>, jac: &mut DMatrix<f64>) -> bool {
+        self.core.residual_jacobian(qp, y);
+        let n = y.len();
+        for i in 0..n {
+            for j in 0..n {
+                jac[(i, j)] = self.beta * self.core.de[(i, j)];
+            }
+        }
+        true
+    }
+}

@@ -1,0 +1,369 @@
+//! VP-RNN-PF, the varying-parameter recurrent neural network with penalty function of
+//! zhong2021 (eq. 2.19-2.30).
+//!
+//! # Penalty (eq. 2.19-2.21)
+//!
+//! The inequalities B x <= h are moved into the objective with the exponential penalty
+//! P(x) = p sum_i exp(-sigma N_i(x)), N_i = h_i - B_i x (p >= 0, sigma > 0); the equality
+//! A x = b stays a constraint and keeps a Lagrange multiplier lambda as a network state
+//! (eq. 2.22), so the state is y = [x; lambda] in R^(nx + n_eq) (Theorem 1).
+//!
+//! For our [`Qp`] the inequality set is G x <= h followed by one row per finite bound:
+//! e_j' x <= upper_j and -e_j' x <= -lower_j (zhong2021's B = [s; E; -E], h = [d; x+; -x-] is
+//! exactly this with s = G when the scheme passes the bounds as bounds; the zhong2021-shaped QPs
+//! of [`crate::random_qp`] pass them as G rows already). Infinite bounds contribute no row
+//! (exp(-sigma * inf) = 0, as the paper's varpi intends).
+//!
+//! # Network (eq. 2.23-2.30)
+//!
+//! With c_i = p sigma exp(-sigma N_i) (the i-th penalty multiplier), the error is the Lagrangian
+//! gradient phi = D y - u (eq. 2.24-2.25):
+//!
+//! ```text
+//!   phi_x      = P x + q + A' lambda + sum_i c_i B_i'
+//!   phi_lambda = A x - b
+//! ```
+//!
+//! and Edot = -gamma exp(t) Phi(phi) (eq. 2.26) gives eq. 2.30, W ydot = -S y - gamma exp(t) Phi(phi) + mu:
+//!
+//! ```text
+//!   W  = [ P + sigma sum c_i B_i'B_i   A' ]     S y = [ Pdot x + sigma sum c_i B_i' (Bdot_i x) + Adot' lambda ]
+//!        [ A                           0  ]           [ Adot x                                              ]
+//!   mu = [ -qdot - sum c_i (Bdot_i' - sigma B_i' hdot_i) ]
+//!        [ bdot                                          ]
+//! ```
+//!
+//! (W is dphi/dy; pσ² e^{-σN} in the paper = sigma c_i here.) The data derivatives come from
+//! `qp_dot` (P, q, A, b, G, h, and the bounds' derivatives for the bound rows); with no `qp_dot`
+//! the QP is frozen. ydot is solved for with an in-place LU ([`super::lu`]).
+//! Activation: linear (2.27), sinh (2.28) or power-sigmoid (2.29), see [`Activation`].
+//!
+//! Numerical guard (ours): the exponent -sigma N_i is capped at [`EXPONENT_CAP`] so a deep
+//! violation (N_i < -700/sigma) gives a huge but finite penalty instead of +inf.
+//!
+//! # Steady state on a frozen QP
+//!
+//! On a frozen QP phidot = W ydot = -g Phi(phi), so phi -> 0: x tends to the optimum x_p of the
+//! penalised problem min x'Px/2 + q'x + P(x) s.t. A x = b, not to the QP's optimum x*. Comparing
+//! the two stationarity conditions (P x + q + A'lambda + B'm = 0 with m = c(x_p) for x_p and
+//! m = mu* for x*) and using A(x_p - x*) = 0 and mu*_i N_i(x*) = 0:
+//!
+//! ```text
+//!   (x_p - x*)' P (x_p - x*) = sum_i [ c_i N_i(x_p) - c_i N_i(x*) - mu*_i N_i(x_p) ]
+//!                           <= sum_i [ p/e + mu*_i max(0, -N_i(x_p)) ]
+//! ```
+//!
+//! since c_i N_i = p (sigma N_i) exp(-sigma N_i) <= p/e, c_i N_i(x*) >= 0, and mu*_i >= 0. So
+//! lambda_min(P) |x_p - x*|_2^2 <= m p / e + sum_i mu*_i viol_i(x_p), where a violation satisfies
+//! viol_i = ln(c_i / (p sigma)) / sigma: the error scales like sqrt(p) plus
+//! sqrt(mu* ln(mu*/(p sigma))/sigma) for active constraints. This is the bound the tests check.
+//!
+//! # Jacobian (QP data frozen)
+//!
+//! With F = ydot, dF/dy = W^{-1} (dr/dy - (dW/dy) F), r the right-hand side of 2.30; collecting
+//! terms (dc_i/dx = sigma c_i B_i):
+//!
+//! ```text
+//!   W dF/dy = -[Pdot + sigma sum c_i (B_i'Bdot_i + Bdot_i'B_i) - sigma^2 sum c_i (hdot_i - Bdot_i x - B_i F_x) B_i'B_i,  Adot';  Adot, 0]
+//!             - g(t) diag(Phi'(phi)) W
+//! ```
+
+use super::activation::Activation;
+use super::lu;
+use super::zeroing::Gain;
+use super::NeuralSolver;
+use crate::qp::{Qp, QpDims};
+use nalgebra::DMatrix;
+
+/// Cap on the penalty exponent -sigma N_i (exp(700) ~ 1e304).
+pub const EXPONENT_CAP: f64 = 700.0;
+
+/// VP-RNN-PF (zhong2021 eq. 2.30): see the module docs.
+#[derive(Clone, Debug)]
+pub struct VpRnnPf {
+    /// Penalty factor p (eq. 2.19).
+    pub p: f64,
+    /// Penalty sharpness sigma (eq. 2.19).
+    pub sigma: f64,
+    /// gamma of the varying parameter gamma exp(t) (eq. 2.26).
+    pub gamma: f64,
+    pub activation: Activation,
+    gain: Gain,
+    dims: QpDims,
+    /// Inequality rows B (G, then the finite bounds), their derivatives, h and hdot.
+    b: DMatrix<f64>,
+    bdot: DMatrix<f64>,
+    h: Vec<f64>,
+    hdot: Vec<f64>,
+    rows: usize,
+    /// c_i = p sigma exp(-sigma N_i).
+    c: Vec<f64>,
+    /// Bdot_i x.
+    bdot_x: Vec<f64>,
+    /// W (eq. 2.30), its LU factors, pivots.
+    w: DMatrix<f64>,
+    lu: DMatrix<f64>,
+    piv: Vec<usize>,
+    /// phi = D y - u (eq. 2.25).
+    phi: Vec<f64>,
+    /// F = ydot.
+    f: Vec<f64>,
+    factored: bool,
+}
+
+impl VpRnnPf {
+    /// The network with gain gamma exp(t) (eq. 2.26).
+    pub fn new(p: f64, sigma: f64, gamma: f64, activation: Activation, dims: QpDims) -> Result<Self, String> {
+        Self::with_gain(p, sigma, gamma, Gain::Exponential(gamma), activation, dims)
+    }
+
+    /// Same network with another gain schedule (e.g. [`Gain::Fixed`] for steady-state tests;
+    /// the paper's network is [`VpRnnPf::new`]).
+    pub fn with_gain(
+        p: f64,
+        sigma: f64,
+        gamma: f64,
+        gain: Gain,
+        activation: Activation,
+        dims: QpDims,
+    ) -> Result<Self, String> {
+        if !(p >= 0.0 && p.is_finite()) || !(sigma > 0.0 && sigma.is_finite()) {
+            return Err(format!("VP-RNN-PF needs p >= 0 and sigma > 0 (eq. 2.19), got p = {p}, sigma = {sigma}"));
+        }
+        activation.validate()?;
+        let rows = dims.n_in + 2 * dims.nx;
+        let n = dims.nx + dims.n_eq;
+        Ok(Self {
+            p,
+            sigma,
+            gamma,
+            activation,
+            gain,
+            dims,
+            b: DMatrix::zeros(rows, dims.nx),
+            bdot: DMatrix::zeros(rows, dims.nx),
+            h: vec![0.0; rows],
+            hdot: vec![0.0; rows],
+            rows: 0,
+            c: vec![0.0; rows],
+            bdot_x: vec![0.0; rows],
+            w: DMatrix::zeros(n, n),
+            lu: DMatrix::zeros(n, n),
+            piv: vec![0; n],
+            phi: vec![0.0; n],
+            f: vec![0.0; n],
+            factored: false,
+        })
+    }
+
+    /// The error phi = D y - u of eq. 2.25 (the penalised Lagrangian's gradient) at the last
+    /// evaluation.
+    pub fn error(&self) -> &[f64] {
+        &self.phi
+    }
+
+    /// Gather the inequality rows (module docs) of `qp` and their derivatives.
+    fn gather_rows(&mut self, qp: &Qp, qp_dot: Option<&Qp>) {
+        let QpDims { nx, n_in, .. } = self.dims;
+        let fin = |v: f64| if v.is_finite() { v } else { 0.0 };
+        let mut r = 0;
+        for k in 0..n_in {
+            for j in 0..nx {
+                self.b[(r, j)] = qp.g[(k, j)];
+                self.bdot[(r, j)] = qp_dot.map_or(0.0, |d| d.g[(k, j)]);
+            }
+            self.h[r] = qp.h[k];
+            self.hdot[r] = qp_dot.map_or(0.0, |d| d.h[k]);
+            r += 1;
+        }
+        for j in 0..nx {
+            for (bound, sign, dot) in [
+                (qp.upper[j], 1.0, qp_dot.map_or(0.0, |d| fin(d.upper[j]))),
+                (-qp.lower[j], -1.0, qp_dot.map_or(0.0, |d| -fin(d.lower[j]))),
+            ] {
+                if bound.is_finite() {
+                    for l in 0..nx {
+                        self.b[(r, l)] = 0.0;
+                        self.bdot[(r, l)] = 0.0;
+                    }
+                    self.b[(r, j)] = sign;
+                    self.h[r] = bound;
+                    self.hdot[r] = dot;
+                    r += 1;
+                }
+            }
+        }
+        self.rows = r;
+    }
+
+    /// Evaluate phi, W, the right-hand side of eq. 2.30 and solve for F = ydot.
+    fn evaluate(&mut self, t: f64, y: &[f64], qp: &Qp, qp_dot: Option<&Qp>) {
+        let QpDims { nx, n_eq, .. } = self.dims;
+        debug_assert_eq!(qp.dims(), self.dims, "QP sizes differ from the sizes the network was built for");
+        debug_assert_eq!(y.len(), nx + n_eq);
+        self.gather_rows(qp, qp_dot);
+        let (x, lambda) = y.split_at(nx);
+        let (p, sigma) = (self.p, self.sigma);
+        for i in 0..self.rows {
+            let mut bx = 0.0;
+            let mut bdx = 0.0;
+            for j in 0..nx {
+                bx += self.b[(i, j)] * x[j];
+                bdx += self.bdot[(i, j)] * x[j];
+            }
+            let n_i = self.h[i] - bx;
+            self.c[i] = p * sigma * (-sigma * n_i).min(EXPONENT_CAP).exp();
+            self.bdot_x[i] = bdx;
+        }
+        // W and phi.
+        for i in 0..nx {
+            for j in 0..nx {
+                let mut s = qp.p[(i, j)];
+                for r in 0..self.rows {
+                    s += sigma * self.c[r] * self.b[(r, i)] * self.b[(r, j)];
+                }
+                self.w[(i, j)] = s;
+            }
+            for k in 0..n_eq {
+                self.w[(i, nx + k)] = qp.a[(k, i)];
+                self.w[(nx + k, i)] = qp.a[(k, i)];
+            }
+        }
+        for k in 0..n_eq {
+            for l in 0..n_eq {
+                self.w[(nx + k, nx + l)] = 0.0;
+            }
+        }
+        for i in 0..nx {
+            let mut s = qp.q[i];
+            for j in 0..nx {
+                s += qp.p[(i, j)] * x[j];
+            }
+            for k in 0..n_eq {
+                s += qp.a[(k, i)] * lambda[k];
+            }
+            for r in 0..self.rows {
+                s += self.c[r] * self.b[(r, i)];
+            }
+            self.phi[i] = s;
+        }
+        for k in 0..n_eq {
+            let mut s = -qp.b[k];
+            for j in 0..nx {
+                s += qp.a[(k, j)] * x[j];
+            }
+            self.phi[nx + k] = s;
+        }
+        // r = -S y - g Phi(phi) + mu.
+        let g = self.gain.at(t);
+        for i in 0..(nx + n_eq) {
+            self.f[i] = -g * self.activation.value(self.phi[i]);
+        }
+        if let Some(d) = qp_dot {
+            for i in 0..nx {
+                let mut s = -d.q[i];
+                for j in 0..nx {
+                    s -= d.p[(i, j)] * x[j];
+                }
+                for k in 0..n_eq {
+                    s -= d.a[(k, i)] * lambda[k];
+                }
+                for r in 0..self.rows {
+                    let c = self.c[r];
+                    s -= sigma * c * self.b[(r, i)] * self.bdot_x[r];
+                    s -= c * (self.bdot[(r, i)] - sigma * self.b[(r, i)] * self.hdot[r]);
+                }
+                self.f[i] += s;
+            }
+            for k in 0..n_eq {
+                let mut s = d.b[k];
+                for j in 0..nx {
+                    s -= d.a[(k, j)] * x[j];
+                }
+                self.f[nx + k] += s;
+            }
+        }
+        self.lu.copy_from(&self.w);
+        self.factored = lu::factor(&mut self.lu, &mut self.piv);
+        if self.factored {
+            lu::solve(&self.lu, &self.piv, &mut self.f);
+        } else {
+            self.f.fill(f64::NAN);
+        }
+    }
+}
+
+impl NeuralSolver for VpRnnPf {
+    fn name(&self) -> String {
+        "VP-RNN-PF".into()
+    }
+    fn state_dim(&self, dims: QpDims) -> usize {
+        dims.nx + dims.n_eq
+    }
+    fn needs_qp_dot(&self) -> bool {
+        true
+    }
+    fn rhs(&mut self, t: f64, y: &[f64], qp: &Qp, qp_dot: Option<&Qp>, ydot: &mut [f64]) {
+        self.evaluate(t, y, qp, qp_dot);
+        ydot.copy_from_slice(&self.f);
+    }
+    fn jacobian(&mut self, t: f64, y: &[f64], qp: &Qp, qp_dot: Option<&Qp>, jac: &mut DMatrix<f64>) -> bool {
+        self.evaluate(t, y, qp, qp_dot);
+        if !self.factored {
+            return false;
+        }
+        let QpDims { nx, n_eq, .. } = self.dims;
+        let n = nx + n_eq;
+        let sigma = self.sigma;
+        let g = self.gain.at(t);
+        // -g diag(Phi'(phi)) W.
+        for i in 0..n {
+            let s = g * self.activation.derivative(self.phi[i]);
+            for j in 0..n {
+                jac[(i, j)] = -s * self.w[(i, j)];
+            }
+        }
+        // sigma^2 sum c_i (hdot_i - Bdot_i x - B_i F_x) B_i'B_i (the F_x part is -(dW/dy) F).
+        for r in 0..self.rows {
+            let mut bf = 0.0;
+            for j in 0..nx {
+                bf += self.b[(r, j)] * self.f[j];
+            }
+            let hd = self.hdot[r] - self.bdot_x[r];
+            let coef = sigma * sigma * self.c[r] * (hd - bf);
+            if coef == 0.0 {
+                continue;
+            }
+            for i in 0..nx {
+                let bi = self.b[(r, i)];
+                if bi == 0.0 {
+                    continue;
+                }
+                for j in 0..nx {
+                    jac[(i, j)] += coef * bi * self.b[(r, j)];
+                }
+            }
+        }
+        if let Some(d) = qp_dot {
+            for i in 0..nx {
+                for j in 0..nx {
+                    let mut s = d.p[(i, j)];
+                    for r in 0..self.rows {
+                        s += sigma
+                            * self.c[r]
+                            * (self.b[(r, i)] * self.bdot[(r, j)] + self.bdot[(r, i)] * self.b[(r, j)]);
+                    }
+                    jac[(i, j)] -= s;
+                }
+            }
+            for k in 0..n_eq {
+                for j in 0..nx {
+                    jac[(j, nx + k)] -= d.a[(k, j)];
+                    jac[(nx + k, j)] -= d.a[(k, j)];
+                }
+            }
+        }
+        lu::solve_columns(&self.lu, &self.piv, jac);
+        true
+    }
+}

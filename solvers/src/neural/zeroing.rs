@@ -1,0 +1,278 @@
+//! The zeroing core shared by every equality-only network of the papers: FP-CDNN and VP-CDNN
+//! (zhang2018 eq. 2.15, 2.11, perturbed 3.2, 3.1), kong2019's finite-time network (eq. 17-20)
+//! and the plain ZNN of kong2019's comparison scheme (eq. 22).
+//!
+//! # The equation they zero
+//!
+//! For the equality-only QP min x'Px/2 + q'x s.t. A x = b the Lagrange conditions
+//! (zhang2018 eq. 2.7-2.8, kong2019 eq. 15-18) are the linear system
+//!
+//! ```text
+//!     Q y = u,   Q = [ P  A' ],   y = [ x      ],   u = [ -q ]
+//!                    [ A  0  ]        [ lambda ]        [  b ]
+//! ```
+//!
+//! (zhang2018 writes Q = [W J'; J 0], u = [-eta; b]; kong2019 writes W = [I J'; J 0],
+//! v = [-beta_theta c; rdot* + k_p (r* - f)]), so lambda has the sign convention of
+//! [`crate::qp::QpDuals`]. The error E(t) = Q y - u (zhang2018 eq. 2.9, kong2019 eq. 19) is made
+//! to obey Edot = -g(t) Phi(E) (zhang2018 eq. 2.10 / 2.14, kong2019 eq. 6); since
+//! Edot = Qdot y + Q ydot - udot (zhang2018 eq. 3.4) the network is the implicit system
+//!
+//! ```text
+//!     Q ydot = -Qdot y + udot - g(t) Phi(Q y - u)  [ - DeltaD(t) y + Delta s(t) ]
+//! ```
+//!
+//! with the bracketed perturbation of zhang2018 eq. 3.1-3.2 (see [`super::cdnn`]) where given.
+//! Q is small and invertible (P positive definite on the null space of A, A of full row rank),
+//! so ydot is solved for at each evaluation with an in-place LU with partial pivoting on a
+//! preallocated matrix ([`super::lu`]); Qdot and udot come from `qp_dot` (P, A, q, b
+//! differentiated); with no `qp_dot` the QP is taken as frozen (Qdot = 0, udot = 0).
+//!
+//! Inequality rows and bounds are outside this structure: a network is built only for
+//! `n_in = 0`, and the bounds `lower`/`upper` of the QP are ignored (the schemes that use these
+//! networks have none).
+//!
+//! Jacobian (QP data frozen, as the trait asks): Q dF/dy = -Qdot - DeltaD - g(t) diag(Phi'(E)) Q.
+
+use super::activation::Activation;
+use super::cdnn::ReferencePerturbation;
+use super::lu;
+use super::NeuralSolver;
+use crate::qp::{Qp, QpDims};
+use nalgebra::DMatrix;
+
+/// Convergence gain of a zeroing network.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Gain {
+    /// g(t) = gamma (zhang2018 eq. 2.14-2.15, kong2019 eq. 6 with gamma = beta).
+    Fixed(f64),
+    /// g(t) = gamma exp(t) (zhang2018 eq. 2.10-2.11; zhong2021 eq. 2.26).
+    Exponential(f64),
+}
+
+impl Gain {
+    #[inline]
+    pub fn at(&self, t: f64) -> f64 {
+        match *self {
+            Gain::Fixed(g) => g,
+            Gain::Exponential(g) => g * t.exp(),
+        }
+    }
+}
+
+/// Q ydot = -Qdot y + udot - g(t) Phi(Q y - u) (+ perturbation): see the module docs.
+#[derive(Clone, Debug)]
+pub struct ZeroingNetwork {
+    name: String,
+    gain: Gain,
+    activation: Activation,
+    perturbation: Option<ReferencePerturbation>,
+    dims: QpDims,
+    /// Q, then its LU factors.
+    lu: DMatrix<f64>,
+    piv: Vec<usize>,
+    /// E = Q y - u.
+    e: Vec<f64>,
+    /// DeltaD(t) scratch (perturbed networks).
+    delta_d: DMatrix<f64>,
+    delta_s: Vec<f64>,
+}
+
+impl ZeroingNetwork {
+    /// A zeroing network named `name` (as the paper writes it) for QPs of sizes `dims`
+    /// (n_in must be 0; a perturbation needs nx + n_eq = 9).
+    pub fn new(
+        name: impl Into<String>,
+        gain: Gain,
+        activation: Activation,
+        perturbation: Option<ReferencePerturbation>,
+        dims: QpDims,
+    ) -> Result<Self, String> {
+        let name = name.into();
+        if dims.n_in != 0 {
+            return Err(format!(
+                "{name} solves equality-constrained QPs only (Q y = u); this QP has {} inequality rows",
+                dims.n_in
+            ));
+        }
+        activation.validate()?;
+        let n = dims.nx + dims.n_eq;
+        if let Some(p) = &perturbation {
+            p.validate(n)?;
+        }
+        Ok(Self {
+            name,
+            gain,
+            activation,
+            perturbation,
+            dims,
+            lu: DMatrix::zeros(n, n),
+            piv: vec![0; n],
+            e: vec![0.0; n],
+            delta_d: DMatrix::zeros(n, n),
+            delta_s: vec![0.0; n],
+        })
+    }
+
+    pub fn gain(&self) -> Gain {
+        self.gain
+    }
+    pub fn activation(&self) -> Activation {
+        self.activation
+    }
+    pub fn perturbation(&self) -> Option<&ReferencePerturbation> {
+        self.perturbation.as_ref()
+    }
+
+    /// Write Q (module docs) into `self.lu`.
+    fn assemble_q(&mut self, qp: &Qp) {
+        let QpDims { nx, n_eq, .. } = self.dims;
+        debug_assert_eq!(qp.dims(), self.dims, "QP sizes differ from the sizes the network was built for");
+        let q = &mut self.lu;
+        for i in 0..nx {
+            for j in 0..nx {
+                q[(i, j)] = qp.p[(i, j)];
+            }
+        }
+        for k in 0..n_eq {
+            for j in 0..nx {
+                q[(j, nx + k)] = qp.a[(k, j)];
+                q[(nx + k, j)] = qp.a[(k, j)];
+            }
+            for l in 0..n_eq {
+                q[(nx + k, nx + l)] = 0.0;
+            }
+        }
+    }
+
+    /// E = Q y - u into `self.e` (Q must be assembled, not yet factored).
+    fn compute_error(&mut self, qp: &Qp, y: &[f64]) {
+        let QpDims { nx, .. } = self.dims;
+        let n = y.len();
+        for i in 0..n {
+            let mut s = 0.0;
+            for j in 0..n {
+                s += self.lu[(i, j)] * y[j];
+            }
+            let u = if i < nx { -qp.q[i] } else { qp.b[i - nx] };
+            self.e[i] = s - u;
+        }
+    }
+
+    /// The error E = Q y - u (zhang2018 eq. 2.9, kong2019 eq. 19), e.g. for kong2019's
+    /// J_E = ||W y - v||.
+    pub fn error(&mut self, qp: &Qp, y: &[f64]) -> &[f64] {
+        self.assemble_q(qp);
+        self.compute_error(qp, y);
+        &self.e
+    }
+
+    /// (Qdot y)_i for the QP derivative `d` (Qdot = [Pdot Adot'; Adot 0]).
+    #[inline]
+    fn qdot_y(&self, d: &Qp, y: &[f64], i: usize) -> f64 {
+        let QpDims { nx, n_eq, .. } = self.dims;
+        let mut s = 0.0;
+        if i < nx {
+            for j in 0..nx {
+                s += d.p[(i, j)] * y[j];
+            }
+            for k in 0..n_eq {
+                s += d.a[(k, i)] * y[nx + k];
+            }
+        } else {
+            let k = i - nx;
+            for j in 0..nx {
+                s += d.a[(k, j)] * y[j];
+            }
+        }
+        s
+    }
+
+    fn fill_perturbation(&mut self, t: f64) {
+        if let Some(p) = &self.perturbation {
+            p.delta_d(t, &mut self.delta_d);
+            p.delta_s(t, &mut self.delta_s);
+        }
+    }
+}
+
+impl NeuralSolver for ZeroingNetwork {
+    fn name(&self) -> String {
+        self.name.clone()
+    }
+    fn state_dim(&self, dims: QpDims) -> usize {
+        dims.nx + dims.n_eq
+    }
+    fn needs_qp_dot(&self) -> bool {
+        true
+    }
+    fn rhs(&mut self, t: f64, y: &[f64], qp: &Qp, qp_dot: Option<&Qp>, ydot: &mut [f64]) {
+        let nx = self.dims.nx;
+        let n = y.len();
+        debug_assert_eq!(n, self.dims.nx + self.dims.n_eq);
+        self.assemble_q(qp);
+        self.compute_error(qp, y);
+        self.fill_perturbation(t);
+        let g = self.gain.at(t);
+        for i in 0..n {
+            let mut r = -g * self.activation.value(self.e[i]);
+            if let Some(d) = qp_dot {
+                let udot = if i < nx { -d.q[i] } else { d.b[i - nx] };
+                r += udot - self.qdot_y(d, y, i);
+            }
+            if self.perturbation.is_some() {
+                let mut dy = 0.0;
+                for j in 0..n {
+                    dy += self.delta_d[(i, j)] * y[j];
+                }
+                r += self.delta_s[i] - dy;
+            }
+            ydot[i] = r;
+        }
+        if !lu::factor(&mut self.lu, &mut self.piv) {
+            ydot.fill(f64::NAN);
+            return;
+        }
+        lu::solve(&self.lu, &self.piv, ydot);
+    }
+    fn jacobian(&mut self, t: f64, y: &[f64], qp: &Qp, qp_dot: Option<&Qp>, jac: &mut DMatrix<f64>) -> bool {
+        let QpDims { nx, n_eq, .. } = self.dims;
+        let n = y.len();
+        self.assemble_q(qp);
+        self.compute_error(qp, y);
+        self.fill_perturbation(t);
+        let g = self.gain.at(t);
+        // Right-hand side -Qdot - DeltaD - g diag(Phi'(E)) Q.
+        for i in 0..n {
+            let s = g * self.activation.derivative(self.e[i]);
+            for j in 0..n {
+                jac[(i, j)] = -s * self.lu[(i, j)];
+            }
+        }
+        if let Some(d) = qp_dot {
+            for i in 0..nx {
+                for j in 0..nx {
+                    jac[(i, j)] -= d.p[(i, j)];
+                }
+            }
+            for k in 0..n_eq {
+                for j in 0..nx {
+                    jac[(j, nx + k)] -= d.a[(k, j)];
+                    jac[(nx + k, j)] -= d.a[(k, j)];
+                }
+            }
+        }
+        if self.perturbation.is_some() {
+            for i in 0..n {
+                for j in 0..n {
+                    jac[(i, j)] -= self.delta_d[(i, j)];
+                }
+            }
+        }
+        if !lu::factor(&mut self.lu, &mut self.piv) {
+            return false;
+        }
+        lu::solve_columns(&self.lu, &self.piv, jac);
+        true
+    }
+}
