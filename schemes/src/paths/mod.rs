@@ -1,8 +1,49 @@
 //! Desired end-effector paths r*(t), rdot*(t), rddot*(t) (see `shared/spec/paths.md`).
 //!
-//! Common form: r*(t) = r_start + dr(phi(t)) with the group's time law
-//! phi(t) = 2 pi sin^2(pi t / (2T)), so phi runs 0 -> 2 pi with zero speed at both ends.
-//! Stroke paths (characters, triangle) are polylines with a rest-to-rest sin^2 law per segment.
+//! # Mathematics
+//!
+//! **Time law** ([`time_law`]). Every path is driven by the rest-to-rest fraction
+//! s(t) = sin^2(pi t / (2T)), sdot = (pi / 2T) sin(pi t / T), sddot = (pi^2 / 2T^2) cos(pi t / T),
+//! which runs 0 -> 1 with zero speed at t = 0 and t = T. The group's time law is phi = 2 pi s:
+//! phi(t) = 2 pi sin^2(pi t / (2T)), phidot = (pi^2 / T) sin(pi t / T), phiddot = (pi^3 / T^2) cos(pi t / T).
+//!
+//! **Closed curves** ([`curve`]). r*(t) = r_start + dr(phi(t)) with dr(0) = 0 = dr(2 pi) and dr, dr', dr''
+//! analytic in phi; the chain rule gives rdot = dr'(phi) phidot and rddot = dr''(phi) phidot^2 + dr'(phi) phiddot.
+//!
+//! **Stroke paths** ([`stroke`], [`characters`]). Polylines P0 -> P1 -> ... -> P0; segment k is the
+//! rest-to-rest move r = P_k + (P_{k+1} - P_k) s_k(t - t_k) with s_k the fraction above over
+//! Delta_k = T L_k / sum(L). Every segment has the same peak speed (pi/2) sum(L) / T and the speed is zero
+//! at every corner; the acceleration jumps there.
+//!
+//! **Globally timed polylines** ([`polyline_global`], the `star-lines` pentagram). The polyline is run
+//! with one time law over its whole arc length: arc-length fraction s(t) = phi(t) / 2 pi, so corners are
+//! passed at speed (the velocity changes direction there; the acceleration has a delta).
+//!
+//! **Construction** ([`spec`]). [`PathSpec`] names a path, its duration and optionally its size;
+//! [`build_path`] turns it into a boxed [`Path`]. Evaluation never allocates: segment tables are
+//! built once at construction. Outside [0, T] every path rests at its end point (zero velocity and
+//! acceleration); at t = 0 and t = T exactly the analytic values are returned (the acceleration
+//! there is generally non-zero because sddot(0) = pi^2 / 2T^2).
+//!
+//! Planar paths lie in the base frame's x-y plane through r_start: z stays r_start.z.
+
+pub mod characters;
+pub mod curve;
+pub mod error;
+pub mod polyline_global;
+pub mod spec;
+pub mod stroke;
+pub mod time_law;
+
+pub use characters::{Character, DAI, PING};
+pub use curve::{ClosedCurve, CurveShape};
+pub use error::PathError;
+pub use polyline_global::GlobalPolyline;
+pub use spec::{
+    build_path, default_duration, default_scale, scale_provenance, PathSpec, PATH_NAMES,
+};
+pub use stroke::{StrokePath, StrokeSegment};
+pub use time_law::{Fraction, RestToRest};
 
 use nalgebra::Vector3;
 
@@ -20,4 +61,9 @@ pub trait Path: Send + Sync {
     fn duration(&self) -> f64;
     /// r*(t), rdot*(t), rddot*(t).
     fn at(&self, t: f64) -> PathPoint;
+    /// Interior instants in (0, T), ascending, where rdot or rddot is discontinuous (corners of
+    /// polylines). Integrators should stop there; the smooth curves have none.
+    fn breakpoints(&self) -> &[f64] {
+        &[]
+    }
 }
