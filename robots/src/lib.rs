@@ -10,8 +10,23 @@
 //!   frame 6, base tilt Rx(-0.02) Ry(-0.05).
 //! - [`Jaco2::kinova`] — Kinova's own model (`jaco2`): D6 = 0.16, hand centre, no tilt.
 //! - [`Katana6m180`] — kong2019's eq. (2), 5 joints.
+//!
+//! Modules: [`dh`] (classical DH forward kinematics), [`geometric_jacobian`] (point and body
+//! Jacobians and their time derivatives), [`rigid_body`] (recursive Newton–Euler, inertia and
+//! Coriolis matrices), [`jaco2`] (Jaco2 kinematics), [`jaco2_dynamics`] (Jaco2 inertial table and
+//! [`Dynamics`] implementation), [`katana`] (Katana 6M180).
 
 use nalgebra::{SMatrix, SVector, Vector3};
+
+pub mod dh;
+pub mod geometric_jacobian;
+pub mod jaco2;
+pub mod jaco2_dynamics;
+pub mod katana;
+pub mod rigid_body;
+
+pub use jaco2::{Jaco2, JACO2, JACO2_PEN};
+pub use katana::{Katana6m180, KATANA6M180};
 
 /// Number of task-space coordinates (end-effector position only) in every paper.
 pub const M: usize = 3;
@@ -19,9 +34,13 @@ pub const M: usize = 3;
 /// Joint-angle and joint-velocity limits, elementwise; `f64::INFINITY` where unlimited.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct JointLimits<const N: usize> {
+    /// Lower joint-angle limits (rad).
     pub theta_min: SVector<f64, N>,
+    /// Upper joint-angle limits (rad).
     pub theta_max: SVector<f64, N>,
+    /// Lower joint-velocity limits (rad/s).
     pub thetadot_min: SVector<f64, N>,
+    /// Upper joint-velocity limits (rad/s).
     pub thetadot_max: SVector<f64, N>,
 }
 

@@ -1,0 +1,144 @@
+//! Classical Denavit–Hartenberg forward kinematics.
+//!
+//! Link `i` of a serial chain is described by `(a_i, alpha_i, d_i)` and its joint angle
+//! `theta_i`; the homogeneous transform from frame `i-1` to frame `i` is
+//!
+//! ```text
+//! A_i = Rz(theta_i) Tz(d_i) Tx(a_i) Rx(alpha_i)
+//!     = [ cθ  -sθ cα   sθ sα   a cθ ]
+//!       [ sθ   cθ cα  -cθ sα   a sθ ]
+//!       [ 0    sα      cα      d    ]
+//!       [ 0    0       0       1    ]
+//! ```
+//!
+//! A chain may carry a fixed base transform `B` (e.g. the Jaco2 pen model's tilt), so frame `k`
+//! in world coordinates is `T_k = B A_1 ... A_k`, with `T_0 = B`. Joint `i` rotates about the
+//! z axis of frame `i-1`, through the origin of frame `i-1`.
+//!
+//! All frames live on the stack (`[Frame; N]`): evaluating a chain never allocates.
+
+use nalgebra::{Matrix3, SVector, Vector3};
+
+/// A rigid transform stored as a rotation matrix and a translation (the origin of the frame).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Frame {
+    /// Orientation: columns are the frame's x, y, z axes in world coordinates.
+    pub rot: Matrix3<f64>,
+    /// Position of the frame's origin in world coordinates.
+    pub origin: Vector3<f64>,
+}
+
+impl Frame {
+    /// The identity transform.
+    pub fn identity() -> Self {
+        Frame { rot: Matrix3::identity(), origin: Vector3::zeros() }
+    }
+
+    /// A pure rotation (origin at zero).
+    pub fn rotation(rot: Matrix3<f64>) -> Self {
+        Frame { rot, origin: Vector3::zeros() }
+    }
+
+    /// Composition `self * other` (apply `other` first, expressed in `self`).
+    pub fn compose(&self, other: &Frame) -> Frame {
+        Frame { rot: self.rot * other.rot, origin: self.origin + self.rot * other.origin }
+    }
+
+    /// Maps a point given in this frame's coordinates to world coordinates.
+    pub fn transform_point(&self, p: &Vector3<f64>) -> Vector3<f64> {
+        self.origin + self.rot * p
+    }
+
+    /// The frame's z axis in world coordinates.
+    pub fn z_axis(&self) -> Vector3<f64> {
+        self.rot.column(2).into_owned()
+    }
+}
+
+/// Classical DH parameters of one link.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DhParam {
+    /// Common-normal length (along x_i).
+    pub a: f64,
+    /// Twist about x_i.
+    pub alpha: f64,
+    /// Offset along z_{i-1}.
+    pub d: f64,
+}
+
+impl DhParam {
+    /// Creates the parameters `(a, alpha, d)`.
+    pub const fn new(a: f64, alpha: f64, d: f64) -> Self {
+        DhParam { a, alpha, d }
+    }
+
+    /// The link transform `A(theta) = Rz(theta) Tz(d) Tx(a) Rx(alpha)`.
+    pub fn transform(&self, theta: f64) -> Frame {
+        let (st, ct) = theta.sin_cos();
+        let (sa, ca) = self.alpha.sin_cos();
+        Frame {
+            rot: Matrix3::new(ct, -st * ca, st * sa, st, ct * ca, -ct * sa, 0.0, sa, ca),
+            origin: Vector3::new(self.a * ct, self.a * st, self.d),
+        }
+    }
+}
+
+/// A serial chain of `N` revolute joints in classical DH convention with a fixed base transform.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DhChain<const N: usize> {
+    /// Fixed transform from the world to DH frame 0.
+    pub base: Frame,
+    /// DH parameters of links 1..=N.
+    pub params: [DhParam; N],
+}
+
+impl<const N: usize> DhChain<N> {
+    /// A chain whose DH frame 0 is the world frame.
+    pub fn new(params: [DhParam; N]) -> Self {
+        DhChain { base: Frame::identity(), params }
+    }
+
+    /// The same chain premultiplied by a fixed base transform.
+    pub fn with_base(self, base: Frame) -> Self {
+        DhChain { base, ..self }
+    }
+
+    /// World-frame transforms `T_0 .. T_N` at joint angles `theta`.
+    pub fn frames(&self, theta: &SVector<f64, N>) -> ChainFrames<N> {
+        let mut links = [Frame::identity(); N];
+        let mut t = self.base;
+        for (i, (link, p)) in links.iter_mut().zip(self.params.iter()).enumerate() {
+            t = t.compose(&p.transform(theta[i]));
+            *link = t;
+        }
+        ChainFrames { base: self.base, links }
+    }
+}
+
+/// The world-frame transforms `T_0 = B, T_1, ..., T_N` of a chain at one configuration.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ChainFrames<const N: usize> {
+    base: Frame,
+    links: [Frame; N],
+}
+
+impl<const N: usize> ChainFrames<N> {
+    /// Frame `k` for `k` in `0..=N` (frame 0 is the base).
+    pub fn frame(&self, k: usize) -> &Frame {
+        if k == 0 {
+            &self.base
+        } else {
+            &self.links[k - 1]
+        }
+    }
+
+    /// Origin `o_k` of frame `k` in world coordinates.
+    pub fn origin(&self, k: usize) -> Vector3<f64> {
+        self.frame(k).origin
+    }
+
+    /// Axis `z_k` of frame `k` in world coordinates (the axis of joint `k + 1`).
+    pub fn z(&self, k: usize) -> Vector3<f64> {
+        self.frame(k).z_axis()
+    }
+}

@@ -1,0 +1,166 @@
+//! Katana 6M180, 5 joints, exactly as kong2019's eq. (2) (`shared/spec/robots.md`).
+//!
+//! With `C1 = cos theta1`, `C23 = cos(theta2 + theta3)`, `S234 = sin(theta2 + theta3 + theta4)`
+//! etc. and `L = l4 + l5`:
+//!
+//! ```text
+//! h    = l2 C2 + l3 C23 + L S234
+//! f(θ) = [ C1 h,  S1 h,  l1 - L C234 + l2 S2 + l3 S23 ]
+//! ```
+//!
+//! Joint 5 (wrist roll) does not appear: its Jacobian column is zero. With the partial
+//! derivatives of `h` and of the height `z`,
+//!
+//! ```text
+//! h2 = -l2 S2 - l3 S23 + L C234,   h3 = -l3 S23 + L C234,   h4 = L C234,
+//! z2 =  l2 C2 + l3 C23 + L S234 = h,   z3 = l3 C23 + L S234,   z4 = L S234,
+//! J  = [ -S1 h   C1 h2   C1 h3   C1 h4   0 ]
+//!      [  C1 h   S1 h2   S1 h3   S1 h4   0 ]
+//!      [  0      z2      z3      z4      0 ]
+//! ```
+//!
+//! and `Jdot` is its exact time derivative, using the angle rates `w2 = thetadot2`,
+//! `w23 = thetadot2 + thetadot3`, `w234 = w23 + thetadot4`:
+//! `hdot2 = -l2 C2 w2 - l3 C23 w23 - L S234 w234`, `hdot3 = -l3 C23 w23 - L S234 w234`,
+//! `hdot4 = -L S234 w234`, `zdot2 = hdot = h2 thetadot2 + h3 thetadot3 + h4 thetadot4`,
+//! `zdot3 = -l3 S23 w23 + L C234 w234`, `zdot4 = L C234 w234`.
+//!
+//! Joint limits: kong2019's scheme enforces none, so all limits are infinite.
+
+use nalgebra::{SMatrix, SVector, Vector3};
+
+use crate::{JointLimits, Robot};
+
+/// Model name of the Katana 6M180.
+pub const KATANA6M180: &str = "katana6m180";
+
+/// The Katana 6M180 position model of kong2019, eq. (2).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Katana6m180 {
+    /// Base height l1 (m).
+    pub l1: f64,
+    /// Upper-arm length l2 (m).
+    pub l2: f64,
+    /// Forearm length l3 (m).
+    pub l3: f64,
+    /// Wrist length l4 (m).
+    pub l4: f64,
+    /// Gripper length l5 (m); only l4 + l5 matters.
+    pub l5: f64,
+}
+
+/// Sines and cosines shared by the position, Jacobian and Jdot.
+struct Trig {
+    s1: f64,
+    c1: f64,
+    s2: f64,
+    c2: f64,
+    s23: f64,
+    c23: f64,
+    s234: f64,
+    c234: f64,
+}
+
+impl Trig {
+    fn new(theta: &SVector<f64, 5>) -> Self {
+        let (s1, c1) = theta[0].sin_cos();
+        let (s2, c2) = theta[1].sin_cos();
+        let (s23, c23) = (theta[1] + theta[2]).sin_cos();
+        let (s234, c234) = (theta[1] + theta[2] + theta[3]).sin_cos();
+        Trig { s1, c1, s2, c2, s23, c23, s234, c234 }
+    }
+}
+
+impl Katana6m180 {
+    /// The Katana manual's lengths: l1 = 0.2015, l2 = 0.19, l3 = 0.139, l4 = 0.1523, l5 = 0.1505.
+    pub fn new() -> Self {
+        Katana6m180 { l1: 0.2015, l2: 0.19, l3: 0.139, l4: 0.1523, l5: 0.1505 }
+    }
+
+    /// Wrist-plus-gripper length L = l4 + l5.
+    fn wrist(&self) -> f64 {
+        self.l4 + self.l5
+    }
+
+    /// Horizontal reach `h` and its partials `(h2, h3, h4)`.
+    fn reach(&self, t: &Trig) -> (f64, [f64; 3]) {
+        let l = self.wrist();
+        let h = self.l2 * t.c2 + self.l3 * t.c23 + l * t.s234;
+        let h4 = l * t.c234;
+        let h3 = -self.l3 * t.s23 + h4;
+        let h2 = -self.l2 * t.s2 + h3;
+        (h, [h2, h3, h4])
+    }
+}
+
+impl Default for Katana6m180 {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Robot<5> for Katana6m180 {
+    fn name(&self) -> &'static str {
+        KATANA6M180
+    }
+
+    fn position(&self, theta: &SVector<f64, 5>) -> Vector3<f64> {
+        let t = Trig::new(theta);
+        let (h, _) = self.reach(&t);
+        let z = self.l1 - self.wrist() * t.c234 + self.l2 * t.s2 + self.l3 * t.s23;
+        Vector3::new(t.c1 * h, t.s1 * h, z)
+    }
+
+    fn jacobian(&self, theta: &SVector<f64, 5>) -> SMatrix<f64, 3, 5> {
+        let t = Trig::new(theta);
+        let (h, dh) = self.reach(&t);
+        let z4 = self.wrist() * t.s234;
+        let z3 = self.l3 * t.c23 + z4;
+        let dz = [h, z3, z4];
+        let mut jac = SMatrix::<f64, 3, 5>::zeros();
+        jac[(0, 0)] = -t.s1 * h;
+        jac[(1, 0)] = t.c1 * h;
+        for k in 0..3 {
+            jac[(0, k + 1)] = t.c1 * dh[k];
+            jac[(1, k + 1)] = t.s1 * dh[k];
+            jac[(2, k + 1)] = dz[k];
+        }
+        jac
+    }
+
+    fn jacobian_dot(&self, theta: &SVector<f64, 5>, thetadot: &SVector<f64, 5>) -> SMatrix<f64, 3, 5> {
+        let t = Trig::new(theta);
+        let l = self.wrist();
+        let (h, dh) = self.reach(&t);
+        let w1 = thetadot[0];
+        let w2 = thetadot[1];
+        let w23 = w2 + thetadot[2];
+        let w234 = w23 + thetadot[3];
+        let h_dot = dh[0] * thetadot[1] + dh[1] * thetadot[2] + dh[2] * thetadot[3];
+        let dh4_dot = -l * t.s234 * w234;
+        let dh3_dot = -self.l3 * t.c23 * w23 + dh4_dot;
+        let dh2_dot = -self.l2 * t.c2 * w2 + dh3_dot;
+        let dh_dot = [dh2_dot, dh3_dot, dh4_dot];
+        let dz4_dot = l * t.c234 * w234;
+        let dz3_dot = -self.l3 * t.s23 * w23 + dz4_dot;
+        let dz_dot = [h_dot, dz3_dot, dz4_dot];
+        let mut jdot = SMatrix::<f64, 3, 5>::zeros();
+        jdot[(0, 0)] = -t.c1 * w1 * h - t.s1 * h_dot;
+        jdot[(1, 0)] = -t.s1 * w1 * h + t.c1 * h_dot;
+        for k in 0..3 {
+            jdot[(0, k + 1)] = -t.s1 * w1 * dh[k] + t.c1 * dh_dot[k];
+            jdot[(1, k + 1)] = t.c1 * w1 * dh[k] + t.s1 * dh_dot[k];
+            jdot[(2, k + 1)] = dz_dot[k];
+        }
+        jdot
+    }
+
+    fn limits(&self) -> JointLimits<5> {
+        JointLimits {
+            theta_min: SVector::repeat(f64::NEG_INFINITY),
+            theta_max: SVector::repeat(f64::INFINITY),
+            thetadot_min: SVector::repeat(f64::NEG_INFINITY),
+            thetadot_max: SVector::repeat(f64::INFINITY),
+        }
+    }
+}
