@@ -50,7 +50,12 @@ pub enum QpShape {
 
 impl QpShape {
     /// All four shapes.
-    pub const ALL: [QpShape; 4] = [QpShape::Jia2019, QpShape::Zhong2021, QpShape::Zhang2018, QpShape::Kong2019];
+    pub const ALL: [QpShape; 4] = [
+        QpShape::Jia2019,
+        QpShape::Zhong2021,
+        QpShape::Zhang2018,
+        QpShape::Kong2019,
+    ];
 
     /// Whether QPs of this shape have equalities only (no inequality rows, no finite bounds).
     pub fn is_equality_only(self) -> bool {
@@ -71,7 +76,11 @@ pub fn random_qp(shape: QpShape, seed: u64) -> Qp {
     let mut rng = rng_from_seed(seed);
     match shape {
         QpShape::Jia2019 => {
-            let varpi = if rng.gen_bool(0.25) { f64::INFINITY } else { VARPI };
+            let varpi = if rng.gen_bool(0.25) {
+                f64::INFINITY
+            } else {
+                VARPI
+            };
             jia2019(&mut rng, varpi)
         }
         QpShape::Zhong2021 => zhong2021(&mut rng),
@@ -83,13 +92,18 @@ pub fn random_qp(shape: QpShape, seed: u64) -> Qp {
 /// Random jia2019 QP (x = [thetadot; p] in R^7) with upper bound `varpi` on p (finite or +inf).
 ///
 /// phi in [0.05, 0.6) and tau in [0, 0.9 - phi) so that 0.05 <= phi + tau < 0.9 and P is
-/// positive definite; q = [random in [-5, 5); 0]; J is a random 3 x 6 matrix of full row rank;
+/// positive definite; q = [random in [-s, s); 0] with s in [0, 3) (so that the bounds
+/// bind in some QPs and not in others); J is a random 3 x 6 matrix of full row rank;
 /// zeta- in [-1.5, -0.1), zeta+ in [0.1, 1.5). The feasible point is thetadot_f strictly inside
 /// (zeta-, zeta+) and p_f = |thetadot_f|_inf + 0.1, strictly inside every inequality and bound.
 pub fn jia2019<R: Rng>(rng: &mut R, varpi: f64) -> Qp {
     let d = TrackingData::draw(rng);
     let n = JACO2_JOINTS;
-    let mut qp = Qp::zeros(QpDims { nx: n + 1, n_eq: TASK_DIM, n_in: 2 * n });
+    let mut qp = Qp::zeros(QpDims {
+        nx: n + 1,
+        n_eq: TASK_DIM,
+        n_in: 2 * n,
+    });
     d.fill_objective_and_equalities(&mut qp);
     for i in 0..n {
         qp.g[(i, i)] = 1.0;
@@ -111,7 +125,11 @@ pub fn zhong2021<R: Rng>(rng: &mut R) -> Qp {
     let bounded = jia2019(rng, VARPI);
     let nx = bounded.q.len();
     let n_s = bounded.h.len();
-    let mut qp = Qp::zeros(QpDims { nx, n_eq: TASK_DIM, n_in: n_s + 2 * nx });
+    let mut qp = Qp::zeros(QpDims {
+        nx,
+        n_eq: TASK_DIM,
+        n_in: n_s + 2 * nx,
+    });
     qp.p.copy_from(&bounded.p);
     qp.q.copy_from(&bounded.q);
     qp.a.copy_from(&bounded.a);
@@ -134,7 +152,11 @@ pub fn zhang2018<R: Rng>(rng: &mut R) -> Qp {
     let zeta = rng.gen_range(0.0..=1.0);
     let m = uniform_matrix(rng, n, n, 1.0);
     let h = &m * m.transpose() / n as f64 + DMatrix::identity(n, n) * 0.05;
-    let mut qp = Qp::zeros(QpDims { nx: n, n_eq: TASK_DIM, n_in: 0 });
+    let mut qp = Qp::zeros(QpDims {
+        nx: n,
+        n_eq: TASK_DIM,
+        n_in: 0,
+    });
     qp.p = DMatrix::identity(n, n) * zeta + &h * &h * (1.0 - zeta);
     qp.p = (&qp.p + qp.p.transpose()) * 0.5;
     qp.q = uniform_vector(rng, n, 5.0);
@@ -147,7 +169,11 @@ pub fn zhang2018<R: Rng>(rng: &mut R) -> Qp {
 /// A random 3 x 5 of full row rank, b in [-1, 1)^3.
 pub fn kong2019<R: Rng>(rng: &mut R) -> Qp {
     let n = KATANA_JOINTS;
-    let mut qp = Qp::zeros(QpDims { nx: n, n_eq: TASK_DIM, n_in: 0 });
+    let mut qp = Qp::zeros(QpDims {
+        nx: n,
+        n_eq: TASK_DIM,
+        n_in: 0,
+    });
     qp.p = DMatrix::identity(n, n);
     qp.q = uniform_vector(rng, n, 5.0);
     qp.a = full_row_rank_matrix(rng, TASK_DIM, n);
@@ -164,7 +190,12 @@ pub fn kong2019<R: Rng>(rng: &mut R) -> Qp {
 /// G in [-1, 1), h = G x_f + slack with slack in [0.1, 1), so x_f is strictly feasible for
 /// every inequality and bound.
 pub fn random_feasible(dims: QpDims, seed: u64) -> Qp {
-    assert!(dims.n_eq <= dims.nx, "random_feasible: more equalities ({}) than variables ({})", dims.n_eq, dims.nx);
+    assert!(
+        dims.n_eq <= dims.nx,
+        "random_feasible: more equalities ({}) than variables ({})",
+        dims.n_eq,
+        dims.nx
+    );
     let mut rng = rng_from_seed(seed);
     let QpDims { nx, n_eq, n_in } = dims;
     let mut qp = Qp::zeros(dims);
@@ -209,14 +240,22 @@ impl TrackingData {
         let n = JACO2_JOINTS;
         let phi = rng.gen_range(0.05..0.6);
         let tau = rng.gen_range(0.0..0.9 - phi);
-        let q_theta = uniform_vector(rng, n, 5.0);
+        let q_scale = rng.gen_range(0.0..3.0);
+        let q_theta = uniform_vector(rng, n, q_scale);
         let jacobian = full_row_rank_matrix(rng, TASK_DIM, n);
         let zeta_lower = DVector::from_fn(n, |_, _| rng.gen_range(-1.5..-0.1));
         let zeta_upper = DVector::from_fn(n, |_, _| rng.gen_range(0.1..1.5));
         let thetadot_f = DVector::from_fn(n, |i, _| {
             zeta_lower[i] + (zeta_upper[i] - zeta_lower[i]) * rng.gen_range(0.05..0.95)
         });
-        Self { weight: phi + tau, q_theta, jacobian, zeta_lower, zeta_upper, thetadot_f }
+        Self {
+            weight: phi + tau,
+            q_theta,
+            jacobian,
+            zeta_lower,
+            zeta_upper,
+            thetadot_f,
+        }
     }
 
     /// P, q, A = [J 0] and b = J thetadot_f of a QP in x = [thetadot; p].
