@@ -1,4 +1,12 @@
 //! Desired paths and the four papers' redundancy-resolution schemes, each turning
 //! (t, robot state) into one QP.
 
+pub mod jia2019;
+pub mod joint_limits;
+pub mod kong2019;
 pub mod paths;
+pub mod qp_dot;
+pub mod scheme;
+pub mod spec;
+pub mod zhang2018;
+pub mod zhong2021;

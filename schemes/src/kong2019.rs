@@ -1,0 +1,180 @@
+//! kong2019: the finite-time repeatable-motion scheme (eq. 14) and the ZNN repetitive scheme it
+//! is compared with (eq. 22) (Kong et al. 2019), both velocity level, x = thetadot in R^n:
+//!
+//! ```text
+//! finite time (14):  min thetadot'thetadot/2 + beta_theta c'thetadot
+//!                    c_i = |theta_i - theta*0_i|^alpha sgn(theta_i - theta*0_i),  0 < alpha < 1
+//! ZNN (22):          min thetadot'thetadot/2 + mu (theta - theta*0)'thetadot
+//! both s.t.          J thetadot = rdot* + k_p (r* - f(theta))
+//! ```
+//!
+//! so P = I, q = beta_theta c (or mu (theta - theta*0)), A = J, b = rdot* + k_p (r* - f(theta));
+//! no inequalities, no bounds (the paper enforces no joint limits).
+//!
+//! theta*0 is the desired initial joint vector, given to the constructor. Eq. (22) as printed
+//! uses theta(0), the actual initial state, and the text adds that the ZNN scheme "assumes the
+//! joints start at the desired position", i.e. theta(0) = theta*0 in its own setting; we take
+//! the reference from the constructor for both schemes, so an experiment chooses theta*0 (the
+//! fair comparison, and what Table 3's drifts suggest) or theta(0) (the print, literally).
+//!
+//! Time derivatives (analytic, `build_dot`): Pdot = 0, Adot = Jdot, bdot = rddot* + k_p (rdot*
+//! - J thetadot); ZNN: qdot = mu thetadot; finite time: qdot_i = beta_theta alpha
+//! |e_i|^(alpha - 1) thetadot_i with e = theta - theta*0. That derivative is unbounded as e_i -> 0
+//! for alpha < 1 (c is Hölder, not Lipschitz, at e = 0; along the ideal finite-time motion
+//! e_i -> 0 in finite time and dc_i/dt ~ |e_i|^(2 alpha - 1) diverges for alpha < 1/2). We
+//! regularise it by flooring |e_i| at `dc_floor` (default 1e-6 rad):
+//! qdot_i = beta_theta alpha max(|e_i|, dc_floor)^(alpha - 1) thetadot_i, i.e. inside the band
+//! |e_i| < dc_floor the slope of the secant of c over the band is used. The QP itself (c) is
+//! exact everywhere.
+
+use std::sync::Arc;
+
+use nalgebra::SVector;
+use robots::Robot;
+use solvers::{Qp, QpDims};
+
+use crate::paths::Path;
+use crate::qp_dot::QpDotScratch;
+use crate::scheme::{Level, Scheme};
+
+/// The repetitive term of the linear part of the objective.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Repetitive {
+    /// q = beta_theta |e|^alpha sgn(e) (eq. 14).
+    FiniteTime { beta_theta: f64, alpha: f64, dc_floor: f64 },
+    /// q = mu e (eq. 22).
+    Znn { mu: f64 },
+}
+
+/// kong2019's velocity-level repetitive schemes: finite time (eq. 14) or ZNN (eq. 22).
+pub struct Kong2019<const N: usize> {
+    robot: Arc<dyn Robot<N>>,
+    path: Arc<dyn Path>,
+    theta_star0: SVector<f64, N>,
+    /// Position feedback gain k_p.
+    pub k_p: f64,
+    term: Repetitive,
+}
+
+/// c = |e|^alpha sgn(e) elementwise (0 at e = 0), e = theta - theta*0: kong2019's eq. (3)/(14).
+pub fn finite_time_c<const N: usize>(
+    theta: &SVector<f64, N>,
+    theta_star0: &SVector<f64, N>,
+    alpha: f64,
+) -> SVector<f64, N> {
+    (theta - theta_star0).map(|e| if e == 0.0 { 0.0 } else { e.abs().powf(alpha).copysign(e) })
+}
+
+impl<const N: usize> Kong2019<N> {
+    /// The finite-time scheme (14) with gain beta_theta, exponent alpha and feedback k_p.
+    pub fn finite_time(
+        robot: Arc<dyn Robot<N>>,
+        path: Arc<dyn Path>,
+        theta_star0: SVector<f64, N>,
+        beta_theta: f64,
+        alpha: f64,
+        k_p: f64,
+    ) -> Self {
+        Self {
+            robot,
+            path,
+            theta_star0,
+            k_p,
+            term: Repetitive::FiniteTime { beta_theta, alpha, dc_floor: 1e-6 },
+        }
+    }
+
+    /// The ZNN repetitive scheme (22) with gain mu and feedback k_p.
+    pub fn znn(
+        robot: Arc<dyn Robot<N>>,
+        path: Arc<dyn Path>,
+        theta_star0: SVector<f64, N>,
+        mu: f64,
+        k_p: f64,
+    ) -> Self {
+        Self { robot, path, theta_star0, k_p, term: Repetitive::Znn { mu } }
+    }
+
+    /// Change the floor on |e_i| used by the finite-time `build_dot` (no effect on ZNN).
+    pub fn with_dc_floor(mut self, floor: f64) -> Self {
+        if let Repetitive::FiniteTime { dc_floor, .. } = &mut self.term {
+            *dc_floor = floor;
+        }
+        self
+    }
+
+    pub fn theta_star0(&self) -> &SVector<f64, N> {
+        &self.theta_star0
+    }
+
+    /// The linear objective term q(theta) (beta_theta c, or mu (theta - theta*0)).
+    pub fn linear_term(&self, theta: &SVector<f64, N>) -> SVector<f64, N> {
+        match self.term {
+            Repetitive::FiniteTime { beta_theta, alpha, .. } => {
+                finite_time_c(theta, &self.theta_star0, alpha) * beta_theta
+            }
+            Repetitive::Znn { mu } => (theta - self.theta_star0) * mu,
+        }
+    }
+}
+
+impl<const N: usize> Scheme<N> for Kong2019<N> {
+    fn name(&self) -> String {
+        match self.term {
+            Repetitive::FiniteTime { .. } => "finite-time".to_string(),
+            Repetitive::Znn { .. } => "ZNN".to_string(),
+        }
+    }
+
+    fn level(&self) -> Level {
+        Level::Velocity
+    }
+
+    fn dims(&self) -> QpDims {
+        QpDims { nx: N, n_eq: 3, n_in: 0 }
+    }
+
+    fn build(&self, t: f64, theta: &SVector<f64, N>, _thetadot: &SVector<f64, N>, qp: &mut Qp) {
+        debug_assert_eq!(qp.dims(), self.dims());
+        qp.p.fill_with_identity();
+        qp.q.copy_from(&self.linear_term(theta));
+        qp.a.copy_from(&self.robot.jacobian(theta));
+        let pp = self.path.at(t);
+        qp.b.copy_from(&(pp.rdot + (pp.r - self.robot.position(theta)) * self.k_p));
+        qp.lower.fill(f64::NEG_INFINITY);
+        qp.upper.fill(f64::INFINITY);
+    }
+
+    /// Analytic (see the module docs for the finite-time regularisation at e = 0).
+    fn build_dot(
+        &self,
+        t: f64,
+        theta: &SVector<f64, N>,
+        thetadot: &SVector<f64, N>,
+        _thetaddot: &SVector<f64, N>,
+        qp_dot: &mut Qp,
+        _scratch: &mut QpDotScratch,
+    ) {
+        debug_assert_eq!(qp_dot.dims(), self.dims());
+        qp_dot.p.fill(0.0);
+        match self.term {
+            Repetitive::FiniteTime { beta_theta, alpha, dc_floor } => {
+                for i in 0..N {
+                    let e = (theta[i] - self.theta_star0[i]).abs().max(dc_floor);
+                    qp_dot.q[i] = beta_theta * alpha * e.powf(alpha - 1.0) * thetadot[i];
+                }
+            }
+            Repetitive::Znn { mu } => {
+                for i in 0..N {
+                    qp_dot.q[i] = mu * thetadot[i];
+                }
+            }
+        }
+        qp_dot.a.copy_from(&self.robot.jacobian_dot(theta, thetadot));
+        let pp = self.path.at(t);
+        let jthd = self.robot.jacobian(theta) * thetadot;
+        qp_dot.b.copy_from(&(pp.rddot + (pp.rdot - jthd) * self.k_p));
+        qp_dot.lower.fill(0.0);
+        qp_dot.upper.fill(0.0);
+    }
+}

@@ -1,0 +1,82 @@
+//! The common interface of the papers' schemes: at every instant a scheme turns
+//! (t, theta, thetadot) into one QP (see [`solvers::Qp`]) whose decision variable x starts with
+//! the joint command: x[..N] is thetadot (velocity level) or thetaddot (acceleration level).
+//!
+//! Besides the QP itself a scheme provides its time derivative along the current motion
+//! ([`Scheme::build_dot`]), which the zeroing networks (FP/VP-CDNN, VP-RNN-PF, kong2019's
+//! finite-time network) need for their Qdot y and udot terms: with the arm at (theta, thetadot)
+//! and the command thetadot (velocity level) or thetaddot (acceleration level),
+//!
+//! ```text
+//! dQP/dt = d/ds QP(t + s, theta + s thetadot, thetadot + s thetaddot) at s = 0
+//! ```
+//!
+//! (at the velocity level the thetadot argument of `build` is unused, so only theta moves).
+
+use nalgebra::SVector;
+use solvers::{Qp, QpDims};
+
+use crate::qp_dot::{self, QpDotScratch};
+
+/// Whether the scheme resolves redundancy at the velocity or the acceleration level.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Level {
+    /// x[..N] = thetadot; the arm state is theta.
+    Velocity,
+    /// x[..N] = thetaddot; the arm state is (theta, thetadot).
+    Acceleration,
+}
+
+/// A redundancy-resolution scheme: QP(t, theta, thetadot).
+pub trait Scheme<const N: usize>: Send + Sync {
+    /// Name as the paper writes it (e.g. `VLTCO`, `MVN-INVM`, `HL-JDF`).
+    fn name(&self) -> String;
+    fn level(&self) -> Level;
+    /// QP sizes (constant along a run).
+    fn dims(&self) -> QpDims;
+    /// Overwrite `qp` with the QP at (t, theta, thetadot). `thetadot` is ignored at the
+    /// velocity level. Must not allocate.
+    fn build(&self, t: f64, theta: &SVector<f64, N>, thetadot: &SVector<f64, N>, qp: &mut Qp);
+
+    /// Overwrite `qp_dot` with the time derivative of every QP field (p, q, a, b, g, h, lower,
+    /// upper) along the current motion (see the module docs): theta moves at `thetadot`, and at
+    /// the acceleration level thetadot moves at `thetaddot` (ignored at the velocity level).
+    /// Entries that are infinite (absent bounds, varpi = +inf) get derivative 0.
+    ///
+    /// Default: central difference [`qp_dot::central_difference`] with the step
+    /// [`qp_dot::default_step`]; schemes override it with analytic derivatives where cheap.
+    /// Does not allocate (`scratch` comes from [`Scheme::new_dot_scratch`]).
+    fn build_dot(
+        &self,
+        t: f64,
+        theta: &SVector<f64, N>,
+        thetadot: &SVector<f64, N>,
+        thetaddot: &SVector<f64, N>,
+        qp_dot: &mut Qp,
+        scratch: &mut QpDotScratch,
+    ) {
+        let h = qp_dot::default_step(self.level(), thetadot, thetaddot);
+        qp_dot::central_difference(self, t, theta, thetadot, thetaddot, h, qp_dot, scratch);
+    }
+
+    /// Joint torque tau = H(theta) thetaddot + c(theta, thetadot) + g(theta) for schemes that
+    /// carry a dynamics model (zhang2018); `None` otherwise.
+    fn torque(
+        &self,
+        _theta: &SVector<f64, N>,
+        _thetadot: &SVector<f64, N>,
+        _thetaddot: &SVector<f64, N>,
+    ) -> Option<SVector<f64, N>> {
+        None
+    }
+
+    /// A zero QP of this scheme's sizes (allocate once per run, then `build` into it).
+    fn new_qp(&self) -> Qp {
+        Qp::zeros(self.dims())
+    }
+
+    /// Scratch space for [`Scheme::build_dot`] (allocate once per run).
+    fn new_dot_scratch(&self) -> QpDotScratch {
+        QpDotScratch::new(self.dims())
+    }
+}

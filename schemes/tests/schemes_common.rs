@@ -1,0 +1,229 @@
+//! Test fixtures: a planar N-link arm with a z coordinate (and a made-up but SPD dynamics), a
+//! circle path, and a small ADMM QP solver that also returns multipliers, so its answers can be
+//! checked by the QP's own KKT residuals. Included by the `schemes*.rs` tests with `#[path]`
+//! (and also compiled alone as a test target with no tests).
+#![allow(dead_code)]
+
+use std::f64::consts::PI;
+
+use nalgebra::{DMatrix, DVector, SMatrix, SVector, Vector3};
+use robots::{Dynamics, JointLimits, Robot};
+use schemes::paths::{Path, PathPoint};
+use solvers::{Qp, QpDuals};
+
+/// Planar arm: joints 1..N-1 rotate in the x-y plane (links `LEN`), joint N moves the tip in z
+/// by `Z_GAIN * theta_N`. Joint 2 has finite angle limits [-1, 2.5]; the others [-3, 3];
+/// velocity limits +-1.5.
+pub struct PlanarZ<const N: usize>;
+
+pub const LEN: f64 = 0.3;
+pub const Z_GAIN: f64 = 0.1;
+
+impl<const N: usize> PlanarZ<N> {
+    fn cum(theta: &SVector<f64, N>) -> [f64; N] {
+        let mut phi = [0.0; N];
+        let mut s = 0.0;
+        for k in 0..N - 1 {
+            s += theta[k];
+            phi[k] = s;
+        }
+        phi
+    }
+}
+
+impl<const N: usize> Robot<N> for PlanarZ<N> {
+    fn name(&self) -> &'static str {
+        "planar-z"
+    }
+
+    fn position(&self, theta: &SVector<f64, N>) -> Vector3<f64> {
+        let phi = Self::cum(theta);
+        let (mut x, mut y) = (0.0, 0.0);
+        for p in phi.iter().take(N - 1) {
+            x += LEN * p.cos();
+            y += LEN * p.sin();
+        }
+        Vector3::new(x, y, Z_GAIN * theta[N - 1])
+    }
+
+    fn jacobian(&self, theta: &SVector<f64, N>) -> SMatrix<f64, 3, N> {
+        let phi = Self::cum(theta);
+        let mut j = SMatrix::<f64, 3, N>::zeros();
+        for i in 0..N - 1 {
+            for p in phi.iter().take(N - 1).skip(i) {
+                j[(0, i)] -= LEN * p.sin();
+                j[(1, i)] += LEN * p.cos();
+            }
+        }
+        j[(2, N - 1)] = Z_GAIN;
+        j
+    }
+
+    fn jacobian_dot(&self, theta: &SVector<f64, N>, thetadot: &SVector<f64, N>) -> SMatrix<f64, 3, N> {
+        let phi = Self::cum(theta);
+        let phid = Self::cum(thetadot);
+        let mut j = SMatrix::<f64, 3, N>::zeros();
+        for i in 0..N - 1 {
+            for k in i..N - 1 {
+                j[(0, i)] -= LEN * phi[k].cos() * phid[k];
+                j[(1, i)] -= LEN * phi[k].sin() * phid[k];
+            }
+        }
+        j
+    }
+
+    fn limits(&self) -> JointLimits<N> {
+        let mut theta_min = SVector::<f64, N>::repeat(-3.0);
+        let mut theta_max = SVector::<f64, N>::repeat(3.0);
+        theta_min[1] = -1.0;
+        theta_max[1] = 2.5;
+        JointLimits {
+            theta_min,
+            theta_max,
+            thetadot_min: SVector::repeat(-1.5),
+            thetadot_max: SVector::repeat(1.5),
+        }
+    }
+}
+
+/// Made-up smooth dynamics: H = 0.5 I + v v' with v_i = 0.3 cos(theta_i) + 0.2 (SPD),
+/// c = 0.1 sin(theta) .* thetadot .* |thetadot|_2, g = 0.98 cos(theta).
+impl<const N: usize> Dynamics<N> for PlanarZ<N> {
+    fn inertia(&self, theta: &SVector<f64, N>) -> SMatrix<f64, N, N> {
+        let v = theta.map(|x| 0.3 * x.cos() + 0.2);
+        SMatrix::<f64, N, N>::identity() * 0.5 + v * v.transpose()
+    }
+
+    fn coriolis(&self, theta: &SVector<f64, N>, thetadot: &SVector<f64, N>) -> SVector<f64, N> {
+        theta.map(|x| 0.1 * x.sin()).component_mul(thetadot) * thetadot.norm()
+    }
+
+    fn coriolis_matrix(&self, _theta: &SVector<f64, N>, _thetadot: &SVector<f64, N>) -> SMatrix<f64, N, N> {
+        SMatrix::zeros()
+    }
+
+    fn gravity(&self, theta: &SVector<f64, N>) -> SVector<f64, N> {
+        theta.map(|x| 0.98 * x.cos())
+    }
+}
+
+/// r = r0 + [a (cos phi - 1), a sin phi, 0.02 sin phi], phi = 2 pi sin^2(pi t / 2T).
+pub struct Circle {
+    pub r0: Vector3<f64>,
+    pub a: f64,
+    pub t_end: f64,
+}
+
+impl Path for Circle {
+    fn duration(&self) -> f64 {
+        self.t_end
+    }
+
+    fn at(&self, t: f64) -> PathPoint {
+        let tt = self.t_end;
+        let phi = 2.0 * PI * (PI * t / (2.0 * tt)).sin().powi(2);
+        let phid = PI * PI / tt * (PI * t / tt).sin();
+        let phidd = PI.powi(3) / (tt * tt) * (PI * t / tt).cos();
+        let (s, c) = phi.sin_cos();
+        let d = Vector3::new(self.a * (c - 1.0), self.a * s, 0.02 * s);
+        let d1 = Vector3::new(-self.a * s, self.a * c, 0.02 * c);
+        let d2 = Vector3::new(-self.a * c, -self.a * s, -0.02 * s);
+        PathPoint { r: self.r0 + d, rdot: d1 * phid, rddot: d2 * phid * phid + d1 * phidd }
+    }
+}
+
+/// Solves the QP by ADMM (OSQP's iteration, fixed rho, many iterations) on
+/// [A; G; I] x in [[b; -inf; lower], [b; h; upper]]; returns x and the multipliers in the
+/// conventions of `solvers::qp`.
+pub fn admm(qp: &Qp, iters: usize) -> (DVector<f64>, QpDuals) {
+    let n = qp.q.len();
+    let (me, mi) = (qp.b.len(), qp.h.len());
+    let m = me + mi + n;
+    let mut c = DMatrix::zeros(m, n);
+    c.view_mut((0, 0), (me, n)).copy_from(&qp.a);
+    c.view_mut((me, 0), (mi, n)).copy_from(&qp.g);
+    c.view_mut((me + mi, 0), (n, n)).fill_with_identity();
+    let mut lo = DVector::zeros(m);
+    let mut hi = DVector::zeros(m);
+    for i in 0..me {
+        lo[i] = qp.b[i];
+        hi[i] = qp.b[i];
+    }
+    for i in 0..mi {
+        lo[me + i] = f64::NEG_INFINITY;
+        hi[me + i] = qp.h[i];
+    }
+    for i in 0..n {
+        lo[me + mi + i] = qp.lower[i];
+        hi[me + mi + i] = qp.upper[i];
+    }
+    let rho_base = 0.1;
+    let rho = DVector::from_fn(m, |i, _| if lo[i] == hi[i] { 1e3 * rho_base } else { rho_base });
+    let sigma = 1e-6;
+    let alpha = 1.6;
+    let k = &qp.p + DMatrix::identity(n, n) * sigma + c.transpose() * DMatrix::from_diagonal(&rho) * &c;
+    let lu = k.lu();
+    let mut x = DVector::zeros(n);
+    let mut z = DVector::zeros(m);
+    let mut y = DVector::zeros(m);
+    for _ in 0..iters {
+        let rhs = &x * sigma - &qp.q + c.transpose() * (rho.component_mul(&z) - &y);
+        let xt = lu.solve(&rhs).unwrap();
+        let zt = &c * &xt;
+        x = &xt * alpha + &x * (1.0 - alpha);
+        let zr = &zt * alpha + &z * (1.0 - alpha);
+        let mut zn = &zr + y.component_div(&rho);
+        for i in 0..m {
+            zn[i] = zn[i].max(lo[i]).min(hi[i]);
+        }
+        y += rho.component_mul(&(&zr - &zn));
+        z = zn;
+    }
+    let duals = QpDuals {
+        lambda: y.rows(0, me).into_owned(),
+        mu: y.rows(me, mi).map(|v| v.max(0.0)),
+        z_lower: y.rows(me + mi, n).map(|v| (-v).max(0.0)),
+        z_upper: y.rows(me + mi, n).map(|v| v.max(0.0)),
+    };
+    (x, duals)
+}
+
+/// Solves an equality-only QP (P nonsingular on null(A)) by its KKT linear system.
+pub fn kkt_solve(qp: &Qp) -> DVector<f64> {
+    let n = qp.q.len();
+    let me = qp.b.len();
+    let mut k = DMatrix::zeros(n + me, n + me);
+    k.view_mut((0, 0), (n, n)).copy_from(&qp.p);
+    k.view_mut((0, n), (n, me)).copy_from(&qp.a.transpose());
+    k.view_mut((n, 0), (me, n)).copy_from(&qp.a);
+    let mut rhs = DVector::zeros(n + me);
+    rhs.rows_mut(0, n).copy_from(&(-&qp.q));
+    rhs.rows_mut(n, me).copy_from(&qp.b);
+    k.lu().solve(&rhs).unwrap().rows(0, n).into_owned()
+}
+
+/// Largest |a - b| over every field of two QPs, treating equal infinities as 0, relative to
+/// max(1, |a|).
+pub fn qp_max_rel_diff(a: &Qp, b: &Qp) -> f64 {
+    let mut d: f64 = 0.0;
+    let pairs: [(&[f64], &[f64]); 8] = [
+        (a.p.as_slice(), b.p.as_slice()),
+        (a.q.as_slice(), b.q.as_slice()),
+        (a.a.as_slice(), b.a.as_slice()),
+        (a.b.as_slice(), b.b.as_slice()),
+        (a.g.as_slice(), b.g.as_slice()),
+        (a.h.as_slice(), b.h.as_slice()),
+        (a.lower.as_slice(), b.lower.as_slice()),
+        (a.upper.as_slice(), b.upper.as_slice()),
+    ];
+    for (x, y) in pairs {
+        assert_eq!(x.len(), y.len());
+        for (&u, &v) in x.iter().zip(y) {
+            if u == v {
+                continue;
+            }
+            d = d.max((u - v).abs() / u.abs().max(1.0));
+        }
+    }
+    d
+}
