@@ -48,6 +48,7 @@ pub struct Zhang2018<const N: usize> {
 
 impl<const N: usize> Zhang2018<N> {
     /// Scheme on a robot with dynamics (kinematics are taken from the same model).
+    #[allow(clippy::too_many_arguments)]
     pub fn new(
         robot: Arc<dyn Dynamics<N>>,
         path: Arc<dyn Path>,

@@ -101,7 +101,7 @@ fn qp_shapes_per_scheme() {
                 for i in 0..N {
                     for c in 0..=N {
                         let top = if c == i { 1.0 } else if c == N { -1.0 } else { 0.0 };
-                        let bot = if c == i { -1.0 } else if c == N { -1.0 } else { 0.0 };
+                        let bot = if c == i || c == N { -1.0 } else { 0.0 };
                         assert_eq!(qp.g[(i, c)], top);
                         assert_eq!(qp.g[(N + i, c)], bot);
                     }

@@ -11,7 +11,6 @@ use std::sync::Arc;
 use common::{Circle, PlanarZ};
 use nalgebra::SVector;
 use robots::Robot;
-use schemes::scheme::Scheme;
 use schemes::spec::{build_scheme, SchemeSpec};
 
 struct Counting;
