@@ -39,8 +39,9 @@ pub enum Activation {
     Sinh,
     /// zhong2021 eq. 2.29 (see the module docs).
     PowerSigmoid { alpha: f64, chi: f64 },
-    /// phi(e) = abs(e)^r sgn(e) (kong2019 eq. 6, 20).
-    SignPower { r: f64 },
+    /// phi(e) = abs(e)^r sgn(e) (kong2019 eq. 6, 20), optionally made linear,
+    /// phi(e) = e delta^(r-1), for abs(e) < delta = `linear_below` (0: the exact form).
+    SignPower { r: f64, linear_below: f64 },
 }
 
 /// The serde name of an activation in experiment files (parameters given beside it).
@@ -70,11 +71,13 @@ impl Activation {
                     Ok(())
                 }
             }
-            Activation::SignPower { r } => {
-                if r > 0.0 && r.is_finite() {
-                    Ok(())
-                } else {
+            Activation::SignPower { r, linear_below } => {
+                if !(r > 0.0 && r.is_finite()) {
                     Err(format!("sign-power needs an exponent r > 0, got {r}"))
+                } else if !(linear_below >= 0.0 && linear_below.is_finite()) {
+                    Err(format!("sign-power linear zone must be >= 0, got {linear_below}"))
+                } else {
+                    Ok(())
                 }
             }
         }
@@ -86,7 +89,13 @@ impl Activation {
             Activation::Linear => "linear".into(),
             Activation::Sinh => "sinh".into(),
             Activation::PowerSigmoid { alpha, chi } => format!("power-sigmoid(alpha={alpha},chi={chi})"),
-            Activation::SignPower { r } => format!("sign-power(r={r})"),
+            Activation::SignPower { r, linear_below } => {
+                if linear_below > 0.0 {
+                    format!("sign-power(r={r},linear below {linear_below:e})")
+                } else {
+                    format!("sign-power(r={r})")
+                }
+            }
         }
     }
 
@@ -97,16 +106,25 @@ impl Activation {
             Activation::Linear => e,
             Activation::Sinh => e.sinh(),
             Activation::PowerSigmoid { alpha, chi } => {
+                // Evaluated on |e| and signed, so that phi is exactly odd in floating point.
                 let a = e.abs();
-                if a <= 1.0 {
+                let v = if a <= 1.0 {
                     let ea = (-alpha).exp();
-                    let ee = (-alpha * e).exp();
+                    let ee = (-alpha * a).exp();
                     (1.0 + ea) * (1.0 - ee) / ((1.0 - ea) * (1.0 + ee))
                 } else {
-                    e.signum() * a.powf(chi)
+                    a.powf(chi)
+                };
+                e.signum() * v
+            }
+            Activation::SignPower { r, linear_below } => {
+                let a = e.abs();
+                if a < linear_below {
+                    e * linear_below.powf(r - 1.0)
+                } else {
+                    e.signum() * a.powf(r)
                 }
             }
-            Activation::SignPower { r } => e.signum() * e.abs().powf(r),
         }
     }
 
@@ -127,7 +145,14 @@ impl Activation {
                     chi * a.powf(chi - 1.0)
                 }
             }
-            Activation::SignPower { r } => r * e.abs().max(SIGN_POWER_MIN_ABS).powf(r - 1.0),
+            Activation::SignPower { r, linear_below } => {
+                let a = e.abs();
+                if a < linear_below {
+                    linear_below.powf(r - 1.0)
+                } else {
+                    r * a.max(SIGN_POWER_MIN_ABS).powf(r - 1.0)
+                }
+            }
         }
     }
 }

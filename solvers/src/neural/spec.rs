@@ -20,7 +20,7 @@ use super::activation::{Activation, ActivationKind, POWER_SIGMOID_ALPHA, POWER_S
 use super::cdnn::{fp_cdnn, vp_cdnn, ReferencePerturbation};
 use super::projection::{LviPdnn, SLviPdnn};
 use super::vp_rnn_pf::VpRnnPf;
-use super::znn::{finite_time, znn};
+use super::znn::{finite_time, znn, FINITE_TIME_LINEAR_BELOW};
 use super::NeuralSolver;
 use crate::qp::QpDims;
 use serde::{Deserialize, Serialize};
@@ -30,6 +30,9 @@ fn default_alpha() -> f64 {
 }
 fn default_chi() -> f64 {
     POWER_SIGMOID_CHI
+}
+fn default_linear_below() -> f64 {
+    FINITE_TIME_LINEAR_BELOW
 }
 
 /// A network and its parameters, by the papers' names.
@@ -70,8 +73,14 @@ pub enum SolverSpec {
         #[serde(default)]
         perturbation: Option<ReferencePerturbation>,
     },
-    /// kong2019 eq. 20 (derived form): gain beta, sign-power exponent alpha (paper: 1 and 0.1).
-    FiniteTime { beta: f64, alpha: f64 },
+    /// kong2019 eq. 20 (derived form): gain beta, sign-power exponent alpha (paper: 1 and 0.1),
+    /// linear zone |e| < linear_below of the sign-power (ours, see [`super::znn`]).
+    FiniteTime {
+        beta: f64,
+        alpha: f64,
+        #[serde(default = "default_linear_below")]
+        linear_below: f64,
+    },
     /// Linear ZNN (kong2019's comparison solver).
     Znn { gamma: f64 },
 }
@@ -166,9 +175,9 @@ pub fn build_solver(spec: &SolverSpec, dims: QpDims) -> Result<Box<dyn NeuralSol
             let act = activation_of(activation, POWER_SIGMOID_ALPHA, POWER_SIGMOID_CHI);
             Box::new(vp_cdnn(gamma, act, perturbation, dims)?)
         }
-        SolverSpec::FiniteTime { beta, alpha } => {
+        SolverSpec::FiniteTime { beta, alpha, linear_below } => {
             check_gain("FTNN", "beta", beta)?;
-            Box::new(finite_time(beta, alpha, dims)?)
+            Box::new(finite_time(beta, alpha, linear_below, dims)?)
         }
         SolverSpec::Znn { gamma } => {
             check_gain("ZNN", "gamma", gamma)?;
