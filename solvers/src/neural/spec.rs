@@ -7,7 +7,7 @@
 //! solver = { kind = "vp-rnn-pf", p = 1e-4, sigma = 400, gamma = 2, activation = "power-sigmoid", alpha = 4, chi = 3 }
 //! solver = { kind = "fp-cdnn", gamma = 200, perturbation = { a_d = 1.0, a_s = 1.5, task_duration = 8 } }
 //! solver = { kind = "vp-cdnn", gamma = 200 }
-//! solver = { kind = "finite-time", beta = 1, alpha = 0.1 }
+//! solver = { kind = "finite-time", beta = 1, alpha = 0.1, linear_below = 1e-8 }   # linear_below optional
 //! solver = { kind = "znn", gamma = 1 }
 //! ```
 //!
