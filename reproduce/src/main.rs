@@ -1,1 +1,220 @@
-fn main(){}
+//! `cargo run --release -p reproduce`: runs driftbench's experiments and writes `results/`.
+
+use clap::Parser;
+use indicatif::{ParallelProgressIterator, ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+use reproduce::experiment::{load_dir, Job, PaperFile};
+use reproduce::results::{merge, read_runs, runs_csv, trace_csv, trace_file, write_atomic, RunRow};
+use reproduce::run::{run_job, RunRecord};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// Regenerates the tables and error data of four papers on drift-free redundancy resolution
+/// (jia2019, zhang2018, zhong2021, kong2019), solving every scheme's QP exactly with Clarabel
+/// along every run and scoring each paper's neural solver against that optimum.
+///
+/// With no flags: runs every experiment in experiments/*.toml (in parallel), writes
+/// results/runs.csv (one row per run) and results/traces/, and prints a summary table.
+#[derive(Parser, Debug)]
+#[command(version, about, long_about)]
+struct Cli {
+    /// Run only this paper's experiments (jia2019, zhang2018, zhong2021, kong2019).
+    #[arg(long)]
+    paper: Option<String>,
+    /// Run only this experiment (an id of experiments.md, e.g. jia2019-clover). Repeatable.
+    #[arg(long)]
+    experiment: Vec<String>,
+    /// Run only the exact column (Clarabel in the loop), no neural solvers.
+    #[arg(long)]
+    exact_only: bool,
+    /// List the experiments and their runs, then exit.
+    #[arg(long)]
+    list: bool,
+    /// Print the robots' check values (tip position and singular values of J at the papers'
+    /// theta0), then exit.
+    #[arg(long)]
+    robots: bool,
+    /// Directory of the experiment files.
+    #[arg(long, default_value_os_t = reproduce::workspace_root().join("experiments"))]
+    experiments_dir: PathBuf,
+    /// Directory results are written to.
+    #[arg(long, default_value_os_t = reproduce::workspace_root().join("results"))]
+    results_dir: PathBuf,
+    /// Do not write results/ (print the summary only).
+    #[arg(long)]
+    dry_run: bool,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    threads: Option<usize>,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match real_main(cli) {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn real_main(cli: Cli) -> Result<ExitCode, String> {
+    if cli.robots {
+        print_robot_check_values();
+        return Ok(ExitCode::SUCCESS);
+    }
+    let files = load_dir(&cli.experiments_dir).map_err(|e| e.to_string())?;
+    let jobs = select_jobs(&files, &cli)?;
+    if cli.list {
+        print_list(&files, &jobs);
+        return Ok(ExitCode::SUCCESS);
+    }
+    if let Some(t) = cli.threads {
+        rayon::ThreadPoolBuilder::new().num_threads(t).build_global().map_err(|e| e.to_string())?;
+    }
+    let records = run_all(&jobs);
+    let git_rev = reproduce::git_revision();
+    let rows: Vec<RunRow> = records.iter().map(|r| RunRow::from_record(r, &git_rev)).collect();
+    print_summary(&rows);
+    if !cli.dry_run {
+        write_results(&cli.results_dir, &records, rows)?;
+    }
+    let failed = records.iter().filter(|r| matches!(r.outcome, reproduce::run::Outcome::Failed { .. })).count();
+    if failed > 0 {
+        eprintln!("{failed} of {} runs failed (reasons in the table above and in results/runs.csv)", records.len());
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn select_jobs(files: &[PaperFile], cli: &Cli) -> Result<Vec<Job>, String> {
+    let all: Vec<Job> = files.iter().flat_map(|f| f.jobs()).collect();
+    if let Some(p) = &cli.paper {
+        if !files.iter().any(|f| &f.paper == p) {
+            let known: Vec<&str> = files.iter().map(|f| f.paper.as_str()).collect();
+            return Err(format!("unknown paper \"{p}\" (known: {})", known.join(", ")));
+        }
+    }
+    for e in &cli.experiment {
+        if !all.iter().any(|j| &j.experiment == e) {
+            let mut ids: Vec<&str> = all.iter().map(|j| j.experiment.as_str()).collect();
+            ids.dedup();
+            return Err(format!("unknown experiment \"{e}\" (known: {})", ids.join(", ")));
+        }
+    }
+    Ok(all
+        .into_iter()
+        .filter(|j| cli.paper.as_ref().is_none_or(|p| &j.paper == p))
+        .filter(|j| cli.experiment.is_empty() || cli.experiment.contains(&j.experiment))
+        .filter(|j| !cli.exact_only || j.solver == reproduce::experiment::SolverChoice::Exact)
+        .collect())
+}
+
+fn run_all(jobs: &[Job]) -> Vec<RunRecord> {
+    let bar = ProgressBar::new(jobs.len() as u64);
+    bar.set_style(
+        ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} runs  {msg}")
+            .expect("valid template"),
+    );
+    // Longest runs first keeps both cores busy to the end; results are re-sorted afterwards.
+    let mut order: Vec<usize> = (0..jobs.len()).collect();
+    order.sort_by(|&a, &b| expected_cost(&jobs[b]).total_cmp(&expected_cost(&jobs[a])));
+    let mut records: Vec<(usize, RunRecord)> = order
+        .par_iter()
+        .progress_with(bar.clone())
+        .map(|&i| {
+            let r = run_job(&jobs[i]);
+            bar.set_message(jobs[i].key());
+            (i, r)
+        })
+        .collect();
+    bar.finish_and_clear();
+    records.sort_by_key(|(i, _)| *i);
+    records.into_iter().map(|(_, r)| r).collect()
+}
+
+/// Rough relative cost for scheduling: neural runs on long paths first.
+fn expected_cost(j: &Job) -> f64 {
+    let solver = if j.solver == reproduce::experiment::SolverChoice::Exact { 1.0 } else { 4.0 };
+    solver * j.path.duration
+}
+
+fn write_results(dir: &std::path::Path, records: &[RunRecord], rows: Vec<RunRow>) -> Result<(), String> {
+    let runs_path = dir.join("runs.csv");
+    let stored = if runs_path.exists() { read_runs(&runs_path).unwrap_or_default() } else { Vec::new() };
+    let merged = merge(stored, rows);
+    for r in records {
+        let bytes = trace_csv(r).map_err(|e| e.to_string())?;
+        write_atomic(&dir.join("traces").join(trace_file(r)), &bytes).map_err(|e| e.to_string())?;
+    }
+    let bytes = runs_csv(&merged).map_err(|e| e.to_string())?;
+    write_atomic(&runs_path, &bytes).map_err(|e| format!("{}: {e}", runs_path.display()))?;
+    eprintln!("wrote {} ({} rows) and {} traces", runs_path.display(), merged.len(), records.len());
+    Ok(())
+}
+
+fn fmt(v: Option<f64>) -> String {
+    v.map(|v| format!("{v:.3e}")).unwrap_or_else(|| "-".into())
+}
+
+fn print_summary(rows: &[RunRow]) {
+    let mut current = String::new();
+    for r in rows {
+        if r.experiment != current {
+            current = r.experiment.clone();
+            println!("\n== {current} ({} on {}, T = {} s)", r.robot, r.path, r.duration);
+            println!(
+                "{:<26} {:<28} {:>10} {:>10} {:>10} {:>10} {:>10} {:>7} {:>8}",
+                "variant", "solver", "drift", "max err", "rms err", "|x-x*|max", "peak qd", "steps", "wall s"
+            );
+        }
+        if r.status != "ok" {
+            println!("{:<26} {:<28} FAILED at t = {}: {}", r.variant, r.solver, fmt(r.failed_at), r.failure);
+            continue;
+        }
+        println!(
+            "{:<26} {:<28} {:>10} {:>10} {:>10} {:>10} {:>10} {:>7} {:>8.2}",
+            r.variant,
+            r.solver,
+            fmt(r.drift_norm),
+            fmt(r.max_pos_err),
+            fmt(r.rms_pos_err),
+            fmt(r.score_max_dx),
+            fmt(r.peak_thetadot),
+            r.steps,
+            r.wall_s
+        );
+    }
+}
+
+fn print_list(files: &[PaperFile], jobs: &[Job]) {
+    for f in files {
+        println!("{} — {}", f.paper, f.title);
+        for e in &f.experiments {
+            let n = jobs.iter().filter(|j| j.experiment == e.id).count();
+            if n == 0 {
+                continue;
+            }
+            println!("  {:<28} {} on {} (T = {} s), {}: {n} runs", e.id, e.robot, e.path.name, e.path.duration, e.paper_output);
+            for j in jobs.iter().filter(|j| j.experiment == e.id) {
+                println!("      {:<30} {}", j.variant, j.solver.label());
+            }
+        }
+    }
+}
+
+fn print_robot_check_values() {
+    use nalgebra::SVector;
+    use robots::{Jaco2, Katana6m180, Robot};
+    let theta0 = SVector::<f64, 6>::from([1.675, 2.79, -3.216, 4.187, -1.71, -2.95]);
+    for r in [Jaco2::pen(), Jaco2::kinova()] {
+        let p = r.position(&theta0);
+        let sv = r.jacobian(&theta0).singular_values();
+        println!("{:<12} theta0 = {:?}\n             f = ({:.6}, {:.6}, {:.6}), sigma(J) = {:.6?}", r.name(), theta0.as_slice(), p.x, p.y, p.z, sv.as_slice());
+    }
+    let pi = std::f64::consts::PI;
+    let k = Katana6m180::new();
+    let t = SVector::<f64, 5>::from([2.0 * pi / 5.0, pi / 2.0, 0.0, -pi / 6.0, pi / 3.0]);
+    let p = k.position(&t);
+    println!("{:<12} theta*0 = {:?}\n             f = ({:.6}, {:.6}, {:.6}), sigma(J) = {:.6?}", k.name(), t.as_slice(), p.x, p.y, p.z, k.jacobian(&t).singular_values().as_slice());
+}

@@ -19,18 +19,23 @@
 //!
 //! Time derivatives (analytic, `build_dot`): Pdot = 0, Adot = Jdot,
 //! bdot = rddot* + k_p (rdot* - J thetadot); ZNN: qdot = mu thetadot; finite time:
-//! qdot_i = beta_theta alpha |e_i|^(alpha - 1) thetadot_i with e = theta - theta*0. That
-//! derivative is unbounded as e_i -> 0 for alpha < 1 (c is Hölder, not Lipschitz, at e = 0;
-//! along the ideal finite-time motion e_i -> 0 in finite time and dc_i/dt ~ |e_i|^(2 alpha - 1)
-//! diverges for alpha < 1/2). We regularise it by flooring |e_i| at `dc_floor` (default
-//! 1e-6 rad): qdot_i = beta_theta alpha max(|e_i|, dc_floor)^(alpha - 1) thetadot_i, i.e. inside
-//! the band |e_i| < dc_floor the slope of the secant of c over the band is used (finite:
-//! 0.1 * 1e-6^(-0.9) ~ 2.5e4 per rad/s for alpha = 0.1). The QP itself (c) is exact everywhere.
+//! qdot_i = beta_theta c'(e_i) thetadot_i with e = theta - theta*0.
+//!
+//! Regularisation (a deviation, documented in the report): c is Hölder, not Lipschitz, at
+//! e = 0 for alpha < 1, so after the finite-time convergence the closed loop
+//! thetadot_i = -beta_theta |e_i|^alpha sgn(e_i) (joint 5 exactly) chatters around e_i = 0 and
+//! no integrator can step there (explicit steps shrink to ~1e-8 s, Newton iterations of
+//! implicit ones diverge). We use the smoothed sign-power of the finite-time network,
+//! c(e) = e (e^2 + delta^2)^((alpha - 1)/2) (`solvers::neural::activation::sign_power`, delta =
+//! `smoothing`, default 1e-6 rad): odd, increasing, smooth, equal to |e|^alpha sgn(e) to 0.5 %
+//! for |e| >= 10 delta, and with slope delta^(alpha - 1) at 0 (so e decays exponentially with
+//! time constant delta^(1 - alpha) / beta_theta ~ 4e-6 s once inside the band).
 
 use std::sync::Arc;
 
 use nalgebra::SVector;
 use robots::Robot;
+use solvers::neural::activation::{sign_power, sign_power_slope};
 use solvers::{Qp, QpDims};
 
 use crate::paths::Path;
@@ -41,7 +46,7 @@ use crate::scheme::{Level, Scheme};
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Repetitive {
     /// q = beta_theta |e|^alpha sgn(e) (eq. 14).
-    FiniteTime { beta_theta: f64, alpha: f64, dc_floor: f64 },
+    FiniteTime { beta_theta: f64, alpha: f64, smoothing: f64 },
     /// q = mu e (eq. 22).
     Znn { mu: f64 },
 }
@@ -56,13 +61,18 @@ pub struct Kong2019<const N: usize> {
     term: Repetitive,
 }
 
-/// c = |e|^alpha sgn(e) elementwise (0 at e = 0), e = theta - theta*0: kong2019's eq. (3)/(14).
+/// Default smoothing width delta of c (see the module docs).
+pub const SMOOTHING: f64 = 1e-6;
+
+/// c = |e|^alpha sgn(e) elementwise, e = theta - theta*0 (kong2019's eq. (3)/(14)), smoothed
+/// over |e| ~ delta = `smoothing` (exact for delta = 0).
 pub fn finite_time_c<const N: usize>(
     theta: &SVector<f64, N>,
     theta_star0: &SVector<f64, N>,
     alpha: f64,
+    smoothing: f64,
 ) -> SVector<f64, N> {
-    (theta - theta_star0).map(|e| if e == 0.0 { 0.0 } else { e.abs().powf(alpha).copysign(e) })
+    (theta - theta_star0).map(|e| sign_power(e, alpha, smoothing))
 }
 
 impl<const N: usize> Kong2019<N> {
@@ -80,7 +90,7 @@ impl<const N: usize> Kong2019<N> {
             path,
             theta_star0,
             k_p,
-            term: Repetitive::FiniteTime { beta_theta, alpha, dc_floor: 1e-6 },
+            term: Repetitive::FiniteTime { beta_theta, alpha, smoothing: SMOOTHING },
         }
     }
 
@@ -95,10 +105,10 @@ impl<const N: usize> Kong2019<N> {
         Self { robot, path, theta_star0, k_p, term: Repetitive::Znn { mu } }
     }
 
-    /// Change the floor on |e_i| used by the finite-time `build_dot` (no effect on ZNN).
-    pub fn with_dc_floor(mut self, floor: f64) -> Self {
-        if let Repetitive::FiniteTime { dc_floor, .. } = &mut self.term {
-            *dc_floor = floor;
+    /// Change the width of the linear zone of c (no effect on ZNN); 0 gives the exact form.
+    pub fn with_smoothing(mut self, delta: f64) -> Self {
+        if let Repetitive::FiniteTime { smoothing, .. } = &mut self.term {
+            *smoothing = delta;
         }
         self
     }
@@ -110,8 +120,8 @@ impl<const N: usize> Kong2019<N> {
     /// The linear objective term q(theta) (beta_theta c, or mu (theta - theta*0)).
     pub fn linear_term(&self, theta: &SVector<f64, N>) -> SVector<f64, N> {
         match self.term {
-            Repetitive::FiniteTime { beta_theta, alpha, .. } => {
-                finite_time_c(theta, &self.theta_star0, alpha) * beta_theta
+            Repetitive::FiniteTime { beta_theta, alpha, smoothing } => {
+                finite_time_c(theta, &self.theta_star0, alpha, smoothing) * beta_theta
             }
             Repetitive::Znn { mu } => (theta - self.theta_star0) * mu,
         }
@@ -158,10 +168,10 @@ impl<const N: usize> Scheme<N> for Kong2019<N> {
         debug_assert_eq!(qp_dot.dims(), self.dims());
         qp_dot.p.fill(0.0);
         match self.term {
-            Repetitive::FiniteTime { beta_theta, alpha, dc_floor } => {
+            Repetitive::FiniteTime { beta_theta, alpha, smoothing } => {
                 for i in 0..N {
-                    let e = (theta[i] - self.theta_star0[i]).abs().max(dc_floor);
-                    qp_dot.q[i] = beta_theta * alpha * e.powf(alpha - 1.0) * thetadot[i];
+                    let e = theta[i] - self.theta_star0[i];
+                    qp_dot.q[i] = beta_theta * sign_power_slope(e, alpha, smoothing) * thetadot[i];
                 }
             }
             Repetitive::Znn { mu } => {

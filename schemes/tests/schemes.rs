@@ -332,10 +332,10 @@ fn zhang2018_weight_is_spd_and_torque_is_the_dynamics() {
 fn kong2019_c_is_odd_and_zero_at_the_reference() {
     let star = theta0();
     let alpha = 0.1;
-    assert_eq!(finite_time_c(&star, &star, alpha), V::zeros());
+    assert_eq!(finite_time_c(&star, &star, alpha, 0.0), V::zeros());
     for e in [V::from([0.3, -0.2, 1e-9, -2.0, 0.5, 1e-3]), V::from([-1.0, 0.7, 0.01, 0.0, -3e-5, 2.5])] {
-        let cp = finite_time_c(&(star + e), &star, alpha);
-        let cm = finite_time_c(&(star - e), &star, alpha);
+        let cp = finite_time_c(&(star + e), &star, alpha, 0.0);
+        let cm = finite_time_c(&(star - e), &star, alpha, 0.0);
         assert!((cp + cm).amax() < 1e-15, "c not odd");
         let e = (star + e) - star; // the difference the scheme actually sees
         for i in 0..N {

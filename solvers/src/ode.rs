@@ -259,7 +259,7 @@ pub fn integrate<S: OdeSystem>(
         yp: vec![0.0; n],
     });
     let y0v = y0.to_vec();
-    let problem = OdeBuilder::<NalgebraMat<f64>>::new()
+    let mut problem = OdeBuilder::<NalgebraMat<f64>>::new()
         .t0(t0)
         .rtol(settings.rtol)
         .atol([settings.atol])
@@ -270,6 +270,10 @@ pub fn integrate<S: OdeSystem>(
         .init(move |_p, _t, y| y.copy_from_slice(&y0v), n)
         .build()
         .map_err(|e| solver_error(t0, e))?;
+    // diffsol counts Newton failures over the whole run, not per step: on networks with kinks
+    // (projections, sign-power) a long run collects many harmless ones, each answered by a
+    // smaller step. A stuck run is caught by the minimum step size and `max_steps` instead.
+    problem.ode_options.max_nonlinear_solver_failures = usize::MAX / 2;
     if let Control::Stop(reason) = observe(t0, y0) {
         return Err(OdeError::Stopped { t: t0, reason });
     }

@@ -166,8 +166,8 @@ fn all_activations() -> Vec<Activation> {
         Activation::Sinh,
         Activation::power_sigmoid_default(),
         Activation::PowerSigmoid { alpha: 2.0, chi: 5.0 },
-        Activation::SignPower { r: 0.1, linear_below: 0.0 },
-        Activation::SignPower { r: 0.5, linear_below: 0.0 },
+        Activation::SignPower { r: 0.1, smoothing: 0.0 },
+        Activation::SignPower { r: 0.5, smoothing: 0.0 },
     ]
 }
 
@@ -207,7 +207,7 @@ fn activations_have_the_papers_forms() {
     assert!((ps.value(1.0) - 1.0).abs() < 1e-14);
     assert!((ps.value(1.0 + 1e-12) - 1.0).abs() < 1e-10);
     // Sign-power (kong2019 eq. 6): |e|^r sgn(e).
-    let sp = Activation::SignPower { r: 0.1, linear_below: 0.0 };
+    let sp = Activation::SignPower { r: 0.1, smoothing: 0.0 };
     for e in [-2.0_f64, -1e-3, 1e-6, 0.3, 5.0] {
         assert!((sp.value(e) - e.abs().powf(0.1) * e.signum()).abs() < 1e-14);
     }
@@ -226,7 +226,7 @@ fn activation_derivatives_match_finite_differences() {
         }
     }
     // Sign-power slope is finite at 0 (floored) and huge.
-    let d0 = Activation::SignPower { r: 0.1, linear_below: 0.0 }.derivative(0.0);
+    let d0 = Activation::SignPower { r: 0.1, smoothing: 0.0 }.derivative(0.0);
     assert!(d0.is_finite() && d0 >= 0.1 * SIGN_POWER_MIN_ABS.powf(-0.9) * 0.999);
 }
 

@@ -7,7 +7,7 @@
 //! solver = { kind = "vp-rnn-pf", p = 1e-4, sigma = 400, gamma = 2, activation = "power-sigmoid", alpha = 4, chi = 3 }
 //! solver = { kind = "fp-cdnn", gamma = 200, perturbation = { a_d = 1.0, a_s = 1.5, task_duration = 8 } }
 //! solver = { kind = "vp-cdnn", gamma = 200 }
-//! solver = { kind = "finite-time", beta = 1, alpha = 0.1, linear_below = 1e-8 }   # linear_below optional
+//! solver = { kind = "finite-time", beta = 1, alpha = 0.1, smoothing = 1e-8 }   # smoothing optional
 //! solver = { kind = "znn", gamma = 1 }
 //! ```
 //!
@@ -20,7 +20,7 @@ use super::activation::{Activation, ActivationKind, POWER_SIGMOID_ALPHA, POWER_S
 use super::cdnn::{fp_cdnn, vp_cdnn, ReferencePerturbation};
 use super::projection::{LviPdnn, SLviPdnn};
 use super::vp_rnn_pf::VpRnnPf;
-use super::znn::{finite_time, znn, FINITE_TIME_LINEAR_BELOW};
+use super::znn::{finite_time, znn, FINITE_TIME_SMOOTHING};
 use super::NeuralSolver;
 use crate::qp::QpDims;
 use serde::{Deserialize, Serialize};
@@ -31,8 +31,8 @@ fn default_alpha() -> f64 {
 fn default_chi() -> f64 {
     POWER_SIGMOID_CHI
 }
-fn default_linear_below() -> f64 {
-    FINITE_TIME_LINEAR_BELOW
+fn default_smoothing() -> f64 {
+    FINITE_TIME_SMOOTHING
 }
 
 /// A network and its parameters, by the papers' names.
@@ -74,12 +74,12 @@ pub enum SolverSpec {
         perturbation: Option<ReferencePerturbation>,
     },
     /// kong2019 eq. 20 (derived form): gain beta, sign-power exponent alpha (paper: 1 and 0.1),
-    /// linear zone |e| < linear_below of the sign-power (ours, see [`super::znn`]).
+    /// linear zone |e| < smoothing of the sign-power (ours, see [`super::znn`]).
     FiniteTime {
         beta: f64,
         alpha: f64,
-        #[serde(default = "default_linear_below")]
-        linear_below: f64,
+        #[serde(default = "default_smoothing")]
+        smoothing: f64,
     },
     /// Linear ZNN (kong2019's comparison solver).
     Znn { gamma: f64 },
@@ -175,9 +175,9 @@ pub fn build_solver(spec: &SolverSpec, dims: QpDims) -> Result<Box<dyn NeuralSol
             let act = activation_of(activation, POWER_SIGMOID_ALPHA, POWER_SIGMOID_CHI);
             Box::new(vp_cdnn(gamma, act, perturbation, dims)?)
         }
-        SolverSpec::FiniteTime { beta, alpha, linear_below } => {
+        SolverSpec::FiniteTime { beta, alpha, smoothing } => {
             check_gain("FTNN", "beta", beta)?;
-            Box::new(finite_time(beta, alpha, linear_below, dims)?)
+            Box::new(finite_time(beta, alpha, smoothing, dims)?)
         }
         SolverSpec::Znn { gamma } => {
             check_gain("ZNN", "gamma", gamma)?;

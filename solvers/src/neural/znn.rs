@@ -35,8 +35,8 @@
 //! Lipschitz there. Implicit integrators (BDF, ESDIRK, TR-BDF2) then fail: Newton's method on
 //! |e|^alpha sgn(e) overshoots the root by a factor 1/alpha - 1 = 9 and diverges; explicit ones
 //! chatter around E = 0 with tiny steps. We therefore make the activation linear with the
-//! matching value, phi(e) = e delta^(alpha-1), inside |e| < delta = `linear_below`
-//! (default [`FINITE_TIME_LINEAR_BELOW`] = 1e-8: slope 1.6e7 for alpha = 0.1, as stiff as the
+//! matching value, phi(e) = e delta^(alpha-1), inside |e| < delta = `smoothing`
+//! (default [`FINITE_TIME_SMOOTHING`] = 1e-8: slope 1.6e7 for alpha = 0.1, as stiff as the
 //! gamma = 1e7 projection networks). The finite-time phase is untouched down to |E_i| = 1e-8,
 //! then E_i decays exponentially with rate beta * 1.6e7; 0 gives the exact form. In our tests
 //! BDF fails on every QP with delta = 0 and 1e-10 and succeeds on all with 1e-8.
@@ -50,16 +50,16 @@ use super::zeroing::{Gain, ZeroingNetwork};
 use crate::qp::QpDims;
 
 /// Default half-width of the sign-power's linear zone (module docs).
-pub const FINITE_TIME_LINEAR_BELOW: f64 = 1e-8;
+pub const FINITE_TIME_SMOOTHING: f64 = 1e-8;
 
 /// kong2019's finite-time network (eq. 20 as derived in the module docs).
-/// `linear_below` is the half-width delta of the linear zone of the sign-power (module docs;
+/// `smoothing` is the half-width delta of the linear zone of the sign-power (module docs;
 /// 0 gives the exact, non-Lipschitz form).
-pub fn finite_time(beta: f64, alpha: f64, linear_below: f64, dims: QpDims) -> Result<ZeroingNetwork, String> {
+pub fn finite_time(beta: f64, alpha: f64, smoothing: f64, dims: QpDims) -> Result<ZeroingNetwork, String> {
     if !(alpha > 0.0 && alpha < 1.0) {
         return Err(format!("finite-time network needs 0 < alpha < 1 (kong2019), got {alpha}"));
     }
-    ZeroingNetwork::new("FTNN", Gain::Fixed(beta), Activation::SignPower { r: alpha, linear_below }, None, dims)
+    ZeroingNetwork::new("FTNN", Gain::Fixed(beta), Activation::SignPower { r: alpha, smoothing }, None, dims)
 }
 
 /// The linear ZNN (kong2019's comparison solver): W ydot = -Wdot y + vdot - gamma (W y - v).

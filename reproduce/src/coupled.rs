@@ -1,0 +1,239 @@
+//! The arm and its solver as one ODE, as the papers' group wrote it in MATLAB.
+//!
+//! Velocity level: state [theta; y], theta' = x[..n].
+//! Acceleration level: state [theta; thetadot; y], theta' = thetadot, thetadot' = x[..n].
+//!
+//! - Exact loop ([`ExactLoop`]): no network state; x = x*(t, theta, thetadot), the optimum of
+//!   the scheme's QP solved by Clarabel at every evaluation.
+//! - Neural loop ([`NeuralLoop`]): y is the network state, x = y[..nx] (the network's current
+//!   estimate), y' = F_net(t, y; QP(t, theta, thetadot)) with, for the zeroing networks, the
+//!   QP's time derivative taken along the current motion (theta moving at thetadot, thetadot at
+//!   the network's thetaddot).
+//!
+//! The neural loop's Jacobian combines the network's analytic dF/dy with the QP frozen (where
+//! it gives one), the exact arm rows, and forward differences for the arm-state columns (QP
+//! data depends on theta nonlinearly through J, f and the bounds) and, for the zeroing
+//! networks, for the joint-command columns too (dQP/dt is taken along the command).
+
+use nalgebra::{DMatrix, DVector, SVector};
+use schemes::qp_dot::QpDotScratch;
+use schemes::scheme::{Level, Scheme};
+use solvers::exact::ExactSolver;
+use solvers::neural::NeuralSolver;
+use solvers::ode::OdeSystem;
+use solvers::Qp;
+
+/// Number of arm-state entries: n at the velocity level, 2n at the acceleration level.
+pub fn arm_dim<const N: usize>(level: Level) -> usize {
+    match level {
+        Level::Velocity => N,
+        Level::Acceleration => 2 * N,
+    }
+}
+
+/// (theta, thetadot) from the arm part of a state vector; thetadot = `command` at the velocity
+/// level (it is not a state there).
+pub fn arm_state<const N: usize>(level: Level, y: &[f64], command: &[f64]) -> (SVector<f64, N>, SVector<f64, N>) {
+    let theta = SVector::<f64, N>::from_column_slice(&y[..N]);
+    let thetadot = match level {
+        Level::Velocity => SVector::<f64, N>::from_column_slice(&command[..N]),
+        Level::Acceleration => SVector::<f64, N>::from_column_slice(&y[N..2 * N]),
+    };
+    (theta, thetadot)
+}
+
+/// Writes the arm part of y' given the joint command x[..n].
+fn arm_rhs<const N: usize>(level: Level, y: &[f64], command: &[f64], dy: &mut [f64]) {
+    match level {
+        Level::Velocity => dy[..N].copy_from_slice(&command[..N]),
+        Level::Acceleration => {
+            dy[..N].copy_from_slice(&y[N..2 * N]);
+            dy[N..2 * N].copy_from_slice(&command[..N]);
+        }
+    }
+}
+
+/// The scheme with Clarabel in the loop.
+pub struct ExactLoop<'a, const N: usize> {
+    pub scheme: &'a dyn Scheme<N>,
+    pub qp: Qp,
+    pub solver: ExactSolver,
+    /// QP solves so far.
+    pub qp_solves: usize,
+    /// First failure of the exact solver (the run is then reported as failed with it).
+    pub failure: Option<String>,
+}
+
+impl<'a, const N: usize> ExactLoop<'a, N> {
+    pub fn new(scheme: &'a dyn Scheme<N>) -> Self {
+        Self { scheme, qp: scheme.new_qp(), solver: ExactSolver::new(), qp_solves: 0, failure: None }
+    }
+
+    /// x*(t, theta, thetadot), or the solver's error.
+    pub fn optimum(&mut self, t: f64, theta: &SVector<f64, N>, thetadot: &SVector<f64, N>) -> Result<DVector<f64>, String> {
+        self.scheme.build(t, theta, thetadot, &mut self.qp);
+        self.qp_solves += 1;
+        self.solver.solve(&self.qp).map(|s| s.x).map_err(|e| e.to_string())
+    }
+}
+
+impl<const N: usize> OdeSystem for ExactLoop<'_, N> {
+    fn dim(&self) -> usize {
+        arm_dim::<N>(self.scheme.level())
+    }
+
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
+        let level = self.scheme.level();
+        let theta = SVector::<f64, N>::from_column_slice(&y[..N]);
+        let thetadot = match level {
+            Level::Velocity => SVector::zeros(),
+            Level::Acceleration => SVector::from_column_slice(&y[N..2 * N]),
+        };
+        match self.optimum(t, &theta, &thetadot) {
+            Ok(x) => arm_rhs::<N>(level, y, x.as_slice(), dy),
+            Err(e) => {
+                if self.failure.is_none() {
+                    self.failure = Some(format!("exact QP at t = {t:.6}: {e}"));
+                }
+                dy.fill(f64::NAN);
+            }
+        }
+    }
+}
+
+/// The scheme solved by a recurrent network, integrated together with the arm.
+pub struct NeuralLoop<'a, const N: usize> {
+    pub scheme: &'a dyn Scheme<N>,
+    pub network: Box<dyn NeuralSolver>,
+    qp: Qp,
+    qp_dot: Qp,
+    dot_scratch: QpDotScratch,
+    net_dim: usize,
+    /// Evaluations of F spent inside [`OdeSystem::jacobian`] (finite-difference columns).
+    pub jacobian_rhs_evals: usize,
+    jac_net: DMatrix<f64>,
+    f0: Vec<f64>,
+    f1: Vec<f64>,
+    yp: Vec<f64>,
+}
+
+impl<'a, const N: usize> NeuralLoop<'a, N> {
+    pub fn new(scheme: &'a dyn Scheme<N>, network: Box<dyn NeuralSolver>) -> Self {
+        let net_dim = network.state_dim(scheme.dims());
+        let dim = arm_dim::<N>(scheme.level()) + net_dim;
+        Self {
+            scheme,
+            network,
+            qp: scheme.new_qp(),
+            qp_dot: scheme.new_qp(),
+            dot_scratch: scheme.new_dot_scratch(),
+            net_dim,
+            jacobian_rhs_evals: 0,
+            jac_net: DMatrix::zeros(net_dim, net_dim),
+            f0: vec![0.0; dim],
+            f1: vec![0.0; dim],
+            yp: vec![0.0; dim],
+        }
+    }
+
+    /// Offset of the network state in the ODE state.
+    pub fn net_offset(&self) -> usize {
+        arm_dim::<N>(self.scheme.level())
+    }
+
+    /// The QP at the state's (t, theta, thetadot) (thetadot read from the network at the
+    /// velocity level), left in `self.qp`, returned with (theta, thetadot).
+    pub fn qp_at(&mut self, t: f64, y: &[f64]) -> (&Qp, SVector<f64, N>, SVector<f64, N>) {
+        let k = self.net_offset();
+        let (theta, thetadot) = arm_state::<N>(self.scheme.level(), y, &y[k..]);
+        self.scheme.build(t, &theta, &thetadot, &mut self.qp);
+        (&self.qp, theta, thetadot)
+    }
+
+    fn eval(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
+        let k = self.net_offset();
+        let level = self.scheme.level();
+        let (theta, thetadot) = arm_state::<N>(level, y, &y[k..]);
+        self.scheme.build(t, &theta, &thetadot, &mut self.qp);
+        let qp_dot = if self.network.needs_qp_dot() {
+            let command = SVector::<f64, N>::from_column_slice(&y[k..k + N]);
+            let (thetadot_m, thetaddot) = match level {
+                Level::Velocity => (command, SVector::zeros()),
+                Level::Acceleration => (thetadot, command),
+            };
+            self.scheme.build_dot(t, &theta, &thetadot_m, &thetaddot, &mut self.qp_dot, &mut self.dot_scratch);
+            Some(&self.qp_dot)
+        } else {
+            None
+        };
+        let (arm, net) = dy.split_at_mut(k);
+        self.network.rhs(t, &y[k..], &self.qp, qp_dot, net);
+        arm_rhs::<N>(level, y, &y[k..], arm);
+    }
+}
+
+impl<const N: usize> OdeSystem for NeuralLoop<'_, N> {
+    fn dim(&self) -> usize {
+        self.net_offset() + self.net_dim
+    }
+
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
+        self.eval(t, y, dy);
+    }
+
+    fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut DMatrix<f64>) -> bool {
+        let k = self.net_offset();
+        let level = self.scheme.level();
+        // Network block with the QP at this state.
+        {
+            let (theta, thetadot) = arm_state::<N>(level, y, &y[k..]);
+            self.scheme.build(t, &theta, &thetadot, &mut self.qp);
+        }
+        let qp_dot_needed = self.network.needs_qp_dot();
+        if qp_dot_needed {
+            // The analytic block of a zeroing network needs dQP/dt at this state.
+            let mut f = std::mem::take(&mut self.f0);
+            self.jacobian_rhs_evals += 1;
+            self.eval(t, y, &mut f);
+            self.f0 = f;
+        }
+        let qp_dot = qp_dot_needed.then_some(&self.qp_dot);
+        if !self.network.jacobian(t, &y[k..], &self.qp, qp_dot, &mut self.jac_net) {
+            return false;
+        }
+        let n = self.dim();
+        jac.fill(0.0);
+        jac.view_mut((k, k), (self.net_dim, self.net_dim)).copy_from(&self.jac_net);
+        // Arm rows: theta' = x[..n] (velocity) or theta' = thetadot, thetadot' = x[..n].
+        match level {
+            Level::Velocity => (0..N).for_each(|i| jac[(i, k + i)] = 1.0),
+            Level::Acceleration => (0..N).for_each(|i| {
+                jac[(i, N + i)] = 1.0;
+                jac[(N + i, k + i)] = 1.0;
+            }),
+        }
+        // Network rows, by forward differences, for the arm-state columns and (for networks fed
+        // with dQP/dt) the joint-command columns: dQP/dt is taken along the network's own
+        // command, a dependence the frozen-QP block above does not see.
+        let fd_columns = if qp_dot_needed { k + N } else { k };
+        let mut f0 = std::mem::take(&mut self.f0);
+        let mut f1 = std::mem::take(&mut self.f1);
+        self.eval(t, y, &mut f0);
+        self.jacobian_rhs_evals += 1 + fd_columns;
+        self.yp.copy_from_slice(y);
+        for j in 0..fd_columns {
+            let h = f64::EPSILON.sqrt() * y[j].abs().max(1.0);
+            self.yp[j] = y[j] + h;
+            let yp = std::mem::take(&mut self.yp);
+            self.eval(t, &yp, &mut f1);
+            self.yp = yp;
+            for i in k..n {
+                jac[(i, j)] = (f1[i] - f0[i]) / h;
+            }
+            self.yp[j] = y[j];
+        }
+        self.f0 = f0;
+        self.f1 = f1;
+        true
+    }
+}

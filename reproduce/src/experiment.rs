@@ -1,0 +1,254 @@
+//! Experiments as data: one TOML file per paper in `experiments/`, read with serde.
+//!
+//! A file holds a paper id and a list of experiments (ids as in `shared/spec/experiments.md`).
+//! An experiment fixes the robot, the path, theta0 (and the scheme's reference theta*0 where a
+//! paper distinguishes it) and the integrators, and lists *variants*: each variant is one scheme
+//! (with its parameters by the paper's names) run exactly (Clarabel in the loop) and by each of
+//! its neural solvers. A variant may override the robot, path, theta0 or theta_ref, which is how
+//! the model check (jaco2 vs jaco2-pen), the star-lines variant and kong2019's two starts are
+//! written. Every run an experiment file describes is a [`Job`].
+
+use schemes::paths::PathSpec;
+use schemes::spec::SchemeSpec;
+use serde::Deserialize;
+use solvers::neural::spec::SolverSpec;
+use solvers::ode::IntegratorSettings;
+use std::path::{Path, PathBuf};
+
+/// One paper's experiment file.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PaperFile {
+    /// Paper id (`jia2019`, `zhang2018`, `zhong2021`, `kong2019`).
+    pub paper: String,
+    pub title: String,
+    #[serde(rename = "experiment")]
+    pub experiments: Vec<Experiment>,
+}
+
+/// One experiment of experiments.md.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Experiment {
+    pub id: String,
+    /// What the paper prints for it (e.g. "Table 2; Figs 2-4").
+    pub paper_output: String,
+    pub robot: String,
+    pub path: PathSpec,
+    pub theta0: Vec<f64>,
+    /// The scheme's joint reference (kong2019's theta*0); theta0 when absent. Paths start at
+    /// f(theta_ref).
+    #[serde(default)]
+    pub theta_ref: Option<Vec<f64>>,
+    /// Integrator of the neural runs (default: BDF/NDF, RelTol 1e-6, AbsTol 1e-8, as ode15s).
+    #[serde(default)]
+    pub integrator: IntegratorSettings,
+    /// Integrator of the exact column (Clarabel in the loop; explicit, since x*(t, theta) is only
+    /// piecewise smooth and has no cheap Jacobian).
+    #[serde(default = "default_exact_integrator")]
+    pub exact_integrator: IntegratorSettings,
+    #[serde(rename = "variant")]
+    pub variants: Vec<Variant>,
+}
+
+fn default_exact_integrator() -> IntegratorSettings {
+    IntegratorSettings { method: solvers::ode::Method::Dopri5, ..IntegratorSettings::default() }
+}
+
+/// One scheme of an experiment, run exactly and by each listed neural solver.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Variant {
+    /// Label as the paper's table column writes it (e.g. "VLTCO").
+    pub label: String,
+    pub scheme: SchemeSpec,
+    #[serde(default)]
+    pub solvers: Vec<SolverSpec>,
+    /// Run the exact column (default true).
+    #[serde(default = "yes")]
+    pub exact: bool,
+    #[serde(default)]
+    pub robot: Option<String>,
+    #[serde(default)]
+    pub path: Option<PathSpec>,
+    #[serde(default)]
+    pub theta0: Option<Vec<f64>>,
+    #[serde(default)]
+    pub theta_ref: Option<Vec<f64>>,
+}
+
+fn yes() -> bool {
+    true
+}
+
+/// The solver of one run: the exact optimum or a neural network.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SolverChoice {
+    Exact,
+    Neural(SolverSpec),
+}
+
+impl SolverChoice {
+    pub fn label(&self) -> String {
+        match self {
+            SolverChoice::Exact => "exact (Clarabel)".to_string(),
+            SolverChoice::Neural(s) => s.display_name(),
+        }
+    }
+}
+
+/// One run: everything needed to simulate it, resolved from the file.
+#[derive(Clone, Debug)]
+pub struct Job {
+    pub paper: String,
+    pub experiment: String,
+    pub variant: String,
+    pub robot: String,
+    pub path: PathSpec,
+    pub theta0: Vec<f64>,
+    pub theta_ref: Vec<f64>,
+    pub scheme: SchemeSpec,
+    pub solver: SolverChoice,
+    pub integrator: IntegratorSettings,
+}
+
+impl Job {
+    /// Stable key of a run: experiment / variant / solver.
+    pub fn key(&self) -> String {
+        format!("{} / {} / {}", self.experiment, self.variant, self.solver.label())
+    }
+}
+
+/// A problem with an experiment file, naming the file and the field.
+#[derive(Debug)]
+pub struct ExperimentFileError {
+    pub file: PathBuf,
+    pub message: String,
+}
+
+impl std::fmt::Display for ExperimentFileError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}: {}", self.file.display(), self.message)
+    }
+}
+
+impl std::error::Error for ExperimentFileError {}
+
+/// Robot names the suite knows, with their joint counts.
+pub const ROBOTS: &[(&str, usize)] = &[("jaco2-pen", 6), ("jaco2", 6), ("katana6m180", 5)];
+
+impl PaperFile {
+    /// Reads and validates one experiment file.
+    pub fn load(path: &Path) -> Result<Self, ExperimentFileError> {
+        let err = |message: String| ExperimentFileError { file: path.to_path_buf(), message };
+        let text = std::fs::read_to_string(path).map_err(|e| err(format!("cannot read: {e}")))?;
+        let file: PaperFile = toml::from_str(&text).map_err(|e| err(e.to_string().trim_end().to_string()))?;
+        file.validate().map_err(err)?;
+        Ok(file)
+    }
+
+    fn validate(&self) -> Result<(), String> {
+        for (i, e) in self.experiments.iter().enumerate() {
+            let at = |field: &str| format!("experiment[{i}] (id \"{}\") field `{field}`", e.id);
+            if !e.id.starts_with(&format!("{}-", self.paper)) {
+                return Err(format!("{}: must start with the paper id \"{}-\"", at("id"), self.paper));
+            }
+            let n = robot_dof(&e.robot).ok_or_else(|| format!("{}: unknown robot \"{}\" (known: {})", at("robot"), e.robot, robot_names()))?;
+            check_len(&e.theta0, n, &at("theta0"))?;
+            if let Some(r) = &e.theta_ref {
+                check_len(r, n, &at("theta_ref"))?;
+            }
+            check_integrator(&e.integrator, &at("integrator"))?;
+            check_integrator(&e.exact_integrator, &at("exact_integrator"))?;
+            if e.variants.is_empty() {
+                return Err(format!("{}: at least one [[experiment.variant]] is needed", at("variant")));
+            }
+            for (j, v) in e.variants.iter().enumerate() {
+                let vat = |field: &str| format!("experiment[{i}] (id \"{}\") variant[{j}] (\"{}\") field `{field}`", e.id, v.label);
+                let robot = v.robot.as_deref().unwrap_or(&e.robot);
+                let vn = robot_dof(robot).ok_or_else(|| format!("{}: unknown robot \"{robot}\" (known: {})", vat("robot"), robot_names()))?;
+                if vn != n && (v.theta0.is_none() || (e.theta_ref.is_some() && v.theta_ref.is_none())) {
+                    return Err(format!("{}: robot \"{robot}\" has {vn} joints; give theta0/theta_ref for it", vat("robot")));
+                }
+                if let Some(t) = &v.theta0 {
+                    check_len(t, vn, &vat("theta0"))?;
+                }
+                if let Some(t) = &v.theta_ref {
+                    check_len(t, vn, &vat("theta_ref"))?;
+                }
+                v.scheme.validate().map_err(|err| format!("{}: {err}", vat("scheme")))?;
+                if !v.exact && v.solvers.is_empty() {
+                    return Err(format!("{}: variant runs nothing (exact = false and no solvers)", vat("solvers")));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Every run of the file, in file order (variant by variant, exact column first).
+    pub fn jobs(&self) -> Vec<Job> {
+        let mut jobs = Vec::new();
+        for e in &self.experiments {
+            for v in &e.variants {
+                let theta0 = v.theta0.clone().unwrap_or_else(|| e.theta0.clone());
+                let theta_ref = v.theta_ref.clone().or_else(|| e.theta_ref.clone()).unwrap_or_else(|| theta0.clone());
+                let base = Job {
+                    paper: self.paper.clone(),
+                    experiment: e.id.clone(),
+                    variant: v.label.clone(),
+                    robot: v.robot.clone().unwrap_or_else(|| e.robot.clone()),
+                    path: v.path.clone().unwrap_or_else(|| e.path.clone()),
+                    theta0,
+                    theta_ref,
+                    scheme: v.scheme.clone(),
+                    solver: SolverChoice::Exact,
+                    integrator: e.exact_integrator,
+                };
+                if v.exact {
+                    jobs.push(base.clone());
+                }
+                for s in &v.solvers {
+                    jobs.push(Job { solver: SolverChoice::Neural(s.clone()), integrator: e.integrator, ..base.clone() });
+                }
+            }
+        }
+        jobs
+    }
+}
+
+fn robot_dof(name: &str) -> Option<usize> {
+    ROBOTS.iter().find(|(n, _)| *n == name).map(|(_, d)| *d)
+}
+
+fn robot_names() -> String {
+    ROBOTS.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
+}
+
+fn check_len(v: &[f64], n: usize, at: &str) -> Result<(), String> {
+    if v.len() != n {
+        return Err(format!("{at}: has {} entries, the robot has {n} joints", v.len()));
+    }
+    if v.iter().any(|x| !x.is_finite()) {
+        return Err(format!("{at}: entries must be finite"));
+    }
+    Ok(())
+}
+
+fn check_integrator(s: &IntegratorSettings, at: &str) -> Result<(), String> {
+    if !(s.rtol > 0.0 && s.atol > 0.0) {
+        return Err(format!("{at}: rtol and atol must be positive"));
+    }
+    Ok(())
+}
+
+/// Loads every `*.toml` of `dir`, sorted by file name.
+pub fn load_dir(dir: &Path) -> Result<Vec<PaperFile>, ExperimentFileError> {
+    let entries = std::fs::read_dir(dir)
+        .map_err(|e| ExperimentFileError { file: dir.to_path_buf(), message: format!("cannot list: {e}") })?;
+    let mut files: Vec<PathBuf> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    files.sort();
+    files.iter().map(|f| PaperFile::load(f)).collect()
+}

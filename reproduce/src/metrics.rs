@@ -1,0 +1,230 @@
+//! Metrics accumulated along a run, one accepted integrator step at a time.
+//!
+//! - drift: theta(T) - theta0 per joint and its 2-norm (also against the reference theta*0
+//!   where a paper distinguishes it, kong2019);
+//! - end-effector position error e(t) = |r*(t) - f(theta(t))|_2: max, RMS (time-weighted by the
+//!   trapezoidal rule over the accepted steps) and final value;
+//! - joint-angle and joint-velocity limit margins: min over joints and time of the distance to
+//!   each finite limit (negative = violated);
+//! - peaks of |thetadot|_inf, |thetaddot|_inf and |tau|_inf (acceleration level);
+//! - sigma_min of the 3 x n position Jacobian along the run (distance from singularity);
+//! - the score of a neural solver against the exact QP optimum at the same (t, state): max and
+//!   RMS |x_nn - x*|_inf over the joint command, max relative objective gap
+//!   (f(x_nn) - f(x*)) / max(1, |f(x*)|), max constraint violation of x_nn.
+
+use nalgebra::{SMatrix, SVector, Vector3};
+use robots::JointLimits;
+
+/// One sample of the arm's motion at an accepted step.
+#[derive(Clone, Copy, Debug)]
+pub struct Sample<const N: usize> {
+    pub t: f64,
+    pub theta: SVector<f64, N>,
+    pub thetadot: SVector<f64, N>,
+    /// Joint acceleration (acceleration level only).
+    pub thetaddot: Option<SVector<f64, N>>,
+    pub torque: Option<SVector<f64, N>>,
+    pub desired: Vector3<f64>,
+    pub actual: Vector3<f64>,
+    pub jacobian: SMatrix<f64, 3, N>,
+}
+
+/// Comparison of a neural solver's output with the exact optimum at one instant.
+#[derive(Clone, Copy, Debug)]
+pub struct ScoreSample {
+    /// |x_nn - x*|_inf over the joint command x[..n].
+    pub dx: f64,
+    /// (f(x_nn) - f(x*)) / max(1, |f(x*)|).
+    pub objective_gap: f64,
+    /// Largest constraint violation of x_nn.
+    pub violation: f64,
+}
+
+/// Score of a neural run against Clarabel along its own trajectory.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Score {
+    pub samples: usize,
+    pub max_dx: f64,
+    pub rms_dx: f64,
+    pub max_objective_gap: f64,
+    pub max_violation: f64,
+}
+
+/// Final metrics of a run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunMetrics {
+    pub drift: Vec<f64>,
+    pub drift_norm: f64,
+    pub drift_ref_norm: f64,
+    pub max_position_error: f64,
+    pub rms_position_error: f64,
+    pub final_position_error: f64,
+    pub theta_margin: f64,
+    pub thetadot_margin: f64,
+    pub peak_thetadot: f64,
+    pub peak_thetaddot: Option<f64>,
+    pub peak_torque: Option<f64>,
+    pub min_sigma_j: f64,
+    pub score: Option<Score>,
+}
+
+/// Streaming accumulator of [`RunMetrics`].
+pub struct MetricsAccumulator<const N: usize> {
+    limits: JointLimits<N>,
+    theta0: SVector<f64, N>,
+    theta_ref: SVector<f64, N>,
+    last: Option<Sample<N>>,
+    last_error: f64,
+    error_sq_integral: f64,
+    max_error: f64,
+    theta_margin: f64,
+    thetadot_margin: f64,
+    peak_thetadot: f64,
+    peak_thetaddot: f64,
+    peak_torque: f64,
+    min_sigma: f64,
+    score: Score,
+    dx_sq_sum: f64,
+}
+
+impl<const N: usize> MetricsAccumulator<N> {
+    pub fn new(limits: JointLimits<N>, theta0: SVector<f64, N>, theta_ref: SVector<f64, N>) -> Self {
+        Self {
+            limits,
+            theta0,
+            theta_ref,
+            last: None,
+            last_error: 0.0,
+            error_sq_integral: 0.0,
+            max_error: 0.0,
+            theta_margin: f64::INFINITY,
+            thetadot_margin: f64::INFINITY,
+            peak_thetadot: 0.0,
+            peak_thetaddot: 0.0,
+            peak_torque: 0.0,
+            min_sigma: f64::INFINITY,
+            score: Score::default(),
+            dx_sq_sum: 0.0,
+        }
+    }
+
+    /// Adds an accepted step.
+    pub fn push(&mut self, s: &Sample<N>) {
+        let e = (s.desired - s.actual).norm();
+        if let Some(prev) = &self.last {
+            let dt = s.t - prev.t;
+            self.error_sq_integral += 0.5 * dt * (e * e + self.last_error * self.last_error);
+        }
+        self.max_error = self.max_error.max(e);
+        let l = &self.limits;
+        for i in 0..N {
+            self.theta_margin =
+                self.theta_margin.min(margin(s.theta[i], l.theta_min[i], l.theta_max[i]));
+            self.thetadot_margin =
+                self.thetadot_margin.min(margin(s.thetadot[i], l.thetadot_min[i], l.thetadot_max[i]));
+        }
+        self.peak_thetadot = self.peak_thetadot.max(s.thetadot.amax());
+        if let Some(a) = &s.thetaddot {
+            self.peak_thetaddot = self.peak_thetaddot.max(a.amax());
+        }
+        if let Some(tau) = &s.torque {
+            self.peak_torque = self.peak_torque.max(tau.amax());
+        }
+        self.min_sigma = self.min_sigma.min(sigma_min(&s.jacobian));
+        self.last_error = e;
+        self.last = Some(*s);
+    }
+
+    /// Adds a comparison with the exact optimum.
+    pub fn push_score(&mut self, c: &ScoreSample) {
+        let sc = &mut self.score;
+        sc.samples += 1;
+        sc.max_dx = sc.max_dx.max(c.dx);
+        sc.max_objective_gap = sc.max_objective_gap.max(c.objective_gap);
+        sc.max_violation = sc.max_violation.max(c.violation);
+        self.dx_sq_sum += c.dx * c.dx;
+    }
+
+    /// Metrics of the run so far (its last sample is theta(T)).
+    pub fn finish(&self, start_time: f64) -> RunMetrics {
+        let last = self.last.expect("a run has at least its initial sample");
+        let drift = last.theta - self.theta0;
+        let duration = last.t - start_time;
+        let score = (self.score.samples > 0).then(|| Score {
+            rms_dx: (self.dx_sq_sum / self.score.samples as f64).sqrt(),
+            ..self.score
+        });
+        RunMetrics {
+            drift: drift.iter().copied().collect(),
+            drift_norm: drift.norm(),
+            drift_ref_norm: (last.theta - self.theta_ref).norm(),
+            max_position_error: self.max_error,
+            rms_position_error: if duration > 0.0 { (self.error_sq_integral / duration).sqrt() } else { self.last_error },
+            final_position_error: self.last_error,
+            theta_margin: self.theta_margin,
+            thetadot_margin: self.thetadot_margin,
+            peak_thetadot: self.peak_thetadot,
+            peak_thetaddot: last.thetaddot.map(|_| self.peak_thetaddot),
+            peak_torque: last.torque.map(|_| self.peak_torque),
+            min_sigma_j: self.min_sigma,
+            score,
+        }
+    }
+}
+
+/// Smallest singular value of a 3 x n Jacobian: sqrt of the least eigenvalue of J J'.
+pub fn sigma_min<const N: usize>(j: &SMatrix<f64, 3, N>) -> f64 {
+    let jjt: nalgebra::Matrix3<f64> = j * j.transpose();
+    jjt.symmetric_eigenvalues().min().max(0.0).sqrt()
+}
+
+/// Distance of v inside [lo, hi] (negative when outside); infinite limits never bind.
+fn margin(v: f64, lo: f64, hi: f64) -> f64 {
+    (v - lo).min(hi - v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::SVector;
+
+    fn limits() -> JointLimits<2> {
+        JointLimits {
+            theta_min: SVector::from([-1.0, f64::NEG_INFINITY]),
+            theta_max: SVector::from([1.0, f64::INFINITY]),
+            thetadot_min: SVector::from([-2.0, -2.0]),
+            thetadot_max: SVector::from([2.0, 2.0]),
+        }
+    }
+
+    fn sample(t: f64, theta: [f64; 2], err: f64) -> Sample<2> {
+        Sample {
+            t,
+            theta: SVector::from(theta),
+            thetadot: SVector::from([0.5, -1.5]),
+            thetaddot: None,
+            torque: None,
+            desired: Vector3::new(err, 0.0, 0.0),
+            actual: Vector3::zeros(),
+            jacobian: SMatrix::<f64, 3, 2>::new(1.0, 0.0, 0.0, 2.0, 0.0, 0.0),
+        }
+    }
+
+    #[test]
+    fn drift_margins_and_rms_of_a_constant_error() {
+        let mut m = MetricsAccumulator::new(limits(), SVector::from([0.0, 0.0]), SVector::from([0.1, 0.0]));
+        m.push(&sample(0.0, [0.0, 0.0], 0.3));
+        m.push(&sample(1.0, [0.9, 5.0], 0.3));
+        m.push(&sample(3.0, [0.3, 4.0], 0.3));
+        let r = m.finish(0.0);
+        assert_eq!(r.drift, vec![0.3, 4.0]);
+        assert!((r.drift_norm - (0.09f64 + 16.0).sqrt()).abs() < 1e-15);
+        assert!((r.drift_ref_norm - (0.04f64 + 16.0).sqrt()).abs() < 1e-15);
+        assert!((r.rms_position_error - 0.3).abs() < 1e-15);
+        assert!((r.theta_margin - 0.1).abs() < 1e-15, "closest approach is 1 - 0.9");
+        assert!((r.thetadot_margin - 0.5).abs() < 1e-15);
+        assert_eq!(r.peak_thetadot, 1.5);
+        assert!((r.min_sigma_j - 1.0).abs() < 1e-12);
+        assert!(r.score.is_none() && r.peak_torque.is_none());
+    }
+}

@@ -1,0 +1,241 @@
+//! `results/`: the committed CSV the report and the regression gate read.
+//!
+//! - `results/runs.csv`: one row per run ([`RunRow`]): identity, outcome, every metric, the
+//!   score against the exact optimum, and provenance (integrator, tolerances, steps,
+//!   evaluations, wall time, crate version, git revision).
+//! - `results/traces/<experiment>/<variant>__<solver>.csv`: the thinned time history of each
+//!   run for the figures.
+//!
+//! Files are written to a temporary name and renamed, so an interrupted run never leaves a
+//! half-written file. Rows are sorted by (experiment, variant, solver) so that two runs give
+//! byte-identical files except for the timing columns (`wall_s`) and `git_rev`.
+
+use crate::run::{Outcome, RunRecord};
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// Columns that legitimately differ between two runs of the same code.
+pub const TIMING_COLUMNS: &[&str] = &["wall_s", "git_rev"];
+
+/// One run, as stored in `results/runs.csv`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RunRow {
+    pub paper: String,
+    pub experiment: String,
+    pub variant: String,
+    pub scheme: String,
+    pub solver: String,
+    pub robot: String,
+    pub path: String,
+    pub path_scale: Option<f64>,
+    pub duration: f64,
+    /// `ok` or `failed`.
+    pub status: String,
+    pub failure: String,
+    pub failed_at: Option<f64>,
+    pub drift_1: Option<f64>,
+    pub drift_2: Option<f64>,
+    pub drift_3: Option<f64>,
+    pub drift_4: Option<f64>,
+    pub drift_5: Option<f64>,
+    pub drift_6: Option<f64>,
+    pub drift_norm: Option<f64>,
+    pub drift_ref_norm: Option<f64>,
+    pub max_pos_err: Option<f64>,
+    pub rms_pos_err: Option<f64>,
+    pub final_pos_err: Option<f64>,
+    pub theta_margin: Option<f64>,
+    pub thetadot_margin: Option<f64>,
+    pub peak_thetadot: Option<f64>,
+    pub peak_thetaddot: Option<f64>,
+    pub peak_torque: Option<f64>,
+    pub min_sigma_j: Option<f64>,
+    pub score_samples: Option<usize>,
+    pub score_max_dx: Option<f64>,
+    pub score_rms_dx: Option<f64>,
+    pub score_max_obj_gap: Option<f64>,
+    pub score_max_violation: Option<f64>,
+    pub score_failures: usize,
+    pub integrator: String,
+    pub rtol: f64,
+    pub atol: f64,
+    pub steps: usize,
+    pub rejected: usize,
+    pub rhs_evals: usize,
+    pub jac_evals: usize,
+    pub qp_solves: usize,
+    pub wall_s: f64,
+    pub crate_version: String,
+    pub git_rev: String,
+}
+
+impl RunRow {
+    pub fn from_record(r: &RunRecord, git_rev: &str) -> Self {
+        let j = &r.job;
+        let (status, failure, failed_at, m) = match &r.outcome {
+            Outcome::Completed(m) => ("ok", String::new(), None, Some(m)),
+            Outcome::Failed { t, reason } => ("failed", reason.clone(), Some(*t), None),
+        };
+        let drift = |i: usize| m.and_then(|m| m.drift.get(i).copied());
+        let score = m.and_then(|m| m.score);
+        RunRow {
+            paper: j.paper.clone(),
+            experiment: j.experiment.clone(),
+            variant: j.variant.clone(),
+            scheme: r.scheme_name.clone(),
+            solver: j.solver.label(),
+            robot: j.robot.clone(),
+            path: j.path.name.clone(),
+            path_scale: j.path.scale.or_else(|| schemes::paths::default_scale(&j.path.name)),
+            duration: j.path.duration,
+            status: status.to_string(),
+            failure,
+            failed_at,
+            drift_1: drift(0),
+            drift_2: drift(1),
+            drift_3: drift(2),
+            drift_4: drift(3),
+            drift_5: drift(4),
+            drift_6: drift(5),
+            drift_norm: m.map(|m| m.drift_norm),
+            drift_ref_norm: m.map(|m| m.drift_ref_norm),
+            max_pos_err: m.map(|m| m.max_position_error),
+            rms_pos_err: m.map(|m| m.rms_position_error),
+            final_pos_err: m.map(|m| m.final_position_error),
+            theta_margin: m.map(|m| m.theta_margin).filter(|v| v.is_finite()),
+            thetadot_margin: m.map(|m| m.thetadot_margin).filter(|v| v.is_finite()),
+            peak_thetadot: m.map(|m| m.peak_thetadot),
+            peak_thetaddot: m.and_then(|m| m.peak_thetaddot),
+            peak_torque: m.and_then(|m| m.peak_torque),
+            min_sigma_j: m.map(|m| m.min_sigma_j),
+            score_samples: score.map(|s| s.samples),
+            score_max_dx: score.map(|s| s.max_dx),
+            score_rms_dx: score.map(|s| s.rms_dx),
+            score_max_obj_gap: score.map(|s| s.max_objective_gap),
+            score_max_violation: score.map(|s| s.max_violation),
+            score_failures: r.score_failures,
+            integrator: j.integrator.method.label().to_string(),
+            rtol: j.integrator.rtol,
+            atol: j.integrator.atol,
+            steps: r.stats.steps,
+            rejected: r.stats.rejected,
+            rhs_evals: r.stats.rhs_evals,
+            jac_evals: r.stats.jac_evals,
+            qp_solves: r.qp_solves,
+            wall_s: r.stats.wall_seconds,
+            crate_version: env!("CARGO_PKG_VERSION").to_string(),
+            git_rev: git_rev.to_string(),
+        }
+    }
+
+    /// Stable sort key.
+    pub fn key(&self) -> (String, String, String) {
+        (self.experiment.clone(), self.variant.clone(), self.solver.clone())
+    }
+
+    /// The joint drifts that exist (n of them).
+    pub fn drifts(&self) -> Vec<f64> {
+        [self.drift_1, self.drift_2, self.drift_3, self.drift_4, self.drift_5, self.drift_6].into_iter().flatten().collect()
+    }
+}
+
+/// Writes `bytes` to `path` atomically (temporary file + rename).
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir)?;
+    }
+    let tmp = path.with_extension("tmp");
+    std::fs::write(&tmp, bytes)?;
+    std::fs::rename(&tmp, path)
+}
+
+/// Serialises rows as CSV.
+pub fn runs_csv(rows: &[RunRow]) -> Result<Vec<u8>, csv::Error> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    for r in rows {
+        w.serialize(r)?;
+    }
+    w.into_inner().map_err(|e| csv::Error::from(e.into_error()))
+}
+
+/// Reads `results/runs.csv`.
+pub fn read_runs(path: &Path) -> Result<Vec<RunRow>, String> {
+    let mut r = csv::Reader::from_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    r.deserialize().map(|row| row.map_err(|e| format!("{}: {e}", path.display()))).collect()
+}
+
+/// Merges freshly computed rows into the stored ones: a fresh row replaces the stored row with
+/// the same key; other stored rows are kept (so running one paper does not erase the others).
+pub fn merge(stored: Vec<RunRow>, fresh: Vec<RunRow>) -> Vec<RunRow> {
+    let mut all: Vec<RunRow> = stored.into_iter().filter(|s| !fresh.iter().any(|f| f.key() == s.key())).collect();
+    all.extend(fresh);
+    all.sort_by_key(|r| r.key());
+    all
+}
+
+/// File name of a run's trace.
+pub fn trace_file(r: &RunRecord) -> String {
+    format!("{}/{}__{}.csv", r.job.experiment, slug(&r.job.variant), slug(&r.job.solver.label()))
+}
+
+/// Lower-case ASCII letters, digits and dashes.
+pub fn slug(s: &str) -> String {
+    let mut out = String::new();
+    for c in s.chars() {
+        if c.is_ascii_alphanumeric() || c == '.' {
+            out.push(c.to_ascii_lowercase());
+        } else if !out.ends_with('-') {
+            out.push('-');
+        }
+    }
+    out.trim_matches('-').to_string()
+}
+
+/// A run's trace as CSV: t, theta_i, thetadot_i, [thetaddot_i, tau_i], desired and actual
+/// position, position error, score dx.
+pub fn trace_csv(r: &RunRecord) -> Result<Vec<u8>, csv::Error> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let Some(first) = r.trace.first() else {
+        return w.into_inner().map_err(|e| csv::Error::from(e.into_error()));
+    };
+    let n = first.theta.len();
+    let mut header = vec!["t".to_string()];
+    header.extend((1..=n).map(|i| format!("theta_{i}")));
+    header.extend((1..=n).map(|i| format!("thetadot_{i}")));
+    if first.thetaddot.is_some() {
+        header.extend((1..=n).map(|i| format!("thetaddot_{i}")));
+    }
+    if first.torque.is_some() {
+        header.extend((1..=n).map(|i| format!("tau_{i}")));
+    }
+    header.extend(["rx_des", "ry_des", "rz_des", "rx", "ry", "rz", "pos_err", "score_dx"].map(String::from));
+    w.write_record(&header)?;
+    for p in &r.trace {
+        let mut rec: Vec<String> = vec![p.t.to_string()];
+        rec.extend(p.theta.iter().chain(&p.thetadot).map(f64::to_string));
+        if let Some(a) = &p.thetaddot {
+            rec.extend(a.iter().map(f64::to_string));
+        }
+        if let Some(a) = &p.torque {
+            rec.extend(a.iter().map(f64::to_string));
+        }
+        rec.extend(p.desired.iter().chain(&p.actual).map(f64::to_string));
+        let err = ((p.desired[0] - p.actual[0]).powi(2) + (p.desired[1] - p.actual[1]).powi(2) + (p.desired[2] - p.actual[2]).powi(2)).sqrt();
+        rec.push(err.to_string());
+        rec.push(p.score_dx.map(|v| v.to_string()).unwrap_or_default());
+        w.write_record(&rec)?;
+    }
+    w.into_inner().map_err(|e| csv::Error::from(e.into_error()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::slug;
+
+    #[test]
+    fn slugs_are_file_safe() {
+        assert_eq!(slug("VP-RNN-PF (sinh)"), "vp-rnn-pf-sinh");
+        assert_eq!(slug("exact (Clarabel)"), "exact-clarabel");
+        assert_eq!(slug("MVN [jaco2 hand centre]"), "mvn-jaco2-hand-centre");
+    }
+}

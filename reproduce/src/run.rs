@@ -1,0 +1,243 @@
+//! Running one [`Job`]: build robot, path, scheme and solver, integrate, collect metrics, the
+//! score against the exact optimum and a thinned trace for the figures.
+
+use crate::coupled::{arm_dim, arm_state, ExactLoop, NeuralLoop};
+use crate::experiment::{Job, SolverChoice};
+use crate::metrics::{MetricsAccumulator, RunMetrics, Sample, ScoreSample};
+use nalgebra::{DVector, SVector};
+use robots::{Dynamics, Jaco2, Katana6m180, Robot};
+use schemes::paths::{build_path, Path};
+use schemes::scheme::{Level, Scheme};
+use schemes::spec::build_scheme;
+use solvers::ode::{integrate, Control, OdeError, OdeStats};
+use std::sync::Arc;
+
+/// Samples kept per run for the figures (uniform in t, plus the last).
+const TRACE_POINTS: usize = 400;
+
+/// One row of a run's trace.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TracePoint {
+    pub t: f64,
+    pub theta: Vec<f64>,
+    pub thetadot: Vec<f64>,
+    pub thetaddot: Option<Vec<f64>>,
+    pub torque: Option<Vec<f64>>,
+    pub desired: [f64; 3],
+    pub actual: [f64; 3],
+    /// |x_nn - x*|_inf at this instant (neural runs).
+    pub score_dx: Option<f64>,
+}
+
+/// Outcome of a run.
+#[derive(Clone, Debug)]
+pub enum Outcome {
+    Completed(RunMetrics),
+    Failed { t: f64, reason: String },
+}
+
+/// Everything a run produces.
+#[derive(Clone, Debug)]
+pub struct RunRecord {
+    pub job: Job,
+    pub scheme_name: String,
+    pub outcome: Outcome,
+    pub stats: OdeStats,
+    /// Clarabel solves (in the loop for the exact column, for scoring in neural runs).
+    pub qp_solves: usize,
+    /// Scoring instants where Clarabel failed (excluded from the score).
+    pub score_failures: usize,
+    pub trace: Vec<TracePoint>,
+}
+
+/// Runs one job to completion or failure; never panics on bad numerics.
+pub fn run_job(job: &Job) -> RunRecord {
+    let result = match job.robot.as_str() {
+        "jaco2-pen" => {
+            let r = Arc::new(Jaco2::pen());
+            run_with::<6>(job, r.clone(), Some(r))
+        }
+        "jaco2" => {
+            let r = Arc::new(Jaco2::kinova());
+            run_with::<6>(job, r.clone(), Some(r))
+        }
+        "katana6m180" => run_with::<5>(job, Arc::new(Katana6m180::new()), None),
+        other => Err(format!("unknown robot \"{other}\"")),
+    };
+    result.unwrap_or_else(|reason| RunRecord {
+        job: job.clone(),
+        scheme_name: job.scheme.display_name(),
+        outcome: Outcome::Failed { t: 0.0, reason },
+        stats: OdeStats::default(),
+        qp_solves: 0,
+        score_failures: 0,
+        trace: Vec::new(),
+    })
+}
+
+fn run_with<const N: usize>(
+    job: &Job,
+    robot: Arc<dyn Robot<N>>,
+    dynamics: Option<Arc<dyn Dynamics<N>>>,
+) -> Result<RunRecord, String> {
+    let theta0 = SVector::<f64, N>::from_column_slice(&job.theta0);
+    let theta_ref = SVector::<f64, N>::from_column_slice(&job.theta_ref);
+    let start = robot.position(&theta_ref);
+    let path: Arc<dyn Path> = Arc::from(build_path(&job.path, start).map_err(|e| e.to_string())?);
+    let scheme = build_scheme::<N>(&job.scheme, robot.clone(), dynamics, path.clone(), theta_ref).map_err(|e| e.to_string())?;
+    let mut observer = Observer::new(robot.as_ref(), scheme.as_ref(), path.as_ref(), theta0, theta_ref);
+    let t1 = path.duration();
+    let level = scheme.level();
+    let (outcome, stats, qp_solves) = match &job.solver {
+        SolverChoice::Exact => {
+            let mut sys = ExactLoop::new(scheme.as_ref());
+            let mut y0 = vec![0.0; arm_dim::<N>(level)];
+            y0[..N].copy_from_slice(theta0.as_slice());
+            let mut probe = ExactLoop::new(scheme.as_ref());
+            let result = integrate(&mut sys, &y0, 0.0, t1, &job.integrator, |t, y| {
+                let (theta, thetadot) = arm_state::<N>(level, y, y);
+                match probe.optimum(t, &theta, &thetadot) {
+                    Ok(x) => {
+                        observer.sample(t, y, &x, level);
+                        Control::Continue
+                    }
+                    Err(e) => Control::Stop(format!("exact QP at t = {t:.6}: {e}")),
+                }
+            });
+            let solves = sys.qp_solves + probe.qp_solves;
+            finish(result, sys.failure.take(), &observer, solves)
+        }
+        SolverChoice::Neural(spec) => {
+            let network = solvers::neural::build_solver(spec, scheme.dims()).map_err(|e| e.to_string())?;
+            let mut sys = NeuralLoop::new(scheme.as_ref(), network);
+            let k = sys.net_offset();
+            let mut y0 = vec![0.0; sys_dim(&sys)];
+            y0[..N].copy_from_slice(theta0.as_slice());
+            let mut scorer = ExactLoop::new(scheme.as_ref());
+            let mut failures = 0usize;
+            let result = integrate(&mut sys, &y0, 0.0, t1, &job.integrator, |t, y| {
+                let x_nn = DVector::from_column_slice(&y[k..k + scheme.dims().nx]);
+                let (theta, thetadot) = arm_state::<N>(level, y, &y[k..]);
+                match scorer.optimum(t, &theta, &thetadot) {
+                    Ok(x_star) => {
+                        let qp = &scorer.qp;
+                        let f_star = qp.objective(&x_star);
+                        let dx = (x_nn.rows(0, N) - x_star.rows(0, N)).amax();
+                        observer.score(&ScoreSample {
+                            dx,
+                            objective_gap: (qp.objective(&x_nn) - f_star) / f_star.abs().max(1.0),
+                            violation: qp.constraint_violation(&x_nn),
+                        });
+                    }
+                    Err(_) => failures += 1,
+                }
+                observer.sample(t, y, &x_nn, level);
+                Control::Continue
+            });
+            let mut r = finish(result, None, &observer, scorer.qp_solves);
+            r.1.rhs_evals += sys.jacobian_rhs_evals;
+            observer.score_failures = failures;
+            r
+        }
+    };
+    Ok(RunRecord {
+        job: job.clone(),
+        scheme_name: scheme.name(),
+        outcome,
+        stats,
+        qp_solves,
+        score_failures: observer.score_failures,
+        trace: observer.trace,
+    })
+}
+
+fn sys_dim<const N: usize>(sys: &NeuralLoop<'_, N>) -> usize {
+    use solvers::ode::OdeSystem;
+    sys.dim()
+}
+
+fn finish<const N: usize>(
+    result: Result<(Vec<f64>, OdeStats), OdeError>,
+    loop_failure: Option<String>,
+    observer: &Observer<'_, N>,
+    qp_solves: usize,
+) -> (Outcome, OdeStats, usize) {
+    match result {
+        Ok((_, stats)) => (Outcome::Completed(observer.metrics.finish(0.0)), stats, qp_solves),
+        Err(e) => {
+            let t = match &e {
+                OdeError::Solver { t, .. }
+                | OdeError::NonFinite { t }
+                | OdeError::TooManySteps { t, .. }
+                | OdeError::Stopped { t, .. } => *t,
+            };
+            let t = t.max(observer.last_t);
+            let reason = match loop_failure {
+                Some(f) => f,
+                None => e.to_string(),
+            };
+            (Outcome::Failed { t, reason }, OdeStats::default(), qp_solves)
+        }
+    }
+}
+
+/// Turns accepted steps into metrics and a thinned trace.
+struct Observer<'a, const N: usize> {
+    robot: &'a dyn Robot<N>,
+    scheme: &'a dyn Scheme<N>,
+    path: &'a dyn Path,
+    metrics: MetricsAccumulator<N>,
+    trace: Vec<TracePoint>,
+    next_trace_t: f64,
+    last_t: f64,
+    last_dx: Option<f64>,
+    score_failures: usize,
+}
+
+impl<'a, const N: usize> Observer<'a, N> {
+    fn new(robot: &'a dyn Robot<N>, scheme: &'a dyn Scheme<N>, path: &'a dyn Path, theta0: SVector<f64, N>, theta_ref: SVector<f64, N>) -> Self {
+        Self {
+            robot,
+            scheme,
+            path,
+            metrics: MetricsAccumulator::new(robot.limits(), theta0, theta_ref),
+            trace: Vec::with_capacity(TRACE_POINTS + 2),
+            next_trace_t: 0.0,
+            last_t: 0.0,
+            last_dx: None,
+            score_failures: 0,
+        }
+    }
+
+    fn score(&mut self, s: &ScoreSample) {
+        self.metrics.push_score(s);
+        self.last_dx = Some(s.dx);
+    }
+
+    /// Records the accepted state y at t with joint command x (x[..n] = thetadot or thetaddot).
+    fn sample(&mut self, t: f64, y: &[f64], x: &DVector<f64>, level: Level) {
+        let (theta, thetadot) = arm_state::<N>(level, y, x.as_slice());
+        let thetaddot = (level == Level::Acceleration).then(|| SVector::<f64, N>::from_column_slice(&x.as_slice()[..N]));
+        let torque = thetaddot.and_then(|a| self.scheme.torque(&theta, &thetadot, &a));
+        let desired = self.path.at(t).r;
+        let actual = self.robot.position(&theta);
+        let s = Sample { t, theta, thetadot, thetaddot, torque, desired, actual, jacobian: self.robot.jacobian(&theta) };
+        self.metrics.push(&s);
+        let duration = self.path.duration();
+        let is_end = t >= duration * (1.0 - 1e-12);
+        if t >= self.next_trace_t || is_end {
+            self.trace.push(TracePoint {
+                t,
+                theta: theta.iter().copied().collect(),
+                thetadot: thetadot.iter().copied().collect(),
+                thetaddot: thetaddot.map(|a| a.iter().copied().collect()),
+                torque: torque.map(|a| a.iter().copied().collect()),
+                desired: [desired.x, desired.y, desired.z],
+                actual: [actual.x, actual.y, actual.z],
+                score_dx: self.last_dx,
+            });
+            self.next_trace_t = t + duration / TRACE_POINTS as f64;
+        }
+        self.last_t = t;
+    }
+}
