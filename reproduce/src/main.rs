@@ -169,7 +169,15 @@ fn print_summary(rows: &[RunRow]) {
             );
         }
         if r.status != "ok" {
-            println!("{:<26} {:<28} FAILED at t = {}: {}", r.variant, r.solver, fmt(r.failed_at), r.failure);
+            println!(
+                "{:<26} {:<28} FAILED at t = {} (peak qd {}, max err {}): {}",
+                r.variant,
+                r.solver,
+                fmt(r.failed_at),
+                fmt(r.peak_thetadot),
+                fmt(r.max_pos_err),
+                r.failure
+            );
             continue;
         }
         println!(

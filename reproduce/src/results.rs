@@ -72,11 +72,13 @@ pub struct RunRow {
 impl RunRow {
     pub fn from_record(r: &RunRecord, git_rev: &str) -> Self {
         let j = &r.job;
-        let (status, failure, failed_at, m) = match &r.outcome {
-            Outcome::Completed(m) => ("ok", String::new(), None, Some(m)),
-            Outcome::Failed { t, reason } => ("failed", reason.clone(), Some(*t), None),
+        // A failed run keeps its metrics up to the failure (peaks, errors, margins), but no
+        // drift: theta(T) was never reached.
+        let (status, failure, failed_at, m, completed) = match &r.outcome {
+            Outcome::Completed(m) => ("ok", String::new(), None, Some(m), true),
+            Outcome::Failed { t, reason, partial } => ("failed", reason.clone(), Some(*t), partial.as_ref(), false),
         };
-        let drift = |i: usize| m.and_then(|m| m.drift.get(i).copied());
+        let drift = |i: usize| m.filter(|_| completed).and_then(|m| m.drift.get(i).copied());
         let score = m.and_then(|m| m.score);
         RunRow {
             paper: j.paper.clone(),
@@ -97,8 +99,8 @@ impl RunRow {
             drift_4: drift(3),
             drift_5: drift(4),
             drift_6: drift(5),
-            drift_norm: m.map(|m| m.drift_norm),
-            drift_ref_norm: m.map(|m| m.drift_ref_norm),
+            drift_norm: m.filter(|_| completed).map(|m| m.drift_norm),
+            drift_ref_norm: m.filter(|_| completed).map(|m| m.drift_ref_norm),
             max_pos_err: m.map(|m| m.max_position_error),
             rms_pos_err: m.map(|m| m.rms_position_error),
             final_pos_err: m.map(|m| m.final_position_error),

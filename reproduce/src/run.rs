@@ -33,7 +33,9 @@ pub struct TracePoint {
 #[derive(Clone, Debug)]
 pub enum Outcome {
     Completed(RunMetrics),
-    Failed { t: f64, reason: String },
+    /// The run stopped at t; `partial` holds the metrics up to there (peaks, errors, margins;
+    /// its drift is theta(t) - theta0, not a drift over the task).
+    Failed { t: f64, reason: String, partial: Option<RunMetrics> },
 }
 
 /// Everything a run produces.
@@ -61,13 +63,17 @@ pub fn run_job(job: &Job) -> RunRecord {
             let r = Arc::new(Jaco2::kinova());
             run_with::<6>(job, r.clone(), Some(r))
         }
+        "jaco2-hand" => {
+            let r = Arc::new(Jaco2::hand());
+            run_with::<6>(job, r.clone(), Some(r))
+        }
         "katana6m180" => run_with::<5>(job, Arc::new(Katana6m180::new()), None),
         other => Err(format!("unknown robot \"{other}\"")),
     };
     result.unwrap_or_else(|reason| RunRecord {
         job: job.clone(),
         scheme_name: job.scheme.display_name(),
-        outcome: Outcome::Failed { t: 0.0, reason },
+        outcome: Outcome::Failed { t: 0.0, reason, partial: None },
         stats: OdeStats::default(),
         qp_solves: 0,
         score_failures: 0,
@@ -176,7 +182,8 @@ fn finish<const N: usize>(
                 Some(f) => f,
                 None => e.to_string(),
             };
-            (Outcome::Failed { t, reason }, OdeStats::default(), qp_solves)
+            let partial = observer.has_samples().then(|| observer.metrics.finish(0.0));
+            (Outcome::Failed { t, reason, partial }, OdeStats::default(), qp_solves)
         }
     }
 }
@@ -207,6 +214,10 @@ impl<'a, const N: usize> Observer<'a, N> {
             last_dx: None,
             score_failures: 0,
         }
+    }
+
+    fn has_samples(&self) -> bool {
+        !self.trace.is_empty()
     }
 
     fn score(&mut self, s: &ScoreSample) {

@@ -35,6 +35,8 @@ use crate::{JointLimits, Robot};
 pub const JACO2_PEN: &str = "jaco2-pen";
 /// Model name of Kinova's own Jaco2 model (hand centre, no tilt).
 pub const JACO2: &str = "jaco2";
+/// Name of [`Jaco2::hand`].
+pub const JACO2_HAND: &str = "jaco2-hand";
 
 /// Base to shoulder height D1 (m).
 pub const D1: f64 = 0.2755;
@@ -89,6 +91,20 @@ fn rot_y(a: f64) -> Matrix3<f64> {
     Matrix3::new(c, 0.0, s, 0.0, 1.0, 0.0, -s, 0.0, c)
 }
 
+/// The papers' joint limits (the group's code, in degrees): theta2 in [-137, 223] deg,
+/// theta3 in [-289, 71] deg, joints 1, 4, 5, 6 in [-1e4, 1e4] deg; |thetadot| <= 1.5 rad/s.
+fn papers_limits() -> JointLimits<6> {
+    let deg = PI / 180.0;
+    let upper = [1e4, 223.0, 71.0, 1e4, 1e4, 1e4];
+    let lower = [-1e4, -137.0, -289.0, -1e4, -1e4, -1e4];
+    JointLimits {
+        theta_min: SVector::from(lower) * deg,
+        theta_max: SVector::from(upper) * deg,
+        thetadot_min: SVector::repeat(-1.5),
+        thetadot_max: SVector::repeat(1.5),
+    }
+}
+
 /// A Jaco2 model: kinematic chain to the task point, joint limits, and the physical arm's
 /// rigid-body model (see [`crate::jaco2_dynamics`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -105,21 +121,20 @@ impl Jaco2 {
     /// `Rx(-0.02) Ry(-0.05)`. Limits from the group's code: theta2 in [-137, 223] deg,
     /// theta3 in [-289, 71] deg, joints 1, 4, 5, 6 in [-1e4, 1e4] deg; |thetadot| <= 1.5 rad/s.
     pub fn pen() -> Self {
-        let deg = PI / 180.0;
-        let upper = [1e4, 223.0, 71.0, 1e4, 1e4, 1e4];
-        let lower = [-1e4, -137.0, -289.0, -1e4, -1e4, -1e4];
         Jaco2 {
             name: JACO2_PEN,
             chain: DhChain::new(jaco2_dh(D6_PEN)).with_base(Frame::rotation(rot_x(TILT_X) * rot_y(TILT_Y))),
             tip: Vector3::from(PEN_TIP),
-            limits: JointLimits {
-                theta_min: SVector::from(lower) * deg,
-                theta_max: SVector::from(upper) * deg,
-                thetadot_min: SVector::repeat(-1.5),
-                thetadot_max: SVector::repeat(1.5),
-            },
+            limits: papers_limits(),
             dynamics: crate::jaco2_dynamics::jaco2_rigid_chain(),
         }
+    }
+
+    /// `jaco2-hand`: Kinova's kinematics (D6 = 0.16, hand centre, no tilt) with the papers'
+    /// joint limits, so that a run differs from `jaco2-pen` by the task point alone (the
+    /// model check of jia2019: joint 6 cannot move the hand centre).
+    pub fn hand() -> Self {
+        Jaco2 { name: JACO2_HAND, limits: papers_limits(), ..Self::kinova() }
     }
 
     /// Kinova's model `jaco2`: D6 = 0.16, task point = origin of frame 6 (hand centre), no tilt.

@@ -25,7 +25,7 @@ pub mod jaco2_dynamics;
 pub mod katana;
 pub mod rigid_body;
 
-pub use jaco2::{Jaco2, JACO2, JACO2_PEN};
+pub use jaco2::{Jaco2, JACO2, JACO2_HAND, JACO2_PEN};
 pub use katana::{Katana6m180, KATANA6M180};
 
 /// Number of task-space coordinates (end-effector position only) in every paper.
