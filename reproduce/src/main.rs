@@ -6,6 +6,8 @@ use rayon::prelude::*;
 use reproduce::experiment::{load_dir, Job, PaperFile};
 use reproduce::results::{merge, read_runs, runs_csv, trace_csv, trace_file, write_atomic, RunRow};
 use reproduce::run::{run_job, RunRecord};
+use std::fmt::Write as _;
+use std::io::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -158,18 +160,19 @@ fn fmt(v: Option<f64>) -> String {
 }
 
 fn print_summary(rows: &[RunRow]) {
+    let mut out = String::new();
     let mut current = String::new();
     for r in rows {
         if r.experiment != current {
             current = r.experiment.clone();
-            println!("\n== {current} ({} on {}, T = {} s)", r.robot, r.path, r.duration);
-            println!(
+            let _ = writeln!(out, "\n== {current} ({} on {}, T = {} s)", r.robot, r.path, r.duration);
+            let _ = writeln!(out, 
                 "{:<26} {:<28} {:>10} {:>10} {:>10} {:>10} {:>10} {:>7} {:>8}",
                 "variant", "solver", "drift", "max err", "rms err", "|x-x*|max", "peak qd", "steps", "wall s"
             );
         }
         if r.status != "ok" {
-            println!(
+            let _ = writeln!(out, 
                 "{:<26} {:<28} FAILED at t = {} (peak qd {}, max err {}): {}",
                 r.variant,
                 r.solver,
@@ -180,7 +183,7 @@ fn print_summary(rows: &[RunRow]) {
             );
             continue;
         }
-        println!(
+        let _ = writeln!(out, 
             "{:<26} {:<28} {:>10} {:>10} {:>10} {:>10} {:>10} {:>7} {:>8.2}",
             r.variant,
             r.solver,
@@ -193,22 +196,25 @@ fn print_summary(rows: &[RunRow]) {
             r.wall_s
         );
     }
+    emit(&out);
 }
 
 fn print_list(files: &[PaperFile], jobs: &[Job]) {
+    let mut out = String::new();
     for f in files {
-        println!("{} — {}", f.paper, f.title);
+        let _ = writeln!(out, "{} — {}", f.paper, f.title);
         for e in &f.experiments {
             let n = jobs.iter().filter(|j| j.experiment == e.id).count();
             if n == 0 {
                 continue;
             }
-            println!("  {:<28} {} on {} (T = {} s), {}: {n} runs", e.id, e.robot, e.path.name, e.path.duration, e.paper_output);
+            let _ = writeln!(out, "  {:<28} {} on {} (T = {} s), {}: {n} runs", e.id, e.robot, e.path.name, e.path.duration, e.paper_output);
             for j in jobs.iter().filter(|j| j.experiment == e.id) {
-                println!("      {:<30} {}", j.variant, j.solver.label());
+                let _ = writeln!(out, "      {:<30} {}", j.variant, j.solver.label());
             }
         }
     }
+    emit(&out);
 }
 
 fn print_robot_check_values() {
@@ -225,4 +231,9 @@ fn print_robot_check_values() {
     let t = SVector::<f64, 5>::from([2.0 * pi / 5.0, pi / 2.0, 0.0, -pi / 6.0, pi / 3.0]);
     let p = k.position(&t);
     println!("{:<12} theta*0 = {:?}\n             f = ({:.6}, {:.6}, {:.6}), sigma(J) = {:.6?}", k.name(), t.as_slice(), p.x, p.y, p.z, k.jacobian(&t).singular_values().as_slice());
+}
+
+/// Writes to stdout, ending quietly when the reader has gone (e.g. `| head`).
+fn emit(text: &str) {
+    let _ = std::io::stdout().lock().write_all(text.as_bytes());
 }

@@ -329,6 +329,29 @@ fn zhang2018_weight_is_spd_and_torque_is_the_dynamics() {
 }
 
 #[test]
+fn kong2019_smoothed_c_is_odd_monotone_and_close_to_the_sign_power() {
+    let star = theta0();
+    let (alpha, delta) = (0.1, 1e-6);
+    let c = |e: f64| finite_time_c(&(star + V::repeat(e)), &star, alpha, delta)[0];
+    let mut prev = f64::NEG_INFINITY;
+    for k in -400..=400 {
+        let e = (k as f64 / 40.0).powi(9).copysign(k as f64) * 1e-9;
+        let v = c(e);
+        assert!((v + c(-e)).abs() <= 1e-15 * v.abs().max(1.0), "odd at {e}");
+        assert!(v >= prev, "monotone at {e}");
+        prev = v;
+        if e.abs() >= 10.0 * delta {
+            let exact = e.abs().powf(alpha).copysign(e);
+            assert!(((v - exact) / exact).abs() < 5e-3, "within 0.5 % of |e|^alpha at {e}");
+        }
+    }
+    // Slope at 0 is delta^(alpha - 1): finite, so integrators can step through e = 0.
+    let h = 1e-12;
+    let slope = (c(h) - c(-h)) / (2.0 * h);
+    assert!((slope / delta.powf(alpha - 1.0) - 1.0).abs() < 1e-3, "slope {slope}");
+}
+
+#[test]
 fn kong2019_c_is_odd_and_zero_at_the_reference() {
     let star = theta0();
     let alpha = 0.1;
@@ -355,13 +378,14 @@ fn kong2019_c_is_odd_and_zero_at_the_reference() {
     znn.build(0.5, &th, &th, &mut qp);
     assert!((qp.q[5] + 1.0).abs() < 1e-14 && (qp.q[0] - 0.2).abs() < 1e-14);
     ft.build(0.5, &th, &th, &mut qp);
-    assert!((qp.q[5] + 0.5_f64.powf(0.1)).abs() < 1e-14);
-    // build_dot is finite at e = 0 (floored) and exact away from it.
+    // The smoothing (delta = 1e-6) changes c by a relative ~0.45 (delta/e)^2 = 2e-12 at e = 0.5.
+    assert!((qp.q[5] + 0.5_f64.powf(0.1)).abs() < 1e-11);
+    // build_dot is finite at e = 0 (slope delta^(alpha - 1) of the smoothed c) and exact away from it.
     let thd = V::repeat(0.3);
     let mut dot = ft.new_qp();
     ft.build_dot(0.5, &star, &thd, &thd, &mut dot, &mut ft.new_dot_scratch());
     assert!(dot.q.iter().all(|v| v.is_finite()));
-    assert!((dot.q[0] - 0.1 * 1e-6_f64.powf(-0.9) * 0.3).abs() < 1e-6 * dot.q[0].abs());
+    assert!((dot.q[0] - 1e-6_f64.powf(-0.9) * 0.3).abs() < 1e-6 * dot.q[0].abs());
 }
 
 /// dQP/dt by the five-point stencil (error O(h^4)) along the same motion.
