@@ -6,6 +6,7 @@ pub mod experiment;
 pub mod metrics;
 pub mod results;
 pub mod run;
+pub mod runner;
 
 use std::path::PathBuf;
 

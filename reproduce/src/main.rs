@@ -1,11 +1,10 @@
 //! `cargo run --release -p reproduce`: runs driftbench's experiments and writes `results/`.
 
 use clap::Parser;
-use indicatif::{ParallelProgressIterator, ProgressBar, ProgressStyle};
-use rayon::prelude::*;
 use reproduce::experiment::{load_dir, Job, PaperFile};
 use reproduce::results::{merge, read_runs, runs_csv, trace_csv, trace_file, write_atomic, RunRow};
-use reproduce::run::{run_job, RunRecord};
+use reproduce::run::RunRecord;
+use reproduce::runner::run_jobs;
 use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::PathBuf;
@@ -75,7 +74,7 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
     if let Some(t) = cli.threads {
         rayon::ThreadPoolBuilder::new().num_threads(t).build_global().map_err(|e| e.to_string())?;
     }
-    let records = run_all(&jobs);
+    let records = run_jobs(&jobs, true);
     let git_rev = reproduce::git_revision();
     let rows: Vec<RunRow> = records.iter().map(|r| RunRow::from_record(r, &git_rev)).collect();
     print_summary(&rows);
@@ -110,35 +109,6 @@ fn select_jobs(files: &[PaperFile], cli: &Cli) -> Result<Vec<Job>, String> {
         .filter(|j| cli.experiment.is_empty() || cli.experiment.contains(&j.experiment))
         .filter(|j| !cli.exact_only || j.solver == reproduce::experiment::SolverChoice::Exact)
         .collect())
-}
-
-fn run_all(jobs: &[Job]) -> Vec<RunRecord> {
-    let bar = ProgressBar::new(jobs.len() as u64);
-    bar.set_style(
-        ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} runs  {msg}")
-            .expect("valid template"),
-    );
-    // Longest runs first keeps both cores busy to the end; results are re-sorted afterwards.
-    let mut order: Vec<usize> = (0..jobs.len()).collect();
-    order.sort_by(|&a, &b| expected_cost(&jobs[b]).total_cmp(&expected_cost(&jobs[a])));
-    let mut records: Vec<(usize, RunRecord)> = order
-        .par_iter()
-        .progress_with(bar.clone())
-        .map(|&i| {
-            let r = run_job(&jobs[i]);
-            bar.set_message(jobs[i].key());
-            (i, r)
-        })
-        .collect();
-    bar.finish_and_clear();
-    records.sort_by_key(|(i, _)| *i);
-    records.into_iter().map(|(_, r)| r).collect()
-}
-
-/// Rough relative cost for scheduling: neural runs on long paths first.
-fn expected_cost(j: &Job) -> f64 {
-    let solver = if j.solver == reproduce::experiment::SolverChoice::Exact { 1.0 } else { 4.0 };
-    solver * j.path.duration
 }
 
 fn write_results(dir: &std::path::Path, records: &[RunRecord], rows: Vec<RunRow>) -> Result<(), String> {

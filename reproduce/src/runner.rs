@@ -1,0 +1,46 @@
+//! Running many jobs: in parallel across runs (rayon), longest first, with a progress bar.
+//! Each run is independent and deterministic, so the order of execution never changes a number.
+
+use crate::experiment::{Job, SolverChoice};
+use crate::run::{run_job, RunRecord};
+use indicatif::{ParallelProgressIterator, ProgressBar, ProgressDrawTarget, ProgressStyle};
+use rayon::prelude::*;
+
+/// Runs `jobs` and returns their records in the order of `jobs`.
+pub fn run_jobs(jobs: &[Job], progress: bool) -> Vec<RunRecord> {
+    let bar = ProgressBar::new(jobs.len() as u64);
+    if progress {
+        bar.set_style(
+            ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} runs  {msg}")
+                .expect("valid template"),
+        );
+    } else {
+        bar.set_draw_target(ProgressDrawTarget::hidden());
+    }
+    // Longest runs first keeps every core busy to the end.
+    let mut order: Vec<usize> = (0..jobs.len()).collect();
+    order.sort_by(|&a, &b| expected_cost(&jobs[b]).total_cmp(&expected_cost(&jobs[a])));
+    let mut records: Vec<(usize, RunRecord)> = order
+        .par_iter()
+        .progress_with(bar.clone())
+        .map(|&i| {
+            let r = run_job(&jobs[i]);
+            bar.set_message(jobs[i].key());
+            (i, r)
+        })
+        .collect();
+    bar.finish_and_clear();
+    records.sort_by_key(|(i, _)| *i);
+    records.into_iter().map(|(_, r)| r).collect()
+}
+
+/// Rough relative cost for scheduling: neural runs on long paths first, the finite-time
+/// network (hundreds of thousands of steps) before everything.
+fn expected_cost(j: &Job) -> f64 {
+    let solver = match &j.solver {
+        SolverChoice::Exact => 1.0,
+        SolverChoice::Neural(s) if s.display_name() == "FTNN" => 100.0,
+        SolverChoice::Neural(_) => 4.0,
+    };
+    solver * j.path.duration
+}
