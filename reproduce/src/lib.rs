@@ -4,6 +4,7 @@
 pub mod coupled;
 pub mod experiment;
 pub mod metrics;
+pub mod report;
 pub mod results;
 pub mod run;
 pub mod runner;
