@@ -3,6 +3,7 @@
 
 pub mod coupled;
 pub mod experiment;
+pub mod figures;
 pub mod metrics;
 pub mod report;
 pub mod results;

@@ -1,0 +1,171 @@
+//! The two kinds of panel: quantities over time (linear or log y axis) and the end-effector path
+//! in the x-y plane (equal aspect ratio).
+
+use super::layout::{draw_error, Area};
+use super::scale;
+use super::style::{font, CAPTION_SIZE, DESIRED_COLOUR, DESIRED_WIDTH, GRID_COLOUR, LABEL_SIZE, LINE_WIDTH};
+use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
+use plotters::prelude::*;
+use std::ops::Range;
+
+/// Blank space around a panel's plot (px).
+const MARGIN: u32 = 8;
+/// Height of the x tick labels plus the x axis description (px).
+const X_LABEL_AREA: u32 = 40;
+/// Width of the y tick labels plus the y axis description (px).
+const Y_LABEL_AREA: u32 = 72;
+/// Tick labels per axis.
+const TICKS: usize = 6;
+
+/// One line of a panel.
+pub struct Series {
+    pub colour: RGBColor,
+    pub points: Vec<(f64, f64)>,
+}
+
+/// Which y axis a time panel uses.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub enum YAxis {
+    Linear,
+    /// Log scale; non-positive values are not drawn.
+    Log,
+}
+
+/// A panel of quantities over time, t from 0 to `t_end`.
+pub struct TimePanel {
+    pub caption: String,
+    /// The y axis description, with its unit.
+    pub y_desc: String,
+    pub y_axis: YAxis,
+    pub t_end: f64,
+    pub series: Vec<Series>,
+}
+
+/// The desired and the actual end-effector path in the x-y plane.
+pub struct PathPanel {
+    pub caption: String,
+    pub desired: Vec<(f64, f64)>,
+    pub actual: Vec<(f64, f64)>,
+    pub actual_colour: RGBColor,
+}
+
+/// Draws the caption at the top of `area`; returns the rest, and the size (px) the plot will
+/// have in it once [`plot`] has made room for the axis labels.
+fn titled<'a>(area: &Area<'a>, caption: &str) -> Result<(Area<'a>, (u32, u32)), String> {
+    let inner = area.titled(caption, font(CAPTION_SIZE)).map_err(draw_error)?;
+    let (w, h) = inner.dim_in_pixel();
+    let plot = (w.saturating_sub(2 * MARGIN + Y_LABEL_AREA), h.saturating_sub(2 * MARGIN + X_LABEL_AREA));
+    Ok((inner, plot))
+}
+
+/// A tick label: plain decimals from 1e-3 to 1e5, scientific notation outside.
+fn tick(v: f64) -> String {
+    let trim = |s: String| if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_string() } else { s };
+    if v == 0.0 {
+        "0".to_string()
+    } else if (1e-3..1e5).contains(&v.abs()) {
+        trim(format!("{v:.4}"))
+    } else {
+        let s = format!("{v:.2e}");
+        let (mantissa, exponent) = s.split_once('e').unwrap_or((&s, "0"));
+        format!("{}e{exponent}", trim(mantissa.to_string()))
+    }
+}
+
+/// Tick labels for a linear axis over `range`: a tick that is zero but for rounding in the
+/// tick arithmetic (far below the axis span) is labelled 0.
+fn ticks(range: &Range<f64>) -> impl Fn(&f64) -> String {
+    let zero = 1e-9 * (range.end - range.start).abs();
+    move |v: &f64| tick(if v.abs() < zero { 0.0 } else { *v })
+}
+
+/// A log-axis tick label: the power of ten.
+fn decade(v: &f64) -> String {
+    format!("1e{}", v.log10().round())
+}
+
+/// Draws axes, grid and lines on `inner` (an area from [`titled`]) with x axis `x`, y axis `y`.
+fn plot<Y>(inner: &Area, x: Range<f64>, x_desc: &str, y: Y, y_desc: &str, y_labels: &dyn Fn(&f64) -> String, lines: &[(ShapeStyle, Vec<(f64, f64)>)]) -> Result<(), String>
+where
+    Y: AsRangedCoord<Value = f64>,
+    Y::CoordDescType: ValueFormatter<f64>,
+{
+    let x_labels = ticks(&x);
+    let mut chart = ChartBuilder::on(inner)
+        .margin(MARGIN)
+        .x_label_area_size(X_LABEL_AREA)
+        .y_label_area_size(Y_LABEL_AREA)
+        .build_cartesian_2d(x, y)
+        .map_err(draw_error)?;
+    chart
+        .configure_mesh()
+        .x_labels(TICKS)
+        .y_labels(TICKS)
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .x_label_formatter(&x_labels)
+        .y_label_formatter(y_labels)
+        .label_style(font(LABEL_SIZE))
+        .axis_desc_style(font(LABEL_SIZE))
+        .bold_line_style(GRID_COLOUR)
+        .light_line_style(TRANSPARENT)
+        .draw()
+        .map_err(draw_error)?;
+    for (style, points) in lines {
+        chart.draw_series(LineSeries::new(points.iter().copied(), *style)).map_err(draw_error)?;
+    }
+    Ok(())
+}
+
+impl TimePanel {
+    /// Draws the panel into `area`.
+    pub fn draw(&self, area: &Area) -> Result<(), String> {
+        let (inner, _) = titled(area, &self.caption)?;
+        let keep = |v: f64| v.is_finite() && (self.y_axis == YAxis::Linear || v > 0.0);
+        let lines: Vec<(ShapeStyle, Vec<(f64, f64)>)> = self
+            .series
+            .iter()
+            .map(|s| (s.colour.stroke_width(LINE_WIDTH), s.points.iter().copied().filter(|&(t, v)| t.is_finite() && keep(v)).collect()))
+            .collect();
+        let values = lines.iter().flat_map(|(_, points)| points.iter().map(|&(_, v)| v));
+        let t = 0.0..self.t_end.max(f64::MIN_POSITIVE);
+        match self.y_axis {
+            YAxis::Linear => {
+                let y = scale::linear(values);
+                plot(&inner, t, "t (s)", y.clone(), &self.y_desc, &ticks(&y), &lines)
+            }
+            YAxis::Log => plot(&inner, t, "t (s)", scale::log(values).log_scale(), &self.y_desc, &decade, &lines),
+        }
+    }
+}
+
+impl PathPanel {
+    /// Draws the panel into `area`: the desired path wide and pale, the actual path over it.
+    pub fn draw(&self, area: &Area) -> Result<(), String> {
+        let (inner, pixels) = titled(area, &self.caption)?;
+        let both = || self.desired.iter().chain(&self.actual);
+        let (x, y) = scale::equal_aspect(scale::linear(both().map(|p| p.0)), scale::linear(both().map(|p| p.1)), pixels);
+        let lines = [
+            (DESIRED_COLOUR.stroke_width(DESIRED_WIDTH), self.desired.clone()),
+            (self.actual_colour.stroke_width(LINE_WIDTH), self.actual.clone()),
+        ];
+        plot(&inner, x, "x (m)", y.clone(), "y (m)", &ticks(&y), &lines)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{decade, ticks};
+
+    #[test]
+    fn tick_labels_are_short() {
+        let label = ticks(&(-1.0..1.0));
+        assert_eq!(label(&0.0), "0");
+        assert_eq!(label(&-2.78e-17), "0");
+        assert_eq!(label(&0.25), "0.25");
+        assert_eq!(label(&-3.0), "-3");
+        assert_eq!(ticks(&(0.0..1e-5))(&2.5e-6), "2.5e-6");
+        assert_eq!(label(&1.0e7), "1e7");
+        assert_eq!(decade(&1e-6), "1e-6");
+    }
+}
