@@ -1,0 +1,52 @@
+//! Whole runs through `reproduce::run::run_job`, exactly as `reproduce` runs them (the ODE
+//! integration of arm + solver, the metrics, the score against the exact optimum along the run),
+//! for the jobs of [`RUN_CASES`]: the exact column and the neural runs of jia2019-star VLTCO,
+//! zhong2021-clover-b and kong2019-circle ZNN. Group `runs`, ids `<experiment>/<solver>`.
+//!
+//! Each job is run once before timing and must complete, so a bench never times a failure; that
+//! run's counts (steps, RHS and Jacobian evaluations, Clarabel solves, allocations) go to stderr.
+//! A neural run's Clarabel solves are the score against the exact optimum at every accepted
+//! step, which `run_job` always computes: they are part of the time measured here.
+
+use criterion::{black_box, criterion_group, criterion_main, Criterion, SamplingMode};
+use driftbench_benches::{
+    allocations_in, bench_id, experiment_jobs, find_job, whole_run_config, CountingAllocator,
+    RUN_CASES,
+};
+use reproduce::run::{run_job, Outcome};
+
+#[global_allocator]
+static ALLOC: CountingAllocator = CountingAllocator;
+
+fn whole_runs(c: &mut Criterion) {
+    let jobs = experiment_jobs();
+    let mut g = c.benchmark_group("runs");
+    g.sampling_mode(SamplingMode::Flat);
+    for (experiment, variant, solver) in RUN_CASES {
+        let job = find_job(&jobs, experiment, variant, solver);
+        let (record, allocations) = allocations_in(|| run_job(&job));
+        if let Outcome::Failed { t, reason, .. } = &record.outcome {
+            panic!("{}: failed at t = {t}: {reason}", job.key());
+        }
+        eprintln!(
+            "run {}: {} steps, {} rhs, {} jacobians, {} Clarabel solves, {} allocations",
+            job.key(),
+            record.stats.steps,
+            record.stats.rhs_evals,
+            record.stats.jac_evals,
+            record.qp_solves,
+            allocations
+        );
+        g.bench_function(format!("{experiment}/{}", bench_id(solver)), |b| {
+            b.iter(|| black_box(run_job(black_box(&job))))
+        });
+    }
+    g.finish();
+}
+
+criterion_group! {
+    name = benches;
+    config = whole_run_config();
+    targets = whole_runs
+}
+criterion_main!(benches);
