@@ -33,7 +33,11 @@ pub fn arm_dim<const N: usize>(level: Level) -> usize {
 
 /// (theta, thetadot) from the arm part of a state vector; thetadot = `command` at the velocity
 /// level (it is not a state there).
-pub fn arm_state<const N: usize>(level: Level, y: &[f64], command: &[f64]) -> (SVector<f64, N>, SVector<f64, N>) {
+pub fn arm_state<const N: usize>(
+    level: Level,
+    y: &[f64],
+    command: &[f64],
+) -> (SVector<f64, N>, SVector<f64, N>) {
     let theta = SVector::<f64, N>::from_column_slice(&y[..N]);
     let thetadot = match level {
         Level::Velocity => SVector::<f64, N>::from_column_slice(&command[..N]),
@@ -66,14 +70,28 @@ pub struct ExactLoop<'a, const N: usize> {
 
 impl<'a, const N: usize> ExactLoop<'a, N> {
     pub fn new(scheme: &'a dyn Scheme<N>) -> Self {
-        Self { scheme, qp: scheme.new_qp(), solver: ExactSolver::new(), qp_solves: 0, failure: None }
+        Self {
+            scheme,
+            qp: scheme.new_qp(),
+            solver: ExactSolver::new(),
+            qp_solves: 0,
+            failure: None,
+        }
     }
 
     /// x*(t, theta, thetadot), or the solver's error.
-    pub fn optimum(&mut self, t: f64, theta: &SVector<f64, N>, thetadot: &SVector<f64, N>) -> Result<DVector<f64>, String> {
+    pub fn optimum(
+        &mut self,
+        t: f64,
+        theta: &SVector<f64, N>,
+        thetadot: &SVector<f64, N>,
+    ) -> Result<DVector<f64>, String> {
         self.scheme.build(t, theta, thetadot, &mut self.qp);
         self.qp_solves += 1;
-        self.solver.solve(&self.qp).map(|s| s.x).map_err(|e| e.to_string())
+        self.solver
+            .solve(&self.qp)
+            .map(|s| s.x)
+            .map_err(|e| e.to_string())
     }
 }
 
@@ -161,7 +179,14 @@ impl<'a, const N: usize> NeuralLoop<'a, N> {
                 Level::Velocity => (command, SVector::zeros()),
                 Level::Acceleration => (thetadot, command),
             };
-            self.scheme.build_dot(t, &theta, &thetadot_m, &thetaddot, &mut self.qp_dot, &mut self.dot_scratch);
+            self.scheme.build_dot(
+                t,
+                &theta,
+                &thetadot_m,
+                &thetaddot,
+                &mut self.qp_dot,
+                &mut self.dot_scratch,
+            );
             Some(&self.qp_dot)
         } else {
             None
@@ -198,12 +223,16 @@ impl<const N: usize> OdeSystem for NeuralLoop<'_, N> {
             self.f0 = f;
         }
         let qp_dot = qp_dot_needed.then_some(&self.qp_dot);
-        if !self.network.jacobian(t, &y[k..], &self.qp, qp_dot, &mut self.jac_net) {
+        if !self
+            .network
+            .jacobian(t, &y[k..], &self.qp, qp_dot, &mut self.jac_net)
+        {
             return false;
         }
         let n = self.dim();
         jac.fill(0.0);
-        jac.view_mut((k, k), (self.net_dim, self.net_dim)).copy_from(&self.jac_net);
+        jac.view_mut((k, k), (self.net_dim, self.net_dim))
+            .copy_from(&self.jac_net);
         // Arm rows: theta' = x[..n] (velocity) or theta' = thetadot, thetadot' = x[..n].
         match level {
             Level::Velocity => (0..N).for_each(|i| jac[(i, k + i)] = 1.0),

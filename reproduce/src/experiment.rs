@@ -56,7 +56,12 @@ pub struct Experiment {
 /// effect it is compared with (x*(t, theta) has kinks where the active set changes, which an
 /// explicit pair's error estimate sees late).
 fn default_exact_integrator() -> IntegratorSettings {
-    IntegratorSettings { method: solvers::ode::Method::Dopri5, rtol: 1e-8, atol: 1e-10, ..IntegratorSettings::default() }
+    IntegratorSettings {
+        method: solvers::ode::Method::Dopri5,
+        rtol: 1e-8,
+        atol: 1e-10,
+        ..IntegratorSettings::default()
+    }
 }
 
 /// One scheme of an experiment, run exactly and by each listed neural solver.
@@ -79,6 +84,9 @@ pub struct Variant {
     pub theta0: Option<Vec<f64>>,
     #[serde(default)]
     pub theta_ref: Option<Vec<f64>>,
+    /// Integrator of this variant's neural runs (overrides the experiment's).
+    #[serde(default)]
+    pub integrator: Option<IntegratorSettings>,
 }
 
 fn yes() -> bool {
@@ -119,7 +127,12 @@ pub struct Job {
 impl Job {
     /// Stable key of a run: experiment / variant / solver.
     pub fn key(&self) -> String {
-        format!("{} / {} / {}", self.experiment, self.variant, self.solver.label())
+        format!(
+            "{} / {} / {}",
+            self.experiment,
+            self.variant,
+            self.solver.label()
+        )
     }
 }
 
@@ -139,14 +152,23 @@ impl std::fmt::Display for ExperimentFileError {
 impl std::error::Error for ExperimentFileError {}
 
 /// Robot names the suite knows, with their joint counts.
-pub const ROBOTS: &[(&str, usize)] = &[("jaco2-pen", 6), ("jaco2", 6), ("jaco2-hand", 6), ("katana6m180", 5)];
+pub const ROBOTS: &[(&str, usize)] = &[
+    ("jaco2-pen", 6),
+    ("jaco2", 6),
+    ("jaco2-hand", 6),
+    ("katana6m180", 5),
+];
 
 impl PaperFile {
     /// Reads and validates one experiment file.
     pub fn load(path: &Path) -> Result<Self, ExperimentFileError> {
-        let err = |message: String| ExperimentFileError { file: path.to_path_buf(), message };
+        let err = |message: String| ExperimentFileError {
+            file: path.to_path_buf(),
+            message,
+        };
         let text = std::fs::read_to_string(path).map_err(|e| err(format!("cannot read: {e}")))?;
-        let file: PaperFile = toml::from_str(&text).map_err(|e| err(e.to_string().trim_end().to_string()))?;
+        let file: PaperFile =
+            toml::from_str(&text).map_err(|e| err(e.to_string().trim_end().to_string()))?;
         file.validate().map_err(err)?;
         Ok(file)
     }
@@ -155,9 +177,20 @@ impl PaperFile {
         for (i, e) in self.experiments.iter().enumerate() {
             let at = |field: &str| format!("experiment[{i}] (id \"{}\") field `{field}`", e.id);
             if !e.id.starts_with(&format!("{}-", self.paper)) {
-                return Err(format!("{}: must start with the paper id \"{}-\"", at("id"), self.paper));
+                return Err(format!(
+                    "{}: must start with the paper id \"{}-\"",
+                    at("id"),
+                    self.paper
+                ));
             }
-            let n = robot_dof(&e.robot).ok_or_else(|| format!("{}: unknown robot \"{}\" (known: {})", at("robot"), e.robot, robot_names()))?;
+            let n = robot_dof(&e.robot).ok_or_else(|| {
+                format!(
+                    "{}: unknown robot \"{}\" (known: {})",
+                    at("robot"),
+                    e.robot,
+                    robot_names()
+                )
+            })?;
             check_len(&e.theta0, n, &at("theta0"))?;
             if let Some(r) = &e.theta_ref {
                 check_len(r, n, &at("theta_ref"))?;
@@ -165,14 +198,33 @@ impl PaperFile {
             check_integrator(&e.integrator, &at("integrator"))?;
             check_integrator(&e.exact_integrator, &at("exact_integrator"))?;
             if e.variants.is_empty() {
-                return Err(format!("{}: at least one [[experiment.variant]] is needed", at("variant")));
+                return Err(format!(
+                    "{}: at least one [[experiment.variant]] is needed",
+                    at("variant")
+                ));
             }
             for (j, v) in e.variants.iter().enumerate() {
-                let vat = |field: &str| format!("experiment[{i}] (id \"{}\") variant[{j}] (\"{}\") field `{field}`", e.id, v.label);
+                let vat = |field: &str| {
+                    format!(
+                        "experiment[{i}] (id \"{}\") variant[{j}] (\"{}\") field `{field}`",
+                        e.id, v.label
+                    )
+                };
                 let robot = v.robot.as_deref().unwrap_or(&e.robot);
-                let vn = robot_dof(robot).ok_or_else(|| format!("{}: unknown robot \"{robot}\" (known: {})", vat("robot"), robot_names()))?;
-                if vn != n && (v.theta0.is_none() || (e.theta_ref.is_some() && v.theta_ref.is_none())) {
-                    return Err(format!("{}: robot \"{robot}\" has {vn} joints; give theta0/theta_ref for it", vat("robot")));
+                let vn = robot_dof(robot).ok_or_else(|| {
+                    format!(
+                        "{}: unknown robot \"{robot}\" (known: {})",
+                        vat("robot"),
+                        robot_names()
+                    )
+                })?;
+                if vn != n
+                    && (v.theta0.is_none() || (e.theta_ref.is_some() && v.theta_ref.is_none()))
+                {
+                    return Err(format!(
+                        "{}: robot \"{robot}\" has {vn} joints; give theta0/theta_ref for it",
+                        vat("robot")
+                    ));
                 }
                 if let Some(t) = &v.theta0 {
                     check_len(t, vn, &vat("theta0"))?;
@@ -180,9 +232,17 @@ impl PaperFile {
                 if let Some(t) = &v.theta_ref {
                     check_len(t, vn, &vat("theta_ref"))?;
                 }
-                v.scheme.validate().map_err(|err| format!("{}: {err}", vat("scheme")))?;
+                if let Some(s) = &v.integrator {
+                    check_integrator(s, &vat("integrator"))?;
+                }
+                v.scheme
+                    .validate()
+                    .map_err(|err| format!("{}: {err}", vat("scheme")))?;
                 if !v.exact && v.solvers.is_empty() {
-                    return Err(format!("{}: variant runs nothing (exact = false and no solvers)", vat("solvers")));
+                    return Err(format!(
+                        "{}: variant runs nothing (exact = false and no solvers)",
+                        vat("solvers")
+                    ));
                 }
             }
         }
@@ -195,7 +255,11 @@ impl PaperFile {
         for e in &self.experiments {
             for v in &e.variants {
                 let theta0 = v.theta0.clone().unwrap_or_else(|| e.theta0.clone());
-                let theta_ref = v.theta_ref.clone().or_else(|| e.theta_ref.clone()).unwrap_or_else(|| theta0.clone());
+                let theta_ref = v
+                    .theta_ref
+                    .clone()
+                    .or_else(|| e.theta_ref.clone())
+                    .unwrap_or_else(|| theta0.clone());
                 let base = Job {
                     paper: self.paper.clone(),
                     experiment: e.id.clone(),
@@ -212,7 +276,12 @@ impl PaperFile {
                     jobs.push(base.clone());
                 }
                 for s in &v.solvers {
-                    jobs.push(Job { solver: SolverChoice::Neural(s.clone()), integrator: e.integrator, ..base.clone() });
+                    let integrator = v.integrator.unwrap_or(e.integrator);
+                    jobs.push(Job {
+                        solver: SolverChoice::Neural(s.clone()),
+                        integrator,
+                        ..base.clone()
+                    });
                 }
             }
         }
@@ -225,12 +294,19 @@ fn robot_dof(name: &str) -> Option<usize> {
 }
 
 fn robot_names() -> String {
-    ROBOTS.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
+    ROBOTS
+        .iter()
+        .map(|(n, _)| *n)
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 fn check_len(v: &[f64], n: usize, at: &str) -> Result<(), String> {
     if v.len() != n {
-        return Err(format!("{at}: has {} entries, the robot has {n} joints", v.len()));
+        return Err(format!(
+            "{at}: has {} entries, the robot has {n} joints",
+            v.len()
+        ));
     }
     if v.iter().any(|x| !x.is_finite()) {
         return Err(format!("{at}: entries must be finite"));
@@ -247,8 +323,10 @@ fn check_integrator(s: &IntegratorSettings, at: &str) -> Result<(), String> {
 
 /// Loads every `*.toml` of `dir`, sorted by file name.
 pub fn load_dir(dir: &Path) -> Result<Vec<PaperFile>, ExperimentFileError> {
-    let entries = std::fs::read_dir(dir)
-        .map_err(|e| ExperimentFileError { file: dir.to_path_buf(), message: format!("cannot list: {e}") })?;
+    let entries = std::fs::read_dir(dir).map_err(|e| ExperimentFileError {
+        file: dir.to_path_buf(),
+        message: format!("cannot list: {e}"),
+    })?;
     let mut files: Vec<PathBuf> = entries
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.extension().is_some_and(|x| x == "toml"))

@@ -14,7 +14,10 @@ use std::path::PathBuf;
 
 /// The workspace root (where `experiments/`, `results/` and `report/` live).
 pub fn workspace_root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).parent().expect("reproduce/ sits in the workspace").to_path_buf()
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("reproduce/ sits in the workspace")
+        .to_path_buf()
 }
 
 /// The current git revision, or "unknown" outside a checkout.

@@ -19,7 +19,9 @@ use std::process::ExitCode;
 #[derive(Parser, Debug)]
 #[command(version, about, long_about)]
 struct Cli {
-    /// Run only this paper's experiments (jia2019, zhang2018, zhong2021, kong2019).
+    /// Run only this paper's experiments (jia2019, zhang2018, zhong2021, kong2019; `cross` is
+    /// the suite's own cross experiment: every velocity-level solver on every velocity-level
+    /// scheme and path).
     #[arg(long)]
     paper: Option<String>,
     /// Run only this experiment (an id of experiments.md, e.g. jia2019-clover). Repeatable.
@@ -41,9 +43,13 @@ struct Cli {
     /// Directory results are written to.
     #[arg(long, default_value_os_t = reproduce::workspace_root().join("results"))]
     results_dir: PathBuf,
-    /// Do not write results/ (print the summary only).
+    /// Do not write results/ or report/ (print the summary only).
     #[arg(long)]
     dry_run: bool,
+    /// Re-render report/REPORT.md and report/figures/ from the stored results/ without running
+    /// anything, then exit.
+    #[arg(long)]
+    report_only: bool,
     /// Worker threads (default: all cores).
     #[arg(long)]
     threads: Option<usize>,
@@ -65,6 +71,10 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
         print_robot_check_values();
         return Ok(ExitCode::SUCCESS);
     }
+    if cli.report_only {
+        render_report(&report_root(&cli)?)?;
+        return Ok(ExitCode::SUCCESS);
+    }
     let files = load_dir(&cli.experiments_dir).map_err(|e| e.to_string())?;
     let jobs = select_jobs(&files, &cli)?;
     if cli.list {
@@ -72,20 +82,57 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
         return Ok(ExitCode::SUCCESS);
     }
     if let Some(t) = cli.threads {
-        rayon::ThreadPoolBuilder::new().num_threads(t).build_global().map_err(|e| e.to_string())?;
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(t)
+            .build_global()
+            .map_err(|e| e.to_string())?;
     }
     let records = run_jobs(&jobs, true);
     let git_rev = reproduce::git_revision();
-    let rows: Vec<RunRow> = records.iter().map(|r| RunRow::from_record(r, &git_rev)).collect();
+    let rows: Vec<RunRow> = records
+        .iter()
+        .map(|r| RunRow::from_record(r, &git_rev))
+        .collect();
     print_summary(&rows);
     if !cli.dry_run {
         write_results(&cli.results_dir, &records, rows)?;
+        match report_root(&cli) {
+            Ok(root) => render_report(&root)?,
+            Err(why) => eprintln!("report not rendered: {why}"),
+        }
     }
-    let failed = records.iter().filter(|r| matches!(r.outcome, reproduce::run::Outcome::Failed { .. })).count();
+    let failed = records
+        .iter()
+        .filter(|r| matches!(r.outcome, reproduce::run::Outcome::Failed { .. }))
+        .count();
     if failed > 0 {
-        eprintln!("{failed} of {} runs failed (reasons in the table above and in results/runs.csv)", records.len());
+        eprintln!(
+            "{failed} of {} runs failed (reasons in the table above and in results/runs.csv)",
+            records.len()
+        );
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// The report is rendered beside the results directory: `<root>/results` -> `<root>/report`.
+fn report_root(cli: &Cli) -> Result<PathBuf, String> {
+    match cli.results_dir.file_name() {
+        Some(name) if name == "results" => {
+            Ok(cli.results_dir.parent().map(PathBuf::from).unwrap_or_else(|| PathBuf::from(".")))
+        }
+        _ => Err(format!(
+            "the report needs a results directory named `results` (got {}); use --dry-run for a scratch run",
+            cli.results_dir.display()
+        )),
+    }
+}
+
+/// Figures first (the report links them), then REPORT.md.
+fn render_report(root: &std::path::Path) -> Result<(), String> {
+    let figures = reproduce::figures::render_all(root)?;
+    let report = reproduce::report::render(root)?;
+    eprintln!("wrote {} figures and {}", figures.len(), report.display());
+    Ok(())
 }
 
 fn select_jobs(files: &[PaperFile], cli: &Cli) -> Result<Vec<Job>, String> {
@@ -93,14 +140,20 @@ fn select_jobs(files: &[PaperFile], cli: &Cli) -> Result<Vec<Job>, String> {
     if let Some(p) = &cli.paper {
         if !files.iter().any(|f| &f.paper == p) {
             let known: Vec<&str> = files.iter().map(|f| f.paper.as_str()).collect();
-            return Err(format!("unknown paper \"{p}\" (known: {})", known.join(", ")));
+            return Err(format!(
+                "unknown paper \"{p}\" (known: {})",
+                known.join(", ")
+            ));
         }
     }
     for e in &cli.experiment {
         if !all.iter().any(|j| &j.experiment == e) {
             let mut ids: Vec<&str> = all.iter().map(|j| j.experiment.as_str()).collect();
             ids.dedup();
-            return Err(format!("unknown experiment \"{e}\" (known: {})", ids.join(", ")));
+            return Err(format!(
+                "unknown experiment \"{e}\" (known: {})",
+                ids.join(", ")
+            ));
         }
     }
     Ok(all
@@ -111,9 +164,17 @@ fn select_jobs(files: &[PaperFile], cli: &Cli) -> Result<Vec<Job>, String> {
         .collect())
 }
 
-fn write_results(dir: &std::path::Path, records: &[RunRecord], rows: Vec<RunRow>) -> Result<(), String> {
+fn write_results(
+    dir: &std::path::Path,
+    records: &[RunRecord],
+    rows: Vec<RunRow>,
+) -> Result<(), String> {
     let runs_path = dir.join("runs.csv");
-    let stored = if runs_path.exists() { read_runs(&runs_path).unwrap_or_default() } else { Vec::new() };
+    let stored = if runs_path.exists() {
+        read_runs(&runs_path).unwrap_or_default()
+    } else {
+        Vec::new()
+    };
     let merged = merge(stored, rows);
     for r in records {
         let bytes = trace_csv(r).map_err(|e| e.to_string())?;
@@ -121,7 +182,12 @@ fn write_results(dir: &std::path::Path, records: &[RunRecord], rows: Vec<RunRow>
     }
     let bytes = runs_csv(&merged).map_err(|e| e.to_string())?;
     write_atomic(&runs_path, &bytes).map_err(|e| format!("{}: {e}", runs_path.display()))?;
-    eprintln!("wrote {} ({} rows) and {} traces", runs_path.display(), merged.len(), records.len());
+    eprintln!(
+        "wrote {} ({} rows) and {} traces",
+        runs_path.display(),
+        merged.len(),
+        records.len()
+    );
     Ok(())
 }
 
@@ -135,14 +201,28 @@ fn print_summary(rows: &[RunRow]) {
     for r in rows {
         if r.experiment != current {
             current = r.experiment.clone();
-            let _ = writeln!(out, "\n== {current} ({} on {}, T = {} s)", r.robot, r.path, r.duration);
-            let _ = writeln!(out, 
+            let _ = writeln!(
+                out,
+                "\n== {current} ({} on {}, T = {} s)",
+                r.robot, r.path, r.duration
+            );
+            let _ = writeln!(
+                out,
                 "{:<26} {:<28} {:>10} {:>10} {:>10} {:>10} {:>10} {:>7} {:>8}",
-                "variant", "solver", "drift", "max err", "rms err", "|x-x*|max", "peak qd", "steps", "wall s"
+                "variant",
+                "solver",
+                "drift",
+                "max err",
+                "rms err",
+                "|x-x*|max",
+                "peak qd",
+                "steps",
+                "wall s"
             );
         }
         if r.status != "ok" {
-            let _ = writeln!(out, 
+            let _ = writeln!(
+                out,
                 "{:<26} {:<28} FAILED at t = {} (peak qd {}, max err {}): {}",
                 r.variant,
                 r.solver,
@@ -153,7 +233,8 @@ fn print_summary(rows: &[RunRow]) {
             );
             continue;
         }
-        let _ = writeln!(out, 
+        let _ = writeln!(
+            out,
             "{:<26} {:<28} {:>10} {:>10} {:>10} {:>10} {:>10} {:>7} {:>8.2}",
             r.variant,
             r.solver,
@@ -164,6 +245,13 @@ fn print_summary(rows: &[RunRow]) {
             fmt(r.peak_thetadot),
             r.steps,
             r.wall_s
+        );
+    }
+    if rows.iter().any(|r| r.solver.starts_with("VP-RNN-PF")) {
+        out.push_str(
+            "\n|x-x*|max: largest |x_nn - x*|_inf of the joint command against Clarabel along the run. For \
+             VP-RNN-PF it measures the exponential-penalty approximation (its equilibrium is the penalised \
+             optimum, not x*), not a solver fault.\n",
         );
     }
     emit(&out);
@@ -178,7 +266,11 @@ fn print_list(files: &[PaperFile], jobs: &[Job]) {
             if n == 0 {
                 continue;
             }
-            let _ = writeln!(out, "  {:<28} {} on {} (T = {} s), {}: {n} runs", e.id, e.robot, e.path.name, e.path.duration, e.paper_output);
+            let _ = writeln!(
+                out,
+                "  {:<28} {} on {} (T = {} s), {}: {n} runs",
+                e.id, e.robot, e.path.name, e.path.duration, e.paper_output
+            );
             for j in jobs.iter().filter(|j| j.experiment == e.id) {
                 let _ = writeln!(out, "      {:<30} {}", j.variant, j.solver.label());
             }
@@ -194,13 +286,29 @@ fn print_robot_check_values() {
     for r in [Jaco2::pen(), Jaco2::kinova()] {
         let p = r.position(&theta0);
         let sv = r.jacobian(&theta0).singular_values();
-        println!("{:<12} theta0 = {:?}\n             f = ({:.6}, {:.6}, {:.6}), sigma(J) = {:.6?}", r.name(), theta0.as_slice(), p.x, p.y, p.z, sv.as_slice());
+        println!(
+            "{:<12} theta0 = {:?}\n             f = ({:.6}, {:.6}, {:.6}), sigma(J) = {:.6?}",
+            r.name(),
+            theta0.as_slice(),
+            p.x,
+            p.y,
+            p.z,
+            sv.as_slice()
+        );
     }
     let pi = std::f64::consts::PI;
     let k = Katana6m180::new();
     let t = SVector::<f64, 5>::from([2.0 * pi / 5.0, pi / 2.0, 0.0, -pi / 6.0, pi / 3.0]);
     let p = k.position(&t);
-    println!("{:<12} theta*0 = {:?}\n             f = ({:.6}, {:.6}, {:.6}), sigma(J) = {:.6?}", k.name(), t.as_slice(), p.x, p.y, p.z, k.jacobian(&t).singular_values().as_slice());
+    println!(
+        "{:<12} theta*0 = {:?}\n             f = ({:.6}, {:.6}, {:.6}), sigma(J) = {:.6?}",
+        k.name(),
+        t.as_slice(),
+        p.x,
+        p.y,
+        p.z,
+        k.jacobian(&t).singular_values().as_slice()
+    );
 }
 
 /// Writes to stdout, ending quietly when the reader has gone (e.g. `| head`).

@@ -88,7 +88,11 @@ pub struct MetricsAccumulator<const N: usize> {
 }
 
 impl<const N: usize> MetricsAccumulator<N> {
-    pub fn new(limits: JointLimits<N>, theta0: SVector<f64, N>, theta_ref: SVector<f64, N>) -> Self {
+    pub fn new(
+        limits: JointLimits<N>,
+        theta0: SVector<f64, N>,
+        theta_ref: SVector<f64, N>,
+    ) -> Self {
         Self {
             limits,
             theta0,
@@ -119,9 +123,13 @@ impl<const N: usize> MetricsAccumulator<N> {
         let l = &self.limits;
         for i in 0..N {
             self.theta_margin =
-                self.theta_margin.min(margin(s.theta[i], l.theta_min[i], l.theta_max[i]));
-            self.thetadot_margin =
-                self.thetadot_margin.min(margin(s.thetadot[i], l.thetadot_min[i], l.thetadot_max[i]));
+                self.theta_margin
+                    .min(margin(s.theta[i], l.theta_min[i], l.theta_max[i]));
+            self.thetadot_margin = self.thetadot_margin.min(margin(
+                s.thetadot[i],
+                l.thetadot_min[i],
+                l.thetadot_max[i],
+            ));
         }
         self.peak_thetadot = self.peak_thetadot.max(s.thetadot.amax());
         if let Some(a) = &s.thetaddot {
@@ -159,7 +167,11 @@ impl<const N: usize> MetricsAccumulator<N> {
             drift_norm: drift.norm(),
             drift_ref_norm: (last.theta - self.theta_ref).norm(),
             max_position_error: self.max_error,
-            rms_position_error: if duration > 0.0 { (self.error_sq_integral / duration).sqrt() } else { self.last_error },
+            rms_position_error: if duration > 0.0 {
+                (self.error_sq_integral / duration).sqrt()
+            } else {
+                self.last_error
+            },
             final_position_error: self.last_error,
             theta_margin: self.theta_margin,
             thetadot_margin: self.thetadot_margin,
@@ -212,7 +224,8 @@ mod tests {
 
     #[test]
     fn sigma_min_of_a_known_jacobian() {
-        let j = SMatrix::<f64, 3, 4>::new(0.0, 3.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.5, 0.0);
+        let j =
+            SMatrix::<f64, 3, 4>::new(0.0, 3.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.5, 0.0);
         assert!((sigma_min(&j) - 0.5).abs() < 1e-12);
         let rotated = nalgebra::Rotation3::from_euler_angles(0.3, -0.2, 1.1).matrix() * j;
         assert!((sigma_min(&rotated) - 0.5).abs() < 1e-12);
@@ -220,7 +233,11 @@ mod tests {
 
     #[test]
     fn drift_margins_and_rms_of_a_constant_error() {
-        let mut m = MetricsAccumulator::new(limits(), SVector::from([0.0, 0.0]), SVector::from([0.1, 0.0]));
+        let mut m = MetricsAccumulator::new(
+            limits(),
+            SVector::from([0.0, 0.0]),
+            SVector::from([0.1, 0.0]),
+        );
         m.push(&sample(0.0, [0.0, 0.0], 0.3));
         m.push(&sample(1.0, [0.9, 5.0], 0.3));
         m.push(&sample(3.0, [0.3, 4.0], 0.3));
@@ -229,10 +246,16 @@ mod tests {
         assert!((r.drift_norm - (0.09f64 + 16.0).sqrt()).abs() < 1e-15);
         assert!((r.drift_ref_norm - (0.04f64 + 16.0).sqrt()).abs() < 1e-15);
         assert!((r.rms_position_error - 0.3).abs() < 1e-15);
-        assert!((r.theta_margin - 0.1).abs() < 1e-15, "closest approach is 1 - 0.9");
+        assert!(
+            (r.theta_margin - 0.1).abs() < 1e-15,
+            "closest approach is 1 - 0.9"
+        );
         assert!((r.thetadot_margin - 0.5).abs() < 1e-15);
         assert_eq!(r.peak_thetadot, 1.5);
-        assert!(r.min_sigma_j.abs() < 1e-12, "a 3 x 2 Jacobian has rank 2: sigma_min(J J') = 0");
+        assert!(
+            r.min_sigma_j.abs() < 1e-12,
+            "a 3 x 2 Jacobian has rank 2: sigma_min(J J') = 0"
+        );
         assert!(r.score.is_none() && r.peak_torque.is_none());
     }
 }

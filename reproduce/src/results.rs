@@ -32,6 +32,8 @@ pub struct RunRow {
     /// `ok` or `failed`.
     pub status: String,
     pub failure: String,
+    /// Last accepted instant of a failed run (the failure message names the instant of the
+    /// evaluation that failed, which may lie inside the next step).
     pub failed_at: Option<f64>,
     pub drift_1: Option<f64>,
     pub drift_2: Option<f64>,
@@ -76,9 +78,14 @@ impl RunRow {
         // drift: theta(T) was never reached.
         let (status, failure, failed_at, m, completed) = match &r.outcome {
             Outcome::Completed(m) => ("ok", String::new(), None, Some(m), true),
-            Outcome::Failed { t, reason, partial } => ("failed", reason.clone(), Some(*t), partial.as_ref(), false),
+            Outcome::Failed { t, reason, partial } => {
+                ("failed", reason.clone(), Some(*t), partial.as_ref(), false)
+            }
         };
-        let drift = |i: usize| m.filter(|_| completed).and_then(|m| m.drift.get(i).copied());
+        let drift = |i: usize| {
+            m.filter(|_| completed)
+                .and_then(|m| m.drift.get(i).copied())
+        };
         let score = m.and_then(|m| m.score);
         RunRow {
             paper: j.paper.clone(),
@@ -88,7 +95,10 @@ impl RunRow {
             solver: j.solver.label(),
             robot: j.robot.clone(),
             path: j.path.name.clone(),
-            path_scale: j.path.scale.or_else(|| schemes::paths::default_scale(&j.path.name)),
+            path_scale: j
+                .path
+                .scale
+                .or_else(|| schemes::paths::default_scale(&j.path.name)),
             duration: j.path.duration,
             status: status.to_string(),
             failure,
@@ -132,12 +142,26 @@ impl RunRow {
 
     /// Stable sort key.
     pub fn key(&self) -> (String, String, String) {
-        (self.experiment.clone(), self.variant.clone(), self.solver.clone())
+        (
+            self.experiment.clone(),
+            self.variant.clone(),
+            self.solver.clone(),
+        )
     }
 
     /// The joint drifts that exist (n of them).
     pub fn drifts(&self) -> Vec<f64> {
-        [self.drift_1, self.drift_2, self.drift_3, self.drift_4, self.drift_5, self.drift_6].into_iter().flatten().collect()
+        [
+            self.drift_1,
+            self.drift_2,
+            self.drift_3,
+            self.drift_4,
+            self.drift_5,
+            self.drift_6,
+        ]
+        .into_iter()
+        .flatten()
+        .collect()
     }
 }
 
@@ -163,13 +187,18 @@ pub fn runs_csv(rows: &[RunRow]) -> Result<Vec<u8>, csv::Error> {
 /// Reads `results/runs.csv`.
 pub fn read_runs(path: &Path) -> Result<Vec<RunRow>, String> {
     let mut r = csv::Reader::from_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    r.deserialize().map(|row| row.map_err(|e| format!("{}: {e}", path.display()))).collect()
+    r.deserialize()
+        .map(|row| row.map_err(|e| format!("{}: {e}", path.display())))
+        .collect()
 }
 
 /// Merges freshly computed rows into the stored ones: a fresh row replaces the stored row with
 /// the same key; other stored rows are kept (so running one paper does not erase the others).
 pub fn merge(stored: Vec<RunRow>, fresh: Vec<RunRow>) -> Vec<RunRow> {
-    let mut all: Vec<RunRow> = stored.into_iter().filter(|s| !fresh.iter().any(|f| f.key() == s.key())).collect();
+    let mut all: Vec<RunRow> = stored
+        .into_iter()
+        .filter(|s| !fresh.iter().any(|f| f.key() == s.key()))
+        .collect();
     all.extend(fresh);
     all.sort_by_key(|r| r.key());
     all
@@ -177,7 +206,12 @@ pub fn merge(stored: Vec<RunRow>, fresh: Vec<RunRow>) -> Vec<RunRow> {
 
 /// File name of a run's trace.
 pub fn trace_file(r: &RunRecord) -> String {
-    format!("{}/{}__{}.csv", r.job.experiment, slug(&r.job.variant), slug(&r.job.solver.label()))
+    format!(
+        "{}/{}__{}.csv",
+        r.job.experiment,
+        slug(&r.job.variant),
+        slug(&r.job.solver.label())
+    )
 }
 
 /// Lower-case ASCII letters, digits and dashes.
@@ -210,7 +244,12 @@ pub fn trace_csv(r: &RunRecord) -> Result<Vec<u8>, csv::Error> {
     if first.torque.is_some() {
         header.extend((1..=n).map(|i| format!("tau_{i}")));
     }
-    header.extend(["rx_des", "ry_des", "rz_des", "rx", "ry", "rz", "pos_err", "score_dx"].map(String::from));
+    header.extend(
+        [
+            "rx_des", "ry_des", "rz_des", "rx", "ry", "rz", "pos_err", "score_dx",
+        ]
+        .map(String::from),
+    );
     w.write_record(&header)?;
     for p in &r.trace {
         let mut rec: Vec<String> = vec![p.t.to_string()];
@@ -222,7 +261,10 @@ pub fn trace_csv(r: &RunRecord) -> Result<Vec<u8>, csv::Error> {
             rec.extend(a.iter().map(f64::to_string));
         }
         rec.extend(p.desired.iter().chain(&p.actual).map(f64::to_string));
-        let err = ((p.desired[0] - p.actual[0]).powi(2) + (p.desired[1] - p.actual[1]).powi(2) + (p.desired[2] - p.actual[2]).powi(2)).sqrt();
+        let err = ((p.desired[0] - p.actual[0]).powi(2)
+            + (p.desired[1] - p.actual[1]).powi(2)
+            + (p.desired[2] - p.actual[2]).powi(2))
+        .sqrt();
         rec.push(err.to_string());
         rec.push(p.score_dx.map(|v| v.to_string()).unwrap_or_default());
         w.write_record(&rec)?;

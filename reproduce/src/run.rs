@@ -9,7 +9,7 @@ use robots::{Dynamics, Jaco2, Katana6m180, Robot};
 use schemes::paths::{build_path, Path};
 use schemes::scheme::{Level, Scheme};
 use schemes::spec::build_scheme;
-use solvers::ode::{integrate, Control, OdeError, OdeStats};
+use solvers::ode::{integrate, Control, OdeFailure, OdeStats};
 use std::sync::Arc;
 
 /// Samples kept per run for the figures (uniform in t, plus the last).
@@ -35,7 +35,11 @@ pub enum Outcome {
     Completed(RunMetrics),
     /// The run stopped at t; `partial` holds the metrics up to there (peaks, errors, margins;
     /// its drift is theta(t) - theta0, not a drift over the task).
-    Failed { t: f64, reason: String, partial: Option<RunMetrics> },
+    Failed {
+        t: f64,
+        reason: String,
+        partial: Option<RunMetrics>,
+    },
 }
 
 /// Everything a run produces.
@@ -73,7 +77,11 @@ pub fn run_job(job: &Job) -> RunRecord {
     result.unwrap_or_else(|reason| RunRecord {
         job: job.clone(),
         scheme_name: job.scheme.display_name(),
-        outcome: Outcome::Failed { t: 0.0, reason, partial: None },
+        outcome: Outcome::Failed {
+            t: 0.0,
+            reason,
+            partial: None,
+        },
         stats: OdeStats::default(),
         qp_solves: 0,
         score_failures: 0,
@@ -90,8 +98,21 @@ fn run_with<const N: usize>(
     let theta_ref = SVector::<f64, N>::from_column_slice(&job.theta_ref);
     let start = robot.position(&theta_ref);
     let path: Arc<dyn Path> = Arc::from(build_path(&job.path, start).map_err(|e| e.to_string())?);
-    let scheme = build_scheme::<N>(&job.scheme, robot.clone(), dynamics, path.clone(), theta_ref).map_err(|e| e.to_string())?;
-    let mut observer = Observer::new(robot.as_ref(), scheme.as_ref(), path.as_ref(), theta0, theta_ref);
+    let scheme = build_scheme::<N>(
+        &job.scheme,
+        robot.clone(),
+        dynamics,
+        path.clone(),
+        theta_ref,
+    )
+    .map_err(|e| e.to_string())?;
+    let mut observer = Observer::new(
+        robot.as_ref(),
+        scheme.as_ref(),
+        path.as_ref(),
+        theta0,
+        theta_ref,
+    );
     let t1 = path.duration();
     let level = scheme.level();
     let (outcome, stats, qp_solves) = match &job.solver {
@@ -114,7 +135,8 @@ fn run_with<const N: usize>(
             finish(result, sys.failure.take(), &observer, solves)
         }
         SolverChoice::Neural(spec) => {
-            let network = solvers::neural::build_solver(spec, scheme.dims()).map_err(|e| e.to_string())?;
+            let network =
+                solvers::neural::build_solver(spec, scheme.dims()).map_err(|e| e.to_string())?;
             let mut sys = NeuralLoop::new(scheme.as_ref(), network);
             let k = sys.net_offset();
             let mut y0 = vec![0.0; sys_dim(&sys)];
@@ -163,27 +185,23 @@ fn sys_dim<const N: usize>(sys: &NeuralLoop<'_, N>) -> usize {
 }
 
 fn finish<const N: usize>(
-    result: Result<(Vec<f64>, OdeStats), OdeError>,
+    result: Result<(Vec<f64>, OdeStats), OdeFailure>,
     loop_failure: Option<String>,
     observer: &Observer<'_, N>,
     qp_solves: usize,
 ) -> (Outcome, OdeStats, usize) {
     match result {
-        Ok((_, stats)) => (Outcome::Completed(observer.metrics.finish(0.0)), stats, qp_solves),
-        Err(e) => {
-            let t = match &e {
-                OdeError::Solver { t, .. }
-                | OdeError::NonFinite { t }
-                | OdeError::TooManySteps { t, .. }
-                | OdeError::Stopped { t, .. } => *t,
-            };
-            let t = t.max(observer.last_t);
-            let reason = match loop_failure {
-                Some(f) => f,
-                None => e.to_string(),
-            };
+        Ok((_, stats)) => (
+            Outcome::Completed(observer.metrics.finish(0.0)),
+            stats,
+            qp_solves,
+        ),
+        Err(OdeFailure { error, stats }) => {
+            // The last accepted step; a loop failure (the exact QP) names its own instant.
+            let t = observer.last_t;
+            let reason = loop_failure.unwrap_or_else(|| error.to_string());
             let partial = observer.has_samples().then(|| observer.metrics.finish(0.0));
-            (Outcome::Failed { t, reason, partial }, OdeStats::default(), qp_solves)
+            (Outcome::Failed { t, reason, partial }, stats, qp_solves)
         }
     }
 }
@@ -202,7 +220,13 @@ struct Observer<'a, const N: usize> {
 }
 
 impl<'a, const N: usize> Observer<'a, N> {
-    fn new(robot: &'a dyn Robot<N>, scheme: &'a dyn Scheme<N>, path: &'a dyn Path, theta0: SVector<f64, N>, theta_ref: SVector<f64, N>) -> Self {
+    fn new(
+        robot: &'a dyn Robot<N>,
+        scheme: &'a dyn Scheme<N>,
+        path: &'a dyn Path,
+        theta0: SVector<f64, N>,
+        theta_ref: SVector<f64, N>,
+    ) -> Self {
         Self {
             robot,
             scheme,
@@ -228,11 +252,21 @@ impl<'a, const N: usize> Observer<'a, N> {
     /// Records the accepted state y at t with joint command x (x[..n] = thetadot or thetaddot).
     fn sample(&mut self, t: f64, y: &[f64], x: &DVector<f64>, level: Level) {
         let (theta, thetadot) = arm_state::<N>(level, y, x.as_slice());
-        let thetaddot = (level == Level::Acceleration).then(|| SVector::<f64, N>::from_column_slice(&x.as_slice()[..N]));
+        let thetaddot = (level == Level::Acceleration)
+            .then(|| SVector::<f64, N>::from_column_slice(&x.as_slice()[..N]));
         let torque = thetaddot.and_then(|a| self.scheme.torque(&theta, &thetadot, &a));
         let desired = self.path.at(t).r;
         let actual = self.robot.position(&theta);
-        let s = Sample { t, theta, thetadot, thetaddot, torque, desired, actual, jacobian: self.robot.jacobian(&theta) };
+        let s = Sample {
+            t,
+            theta,
+            thetadot,
+            thetaddot,
+            torque,
+            desired,
+            actual,
+            jacobian: self.robot.jacobian(&theta),
+        };
         self.metrics.push(&s);
         let duration = self.path.duration();
         let is_end = t >= duration * (1.0 - 1e-12);

@@ -11,8 +11,10 @@ pub fn run_jobs(jobs: &[Job], progress: bool) -> Vec<RunRecord> {
     let bar = ProgressBar::new(jobs.len() as u64);
     if progress {
         bar.set_style(
-            ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} runs  {msg}")
-                .expect("valid template"),
+            ProgressStyle::with_template(
+                "{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} runs  {msg}",
+            )
+            .expect("valid template"),
         );
     } else {
         bar.set_draw_target(ProgressDrawTarget::hidden());

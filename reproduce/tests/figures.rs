@@ -18,7 +18,9 @@ fn row(experiment: &str, variant: &str, solver: &str, failed_at: Option<f64>) ->
         path_scale: None,
         duration: 2.0,
         status: if failed_at.is_some() { "failed" } else { "ok" }.into(),
-        failure: failed_at.map(|t| format!("integrator failed at t = {t}")).unwrap_or_default(),
+        failure: failed_at
+            .map(|t| format!("integrator failed at t = {t}"))
+            .unwrap_or_default(),
         failed_at,
         drift_1: None,
         drift_2: None,
@@ -60,12 +62,21 @@ fn row(experiment: &str, variant: &str, solver: &str, failed_at: Option<f64>) ->
 /// A trace CSV of `n` joints over [0, t_end] in `rows` samples, with accelerations and torques
 /// if `acceleration`, a score if `scored`; the first position error is exactly 0.
 fn trace(n: usize, rows: usize, t_end: f64, acceleration: bool, scored: bool) -> String {
-    let blocks: &[&str] = if acceleration { &["theta", "thetadot", "thetaddot", "tau"] } else { &["theta", "thetadot"] };
+    let blocks: &[&str] = if acceleration {
+        &["theta", "thetadot", "thetaddot", "tau"]
+    } else {
+        &["theta", "thetadot"]
+    };
     let mut header = vec!["t".to_string()];
     for block in blocks {
         header.extend((1..=n).map(|i| format!("{block}_{i}")));
     }
-    header.extend(["rx_des", "ry_des", "rz_des", "rx", "ry", "rz", "pos_err", "score_dx"].map(String::from));
+    header.extend(
+        [
+            "rx_des", "ry_des", "rz_des", "rx", "ry", "rz", "pos_err", "score_dx",
+        ]
+        .map(String::from),
+    );
     let mut csv = header.join(",") + "\n";
     for k in 0..rows {
         let t = t_end * k as f64 / (rows - 1) as f64;
@@ -76,7 +87,11 @@ fn trace(n: usize, rows: usize, t_end: f64, acceleration: bool, scored: bool) ->
         let (x, y) = (0.1 * t.cos(), 0.1 * t.sin());
         let err = 1e-6 * t;
         fields.extend([x, y, 0.2, x + err, y, 0.2, err].map(|v| v.to_string()));
-        fields.push(if scored { (1e-3 * (1.0 + t)).to_string() } else { String::new() });
+        fields.push(if scored {
+            (1e-3 * (1.0 + t)).to_string()
+        } else {
+            String::new()
+        });
         csv += &(fields.join(",") + "\n");
     }
     csv
@@ -84,7 +99,8 @@ fn trace(n: usize, rows: usize, t_end: f64, acceleration: bool, scored: bool) ->
 
 /// A fresh directory under the system's temporary directory.
 fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("driftbench-figures-{name}-{}", std::process::id()));
+    let dir =
+        std::env::temp_dir().join(format!("driftbench-figures-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
@@ -100,9 +116,21 @@ fn synthetic_results(root: &Path) {
     ];
     write_atomic(&root.join("results/runs.csv"), &runs_csv(&runs).unwrap()).unwrap();
     let traces = root.join("results/traces");
-    write_atomic(&traces.join("exp-vel/vltco__exact-clarabel.csv"), trace(6, 50, 2.0, false, false).as_bytes()).unwrap();
-    write_atomic(&traces.join("exp-vel/vltco__lvi-pdnn.csv"), trace(6, 900, 2.0, false, true).as_bytes()).unwrap();
-    write_atomic(&traces.join("exp-acc/mtn-zeta-0__fp-cdnn.csv"), trace(5, 20, 0.5, true, true).as_bytes()).unwrap();
+    write_atomic(
+        &traces.join("exp-vel/vltco__exact-clarabel.csv"),
+        trace(6, 50, 2.0, false, false).as_bytes(),
+    )
+    .unwrap();
+    write_atomic(
+        &traces.join("exp-vel/vltco__lvi-pdnn.csv"),
+        trace(6, 900, 2.0, false, true).as_bytes(),
+    )
+    .unwrap();
+    write_atomic(
+        &traces.join("exp-acc/mtn-zeta-0__fp-cdnn.csv"),
+        trace(5, 20, 0.5, true, true).as_bytes(),
+    )
+    .unwrap();
 }
 
 /// The number of points of every polyline with more than ten (data, not axes, ticks or legend).
@@ -146,10 +174,26 @@ fn writes_one_figure_per_run_and_one_overview_per_experiment() {
     ];
     for (path, title) in written.iter().zip(titles) {
         let svg = read(path);
-        assert!(svg.starts_with("<svg"), "{} does not start with <svg", path.display());
-        assert!(svg.trim_end().ends_with("</svg>"), "{} is not closed", path.display());
-        assert!(svg.contains(title), "{} lacks its title {title:?}", path.display());
-        assert!(svg.contains("<polyline") || svg.contains("<path"), "{} draws no line", path.display());
+        assert!(
+            svg.starts_with("<svg"),
+            "{} does not start with <svg",
+            path.display()
+        );
+        assert!(
+            svg.trim_end().ends_with("</svg>"),
+            "{} is not closed",
+            path.display()
+        );
+        assert!(
+            svg.contains(title),
+            "{} lacks its title {title:?}",
+            path.display()
+        );
+        assert!(
+            svg.contains("<polyline") || svg.contains("<path"),
+            "{} draws no line",
+            path.display()
+        );
     }
     std::fs::remove_dir_all(&root).unwrap();
 }
@@ -162,23 +206,61 @@ fn panels_follow_the_level_and_the_overview_scores_neural_runs() {
     let figure = |name: &str| read(&root.join("report/figures").join(name));
 
     let velocity = figure("exp-vel__vltco__lvi-pdnn.svg");
-    for label in ["(a) end-effector path", "(b) position error", "(c) joint angles", "(d) joint velocities", "x (m)", "y (m)", "t (s)", "velocity (rad/s)", "joint 6"] {
-        assert!(velocity.contains(label), "velocity-level figure lacks {label:?}");
+    for label in [
+        "(a) end-effector path",
+        "(b) position error",
+        "(c) joint angles",
+        "(d) joint velocities",
+        "x (m)",
+        "y (m)",
+        "t (s)",
+        "velocity (rad/s)",
+        "joint 6",
+    ] {
+        assert!(
+            velocity.contains(label),
+            "velocity-level figure lacks {label:?}"
+        );
     }
-    assert!(!velocity.contains("torque"), "velocity-level figure has a torque panel");
+    assert!(
+        !velocity.contains("torque"),
+        "velocity-level figure has a torque panel"
+    );
     let series = data_lines(&velocity);
-    assert_eq!(series.len(), 2 + 1 + 6 + 6, "path x2, error, angles x6, velocities x6");
-    assert!(series.iter().all(|&points| points <= 400), "a 900-sample trace was not thinned: {series:?}");
+    assert_eq!(
+        series.len(),
+        2 + 1 + 6 + 6,
+        "path x2, error, angles x6, velocities x6"
+    );
+    assert!(
+        series.iter().all(|&points| points <= 400),
+        "a 900-sample trace was not thinned: {series:?}"
+    );
 
     let acceleration = figure("exp-acc__mtn-zeta-0__fp-cdnn.svg");
-    for label in ["(e) joint accelerations", "(f) joint torques", "acceleration (rad/s^2)", "torque (N m)", "joint 5"] {
-        assert!(acceleration.contains(label), "acceleration-level figure lacks {label:?}");
+    for label in [
+        "(e) joint accelerations",
+        "(f) joint torques",
+        "acceleration (rad/s^2)",
+        "torque (N m)",
+        "joint 5",
+    ] {
+        assert!(
+            acceleration.contains(label),
+            "acceleration-level figure lacks {label:?}"
+        );
     }
     assert!(!acceleration.contains("joint 6"));
 
     let overview = figure("exp-vel__overview.svg");
-    assert!(overview.contains("|x_nn - x*| (rad/s)"), "overview lacks the score panel");
-    assert!(overview.contains("VLTCO / LVI-PDNN") && overview.contains("VLTCO / exact (Clarabel)"), "overview legend lacks a run");
+    assert!(
+        overview.contains("|x_nn - x*| (rad/s)"),
+        "overview lacks the score panel"
+    );
+    assert!(
+        overview.contains("VLTCO / LVI-PDNN") && overview.contains("VLTCO / exact (Clarabel)"),
+        "overview legend lacks a run"
+    );
     std::fs::remove_dir_all(&root).unwrap();
 }
 
@@ -188,9 +270,17 @@ fn rendering_twice_gives_identical_bytes_and_removes_stale_figures() {
     synthetic_results(&root);
     let stale = root.join("report/figures/exp-old__gone__solver.svg");
     write_atomic(&stale, b"<svg></svg>").unwrap();
-    let first: Vec<Vec<u8>> = render_all(&root).unwrap().iter().map(|p| std::fs::read(p).unwrap()).collect();
+    let first: Vec<Vec<u8>> = render_all(&root)
+        .unwrap()
+        .iter()
+        .map(|p| std::fs::read(p).unwrap())
+        .collect();
     assert!(!stale.exists(), "a figure of a run that is gone was kept");
-    let second: Vec<Vec<u8>> = render_all(&root).unwrap().iter().map(|p| std::fs::read(p).unwrap()).collect();
+    let second: Vec<Vec<u8>> = render_all(&root)
+        .unwrap()
+        .iter()
+        .map(|p| std::fs::read(p).unwrap())
+        .collect();
     assert_eq!(first, second);
     std::fs::remove_dir_all(&root).unwrap();
 }
@@ -203,11 +293,17 @@ fn a_malformed_trace_is_an_error_naming_the_file() {
     let text = read(&bad).replacen("\n0,", "\nnot-a-number,", 1);
     std::fs::write(&bad, text).unwrap();
     let err = render_all(&root).unwrap_err();
-    assert!(err.contains("vltco__lvi-pdnn.csv") && err.contains("not a number"), "{err}");
+    assert!(
+        err.contains("vltco__lvi-pdnn.csv") && err.contains("not a number"),
+        "{err}"
+    );
 
     std::fs::write(&bad, "t,theta_1\n0,1\n").unwrap();
     let err = render_all(&root).unwrap_err();
-    assert!(err.contains("vltco__lvi-pdnn.csv") && err.contains("thetadot"), "{err}");
+    assert!(
+        err.contains("vltco__lvi-pdnn.csv") && err.contains("thetadot"),
+        "{err}"
+    );
 
     std::fs::remove_file(&bad).unwrap();
     let err = render_all(&root).unwrap_err();
@@ -221,7 +317,8 @@ fn a_malformed_trace_is_an_error_naming_the_file() {
 fn render_the_committed_results() {
     let root = reproduce::workspace_root();
     let runs = reproduce::results::read_runs(&root.join("results/runs.csv")).unwrap();
-    let experiments: std::collections::BTreeSet<&str> = runs.iter().map(|r| r.experiment.as_str()).collect();
+    let experiments: std::collections::BTreeSet<&str> =
+        runs.iter().map(|r| r.experiment.as_str()).collect();
     let written = render_all(&root).unwrap();
     assert_eq!(written.len(), runs.len() + experiments.len());
 }

@@ -16,15 +16,30 @@ use reproduce::runner::run_jobs;
 /// Runs that diverge by design of the experiment (the paper's own claim or a documented
 /// finding), as (experiment prefix, variant prefix, solver prefix, why).
 const EXPECTED_DIVERGENCE: &[(&str, &str, &str, &str)] = &[
-    ("zhang2018-", "MTN", "", "minimum torque norm: joint velocities diverge (zhang2018 Figs 2-3)"),
-    ("zhang2018-", "HL-JDF (zeta=0.8)", "FP-CDNN (perturbed", "fixed-gain network under the reference perturbation"),
-    ("jia2019-clover", "MVN [jaco2 physical limits]", "", "clover at T = 5 s exceeds Kinova's physical joint-speed limits"),
+    (
+        "zhang2018-",
+        "MTN",
+        "",
+        "minimum torque norm: joint velocities diverge (zhang2018 Figs 2-3)",
+    ),
+    (
+        "zhang2018-",
+        "HL-JDF (zeta=0.8)",
+        "FP-CDNN (perturbed",
+        "fixed-gain network under the reference perturbation",
+    ),
+    (
+        "jia2019-clover",
+        "MVN [jaco2 physical limits]",
+        "",
+        "clover at T = 5 s exceeds Kinova's physical joint-speed limits",
+    ),
 ];
 
 fn expected_to_diverge(r: &RunRow) -> bool {
-    EXPECTED_DIVERGENCE
-        .iter()
-        .any(|(e, v, s, _)| r.experiment.starts_with(e) && r.variant.starts_with(v) && r.solver.starts_with(s))
+    EXPECTED_DIVERGENCE.iter().any(|(e, v, s, _)| {
+        r.experiment.starts_with(e) && r.variant.starts_with(v) && r.solver.starts_with(s)
+    })
 }
 
 fn close(a: Option<f64>, b: Option<f64>) -> bool {
@@ -38,10 +53,14 @@ fn close(a: Option<f64>, b: Option<f64>) -> bool {
 #[test]
 fn fresh_run_matches_the_committed_results() {
     let root = reproduce::workspace_root();
-    let committed = read_runs(&root.join("results/runs.csv")).expect("results/runs.csv is committed");
+    let committed =
+        read_runs(&root.join("results/runs.csv")).expect("results/runs.csv is committed");
     let files = load_dir(&root.join("experiments")).unwrap();
     let jobs: Vec<_> = files.iter().flat_map(|f| f.jobs()).collect();
-    let fresh: Vec<RunRow> = run_jobs(&jobs, false).iter().map(|r| RunRow::from_record(r, "test")).collect();
+    let fresh: Vec<RunRow> = run_jobs(&jobs, false)
+        .iter()
+        .map(|r| RunRow::from_record(r, "test"))
+        .collect();
 
     let mut problems = Vec::new();
     for c in &committed {
@@ -50,7 +69,13 @@ fn fresh_run_matches_the_committed_results() {
             continue;
         };
         if f.status != c.status {
-            problems.push(format!("{:?}: status {} -> {} ({})", c.key(), c.status, f.status, f.failure));
+            problems.push(format!(
+                "{:?}: status {} -> {} ({})",
+                c.key(),
+                c.status,
+                f.status,
+                f.failure
+            ));
             continue;
         }
         if c.status == "ok" {
@@ -73,14 +98,22 @@ fn fresh_run_matches_the_committed_results() {
     }
     for f in &fresh {
         if !committed.iter().any(|c| c.key() == f.key()) {
-            problems.push(format!("{:?}: new run not in results/runs.csv (run the reproduction and commit)", f.key()));
+            problems.push(format!(
+                "{:?}: new run not in results/runs.csv (run the reproduction and commit)",
+                f.key()
+            ));
         }
         let neural = f.solver != SolverChoice::Exact.label();
         if neural && f.status != "ok" && !expected_to_diverge(f) {
             problems.push(format!("{:?}: neural run failed: {}", f.key(), f.failure));
         }
     }
-    assert!(problems.is_empty(), "{} regressions:\n{}", problems.len(), problems.join("\n"));
+    assert!(
+        problems.is_empty(),
+        "{} regressions:\n{}",
+        problems.len(),
+        problems.join("\n")
+    );
 }
 
 #[test]
@@ -90,13 +123,23 @@ fn two_runs_give_identical_rows() {
     let jobs: Vec<_> = files
         .iter()
         .flat_map(|f| f.jobs())
-        .filter(|j| ["jia2019-star", "zhong2021-clover-b", "zhang2018-cardioid-robust"].contains(&j.experiment.as_str()))
+        .filter(|j| {
+            [
+                "jia2019-star",
+                "zhong2021-clover-b",
+                "zhang2018-cardioid-robust",
+            ]
+            .contains(&j.experiment.as_str())
+        })
         .collect();
     assert!(jobs.len() >= 8);
     let rows = |_| -> Vec<RunRow> {
         run_jobs(&jobs, false)
             .iter()
-            .map(|r| RunRow { wall_s: 0.0, ..RunRow::from_record(r, "test") })
+            .map(|r| RunRow {
+                wall_s: 0.0,
+                ..RunRow::from_record(r, "test")
+            })
             .collect()
     };
     let (a, b) = (rows(0), rows(1));

@@ -18,17 +18,32 @@ fn renders_every_paper_and_experiment_from_the_committed_results() {
     let path = render(&root).expect("report renders");
     let md = std::fs::read_to_string(&path).unwrap();
     for (paper, _) in PAPERS {
-        assert!(md.contains(&format!("\n## {paper}\n")), "no section for {paper}");
+        assert!(
+            md.contains(&format!("\n## {paper}\n")),
+            "no section for {paper}"
+        );
     }
     let rows = read_runs(&root.join("results/runs.csv")).unwrap();
     for r in &rows {
-        assert!(md.contains(&r.experiment), "experiment {} missing from the report", r.experiment);
+        assert!(
+            md.contains(&r.experiment),
+            "experiment {} missing from the report",
+            r.experiment
+        );
     }
-    for heading in ["## Score against the exact optimum", "## Cost", "## Cross experiment", "## Published numbers without a run"] {
+    for heading in [
+        "## Score against the exact optimum",
+        "## Cost",
+        "## Cross experiment",
+        "## Published numbers without a run",
+    ] {
         assert!(md.contains(heading), "missing {heading}");
     }
     let deviations = std::fs::read_to_string(root.join("report/deviations.md")).unwrap();
-    assert!(md.contains(&deviations), "deviations.md not included verbatim");
+    assert!(
+        md.contains(&deviations),
+        "deviations.md not included verbatim"
+    );
 }
 
 #[test]
@@ -43,21 +58,31 @@ fn rendering_twice_gives_identical_bytes() {
 #[test]
 fn every_mapped_published_number_finds_its_run() {
     let inputs = committed();
-    let values = read_paper_values(&reproduce::workspace_root().join("report/paper-values.csv")).unwrap();
+    let values =
+        read_paper_values(&reproduce::workspace_root().join("report/paper-values.csv")).unwrap();
     let mut mapped = 0;
     for v in &values {
         if mapping_of(v).is_some() {
             match resolve(v, &inputs.runs) {
                 Resolution::Found { .. } => mapped += 1,
                 Resolution::Unmapped(why) if why.contains("does not record") => {}
-                Resolution::Unmapped(why) => panic!("{} {} {} {}: {why}", v.paper, v.table, v.experiment, v.column),
+                Resolution::Unmapped(why) => panic!(
+                    "{} {} {} {}: {why}",
+                    v.paper, v.table, v.experiment, v.column
+                ),
             }
         }
     }
     assert!(mapped > 100, "only {mapped} published numbers mapped");
     let md = to_markdown(&inputs);
-    let section = md.split("## Published numbers without a run").nth(1).unwrap();
-    assert!(section.contains("all-vltco") && section.contains("error_norm_settle_s"), "unmapped numbers not listed");
+    let section = md
+        .split("## Published numbers without a run")
+        .nth(1)
+        .unwrap();
+    assert!(
+        section.contains("all-vltco") && section.contains("error_norm_settle_s"),
+        "unmapped numbers not listed"
+    );
 }
 
 /// A completed run with the given drift norm (everything else neutral).
@@ -118,25 +143,40 @@ fn synthetic() -> Vec<RunRow> {
         row("jia2019-clover", "MVN", "exact (Clarabel)", 0.3),
         row("jia2019-clover", "MVN-INVM", "LVI-PDNN", 0.1),
         row("jia2019-clover", "VLTCO", "LVI-PDNN", 1e-3),
-        row("jia2019-clover", "MVN [jaco2-hand]", "exact (Clarabel)", 0.0),
+        row(
+            "jia2019-clover",
+            "MVN [jaco2-hand]",
+            "exact (Clarabel)",
+            0.0,
+        ),
     ]
 }
 
 fn verdicts(rows: Vec<RunRow>) -> Vec<(String, Verdict)> {
-    claims::jia2019(&Runs::new(rows)).into_iter().map(|c| (c.short, c.verdict)).collect()
+    claims::jia2019(&Runs::new(rows))
+        .into_iter()
+        .map(|c| (c.short, c.verdict))
+        .collect()
 }
 
 #[test]
 fn claims_pass_on_synthetic_rows_and_fail_when_a_number_changes() {
     let all_pass = verdicts(synthetic());
-    assert!(all_pass.iter().all(|(_, v)| *v == Verdict::Pass), "{all_pass:?}");
+    assert!(
+        all_pass.iter().all(|(_, v)| *v == Verdict::Pass),
+        "{all_pass:?}"
+    );
 
     // VLTCO's drift no longer 10x below MVN-INVM's: exactly the ordering claim fails.
     let mut rows = synthetic();
     rows[3].drift_norm = Some(0.02);
     let changed = verdicts(rows);
     for ((short, before), (_, after)) in all_pass.iter().zip(&changed) {
-        let expected = if short == "drift(VLTCO) << drift(MVN-INVM)" { Verdict::Fail } else { *before };
+        let expected = if short == "drift(VLTCO) << drift(MVN-INVM)" {
+            Verdict::Fail
+        } else {
+            *before
+        };
         assert_eq!(*after, expected, "{short}");
     }
 
@@ -144,11 +184,21 @@ fn claims_pass_on_synthetic_rows_and_fail_when_a_number_changes() {
     let mut rows = synthetic();
     rows[0].thetadot_margin = Some(-1e-6);
     let changed = verdicts(rows);
-    assert!(changed.iter().any(|(s, v)| s == "joints inside their limits" && *v == Verdict::Fail), "{changed:?}");
+    assert!(
+        changed
+            .iter()
+            .any(|(s, v)| s == "joints inside their limits" && *v == Verdict::Fail),
+        "{changed:?}"
+    );
 
     // A missing run makes a claim N/A, never PASS.
     let mut rows = synthetic();
     rows.retain(|r| r.variant != "MVN [jaco2-hand]");
     let changed = verdicts(rows);
-    assert!(changed.iter().any(|(s, v)| s == "jaco2-hand leaves joint 6 still" && *v == Verdict::NotApplicable), "{changed:?}");
+    assert!(
+        changed
+            .iter()
+            .any(|(s, v)| s == "jaco2-hand leaves joint 6 still" && *v == Verdict::NotApplicable),
+        "{changed:?}"
+    );
 }

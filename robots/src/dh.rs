@@ -31,17 +31,26 @@ pub struct Frame {
 impl Frame {
     /// The identity transform.
     pub fn identity() -> Self {
-        Frame { rot: Matrix3::identity(), origin: Vector3::zeros() }
+        Frame {
+            rot: Matrix3::identity(),
+            origin: Vector3::zeros(),
+        }
     }
 
     /// A pure rotation (origin at zero).
     pub fn rotation(rot: Matrix3<f64>) -> Self {
-        Frame { rot, origin: Vector3::zeros() }
+        Frame {
+            rot,
+            origin: Vector3::zeros(),
+        }
     }
 
     /// Composition `self * other` (apply `other` first, expressed in `self`).
     pub fn compose(&self, other: &Frame) -> Frame {
-        Frame { rot: self.rot * other.rot, origin: self.origin + self.rot * other.origin }
+        Frame {
+            rot: self.rot * other.rot,
+            origin: self.origin + self.rot * other.origin,
+        }
     }
 
     /// Maps a point given in this frame's coordinates to world coordinates.
@@ -95,7 +104,10 @@ pub struct DhChain<const N: usize> {
 impl<const N: usize> DhChain<N> {
     /// A chain whose DH frame 0 is the world frame.
     pub fn new(params: [DhParam; N]) -> Self {
-        DhChain { base: Frame::identity(), params }
+        DhChain {
+            base: Frame::identity(),
+            params,
+        }
     }
 
     /// The same chain premultiplied by a fixed base transform.
@@ -111,7 +123,10 @@ impl<const N: usize> DhChain<N> {
             t = t.compose(&p.transform(theta[i]));
             *link = t;
         }
-        ChainFrames { base: self.base, links }
+        ChainFrames {
+            base: self.base,
+            links,
+        }
     }
 }
 

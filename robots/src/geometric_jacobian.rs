@@ -69,7 +69,11 @@ impl<const N: usize> ChainFrames<N> {
     }
 
     /// Time derivative of [`ChainFrames::angular_jacobian`] along `thetadot`.
-    pub fn angular_jacobian_dot(&self, link: usize, thetadot: &SVector<f64, N>) -> SMatrix<f64, 3, N> {
+    pub fn angular_jacobian_dot(
+        &self,
+        link: usize,
+        thetadot: &SVector<f64, N>,
+    ) -> SMatrix<f64, 3, N> {
         let mut jdot = SMatrix::<f64, 3, N>::zeros();
         let mut omega = Vector3::zeros();
         for j in 0..link {

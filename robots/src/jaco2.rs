@@ -123,7 +123,8 @@ impl Jaco2 {
     pub fn pen() -> Self {
         Jaco2 {
             name: JACO2_PEN,
-            chain: DhChain::new(jaco2_dh(D6_PEN)).with_base(Frame::rotation(rot_x(TILT_X) * rot_y(TILT_Y))),
+            chain: DhChain::new(jaco2_dh(D6_PEN))
+                .with_base(Frame::rotation(rot_x(TILT_X) * rot_y(TILT_Y))),
             tip: Vector3::from(PEN_TIP),
             limits: papers_limits(),
             dynamics: crate::jaco2_dynamics::jaco2_rigid_chain(),
@@ -134,7 +135,11 @@ impl Jaco2 {
     /// joint limits, so that a run differs from `jaco2-pen` by the task point alone (the
     /// model check of jia2019: joint 6 cannot move the hand centre).
     pub fn hand() -> Self {
-        Jaco2 { name: JACO2_HAND, limits: papers_limits(), ..Self::kinova() }
+        Jaco2 {
+            name: JACO2_HAND,
+            limits: papers_limits(),
+            ..Self::kinova()
+        }
     }
 
     /// Kinova's model `jaco2`: D6 = 0.16, task point = origin of frame 6 (hand centre), no tilt.
@@ -189,7 +194,11 @@ impl Robot<6> for Jaco2 {
         frames.point_jacobian(6, &p)
     }
 
-    fn jacobian_dot(&self, theta: &SVector<f64, 6>, thetadot: &SVector<f64, 6>) -> SMatrix<f64, 3, 6> {
+    fn jacobian_dot(
+        &self,
+        theta: &SVector<f64, 6>,
+        thetadot: &SVector<f64, 6>,
+    ) -> SMatrix<f64, 3, 6> {
         let frames = self.chain.frames(theta);
         let p = frames.frame(6).transform_point(&self.tip);
         frames.point_jacobian_dot(6, &p, thetadot)

@@ -25,15 +25,35 @@ pub const G0: f64 = 9.81;
 
 /// Inertial parameters of Jaco2 links 1-6 (link 6 = hand) in the D6 = 0.16 DH frames.
 pub fn jaco2_bodies() -> [RigidBody; 6] {
-    let body = |mass: f64, com: [f64; 3], inertia: Matrix3<f64>| RigidBody { mass, com: Vector3::from(com), inertia };
+    let body = |mass: f64, com: [f64; 3], inertia: Matrix3<f64>| RigidBody {
+        mass,
+        com: Vector3::from(com),
+        inertia,
+    };
     let wrist = Matrix3::new(7.7e-5, 0.0, 0.0, 0.0, 1.26e-4, 2.8e-5, 0.0, 2.8e-5, 9.4e-5);
     [
-        body(0.7477, [0.0, -0.05825, 0.0020], Matrix3::from_diagonal(&Vector3::new(1.520e-3, 5.98e-4, 1.520e-3))),
-        body(0.99, [-0.2035, 0.0, 0.0116], Matrix3::from_diagonal(&Vector3::new(7.92e-4, 1.0502e-2, 1.0502e-2))),
-        body(0.6763, [0.0, 0.0028, -0.0810], Matrix3::from_diagonal(&Vector3::new(1.420e-3, 1.420e-3, 3.04e-4))),
+        body(
+            0.7477,
+            [0.0, -0.05825, 0.0020],
+            Matrix3::from_diagonal(&Vector3::new(1.520e-3, 5.98e-4, 1.520e-3)),
+        ),
+        body(
+            0.99,
+            [-0.2035, 0.0, 0.0116],
+            Matrix3::from_diagonal(&Vector3::new(7.92e-4, 1.0502e-2, 1.0502e-2)),
+        ),
+        body(
+            0.6763,
+            [0.0, 0.0028, -0.0810],
+            Matrix3::from_diagonal(&Vector3::new(1.420e-3, 1.420e-3, 3.04e-4)),
+        ),
         body(0.426367, [0.0, 0.0, -0.0428], wrist),
         body(0.426367, [0.0, 0.0, -0.0427], wrist),
-        body(0.99, [0.0, 0.0, -0.1000], Matrix3::from_diagonal(&Vector3::new(3.45e-4, 3.45e-4, 5.82e-4))),
+        body(
+            0.99,
+            [0.0, 0.0, -0.1000],
+            Matrix3::from_diagonal(&Vector3::new(3.45e-4, 3.45e-4, 5.82e-4)),
+        ),
     ]
 }
 
@@ -55,7 +75,11 @@ impl Dynamics<6> for Jaco2 {
         self.rigid_chain().coriolis(theta, thetadot)
     }
 
-    fn coriolis_matrix(&self, theta: &SVector<f64, 6>, thetadot: &SVector<f64, 6>) -> SMatrix<f64, 6, 6> {
+    fn coriolis_matrix(
+        &self,
+        theta: &SVector<f64, 6>,
+        thetadot: &SVector<f64, 6>,
+    ) -> SMatrix<f64, 6, 6> {
         self.rigid_chain().coriolis_matrix(theta, thetadot)
     }
 

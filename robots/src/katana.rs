@@ -67,14 +67,29 @@ impl Trig {
         let (s2, c2) = theta[1].sin_cos();
         let (s23, c23) = (theta[1] + theta[2]).sin_cos();
         let (s234, c234) = (theta[1] + theta[2] + theta[3]).sin_cos();
-        Trig { s1, c1, s2, c2, s23, c23, s234, c234 }
+        Trig {
+            s1,
+            c1,
+            s2,
+            c2,
+            s23,
+            c23,
+            s234,
+            c234,
+        }
     }
 }
 
 impl Katana6m180 {
     /// The Katana manual's lengths: l1 = 0.2015, l2 = 0.19, l3 = 0.139, l4 = 0.1523, l5 = 0.1505.
     pub fn new() -> Self {
-        Katana6m180 { l1: 0.2015, l2: 0.19, l3: 0.139, l4: 0.1523, l5: 0.1505 }
+        Katana6m180 {
+            l1: 0.2015,
+            l2: 0.19,
+            l3: 0.139,
+            l4: 0.1523,
+            l5: 0.1505,
+        }
     }
 
     /// Wrist-plus-gripper length L = l4 + l5.
@@ -128,7 +143,11 @@ impl Robot<5> for Katana6m180 {
         jac
     }
 
-    fn jacobian_dot(&self, theta: &SVector<f64, 5>, thetadot: &SVector<f64, 5>) -> SMatrix<f64, 3, 5> {
+    fn jacobian_dot(
+        &self,
+        theta: &SVector<f64, 5>,
+        thetadot: &SVector<f64, 5>,
+    ) -> SMatrix<f64, 3, 5> {
         let t = Trig::new(theta);
         let l = self.wrist();
         let (h, dh) = self.reach(&t);

@@ -53,7 +53,11 @@ pub trait Robot<const N: usize>: Send + Sync {
     /// Position Jacobian J(theta) = df/dtheta.
     fn jacobian(&self, theta: &SVector<f64, N>) -> SMatrix<f64, 3, N>;
     /// Time derivative dJ/dt along thetadot.
-    fn jacobian_dot(&self, theta: &SVector<f64, N>, thetadot: &SVector<f64, N>) -> SMatrix<f64, 3, N>;
+    fn jacobian_dot(
+        &self,
+        theta: &SVector<f64, N>,
+        thetadot: &SVector<f64, N>,
+    ) -> SMatrix<f64, 3, N>;
     /// Joint limits the papers' schemes use.
     fn limits(&self) -> JointLimits<N>;
 }
@@ -66,7 +70,11 @@ pub trait Dynamics<const N: usize>: Robot<N> {
     fn coriolis(&self, theta: &SVector<f64, N>, thetadot: &SVector<f64, N>) -> SVector<f64, N>;
     /// A Coriolis matrix C(theta, thetadot) with c = C thetadot and Hdot - 2C skew-symmetric
     /// (Christoffel symbols of the first kind).
-    fn coriolis_matrix(&self, theta: &SVector<f64, N>, thetadot: &SVector<f64, N>) -> SMatrix<f64, N, N>;
+    fn coriolis_matrix(
+        &self,
+        theta: &SVector<f64, N>,
+        thetadot: &SVector<f64, N>,
+    ) -> SMatrix<f64, N, N>;
     /// Gravity vector g(theta) = dU/dtheta.
     fn gravity(&self, theta: &SVector<f64, N>) -> SVector<f64, N>;
 }

@@ -107,7 +107,9 @@ impl<const N: usize> RigidChain<N> {
         let mut n = Vector3::<f64>::zeros();
         for i in (0..N).rev() {
             let o = frames.origin(i);
-            n += (frames.origin(i + 1) - o).cross(&f) + moment[i] + (masses.com[i] - o).cross(&force[i]);
+            n += (frames.origin(i + 1) - o).cross(&f)
+                + moment[i]
+                + (masses.com[i] - o).cross(&force[i]);
             f += force[i];
             tau[i] = frames.z(i).dot(&n);
         }
@@ -132,18 +134,28 @@ impl<const N: usize> RigidChain<N> {
         for i in 0..N {
             let jv = frames.point_jacobian(i + 1, &masses.com[i]);
             let jw = frames.angular_jacobian(i + 1);
-            h += jv.transpose() * jv * self.bodies[i].mass + jw.transpose() * masses.inertia[i] * jw;
+            h +=
+                jv.transpose() * jv * self.bodies[i].mass + jw.transpose() * masses.inertia[i] * jw;
         }
         h
     }
 
     /// Coriolis and centrifugal torques `c(theta, thetadot)` (RNEA, `qdd = 0`, no gravity).
     pub fn coriolis(&self, theta: &SVector<f64, N>, thetadot: &SVector<f64, N>) -> SVector<f64, N> {
-        self.rnea(&self.chain.frames(theta), thetadot, &SVector::zeros(), Vector3::zeros())
+        self.rnea(
+            &self.chain.frames(theta),
+            thetadot,
+            &SVector::zeros(),
+            Vector3::zeros(),
+        )
     }
 
     /// Christoffel-consistent Coriolis matrix (see the module documentation).
-    pub fn coriolis_matrix(&self, theta: &SVector<f64, N>, thetadot: &SVector<f64, N>) -> SMatrix<f64, N, N> {
+    pub fn coriolis_matrix(
+        &self,
+        theta: &SVector<f64, N>,
+        thetadot: &SVector<f64, N>,
+    ) -> SMatrix<f64, N, N> {
         let frames = self.chain.frames(theta);
         let masses = self.link_masses(&frames);
         let mut c = SMatrix::<f64, N, N>::zeros();
@@ -157,13 +169,19 @@ impl<const N: usize> RigidChain<N> {
             let omega = jw * thetadot;
             let w = omega.cross_matrix();
             let b = (w * iw - iw * w - (iw * omega).cross_matrix()) * 0.5;
-            c += jv.transpose() * jv_dot * self.bodies[i].mass + jw.transpose() * (iw * jw_dot + b * jw);
+            c += jv.transpose() * jv_dot * self.bodies[i].mass
+                + jw.transpose() * (iw * jw_dot + b * jw);
         }
         c
     }
 
     /// Gravity torques `g(theta) = dU/dtheta` (RNEA with `qd = qdd = 0`).
     pub fn gravity_torques(&self, theta: &SVector<f64, N>) -> SVector<f64, N> {
-        self.rnea(&self.chain.frames(theta), &SVector::zeros(), &SVector::zeros(), -self.gravity)
+        self.rnea(
+            &self.chain.frames(theta),
+            &SVector::zeros(),
+            &SVector::zeros(),
+            -self.gravity,
+        )
     }
 }

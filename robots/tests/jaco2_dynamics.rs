@@ -16,7 +16,11 @@ fn samples(seed: u64) -> Vec<(V6, V6, V6)> {
     let q = random_vectors::<6>(seed, 10, 4.0);
     let qd = random_vectors::<6>(seed + 100, 10, 1.5);
     let qdd = random_vectors::<6>(seed + 200, 10, 3.0);
-    q.into_iter().zip(qd).zip(qdd).map(|((a, b), c)| (a, b, c)).collect()
+    q.into_iter()
+        .zip(qd)
+        .zip(qdd)
+        .map(|((a, b), c)| (a, b, c))
+        .collect()
 }
 
 /// World pose (rotation, centre of mass) of every link on the D6 = 0.16 chain.
@@ -30,7 +34,11 @@ fn link_poses(theta: &V6) -> [(Matrix3<f64>, Vector3<f64>); 6] {
 fn potential(theta: &V6) -> f64 {
     let g0 = Vector3::new(0.0, 0.0, -9.81);
     let bodies = jaco2_bodies();
-    link_poses(theta).iter().zip(&bodies).map(|((_, p), b)| -b.mass * g0.dot(p)).sum()
+    link_poses(theta)
+        .iter()
+        .zip(&bodies)
+        .map(|((_, p), b)| -b.mass * g0.dot(p))
+        .sum()
 }
 
 /// T = sum 1/2 m |v_c|^2 + 1/2 w' I_w w with v_c and w from finite differences of the poses.
@@ -78,7 +86,10 @@ fn kinetic_energy_matches_link_velocities() {
     for (q, qd, _) in samples(23) {
         let from_h = 0.5 * qd.dot(&(robot.inertia(&q) * qd));
         let direct = kinetic_energy(&q, &qd);
-        assert!((from_h - direct).abs() < 1e-8 * (1.0 + direct), "T: {from_h} vs {direct}");
+        assert!(
+            (from_h - direct).abs() < 1e-8 * (1.0 + direct),
+            "T: {from_h} vs {direct}"
+        );
     }
 }
 
@@ -88,7 +99,11 @@ fn rnea_equals_h_qdd_plus_c_plus_g() {
     for (q, qd, qdd) in samples(24) {
         let tau = robot.rigid_chain().inverse_dynamics(&q, &qd, &qdd);
         let model = robot.inertia(&q) * qdd + robot.coriolis(&q, &qd) + robot.gravity(&q);
-        assert!((tau - model).amax() < 1e-12, "|tau - (H qdd + c + g)| = {:e}", (tau - model).amax());
+        assert!(
+            (tau - model).amax() < 1e-12,
+            "|tau - (H qdd + c + g)| = {:e}",
+            (tau - model).amax()
+        );
     }
 }
 
@@ -122,7 +137,9 @@ fn coriolis_matrix_equals_christoffel_symbols() {
             fd_directional(|t| robot.inertia(t), &q, &e, 1e-5)
         });
         let christoffel = SMatrix::<f64, 6, 6>::from_fn(|i, j| {
-            (0..6).map(|k| 0.5 * (dh[k][(i, j)] + dh[j][(i, k)] - dh[i][(j, k)]) * qd[k]).sum()
+            (0..6)
+                .map(|k| 0.5 * (dh[k][(i, j)] + dh[j][(i, k)] - dh[i][(j, k)]) * qd[k])
+                .sum()
         });
         let err = (robot.coriolis_matrix(&q, &qd) - christoffel).amax();
         assert!(err < 1e-8, "|C - C_christoffel| = {err:e}");
@@ -135,7 +152,10 @@ fn pen_model_has_the_physical_arms_dynamics() {
     for (q, qd, _) in samples(28) {
         assert_eq!(pen.inertia(&q), kinova.inertia(&q));
         assert_eq!(pen.coriolis(&q, &qd), kinova.coriolis(&q, &qd));
-        assert_eq!(pen.coriolis_matrix(&q, &qd), kinova.coriolis_matrix(&q, &qd));
+        assert_eq!(
+            pen.coriolis_matrix(&q, &qd),
+            kinova.coriolis_matrix(&q, &qd)
+        );
         assert_eq!(pen.gravity(&q), kinova.gravity(&q));
     }
 }

@@ -29,22 +29,40 @@ fn names() {
 fn pen_check_values() {
     let robot = Jaco2::pen();
     let p = robot.position(&theta0());
-    assert_close(p.as_slice(), &[0.250226, -0.366141, 0.024212], 1e-6, "jaco2-pen tip");
+    assert_close(
+        p.as_slice(),
+        &[0.250226, -0.366141, 0.024212],
+        1e-6,
+        "jaco2-pen tip",
+    );
     let s = singular_values(&robot.jacobian(&theta0()));
-    assert_close(&s, &[0.633203, 0.422549, 0.295221], 1e-5, "jaco2-pen singular values");
+    assert_close(
+        &s,
+        &[0.633203, 0.422549, 0.295221],
+        1e-5,
+        "jaco2-pen singular values",
+    );
 }
 
 #[test]
 fn kinova_check_values() {
     let p = Jaco2::kinova().position(&theta0());
-    assert_close(p.as_slice(), &[0.280261, -0.417131, 0.054383], 1e-6, "jaco2 tool point");
+    assert_close(
+        p.as_slice(),
+        &[0.280261, -0.417131, 0.054383],
+        1e-6,
+        "jaco2 tool point",
+    );
 }
 
 /// Pen model: Rx(-0.02) Ry(-0.05) times the D6 = 0.1425 chain, tip (0, -0.075, 0) in frame 6.
 fn pen_independent(theta: &SVector<f64, 6>) -> Vector3<f64> {
     let tilt = Rotation3::from_axis_angle(&Vector3::x_axis(), -0.02).to_homogeneous()
         * Rotation3::from_axis_angle(&Vector3::y_axis(), -0.05).to_homogeneous();
-    apply(&jaco2_frames(0.1425, tilt, theta)[5], &Vector3::new(0.0, -0.075, 0.0))
+    apply(
+        &jaco2_frames(0.1425, tilt, theta)[5],
+        &Vector3::new(0.0, -0.075, 0.0),
+    )
 }
 
 #[test]
@@ -53,7 +71,10 @@ fn position_matches_independent_transcription() {
     let kinova = Jaco2::kinova();
     for theta in random_vectors::<6>(1, 20, 4.0) {
         assert!((pen.position(&theta) - pen_independent(&theta)).norm() < 1e-12);
-        let hand = apply(&jaco2_frames(0.16, Matrix4::identity(), &theta)[5], &Vector3::zeros());
+        let hand = apply(
+            &jaco2_frames(0.16, Matrix4::identity(), &theta)[5],
+            &Vector3::zeros(),
+        );
         assert!((kinova.position(&theta) - hand).norm() < 1e-12);
     }
 }
@@ -75,7 +96,10 @@ fn every_joint_moves_the_pen_tip() {
     for theta in random_vectors::<6>(3, 10, 4.0) {
         let jac = robot.jacobian(&theta);
         for k in 0..6 {
-            assert!(jac.column(k).norm() > 1e-3, "column {k} vanishes at {theta:?}");
+            assert!(
+                jac.column(k).norm() > 1e-3,
+                "column {k} vanishes at {theta:?}"
+            );
         }
     }
 }
@@ -119,6 +143,9 @@ fn kinova_limits() {
     for k in [0, 3, 4, 5] {
         assert!(lim.theta_min[k] == f64::NEG_INFINITY && lim.theta_max[k] == f64::INFINITY);
     }
-    assert_eq!(lim.thetadot_max, SVector::<f64, 6>::from([0.6283, 0.6283, 0.6283, 0.8378, 0.8378, 0.8378]));
+    assert_eq!(
+        lim.thetadot_max,
+        SVector::<f64, 6>::from([0.6283, 0.6283, 0.6283, 0.8378, 0.8378, 0.8378])
+    );
     assert_eq!(lim.thetadot_min, -lim.thetadot_max);
 }

@@ -37,12 +37,18 @@ fn check_values() {
     let p = robot.position(&theta_star0());
     let want = [0.081034, 0.249398, 0.379100];
     for k in 0..3 {
-        assert!((p[k] - want[k]).abs() < 1e-6, "position {p:?}, want {want:?}");
+        assert!(
+            (p[k] - want[k]).abs() < 1e-6,
+            "position {p:?}, want {want:?}"
+        );
     }
     let s = singular_values(&robot.jacobian(&theta_star0()));
     let want = [0.454295, 0.262232, 0.233519];
     for k in 0..3 {
-        assert!((s[k] - want[k]).abs() < 1e-5, "singular values {s:?}, want {want:?}");
+        assert!(
+            (s[k] - want[k]).abs() < 1e-5,
+            "singular values {s:?}, want {want:?}"
+        );
     }
 }
 
@@ -98,6 +104,14 @@ fn stretched_pose_is_singular() {
 #[test]
 fn limits_are_unenforced() {
     let lim = Katana6m180::new().limits();
-    assert!(lim.theta_min.iter().chain(lim.thetadot_min.iter()).all(|&x| x == f64::NEG_INFINITY));
-    assert!(lim.theta_max.iter().chain(lim.thetadot_max.iter()).all(|&x| x == f64::INFINITY));
+    assert!(lim
+        .theta_min
+        .iter()
+        .chain(lim.thetadot_min.iter())
+        .all(|&x| x == f64::NEG_INFINITY));
+    assert!(lim
+        .theta_max
+        .iter()
+        .chain(lim.thetadot_max.iter())
+        .all(|&x| x == f64::INFINITY));
 }

@@ -67,7 +67,16 @@ impl<const N: usize> Jia2019<N> {
         kappa: f64,
         lambda: f64,
     ) -> Self {
-        Self { robot, path, theta0, phi, tau, kappa, lambda, varpi: f64::INFINITY }
+        Self {
+            robot,
+            path,
+            theta0,
+            phi,
+            tau,
+            kappa,
+            lambda,
+            varpi: f64::INFINITY,
+        }
     }
 
     /// Replace varpi = +inf by a finite constant.
@@ -173,7 +182,11 @@ impl<const N: usize> Scheme<N> for Jia2019<N> {
     }
 
     fn dims(&self) -> QpDims {
-        QpDims { nx: N + 1, n_eq: 3, n_in: 2 * N }
+        QpDims {
+            nx: N + 1,
+            n_eq: 3,
+            n_in: 2 * N,
+        }
     }
 
     fn build(&self, t: f64, theta: &SVector<f64, N>, _thetadot: &SVector<f64, N>, qp: &mut Qp) {

@@ -46,7 +46,11 @@ use crate::scheme::{Level, Scheme};
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Repetitive {
     /// q = beta_theta |e|^alpha sgn(e) (eq. 14).
-    FiniteTime { beta_theta: f64, alpha: f64, smoothing: f64 },
+    FiniteTime {
+        beta_theta: f64,
+        alpha: f64,
+        smoothing: f64,
+    },
     /// q = mu e (eq. 22).
     Znn { mu: f64 },
 }
@@ -90,7 +94,11 @@ impl<const N: usize> Kong2019<N> {
             path,
             theta_star0,
             k_p,
-            term: Repetitive::FiniteTime { beta_theta, alpha, smoothing: SMOOTHING },
+            term: Repetitive::FiniteTime {
+                beta_theta,
+                alpha,
+                smoothing: SMOOTHING,
+            },
         }
     }
 
@@ -102,7 +110,13 @@ impl<const N: usize> Kong2019<N> {
         mu: f64,
         k_p: f64,
     ) -> Self {
-        Self { robot, path, theta_star0, k_p, term: Repetitive::Znn { mu } }
+        Self {
+            robot,
+            path,
+            theta_star0,
+            k_p,
+            term: Repetitive::Znn { mu },
+        }
     }
 
     /// Change the width of the linear zone of c (no effect on ZNN); 0 gives the exact form.
@@ -120,9 +134,11 @@ impl<const N: usize> Kong2019<N> {
     /// The linear objective term q(theta) (beta_theta c, or mu (theta - theta*0)).
     pub fn linear_term(&self, theta: &SVector<f64, N>) -> SVector<f64, N> {
         match self.term {
-            Repetitive::FiniteTime { beta_theta, alpha, smoothing } => {
-                finite_time_c(theta, &self.theta_star0, alpha, smoothing) * beta_theta
-            }
+            Repetitive::FiniteTime {
+                beta_theta,
+                alpha,
+                smoothing,
+            } => finite_time_c(theta, &self.theta_star0, alpha, smoothing) * beta_theta,
             Repetitive::Znn { mu } => (theta - self.theta_star0) * mu,
         }
     }
@@ -141,7 +157,11 @@ impl<const N: usize> Scheme<N> for Kong2019<N> {
     }
 
     fn dims(&self) -> QpDims {
-        QpDims { nx: N, n_eq: 3, n_in: 0 }
+        QpDims {
+            nx: N,
+            n_eq: 3,
+            n_in: 0,
+        }
     }
 
     fn build(&self, t: f64, theta: &SVector<f64, N>, _thetadot: &SVector<f64, N>, qp: &mut Qp) {
@@ -168,7 +188,11 @@ impl<const N: usize> Scheme<N> for Kong2019<N> {
         debug_assert_eq!(qp_dot.dims(), self.dims());
         qp_dot.p.fill(0.0);
         match self.term {
-            Repetitive::FiniteTime { beta_theta, alpha, smoothing } => {
+            Repetitive::FiniteTime {
+                beta_theta,
+                alpha,
+                smoothing,
+            } => {
                 for i in 0..N {
                     let e = theta[i] - self.theta_star0[i];
                     qp_dot.q[i] = beta_theta * sign_power_slope(e, alpha, smoothing) * thetadot[i];
@@ -180,10 +204,14 @@ impl<const N: usize> Scheme<N> for Kong2019<N> {
                 }
             }
         }
-        qp_dot.a.copy_from(&self.robot.jacobian_dot(theta, thetadot));
+        qp_dot
+            .a
+            .copy_from(&self.robot.jacobian_dot(theta, thetadot));
         let pp = self.path.at(t);
         let jthd = self.robot.jacobian(theta) * thetadot;
-        qp_dot.b.copy_from(&(pp.rddot + (pp.rdot - jthd) * self.k_p));
+        qp_dot
+            .b
+            .copy_from(&(pp.rddot + (pp.rdot - jthd) * self.k_p));
         qp_dot.lower.fill(0.0);
         qp_dot.upper.fill(0.0);
     }

@@ -37,7 +37,10 @@ pub struct QpDotScratch {
 
 impl QpDotScratch {
     pub fn new(dims: QpDims) -> Self {
-        Self { plus: Qp::zeros(dims), minus: Qp::zeros(dims) }
+        Self {
+            plus: Qp::zeros(dims),
+            minus: Qp::zeros(dims),
+        }
     }
 }
 
@@ -73,7 +76,11 @@ pub fn central_difference<const N: usize, S: Scheme<N> + ?Sized>(
     for (sign, qp) in [(1.0, &mut scratch.plus), (-1.0, &mut scratch.minus)] {
         let s = sign * h;
         let th = theta + thetadot * s;
-        let thd = if accel { thetadot + thetaddot * s } else { *thetadot };
+        let thd = if accel {
+            thetadot + thetaddot * s
+        } else {
+            *thetadot
+        };
         scheme.build(t + s, &th, &thd, qp);
     }
     difference_quotient(&scratch.plus, &scratch.minus, 2.0 * h, qp_dot);
@@ -104,8 +111,16 @@ fn dq<R: Dim, C: Dim, S1, S2, S3>(
     S3: RawStorageMut<f64, R, C>,
 {
     assert_eq!(plus.shape(), out.shape(), "qp_dot has the wrong dimensions");
-    assert_eq!(minus.shape(), out.shape(), "qp_dot has the wrong dimensions");
+    assert_eq!(
+        minus.shape(),
+        out.shape(),
+        "qp_dot has the wrong dimensions"
+    );
     for ((o, &a), &b) in out.iter_mut().zip(plus.iter()).zip(minus.iter()) {
-        *o = if a == b || !a.is_finite() || !b.is_finite() { 0.0 } else { (a - b) * inv };
+        *o = if a == b || !a.is_finite() || !b.is_finite() {
+            0.0
+        } else {
+            (a - b) * inv
+        };
     }
 }

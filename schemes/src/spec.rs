@@ -37,7 +37,12 @@ fn default_zhong_lambda() -> f64 {
 #[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum SchemeSpec {
     /// jia2019 eq. 2.17–2.20: MVN (phi = 1, tau = 0), MVN-INVM (0.2, 0), VLTCO (0.2, 0.4).
-    Jia2019 { phi: f64, tau: f64, kappa: f64, lambda: f64 },
+    Jia2019 {
+        phi: f64,
+        tau: f64,
+        kappa: f64,
+        lambda: f64,
+    },
     /// zhong2021 CMCO eq. 2.16–2.18.
     Zhong2021 {
         eta: f64,
@@ -47,9 +52,19 @@ pub enum SchemeSpec {
         lambda: f64,
     },
     /// zhang2018 HL-JDF eq. 2.5–2.6 (MTN when zeta = 0).
-    Zhang2018 { zeta: f64, alpha: f64, beta: f64, rho_v: f64, rho_p: f64 },
+    Zhang2018 {
+        zeta: f64,
+        alpha: f64,
+        beta: f64,
+        rho_v: f64,
+        rho_p: f64,
+    },
     /// kong2019 finite-time repeatable scheme, eq. 14.
-    Kong2019FiniteTime { beta_theta: f64, k_p: f64, alpha: f64 },
+    Kong2019FiniteTime {
+        beta_theta: f64,
+        k_p: f64,
+        alpha: f64,
+    },
     /// kong2019's ZNN repetitive baseline, eq. 22.
     Kong2019Znn { mu: f64, k_p: f64 },
 }
@@ -60,9 +75,18 @@ pub enum SchemeError {
     /// The scheme needs rigid-body dynamics and none was given.
     MissingDynamics { scheme: &'static str },
     /// The dynamics model is not the kinematic robot.
-    RobotMismatch { scheme: &'static str, robot: &'static str, dynamics: &'static str },
+    RobotMismatch {
+        scheme: &'static str,
+        robot: &'static str,
+        dynamics: &'static str,
+    },
     /// A parameter is out of its range.
-    InvalidParameter { scheme: &'static str, field: &'static str, value: f64, requirement: &'static str },
+    InvalidParameter {
+        scheme: &'static str,
+        field: &'static str,
+        value: f64,
+        requirement: &'static str,
+    },
 }
 
 impl fmt::Display for SchemeError {
@@ -72,11 +96,20 @@ impl fmt::Display for SchemeError {
                 f,
                 "scheme {scheme} needs a robot with dynamics (H, c, g), but none was given"
             ),
-            SchemeError::RobotMismatch { scheme, robot, dynamics } => write!(
+            SchemeError::RobotMismatch {
+                scheme,
+                robot,
+                dynamics,
+            } => write!(
                 f,
                 "scheme {scheme}: the dynamics model '{dynamics}' is not the robot '{robot}'"
             ),
-            SchemeError::InvalidParameter { scheme, field, value, requirement } => write!(
+            SchemeError::InvalidParameter {
+                scheme,
+                field,
+                value,
+                requirement,
+            } => write!(
                 f,
                 "scheme {scheme}: parameter '{field}' = {value} is invalid (must be {requirement})"
             ),
@@ -96,7 +129,12 @@ fn check(
     if value.is_finite() && ok {
         Ok(())
     } else {
-        Err(SchemeError::InvalidParameter { scheme, field, value, requirement })
+        Err(SchemeError::InvalidParameter {
+            scheme,
+            field,
+            value,
+            requirement,
+        })
     }
 }
 
@@ -117,13 +155,18 @@ impl SchemeSpec {
     pub fn display_name(&self) -> String {
         match *self {
             SchemeSpec::Jia2019 { phi, tau, .. } => {
-                format!("{} (phi={phi}, tau={tau})", Jia2019::<1>::scheme_name(phi, tau))
+                format!(
+                    "{} (phi={phi}, tau={tau})",
+                    Jia2019::<1>::scheme_name(phi, tau)
+                )
             }
             SchemeSpec::Zhong2021 { eta, delta, .. } => format!("CMCO (eta={eta}, delta={delta})"),
             SchemeSpec::Zhang2018 { zeta, .. } => {
                 format!("{} (zeta={zeta})", Zhang2018::<1>::scheme_name(zeta))
             }
-            SchemeSpec::Kong2019FiniteTime { beta_theta, alpha, .. } => {
+            SchemeSpec::Kong2019FiniteTime {
+                beta_theta, alpha, ..
+            } => {
                 format!("finite-time (beta_theta={beta_theta}, alpha={alpha})")
             }
             SchemeSpec::Kong2019Znn { mu, .. } => format!("ZNN (mu={mu})"),
@@ -134,29 +177,73 @@ impl SchemeSpec {
     pub fn validate(&self) -> Result<(), SchemeError> {
         let s = self.kind();
         match *self {
-            SchemeSpec::Jia2019 { phi, tau, kappa, lambda } => {
+            SchemeSpec::Jia2019 {
+                phi,
+                tau,
+                kappa,
+                lambda,
+            } => {
                 check(s, "phi", phi, phi >= 0.0, "finite and >= 0")?;
-                check(s, "tau", tau, tau >= 0.0 && phi + tau <= 1.0, "finite, >= 0, phi + tau <= 1")?;
+                check(
+                    s,
+                    "tau",
+                    tau,
+                    tau >= 0.0 && phi + tau <= 1.0,
+                    "finite, >= 0, phi + tau <= 1",
+                )?;
                 check(s, "kappa", kappa, kappa > 0.0, "finite and > 0")?;
                 check(s, "lambda", lambda, lambda >= 0.0, "finite and >= 0")
             }
-            SchemeSpec::Zhong2021 { eta, delta, upsilon, lambda } => {
+            SchemeSpec::Zhong2021 {
+                eta,
+                delta,
+                upsilon,
+                lambda,
+            } => {
                 check(s, "eta", eta, eta >= 0.0, "finite and >= 0")?;
-                check(s, "delta", delta, delta >= 0.0 && eta + delta <= 1.0, "finite, >= 0, eta + delta <= 1")?;
+                check(
+                    s,
+                    "delta",
+                    delta,
+                    delta >= 0.0 && eta + delta <= 1.0,
+                    "finite, >= 0, eta + delta <= 1",
+                )?;
                 check(s, "upsilon", upsilon, upsilon > 0.0, "finite and > 0")?;
                 check(s, "lambda", lambda, lambda >= 0.0, "finite and >= 0")
             }
-            SchemeSpec::Zhang2018 { zeta, alpha, beta, rho_v, rho_p } => {
+            SchemeSpec::Zhang2018 {
+                zeta,
+                alpha,
+                beta,
+                rho_v,
+                rho_p,
+            } => {
                 check(s, "zeta", zeta, (0.0..=1.0).contains(&zeta), "in [0, 1]")?;
                 check(s, "alpha", alpha, alpha >= 0.0, "finite and >= 0")?;
                 check(s, "beta", beta, beta >= 0.0, "finite and >= 0")?;
                 check(s, "rho_v", rho_v, rho_v >= 0.0, "finite and >= 0")?;
                 check(s, "rho_p", rho_p, rho_p >= 0.0, "finite and >= 0")
             }
-            SchemeSpec::Kong2019FiniteTime { beta_theta, k_p, alpha } => {
-                check(s, "beta_theta", beta_theta, beta_theta >= 0.0, "finite and >= 0")?;
+            SchemeSpec::Kong2019FiniteTime {
+                beta_theta,
+                k_p,
+                alpha,
+            } => {
+                check(
+                    s,
+                    "beta_theta",
+                    beta_theta,
+                    beta_theta >= 0.0,
+                    "finite and >= 0",
+                )?;
                 check(s, "k_p", k_p, k_p >= 0.0, "finite and >= 0")?;
-                check(s, "alpha", alpha, alpha > 0.0, "finite and > 0 (the paper: 0 < alpha < 1)")
+                check(
+                    s,
+                    "alpha",
+                    alpha,
+                    alpha > 0.0,
+                    "finite and > 0 (the paper: 0 < alpha < 1)",
+                )
             }
             SchemeSpec::Kong2019Znn { mu, k_p } => {
                 check(s, "mu", mu, mu >= 0.0, "finite and >= 0")?;
@@ -181,14 +268,32 @@ pub fn build_scheme<const N: usize>(
 ) -> Result<Box<dyn Scheme<N>>, SchemeError> {
     spec.validate()?;
     Ok(match *spec {
-        SchemeSpec::Jia2019 { phi, tau, kappa, lambda } => {
-            Box::new(Jia2019::new(robot, path, theta_ref, phi, tau, kappa, lambda))
-        }
-        SchemeSpec::Zhong2021 { eta, delta, upsilon, lambda } => {
-            Box::new(Zhong2021::new(robot, path, theta_ref, eta, delta, upsilon, lambda))
-        }
-        SchemeSpec::Zhang2018 { zeta, alpha, beta, rho_v, rho_p } => {
-            let dynamics = dynamics.ok_or(SchemeError::MissingDynamics { scheme: "zhang2018" })?;
+        SchemeSpec::Jia2019 {
+            phi,
+            tau,
+            kappa,
+            lambda,
+        } => Box::new(Jia2019::new(
+            robot, path, theta_ref, phi, tau, kappa, lambda,
+        )),
+        SchemeSpec::Zhong2021 {
+            eta,
+            delta,
+            upsilon,
+            lambda,
+        } => Box::new(Zhong2021::new(
+            robot, path, theta_ref, eta, delta, upsilon, lambda,
+        )),
+        SchemeSpec::Zhang2018 {
+            zeta,
+            alpha,
+            beta,
+            rho_v,
+            rho_p,
+        } => {
+            let dynamics = dynamics.ok_or(SchemeError::MissingDynamics {
+                scheme: "zhang2018",
+            })?;
             if dynamics.name() != robot.name() {
                 return Err(SchemeError::RobotMismatch {
                     scheme: "zhang2018",
@@ -196,11 +301,19 @@ pub fn build_scheme<const N: usize>(
                     dynamics: dynamics.name(),
                 });
             }
-            Box::new(Zhang2018::new(dynamics, path, theta_ref, zeta, alpha, beta, rho_v, rho_p))
+            Box::new(Zhang2018::new(
+                dynamics, path, theta_ref, zeta, alpha, beta, rho_v, rho_p,
+            ))
         }
-        SchemeSpec::Kong2019FiniteTime { beta_theta, k_p, alpha } => {
-            Box::new(Kong2019::finite_time(robot, path, theta_ref, beta_theta, alpha, k_p))
+        SchemeSpec::Kong2019FiniteTime {
+            beta_theta,
+            k_p,
+            alpha,
+        } => Box::new(Kong2019::finite_time(
+            robot, path, theta_ref, beta_theta, alpha, k_p,
+        )),
+        SchemeSpec::Kong2019Znn { mu, k_p } => {
+            Box::new(Kong2019::znn(robot, path, theta_ref, mu, k_p))
         }
-        SchemeSpec::Kong2019Znn { mu, k_p } => Box::new(Kong2019::znn(robot, path, theta_ref, mu, k_p)),
     })
 }

@@ -59,7 +59,16 @@ impl<const N: usize> Zhang2018<N> {
         rho_v: f64,
         rho_p: f64,
     ) -> Self {
-        Self { robot, path, theta0, zeta, alpha, beta, rho_v, rho_p }
+        Self {
+            robot,
+            path,
+            theta0,
+            zeta,
+            alpha,
+            beta,
+            rho_v,
+            rho_p,
+        }
     }
 
     pub fn theta0(&self) -> &SVector<f64, N> {
@@ -92,7 +101,11 @@ impl<const N: usize> Scheme<N> for Zhang2018<N> {
     }
 
     fn dims(&self) -> QpDims {
-        QpDims { nx: N, n_eq: 3, n_in: 0 }
+        QpDims {
+            nx: N,
+            n_eq: 3,
+            n_in: 0,
+        }
     }
 
     fn build(&self, t: f64, theta: &SVector<f64, N>, thetadot: &SVector<f64, N>, qp: &mut Qp) {
@@ -104,8 +117,8 @@ impl<const N: usize> Scheme<N> for Zhang2018<N> {
         let w = (w + w.transpose()) * 0.5;
         qp.p.copy_from(&w);
         let cg = self.robot.coriolis(theta, thetadot) + self.robot.gravity(theta);
-        let sigma = thetadot * (self.alpha + self.beta)
-            + (theta - self.theta0) * (self.alpha * self.beta);
+        let sigma =
+            thetadot * (self.alpha + self.beta) + (theta - self.theta0) * (self.alpha * self.beta);
         let eta = sigma * z + h.tr_mul(&cg) * (1.0 - z);
         qp.q.copy_from(&eta);
         let j = self.robot.jacobian(theta);

@@ -70,7 +70,16 @@ impl<const N: usize> Zhong2021<N> {
         upsilon: f64,
         lambda: f64,
     ) -> Self {
-        Self { robot, path, theta0, eta, delta, upsilon, lambda, varpi: f64::INFINITY }
+        Self {
+            robot,
+            path,
+            theta0,
+            eta,
+            delta,
+            upsilon,
+            lambda,
+            varpi: f64::INFINITY,
+        }
     }
 
     /// Replace varpi = +inf by a finite constant.
@@ -94,7 +103,11 @@ impl<const N: usize> Scheme<N> for Zhong2021<N> {
     }
 
     fn dims(&self) -> QpDims {
-        QpDims { nx: N + 1, n_eq: 3, n_in: 4 * N + 2 }
+        QpDims {
+            nx: N + 1,
+            n_eq: 3,
+            n_in: 4 * N + 2,
+        }
     }
 
     fn build(&self, t: f64, theta: &SVector<f64, N>, _thetadot: &SVector<f64, N>, qp: &mut Qp) {

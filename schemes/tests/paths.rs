@@ -17,6 +17,7 @@ fn spec(name: &str) -> PathSpec {
         name: name.to_string(),
         duration: default_duration(name).unwrap(),
         scale: None,
+        reverse: false,
     }
 }
 
@@ -346,6 +347,7 @@ fn bad_specs_are_rejected_naming_the_field() {
         name: "spiral".into(),
         duration: 5.0,
         scale: None,
+        reverse: false,
     };
     let err = build_path(&bad_name, start()).err().unwrap();
     assert_eq!(err, PathError::UnknownName("spiral".into()));
@@ -385,7 +387,8 @@ fn path_spec_reads_from_toml() {
         PathSpec {
             name: "dai".into(),
             duration: 15.0,
-            scale: None
+            scale: None,
+            reverse: false,
         }
     );
     let s: PathSpec = toml::from_str("name = \"circle\"\nduration = 9.0\nscale = 0.1\n").unwrap();
@@ -393,4 +396,36 @@ fn path_spec_reads_from_toml() {
     assert!(
         toml::from_str::<PathSpec>("name = \"circle\"\nduration = 9.0\nsclae = 0.1\n").is_err()
     );
+}
+
+#[test]
+fn a_reversed_path_is_the_same_curve_travelled_backwards() {
+    for name in PATH_NAMES {
+        let fwd = build_path(&spec(name), start()).unwrap();
+        let rev = build_path(
+            &PathSpec {
+                reverse: true,
+                ..spec(name)
+            },
+            start(),
+        )
+        .unwrap();
+        let t_end = fwd.duration();
+        assert!(
+            (rev.at(0.0).r - start()).norm() < 1e-12 && (rev.at(t_end).r - start()).norm() < 1e-12,
+            "{name}"
+        );
+        for k in 1..50 {
+            let t = t_end * k as f64 / 50.0;
+            let (f, r) = (fwd.at(t_end - t), rev.at(t));
+            assert!(
+                (f.r - r.r).norm() < 1e-15
+                    && (f.rdot + r.rdot).norm() < 1e-15
+                    && (f.rddot - r.rddot).norm() < 1e-15,
+                "{name} at {t}"
+            );
+        }
+        let expected: Vec<f64> = fwd.breakpoints().iter().rev().map(|b| t_end - b).collect();
+        assert_eq!(rev.breakpoints(), expected.as_slice(), "{name}");
+    }
 }

@@ -34,19 +34,64 @@ fn robot() -> Arc<PlanarZ<N>> {
 }
 
 fn path() -> Arc<Circle> {
-    Arc::new(Circle { r0: PlanarZ::<N>.position(&theta0()), a: 0.05, t_end: 5.0 })
+    Arc::new(Circle {
+        r0: PlanarZ::<N>.position(&theta0()),
+        a: 0.05,
+        t_end: 5.0,
+    })
 }
 
 fn specs() -> Vec<SchemeSpec> {
     vec![
-        SchemeSpec::Jia2019 { phi: 1.0, tau: 0.0, kappa: 20.0, lambda: 20.0 },
-        SchemeSpec::Jia2019 { phi: 0.2, tau: 0.0, kappa: 20.0, lambda: 20.0 },
-        SchemeSpec::Jia2019 { phi: 0.2, tau: 0.4, kappa: 20.0, lambda: 20.0 },
-        SchemeSpec::Zhong2021 { eta: 0.2, delta: 0.4, upsilon: 20.0, lambda: 20.0 },
-        SchemeSpec::Zhong2021 { eta: 0.1, delta: 0.8, upsilon: 20.0, lambda: 20.0 },
-        SchemeSpec::Zhang2018 { zeta: 0.0, alpha: 20.0, beta: 20.0, rho_v: 20.0, rho_p: 20.0 },
-        SchemeSpec::Zhang2018 { zeta: 0.6, alpha: 20.0, beta: 20.0, rho_v: 20.0, rho_p: 20.0 },
-        SchemeSpec::Kong2019FiniteTime { beta_theta: 1.0, k_p: 1.0, alpha: 0.1 },
+        SchemeSpec::Jia2019 {
+            phi: 1.0,
+            tau: 0.0,
+            kappa: 20.0,
+            lambda: 20.0,
+        },
+        SchemeSpec::Jia2019 {
+            phi: 0.2,
+            tau: 0.0,
+            kappa: 20.0,
+            lambda: 20.0,
+        },
+        SchemeSpec::Jia2019 {
+            phi: 0.2,
+            tau: 0.4,
+            kappa: 20.0,
+            lambda: 20.0,
+        },
+        SchemeSpec::Zhong2021 {
+            eta: 0.2,
+            delta: 0.4,
+            upsilon: 20.0,
+            lambda: 20.0,
+        },
+        SchemeSpec::Zhong2021 {
+            eta: 0.1,
+            delta: 0.8,
+            upsilon: 20.0,
+            lambda: 20.0,
+        },
+        SchemeSpec::Zhang2018 {
+            zeta: 0.0,
+            alpha: 20.0,
+            beta: 20.0,
+            rho_v: 20.0,
+            rho_p: 20.0,
+        },
+        SchemeSpec::Zhang2018 {
+            zeta: 0.6,
+            alpha: 20.0,
+            beta: 20.0,
+            rho_v: 20.0,
+            rho_p: 20.0,
+        },
+        SchemeSpec::Kong2019FiniteTime {
+            beta_theta: 1.0,
+            k_p: 1.0,
+            alpha: 0.1,
+        },
         SchemeSpec::Kong2019Znn { mu: 1.0, k_p: 1.0 },
     ]
 }
@@ -58,10 +103,38 @@ fn make(spec: &SchemeSpec) -> Box<dyn Scheme<N>> {
 
 fn expected_dims(spec: &SchemeSpec) -> (QpDims, Level) {
     match spec {
-        SchemeSpec::Jia2019 { .. } => (QpDims { nx: N + 1, n_eq: 3, n_in: 2 * N }, Level::Velocity),
-        SchemeSpec::Zhong2021 { .. } => (QpDims { nx: N + 1, n_eq: 3, n_in: 4 * N + 2 }, Level::Velocity),
-        SchemeSpec::Zhang2018 { .. } => (QpDims { nx: N, n_eq: 3, n_in: 0 }, Level::Acceleration),
-        _ => (QpDims { nx: N, n_eq: 3, n_in: 0 }, Level::Velocity),
+        SchemeSpec::Jia2019 { .. } => (
+            QpDims {
+                nx: N + 1,
+                n_eq: 3,
+                n_in: 2 * N,
+            },
+            Level::Velocity,
+        ),
+        SchemeSpec::Zhong2021 { .. } => (
+            QpDims {
+                nx: N + 1,
+                n_eq: 3,
+                n_in: 4 * N + 2,
+            },
+            Level::Velocity,
+        ),
+        SchemeSpec::Zhang2018 { .. } => (
+            QpDims {
+                nx: N,
+                n_eq: 3,
+                n_in: 0,
+            },
+            Level::Acceleration,
+        ),
+        _ => (
+            QpDims {
+                nx: N,
+                n_eq: 3,
+                n_in: 0,
+            },
+            Level::Velocity,
+        ),
     }
 }
 
@@ -100,7 +173,13 @@ fn qp_shapes_per_scheme() {
                 // G = [I -1; -I -1], h = 0; bounds x- = [zeta-; 0], x+ = [zeta+; +inf].
                 for i in 0..N {
                     for c in 0..=N {
-                        let top = if c == i { 1.0 } else if c == N { -1.0 } else { 0.0 };
+                        let top = if c == i {
+                            1.0
+                        } else if c == N {
+                            -1.0
+                        } else {
+                            0.0
+                        };
                         let bot = if c == i || c == N { -1.0 } else { 0.0 };
                         assert_eq!(qp.g[(i, c)], top);
                         assert_eq!(qp.g[(N + i, c)], bot);
@@ -163,7 +242,10 @@ fn jia2019_objective_data() {
         }
         assert_eq!(qp.q[N], 0.0);
         // b = rdot* (no position feedback).
-        assert_eq!(qp.b, nalgebra::DVector::from_column_slice(path().at(0.7).rdot.as_slice()));
+        assert_eq!(
+            qp.b,
+            nalgebra::DVector::from_column_slice(path().at(0.7).rdot.as_slice())
+        );
     }
     assert_eq!(Jia2019::<N>::scheme_name(1.0, 0.0), "MVN");
     assert_eq!(Jia2019::<N>::scheme_name(0.2, 0.0), "MVN-INVM");
@@ -186,9 +268,18 @@ fn merged_bounds_tighten_near_joint_limits() {
         s.build(0.0, &th, &th, &mut qp);
         let hi = qp.upper[1];
         assert!(hi <= 1.5, "upper bound {hi} exceeds the velocity limit");
-        assert!(hi <= prev_hi + 1e-15, "upper bound grows as the joint nears its limit");
-        assert!((hi - (20.0 * d).min(1.5)).abs() < 1e-12, "d = {d}: zeta+ = {hi}");
-        assert!(qp.lower[1] >= -1.5 && qp.lower[1] == -1.5, "far from the lower limit");
+        assert!(
+            hi <= prev_hi + 1e-15,
+            "upper bound grows as the joint nears its limit"
+        );
+        assert!(
+            (hi - (20.0 * d).min(1.5)).abs() < 1e-12,
+            "d = {d}: zeta+ = {hi}"
+        );
+        assert!(
+            qp.lower[1] >= -1.5 && qp.lower[1] == -1.5,
+            "far from the lower limit"
+        );
         prev_hi = hi;
         // zhong2021's rows carry the same bounds: h = [0; zeta+; varpi; -zeta-; 0].
         z.build(0.0, &th, &th, &mut zqp);
@@ -224,11 +315,25 @@ fn piecewise_bounds_equal_max_min_form() {
             let (lo, hi) = merged_bounds(&lim, &th, gain);
             let (plo, phi) = piecewise_bounds(&lim, &th, gain);
             for i in 0..N {
-                assert!((lo[i] - plo[i]).abs() < 1e-12, "x = {x}, joint {i}: {} vs {}", lo[i], plo[i]);
-                assert!((hi[i] - phi[i]).abs() < 1e-12, "x = {x}, joint {i}: {} vs {}", hi[i], phi[i]);
+                assert!(
+                    (lo[i] - plo[i]).abs() < 1e-12,
+                    "x = {x}, joint {i}: {} vs {}",
+                    lo[i],
+                    plo[i]
+                );
+                assert!(
+                    (hi[i] - phi[i]).abs() < 1e-12,
+                    "x = {x}, joint {i}: {} vs {}",
+                    hi[i],
+                    phi[i]
+                );
                 assert!(hi[i] <= lim.thetadot_max[i] && lo[i] >= lim.thetadot_min[i]);
             }
-            assert_eq!((lo[4], hi[4]), (-1.5, 1.5), "unlimited joint keeps the velocity limits");
+            assert_eq!(
+                (lo[4], hi[4]),
+                (-1.5, 1.5),
+                "unlimited joint keeps the velocity limits"
+            );
         }
     }
 }
@@ -239,17 +344,27 @@ fn exact_optimum_tracks_the_task_velocity() {
     for spec in specs() {
         let s = make(&spec);
         let mut qp = s.new_qp();
-        for (t, th) in [(0.0, theta0()), (1.1, th_off), (2.6, th_off), (4.2, theta0())] {
+        for (t, th) in [
+            (0.0, theta0()),
+            (1.1, th_off),
+            (2.6, th_off),
+            (4.2, theta0()),
+        ] {
             s.build(t, &th, &thd, &mut qp);
             let (x, duals) = admm(&qp, 20_000);
             let kkt = qp.kkt_residuals(&x, &duals);
-            assert!(kkt.max() < 1e-7, "{} t = {t}: ADMM not converged: {kkt:?}", spec.display_name());
+            assert!(
+                kkt.max() < 1e-7,
+                "{} t = {t}: ADMM not converged: {kkt:?}",
+                spec.display_name()
+            );
             let j = PlanarZ::<N>.jacobian(&th);
             let xd = V::from_iterator(x.iter().take(N).copied());
             let pp = path().at(t);
             let expected = match spec {
                 SchemeSpec::Jia2019 { .. } | SchemeSpec::Zhong2021 { .. } => pp.rdot,
-                SchemeSpec::Kong2019FiniteTime { k_p, .. } | SchemeSpec::Kong2019Znn { k_p, .. } => {
+                SchemeSpec::Kong2019FiniteTime { k_p, .. }
+                | SchemeSpec::Kong2019Znn { k_p, .. } => {
                     pp.rdot + (pp.r - PlanarZ::<N>.position(&th)) * k_p
                 }
                 SchemeSpec::Zhang2018 { rho_v, rho_p, .. } => {
@@ -259,22 +374,39 @@ fn exact_optimum_tracks_the_task_velocity() {
                 }
             };
             let res: Vector3<f64> = j * xd - expected;
-            assert!(res.norm() < 1e-7, "{} t = {t}: |J x - b*| = {}", spec.display_name(), res.norm());
+            assert!(
+                res.norm() < 1e-7,
+                "{} t = {t}: |J x - b*| = {}",
+                spec.display_name(),
+                res.norm()
+            );
             // Equality-only QPs: the KKT linear system gives the same optimum.
             if qp.h.is_empty() {
                 let xk = kkt_solve(&qp);
-                assert!((&xk - &x).amax() < 1e-6, "{}: ADMM vs KKT {}", spec.display_name(), (&xk - &x).amax());
+                assert!(
+                    (&xk - &x).amax() < 1e-6,
+                    "{}: ADMM vs KKT {}",
+                    spec.display_name(),
+                    (&xk - &x).amax()
+                );
             }
             // Velocity-level schemes with bounds: the optimum respects the merged limits.
             if matches!(spec, SchemeSpec::Jia2019 { .. }) {
                 let lim = PlanarZ::<N>.limits();
                 for i in 0..N {
-                    assert!(x[i] <= lim.thetadot_max[i] + 1e-8 && x[i] >= lim.thetadot_min[i] - 1e-8);
+                    assert!(
+                        x[i] <= lim.thetadot_max[i] + 1e-8 && x[i] >= lim.thetadot_min[i] - 1e-8
+                    );
                 }
                 // p = |thetadot|_inf when the INVM term has weight.
                 if let SchemeSpec::Jia2019 { phi, tau, .. } = spec {
                     if phi + tau < 1.0 {
-                        assert!((x[N] - xd.amax()).abs() < 1e-6, "p = {} vs {}", x[N], xd.amax());
+                        assert!(
+                            (x[N] - xd.amax()).abs() < 1e-6,
+                            "p = {} vs {}",
+                            x[N],
+                            xd.amax()
+                        );
                     }
                 }
             }
@@ -285,7 +417,12 @@ fn exact_optimum_tracks_the_task_velocity() {
 #[test]
 fn mvn_optimum_is_the_minimum_norm_solution() {
     // MVN with inactive bounds: thetadot = J^+ rdot*.
-    let s = make(&SchemeSpec::Jia2019 { phi: 1.0, tau: 0.0, kappa: 20.0, lambda: 20.0 });
+    let s = make(&SchemeSpec::Jia2019 {
+        phi: 1.0,
+        tau: 0.0,
+        kappa: 20.0,
+        lambda: 20.0,
+    });
     let mut qp = s.new_qp();
     let t = 1.7;
     s.build(t, &theta0(), &theta0(), &mut qp);
@@ -342,13 +479,19 @@ fn kong2019_smoothed_c_is_odd_monotone_and_close_to_the_sign_power() {
         prev = v;
         if e.abs() >= 10.0 * delta {
             let exact = e.abs().powf(alpha).copysign(e);
-            assert!(((v - exact) / exact).abs() < 5e-3, "within 0.5 % of |e|^alpha at {e}");
+            assert!(
+                ((v - exact) / exact).abs() < 5e-3,
+                "within 0.5 % of |e|^alpha at {e}"
+            );
         }
     }
     // Slope at 0 is delta^(alpha - 1): finite, so integrators can step through e = 0.
     let h = 1e-12;
     let slope = (c(h) - c(-h)) / (2.0 * h);
-    assert!((slope / delta.powf(alpha - 1.0) - 1.0).abs() < 1e-3, "slope {slope}");
+    assert!(
+        (slope / delta.powf(alpha - 1.0) - 1.0).abs() < 1e-3,
+        "slope {slope}"
+    );
 }
 
 #[test]
@@ -356,7 +499,10 @@ fn kong2019_c_is_odd_and_zero_at_the_reference() {
     let star = theta0();
     let alpha = 0.1;
     assert_eq!(finite_time_c(&star, &star, alpha, 0.0), V::zeros());
-    for e in [V::from([0.3, -0.2, 1e-9, -2.0, 0.5, 1e-3]), V::from([-1.0, 0.7, 0.01, 0.0, -3e-5, 2.5])] {
+    for e in [
+        V::from([0.3, -0.2, 1e-9, -2.0, 0.5, 1e-3]),
+        V::from([-1.0, 0.7, 0.01, 0.0, -3e-5, 2.5]),
+    ] {
         let cp = finite_time_c(&(star + e), &star, alpha, 0.0);
         let cm = finite_time_c(&(star - e), &star, alpha, 0.0);
         assert!((cp + cm).amax() < 1e-15, "c not odd");
@@ -435,11 +581,19 @@ fn build_dot_matches_a_higher_order_difference() {
             s.build_dot(t, &th, &thd, &thdd, &mut dot, &mut scratch);
             let reference = stencil_dot(&*s, t, &th, &thd, &thdd, 1e-3);
             let d = qp_max_rel_diff(&dot, &reference);
-            assert!(d < 1e-6, "{} t = {t}: build_dot off by {d}", spec.display_name());
+            assert!(
+                d < 1e-6,
+                "{} t = {t}: build_dot off by {d}",
+                spec.display_name()
+            );
             // The derivative is not trivially zero.
             assert!(dot.b.amax() > 0.0);
             if t == 3.7 && matches!(spec, SchemeSpec::Jia2019 { .. }) {
-                assert!((dot.upper[1] + 20.0 * thd[1]).abs() < 1e-12, "zeta+ dot = {}", dot.upper[1]);
+                assert!(
+                    (dot.upper[1] + 20.0 * thd[1]).abs() < 1e-12,
+                    "zeta+ dot = {}",
+                    dot.upper[1]
+                );
             }
             if t == 3.7 && matches!(spec, SchemeSpec::Zhong2021 { .. }) {
                 assert!((dot.h[2 * N + 1] + 20.0 * thd[1]).abs() < 1e-12);
@@ -449,14 +603,23 @@ fn build_dot_matches_a_higher_order_difference() {
             let h = qp_dot::default_step(s.level(), &thd, &thdd);
             qp_dot::central_difference(&*s, t, &th, &thd, &thdd, h, &mut fd, &mut scratch);
             let d = qp_max_rel_diff(&fd, &reference);
-            assert!(d < 1e-6, "{} t = {t}: central difference off by {d}", spec.display_name());
+            assert!(
+                d < 1e-6,
+                "{} t = {t}: central difference off by {d}",
+                spec.display_name()
+            );
         }
     }
 }
 
 #[test]
 fn infinite_entries_have_zero_derivative() {
-    let s = make(&SchemeSpec::Zhong2021 { eta: 0.2, delta: 0.4, upsilon: 20.0, lambda: 20.0 });
+    let s = make(&SchemeSpec::Zhong2021 {
+        eta: 0.2,
+        delta: 0.4,
+        upsilon: 20.0,
+        lambda: 20.0,
+    });
     let (th, thd, thdd) = state();
     let mut fd = s.new_qp();
     let mut scratch = QpDotScratch::new(s.dims());
@@ -483,11 +646,28 @@ fn dims_constant_along_a_run() {
             assert_eq!(qp.dims(), dims);
             assert_eq!(s.dims(), dims);
             assert_eq!(dot.dims(), dims);
-            for v in qp.p.iter().chain(qp.q.iter()).chain(qp.a.iter()).chain(qp.b.iter()).chain(qp.g.iter()) {
+            for v in
+                qp.p.iter()
+                    .chain(qp.q.iter())
+                    .chain(qp.a.iter())
+                    .chain(qp.b.iter())
+                    .chain(qp.g.iter())
+            {
                 assert!(v.is_finite(), "{}", spec.display_name());
             }
-            assert!(qp.h.iter().chain(qp.lower.iter()).chain(qp.upper.iter()).all(|v| !v.is_nan()));
-            for v in dot.p.iter().chain(dot.q.iter()).chain(dot.b.iter()).chain(dot.h.iter()) {
+            assert!(qp
+                .h
+                .iter()
+                .chain(qp.lower.iter())
+                .chain(qp.upper.iter())
+                .all(|v| !v.is_nan()));
+            for v in dot
+                .p
+                .iter()
+                .chain(dot.q.iter())
+                .chain(dot.b.iter())
+                .chain(dot.h.iter())
+            {
                 assert!(v.is_finite(), "{}", spec.display_name());
             }
             th += thd * 0.02;
@@ -517,42 +697,101 @@ fn spec_parses_every_kind() {
         assert_eq!(back, spec);
         assert!(make(&spec).name().len() > 1);
     }
-    let z: SchemeSpec = toml::from_str("kind = \"zhong2021\"\neta = 0.1\ndelta = 0.8\nupsilon = 20.0").unwrap();
-    assert_eq!(z, SchemeSpec::Zhong2021 { eta: 0.1, delta: 0.8, upsilon: 20.0, lambda: 20.0 });
+    let z: SchemeSpec =
+        toml::from_str("kind = \"zhong2021\"\neta = 0.1\ndelta = 0.8\nupsilon = 20.0").unwrap();
+    assert_eq!(
+        z,
+        SchemeSpec::Zhong2021 {
+            eta: 0.1,
+            delta: 0.8,
+            upsilon: 20.0,
+            lambda: 20.0
+        }
+    );
 }
 
 #[test]
 fn spec_rejects_unknown_and_missing_fields() {
-    assert!(toml::from_str::<SchemeSpec>("kind = \"jia2019\"\nphi = 0.2\ntau = 0.4\nkappa = 20.0\nlambda = 20.0\nmu = 5.0").is_err());
-    assert!(toml::from_str::<SchemeSpec>("kind = \"jia2019\"\nphi = 0.2\ntau = 0.4\nkappa = 20.0").is_err());
+    assert!(toml::from_str::<SchemeSpec>(
+        "kind = \"jia2019\"\nphi = 0.2\ntau = 0.4\nkappa = 20.0\nlambda = 20.0\nmu = 5.0"
+    )
+    .is_err());
+    assert!(
+        toml::from_str::<SchemeSpec>("kind = \"jia2019\"\nphi = 0.2\ntau = 0.4\nkappa = 20.0")
+            .is_err()
+    );
     assert!(toml::from_str::<SchemeSpec>("kind = \"kong2019\"\nmu = 1.0\nk_p = 1.0").is_err());
 }
 
 #[test]
 fn build_scheme_reports_clear_errors() {
     let r = robot();
-    let zhang = SchemeSpec::Zhang2018 { zeta: 0.6, alpha: 20.0, beta: 20.0, rho_v: 20.0, rho_p: 20.0 };
-    let err = build_scheme::<N>(&zhang, r.clone(), None, path(), theta0()).err().unwrap();
-    assert_eq!(err, SchemeError::MissingDynamics { scheme: "zhang2018" });
+    let zhang = SchemeSpec::Zhang2018 {
+        zeta: 0.6,
+        alpha: 20.0,
+        beta: 20.0,
+        rho_v: 20.0,
+        rho_p: 20.0,
+    };
+    let err = build_scheme::<N>(&zhang, r.clone(), None, path(), theta0())
+        .err()
+        .unwrap();
+    assert_eq!(
+        err,
+        SchemeError::MissingDynamics {
+            scheme: "zhang2018"
+        }
+    );
     assert!(err.to_string().contains("dynamics"), "{err}");
     let _: &dyn std::error::Error = &err;
 
-    let bad = SchemeSpec::Jia2019 { phi: 0.8, tau: 0.4, kappa: 20.0, lambda: 20.0 };
-    let err = build_scheme::<N>(&bad, r.clone(), None, path(), theta0()).err().unwrap();
+    let bad = SchemeSpec::Jia2019 {
+        phi: 0.8,
+        tau: 0.4,
+        kappa: 20.0,
+        lambda: 20.0,
+    };
+    let err = build_scheme::<N>(&bad, r.clone(), None, path(), theta0())
+        .err()
+        .unwrap();
     assert!(err.to_string().contains("'tau'"), "{err}");
-    let bad = SchemeSpec::Zhong2021 { eta: 0.2, delta: 0.4, upsilon: -1.0, lambda: 20.0 };
-    let err = build_scheme::<N>(&bad, r.clone(), None, path(), theta0()).err().unwrap();
+    let bad = SchemeSpec::Zhong2021 {
+        eta: 0.2,
+        delta: 0.4,
+        upsilon: -1.0,
+        lambda: 20.0,
+    };
+    let err = build_scheme::<N>(&bad, r.clone(), None, path(), theta0())
+        .err()
+        .unwrap();
     assert!(err.to_string().contains("'upsilon'"), "{err}");
-    let bad = SchemeSpec::Kong2019FiniteTime { beta_theta: 1.0, k_p: f64::NAN, alpha: 0.1 };
-    let err = build_scheme::<N>(&bad, r.clone(), None, path(), theta0()).err().unwrap();
+    let bad = SchemeSpec::Kong2019FiniteTime {
+        beta_theta: 1.0,
+        k_p: f64::NAN,
+        alpha: 0.1,
+    };
+    let err = build_scheme::<N>(&bad, r.clone(), None, path(), theta0())
+        .err()
+        .unwrap();
     assert!(err.to_string().contains("'k_p'"), "{err}");
-    let bad = SchemeSpec::Zhang2018 { zeta: 1.5, alpha: 20.0, beta: 20.0, rho_v: 20.0, rho_p: 20.0 };
+    let bad = SchemeSpec::Zhang2018 {
+        zeta: 1.5,
+        alpha: 20.0,
+        beta: 20.0,
+        rho_v: 20.0,
+        rho_p: 20.0,
+    };
     let dynamics: Arc<dyn Dynamics<N>> = r.clone();
-    let err = build_scheme::<N>(&bad, r.clone(), Some(dynamics), path(), theta0()).err().unwrap();
+    let err = build_scheme::<N>(&bad, r.clone(), Some(dynamics), path(), theta0())
+        .err()
+        .unwrap();
     assert!(err.to_string().contains("'zeta'"), "{err}");
 
     // Non-dynamics schemes do not need dynamics.
-    for spec in specs().into_iter().filter(|s| !matches!(s, SchemeSpec::Zhang2018 { .. })) {
+    for spec in specs()
+        .into_iter()
+        .filter(|s| !matches!(s, SchemeSpec::Zhang2018 { .. }))
+    {
         assert!(build_scheme::<N>(&spec, r.clone(), None, path(), theta0()).is_ok());
     }
 }

@@ -50,24 +50,60 @@ fn build_and_build_dot_do_not_allocate() {
     assert!(count(|| drop(std::hint::black_box(vec![1u8; 16]))) >= 1);
     let theta0 = SVector::<f64, N>::from([0.3, 1.2, -0.8, 0.5, -0.4, 0.2]);
     let robot = Arc::new(PlanarZ::<N>);
-    let path = Arc::new(Circle { r0: robot.position(&theta0), a: 0.05, t_end: 5.0 });
+    let path = Arc::new(Circle {
+        r0: robot.position(&theta0),
+        a: 0.05,
+        t_end: 5.0,
+    });
     let specs = [
-        SchemeSpec::Jia2019 { phi: 0.2, tau: 0.4, kappa: 20.0, lambda: 20.0 },
-        SchemeSpec::Zhong2021 { eta: 0.2, delta: 0.4, upsilon: 20.0, lambda: 20.0 },
-        SchemeSpec::Zhang2018 { zeta: 0.6, alpha: 20.0, beta: 20.0, rho_v: 20.0, rho_p: 20.0 },
-        SchemeSpec::Kong2019FiniteTime { beta_theta: 1.0, k_p: 1.0, alpha: 0.1 },
+        SchemeSpec::Jia2019 {
+            phi: 0.2,
+            tau: 0.4,
+            kappa: 20.0,
+            lambda: 20.0,
+        },
+        SchemeSpec::Zhong2021 {
+            eta: 0.2,
+            delta: 0.4,
+            upsilon: 20.0,
+            lambda: 20.0,
+        },
+        SchemeSpec::Zhang2018 {
+            zeta: 0.6,
+            alpha: 20.0,
+            beta: 20.0,
+            rho_v: 20.0,
+            rho_p: 20.0,
+        },
+        SchemeSpec::Kong2019FiniteTime {
+            beta_theta: 1.0,
+            k_p: 1.0,
+            alpha: 0.1,
+        },
         SchemeSpec::Kong2019Znn { mu: 1.0, k_p: 1.0 },
     ];
     let th = theta0 + SVector::<f64, N>::repeat(0.05);
     let thd = SVector::<f64, N>::repeat(0.2);
     for spec in &specs {
-        let s = build_scheme::<N>(spec, robot.clone(), Some(robot.clone()), path.clone(), theta0).unwrap();
+        let s = build_scheme::<N>(
+            spec,
+            robot.clone(),
+            Some(robot.clone()),
+            path.clone(),
+            theta0,
+        )
+        .unwrap();
         let mut qp = s.new_qp();
         let mut dot = s.new_qp();
         let mut scratch = s.new_dot_scratch();
         let n = count(|| s.build(1.0, &th, &thd, &mut qp));
         assert_eq!(n, 0, "{}: build allocated {n} times", spec.display_name());
         let n = count(|| s.build_dot(1.0, &th, &thd, &thd, &mut dot, &mut scratch));
-        assert_eq!(n, 0, "{}: build_dot allocated {n} times", spec.display_name());
+        assert_eq!(
+            n,
+            0,
+            "{}: build_dot allocated {n} times",
+            spec.display_name()
+        );
     }
 }

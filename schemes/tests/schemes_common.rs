@@ -59,7 +59,11 @@ impl<const N: usize> Robot<N> for PlanarZ<N> {
         j
     }
 
-    fn jacobian_dot(&self, theta: &SVector<f64, N>, thetadot: &SVector<f64, N>) -> SMatrix<f64, 3, N> {
+    fn jacobian_dot(
+        &self,
+        theta: &SVector<f64, N>,
+        thetadot: &SVector<f64, N>,
+    ) -> SMatrix<f64, 3, N> {
         let phi = Self::cum(theta);
         let phid = Self::cum(thetadot);
         let mut j = SMatrix::<f64, 3, N>::zeros();
@@ -98,7 +102,11 @@ impl<const N: usize> Dynamics<N> for PlanarZ<N> {
         theta.map(|x| 0.1 * x.sin()).component_mul(thetadot) * thetadot.norm()
     }
 
-    fn coriolis_matrix(&self, _theta: &SVector<f64, N>, _thetadot: &SVector<f64, N>) -> SMatrix<f64, N, N> {
+    fn coriolis_matrix(
+        &self,
+        _theta: &SVector<f64, N>,
+        _thetadot: &SVector<f64, N>,
+    ) -> SMatrix<f64, N, N> {
         SMatrix::zeros()
     }
 
@@ -128,7 +136,11 @@ impl Path for Circle {
         let d = Vector3::new(self.a * (c - 1.0), self.a * s, 0.02 * s);
         let d1 = Vector3::new(-self.a * s, self.a * c, 0.02 * c);
         let d2 = Vector3::new(-self.a * c, -self.a * s, -0.02 * s);
-        PathPoint { r: self.r0 + d, rdot: d1 * phid, rddot: d2 * phid * phid + d1 * phidd }
+        PathPoint {
+            r: self.r0 + d,
+            rdot: d1 * phid,
+            rddot: d2 * phid * phid + d1 * phidd,
+        }
     }
 }
 
@@ -158,10 +170,17 @@ pub fn admm(qp: &Qp, iters: usize) -> (DVector<f64>, QpDuals) {
         hi[me + mi + i] = qp.upper[i];
     }
     let rho_base = 0.1;
-    let rho = DVector::from_fn(m, |i, _| if lo[i] == hi[i] { 1e3 * rho_base } else { rho_base });
+    let rho = DVector::from_fn(m, |i, _| {
+        if lo[i] == hi[i] {
+            1e3 * rho_base
+        } else {
+            rho_base
+        }
+    });
     let sigma = 1e-6;
     let alpha = 1.6;
-    let k = &qp.p + DMatrix::identity(n, n) * sigma + c.transpose() * DMatrix::from_diagonal(&rho) * &c;
+    let k =
+        &qp.p + DMatrix::identity(n, n) * sigma + c.transpose() * DMatrix::from_diagonal(&rho) * &c;
     let lu = k.lu();
     let mut x = DVector::zeros(n);
     let mut z = DVector::zeros(m);

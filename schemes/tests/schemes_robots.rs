@@ -15,7 +15,18 @@ use schemes::spec::{build_scheme, SchemeSpec};
 use solvers::{ExactSolver, Qp};
 
 fn path(name: &str, duration: f64, start: Vector3<f64>) -> Arc<dyn Path> {
-    Arc::from(build_path(&PathSpec { name: name.into(), duration, scale: None }, start).unwrap())
+    Arc::from(
+        build_path(
+            &PathSpec {
+                name: name.into(),
+                duration,
+                scale: None,
+                reverse: false,
+            },
+            start,
+        )
+        .unwrap(),
+    )
 }
 
 fn max_rel_diff(a: &Qp, b: &Qp) -> f64 {
@@ -53,7 +64,11 @@ fn reference_dot<const N: usize>(
     let mut scratch = s.new_dot_scratch();
     qp_dot::central_difference(s, t, th, thd, thdd, h, &mut d1, &mut scratch);
     qp_dot::central_difference(s, t, th, thd, thdd, 2.0 * h, &mut d2, &mut scratch);
-    let comb = |o: &mut [f64], t: &[f64]| o.iter_mut().zip(t).for_each(|(a, b)| *a = (4.0 * *a - b) / 3.0);
+    let comb = |o: &mut [f64], t: &[f64]| {
+        o.iter_mut()
+            .zip(t)
+            .for_each(|(a, b)| *a = (4.0 * *a - b) / 3.0)
+    };
     comb(d1.p.as_mut_slice(), d2.p.as_slice());
     comb(d1.q.as_mut_slice(), d2.q.as_slice());
     comb(d1.a.as_mut_slice(), d2.a.as_slice());
@@ -74,24 +89,88 @@ fn jaco2_schemes_exact_optimum_and_derivative() {
     let clover = path("four-leaf-clover", 5.0, robot.position(&theta0));
     let butterfly = path("butterfly", 8.0, robot.position(&theta0));
     let specs = [
-        (SchemeSpec::Jia2019 { phi: 1.0, tau: 0.0, kappa: 20.0, lambda: 20.0 }, &clover),
-        (SchemeSpec::Jia2019 { phi: 0.2, tau: 0.0, kappa: 20.0, lambda: 20.0 }, &clover),
-        (SchemeSpec::Jia2019 { phi: 0.2, tau: 0.4, kappa: 20.0, lambda: 20.0 }, &clover),
-        (SchemeSpec::Zhong2021 { eta: 0.2, delta: 0.4, upsilon: 20.0, lambda: 20.0 }, &clover),
-        (SchemeSpec::Zhang2018 { zeta: 0.0, alpha: 20.0, beta: 20.0, rho_v: 20.0, rho_p: 20.0 }, &butterfly),
-        (SchemeSpec::Zhang2018 { zeta: 0.6, alpha: 20.0, beta: 20.0, rho_v: 20.0, rho_p: 20.0 }, &butterfly),
+        (
+            SchemeSpec::Jia2019 {
+                phi: 1.0,
+                tau: 0.0,
+                kappa: 20.0,
+                lambda: 20.0,
+            },
+            &clover,
+        ),
+        (
+            SchemeSpec::Jia2019 {
+                phi: 0.2,
+                tau: 0.0,
+                kappa: 20.0,
+                lambda: 20.0,
+            },
+            &clover,
+        ),
+        (
+            SchemeSpec::Jia2019 {
+                phi: 0.2,
+                tau: 0.4,
+                kappa: 20.0,
+                lambda: 20.0,
+            },
+            &clover,
+        ),
+        (
+            SchemeSpec::Zhong2021 {
+                eta: 0.2,
+                delta: 0.4,
+                upsilon: 20.0,
+                lambda: 20.0,
+            },
+            &clover,
+        ),
+        (
+            SchemeSpec::Zhang2018 {
+                zeta: 0.0,
+                alpha: 20.0,
+                beta: 20.0,
+                rho_v: 20.0,
+                rho_p: 20.0,
+            },
+            &butterfly,
+        ),
+        (
+            SchemeSpec::Zhang2018 {
+                zeta: 0.6,
+                alpha: 20.0,
+                beta: 20.0,
+                rho_v: 20.0,
+                rho_p: 20.0,
+            },
+            &butterfly,
+        ),
     ];
     let mut exact = ExactSolver::new();
     let th = theta0 + SVector::<f64, 6>::from([0.02, -0.03, 0.01, 0.04, -0.02, 0.03]);
     let thd = SVector::<f64, 6>::from([0.2, -0.1, 0.15, -0.3, 0.25, 0.1]);
     let thdd = SVector::<f64, 6>::from([0.5, -0.4, 0.3, 0.2, -0.6, 0.1]);
     for (spec, p) in specs {
-        let s = build_scheme::<6>(&spec, robot.clone(), Some(dynamics.clone()), (*p).clone(), theta0).unwrap();
+        let s = build_scheme::<6>(
+            &spec,
+            robot.clone(),
+            Some(dynamics.clone()),
+            (*p).clone(),
+            theta0,
+        )
+        .unwrap();
         let mut qp = s.new_qp();
         for t in [0.0, 1.0, 2.3, 3.9] {
             s.build(t, &th, &thd, &mut qp);
-            let sol = exact.solve(&qp).unwrap_or_else(|e| panic!("{} t = {t}: {e}", spec.display_name()));
-            assert!(sol.kkt.max() < 1e-6, "{}: {:?}", spec.display_name(), sol.kkt);
+            let sol = exact
+                .solve(&qp)
+                .unwrap_or_else(|e| panic!("{} t = {t}: {e}", spec.display_name()));
+            assert!(
+                sol.kkt.max() < 1e-6,
+                "{}: {:?}",
+                spec.display_name(),
+                sol.kkt
+            );
             let x = SVector::<f64, 6>::from_iterator(sol.x.iter().take(6).copied());
             let j = robot.jacobian(&th);
             let pp = p.at(t);
@@ -102,9 +181,18 @@ fn jaco2_schemes_exact_optimum_and_derivative() {
                     + (pp.rdot - j * thd) * 20.0
                     + (pp.r - robot.position(&th)) * 20.0
             };
-            assert!((j * x - b).norm() < 1e-8, "{} t = {t}: |J x - b| = {}", spec.display_name(), (j * x - b).norm());
+            assert!(
+                (j * x - b).norm() < 1e-8,
+                "{} t = {t}: |J x - b| = {}",
+                spec.display_name(),
+                (j * x - b).norm()
+            );
             if s.level() == Level::Velocity {
-                assert!(x.amax() <= 1.5 + 1e-8, "{}: velocity limit", spec.display_name());
+                assert!(
+                    x.amax() <= 1.5 + 1e-8,
+                    "{}: velocity limit",
+                    spec.display_name()
+                );
             } else {
                 let w = qp.p.clone().symmetric_eigenvalues();
                 assert!(w.min() > 0.0, "{}: W eigenvalues {w}", spec.display_name());
@@ -129,7 +217,11 @@ fn katana_kong2019_schemes() {
     let th = star + SVector::<f64, 5>::from([0.0, 0.0, 0.0, 0.0, 0.5]);
     let thd = SVector::<f64, 5>::from([0.1, -0.05, 0.08, 0.02, -0.2]);
     for spec in [
-        SchemeSpec::Kong2019FiniteTime { beta_theta: 1.0, k_p: 1.0, alpha: 0.1 },
+        SchemeSpec::Kong2019FiniteTime {
+            beta_theta: 1.0,
+            k_p: 1.0,
+            alpha: 0.1,
+        },
         SchemeSpec::Kong2019Znn { mu: 1.0, k_p: 1.0 },
     ] {
         let s = build_scheme::<5>(&spec, robot.clone(), None, circle.clone(), star).unwrap();
@@ -144,7 +236,12 @@ fn katana_kong2019_schemes() {
             let b = pp.rdot + (pp.r - robot.position(&th)) * 1.0;
             assert!((robot.jacobian(&th) * x - b).norm() < 1e-8);
             // Joint 5 (wrist roll) does not move the tip: its velocity is the repetitive term alone.
-            assert!((x[4] + qp.q[4]).abs() < 1e-7, "x5 = {} vs -q5 = {}", x[4], -qp.q[4]);
+            assert!(
+                (x[4] + qp.q[4]).abs() < 1e-7,
+                "x5 = {} vs -q5 = {}",
+                x[4],
+                -qp.q[4]
+            );
         }
         // build_dot away from e = 0 (at e_i = 0 the finite-time derivative is floored, see
         // kong2019's module docs, and no difference quotient converges).

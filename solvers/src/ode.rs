@@ -17,8 +17,8 @@
 //! finite-difference Jacobians), Jacobian evaluations and wall time.
 
 use diffsol::{
-    DiffsolError, NalgebraLU, NalgebraMat, OdeBuilder, OdeEquations, OdeSolverMethod, OdeSolverStopReason,
-    Tableau, TableauMat, TableauVec, VectorCommon,
+    DiffsolError, NalgebraLU, NalgebraMat, OdeBuilder, OdeEquations, OdeSolverMethod,
+    OdeSolverStopReason, Tableau, TableauMat, TableauVec, VectorCommon,
 };
 use nalgebra::{DMatrix, DVector};
 use std::cell::RefCell;
@@ -91,7 +91,12 @@ fn default_max_steps() -> usize {
 impl Default for IntegratorSettings {
     /// ode15s with the papers' group tolerances (RelTol 1e-6, AbsTol 1e-8).
     fn default() -> Self {
-        Self { method: Method::Bdf, rtol: 1e-6, atol: 1e-8, max_steps: default_max_steps() }
+        Self {
+            method: Method::Bdf,
+            rtol: 1e-6,
+            atol: 1e-8,
+            max_steps: default_max_steps(),
+        }
     }
 }
 
@@ -125,15 +130,49 @@ pub enum OdeError {
 impl std::fmt::Display for OdeError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            OdeError::Solver { t, message } => write!(f, "integrator failed at t = {t:.6}: {message}"),
-            OdeError::NonFinite { t } => write!(f, "state became non-finite at t = {t:.6} (diverged)"),
-            OdeError::TooManySteps { t, steps } => write!(f, "more than {steps} steps by t = {t:.6} (diverging or too stiff for the method)"),
+            OdeError::Solver { t, message } => {
+                write!(f, "integrator failed at t = {t:.6}: {message}")
+            }
+            OdeError::NonFinite { t } => {
+                write!(f, "state became non-finite at t = {t:.6} (diverged)")
+            }
+            OdeError::TooManySteps { t, steps } => write!(
+                f,
+                "more than {steps} steps by t = {t:.6} (diverging or too stiff for the method)"
+            ),
             OdeError::Stopped { t, reason } => write!(f, "stopped at t = {t:.6}: {reason}"),
         }
     }
 }
 
 impl std::error::Error for OdeError {}
+
+impl OdeError {
+    /// Time at which the integration stopped.
+    pub fn t(&self) -> f64 {
+        match self {
+            OdeError::Solver { t, .. }
+            | OdeError::NonFinite { t }
+            | OdeError::TooManySteps { t, .. }
+            | OdeError::Stopped { t, .. } => *t,
+        }
+    }
+}
+
+/// A failed integration with the cost spent until it stopped.
+#[derive(Debug)]
+pub struct OdeFailure {
+    pub error: OdeError,
+    pub stats: OdeStats,
+}
+
+impl std::fmt::Display for OdeFailure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.error.fmt(f)
+    }
+}
+
+impl std::error::Error for OdeFailure {}
 
 /// What the observer tells the integrator after an accepted step.
 #[derive(Debug, Clone, PartialEq)]
@@ -145,7 +184,15 @@ pub enum Control {
 /// The Dormand-Prince 5(4) tableau (FSAL, 7 stages), with d = b - b_hat for the error estimate.
 pub fn dopri5_tableau() -> Tableau<f64> {
     let c = [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0, 1.0];
-    let b = [35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0, 0.0];
+    let b = [
+        35.0 / 384.0,
+        0.0,
+        500.0 / 1113.0,
+        125.0 / 192.0,
+        -2187.0 / 6784.0,
+        11.0 / 84.0,
+        0.0,
+    ];
     let b_hat = [
         5179.0 / 57600.0,
         0.0,
@@ -160,8 +207,19 @@ pub fn dopri5_tableau() -> Tableau<f64> {
         &[1.0 / 5.0],
         &[3.0 / 40.0, 9.0 / 40.0],
         &[44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0],
-        &[19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0],
-        &[9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0],
+        &[
+            19372.0 / 6561.0,
+            -25360.0 / 2187.0,
+            64448.0 / 6561.0,
+            -212.0 / 729.0,
+        ],
+        &[
+            9017.0 / 3168.0,
+            -355.0 / 33.0,
+            46732.0 / 5247.0,
+            49.0 / 176.0,
+            -5103.0 / 18656.0,
+        ],
         &b[..6],
     ];
     let mut a = TableauMat::zeros(7, 7);
@@ -171,7 +229,14 @@ pub fn dopri5_tableau() -> Tableau<f64> {
         }
     }
     let d: Vec<f64> = b.iter().zip(b_hat.iter()).map(|(x, y)| x - y).collect();
-    Tableau::new(a, TableauVec::from_slice(&b), TableauVec::from_slice(&c), TableauVec::from_slice(&d), 4, None)
+    Tableau::new(
+        a,
+        TableauVec::from_slice(&b),
+        TableauVec::from_slice(&c),
+        TableauVec::from_slice(&d),
+        4,
+        None,
+    )
 }
 
 /// The system plus the cached dense Jacobian and the evaluation counters.
@@ -234,7 +299,8 @@ impl<'s, S: OdeSystem> Counted<'s, S> {
 }
 
 /// Integrates `sys` from `t0` to `t1` starting at `y0`. `observe(t, y)` is called at t0 and after
-/// every accepted step (the last one at t1) and may stop the run. Returns y(t1).
+/// every accepted step (the last one at t1) and may stop the run. Returns y(t1) and the cost;
+/// a failure carries the cost spent until it stopped.
 pub fn integrate<S: OdeSystem>(
     sys: &mut S,
     y0: &[f64],
@@ -242,10 +308,11 @@ pub fn integrate<S: OdeSystem>(
     t1: f64,
     settings: &IntegratorSettings,
     mut observe: impl FnMut(f64, &[f64]) -> Control,
-) -> Result<(Vec<f64>, OdeStats), OdeError> {
+) -> Result<(Vec<f64>, OdeStats), OdeFailure> {
     let n = sys.dim();
     assert_eq!(y0.len(), n, "initial state has the wrong dimension");
     let start = Instant::now();
+    let mut steps_done = (0usize, 0usize);
     let counted = RefCell::new(Counted {
         sys,
         rhs_evals: 0,
@@ -259,85 +326,157 @@ pub fn integrate<S: OdeSystem>(
         yp: vec![0.0; n],
     });
     let y0v = y0.to_vec();
-    let mut problem = OdeBuilder::<NalgebraMat<f64>>::new()
-        .t0(t0)
-        .rtol(settings.rtol)
-        .atol([settings.atol])
-        .rhs_implicit(
-            |y, _p, t, dy| counted.borrow_mut().rhs(t, y, dy),
-            |y, _p, t, v, out| counted.borrow_mut().jac_mul(t, y, v, out),
-        )
-        .init(move |_p, _t, y| y.copy_from_slice(&y0v), n)
-        .build()
-        .map_err(|e| solver_error(t0, e))?;
-    // diffsol counts Newton failures over the whole run, not per step: on networks with kinks
-    // (projections, sign-power) a long run collects many harmless ones, each answered by a
-    // smaller step. A stuck run is caught by the minimum step size and `max_steps` instead.
-    problem.ode_options.max_nonlinear_solver_failures = usize::MAX / 2;
-    if let Control::Stop(reason) = observe(t0, y0) {
-        return Err(OdeError::Stopped { t: t0, reason });
-    }
-    let solver_err = |e| solver_error(t0, e);
-    let (y, steps, rejected) = match settings.method {
-        Method::Bdf => drive(problem.bdf::<NalgebraLU<f64>>().map_err(solver_err)?, t1, settings.max_steps, &mut observe)?,
-        Method::Esdirk34 => {
-            drive(problem.esdirk34::<NalgebraLU<f64>>().map_err(solver_err)?, t1, settings.max_steps, &mut observe)?
+    let outcome = (|| -> Result<Vec<f64>, OdeError> {
+        let mut problem = OdeBuilder::<NalgebraMat<f64>>::new()
+            .t0(t0)
+            .rtol(settings.rtol)
+            .atol([settings.atol])
+            .rhs_implicit(
+                |y, _p, t, dy| counted.borrow_mut().rhs(t, y, dy),
+                |y, _p, t, v, out| counted.borrow_mut().jac_mul(t, y, v, out),
+            )
+            .init(move |_p, _t, y| y.copy_from_slice(&y0v), n)
+            .build()
+            .map_err(|e| solver_error(t0, e))?;
+        // diffsol counts Newton failures over the whole run, not per step: on networks with kinks
+        // (projections, sign-power) a long run collects many harmless ones, each answered by a
+        // smaller step. A stuck run is caught by the minimum step size and `max_steps` instead.
+        problem.ode_options.max_nonlinear_solver_failures = usize::MAX / 2;
+        if let Control::Stop(reason) = observe(t0, y0) {
+            return Err(OdeError::Stopped { t: t0, reason });
         }
-        Method::TrBdf2 => {
-            drive(problem.tr_bdf2::<NalgebraLU<f64>>().map_err(solver_err)?, t1, settings.max_steps, &mut observe)?
+        let solver_err = |e| solver_error(t0, e);
+        let driven = match settings.method {
+            Method::Bdf => drive(
+                problem.bdf::<NalgebraLU<f64>>().map_err(solver_err)?,
+                t1,
+                settings.max_steps,
+                &mut observe,
+            )?,
+            Method::Esdirk34 => drive(
+                problem.esdirk34::<NalgebraLU<f64>>().map_err(solver_err)?,
+                t1,
+                settings.max_steps,
+                &mut observe,
+            )?,
+            Method::TrBdf2 => drive(
+                problem.tr_bdf2::<NalgebraLU<f64>>().map_err(solver_err)?,
+                t1,
+                settings.max_steps,
+                &mut observe,
+            )?,
+            Method::Tsit45 => drive(
+                problem.tsit45().map_err(solver_err)?,
+                t1,
+                settings.max_steps,
+                &mut observe,
+            )?,
+            Method::Dopri5 => {
+                let tableau = dopri5_tableau();
+                let state = problem.rk_state(&tableau).map_err(solver_err)?;
+                drive(
+                    problem
+                        .explicit_rk_solver(state, tableau)
+                        .map_err(solver_err)?,
+                    t1,
+                    settings.max_steps,
+                    &mut observe,
+                )?
+            }
+        };
+        let Driven {
+            y,
+            steps,
+            rejected,
+            error,
+        } = driven;
+        steps_done = (steps, rejected);
+        match error {
+            Some(e) => Err(e),
+            None => Ok(y),
         }
-        Method::Tsit45 => drive(problem.tsit45().map_err(solver_err)?, t1, settings.max_steps, &mut observe)?,
-        Method::Dopri5 => {
-            let tableau = dopri5_tableau();
-            let state = problem.rk_state(&tableau).map_err(solver_err)?;
-            drive(problem.explicit_rk_solver(state, tableau).map_err(solver_err)?, t1, settings.max_steps, &mut observe)?
-        }
-    };
+    })();
     let c = counted.borrow();
     let stats = OdeStats {
-        steps,
-        rejected,
+        steps: steps_done.0,
+        rejected: steps_done.1,
         rhs_evals: c.rhs_evals,
         jac_evals: c.jac_evals,
         wall_seconds: start.elapsed().as_secs_f64(),
     };
-    Ok((y, stats))
+    match outcome {
+        Ok(y) => Ok((y, stats)),
+        Err(error) => Err(OdeFailure { error, stats }),
+    }
+}
+
+/// What [`drive`] returns: the last state, the step counts, and the error that stopped it early.
+struct Driven {
+    y: Vec<f64>,
+    steps: usize,
+    rejected: usize,
+    error: Option<OdeError>,
 }
 
 fn solver_error(t: f64, e: DiffsolError) -> OdeError {
-    OdeError::Solver { t, message: e.to_string() }
+    OdeError::Solver {
+        t,
+        message: e.to_string(),
+    }
 }
 
-/// Steps `solver` to `t1`, observing every accepted step. Returns (y(t1), steps, rejected).
+/// Steps `solver` to `t1`, observing every accepted step.
 fn drive<'a, Eqn, M>(
     mut solver: M,
     t1: f64,
     max_steps: usize,
     observe: &mut impl FnMut(f64, &[f64]) -> Control,
-) -> Result<(Vec<f64>, usize, usize), OdeError>
+) -> Result<Driven, OdeError>
 where
     Eqn: OdeEquations<T = f64, V = diffsol::NalgebraVec<f64>> + 'a,
     M: OdeSolverMethod<'a, Eqn>,
 {
-    solver.set_stop_time(t1).map_err(|e| solver_error(solver.state().t, e))?;
+    solver
+        .set_stop_time(t1)
+        .map_err(|e| solver_error(solver.state().t, e))?;
     let mut steps = 0usize;
+    let stop = |solver: &M, steps: usize, error: OdeError| Driven {
+        y: solver.state().y.inner().as_slice().to_vec(),
+        steps,
+        rejected: solver.get_statistics().number_of_error_test_failures,
+        error: Some(error),
+    };
     loop {
-        let reason = solver.step().map_err(|e| solver_error(solver.state().t, e))?;
+        let reason = match solver.step() {
+            Ok(r) => r,
+            Err(e) => {
+                let err = solver_error(solver.state().t, e);
+                return Ok(stop(&solver, steps, err));
+            }
+        };
         steps += 1;
         let state = solver.state();
+        let t = state.t;
         let y = state.y.inner().as_slice();
         if y.iter().any(|v| !v.is_finite()) {
-            return Err(OdeError::NonFinite { t: state.t });
+            return Ok(stop(&solver, steps, OdeError::NonFinite { t }));
         }
-        if let Control::Stop(reason) = observe(state.t, y) {
-            return Err(OdeError::Stopped { t: state.t, reason });
+        if let Control::Stop(reason) = observe(t, y) {
+            return Ok(stop(&solver, steps, OdeError::Stopped { t, reason }));
         }
         match reason {
             OdeSolverStopReason::TstopReached => {
                 let rejected = solver.get_statistics().number_of_error_test_failures;
-                return Ok((y.to_vec(), steps, rejected));
+                return Ok(Driven {
+                    y: y.to_vec(),
+                    steps,
+                    rejected,
+                    error: None,
+                });
             }
-            _ if steps >= max_steps => return Err(OdeError::TooManySteps { t: state.t, steps }),
+            _ if steps >= max_steps => {
+                return Ok(stop(&solver, steps, OdeError::TooManySteps { t, steps }))
+            }
             _ => {}
         }
     }

@@ -83,7 +83,11 @@ impl Qp {
     }
 
     pub fn dims(&self) -> QpDims {
-        QpDims { nx: self.q.len(), n_eq: self.b.len(), n_in: self.h.len() }
+        QpDims {
+            nx: self.q.len(),
+            n_eq: self.b.len(),
+            n_in: self.h.len(),
+        }
     }
 
     /// Objective x'Px/2 + q'x.
@@ -138,6 +142,10 @@ impl Qp {
                 comp = comp.max((d.z_upper[i] * (self.upper[i] - x[i])).abs());
             }
         }
-        KktResiduals { primal, dual, complementarity: comp }
+        KktResiduals {
+            primal,
+            dual,
+            complementarity: comp,
+        }
     }
 }

@@ -9,7 +9,9 @@ use solvers::neural::activation::{Activation, SIGN_POWER_MIN_ABS};
 use solvers::neural::cdnn::ReferencePerturbation;
 use solvers::neural::projection::{primal_dual_dim, LviPdnn, SLviPdnn};
 use solvers::neural::zeroing::Gain;
-use solvers::neural::{build_solver, finite_time, fp_cdnn, vp_cdnn, znn, NeuralSolver, SolverSpec, VpRnnPf};
+use solvers::neural::{
+    build_solver, finite_time, fp_cdnn, vp_cdnn, znn, NeuralSolver, SolverSpec, VpRnnPf,
+};
 use solvers::ode::{integrate, Control, IntegratorSettings, Method, OdeSystem};
 use solvers::{random_qp, ExactSolver, Qp, QpDims, QpShape};
 
@@ -29,7 +31,13 @@ struct Net<'a> {
 impl<'a> Net<'a> {
     fn new(solver: &'a mut dyn NeuralSolver, qp0: &'a Qp, qp1: Option<&'a Qp>) -> Self {
         let n = solver.state_dim(qp0.dims());
-        Self { solver, qp0, qp1, qp: qp0.clone(), n }
+        Self {
+            solver,
+            qp0,
+            qp1,
+            qp: qp0.clone(),
+            n,
+        }
     }
     fn update(&mut self, t: f64) {
         if let Some(d) = self.qp1 {
@@ -62,7 +70,12 @@ impl OdeSystem for Net<'_> {
 }
 
 fn settings(rtol: f64, atol: f64) -> IntegratorSettings {
-    IntegratorSettings { method: Method::Bdf, rtol, atol, max_steps: 200_000 }
+    IntegratorSettings {
+        method: Method::Bdf,
+        rtol,
+        atol,
+        max_steps: 200_000,
+    }
 }
 
 /// Integrate the network on the frozen QP from y(0) over chunks of length chunk, 2 chunk,
@@ -82,7 +95,8 @@ fn steady_state(
     let mut len = chunk;
     for _ in 0..max_chunks {
         let mut net = Net::new(&mut *solver, qp, None);
-        let (y1, _) = integrate(&mut net, &y, t, t + len, s, |_, _| Control::Continue).expect("integration failed");
+        let (y1, _) = integrate(&mut net, &y, t, t + len, s, |_, _| Control::Continue)
+            .expect("integration failed");
         y = y1;
         t += len;
         len *= 2.0;
@@ -98,7 +112,9 @@ fn inf_norm(v: &[f64]) -> f64 {
 }
 
 fn x_err(y: &[f64], xs: &DVector<f64>) -> f64 {
-    xs.iter().zip(y).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()))
+    xs.iter()
+        .zip(y)
+        .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()))
 }
 
 /// A random derivative of a QP (same shapes; bounds' derivatives zero where bounds are absent).
@@ -114,14 +130,28 @@ fn random_qp_dot(qp: &Qp, rng: &mut ChaCha8Rng, scale: f64) -> Qp {
     d.g = DMatrix::from_fn(n_in, nx, &mut r);
     d.h = DVector::from_fn(n_in, &mut r);
     for j in 0..nx {
-        d.lower[j] = if qp.lower[j].is_finite() { r(0, 0) } else { 0.0 };
-        d.upper[j] = if qp.upper[j].is_finite() { r(0, 0) } else { 0.0 };
+        d.lower[j] = if qp.lower[j].is_finite() {
+            r(0, 0)
+        } else {
+            0.0
+        };
+        d.upper[j] = if qp.upper[j].is_finite() {
+            r(0, 0)
+        } else {
+            0.0
+        };
     }
     d
 }
 
 /// Central-difference dF/dy of the solver's rhs.
-fn fd_jacobian(solver: &mut dyn NeuralSolver, t: f64, y: &[f64], qp: &Qp, qp_dot: Option<&Qp>) -> DMatrix<f64> {
+fn fd_jacobian(
+    solver: &mut dyn NeuralSolver,
+    t: f64,
+    y: &[f64],
+    qp: &Qp,
+    qp_dot: Option<&Qp>,
+) -> DMatrix<f64> {
     let n = y.len();
     let mut jac = DMatrix::zeros(n, n);
     let mut yp = y.to_vec();
@@ -142,17 +172,29 @@ fn fd_jacobian(solver: &mut dyn NeuralSolver, t: f64, y: &[f64], qp: &Qp, qp_dot
 }
 
 /// Max |J - J_fd| relative to max(1, |J|_max).
-fn jacobian_mismatch(solver: &mut dyn NeuralSolver, t: f64, y: &[f64], qp: &Qp, qp_dot: Option<&Qp>) -> f64 {
+fn jacobian_mismatch(
+    solver: &mut dyn NeuralSolver,
+    t: f64,
+    y: &[f64],
+    qp: &Qp,
+    qp_dot: Option<&Qp>,
+) -> f64 {
     let n = y.len();
     let mut jac = DMatrix::from_element(n, n, f64::NAN);
-    assert!(solver.jacobian(t, y, qp, qp_dot, &mut jac), "{} gives no analytic Jacobian", solver.name());
+    assert!(
+        solver.jacobian(t, y, qp, qp_dot, &mut jac),
+        "{} gives no analytic Jacobian",
+        solver.name()
+    );
     let fd = fd_jacobian(solver, t, y, qp, qp_dot);
     let scale = jac.amax().max(1.0);
     (&jac - &fd).amax() / scale
 }
 
 fn exact(qp: &Qp) -> solvers::ExactSolution {
-    ExactSolver::new().solve(qp).expect("exact solver failed on a feasible random QP")
+    ExactSolver::new()
+        .solve(qp)
+        .expect("exact solver failed on a feasible random QP")
 }
 
 const N_QPS: u64 = 1000;
@@ -165,9 +207,18 @@ fn all_activations() -> Vec<Activation> {
         Activation::Linear,
         Activation::Sinh,
         Activation::power_sigmoid_default(),
-        Activation::PowerSigmoid { alpha: 2.0, chi: 5.0 },
-        Activation::SignPower { r: 0.1, smoothing: 0.0 },
-        Activation::SignPower { r: 0.5, smoothing: 0.0 },
+        Activation::PowerSigmoid {
+            alpha: 2.0,
+            chi: 5.0,
+        },
+        Activation::SignPower {
+            r: 0.1,
+            smoothing: 0.0,
+        },
+        Activation::SignPower {
+            r: 0.5,
+            smoothing: 0.0,
+        },
     ]
 }
 
@@ -179,7 +230,12 @@ fn activations_are_odd_and_increasing() {
             assert_eq!(act.value(-e), -act.value(e), "{act:?} not odd at {e}");
         }
         for w in pts.windows(2) {
-            assert!(act.value(w[1]) > act.value(w[0]), "{act:?} not increasing on [{}, {}]", w[0], w[1]);
+            assert!(
+                act.value(w[1]) > act.value(w[0]),
+                "{act:?} not increasing on [{}, {}]",
+                w[0],
+                w[1]
+            );
         }
         assert_eq!(act.value(0.0), 0.0);
     }
@@ -195,19 +251,30 @@ fn activations_have_the_papers_forms() {
     // Power-sigmoid (2.29) with alpha = 4, chi = 3.
     let ps = Activation::power_sigmoid_default();
     let a: f64 = 4.0;
-    let sig = |e: f64| (1.0 + (-a).exp()) * (1.0 - (-a * e).exp()) / ((1.0 - (-a).exp()) * (1.0 + (-a * e).exp()));
+    let sig = |e: f64| {
+        (1.0 + (-a).exp()) * (1.0 - (-a * e).exp()) / ((1.0 - (-a).exp()) * (1.0 + (-a * e).exp()))
+    };
     for e in [0.1, 0.5, 0.9, 1.0] {
-        assert!((ps.value(e) - sig(e)).abs() < 1e-14, "sigmoid branch at {e}");
+        assert!(
+            (ps.value(e) - sig(e)).abs() < 1e-14,
+            "sigmoid branch at {e}"
+        );
     }
     for e in [1.5, 2.0, 3.0] {
-        assert!((ps.value(e) - e.powi(3)).abs() < 1e-12, "power branch at {e}");
+        assert!(
+            (ps.value(e) - e.powi(3)).abs() < 1e-12,
+            "power branch at {e}"
+        );
         assert!((ps.value(-e) + e.powi(3)).abs() < 1e-12);
     }
     // Continuous at |e| = 1 (both branches give 1).
     assert!((ps.value(1.0) - 1.0).abs() < 1e-14);
     assert!((ps.value(1.0 + 1e-12) - 1.0).abs() < 1e-10);
     // Sign-power (kong2019 eq. 6): |e|^r sgn(e).
-    let sp = Activation::SignPower { r: 0.1, smoothing: 0.0 };
+    let sp = Activation::SignPower {
+        r: 0.1,
+        smoothing: 0.0,
+    };
     for e in [-2.0_f64, -1e-3, 1e-6, 0.3, 5.0] {
         assert!((sp.value(e) - e.abs().powf(0.1) * e.signum()).abs() < 1e-14);
     }
@@ -221,12 +288,19 @@ fn activation_derivatives_match_finite_differences() {
             let h = 1e-6;
             let fd = (act.value(e + h) - act.value(e - h)) / (2.0 * h);
             let d = act.derivative(e);
-            assert!((d - fd).abs() <= 1e-6 * d.abs().max(1.0), "{act:?} at {e}: analytic {d}, fd {fd}");
+            assert!(
+                (d - fd).abs() <= 1e-6 * d.abs().max(1.0),
+                "{act:?} at {e}: analytic {d}, fd {fd}"
+            );
             assert!(d > 0.0);
         }
     }
     // Sign-power slope is finite at 0 (floored) and huge.
-    let d0 = Activation::SignPower { r: 0.1, smoothing: 0.0 }.derivative(0.0);
+    let d0 = Activation::SignPower {
+        r: 0.1,
+        smoothing: 0.0,
+    }
+    .derivative(0.0);
     assert!(d0.is_finite() && d0 >= 0.1 * SIGN_POWER_MIN_ABS.powf(-0.9) * 0.999);
 }
 
@@ -236,7 +310,10 @@ fn activation_derivatives_match_finite_differences() {
 #[test]
 fn projection_jacobians_match_finite_differences() {
     let mut rng = ChaCha8Rng::seed_from_u64(11);
-    for (shape, seeds) in [(QpShape::Jia2019, 0..20u64), (QpShape::Zhong2021, 100..120u64)] {
+    for (shape, seeds) in [
+        (QpShape::Jia2019, 0..20u64),
+        (QpShape::Zhong2021, 100..120u64),
+    ] {
         for seed in seeds {
             let qp = random_qp(shape, seed);
             let dims = qp.dims();
@@ -247,7 +324,10 @@ fn projection_jacobians_match_finite_differences() {
                 let m1 = jacobian_mismatch(&mut lvi, 0.3, &y, &qp, None);
                 let mut slvi = SLviPdnn::new(1e7, dims);
                 let m2 = jacobian_mismatch(&mut slvi, 0.3, &y, &qp, None);
-                assert!(m1 < 1e-7 && m2 < 1e-7, "{shape:?} seed {seed}: LVI {m1:e}, S-LVI {m2:e}");
+                assert!(
+                    m1 < 1e-7 && m2 < 1e-7,
+                    "{shape:?} seed {seed}: LVI {m1:e}, S-LVI {m2:e}"
+                );
             }
         }
     }
@@ -272,13 +352,33 @@ fn zeroing_jacobians_match_finite_differences() {
                 Box::new(znn(1.0, dims).unwrap()),
             ];
             if n == 9 {
-                nets.push(Box::new(fp_cdnn(200.0, Activation::Linear, Some(ReferencePerturbation::reference(8.0)), dims).unwrap()));
-                nets.push(Box::new(vp_cdnn(200.0, Activation::Linear, Some(ReferencePerturbation::reference(8.0)), dims).unwrap()));
+                nets.push(Box::new(
+                    fp_cdnn(
+                        200.0,
+                        Activation::Linear,
+                        Some(ReferencePerturbation::reference(8.0)),
+                        dims,
+                    )
+                    .unwrap(),
+                ));
+                nets.push(Box::new(
+                    vp_cdnn(
+                        200.0,
+                        Activation::Linear,
+                        Some(ReferencePerturbation::reference(8.0)),
+                        dims,
+                    )
+                    .unwrap(),
+                ));
             }
             for net in nets.iter_mut() {
                 for qd in [None, Some(&qp_dot)] {
                     let m = jacobian_mismatch(net.as_mut(), t, &y, &qp, qd);
-                    assert!(m < 1e-6, "{} on {shape:?} seed {seed}: mismatch {m:e}", net.name());
+                    assert!(
+                        m < 1e-6,
+                        "{} on {shape:?} seed {seed}: mismatch {m:e}",
+                        net.name()
+                    );
                 }
             }
         }
@@ -295,11 +395,21 @@ fn vp_rnn_pf_jacobian_matches_finite_differences() {
             let xs = exact(&qp).x;
             let qp_dot = random_qp_dot(&qp, &mut rng, 1.0);
             for (p, sigma) in [(1e-4, 400.0), (0.1, 5.0)] {
-                for act in [Activation::Linear, Activation::Sinh, Activation::power_sigmoid_default()] {
+                for act in [
+                    Activation::Linear,
+                    Activation::Sinh,
+                    Activation::power_sigmoid_default(),
+                ] {
                     let mut net = VpRnnPf::new(p, sigma, 2.0, act, dims).unwrap();
                     // Near the optimum (the penalty's scale is 1/sigma), multipliers of order 1.
                     let y: Vec<f64> = (0..dims.nx + dims.n_eq)
-                        .map(|i| if i < dims.nx { xs[i] + rng.gen_range(-1.0..1.0) / sigma } else { rng.gen_range(-1.0..1.0) })
+                        .map(|i| {
+                            if i < dims.nx {
+                                xs[i] + rng.gen_range(-1.0..1.0) / sigma
+                            } else {
+                                rng.gen_range(-1.0..1.0)
+                            }
+                        })
                         .collect();
                     let t = rng.gen_range(0.0..1.0);
                     for qd in [None, Some(&qp_dot)] {
@@ -329,7 +439,11 @@ fn lvi_point(qp: &Qp, sol: &solvers::ExactSolution) -> Vec<f64> {
     y
 }
 
-fn projection_equilibria(shape: QpShape, seeds: std::ops::Range<u64>, lvi: bool) -> (f64, f64, usize) {
+fn projection_equilibria(
+    shape: QpShape,
+    seeds: std::ops::Range<u64>,
+    lvi: bool,
+) -> (f64, f64, usize) {
     let s = settings(1e-10, 1e-13);
     let (mut worst, mut worst_fixed, mut count) = (0.0_f64, 0.0_f64, 0);
     for seed in seeds {
@@ -341,8 +455,11 @@ fn projection_equilibria(shape: QpShape, seeds: std::ops::Range<u64>, lvi: bool)
         let fixed = inf_norm(core.residual(&qp, &lvi_point(&qp, &sol)));
         worst_fixed = worst_fixed.max(fixed);
         // The network itself, gain scaled to 1 (the equilibrium does not depend on it).
-        let mut net: Box<dyn NeuralSolver> =
-            if lvi { Box::new(LviPdnn::new(1.0, dims)) } else { Box::new(SLviPdnn::new(1.0, dims)) };
+        let mut net: Box<dyn NeuralSolver> = if lvi {
+            Box::new(LviPdnn::new(1.0, dims))
+        } else {
+            Box::new(SLviPdnn::new(1.0, dims))
+        };
         let mut probe = SLviPdnn::new(1.0, dims);
         // Stop at residual 1e-11, or once the residual is below 1e-7 and stalls (no halving over
         // a doubled horizon): S-LVI-PDNN can slide along a kink of P_Omega (an equilibrium on a
@@ -365,7 +482,10 @@ fn projection_equilibria(shape: QpShape, seeds: std::ops::Range<u64>, lvi: bool)
         worst = worst.max(err);
         count += 1;
     }
-    assert!(worst_fixed < 1e-6, "exact optimum is not a fixed point of P_Omega: {worst_fixed:e}");
+    assert!(
+        worst_fixed < 1e-6,
+        "exact optimum is not a fixed point of P_Omega: {worst_fixed:e}"
+    );
     (worst, worst_fixed, count)
 }
 
@@ -383,7 +503,11 @@ fn s_lvi_pdnn_steady_state_is_the_exact_optimum() {
     eprintln!("S-LVI-PDNN: {n} zhong2021 QPs worst |x-x*|_inf {w:.2e} (fixed-point residual at x* {f:.2e}); {n2} jia2019 QPs worst {w2:.2e} ({f2:.2e})");
 }
 
-fn zeroing_equilibria(shape: QpShape, make: impl Fn(QpDims) -> Box<dyn NeuralSolver>, t_end: f64) -> (f64, f64) {
+fn zeroing_equilibria(
+    shape: QpShape,
+    make: impl Fn(QpDims) -> Box<dyn NeuralSolver>,
+    t_end: f64,
+) -> (f64, f64) {
     let s = settings(1e-10, 1e-13);
     let (mut worst_x, mut worst_l) = (0.0_f64, 0.0_f64);
     for seed in 0..N_QPS {
@@ -393,9 +517,19 @@ fn zeroing_equilibria(shape: QpShape, make: impl Fn(QpDims) -> Box<dyn NeuralSol
         let mut net = make(dims);
         let y = steady_state(net.as_mut(), &qp, t_end, 1, &s, |_, _, _| true);
         let err = x_err(&y, &sol.x);
-        let lerr = (0..dims.n_eq).fold(0.0_f64, |m, k| m.max((y[dims.nx + k] - sol.duals.lambda[k]).abs()));
-        assert!(err <= 1e-6, "{} on {shape:?} seed {seed}: |x - x*|_inf = {err:e}", net.name());
-        assert!(lerr <= 1e-5, "{} on {shape:?} seed {seed}: |lambda - lambda*|_inf = {lerr:e}", net.name());
+        let lerr = (0..dims.n_eq).fold(0.0_f64, |m, k| {
+            m.max((y[dims.nx + k] - sol.duals.lambda[k]).abs())
+        });
+        assert!(
+            err <= 1e-6,
+            "{} on {shape:?} seed {seed}: |x - x*|_inf = {err:e}",
+            net.name()
+        );
+        assert!(
+            lerr <= 1e-5,
+            "{} on {shape:?} seed {seed}: |lambda - lambda*|_inf = {lerr:e}",
+            net.name()
+        );
         worst_x = worst_x.max(err);
         worst_l = worst_l.max(lerr);
     }
@@ -404,17 +538,31 @@ fn zeroing_equilibria(shape: QpShape, make: impl Fn(QpDims) -> Box<dyn NeuralSol
 
 #[test]
 fn cdnn_steady_states_are_the_exact_optimum() {
-    let (a, al) = zeroing_equilibria(QpShape::Zhang2018, |d| Box::new(fp_cdnn(200.0, Activation::Linear, None, d).unwrap()), 1.0);
-    let (b, bl) = zeroing_equilibria(QpShape::Zhang2018, |d| Box::new(vp_cdnn(2.0, Activation::Linear, None, d).unwrap()), 3.0);
+    let (a, al) = zeroing_equilibria(
+        QpShape::Zhang2018,
+        |d| Box::new(fp_cdnn(200.0, Activation::Linear, None, d).unwrap()),
+        1.0,
+    );
+    let (b, bl) = zeroing_equilibria(
+        QpShape::Zhang2018,
+        |d| Box::new(vp_cdnn(2.0, Activation::Linear, None, d).unwrap()),
+        3.0,
+    );
     eprintln!("{N_QPS} zhang2018 QPs: FP-CDNN worst |x-x*| {a:.2e} (lambda {al:.2e}); VP-CDNN {b:.2e} ({bl:.2e})");
 }
 
 #[test]
 fn kong2019_networks_reach_the_kkt_solution() {
     // FTNN: by eq. 11 each error component vanishes by t_s = |E_i(0)|^0.9 / 0.9 <= ~8 for |E(0)| <= 5.
-    let (a, al) = zeroing_equilibria(QpShape::Kong2019, |d| Box::new(finite_time(1.0, 0.1, 1e-8, d).unwrap()), 12.0);
+    let (a, al) = zeroing_equilibria(
+        QpShape::Kong2019,
+        |d| Box::new(finite_time(1.0, 0.1, 1e-8, d).unwrap()),
+        12.0,
+    );
     let (b, bl) = zeroing_equilibria(QpShape::Kong2019, |d| Box::new(znn(1.0, d).unwrap()), 40.0);
-    eprintln!("{N_QPS} kong2019 QPs: FTNN worst |x-x*| {a:.2e} (lambda {al:.2e}); ZNN {b:.2e} ({bl:.2e})");
+    eprintln!(
+        "{N_QPS} kong2019 QPs: FTNN worst |x-x*| {a:.2e} (lambda {al:.2e}); ZNN {b:.2e} ({bl:.2e})"
+    );
 }
 
 /// lambda_min of a symmetric matrix.
@@ -428,7 +576,11 @@ fn vp_rnn_pf_steady_state_is_within_the_penalty_bound() {
     //   lambda_min(P) |x_p - x*|_2^2 <= m p / e + sum_i mu*_i max(0, -N_i(x_p)).
     let s = settings(1e-10, 1e-13);
     let (p, sigma, gamma) = (1e-4, 400.0, 2.0);
-    let acts = [Activation::Linear, Activation::Sinh, Activation::power_sigmoid_default()];
+    let acts = [
+        Activation::Linear,
+        Activation::Sinh,
+        Activation::power_sigmoid_default(),
+    ];
     let (mut worst_err, mut worst_ratio, mut worst_grad) = (0.0_f64, 0.0_f64, 0.0_f64);
     for seed in 0..N_QPS {
         // Every QP with the linear activation, one in five also with sinh and power-sigmoid.
@@ -447,15 +599,23 @@ fn vp_rnn_pf_steady_state_is_within_the_penalty_bound() {
             let grad = &qp.p * &x + &qp.q + qp.a.tr_mul(&lam) + qp.g.tr_mul(&c);
             let feas = &qp.a * &x - &qp.b;
             let g = grad.amax().max(feas.amax());
-            assert!(g < 1e-7, "VP-RNN-PF {act:?} seed {seed}: penalised KKT residual {g:e}");
+            assert!(
+                g < 1e-7,
+                "VP-RNN-PF {act:?} seed {seed}: penalised KKT residual {g:e}"
+            );
             worst_grad = worst_grad.max(g);
             // The penalty bound.
             let d = &x - &sol.x;
             let lhs = lambda_min(&qp.p) * d.norm_squared();
             let m = qp.h.len() as f64;
-            let viol: f64 = (0..qp.h.len()).map(|i| sol.duals.mu[i].max(0.0) * (-slack[i]).max(0.0)).sum();
+            let viol: f64 = (0..qp.h.len())
+                .map(|i| sol.duals.mu[i].max(0.0) * (-slack[i]).max(0.0))
+                .sum();
             let rhs = m * p / std::f64::consts::E + viol;
-            assert!(lhs <= rhs * (1.0 + 1e-6) + 1e-10, "VP-RNN-PF {act:?} seed {seed}: {lhs:e} > bound {rhs:e}");
+            assert!(
+                lhs <= rhs * (1.0 + 1e-6) + 1e-10,
+                "VP-RNN-PF {act:?} seed {seed}: {lhs:e} > bound {rhs:e}"
+            );
             worst_ratio = worst_ratio.max(lhs / rhs);
             worst_err = worst_err.max(d.amax());
         }
@@ -497,14 +657,22 @@ fn zeroing_error_follows_its_design_formula_on_moving_qps() {
                 };
                 let y0 = vec![0.0; dims.nx + dims.n_eq];
                 let mut sys = Net::new(&mut net, &qp0, Some(&qp1));
-                let (y1, _) = integrate(&mut sys, &y0, 0.0, t1, &s, |_, _| Control::Continue).unwrap();
+                let (y1, _) =
+                    integrate(&mut sys, &y0, 0.0, t1, &s, |_, _| Control::Continue).unwrap();
                 let mut qpt = qp0.clone();
                 qp_at(&qp0, &qp1, t1, &mut qpt);
                 let e0 = qp_error_cdnn(&qp0, &y0);
                 let e1 = qp_error_cdnn(&qpt, &y1);
-                let decay = if vp { (-gamma * (t1.exp() - 1.0)).exp() } else { (-gamma * t1).exp() };
+                let decay = if vp {
+                    (-gamma * (t1.exp() - 1.0)).exp()
+                } else {
+                    (-gamma * t1).exp()
+                };
                 let dev = (&e1 - &e0 * decay).amax() / e0.amax();
-                assert!(dev < 1e-6, "{shape:?} seed {seed} vp={vp}: E(t) off its design formula by {dev:e}");
+                assert!(
+                    dev < 1e-6,
+                    "{shape:?} seed {seed} vp={vp}: E(t) off its design formula by {dev:e}"
+                );
             }
         }
     }
@@ -537,7 +705,10 @@ fn vp_rnn_pf_error_follows_its_design_formula_on_moving_qps() {
             let phi1 = DVector::from_column_slice(net.error());
             let decay = (-gamma * (t1.exp() - 1.0)).exp();
             let dev = (&phi1 - &phi0 * decay).amax() / phi0.amax();
-            assert!(dev < 1e-6, "{shape:?} seed {seed}: phi(t) off its design formula by {dev:e}");
+            assert!(
+                dev < 1e-6,
+                "{shape:?} seed {seed}: phi(t) off its design formula by {dev:e}"
+            );
         }
     }
 }
@@ -564,10 +735,19 @@ fn reference_perturbation_matches_experiments_md_and_enters_as_eq_3_1() {
     pert.delta_s(4.0, &mut ds);
     let want = [3.0, -6.0, 7.5, 0.0, 1.5, 0.0, -1.5, 0.0, 0.0];
     for i in 0..9 {
-        assert!((ds[i] - want[i]).abs() < 1e-12, "Delta s entry {i}: {} vs {}", ds[i], want[i]);
+        assert!(
+            (ds[i] - want[i]).abs() < 1e-12,
+            "Delta s entry {i}: {} vs {}",
+            ds[i],
+            want[i]
+        );
     }
     // t = 0: D0 = [sin 0, cos 0, ...]; row 1 = [0, 1, 0, 1, 0, 1, 0, 1, 0]; amplitudes scale.
-    let p2 = ReferencePerturbation { a_d: 2.5, a_s: 0.0, task_duration: 8.0 };
+    let p2 = ReferencePerturbation {
+        a_d: 2.5,
+        a_s: 0.0,
+        task_duration: 8.0,
+    };
     p2.delta_d(0.0, &mut dd);
     let row1 = [0.0, 1.0, 0.0, 1.0, 0.0, 1.0, 0.0, 1.0, 0.0];
     for j in 0..9 {
@@ -598,7 +778,8 @@ fn reference_perturbation_matches_experiments_md_and_enters_as_eq_3_1() {
             m.view_mut((6, 0), (3, 6)).copy_from(&q.a);
             m
         };
-        let rhs_vec = |q: &Qp| DVector::from_iterator(9, q.q.iter().map(|v| -v).chain(q.b.iter().copied()));
+        let rhs_vec =
+            |q: &Qp| DVector::from_iterator(9, q.q.iter().map(|v| -v).chain(q.b.iter().copied()));
         let (qm, qdm, u, ud) = (kkt(&qp), kkt(&qd), rhs_vec(&qp), rhs_vec(&qd));
         let mut dd = DMatrix::zeros(9, 9);
         pert.delta_d(t, &mut dd);
@@ -608,7 +789,10 @@ fn reference_perturbation_matches_experiments_md_and_enters_as_eq_3_1() {
         let want = -(&qdm + &dd) * &y - (&qm * &y - &u) * g + ud + DVector::from_column_slice(&ds);
         let got = &qm * DVector::from_column_slice(&ydot);
         let dev = (&got - &want).amax() / want.amax();
-        assert!(dev < 1e-10, "vp={vp}: Q ydot deviates from eq. 3.1/3.2 by {dev:e}");
+        assert!(
+            dev < 1e-10,
+            "vp={vp}: Q ydot deviates from eq. 3.1/3.2 by {dev:e}"
+        );
     }
 }
 
@@ -621,7 +805,9 @@ struct File {
 }
 
 fn parse(s: &str) -> Result<SolverSpec, String> {
-    toml::from_str::<File>(s).map(|f| f.solver).map_err(|e| e.to_string())
+    toml::from_str::<File>(s)
+        .map(|f| f.solver)
+        .map_err(|e| e.to_string())
 }
 
 #[test]
@@ -660,9 +846,15 @@ fn solver_specs_parse_build_and_reject_mistakes() {
         assert_eq!(net.needs_qp_dot(), spec.needs_qp_dot());
     }
     // Defaults: vp-rnn-pf's power-sigmoid parameters, perturbation amplitudes.
-    let spec = parse("solver = { kind = \"fp-cdnn\", gamma = 200.0, perturbation = { task_duration = 8.0 } }").unwrap();
+    let spec = parse(
+        "solver = { kind = \"fp-cdnn\", gamma = 200.0, perturbation = { task_duration = 8.0 } }",
+    )
+    .unwrap();
     match spec {
-        SolverSpec::FpCdnn { perturbation: Some(p), .. } => assert_eq!((p.a_d, p.a_s), (1.0, 1.5)),
+        SolverSpec::FpCdnn {
+            perturbation: Some(p),
+            ..
+        } => assert_eq!((p.a_d, p.a_s), (1.0, 1.5)),
         other => panic!("{other:?}"),
     }
     // Mistakes.
@@ -677,12 +869,27 @@ fn solver_specs_parse_build_and_reject_mistakes() {
     }
     // Builder errors: zeroing networks on inequality QPs, perturbation of the wrong size, bad gains.
     let jia = random_qp(QpShape::Jia2019, 2).dims();
-    assert!(build_solver(&parse("solver = { kind = \"znn\", gamma = 1.0 }").unwrap(), jia).is_err());
+    assert!(build_solver(
+        &parse("solver = { kind = \"znn\", gamma = 1.0 }").unwrap(),
+        jia
+    )
+    .is_err());
     let kong = random_qp(QpShape::Kong2019, 2).dims();
-    let pert = parse("solver = { kind = \"vp-cdnn\", gamma = 2.0, perturbation = { task_duration = 9.0 } }").unwrap();
+    let pert = parse(
+        "solver = { kind = \"vp-cdnn\", gamma = 2.0, perturbation = { task_duration = 9.0 } }",
+    )
+    .unwrap();
     assert!(build_solver(&pert, kong).is_err());
-    assert!(build_solver(&parse("solver = { kind = \"lvi-pdnn\", gamma = -1.0 }").unwrap(), jia).is_err());
-    assert!(build_solver(&parse("solver = { kind = \"finite-time\", beta = 1.0, alpha = 1.5 }").unwrap(), kong).is_err());
+    assert!(build_solver(
+        &parse("solver = { kind = \"lvi-pdnn\", gamma = -1.0 }").unwrap(),
+        jia
+    )
+    .is_err());
+    assert!(build_solver(
+        &parse("solver = { kind = \"finite-time\", beta = 1.0, alpha = 1.5 }").unwrap(),
+        kong
+    )
+    .is_err());
 }
 
 #[test]
@@ -695,9 +902,17 @@ fn zeroing_network_with_gain_variants_and_fixed_gain_vp_rnn_pf() {
     let dims = qp.dims();
     let s = settings(1e-10, 1e-13);
     let mut a = VpRnnPf::new(1e-4, 400.0, 2.0, Activation::Linear, dims).unwrap();
-    let mut b = VpRnnPf::with_gain(1e-4, 400.0, 2.0, Gain::Fixed(2.0), Activation::Linear, dims).unwrap();
+    let mut b =
+        VpRnnPf::with_gain(1e-4, 400.0, 2.0, Gain::Fixed(2.0), Activation::Linear, dims).unwrap();
     let ya = steady_state(&mut a, &qp, 8.0, 1, &s, |_, _, _| true);
     let yb = steady_state(&mut b, &qp, 30.0, 1, &s, |_, _, _| true);
-    let d = ya.iter().zip(&yb).take(dims.nx).fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()));
-    assert!(d < 1e-7, "fixed and varying gain steady states differ by {d:e}");
+    let d = ya
+        .iter()
+        .zip(&yb)
+        .take(dims.nx)
+        .fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()));
+    assert!(
+        d < 1e-7,
+        "fixed and varying gain steady states differ by {d:e}"
+    );
 }

@@ -38,21 +38,43 @@ impl OdeSystem for Tracking {
 }
 
 fn settings(method: Method, rtol: f64, atol: f64) -> IntegratorSettings {
-    IntegratorSettings { method, rtol, atol, max_steps: 1_000_000 }
+    IntegratorSettings {
+        method,
+        rtol,
+        atol,
+        max_steps: 1_000_000,
+    }
 }
 
 #[test]
 fn every_method_follows_the_oscillator() {
-    for method in [Method::Bdf, Method::Esdirk34, Method::TrBdf2, Method::Dopri5, Method::Tsit45] {
+    for method in [
+        Method::Bdf,
+        Method::Esdirk34,
+        Method::TrBdf2,
+        Method::Dopri5,
+        Method::Tsit45,
+    ] {
         let mut observed = 0;
-        let (y, stats) = integrate(&mut Oscillator, &[1.0, 0.0], 0.0, 5.0, &settings(method, 1e-8, 1e-10), |_, _| {
-            observed += 1;
-            Control::Continue
-        })
+        let (y, stats) = integrate(
+            &mut Oscillator,
+            &[1.0, 0.0],
+            0.0,
+            5.0,
+            &settings(method, 1e-8, 1e-10),
+            |_, _| {
+                observed += 1;
+                Control::Continue
+            },
+        )
         .unwrap();
         let err = (y[0] - 5f64.cos()).abs().max((y[1] + 5f64.sin()).abs());
         assert!(err < 1e-5, "{method}: error {err:e}");
-        assert_eq!(observed, stats.steps + 1, "{method}: observer sees t0 and every accepted step");
+        assert_eq!(
+            observed,
+            stats.steps + 1,
+            "{method}: observer sees t0 and every accepted step"
+        );
         assert!(stats.rhs_evals > stats.steps);
     }
 }
@@ -73,7 +95,10 @@ fn dopri5_is_fifth_order() {
     };
     let (e_loose, n_loose) = run(1e-5);
     let (e_tight, n_tight) = run(1e-10);
-    assert!(e_tight < 1e-8 && e_tight < e_loose, "errors {e_loose:e} -> {e_tight:e}");
+    assert!(
+        e_tight < 1e-8 && e_tight < e_loose,
+        "errors {e_loose:e} -> {e_tight:e}"
+    );
     // A 5(4) pair: a 1e5 tighter tolerance costs about 1e5^(1/5) = 10x the steps, not 100x as order 2 would.
     let ratio = n_tight as f64 / n_loose as f64;
     assert!(ratio > 3.0 && ratio < 30.0, "step ratio {ratio}");
@@ -83,24 +108,56 @@ fn dopri5_is_fifth_order() {
 fn bdf_handles_gamma_1e7_with_both_jacobians() {
     for analytic in [true, false] {
         let gamma = 1e7;
-        let mut sys = Tracking { gamma, analytic_jacobian: analytic };
+        let mut sys = Tracking {
+            gamma,
+            analytic_jacobian: analytic,
+        };
         let t1 = 3.0;
-        let (y, stats) =
-            integrate(&mut sys, &[0.0], 0.0, t1, &IntegratorSettings::default(), |_, _| Control::Continue).unwrap();
+        let (y, stats) = integrate(
+            &mut sys,
+            &[0.0],
+            0.0,
+            t1,
+            &IntegratorSettings::default(),
+            |_, _| Control::Continue,
+        )
+        .unwrap();
         let exact = gamma * (gamma * t1.sin() - t1.cos()) / (1.0 + gamma * gamma);
-        assert!((y[0] - exact).abs() < 1e-6, "analytic={analytic}: {} vs {exact}", y[0]);
-        assert!(stats.steps < 5_000, "a stiff method must not be step-limited by gamma: {} steps", stats.steps);
+        assert!(
+            (y[0] - exact).abs() < 1e-6,
+            "analytic={analytic}: {} vs {exact}",
+            y[0]
+        );
+        assert!(
+            stats.steps < 5_000,
+            "a stiff method must not be step-limited by gamma: {} steps",
+            stats.steps
+        );
         assert!(stats.jac_evals >= 1);
     }
 }
 
 #[test]
 fn explicit_method_is_step_limited_on_the_stiff_problem() {
-    let mut sys = Tracking { gamma: 1e5, analytic_jacobian: true };
-    let (_, stats) =
-        integrate(&mut sys, &[0.0], 0.0, 0.1, &settings(Method::Dopri5, 1e-6, 1e-8), |_, _| Control::Continue).unwrap();
+    let mut sys = Tracking {
+        gamma: 1e5,
+        analytic_jacobian: true,
+    };
+    let (_, stats) = integrate(
+        &mut sys,
+        &[0.0],
+        0.0,
+        0.1,
+        &settings(Method::Dopri5, 1e-6, 1e-8),
+        |_, _| Control::Continue,
+    )
+    .unwrap();
     // Dormand-Prince's stability interval is about 3.3 / gamma.
-    assert!(stats.steps as f64 > 0.1 * 1e5 / 4.0, "only {} steps", stats.steps);
+    assert!(
+        stats.steps as f64 > 0.1 * 1e5 / 4.0,
+        "only {} steps",
+        stats.steps
+    );
 }
 
 #[test]
@@ -115,14 +172,40 @@ fn observer_can_stop_and_divergence_is_reported() {
         }
     }
     // y' = y^2, y(0) = 1 blows up at t = 1.
-    let r = integrate(&mut Blowup, &[1.0], 0.0, 2.0, &settings(Method::Dopri5, 1e-6, 1e-8), |_, _| Control::Continue);
-    assert!(r.is_err(), "blow-up must be reported, got {:?}", r.map(|x| x.0));
-    let r = integrate(&mut Oscillator, &[1.0, 0.0], 0.0, 5.0, &settings(Method::Bdf, 1e-6, 1e-8), |t, _| {
-        if t > 1.0 {
-            Control::Stop("enough".into())
-        } else {
-            Control::Continue
-        }
-    });
-    assert!(matches!(r, Err(solvers::ode::OdeError::Stopped { .. })));
+    let r = integrate(
+        &mut Blowup,
+        &[1.0],
+        0.0,
+        2.0,
+        &settings(Method::Dopri5, 1e-6, 1e-8),
+        |_, _| Control::Continue,
+    );
+    assert!(
+        r.is_err(),
+        "blow-up must be reported, got {:?}",
+        r.map(|x| x.0)
+    );
+    let r = integrate(
+        &mut Oscillator,
+        &[1.0, 0.0],
+        0.0,
+        5.0,
+        &settings(Method::Bdf, 1e-6, 1e-8),
+        |t, _| {
+            if t > 1.0 {
+                Control::Stop("enough".into())
+            } else {
+                Control::Continue
+            }
+        },
+    );
+    let failure = r.expect_err("stopped by the observer");
+    assert!(matches!(
+        failure.error,
+        solvers::ode::OdeError::Stopped { .. }
+    ));
+    assert!(
+        failure.stats.steps > 0 && failure.stats.rhs_evals > failure.stats.steps,
+        "cost until the stop is kept"
+    );
 }

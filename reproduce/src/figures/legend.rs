@@ -41,7 +41,10 @@ pub fn draw(area: &Area, entries: &[Entry], arrangement: Arrangement) -> Result<
         let extra_rows = i32::try_from(lines.len().saturating_sub(1)).unwrap_or(i32::MAX);
         let mut text_width = 0;
         for line in &lines {
-            text_width = text_width.max(px(area.estimate_text_size(line, &style).map_err(draw_error)?.0));
+            text_width = text_width.max(px(area
+                .estimate_text_size(line, &style)
+                .map_err(draw_error)?
+                .0));
         }
         let span = SAMPLE + GAP + text_width;
         if x > GAP && (arrangement == Arrangement::Column || x + span > width) {
@@ -50,10 +53,16 @@ pub fn draw(area: &Area, entries: &[Entry], arrangement: Arrangement) -> Result<
         if y + ROW * extra_rows + ROW / 2 > height {
             break;
         }
-        area.draw(&PathElement::new(vec![(x, y), (x + SAMPLE, y)], entry.style)).map_err(draw_error)?;
+        area.draw(&PathElement::new(
+            vec![(x, y), (x + SAMPLE, y)],
+            entry.style,
+        ))
+        .map_err(draw_error)?;
         for (row, line) in (0..).zip(&lines) {
-            let top = y + ROW * row - px(area.estimate_text_size(line, &style).map_err(draw_error)?.1) / 2;
-            area.draw(&Text::new(*line, (x + SAMPLE + GAP, top), style.clone())).map_err(draw_error)?;
+            let top = y + ROW * row
+                - px(area.estimate_text_size(line, &style).map_err(draw_error)?.1) / 2;
+            area.draw(&Text::new(*line, (x + SAMPLE + GAP, top), style.clone()))
+                .map_err(draw_error)?;
         }
         x += span + 2 * GAP;
         if extra_rows > 0 {

@@ -49,29 +49,51 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, String> {
     let traces_dir = root.join("results").join("traces");
     let traces = runs
         .iter()
-        .map(|run| Trace::read(&traces_dir.join(&run.experiment).join(format!("{}.csv", run_stem(run)))))
+        .map(|run| {
+            Trace::read(
+                &traces_dir
+                    .join(&run.experiment)
+                    .join(format!("{}.csv", run_stem(run))),
+            )
+        })
         .collect::<Result<Vec<_>, _>>()?;
 
     let mut figures: BTreeMap<String, String> = BTreeMap::new();
     let mut add = |name: String, svg: String| match figures.insert(name.clone(), svg) {
         None => Ok(()),
-        Some(_) => Err(format!("two figures would be written to {name}: rename a variant or a solver")),
+        Some(_) => Err(format!(
+            "two figures would be written to {name}: rename a variant or a solver"
+        )),
     };
     let mut by_experiment: BTreeMap<&str, Vec<(&RunRow, &Trace)>> = BTreeMap::new();
     for (run, trace) in runs.iter().zip(&traces) {
-        add(format!("{}__{}.svg", run.experiment, run_stem(run)), run_figure::render(run, trace)?)?;
-        by_experiment.entry(&run.experiment).or_default().push((run, trace));
+        add(
+            format!("{}__{}.svg", run.experiment, run_stem(run)),
+            run_figure::render(run, trace)?,
+        )?;
+        by_experiment
+            .entry(&run.experiment)
+            .or_default()
+            .push((run, trace));
     }
     for (experiment, members) in &by_experiment {
-        add(format!("{experiment}__overview.svg"), overview::render(experiment, members)?)?;
+        add(
+            format!("{experiment}__overview.svg"),
+            overview::render(experiment, members)?,
+        )?;
     }
 
     let out_dir = root.join("report").join("figures");
     std::fs::create_dir_all(&out_dir).map_err(|e| format!("{}: {e}", out_dir.display()))?;
     let stale = std::fs::read_dir(&out_dir).map_err(|e| format!("{}: {e}", out_dir.display()))?;
     for entry in stale {
-        let path = entry.map_err(|e| format!("{}: {e}", out_dir.display()))?.path();
-        let name = path.file_name().and_then(|n| n.to_str()).unwrap_or_default();
+        let path = entry
+            .map_err(|e| format!("{}: {e}", out_dir.display()))?
+            .path();
+        let name = path
+            .file_name()
+            .and_then(|n| n.to_str())
+            .unwrap_or_default();
         if is_figure_name(name) && !figures.contains_key(name) {
             std::fs::remove_file(&path).map_err(|e| format!("{}: {e}", path.display()))?;
         }

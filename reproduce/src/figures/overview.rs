@@ -28,10 +28,21 @@ pub fn render(experiment: &str, runs: &[(&RunRow, &Trace)]) -> Result<String, St
         y_desc: "error (m)".to_string(),
         y_axis: YAxis::Log,
         t_end,
-        series: runs.iter().enumerate().map(|(k, (_, trace))| Series { colour: colour(k), points: trace.over_time(&trace.pos_err) }).collect(),
+        series: runs
+            .iter()
+            .enumerate()
+            .map(|(k, (_, trace))| Series {
+                colour: colour(k),
+                points: trace.over_time(&trace.pos_err),
+            })
+            .collect(),
     };
     let scored = runs.iter().any(|(_, trace)| trace.is_scored());
-    let unit = if runs.iter().any(|(_, trace)| trace.thetaddot.is_some()) { "rad/s^2" } else { "rad/s" };
+    let unit = if runs.iter().any(|(_, trace)| trace.thetaddot.is_some()) {
+        "rad/s^2"
+    } else {
+        "rad/s"
+    };
     let scores = scored.then(|| TimePanel {
         caption: "(b) neural solvers: distance to the exact QP optimum |x_nn - x*|".to_string(),
         y_desc: format!("|x_nn - x*| ({unit})"),
@@ -42,23 +53,37 @@ pub fn render(experiment: &str, runs: &[(&RunRow, &Trace)]) -> Result<String, St
             .enumerate()
             .map(|(k, (_, trace))| Series {
                 colour: colour(k),
-                points: trace.thinned().into_iter().filter_map(|i| trace.score_dx[i].map(|dx| (trace.t[i], dx))).collect(),
+                points: trace
+                    .thinned()
+                    .into_iter()
+                    .filter_map(|i| trace.score_dx[i].map(|dx| (trace.t[i], dx)))
+                    .collect(),
             })
             .collect(),
     });
-    let entries: Vec<Entry> = runs.iter().enumerate().map(|(k, (run, _))| Entry { style: colour(k).stroke_width(LEGEND_LINE_WIDTH), label: label(run) }).collect();
+    let entries: Vec<Entry> = runs
+        .iter()
+        .enumerate()
+        .map(|(k, (run, _))| Entry {
+            style: colour(k).stroke_width(LEGEND_LINE_WIDTH),
+            label: label(run),
+        })
+        .collect();
 
-    figure(&format!("{experiment}: overview of {} runs", runs.len()), |area: &Area| {
-        let (width, _) = area.dim_in_pixel();
-        let (plots, legend_area) = area.split_horizontally(width.saturating_sub(LEGEND_WIDTH));
-        legend::draw(&legend_area, &entries, Arrangement::Column)?;
-        match &scores {
-            Some(scores) => {
-                let (top, bottom) = plots.split_vertically(plots.dim_in_pixel().1 / 2);
-                errors.draw(&top)?;
-                scores.draw(&bottom)
+    figure(
+        &format!("{experiment}: overview of {} runs", runs.len()),
+        |area: &Area| {
+            let (width, _) = area.dim_in_pixel();
+            let (plots, legend_area) = area.split_horizontally(width.saturating_sub(LEGEND_WIDTH));
+            legend::draw(&legend_area, &entries, Arrangement::Column)?;
+            match &scores {
+                Some(scores) => {
+                    let (top, bottom) = plots.split_vertically(plots.dim_in_pixel().1 / 2);
+                    errors.draw(&top)?;
+                    scores.draw(&bottom)
+                }
+                None => errors.draw(&plots),
             }
-            None => errors.draw(&plots),
-        }
-    })
+        },
+    )
 }

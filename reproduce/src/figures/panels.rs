@@ -3,7 +3,9 @@
 
 use super::layout::{draw_error, Area};
 use super::scale;
-use super::style::{font, CAPTION_SIZE, DESIRED_COLOUR, DESIRED_WIDTH, GRID_COLOUR, LABEL_SIZE, LINE_WIDTH};
+use super::style::{
+    font, CAPTION_SIZE, DESIRED_COLOUR, DESIRED_WIDTH, GRID_COLOUR, LABEL_SIZE, LINE_WIDTH,
+};
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::prelude::*;
 use std::ops::Range;
@@ -52,15 +54,26 @@ pub struct PathPanel {
 /// Draws the caption at the top of `area`; returns the rest, and the size (px) the plot will
 /// have in it once [`plot`] has made room for the axis labels.
 fn titled<'a>(area: &Area<'a>, caption: &str) -> Result<(Area<'a>, (u32, u32)), String> {
-    let inner = area.titled(caption, font(CAPTION_SIZE)).map_err(draw_error)?;
+    let inner = area
+        .titled(caption, font(CAPTION_SIZE))
+        .map_err(draw_error)?;
     let (w, h) = inner.dim_in_pixel();
-    let plot = (w.saturating_sub(2 * MARGIN + Y_LABEL_AREA), h.saturating_sub(2 * MARGIN + X_LABEL_AREA));
+    let plot = (
+        w.saturating_sub(2 * MARGIN + Y_LABEL_AREA),
+        h.saturating_sub(2 * MARGIN + X_LABEL_AREA),
+    );
     Ok((inner, plot))
 }
 
 /// A tick label: plain decimals from 1e-3 to 1e5, scientific notation outside.
 fn tick(v: f64) -> String {
-    let trim = |s: String| if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_string() } else { s };
+    let trim = |s: String| {
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        }
+    };
     if v == 0.0 {
         "0".to_string()
     } else if (1e-3..1e5).contains(&v.abs()) {
@@ -85,7 +98,15 @@ fn decade(v: &f64) -> String {
 }
 
 /// Draws axes, grid and lines on `inner` (an area from [`titled`]) with x axis `x`, y axis `y`.
-fn plot<Y>(inner: &Area, x: Range<f64>, x_desc: &str, y: Y, y_desc: &str, y_labels: &dyn Fn(&f64) -> String, lines: &[(ShapeStyle, Vec<(f64, f64)>)]) -> Result<(), String>
+fn plot<Y>(
+    inner: &Area,
+    x: Range<f64>,
+    x_desc: &str,
+    y: Y,
+    y_desc: &str,
+    y_labels: &dyn Fn(&f64) -> String,
+    lines: &[(ShapeStyle, Vec<(f64, f64)>)],
+) -> Result<(), String>
 where
     Y: AsRangedCoord<Value = f64>,
     Y::CoordDescType: ValueFormatter<f64>,
@@ -112,7 +133,9 @@ where
         .draw()
         .map_err(draw_error)?;
     for (style, points) in lines {
-        chart.draw_series(LineSeries::new(points.iter().copied(), *style)).map_err(draw_error)?;
+        chart
+            .draw_series(LineSeries::new(points.iter().copied(), *style))
+            .map_err(draw_error)?;
     }
     Ok(())
 }
@@ -125,16 +148,43 @@ impl TimePanel {
         let lines: Vec<(ShapeStyle, Vec<(f64, f64)>)> = self
             .series
             .iter()
-            .map(|s| (s.colour.stroke_width(LINE_WIDTH), s.points.iter().copied().filter(|&(t, v)| t.is_finite() && keep(v)).collect()))
+            .map(|s| {
+                (
+                    s.colour.stroke_width(LINE_WIDTH),
+                    s.points
+                        .iter()
+                        .copied()
+                        .filter(|&(t, v)| t.is_finite() && keep(v))
+                        .collect(),
+                )
+            })
             .collect();
-        let values = lines.iter().flat_map(|(_, points)| points.iter().map(|&(_, v)| v));
+        let values = lines
+            .iter()
+            .flat_map(|(_, points)| points.iter().map(|&(_, v)| v));
         let t = 0.0..self.t_end.max(f64::MIN_POSITIVE);
         match self.y_axis {
             YAxis::Linear => {
                 let y = scale::linear(values);
-                plot(&inner, t, "t (s)", y.clone(), &self.y_desc, &ticks(&y), &lines)
+                plot(
+                    &inner,
+                    t,
+                    "t (s)",
+                    y.clone(),
+                    &self.y_desc,
+                    &ticks(&y),
+                    &lines,
+                )
             }
-            YAxis::Log => plot(&inner, t, "t (s)", scale::log(values).log_scale(), &self.y_desc, &decade, &lines),
+            YAxis::Log => plot(
+                &inner,
+                t,
+                "t (s)",
+                scale::log(values).log_scale(),
+                &self.y_desc,
+                &decade,
+                &lines,
+            ),
         }
     }
 }
@@ -144,10 +194,20 @@ impl PathPanel {
     pub fn draw(&self, area: &Area) -> Result<(), String> {
         let (inner, pixels) = titled(area, &self.caption)?;
         let both = || self.desired.iter().chain(&self.actual);
-        let (x, y) = scale::equal_aspect(scale::linear(both().map(|p| p.0)), scale::linear(both().map(|p| p.1)), pixels);
+        let (x, y) = scale::equal_aspect(
+            scale::linear(both().map(|p| p.0)),
+            scale::linear(both().map(|p| p.1)),
+            pixels,
+        );
         let lines = [
-            (DESIRED_COLOUR.stroke_width(DESIRED_WIDTH), self.desired.clone()),
-            (self.actual_colour.stroke_width(LINE_WIDTH), self.actual.clone()),
+            (
+                DESIRED_COLOUR.stroke_width(DESIRED_WIDTH),
+                self.desired.clone(),
+            ),
+            (
+                self.actual_colour.stroke_width(LINE_WIDTH),
+                self.actual.clone(),
+            ),
         ];
         plot(&inner, x, "x (m)", y.clone(), "y (m)", &ticks(&y), &lines)
     }

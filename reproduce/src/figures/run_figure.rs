@@ -27,13 +27,20 @@ pub fn title(run: &RunRow) -> String {
 }
 
 /// One series per joint, joint i in colour i.
-fn per_joint(trace: &Trace, columns: &[Vec<f64>], value: impl Fn(usize, f64) -> f64) -> Vec<Series> {
+fn per_joint(
+    trace: &Trace,
+    columns: &[Vec<f64>],
+    value: impl Fn(usize, f64) -> f64,
+) -> Vec<Series> {
     columns
         .iter()
         .enumerate()
         .map(|(i, column)| {
             let shifted: Vec<f64> = column.iter().map(|&v| value(i, v)).collect();
-            Series { colour: colour(i), points: trace.over_time(&shifted) }
+            Series {
+                colour: colour(i),
+                points: trace.over_time(&shifted),
+            }
         })
         .collect()
 }
@@ -49,7 +56,13 @@ pub fn render(run: &RunRow, trace: &Trace) -> Result<String, String> {
         series,
     };
     let joints = |columns: &[Vec<f64>]| per_joint(trace, columns, |_, v| v);
-    let path = |xy: &[Vec<f64>; 2]| trace.thinned().into_iter().map(|k| (xy[0][k], xy[1][k])).collect();
+    let path = |xy: &[Vec<f64>; 2]| {
+        trace
+            .thinned()
+            .into_iter()
+            .map(|k| (xy[0][k], xy[1][k]))
+            .collect()
+    };
     let path_panel = PathPanel {
         caption: "(a) end-effector path, x-y plane".to_string(),
         desired: path(&trace.desired),
@@ -57,22 +70,59 @@ pub fn render(run: &RunRow, trace: &Trace) -> Result<String, String> {
         actual_colour: ACTUAL_COLOUR,
     };
     let mut panels = vec![
-        time("(b) position error |r* - f(theta)|", "error (m)", YAxis::Log, vec![Series { colour: ACTUAL_COLOUR, points: trace.over_time(&trace.pos_err) }]),
-        time("(c) joint angles theta_i(t) - theta_i(0)", "angle change (rad)", YAxis::Linear, per_joint(trace, &trace.theta, |i, v| v - trace.theta[i][0])),
-        time("(d) joint velocities", "velocity (rad/s)", YAxis::Linear, joints(&trace.thetadot)),
+        time(
+            "(b) position error |r* - f(theta)|",
+            "error (m)",
+            YAxis::Log,
+            vec![Series {
+                colour: ACTUAL_COLOUR,
+                points: trace.over_time(&trace.pos_err),
+            }],
+        ),
+        time(
+            "(c) joint angles theta_i(t) - theta_i(0)",
+            "angle change (rad)",
+            YAxis::Linear,
+            per_joint(trace, &trace.theta, |i, v| v - trace.theta[i][0]),
+        ),
+        time(
+            "(d) joint velocities",
+            "velocity (rad/s)",
+            YAxis::Linear,
+            joints(&trace.thetadot),
+        ),
     ];
     if let Some(thetaddot) = &trace.thetaddot {
-        panels.push(time("(e) joint accelerations", "acceleration (rad/s^2)", YAxis::Linear, joints(thetaddot)));
+        panels.push(time(
+            "(e) joint accelerations",
+            "acceleration (rad/s^2)",
+            YAxis::Linear,
+            joints(thetaddot),
+        ));
     }
     if let Some(tau) = &trace.tau {
-        panels.push(time("(f) joint torques", "torque (N m)", YAxis::Linear, joints(tau)));
+        panels.push(time(
+            "(f) joint torques",
+            "torque (N m)",
+            YAxis::Linear,
+            joints(tau),
+        ));
     }
 
     let mut entries = vec![
-        Entry { style: DESIRED_COLOUR.stroke_width(DESIRED_WIDTH), label: "desired r*".to_string() },
-        Entry { style: ACTUAL_COLOUR.stroke_width(LEGEND_LINE_WIDTH), label: "actual f(theta)".to_string() },
+        Entry {
+            style: DESIRED_COLOUR.stroke_width(DESIRED_WIDTH),
+            label: "desired r*".to_string(),
+        },
+        Entry {
+            style: ACTUAL_COLOUR.stroke_width(LEGEND_LINE_WIDTH),
+            label: "actual f(theta)".to_string(),
+        },
     ];
-    entries.extend((0..trace.joints()).map(|i| Entry { style: colour(i).stroke_width(LEGEND_LINE_WIDTH), label: format!("joint {}", i + 1) }));
+    entries.extend((0..trace.joints()).map(|i| Entry {
+        style: colour(i).stroke_width(LEGEND_LINE_WIDTH),
+        label: format!("joint {}", i + 1),
+    }));
 
     figure(&title(run), |area: &Area| {
         let (strip, body) = area.split_vertically(LEGEND_HEIGHT);

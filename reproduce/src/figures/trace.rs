@@ -43,17 +43,26 @@ impl Trace {
         let header = reader.headers().map_err(|e| fail(e.to_string()))?.clone();
         let column = |name: &str| header.iter().position(|h| h == name);
         let required = |name: &str| column(name).ok_or_else(|| fail(format!("no column `{name}`")));
-        let joints = |prefix: &str| -> Vec<usize> { (1..).map_while(|i| column(&format!("{prefix}_{i}"))).collect() };
+        let joints = |prefix: &str| -> Vec<usize> {
+            (1..)
+                .map_while(|i| column(&format!("{prefix}_{i}")))
+                .collect()
+        };
         let theta = joints("theta");
         let thetadot = joints("thetadot");
         if theta.is_empty() || thetadot.len() != theta.len() {
-            return Err(fail(format!("expected theta_1..n and thetadot_1..n, found {} and {}", theta.len(), thetadot.len())));
+            return Err(fail(format!(
+                "expected theta_1..n and thetadot_1..n, found {} and {}",
+                theta.len(),
+                thetadot.len()
+            )));
         }
         let thetaddot = joints("thetaddot");
         let tau = joints("tau");
         let [t, rx_des, ry_des, rx, ry, pos_err, score_dx] =
             ["t", "rx_des", "ry_des", "rx", "ry", "pos_err", "score_dx"].map(required);
-        let (t, rx_des, ry_des, rx, ry, pos_err, score_dx) = (t?, rx_des?, ry_des?, rx?, ry?, pos_err?, score_dx?);
+        let (t, rx_des, ry_des, rx, ry, pos_err, score_dx) =
+            (t?, rx_des?, ry_des?, rx?, ry?, pos_err?, score_dx?);
 
         let mut trace = Trace {
             theta: vec![Vec::new(); theta.len()],
@@ -69,9 +78,17 @@ impl Trace {
                 if text.is_empty() {
                     return Ok(None);
                 }
-                text.parse().map(Some).map_err(|_| fail(format!("row {}: `{}` = {text:?} is not a number", row + 2, &header[c])))
+                text.parse().map(Some).map_err(|_| {
+                    fail(format!(
+                        "row {}: `{}` = {text:?} is not a number",
+                        row + 2,
+                        &header[c]
+                    ))
+                })
             };
-            let number = |c: usize| field(c)?.ok_or_else(|| fail(format!("row {}: `{}` is empty", row + 2, &header[c])));
+            let number = |c: usize| {
+                field(c)?.ok_or_else(|| fail(format!("row {}: `{}` is empty", row + 2, &header[c])))
+            };
             let push_joints = |into: &mut Vec<Vec<f64>>, columns: &[usize]| -> Result<(), String> {
                 for (series, &c) in into.iter_mut().zip(columns) {
                     series.push(number(c)?);
@@ -113,11 +130,16 @@ impl Trace {
         if n <= MAX_SAMPLES {
             return (0..n).collect();
         }
-        (0..MAX_SAMPLES).map(|k| k * (n - 1) / (MAX_SAMPLES - 1)).collect()
+        (0..MAX_SAMPLES)
+            .map(|k| k * (n - 1) / (MAX_SAMPLES - 1))
+            .collect()
     }
 
     /// `(t, value)` pairs of one column at the thinned samples.
     pub fn over_time(&self, values: &[f64]) -> Vec<(f64, f64)> {
-        self.thinned().into_iter().map(|k| (self.t[k], values[k])).collect()
+        self.thinned()
+            .into_iter()
+            .map(|k| (self.t[k], values[k]))
+            .collect()
     }
 }

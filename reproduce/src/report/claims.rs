@@ -46,13 +46,22 @@ pub struct Claim {
 }
 
 /// Evaluates a claim: `Ok((holds, evidence))`, or `Err(why)` for N/A.
-fn check(short: &str, statement: &str, eval: impl FnOnce() -> Result<(bool, String), String>) -> Claim {
+fn check(
+    short: &str,
+    statement: &str,
+    eval: impl FnOnce() -> Result<(bool, String), String>,
+) -> Claim {
     let (verdict, evidence) = match eval() {
         Ok((true, e)) => (Verdict::Pass, e),
         Ok((false, e)) => (Verdict::Fail, e),
         Err(e) => (Verdict::NotApplicable, e),
     };
-    Claim { short: short.to_string(), statement: statement.to_string(), verdict, evidence }
+    Claim {
+        short: short.to_string(),
+        statement: statement.to_string(),
+        verdict,
+        evidence,
+    }
 }
 
 /// The claims of one paper (`values` gives the published compute times zhong2021's claim
@@ -69,18 +78,42 @@ pub fn evaluate(paper: &str, runs: &Runs, values: &[PaperValue]) -> Vec<Claim> {
 
 /// A metric that must exist (a completed run's drift, a measured error).
 fn value(r: &RunRow, v: Option<f64>, what: &str) -> Result<f64, String> {
-    v.ok_or_else(|| format!("{} / {} / {}: no {what} ({})", r.experiment, r.variant, r.solver, if completed(r) { "not measured".to_string() } else { failed_at(r) }))
+    v.ok_or_else(|| {
+        format!(
+            "{} / {} / {}: no {what} ({})",
+            r.experiment,
+            r.variant,
+            r.solver,
+            if completed(r) {
+                "not measured".to_string()
+            } else {
+                failed_at(r)
+            }
+        )
+    })
 }
 
 /// "label value (exact value)" for one metric of the paper's solver and the exact column.
 fn with_exact(runs: &Runs, r: &RunRow, v: impl Fn(&RunRow) -> Option<f64>) -> String {
-    let exact = runs.find(&r.experiment, &r.variant, EXACT).and_then(&v).map(|e| format!(" (exact {})", sci(e))).unwrap_or_default();
-    format!("{} {}{exact}", r.variant, v(r).map(sci).unwrap_or_else(|| failed_at(r)))
+    let exact = runs
+        .find(&r.experiment, &r.variant, EXACT)
+        .and_then(&v)
+        .map(|e| format!(" (exact {})", sci(e)))
+        .unwrap_or_default();
+    format!(
+        "{} {}{exact}",
+        r.variant,
+        v(r).map(sci).unwrap_or_else(|| failed_at(r))
+    )
 }
 
 /// The run of `runs` (a filtered set) with the largest value of `v`, and that value.
-fn worst<'a>(rows: impl Iterator<Item = &'a RunRow>, v: impl Fn(&RunRow) -> Option<f64>) -> Option<(&'a RunRow, f64)> {
-    rows.filter_map(|r| v(r).map(|x| (r, x))).max_by(|a, b| a.1.total_cmp(&b.1))
+fn worst<'a>(
+    rows: impl Iterator<Item = &'a RunRow>,
+    v: impl Fn(&RunRow) -> Option<f64>,
+) -> Option<(&'a RunRow, f64)> {
+    rows.filter_map(|r| v(r).map(|x| (r, x)))
+        .max_by(|a, b| a.1.total_cmp(&b.1))
 }
 
 /// `rows`, or an error when there are none (the claim is then N/A).
@@ -148,13 +181,23 @@ const TRACKING: f64 = 1e-3;
 /// zhang2018: MTN diverges, HL-JDF returns, FP-CDNN breaks under perturbation, VP-CDNN does not.
 pub fn zhang2018(runs: &Runs) -> Vec<Claim> {
     let select = |exp_suffix: &'static str, variant: &'static str, solver: &'static str| {
-        runs.of_paper("zhang2018").filter(move |r| r.experiment.ends_with(exp_suffix) && r.variant.starts_with(variant) && r.solver.starts_with(solver)).collect::<Vec<_>>()
+        runs.of_paper("zhang2018")
+            .filter(move |r| {
+                r.experiment.ends_with(exp_suffix)
+                    && r.variant.starts_with(variant)
+                    && r.solver.starts_with(solver)
+            })
+            .collect::<Vec<_>>()
     };
     let peaks = |r: &RunRow| {
         format!(
             "{}: {}, peak |θ̇| {}, |θ̈| {}, |τ| {}",
             r.experiment.trim_start_matches("zhang2018-"),
-            if completed(r) { format!("drift {}", r.drift_norm.map(sci).unwrap_or_default()) } else { failed_at(r) },
+            if completed(r) {
+                format!("drift {}", r.drift_norm.map(sci).unwrap_or_default())
+            } else {
+                failed_at(r)
+            },
             r.peak_thetadot.map(sci).unwrap_or_default(),
             r.peak_thetaddot.map(sci).unwrap_or_default(),
             r.peak_torque.map(sci).unwrap_or_default()
@@ -199,7 +242,11 @@ pub fn zhang2018(runs: &Runs) -> Vec<Claim> {
 
 /// zhong2021's experiments and the compute-time ratio S-LVI-PDNN / VP-RNN-PF the paper reports
 /// (about 2x on the clover, 7x on "dai").
-const ZHONG: &[(&str, f64)] = &[("zhong2021-clover-a", 2.0), ("zhong2021-clover-b", 2.0), ("zhong2021-dai", 7.0)];
+const ZHONG: &[(&str, f64)] = &[
+    ("zhong2021-clover-a", 2.0),
+    ("zhong2021-clover-b", 2.0),
+    ("zhong2021-dai", 7.0),
+];
 
 /// zhong2021: VP-RNN-PF drifts less, tracks better, and is faster than S-LVI-PDNN.
 pub fn zhong2021(runs: &Runs, values: &[PaperValue]) -> Vec<Claim> {
@@ -207,22 +254,47 @@ pub fn zhong2021(runs: &Runs, values: &[PaperValue]) -> Vec<Claim> {
     for &(exp, target) in ZHONG {
         let short = exp.trim_start_matches("zhong2021-");
         let split = || -> Result<(Vec<&RunRow>, &RunRow), String> {
-            let vp: Vec<&RunRow> = runs.of_experiment(exp).filter(|r| r.solver.starts_with("VP-RNN-PF")).collect();
-            let s = runs.of_experiment(exp).find(|r| r.solver == "S-LVI-PDNN").ok_or(format!("no S-LVI-PDNN run on {exp}"))?;
+            let vp: Vec<&RunRow> = runs
+                .of_experiment(exp)
+                .filter(|r| r.solver.starts_with("VP-RNN-PF"))
+                .collect();
+            let s = runs
+                .of_experiment(exp)
+                .find(|r| r.solver == "S-LVI-PDNN")
+                .ok_or(format!("no S-LVI-PDNN run on {exp}"))?;
             if vp.is_empty() {
                 return Err(format!("no VP-RNN-PF run on {exp}"));
             }
             Ok((vp, s))
         };
-        let compare = |what: &str, v: fn(&RunRow) -> Option<f64>| -> Result<(bool, String), String> {
-            let (vp, s) = split()?;
-            let sv = value(s, v(s), what)?;
-            let vps: Vec<(&RunRow, f64)> = vp.iter().map(|r| value(r, v(r), what).map(|x| (*r, x))).collect::<Result<_, _>>()?;
-            let ev = vps.iter().map(|(r, x)| format!("{} {}", r.solver, sci(*x))).collect::<Vec<_>>().join(", ");
-            let exact = runs.find(exp, &s.variant, EXACT).and_then(v).map(|e| format!("; exact {}", sci(e))).unwrap_or_default();
-            Ok((vps.iter().all(|(_, x)| *x < sv), format!("{ev}; S-LVI-PDNN {}{exact}", sci(sv))))
-        };
-        claims.push(check(&format!("{short}: VP-RNN-PF drifts less"), &format!("{exp}: every VP-RNN-PF variant's ‖drift‖ below S-LVI-PDNN's"), || compare("drift", |r| r.drift_norm)));
+        let compare =
+            |what: &str, v: fn(&RunRow) -> Option<f64>| -> Result<(bool, String), String> {
+                let (vp, s) = split()?;
+                let sv = value(s, v(s), what)?;
+                let vps: Vec<(&RunRow, f64)> = vp
+                    .iter()
+                    .map(|r| value(r, v(r), what).map(|x| (*r, x)))
+                    .collect::<Result<_, _>>()?;
+                let ev = vps
+                    .iter()
+                    .map(|(r, x)| format!("{} {}", r.solver, sci(*x)))
+                    .collect::<Vec<_>>()
+                    .join(", ");
+                let exact = runs
+                    .find(exp, &s.variant, EXACT)
+                    .and_then(v)
+                    .map(|e| format!("; exact {}", sci(e)))
+                    .unwrap_or_default();
+                Ok((
+                    vps.iter().all(|(_, x)| *x < sv),
+                    format!("{ev}; S-LVI-PDNN {}{exact}", sci(sv)),
+                ))
+            };
+        claims.push(check(
+            &format!("{short}: VP-RNN-PF drifts less"),
+            &format!("{exp}: every VP-RNN-PF variant's ‖drift‖ below S-LVI-PDNN's"),
+            || compare("drift", |r| r.drift_norm),
+        ));
         claims.push(check(
             &format!("{short}: VP-RNN-PF tracks better"),
             &format!("{exp}: every VP-RNN-PF variant's max position error below S-LVI-PDNN's"),
@@ -253,9 +325,23 @@ pub fn kong2019(runs: &Runs) -> Vec<Claim> {
     let ratio_claim = |exp: &str, suffix: &str| -> Result<(f64, f64, String), String> {
         let ft = runs.need(exp, &format!("{FT}{suffix}"), "FTNN")?;
         let zn = runs.need(exp, &format!("{ZN}{suffix}"), "ZNN")?;
-        let (a, b) = (value(ft, ft.drift_ref_norm, "drift")?, value(zn, zn.drift_ref_norm, "drift")?);
-        Ok((a, b, format!("{}: FTNN {}, ZNN {} (ZNN/FTNN {}; exact: {} vs {})", exp.trim_start_matches("kong2019-"), sci(a), sci(b), sci(b / a),
-            with_exact(runs, ft, |r| r.drift_ref_norm), with_exact(runs, zn, |r| r.drift_ref_norm))))
+        let (a, b) = (
+            value(ft, ft.drift_ref_norm, "drift")?,
+            value(zn, zn.drift_ref_norm, "drift")?,
+        );
+        Ok((
+            a,
+            b,
+            format!(
+                "{}: FTNN {}, ZNN {} (ZNN/FTNN {}; exact: {} vs {})",
+                exp.trim_start_matches("kong2019-"),
+                sci(a),
+                sci(b),
+                sci(b / a),
+                with_exact(runs, ft, |r| r.drift_ref_norm),
+                with_exact(runs, zn, |r| r.drift_ref_norm)
+            ),
+        ))
     };
     let deviated = ["kong2019-circle", "kong2019-triangle"];
     vec![
@@ -287,7 +373,12 @@ pub fn kong2019(runs: &Runs) -> Vec<Claim> {
 pub fn checklist(claims: &[Claim]) -> String {
     let mut out = String::new();
     for c in claims {
-        out.push_str(&format!("- **{}** {} — {}\n", c.verdict.label(), c.statement, c.evidence));
+        out.push_str(&format!(
+            "- **{}** {} — {}\n",
+            c.verdict.label(),
+            c.statement,
+            c.evidence
+        ));
     }
     out
 }

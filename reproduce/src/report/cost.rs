@@ -11,11 +11,29 @@ use super::runs::{completed, Runs};
 
 /// One cost table per paper: every run's integrator, tolerances and effort.
 pub fn cost_table(runs: &Runs, paper: &str) -> String {
-    let mut t = Table::new(["experiment", "variant", "solver", "integrator", "rtol", "atol", "steps (rejected)", "RHS evals", "Jacobians", "QP solves", "wall (s)"]);
+    let mut t = Table::new([
+        "experiment",
+        "variant",
+        "solver",
+        "integrator",
+        "rtol",
+        "atol",
+        "steps (rejected)",
+        "RHS evals",
+        "Jacobians",
+        "QP solves",
+        "wall (s)",
+    ]);
     for r in runs.of_paper(paper) {
         // A failed run's integrator statistics are not stored (the rows hold zeros).
         let lost = !completed(r) && r.steps == 0;
-        let count = |n: usize| if lost { "not recorded".to_string() } else { n.to_string() };
+        let count = |n: usize| {
+            if lost {
+                "not recorded".to_string()
+            } else {
+                n.to_string()
+            }
+        };
         t.push([
             r.experiment.clone(),
             r.variant.clone(),
@@ -23,7 +41,11 @@ pub fn cost_table(runs: &Runs, paper: &str) -> String {
             r.integrator.clone(),
             sci(r.rtol),
             sci(r.atol),
-            if lost { count(0) } else { format!("{} ({})", r.steps, r.rejected) },
+            if lost {
+                count(0)
+            } else {
+                format!("{} ({})", r.steps, r.rejected)
+            },
             count(r.rhs_evals),
             count(r.jac_evals),
             r.qp_solves.to_string(),
@@ -42,38 +64,75 @@ pub struct Slowdown {
 
 /// The mean of the VP-RNN-PF variants' times among (solver label, seconds) pairs.
 fn vp_mean(times: &[(&str, f64)]) -> Option<f64> {
-    let vp: Vec<f64> = times.iter().filter(|(s, _)| s.starts_with("VP-RNN-PF")).map(|(_, t)| *t).collect();
+    let vp: Vec<f64> = times
+        .iter()
+        .filter(|(s, _)| s.starts_with("VP-RNN-PF"))
+        .map(|(_, t)| *t)
+        .collect();
     (!vp.is_empty()).then(|| vp.iter().sum::<f64>() / vp.len() as f64)
 }
 
 /// The published MATLAB times of one of our experiments, as (our solver label, seconds).
-fn paper_times<'a>(values: &'a [PaperValue], experiment: &'a str) -> impl Iterator<Item = (&'static str, f64)> + 'a {
+fn paper_times<'a>(
+    values: &'a [PaperValue],
+    experiment: &'a str,
+) -> impl Iterator<Item = (&'static str, f64)> + 'a {
     values
         .iter()
         .filter(|v| our_metric(&v.metric) == Some("wall_s"))
-        .filter_map(move |v| mapping_of(v).filter(|m| m.experiment == experiment).map(|m| (m.solver, v.value)))
+        .filter_map(move |v| {
+            mapping_of(v)
+                .filter(|m| m.experiment == experiment)
+                .map(|m| (m.solver, v.value))
+        })
 }
 
 /// [`Slowdown`] of one zhong2021 experiment.
 pub fn slowdown(runs: &Runs, values: &[PaperValue], experiment: &str) -> Slowdown {
     let ratio = |times: &[(&str, f64)]| {
-        let s = times.iter().find(|(s, _)| *s == "S-LVI-PDNN").map(|(_, t)| *t)?;
+        let s = times
+            .iter()
+            .find(|(s, _)| *s == "S-LVI-PDNN")
+            .map(|(_, t)| *t)?;
         vp_mean(times).map(|vp| s / vp)
     };
-    let ours: Vec<(&str, f64)> = runs.of_experiment(experiment).filter(|r| completed(r)).map(|r| (r.solver.as_str(), r.wall_s)).collect();
+    let ours: Vec<(&str, f64)> = runs
+        .of_experiment(experiment)
+        .filter(|r| completed(r))
+        .map(|r| (r.solver.as_str(), r.wall_s))
+        .collect();
     let paper: Vec<(&str, f64)> = paper_times(values, experiment).collect();
-    Slowdown { ours: ratio(&ours), paper: ratio(&paper) }
+    Slowdown {
+        ours: ratio(&ours),
+        paper: ratio(&paper),
+    }
 }
 
 /// zhong2021's compute times: per experiment and solver, the paper's MATLAB seconds and
 /// ours, each also divided by the mean of the VP-RNN-PF variants.
 pub fn matlab_comparison(runs: &Runs, values: &[PaperValue]) -> String {
-    let mut t = Table::new(["experiment", "solver", "paper (MATLAB, s)", "paper ÷ VP-RNN-PF mean", "ours (s)", "ours ÷ VP-RNN-PF mean"]);
-    let mut experiments: Vec<&str> = values.iter().filter(|v| our_metric(&v.metric) == Some("wall_s")).filter_map(mapping_of).map(|m| m.experiment).collect();
+    let mut t = Table::new([
+        "experiment",
+        "solver",
+        "paper (MATLAB, s)",
+        "paper ÷ VP-RNN-PF mean",
+        "ours (s)",
+        "ours ÷ VP-RNN-PF mean",
+    ]);
+    let mut experiments: Vec<&str> = values
+        .iter()
+        .filter(|v| our_metric(&v.metric) == Some("wall_s"))
+        .filter_map(mapping_of)
+        .map(|m| m.experiment)
+        .collect();
     experiments.dedup();
     for exp in experiments {
         let paper: Vec<(&str, f64)> = paper_times(values, exp).collect();
-        let ours: Vec<(&str, f64)> = runs.of_experiment(exp).filter(|r| paper.iter().any(|(s, _)| *s == r.solver)).map(|r| (r.solver.as_str(), r.wall_s)).collect();
+        let ours: Vec<(&str, f64)> = runs
+            .of_experiment(exp)
+            .filter(|r| paper.iter().any(|(s, _)| *s == r.solver))
+            .map(|r| (r.solver.as_str(), r.wall_s))
+            .collect();
         let (paper_vp, ours_vp) = (vp_mean(&paper), vp_mean(&ours));
         for (solver, p) in &paper {
             let o = ours.iter().find(|(s, _)| s == solver).map(|(_, t)| *t);

@@ -29,7 +29,10 @@ const MATRICES: &[(&str, &str, Best)] = &[
 /// The cross section as Markdown (empty when there are no cross runs).
 pub fn section(runs: &Runs, paper: &str) -> String {
     let rows: Vec<&RunRow> = runs.of_paper(paper).collect();
-    let mut columns: Vec<(&str, &str)> = rows.iter().map(|r| (r.experiment.as_str(), r.variant.as_str())).collect();
+    let mut columns: Vec<(&str, &str)> = rows
+        .iter()
+        .map(|r| (r.experiment.as_str(), r.variant.as_str()))
+        .collect();
     columns.dedup();
     let mut solvers: Vec<&str> = rows.iter().map(|r| r.solver.as_str()).collect();
     solvers.sort_by_key(|s| (*s != EXACT, *s));
@@ -38,7 +41,10 @@ pub fn section(runs: &Runs, paper: &str) -> String {
         return String::new();
     }
     let label = |(e, v): (&str, &str)| {
-        let r = rows.iter().find(|r| r.experiment == e && r.variant == v).expect("column taken from the rows");
+        let r = rows
+            .iter()
+            .find(|r| r.experiment == e && r.variant == v)
+            .expect("column taken from the rows");
         format!("{} · {}", r.scheme, r.path)
     };
     let mut out = String::new();
@@ -48,15 +54,23 @@ pub fn section(runs: &Runs, paper: &str) -> String {
         let mut t = Table::new(header);
         for s in &solvers {
             let mut row = vec![s.to_string()];
-            row.extend(columns.iter().map(|(e, v)| match runs.find(e, v, s) {
-                None => MISSING.to_string(),
-                Some(r) if !completed(r) => failed_at(r),
-                Some(r) => metric(r, column).map(sci).unwrap_or_else(|| MISSING.to_string()),
+            row.extend(columns.iter().map(|(e, v)| {
+                match runs.find(e, v, s) {
+                    None => MISSING.to_string(),
+                    Some(r) if !completed(r) => failed_at(r),
+                    Some(r) => metric(r, column)
+                        .map(sci)
+                        .unwrap_or_else(|| MISSING.to_string()),
+                }
             }));
             t.push(row);
         }
         let mut best_row = vec!["**best**".to_string()];
-        best_row.extend(columns.iter().map(|(e, v)| best_in(runs, e, v, column, best)));
+        best_row.extend(
+            columns
+                .iter()
+                .map(|(e, v)| best_in(runs, e, v, column, best)),
+        );
         t.push(best_row);
         out.push_str(&format!("**{title}**\n\n{}\n", t.render()));
     }
@@ -66,7 +80,9 @@ pub fn section(runs: &Runs, paper: &str) -> String {
 /// The best completed neural run of one column under `rule`, as "solver" — or "tie" when
 /// several share the best value (to a relative 1e-6).
 fn best_in(runs: &Runs, experiment: &str, variant: &str, column: &str, rule: Best) -> String {
-    let exact = runs.find(experiment, variant, EXACT).and_then(|r| metric(r, column));
+    let exact = runs
+        .find(experiment, variant, EXACT)
+        .and_then(|r| metric(r, column));
     let key = |x: f64| match rule {
         Best::Smallest => Some(x),
         Best::ClosestToExact => exact.map(|e| (x - e).abs()),
@@ -80,7 +96,10 @@ fn best_in(runs: &Runs, experiment: &str, variant: &str, column: &str, rule: Bes
     match ranked.as_slice() {
         [] => MISSING.to_string(),
         [(first, a), (_, b), ..] if (b - a).abs() <= 1e-6 * a.abs().max(b.abs()) => {
-            let n = ranked.iter().filter(|(_, k)| (k - a).abs() <= 1e-6 * a.abs().max(k.abs())).count();
+            let n = ranked
+                .iter()
+                .filter(|(_, k)| (k - a).abs() <= 1e-6 * a.abs().max(k.abs()))
+                .count();
             if n == ranked.len() {
                 format!("tie (all {n})")
             } else {

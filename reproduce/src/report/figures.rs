@@ -11,7 +11,11 @@ pub fn list(dir: &Path) -> Result<Vec<String>, String> {
     }
     let mut names = Vec::new();
     for entry in std::fs::read_dir(dir).map_err(|e| format!("{}: {e}", dir.display()))? {
-        let name = entry.map_err(|e| format!("{}: {e}", dir.display()))?.file_name().to_string_lossy().into_owned();
+        let name = entry
+            .map_err(|e| format!("{}: {e}", dir.display()))?
+            .file_name()
+            .to_string_lossy()
+            .into_owned();
         if name.ends_with(".svg") {
             names.push(name);
         }
@@ -30,15 +34,27 @@ pub fn links(figures: &[String], experiment: &str) -> String {
     }
     let mut out = String::new();
     if let Some(overview) = mine.iter().find(|f| f.ends_with("__overview.svg")) {
-        out.push_str(&format!("![{experiment}: overview](figures/{overview})\n\n"));
+        out.push_str(&format!(
+            "![{experiment}: overview](figures/{overview})\n\n"
+        ));
     }
     let items: Vec<String> = mine
         .iter()
         .filter(|f| !f.ends_with("__overview.svg"))
-        .map(|f| format!("[{}](figures/{f})", f.trim_start_matches(&prefix).trim_end_matches(".svg").replace("__", " / ")))
+        .map(|f| {
+            format!(
+                "[{}](figures/{f})",
+                f.trim_start_matches(&prefix)
+                    .trim_end_matches(".svg")
+                    .replace("__", " / ")
+            )
+        })
         .collect();
     if !items.is_empty() {
-        out.push_str(&format!("Figures of `{experiment}` (variant / solver): {}\n\n", items.join(" · ")));
+        out.push_str(&format!(
+            "Figures of `{experiment}` (variant / solver): {}\n\n",
+            items.join(" · ")
+        ));
     }
     out
 }

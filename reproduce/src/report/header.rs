@@ -10,7 +10,10 @@ pub fn header(runs: &Runs, published: usize, figures: usize) -> String {
         let mut v: Vec<&str> = runs.all().iter().map(f).collect();
         v.sort();
         v.dedup();
-        v.iter().map(|s| format!("`{s}`")).collect::<Vec<_>>().join(", ")
+        v.iter()
+            .map(|s| format!("`{s}`"))
+            .collect::<Vec<_>>()
+            .join(", ")
     };
     let mut out = String::from("# driftbench — reproduction report\n\n");
     out.push_str(
@@ -27,15 +30,33 @@ computational cost, a cross experiment (every solver on every scheme and path), 
         distinct(|r| &r.crate_version),
     ));
     let mut t = Table::new(["integrator", "rtol", "atol", "runs", "solvers"]);
-    let mut settings: Vec<(String, f64, f64)> = runs.all().iter().map(|r| (r.integrator.clone(), r.rtol, r.atol)).collect();
-    settings.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)).then(a.2.total_cmp(&b.2)));
+    let mut settings: Vec<(String, f64, f64)> = runs
+        .all()
+        .iter()
+        .map(|r| (r.integrator.clone(), r.rtol, r.atol))
+        .collect();
+    settings.sort_by(|a, b| {
+        a.0.cmp(&b.0)
+            .then(a.1.total_cmp(&b.1))
+            .then(a.2.total_cmp(&b.2))
+    });
     settings.dedup();
     for (method, rtol, atol) in settings {
-        let of: Vec<&crate::results::RunRow> = runs.all().iter().filter(|r| r.integrator == method && r.rtol == rtol && r.atol == atol).collect();
+        let of: Vec<&crate::results::RunRow> = runs
+            .all()
+            .iter()
+            .filter(|r| r.integrator == method && r.rtol == rtol && r.atol == atol)
+            .collect();
         let mut solvers: Vec<&str> = of.iter().map(|r| r.solver.as_str()).collect();
         solvers.sort();
         solvers.dedup();
-        t.push([method, sci(rtol), sci(atol), of.len().to_string(), solvers.join(", ")]);
+        t.push([
+            method,
+            sci(rtol),
+            sci(atol),
+            of.len().to_string(),
+            solvers.join(", "),
+        ]);
     }
     out.push_str("**Integrators and tolerances** (from the rows):\n\n");
     out.push_str(&t.render());

@@ -33,13 +33,20 @@ pub struct Table {
 impl Table {
     /// A table with these column headers and no rows.
     pub fn new<S: Into<String>>(header: impl IntoIterator<Item = S>) -> Self {
-        Table { header: header.into_iter().map(Into::into).collect(), rows: Vec::new() }
+        Table {
+            header: header.into_iter().map(Into::into).collect(),
+            rows: Vec::new(),
+        }
     }
 
     /// Appends a row (one cell per header column).
     pub fn push<S: Into<String>>(&mut self, row: impl IntoIterator<Item = S>) {
         let row: Vec<String> = row.into_iter().map(Into::into).collect();
-        debug_assert_eq!(row.len(), self.header.len(), "row width differs from the header");
+        debug_assert_eq!(
+            row.len(),
+            self.header.len(),
+            "row width differs from the header"
+        );
         self.rows.push(row);
     }
 
@@ -53,13 +60,32 @@ impl Table {
         let keep: Vec<bool> = (0..self.header.len())
             .map(|c| c == 0 || self.rows.iter().any(|r| r[c] != MISSING))
             .collect();
-        let pick = |cells: Vec<String>| cells.into_iter().zip(&keep).filter(|(_, k)| **k).map(|(c, _)| c).collect();
-        Table { header: pick(self.header), rows: self.rows.into_iter().map(pick).collect() }
+        let pick = |cells: Vec<String>| {
+            cells
+                .into_iter()
+                .zip(&keep)
+                .filter(|(_, k)| **k)
+                .map(|(c, _)| c)
+                .collect()
+        };
+        Table {
+            header: pick(self.header),
+            rows: self.rows.into_iter().map(pick).collect(),
+        }
     }
 
     /// The table as Markdown, ending with a newline.
     pub fn render(&self) -> String {
-        let line = |cells: &[String]| format!("| {} |\n", cells.iter().map(|c| escape(c)).collect::<Vec<_>>().join(" | "));
+        let line = |cells: &[String]| {
+            format!(
+                "| {} |\n",
+                cells
+                    .iter()
+                    .map(|c| escape(c))
+                    .collect::<Vec<_>>()
+                    .join(" | ")
+            )
+        };
         let mut out = line(&self.header);
         out.push_str(&format!("|{}\n", "---|".repeat(self.header.len())));
         for r in &self.rows {
@@ -89,6 +115,9 @@ mod tests {
     fn empty_columns_are_dropped_and_pipes_escaped() {
         let mut t = Table::new(["a", "b", "c"]);
         t.push(["x|y", MISSING, "1"]);
-        assert_eq!(t.without_empty_columns().render(), "| a | c |\n|---|---|\n| x\\|y | 1 |\n");
+        assert_eq!(
+            t.without_empty_columns().render(),
+            "| a | c |\n|---|---|\n| x\\|y | 1 |\n"
+        );
     }
 }

@@ -35,9 +35,18 @@ use std::path::{Path, PathBuf};
 /// The four papers, as (id, title), in report order.
 pub const PAPERS: &[(&str, &str)] = &[
     ("jia2019", "VLTCO scheme solved by LVI-PDNN (Jaco2)"),
-    ("zhang2018", "HL-JDF scheme solved by VP-CDNN vs FP-CDNN (Jaco2 with dynamics)"),
-    ("zhong2021", "CMCO scheme solved by VP-RNN-PF vs S-LVI-PDNN (Jaco2)"),
-    ("kong2019", "Finite-time repeatable motion planning (Katana 6M180)"),
+    (
+        "zhang2018",
+        "HL-JDF scheme solved by VP-CDNN vs FP-CDNN (Jaco2 with dynamics)",
+    ),
+    (
+        "zhong2021",
+        "CMCO scheme solved by VP-RNN-PF vs S-LVI-PDNN (Jaco2)",
+    ),
+    (
+        "kong2019",
+        "Finite-time repeatable motion planning (Katana 6M180)",
+    ),
 ];
 
 /// The `paper` value of the suite's own cross experiment.
@@ -62,7 +71,8 @@ impl Inputs {
         Ok(Inputs {
             runs: Runs::new(read_runs(&root.join("results").join("runs.csv"))?),
             values: read_paper_values(&report.join("paper-values.csv"))?,
-            deviations: std::fs::read_to_string(&deviations_path).map_err(|e| format!("{}: {e}", deviations_path.display()))?,
+            deviations: std::fs::read_to_string(&deviations_path)
+                .map_err(|e| format!("{}: {e}", deviations_path.display()))?,
             figures: figures::list(&report.join("figures"))?,
         })
     }
@@ -72,29 +82,51 @@ impl Inputs {
 pub fn render(root: &Path) -> Result<PathBuf, String> {
     let inputs = Inputs::load(root)?;
     let path = root.join("report").join("REPORT.md");
-    write_atomic(&path, to_markdown(&inputs).as_bytes()).map_err(|e| format!("{}: {e}", path.display()))?;
+    write_atomic(&path, to_markdown(&inputs).as_bytes())
+        .map_err(|e| format!("{}: {e}", path.display()))?;
     Ok(path)
 }
 
 /// The whole report as Markdown.
 pub fn to_markdown(inputs: &Inputs) -> String {
-    let Inputs { runs, values, deviations, figures } = inputs;
+    let Inputs {
+        runs,
+        values,
+        deviations,
+        figures,
+    } = inputs;
     let mut out = header::header(runs, values.len(), figures.len());
 
-    let evaluated: Vec<(&str, &str, Vec<claims::Claim>)> = PAPERS.iter().map(|&(p, title)| (p, title, claims::evaluate(p, runs, values))).collect();
+    let evaluated: Vec<(&str, &str, Vec<claims::Claim>)> = PAPERS
+        .iter()
+        .map(|&(p, title)| (p, title, claims::evaluate(p, runs, values)))
+        .collect();
     out.push_str("## Summary\n\n");
-    let mut summary = Table::new(["paper", "verdict", "claims PASS / FAIL / N/A", "our drift ÷ paper's"]);
+    let mut summary = Table::new([
+        "paper",
+        "verdict",
+        "claims PASS / FAIL / N/A",
+        "our drift ÷ paper's",
+    ]);
     for (paper, _, c) in &evaluated {
         let n = |v: claims::Verdict| c.iter().filter(|x| x.verdict == v).count();
         let ratios = verdict::drift_ratios(paper, runs, values);
-        let range = match (ratios.iter().map(|r| r.1).reduce(f64::min), ratios.iter().map(|r| r.1).reduce(f64::max)) {
+        let range = match (
+            ratios.iter().map(|r| r.1).reduce(f64::min),
+            ratios.iter().map(|r| r.1).reduce(f64::max),
+        ) {
             (Some(lo), Some(hi)) => format!("{} to {}", sci(lo), sci(hi)),
             _ => "no published table".to_string(),
         };
         summary.push([
             format!("[{paper}](#{paper})"),
             verdict::level(c, &ratios).to_string(),
-            format!("{} / {} / {}", n(claims::Verdict::Pass), n(claims::Verdict::Fail), n(claims::Verdict::NotApplicable)),
+            format!(
+                "{} / {} / {}",
+                n(claims::Verdict::Pass),
+                n(claims::Verdict::Fail),
+                n(claims::Verdict::NotApplicable)
+            ),
             range,
         ]);
     }
@@ -104,7 +136,11 @@ pub fn to_markdown(inputs: &Inputs) -> String {
     for (paper, title, c) in &evaluated {
         out.push_str(&format!("## {paper}\n\n*{title}.*\n\n"));
         out.push_str(&verdict::paragraph(paper, c, runs, values));
-        let tables: Vec<String> = tables::published_tables(paper, values).iter().map(|t| tables::side_by_side(paper, t, values, runs)).filter(|t| !t.is_empty()).collect();
+        let tables: Vec<String> = tables::published_tables(paper, values)
+            .iter()
+            .map(|t| tables::side_by_side(paper, t, values, runs))
+            .filter(|t| !t.is_empty())
+            .collect();
         if !tables.is_empty() {
             out.push_str("\n### Published tables side by side\n\n");
             out.push_str(&tables.join("\n"));
@@ -117,13 +153,19 @@ pub fn to_markdown(inputs: &Inputs) -> String {
             "\n### Every run\n\n"
         });
         for exp in runs.experiments(paper) {
-            out.push_str(&format!("#### `{exp}`\n\n{}", tables::runs_table(runs, &exp)));
+            out.push_str(&format!(
+                "#### `{exp}`\n\n{}",
+                tables::runs_table(runs, &exp)
+            ));
             out.push('\n');
             out.push_str(&figures::links(figures, &exp));
         }
     }
 
-    out.push_str(&format!("## Score against the exact optimum\n\n{}\n\n", score::NOTE));
+    out.push_str(&format!(
+        "## Score against the exact optimum\n\n{}\n\n",
+        score::NOTE
+    ));
     for paper in PAPERS.iter().map(|p| p.0).chain([CROSS]) {
         let t = score::score_table(runs, paper);
         if !t.is_empty() {
@@ -133,14 +175,24 @@ pub fn to_markdown(inputs: &Inputs) -> String {
 
     out.push_str("## Cost\n\nSteps, evaluations and QP solves are counted by the integrator and the scorer (the exact QP is solved at every RHS evaluation of the exact column and at every accepted step of a neural run). Wall times come from runs executed in parallel: compare them within one table, not across machines.\n\n");
     for paper in PAPERS.iter().map(|p| p.0).chain([CROSS]) {
-        out.push_str(&format!("### {paper}\n\n{}\n", cost::cost_table(runs, paper)));
+        out.push_str(&format!(
+            "### {paper}\n\n{}\n",
+            cost::cost_table(runs, paper)
+        ));
     }
     out.push_str("### zhong2021: compute time against the paper's MATLAB times\n\n");
     out.push_str(&cost::matlab_comparison(runs, values));
     out.push('\n');
 
     out.push_str("## Cross experiment\n\nEvery velocity-level solver on every velocity-level scheme and path (ids: ");
-    out.push_str(&runs.experiments(CROSS).iter().map(|e| format!("`{e}`")).collect::<Vec<_>>().join(", "));
+    out.push_str(
+        &runs
+            .experiments(CROSS)
+            .iter()
+            .map(|e| format!("`{e}`"))
+            .collect::<Vec<_>>()
+            .join(", "),
+    );
     out.push_str("). Columns are scheme · path; a failed run shows its failure time.\n\n");
     out.push_str(&cross::section(runs, CROSS));
     for exp in runs.experiments(CROSS) {
@@ -152,9 +204,25 @@ pub fn to_markdown(inputs: &Inputs) -> String {
     if missing.is_empty() {
         out.push_str("Every published number maps to a run.\n");
     } else {
-        let mut t = Table::new(["paper", "table", "experiment", "column", "metric", "value", "why"]);
+        let mut t = Table::new([
+            "paper",
+            "table",
+            "experiment",
+            "column",
+            "metric",
+            "value",
+            "why",
+        ]);
         for (v, why) in missing {
-            t.push([v.paper.clone(), v.table.clone(), v.experiment.clone(), v.column.clone(), v.metric.clone(), sci(v.value), why]);
+            t.push([
+                v.paper.clone(),
+                v.table.clone(),
+                v.experiment.clone(),
+                v.column.clone(),
+                v.metric.clone(),
+                sci(v.value),
+                why,
+            ]);
         }
         out.push_str(&t.render());
     }

@@ -30,7 +30,9 @@ pub struct PaperValue {
 /// Reads `report/paper-values.csv`.
 pub fn read_paper_values(path: &Path) -> Result<Vec<PaperValue>, String> {
     let mut r = csv::Reader::from_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    r.deserialize().map(|row| row.map_err(|e| format!("{}: {e}", path.display()))).collect()
+    r.deserialize()
+        .map(|row| row.map_err(|e| format!("{}: {e}", path.display())))
+        .collect()
 }
 
 /// Which of our runs reproduces one column of a published table.
@@ -60,7 +62,15 @@ const fn map(
     solver: &'static str,
     companions: &'static [&'static str],
 ) -> Mapping {
-    Mapping { paper, published_experiment, published_column, experiment, variant, solver, companions }
+    Mapping {
+        paper,
+        published_experiment,
+        published_column,
+        experiment,
+        variant,
+        solver,
+        companions,
+    }
 }
 
 const ZA: &str = "CMCO (eta=0.2, delta=0.4)";
@@ -74,26 +84,186 @@ const ZN0: &str = "ZNN (eq. 22) [start on theta*0]";
 /// runs that start on theta*0 (its theta5 drift of -8e-9 only makes sense there); the
 /// deviated-start runs are shown beside them.
 pub const MAPPINGS: &[Mapping] = &[
-    map("jia2019", "clover-mvn", "MVN (phi=1 tau=0)", "jia2019-clover", "MVN", "LVI-PDNN", &[]),
-    map("jia2019", "clover-mvn-invm", "MVN-INVM (phi=0.2 tau=0)", "jia2019-clover", "MVN-INVM", "LVI-PDNN", &[]),
-    map("jia2019", "clover-vltco", "VLTCO (phi=0.2 tau=0.4)", "jia2019-clover", "VLTCO", "LVI-PDNN", &[]),
-    map("jia2019", "star-vltco", "VLTCO five-point star T=5", "jia2019-star", "VLTCO", "LVI-PDNN", &["VLTCO [star-lines]"]),
-    map("jia2019", "ping-vltco", "VLTCO character ping T=15", "jia2019-ping", "VLTCO", "LVI-PDNN", &[]),
-    map("zhong2021", "clover-cmco-0.2-0.4", "VP-RNN-PF linear", "zhong2021-clover-a", ZA, "VP-RNN-PF (linear)", &[]),
-    map("zhong2021", "clover-cmco-0.2-0.4", "VP-RNN-PF sinh", "zhong2021-clover-a", ZA, "VP-RNN-PF (sinh)", &[]),
-    map("zhong2021", "clover-cmco-0.2-0.4", "VP-RNN-PF power-sigmoid", "zhong2021-clover-a", ZA, "VP-RNN-PF (power-sigmoid)", &[]),
-    map("zhong2021", "clover-cmco-0.2-0.4", "S-LVI-PDNN", "zhong2021-clover-a", ZA, "S-LVI-PDNN", &[]),
-    map("zhong2021", "clover-cmco-0.1-0.8", "VP-RNN-PF linear", "zhong2021-clover-b", ZB, "VP-RNN-PF (linear)", &[]),
-    map("zhong2021", "clover-cmco-0.1-0.8", "VP-RNN-PF sinh", "zhong2021-clover-b", ZB, "VP-RNN-PF (sinh)", &[]),
-    map("zhong2021", "clover-cmco-0.1-0.8", "VP-RNN-PF power-sigmoid", "zhong2021-clover-b", ZB, "VP-RNN-PF (power-sigmoid)", &[]),
-    map("zhong2021", "clover-cmco-0.1-0.8", "S-LVI-PDNN", "zhong2021-clover-b", ZB, "S-LVI-PDNN", &[]),
-    map("zhong2021", "dai-cmco-0.1-0.8", "VP-RNN-PF linear", "zhong2021-dai", ZB, "VP-RNN-PF (linear)", &[]),
-    map("zhong2021", "dai-cmco-0.1-0.8", "VP-RNN-PF sinh", "zhong2021-dai", ZB, "VP-RNN-PF (sinh)", &[]),
-    map("zhong2021", "dai-cmco-0.1-0.8", "VP-RNN-PF power-sigmoid", "zhong2021-dai", ZB, "VP-RNN-PF (power-sigmoid)", &[]),
-    map("zhong2021", "dai-cmco-0.1-0.8", "S-LVI-PDNN", "zhong2021-dai", ZB, "S-LVI-PDNN", &[]),
-    map("kong2019", "circle-rmp", "finite-time scheme (12)", "kong2019-circle", FT0, "FTNN", &[FT]),
-    map("kong2019", "circle-rmp", "ZNN scheme (22)", "kong2019-circle", ZN0, "ZNN", &[ZN]),
-    map("kong2019", "triangle-rmp", "finite-time scheme (12)", "kong2019-triangle", FT, "FTNN", &[]),
+    map(
+        "jia2019",
+        "clover-mvn",
+        "MVN (phi=1 tau=0)",
+        "jia2019-clover",
+        "MVN",
+        "LVI-PDNN",
+        &[],
+    ),
+    map(
+        "jia2019",
+        "clover-mvn-invm",
+        "MVN-INVM (phi=0.2 tau=0)",
+        "jia2019-clover",
+        "MVN-INVM",
+        "LVI-PDNN",
+        &[],
+    ),
+    map(
+        "jia2019",
+        "clover-vltco",
+        "VLTCO (phi=0.2 tau=0.4)",
+        "jia2019-clover",
+        "VLTCO",
+        "LVI-PDNN",
+        &[],
+    ),
+    map(
+        "jia2019",
+        "star-vltco",
+        "VLTCO five-point star T=5",
+        "jia2019-star",
+        "VLTCO",
+        "LVI-PDNN",
+        &["VLTCO [star-lines]"],
+    ),
+    map(
+        "jia2019",
+        "ping-vltco",
+        "VLTCO character ping T=15",
+        "jia2019-ping",
+        "VLTCO",
+        "LVI-PDNN",
+        &[],
+    ),
+    map(
+        "zhong2021",
+        "clover-cmco-0.2-0.4",
+        "VP-RNN-PF linear",
+        "zhong2021-clover-a",
+        ZA,
+        "VP-RNN-PF (linear)",
+        &[],
+    ),
+    map(
+        "zhong2021",
+        "clover-cmco-0.2-0.4",
+        "VP-RNN-PF sinh",
+        "zhong2021-clover-a",
+        ZA,
+        "VP-RNN-PF (sinh)",
+        &[],
+    ),
+    map(
+        "zhong2021",
+        "clover-cmco-0.2-0.4",
+        "VP-RNN-PF power-sigmoid",
+        "zhong2021-clover-a",
+        ZA,
+        "VP-RNN-PF (power-sigmoid)",
+        &[],
+    ),
+    map(
+        "zhong2021",
+        "clover-cmco-0.2-0.4",
+        "S-LVI-PDNN",
+        "zhong2021-clover-a",
+        ZA,
+        "S-LVI-PDNN",
+        &[],
+    ),
+    map(
+        "zhong2021",
+        "clover-cmco-0.1-0.8",
+        "VP-RNN-PF linear",
+        "zhong2021-clover-b",
+        ZB,
+        "VP-RNN-PF (linear)",
+        &[],
+    ),
+    map(
+        "zhong2021",
+        "clover-cmco-0.1-0.8",
+        "VP-RNN-PF sinh",
+        "zhong2021-clover-b",
+        ZB,
+        "VP-RNN-PF (sinh)",
+        &[],
+    ),
+    map(
+        "zhong2021",
+        "clover-cmco-0.1-0.8",
+        "VP-RNN-PF power-sigmoid",
+        "zhong2021-clover-b",
+        ZB,
+        "VP-RNN-PF (power-sigmoid)",
+        &[],
+    ),
+    map(
+        "zhong2021",
+        "clover-cmco-0.1-0.8",
+        "S-LVI-PDNN",
+        "zhong2021-clover-b",
+        ZB,
+        "S-LVI-PDNN",
+        &[],
+    ),
+    map(
+        "zhong2021",
+        "dai-cmco-0.1-0.8",
+        "VP-RNN-PF linear",
+        "zhong2021-dai",
+        ZB,
+        "VP-RNN-PF (linear)",
+        &[],
+    ),
+    map(
+        "zhong2021",
+        "dai-cmco-0.1-0.8",
+        "VP-RNN-PF sinh",
+        "zhong2021-dai",
+        ZB,
+        "VP-RNN-PF (sinh)",
+        &[],
+    ),
+    map(
+        "zhong2021",
+        "dai-cmco-0.1-0.8",
+        "VP-RNN-PF power-sigmoid",
+        "zhong2021-dai",
+        ZB,
+        "VP-RNN-PF (power-sigmoid)",
+        &[],
+    ),
+    map(
+        "zhong2021",
+        "dai-cmco-0.1-0.8",
+        "S-LVI-PDNN",
+        "zhong2021-dai",
+        ZB,
+        "S-LVI-PDNN",
+        &[],
+    ),
+    map(
+        "kong2019",
+        "circle-rmp",
+        "finite-time scheme (12)",
+        "kong2019-circle",
+        FT0,
+        "FTNN",
+        &[FT],
+    ),
+    map(
+        "kong2019",
+        "circle-rmp",
+        "ZNN scheme (22)",
+        "kong2019-circle",
+        ZN0,
+        "ZNN",
+        &[ZN],
+    ),
+    map(
+        "kong2019",
+        "triangle-rmp",
+        "finite-time scheme (12)",
+        "kong2019-triangle",
+        FT,
+        "FTNN",
+        &[],
+    ),
 ];
 
 /// The `runs.csv` column that measures a published metric, if we measure it.
@@ -115,16 +285,22 @@ pub fn our_metric(published_metric: &str) -> Option<&'static str> {
 
 /// The mapping of a published number's (paper, experiment, column), if any.
 pub fn mapping_of(v: &PaperValue) -> Option<&'static Mapping> {
-    MAPPINGS
-        .iter()
-        .find(|m| m.paper == v.paper && m.published_experiment == v.experiment && m.published_column == v.column)
+    MAPPINGS.iter().find(|m| {
+        m.paper == v.paper
+            && m.published_experiment == v.experiment
+            && m.published_column == v.column
+    })
 }
 
 /// Where a published number lands among our runs.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Resolution<'a> {
     /// Our run and the `runs.csv` column that measures the number.
-    Found { mapping: &'static Mapping, run: &'a RunRow, metric: &'static str },
+    Found {
+        mapping: &'static Mapping,
+        run: &'a RunRow,
+        metric: &'static str,
+    },
     /// No run reproduces it (with the reason, for the report).
     Unmapped(String),
 }
@@ -132,13 +308,19 @@ pub enum Resolution<'a> {
 /// Finds the run (and column) that reproduces a published number.
 pub fn resolve<'a>(v: &PaperValue, runs: &'a Runs) -> Resolution<'a> {
     let Some(mapping) = mapping_of(v) else {
-        return Resolution::Unmapped("no single run corresponds (see the claims checklist)".to_string());
+        return Resolution::Unmapped(
+            "no single run corresponds (see the claims checklist)".to_string(),
+        );
     };
     let Some(metric) = our_metric(&v.metric) else {
         return Resolution::Unmapped(format!("the suite does not record `{}`", v.metric));
     };
     match runs.find(mapping.experiment, mapping.variant, mapping.solver) {
-        Some(run) => Resolution::Found { mapping, run, metric },
+        Some(run) => Resolution::Found {
+            mapping,
+            run,
+            metric,
+        },
         None => Resolution::Unmapped(format!(
             "mapped to {} / {} / {}, but that run is missing from results/runs.csv",
             mapping.experiment, mapping.variant, mapping.solver
@@ -162,7 +344,9 @@ pub fn unmapped<'a>(values: &'a [PaperValue], runs: &Runs) -> Vec<(&'a PaperValu
 /// per-joint entries (flagged `true`).
 pub fn published(values: &[PaperValue], mapping: &Mapping, metric: &str) -> Option<(f64, bool)> {
     let of_column = || {
-        values.iter().filter(move |v| mapping_of(v) == Some(mapping))
+        values
+            .iter()
+            .filter(move |v| mapping_of(v) == Some(mapping))
     };
     if let Some(v) = of_column().find(|v| our_metric(&v.metric) == Some(metric)) {
         return Some((v.value, false));
@@ -170,6 +354,9 @@ pub fn published(values: &[PaperValue], mapping: &Mapping, metric: &str) -> Opti
     if metric != "drift_norm" {
         return None;
     }
-    let joints: Vec<f64> = of_column().filter(|v| v.metric.starts_with("drift_") && v.metric != "drift_norm").map(|v| v.value).collect();
+    let joints: Vec<f64> = of_column()
+        .filter(|v| v.metric.starts_with("drift_") && v.metric != "drift_norm")
+        .map(|v| v.value)
+        .collect();
     (!joints.is_empty()).then(|| (joints.iter().map(|d| d * d).sum::<f64>().sqrt(), true))
 }

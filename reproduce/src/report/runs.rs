@@ -26,12 +26,15 @@ impl Runs {
 
     /// The run of `solver` on `variant` of `experiment`.
     pub fn find(&self, experiment: &str, variant: &str, solver: &str) -> Option<&RunRow> {
-        self.rows.iter().find(|r| r.experiment == experiment && r.variant == variant && r.solver == solver)
+        self.rows
+            .iter()
+            .find(|r| r.experiment == experiment && r.variant == variant && r.solver == solver)
     }
 
     /// Like [`Runs::find`], with the missing run as an error message.
     pub fn need(&self, experiment: &str, variant: &str, solver: &str) -> Result<&RunRow, String> {
-        self.find(experiment, variant, solver).ok_or_else(|| format!("no run of {solver} on {experiment} / {variant}"))
+        self.find(experiment, variant, solver)
+            .ok_or_else(|| format!("no run of {solver} on {experiment} / {variant}"))
     }
 
     /// The runs of one paper (the `paper` column).
@@ -40,7 +43,10 @@ impl Runs {
     }
 
     /// The runs of one experiment.
-    pub fn of_experiment<'a>(&'a self, experiment: &'a str) -> impl Iterator<Item = &'a RunRow> + 'a {
+    pub fn of_experiment<'a>(
+        &'a self,
+        experiment: &'a str,
+    ) -> impl Iterator<Item = &'a RunRow> + 'a {
         self.rows.iter().filter(move |r| r.experiment == experiment)
     }
 

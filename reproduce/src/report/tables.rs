@@ -41,7 +41,9 @@ pub fn published_tables(paper: &str, values: &[PaperValue]) -> Vec<String> {
 /// The mapped columns of one published table, in the CSV's order.
 fn columns_of(paper: &str, table: &str, values: &[PaperValue]) -> Vec<&'static Mapping> {
     let mut cols: Vec<&'static Mapping> = Vec::new();
-    let measured = values.iter().filter(|v| v.paper == paper && v.table == table && our_metric(&v.metric).is_some());
+    let measured = values
+        .iter()
+        .filter(|v| v.paper == paper && v.table == table && our_metric(&v.metric).is_some());
     for m in measured.filter_map(mapping_of) {
         if !cols.contains(&m) {
             cols.push(m);
@@ -53,23 +55,40 @@ fn columns_of(paper: &str, table: &str, values: &[PaperValue]) -> Vec<&'static M
 /// The quantities (our column names) of one published table: what the paper prints and we
 /// measure, plus the drift norm (derived when the paper prints only joints) and the drift
 /// against theta*0 when some shown run starts off it.
-fn quantities_of(paper: &str, table: &str, values: &[PaperValue], shown: &[&RunRow]) -> Vec<&'static str> {
+fn quantities_of(
+    paper: &str,
+    table: &str,
+    values: &[PaperValue],
+    shown: &[&RunRow],
+) -> Vec<&'static str> {
     let mut q: Vec<&'static str> = Vec::new();
-    for m in values.iter().filter(|v| v.paper == paper && v.table == table && mapping_of(v).is_some()).filter_map(|v| our_metric(&v.metric)) {
+    for m in values
+        .iter()
+        .filter(|v| v.paper == paper && v.table == table && mapping_of(v).is_some())
+        .filter_map(|v| our_metric(&v.metric))
+    {
         if !q.contains(&m) {
             q.push(m);
         }
     }
     if q.iter().any(|m| m.starts_with("drift_")) && !q.contains(&"drift_norm") {
-        let at = q.iter().rposition(|m| m.starts_with("drift_")).map_or(q.len(), |i| i + 1);
+        let at = q
+            .iter()
+            .rposition(|m| m.starts_with("drift_"))
+            .map_or(q.len(), |i| i + 1);
         q.insert(at, "drift_norm");
     }
-    let off_reference = shown.iter().any(|r| match (r.drift_norm, r.drift_ref_norm) {
-        (Some(a), Some(b)) => (a - b).abs() > 1e-12 * a.abs().max(1.0),
-        _ => false,
-    });
+    let off_reference = shown
+        .iter()
+        .any(|r| match (r.drift_norm, r.drift_ref_norm) {
+            (Some(a), Some(b)) => (a - b).abs() > 1e-12 * a.abs().max(1.0),
+            _ => false,
+        });
     if off_reference {
-        let at = q.iter().position(|m| *m == "drift_norm").map_or(q.len(), |i| i + 1);
+        let at = q
+            .iter()
+            .position(|m| *m == "drift_norm")
+            .map_or(q.len(), |i| i + 1);
         q.insert(at, "drift_ref_norm");
     }
     q
@@ -88,8 +107,16 @@ pub fn side_by_side(paper: &str, table: &str, values: &[PaperValue], runs: &Runs
     if columns.is_empty() {
         return String::new();
     }
-    let one_variant = columns.iter().all(|c| c.variant == columns[0].variant && c.companions.is_empty());
-    let name = |solver: &str, variant: &str| if one_variant { solver.to_string() } else { format!("{solver}, {variant}") };
+    let one_variant = columns
+        .iter()
+        .all(|c| c.variant == columns[0].variant && c.companions.is_empty());
+    let name = |solver: &str, variant: &str| {
+        if one_variant {
+            solver.to_string()
+        } else {
+            format!("{solver}, {variant}")
+        }
+    };
 
     // Column layout: per published column, the paper's number then, per variant, the exact
     // run (once per variant), the paper's solver and the ratio.
@@ -104,14 +131,29 @@ pub fn side_by_side(paper: &str, table: &str, values: &[PaperValue], runs: &Runs
         for variant in std::iter::once(&m.variant).chain(m.companions.iter()) {
             if !exact_shown.contains(&(m.experiment, variant)) {
                 exact_shown.push((m.experiment, variant));
-                cols.push(Col::Ours(OursColumn { header: name("exact", variant), run: runs.find(m.experiment, variant, EXACT), ratio_of: None }));
+                cols.push(Col::Ours(OursColumn {
+                    header: name("exact", variant),
+                    run: runs.find(m.experiment, variant, EXACT),
+                    ratio_of: None,
+                }));
             }
             let run = runs.find(m.experiment, variant, m.solver);
-            cols.push(Col::Ours(OursColumn { header: name(m.solver, variant), run, ratio_of: None }));
-            cols.push(Col::Ours(OursColumn { header: "ratio".to_string(), run, ratio_of: Some(m) }));
+            cols.push(Col::Ours(OursColumn {
+                header: name(m.solver, variant),
+                run,
+                ratio_of: None,
+            }));
+            cols.push(Col::Ours(OursColumn {
+                header: "ratio".to_string(),
+                run,
+                ratio_of: Some(m),
+            }));
         }
     }
-    let shown: Vec<&RunRow> = cols.iter().filter_map(|c| if let Col::Ours(o) = c { o.run } else { None }).collect();
+    let shown: Vec<&RunRow> = cols
+        .iter()
+        .filter_map(|c| if let Col::Ours(o) = c { o.run } else { None })
+        .collect();
 
     let mut header = vec!["quantity".to_string()];
     header.extend(cols.iter().map(|c| match c {
@@ -132,9 +174,19 @@ pub fn side_by_side(paper: &str, table: &str, values: &[PaperValue], runs: &Runs
                     None => MISSING.to_string(),
                 },
                 Col::Ours(OursColumn { run: None, .. }) => "no run".to_string(),
-                Col::Ours(OursColumn { run: Some(r), ratio_of: None, .. }) => metric_cell(r, q),
-                Col::Ours(OursColumn { run: Some(r), ratio_of: Some(m), .. }) => {
-                    let ratio = metric(r, q).zip(published(values, m, q)).map(|(o, (p, _))| o / p);
+                Col::Ours(OursColumn {
+                    run: Some(r),
+                    ratio_of: None,
+                    ..
+                }) => metric_cell(r, q),
+                Col::Ours(OursColumn {
+                    run: Some(r),
+                    ratio_of: Some(m),
+                    ..
+                }) => {
+                    let ratio = metric(r, q)
+                        .zip(published(values, m, q))
+                        .map(|(o, (p, _))| o / p);
                     sci_opt(ratio)
                 }
             });
@@ -142,14 +194,28 @@ pub fn side_by_side(paper: &str, table: &str, values: &[PaperValue], runs: &Runs
         t.push(row);
     }
     let mut out = String::new();
-    let ids: Vec<&str> = columns.iter().map(|c| c.experiment).fold(Vec::new(), |mut v, e| {
-        if !v.contains(&e) {
-            v.push(e);
-        }
-        v
-    });
-    let caption = if table == "text" { "Numbers quoted in the text".to_string() } else { format!("Table {}", table.trim_start_matches('T')) };
-    out.push_str(&format!("**{caption}** — our experiment{} {}", if ids.len() > 1 { "s" } else { "" }, ids.iter().map(|e| format!("`{e}`")).collect::<Vec<_>>().join(", ")));
+    let ids: Vec<&str> = columns
+        .iter()
+        .map(|c| c.experiment)
+        .fold(Vec::new(), |mut v, e| {
+            if !v.contains(&e) {
+                v.push(e);
+            }
+            v
+        });
+    let caption = if table == "text" {
+        "Numbers quoted in the text".to_string()
+    } else {
+        format!("Table {}", table.trim_start_matches('T'))
+    };
+    out.push_str(&format!(
+        "**{caption}** — our experiment{} {}",
+        if ids.len() > 1 { "s" } else { "" },
+        ids.iter()
+            .map(|e| format!("`{e}`"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    ));
     if one_variant {
         out.push_str(&format!(", variant \"{}\"", columns[0].variant));
     }
@@ -170,7 +236,15 @@ pub fn runs_table(runs: &Runs, experiment: &str) -> String {
     if off_reference {
         quantities.push("drift_ref_norm");
     }
-    quantities.extend(["max_pos_err", "final_pos_err", "peak_thetadot", "peak_thetaddot", "peak_torque", "theta_margin", "thetadot_margin"]);
+    quantities.extend([
+        "max_pos_err",
+        "final_pos_err",
+        "peak_thetadot",
+        "peak_thetaddot",
+        "peak_torque",
+        "theta_margin",
+        "thetadot_margin",
+    ]);
     let label = |q: &str| match q {
         "peak_thetadot" => "peak |θ̇|".to_string(),
         "peak_thetaddot" => "peak |θ̈|".to_string(),

@@ -23,7 +23,9 @@ const SOLVER_MATTERS: f64 = 0.05;
 pub fn level(claims: &[Claim], ratios: &[(String, f64)]) -> &'static str {
     let count = |v: Verdict| claims.iter().filter(|c| c.verdict == v).count();
     let (pass, fail) = (count(Verdict::Pass), count(Verdict::Fail));
-    let close = ratios.iter().all(|(_, r)| (1.0 / CLOSE..=CLOSE).contains(r));
+    let close = ratios
+        .iter()
+        .all(|(_, r)| (1.0 / CLOSE..=CLOSE).contains(r));
     match (pass, fail) {
         (0, 0) => "not evaluated",
         (_, 0) if close => "reproduced",
@@ -34,8 +36,14 @@ pub fn level(claims: &[Claim], ratios: &[(String, f64)]) -> &'static str {
 }
 
 /// Our run of the paper's solver for each mapped column of `paper`, with its mapping.
-fn mapped_runs<'a>(paper: &'a str, runs: &'a Runs) -> impl Iterator<Item = (&'static Mapping, &'a RunRow)> + 'a {
-    MAPPINGS.iter().filter(move |m| m.paper == paper).filter_map(move |m| runs.find(m.experiment, m.variant, m.solver).map(|r| (m, r)))
+fn mapped_runs<'a>(
+    paper: &'a str,
+    runs: &'a Runs,
+) -> impl Iterator<Item = (&'static Mapping, &'a RunRow)> + 'a {
+    MAPPINGS
+        .iter()
+        .filter(move |m| m.paper == paper)
+        .filter_map(move |m| runs.find(m.experiment, m.variant, m.solver).map(|r| (m, r)))
 }
 
 /// Our drift norm (the paper's solver, primary variant) over the paper's, per mapped column,
@@ -44,7 +52,10 @@ pub fn drift_ratios(paper: &str, runs: &Runs, values: &[PaperValue]) -> Vec<(Str
     mapped_runs(paper, runs)
         .filter_map(|(m, r)| {
             let (p, _) = published(values, m, "drift_norm")?;
-            Some((format!("{}, {}", r.experiment, m.published_column), r.drift_norm? / p))
+            Some((
+                format!("{}, {}", r.experiment, m.published_column),
+                r.drift_norm? / p,
+            ))
         })
         .collect()
 }
@@ -54,7 +65,9 @@ fn sign_agreement(paper: &str, runs: &Runs, values: &[PaperValue]) -> (usize, us
     let mut same = 0;
     let mut compared = 0;
     for (m, r) in mapped_runs(paper, runs) {
-        for joint in ["drift_1", "drift_2", "drift_3", "drift_4", "drift_5", "drift_6"] {
+        for joint in [
+            "drift_1", "drift_2", "drift_3", "drift_4", "drift_5", "drift_6",
+        ] {
             if let (Some((p, _)), Some(o)) = (published(values, m, joint), metric(r, joint)) {
                 compared += 1;
                 same += usize::from(p.signum() == o.signum());
@@ -77,9 +90,24 @@ fn solver_effect<'a>(paper: &'a str, runs: &'a Runs) -> Option<(f64, &'a RunRow)
 /// The verdict paragraph of one paper.
 pub fn paragraph(paper: &str, claims: &[Claim], runs: &Runs, values: &[PaperValue]) -> String {
     let ratios = drift_ratios(paper, runs, values);
-    let of = |v: Verdict| claims.iter().filter(|c| c.verdict == v).map(|c| c.short.as_str()).collect::<Vec<_>>();
-    let (pass, fail, na) = (of(Verdict::Pass), of(Verdict::Fail), of(Verdict::NotApplicable));
-    let mut out = format!("**Verdict: {}.** {} of {} evaluated claims hold", level(claims, &ratios), pass.len(), pass.len() + fail.len());
+    let of = |v: Verdict| {
+        claims
+            .iter()
+            .filter(|c| c.verdict == v)
+            .map(|c| c.short.as_str())
+            .collect::<Vec<_>>()
+    };
+    let (pass, fail, na) = (
+        of(Verdict::Pass),
+        of(Verdict::Fail),
+        of(Verdict::NotApplicable),
+    );
+    let mut out = format!(
+        "**Verdict: {}.** {} of {} evaluated claims hold",
+        level(claims, &ratios),
+        pass.len(),
+        pass.len() + fail.len()
+    );
     if !pass.is_empty() {
         out.push_str(&format!(" ({})", pass.join("; ")));
     }
@@ -94,7 +122,10 @@ pub fn paragraph(paper: &str, claims: &[Claim], runs: &Runs, values: &[PaperValu
         out.push_str(" The paper prints no drift table: the verdict rests on the qualitative claims of its figures.");
     } else {
         let by = |a: &&(String, f64), b: &&(String, f64)| a.1.total_cmp(&b.1);
-        let (lo, hi) = (ratios.iter().min_by(by).expect("nonempty"), ratios.iter().max_by(by).expect("nonempty"));
+        let (lo, hi) = (
+            ratios.iter().min_by(by).expect("nonempty"),
+            ratios.iter().max_by(by).expect("nonempty"),
+        );
         out.push_str(&format!(
             " Magnitudes: over {} published columns our drift norm (the paper's solver) is {} (`{}`) to {} (`{}`) times the paper's: {}.",
             ratios.len(),
@@ -105,7 +136,9 @@ pub fn paragraph(paper: &str, claims: &[Claim], runs: &Runs, values: &[PaperValu
             if lo.1 >= 1.0 / CLOSE && hi.1 <= CLOSE { format!("within a factor {CLOSE}") } else { format!("beyond a factor {CLOSE}") }
         ));
         let (same, compared) = sign_agreement(paper, runs, values);
-        out.push_str(&format!(" The per-joint drifts have the paper's sign in {same} of {compared} entries."));
+        out.push_str(&format!(
+            " The per-joint drifts have the paper's sign in {same} of {compared} entries."
+        ));
     }
     if let Some((e, r)) = solver_effect(paper, runs) {
         if e <= SOLVER_MATTERS {

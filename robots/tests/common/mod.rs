@@ -9,7 +9,9 @@ use rand_chacha::ChaCha8Rng;
 /// Seeded random joint vectors with entries uniform in [-lim, lim].
 pub fn random_vectors<const N: usize>(seed: u64, count: usize, lim: f64) -> Vec<SVector<f64, N>> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    (0..count).map(|_| SVector::from_fn(|_, _| rng.gen_range(-lim..lim))).collect()
+    (0..count)
+        .map(|_| SVector::from_fn(|_, _| rng.gen_range(-lim..lim)))
+        .collect()
 }
 
 /// Central-difference Jacobian of a vector function.
@@ -86,7 +88,11 @@ pub fn rot(t: &Matrix4<f64>) -> Matrix3<f64> {
 /// Singular values of a 3 x N matrix, descending.
 pub fn singular_values<const N: usize>(j: &SMatrix<f64, 3, N>) -> [f64; 3] {
     let eig = (j * j.transpose()).symmetric_eigenvalues();
-    let mut s = [eig[0].max(0.0).sqrt(), eig[1].max(0.0).sqrt(), eig[2].max(0.0).sqrt()];
+    let mut s = [
+        eig[0].max(0.0).sqrt(),
+        eig[1].max(0.0).sqrt(),
+        eig[2].max(0.0).sqrt(),
+    ];
     s.sort_by(|a, b| b.partial_cmp(a).unwrap());
     s
 }

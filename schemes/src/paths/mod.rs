@@ -31,6 +31,7 @@ pub mod characters;
 pub mod curve;
 pub mod error;
 pub mod polyline_global;
+pub mod reversed;
 pub mod spec;
 pub mod stroke;
 pub mod time_law;
@@ -39,6 +40,7 @@ pub use characters::{Character, DAI, PING};
 pub use curve::{ClosedCurve, CurveShape};
 pub use error::PathError;
 pub use polyline_global::GlobalPolyline;
+pub use reversed::Reversed;
 pub use spec::{
     build_path, default_duration, default_scale, scale_provenance, PathSpec, PATH_NAMES,
 };

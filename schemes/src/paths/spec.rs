@@ -18,6 +18,7 @@ use super::characters::{DAI, PING};
 use super::curve::{ClosedCurve, CurveShape};
 use super::error::PathError;
 use super::polyline_global::GlobalPolyline;
+use super::reversed::Reversed;
 use super::stroke::StrokePath;
 use super::Path;
 use nalgebra::Vector3;
@@ -33,6 +34,9 @@ pub struct PathSpec {
     /// Size override (a, R, s, side or r in metres); `None` uses [`default_scale`].
     #[serde(default)]
     pub scale: Option<f64>,
+    /// Travel the path backwards (same curve, opposite orientation; see [`Reversed`]).
+    #[serde(default)]
+    pub reverse: bool,
 }
 
 /// Every path name [`build_path`] accepts.
@@ -101,7 +105,7 @@ pub fn build_path(spec: &PathSpec, start: Vector3<f64>) -> Result<Box<dyn Path>,
     }
     let curve =
         |shape| Ok(Box::new(ClosedCurve::new(shape, size, start, duration)) as Box<dyn Path>);
-    match spec.name.as_str() {
+    let forward: Result<Box<dyn Path>, PathError> = match spec.name.as_str() {
         "four-leaf-clover" => curve(CurveShape::FourLeafClover),
         "five-point-star" => curve(CurveShape::FivePointStar),
         "butterfly" => curve(CurveShape::Butterfly),
@@ -112,5 +116,11 @@ pub fn build_path(spec: &PathSpec, start: Vector3<f64>) -> Result<Box<dyn Path>,
         "dai" => Ok(Box::new(DAI.path(start, size, duration)?)),
         "triangle" => Ok(Box::new(StrokePath::triangle(start, size, duration)?)),
         other => unreachable!("{other} is in TABLE but has no constructor"),
-    }
+    };
+    let forward = forward?;
+    Ok(if spec.reverse {
+        Box::new(Reversed::new(forward))
+    } else {
+        forward
+    })
 }

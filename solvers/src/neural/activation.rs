@@ -87,7 +87,10 @@ pub enum ActivationKind {
 impl Activation {
     /// The zhong2021 power-sigmoid with the default alpha = 4, chi = 3.
     pub fn power_sigmoid_default() -> Self {
-        Activation::PowerSigmoid { alpha: POWER_SIGMOID_ALPHA, chi: POWER_SIGMOID_CHI }
+        Activation::PowerSigmoid {
+            alpha: POWER_SIGMOID_ALPHA,
+            chi: POWER_SIGMOID_CHI,
+        }
     }
 
     /// Check the papers' parameter ranges.
@@ -105,7 +108,9 @@ impl Activation {
                 if !(r > 0.0 && r.is_finite()) {
                     Err(format!("sign-power needs an exponent r > 0, got {r}"))
                 } else if !(smoothing >= 0.0 && smoothing.is_finite()) {
-                    Err(format!("sign-power linear zone must be >= 0, got {smoothing}"))
+                    Err(format!(
+                        "sign-power linear zone must be >= 0, got {smoothing}"
+                    ))
                 } else {
                     Ok(())
                 }
@@ -118,7 +123,9 @@ impl Activation {
         match *self {
             Activation::Linear => "linear".into(),
             Activation::Sinh => "sinh".into(),
-            Activation::PowerSigmoid { alpha, chi } => format!("power-sigmoid(alpha={alpha},chi={chi})"),
+            Activation::PowerSigmoid { alpha, chi } => {
+                format!("power-sigmoid(alpha={alpha},chi={chi})")
+            }
             Activation::SignPower { r, smoothing } => {
                 if smoothing > 0.0 {
                     format!("sign-power(r={r},linear below {smoothing:e})")

@@ -51,16 +51,32 @@ pub struct Trig {
 }
 
 const fn s(k: f64) -> Trig {
-    Trig { sign: 1.0, sine: true, k }
+    Trig {
+        sign: 1.0,
+        sine: true,
+        k,
+    }
 }
 const fn ns(k: f64) -> Trig {
-    Trig { sign: -1.0, sine: true, k }
+    Trig {
+        sign: -1.0,
+        sine: true,
+        k,
+    }
 }
 const fn c(k: f64) -> Trig {
-    Trig { sign: 1.0, sine: false, k }
+    Trig {
+        sign: 1.0,
+        sine: false,
+        k,
+    }
 }
 const fn nc(k: f64) -> Trig {
-    Trig { sign: -1.0, sine: false, k }
+    Trig {
+        sign: -1.0,
+        sine: false,
+        k,
+    }
 }
 
 impl Trig {
@@ -73,15 +89,105 @@ impl Trig {
 
 /// D0(t) of experiments.md, row by row, as functions of w = pi t / T.
 pub const D0_TABLE: [[Trig; 9]; 9] = [
-    [s(1.), c(1.), ns(2.), c(1.), ns(1.), c(3.), ns(1.), c(1.), ns(1.)],
-    [c(2.), c(2.), nc(4.), s(1.), ns(2.), nc(3.), ns(2.), c(1.), ns(1.)],
-    [s(3.), ns(4.), c(5.), nc(3.), c(4.), ns(5.), c(2.), ns(1.), c(1.)],
-    [s(1.), c(1.), ns(1.), c(1.), ns(1.), c(1.), ns(1.), c(1.), ns(1.)],
-    [s(1.), c(2.), ns(1.), c(1.), ns(2.), c(1.), ns(2.), c(1.), ns(1.)],
-    [ns(2.), c(1.), ns(2.), c(1.), ns(1.), c(1.), c(2.), ns(1.), c(1.)],
-    [s(1.), c(1.), ns(1.), c(2.), ns(2.), c(1.), ns(2.), c(1.), ns(1.)],
-    [s(1.), c(1.), ns(1.), c(1.), ns(1.), c(1.), c(1.), ns(1.), c(1.)],
-    [ns(2.), c(2.), ns(1.), c(1.), ns(1.), c(2.), ns(2.), c(1.), ns(1.)],
+    [
+        s(1.),
+        c(1.),
+        ns(2.),
+        c(1.),
+        ns(1.),
+        c(3.),
+        ns(1.),
+        c(1.),
+        ns(1.),
+    ],
+    [
+        c(2.),
+        c(2.),
+        nc(4.),
+        s(1.),
+        ns(2.),
+        nc(3.),
+        ns(2.),
+        c(1.),
+        ns(1.),
+    ],
+    [
+        s(3.),
+        ns(4.),
+        c(5.),
+        nc(3.),
+        c(4.),
+        ns(5.),
+        c(2.),
+        ns(1.),
+        c(1.),
+    ],
+    [
+        s(1.),
+        c(1.),
+        ns(1.),
+        c(1.),
+        ns(1.),
+        c(1.),
+        ns(1.),
+        c(1.),
+        ns(1.),
+    ],
+    [
+        s(1.),
+        c(2.),
+        ns(1.),
+        c(1.),
+        ns(2.),
+        c(1.),
+        ns(2.),
+        c(1.),
+        ns(1.),
+    ],
+    [
+        ns(2.),
+        c(1.),
+        ns(2.),
+        c(1.),
+        ns(1.),
+        c(1.),
+        c(2.),
+        ns(1.),
+        c(1.),
+    ],
+    [
+        s(1.),
+        c(1.),
+        ns(1.),
+        c(2.),
+        ns(2.),
+        c(1.),
+        ns(2.),
+        c(1.),
+        ns(1.),
+    ],
+    [
+        s(1.),
+        c(1.),
+        ns(1.),
+        c(1.),
+        ns(1.),
+        c(1.),
+        c(1.),
+        ns(1.),
+        c(1.),
+    ],
+    [
+        ns(2.),
+        c(2.),
+        ns(1.),
+        c(1.),
+        ns(1.),
+        c(2.),
+        ns(2.),
+        c(1.),
+        ns(1.),
+    ],
 ];
 
 /// Delta s(t) / A_s of experiments.md.
@@ -121,7 +227,11 @@ pub struct ReferencePerturbation {
 impl ReferencePerturbation {
     /// The reference amplitudes (A_D = 1, A_s = 1.5) for a task of duration T.
     pub fn reference(task_duration: f64) -> Self {
-        Self { a_d: REFERENCE_A_D, a_s: REFERENCE_A_S, task_duration }
+        Self {
+            a_d: REFERENCE_A_D,
+            a_s: REFERENCE_A_S,
+            task_duration,
+        }
     }
 
     pub fn validate(&self, state_dim: usize) -> Result<(), String> {
@@ -131,7 +241,10 @@ impl ReferencePerturbation {
             ));
         }
         if !(self.task_duration > 0.0 && self.task_duration.is_finite()) {
-            return Err(format!("perturbation task_duration must be positive, got {}", self.task_duration));
+            return Err(format!(
+                "perturbation task_duration must be positive, got {}",
+                self.task_duration
+            ));
         }
         if !self.a_d.is_finite() || !self.a_s.is_finite() {
             return Err("perturbation amplitudes must be finite".into());
@@ -170,7 +283,13 @@ pub fn fp_cdnn(
     perturbation: Option<ReferencePerturbation>,
     dims: QpDims,
 ) -> Result<ZeroingNetwork, String> {
-    ZeroingNetwork::new("FP-CDNN", Gain::Fixed(gamma), activation, perturbation, dims)
+    ZeroingNetwork::new(
+        "FP-CDNN",
+        Gain::Fixed(gamma),
+        activation,
+        perturbation,
+        dims,
+    )
 }
 
 /// VP-CDNN (zhang2018 eq. 2.11; eq. 3.1 with a perturbation): gain gamma exp(t).
@@ -180,5 +299,11 @@ pub fn vp_cdnn(
     perturbation: Option<ReferencePerturbation>,
     dims: QpDims,
 ) -> Result<ZeroingNetwork, String> {
-    ZeroingNetwork::new("VP-CDNN", Gain::Exponential(gamma), activation, perturbation, dims)
+    ZeroingNetwork::new(
+        "VP-CDNN",
+        Gain::Exponential(gamma),
+        activation,
+        perturbation,
+        dims,
+    )
 }

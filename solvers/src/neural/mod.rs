@@ -52,7 +52,14 @@ pub trait NeuralSolver: Send {
     fn rhs(&mut self, t: f64, y: &[f64], qp: &Qp, qp_dot: Option<&Qp>, ydot: &mut [f64]);
     /// dF/dy with the QP data frozen, written into `jac` (state_dim x state_dim).
     /// Returns false when the network gives no analytic Jacobian.
-    fn jacobian(&mut self, _t: f64, _y: &[f64], _qp: &Qp, _qp_dot: Option<&Qp>, _jac: &mut DMatrix<f64>) -> bool {
+    fn jacobian(
+        &mut self,
+        _t: f64,
+        _y: &[f64],
+        _qp: &Qp,
+        _qp_dot: Option<&Qp>,
+        _jac: &mut DMatrix<f64>,
+    ) -> bool {
         false
     }
     /// The network's initial state y(0) for QPs of sizes `dims` (zero: no paper says otherwise).

@@ -73,7 +73,13 @@ pub struct LviCore {
 impl LviCore {
     pub fn new(dims: QpDims) -> Self {
         let n = primal_dual_dim(dims);
-        Self { dims, e: vec![0.0; n], z: vec![0.0; n], m: DMatrix::zeros(n, n), de: DMatrix::zeros(n, n) }
+        Self {
+            dims,
+            e: vec![0.0; n],
+            z: vec![0.0; n],
+            m: DMatrix::zeros(n, n),
+            de: DMatrix::zeros(n, n),
+        }
     }
 
     pub fn dims(&self) -> QpDims {
@@ -81,7 +87,11 @@ impl LviCore {
     }
 
     fn check(&self, qp: &Qp, y: &[f64]) {
-        debug_assert_eq!(qp.dims(), self.dims, "QP sizes differ from the sizes the network was built for");
+        debug_assert_eq!(
+            qp.dims(),
+            self.dims,
+            "QP sizes differ from the sizes the network was built for"
+        );
         debug_assert_eq!(y.len(), primal_dual_dim(self.dims));
     }
 
@@ -221,7 +231,10 @@ pub struct LviPdnn {
 
 impl LviPdnn {
     pub fn new(gamma: f64, dims: QpDims) -> Self {
-        Self { gamma, core: LviCore::new(dims) }
+        Self {
+            gamma,
+            core: LviCore::new(dims),
+        }
     }
     /// The residual e(y) of eq. 2.22 (zero exactly at the LVI's solutions).
     pub fn residual(&mut self, qp: &Qp, y: &[f64]) -> &[f64] {
@@ -240,7 +253,14 @@ impl NeuralSolver for LviPdnn {
         self.core.residual(qp, y);
         self.core.i_plus_mt_e(qp, self.gamma, ydot);
     }
-    fn jacobian(&mut self, _t: f64, y: &[f64], qp: &Qp, _qp_dot: Option<&Qp>, jac: &mut DMatrix<f64>) -> bool {
+    fn jacobian(
+        &mut self,
+        _t: f64,
+        y: &[f64],
+        qp: &Qp,
+        _qp_dot: Option<&Qp>,
+        jac: &mut DMatrix<f64>,
+    ) -> bool {
         self.core.residual_jacobian(qp, y);
         // jac = gamma (I + M') de.
         let n = y.len();
@@ -268,7 +288,10 @@ pub struct SLviPdnn {
 
 impl SLviPdnn {
     pub fn new(beta: f64, dims: QpDims) -> Self {
-        Self { beta, core: LviCore::new(dims) }
+        Self {
+            beta,
+            core: LviCore::new(dims),
+        }
     }
     /// The residual e(y) of eq. 2.22 (zero exactly at the LVI's solutions).
     pub fn residual(&mut self, qp: &Qp, y: &[f64]) -> &[f64] {
@@ -289,7 +312,14 @@ impl NeuralSolver for SLviPdnn {
             *d = self.beta * ei;
         }
     }
-    fn jacobian(&mut self, _t: f64, y: &[f64], qp: &Qp, _qp_dot: Option<&Qp>, jac: &mut DMatrix<f64>) -> bool {
+    fn jacobian(
+        &mut self,
+        _t: f64,
+        y: &[f64],
+        qp: &Qp,
+        _qp_dot: Option<&Qp>,
+        jac: &mut DMatrix<f64>,
+    ) -> bool {
         self.core.residual_jacobian(qp, y);
         let n = y.len();
         for i in 0..n {

@@ -97,7 +97,9 @@ fn check_gain(name: &str, symbol: &str, v: f64) -> Result<(), String> {
     if v > 0.0 && v.is_finite() {
         Ok(())
     } else {
-        Err(format!("{name}: {symbol} must be positive and finite, got {v}"))
+        Err(format!(
+            "{name}: {symbol} must be positive and finite, got {v}"
+        ))
     }
 }
 
@@ -108,9 +110,19 @@ impl SolverSpec {
         match self {
             SolverSpec::LviPdnn { .. } => "LVI-PDNN".into(),
             SolverSpec::SLviPdnn { .. } => "S-LVI-PDNN".into(),
-            SolverSpec::VpRnnPf { activation, .. } => format!("VP-RNN-PF ({})", kind_label(*activation)),
-            SolverSpec::FpCdnn { activation, perturbation, .. } => cdnn_name("FP-CDNN", *activation, perturbation),
-            SolverSpec::VpCdnn { activation, perturbation, .. } => cdnn_name("VP-CDNN", *activation, perturbation),
+            SolverSpec::VpRnnPf { activation, .. } => {
+                format!("VP-RNN-PF ({})", kind_label(*activation))
+            }
+            SolverSpec::FpCdnn {
+                activation,
+                perturbation,
+                ..
+            } => cdnn_name("FP-CDNN", *activation, perturbation),
+            SolverSpec::VpCdnn {
+                activation,
+                perturbation,
+                ..
+            } => cdnn_name("VP-CDNN", *activation, perturbation),
             SolverSpec::FiniteTime { .. } => "FTNN".into(),
             SolverSpec::Znn { .. } => "ZNN".into(),
         }
@@ -118,12 +130,18 @@ impl SolverSpec {
 
     /// Whether the network needs dQP/dt (zeroing networks).
     pub fn needs_qp_dot(&self) -> bool {
-        !matches!(self, SolverSpec::LviPdnn { .. } | SolverSpec::SLviPdnn { .. })
+        !matches!(
+            self,
+            SolverSpec::LviPdnn { .. } | SolverSpec::SLviPdnn { .. }
+        )
     }
 
     /// Whether the network handles inequality rows and bounds (only the equality part otherwise).
     pub fn handles_inequalities(&self) -> bool {
-        matches!(self, SolverSpec::LviPdnn { .. } | SolverSpec::SLviPdnn { .. } | SolverSpec::VpRnnPf { .. })
+        matches!(
+            self,
+            SolverSpec::LviPdnn { .. } | SolverSpec::SLviPdnn { .. } | SolverSpec::VpRnnPf { .. }
+        )
     }
 }
 
@@ -161,21 +179,46 @@ pub fn build_solver(spec: &SolverSpec, dims: QpDims) -> Result<Box<dyn NeuralSol
             check_gain("S-LVI-PDNN", "beta", beta)?;
             Box::new(SLviPdnn::new(beta, dims))
         }
-        SolverSpec::VpRnnPf { p, sigma, gamma, activation, alpha, chi } => {
+        SolverSpec::VpRnnPf {
+            p,
+            sigma,
+            gamma,
+            activation,
+            alpha,
+            chi,
+        } => {
             check_gain("VP-RNN-PF", "gamma", gamma)?;
-            Box::new(VpRnnPf::new(p, sigma, gamma, activation_of(activation, alpha, chi), dims)?)
+            Box::new(VpRnnPf::new(
+                p,
+                sigma,
+                gamma,
+                activation_of(activation, alpha, chi),
+                dims,
+            )?)
         }
-        SolverSpec::FpCdnn { gamma, activation, perturbation } => {
+        SolverSpec::FpCdnn {
+            gamma,
+            activation,
+            perturbation,
+        } => {
             check_gain("FP-CDNN", "gamma", gamma)?;
             let act = activation_of(activation, POWER_SIGMOID_ALPHA, POWER_SIGMOID_CHI);
             Box::new(fp_cdnn(gamma, act, perturbation, dims)?)
         }
-        SolverSpec::VpCdnn { gamma, activation, perturbation } => {
+        SolverSpec::VpCdnn {
+            gamma,
+            activation,
+            perturbation,
+        } => {
             check_gain("VP-CDNN", "gamma", gamma)?;
             let act = activation_of(activation, POWER_SIGMOID_ALPHA, POWER_SIGMOID_CHI);
             Box::new(vp_cdnn(gamma, act, perturbation, dims)?)
         }
-        SolverSpec::FiniteTime { beta, alpha, smoothing } => {
+        SolverSpec::FiniteTime {
+            beta,
+            alpha,
+            smoothing,
+        } => {
             check_gain("FTNN", "beta", beta)?;
             Box::new(finite_time(beta, alpha, smoothing, dims)?)
         }

@@ -113,7 +113,13 @@ pub struct VpRnnPf {
 
 impl VpRnnPf {
     /// The network with gain gamma exp(t) (eq. 2.26).
-    pub fn new(p: f64, sigma: f64, gamma: f64, activation: Activation, dims: QpDims) -> Result<Self, String> {
+    pub fn new(
+        p: f64,
+        sigma: f64,
+        gamma: f64,
+        activation: Activation,
+        dims: QpDims,
+    ) -> Result<Self, String> {
         Self::with_gain(p, sigma, gamma, Gain::Exponential(gamma), activation, dims)
     }
 
@@ -128,7 +134,9 @@ impl VpRnnPf {
         dims: QpDims,
     ) -> Result<Self, String> {
         if !(p >= 0.0 && p.is_finite()) || !(sigma > 0.0 && sigma.is_finite()) {
-            return Err(format!("VP-RNN-PF needs p >= 0 and sigma > 0 (eq. 2.19), got p = {p}, sigma = {sigma}"));
+            return Err(format!(
+                "VP-RNN-PF needs p >= 0 and sigma > 0 (eq. 2.19), got p = {p}, sigma = {sigma}"
+            ));
         }
         activation.validate()?;
         let rows = dims.n_in + 2 * dims.nx;
@@ -199,7 +207,11 @@ impl VpRnnPf {
     /// Evaluate phi, W, the right-hand side of eq. 2.30 and solve for F = ydot.
     fn evaluate(&mut self, t: f64, y: &[f64], qp: &Qp, qp_dot: Option<&Qp>) {
         let QpDims { nx, n_eq, .. } = self.dims;
-        debug_assert_eq!(qp.dims(), self.dims, "QP sizes differ from the sizes the network was built for");
+        debug_assert_eq!(
+            qp.dims(),
+            self.dims,
+            "QP sizes differ from the sizes the network was built for"
+        );
         debug_assert_eq!(y.len(), nx + n_eq);
         self.gather_rows(qp, qp_dot);
         let (x, lambda) = y.split_at(nx);
@@ -307,7 +319,14 @@ impl NeuralSolver for VpRnnPf {
         self.evaluate(t, y, qp, qp_dot);
         ydot.copy_from_slice(&self.f);
     }
-    fn jacobian(&mut self, t: f64, y: &[f64], qp: &Qp, qp_dot: Option<&Qp>, jac: &mut DMatrix<f64>) -> bool {
+    fn jacobian(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        qp: &Qp,
+        qp_dot: Option<&Qp>,
+        jac: &mut DMatrix<f64>,
+    ) -> bool {
         self.evaluate(t, y, qp, qp_dot);
         if !self.factored {
             return false;
@@ -351,7 +370,8 @@ impl NeuralSolver for VpRnnPf {
                     for r in 0..self.rows {
                         s += sigma
                             * self.c[r]
-                            * (self.b[(r, i)] * self.bdot[(r, j)] + self.bdot[(r, i)] * self.b[(r, j)]);
+                            * (self.b[(r, i)] * self.bdot[(r, j)]
+                                + self.bdot[(r, i)] * self.b[(r, j)]);
                     }
                     jac[(i, j)] -= s;
                 }

@@ -127,7 +127,11 @@ impl ZeroingNetwork {
     /// Write Q (module docs) into `self.lu`.
     fn assemble_q(&mut self, qp: &Qp) {
         let QpDims { nx, n_eq, .. } = self.dims;
-        debug_assert_eq!(qp.dims(), self.dims, "QP sizes differ from the sizes the network was built for");
+        debug_assert_eq!(
+            qp.dims(),
+            self.dims,
+            "QP sizes differ from the sizes the network was built for"
+        );
         let q = &mut self.lu;
         for i in 0..nx {
             for j in 0..nx {
@@ -235,7 +239,14 @@ impl NeuralSolver for ZeroingNetwork {
         }
         lu::solve(&self.lu, &self.piv, ydot);
     }
-    fn jacobian(&mut self, t: f64, y: &[f64], qp: &Qp, qp_dot: Option<&Qp>, jac: &mut DMatrix<f64>) -> bool {
+    fn jacobian(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        qp: &Qp,
+        qp_dot: Option<&Qp>,
+        jac: &mut DMatrix<f64>,
+    ) -> bool {
         let QpDims { nx, n_eq, .. } = self.dims;
         let n = y.len();
         self.assemble_q(qp);

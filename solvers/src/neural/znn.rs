@@ -55,11 +55,27 @@ pub const FINITE_TIME_SMOOTHING: f64 = 1e-8;
 /// kong2019's finite-time network (eq. 20 as derived in the module docs).
 /// `smoothing` is the half-width delta of the linear zone of the sign-power (module docs;
 /// 0 gives the exact, non-Lipschitz form).
-pub fn finite_time(beta: f64, alpha: f64, smoothing: f64, dims: QpDims) -> Result<ZeroingNetwork, String> {
+pub fn finite_time(
+    beta: f64,
+    alpha: f64,
+    smoothing: f64,
+    dims: QpDims,
+) -> Result<ZeroingNetwork, String> {
     if !(alpha > 0.0 && alpha < 1.0) {
-        return Err(format!("finite-time network needs 0 < alpha < 1 (kong2019), got {alpha}"));
+        return Err(format!(
+            "finite-time network needs 0 < alpha < 1 (kong2019), got {alpha}"
+        ));
     }
-    ZeroingNetwork::new("FTNN", Gain::Fixed(beta), Activation::SignPower { r: alpha, smoothing }, None, dims)
+    ZeroingNetwork::new(
+        "FTNN",
+        Gain::Fixed(beta),
+        Activation::SignPower {
+            r: alpha,
+            smoothing,
+        },
+        None,
+        dims,
+    )
 }
 
 /// The linear ZNN (kong2019's comparison solver): W ydot = -Wdot y + vdot - gamma (W y - v).
