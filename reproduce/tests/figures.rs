@@ -54,6 +54,8 @@ fn row(experiment: &str, variant: &str, solver: &str, failed_at: Option<f64>) ->
         jac_evals: 0,
         qp_solves: 0,
         wall_s: 0.0,
+        sim_s: 0.0,
+        observe_s: 0.0,
         crate_version: "0.1.0".into(),
         git_rev: "synthetic".into(),
     }

@@ -138,6 +138,8 @@ fn two_runs_give_identical_rows() {
             .iter()
             .map(|r| RunRow {
                 wall_s: 0.0,
+                sim_s: 0.0,
+                observe_s: 0.0,
                 ..RunRow::from_record(r, "test")
             })
             .collect()

@@ -132,6 +132,8 @@ fn row(experiment: &str, variant: &str, solver: &str, drift: f64) -> RunRow {
         jac_evals: 0,
         qp_solves: 1,
         wall_s: 0.1,
+        sim_s: 0.1,
+        observe_s: 0.0,
         crate_version: "0".into(),
         git_rev: "test".into(),
     }

@@ -23,9 +23,10 @@ pub fn cost_table(runs: &Runs, paper: &str) -> String {
         "Jacobians",
         "QP solves",
         "wall (s)",
+        "simulation (s)",
     ]);
     for r in runs.of_paper(paper) {
-        // A failed run's integrator statistics are not stored (the rows hold zeros).
+        // Runs that failed before their first step have no statistics.
         let lost = !completed(r) && r.steps == 0;
         let count = |n: usize| {
             if lost {
@@ -50,6 +51,7 @@ pub fn cost_table(runs: &Runs, paper: &str) -> String {
             count(r.jac_evals),
             r.qp_solves.to_string(),
             if lost { count(0) } else { sci(r.wall_s) },
+            if lost { count(0) } else { sci(r.sim_s) },
         ]);
     }
     t.render()
@@ -79,7 +81,7 @@ fn paper_times<'a>(
 ) -> impl Iterator<Item = (&'static str, f64)> + 'a {
     values
         .iter()
-        .filter(|v| our_metric(&v.metric) == Some("wall_s"))
+        .filter(|v| our_metric(&v.metric) == Some("sim_s"))
         .filter_map(move |v| {
             mapping_of(v)
                 .filter(|m| m.experiment == experiment)
@@ -99,7 +101,7 @@ pub fn slowdown(runs: &Runs, values: &[PaperValue], experiment: &str) -> Slowdow
     let ours: Vec<(&str, f64)> = runs
         .of_experiment(experiment)
         .filter(|r| completed(r))
-        .map(|r| (r.solver.as_str(), r.wall_s))
+        .map(|r| (r.solver.as_str(), r.sim_s))
         .collect();
     let paper: Vec<(&str, f64)> = paper_times(values, experiment).collect();
     Slowdown {
@@ -121,7 +123,7 @@ pub fn matlab_comparison(runs: &Runs, values: &[PaperValue]) -> String {
     ]);
     let mut experiments: Vec<&str> = values
         .iter()
-        .filter(|v| our_metric(&v.metric) == Some("wall_s"))
+        .filter(|v| our_metric(&v.metric) == Some("sim_s"))
         .filter_map(mapping_of)
         .map(|m| m.experiment)
         .collect();
@@ -131,7 +133,7 @@ pub fn matlab_comparison(runs: &Runs, values: &[PaperValue]) -> String {
         let ours: Vec<(&str, f64)> = runs
             .of_experiment(exp)
             .filter(|r| paper.iter().any(|(s, _)| *s == r.solver))
-            .map(|r| (r.solver.as_str(), r.wall_s))
+            .map(|r| (r.solver.as_str(), r.sim_s))
             .collect();
         let (paper_vp, ours_vp) = (vp_mean(&paper), vp_mean(&ours));
         for (solver, p) in &paper {

@@ -181,6 +181,13 @@ pub fn to_markdown(inputs: &Inputs) -> String {
         ));
     }
     out.push_str("### zhong2021: compute time against the paper's MATLAB times\n\n");
+    out.push_str(
+        "Ours is `sim_s`: the wall time of the simulation proper (arm, network, integrator), \
+         without the observation at accepted steps (metrics and the Clarabel solves that score \
+         the run, which cost more than the networks themselves: ~50 us a solve against 0.3-3 us a \
+         network evaluation). Absolute times are not comparable across machines and languages; \
+         the ratios are.\n\n",
+    );
     out.push_str(&cost::matlab_comparison(runs, values));
     out.push('\n');
 

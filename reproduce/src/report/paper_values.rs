@@ -276,7 +276,7 @@ pub fn our_metric(published_metric: &str) -> Option<&'static str> {
         "drift_5" => "drift_5",
         "drift_6" => "drift_6",
         "drift_norm" => "drift_norm",
-        "compute_time_s" => "wall_s",
+        "compute_time_s" => "sim_s",
         "max_position_error_m" => "max_pos_err",
         "final_position_error_m" => "final_pos_err",
         _ => return None,

@@ -109,6 +109,7 @@ pub fn metric(r: &RunRow, name: &str) -> Option<f64> {
         "score_max_obj_gap" => r.score_max_obj_gap,
         "score_max_violation" => r.score_max_violation,
         "wall_s" => Some(r.wall_s),
+        "sim_s" => Some(r.sim_s),
         _ => None,
     }
 }

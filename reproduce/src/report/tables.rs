@@ -16,7 +16,7 @@ pub fn quantity_label(metric: &str) -> String {
     match metric {
         "drift_norm" => "‖θ(T) − θ(0)‖".to_string(),
         "drift_ref_norm" => "‖θ(T) − θ*0‖".to_string(),
-        "wall_s" => "compute time (s)".to_string(),
+        "wall_s" | "sim_s" => "compute time (s)".to_string(),
         "max_pos_err" => "max position error (m)".to_string(),
         "final_pos_err" => "final position error (m)".to_string(),
         m => match m.strip_prefix("drift_") {
