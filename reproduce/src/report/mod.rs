@@ -23,6 +23,7 @@ pub mod markdown;
 pub mod paper_values;
 pub mod runs;
 pub mod score;
+pub mod sweep;
 pub mod tables;
 pub mod verdict;
 
@@ -144,6 +145,9 @@ pub fn to_markdown(inputs: &Inputs) -> String {
         if !tables.is_empty() {
             out.push_str("\n### Published tables side by side\n\n");
             out.push_str(&tables.join("\n"));
+        }
+        if *paper == "jia2019" {
+            out.push_str(&sweep::clover_sweep(runs, values));
         }
         out.push_str("\n### Claims\n\n");
         out.push_str(&claims::checklist(c));
