@@ -189,7 +189,11 @@ pub fn bench_id(display_name: &str) -> String {
 /// perturbed FP-/VP-CDNN for zhang2018; FTNN and ZNN for kong2019.
 pub fn paper_networks(jobs: &[Job], shape: QpShape) -> Vec<(String, SolverSpec)> {
     let mut out: Vec<(String, SolverSpec)> = Vec::new();
-    for j in jobs.iter().filter(|j| j.paper == paper_of(shape)) {
+    // The paper's own experiments, not the parameter sweeps beside them.
+    for j in jobs
+        .iter()
+        .filter(|j| j.paper == paper_of(shape) && !j.experiment.ends_with("-sweep"))
+    {
         if let SolverChoice::Neural(spec) = &j.solver {
             let name = spec.display_name();
             if !out.iter().any(|(n, _)| *n == name) {

@@ -9,8 +9,11 @@
 //! - peaks of |thetadot|_inf, |thetaddot|_inf and |tau|_inf (acceleration level);
 //! - sigma_min of the 3 x n position Jacobian along the run (distance from singularity);
 //! - the score of a neural solver against the exact QP optimum at the same (t, state): max and
-//!   RMS |x_nn - x*|_inf over the joint command, max relative objective gap
-//!   (f(x_nn) - f(x*)) / max(1, |f(x*)|), max constraint violation of x_nn.
+//!   RMS (time-weighted, trapezoidal) |x_nn - x*|_inf over the joint command, max relative
+//!   objective gap (f(x_nn) - f(x*)) / max(1, |f(x*)|), max constraint violation of x_nn;
+//! - the network's own error norm (|Q y - u| for the zeroing networks, kong2019's J_E; the
+//!   projection residual for LVI-PDNN and S-LVI-PDNN): final value and largest value after
+//!   t = 1 s (kong2019's "settles within ~1 s").
 
 use nalgebra::{SMatrix, SVector, Vector3};
 use robots::JointLimits;
@@ -50,6 +53,17 @@ pub struct Score {
     pub max_violation: f64,
 }
 
+/// The network's own error norm along a run.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NetworkError {
+    pub final_value: f64,
+    /// Largest value at t >= [`SETTLE_TIME`] (0 if the run ended before).
+    pub max_after_settle: f64,
+}
+
+/// kong2019's settling time of its network error (s).
+pub const SETTLE_TIME: f64 = 1.0;
+
 /// Final metrics of a run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RunMetrics {
@@ -66,6 +80,7 @@ pub struct RunMetrics {
     pub peak_torque: Option<f64>,
     pub min_sigma_j: f64,
     pub score: Option<Score>,
+    pub network_error: Option<NetworkError>,
 }
 
 /// Streaming accumulator of [`RunMetrics`].
@@ -84,7 +99,10 @@ pub struct MetricsAccumulator<const N: usize> {
     peak_torque: f64,
     min_sigma: f64,
     score: Score,
-    dx_sq_sum: f64,
+    /// (t, dx) of the last score sample and the trapezoidal integral of dx^2.
+    last_score: Option<(f64, f64)>,
+    dx_sq_integral: f64,
+    network_error: Option<NetworkError>,
 }
 
 impl<const N: usize> MetricsAccumulator<N> {
@@ -108,7 +126,9 @@ impl<const N: usize> MetricsAccumulator<N> {
             peak_torque: 0.0,
             min_sigma: f64::INFINITY,
             score: Score::default(),
-            dx_sq_sum: 0.0,
+            last_score: None,
+            dx_sq_integral: 0.0,
+            network_error: None,
         }
     }
 
@@ -143,14 +163,26 @@ impl<const N: usize> MetricsAccumulator<N> {
         self.last = Some(*s);
     }
 
-    /// Adds a comparison with the exact optimum.
-    pub fn push_score(&mut self, c: &ScoreSample) {
+    /// Adds a comparison with the exact optimum at time t.
+    pub fn push_score(&mut self, t: f64, c: &ScoreSample) {
         let sc = &mut self.score;
         sc.samples += 1;
         sc.max_dx = sc.max_dx.max(c.dx);
         sc.max_objective_gap = sc.max_objective_gap.max(c.objective_gap);
         sc.max_violation = sc.max_violation.max(c.violation);
-        self.dx_sq_sum += c.dx * c.dx;
+        if let Some((t0, dx0)) = self.last_score {
+            self.dx_sq_integral += 0.5 * (t - t0) * (dx0 * dx0 + c.dx * c.dx);
+        }
+        self.last_score = Some((t, c.dx));
+    }
+
+    /// Adds the network's own error norm at time t.
+    pub fn push_network_error(&mut self, t: f64, e: f64) {
+        let n = self.network_error.get_or_insert_with(NetworkError::default);
+        n.final_value = e;
+        if t >= SETTLE_TIME {
+            n.max_after_settle = n.max_after_settle.max(e);
+        }
     }
 
     /// Metrics of the run so far (its last sample is theta(T)).
@@ -158,9 +190,17 @@ impl<const N: usize> MetricsAccumulator<N> {
         let last = self.last.expect("a run has at least its initial sample");
         let drift = last.theta - self.theta0;
         let duration = last.t - start_time;
-        let score = (self.score.samples > 0).then(|| Score {
-            rms_dx: (self.dx_sq_sum / self.score.samples as f64).sqrt(),
-            ..self.score
+        let score = (self.score.samples > 0).then(|| {
+            let rms_dx = match self.last_score {
+                Some((t_last, _)) if t_last > start_time => {
+                    (self.dx_sq_integral / (t_last - start_time)).sqrt()
+                }
+                _ => self.score.max_dx,
+            };
+            Score {
+                rms_dx,
+                ..self.score
+            }
         });
         RunMetrics {
             drift: drift.iter().copied().collect(),
@@ -180,6 +220,7 @@ impl<const N: usize> MetricsAccumulator<N> {
             peak_torque: last.torque.map(|_| self.peak_torque),
             min_sigma_j: self.min_sigma,
             score,
+            network_error: self.network_error,
         }
     }
 }
@@ -223,6 +264,38 @@ mod tests {
     }
 
     #[test]
+    fn score_rms_is_time_weighted_and_network_error_settles() {
+        let mut m = MetricsAccumulator::new(limits(), SVector::zeros(), SVector::zeros());
+        m.push(&sample(0.0, [0.0, 0.0], 0.0));
+        let score = |dx: f64| ScoreSample {
+            dx,
+            objective_gap: 0.0,
+            violation: 0.0,
+        };
+        // dx = 1 on [0, 0.001] sampled densely, then 0 until t = 10: RMS ~ sqrt(0.001 / 10).
+        for k in 0..=10 {
+            m.push_score(k as f64 * 1e-4, &score(1.0));
+        }
+        m.push_score(0.0011, &score(0.0));
+        m.push_score(10.0, &score(0.0));
+        m.push_network_error(0.5, 3.0);
+        m.push_network_error(1.5, 2e-4);
+        m.push_network_error(9.0, 1e-6);
+        m.push(&sample(10.0, [0.0, 0.0], 0.0));
+        let r = m.finish(0.0);
+        let s = r.score.unwrap();
+        assert_eq!(s.samples, 13);
+        assert_eq!(s.max_dx, 1.0);
+        assert!(
+            (s.rms_dx - (0.00105f64 / 10.0).sqrt()).abs() < 1e-6,
+            "time-weighted, not per sample: {}",
+            s.rms_dx
+        );
+        let e = r.network_error.unwrap();
+        assert_eq!((e.final_value, e.max_after_settle), (1e-6, 2e-4));
+    }
+
+    #[test]
     fn sigma_min_of_a_known_jacobian() {
         let j =
             SMatrix::<f64, 3, 4>::new(0.0, 3.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.5, 0.0);
@@ -256,6 +329,6 @@ mod tests {
             r.min_sigma_j.abs() < 1e-12,
             "a 3 x 2 Jacobian has rank 2: sigma_min(J J') = 0"
         );
-        assert!(r.score.is_none() && r.peak_torque.is_none());
+        assert!(r.score.is_none() && r.peak_torque.is_none() && r.network_error.is_none());
     }
 }

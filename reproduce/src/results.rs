@@ -58,6 +58,10 @@ pub struct RunRow {
     pub score_max_obj_gap: Option<f64>,
     pub score_max_violation: Option<f64>,
     pub score_failures: usize,
+    /// The network's own error norm at T (|Q y - u| for the zeroing networks).
+    pub net_error_final: Option<f64>,
+    /// Its largest value after t = 1 s (kong2019: "settles within ~1 s").
+    pub net_error_max_after_1s: Option<f64>,
     pub integrator: String,
     pub rtol: f64,
     pub atol: f64,
@@ -133,6 +137,8 @@ impl RunRow {
             score_max_obj_gap: score.map(|s| s.max_objective_gap),
             score_max_violation: score.map(|s| s.max_violation),
             score_failures: r.score_failures,
+            net_error_final: m.and_then(|m| m.network_error).map(|e| e.final_value),
+            net_error_max_after_1s: m.and_then(|m| m.network_error).map(|e| e.max_after_settle),
             integrator: j.integrator.method.label().to_string(),
             rtol: j.integrator.rtol,
             atol: j.integrator.atol,
@@ -182,7 +188,11 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     if let Some(dir) = path.parent() {
         std::fs::create_dir_all(dir)?;
     }
-    let unique = format!("{}.{}.tmp", std::process::id(), COUNTER.fetch_add(1, Ordering::Relaxed));
+    let unique = format!(
+        "{}.{}.tmp",
+        std::process::id(),
+        COUNTER.fetch_add(1, Ordering::Relaxed)
+    );
     let mut name = path.file_name().unwrap_or_default().to_os_string();
     name.push(".");
     name.push(unique);
@@ -264,7 +274,15 @@ pub fn trace_csv(r: &RunRecord) -> Result<Vec<u8>, csv::Error> {
     }
     header.extend(
         [
-            "rx_des", "ry_des", "rz_des", "rx", "ry", "rz", "pos_err", "score_dx",
+            "rx_des",
+            "ry_des",
+            "rz_des",
+            "rx",
+            "ry",
+            "rz",
+            "pos_err",
+            "score_dx",
+            "net_error",
         ]
         .map(String::from),
     );
@@ -285,6 +303,7 @@ pub fn trace_csv(r: &RunRecord) -> Result<Vec<u8>, csv::Error> {
         .sqrt();
         rec.push(err.to_string());
         rec.push(p.score_dx.map(|v| v.to_string()).unwrap_or_default());
+        rec.push(p.network_error.map(|v| v.to_string()).unwrap_or_default());
         w.write_record(&rec)?;
     }
     w.into_inner().map_err(|e| csv::Error::from(e.into_error()))

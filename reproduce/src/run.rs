@@ -28,6 +28,8 @@ pub struct TracePoint {
     pub actual: [f64; 3],
     /// |x_nn - x*|_inf at this instant (neural runs).
     pub score_dx: Option<f64>,
+    /// The network's own error norm at this instant (where it has one).
+    pub network_error: Option<f64>,
 }
 
 /// Outcome of a run.
@@ -150,6 +152,9 @@ fn run_with<const N: usize>(
             let mut y0 = vec![0.0; sys_dim(&sys)];
             y0[..N].copy_from_slice(theta0.as_slice());
             let mut scorer = ExactLoop::new(scheme.as_ref());
+            // A second instance of the network, to read its own error at accepted states.
+            let mut probe =
+                solvers::neural::build_solver(spec, scheme.dims()).map_err(|e| e.to_string())?;
             let mut failures = 0usize;
             let result = integrate(&mut sys, &y0, 0.0, t1, &job.integrator, |t, y| {
                 let started = Instant::now();
@@ -160,13 +165,21 @@ fn run_with<const N: usize>(
                         let qp = &scorer.qp;
                         let f_star = qp.objective(&x_star);
                         let dx = (x_nn.rows(0, N) - x_star.rows(0, N)).amax();
-                        observer.score(&ScoreSample {
-                            dx,
-                            objective_gap: (qp.objective(&x_nn) - f_star) / f_star.abs().max(1.0),
-                            violation: qp.constraint_violation(&x_nn),
-                        });
+                        observer.score(
+                            t,
+                            &ScoreSample {
+                                dx,
+                                objective_gap: (qp.objective(&x_nn) - f_star)
+                                    / f_star.abs().max(1.0),
+                                violation: qp.constraint_violation(&x_nn),
+                            },
+                        );
                     }
                     Err(_) => failures += 1,
+                }
+                // scorer.qp holds the QP at this state even when Clarabel failed on it.
+                if let Some(e) = probe.error_norm(&scorer.qp, &y[k..]) {
+                    observer.network_error(t, e);
                 }
                 observer.sample(t, y, &x_nn, level);
                 observer.seconds += started.elapsed().as_secs_f64();
@@ -227,6 +240,7 @@ struct Observer<'a, const N: usize> {
     next_trace_t: f64,
     last_t: f64,
     last_dx: Option<f64>,
+    last_network_error: Option<f64>,
     score_failures: usize,
     /// Wall time spent in the observer (see [`RunRecord::observe_seconds`]).
     seconds: f64,
@@ -249,6 +263,7 @@ impl<'a, const N: usize> Observer<'a, N> {
             next_trace_t: 0.0,
             last_t: 0.0,
             last_dx: None,
+            last_network_error: None,
             score_failures: 0,
             seconds: 0.0,
         }
@@ -258,9 +273,14 @@ impl<'a, const N: usize> Observer<'a, N> {
         !self.trace.is_empty()
     }
 
-    fn score(&mut self, s: &ScoreSample) {
-        self.metrics.push_score(s);
+    fn score(&mut self, t: f64, s: &ScoreSample) {
+        self.metrics.push_score(t, s);
         self.last_dx = Some(s.dx);
+    }
+
+    fn network_error(&mut self, t: f64, e: f64) {
+        self.metrics.push_network_error(t, e);
+        self.last_network_error = Some(e);
     }
 
     /// Records the accepted state y at t with joint command x (x[..n] = thetadot or thetaddot).
@@ -294,6 +314,7 @@ impl<'a, const N: usize> Observer<'a, N> {
                 desired: [desired.x, desired.y, desired.z],
                 actual: [actual.x, actual.y, actual.z],
                 score_dx: self.last_dx,
+                network_error: self.last_network_error,
             });
             self.next_trace_t = t + duration / TRACE_POINTS as f64;
         }

@@ -123,6 +123,8 @@ fn row(experiment: &str, variant: &str, solver: &str, drift: f64) -> RunRow {
         score_max_obj_gap: None,
         score_max_violation: None,
         score_failures: 0,
+        net_error_final: None,
+        net_error_max_after_1s: None,
         integrator: "bdf".into(),
         rtol: 1e-6,
         atol: 1e-8,

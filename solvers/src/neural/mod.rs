@@ -50,6 +50,12 @@ pub trait NeuralSolver: Send {
     /// Network dynamics ydot = F(t, y; QP(t)). `qp_dot` holds dQP/dt (every field
     /// differentiated; bounds and shapes as in `qp`) when [`NeuralSolver::needs_qp_dot`].
     fn rhs(&mut self, t: f64, y: &[f64], qp: &Qp, qp_dot: Option<&Qp>, ydot: &mut [f64]);
+    /// The norm of the network's own error at state y (for the zeroing networks |Q y - u|_2,
+    /// kong2019's J_E; for the projection networks |P_Omega(y - (M y + q)) - y|_2), or `None`
+    /// where the network has no state-only error (VP-RNN-PF's depends on the last evaluation).
+    fn error_norm(&mut self, _qp: &Qp, _y: &[f64]) -> Option<f64> {
+        None
+    }
     /// dF/dy with the QP data frozen, written into `jac` (state_dim x state_dim).
     /// Returns false when the network gives no analytic Jacobian.
     fn jacobian(

@@ -243,6 +243,15 @@ impl LviPdnn {
 }
 
 impl NeuralSolver for LviPdnn {
+    fn error_norm(&mut self, qp: &Qp, y: &[f64]) -> Option<f64> {
+        Some(
+            self.residual(qp, y)
+                .iter()
+                .map(|e| e * e)
+                .sum::<f64>()
+                .sqrt(),
+        )
+    }
     fn name(&self) -> String {
         "LVI-PDNN".into()
     }
@@ -300,6 +309,15 @@ impl SLviPdnn {
 }
 
 impl NeuralSolver for SLviPdnn {
+    fn error_norm(&mut self, qp: &Qp, y: &[f64]) -> Option<f64> {
+        Some(
+            self.residual(qp, y)
+                .iter()
+                .map(|e| e * e)
+                .sum::<f64>()
+                .sqrt(),
+        )
+    }
     fn name(&self) -> String {
         "S-LVI-PDNN".into()
     }

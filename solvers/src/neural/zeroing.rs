@@ -201,6 +201,9 @@ impl ZeroingNetwork {
 }
 
 impl NeuralSolver for ZeroingNetwork {
+    fn error_norm(&mut self, qp: &Qp, y: &[f64]) -> Option<f64> {
+        Some(self.error(qp, y).iter().map(|e| e * e).sum::<f64>().sqrt())
+    }
     fn name(&self) -> String {
         self.name.clone()
     }
