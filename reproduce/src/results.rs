@@ -232,13 +232,18 @@ pub fn merge(stored: Vec<RunRow>, fresh: Vec<RunRow>) -> Vec<RunRow> {
     all
 }
 
-/// File name of a run's trace.
+/// `<variant-slug>__<solver-slug>`: a run's file stem inside its experiment's directory, shared
+/// by the traces and the figures.
+pub fn run_stem(variant: &str, solver: &str) -> String {
+    format!("{}__{}", slug(variant), slug(solver))
+}
+
+/// File name of a run's trace, relative to `results/traces/`.
 pub fn trace_file(r: &RunRecord) -> String {
     format!(
-        "{}/{}__{}.csv",
+        "{}/{}.csv",
         r.job.experiment,
-        slug(&r.job.variant),
-        slug(&r.job.solver.label())
+        run_stem(&r.job.variant, &r.job.solver.label())
     )
 }
 

@@ -23,14 +23,14 @@ mod scale;
 mod style;
 mod trace;
 
-use crate::results::{read_runs, slug, write_atomic, RunRow};
+use crate::results::{read_runs, write_atomic, RunRow};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use trace::Trace;
 
-/// `<variant-slug>__<solver-slug>`: the run's trace file stem inside its experiment's directory.
+/// The run's file stem (see [`crate::results::run_stem`]).
 fn run_stem(run: &RunRow) -> String {
-    format!("{}__{}", slug(&run.variant), slug(&run.solver))
+    crate::results::run_stem(&run.variant, &run.solver)
 }
 
 /// Whether `name` follows this module's naming scheme (`<experiment>__<...>.svg`), i.e. is a
