@@ -4,6 +4,7 @@
 pub mod coupled;
 pub mod experiment;
 pub mod figures;
+pub mod gate;
 pub mod metrics;
 pub mod report;
 pub mod results;

@@ -46,6 +46,11 @@ struct Cli {
     /// Do not write results/ or report/ (print the summary only).
     #[arg(long)]
     dry_run: bool,
+    /// The regression gate: run the selected experiments and compare them with the committed
+    /// results/runs.csv (status, drifts, max position error); write nothing; exit 1 on any
+    /// difference. `cargo test --workspace --release` runs the same gate over everything.
+    #[arg(long)]
+    check: bool,
     /// Re-render report/REPORT.md and report/figures/ from the stored results/ without running
     /// anything, then exit.
     #[arg(long)]
@@ -94,6 +99,9 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
         .map(|r| RunRow::from_record(r, &git_rev))
         .collect();
     print_summary(&rows);
+    if cli.check {
+        return check(&cli.results_dir, &rows, cli.exact_only);
+    }
     if !cli.dry_run {
         write_results(&cli.results_dir, &records, rows)?;
         match report_root(&cli) {
@@ -112,6 +120,36 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
         );
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// Compares `fresh` with the committed rows of the same runs (see `reproduce::gate`).
+fn check(
+    results_dir: &std::path::Path,
+    fresh: &[RunRow],
+    exact_only: bool,
+) -> Result<ExitCode, String> {
+    let exact = reproduce::experiment::SolverChoice::Exact.label();
+    let committed: Vec<RunRow> = read_runs(&results_dir.join("runs.csv"))?
+        .into_iter()
+        .filter(|c| fresh.iter().any(|f| f.experiment == c.experiment))
+        .filter(|c| !exact_only || c.solver == exact)
+        .collect();
+    let problems = reproduce::gate::compare(&committed, fresh);
+    if problems.is_empty() {
+        println!(
+            "regression gate: {} runs agree with {}",
+            fresh.len(),
+            results_dir.join("runs.csv").display()
+        );
+        Ok(ExitCode::SUCCESS)
+    } else {
+        println!(
+            "regression gate: {} differences\n{}",
+            problems.len(),
+            problems.join("\n")
+        );
+        Ok(ExitCode::from(1))
+    }
 }
 
 /// The report is rendered beside the results directory: `<root>/results` -> `<root>/report`.
