@@ -73,3 +73,8 @@ pub trait NeuralSolver: Send {
         y0.fill(0.0);
     }
 }
+
+/// |v|_2.
+pub(crate) fn euclidean_norm(v: &[f64]) -> f64 {
+    v.iter().map(|e| e * e).sum::<f64>().sqrt()
+}

@@ -35,7 +35,7 @@
 //! Jacobians are de/dy = Dz (I - M) - I, so dF/dy = gamma (I + M')(Dz (I - M) - I) for LVI-PDNN
 //! and beta (Dz (I - M) - I) for S-LVI-PDNN.
 
-use super::NeuralSolver;
+use super::{euclidean_norm, NeuralSolver};
 use crate::qp::{Qp, QpDims};
 use nalgebra::DMatrix;
 
@@ -244,13 +244,7 @@ impl LviPdnn {
 
 impl NeuralSolver for LviPdnn {
     fn error_norm(&mut self, qp: &Qp, y: &[f64]) -> Option<f64> {
-        Some(
-            self.residual(qp, y)
-                .iter()
-                .map(|e| e * e)
-                .sum::<f64>()
-                .sqrt(),
-        )
+        Some(euclidean_norm(self.core.residual(qp, y)))
     }
     fn name(&self) -> String {
         "LVI-PDNN".into()
@@ -310,13 +304,7 @@ impl SLviPdnn {
 
 impl NeuralSolver for SLviPdnn {
     fn error_norm(&mut self, qp: &Qp, y: &[f64]) -> Option<f64> {
-        Some(
-            self.residual(qp, y)
-                .iter()
-                .map(|e| e * e)
-                .sum::<f64>()
-                .sqrt(),
-        )
+        Some(euclidean_norm(self.core.residual(qp, y)))
     }
     fn name(&self) -> String {
         "S-LVI-PDNN".into()

@@ -37,7 +37,7 @@
 use super::activation::Activation;
 use super::cdnn::ReferencePerturbation;
 use super::lu;
-use super::NeuralSolver;
+use super::{euclidean_norm, NeuralSolver};
 use crate::qp::{Qp, QpDims};
 use nalgebra::DMatrix;
 
@@ -202,7 +202,7 @@ impl ZeroingNetwork {
 
 impl NeuralSolver for ZeroingNetwork {
     fn error_norm(&mut self, qp: &Qp, y: &[f64]) -> Option<f64> {
-        Some(self.error(qp, y).iter().map(|e| e * e).sum::<f64>().sqrt())
+        Some(euclidean_norm(self.error(qp, y)))
     }
     fn name(&self) -> String {
         self.name.clone()
