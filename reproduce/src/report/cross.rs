@@ -24,6 +24,7 @@ const MATRICES: &[(&str, &str, Best)] = &[
     ("Drift ‖θ(T) − θ_ref‖ (rad; θ_ref = θ0, or θ*0 for kong2019's schemes)", "drift_ref_norm", Best::ClosestToExact),
     ("Max position error (m)", "max_pos_err", Best::Smallest),
     ("Score: max |x − x*| against the exact optimum (includes the start-up transient from the zero network state: on kong2019's deviated start every solver ties at |x*(0)|)", "score_max_dx", Best::Smallest),
+    ("Score: RMS |x − x*| over the run (time-weighted, so the start-up transient counts for its duration only)", "score_rms_dx", Best::Smallest),
 ];
 
 /// The cross section as Markdown (empty when there are no cross runs).
