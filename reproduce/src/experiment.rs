@@ -151,14 +151,6 @@ impl std::fmt::Display for ExperimentFileError {
 
 impl std::error::Error for ExperimentFileError {}
 
-/// Robot names the suite knows, with their joint counts.
-pub const ROBOTS: &[(&str, usize)] = &[
-    ("jaco2-pen", 6),
-    ("jaco2", 6),
-    ("jaco2-hand", 6),
-    ("katana6m180", 5),
-];
-
 impl PaperFile {
     /// Reads and validates one experiment file.
     pub fn load(path: &Path) -> Result<Self, ExperimentFileError> {
@@ -289,14 +281,13 @@ impl PaperFile {
     }
 }
 
+/// Joint count of the robot called `name` (see [`crate::robot_registry`]).
 fn robot_dof(name: &str) -> Option<usize> {
-    ROBOTS.iter().find(|(n, _)| *n == name).map(|(_, d)| *d)
+    crate::robot_registry::robot_by_name(name).map(|r| r.dof())
 }
 
 fn robot_names() -> String {
-    ROBOTS
-        .iter()
-        .map(|(n, _)| *n)
+    crate::robot_registry::robot_names()
         .collect::<Vec<_>>()
         .join(", ")
 }

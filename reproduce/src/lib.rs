@@ -8,6 +8,7 @@ pub mod gate;
 pub mod metrics;
 pub mod report;
 pub mod results;
+pub mod robot_registry;
 pub mod run;
 pub mod runner;
 

@@ -4,8 +4,9 @@
 use crate::coupled::{arm_dim, arm_state, ExactLoop, NeuralLoop};
 use crate::experiment::{Job, SolverChoice};
 use crate::metrics::{MetricsAccumulator, RunMetrics, Sample, ScoreSample};
+use crate::robot_registry::{robot_by_name, AnyRobot};
 use nalgebra::{DVector, SVector};
-use robots::{Dynamics, Jaco2, Katana6m180, Robot};
+use robots::{Dynamics, Robot};
 use schemes::paths::{build_path, Path};
 use schemes::scheme::{Level, Scheme};
 use schemes::spec::build_scheme;
@@ -64,21 +65,10 @@ pub struct RunRecord {
 
 /// Runs one job to completion or failure; never panics on bad numerics.
 pub fn run_job(job: &Job) -> RunRecord {
-    let result = match job.robot.as_str() {
-        "jaco2-pen" => {
-            let r = Arc::new(Jaco2::pen());
-            run_with::<6>(job, r.clone(), Some(r))
-        }
-        "jaco2" => {
-            let r = Arc::new(Jaco2::kinova());
-            run_with::<6>(job, r.clone(), Some(r))
-        }
-        "jaco2-hand" => {
-            let r = Arc::new(Jaco2::hand());
-            run_with::<6>(job, r.clone(), Some(r))
-        }
-        "katana6m180" => run_with::<5>(job, Arc::new(Katana6m180::new()), None),
-        other => Err(format!("unknown robot \"{other}\"")),
+    let result = match robot_by_name(&job.robot) {
+        Some(AnyRobot::Jaco2(r)) => run_with::<6>(job, r.clone(), Some(r)),
+        Some(AnyRobot::Katana(r)) => run_with::<5>(job, r, None),
+        None => Err(format!("unknown robot \"{}\"", job.robot)),
     };
     result.unwrap_or_else(|reason| RunRecord {
         job: job.clone(),

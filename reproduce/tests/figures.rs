@@ -268,6 +268,52 @@ fn panels_follow_the_level_and_the_overview_scores_neural_runs() {
     std::fs::remove_dir_all(&root).unwrap();
 }
 
+/// The number of polylines of exactly `points` points.
+fn polylines_of(svg: &str, points: usize) -> usize {
+    svg.split("<polyline")
+        .skip(1)
+        .filter_map(|element| element.split("points=\"").nth(1)?.split('"').next())
+        .filter(|p| p.split_whitespace().count() == points)
+        .count()
+}
+
+#[test]
+fn panel_a_draws_the_arm_where_the_robot_is_known_and_fits_the_trace() {
+    let root = scratch("arm");
+    synthetic_results(&root);
+    render_all(&root).unwrap();
+    let figure = |name: &str| read(&root.join("report/figures").join(name));
+
+    // jaco2-pen, 6 joints: twelve poses of base, frame origins 1..=6 and pen tip.
+    let velocity = figure("exp-vel__vltco__lvi-pdnn.svg");
+    assert_eq!(polylines_of(&velocity, 8), 12, "twelve Jaco2 poses");
+    assert!(velocity.contains("arm at t = 0") && velocity.contains("arm over time"));
+
+    // A 5-joint trace for a 6-joint robot: no arm, no error.
+    let acceleration = figure("exp-acc__mtn-zeta-0__fp-cdnn.svg");
+    assert_eq!(polylines_of(&acceleration, 8), 0);
+    assert!(!acceleration.contains("arm at t = 0"));
+
+    // The Katana (5 points a pose), and a robot the suite does not know (no arm).
+    let mut katana = row("exp-acc", "MTN (zeta=0)", "FP-CDNN", Some(0.5));
+    katana.robot = "katana6m180".into();
+    let mut unknown = row("exp-vel", "VLTCO", "LVI-PDNN", None);
+    unknown.robot = "puma560".into();
+    let runs = [
+        row("exp-vel", "VLTCO", "exact (Clarabel)", None),
+        unknown,
+        katana,
+    ];
+    write_atomic(&root.join("results/runs.csv"), &runs_csv(&runs).unwrap()).unwrap();
+    render_all(&root).unwrap();
+    let katana = figure("exp-acc__mtn-zeta-0__fp-cdnn.svg");
+    assert_eq!(polylines_of(&katana, 5), 12, "twelve Katana poses");
+    let unknown = figure("exp-vel__vltco__lvi-pdnn.svg");
+    assert!(!unknown.contains("arm at t = 0"));
+    assert_eq!(polylines_of(&unknown, 8), 0);
+    std::fs::remove_dir_all(&root).unwrap();
+}
+
 #[test]
 fn rendering_twice_gives_identical_bytes_and_removes_stale_figures() {
     let root = scratch("determinism");

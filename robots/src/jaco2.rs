@@ -207,4 +207,14 @@ impl Robot<6> for Jaco2 {
     fn limits(&self) -> JointLimits<6> {
         self.limits
     }
+
+    /// The origins of DH frames 0..=6 (frame 0 is the base, the world origin), then the task
+    /// point.
+    fn skeleton(&self, theta: &SVector<f64, 6>) -> Vec<Vector3<f64>> {
+        let frames = self.chain.frames(theta);
+        (0..=6)
+            .map(|k| frames.origin(k))
+            .chain(std::iter::once(frames.frame(6).transform_point(&self.tip)))
+            .collect()
+    }
 }

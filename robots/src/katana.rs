@@ -182,4 +182,16 @@ impl Robot<5> for Katana6m180 {
             thetadot_max: SVector::repeat(f64::INFINITY),
         }
     }
+
+    /// Base, shoulder, elbow, wrist and task point, from the pieces of eq. (2):
+    /// shoulder `(0, 0, l1)`, elbow `shoulder + l2 [C1 C2, S1 C2, S2]`, wrist
+    /// `elbow + l3 [C1 C23, S1 C23, S23]`, task point `wrist + L [C1 S234, S1 S234, -C234]`.
+    fn skeleton(&self, theta: &SVector<f64, 5>) -> Vec<Vector3<f64>> {
+        let t = Trig::new(theta);
+        let base = Vector3::zeros();
+        let shoulder = Vector3::new(0.0, 0.0, self.l1);
+        let elbow = shoulder + self.l2 * Vector3::new(t.c1 * t.c2, t.s1 * t.c2, t.s2);
+        let wrist = elbow + self.l3 * Vector3::new(t.c1 * t.c23, t.s1 * t.c23, t.s23);
+        vec![base, shoulder, elbow, wrist, self.position(theta)]
+    }
 }

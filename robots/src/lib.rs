@@ -60,6 +60,12 @@ pub trait Robot<const N: usize>: Send + Sync {
     ) -> SMatrix<f64, 3, N>;
     /// Joint limits the papers' schemes use.
     fn limits(&self) -> JointLimits<N>;
+    /// Points of the arm from the base to the task point, for drawing (allocates; not for the
+    /// hot path). The default is the world origin and the task point; a model overrides it
+    /// with its joint origins in between.
+    fn skeleton(&self, theta: &SVector<f64, N>) -> Vec<Vector3<f64>> {
+        vec![Vector3::zeros(), self.position(theta)]
+    }
 }
 
 /// Rigid-body dynamics H(theta) thetaddot + c(theta, thetadot) + g(theta) = tau.

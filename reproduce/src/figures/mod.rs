@@ -4,7 +4,8 @@
 //! into `report/figures/`:
 //!
 //! - `<experiment>__<variant-slug>__<solver-slug>.svg`, one per run: (a) the desired and actual
-//!   end-effector path in the x-y plane (equal aspect), (b) the position error over time (log
+//!   end-effector path in the x-y plane over the arm's motion (its skeleton at a dozen instants
+//!   in light grey, the start pose darker; equal aspect), (b) the position error over time (log
 //!   scale), (c) the joint angles relative to theta(0), so the drift is the value at t = T,
 //!   (d) the joint velocities, and for acceleration-level runs (e) the joint accelerations and
 //!   (f) the torques. A failed run is drawn up to its failure, with the time in the title.
@@ -14,6 +15,7 @@
 //! The output is a function of the inputs only (no timestamps, sorted inputs, integer pixel
 //! coordinates), so unchanged results give byte-identical figures.
 
+mod arm;
 mod layout;
 mod legend;
 mod overview;

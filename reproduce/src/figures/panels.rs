@@ -4,7 +4,8 @@
 use super::layout::{draw_error, Area};
 use super::scale;
 use super::style::{
-    font, CAPTION_SIZE, DESIRED_COLOUR, DESIRED_WIDTH, GRID_COLOUR, LABEL_SIZE, LINE_WIDTH,
+    font, ARM_COLOUR, ARM_START_COLOUR, CAPTION_SIZE, DESIRED_COLOUR, DESIRED_WIDTH, GRID_COLOUR,
+    LABEL_SIZE, LINE_WIDTH,
 };
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::prelude::*;
@@ -43,12 +44,14 @@ pub struct TimePanel {
     pub series: Vec<Series>,
 }
 
-/// The desired and the actual end-effector path in the x-y plane.
+/// The desired and the actual end-effector path in the x-y plane, over the arm's motion.
 pub struct PathPanel {
     pub caption: String,
     pub desired: Vec<(f64, f64)>,
     pub actual: Vec<(f64, f64)>,
     pub actual_colour: RGBColor,
+    /// The arm's x-y polylines over time, the start pose first; may be empty.
+    pub arm: Vec<Vec<(f64, f64)>>,
 }
 
 /// Draws the caption at the top of `area`; returns the rest, and the size (px) the plot will
@@ -190,25 +193,45 @@ impl TimePanel {
 }
 
 impl PathPanel {
-    /// Draws the panel into `area`: the desired path wide and pale, the actual path over it.
+    /// Draws the panel into `area`: the arm's poses thin and light with the start pose darker,
+    /// over them the desired path wide and pale, and the actual path on top. The equal-aspect
+    /// ranges cover the arm as well as the paths.
     pub fn draw(&self, area: &Area) -> Result<(), String> {
         let (inner, pixels) = titled(area, &self.caption)?;
-        let both = || self.desired.iter().chain(&self.actual);
+        let all = || {
+            self.desired
+                .iter()
+                .chain(&self.actual)
+                .chain(self.arm.iter().flatten())
+        };
         let (x, y) = scale::equal_aspect(
-            scale::linear(both().map(|p| p.0)),
-            scale::linear(both().map(|p| p.1)),
+            scale::linear(all().map(|p| p.0)),
+            scale::linear(all().map(|p| p.1)),
             pixels,
         );
-        let lines = [
-            (
-                DESIRED_COLOUR.stroke_width(DESIRED_WIDTH),
-                self.desired.clone(),
-            ),
-            (
-                self.actual_colour.stroke_width(LINE_WIDTH),
-                self.actual.clone(),
-            ),
-        ];
+        let arm_style = |k: usize| {
+            if k == 0 {
+                ARM_START_COLOUR.stroke_width(LINE_WIDTH)
+            } else {
+                ARM_COLOUR.stroke_width(LINE_WIDTH)
+            }
+        };
+        // Later poses first, so that the start pose lies over them.
+        let mut lines: Vec<(ShapeStyle, Vec<(f64, f64)>)> = self
+            .arm
+            .iter()
+            .enumerate()
+            .rev()
+            .map(|(k, pose)| (arm_style(k), pose.clone()))
+            .collect();
+        lines.push((
+            DESIRED_COLOUR.stroke_width(DESIRED_WIDTH),
+            self.desired.clone(),
+        ));
+        lines.push((
+            self.actual_colour.stroke_width(LINE_WIDTH),
+            self.actual.clone(),
+        ));
         plot(&inner, x, "x (m)", y.clone(), "y (m)", &ticks(&y), &lines)
     }
 }

@@ -1,11 +1,14 @@
-//! The figure of one run: (a) end-effector path, (b) position error, (c) joint angles relative
+//! The figure of one run: (a) end-effector path over the arm's motion, (b) position error, (c) joint angles relative
 //! to theta(0), (d) joint velocities, and at the acceleration level (e) joint accelerations and
 //! (f) torques, as in the papers' per-run figures.
 
+use super::arm;
 use super::layout::{figure, Area};
 use super::legend::{self, Arrangement, Entry};
 use super::panels::{PathPanel, Series, TimePanel, YAxis};
-use super::style::{colour, DESIRED_COLOUR, DESIRED_WIDTH, LEGEND_LINE_WIDTH};
+use super::style::{
+    colour, ARM_COLOUR, ARM_START_COLOUR, DESIRED_COLOUR, DESIRED_WIDTH, LEGEND_LINE_WIDTH,
+};
 use super::trace::Trace;
 use crate::results::RunRow;
 use plotters::prelude::*;
@@ -68,6 +71,7 @@ pub fn render(run: &RunRow, trace: &Trace) -> Result<String, String> {
         desired: path(&trace.desired),
         actual: path(&trace.actual),
         actual_colour: ACTUAL_COLOUR,
+        arm: arm::poses(run, trace),
     };
     let mut panels = vec![
         time(
@@ -119,6 +123,18 @@ pub fn render(run: &RunRow, trace: &Trace) -> Result<String, String> {
             label: "actual f(theta)".to_string(),
         },
     ];
+    if !path_panel.arm.is_empty() {
+        entries.extend([
+            Entry {
+                style: ARM_START_COLOUR.stroke_width(LEGEND_LINE_WIDTH),
+                label: "arm at t = 0".to_string(),
+            },
+            Entry {
+                style: ARM_COLOUR.stroke_width(LEGEND_LINE_WIDTH),
+                label: "arm over time".to_string(),
+            },
+        ]);
+    }
     entries.extend((0..trace.joints()).map(|i| Entry {
         style: colour(i).stroke_width(LEGEND_LINE_WIDTH),
         label: format!("joint {}", i + 1),

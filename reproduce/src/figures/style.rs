@@ -20,6 +20,10 @@ pub const LEGEND_LINE_WIDTH: u32 = 2;
 pub const DESIRED_WIDTH: u32 = 6;
 /// Colour of the desired path.
 pub const DESIRED_COLOUR: RGBColor = RGBColor(190, 190, 190);
+/// Colour of the arm's poses over time in the path panel, lighter than the desired path.
+pub const ARM_COLOUR: RGBColor = RGBColor(200, 200, 200);
+/// Colour of the arm's start pose in the path panel.
+pub const ARM_START_COLOUR: RGBColor = RGBColor(110, 110, 110);
 /// Colour of the grid lines.
 pub const GRID_COLOUR: RGBColor = RGBColor(225, 225, 225);
 

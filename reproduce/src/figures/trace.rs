@@ -124,15 +124,27 @@ impl Trace {
         self.score_dx.iter().any(Option::is_some)
     }
 
-    /// Indices of at most [`MAX_SAMPLES`] evenly spread samples, first and last included.
-    pub fn thinned(&self) -> Vec<usize> {
+    /// Indices of at most `count` samples evenly spread over the rows, first and last included
+    /// (just the first if `count` is 1).
+    pub fn spread(&self, count: usize) -> Vec<usize> {
         let n = self.t.len();
-        if n <= MAX_SAMPLES {
+        if n <= count {
             return (0..n).collect();
         }
-        (0..MAX_SAMPLES)
-            .map(|k| k * (n - 1) / (MAX_SAMPLES - 1))
-            .collect()
+        if count <= 1 {
+            return (0..count).collect();
+        }
+        (0..count).map(|k| k * (n - 1) / (count - 1)).collect()
+    }
+
+    /// Indices of at most [`MAX_SAMPLES`] evenly spread samples, first and last included.
+    pub fn thinned(&self) -> Vec<usize> {
+        self.spread(MAX_SAMPLES)
+    }
+
+    /// The joint angles at sample `k` (rad).
+    pub fn theta_at(&self, k: usize) -> Vec<f64> {
+        self.theta.iter().map(|joint| joint[k]).collect()
     }
 
     /// `(t, value)` pairs of one column at the thinned samples.
