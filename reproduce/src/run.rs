@@ -10,7 +10,7 @@ use robots::{Dynamics, Robot};
 use schemes::paths::{build_path, Path};
 use schemes::scheme::{Level, Scheme};
 use schemes::spec::build_scheme;
-use solvers::ode::{integrate, Control, OdeFailure, OdeStats};
+use solvers::ode::{integrate, Control, OdeFailure, OdeStats, OdeSystem};
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -139,7 +139,7 @@ fn run_with<const N: usize>(
                 solvers::neural::build_solver(spec, scheme.dims()).map_err(|e| e.to_string())?;
             let mut sys = NeuralLoop::new(scheme.as_ref(), network);
             let k = sys.net_offset();
-            let mut y0 = vec![0.0; sys_dim(&sys)];
+            let mut y0 = vec![0.0; sys.dim()];
             y0[..N].copy_from_slice(theta0.as_slice());
             let mut scorer = ExactLoop::new(scheme.as_ref());
             // A second instance of the network, to read its own error at accepted states.
@@ -191,11 +191,6 @@ fn run_with<const N: usize>(
         observe_seconds: observer.seconds,
         trace: observer.trace,
     })
-}
-
-fn sys_dim<const N: usize>(sys: &NeuralLoop<'_, N>) -> usize {
-    use solvers::ode::OdeSystem;
-    sys.dim()
 }
 
 fn finish<const N: usize>(
