@@ -209,24 +209,18 @@ impl<const N: usize> OdeSystem for NeuralLoop<'_, N> {
     fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut DMatrix<f64>) -> bool {
         let k = self.net_offset();
         let level = self.scheme.level();
-        // Network block with the QP at this state.
-        {
-            let (theta, thetadot) = arm_state::<N>(level, y, &y[k..]);
-            self.scheme.build(t, &theta, &thetadot, &mut self.qp);
-        }
+        // F at y: the base of the differences below, and it leaves the QP (and, for the
+        // zeroing networks, dQP/dt) at this state for the network's analytic block.
+        let mut f0 = std::mem::take(&mut self.f0);
+        self.eval(t, y, &mut f0);
+        self.f0 = f0;
         let qp_dot_needed = self.network.needs_qp_dot();
-        if qp_dot_needed {
-            // The analytic block of a zeroing network needs dQP/dt at this state.
-            let mut f = std::mem::take(&mut self.f0);
-            self.jacobian_rhs_evals += 1;
-            self.eval(t, y, &mut f);
-            self.f0 = f;
-        }
         let qp_dot = qp_dot_needed.then_some(&self.qp_dot);
         if !self
             .network
             .jacobian(t, &y[k..], &self.qp, qp_dot, &mut self.jac_net)
         {
+            self.jacobian_rhs_evals += 1;
             return false;
         }
         let n = self.dim();
@@ -245,9 +239,8 @@ impl<const N: usize> OdeSystem for NeuralLoop<'_, N> {
         // with dQP/dt) the joint-command columns: dQP/dt is taken along the network's own
         // command, a dependence the frozen-QP block above does not see.
         let fd_columns = if qp_dot_needed { k + N } else { k };
-        let mut f0 = std::mem::take(&mut self.f0);
+        let f0 = std::mem::take(&mut self.f0);
         let mut f1 = std::mem::take(&mut self.f1);
-        self.eval(t, y, &mut f0);
         self.jacobian_rhs_evals += 1 + fd_columns;
         self.yp.copy_from_slice(y);
         for j in 0..fd_columns {

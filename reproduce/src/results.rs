@@ -8,14 +8,11 @@
 //!
 //! Files are written to a temporary name and renamed, so an interrupted run never leaves a
 //! half-written file. Rows are sorted by (experiment, variant, solver) so that two runs give
-//! byte-identical files except for the timing columns (`wall_s`) and `git_rev`.
+//! byte-identical files except for the timing columns (`wall_s`, `sim_s`, `observe_s`) and `git_rev`.
 
 use crate::run::{Outcome, RunRecord};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
-
-/// Columns that legitimately differ between two runs of the same code.
-pub const TIMING_COLUMNS: &[&str] = &["wall_s", "sim_s", "observe_s", "git_rev"];
 
 /// One run, as stored in `results/runs.csv`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

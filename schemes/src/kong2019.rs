@@ -119,14 +119,6 @@ impl<const N: usize> Kong2019<N> {
         }
     }
 
-    /// Change the width of the linear zone of c (no effect on ZNN); 0 gives the exact form.
-    pub fn with_smoothing(mut self, delta: f64) -> Self {
-        if let Repetitive::FiniteTime { smoothing, .. } = &mut self.term {
-            *smoothing = delta;
-        }
-        self
-    }
-
     pub fn theta_star0(&self) -> &SVector<f64, N> {
         &self.theta_star0
     }

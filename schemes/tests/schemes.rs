@@ -1,14 +1,13 @@
-//! Tests of the papers' schemes on a small planar test arm (see `schemes_common.rs`): QP shapes,
+//! Tests of the papers' schemes on a small planar test arm (see `common/mod.rs`): QP shapes,
 //! the data each equation prescribes, the merged joint bounds, the exact optimum's task
 //! constraint, zhang2018's weight matrix, kong2019's finite-time term, the QP time derivative,
 //! constant sizes along a run, and the experiment-file spec.
 
-#[path = "schemes_common.rs"]
 mod common;
 
 use std::sync::Arc;
 
-use common::{admm, kkt_solve, qp_max_rel_diff, Circle, PlanarZ};
+use common::{admm, kkt_solve, paper_specs as specs, qp_max_rel_diff, Circle, PlanarZ};
 use nalgebra::{DMatrix, SVector, Vector3};
 use robots::{Dynamics, JointLimits, Robot};
 use schemes::jia2019::Jia2019;
@@ -39,61 +38,6 @@ fn path() -> Arc<Circle> {
         a: 0.05,
         t_end: 5.0,
     })
-}
-
-fn specs() -> Vec<SchemeSpec> {
-    vec![
-        SchemeSpec::Jia2019 {
-            phi: 1.0,
-            tau: 0.0,
-            kappa: 20.0,
-            lambda: 20.0,
-        },
-        SchemeSpec::Jia2019 {
-            phi: 0.2,
-            tau: 0.0,
-            kappa: 20.0,
-            lambda: 20.0,
-        },
-        SchemeSpec::Jia2019 {
-            phi: 0.2,
-            tau: 0.4,
-            kappa: 20.0,
-            lambda: 20.0,
-        },
-        SchemeSpec::Zhong2021 {
-            eta: 0.2,
-            delta: 0.4,
-            upsilon: 20.0,
-            lambda: 20.0,
-        },
-        SchemeSpec::Zhong2021 {
-            eta: 0.1,
-            delta: 0.8,
-            upsilon: 20.0,
-            lambda: 20.0,
-        },
-        SchemeSpec::Zhang2018 {
-            zeta: 0.0,
-            alpha: 20.0,
-            beta: 20.0,
-            rho_v: 20.0,
-            rho_p: 20.0,
-        },
-        SchemeSpec::Zhang2018 {
-            zeta: 0.6,
-            alpha: 20.0,
-            beta: 20.0,
-            rho_v: 20.0,
-            rho_p: 20.0,
-        },
-        SchemeSpec::Kong2019FiniteTime {
-            beta_theta: 1.0,
-            k_p: 1.0,
-            alpha: 0.1,
-        },
-        SchemeSpec::Kong2019Znn { mu: 1.0, k_p: 1.0 },
-    ]
 }
 
 fn make(spec: &SchemeSpec) -> Box<dyn Scheme<N>> {

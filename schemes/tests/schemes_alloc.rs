@@ -1,7 +1,6 @@
 //! `build` and the analytic `build_dot` overrides must not allocate: counted with a global
 //! allocator that counts allocations made by the current thread while a flag is set.
 
-#[path = "schemes_common.rs"]
 mod common;
 
 use std::alloc::{GlobalAlloc, Layout, System};
@@ -11,7 +10,7 @@ use std::sync::Arc;
 use common::{Circle, PlanarZ};
 use nalgebra::SVector;
 use robots::Robot;
-use schemes::spec::{build_scheme, SchemeSpec};
+use schemes::spec::build_scheme;
 
 struct Counting;
 
@@ -55,33 +54,7 @@ fn build_and_build_dot_do_not_allocate() {
         a: 0.05,
         t_end: 5.0,
     });
-    let specs = [
-        SchemeSpec::Jia2019 {
-            phi: 0.2,
-            tau: 0.4,
-            kappa: 20.0,
-            lambda: 20.0,
-        },
-        SchemeSpec::Zhong2021 {
-            eta: 0.2,
-            delta: 0.4,
-            upsilon: 20.0,
-            lambda: 20.0,
-        },
-        SchemeSpec::Zhang2018 {
-            zeta: 0.6,
-            alpha: 20.0,
-            beta: 20.0,
-            rho_v: 20.0,
-            rho_p: 20.0,
-        },
-        SchemeSpec::Kong2019FiniteTime {
-            beta_theta: 1.0,
-            k_p: 1.0,
-            alpha: 0.1,
-        },
-        SchemeSpec::Kong2019Znn { mu: 1.0, k_p: 1.0 },
-    ];
+    let specs = common::paper_specs();
     let th = theta0 + SVector::<f64, N>::repeat(0.05);
     let thd = SVector::<f64, N>::repeat(0.2);
     for spec in &specs {

@@ -3,9 +3,12 @@
 //! merged bounds, zhang2018's W is SPD with the real inertia, and build_dot matches a
 //! higher-order difference on the real kinematics.
 
+mod common;
+
 use std::f64::consts::PI;
 use std::sync::Arc;
 
+use common::qp_max_rel_diff;
 use nalgebra::{SVector, Vector3};
 use robots::{Dynamics, Jaco2, Katana6m180, Robot};
 use schemes::paths::{build_path, Path, PathSpec};
@@ -27,27 +30,6 @@ fn path(name: &str, duration: f64, start: Vector3<f64>) -> Arc<dyn Path> {
         )
         .unwrap(),
     )
-}
-
-fn max_rel_diff(a: &Qp, b: &Qp) -> f64 {
-    let mut d: f64 = 0.0;
-    for (x, y) in [
-        (a.p.as_slice(), b.p.as_slice()),
-        (a.q.as_slice(), b.q.as_slice()),
-        (a.a.as_slice(), b.a.as_slice()),
-        (a.b.as_slice(), b.b.as_slice()),
-        (a.g.as_slice(), b.g.as_slice()),
-        (a.h.as_slice(), b.h.as_slice()),
-        (a.lower.as_slice(), b.lower.as_slice()),
-        (a.upper.as_slice(), b.upper.as_slice()),
-    ] {
-        for (&u, &v) in x.iter().zip(y) {
-            if u != v {
-                d = d.max((u - v).abs() / u.abs().max(1.0));
-            }
-        }
-    }
-    d
 }
 
 /// Richardson-extrapolated central difference (O(h^4)) along the motion.
@@ -203,7 +185,7 @@ fn jaco2_schemes_exact_optimum_and_derivative() {
         let mut dot = s.new_qp();
         let mut scratch = s.new_dot_scratch();
         s.build_dot(1.7, &th, &thd, &thdd, &mut dot, &mut scratch);
-        let d = max_rel_diff(&dot, &reference_dot(&*s, 1.7, &th, &thd, &thdd, 1e-3));
+        let d = qp_max_rel_diff(&dot, &reference_dot(&*s, 1.7, &th, &thd, &thdd, 1e-3));
         assert!(d < 1e-6, "{}: build_dot off by {d}", spec.display_name());
     }
 }
@@ -248,7 +230,7 @@ fn katana_kong2019_schemes() {
         let th2 = star + SVector::<f64, 5>::from([0.03, -0.02, 0.05, 0.01, 0.5]);
         let mut dot = s.new_qp();
         s.build_dot(3.0, &th2, &thd, &thd, &mut dot, &mut s.new_dot_scratch());
-        let d = max_rel_diff(&dot, &reference_dot(&*s, 3.0, &th2, &thd, &thd, 1e-4));
+        let d = qp_max_rel_diff(&dot, &reference_dot(&*s, 3.0, &th2, &thd, &thd, 1e-4));
         assert!(d < 1e-6, "{}: build_dot off by {d}", spec.display_name());
     }
 }

@@ -61,9 +61,6 @@ impl Method {
             Method::Tsit45 => "tsit45",
         }
     }
-    pub fn is_implicit(self) -> bool {
-        matches!(self, Method::Bdf | Method::Esdirk34 | Method::TrBdf2)
-    }
 }
 
 impl std::fmt::Display for Method {
@@ -146,18 +143,6 @@ impl std::fmt::Display for OdeError {
 }
 
 impl std::error::Error for OdeError {}
-
-impl OdeError {
-    /// Time at which the integration stopped.
-    pub fn t(&self) -> f64 {
-        match self {
-            OdeError::Solver { t, .. }
-            | OdeError::NonFinite { t }
-            | OdeError::TooManySteps { t, .. }
-            | OdeError::Stopped { t, .. } => *t,
-        }
-    }
-}
 
 /// A failed integration with the cost spent until it stopped.
 #[derive(Debug)]

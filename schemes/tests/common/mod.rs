@@ -1,7 +1,7 @@
 //! Test fixtures: a planar N-link arm with a z coordinate (and a made-up but SPD dynamics), a
 //! circle path, and a small ADMM QP solver that also returns multipliers, so its answers can be
-//! checked by the QP's own KKT residuals. Included by the `schemes*.rs` tests with `#[path]`
-//! (and also compiled alone as a test target with no tests).
+//! checked by the QP's own KKT residuals; the papers' scheme specs the tests sweep; and a QP
+//! comparison. Shared by the `schemes*.rs` tests (`mod common;`).
 #![allow(dead_code)]
 
 use std::f64::consts::PI;
@@ -9,6 +9,7 @@ use std::f64::consts::PI;
 use nalgebra::{DMatrix, DVector, SMatrix, SVector, Vector3};
 use robots::{Dynamics, JointLimits, Robot};
 use schemes::paths::{Path, PathPoint};
+use schemes::spec::SchemeSpec;
 use solvers::{Qp, QpDuals};
 
 /// Planar arm: joints 1..N-1 rotate in the x-y plane (links `LEN`), joint N moves the tip in z
@@ -245,4 +246,60 @@ pub fn qp_max_rel_diff(a: &Qp, b: &Qp) -> f64 {
         }
     }
     d
+}
+
+/// Every paper's scheme at the parameters the papers use (and MVN / MVN-INVM / MTN).
+pub fn paper_specs() -> Vec<SchemeSpec> {
+    vec![
+        SchemeSpec::Jia2019 {
+            phi: 1.0,
+            tau: 0.0,
+            kappa: 20.0,
+            lambda: 20.0,
+        },
+        SchemeSpec::Jia2019 {
+            phi: 0.2,
+            tau: 0.0,
+            kappa: 20.0,
+            lambda: 20.0,
+        },
+        SchemeSpec::Jia2019 {
+            phi: 0.2,
+            tau: 0.4,
+            kappa: 20.0,
+            lambda: 20.0,
+        },
+        SchemeSpec::Zhong2021 {
+            eta: 0.2,
+            delta: 0.4,
+            upsilon: 20.0,
+            lambda: 20.0,
+        },
+        SchemeSpec::Zhong2021 {
+            eta: 0.1,
+            delta: 0.8,
+            upsilon: 20.0,
+            lambda: 20.0,
+        },
+        SchemeSpec::Zhang2018 {
+            zeta: 0.0,
+            alpha: 20.0,
+            beta: 20.0,
+            rho_v: 20.0,
+            rho_p: 20.0,
+        },
+        SchemeSpec::Zhang2018 {
+            zeta: 0.6,
+            alpha: 20.0,
+            beta: 20.0,
+            rho_v: 20.0,
+            rho_p: 20.0,
+        },
+        SchemeSpec::Kong2019FiniteTime {
+            beta_theta: 1.0,
+            k_p: 1.0,
+            alpha: 0.1,
+        },
+        SchemeSpec::Kong2019Znn { mu: 1.0, k_p: 1.0 },
+    ]
 }
