@@ -20,8 +20,10 @@
 //!
 //! Choices (documented deviations):
 //! - b = rdot* exactly as printed: no position feedback, so tracking error integrates.
-//! - The RMP weight is taken from the QP data as printed, g = tau Lambda (theta - theta0) with
-//!   Lambda = 20; the text's Lambda = 2 mu with mu = 5 would give 10.
+//! - The RMP term's linear coefficient is by default the QP data as printed,
+//!   g = tau Lambda (theta - theta0) with Lambda = 20; the expansion of jia2019 (2.11) with
+//!   Lambda = 2 mu gives tau Lambda / 2, and the text's mu = 5 gives tau mu. All three are
+//!   available ([`RmpReading`], [`Jia2019::with_rmp`]; see [`crate::rmp`]).
 //! - varpi, "a large constant standing for +inf", is `f64::INFINITY` by default (the QP type
 //!   supports absent bounds); [`Jia2019::with_varpi`] sets a finite constant for solvers that
 //!   need a finite box.
@@ -36,6 +38,7 @@ use solvers::{Qp, QpDims};
 use crate::joint_limits::{merged_bounds, merged_bounds_dot};
 use crate::paths::Path;
 use crate::qp_dot::QpDotScratch;
+use crate::rmp::RmpReading;
 use crate::scheme::{Level, Scheme};
 
 /// jia2019's tri-criteria scheme (MVN / MVN-INVM / VLTCO), eq. 2.17–2.20.
@@ -51,6 +54,10 @@ pub struct Jia2019<const N: usize> {
     pub kappa: f64,
     /// RMP gain Lambda.
     pub lambda: f64,
+    /// Which reading of the RMP coefficient g uses (default: as printed, tau Lambda).
+    pub rmp: RmpReading,
+    /// The text's RMP gain mu of C = mu (theta - theta0) (used by [`RmpReading::TextGain`]).
+    pub mu: f64,
     /// Upper bound of p (the paper's "large constant"); +inf by default.
     pub varpi: f64,
 }
@@ -75,8 +82,24 @@ impl<const N: usize> Jia2019<N> {
             tau,
             kappa,
             lambda,
+            rmp: RmpReading::Printed,
+            mu: 5.0,
             varpi: f64::INFINITY,
         }
+    }
+
+    /// Use `reading` for the RMP coefficient, with the text's gain `mu` (used only by
+    /// [`RmpReading::TextGain`]).
+    pub fn with_rmp(mut self, reading: RmpReading, mu: f64) -> Self {
+        self.rmp = reading;
+        self.mu = mu;
+        self
+    }
+
+    /// The factor c of g = [c (theta - theta0); 0]: tau times the reading's coefficient
+    /// (tau Lambda as printed).
+    pub fn rmp_coefficient(&self) -> f64 {
+        self.tau * self.rmp.coefficient(self.lambda, self.mu)
     }
 
     /// Replace varpi = +inf by a finite constant.
@@ -200,7 +223,7 @@ impl<const N: usize> Scheme<N> for Jia2019<N> {
             &self.theta0,
             self.phi,
             self.tau,
-            self.tau * self.lambda,
+            self.rmp_coefficient(),
         );
         write_invm_rows::<N>(qp, 0);
         let (lo, hi) = merged_bounds(&self.robot.limits(), theta, self.kappa);
@@ -210,7 +233,8 @@ impl<const N: usize> Scheme<N> for Jia2019<N> {
         qp.upper[N] = self.varpi;
     }
 
-    /// Analytic: Ddot = 0, gdot = [tau Lambda thetadot; 0], Adot = [Jdot 0], bdot = rddot*,
+    /// Analytic: Ddot = 0, gdot = [c thetadot; 0] (c = [`Jia2019::rmp_coefficient`]),
+    /// Adot = [Jdot 0], bdot = rddot*,
     /// Gdot = 0, hdot = 0, bounds by [`merged_bounds_dot`] (right-hand derivative at the kink).
     fn build_dot(
         &self,
@@ -229,7 +253,7 @@ impl<const N: usize> Scheme<N> for Jia2019<N> {
             t,
             theta,
             thetadot,
-            self.tau * self.lambda,
+            self.rmp_coefficient(),
         );
         qp_dot.g.fill(0.0);
         qp_dot.h.fill(0.0);

@@ -6,6 +6,7 @@ pub mod joint_limits;
 pub mod kong2019;
 pub mod paths;
 pub mod qp_dot;
+pub mod rmp;
 pub mod scheme;
 pub mod spec;
 pub mod zhang2018;

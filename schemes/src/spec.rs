@@ -13,6 +13,14 @@
 //! delta, upsilon, lambda = Lambda, default 20 as in every zhong2021 run), zhang2018 (zeta,
 //! alpha, beta, rho_v, rho_p), kong2019 finite time (beta_theta, k_p, alpha), kong2019 ZNN (mu,
 //! k_p). Unknown fields are rejected.
+//!
+//! The RMP term's linear coefficient has three readings ([`RmpReading`], see [`crate::rmp`]):
+//! jia2019 takes `rmp = "printed"` (default, g = tau Lambda (theta - theta0)), `"expansion"`
+//! (tau Lambda / 2, jia2019 (2.11) with Lambda = 2 mu) or `"text-mu"` (tau mu) with `mu`
+//! (default 5, the text's value); zhong2021 takes the same readings (`"text-tau"` is accepted for
+//! `"text-mu"`) with its gain `tau` of c = tau (theta - theta0) (default 10 = Lambda / 2 at the
+//! papers' Lambda = 20, from zhong2021 (2.10)'s Lambda = 2 tau; the paper gives no value).
+//! Both fields are optional and left out when serialised at their defaults.
 
 use std::fmt;
 use std::sync::Arc;
@@ -24,12 +32,31 @@ use serde::{Deserialize, Serialize};
 use crate::jia2019::Jia2019;
 use crate::kong2019::Kong2019;
 use crate::paths::Path;
+pub use crate::rmp::RmpReading;
 use crate::scheme::Scheme;
 use crate::zhang2018::Zhang2018;
 use crate::zhong2021::Zhong2021;
 
 fn default_zhong_lambda() -> f64 {
     20.0
+}
+
+/// jia2019's mu = 5 (text after jia2019 (2.9)).
+fn default_jia_mu() -> f64 {
+    5.0
+}
+
+fn is_default_jia_mu(mu: &f64) -> bool {
+    *mu == default_jia_mu()
+}
+
+/// zhong2021's tau of c = tau (theta - theta0): Lambda / 2 = 10 at Lambda = 20 (zhong2021 (2.10)).
+fn default_zhong_tau() -> f64 {
+    10.0
+}
+
+fn is_default_zhong_tau(tau: &f64) -> bool {
+    *tau == default_zhong_tau()
 }
 
 /// A scheme and its parameters, as an experiment file names them.
@@ -42,6 +69,12 @@ pub enum SchemeSpec {
         tau: f64,
         kappa: f64,
         lambda: f64,
+        /// Reading of the RMP coefficient (default `printed`: tau Lambda).
+        #[serde(default, skip_serializing_if = "RmpReading::is_printed")]
+        rmp: RmpReading,
+        /// The text's gain mu of C = mu (theta - theta0), used by `rmp = "text-mu"`.
+        #[serde(default = "default_jia_mu", skip_serializing_if = "is_default_jia_mu")]
+        mu: f64,
     },
     /// zhong2021 CMCO eq. 2.16–2.18.
     Zhong2021 {
@@ -50,6 +83,16 @@ pub enum SchemeSpec {
         upsilon: f64,
         #[serde(default = "default_zhong_lambda")]
         lambda: f64,
+        /// Reading of the RMP coefficient (default `printed`: delta Lambda).
+        #[serde(default, skip_serializing_if = "RmpReading::is_printed")]
+        rmp: RmpReading,
+        /// The text's gain tau of c = tau (theta - theta0), used by `rmp = "text-mu"`
+        /// (or `"text-tau"`).
+        #[serde(
+            default = "default_zhong_tau",
+            skip_serializing_if = "is_default_zhong_tau"
+        )]
+        tau: f64,
     },
     /// zhang2018 HL-JDF eq. 2.5–2.6 (MTN when zeta = 0).
     Zhang2018 {
@@ -151,16 +194,39 @@ impl SchemeSpec {
     }
 
     /// The scheme's name as the paper writes it, with the parameters that distinguish runs,
-    /// e.g. `VLTCO (phi=0.2, tau=0.4)`, `CMCO (eta=0.1, delta=0.8)`, `MTN (zeta=0)`.
+    /// e.g. `VLTCO (phi=0.2, tau=0.4)`, `CMCO (eta=0.1, delta=0.8)`, `MTN (zeta=0)`. A
+    /// non-default RMP reading is appended: `VLTCO (phi=0.2, tau=0.4, rmp=expansion)`,
+    /// `VLTCO (phi=0.2, tau=0.4, rmp=text-mu, mu=5)`, `CMCO (eta=0.1, delta=0.8, rmp=text-tau,
+    /// tau=10)`.
     pub fn display_name(&self) -> String {
         match *self {
-            SchemeSpec::Jia2019 { phi, tau, .. } => {
+            SchemeSpec::Jia2019 {
+                phi, tau, rmp, mu, ..
+            } => {
+                let reading = match rmp {
+                    RmpReading::Printed => String::new(),
+                    RmpReading::Expansion => ", rmp=expansion".to_string(),
+                    RmpReading::TextGain => format!(", rmp=text-mu, mu={mu}"),
+                };
                 format!(
-                    "{} (phi={phi}, tau={tau})",
+                    "{} (phi={phi}, tau={tau}{reading})",
                     Jia2019::<1>::scheme_name(phi, tau)
                 )
             }
-            SchemeSpec::Zhong2021 { eta, delta, .. } => format!("CMCO (eta={eta}, delta={delta})"),
+            SchemeSpec::Zhong2021 {
+                eta,
+                delta,
+                rmp,
+                tau,
+                ..
+            } => {
+                let reading = match rmp {
+                    RmpReading::Printed => String::new(),
+                    RmpReading::Expansion => ", rmp=expansion".to_string(),
+                    RmpReading::TextGain => format!(", rmp=text-tau, tau={tau}"),
+                };
+                format!("CMCO (eta={eta}, delta={delta}{reading})")
+            }
             SchemeSpec::Zhang2018 { zeta, .. } => {
                 format!("{} (zeta={zeta})", Zhang2018::<1>::scheme_name(zeta))
             }
@@ -182,7 +248,10 @@ impl SchemeSpec {
                 tau,
                 kappa,
                 lambda,
+                mu,
+                ..
             } => {
+                check(s, "mu", mu, mu > 0.0, "finite and > 0")?;
                 check(s, "phi", phi, phi >= 0.0, "finite and >= 0")?;
                 check(
                     s,
@@ -199,7 +268,10 @@ impl SchemeSpec {
                 delta,
                 upsilon,
                 lambda,
+                tau,
+                ..
             } => {
+                check(s, "tau", tau, tau > 0.0, "finite and > 0")?;
                 check(s, "eta", eta, eta >= 0.0, "finite and >= 0")?;
                 check(
                     s,
@@ -273,17 +345,21 @@ pub fn build_scheme<const N: usize>(
             tau,
             kappa,
             lambda,
-        } => Box::new(Jia2019::new(
-            robot, path, theta_ref, phi, tau, kappa, lambda,
-        )),
+            rmp,
+            mu,
+        } => Box::new(
+            Jia2019::new(robot, path, theta_ref, phi, tau, kappa, lambda).with_rmp(rmp, mu),
+        ),
         SchemeSpec::Zhong2021 {
             eta,
             delta,
             upsilon,
             lambda,
-        } => Box::new(Zhong2021::new(
-            robot, path, theta_ref, eta, delta, upsilon, lambda,
-        )),
+            rmp,
+            tau,
+        } => Box::new(
+            Zhong2021::new(robot, path, theta_ref, eta, delta, upsilon, lambda).with_rmp(rmp, tau),
+        ),
         SchemeSpec::Zhang2018 {
             zeta,
             alpha,

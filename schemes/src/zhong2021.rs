@@ -26,7 +26,11 @@
 //! - varpi ("an infinite constant") is `f64::INFINITY` by default, so the row k <= varpi has
 //!   h = +inf (its penalty term exp(-sigma (h - Bx)) is exactly 0); [`Zhong2021::with_varpi`]
 //!   sets a finite constant.
-//! - Lambda (= 2 tau in the text) is a parameter; the experiments use Lambda = 20.
+//! - Lambda (= 2 tau in the text, zhong2021 (2.10)) is a parameter; the experiments use
+//!   Lambda = 20. The RMP term's linear coefficient is by default the QP data as printed,
+//!   g = delta Lambda (theta - theta0); the expansion of delta ||thetadot + c||^2 / 2 with
+//!   c = tau (theta - theta0) and Lambda = 2 tau gives delta Lambda / 2, and a given gain tau
+//!   gives delta tau ([`RmpReading`], [`Zhong2021::with_rmp`]; see [`crate::rmp`]).
 //! - theta0 is the run's initial joint vector; b = rdot* has no position feedback, as printed.
 
 use std::sync::Arc;
@@ -39,6 +43,7 @@ use crate::jia2019::{write_invm_rows, write_tri_criteria, write_tri_criteria_dot
 use crate::joint_limits::{merged_bounds_dot, piecewise_bounds};
 use crate::paths::Path;
 use crate::qp_dot::QpDotScratch;
+use crate::rmp::RmpReading;
 use crate::scheme::{Level, Scheme};
 
 /// zhong2021's CMCO scheme, eq. 2.16–2.18.
@@ -54,6 +59,10 @@ pub struct Zhong2021<const N: usize> {
     pub upsilon: f64,
     /// RMP gain Lambda.
     pub lambda: f64,
+    /// Which reading of the RMP coefficient g uses (default: as printed, delta Lambda).
+    pub rmp: RmpReading,
+    /// The text's RMP gain tau of c = tau (theta - theta0) (used by [`RmpReading::TextGain`]).
+    pub tau: f64,
     /// Upper bound of k; +inf by default.
     pub varpi: f64,
 }
@@ -78,8 +87,24 @@ impl<const N: usize> Zhong2021<N> {
             delta,
             upsilon,
             lambda,
+            rmp: RmpReading::Printed,
+            tau: 10.0,
             varpi: f64::INFINITY,
         }
+    }
+
+    /// Use `reading` for the RMP coefficient, with the text's gain `tau` (used only by
+    /// [`RmpReading::TextGain`]).
+    pub fn with_rmp(mut self, reading: RmpReading, tau: f64) -> Self {
+        self.rmp = reading;
+        self.tau = tau;
+        self
+    }
+
+    /// The factor c of g = [c (theta - theta0); 0]: delta times the reading's coefficient
+    /// (delta Lambda as printed).
+    pub fn rmp_coefficient(&self) -> f64 {
+        self.delta * self.rmp.coefficient(self.lambda, self.tau)
     }
 
     /// Replace varpi = +inf by a finite constant.
@@ -121,7 +146,7 @@ impl<const N: usize> Scheme<N> for Zhong2021<N> {
             &self.theta0,
             self.eta,
             self.delta,
-            self.delta * self.lambda,
+            self.rmp_coefficient(),
         );
         // s rows (INVM), h = d = 0.
         write_invm_rows::<N>(qp, 0);
@@ -143,7 +168,8 @@ impl<const N: usize> Scheme<N> for Zhong2021<N> {
         qp.upper.fill(f64::INFINITY);
     }
 
-    /// Analytic: Qdot = 0, gdot = [delta Lambda thetadot; 0], Adot = [Jdot 0], bdot = rddot*,
+    /// Analytic: Qdot = 0, gdot = [c thetadot; 0] (c = [`Zhong2021::rmp_coefficient`]),
+    /// Adot = [Jdot 0], bdot = rddot*,
     /// Bdot = 0, hdot = [0; zeta+dot; 0; -zeta-dot; 0] (right-hand derivative at the switch
     /// points xi1, xi2).
     fn build_dot(
@@ -163,7 +189,7 @@ impl<const N: usize> Scheme<N> for Zhong2021<N> {
             t,
             theta,
             thetadot,
-            self.delta * self.lambda,
+            self.rmp_coefficient(),
         );
         qp_dot.g.fill(0.0);
         qp_dot.h.fill(0.0);

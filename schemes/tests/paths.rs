@@ -4,7 +4,7 @@
 use nalgebra::Vector3;
 use schemes::paths::{
     build_path, default_duration, default_scale, scale_provenance, ClosedCurve, CurveShape,
-    GlobalPolyline, Path, PathError, PathSpec, StrokePath, DAI, PATH_NAMES, PING,
+    GlobalPolyline, Path, PathError, PathPoint, PathSpec, StrokePath, DAI, PATH_NAMES, PING,
 };
 use std::f64::consts::PI;
 
@@ -13,13 +13,11 @@ fn start() -> Vector3<f64> {
 }
 
 fn spec(name: &str) -> PathSpec {
-    PathSpec {
-        name: name.to_string(),
-        duration: default_duration(name).unwrap(),
-        scale: None,
-        reverse: false,
-    }
+    PathSpec::new(name, default_duration(name).unwrap())
 }
+
+/// The one path that does not end where it starts (the group's butterfly as printed).
+const OPEN: &str = "butterfly-as-printed";
 
 fn all_paths() -> Vec<(&'static str, Box<dyn Path>)> {
     PATH_NAMES
@@ -43,6 +41,9 @@ fn every_path_starts_at_start_and_closes() {
         let r0 = p.at(0.0).r;
         let r_t = p.at(p.duration()).r;
         assert!((r0 - start()).norm() < 1e-15, "{name}: r(0) = {r0}");
+        if name == OPEN {
+            continue;
+        }
         assert!(
             (r_t - r0).norm() < 1e-12,
             "{name}: r(T) - r(0) = {}",
@@ -75,9 +76,16 @@ fn outside_the_interval_paths_rest_at_their_end_points() {
 
 #[test]
 fn derivatives_match_central_differences() {
-    let h = 1e-5;
     for (name, p) in all_paths() {
-        let ts = samples(p.as_ref(), 400, 3.0 * h);
+        assert_derivatives_match(name, p.as_ref());
+    }
+}
+
+/// rdot and rddot of `p` against central differences of r and rdot at interior samples.
+fn assert_derivatives_match(name: &str, p: &dyn Path) {
+    let h = 1e-5;
+    {
+        let ts = samples(p, 400, 3.0 * h);
         assert!(ts.len() > 300, "{name}: too few samples");
         for t in ts {
             let (minus, plus, here) = (p.at(t - h), p.at(t + h), p.at(t));
@@ -343,12 +351,7 @@ fn every_name_has_a_size_provenance_and_duration() {
 
 #[test]
 fn bad_specs_are_rejected_naming_the_field() {
-    let bad_name = PathSpec {
-        name: "spiral".into(),
-        duration: 5.0,
-        scale: None,
-        reverse: false,
-    };
+    let bad_name = PathSpec::new("spiral", 5.0);
     let err = build_path(&bad_name, start()).err().unwrap();
     assert_eq!(err, PathError::UnknownName("spiral".into()));
     let msg = err.to_string();
@@ -382,15 +385,7 @@ fn bad_specs_are_rejected_naming_the_field() {
 #[test]
 fn path_spec_reads_from_toml() {
     let s: PathSpec = toml::from_str("name = \"dai\"\nduration = 15.0\n").unwrap();
-    assert_eq!(
-        s,
-        PathSpec {
-            name: "dai".into(),
-            duration: 15.0,
-            scale: None,
-            reverse: false,
-        }
-    );
+    assert_eq!(s, PathSpec::new("dai", 15.0));
     let s: PathSpec = toml::from_str("name = \"circle\"\nduration = 9.0\nscale = 0.1\n").unwrap();
     assert_eq!(s.scale, Some(0.1));
     assert!(
@@ -412,9 +407,13 @@ fn a_reversed_path_is_the_same_curve_travelled_backwards() {
         .unwrap();
         let t_end = fwd.duration();
         assert!(
-            (rev.at(0.0).r - start()).norm() < 1e-12 && (rev.at(t_end).r - start()).norm() < 1e-12,
+            (rev.at(0.0).r - fwd.at(t_end).r).norm() < 1e-15
+                && (rev.at(t_end).r - start()).norm() < 1e-15,
             "{name}"
         );
+        if *name != OPEN {
+            assert!((rev.at(0.0).r - start()).norm() < 1e-12, "{name}");
+        }
         for k in 1..50 {
             let t = t_end * k as f64 / 50.0;
             let (f, r) = (fwd.at(t_end - t), rev.at(t));
@@ -428,4 +427,281 @@ fn a_reversed_path_is_the_same_curve_travelled_backwards() {
         let expected: Vec<f64> = fwd.breakpoints().iter().rev().map(|b| t_end - b).collect();
         assert_eq!(rev.breakpoints(), expected.as_slice(), "{name}");
     }
+}
+
+// ---- pose: rotation, tilt and phase -------------------------------------------------------
+
+/// Paths a non-zero `phase` applies to (closed curves and star-lines).
+const PHASEABLE: [&str; 6] = [
+    "four-leaf-clover",
+    "five-point-star",
+    "star-lines",
+    "butterfly",
+    "cardioid",
+    "circle",
+];
+
+/// R = Ry(ty) Rx(tx) Rz(rz), written out (independently of the crate's construction).
+fn rotation_matrix(rz: f64, tx: f64, ty: f64) -> nalgebra::Matrix3<f64> {
+    let (sz, cz) = rz.sin_cos();
+    let (sx, cx) = tx.sin_cos();
+    let (sy, cy) = ty.sin_cos();
+    let z = nalgebra::Matrix3::new(cz, -sz, 0.0, sz, cz, 0.0, 0.0, 0.0, 1.0);
+    let x = nalgebra::Matrix3::new(1.0, 0.0, 0.0, 0.0, cx, -sx, 0.0, sx, cx);
+    let y = nalgebra::Matrix3::new(cy, 0.0, sy, 0.0, 1.0, 0.0, -sy, 0.0, cy);
+    y * x * z
+}
+
+fn posed(name: &str, rotation: f64, tilt_x: f64, tilt_y: f64, phase: f64) -> PathSpec {
+    PathSpec {
+        rotation,
+        tilt_x,
+        tilt_y,
+        phase,
+        ..spec(name)
+    }
+}
+
+/// (rotation, tilt_x, tilt_y, phase) combinations; phase only for [`PHASEABLE`] names.
+fn poses(name: &str) -> Vec<(f64, f64, f64, f64)> {
+    let mut v = vec![
+        (0.7, 0.0, 0.0, 0.0),
+        (0.0, 0.4, -0.3, 0.0),
+        (-2.1, 1.1, 0.6, 0.0),
+    ];
+    if PHASEABLE.contains(&name) {
+        v.extend([(0.0, 0.0, 0.0, 0.37), (0.7, 0.4, -0.3, 0.81)]);
+    }
+    v
+}
+
+#[test]
+fn posed_paths_keep_the_path_properties() {
+    for &name in PATH_NAMES {
+        for (rz, tx, ty, ph) in poses(name) {
+            let label = format!("{name} pose ({rz}, {tx}, {ty}, phase {ph})");
+            let p = build_path(&posed(name, rz, tx, ty, ph), start()).unwrap();
+            let big_t = p.duration();
+            assert!((p.at(0.0).r - start()).norm() < 1e-15, "{label}: r(0)");
+            if name != OPEN {
+                assert!((p.at(big_t).r - start()).norm() < 1e-12, "{label}: r(T)");
+            }
+            for t in [0.0, big_t] {
+                assert!(p.at(t).rdot.norm() < 1e-14, "{label}: rdot({t})");
+            }
+            for (t, end) in [(-1.0, 0.0), (big_t + 1.0, big_t)] {
+                let q = p.at(t);
+                assert_eq!(q.r, p.at(end).r, "{label} at t = {t}");
+                assert_eq!(q.rdot, Vector3::zeros(), "{label} at t = {t}");
+                assert_eq!(q.rddot, Vector3::zeros(), "{label} at t = {t}");
+            }
+            assert_derivatives_match(&label, p.as_ref());
+        }
+    }
+}
+
+#[test]
+fn rotation_and_tilt_map_offsets_by_r_and_keep_distances() {
+    for &name in PATH_NAMES {
+        let flat = build_path(&spec(name), start()).unwrap();
+        for (rz, tx, ty) in [(0.7, 0.0, 0.0), (0.0, 0.4, -0.3), (-2.1, 1.1, 0.6)] {
+            let rot = rotation_matrix(rz, tx, ty);
+            let normal = rot * Vector3::z();
+            let p = build_path(&posed(name, rz, tx, ty, 0.0), start()).unwrap();
+            assert_eq!(p.breakpoints(), flat.breakpoints(), "{name}");
+            for i in 0..=200 {
+                let t = p.duration() * i as f64 / 200.0;
+                let (q, f) = (p.at(t), flat.at(t));
+                let (d, df) = (q.r - start(), f.r - start());
+                // Distances from the start point and speeds are preserved.
+                assert!((d.norm() - df.norm()).abs() < 1e-15, "{name} t = {t}");
+                assert!(
+                    (q.rdot.norm() - f.rdot.norm()).abs() < 1e-14,
+                    "{name} t = {t}"
+                );
+                // The offsets (and velocity, acceleration) are R times the flat ones ...
+                assert!((d - rot * df).norm() < 1e-15, "{name} t = {t}");
+                assert!((q.rdot - rot * f.rdot).norm() < 1e-14, "{name} t = {t}");
+                assert!((q.rddot - rot * f.rddot).norm() < 1e-13, "{name} t = {t}");
+                // ... hence orthogonal to the plane normal R e_z.
+                assert!(d.dot(&normal).abs() < 1e-15, "{name} t = {t}");
+                assert!(q.rdot.dot(&normal).abs() < 1e-14, "{name} t = {t}");
+                assert!(q.rddot.dot(&normal).abs() < 1e-13, "{name} t = {t}");
+            }
+        }
+    }
+    // A tilt takes the figure out of the base x-y plane: z moves.
+    let tilted = build_path(&posed("circle", 0.0, 0.0, 0.5, 0.0), start()).unwrap();
+    assert!((tilted.at(4.5).r.z - start().z).abs() > 0.01);
+    // The crate's R is the documented one.
+    let r = schemes::paths::pose_rotation(-2.1, 1.1, 0.6);
+    assert!((r - rotation_matrix(-2.1, 1.1, 0.6)).amax() < 1e-15);
+}
+
+#[test]
+fn default_pose_reproduces_the_path_exactly() {
+    for &name in PATH_NAMES {
+        let plain = build_path(&spec(name), start()).unwrap();
+        let zeros = build_path(&posed(name, 0.0, -0.0, 0.0, 0.0), start()).unwrap();
+        assert_eq!(plain.breakpoints(), zeros.breakpoints(), "{name}");
+        for i in 0..=300 {
+            let t = plain.duration() * i as f64 / 300.0;
+            let (a, b): (PathPoint, PathPoint) = (plain.at(t), zeros.at(t));
+            assert_eq!(a, b, "{name} at {t}");
+        }
+    }
+    let c = ClosedCurve::new(CurveShape::Butterfly, 0.035, start(), 8.0);
+    assert_eq!(c.clone().with_phase(0.0).unwrap(), c);
+    let g = GlobalPolyline::pentagram(start(), 0.08, 5.0).unwrap();
+    let g0 = GlobalPolyline::pentagram_with_phase(start(), 0.08, 5.0, 0.0).unwrap();
+    assert_eq!(g, g0);
+}
+
+/// The time at which the sin^2 law has covered the fraction `s` of the cycle.
+fn time_of_fraction(s: f64, big_t: f64) -> f64 {
+    2.0 * big_t / PI * s.sqrt().asin()
+}
+
+#[test]
+fn a_phased_path_is_the_path_started_later_minus_its_offset() {
+    for name in PHASEABLE {
+        let plain = build_path(&spec(name), start()).unwrap();
+        let big_t = plain.duration();
+        for phase in [0.1, 0.25, 0.6] {
+            let p = build_path(&posed(name, 0.0, 0.0, 0.0, phase), start()).unwrap();
+            let offset = plain.at(time_of_fraction(phase, big_t)).r - start();
+            for i in 0..=100 {
+                let t = big_t * i as f64 / 100.0;
+                let s = (PI * t / (2.0 * big_t)).sin().powi(2);
+                let later = plain.at(time_of_fraction((s + phase) % 1.0, big_t)).r;
+                let want = later - offset;
+                assert!(
+                    (p.at(t).r - want).norm() < 1e-9,
+                    "{name} phase {phase} t = {t}: {} vs {want}",
+                    p.at(t).r
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn a_quarter_phase_circle_starts_a_quarter_turn_later() {
+    let (r, big_t) = (0.05, 9.0);
+    let p = build_path(&posed("circle", 0.0, 0.0, 0.0, 0.25), start()).unwrap();
+    assert!(p.breakpoints().is_empty());
+    for i in 0..=90 {
+        let t = big_t * i as f64 / 90.0;
+        let phi = 2.0 * PI * (PI * t / (2.0 * big_t)).sin().powi(2);
+        let phidot = PI * PI / big_t * (PI * t / big_t).sin();
+        // dr(phi + pi/2) - dr(pi/2) with dr = r [cos - 1, sin]: r [-sin phi, cos phi - 1].
+        let want = start() + r * Vector3::new(-phi.sin(), phi.cos() - 1.0, 0.0);
+        let want_v = r * phidot * Vector3::new(-phi.cos(), -phi.sin(), 0.0);
+        let q = p.at(t);
+        assert!((q.r - want).norm() < 1e-15, "t = {t}: {} vs {want}", q.r);
+        assert!((q.rdot - want_v).norm() < 1e-14, "t = {t}");
+    }
+    // The unphased circle goes -x first, the quarter-phased one -y first (centre below).
+    assert!((p.at(4.5).r - start() - Vector3::new(0.0, -0.1, 0.0)).norm() < 1e-15);
+}
+
+#[test]
+fn phased_butterfly_and_star_lines_report_their_new_corners() {
+    let b = build_path(&posed("butterfly", 0.0, 0.0, 0.0, 0.3), start()).unwrap();
+    assert_eq!(b.breakpoints().len(), 1);
+    let tb = b.breakpoints()[0];
+    // There phi = 2 pi (1 - 0.3): the tip passes the original start point ...
+    let a = default_scale("butterfly").unwrap();
+    let back = ClosedCurve::new(CurveShape::Butterfly, a, start(), 8.0)
+        .at(time_of_fraction(0.3, 8.0))
+        .r;
+    assert!((b.at(tb).r - (2.0 * start() - back)).norm() < 1e-12);
+    // ... where the butterfly's tangent is not periodic: the velocity jumps.
+    assert!((b.at(tb - 1e-9).rdot - b.at(tb + 1e-9).rdot).norm() > 1e-4);
+    // star-lines from inside its first chord: V0 becomes a fifth corner.
+    let s = build_path(&posed("star-lines", 0.0, 0.0, 0.0, 0.1), start()).unwrap();
+    assert_eq!(s.breakpoints().len(), 5);
+    let unphased_corners = build_path(&spec("star-lines"), start()).unwrap();
+    assert_eq!(unphased_corners.breakpoints().len(), 4);
+}
+
+#[test]
+fn butterfly_as_printed_misses_closing_by_a_32nd() {
+    assert!(PATH_NAMES.contains(&OPEN));
+    assert_eq!(default_scale(OPEN), Some(0.035));
+    assert_eq!(scale_provenance(OPEN), Some("group's code"));
+    assert_eq!(default_duration(OPEN), Some(8.0));
+    let a = 0.035;
+    let p = build_path(&spec(OPEN), start()).unwrap();
+    let miss = p.at(8.0).r - p.at(0.0).r;
+    assert!(
+        (miss - Vector3::new(0.0, -a / 32.0, 0.0)).norm() < 1e-14,
+        "miss = {miss}"
+    );
+    // Until the end it is the corrected butterfly minus a (phi / 2 pi) / 32 in y.
+    let corrected = build_path(&spec("butterfly"), start()).unwrap();
+    for t in [1.0, 3.3, 6.1] {
+        let s = (PI * t / 16.0).sin().powi(2);
+        let d = corrected.at(t).r - p.at(t).r;
+        assert!(
+            (d - Vector3::new(0.0, a * s / 32.0, 0.0)).norm() < 1e-15,
+            "t = {t}"
+        );
+    }
+}
+
+#[test]
+fn bad_poses_are_rejected_naming_the_field() {
+    for name in ["ping", "dai", "triangle", OPEN] {
+        let err = build_path(&posed(name, 0.0, 0.0, 0.0, 0.5), start())
+            .err()
+            .unwrap();
+        assert_eq!(err, PathError::PhaseNotSupported(name.into()));
+        let msg = err.to_string();
+        assert!(msg.contains("`phase`") && msg.contains(name), "{msg}");
+        // Rotation and tilt apply to them.
+        assert!(build_path(&posed(name, 0.3, 0.2, 0.1, 0.0), start()).is_ok());
+    }
+    for phase in [1.0, -0.1, 1.5, f64::NAN, f64::INFINITY] {
+        let err = build_path(&posed("circle", 0.0, 0.0, 0.0, phase), start())
+            .err()
+            .unwrap();
+        assert!(matches!(err, PathError::PhaseOutOfRange(_)), "{err:?}");
+        assert!(err.to_string().contains("`phase`"));
+    }
+    for (field, spec) in [
+        ("rotation", posed("circle", f64::NAN, 0.0, 0.0, 0.0)),
+        ("tilt_x", posed("ping", 0.0, f64::INFINITY, 0.0, 0.0)),
+        (
+            "tilt_y",
+            posed("star-lines", 0.0, 0.0, f64::NEG_INFINITY, 0.0),
+        ),
+    ] {
+        let err = build_path(&spec, start()).err().unwrap();
+        assert!(
+            matches!(err, PathError::NonFinitePose { field: f, .. } if f == field),
+            "{err:?}"
+        );
+        assert!(err.to_string().contains(&format!("`{field}`")));
+    }
+}
+
+#[test]
+fn pose_fields_read_from_toml_and_are_left_out_at_their_defaults() {
+    let s: PathSpec = toml::from_str(
+        "name = \"circle\"\nduration = 9.0\nrotation = 0.5\ntilt_x = 0.1\ntilt_y = -0.2\nphase = 0.25\n",
+    )
+    .unwrap();
+    assert_eq!(s, posed("circle", 0.5, 0.1, -0.2, 0.25));
+    assert_eq!(
+        toml::from_str::<PathSpec>(&toml::to_string(&s).unwrap()).unwrap(),
+        s
+    );
+    let plain = toml::to_string(&spec("circle")).unwrap();
+    for field in ["rotation", "tilt_x", "tilt_y", "phase"] {
+        assert!(!plain.contains(field), "{plain}");
+    }
+    assert!(
+        toml::from_str::<PathSpec>("name = \"circle\"\nduration = 9.0\ntilt_z = 0.1\n").is_err()
+    );
 }

@@ -16,7 +16,7 @@ use schemes::kong2019::{finite_time_c, Kong2019};
 use schemes::paths::Path;
 use schemes::qp_dot::{self, QpDotScratch};
 use schemes::scheme::{Level, Scheme};
-use schemes::spec::{build_scheme, SchemeError, SchemeSpec};
+use schemes::spec::{build_scheme, RmpReading, SchemeError, SchemeSpec};
 use schemes::zhang2018::Zhang2018;
 use schemes::zhong2021::Zhong2021;
 use solvers::{Qp, QpDims};
@@ -366,6 +366,8 @@ fn mvn_optimum_is_the_minimum_norm_solution() {
         tau: 0.0,
         kappa: 20.0,
         lambda: 20.0,
+        rmp: RmpReading::Printed,
+        mu: 5.0,
     });
     let mut qp = s.new_qp();
     let t = 1.7;
@@ -563,6 +565,8 @@ fn infinite_entries_have_zero_derivative() {
         delta: 0.4,
         upsilon: 20.0,
         lambda: 20.0,
+        rmp: RmpReading::Printed,
+        tau: 10.0,
     });
     let (th, thd, thdd) = state();
     let mut fd = s.new_qp();
@@ -649,7 +653,9 @@ fn spec_parses_every_kind() {
             eta: 0.1,
             delta: 0.8,
             upsilon: 20.0,
-            lambda: 20.0
+            lambda: 20.0,
+            rmp: RmpReading::Printed,
+            tau: 10.0
         }
     );
 }
@@ -657,7 +663,7 @@ fn spec_parses_every_kind() {
 #[test]
 fn spec_rejects_unknown_and_missing_fields() {
     assert!(toml::from_str::<SchemeSpec>(
-        "kind = \"jia2019\"\nphi = 0.2\ntau = 0.4\nkappa = 20.0\nlambda = 20.0\nmu = 5.0"
+        "kind = \"jia2019\"\nphi = 0.2\ntau = 0.4\nkappa = 20.0\nlambda = 20.0\nupsilon = 5.0"
     )
     .is_err());
     assert!(
@@ -694,6 +700,8 @@ fn build_scheme_reports_clear_errors() {
         tau: 0.4,
         kappa: 20.0,
         lambda: 20.0,
+        rmp: RmpReading::Printed,
+        mu: 5.0,
     };
     let err = build_scheme::<N>(&bad, r.clone(), None, path(), theta0())
         .err()
@@ -704,6 +712,8 @@ fn build_scheme_reports_clear_errors() {
         delta: 0.4,
         upsilon: -1.0,
         lambda: 20.0,
+        rmp: RmpReading::Printed,
+        tau: 10.0,
     };
     let err = build_scheme::<N>(&bad, r.clone(), None, path(), theta0())
         .err()
@@ -737,5 +747,175 @@ fn build_scheme_reports_clear_errors() {
         .filter(|s| !matches!(s, SchemeSpec::Zhang2018 { .. }))
     {
         assert!(build_scheme::<N>(&spec, r.clone(), None, path(), theta0()).is_ok());
+    }
+}
+
+/// A random state theta near theta0 (deterministic LCG).
+fn random_theta(seed: u64) -> V {
+    let mut x = seed;
+    V::from_fn(|i, _| {
+        x = x
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        theta0()[i] + ((x >> 11) as f64 / (1u64 << 53) as f64 - 0.5)
+    })
+}
+
+fn jia(tau: f64, rmp: RmpReading, mu: f64) -> SchemeSpec {
+    SchemeSpec::Jia2019 {
+        phi: 0.2,
+        tau,
+        kappa: 20.0,
+        lambda: 20.0,
+        rmp,
+        mu,
+    }
+}
+
+fn zhong(delta: f64, rmp: RmpReading, tau: f64) -> SchemeSpec {
+    SchemeSpec::Zhong2021 {
+        eta: 0.1,
+        delta,
+        upsilon: 20.0,
+        lambda: 20.0,
+        rmp,
+        tau,
+    }
+}
+
+#[test]
+fn rmp_readings_set_the_linear_term_as_the_expansion_predicts() {
+    let readings = [
+        RmpReading::Printed,
+        RmpReading::Expansion,
+        RmpReading::TextGain,
+    ];
+    // At Lambda = 20 and mu = 5: 20, 10 and 5 (times the weight).
+    let want_k = [20.0, 10.0, 5.0];
+    for (reading, &k) in readings.iter().zip(&want_k) {
+        assert_eq!(reading.coefficient(20.0, 5.0), k, "{reading:?}");
+    }
+    for seed in 1..4u64 {
+        let theta = random_theta(seed);
+        let t = 0.9 + seed as f64;
+        for (&reading, &k) in readings.iter().zip(&want_k) {
+            // jia2019: g = [tau k (theta - theta0); 0].
+            let tau = 0.4;
+            let s = make(&jia(tau, reading, 5.0));
+            let mut qp = s.new_qp();
+            s.build(t, &theta, &theta, &mut qp);
+            for i in 0..N {
+                let want = tau * k * (theta[i] - theta0()[i]);
+                assert!(
+                    (qp.q[i] - want).abs() <= 1e-15 * want.abs().max(1.0),
+                    "jia2019 {reading:?}: g[{i}] = {} vs {want}",
+                    qp.q[i]
+                );
+            }
+            assert_eq!(qp.q[N], 0.0);
+            // zhong2021 with tau = 5 for the text reading: g = [delta k (theta - theta0); 0].
+            let delta = 0.8;
+            let s = make(&zhong(delta, reading, 5.0));
+            let mut qp = s.new_qp();
+            s.build(t, &theta, &theta, &mut qp);
+            for i in 0..N {
+                let want = delta * k * (theta[i] - theta0()[i]);
+                assert!(
+                    (qp.q[i] - want).abs() <= 1e-15 * want.abs().max(1.0),
+                    "zhong2021 {reading:?}: g[{i}] = {} vs {want}",
+                    qp.q[i]
+                );
+            }
+            assert_eq!(qp.q[N], 0.0);
+        }
+    }
+    // The default reading is the printed one, bit for bit, and the weight-free parts agree.
+    let theta = random_theta(7);
+    let mut a = make(&jia(0.4, RmpReading::Printed, 5.0)).new_qp();
+    let mut b = a.clone();
+    make(&jia(0.4, RmpReading::Printed, 5.0)).build(2.0, &theta, &theta, &mut a);
+    let direct = Jia2019::new(robot(), path(), theta0(), 0.2, 0.4, 20.0, 20.0);
+    direct.build(2.0, &theta, &theta, &mut b);
+    assert_eq!(a.q, b.q);
+    assert_eq!(a.p, b.p);
+    let mut c = a.clone();
+    make(&jia(0.4, RmpReading::Expansion, 5.0)).build(2.0, &theta, &theta, &mut c);
+    assert_eq!(a.p, c.p);
+    assert_eq!(a.a, c.a);
+    assert_ne!(a.q, c.q);
+}
+
+#[test]
+fn rmp_reading_fields_read_display_and_validate() {
+    // Existing files (no rmp, no mu) read as the printed reading with the defaults.
+    let old: SchemeSpec =
+        toml::from_str("kind = \"jia2019\"\nphi = 0.2\ntau = 0.4\nkappa = 20.0\nlambda = 20.0")
+            .unwrap();
+    assert_eq!(old, jia(0.4, RmpReading::Printed, 5.0));
+    assert_eq!(old.display_name(), "VLTCO (phi=0.2, tau=0.4)");
+    // Defaults are left out when written.
+    let text = toml::to_string(&old).unwrap();
+    assert!(!text.contains("rmp") && !text.contains("mu"), "{text}");
+    let z: SchemeSpec =
+        toml::from_str("kind = \"zhong2021\"\neta = 0.1\ndelta = 0.8\nupsilon = 20.0").unwrap();
+    assert_eq!(z, zhong(0.8, RmpReading::Printed, 10.0));
+    assert_eq!(z.display_name(), "CMCO (eta=0.1, delta=0.8)");
+    assert!(!toml::to_string(&z).unwrap().contains("tau"));
+
+    let e: SchemeSpec = toml::from_str(
+        "kind = \"jia2019\"\nphi = 0.2\ntau = 0.4\nkappa = 20.0\nlambda = 20.0\nrmp = \"expansion\"",
+    )
+    .unwrap();
+    assert_eq!(e, jia(0.4, RmpReading::Expansion, 5.0));
+    assert_eq!(e.display_name(), "VLTCO (phi=0.2, tau=0.4, rmp=expansion)");
+    let m: SchemeSpec = toml::from_str(
+        "kind = \"jia2019\"\nphi = 0.2\ntau = 0.4\nkappa = 20.0\nlambda = 20.0\nrmp = \"text-mu\"\nmu = 4.0",
+    )
+    .unwrap();
+    assert_eq!(m, jia(0.4, RmpReading::TextGain, 4.0));
+    assert_eq!(
+        m.display_name(),
+        "VLTCO (phi=0.2, tau=0.4, rmp=text-mu, mu=4)"
+    );
+    let zt: SchemeSpec = toml::from_str(
+        "kind = \"zhong2021\"\neta = 0.1\ndelta = 0.8\nupsilon = 20.0\nrmp = \"text-tau\"\ntau = 5.0",
+    )
+    .unwrap();
+    assert_eq!(zt, zhong(0.8, RmpReading::TextGain, 5.0));
+    assert_eq!(
+        zt.display_name(),
+        "CMCO (eta=0.1, delta=0.8, rmp=text-tau, tau=5)"
+    );
+    for spec in [e, m, zt] {
+        let back: SchemeSpec = toml::from_str(&toml::to_string(&spec).unwrap()).unwrap();
+        assert_eq!(back, spec);
+    }
+    assert!(toml::from_str::<SchemeSpec>(
+        "kind = \"jia2019\"\nphi = 0.2\ntau = 0.4\nkappa = 20.0\nlambda = 20.0\nrmp = \"halved\""
+    )
+    .is_err());
+
+    let r = robot();
+    for mu in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        let err = build_scheme::<N>(
+            &jia(0.4, RmpReading::TextGain, mu),
+            r.clone(),
+            None,
+            path(),
+            theta0(),
+        )
+        .err()
+        .unwrap();
+        assert!(err.to_string().contains("'mu'"), "{err}");
+        let err = build_scheme::<N>(
+            &zhong(0.8, RmpReading::TextGain, mu),
+            r.clone(),
+            None,
+            path(),
+            theta0(),
+        )
+        .err()
+        .unwrap();
+        assert!(err.to_string().contains("'tau'"), "{err}");
     }
 }

@@ -14,22 +14,11 @@ use robots::{Dynamics, Jaco2, Katana6m180, Robot};
 use schemes::paths::{build_path, Path, PathSpec};
 use schemes::qp_dot;
 use schemes::scheme::{Level, Scheme};
-use schemes::spec::{build_scheme, SchemeSpec};
+use schemes::spec::{build_scheme, RmpReading, SchemeSpec};
 use solvers::{ExactSolver, Qp};
 
 fn path(name: &str, duration: f64, start: Vector3<f64>) -> Arc<dyn Path> {
-    Arc::from(
-        build_path(
-            &PathSpec {
-                name: name.into(),
-                duration,
-                scale: None,
-                reverse: false,
-            },
-            start,
-        )
-        .unwrap(),
-    )
+    Arc::from(build_path(&PathSpec::new(name, duration), start).unwrap())
 }
 
 /// Richardson-extrapolated central difference (O(h^4)) along the motion.
@@ -77,6 +66,8 @@ fn jaco2_schemes_exact_optimum_and_derivative() {
                 tau: 0.0,
                 kappa: 20.0,
                 lambda: 20.0,
+                rmp: RmpReading::Printed,
+                mu: 5.0,
             },
             &clover,
         ),
@@ -86,6 +77,8 @@ fn jaco2_schemes_exact_optimum_and_derivative() {
                 tau: 0.0,
                 kappa: 20.0,
                 lambda: 20.0,
+                rmp: RmpReading::Printed,
+                mu: 5.0,
             },
             &clover,
         ),
@@ -95,6 +88,8 @@ fn jaco2_schemes_exact_optimum_and_derivative() {
                 tau: 0.4,
                 kappa: 20.0,
                 lambda: 20.0,
+                rmp: RmpReading::Printed,
+                mu: 5.0,
             },
             &clover,
         ),
@@ -104,6 +99,8 @@ fn jaco2_schemes_exact_optimum_and_derivative() {
                 delta: 0.4,
                 upsilon: 20.0,
                 lambda: 20.0,
+                rmp: RmpReading::Printed,
+                tau: 10.0,
             },
             &clover,
         ),

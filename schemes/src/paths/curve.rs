@@ -15,7 +15,21 @@
 //! The polar shapes use rho(phi) [cos phi, sin phi]: derivative [rho' c - rho s, rho' s + rho c],
 //! second derivative [(rho'' - rho) c - 2 rho' s, (rho'' - rho) s + 2 rho' c].
 //! Time derivatives follow by the chain rule: rdot = dr' phidot, rddot = dr'' phidot^2 + dr' phiddot.
+//!
+//! **Phase** ([`ClosedCurve::with_phase`]). A phase p in [0, 1) starts the tip a fraction p of the
+//! cycle further along the same closed curve, keeping the start point fixed (the placement of the
+//! curve relative to the start point): with phi0 = 2 pi p,
+//! dr_p(phi) = dr(w(phi + phi0)) - dr(phi0), w(psi) = psi - 2 pi if psi >= 2 pi, else psi,
+//! so dr_p(0) = 0 = dr_p(2 pi) and the derivatives are dr'(w(phi + phi0)), dr''(w(phi + phi0)).
+//! For the periodic shapes (clover, star, cardioid, circle) the wrap w changes nothing
+//! (dr(psi - 2 pi) = dr(psi)) and dr_p is as smooth as dr. The butterfly is closed
+//! (dr(2 pi) = dr(0)) but its tangent is not periodic (sin^5(phi/12) and the closing term are
+//! not): phased, it passes its original start point with a velocity jump, reported as a
+//! breakpoint at the instant phi(t) = 2 pi (1 - p), t = (2T / pi) asin(sqrt(1 - p)). The
+//! as-printed butterfly does not close, so it has no phase. p = 0 is the unphased curve itself
+//! (no shift is applied at all).
 
+use super::error::PathError;
 use super::time_law::RestToRest;
 use super::{Path, PathPoint};
 use nalgebra::Vector3;
@@ -83,6 +97,17 @@ fn butterfly(a: f64, phi: f64, correct: bool) -> Jet {
 }
 
 impl CurveShape {
+    /// Whether dr and its phi-derivatives are 2 pi-periodic (the curve closes smoothly, so any
+    /// point of it can be the start without a corner).
+    pub fn is_periodic(self) -> bool {
+        !matches!(self, Self::Butterfly | Self::ButterflyAsPrinted)
+    }
+
+    /// Whether dr(2 pi) = dr(0) (the curve ends where it starts).
+    pub fn is_closed(self) -> bool {
+        self != Self::ButterflyAsPrinted
+    }
+
     /// dr(phi), dr'(phi), dr''(phi) for size `a` (the radius for the circle).
     pub fn offset(self, a: f64, phi: f64) -> [Vector3<f64>; 3] {
         match self {
@@ -117,6 +142,13 @@ impl CurveShape {
     }
 }
 
+/// The start shift of a phased curve: phi0 = 2 pi p and the offset dr(phi0) it subtracts.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct PhaseShift {
+    phi0: f64,
+    offset0: Vector3<f64>,
+}
+
 /// A closed curve r_start + dr(phi(t)) driven by the group's time law.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ClosedCurve {
@@ -124,6 +156,10 @@ pub struct ClosedCurve {
     size: f64,
     start: Vector3<f64>,
     law: RestToRest,
+    /// `None`: the curve from phi = 0 (computed exactly as without a phase).
+    phase: Option<PhaseShift>,
+    /// The wrap instant of a phased non-periodic curve (empty otherwise).
+    breakpoints: Vec<f64>,
 }
 
 impl ClosedCurve {
@@ -135,7 +171,44 @@ impl ClosedCurve {
             size,
             start,
             law: RestToRest::new(duration),
+            phase: None,
+            breakpoints: Vec::new(),
         }
+    }
+
+    /// The same curve started a fraction `phase` of the cycle later (see the module docs):
+    /// dr_p(phi) = dr(w(phi + 2 pi phase)) - dr(2 pi phase). `phase` = 0 returns the curve
+    /// unchanged. Errors if `phase` is not in [0, 1) or the shape does not close
+    /// ([`CurveShape::ButterflyAsPrinted`]).
+    pub fn with_phase(mut self, phase: f64) -> Result<Self, PathError> {
+        if !(0.0..1.0).contains(&phase) {
+            return Err(PathError::PhaseOutOfRange(phase));
+        }
+        if !self.shape.is_closed() {
+            return Err(PathError::PhaseNotSupported(format!("{:?}", self.shape)));
+        }
+        if phase == 0.0 {
+            self.phase = None;
+            self.breakpoints.clear();
+            return Ok(self);
+        }
+        let phi0 = 2.0 * PI * phase;
+        self.phase = Some(PhaseShift {
+            phi0,
+            offset0: self.shape.offset(self.size, phi0)[0],
+        });
+        self.breakpoints = if self.shape.is_periodic() {
+            Vec::new()
+        } else {
+            let big_t = self.law.duration();
+            vec![2.0 * big_t / PI * (1.0 - phase).sqrt().asin()]
+        };
+        Ok(self)
+    }
+
+    /// The phase p (0 for an unphased curve).
+    pub fn phase(&self) -> f64 {
+        self.phase.map_or(0.0, |p| p.phi0 / (2.0 * PI))
     }
 
     /// The shape.
@@ -156,11 +229,25 @@ impl Path for ClosedCurve {
 
     fn at(&self, t: f64) -> PathPoint {
         let phi = self.law.phi(t);
-        let [d, d1, d2] = self.shape.offset(self.size, phi.s);
+        let [d, d1, d2] = match self.phase {
+            None => self.shape.offset(self.size, phi.s),
+            Some(PhaseShift { phi0, offset0 }) => {
+                let mut psi = phi.s + phi0;
+                if psi >= 2.0 * PI {
+                    psi -= 2.0 * PI;
+                }
+                let [d, d1, d2] = self.shape.offset(self.size, psi);
+                [d - offset0, d1, d2]
+            }
+        };
         PathPoint {
             r: self.start + d,
             rdot: d1 * phi.sdot,
             rddot: d2 * (phi.sdot * phi.sdot) + d1 * phi.sddot,
         }
+    }
+
+    fn breakpoints(&self) -> &[f64] {
+        &self.breakpoints
     }
 }

@@ -15,6 +15,13 @@ pub enum PathError {
     NonFinitePoint,
     /// A polyline has no segment of positive length (all its points coincide).
     DegeneratePolyline,
+    /// A pose angle (`rotation`, `tilt_x` or `tilt_y`, named by `field`) is not finite.
+    NonFinitePose { field: &'static str, value: f64 },
+    /// `phase` is not in [0, 1).
+    PhaseOutOfRange(f64),
+    /// A non-zero `phase` was given for a path (named) that has no cycle to shift: the stroke
+    /// paths (ping, dai, triangle) and the unclosed butterfly-as-printed.
+    PhaseNotSupported(String),
 }
 
 impl fmt::Display for PathError {
@@ -38,6 +45,20 @@ impl fmt::Display for PathError {
             Self::DegeneratePolyline => {
                 write!(f, "polyline path has no segment of positive length")
             }
+            Self::NonFinitePose { field, value } => {
+                write!(f, "path `{field}` must be finite (radians), got {value}")
+            }
+            Self::PhaseOutOfRange(p) => {
+                write!(
+                    f,
+                    "path `phase` must be in [0, 1) (a fraction of the cycle), got {p}"
+                )
+            }
+            Self::PhaseNotSupported(name) => write!(
+                f,
+                "path `phase` must be 0 for {name}: only closed curves and star-lines can start \
+                 elsewhere on their cycle"
+            ),
         }
     }
 }

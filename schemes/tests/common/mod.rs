@@ -9,7 +9,7 @@ use std::f64::consts::PI;
 use nalgebra::{DMatrix, DVector, SMatrix, SVector, Vector3};
 use robots::{Dynamics, JointLimits, Robot};
 use schemes::paths::{Path, PathPoint};
-use schemes::spec::SchemeSpec;
+use schemes::spec::{RmpReading, SchemeSpec};
 use solvers::{Qp, QpDuals};
 
 /// Planar arm: joints 1..N-1 rotate in the x-y plane (links `LEN`), joint N moves the tip in z
@@ -256,30 +256,40 @@ pub fn paper_specs() -> Vec<SchemeSpec> {
             tau: 0.0,
             kappa: 20.0,
             lambda: 20.0,
+            rmp: RmpReading::Printed,
+            mu: 5.0,
         },
         SchemeSpec::Jia2019 {
             phi: 0.2,
             tau: 0.0,
             kappa: 20.0,
             lambda: 20.0,
+            rmp: RmpReading::Printed,
+            mu: 5.0,
         },
         SchemeSpec::Jia2019 {
             phi: 0.2,
             tau: 0.4,
             kappa: 20.0,
             lambda: 20.0,
+            rmp: RmpReading::Printed,
+            mu: 5.0,
         },
         SchemeSpec::Zhong2021 {
             eta: 0.2,
             delta: 0.4,
             upsilon: 20.0,
             lambda: 20.0,
+            rmp: RmpReading::Printed,
+            tau: 10.0,
         },
         SchemeSpec::Zhong2021 {
             eta: 0.1,
             delta: 0.8,
             upsilon: 20.0,
             lambda: 20.0,
+            rmp: RmpReading::Printed,
+            tau: 10.0,
         },
         SchemeSpec::Zhang2018 {
             zeta: 0.0,
