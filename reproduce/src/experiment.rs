@@ -309,6 +309,7 @@ fn check_integrator(s: &IntegratorSettings, at: &str) -> Result<(), String> {
     if !(s.rtol > 0.0 && s.atol > 0.0) {
         return Err(format!("{at}: rtol and atol must be positive"));
     }
+    s.validate().map_err(|e| format!("{at}: {e}"))?;
     Ok(())
 }
 

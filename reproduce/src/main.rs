@@ -321,7 +321,14 @@ fn print_robot_check_values() {
     use nalgebra::SVector;
     use robots::{Jaco2, Katana6m180, Robot};
     let theta0 = SVector::<f64, 6>::from([1.675, 2.79, -3.216, 4.187, -1.71, -2.95]);
-    for r in [Jaco2::pen(), Jaco2::kinova()] {
+    // The group's EXP2 model also at the group's EXP2 theta0 (group-code.md).
+    let theta0_exp2 = SVector::<f64, 6>::from([1.670, 2.845, -3.218, 4.182, -1.715, -2.655]);
+    for (r, theta0) in [
+        (Jaco2::pen(), theta0),
+        (Jaco2::kinova(), theta0),
+        (Jaco2::pen_exp2(), theta0),
+        (Jaco2::pen_exp2(), theta0_exp2),
+    ] {
         let p = r.position(&theta0);
         let sv = r.jacobian(&theta0).singular_values();
         println!(

@@ -23,6 +23,9 @@ const ROBOTS: &[(&str, Constructor)] = &[
     (robots::JACO2_PEN, || {
         AnyRobot::Jaco2(Arc::new(Jaco2::pen()))
     }),
+    (robots::JACO2_PEN_EXP2, || {
+        AnyRobot::Jaco2(Arc::new(Jaco2::pen_exp2()))
+    }),
     (robots::JACO2, || AnyRobot::Jaco2(Arc::new(Jaco2::kinova()))),
     (robots::JACO2_HAND, || {
         AnyRobot::Jaco2(Arc::new(Jaco2::hand()))

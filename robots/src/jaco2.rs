@@ -12,9 +12,13 @@
 //! | 5 | 0  | 2aa   | -k (D4 + D5)      |
 //! | 6 | 0  | pi    | -(k D5 + D6)      |
 //!
-//! Two variants:
+//! Variants:
 //! - `jaco2-pen` ([`Jaco2::pen`], the papers' model): D6 = 0.1425, task point = pen tip
 //!   (0, -0.075, 0) in frame 6, world = `Rx(-0.02) Ry(-0.05)` times DH frame 0.
+//! - `jaco2-pen-exp2` ([`Jaco2::pen_exp2`], the group's EXP2 code, `shared/spec/group-code.md`):
+//!   the same chain, pen tip and tilt with D4 = D5 = 0.07433, D6 = 0.13 and aa = 11 pi / 72
+//!   (so k = sin(aa)/sin(2aa) = 1/(2 cos(11 pi/72)) = 0.5807 instead of 1/sqrt(3)).
+//! - `jaco2-hand` ([`Jaco2::hand`]): Kinova's kinematics with the papers' limits.
 //! - `jaco2` ([`Jaco2::kinova`], Kinova's model): D6 = 0.16, task point = origin of frame 6,
 //!   no tilt.
 //!
@@ -37,6 +41,8 @@ pub const JACO2_PEN: &str = "jaco2-pen";
 pub const JACO2: &str = "jaco2";
 /// Name of [`Jaco2::hand`].
 pub const JACO2_HAND: &str = "jaco2-hand";
+/// Model name of the group's EXP2 pen model ([`Jaco2::pen_exp2`]).
+pub const JACO2_PEN_EXP2: &str = "jaco2-pen-exp2";
 
 /// Base to shoulder height D1 (m).
 pub const D1: f64 = 0.2755;
@@ -62,20 +68,51 @@ pub const PEN_TIP: [f64; 3] = [0.0, -0.075, 0.0];
 pub const TILT_X: f64 = -0.02;
 /// See [`TILT_X`].
 pub const TILT_Y: f64 = -0.05;
+/// The wrist of a Jaco2 chain: the lengths D4, D5, D6 (m) and the wrist half-angle aa (rad);
+/// the other DH lengths (D1, D2, D3, e2) are common to every variant.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Wrist {
+    pub d4: f64,
+    pub d5: f64,
+    pub d6: f64,
+    pub half_angle: f64,
+}
+
+/// The papers' pen model's wrist (`robots.md`): D4 = D5 = 0.0741, D6 = 0.1425, aa = pi/6.
+pub const PEN_WRIST: Wrist = Wrist {
+    d4: D4,
+    d5: D5,
+    d6: D6_PEN,
+    half_angle: WRIST_HALF_ANGLE,
+};
+
+/// The group's EXP2 wrist (`group-code.md`): D4 = D5 = 0.07433, D6 = 0.13, aa = 11 pi / 72.
+pub const EXP2_WRIST: Wrist = Wrist {
+    d4: 0.07433,
+    d5: 0.07433,
+    d6: 0.13,
+    half_angle: 11.0 * PI / 72.0,
+};
+
 /// Kinova's actuator effort limits (N m), joints 1-6.
 pub const EFFORT_LIMITS: [f64; 6] = [40.0, 80.0, 40.0, 20.0, 20.0, 20.0];
 
-/// The Jaco2 DH table for a given D6.
+/// The Jaco2 DH table for a given D6 (D4 = D5 = 0.0741, aa = pi/6).
 pub fn jaco2_dh(d6: f64) -> [DhParam; 6] {
-    let aa = WRIST_HALF_ANGLE;
+    jaco2_dh_wrist(Wrist { d6, ..PEN_WRIST })
+}
+
+/// The Jaco2 DH table (`robots.md`) for a given wrist, with k = sin(aa)/sin(2aa).
+pub fn jaco2_dh_wrist(w: Wrist) -> [DhParam; 6] {
+    let aa = w.half_angle;
     let k = aa.sin() / (2.0 * aa).sin();
     [
         DhParam::new(0.0, PI / 2.0, D1),
         DhParam::new(D2, PI, 0.0),
         DhParam::new(0.0, PI / 2.0, -E2),
-        DhParam::new(0.0, 2.0 * aa, -(D3 + k * D4)),
-        DhParam::new(0.0, 2.0 * aa, -k * (D4 + D5)),
-        DhParam::new(0.0, PI, -(k * D5 + d6)),
+        DhParam::new(0.0, 2.0 * aa, -(D3 + k * w.d4)),
+        DhParam::new(0.0, 2.0 * aa, -k * (w.d4 + w.d5)),
+        DhParam::new(0.0, PI, -(k * w.d5 + w.d6)),
     ]
 }
 
@@ -121,9 +158,22 @@ impl Jaco2 {
     /// `Rx(-0.02) Ry(-0.05)`. Limits from the group's code: theta2 in [-137, 223] deg,
     /// theta3 in [-289, 71] deg, joints 1, 4, 5, 6 in [-1e4, 1e4] deg; |thetadot| <= 1.5 rad/s.
     pub fn pen() -> Self {
+        Self::pen_with_wrist(JACO2_PEN, PEN_WRIST)
+    }
+
+    /// The group's EXP2 model `jaco2-pen-exp2` (`group-code.md`): `jaco2-pen` with the wrist
+    /// D4 = D5 = 0.07433, D6 = 0.13, aa = 11 pi / 72 ([`EXP2_WRIST`]); same pen tip, tilt and
+    /// limits, and the same rigid-body model (the group's code does no dynamics).
+    pub fn pen_exp2() -> Self {
+        Self::pen_with_wrist(JACO2_PEN_EXP2, EXP2_WRIST)
+    }
+
+    /// A pen model named `name`: the chain with wrist `w`, pen tip (0, -0.075, 0) in frame 6,
+    /// base tilt `Rx(-0.02) Ry(-0.05)`, the papers' limits, the physical arm's dynamics.
+    pub fn pen_with_wrist(name: &'static str, w: Wrist) -> Self {
         Jaco2 {
-            name: JACO2_PEN,
-            chain: DhChain::new(jaco2_dh(D6_PEN))
+            name,
+            chain: DhChain::new(jaco2_dh_wrist(w))
                 .with_base(Frame::rotation(rot_x(TILT_X) * rot_y(TILT_Y))),
             tip: Vector3::from(PEN_TIP),
             limits: papers_limits(),

@@ -8,6 +8,8 @@
 //! Models (see `shared/spec/robots.md`):
 //! - [`Jaco2::pen`] — the papers' Jaco2 (`jaco2-pen`): D6 = 0.1425, pen tip (0, -0.075, 0) in
 //!   frame 6, base tilt Rx(-0.02) Ry(-0.05).
+//! - [`Jaco2::pen_exp2`] — the group's EXP2 variant (`jaco2-pen-exp2`): D4 = D5 = 0.07433,
+//!   D6 = 0.13, wrist half-angle 11 pi / 72, same pen tip and tilt.
 //! - [`Jaco2::kinova`] — Kinova's own model (`jaco2`): D6 = 0.16, hand centre, no tilt.
 //! - [`Katana6m180`] — kong2019's eq. (2), 5 joints.
 //!
@@ -25,7 +27,7 @@ pub mod jaco2_dynamics;
 pub mod katana;
 pub mod rigid_body;
 
-pub use jaco2::{Jaco2, JACO2, JACO2_HAND, JACO2_PEN};
+pub use jaco2::{Jaco2, JACO2, JACO2_HAND, JACO2_PEN, JACO2_PEN_EXP2};
 pub use katana::{Katana6m180, KATANA6M180};
 
 /// Number of task-space coordinates (end-effector position only) in every paper.

@@ -5,7 +5,8 @@ mod common;
 
 use common::*;
 use nalgebra::{Matrix4, Rotation3, SVector, Vector3};
-use robots::{Jaco2, Robot, JACO2, JACO2_PEN};
+use robots::jaco2::{EXP2_WRIST, PEN_WRIST};
+use robots::{Jaco2, Robot, JACO2, JACO2_PEN, JACO2_PEN_EXP2};
 
 fn theta0() -> SVector<f64, 6> {
     SVector::from([1.675, 2.79, -3.216, 4.187, -1.71, -2.95])
@@ -23,6 +24,8 @@ fn names() {
     assert_eq!(Jaco2::kinova().name(), JACO2);
     assert_eq!(JACO2_PEN, "jaco2-pen");
     assert_eq!(JACO2, "jaco2");
+    assert_eq!(Jaco2::pen_exp2().name(), JACO2_PEN_EXP2);
+    assert_eq!(JACO2_PEN_EXP2, "jaco2-pen-exp2");
 }
 
 #[test]
@@ -81,7 +84,7 @@ fn position_matches_independent_transcription() {
 
 #[test]
 fn jacobian_matches_finite_differences() {
-    for robot in [Jaco2::pen(), Jaco2::kinova()] {
+    for robot in [Jaco2::pen(), Jaco2::kinova(), Jaco2::pen_exp2()] {
         for theta in random_vectors::<6>(2, 10, 4.0) {
             let fd = fd_jacobian(|t| robot.position(t), &theta, 1e-5);
             let err = (robot.jacobian(&theta) - fd).amax();
@@ -106,7 +109,7 @@ fn every_joint_moves_the_pen_tip() {
 
 #[test]
 fn jacobian_dot_matches_finite_differences() {
-    for robot in [Jaco2::pen(), Jaco2::kinova()] {
+    for robot in [Jaco2::pen(), Jaco2::kinova(), Jaco2::pen_exp2()] {
         let thetas = random_vectors::<6>(4, 10, 4.0);
         let rates = random_vectors::<6>(5, 10, 1.5);
         for (theta, thetadot) in thetas.iter().zip(&rates) {
@@ -148,4 +151,69 @@ fn kinova_limits() {
         SVector::<f64, 6>::from([0.6283, 0.6283, 0.6283, 0.8378, 0.8378, 0.8378])
     );
     assert_eq!(lim.thetadot_min, -lim.thetadot_max);
+}
+
+/// The group's EXP2 chain (group-code.md) transcribed independently: D4 = D5 = 0.07433,
+/// D6 = 0.13, aa = 11 pi / 72, k = sin(aa) / sin(2 aa); pen tip and tilt as jaco2-pen.
+fn exp2_independent(theta: &SVector<f64, 6>) -> Vector3<f64> {
+    use std::f64::consts::PI;
+    let (d1, d2, d3, d4, d5, d6, e2) = (0.2755, 0.41, 0.2073, 0.07433, 0.07433, 0.13, 0.0098);
+    let aa = 11.0 * PI / 72.0;
+    let k = aa.sin() / (2.0 * aa).sin();
+    let table = [
+        (0.0, PI / 2.0, d1),
+        (d2, PI, 0.0),
+        (0.0, PI / 2.0, -e2),
+        (0.0, 2.0 * aa, -(d3 + k * d4)),
+        (0.0, 2.0 * aa, -k * (d4 + d5)),
+        (0.0, PI, -(k * d5 + d6)),
+    ];
+    let mut t = Rotation3::from_axis_angle(&Vector3::x_axis(), -0.02).to_homogeneous()
+        * Rotation3::from_axis_angle(&Vector3::y_axis(), -0.05).to_homogeneous();
+    for (i, (a, alpha, d)) in table.iter().enumerate() {
+        t *= dh4(*a, *alpha, *d, theta[i]);
+    }
+    apply(&t, &Vector3::new(0.0, -0.075, 0.0))
+}
+
+#[test]
+fn exp2_variant_is_the_groups_chain_and_pen_with_pens_wrist_is_jaco2_pen() {
+    let exp2 = Jaco2::pen_exp2();
+    let pen = Jaco2::pen();
+    let same = Jaco2::pen_with_wrist(JACO2_PEN, PEN_WRIST);
+    assert_eq!(same, pen);
+    assert_eq!(Jaco2::pen_with_wrist(JACO2_PEN_EXP2, EXP2_WRIST), exp2);
+    for theta in random_vectors::<6>(6, 20, 4.0) {
+        assert!((exp2.position(&theta) - exp2_independent(&theta)).norm() < 1e-12);
+        assert_eq!(same.position(&theta), pen.position(&theta));
+        assert!((same.position(&theta) - pen_independent(&theta)).norm() < 1e-12);
+    }
+    assert_eq!(exp2.limits(), pen.limits());
+    assert_eq!(exp2.tip(), pen.tip());
+}
+
+/// Check value of jaco2-pen-exp2 at the group's EXP2 theta0: the tip, printed, and its distance
+/// from jaco2-pen's tip at the same pose: 29.5 mm, which the changes account for (d6 of the DH
+/// table shorter by 13.4 mm, d5 by 1.8 mm, and the two wrist twists 2aa smaller by 5 deg each,
+/// each swinging the ~0.2 m wrist-to-pen lever by ~15 mm).
+#[test]
+fn exp2_check_value_at_its_theta0() {
+    let theta0 = SVector::from([1.670, 2.845, -3.218, 4.182, -1.715, -2.655]);
+    let p = Jaco2::pen_exp2().position(&theta0);
+    let q = Jaco2::pen().position(&theta0);
+    let d = (p - q).norm();
+    println!(
+        "jaco2-pen-exp2 tip at theta0 = ({:.6}, {:.6}, {:.6}); jaco2-pen = ({:.6}, {:.6}, {:.6}); |difference| = {:.3} mm",
+        p.x, p.y, p.z, q.x, q.y, q.z, d * 1e3
+    );
+    assert!((p - exp2_independent(&theta0)).norm() < 1e-12);
+    assert_close(
+        p.as_slice(),
+        &[0.216772, -0.374490, -0.022114],
+        1e-6,
+        "jaco2-pen-exp2 tip at the EXP2 theta0",
+    );
+    assert!(d > 1e-2 && d < 5e-2, "|difference| = {d}");
+    let sv = singular_values(&Jaco2::pen_exp2().jacobian(&theta0));
+    assert!(sv[2] > 1e-2, "EXP2 theta0 is singular: {sv:?}");
 }

@@ -13,6 +13,14 @@
 //! Jacobian as products J v with unit vectors v; the dense matrix is computed once per state and
 //! cached, so a product costs a matrix-vector multiply.
 //!
+//! A largest step ([`IntegratorSettings::max_step`], ode15s's `MaxStep`; the group's code sets
+//! 0.05 s) is enforced through diffsol's stop time: before each step the stop time is set to
+//! t + max_step, so a method whose proposed step is longer rescales it to land there (BDF through
+//! its own step-size change, which rescales the difference array and keeps the order, unlike
+//! overwriting h through `state_mut`, which would restart BDF at first order). When less than
+//! two maximal steps remain, the rest is split in two equal steps rather than leaving a sliver.
+//! Without it (the default) the stop time is t1 once, as before.
+//!
 //! Every call reports steps, rejected steps, F evaluations (including those spent on
 //! finite-difference Jacobians), Jacobian evaluations and wall time.
 
@@ -79,6 +87,22 @@ pub struct IntegratorSettings {
     /// Accepted steps after which the run is abandoned as diverging.
     #[serde(default = "default_max_steps")]
     pub max_steps: usize,
+    /// Largest step (ode15s's `MaxStep`; the group's code: 0.05 s). `None` (the default):
+    /// unlimited. Must be positive and finite.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_step: Option<f64>,
+}
+
+impl IntegratorSettings {
+    /// Checks what the integrator itself needs: a positive, finite `max_step` where given.
+    pub fn validate(&self) -> Result<(), String> {
+        match self.max_step {
+            Some(h) if !(h > 0.0 && h.is_finite()) => {
+                Err(format!("max_step must be positive and finite, got {h}"))
+            }
+            _ => Ok(()),
+        }
+    }
 }
 
 fn default_max_steps() -> usize {
@@ -93,6 +117,7 @@ impl Default for IntegratorSettings {
             rtol: 1e-6,
             atol: 1e-8,
             max_steps: default_max_steps(),
+            max_step: None,
         }
     }
 }
@@ -297,6 +322,12 @@ pub fn integrate<S: OdeSystem>(
     let n = sys.dim();
     assert_eq!(y0.len(), n, "initial state has the wrong dimension");
     let start = Instant::now();
+    if let Err(message) = settings.validate() {
+        return Err(OdeFailure {
+            error: OdeError::Solver { t: t0, message },
+            stats: OdeStats::default(),
+        });
+    }
     let mut steps_done = (0usize, 0usize);
     let counted = RefCell::new(Counted {
         sys,
@@ -335,25 +366,25 @@ pub fn integrate<S: OdeSystem>(
             Method::Bdf => drive(
                 problem.bdf::<NalgebraLU<f64>>().map_err(solver_err)?,
                 t1,
-                settings.max_steps,
+                settings,
                 &mut observe,
             )?,
             Method::Esdirk34 => drive(
                 problem.esdirk34::<NalgebraLU<f64>>().map_err(solver_err)?,
                 t1,
-                settings.max_steps,
+                settings,
                 &mut observe,
             )?,
             Method::TrBdf2 => drive(
                 problem.tr_bdf2::<NalgebraLU<f64>>().map_err(solver_err)?,
                 t1,
-                settings.max_steps,
+                settings,
                 &mut observe,
             )?,
             Method::Tsit45 => drive(
                 problem.tsit45().map_err(solver_err)?,
                 t1,
-                settings.max_steps,
+                settings,
                 &mut observe,
             )?,
             Method::Dopri5 => {
@@ -364,7 +395,7 @@ pub fn integrate<S: OdeSystem>(
                         .explicit_rk_solver(state, tableau)
                         .map_err(solver_err)?,
                     t1,
-                    settings.max_steps,
+                    settings,
                     &mut observe,
                 )?
             }
@@ -410,19 +441,39 @@ fn solver_error(t: f64, e: DiffsolError) -> OdeError {
     }
 }
 
-/// Steps `solver` to `t1`, observing every accepted step.
+/// The next stop time from `t` towards `t1` with steps of at most `h` (module docs): t1 when
+/// within one step, the midpoint when within two, else t + h.
+fn next_stop(t: f64, t1: f64, h: f64) -> f64 {
+    let rest = t1 - t;
+    if rest <= h {
+        t1
+    } else if rest < 2.0 * h {
+        t + 0.5 * rest
+    } else {
+        t + h
+    }
+}
+
+/// Steps `solver` to `t1`, observing every accepted step (steps of at most
+/// `settings.max_step` where given).
 fn drive<'a, Eqn, M>(
     mut solver: M,
     t1: f64,
-    max_steps: usize,
+    settings: &IntegratorSettings,
     observe: &mut impl FnMut(f64, &[f64]) -> Control,
 ) -> Result<Driven, OdeError>
 where
     Eqn: OdeEquations<T = f64, V = diffsol::NalgebraVec<f64>> + 'a,
     M: OdeSolverMethod<'a, Eqn>,
 {
+    let max_steps = settings.max_steps;
+    // The stop time in force (t1 unless a maximal step is enforced).
+    let mut stop_at = match settings.max_step {
+        Some(h) => next_stop(solver.state().t, t1, h),
+        None => t1,
+    };
     solver
-        .set_stop_time(t1)
+        .set_stop_time(stop_at)
         .map_err(|e| solver_error(solver.state().t, e))?;
     let mut steps = 0usize;
     let stop = |solver: &M, steps: usize, error: OdeError| Driven {
@@ -432,6 +483,15 @@ where
         error: Some(error),
     };
     loop {
+        if let Some(h) = settings.max_step {
+            if steps > 0 {
+                let t = solver.state().t;
+                stop_at = next_stop(t, t1, h);
+                if let Err(e) = solver.set_stop_time(stop_at) {
+                    return Ok(stop(&solver, steps, solver_error(t, e)));
+                }
+            }
+        }
         let reason = match solver.step() {
             Ok(r) => r,
             Err(e) => {
@@ -450,7 +510,7 @@ where
             return Ok(stop(&solver, steps, OdeError::Stopped { t, reason }));
         }
         match reason {
-            OdeSolverStopReason::TstopReached => {
+            OdeSolverStopReason::TstopReached if stop_at == t1 => {
                 let rejected = solver.get_statistics().number_of_error_test_failures;
                 return Ok(Driven {
                     y: y.to_vec(),

@@ -10,7 +10,7 @@ use solvers::neural::cdnn::ReferencePerturbation;
 use solvers::neural::projection::{primal_dual_dim, LviPdnn, SLviPdnn};
 use solvers::neural::zeroing::Gain;
 use solvers::neural::{
-    build_solver, finite_time, fp_cdnn, vp_cdnn, znn, NeuralSolver, SolverSpec, VpRnnPf,
+    build_solver, finite_time, fp_cdnn, group_znn, vp_cdnn, znn, NeuralSolver, SolverSpec, VpRnnPf,
 };
 use solvers::ode::{integrate, Control, IntegratorSettings, Method, OdeSystem};
 use solvers::{random_qp, ExactSolver, Qp, QpDims, QpShape};
@@ -75,6 +75,7 @@ fn settings(rtol: f64, atol: f64) -> IntegratorSettings {
         rtol,
         atol,
         max_steps: 200_000,
+        max_step: None,
     }
 }
 
@@ -219,7 +220,74 @@ fn all_activations() -> Vec<Activation> {
             r: 0.5,
             smoothing: 0.0,
         },
+        Activation::GroupPowerSigmoid { xi: 1.0, p: 1.0 },
+        Activation::GroupPowerSigmoid { xi: 1.0, p: 3.0 },
+        Activation::GroupPowerSigmoid { xi: 4.0, p: 3.0 },
     ]
+}
+
+#[test]
+fn group_power_sigmoid_is_afmpowersigmoid() {
+    // AFMpowersigmoid(e, xi, p) transcribed: e^p where |e| >= 1, else the sigmoid, on e itself.
+    let afm = |e: f64, xi: f64, p: i32| {
+        if e.abs() >= 1.0 {
+            e.powi(p)
+        } else {
+            ((1.0 + (-xi).exp()) / (1.0 - (-xi).exp())) * (1.0 - (-xi * e).exp())
+                / (1.0 + (-xi * e).exp())
+        }
+    };
+    for (xi, p) in [(1.0, 1), (1.0, 3), (2.5, 3)] {
+        let act = Activation::GroupPowerSigmoid { xi, p: p as f64 };
+        assert!(act.validate().is_ok());
+        for e in [
+            -3.0, -1.0, -0.999, -0.4, -1e-3, 0.0, 1e-3, 0.3, 0.999, 1.0, 1.2, 4.0,
+        ] {
+            let (got, want) = (act.value(e), afm(e, xi, p));
+            assert!(
+                (got - want).abs() <= 1e-14 * want.abs().max(1.0),
+                "xi={xi} p={p} at {e}: {got} vs {want}"
+            );
+            // Odd, exactly.
+            assert_eq!(act.value(-e), -act.value(e));
+        }
+        // Continuous at |e| = 1: both branches give +-1.
+        for s in [1.0, -1.0] {
+            let inside = act.value(s * (1.0 - 1e-12));
+            let outside = act.value(s * (1.0 + 1e-12));
+            assert!((inside - s).abs() < 1e-10 && (outside - s).abs() < 1e-10);
+            assert!((act.value(s) - s).abs() < 1e-15);
+        }
+        // The power branch owns |e| = 1: its derivative is p there, the sigmoid's xi/sinh(xi)
+        // just inside.
+        assert_eq!(act.derivative(1.0), p as f64);
+        let inner = act.derivative(1.0 - 1e-12);
+        assert!((inner - xi / xi.sinh()).abs() < 1e-9, "{inner}");
+    }
+    // Same family as zhong2021's eq. 2.29: alpha = xi, chi = p, equal away from |e| = 1.
+    let g = Activation::GroupPowerSigmoid { xi: 4.0, p: 3.0 };
+    let z = Activation::PowerSigmoid {
+        alpha: 4.0,
+        chi: 3.0,
+    };
+    for e in [-2.0, -0.7, 0.2, 0.9, 1.5] {
+        assert_eq!(g.value(e), z.value(e));
+        assert_eq!(g.derivative(e), z.derivative(e));
+    }
+    for bad in [
+        (0.0, 1.0),
+        (-1.0, 1.0),
+        (1.0, 0.5),
+        (f64::NAN, 1.0),
+        (1.0, f64::INFINITY),
+    ] {
+        assert!(Activation::GroupPowerSigmoid {
+            xi: bad.0,
+            p: bad.1
+        }
+        .validate()
+        .is_err());
+    }
 }
 
 #[test]
@@ -370,7 +438,29 @@ fn zeroing_jacobians_match_finite_differences() {
                     )
                     .unwrap(),
                 ));
+                nets.push(Box::new(
+                    group_znn(
+                        500.0,
+                        2500.0,
+                        Activation::GroupPowerSigmoid { xi: 1.0, p: 1.0 },
+                        Some(ReferencePerturbation::reference(8.0)),
+                        false,
+                        dims,
+                    )
+                    .unwrap(),
+                ));
             }
+            nets.push(Box::new(
+                group_znn(
+                    500.0,
+                    2500.0,
+                    Activation::GroupPowerSigmoid { xi: 1.0, p: 3.0 },
+                    None,
+                    true,
+                    dims,
+                )
+                .unwrap(),
+            ));
             for net in nets.iter_mut() {
                 for qd in [None, Some(&qp_dot)] {
                     let m = jacobian_mismatch(net.as_mut(), t, &y, &qp, qd);
@@ -796,6 +886,84 @@ fn reference_perturbation_matches_experiments_md_and_enters_as_eq_3_1() {
     }
 }
 
+/// The group's network is Q ydot = -Qdot y - gamma Phi(E) + udot - nu t E + Delta_s(t)
+/// (group-code.md), with udot = [-qdot; bdot] or, with udot_rmp = false, [0; bdot], and no DeltaD.
+#[test]
+fn group_znn_is_the_groups_equation() {
+    let mut rng = ChaCha8Rng::seed_from_u64(32);
+    let qp = random_qp(QpShape::Zhang2018, 4);
+    let qd = random_qp_dot(&qp, &mut rng, 1.0);
+    let dims = qp.dims();
+    let t = 1.9;
+    let y = DVector::from_fn(9, |_, _| rng.gen_range(-1.0..1.0));
+    let pert = ReferencePerturbation {
+        a_d: 3.0, // ignored by the group's network
+        a_s: 1.5,
+        task_duration: 8.0,
+    };
+    let act = Activation::GroupPowerSigmoid { xi: 1.0, p: 1.0 };
+    let kkt = |q: &Qp| {
+        let mut m = DMatrix::zeros(9, 9);
+        m.view_mut((0, 0), (6, 6)).copy_from(&q.p);
+        m.view_mut((0, 6), (6, 3)).copy_from(&q.a.transpose());
+        m.view_mut((6, 0), (3, 6)).copy_from(&q.a);
+        m
+    };
+    let rhs_vec =
+        |q: &Qp| DVector::from_iterator(9, q.q.iter().map(|v| -v).chain(q.b.iter().copied()));
+    let (qm, qdm, u) = (kkt(&qp), kkt(&qd), rhs_vec(&qp));
+    let e = &qm * &y - &u;
+    let phi = e.map(|v| act.value(v));
+    // Delta_s written out from group-code.md, w = pi t / T.
+    let w = std::f64::consts::PI * t / 8.0;
+    let ds = DVector::from_vec(vec![
+        2.0 * w.sin(),
+        4.0 * (2.0 * w).cos(),
+        -5.0 * (3.0 * w).sin(),
+        (3.0 * w).cos(),
+        -(3.0 * w).sin(),
+        3.0 * w.cos(),
+        -w.sin(),
+        -(2.0 * w).sin(),
+        w.cos(),
+    ]) * 1.5;
+    for (perturbed, udot_rmp) in [(true, true), (true, false), (false, true)] {
+        let mut ud = rhs_vec(&qd);
+        if !udot_rmp {
+            ud.rows_mut(0, 6).fill(0.0);
+        }
+        let mut net = group_znn(
+            500.0,
+            2500.0,
+            act,
+            perturbed.then_some(pert),
+            udot_rmp,
+            dims,
+        )
+        .unwrap();
+        let mut ydot = vec![0.0; 9];
+        net.rhs(t, y.as_slice(), &qp, Some(&qd), &mut ydot);
+        let mut want = -&qdm * &y - &phi * 500.0 + ud - &e * (2500.0 * t);
+        if perturbed {
+            want += &ds;
+        }
+        let got = &qm * DVector::from_column_slice(&ydot);
+        let dev = (&got - &want).amax() / want.amax();
+        assert!(
+            dev < 1e-10,
+            "perturbed={perturbed} udot_rmp={udot_rmp}: deviates by {dev:e}"
+        );
+    }
+    // nu = 0, linear, no perturbation, udot_rmp: exactly FP-CDNN (the same core, bit for bit).
+    let mut g = group_znn(200.0, 0.0, Activation::Linear, None, true, dims).unwrap();
+    let mut f = fp_cdnn(200.0, Activation::Linear, None, dims).unwrap();
+    let (mut a, mut b) = (vec![0.0; 9], vec![0.0; 9]);
+    g.rhs(t, y.as_slice(), &qp, Some(&qd), &mut a);
+    f.rhs(t, y.as_slice(), &qp, Some(&qd), &mut b);
+    assert_eq!(a, b);
+    assert!(group_znn(500.0, -1.0, act, None, true, dims).is_err());
+}
+
 // ---------------------------------------------------------------------------------------------
 // specifications
 
@@ -829,6 +997,37 @@ fn solver_specs_parse_build_and_reject_mistakes() {
         ),
         ("solver = { kind = \"finite-time\", beta = 1.0, alpha = 0.1 }", "FTNN", QpShape::Kong2019),
         ("solver = { kind = \"znn\", gamma = 1.0 }", "ZNN", QpShape::Kong2019),
+        ("solver = { kind = \"group-znn\" }", "group ZNN (gamma=500, nu=2500)", QpShape::Zhang2018),
+        (
+            "solver = { kind = \"group-znn\", gamma = 500.0, nu = 2500.0, activation = \"group-power-sigmoid\", xi = 1.0, power = 1.0, perturbation = { a_s = 1.5, task_duration = 8.0 }, udot_rmp = false }",
+            "group ZNN (gamma=500, nu=2500, perturbed A_s=1.5, udot without -qdot)",
+            QpShape::Zhang2018,
+        ),
+        (
+            "solver = { kind = \"group-znn\", nu = 0.0, activation = \"linear\" }",
+            "group ZNN (gamma=500, nu=0, linear)",
+            QpShape::Kong2019,
+        ),
+        (
+            "solver = { kind = \"group-znn\", power = 3.0 }",
+            "group ZNN (gamma=500, nu=2500, group-power-sigmoid(xi=1,p=3))",
+            QpShape::Zhang2018,
+        ),
+        (
+            "solver = { kind = \"fp-cdnn\", gamma = 200.0, activation = \"group-power-sigmoid\" }",
+            "FP-CDNN (group-power-sigmoid)",
+            QpShape::Zhang2018,
+        ),
+        (
+            "solver = { kind = \"vp-cdnn\", gamma = 2.0, activation = \"power-sigmoid\", alpha = 2.0 }",
+            "VP-CDNN (power-sigmoid(alpha=2,chi=3))",
+            QpShape::Zhang2018,
+        ),
+        (
+            "solver = { kind = \"vp-rnn-pf\", p = 1e-4, sigma = 400.0, gamma = 2.0, activation = \"group-power-sigmoid\", xi = 2.0, power = 3.0 }",
+            "VP-RNN-PF (group-power-sigmoid(xi=2,p=3))",
+            QpShape::Zhong2021,
+        ),
     ];
     for (text, name, shape) in cases {
         let spec = parse(text).unwrap_or_else(|e| panic!("{text}: {e}"));
@@ -864,6 +1063,8 @@ fn solver_specs_parse_build_and_reject_mistakes() {
         "solver = { kind = \"lvi\", gamma = 1e7 }",
         "solver = { kind = \"vp-rnn-pf\", p = 1e-4, sigma = 400.0, gamma = 2.0, activation = \"tanh\" }",
         "solver = { kind = \"fp-cdnn\", gamma = 200.0, perturbation = { a_d = 1.0, amplitude = 2.0, task_duration = 8.0 } }",
+        "solver = { kind = \"group-znn\", mu = 1.0 }",
+        "solver = { kind = \"group-znn\", udot_rmp = 1 }",
     ] {
         assert!(parse(bad).is_err(), "accepted: {bad}");
     }
@@ -890,6 +1091,14 @@ fn solver_specs_parse_build_and_reject_mistakes() {
         kong
     )
     .is_err());
+    for bad in [
+        "solver = { kind = \"group-znn\", nu = -1.0 }",
+        "solver = { kind = \"group-znn\", gamma = 0.0 }",
+        "solver = { kind = \"group-znn\", xi = 0.0 }",
+        "solver = { kind = \"fp-cdnn\", gamma = 1.0, activation = \"group-power-sigmoid\", power = 0.5 }",
+    ] {
+        assert!(build_solver(&parse(bad).unwrap(), kong).is_err(), "built: {bad}");
+    }
 }
 
 #[test]

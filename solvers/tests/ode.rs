@@ -43,6 +43,7 @@ fn settings(method: Method, rtol: f64, atol: f64) -> IntegratorSettings {
         rtol,
         atol,
         max_steps: 1_000_000,
+        max_step: None,
     }
 }
 
@@ -208,4 +209,73 @@ fn observer_can_stop_and_divergence_is_reported() {
         failure.stats.steps > 0 && failure.stats.rhs_evals > failure.stats.steps,
         "cost until the stop is kept"
     );
+}
+
+/// ode15s's MaxStep (the group's 0.05 s): on the oscillator over [0, 8], which every method
+/// would otherwise cross in far fewer steps, no accepted step is longer than 0.05 and the
+/// result is still accurate.
+#[test]
+fn max_step_bounds_every_accepted_step() {
+    for method in [
+        Method::Bdf,
+        Method::Esdirk34,
+        Method::TrBdf2,
+        Method::Dopri5,
+        Method::Tsit45,
+    ] {
+        // Tolerances loose enough that the method steps beyond 0.05 when unlimited.
+        let rtol = if method == Method::TrBdf2 { 1e-3 } else { 1e-5 };
+        let (mut last, mut longest_unlimited) = (0.0, 0.0_f64);
+        integrate(
+            &mut Oscillator,
+            &[1.0, 0.0],
+            0.0,
+            8.0,
+            &settings(method, rtol, rtol * 1e-2),
+            |t, _| {
+                longest_unlimited = longest_unlimited.max(t - last);
+                last = t;
+                Control::Continue
+            },
+        )
+        .unwrap();
+        let mut s = settings(method, rtol, rtol * 1e-2);
+        s.max_step = Some(0.05);
+        last = 0.0;
+        let mut longest: f64 = 0.0;
+        let (y, stats) = integrate(&mut Oscillator, &[1.0, 0.0], 0.0, 8.0, &s, |t, _| {
+            longest = longest.max(t - last);
+            last = t;
+            Control::Continue
+        })
+        .unwrap();
+        assert!(
+            longest_unlimited > 0.06,
+            "{method}: the test needs steps longer than 0.05 when unlimited, longest {longest_unlimited}"
+        );
+        assert!(stats.steps >= 160, "{method}: {} steps", stats.steps);
+        assert!(longest <= 0.05 + 1e-12, "{method}: a step of {longest}");
+        assert_eq!(last, 8.0, "{method}: ends at t1");
+        let err = (y[0] - 8f64.cos()).abs().max((y[1] + 8f64.sin()).abs());
+        assert!(err < 100.0 * rtol, "{method}: error {err:e}");
+    }
+    // Validation.
+    for bad in [0.0, -0.1, f64::NAN, f64::INFINITY] {
+        let mut s = settings(Method::Bdf, 1e-6, 1e-8);
+        s.max_step = Some(bad);
+        assert!(s.validate().is_err());
+        assert!(
+            integrate(&mut Oscillator, &[1.0, 0.0], 0.0, 1.0, &s, |_, _| {
+                Control::Continue
+            })
+            .is_err()
+        );
+    }
+    // TOML: absent means None, present is read.
+    let s: IntegratorSettings =
+        toml::from_str("method = \"bdf\"\nrtol = 1e-6\natol = 1e-8\nmax_step = 0.05").unwrap();
+    assert_eq!(s.max_step, Some(0.05));
+    let s: IntegratorSettings =
+        toml::from_str("method = \"bdf\"\nrtol = 1e-6\natol = 1e-8").unwrap();
+    assert_eq!(s.max_step, None);
 }

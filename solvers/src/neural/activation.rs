@@ -8,6 +8,7 @@
 //! | [`Activation::Linear`] | e | zhong2021 eq. 2.27; zhang2018 ("linear unless stated"); the ZNN |
 //! | [`Activation::Sinh`] | (exp(e) - exp(-e))/2 | zhong2021 eq. 2.28 |
 //! | [`Activation::PowerSigmoid`] | (1+exp(-alpha))(1-exp(-alpha e)) / ((1-exp(-alpha))(1+exp(-alpha e))) for abs(e) <= 1, sgn(e) abs(e)^chi for abs(e) > 1 | zhong2021 eq. 2.29 (alpha >= 2, chi >= 3) |
+//! | [`Activation::GroupPowerSigmoid`] | e^p for abs(e) >= 1, ((1+exp(-xi))/(1-exp(-xi))) (1-exp(-xi e))/(1+exp(-xi e)) otherwise | the group's `AFMpowersigmoid(e, xi, p)` (`shared/spec/group-code.md`) |
 //! | [`Activation::SignPower`] | abs(e)^r sgn(e) | kong2019 eq. 6 and 20 (r = the paper's alpha, 0 < r < 1) |
 //!
 //! Power-sigmoid: the paper prints e^chi for abs(e) > 1, which is odd only for odd integer chi;
@@ -15,6 +16,28 @@
 //! choice chi = 3) and odd for every chi. The two branches meet at abs(e) = 1 (both give +-1), so
 //! phi is continuous; its derivative jumps there (alpha(1+exp(-alpha))/(... ) vs chi).
 //! Defaults (the paper gives only the ranges): alpha = 4, chi = 3.
+//!
+//! # The group's power-sigmoid, and how it maps onto zhong2021's
+//!
+//! The papers' group's MATLAB code (`AFMpowersigmoid.m`, see `shared/spec/group-code.md`) computes,
+//! elementwise, phi(e) = e^p where abs(e) >= 1 and
+//! ((1 + exp(-xi)) / (1 - exp(-xi))) (1 - exp(-xi e)) / (1 + exp(-xi e)) otherwise; called with
+//! one argument it uses xi = 1, p = 1, with two p = 3 ([`GROUP_POWER_SIGMOID_XI`],
+//! [`GROUP_POWER_SIGMOID_P`] are the one-argument defaults, the ones its network uses).
+//! This is zhong2021's eq. 2.29 with **alpha = xi and chi = p**: the same sigmoid branch
+//! (= coth(xi/2) tanh(xi e/2)) inside, the same power outside. The two differ only at
+//! abs(e) = 1 exactly, which the group gives to the power branch (>= 1) and zhong2021 to the
+//! sigmoid (<= 1): the values agree there (both branches give +-1, up to rounding of the sigmoid
+//! branch), the one-sided derivatives do not (p vs xi / sinh(xi)), so
+//! [`Activation::derivative`] returns p at abs(e) = 1 for the group's form and the sigmoid's
+//! slope for zhong2021's. What differs in practice is the parameters: zhong2021 asks alpha >= 2,
+//! chi >= 3 (we default to 4, 3), the group uses xi = 1, p = 1, i.e. a sigmoid of slope
+//! (xi/2) coth(xi/2) = 1.082 at 0 and xi / sinh(xi) = 0.851 at abs(e) = 1, and the identity
+//! outside [-1, 1]. Like zhong2021's, the power branch is written sgn(e) abs(e)^p: identical to
+//! the code's e.^p for odd integer p (the code's 1 and 3: the sign is preserved), and odd for
+//! every p (for even p, e.^p would lose the sign; for non-integer p MATLAB would return complex
+//! numbers for e <= -1). Both branches are evaluated on abs(e) and signed, so phi is exactly odd
+//! in floating point. Parameters: xi > 0, p >= 1.
 //!
 //! Sign-power with r < 1 has an infinite slope at e = 0 (that is what makes the convergence
 //! finite-time, and what makes every integrator fail once e reaches 0: explicit steps collapse,
@@ -33,6 +56,28 @@ use serde::Deserialize;
 pub const POWER_SIGMOID_ALPHA: f64 = 4.0;
 /// Default power-sigmoid chi (zhong2021 eq. 2.29 asks only chi >= 3).
 pub const POWER_SIGMOID_CHI: f64 = 3.0;
+/// Default xi of the group's power-sigmoid (`AFMpowersigmoid` called with one argument).
+pub const GROUP_POWER_SIGMOID_XI: f64 = 1.0;
+/// Default p of the group's power-sigmoid (`AFMpowersigmoid` called with one argument).
+pub const GROUP_POWER_SIGMOID_P: f64 = 1.0;
+
+/// The sigmoid branch shared by both power-sigmoids at a = abs(e) <= 1, steepness `s` (zhong2021's
+/// alpha, the group's xi): (1 + exp(-s)) (1 - exp(-s a)) / ((1 - exp(-s)) (1 + exp(-s a))).
+#[inline]
+fn sigmoid_branch(a: f64, s: f64) -> f64 {
+    let ea = (-s).exp();
+    let ee = (-s * a).exp();
+    (1.0 + ea) * (1.0 - ee) / ((1.0 - ea) * (1.0 + ee))
+}
+
+/// d/da of [`sigmoid_branch`]: d/da (1-z)/(1+z) with z = exp(-s a) is 2 s z / (1+z)^2.
+#[inline]
+fn sigmoid_branch_slope(a: f64, s: f64) -> f64 {
+    let ea = (-s).exp();
+    let z = (-s * a).exp();
+    (1.0 + ea) / (1.0 - ea) * 2.0 * s * z / ((1.0 + z) * (1.0 + z))
+}
+
 /// Smoothed sign-power e (e^2 + delta^2)^((r - 1)/2) (exact abs(e)^r sgn(e) for delta = 0).
 #[inline]
 pub fn sign_power(e: f64, r: f64, delta: f64) -> f64 {
@@ -69,6 +114,9 @@ pub enum Activation {
     Sinh,
     /// zhong2021 eq. 2.29 (see the module docs).
     PowerSigmoid { alpha: f64, chi: f64 },
+    /// The group's `AFMpowersigmoid(e, xi, p)` (module docs): zhong2021's eq. 2.29 with
+    /// alpha = xi, chi = p, the power branch owning abs(e) = 1.
+    GroupPowerSigmoid { xi: f64, p: f64 },
     /// phi(e) = abs(e)^r sgn(e) (kong2019 eq. 6, 20), optionally made linear,
     /// phi(e) = e delta^(r-1), for abs(e) < delta = `smoothing` (0: the exact form).
     SignPower { r: f64, smoothing: f64 },
@@ -82,6 +130,8 @@ pub enum ActivationKind {
     Linear,
     Sinh,
     PowerSigmoid,
+    /// [`Activation::GroupPowerSigmoid`] (`group-power-sigmoid`, parameters `xi` and `power`).
+    GroupPowerSigmoid,
 }
 
 impl Activation {
@@ -100,6 +150,13 @@ impl Activation {
             Activation::PowerSigmoid { alpha, chi } => {
                 if !(alpha > 0.0 && alpha.is_finite()) || !(chi >= 1.0 && chi.is_finite()) {
                     Err(format!("power-sigmoid needs alpha > 0 and chi >= 1 (paper: alpha >= 2, chi >= 3), got alpha = {alpha}, chi = {chi}"))
+                } else {
+                    Ok(())
+                }
+            }
+            Activation::GroupPowerSigmoid { xi, p } => {
+                if !(xi > 0.0 && xi.is_finite() && p >= 1.0 && p.is_finite()) {
+                    Err(format!("group power-sigmoid needs xi > 0 and p >= 1 (the group's code: xi = 1, p = 1 or 3), got xi = {xi}, p = {p}"))
                 } else {
                     Ok(())
                 }
@@ -126,6 +183,9 @@ impl Activation {
             Activation::PowerSigmoid { alpha, chi } => {
                 format!("power-sigmoid(alpha={alpha},chi={chi})")
             }
+            Activation::GroupPowerSigmoid { xi, p } => {
+                format!("group-power-sigmoid(xi={xi},p={p})")
+            }
             Activation::SignPower { r, smoothing } => {
                 if smoothing > 0.0 {
                     format!("sign-power(r={r},linear below {smoothing:e})")
@@ -146,11 +206,18 @@ impl Activation {
                 // Evaluated on |e| and signed, so that phi is exactly odd in floating point.
                 let a = e.abs();
                 let v = if a <= 1.0 {
-                    let ea = (-alpha).exp();
-                    let ee = (-alpha * a).exp();
-                    (1.0 + ea) * (1.0 - ee) / ((1.0 - ea) * (1.0 + ee))
+                    sigmoid_branch(a, alpha)
                 } else {
                     a.powf(chi)
+                };
+                e.signum() * v
+            }
+            Activation::GroupPowerSigmoid { xi, p } => {
+                let a = e.abs();
+                let v = if a >= 1.0 {
+                    a.powf(p)
+                } else {
+                    sigmoid_branch(a, xi)
                 };
                 e.signum() * v
             }
@@ -167,12 +234,17 @@ impl Activation {
             Activation::PowerSigmoid { alpha, chi } => {
                 let a = e.abs();
                 if a <= 1.0 {
-                    // d/de (1-z)/(1+z) with z = exp(-alpha e) is 2 alpha z / (1+z)^2.
-                    let ea = (-alpha).exp();
-                    let z = (-alpha * a).exp();
-                    (1.0 + ea) / (1.0 - ea) * 2.0 * alpha * z / ((1.0 + z) * (1.0 + z))
+                    sigmoid_branch_slope(a, alpha)
                 } else {
                     chi * a.powf(chi - 1.0)
+                }
+            }
+            Activation::GroupPowerSigmoid { xi, p } => {
+                let a = e.abs();
+                if a >= 1.0 {
+                    p * a.powf(p - 1.0)
+                } else {
+                    sigmoid_branch_slope(a, xi)
                 }
             }
             Activation::SignPower { r, smoothing } => sign_power_slope(e, r, smoothing),

@@ -9,15 +9,28 @@
 //! solver = { kind = "vp-cdnn", gamma = 200 }
 //! solver = { kind = "finite-time", beta = 1, alpha = 0.1, smoothing = 1e-8 }   # smoothing optional
 //! solver = { kind = "znn", gamma = 1 }
+//! solver = { kind = "group-znn", gamma = 500, nu = 2500, perturbation = { a_s = 1.5, task_duration = 8 } }
+//! solver = { kind = "group-znn", udot_rmp = false, activation = "linear" }
 //! ```
 //!
-//! `activation` is `linear` (default), `sinh` or `power-sigmoid`; `alpha`/`chi` (defaults 4 and
-//! 3) are the power-sigmoid's parameters (zhong2021 eq. 2.29) and are ignored otherwise. The
-//! CDNNs accept an activation too (the paper's runs are linear), with the power-sigmoid at its
-//! defaults.
+//! `activation` is `linear` (default; for `group-znn` the default is `group-power-sigmoid`),
+//! `sinh`, `power-sigmoid` or `group-power-sigmoid`; `alpha`/`chi` (defaults 4 and 3) are the
+//! power-sigmoid's parameters (zhong2021 eq. 2.29), `xi`/`power` (defaults 1 and 1) the group's
+//! power-sigmoid's xi and p (`power`, since VP-RNN-PF's `p` is its own parameter); each pair is
+//! ignored for the other activations. Every network that takes an activation (VP-RNN-PF, the
+//! CDNNs, the group's network) takes all four. The CDNNs' runs in the paper are linear.
+//!
+//! `group-znn` (the group's network, [`super::group`]): `gamma` (default 500), `nu` (default
+//! 2500), `activation`, `perturbation` (optional, as the CDNNs; only `a_s` and `task_duration`
+//! are used, its DeltaD is not) and `udot_rmp` (default true; false drops the -qdot part of
+//! udot, as the group's EXP1 file).
 
-use super::activation::{Activation, ActivationKind, POWER_SIGMOID_ALPHA, POWER_SIGMOID_CHI};
+use super::activation::{
+    Activation, ActivationKind, GROUP_POWER_SIGMOID_P, GROUP_POWER_SIGMOID_XI, POWER_SIGMOID_ALPHA,
+    POWER_SIGMOID_CHI,
+};
 use super::cdnn::{fp_cdnn, vp_cdnn, ReferencePerturbation};
+use super::group::{group_znn, GROUP_GAMMA, GROUP_NU};
 use super::projection::{LviPdnn, SLviPdnn};
 use super::vp_rnn_pf::VpRnnPf;
 use super::znn::{finite_time, znn, FINITE_TIME_SMOOTHING};
@@ -33,6 +46,24 @@ fn default_chi() -> f64 {
 }
 fn default_smoothing() -> f64 {
     FINITE_TIME_SMOOTHING
+}
+fn default_xi() -> f64 {
+    GROUP_POWER_SIGMOID_XI
+}
+fn default_power() -> f64 {
+    GROUP_POWER_SIGMOID_P
+}
+fn default_group_gamma() -> f64 {
+    GROUP_GAMMA
+}
+fn default_group_nu() -> f64 {
+    GROUP_NU
+}
+fn default_group_activation() -> ActivationKind {
+    ActivationKind::GroupPowerSigmoid
+}
+fn default_true() -> bool {
+    true
 }
 
 /// A network and its parameters, by the papers' names.
@@ -56,12 +87,26 @@ pub enum SolverSpec {
         /// Power-sigmoid chi (eq. 2.29).
         #[serde(default = "default_chi")]
         chi: f64,
+        /// The group's power-sigmoid xi.
+        #[serde(default = "default_xi")]
+        xi: f64,
+        /// The group's power-sigmoid p.
+        #[serde(default = "default_power")]
+        power: f64,
     },
     /// zhang2018 eq. 2.15 (eq. 3.2 when perturbed).
     FpCdnn {
         gamma: f64,
         #[serde(default)]
         activation: ActivationKind,
+        #[serde(default = "default_alpha")]
+        alpha: f64,
+        #[serde(default = "default_chi")]
+        chi: f64,
+        #[serde(default = "default_xi")]
+        xi: f64,
+        #[serde(default = "default_power")]
+        power: f64,
         #[serde(default)]
         perturbation: Option<ReferencePerturbation>,
     },
@@ -70,6 +115,14 @@ pub enum SolverSpec {
         gamma: f64,
         #[serde(default)]
         activation: ActivationKind,
+        #[serde(default = "default_alpha")]
+        alpha: f64,
+        #[serde(default = "default_chi")]
+        chi: f64,
+        #[serde(default = "default_xi")]
+        xi: f64,
+        #[serde(default = "default_power")]
+        power: f64,
         #[serde(default)]
         perturbation: Option<ReferencePerturbation>,
     },
@@ -83,13 +136,63 @@ pub enum SolverSpec {
     },
     /// Linear ZNN (kong2019's comparison solver).
     Znn { gamma: f64 },
+    /// The papers' group's own network (`shared/spec/group-code.md`, [`super::group`]):
+    /// Q ydot = -Qdot y - gamma Phi(E) + udot - nu t E + Delta_s(t).
+    GroupZnn {
+        #[serde(default = "default_group_gamma")]
+        gamma: f64,
+        #[serde(default = "default_group_nu")]
+        nu: f64,
+        #[serde(default = "default_group_activation")]
+        activation: ActivationKind,
+        #[serde(default = "default_alpha")]
+        alpha: f64,
+        #[serde(default = "default_chi")]
+        chi: f64,
+        #[serde(default = "default_xi")]
+        xi: f64,
+        #[serde(default = "default_power")]
+        power: f64,
+        /// Only `a_s` and `task_duration` are used (the group's code does not use DeltaD).
+        #[serde(default)]
+        perturbation: Option<ReferencePerturbation>,
+        /// false: udot = [0; bdot], without its -qdot part (the group's EXP1 file).
+        #[serde(default = "default_true")]
+        udot_rmp: bool,
+    },
 }
 
-fn activation_of(kind: ActivationKind, alpha: f64, chi: f64) -> Activation {
+/// The activation of `kind` with its parameters: `alpha`, `chi` for zhong2021's power-sigmoid,
+/// `xi`, `power` for the group's; the others ignored.
+pub fn activation_of(
+    kind: ActivationKind,
+    alpha: f64,
+    chi: f64,
+    xi: f64,
+    power: f64,
+) -> Activation {
     match kind {
         ActivationKind::Linear => Activation::Linear,
         ActivationKind::Sinh => Activation::Sinh,
         ActivationKind::PowerSigmoid => Activation::PowerSigmoid { alpha, chi },
+        ActivationKind::GroupPowerSigmoid => Activation::GroupPowerSigmoid { xi, p: power },
+    }
+}
+
+/// Name of an activation in display names: the kind's label at default parameters (so the
+/// existing names are unchanged), the label with its parameters otherwise.
+fn activation_name(kind: ActivationKind, alpha: f64, chi: f64, xi: f64, power: f64) -> String {
+    let at_defaults = match kind {
+        ActivationKind::Linear | ActivationKind::Sinh => true,
+        ActivationKind::PowerSigmoid => alpha == POWER_SIGMOID_ALPHA && chi == POWER_SIGMOID_CHI,
+        ActivationKind::GroupPowerSigmoid => {
+            xi == GROUP_POWER_SIGMOID_XI && power == GROUP_POWER_SIGMOID_P
+        }
+    };
+    if at_defaults {
+        kind_label(kind).to_string()
+    } else {
+        activation_of(kind, alpha, chi, xi, power).label()
     }
 }
 
@@ -110,21 +213,73 @@ impl SolverSpec {
         match self {
             SolverSpec::LviPdnn { .. } => "LVI-PDNN".into(),
             SolverSpec::SLviPdnn { .. } => "S-LVI-PDNN".into(),
-            SolverSpec::VpRnnPf { activation, .. } => {
-                format!("VP-RNN-PF ({})", kind_label(*activation))
+            SolverSpec::VpRnnPf {
+                activation,
+                alpha,
+                chi,
+                xi,
+                power,
+                ..
+            } => {
+                format!(
+                    "VP-RNN-PF ({})",
+                    activation_name(*activation, *alpha, *chi, *xi, *power)
+                )
             }
             SolverSpec::FpCdnn {
                 activation,
+                alpha,
+                chi,
+                xi,
+                power,
                 perturbation,
                 ..
-            } => cdnn_name("FP-CDNN", *activation, perturbation),
+            } => cdnn_name(
+                "FP-CDNN",
+                activation_name(*activation, *alpha, *chi, *xi, *power),
+                *activation == ActivationKind::Linear,
+                perturbation,
+            ),
             SolverSpec::VpCdnn {
                 activation,
+                alpha,
+                chi,
+                xi,
+                power,
                 perturbation,
                 ..
-            } => cdnn_name("VP-CDNN", *activation, perturbation),
+            } => cdnn_name(
+                "VP-CDNN",
+                activation_name(*activation, *alpha, *chi, *xi, *power),
+                *activation == ActivationKind::Linear,
+                perturbation,
+            ),
             SolverSpec::FiniteTime { .. } => "FTNN".into(),
             SolverSpec::Znn { .. } => "ZNN".into(),
+            SolverSpec::GroupZnn {
+                gamma,
+                nu,
+                activation,
+                alpha,
+                chi,
+                xi,
+                power,
+                perturbation,
+                udot_rmp,
+            } => {
+                let mut parts = vec![format!("gamma={gamma}"), format!("nu={nu}")];
+                let act = activation_name(*activation, *alpha, *chi, *xi, *power);
+                if act != kind_label(default_group_activation()) {
+                    parts.push(act);
+                }
+                if let Some(p) = perturbation {
+                    parts.push(format!("perturbed A_s={}", p.a_s));
+                }
+                if !udot_rmp {
+                    parts.push("udot without -qdot".into());
+                }
+                format!("group ZNN ({})", parts.join(", "))
+            }
         }
     }
 
@@ -150,14 +305,20 @@ fn kind_label(k: ActivationKind) -> &'static str {
         ActivationKind::Linear => "linear",
         ActivationKind::Sinh => "sinh",
         ActivationKind::PowerSigmoid => "power-sigmoid",
+        ActivationKind::GroupPowerSigmoid => "group-power-sigmoid",
     }
 }
 
-fn cdnn_name(base: &str, act: ActivationKind, pert: &Option<ReferencePerturbation>) -> String {
+fn cdnn_name(
+    base: &str,
+    act: String,
+    linear: bool,
+    pert: &Option<ReferencePerturbation>,
+) -> String {
     let mut s = base.to_string();
     let mut extra = Vec::new();
-    if act != ActivationKind::Linear {
-        extra.push(kind_label(act).to_string());
+    if !linear {
+        extra.push(act);
     }
     if let Some(p) = pert {
         extra.push(format!("perturbed A_D={}, A_s={}", p.a_d, p.a_s));
@@ -186,32 +347,42 @@ pub fn build_solver(spec: &SolverSpec, dims: QpDims) -> Result<Box<dyn NeuralSol
             activation,
             alpha,
             chi,
+            xi,
+            power,
         } => {
             check_gain("VP-RNN-PF", "gamma", gamma)?;
             Box::new(VpRnnPf::new(
                 p,
                 sigma,
                 gamma,
-                activation_of(activation, alpha, chi),
+                activation_of(activation, alpha, chi, xi, power),
                 dims,
             )?)
         }
         SolverSpec::FpCdnn {
             gamma,
             activation,
+            alpha,
+            chi,
+            xi,
+            power,
             perturbation,
         } => {
             check_gain("FP-CDNN", "gamma", gamma)?;
-            let act = activation_of(activation, POWER_SIGMOID_ALPHA, POWER_SIGMOID_CHI);
+            let act = activation_of(activation, alpha, chi, xi, power);
             Box::new(fp_cdnn(gamma, act, perturbation, dims)?)
         }
         SolverSpec::VpCdnn {
             gamma,
             activation,
+            alpha,
+            chi,
+            xi,
+            power,
             perturbation,
         } => {
             check_gain("VP-CDNN", "gamma", gamma)?;
-            let act = activation_of(activation, POWER_SIGMOID_ALPHA, POWER_SIGMOID_CHI);
+            let act = activation_of(activation, alpha, chi, xi, power);
             Box::new(vp_cdnn(gamma, act, perturbation, dims)?)
         }
         SolverSpec::FiniteTime {
@@ -225,6 +396,21 @@ pub fn build_solver(spec: &SolverSpec, dims: QpDims) -> Result<Box<dyn NeuralSol
         SolverSpec::Znn { gamma } => {
             check_gain("ZNN", "gamma", gamma)?;
             Box::new(znn(gamma, dims)?)
+        }
+        SolverSpec::GroupZnn {
+            gamma,
+            nu,
+            activation,
+            alpha,
+            chi,
+            xi,
+            power,
+            perturbation,
+            udot_rmp,
+        } => {
+            check_gain("group ZNN", "gamma", gamma)?;
+            let act = activation_of(activation, alpha, chi, xi, power);
+            Box::new(group_znn(gamma, nu, act, perturbation, udot_rmp, dims)?)
         }
     })
 }

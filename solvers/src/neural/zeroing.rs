@@ -1,6 +1,7 @@
 //! The zeroing core shared by every equality-only network of the papers: FP-CDNN and VP-CDNN
 //! (zhang2018 eq. 2.15, 2.11, perturbed 3.2, 3.1), kong2019's finite-time network (eq. 17-20)
-//! and the plain ZNN of kong2019's comparison scheme (eq. 22).
+//! the plain ZNN of kong2019's comparison scheme (eq. 22) and the papers' group's own network
+//! ([`super::group`], `shared/spec/group-code.md`).
 //!
 //! # The equation they zero
 //!
@@ -23,6 +24,15 @@
 //! ```
 //!
 //! with the bracketed perturbation of zhang2018 eq. 3.1-3.2 (see [`super::cdnn`]) where given.
+//!
+//! Three options, all off by default (and then not evaluated at all, so the networks above are
+//! unchanged bit for bit), make the group's network ([`super::group`]):
+//! - a growing-gain term -nu t E on the right-hand side ([`ZeroingNetwork::with_growing_gain`]);
+//! - the perturbation's vector part Delta s(t) alone, without DeltaD(t)
+//!   ([`ZeroingNetwork::with_vector_perturbation_only`]);
+//! - udot without its -qdot part, i.e. udot = [0; bdot]
+//!   ([`ZeroingNetwork::without_udot_q`]).
+//!
 //! Q is small and invertible (P positive definite on the null space of A, A of full row rank),
 //! so ydot is solved for at each evaluation with an in-place LU with partial pivoting on a
 //! preallocated matrix ([`super::lu`]); Qdot and udot come from `qp_dot` (P, A, q, b
@@ -32,7 +42,8 @@
 //! `n_in = 0`, and the bounds `lower`/`upper` of the QP are ignored (the schemes that use these
 //! networks have none).
 //!
-//! Jacobian (QP data frozen, as the trait asks): Q dF/dy = -Qdot - DeltaD - g(t) diag(Phi'(E)) Q.
+//! Jacobian (QP data frozen, as the trait asks):
+//! Q dF/dy = -Qdot - DeltaD - (g(t) diag(Phi'(E)) + nu t I) Q.
 
 use super::activation::Activation;
 use super::cdnn::ReferencePerturbation;
@@ -76,6 +87,12 @@ pub struct ZeroingNetwork {
     /// DeltaD(t) scratch (perturbed networks).
     delta_d: DMatrix<f64>,
     delta_s: Vec<f64>,
+    /// nu of the growing-gain term -nu t E (0: none).
+    nu: f64,
+    /// Whether a perturbation's DeltaD(t) is used (else Delta s(t) alone).
+    matrix_perturbation: bool,
+    /// Whether udot includes -qdot (else udot = [0; bdot]).
+    udot_q: bool,
 }
 
 impl ZeroingNetwork {
@@ -111,7 +128,50 @@ impl ZeroingNetwork {
             e: vec![0.0; n],
             delta_d: DMatrix::zeros(n, n),
             delta_s: vec![0.0; n],
+            nu: 0.0,
+            matrix_perturbation: true,
+            udot_q: true,
         })
+    }
+
+    /// Adds the growing-gain term -nu t E to the right-hand side (the group's network;
+    /// nu = 0 leaves the network unchanged). nu must be finite and >= 0.
+    pub fn with_growing_gain(mut self, nu: f64) -> Result<Self, String> {
+        if !(nu >= 0.0 && nu.is_finite()) {
+            return Err(format!(
+                "{}: nu must be finite and >= 0, got {nu}",
+                self.name
+            ));
+        }
+        self.nu = nu;
+        Ok(self)
+    }
+
+    /// Uses only the vector part Delta s(t) of the perturbation, not DeltaD(t) (the group's code
+    /// computes its matrix perturbation but does not use it).
+    pub fn with_vector_perturbation_only(mut self) -> Self {
+        self.matrix_perturbation = false;
+        self
+    }
+
+    /// Drops the -qdot part of udot, udot = [0; bdot] (the group's EXP1 file, whose udot lacks
+    /// the -k thetadot term).
+    pub fn without_udot_q(mut self) -> Self {
+        self.udot_q = false;
+        self
+    }
+
+    /// nu of the growing-gain term -nu t E (0: none).
+    pub fn growing_gain(&self) -> f64 {
+        self.nu
+    }
+    /// Whether DeltaD(t) of the perturbation is used.
+    pub fn uses_matrix_perturbation(&self) -> bool {
+        self.perturbation.is_some() && self.matrix_perturbation
+    }
+    /// Whether udot includes -qdot.
+    pub fn udot_includes_q(&self) -> bool {
+        self.udot_q
     }
 
     pub fn gain(&self) -> Gain {
@@ -194,7 +254,9 @@ impl ZeroingNetwork {
 
     fn fill_perturbation(&mut self, t: f64) {
         if let Some(p) = &self.perturbation {
-            p.delta_d(t, &mut self.delta_d);
+            if self.matrix_perturbation {
+                p.delta_d(t, &mut self.delta_d);
+            }
             p.delta_s(t, &mut self.delta_s);
         }
     }
@@ -221,18 +283,30 @@ impl NeuralSolver for ZeroingNetwork {
         self.compute_error(qp, y);
         self.fill_perturbation(t);
         let g = self.gain.at(t);
+        let matrix_perturbation = self.uses_matrix_perturbation();
         for i in 0..n {
             let mut r = -g * self.activation.value(self.e[i]);
+            if self.nu != 0.0 {
+                r -= self.nu * t * self.e[i];
+            }
             if let Some(d) = qp_dot {
-                let udot = if i < nx { -d.q[i] } else { d.b[i - nx] };
+                let udot = if i >= nx {
+                    d.b[i - nx]
+                } else if self.udot_q {
+                    -d.q[i]
+                } else {
+                    0.0
+                };
                 r += udot - self.qdot_y(d, y, i);
             }
-            if self.perturbation.is_some() {
+            if matrix_perturbation {
                 let mut dy = 0.0;
                 for j in 0..n {
                     dy += self.delta_d[(i, j)] * y[j];
                 }
                 r += self.delta_s[i] - dy;
+            } else if self.perturbation.is_some() {
+                r += self.delta_s[i];
             }
             ydot[i] = r;
         }
@@ -256,9 +330,12 @@ impl NeuralSolver for ZeroingNetwork {
         self.compute_error(qp, y);
         self.fill_perturbation(t);
         let g = self.gain.at(t);
-        // Right-hand side -Qdot - DeltaD - g diag(Phi'(E)) Q.
+        // Right-hand side -Qdot - DeltaD - (g diag(Phi'(E)) + nu t I) Q.
         for i in 0..n {
-            let s = g * self.activation.derivative(self.e[i]);
+            let mut s = g * self.activation.derivative(self.e[i]);
+            if self.nu != 0.0 {
+                s += self.nu * t;
+            }
             for j in 0..n {
                 jac[(i, j)] = -s * self.lu[(i, j)];
             }
@@ -276,7 +353,7 @@ impl NeuralSolver for ZeroingNetwork {
                 }
             }
         }
-        if self.perturbation.is_some() {
+        if self.uses_matrix_perturbation() {
             for i in 0..n {
                 for j in 0..n {
                     jac[(i, j)] -= self.delta_d[(i, j)];
