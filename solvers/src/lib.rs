@@ -1,12 +1,16 @@
-//! The QP type, the exact reference solver (Clarabel), the papers' neural solvers and the
-//! ODE integration layer (diffsol) they are simulated with.
+//! The QP type, the exact reference solver (Clarabel), a hot-started dense active-set solver,
+//! the papers' neural solvers and the ODE integration layer (diffsol) they are simulated with.
 
+pub mod active_set;
 pub mod exact;
 pub mod neural;
 pub mod ode;
 pub mod qp;
 pub mod random_qp;
 
+pub use active_set::{
+    ActiveSetError, ActiveSetSolution, ActiveSetSolver, ActiveSetStart, Constraint, WorkingSet,
+};
 pub use exact::{solve_equality_kkt, ExactError, ExactSolution, ExactSolver, ExactStatus};
 pub use qp::{KktResiduals, Qp, QpDims, QpDuals};
 pub use random_qp::{random_feasible, random_qp, QpShape};

@@ -1,0 +1,1106 @@
+//! A hand-written dense active-set solver for the small strictly convex QPs of [`crate::qp`],
+//! hot-started from the previous instant's working set and certified by its KKT residuals.
+//!
+//! # Why hand-written
+//!
+//! No permissively licensed, maintained Rust crate does dense active-set QP: the `quadprog`
+//! crate (Goldfarb–Idnani) is GPL-2.0, and DAQP, qpOASES and ProxQP have no Rust crates. The
+//! papers' QPs have at most ~10 variables and ~30 rows, so a dense method that refactorises a
+//! small KKT matrix at every working-set change is both simple and fast, and its answers are
+//! checked here (see *Certification*) and against Clarabel in the tests.
+//!
+//! # Problem and constraint numbering
+//!
+//! The QP is that of [`crate::qp`]: minimise x'Px/2 + q'x subject to A x = b, G x <= h,
+//! l <= x <= u. Every inequality is written as c_k'x <= d_k and numbered (this is the order
+//! used for every tie break):
+//!
+//! ```text
+//! k in [0, m_in)              Constraint::Inequality(i)   c_k = G_i,   d_k =  h_i
+//! k in [m_in, m_in + n)       Constraint::Upper(i)        c_k =  e_i,  d_k =  u_i
+//! k in [m_in + n, m_in + 2n)  Constraint::Lower(i)        c_k = -e_i,  d_k = -l_i
+//! ```
+//!
+//! Rows with an infinite right-hand side (h_i = +inf, u_i = +inf, l_i = -inf) are absent: they
+//! are never violated, never enter a working set and get a zero multiplier.
+//!
+//! # The KKT system of a working set
+//!
+//! For a working set W (inequality rows held as equalities) with matrix C = [A; C_W] and
+//! right-hand side d = [b; d_W], the minimiser of the objective on {C x = d} and its
+//! multipliers solve
+//!
+//! ```text
+//! [ P  C' ] [ x ]   [ -q - t c_p ]
+//! [ C  0  ] [ y ] = [  d         ]          (t = 0 except inside a dual step, below)
+//! ```
+//!
+//! which is nonsingular when C has full row rank and P is positive definite on the null space
+//! of C. The matrix (order n + m_eq + |W| <= 2n) is assembled in a buffer sized at
+//! construction and factorised by an in-place LU with partial pivoting (our own few lines:
+//! nalgebra's `LU` takes an owned matrix of exactly the system's order and allocates its
+//! permutation at every factorisation), followed by one step of iterative refinement against
+//! the unfactorised matrix. "One KKT solve" below means one such factorisation; the second
+//! right-hand side of a dual step reuses it.
+//!
+//! # Primal iterations (from a feasible point)
+//!
+//! Given a feasible x that lies on the rows of W, let x* be the KKT solution for W and
+//! p = x* - x. If p != 0, the step length is the blocking ratio
+//!
+//! ```text
+//! alpha = min(1, min over k not in W with c_k'p > 0 of (d_k - c_k'x) / c_k'p),
+//! ```
+//!
+//! x <- x + alpha p, and the blocking row (smallest k on ties) joins W. If p = 0, x minimises
+//! the objective on W; if every inequality multiplier y_k of W is >= 0 the KKT conditions hold
+//! and x is optimal, otherwise the row with the most negative multiplier (smallest k on ties)
+//! leaves W: moving off it decreases the objective while keeping the other rows.
+//!
+//! # Dual iterations (Goldfarb–Idnani; the cold start)
+//!
+//! A primal method needs a feasible point, which a general QP does not provide (a phase 1
+//! would be a linear program, i.e. a second solver). The cold start is therefore the dual
+//! active-set method of Goldfarb and Idnani (1983), which starts from the minimiser subject to
+//! the equalities only (W empty), keeps every iterate a minimiser on its working set with
+//! multipliers >= 0 (dual feasible), and works towards primal feasibility:
+//!
+//! 1. pick the most violated row p (largest c_p'x - d_p, smallest k on ties); none: optimal;
+//! 2. raise p's multiplier t from 0 along the directions (dx, dy) that keep stationarity and
+//!    the rows of W: `[P C'; C 0] [dx; dy] = [-c_p; 0]`, so x(t) = x + t dx, y(t) = y + t dy;
+//! 3. full step t2 = (c_p'x - d_p) / (-c_p'dx) makes p active (c_p'dx = -dx'P dx < 0): p joins
+//!    W; partial step t1 = min over inequality rows j of W with dy_j < 0 of y_j / (-dy_j)
+//!    (smallest k on ties) drives y_j to zero: j leaves W and step 2 is repeated for the
+//!    same p with the reached t;
+//! 4. if dx = 0 (c_p is a combination of the rows of W) and no dy_j < 0, t can grow without
+//!    bound: the dual is unbounded, i.e. the QP is **infeasible**
+//!    ([`ActiveSetError::Infeasible`]).
+//!
+//! The dual objective strictly increases at every full step, so no working set repeats.
+//!
+//! # Hot start
+//!
+//! [`ActiveSetSolver::solve`] with a warm working set (the previous instant's) first solves the
+//! KKT system of that set once. If its x is primal feasible and its inequality multipliers are
+//! >= 0 the KKT conditions hold and the answer costs exactly one KKT solve (the usual case
+//! along a trajectory). If x is feasible but some multiplier is negative, primal iterations
+//! continue from x. If x is infeasible, the rows with negative multipliers are dropped (and
+//! the system re-solved) until the multipliers are >= 0, and dual iterations continue from
+//! there. A warm set that is inconsistent (index out of range, infinite right-hand side,
+//! duplicate row, more rows than variables, singular KKT matrix), or a warm path that fails,
+//! falls back to the cold start.
+//!
+//! # Why a KKT point is the optimum
+//!
+//! For a convex QP (P positive semidefinite) the KKT conditions are sufficient: if x is
+//! feasible and P x + q + A'lambda + G'mu + z_u - z_l = 0 with mu, z >= 0 complementary, then
+//! for every feasible x', f(x') - f(x) >= grad f(x)'(x' - x) = -lambda'A(x'-x) - mu'G(x'-x) -
+//! z_u'(x'-x) + z_l'(x'-x) = mu'(h - Gx') + z_u'(u - x') + z_l'(x' - l) >= 0 (using
+//! complementarity on the active rows and A x' = A x = b). With P positive definite on the
+//! null space of the active rows the minimiser is unique.
+//!
+//! # Certification
+//!
+//! Every answer (x and the multipliers, in the sign convention of [`crate::qp`]:
+//! P x + q + A'lambda + G'mu + z_u - z_l = 0) is checked by [`Qp::kkt_residuals`]: stationarity,
+//! primal feasibility, dual feasibility and complementarity must all be at most
+//! `tol * (1 + max(|q|_inf, |b|_inf))`, the scale of [`crate::exact`], with `tol` =
+//! [`DEFAULT_CERT_TOL`] = 1e-10 unless changed. A warm-started answer that fails is retried
+//! cold; a cold answer that fails is an error ([`ActiveSetError::NotCertified`]), on which the
+//! caller should fall back to Clarabel ([`crate::ExactSolver`]).
+//!
+//! # Tolerances inside the iterations
+//!
+//! With s = 1 + max(|q|_inf, |b|_inf): a row is violated when c_k'x - d_k > 1e-12 s; a
+//! multiplier is negative when y_k < -1e-12 s; a primal step is zero when
+//! |p|_inf <= 1e-12 (1 + |x|_inf); a row blocks only when c_k'p > 1e-12 |c_k|_1 |p|_inf; dx is
+//! zero when dx'P dx <= 1e-20 |c_p|^2 / max|P_ij|; an LU pivot below 1e-13 max|K_ij| means a
+//! singular KKT matrix.
+//!
+//! # Allocation
+//!
+//! Every buffer is sized at construction for the largest [`QpDims`] given (and grown, once,
+//! if a larger QP comes). [`ActiveSetSolver::solve_into`] writes into a caller-owned
+//! [`ActiveSetSolution`] and, with certification disabled, allocates nothing (checked by a
+//! test). Certification calls [`Qp::kkt_residuals`], which allocates a few temporaries of
+//! length n and m_in; [`ActiveSetSolver::solve`] also allocates the returned solution. An
+//! error allocates its message.
+
+use crate::qp::{KktResiduals, Qp, QpDims, QpDuals};
+use nalgebra::DVector;
+use std::fmt;
+
+/// Default relative tolerance of the certification (see the module docs).
+pub const DEFAULT_CERT_TOL: f64 = 1e-10;
+/// Default cap on working-set changes per solve (adds plus drops, over all phases).
+pub const DEFAULT_MAX_ITERATIONS: u32 = 500;
+
+const FEAS_TOL: f64 = 1e-12;
+const DUAL_TOL: f64 = 1e-12;
+const STEP_TOL: f64 = 1e-12;
+const BLOCK_TOL: f64 = 1e-12;
+const DX_TOL: f64 = 1e-20;
+const PIVOT_TOL: f64 = 1e-13;
+
+/// One inequality row of a QP (see the module docs for the numbering).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Constraint {
+    /// Row i of G x <= h.
+    Inequality(usize),
+    /// The upper bound x_i <= u_i.
+    Upper(usize),
+    /// The lower bound x_i >= l_i.
+    Lower(usize),
+}
+
+impl Constraint {
+    /// The row's number k (module docs) in a QP with `nx` variables and `n_in` rows of G.
+    fn id(self, nx: usize, n_in: usize) -> usize {
+        match self {
+            Self::Inequality(i) => i,
+            Self::Upper(i) => n_in + i,
+            Self::Lower(i) => n_in + nx + i,
+        }
+    }
+
+    fn from_id(k: usize, nx: usize, n_in: usize) -> Self {
+        if k < n_in {
+            Self::Inequality(k)
+        } else if k < n_in + nx {
+            Self::Upper(k - n_in)
+        } else {
+            Self::Lower(k - n_in - nx)
+        }
+    }
+}
+
+/// A set of inequality rows held as equalities (the equality rows are always included and not
+/// listed). The solver returns it sorted (Inequality rows, then Upper, then Lower bounds, each by
+/// index); as a warm start any order is accepted.
+#[derive(Debug, Default, PartialEq, Eq, Hash)]
+pub struct WorkingSet {
+    constraints: Vec<Constraint>,
+}
+
+impl Clone for WorkingSet {
+    fn clone(&self) -> Self {
+        Self {
+            constraints: self.constraints.clone(),
+        }
+    }
+
+    /// Reuses `self`'s buffer (no allocation when it is large enough), unlike the derived impl.
+    fn clone_from(&mut self, source: &Self) {
+        self.constraints.clone_from(&source.constraints);
+    }
+}
+
+impl WorkingSet {
+    /// The empty set (only the equalities active).
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The empty set with room for `capacity` rows.
+    pub fn with_capacity(capacity: usize) -> Self {
+        Self {
+            constraints: Vec::with_capacity(capacity),
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        self.constraints.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.constraints.is_empty()
+    }
+
+    pub fn contains(&self, c: Constraint) -> bool {
+        self.constraints.contains(&c)
+    }
+
+    pub fn push(&mut self, c: Constraint) {
+        self.constraints.push(c);
+    }
+
+    pub fn clear(&mut self) {
+        self.constraints.clear();
+    }
+
+    pub fn as_slice(&self) -> &[Constraint] {
+        &self.constraints
+    }
+
+    pub fn iter(&self) -> impl Iterator<Item = Constraint> + '_ {
+        self.constraints.iter().copied()
+    }
+}
+
+impl FromIterator<Constraint> for WorkingSet {
+    fn from_iter<I: IntoIterator<Item = Constraint>>(iter: I) -> Self {
+        Self {
+            constraints: iter.into_iter().collect(),
+        }
+    }
+}
+
+/// How a solve started (and hence how much it cost).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ActiveSetStart {
+    /// The warm working set was optimal: one KKT solve.
+    Warm,
+    /// The warm set's point was feasible; primal iterations followed.
+    WarmPrimal,
+    /// The warm set's point was infeasible; dual iterations followed.
+    WarmDual,
+    /// No (usable) warm set: dual iterations from the equality-constrained minimiser.
+    Cold,
+}
+
+/// A certified solution of [`ActiveSetSolver`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct ActiveSetSolution {
+    pub x: DVector<f64>,
+    /// Multipliers in the convention of [`crate::qp`] (zero outside the working set).
+    pub duals: QpDuals,
+    /// x'Px/2 + q'x at `x`.
+    pub objective: f64,
+    /// The optimal working set, sorted; pass it as the next instant's warm start.
+    pub working_set: WorkingSet,
+    /// Working-set changes (rows added plus rows dropped), over all phases.
+    pub iterations: u32,
+    /// KKT factorisations (1 for a successful warm start from the optimal set).
+    pub kkt_solves: u32,
+    /// Which path found the answer.
+    pub start: ActiveSetStart,
+    /// [`Qp::kkt_residuals`] of (x, duals); `None` when certification is disabled.
+    pub kkt: Option<KktResiduals>,
+    /// Whether the answer was certified (always true unless certification is disabled).
+    pub certified: bool,
+}
+
+impl ActiveSetSolution {
+    /// An all-zero solution of the given sizes, to be filled by [`ActiveSetSolver::solve_into`].
+    pub fn zeros(dims: QpDims) -> Self {
+        let QpDims { nx, n_eq, n_in } = dims;
+        Self {
+            x: DVector::zeros(nx),
+            duals: QpDuals {
+                lambda: DVector::zeros(n_eq),
+                mu: DVector::zeros(n_in),
+                z_lower: DVector::zeros(nx),
+                z_upper: DVector::zeros(nx),
+            },
+            objective: 0.0,
+            working_set: WorkingSet::with_capacity(nx),
+            iterations: 0,
+            kkt_solves: 0,
+            start: ActiveSetStart::Cold,
+            kkt: None,
+            certified: false,
+        }
+    }
+}
+
+/// Why the active-set solver gave no answer (the caller should fall back to Clarabel).
+#[derive(Clone, Debug, PartialEq)]
+pub enum ActiveSetError {
+    /// Inconsistent sizes, a NaN or infinite entry in P, q, A, b or G, or an infinite bound on
+    /// the wrong side.
+    InvalidData(String),
+    /// The dual iterations proved the constraints inconsistent (module docs, step 4).
+    Infeasible,
+    /// A KKT matrix was singular: A rank deficient, or P not positive definite on the null
+    /// space of the active rows.
+    Singular,
+    /// More than the allowed working-set changes.
+    IterationLimit { iterations: u32 },
+    /// The answer's KKT residuals exceed the tolerance.
+    NotCertified { kkt: KktResiduals, tolerance: f64 },
+}
+
+impl fmt::Display for ActiveSetError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::InvalidData(msg) => write!(f, "invalid QP data: {msg}"),
+            Self::Infeasible => write!(f, "QP is infeasible (dual iterations unbounded)"),
+            Self::Singular => write!(f, "singular KKT matrix"),
+            Self::IterationLimit { iterations } => {
+                write!(f, "active-set iteration limit reached ({iterations})")
+            }
+            Self::NotCertified { kkt, tolerance } => write!(
+                f,
+                "answer not certified: KKT residuals (primal {:.3e}, dual {:.3e}, \
+                 complementarity {:.3e}) exceed {tolerance:.3e}",
+                kkt.primal, kkt.dual, kkt.complementarity
+            ),
+        }
+    }
+}
+
+impl std::error::Error for ActiveSetError {}
+
+/// Dense active-set QP solver with hot start and KKT certification (see the module docs).
+#[derive(Clone, Debug)]
+pub struct ActiveSetSolver {
+    max_iterations: u32,
+    cert_tol: f64,
+    certify: bool,
+    /// Dims the buffers are sized for.
+    cap: QpDims,
+    /// KKT matrix (row-major, order k, packed), overwritten by its LU factors.
+    lu: Vec<f64>,
+    /// The unfactorised KKT matrix, for iterative refinement.
+    kkt: Vec<f64>,
+    piv: Vec<usize>,
+    /// Right-hand side, solution and scratch of the main system.
+    rhs: Vec<f64>,
+    z: Vec<f64>,
+    /// Direction (dual step) solution.
+    dz: Vec<f64>,
+    res: Vec<f64>,
+    /// Current iterate.
+    x: Vec<f64>,
+    /// Working set (row numbers), in KKT order, and membership flags.
+    w: Vec<usize>,
+    in_w: Vec<bool>,
+    // Per-solve state.
+    iterations: u32,
+    kkt_solves: u32,
+    /// Order of the current KKT system.
+    k: usize,
+}
+
+/// Problem-wide constants of one solve.
+#[derive(Clone, Copy)]
+struct Ctx {
+    nx: usize,
+    n_eq: usize,
+    n_in: usize,
+    /// 1 + max(|q|_inf, |b|_inf).
+    scale: f64,
+    /// max |P_ij| (1 if P = 0).
+    pmax: f64,
+}
+
+impl ActiveSetSolver {
+    /// A solver with buffers for QPs up to `max_dims`, certification on at [`DEFAULT_CERT_TOL`],
+    /// at most [`DEFAULT_MAX_ITERATIONS`] working-set changes.
+    pub fn new(max_dims: QpDims) -> Self {
+        let mut s = Self {
+            max_iterations: DEFAULT_MAX_ITERATIONS,
+            cert_tol: DEFAULT_CERT_TOL,
+            certify: true,
+            cap: QpDims {
+                nx: 0,
+                n_eq: 0,
+                n_in: 0,
+            },
+            lu: Vec::new(),
+            kkt: Vec::new(),
+            piv: Vec::new(),
+            rhs: Vec::new(),
+            z: Vec::new(),
+            dz: Vec::new(),
+            res: Vec::new(),
+            x: Vec::new(),
+            w: Vec::new(),
+            in_w: Vec::new(),
+            iterations: 0,
+            kkt_solves: 0,
+            k: 0,
+        };
+        s.reserve(max_dims);
+        s
+    }
+
+    /// Changes the cap on working-set changes per solve.
+    pub fn with_max_iterations(mut self, max_iterations: u32) -> Self {
+        self.max_iterations = max_iterations;
+        self
+    }
+
+    /// Changes the relative certification tolerance (see the module docs).
+    pub fn with_certification_tolerance(mut self, tol: f64) -> Self {
+        self.cert_tol = tol;
+        self
+    }
+
+    /// Turns certification off (answers then have `certified == false`, `kkt == None`) or on.
+    /// Off, [`Self::solve_into`] allocates nothing; the answers are then unchecked.
+    pub fn with_certification(mut self, certify: bool) -> Self {
+        self.certify = certify;
+        self
+    }
+
+    /// Grows the buffers to hold QPs up to `dims` (no-op if they already do).
+    fn reserve(&mut self, dims: QpDims) {
+        let cap = QpDims {
+            nx: self.cap.nx.max(dims.nx),
+            n_eq: self.cap.n_eq.max(dims.n_eq),
+            n_in: self.cap.n_in.max(dims.n_in),
+        };
+        if cap == self.cap && !self.lu.is_empty() {
+            return;
+        }
+        self.cap = cap;
+        // Order of the KKT system: n + m_eq + |W| <= 2n (a larger system has dependent rows and
+        // is refused before assembly).
+        let kmax = 2 * cap.nx;
+        let m_total = cap.n_in + 2 * cap.nx;
+        self.lu.resize(kmax * kmax, 0.0);
+        self.kkt.resize(kmax * kmax, 0.0);
+        self.piv.resize(kmax, 0);
+        self.rhs.resize(kmax, 0.0);
+        self.z.resize(kmax, 0.0);
+        self.dz.resize(kmax, 0.0);
+        self.res.resize(kmax, 0.0);
+        self.x.resize(cap.nx, 0.0);
+        self.w.reserve(m_total.max(kmax));
+        self.in_w.resize(m_total, false);
+    }
+
+    /// Solves `qp`, hot-started from `warm` if given (see the module docs); allocates the
+    /// returned solution.
+    pub fn solve(
+        &mut self,
+        qp: &Qp,
+        warm: Option<&WorkingSet>,
+    ) -> Result<ActiveSetSolution, ActiveSetError> {
+        let mut out = ActiveSetSolution::zeros(qp.dims());
+        self.solve_into(qp, warm, &mut out)?;
+        Ok(out)
+    }
+
+    /// As [`Self::solve`], writing into `out` (resized if its sizes differ from the QP's). On
+    /// error `out` holds unspecified values. To hot-start from `out` itself, copy its working
+    /// set first (`prev.clone_from(&out.working_set)` does not allocate once `prev` is large
+    /// enough).
+    pub fn solve_into(
+        &mut self,
+        qp: &Qp,
+        warm: Option<&WorkingSet>,
+        out: &mut ActiveSetSolution,
+    ) -> Result<(), ActiveSetError> {
+        validate(qp)?;
+        let dims = qp.dims();
+        self.reserve(dims);
+        let ctx = Ctx {
+            nx: dims.nx,
+            n_eq: dims.n_eq,
+            n_in: dims.n_in,
+            scale: 1.0 + qp.q.amax().max(qp.b.amax()),
+            pmax: match qp.p.amax() {
+                m if m > 0.0 => m,
+                _ => 1.0,
+            },
+        };
+        self.iterations = 0;
+        self.kkt_solves = 0;
+        if let Some(ws) = warm {
+            if self.load_warm(qp, &ctx, ws) {
+                if let Ok(start) = self.warm_path(qp, &ctx) {
+                    if self.finish(qp, &ctx, start, out).is_ok() {
+                        return Ok(());
+                    }
+                }
+            }
+        }
+        self.clear_w(&ctx);
+        self.factor_and_solve(qp, &ctx, None, 0.0)?;
+        self.dual_loop(qp, &ctx)?;
+        self.finish(qp, &ctx, ActiveSetStart::Cold, out)
+    }
+
+    /// Loads a warm set into `w`; false if it is inconsistent (module docs, *Hot start*).
+    fn load_warm(&mut self, qp: &Qp, ctx: &Ctx, ws: &WorkingSet) -> bool {
+        self.clear_w(ctx);
+        if ctx.n_eq + ws.len() > ctx.nx {
+            return false;
+        }
+        for c in ws.iter() {
+            let in_range = match c {
+                Constraint::Inequality(i) => i < ctx.n_in,
+                Constraint::Upper(i) | Constraint::Lower(i) => i < ctx.nx,
+            };
+            if !in_range {
+                return false;
+            }
+            let k = c.id(ctx.nx, ctx.n_in);
+            if self.in_w[k] || !rhs(qp, ctx, k).is_finite() {
+                return false;
+            }
+            self.add(k);
+        }
+        true
+    }
+
+    /// The warm path after the first KKT solve (module docs, *Hot start*).
+    fn warm_path(&mut self, qp: &Qp, ctx: &Ctx) -> Result<ActiveSetStart, ActiveSetError> {
+        self.factor_and_solve(qp, ctx, None, 0.0)?;
+        let feasible = self.most_violated(qp, ctx).is_none();
+        let dual_ok = self.most_negative(ctx).is_none();
+        if feasible {
+            self.x[..ctx.nx].copy_from_slice(&self.z[..ctx.nx]);
+            if dual_ok {
+                return Ok(ActiveSetStart::Warm);
+            }
+            self.primal_loop(qp, ctx)?;
+            return Ok(ActiveSetStart::WarmPrimal);
+        }
+        // Drop every row with a negative multiplier until the rest are >= 0.
+        while self.most_negative(ctx).is_some() {
+            let tol = DUAL_TOL * ctx.scale;
+            let mut s = 0;
+            while s < self.w.len() {
+                if self.z[ctx.nx + ctx.n_eq + s] < -tol {
+                    self.remove_at(s);
+                    self.bump()?;
+                    // The multipliers shift with the rows; keep z aligned with w.
+                    let base = ctx.nx + ctx.n_eq + s;
+                    self.z.copy_within(base + 1..self.k, base);
+                    self.k -= 1;
+                } else {
+                    s += 1;
+                }
+            }
+            self.factor_and_solve(qp, ctx, None, 0.0)?;
+        }
+        self.dual_loop(qp, ctx)?;
+        Ok(ActiveSetStart::WarmDual)
+    }
+
+    /// Primal iterations (module docs). Precondition: `x` feasible, on the rows of W, and `z`
+    /// solves the KKT system of W.
+    fn primal_loop(&mut self, qp: &Qp, ctx: &Ctx) -> Result<(), ActiveSetError> {
+        let nx = ctx.nx;
+        loop {
+            // p = x* - x
+            let mut p_norm: f64 = 0.0;
+            let mut x_norm: f64 = 0.0;
+            for j in 0..nx {
+                p_norm = p_norm.max((self.z[j] - self.x[j]).abs());
+                x_norm = x_norm.max(self.x[j].abs());
+            }
+            let mut blocking = None;
+            let mut alpha = 1.0;
+            if p_norm > STEP_TOL * (1.0 + x_norm) {
+                let m_total = ctx.n_in + 2 * nx;
+                for k in 0..m_total {
+                    if self.in_w[k] {
+                        continue;
+                    }
+                    let d = rhs(qp, ctx, k);
+                    if !d.is_finite() {
+                        continue;
+                    }
+                    let (cp, c1) = row_dot_diff(qp, ctx, k, &self.z, &self.x);
+                    if cp <= BLOCK_TOL * c1 * p_norm {
+                        continue;
+                    }
+                    let slack = (d - row_dot(qp, ctx, k, &self.x)).max(0.0);
+                    let ratio = slack / cp;
+                    // Strict: the smallest k wins ties (k increases).
+                    if ratio < alpha {
+                        alpha = ratio;
+                        blocking = Some(k);
+                    }
+                }
+            }
+            match blocking {
+                Some(k) => {
+                    for j in 0..nx {
+                        self.x[j] += alpha * (self.z[j] - self.x[j]);
+                    }
+                    self.add(k);
+                    self.bump()?;
+                    self.factor_and_solve(qp, ctx, None, 0.0)?;
+                }
+                None => {
+                    // x = x*, the minimiser on W: multiplier test.
+                    self.x[..nx].copy_from_slice(&self.z[..nx]);
+                    match self.most_negative(ctx) {
+                        None => return Ok(()),
+                        Some(s) => {
+                            self.remove_at(s);
+                            self.bump()?;
+                            self.factor_and_solve(qp, ctx, None, 0.0)?;
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Dual (Goldfarb–Idnani) iterations (module docs). Precondition: `z` solves the KKT system
+    /// of W (with t = 0) and W's inequality multipliers are >= 0 (up to the tolerance).
+    fn dual_loop(&mut self, qp: &Qp, ctx: &Ctx) -> Result<(), ActiveSetError> {
+        let nx = ctx.nx;
+        let off = nx + ctx.n_eq;
+        let mut entering: Option<usize> = None;
+        let mut t = 0.0;
+        loop {
+            let p = match entering {
+                Some(p) => p,
+                None => match self.most_violated(qp, ctx) {
+                    None => {
+                        self.x[..nx].copy_from_slice(&self.z[..nx]);
+                        return Ok(());
+                    }
+                    Some(p) => {
+                        entering = Some(p);
+                        t = 0.0;
+                        p
+                    }
+                },
+            };
+            // Directions: [P C'; C 0][dx; dy] = [-c_p; 0].
+            self.solve_direction(qp, ctx, p);
+            let mut dxpdx = 0.0;
+            for i in 0..nx {
+                let mut s = 0.0;
+                for j in 0..nx {
+                    s += qp.p[(i, j)] * self.dz[j];
+                }
+                dxpdx += self.dz[i] * s;
+            }
+            let nd = row_dot(qp, ctx, p, &self.dz);
+            let (n_sq, _) = row_norms(qp, ctx, p);
+            let dx_zero = !(dxpdx > DX_TOL * n_sq / ctx.pmax) || !(nd < 0.0);
+            // Partial (dual) step.
+            let mut dy_norm: f64 = 0.0;
+            for s in 0..self.w.len() {
+                dy_norm = dy_norm.max(self.dz[off + s].abs());
+            }
+            let mut t1 = f64::INFINITY;
+            let mut leaving: Option<(usize, usize)> = None; // (position, row number)
+            for s in 0..self.w.len() {
+                let dy = self.dz[off + s];
+                if dy < -1e-13 * dy_norm {
+                    let ratio = self.z[off + s].max(0.0) / -dy;
+                    let k = self.w[s];
+                    let better = match leaving {
+                        None => true,
+                        Some((_, kb)) => ratio < t1 || (ratio == t1 && k < kb),
+                    };
+                    if better {
+                        t1 = ratio;
+                        leaving = Some((s, k));
+                    }
+                }
+            }
+            let violation = row_dot(qp, ctx, p, &self.z) - rhs(qp, ctx, p);
+            let t2 = if dx_zero {
+                f64::INFINITY
+            } else {
+                violation.max(0.0) / -nd
+            };
+            if dx_zero && leaving.is_none() {
+                return Err(ActiveSetError::Infeasible);
+            }
+            if !dx_zero && (leaving.is_none() || t2 <= t1) {
+                // Full step: p joins W; its multiplier t is recomputed by the next solve.
+                self.add(p);
+                self.bump()?;
+                entering = None;
+                t = 0.0;
+                self.factor_and_solve(qp, ctx, None, 0.0)?;
+            } else {
+                let (s, _) = leaving.expect("checked above");
+                t += t1;
+                self.remove_at(s);
+                self.bump()?;
+                self.factor_and_solve(qp, ctx, Some(p), t)?;
+            }
+        }
+    }
+
+    /// Most violated row not in W (largest c_k'x - d_k above the tolerance at x = z's x part,
+    /// smallest k on ties).
+    fn most_violated(&self, qp: &Qp, ctx: &Ctx) -> Option<usize> {
+        let tol = FEAS_TOL * ctx.scale;
+        let mut best: Option<(usize, f64)> = None;
+        for k in 0..ctx.n_in + 2 * ctx.nx {
+            if self.in_w[k] {
+                continue;
+            }
+            let d = rhs(qp, ctx, k);
+            if !d.is_finite() {
+                continue;
+            }
+            let v = row_dot(qp, ctx, k, &self.z) - d;
+            if v > tol && best.is_none_or(|(_, vb)| v > vb) {
+                best = Some((k, v));
+            }
+        }
+        best.map(|(k, _)| k)
+    }
+
+    /// Position in W of the most negative inequality multiplier below the tolerance (smallest
+    /// row number on ties).
+    fn most_negative(&self, ctx: &Ctx) -> Option<usize> {
+        let tol = DUAL_TOL * ctx.scale;
+        let off = ctx.nx + ctx.n_eq;
+        let mut best: Option<(usize, f64)> = None;
+        for s in 0..self.w.len() {
+            let y = self.z[off + s];
+            if y < -tol {
+                let better = match best {
+                    None => true,
+                    Some((sb, yb)) => y < yb || (y == yb && self.w[s] < self.w[sb]),
+                };
+                if better {
+                    best = Some((s, y));
+                }
+            }
+        }
+        best.map(|(s, _)| s)
+    }
+
+    fn bump(&mut self) -> Result<(), ActiveSetError> {
+        self.iterations += 1;
+        if self.iterations > self.max_iterations {
+            return Err(ActiveSetError::IterationLimit {
+                iterations: self.iterations,
+            });
+        }
+        Ok(())
+    }
+
+    fn clear_w(&mut self, ctx: &Ctx) {
+        self.w.clear();
+        self.in_w[..ctx.n_in + 2 * ctx.nx].fill(false);
+    }
+
+    fn add(&mut self, k: usize) {
+        self.w.push(k);
+        self.in_w[k] = true;
+    }
+
+    fn remove_at(&mut self, s: usize) {
+        let k = self.w.remove(s);
+        self.in_w[k] = false;
+    }
+
+    /// Assembles and factorises the KKT matrix of W, and solves it for the right-hand side
+    /// [-q - t c_p; b; d_W] into `z` (one KKT solve).
+    fn factor_and_solve(
+        &mut self,
+        qp: &Qp,
+        ctx: &Ctx,
+        p: Option<usize>,
+        t: f64,
+    ) -> Result<(), ActiveSetError> {
+        let Ctx { nx, n_eq, .. } = *ctx;
+        if n_eq + self.w.len() > nx {
+            // More rows than variables: necessarily dependent (and beyond the buffers).
+            return Err(ActiveSetError::Singular);
+        }
+        let k = nx + n_eq + self.w.len();
+        self.k = k;
+        self.kkt_solves += 1;
+        let kk = &mut self.kkt[..k * k];
+        kk.fill(0.0);
+        for i in 0..nx {
+            for j in 0..nx {
+                kk[i * k + j] = qp.p[(i, j)];
+            }
+        }
+        for r in 0..n_eq {
+            for j in 0..nx {
+                let a = qp.a[(r, j)];
+                kk[(nx + r) * k + j] = a;
+                kk[j * k + nx + r] = a;
+            }
+        }
+        for (s, &row) in self.w.iter().enumerate() {
+            let pos = nx + n_eq + s;
+            fill_row(qp, ctx, row, |j, c| {
+                kk[pos * k + j] = c;
+                kk[j * k + pos] = c;
+            });
+        }
+        self.lu[..k * k].copy_from_slice(&self.kkt[..k * k]);
+        if !lu_factor(&mut self.lu[..k * k], k, &mut self.piv[..k]) {
+            return Err(ActiveSetError::Singular);
+        }
+        for j in 0..nx {
+            self.rhs[j] = -qp.q[j];
+        }
+        if let Some(p) = p {
+            fill_row(qp, ctx, p, |j, c| self.rhs[j] -= t * c);
+        }
+        for r in 0..n_eq {
+            self.rhs[nx + r] = qp.b[r];
+        }
+        for (s, &row) in self.w.iter().enumerate() {
+            self.rhs[nx + n_eq + s] = rhs(qp, ctx, row);
+        }
+        self.solve_refined(false);
+        Ok(())
+    }
+
+    /// Solves the factorised system for [-c_p; 0] into `dz`.
+    fn solve_direction(&mut self, qp: &Qp, ctx: &Ctx, p: usize) {
+        self.rhs[..self.k].fill(0.0);
+        fill_row(qp, ctx, p, |j, c| self.rhs[j] = -c);
+        self.solve_refined(true);
+    }
+
+    /// LU solve of `rhs` plus one step of iterative refinement, into `dz` (direction) or `z`.
+    fn solve_refined(&mut self, direction: bool) {
+        let k = self.k;
+        let out = if direction {
+            &mut self.dz[..k]
+        } else {
+            &mut self.z[..k]
+        };
+        out.copy_from_slice(&self.rhs[..k]);
+        lu_solve(&self.lu[..k * k], k, &self.piv[..k], out);
+        for i in 0..k {
+            let row = &self.kkt[i * k..(i + 1) * k];
+            let mut s = self.rhs[i];
+            for j in 0..k {
+                s -= row[j] * out[j];
+            }
+            self.res[i] = s;
+        }
+        lu_solve(&self.lu[..k * k], k, &self.piv[..k], &mut self.res[..k]);
+        for i in 0..k {
+            out[i] += self.res[i];
+        }
+    }
+
+    /// Writes the answer (x, multipliers of z, sorted W) into `out` and certifies it.
+    fn finish(
+        &mut self,
+        qp: &Qp,
+        ctx: &Ctx,
+        start: ActiveSetStart,
+        out: &mut ActiveSetSolution,
+    ) -> Result<(), ActiveSetError> {
+        let Ctx { nx, n_eq, n_in, .. } = *ctx;
+        if out.x.len() != nx {
+            out.x = DVector::zeros(nx);
+        }
+        if out.duals.lambda.len() != n_eq {
+            out.duals.lambda = DVector::zeros(n_eq);
+        }
+        if out.duals.mu.len() != n_in {
+            out.duals.mu = DVector::zeros(n_in);
+        }
+        if out.duals.z_lower.len() != nx {
+            out.duals.z_lower = DVector::zeros(nx);
+        }
+        if out.duals.z_upper.len() != nx {
+            out.duals.z_upper = DVector::zeros(nx);
+        }
+        out.x.as_mut_slice().copy_from_slice(&self.x[..nx]);
+        out.duals
+            .lambda
+            .as_mut_slice()
+            .copy_from_slice(&self.z[nx..nx + n_eq]);
+        out.duals.mu.fill(0.0);
+        out.duals.z_lower.fill(0.0);
+        out.duals.z_upper.fill(0.0);
+        out.working_set.clear();
+        for (s, &k) in self.w.iter().enumerate() {
+            let y = self.z[nx + n_eq + s];
+            let c = Constraint::from_id(k, nx, n_in);
+            match c {
+                Constraint::Inequality(i) => out.duals.mu[i] = y,
+                Constraint::Upper(i) => out.duals.z_upper[i] = y,
+                Constraint::Lower(i) => out.duals.z_lower[i] = y,
+            }
+            out.working_set.push(c);
+        }
+        out.working_set.constraints.sort_unstable();
+        let mut obj = 0.0;
+        for i in 0..nx {
+            let mut s = 0.0;
+            for j in 0..nx {
+                s += qp.p[(i, j)] * self.x[j];
+            }
+            obj += self.x[i] * (0.5 * s + qp.q[i]);
+        }
+        out.objective = obj;
+        out.iterations = self.iterations;
+        out.kkt_solves = self.kkt_solves;
+        out.start = start;
+        out.kkt = None;
+        out.certified = false;
+        if self.certify {
+            let kkt = qp.kkt_residuals(&out.x, &out.duals);
+            let tolerance = self.cert_tol * ctx.scale;
+            out.kkt = Some(kkt);
+            if !(kkt.max() <= tolerance) {
+                return Err(ActiveSetError::NotCertified { kkt, tolerance });
+            }
+            out.certified = true;
+        }
+        Ok(())
+    }
+}
+
+/// Right-hand side d_k of row k (may be +inf: the row is absent).
+fn rhs(qp: &Qp, ctx: &Ctx, k: usize) -> f64 {
+    if k < ctx.n_in {
+        qp.h[k]
+    } else if k < ctx.n_in + ctx.nx {
+        qp.upper[k - ctx.n_in]
+    } else {
+        -qp.lower[k - ctx.n_in - ctx.nx]
+    }
+}
+
+/// Calls `f(j, c_kj)` for the nonzero entries of row k (all entries for a row of G).
+fn fill_row<F: FnMut(usize, f64)>(qp: &Qp, ctx: &Ctx, k: usize, mut f: F) {
+    if k < ctx.n_in {
+        for j in 0..ctx.nx {
+            f(j, qp.g[(k, j)]);
+        }
+    } else if k < ctx.n_in + ctx.nx {
+        f(k - ctx.n_in, 1.0);
+    } else {
+        f(k - ctx.n_in - ctx.nx, -1.0);
+    }
+}
+
+/// c_k'v (v's first n entries).
+fn row_dot(qp: &Qp, ctx: &Ctx, k: usize, v: &[f64]) -> f64 {
+    let mut s = 0.0;
+    fill_row(qp, ctx, k, |j, c| s += c * v[j]);
+    s
+}
+
+/// (c_k'(a - b), |c_k|_1).
+fn row_dot_diff(qp: &Qp, ctx: &Ctx, k: usize, a: &[f64], b: &[f64]) -> (f64, f64) {
+    let mut s = 0.0;
+    let mut n1 = 0.0;
+    fill_row(qp, ctx, k, |j, c| {
+        s += c * (a[j] - b[j]);
+        n1 += c.abs();
+    });
+    (s, n1)
+}
+
+/// (|c_k|_2^2, |c_k|_1).
+fn row_norms(qp: &Qp, ctx: &Ctx, k: usize) -> (f64, f64) {
+    let mut n2 = 0.0;
+    let mut n1 = 0.0;
+    fill_row(qp, ctx, k, |_, c| {
+        n2 += c * c;
+        n1 += c.abs();
+    });
+    (n2, n1)
+}
+
+/// In-place LU with partial pivoting of the row-major n x n matrix `a` (LAPACK getrf layout:
+/// unit-lower L below the diagonal, U on and above, `piv[i]` the row swapped with row i at
+/// step i). False if a pivot is below [`PIVOT_TOL`] times the largest entry.
+fn lu_factor(a: &mut [f64], n: usize, piv: &mut [usize]) -> bool {
+    let amax = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if n > 0 && !(amax > 0.0 && amax.is_finite()) {
+        return false;
+    }
+    let tol = PIVOT_TOL * amax;
+    for k in 0..n {
+        let mut p = k;
+        let mut best = a[k * n + k].abs();
+        for r in k + 1..n {
+            let v = a[r * n + k].abs();
+            if v > best {
+                best = v;
+                p = r;
+            }
+        }
+        if !(best > tol) {
+            return false;
+        }
+        piv[k] = p;
+        if p != k {
+            for c in 0..n {
+                a.swap(k * n + c, p * n + c);
+            }
+        }
+        let pivot = a[k * n + k];
+        for r in k + 1..n {
+            let f = a[r * n + k] / pivot;
+            a[r * n + k] = f;
+            if f != 0.0 {
+                for c in k + 1..n {
+                    a[r * n + c] -= f * a[k * n + c];
+                }
+            }
+        }
+    }
+    true
+}
+
+/// Solves with the factors of [`lu_factor`], overwriting `b` with the solution.
+fn lu_solve(a: &[f64], n: usize, piv: &[usize], b: &mut [f64]) {
+    for k in 0..n {
+        b.swap(k, piv[k]);
+    }
+    for r in 0..n {
+        let mut s = b[r];
+        for c in 0..r {
+            s -= a[r * n + c] * b[c];
+        }
+        b[r] = s;
+    }
+    for r in (0..n).rev() {
+        let mut s = b[r];
+        for c in r + 1..n {
+            s -= a[r * n + c] * b[c];
+        }
+        b[r] = s / a[r * n + r];
+    }
+}
+
+/// Rejects malformed data (see [`ActiveSetError::InvalidData`]).
+fn validate(qp: &Qp) -> Result<(), ActiveSetError> {
+    let QpDims { nx, n_eq, n_in } = qp.dims();
+    let shapes = [
+        ("P", qp.p.shape(), (nx, nx)),
+        ("A", qp.a.shape(), (n_eq, nx)),
+        ("G", qp.g.shape(), (n_in, nx)),
+        ("lower", qp.lower.shape(), (nx, 1)),
+        ("upper", qp.upper.shape(), (nx, 1)),
+    ];
+    for (name, got, want) in shapes {
+        if got != want {
+            return Err(ActiveSetError::InvalidData(format!(
+                "{name} is {got:?}, expected {want:?}"
+            )));
+        }
+    }
+    let finite = [
+        ("P", qp.p.as_slice()),
+        ("q", qp.q.as_slice()),
+        ("A", qp.a.as_slice()),
+        ("b", qp.b.as_slice()),
+        ("G", qp.g.as_slice()),
+    ];
+    for (name, data) in finite {
+        if data.iter().any(|v| !v.is_finite()) {
+            return Err(ActiveSetError::InvalidData(format!(
+                "{name} has a non-finite entry"
+            )));
+        }
+    }
+    let one_sided = [
+        ("h", qp.h.as_slice(), f64::NEG_INFINITY),
+        ("upper", qp.upper.as_slice(), f64::NEG_INFINITY),
+        ("lower", qp.lower.as_slice(), f64::INFINITY),
+    ];
+    for (name, data, wrong) in one_sided {
+        if data.iter().any(|&v| v.is_nan() || v == wrong) {
+            return Err(ActiveSetError::InvalidData(format!(
+                "{name} has a NaN or {wrong} entry"
+            )));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,77 @@
+//! With certification off, [`ActiveSetSolver::solve_into`] allocates nothing once its buffers and
+//! the output are sized, cold or hot-started: counted with a global allocator that counts the
+//! current thread's allocations while a flag is set. (Certification calls `Qp::kkt_residuals`,
+//! which allocates; that is documented in the module.)
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+
+use solvers::{random_qp, ActiveSetSolution, ActiveSetSolver, QpDims, QpShape, WorkingSet};
+
+struct Counting;
+
+thread_local! {
+    static ON: Cell<bool> = const { Cell::new(false) };
+    static COUNT: Cell<usize> = const { Cell::new(0) };
+}
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        if ON.with(|o| o.get()) {
+            COUNT.with(|c| c.set(c.get() + 1));
+        }
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+fn count<F: FnOnce()>(f: F) -> usize {
+    COUNT.with(|c| c.set(0));
+    ON.with(|o| o.set(true));
+    f();
+    ON.with(|o| o.set(false));
+    COUNT.with(|c| c.get())
+}
+
+#[test]
+fn uncertified_solves_do_not_allocate() {
+    assert!(count(|| drop(std::hint::black_box(vec![1u8; 16]))) >= 1);
+    for shape in QpShape::ALL {
+        let qps: Vec<_> = (0..50).map(|seed| random_qp(shape, seed)).collect();
+        let dims = qps[0].dims();
+        let mut solver = ActiveSetSolver::new(dims).with_certification(false);
+        let mut out = ActiveSetSolution::zeros(dims);
+        let mut prev = WorkingSet::with_capacity(dims.nx);
+        for (seed, qp) in qps.iter().enumerate() {
+            // Warm from the previous QP's set (primal or dual continuation, or cold).
+            let n1 = count(|| solver.solve_into(qp, Some(&prev), &mut out).unwrap());
+            let n2 = count(|| solver.solve_into(qp, None, &mut out).unwrap());
+            let n3 = count(|| prev.clone_from(&out.working_set));
+            let n4 = count(|| solver.solve_into(qp, Some(&prev), &mut out).unwrap());
+            let n = n1 + n2 + n3 + n4;
+            assert_eq!(n, 0, "{shape:?} seed {seed}: {n} allocations");
+            assert!(!out.certified);
+        }
+    }
+    // Certified, the only allocations are those of Qp::kkt_residuals.
+    let qp = random_qp(QpShape::Jia2019, 1);
+    let mut solver = ActiveSetSolver::new(QpDims {
+        nx: 7,
+        n_eq: 3,
+        n_in: 12,
+    });
+    let mut out = ActiveSetSolution::zeros(qp.dims());
+    solver.solve_into(&qp, None, &mut out).unwrap();
+    let n = count(|| solver.solve_into(&qp, None, &mut out).unwrap());
+    let d = out.duals.clone();
+    let x = out.x.clone();
+    let m = count(|| {
+        std::hint::black_box(qp.kkt_residuals(&x, &d));
+    });
+    assert_eq!(n, m, "certified solve allocates beyond kkt_residuals");
+}
