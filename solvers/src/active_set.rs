@@ -82,22 +82,28 @@
 //!
 //! [`ActiveSetSolver::solve`] with a warm working set (the previous instant's) first solves the
 //! KKT system of that set once. If its x is primal feasible and its inequality multipliers are
-//! >= 0 the KKT conditions hold and the answer costs exactly one KKT solve (the usual case
+//! nonnegative the KKT conditions hold and the answer costs exactly one KKT solve (the usual case
 //! along a trajectory). If x is feasible but some multiplier is negative, primal iterations
 //! continue from x. If x is infeasible, the rows with negative multipliers are dropped (and
-//! the system re-solved) until the multipliers are >= 0, and dual iterations continue from
+//! the system re-solved) until the multipliers are nonnegative, and dual iterations continue from
 //! there. A warm set that is inconsistent (index out of range, infinite right-hand side,
 //! duplicate row, more rows than variables, singular KKT matrix), or a warm path that fails,
 //! falls back to the cold start.
 //!
 //! # Why a KKT point is the optimum
 //!
-//! For a convex QP (P positive semidefinite) the KKT conditions are sufficient: if x is
-//! feasible and P x + q + A'lambda + G'mu + z_u - z_l = 0 with mu, z >= 0 complementary, then
-//! for every feasible x', f(x') - f(x) >= grad f(x)'(x' - x) = -lambda'A(x'-x) - mu'G(x'-x) -
-//! z_u'(x'-x) + z_l'(x'-x) = mu'(h - Gx') + z_u'(u - x') + z_l'(x' - l) >= 0 (using
-//! complementarity on the active rows and A x' = A x = b). With P positive definite on the
-//! null space of the active rows the minimiser is unique.
+//! For a convex QP (P positive semidefinite) the KKT conditions are sufficient. Let x be
+//! feasible with P x + q + A'lambda + G'mu + z_u - z_l = 0, mu, z_l, z_u nonnegative and
+//! complementary. For every feasible x', by convexity, A x' = A x = b and complementarity
+//! (mu'(h - Gx) = 0 and so on):
+//!
+//! ```text
+//! f(x') - f(x) >= (P x + q)'(x' - x)
+//!               = -lambda'A(x' - x) - mu'G(x' - x) - z_u'(x' - x) + z_l'(x' - x)
+//!               = mu'(h - G x') + z_u'(u - x') + z_l'(x' - l)  >=  0.
+//! ```
+//!
+//! With P positive definite on the null space of the active rows the minimiser is unique.
 //!
 //! # Certification
 //!
@@ -667,7 +673,9 @@ impl ActiveSetSolver {
             }
             let nd = row_dot(qp, ctx, p, &self.dz);
             let (n_sq, _) = row_norms(qp, ctx, p);
-            let dx_zero = !(dxpdx > DX_TOL * n_sq / ctx.pmax) || !(nd < 0.0);
+            // (NaN counts as zero.)
+            let dx_zero =
+                dxpdx.is_nan() || dxpdx <= DX_TOL * n_sq / ctx.pmax || nd.is_nan() || nd >= 0.0;
             // Partial (dual) step.
             let mut dy_norm: f64 = 0.0;
             for s in 0..self.w.len() {
@@ -867,8 +875,8 @@ impl ActiveSetSolver {
             self.res[i] = s;
         }
         lu_solve(&self.lu[..k * k], k, &self.piv[..k], &mut self.res[..k]);
-        for i in 0..k {
-            out[i] += self.res[i];
+        for (o, r) in out.iter_mut().zip(&self.res[..k]) {
+            *o += r;
         }
     }
 
@@ -934,7 +942,7 @@ impl ActiveSetSolver {
             let kkt = qp.kkt_residuals(&out.x, &out.duals);
             let tolerance = self.cert_tol * ctx.scale;
             out.kkt = Some(kkt);
-            if !(kkt.max() <= tolerance) {
+            if kkt.max().is_nan() || kkt.max() > tolerance {
                 return Err(ActiveSetError::NotCertified { kkt, tolerance });
             }
             out.certified = true;
@@ -1001,7 +1009,7 @@ fn row_norms(qp: &Qp, ctx: &Ctx, k: usize) -> (f64, f64) {
 /// step i). False if a pivot is below [`PIVOT_TOL`] times the largest entry.
 fn lu_factor(a: &mut [f64], n: usize, piv: &mut [usize]) -> bool {
     let amax = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    if n > 0 && !(amax > 0.0 && amax.is_finite()) {
+    if n > 0 && (amax.is_nan() || amax <= 0.0 || amax.is_infinite()) {
         return false;
     }
     let tol = PIVOT_TOL * amax;
@@ -1015,7 +1023,7 @@ fn lu_factor(a: &mut [f64], n: usize, piv: &mut [usize]) -> bool {
                 p = r;
             }
         }
-        if !(best > tol) {
+        if best.is_nan() || best <= tol {
             return false;
         }
         piv[k] = p;
@@ -1040,8 +1048,8 @@ fn lu_factor(a: &mut [f64], n: usize, piv: &mut [usize]) -> bool {
 
 /// Solves with the factors of [`lu_factor`], overwriting `b` with the solution.
 fn lu_solve(a: &[f64], n: usize, piv: &[usize], b: &mut [f64]) {
-    for k in 0..n {
-        b.swap(k, piv[k]);
+    for (k, &p) in piv[..n].iter().enumerate() {
+        b.swap(k, p);
     }
     for r in 0..n {
         let mut s = b[r];
