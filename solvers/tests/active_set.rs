@@ -251,6 +251,12 @@ fn agrees_with_clarabel_cold_and_warm_on_every_shape() {
             t.duals = t.duals.max(s.duals);
             t.kkt = t.kkt.max(s.kkt);
             t.polished += s.polished;
+            t.warm += s.warm;
+            t.warm_primal += s.warm_primal;
+            t.warm_dual += s.warm_dual;
+            t.cold += s.cold;
+            t.max_iterations = t.max_iterations.max(s.max_iterations);
+            t.max_solves = t.max_solves.max(s.max_solves);
             t.x_clarabel = t.x_clarabel.max(s.x_clarabel);
         }
     }
