@@ -3,6 +3,7 @@
 
 pub mod coupled;
 pub mod experiment;
+pub mod explain;
 pub mod figures;
 pub mod gate;
 pub mod metrics;

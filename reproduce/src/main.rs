@@ -58,6 +58,22 @@ struct Cli {
     /// Worker threads (default: all cores).
     #[arg(long)]
     threads: Option<usize>,
+    /// Skip the explanation runs (tolerance ladders, drift attribution) that a normal run
+    /// adds for the selected runs of the papers' solvers and of the group-code experiments.
+    #[arg(long)]
+    skip_explain: bool,
+    /// Run only the explanation runs of the selection (ladders and attribution; writes
+    /// results/ladder.csv and results/attribution.csv and the report), not the runs themselves.
+    #[arg(long)]
+    explain_only: bool,
+    /// Setup inference: fit the parameters the papers leave open (path pose, size where it is
+    /// assumed, direction, RMP reading) to a published drift table; `all`, a paper
+    /// (`jia2019`), one table (`jia2019:T2`) or a comma-separated list of these. Writes
+    /// results/inference.csv and
+    /// results/inference-entries.csv (each table as it finishes), then re-renders the report.
+    /// Takes minutes per table.
+    #[arg(long, value_name = "TABLE")]
+    infer: Option<String>,
 }
 
 fn main() -> ExitCode {
@@ -92,8 +108,17 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
             .build_global()
             .map_err(|e| e.to_string())?;
     }
-    let records = run_jobs(&jobs, true);
     let git_rev = reproduce::git_revision();
+    if let Some(which) = &cli.infer {
+        infer(&cli, which, &files.iter().flat_map(|f| f.jobs()).collect::<Vec<_>>())?;
+        return Ok(ExitCode::SUCCESS);
+    }
+    let all: Vec<Job> = files.iter().flat_map(|f| f.jobs()).collect();
+    if cli.explain_only {
+        explain(&cli, &jobs, &all, &git_rev)?;
+        return Ok(ExitCode::SUCCESS);
+    }
+    let records = run_jobs(&jobs, true);
     let rows: Vec<RunRow> = records
         .iter()
         .map(|r| RunRow::from_record(r, &git_rev))
@@ -104,6 +129,9 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
     }
     if !cli.dry_run {
         write_results(&cli.results_dir, &records, rows)?;
+        if !cli.skip_explain && !cli.exact_only {
+            explain(&cli, &jobs, &all, &git_rev)?;
+        }
         match report_root(&cli) {
             Ok(root) => render_report(&root)?,
             Err(why) => eprintln!("report not rendered: {why}"),
@@ -120,6 +148,83 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
         );
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// The ladders and attributions of the selected runs of the papers' solvers (see
+/// `reproduce::explain`), written to results/ and rendered into the report.
+fn explain(cli: &Cli, jobs: &[Job], all: &[Job], git_rev: &str) -> Result<(), String> {
+    let targets = reproduce::explain::targets(jobs);
+    if targets.is_empty() {
+        return Ok(());
+    }
+    eprintln!(
+        "explaining {} runs of the papers' solvers (tolerance ladders, attribution)",
+        targets.len()
+    );
+    let explained = reproduce::explain::explain(&targets, all, true, git_rev);
+    if cli.dry_run {
+        return Ok(());
+    }
+    reproduce::explain::write(&cli.results_dir, &explained)?;
+    eprintln!(
+        "wrote {} ladder rows and {} attribution rows",
+        explained.ladder.len(),
+        explained.attribution.len()
+    );
+    if cli.explain_only {
+        render_report(&report_root(cli)?)?;
+    }
+    Ok(())
+}
+
+/// `--infer`: fits the selected published tables (see `reproduce::explain::inference`).
+fn infer(cli: &Cli, which: &str, jobs: &[Job]) -> Result<(), String> {
+    use reproduce::explain::inference::{fit, problem, rows, table_ids, Budget};
+    let root = report_root(cli)?;
+    let values = reproduce::report::paper_values::read_paper_values(
+        &root.join("report").join("paper-values.csv"),
+    )?;
+    let ids = table_ids(&values);
+    let wanted: Vec<&str> = which.split(',').map(str::trim).collect();
+    let selected: Vec<&(String, String)> = ids
+        .iter()
+        .filter(|(p, t)| {
+            wanted
+                .iter()
+                .any(|w| *w == "all" || w == p || *w == format!("{p}:{t}"))
+        })
+        .collect();
+    if selected.is_empty() {
+        let known: Vec<String> = ids.iter().map(|(p, t)| format!("{p}:{t}")).collect();
+        return Err(format!(
+            "--infer {which}: no such table (known: all, a paper, or one of {})",
+            known.join(", ")
+        ));
+    }
+    for (paper, table) in selected {
+        let p = problem(paper, table, &values, jobs)?;
+        eprintln!(
+            "inferring the setup of {paper} {table}: {} columns, {} exact runs per evaluation",
+            p.columns.len(),
+            p.runs.len()
+        );
+        let f = fit(&p, Budget::default());
+        let best = f.best();
+        eprintln!(
+            "  declared: residual {:.3}; best fit: residual {:.3} ({:?}), {} evaluations in {:.0} s",
+            f.declared.rel_residual, best.rel_residual, best.setup, f.evaluations, f.wall_s
+        );
+        // Each table is written as soon as it is fitted: an interrupted --infer all keeps the
+        // tables it finished.
+        let (r, e) = rows(&p, &f);
+        if !cli.dry_run {
+            reproduce::explain::write_inference(&cli.results_dir, &r, &e)?;
+        }
+    }
+    if cli.dry_run {
+        return Ok(());
+    }
+    render_report(&root)
 }
 
 /// Compares `fresh` with the committed rows of the same runs (see `reproduce::gate`).

@@ -62,6 +62,9 @@ pub struct RunRow {
     pub integrator: String,
     pub rtol: f64,
     pub atol: f64,
+    /// The integrator's largest step (ode15s's MaxStep), where the run sets one.
+    #[serde(default)]
+    pub max_step: Option<f64>,
     pub steps: usize,
     pub rejected: usize,
     pub rhs_evals: usize,
@@ -139,6 +142,7 @@ impl RunRow {
             integrator: j.integrator.method.label().to_string(),
             rtol: j.integrator.rtol,
             atol: j.integrator.atol,
+            max_step: j.integrator.max_step,
             steps: r.stats.steps,
             rejected: r.stats.rejected,
             rhs_evals: r.stats.rhs_evals,

@@ -150,6 +150,11 @@ fn run_with<const N: usize>(
                 let started = Instant::now();
                 let x_nn = DVector::from_column_slice(&y[k..k + scheme.dims().nx]);
                 let (theta, thetadot) = arm_state::<N>(level, y, &y[k..]);
+                if !job.score {
+                    observer.sample(t, y, &x_nn, level);
+                    observer.seconds += started.elapsed().as_secs_f64();
+                    return Control::Continue;
+                }
                 match scorer.optimum(t, &theta, &thetadot) {
                     Ok(x_star) => {
                         let qp = &scorer.qp;

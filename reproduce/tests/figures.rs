@@ -50,6 +50,7 @@ fn row(experiment: &str, variant: &str, solver: &str, failed_at: Option<f64>) ->
         integrator: "bdf".into(),
         rtol: 1e-6,
         atol: 1e-8,
+        max_step: None,
         steps: 0,
         rejected: 0,
         rhs_evals: 0,

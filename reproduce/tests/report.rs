@@ -128,6 +128,7 @@ fn row(experiment: &str, variant: &str, solver: &str, drift: f64) -> RunRow {
         integrator: "bdf".into(),
         rtol: 1e-6,
         atol: 1e-8,
+        max_step: None,
         steps: 1,
         rejected: 0,
         rhs_evals: 1,

@@ -12,6 +12,9 @@
 //! - `<experiment>__overview.svg`, one per experiment: the position error of every run on one
 //!   log-scale plot and, where neural runs exist, their distance to the exact QP optimum.
 //!
+//! - `inference-<paper>-<table>__profiles.svg`, one per table of `results/inference.csv`: the
+//!   setup inference's profiles ([`profile`]).
+//!
 //! The output is a function of the inputs only (no timestamps, sorted inputs, integer pixel
 //! coordinates), so unchanged results give byte-identical figures.
 
@@ -20,6 +23,7 @@ mod layout;
 mod legend;
 mod overview;
 mod panels;
+pub mod profile;
 mod run_figure;
 mod scale;
 mod style;
@@ -83,6 +87,26 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, String> {
             format!("{experiment}__overview.svg"),
             overview::render(experiment, members)?,
         )?;
+    }
+
+    let inference: Vec<crate::explain::inference::InferenceRow> =
+        crate::explain::read_csv(&root.join("results").join("inference.csv"))?;
+    let mut tables: Vec<(&str, &str)> = inference
+        .iter()
+        .map(|r| (r.paper.as_str(), r.table.as_str()))
+        .collect();
+    tables.dedup();
+    for (paper, table) in tables {
+        let rows: Vec<_> = inference
+            .iter()
+            .filter(|r| r.paper == paper && r.table == table)
+            .collect();
+        if rows.iter().any(|r| r.kind.starts_with("profile: ")) {
+            add(
+                profile::file_name(paper, table),
+                profile::render(paper, table, &rows)?,
+            )?;
+        }
     }
 
     let out_dir = root.join("report").join("figures");

@@ -252,3 +252,36 @@ mod tests {
         assert_eq!(decade(&1e-6), "1e-6");
     }
 }
+
+/// One profile of the setup inference: the best relative residual (log scale) against the
+/// value of one parameter, the others re-fitted at each point.
+pub struct ProfilePanel {
+    pub caption: String,
+    /// The parameter and its unit.
+    pub x_desc: String,
+    pub x: Range<f64>,
+    pub points: Vec<(f64, f64)>,
+}
+
+impl ProfilePanel {
+    /// Draws the panel into `area`.
+    pub fn draw(&self, area: &Area) -> Result<(), String> {
+        let (inner, _) = titled(area, &self.caption)?;
+        let points: Vec<(f64, f64)> = self
+            .points
+            .iter()
+            .copied()
+            .filter(|&(x, v)| x.is_finite() && v.is_finite() && v > 0.0)
+            .collect();
+        let y = scale::log(points.iter().map(|p| p.1));
+        plot(
+            &inner,
+            self.x.clone(),
+            &self.x_desc,
+            y.log_scale(),
+            "relative residual",
+            &decade,
+            &[(super::style::colour(0).stroke_width(2), points)],
+        )
+    }
+}

@@ -33,7 +33,7 @@ computational cost, a cross experiment (every solver on every scheme and path), 
     let mut settings: Vec<(String, f64, f64)> = runs
         .all()
         .iter()
-        .map(|r| (r.integrator.clone(), r.rtol, r.atol))
+        .map(|r| (method_label(r), r.rtol, r.atol))
         .collect();
     settings.sort_by(|a, b| {
         a.0.cmp(&b.0)
@@ -45,7 +45,7 @@ computational cost, a cross experiment (every solver on every scheme and path), 
         let of: Vec<&crate::results::RunRow> = runs
             .all()
             .iter()
-            .filter(|r| r.integrator == method && r.rtol == rtol && r.atol == atol)
+            .filter(|r| method_label(r) == method && r.rtol == rtol && r.atol == atol)
             .collect();
         let mut solvers: Vec<&str> = of.iter().map(|r| r.solver.as_str()).collect();
         solvers.sort();
@@ -69,4 +69,12 @@ in the loop: it separates what the scheme does from what the neural solver adds.
 θ(T) − θ(0) in rad; position errors in m; times in s.\n\n",
     );
     out
+}
+
+/// The integrator of a row, with ode15s's MaxStep where the run sets one.
+fn method_label(r: &crate::results::RunRow) -> String {
+    match r.max_step {
+        Some(h) => format!("{} (MaxStep {h})", r.integrator),
+        None => r.integrator.clone(),
+    }
 }

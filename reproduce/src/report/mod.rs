@@ -26,7 +26,9 @@ pub mod score;
 pub mod sweep;
 pub mod tables;
 pub mod verdict;
+pub mod why;
 
+use crate::explain::read_csv;
 use crate::results::{read_runs, write_atomic};
 use markdown::{sci, Table};
 use paper_values::{read_paper_values, PaperValue};
@@ -62,19 +64,28 @@ pub struct Inputs {
     pub deviations: String,
     /// SVG file names in `report/figures/`, sorted.
     pub figures: Vec<String>,
+    /// Ladders, attribution and inference (`results/*.csv` beside runs.csv; absent = empty).
+    pub explanations: why::Explanations,
 }
 
 impl Inputs {
     /// Reads the inputs under the workspace root `root`.
     pub fn load(root: &Path) -> Result<Self, String> {
         let report = root.join("report");
+        let results = root.join("results");
         let deviations_path = report.join("deviations.md");
         Ok(Inputs {
-            runs: Runs::new(read_runs(&root.join("results").join("runs.csv"))?),
+            runs: Runs::new(read_runs(&results.join("runs.csv"))?),
             values: read_paper_values(&report.join("paper-values.csv"))?,
             deviations: std::fs::read_to_string(&deviations_path)
                 .map_err(|e| format!("{}: {e}", deviations_path.display()))?,
             figures: figures::list(&report.join("figures"))?,
+            explanations: why::Explanations {
+                ladder: read_csv(&results.join("ladder.csv"))?,
+                attribution: read_csv(&results.join("attribution.csv"))?,
+                inference: read_csv(&results.join("inference.csv"))?,
+                entries: read_csv(&results.join("inference-entries.csv"))?,
+            },
         })
     }
 }
@@ -95,6 +106,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
         values,
         deviations,
         figures,
+        explanations,
     } = inputs;
     let mut out = header::header(runs, values.len(), figures.len());
 
@@ -137,6 +149,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
     for (paper, title, c) in &evaluated {
         out.push_str(&format!("## {paper}\n\n*{title}.*\n\n"));
         out.push_str(&verdict::paragraph(paper, c, runs, values));
+        out.push_str(&why::summary(paper, explanations, values));
         let tables: Vec<String> = tables::published_tables(paper, values)
             .iter()
             .map(|t| tables::side_by_side(paper, t, values, runs))
@@ -149,6 +162,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
         if *paper == "jia2019" {
             out.push_str(&sweep::clover_sweep(runs, values));
         }
+        out.push_str(&why::section(paper, explanations, values, runs));
         out.push_str("\n### Claims\n\n");
         out.push_str(&claims::checklist(c));
         out.push_str(if tables.is_empty() {
@@ -165,6 +179,8 @@ pub fn to_markdown(inputs: &Inputs) -> String {
             out.push_str(&figures::links(figures, &exp));
         }
     }
+
+    out.push_str(&group_section(runs, explanations, values, figures));
 
     out.push_str(&format!(
         "## Score against the exact optimum\n\n{}\n\n",
@@ -243,5 +259,32 @@ pub fn to_markdown(inputs: &Inputs) -> String {
     if !deviations.ends_with('\n') {
         out.push('\n');
     }
+    out
+}
+
+/// The group-code reference experiments (`experiments/group.toml`, shared/spec/group-code.md):
+/// every run, its attribution and ladder. Their numbers are the code's own metrics (drift and
+/// max end-effector error), not published values.
+fn group_section(
+    runs: &Runs,
+    explanations: &why::Explanations,
+    values: &[PaperValue],
+    figures: &[String],
+) -> String {
+    let group = crate::explain::GROUP;
+    let experiments = runs.experiments(group);
+    if experiments.is_empty() {
+        return String::new();
+    }
+    let mut out = String::from(
+        "## The group's own code (reference experiment)\n\nThe only public code of this family (shared/spec/group-code.md) computes a star (EXP1) and a butterfly (EXP2) with a zeroing network that has a growing-gain term -nu t E, the group's power-sigmoid and an injected perturbation, on the Jaco2 with kong2019's eq. 22 scheme (k = 6 and 5, no joint limits, no feedback). We compute exactly what it describes, and switch each of its ingredients off in its own variant (nu = 0, no perturbation, linear activation, udot with and without the -k thetadot term, the butterfly closed), so each ingredient's share of the drift is measured, not guessed. These are not published numbers: the group's stored results are not part of the papers.\n\n",
+    );
+    for exp in &experiments {
+        out.push_str(&format!("#### `{exp}`\n\n{}", tables::runs_table(runs, exp)));
+        out.push('\n');
+        out.push_str(&figures::links(figures, exp));
+    }
+    out.push_str(&why::section(group, explanations, values, runs));
+    out.push('\n');
     out
 }

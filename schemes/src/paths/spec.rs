@@ -144,6 +144,12 @@ pub fn default_duration(name: &str) -> Option<f64> {
     entry(name).map(|e| e.3)
 }
 
+/// Whether a non-zero `phase` is accepted for the path `name`: the closed figures (not the
+/// stroke paths ping, dai, triangle, nor the butterfly as printed, which does not close).
+pub fn phase_supported(name: &str) -> bool {
+    !matches!(name, "ping" | "dai" | "triangle" | "butterfly-as-printed")
+}
+
 /// Builds the path `spec` describes, starting (and ending) at `start`.
 ///
 /// Errors name the offending field: unknown `name`, non-positive or non-finite `duration` or
@@ -176,12 +182,7 @@ pub fn build_path(spec: &PathSpec, start: Vector3<f64>) -> Result<Box<dyn Path>,
     if !start.iter().all(|x| x.is_finite()) {
         return Err(PathError::NonFinitePoint);
     }
-    if phase != 0.0
-        && matches!(
-            spec.name.as_str(),
-            "ping" | "dai" | "triangle" | "butterfly-as-printed"
-        )
-    {
+    if phase != 0.0 && !phase_supported(&spec.name) {
         return Err(PathError::PhaseNotSupported(spec.name.clone()));
     }
     let curve = |shape| -> Result<Box<dyn Path>, PathError> {
