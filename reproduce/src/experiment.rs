@@ -8,6 +8,8 @@
 //! the model check (jaco2 vs jaco2-pen), the star-lines variant and kong2019's two starts are
 //! written. Every run an experiment file describes is a [`Job`].
 
+use crate::results::{run_stem, slug};
+use crate::run::JobPart;
 use schemes::paths::PathSpec;
 use schemes::spec::SchemeSpec;
 use serde::Deserialize;
@@ -158,22 +160,40 @@ impl std::fmt::Display for ExperimentFileError {
 impl std::error::Error for ExperimentFileError {}
 
 impl PaperFile {
-    /// Reads and validates one experiment file.
+    /// Reads and validates one experiment file: everything a run would reject is rejected here,
+    /// before anything runs (see [`PaperFile::validate`]).
     pub fn load(path: &Path) -> Result<Self, ExperimentFileError> {
         let err = |message: String| ExperimentFileError {
             file: path.to_path_buf(),
             message,
         };
         let text = std::fs::read_to_string(path).map_err(|e| err(format!("cannot read: {e}")))?;
+        Self::from_toml(&text).map_err(err)
+    }
+
+    /// Parses and validates the text of an experiment file (errors without the file name;
+    /// [`PaperFile::load`] adds it).
+    pub fn from_toml(text: &str) -> Result<Self, String> {
         let file: PaperFile =
-            toml::from_str(&text).map_err(|e| err(e.to_string().trim_end().to_string()))?;
-        file.validate().map_err(err)?;
+            toml::from_str(text).map_err(|e| e.to_string().trim_end().to_string())?;
+        file.validate()?;
         Ok(file)
     }
 
+    /// Every check, in one place. Field ranges are the crates' own validators
+    /// ([`IntegratorSettings::validate`], [`SchemeSpec::validate`]); the rest is checked by
+    /// building each run's path (from f(theta_ref)), scheme and network exactly as the run
+    /// does ([`crate::run::check_job`]): path names, durations, scales and pose, solver gains,
+    /// scheme/robot compatibility (zhang2018 needs dynamics) and solver/scheme compatibility
+    /// (the zeroing networks take equality-only QPs; a perturbation needs n + m = 9). Then the
+    /// names: ids and labels that are unsafe as file names, experiment ids, variant labels and
+    /// run keys that repeat, and slugs (file names of traces and figures) that collide.
     fn validate(&self) -> Result<(), String> {
+        check_name(&self.paper, "field `paper`")?;
+        let mut id_slugs: Vec<(String, &str)> = Vec::new();
         for (i, e) in self.experiments.iter().enumerate() {
             let at = |field: &str| format!("experiment[{i}] (id \"{}\") field `{field}`", e.id);
+            check_name(&e.id, &at("id"))?;
             if !e.id.starts_with(&format!("{}-", self.paper)) {
                 return Err(format!(
                     "{}: must start with the paper id \"{}-\"",
@@ -181,6 +201,19 @@ impl PaperFile {
                     self.paper
                 ));
             }
+            if let Some((_, other)) = id_slugs.iter().find(|(s, _)| *s == slug(&e.id)) {
+                return Err(if *other == e.id {
+                    format!("{}: experiment id \"{}\" is used twice", at("id"), e.id)
+                } else {
+                    format!(
+                        "{}: \"{}\" and \"{other}\" have the same file name \"{}\" (results/traces/ and report/figures/); rename one",
+                        at("id"),
+                        e.id,
+                        slug(&e.id)
+                    )
+                });
+            }
+            id_slugs.push((slug(&e.id), &e.id));
             let n = robot_dof(&e.robot).ok_or_else(|| {
                 format!(
                     "{}: unknown robot \"{}\" (known: {})",
@@ -201,6 +234,8 @@ impl PaperFile {
                     at("variant")
                 ));
             }
+            let mut label_slugs: Vec<(String, &str)> = Vec::new();
+            let mut keys: Vec<(String, String)> = Vec::new();
             for (j, v) in e.variants.iter().enumerate() {
                 let vat = |field: &str| {
                     format!(
@@ -208,6 +243,24 @@ impl PaperFile {
                         e.id, v.label
                     )
                 };
+                check_name(&v.label, &vat("label"))?;
+                if let Some((_, other)) = label_slugs.iter().find(|(s, _)| *s == slug(&v.label)) {
+                    return Err(if *other == v.label {
+                        format!(
+                            "{}: label \"{}\" is used by two variants of the experiment",
+                            vat("label"),
+                            v.label
+                        )
+                    } else {
+                        format!(
+                            "{}: \"{}\" and \"{other}\" have the same file name \"{}\" within the experiment; rename one",
+                            vat("label"),
+                            v.label,
+                            slug(&v.label)
+                        )
+                    });
+                }
+                label_slugs.push((slug(&v.label), &v.label));
                 let robot = v.robot.as_deref().unwrap_or(&e.robot);
                 let vn = robot_dof(robot).ok_or_else(|| {
                     format!(
@@ -242,50 +295,104 @@ impl PaperFile {
                         vat("solvers")
                     ));
                 }
+                for (k, job) in self.variant_jobs(e, v).iter().enumerate() {
+                    crate::run::check_job(job).map_err(|(part, message)| {
+                        let field = match (&part, &job.solver) {
+                            (JobPart::Solver, _) => {
+                                format!("solvers[{}]", k - usize::from(v.exact))
+                            }
+                            (JobPart::Path, _) if v.path.is_some() => "path".to_string(),
+                            (JobPart::Path, _) => {
+                                return format!("{}: {message}", at("path"));
+                            }
+                            _ => part.field().to_string(),
+                        };
+                        format!("{}: {message}", vat(&field))
+                    })?;
+                    let label = job.solver.label();
+                    if keys.iter().any(|(key, _)| *key == job.key()) {
+                        return Err(format!(
+                            "{}: run \"{}\" is listed twice (experiment / variant / solver must be unique)",
+                            vat("solvers"),
+                            job.key()
+                        ));
+                    }
+                    let stem = run_stem(&v.label, &label);
+                    if let Some((other, _)) = keys.iter().find(|(_, s)| *s == stem) {
+                        return Err(format!(
+                            "{}: runs \"{}\" and \"{other}\" have the same file name \"{stem}\" within the experiment; rename the variant",
+                            vat("solvers"),
+                            job.key()
+                        ));
+                    }
+                    keys.push((job.key(), stem));
+                }
             }
         }
         Ok(())
     }
 
-    /// Every run of the file, in file order (variant by variant, exact column first).
-    pub fn jobs(&self) -> Vec<Job> {
+    /// The runs of one variant of experiment `e` (exact column first).
+    fn variant_jobs(&self, e: &Experiment, v: &Variant) -> Vec<Job> {
         let mut jobs = Vec::new();
-        for e in &self.experiments {
-            for v in &e.variants {
-                let theta0 = v.theta0.clone().unwrap_or_else(|| e.theta0.clone());
-                let theta_ref = v
-                    .theta_ref
-                    .clone()
-                    .or_else(|| e.theta_ref.clone())
-                    .unwrap_or_else(|| theta0.clone());
-                let base = Job {
-                    paper: self.paper.clone(),
-                    experiment: e.id.clone(),
-                    variant: v.label.clone(),
-                    robot: v.robot.clone().unwrap_or_else(|| e.robot.clone()),
-                    path: v.path.clone().unwrap_or_else(|| e.path.clone()),
-                    theta0,
-                    theta_ref,
-                    scheme: v.scheme.clone(),
-                    solver: SolverChoice::Exact,
-                    integrator: e.exact_integrator,
-                    score: true,
-                };
-                if v.exact {
-                    jobs.push(base.clone());
-                }
-                for s in &v.solvers {
-                    let integrator = v.integrator.unwrap_or(e.integrator);
-                    jobs.push(Job {
-                        solver: SolverChoice::Neural(s.clone()),
-                        integrator,
-                        ..base.clone()
-                    });
-                }
-            }
+        let theta0 = v.theta0.clone().unwrap_or_else(|| e.theta0.clone());
+        let theta_ref = v
+            .theta_ref
+            .clone()
+            .or_else(|| e.theta_ref.clone())
+            .unwrap_or_else(|| theta0.clone());
+        let base = Job {
+            paper: self.paper.clone(),
+            experiment: e.id.clone(),
+            variant: v.label.clone(),
+            robot: v.robot.clone().unwrap_or_else(|| e.robot.clone()),
+            path: v.path.clone().unwrap_or_else(|| e.path.clone()),
+            theta0,
+            theta_ref,
+            scheme: v.scheme.clone(),
+            solver: SolverChoice::Exact,
+            integrator: e.exact_integrator,
+            score: true,
+        };
+        if v.exact {
+            jobs.push(base.clone());
+        }
+        for s in &v.solvers {
+            let integrator = v.integrator.unwrap_or(e.integrator);
+            jobs.push(Job {
+                solver: SolverChoice::Neural(s.clone()),
+                integrator,
+                ..base.clone()
+            });
         }
         jobs
     }
+
+    /// Every run of the file, in file order (variant by variant, exact column first).
+    pub fn jobs(&self) -> Vec<Job> {
+        self.experiments
+            .iter()
+            .flat_map(|e| e.variants.iter().map(move |v| (e, v)))
+            .flat_map(|(e, v)| self.variant_jobs(e, v))
+            .collect()
+    }
+}
+
+/// An id or label becomes a directory or file name (results/traces/<id>/<label>__<solver>.csv,
+/// report/figures/): it must not contain `/`, `\` or `..`, nor be empty once slugged
+/// ([`crate::results::slug`]).
+fn check_name(name: &str, at: &str) -> Result<(), String> {
+    if name.contains('/') || name.contains('\\') || name.contains("..") {
+        return Err(format!(
+            "{at}: \"{name}\" must not contain `/`, `\\` or `..` (it names files under results/ and report/)"
+        ));
+    }
+    if slug(name).is_empty() {
+        return Err(format!(
+            "{at}: \"{name}\" needs at least one ASCII letter or digit (it names files under results/ and report/)"
+        ));
+    }
+    Ok(())
 }
 
 /// Joint count of the robot called `name` (see [`crate::robot_registry`]).
@@ -313,23 +420,45 @@ fn check_len(v: &[f64], n: usize, at: &str) -> Result<(), String> {
 }
 
 fn check_integrator(s: &IntegratorSettings, at: &str) -> Result<(), String> {
-    if !(s.rtol > 0.0 && s.atol > 0.0) {
-        return Err(format!("{at}: rtol and atol must be positive"));
-    }
-    s.validate().map_err(|e| format!("{at}: {e}"))?;
-    Ok(())
+    s.validate().map_err(|e| format!("{at}: {e}"))
 }
 
-/// Loads every `*.toml` of `dir`, sorted by file name.
+/// Loads every `*.toml` of `dir`, sorted by file name, and checks what spans files: an
+/// experiment id (or its file name, the slug) is defined in one file only.
 pub fn load_dir(dir: &Path) -> Result<Vec<PaperFile>, ExperimentFileError> {
     let entries = std::fs::read_dir(dir).map_err(|e| ExperimentFileError {
         file: dir.to_path_buf(),
         message: format!("cannot list: {e}"),
     })?;
-    let mut files: Vec<PathBuf> = entries
+    let mut paths: Vec<PathBuf> = entries
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.extension().is_some_and(|x| x == "toml"))
         .collect();
-    files.sort();
-    files.iter().map(|f| PaperFile::load(f)).collect()
+    paths.sort();
+    let mut files = Vec::with_capacity(paths.len());
+    let mut seen: Vec<(String, String, &Path)> = Vec::new();
+    for path in &paths {
+        let file = PaperFile::load(path)?;
+        for (i, e) in file.experiments.iter().enumerate() {
+            if let Some((_, other, other_file)) = seen.iter().find(|(s, _, _)| *s == slug(&e.id)) {
+                let what = if *other == e.id {
+                    format!("\"{}\" is also defined in {}", e.id, other_file.display())
+                } else {
+                    format!(
+                        "\"{}\" has the same file name \"{}\" as \"{other}\" of {}; rename one",
+                        e.id,
+                        slug(&e.id),
+                        other_file.display()
+                    )
+                };
+                return Err(ExperimentFileError {
+                    file: path.clone(),
+                    message: format!("experiment[{i}] (id \"{}\") field `id`: {what}", e.id),
+                });
+            }
+            seen.push((slug(&e.id), e.id.clone(), path));
+        }
+        files.push(file);
+    }
+    Ok(files)
 }

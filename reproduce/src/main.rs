@@ -2,7 +2,10 @@
 
 use clap::Parser;
 use reproduce::experiment::{load_dir, Job, PaperFile};
-use reproduce::results::{merge, read_runs, runs_csv, trace_csv, trace_file, write_atomic, RunRow};
+use reproduce::results::{
+    check_writable, merge, read_runs, remove_stale_tmp, runs_csv, trace_csv, trace_file,
+    write_atomic, RunRow,
+};
 use reproduce::run::RunRecord;
 use reproduce::runner::run_jobs;
 use std::fmt::Write as _;
@@ -93,7 +96,12 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
         return Ok(ExitCode::SUCCESS);
     }
     if cli.report_only {
-        render_report(&report_root(&cli)?)?;
+        let root = report_root(&cli)?;
+        let report = root.join("report");
+        check_writable(&report)?;
+        remove_stale_tmp(&report)
+            .map_err(|e| format!("{}: cannot clean: {e}", report.display()))?;
+        render_report(&root)?;
         return Ok(ExitCode::SUCCESS);
     }
     let files = load_dir(&cli.experiments_dir).map_err(|e| e.to_string())?;
@@ -102,6 +110,14 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
         print_list(&files, &jobs);
         return Ok(ExitCode::SUCCESS);
     }
+    // Before anything runs: the stored results must be readable (they are merged with the new
+    // rows, never dropped), and results/ and report/ writable; stale temporary files of killed
+    // runs are removed.
+    let stored = if cli.check || cli.dry_run {
+        None
+    } else {
+        Some(prepare_output(&cli)?)
+    };
     if let Some(t) = cli.threads {
         rayon::ThreadPoolBuilder::new()
             .num_threads(t)
@@ -127,8 +143,8 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
     if cli.check {
         return check(&cli.results_dir, &rows, cli.exact_only);
     }
-    if !cli.dry_run {
-        write_results(&cli.results_dir, &records, rows)?;
+    if let Some(stored) = stored {
+        write_results(&cli.results_dir, &records, stored, rows)?;
         if !cli.skip_explain && !cli.exact_only {
             explain(&cli, &jobs, &all, &git_rev)?;
         }
@@ -307,21 +323,48 @@ fn select_jobs(files: &[PaperFile], cli: &Cli) -> Result<Vec<Job>, String> {
         .collect())
 }
 
-fn write_results(
-    dir: &std::path::Path,
-    records: &[RunRecord],
-    rows: Vec<RunRow>,
-) -> Result<(), String> {
-    let runs_path = dir.join("runs.csv");
+/// Checks, before any run, that results can be written without losing anything: reads the
+/// stored results/runs.csv (an unreadable or old-schema file is an error naming the file, the
+/// line and how to recover), checks that results/ and report/ are writable, and removes the
+/// temporary files killed runs left there. Returns the stored rows.
+fn prepare_output(cli: &Cli) -> Result<Vec<RunRow>, String> {
+    let runs_path = cli.results_dir.join("runs.csv");
     let stored = if runs_path.exists() {
-        read_runs(&runs_path).unwrap_or_default()
+        read_runs(&runs_path)?
     } else {
         Vec::new()
     };
+    let mut dirs = vec![cli.results_dir.clone()];
+    if let Ok(root) = report_root(cli) {
+        dirs.push(root.join("report"));
+    }
+    for dir in &dirs {
+        check_writable(dir)?;
+        let removed =
+            remove_stale_tmp(dir).map_err(|e| format!("{}: cannot clean: {e}", dir.display()))?;
+        if !removed.is_empty() {
+            eprintln!(
+                "removed {} stale temporary file(s) of interrupted runs under {}",
+                removed.len(),
+                dir.display()
+            );
+        }
+    }
+    Ok(stored)
+}
+
+fn write_results(
+    dir: &std::path::Path,
+    records: &[RunRecord],
+    stored: Vec<RunRow>,
+    rows: Vec<RunRow>,
+) -> Result<(), String> {
+    let runs_path = dir.join("runs.csv");
     let merged = merge(stored, rows);
     for r in records {
         let bytes = trace_csv(r).map_err(|e| e.to_string())?;
-        write_atomic(&dir.join("traces").join(trace_file(r)), &bytes).map_err(|e| e.to_string())?;
+        let path = dir.join("traces").join(trace_file(r));
+        write_atomic(&path, &bytes).map_err(|e| format!("{}: {e}", path.display()))?;
     }
     let bytes = runs_csv(&merged).map_err(|e| e.to_string())?;
     write_atomic(&runs_path, &bytes).map_err(|e| format!("{}: {e}", runs_path.display()))?;

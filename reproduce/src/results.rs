@@ -213,12 +213,130 @@ pub fn runs_csv(rows: &[RunRow]) -> Result<Vec<u8>, csv::Error> {
     w.into_inner().map_err(|e| csv::Error::from(e.into_error()))
 }
 
-/// Reads `results/runs.csv`.
+/// How to recover from a `runs.csv` this version cannot read.
+fn recovery_hint(path: &Path) -> String {
+    format!(
+        "nothing was run or written; restore the committed file with `git checkout {0}` or move \
+         it away (e.g. `mv {0} {0}.old`) and run again",
+        path.display()
+    )
+}
+
+/// The column names of `runs.csv` (the fields of [`RunRow`], in order).
+pub fn runs_columns() -> &'static [&'static str] {
+    use serde::de::{self, Visitor};
+    struct Grab<'a>(&'a mut &'static [&'static str]);
+    impl<'de> de::Deserializer<'de> for Grab<'_> {
+        type Error = de::value::Error;
+        fn deserialize_any<V: Visitor<'de>>(self, _: V) -> Result<V::Value, Self::Error> {
+            Err(de::Error::custom("not a struct"))
+        }
+        fn deserialize_struct<V: Visitor<'de>>(
+            self,
+            _: &'static str,
+            fields: &'static [&'static str],
+            _: V,
+        ) -> Result<V::Value, Self::Error> {
+            *self.0 = fields;
+            Err(de::Error::custom("fields taken"))
+        }
+        serde::forward_to_deserialize_any! {
+            bool i8 i16 i32 i64 i128 u8 u16 u32 u64 u128 f32 f64 char str string bytes byte_buf
+            option unit unit_struct newtype_struct seq tuple tuple_struct map enum identifier
+            ignored_any
+        }
+    }
+    let mut fields: &'static [&'static str] = &[];
+    let _ = RunRow::deserialize(Grab(&mut fields));
+    fields
+}
+
+/// Reads `results/runs.csv`. Any problem is an error naming the file, the line and how to
+/// recover, never a silently shorter list: an unreadable file, a header that is not this
+/// version's columns (an old schema: a missing or an unknown column), or a row that does not
+/// parse. An empty file has no rows.
 pub fn read_runs(path: &Path) -> Result<Vec<RunRow>, String> {
-    let mut r = csv::Reader::from_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    r.deserialize()
-        .map(|row| row.map_err(|e| format!("{}: {e}", path.display())))
-        .collect()
+    let fail = |line: Option<u64>, what: String| {
+        let at = line.map(|l| format!(" line {l}")).unwrap_or_default();
+        format!("{}:{at}: {what}; {}", path.display(), recovery_hint(path))
+    };
+    let mut r =
+        csv::Reader::from_path(path).map_err(|e| fail(None, format!("cannot read: {e}")))?;
+    let header = r
+        .headers()
+        .map_err(|e| fail(e.position().map(|p| p.line()), e.to_string()))?
+        .clone();
+    if header.is_empty() || (header.len() == 1 && header[0].is_empty()) {
+        return Ok(Vec::new());
+    }
+    let expected = runs_columns();
+    let missing: Vec<&str> = expected
+        .iter()
+        .copied()
+        .filter(|c| !header.iter().any(|h| h == *c))
+        .collect();
+    let unknown: Vec<&str> = header.iter().filter(|h| !expected.contains(h)).collect();
+    if !missing.is_empty() || !unknown.is_empty() {
+        let mut what = vec![
+            "the header is not this version's runs.csv schema (an old or a \
+                             foreign file)"
+                .to_string(),
+        ];
+        if !missing.is_empty() {
+            what.push(format!("missing columns: {}", missing.join(", ")));
+        }
+        if !unknown.is_empty() {
+            what.push(format!("unknown columns: {}", unknown.join(", ")));
+        }
+        return Err(fail(Some(1), what.join("; ")));
+    }
+    let mut rows = Vec::new();
+    for (i, row) in r.deserialize::<RunRow>().enumerate() {
+        match row {
+            Ok(row) => rows.push(row),
+            Err(e) => {
+                // Data rows start on line 2 (the csv crate's positions are 1-based lines).
+                let line = e.position().map(|p| p.line()).unwrap_or(i as u64 + 2);
+                let what = match e.kind() {
+                    csv::ErrorKind::Deserialize { err, .. } => format!("row does not parse: {err}"),
+                    _ => format!("row does not parse: {e}"),
+                };
+                return Err(fail(Some(line), what));
+            }
+        }
+    }
+    Ok(rows)
+}
+
+/// Removes the temporary files ([`write_atomic`]'s `<name>.<pid>.<n>.tmp`) that killed runs
+/// left anywhere under `dir`; returns the paths removed. A missing `dir` has none.
+pub fn remove_stale_tmp(dir: &Path) -> std::io::Result<Vec<std::path::PathBuf>> {
+    let mut removed = Vec::new();
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Ok(removed);
+    };
+    for entry in entries {
+        let entry = entry?;
+        let path = entry.path();
+        let kind = entry.file_type()?;
+        if kind.is_dir() {
+            removed.extend(remove_stale_tmp(&path)?);
+        } else if kind.is_file() && path.extension().is_some_and(|x| x == "tmp") {
+            std::fs::remove_file(&path)?;
+            removed.push(path);
+        }
+    }
+    Ok(removed)
+}
+
+/// Checks that files can be created in `dir` (created if absent): writes and removes a probe
+/// file. The error names the directory.
+pub fn check_writable(dir: &Path) -> Result<(), String> {
+    let fail = |e: std::io::Error| format!("{}: not writable: {e}", dir.display());
+    std::fs::create_dir_all(dir).map_err(fail)?;
+    let probe = dir.join(format!(".write-probe.{}.tmp", std::process::id()));
+    std::fs::write(&probe, b"").map_err(fail)?;
+    std::fs::remove_file(&probe).map_err(fail)
 }
 
 /// Merges freshly computed rows into the stored ones: a fresh row replaces the stored row with

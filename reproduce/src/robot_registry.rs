@@ -48,7 +48,22 @@ pub fn robot_names() -> impl Iterator<Item = &'static str> {
     ROBOTS.iter().map(|(n, _)| *n)
 }
 
+/// The names of the robots with rigid-body dynamics (H, c, g), which the acceleration-level
+/// zhang2018 scheme needs: the Jaco2 family.
+pub fn robots_with_dynamics() -> Vec<&'static str> {
+    ROBOTS
+        .iter()
+        .filter(|(_, build)| build().has_dynamics())
+        .map(|(n, _)| *n)
+        .collect()
+}
+
 impl AnyRobot {
+    /// Whether the model has rigid-body dynamics (H, c, g).
+    pub fn has_dynamics(&self) -> bool {
+        matches!(self, AnyRobot::Jaco2(_))
+    }
+
     /// Number of joints.
     pub fn dof(&self) -> usize {
         match self {

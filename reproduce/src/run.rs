@@ -86,15 +86,84 @@ pub fn run_job(job: &Job) -> RunRecord {
     })
 }
 
-fn run_with<const N: usize>(
+/// Which part of a [`Job`] could not be built (see [`check_job`]).
+#[derive(Clone, Debug, PartialEq)]
+pub enum JobPart {
+    Robot,
+    Theta0,
+    ThetaRef,
+    Path,
+    Scheme,
+    Solver,
+}
+
+impl JobPart {
+    /// The experiment-file field the part comes from.
+    pub fn field(&self) -> &'static str {
+        match self {
+            JobPart::Robot => "robot",
+            JobPart::Theta0 => "theta0",
+            JobPart::ThetaRef => "theta_ref",
+            JobPart::Path => "path",
+            JobPart::Scheme => "scheme",
+            JobPart::Solver => "solvers",
+        }
+    }
+}
+
+/// Builds everything a run builds before integrating (robot, path from f(theta_ref), scheme,
+/// and the network for the scheme's QP sizes) without integrating anything, so that an
+/// experiment file is rejected at load for exactly what would make its run fail at t = 0.
+/// The error names the part (and so the file's field) and the builder's own message.
+pub fn check_job(job: &Job) -> Result<(), (JobPart, String)> {
+    fn with<const N: usize>(
+        job: &Job,
+        robot: Arc<dyn Robot<N>>,
+        dynamics: Option<Arc<dyn Dynamics<N>>>,
+    ) -> Result<(), (JobPart, String)> {
+        for (part, v) in [
+            (JobPart::Theta0, &job.theta0),
+            (JobPart::ThetaRef, &job.theta_ref),
+        ] {
+            if v.len() != N {
+                return Err((
+                    part,
+                    format!("has {} entries, the robot has {N} joints", v.len()),
+                ));
+            }
+            if v.iter().any(|x| !x.is_finite()) {
+                return Err((part, "entries must be finite".to_string()));
+            }
+        }
+        let (_, scheme) = build_parts::<N>(job, robot, dynamics)?;
+        if let SolverChoice::Neural(spec) = &job.solver {
+            solvers::neural::build_solver(spec, scheme.dims()).map_err(|e| {
+                (
+                    JobPart::Solver,
+                    format!("{}: {e} (scheme {})", spec.display_name(), scheme.name()),
+                )
+            })?;
+        }
+        Ok(())
+    }
+    match robot_by_name(&job.robot) {
+        Some(AnyRobot::Jaco2(r)) => with::<6>(job, r.clone(), Some(r)),
+        Some(AnyRobot::Katana(r)) => with::<5>(job, r, None),
+        None => Err((JobPart::Robot, format!("unknown robot \"{}\"", job.robot))),
+    }
+}
+
+/// The path (starting at f(theta_ref)) and the scheme of a run.
+#[allow(clippy::type_complexity)]
+fn build_parts<const N: usize>(
     job: &Job,
     robot: Arc<dyn Robot<N>>,
     dynamics: Option<Arc<dyn Dynamics<N>>>,
-) -> Result<RunRecord, String> {
-    let theta0 = SVector::<f64, N>::from_column_slice(&job.theta0);
+) -> Result<(Arc<dyn Path>, Box<dyn Scheme<N>>), (JobPart, String)> {
     let theta_ref = SVector::<f64, N>::from_column_slice(&job.theta_ref);
     let start = robot.position(&theta_ref);
-    let path: Arc<dyn Path> = Arc::from(build_path(&job.path, start).map_err(|e| e.to_string())?);
+    let path: Arc<dyn Path> =
+        Arc::from(build_path(&job.path, start).map_err(|e| (JobPart::Path, e.to_string()))?);
     let scheme = build_scheme::<N>(
         &job.scheme,
         robot.clone(),
@@ -102,7 +171,28 @@ fn run_with<const N: usize>(
         path.clone(),
         theta_ref,
     )
-    .map_err(|e| e.to_string())?;
+    .map_err(|e| {
+        let mut message = e.to_string();
+        if let schemes::spec::SchemeError::MissingDynamics { .. } = e {
+            message.push_str(&format!(
+                " (robot \"{}\" is kinematic only; robots with dynamics: {})",
+                job.robot,
+                crate::robot_registry::robots_with_dynamics().join(", ")
+            ));
+        }
+        (JobPart::Scheme, message)
+    })?;
+    Ok((path, scheme))
+}
+
+fn run_with<const N: usize>(
+    job: &Job,
+    robot: Arc<dyn Robot<N>>,
+    dynamics: Option<Arc<dyn Dynamics<N>>>,
+) -> Result<RunRecord, String> {
+    let theta0 = SVector::<f64, N>::from_column_slice(&job.theta0);
+    let theta_ref = SVector::<f64, N>::from_column_slice(&job.theta_ref);
+    let (path, scheme) = build_parts::<N>(job, robot.clone(), dynamics).map_err(|(_, e)| e)?;
     let mut observer = Observer::new(
         robot.as_ref(),
         scheme.as_ref(),

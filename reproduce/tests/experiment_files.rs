@@ -130,3 +130,450 @@ fn malformed_files_name_the_file_and_the_field() {
         &["integrator"],
     );
 }
+
+/// A kong2019-style file on the 5-joint Katana (kinematics only).
+const KATANA: &str = r#"
+paper = "kong2019"
+title = "t"
+[[experiment]]
+id = "kong2019-x"
+paper_output = "-"
+robot = "katana6m180"
+path = { name = "circle", duration = 9.0 }
+theta0 = [1.2566, 1.5708, 0.0, -0.5236, 1.0472]
+[[experiment.variant]]
+label = "ZNN (eq. 22)"
+scheme = { kind = "kong2019-znn", mu = 1.0, k_p = 1.0 }
+solvers = [{ kind = "znn", gamma = 1.0 }]
+"#;
+
+/// A zhang2018-style file (acceleration level, Jaco2 with dynamics).
+const ZHANG: &str = r#"
+paper = "zhang2018"
+title = "t"
+[[experiment]]
+id = "zhang2018-x"
+paper_output = "-"
+robot = "jaco2-pen"
+path = { name = "butterfly", duration = 8.0 }
+theta0 = [1.68, 2.81, -3.22, 4.19, -1.71, -2.65]
+[[experiment.variant]]
+label = "HL-JDF"
+scheme = { kind = "zhang2018", zeta = 0.6, alpha = 20.0, beta = 20.0, rho_v = 20.0, rho_p = 20.0 }
+solvers = [{ kind = "fp-cdnn", gamma = 200.0 }]
+"#;
+
+#[test]
+fn the_templates_load() {
+    for (name, text) in [("good_t", GOOD), ("katana_t", KATANA), ("zhang_t", ZHANG)] {
+        load_text(name, text).unwrap_or_else(|e| panic!("{name}: {e}"));
+    }
+}
+
+#[test]
+fn paths_are_checked_at_load() {
+    assert_rejected(
+        "unknown_path",
+        &GOOD.replace("four-leaf-clover", "four-leaf-clovr"),
+        &[
+            "field `path`",
+            "four-leaf-clovr",
+            "valid names",
+            "five-point-star",
+        ],
+    );
+    for (name, bad) in [("zero_duration", "0.0"), ("negative_duration", "-5.0")] {
+        assert_rejected(
+            name,
+            &GOOD.replace("duration = 5.0", &format!("duration = {bad}")),
+            &["jia2019-x", "field `path`", "duration"],
+        );
+    }
+    assert_rejected(
+        "inf_duration",
+        &GOOD.replace("duration = 5.0", "duration = inf"),
+        &["duration"],
+    );
+    assert_rejected(
+        "zero_scale",
+        &GOOD.replace("duration = 5.0", "duration = 5.0, scale = 0.0"),
+        &["scale"],
+    );
+    assert_rejected(
+        "nan_rotation",
+        &GOOD.replace("duration = 5.0", "duration = 5.0, rotation = nan"),
+        &["rotation"],
+    );
+    assert_rejected(
+        "inf_tilt",
+        &GOOD.replace("duration = 5.0", "duration = 5.0, tilt_y = -inf"),
+        &["tilt_y"],
+    );
+    assert_rejected(
+        "phase_one",
+        &GOOD.replace("duration = 5.0", "duration = 5.0, phase = 1.0"),
+        &["phase", "[0, 1)"],
+    );
+    // Phase is defined for the closed curves only, not for the stroke paths.
+    load_text(
+        "phase_clover",
+        &GOOD.replace("duration = 5.0", "duration = 5.0, phase = 0.25"),
+    )
+    .unwrap();
+    assert_rejected(
+        "phase_triangle",
+        &KATANA
+            .replace("\"circle\"", "\"triangle\"")
+            .replace("duration = 9.0", "duration = 9.0, phase = 0.5"),
+        &["phase", "triangle"],
+    );
+    // A variant's own path names the variant.
+    assert_rejected(
+        "variant_path",
+        &GOOD.replace(
+            "solvers = [",
+            "path = { name = \"ping\", duration = -1.0 }\nsolvers = [",
+        ),
+        &["variant[0] (\"VLTCO\") field `path`", "duration"],
+    );
+}
+
+#[test]
+fn gains_are_checked_at_load() {
+    for bad in ["0.0", "-1.0", "inf", "nan"] {
+        assert_rejected(
+            "solver_gain",
+            &GOOD.replace("gamma = 1e7", &format!("gamma = {bad}")),
+            &["variant[0] (\"VLTCO\")", "field `solvers[0]`", "gamma"],
+        );
+        assert_rejected(
+            "scheme_gain",
+            &GOOD.replace("kappa = 20.0", &format!("kappa = {bad}")),
+            &["field `scheme`", "kappa"],
+        );
+        assert_rejected(
+            "zhang_gain",
+            &ZHANG.replace("alpha = 20.0", &format!("alpha = {bad}")),
+            &["field `scheme`", "alpha"],
+        );
+        assert_rejected(
+            "kong_gain",
+            &KATANA.replace("mu = 1.0", &format!("mu = {bad}")),
+            &["field `scheme`", "mu"],
+        );
+    }
+    assert_rejected(
+        "vp_rnn_pf_sigma",
+        &GOOD.replace(
+            "{ kind = \"lvi-pdnn\", gamma = 1e7 }",
+            "{ kind = \"lvi-pdnn\", gamma = 1e7 }, { kind = \"vp-rnn-pf\", p = 1e-4, sigma = 0.0, gamma = 2.0 }",
+        ),
+        &["field `solvers[1]`", "sigma"],
+    );
+    assert_rejected(
+        "ftnn_alpha",
+        &KATANA.replace(
+            "{ kind = \"znn\", gamma = 1.0 }",
+            "{ kind = \"finite-time\", beta = 1.0, alpha = 1.5 }",
+        ),
+        &["solvers[0]", "alpha"],
+    );
+}
+
+#[test]
+fn integrator_tolerances_are_checked_at_load() {
+    let with = |integrator: &str| {
+        GOOD.replace(
+            "theta0 = [",
+            &format!("integrator = {{ {integrator} }}\ntheta0 = ["),
+        )
+    };
+    for rtol in ["inf", "1e300", "0.0", "1.0", "nan", "-1e-6"] {
+        assert_rejected(
+            "rtol",
+            &with(&format!("method = \"bdf\", rtol = {rtol}, atol = 1e-8")),
+            &["field `integrator`", "rtol"],
+        );
+    }
+    for atol in ["inf", "0.0", "nan"] {
+        assert_rejected(
+            "atol",
+            &with(&format!("method = \"bdf\", rtol = 1e-6, atol = {atol}")),
+            &["field `integrator`", "atol"],
+        );
+    }
+    assert_rejected(
+        "max_steps",
+        &with("method = \"bdf\", rtol = 1e-6, atol = 1e-8, max_steps = 0"),
+        &["field `integrator`", "max_steps"],
+    );
+    for h in ["0.0", "inf", "-0.05"] {
+        assert_rejected(
+            "max_step",
+            &with(&format!(
+                "method = \"bdf\", rtol = 1e-6, atol = 1e-8, max_step = {h}"
+            )),
+            &["max_step"],
+        );
+    }
+    assert_rejected(
+        "exact_rtol",
+        &GOOD.replace(
+            "theta0 = [",
+            "exact_integrator = { method = \"dopri5\", rtol = 1e300, atol = 1e-10 }\ntheta0 = [",
+        ),
+        &["field `exact_integrator`", "rtol"],
+    );
+    assert_rejected(
+        "variant_integrator",
+        &GOOD.replace(
+            "solvers = [",
+            "integrator = { method = \"bdf\", rtol = 1e-6, atol = 1e-8, max_steps = 0 }\nsolvers = [",
+        ),
+        &["variant[0] (\"VLTCO\") field `integrator`", "max_steps"],
+    );
+}
+
+#[test]
+fn scheme_robot_and_solver_must_fit_together() {
+    // zhang2018 is acceleration level and needs the arm's dynamics: not the Katana.
+    let katana_zhang = KATANA.replace("paper = \"kong2019\"", "paper = \"kong2019\"").replace(
+        "scheme = { kind = \"kong2019-znn\", mu = 1.0, k_p = 1.0 }\nsolvers = [{ kind = \"znn\", gamma = 1.0 }]",
+        "scheme = { kind = \"zhang2018\", zeta = 0.6, alpha = 20.0, beta = 20.0, rho_v = 20.0, rho_p = 20.0 }",
+    );
+    assert_rejected(
+        "zhang_on_katana",
+        &katana_zhang,
+        &["field `scheme`", "dynamics", "katana6m180", "jaco2-pen"],
+    );
+    // The zeroing networks solve equality-constrained QPs only; jia2019's QP has inequalities.
+    assert_rejected(
+        "cdnn_on_jia",
+        &GOOD.replace(
+            "{ kind = \"lvi-pdnn\", gamma = 1e7 }",
+            "{ kind = \"fp-cdnn\", gamma = 200.0 }",
+        ),
+        &["field `solvers[0]`", "FP-CDNN", "inequality"],
+    );
+    // The reference perturbation is 9-dimensional (6 joints + 3): not for the 5-joint Katana.
+    assert_rejected(
+        "perturbation_on_katana",
+        &KATANA.replace(
+            "{ kind = \"znn\", gamma = 1.0 }",
+            "{ kind = \"fp-cdnn\", gamma = 200.0, perturbation = { a_d = 1.0, a_s = 1.5, task_duration = 9.0 } }",
+        ),
+        &["solvers[0]", "perturbation"],
+    );
+    // The networks are QP solvers and do not depend on the level: a velocity-level paper's
+    // network on zhang2018's acceleration-level QP (equality-only, unbounded) is a valid run.
+    load_text(
+        "lvi_on_zhang",
+        &ZHANG.replace(
+            "{ kind = \"fp-cdnn\", gamma = 200.0 }",
+            "{ kind = \"lvi-pdnn\", gamma = 1e7 }",
+        ),
+    )
+    .unwrap();
+    // theta_ref must fit the robot too.
+    assert_rejected(
+        "theta_ref_len",
+        &GOOD.replace("theta0 = [", "theta_ref = [0.0, 0.0]\ntheta0 = ["),
+        &["field `theta_ref`", "2 entries", "6 joints"],
+    );
+    assert_rejected(
+        "variant_theta0_len",
+        &GOOD.replace("solvers = [", "theta0 = [1.0]\nsolvers = ["),
+        &["variant[0] (\"VLTCO\") field `theta0`", "1 entries"],
+    );
+}
+
+/// A second experiment `id` with one variant `label`.
+fn second_experiment(id: &str, label: &str) -> String {
+    let start = GOOD.find("[[experiment]]").unwrap();
+    GOOD[start..]
+        .replace("jia2019-x", id)
+        .replace("label = \"VLTCO\"", &format!("label = \"{label}\""))
+}
+
+#[test]
+fn names_must_be_unique_and_file_safe() {
+    assert_rejected(
+        "dup_id",
+        &format!("{GOOD}{}", second_experiment("jia2019-x", "VLTCO")),
+        &["experiment[1] (id \"jia2019-x\") field `id`", "used twice"],
+    );
+    assert_rejected(
+        "id_slug_collision",
+        &format!("{GOOD}{}", second_experiment("jia2019-X", "VLTCO")),
+        &["field `id`", "jia2019-X", "jia2019-x", "same file name"],
+    );
+    let mut two_variants = GOOD.to_string();
+    two_variants.push_str(&GOOD[GOOD.find("[[experiment.variant]]").unwrap()..]);
+    assert_rejected(
+        "dup_label",
+        &two_variants,
+        &["variant[1] (\"VLTCO\") field `label`", "two variants"],
+    );
+    assert_rejected(
+        "label_slug_collision",
+        &two_variants.replacen("label = \"VLTCO\"", "label = \"vltco\"", 1),
+        &["field `label`", "same file name", "\"vltco\""],
+    );
+    assert_rejected(
+        "dup_run_key",
+        &GOOD.replace(
+            "solvers = [{ kind = \"lvi-pdnn\", gamma = 1e7 }]",
+            "solvers = [{ kind = \"lvi-pdnn\", gamma = 1e7 }, { kind = \"lvi-pdnn\", gamma = 1e6 }]",
+        ),
+        &["jia2019-x / VLTCO / LVI-PDNN", "listed twice"],
+    );
+    assert_rejected(
+        "escaping_id",
+        &GOOD.replace("id = \"jia2019-x\"", "id = \"jia2019-/../../etc\""),
+        &["field `id`", "must not contain"],
+    );
+    assert_rejected(
+        "escaping_label",
+        &GOOD.replace("label = \"VLTCO\"", "label = \"..\\\\x\""),
+        &["field `label`", "must not contain"],
+    );
+    assert_rejected(
+        "empty_slug_label",
+        &GOOD.replace("label = \"VLTCO\"", "label = \" () \""),
+        &["field `label`", "letter or digit"],
+    );
+}
+
+#[test]
+fn experiment_ids_are_unique_across_files() {
+    let dir = std::env::temp_dir().join(format!("driftbench-test-{}-dupdir", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("a.toml"), GOOD).unwrap();
+    std::fs::write(
+        dir.join("b.toml"),
+        GOOD.replace("label = \"VLTCO\"", "label = \"other\""),
+    )
+    .unwrap();
+    let err = load_dir(&dir)
+        .expect_err("an id defined in two files")
+        .to_string();
+    assert!(err.contains("b.toml") && err.contains("a.toml"), "{err}");
+    assert!(
+        err.contains("jia2019-x") && err.contains("also defined"),
+        "{err}"
+    );
+    // Ids that differ only in what their file name drops collide too.
+    std::fs::write(
+        dir.join("b.toml"),
+        GOOD.replace("id = \"jia2019-x\"", "id = \"jia2019-X\""),
+    )
+    .unwrap();
+    let err = load_dir(&dir).expect_err("colliding slugs").to_string();
+    assert!(
+        err.contains("same file name") && err.contains("a.toml"),
+        "{err}"
+    );
+    std::fs::remove_file(dir.join("b.toml")).unwrap();
+    assert_eq!(load_dir(&dir).unwrap().len(), 1);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The first `lines` lines of the committed results/runs.csv, rewritten by `edit`, in a temp
+/// file; the result of reading it.
+fn read_edited_runs(
+    name: &str,
+    lines: usize,
+    edit: impl Fn(Vec<String>) -> Vec<String>,
+) -> (PathBuf, Result<Vec<reproduce::results::RunRow>, String>) {
+    let committed = reproduce::workspace_root().join("results").join("runs.csv");
+    let text = std::fs::read_to_string(committed).unwrap();
+    let head: Vec<String> = text.lines().take(lines).map(String::from).collect();
+    let dir = std::env::temp_dir().join(format!("driftbench-test-{}-runs", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(format!("{name}.csv"));
+    std::fs::write(&path, edit(head).join("\n") + "\n").unwrap();
+    let result = reproduce::results::read_runs(&path);
+    (path, result)
+}
+
+#[test]
+fn a_corrupt_runs_csv_is_an_error_never_an_empty_list() {
+    use reproduce::results::read_runs;
+    let (_, good) = read_edited_runs("good", 4, |l| l);
+    assert_eq!(good.unwrap().len(), 3);
+    // A row that does not parse (a number column, observe_s, holding text) on line 3.
+    let (path, bad) = read_edited_runs("bad_row", 4, |mut l| {
+        let mut cells: Vec<&str> = l[2].split(',').collect();
+        let k = cells.len() - 3;
+        cells[k] = "abc";
+        l[2] = cells.join(",");
+        l
+    });
+    let err = bad.expect_err("a corrupt row is an error");
+    assert!(err.contains(&path.display().to_string()), "{err}");
+    assert!(err.contains("line 3"), "{err}");
+    assert!(
+        err.contains("git checkout") && err.contains("move"),
+        "{err}"
+    );
+    // A truncated row (a killed writer of an older version, or a bad merge).
+    let (_, bad) = read_edited_runs("truncated", 4, |mut l| {
+        let cut = l[3].len() / 2;
+        l[3].truncate(cut);
+        l
+    });
+    assert!(bad.expect_err("truncated row").contains("line 4"));
+    // An old schema: a column this version writes is missing from the header.
+    let (path, old) = read_edited_runs("old_schema", 3, |l| {
+        l.into_iter()
+            .map(|line| {
+                let cells: Vec<&str> = line.split(',').collect();
+                [&cells[..cells.len() - 3], &cells[cells.len() - 2..]]
+                    .concat()
+                    .join(",")
+            })
+            .collect()
+    });
+    let err = old.expect_err("an old schema is an error");
+    assert!(
+        err.contains(&path.display().to_string()) && err.contains("line 1"),
+        "{err}"
+    );
+    assert!(err.contains("missing columns: observe_s"), "{err}");
+    // An unknown column.
+    let (_, foreign) = read_edited_runs("foreign", 2, |mut l| {
+        l[0].push_str(",extra");
+        l[1].push_str(",1");
+        l
+    });
+    assert!(foreign
+        .expect_err("unknown column")
+        .contains("unknown columns: extra"));
+    // Not a file at all.
+    let missing = std::env::temp_dir()
+        .join("driftbench-no-such-dir")
+        .join("runs.csv");
+    let err = read_runs(&missing).expect_err("missing file");
+    assert!(err.contains("runs.csv"), "{err}");
+}
+
+#[test]
+fn stale_temporary_files_are_removed() {
+    use reproduce::results::{check_writable, remove_stale_tmp, write_atomic};
+    let dir = std::env::temp_dir().join(format!("driftbench-test-{}-tmp", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let nested = dir.join("traces").join("x");
+    std::fs::create_dir_all(&nested).unwrap();
+    std::fs::write(dir.join("runs.csv.123.0.tmp"), "half").unwrap();
+    std::fs::write(nested.join("a__b.csv.123.7.tmp"), "half").unwrap();
+    write_atomic(&nested.join("a__b.csv"), b"t\n").unwrap();
+    let removed = remove_stale_tmp(&dir).unwrap();
+    assert_eq!(removed.len(), 2, "{removed:?}");
+    assert!(nested.join("a__b.csv").exists());
+    assert!(remove_stale_tmp(&dir.join("absent")).unwrap().is_empty());
+    check_writable(&dir.join("new")).unwrap();
+    assert!(dir.join("new").is_dir());
+    assert!(std::fs::read_dir(dir.join("new")).unwrap().next().is_none());
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -239,7 +239,8 @@ impl SchemeSpec {
         }
     }
 
-    /// Checks every parameter's range (finite, and as the papers require).
+    /// Checks every parameter's range (finite, and as the papers require: the feedback and
+    /// drift gains are positive design parameters, so 0 is rejected as well as inf and NaN).
     pub fn validate(&self) -> Result<(), SchemeError> {
         let s = self.kind();
         match *self {
@@ -261,7 +262,7 @@ impl SchemeSpec {
                     "finite, >= 0, phi + tau <= 1",
                 )?;
                 check(s, "kappa", kappa, kappa > 0.0, "finite and > 0")?;
-                check(s, "lambda", lambda, lambda >= 0.0, "finite and >= 0")
+                check(s, "lambda", lambda, lambda > 0.0, "finite and > 0")
             }
             SchemeSpec::Zhong2021 {
                 eta,
@@ -281,7 +282,7 @@ impl SchemeSpec {
                     "finite, >= 0, eta + delta <= 1",
                 )?;
                 check(s, "upsilon", upsilon, upsilon > 0.0, "finite and > 0")?;
-                check(s, "lambda", lambda, lambda >= 0.0, "finite and >= 0")
+                check(s, "lambda", lambda, lambda > 0.0, "finite and > 0")
             }
             SchemeSpec::Zhang2018 {
                 zeta,
@@ -291,10 +292,10 @@ impl SchemeSpec {
                 rho_p,
             } => {
                 check(s, "zeta", zeta, (0.0..=1.0).contains(&zeta), "in [0, 1]")?;
-                check(s, "alpha", alpha, alpha >= 0.0, "finite and >= 0")?;
-                check(s, "beta", beta, beta >= 0.0, "finite and >= 0")?;
-                check(s, "rho_v", rho_v, rho_v >= 0.0, "finite and >= 0")?;
-                check(s, "rho_p", rho_p, rho_p >= 0.0, "finite and >= 0")
+                check(s, "alpha", alpha, alpha > 0.0, "finite and > 0")?;
+                check(s, "beta", beta, beta > 0.0, "finite and > 0")?;
+                check(s, "rho_v", rho_v, rho_v > 0.0, "finite and > 0")?;
+                check(s, "rho_p", rho_p, rho_p > 0.0, "finite and > 0")
             }
             SchemeSpec::Kong2019FiniteTime {
                 beta_theta,
@@ -305,10 +306,10 @@ impl SchemeSpec {
                     s,
                     "beta_theta",
                     beta_theta,
-                    beta_theta >= 0.0,
-                    "finite and >= 0",
+                    beta_theta > 0.0,
+                    "finite and > 0",
                 )?;
-                check(s, "k_p", k_p, k_p >= 0.0, "finite and >= 0")?;
+                check(s, "k_p", k_p, k_p >= 0.0, "finite and >= 0 (0: no position feedback)")?;
                 check(
                     s,
                     "alpha",
@@ -318,8 +319,8 @@ impl SchemeSpec {
                 )
             }
             SchemeSpec::Kong2019Znn { mu, k_p } => {
-                check(s, "mu", mu, mu >= 0.0, "finite and >= 0")?;
-                check(s, "k_p", k_p, k_p >= 0.0, "finite and >= 0")
+                check(s, "mu", mu, mu > 0.0, "finite and > 0")?;
+                check(s, "k_p", k_p, k_p >= 0.0, "finite and >= 0 (0: no position feedback)")
             }
         }
     }

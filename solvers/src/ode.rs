@@ -94,8 +94,21 @@ pub struct IntegratorSettings {
 }
 
 impl IntegratorSettings {
-    /// Checks what the integrator itself needs: a positive, finite `max_step` where given.
+    /// Checks what the integrator itself needs: 0 < `rtol` < 1, a positive finite `atol`,
+    /// `max_steps` >= 1 and a positive, finite `max_step` where given. Each message names the
+    /// field and its valid range.
     pub fn validate(&self) -> Result<(), String> {
+        let rtol = self.rtol;
+        if !(rtol > 0.0 && rtol < 1.0) {
+            return Err(format!("rtol must be in (0, 1), got {rtol}"));
+        }
+        let atol = self.atol;
+        if !(atol > 0.0 && atol.is_finite()) {
+            return Err(format!("atol must be positive and finite, got {atol}"));
+        }
+        if self.max_steps == 0 {
+            return Err("max_steps must be at least 1, got 0".to_string());
+        }
         match self.max_step {
             Some(h) if !(h > 0.0 && h.is_finite()) => {
                 Err(format!("max_step must be positive and finite, got {h}"))
