@@ -34,7 +34,7 @@ fn whole_runs(c: &mut Criterion) {
             record.stats.steps,
             record.stats.rhs_evals,
             record.stats.jac_evals,
-            record.qp_solves,
+            record.qp.solves,
             allocations
         );
         g.bench_function(format!("{experiment}/{}", bench_id(solver)), |b| {

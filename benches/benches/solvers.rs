@@ -6,7 +6,10 @@
 //! `<network>/rhs` (one right-hand-side evaluation, what the integrator calls per stage),
 //! `<network>/jacobian` (one analytic dF/dy, what a stiff integrator calls per Newton
 //! refresh), `exact-Clarabel/solve` (one `ExactSolver::solve`, what the exact column calls per
-//! RHS evaluation) and, on the equality-only shapes, `direct-KKT/solve` (one dense KKT solve).
+//! RHS evaluation before the active-set path), `exact-active-set/hot` and `/cold` (one certified
+//! active-set solve, hot-started from the optimum's working set or cold: what the exact column
+//! and the scorer call now) and, on the equality-only shapes, `direct-KKT/solve` (one dense KKT
+//! solve).
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use driftbench_benches::{
@@ -15,7 +18,7 @@ use driftbench_benches::{
 };
 use nalgebra::DMatrix;
 use solvers::neural::build_solver;
-use solvers::{solve_equality_kkt, ExactSolver};
+use solvers::{solve_equality_kkt, ActiveSetSolution, ActiveSetSolver, ExactSolver};
 
 #[global_allocator]
 static ALLOC: CountingAllocator = CountingAllocator;
@@ -79,6 +82,25 @@ fn per_evaluation(c: &mut Criterion) {
         });
         group.bench_function("exact-Clarabel/solve", |b| {
             b.iter(|| exact.solve(black_box(&rep.qp)).map(|s| s.x))
+        });
+
+        // The exact path of the loop: the certified active-set solver, hot-started from the
+        // previous answer's working set (one KKT solve when the active set has not changed) and
+        // cold (the dual method from the unconstrained minimiser).
+        let mut fast = ActiveSetSolver::new(rep.qp.dims());
+        let mut out = ActiveSetSolution::zeros(rep.qp.dims());
+        fast.solve_into(&rep.qp, None, &mut out)
+            .expect("the active-set solver solves the representative QP");
+        let warm = out.working_set.clone();
+        report_allocations(&format!("{paper}/exact-active-set/hot"), || {
+            fast.solve_into(&rep.qp, Some(&warm), &mut out)
+                .expect("hot start");
+        });
+        group.bench_function("exact-active-set/hot", |b| {
+            b.iter(|| fast.solve_into(black_box(&rep.qp), Some(&warm), &mut out))
+        });
+        group.bench_function("exact-active-set/cold", |b| {
+            b.iter(|| fast.solve_into(black_box(&rep.qp), None, &mut out))
         });
 
         if rep.shape.is_equality_only() {

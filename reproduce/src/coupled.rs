@@ -4,7 +4,7 @@
 //! Acceleration level: state [theta; thetadot; y], theta' = thetadot, thetadot' = x[..n].
 //!
 //! - Exact loop ([`ExactLoop`]): no network state; x = x*(t, theta, thetadot), the optimum of
-//!   the scheme's QP solved by Clarabel at every evaluation.
+//!   the scheme's QP at every evaluation (certified active set, Clarabel as fallback and check).
 //! - Neural loop ([`NeuralLoop`]): y is the network state, x = y[..nx] (the network's current
 //!   estimate), y' = F_net(t, y; QP(t, theta, thetadot)) with, for the zeroing networks, the
 //!   QP's time derivative taken along the current motion (theta moving at thetadot, thetadot at
@@ -18,7 +18,7 @@
 use nalgebra::{DMatrix, DVector, SVector};
 use schemes::qp_dot::QpDotScratch;
 use schemes::scheme::{Level, Scheme};
-use solvers::exact::ExactSolver;
+use solvers::exact_path::{ExactPath, ExactPathStats};
 use solvers::neural::NeuralSolver;
 use solvers::ode::OdeSystem;
 use solvers::Qp;
@@ -57,24 +57,23 @@ fn arm_rhs<const N: usize>(level: Level, y: &[f64], command: &[f64], dy: &mut [f
     }
 }
 
-/// The scheme with Clarabel in the loop.
+/// The scheme with its exact optimum in the loop ([`ExactPath`]: the certified active-set
+/// solver, Clarabel when it fails and on a sample).
 pub struct ExactLoop<'a, const N: usize> {
     pub scheme: &'a dyn Scheme<N>,
     pub qp: Qp,
-    pub solver: ExactSolver,
-    /// QP solves so far.
-    pub qp_solves: usize,
+    pub solver: ExactPath,
     /// First failure of the exact solver (the run is then reported as failed with it).
     pub failure: Option<String>,
 }
 
 impl<'a, const N: usize> ExactLoop<'a, N> {
     pub fn new(scheme: &'a dyn Scheme<N>) -> Self {
+        let qp = scheme.new_qp();
         Self {
             scheme,
-            qp: scheme.new_qp(),
-            solver: ExactSolver::new(),
-            qp_solves: 0,
+            solver: ExactPath::new(&qp),
+            qp,
             failure: None,
         }
     }
@@ -87,11 +86,15 @@ impl<'a, const N: usize> ExactLoop<'a, N> {
         thetadot: &SVector<f64, N>,
     ) -> Result<DVector<f64>, String> {
         self.scheme.build(t, theta, thetadot, &mut self.qp);
-        self.qp_solves += 1;
         self.solver
             .solve(&self.qp)
-            .map(|s| s.x)
+            .cloned()
             .map_err(|e| e.to_string())
+    }
+
+    /// QPs solved, fallbacks and the Clarabel sample so far.
+    pub fn stats(&self) -> ExactPathStats {
+        self.solver.stats
     }
 }
 

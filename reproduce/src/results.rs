@@ -70,6 +70,12 @@ pub struct RunRow {
     pub rhs_evals: usize,
     pub jac_evals: usize,
     pub qp_solves: usize,
+    /// Exact QPs the certified active-set solver could not answer (Clarabel did).
+    pub qp_fallbacks: usize,
+    /// Certified active-set answers also solved by Clarabel (the first and every 100th).
+    pub qp_checks: usize,
+    /// Largest relative |x_active_set - x_clarabel|_inf over those checks.
+    pub qp_check_max_dx: Option<f64>,
     /// Wall time of the whole integration.
     pub wall_s: f64,
     /// Wall time of the simulation proper (arm + solver + integrator): `wall_s - observe_s`.
@@ -147,7 +153,10 @@ impl RunRow {
             rejected: r.stats.rejected,
             rhs_evals: r.stats.rhs_evals,
             jac_evals: r.stats.jac_evals,
-            qp_solves: r.qp_solves,
+            qp_solves: r.qp.solves,
+            qp_fallbacks: r.qp.fallbacks,
+            qp_checks: r.qp.checks,
+            qp_check_max_dx: (r.qp.checks > 0).then_some(r.qp.check_max_dx),
             wall_s: r.stats.wall_seconds,
             sim_s: (r.stats.wall_seconds - r.observe_seconds).max(0.0),
             observe_s: r.observe_seconds,

@@ -10,6 +10,7 @@ use robots::{Dynamics, Robot};
 use schemes::paths::{build_path, Path};
 use schemes::scheme::{Level, Scheme};
 use schemes::spec::build_scheme;
+use solvers::exact_path::ExactPathStats;
 use solvers::ode::{integrate, Control, OdeFailure, OdeStats, OdeSystem};
 use std::sync::Arc;
 use std::time::Instant;
@@ -53,8 +54,9 @@ pub struct RunRecord {
     pub scheme_name: String,
     pub outcome: Outcome,
     pub stats: OdeStats,
-    /// Clarabel solves (in the loop for the exact column, for scoring in neural runs).
-    pub qp_solves: usize,
+    /// Exact QP solves (in the loop for the exact column, for scoring in neural runs), with the
+    /// active-set solver's fallbacks to Clarabel and the Clarabel sample.
+    pub qp: ExactPathStats,
     /// Scoring instants where Clarabel failed (excluded from the score).
     pub score_failures: usize,
     /// Seconds spent observing accepted steps (metrics, trace, and the Clarabel solves that
@@ -79,7 +81,7 @@ pub fn run_job(job: &Job) -> RunRecord {
             partial: None,
         },
         stats: OdeStats::default(),
-        qp_solves: 0,
+        qp: ExactPathStats::default(),
         score_failures: 0,
         observe_seconds: 0.0,
         trace: Vec::new(),
@@ -202,7 +204,7 @@ fn run_with<const N: usize>(
     );
     let t1 = path.duration();
     let level = scheme.level();
-    let (outcome, stats, qp_solves) = match &job.solver {
+    let (outcome, stats, qp) = match &job.solver {
         SolverChoice::Exact => {
             let mut sys = ExactLoop::new(scheme.as_ref());
             let mut y0 = vec![0.0; arm_dim::<N>(level)];
@@ -221,7 +223,8 @@ fn run_with<const N: usize>(
                 observer.seconds += started.elapsed().as_secs_f64();
                 control
             });
-            let solves = sys.qp_solves + probe.qp_solves;
+            let mut solves = sys.stats();
+            solves.add(&probe.stats());
             finish(result, sys.failure.take(), &observer, solves)
         }
         SolverChoice::Neural(spec) => {
@@ -270,7 +273,7 @@ fn run_with<const N: usize>(
                 observer.seconds += started.elapsed().as_secs_f64();
                 Control::Continue
             });
-            let mut r = finish(result, None, &observer, scorer.qp_solves);
+            let mut r = finish(result, None, &observer, scorer.stats());
             r.1.rhs_evals += sys.jacobian_rhs_evals;
             observer.score_failures = failures;
             r
@@ -281,7 +284,7 @@ fn run_with<const N: usize>(
         scheme_name: scheme.name(),
         outcome,
         stats,
-        qp_solves,
+        qp,
         score_failures: observer.score_failures,
         observe_seconds: observer.seconds,
         trace: observer.trace,
@@ -292,20 +295,20 @@ fn finish<const N: usize>(
     result: Result<(Vec<f64>, OdeStats), OdeFailure>,
     loop_failure: Option<String>,
     observer: &Observer<'_, N>,
-    qp_solves: usize,
-) -> (Outcome, OdeStats, usize) {
+    qp: ExactPathStats,
+) -> (Outcome, OdeStats, ExactPathStats) {
     match result {
         Ok((_, stats)) => (
             Outcome::Completed(observer.metrics.finish(0.0)),
             stats,
-            qp_solves,
+            qp,
         ),
         Err(OdeFailure { error, stats }) => {
             // The last accepted step; a loop failure (the exact QP) names its own instant.
             let t = observer.last_t;
             let reason = loop_failure.unwrap_or_else(|| error.to_string());
             let partial = observer.has_samples().then(|| observer.metrics.finish(0.0));
-            (Outcome::Failed { t, reason, partial }, stats, qp_solves)
+            (Outcome::Failed { t, reason, partial }, stats, qp)
         }
     }
 }

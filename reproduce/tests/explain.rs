@@ -79,8 +79,8 @@ fn ladder_converges_and_attribution_adds_up() {
             run[k]
         );
     }
-    // The ZNN at gain 1 lags the exact optimum: its lag is not zero.
-    assert!(l.iter().any(|v| v.abs() > 1e-9));
+    // The run at RelTol 1e-6 is not the converged one: the integration error is measured.
+    assert!(i.iter().any(|v| v.abs() > 0.0));
 }
 
 #[test]
@@ -118,14 +118,23 @@ fn switches_change_one_ingredient_only() {
     }
 }
 
-/// Inference recovers a rotation from a table the suite made at that rotation.
+/// Inference recovers a rotation from a table the suite made at that rotation (kong2019's ZNN
+/// scheme on the triangle, started on theta*0 so the drift is the scheme's alone; the triangle
+/// has no start phase and a printed size, so the rotation and the direction are the free
+/// parameters).
 #[test]
 fn inference_recovers_a_known_setup() {
     let jobs = jobs();
     let exact = find(&jobs, "kong2019-triangle", "ZNN (eq. 22)", "exact (Clarabel)");
+    // Tight tolerances: the drift here is ~1e-5, so AbsTol 1e-8 would leave 1e-3 of noise.
     let run = Job {
-        integrator: reproduce::explain::inference::inference_integrator(),
+        integrator: solvers::ode::IntegratorSettings {
+            rtol: 1e-10,
+            atol: 1e-13,
+            ..reproduce::explain::inference::inference_integrator()
+        },
         score: false,
+        theta0: exact.theta_ref.clone(),
         ..exact
     };
     let mut problem = TableProblem {
@@ -149,16 +158,22 @@ fn inference_recovers_a_known_setup() {
     let f = fit(
         &problem,
         Budget {
-            iterations: 40,
+            iterations: 100,
             profile_iterations: 0,
             profiles: false,
         },
     );
+    // Two of the five drifts vanish here, so other rotations come close (a local minimum near
+    // 1.5 rad at 1e-3, the reason the report prints profiles); the multi-start finds the truth.
     let best = f.best();
-    assert!(best.rel_residual < 1e-3, "residual {}", best.rel_residual);
+    assert!(best.rel_residual < 1e-5, "residual {}", best.rel_residual);
     assert!(!best.setup.reverse);
     let d = (best.setup.rotation - 0.9).rem_euclid(2.0 * std::f64::consts::PI);
-    assert!(d.min(2.0 * std::f64::consts::PI - d) < 0.02, "rotation {}", best.setup.rotation);
+    assert!(
+        d.min(2.0 * std::f64::consts::PI - d) < 1e-3,
+        "rotation {}",
+        best.setup.rotation
+    );
 }
 
 /// The committed report explains every paper with a published table and has the group-code

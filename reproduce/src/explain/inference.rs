@@ -20,7 +20,8 @@
 //! of the table, run in parallel. A profile fixes one continuous parameter on a grid and
 //! re-fits the others: a flat profile means the table does not determine that parameter.
 //!
-//! The exact runs here use Dormand-Prince at RelTol 1e-6 / AbsTol 1e-8 ([`inference_integrator`]):
+//! The exact runs here use RelTol 1e-6 / AbsTol 1e-8 ([`inference_integrator`], with the
+//! experiment's method):
 //! the ladder shows their drift within ~1e-4 relative of the converged one, far below the
 //! residuals a fit can reach. An inferred setup is always shown as "inferred setup (fitted to
 //! the paper)" beside the declared one, never instead of it.
@@ -39,7 +40,8 @@ use std::f64::consts::PI;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
-/// The exact column's integrator during inference (see the module doc).
+/// The exact column's tolerances during inference (see the module doc); the method stays the
+/// experiment's (Dormand-Prince, BDF for kong2019's stiff finite-time scheme).
 pub fn inference_integrator() -> IntegratorSettings {
     IntegratorSettings {
         method: Method::Dopri5,
@@ -50,8 +52,9 @@ pub fn inference_integrator() -> IntegratorSettings {
     }
 }
 
-/// Penalty residual of a setup whose run fails (an unreachable pose, an infeasible QP).
-const FAILED: f64 = 10.0;
+/// Penalty residual of a setup whose run fails (an unreachable pose, an infeasible QP); the
+/// report prints such points as failed.
+pub const FAILED: f64 = 10.0;
 
 /// One candidate setup of a table.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -181,7 +184,10 @@ pub fn problem(
                 format!("{paper} {table}: no exact run of {} / {}", m.experiment, m.variant)
             })?;
         let job = Job {
-            integrator: inference_integrator(),
+            integrator: IntegratorSettings {
+                method: exact.integrator.method,
+                ..inference_integrator()
+            },
             score: false,
             ..exact.clone()
         };
@@ -297,7 +303,7 @@ impl Free {
     /// Initial simplex step.
     fn step(self) -> f64 {
         match self {
-            Free::Rotation => 0.6,
+            Free::Rotation => 0.3,
             Free::Phase => 0.15,
             Free::LogScale => 0.3,
         }
@@ -450,8 +456,8 @@ impl Fit {
     }
 }
 
-/// The starts: every discrete combination (direction x RMP reading) from two poses (the second
-/// half a turn and, where the phase is free, half a cycle away).
+/// The starts: every discrete combination (direction x RMP reading) from four poses, a quarter
+/// turn (and, where the phase is free, a quarter cycle) apart.
 pub fn starts(p: &TableProblem) -> Vec<Setup> {
     let phase_free = free_parameters(p).contains(&Free::Phase);
     let readings: &[RmpReading] = if p.fit_rmp {
@@ -462,7 +468,8 @@ pub fn starts(p: &TableProblem) -> Vec<Setup> {
     let mut out = Vec::new();
     for &reverse in &[false, true] {
         for &rmp in readings {
-            for (rotation, phase) in [(0.0, 0.0), (PI, 0.5)] {
+            for k in 0..4 {
+                let (rotation, phase) = (f64::from(k) * PI / 2.0, f64::from(k) / 4.0);
                 out.push(Setup {
                     rotation,
                     phase: if phase_free { phase } else { 0.0 },

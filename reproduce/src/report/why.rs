@@ -289,7 +289,11 @@ pub fn inference_section(paper: &str, x: &Explanations) -> String {
                             "phase" => r.phase,
                             _ => r.scale_factor,
                         };
-                        format!("{v:.2} → {}", sci(r.rel_residual))
+                        if r.rel_residual >= FAILED_RESIDUAL {
+                            format!("{v:.2} → failed (a run of the table failed)")
+                        } else {
+                            format!("{v:.2} → {}", sci(r.rel_residual))
+                        }
                     })
                     .collect();
                 let spread = profile_spread(&profiles, name);
@@ -299,6 +303,8 @@ pub fn inference_section(paper: &str, x: &Explanations) -> String {
                     pts.join(", "),
                     if spread < 1.25 {
                         "flat: the table does not determine it"
+                    } else if spread < 2.0 {
+                        "weakly determined: the residual moves by less than 2x over the range"
                     } else {
                         "determined"
                     }
@@ -345,12 +351,15 @@ pub fn inference_section(paper: &str, x: &Explanations) -> String {
     out
 }
 
-/// Largest over smallest residual along one profile.
+use crate::explain::inference::FAILED as FAILED_RESIDUAL;
+
+/// Largest over smallest residual along one profile (failed points left out).
 fn profile_spread(profiles: &[&&InferenceRow], name: &str) -> f64 {
     let r: Vec<f64> = profiles
         .iter()
         .filter(|r| r.kind.trim_start_matches("profile: ") == name)
         .map(|r| r.rel_residual)
+        .filter(|r| *r < FAILED_RESIDUAL)
         .collect();
     let lo = r.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = r.iter().copied().fold(0.0, f64::max);
@@ -409,7 +418,10 @@ pub fn section(paper: &str, x: &Explanations, values: &[PaperValue], _runs: &Run
         out.push_str("\n#### Tolerance ladder\n\n");
         out.push_str(&ladder);
     }
-    if paper != crate::explain::GROUP {
+    let has_tables = crate::explain::inference::table_ids(values)
+        .iter()
+        .any(|(p, _)| p == paper);
+    if has_tables {
         out.push_str("\n#### Setup inference\n\n");
         out.push_str(&inference_section(paper, x));
     }
@@ -476,6 +488,35 @@ pub fn summary(paper: &str, x: &Explanations, values: &[PaperValue]) -> String {
                 closer += 1;
             }
         }
+    }
+    // Several published solver columns on one scheme: how far apart the paper's are, and ours.
+    let mut schemes: Vec<(&str, &str)> = keys.iter().map(|k| (k.0, k.1)).collect();
+    schemes.dedup();
+    for (experiment, variant) in schemes {
+        let norms: Vec<(f64, f64)> = MAPPINGS
+            .iter()
+            .filter(|m| m.experiment == experiment && m.variant == variant)
+            .filter_map(|m| {
+                let theirs = published(values, m, "drift_norm")?.0;
+                let ours = component(&x.attribution, (m.experiment, m.variant, m.solver), "run")?
+                    .drift_norm?;
+                Some((theirs, ours))
+            })
+            .collect();
+        if norms.len() < 2 {
+            continue;
+        }
+        let spread = |v: &[f64]| {
+            v.iter().copied().fold(0.0, f64::max) / v.iter().copied().fold(f64::INFINITY, f64::min)
+        };
+        let theirs: Vec<f64> = norms.iter().map(|n| n.0).collect();
+        let ours: Vec<f64> = norms.iter().map(|n| n.1).collect();
+        out.push_str(&format!(
+            " On `{experiment}` {variant} the paper's {} solvers' drift norms span a factor {:.1}, ours {:.2}: one scheme, so solvers that converge cannot differ by more than their lag.",
+            norms.len(),
+            spread(&theirs),
+            spread(&ours)
+        ));
     }
     if compared > 0 {
         let lo = ratios.iter().copied().fold(f64::INFINITY, f64::min);
