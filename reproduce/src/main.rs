@@ -126,7 +126,11 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
     }
     let git_rev = reproduce::git_revision();
     if let Some(which) = &cli.infer {
-        infer(&cli, which, &files.iter().flat_map(|f| f.jobs()).collect::<Vec<_>>())?;
+        infer(
+            &cli,
+            which,
+            &files.iter().flat_map(|f| f.jobs()).collect::<Vec<_>>(),
+        )?;
         return Ok(ExitCode::SUCCESS);
     }
     let all: Vec<Job> = files.iter().flat_map(|f| f.jobs()).collect();

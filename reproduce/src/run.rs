@@ -18,6 +18,13 @@ use std::time::Instant;
 /// Samples kept per run for the figures (uniform in t, plus the last).
 const TRACE_POINTS: usize = 400;
 
+/// A run stops as diverging when a joint velocity exceeds this many times its bound (the
+/// papers' schemes keep every joint inside its bound; 10x is far outside anything a run that
+/// recovers reaches, and MTN's blow-up passes it within a fraction of a second).
+pub const DIVERGENCE_FACTOR: f64 = 10.0;
+/// ... or when an entry of the integrated state (angles, velocities, network state) exceeds this.
+pub const DIVERGENCE_STATE: f64 = 1e6;
+
 /// One row of a run's trace.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TracePoint {
@@ -216,7 +223,9 @@ fn run_with<const N: usize>(
                 let control = match probe.optimum(t, &theta, &thetadot) {
                     Ok(x) => {
                         observer.sample(t, y, &x, level);
-                        Control::Continue
+                        observer
+                            .divergence(y)
+                            .map_or(Control::Continue, Control::Stop)
                     }
                     Err(e) => Control::Stop(format!("exact QP at t = {t:.6}: {e}")),
                 };
@@ -246,7 +255,9 @@ fn run_with<const N: usize>(
                 if !job.score {
                     observer.sample(t, y, &x_nn, level);
                     observer.seconds += started.elapsed().as_secs_f64();
-                    return Control::Continue;
+                    return observer
+                        .divergence(y)
+                        .map_or(Control::Continue, Control::Stop);
                 }
                 match scorer.optimum(t, &theta, &thetadot) {
                     Ok(x_star) => {
@@ -271,7 +282,9 @@ fn run_with<const N: usize>(
                 }
                 observer.sample(t, y, &x_nn, level);
                 observer.seconds += started.elapsed().as_secs_f64();
-                Control::Continue
+                observer
+                    .divergence(y)
+                    .map_or(Control::Continue, Control::Stop)
             });
             let mut r = finish(result, None, &observer, scorer.stats());
             r.1.rhs_evals += sys.jacobian_rhs_evals;
@@ -298,11 +311,7 @@ fn finish<const N: usize>(
     qp: ExactPathStats,
 ) -> (Outcome, OdeStats, ExactPathStats) {
     match result {
-        Ok((_, stats)) => (
-            Outcome::Completed(observer.metrics.finish(0.0)),
-            stats,
-            qp,
-        ),
+        Ok((_, stats)) => (Outcome::Completed(observer.metrics.finish(0.0)), stats, qp),
         Err(OdeFailure { error, stats }) => {
             // The last accepted step; a loop failure (the exact QP) names its own instant.
             let t = observer.last_t;
@@ -322,6 +331,8 @@ struct Observer<'a, const N: usize> {
     trace: Vec<TracePoint>,
     next_trace_t: f64,
     last_t: f64,
+    /// Joint velocities at the last accepted step (for [`Self::divergence`]).
+    last_thetadot: SVector<f64, N>,
     last_dx: Option<f64>,
     last_network_error: Option<f64>,
     score_failures: usize,
@@ -345,6 +356,7 @@ impl<'a, const N: usize> Observer<'a, N> {
             trace: Vec::with_capacity(TRACE_POINTS + 2),
             next_trace_t: 0.0,
             last_t: 0.0,
+            last_thetadot: SVector::zeros(),
             last_dx: None,
             last_network_error: None,
             score_failures: 0,
@@ -366,6 +378,28 @@ impl<'a, const N: usize> Observer<'a, N> {
         self.last_network_error = Some(e);
     }
 
+    /// Why the run is diverging at the state just sampled, if it is: a joint velocity beyond
+    /// [`DIVERGENCE_FACTOR`] times its bound, or a state entry beyond [`DIVERGENCE_STATE`]. The
+    /// run stops there with that reason instead of integrating a blow-up to the step limit.
+    fn divergence(&self, y: &[f64]) -> Option<String> {
+        let limits = self.robot.limits();
+        for i in 0..N {
+            let v = self.last_thetadot[i];
+            let bound = limits.thetadot_max[i].max(-limits.thetadot_min[i]);
+            if bound.is_finite() && v.abs() > DIVERGENCE_FACTOR * bound {
+                return Some(format!(
+                    "diverging: |thetadot_{}| = {:.3e} rad/s exceeds {DIVERGENCE_FACTOR} x its bound {bound} rad/s",
+                    i + 1,
+                    v.abs()
+                ));
+            }
+        }
+        let peak = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        (peak > DIVERGENCE_STATE || !peak.is_finite()).then(|| {
+            format!("diverging: a state entry reached {peak:.3e} (limit {DIVERGENCE_STATE:e})")
+        })
+    }
+
     /// Records the accepted state y at t with joint command x (x[..n] = thetadot or thetaddot).
     fn sample(&mut self, t: f64, y: &[f64], x: &DVector<f64>, level: Level) {
         let (theta, thetadot) = arm_state::<N>(level, y, x.as_slice());
@@ -385,6 +419,7 @@ impl<'a, const N: usize> Observer<'a, N> {
             jacobian: self.robot.jacobian(&theta),
         };
         self.metrics.push(&s);
+        self.last_thetadot = thetadot;
         let duration = self.path.duration();
         let is_end = t >= duration * (1.0 - 1e-12);
         if t >= self.next_trace_t || is_end {

@@ -26,7 +26,12 @@ fn find(jobs: &[Job], experiment: &str, variant: &str, solver: &str) -> Job {
 
 /// kong2019's ZNN on the circle from theta*0: cheap (a few hundred steps), not stiff.
 fn znn_circle(jobs: &[Job]) -> Job {
-    find(jobs, "kong2019-circle", "ZNN (eq. 22) [start on theta*0]", "ZNN")
+    find(
+        jobs,
+        "kong2019-circle",
+        "ZNN (eq. 22) [start on theta*0]",
+        "ZNN",
+    )
 }
 
 #[test]
@@ -38,7 +43,10 @@ fn ladder_converges_and_attribution_adds_up() {
     // The ladder: the reference is the finest BDF rung, and tightening the tolerance by six
     // decades gains digits.
     let neural: Vec<_> = x.ladder.iter().filter(|r| r.solver == "ZNN").collect();
-    let reference = neural.iter().find(|r| r.reference).expect("a reference rung");
+    let reference = neural
+        .iter()
+        .find(|r| r.reference)
+        .expect("a reference rung");
     assert_eq!((reference.method.as_str(), reference.rtol), ("bdf", 1e-10));
     let digits = |rtol: f64| {
         neural
@@ -62,8 +70,7 @@ fn ladder_converges_and_attribution_adds_up() {
             .iter()
             .find(|r| r.component == name)
             .unwrap_or_else(|| panic!("component {name}"));
-        [r.drift_1, r.drift_2, r.drift_3, r.drift_4, r.drift_5]
-            .map(|d| d.expect("every joint"))
+        [r.drift_1, r.drift_2, r.drift_3, r.drift_4, r.drift_5].map(|d| d.expect("every joint"))
     };
     let run = comp("run");
     let (s, l, i) = (
@@ -89,11 +96,19 @@ fn switches_change_one_ingredient_only() {
     let perturbed = jobs
         .iter()
         .find(|j| {
-            matches!(&j.solver, SolverChoice::Neural(SolverSpec::FpCdnn { perturbation: Some(_), .. }))
+            matches!(
+                &j.solver,
+                SolverChoice::Neural(SolverSpec::FpCdnn {
+                    perturbation: Some(_),
+                    ..
+                })
+            )
         })
         .expect("a perturbed FP-CDNN run")
         .clone();
-    let off = Switch::NoPerturbation.apply(&perturbed).expect("it has one");
+    let off = Switch::NoPerturbation
+        .apply(&perturbed)
+        .expect("it has one");
     match (&perturbed.solver, &off.solver) {
         (
             SolverChoice::Neural(SolverSpec::FpCdnn { gamma: a, .. }),
@@ -113,7 +128,10 @@ fn switches_change_one_ingredient_only() {
     assert!(Switch::FinerSmoothing.apply(&znn_circle(&jobs)).is_none());
     // Ladder rungs keep everything but the integrator.
     for j in ladder::jobs(&perturbed) {
-        assert_eq!((j.solver.clone(), j.path.clone()), (perturbed.solver.clone(), perturbed.path.clone()));
+        assert_eq!(
+            (j.solver.clone(), j.path.clone()),
+            (perturbed.solver.clone(), perturbed.path.clone())
+        );
         assert!(!j.score);
     }
 }
@@ -125,7 +143,12 @@ fn switches_change_one_ingredient_only() {
 #[test]
 fn inference_recovers_a_known_setup() {
     let jobs = jobs();
-    let exact = find(&jobs, "kong2019-triangle", "ZNN (eq. 22)", "exact (Clarabel)");
+    let exact = find(
+        &jobs,
+        "kong2019-triangle",
+        "ZNN (eq. 22)",
+        "exact (Clarabel)",
+    );
     // Tight tolerances: the drift here is ~1e-5, so AbsTol 1e-8 would leave 1e-3 of noise.
     let run = Job {
         integrator: solvers::ode::IntegratorSettings {
@@ -151,9 +174,17 @@ fn inference_recovers_a_known_setup() {
     };
     let synthetic = evaluate(&problem, truth);
     assert!(synthetic.failure.is_none(), "{:?}", synthetic.failure);
-    problem.columns[0].2 = synthetic.entries[0].1.iter().map(|(ours, _)| *ours).collect();
+    problem.columns[0].2 = synthetic.entries[0]
+        .1
+        .iter()
+        .map(|(ours, _)| *ours)
+        .collect();
     let declared = evaluate(&problem, Setup::DECLARED);
-    assert!(declared.rel_residual > 0.05, "the rotation matters: {}", declared.rel_residual);
+    assert!(
+        declared.rel_residual > 0.05,
+        "the rotation matters: {}",
+        declared.rel_residual
+    );
 
     let f = fit(
         &problem,
@@ -184,7 +215,9 @@ fn the_report_explains_every_paper_with_a_table() {
     let md = to_markdown(&Inputs::load(&reproduce::workspace_root()).unwrap());
     for paper in ["jia2019", "zhong2021", "kong2019", "zhang2018"] {
         let start = md.find(&format!("\n## {paper}\n")).expect("paper section");
-        let end = md[start + 1..].find("\n## ").map_or(md.len(), |e| start + 1 + e);
+        let end = md[start + 1..]
+            .find("\n## ")
+            .map_or(md.len(), |e| start + 1 + e);
         let section = &md[start..end];
         assert!(section.contains("### Why the numbers differ"), "{paper}");
         assert!(section.contains("#### Drift attribution"), "{paper}");
@@ -192,8 +225,13 @@ fn the_report_explains_every_paper_with_a_table() {
     }
     for paper in ["jia2019", "zhong2021", "kong2019"] {
         let start = md.find(&format!("\n## {paper}\n")).unwrap();
-        let end = md[start + 1..].find("\n## ").map_or(md.len(), |e| start + 1 + e);
-        assert!(md[start..end].contains("inferred setup (fitted to the paper)"), "{paper}");
+        let end = md[start + 1..]
+            .find("\n## ")
+            .map_or(md.len(), |e| start + 1 + e);
+        assert!(
+            md[start..end].contains("inferred setup (fitted to the paper)"),
+            "{paper}"
+        );
     }
     assert!(md.contains("## The group's own code (reference experiment)"));
 }

@@ -309,7 +309,13 @@ impl SchemeSpec {
                     beta_theta > 0.0,
                     "finite and > 0",
                 )?;
-                check(s, "k_p", k_p, k_p >= 0.0, "finite and >= 0 (0: no position feedback)")?;
+                check(
+                    s,
+                    "k_p",
+                    k_p,
+                    k_p >= 0.0,
+                    "finite and >= 0 (0: no position feedback)",
+                )?;
                 check(
                     s,
                     "alpha",
@@ -320,7 +326,13 @@ impl SchemeSpec {
             }
             SchemeSpec::Kong2019Znn { mu, k_p } => {
                 check(s, "mu", mu, mu > 0.0, "finite and > 0")?;
-                check(s, "k_p", k_p, k_p >= 0.0, "finite and >= 0 (0: no position feedback)")
+                check(
+                    s,
+                    "k_p",
+                    k_p,
+                    k_p >= 0.0,
+                    "finite and >= 0 (0: no position feedback)",
+                )
             }
         }
     }

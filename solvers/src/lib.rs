@@ -12,7 +12,7 @@ pub mod random_qp;
 pub use active_set::{
     ActiveSetError, ActiveSetSolution, ActiveSetSolver, ActiveSetStart, Constraint, WorkingSet,
 };
-pub use exact_path::{ExactPath, ExactPathStats};
 pub use exact::{solve_equality_kkt, ExactError, ExactSolution, ExactSolver, ExactStatus};
+pub use exact_path::{ExactPath, ExactPathStats};
 pub use qp::{KktResiduals, Qp, QpDims, QpDuals};
 pub use random_qp::{random_feasible, random_qp, QpShape};

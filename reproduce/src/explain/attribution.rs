@@ -61,7 +61,10 @@ impl Switch {
             score: false,
             ..job.clone()
         };
-        out.integrator.max_steps = out.integrator.max_steps.min(super::ladder::LADDER_MAX_STEPS);
+        out.integrator.max_steps = out
+            .integrator
+            .max_steps
+            .min(super::ladder::LADDER_MAX_STEPS);
         match self {
             Switch::NoPerturbation => {
                 let spec = without_perturbation(spec)?;
@@ -163,10 +166,12 @@ pub fn attribution_rows(
     };
     let drifts = |r: &LadderRow| -> Option<Vec<f64>> {
         (r.status == "ok").then(|| {
-            [r.drift_1, r.drift_2, r.drift_3, r.drift_4, r.drift_5, r.drift_6]
-                .into_iter()
-                .flatten()
-                .collect()
+            [
+                r.drift_1, r.drift_2, r.drift_3, r.drift_4, r.drift_5, r.drift_6,
+            ]
+            .into_iter()
+            .flatten()
+            .collect()
         })
     };
     let d_run = drifts(run);
@@ -235,12 +240,12 @@ pub fn attribution_rows(
     for (s, r) in switches {
         let d_off = (r.status == "ok").then(|| r.drifts());
         let err = run.max_pos_err.zip(r.max_pos_err).map(|(a, b)| a - b);
-        rows.push(row(
-            s.component(),
-            diff(&d_run, &d_off),
-            err,
-            &format!("run without it: {}", r.failure),
-        ));
+        let note = if d_run.is_none() {
+            format!("the run itself failed: {}", run.failure)
+        } else {
+            format!("run without it: {}", r.failure)
+        };
+        rows.push(row(s.component(), diff(&d_run, &d_off), err, &note));
     }
     rows
 }

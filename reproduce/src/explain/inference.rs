@@ -146,13 +146,18 @@ pub fn problem(
         fit_rmp: false,
     };
     let mut seen: Vec<(&str, &str)> = Vec::new();
-    for v in values.iter().filter(|v| v.paper == paper && v.table == table) {
+    for v in values
+        .iter()
+        .filter(|v| v.paper == paper && v.table == table)
+    {
         if seen.contains(&(&v.experiment, &v.column)) {
             continue;
         }
         seen.push((&v.experiment, &v.column));
         let Some(m) = MAPPINGS.iter().find(|m| {
-            m.paper == paper && m.published_experiment == v.experiment && m.published_column == v.column
+            m.paper == paper
+                && m.published_experiment == v.experiment
+                && m.published_column == v.column
         }) else {
             continue;
         };
@@ -181,7 +186,10 @@ pub fn problem(
                     && j.solver == SolverChoice::Exact
             })
             .ok_or_else(|| {
-                format!("{paper} {table}: no exact run of {} / {}", m.experiment, m.variant)
+                format!(
+                    "{paper} {table}: no exact run of {} / {}",
+                    m.experiment, m.variant
+                )
             })?;
         let job = Job {
             integrator: IntegratorSettings {
@@ -209,7 +217,9 @@ pub fn problem(
         p.columns.push((v.column.clone(), index, drifts));
     }
     if p.columns.is_empty() {
-        return Err(format!("{paper} {table}: no published per-joint drifts map onto a run"));
+        return Err(format!(
+            "{paper} {table}: no published per-joint drifts map onto a run"
+        ));
     }
     Ok(p)
 }
@@ -339,7 +349,10 @@ impl Free {
 /// The free continuous parameters of a table.
 pub fn free_parameters(p: &TableProblem) -> Vec<Free> {
     let mut f = vec![Free::Rotation];
-    if p.runs.iter().all(|j| schemes::paths::phase_supported(&j.path.name)) {
+    if p.runs
+        .iter()
+        .all(|j| schemes::paths::phase_supported(&j.path.name))
+    {
         f.push(Free::Phase);
     }
     if p.fit_scale {
@@ -461,7 +474,11 @@ impl Fit {
 pub fn starts(p: &TableProblem) -> Vec<Setup> {
     let phase_free = free_parameters(p).contains(&Free::Phase);
     let readings: &[RmpReading] = if p.fit_rmp {
-        &[RmpReading::Printed, RmpReading::Expansion, RmpReading::TextGain]
+        &[
+            RmpReading::Printed,
+            RmpReading::Expansion,
+            RmpReading::TextGain,
+        ]
     } else {
         &[RmpReading::Printed]
     };

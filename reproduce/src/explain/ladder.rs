@@ -83,16 +83,13 @@ pub fn rungs(job: &Job) -> Vec<IntegratorSettings> {
             };
             out.push(rung(Method::Bdf, 1e-3, 1e-6, max_step));
             for method in [Method::Bdf, second] {
-                out.extend(
-                    rtols
-                        .iter()
-                        .map(|&r| rung(method, r, r / 100.0, max_step)),
-                );
+                out.extend(rtols.iter().map(|&r| rung(method, r, r / 100.0, max_step)));
             }
             // The run's own setting keeps its own step limit: it is the run of results/runs.csv.
             let own = job.integrator;
             if let Some(same) = out.iter_mut().find(|r| {
-                (r.method, r.rtol, r.atol, r.max_step) == (own.method, own.rtol, own.atol, own.max_step)
+                (r.method, r.rtol, r.atol, r.max_step)
+                    == (own.method, own.rtol, own.atol, own.max_step)
             }) {
                 *same = own;
             } else {

@@ -86,7 +86,10 @@ pub fn explain(targets: &[Job], all: &[Job], progress: bool, git_rev: &str) -> E
     let mut switch_spans = Vec::new();
     for t in targets {
         let s = switch_jobs(t);
-        switch_spans.push((jobs.len(), s.iter().map(|(k, _)| *k).collect::<Vec<Switch>>()));
+        switch_spans.push((
+            jobs.len(),
+            s.iter().map(|(k, _)| *k).collect::<Vec<Switch>>(),
+        ));
         jobs.extend(s.into_iter().map(|(_, j)| j));
     }
     let rows: Vec<RunRow> = run_jobs(&jobs, progress)
@@ -152,11 +155,9 @@ pub fn read_csv<T: DeserializeOwned>(path: &Path) -> Result<Vec<T>, String> {
 pub fn write(results_dir: &Path, fresh: &Explained) -> Result<(), String> {
     let ladder_path = results_dir.join("ladder.csv");
     let attribution_path = results_dir.join("attribution.csv");
-    let ladder = merge(
-        read_csv::<LadderRow>(&ladder_path)?,
-        &fresh.ladder,
-        |r| (r.experiment.clone(), r.variant.clone(), r.solver.clone()),
-    );
+    let ladder = merge(read_csv::<LadderRow>(&ladder_path)?, &fresh.ladder, |r| {
+        (r.experiment.clone(), r.variant.clone(), r.solver.clone())
+    });
     let attribution = merge(
         read_csv::<AttributionRow>(&attribution_path)?,
         &fresh.attribution,

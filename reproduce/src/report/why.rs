@@ -21,7 +21,11 @@ pub struct Explanations {
 }
 
 /// The component names of the attribution, in column order (switches after the sum).
-const SUM: [&str; 3] = ["scheme (exact, converged)", "network lag", "integration error"];
+const SUM: [&str; 3] = [
+    "scheme (exact, converged)",
+    "network lag",
+    "integration error",
+];
 
 fn runs_of<'a>(rows: &'a [AttributionRow], paper: &str) -> Vec<(&'a str, &'a str, &'a str)> {
     let mut out: Vec<(&str, &str, &str)> = Vec::new();
@@ -146,11 +150,15 @@ pub fn ladder_table(paper: &str, x: &Explanations) -> String {
     let mut rungs: Vec<(String, f64, f64)> = Vec::new();
     for r in &rows {
         let k = (r.method.clone(), r.rtol, r.atol);
-        if r.max_step.is_none() && !rungs.contains(&k) {
+        if !rungs.contains(&k) {
             rungs.push(k);
         }
     }
-    rungs.sort_by(|a, b| a.0.cmp(&b.0).then(b.1.total_cmp(&a.1)).then(b.2.total_cmp(&a.2)));
+    rungs.sort_by(|a, b| {
+        a.0.cmp(&b.0)
+            .then(b.1.total_cmp(&a.1))
+            .then(b.2.total_cmp(&a.2))
+    });
     let mut keys: Vec<(&str, &str, &str)> = Vec::new();
     for r in &rows {
         let k = (r.experiment.as_str(), r.variant.as_str(), r.solver.as_str());
@@ -159,19 +167,15 @@ pub fn ladder_table(paper: &str, x: &Explanations) -> String {
         }
     }
     let mut header = vec!["run".to_string()];
-    header.extend(
-        rungs
-            .iter()
-            .map(|(m, r, a)| {
-                let matlab = m == "bdf" && *r == 1e-3 && *a == 1e-6;
-                format!(
-                    "{m} {}/{}{}",
-                    short_tol(*r),
-                    short_tol(*a),
-                    if matlab { " (MATLAB default)" } else { "" }
-                )
-            }),
-    );
+    header.extend(rungs.iter().map(|(m, r, a)| {
+        let matlab = m == "bdf" && *r == 1e-3 && *a == 1e-6;
+        format!(
+            "{m} {}/{}{}",
+            short_tol(*r),
+            short_tol(*a),
+            if matlab { " (MATLAB default)" } else { "" }
+        )
+    }));
     let mut t = Table::new(header);
     for key in keys {
         let mut row = vec![format!("`{}` {} / {}", key.0, key.1, key.2)];
@@ -181,14 +185,16 @@ pub fn ladder_table(paper: &str, x: &Explanations) -> String {
                     && &r.method == m
                     && r.rtol == *rt
                     && r.atol == *at
-                    && r.max_step.is_none()
             });
             row.push(match r {
                 None => MISSING.to_string(),
                 Some(r) if r.reference => "ref".to_string(),
                 Some(r) if r.status != "ok" => "×".to_string(),
                 Some(r) => {
-                    let d = r.stable_digits.map(|d| format!("{d:.1}")).unwrap_or_default();
+                    let d = r
+                        .stable_digits
+                        .map(|d| format!("{d:.1}"))
+                        .unwrap_or_default();
                     if r.as_run {
                         format!("**{d}**")
                     } else {
@@ -201,7 +207,7 @@ pub fn ladder_table(paper: &str, x: &Explanations) -> String {
     }
     let mut out = t.without_empty_columns().render();
     out.push_str(
-        "\nCells: significant digits the drift shares with the converged drift (\"ref\", the finest completed rung; -log10 of the relative change), **bold** at the run's own setting; × the rung did not finish (an explicit method on a stiff network, or the step cap). A published digit beyond the digits at the paper's setting (ode15s = bdf at RelTol 1e-6 / AbsTol 1e-8; MATLAB's default is 1e-3 / 1e-6) can be integration noise. Every rung with its drifts, steps and wall time: `results/ladder.csv`.\n",
+        "\nCells: significant digits the drift shares with the converged drift (\"ref\", the finest completed rung; -log10 of the relative change), **bold** at the run's own setting; × the rung did not finish (an explicit method on a stiff network, or the step cap). A published digit beyond the digits at the paper's setting (ode15s = bdf at RelTol 1e-6 / AbsTol 1e-8; MATLAB's default is 1e-3 / 1e-6) can be integration noise. A run with the group's MaxStep keeps it on every rung. Every rung with its drifts, steps and wall time: `results/ladder.csv`.\n",
     );
     out
 }
@@ -451,8 +457,13 @@ pub fn summary(paper: &str, x: &Explanations, values: &[PaperValue]) -> String {
     };
     let (s, l, i) = (shares(SUM[0]), shares(SUM[1]), shares(SUM[2]));
     let mut out = format!(
-        "\n**Why** (see \"Why the numbers differ\" below). Over {} runs of the paper's solver, the scheme itself (exact column, converged) carries {} of the drift (|d_exact| / |d_run|), the network's lag {} and integration error {}.",
+        "\n**Why** (see \"Why the numbers differ\" below). Over {} runs of {}, the scheme itself (exact column, converged) carries {} of the drift (|d_exact| / |d_run|), the network's lag {} and integration error {}.",
         keys.len(),
+        if paper == crate::explain::GROUP {
+            "the group's network"
+        } else {
+            "the paper's solver"
+        },
         range(&s),
         range(&l),
         range(&i)

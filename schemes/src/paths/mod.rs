@@ -50,7 +50,8 @@ pub use polyline_global::{shift_closed_loop, GlobalPolyline};
 pub use pose::{pose_rotation, Posed};
 pub use reversed::Reversed;
 pub use spec::{
-    build_path, default_duration, phase_supported, default_scale, scale_provenance, PathSpec, PATH_NAMES,
+    build_path, default_duration, default_scale, phase_supported, scale_provenance, PathSpec,
+    PATH_NAMES,
 };
 pub use stroke::{StrokePath, StrokeSegment};
 pub use time_law::{Fraction, RestToRest};
