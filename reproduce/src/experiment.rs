@@ -91,6 +91,21 @@ pub struct Variant {
     /// Integrator of this variant's neural runs (overrides the experiment's).
     #[serde(default)]
     pub integrator: Option<IntegratorSettings>,
+    /// Initial state of the networks (the papers do not print it; default: zero).
+    #[serde(default)]
+    pub network_init: NetworkInit,
+}
+
+/// Where a network's state starts: the papers leave it open, the group's code starts from zero.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum NetworkInit {
+    /// y(0) = 0 (thetadot = 0 and zero multipliers at the velocity level), as the group's code.
+    #[default]
+    Zero,
+    /// The network's joint command starts at the exact optimum x*(0) of the QP at t = 0 (its
+    /// other state entries, multipliers and auxiliary variables, at zero): no start transient.
+    Exact,
 }
 
 fn yes() -> bool {
@@ -130,6 +145,8 @@ pub struct Job {
     /// experiment file; the controlled re-runs of [`crate::explain`] need only drift and
     /// position error and switch it off).
     pub score: bool,
+    /// Initial state of a neural run's network.
+    pub network_init: NetworkInit,
 }
 
 impl Job {
@@ -353,6 +370,7 @@ impl PaperFile {
             solver: SolverChoice::Exact,
             integrator: e.exact_integrator,
             score: true,
+            network_init: NetworkInit::Zero,
         };
         if v.exact {
             jobs.push(base.clone());
@@ -362,6 +380,7 @@ impl PaperFile {
             jobs.push(Job {
                 solver: SolverChoice::Neural(s.clone()),
                 integrator,
+                network_init: v.network_init,
                 ..base.clone()
             });
         }

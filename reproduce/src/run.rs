@@ -2,7 +2,7 @@
 //! score against the exact optimum and a thinned trace for the figures.
 
 use crate::coupled::{arm_dim, arm_state, ExactLoop, NeuralLoop};
-use crate::experiment::{Job, SolverChoice};
+use crate::experiment::{Job, NetworkInit, SolverChoice};
 use crate::metrics::{MetricsAccumulator, RunMetrics, Sample, ScoreSample};
 use crate::robot_registry::{robot_by_name, AnyRobot};
 use nalgebra::{DVector, SVector};
@@ -244,6 +244,18 @@ fn run_with<const N: usize>(
             let mut y0 = vec![0.0; sys.dim()];
             y0[..N].copy_from_slice(theta0.as_slice());
             let mut scorer = ExactLoop::new(scheme.as_ref());
+            if job.network_init == NetworkInit::Exact {
+                // x*(0) at the arm's initial state (at the velocity level thetadot is the
+                // command itself, which the QP does not depend on).
+                let thetadot0 = match level {
+                    Level::Velocity => SVector::zeros(),
+                    Level::Acceleration => SVector::from_column_slice(&y0[N..2 * N]),
+                };
+                let x0 = scorer
+                    .optimum(0.0, &theta0, &thetadot0)
+                    .map_err(|e| format!("network_init = \"exact\": the QP at t = 0: {e}"))?;
+                y0[k..k + x0.len()].copy_from_slice(x0.as_slice());
+            }
             // A second instance of the network, to read its own error at accepted states.
             let mut probe =
                 solvers::neural::build_solver(spec, scheme.dims()).map_err(|e| e.to_string())?;

@@ -235,3 +235,28 @@ fn the_report_explains_every_paper_with_a_table() {
     }
     assert!(md.contains("## The group's own code (reference experiment)"));
 }
+
+/// `network_init = "exact"` starts the network's command at x*(0): no start transient, so its
+/// first scored distance to the optimum is at round-off, where the zero start's is |x*(0)|.
+#[test]
+fn network_can_start_at_the_exact_optimum() {
+    use reproduce::experiment::NetworkInit;
+    use reproduce::run::run_job;
+    let jobs = jobs();
+    // The deviated start: x*(0) = -mu (theta0 - theta*0) + ... is not zero.
+    let zero = find(&jobs, "kong2019-circle", "ZNN (eq. 22)", "ZNN");
+    let exact = Job {
+        network_init: NetworkInit::Exact,
+        ..zero.clone()
+    };
+    let first = |j: &Job| {
+        run_job(j)
+            .trace
+            .iter()
+            .find_map(|p| p.score_dx)
+            .expect("a scored sample")
+    };
+    let (from_zero, from_exact) = (first(&zero), first(&exact));
+    assert!(from_exact < 1e-9, "{from_exact}");
+    assert!(from_zero > 1e-3, "{from_zero}");
+}
