@@ -1067,48 +1067,7 @@ fn lu_solve(a: &[f64], n: usize, piv: &[usize], b: &mut [f64]) {
     }
 }
 
-/// Rejects malformed data (see [`ActiveSetError::InvalidData`]).
+/// Rejects malformed data (see [`ActiveSetError::InvalidData`] and [`Qp::validate`]).
 fn validate(qp: &Qp) -> Result<(), ActiveSetError> {
-    let QpDims { nx, n_eq, n_in } = qp.dims();
-    let shapes = [
-        ("P", qp.p.shape(), (nx, nx)),
-        ("A", qp.a.shape(), (n_eq, nx)),
-        ("G", qp.g.shape(), (n_in, nx)),
-        ("lower", qp.lower.shape(), (nx, 1)),
-        ("upper", qp.upper.shape(), (nx, 1)),
-    ];
-    for (name, got, want) in shapes {
-        if got != want {
-            return Err(ActiveSetError::InvalidData(format!(
-                "{name} is {got:?}, expected {want:?}"
-            )));
-        }
-    }
-    let finite = [
-        ("P", qp.p.as_slice()),
-        ("q", qp.q.as_slice()),
-        ("A", qp.a.as_slice()),
-        ("b", qp.b.as_slice()),
-        ("G", qp.g.as_slice()),
-    ];
-    for (name, data) in finite {
-        if data.iter().any(|v| !v.is_finite()) {
-            return Err(ActiveSetError::InvalidData(format!(
-                "{name} has a non-finite entry"
-            )));
-        }
-    }
-    let one_sided = [
-        ("h", qp.h.as_slice(), f64::NEG_INFINITY),
-        ("upper", qp.upper.as_slice(), f64::NEG_INFINITY),
-        ("lower", qp.lower.as_slice(), f64::INFINITY),
-    ];
-    for (name, data, wrong) in one_sided {
-        if data.iter().any(|&v| v.is_nan() || v == wrong) {
-            return Err(ActiveSetError::InvalidData(format!(
-                "{name} has a NaN or {wrong} entry"
-            )));
-        }
-    }
-    Ok(())
+    qp.validate().map_err(ActiveSetError::InvalidData)
 }

@@ -82,6 +82,48 @@ impl Qp {
         }
     }
 
+    /// Checks the data: every matrix and vector of the sizes q, b and h imply, P, q, A, b and G
+    /// finite, and the one-sided data on its own side (h_i, u_i never -inf, l_i never +inf; no
+    /// NaN). The message names the offending field.
+    pub fn validate(&self) -> Result<(), String> {
+        let (nx, n_eq, n_in) = (self.q.len(), self.b.len(), self.h.len());
+        let shapes = [
+            ("P", self.p.shape(), (nx, nx)),
+            ("A", self.a.shape(), (n_eq, nx)),
+            ("G", self.g.shape(), (n_in, nx)),
+            ("lower", self.lower.shape(), (nx, 1)),
+            ("upper", self.upper.shape(), (nx, 1)),
+        ];
+        for (name, got, want) in shapes {
+            if got != want {
+                return Err(format!("{name} is {got:?}, expected {want:?}"));
+            }
+        }
+        let finite = [
+            ("P", self.p.as_slice()),
+            ("q", self.q.as_slice()),
+            ("A", self.a.as_slice()),
+            ("b", self.b.as_slice()),
+            ("G", self.g.as_slice()),
+        ];
+        for (name, data) in finite {
+            if data.iter().any(|v| !v.is_finite()) {
+                return Err(format!("{name} has a non-finite entry"));
+            }
+        }
+        let one_sided = [
+            ("h", self.h.as_slice(), f64::NEG_INFINITY),
+            ("upper", self.upper.as_slice(), f64::NEG_INFINITY),
+            ("lower", self.lower.as_slice(), f64::INFINITY),
+        ];
+        for (name, data, wrong) in one_sided {
+            if data.iter().any(|&v| v.is_nan() || v == wrong) {
+                return Err(format!("{name} has a NaN or {wrong} entry"));
+            }
+        }
+        Ok(())
+    }
+
     pub fn dims(&self) -> QpDims {
         QpDims {
             nx: self.q.len(),

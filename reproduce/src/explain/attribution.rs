@@ -164,16 +164,7 @@ pub fn attribution_rows(
     let Some(run) = neural.iter().find(|r| r.as_run) else {
         return Vec::new();
     };
-    let drifts = |r: &LadderRow| -> Option<Vec<f64>> {
-        (r.status == "ok").then(|| {
-            [
-                r.drift_1, r.drift_2, r.drift_3, r.drift_4, r.drift_5, r.drift_6,
-            ]
-            .into_iter()
-            .flatten()
-            .collect()
-        })
-    };
+    let drifts = |r: &LadderRow| (r.status == "ok").then(|| r.drifts());
     let d_run = drifts(run);
     // A reference counts as converged only from RelTol CONVERGED_RTOL on (the finite-time
     // network's ladder stops at 1e-4: it has none).

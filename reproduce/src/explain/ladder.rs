@@ -147,6 +147,23 @@ pub struct LadderRow {
     pub wall_s: f64,
 }
 
+impl LadderRow {
+    /// The joint drifts that exist (none for a rung that did not complete).
+    pub fn drifts(&self) -> Vec<f64> {
+        [
+            self.drift_1,
+            self.drift_2,
+            self.drift_3,
+            self.drift_4,
+            self.drift_5,
+            self.drift_6,
+        ]
+        .into_iter()
+        .flatten()
+        .collect()
+    }
+}
+
 /// Relative 2-norm distance |a - b| / |b| of two drift vectors.
 pub fn rel_distance(a: &[f64], b: &[f64]) -> f64 {
     let num: f64 = a.iter().zip(b).map(|(x, y)| (x - y).powi(2)).sum();
