@@ -23,14 +23,36 @@ pub fn workspace_root() -> PathBuf {
         .to_path_buf()
 }
 
-/// The current git revision, or "unknown" outside a checkout.
+/// The current git revision, with `-dirty` when the code differs from it (any tracked file
+/// outside `results/` and `report/`, which a run itself rewrites), or "unknown" outside a
+/// checkout.
 pub fn git_revision() -> String {
-    std::process::Command::new("git")
-        .args(["rev-parse", "--short=12", "HEAD"])
-        .current_dir(workspace_root())
-        .output()
-        .ok()
+    let git = |args: &[&str]| {
+        std::process::Command::new("git")
+            .args(args)
+            .current_dir(workspace_root())
+            .output()
+            .ok()
+    };
+    let Some(rev) = git(&["rev-parse", "--short=12", "HEAD"])
         .filter(|o| o.status.success())
         .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
-        .unwrap_or_else(|| "unknown".to_string())
+    else {
+        return "unknown".to_string();
+    };
+    let dirty = git(&[
+        "diff",
+        "--quiet",
+        "HEAD",
+        "--",
+        ".",
+        ":(exclude)results",
+        ":(exclude)report",
+    ])
+    .is_some_and(|o| o.status.code() == Some(1));
+    if dirty {
+        format!("{rev}-dirty")
+    } else {
+        rev
+    }
 }

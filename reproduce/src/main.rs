@@ -50,10 +50,14 @@ struct Cli {
     #[arg(long)]
     dry_run: bool,
     /// The regression gate: run the selected experiments and compare them with the committed
-    /// results/runs.csv (status, drifts, max position error); write nothing; exit 1 on any
+    /// results/runs.csv of git HEAD (or --baseline; status, drifts, max position error); write nothing; exit 1 on any
     /// difference. `cargo test --workspace --release` runs the same gate over everything.
     #[arg(long)]
     check: bool,
+    /// The gate's baseline (default: git HEAD's committed results/runs.csv, or the results
+    /// directory's runs.csv outside a checkout).
+    #[arg(long, value_name = "FILE")]
+    baseline: Option<PathBuf>,
     /// Re-render report/REPORT.md and report/figures/ from the stored results/ without running
     /// anything, then exit.
     #[arg(long)]
@@ -144,8 +148,27 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
         .map(|r| RunRow::from_record(r, &git_rev))
         .collect();
     print_summary(&rows);
+    // Failed runs, and whether the experiment files' findings expect them (reproduce::gate).
+    let failed: Vec<(String, bool)> = rows
+        .iter()
+        .filter(|r| r.status != "ok")
+        .map(|r| {
+            (
+                format!(
+                    "{} / {} / {}: {}",
+                    r.experiment, r.variant, r.solver, r.failure
+                ),
+                reproduce::gate::expected_to_diverge(r),
+            )
+        })
+        .collect();
     if cli.check {
-        return check(&cli.results_dir, &rows, cli.exact_only);
+        return check(
+            &cli.results_dir,
+            cli.baseline.as_deref(),
+            &rows,
+            cli.exact_only,
+        );
     }
     if let Some(stored) = stored {
         write_results(&cli.results_dir, &records, stored, rows)?;
@@ -157,15 +180,25 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
             Err(why) => eprintln!("report not rendered: {why}"),
         }
     }
-    let failed = records
+    let unexpected: Vec<&String> = failed
         .iter()
-        .filter(|r| matches!(r.outcome, reproduce::run::Outcome::Failed { .. }))
-        .count();
-    if failed > 0 {
+        .filter(|(_, expected)| !expected)
+        .map(|(line, _)| line)
+        .collect();
+    if !failed.is_empty() {
         eprintln!(
-            "{failed} of {} runs failed (reasons in the table above and in results/runs.csv)",
-            records.len()
+            "{} of {} runs failed, {} of them expected (reasons in the table above and in results/runs.csv)",
+            failed.len(),
+            records.len(),
+            failed.len() - unexpected.len()
         );
+    }
+    if !unexpected.is_empty() {
+        eprintln!("unexpected failures (exit code 1):");
+        for line in &unexpected {
+            eprintln!("  {line}");
+        }
+        return Ok(ExitCode::from(1));
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -248,13 +281,54 @@ fn infer(cli: &Cli, which: &str, jobs: &[Job]) -> Result<(), String> {
 }
 
 /// Compares `fresh` with the committed rows of the same runs (see `reproduce::gate`).
+/// The gate's baseline: `file` when given; otherwise the committed `results/runs.csv` of git
+/// HEAD (so a run followed by `--check` compares with what is committed, not with what the run
+/// just wrote); outside a checkout, or for another results directory, its `runs.csv`. Returns
+/// the rows and a name for messages.
+fn baseline(
+    results_dir: &std::path::Path,
+    file: Option<&std::path::Path>,
+) -> Result<(Vec<RunRow>, String), String> {
+    if let Some(f) = file {
+        return Ok((read_runs(f)?, f.display().to_string()));
+    }
+    let root = reproduce::workspace_root();
+    let in_tree = results_dir == root.join("results");
+    let committed = in_tree
+        .then(|| {
+            std::process::Command::new("git")
+                .args(["show", "HEAD:results/runs.csv"])
+                .current_dir(&root)
+                .output()
+                .ok()
+                .filter(|o| o.status.success())
+        })
+        .flatten();
+    match committed {
+        Some(out) => {
+            let tmp = std::env::temp_dir()
+                .join(format!("driftbench-baseline-{}.csv", std::process::id()));
+            std::fs::write(&tmp, &out.stdout).map_err(|e| format!("{}: {e}", tmp.display()))?;
+            let rows = read_runs(&tmp).map_err(|e| format!("HEAD:results/runs.csv ({e})"));
+            let _ = std::fs::remove_file(&tmp);
+            Ok((rows?, "git HEAD:results/runs.csv".to_string()))
+        }
+        None => {
+            let path = results_dir.join("runs.csv");
+            Ok((read_runs(&path)?, path.display().to_string()))
+        }
+    }
+}
+
 fn check(
     results_dir: &std::path::Path,
+    baseline_file: Option<&std::path::Path>,
     fresh: &[RunRow],
     exact_only: bool,
 ) -> Result<ExitCode, String> {
     let exact = reproduce::experiment::SolverChoice::Exact.label();
-    let committed: Vec<RunRow> = read_runs(&results_dir.join("runs.csv"))?
+    let (baseline_rows, baseline_name) = baseline(results_dir, baseline_file)?;
+    let committed: Vec<RunRow> = baseline_rows
         .into_iter()
         .filter(|c| fresh.iter().any(|f| f.experiment == c.experiment))
         .filter(|c| !exact_only || c.solver == exact)
@@ -262,9 +336,8 @@ fn check(
     let problems = reproduce::gate::compare(&committed, fresh);
     if problems.is_empty() {
         println!(
-            "regression gate: {} runs agree with {}",
+            "regression gate: {} runs agree with {baseline_name}",
             fresh.len(),
-            results_dir.join("runs.csv").display()
         );
         Ok(ExitCode::SUCCESS)
     } else {

@@ -89,6 +89,22 @@ fn paper_times<'a>(
         })
 }
 
+/// S-LVI-PDNN's right-hand-side evaluations over the mean of the VP-RNN-PF variants' in one
+/// experiment: the deterministic measure of relative cost (the same on every machine and under
+/// any load), which the compute-time claim is decided by.
+pub fn evaluation_ratio(runs: &Runs, experiment: &str) -> Option<f64> {
+    let evals: Vec<(&str, f64)> = runs
+        .of_experiment(experiment)
+        .filter(|r| completed(r))
+        .map(|r| (r.solver.as_str(), r.rhs_evals as f64))
+        .collect();
+    let s = evals
+        .iter()
+        .find(|(s, _)| *s == "S-LVI-PDNN")
+        .map(|(_, e)| *e)?;
+    vp_mean(&evals).map(|vp| s / vp)
+}
+
 /// [`Slowdown`] of one zhong2021 experiment.
 pub fn slowdown(runs: &Runs, values: &[PaperValue], experiment: &str) -> Slowdown {
     let ratio = |times: &[(&str, f64)]| {

@@ -1,0 +1,103 @@
+//! The binary's contract with its caller: the gate compares with the committed baseline (or a
+//! stated one) and fails on a doctored one; an unexpected failed run exits non-zero, the
+//! experiment files' expected failures do not.
+
+use reproduce::results::{read_runs, runs_csv};
+use std::process::Command;
+
+fn reproduce() -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_reproduce"));
+    c.current_dir(reproduce::workspace_root());
+    c
+}
+
+#[test]
+fn the_gate_compares_with_the_stated_baseline() {
+    let root = reproduce::workspace_root();
+    let committed = read_runs(&root.join("results/runs.csv")).unwrap();
+    let dir = std::env::temp_dir().join(format!("driftbench-cli-gate-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let exp = "kong2019-circle-mu-sweep";
+
+    let same = dir.join("same.csv");
+    std::fs::write(&same, runs_csv(&committed).unwrap()).unwrap();
+    let ok = reproduce()
+        .args(["--check", "--experiment", exp, "--baseline"])
+        .arg(&same)
+        .output()
+        .unwrap();
+    assert!(
+        ok.status.success(),
+        "{}",
+        String::from_utf8_lossy(&ok.stdout)
+    );
+
+    let mut doctored = committed.clone();
+    let row = doctored
+        .iter_mut()
+        .find(|r| r.experiment == exp && r.drift_norm.is_some())
+        .unwrap();
+    row.drift_norm = row.drift_norm.map(|d| d * 1.01);
+    let bad = dir.join("doctored.csv");
+    std::fs::write(&bad, runs_csv(&doctored).unwrap()).unwrap();
+    let fail = reproduce()
+        .args(["--check", "--experiment", exp, "--baseline"])
+        .arg(&bad)
+        .output()
+        .unwrap();
+    assert_eq!(fail.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&fail.stdout).contains("drift_norm"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn an_unexpected_failure_exits_non_zero() {
+    let dir = std::env::temp_dir().join(format!("driftbench-cli-exit-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // The clover in 0.5 s asks for ten times the joint-speed limit: the exact QP is infeasible.
+    std::fs::write(
+        dir.join("jia2019.toml"),
+        r#"paper = "jia2019"
+title = "too fast"
+[[experiment]]
+id = "jia2019-too-fast"
+paper_output = "none"
+robot = "jaco2-pen"
+path = { name = "four-leaf-clover", duration = 0.5 }
+theta0 = [1.675, 2.79, -3.216, 4.187, -1.71, -2.95]
+[[experiment.variant]]
+label = "VLTCO"
+scheme = { kind = "jia2019", phi = 0.2, tau = 0.4, kappa = 20.0, lambda = 20.0 }
+"#,
+    )
+    .unwrap();
+    let out = reproduce()
+        .args(["--dry-run", "--experiments-dir"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(String::from_utf8_lossy(&out.stderr).contains("unexpected failures"));
+
+    // The same files' expected failures (MTN diverges) exit 0.
+    let out = reproduce()
+        .args([
+            "--dry-run",
+            "--skip-explain",
+            "--experiment",
+            "zhang2018-cardioid-scheme",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
