@@ -117,6 +117,12 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
     // Before anything runs: the stored results must be readable (they are merged with the new
     // rows, never dropped), and results/ and report/ writable; stale temporary files of killed
     // runs are removed.
+    // One writer at a time: held until the process ends.
+    let _lock = if cli.check || cli.dry_run {
+        None
+    } else {
+        Some(lock_results(&cli.results_dir)?)
+    };
     let stored = if cli.check || cli.dry_run {
         None
     } else {
@@ -402,6 +408,31 @@ fn select_jobs(files: &[PaperFile], cli: &Cli) -> Result<Vec<Job>, String> {
 
 /// Checks, before any run, that results can be written without losing anything: reads the
 /// stored results/runs.csv (an unreadable or old-schema file is an error naming the file, the
+/// An advisory lock on the results directory (`<dir>/.lock`, the operating system's file lock
+/// through `std::fs::File::try_lock`): a second writer refuses at once, naming the directory,
+/// instead of overwriting the first one's results with its own. The lock ends with the process.
+fn lock_results(dir: &std::path::Path) -> Result<std::fs::File, String> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: cannot create: {e}", dir.display()))?;
+    let path = dir.join(".lock");
+    let file = std::fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(&path)
+        .map_err(|e| format!("{}: cannot open the lock file: {e}", path.display()))?;
+    match file.try_lock() {
+        Ok(()) => Ok(file),
+        Err(std::fs::TryLockError::WouldBlock) => Err(format!(
+            "another reproduce is writing to {} (lock {}): wait for it to finish, or give this run another --results-dir",
+            dir.display(),
+            path.display()
+        )),
+        Err(std::fs::TryLockError::Error(e)) => {
+            Err(format!("{}: cannot lock: {e}", path.display()))
+        }
+    }
+}
+
 /// line and how to recover), checks that results/ and report/ are writable, and removes the
 /// temporary files killed runs left there. Returns the stored rows.
 fn prepare_output(cli: &Cli) -> Result<Vec<RunRow>, String> {

@@ -5,6 +5,10 @@ use crate::experiment::{Job, SolverChoice};
 use crate::run::{run_job, RunRecord};
 use indicatif::{ParallelProgressIterator, ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
+use std::collections::BTreeMap;
+use std::io::IsTerminal;
+use std::sync::Mutex;
+use std::time::Instant;
 
 /// Runs `jobs` and returns their records in the order of `jobs`.
 pub fn run_jobs(jobs: &[Job], progress: bool) -> Vec<RunRecord> {
@@ -19,6 +23,9 @@ pub fn run_jobs(jobs: &[Job], progress: bool) -> Vec<RunRecord> {
     } else {
         bar.set_draw_target(ProgressDrawTarget::hidden());
     }
+    // Without a terminal (CI logs, redirected output) the bar is hidden: a line per finished
+    // experiment shows life instead.
+    let log = (progress && !std::io::stderr().is_terminal()).then(|| ExperimentLog::new(jobs));
     // Longest runs first keeps every core busy to the end.
     let mut order: Vec<usize> = (0..jobs.len()).collect();
     order.sort_by(|&a, &b| expected_cost(&jobs[b]).total_cmp(&expected_cost(&jobs[a])));
@@ -28,6 +35,9 @@ pub fn run_jobs(jobs: &[Job], progress: bool) -> Vec<RunRecord> {
         .map(|&i| {
             let r = run_job(&jobs[i]);
             bar.set_message(jobs[i].key());
+            if let Some(log) = &log {
+                log.finished(&jobs[i].experiment);
+            }
             (i, r)
         })
         .collect();
@@ -45,4 +55,45 @@ fn expected_cost(j: &Job) -> f64 {
         SolverChoice::Neural(_) => 4.0,
     };
     solver * j.path.duration
+}
+
+/// Progress without a terminal: one line per experiment whose runs have all finished, with the
+/// overall count and the elapsed time.
+struct ExperimentLog {
+    started: Instant,
+    total: usize,
+    /// Per experiment: (finished, runs); and the runs finished overall.
+    state: Mutex<(BTreeMap<String, (usize, usize)>, usize)>,
+}
+
+impl ExperimentLog {
+    fn new(jobs: &[Job]) -> Self {
+        let mut per: BTreeMap<String, (usize, usize)> = BTreeMap::new();
+        for j in jobs {
+            per.entry(j.experiment.clone()).or_default().1 += 1;
+        }
+        Self {
+            started: Instant::now(),
+            total: jobs.len(),
+            state: Mutex::new((per, 0)),
+        }
+    }
+
+    fn finished(&self, experiment: &str) {
+        let Ok(mut state) = self.state.lock() else {
+            return;
+        };
+        state.1 += 1;
+        let overall = state.1;
+        if let Some((done, runs)) = state.0.get_mut(experiment) {
+            *done += 1;
+            if done == runs {
+                eprintln!(
+                    "[{:>7.1} s] {experiment}: {runs} runs done ({overall}/{} overall)",
+                    self.started.elapsed().as_secs_f64(),
+                    self.total
+                );
+            }
+        }
+    }
 }

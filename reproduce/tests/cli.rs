@@ -101,3 +101,30 @@ scheme = { kind = "jia2019", phi = 0.2, tau = 0.4, kappa = 20.0, lambda = 20.0 }
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// One writer at a time: while another process holds the results directory's lock, a run
+/// refuses at once (exit 2), naming the directory, and writes nothing.
+#[test]
+fn a_second_writer_refuses() {
+    let dir = std::env::temp_dir()
+        .join(format!("driftbench-cli-lock-{}", std::process::id()))
+        .join("results");
+    std::fs::create_dir_all(&dir).unwrap();
+    let lock = std::fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(dir.join(".lock"))
+        .unwrap();
+    lock.lock().unwrap();
+    let out = reproduce()
+        .args(["--experiment", "kong2019-circle-mu-sweep", "--results-dir"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("another reproduce is writing"));
+    assert!(!dir.join("runs.csv").exists());
+    drop(lock);
+    let _ = std::fs::remove_dir_all(dir.parent().unwrap());
+}
