@@ -1,9 +1,10 @@
 //! The setup inference's profiles of one published table (`results/inference.csv`): one panel
-//! per fitted parameter, the best relative residual with the other parameters re-fitted.
+//! per fitted parameter, the best relative residual with the other parameters re-fitted (points
+//! where a run of the table failed are left out).
 
 use super::layout::figure;
 use super::panels::ProfilePanel;
-use crate::explain::inference::InferenceRow;
+use crate::explain::inference::{InferenceRow, FAILED};
 use std::f64::consts::PI;
 
 /// File name of a table's profile figure inside `report/figures/`.
@@ -24,6 +25,8 @@ pub fn render(paper: &str, table: &str, rows: &[&InferenceRow]) -> Result<String
             let points = rows
                 .iter()
                 .filter(|r| r.kind.strip_prefix("profile: ") == Some(name))
+                // A point whose run failed carries the penalty residual: not drawn.
+                .filter(|r| r.rel_residual < FAILED)
                 .map(|r| {
                     let x = match name {
                         "rotation" => r.rotation,
