@@ -3,7 +3,7 @@
 use clap::Parser;
 use reproduce::experiment::{load_dir, Job, PaperFile};
 use reproduce::results::{
-    check_writable, merge, read_runs, remove_stale_tmp, runs_csv, trace_csv, trace_file,
+    check_writable, merge, read_runs, remove_stale_tmp, run_stem, runs_csv, trace_csv, trace_file,
     write_atomic, RunRow,
 };
 use reproduce::run::RunRecord;
@@ -177,7 +177,7 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
         );
     }
     if let Some(stored) = stored {
-        write_results(&cli.results_dir, &records, stored, rows)?;
+        write_results(&cli.results_dir, &records, stored, rows, &all)?;
         if !cli.skip_explain && !cli.exact_only {
             explain(&cli, &jobs, &all, &git_rev)?;
         }
@@ -461,14 +461,45 @@ fn prepare_output(cli: &Cli) -> Result<Vec<RunRow>, String> {
     Ok(stored)
 }
 
+/// Merges the fresh rows into the stored ones and writes runs.csv and the fresh traces. Stored
+/// rows of runs the experiment files no longer describe (`all`: every job of the files) are
+/// pruned with their traces, and said so: results reflect the experiment files.
 fn write_results(
     dir: &std::path::Path,
     records: &[RunRecord],
     stored: Vec<RunRow>,
     rows: Vec<RunRow>,
+    all: &[Job],
 ) -> Result<(), String> {
     let runs_path = dir.join("runs.csv");
-    let merged = merge(stored, rows);
+    let exists = |r: &RunRow| {
+        all.iter().any(|j| {
+            j.experiment == r.experiment && j.variant == r.variant && j.solver.label() == r.solver
+        })
+    };
+    let (kept, pruned): (Vec<RunRow>, Vec<RunRow>) = stored.into_iter().partition(exists);
+    for r in &pruned {
+        let trace = dir
+            .join("traces")
+            .join(&r.experiment)
+            .join(format!("{}.csv", run_stem(&r.variant, &r.solver)));
+        if trace.exists() {
+            std::fs::remove_file(&trace).map_err(|e| format!("{}: {e}", trace.display()))?;
+        }
+        let _ = std::fs::remove_dir(dir.join("traces").join(&r.experiment));
+    }
+    if !pruned.is_empty() {
+        eprintln!(
+            "pruned {} stored run(s) that no experiment file describes any more: {}",
+            pruned.len(),
+            pruned
+                .iter()
+                .map(|r| format!("{} / {} / {}", r.experiment, r.variant, r.solver))
+                .collect::<Vec<_>>()
+                .join("; ")
+        );
+    }
+    let merged = merge(kept, rows);
     for r in records {
         let bytes = trace_csv(r).map_err(|e| e.to_string())?;
         let path = dir.join("traces").join(trace_file(r));

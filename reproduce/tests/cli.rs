@@ -128,3 +128,64 @@ fn a_second_writer_refuses() {
     drop(lock);
     let _ = std::fs::remove_dir_all(dir.parent().unwrap());
 }
+
+/// Results reflect the experiment files: a stored run that no file describes any more is
+/// pruned, with its trace, and the run says so.
+#[test]
+fn runs_of_deleted_experiments_are_pruned() {
+    let base = std::env::temp_dir().join(format!("driftbench-cli-prune-{}", std::process::id()));
+    let (experiments, results) = (base.join("experiments"), base.join("res"));
+    std::fs::create_dir_all(&experiments).unwrap();
+    std::fs::create_dir_all(&results).unwrap();
+    std::fs::write(
+        experiments.join("kong2019.toml"),
+        r#"paper = "kong2019"
+title = "one cheap run"
+[[experiment]]
+id = "kong2019-kept"
+paper_output = "none"
+robot = "katana6m180"
+path = { name = "circle", duration = 9.0 }
+theta0 = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.0471975511965976]
+exact_integrator = { method = "bdf", rtol = 1e-8, atol = 1e-10 }
+[[experiment.variant]]
+label = "ZNN (eq. 22)"
+scheme = { kind = "kong2019-znn", mu = 1.0, k_p = 1.0 }
+"#,
+    )
+    .unwrap();
+    let committed = read_runs(&reproduce::workspace_root().join("results/runs.csv")).unwrap();
+    let mut stale = committed[0].clone();
+    stale.experiment = "kong2019-deleted".to_string();
+    std::fs::write(
+        results.join("runs.csv"),
+        runs_csv(&[stale.clone()]).unwrap(),
+    )
+    .unwrap();
+    let trace_dir = results.join("traces").join("kong2019-deleted");
+    std::fs::create_dir_all(&trace_dir).unwrap();
+    let trace = trace_dir.join(format!(
+        "{}.csv",
+        reproduce::results::run_stem(&stale.variant, &stale.solver)
+    ));
+    std::fs::write(&trace, "t\n0\n").unwrap();
+
+    let out = reproduce()
+        .args(["--experiments-dir"])
+        .arg(&experiments)
+        .arg("--results-dir")
+        .arg(&results)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(String::from_utf8_lossy(&out.stderr).contains("pruned 1 stored run"));
+    let rows = read_runs(&results.join("runs.csv")).unwrap();
+    assert_eq!(rows.len(), 1);
+    assert_eq!(rows[0].experiment, "kong2019-kept");
+    assert!(!trace.exists());
+    let _ = std::fs::remove_dir_all(&base);
+}
