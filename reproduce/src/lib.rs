@@ -6,6 +6,7 @@ pub mod experiment;
 pub mod explain;
 pub mod figures;
 pub mod gate;
+pub mod journal;
 pub mod metrics;
 pub mod report;
 pub mod results;

@@ -7,7 +7,7 @@ use reproduce::results::{
     write_atomic, RunRow,
 };
 use reproduce::run::RunRecord;
-use reproduce::runner::run_jobs;
+use reproduce::runner::run_jobs_with;
 use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::PathBuf;
@@ -148,7 +148,46 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
         explain(&cli, &jobs, &all, &git_rev)?;
         return Ok(ExitCode::SUCCESS);
     }
-    let records = run_jobs(&jobs, true);
+    // Resume: fold the journal of an interrupted run into runs.csv; the runs it holds from this
+    // code revision are not run again (reproduce::journal).
+    let mut stored = stored;
+    let mut to_run: Vec<Job> = jobs.clone();
+    if let Some(rows) = stored.as_mut() {
+        let recovered = reproduce::journal::recover(&cli.results_dir)?;
+        if !recovered.is_empty() {
+            let done: Vec<(String, String, String)> = recovered
+                .iter()
+                .filter(|r| r.git_rev == git_rev)
+                .map(RunRow::key)
+                .collect();
+            *rows = merge(std::mem::take(rows), recovered.clone());
+            let path = cli.results_dir.join("runs.csv");
+            let bytes = runs_csv(rows).map_err(|e| e.to_string())?;
+            write_atomic(&path, &bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+            reproduce::journal::remove(&cli.results_dir)?;
+            let before = to_run.len();
+            to_run.retain(|j| {
+                !done.contains(&(j.experiment.clone(), j.variant.clone(), j.solver.label()))
+            });
+            eprintln!(
+                "folded {} run(s) of an interrupted run into {}; resuming: {} of the selected runs already done",
+                recovered.len(),
+                path.display(),
+                before - to_run.len()
+            );
+        }
+    }
+    let journal = stored
+        .is_some()
+        .then(|| reproduce::journal::Journal::open(&cli.results_dir, &git_rev))
+        .transpose()?;
+    let records = run_jobs_with(&to_run, true, |r| {
+        if let Some(j) = &journal {
+            if let Err(e) = j.record(r) {
+                eprintln!("warning: run not checkpointed: {e}");
+            }
+        }
+    });
     let rows: Vec<RunRow> = records
         .iter()
         .map(|r| RunRow::from_record(r, &git_rev))
@@ -178,6 +217,7 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
     }
     if let Some(stored) = stored {
         write_results(&cli.results_dir, &records, stored, rows, &all)?;
+        reproduce::journal::remove(&cli.results_dir)?;
         if !cli.skip_explain && !cli.exact_only {
             explain(&cli, &jobs, &all, &git_rev)?;
         }

@@ -12,6 +12,16 @@ use std::time::Instant;
 
 /// Runs `jobs` and returns their records in the order of `jobs`.
 pub fn run_jobs(jobs: &[Job], progress: bool) -> Vec<RunRecord> {
+    run_jobs_with(jobs, progress, |_| {})
+}
+
+/// [`run_jobs`], calling `finished` with each record as soon as its run ends (from the worker
+/// thread: the checkpoint journal).
+pub fn run_jobs_with(
+    jobs: &[Job],
+    progress: bool,
+    finished: impl Fn(&RunRecord) + Sync,
+) -> Vec<RunRecord> {
     let bar = ProgressBar::new(jobs.len() as u64);
     if progress {
         bar.set_style(
@@ -34,6 +44,7 @@ pub fn run_jobs(jobs: &[Job], progress: bool) -> Vec<RunRecord> {
         .progress_with(bar.clone())
         .map(|&i| {
             let r = run_job(&jobs[i]);
+            finished(&r);
             bar.set_message(jobs[i].key());
             if let Some(log) = &log {
                 log.finished(&jobs[i].experiment);

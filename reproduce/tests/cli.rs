@@ -189,3 +189,81 @@ scheme = { kind = "kong2019-znn", mu = 1.0, k_p = 1.0 }
     assert!(!trace.exists());
     let _ = std::fs::remove_dir_all(&base);
 }
+
+/// A run killed (SIGKILL) half-way loses only what was running: the next start folds the
+/// journal into runs.csv, does not redo the finished runs, and writes no duplicate row.
+#[test]
+fn a_killed_run_resumes_without_redoing_finished_runs() {
+    let base = std::env::temp_dir().join(format!("driftbench-cli-resume-{}", std::process::id()));
+    let (experiments, results) = (base.join("experiments"), base.join("res"));
+    std::fs::create_dir_all(&experiments).unwrap();
+    std::fs::create_dir_all(&results).unwrap();
+    // One slow run (the finite-time network, ~650,000 steps) and three quick ones.
+    let mut toml = String::from(
+        r#"paper = "kong2019"
+title = "resume"
+[[experiment]]
+id = "kong2019-resume"
+paper_output = "none"
+robot = "katana6m180"
+path = { name = "circle", duration = 9.0 }
+theta0 = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.5471975511965976]
+theta_ref = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.0471975511965976]
+[[experiment.variant]]
+label = "finite-time"
+exact = false
+scheme = { kind = "kong2019-finite-time", beta_theta = 1.0, k_p = 1.0, alpha = 0.1 }
+solvers = [{ kind = "finite-time", beta = 1.0, alpha = 0.1, smoothing = 1e-6 }]
+"#,
+    );
+    for mu in [1, 2, 4] {
+        toml.push_str(&format!(
+            "[[experiment.variant]]\nlabel = \"ZNN mu={mu}\"\nexact = false\nscheme = {{ kind = \"kong2019-znn\", mu = {mu}.0, k_p = 1.0 }}\nsolvers = [{{ kind = \"znn\", gamma = 1.0 }}]\n"
+        ));
+    }
+    std::fs::write(experiments.join("kong2019.toml"), toml).unwrap();
+    let run = || {
+        let mut c = reproduce();
+        c.args(["--skip-explain", "--threads", "2", "--experiments-dir"])
+            .arg(&experiments)
+            .arg("--results-dir")
+            .arg(&results)
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::piped());
+        c
+    };
+    let mut first = run().spawn().unwrap();
+    let journal = reproduce::journal::path(&results);
+    let lines = || {
+        std::fs::read_to_string(&journal)
+            .map(|t| t.lines().count())
+            .unwrap_or(0)
+    };
+    let started = std::time::Instant::now();
+    while lines() < 4 && started.elapsed().as_secs() < 60 {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    first.kill().unwrap();
+    let _ = first.wait();
+    assert_eq!(
+        lines(),
+        4,
+        "the three quick runs are checkpointed before the kill"
+    );
+    assert!(!results.join("runs.csv").exists());
+
+    let second = run().output().unwrap();
+    let err = String::from_utf8_lossy(&second.stderr);
+    assert!(second.status.success(), "{err}");
+    assert!(
+        err.contains("resuming: 3 of the selected runs already done"),
+        "{err}"
+    );
+    let rows = read_runs(&results.join("runs.csv")).unwrap();
+    assert_eq!(rows.len(), 4);
+    let mut keys: Vec<_> = rows.iter().map(|r| r.key()).collect();
+    keys.dedup();
+    assert_eq!(keys.len(), 4, "no duplicate row");
+    assert!(!journal.exists());
+    let _ = std::fs::remove_dir_all(&base);
+}
