@@ -87,6 +87,10 @@ pub struct IntegratorSettings {
     /// Accepted steps after which the run is abandoned as diverging.
     #[serde(default = "default_max_steps")]
     pub max_steps: usize,
+    /// Wall-time budget of one integration in seconds: a run past it fails with that reason,
+    /// so no input can keep the binary busy for good (default [`DEFAULT_MAX_WALL_S`]).
+    #[serde(default = "default_max_wall_s")]
+    pub max_wall_s: f64,
     /// Largest step (ode15s's `MaxStep`; the group's code: 0.05 s). `None` (the default):
     /// unlimited. Must be positive and finite.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -109,6 +113,12 @@ impl IntegratorSettings {
         if self.max_steps == 0 {
             return Err("max_steps must be at least 1, got 0".to_string());
         }
+        if !(self.max_wall_s > 0.0) {
+            return Err(format!(
+                "max_wall_s must be positive, got {}",
+                self.max_wall_s
+            ));
+        }
         match self.max_step {
             Some(h) if !(h > 0.0 && h.is_finite()) => {
                 Err(format!("max_step must be positive and finite, got {h}"))
@@ -122,6 +132,14 @@ fn default_max_steps() -> usize {
     2_000_000
 }
 
+/// The default wall-time budget of one integration (s): generous, 30x the longest run of the
+/// papers' experiments on a 2-core machine.
+pub const DEFAULT_MAX_WALL_S: f64 = 600.0;
+
+fn default_max_wall_s() -> f64 {
+    DEFAULT_MAX_WALL_S
+}
+
 impl Default for IntegratorSettings {
     /// ode15s with the papers' group tolerances (RelTol 1e-6, AbsTol 1e-8).
     fn default() -> Self {
@@ -130,6 +148,7 @@ impl Default for IntegratorSettings {
             rtol: 1e-6,
             atol: 1e-8,
             max_steps: default_max_steps(),
+            max_wall_s: DEFAULT_MAX_WALL_S,
             max_step: None,
         }
     }
@@ -160,6 +179,8 @@ pub enum OdeError {
     TooManySteps { t: f64, steps: usize },
     /// The observer asked to stop.
     Stopped { t: f64, reason: String },
+    /// The wall-time budget ran out.
+    WallBudget { t: f64, seconds: f64 },
 }
 
 impl std::fmt::Display for OdeError {
@@ -176,6 +197,10 @@ impl std::fmt::Display for OdeError {
                 "more than {steps} steps by t = {t:.6} (diverging or too stiff for the method)"
             ),
             OdeError::Stopped { t, reason } => write!(f, "stopped at t = {t:.6}: {reason}"),
+            OdeError::WallBudget { t, seconds } => write!(
+                f,
+                "wall-time budget of {seconds} s used up at t = {t:.6} (max_wall_s)"
+            ),
         }
     }
 }
@@ -480,6 +505,7 @@ where
     M: OdeSolverMethod<'a, Eqn>,
 {
     let max_steps = settings.max_steps;
+    let started = std::time::Instant::now();
     // The stop time in force (t1 unless a maximal step is enforced).
     let mut stop_at = match settings.max_step {
         Some(h) => next_stop(solver.state().t, t1, h),
@@ -534,6 +560,10 @@ where
             }
             _ if steps >= max_steps => {
                 return Ok(stop(&solver, steps, OdeError::TooManySteps { t, steps }))
+            }
+            _ if started.elapsed().as_secs_f64() > settings.max_wall_s => {
+                let seconds = settings.max_wall_s;
+                return Ok(stop(&solver, steps, OdeError::WallBudget { t, seconds }));
             }
             _ => {}
         }

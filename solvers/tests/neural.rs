@@ -76,6 +76,7 @@ fn settings(rtol: f64, atol: f64) -> IntegratorSettings {
         atol,
         max_steps: 200_000,
         max_step: None,
+        ..IntegratorSettings::default()
     }
 }
 

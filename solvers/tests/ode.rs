@@ -44,6 +44,7 @@ fn settings(method: Method, rtol: f64, atol: f64) -> IntegratorSettings {
         atol,
         max_steps: 1_000_000,
         max_step: None,
+        ..IntegratorSettings::default()
     }
 }
 
@@ -278,4 +279,29 @@ fn max_step_bounds_every_accepted_step() {
     let s: IntegratorSettings =
         toml::from_str("method = \"bdf\"\nrtol = 1e-6\natol = 1e-8").unwrap();
     assert_eq!(s.max_step, None);
+}
+
+/// The wall-time budget bounds every integration: past it the run fails with that reason (a
+/// budget far below one step's cost trips it after the first step).
+#[test]
+fn the_wall_time_budget_stops_a_run() {
+    let budget = IntegratorSettings {
+        max_wall_s: 1e-12,
+        ..settings(Method::Dopri5, 1e-10, 1e-12)
+    };
+    let failure = integrate(&mut Oscillator, &[1.0, 0.0], 0.0, 1e3, &budget, |_, _| {
+        Control::Continue
+    })
+    .unwrap_err();
+    assert!(
+        matches!(failure.error, solvers::ode::OdeError::WallBudget { .. }),
+        "{failure}"
+    );
+    assert!(failure.to_string().contains("wall-time budget"));
+    assert!(IntegratorSettings {
+        max_wall_s: 0.0,
+        ..IntegratorSettings::default()
+    }
+    .validate()
+    .is_err());
 }

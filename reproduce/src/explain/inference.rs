@@ -49,6 +49,7 @@ pub fn inference_integrator() -> IntegratorSettings {
         atol: 1e-8,
         max_steps: 200_000,
         max_step: None,
+        ..IntegratorSettings::default()
     }
 }
 

@@ -53,6 +53,7 @@ fn rung(method: Method, rtol: f64, atol: f64, max_step: Option<f64>) -> Integrat
             LADDER_MAX_STEPS
         },
         max_step,
+        ..IntegratorSettings::default()
     }
 }
 
