@@ -94,6 +94,28 @@ pub struct Variant {
     /// Initial state of the networks (the papers do not print it; default: zero).
     #[serde(default)]
     pub network_init: NetworkInit,
+    /// Runs of this variant that are expected to fail (a finding, not a fault): they do not
+    /// make the binary exit non-zero nor the regression gate complain.
+    #[serde(default)]
+    pub expected_failure: Option<ExpectedFailure>,
+}
+
+/// An expected failure: why, and which of the variant's runs (solver label prefixes, e.g.
+/// `"FP-CDNN"` or `"exact"`; empty: every run of the variant).
+#[derive(Clone, Debug, PartialEq, Eq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExpectedFailure {
+    pub why: String,
+    #[serde(default)]
+    pub solvers: Vec<String>,
+}
+
+impl ExpectedFailure {
+    /// The reason, if the run with solver label `label` is one of the expected failures.
+    fn of(&self, label: &str) -> Option<String> {
+        (self.solvers.is_empty() || self.solvers.iter().any(|s| label.starts_with(s.as_str())))
+            .then(|| self.why.clone())
+    }
 }
 
 /// Where a network's state starts: the papers leave it open, the group's code starts from zero.
@@ -147,6 +169,8 @@ pub struct Job {
     pub score: bool,
     /// Initial state of a neural run's network.
     pub network_init: NetworkInit,
+    /// Why this run is expected to fail, if it is (the variant's `expected_failure`).
+    pub expected_failure: Option<String>,
 }
 
 impl Job {
@@ -371,6 +395,10 @@ impl PaperFile {
             integrator: e.exact_integrator,
             score: true,
             network_init: NetworkInit::Zero,
+            expected_failure: v
+                .expected_failure
+                .as_ref()
+                .and_then(|f| f.of(&SolverChoice::Exact.label())),
         };
         if v.exact {
             jobs.push(base.clone());
@@ -381,6 +409,10 @@ impl PaperFile {
                 solver: SolverChoice::Neural(s.clone()),
                 integrator,
                 network_init: v.network_init,
+                expected_failure: v
+                    .expected_failure
+                    .as_ref()
+                    .and_then(|f| f.of(&SolverChoice::Neural(s.clone()).label())),
                 ..base.clone()
             });
         }

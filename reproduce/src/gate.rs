@@ -8,42 +8,17 @@
 //!   floating-point noise across machines is a change of behaviour;
 //! - every committed run must still be produced, and every fresh run must be committed;
 //! - every neural run must complete, except those whose divergence is itself the finding
-//!   ([`EXPECTED_DIVERGENCE`]).
+//!   (declared in the experiment files as `expected_failure`, recorded in each row).
 
 use crate::experiment::SolverChoice;
 use crate::results::RunRow;
 
-/// Runs that diverge by design of the experiment (the paper's own claim or a documented
-/// finding), as (experiment prefix, variant prefix, solver prefix, why).
-pub const EXPECTED_DIVERGENCE: &[(&str, &str, &str, &str)] = &[
-    (
-        "zhang2018-",
-        "MTN",
-        "",
-        "minimum torque norm: joint velocities diverge (zhang2018 Figs 2-3)",
-    ),
-    (
-        "zhang2018-",
-        "HL-JDF (zeta=0.8)",
-        "FP-CDNN (perturbed",
-        "fixed-gain network under the reference perturbation (report: reading the numbers)",
-    ),
-    (
-        "jia2019-clover",
-        "MVN [jaco2 physical limits]",
-        "",
-        "the clover at T = 5 s exceeds Kinova's physical joint-speed limits",
-    ),
-];
-
 /// Relative tolerance of the drift comparison.
 pub const RELATIVE_TOLERANCE: f64 = 1e-6;
 
-/// Whether `r` is one of the runs expected to diverge.
+/// Whether `r` is one of the runs its experiment file expects to fail (`expected_failure`).
 pub fn expected_to_diverge(r: &RunRow) -> bool {
-    EXPECTED_DIVERGENCE.iter().any(|(e, v, s, _)| {
-        r.experiment.starts_with(e) && r.variant.starts_with(v) && r.solver.starts_with(s)
-    })
+    !r.expected_failure.is_empty()
 }
 
 fn close(a: Option<f64>, b: Option<f64>) -> bool {

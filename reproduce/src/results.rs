@@ -29,6 +29,8 @@ pub struct RunRow {
     /// `ok` or `failed`.
     pub status: String,
     pub failure: String,
+    /// Why the experiment file expects this run to fail (empty: it should complete).
+    pub expected_failure: String,
     /// Last accepted instant of a failed run (the failure message names the instant of the
     /// evaluation that failed, which may lie inside the next step).
     pub failed_at: Option<f64>,
@@ -119,6 +121,7 @@ impl RunRow {
             duration: j.path.duration,
             status: status.to_string(),
             failure,
+            expected_failure: j.expected_failure.clone().unwrap_or_default(),
             failed_at,
             drift_1: drift(0),
             drift_2: drift(1),

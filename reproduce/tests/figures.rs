@@ -21,6 +21,7 @@ fn row(experiment: &str, variant: &str, solver: &str, failed_at: Option<f64>) ->
         failure: failed_at
             .map(|t| format!("integrator failed at t = {t}"))
             .unwrap_or_default(),
+        expected_failure: String::new(),
         failed_at,
         drift_1: None,
         drift_2: None,

@@ -99,6 +99,7 @@ fn row(experiment: &str, variant: &str, solver: &str, drift: f64) -> RunRow {
         duration: 5.0,
         status: "ok".into(),
         failure: String::new(),
+        expected_failure: String::new(),
         failed_at: None,
         drift_1: Some(drift),
         drift_2: Some(0.0),
