@@ -264,7 +264,7 @@ fn explain(cli: &Cli, jobs: &[Job], all: &[Job], git_rev: &str) -> Result<(), St
     if cli.dry_run {
         return Ok(());
     }
-    reproduce::explain::write(&cli.results_dir, &explained)?;
+    reproduce::explain::write(&cli.results_dir, &explained, all)?;
     eprintln!(
         "wrote {} ladder rows and {} attribution rows",
         explained.ladder.len(),

@@ -91,6 +91,10 @@ pub struct IntegratorSettings {
     /// so no input can keep the binary busy for good (default [`DEFAULT_MAX_WALL_S`]).
     #[serde(default = "default_max_wall_s")]
     pub max_wall_s: f64,
+    /// Evaluation budget: right-hand-side evaluations (finite-difference Jacobian columns
+    /// included) after which the run fails with that reason (default [`DEFAULT_MAX_RHS_EVALS`]).
+    #[serde(default = "default_max_rhs_evals")]
+    pub max_rhs_evals: usize,
     /// Largest step (ode15s's `MaxStep`; the group's code: 0.05 s). `None` (the default):
     /// unlimited. Must be positive and finite.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -112,6 +116,9 @@ impl IntegratorSettings {
         }
         if self.max_steps == 0 {
             return Err("max_steps must be at least 1, got 0".to_string());
+        }
+        if self.max_rhs_evals == 0 {
+            return Err("max_rhs_evals must be at least 1, got 0".to_string());
         }
         if !(self.max_wall_s > 0.0) {
             return Err(format!(
@@ -140,6 +147,14 @@ fn default_max_wall_s() -> f64 {
     DEFAULT_MAX_WALL_S
 }
 
+/// The default evaluation budget: 20x the heaviest run of the papers' experiments (the
+/// finite-time network, ~5 million).
+pub const DEFAULT_MAX_RHS_EVALS: usize = 100_000_000;
+
+fn default_max_rhs_evals() -> usize {
+    DEFAULT_MAX_RHS_EVALS
+}
+
 impl Default for IntegratorSettings {
     /// ode15s with the papers' group tolerances (RelTol 1e-6, AbsTol 1e-8).
     fn default() -> Self {
@@ -149,6 +164,7 @@ impl Default for IntegratorSettings {
             atol: 1e-8,
             max_steps: default_max_steps(),
             max_wall_s: DEFAULT_MAX_WALL_S,
+            max_rhs_evals: DEFAULT_MAX_RHS_EVALS,
             max_step: None,
         }
     }
@@ -400,6 +416,16 @@ pub fn integrate<S: OdeSystem>(
             return Err(OdeError::Stopped { t: t0, reason });
         }
         let solver_err = |e| solver_error(t0, e);
+        // The evaluation budget, checked at every accepted step.
+        let max_evals = settings.max_rhs_evals;
+        let mut observe = |t: f64, y: &[f64]| {
+            if counted.borrow().rhs_evals > max_evals {
+                return Control::Stop(format!(
+                    "evaluation budget of {max_evals} right-hand-side evaluations used up (max_rhs_evals)"
+                ));
+            }
+            observe(t, y)
+        };
         let driven = match settings.method {
             Method::Bdf => drive(
                 problem.bdf::<NalgebraLU<f64>>().map_err(solver_err)?,

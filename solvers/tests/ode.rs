@@ -305,3 +305,21 @@ fn the_wall_time_budget_stops_a_run() {
     .validate()
     .is_err());
 }
+
+/// The evaluation budget bounds every integration the same way, deterministically.
+#[test]
+fn the_evaluation_budget_stops_a_run() {
+    let budget = IntegratorSettings {
+        max_rhs_evals: 50,
+        ..settings(Method::Dopri5, 1e-10, 1e-12)
+    };
+    let failure = integrate(&mut Oscillator, &[1.0, 0.0], 0.0, 1e3, &budget, |_, _| {
+        Control::Continue
+    })
+    .unwrap_err();
+    assert!(
+        failure.to_string().contains("evaluation budget of 50"),
+        "{failure}"
+    );
+    assert!(failure.stats.rhs_evals > 50 && failure.stats.rhs_evals < 100);
+}

@@ -151,18 +151,25 @@ pub fn read_csv<T: DeserializeOwned>(path: &Path) -> Result<Vec<T>, String> {
 }
 
 /// Writes `results/ladder.csv` and `results/attribution.csv`: fresh rows replace the stored
-/// rows of the same runs (experiment, variant, solver); other stored rows are kept.
-pub fn write(results_dir: &Path, fresh: &Explained) -> Result<(), String> {
+/// rows of the same runs (experiment, variant, solver); other stored rows are kept if their run
+/// still exists among `all` (every job of the experiment files), pruned otherwise.
+pub fn write(results_dir: &Path, fresh: &Explained, all: &[Job]) -> Result<(), String> {
     let ladder_path = results_dir.join("ladder.csv");
     let attribution_path = results_dir.join("attribution.csv");
-    let ladder = merge(read_csv::<LadderRow>(&ladder_path)?, &fresh.ladder, |r| {
+    let exists = |e: &str, v: &str, s: &str| {
+        all.iter()
+            .any(|j| j.experiment == e && j.variant == v && j.solver.label() == s)
+    };
+    let mut stored_ladder = read_csv::<LadderRow>(&ladder_path)?;
+    stored_ladder.retain(|r| exists(&r.experiment, &r.variant, &r.solver));
+    let mut stored_attribution = read_csv::<AttributionRow>(&attribution_path)?;
+    stored_attribution.retain(|r| exists(&r.experiment, &r.variant, &r.solver));
+    let ladder = merge(stored_ladder, &fresh.ladder, |r| {
         (r.experiment.clone(), r.variant.clone(), r.solver.clone())
     });
-    let attribution = merge(
-        read_csv::<AttributionRow>(&attribution_path)?,
-        &fresh.attribution,
-        |r| (r.experiment.clone(), r.variant.clone(), r.solver.clone()),
-    );
+    let attribution = merge(stored_attribution, &fresh.attribution, |r| {
+        (r.experiment.clone(), r.variant.clone(), r.solver.clone())
+    });
     for (path, bytes) in [
         (&ladder_path, to_csv(&ladder)?),
         (&attribution_path, to_csv(&attribution)?),
