@@ -211,3 +211,27 @@ fn claims_pass_on_synthetic_rows_and_fail_when_a_number_changes() {
         "{changed:?}"
     );
 }
+
+/// Verdicts do not depend on machine load: scaling every run's timing columns by its own factor
+/// (0.3x to 3.3x) leaves every claim's verdict as it was.
+#[test]
+fn verdicts_do_not_depend_on_timing() {
+    let inputs = committed();
+    let verdicts = |rows: Vec<RunRow>| -> Vec<(String, Verdict)> {
+        let runs = Runs::new(rows);
+        PAPERS
+            .iter()
+            .flat_map(|(p, _)| claims::evaluate(p, &runs, &inputs.values))
+            .map(|c| (c.short, c.verdict))
+            .collect()
+    };
+    let before = verdicts(inputs.runs.all().to_vec());
+    let mut noisy = inputs.runs.all().to_vec();
+    for (i, r) in noisy.iter_mut().enumerate() {
+        let f = 0.3 + (i % 7) as f64 * 0.5;
+        r.wall_s *= f;
+        r.sim_s *= f;
+        r.observe_s *= f;
+    }
+    assert_eq!(before, verdicts(noisy));
+}
