@@ -483,8 +483,13 @@ fn prepare_output(cli: &Cli) -> Result<Vec<RunRow>, String> {
         Vec::new()
     };
     let mut dirs = vec![cli.results_dir.clone()];
-    if let Ok(root) = report_root(cli) {
-        dirs.push(root.join("report"));
+    match report_root(cli) {
+        Ok(root) => dirs.push(root.join("report")),
+        // Said before anything runs, not after.
+        Err(why) => eprintln!(
+            "note: results go to {}, but {why}",
+            cli.results_dir.display()
+        ),
     }
     for dir in &dirs {
         check_writable(dir)?;
