@@ -179,18 +179,21 @@ impl RunRow {
 
     /// The joint drifts that exist (n of them).
     pub fn drifts(&self) -> Vec<f64> {
-        [
+        present([
             self.drift_1,
             self.drift_2,
             self.drift_3,
             self.drift_4,
             self.drift_5,
             self.drift_6,
-        ]
-        .into_iter()
-        .flatten()
-        .collect()
+        ])
     }
+}
+
+/// The entries of the six per-joint drift columns that exist (a 5-joint arm leaves the sixth
+/// empty; a failed run all of them).
+pub fn present(drifts: [Option<f64>; 6]) -> Vec<f64> {
+    drifts.into_iter().flatten().collect()
 }
 
 /// Writes `bytes` to `path` atomically: to a temporary file unique to this call (process id and

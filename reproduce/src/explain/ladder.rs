@@ -151,17 +151,14 @@ pub struct LadderRow {
 impl LadderRow {
     /// The joint drifts that exist (none for a rung that did not complete).
     pub fn drifts(&self) -> Vec<f64> {
-        [
+        crate::results::present([
             self.drift_1,
             self.drift_2,
             self.drift_3,
             self.drift_4,
             self.drift_5,
             self.drift_6,
-        ]
-        .into_iter()
-        .flatten()
-        .collect()
+        ])
     }
 }
 

@@ -162,7 +162,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
         if *paper == "jia2019" {
             out.push_str(&sweep::clover_sweep(runs, values));
         }
-        out.push_str(&why::section(paper, explanations, values, runs));
+        out.push_str(&why::section(paper, explanations, values));
         out.push_str("\n### Claims\n\n");
         out.push_str(&claims::checklist(c));
         out.push_str(if tables.is_empty() {
@@ -287,7 +287,7 @@ fn group_section(
         out.push('\n');
         out.push_str(&figures::links(figures, exp));
     }
-    out.push_str(&why::section(group, explanations, values, runs));
+    out.push_str(&why::section(group, explanations, values));
     out.push('\n');
     out
 }

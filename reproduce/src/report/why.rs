@@ -5,7 +5,6 @@
 
 use super::markdown::{sci, sci_opt, Table, MISSING};
 use super::paper_values::{published, PaperValue, MAPPINGS};
-use super::runs::Runs;
 use crate::explain::attribution::AttributionRow;
 use crate::explain::inference::{EntryRow, InferenceRow};
 use crate::explain::ladder::LadderRow;
@@ -406,7 +405,7 @@ pub fn sentence(declared: &InferenceRow, best: &InferenceRow) -> String {
 }
 
 /// The whole "Why the numbers differ" subsection of one paper.
-pub fn section(paper: &str, x: &Explanations, values: &[PaperValue], _runs: &Runs) -> String {
+pub fn section(paper: &str, x: &Explanations, values: &[PaperValue]) -> String {
     let attribution = attribution_table(paper, x, values);
     let ladder = ladder_table(paper, x);
     if attribution.is_empty() && ladder.is_empty() {
