@@ -1,4 +1,4 @@
-//! Whole runs through `reproduce::run::run_job`, exactly as `reproduce` runs them (the ODE
+//! Whole runs through `simulation::run::run_job`, exactly as `reproduce` runs them (the ODE
 //! integration of arm + solver, the metrics, the score against the exact optimum along the run),
 //! for the jobs of [`RUN_CASES`]: the exact column and the neural runs of jia2019-star VLTCO,
 //! zhong2021-clover-b and kong2019-circle ZNN. Group `runs`, ids `<experiment>/<solver>`.
@@ -13,7 +13,7 @@ use driftbench_benches::{
     allocations_in, bench_id, experiment_jobs, find_job, whole_run_config, CountingAllocator,
     RUN_CASES,
 };
-use reproduce::run::{run_job, Outcome};
+use simulation::run::{run_job, Outcome};
 
 #[global_allocator]
 static ALLOC: CountingAllocator = CountingAllocator;

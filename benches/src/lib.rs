@@ -23,11 +23,11 @@ use std::time::Duration;
 
 use criterion::Criterion;
 use nalgebra::{DVector, SVector};
-use reproduce::experiment::{load_dir, Job, SolverChoice};
 use robots::{Dynamics, Jaco2, Katana6m180, Robot};
 use schemes::paths::{build_path, Path};
 use schemes::scheme::Scheme;
 use schemes::spec::build_scheme;
+use simulation::experiment::{load_dir, Job, SolverChoice};
 use solvers::neural::{NeuralSolver, SolverSpec};
 use solvers::{random_qp, ExactSolver, Qp, QpShape};
 
@@ -158,7 +158,9 @@ impl RepresentativeQp {
 /// Every job of every file in `experiments/` (panics on an unreadable file: the reproduction's
 /// own tests report those).
 pub fn experiment_jobs() -> Vec<Job> {
-    let dir = reproduce::workspace_root().join("experiments");
+    let dir = simulation::root::from_current_dir()
+        .unwrap()
+        .join("experiments");
     load_dir(&dir)
         .unwrap_or_else(|e| panic!("loading {}: {e}", dir.display()))
         .iter()

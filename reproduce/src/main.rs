@@ -1,13 +1,14 @@
 //! `cargo run --release -p reproduce`: runs driftbench's experiments and writes `results/`.
 
 use clap::Parser;
-use reproduce::experiment::{load_dir, Job, PaperFile};
-use reproduce::results::{
-    check_writable, merge, read_runs, remove_stale_tmp, run_stem, runs_csv, trace_csv, trace_file,
+use records::runs::{
+    check_writable, merge, read_runs, remove_stale_tmp, runs_csv, trace_csv, trace_file,
     write_atomic, RunRow,
 };
-use reproduce::run::RunRecord;
-use reproduce::runner::run_jobs_with;
+use simulation::experiment::{load_dir, Job, PaperFile};
+use simulation::naming::run_stem;
+use simulation::run::RunRecord;
+use simulation::runner::run_jobs_with;
 use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::PathBuf;
@@ -40,11 +41,22 @@ struct Cli {
     /// theta0), then exit.
     #[arg(long)]
     robots: bool,
-    /// Directory of the experiment files.
-    #[arg(long, default_value_os_t = reproduce::workspace_root().join("experiments"))]
+    /// The project root: the directory with experiments/, results/ and report/ (default: the
+    /// nearest directory at or above the working directory that has an experiments/ folder).
+    #[arg(long, value_name = "DIR")]
+    root: Option<PathBuf>,
+    /// Directory of the experiment files (default: ROOT/experiments).
+    #[arg(long = "experiments-dir", value_name = "DIR")]
+    experiments_dir_arg: Option<PathBuf>,
+    /// Directory results are written to (default: ROOT/results); the report goes beside it.
+    #[arg(long = "results-dir", value_name = "DIR")]
+    results_dir_arg: Option<PathBuf>,
+    /// The resolved project root, experiments and results directories.
+    #[arg(skip)]
+    project_root: PathBuf,
+    #[arg(skip)]
     experiments_dir: PathBuf,
-    /// Directory results are written to.
-    #[arg(long, default_value_os_t = reproduce::workspace_root().join("results"))]
+    #[arg(skip)]
     results_dir: PathBuf,
     /// Do not write results/ or report/ (print the summary only).
     #[arg(long)]
@@ -85,13 +97,32 @@ struct Cli {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    match real_main(cli) {
+    match resolve_dirs(cli).and_then(real_main) {
         Ok(code) => code,
         Err(e) => {
             eprintln!("error: {e}");
             ExitCode::from(2)
         }
     }
+}
+
+/// Fills in the project root (`--root`, else found from the working directory) and the
+/// experiments and results directories under it, unless given.
+fn resolve_dirs(mut cli: Cli) -> Result<Cli, String> {
+    let root = match &cli.root {
+        Some(r) => r.clone(),
+        None => simulation::root::from_current_dir().map_err(|e| e.to_string())?,
+    };
+    cli.experiments_dir = cli
+        .experiments_dir_arg
+        .clone()
+        .unwrap_or_else(|| root.join("experiments"));
+    cli.results_dir = cli
+        .results_dir_arg
+        .clone()
+        .unwrap_or_else(|| root.join("results"));
+    cli.project_root = root;
+    Ok(cli)
 }
 
 fn real_main(cli: Cli) -> Result<ExitCode, String> {
@@ -134,7 +165,7 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
             .build_global()
             .map_err(|e| e.to_string())?;
     }
-    let git_rev = reproduce::git_revision();
+    let git_rev = simulation::root::git_revision(&cli.project_root);
     if let Some(which) = &cli.infer {
         infer(
             &cli,
@@ -153,7 +184,7 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
     let mut stored = stored;
     let mut to_run: Vec<Job> = jobs.clone();
     if let Some(rows) = stored.as_mut() {
-        let recovered = reproduce::journal::recover(&cli.results_dir)?;
+        let recovered = records::journal::recover(&cli.results_dir)?;
         if !recovered.is_empty() {
             let done: Vec<(String, String, String)> = recovered
                 .iter()
@@ -164,7 +195,7 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
             let path = cli.results_dir.join("runs.csv");
             let bytes = runs_csv(rows).map_err(|e| e.to_string())?;
             write_atomic(&path, &bytes).map_err(|e| format!("{}: {e}", path.display()))?;
-            reproduce::journal::remove(&cli.results_dir)?;
+            records::journal::remove(&cli.results_dir)?;
             let before = to_run.len();
             to_run.retain(|j| {
                 !done.contains(&(j.experiment.clone(), j.variant.clone(), j.solver.label()))
@@ -179,7 +210,7 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
     }
     let journal = stored
         .is_some()
-        .then(|| reproduce::journal::Journal::open(&cli.results_dir, &git_rev))
+        .then(|| records::journal::Journal::open(&cli.results_dir, &git_rev))
         .transpose()?;
     let records = run_jobs_with(&to_run, true, |r| {
         if let Some(j) = &journal {
@@ -203,12 +234,13 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
                     "{} / {} / {}: {}",
                     r.experiment, r.variant, r.solver, r.failure
                 ),
-                reproduce::gate::expected_to_diverge(r),
+                records::gate::expected_to_diverge(r),
             )
         })
         .collect();
     if cli.check {
         return check(
+            &cli.project_root,
             &cli.results_dir,
             cli.baseline.as_deref(),
             &rows,
@@ -217,7 +249,7 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
     }
     if let Some(stored) = stored {
         write_results(&cli.results_dir, &records, stored, rows, &all)?;
-        reproduce::journal::remove(&cli.results_dir)?;
+        records::journal::remove(&cli.results_dir)?;
         if !cli.skip_explain && !cli.exact_only {
             explain(&cli, &jobs, &all, &git_rev)?;
         }
@@ -250,9 +282,9 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
 }
 
 /// The ladders and attributions of the selected runs of the papers' solvers (see
-/// `reproduce::explain`), written to results/ and rendered into the report.
+/// `explain`), written to results/ and rendered into the report.
 fn explain(cli: &Cli, jobs: &[Job], all: &[Job], git_rev: &str) -> Result<(), String> {
-    let targets = reproduce::explain::targets(jobs);
+    let targets = explain::targets(jobs);
     if targets.is_empty() {
         return Ok(());
     }
@@ -260,11 +292,11 @@ fn explain(cli: &Cli, jobs: &[Job], all: &[Job], git_rev: &str) -> Result<(), St
         "explaining {} runs of the papers' solvers (tolerance ladders, attribution)",
         targets.len()
     );
-    let explained = reproduce::explain::explain(&targets, all, true, git_rev);
+    let explained = explain::explain(&targets, all, true, git_rev);
     if cli.dry_run {
         return Ok(());
     }
-    reproduce::explain::write(&cli.results_dir, &explained, all)?;
+    explain::write(&cli.results_dir, &explained, all)?;
     eprintln!(
         "wrote {} ladder rows and {} attribution rows",
         explained.ladder.len(),
@@ -276,13 +308,12 @@ fn explain(cli: &Cli, jobs: &[Job], all: &[Job], git_rev: &str) -> Result<(), St
     Ok(())
 }
 
-/// `--infer`: fits the selected published tables (see `reproduce::explain::inference`).
+/// `--infer`: fits the selected published tables (see `explain::inference`).
 fn infer(cli: &Cli, which: &str, jobs: &[Job]) -> Result<(), String> {
-    use reproduce::explain::inference::{fit, problem, rows, table_ids, Budget};
+    use explain::inference::{fit, problem, rows, table_ids, Budget};
     let root = report_root(cli)?;
-    let values = reproduce::report::paper_values::read_paper_values(
-        &root.join("report").join("paper-values.csv"),
-    )?;
+    let values =
+        records::paper_values::read_paper_values(&root.join("report").join("paper-values.csv"))?;
     let ids = table_ids(&values);
     let wanted: Vec<&str> = which.split(',').map(str::trim).collect();
     let selected: Vec<&(String, String)> = ids
@@ -317,7 +348,7 @@ fn infer(cli: &Cli, which: &str, jobs: &[Job]) -> Result<(), String> {
         // tables it finished.
         let (r, e) = rows(&p, &f);
         if !cli.dry_run {
-            reproduce::explain::write_inference(&cli.results_dir, &r, &e)?;
+            explain::write_inference(&cli.results_dir, &r, &e)?;
         }
     }
     if cli.dry_run {
@@ -332,19 +363,19 @@ fn infer(cli: &Cli, which: &str, jobs: &[Job]) -> Result<(), String> {
 /// just wrote); outside a checkout, or for another results directory, its `runs.csv`. Returns
 /// the rows and a name for messages.
 fn baseline(
+    root: &std::path::Path,
     results_dir: &std::path::Path,
     file: Option<&std::path::Path>,
 ) -> Result<(Vec<RunRow>, String), String> {
     if let Some(f) = file {
         return Ok((read_runs(f)?, f.display().to_string()));
     }
-    let root = reproduce::workspace_root();
     let in_tree = results_dir == root.join("results");
     let committed = in_tree
         .then(|| {
             std::process::Command::new("git")
                 .args(["show", "HEAD:results/runs.csv"])
-                .current_dir(&root)
+                .current_dir(root)
                 .output()
                 .ok()
                 .filter(|o| o.status.success())
@@ -367,19 +398,20 @@ fn baseline(
 }
 
 fn check(
+    root: &std::path::Path,
     results_dir: &std::path::Path,
     baseline_file: Option<&std::path::Path>,
     fresh: &[RunRow],
     exact_only: bool,
 ) -> Result<ExitCode, String> {
-    let exact = reproduce::experiment::SolverChoice::Exact.label();
-    let (baseline_rows, baseline_name) = baseline(results_dir, baseline_file)?;
+    let exact = simulation::experiment::SolverChoice::Exact.label();
+    let (baseline_rows, baseline_name) = baseline(root, results_dir, baseline_file)?;
     let committed: Vec<RunRow> = baseline_rows
         .into_iter()
         .filter(|c| fresh.iter().any(|f| f.experiment == c.experiment))
         .filter(|c| !exact_only || c.solver == exact)
         .collect();
-    let problems = reproduce::gate::compare(&committed, fresh);
+    let problems = records::gate::compare(&committed, fresh);
     if problems.is_empty() {
         println!(
             "regression gate: {} runs agree with {baseline_name}",
@@ -411,8 +443,8 @@ fn report_root(cli: &Cli) -> Result<PathBuf, String> {
 
 /// Figures first (the report links them), then REPORT.md.
 fn render_report(root: &std::path::Path) -> Result<(), String> {
-    let figures = reproduce::figures::render_all(root)?;
-    let report = reproduce::report::render(root)?;
+    let figures = presentation::figures::render_all(root)?;
+    let report = presentation::report::render(root)?;
     eprintln!("wrote {} figures and {}", figures.len(), report.display());
     Ok(())
 }
@@ -442,7 +474,7 @@ fn select_jobs(files: &[PaperFile], cli: &Cli) -> Result<Vec<Job>, String> {
         .into_iter()
         .filter(|j| cli.paper.as_ref().is_none_or(|p| &j.paper == p))
         .filter(|j| cli.experiment.is_empty() || cli.experiment.contains(&j.experiment))
-        .filter(|j| !cli.exact_only || j.solver == reproduce::experiment::SolverChoice::Exact)
+        .filter(|j| !cli.exact_only || j.solver == simulation::experiment::SolverChoice::Exact)
         .collect())
 }
 

@@ -2,18 +2,18 @@
 //! stated one) and fails on a doctored one; an unexpected failed run exits non-zero, the
 //! experiment files' expected failures do not.
 
-use reproduce::results::{read_runs, runs_csv};
+use records::runs::{read_runs, runs_csv};
 use std::process::Command;
 
 fn reproduce() -> Command {
     let mut c = Command::new(env!("CARGO_BIN_EXE_reproduce"));
-    c.current_dir(reproduce::workspace_root());
+    c.current_dir(simulation::root::from_current_dir().unwrap());
     c
 }
 
 #[test]
 fn the_gate_compares_with_the_stated_baseline() {
-    let root = reproduce::workspace_root();
+    let root = simulation::root::from_current_dir().unwrap();
     let committed = read_runs(&root.join("results/runs.csv")).unwrap();
     let dir = std::env::temp_dir().join(format!("driftbench-cli-gate-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -154,7 +154,12 @@ scheme = { kind = "kong2019-znn", mu = 1.0, k_p = 1.0 }
 "#,
     )
     .unwrap();
-    let committed = read_runs(&reproduce::workspace_root().join("results/runs.csv")).unwrap();
+    let committed = read_runs(
+        &simulation::root::from_current_dir()
+            .unwrap()
+            .join("results/runs.csv"),
+    )
+    .unwrap();
     let mut stale = committed[0].clone();
     stale.experiment = "kong2019-deleted".to_string();
     std::fs::write(
@@ -166,7 +171,7 @@ scheme = { kind = "kong2019-znn", mu = 1.0, k_p = 1.0 }
     std::fs::create_dir_all(&trace_dir).unwrap();
     let trace = trace_dir.join(format!(
         "{}.csv",
-        reproduce::results::run_stem(&stale.variant, &stale.solver)
+        simulation::naming::run_stem(&stale.variant, &stale.solver)
     ));
     std::fs::write(&trace, "t\n0\n").unwrap();
 
@@ -233,7 +238,7 @@ solvers = [{ kind = "finite-time", beta = 1.0, alpha = 0.1, smoothing = 1e-6 }]
         c
     };
     let mut first = run().spawn().unwrap();
-    let journal = reproduce::journal::path(&results);
+    let journal = records::journal::path(&results);
     let lines = || {
         std::fs::read_to_string(&journal)
             .map(|t| t.lines().count())

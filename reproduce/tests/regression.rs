@@ -2,14 +2,14 @@
 //! committed `results/runs.csv`; and two fresh runs of the same jobs give identical rows,
 //! timing columns aside.
 
-use reproduce::experiment::load_dir;
-use reproduce::gate::compare;
-use reproduce::results::{read_runs, RunRow};
-use reproduce::runner::run_jobs;
+use records::gate::compare;
+use records::runs::{read_runs, RunRow};
+use simulation::experiment::load_dir;
+use simulation::runner::run_jobs;
 
 #[test]
 fn fresh_run_matches_the_committed_results() {
-    let root = reproduce::workspace_root();
+    let root = simulation::root::from_current_dir().unwrap();
     let committed =
         read_runs(&root.join("results/runs.csv")).expect("results/runs.csv is committed");
     let files = load_dir(&root.join("experiments")).unwrap();
@@ -31,7 +31,12 @@ fn fresh_run_matches_the_committed_results() {
 /// The gate itself: a changed drift, a changed status and a missing run are each caught.
 #[test]
 fn the_gate_catches_changes() {
-    let committed = read_runs(&reproduce::workspace_root().join("results/runs.csv")).unwrap();
+    let committed = read_runs(
+        &simulation::root::from_current_dir()
+            .unwrap()
+            .join("results/runs.csv"),
+    )
+    .unwrap();
     assert!(compare(&committed, &committed).is_empty());
     let ok = committed
         .iter()
@@ -50,7 +55,7 @@ fn the_gate_catches_changes() {
 
 #[test]
 fn two_runs_give_identical_rows() {
-    let root = reproduce::workspace_root();
+    let root = simulation::root::from_current_dir().unwrap();
     let files = load_dir(&root.join("experiments")).unwrap();
     let jobs: Vec<_> = files
         .iter()

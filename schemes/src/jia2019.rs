@@ -31,9 +31,9 @@
 
 use std::sync::Arc;
 
+use crate::qp::{Qp, QpDims};
 use nalgebra::SVector;
 use robots::Robot;
-use solvers::{Qp, QpDims};
 
 use crate::joint_limits::{merged_bounds, merged_bounds_dot};
 use crate::paths::Path;

@@ -1,13 +1,17 @@
 //! Desired paths and the four papers' redundancy-resolution schemes, each turning
-//! (t, robot state) into one QP.
+//! (t, robot state) into one QP ([`qp::Qp`], which the solvers take).
+
+pub use qp::{KktResiduals, Qp, QpDims, QpDuals};
 
 pub mod jia2019;
 pub mod joint_limits;
 pub mod kong2019;
 pub mod paths;
+pub mod qp;
 pub mod qp_dot;
 pub mod rmp;
 pub mod scheme;
+pub mod sign_power;
 pub mod spec;
 pub mod zhang2018;
 pub mod zhong2021;

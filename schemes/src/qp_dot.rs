@@ -20,8 +20,8 @@
 //!
 //! Nothing here allocates after [`QpDotScratch::new`].
 
+use crate::qp::{Qp, QpDims};
 use nalgebra::{Dim, Matrix, RawStorage, RawStorageMut, SVector};
-use solvers::{Qp, QpDims};
 
 use crate::scheme::{Level, Scheme};
 

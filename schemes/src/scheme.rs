@@ -1,5 +1,5 @@
 //! The common interface of the papers' schemes: at every instant a scheme turns
-//! (t, theta, thetadot) into one QP (see [`solvers::Qp`]) whose decision variable x starts with
+//! (t, theta, thetadot) into one QP (see [`crate::qp::Qp`]) whose decision variable x starts with
 //! the joint command: x[..N] is thetadot (velocity level) or thetaddot (acceleration level).
 //!
 //! Besides the QP itself a scheme provides its time derivative along the current motion
@@ -13,8 +13,8 @@
 //!
 //! (at the velocity level the thetadot argument of `build` is unused, so only theta moves).
 
+use crate::qp::{Qp, QpDims};
 use nalgebra::SVector;
-use solvers::{Qp, QpDims};
 
 use crate::qp_dot::{self, QpDotScratch};
 

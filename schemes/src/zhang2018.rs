@@ -24,9 +24,9 @@
 
 use std::sync::Arc;
 
+use crate::qp::{Qp, QpDims};
 use nalgebra::{SMatrix, SVector};
 use robots::Dynamics;
-use solvers::{Qp, QpDims};
 
 use crate::paths::Path;
 use crate::scheme::{Level, Scheme};

@@ -35,9 +35,9 @@
 
 use std::sync::Arc;
 
+use crate::qp::{Qp, QpDims};
 use nalgebra::SVector;
 use robots::Robot;
-use solvers::{Qp, QpDims};
 
 use crate::jia2019::{write_invm_rows, write_tri_criteria, write_tri_criteria_dot};
 use crate::joint_limits::{merged_bounds_dot, piecewise_bounds};

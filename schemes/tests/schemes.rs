@@ -7,7 +7,7 @@ mod common;
 
 use std::sync::Arc;
 
-use common::{admm, kkt_solve, paper_specs as specs, qp_max_rel_diff, Circle, PlanarZ};
+use common::{admm, kkt_solve, paper_specs as specs, Circle, PlanarZ};
 use nalgebra::{DMatrix, SVector, Vector3};
 use robots::{Dynamics, JointLimits, Robot};
 use schemes::jia2019::Jia2019;
@@ -19,7 +19,7 @@ use schemes::scheme::{Level, Scheme};
 use schemes::spec::{build_scheme, RmpReading, SchemeError, SchemeSpec};
 use schemes::zhang2018::Zhang2018;
 use schemes::zhong2021::Zhong2021;
-use solvers::{Qp, QpDims};
+use schemes::{Qp, QpDims};
 
 const N: usize = 6;
 type V = SVector<f64, N>;
@@ -526,7 +526,7 @@ fn build_dot_matches_a_higher_order_difference() {
             let mut scratch = s.new_dot_scratch();
             s.build_dot(t, &th, &thd, &thdd, &mut dot, &mut scratch);
             let reference = stencil_dot(&*s, t, &th, &thd, &thdd, 1e-3);
-            let d = qp_max_rel_diff(&dot, &reference);
+            let d = dot.max_rel_diff(&reference);
             assert!(
                 d < 1e-6,
                 "{} t = {t}: build_dot off by {d}",
@@ -548,7 +548,7 @@ fn build_dot_matches_a_higher_order_difference() {
             let mut fd = s.new_qp();
             let h = qp_dot::default_step(s.level(), &thd, &thdd);
             qp_dot::central_difference(&*s, t, &th, &thd, &thdd, h, &mut fd, &mut scratch);
-            let d = qp_max_rel_diff(&fd, &reference);
+            let d = fd.max_rel_diff(&reference);
             assert!(
                 d < 1e-6,
                 "{} t = {t}: central difference off by {d}",

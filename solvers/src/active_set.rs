@@ -1,4 +1,4 @@
-//! A hand-written dense active-set solver for the small strictly convex QPs of [`crate::qp`],
+//! A hand-written dense active-set solver for the small strictly convex QPs of [`schemes::qp`],
 //! hot-started from the previous instant's working set and certified by its KKT residuals.
 //!
 //! # Why hand-written
@@ -11,7 +11,7 @@
 //!
 //! # Problem and constraint numbering
 //!
-//! The QP is that of [`crate::qp`]: minimise x'Px/2 + q'x subject to A x = b, G x <= h,
+//! The QP is that of [`schemes::qp`]: minimise x'Px/2 + q'x subject to A x = b, G x <= h,
 //! l <= x <= u. Every inequality is written as c_k'x <= d_k and numbered (this is the order
 //! used for every tie break):
 //!
@@ -107,7 +107,7 @@
 //!
 //! # Certification
 //!
-//! Every answer (x and the multipliers, in the sign convention of [`crate::qp`]:
+//! Every answer (x and the multipliers, in the sign convention of [`schemes::qp`]:
 //! P x + q + A'lambda + G'mu + z_u - z_l = 0) is checked by [`Qp::kkt_residuals`]: stationarity,
 //! primal feasibility, dual feasibility and complementarity must all be at most
 //! `tol * (1 + max(|q|_inf, |b|_inf))`, the scale of [`crate::exact`], with `tol` =
@@ -132,8 +132,8 @@
 //! length n and m_in; [`ActiveSetSolver::solve`] also allocates the returned solution. An
 //! error allocates its message.
 
-use crate::qp::{KktResiduals, Qp, QpDims, QpDuals};
 use nalgebra::DVector;
+use schemes::qp::{KktResiduals, Qp, QpDims, QpDuals};
 use std::fmt;
 
 /// Default relative tolerance of the certification (see the module docs).
@@ -268,7 +268,7 @@ pub enum ActiveSetStart {
 #[derive(Clone, Debug, PartialEq)]
 pub struct ActiveSetSolution {
     pub x: DVector<f64>,
-    /// Multipliers in the convention of [`crate::qp`] (zero outside the working set).
+    /// Multipliers in the convention of [`schemes::qp`] (zero outside the working set).
     pub duals: QpDuals,
     /// x'Px/2 + q'x at `x`.
     pub objective: f64,

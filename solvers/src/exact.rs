@@ -1,5 +1,5 @@
 //! The exact reference solver: Clarabel (an interior-point conic solver) on the QP of
-//! [`crate::qp`], plus a direct KKT solve for equality-only QPs as an independent check.
+//! [`schemes::qp`], plus a direct KKT solve for equality-only QPs as an independent check.
 //!
 //! # Cone mapping
 //!
@@ -23,7 +23,7 @@
 //! Only finite bounds get a row; an absent bound (l_i = -inf, u_i = +inf) and an absent
 //! inequality (h_i = +inf) get no row and a zero multiplier: no big-M constant is ever
 //! introduced. With this stacking Clarabel's stationarity P x + q + A_c' z = 0 reads
-//! P x + q + A'lambda + G'mu + z_u - z_l = 0, exactly the convention of [`crate::qp`], so the
+//! P x + q + A'lambda + G'mu + z_u - z_l = 0, exactly the convention of [`schemes::qp`], so the
 //! multipliers are copied without sign changes. P is passed as its upper triangle in CSC form.
 //!
 //! # Tolerances
@@ -44,12 +44,12 @@
 //! inequality and bound right-hand sides are left out because the papers fill them with large
 //! constants standing for +inf (varpi = 1e3 and more), which would make the check meaningless.
 
-use crate::qp::{KktResiduals, Qp, QpDuals};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettings, DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
 };
 use nalgebra::{DMatrix, DVector};
+use schemes::qp::{KktResiduals, Qp, QpDuals};
 use std::fmt;
 
 /// Clarabel's gap and feasibility tolerances, tried in turn (see the module docs).
@@ -188,7 +188,7 @@ impl std::error::Error for ExactError {}
 #[derive(Clone, Debug, PartialEq)]
 pub struct ExactSolution {
     pub x: DVector<f64>,
-    /// Multipliers in the convention of [`crate::qp`] (zero for absent constraints).
+    /// Multipliers in the convention of [`schemes::qp`] (zero for absent constraints).
     pub duals: QpDuals,
     /// x'Px/2 + q'x evaluated at `x` by [`Qp::objective`].
     pub objective: f64,

@@ -4,7 +4,7 @@
 //!
 //! # Why the answer is the exact optimum
 //!
-//! For the convex QPs of [`crate::qp`] the KKT conditions (stationarity, primal and dual
+//! For the convex QPs of [`schemes::qp`] the KKT conditions (stationarity, primal and dual
 //! feasibility, complementarity) are necessary and sufficient for optimality. The active-set
 //! solver returns an answer only if its own residuals meet them to 1e-10 (relative to
 //! 1 + max(|q|, |b|)); otherwise (a singular KKT matrix, as MVN's QP whose p has no weight, an
@@ -26,8 +26,8 @@
 
 use crate::active_set::{ActiveSetSolution, ActiveSetSolver, WorkingSet};
 use crate::exact::{ExactError, ExactSolver};
-use crate::qp::Qp;
 use nalgebra::DVector;
+use schemes::qp::Qp;
 
 /// Every this many solves (and on the first), Clarabel solves the same QP as a check.
 pub const CHECK_EVERY: usize = 100;

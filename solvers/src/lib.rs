@@ -1,4 +1,4 @@
-//! The QP type, the exact reference solver (Clarabel), a hot-started dense active-set solver,
+//! The exact reference solver (Clarabel), a hot-started dense active-set solver,
 //! the papers' neural solvers and the ODE integration layer (diffsol) they are simulated with.
 
 pub mod active_set;
@@ -6,7 +6,6 @@ pub mod exact;
 pub mod exact_path;
 pub mod neural;
 pub mod ode;
-pub mod qp;
 pub mod random_qp;
 
 pub use active_set::{
@@ -14,5 +13,5 @@ pub use active_set::{
 };
 pub use exact::{solve_equality_kkt, ExactError, ExactSolution, ExactSolver, ExactStatus};
 pub use exact_path::{ExactPath, ExactPathStats};
-pub use qp::{KktResiduals, Qp, QpDims, QpDuals};
 pub use random_qp::{random_feasible, random_qp, QpShape};
+pub use schemes::qp::{KktResiduals, Qp, QpDims, QpDuals};

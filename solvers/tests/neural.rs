@@ -5,7 +5,8 @@
 use nalgebra::{DMatrix, DVector};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use solvers::neural::activation::{Activation, SIGN_POWER_MIN_ABS};
+use schemes::sign_power::SIGN_POWER_MIN_ABS;
+use solvers::neural::activation::Activation;
 use solvers::neural::cdnn::ReferencePerturbation;
 use solvers::neural::projection::{primal_dual_dim, LviPdnn, SLviPdnn};
 use solvers::neural::zeroing::Gain;

@@ -10,7 +10,7 @@ use nalgebra::{DMatrix, DVector, SMatrix, SVector, Vector3};
 use robots::{Dynamics, JointLimits, Robot};
 use schemes::paths::{Path, PathPoint};
 use schemes::spec::{RmpReading, SchemeSpec};
-use solvers::{Qp, QpDuals};
+use schemes::{Qp, QpDuals};
 
 /// Planar arm: joints 1..N-1 rotate in the x-y plane (links `LEN`), joint N moves the tip in z
 /// by `Z_GAIN * theta_N`. Joint 2 has finite angle limits [-1, 2.5]; the others [-3, 3];
@@ -147,7 +147,7 @@ impl Path for Circle {
 
 /// Solves the QP by ADMM (OSQP's iteration, fixed rho, many iterations) on
 /// [A; G; I] x in [[b; -inf; lower], [b; h; upper]]; returns x and the multipliers in the
-/// conventions of `solvers::qp`.
+/// conventions of `schemes::qp`.
 pub fn admm(qp: &Qp, iters: usize) -> (DVector<f64>, QpDuals) {
     let n = qp.q.len();
     let (me, mi) = (qp.b.len(), qp.h.len());
@@ -220,32 +220,6 @@ pub fn kkt_solve(qp: &Qp) -> DVector<f64> {
     rhs.rows_mut(0, n).copy_from(&(-&qp.q));
     rhs.rows_mut(n, me).copy_from(&qp.b);
     k.lu().solve(&rhs).unwrap().rows(0, n).into_owned()
-}
-
-/// Largest |a - b| over every field of two QPs, treating equal infinities as 0, relative to
-/// max(1, |a|).
-pub fn qp_max_rel_diff(a: &Qp, b: &Qp) -> f64 {
-    let mut d: f64 = 0.0;
-    let pairs: [(&[f64], &[f64]); 8] = [
-        (a.p.as_slice(), b.p.as_slice()),
-        (a.q.as_slice(), b.q.as_slice()),
-        (a.a.as_slice(), b.a.as_slice()),
-        (a.b.as_slice(), b.b.as_slice()),
-        (a.g.as_slice(), b.g.as_slice()),
-        (a.h.as_slice(), b.h.as_slice()),
-        (a.lower.as_slice(), b.lower.as_slice()),
-        (a.upper.as_slice(), b.upper.as_slice()),
-    ];
-    for (x, y) in pairs {
-        assert_eq!(x.len(), y.len());
-        for (&u, &v) in x.iter().zip(y) {
-            if u == v {
-                continue;
-            }
-            d = d.max((u - v).abs() / u.abs().max(1.0));
-        }
-    }
-    d
 }
 
 /// Every paper's scheme at the parameters the papers use (and MVN / MVN-INVM / MTN).

@@ -41,15 +41,16 @@
 //!
 //! Sign-power with r < 1 has an infinite slope at e = 0 (that is what makes the convergence
 //! finite-time, and what makes every integrator fail once e reaches 0: explicit steps collapse,
-//! Newton iterations of implicit ones diverge). [`sign_power`] therefore takes a smoothing width
+//! Newton iterations of implicit ones diverge). [`sign_power`](schemes::sign_power::sign_power) therefore takes a smoothing width
 //! delta: phi(e) = e (e^2 + delta^2)^((r - 1)/2), which is odd, strictly increasing (slope
 //! (e^2 + delta^2)^((r-3)/2) (r e^2 + delta^2) > 0), smooth, equal to abs(e)^r sgn(e) up to a
 //! relative (1 + delta^2/e^2)^((r-1)/2) - 1 (< 0.5 % at abs(e) = 10 delta for r = 0.1), and has the
 //! finite slope delta^(r-1) at 0: the finite-time phase is kept down to abs(e) ~ delta and then
 //! turns into an exponential decay with rate delta^(r-1). delta = 0 gives the exact form (its
-//! slope then evaluated at max(abs(e), [`SIGN_POWER_MIN_ABS`]) so Jacobians stay finite). The same
+//! slope then evaluated at max(abs(e), [`SIGN_POWER_MIN_ABS`](schemes::sign_power::SIGN_POWER_MIN_ABS)) so Jacobians stay finite). The same
 //! function is kong2019's c in its finite-time scheme (`schemes::kong2019`).
 
+use schemes::sign_power::{sign_power, sign_power_slope};
 use serde::Deserialize;
 
 /// Default power-sigmoid alpha (zhong2021 eq. 2.29 asks only alpha >= 2).
@@ -77,33 +78,6 @@ fn sigmoid_branch_slope(a: f64, s: f64) -> f64 {
     let z = (-s * a).exp();
     (1.0 + ea) / (1.0 - ea) * 2.0 * s * z / ((1.0 + z) * (1.0 + z))
 }
-
-/// Smoothed sign-power e (e^2 + delta^2)^((r - 1)/2) (exact abs(e)^r sgn(e) for delta = 0).
-#[inline]
-pub fn sign_power(e: f64, r: f64, delta: f64) -> f64 {
-    if delta > 0.0 {
-        e * (e * e + delta * delta).powf(0.5 * (r - 1.0))
-    } else if e == 0.0 {
-        0.0
-    } else {
-        e.abs().powf(r).copysign(e)
-    }
-}
-
-/// d/de of [`sign_power`].
-#[inline]
-pub fn sign_power_slope(e: f64, r: f64, delta: f64) -> f64 {
-    if delta > 0.0 {
-        let s = e * e + delta * delta;
-        s.powf(0.5 * (r - 3.0)) * (r * e * e + delta * delta)
-    } else {
-        r * e.abs().max(SIGN_POWER_MIN_ABS).powf(r - 1.0)
-    }
-}
-
-/// Floor on abs(e) where the sign-power slope r abs(e)^(r-1) is evaluated (r < 1 makes it
-/// infinite at 0).
-pub const SIGN_POWER_MIN_ABS: f64 = 1e-12;
 
 /// One activation unit phi (applied elementwise).
 #[derive(Clone, Copy, Debug, PartialEq)]

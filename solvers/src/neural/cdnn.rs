@@ -30,8 +30,8 @@
 
 use super::activation::Activation;
 use super::zeroing::{Gain, ZeroingNetwork};
-use crate::qp::QpDims;
 use nalgebra::DMatrix;
+use schemes::qp::QpDims;
 use serde::Deserialize;
 use std::f64::consts::PI;
 

@@ -31,7 +31,7 @@
 use super::activation::Activation;
 use super::cdnn::ReferencePerturbation;
 use super::zeroing::{Gain, ZeroingNetwork};
-use crate::qp::QpDims;
+use schemes::qp::QpDims;
 
 /// The group's gamma (`mvn_ZZJLJrebi1.m`).
 pub const GROUP_GAMMA: f64 = 500.0;

@@ -1,5 +1,5 @@
 //! The papers' recurrent neural networks as continuous-time systems solving a QP
-//! (see [`crate::qp::Qp`]). Each network has a state y whose first `nx` entries are the
+//! (see [`schemes::qp::Qp`]). Each network has a state y whose first `nx` entries are the
 //! current estimate of the decision variable x (the joint velocity or acceleration that
 //! drives the arm); the rest are dual (multiplier) states where the network has them.
 //!
@@ -34,8 +34,8 @@ pub use vp_rnn_pf::VpRnnPf;
 pub use zeroing::{Gain, ZeroingNetwork};
 pub use znn::{finite_time, znn};
 
-use crate::qp::{Qp, QpDims};
 use nalgebra::DMatrix;
+use schemes::qp::{Qp, QpDims};
 
 /// A recurrent network that solves a (possibly time-varying) QP.
 ///

@@ -35,7 +35,7 @@ use super::projection::{LviPdnn, SLviPdnn};
 use super::vp_rnn_pf::VpRnnPf;
 use super::znn::{finite_time, znn, FINITE_TIME_SMOOTHING};
 use super::NeuralSolver;
-use crate::qp::QpDims;
+use schemes::qp::QpDims;
 use serde::{Deserialize, Serialize};
 
 fn default_alpha() -> f64 {

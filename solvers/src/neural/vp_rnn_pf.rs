@@ -72,8 +72,8 @@ use super::activation::Activation;
 use super::lu;
 use super::zeroing::Gain;
 use super::NeuralSolver;
-use crate::qp::{Qp, QpDims};
 use nalgebra::DMatrix;
+use schemes::qp::{Qp, QpDims};
 
 /// Cap on the penalty exponent -sigma N_i (exp(700) ~ 1e304).
 pub const EXPONENT_CAP: f64 = 700.0;

@@ -15,7 +15,7 @@
 //!
 //! (zhang2018 writes Q = [W J'; J 0], u = [-eta; b]; kong2019 writes W = [I J'; J 0],
 //! v = [-beta_theta c; rdot* + k_p (r* - f)]), so lambda has the sign convention of
-//! [`crate::qp::QpDuals`]. The error E(t) = Q y - u (zhang2018 eq. 2.9, kong2019 eq. 19) is made
+//! [`schemes::qp::QpDuals`]. The error E(t) = Q y - u (zhang2018 eq. 2.9, kong2019 eq. 19) is made
 //! to obey Edot = -g(t) Phi(E) (zhang2018 eq. 2.10 / 2.14, kong2019 eq. 6); since
 //! Edot = Qdot y + Q ydot - udot (zhang2018 eq. 3.4) the network is the implicit system
 //!
@@ -49,8 +49,8 @@ use super::activation::Activation;
 use super::cdnn::ReferencePerturbation;
 use super::lu;
 use super::{euclidean_norm, NeuralSolver};
-use crate::qp::{Qp, QpDims};
 use nalgebra::DMatrix;
+use schemes::qp::{Qp, QpDims};
 
 /// Convergence gain of a zeroing network.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -47,7 +47,7 @@
 
 use super::activation::Activation;
 use super::zeroing::{Gain, ZeroingNetwork};
-use crate::qp::QpDims;
+use schemes::qp::QpDims;
 
 /// Default half-width of the sign-power's linear zone (module docs).
 pub const FINITE_TIME_SMOOTHING: f64 = 1e-8;

@@ -1,0 +1,252 @@
+//! Drift attribution: what each ingredient of a run adds to its drift and position error.
+//!
+//! # Mathematics
+//!
+//! For a run of a paper's solver let d_run be its drift theta(T) - theta(0) (per joint) at the
+//! run's own integrator setting, d_net the same network integrated to convergence (the finest
+//! completed rung of its [tolerance ladder](super::ladder)) and d_exact the exact column (Clarabel in
+//! the loop) integrated to convergence (the finest Dormand-Prince rung). The telescoping sum
+//!
+//! ```text
+//!   d_run = d_exact + (d_net - d_exact) + (d_run - d_net)
+//!         = scheme  + network lag        + integration error
+//! ```
+//!
+//! holds exactly, per joint. Ingredients that are switched rather than converged are measured
+//! by one controlled re-run each, everything else held: the injected perturbation
+//! (zhang2018's Delta_s, Delta_D; the group's code) as d_run - d_run(no perturbation); a path
+//! that does not close (the group's butterfly as printed) as d_run - d_run(closed path); our
+//! own regularisation of kong2019's sign-power as d_run - d_run(smoothing / 100) (switch runs
+//! are capped at the ladder's step limit: the finer smoothing is stiffer still). These switch
+//! effects overlap the three terms above (they are part of the scheme or of the network): they
+//! are "of which" columns, not further summands. For the position error the same runs give
+//! max_t |r* - f(theta)| of each; a switch row holds the difference of the two maxima.
+
+use super::ladder::LadderRow;
+use records::runs::RunRow;
+use serde::{Deserialize, Serialize};
+use simulation::experiment::{Job, SolverChoice};
+use solvers::neural::spec::SolverSpec;
+
+/// The largest RelTol whose rung may serve as a converged reference.
+pub const CONVERGED_RTOL: f64 = 1e-8;
+
+/// A controlled re-run that switches one ingredient off.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Switch {
+    /// The injected perturbation removed.
+    NoPerturbation,
+    /// The path closed (the butterfly with its closing correction).
+    ClosedPath,
+    /// kong2019's sign-power linear zone delta divided by 100.
+    FinerSmoothing,
+}
+
+impl Switch {
+    /// The attribution component this switch measures.
+    pub fn component(self) -> &'static str {
+        match self {
+            Switch::NoPerturbation => "of which: injected perturbation",
+            Switch::ClosedPath => "of which: path non-closure",
+            Switch::FinerSmoothing => "of which: sign-power smoothing (ours)",
+        }
+    }
+
+    /// `job` with this ingredient switched off, or `None` when the run does not have it.
+    pub fn apply(self, job: &Job) -> Option<Job> {
+        let SolverChoice::Neural(spec) = &job.solver else {
+            return None;
+        };
+        let mut out = Job {
+            score: false,
+            ..job.clone()
+        };
+        out.integrator.max_steps = out
+            .integrator
+            .max_steps
+            .min(super::ladder::LADDER_MAX_STEPS);
+        match self {
+            Switch::NoPerturbation => {
+                let spec = without_perturbation(spec)?;
+                out.solver = SolverChoice::Neural(spec);
+            }
+            Switch::ClosedPath => {
+                if job.path.name != "butterfly-as-printed" {
+                    return None;
+                }
+                out.path.name = "butterfly".to_string();
+            }
+            Switch::FinerSmoothing => {
+                let SolverSpec::FiniteTime {
+                    beta,
+                    alpha,
+                    smoothing,
+                } = *spec
+                else {
+                    return None;
+                };
+                out.solver = SolverChoice::Neural(SolverSpec::FiniteTime {
+                    beta,
+                    alpha,
+                    smoothing: smoothing / 100.0,
+                });
+            }
+        }
+        Some(out)
+    }
+}
+
+/// Every switch, in report order.
+pub const SWITCHES: [Switch; 3] = [
+    Switch::NoPerturbation,
+    Switch::ClosedPath,
+    Switch::FinerSmoothing,
+];
+
+/// The solver without its injected perturbation, `None` when it has none.
+fn without_perturbation(spec: &SolverSpec) -> Option<SolverSpec> {
+    let mut s = spec.clone();
+    match &mut s {
+        SolverSpec::FpCdnn { perturbation, .. }
+        | SolverSpec::VpCdnn { perturbation, .. }
+        | SolverSpec::GroupZnn { perturbation, .. } => perturbation.take().map(|_| ()),
+        _ => None,
+    }?;
+    Some(s)
+}
+
+/// One component of one run's drift, as stored in `results/attribution.csv`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct AttributionRow {
+    pub paper: String,
+    pub experiment: String,
+    pub variant: String,
+    pub solver: String,
+    /// `run`, `scheme (exact, converged)`, `network lag`, `integration error`, or an
+    /// `of which: ...` switch effect.
+    pub component: String,
+    pub drift_1: Option<f64>,
+    pub drift_2: Option<f64>,
+    pub drift_3: Option<f64>,
+    pub drift_4: Option<f64>,
+    pub drift_5: Option<f64>,
+    pub drift_6: Option<f64>,
+    /// 2-norm of the component (of the drift itself for `run` and `scheme`).
+    pub drift_norm: Option<f64>,
+    /// |component| / |d_run|.
+    pub share: Option<f64>,
+    /// Max position error of the run (`run`, `scheme`, `network lag` = converged network), or
+    /// the change of it the ingredient causes (switch rows).
+    pub max_pos_err: Option<f64>,
+    /// Why a component is missing (a rung or switch run that did not complete).
+    pub note: String,
+}
+
+/// The controlled re-runs of one target besides its ladders: (switch, job).
+pub fn switch_jobs(job: &Job) -> Vec<(Switch, Job)> {
+    SWITCHES
+        .iter()
+        .filter_map(|&s| s.apply(job).map(|j| (s, j)))
+        .collect()
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// The attribution rows of one neural run from its ladder, its exact column's ladder and its
+/// switch runs.
+pub fn attribution_rows(
+    neural: &[LadderRow],
+    exact: &[LadderRow],
+    switches: &[(Switch, RunRow)],
+) -> Vec<AttributionRow> {
+    let Some(run) = neural.iter().find(|r| r.as_run) else {
+        return Vec::new();
+    };
+    let drifts = |r: &LadderRow| (r.status == "ok").then(|| r.drifts());
+    let d_run = drifts(run);
+    // A reference counts as converged only from RelTol CONVERGED_RTOL on (the finite-time
+    // network's ladder stops at 1e-4: it has none).
+    let converged = |r: &&LadderRow| r.reference && r.rtol <= CONVERGED_RTOL;
+    let net_ref = neural.iter().find(converged);
+    let exact_ref = exact.iter().find(converged);
+    let d_net = net_ref.and_then(drifts);
+    let d_exact = exact_ref.and_then(drifts);
+    let run_norm = d_run.as_deref().map(norm);
+    let row = |component: &str, d: Option<Vec<f64>>, err: Option<f64>, note: &str| {
+        let get = |i: usize| d.as_ref().and_then(|d| d.get(i).copied());
+        let n = d.as_deref().map(norm);
+        AttributionRow {
+            paper: run.paper.clone(),
+            experiment: run.experiment.clone(),
+            variant: run.variant.clone(),
+            solver: run.solver.clone(),
+            component: component.to_string(),
+            drift_1: get(0),
+            drift_2: get(1),
+            drift_3: get(2),
+            drift_4: get(3),
+            drift_5: get(4),
+            drift_6: get(5),
+            drift_norm: n,
+            share: n.zip(run_norm).map(|(a, b)| a / b),
+            max_pos_err: err,
+            note: if d.is_some() {
+                String::new()
+            } else {
+                note.to_string()
+            },
+        }
+    };
+    let diff = |a: &Option<Vec<f64>>, b: &Option<Vec<f64>>| -> Option<Vec<f64>> {
+        let (a, b) = (a.as_ref()?, b.as_ref()?);
+        Some(a.iter().zip(b).map(|(x, y)| x - y).collect())
+    };
+    let unfinished = |r: Option<&LadderRow>, what: &str| match r {
+        None => format!("no {what} rung completed at RelTol <= {CONVERGED_RTOL:e}"),
+        Some(r) => format!("{what}: {}", r.failure),
+    };
+    let mut rows = vec![
+        row("run", d_run.clone(), run.max_pos_err, &run.failure),
+        row(
+            "scheme (exact, converged)",
+            d_exact.clone(),
+            exact_ref.and_then(|r| r.max_pos_err),
+            &unfinished(exact_ref, "exact"),
+        ),
+        row(
+            "network lag",
+            diff(&d_net, &d_exact),
+            net_ref.and_then(|r| r.max_pos_err),
+            &unfinished(net_ref, "converged network"),
+        ),
+        row(
+            "integration error",
+            diff(&d_run, &d_net),
+            None,
+            &unfinished(net_ref, "converged network"),
+        ),
+    ];
+    for (s, r) in switches {
+        let d_off = (r.status == "ok").then(|| r.drifts());
+        let err = run.max_pos_err.zip(r.max_pos_err).map(|(a, b)| a - b);
+        let note = if d_run.is_none() {
+            format!("the run itself failed: {}", run.failure)
+        } else {
+            format!("run without it: {}", r.failure)
+        };
+        rows.push(row(s.component(), diff(&d_run, &d_off), err, &note));
+    }
+    rows
+}
+
+/// The exact counterpart of `job` (same variant, Clarabel in the loop), whose ladder gives the
+/// converged scheme drift.
+pub fn exact_counterpart(job: &Job) -> Job {
+    Job {
+        solver: SolverChoice::Exact,
+        score: false,
+        ..job.clone()
+    }
+}

@@ -1,0 +1,242 @@
+//! The tolerance ladder: one run re-integrated at a sequence of tolerances and methods, to tell
+//! which published digits could be integration noise.
+//!
+//! # Mathematics
+//!
+//! Let d(rtol) be the drift theta(T) - theta(0) of a run integrated with relative tolerance rtol
+//! (absolute tolerance atol = rtol / 100, the ratio of the papers' RelTol 1e-6 / AbsTol 1e-8).
+//! For a method of order p whose local error control works, the global error behaves like
+//! C rtol^(p / (p + 1)), so d(rtol) converges as rtol -> 0. We take the finest rung that
+//! completed as the converged value d* and report for every rung the relative change
+//! |d(rtol) - d*| / |d*| (2-norm over the joints) and the digits it shares with d*,
+//! -log10 of that change. A published digit at or beyond the digits shared at the paper's own
+//! setting (ode15s, RelTol 1e-6, AbsTol 1e-8) could be integration noise.
+//!
+//! Rungs: BDF/NDF (ode15s's method) at MATLAB's defaults (RelTol 1e-3, AbsTol 1e-6) and at
+//! RelTol 1e-3 ... 1e-10; a second method at the same RelTols (Dormand-Prince 5(4), ode45's
+//! method; ESDIRK3(4) for the finite-time network); the run's own setting. A run with the
+//! group's `MaxStep` keeps it on every rung. The exact column (Clarabel in the loop) is laddered
+//! with its experiment's exact method (Dormand-Prince, or BDF where the scheme is stiff), down
+//! to RelTol 1e-12. Explicit rungs
+//! on the stiff networks (gamma = 1e7) cannot finish: rungs are capped at
+//! [`LADDER_MAX_STEPS`] (explicit: [`LADDER_MAX_EXPLICIT_STEPS`]) accepted steps and an
+//! unfinished rung is reported as such, not dropped.
+
+use records::runs::RunRow;
+use serde::{Deserialize, Serialize};
+use simulation::experiment::{Job, SolverChoice};
+use solvers::neural::spec::SolverSpec;
+use solvers::ode::{IntegratorSettings, Method};
+
+/// Accepted steps after which an implicit ladder rung is abandoned (the finite-time network
+/// needs ~650,000 BDF steps at RelTol 1e-6: its tighter BDF rungs end unfinished, its ESDIRK
+/// rungs converge).
+pub const LADDER_MAX_STEPS: usize = 100_000;
+/// The same for explicit rungs: an explicit method on a network with gain 1e7 would need ~10^8
+/// steps; 20,000 tell that it cannot finish.
+pub const LADDER_MAX_EXPLICIT_STEPS: usize = 20_000;
+
+/// RelTol of the BDF rungs (and of the second method's) of a neural run.
+const NEURAL_RTOLS: [f64; 8] = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10];
+/// RelTol of the rungs of the exact column (its run is at 1e-11; 1e-12 is the reference).
+const EXACT_RTOLS: [f64; 7] = [1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12];
+
+/// One rung: method and tolerances.
+fn rung(method: Method, rtol: f64, atol: f64, max_step: Option<f64>) -> IntegratorSettings {
+    IntegratorSettings {
+        method,
+        rtol,
+        atol,
+        max_steps: if method == Method::Dopri5 || method == Method::Tsit45 {
+            LADDER_MAX_EXPLICIT_STEPS
+        } else {
+            LADDER_MAX_STEPS
+        },
+        max_step,
+        ..IntegratorSettings::default()
+    }
+}
+
+/// The rungs of `job`'s ladder. A neural run: BDF at MATLAB's defaults and at every RelTol,
+/// then a second method at every RelTol (ESDIRK3(4) for the finite-time network, whose
+/// sign-power BDF's higher orders handle badly; Dormand-Prince otherwise), then its own setting
+/// (with the group's MaxStep where it has one). The finite-time network needs 4e5-6e5 steps
+/// at RelTol 1e-6 with either method, so its ladder stops at RelTol 1e-4 (its own run at 1e-6
+/// is in results/runs.csv). The exact column: its experiment's exact method (Dormand-Prince;
+/// BDF for kong2019, whose finite-time scheme is stiff itself).
+pub fn rungs(job: &Job) -> Vec<IntegratorSettings> {
+    let max_step = job.integrator.max_step;
+    let mut out = Vec::new();
+    match &job.solver {
+        SolverChoice::Exact => {
+            out.extend(
+                EXACT_RTOLS
+                    .iter()
+                    .map(|&r| rung(job.integrator.method, r, r / 100.0, None)),
+            );
+        }
+        SolverChoice::Neural(spec) => {
+            let finite_time = matches!(spec, SolverSpec::FiniteTime { .. });
+            let (second, rtols) = if finite_time {
+                (Method::Esdirk34, &NEURAL_RTOLS[..2])
+            } else {
+                (Method::Dopri5, &NEURAL_RTOLS[..])
+            };
+            out.push(rung(Method::Bdf, 1e-3, 1e-6, max_step));
+            for method in [Method::Bdf, second] {
+                out.extend(rtols.iter().map(|&r| rung(method, r, r / 100.0, max_step)));
+            }
+            // The run's own setting keeps its own step limit: it is the run of results/runs.csv.
+            let own = job.integrator;
+            if let Some(same) = out.iter_mut().find(|r| {
+                (r.method, r.rtol, r.atol, r.max_step)
+                    == (own.method, own.rtol, own.atol, own.max_step)
+            }) {
+                *same = own;
+            } else {
+                out.push(own);
+            }
+        }
+    }
+    out
+}
+
+/// The jobs of `job`'s ladder (scoring off: only drift and position error are read).
+pub fn jobs(job: &Job) -> Vec<Job> {
+    rungs(job)
+        .into_iter()
+        .map(|integrator| Job {
+            integrator,
+            score: false,
+            ..job.clone()
+        })
+        .collect()
+}
+
+/// One rung's result, as stored in `results/ladder.csv`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LadderRow {
+    pub paper: String,
+    pub experiment: String,
+    pub variant: String,
+    pub solver: String,
+    pub method: String,
+    pub rtol: f64,
+    pub atol: f64,
+    pub max_step: Option<f64>,
+    /// The run's own setting (the rung results/runs.csv holds).
+    pub as_run: bool,
+    pub status: String,
+    pub failure: String,
+    pub drift_1: Option<f64>,
+    pub drift_2: Option<f64>,
+    pub drift_3: Option<f64>,
+    pub drift_4: Option<f64>,
+    pub drift_5: Option<f64>,
+    pub drift_6: Option<f64>,
+    pub drift_norm: Option<f64>,
+    pub max_pos_err: Option<f64>,
+    /// |d - d*| / |d*| against the converged drift d* (the finest completed rung).
+    pub rel_change: Option<f64>,
+    /// -log10(rel_change): significant digits shared with the converged drift.
+    pub stable_digits: Option<f64>,
+    /// This rung is the converged reference d*.
+    pub reference: bool,
+    pub steps: usize,
+    pub rejected: usize,
+    pub rhs_evals: usize,
+    pub wall_s: f64,
+}
+
+impl LadderRow {
+    /// The joint drifts that exist (none for a rung that did not complete).
+    pub fn drifts(&self) -> Vec<f64> {
+        records::runs::present([
+            self.drift_1,
+            self.drift_2,
+            self.drift_3,
+            self.drift_4,
+            self.drift_5,
+            self.drift_6,
+        ])
+    }
+}
+
+/// Relative 2-norm distance |a - b| / |b| of two drift vectors.
+pub fn rel_distance(a: &[f64], b: &[f64]) -> f64 {
+    let num: f64 = a.iter().zip(b).map(|(x, y)| (x - y).powi(2)).sum();
+    let den: f64 = b.iter().map(|y| y * y).sum();
+    (num / den.max(f64::MIN_POSITIVE)).sqrt()
+}
+
+/// The converged reference among one run's rungs: the completed rung with the smallest
+/// RelTol (ties: BDF before ESDIRK3(4) before Dormand-Prince, then the smaller AbsTol), as an
+/// index into `rows`.
+pub fn reference(rows: &[RunRow]) -> Option<usize> {
+    let preferred = |r: &RunRow| match r.integrator.as_str() {
+        "bdf" => 0,
+        "esdirk34" => 1,
+        "dopri5" => 2,
+        _ => 3,
+    };
+    rows.iter()
+        .enumerate()
+        .filter(|(_, r)| r.status == "ok")
+        .min_by(|a, b| {
+            a.1.rtol
+                .total_cmp(&b.1.rtol)
+                .then(preferred(a.1).cmp(&preferred(b.1)))
+                .then(a.1.atol.total_cmp(&b.1.atol))
+        })
+        .map(|(i, _)| i)
+}
+
+/// The ladder rows of one run from its rungs' results (`rows[i]` is the run of `rungs[i]`).
+pub fn ladder_rows(base: &Job, rungs: &[IntegratorSettings], rows: &[RunRow]) -> Vec<LadderRow> {
+    let reference = reference(rows);
+    let d_star = reference.map(|i| rows[i].drifts());
+    rungs
+        .iter()
+        .zip(rows)
+        .enumerate()
+        .map(|(i, (s, r))| {
+            let rel_change = d_star
+                .as_ref()
+                .filter(|_| r.status == "ok")
+                .map(|d| rel_distance(&r.drifts(), d));
+            LadderRow {
+                paper: r.paper.clone(),
+                experiment: r.experiment.clone(),
+                variant: r.variant.clone(),
+                solver: r.solver.clone(),
+                method: s.method.label().to_string(),
+                rtol: s.rtol,
+                atol: s.atol,
+                max_step: s.max_step,
+                as_run: s.method == base.integrator.method
+                    && s.rtol == base.integrator.rtol
+                    && s.atol == base.integrator.atol
+                    && s.max_step == base.integrator.max_step,
+                status: r.status.clone(),
+                failure: r.failure.clone(),
+                drift_1: r.drift_1,
+                drift_2: r.drift_2,
+                drift_3: r.drift_3,
+                drift_4: r.drift_4,
+                drift_5: r.drift_5,
+                drift_6: r.drift_6,
+                drift_norm: r.drift_norm,
+                max_pos_err: r.max_pos_err,
+                rel_change: rel_change.filter(|_| Some(i) != reference),
+                stable_digits: rel_change
+                    .filter(|_| Some(i) != reference)
+                    .map(|c| -c.max(1e-16).log10()),
+                reference: Some(i) == reference,
+                steps: r.steps,
+                rejected: r.rejected,
+                rhs_evals: r.rhs_evals,
+                wall_s: r.wall_s,
+            }
+        })
+        .collect()
+}

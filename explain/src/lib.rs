@@ -1,0 +1,215 @@
+//! Why the published numbers differ: controlled re-runs around every run of a paper's solver.
+//!
+//! - [`ladder`]: each run re-integrated from RelTol 1e-3 to 1e-10 (BDF and Dormand-Prince; the
+//!   exact column to 1e-12): which digits are integration noise, and the converged drifts.
+//! - [`attribution`]: each run's drift split into scheme + network lag + integration error
+//!   (exact, telescoping), with the effect of each switched ingredient beside it.
+//! - [`inference`]: the setup the papers leave open (path pose, RMP reading) fitted to a
+//!   published table, always shown beside the declared setup, never instead of it.
+//!
+//! The runs explained ([`targets`]) are those of the papers' solvers that a published column
+//! maps onto (`records::paper_values::MAPPINGS`), zhang2018's perturbed runs (its robustness
+//! experiments: the paper prints no table, but the perturbation is an ingredient to attribute)
+//! and the group-code experiments' "as coded" runs (paper id `group`). Results: `results/ladder.csv`, `results/attribution.csv`
+//! (written by [`write`]), `results/inference.csv` (by `reproduce --infer`).
+
+pub mod attribution;
+pub mod inference;
+pub mod ladder;
+
+use attribution::{attribution_rows, exact_counterpart, switch_jobs, AttributionRow, Switch};
+use ladder::LadderRow;
+use records::paper_values::MAPPINGS;
+use records::runs::{write_atomic, RunRow};
+use serde::de::DeserializeOwned;
+use serde::Serialize;
+use simulation::experiment::{Job, SolverChoice};
+use simulation::runner::run_jobs;
+use std::path::Path;
+
+/// Paper id of the group-code reference experiments (`experiments/group.toml`).
+pub const GROUP: &str = "group";
+/// Label prefix of the group-code variants that compute what the code computes (the others
+/// switch one ingredient off and are attributed through their own rows).
+pub const GROUP_AS_CODED: &str = "as coded";
+
+/// The neural runs to explain among `jobs`, in `jobs` order.
+pub fn targets(jobs: &[Job]) -> Vec<Job> {
+    jobs.iter()
+        .filter(|j| matches!(j.solver, SolverChoice::Neural(_)))
+        .filter(|j| {
+            (j.paper == GROUP && j.variant.starts_with(GROUP_AS_CODED))
+                || (j.paper == "zhang2018" && j.experiment.ends_with("-robust"))
+                || MAPPINGS.iter().any(|m| {
+                    m.experiment == j.experiment
+                        && m.variant == j.variant
+                        && m.solver == j.solver.label()
+                })
+        })
+        .cloned()
+        .collect()
+}
+
+/// What [`explain`] computes.
+#[derive(Clone, Debug, Default)]
+pub struct Explained {
+    pub ladder: Vec<LadderRow>,
+    pub attribution: Vec<AttributionRow>,
+}
+
+/// Runs the ladders (of each target and of its exact column) and the switch runs, in parallel,
+/// and derives the ladder and attribution rows.
+///
+/// `all` is every job of the experiment files: the exact column of a target's variant is
+/// laddered with the method its experiment integrates it with.
+pub fn explain(targets: &[Job], all: &[Job], progress: bool, git_rev: &str) -> Explained {
+    // Every job once: the exact ladders are shared by the solvers of one variant.
+    let mut ladders: Vec<Job> = Vec::new();
+    for t in targets {
+        let mut exact = exact_counterpart(t);
+        if let Some(declared) = all.iter().find(|j| j.key() == exact.key()) {
+            exact.integrator = declared.integrator;
+        }
+        for base in [t.clone(), exact] {
+            if !ladders.iter().any(|l| l.key() == base.key()) {
+                ladders.push(base);
+            }
+        }
+    }
+    let mut jobs: Vec<Job> = Vec::new();
+    let mut spans = Vec::new();
+    for base in &ladders {
+        let rungs = ladder::jobs(base);
+        spans.push((jobs.len(), rungs.len()));
+        jobs.extend(rungs);
+    }
+    let mut switch_spans = Vec::new();
+    for t in targets {
+        let s = switch_jobs(t);
+        switch_spans.push((
+            jobs.len(),
+            s.iter().map(|(k, _)| *k).collect::<Vec<Switch>>(),
+        ));
+        jobs.extend(s.into_iter().map(|(_, j)| j));
+    }
+    let rows: Vec<RunRow> = run_jobs(&jobs, progress)
+        .iter()
+        .map(|r| RunRow::from_record(r, git_rev))
+        .collect();
+    let mut out = Explained::default();
+    let mut per_base: Vec<Vec<LadderRow>> = Vec::new();
+    for (base, (start, len)) in ladders.iter().zip(&spans) {
+        let settings: Vec<_> = jobs[*start..start + len]
+            .iter()
+            .map(|j| j.integrator)
+            .collect();
+        let l = ladder::ladder_rows(base, &settings, &rows[*start..start + len]);
+        out.ladder.extend(l.iter().cloned());
+        per_base.push(l);
+    }
+    let ladder_of = |job: &Job| {
+        ladders
+            .iter()
+            .position(|l| l.key() == job.key())
+            .map(|i| per_base[i].as_slice())
+            .unwrap_or(&[])
+    };
+    for (t, (start, kinds)) in targets.iter().zip(&switch_spans) {
+        let switched: Vec<(Switch, RunRow)> = kinds
+            .iter()
+            .enumerate()
+            .map(|(i, k)| (*k, rows[start + i].clone()))
+            .collect();
+        out.attribution.extend(attribution_rows(
+            ladder_of(t),
+            ladder_of(&exact_counterpart(t)),
+            &switched,
+        ));
+    }
+    out
+}
+
+/// Serialises rows as CSV.
+pub fn to_csv<T: Serialize>(rows: &[T]) -> Result<Vec<u8>, String> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    for r in rows {
+        w.serialize(r).map_err(|e| e.to_string())?;
+    }
+    w.into_inner().map_err(|e| e.to_string())
+}
+
+/// Reads a CSV of `T`; an absent file is empty, an unreadable one an error naming it.
+pub fn read_csv<T: DeserializeOwned>(path: &Path) -> Result<Vec<T>, String> {
+    if !path.exists() {
+        return Ok(Vec::new());
+    }
+    let mut r = csv::Reader::from_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    r.deserialize()
+        .enumerate()
+        .map(|(i, row)| row.map_err(|e| format!("{}: row {}: {e}", path.display(), i + 2)))
+        .collect()
+}
+
+/// Writes `results/ladder.csv` and `results/attribution.csv`: fresh rows replace the stored
+/// rows of the same runs (experiment, variant, solver); other stored rows are kept if their run
+/// still exists among `all` (every job of the experiment files), pruned otherwise.
+pub fn write(results_dir: &Path, fresh: &Explained, all: &[Job]) -> Result<(), String> {
+    let ladder_path = results_dir.join("ladder.csv");
+    let attribution_path = results_dir.join("attribution.csv");
+    let exists = |e: &str, v: &str, s: &str| {
+        all.iter()
+            .any(|j| j.experiment == e && j.variant == v && j.solver.label() == s)
+    };
+    let mut stored_ladder = read_csv::<LadderRow>(&ladder_path)?;
+    stored_ladder.retain(|r| exists(&r.experiment, &r.variant, &r.solver));
+    let mut stored_attribution = read_csv::<AttributionRow>(&attribution_path)?;
+    stored_attribution.retain(|r| exists(&r.experiment, &r.variant, &r.solver));
+    let ladder = merge(stored_ladder, &fresh.ladder, |r| {
+        (r.experiment.clone(), r.variant.clone(), r.solver.clone())
+    });
+    let attribution = merge(stored_attribution, &fresh.attribution, |r| {
+        (r.experiment.clone(), r.variant.clone(), r.solver.clone())
+    });
+    for (path, bytes) in [
+        (&ladder_path, to_csv(&ladder)?),
+        (&attribution_path, to_csv(&attribution)?),
+    ] {
+        write_atomic(path, &bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+    }
+    Ok(())
+}
+
+/// Writes `results/inference.csv` and `results/inference-entries.csv`: fresh rows replace the
+/// stored rows of the same tables.
+pub fn write_inference(
+    results_dir: &Path,
+    fresh: &[inference::InferenceRow],
+    fresh_entries: &[inference::EntryRow],
+) -> Result<(), String> {
+    let path = results_dir.join("inference.csv");
+    let entries_path = results_dir.join("inference-entries.csv");
+    let rows = merge(read_csv(&path)?, fresh, |r: &inference::InferenceRow| {
+        (r.paper.clone(), r.table.clone())
+    });
+    let entries = merge(
+        read_csv(&entries_path)?,
+        fresh_entries,
+        |r: &inference::EntryRow| (r.paper.clone(), r.table.clone()),
+    );
+    for (p, bytes) in [(&path, to_csv(&rows)?), (&entries_path, to_csv(&entries)?)] {
+        write_atomic(p, &bytes).map_err(|e| format!("{}: {e}", p.display()))?;
+    }
+    Ok(())
+}
+
+/// Stored rows whose run is not among `fresh`'s, then `fresh`, sorted by run (stable within a
+/// run, so rungs and components keep their order).
+fn merge<T: Clone, K: Ord>(stored: Vec<T>, fresh: &[T], key: impl Fn(&T) -> K) -> Vec<T> {
+    let mut all: Vec<T> = stored
+        .into_iter()
+        .filter(|s| !fresh.iter().any(|f| key(f) == key(s)))
+        .collect();
+    all.extend(fresh.iter().cloned());
+    all.sort_by(|a, b| key(a).cmp(&key(b)));
+    all
+}

@@ -1,0 +1,153 @@
+//! The figure of one run: (a) end-effector path over the arm's motion, (b) position error, (c) joint angles relative
+//! to theta(0), (d) joint velocities, and at the acceleration level (e) joint accelerations and
+//! (f) torques, as in the papers' per-run figures.
+
+use super::arm;
+use super::layout::{figure, Area};
+use super::legend::{self, Arrangement, Entry};
+use super::panels::{PathPanel, Series, TimePanel, YAxis};
+use super::style::{
+    colour, ARM_COLOUR, ARM_START_COLOUR, DESIRED_COLOUR, DESIRED_WIDTH, LEGEND_LINE_WIDTH,
+};
+use super::trace::Trace;
+use plotters::prelude::*;
+use records::runs::RunRow;
+
+/// Height of the legend strip under the title (px).
+const LEGEND_HEIGHT: u32 = 28;
+/// Colour of the single-line quantities (actual path, position error).
+const ACTUAL_COLOUR: RGBColor = BLACK;
+
+/// "experiment: variant / solver", with "failed at t = ... s" for a failed run.
+pub fn title(run: &RunRow) -> String {
+    let mut title = format!("{}: {} / {}", run.experiment, run.variant, run.solver);
+    if let Some(t) = run.failed_at {
+        title.push_str(&format!(" (failed at t = {t:.3} s)"));
+    } else if run.status != "ok" {
+        title.push_str(&format!(" ({})", run.status));
+    }
+    title
+}
+
+/// One series per joint, joint i in colour i.
+fn per_joint(
+    trace: &Trace,
+    columns: &[Vec<f64>],
+    value: impl Fn(usize, f64) -> f64,
+) -> Vec<Series> {
+    columns
+        .iter()
+        .enumerate()
+        .map(|(i, column)| {
+            let shifted: Vec<f64> = column.iter().map(|&v| value(i, v)).collect();
+            Series {
+                colour: colour(i),
+                points: trace.over_time(&shifted),
+            }
+        })
+        .collect()
+}
+
+/// The run's SVG.
+pub fn render(run: &RunRow, trace: &Trace) -> Result<String, String> {
+    let t_end = run.duration;
+    let time = |caption: &str, y_desc: &str, y_axis: YAxis, series: Vec<Series>| TimePanel {
+        caption: caption.to_string(),
+        y_desc: y_desc.to_string(),
+        y_axis,
+        t_end,
+        series,
+    };
+    let joints = |columns: &[Vec<f64>]| per_joint(trace, columns, |_, v| v);
+    let path = |xy: &[Vec<f64>; 2]| {
+        trace
+            .thinned()
+            .into_iter()
+            .map(|k| (xy[0][k], xy[1][k]))
+            .collect()
+    };
+    let path_panel = PathPanel {
+        caption: "(a) end-effector path, x-y plane".to_string(),
+        desired: path(&trace.desired),
+        actual: path(&trace.actual),
+        actual_colour: ACTUAL_COLOUR,
+        arm: arm::poses(run, trace),
+    };
+    let mut panels = vec![
+        time(
+            "(b) position error |r* - f(theta)|",
+            "error (m)",
+            YAxis::Log,
+            vec![Series {
+                colour: ACTUAL_COLOUR,
+                points: trace.over_time(&trace.pos_err),
+            }],
+        ),
+        time(
+            "(c) joint angles theta_i(t) - theta_i(0)",
+            "angle change (rad)",
+            YAxis::Linear,
+            per_joint(trace, &trace.theta, |i, v| v - trace.theta[i][0]),
+        ),
+        time(
+            "(d) joint velocities",
+            "velocity (rad/s)",
+            YAxis::Linear,
+            joints(&trace.thetadot),
+        ),
+    ];
+    if let Some(thetaddot) = &trace.thetaddot {
+        panels.push(time(
+            "(e) joint accelerations",
+            "acceleration (rad/s^2)",
+            YAxis::Linear,
+            joints(thetaddot),
+        ));
+    }
+    if let Some(tau) = &trace.tau {
+        panels.push(time(
+            "(f) joint torques",
+            "torque (N m)",
+            YAxis::Linear,
+            joints(tau),
+        ));
+    }
+
+    let mut entries = vec![
+        Entry {
+            style: DESIRED_COLOUR.stroke_width(DESIRED_WIDTH),
+            label: "desired r*".to_string(),
+        },
+        Entry {
+            style: ACTUAL_COLOUR.stroke_width(LEGEND_LINE_WIDTH),
+            label: "actual f(theta)".to_string(),
+        },
+    ];
+    if !path_panel.arm.is_empty() {
+        entries.extend([
+            Entry {
+                style: ARM_START_COLOUR.stroke_width(LEGEND_LINE_WIDTH),
+                label: "arm at t = 0".to_string(),
+            },
+            Entry {
+                style: ARM_COLOUR.stroke_width(LEGEND_LINE_WIDTH),
+                label: "arm over time".to_string(),
+            },
+        ]);
+    }
+    entries.extend((0..trace.joints()).map(|i| Entry {
+        style: colour(i).stroke_width(LEGEND_LINE_WIDTH),
+        label: format!("joint {}", i + 1),
+    }));
+
+    figure(&title(run), |area: &Area| {
+        let (strip, body) = area.split_vertically(LEGEND_HEIGHT);
+        legend::draw(&strip, &entries, Arrangement::Strip)?;
+        let cells = body.split_evenly(((panels.len() + 1).div_ceil(2), 2));
+        path_panel.draw(&cells[0])?;
+        for (panel, cell) in panels.iter().zip(&cells[1..]) {
+            panel.draw(cell)?;
+        }
+        Ok(())
+    })
+}

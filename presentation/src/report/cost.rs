@@ -1,0 +1,168 @@
+//! Cost: integrator, tolerances, steps, evaluations, QP solves and wall time per run, and
+//! zhong2021's compute-time comparison with the paper's MATLAB times, as ratios.
+//!
+//! Absolute times are not comparable across machines and languages, ratios within one
+//! machine are: S-LVI-PDNN's time over the mean time of the VP-RNN-PF variants is what
+//! zhong2021 claims (about 2x on the clover, 7x on "dai").
+
+use super::markdown::{sci, sci_opt, Table, MISSING};
+use records::index::{completed, Runs};
+use records::paper_values::{mapping_of, our_metric, PaperValue};
+
+/// One cost table per paper: every run's integrator, tolerances and effort.
+pub fn cost_table(runs: &Runs, paper: &str) -> String {
+    let mut t = Table::new([
+        "experiment",
+        "variant",
+        "solver",
+        "integrator",
+        "rtol",
+        "atol",
+        "steps (rejected)",
+        "RHS evals",
+        "Jacobians",
+        "QP solves",
+        "wall (s)",
+        "simulation (s)",
+    ]);
+    for r in runs.of_paper(paper) {
+        // Runs that failed before their first step have no statistics.
+        let lost = !completed(r) && r.steps == 0;
+        let count = |n: usize| {
+            if lost {
+                "not recorded".to_string()
+            } else {
+                n.to_string()
+            }
+        };
+        t.push([
+            r.experiment.clone(),
+            r.variant.clone(),
+            r.solver.clone(),
+            r.integrator.clone(),
+            sci(r.rtol),
+            sci(r.atol),
+            if lost {
+                count(0)
+            } else {
+                format!("{} ({})", r.steps, r.rejected)
+            },
+            count(r.rhs_evals),
+            count(r.jac_evals),
+            r.qp_solves.to_string(),
+            if lost { count(0) } else { sci(r.wall_s) },
+            if lost { count(0) } else { sci(r.sim_s) },
+        ]);
+    }
+    t.render()
+}
+
+/// S-LVI-PDNN's compute time over the mean VP-RNN-PF compute time, ours and the paper's.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Slowdown {
+    pub ours: Option<f64>,
+    pub paper: Option<f64>,
+}
+
+/// The mean of the VP-RNN-PF variants' times among (solver label, seconds) pairs.
+fn vp_mean(times: &[(&str, f64)]) -> Option<f64> {
+    let vp: Vec<f64> = times
+        .iter()
+        .filter(|(s, _)| s.starts_with("VP-RNN-PF"))
+        .map(|(_, t)| *t)
+        .collect();
+    (!vp.is_empty()).then(|| vp.iter().sum::<f64>() / vp.len() as f64)
+}
+
+/// The published MATLAB times of one of our experiments, as (our solver label, seconds).
+fn paper_times<'a>(
+    values: &'a [PaperValue],
+    experiment: &'a str,
+) -> impl Iterator<Item = (&'static str, f64)> + 'a {
+    values
+        .iter()
+        .filter(|v| our_metric(&v.metric) == Some("sim_s"))
+        .filter_map(move |v| {
+            mapping_of(v)
+                .filter(|m| m.experiment == experiment)
+                .map(|m| (m.solver, v.value))
+        })
+}
+
+/// S-LVI-PDNN's right-hand-side evaluations over the mean of the VP-RNN-PF variants' in one
+/// experiment: the deterministic measure of relative cost (the same on every machine and under
+/// any load), which the compute-time claim is decided by.
+pub fn evaluation_ratio(runs: &Runs, experiment: &str) -> Option<f64> {
+    let evals: Vec<(&str, f64)> = runs
+        .of_experiment(experiment)
+        .filter(|r| completed(r))
+        .map(|r| (r.solver.as_str(), r.rhs_evals as f64))
+        .collect();
+    let s = evals
+        .iter()
+        .find(|(s, _)| *s == "S-LVI-PDNN")
+        .map(|(_, e)| *e)?;
+    vp_mean(&evals).map(|vp| s / vp)
+}
+
+/// [`Slowdown`] of one zhong2021 experiment.
+pub fn slowdown(runs: &Runs, values: &[PaperValue], experiment: &str) -> Slowdown {
+    let ratio = |times: &[(&str, f64)]| {
+        let s = times
+            .iter()
+            .find(|(s, _)| *s == "S-LVI-PDNN")
+            .map(|(_, t)| *t)?;
+        vp_mean(times).map(|vp| s / vp)
+    };
+    let ours: Vec<(&str, f64)> = runs
+        .of_experiment(experiment)
+        .filter(|r| completed(r))
+        .map(|r| (r.solver.as_str(), r.sim_s))
+        .collect();
+    let paper: Vec<(&str, f64)> = paper_times(values, experiment).collect();
+    Slowdown {
+        ours: ratio(&ours),
+        paper: ratio(&paper),
+    }
+}
+
+/// zhong2021's compute times: per experiment and solver, the paper's MATLAB seconds and
+/// ours, each also divided by the mean of the VP-RNN-PF variants.
+pub fn matlab_comparison(runs: &Runs, values: &[PaperValue]) -> String {
+    let mut t = Table::new([
+        "experiment",
+        "solver",
+        "paper (MATLAB, s)",
+        "paper ÷ VP-RNN-PF mean",
+        "ours (s)",
+        "ours ÷ VP-RNN-PF mean",
+    ]);
+    let mut experiments: Vec<&str> = values
+        .iter()
+        .filter(|v| our_metric(&v.metric) == Some("sim_s"))
+        .filter_map(mapping_of)
+        .map(|m| m.experiment)
+        .collect();
+    experiments.dedup();
+    for exp in experiments {
+        let paper: Vec<(&str, f64)> = paper_times(values, exp).collect();
+        let ours: Vec<(&str, f64)> = runs
+            .of_experiment(exp)
+            .filter(|r| paper.iter().any(|(s, _)| *s == r.solver))
+            .map(|r| (r.solver.as_str(), r.sim_s))
+            .collect();
+        let (paper_vp, ours_vp) = (vp_mean(&paper), vp_mean(&ours));
+        for (solver, p) in &paper {
+            let o = ours.iter().find(|(s, _)| s == solver).map(|(_, t)| *t);
+            t.push([
+                exp.to_string(),
+                solver.to_string(),
+                sci(*p),
+                sci_opt(paper_vp.map(|m| p / m)),
+                o.map(sci).unwrap_or_else(|| MISSING.to_string()),
+                sci_opt(o.zip(ours_vp).map(|(o, m)| o / m)),
+            ]);
+        }
+    }
+    t.render()
+}

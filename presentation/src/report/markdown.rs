@@ -1,0 +1,132 @@
+//! Markdown building blocks: the report's number format and a pipe-table builder.
+//!
+//! Every measured number is printed with three significant digits in scientific notation
+//! ([`sci`]), so that columns of very different magnitudes stay comparable at a glance and
+//! the output is byte-stable.
+
+/// The placeholder for a number that does not exist (not measured, not printed by the paper).
+pub const MISSING: &str = "—";
+
+/// `v` with three significant digits in scientific notation, e.g. `-1.23e-4`.
+pub fn sci(v: f64) -> String {
+    if v == 0.0 {
+        "0.00e0".to_string()
+    } else if v.is_finite() {
+        format!("{v:.2e}")
+    } else {
+        v.to_string()
+    }
+}
+
+/// [`sci`] of an optional number, [`MISSING`] when absent.
+pub fn sci_opt(v: Option<f64>) -> String {
+    v.map(sci).unwrap_or_else(|| MISSING.to_string())
+}
+
+/// A Markdown pipe table.
+#[derive(Clone, Debug)]
+pub struct Table {
+    header: Vec<String>,
+    rows: Vec<Vec<String>>,
+}
+
+impl Table {
+    /// A table with these column headers and no rows.
+    pub fn new<S: Into<String>>(header: impl IntoIterator<Item = S>) -> Self {
+        Table {
+            header: header.into_iter().map(Into::into).collect(),
+            rows: Vec::new(),
+        }
+    }
+
+    /// Appends a row (one cell per header column).
+    pub fn push<S: Into<String>>(&mut self, row: impl IntoIterator<Item = S>) {
+        let row: Vec<String> = row.into_iter().map(Into::into).collect();
+        debug_assert_eq!(
+            row.len(),
+            self.header.len(),
+            "row width differs from the header"
+        );
+        self.rows.push(row);
+    }
+
+    /// True when the table has no rows.
+    pub fn is_empty(&self) -> bool {
+        self.rows.is_empty()
+    }
+
+    /// Removes the columns (other than the first) whose cells are all [`MISSING`].
+    pub fn without_empty_columns(self) -> Self {
+        let keep: Vec<bool> = (0..self.header.len())
+            .map(|c| c == 0 || self.rows.iter().any(|r| r[c] != MISSING))
+            .collect();
+        let pick = |cells: Vec<String>| {
+            cells
+                .into_iter()
+                .zip(&keep)
+                .filter(|(_, k)| **k)
+                .map(|(c, _)| c)
+                .collect()
+        };
+        Table {
+            header: pick(self.header),
+            rows: self.rows.into_iter().map(pick).collect(),
+        }
+    }
+
+    /// The table as Markdown, ending with a newline.
+    pub fn render(&self) -> String {
+        let line = |cells: &[String]| {
+            format!(
+                "| {} |\n",
+                cells
+                    .iter()
+                    .map(|c| escape(c))
+                    .collect::<Vec<_>>()
+                    .join(" | ")
+            )
+        };
+        let mut out = line(&self.header);
+        out.push_str(&format!("|{}\n", "---|".repeat(self.header.len())));
+        for r in &self.rows {
+            out.push_str(&line(r));
+        }
+        out
+    }
+}
+
+/// A cell's text with the characters that would break a pipe table escaped.
+fn escape(cell: &str) -> String {
+    cell.replace('|', "\\|").replace('\n', " ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn three_significant_digits() {
+        assert_eq!(sci(-0.00012345), "-1.23e-4");
+        assert_eq!(sci(1.0), "1.00e0");
+        assert_eq!(sci_opt(None), MISSING);
+    }
+
+    #[test]
+    fn empty_columns_are_dropped_and_pipes_escaped() {
+        let mut t = Table::new(["a", "b", "c"]);
+        t.push(["x|y", MISSING, "1"]);
+        assert_eq!(
+            t.without_empty_columns().render(),
+            "| a | c |\n|---|---|\n| x\\|y | 1 |\n"
+        );
+    }
+}
+
+/// A cell for `metric` of `r`: the number, or why there is none (a failed run has no drift).
+pub fn metric_cell(r: &records::runs::RunRow, name: &str) -> String {
+    match records::index::metric(r, name) {
+        Some(v) => sci(v),
+        None if !records::index::completed(r) => records::index::failed_at(r),
+        None => MISSING.to_string(),
+    }
+}

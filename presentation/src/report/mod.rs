@@ -1,0 +1,291 @@
+//! `report/REPORT.md`: the reproduction report, rendered from stored results only.
+//!
+//! Inputs: `results/runs.csv` (one row per run), `report/paper-values.csv` (the papers'
+//! published numbers), `report/deviations.md` (hand-written, included verbatim) and the SVG
+//! names in `report/figures/`. Nothing is re-run and nothing depends on the clock, so
+//! identical inputs give a byte-identical report ([`render`] writes it atomically).
+//!
+//! Layout (one concept per module):
+//! - [`header`]: what this is, provenance (git revision, integrators, tolerances), how to regenerate;
+//! - per paper: the [`verdict`] paragraph, the published [`tables`] side by side with ours,
+//!   the [`claims`] checklist, the suite's table of every run, and the [`figures`];
+//! - the [`score`] of every neural run against the exact optimum;
+//! - the [`cost`] of every run, and zhong2021's MATLAB comparison as ratios;
+//! - the [`cross`] experiment matrices;
+//! - the published numbers without a run (`records::paper_values`), and the deviations.
+
+pub mod claims;
+pub mod cost;
+pub mod cross;
+pub mod figures;
+pub mod header;
+pub mod markdown;
+pub mod score;
+pub mod sweep;
+pub mod tables;
+pub mod verdict;
+pub mod why;
+
+use explain::read_csv;
+use markdown::{sci, Table};
+use records::index::Runs;
+use records::paper_values::{read_paper_values, PaperValue};
+use records::runs::{read_runs, write_atomic};
+use std::path::{Path, PathBuf};
+
+/// The four papers, as (id, title), in report order.
+pub const PAPERS: &[(&str, &str)] = &[
+    ("jia2019", "VLTCO scheme solved by LVI-PDNN (Jaco2)"),
+    (
+        "zhang2018",
+        "HL-JDF scheme solved by VP-CDNN vs FP-CDNN (Jaco2 with dynamics)",
+    ),
+    (
+        "zhong2021",
+        "CMCO scheme solved by VP-RNN-PF vs S-LVI-PDNN (Jaco2)",
+    ),
+    (
+        "kong2019",
+        "Finite-time repeatable motion planning (Katana 6M180)",
+    ),
+];
+
+/// The `paper` value of the suite's own cross experiment.
+pub const CROSS: &str = "cross";
+
+/// Everything the report is rendered from.
+#[derive(Clone, Debug)]
+pub struct Inputs {
+    pub runs: Runs,
+    pub values: Vec<PaperValue>,
+    /// `report/deviations.md`, verbatim.
+    pub deviations: String,
+    /// SVG file names in `report/figures/`, sorted.
+    pub figures: Vec<String>,
+    /// Ladders, attribution and inference (`results/*.csv` beside runs.csv; absent = empty).
+    pub explanations: why::Explanations,
+}
+
+impl Inputs {
+    /// Reads the inputs under the workspace root `root`.
+    pub fn load(root: &Path) -> Result<Self, String> {
+        let report = root.join("report");
+        let results = root.join("results");
+        let deviations_path = report.join("deviations.md");
+        Ok(Inputs {
+            runs: Runs::new(read_runs(&results.join("runs.csv"))?),
+            values: read_paper_values(&report.join("paper-values.csv"))?,
+            deviations: std::fs::read_to_string(&deviations_path)
+                .map_err(|e| format!("{}: {e}", deviations_path.display()))?,
+            figures: figures::list(&report.join("figures"))?,
+            explanations: why::Explanations {
+                ladder: read_csv(&results.join("ladder.csv"))?,
+                attribution: read_csv(&results.join("attribution.csv"))?,
+                inference: read_csv(&results.join("inference.csv"))?,
+                entries: read_csv(&results.join("inference-entries.csv"))?,
+            },
+        })
+    }
+}
+
+/// Renders `root/report/REPORT.md` from the stored results and returns its path.
+pub fn render(root: &Path) -> Result<PathBuf, String> {
+    let inputs = Inputs::load(root)?;
+    let path = root.join("report").join("REPORT.md");
+    write_atomic(&path, to_markdown(&inputs).as_bytes())
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(path)
+}
+
+/// The whole report as Markdown.
+pub fn to_markdown(inputs: &Inputs) -> String {
+    let Inputs {
+        runs,
+        values,
+        deviations,
+        figures,
+        explanations,
+    } = inputs;
+    let mut out = header::header(runs, values.len(), figures.len());
+
+    let evaluated: Vec<(&str, &str, Vec<claims::Claim>)> = PAPERS
+        .iter()
+        .map(|&(p, title)| (p, title, claims::evaluate(p, runs, values)))
+        .collect();
+    out.push_str("## Summary\n\n");
+    let mut summary = Table::new([
+        "paper",
+        "verdict",
+        "claims PASS / FAIL / N/A",
+        "our drift ÷ paper's",
+    ]);
+    for (paper, _, c) in &evaluated {
+        let n = |v: claims::Verdict| c.iter().filter(|x| x.verdict == v).count();
+        let ratios = verdict::drift_ratios(paper, runs, values);
+        let range = match (
+            ratios.iter().map(|r| r.1).reduce(f64::min),
+            ratios.iter().map(|r| r.1).reduce(f64::max),
+        ) {
+            (Some(lo), Some(hi)) => format!("{} to {}", sci(lo), sci(hi)),
+            _ => "no published table".to_string(),
+        };
+        summary.push([
+            format!("[{paper}](#{paper})"),
+            verdict::level(c, &ratios).to_string(),
+            format!(
+                "{} / {} / {}",
+                n(claims::Verdict::Pass),
+                n(claims::Verdict::Fail),
+                n(claims::Verdict::NotApplicable)
+            ),
+            range,
+        ]);
+    }
+    out.push_str(&summary.render());
+    out.push('\n');
+
+    for (paper, title, c) in &evaluated {
+        out.push_str(&format!("## {paper}\n\n*{title}.*\n\n"));
+        out.push_str(&verdict::paragraph(paper, c, runs, values));
+        out.push_str(&why::summary(paper, explanations, values));
+        let tables: Vec<String> = tables::published_tables(paper, values)
+            .iter()
+            .map(|t| tables::side_by_side(paper, t, values, runs))
+            .filter(|t| !t.is_empty())
+            .collect();
+        if !tables.is_empty() {
+            out.push_str("\n### Published tables side by side\n\n");
+            out.push_str(&tables.join("\n"));
+        }
+        if *paper == "jia2019" {
+            out.push_str(&sweep::clover_sweep(runs, values));
+        }
+        out.push_str(&why::section(paper, explanations, values));
+        out.push_str("\n### Claims\n\n");
+        out.push_str(&claims::checklist(c));
+        out.push_str(if tables.is_empty() {
+            "\n### Every run (the paper prints no table: this is the suite's)\n\n"
+        } else {
+            "\n### Every run\n\n"
+        });
+        for exp in runs.experiments(paper) {
+            out.push_str(&format!(
+                "#### `{exp}`\n\n{}",
+                tables::runs_table(runs, &exp)
+            ));
+            out.push('\n');
+            out.push_str(&figures::links(figures, &exp));
+        }
+    }
+
+    out.push_str(&group_section(runs, explanations, values, figures));
+
+    out.push_str(&format!(
+        "## Score against the exact optimum\n\n{}\n\n",
+        score::NOTE
+    ));
+    for paper in PAPERS.iter().map(|p| p.0).chain([CROSS]) {
+        let t = score::score_table(runs, paper);
+        if !t.is_empty() {
+            out.push_str(&format!("### {paper}\n\n{t}\n"));
+        }
+    }
+
+    out.push_str("## Cost\n\nSteps, evaluations and QP solves are counted by the integrator and the scorer (the exact QP is solved at every RHS evaluation of the exact column and at every accepted step of a neural run). Wall times come from runs executed in parallel: compare them within one table, not across machines.\n\n");
+    for paper in PAPERS.iter().map(|p| p.0).chain([CROSS]) {
+        out.push_str(&format!(
+            "### {paper}\n\n{}\n",
+            cost::cost_table(runs, paper)
+        ));
+    }
+    out.push_str("### zhong2021: compute time against the paper's MATLAB times\n\n");
+    out.push_str(
+        "Ours is `sim_s`: the wall time of the simulation proper (arm, network, integrator), \
+         without the observation at accepted steps (metrics and the Clarabel solves that score \
+         the run, which cost more than the networks themselves: ~50 us a solve against 0.3-3 us a \
+         network evaluation). Absolute times are not comparable across machines and languages; \
+         the ratios are.\n\n",
+    );
+    out.push_str(&cost::matlab_comparison(runs, values));
+    out.push('\n');
+
+    out.push_str("## Cross experiment\n\nEvery velocity-level solver on every velocity-level scheme and path (ids: ");
+    out.push_str(
+        &runs
+            .experiments(CROSS)
+            .iter()
+            .map(|e| format!("`{e}`"))
+            .collect::<Vec<_>>()
+            .join(", "),
+    );
+    out.push_str("). Columns are scheme · path; a failed run shows its failure time.\n\n");
+    out.push_str(&cross::section(runs, CROSS));
+    for exp in runs.experiments(CROSS) {
+        out.push_str(&figures::links(figures, &exp));
+    }
+
+    out.push_str("\n## Published numbers without a run\n\n");
+    let missing = records::paper_values::unmapped(values, runs);
+    if missing.is_empty() {
+        out.push_str("Every published number maps to a run.\n");
+    } else {
+        let mut t = Table::new([
+            "paper",
+            "table",
+            "experiment",
+            "column",
+            "metric",
+            "value",
+            "why",
+        ]);
+        for (v, why) in missing {
+            t.push([
+                v.paper.clone(),
+                v.table.clone(),
+                v.experiment.clone(),
+                v.column.clone(),
+                v.metric.clone(),
+                sci(v.value),
+                why,
+            ]);
+        }
+        out.push_str(&t.render());
+    }
+
+    out.push_str("\n---\n\n");
+    out.push_str(deviations);
+    if !deviations.ends_with('\n') {
+        out.push('\n');
+    }
+    out
+}
+
+/// The group-code reference experiments (`experiments/group.toml`, shared/spec/group-code.md):
+/// every run, its attribution and ladder. Their numbers are the code's own metrics (drift and
+/// max end-effector error), not published values.
+fn group_section(
+    runs: &Runs,
+    explanations: &why::Explanations,
+    values: &[PaperValue],
+    figures: &[String],
+) -> String {
+    let group = explain::GROUP;
+    let experiments = runs.experiments(group);
+    if experiments.is_empty() {
+        return String::new();
+    }
+    let mut out = String::from(
+        "## The group's own code (reference experiment)\n\nThe only public code of this family (shared/spec/group-code.md) computes a star (EXP1) and a butterfly (EXP2) with a zeroing network that has a growing-gain term -nu t E, the group's power-sigmoid and an injected perturbation, on the Jaco2 with kong2019's eq. 22 scheme (k = 6 and 5, no joint limits, no feedback). We compute exactly what it describes, and switch each of its ingredients off in its own variant (nu = 0, no perturbation, linear activation, udot with and without the -k thetadot term, the butterfly closed), so each ingredient's share of the drift is measured, not guessed. These are not published numbers: the group's stored results are not part of the papers.\n\n",
+    );
+    for exp in &experiments {
+        out.push_str(&format!(
+            "#### `{exp}`\n\n{}",
+            tables::runs_table(runs, exp)
+        ));
+        out.push('\n');
+        out.push_str(&figures::links(figures, exp));
+    }
+    out.push_str(&why::section(group, explanations, values));
+    out.push('\n');
+    out
+}

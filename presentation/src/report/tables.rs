@@ -1,0 +1,268 @@
+//! The papers' tables side by side with ours, and the suite's own table of every run.
+//!
+//! A published table (one `(paper, table)` of `paper-values.csv`) becomes one Markdown table:
+//! rows are the quantities (joint drifts, drift norm, and whatever else the paper prints),
+//! and for each published column there are the paper's number, our exact (Clarabel) run, our
+//! run of the paper's solver, and the ratio ours/paper — then the same for each companion
+//! variant. The exact column separates what the scheme does from what the solver adds.
+
+use super::markdown::metric_cell;
+use super::markdown::{sci, sci_opt, Table, MISSING};
+use records::index::{metric, status_text, Runs, EXACT};
+use records::paper_values::{mapping_of, our_metric, published, Mapping, PaperValue};
+use records::runs::RunRow;
+
+/// A quantity's row label.
+pub fn quantity_label(metric: &str) -> String {
+    match metric {
+        "drift_norm" => "‖θ(T) − θ(0)‖".to_string(),
+        "drift_ref_norm" => "‖θ(T) − θ*0‖".to_string(),
+        "wall_s" | "sim_s" => "compute time (s)".to_string(),
+        "max_pos_err" => "max position error (m)".to_string(),
+        "final_pos_err" => "final position error (m)".to_string(),
+        m => match m.strip_prefix("drift_") {
+            Some(i) => format!("θ{i}(T) − θ{i}(0)"),
+            None => m.to_string(),
+        },
+    }
+}
+
+/// The published tables of `paper`, in the order the CSV lists them (`text` last).
+pub fn published_tables(paper: &str, values: &[PaperValue]) -> Vec<String> {
+    let mut tables: Vec<String> = Vec::new();
+    for v in values.iter().filter(|v| v.paper == paper) {
+        if !tables.contains(&v.table) {
+            tables.push(v.table.clone());
+        }
+    }
+    tables.sort_by_key(|t| t == "text");
+    tables
+}
+
+/// The mapped columns of one published table, in the CSV's order.
+fn columns_of(paper: &str, table: &str, values: &[PaperValue]) -> Vec<&'static Mapping> {
+    let mut cols: Vec<&'static Mapping> = Vec::new();
+    let measured = values
+        .iter()
+        .filter(|v| v.paper == paper && v.table == table && our_metric(&v.metric).is_some());
+    for m in measured.filter_map(mapping_of) {
+        if !cols.contains(&m) {
+            cols.push(m);
+        }
+    }
+    cols
+}
+
+/// The quantities (our column names) of one published table: what the paper prints and we
+/// measure, plus the drift norm (derived when the paper prints only joints) and the drift
+/// against theta*0 when some shown run starts off it.
+fn quantities_of(
+    paper: &str,
+    table: &str,
+    values: &[PaperValue],
+    shown: &[&RunRow],
+) -> Vec<&'static str> {
+    let mut q: Vec<&'static str> = Vec::new();
+    for m in values
+        .iter()
+        .filter(|v| v.paper == paper && v.table == table && mapping_of(v).is_some())
+        .filter_map(|v| our_metric(&v.metric))
+    {
+        if !q.contains(&m) {
+            q.push(m);
+        }
+    }
+    if q.iter().any(|m| m.starts_with("drift_")) && !q.contains(&"drift_norm") {
+        let at = q
+            .iter()
+            .rposition(|m| m.starts_with("drift_"))
+            .map_or(q.len(), |i| i + 1);
+        q.insert(at, "drift_norm");
+    }
+    let off_reference = shown
+        .iter()
+        .any(|r| match (r.drift_norm, r.drift_ref_norm) {
+            (Some(a), Some(b)) => (a - b).abs() > 1e-12 * a.abs().max(1.0),
+            _ => false,
+        });
+    if off_reference {
+        let at = q
+            .iter()
+            .position(|m| *m == "drift_norm")
+            .map_or(q.len(), |i| i + 1);
+        q.insert(at, "drift_ref_norm");
+    }
+    q
+}
+
+/// One column of ours: a run, and the published column its ratio is taken against.
+struct OursColumn<'a> {
+    header: String,
+    run: Option<&'a RunRow>,
+    ratio_of: Option<&'static Mapping>,
+}
+
+/// One published table side by side with ours, as Markdown (empty when nothing maps).
+pub fn side_by_side(paper: &str, table: &str, values: &[PaperValue], runs: &Runs) -> String {
+    let columns = columns_of(paper, table, values);
+    if columns.is_empty() {
+        return String::new();
+    }
+    let one_variant = columns
+        .iter()
+        .all(|c| c.variant == columns[0].variant && c.companions.is_empty());
+    let name = |solver: &str, variant: &str| {
+        if one_variant {
+            solver.to_string()
+        } else {
+            format!("{solver}, {variant}")
+        }
+    };
+
+    // Column layout: per published column, the paper's number then, per variant, the exact
+    // run (once per variant), the paper's solver and the ratio.
+    enum Col<'a> {
+        Paper(&'static Mapping),
+        Ours(OursColumn<'a>),
+    }
+    let mut cols: Vec<Col> = Vec::new();
+    let mut exact_shown: Vec<(&str, &str)> = Vec::new();
+    for m in &columns {
+        cols.push(Col::Paper(m));
+        for variant in std::iter::once(&m.variant).chain(m.companions.iter()) {
+            if !exact_shown.contains(&(m.experiment, variant)) {
+                exact_shown.push((m.experiment, variant));
+                cols.push(Col::Ours(OursColumn {
+                    header: name("exact", variant),
+                    run: runs.find(m.experiment, variant, EXACT),
+                    ratio_of: None,
+                }));
+            }
+            let run = runs.find(m.experiment, variant, m.solver);
+            cols.push(Col::Ours(OursColumn {
+                header: name(m.solver, variant),
+                run,
+                ratio_of: None,
+            }));
+            cols.push(Col::Ours(OursColumn {
+                header: "ratio".to_string(),
+                run,
+                ratio_of: Some(m),
+            }));
+        }
+    }
+    let shown: Vec<&RunRow> = cols
+        .iter()
+        .filter_map(|c| if let Col::Ours(o) = c { o.run } else { None })
+        .collect();
+
+    let mut header = vec!["quantity".to_string()];
+    header.extend(cols.iter().map(|c| match c {
+        Col::Paper(m) => format!("paper: {}", m.published_column),
+        Col::Ours(o) => o.header.clone(),
+    }));
+    let mut t = Table::new(header);
+    let mut derived = false;
+    for q in quantities_of(paper, table, values, &shown) {
+        let mut row = vec![quantity_label(q)];
+        for c in &cols {
+            row.push(match c {
+                Col::Paper(m) => match published(values, m, q) {
+                    Some((v, d)) => {
+                        derived |= d;
+                        format!("{}{}", sci(v), if d { "*" } else { "" })
+                    }
+                    None => MISSING.to_string(),
+                },
+                Col::Ours(OursColumn { run: None, .. }) => "no run".to_string(),
+                Col::Ours(OursColumn {
+                    run: Some(r),
+                    ratio_of: None,
+                    ..
+                }) => metric_cell(r, q),
+                Col::Ours(OursColumn {
+                    run: Some(r),
+                    ratio_of: Some(m),
+                    ..
+                }) => {
+                    let ratio = metric(r, q)
+                        .zip(published(values, m, q))
+                        .map(|(o, (p, _))| o / p);
+                    sci_opt(ratio)
+                }
+            });
+        }
+        t.push(row);
+    }
+    let mut out = String::new();
+    let ids: Vec<&str> = columns
+        .iter()
+        .map(|c| c.experiment)
+        .fold(Vec::new(), |mut v, e| {
+            if !v.contains(&e) {
+                v.push(e);
+            }
+            v
+        });
+    let caption = if table == "text" {
+        "Numbers quoted in the text".to_string()
+    } else {
+        format!("Table {}", table.trim_start_matches('T'))
+    };
+    out.push_str(&format!(
+        "**{caption}** — our experiment{} {}",
+        if ids.len() > 1 { "s" } else { "" },
+        ids.iter()
+            .map(|e| format!("`{e}`"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    ));
+    if one_variant {
+        out.push_str(&format!(", variant \"{}\"", columns[0].variant));
+    }
+    out.push_str(". Ratio = our run of the paper's solver / paper.\n\n");
+    out.push_str(&t.render());
+    if derived {
+        out.push_str("\n\\* not printed by the paper: the norm of its per-joint entries.\n");
+    }
+    out
+}
+
+/// The suite's table of every run of one experiment: status, drift, position error, peaks
+/// and joint-limit margins (columns that no run measures are left out).
+pub fn runs_table(runs: &Runs, experiment: &str) -> String {
+    let rows: Vec<&RunRow> = runs.of_experiment(experiment).collect();
+    let off_reference = rows.iter().any(|r| r.drift_norm != r.drift_ref_norm);
+    let mut quantities = vec!["drift_norm"];
+    if off_reference {
+        quantities.push("drift_ref_norm");
+    }
+    quantities.extend([
+        "max_pos_err",
+        "final_pos_err",
+        "peak_thetadot",
+        "peak_thetaddot",
+        "peak_torque",
+        "theta_margin",
+        "thetadot_margin",
+    ]);
+    let label = |q: &str| match q {
+        "peak_thetadot" => "peak |θ̇|".to_string(),
+        "peak_thetaddot" => "peak |θ̈|".to_string(),
+        "peak_torque" => "peak |τ|".to_string(),
+        "theta_margin" => "min θ margin".to_string(),
+        "thetadot_margin" => "min θ̇ margin".to_string(),
+        q => quantity_label(q),
+    };
+    let mut header = vec!["variant".to_string(), "solver".to_string()];
+    header.extend(quantities.iter().map(|q| label(q)));
+    header.push("status".to_string());
+    let mut t = Table::new(header);
+    for r in rows {
+        let mut row = vec![r.variant.clone(), r.solver.clone()];
+        row.extend(quantities.iter().map(|q| sci_opt(metric(r, q))));
+        row.push(status_text(r));
+        t.push(row);
+    }
+    t.without_empty_columns().render()
+}

@@ -1,0 +1,270 @@
+//! The report generator: renders from the committed results, is byte-stable, evaluates
+//! claims from the numbers (a changed number flips a verdict), and maps every published
+//! number that has a mapping onto an existing run.
+
+use presentation::report::claims::{self, Verdict};
+use presentation::report::{render, to_markdown, Inputs, PAPERS};
+use records::index::Runs;
+use records::paper_values::{mapping_of, read_paper_values, resolve, Resolution};
+use records::runs::{read_runs, RunRow};
+
+fn committed() -> Inputs {
+    Inputs::load(&simulation::root::from_current_dir().unwrap()).expect("committed inputs load")
+}
+
+#[test]
+fn renders_every_paper_and_experiment_from_the_committed_results() {
+    let root = simulation::root::from_current_dir().unwrap();
+    let path = render(&root).expect("report renders");
+    let md = std::fs::read_to_string(&path).unwrap();
+    for (paper, _) in PAPERS {
+        assert!(
+            md.contains(&format!("\n## {paper}\n")),
+            "no section for {paper}"
+        );
+    }
+    let rows = read_runs(&root.join("results/runs.csv")).unwrap();
+    for r in &rows {
+        assert!(
+            md.contains(&r.experiment),
+            "experiment {} missing from the report",
+            r.experiment
+        );
+    }
+    for heading in [
+        "## Score against the exact optimum",
+        "## Cost",
+        "## Cross experiment",
+        "## Published numbers without a run",
+    ] {
+        assert!(md.contains(heading), "missing {heading}");
+    }
+    let deviations = std::fs::read_to_string(root.join("report/deviations.md")).unwrap();
+    assert!(
+        md.contains(&deviations),
+        "deviations.md not included verbatim"
+    );
+}
+
+#[test]
+fn rendering_twice_gives_identical_bytes() {
+    let root = simulation::root::from_current_dir().unwrap();
+    let first = std::fs::read(render(&root).unwrap()).unwrap();
+    let second = std::fs::read(render(&root).unwrap()).unwrap();
+    assert_eq!(first, second);
+    assert_eq!(to_markdown(&committed()).as_bytes(), &first[..]);
+}
+
+#[test]
+fn every_mapped_published_number_finds_its_run() {
+    let inputs = committed();
+    let values = read_paper_values(
+        &simulation::root::from_current_dir()
+            .unwrap()
+            .join("report/paper-values.csv"),
+    )
+    .unwrap();
+    let mut mapped = 0;
+    for v in &values {
+        if mapping_of(v).is_some() {
+            match resolve(v, &inputs.runs) {
+                Resolution::Found { .. } => mapped += 1,
+                Resolution::Unmapped(why) if why.contains("does not record") => {}
+                Resolution::Unmapped(why) => panic!(
+                    "{} {} {} {}: {why}",
+                    v.paper, v.table, v.experiment, v.column
+                ),
+            }
+        }
+    }
+    assert!(mapped > 100, "only {mapped} published numbers mapped");
+    let md = to_markdown(&inputs);
+    let section = md
+        .split("## Published numbers without a run")
+        .nth(1)
+        .unwrap();
+    assert!(
+        section.contains("all-vltco") && section.contains("error_norm_settle_s"),
+        "unmapped numbers not listed"
+    );
+}
+
+/// A completed run with the given drift norm (everything else neutral).
+fn row(experiment: &str, variant: &str, solver: &str, drift: f64) -> RunRow {
+    RunRow {
+        paper: "jia2019".into(),
+        experiment: experiment.into(),
+        variant: variant.into(),
+        scheme: variant.into(),
+        solver: solver.into(),
+        robot: "jaco2-pen".into(),
+        path: "four-leaf-clover".into(),
+        path_scale: None,
+        duration: 5.0,
+        status: "ok".into(),
+        failure: String::new(),
+        expected_failure: String::new(),
+        failed_at: None,
+        drift_1: Some(drift),
+        drift_2: Some(0.0),
+        drift_3: Some(0.0),
+        drift_4: Some(0.0),
+        drift_5: Some(0.0),
+        drift_6: Some(drift),
+        drift_norm: Some(drift),
+        drift_ref_norm: Some(drift),
+        max_pos_err: Some(1e-6),
+        rms_pos_err: Some(1e-6),
+        final_pos_err: Some(1e-6),
+        theta_margin: Some(0.5),
+        thetadot_margin: Some(0.1),
+        peak_thetadot: Some(1.4),
+        peak_thetaddot: None,
+        peak_torque: None,
+        min_sigma_j: Some(0.2),
+        score_samples: None,
+        score_max_dx: None,
+        score_rms_dx: None,
+        score_max_obj_gap: None,
+        score_max_violation: None,
+        score_failures: 0,
+        net_error_final: None,
+        net_error_max_after_1s: None,
+        integrator: "bdf".into(),
+        rtol: 1e-6,
+        atol: 1e-8,
+        max_step: None,
+        steps: 1,
+        rejected: 0,
+        rhs_evals: 1,
+        jac_evals: 0,
+        qp_solves: 1,
+        qp_fallbacks: 0,
+        qp_checks: 0,
+        qp_check_max_dx: None,
+        wall_s: 0.1,
+        sim_s: 0.1,
+        observe_s: 0.0,
+        crate_version: "0".into(),
+        git_rev: "test".into(),
+    }
+}
+
+fn synthetic() -> Vec<RunRow> {
+    vec![
+        row("jia2019-clover", "MVN", "LVI-PDNN", 0.3),
+        row("jia2019-clover", "MVN", "exact (Clarabel)", 0.3),
+        row("jia2019-clover", "MVN-INVM", "LVI-PDNN", 0.1),
+        row("jia2019-clover", "VLTCO", "LVI-PDNN", 1e-3),
+        row(
+            "jia2019-clover",
+            "MVN [jaco2-hand]",
+            "exact (Clarabel)",
+            0.0,
+        ),
+    ]
+}
+
+fn verdicts(rows: Vec<RunRow>) -> Vec<(String, Verdict)> {
+    claims::jia2019(&Runs::new(rows))
+        .into_iter()
+        .map(|c| (c.short, c.verdict))
+        .collect()
+}
+
+#[test]
+fn claims_pass_on_synthetic_rows_and_fail_when_a_number_changes() {
+    let all_pass = verdicts(synthetic());
+    assert!(
+        all_pass.iter().all(|(_, v)| *v == Verdict::Pass),
+        "{all_pass:?}"
+    );
+
+    // VLTCO's drift no longer 10x below MVN-INVM's: exactly the ordering claim fails.
+    let mut rows = synthetic();
+    rows[3].drift_norm = Some(0.02);
+    let changed = verdicts(rows);
+    for ((short, before), (_, after)) in all_pass.iter().zip(&changed) {
+        let expected = if short == "drift(VLTCO) << drift(MVN-INVM)" {
+            Verdict::Fail
+        } else {
+            *before
+        };
+        assert_eq!(*after, expected, "{short}");
+    }
+
+    // A velocity bound crossed by 1e-6 rad/s fails the limits claims.
+    let mut rows = synthetic();
+    rows[0].thetadot_margin = Some(-1e-6);
+    let changed = verdicts(rows);
+    assert!(
+        changed
+            .iter()
+            .any(|(s, v)| s == "joints inside their limits" && *v == Verdict::Fail),
+        "{changed:?}"
+    );
+
+    // A missing run makes a claim N/A, never PASS.
+    let mut rows = synthetic();
+    rows.retain(|r| r.variant != "MVN [jaco2-hand]");
+    let changed = verdicts(rows);
+    assert!(
+        changed
+            .iter()
+            .any(|(s, v)| s == "jaco2-hand leaves joint 6 still" && *v == Verdict::NotApplicable),
+        "{changed:?}"
+    );
+}
+
+/// Verdicts do not depend on machine load: scaling every run's timing columns by its own factor
+/// (0.3x to 3.3x) leaves every claim's verdict as it was.
+#[test]
+fn verdicts_do_not_depend_on_timing() {
+    let inputs = committed();
+    let verdicts = |rows: Vec<RunRow>| -> Vec<(String, Verdict)> {
+        let runs = Runs::new(rows);
+        PAPERS
+            .iter()
+            .flat_map(|(p, _)| claims::evaluate(p, &runs, &inputs.values))
+            .map(|c| (c.short, c.verdict))
+            .collect()
+    };
+    let before = verdicts(inputs.runs.all().to_vec());
+    let mut noisy = inputs.runs.all().to_vec();
+    for (i, r) in noisy.iter_mut().enumerate() {
+        let f = 0.3 + (i % 7) as f64 * 0.5;
+        r.wall_s *= f;
+        r.sim_s *= f;
+        r.observe_s *= f;
+    }
+    assert_eq!(before, verdicts(noisy));
+}
+
+/// The committed report explains every paper with a published table and has the group-code
+/// section, from the committed ladder, attribution and inference results.
+#[test]
+fn the_report_explains_every_paper_with_a_table() {
+    use presentation::report::{to_markdown, Inputs};
+    let md = to_markdown(&Inputs::load(&simulation::root::from_current_dir().unwrap()).unwrap());
+    for paper in ["jia2019", "zhong2021", "kong2019", "zhang2018"] {
+        let start = md.find(&format!("\n## {paper}\n")).expect("paper section");
+        let end = md[start + 1..]
+            .find("\n## ")
+            .map_or(md.len(), |e| start + 1 + e);
+        let section = &md[start..end];
+        assert!(section.contains("### Why the numbers differ"), "{paper}");
+        assert!(section.contains("#### Drift attribution"), "{paper}");
+        assert!(section.contains("#### Tolerance ladder"), "{paper}");
+    }
+    for paper in ["jia2019", "zhong2021", "kong2019"] {
+        let start = md.find(&format!("\n## {paper}\n")).unwrap();
+        let end = md[start + 1..]
+            .find("\n## ")
+            .map_or(md.len(), |e| start + 1 + e);
+        assert!(
+            md[start..end].contains("inferred setup (fitted to the paper)"),
+            "{paper}"
+        );
+    }
+    assert!(md.contains("## The group's own code (reference experiment)"));
+}

@@ -1,0 +1,82 @@
+//! The regression gate: a fresh run against the committed `results/runs.csv`.
+//!
+//! A fresh row is compared with the committed row of the same (experiment, variant, solver):
+//! - the status must be the same (a run that completed must still complete, a run that failed
+//!   is a recorded finding and must still fail);
+//! - for completed runs the drift per joint, its norm and the max position error must agree to
+//!   a relative 1e-6 (absolute 1e-12): the simulation is deterministic, so anything beyond
+//!   floating-point noise across machines is a change of behaviour;
+//! - every committed run must still be produced, and every fresh run must be committed;
+//! - every neural run must complete, except those whose divergence is itself the finding
+//!   (declared in the experiment files as `expected_failure`, recorded in each row).
+
+use crate::runs::RunRow;
+use simulation::experiment::SolverChoice;
+
+/// Relative tolerance of the drift comparison.
+pub const RELATIVE_TOLERANCE: f64 = 1e-6;
+
+/// Whether `r` is one of the runs its experiment file expects to fail (`expected_failure`).
+pub fn expected_to_diverge(r: &RunRow) -> bool {
+    !r.expected_failure.is_empty()
+}
+
+fn close(a: Option<f64>, b: Option<f64>) -> bool {
+    match (a, b) {
+        (Some(a), Some(b)) => (a - b).abs() <= 1e-12 + RELATIVE_TOLERANCE * a.abs().max(b.abs()),
+        (None, None) => true,
+        _ => false,
+    }
+}
+
+/// Every difference between `committed` and `fresh` that the gate rejects, one line each.
+/// `committed` should hold the rows of the same selection of runs as `fresh`.
+pub fn compare(committed: &[RunRow], fresh: &[RunRow]) -> Vec<String> {
+    let mut problems = Vec::new();
+    for c in committed {
+        let Some(f) = fresh.iter().find(|f| f.key() == c.key()) else {
+            problems.push(format!("{:?}: committed run no longer produced", c.key()));
+            continue;
+        };
+        if f.status != c.status {
+            problems.push(format!(
+                "{:?}: status {} -> {} ({})",
+                c.key(),
+                c.status,
+                f.status,
+                f.failure
+            ));
+            continue;
+        }
+        if c.status == "ok" {
+            let pairs = [
+                ("drift_1", c.drift_1, f.drift_1),
+                ("drift_2", c.drift_2, f.drift_2),
+                ("drift_3", c.drift_3, f.drift_3),
+                ("drift_4", c.drift_4, f.drift_4),
+                ("drift_5", c.drift_5, f.drift_5),
+                ("drift_6", c.drift_6, f.drift_6),
+                ("drift_norm", c.drift_norm, f.drift_norm),
+                ("max_pos_err", c.max_pos_err, f.max_pos_err),
+            ];
+            for (name, a, b) in pairs {
+                if !close(a, b) {
+                    problems.push(format!("{:?}: {name} {a:?} -> {b:?}", c.key()));
+                }
+            }
+        }
+    }
+    for f in fresh {
+        if !committed.iter().any(|c| c.key() == f.key()) {
+            problems.push(format!(
+                "{:?}: new run not in results/runs.csv (run the reproduction and commit results/)",
+                f.key()
+            ));
+        }
+        let neural = f.solver != SolverChoice::Exact.label();
+        if neural && f.status != "ok" && !expected_to_diverge(f) {
+            problems.push(format!("{:?}: neural run failed: {}", f.key(), f.failure));
+        }
+    }
+    problems
+}

@@ -1,0 +1,115 @@
+//! The stored runs, indexed the way the report looks them up: by (experiment, variant,
+//! solver), by paper and by experiment; metric access by column name; a run's status in words.
+
+use crate::runs::RunRow;
+
+/// The solver label of the exact column (Clarabel in the loop).
+pub const EXACT: &str = "exact (Clarabel)";
+
+/// All rows of `results/runs.csv`, sorted by (experiment, variant, solver).
+#[derive(Clone, Debug)]
+pub struct Runs {
+    rows: Vec<RunRow>,
+}
+
+impl Runs {
+    /// Indexes `rows` (sorted, so every listing below is deterministic).
+    pub fn new(mut rows: Vec<RunRow>) -> Self {
+        rows.sort_by_key(|r| r.key());
+        Runs { rows }
+    }
+
+    /// Every run.
+    pub fn all(&self) -> &[RunRow] {
+        &self.rows
+    }
+
+    /// The run of `solver` on `variant` of `experiment`.
+    pub fn find(&self, experiment: &str, variant: &str, solver: &str) -> Option<&RunRow> {
+        self.rows
+            .iter()
+            .find(|r| r.experiment == experiment && r.variant == variant && r.solver == solver)
+    }
+
+    /// Like [`Runs::find`], with the missing run as an error message.
+    pub fn need(&self, experiment: &str, variant: &str, solver: &str) -> Result<&RunRow, String> {
+        self.find(experiment, variant, solver)
+            .ok_or_else(|| format!("no run of {solver} on {experiment} / {variant}"))
+    }
+
+    /// The runs of one paper (the `paper` column).
+    pub fn of_paper<'a>(&'a self, paper: &'a str) -> impl Iterator<Item = &'a RunRow> + 'a {
+        self.rows.iter().filter(move |r| r.paper == paper)
+    }
+
+    /// The runs of one experiment.
+    pub fn of_experiment<'a>(
+        &'a self,
+        experiment: &'a str,
+    ) -> impl Iterator<Item = &'a RunRow> + 'a {
+        self.rows.iter().filter(move |r| r.experiment == experiment)
+    }
+
+    /// The experiment ids of one paper, sorted.
+    pub fn experiments(&self, paper: &str) -> Vec<String> {
+        let mut ids: Vec<String> = self.of_paper(paper).map(|r| r.experiment.clone()).collect();
+        ids.dedup();
+        ids
+    }
+}
+
+/// True for a run of a neural solver (everything but the exact column).
+pub fn is_neural(r: &RunRow) -> bool {
+    r.solver != EXACT
+}
+
+/// True when the run reached the end of its task.
+pub fn completed(r: &RunRow) -> bool {
+    r.status == "ok"
+}
+
+/// `ok`, or `failed at t = ... (reason)`.
+pub fn status_text(r: &RunRow) -> String {
+    if completed(r) {
+        "ok".to_string()
+    } else {
+        format!("{} ({})", failed_at(r), r.failure)
+    }
+}
+
+/// `failed at t = ...` without the reason (for narrow cells).
+pub fn failed_at(r: &RunRow) -> String {
+    match r.failed_at {
+        Some(t) => format!("failed at t = {t:.3} s"),
+        None => "failed".to_string(),
+    }
+}
+
+/// A numeric column of a run by its `runs.csv` name; `None` when not measured or unknown.
+pub fn metric(r: &RunRow, name: &str) -> Option<f64> {
+    match name {
+        "drift_1" => r.drift_1,
+        "drift_2" => r.drift_2,
+        "drift_3" => r.drift_3,
+        "drift_4" => r.drift_4,
+        "drift_5" => r.drift_5,
+        "drift_6" => r.drift_6,
+        "drift_norm" => r.drift_norm,
+        "drift_ref_norm" => r.drift_ref_norm,
+        "max_pos_err" => r.max_pos_err,
+        "rms_pos_err" => r.rms_pos_err,
+        "final_pos_err" => r.final_pos_err,
+        "theta_margin" => r.theta_margin,
+        "thetadot_margin" => r.thetadot_margin,
+        "peak_thetadot" => r.peak_thetadot,
+        "peak_thetaddot" => r.peak_thetaddot,
+        "peak_torque" => r.peak_torque,
+        "score_max_dx" => r.score_max_dx,
+        "score_rms_dx" => r.score_rms_dx,
+        "score_max_obj_gap" => r.score_max_obj_gap,
+        "score_max_violation" => r.score_max_violation,
+        "wall_s" => Some(r.wall_s),
+        "sim_s" => Some(r.sim_s),
+        _ => None,
+    }
+}

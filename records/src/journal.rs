@@ -1,0 +1,100 @@
+//! The checkpoint journal: `results/journal.csv`, one `runs.csv` row appended (and flushed) as
+//! each run finishes, its trace written beside it at once. A run that is interrupted (SIGINT,
+//! SIGKILL, a pre-empted job) loses only the runs that were in flight: the next start folds the
+//! journal into `runs.csv` (atomically) and skips the runs it holds when they were produced by
+//! the same code revision. A normal end merges everything into `runs.csv` and removes the
+//! journal. A line cut short by a kill (the last one) is dropped; any other bad line is an error
+//! naming the file and the line.
+
+use crate::runs::{read_runs, runs_columns, trace_csv, trace_file, write_atomic, RunRow};
+use simulation::run::RunRecord;
+use std::fs::{File, OpenOptions};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+/// The journal of the results directory `dir`.
+pub fn path(dir: &Path) -> PathBuf {
+    dir.join("journal.csv")
+}
+
+/// An open journal, shared by the worker threads.
+pub struct Journal {
+    dir: PathBuf,
+    file: Mutex<File>,
+    git_rev: String,
+}
+
+impl Journal {
+    /// Opens (creating, with the header) the journal of `dir` for appending.
+    pub fn open(dir: &Path, git_rev: &str) -> Result<Self, String> {
+        let path = path(dir);
+        let mut file = OpenOptions::new()
+            .create(true)
+            .append(true)
+            .open(&path)
+            .map_err(|e| format!("{}: cannot open: {e}", path.display()))?;
+        let empty = file.metadata().map(|m| m.len() == 0).unwrap_or(true);
+        if empty {
+            writeln!(file, "{}", runs_columns().join(","))
+                .map_err(|e| format!("{}: {e}", path.display()))?;
+        }
+        Ok(Self {
+            dir: dir.to_path_buf(),
+            file: Mutex::new(file),
+            git_rev: git_rev.to_string(),
+        })
+    }
+
+    /// Checkpoints one finished run: its trace, then its row (one write, flushed).
+    pub fn record(&self, r: &RunRecord) -> Result<(), String> {
+        let trace = self.dir.join("traces").join(trace_file(r));
+        let bytes = trace_csv(r).map_err(|e| e.to_string())?;
+        write_atomic(&trace, &bytes).map_err(|e| format!("{}: {e}", trace.display()))?;
+        let mut w = csv::WriterBuilder::new()
+            .has_headers(false)
+            .from_writer(Vec::new());
+        w.serialize(RunRow::from_record(r, &self.git_rev))
+            .map_err(|e| e.to_string())?;
+        let line = w.into_inner().map_err(|e| e.to_string())?;
+        let mut file = self
+            .file
+            .lock()
+            .map_err(|_| "journal lock poisoned".to_string())?;
+        file.write_all(&line)
+            .and_then(|()| file.flush())
+            .map_err(|e| format!("{}: {e}", path(&self.dir).display()))
+    }
+}
+
+/// The rows of an interrupted run's journal (none without one). A last line cut short by a
+/// kill is dropped.
+pub fn recover(dir: &Path) -> Result<Vec<RunRow>, String> {
+    let journal = path(dir);
+    if !journal.exists() {
+        return Ok(Vec::new());
+    }
+    let text = std::fs::read_to_string(&journal)
+        .map_err(|e| format!("{}: cannot read: {e}", journal.display()))?;
+    // Keep only complete lines: a kill can cut the last one short.
+    let complete = match text.rfind('\n') {
+        Some(end) => &text[..=end],
+        None => "",
+    };
+    let tmp = dir.join(format!("journal.{}.recover.tmp", std::process::id()));
+    std::fs::write(&tmp, complete).map_err(|e| format!("{}: {e}", tmp.display()))?;
+    let rows = read_runs(&tmp)
+        .map_err(|e| e.replace(&tmp.display().to_string(), &journal.display().to_string()));
+    let _ = std::fs::remove_file(&tmp);
+    rows
+}
+
+/// Removes the journal of `dir` (after its rows are in runs.csv).
+pub fn remove(dir: &Path) -> Result<(), String> {
+    let journal = path(dir);
+    match std::fs::remove_file(&journal) {
+        Ok(()) => Ok(()),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+        Err(e) => Err(format!("{}: {e}", journal.display())),
+    }
+}

@@ -1,0 +1,16 @@
+//! driftbench's results layer: what a run leaves behind and how it is kept.
+//!
+//! - [`runs`]: the schema of `results/runs.csv` ([`runs::RunRow`], one row per run, from a
+//!   simulation's [`simulation::run::RunRecord`]) and of the traces; atomic writes; reading
+//!   with the schema checked.
+//! - [`index`]: the stored runs indexed as the report and the analyses look them up.
+//! - [`journal`]: the checkpoint of finished runs that an interrupted run resumes from.
+//! - [`gate`]: the regression gate (fresh rows against committed ones).
+//! - [`paper_values`]: the published numbers (`report/paper-values.csv`) and which run each
+//!   one is compared with.
+
+pub mod gate;
+pub mod index;
+pub mod journal;
+pub mod paper_values;
+pub mod runs;

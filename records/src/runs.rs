@@ -1,0 +1,431 @@
+//! `results/`: the committed CSV the report and the regression gate read.
+//!
+//! - `results/runs.csv`: one row per run ([`RunRow`]): identity, outcome, every metric, the
+//!   score against the exact optimum, and provenance (integrator, tolerances, steps,
+//!   evaluations, wall time, crate version, git revision).
+//! - `results/traces/<experiment>/<variant>__<solver>.csv`: the thinned time history of each
+//!   run for the figures.
+//!
+//! Files are written to a temporary name and renamed, so an interrupted run never leaves a
+//! half-written file. Rows are sorted by (experiment, variant, solver) so that two runs give
+//! byte-identical files except for the timing columns (`wall_s`, `sim_s`, `observe_s`) and `git_rev`.
+
+use serde::{Deserialize, Serialize};
+use simulation::naming::run_stem;
+use simulation::run::{Outcome, RunRecord};
+use std::path::Path;
+
+/// One run, as stored in `results/runs.csv`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RunRow {
+    pub paper: String,
+    pub experiment: String,
+    pub variant: String,
+    pub scheme: String,
+    pub solver: String,
+    pub robot: String,
+    pub path: String,
+    pub path_scale: Option<f64>,
+    pub duration: f64,
+    /// `ok` or `failed`.
+    pub status: String,
+    pub failure: String,
+    /// Why the experiment file expects this run to fail (empty: it should complete).
+    pub expected_failure: String,
+    /// Last accepted instant of a failed run (the failure message names the instant of the
+    /// evaluation that failed, which may lie inside the next step).
+    pub failed_at: Option<f64>,
+    pub drift_1: Option<f64>,
+    pub drift_2: Option<f64>,
+    pub drift_3: Option<f64>,
+    pub drift_4: Option<f64>,
+    pub drift_5: Option<f64>,
+    pub drift_6: Option<f64>,
+    pub drift_norm: Option<f64>,
+    pub drift_ref_norm: Option<f64>,
+    pub max_pos_err: Option<f64>,
+    pub rms_pos_err: Option<f64>,
+    pub final_pos_err: Option<f64>,
+    pub theta_margin: Option<f64>,
+    pub thetadot_margin: Option<f64>,
+    pub peak_thetadot: Option<f64>,
+    pub peak_thetaddot: Option<f64>,
+    pub peak_torque: Option<f64>,
+    pub min_sigma_j: Option<f64>,
+    pub score_samples: Option<usize>,
+    pub score_max_dx: Option<f64>,
+    pub score_rms_dx: Option<f64>,
+    pub score_max_obj_gap: Option<f64>,
+    pub score_max_violation: Option<f64>,
+    pub score_failures: usize,
+    /// The network's own error norm at T (|Q y - u| for the zeroing networks).
+    pub net_error_final: Option<f64>,
+    /// Its largest value after t = 1 s (kong2019: "settles within ~1 s").
+    pub net_error_max_after_1s: Option<f64>,
+    pub integrator: String,
+    pub rtol: f64,
+    pub atol: f64,
+    /// The integrator's largest step (ode15s's MaxStep), where the run sets one.
+    #[serde(default)]
+    pub max_step: Option<f64>,
+    pub steps: usize,
+    pub rejected: usize,
+    pub rhs_evals: usize,
+    pub jac_evals: usize,
+    pub qp_solves: usize,
+    /// Exact QPs the certified active-set solver could not answer (Clarabel did).
+    pub qp_fallbacks: usize,
+    /// Certified active-set answers also solved by Clarabel (the first and every 100th).
+    pub qp_checks: usize,
+    /// Largest relative |x_active_set - x_clarabel|_inf over those checks.
+    pub qp_check_max_dx: Option<f64>,
+    /// Wall time of the whole integration.
+    pub wall_s: f64,
+    /// Wall time of the simulation proper (arm + solver + integrator): `wall_s - observe_s`.
+    /// The number to compare solvers by.
+    pub sim_s: f64,
+    /// Wall time of the observation at accepted steps (metrics, trace, the Clarabel solves that
+    /// score a neural run or give the exact column's thetadot).
+    pub observe_s: f64,
+    pub crate_version: String,
+    pub git_rev: String,
+}
+
+impl RunRow {
+    pub fn from_record(r: &RunRecord, git_rev: &str) -> Self {
+        let j = &r.job;
+        // A failed run keeps its metrics up to the failure (peaks, errors, margins), but no
+        // drift: theta(T) was never reached.
+        let (status, failure, failed_at, m, completed) = match &r.outcome {
+            Outcome::Completed(m) => ("ok", String::new(), None, Some(m), true),
+            Outcome::Failed { t, reason, partial } => {
+                ("failed", reason.clone(), Some(*t), partial.as_ref(), false)
+            }
+        };
+        let drift = |i: usize| {
+            m.filter(|_| completed)
+                .and_then(|m| m.drift.get(i).copied())
+        };
+        let score = m.and_then(|m| m.score);
+        RunRow {
+            paper: j.paper.clone(),
+            experiment: j.experiment.clone(),
+            variant: j.variant.clone(),
+            scheme: r.scheme_name.clone(),
+            solver: j.solver.label(),
+            robot: j.robot.clone(),
+            path: j.path.name.clone(),
+            path_scale: j
+                .path
+                .scale
+                .or_else(|| schemes::paths::default_scale(&j.path.name)),
+            duration: j.path.duration,
+            status: status.to_string(),
+            failure,
+            expected_failure: j.expected_failure.clone().unwrap_or_default(),
+            failed_at,
+            drift_1: drift(0),
+            drift_2: drift(1),
+            drift_3: drift(2),
+            drift_4: drift(3),
+            drift_5: drift(4),
+            drift_6: drift(5),
+            drift_norm: m.filter(|_| completed).map(|m| m.drift_norm),
+            drift_ref_norm: m.filter(|_| completed).map(|m| m.drift_ref_norm),
+            max_pos_err: m.map(|m| m.max_position_error),
+            rms_pos_err: m.map(|m| m.rms_position_error),
+            final_pos_err: m.map(|m| m.final_position_error),
+            theta_margin: m.map(|m| m.theta_margin).filter(|v| v.is_finite()),
+            thetadot_margin: m.map(|m| m.thetadot_margin).filter(|v| v.is_finite()),
+            peak_thetadot: m.map(|m| m.peak_thetadot),
+            peak_thetaddot: m.and_then(|m| m.peak_thetaddot),
+            peak_torque: m.and_then(|m| m.peak_torque),
+            min_sigma_j: m.map(|m| m.min_sigma_j),
+            score_samples: score.map(|s| s.samples),
+            score_max_dx: score.map(|s| s.max_dx),
+            score_rms_dx: score.map(|s| s.rms_dx),
+            score_max_obj_gap: score.map(|s| s.max_objective_gap),
+            score_max_violation: score.map(|s| s.max_violation),
+            score_failures: r.score_failures,
+            net_error_final: m.and_then(|m| m.network_error).map(|e| e.final_value),
+            net_error_max_after_1s: m.and_then(|m| m.network_error).map(|e| e.max_after_settle),
+            integrator: j.integrator.method.label().to_string(),
+            rtol: j.integrator.rtol,
+            atol: j.integrator.atol,
+            max_step: j.integrator.max_step,
+            steps: r.stats.steps,
+            rejected: r.stats.rejected,
+            rhs_evals: r.stats.rhs_evals,
+            jac_evals: r.stats.jac_evals,
+            qp_solves: r.qp.solves,
+            qp_fallbacks: r.qp.fallbacks,
+            qp_checks: r.qp.checks,
+            qp_check_max_dx: (r.qp.checks > 0).then_some(r.qp.check_max_dx),
+            wall_s: r.stats.wall_seconds,
+            sim_s: (r.stats.wall_seconds - r.observe_seconds).max(0.0),
+            observe_s: r.observe_seconds,
+            crate_version: env!("CARGO_PKG_VERSION").to_string(),
+            git_rev: git_rev.to_string(),
+        }
+    }
+
+    /// Stable sort key.
+    pub fn key(&self) -> (String, String, String) {
+        (
+            self.experiment.clone(),
+            self.variant.clone(),
+            self.solver.clone(),
+        )
+    }
+
+    /// The joint drifts that exist (n of them).
+    pub fn drifts(&self) -> Vec<f64> {
+        present([
+            self.drift_1,
+            self.drift_2,
+            self.drift_3,
+            self.drift_4,
+            self.drift_5,
+            self.drift_6,
+        ])
+    }
+}
+
+/// The entries of the six per-joint drift columns that exist (a 5-joint arm leaves the sixth
+/// empty; a failed run all of them).
+pub fn present(drifts: [Option<f64>; 6]) -> Vec<f64> {
+    drifts.into_iter().flatten().collect()
+}
+
+/// Writes `bytes` to `path` atomically: to a temporary file unique to this call (process id and
+/// a counter, so concurrent writers of the same file never share one), then renamed over `path`.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    static COUNTER: AtomicUsize = AtomicUsize::new(0);
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir)?;
+    }
+    let unique = format!(
+        "{}.{}.tmp",
+        std::process::id(),
+        COUNTER.fetch_add(1, Ordering::Relaxed)
+    );
+    let mut name = path.file_name().unwrap_or_default().to_os_string();
+    name.push(".");
+    name.push(unique);
+    let tmp = path.with_file_name(name);
+    std::fs::write(&tmp, bytes)?;
+    std::fs::rename(&tmp, path).inspect_err(|_| {
+        let _ = std::fs::remove_file(&tmp);
+    })
+}
+
+/// Serialises rows as CSV.
+pub fn runs_csv(rows: &[RunRow]) -> Result<Vec<u8>, csv::Error> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    for r in rows {
+        w.serialize(r)?;
+    }
+    w.into_inner().map_err(|e| csv::Error::from(e.into_error()))
+}
+
+/// How to recover from a `runs.csv` this version cannot read.
+fn recovery_hint(path: &Path) -> String {
+    format!(
+        "nothing was run or written; restore the committed file with `git checkout {0}` or move \
+         it away (e.g. `mv {0} {0}.old`) and run again",
+        path.display()
+    )
+}
+
+/// The column names of `runs.csv` (the fields of [`RunRow`], in order).
+pub fn runs_columns() -> &'static [&'static str] {
+    use serde::de::{self, Visitor};
+    struct Grab<'a>(&'a mut &'static [&'static str]);
+    impl<'de> de::Deserializer<'de> for Grab<'_> {
+        type Error = de::value::Error;
+        fn deserialize_any<V: Visitor<'de>>(self, _: V) -> Result<V::Value, Self::Error> {
+            Err(de::Error::custom("not a struct"))
+        }
+        fn deserialize_struct<V: Visitor<'de>>(
+            self,
+            _: &'static str,
+            fields: &'static [&'static str],
+            _: V,
+        ) -> Result<V::Value, Self::Error> {
+            *self.0 = fields;
+            Err(de::Error::custom("fields taken"))
+        }
+        serde::forward_to_deserialize_any! {
+            bool i8 i16 i32 i64 i128 u8 u16 u32 u64 u128 f32 f64 char str string bytes byte_buf
+            option unit unit_struct newtype_struct seq tuple tuple_struct map enum identifier
+            ignored_any
+        }
+    }
+    let mut fields: &'static [&'static str] = &[];
+    let _ = RunRow::deserialize(Grab(&mut fields));
+    fields
+}
+
+/// Reads `results/runs.csv`. Any problem is an error naming the file, the line and how to
+/// recover, never a silently shorter list: an unreadable file, a header that is not this
+/// version's columns (an old schema: a missing or an unknown column), or a row that does not
+/// parse. An empty file has no rows.
+pub fn read_runs(path: &Path) -> Result<Vec<RunRow>, String> {
+    let fail = |line: Option<u64>, what: String| {
+        let at = line.map(|l| format!(" line {l}")).unwrap_or_default();
+        format!("{}:{at}: {what}; {}", path.display(), recovery_hint(path))
+    };
+    let mut r =
+        csv::Reader::from_path(path).map_err(|e| fail(None, format!("cannot read: {e}")))?;
+    let header = r
+        .headers()
+        .map_err(|e| fail(e.position().map(|p| p.line()), e.to_string()))?
+        .clone();
+    if header.is_empty() || (header.len() == 1 && header[0].is_empty()) {
+        return Ok(Vec::new());
+    }
+    let expected = runs_columns();
+    let missing: Vec<&str> = expected
+        .iter()
+        .copied()
+        .filter(|c| !header.iter().any(|h| h == *c))
+        .collect();
+    let unknown: Vec<&str> = header.iter().filter(|h| !expected.contains(h)).collect();
+    if !missing.is_empty() || !unknown.is_empty() {
+        let mut what = vec![
+            "the header is not this version's runs.csv schema (an old or a \
+                             foreign file)"
+                .to_string(),
+        ];
+        if !missing.is_empty() {
+            what.push(format!("missing columns: {}", missing.join(", ")));
+        }
+        if !unknown.is_empty() {
+            what.push(format!("unknown columns: {}", unknown.join(", ")));
+        }
+        return Err(fail(Some(1), what.join("; ")));
+    }
+    let mut rows = Vec::new();
+    for (i, row) in r.deserialize::<RunRow>().enumerate() {
+        match row {
+            Ok(row) => rows.push(row),
+            Err(e) => {
+                // Data rows start on line 2 (the csv crate's positions are 1-based lines).
+                let line = e.position().map(|p| p.line()).unwrap_or(i as u64 + 2);
+                let what = match e.kind() {
+                    csv::ErrorKind::Deserialize { err, .. } => format!("row does not parse: {err}"),
+                    _ => format!("row does not parse: {e}"),
+                };
+                return Err(fail(Some(line), what));
+            }
+        }
+    }
+    Ok(rows)
+}
+
+/// Removes the temporary files ([`write_atomic`]'s `<name>.<pid>.<n>.tmp`) that killed runs
+/// left anywhere under `dir`; returns the paths removed. A missing `dir` has none.
+pub fn remove_stale_tmp(dir: &Path) -> std::io::Result<Vec<std::path::PathBuf>> {
+    let mut removed = Vec::new();
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Ok(removed);
+    };
+    for entry in entries {
+        let entry = entry?;
+        let path = entry.path();
+        let kind = entry.file_type()?;
+        if kind.is_dir() {
+            removed.extend(remove_stale_tmp(&path)?);
+        } else if kind.is_file() && path.extension().is_some_and(|x| x == "tmp") {
+            std::fs::remove_file(&path)?;
+            removed.push(path);
+        }
+    }
+    Ok(removed)
+}
+
+/// Checks that files can be created in `dir` (created if absent): writes and removes a probe
+/// file. The error names the directory.
+pub fn check_writable(dir: &Path) -> Result<(), String> {
+    let fail = |e: std::io::Error| format!("{}: not writable: {e}", dir.display());
+    std::fs::create_dir_all(dir).map_err(fail)?;
+    let probe = dir.join(format!(".write-probe.{}.tmp", std::process::id()));
+    std::fs::write(&probe, b"").map_err(fail)?;
+    std::fs::remove_file(&probe).map_err(fail)
+}
+
+/// Merges freshly computed rows into the stored ones: a fresh row replaces the stored row with
+/// the same key; other stored rows are kept (so running one paper does not erase the others).
+pub fn merge(stored: Vec<RunRow>, fresh: Vec<RunRow>) -> Vec<RunRow> {
+    let mut all: Vec<RunRow> = stored
+        .into_iter()
+        .filter(|s| !fresh.iter().any(|f| f.key() == s.key()))
+        .collect();
+    all.extend(fresh);
+    all.sort_by_key(|r| r.key());
+    all
+}
+
+/// File name of a run's trace, relative to `results/traces/`.
+pub fn trace_file(r: &RunRecord) -> String {
+    format!(
+        "{}/{}.csv",
+        r.job.experiment,
+        run_stem(&r.job.variant, &r.job.solver.label())
+    )
+}
+
+/// A run's trace as CSV: t, theta_i, thetadot_i, [thetaddot_i, tau_i], desired and actual
+/// position, position error, score dx.
+pub fn trace_csv(r: &RunRecord) -> Result<Vec<u8>, csv::Error> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let Some(first) = r.trace.first() else {
+        return w.into_inner().map_err(|e| csv::Error::from(e.into_error()));
+    };
+    let n = first.theta.len();
+    let mut header = vec!["t".to_string()];
+    header.extend((1..=n).map(|i| format!("theta_{i}")));
+    header.extend((1..=n).map(|i| format!("thetadot_{i}")));
+    if first.thetaddot.is_some() {
+        header.extend((1..=n).map(|i| format!("thetaddot_{i}")));
+    }
+    if first.torque.is_some() {
+        header.extend((1..=n).map(|i| format!("tau_{i}")));
+    }
+    header.extend(
+        [
+            "rx_des",
+            "ry_des",
+            "rz_des",
+            "rx",
+            "ry",
+            "rz",
+            "pos_err",
+            "score_dx",
+            "net_error",
+        ]
+        .map(String::from),
+    );
+    w.write_record(&header)?;
+    for p in &r.trace {
+        let mut rec: Vec<String> = vec![p.t.to_string()];
+        rec.extend(p.theta.iter().chain(&p.thetadot).map(f64::to_string));
+        if let Some(a) = &p.thetaddot {
+            rec.extend(a.iter().map(f64::to_string));
+        }
+        if let Some(a) = &p.torque {
+            rec.extend(a.iter().map(f64::to_string));
+        }
+        rec.extend(p.desired.iter().chain(&p.actual).map(f64::to_string));
+        let err = ((p.desired[0] - p.actual[0]).powi(2)
+            + (p.desired[1] - p.actual[1]).powi(2)
+            + (p.desired[2] - p.actual[2]).powi(2))
+        .sqrt();
+        rec.push(err.to_string());
+        rec.push(p.score_dx.map(|v| v.to_string()).unwrap_or_default());
+        rec.push(p.network_error.map(|v| v.to_string()).unwrap_or_default());
+        w.write_record(&rec)?;
+    }
+    w.into_inner().map_err(|e| csv::Error::from(e.into_error()))
+}

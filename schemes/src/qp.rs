@@ -1,0 +1,217 @@
+//! The quadratic program every scheme produces at every instant:
+//!
+//! ```text
+//! minimise    x'Px/2 + q'x
+//! subject to  A x  = b          (m_eq rows)
+//!             G x <= h          (m_in rows)
+//!             l <= x <= u       (elementwise; +-inf where a bound is absent)
+//! ```
+//!
+//! P is symmetric positive semidefinite. The storage is dense (the papers' QPs have at most
+//! ~10 variables) and allocated once per run: schemes overwrite it in place at every step.
+//!
+//! KKT conditions with multipliers (lambda for A x = b, mu >= 0 for G x <= h,
+//! z_l, z_u >= 0 for the bounds):
+//! stationarity  P x + q + A'lambda + G'mu - z_l + z_u = 0,
+//! primal        A x = b, G x <= h, l <= x <= u,
+//! complementarity mu_i (h - Gx)_i = 0, z_l (x - l) = 0, z_u (u - x) = 0.
+
+use nalgebra::{DMatrix, DVector};
+
+/// Sizes of a QP: variables, equality rows, inequality rows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct QpDims {
+    pub nx: usize,
+    pub n_eq: usize,
+    pub n_in: usize,
+}
+
+/// A dense convex QP (see the module docs for the form).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Qp {
+    pub p: DMatrix<f64>,
+    pub q: DVector<f64>,
+    pub a: DMatrix<f64>,
+    pub b: DVector<f64>,
+    pub g: DMatrix<f64>,
+    pub h: DVector<f64>,
+    pub lower: DVector<f64>,
+    pub upper: DVector<f64>,
+}
+
+/// Multipliers of a QP solution (sign conventions as in the module docs).
+#[derive(Clone, Debug, PartialEq)]
+pub struct QpDuals {
+    pub lambda: DVector<f64>,
+    pub mu: DVector<f64>,
+    pub z_lower: DVector<f64>,
+    pub z_upper: DVector<f64>,
+}
+
+/// Infinity-norm KKT residuals of a primal-dual pair.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct KktResiduals {
+    /// max violation of A x = b, G x <= h and the bounds.
+    pub primal: f64,
+    /// |P x + q + A'lambda + G'mu - z_l + z_u|_inf, plus any negative multiplier.
+    pub dual: f64,
+    /// max |mu_i (h - Gx)_i|, |z_l (x - l)|, |z_u (u - x)| over finite bounds.
+    pub complementarity: f64,
+}
+
+impl KktResiduals {
+    /// Largest of the three residuals.
+    pub fn max(&self) -> f64 {
+        self.primal.max(self.dual).max(self.complementarity)
+    }
+}
+
+impl Qp {
+    /// A QP of the given sizes with all data zero and no bounds.
+    pub fn zeros(dims: QpDims) -> Self {
+        let QpDims { nx, n_eq, n_in } = dims;
+        Self {
+            p: DMatrix::zeros(nx, nx),
+            q: DVector::zeros(nx),
+            a: DMatrix::zeros(n_eq, nx),
+            b: DVector::zeros(n_eq),
+            g: DMatrix::zeros(n_in, nx),
+            h: DVector::zeros(n_in),
+            lower: DVector::from_element(nx, f64::NEG_INFINITY),
+            upper: DVector::from_element(nx, f64::INFINITY),
+        }
+    }
+
+    /// Checks the data: every matrix and vector of the sizes q, b and h imply, P, q, A, b and G
+    /// finite, and the one-sided data on its own side (h_i, u_i never -inf, l_i never +inf; no
+    /// NaN). The message names the offending field.
+    pub fn validate(&self) -> Result<(), String> {
+        let (nx, n_eq, n_in) = (self.q.len(), self.b.len(), self.h.len());
+        let shapes = [
+            ("P", self.p.shape(), (nx, nx)),
+            ("A", self.a.shape(), (n_eq, nx)),
+            ("G", self.g.shape(), (n_in, nx)),
+            ("lower", self.lower.shape(), (nx, 1)),
+            ("upper", self.upper.shape(), (nx, 1)),
+        ];
+        for (name, got, want) in shapes {
+            if got != want {
+                return Err(format!("{name} is {got:?}, expected {want:?}"));
+            }
+        }
+        let finite = [
+            ("P", self.p.as_slice()),
+            ("q", self.q.as_slice()),
+            ("A", self.a.as_slice()),
+            ("b", self.b.as_slice()),
+            ("G", self.g.as_slice()),
+        ];
+        for (name, data) in finite {
+            if data.iter().any(|v| !v.is_finite()) {
+                return Err(format!("{name} has a non-finite entry"));
+            }
+        }
+        let one_sided = [
+            ("h", self.h.as_slice(), f64::NEG_INFINITY),
+            ("upper", self.upper.as_slice(), f64::NEG_INFINITY),
+            ("lower", self.lower.as_slice(), f64::INFINITY),
+        ];
+        for (name, data, wrong) in one_sided {
+            if data.iter().any(|&v| v.is_nan() || v == wrong) {
+                return Err(format!("{name} has a NaN or {wrong} entry"));
+            }
+        }
+        Ok(())
+    }
+
+    /// Largest difference over every entry of two QPs of the same shape, relative to
+    /// max(1, |self entry|), equal entries (infinite bounds too) counting 0. For comparing a QP
+    /// with one built another way (a derivative against its difference quotient, say).
+    pub fn max_rel_diff(&self, other: &Qp) -> f64 {
+        let pairs: [(&[f64], &[f64]); 8] = [
+            (self.p.as_slice(), other.p.as_slice()),
+            (self.q.as_slice(), other.q.as_slice()),
+            (self.a.as_slice(), other.a.as_slice()),
+            (self.b.as_slice(), other.b.as_slice()),
+            (self.g.as_slice(), other.g.as_slice()),
+            (self.h.as_slice(), other.h.as_slice()),
+            (self.lower.as_slice(), other.lower.as_slice()),
+            (self.upper.as_slice(), other.upper.as_slice()),
+        ];
+        let mut d: f64 = 0.0;
+        for (x, y) in pairs {
+            assert_eq!(x.len(), y.len(), "QPs of different shapes");
+            for (&u, &v) in x.iter().zip(y).filter(|(u, v)| u != v) {
+                d = d.max((u - v).abs() / u.abs().max(1.0));
+            }
+        }
+        d
+    }
+
+    pub fn dims(&self) -> QpDims {
+        QpDims {
+            nx: self.q.len(),
+            n_eq: self.b.len(),
+            n_in: self.h.len(),
+        }
+    }
+
+    /// Objective x'Px/2 + q'x.
+    pub fn objective(&self, x: &DVector<f64>) -> f64 {
+        0.5 * x.dot(&(&self.p * x)) + self.q.dot(x)
+    }
+
+    /// Largest violation of any constraint at x (0 when x is feasible).
+    pub fn constraint_violation(&self, x: &DVector<f64>) -> f64 {
+        let mut v: f64 = 0.0;
+        if self.b.len() > 0 {
+            v = v.max((&self.a * x - &self.b).amax());
+        }
+        if self.h.len() > 0 {
+            let gx = &self.g * x;
+            for i in 0..self.h.len() {
+                v = v.max(gx[i] - self.h[i]);
+            }
+        }
+        for i in 0..x.len() {
+            v = v.max(self.lower[i] - x[i]).max(x[i] - self.upper[i]);
+        }
+        v
+    }
+
+    /// KKT residuals of (x, duals) (see the module docs).
+    pub fn kkt_residuals(&self, x: &DVector<f64>, d: &QpDuals) -> KktResiduals {
+        let primal = self.constraint_violation(x);
+        let mut stat = &self.p * x + &self.q - &d.z_lower + &d.z_upper;
+        if self.b.len() > 0 {
+            stat += self.a.tr_mul(&d.lambda);
+        }
+        if self.h.len() > 0 {
+            stat += self.g.tr_mul(&d.mu);
+        }
+        let mut dual = stat.amax();
+        for m in d.mu.iter().chain(d.z_lower.iter()).chain(d.z_upper.iter()) {
+            dual = dual.max(-m);
+        }
+        let mut comp: f64 = 0.0;
+        if self.h.len() > 0 {
+            let slack = &self.h - &self.g * x;
+            for i in 0..slack.len() {
+                comp = comp.max((d.mu[i] * slack[i]).abs());
+            }
+        }
+        for i in 0..x.len() {
+            if self.lower[i].is_finite() {
+                comp = comp.max((d.z_lower[i] * (x[i] - self.lower[i])).abs());
+            }
+            if self.upper[i].is_finite() {
+                comp = comp.max((d.z_upper[i] * (self.upper[i] - x[i])).abs());
+            }
+        }
+        KktResiduals {
+            primal,
+            dual,
+            complementarity: comp,
+        }
+    }
+}

@@ -1,0 +1,515 @@
+//! Experiments as data: one TOML file per paper in `experiments/`, read with serde.
+//!
+//! A file holds a paper id and a list of experiments (ids as in `shared/spec/experiments.md`).
+//! An experiment fixes the robot, the path, theta0 (and the scheme's reference theta*0 where a
+//! paper distinguishes it) and the integrators, and lists *variants*: each variant is one scheme
+//! (with its parameters by the paper's names) run exactly (Clarabel in the loop) and by each of
+//! its neural solvers. A variant may override the robot, path, theta0 or theta_ref, which is how
+//! the model check (jaco2 vs jaco2-pen), the star-lines variant and kong2019's two starts are
+//! written. Every run an experiment file describes is a [`Job`].
+
+use crate::naming::{run_stem, slug};
+use crate::run::JobPart;
+use schemes::paths::PathSpec;
+use schemes::spec::SchemeSpec;
+use serde::Deserialize;
+use solvers::neural::spec::SolverSpec;
+use solvers::ode::IntegratorSettings;
+use std::path::{Path, PathBuf};
+
+/// One paper's experiment file.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PaperFile {
+    /// Paper id (`jia2019`, `zhang2018`, `zhong2021`, `kong2019`).
+    pub paper: String,
+    pub title: String,
+    #[serde(rename = "experiment")]
+    pub experiments: Vec<Experiment>,
+}
+
+/// One experiment of experiments.md.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Experiment {
+    pub id: String,
+    /// What the paper prints for it (e.g. "Table 2; Figs 2-4").
+    pub paper_output: String,
+    pub robot: String,
+    pub path: PathSpec,
+    pub theta0: Vec<f64>,
+    /// The scheme's joint reference (kong2019's theta*0); theta0 when absent. Paths start at
+    /// f(theta_ref).
+    #[serde(default)]
+    pub theta_ref: Option<Vec<f64>>,
+    /// Integrator of the neural runs (default: BDF/NDF, RelTol 1e-6, AbsTol 1e-8, as ode15s).
+    #[serde(default)]
+    pub integrator: IntegratorSettings,
+    /// Integrator of the exact column (Clarabel in the loop; by default explicit, since
+    /// x*(t, theta) is only piecewise smooth and has no cheap Jacobian).
+    #[serde(default = "default_exact_integrator")]
+    pub exact_integrator: IntegratorSettings,
+    #[serde(rename = "variant")]
+    pub variants: Vec<Variant>,
+}
+
+/// Dormand-Prince 5(4) at RelTol 1e-11, AbsTol 1e-13: x*(t, theta) has kinks where the active
+/// set changes, which an explicit pair's error estimate sees late, so the reference column needs
+/// five orders more than the papers' 1e-6 / 1e-8 to be converged. The tolerance ladder
+/// (`results/ladder.csv`) decides it: at RelTol 1e-8 the jia2019 clover drifts were 0.1-0.3 %
+/// off the converged ones, at 1e-10 some drifts (the star's, zhong2021's clover b) still move in
+/// the fourth digit, at 1e-11 every exact drift that is not itself zero holds four digits.
+fn default_exact_integrator() -> IntegratorSettings {
+    IntegratorSettings {
+        method: solvers::ode::Method::Dopri5,
+        rtol: 1e-11,
+        atol: 1e-13,
+        ..IntegratorSettings::default()
+    }
+}
+
+/// One scheme of an experiment, run exactly and by each listed neural solver.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Variant {
+    /// Label as the paper's table column writes it (e.g. "VLTCO").
+    pub label: String,
+    pub scheme: SchemeSpec,
+    #[serde(default)]
+    pub solvers: Vec<SolverSpec>,
+    /// Run the exact column (default true).
+    #[serde(default = "yes")]
+    pub exact: bool,
+    #[serde(default)]
+    pub robot: Option<String>,
+    #[serde(default)]
+    pub path: Option<PathSpec>,
+    #[serde(default)]
+    pub theta0: Option<Vec<f64>>,
+    #[serde(default)]
+    pub theta_ref: Option<Vec<f64>>,
+    /// Integrator of this variant's neural runs (overrides the experiment's).
+    #[serde(default)]
+    pub integrator: Option<IntegratorSettings>,
+    /// Initial state of the networks (the papers do not print it; default: zero).
+    #[serde(default)]
+    pub network_init: NetworkInit,
+    /// Runs of this variant that are expected to fail (a finding, not a fault): they do not
+    /// make the binary exit non-zero nor the regression gate complain.
+    #[serde(default)]
+    pub expected_failure: Option<ExpectedFailure>,
+}
+
+/// An expected failure: why, and which of the variant's runs (solver label prefixes, e.g.
+/// `"FP-CDNN"` or `"exact"`; empty: every run of the variant).
+#[derive(Clone, Debug, PartialEq, Eq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ExpectedFailure {
+    pub why: String,
+    #[serde(default)]
+    pub solvers: Vec<String>,
+}
+
+impl ExpectedFailure {
+    /// The reason, if the run with solver label `label` is one of the expected failures.
+    fn of(&self, label: &str) -> Option<String> {
+        (self.solvers.is_empty() || self.solvers.iter().any(|s| label.starts_with(s.as_str())))
+            .then(|| self.why.clone())
+    }
+}
+
+/// Where a network's state starts: the papers leave it open, the group's code starts from zero.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum NetworkInit {
+    /// y(0) = 0 (thetadot = 0 and zero multipliers at the velocity level), as the group's code.
+    #[default]
+    Zero,
+    /// The network's joint command starts at the exact optimum x*(0) of the QP at t = 0 (its
+    /// other state entries, multipliers and auxiliary variables, at zero): no start transient.
+    Exact,
+}
+
+fn yes() -> bool {
+    true
+}
+
+/// The solver of one run: the exact optimum or a neural network.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SolverChoice {
+    Exact,
+    Neural(SolverSpec),
+}
+
+impl SolverChoice {
+    pub fn label(&self) -> String {
+        match self {
+            SolverChoice::Exact => "exact (Clarabel)".to_string(),
+            SolverChoice::Neural(s) => s.display_name(),
+        }
+    }
+}
+
+/// One run: everything needed to simulate it, resolved from the file.
+#[derive(Clone, Debug)]
+pub struct Job {
+    pub paper: String,
+    pub experiment: String,
+    pub variant: String,
+    pub robot: String,
+    pub path: PathSpec,
+    pub theta0: Vec<f64>,
+    pub theta_ref: Vec<f64>,
+    pub scheme: SchemeSpec,
+    pub solver: SolverChoice,
+    pub integrator: IntegratorSettings,
+    /// Score a neural run against Clarabel at every accepted step (true for every run of an
+    /// experiment file; the controlled re-runs of the `explain` crate need only drift and
+    /// position error and switch it off).
+    pub score: bool,
+    /// Initial state of a neural run's network.
+    pub network_init: NetworkInit,
+    /// Why this run is expected to fail, if it is (the variant's `expected_failure`).
+    pub expected_failure: Option<String>,
+}
+
+impl Job {
+    /// Stable key of a run: experiment / variant / solver.
+    pub fn key(&self) -> String {
+        format!(
+            "{} / {} / {}",
+            self.experiment,
+            self.variant,
+            self.solver.label()
+        )
+    }
+}
+
+/// A problem with an experiment file, naming the file and the field.
+#[derive(Debug)]
+pub struct ExperimentFileError {
+    pub file: PathBuf,
+    pub message: String,
+}
+
+impl std::fmt::Display for ExperimentFileError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}: {}", self.file.display(), self.message)
+    }
+}
+
+impl std::error::Error for ExperimentFileError {}
+
+impl PaperFile {
+    /// Reads and validates one experiment file: everything a run would reject is rejected here,
+    /// before anything runs (see [`PaperFile::validate`]).
+    pub fn load(path: &Path) -> Result<Self, ExperimentFileError> {
+        let err = |message: String| ExperimentFileError {
+            file: path.to_path_buf(),
+            message,
+        };
+        let text = std::fs::read_to_string(path).map_err(|e| err(format!("cannot read: {e}")))?;
+        Self::from_toml(&text).map_err(err)
+    }
+
+    /// Parses and validates the text of an experiment file (errors without the file name;
+    /// [`PaperFile::load`] adds it).
+    pub fn from_toml(text: &str) -> Result<Self, String> {
+        let file: PaperFile =
+            toml::from_str(text).map_err(|e| e.to_string().trim_end().to_string())?;
+        file.validate()?;
+        Ok(file)
+    }
+
+    /// Every check, in one place. Field ranges are the crates' own validators
+    /// ([`IntegratorSettings::validate`], [`SchemeSpec::validate`]); the rest is checked by
+    /// building each run's path (from f(theta_ref)), scheme and network exactly as the run
+    /// does ([`crate::run::check_job`]): path names, durations, scales and pose, solver gains,
+    /// scheme/robot compatibility (zhang2018 needs dynamics) and solver/scheme compatibility
+    /// (the zeroing networks take equality-only QPs; a perturbation needs n + m = 9). Then the
+    /// names: ids and labels that are unsafe as file names, experiment ids, variant labels and
+    /// run keys that repeat, and slugs (file names of traces and figures) that collide.
+    fn validate(&self) -> Result<(), String> {
+        check_name(&self.paper, "field `paper`")?;
+        let mut id_slugs: Vec<(String, &str)> = Vec::new();
+        for (i, e) in self.experiments.iter().enumerate() {
+            let at = |field: &str| format!("experiment[{i}] (id \"{}\") field `{field}`", e.id);
+            check_name(&e.id, &at("id"))?;
+            if !e.id.starts_with(&format!("{}-", self.paper)) {
+                return Err(format!(
+                    "{}: must start with the paper id \"{}-\"",
+                    at("id"),
+                    self.paper
+                ));
+            }
+            if let Some((_, other)) = id_slugs.iter().find(|(s, _)| *s == slug(&e.id)) {
+                return Err(if *other == e.id {
+                    format!("{}: experiment id \"{}\" is used twice", at("id"), e.id)
+                } else {
+                    format!(
+                        "{}: \"{}\" and \"{other}\" have the same file name \"{}\" (results/traces/ and report/figures/); rename one",
+                        at("id"),
+                        e.id,
+                        slug(&e.id)
+                    )
+                });
+            }
+            id_slugs.push((slug(&e.id), &e.id));
+            let n = robot_dof(&e.robot).ok_or_else(|| {
+                format!(
+                    "{}: unknown robot \"{}\" (known: {})",
+                    at("robot"),
+                    e.robot,
+                    robot_names()
+                )
+            })?;
+            check_len(&e.theta0, n, &at("theta0"))?;
+            if let Some(r) = &e.theta_ref {
+                check_len(r, n, &at("theta_ref"))?;
+            }
+            check_integrator(&e.integrator, &at("integrator"))?;
+            check_integrator(&e.exact_integrator, &at("exact_integrator"))?;
+            if e.variants.is_empty() {
+                return Err(format!(
+                    "{}: at least one [[experiment.variant]] is needed",
+                    at("variant")
+                ));
+            }
+            let mut label_slugs: Vec<(String, &str)> = Vec::new();
+            let mut keys: Vec<(String, String)> = Vec::new();
+            for (j, v) in e.variants.iter().enumerate() {
+                let vat = |field: &str| {
+                    format!(
+                        "experiment[{i}] (id \"{}\") variant[{j}] (\"{}\") field `{field}`",
+                        e.id, v.label
+                    )
+                };
+                check_name(&v.label, &vat("label"))?;
+                if let Some((_, other)) = label_slugs.iter().find(|(s, _)| *s == slug(&v.label)) {
+                    return Err(if *other == v.label {
+                        format!(
+                            "{}: label \"{}\" is used by two variants of the experiment",
+                            vat("label"),
+                            v.label
+                        )
+                    } else {
+                        format!(
+                            "{}: \"{}\" and \"{other}\" have the same file name \"{}\" within the experiment; rename one",
+                            vat("label"),
+                            v.label,
+                            slug(&v.label)
+                        )
+                    });
+                }
+                label_slugs.push((slug(&v.label), &v.label));
+                let robot = v.robot.as_deref().unwrap_or(&e.robot);
+                let vn = robot_dof(robot).ok_or_else(|| {
+                    format!(
+                        "{}: unknown robot \"{robot}\" (known: {})",
+                        vat("robot"),
+                        robot_names()
+                    )
+                })?;
+                if vn != n
+                    && (v.theta0.is_none() || (e.theta_ref.is_some() && v.theta_ref.is_none()))
+                {
+                    return Err(format!(
+                        "{}: robot \"{robot}\" has {vn} joints; give theta0/theta_ref for it",
+                        vat("robot")
+                    ));
+                }
+                if let Some(t) = &v.theta0 {
+                    check_len(t, vn, &vat("theta0"))?;
+                }
+                if let Some(t) = &v.theta_ref {
+                    check_len(t, vn, &vat("theta_ref"))?;
+                }
+                if let Some(s) = &v.integrator {
+                    check_integrator(s, &vat("integrator"))?;
+                }
+                v.scheme
+                    .validate()
+                    .map_err(|err| format!("{}: {err}", vat("scheme")))?;
+                if !v.exact && v.solvers.is_empty() {
+                    return Err(format!(
+                        "{}: variant runs nothing (exact = false and no solvers)",
+                        vat("solvers")
+                    ));
+                }
+                for (k, job) in self.variant_jobs(e, v).iter().enumerate() {
+                    crate::run::check_job(job).map_err(|(part, message)| {
+                        let field = match (&part, &job.solver) {
+                            (JobPart::Solver, _) => {
+                                format!("solvers[{}]", k - usize::from(v.exact))
+                            }
+                            (JobPart::Path, _) if v.path.is_some() => "path".to_string(),
+                            (JobPart::Path, _) => {
+                                return format!("{}: {message}", at("path"));
+                            }
+                            _ => part.field().to_string(),
+                        };
+                        format!("{}: {message}", vat(&field))
+                    })?;
+                    let label = job.solver.label();
+                    if keys.iter().any(|(key, _)| *key == job.key()) {
+                        return Err(format!(
+                            "{}: run \"{}\" is listed twice (experiment / variant / solver must be unique)",
+                            vat("solvers"),
+                            job.key()
+                        ));
+                    }
+                    let stem = run_stem(&v.label, &label);
+                    if let Some((other, _)) = keys.iter().find(|(_, s)| *s == stem) {
+                        return Err(format!(
+                            "{}: runs \"{}\" and \"{other}\" have the same file name \"{stem}\" within the experiment; rename the variant",
+                            vat("solvers"),
+                            job.key()
+                        ));
+                    }
+                    keys.push((job.key(), stem));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The runs of one variant of experiment `e` (exact column first).
+    fn variant_jobs(&self, e: &Experiment, v: &Variant) -> Vec<Job> {
+        let mut jobs = Vec::new();
+        let theta0 = v.theta0.clone().unwrap_or_else(|| e.theta0.clone());
+        let theta_ref = v
+            .theta_ref
+            .clone()
+            .or_else(|| e.theta_ref.clone())
+            .unwrap_or_else(|| theta0.clone());
+        let base = Job {
+            paper: self.paper.clone(),
+            experiment: e.id.clone(),
+            variant: v.label.clone(),
+            robot: v.robot.clone().unwrap_or_else(|| e.robot.clone()),
+            path: v.path.clone().unwrap_or_else(|| e.path.clone()),
+            theta0,
+            theta_ref,
+            scheme: v.scheme.clone(),
+            solver: SolverChoice::Exact,
+            integrator: e.exact_integrator,
+            score: true,
+            network_init: NetworkInit::Zero,
+            expected_failure: v
+                .expected_failure
+                .as_ref()
+                .and_then(|f| f.of(&SolverChoice::Exact.label())),
+        };
+        if v.exact {
+            jobs.push(base.clone());
+        }
+        for s in &v.solvers {
+            let integrator = v.integrator.unwrap_or(e.integrator);
+            jobs.push(Job {
+                solver: SolverChoice::Neural(s.clone()),
+                integrator,
+                network_init: v.network_init,
+                expected_failure: v
+                    .expected_failure
+                    .as_ref()
+                    .and_then(|f| f.of(&SolverChoice::Neural(s.clone()).label())),
+                ..base.clone()
+            });
+        }
+        jobs
+    }
+
+    /// Every run of the file, in file order (variant by variant, exact column first).
+    pub fn jobs(&self) -> Vec<Job> {
+        self.experiments
+            .iter()
+            .flat_map(|e| e.variants.iter().map(move |v| (e, v)))
+            .flat_map(|(e, v)| self.variant_jobs(e, v))
+            .collect()
+    }
+}
+
+/// An id or label becomes a directory or file name (results/traces/<id>/<label>__<solver>.csv,
+/// report/figures/): it must not contain `/`, `\` or `..`, nor be empty once slugged
+/// ([`crate::naming::slug`]).
+fn check_name(name: &str, at: &str) -> Result<(), String> {
+    if name.contains('/') || name.contains('\\') || name.contains("..") {
+        return Err(format!(
+            "{at}: \"{name}\" must not contain `/`, `\\` or `..` (it names files under results/ and report/)"
+        ));
+    }
+    if slug(name).is_empty() {
+        return Err(format!(
+            "{at}: \"{name}\" needs at least one ASCII letter or digit (it names files under results/ and report/)"
+        ));
+    }
+    Ok(())
+}
+
+/// Joint count of the robot called `name` (see [`crate::robot_registry`]).
+fn robot_dof(name: &str) -> Option<usize> {
+    crate::robot_registry::robot_by_name(name).map(|r| r.dof())
+}
+
+fn robot_names() -> String {
+    crate::robot_registry::robot_names()
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+fn check_len(v: &[f64], n: usize, at: &str) -> Result<(), String> {
+    if v.len() != n {
+        return Err(format!(
+            "{at}: has {} entries, the robot has {n} joints",
+            v.len()
+        ));
+    }
+    if v.iter().any(|x| !x.is_finite()) {
+        return Err(format!("{at}: entries must be finite"));
+    }
+    Ok(())
+}
+
+fn check_integrator(s: &IntegratorSettings, at: &str) -> Result<(), String> {
+    s.validate().map_err(|e| format!("{at}: {e}"))
+}
+
+/// Loads every `*.toml` of `dir`, sorted by file name, and checks what spans files: an
+/// experiment id (or its file name, the slug) is defined in one file only.
+pub fn load_dir(dir: &Path) -> Result<Vec<PaperFile>, ExperimentFileError> {
+    let entries = std::fs::read_dir(dir).map_err(|e| ExperimentFileError {
+        file: dir.to_path_buf(),
+        message: format!("cannot list: {e}"),
+    })?;
+    let mut paths: Vec<PathBuf> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    paths.sort();
+    let mut files = Vec::with_capacity(paths.len());
+    let mut seen: Vec<(String, String, &Path)> = Vec::new();
+    for path in &paths {
+        let file = PaperFile::load(path)?;
+        for (i, e) in file.experiments.iter().enumerate() {
+            if let Some((_, other, other_file)) = seen.iter().find(|(s, _, _)| *s == slug(&e.id)) {
+                let what = if *other == e.id {
+                    format!("\"{}\" is also defined in {}", e.id, other_file.display())
+                } else {
+                    format!(
+                        "\"{}\" has the same file name \"{}\" as \"{other}\" of {}; rename one",
+                        e.id,
+                        slug(&e.id),
+                        other_file.display()
+                    )
+                };
+                return Err(ExperimentFileError {
+                    file: path.clone(),
+                    message: format!("experiment[{i}] (id \"{}\") field `id`: {what}", e.id),
+                });
+            }
+            seen.push((slug(&e.id), e.id.clone(), path));
+        }
+        files.push(file);
+    }
+    Ok(files)
+}

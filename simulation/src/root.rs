@@ -1,0 +1,93 @@
+//! The project root: the directory holding `experiments/` (the inputs), `results/` and
+//! `report/` (the outputs). Nothing is baked in at compile time: the binary finds the root from
+//! its working directory upwards (as git finds `.git`), or is told it with `--root`, so an
+//! installed `reproduce` works on any checkout or on a directory of one's own experiments.
+
+use std::path::{Path, PathBuf};
+
+/// No directory with an `experiments/` folder at or above the start.
+#[derive(Debug, thiserror::Error)]
+#[error(
+    "no project root at or above {}: none of these directories has an experiments/ folder; run \
+     from inside a driftbench checkout (or a directory with experiments/*.toml) or pass --root DIR",
+    start.display()
+)]
+pub struct RootNotFound {
+    pub start: PathBuf,
+}
+
+/// The nearest directory at or above `start` that has an `experiments/` folder.
+pub fn find(start: &Path) -> Result<PathBuf, RootNotFound> {
+    start
+        .ancestors()
+        .find(|dir| dir.join("experiments").is_dir())
+        .map(Path::to_path_buf)
+        .ok_or_else(|| RootNotFound {
+            start: start.to_path_buf(),
+        })
+}
+
+/// [`find`] from the process's working directory (tests run in their crate's directory, inside
+/// the workspace, so they find the workspace root).
+pub fn from_current_dir() -> Result<PathBuf, RootNotFound> {
+    let cwd = std::env::current_dir().map_err(|_| RootNotFound {
+        start: PathBuf::from("."),
+    })?;
+    find(&cwd)
+}
+
+/// The git revision of the checkout at `root`, with `-dirty` when the code differs from it (any
+/// tracked file outside `results/` and `report/`, which a run itself rewrites), or "unknown"
+/// outside a checkout.
+pub fn git_revision(root: &Path) -> String {
+    let git = |args: &[&str]| {
+        std::process::Command::new("git")
+            .args(args)
+            .current_dir(root)
+            .output()
+            .ok()
+    };
+    let Some(rev) = git(&["rev-parse", "--short=12", "HEAD"])
+        .filter(|o| o.status.success())
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+    else {
+        return "unknown".to_string();
+    };
+    let dirty = git(&[
+        "diff",
+        "--quiet",
+        "HEAD",
+        "--",
+        ".",
+        ":(exclude)results",
+        ":(exclude)report",
+    ])
+    .is_some_and(|o| o.status.code() == Some(1));
+    if dirty {
+        format!("{rev}-dirty")
+    } else {
+        rev
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_root_is_found_from_any_directory_below_it() {
+        let base = std::env::temp_dir().join(format!("driftbench-root-{}", std::process::id()));
+        let deep = base.join("experiments").join("a").join("b");
+        std::fs::create_dir_all(&deep).unwrap();
+        assert_eq!(find(&deep).unwrap(), base);
+        assert_eq!(find(&base).unwrap(), base);
+        let outside = std::env::temp_dir().join(format!("driftbench-none-{}", std::process::id()));
+        std::fs::create_dir_all(&outside).unwrap();
+        if outside.ancestors().all(|d| !d.join("experiments").is_dir()) {
+            let e = find(&outside).unwrap_err().to_string();
+            assert!(e.contains("--root") && e.contains("experiments/"), "{e}");
+        }
+        std::fs::remove_dir_all(&base).unwrap();
+        std::fs::remove_dir_all(&outside).unwrap();
+    }
+}

@@ -1,0 +1,482 @@
+//! The experiment files: every committed file loads, every experiment of experiments.md is
+//! there, and a malformed file is rejected with an error naming the file and the field.
+
+use simulation::experiment::{load_dir, PaperFile};
+use std::path::PathBuf;
+
+fn experiments_dir() -> PathBuf {
+    simulation::root::from_current_dir()
+        .unwrap()
+        .join("experiments")
+}
+
+#[test]
+fn every_experiment_of_the_spec_is_in_the_files() {
+    let files = load_dir(&experiments_dir()).expect("committed experiment files load");
+    let ids: Vec<String> = files
+        .iter()
+        .flat_map(|f| f.experiments.iter().map(|e| e.id.clone()))
+        .collect();
+    for id in [
+        "jia2019-clover",
+        "jia2019-star",
+        "jia2019-ping",
+        "zhang2018-butterfly-scheme",
+        "zhang2018-cardioid-scheme",
+        "zhang2018-butterfly-robust",
+        "zhang2018-cardioid-robust",
+        "zhong2021-clover-a",
+        "zhong2021-clover-b",
+        "zhong2021-dai",
+        "kong2019-triangle",
+        "kong2019-circle",
+    ] {
+        assert!(
+            ids.iter().any(|i| i == id),
+            "experiment {id} missing from experiments/"
+        );
+    }
+    let papers: Vec<&str> = files.iter().map(|f| f.paper.as_str()).collect();
+    for p in ["jia2019", "zhang2018", "zhong2021", "kong2019"] {
+        assert!(papers.contains(&p), "no experiment file for {p}");
+    }
+}
+
+/// Writes `text` to a fresh file and loads it.
+fn load_text(name: &str, text: &str) -> Result<PaperFile, String> {
+    let dir = std::env::temp_dir().join(format!("driftbench-test-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(&path, text).unwrap();
+    PaperFile::load(&path).map_err(|e| e.to_string())
+}
+
+const GOOD: &str = r#"
+paper = "jia2019"
+title = "t"
+[[experiment]]
+id = "jia2019-x"
+paper_output = "-"
+robot = "jaco2-pen"
+path = { name = "four-leaf-clover", duration = 5.0 }
+theta0 = [1.675, 2.79, -3.216, 4.187, -1.71, -2.95]
+[[experiment.variant]]
+label = "VLTCO"
+scheme = { kind = "jia2019", phi = 0.2, tau = 0.4, kappa = 20.0, lambda = 20.0 }
+solvers = [{ kind = "lvi-pdnn", gamma = 1e7 }]
+"#;
+
+fn assert_rejected(name: &str, text: &str, must_mention: &[&str]) {
+    let err = load_text(name, text).expect_err("malformed file must be rejected");
+    assert!(
+        err.contains(&format!("{name}.toml")),
+        "error does not name the file: {err}"
+    );
+    for m in must_mention {
+        assert!(err.contains(m), "error does not mention `{m}`: {err}");
+    }
+}
+
+#[test]
+fn a_good_file_loads_and_expands_into_runs() {
+    let f = load_text("good", GOOD).unwrap();
+    let jobs = f.jobs();
+    assert_eq!(jobs.len(), 2, "exact column + one neural solver");
+    assert_eq!(
+        jobs[0].theta_ref, jobs[0].theta0,
+        "theta_ref defaults to theta0"
+    );
+}
+
+#[test]
+fn malformed_files_name_the_file_and_the_field() {
+    assert_rejected(
+        "missing_theta0",
+        &GOOD.replace("theta0 = [1.675, 2.79, -3.216, 4.187, -1.71, -2.95]\n", ""),
+        &["theta0"],
+    );
+    assert_rejected(
+        "short_theta0",
+        &GOOD.replace("-1.71, -2.95]", "-1.71]"),
+        &["theta0", "5 entries"],
+    );
+    assert_rejected(
+        "unknown_robot",
+        &GOOD.replace("jaco2-pen", "jaco3"),
+        &["robot", "jaco3"],
+    );
+    assert_rejected(
+        "unknown_field",
+        &GOOD.replace("paper_output", "paper_outptu"),
+        &["paper_outptu"],
+    );
+    assert_rejected(
+        "bad_scheme_kind",
+        &GOOD.replace("kind = \"jia2019\"", "kind = \"jia2020\""),
+        &["jia2020"],
+    );
+    assert_rejected(
+        "bad_solver_field",
+        &GOOD.replace("gamma = 1e7", "gama = 1e7"),
+        &["gama"],
+    );
+    assert_rejected("bad_id", &GOOD.replace("jia2019-x", "zhong2021-x"), &["id"]);
+    assert_rejected(
+        "bad_tolerance",
+        &GOOD
+            .replace("solvers = [", "exact = true\nsolvers = [")
+            .replace(
+                "theta0 = [",
+                "integrator = { method = \"bdf\", rtol = -1.0, atol = 1e-8 }\ntheta0 = [",
+            ),
+        &["integrator"],
+    );
+}
+
+/// A kong2019-style file on the 5-joint Katana (kinematics only).
+const KATANA: &str = r#"
+paper = "kong2019"
+title = "t"
+[[experiment]]
+id = "kong2019-x"
+paper_output = "-"
+robot = "katana6m180"
+path = { name = "circle", duration = 9.0 }
+theta0 = [1.2566, 1.5708, 0.0, -0.5236, 1.0472]
+[[experiment.variant]]
+label = "ZNN (eq. 22)"
+scheme = { kind = "kong2019-znn", mu = 1.0, k_p = 1.0 }
+solvers = [{ kind = "znn", gamma = 1.0 }]
+"#;
+
+/// A zhang2018-style file (acceleration level, Jaco2 with dynamics).
+const ZHANG: &str = r#"
+paper = "zhang2018"
+title = "t"
+[[experiment]]
+id = "zhang2018-x"
+paper_output = "-"
+robot = "jaco2-pen"
+path = { name = "butterfly", duration = 8.0 }
+theta0 = [1.68, 2.81, -3.22, 4.19, -1.71, -2.65]
+[[experiment.variant]]
+label = "HL-JDF"
+scheme = { kind = "zhang2018", zeta = 0.6, alpha = 20.0, beta = 20.0, rho_v = 20.0, rho_p = 20.0 }
+solvers = [{ kind = "fp-cdnn", gamma = 200.0 }]
+"#;
+
+#[test]
+fn the_templates_load() {
+    for (name, text) in [("good_t", GOOD), ("katana_t", KATANA), ("zhang_t", ZHANG)] {
+        load_text(name, text).unwrap_or_else(|e| panic!("{name}: {e}"));
+    }
+}
+
+#[test]
+fn paths_are_checked_at_load() {
+    assert_rejected(
+        "unknown_path",
+        &GOOD.replace("four-leaf-clover", "four-leaf-clovr"),
+        &[
+            "field `path`",
+            "four-leaf-clovr",
+            "valid names",
+            "five-point-star",
+        ],
+    );
+    for (name, bad) in [("zero_duration", "0.0"), ("negative_duration", "-5.0")] {
+        assert_rejected(
+            name,
+            &GOOD.replace("duration = 5.0", &format!("duration = {bad}")),
+            &["jia2019-x", "field `path`", "duration"],
+        );
+    }
+    assert_rejected(
+        "inf_duration",
+        &GOOD.replace("duration = 5.0", "duration = inf"),
+        &["duration"],
+    );
+    assert_rejected(
+        "zero_scale",
+        &GOOD.replace("duration = 5.0", "duration = 5.0, scale = 0.0"),
+        &["scale"],
+    );
+    assert_rejected(
+        "nan_rotation",
+        &GOOD.replace("duration = 5.0", "duration = 5.0, rotation = nan"),
+        &["rotation"],
+    );
+    assert_rejected(
+        "inf_tilt",
+        &GOOD.replace("duration = 5.0", "duration = 5.0, tilt_y = -inf"),
+        &["tilt_y"],
+    );
+    assert_rejected(
+        "phase_one",
+        &GOOD.replace("duration = 5.0", "duration = 5.0, phase = 1.0"),
+        &["phase", "[0, 1)"],
+    );
+    // Phase is defined for the closed curves only, not for the stroke paths.
+    load_text(
+        "phase_clover",
+        &GOOD.replace("duration = 5.0", "duration = 5.0, phase = 0.25"),
+    )
+    .unwrap();
+    assert_rejected(
+        "phase_triangle",
+        &KATANA
+            .replace("\"circle\"", "\"triangle\"")
+            .replace("duration = 9.0", "duration = 9.0, phase = 0.5"),
+        &["phase", "triangle"],
+    );
+    // A variant's own path names the variant.
+    assert_rejected(
+        "variant_path",
+        &GOOD.replace(
+            "solvers = [",
+            "path = { name = \"ping\", duration = -1.0 }\nsolvers = [",
+        ),
+        &["variant[0] (\"VLTCO\") field `path`", "duration"],
+    );
+}
+
+#[test]
+fn gains_are_checked_at_load() {
+    for bad in ["0.0", "-1.0", "inf", "nan"] {
+        assert_rejected(
+            "solver_gain",
+            &GOOD.replace("gamma = 1e7", &format!("gamma = {bad}")),
+            &["variant[0] (\"VLTCO\")", "field `solvers[0]`", "gamma"],
+        );
+        assert_rejected(
+            "scheme_gain",
+            &GOOD.replace("kappa = 20.0", &format!("kappa = {bad}")),
+            &["field `scheme`", "kappa"],
+        );
+        assert_rejected(
+            "zhang_gain",
+            &ZHANG.replace("alpha = 20.0", &format!("alpha = {bad}")),
+            &["field `scheme`", "alpha"],
+        );
+        assert_rejected(
+            "kong_gain",
+            &KATANA.replace("mu = 1.0", &format!("mu = {bad}")),
+            &["field `scheme`", "mu"],
+        );
+    }
+    assert_rejected(
+        "vp_rnn_pf_sigma",
+        &GOOD.replace(
+            "{ kind = \"lvi-pdnn\", gamma = 1e7 }",
+            "{ kind = \"lvi-pdnn\", gamma = 1e7 }, { kind = \"vp-rnn-pf\", p = 1e-4, sigma = 0.0, gamma = 2.0 }",
+        ),
+        &["field `solvers[1]`", "sigma"],
+    );
+    assert_rejected(
+        "ftnn_alpha",
+        &KATANA.replace(
+            "{ kind = \"znn\", gamma = 1.0 }",
+            "{ kind = \"finite-time\", beta = 1.0, alpha = 1.5 }",
+        ),
+        &["solvers[0]", "alpha"],
+    );
+}
+
+#[test]
+fn integrator_tolerances_are_checked_at_load() {
+    let with = |integrator: &str| {
+        GOOD.replace(
+            "theta0 = [",
+            &format!("integrator = {{ {integrator} }}\ntheta0 = ["),
+        )
+    };
+    for rtol in ["inf", "1e300", "0.0", "1.0", "nan", "-1e-6"] {
+        assert_rejected(
+            "rtol",
+            &with(&format!("method = \"bdf\", rtol = {rtol}, atol = 1e-8")),
+            &["field `integrator`", "rtol"],
+        );
+    }
+    for atol in ["inf", "0.0", "nan"] {
+        assert_rejected(
+            "atol",
+            &with(&format!("method = \"bdf\", rtol = 1e-6, atol = {atol}")),
+            &["field `integrator`", "atol"],
+        );
+    }
+    assert_rejected(
+        "max_steps",
+        &with("method = \"bdf\", rtol = 1e-6, atol = 1e-8, max_steps = 0"),
+        &["field `integrator`", "max_steps"],
+    );
+    for h in ["0.0", "inf", "-0.05"] {
+        assert_rejected(
+            "max_step",
+            &with(&format!(
+                "method = \"bdf\", rtol = 1e-6, atol = 1e-8, max_step = {h}"
+            )),
+            &["max_step"],
+        );
+    }
+    assert_rejected(
+        "exact_rtol",
+        &GOOD.replace(
+            "theta0 = [",
+            "exact_integrator = { method = \"dopri5\", rtol = 1e300, atol = 1e-10 }\ntheta0 = [",
+        ),
+        &["field `exact_integrator`", "rtol"],
+    );
+    assert_rejected(
+        "variant_integrator",
+        &GOOD.replace(
+            "solvers = [",
+            "integrator = { method = \"bdf\", rtol = 1e-6, atol = 1e-8, max_steps = 0 }\nsolvers = [",
+        ),
+        &["variant[0] (\"VLTCO\") field `integrator`", "max_steps"],
+    );
+}
+
+#[test]
+fn scheme_robot_and_solver_must_fit_together() {
+    // zhang2018 is acceleration level and needs the arm's dynamics: not the Katana.
+    let katana_zhang = KATANA.replace("paper = \"kong2019\"", "paper = \"kong2019\"").replace(
+        "scheme = { kind = \"kong2019-znn\", mu = 1.0, k_p = 1.0 }\nsolvers = [{ kind = \"znn\", gamma = 1.0 }]",
+        "scheme = { kind = \"zhang2018\", zeta = 0.6, alpha = 20.0, beta = 20.0, rho_v = 20.0, rho_p = 20.0 }",
+    );
+    assert_rejected(
+        "zhang_on_katana",
+        &katana_zhang,
+        &["field `scheme`", "dynamics", "katana6m180", "jaco2-pen"],
+    );
+    // The zeroing networks solve equality-constrained QPs only; jia2019's QP has inequalities.
+    assert_rejected(
+        "cdnn_on_jia",
+        &GOOD.replace(
+            "{ kind = \"lvi-pdnn\", gamma = 1e7 }",
+            "{ kind = \"fp-cdnn\", gamma = 200.0 }",
+        ),
+        &["field `solvers[0]`", "FP-CDNN", "inequality"],
+    );
+    // The reference perturbation is 9-dimensional (6 joints + 3): not for the 5-joint Katana.
+    assert_rejected(
+        "perturbation_on_katana",
+        &KATANA.replace(
+            "{ kind = \"znn\", gamma = 1.0 }",
+            "{ kind = \"fp-cdnn\", gamma = 200.0, perturbation = { a_d = 1.0, a_s = 1.5, task_duration = 9.0 } }",
+        ),
+        &["solvers[0]", "perturbation"],
+    );
+    // The networks are QP solvers and do not depend on the level: a velocity-level paper's
+    // network on zhang2018's acceleration-level QP (equality-only, unbounded) is a valid run.
+    load_text(
+        "lvi_on_zhang",
+        &ZHANG.replace(
+            "{ kind = \"fp-cdnn\", gamma = 200.0 }",
+            "{ kind = \"lvi-pdnn\", gamma = 1e7 }",
+        ),
+    )
+    .unwrap();
+    // theta_ref must fit the robot too.
+    assert_rejected(
+        "theta_ref_len",
+        &GOOD.replace("theta0 = [", "theta_ref = [0.0, 0.0]\ntheta0 = ["),
+        &["field `theta_ref`", "2 entries", "6 joints"],
+    );
+    assert_rejected(
+        "variant_theta0_len",
+        &GOOD.replace("solvers = [", "theta0 = [1.0]\nsolvers = ["),
+        &["variant[0] (\"VLTCO\") field `theta0`", "1 entries"],
+    );
+}
+
+/// A second experiment `id` with one variant `label`.
+fn second_experiment(id: &str, label: &str) -> String {
+    let start = GOOD.find("[[experiment]]").unwrap();
+    GOOD[start..]
+        .replace("jia2019-x", id)
+        .replace("label = \"VLTCO\"", &format!("label = \"{label}\""))
+}
+
+#[test]
+fn names_must_be_unique_and_file_safe() {
+    assert_rejected(
+        "dup_id",
+        &format!("{GOOD}{}", second_experiment("jia2019-x", "VLTCO")),
+        &["experiment[1] (id \"jia2019-x\") field `id`", "used twice"],
+    );
+    assert_rejected(
+        "id_slug_collision",
+        &format!("{GOOD}{}", second_experiment("jia2019-X", "VLTCO")),
+        &["field `id`", "jia2019-X", "jia2019-x", "same file name"],
+    );
+    let mut two_variants = GOOD.to_string();
+    two_variants.push_str(&GOOD[GOOD.find("[[experiment.variant]]").unwrap()..]);
+    assert_rejected(
+        "dup_label",
+        &two_variants,
+        &["variant[1] (\"VLTCO\") field `label`", "two variants"],
+    );
+    assert_rejected(
+        "label_slug_collision",
+        &two_variants.replacen("label = \"VLTCO\"", "label = \"vltco\"", 1),
+        &["field `label`", "same file name", "\"vltco\""],
+    );
+    assert_rejected(
+        "dup_run_key",
+        &GOOD.replace(
+            "solvers = [{ kind = \"lvi-pdnn\", gamma = 1e7 }]",
+            "solvers = [{ kind = \"lvi-pdnn\", gamma = 1e7 }, { kind = \"lvi-pdnn\", gamma = 1e6 }]",
+        ),
+        &["jia2019-x / VLTCO / LVI-PDNN", "listed twice"],
+    );
+    assert_rejected(
+        "escaping_id",
+        &GOOD.replace("id = \"jia2019-x\"", "id = \"jia2019-/../../etc\""),
+        &["field `id`", "must not contain"],
+    );
+    assert_rejected(
+        "escaping_label",
+        &GOOD.replace("label = \"VLTCO\"", "label = \"..\\\\x\""),
+        &["field `label`", "must not contain"],
+    );
+    assert_rejected(
+        "empty_slug_label",
+        &GOOD.replace("label = \"VLTCO\"", "label = \" () \""),
+        &["field `label`", "letter or digit"],
+    );
+}
+
+#[test]
+fn experiment_ids_are_unique_across_files() {
+    let dir = std::env::temp_dir().join(format!("driftbench-test-{}-dupdir", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("a.toml"), GOOD).unwrap();
+    std::fs::write(
+        dir.join("b.toml"),
+        GOOD.replace("label = \"VLTCO\"", "label = \"other\""),
+    )
+    .unwrap();
+    let err = load_dir(&dir)
+        .expect_err("an id defined in two files")
+        .to_string();
+    assert!(err.contains("b.toml") && err.contains("a.toml"), "{err}");
+    assert!(
+        err.contains("jia2019-x") && err.contains("also defined"),
+        "{err}"
+    );
+    // Ids that differ only in what their file name drops collide too.
+    std::fs::write(
+        dir.join("b.toml"),
+        GOOD.replace("id = \"jia2019-x\"", "id = \"jia2019-X\""),
+    )
+    .unwrap();
+    let err = load_dir(&dir).expect_err("colliding slugs").to_string();
+    assert!(
+        err.contains("same file name") && err.contains("a.toml"),
+        "{err}"
+    );
+    std::fs::remove_file(dir.join("b.toml")).unwrap();
+    assert_eq!(load_dir(&dir).unwrap().len(), 1);
+    let _ = std::fs::remove_dir_all(&dir);
+}
