@@ -16,6 +16,26 @@
 //! z axis of frame `i-1`, through the origin of frame `i-1`.
 //!
 //! All frames live on the stack (`[Frame; N]`): evaluating a chain never allocates.
+//!
+//! # Modified (Craig) DH
+//!
+//! A chain given in modified DH ([`ModifiedDhParam`], e.g. Franka's Panda) has link transforms
+//! `M_i = Rx(alpha_i) Tx(a_i) Rz(theta_i) Tz(d_i)` (parameters of row `i` as the manufacturer
+//! lists them: `alpha_i`, `a_i` precede the joint), followed by a fixed flange row
+//! `F = Rx(alpha_f) Tx(a_f) Tz(d_f)`. Writing `M_i = S_i Z_i(theta_i)` with
+//! `S_i = Rx(alpha_i) Tx(a_i)` and `Z_i = Rz(theta_i) Tz(d_i)`, and regrouping,
+//!
+//! ```text
+//! M_1 ... M_N F = S_1 [Z_1 S_2] [Z_2 S_3] ... [Z_{N-1} S_N] [Z_N Rx(alpha_f) Tx(a_f)] Tz(d_f).
+//! ```
+//!
+//! `Rx` and `Tx` commute (rotation about and translation along the same axis), so every bracket
+//! `Rz(theta_i) Tz(d_i) Rx(alpha_{i+1}) Tx(a_{i+1}) = A(theta_i; a_{i+1}, alpha_{i+1}, d_i)` is a
+//! classical DH link. Hence the equivalent classical chain ([`DhChain::from_modified`]) has
+//! base `B = S_1`, links `(a_{i+1}, alpha_{i+1}, d_i)` for `i < N`, last link
+//! `(a_f, alpha_f, d_N)`, and the flange origin at `(0, 0, d_f)` in classical frame `N`. Classical
+//! frame `i` is modified frame `i` times `S_{i+1}`: its z axis is the axis of joint `i + 1`, as the
+//! classical convention requires, and joint `i` still turns about `z_{i-1}` through `o_{i-1}`.
 
 use nalgebra::{Matrix3, SVector, Vector3};
 
@@ -92,6 +112,34 @@ impl DhParam {
     }
 }
 
+/// Modified (Craig) DH parameters of one row: the transform of the row is
+/// `Rx(alpha) Tx(a) Rz(theta) Tz(d)` (see the module documentation).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ModifiedDhParam {
+    /// Length along the previous x axis, applied before the joint.
+    pub a: f64,
+    /// Twist about the previous x axis, applied before the joint.
+    pub alpha: f64,
+    /// Offset along the joint's own z axis, applied after the joint.
+    pub d: f64,
+}
+
+impl ModifiedDhParam {
+    /// Creates the parameters `(a, alpha, d)`.
+    pub const fn new(a: f64, alpha: f64, d: f64) -> Self {
+        ModifiedDhParam { a, alpha, d }
+    }
+
+    /// The fixed part `S = Rx(alpha) Tx(a)` that precedes the joint.
+    fn prefix(&self) -> Frame {
+        let (sa, ca) = self.alpha.sin_cos();
+        Frame {
+            rot: Matrix3::new(1.0, 0.0, 0.0, 0.0, ca, -sa, 0.0, sa, ca),
+            origin: Vector3::new(self.a, 0.0, 0.0),
+        }
+    }
+}
+
 /// A serial chain of `N` revolute joints in classical DH convention with a fixed base transform.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DhChain<const N: usize> {
@@ -113,6 +161,22 @@ impl<const N: usize> DhChain<N> {
     /// The same chain premultiplied by a fixed base transform.
     pub fn with_base(self, base: Frame) -> Self {
         DhChain { base, ..self }
+    }
+
+    /// The classical chain equivalent to the modified-DH rows `rows` followed by the fixed
+    /// flange row `flange` (module documentation): returns the chain (base `Rx(alpha_1) Tx(a_1)`,
+    /// links `(a_{i+1}, alpha_{i+1}, d_i)`, last link `(a_f, alpha_f, d_N)`) and the flange
+    /// origin `(0, 0, d_f)` in classical frame `N`.
+    pub fn from_modified(
+        rows: [ModifiedDhParam; N],
+        flange: ModifiedDhParam,
+    ) -> (Self, Vector3<f64>) {
+        let params = core::array::from_fn(|i| {
+            let next = if i + 1 < N { rows[i + 1] } else { flange };
+            DhParam::new(next.a, next.alpha, rows[i].d)
+        });
+        let base = rows.first().unwrap_or(&flange).prefix();
+        (DhChain { base, params }, Vector3::new(0.0, 0.0, flange.d))
     }
 
     /// World-frame transforms `T_0 .. T_N` at joint angles `theta`.

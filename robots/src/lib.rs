@@ -12,11 +12,16 @@
 //!   D6 = 0.13, wrist half-angle 11 pi / 72, same pen tip and tilt.
 //! - [`Jaco2::kinova`] — Kinova's own model (`jaco2`): D6 = 0.16, hand centre, no tilt.
 //! - [`Katana6m180`] — kong2019's eq. (2), 5 joints.
+//! - [`Panda`] — Franka Emika Panda (`panda`), 7 joints, Franka's modified-DH table, flange
+//!   centre.
+//! - [`NLink`] — the synthetic n-link family (`nlink-3` .. `nlink-30`): a yaw joint and a planar
+//!   pitch chain, for cost scaling.
 //!
 //! Modules: [`dh`] (classical DH forward kinematics), [`geometric_jacobian`] (point and body
 //! Jacobians and their time derivatives), [`rigid_body`] (recursive Newton–Euler, inertia and
 //! Coriolis matrices), [`jaco2`] (Jaco2 kinematics), [`jaco2_dynamics`] (Jaco2 inertial table and
-//! [`Dynamics`] implementation), [`katana`] (Katana 6M180).
+//! [`Dynamics`] implementation), [`katana`] (Katana 6M180), [`panda`] (Franka Emika Panda),
+//! [`nlink`] (the n-link family).
 
 use nalgebra::{SMatrix, SVector, Vector3};
 
@@ -25,10 +30,14 @@ pub mod geometric_jacobian;
 pub mod jaco2;
 pub mod jaco2_dynamics;
 pub mod katana;
+pub mod nlink;
+pub mod panda;
 pub mod rigid_body;
 
 pub use jaco2::{Jaco2, JACO2, JACO2_HAND, JACO2_PEN, JACO2_PEN_EXP2};
 pub use katana::{Katana6m180, KATANA6M180};
+pub use nlink::NLink;
+pub use panda::{Panda, PANDA};
 
 /// Number of task-space coordinates (end-effector position only) in every paper.
 pub const M: usize = 3;
@@ -48,7 +57,8 @@ pub struct JointLimits<const N: usize> {
 
 /// A serial arm whose task point is tracked in position (m = 3).
 pub trait Robot<const N: usize>: Send + Sync {
-    /// Model name as used in experiment files (`jaco2-pen`, `jaco2`, `katana6m180`).
+    /// Model name as used in experiment files (`jaco2-pen`, `jaco2`, `katana6m180`, `panda`,
+    /// `nlink-7`).
     fn name(&self) -> &'static str;
     /// Task-point position f(theta) in the world frame.
     fn position(&self, theta: &SVector<f64, N>) -> Vector3<f64>;

@@ -1,0 +1,237 @@
+//! The n-link family `nlink-{N}` (N = 3..=30): a synthetic arm for measuring how a scheme's
+//! cost scales with the number of joints, not a physical robot.
+//!
+//! The papers track the task point in 3-D (m = 3); a strictly planar chain would give `J` a zero
+//! row and a rank-deficient equality constraint. So joint 1 is a yaw joint about the world z
+//! axis at the base (the world origin), and joints 2..=N are pitch joints with parallel,
+//! horizontal axes forming a planar chain in the vertical plane that joint 1 turns. Joint 2 sits
+//! on the yaw axis at height `h0 = 0.3` m ([`H0`]); links 2..=N (from joint `k` to joint `k + 1`,
+//! joint `N + 1` being the tip) all have length `l = L / (N - 1)`, total reach `L = 1` m
+//! ([`REACH`]).
+//!
+//! With the cumulative pitch angles `phi_k = theta_2 + ... + theta_k` (k = 2..=N), the
+//! horizontal reach `r` and height `z`,
+//!
+//! ```text
+//! r = sum_{k=2..N} l cos(phi_k),     z = h0 + sum_{k=2..N} l sin(phi_k),
+//! f(theta) = [ cos(theta_1) r,  sin(theta_1) r,  z ].
+//! ```
+//!
+//! Joint `j >= 2` moves links `j..=N`, so with the suffix sums
+//! `S_j = sum_{k>=j} l sin(phi_k)`, `C_j = sum_{k>=j} l cos(phi_k)` (so `r = C_2`,
+//! `z = h0 + S_2`),
+//!
+//! ```text
+//! J_1 = [ -sin(theta_1) r,  cos(theta_1) r,  0 ],
+//! J_j = [ -cos(theta_1) S_j,  -sin(theta_1) S_j,  C_j ]      (j >= 2).
+//! ```
+//!
+//! `Jdot` is its exact time derivative. With `w_1 = thetadot_1`, the angle rates
+//! `w_k = thetadot_2 + ... + thetadot_k` of `phi_k`, and the weighted suffix sums
+//! `Sw_j = sum_{k>=j} l sin(phi_k) w_k`, `Cw_j = sum_{k>=j} l cos(phi_k) w_k`, we have
+//! `d/dt S_j = Cw_j`, `d/dt C_j = -Sw_j`, `rdot = -Sw_2`, and
+//!
+//! ```text
+//! Jdot_1 = [ -cos(theta_1) w_1 r - sin(theta_1) rdot,  -sin(theta_1) w_1 r + cos(theta_1) rdot,  0 ],
+//! Jdot_j = [ sin(theta_1) w_1 S_j - cos(theta_1) Cw_j,  -cos(theta_1) w_1 S_j - sin(theta_1) Cw_j,  -Sw_j ].
+//! ```
+//!
+//! The out-of-plane direction `(-sin theta_1, cos theta_1, 0)` is reached by joint 1 alone, so
+//! one singular value of `J` is exactly `|r|`; the other two are those of the planar 2 x (N-1)
+//! block.
+//!
+//! Joint limits (this suite's choice, not a datasheet): `theta_1` in `[-pi, pi]`, the pitch
+//! joints in `[-2.6, 2.6]` rad, `|thetadot| <= 2` rad/s for every joint.
+//!
+//! [`NLink::home`]: `theta_1 = 0`, `theta_2 = 1.2`, and every further pitch joint bent by
+//! `-3 / (N - 1)` rad, so the chain is a (discrete) circular arc curling down by a total of
+//! `3 (N - 2) / (N - 1)` rad; its tip sits 0.665-0.732 m from joint 2 (about two thirds of the
+//! reach), in front of the yaw axis and above the base. The smallest Jacobian singular value
+//! there is 0.298909 at N = 3 and grows with N to 0.648 (0.645 at N = 30); `tests/nlink.rs`
+//! asserts it is above 0.05 for every N = 3..=30 and the N = 3 value to 1e-6.
+
+use std::f64::consts::PI;
+
+use nalgebra::{SMatrix, SVector, Vector3};
+
+use crate::{JointLimits, Robot};
+
+/// Height of joint 2 (the first pitch joint) above the base (m).
+pub const H0: f64 = 0.3;
+/// Total length of the pitch chain, links 2..=N (m).
+pub const REACH: f64 = 1.0;
+/// Limit of the pitch joints 2..=N (rad): they range over `[-PITCH_LIMIT, PITCH_LIMIT]`.
+pub const PITCH_LIMIT: f64 = 2.6;
+/// Joint-velocity limit of every joint (rad/s).
+pub const VELOCITY_LIMIT: f64 = 2.0;
+/// Smallest number of joints in the family.
+pub const NLINK_MIN: usize = 3;
+/// Largest number of joints in the family.
+pub const NLINK_MAX: usize = 30;
+
+/// Model names `nlink-{N}`, indexed by N (entries below [`NLINK_MIN`] are unused).
+const NAMES: [&str; NLINK_MAX + 1] = [
+    "", "", "", "nlink-3", "nlink-4", "nlink-5", "nlink-6", "nlink-7", "nlink-8", "nlink-9",
+    "nlink-10", "nlink-11", "nlink-12", "nlink-13", "nlink-14", "nlink-15", "nlink-16", "nlink-17",
+    "nlink-18", "nlink-19", "nlink-20", "nlink-21", "nlink-22", "nlink-23", "nlink-24", "nlink-25",
+    "nlink-26", "nlink-27", "nlink-28", "nlink-29", "nlink-30",
+];
+
+/// The n-link arm with `N` joints (N = 3..=30; other N do not compile):
+///
+/// ```compile_fail
+/// let _ = robots::NLink::<31>::new();
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NLink<const N: usize> {
+    _in_family: (),
+}
+
+impl<const N: usize> NLink<N> {
+    /// Compile-time check that N is in the family.
+    const IN_FAMILY: () = assert!(N >= NLINK_MIN && N <= NLINK_MAX, "nlink: N must be 3..=30");
+
+    /// The arm (see the module documentation).
+    pub fn new() -> Self {
+        NLink {
+            _in_family: Self::IN_FAMILY,
+        }
+    }
+
+    /// Length of every pitch link, `L / (N - 1)` (m).
+    pub fn link_length() -> f64 {
+        REACH / (N - 1) as f64
+    }
+
+    /// The stated home pose: `theta_1 = 0`, `theta_2 = 1.2`, `theta_k = -3 / (N - 1)` for
+    /// k = 3..=N (module documentation).
+    pub fn home() -> SVector<f64, N> {
+        let bend = -3.0 / (N - 1) as f64;
+        SVector::from_fn(|k, _| match k {
+            0 => 0.0,
+            1 => 1.2,
+            _ => bend,
+        })
+    }
+
+    /// `(sin phi_k, cos phi_k)` of the cumulative pitch angles, stored at index `k - 1`
+    /// (entry 0 unused).
+    fn pitch_trig(theta: &SVector<f64, N>) -> ([f64; N], [f64; N]) {
+        let mut s = [0.0; N];
+        let mut c = [0.0; N];
+        let mut phi = 0.0;
+        for k in 1..N {
+            phi += theta[k];
+            (s[k], c[k]) = phi.sin_cos();
+        }
+        (s, c)
+    }
+}
+
+impl<const N: usize> Default for NLink<N> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<const N: usize> Robot<N> for NLink<N> {
+    fn name(&self) -> &'static str {
+        NAMES[N]
+    }
+
+    fn position(&self, theta: &SVector<f64, N>) -> Vector3<f64> {
+        let l = Self::link_length();
+        let mut r = 0.0;
+        let mut z = H0;
+        let mut phi = 0.0;
+        for k in 1..N {
+            phi += theta[k];
+            let (s, c) = f64::sin_cos(phi);
+            r += l * c;
+            z += l * s;
+        }
+        let (s1, c1) = theta[0].sin_cos();
+        Vector3::new(c1 * r, s1 * r, z)
+    }
+
+    fn jacobian(&self, theta: &SVector<f64, N>) -> SMatrix<f64, 3, N> {
+        let l = Self::link_length();
+        let (s, c) = Self::pitch_trig(theta);
+        let (s1, c1) = theta[0].sin_cos();
+        let mut jac = SMatrix::<f64, 3, N>::zeros();
+        let (mut sj, mut cj) = (0.0, 0.0);
+        for j in (1..N).rev() {
+            sj += l * s[j];
+            cj += l * c[j];
+            jac[(0, j)] = -c1 * sj;
+            jac[(1, j)] = -s1 * sj;
+            jac[(2, j)] = cj;
+        }
+        jac[(0, 0)] = -s1 * cj;
+        jac[(1, 0)] = c1 * cj;
+        jac
+    }
+
+    fn jacobian_dot(
+        &self,
+        theta: &SVector<f64, N>,
+        thetadot: &SVector<f64, N>,
+    ) -> SMatrix<f64, 3, N> {
+        let l = Self::link_length();
+        let (s, c) = Self::pitch_trig(theta);
+        let mut w = [0.0; N];
+        w[0] = thetadot[0];
+        let mut rate = 0.0;
+        for k in 1..N {
+            rate += thetadot[k];
+            w[k] = rate;
+        }
+        let (s1, c1) = theta[0].sin_cos();
+        let w1 = w[0];
+        let mut jdot = SMatrix::<f64, 3, N>::zeros();
+        let (mut sj, mut cj, mut swj, mut cwj) = (0.0, 0.0, 0.0, 0.0);
+        for j in (1..N).rev() {
+            sj += l * s[j];
+            cj += l * c[j];
+            swj += l * s[j] * w[j];
+            cwj += l * c[j] * w[j];
+            jdot[(0, j)] = s1 * w1 * sj - c1 * cwj;
+            jdot[(1, j)] = -c1 * w1 * sj - s1 * cwj;
+            jdot[(2, j)] = -swj;
+        }
+        let (r, rdot) = (cj, -swj);
+        jdot[(0, 0)] = -c1 * w1 * r - s1 * rdot;
+        jdot[(1, 0)] = -s1 * w1 * r + c1 * rdot;
+        jdot
+    }
+
+    fn limits(&self) -> JointLimits<N> {
+        let mut theta_max = SVector::repeat(PITCH_LIMIT);
+        theta_max[0] = PI;
+        JointLimits {
+            theta_min: -theta_max,
+            theta_max,
+            thetadot_min: SVector::repeat(-VELOCITY_LIMIT),
+            thetadot_max: SVector::repeat(VELOCITY_LIMIT),
+        }
+    }
+
+    /// The base (joint 1's origin, the world origin), joints 2..=N, then the tip: N + 1 points;
+    /// the first segment is the column `h0`, the others the pitch links of length `L / (N - 1)`.
+    fn skeleton(&self, theta: &SVector<f64, N>) -> Vec<Vector3<f64>> {
+        let l = Self::link_length();
+        let (s1, c1) = theta[0].sin_cos();
+        let mut points = Vec::with_capacity(N + 1);
+        points.push(Vector3::zeros());
+        let (mut r, mut z, mut phi) = (0.0, H0, 0.0);
+        points.push(Vector3::new(0.0, 0.0, z));
+        for k in 1..N {
+            phi += theta[k];
+            let (s, c) = f64::sin_cos(phi);
+            r += l * c;
+            z += l * s;
+            points.push(Vector3::new(c1 * r, s1 * r, z));
+        }
+        points
+    }
+}
