@@ -24,6 +24,7 @@
 
 use super::ladder::LadderRow;
 use records::runs::RunRow;
+use records::table::Row;
 use serde::{Deserialize, Serialize};
 use simulation::experiment::{Job, SolverChoice};
 use solvers::neural::spec::SolverSpec;
@@ -125,12 +126,10 @@ pub struct AttributionRow {
     /// `run`, `scheme (exact, converged)`, `network lag`, `integration error`, or an
     /// `of which: ...` switch effect.
     pub component: String,
-    pub drift_1: Option<f64>,
-    pub drift_2: Option<f64>,
-    pub drift_3: Option<f64>,
-    pub drift_4: Option<f64>,
-    pub drift_5: Option<f64>,
-    pub drift_6: Option<f64>,
+    /// The component's drift per joint (none where it could not be formed): the columns
+    /// `drift_1 .. drift_K`.
+    #[serde(skip)]
+    pub drift: Vec<f64>,
     /// 2-norm of the component (of the drift itself for `run` and `scheme`).
     pub drift_norm: Option<f64>,
     /// |component| / |d_run|.
@@ -140,6 +139,17 @@ pub struct AttributionRow {
     pub max_pos_err: Option<f64>,
     /// Why a component is missing (a rung or switch run that did not complete).
     pub note: String,
+}
+
+impl Row for AttributionRow {
+    const JOINTS: Option<&'static str> = Some("drift");
+    const JOINTS_BEFORE: &'static str = "drift_norm";
+    fn joints(&self) -> &[f64] {
+        &self.drift
+    }
+    fn set_joints(&mut self, values: Vec<f64>) {
+        self.drift = values;
+    }
 }
 
 /// The controlled re-runs of one target besides its ladders: (switch, job).
@@ -164,7 +174,7 @@ pub fn attribution_rows(
     let Some(run) = neural.iter().find(|r| r.as_run) else {
         return Vec::new();
     };
-    let drifts = |r: &LadderRow| (r.status == "ok").then(|| r.drifts());
+    let drifts = |r: &LadderRow| r.completed().then(|| r.drift.clone());
     let d_run = drifts(run);
     // A reference counts as converged only from RelTol CONVERGED_RTOL on (the finite-time
     // network's ladder stops at 1e-4: it has none).
@@ -175,7 +185,6 @@ pub fn attribution_rows(
     let d_exact = exact_ref.and_then(drifts);
     let run_norm = d_run.as_deref().map(norm);
     let row = |component: &str, d: Option<Vec<f64>>, err: Option<f64>, note: &str| {
-        let get = |i: usize| d.as_ref().and_then(|d| d.get(i).copied());
         let n = d.as_deref().map(norm);
         AttributionRow {
             paper: run.paper.clone(),
@@ -183,12 +192,7 @@ pub fn attribution_rows(
             variant: run.variant.clone(),
             solver: run.solver.clone(),
             component: component.to_string(),
-            drift_1: get(0),
-            drift_2: get(1),
-            drift_3: get(2),
-            drift_4: get(3),
-            drift_5: get(4),
-            drift_6: get(5),
+            drift: d.clone().unwrap_or_default(),
             drift_norm: n,
             share: n.zip(run_norm).map(|(a, b)| a / b),
             max_pos_err: err,
@@ -229,7 +233,7 @@ pub fn attribution_rows(
         ),
     ];
     for (s, r) in switches {
-        let d_off = (r.status == "ok").then(|| r.drifts());
+        let d_off = r.completed().then(|| r.drift.clone());
         let err = run.max_pos_err.zip(r.max_pos_err).map(|(a, b)| a - b);
         let note = if d_run.is_none() {
             format!("the run itself failed: {}", run.failure)

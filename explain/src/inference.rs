@@ -263,13 +263,13 @@ pub fn evaluate(p: &TableProblem, setup: Setup) -> Evaluation {
         .collect();
     let failure = rows
         .iter()
-        .find(|r| r.status != "ok")
+        .find(|r| !r.completed())
         .map(|r| format!("{} / {}: {}", r.experiment, r.variant, r.failure));
     let mut num = 0.0;
     let mut den = 0.0;
     let mut entries = Vec::new();
     for (column, i, paper) in &p.columns {
-        let ours = rows[*i].drifts();
+        let ours = &rows[*i].drift;
         let pairs: Vec<(f64, f64)> = paper
             .iter()
             .enumerate()
@@ -565,6 +565,8 @@ pub struct InferenceRow {
     pub wall_s: f64,
 }
 
+impl records::table::Row for InferenceRow {}
+
 /// One entry of the declared and the best-fit setup, for `results/inference-entries.csv`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct EntryRow {
@@ -579,6 +581,8 @@ pub struct EntryRow {
     pub rel_error: f64,
     pub sign_matched: bool,
 }
+
+impl records::table::Row for EntryRow {}
 
 /// The rows of one fit.
 pub fn rows(p: &TableProblem, f: &Fit) -> (Vec<InferenceRow>, Vec<EntryRow>) {

@@ -22,7 +22,8 @@
 //! [`LADDER_MAX_STEPS`] (explicit: [`LADDER_MAX_EXPLICIT_STEPS`]) accepted steps and an
 //! unfinished rung is reported as such, not dropped.
 
-use records::runs::RunRow;
+use records::runs::{RunRow, Status};
+use records::table::Row;
 use serde::{Deserialize, Serialize};
 use simulation::experiment::{Job, SolverChoice};
 use solvers::neural::spec::SolverSpec;
@@ -126,14 +127,12 @@ pub struct LadderRow {
     pub max_step: Option<f64>,
     /// The run's own setting (the rung results/runs.csv holds).
     pub as_run: bool,
-    pub status: String,
+    pub status: Status,
     pub failure: String,
-    pub drift_1: Option<f64>,
-    pub drift_2: Option<f64>,
-    pub drift_3: Option<f64>,
-    pub drift_4: Option<f64>,
-    pub drift_5: Option<f64>,
-    pub drift_6: Option<f64>,
+    /// theta(T) - theta(0) per joint (none for a rung that did not complete): the columns
+    /// `drift_1 .. drift_K`.
+    #[serde(skip)]
+    pub drift: Vec<f64>,
     pub drift_norm: Option<f64>,
     pub max_pos_err: Option<f64>,
     /// |d - d*| / |d*| against the converged drift d* (the finest completed rung).
@@ -149,16 +148,20 @@ pub struct LadderRow {
 }
 
 impl LadderRow {
-    /// The joint drifts that exist (none for a rung that did not complete).
-    pub fn drifts(&self) -> Vec<f64> {
-        records::runs::present([
-            self.drift_1,
-            self.drift_2,
-            self.drift_3,
-            self.drift_4,
-            self.drift_5,
-            self.drift_6,
-        ])
+    /// Whether the rung completed.
+    pub fn completed(&self) -> bool {
+        self.status == Status::Ok
+    }
+}
+
+impl Row for LadderRow {
+    const JOINTS: Option<&'static str> = Some("drift");
+    const JOINTS_BEFORE: &'static str = "drift_norm";
+    fn joints(&self) -> &[f64] {
+        &self.drift
+    }
+    fn set_joints(&mut self, values: Vec<f64>) {
+        self.drift = values;
     }
 }
 
@@ -181,7 +184,7 @@ pub fn reference(rows: &[RunRow]) -> Option<usize> {
     };
     rows.iter()
         .enumerate()
-        .filter(|(_, r)| r.status == "ok")
+        .filter(|(_, r)| r.completed())
         .min_by(|a, b| {
             a.1.rtol
                 .total_cmp(&b.1.rtol)
@@ -194,7 +197,7 @@ pub fn reference(rows: &[RunRow]) -> Option<usize> {
 /// The ladder rows of one run from its rungs' results (`rows[i]` is the run of `rungs[i]`).
 pub fn ladder_rows(base: &Job, rungs: &[IntegratorSettings], rows: &[RunRow]) -> Vec<LadderRow> {
     let reference = reference(rows);
-    let d_star = reference.map(|i| rows[i].drifts());
+    let d_star = reference.map(|i| &rows[i].drift);
     rungs
         .iter()
         .zip(rows)
@@ -202,8 +205,8 @@ pub fn ladder_rows(base: &Job, rungs: &[IntegratorSettings], rows: &[RunRow]) ->
         .map(|(i, (s, r))| {
             let rel_change = d_star
                 .as_ref()
-                .filter(|_| r.status == "ok")
-                .map(|d| rel_distance(&r.drifts(), d));
+                .filter(|_| r.completed())
+                .map(|d| rel_distance(&r.drift, d));
             LadderRow {
                 paper: r.paper.clone(),
                 experiment: r.experiment.clone(),
@@ -217,14 +220,9 @@ pub fn ladder_rows(base: &Job, rungs: &[IntegratorSettings], rows: &[RunRow]) ->
                     && s.rtol == base.integrator.rtol
                     && s.atol == base.integrator.atol
                     && s.max_step == base.integrator.max_step,
-                status: r.status.clone(),
+                status: r.status,
                 failure: r.failure.clone(),
-                drift_1: r.drift_1,
-                drift_2: r.drift_2,
-                drift_3: r.drift_3,
-                drift_4: r.drift_4,
-                drift_5: r.drift_5,
-                drift_6: r.drift_6,
+                drift: r.drift.clone(),
                 drift_norm: r.drift_norm,
                 max_pos_err: r.max_pos_err,
                 rel_change: rel_change.filter(|_| Some(i) != reference),

@@ -21,8 +21,7 @@ use attribution::{attribution_rows, exact_counterpart, switch_jobs, AttributionR
 use ladder::LadderRow;
 use records::paper_values::MAPPINGS;
 use records::runs::{write_atomic, RunRow};
-use serde::de::DeserializeOwned;
-use serde::Serialize;
+use records::table::Row;
 use simulation::experiment::{Job, SolverChoice};
 use simulation::runner::run_jobs;
 use std::path::Path;
@@ -129,25 +128,17 @@ pub fn explain(targets: &[Job], all: &[Job], progress: bool, git_rev: &str) -> E
     out
 }
 
-/// Serialises rows as CSV.
-pub fn to_csv<T: Serialize>(rows: &[T]) -> Result<Vec<u8>, String> {
-    let mut w = csv::Writer::from_writer(Vec::new());
-    for r in rows {
-        w.serialize(r).map_err(|e| e.to_string())?;
-    }
-    w.into_inner().map_err(|e| e.to_string())
+/// Serialises rows as CSV (per-joint columns as [`records::table`] writes them).
+pub fn to_csv<T: Row>(rows: &[T]) -> Result<Vec<u8>, String> {
+    records::table::to_csv(rows).map_err(|e| e.to_string())
 }
 
 /// Reads a CSV of `T`; an absent file is empty, an unreadable one an error naming it.
-pub fn read_csv<T: DeserializeOwned>(path: &Path) -> Result<Vec<T>, String> {
+pub fn read_csv<T: Row>(path: &Path) -> Result<Vec<T>, String> {
     if !path.exists() {
         return Ok(Vec::new());
     }
-    let mut r = csv::Reader::from_path(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    r.deserialize()
-        .enumerate()
-        .map(|(i, row)| row.map_err(|e| format!("{}: row {}: {e}", path.display(), i + 2)))
-        .collect()
+    records::table::read(path).map_err(|e| e.to_string())
 }
 
 /// Writes `results/ladder.csv` and `results/attribution.csv`: fresh rows replace the stored

@@ -70,7 +70,7 @@ fn ladder_converges_and_attribution_adds_up() {
             .iter()
             .find(|r| r.component == name)
             .unwrap_or_else(|| panic!("component {name}"));
-        [r.drift_1, r.drift_2, r.drift_3, r.drift_4, r.drift_5].map(|d| d.expect("every joint"))
+        <[f64; 5]>::try_from(r.drift.as_slice()).expect("every joint")
     };
     let run = comp("run");
     let (s, l, i) = (

@@ -2,7 +2,8 @@
 //! the titles, panels by level, failed runs, determinism, and errors that name the bad file.
 
 use presentation::figures::render_all;
-use records::runs::{runs_csv, write_atomic, RunRow};
+use records::runs::{runs_csv, write_atomic, RunRow, Status};
+use simulation::error::FailureKind;
 use std::path::{Path, PathBuf};
 
 /// A run row with the identity and outcome given and every metric empty.
@@ -13,22 +14,23 @@ fn row(experiment: &str, variant: &str, solver: &str, failed_at: Option<f64>) ->
         variant: variant.into(),
         scheme: variant.into(),
         solver: solver.into(),
+        solver_kind: "lvi-pdnn".into(),
         robot: "jaco2-pen".into(),
         path: "circle".into(),
         path_scale: None,
         duration: 2.0,
-        status: if failed_at.is_some() { "failed" } else { "ok" }.into(),
+        status: if failed_at.is_some() {
+            Status::Failed
+        } else {
+            Status::Ok
+        },
         failure: failed_at
             .map(|t| format!("integrator failed at t = {t}"))
             .unwrap_or_default(),
+        failure_kind: failed_at.map(|_| FailureKind::Integrator),
         expected_failure: String::new(),
         failed_at,
-        drift_1: None,
-        drift_2: None,
-        drift_3: None,
-        drift_4: None,
-        drift_5: None,
-        drift_6: None,
+        drift: Vec::new(),
         drift_norm: None,
         drift_ref_norm: None,
         max_pos_err: None,

@@ -6,7 +6,7 @@ use presentation::report::claims::{self, Verdict};
 use presentation::report::{render, to_markdown, Inputs, PAPERS};
 use records::index::Runs;
 use records::paper_values::{mapping_of, read_paper_values, resolve, Resolution};
-use records::runs::{read_runs, RunRow};
+use records::runs::{read_runs, RunRow, Status};
 
 fn committed() -> Inputs {
     Inputs::load(&simulation::root::from_current_dir().unwrap()).expect("committed inputs load")
@@ -97,20 +97,22 @@ fn row(experiment: &str, variant: &str, solver: &str, drift: f64) -> RunRow {
         variant: variant.into(),
         scheme: variant.into(),
         solver: solver.into(),
+        solver_kind: if solver == records::index::EXACT {
+            "exact"
+        } else {
+            "lvi-pdnn"
+        }
+        .into(),
         robot: "jaco2-pen".into(),
         path: "four-leaf-clover".into(),
         path_scale: None,
         duration: 5.0,
-        status: "ok".into(),
+        status: Status::Ok,
         failure: String::new(),
+        failure_kind: None,
         expected_failure: String::new(),
         failed_at: None,
-        drift_1: Some(drift),
-        drift_2: Some(0.0),
-        drift_3: Some(0.0),
-        drift_4: Some(0.0),
-        drift_5: Some(0.0),
-        drift_6: Some(drift),
+        drift: vec![drift, 0.0, 0.0, 0.0, 0.0, drift],
         drift_norm: Some(drift),
         drift_ref_norm: Some(drift),
         max_pos_err: Some(1e-6),

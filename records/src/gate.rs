@@ -11,7 +11,6 @@
 //!   (declared in the experiment files as `expected_failure`, recorded in each row).
 
 use crate::runs::RunRow;
-use simulation::experiment::SolverChoice;
 
 /// Relative tolerance of the drift comparison.
 pub const RELATIVE_TOLERANCE: f64 = 1e-6;
@@ -48,18 +47,26 @@ pub fn compare(committed: &[RunRow], fresh: &[RunRow]) -> Vec<String> {
             ));
             continue;
         }
-        if c.status == "ok" {
-            let pairs = [
-                ("drift_1", c.drift_1, f.drift_1),
-                ("drift_2", c.drift_2, f.drift_2),
-                ("drift_3", c.drift_3, f.drift_3),
-                ("drift_4", c.drift_4, f.drift_4),
-                ("drift_5", c.drift_5, f.drift_5),
-                ("drift_6", c.drift_6, f.drift_6),
-                ("drift_norm", c.drift_norm, f.drift_norm),
-                ("max_pos_err", c.max_pos_err, f.max_pos_err),
+        if c.completed() {
+            if c.drift.len() != f.drift.len() {
+                problems.push(format!(
+                    "{:?}: {} joint drifts -> {}",
+                    c.key(),
+                    c.drift.len(),
+                    f.drift.len()
+                ));
+            }
+            let joints = c
+                .drift
+                .iter()
+                .zip(&f.drift)
+                .enumerate()
+                .map(|(i, (a, b))| (format!("drift_{}", i + 1), Some(*a), Some(*b)));
+            let totals = [
+                ("drift_norm".to_string(), c.drift_norm, f.drift_norm),
+                ("max_pos_err".to_string(), c.max_pos_err, f.max_pos_err),
             ];
-            for (name, a, b) in pairs {
+            for (name, a, b) in joints.chain(totals) {
                 if !close(a, b) {
                     problems.push(format!("{:?}: {name} {a:?} -> {b:?}", c.key()));
                 }
@@ -73,8 +80,7 @@ pub fn compare(committed: &[RunRow], fresh: &[RunRow]) -> Vec<String> {
                 f.key()
             ));
         }
-        let neural = f.solver != SolverChoice::Exact.label();
-        if neural && f.status != "ok" && !expected_to_diverge(f) {
+        if !f.is_exact() && !f.completed() && !expected_to_diverge(f) {
             problems.push(format!("{:?}: neural run failed: {}", f.key(), f.failure));
         }
     }

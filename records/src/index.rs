@@ -60,12 +60,12 @@ impl Runs {
 
 /// True for a run of a neural solver (everything but the exact column).
 pub fn is_neural(r: &RunRow) -> bool {
-    r.solver != EXACT
+    !r.is_exact()
 }
 
 /// True when the run reached the end of its task.
 pub fn completed(r: &RunRow) -> bool {
-    r.status == "ok"
+    r.completed()
 }
 
 /// `ok`, or `failed at t = ... (reason)`.
@@ -85,15 +85,16 @@ pub fn failed_at(r: &RunRow) -> String {
     }
 }
 
-/// A numeric column of a run by its `runs.csv` name; `None` when not measured or unknown.
+/// A numeric column of a run by its `runs.csv` name (`drift_k` for joint k); `None` when not
+/// measured or unknown.
 pub fn metric(r: &RunRow, name: &str) -> Option<f64> {
+    if let Some(k) = name
+        .strip_prefix("drift_")
+        .and_then(|k| k.parse::<usize>().ok())
+    {
+        return k.checked_sub(1).and_then(|i| r.drift.get(i).copied());
+    }
     match name {
-        "drift_1" => r.drift_1,
-        "drift_2" => r.drift_2,
-        "drift_3" => r.drift_3,
-        "drift_4" => r.drift_4,
-        "drift_5" => r.drift_5,
-        "drift_6" => r.drift_6,
         "drift_norm" => r.drift_norm,
         "drift_ref_norm" => r.drift_ref_norm,
         "max_pos_err" => r.max_pos_err,

@@ -6,7 +6,8 @@
 //! journal. A line cut short by a kill (the last one) is dropped; any other bad line is an error
 //! naming the file and the line.
 
-use crate::runs::{read_runs, runs_columns, trace_csv, trace_file, write_atomic, RunRow};
+use crate::runs::{trace_csv, trace_file, write_atomic, RunRow};
+use crate::table;
 use simulation::run::RunRecord;
 use std::fs::{File, OpenOptions};
 use std::io::Write;
@@ -21,13 +22,17 @@ pub fn path(dir: &Path) -> PathBuf {
 /// An open journal, shared by the worker threads.
 pub struct Journal {
     dir: PathBuf,
+    /// Per-joint columns of its header (the most joints among the runs it will hold).
+    joints: usize,
     file: Mutex<File>,
     git_rev: String,
 }
 
 impl Journal {
-    /// Opens (creating, with the header) the journal of `dir` for appending.
-    pub fn open(dir: &Path, git_rev: &str) -> Result<Self, String> {
+    /// Opens (creating, with the header) the journal of `dir` for appending rows of arms with
+    /// at most `joints` joints. An existing journal keeps its header: a run resumed with arms
+    /// of more joints than it was started with starts a new journal.
+    pub fn open(dir: &Path, git_rev: &str, joints: usize) -> Result<Self, String> {
         let path = path(dir);
         let mut file = OpenOptions::new()
             .create(true)
@@ -35,12 +40,24 @@ impl Journal {
             .open(&path)
             .map_err(|e| format!("{}: cannot open: {e}", path.display()))?;
         let empty = file.metadata().map(|m| m.len() == 0).unwrap_or(true);
+        let header = table::header::<RunRow>(joints);
         if empty {
-            writeln!(file, "{}", runs_columns().join(","))
+            writeln!(file, "{}", header.join(","))
                 .map_err(|e| format!("{}: {e}", path.display()))?;
+        } else {
+            let text = std::fs::read_to_string(&path)
+                .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
+            if text.lines().next() != Some(header.join(",").as_str()) {
+                return Err(format!(
+                    "{}: its header is not that of this run (more joints, or another version); \
+                     fold it in by running the same selection again, or remove it",
+                    path.display()
+                ));
+            }
         }
         Ok(Self {
             dir: dir.to_path_buf(),
+            joints,
             file: Mutex::new(file),
             git_rev: git_rev.to_string(),
         })
@@ -54,7 +71,8 @@ impl Journal {
         let mut w = csv::WriterBuilder::new()
             .has_headers(false)
             .from_writer(Vec::new());
-        w.serialize(RunRow::from_record(r, &self.git_rev))
+        let row = RunRow::from_record(r, &self.git_rev);
+        w.write_record(table::record(&row, self.joints).map_err(|e| e.to_string())?)
             .map_err(|e| e.to_string())?;
         let line = w.into_inner().map_err(|e| e.to_string())?;
         let mut file = self
@@ -81,12 +99,13 @@ pub fn recover(dir: &Path) -> Result<Vec<RunRow>, String> {
         Some(end) => &text[..=end],
         None => "",
     };
-    let tmp = dir.join(format!("journal.{}.recover.tmp", std::process::id()));
-    std::fs::write(&tmp, complete).map_err(|e| format!("{}: {e}", tmp.display()))?;
-    let rows = read_runs(&tmp)
-        .map_err(|e| e.replace(&tmp.display().to_string(), &journal.display().to_string()));
-    let _ = std::fs::remove_file(&tmp);
-    rows
+    table::from_reader(complete.as_bytes()).map_err(|e| {
+        table::TableError {
+            path: Some(journal.clone()),
+            ..e
+        }
+        .to_string()
+    })
 }
 
 /// Removes the journal of `dir` (after its rows are in runs.csv).

@@ -3,6 +3,7 @@
 //! - [`runs`]: the schema of `results/runs.csv` ([`runs::RunRow`], one row per run, from a
 //!   simulation's [`simulation::run::RunRecord`]) and of the traces; atomic writes; reading
 //!   with the schema checked.
+//! - [`table`]: CSV tables whose per-joint columns follow the robot's joint count.
 //! - [`index`]: the stored runs indexed as the report and the analyses look them up.
 //! - [`journal`]: the checkpoint of finished runs that an interrupted run resumes from.
 //! - [`gate`]: the regression gate (fresh rows against committed ones).
@@ -14,3 +15,4 @@ pub mod index;
 pub mod journal;
 pub mod paper_values;
 pub mod runs;
+pub mod table;

@@ -10,7 +10,9 @@
 //! half-written file. Rows are sorted by (experiment, variant, solver) so that two runs give
 //! byte-identical files except for the timing columns (`wall_s`, `sim_s`, `observe_s`) and `git_rev`.
 
+use crate::table::{self, Row};
 use serde::{Deserialize, Serialize};
+use simulation::error::FailureKind;
 use simulation::naming::run_stem;
 use simulation::run::{Outcome, RunRecord};
 use std::path::Path;
@@ -23,24 +25,27 @@ pub struct RunRow {
     pub variant: String,
     pub scheme: String,
     pub solver: String,
+    /// The solver's identity: `exact`, or the network's kind as experiment files name it
+    /// (`lvi-pdnn`, ...); `solver` is a label with its parameters.
+    pub solver_kind: String,
     pub robot: String,
     pub path: String,
     pub path_scale: Option<f64>,
     pub duration: f64,
-    /// `ok` or `failed`.
-    pub status: String,
+    pub status: Status,
+    /// Why the run failed, in words (empty when it completed).
     pub failure: String,
+    /// The failure's category (empty when the run completed).
+    pub failure_kind: Option<FailureKind>,
     /// Why the experiment file expects this run to fail (empty: it should complete).
     pub expected_failure: String,
     /// Last accepted instant of a failed run (the failure message names the instant of the
     /// evaluation that failed, which may lie inside the next step).
     pub failed_at: Option<f64>,
-    pub drift_1: Option<f64>,
-    pub drift_2: Option<f64>,
-    pub drift_3: Option<f64>,
-    pub drift_4: Option<f64>,
-    pub drift_5: Option<f64>,
-    pub drift_6: Option<f64>,
+    /// theta(T) - theta(0) per joint (n entries for an n-joint arm; none for a failed run):
+    /// the columns `drift_1 .. drift_K` (see [`crate::table`]).
+    #[serde(skip)]
+    pub drift: Vec<f64>,
     pub drift_norm: Option<f64>,
     pub drift_ref_norm: Option<f64>,
     pub max_pos_err: Option<f64>,
@@ -96,15 +101,16 @@ impl RunRow {
         let j = &r.job;
         // A failed run keeps its metrics up to the failure (peaks, errors, margins), but no
         // drift: theta(T) was never reached.
-        let (status, failure, failed_at, m, completed) = match &r.outcome {
-            Outcome::Completed(m) => ("ok", String::new(), None, Some(m), true),
-            Outcome::Failed { t, reason, partial } => {
-                ("failed", reason.clone(), Some(*t), partial.as_ref(), false)
-            }
-        };
-        let drift = |i: usize| {
-            m.filter(|_| completed)
-                .and_then(|m| m.drift.get(i).copied())
+        let (status, failure, failure_kind, failed_at, m, completed) = match &r.outcome {
+            Outcome::Completed(m) => (Status::Ok, String::new(), None, None, Some(m), true),
+            Outcome::Failed { t, error, partial } => (
+                Status::Failed,
+                error.to_string(),
+                Some(error.kind()),
+                Some(*t),
+                partial.as_ref(),
+                false,
+            ),
         };
         let score = m.and_then(|m| m.score);
         RunRow {
@@ -113,6 +119,7 @@ impl RunRow {
             variant: j.variant.clone(),
             scheme: r.scheme_name.clone(),
             solver: j.solver.label(),
+            solver_kind: j.solver.kind().to_string(),
             robot: j.robot.clone(),
             path: j.path.name.clone(),
             path_scale: j
@@ -120,16 +127,15 @@ impl RunRow {
                 .scale
                 .or_else(|| schemes::paths::default_scale(&j.path.name)),
             duration: j.path.duration,
-            status: status.to_string(),
+            status,
             failure,
+            failure_kind,
             expected_failure: j.expected_failure.clone().unwrap_or_default(),
             failed_at,
-            drift_1: drift(0),
-            drift_2: drift(1),
-            drift_3: drift(2),
-            drift_4: drift(3),
-            drift_5: drift(4),
-            drift_6: drift(5),
+            drift: m
+                .filter(|_| completed)
+                .map(|m| m.drift.clone())
+                .unwrap_or_default(),
             drift_norm: m.filter(|_| completed).map(|m| m.drift_norm),
             drift_ref_norm: m.filter(|_| completed).map(|m| m.drift_ref_norm),
             max_pos_err: m.map(|m| m.max_position_error),
@@ -178,23 +184,45 @@ impl RunRow {
         )
     }
 
-    /// The joint drifts that exist (n of them).
-    pub fn drifts(&self) -> Vec<f64> {
-        present([
-            self.drift_1,
-            self.drift_2,
-            self.drift_3,
-            self.drift_4,
-            self.drift_5,
-            self.drift_6,
-        ])
+    /// Whether the run completed.
+    pub fn completed(&self) -> bool {
+        self.status == Status::Ok
+    }
+
+    /// Whether the run is the exact column (the optimum in the loop).
+    pub fn is_exact(&self) -> bool {
+        self.solver_kind == simulation::experiment::EXACT_KIND
     }
 }
 
-/// The entries of the six per-joint drift columns that exist (a 5-joint arm leaves the sixth
-/// empty; a failed run all of them).
-pub fn present(drifts: [Option<f64>; 6]) -> Vec<f64> {
-    drifts.into_iter().flatten().collect()
+impl Row for RunRow {
+    const JOINTS: Option<&'static str> = Some("drift");
+    const JOINTS_BEFORE: &'static str = "drift_norm";
+    fn joints(&self) -> &[f64] {
+        &self.drift
+    }
+    fn set_joints(&mut self, values: Vec<f64>) {
+        self.drift = values;
+    }
+}
+
+/// Whether a run reached its path's end.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Status {
+    /// Completed: drift and every metric over the whole task.
+    Ok,
+    /// Stopped early (see `failure` and `failure_kind`).
+    Failed,
+}
+
+impl std::fmt::Display for Status {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Status::Ok => "ok",
+            Status::Failed => "failed",
+        })
+    }
 }
 
 /// Writes `bytes` to `path` atomically: to a temporary file unique to this call (process id and
@@ -220,13 +248,9 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     })
 }
 
-/// Serialises rows as CSV.
+/// Serialises rows as CSV (see [`crate::table`]: as many drift columns as the most joints).
 pub fn runs_csv(rows: &[RunRow]) -> Result<Vec<u8>, csv::Error> {
-    let mut w = csv::Writer::from_writer(Vec::new());
-    for r in rows {
-        w.serialize(r)?;
-    }
-    w.into_inner().map_err(|e| csv::Error::from(e.into_error()))
+    table::to_csv(rows)
 }
 
 /// How to recover from a `runs.csv` this version cannot read.
@@ -238,90 +262,12 @@ fn recovery_hint(path: &Path) -> String {
     )
 }
 
-/// The column names of `runs.csv` (the fields of [`RunRow`], in order).
-pub fn runs_columns() -> &'static [&'static str] {
-    use serde::de::{self, Visitor};
-    struct Grab<'a>(&'a mut &'static [&'static str]);
-    impl<'de> de::Deserializer<'de> for Grab<'_> {
-        type Error = de::value::Error;
-        fn deserialize_any<V: Visitor<'de>>(self, _: V) -> Result<V::Value, Self::Error> {
-            Err(de::Error::custom("not a struct"))
-        }
-        fn deserialize_struct<V: Visitor<'de>>(
-            self,
-            _: &'static str,
-            fields: &'static [&'static str],
-            _: V,
-        ) -> Result<V::Value, Self::Error> {
-            *self.0 = fields;
-            Err(de::Error::custom("fields taken"))
-        }
-        serde::forward_to_deserialize_any! {
-            bool i8 i16 i32 i64 i128 u8 u16 u32 u64 u128 f32 f64 char str string bytes byte_buf
-            option unit unit_struct newtype_struct seq tuple tuple_struct map enum identifier
-            ignored_any
-        }
-    }
-    let mut fields: &'static [&'static str] = &[];
-    let _ = RunRow::deserialize(Grab(&mut fields));
-    fields
-}
-
 /// Reads `results/runs.csv`. Any problem is an error naming the file, the line and how to
 /// recover, never a silently shorter list: an unreadable file, a header that is not this
 /// version's columns (an old schema: a missing or an unknown column), or a row that does not
 /// parse. An empty file has no rows.
 pub fn read_runs(path: &Path) -> Result<Vec<RunRow>, String> {
-    let fail = |line: Option<u64>, what: String| {
-        let at = line.map(|l| format!(" line {l}")).unwrap_or_default();
-        format!("{}:{at}: {what}; {}", path.display(), recovery_hint(path))
-    };
-    let mut r =
-        csv::Reader::from_path(path).map_err(|e| fail(None, format!("cannot read: {e}")))?;
-    let header = r
-        .headers()
-        .map_err(|e| fail(e.position().map(|p| p.line()), e.to_string()))?
-        .clone();
-    if header.is_empty() || (header.len() == 1 && header[0].is_empty()) {
-        return Ok(Vec::new());
-    }
-    let expected = runs_columns();
-    let missing: Vec<&str> = expected
-        .iter()
-        .copied()
-        .filter(|c| !header.iter().any(|h| h == *c))
-        .collect();
-    let unknown: Vec<&str> = header.iter().filter(|h| !expected.contains(h)).collect();
-    if !missing.is_empty() || !unknown.is_empty() {
-        let mut what = vec![
-            "the header is not this version's runs.csv schema (an old or a \
-                             foreign file)"
-                .to_string(),
-        ];
-        if !missing.is_empty() {
-            what.push(format!("missing columns: {}", missing.join(", ")));
-        }
-        if !unknown.is_empty() {
-            what.push(format!("unknown columns: {}", unknown.join(", ")));
-        }
-        return Err(fail(Some(1), what.join("; ")));
-    }
-    let mut rows = Vec::new();
-    for (i, row) in r.deserialize::<RunRow>().enumerate() {
-        match row {
-            Ok(row) => rows.push(row),
-            Err(e) => {
-                // Data rows start on line 2 (the csv crate's positions are 1-based lines).
-                let line = e.position().map(|p| p.line()).unwrap_or(i as u64 + 2);
-                let what = match e.kind() {
-                    csv::ErrorKind::Deserialize { err, .. } => format!("row does not parse: {err}"),
-                    _ => format!("row does not parse: {e}"),
-                };
-                return Err(fail(Some(line), what));
-            }
-        }
-    }
-    Ok(rows)
+    table::read(path).map_err(|e| format!("{e}; {}", recovery_hint(path)))
 }
 
 /// Removes the temporary files ([`write_atomic`]'s `<name>.<pid>.<n>.tmp`) that killed runs

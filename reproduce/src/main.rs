@@ -37,8 +37,9 @@ struct Cli {
     /// List the experiments and their runs, then exit.
     #[arg(long)]
     list: bool,
-    /// Print the robots' check values (tip position and singular values of J at the papers'
-    /// theta0), then exit.
+    /// List the robots experiment files can name (Jaco2 variants, Katana 6M180, Franka Panda,
+    /// the n-link family) with their joint counts and check values (tip position and singular
+    /// values of J at a stated pose), then exit.
     #[arg(long)]
     robots: bool,
     /// The project root: the directory with experiments/, results/ and report/ (default: the
@@ -210,7 +211,15 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
     }
     let journal = stored
         .is_some()
-        .then(|| records::journal::Journal::open(&cli.results_dir, &git_rev))
+        .then(|| {
+            let joints = jobs
+                .iter()
+                .filter_map(|j| {
+                    simulation::robot_registry::robot_by_name(&j.robot).map(|r| r.dof())
+                })
+                .max();
+            records::journal::Journal::open(&cli.results_dir, &git_rev, joints.unwrap_or(0))
+        })
         .transpose()?;
     let records = run_jobs_with(&to_run, true, |r| {
         if let Some(j) = &journal {
@@ -227,7 +236,7 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
     // Failed runs, and whether the experiment files' findings expect them (reproduce::gate).
     let failed: Vec<(String, bool)> = rows
         .iter()
-        .filter(|r| r.status != "ok")
+        .filter(|r| !r.completed())
         .map(|r| {
             (
                 format!(
@@ -404,12 +413,11 @@ fn check(
     fresh: &[RunRow],
     exact_only: bool,
 ) -> Result<ExitCode, String> {
-    let exact = simulation::experiment::SolverChoice::Exact.label();
     let (baseline_rows, baseline_name) = baseline(root, results_dir, baseline_file)?;
     let committed: Vec<RunRow> = baseline_rows
         .into_iter()
         .filter(|c| fresh.iter().any(|f| f.experiment == c.experiment))
-        .filter(|c| !exact_only || c.solver == exact)
+        .filter(|c| !exact_only || c.is_exact())
         .collect();
     let problems = records::gate::compare(&committed, fresh);
     if problems.is_empty() {
@@ -622,7 +630,7 @@ fn print_summary(rows: &[RunRow]) {
                 "wall s"
             );
         }
-        if r.status != "ok" {
+        if !r.completed() {
             let _ = writeln!(
                 out,
                 "{:<26} {:<28} FAILED at t = {} (peak qd {}, max err {}): {}",
@@ -682,42 +690,22 @@ fn print_list(files: &[PaperFile], jobs: &[Job]) {
 }
 
 fn print_robot_check_values() {
-    use nalgebra::SVector;
-    use robots::{Jaco2, Katana6m180, Robot};
-    let theta0 = SVector::<f64, 6>::from([1.675, 2.79, -3.216, 4.187, -1.71, -2.95]);
-    // The group's EXP2 model also at the group's EXP2 theta0 (group-code.md).
-    let theta0_exp2 = SVector::<f64, 6>::from([1.670, 2.845, -3.218, 4.182, -1.715, -2.655]);
-    for (r, theta0) in [
-        (Jaco2::pen(), theta0),
-        (Jaco2::kinova(), theta0),
-        (Jaco2::pen_exp2(), theta0),
-        (Jaco2::pen_exp2(), theta0_exp2),
-    ] {
-        let p = r.position(&theta0);
-        let sv = r.jacobian(&theta0).singular_values();
+    use simulation::robot_registry::{robot_by_name, robot_names};
+    for name in robot_names() {
+        let robot = robot_by_name(&name).expect("a registry name");
+        let theta = robot.stated_pose();
+        let (p, sv) = robot
+            .check_values(&theta)
+            .expect("the stated pose has the robot's joint count");
         println!(
-            "{:<12} theta0 = {:?}\n             f = ({:.6}, {:.6}, {:.6}), sigma(J) = {:.6?}",
-            r.name(),
-            theta0.as_slice(),
+            "{name:<14} {} joints{}, theta = {theta:.4?}\n               f = ({:.6}, {:.6}, {:.6}), sigma(J) = {sv:.6?}",
+            robot.dof(),
+            if robot.has_dynamics() { ", dynamics" } else { "" },
             p.x,
             p.y,
             p.z,
-            sv.as_slice()
         );
     }
-    let pi = std::f64::consts::PI;
-    let k = Katana6m180::new();
-    let t = SVector::<f64, 5>::from([2.0 * pi / 5.0, pi / 2.0, 0.0, -pi / 6.0, pi / 3.0]);
-    let p = k.position(&t);
-    println!(
-        "{:<12} theta*0 = {:?}\n             f = ({:.6}, {:.6}, {:.6}), sigma(J) = {:.6?}",
-        k.name(),
-        t.as_slice(),
-        p.x,
-        p.y,
-        p.z,
-        k.jacobian(&t).singular_values().as_slice()
-    );
 }
 
 /// Writes to stdout, ending quietly when the reader has gone (e.g. `| head`).

@@ -40,13 +40,13 @@ fn the_gate_catches_changes() {
     assert!(compare(&committed, &committed).is_empty());
     let ok = committed
         .iter()
-        .position(|r| r.status == "ok" && r.drift_norm.is_some())
+        .position(|r| r.completed() && r.drift_norm.is_some())
         .unwrap();
     let mut changed = committed.clone();
-    changed[ok].drift_3 = changed[ok].drift_3.map(|d| d * (1.0 + 1e-4) + 1e-9);
+    changed[ok].drift[2] = changed[ok].drift[2] * (1.0 + 1e-4) + 1e-9;
     assert_eq!(compare(&committed, &changed).len(), 1, "a drift change");
     let mut failed = committed.clone();
-    failed[ok].status = "failed".into();
+    failed[ok].status = records::runs::Status::Failed;
     assert!(!compare(&committed, &failed).is_empty(), "a status change");
     let mut missing = committed.clone();
     missing.remove(ok);

@@ -21,7 +21,7 @@ use schemes::scheme::{Level, Scheme};
 use solvers::exact_path::{ExactPath, ExactPathStats};
 use solvers::neural::NeuralSolver;
 use solvers::ode::OdeSystem;
-use solvers::Qp;
+use solvers::{ExactError, Qp};
 
 /// Number of arm-state entries: n at the velocity level, 2n at the acceleration level.
 pub fn arm_dim<const N: usize>(level: Level) -> usize {
@@ -63,8 +63,9 @@ pub struct ExactLoop<'a, const N: usize> {
     pub scheme: &'a dyn Scheme<N>,
     pub qp: Qp,
     pub solver: ExactPath,
-    /// First failure of the exact solver (the run is then reported as failed with it).
-    pub failure: Option<String>,
+    /// First failure of the exact solver, with its instant (the run is then reported as
+    /// failed with it).
+    pub failure: Option<(f64, ExactError)>,
 }
 
 impl<'a, const N: usize> ExactLoop<'a, N> {
@@ -84,12 +85,9 @@ impl<'a, const N: usize> ExactLoop<'a, N> {
         t: f64,
         theta: &SVector<f64, N>,
         thetadot: &SVector<f64, N>,
-    ) -> Result<DVector<f64>, String> {
+    ) -> Result<DVector<f64>, ExactError> {
         self.scheme.build(t, theta, thetadot, &mut self.qp);
-        self.solver
-            .solve(&self.qp)
-            .cloned()
-            .map_err(|e| e.to_string())
+        self.solver.solve(&self.qp).cloned()
     }
 
     /// QPs solved, fallbacks and the Clarabel sample so far.
@@ -114,7 +112,7 @@ impl<const N: usize> OdeSystem for ExactLoop<'_, N> {
             Ok(x) => arm_rhs::<N>(level, y, x.as_slice(), dy),
             Err(e) => {
                 if self.failure.is_none() {
-                    self.failure = Some(format!("exact QP at t = {t:.6}: {e}"));
+                    self.failure = Some((t, e));
                 }
                 dy.fill(f64::NAN);
             }

@@ -141,7 +141,19 @@ pub enum SolverChoice {
     Neural(SolverSpec),
 }
 
+/// The solver kind of the exact column (`solver_kind` in results).
+pub const EXACT_KIND: &str = "exact";
+
 impl SolverChoice {
+    /// The solver's identity: [`EXACT_KIND`], or the network's kind (`lvi-pdnn`, ...).
+    pub fn kind(&self) -> &'static str {
+        match self {
+            SolverChoice::Exact => EXACT_KIND,
+            SolverChoice::Neural(s) => s.kind(),
+        }
+    }
+
+    /// The solver's label in tables and run keys: the network with its parameters.
     pub fn label(&self) -> String {
         match self {
             SolverChoice::Exact => "exact (Clarabel)".to_string(),
@@ -453,6 +465,11 @@ fn robot_dof(name: &str) -> Option<usize> {
 
 fn robot_names() -> String {
     crate::robot_registry::robot_names()
+        .filter(|n| !n.starts_with("nlink-"))
+        .chain([format!(
+            "nlink-N (N in {:?})",
+            crate::robot_registry::NLINK_SIZES
+        )])
         .collect::<Vec<_>>()
         .join(", ")
 }

@@ -10,6 +10,7 @@
 //! project (experiments/, results/, report/) and the code revision runs are stamped with.
 
 pub mod coupled;
+pub mod error;
 pub mod experiment;
 pub mod metrics;
 pub mod naming;

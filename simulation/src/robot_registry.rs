@@ -1,9 +1,17 @@
 //! The one place that maps the robot names of experiment files to robot models: the runner
 //! builds its robot here, experiment files are validated against it, and the figures draw the
 //! arm with it.
+//!
+//! Models are generic in their joint count N (fixed-size nalgebra in the hot path), so code that
+//! uses a robot by name is written once as a [`RobotVisitor`], generic in N, and
+//! [`AnyRobot::visit`] calls it with the model's N. Every N the registry can produce is
+//! instantiated at compile time (the whole simulation, ~9 s of release build per N): 5
+//! (Katana), 6 (Jaco2), 7 (Panda), and the n-link family at [`NLINK_SIZES`], which spans
+//! robots' `nlink-3 ..= nlink-30` in eight steps (a cost-versus-joints curve needs a spread of N,
+//! not every N). Adding an N is one entry in that list and in `visit`'s.
 
 use nalgebra::{SVector, Vector3};
-use robots::{Jaco2, Katana6m180, Robot};
+use robots::{Dynamics, Jaco2, Katana6m180, NLink, Panda, Robot};
 use std::sync::Arc;
 
 /// A robot model of any joint count.
@@ -13,12 +21,28 @@ pub enum AnyRobot {
     Jaco2(Arc<Jaco2>),
     /// The Katana 6M180 (5 joints, kinematics only).
     Katana(Arc<Katana6m180>),
+    /// The Franka Emika Panda (7 joints, kinematics only).
+    Panda(Arc<Panda>),
+    /// The synthetic n-link arm `nlink-N` with N joints (kinematics only).
+    NLink(usize),
+}
+
+/// Code generic in the joint count, run on a robot of the registry ([`AnyRobot::visit`]).
+pub trait RobotVisitor {
+    type Output;
+    /// Called with the model (and its dynamics, where it has them).
+    fn visit<const N: usize>(
+        self,
+        robot: Arc<dyn Robot<N>>,
+        dynamics: Option<Arc<dyn Dynamics<N>>>,
+    ) -> Self::Output;
 }
 
 /// Builds one model.
 type Constructor = fn() -> AnyRobot;
 
-/// The suite's robot names, each with its constructor.
+/// The suite's named robot models (the n-link family is [`nlink_name`]), each with its
+/// constructor.
 const ROBOTS: &[(&str, Constructor)] = &[
     (robots::JACO2_PEN, || {
         AnyRobot::Jaco2(Arc::new(Jaco2::pen()))
@@ -33,19 +57,37 @@ const ROBOTS: &[(&str, Constructor)] = &[
     (robots::KATANA6M180, || {
         AnyRobot::Katana(Arc::new(Katana6m180::new()))
     }),
+    (robots::PANDA, || AnyRobot::Panda(Arc::new(Panda::new()))),
 ];
+
+/// The joint counts of the n-link arms in the registry (`nlink-N`).
+pub const NLINK_SIZES: [usize; 8] = [3, 5, 6, 7, 10, 15, 20, 30];
+
+/// The name of the n-link arm with `n` joints.
+pub fn nlink_name(n: usize) -> String {
+    format!("nlink-{n}")
+}
 
 /// The model called `name` in experiment files, if the suite knows it.
 pub fn robot_by_name(name: &str) -> Option<AnyRobot> {
+    if let Some(n) = name
+        .strip_prefix("nlink-")
+        .and_then(|n| n.parse::<usize>().ok())
+    {
+        return NLINK_SIZES.contains(&n).then_some(AnyRobot::NLink(n));
+    }
     ROBOTS
         .iter()
         .find(|(n, _)| *n == name)
         .map(|(_, build)| build())
 }
 
-/// The robot names the suite knows, in a fixed order.
-pub fn robot_names() -> impl Iterator<Item = &'static str> {
-    ROBOTS.iter().map(|(n, _)| *n)
+/// The robot names the suite knows, in a fixed order (the n-link family last, by N).
+pub fn robot_names() -> impl Iterator<Item = String> {
+    ROBOTS
+        .iter()
+        .map(|(n, _)| n.to_string())
+        .chain(NLINK_SIZES.iter().map(|&n| nlink_name(n)))
 }
 
 /// The names of the robots with rigid-body dynamics (H, c, g), which the acceleration-level
@@ -58,7 +100,54 @@ pub fn robots_with_dynamics() -> Vec<&'static str> {
         .collect()
 }
 
+/// Calls `$visitor.visit::<N>` with `NLink::<N>` for the N in `$n` (one arm per N of the family).
+macro_rules! visit_nlink {
+    ($n:expr, $visitor:expr, [$($k:literal),*]) => {
+        match $n {
+            $($k => $visitor.visit::<$k>(Arc::new(NLink::<$k>::new()), None),)*
+            n => unreachable!("nlink-{n} is not in the registry (NLINK_SIZES)"),
+        }
+    };
+}
+
 impl AnyRobot {
+    /// Runs `visitor` on this model with its joint count.
+    pub fn visit<V: RobotVisitor>(&self, visitor: V) -> V::Output {
+        match self {
+            AnyRobot::Jaco2(r) => visitor.visit::<6>(r.clone(), Some(r.clone())),
+            AnyRobot::Katana(r) => visitor.visit::<5>(r.clone(), None),
+            AnyRobot::Panda(r) => visitor.visit::<7>(r.clone(), None),
+            AnyRobot::NLink(n) => visit_nlink!(*n, visitor, [3, 5, 6, 7, 10, 15, 20, 30]),
+        }
+    }
+
+    /// The pose the model's check values are stated at: the papers' theta0 for the Jaco2
+    /// models (the group's EXP2 theta0 for `jaco2-pen-exp2`), kong2019's theta*0 for the
+    /// Katana, Franka's "ready" pose for the Panda, [`NLink::home`] for the n-link arms.
+    pub fn stated_pose(&self) -> Vec<f64> {
+        struct Home;
+        impl RobotVisitor for Home {
+            type Output = Vec<f64>;
+            fn visit<const N: usize>(
+                self,
+                _: Arc<dyn Robot<N>>,
+                _: Option<Arc<dyn Dynamics<N>>>,
+            ) -> Vec<f64> {
+                NLink::<N>::home().as_slice().to_vec()
+            }
+        }
+        let pi = std::f64::consts::PI;
+        match self {
+            AnyRobot::Jaco2(r) if r.name() == robots::JACO2_PEN_EXP2 => {
+                vec![1.670, 2.845, -3.218, 4.182, -1.715, -2.655]
+            }
+            AnyRobot::Jaco2(_) => vec![1.675, 2.79, -3.216, 4.187, -1.71, -2.95],
+            AnyRobot::Katana(_) => vec![2.0 * pi / 5.0, pi / 2.0, 0.0, -pi / 6.0, pi / 3.0],
+            AnyRobot::Panda(_) => Panda::READY.to_vec(),
+            AnyRobot::NLink(n) => visit_nlink!(*n, Home, [3, 5, 6, 7, 10, 15, 20, 30]),
+        }
+    }
+
     /// Whether the model has rigid-body dynamics (H, c, g).
     pub fn has_dynamics(&self) -> bool {
         matches!(self, AnyRobot::Jaco2(_))
@@ -69,29 +158,78 @@ impl AnyRobot {
         match self {
             AnyRobot::Jaco2(_) => 6,
             AnyRobot::Katana(_) => 5,
+            AnyRobot::Panda(_) => 7,
+            AnyRobot::NLink(n) => *n,
         }
+    }
+
+    /// The model's name.
+    pub fn name(&self) -> String {
+        struct Name;
+        impl RobotVisitor for Name {
+            type Output = String;
+            fn visit<const N: usize>(
+                self,
+                robot: Arc<dyn Robot<N>>,
+                _: Option<Arc<dyn Dynamics<N>>>,
+            ) -> String {
+                robot.name().to_string()
+            }
+        }
+        self.visit(Name)
     }
 
     /// The arm's points from the base to the task point at joint angles `theta` (see
     /// [`Robot::skeleton`]); an error if `theta` does not have [`Self::dof`] entries.
     pub fn skeleton(&self, theta: &[f64]) -> Result<Vec<Vector3<f64>>, String> {
-        fn of<const N: usize>(
-            robot: &dyn Robot<N>,
-            theta: &[f64],
-        ) -> Result<Vec<Vector3<f64>>, String> {
-            if theta.len() != N {
-                return Err(format!(
-                    "{}: {} joint angles given, the robot has {N} joints",
-                    robot.name(),
-                    theta.len()
-                ));
+        struct Skeleton<'a>(&'a [f64]);
+        impl RobotVisitor for Skeleton<'_> {
+            type Output = Result<Vec<Vector3<f64>>, String>;
+            fn visit<const N: usize>(
+                self,
+                robot: Arc<dyn Robot<N>>,
+                _: Option<Arc<dyn Dynamics<N>>>,
+            ) -> Self::Output {
+                if self.0.len() != N {
+                    return Err(format!(
+                        "{}: {} joint angles given, the robot has {N} joints",
+                        robot.name(),
+                        self.0.len()
+                    ));
+                }
+                Ok(robot.skeleton(&SVector::<f64, N>::from_column_slice(self.0)))
             }
-            Ok(robot.skeleton(&SVector::<f64, N>::from_column_slice(theta)))
         }
-        match self {
-            AnyRobot::Jaco2(r) => of::<6>(r.as_ref(), theta),
-            AnyRobot::Katana(r) => of::<5>(r.as_ref(), theta),
+        self.visit(Skeleton(theta))
+    }
+
+    /// Tip position and the singular values of J at `theta` (the check values `reproduce
+    /// --robots` prints); an error if `theta` does not have [`Self::dof`] entries.
+    pub fn check_values(&self, theta: &[f64]) -> Result<(Vector3<f64>, Vec<f64>), String> {
+        struct Check<'a>(&'a [f64]);
+        impl RobotVisitor for Check<'_> {
+            type Output = Result<(Vector3<f64>, Vec<f64>), String>;
+            fn visit<const N: usize>(
+                self,
+                robot: Arc<dyn Robot<N>>,
+                _: Option<Arc<dyn Dynamics<N>>>,
+            ) -> Self::Output {
+                if self.0.len() != N {
+                    return Err(format!(
+                        "{}: {} joint angles given, the robot has {N} joints",
+                        robot.name(),
+                        self.0.len()
+                    ));
+                }
+                let theta = SVector::<f64, N>::from_column_slice(self.0);
+                let j =
+                    nalgebra::DMatrix::from_column_slice(3, N, robot.jacobian(&theta).as_slice());
+                let mut sv: Vec<f64> = j.singular_values().iter().copied().collect();
+                sv.sort_by(|a, b| b.total_cmp(a));
+                Ok((robot.position(&theta), sv))
+            }
         }
+        self.visit(Check(theta))
     }
 }
 
@@ -101,17 +239,22 @@ mod tests {
 
     #[test]
     fn every_name_builds_the_model_of_that_name() {
-        for name in robot_names() {
+        let names: Vec<String> = robot_names().collect();
+        assert!(names.iter().any(|n| n == "panda"));
+        assert!(names.iter().any(|n| n == "nlink-3") && names.iter().any(|n| n == "nlink-30"));
+        for name in &names {
             let robot = robot_by_name(name).unwrap();
-            let model = match &robot {
-                AnyRobot::Jaco2(r) => Robot::<6>::name(r.as_ref()),
-                AnyRobot::Katana(r) => Robot::<5>::name(r.as_ref()),
-            };
-            assert_eq!(model, name);
+            assert_eq!(&robot.name(), name);
             let points = robot.skeleton(&vec![0.1; robot.dof()]).unwrap();
             assert!(points.len() >= 2);
             assert!(robot.skeleton(&vec![0.1; robot.dof() + 1]).is_err());
         }
-        assert!(robot_by_name("puma560").is_none());
+        assert_eq!(
+            names.iter().filter(|n| n.starts_with("nlink-")).count(),
+            NLINK_SIZES.len()
+        );
+        for unknown in ["puma560", "nlink-2", "nlink-4", "nlink-31", "nlink-x"] {
+            assert!(robot_by_name(unknown).is_none(), "{unknown}");
+        }
     }
 }

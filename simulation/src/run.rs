@@ -2,16 +2,18 @@
 //! score against the exact optimum and a thinned trace for the figures.
 
 use crate::coupled::{arm_dim, arm_state, ExactLoop, NeuralLoop};
+use crate::error::RunError;
 use crate::experiment::{Job, NetworkInit, SolverChoice};
 use crate::metrics::{MetricsAccumulator, RunMetrics, Sample, ScoreSample};
-use crate::robot_registry::{robot_by_name, AnyRobot};
+use crate::robot_registry::{robot_by_name, RobotVisitor};
 use nalgebra::{DVector, SVector};
 use robots::{Dynamics, Robot};
 use schemes::paths::{build_path, Path};
 use schemes::scheme::{Level, Scheme};
 use schemes::spec::build_scheme;
 use solvers::exact_path::ExactPathStats;
-use solvers::ode::{integrate, Control, OdeFailure, OdeStats, OdeSystem};
+use solvers::ode::{integrate, Control, OdeError, OdeFailure, OdeStats, OdeSystem};
+use solvers::ExactError;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -49,7 +51,7 @@ pub enum Outcome {
     /// its drift is theta(t) - theta0, not a drift over the task).
     Failed {
         t: f64,
-        reason: String,
+        error: RunError,
         partial: Option<RunMetrics>,
     },
 }
@@ -74,17 +76,30 @@ pub struct RunRecord {
 
 /// Runs one job to completion or failure; never panics on bad numerics.
 pub fn run_job(job: &Job) -> RunRecord {
+    struct Run<'a>(&'a Job);
+    impl RobotVisitor for Run<'_> {
+        type Output = Result<RunRecord, RunError>;
+        fn visit<const N: usize>(
+            self,
+            robot: Arc<dyn Robot<N>>,
+            dynamics: Option<Arc<dyn Dynamics<N>>>,
+        ) -> Self::Output {
+            run_with::<N>(self.0, robot, dynamics)
+        }
+    }
     let result = match robot_by_name(&job.robot) {
-        Some(AnyRobot::Jaco2(r)) => run_with::<6>(job, r.clone(), Some(r)),
-        Some(AnyRobot::Katana(r)) => run_with::<5>(job, r, None),
-        None => Err(format!("unknown robot \"{}\"", job.robot)),
+        Some(robot) => robot.visit(Run(job)),
+        None => Err(RunError::Setup {
+            part: JobPart::Robot,
+            message: format!("unknown robot \"{}\"", job.robot),
+        }),
     };
-    result.unwrap_or_else(|reason| RunRecord {
+    result.unwrap_or_else(|error| RunRecord {
         job: job.clone(),
         scheme_name: job.scheme.display_name(),
         outcome: Outcome::Failed {
             t: 0.0,
-            reason,
+            error,
             partial: None,
         },
         stats: OdeStats::default(),
@@ -155,9 +170,19 @@ pub fn check_job(job: &Job) -> Result<(), (JobPart, String)> {
         }
         Ok(())
     }
+    struct Check<'a>(&'a Job);
+    impl RobotVisitor for Check<'_> {
+        type Output = Result<(), (JobPart, String)>;
+        fn visit<const N: usize>(
+            self,
+            robot: Arc<dyn Robot<N>>,
+            dynamics: Option<Arc<dyn Dynamics<N>>>,
+        ) -> Self::Output {
+            with::<N>(self.0, robot, dynamics)
+        }
+    }
     match robot_by_name(&job.robot) {
-        Some(AnyRobot::Jaco2(r)) => with::<6>(job, r.clone(), Some(r)),
-        Some(AnyRobot::Katana(r)) => with::<5>(job, r, None),
+        Some(robot) => robot.visit(Check(job)),
         None => Err((JobPart::Robot, format!("unknown robot \"{}\"", job.robot))),
     }
 }
@@ -198,10 +223,11 @@ fn run_with<const N: usize>(
     job: &Job,
     robot: Arc<dyn Robot<N>>,
     dynamics: Option<Arc<dyn Dynamics<N>>>,
-) -> Result<RunRecord, String> {
+) -> Result<RunRecord, RunError> {
     let theta0 = SVector::<f64, N>::from_column_slice(&job.theta0);
     let theta_ref = SVector::<f64, N>::from_column_slice(&job.theta_ref);
-    let (path, scheme) = build_parts::<N>(job, robot.clone(), dynamics).map_err(|(_, e)| e)?;
+    let (path, scheme) = build_parts::<N>(job, robot.clone(), dynamics)
+        .map_err(|(part, message)| RunError::Setup { part, message })?;
     let mut observer = Observer::new(
         robot.as_ref(),
         scheme.as_ref(),
@@ -217,6 +243,7 @@ fn run_with<const N: usize>(
             let mut y0 = vec![0.0; arm_dim::<N>(level)];
             y0[..N].copy_from_slice(theta0.as_slice());
             let mut probe = ExactLoop::new(scheme.as_ref());
+            let mut exact_failure = None;
             let result = integrate(&mut sys, &y0, 0.0, t1, &job.integrator, |t, y| {
                 let started = Instant::now();
                 let (theta, thetadot) = arm_state::<N>(level, y, y);
@@ -227,18 +254,31 @@ fn run_with<const N: usize>(
                             .divergence(y)
                             .map_or(Control::Continue, Control::Stop)
                     }
-                    Err(e) => Control::Stop(format!("exact QP at t = {t:.6}: {e}")),
+                    Err(e) => {
+                        let stop = Control::Stop(format!("exact QP at t = {t:.6}: {e}"));
+                        exact_failure.get_or_insert((t, e));
+                        stop
+                    }
                 };
                 observer.seconds += started.elapsed().as_secs_f64();
                 control
             });
             let mut solves = sys.stats();
             solves.add(&probe.stats());
-            finish(result, sys.failure.take(), &observer, solves)
+            finish(
+                result,
+                sys.failure.take().or(exact_failure),
+                &observer,
+                solves,
+            )
         }
         SolverChoice::Neural(spec) => {
-            let network =
-                solvers::neural::build_solver(spec, scheme.dims()).map_err(|e| e.to_string())?;
+            let network = solvers::neural::build_solver(spec, scheme.dims()).map_err(|e| {
+                RunError::Setup {
+                    part: JobPart::Solver,
+                    message: e.to_string(),
+                }
+            })?;
             let mut sys = NeuralLoop::new(scheme.as_ref(), network);
             let k = sys.net_offset();
             let mut y0 = vec![0.0; sys.dim()];
@@ -253,12 +293,16 @@ fn run_with<const N: usize>(
                 };
                 let x0 = scorer
                     .optimum(0.0, &theta0, &thetadot0)
-                    .map_err(|e| format!("network_init = \"exact\": the QP at t = 0: {e}"))?;
+                    .map_err(|error| RunError::ExactQp { t: 0.0, error })?;
                 y0[k..k + x0.len()].copy_from_slice(x0.as_slice());
             }
             // A second instance of the network, to read its own error at accepted states.
-            let mut probe =
-                solvers::neural::build_solver(spec, scheme.dims()).map_err(|e| e.to_string())?;
+            let mut probe = solvers::neural::build_solver(spec, scheme.dims()).map_err(|e| {
+                RunError::Setup {
+                    part: JobPart::Solver,
+                    message: e.to_string(),
+                }
+            })?;
             let mut failures = 0usize;
             let result = integrate(&mut sys, &y0, 0.0, t1, &job.integrator, |t, y| {
                 let started = Instant::now();
@@ -318,18 +362,23 @@ fn run_with<const N: usize>(
 
 fn finish<const N: usize>(
     result: Result<(Vec<f64>, OdeStats), OdeFailure>,
-    loop_failure: Option<String>,
+    exact_failure: Option<(f64, ExactError)>,
     observer: &Observer<'_, N>,
     qp: ExactPathStats,
 ) -> (Outcome, OdeStats, ExactPathStats) {
     match result {
         Ok((_, stats)) => (Outcome::Completed(observer.metrics.finish(0.0)), stats, qp),
         Err(OdeFailure { error, stats }) => {
-            // The last accepted step; a loop failure (the exact QP) names its own instant.
+            // The last accepted step; an exact-QP failure names its own instant. The observer
+            // stops a run only for divergence or an exact-QP failure.
             let t = observer.last_t;
-            let reason = loop_failure.unwrap_or_else(|| error.to_string());
+            let error = match (exact_failure, error) {
+                (Some((t, error)), _) => RunError::ExactQp { t, error },
+                (None, OdeError::Stopped { t, reason }) => RunError::Diverged { t, reason },
+                (None, e) => RunError::Integration(e),
+            };
             let partial = observer.has_samples().then(|| observer.metrics.finish(0.0));
-            (Outcome::Failed { t, reason, partial }, stats, qp)
+            (Outcome::Failed { t, error, partial }, stats, qp)
         }
     }
 }

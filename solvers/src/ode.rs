@@ -185,7 +185,7 @@ pub struct OdeStats {
 }
 
 /// Why an integration stopped early.
-#[derive(Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum OdeError {
     /// diffsol gave up (step size underflow, Newton failure, ...).
     Solver { t: f64, message: String },
@@ -197,6 +197,8 @@ pub enum OdeError {
     Stopped { t: f64, reason: String },
     /// The wall-time budget ran out.
     WallBudget { t: f64, seconds: f64 },
+    /// The right-hand-side evaluation budget ran out.
+    EvalBudget { t: f64, evals: usize },
 }
 
 impl std::fmt::Display for OdeError {
@@ -217,6 +219,11 @@ impl std::fmt::Display for OdeError {
                 f,
                 "wall-time budget of {seconds} s used up at t = {t:.6} (max_wall_s)"
             ),
+            OdeError::EvalBudget { t, evals } => write!(
+                f,
+                "stopped at t = {t:.6}: evaluation budget of {evals} right-hand-side evaluations \
+                 used up (max_rhs_evals)"
+            ),
         }
     }
 }
@@ -224,7 +231,7 @@ impl std::fmt::Display for OdeError {
 impl std::error::Error for OdeError {}
 
 /// A failed integration with the cost spent until it stopped.
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub struct OdeFailure {
     pub error: OdeError,
     pub stats: OdeStats,
@@ -418,11 +425,11 @@ pub fn integrate<S: OdeSystem>(
         let solver_err = |e| solver_error(t0, e);
         // The evaluation budget, checked at every accepted step.
         let max_evals = settings.max_rhs_evals;
+        let budget_hit = std::cell::Cell::new(false);
         let mut observe = |t: f64, y: &[f64]| {
             if counted.borrow().rhs_evals > max_evals {
-                return Control::Stop(format!(
-                    "evaluation budget of {max_evals} right-hand-side evaluations used up (max_rhs_evals)"
-                ));
+                budget_hit.set(true);
+                return Control::Stop(String::new());
             }
             observe(t, y)
         };
@@ -472,6 +479,10 @@ pub fn integrate<S: OdeSystem>(
         } = driven;
         steps_done = (steps, rejected);
         match error {
+            Some(OdeError::Stopped { t, .. }) if budget_hit.get() => Err(OdeError::EvalBudget {
+                t,
+                evals: max_evals,
+            }),
             Some(e) => Err(e),
             None => Ok(y),
         }

@@ -23,7 +23,7 @@ pub fn title(run: &RunRow) -> String {
     let mut title = format!("{}: {} / {}", run.experiment, run.variant, run.solver);
     if let Some(t) = run.failed_at {
         title.push_str(&format!(" (failed at t = {t:.3} s)"));
-    } else if run.status != "ok" {
+    } else if !run.completed() {
         title.push_str(&format!(" ({})", run.status));
     }
     title

@@ -169,7 +169,7 @@ pub fn jia2019(runs: &Runs) -> Vec<Claim> {
         check("jaco2-hand leaves joint 6 still", "MVN, exact: |θ6(T) − θ6(0)| on jaco2-hand at most 1e-3 x that on jaco2-pen (joint 6 cannot move a tool point on its axis)", || {
             let hand = runs.need("jia2019-clover", "MVN [jaco2-hand]", EXACT)?;
             let pen = runs.need("jia2019-clover", "MVN", EXACT)?;
-            let (h, p) = (value(hand, hand.drift_6, "θ6 drift")?.abs(), value(pen, pen.drift_6, "θ6 drift")?.abs());
+            let (h, p) = (value(hand, hand.drift.get(5).copied(), "θ6 drift")?.abs(), value(pen, pen.drift.get(5).copied(), "θ6 drift")?.abs());
             Ok((h <= 1e-3 * p, format!("|θ6 drift|: jaco2-hand {}, jaco2-pen {}", sci(h), sci(p))))
         }),
     ]

@@ -113,7 +113,7 @@ pub fn attribution_table(paper: &str, x: &Explanations, values: &[PaperValue]) -
             paper_norm,
             sci_opt(run.and_then(|r| r.drift_norm)),
             match matlab {
-                Some(r) if r.status == "ok" => sci_opt(r.drift_norm),
+                Some(r) if r.completed() => sci_opt(r.drift_norm),
                 Some(_) => "×".to_string(),
                 None => MISSING.to_string(),
             },
@@ -188,7 +188,7 @@ pub fn ladder_table(paper: &str, x: &Explanations) -> String {
             row.push(match r {
                 None => MISSING.to_string(),
                 Some(r) if r.reference => "ref".to_string(),
-                Some(r) if r.status != "ok" => "×".to_string(),
+                Some(r) if !r.completed() => "×".to_string(),
                 Some(r) => {
                     let d = r
                         .stable_digits
@@ -488,7 +488,7 @@ pub fn summary(paper: &str, x: &Explanations, values: &[PaperValue]) -> String {
             .find(|r| {
                 (r.experiment.as_str(), r.variant.as_str(), r.solver.as_str()) == *key
                     && is_matlab_default(r)
-                    && r.status == "ok"
+                    && r.completed()
             })
             .and_then(|r| r.drift_norm);
         if let (Some(run), Some(matlab)) = (run, matlab) {

@@ -207,6 +207,21 @@ fn check_gain(name: &str, symbol: &str, v: f64) -> Result<(), String> {
 }
 
 impl SolverSpec {
+    /// The network's kind as experiment files name it (`kind = "lvi-pdnn"`): its identity, where
+    /// [`SolverSpec::display_name`] is a label with its parameters.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            SolverSpec::LviPdnn { .. } => "lvi-pdnn",
+            SolverSpec::SLviPdnn { .. } => "s-lvi-pdnn",
+            SolverSpec::VpRnnPf { .. } => "vp-rnn-pf",
+            SolverSpec::FpCdnn { .. } => "fp-cdnn",
+            SolverSpec::VpCdnn { .. } => "vp-cdnn",
+            SolverSpec::FiniteTime { .. } => "finite-time",
+            SolverSpec::Znn { .. } => "znn",
+            SolverSpec::GroupZnn { .. } => "group-znn",
+        }
+    }
+
     /// The network's name as the papers write it, with the variant where it matters,
     /// e.g. `VP-RNN-PF (sinh)`, `FP-CDNN (perturbed)`.
     pub fn display_name(&self) -> String {

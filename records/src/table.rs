@@ -1,0 +1,340 @@
+//! CSV tables of rows, with per-joint columns that follow the robot's joint count.
+//!
+//! A row type ([`Row`]) is a serde struct; most fields are one column each. A type may also hold
+//! a per-joint vector (a run's drift theta(T) - theta(0), n entries for an n-joint arm), kept in
+//! the struct as a `Vec<f64>` (`#[serde(skip)]`) and written as the columns
+//! `<stem>_1 .. <stem>_K`, K the largest joint count among the file's rows, placed just before
+//! the column [`Row::JOINTS_BEFORE`]. A row of an arm with fewer joints leaves the rest empty; a
+//! row without the vector (a failed run) leaves them all empty. So a file of 5- and 6-joint runs
+//! has six drift columns, one with a 7-joint Panda seven, and nothing is ever fixed at six.
+//!
+//! Reading checks the header against the type's fields exactly (a missing or an unknown column
+//! is an old or a foreign file, never silently defaulted) and the per-joint columns for being
+//! numbered 1..K without gaps; any problem is a [`TableError`] naming the line.
+
+use serde::de::DeserializeOwned;
+use serde::Serialize;
+use std::path::Path;
+
+/// A row of a CSV table (see the module docs).
+pub trait Row: Serialize + DeserializeOwned {
+    /// Stem of the per-joint columns (`drift` -> `drift_1 ..`); `None`: the type has none.
+    const JOINTS: Option<&'static str> = None;
+    /// The column the per-joint columns are written before.
+    const JOINTS_BEFORE: &'static str = "";
+    /// The row's per-joint values (empty: none).
+    fn joints(&self) -> &[f64] {
+        &[]
+    }
+    /// Sets the per-joint values read from a file.
+    fn set_joints(&mut self, _values: Vec<f64>) {}
+}
+
+/// A problem reading a table: where and what.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{}{}{what}", .path.as_ref().map(|p| format!("{}: ", p.display())).unwrap_or_default(), if *.line > 0 { format!("line {}: ", .line) } else { String::new() })]
+pub struct TableError {
+    /// The file, when read from one.
+    pub path: Option<std::path::PathBuf>,
+    /// 1-based line (the header is line 1; 0: the file as a whole).
+    pub line: u64,
+    pub what: String,
+}
+
+/// The serde field names of `T`, in order (the fixed columns).
+pub fn fields<T: DeserializeOwned>() -> &'static [&'static str] {
+    use serde::de::{self, Visitor};
+    struct Grab<'a>(&'a mut &'static [&'static str]);
+    impl<'de> de::Deserializer<'de> for Grab<'_> {
+        type Error = de::value::Error;
+        fn deserialize_any<V: Visitor<'de>>(self, _: V) -> Result<V::Value, Self::Error> {
+            Err(de::Error::custom("not a struct"))
+        }
+        fn deserialize_struct<V: Visitor<'de>>(
+            self,
+            _: &'static str,
+            fields: &'static [&'static str],
+            _: V,
+        ) -> Result<V::Value, Self::Error> {
+            *self.0 = fields;
+            Err(de::Error::custom("fields taken"))
+        }
+        serde::forward_to_deserialize_any! {
+            bool i8 i16 i32 i64 i128 u8 u16 u32 u64 u128 f32 f64 char str string bytes byte_buf
+            option unit unit_struct newtype_struct seq tuple tuple_struct map enum identifier
+            ignored_any
+        }
+    }
+    let mut fields: &'static [&'static str] = &[];
+    let _ = T::deserialize(Grab(&mut fields));
+    fields
+}
+
+/// The header of a table of `T` whose rows have at most `k` per-joint values.
+pub fn header<T: Row>(k: usize) -> Vec<String> {
+    let mut out = Vec::new();
+    for f in fields::<T>() {
+        if let Some(stem) = T::JOINTS.filter(|_| *f == T::JOINTS_BEFORE) {
+            out.extend((1..=k).map(|i| format!("{stem}_{i}")));
+        }
+        out.push(f.to_string());
+    }
+    out
+}
+
+/// The rows as CSV bytes (header first; a header even without rows), with as many per-joint
+/// columns as the longest per-joint vector.
+pub fn to_csv<T: Row>(rows: &[T]) -> Result<Vec<u8>, csv::Error> {
+    let k = rows.iter().map(|r| r.joints().len()).max().unwrap_or(0);
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record(header::<T>(k))?;
+    for r in rows {
+        w.write_record(record(r, k)?)?;
+    }
+    w.into_inner().map_err(|e| csv::Error::from(e.into_error()))
+}
+
+/// The cells of one row in a table with `k` per-joint columns (`k` at least the row's count).
+pub fn record<T: Row>(row: &T, k: usize) -> Result<Vec<String>, csv::Error> {
+    // The fixed columns through serde, then the per-joint cells spliced in.
+    let mut w = csv::WriterBuilder::new()
+        .has_headers(false)
+        .from_writer(Vec::new());
+    w.serialize(row)?;
+    let bytes = w
+        .into_inner()
+        .map_err(|e| csv::Error::from(e.into_error()))?;
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .from_reader(bytes.as_slice());
+    let fixed = reader.records().next().transpose()?.unwrap_or_default();
+    let mut cells: Vec<String> = fixed.iter().map(String::from).collect();
+    if T::JOINTS.is_some() {
+        if let Some(at) = fields::<T>().iter().position(|f| *f == T::JOINTS_BEFORE) {
+            let mut joints: Vec<String> = row.joints().iter().map(|v| format_f64(*v)).collect();
+            joints.resize(k.max(joints.len()), String::new());
+            cells.splice(at..at, joints);
+        }
+    }
+    Ok(cells)
+}
+
+/// A float as the csv crate's serde writer writes it (shortest round-trip form), so per-joint
+/// cells look like every other number of the file.
+fn format_f64(v: f64) -> String {
+    let mut w = csv::WriterBuilder::new()
+        .has_headers(false)
+        .from_writer(Vec::new());
+    w.serialize(v).expect("a float serialises");
+    let bytes = w.into_inner().expect("in-memory writer");
+    String::from_utf8(bytes)
+        .expect("ASCII")
+        .trim_end()
+        .to_string()
+}
+
+/// Reads a table of `T` from CSV text; see the module docs for what is checked.
+pub fn from_reader<T: Row, R: std::io::Read>(input: R) -> Result<Vec<T>, TableError> {
+    let err = |line: u64, what: String| TableError {
+        path: None,
+        line,
+        what,
+    };
+    let mut r = csv::Reader::from_reader(input);
+    let header = r
+        .headers()
+        .map_err(|e| err(e.position().map_or(1, |p| p.line()), e.to_string()))?
+        .clone();
+    if header.is_empty() || (header.len() == 1 && header[0].is_empty()) {
+        return Ok(Vec::new());
+    }
+    // Per-joint columns: `<stem>_<k>`, numbered 1..K in order.
+    let joint_index = |h: &str| -> Option<usize> {
+        let stem = T::JOINTS?;
+        h.strip_prefix(stem)?
+            .strip_prefix('_')?
+            .parse::<usize>()
+            .ok()
+    };
+    let joint_cols: Vec<usize> = (0..header.len())
+        .filter(|&i| joint_index(&header[i]).is_some())
+        .collect();
+    for (k, &i) in joint_cols.iter().enumerate() {
+        if joint_index(&header[i]) != Some(k + 1) {
+            return Err(err(
+                1,
+                format!(
+                    "per-joint column {} out of order (expected {}_{})",
+                    &header[i],
+                    T::JOINTS.unwrap_or_default(),
+                    k + 1
+                ),
+            ));
+        }
+    }
+    let fixed_header: csv::StringRecord = header
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| !joint_cols.contains(i))
+        .map(|(_, h)| h)
+        .collect();
+    let expected = fields::<T>();
+    let missing: Vec<&str> = expected
+        .iter()
+        .copied()
+        .filter(|c| !fixed_header.iter().any(|h| h == *c))
+        .collect();
+    let unknown: Vec<&str> = fixed_header
+        .iter()
+        .filter(|h| !expected.contains(h))
+        .collect();
+    if !missing.is_empty() || !unknown.is_empty() {
+        let mut what =
+            vec!["the header is not this version's schema (an old or a foreign file)".to_string()];
+        if !missing.is_empty() {
+            what.push(format!("missing columns: {}", missing.join(", ")));
+        }
+        if !unknown.is_empty() {
+            what.push(format!("unknown columns: {}", unknown.join(", ")));
+        }
+        return Err(err(1, what.join("; ")));
+    }
+    let mut rows = Vec::new();
+    for (i, record) in r.records().enumerate() {
+        let fallback = i as u64 + 2;
+        let record = record.map_err(|e| {
+            err(
+                e.position().map_or(fallback, |p| p.line()),
+                format!("row does not parse: {e}"),
+            )
+        })?;
+        let line = record.position().map_or(fallback, |p| p.line());
+        let fixed: csv::StringRecord = record
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| !joint_cols.contains(i))
+            .map(|(_, c)| c)
+            .collect();
+        let mut row: T = fixed.deserialize(Some(&fixed_header)).map_err(|e| {
+            let what = match e.kind() {
+                csv::ErrorKind::Deserialize { err, .. } => format!("row does not parse: {err}"),
+                _ => format!("row does not parse: {e}"),
+            };
+            err(line, what)
+        })?;
+        let cells: Vec<&str> = joint_cols.iter().map(|&i| &record[i]).collect();
+        let n = cells
+            .iter()
+            .rposition(|c| !c.is_empty())
+            .map_or(0, |p| p + 1);
+        let values = cells[..n]
+            .iter()
+            .enumerate()
+            .map(|(k, c)| {
+                c.parse::<f64>().map_err(|_| {
+                    err(
+                        line,
+                        format!(
+                            "row does not parse: {}_{} = {c:?} is not a number (per-joint \
+                             columns are filled from joint 1 without gaps)",
+                            T::JOINTS.unwrap_or_default(),
+                            k + 1
+                        ),
+                    )
+                })
+            })
+            .collect::<Result<Vec<f64>, _>>()?;
+        row.set_joints(values);
+        rows.push(row);
+    }
+    Ok(rows)
+}
+
+/// Reads a table of `T` from `path` (errors name it).
+pub fn read<T: Row>(path: &Path) -> Result<Vec<T>, TableError> {
+    let file = std::fs::File::open(path).map_err(|e| TableError {
+        path: Some(path.to_path_buf()),
+        line: 0,
+        what: format!("cannot read: {e}"),
+    })?;
+    from_reader(std::io::BufReader::new(file)).map_err(|e| TableError {
+        path: Some(path.to_path_buf()),
+        ..e
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde::Deserialize;
+
+    #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+    struct R {
+        name: String,
+        #[serde(skip)]
+        drift: Vec<f64>,
+        norm: Option<f64>,
+    }
+
+    impl Row for R {
+        const JOINTS: Option<&'static str> = Some("drift");
+        const JOINTS_BEFORE: &'static str = "norm";
+        fn joints(&self) -> &[f64] {
+            &self.drift
+        }
+        fn set_joints(&mut self, values: Vec<f64>) {
+            self.drift = values;
+        }
+    }
+
+    fn r(name: &str, drift: &[f64]) -> R {
+        R {
+            name: name.into(),
+            drift: drift.to_vec(),
+            norm: (!drift.is_empty()).then_some(1.5),
+        }
+    }
+
+    #[test]
+    fn per_joint_columns_follow_the_largest_joint_count_and_round_trip() {
+        let rows = vec![
+            r("five", &[1.0, -2.0, 3.0, 4.0, 0.1]),
+            r("seven", &[1e-300, 2.0, 3.0, 4.0, 5.0, 6.0, -7.25]),
+            r("failed", &[]),
+        ];
+        let bytes = to_csv(&rows).unwrap();
+        let text = String::from_utf8(bytes.clone()).unwrap();
+        assert!(
+            text.starts_with("name,drift_1,drift_2,drift_3,drift_4,drift_5,drift_6,drift_7,norm\n"),
+            "{text}"
+        );
+        assert!(
+            text.contains("\nfive,1.0,-2.0,3.0,4.0,0.1,,,1.5\n"),
+            "{text}"
+        );
+        assert!(text.contains("\nfailed,,,,,,,,\n"), "{text}");
+        assert_eq!(from_reader::<R, _>(bytes.as_slice()).unwrap(), rows);
+        // No rows with joints: no per-joint columns.
+        let text = String::from_utf8(to_csv(&[r("failed", &[])]).unwrap()).unwrap();
+        assert!(text.starts_with("name,norm\n"), "{text}");
+    }
+
+    #[test]
+    fn bad_headers_and_cells_are_errors_naming_the_line() {
+        let e = from_reader::<R, _>("name,drift_2,norm\nx,1,2\n".as_bytes()).unwrap_err();
+        assert!(
+            e.to_string().contains("line 1") && e.what.contains("drift_2 out of order"),
+            "{e}"
+        );
+        let e = from_reader::<R, _>("name,norm,extra\nx,1,2\n".as_bytes()).unwrap_err();
+        assert!(e.what.contains("unknown columns: extra"), "{e}");
+        let e = from_reader::<R, _>("name\nx\n".as_bytes()).unwrap_err();
+        assert!(e.what.contains("missing columns: norm"), "{e}");
+        let e = from_reader::<R, _>("name,drift_1,drift_2,norm\nx,1,2,3\ny,,2,3\n".as_bytes())
+            .unwrap_err();
+        assert_eq!(e.line, 3, "{e}");
+        assert!(e.what.contains("drift_1"), "{e}");
+        let e = from_reader::<R, _>("name,drift_1,norm\nx,1,abc\n".as_bytes()).unwrap_err();
+        assert_eq!(e.line, 2, "{e}");
+    }
+}
