@@ -1,5 +1,7 @@
 //! The figure generator on a small synthetic results directory: file names, well-formed SVG with
-//! the titles, panels by level, failed runs, determinism, and errors that name the bad file.
+//! the titles, a PNG beside every SVG, panels by level, failed runs, determinism, and errors that
+//! name the bad file; and the committed figures: a PNG beside every SVG, and the SVGs are those
+//! the committed results give.
 
 use presentation::figures::render_all;
 use records::runs::{runs_csv, write_atomic, RunRow, Status};
@@ -158,6 +160,43 @@ fn read(path: &Path) -> String {
     std::fs::read_to_string(path).unwrap()
 }
 
+/// The width and height in a PNG's header, read from the bytes: the eight-byte PNG signature,
+/// then the IHDR chunk (length 13, type, width, height); `None` if `bytes` do not start so.
+fn png_size(bytes: &[u8]) -> Option<(u32, u32)> {
+    const SIGNATURE: [u8; 8] = [0x89, b'P', b'N', b'G', b'\r', b'\n', 0x1a, b'\n'];
+    let be = |at: usize| -> Option<u32> {
+        Some(u32::from_be_bytes(bytes.get(at..at + 4)?.try_into().ok()?))
+    };
+    if bytes.get(..8)? != SIGNATURE || be(8)? != 13 || bytes.get(12..16)? != b"IHDR" {
+        return None;
+    }
+    Some((be(16)?, be(20)?))
+}
+
+/// Decodes a whole PNG (every chunk, every row) and returns its size and its pixels' distinct
+/// byte values (a blank image has one).
+fn decode_png(bytes: &[u8]) -> Result<((u32, u32), usize), String> {
+    let mut reader = png::Decoder::new(bytes)
+        .read_info()
+        .map_err(|e| e.to_string())?;
+    let mut pixels = vec![0; reader.output_buffer_size()];
+    let frame = reader.next_frame(&mut pixels).map_err(|e| e.to_string())?;
+    let distinct: std::collections::BTreeSet<u8> =
+        pixels[..frame.buffer_size()].iter().copied().collect();
+    Ok(((frame.width, frame.height), distinct.len()))
+}
+
+/// The file names in `dir` ending in `.extension`, without it, sorted.
+fn stems(dir: &Path, extension: &str) -> Vec<String> {
+    let mut stems: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|entry| entry.unwrap().file_name().to_string_lossy().into_owned())
+        .filter_map(|name| Some(name.strip_suffix(&format!(".{extension}"))?.to_string()))
+        .collect();
+    stems.sort();
+    stems
+}
+
 #[test]
 fn writes_one_figure_per_run_and_one_overview_per_experiment() {
     let root = scratch("names");
@@ -205,7 +244,13 @@ fn writes_one_figure_per_run_and_one_overview_per_experiment() {
             "{} draws no line",
             path.display()
         );
+        let png = std::fs::read(path.with_extension("png")).unwrap();
+        assert_eq!(png_size(&png), Some((1200, 900)), "{}", path.display());
+        let (size, distinct) = decode_png(&png).unwrap();
+        assert_eq!(size, (1200, 900));
+        assert!(distinct > 2, "{} has a blank PNG", path.display());
     }
+    assert_eq!(stems(&dir, "svg"), stems(&dir, "png"));
     std::fs::remove_dir_all(&root).unwrap();
 }
 
@@ -327,17 +372,26 @@ fn rendering_twice_gives_identical_bytes_and_removes_stale_figures() {
     synthetic_results(&root);
     let stale = root.join("report/figures/exp-old__gone__solver.svg");
     write_atomic(&stale, b"<svg></svg>").unwrap();
-    let first: Vec<Vec<u8>> = render_all(&root)
-        .unwrap()
-        .iter()
-        .map(|p| std::fs::read(p).unwrap())
-        .collect();
+    let stale_png = stale.with_extension("png");
+    write_atomic(&stale_png, b"\x89PNG").unwrap();
+    let mine = root.join("report/figures/notes.png");
+    write_atomic(&mine, b"not a figure").unwrap();
+    let bytes = |svgs: Vec<PathBuf>| -> Vec<(Vec<u8>, Vec<u8>)> {
+        svgs.iter()
+            .map(|p| {
+                let png = std::fs::read(p.with_extension("png")).unwrap();
+                (std::fs::read(p).unwrap(), png)
+            })
+            .collect()
+    };
+    let first = bytes(render_all(&root).unwrap());
     assert!(!stale.exists(), "a figure of a run that is gone was kept");
-    let second: Vec<Vec<u8>> = render_all(&root)
-        .unwrap()
-        .iter()
-        .map(|p| std::fs::read(p).unwrap())
-        .collect();
+    assert!(
+        !stale_png.exists(),
+        "the PNG of a run that is gone was kept"
+    );
+    assert!(mine.exists(), "a file not named as a figure was deleted");
+    let second = bytes(render_all(&root).unwrap());
     assert_eq!(first, second);
     std::fs::remove_dir_all(&root).unwrap();
 }
@@ -368,14 +422,86 @@ fn a_malformed_trace_is_an_error_naming_the_file() {
     std::fs::remove_dir_all(&root).unwrap();
 }
 
-/// Regenerates `report/figures/` from the committed results (run with `--ignored`).
+/// Every committed SVG figure has its PNG (same stem) and every PNG its SVG; every PNG starts
+/// with the PNG signature and a header of non-zero size, and decodes.
 #[test]
-#[ignore = "rewrites report/figures/ from the committed results"]
-fn render_the_committed_results() {
-    let root = simulation::root::from_current_dir().unwrap();
-    let runs = records::runs::read_runs(&root.join("results/runs.csv")).unwrap();
-    let experiments: std::collections::BTreeSet<&str> =
-        runs.iter().map(|r| r.experiment.as_str()).collect();
-    let written = render_all(&root).unwrap();
-    assert_eq!(written.len(), runs.len() + experiments.len());
+fn every_committed_figure_has_its_png() {
+    let dir = simulation::root::from_current_dir()
+        .unwrap()
+        .join("report/figures");
+    let (svgs, pngs) = (stems(&dir, "svg"), stems(&dir, "png"));
+    assert!(!svgs.is_empty(), "no figure in {}", dir.display());
+    let lacking = |of: &[String], in_: &[String]| -> Vec<String> {
+        of.iter().filter(|s| !in_.contains(s)).cloned().collect()
+    };
+    let regenerate = "regenerate with `cargo run --release -p reproduce -- --report-only`";
+    assert_eq!(
+        lacking(&svgs, &pngs),
+        Vec::<String>::new(),
+        "SVGs without a PNG: {regenerate}"
+    );
+    assert_eq!(
+        lacking(&pngs, &svgs),
+        Vec::<String>::new(),
+        "PNGs without an SVG: {regenerate}"
+    );
+    for stem in &pngs {
+        let bytes = std::fs::read(dir.join(format!("{stem}.png"))).unwrap();
+        let size = png_size(&bytes).unwrap_or_else(|| panic!("{stem}.png is not a PNG"));
+        assert!(size.0 > 0 && size.1 > 0, "{stem}.png is {size:?}");
+        assert_eq!(decode_png(&bytes).map(|d| d.0), Ok(size), "{stem}.png");
+    }
+}
+
+/// Copies the files of `from` into `to`, folders included.
+fn copy_tree(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for entry in std::fs::read_dir(from).unwrap() {
+        let entry = entry.unwrap();
+        let target = to.join(entry.file_name());
+        if entry.file_type().unwrap().is_dir() {
+            copy_tree(&entry.path(), &target);
+        } else {
+            std::fs::copy(entry.path(), target).unwrap();
+        }
+    }
+}
+
+/// The committed SVG figures are byte for byte those the committed results give: rendered from
+/// a copy of `results/` in a scratch directory, so nothing in the repository is written.
+#[test]
+fn the_committed_figures_are_those_the_committed_results_give() {
+    let committed = simulation::root::from_current_dir().unwrap();
+    let root = scratch("committed");
+    std::fs::create_dir_all(root.join("results")).unwrap();
+    for file in ["runs.csv", "inference.csv"] {
+        std::fs::copy(
+            committed.join("results").join(file),
+            root.join("results").join(file),
+        )
+        .unwrap();
+    }
+    copy_tree(
+        &committed.join("results/traces"),
+        &root.join("results/traces"),
+    );
+    render_all(&root).unwrap();
+    let (ours, theirs) = (
+        root.join("report/figures"),
+        committed.join("report/figures"),
+    );
+    let regenerate = "regenerate with `cargo run --release -p reproduce -- --report-only`";
+    assert_eq!(
+        stems(&ours, "svg"),
+        stems(&theirs, "svg"),
+        "the committed figures are not those of the committed results: {regenerate}"
+    );
+    for stem in stems(&ours, "svg") {
+        let name = format!("{stem}.svg");
+        assert!(
+            std::fs::read(ours.join(&name)).unwrap() == std::fs::read(theirs.join(&name)).unwrap(),
+            "report/figures/{name} is stale: {regenerate}"
+        );
+    }
+    std::fs::remove_dir_all(&root).unwrap();
 }

@@ -1,12 +1,17 @@
-//! The report generator: renders from the committed results, is byte-stable, evaluates
-//! claims from the numbers (a changed number flips a verdict), and maps every published
-//! number that has a mapping onto an existing run.
+//! The report generator: renders from the committed results, the committed report is the one
+//! they give (rendered into a scratch directory, never over the committed file), is byte-stable,
+//! evaluates claims from the numbers (a changed number flips a verdict), and maps every
+//! published number that has a mapping onto an existing run.
 
 use presentation::report::claims::{self, Verdict};
 use presentation::report::{render, to_markdown, Inputs, PAPERS};
 use records::index::Runs;
 use records::paper_values::{mapping_of, read_paper_values, resolve, Resolution};
 use records::runs::{read_runs, RunRow, Status};
+use std::path::{Path, PathBuf};
+
+/// How to bring a stale committed report or figure up to date.
+const REGENERATE: &str = "regenerate with `cargo run --release -p reproduce -- --report-only`";
 
 fn committed() -> Inputs {
     Inputs::load(&simulation::root::from_current_dir().unwrap()).expect("committed inputs load")
@@ -15,8 +20,7 @@ fn committed() -> Inputs {
 #[test]
 fn renders_every_paper_and_experiment_from_the_committed_results() {
     let root = simulation::root::from_current_dir().unwrap();
-    let path = render(&root).expect("report renders");
-    let md = std::fs::read_to_string(&path).unwrap();
+    let md = to_markdown(&committed());
     for (paper, _) in PAPERS {
         assert!(
             md.contains(&format!("\n## {paper}\n")),
@@ -46,13 +50,68 @@ fn renders_every_paper_and_experiment_from_the_committed_results() {
     );
 }
 
+/// A scratch project root holding copies of what the report is rendered from: the files directly
+/// in `results/` and in `report/` (but `REPORT.md`), and in `report/figures/` an empty file of
+/// each SVG's name (the report lists the names only).
+fn scratch_copy_of_the_inputs(committed: &Path) -> PathBuf {
+    let root = std::env::temp_dir().join(format!("driftbench-report-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&root);
+    for dir in ["results", "report"] {
+        std::fs::create_dir_all(root.join(dir)).unwrap();
+        for entry in std::fs::read_dir(committed.join(dir)).unwrap() {
+            let entry = entry.unwrap();
+            if entry.file_type().unwrap().is_file() && entry.file_name() != "REPORT.md" {
+                std::fs::copy(entry.path(), root.join(dir).join(entry.file_name())).unwrap();
+            }
+        }
+    }
+    std::fs::create_dir_all(root.join("report/figures")).unwrap();
+    for entry in std::fs::read_dir(committed.join("report/figures")).unwrap() {
+        let name = entry.unwrap().file_name();
+        if name.to_string_lossy().ends_with(".svg") {
+            std::fs::write(root.join("report/figures").join(name), "").unwrap();
+        }
+    }
+    root
+}
+
+/// The committed `report/REPORT.md` is byte for byte the report the committed results give:
+/// rendered into a scratch directory, so a stale committed report fails (the test never writes
+/// the committed file).
+#[test]
+fn the_committed_report_is_the_one_the_committed_results_give() {
+    let committed_root = simulation::root::from_current_dir().unwrap();
+    let committed = std::fs::read_to_string(committed_root.join("report/REPORT.md"))
+        .expect("report/REPORT.md is committed");
+    let scratch = scratch_copy_of_the_inputs(&committed_root);
+    let path = render(&scratch).expect("report renders");
+    assert!(
+        path.starts_with(&scratch),
+        "rendered outside the scratch root"
+    );
+    let rendered = std::fs::read_to_string(&path).unwrap();
+    std::fs::remove_dir_all(&scratch).unwrap();
+    if rendered != committed {
+        let line = rendered
+            .lines()
+            .zip(committed.lines())
+            .position(|(a, b)| a != b)
+            .unwrap_or(rendered.lines().count().min(committed.lines().count()));
+        panic!(
+            "report/REPORT.md is stale: it differs from the report the committed results give \
+             from line {} on\n  committed: {:?}\n  rendered:  {:?}\n{REGENERATE}",
+            line + 1,
+            committed.lines().nth(line).unwrap_or("(end of file)"),
+            rendered.lines().nth(line).unwrap_or("(end of file)"),
+        );
+    }
+}
+
 #[test]
 fn rendering_twice_gives_identical_bytes() {
-    let root = simulation::root::from_current_dir().unwrap();
-    let first = std::fs::read(render(&root).unwrap()).unwrap();
-    let second = std::fs::read(render(&root).unwrap()).unwrap();
+    let first = to_markdown(&committed());
+    let second = to_markdown(&committed());
     assert_eq!(first, second);
-    assert_eq!(to_markdown(&committed()).as_bytes(), &first[..]);
 }
 
 #[test]
@@ -246,8 +305,7 @@ fn verdicts_do_not_depend_on_timing() {
 /// section, from the committed ladder, attribution and inference results.
 #[test]
 fn the_report_explains_every_paper_with_a_table() {
-    use presentation::report::{to_markdown, Inputs};
-    let md = to_markdown(&Inputs::load(&simulation::root::from_current_dir().unwrap()).unwrap());
+    let md = to_markdown(&committed());
     for paper in ["jia2019", "zhong2021", "kong2019", "zhang2018"] {
         let start = md.find(&format!("\n## {paper}\n")).expect("paper section");
         let end = md[start + 1..]

@@ -30,7 +30,11 @@ pub enum Arrangement {
 /// Draws `entries` into `area`; a label's further lines (after `\n`) go on rows of their own
 /// under its first, and the next entry starts on a new row. Entries past the bottom of the
 /// area are left out.
-pub fn draw(area: &Area, entries: &[Entry], arrangement: Arrangement) -> Result<(), String> {
+pub fn draw<DB: DrawingBackend>(
+    area: &Area<DB>,
+    entries: &[Entry],
+    arrangement: Arrangement,
+) -> Result<(), String> {
     let px = |v: u32| i32::try_from(v).unwrap_or(i32::MAX);
     let (width, height) = area.dim_in_pixel();
     let (width, height) = (px(width), px(height));

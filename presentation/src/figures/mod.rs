@@ -1,7 +1,9 @@
-//! The report's figures, drawn from the committed results as SVG (plotters, no font files).
+//! The report's figures, drawn from the committed results as SVG and, beside each SVG, as a PNG
+//! of the same drawing (plotters; the PNG's text in the embedded DejaVu Sans, so no system font
+//! is read), for viewers that do not render SVG.
 //!
 //! [`render_all`] reads `results/runs.csv` and every run's trace in `results/traces/` and writes
-//! into `report/figures/`:
+//! into `report/figures/` (each name below also as `.png`):
 //!
 //! - `<experiment>__<variant-slug>__<solver-slug>.svg`, one per run: (a) the desired and actual
 //!   end-effector path in the x-y plane over the arm's motion (its skeleton at a dozen instants
@@ -15,8 +17,10 @@
 //! - `inference-<paper>-<table>__profiles.svg`, one per table of `results/inference.csv`: the
 //!   setup inference's profiles ([`profile`]).
 //!
-//! The output is a function of the inputs only (no timestamps, sorted inputs, integer pixel
-//! coordinates), so unchanged results give byte-identical figures.
+//! Each figure is drawn once against a generic plotters backend ([`layout::Body`]) and emitted
+//! both ways; figures are drawn in parallel. The output is a function of the inputs only (no
+//! timestamps, sorted inputs, integer pixel coordinates), so unchanged results give
+//! byte-identical figures.
 
 mod arm;
 mod layout;
@@ -29,6 +33,9 @@ mod scale;
 mod style;
 mod trace;
 
+use explain::inference::InferenceRow;
+use layout::Rendered;
+use rayon::prelude::*;
 use records::runs::{read_runs, write_atomic, RunRow};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -39,15 +46,40 @@ fn run_stem(run: &RunRow) -> String {
     simulation::naming::run_stem(&run.variant, &run.solver)
 }
 
-/// Whether `name` follows this module's naming scheme (`<experiment>__<...>.svg`), i.e. is a
-/// figure that [`render_all`] owns and may replace or delete.
-fn is_figure_name(name: &str) -> bool {
-    name.ends_with(".svg") && name.contains("__")
+/// The SVG name of the figure that file `name` belongs to, if `name` follows this module's
+/// naming scheme (`<experiment>__<...>.svg` or its `.png`), i.e. is a file that [`render_all`]
+/// owns and may replace or delete.
+fn figure_of(name: &str) -> Option<String> {
+    if !name.contains("__") {
+        return None;
+    }
+    let stem = name
+        .strip_suffix(".svg")
+        .or_else(|| name.strip_suffix(".png"))?;
+    Some(format!("{stem}.svg"))
 }
 
-/// Renders every figure of the results under `root` into `root/report/figures/` and returns
-/// the written paths, sorted. Figures in that directory that no longer correspond to a run or
-/// an experiment are deleted. Fails, naming the file, on an unreadable `runs.csv`, a missing or
+/// One figure to draw, by kind, with what it is drawn from.
+enum Job<'a> {
+    Run(&'a RunRow, &'a Trace),
+    Overview(&'a str, Vec<(&'a RunRow, &'a Trace)>),
+    Profiles(&'a str, &'a str, Vec<&'a InferenceRow>),
+}
+
+impl Job<'_> {
+    /// The figure as SVG and PNG.
+    fn render(&self) -> Result<Rendered, String> {
+        match self {
+            Job::Run(run, trace) => run_figure::figure(run, trace).render(),
+            Job::Overview(experiment, members) => overview::figure(experiment, members).render(),
+            Job::Profiles(paper, table, rows) => profile::figure(paper, table, rows).render(),
+        }
+    }
+}
+
+/// Renders every figure of the results under `root` into `root/report/figures/`, each as an SVG
+/// and a PNG with the same stem, and returns the SVGs' paths, sorted. Figures (SVG or PNG) in
+/// that directory that no longer correspond to a run or an experiment are deleted. Fails, naming the file, on an unreadable `runs.csv`, a missing or
 /// malformed trace, or two runs whose names give the same file name.
 pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, String> {
     let mut runs = read_runs(&root.join("results").join("runs.csv"))?;
@@ -64,8 +96,8 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, String> {
         })
         .collect::<Result<Vec<_>, _>>()?;
 
-    let mut figures: BTreeMap<String, String> = BTreeMap::new();
-    let mut add = |name: String, svg: String| match figures.insert(name.clone(), svg) {
+    let mut jobs: BTreeMap<String, Job> = BTreeMap::new();
+    let mut add = |name: String, job| match jobs.insert(name.clone(), job) {
         None => Ok(()),
         Some(_) => Err(format!(
             "two figures would be written to {name}: rename a variant or a solver"
@@ -75,21 +107,21 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, String> {
     for (run, trace) in runs.iter().zip(&traces) {
         add(
             format!("{}__{}.svg", run.experiment, run_stem(run)),
-            run_figure::render(run, trace)?,
+            Job::Run(run, trace),
         )?;
         by_experiment
             .entry(&run.experiment)
             .or_default()
             .push((run, trace));
     }
-    for (experiment, members) in &by_experiment {
+    for (experiment, members) in by_experiment {
         add(
             format!("{experiment}__overview.svg"),
-            overview::render(experiment, members)?,
+            Job::Overview(experiment, members),
         )?;
     }
 
-    let inference: Vec<explain::inference::InferenceRow> =
+    let inference: Vec<InferenceRow> =
         explain::read_csv(&root.join("results").join("inference.csv"))?;
     let mut tables: Vec<(&str, &str)> = inference
         .iter()
@@ -104,10 +136,19 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, String> {
         if rows.iter().any(|r| r.kind.starts_with("profile: ")) {
             add(
                 profile::file_name(paper, table),
-                profile::render(paper, table, &rows)?,
+                Job::Profiles(paper, table, rows),
             )?;
         }
     }
+
+    let figures: BTreeMap<String, Rendered> = jobs
+        .into_par_iter()
+        .map(|(name, job)| {
+            job.render()
+                .map(|figure| (name.clone(), figure))
+                .map_err(|e| format!("{name}: {e}"))
+        })
+        .collect::<Result<_, _>>()?;
 
     let out_dir = root.join("report").join("figures");
     std::fs::create_dir_all(&out_dir).map_err(|e| format!("{}: {e}", out_dir.display()))?;
@@ -120,16 +161,20 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, String> {
             .file_name()
             .and_then(|n| n.to_str())
             .unwrap_or_default();
-        if is_figure_name(name) && !figures.contains_key(name) {
+        if figure_of(name).is_some_and(|svg| !figures.contains_key(&svg)) {
             std::fs::remove_file(&path).map_err(|e| format!("{}: {e}", path.display()))?;
         }
     }
+    let write = |path: &Path, bytes: &[u8]| {
+        write_atomic(path, bytes).map_err(|e| format!("{}: {e}", path.display()))
+    };
     figures
         .into_iter()
-        .map(|(name, svg)| {
-            let path = out_dir.join(name);
-            write_atomic(&path, svg.as_bytes()).map_err(|e| format!("{}: {e}", path.display()))?;
-            Ok(path)
+        .map(|(name, figure)| {
+            let svg = out_dir.join(name);
+            write(&svg, figure.svg.as_bytes())?;
+            write(&svg.with_extension("png"), &figure.png)?;
+            Ok(svg)
         })
         .collect()
 }

@@ -1,7 +1,7 @@
 //! The overview of one experiment: every run's position error over time on one log-scale plot
 //! and, where neural runs exist, their distance to the exact optimum |x_nn - x*| over time.
 
-use super::layout::{figure, Area};
+use super::layout::{Area, Body, Figure};
 use super::legend::{self, Arrangement, Entry};
 use super::panels::{Series, TimePanel, YAxis};
 use super::style::{colour, LEGEND_LINE_WIDTH};
@@ -20,8 +20,32 @@ fn label(run: &RunRow) -> String {
     }
 }
 
-/// The experiment's SVG; `runs` all belong to `experiment`, run k is drawn in colour k.
-pub fn render(experiment: &str, runs: &[(&RunRow, &Trace)]) -> Result<String, String> {
+/// What an overview draws under its title: the plots on the left, the legend column on the
+/// right.
+pub struct OverviewBody {
+    entries: Vec<Entry>,
+    errors: TimePanel,
+    scores: Option<TimePanel>,
+}
+
+impl Body for OverviewBody {
+    fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), String> {
+        let (width, _) = area.dim_in_pixel();
+        let (plots, legend_area) = area.split_horizontally(width.saturating_sub(LEGEND_WIDTH));
+        legend::draw(&legend_area, &self.entries, Arrangement::Column)?;
+        match &self.scores {
+            Some(scores) => {
+                let (top, bottom) = plots.split_vertically(plots.dim_in_pixel().1 / 2);
+                self.errors.draw(&top)?;
+                scores.draw(&bottom)
+            }
+            None => self.errors.draw(&plots),
+        }
+    }
+}
+
+/// The experiment's figure; `runs` all belong to `experiment`, run k is drawn in colour k.
+pub fn figure(experiment: &str, runs: &[(&RunRow, &Trace)]) -> Figure<OverviewBody> {
     let t_end = runs.iter().map(|(run, _)| run.duration).fold(0.0, f64::max);
     let errors = TimePanel {
         caption: "(a) position error |r* - f(theta)| of every run".to_string(),
@@ -70,20 +94,12 @@ pub fn render(experiment: &str, runs: &[(&RunRow, &Trace)]) -> Result<String, St
         })
         .collect();
 
-    figure(
-        &format!("{experiment}: overview of {} runs", runs.len()),
-        |area: &Area| {
-            let (width, _) = area.dim_in_pixel();
-            let (plots, legend_area) = area.split_horizontally(width.saturating_sub(LEGEND_WIDTH));
-            legend::draw(&legend_area, &entries, Arrangement::Column)?;
-            match &scores {
-                Some(scores) => {
-                    let (top, bottom) = plots.split_vertically(plots.dim_in_pixel().1 / 2);
-                    errors.draw(&top)?;
-                    scores.draw(&bottom)
-                }
-                None => errors.draw(&plots),
-            }
+    Figure {
+        title: format!("{experiment}: overview of {} runs", runs.len()),
+        body: OverviewBody {
+            entries,
+            errors,
+            scores,
         },
-    )
+    }
 }

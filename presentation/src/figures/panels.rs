@@ -56,7 +56,10 @@ pub struct PathPanel {
 
 /// Draws the caption at the top of `area`; returns the rest, and the size (px) the plot will
 /// have in it once [`plot`] has made room for the axis labels.
-fn titled<'a>(area: &Area<'a>, caption: &str) -> Result<(Area<'a>, (u32, u32)), String> {
+fn titled<DB: DrawingBackend>(
+    area: &Area<DB>,
+    caption: &str,
+) -> Result<(Area<DB>, (u32, u32)), String> {
     let inner = area
         .titled(caption, font(CAPTION_SIZE))
         .map_err(draw_error)?;
@@ -101,8 +104,8 @@ fn decade(v: &f64) -> String {
 }
 
 /// Draws axes, grid and lines on `inner` (an area from [`titled`]) with x axis `x`, y axis `y`.
-fn plot<Y>(
-    inner: &Area,
+fn plot<DB: DrawingBackend, Y>(
+    inner: &Area<DB>,
     x: Range<f64>,
     x_desc: &str,
     y: Y,
@@ -145,7 +148,7 @@ where
 
 impl TimePanel {
     /// Draws the panel into `area`.
-    pub fn draw(&self, area: &Area) -> Result<(), String> {
+    pub fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), String> {
         let (inner, _) = titled(area, &self.caption)?;
         let keep = |v: f64| v.is_finite() && (self.y_axis == YAxis::Linear || v > 0.0);
         let lines: Vec<(ShapeStyle, Vec<(f64, f64)>)> = self
@@ -196,7 +199,7 @@ impl PathPanel {
     /// Draws the panel into `area`: the arm's poses thin and light with the start pose darker,
     /// over them the desired path wide and pale, and the actual path on top. The equal-aspect
     /// ranges cover the arm as well as the paths.
-    pub fn draw(&self, area: &Area) -> Result<(), String> {
+    pub fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), String> {
         let (inner, pixels) = titled(area, &self.caption)?;
         let all = || {
             self.desired
@@ -236,23 +239,6 @@ impl PathPanel {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::{decade, ticks};
-
-    #[test]
-    fn tick_labels_are_short() {
-        let label = ticks(&(-1.0..1.0));
-        assert_eq!(label(&0.0), "0");
-        assert_eq!(label(&-2.78e-17), "0");
-        assert_eq!(label(&0.25), "0.25");
-        assert_eq!(label(&-3.0), "-3");
-        assert_eq!(ticks(&(0.0..1e-5))(&2.5e-6), "2.5e-6");
-        assert_eq!(label(&1.0e7), "1e7");
-        assert_eq!(decade(&1e-6), "1e-6");
-    }
-}
-
 /// One profile of the setup inference: the best relative residual (log scale) against the
 /// value of one parameter, the others re-fitted at each point.
 pub struct ProfilePanel {
@@ -265,7 +251,7 @@ pub struct ProfilePanel {
 
 impl ProfilePanel {
     /// Draws the panel into `area`.
-    pub fn draw(&self, area: &Area) -> Result<(), String> {
+    pub fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), String> {
         let (inner, _) = titled(area, &self.caption)?;
         let points: Vec<(f64, f64)> = self
             .points
@@ -283,5 +269,22 @@ impl ProfilePanel {
             &decade,
             &[(super::style::colour(0).stroke_width(2), points)],
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{decade, ticks};
+
+    #[test]
+    fn tick_labels_are_short() {
+        let label = ticks(&(-1.0..1.0));
+        assert_eq!(label(&0.0), "0");
+        assert_eq!(label(&-2.78e-17), "0");
+        assert_eq!(label(&0.25), "0.25");
+        assert_eq!(label(&-3.0), "-3");
+        assert_eq!(ticks(&(0.0..1e-5))(&2.5e-6), "2.5e-6");
+        assert_eq!(label(&1.0e7), "1e7");
+        assert_eq!(decade(&1e-6), "1e-6");
     }
 }

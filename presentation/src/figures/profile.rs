@@ -2,9 +2,10 @@
 //! per fitted parameter, the best relative residual with the other parameters re-fitted (points
 //! where a run of the table failed are left out).
 
-use super::layout::figure;
+use super::layout::{Area, Body, Figure};
 use super::panels::ProfilePanel;
 use explain::inference::{InferenceRow, FAILED};
+use plotters::prelude::*;
 use std::f64::consts::PI;
 
 /// File name of a table's profile figure inside `report/figures/`.
@@ -12,8 +13,26 @@ pub fn file_name(paper: &str, table: &str) -> String {
     format!("inference-{paper}-{table}__profiles.svg")
 }
 
-/// The SVG of one table's profiles; `rows` are that table's rows of `inference.csv`.
-pub fn render(paper: &str, table: &str, rows: &[&InferenceRow]) -> Result<String, String> {
+/// What a profile figure draws under its title: one panel per parameter, side by side.
+pub struct ProfilesBody {
+    panels: Vec<ProfilePanel>,
+}
+
+impl Body for ProfilesBody {
+    fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), String> {
+        if self.panels.is_empty() {
+            return Ok(());
+        }
+        let cells = area.split_evenly((1, self.panels.len()));
+        for (panel, cell) in self.panels.iter().zip(&cells) {
+            panel.draw(cell)?;
+        }
+        Ok(())
+    }
+}
+
+/// The figure of one table's profiles; `rows` are that table's rows of `inference.csv`.
+pub fn figure(paper: &str, table: &str, rows: &[&InferenceRow]) -> Figure<ProfilesBody> {
     let mut names: Vec<&str> = rows
         .iter()
         .filter_map(|r| r.kind.strip_prefix("profile: "))
@@ -49,17 +68,8 @@ pub fn render(paper: &str, table: &str, rows: &[&InferenceRow]) -> Result<String
             }
         })
         .collect();
-    figure(
-        &format!("{paper} {table}: setup inference profiles (others re-fitted)"),
-        |area| {
-            if panels.is_empty() {
-                return Ok(());
-            }
-            let cells = area.split_evenly((1, panels.len()));
-            for (panel, cell) in panels.iter().zip(&cells) {
-                panel.draw(cell)?;
-            }
-            Ok(())
-        },
-    )
+    Figure {
+        title: format!("{paper} {table}: setup inference profiles (others re-fitted)"),
+        body: ProfilesBody { panels },
+    }
 }

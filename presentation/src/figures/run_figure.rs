@@ -3,7 +3,7 @@
 //! (f) torques, as in the papers' per-run figures.
 
 use super::arm;
-use super::layout::{figure, Area};
+use super::layout::{Area, Body, Figure};
 use super::legend::{self, Arrangement, Entry};
 use super::panels::{PathPanel, Series, TimePanel, YAxis};
 use super::style::{
@@ -48,8 +48,28 @@ fn per_joint(
         .collect()
 }
 
-/// The run's SVG.
-pub fn render(run: &RunRow, trace: &Trace) -> Result<String, String> {
+/// What the figure of a run draws under its title: the legend strip, then the panels two by two.
+pub struct RunBody {
+    entries: Vec<Entry>,
+    path_panel: PathPanel,
+    panels: Vec<TimePanel>,
+}
+
+impl Body for RunBody {
+    fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), String> {
+        let (strip, body) = area.split_vertically(LEGEND_HEIGHT);
+        legend::draw(&strip, &self.entries, Arrangement::Strip)?;
+        let cells = body.split_evenly(((self.panels.len() + 1).div_ceil(2), 2));
+        self.path_panel.draw(&cells[0])?;
+        for (panel, cell) in self.panels.iter().zip(&cells[1..]) {
+            panel.draw(cell)?;
+        }
+        Ok(())
+    }
+}
+
+/// The run's figure.
+pub fn figure(run: &RunRow, trace: &Trace) -> Figure<RunBody> {
     let t_end = run.duration;
     let time = |caption: &str, y_desc: &str, y_axis: YAxis, series: Vec<Series>| TimePanel {
         caption: caption.to_string(),
@@ -140,14 +160,12 @@ pub fn render(run: &RunRow, trace: &Trace) -> Result<String, String> {
         label: format!("joint {}", i + 1),
     }));
 
-    figure(&title(run), |area: &Area| {
-        let (strip, body) = area.split_vertically(LEGEND_HEIGHT);
-        legend::draw(&strip, &entries, Arrangement::Strip)?;
-        let cells = body.split_evenly(((panels.len() + 1).div_ceil(2), 2));
-        path_panel.draw(&cells[0])?;
-        for (panel, cell) in panels.iter().zip(&cells[1..]) {
-            panel.draw(cell)?;
-        }
-        Ok(())
-    })
+    Figure {
+        title: title(run),
+        body: RunBody {
+            entries,
+            path_panel,
+            panels,
+        },
+    }
 }

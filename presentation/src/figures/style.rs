@@ -1,6 +1,11 @@
 //! The figures' look: canvas sizes, fonts, line widths and the colour cycle.
 
 use plotters::style::{FontDesc, FontFamily, FontStyle, RGBColor};
+use std::sync::OnceLock;
+
+/// DejaVu Sans (see `presentation/assets/DejaVuSans-LICENSE.txt`), embedded so that the PNGs'
+/// text needs no system font.
+static FONT: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
 
 /// Size of every figure (px).
 pub const CANVAS: (u32, u32) = (1200, 900);
@@ -57,7 +62,21 @@ pub fn colour(k: usize) -> RGBColor {
     PALETTE[k % PALETTE.len()]
 }
 
-/// A sans-serif font of the given size (no font file is read: SVG leaves glyphs to the viewer).
+/// Registers the embedded font as plotters' `sans-serif` (once a process; later calls return
+/// the first outcome). Must run before [`font`] builds a font description, since plotters
+/// resolves the family when the description is made.
+pub fn register_font() -> Result<(), String> {
+    static REGISTERED: OnceLock<bool> = OnceLock::new();
+    let ok = *REGISTERED.get_or_init(|| {
+        plotters::style::register_font(FontFamily::SansSerif.as_str(), FontStyle::Normal, FONT)
+            .is_ok()
+    });
+    ok.then_some(())
+        .ok_or_else(|| "the embedded font DejaVuSans.ttf does not parse".to_string())
+}
+
+/// A sans-serif font of the given size: the embedded DejaVu Sans in a PNG, the viewer's
+/// sans-serif in an SVG (which names the family and leaves the glyphs to the viewer).
 pub fn font(size: f64) -> FontDesc<'static> {
     FontDesc::new(FontFamily::SansSerif, size, FontStyle::Normal)
 }
