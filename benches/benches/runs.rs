@@ -13,7 +13,8 @@ use driftbench_benches::{
     allocations_in, bench_id, experiment_jobs, find_job, whole_run_config, CountingAllocator,
     RUN_CASES,
 };
-use simulation::run::{run_job, Outcome};
+use simulation::run::run_job;
+use simulation::simulate::Outcome;
 
 #[global_allocator]
 static ALLOC: CountingAllocator = CountingAllocator;
@@ -25,16 +26,16 @@ fn whole_runs(c: &mut Criterion) {
     for (experiment, variant, solver) in RUN_CASES {
         let job = find_job(&jobs, experiment, variant, solver);
         let (record, allocations) = allocations_in(|| run_job(&job));
-        if let Outcome::Failed { t, reason, .. } = &record.outcome {
-            panic!("{}: failed at t = {t}: {reason}", job.key());
+        if let Outcome::Failed { t, error, .. } = &record.run.outcome {
+            panic!("{}: failed at t = {t}: {error}", job.key());
         }
         eprintln!(
             "run {}: {} steps, {} rhs, {} jacobians, {} Clarabel solves, {} allocations",
             job.key(),
-            record.stats.steps,
-            record.stats.rhs_evals,
-            record.stats.jac_evals,
-            record.qp.solves,
+            record.run.stats.steps,
+            record.run.stats.rhs_evals,
+            record.run.stats.jac_evals,
+            record.run.qp.solves,
             allocations
         );
         g.bench_function(format!("{experiment}/{}", bench_id(solver)), |b| {

@@ -222,6 +222,7 @@ fn network_can_start_at_the_exact_optimum() {
     };
     let first = |j: &Job| {
         run_job(j)
+            .run
             .trace
             .iter()
             .find_map(|p| p.score_dx)

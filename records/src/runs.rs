@@ -14,7 +14,8 @@ use crate::table::{self, Row};
 use serde::{Deserialize, Serialize};
 use simulation::error::FailureKind;
 use simulation::naming::run_stem;
-use simulation::run::{Outcome, RunRecord};
+use simulation::run::RunRecord;
+use simulation::simulate::Outcome;
 use std::path::Path;
 
 /// One run, as stored in `results/runs.csv`.
@@ -101,7 +102,7 @@ impl RunRow {
         let j = &r.job;
         // A failed run keeps its metrics up to the failure (peaks, errors, margins), but no
         // drift: theta(T) was never reached.
-        let (status, failure, failure_kind, failed_at, m, completed) = match &r.outcome {
+        let (status, failure, failure_kind, failed_at, m, completed) = match &r.run.outcome {
             Outcome::Completed(m) => (Status::Ok, String::new(), None, None, Some(m), true),
             Outcome::Failed { t, error, partial } => (
                 Status::Failed,
@@ -117,7 +118,7 @@ impl RunRow {
             paper: j.paper.clone(),
             experiment: j.experiment.clone(),
             variant: j.variant.clone(),
-            scheme: r.scheme_name.clone(),
+            scheme: r.run.scheme_name.clone(),
             solver: j.solver.label(),
             solver_kind: j.solver.kind().to_string(),
             robot: j.robot.clone(),
@@ -152,24 +153,24 @@ impl RunRow {
             score_rms_dx: score.map(|s| s.rms_dx),
             score_max_obj_gap: score.map(|s| s.max_objective_gap),
             score_max_violation: score.map(|s| s.max_violation),
-            score_failures: r.score_failures,
+            score_failures: r.run.score_failures,
             net_error_final: m.and_then(|m| m.network_error).map(|e| e.final_value),
             net_error_max_after_1s: m.and_then(|m| m.network_error).map(|e| e.max_after_settle),
             integrator: j.integrator.method.label().to_string(),
             rtol: j.integrator.rtol,
             atol: j.integrator.atol,
             max_step: j.integrator.max_step,
-            steps: r.stats.steps,
-            rejected: r.stats.rejected,
-            rhs_evals: r.stats.rhs_evals,
-            jac_evals: r.stats.jac_evals,
-            qp_solves: r.qp.solves,
-            qp_fallbacks: r.qp.fallbacks,
-            qp_checks: r.qp.checks,
-            qp_check_max_dx: (r.qp.checks > 0).then_some(r.qp.check_max_dx),
-            wall_s: r.stats.wall_seconds,
-            sim_s: (r.stats.wall_seconds - r.observe_seconds).max(0.0),
-            observe_s: r.observe_seconds,
+            steps: r.run.stats.steps,
+            rejected: r.run.stats.rejected,
+            rhs_evals: r.run.stats.rhs_evals,
+            jac_evals: r.run.stats.jac_evals,
+            qp_solves: r.run.qp.solves,
+            qp_fallbacks: r.run.qp.fallbacks,
+            qp_checks: r.run.qp.checks,
+            qp_check_max_dx: (r.run.qp.checks > 0).then_some(r.run.qp.check_max_dx),
+            wall_s: r.run.stats.wall_seconds,
+            sim_s: (r.run.stats.wall_seconds - r.run.observe_seconds).max(0.0),
+            observe_s: r.run.observe_seconds,
             crate_version: env!("CARGO_PKG_VERSION").to_string(),
             git_rev: git_rev.to_string(),
         }
@@ -326,7 +327,7 @@ pub fn trace_file(r: &RunRecord) -> String {
 /// position, position error, score dx.
 pub fn trace_csv(r: &RunRecord) -> Result<Vec<u8>, csv::Error> {
     let mut w = csv::Writer::from_writer(Vec::new());
-    let Some(first) = r.trace.first() else {
+    let Some(first) = r.run.trace.first() else {
         return w.into_inner().map_err(|e| csv::Error::from(e.into_error()));
     };
     let n = first.theta.len();
@@ -354,7 +355,7 @@ pub fn trace_csv(r: &RunRecord) -> Result<Vec<u8>, csv::Error> {
         .map(String::from),
     );
     w.write_record(&header)?;
-    for p in &r.trace {
+    for p in &r.run.trace {
         let mut rec: Vec<String> = vec![p.t.to_string()];
         rec.extend(p.theta.iter().chain(&p.thetadot).map(f64::to_string));
         if let Some(a) = &p.thetaddot {

@@ -59,7 +59,7 @@ pub struct Experiment {
 /// (`results/ladder.csv`) decides it: at RelTol 1e-8 the jia2019 clover drifts were 0.1-0.3 %
 /// off the converged ones, at 1e-10 some drifts (the star's, zhong2021's clover b) still move in
 /// the fourth digit, at 1e-11 every exact drift that is not itself zero holds four digits.
-fn default_exact_integrator() -> IntegratorSettings {
+pub fn default_exact_integrator() -> IntegratorSettings {
     IntegratorSettings {
         method: solvers::ode::Method::Dopri5,
         rtol: 1e-11,

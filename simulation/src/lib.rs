@@ -18,3 +18,4 @@ pub mod robot_registry;
 pub mod root;
 pub mod run;
 pub mod runner;
+pub mod simulate;

@@ -1,0 +1,161 @@
+//! A robot written outside the library, run through a paper's scheme.
+//!
+//! A 4-joint arm: a yaw joint at the base, then three pitch joints in the vertical plane it
+//! turns (links 0.30, 0.25, 0.15 m; shoulder 0.20 m above the base). With cumulative pitch
+//! angles phi_k = theta_2 + ... + theta_k, horizontal reach r = sum l_k cos(phi_k) and height
+//! z = h + sum l_k sin(phi_k), the tip is f(theta) = (cos(theta_1) r, sin(theta_1) r, z), and
+//!
+//! ```text
+//! J_1 = (-sin(theta_1) r, cos(theta_1) r, 0),
+//! J_j = (-cos(theta_1) S_j, -sin(theta_1) S_j, C_j)    (j >= 2),
+//! ```
+//!
+//! with the suffix sums S_j = sum_{k>=j} l_k sin(phi_k), C_j = sum_{k>=j} l_k cos(phi_k).
+//! `Robot::jacobian_dot` is taken here by a central difference of J along thetadot (h = 1e-6):
+//! a user can start that way and write the exact derivative later. Implementing
+//! `robots::Robot<4>` is all the suite asks; `simulation::simulate::simulate` then runs it
+//! through kong2019's ZNN scheme (eq. 22) on a circle, solved exactly and by kong2019's ZNN.
+//!
+//! `cargo run --release --example user_robot`
+
+use nalgebra::{SMatrix, SVector, Vector3};
+use robots::{JointLimits, Robot};
+use schemes::kong2019::Kong2019;
+use schemes::paths::{build_path, PathSpec};
+use simulation::experiment::{default_exact_integrator, NetworkInit};
+use simulation::simulate::{simulate, Outcome, Settings, Solver};
+use solvers::neural::{build_solver, NeuralSolver, SolverSpec};
+use solvers::ode::IntegratorSettings;
+use std::sync::Arc;
+
+/// The 4-joint arm of the module docs.
+struct FourJointArm {
+    shoulder: f64,
+    links: [f64; 3],
+}
+
+impl FourJointArm {
+    /// (r, z, S_2..S_4, C_2..C_4) at theta.
+    fn sums(&self, theta: &SVector<f64, 4>) -> (f64, f64, [f64; 3], [f64; 3]) {
+        let mut phi = 0.0;
+        let mut s = [0.0; 3];
+        let mut c = [0.0; 3];
+        for k in 0..3 {
+            phi += theta[k + 1];
+            s[k] = self.links[k] * phi.sin();
+            c[k] = self.links[k] * phi.cos();
+        }
+        // Suffix sums: entry j holds the sum over links j.. .
+        for k in (0..2).rev() {
+            s[k] += s[k + 1];
+            c[k] += c[k + 1];
+        }
+        (c[0], self.shoulder + s[0], s, c)
+    }
+}
+
+impl Robot<4> for FourJointArm {
+    fn name(&self) -> &'static str {
+        "four-joint-arm (user)"
+    }
+
+    fn position(&self, theta: &SVector<f64, 4>) -> Vector3<f64> {
+        let (r, z, _, _) = self.sums(theta);
+        Vector3::new(theta[0].cos() * r, theta[0].sin() * r, z)
+    }
+
+    fn jacobian(&self, theta: &SVector<f64, 4>) -> SMatrix<f64, 3, 4> {
+        let (r, _, s, c) = self.sums(theta);
+        let (s1, c1) = theta[0].sin_cos();
+        let mut j = SMatrix::<f64, 3, 4>::zeros();
+        j.set_column(0, &Vector3::new(-s1 * r, c1 * r, 0.0));
+        for k in 0..3 {
+            j.set_column(k + 1, &Vector3::new(-c1 * s[k], -s1 * s[k], c[k]));
+        }
+        j
+    }
+
+    fn jacobian_dot(
+        &self,
+        theta: &SVector<f64, 4>,
+        thetadot: &SVector<f64, 4>,
+    ) -> SMatrix<f64, 3, 4> {
+        let h = 1e-6;
+        (self.jacobian(&(theta + thetadot * h)) - self.jacobian(&(theta - thetadot * h)))
+            / (2.0 * h)
+    }
+
+    fn limits(&self) -> JointLimits<4> {
+        JointLimits {
+            theta_min: SVector::repeat(-3.0),
+            theta_max: SVector::repeat(3.0),
+            thetadot_min: SVector::repeat(-2.0),
+            thetadot_max: SVector::repeat(2.0),
+        }
+    }
+}
+
+/// Drift and tracking error of the exact column and of kong2019's ZNN on the user's arm.
+fn run() -> Vec<(String, f64, f64)> {
+    let robot = Arc::new(FourJointArm {
+        shoulder: 0.20,
+        links: [0.30, 0.25, 0.15],
+    });
+    let theta_star = SVector::<f64, 4>::from([0.3, 0.9, -1.2, -0.6]);
+    let path: Arc<dyn schemes::paths::Path> = Arc::from(
+        build_path(&PathSpec::new("circle", 9.0), robot.position(&theta_star))
+            .expect("the circle is a known path"),
+    );
+    // kong2019 eq. 22 with mu = 1, k_p = 1.
+    let scheme = Kong2019::znn(robot.clone(), path.clone(), theta_star, 1.0, 1.0);
+    let dims = schemes::scheme::Scheme::dims(&scheme);
+    // The networks as the papers integrate them (BDF, RelTol 1e-6, AbsTol 1e-8, as ode15s);
+    // the exact column as the suite does (Dormand-Prince, RelTol 1e-11: converged).
+    let networks = Settings {
+        integrator: IntegratorSettings::default(),
+        score: true,
+        network_init: NetworkInit::Zero,
+    };
+    let exact = Settings {
+        integrator: default_exact_integrator(),
+        ..networks.clone()
+    };
+    let znn = move || -> Result<Box<dyn NeuralSolver>, String> {
+        build_solver(&SolverSpec::Znn { gamma: 1.0 }, dims)
+    };
+    [
+        ("exact", Solver::Exact),
+        ("ZNN (kong2019, gamma = 1)", Solver::Network(&znn)),
+    ]
+    .into_iter()
+    .map(|(name, solver)| {
+        let settings = if matches!(solver, Solver::Exact) {
+            &exact
+        } else {
+            &networks
+        };
+        let run = simulate(
+            robot.as_ref(),
+            path.as_ref(),
+            &scheme,
+            solver,
+            &theta_star,
+            &theta_star,
+            settings,
+        )
+        .expect("the run starts");
+        match &run.outcome {
+            Outcome::Completed(m) => (name.to_string(), m.drift_norm, m.max_position_error),
+            Outcome::Failed { error, .. } => panic!("{name}: {error}"),
+        }
+    })
+    .collect()
+}
+
+fn main() {
+    println!("kong2019 ZNN scheme on a circle (T = 9 s), a 4-joint arm written in this example");
+    println!("{:<28} {:>10} {:>10}", "solver", "|drift|", "max err");
+    for (name, drift, err) in run() {
+        println!("{name:<28} {drift:>10.3e} {err:>10.3e}");
+    }
+}
