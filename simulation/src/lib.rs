@@ -17,3 +17,4 @@ pub mod robot_registry;
 pub mod root;
 pub mod run;
 pub mod runner;
+pub mod sweep;
