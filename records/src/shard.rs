@@ -16,6 +16,7 @@
 
 use crate::runs::{read_runs, RunRow};
 use serde::{Deserialize, Serialize};
+use simulation::naming::run_stem;
 use std::path::{Path, PathBuf};
 
 /// The manifest's file name in a shard directory.
@@ -234,6 +235,28 @@ pub fn read_shard(dir: &Path) -> Result<ShardDir, String> {
         manifest,
         rows,
     })
+}
+
+/// Copies the traces of every shard's rows into `results` (each written atomically); returns
+/// how many. A run without a trace file (none was written) is skipped.
+pub fn copy_traces(shards: &[ShardDir], results: &Path) -> Result<usize, String> {
+    let mut n = 0;
+    for s in shards {
+        for r in &s.rows {
+            let rel = Path::new("traces")
+                .join(&r.experiment)
+                .join(format!("{}.csv", run_stem(&r.variant, &r.solver)));
+            let from = s.dir.join(&rel);
+            if !from.exists() {
+                continue;
+            }
+            let bytes = std::fs::read(&from).map_err(|e| format!("{}: {e}", from.display()))?;
+            let to = results.join(&rel);
+            crate::runs::write_atomic(&to, &bytes).map_err(|e| format!("{}: {e}", to.display()))?;
+            n += 1;
+        }
+    }
+    Ok(n)
 }
 
 /// Checks shards before a merge: the same N, experiment files (`hash`: the current files')
