@@ -6,6 +6,7 @@
 //! - [`table`]: CSV tables whose per-joint columns follow the robot's joint count.
 //! - [`index`]: the stored runs indexed as the report and the analyses look them up.
 //! - [`journal`]: the checkpoint of finished runs that an interrupted run resumes from.
+//! - [`shard`]: cluster runs: which shard a run belongs to, the shard manifest, the merge checks.
 //! - [`gate`]: the regression gate (fresh rows against committed ones).
 //! - [`paper_values`]: the published numbers (`report/paper-values.csv`) and which run each
 //!   one is compared with.
@@ -15,4 +16,5 @@ pub mod index;
 pub mod journal;
 pub mod paper_values;
 pub mod runs;
+pub mod shard;
 pub mod table;

@@ -94,6 +94,32 @@ struct Cli {
     /// Takes minutes per table.
     #[arg(long, value_name = "TABLE")]
     infer: Option<String>,
+    /// Cluster runs (docs/cluster.md): run only shard K of N of the selected runs (K = 1..N; a
+    /// run's shard is a stable hash of its key) into ROOT/results-shard-K-of-N/ (or
+    /// --results-dir): runs.csv, traces/ and, written last, shard.toml. Implies --skip-explain
+    /// and renders no report. A shard started again resumes from its journal. `--shard auto` (or
+    /// `--shard` alone) takes K and N from a Slurm job array (SLURM_ARRAY_TASK_ID, minus
+    /// SLURM_ARRAY_TASK_MIN - 1, of SLURM_ARRAY_TASK_COUNT) or a Kubernetes Indexed Job
+    /// (JOB_COMPLETION_INDEX + 1, of --shards or DRIFTBENCH_SHARDS). With --list: the shard's runs.
+    #[arg(long, value_name = "K/N", num_args = 0..=1, default_missing_value = "auto",
+          conflicts_with_all = ["check", "report_only", "explain_only", "infer", "merge"])]
+    shard: Option<String>,
+    /// The number of shards N for `--shard auto` under Kubernetes; with --list and no --shard:
+    /// print how many of the selected runs each of N shards gets.
+    #[arg(long, value_name = "N")]
+    shards: Option<usize>,
+    /// Merge finished shard directories (of `--shard K/N`) into results/ and render the report:
+    /// checks that they agree on N and on the experiment files and that every selected run (the
+    /// selection the shards were given) is in exactly one shard; otherwise names the missing
+    /// or duplicated runs (and the shard that should have produced them), writes nothing and
+    /// exits 2. Does not run the explanation layer: run `reproduce --explain-only` afterwards
+    /// if wanted.
+    #[arg(long, value_name = "DIR", num_args = 1..,
+          conflicts_with_all = ["check", "report_only", "explain_only", "infer", "paper", "experiment", "exact_only", "dry_run"])]
+    merge: Vec<PathBuf>,
+    /// The resolved shard of `--shard`.
+    #[arg(skip)]
+    shard_resolved: Option<records::shard::Shard>,
 }
 
 fn main() -> ExitCode {
@@ -118,10 +144,22 @@ fn resolve_dirs(mut cli: Cli) -> Result<Cli, String> {
         .experiments_dir_arg
         .clone()
         .unwrap_or_else(|| root.join("experiments"));
+    cli.shard_resolved = match cli.shard.as_deref() {
+        None => None,
+        Some("auto") => Some(records::shard::Shard::from_env(
+            |v| std::env::var(v).ok(),
+            cli.shards,
+        )?),
+        Some(kn) => Some(records::shard::Shard::parse(kn)?),
+    };
+    let results = match cli.shard_resolved {
+        Some(s) => s.dir_name(),
+        None => "results".to_string(),
+    };
     cli.results_dir = cli
         .results_dir_arg
         .clone()
-        .unwrap_or_else(|| root.join("results"));
+        .unwrap_or_else(|| root.join(results));
     cli.project_root = root;
     Ok(cli)
 }
@@ -141,9 +179,28 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
         return Ok(ExitCode::SUCCESS);
     }
     let files = load_dir(&cli.experiments_dir).map_err(|e| e.to_string())?;
-    let jobs = select_jobs(&files, &cli)?;
+    if !cli.merge.is_empty() {
+        return merge_shards(&cli, &files);
+    }
+    let mut jobs = select_jobs(&files, &selection(&cli))?;
+    let selected = jobs.len();
+    if let Some(shard) = cli.shard_resolved {
+        jobs.retain(|j| shard.owns(&j.key()));
+        eprintln!(
+            "shard {shard}: {} of the {selected} selected runs, into {}",
+            jobs.len(),
+            cli.results_dir.display()
+        );
+    }
     if cli.list {
         print_list(&files, &jobs);
+        if let (Some(n), None) = (cli.shards, cli.shard_resolved) {
+            let keys: Vec<String> = jobs.iter().map(Job::key).collect();
+            let counts = records::shard::plan(keys.iter().map(String::as_str), n);
+            for (k, c) in counts.iter().enumerate() {
+                println!("shard {}/{n}: {c} runs", k + 1);
+            }
+        }
         return Ok(ExitCode::SUCCESS);
     }
     // Before anything runs: the stored results must be readable (they are merged with the new
@@ -160,6 +217,10 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
     } else {
         Some(prepare_output(&cli)?)
     };
+    // A shard directory is finished only once its manifest is written again, at the end.
+    if cli.shard_resolved.is_some() && stored.is_some() {
+        records::shard::Manifest::remove(&cli.results_dir)?;
+    }
     if let Some(t) = cli.threads {
         rayon::ThreadPoolBuilder::new()
             .num_threads(t)
@@ -259,12 +320,28 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
     if let Some(stored) = stored {
         write_results(&cli.results_dir, &records, stored, rows, &all)?;
         records::journal::remove(&cli.results_dir)?;
-        if !cli.skip_explain && !cli.exact_only {
-            explain(&cli, &jobs, &all, &git_rev)?;
-        }
-        match report_root(&cli) {
-            Ok(root) => render_report(&root)?,
-            Err(why) => eprintln!("report not rendered: {why}"),
+        if let Some(shard) = cli.shard_resolved {
+            records::shard::Manifest {
+                shard: shard.k,
+                shards: shard.n,
+                git_rev: git_rev.clone(),
+                experiments_hash: records::shard::experiments_hash(&cli.experiments_dir)?,
+                runs: jobs.iter().map(Job::key).collect(),
+                selection: selection(&cli),
+            }
+            .write(&cli.results_dir)?;
+            eprintln!(
+                "shard {shard} done: merge with `reproduce --merge {}...`",
+                cli.results_dir.display()
+            );
+        } else {
+            if !cli.skip_explain && !cli.exact_only {
+                explain(&cli, &jobs, &all, &git_rev)?;
+            }
+            match report_root(&cli) {
+                Ok(root) => render_report(&root)?,
+                Err(why) => eprintln!("report not rendered: {why}"),
+            }
         }
     }
     let unexpected: Vec<&String> = failed
@@ -457,7 +534,61 @@ fn render_report(root: &std::path::Path) -> Result<(), String> {
     Ok(())
 }
 
-fn select_jobs(files: &[PaperFile], cli: &Cli) -> Result<Vec<Job>, String> {
+/// The selection flags of the command line (recorded in a shard's manifest).
+fn selection(cli: &Cli) -> records::shard::Selection {
+    records::shard::Selection {
+        paper: cli.paper.clone(),
+        experiments: cli.experiment.clone(),
+        exact_only: cli.exact_only,
+    }
+}
+
+/// `--merge`: checks the shard directories (records::shard), then merges their rows and traces
+/// into the results directory and renders the report, as a normal run does.
+fn merge_shards(cli: &Cli, files: &[PaperFile]) -> Result<ExitCode, String> {
+    let shards = cli
+        .merge
+        .iter()
+        .map(|d| records::shard::read_shard(d))
+        .collect::<Result<Vec<_>, _>>()?;
+    let sel = shards
+        .first()
+        .map(|s| s.manifest.selection.clone())
+        .unwrap_or_default();
+    let expected: Vec<String> = select_jobs(files, &sel)?.iter().map(Job::key).collect();
+    let hash = records::shard::experiments_hash(&cli.experiments_dir)?;
+    records::shard::check_shards(&shards, &expected, &hash)?;
+    let _lock = lock_results(&cli.results_dir)?;
+    let stored = prepare_output(cli)?;
+    let traces = records::shard::copy_traces(&shards, &cli.results_dir)?;
+    let rows: Vec<RunRow> = shards.iter().flat_map(|s| s.rows.clone()).collect();
+    let unexpected: Vec<String> = rows
+        .iter()
+        .filter(|r| !r.completed() && !records::gate::expected_to_diverge(r))
+        .map(|r| format!("{}: {}", records::shard::row_key(r), r.failure))
+        .collect();
+    let all: Vec<Job> = files.iter().flat_map(|f| f.jobs()).collect();
+    eprintln!(
+        "merging {} shard(s): {} runs, {traces} traces",
+        shards.len(),
+        rows.len()
+    );
+    write_results(&cli.results_dir, &[], stored, rows, &all)?;
+    match report_root(cli) {
+        Ok(root) => render_report(&root)?,
+        Err(why) => eprintln!("report not rendered: {why}"),
+    }
+    if !unexpected.is_empty() {
+        eprintln!("unexpected failures (exit code 1):");
+        for line in &unexpected {
+            eprintln!("  {line}");
+        }
+        return Ok(ExitCode::from(1));
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn select_jobs(files: &[PaperFile], cli: &records::shard::Selection) -> Result<Vec<Job>, String> {
     let all: Vec<Job> = files.iter().flat_map(|f| f.jobs()).collect();
     if let Some(p) = &cli.paper {
         if !files.iter().any(|f| &f.paper == p) {
@@ -468,7 +599,7 @@ fn select_jobs(files: &[PaperFile], cli: &Cli) -> Result<Vec<Job>, String> {
             ));
         }
     }
-    for e in &cli.experiment {
+    for e in &cli.experiments {
         if !all.iter().any(|j| &j.experiment == e) {
             let mut ids: Vec<&str> = all.iter().map(|j| j.experiment.as_str()).collect();
             ids.dedup();
@@ -481,7 +612,7 @@ fn select_jobs(files: &[PaperFile], cli: &Cli) -> Result<Vec<Job>, String> {
     Ok(all
         .into_iter()
         .filter(|j| cli.paper.as_ref().is_none_or(|p| &j.paper == p))
-        .filter(|j| cli.experiment.is_empty() || cli.experiment.contains(&j.experiment))
+        .filter(|j| cli.experiments.is_empty() || cli.experiments.contains(&j.experiment))
         .filter(|j| !cli.exact_only || j.solver == simulation::experiment::SolverChoice::Exact)
         .collect())
 }
@@ -525,6 +656,8 @@ fn prepare_output(cli: &Cli) -> Result<Vec<RunRow>, String> {
     let mut dirs = vec![cli.results_dir.clone()];
     match report_root(cli) {
         Ok(root) => dirs.push(root.join("report")),
+        // A shard renders no report.
+        Err(_) if cli.shard_resolved.is_some() => {}
         // Said before anything runs, not after.
         Err(why) => eprintln!(
             "note: results go to {}, but {why}",

@@ -6,7 +6,8 @@
 //! (with its parameters by the paper's names) run exactly (Clarabel in the loop) and by each of
 //! its neural solvers. A variant may override the robot, path, theta0 or theta_ref, which is how
 //! the model check (jaco2 vs jaco2-pen), the star-lines variant and kong2019's two starts are
-//! written. Every run an experiment file describes is a [`Job`].
+//! written. A variant with a `sweep` table stands for many (the grammar: [`crate::sweep`]).
+//! Every run an experiment file describes is a [`Job`].
 
 use crate::naming::{run_stem, slug};
 use crate::run::JobPart;
@@ -227,8 +228,20 @@ impl PaperFile {
     /// Parses and validates the text of an experiment file (errors without the file name;
     /// [`PaperFile::load`] adds it).
     pub fn from_toml(text: &str) -> Result<Self, String> {
-        let file: PaperFile =
-            toml::from_str(text).map_err(|e| e.to_string().trim_end().to_string())?;
+        let trim = |e: toml::de::Error| e.to_string().trim_end().to_string();
+        let mut doc: toml::Table = toml::from_str(text).map_err(trim)?;
+        // Sweeps (crate::sweep) expand at the TOML level; a file without one is read from its
+        // text, so serde's errors keep their line numbers.
+        let file: PaperFile = if crate::sweep::has_sweeps(&doc) {
+            crate::sweep::expand_file(&mut doc, |v| {
+                Variant::deserialize(toml::Value::Table(v.clone()))
+                    .map(|_| ())
+                    .map_err(trim)
+            })?;
+            PaperFile::deserialize(toml::Value::Table(doc)).map_err(trim)?
+        } else {
+            toml::from_str(text).map_err(trim)?
+        };
         file.validate()?;
         Ok(file)
     }

@@ -19,3 +19,4 @@ pub mod root;
 pub mod run;
 pub mod runner;
 pub mod simulate;
+pub mod sweep;

@@ -1,0 +1,786 @@
+//! The sweep grammar of experiment files: one `[[experiment.variant]]` that stands for many.
+//!
+//! A variant may give a `sweep` table. Each entry names a parameter by its *dotted path* into
+//! the variant table and lists the values it takes; the variant expands into the cartesian
+//! product of the entries (the first entry outermost, the last one varying fastest), each copy
+//! with its parameters set and its label generated. Expansion happens on the parsed TOML
+//! (`toml::Table`), before the file is deserialised into [`crate::experiment::PaperFile`], so an
+//! expanded variant is exactly the variant one would have written by hand.
+//!
+//! ```toml
+//! [[experiment.variant]]
+//! label = "ZNN (eq. 22)"
+//! scheme = { kind = "kong2019-znn", k_p = 1.0 }
+//! solvers = [{ kind = "znn", gamma = 1.0 }]
+//! sweep = { "scheme.mu" = [0.25, 0.5, 2, 4, 8] }
+//! # -> "ZNN (eq. 22) [mu=0.25]", "ZNN (eq. 22) [mu=0.5]", "ZNN (eq. 22) [mu=2]", ...
+//! ```
+//!
+//! **Keys** are dotted paths into the variant table: `"scheme.mu"`, `"path.scale"`,
+//! `"theta0.2"` (an array index, 0-based), `"solvers.0.gamma"`, `"solvers.*.gamma"` (`*`: every
+//! element of the array). The first segment must be a field of a variant (not `label`), every
+//! table or array on the way must be given by the variant itself (write e.g. `path = { name =
+//! "circle", duration = 9.0 }` on the variant to sweep `path.scale`), and the last segment may be
+//! new (a field the base variant leaves at its default); a misspelt field is caught when the
+//! expanded variant is read (serde's `unknown field`, with the sweep named). Several paths
+//! joined by commas, `"path.scale, path.reverse"`, move *together* (a zipped group): each value
+//! is then a list with one entry per path.
+//!
+//! **Values** are a non-empty TOML list (any TOML values: numbers, booleans, strings, tables,
+//! lists), or a range `{ from = a, to = b, step = s }` (both ends included). A range counts
+//! n = round((b - a) / s) steps and rejects a step that does not divide the interval to 1e-9;
+//! its values are a + k s computed in decimal (from the shortest decimal forms of a and s), so
+//! `{ from = 0.1, to = 0.3, step = 0.1 }` gives 0.1, 0.2, 0.3 and not 0.30000000000000004. A
+//! range of integers gives integers. A list element may be a *labelled value*
+//! `{ value = ..., label = "text" }` (a table with exactly these two keys): the text names the
+//! value in the generated label instead of the value itself.
+//!
+//! **Labels.** The variant's `label` is a template. If it contains placeholders `{name}` —
+//! `name` the last segment of a swept path (or the whole path, when two paths end alike) —
+//! each is replaced by the text of that parameter's value: `label = "{phi} [{reverse}a={scale}]"`.
+//! Otherwise the generated label is the label plus ` [k=v, k2=v2]`, k the last segment of each
+//! path, in the order of the sweep table (a labelled value contributes its text alone, and
+//! nothing when its text is empty). A value's text is its label when labelled, otherwise the
+//! value as TOML writes it: `2` for the integer 2, `2.0` for the float 2.0, `0.25`, `true`,
+//! strings without quotes.
+//!
+//! **Order.** Keys keep the order written in the file: the workspace enables the `toml` crate's
+//! `preserve_order` feature, so tables are insertion-ordered.
+//!
+//! **Errors** name the experiment, the variant and the key (the file is added by
+//! [`crate::experiment::PaperFile::load`]): an unknown key path, an empty list, a swept key
+//! that is neither a list nor a range, a bad range, a zipped value of the wrong length, a
+//! placeholder that names no swept key, and two expanded variants with the same label.
+
+use toml::{Table, Value};
+
+/// The fields of a variant a sweep may set (`label` is the template, not a parameter).
+const VARIANT_FIELDS: &[&str] = &[
+    "scheme",
+    "solvers",
+    "exact",
+    "robot",
+    "path",
+    "theta0",
+    "theta_ref",
+    "integrator",
+    "network_init",
+    "expected_failure",
+];
+
+/// Most runs one variant may expand into (a typo in a range should not eat the memory).
+pub const MAX_EXPANSION: usize = 1_000_000;
+
+/// Whether any variant of the parsed file gives a `sweep`.
+pub fn has_sweeps(doc: &Table) -> bool {
+    experiments(doc).any(|e| variants(e).any(|v| v.contains_key("sweep")))
+}
+
+fn experiments(doc: &Table) -> impl Iterator<Item = &Table> {
+    doc.get("experiment")
+        .and_then(Value::as_array)
+        .into_iter()
+        .flatten()
+        .filter_map(Value::as_table)
+}
+
+fn variants(e: &Table) -> impl Iterator<Item = &Table> {
+    e.get("variant")
+        .and_then(Value::as_array)
+        .into_iter()
+        .flatten()
+        .filter_map(Value::as_table)
+}
+
+/// Expands every variant with a `sweep` in the parsed experiment file `doc`, in place (the
+/// expanded variants take the sweep variant's place, in order). `check` reads one expanded
+/// variant as the experiment file does (a misspelt swept field fails there).
+pub fn expand_file(
+    doc: &mut Table,
+    check: impl Fn(&Table) -> Result<(), String>,
+) -> Result<(), String> {
+    let Some(Value::Array(exps)) = doc.get_mut("experiment") else {
+        return Ok(());
+    };
+    for (i, e) in exps.iter_mut().enumerate() {
+        let Value::Table(e) = e else { continue };
+        let id = e
+            .get("id")
+            .and_then(Value::as_str)
+            .unwrap_or("?")
+            .to_string();
+        let Some(Value::Array(vars)) = e.get_mut("variant") else {
+            continue;
+        };
+        let mut out = Vec::with_capacity(vars.len());
+        for (j, v) in std::mem::take(vars).into_iter().enumerate() {
+            match v {
+                Value::Table(t) if t.contains_key("sweep") => {
+                    let label = t
+                        .get("label")
+                        .and_then(Value::as_str)
+                        .unwrap_or("?")
+                        .to_string();
+                    let at = format!("experiment[{i}] (id \"{id}\") variant[{j}] (\"{label}\")");
+                    let expanded = expand_variant(&t).map_err(|e| format!("{at} {e}"))?;
+                    if let Some(first) = expanded.first() {
+                        check(first).map_err(|err| {
+                            format!(
+                                "{at} field `sweep`: the expanded variant \"{}\" does not read: {err} (check the swept keys: {})",
+                                first.get("label").and_then(Value::as_str).unwrap_or("?"),
+                                sweep_keys(&t).join(", ")
+                            )
+                        })?;
+                    }
+                    out.extend(expanded.into_iter().map(Value::Table));
+                }
+                other => out.push(other),
+            }
+        }
+        *vars = out;
+    }
+    Ok(())
+}
+
+fn sweep_keys(t: &Table) -> Vec<String> {
+    t.get("sweep")
+        .and_then(Value::as_table)
+        .map(|s| s.keys().map(|k| format!("`{k}`")).collect())
+        .unwrap_or_default()
+}
+
+/// One axis of a sweep: the paths it sets (several: a zipped group) and its values.
+#[derive(Debug)]
+struct Axis {
+    key: String,
+    paths: Vec<Vec<String>>,
+    /// Per value: the value of each path, and the text that names it (a labelled value's).
+    values: Vec<(Vec<Value>, Option<String>)>,
+}
+
+/// Expands one variant table (with its `sweep`) into the variants of the product. Errors start
+/// with the field (`field `sweep` key `...``), the caller prefixes experiment and variant.
+pub fn expand_variant(variant: &Table) -> Result<Vec<Table>, String> {
+    let mut base = variant.clone();
+    let sweep = match base.remove("sweep") {
+        Some(Value::Table(s)) => s,
+        Some(other) => {
+            return Err(format!(
+                "field `sweep`: must be a table of dotted keys and value lists, e.g. sweep = {{ \"scheme.mu\" = [0.5, 1, 2] }} (got {})",
+                other.type_str()
+            ))
+        }
+        None => return Ok(vec![base]),
+    };
+    if sweep.is_empty() {
+        return Err("field `sweep`: is empty (give at least one key)".to_string());
+    }
+    let template = match base.get("label") {
+        Some(Value::String(s)) => s.clone(),
+        _ => return Err(
+            "field `label`: a sweep variant needs a label (the template of the generated labels)"
+                .to_string(),
+        ),
+    };
+    let mut axes = Vec::with_capacity(sweep.len());
+    for (key, val) in &sweep {
+        axes.push(parse_axis(&base, key, val)?);
+    }
+    let total = axes
+        .iter()
+        .try_fold(1usize, |n, a| n.checked_mul(a.values.len()))
+        .filter(|n| *n <= MAX_EXPANSION)
+        .ok_or_else(|| format!("field `sweep`: expands into more than {MAX_EXPANSION} variants"))?;
+    let names = placeholder_names(&axes);
+    check_template(&template, &names)?;
+    let mut out: Vec<Table> = Vec::with_capacity(total);
+    let mut labels: Vec<(String, usize)> = Vec::with_capacity(total);
+    let mut idx = vec![0usize; axes.len()];
+    for n in 0..total {
+        // Odometer: the last axis varies fastest.
+        let mut rest = n;
+        for (a, i) in axes.iter().zip(idx.iter_mut()).rev() {
+            *i = rest % a.values.len();
+            rest /= a.values.len();
+        }
+        let mut t = base.clone();
+        for (a, &i) in axes.iter().zip(&idx) {
+            for (path, value) in a.paths.iter().zip(&a.values[i].0) {
+                set(&mut t, path, value.clone());
+            }
+        }
+        let label = make_label(&template, &axes, &idx, &names);
+        if let Some((_, m)) = labels.iter().find(|(l, _)| *l == label) {
+            return Err(format!(
+                "field `sweep`: expanded variants {m} and {n} both get the label \"{label}\"; the label template must tell every value of every key apart (keys: {})",
+                axes.iter().map(|a| format!("`{}`", a.key)).collect::<Vec<_>>().join(", ")
+            ));
+        }
+        t.insert("label".to_string(), Value::String(label.clone()));
+        labels.push((label, n));
+        out.push(t);
+    }
+    Ok(out)
+}
+
+fn parse_axis(base: &Table, key: &str, val: &Value) -> Result<Axis, String> {
+    let at = format!("field `sweep` key `{key}`");
+    let paths: Vec<Vec<String>> = key
+        .split(',')
+        .map(|p| p.trim().split('.').map(|s| s.trim().to_string()).collect())
+        .collect();
+    for path in &paths {
+        check_path(base, path).map_err(|e| format!("{at}: {e}"))?;
+    }
+    let raw: Vec<Value> = match val {
+        Value::Array(a) if a.is_empty() => {
+            return Err(format!("{at}: the list of values is empty"))
+        }
+        Value::Array(a) => a.clone(),
+        Value::Table(t) if paths.len() == 1 => range(t).map_err(|e| format!("{at}: {e}"))?,
+        other => {
+            return Err(format!(
+                "{at}: must be a list of values{} (got {})",
+                if paths.len() == 1 {
+                    " or a range { from = a, to = b, step = s }"
+                } else {
+                    " (each a list with one entry per path of the group)"
+                },
+                other.type_str()
+            ))
+        }
+    };
+    let mut values = Vec::with_capacity(raw.len());
+    for (k, v) in raw.into_iter().enumerate() {
+        let (v, text) = match v {
+            Value::Table(t)
+                if t.len() == 2 && t.contains_key("value") && t.contains_key("label") =>
+            {
+                let text = match t.get("label") {
+                    Some(Value::String(s)) => s.clone(),
+                    _ => return Err(format!("{at}: value [{k}]: `label` must be a string")),
+                };
+                (t["value"].clone(), Some(text))
+            }
+            v => (v, None),
+        };
+        let per_path = if paths.len() == 1 {
+            vec![v]
+        } else {
+            match v {
+                Value::Array(a) if a.len() == paths.len() => a,
+                other => {
+                    return Err(format!(
+                        "{at}: value [{k}] must be a list of {} entries, one per path of the group (got {})",
+                        paths.len(),
+                        display(&other)
+                    ))
+                }
+            }
+        };
+        values.push((per_path, text));
+    }
+    Ok(Axis {
+        key: key.to_string(),
+        paths,
+        values,
+    })
+}
+
+/// A path is known when its first segment is a variant field and every table or array on the
+/// way is there (the last segment may be new in a table).
+fn check_path(base: &Table, path: &[String]) -> Result<(), String> {
+    let first = &path[0];
+    if path.iter().any(String::is_empty) {
+        return Err("unknown key path: an empty segment".to_string());
+    }
+    if !VARIANT_FIELDS.contains(&first.as_str()) {
+        return Err(format!(
+            "unknown key path: `{first}` is not a field of a variant (fields: {})",
+            VARIANT_FIELDS.join(", ")
+        ));
+    }
+    fn walk(v: Option<&Value>, rest: &[String], done: &str) -> Result<(), String> {
+        let Some((seg, rest)) = rest.split_first() else {
+            return Ok(());
+        };
+        let here = format!("{done}.{seg}");
+        match v {
+            Some(Value::Table(t)) => {
+                if rest.is_empty() {
+                    Ok(())
+                } else {
+                    match t.get(seg.as_str()) {
+                        Some(x) => walk(Some(x), rest, &here),
+                        None => Err(format!(
+                            "unknown key path: `{done}` has no `{seg}` (give it on the variant to sweep inside it)"
+                        )),
+                    }
+                }
+            }
+            Some(Value::Array(a)) => {
+                if seg == "*" {
+                    if a.is_empty() {
+                        return Err(format!("unknown key path: `{done}` is an empty list"));
+                    }
+                    a.iter().try_for_each(|x| walk(Some(x), rest, &here))
+                } else {
+                    let i: usize = seg.parse().map_err(|_| {
+                        format!("unknown key path: `{done}` is a list: index it with 0, 1, ... or `*`, not `{seg}`")
+                    })?;
+                    match a.get(i) {
+                        Some(x) => walk(Some(x), rest, &here),
+                        None => Err(format!(
+                            "unknown key path: `{done}` has {} entries, no [{i}]",
+                            a.len()
+                        )),
+                    }
+                }
+            }
+            Some(other) => Err(format!(
+                "unknown key path: `{done}` is a {}, not a table or a list",
+                other.type_str()
+            )),
+            None => Err(format!(
+                "unknown key path: the variant gives no `{done}` (write it on the variant, e.g. {done} = {{ ... }}, to sweep inside it)"
+            )),
+        }
+    }
+    walk(base.get(first.as_str()), &path[1..], first)
+}
+
+/// Sets `path` of `t` to `v` (`*` sets every element of a list). The path was checked.
+fn set(t: &mut Table, path: &[String], v: Value) {
+    fn go(x: &mut Value, rest: &[String], v: &Value) {
+        let Some((seg, rest)) = rest.split_first() else {
+            *x = v.clone();
+            return;
+        };
+        match x {
+            Value::Table(t) => {
+                let entry = t
+                    .entry(seg.clone())
+                    .or_insert_with(|| Value::Boolean(false));
+                go(entry, rest, v);
+            }
+            Value::Array(a) if seg == "*" => a.iter_mut().for_each(|e| go(e, rest, v)),
+            Value::Array(a) => {
+                if let Some(e) = seg.parse::<usize>().ok().and_then(|i| a.get_mut(i)) {
+                    go(e, rest, v);
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut root = Value::Table(std::mem::take(t));
+    go(&mut root, path, &v);
+    if let Value::Table(r) = root {
+        *t = r;
+    }
+}
+
+/// The names a label template may use: per axis and path, the last segment when no other
+/// swept path ends alike, and always the whole path.
+fn placeholder_names(axes: &[Axis]) -> Vec<(String, usize, usize)> {
+    let mut names = Vec::new();
+    let lasts: Vec<&String> = axes
+        .iter()
+        .flat_map(|a| a.paths.iter().map(|p| p.last().expect("non-empty path")))
+        .collect();
+    for (ai, a) in axes.iter().enumerate() {
+        for (pi, p) in a.paths.iter().enumerate() {
+            let last = p.last().expect("non-empty path");
+            if lasts.iter().filter(|l| **l == last).count() == 1 {
+                names.push((last.clone(), ai, pi));
+            }
+            names.push((p.join("."), ai, pi));
+        }
+    }
+    names
+}
+
+/// The placeholders `{name}` of a template (text between braces without spaces).
+fn placeholders(template: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut rest = template;
+    while let Some(open) = rest.find('{') {
+        let after = &rest[open + 1..];
+        match after.find('}') {
+            Some(close) if !after[..close].is_empty() && !after[..close].contains([' ', '{']) => {
+                out.push(after[..close].to_string());
+                rest = &after[close + 1..];
+            }
+            _ => rest = after,
+        }
+    }
+    out
+}
+
+fn check_template(template: &str, names: &[(String, usize, usize)]) -> Result<(), String> {
+    for p in placeholders(template) {
+        if !names.iter().any(|(n, _, _)| *n == p) {
+            let mut known: Vec<&str> = names.iter().map(|(n, _, _)| n.as_str()).collect();
+            known.dedup();
+            return Err(format!(
+                "field `label`: placeholder {{{p}}} names no swept key (known: {})",
+                known.join(", ")
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn make_label(
+    template: &str,
+    axes: &[Axis],
+    idx: &[usize],
+    names: &[(String, usize, usize)],
+) -> String {
+    let text = |ai: usize, pi: usize| {
+        let (vals, label) = &axes[ai].values[idx[ai]];
+        label.clone().unwrap_or_else(|| display(&vals[pi]))
+    };
+    let used = placeholders(template);
+    if !used.is_empty() {
+        let mut out = template.to_string();
+        for (name, ai, pi) in names {
+            out = out.replace(&format!("{{{name}}}"), &text(*ai, *pi));
+        }
+        return out;
+    }
+    let mut parts = Vec::new();
+    for (ai, a) in axes.iter().enumerate() {
+        let (vals, label) = &a.values[idx[ai]];
+        match label {
+            Some(l) if l.is_empty() => {}
+            Some(l) => parts.push(l.clone()),
+            None => {
+                for (p, v) in a.paths.iter().zip(vals) {
+                    parts.push(format!(
+                        "{}={}",
+                        p.last().expect("non-empty path"),
+                        display(v)
+                    ));
+                }
+            }
+        }
+    }
+    format!("{template} [{}]", parts.join(", "))
+}
+
+/// A value as TOML writes it: `2`, `2.0`, `0.25`, `true`; strings without quotes.
+pub fn display(v: &Value) -> String {
+    match v {
+        Value::String(s) => s.clone(),
+        Value::Integer(i) => i.to_string(),
+        Value::Float(f) => {
+            let s = f.to_string();
+            if f.is_finite() && !s.contains(['.', 'e', 'E']) {
+                format!("{s}.0")
+            } else {
+                s
+            }
+        }
+        Value::Boolean(b) => b.to_string(),
+        other => other.to_string(),
+    }
+}
+
+/// The values of a range table `{ from, to, step }`.
+fn range(t: &Table) -> Result<Vec<Value>, String> {
+    let keys: Vec<&str> = t.keys().map(String::as_str).collect();
+    if keys.len() != 3 || !["from", "to", "step"].iter().all(|k| keys.contains(k)) {
+        return Err(format!(
+            "a range is {{ from = a, to = b, step = s }} (got keys: {})",
+            keys.join(", ")
+        ));
+    }
+    if let (Some(Value::Integer(a)), Some(Value::Integer(b)), Some(Value::Integer(s))) =
+        (t.get("from"), t.get("to"), t.get("step"))
+    {
+        let (a, b, s) = (*a, *b, *s);
+        if s == 0 || (b - a) % s != 0 || (b - a) / s < 0 {
+            return Err(format!(
+                "range from {a} to {b}: step {s} does not divide the interval"
+            ));
+        }
+        let n = (b - a) / s;
+        if n as u64 >= MAX_EXPANSION as u64 {
+            return Err(format!("range has more than {MAX_EXPANSION} values"));
+        }
+        return Ok((0..=n).map(|k| Value::Integer(a + k * s)).collect());
+    }
+    let num = |k: &str| match t.get(k) {
+        Some(Value::Integer(i)) => Ok(*i as f64),
+        Some(Value::Float(f)) if f.is_finite() => Ok(*f),
+        _ => Err(format!("range `{k}` must be a finite number")),
+    };
+    let (a, b, s) = (num("from")?, num("to")?, num("step")?);
+    float_range(a, b, s)?
+        .into_iter()
+        .map(|x| Ok(Value::Float(x)))
+        .collect()
+}
+
+/// a, a + s, ..., b: n = round((b - a) / s), which must be an integer to 1e-9; values in
+/// decimal arithmetic.
+pub fn float_range(a: f64, b: f64, s: f64) -> Result<Vec<f64>, String> {
+    if s == 0.0 {
+        return Err("range step is 0".to_string());
+    }
+    let q = (b - a) / s;
+    let n = q.round();
+    if (q - n).abs() > 1e-9 {
+        return Err(format!(
+            "range from {a} to {b}: step {s} does not divide the interval ((to - from) / step = {q})"
+        ));
+    }
+    if n < 0.0 {
+        return Err(format!(
+            "range from {a} to {b}: step {s} points away from `to`"
+        ));
+    }
+    if n >= MAX_EXPANSION as f64 {
+        return Err(format!("range has more than {MAX_EXPANSION} values"));
+    }
+    let n = n as i64;
+    Ok(match (decimal(a), decimal(s)) {
+        (Some((ma, ea)), Some((ms, es))) => {
+            let e = ea.max(es);
+            let (ma, ms) = (ma * 10i128.pow(e - ea), ms * 10i128.pow(e - es));
+            (0..=n)
+                .map(|k| {
+                    let m = ma + ms * k as i128;
+                    format!("{m}e-{e}").parse::<f64>().expect("a decimal")
+                })
+                .collect()
+        }
+        _ => (0..=n).map(|k| a + k as f64 * s).collect(),
+    })
+}
+
+/// x as m * 10^-e from its shortest decimal form (None when that does not fit).
+fn decimal(x: f64) -> Option<(i128, u32)> {
+    let s = format!("{x}");
+    let (neg, s) = match s.strip_prefix('-') {
+        Some(r) => (true, r),
+        None => (false, s.as_str()),
+    };
+    let (int, frac) = s.split_once('.').unwrap_or((s, ""));
+    if int.len() + frac.len() > 30 || frac.len() > 20 {
+        return None;
+    }
+    let m: i128 = format!("{int}{frac}").parse().ok()?;
+    Some((if neg { -m } else { m }, frac.len() as u32))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn variant(text: &str) -> Table {
+        toml::from_str(text).unwrap()
+    }
+
+    fn labels(t: &[Table]) -> Vec<&str> {
+        t.iter().map(|v| v["label"].as_str().unwrap()).collect()
+    }
+
+    #[test]
+    fn default_labels_in_written_order() {
+        let v = variant(
+            r#"label = "VLTCO"
+path = { name = "circle", duration = 9.0 }
+scheme = { kind = "jia2019" }
+sweep = { "path.scale" = [0.1, 0.15], "path.reverse" = [false, true] }"#,
+        );
+        let out = expand_variant(&v).unwrap();
+        assert_eq!(
+            labels(&out),
+            [
+                "VLTCO [scale=0.1, reverse=false]",
+                "VLTCO [scale=0.1, reverse=true]",
+                "VLTCO [scale=0.15, reverse=false]",
+                "VLTCO [scale=0.15, reverse=true]",
+            ]
+        );
+        assert_eq!(out[3]["path"]["scale"].as_float(), Some(0.15));
+        assert_eq!(out[3]["path"]["reverse"].as_bool(), Some(true));
+        assert_eq!(out[3]["path"]["name"].as_str(), Some("circle"));
+        assert!(!out[0].contains_key("sweep"));
+    }
+
+    #[test]
+    fn values_are_named_as_written() {
+        let v = variant(
+            r#"label = "ZNN"
+scheme = { kind = "kong2019-znn", mu = 1.0 }
+sweep = { "scheme.mu" = [0.25, 2, 2.0, 1e7] }"#,
+        );
+        let out = expand_variant(&v).unwrap();
+        assert_eq!(
+            labels(&out),
+            [
+                "ZNN [mu=0.25]",
+                "ZNN [mu=2]",
+                "ZNN [mu=2.0]",
+                "ZNN [mu=10000000.0]"
+            ]
+        );
+    }
+
+    #[test]
+    fn templates_labelled_values_zips_and_wildcards() {
+        let v = variant(
+            r#"label = "{phi} [{reverse}a={scale}] k={a_d}"
+path = { name = "circle", duration = 9.0 }
+scheme = { kind = "jia2019", kappa = 20.0 }
+solvers = [{ kind = "fp-cdnn", perturbation = { a_d = 0.0, a_s = 0.0 } }, { kind = "vp-cdnn", perturbation = { a_d = 0.0, a_s = 0.0 } }]
+sweep = { "path.reverse" = [{ value = false, label = "" }, { value = true, label = "reversed, " }], "path.scale" = [0.1], "scheme.phi, scheme.tau" = [{ value = [1.0, 0.0], label = "MVN" }, { value = [0.2, 0.4], label = "VLTCO" }], "solvers.*.perturbation.a_d, solvers.*.perturbation.a_s" = [[0.5, 0.75]] }"#,
+        );
+        let out = expand_variant(&v).unwrap();
+        assert_eq!(
+            labels(&out),
+            [
+                "MVN [a=0.1] k=0.5",
+                "VLTCO [a=0.1] k=0.5",
+                "MVN [reversed, a=0.1] k=0.5",
+                "VLTCO [reversed, a=0.1] k=0.5"
+            ]
+        );
+        assert_eq!(out[1]["scheme"]["tau"].as_float(), Some(0.4));
+        assert_eq!(out[1]["scheme"]["kappa"].as_float(), Some(20.0));
+        for s in out[0]["solvers"].as_array().unwrap() {
+            assert_eq!(s["perturbation"]["a_s"].as_float(), Some(0.75));
+        }
+        // Array indices; a labelled value without a template adds its text alone.
+        let v = variant(
+            r#"label = "X"
+solvers = [{ kind = "fp-cdnn", gamma = 1.0 }]
+theta0 = [1.0, 2.0]
+sweep = { "solvers.0.gamma" = [20.0, 2000.0], "theta0.1" = [{ value = 3.0, label = "moved" }] }"#,
+        );
+        let out = expand_variant(&v).unwrap();
+        assert_eq!(
+            labels(&out),
+            ["X [gamma=20.0, moved]", "X [gamma=2000.0, moved]"]
+        );
+        assert_eq!(out[1]["theta0"][1].as_float(), Some(3.0));
+    }
+
+    #[test]
+    fn ranges_are_decimal_safe() {
+        assert_eq!(float_range(0.1, 0.3, 0.1).unwrap(), [0.1, 0.2, 0.3]);
+        assert_eq!(
+            float_range(0.0, 1.0, 0.25).unwrap(),
+            [0.0, 0.25, 0.5, 0.75, 1.0]
+        );
+        assert_eq!(float_range(1.0, 0.7, -0.1).unwrap(), [1.0, 0.9, 0.8, 0.7]);
+        assert_eq!(float_range(2.5, 2.5, 1.0).unwrap(), [2.5]);
+        assert!(float_range(0.0, 1.0, 0.3).is_err());
+        assert!(float_range(0.0, 1.0, 0.0).is_err());
+        assert!(float_range(0.0, 1.0, -0.5).is_err());
+        let v = variant(
+            r#"label = "Z"
+scheme = { kind = "x" }
+sweep = { "scheme.mu" = { from = 0.1, to = 0.3, step = 0.1 }, "scheme.n" = { from = 1, to = 5, step = 2 } }"#,
+        );
+        let out = expand_variant(&v).unwrap();
+        assert_eq!(out.len(), 9);
+        assert_eq!(out[8]["label"].as_str(), Some("Z [mu=0.3, n=5]"));
+        assert_eq!(out[8]["scheme"]["n"].as_integer(), Some(5));
+        assert_eq!(out[3]["scheme"]["mu"].as_float(), Some(0.2));
+    }
+
+    #[test]
+    fn every_error_names_the_key() {
+        let err = |sweep: &str| {
+            let v = variant(&format!(
+                "label = \"L\"\nscheme = {{ kind = \"x\", mu = 1.0 }}\nsolvers = [{{ kind = \"znn\" }}]\nsweep = {sweep}"
+            ));
+            expand_variant(&v).unwrap_err()
+        };
+        let e = err(r#"{ "schem.mu" = [1.0] }"#);
+        assert!(
+            e.contains("key `schem.mu`") && e.contains("unknown key path"),
+            "{e}"
+        );
+        let e = err(r#"{ "path.scale" = [1.0] }"#);
+        assert!(
+            e.contains("key `path.scale`") && e.contains("gives no `path`"),
+            "{e}"
+        );
+        let e = err(r#"{ "scheme.mu.x" = [1.0] }"#);
+        assert!(
+            e.contains("key `scheme.mu.x`") && e.contains("not a table"),
+            "{e}"
+        );
+        let e = err(r#"{ "solvers.3.gamma" = [1.0] }"#);
+        assert!(e.contains("no [3]"), "{e}");
+        let e = err(r#"{ "scheme.mu" = [] }"#);
+        assert!(e.contains("key `scheme.mu`") && e.contains("empty"), "{e}");
+        let e = err(r#"{ "scheme.mu" = 1.0 }"#);
+        assert!(
+            e.contains("key `scheme.mu`") && e.contains("must be a list"),
+            "{e}"
+        );
+        let e = err(r#"{ "scheme.mu" = { from = 0, to = 1, step = 0.3 } }"#);
+        assert!(
+            e.contains("key `scheme.mu`") && e.contains("does not divide"),
+            "{e}"
+        );
+        let e = err(r#"{ "scheme.mu" = { from = 0, to = 1 } }"#);
+        assert!(
+            e.contains("key `scheme.mu`") && e.contains("a range is"),
+            "{e}"
+        );
+        let e = err(r#"{ "scheme.mu, scheme.nu" = [[1.0]] }"#);
+        assert!(e.contains("one per path"), "{e}");
+        let e = err(r#"{ "scheme.mu" = [1, 1] }"#);
+        assert!(e.contains("both get the label \"L [mu=1]\""), "{e}");
+        let e = err("{}");
+        assert!(e.contains("empty"), "{e}");
+        let v = variant(
+            "label = \"L {nu}\"\nscheme = { kind = \"x\" }\nsweep = { \"scheme.mu\" = [1] }",
+        );
+        let e = expand_variant(&v).unwrap_err();
+        assert!(e.contains("placeholder {nu}"), "{e}");
+    }
+
+    #[test]
+    fn expand_file_names_experiment_and_variant() {
+        let mut doc: Table = toml::from_str(
+            r#"paper = "p"
+[[experiment]]
+id = "p-e"
+[[experiment.variant]]
+label = "plain"
+[[experiment.variant]]
+label = "S"
+scheme = { kind = "x" }
+sweep = { "scheme.mu" = [1, 2] }
+[[experiment.variant]]
+label = "last"
+"#,
+        )
+        .unwrap();
+        assert!(has_sweeps(&doc));
+        expand_file(&mut doc, |_| Ok(())).unwrap();
+        let labels: Vec<&str> = variants(experiments(&doc).next().unwrap())
+            .map(|v| v["label"].as_str().unwrap())
+            .collect();
+        assert_eq!(labels, ["plain", "S [mu=1]", "S [mu=2]", "last"]);
+        assert!(!has_sweeps(&doc));
+        let mut doc: Table = toml::from_str(
+            "paper = \"p\"\n[[experiment]]\nid = \"p-e\"\n[[experiment.variant]]\nlabel = \"S\"\nscheme = { kind = \"x\" }\nsweep = { \"scheme.mu\" = [] }\n",
+        )
+        .unwrap();
+        let e = expand_file(&mut doc, |_| Ok(())).unwrap_err();
+        assert!(
+            e.starts_with(
+                "experiment[0] (id \"p-e\") variant[0] (\"S\") field `sweep` key `scheme.mu`"
+            ),
+            "{e}"
+        );
+    }
+}
