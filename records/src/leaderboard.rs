@@ -77,9 +77,8 @@ pub const SHIFT_DRIFT: f64 = 1e-3;
 pub const PENALTY_DRIFT: f64 = 1.0;
 
 /// Shift of the shifted geometric mean of wall time (s): 10 ms. qpbenchmark shifts its runtimes
-/// by 10 s, next to time limits of minutes; ours are 1 ms to 15 s of simulation on 5–15 s
-/// tasks, and below ~10 ms the times of runs executed in parallel are mostly setup and
-/// scheduling noise.
+/// by 10 s; ours are 1 ms to 15 s of simulation on 5–15 s tasks, and below ~10 ms the times of
+/// runs executed in parallel are mostly setup and scheduling noise.
 pub const SHIFT_TIME_S: f64 = 1e-2;
 
 /// The time limit, as a multiple of the task's simulated duration: a failed run counts at
