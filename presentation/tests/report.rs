@@ -37,6 +37,7 @@ fn renders_every_paper_and_experiment_from_the_committed_results() {
     }
     for heading in [
         "## Score against the exact optimum",
+        "## Leaderboard",
         "## Cost",
         "## Cross experiment",
         "## Published numbers without a run",

@@ -5,6 +5,8 @@
 //!   with the schema checked.
 //! - [`table`]: CSV tables whose per-joint columns follow the robot's joint count.
 //! - [`index`]: the stored runs indexed as the report and the analyses look them up.
+//! - [`leaderboard`]: every velocity-level solver on the standard task set, scored as
+//!   qpbenchmark scores QP solvers (`results/leaderboard.csv`).
 //! - [`journal`]: the checkpoint of finished runs that an interrupted run resumes from.
 //! - [`shard`]: cluster runs: which shard a run belongs to, the shard manifest, the merge checks.
 //! - [`gate`]: the regression gate (fresh rows against committed ones).
@@ -14,6 +16,7 @@
 pub mod gate;
 pub mod index;
 pub mod journal;
+pub mod leaderboard;
 pub mod paper_values;
 pub mod runs;
 pub mod shard;

@@ -530,6 +530,10 @@ fn report_root(cli: &Cli) -> Result<PathBuf, String> {
 fn render_report(root: &std::path::Path) -> Result<(), String> {
     let figures = presentation::figures::render_all(root)?;
     let report = presentation::report::render(root)?;
+    records::leaderboard::write(
+        &root.join("results"),
+        &read_runs(&root.join("results/runs.csv"))?,
+    )?;
     eprintln!("wrote {} figures and {}", figures.len(), report.display());
     Ok(())
 }

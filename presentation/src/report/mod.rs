@@ -10,6 +10,7 @@
 //! - per paper: the [`verdict`] paragraph, the published [`tables`] side by side with ours,
 //!   the [`claims`] checklist, the suite's table of every run, and the [`figures`];
 //! - the [`score`] of every neural run against the exact optimum;
+//! - the [`leaderboard`]: every velocity-level solver on the standard task set, qpbenchmark-style;
 //! - the [`cost`] of every run, and zhong2021's MATLAB comparison as ratios;
 //! - the [`cross`] experiment matrices;
 //! - the published numbers without a run (`records::paper_values`), and the deviations.
@@ -19,6 +20,7 @@ pub mod cost;
 pub mod cross;
 pub mod figures;
 pub mod header;
+pub mod leaderboard;
 pub mod markdown;
 pub mod score;
 pub mod sweep;
@@ -190,6 +192,8 @@ pub fn to_markdown(inputs: &Inputs) -> String {
             out.push_str(&format!("### {paper}\n\n{t}\n"));
         }
     }
+
+    out.push_str(&leaderboard::section(runs));
 
     out.push_str("## Cost\n\nSteps, evaluations and QP solves are counted by the integrator and the scorer (the exact QP is solved at every RHS evaluation of the exact column and at every accepted step of a neural run). Wall times come from runs executed in parallel: compare them within one table, not across machines.\n\n");
     for paper in PAPERS.iter().map(|p| p.0).chain([CROSS]) {

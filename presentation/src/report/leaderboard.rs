@@ -1,0 +1,349 @@
+//! The leaderboard section: every velocity-level solver on the standard task set, scored as
+//! qpbenchmark scores QP solvers ([`records::leaderboard`], also `results/leaderboard.csv`):
+//! the ranking, the distributions, a reading generated from the numbers, and the definitions.
+
+use super::markdown::{sci, Table};
+use records::index::Runs;
+use records::leaderboard::{
+    self as board, LeaderboardRow, PENALTY_DRIFT, PENALTY_DX, SHIFT_DRIFT, SHIFT_DX, SHIFT_TIME_S,
+    STANDARD_PAPER, STANDARD_SET, TIME_LIMIT_FACTOR, TOL_RMS_DX,
+};
+
+/// The whole section (`## Leaderboard`), empty when there is no standard task.
+pub fn section(runs: &Runs) -> String {
+    let tasks = board::standard_tasks(runs.all());
+    let rows = board::leaderboard(runs.all());
+    if tasks.is_empty() || rows.is_empty() {
+        return String::new();
+    }
+    let mut out = format!(
+        "## Leaderboard\n\nEvery velocity-level solver on the standard task set — the {} tasks \
+         (experiment · variant) of the `{STANDARD_PAPER}` experiment, every velocity-level scheme, \
+         path and robot, the 7-joint Panda included — scored as \
+         [qpbenchmark](https://github.com/qpsolvers/qpbenchmark) scores QP solvers: success and \
+         correct rates against stated tolerances, and shifted geometric means normalised to the \
+         best solver (1.00 = best), with medians and 95th percentiles. The same numbers are in \
+         `results/leaderboard.csv`; the definitions follow the tables.\n\n",
+        tasks.len()
+    );
+    out.push_str(&reading(&rows, tasks.len()));
+    out.push('\n');
+    for set in sets(&rows) {
+        let members: Vec<&LeaderboardRow> = rows.iter().filter(|r| r.task_set == set).collect();
+        let n = members[0].tasks;
+        if set == STANDARD_SET {
+            out.push_str(&format!("### Standard set ({n} tasks)\n\n"));
+        } else {
+            let partial: Vec<&str> = members
+                .iter()
+                .filter(|r| r.standard_runs < tasks.len())
+                .map(|r| r.solver.as_str())
+                .collect();
+            out.push_str(&format!(
+                "### The {n} tasks of {} (not on every standard task)\n\n{} ran on {n} of the {} \
+                 standard tasks only, so they are not in the standard ranking; here every solver \
+                 that ran on all of those tasks is ranked on them, normalised among themselves.\n\n",
+                join_and(&partial),
+                join_and(&partial),
+                tasks.len()
+            ));
+        }
+        out.push_str(&ranking(&members));
+        out.push('\n');
+        out.push_str(&distributions(&members));
+        out.push('\n');
+    }
+    out.push_str(&definitions());
+    out
+}
+
+/// The task sets in the rows' order.
+fn sets(rows: &[LeaderboardRow]) -> Vec<&str> {
+    let mut out: Vec<&str> = Vec::new();
+    for r in rows {
+        if !out.contains(&r.task_set.as_str()) {
+            out.push(&r.task_set);
+        }
+    }
+    out
+}
+
+/// A ratio to the best with three significant digits (`1.00`, `12.3`, `456`), scientific above.
+fn times(v: f64) -> String {
+    if v.is_finite() && (1.0..1000.0).contains(&v) {
+        let decimals = 2 - v.log10().floor() as usize;
+        format!("{v:.decimals$}")
+    } else {
+        sci(v)
+    }
+}
+
+/// A percentage of tasks.
+fn pct(v: f64) -> String {
+    format!("{v:.0} %")
+}
+
+/// The ranking table of one set.
+fn ranking(rows: &[&LeaderboardRow]) -> String {
+    let mut t = Table::new([
+        "rank",
+        "solver",
+        "kind",
+        "standard tasks run",
+        "completed",
+        "success rate",
+        "correct rate",
+        "RMS |x − x*| (shm, × best)",
+        "drift error (shm, × best)",
+        "sim time (shm, × best)",
+    ]);
+    for r in rows {
+        t.push([
+            r.rank.to_string(),
+            r.solver.clone(),
+            r.solver_kind.clone(),
+            r.standard_runs.to_string(),
+            format!("{} / {}", r.completed, r.tasks),
+            format!(
+                "{} ({} / {})",
+                pct(r.success_pct),
+                r.within_tolerance,
+                r.tasks
+            ),
+            pct(r.correct_pct),
+            times(r.dx_rel),
+            times(r.drift_rel),
+            times(r.time_rel),
+        ]);
+    }
+    t.render()
+}
+
+/// The absolute shifted geometric means, medians and 95th percentiles of one set.
+fn distributions(rows: &[&LeaderboardRow]) -> String {
+    let mut t = Table::new([
+        "solver",
+        "RMS |x − x*| shm (rad/s)",
+        "p50",
+        "p95",
+        "drift error shm",
+        "p50",
+        "p95",
+        "sim time shm (s)",
+        "p50",
+        "p95",
+    ]);
+    for r in rows {
+        t.push([
+            r.solver.clone(),
+            sci(r.dx_shm),
+            sci(r.dx_p50),
+            sci(r.dx_p95),
+            sci(r.drift_shm),
+            sci(r.drift_p50),
+            sci(r.drift_p95),
+            sci(r.time_shm),
+            sci(r.time_p50),
+            sci(r.time_p95),
+        ]);
+    }
+    t.render()
+}
+
+/// "a", "a and b", "a, b and c".
+fn join_and(names: &[&str]) -> String {
+    match names {
+        [] => String::new(),
+        [one] => one.to_string(),
+        [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
+    }
+}
+
+/// The rows of `set` whose `key` is the smallest (the best: ratio 1).
+fn best_by<'a>(
+    rows: &[&'a LeaderboardRow],
+    key: impl Fn(&LeaderboardRow) -> f64,
+) -> Vec<&'a LeaderboardRow> {
+    let best = rows.iter().map(|r| key(r)).fold(f64::INFINITY, f64::min);
+    rows.iter().copied().filter(|r| key(r) == best).collect()
+}
+
+/// One paragraph reading the standard set (and a sentence per other set), generated from the
+/// numbers.
+pub fn reading(rows: &[LeaderboardRow], standard_tasks: usize) -> String {
+    let std: Vec<&LeaderboardRow> = rows.iter().filter(|r| r.task_set == STANDARD_SET).collect();
+    let mut s = Vec::new();
+    if std.is_empty() {
+        s.push(format!(
+            "No solver ran on all {standard_tasks} standard tasks, so there is no standard ranking."
+        ));
+    } else {
+        let n = std[0].tasks;
+        let names = |rs: &[&LeaderboardRow]| {
+            join_and(&rs.iter().map(|r| r.solver.as_str()).collect::<Vec<_>>())
+        };
+        // Success, best first, grouped by rate.
+        let mut groups: Vec<(usize, Vec<&LeaderboardRow>)> = Vec::new();
+        for r in &std {
+            match groups.last_mut() {
+                Some((w, g)) if *w == r.within_tolerance => g.push(r),
+                _ => groups.push((r.within_tolerance, vec![r])),
+            }
+        }
+        let (w, top) = &groups[0];
+        s.push(format!(
+            "On the standard set, {} {} within tolerance (RMS |x − x*| ≤ {} rad/s) on {w} of \
+             {n} tasks",
+            names(top),
+            if top.len() == 1 { "is" } else { "are" },
+            sci(TOL_RMS_DX)
+        ));
+        let rest: Vec<String> = groups[1..]
+            .iter()
+            .map(|(w, g)| format!("{} on {w}", names(g)))
+            .collect();
+        if let Some(last) = s.last_mut() {
+            if rest.is_empty() {
+                last.push('.');
+            } else {
+                last.push_str(&format!("; {}.", rest.join(", ")));
+            }
+        }
+        let failed: usize = std.iter().map(|r| r.tasks - r.completed).sum();
+        s.push(if failed == 0 {
+            "Every run completed, so the correct rate equals the success rate: each miss is a run \
+             that completed outside the tolerance."
+                .to_string()
+        } else {
+            format!(
+                "{failed} runs failed and count at the penalties; a failure is not an incorrect \
+                 outcome (the correct rate counts only completed runs outside the tolerance)."
+            )
+        });
+        let spread = |key: fn(&LeaderboardRow) -> f64| {
+            let others: Vec<f64> = std.iter().map(|r| key(r)).filter(|v| *v != 1.0).collect();
+            match (
+                others.iter().copied().reduce(f64::min),
+                others.iter().copied().reduce(f64::max),
+            ) {
+                (Some(lo), Some(hi)) if lo == hi => format!("{}×", times(lo)),
+                (Some(lo), Some(hi)) => format!("{}× to {}×", times(lo), times(hi)),
+                _ => "the same".to_string(),
+            }
+        };
+        let acc = best_by(&std, |r| r.dx_rel);
+        s.push(format!(
+            "The closest to the exact optimum is {} (shifted geometric mean of the RMS distance \
+             {} rad/s, median {}); the others' means are {} that.",
+            names(&acc),
+            sci(acc[0].dx_shm),
+            sci(acc[0].dx_p50),
+            spread(|r| r.dx_rel)
+        ));
+        let drift = best_by(&std, |r| r.drift_rel);
+        s.push(format!(
+            "{} reproduce{} the exact column's drift most closely (relative error: shifted \
+             geometric mean {}, 95th percentile {}); the others are {} that.",
+            names(&drift),
+            if drift.len() == 1 { "s" } else { "" },
+            sci(drift[0].drift_shm),
+            sci(drift[0].drift_p95),
+            spread(|r| r.drift_rel)
+        ));
+        let fast = best_by(&std, |r| r.time_rel);
+        s.push(format!(
+            "{} {} fastest (shifted geometric mean of the simulation time {} s, median {} s); the \
+             others take {} as long. Times come from runs executed in parallel, so single runs \
+             can be slowed by their neighbours: read the medians beside the means.",
+            names(&fast),
+            if fast.len() == 1 { "is" } else { "are" },
+            sci(fast[0].time_shm),
+            sci(fast[0].time_p50),
+            spread(|r| r.time_rel)
+        ));
+    }
+    for set in sets(rows).into_iter().filter(|s| *s != STANDARD_SET) {
+        let members: Vec<&LeaderboardRow> = rows.iter().filter(|r| r.task_set == set).collect();
+        let partial: Vec<&LeaderboardRow> = members
+            .iter()
+            .copied()
+            .filter(|r| r.standard_runs < standard_tasks)
+            .collect();
+        let n = members[0].tasks;
+        let first = members[0];
+        s.push(format!(
+            "{} ran on {n} of the {standard_tasks} standard tasks only; on those, {} ranks first \
+             ({} / {n} within tolerance), and {}.",
+            join_and(
+                &partial
+                    .iter()
+                    .map(|r| r.solver.as_str())
+                    .collect::<Vec<_>>()
+            ),
+            first.solver,
+            first.within_tolerance,
+            join_and(
+                &partial
+                    .iter()
+                    .map(|r| format!(
+                        "{} is within tolerance on {} / {n} (rank {} of {})",
+                        r.solver,
+                        r.within_tolerance,
+                        r.rank,
+                        members.len()
+                    ))
+                    .collect::<Vec<_>>()
+                    .iter()
+                    .map(String::as_str)
+                    .collect::<Vec<_>>()
+            )
+        ));
+    }
+    format!("{}\n", s.join(" "))
+}
+
+/// The definitions: task set, tolerances, shifts, penalties, ranking.
+fn definitions() -> String {
+    format!(
+        "**Definitions** (constants in `records::leaderboard`; the suite's choices, not tuned to \
+         the results):\n\n\
+         - *Task set.* The standard set is every task of the `{STANDARD_PAPER}` experiment whose \
+         exact column completed. Solvers are grouped by label (the parameterised network); a \
+         solver that did not run on every standard task is ranked separately, on the tasks it ran \
+         on, against every solver that also ran on all of them, and normalised there.\n\
+         - *Success rate*: share of the set's tasks where the run completed and its RMS \
+         |x − x*|_inf along the run (`score_rms_dx`) is at most {tol} rad/s — a thousandth of \
+         the arms' joint-velocity limits. The RMS, not the max: the max includes the start-up \
+         from the zero network state (on kong2019's deviated start every network ties at \
+         |x*(0)|). VP-RNN-PF's equilibrium is the exponential-penalty optimum, not x*: it sits \
+         ~1e-2 rad/s from x* by design, and the tolerance counts that against it.\n\
+         - *Correct rate* (qpbenchmark's): share of the set's tasks where the run's verdict is \
+         right — it failed, or it completed within tolerance; a run that completes outside the \
+         tolerance is the one incorrect outcome.\n\
+         - *Shifted geometric mean* exp(mean ln(v + sh)) − sh over the set's tasks, divided by \
+         the best solver's (× best; 1.00 = best). Shifts: RMS |x − x*| sh = {sdx} rad/s (a \
+         hundredth of the tolerance: solvers both far inside it count as about equal); drift \
+         error sh = {sdrift} (drift is printed with three significant digits); sim time sh = \
+         {stime} s (qpbenchmark shifts its runtimes by 10 s; ours are 1 ms to 15 s \
+         on 5–15 s tasks, and below ~10 ms parallel runs' times are mostly noise).\n\
+         - *Drift error*: the relative distance of the per-joint drift vectors, \
+         |θ(T) − θ(0) − d*| / |d*|, d* the exact column's drift on the same task (from the \
+         norms when the joint counts differ).\n\
+         - *Sim time*: `sim_s`, the wall time of the simulation proper (arm, network, \
+         integrator), without the scoring.\n\
+         - *Penalties.* A failed run counts at {pdx} rad/s for |x − x*| (the order of the joint \
+         velocity limits), {pdrift} for the drift error (a drift as far from the exact one as that \
+         is from zero) and at the time limit, {limit} × the task's duration, for time \
+         (qpbenchmark counts a failure at its time limit); every value is capped there, so no \
+         completed run counts worse than a failure.\n\
+         - *Percentiles* p50 and p95 over the set's tasks, linearly interpolated between ranks.\n\
+         - *Rank*: success rate, then the normalised means of |x − x*|, drift error and time.\n\n",
+        tol = sci(TOL_RMS_DX),
+        sdx = sci(SHIFT_DX),
+        sdrift = sci(SHIFT_DRIFT),
+        stime = sci(SHIFT_TIME_S),
+        pdx = sci(PENALTY_DX),
+        pdrift = sci(PENALTY_DRIFT),
+        limit = TIME_LIMIT_FACTOR,
+    )
+}

@@ -1,0 +1,27 @@
+//! The committed `results/leaderboard.csv` is the leaderboard the committed `results/runs.csv`
+//! gives (both are rewritten whenever the report is rendered), byte for byte.
+
+#[test]
+fn the_committed_leaderboard_is_the_one_the_committed_runs_give() {
+    let root = simulation::root::from_current_dir().unwrap();
+    let runs = records::runs::read_runs(&root.join("results/runs.csv")).unwrap();
+    let path = root.join("results/leaderboard.csv");
+    let committed =
+        std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let rows = records::leaderboard::leaderboard(&runs);
+    let fresh = String::from_utf8(records::leaderboard::leaderboard_csv(&rows).unwrap()).unwrap();
+    assert!(
+        committed == fresh,
+        "{} is stale: regenerate with `cargo run --release -p reproduce -- --report-only`",
+        path.display()
+    );
+    // Every standard task and every solver that ran on all of them is on it.
+    let tasks = records::leaderboard::standard_tasks(&runs);
+    assert!(!tasks.is_empty());
+    let standard = rows
+        .iter()
+        .filter(|r| r.task_set == records::leaderboard::STANDARD_SET);
+    for r in standard {
+        assert_eq!((r.tasks, r.standard_runs), (tasks.len(), tasks.len()));
+    }
+}
