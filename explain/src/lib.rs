@@ -201,6 +201,6 @@ fn merge<T: Clone, K: Ord>(stored: Vec<T>, fresh: &[T], key: impl Fn(&T) -> K) -
         .filter(|s| !fresh.iter().any(|f| key(f) == key(s)))
         .collect();
     all.extend(fresh.iter().cloned());
-    all.sort_by(|a, b| key(a).cmp(&key(b)));
+    all.sort_by_key(|a| key(a));
     all
 }

@@ -164,10 +164,10 @@ impl Qp {
     /// Largest violation of any constraint at x (0 when x is feasible).
     pub fn constraint_violation(&self, x: &DVector<f64>) -> f64 {
         let mut v: f64 = 0.0;
-        if self.b.len() > 0 {
+        if !self.b.is_empty() {
             v = v.max((&self.a * x - &self.b).amax());
         }
-        if self.h.len() > 0 {
+        if !self.h.is_empty() {
             let gx = &self.g * x;
             for i in 0..self.h.len() {
                 v = v.max(gx[i] - self.h[i]);
@@ -183,10 +183,10 @@ impl Qp {
     pub fn kkt_residuals(&self, x: &DVector<f64>, d: &QpDuals) -> KktResiduals {
         let primal = self.constraint_violation(x);
         let mut stat = &self.p * x + &self.q - &d.z_lower + &d.z_upper;
-        if self.b.len() > 0 {
+        if !self.b.is_empty() {
             stat += self.a.tr_mul(&d.lambda);
         }
-        if self.h.len() > 0 {
+        if !self.h.is_empty() {
             stat += self.g.tr_mul(&d.mu);
         }
         let mut dual = stat.amax();
@@ -194,7 +194,7 @@ impl Qp {
             dual = dual.max(-m);
         }
         let mut comp: f64 = 0.0;
-        if self.h.len() > 0 {
+        if !self.h.is_empty() {
             let slack = &self.h - &self.g * x;
             for i in 0..slack.len() {
                 comp = comp.max((d.mu[i] * slack[i]).abs());

@@ -191,7 +191,7 @@ fn run_with<const N: usize>(
         }
     };
     let settings = Settings {
-        integrator: job.integrator.clone(),
+        integrator: job.integrator,
         score: job.score,
         network_init: job.network_init,
     };

@@ -68,13 +68,16 @@ fn expected_cost(j: &Job) -> f64 {
     solver * j.path.duration
 }
 
+/// Per experiment id: (runs finished, runs).
+type Counts = BTreeMap<String, (usize, usize)>;
+
 /// Progress without a terminal: one line per experiment whose runs have all finished, with the
 /// overall count and the elapsed time.
 struct ExperimentLog {
     started: Instant,
     total: usize,
     /// Per experiment: (finished, runs); and the runs finished overall.
-    state: Mutex<(BTreeMap<String, (usize, usize)>, usize)>,
+    state: Mutex<(Counts, usize)>,
 }
 
 impl ExperimentLog {

@@ -339,7 +339,7 @@ fn integrator_tolerances_are_checked_at_load() {
 #[test]
 fn scheme_robot_and_solver_must_fit_together() {
     // zhang2018 is acceleration level and needs the arm's dynamics: not the Katana.
-    let katana_zhang = KATANA.replace("paper = \"kong2019\"", "paper = \"kong2019\"").replace(
+    let katana_zhang = KATANA.replace(
         "scheme = { kind = \"kong2019-znn\", mu = 1.0, k_p = 1.0 }\nsolvers = [{ kind = \"znn\", gamma = 1.0 }]",
         "scheme = { kind = \"zhang2018\", zeta = 0.6, alpha = 20.0, beta = 20.0, rho_v = 20.0, rho_p = 20.0 }",
     );

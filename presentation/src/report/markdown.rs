@@ -100,6 +100,15 @@ fn escape(cell: &str) -> String {
     cell.replace('|', "\\|").replace('\n', " ")
 }
 
+/// A cell for `metric` of `r`: the number, or why there is none (a failed run has no drift).
+pub fn metric_cell(r: &records::runs::RunRow, name: &str) -> String {
+    match records::index::metric(r, name) {
+        Some(v) => sci(v),
+        None if !records::index::completed(r) => records::index::failed_at(r),
+        None => MISSING.to_string(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -119,14 +128,5 @@ mod tests {
             t.without_empty_columns().render(),
             "| a | c |\n|---|---|\n| x\\|y | 1 |\n"
         );
-    }
-}
-
-/// A cell for `metric` of `r`: the number, or why there is none (a failed run has no drift).
-pub fn metric_cell(r: &records::runs::RunRow, name: &str) -> String {
-    match records::index::metric(r, name) {
-        Some(v) => sci(v),
-        None if !records::index::completed(r) => records::index::failed_at(r),
-        None => MISSING.to_string(),
     }
 }

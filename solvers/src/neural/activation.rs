@@ -117,7 +117,7 @@ impl Activation {
         }
     }
 
-    /// Check the papers' parameter ranges.
+    /// Check the papers' parameter ranges (written `!(x > 0 && finite)` so that NaN fails).
     pub fn validate(&self) -> Result<(), String> {
         match *self {
             Activation::Linear | Activation::Sinh => Ok(()),
