@@ -26,7 +26,7 @@ use schemes::jia2019::Jia2019;
 use schemes::paths::{build_path, PathSpec};
 use schemes::qp::{Qp, QpDims};
 use simulation::experiment::{default_exact_integrator, NetworkInit};
-use simulation::simulate::{simulate, Outcome, Settings, Solver};
+use simulation::simulate::{simulate, Outcome, Scoring, Settings, Solver};
 use solvers::neural::{build_solver, NeuralSolver, SolverSpec};
 use solvers::ode::IntegratorSettings;
 use std::sync::Arc;
@@ -139,7 +139,7 @@ fn run() -> Vec<Line> {
     // the exact column as the suite does (Dormand-Prince, RelTol 1e-11: converged).
     let networks = Settings {
         integrator: IntegratorSettings::default(),
-        score: true,
+        scoring: Scoring::EveryStep,
         network_init: NetworkInit::Zero,
     };
     let exact = Settings {

@@ -23,7 +23,7 @@ use robots::{JointLimits, Robot};
 use schemes::kong2019::Kong2019;
 use schemes::paths::{build_path, PathSpec};
 use simulation::experiment::{default_exact_integrator, NetworkInit};
-use simulation::simulate::{simulate, Outcome, Settings, Solver};
+use simulation::simulate::{simulate, Outcome, Scoring, Settings, Solver};
 use solvers::neural::{build_solver, NeuralSolver, SolverSpec};
 use solvers::ode::IntegratorSettings;
 use std::sync::Arc;
@@ -113,7 +113,7 @@ fn run() -> Vec<(String, f64, f64)> {
     // the exact column as the suite does (Dormand-Prince, RelTol 1e-11: converged).
     let networks = Settings {
         integrator: IntegratorSettings::default(),
-        score: true,
+        scoring: Scoring::EveryStep,
         network_init: NetworkInit::Zero,
     };
     let exact = Settings {

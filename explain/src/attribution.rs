@@ -27,6 +27,7 @@ use records::runs::RunRow;
 use records::table::Row;
 use serde::{Deserialize, Serialize};
 use simulation::experiment::{Job, SolverChoice};
+use simulation::simulate::Scoring;
 use solvers::neural::spec::SolverSpec;
 
 /// The largest RelTol whose rung may serve as a converged reference.
@@ -59,7 +60,7 @@ impl Switch {
             return None;
         };
         let mut out = Job {
-            score: false,
+            scoring: Scoring::Off,
             ..job.clone()
         };
         out.integrator.max_steps = out
@@ -250,7 +251,7 @@ pub fn attribution_rows(
 pub fn exact_counterpart(job: &Job) -> Job {
     Job {
         solver: SolverChoice::Exact,
-        score: false,
+        scoring: Scoring::Off,
         ..job.clone()
     }
 }

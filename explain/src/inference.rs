@@ -35,6 +35,7 @@ use schemes::spec::{RmpReading, SchemeSpec};
 use serde::{Deserialize, Serialize};
 use simulation::experiment::{Job, SolverChoice};
 use simulation::run::run_job;
+use simulation::simulate::Scoring;
 use solvers::ode::{IntegratorSettings, Method};
 use std::f64::consts::PI;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -197,7 +198,7 @@ pub fn problem(
                 method: exact.integrator.method,
                 ..inference_integrator()
             },
-            score: false,
+            scoring: Scoring::Off,
             ..exact.clone()
         };
         let index = match p.runs.iter().position(|r| r.key() == job.key()) {

@@ -26,6 +26,7 @@ use records::runs::{RunRow, Status};
 use records::table::Row;
 use serde::{Deserialize, Serialize};
 use simulation::experiment::{Job, SolverChoice};
+use simulation::simulate::Scoring;
 use solvers::neural::spec::SolverSpec;
 use solvers::ode::{IntegratorSettings, Method};
 
@@ -108,7 +109,7 @@ pub fn jobs(job: &Job) -> Vec<Job> {
         .into_iter()
         .map(|integrator| Job {
             integrator,
-            score: false,
+            scoring: Scoring::Off,
             ..job.clone()
         })
         .collect()

@@ -132,7 +132,7 @@ fn switches_change_one_ingredient_only() {
             (j.solver.clone(), j.path.clone()),
             (perturbed.solver.clone(), perturbed.path.clone())
         );
-        assert!(!j.score);
+        assert_eq!(j.scoring, simulation::simulate::Scoring::Off);
     }
 }
 
@@ -156,7 +156,7 @@ fn inference_recovers_a_known_setup() {
             atol: 1e-13,
             ..explain::inference::inference_integrator()
         },
-        score: false,
+        scoring: simulation::simulate::Scoring::Off,
         theta0: exact.theta_ref.clone(),
         ..exact
     };

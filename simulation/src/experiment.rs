@@ -11,6 +11,7 @@
 
 use crate::naming::{run_stem, slug};
 use crate::run::JobPart;
+use crate::simulate::Scoring;
 use schemes::paths::PathSpec;
 use schemes::spec::SchemeSpec;
 use serde::Deserialize;
@@ -50,6 +51,10 @@ pub struct Experiment {
     /// x*(t, theta) is only piecewise smooth and has no cheap Jacobian).
     #[serde(default = "default_exact_integrator")]
     pub exact_integrator: IntegratorSettings,
+    /// Where the neural runs are scored against the exact optimum: `"every-step"` (default),
+    /// `{ max-instants = 2000 }` (a bounded number of exact solves per run) or `"off"`.
+    #[serde(default)]
+    pub scoring: Scoring,
     #[serde(rename = "variant")]
     pub variants: Vec<Variant>,
 }
@@ -176,10 +181,10 @@ pub struct Job {
     pub scheme: SchemeSpec,
     pub solver: SolverChoice,
     pub integrator: IntegratorSettings,
-    /// Score a neural run against Clarabel at every accepted step (true for every run of an
-    /// experiment file; the controlled re-runs of the `explain` crate need only drift and
-    /// position error and switch it off).
-    pub score: bool,
+    /// Where a neural run is scored against the exact optimum (the experiment's `scoring`;
+    /// the controlled re-runs of the `explain` crate need only drift and position error and
+    /// switch it off).
+    pub scoring: Scoring,
     /// Initial state of a neural run's network.
     pub network_init: NetworkInit,
     /// Why this run is expected to fail, if it is (the variant's `expected_failure`).
@@ -418,7 +423,7 @@ impl PaperFile {
             scheme: v.scheme.clone(),
             solver: SolverChoice::Exact,
             integrator: e.exact_integrator,
-            score: true,
+            scoring: e.scoring,
             network_init: NetworkInit::Zero,
             expected_failure: v
                 .expected_failure

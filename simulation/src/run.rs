@@ -192,7 +192,7 @@ fn run_with<const N: usize>(
     };
     let settings = Settings {
         integrator: job.integrator,
-        score: job.score,
+        scoring: job.scoring,
         network_init: job.network_init,
     };
     simulate(

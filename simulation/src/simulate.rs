@@ -18,6 +18,7 @@ use nalgebra::{DVector, SVector};
 use robots::Robot;
 use schemes::paths::Path;
 use schemes::scheme::{Level, Scheme};
+use serde::{Deserialize, Serialize};
 use solvers::exact_path::ExactPathStats;
 use solvers::neural::NeuralSolver;
 use solvers::ode::{
@@ -37,13 +38,29 @@ pub enum Solver<'a> {
     Network(&'a dyn Fn() -> Result<Box<dyn NeuralSolver>, String>),
 }
 
+/// Where a network run is compared with the exact optimum (one exact QP solve each).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case", deny_unknown_fields)]
+pub enum Scoring {
+    /// At every accepted step of the integrator (the default: the score sees every state the
+    /// network reaches).
+    #[default]
+    EveryStep,
+    /// At most this many instants: the first accepted step at or after each point of a uniform
+    /// grid of the run's duration (and the last step), so a run of 10^5 steps costs a bounded
+    /// number of exact solves; `score_samples` in results says how many were taken.
+    MaxInstants(usize),
+    /// Not scored (the explanation layer's controlled re-runs need only drift and error).
+    Off,
+}
+
 /// How a run is integrated and observed.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Settings {
     /// The integrator of the coupled arm + solver ODE.
     pub integrator: IntegratorSettings,
-    /// Score a network against the exact optimum at every accepted step.
-    pub score: bool,
+    /// Where a network is scored against the exact optimum.
+    pub scoring: Scoring,
     /// Where a network's state starts.
     pub network_init: NetworkInit,
 }
@@ -188,11 +205,23 @@ pub fn simulate<const N: usize>(
                 message,
             })?;
             let mut failures = 0usize;
+            let mut next_score_t = 0.0;
             let result = integrate(&mut sys, &y0, 0.0, t1, &settings.integrator, |t, y| {
                 let started = Instant::now();
                 let x_nn = DVector::from_column_slice(&y[k..k + scheme.dims().nx]);
                 let (theta, thetadot) = arm_state::<N>(level, y, &y[k..]);
-                if !settings.score {
+                let due = match settings.scoring {
+                    Scoring::EveryStep => true,
+                    Scoring::Off => false,
+                    Scoring::MaxInstants(n) => {
+                        let due = t >= next_score_t || t >= t1 * (1.0 - 1e-12);
+                        if due {
+                            next_score_t = t + t1 / n.max(1) as f64;
+                        }
+                        due
+                    }
+                };
+                if !due {
                     observer.sample(t, y, &x_nn, level);
                     observer.seconds += started.elapsed().as_secs_f64();
                     return observer

@@ -1,0 +1,86 @@
+//! The scoring grid: a network run scored at every accepted step, at a bounded number of
+//! instants, or not at all, as the experiment file's `scoring` says.
+
+use simulation::experiment::{load_dir, Job, PaperFile, SolverChoice};
+use simulation::run::run_job;
+use simulation::simulate::{Outcome, Scoring};
+
+fn znn_job() -> Job {
+    let root = simulation::root::from_current_dir().unwrap();
+    load_dir(&root.join("experiments"))
+        .unwrap()
+        .iter()
+        .flat_map(PaperFile::jobs)
+        .find(|j| {
+            j.experiment == "kong2019-circle"
+                && j.variant == "ZNN (eq. 22)"
+                && matches!(j.solver, SolverChoice::Neural(_))
+        })
+        .expect("kong2019's ZNN run")
+}
+
+fn samples_and_max_dx(job: &Job) -> (usize, usize, Option<f64>) {
+    let r = run_job(job);
+    let Outcome::Completed(m) = &r.run.outcome else {
+        panic!("{:?}", r.run.outcome)
+    };
+    let score = m.score.map(|s| (s.samples, s.max_dx));
+    (
+        r.run.stats.steps,
+        score.map_or(0, |s| s.0),
+        score.map(|s| s.1),
+    )
+}
+
+#[test]
+fn a_grid_bounds_the_exact_solves_and_every_step_sees_them_all() {
+    let every = znn_job();
+    assert_eq!(every.scoring, Scoring::EveryStep);
+    let (steps, n_every, max_every) = samples_and_max_dx(&every);
+    // Every accepted step, and the initial state.
+    assert_eq!(n_every, steps + 1);
+    let grid = Job {
+        scoring: Scoring::MaxInstants(20),
+        ..every.clone()
+    };
+    let (_, n_grid, max_grid) = samples_and_max_dx(&grid);
+    assert!((2..=22).contains(&n_grid), "{n_grid} instants");
+    // The grid's instants are a subset of the accepted steps: its max cannot exceed theirs.
+    assert!(max_grid.unwrap() <= max_every.unwrap());
+    let off = Job {
+        scoring: Scoring::Off,
+        ..every
+    };
+    assert_eq!(samples_and_max_dx(&off).1, 0);
+}
+
+#[test]
+fn the_scoring_setting_is_read_from_the_experiment_file() {
+    let file = |scoring: &str| {
+        format!(
+            r#"paper = "kong2019"
+title = "t"
+[[experiment]]
+id = "kong2019-e"
+paper_output = "none"
+robot = "katana6m180"
+path = {{ name = "circle", duration = 9.0 }}
+theta0 = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.0471975511965976]
+{scoring}
+[[experiment.variant]]
+label = "ZNN"
+scheme = {{ kind = "kong2019-znn", mu = 1.0, k_p = 1.0 }}
+solvers = [{{ kind = "znn", gamma = 1.0 }}]
+"#
+        )
+    };
+    let scoring_of = |text: &str| PaperFile::from_toml(text).map(|f| f.jobs()[1].scoring);
+    assert_eq!(scoring_of(&file("")), Ok(Scoring::EveryStep));
+    assert_eq!(
+        scoring_of(&file("scoring = { max-instants = 500 }")),
+        Ok(Scoring::MaxInstants(500))
+    );
+    assert_eq!(scoring_of(&file("scoring = \"off\"")), Ok(Scoring::Off));
+    let err = scoring_of(&file("scoring = \"sometimes\"")).unwrap_err();
+    assert!(err.contains("every-step") && err.contains("max-instants"), "{err}");
+}
