@@ -4,9 +4,49 @@
 //! error's `Display`.
 
 use crate::run::JobPart;
+use schemes::paths::PathError;
+use schemes::spec::SchemeError;
 use serde::{Deserialize, Serialize};
 use solvers::ode::OdeError;
 use solvers::ExactError;
+
+/// Why a run's parts could not be built from its specification (robot, pose, path, scheme,
+/// network), each wrapping its layer's own error.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SetupError {
+    #[error("unknown robot \"{0}\"")]
+    UnknownRobot(String),
+    /// theta0 or theta_ref does not have the robot's joint count.
+    #[error("has {given} entries, the robot has {joints} joints")]
+    PoseLength {
+        part: JobPart,
+        given: usize,
+        joints: usize,
+    },
+    #[error("entries must be finite")]
+    PoseNotFinite { part: JobPart },
+    #[error(transparent)]
+    Path(#[from] PathError),
+    /// The scheme's error, with a hint naming what would fit (e.g. the robots with dynamics).
+    #[error("{error}{hint}")]
+    Scheme { error: SchemeError, hint: String },
+    /// The network could not be built for the scheme's QP (its message names both).
+    #[error("{0}")]
+    Network(String),
+}
+
+impl SetupError {
+    /// The part of the job (and so the experiment-file field) at fault.
+    pub fn part(&self) -> JobPart {
+        match self {
+            SetupError::UnknownRobot(_) => JobPart::Robot,
+            SetupError::PoseLength { part, .. } | SetupError::PoseNotFinite { part } => *part,
+            SetupError::Path(_) => JobPart::Path,
+            SetupError::Scheme { .. } => JobPart::Scheme,
+            SetupError::Network(_) => JobPart::Solver,
+        }
+    }
+}
 
 /// What stopped a run, as a category a table can be grouped by.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
@@ -34,8 +74,8 @@ pub enum FailureKind {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum RunError {
     /// A part of the job could not be built.
-    #[error("{message}")]
-    Setup { part: JobPart, message: String },
+    #[error(transparent)]
+    Setup(#[from] SetupError),
     /// The exact QP at instant t had no solution.
     #[error("exact QP at t = {t:.6}: {error}")]
     ExactQp { t: f64, error: ExactError },
@@ -51,7 +91,7 @@ impl RunError {
     /// The category of this failure.
     pub fn kind(&self) -> FailureKind {
         match self {
-            RunError::Setup { .. } => FailureKind::Setup,
+            RunError::Setup(_) => FailureKind::Setup,
             RunError::ExactQp { .. } => FailureKind::ExactQp,
             RunError::Diverged { .. } => FailureKind::Diverged,
             RunError::Integration(e) => match e {

@@ -367,7 +367,8 @@ impl PaperFile {
                     ));
                 }
                 for (k, job) in self.variant_jobs(e, v).iter().enumerate() {
-                    crate::run::check_job(job).map_err(|(part, message)| {
+                    crate::run::check_job(job).map_err(|e| {
+                        let (part, message) = (e.part(), e.to_string());
                         let field = match (&part, &job.solver) {
                             (JobPart::Solver, _) => {
                                 format!("solvers[{}]", k - usize::from(v.exact))

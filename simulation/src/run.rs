@@ -1,7 +1,7 @@
 //! Running one [`Job`] of an experiment file: build its robot (from the registry), path,
 //! scheme and solver from the file's specifications, then [`simulate`] them.
 
-use crate::error::RunError;
+use crate::error::{RunError, SetupError};
 use crate::experiment::{Job, SolverChoice};
 use crate::robot_registry::{robot_by_name, RobotVisitor};
 use crate::simulate::{simulate, Outcome, Run, Settings, Solver};
@@ -36,10 +36,7 @@ pub fn run_job(job: &Job) -> RunRecord {
     }
     let result = match robot_by_name(&job.robot) {
         Some(robot) => robot.visit(FromJob(job)),
-        None => Err(RunError::Setup {
-            part: JobPart::Robot,
-            message: format!("unknown robot \"{}\"", job.robot),
-        }),
+        None => Err(SetupError::UnknownRobot(job.robot.clone()).into()),
     };
     let run = result.unwrap_or_else(|error| Run {
         scheme_name: job.scheme.display_name(),
@@ -61,7 +58,7 @@ pub fn run_job(job: &Job) -> RunRecord {
 }
 
 /// Which part of a [`Job`] could not be built (see [`check_job`]).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum JobPart {
     Robot,
     Theta0,
@@ -89,40 +86,42 @@ impl JobPart {
 /// and the network for the scheme's QP sizes) without integrating anything, so that an
 /// experiment file is rejected at load for exactly what would make its run fail at t = 0.
 /// The error names the part (and so the file's field) and the builder's own message.
-pub fn check_job(job: &Job) -> Result<(), (JobPart, String)> {
+pub fn check_job(job: &Job) -> Result<(), SetupError> {
     fn with<const N: usize>(
         job: &Job,
         robot: Arc<dyn Robot<N>>,
         dynamics: Option<Arc<dyn Dynamics<N>>>,
-    ) -> Result<(), (JobPart, String)> {
+    ) -> Result<(), SetupError> {
         for (part, v) in [
             (JobPart::Theta0, &job.theta0),
             (JobPart::ThetaRef, &job.theta_ref),
         ] {
             if v.len() != N {
-                return Err((
+                return Err(SetupError::PoseLength {
                     part,
-                    format!("has {} entries, the robot has {N} joints", v.len()),
-                ));
+                    given: v.len(),
+                    joints: N,
+                });
             }
             if v.iter().any(|x| !x.is_finite()) {
-                return Err((part, "entries must be finite".to_string()));
+                return Err(SetupError::PoseNotFinite { part });
             }
         }
         let (_, scheme) = build_parts::<N>(job, robot, dynamics)?;
         if let SolverChoice::Neural(spec) = &job.solver {
             solvers::neural::build_solver(spec, scheme.dims()).map_err(|e| {
-                (
-                    JobPart::Solver,
-                    format!("{}: {e} (scheme {})", spec.display_name(), scheme.name()),
-                )
+                SetupError::Network(format!(
+                    "{}: {e} (scheme {})",
+                    spec.display_name(),
+                    scheme.name()
+                ))
             })?;
         }
         Ok(())
     }
     struct Check<'a>(&'a Job);
     impl RobotVisitor for Check<'_> {
-        type Output = Result<(), (JobPart, String)>;
+        type Output = Result<(), SetupError>;
         fn visit<const N: usize>(
             self,
             robot: Arc<dyn Robot<N>>,
@@ -133,7 +132,7 @@ pub fn check_job(job: &Job) -> Result<(), (JobPart, String)> {
     }
     match robot_by_name(&job.robot) {
         Some(robot) => robot.visit(Check(job)),
-        None => Err((JobPart::Robot, format!("unknown robot \"{}\"", job.robot))),
+        None => Err(SetupError::UnknownRobot(job.robot.clone())),
     }
 }
 
@@ -143,11 +142,10 @@ fn build_parts<const N: usize>(
     job: &Job,
     robot: Arc<dyn Robot<N>>,
     dynamics: Option<Arc<dyn Dynamics<N>>>,
-) -> Result<(Arc<dyn Path>, Box<dyn Scheme<N>>), (JobPart, String)> {
+) -> Result<(Arc<dyn Path>, Box<dyn Scheme<N>>), SetupError> {
     let theta_ref = SVector::<f64, N>::from_column_slice(&job.theta_ref);
     let start = robot.position(&theta_ref);
-    let path: Arc<dyn Path> =
-        Arc::from(build_path(&job.path, start).map_err(|e| (JobPart::Path, e.to_string()))?);
+    let path: Arc<dyn Path> = Arc::from(build_path(&job.path, start)?);
     let scheme = build_scheme::<N>(
         &job.scheme,
         robot.clone(),
@@ -155,16 +153,16 @@ fn build_parts<const N: usize>(
         path.clone(),
         theta_ref,
     )
-    .map_err(|e| {
-        let mut message = e.to_string();
-        if let schemes::spec::SchemeError::MissingDynamics { .. } = e {
-            message.push_str(&format!(
+    .map_err(|error| {
+        let hint = match error {
+            schemes::spec::SchemeError::MissingDynamics { .. } => format!(
                 " (robot \"{}\" is kinematic only; robots with dynamics: {})",
                 job.robot,
                 crate::robot_registry::robots_with_dynamics().join(", ")
-            ));
-        }
-        (JobPart::Scheme, message)
+            ),
+            _ => String::new(),
+        };
+        SetupError::Scheme { error, hint }
     })?;
     Ok((path, scheme))
 }
@@ -176,8 +174,7 @@ fn run_with<const N: usize>(
 ) -> Result<Run, RunError> {
     let theta0 = SVector::<f64, N>::from_column_slice(&job.theta0);
     let theta_ref = SVector::<f64, N>::from_column_slice(&job.theta_ref);
-    let (path, scheme) = build_parts::<N>(job, robot.clone(), dynamics)
-        .map_err(|(part, message)| RunError::Setup { part, message })?;
+    let (path, scheme) = build_parts::<N>(job, robot.clone(), dynamics)?;
     let dims = scheme.dims();
     let network = |spec: &solvers::neural::SolverSpec| {
         solvers::neural::build_solver(spec, dims).map_err(|e| e.to_string())

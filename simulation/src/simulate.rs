@@ -10,10 +10,9 @@
 //! x[..N]. The exact column integrates theta alone with x = x*(t, theta).
 
 use crate::coupled::{arm_dim, arm_state, ExactLoop, NeuralLoop};
-use crate::error::RunError;
+use crate::error::{RunError, SetupError};
 use crate::experiment::NetworkInit;
 use crate::metrics::{MetricsAccumulator, RunMetrics, Sample, ScoreSample};
-use crate::run::JobPart;
 use nalgebra::{DVector, SVector};
 use robots::Robot;
 use schemes::paths::Path;
@@ -178,10 +177,7 @@ pub fn simulate<const N: usize>(
             )
         }
         Solver::Network(build) => {
-            let network = build().map_err(|message| RunError::Setup {
-                part: JobPart::Solver,
-                message,
-            })?;
+            let network = build().map_err(SetupError::Network)?;
             let mut sys = NeuralLoop::new(scheme, network);
             let k = sys.net_offset();
             let mut y0 = vec![0.0; sys.dim()];
@@ -200,10 +196,7 @@ pub fn simulate<const N: usize>(
                 y0[k..k + x0.len()].copy_from_slice(x0.as_slice());
             }
             // A second instance of the network, to read its own error at accepted states.
-            let mut probe = build().map_err(|message| RunError::Setup {
-                part: JobPart::Solver,
-                message,
-            })?;
+            let mut probe = build().map_err(SetupError::Network)?;
             let mut failures = 0usize;
             let mut next_score_t = 0.0;
             let result = integrate(&mut sys, &y0, 0.0, t1, &settings.integrator, |t, y| {

@@ -82,5 +82,8 @@ solvers = [{{ kind = "znn", gamma = 1.0 }}]
     );
     assert_eq!(scoring_of(&file("scoring = \"off\"")), Ok(Scoring::Off));
     let err = scoring_of(&file("scoring = \"sometimes\"")).unwrap_err();
-    assert!(err.contains("every-step") && err.contains("max-instants"), "{err}");
+    assert!(
+        err.contains("every-step") && err.contains("max-instants"),
+        "{err}"
+    );
 }
