@@ -24,7 +24,6 @@
 
 use super::ladder::LadderRow;
 use records::runs::RunRow;
-use records::table::Row;
 use serde::{Deserialize, Serialize};
 use simulation::experiment::{Job, SolverChoice};
 use simulation::simulate::Scoring;
@@ -142,16 +141,7 @@ pub struct AttributionRow {
     pub note: String,
 }
 
-impl Row for AttributionRow {
-    const JOINTS: Option<&'static str> = Some("drift");
-    const JOINTS_BEFORE: &'static str = "drift_norm";
-    fn joints(&self) -> &[f64] {
-        &self.drift
-    }
-    fn set_joints(&mut self, values: Vec<f64>) {
-        self.drift = values;
-    }
-}
+records::drift_columns!(AttributionRow, drift, "drift_norm");
 
 /// The controlled re-runs of one target besides its ladders: (switch, job).
 pub fn switch_jobs(job: &Job) -> Vec<(Switch, Job)> {

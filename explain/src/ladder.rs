@@ -23,7 +23,6 @@
 //! unfinished rung is reported as such, not dropped.
 
 use records::runs::{RunRow, Status};
-use records::table::Row;
 use serde::{Deserialize, Serialize};
 use simulation::experiment::{Job, SolverChoice};
 use simulation::simulate::Scoring;
@@ -155,16 +154,7 @@ impl LadderRow {
     }
 }
 
-impl Row for LadderRow {
-    const JOINTS: Option<&'static str> = Some("drift");
-    const JOINTS_BEFORE: &'static str = "drift_norm";
-    fn joints(&self) -> &[f64] {
-        &self.drift
-    }
-    fn set_joints(&mut self, values: Vec<f64>) {
-        self.drift = values;
-    }
-}
+records::drift_columns!(LadderRow, drift, "drift_norm");
 
 /// Relative 2-norm distance |a - b| / |b| of two drift vectors.
 pub fn rel_distance(a: &[f64], b: &[f64]) -> f64 {

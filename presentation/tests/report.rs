@@ -7,7 +7,7 @@ use presentation::report::claims::{self, Verdict};
 use presentation::report::{render, to_markdown, Inputs, PAPERS};
 use records::index::Runs;
 use records::paper_values::{mapping_of, read_paper_values, resolve, Resolution};
-use records::runs::{read_runs, RunRow, Status};
+use records::runs::{read_runs, RunRow};
 use std::path::{Path, PathBuf};
 
 /// How to bring a stale committed report or figure up to date.
@@ -151,27 +151,14 @@ fn every_mapped_published_number_finds_its_run() {
 
 /// A completed run with the given drift norm (everything else neutral).
 fn row(experiment: &str, variant: &str, solver: &str, drift: f64) -> RunRow {
+    let kind = if solver == records::index::EXACT {
+        "exact"
+    } else {
+        "lvi-pdnn"
+    };
     RunRow {
         paper: "jia2019".into(),
-        experiment: experiment.into(),
-        variant: variant.into(),
-        scheme: variant.into(),
-        solver: solver.into(),
-        solver_kind: if solver == records::index::EXACT {
-            "exact"
-        } else {
-            "lvi-pdnn"
-        }
-        .into(),
-        robot: "jaco2-pen".into(),
         path: "four-leaf-clover".into(),
-        path_scale: None,
-        duration: 5.0,
-        status: Status::Ok,
-        failure: String::new(),
-        failure_kind: None,
-        expected_failure: String::new(),
-        failed_at: None,
         drift: vec![drift, 0.0, 0.0, 0.0, 0.0, drift],
         drift_norm: Some(drift),
         drift_ref_norm: Some(drift),
@@ -181,34 +168,13 @@ fn row(experiment: &str, variant: &str, solver: &str, drift: f64) -> RunRow {
         theta_margin: Some(0.5),
         thetadot_margin: Some(0.1),
         peak_thetadot: Some(1.4),
-        peak_thetaddot: None,
-        peak_torque: None,
         min_sigma_j: Some(0.2),
-        score_samples: None,
-        score_max_dx: None,
-        score_rms_dx: None,
-        score_max_obj_gap: None,
-        score_max_violation: None,
-        score_failures: 0,
-        net_error_final: None,
-        net_error_max_after_1s: None,
-        integrator: "bdf".into(),
-        rtol: 1e-6,
-        atol: 1e-8,
-        max_step: None,
         steps: 1,
-        rejected: 0,
         rhs_evals: 1,
-        jac_evals: 0,
         qp_solves: 1,
-        qp_fallbacks: 0,
-        qp_checks: 0,
-        qp_check_max_dx: None,
         wall_s: 0.1,
         sim_s: 0.1,
-        observe_s: 0.0,
-        crate_version: "0".into(),
-        git_rev: "test".into(),
+        ..RunRow::blank(experiment, variant, solver, kind)
     }
 }
 

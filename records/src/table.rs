@@ -30,6 +30,24 @@ pub trait Row: Serialize + DeserializeOwned {
     fn set_joints(&mut self, _values: Vec<f64>) {}
 }
 
+/// Implements [`Row`] for a struct whose per-joint vector is its field `$field` (a
+/// `#[serde(skip)] Vec<f64>`), written as the columns `drift_1 .. drift_K` before `$before`.
+#[macro_export]
+macro_rules! drift_columns {
+    ($row:ty, $field:ident, $before:literal) => {
+        impl $crate::table::Row for $row {
+            const JOINTS: Option<&'static str> = Some("drift");
+            const JOINTS_BEFORE: &'static str = $before;
+            fn joints(&self) -> &[f64] {
+                &self.$field
+            }
+            fn set_joints(&mut self, values: Vec<f64>) {
+                self.$field = values;
+            }
+        }
+    };
+}
+
 /// A problem reading a table: where and what.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("{}{}{what}", .path.as_ref().map(|p| format!("{}: ", p.display())).unwrap_or_default(), if *.line > 0 { format!("line {}: ", .line) } else { String::new() })]

@@ -2,14 +2,10 @@
 //! stated one) and fails on a doctored one; an unexpected failed run exits non-zero, the
 //! experiment files' expected failures do not.
 
-use records::runs::{read_runs, runs_csv};
-use std::process::Command;
+mod common;
 
-fn reproduce() -> Command {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_reproduce"));
-    c.current_dir(simulation::root::from_current_dir().unwrap());
-    c
-}
+use common::reproduce;
+use records::runs::{read_runs, runs_csv};
 
 #[test]
 fn the_gate_compares_with_the_stated_baseline() {
@@ -237,25 +233,8 @@ solvers = [{ kind = "finite-time", beta = 1.0, alpha = 0.1, smoothing = 1e-6 }]
             .stderr(std::process::Stdio::piped());
         c
     };
-    let mut first = run().spawn().unwrap();
+    common::kill_after_checkpoints(run, &results, 3);
     let journal = records::journal::path(&results);
-    let lines = || {
-        std::fs::read_to_string(&journal)
-            .map(|t| t.lines().count())
-            .unwrap_or(0)
-    };
-    let started = std::time::Instant::now();
-    while lines() < 4 && started.elapsed().as_secs() < 60 {
-        std::thread::sleep(std::time::Duration::from_millis(20));
-    }
-    first.kill().unwrap();
-    let _ = first.wait();
-    assert_eq!(
-        lines(),
-        4,
-        "the three quick runs are checkpointed before the kill"
-    );
-    assert!(!results.join("runs.csv").exists());
 
     let second = run().output().unwrap();
     let err = String::from_utf8_lossy(&second.stderr);

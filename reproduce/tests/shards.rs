@@ -1,15 +1,12 @@
 //! Cluster runs as a user runs them: shards as separate processes, merged; a shard killed and
 //! started again; a merge with a shard missing.
 
+mod common;
+
+use common::reproduce;
 use records::runs::{read_runs, RunRow};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn reproduce() -> Command {
-    let mut c = Command::new(env!("CARGO_BIN_EXE_reproduce"));
-    c.current_dir(simulation::root::from_current_dir().unwrap());
-    c
-}
+use std::process::Output;
 
 fn temp(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("driftbench-shards-{name}-{}", std::process::id()));
@@ -198,25 +195,8 @@ sweep = { "scheme.mu" = [1, 2, 4] }
             .stderr(std::process::Stdio::piped());
         c
     };
-    let mut first = run().spawn().unwrap();
+    common::kill_after_checkpoints(run, &results, 3);
     let journal = records::journal::path(&results);
-    let lines = || {
-        std::fs::read_to_string(&journal)
-            .map(|t| t.lines().count())
-            .unwrap_or(0)
-    };
-    let started = std::time::Instant::now();
-    while lines() < 4 && started.elapsed().as_secs() < 60 {
-        std::thread::sleep(std::time::Duration::from_millis(20));
-    }
-    first.kill().unwrap();
-    let _ = first.wait();
-    assert_eq!(
-        lines(),
-        4,
-        "the three quick runs are checkpointed before the kill"
-    );
-    assert!(!results.join("runs.csv").exists());
     assert!(
         !results.join("shard.toml").exists(),
         "an unfinished shard has no manifest"
