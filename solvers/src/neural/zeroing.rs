@@ -333,6 +333,12 @@ impl NeuralSolver for ZeroingNetwork {
         dqp_dot: Option<&Qp>,
         out: &mut [f64],
     ) -> bool {
+        // Given for the sign-power activation only (kong2019's finite-time network), whose band
+        // of width delta makes the coupled loop's forward difference of F wrong; the networks
+        // with smooth activations keep that difference, and their runs stay bit for bit.
+        if !matches!(self.activation, Activation::SignPower { .. }) {
+            return false;
+        }
         let nx = self.dims.nx;
         let n = y.len();
         // F at the base point; leaves E in `self.e` and the LU factors of Q in `self.lu`.
