@@ -29,9 +29,9 @@ use simulation::simulate::Scoring;
 use solvers::neural::spec::SolverSpec;
 use solvers::ode::{IntegratorSettings, Method};
 
-/// Accepted steps after which an implicit ladder rung is abandoned (the finite-time network
-/// needs ~650,000 BDF steps at RelTol 1e-6: its tighter BDF rungs end unfinished, its ESDIRK
-/// rungs converge).
+/// Accepted steps after which an implicit ladder rung is abandoned (every implicit run of the
+/// papers' experiments needs a few thousand; the finite-time network needed ~650,000 BDF steps
+/// at RelTol 1e-6 until its coupled Jacobian took the chain rule through the QP data).
 pub const LADDER_MAX_STEPS: usize = 100_000;
 /// The same for explicit rungs: an explicit method on a network with gain 1e7 would need ~10^8
 /// steps; 20,000 tell that it cannot finish.
@@ -59,12 +59,11 @@ fn rung(method: Method, rtol: f64, atol: f64, max_step: Option<f64>) -> Integrat
 }
 
 /// The rungs of `job`'s ladder. A neural run: BDF at MATLAB's defaults and at every RelTol,
-/// then a second method at every RelTol (ESDIRK3(4) for the finite-time network, whose
-/// sign-power BDF's higher orders handle badly; Dormand-Prince otherwise), then its own setting
-/// (with the group's MaxStep where it has one). The finite-time network needs 4e5-6e5 steps
-/// at RelTol 1e-6 with either method, so its ladder stops at RelTol 1e-4 (its own run at 1e-6
-/// is in results/runs.csv). The exact column: its experiment's exact method (Dormand-Prince;
-/// BDF for kong2019, whose finite-time scheme is stiff itself).
+/// then a second method at every RelTol (ESDIRK3(4) for the finite-time network, stiff in the
+/// sign-power's band, where an explicit method cannot finish; Dormand-Prince otherwise), then
+/// its own setting (with the group's MaxStep where it has one). The exact column: its
+/// experiment's exact method (Dormand-Prince; BDF for kong2019, whose finite-time scheme is
+/// stiff itself).
 pub fn rungs(job: &Job) -> Vec<IntegratorSettings> {
     let max_step = job.integrator.max_step;
     let mut out = Vec::new();
@@ -78,14 +77,18 @@ pub fn rungs(job: &Job) -> Vec<IntegratorSettings> {
         }
         SolverChoice::Neural(spec) => {
             let finite_time = matches!(spec, SolverSpec::FiniteTime { .. });
-            let (second, rtols) = if finite_time {
-                (Method::Esdirk34, &NEURAL_RTOLS[..2])
+            let second = if finite_time {
+                Method::Esdirk34
             } else {
-                (Method::Dopri5, &NEURAL_RTOLS[..])
+                Method::Dopri5
             };
             out.push(rung(Method::Bdf, 1e-3, 1e-6, max_step));
             for method in [Method::Bdf, second] {
-                out.extend(rtols.iter().map(|&r| rung(method, r, r / 100.0, max_step)));
+                out.extend(
+                    NEURAL_RTOLS
+                        .iter()
+                        .map(|&r| rung(method, r, r / 100.0, max_step)),
+                );
             }
             // The run's own setting keeps its own step limit: it is the run of results/runs.csv.
             let own = job.integrator;

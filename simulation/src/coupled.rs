@@ -11,9 +11,16 @@
 //!   the network's thetaddot).
 //!
 //! The neural loop's Jacobian combines the network's analytic dF/dy with the QP frozen (where
-//! it gives one), the exact arm rows, and forward differences for the arm-state columns (QP
-//! data depends on theta nonlinearly through J, f and the bounds) and, for the zeroing
-//! networks, for the joint-command columns too (dQP/dt is taken along the command).
+//! it gives one), the exact arm rows, and, for the arm-state columns (QP data depends on theta
+//! nonlinearly through J, f and the bounds) and for the zeroing networks' joint-command columns
+//! too (dQP/dt is taken along the command), the chain rule where the network gives its
+//! derivative along the QP data ([`NeuralSolver::data_derivative`]): central differences of
+//! the QP data (and dQP/dt) times that derivative. Differencing F as a whole (the fallback, and
+//! what the other networks get) puts the network's own nonlinearity inside the difference: for
+//! kong2019's finite-time network on its finite-time scheme a step of sqrt(eps) in a joint
+//! angle whose error sits inside the sign-power's band moves the network error E by ~1e-3,
+//! a thousand times the activation's band of 1e-6, and the column came out ~90x too small:
+//! Newton then failed on every other step (650,000 steps instead of ~3,000).
 
 use nalgebra::{DMatrix, DVector, SVector};
 use schemes::qp_dot::QpDotScratch;
@@ -134,6 +141,50 @@ pub struct NeuralLoop<'a, const N: usize> {
     f0: Vec<f64>,
     f1: Vec<f64>,
     yp: Vec<f64>,
+    /// QP data (and dQP/dt) at y -/+ h e_j, then their difference quotient, for the chain rule.
+    qp_lo: Qp,
+    qp_hi: Qp,
+    qp_dot_lo: Qp,
+    qp_dot_hi: Qp,
+    dcol: Vec<f64>,
+}
+
+/// The QP (and, with `dot`, dQP/dt along the command) at the state y, as [`NeuralLoop`]'s
+/// right-hand side builds them.
+#[allow(clippy::too_many_arguments)]
+fn qp_data_at<const N: usize>(
+    scheme: &dyn Scheme<N>,
+    k: usize,
+    t: f64,
+    y: &[f64],
+    qp: &mut Qp,
+    dot: Option<&mut Qp>,
+    scratch: &mut QpDotScratch,
+) {
+    let level = scheme.level();
+    let (theta, thetadot) = arm_state::<N>(level, y, &y[k..]);
+    scheme.build(t, &theta, &thetadot, qp);
+    if let Some(qp_dot) = dot {
+        let command = SVector::<f64, N>::from_column_slice(&y[k..k + N]);
+        let (thetadot_m, thetaddot) = match level {
+            Level::Velocity => (command, SVector::zeros()),
+            Level::Acceleration => (thetadot, command),
+        };
+        scheme.build_dot(t, &theta, &thetadot_m, &thetaddot, qp_dot, scratch);
+    }
+}
+
+/// hi <- (hi - lo) / (2 h) for the data the networks read (P, q, A, b, G, h).
+fn central_difference(hi: &mut Qp, lo: &Qp, h: f64) {
+    let s = 0.5 / h;
+    for (a, b) in [(&mut hi.p, &lo.p), (&mut hi.a, &lo.a), (&mut hi.g, &lo.g)] {
+        *a -= b;
+        *a *= s;
+    }
+    for (a, b) in [(&mut hi.q, &lo.q), (&mut hi.b, &lo.b), (&mut hi.h, &lo.h)] {
+        *a -= b;
+        *a *= s;
+    }
 }
 
 impl<'a, const N: usize> NeuralLoop<'a, N> {
@@ -152,6 +203,11 @@ impl<'a, const N: usize> NeuralLoop<'a, N> {
             f0: vec![0.0; dim],
             f1: vec![0.0; dim],
             yp: vec![0.0; dim],
+            qp_lo: scheme.new_qp(),
+            qp_hi: scheme.new_qp(),
+            qp_dot_lo: scheme.new_qp(),
+            qp_dot_hi: scheme.new_qp(),
+            dcol: vec![0.0; net_dim],
         }
     }
 
@@ -198,6 +254,78 @@ impl<'a, const N: usize> NeuralLoop<'a, N> {
     }
 }
 
+impl<const N: usize> NeuralLoop<'_, N> {
+    /// The network rows of the first `columns` columns of the Jacobian by the chain rule (module
+    /// docs): the network's analytic block (already in `jac`, for the command columns) plus its
+    /// derivative along the QP data, differenced centrally with step sqrt(eps) max(|y_j|, 1).
+    /// `self.qp` and `self.qp_dot` must hold the data at y. False (and `jac` untouched) when
+    /// the network does not give its data derivative.
+    fn chain_rule_columns(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        columns: usize,
+        jac: &mut DMatrix<f64>,
+    ) -> bool {
+        let k = self.net_offset();
+        let scheme = self.scheme;
+        let dot = self.network.needs_qp_dot();
+        let mut dcol = std::mem::take(&mut self.dcol);
+        self.yp.copy_from_slice(y);
+        for j in 0..columns {
+            let h = f64::EPSILON.sqrt() * y[j].abs().max(1.0);
+            self.yp[j] = y[j] + h;
+            let hi = self.yp[j];
+            qp_data_at::<N>(
+                scheme,
+                k,
+                t,
+                &self.yp,
+                &mut self.qp_hi,
+                dot.then_some(&mut self.qp_dot_hi),
+                &mut self.dot_scratch,
+            );
+            self.yp[j] = y[j] - h;
+            let lo = self.yp[j];
+            qp_data_at::<N>(
+                scheme,
+                k,
+                t,
+                &self.yp,
+                &mut self.qp_lo,
+                dot.then_some(&mut self.qp_dot_lo),
+                &mut self.dot_scratch,
+            );
+            self.yp[j] = y[j];
+            // The step actually taken (y_j +- h rounded).
+            let h = 0.5 * (hi - lo);
+            central_difference(&mut self.qp_hi, &self.qp_lo, h);
+            if dot {
+                central_difference(&mut self.qp_dot_hi, &self.qp_dot_lo, h);
+            }
+            let ok = self.network.data_derivative(
+                t,
+                &y[k..],
+                &self.qp,
+                dot.then_some(&self.qp_dot),
+                &self.qp_hi,
+                dot.then_some(&self.qp_dot_hi),
+                &mut dcol,
+            );
+            if !ok {
+                self.dcol = dcol;
+                return false;
+            }
+            for (i, d) in dcol.iter().enumerate() {
+                let analytic = if j >= k { self.jac_net[(i, j - k)] } else { 0.0 };
+                jac[(k + i, j)] = analytic + d;
+            }
+        }
+        self.dcol = dcol;
+        true
+    }
+}
+
 impl<const N: usize> OdeSystem for NeuralLoop<'_, N> {
     fn dim(&self) -> usize {
         self.net_offset() + self.net_dim
@@ -240,6 +368,11 @@ impl<const N: usize> OdeSystem for NeuralLoop<'_, N> {
         // with dQP/dt) the joint-command columns: dQP/dt is taken along the network's own
         // command, a dependence the frozen-QP block above does not see.
         let fd_columns = if qp_dot_needed { k + N } else { k };
+        if self.chain_rule_columns(t, y, fd_columns, jac) {
+            // F at y above (the network's data derivatives are not evaluations of F).
+            self.jacobian_rhs_evals += 1;
+            return true;
+        }
         let f0 = std::mem::take(&mut self.f0);
         let mut f1 = std::mem::take(&mut self.f1);
         self.jacobian_rhs_evals += 1 + fd_columns;

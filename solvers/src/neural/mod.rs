@@ -71,6 +71,26 @@ pub trait NeuralSolver: Send {
     ) -> bool {
         false
     }
+    /// The derivative of F(t, y; QP) with respect to the QP data along a direction: `out` =
+    /// d/ds F(t, y; qp + s dqp, qp_dot + s dqp_dot) at s = 0 (`dqp_dot` only where
+    /// [`NeuralSolver::needs_qp_dot`]; `None` there: qp_dot held fixed). The coupled arm +
+    /// network ODE chains it with the derivative of the QP data along the arm's state, which
+    /// keeps the network's own nonlinearity (e.g. a sign-power of width 1e-6) out of a finite
+    /// difference. Returns false when the network does not give it (the caller then differences
+    /// F as a whole).
+    #[allow(clippy::too_many_arguments)]
+    fn data_derivative(
+        &mut self,
+        _t: f64,
+        _y: &[f64],
+        _qp: &Qp,
+        _qp_dot: Option<&Qp>,
+        _dqp: &Qp,
+        _dqp_dot: Option<&Qp>,
+        _out: &mut [f64],
+    ) -> bool {
+        false
+    }
     /// The network's initial state y(0) for QPs of sizes `dims` (zero: no paper says otherwise).
     fn initial_state(&self, _dims: QpDims, y0: &mut [f64]) {
         y0.fill(0.0);

@@ -44,6 +44,10 @@
 //!
 //! Jacobian (QP data frozen, as the trait asks):
 //! Q dF/dy = -Qdot - DeltaD - (g(t) diag(Phi'(E)) + nu t I) Q.
+//!
+//! Derivative along the QP data (dQ, du from a direction dP, dq, dA, db; dQdot, dudot from the
+//! direction of the QP's time derivative): differentiating Q F = r gives
+//! Q dF = dr - dQ F with dr = -(g(t) diag(Phi'(E)) + nu t I)(dQ y - du) - dQdot y + dudot.
 
 use super::activation::Activation;
 use super::cdnn::ReferencePerturbation;
@@ -93,6 +97,8 @@ pub struct ZeroingNetwork {
     matrix_perturbation: bool,
     /// Whether udot includes -qdot (else udot = [0; bdot]).
     udot_q: bool,
+    /// F at the base point of [`NeuralSolver::data_derivative`].
+    f_base: Vec<f64>,
 }
 
 impl ZeroingNetwork {
@@ -131,6 +137,7 @@ impl ZeroingNetwork {
             nu: 0.0,
             matrix_perturbation: true,
             udot_q: true,
+            f_base: vec![0.0; n],
         })
     }
 
@@ -315,6 +322,57 @@ impl NeuralSolver for ZeroingNetwork {
             return;
         }
         lu::solve(&self.lu, &self.piv, ydot);
+    }
+    fn data_derivative(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        qp: &Qp,
+        qp_dot: Option<&Qp>,
+        dqp: &Qp,
+        dqp_dot: Option<&Qp>,
+        out: &mut [f64],
+    ) -> bool {
+        // Given for the sign-power activation only (kong2019's finite-time network), whose band
+        // of width delta makes the coupled loop's forward difference of F wrong; the networks
+        // with smooth activations keep that difference, and their runs stay bit for bit.
+        if !matches!(self.activation, Activation::SignPower { .. }) {
+            return false;
+        }
+        let nx = self.dims.nx;
+        let n = y.len();
+        // F at the base point; leaves E in `self.e` and the LU factors of Q in `self.lu`.
+        let mut f = std::mem::take(&mut self.f_base);
+        self.rhs(t, y, qp, qp_dot, &mut f);
+        if f.iter().any(|v| !v.is_finite()) {
+            self.f_base = f;
+            return false;
+        }
+        let g = self.gain.at(t);
+        for i in 0..n {
+            // dE = dQ y - du, du = [-dq; db].
+            let du = if i < nx { -dqp.q[i] } else { dqp.b[i - nx] };
+            let de = self.qdot_y(dqp, y, i) - du;
+            let mut s = g * self.activation.derivative(self.e[i]);
+            if self.nu != 0.0 {
+                s += self.nu * t;
+            }
+            let mut r = -s * de - self.qdot_y(dqp, &f, i);
+            if let (Some(_), Some(dd)) = (qp_dot, dqp_dot) {
+                let dudot = if i >= nx {
+                    dd.b[i - nx]
+                } else if self.udot_q {
+                    -dd.q[i]
+                } else {
+                    0.0
+                };
+                r += dudot - self.qdot_y(dd, y, i);
+            }
+            out[i] = r;
+        }
+        self.f_base = f;
+        lu::solve(&self.lu, &self.piv, out);
+        true
     }
     fn jacobian(
         &mut self,
