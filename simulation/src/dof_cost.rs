@@ -51,7 +51,7 @@ use schemes::kong2019::Kong2019;
 use schemes::paths::{build_path, Path, PathSpec};
 use schemes::qp::{Qp, QpDims};
 use schemes::scheme::Scheme;
-use solvers::neural::{build_solver, SolverSpec};
+use solvers::neural::{build_solver, NeuralSolver, SolverSpec};
 use solvers::ode::IntegratorSettings;
 use solvers::{solve_equality_kkt, ActiveSetSolution, ActiveSetSolver, ExactSolver, WorkingSet};
 use std::sync::Arc;
@@ -221,8 +221,8 @@ pub fn fit_power_law(points: &[(f64, f64)]) -> Option<PowerFit> {
     })
 }
 
-/// How much is measured: the defaults take ~30-60 s for the eight N and both schemes on two
-/// cores.
+/// How much is measured: the defaults take ~20-40 s for the eight N and both schemes on one
+/// core of a 2020s server CPU (most of it the jia2019 runs at N = 20 and 30).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Budget {
     /// States sampled from the exact run's trace.
@@ -240,11 +240,11 @@ pub struct Budget {
 impl Default for Budget {
     fn default() -> Self {
         Budget {
-            states: 50,
+            states: 100,
             passes: 3,
             min_batch_us: 20.0,
             max_reps: 200,
-            runs: 3,
+            runs: 5,
         }
     }
 }
@@ -326,36 +326,151 @@ pub fn measure_all(budget: &Budget, mut progress: impl FnMut(&Case)) -> Vec<Meas
 /// Measures one case (see the module docs); quantities that cannot be measured (a network
 /// without an analytic Jacobian, a failed exact run) are left out, with a message on stderr.
 pub fn measure(case: &Case, budget: &Budget) -> Vec<Measurement> {
+    let mut prepared = match prepare(case, budget.states) {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!(
+                "{} nlink-{}: {e}; nothing measured",
+                case.scheme.id(),
+                case.n
+            );
+            return Vec::new();
+        }
+    };
+    let timer = Timer { budget };
+    let mut out = Vec::new();
+    for quantity in Quantity::ALL {
+        if !prepared.supports(quantity) {
+            eprintln!("{}: {} not measured", prepared.label(), quantity.id());
+            continue;
+        }
+        let (samples, run) = if quantity.is_run() {
+            let (samples, ()) = repeat_runs(budget.runs, || prepared.call(quantity, 0));
+            (samples, prepared.last_run())
+        } else {
+            let states = prepared.states();
+            (timer.samples(states, |i| prepared.call(quantity, i)), None)
+        };
+        if let Some(summary) = Summary::of(&samples) {
+            out.push(Measurement {
+                scheme: case.scheme,
+                scheme_name: prepared.scheme_name(),
+                network: prepared.network_name(),
+                n: case.n,
+                dims: prepared.dims(),
+                quantity,
+                summary,
+                run,
+            });
+        }
+    }
+    out
+}
+
+/// A case made ready to time (see [`prepare`]): every quantity of [`Quantity`] as one call,
+/// without allocation where the code timed does not allocate itself. Object safe, so the
+/// criterion benches and [`measure`] drive it without knowing N.
+pub trait PreparedCase {
+    /// `<scheme> nlink-<N>`.
+    fn label(&self) -> String;
+    fn scheme_name(&self) -> String;
+    fn network_name(&self) -> String;
+    fn dims(&self) -> QpDims;
+    /// States sampled from the exact run (per-call quantities take an index below this).
+    fn states(&self) -> usize;
+    /// Whether `quantity` can be timed (the network has an analytic Jacobian, the equality
+    /// KKT matrix is regular).
+    fn supports(&self, quantity: Quantity) -> bool;
+    /// One call of `quantity` at state `i` (a whole run, for the run quantities; `i` unused).
+    fn call(&mut self, quantity: Quantity, i: usize);
+    /// Counts of the last whole run [`Self::call`] made.
+    fn last_run(&self) -> Option<RunCounts>;
+}
+
+/// Builds `case`'s robot, path, scheme and network, runs the exact column once and samples up
+/// to `states` states of its trace (evenly spread), with the QP, its time derivative, the
+/// exact optimum and the previous sampled instant's optimal working set at each. An error when
+/// the exact run does not start or leaves no trace.
+pub fn prepare(case: &Case, states: usize) -> Result<Box<dyn PreparedCase>, String> {
     let robot = robot_by_name(&nlink_name(case.n))
-        .unwrap_or_else(|| panic!("nlink-{} is not in the registry (NLINK_SIZES)", case.n));
+        .ok_or_else(|| format!("nlink-{} is not in the registry (NLINK_SIZES)", case.n))?;
     let home = robot.stated_pose();
-    robot.visit(Measure {
+    robot.visit(Prepare {
         case,
-        budget,
+        states,
         home: &home,
     })
 }
 
-/// [`measure`] generic in N.
-struct Measure<'a> {
+/// [`prepare`] generic in N.
+struct Prepare<'a> {
     case: &'a Case,
-    budget: &'a Budget,
+    states: usize,
     home: &'a [f64],
 }
 
-impl RobotVisitor for Measure<'_> {
-    type Output = Vec<Measurement>;
+impl RobotVisitor for Prepare<'_> {
+    type Output = Result<Box<dyn PreparedCase>, String>;
 
     fn visit<const N: usize>(
         self,
         robot: Arc<dyn Robot<N>>,
         _: Option<Arc<dyn Dynamics<N>>>,
-    ) -> Vec<Measurement> {
-        let Measure { case, budget, home } = self;
+    ) -> Self::Output {
+        Ok(Box::new(Prepared::<N>::new(
+            self.case,
+            robot,
+            self.home,
+            self.states,
+        )?))
+    }
+}
+
+/// A state of the arm at an instant: (t, theta, thetadot).
+type State<const N: usize> = (f64, SVector<f64, N>, SVector<f64, N>);
+
+/// [`PreparedCase`] for an N-joint arm.
+struct Prepared<const N: usize> {
+    label: String,
+    robot: Arc<dyn Robot<N>>,
+    path: Arc<dyn Path>,
+    scheme: Box<dyn Scheme<N>>,
+    theta0: SVector<f64, N>,
+    network_spec: SolverSpec,
+    network: Box<dyn NeuralSolver>,
+    needs_dot: bool,
+    has_jacobian: bool,
+    has_kkt: bool,
+    states: Vec<State<N>>,
+    qps: Vec<Qp>,
+    qp_dots: Vec<Qp>,
+    /// Network states near the optimum.
+    ys: Vec<Vec<f64>>,
+    /// The previous sampled instant's optimal working set (the hot start).
+    warm: Vec<WorkingSet>,
+    /// The equality-constrained QPs of the same P, q, A, b (the KKT floor).
+    equality: Vec<Qp>,
+    scratch_qp: Qp,
+    fast: ActiveSetSolver,
+    sol: ActiveSetSolution,
+    clarabel: ExactSolver,
+    ydot: Vec<f64>,
+    jac: DMatrix<f64>,
+    last_run: Option<RunCounts>,
+}
+
+impl<const N: usize> Prepared<N> {
+    fn new(
+        case: &Case,
+        robot: Arc<dyn Robot<N>>,
+        home: &[f64],
+        states: usize,
+    ) -> Result<Self, String> {
+        let label = format!("{} nlink-{N}", case.scheme.id());
         let theta0 = SVector::<f64, N>::from_column_slice(home);
         let path: Arc<dyn Path> = Arc::from(
             build_path(&case.scheme.path(), robot.position(&theta0))
-                .expect("the clover and the circle build from any finite start"),
+                .map_err(|e| format!("{label}: {e}"))?,
         );
         let scheme: Box<dyn Scheme<N>> = match case.scheme {
             SchemeKind::Jia2019 => Box::new(Jia2019::new(
@@ -372,81 +487,26 @@ impl RobotVisitor for Measure<'_> {
             }
         };
         let dims = scheme.dims();
-        let network = || build_solver(&case.network, dims);
-        let network_name = case.network.display_name();
-        let exact_settings = Settings {
-            integrator: default_exact_integrator(),
-            score: true,
-            network_init: NetworkInit::Zero,
-        };
-        let network_settings = Settings {
-            integrator: IntegratorSettings::default(),
-            ..exact_settings.clone()
-        };
-        let mut out = Vec::new();
-        let mut push = |quantity: Quantity, samples: &[f64], run: Option<RunCounts>| {
-            if let Some(summary) = Summary::of(samples) {
-                out.push(Measurement {
-                    scheme: case.scheme,
-                    scheme_name: scheme.name(),
-                    network: network_name.clone(),
-                    n: N,
-                    dims,
-                    quantity,
-                    summary,
-                    run,
-                });
-            }
-        };
-        let label = format!("{} nlink-{N}", case.scheme.id());
+        let mut network = build_solver(&case.network, dims).map_err(|e| format!("{label}: {e}"))?;
+        let needs_dot = network.needs_qp_dot();
 
-        // Whole runs; the first exact run's trace gives the states.
-        let run_with = |solver: Solver<'_>, settings: &Settings| {
-            simulate(
-                robot.as_ref(),
-                path.as_ref(),
-                scheme.as_ref(),
-                solver,
-                &theta0,
-                &theta0,
-                settings,
-            )
-        };
-        let counts = |run: &crate::simulate::Run| RunCounts {
-            steps: run.stats.steps,
-            rhs_evals: run.stats.rhs_evals,
-            completed: matches!(run.outcome, Outcome::Completed(_)),
-        };
-        let (samples, exact_run) =
-            repeat_runs(budget.runs, || run_with(Solver::Exact, &exact_settings));
-        let exact_run = match exact_run {
-            Ok(run) => run,
-            Err(e) => {
-                eprintln!("{label}: the exact run does not start ({e}); nothing measured");
-                return out;
-            }
-        };
-        if let Outcome::Failed { t, error, .. } = &exact_run.outcome {
+        // The states: evenly spread trace points of one exact run.
+        let run = simulate(
+            robot.as_ref(),
+            path.as_ref(),
+            scheme.as_ref(),
+            Solver::Exact,
+            &theta0,
+            &theta0,
+            &exact_settings(),
+        )
+        .map_err(|e| format!("{label}: the exact run does not start: {e}"))?;
+        if let Outcome::Failed { t, error, .. } = &run.outcome {
             eprintln!("{label}: the exact run failed at t = {t}: {error}");
         }
-        push(Quantity::RunExact, &samples, Some(counts(&exact_run)));
-        let (samples, network_run) = repeat_runs(budget.runs, || {
-            run_with(Solver::Network(&network), &network_settings)
-        });
-        match network_run {
-            Ok(run) => {
-                if let Outcome::Failed { t, error, .. } = &run.outcome {
-                    eprintln!("{label}: the {network_name} run failed at t = {t}: {error}");
-                }
-                push(Quantity::RunNetwork, &samples, Some(counts(&run)));
-            }
-            Err(e) => eprintln!("{label}: the {network_name} run does not start: {e}"),
-        }
-
-        // The states: evenly spread trace points of the exact run.
-        let trace = &exact_run.trace;
-        let count = budget.states.clamp(1, trace.len().max(1));
-        let states: Vec<(f64, SVector<f64, N>, SVector<f64, N>)> = (0..count)
+        let trace = &run.trace;
+        let count = states.clamp(1, trace.len().max(1));
+        let states: Vec<State<N>> = (0..count)
             .filter_map(|i| trace.get(i * trace.len() / count))
             .map(|p| {
                 (
@@ -457,55 +517,33 @@ impl RobotVisitor for Measure<'_> {
             })
             .collect();
         if states.is_empty() {
-            eprintln!("{label}: the exact run has no trace; no per-call quantity measured");
-            return out;
+            return Err(format!("{label}: the exact run left no trace"));
         }
-        let qps: Vec<Qp> = states
-            .iter()
-            .map(|(t, theta, thetadot)| {
-                let mut qp = scheme.new_qp();
-                scheme.build(*t, theta, thetadot, &mut qp);
-                qp
-            })
-            .collect();
-        let qp_dots: Vec<Qp> = states
-            .iter()
-            .map(|(t, theta, thetadot)| {
-                let mut qp_dot = scheme.new_qp();
-                let mut scratch = scheme.new_dot_scratch();
-                scheme.build_dot(
-                    *t,
-                    theta,
-                    thetadot,
-                    &SVector::zeros(),
-                    &mut qp_dot,
-                    &mut scratch,
-                );
-                qp_dot
-            })
-            .collect();
-        let timer = Timer { budget };
+        let mut qps = Vec::with_capacity(states.len());
+        let mut qp_dots = Vec::with_capacity(states.len());
+        let mut scratch = scheme.new_dot_scratch();
+        for (t, theta, thetadot) in &states {
+            let mut qp = scheme.new_qp();
+            scheme.build(*t, theta, thetadot, &mut qp);
+            qps.push(qp);
+            let mut qp_dot = scheme.new_qp();
+            let thetaddot = SVector::zeros();
+            scheme.build_dot(*t, theta, thetadot, &thetaddot, &mut qp_dot, &mut scratch);
+            qp_dots.push(qp_dot);
+        }
 
-        // scheme-build
-        let mut scratch_qp = scheme.new_qp();
-        let samples = timer.samples(states.len(), |i| {
-            let (t, theta, thetadot) = &states[i];
-            scheme.build(*t, theta, thetadot, &mut scratch_qp);
-        });
-        push(Quantity::SchemeBuild, &samples, None);
-
-        // Exact optima and the previous instant's working sets (the hot start).
+        // Exact optima and optimal working sets along the sampled states.
         let mut fast = ActiveSetSolver::new(dims);
         let mut sol = ActiveSetSolution::zeros(dims);
         let mut clarabel = ExactSolver::new();
         let mut x_star: Vec<DVector<f64>> = Vec::with_capacity(qps.len());
-        let mut optimal_sets: Vec<WorkingSet> = Vec::with_capacity(qps.len());
+        let mut optimal: Vec<WorkingSet> = Vec::with_capacity(qps.len());
         let mut uncertified = 0usize;
         for qp in &qps {
-            match fast.solve_into(qp, optimal_sets.last(), &mut sol) {
+            match fast.solve_into(qp, optimal.last(), &mut sol) {
                 Ok(()) => {
                     x_star.push(sol.x.clone());
-                    optimal_sets.push(sol.working_set.clone());
+                    optimal.push(sol.working_set.clone());
                 }
                 Err(_) => {
                     uncertified += 1;
@@ -514,7 +552,7 @@ impl RobotVisitor for Measure<'_> {
                         .map(|s| s.x)
                         .unwrap_or_else(|_| DVector::zeros(dims.nx));
                     x_star.push(x);
-                    optimal_sets.push(optimal_sets.last().cloned().unwrap_or_else(WorkingSet::new));
+                    optimal.push(optimal.last().cloned().unwrap_or_default());
                 }
             }
         }
@@ -525,56 +563,30 @@ impl RobotVisitor for Measure<'_> {
             );
         }
         let warm: Vec<WorkingSet> = (0..qps.len())
-            .map(|i| optimal_sets[i.saturating_sub(1)].clone())
+            .map(|i| optimal[i.saturating_sub(1)].clone())
             .collect();
 
-        // network-rhs, network-jacobian
-        match network() {
-            Ok(mut net) => {
-                let ys: Vec<Vec<f64>> = x_star
-                    .iter()
-                    .map(|x| {
-                        let mut y = vec![0.0; net.state_dim(dims)];
-                        for (i, xi) in x.iter().enumerate() {
-                            y[i] = xi + 1e-3 * ((i + 1) as f64).sin();
-                        }
-                        y
-                    })
-                    .collect();
-                let needs_dot = net.needs_qp_dot();
-                let dim = ys[0].len();
-                let mut ydot = vec![0.0; dim];
-                let samples = timer.samples(states.len(), |i| {
-                    let dot = needs_dot.then_some(&qp_dots[i]);
-                    net.rhs(states[i].0, &ys[i], &qps[i], dot, &mut ydot);
-                });
-                push(Quantity::NetworkRhs, &samples, None);
-                let mut jac = DMatrix::zeros(dim, dim);
-                let dot0 = needs_dot.then_some(&qp_dots[0]);
-                if net.jacobian(states[0].0, &ys[0], &qps[0], dot0, &mut jac) {
-                    let samples = timer.samples(states.len(), |i| {
-                        let dot = needs_dot.then_some(&qp_dots[i]);
-                        net.jacobian(states[i].0, &ys[i], &qps[i], dot, &mut jac);
-                    });
-                    push(Quantity::NetworkJacobian, &samples, None);
-                } else {
-                    eprintln!("{label}: {network_name} has no analytic Jacobian");
+        // Network states near the optimum: x* + 1e-3 sin(i + 1), multipliers 0.
+        let dim = network.state_dim(dims);
+        let ys: Vec<Vec<f64>> = x_star
+            .iter()
+            .map(|x| {
+                let mut y = vec![0.0; dim];
+                for (i, xi) in x.iter().enumerate() {
+                    y[i] = xi + 1e-3 * ((i + 1) as f64).sin();
                 }
-            }
-            Err(e) => eprintln!("{label}: {network_name} does not build: {e}"),
-        }
+                y
+            })
+            .collect();
+        let mut jac = DMatrix::zeros(dim, dim);
+        let has_jacobian = network.jacobian(
+            states[0].0,
+            &ys[0],
+            &qps[0],
+            needs_dot.then_some(&qp_dots[0]),
+            &mut jac,
+        );
 
-        // exact-active-set (hot), exact-clarabel
-        let samples = timer.samples(states.len(), |i| {
-            let _ = fast.solve_into(&qps[i], Some(&warm[i]), &mut sol);
-        });
-        push(Quantity::ExactActiveSet, &samples, None);
-        let samples = timer.samples(states.len(), |i| {
-            let _ = clarabel.solve(&qps[i]);
-        });
-        push(Quantity::ExactClarabel, &samples, None);
-
-        // kkt-floor: the equality-constrained QP of the same P, q, A, b.
         let equality: Vec<Qp> = qps
             .iter()
             .map(|qp| {
@@ -592,15 +604,145 @@ impl RobotVisitor for Measure<'_> {
                 e
             })
             .collect();
-        if solve_equality_kkt(&equality[0]).is_some() {
-            let samples = timer.samples(states.len(), |i| {
-                let _ = solve_equality_kkt(&equality[i]);
-            });
-            push(Quantity::KktFloor, &samples, None);
-        } else {
-            eprintln!("{label}: the equality KKT matrix is singular");
+        let has_kkt = solve_equality_kkt(&equality[0]).is_some();
+        Ok(Prepared {
+            label,
+            scratch_qp: scheme.new_qp(),
+            robot,
+            path,
+            scheme,
+            theta0,
+            network_spec: case.network.clone(),
+            network,
+            needs_dot,
+            has_jacobian,
+            has_kkt,
+            states,
+            qps,
+            qp_dots,
+            ys,
+            warm,
+            equality,
+            fast,
+            sol,
+            clarabel,
+            ydot: vec![0.0; dim],
+            jac,
+            last_run: Some(RunCounts::of(&run)),
+        })
+    }
+
+    /// A whole run with `solver` and `settings`; records its counts.
+    fn run(&mut self, solver: Solver<'_>, settings: &Settings) {
+        let run = simulate(
+            self.robot.as_ref(),
+            self.path.as_ref(),
+            self.scheme.as_ref(),
+            solver,
+            &self.theta0,
+            &self.theta0,
+            settings,
+        );
+        self.last_run = run.ok().map(|r| RunCounts::of(&r));
+    }
+}
+
+impl RunCounts {
+    fn of(run: &crate::simulate::Run) -> Self {
+        RunCounts {
+            steps: run.stats.steps,
+            rhs_evals: run.stats.rhs_evals,
+            completed: matches!(run.outcome, Outcome::Completed(_)),
         }
-        out
+    }
+}
+
+/// The experiment files' default settings of an exact column: [`default_exact_integrator`],
+/// scored (the exact column has nothing to score), network at zero.
+pub fn exact_settings() -> Settings {
+    Settings {
+        integrator: default_exact_integrator(),
+        score: true,
+        network_init: NetworkInit::Zero,
+    }
+}
+
+/// The experiment files' default settings of a network run: [`IntegratorSettings::default`]
+/// (BDF, RelTol 1e-6, AbsTol 1e-8, as ode15s), scored against the exact optimum at every
+/// accepted step, network state starting at zero.
+pub fn network_settings() -> Settings {
+    Settings {
+        integrator: IntegratorSettings::default(),
+        ..exact_settings()
+    }
+}
+
+impl<const N: usize> PreparedCase for Prepared<N> {
+    fn label(&self) -> String {
+        self.label.clone()
+    }
+
+    fn scheme_name(&self) -> String {
+        self.scheme.name()
+    }
+
+    fn network_name(&self) -> String {
+        self.network_spec.display_name()
+    }
+
+    fn dims(&self) -> QpDims {
+        self.scheme.dims()
+    }
+
+    fn states(&self) -> usize {
+        self.states.len()
+    }
+
+    fn supports(&self, quantity: Quantity) -> bool {
+        match quantity {
+            Quantity::NetworkJacobian => self.has_jacobian,
+            Quantity::KktFloor => self.has_kkt,
+            _ => true,
+        }
+    }
+
+    fn call(&mut self, quantity: Quantity, i: usize) {
+        let i = i % self.states.len();
+        let (t, theta, thetadot) = &self.states[i];
+        let dot = self.needs_dot.then_some(&self.qp_dots[i]);
+        match quantity {
+            Quantity::SchemeBuild => self.scheme.build(*t, theta, thetadot, &mut self.scratch_qp),
+            Quantity::NetworkRhs => {
+                self.network
+                    .rhs(*t, &self.ys[i], &self.qps[i], dot, &mut self.ydot)
+            }
+            Quantity::NetworkJacobian => {
+                self.network
+                    .jacobian(*t, &self.ys[i], &self.qps[i], dot, &mut self.jac);
+            }
+            Quantity::ExactActiveSet => {
+                let _ = self
+                    .fast
+                    .solve_into(&self.qps[i], Some(&self.warm[i]), &mut self.sol);
+            }
+            Quantity::ExactClarabel => {
+                let _ = self.clarabel.solve(&self.qps[i]);
+            }
+            Quantity::KktFloor => {
+                let _ = solve_equality_kkt(&self.equality[i]);
+            }
+            Quantity::RunExact => self.run(Solver::Exact, &exact_settings()),
+            Quantity::RunNetwork => {
+                let spec = self.network_spec.clone();
+                let dims = self.scheme.dims();
+                let build = move || build_solver(&spec, dims);
+                self.run(Solver::Network(&build), &network_settings());
+            }
+        }
+    }
+
+    fn last_run(&self) -> Option<RunCounts> {
+        self.last_run
     }
 }
 
