@@ -436,6 +436,15 @@ fn the_committed_figures_are_those_the_committed_results_give() {
         )
         .unwrap();
     }
+    // Measured by `reproduce --dof-cost`, not by every checkout: copied where it exists.
+    let dof_cost = committed.join("results").join(records::dof_cost::FILE);
+    if dof_cost.exists() {
+        std::fs::copy(
+            &dof_cost,
+            root.join("results").join(records::dof_cost::FILE),
+        )
+        .unwrap();
+    }
     copy_tree(
         &committed.join("results/traces"),
         &root.join("results/traces"),

@@ -4,6 +4,7 @@
 //!   simulation's [`simulation::run::RunRecord`]) and of the traces; atomic writes; reading
 //!   with the schema checked.
 //! - [`table`]: CSV tables whose per-joint columns follow the robot's joint count.
+//! - [`dof_cost`]: the cost against the number of joints (`results/dof-cost.csv`).
 //! - [`index`]: the stored runs indexed as the report and the analyses look them up.
 //! - [`leaderboard`]: every velocity-level solver on the standard task set, scored as
 //!   qpbenchmark scores QP solvers (`results/leaderboard.csv`).
@@ -13,6 +14,7 @@
 //! - [`paper_values`]: the published numbers (`report/paper-values.csv`) and which run each
 //!   one is compared with.
 
+pub mod dof_cost;
 pub mod gate;
 pub mod index;
 pub mod journal;

@@ -94,6 +94,13 @@ struct Cli {
     /// Takes minutes per table.
     #[arg(long, value_name = "TABLE")]
     infer: Option<String>,
+    /// Cost against the number of joints: time scheme build, network RHS and Jacobian, the
+    /// exact solve (active set and Clarabel), the dense KKT floor and whole runs on the n-link
+    /// arms (N = 3 ... 30) with jia2019's and kong2019's schemes (simulation::dof_cost), write
+    /// results/dof-cost.csv (with the fitted growth exponents and the machine), then re-render
+    /// the report. Takes about a minute; run it on an otherwise idle machine.
+    #[arg(long, conflicts_with_all = ["check", "report_only", "explain_only", "infer", "merge", "shard"])]
+    dof_cost: bool,
     /// Cluster runs (docs/cluster.md): run only shard K of N of the selected runs (K = 1..N; a
     /// run's shard is a stable hash of its key) into ROOT/results-shard-K-of-N/ (or
     /// --results-dir): runs.csv, traces/ and, written last, shard.toml. Implies --skip-explain
@@ -176,6 +183,10 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
         remove_stale_tmp(&report)
             .map_err(|e| format!("{}: cannot clean: {e}", report.display()))?;
         render_report(&root)?;
+        return Ok(ExitCode::SUCCESS);
+    }
+    if cli.dof_cost {
+        dof_cost(&cli)?;
         return Ok(ExitCode::SUCCESS);
     }
     let files = load_dir(&cli.experiments_dir).map_err(|e| e.to_string())?;
@@ -440,6 +451,41 @@ fn infer(cli: &Cli, which: &str, jobs: &[Job]) -> Result<(), String> {
     if cli.dry_run {
         return Ok(());
     }
+    render_report(&root)
+}
+
+/// `--dof-cost`: measures the cost against the number of joints (`simulation::dof_cost`),
+/// writes results/dof-cost.csv and re-renders the report.
+fn dof_cost(cli: &Cli) -> Result<(), String> {
+    use simulation::dof_cost::{machine, measure_all, Budget};
+    let (cpu, cores) = machine();
+    eprintln!("measuring the cost against the number of joints on {cpu} ({cores} cores)");
+    let started = std::time::Instant::now();
+    let measurements = measure_all(&Budget::default(), |case| {
+        eprintln!(
+            "  {} nlink-{}: done at {:.1} s",
+            case.scheme.id(),
+            case.n,
+            started.elapsed().as_secs_f64()
+        );
+    });
+    let git_rev = simulation::root::git_revision(&cli.project_root);
+    let rows = records::dof_cost::rows(&measurements, &cpu, cores, &git_rev);
+    for fit in rows.iter().filter(|r| r.is_fit()) {
+        eprintln!(
+            "  {} {}: cost ~ N^{:.2}",
+            fit.scheme,
+            fit.quantity,
+            fit.exponent.unwrap_or(f64::NAN)
+        );
+    }
+    if cli.dry_run {
+        return Ok(());
+    }
+    let root = report_root(cli)?;
+    let _lock = lock_results(&cli.results_dir)?;
+    let path = records::dof_cost::write(&cli.results_dir, &rows)?;
+    eprintln!("wrote {} ({} rows)", path.display(), rows.len());
     render_report(&root)
 }
 

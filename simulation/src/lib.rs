@@ -8,8 +8,10 @@
 //! returns a [`run::RunRecord`]; [`runner`] runs many in parallel. Writing the records is the
 //! `records` crate's work, presenting them the `presentation` crate's. [`root`] finds the
 //! project (experiments/, results/, report/) and the code revision runs are stamped with.
+//! [`dof_cost`] measures what an instant and a run cost against the number of joints.
 
 pub mod coupled;
+pub mod dof_cost;
 pub mod error;
 pub mod experiment;
 pub mod metrics;

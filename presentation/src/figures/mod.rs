@@ -16,6 +16,8 @@
 //!
 //! - `inference-<paper>-<table>__profiles.svg`, one per table of `results/inference.csv`: the
 //!   setup inference's profiles ([`profile`]).
+//! - `dof-cost__<scheme>.svg`, one per scheme of `results/dof-cost.csv`: the cost against the
+//!   number of joints ([`dof_cost`]).
 //!
 //! Each figure is drawn once against a generic plotters backend ([`layout::Body`]) and emitted
 //! both ways; figures are drawn in parallel. The output is a function of the inputs only (no
@@ -23,6 +25,7 @@
 //! byte-identical figures.
 
 mod arm;
+pub mod dof_cost;
 mod layout;
 mod legend;
 mod overview;
@@ -36,6 +39,7 @@ mod trace;
 use explain::inference::InferenceRow;
 use layout::Rendered;
 use rayon::prelude::*;
+use records::dof_cost::DofCostRow;
 use records::runs::{read_runs, write_atomic, RunRow};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -64,6 +68,7 @@ enum Job<'a> {
     Run(&'a RunRow, &'a Trace),
     Overview(&'a str, Vec<(&'a RunRow, &'a Trace)>),
     Profiles(&'a str, &'a str, Vec<&'a InferenceRow>),
+    DofCost(&'a str, Vec<&'a DofCostRow>),
 }
 
 impl Job<'_> {
@@ -73,6 +78,7 @@ impl Job<'_> {
             Job::Run(run, trace) => run_figure::figure(run, trace).render(),
             Job::Overview(experiment, members) => overview::figure(experiment, members).render(),
             Job::Profiles(paper, table, rows) => profile::figure(paper, table, rows).render(),
+            Job::DofCost(scheme, rows) => dof_cost::figure(scheme, rows).render(),
         }
     }
 }
@@ -139,6 +145,15 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, String> {
                 Job::Profiles(paper, table, rows),
             )?;
         }
+    }
+
+    let dof_rows = records::dof_cost::read(&root.join("results"))?;
+    let mut schemes: Vec<&str> = dof_rows.iter().map(|r| r.scheme.as_str()).collect();
+    schemes.sort_unstable();
+    schemes.dedup();
+    for scheme in schemes {
+        let rows: Vec<&DofCostRow> = dof_rows.iter().filter(|r| r.scheme == scheme).collect();
+        add(dof_cost::file_name(scheme), Job::DofCost(scheme, rows))?;
     }
 
     let figures: BTreeMap<String, Rendered> = jobs

@@ -103,7 +103,8 @@ fn decade(v: &f64) -> String {
     format!("1e{}", v.log10().round())
 }
 
-/// Draws axes, grid and lines on `inner` (an area from [`titled`]) with x axis `x`, y axis `y`.
+/// Draws axes, grid and lines on `inner` (an area from [`titled`]) with a linear x axis `x`,
+/// y axis `y`.
 fn plot<DB: DrawingBackend, Y>(
     inner: &Area<DB>,
     x: Range<f64>,
@@ -118,6 +119,27 @@ where
     Y::CoordDescType: ValueFormatter<f64>,
 {
     let x_labels = ticks(&x);
+    plot_xy(inner, x, x_desc, &x_labels, y, y_desc, y_labels, lines)
+}
+
+/// [`plot`] with any x axis `x` (linear or log) labelled by `x_labels`.
+#[allow(clippy::too_many_arguments)]
+fn plot_xy<DB: DrawingBackend, X, Y>(
+    inner: &Area<DB>,
+    x: X,
+    x_desc: &str,
+    x_labels: &dyn Fn(&f64) -> String,
+    y: Y,
+    y_desc: &str,
+    y_labels: &dyn Fn(&f64) -> String,
+    lines: &[(ShapeStyle, Vec<(f64, f64)>)],
+) -> Result<(), String>
+where
+    X: AsRangedCoord<Value = f64>,
+    X::CoordDescType: ValueFormatter<f64>,
+    Y: AsRangedCoord<Value = f64>,
+    Y::CoordDescType: ValueFormatter<f64>,
+{
     let mut chart = ChartBuilder::on(inner)
         .margin(MARGIN)
         .x_label_area_size(X_LABEL_AREA)
@@ -130,7 +152,7 @@ where
         .y_labels(TICKS)
         .x_desc(x_desc)
         .y_desc(y_desc)
-        .x_label_formatter(&x_labels)
+        .x_label_formatter(x_labels)
         .y_label_formatter(y_labels)
         .label_style(font(LABEL_SIZE))
         .axis_desc_style(font(LABEL_SIZE))
@@ -268,6 +290,64 @@ impl ProfilePanel {
             "relative residual",
             &decade,
             &[(super::style::colour(0).stroke_width(2), points)],
+        )
+    }
+}
+
+/// Quantities against a size, both axes logarithmic (a power law is a straight line): the x
+/// axis spans the points' x from 10 % below to 10 % above, with a tick at each x of the data,
+/// the y axis whole decades.
+pub struct LogLogPanel {
+    pub caption: String,
+    /// The x quantity and its unit.
+    pub x_desc: String,
+    /// The y quantity and its unit.
+    pub y_desc: String,
+    pub series: Vec<Series>,
+}
+
+impl LogLogPanel {
+    /// Draws the panel into `area`; non-positive or non-finite points are left out.
+    pub fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), String> {
+        let (inner, _) = titled(area, &self.caption)?;
+        let lines: Vec<(ShapeStyle, Vec<(f64, f64)>)> = self
+            .series
+            .iter()
+            .map(|s| {
+                let points = s
+                    .points
+                    .iter()
+                    .copied()
+                    .filter(|&(x, y)| x.is_finite() && y.is_finite() && x > 0.0 && y > 0.0)
+                    .collect();
+                (s.colour.stroke_width(2), points)
+            })
+            .collect();
+        let xs = lines.iter().flat_map(|(_, p)| p.iter().map(|q| q.0));
+        let (lo, hi) = xs.fold((f64::INFINITY, 0.0f64), |(lo, hi), x| {
+            (lo.min(x), hi.max(x))
+        });
+        let x = if lo <= hi {
+            lo / 1.1..hi * 1.1
+        } else {
+            1.0..10.0
+        };
+        let mut x_ticks: Vec<f64> = lines
+            .iter()
+            .flat_map(|(_, p)| p.iter().map(|q| q.0))
+            .collect();
+        x_ticks.sort_by(f64::total_cmp);
+        x_ticks.dedup();
+        let y = scale::log(lines.iter().flat_map(|(_, p)| p.iter().map(|q| q.1)));
+        plot_xy(
+            &inner,
+            x.log_scale().with_key_points(x_ticks),
+            &self.x_desc,
+            &|v: &f64| tick(*v),
+            y.log_scale(),
+            &self.y_desc,
+            &decade,
+            &lines,
         )
     }
 }

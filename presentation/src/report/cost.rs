@@ -75,7 +75,7 @@ fn vp_mean(times: &[(&str, f64)]) -> Option<f64> {
 }
 
 /// The published MATLAB times of one of our experiments, as (our solver label, seconds).
-fn paper_times<'a>(
+pub(crate) fn paper_times<'a>(
     values: &'a [PaperValue],
     experiment: &'a str,
 ) -> impl Iterator<Item = (&'static str, f64)> + 'a {
@@ -126,6 +126,19 @@ pub fn slowdown(runs: &Runs, values: &[PaperValue], experiment: &str) -> Slowdow
     }
 }
 
+/// Our experiments that a published MATLAB compute time maps onto, in the published values'
+/// order.
+pub(crate) fn matlab_experiments(values: &[PaperValue]) -> Vec<&'static str> {
+    let mut experiments: Vec<&str> = values
+        .iter()
+        .filter(|v| our_metric(&v.metric) == Some("sim_s"))
+        .filter_map(mapping_of)
+        .map(|m| m.experiment)
+        .collect();
+    experiments.dedup();
+    experiments
+}
+
 /// zhong2021's compute times: per experiment and solver, the paper's MATLAB seconds and
 /// ours, each also divided by the mean of the VP-RNN-PF variants.
 pub fn matlab_comparison(runs: &Runs, values: &[PaperValue]) -> String {
@@ -137,14 +150,7 @@ pub fn matlab_comparison(runs: &Runs, values: &[PaperValue]) -> String {
         "ours (s)",
         "ours ÷ VP-RNN-PF mean",
     ]);
-    let mut experiments: Vec<&str> = values
-        .iter()
-        .filter(|v| our_metric(&v.metric) == Some("sim_s"))
-        .filter_map(mapping_of)
-        .map(|m| m.experiment)
-        .collect();
-    experiments.dedup();
-    for exp in experiments {
+    for exp in matlab_experiments(values) {
         let paper: Vec<(&str, f64)> = paper_times(values, exp).collect();
         let ours: Vec<(&str, f64)> = runs
             .of_experiment(exp)

@@ -1,6 +1,7 @@
 //! `report/REPORT.md`: the reproduction report, rendered from stored results only.
 //!
-//! Inputs: `results/runs.csv` (one row per run), `report/paper-values.csv` (the papers'
+//! Inputs: `results/runs.csv` (one row per run), `results/dof-cost.csv` (the cost against the
+//! number of joints, when measured), `report/paper-values.csv` (the papers'
 //! published numbers), `report/deviations.md` (hand-written, included verbatim) and the SVG
 //! names in `report/figures/`. Nothing is re-run and nothing depends on the clock, so
 //! identical inputs give a byte-identical report ([`render`] writes it atomically).
@@ -12,6 +13,8 @@
 //! - the [`score`] of every neural run against the exact optimum;
 //! - the [`leaderboard`]: every velocity-level solver on the standard task set, qpbenchmark-style;
 //! - the [`cost`] of every run, and zhong2021's MATLAB comparison as ratios;
+//! - [`performance`]: per-instant costs against the exact solvers and the KKT floor, the cost
+//!   against the number of joints, whole runs against the MATLAB times, and the machine;
 //! - the [`cross`] experiment matrices;
 //! - the published numbers without a run (`records::paper_values`), and the deviations.
 
@@ -22,6 +25,7 @@ pub mod figures;
 pub mod header;
 pub mod leaderboard;
 pub mod markdown;
+pub mod performance;
 pub mod score;
 pub mod sweep;
 pub mod tables;
@@ -66,6 +70,8 @@ pub struct Inputs {
     pub figures: Vec<String>,
     /// Ladders, attribution and inference (`results/*.csv` beside runs.csv; absent = empty).
     pub explanations: why::Explanations,
+    /// `results/dof-cost.csv` (absent = empty).
+    pub dof_cost: Vec<records::dof_cost::DofCostRow>,
 }
 
 impl Inputs {
@@ -86,6 +92,7 @@ impl Inputs {
                 inference: read_csv(&results.join("inference.csv"))?,
                 entries: read_csv(&results.join("inference-entries.csv"))?,
             },
+            dof_cost: records::dof_cost::read(&results)?,
         })
     }
 }
@@ -107,6 +114,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
         deviations,
         figures,
         explanations,
+        dof_cost,
     } = inputs;
     let mut out = header::header(runs, values.len(), figures.len());
 
@@ -212,6 +220,8 @@ pub fn to_markdown(inputs: &Inputs) -> String {
     );
     out.push_str(&cost::matlab_comparison(runs, values));
     out.push('\n');
+
+    out.push_str(&performance::section(dof_cost, runs, values, figures));
 
     out.push_str("## Cross experiment\n\nEvery velocity-level solver on every velocity-level scheme and path (ids: ");
     out.push_str(

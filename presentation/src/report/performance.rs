@@ -1,0 +1,526 @@
+//! Performance: what an instant and a run cost, from `results/dof-cost.csv` (written by
+//! `reproduce --dof-cost`, see `simulation::dof_cost`) and from the per-run counts and times of
+//! `results/runs.csv`:
+//!
+//! - per instant at the Jaco2's size (N = 6): each network evaluation against the exact
+//!   solvers (the hot-started active set, Clarabel) and the dense KKT floor, median and p95;
+//! - per accepted step and per RHS evaluation of the reproduction's own runs, by solver kind;
+//! - the cost against the number of joints (figure `dof-cost__<scheme>.svg`) with the fitted
+//!   growth exponents, and the whole runs on the n-link arms;
+//! - the whole-run times against the papers' MATLAB times (the published compute times that
+//!   [`super::cost`] maps), simulation and total;
+//! - the machine the DOF measurement ran on.
+//!
+//! Every number is read from `results/`; without `dof-cost.csv` the section says how to
+//! produce it and shows what `runs.csv` gives.
+
+use super::cost::{matlab_experiments, paper_times};
+use super::markdown::{sci, sci_opt, Table, MISSING};
+use records::dof_cost::DofCostRow;
+use records::index::{completed, Runs};
+use records::paper_values::PaperValue;
+use simulation::dof_cost::{Quantity, Summary};
+use std::collections::BTreeMap;
+
+/// The joint count the per-instant table is shown at: the Jaco2's.
+pub const JACO2_N: usize = 6;
+
+/// The issue's targets the section states the measured ratios against: the exact path per
+/// instant within this many network RHS evaluations (7-variable QPs) ...
+pub const TARGET_EXACT_OVER_RHS: f64 = 5.0;
+/// ... every zhong2021 simulation this many times faster than the paper's MATLAB time ...
+pub const TARGET_SIMULATION_SPEEDUP: f64 = 300.0;
+/// ... and every whole run (scoring included) this many times.
+pub const TARGET_TOTAL_SPEEDUP: f64 = 100.0;
+
+/// A quantity as the report and the figure name it (`network` is the network's name).
+pub fn quantity_label(quantity: Quantity, network: &str) -> String {
+    match quantity {
+        Quantity::SchemeBuild => "scheme build (QP assembly)".to_string(),
+        Quantity::NetworkRhs => format!("{network} RHS"),
+        Quantity::NetworkJacobian => format!("{network} Jacobian"),
+        Quantity::ExactActiveSet => "exact: active set, hot-started".to_string(),
+        Quantity::ExactClarabel => "exact: Clarabel".to_string(),
+        Quantity::KktFloor => "dense KKT floor (one LU)".to_string(),
+        Quantity::RunExact => "whole run, exact column".to_string(),
+        Quantity::RunNetwork => format!("whole run, {network}"),
+    }
+}
+
+/// The measured row of (scheme, N, quantity).
+fn find<'a>(
+    dof: &'a [DofCostRow],
+    scheme: &str,
+    n: usize,
+    quantity: Quantity,
+) -> Option<&'a DofCostRow> {
+    dof.iter().find(|r| {
+        !r.is_fit() && r.scheme == scheme && r.n == Some(n) && r.quantity == quantity.id()
+    })
+}
+
+/// The schemes of the measurement, in file order.
+fn schemes(dof: &[DofCostRow]) -> Vec<&str> {
+    let mut out: Vec<&str> = Vec::new();
+    for r in dof {
+        if !out.contains(&r.scheme.as_str()) {
+            out.push(&r.scheme);
+        }
+    }
+    out
+}
+
+/// The `## Performance` section.
+pub fn section(
+    dof: &[DofCostRow],
+    runs: &Runs,
+    values: &[PaperValue],
+    figures: &[String],
+) -> String {
+    let mut out = String::from(
+        "## Performance\n\nWhat an instant and a run cost: the networks' evaluations against \
+         the exact solvers, against the number of joints, and the whole runs against the papers' \
+         MATLAB times. Speed is measured here and in `cargo bench -p driftbench-benches`, never \
+         asserted by a test.\n\n",
+    );
+    if dof.is_empty() {
+        out.push_str(
+            "`results/dof-cost.csv` is absent: `cargo run --release -p reproduce -- --dof-cost` \
+             measures the per-instant costs and the cost against the number of joints (about a \
+             minute on an idle machine) and re-renders this report. What `results/runs.csv` \
+             gives follows.\n\n",
+        );
+    } else {
+        out.push_str(&machine(dof));
+        out.push_str(&per_instant(dof));
+    }
+    out.push_str(&per_solver_kind(runs));
+    if !dof.is_empty() {
+        out.push_str(&dof_curve(dof, figures));
+        out.push_str(&dof_runs(dof));
+    }
+    out.push_str(&matlab(runs, values));
+    out
+}
+
+/// The machine and revision of the measurement.
+fn machine(dof: &[DofCostRow]) -> String {
+    let mut machines: Vec<String> = dof
+        .iter()
+        .map(|r| {
+            format!(
+                "{} ({} logical cores available) at revision `{}`",
+                r.machine, r.cores, r.git_rev
+            )
+        })
+        .collect();
+    machines.dedup();
+    format!(
+        "**Machine.** `results/dof-cost.csv` was measured on {} by `reproduce --dof-cost`, one \
+         case after the other on one thread (the CPU model and cores read from `/proc/cpuinfo` \
+         and the process's available parallelism at measurement time). \
+         Times are comparable within it, not across machines; the wall times of \
+         `results/runs.csv` come from the run that wrote them, with runs in parallel on every \
+         core.\n\n",
+        machines.join("; ")
+    )
+}
+
+/// Median and p95 of each per-call quantity at N = [`JACO2_N`], with ratios to the network RHS
+/// and to the KKT floor, and the 7-variable target.
+fn per_instant(dof: &[DofCostRow]) -> String {
+    let mut out = format!(
+        "### Per instant at N = {JACO2_N} (the Jaco2's size)\n\nOne call at states sampled from \
+         an exact run of `nlink-{JACO2_N}` (`simulation::dof_cost`): the network's right-hand \
+         side and Jacobian, the scheme's QP assembly, the exact optimum by the hot-started \
+         active set (what the exact column and the scorer call) and by Clarabel (the reference \
+         of record), and the dense KKT floor (one LU solve of the equality-constrained KKT \
+         system of the same QP, size nx + n_eq). Medians and 95th percentiles in microseconds.\n\n"
+    );
+    let mut t = Table::new([
+        "scheme",
+        "QP (nx, n_eq, n_in)",
+        "quantity",
+        "median (us)",
+        "p95 (us)",
+        "median ÷ network RHS",
+        "median ÷ KKT floor",
+        "samples",
+    ]);
+    for scheme in schemes(dof) {
+        let median = |q| find(dof, scheme, JACO2_N, q).and_then(|r| r.median_us);
+        let (rhs, floor) = (median(Quantity::NetworkRhs), median(Quantity::KktFloor));
+        for quantity in Quantity::ALL.into_iter().filter(|q| !q.is_run()) {
+            let Some(r) = find(dof, scheme, JACO2_N, quantity) else {
+                continue;
+            };
+            let dims = match (r.nx, r.n_eq, r.n_in) {
+                (Some(a), Some(b), Some(c)) => format!("{a}, {b}, {c}"),
+                _ => MISSING.to_string(),
+            };
+            t.push([
+                format!("{scheme} {}", r.scheme_name),
+                dims,
+                quantity_label(quantity, &r.network),
+                sci_opt(r.median_us),
+                sci_opt(r.p95_us),
+                sci_opt(r.median_us.zip(rhs).map(|(m, d)| m / d)),
+                sci_opt(r.median_us.zip(floor).map(|(m, d)| m / d)),
+                r.samples.to_string(),
+            ]);
+        }
+    }
+    if t.is_empty() {
+        out.push_str(&format!("No measurement at N = {JACO2_N}.\n\n"));
+        return out;
+    }
+    out.push_str(&t.render());
+    out.push('\n');
+    // The issue's target on the 7-variable QPs: jia2019's at N = 6 (nx = N + 1).
+    for scheme in schemes(dof) {
+        let active = find(dof, scheme, JACO2_N, Quantity::ExactActiveSet);
+        let rhs = find(dof, scheme, JACO2_N, Quantity::NetworkRhs);
+        if let (Some(a), Some(r)) = (active, rhs) {
+            if a.nx != Some(7) {
+                continue;
+            }
+            if let (Some(am), Some(rm)) = (a.median_us, r.median_us) {
+                let ratio = am / rm;
+                out.push_str(&format!(
+                    "On the 7-variable QP ({scheme} {}) the hot-started active set takes {} \
+                     times one {} RHS evaluation: the target of at most {} is {}.\n\n",
+                    a.scheme_name,
+                    sci(ratio),
+                    r.network,
+                    TARGET_EXACT_OVER_RHS,
+                    if ratio <= TARGET_EXACT_OVER_RHS {
+                        "met"
+                    } else {
+                        "not met (the gap is the ratio above)"
+                    }
+                ));
+            }
+        }
+    }
+    out
+}
+
+/// Per accepted step and per RHS evaluation in the completed runs of `runs.csv`, by solver
+/// kind.
+fn per_solver_kind(runs: &Runs) -> String {
+    let mut kinds: BTreeMap<&str, Vec<&records::runs::RunRow>> = BTreeMap::new();
+    for r in runs.all() {
+        if completed(r) && r.steps > 0 && r.rhs_evals > 0 {
+            kinds.entry(r.solver_kind.as_str()).or_default().push(r);
+        }
+    }
+    let mut out = String::from(
+        "### Per step in the reproduction's runs\n\nFrom `results/runs.csv`, every completed run \
+         by solver kind: the whole run's wall time (`wall_s`: simulation and observation, \
+         scoring included) per accepted step, the simulation's (`sim_s`: arm, solver, \
+         integrator) per RHS evaluation, and the RHS evaluations a run takes. Medians and 95th \
+         percentiles over the runs; the runs ran in parallel, so these include contention.\n\n",
+    );
+    let mut t = Table::new([
+        "solver kind",
+        "runs",
+        "wall per step, median (us)",
+        "p95 (us)",
+        "simulation per RHS, median (us)",
+        "p95 (us)",
+        "RHS evals per run, median",
+    ]);
+    for (kind, rows) in &kinds {
+        let per_step: Vec<f64> = rows
+            .iter()
+            .map(|r| r.wall_s * 1e6 / r.steps as f64)
+            .collect();
+        let per_rhs: Vec<f64> = rows
+            .iter()
+            .map(|r| r.sim_s * 1e6 / r.rhs_evals as f64)
+            .collect();
+        let evals: Vec<f64> = rows.iter().map(|r| r.rhs_evals as f64).collect();
+        let (step, rhs, ev) = (
+            Summary::of(&per_step),
+            Summary::of(&per_rhs),
+            Summary::of(&evals),
+        );
+        t.push([
+            kind.to_string(),
+            rows.len().to_string(),
+            sci_opt(step.map(|s| s.median_us)),
+            sci_opt(step.map(|s| s.p95_us)),
+            sci_opt(rhs.map(|s| s.median_us)),
+            sci_opt(rhs.map(|s| s.p95_us)),
+            sci_opt(ev.map(|s| s.median_us)),
+        ]);
+    }
+    if t.is_empty() {
+        out.push_str("No completed run in `results/runs.csv`.\n\n");
+    } else {
+        out.push_str(&t.render());
+        out.push('\n');
+    }
+    out
+}
+
+/// The figures of the cost against N and the fitted exponents.
+fn dof_curve(dof: &[DofCostRow], figures: &[String]) -> String {
+    let mut out = String::from(
+        "### Cost against the number of joints\n\nThe n-link arms `nlink-N` (N = 3 ... 30, a yaw \
+         joint and a planar pitch chain, from their stated home pose) with jia2019's VLTCO \
+         scheme on a four-leaf clover (nx = N + 1, 2N inequality rows, bounds) and kong2019's \
+         ZNN scheme (eq. 22) on a circle (nx = N, equalities only). k is the growth exponent of \
+         median cost ~ c N^k, fitted by least squares on log-log over the measured N.\n\n",
+    );
+    for scheme in schemes(dof) {
+        let name = crate::figures::dof_cost::file_name(scheme);
+        if figures.contains(&name) {
+            out.push_str(&format!("![{scheme}: cost against N](figures/{name})\n\n"));
+        }
+    }
+    let mut t = Table::new([
+        "scheme",
+        "quantity",
+        "k",
+        "c (us)",
+        "median at the smallest N (us)",
+        "median at the largest N (us)",
+    ]);
+    for fit in dof.iter().filter(|r| r.is_fit()) {
+        let measured: Vec<&DofCostRow> = dof
+            .iter()
+            .filter(|r| !r.is_fit() && r.scheme == fit.scheme && r.quantity == fit.quantity)
+            .collect();
+        let at = |pick: fn(usize, usize) -> bool| {
+            measured
+                .iter()
+                .filter_map(|r| Some((r.n?, r.median_us?)))
+                .reduce(|a, b| if pick(b.0, a.0) { b } else { a })
+                .map_or(MISSING.to_string(), |(n, m)| {
+                    format!("{} (N = {n})", sci(m))
+                })
+        };
+        let label = Quantity::from_id(&fit.quantity)
+            .map_or(fit.quantity.clone(), |q| quantity_label(q, &fit.network));
+        t.push([
+            format!("{} {}", fit.scheme, fit.scheme_name),
+            label,
+            fit.exponent
+                .map_or(MISSING.to_string(), |k| format!("{k:.2}")),
+            sci_opt(fit.factor_us),
+            at(|a, b| a < b),
+            at(|a, b| a > b),
+        ]);
+    }
+    if !t.is_empty() {
+        out.push_str(&t.render());
+        out.push('\n');
+    }
+    out
+}
+
+/// The whole runs of the DOF measurement, per N: time, steps and time per step.
+fn dof_runs(dof: &[DofCostRow]) -> String {
+    let mut t = Table::new([
+        "scheme",
+        "N",
+        "exact run, median (s)",
+        "steps",
+        "per step (us)",
+        "network run, median (s)",
+        "steps",
+        "per step (us)",
+    ]);
+    for scheme in schemes(dof) {
+        let mut ns: Vec<usize> = dof
+            .iter()
+            .filter(|r| r.scheme == scheme)
+            .filter_map(|r| r.n)
+            .collect();
+        ns.sort_unstable();
+        ns.dedup();
+        for n in ns {
+            let cells = |q| match find(dof, scheme, n, q) {
+                None => [
+                    MISSING.to_string(),
+                    MISSING.to_string(),
+                    MISSING.to_string(),
+                ],
+                Some(r) => {
+                    let time = match r.completed {
+                        Some(false) => {
+                            format!("{} (failed)", sci_opt(r.median_us.map(|m| m * 1e-6)))
+                        }
+                        _ => sci_opt(r.median_us.map(|m| m * 1e-6)),
+                    };
+                    [
+                        time,
+                        r.steps.map_or(MISSING.to_string(), |s| s.to_string()),
+                        sci_opt(r.median_us.zip(r.steps).map(|(m, s)| m / s.max(1) as f64)),
+                    ]
+                }
+            };
+            let [e0, e1, e2] = cells(Quantity::RunExact);
+            let [n0, n1, n2] = cells(Quantity::RunNetwork);
+            t.push([scheme.to_string(), n.to_string(), e0, e1, e2, n0, n1, n2]);
+        }
+    }
+    if t.is_empty() {
+        return String::new();
+    }
+    let network = dof
+        .iter()
+        .find(|r| r.quantity == Quantity::RunNetwork.id())
+        .map_or("the network", |r| r.network.as_str());
+    format!(
+        "Whole runs on the n-link arms (`simulate` with the experiment files' defaults: the \
+         exact column by Dormand-Prince at RelTol 1e-11, {network} by BDF at RelTol 1e-6 scored \
+         at every accepted step), median of the repetitions:\n\n{}\n",
+        t.render()
+    )
+}
+
+/// The whole runs against the papers' MATLAB compute times: simulation (`sim_s`) and total
+/// (`wall_s`, scoring and observation included), with the smallest speedups.
+fn matlab(runs: &Runs, values: &[PaperValue]) -> String {
+    let mut t = Table::new([
+        "experiment",
+        "solver",
+        "paper (MATLAB, s)",
+        "ours: simulation (s)",
+        "ours: total (s)",
+        "paper ÷ simulation",
+        "paper ÷ total",
+    ]);
+    let (mut min_sim, mut min_total) = (f64::INFINITY, f64::INFINITY);
+    for exp in matlab_experiments(values) {
+        for (solver, paper) in paper_times(values, exp) {
+            let ours = runs.of_experiment(exp).find(|r| r.solver == solver);
+            let sim = ours.filter(|r| completed(r)).map(|r| (r.sim_s, r.wall_s));
+            if let Some((s, w)) = sim {
+                min_sim = min_sim.min(paper / s);
+                min_total = min_total.min(paper / w);
+            }
+            t.push([
+                exp.to_string(),
+                solver.to_string(),
+                sci(paper),
+                sci_opt(sim.map(|p| p.0)),
+                sci_opt(sim.map(|p| p.1)),
+                sci_opt(sim.map(|(s, _)| paper / s)),
+                sci_opt(sim.map(|(_, w)| paper / w)),
+            ]);
+        }
+    }
+    if t.is_empty() {
+        return String::new();
+    }
+    let mut out = String::from(
+        "### Whole runs against the papers' MATLAB times\n\nThe published compute times \
+         (zhong2021) beside our runs of `results/runs.csv`: the simulation alone (`sim_s`: arm, \
+         network, integrator) and the whole run (`wall_s`: with the observation at every \
+         accepted step, i.e. metrics and the exact solves that score the run). Different \
+         machines and languages: the speedups say how far apart, not which implementation is \
+         better.\n\n",
+    );
+    out.push_str(&t.render());
+    out.push('\n');
+    if min_sim.is_finite() && min_total.is_finite() {
+        let verdict = |v: f64, target: f64| if v >= target { "met" } else { "not met" };
+        out.push_str(&format!(
+            "Smallest speedup over these runs: {} for the simulation (the target of {}x is {}) \
+             and {} for the whole run (the target of {}x is {}).\n\n",
+            sci(min_sim),
+            TARGET_SIMULATION_SPEEDUP,
+            verdict(min_sim, TARGET_SIMULATION_SPEEDUP),
+            sci(min_total),
+            TARGET_TOTAL_SPEEDUP,
+            verdict(min_total, TARGET_TOTAL_SPEEDUP),
+        ));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A synthetic dof-cost.csv: jia2019 at N = 3, 6, 12 with cost = N^2 us (network RHS) and
+    /// 3 N^2 (active set), plus the fits.
+    fn synthetic() -> Vec<DofCostRow> {
+        let header = "scheme,scheme_name,network,quantity,kind,n,nx,n_eq,n_in,median_us,p95_us,\
+                      samples,exponent,factor_us,steps,rhs_evals,completed,machine,cores,git_rev\n";
+        let mut text = header.to_string();
+        for n in [3usize, 6, 12] {
+            let (nx, n_in, m) = (n + 1, 2 * n, (n * n) as f64);
+            for (q, f) in [
+                ("network-rhs", 1.0),
+                ("exact-active-set", 3.0),
+                ("kkt-floor", 0.5),
+            ] {
+                text.push_str(&format!(
+                    "jia2019,VLTCO,LVI-PDNN,{q},measured,{n},{nx},3,{n_in},{},{},300,,,,,,Test CPU,2,abc\n",
+                    f * m,
+                    1.5 * f * m
+                ));
+            }
+            text.push_str(&format!(
+                "jia2019,VLTCO,LVI-PDNN,run-exact,measured,{n},{nx},3,{n_in},{},{},5,,,1000,7000,true,Test CPU,2,abc\n",
+                1e4 * n as f64,
+                1.1e4 * n as f64
+            ));
+        }
+        let rows: Vec<DofCostRow> = records::table::from_reader(text.as_bytes()).unwrap();
+        let fits = records::dof_cost::fit_rows(&rows);
+        rows.into_iter().chain(fits).collect()
+    }
+
+    #[test]
+    fn the_section_renders_from_a_synthetic_csv() {
+        let dof = synthetic();
+        let figures = vec!["dof-cost__jia2019.svg".to_string()];
+        let md = section(&dof, &Runs::new(Vec::new()), &[], &figures);
+        assert!(md.starts_with("## Performance\n"), "{md}");
+        assert!(
+            md.contains("Test CPU (2 logical cores available) at revision `abc`"),
+            "{md}"
+        );
+        // N = 6: the RHS median 36 us, the active set 108 us = 3x the RHS, 6x the floor.
+        assert!(md.contains("| jia2019 VLTCO | 7, 3, 12 | LVI-PDNN RHS | 3.60e1 | 5.40e1 | 1.00e0 | 2.00e0 | 300 |"), "{md}");
+        assert!(
+            md.contains("| exact: active set, hot-started | 1.08e2 | 1.62e2 | 3.00e0 | 6.00e0 |"),
+            "{md}"
+        );
+        assert!(
+            md.contains(
+                "takes 3.00e0 times one LVI-PDNN RHS evaluation: the target of at most 5 is met"
+            ),
+            "{md}"
+        );
+        assert!(
+            md.contains("![jia2019: cost against N](figures/dof-cost__jia2019.svg)"),
+            "{md}"
+        );
+        // Exact power laws: k = 2 and k = 1.
+        assert!(md.contains("| jia2019 VLTCO | LVI-PDNN RHS | 2.00 | 1.00e0 | 9.00e0 (N = 3) | 1.44e2 (N = 12) |"), "{md}");
+        assert!(
+            md.contains("| jia2019 VLTCO | whole run, exact column | 1.00 |"),
+            "{md}"
+        );
+        // Whole runs: 6e4 us = 6e-2 s over 1000 steps = 60 us a step.
+        assert!(
+            md.contains("| jia2019 | 6 | 6.00e-2 | 1000 | 6.00e1 | — | — | — |"),
+            "{md}"
+        );
+        assert!(!md.contains("is absent"), "{md}");
+    }
+
+    #[test]
+    fn without_the_csv_the_section_says_how_to_produce_it() {
+        let md = section(&[], &Runs::new(Vec::new()), &[], &[]);
+        assert!(md.contains("`results/dof-cost.csv` is absent"), "{md}");
+        assert!(md.contains("-- --dof-cost"), "{md}");
+        assert!(md.contains("No completed run"), "{md}");
+    }
+}
