@@ -317,7 +317,11 @@ impl<const N: usize> NeuralLoop<'_, N> {
                 return false;
             }
             for (i, d) in dcol.iter().enumerate() {
-                let analytic = if j >= k { self.jac_net[(i, j - k)] } else { 0.0 };
+                let analytic = if j >= k {
+                    self.jac_net[(i, j - k)]
+                } else {
+                    0.0
+                };
                 jac[(k + i, j)] = analytic + d;
             }
         }

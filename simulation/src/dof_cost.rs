@@ -43,7 +43,7 @@
 
 use crate::experiment::{default_exact_integrator, NetworkInit};
 use crate::robot_registry::{nlink_name, robot_by_name, RobotVisitor, NLINK_SIZES};
-use crate::simulate::{simulate, Outcome, Settings, Solver};
+use crate::simulate::{simulate, Outcome, Scoring, Settings, Solver};
 use nalgebra::{DMatrix, DVector, SVector};
 use robots::{Dynamics, Robot};
 use schemes::jia2019::Jia2019;
@@ -662,7 +662,7 @@ impl RunCounts {
 pub fn exact_settings() -> Settings {
     Settings {
         integrator: default_exact_integrator(),
-        score: true,
+        scoring: Scoring::EveryStep,
         network_init: NetworkInit::Zero,
     }
 }

@@ -56,7 +56,11 @@ fn coupled_ftnn_jacobian_matches_fine_central_differences() {
     let (mut fp, mut fm) = (vec![0.0; n], vec![0.0; n]);
     for (t, y) in &states {
         // Joint 3's error inside the band: the case the old Jacobian got wrong.
-        assert!((y[2] - theta_ref[2]).abs() < 1e-6, "e_3 = {}", y[2] - theta_ref[2]);
+        assert!(
+            (y[2] - theta_ref[2]).abs() < 1e-6,
+            "e_3 = {}",
+            y[2] - theta_ref[2]
+        );
         let mut analytic = DMatrix::zeros(n, n);
         assert!(sys.jacobian(*t, y, &mut analytic));
         let mut fd = DMatrix::zeros(n, n);
