@@ -18,13 +18,9 @@ use std::sync::Arc;
 #[test]
 fn coupled_ftnn_jacobian_matches_fine_central_differences() {
     let robot: Arc<dyn Robot<5>> = Arc::new(Katana6m180::new());
-    let theta_ref = SVector::<f64, 5>::from([
-        1.2566370614359172,
-        1.5707963267948966,
-        0.0,
-        -0.5235987755982988,
-        1.0471975511965976,
-    ]);
+    // kong2019's theta*0: (2 pi/5, pi/2, 0, -pi/6, pi/3).
+    let pi = std::f64::consts::PI;
+    let theta_ref = SVector::<f64, 5>::from([2.0 * pi / 5.0, pi / 2.0, 0.0, -pi / 6.0, pi / 3.0]);
     let mut theta0 = theta_ref;
     theta0[4] += 0.5;
     let spec: PathSpec = toml::from_str("name = \"circle\"\nduration = 9.0").unwrap();
