@@ -100,7 +100,83 @@ pub fn section(
         out.push_str(&dof_runs(dof));
     }
     out.push_str(&matlab(runs, values));
+    if !dof.is_empty() {
+        out.push_str(&where_time_goes(dof, runs, values));
+    }
     out
+}
+
+/// Where a MATLAB-compared run's simulation time goes: its RHS evaluations (network RHS and
+/// scheme build, at the per-call medians measured at N = [`JACO2_N`] on jia2019's VLTCO, the
+/// QP shape closest to zhong2021's), its network Jacobians (same), and the rest, which is the
+/// integrator's own work: LU factorisations, Newton iterations, step control.
+fn where_time_goes(dof: &[DofCostRow], runs: &Runs, values: &[PaperValue]) -> String {
+    let median = |q| find(dof, "jia2019", JACO2_N, q).and_then(|r| r.median_us);
+    let (Some(rhs), Some(build), Some(jac)) = (
+        median(Quantity::NetworkRhs),
+        median(Quantity::SchemeBuild),
+        median(Quantity::NetworkJacobian),
+    ) else {
+        return String::new();
+    };
+    let mut t = Table::new([
+        "experiment",
+        "solver",
+        "RHS evals",
+        "Jacobians",
+        "simulation (ms)",
+        "RHS work",
+        "Jacobian work",
+        "integrator and the rest",
+    ]);
+    let mut rest_shares = Vec::new();
+    for exp in matlab_experiments(values) {
+        for (solver, _) in paper_times(values, exp) {
+            let Some(r) = runs
+                .of_experiment(exp)
+                .find(|r| r.solver == solver && completed(r))
+            else {
+                continue;
+            };
+            let sim_us = r.sim_s * 1e6;
+            let rhs_us = r.rhs_evals as f64 * (rhs + build);
+            let jac_us = r.jac_evals as f64 * jac;
+            let rest = (sim_us - rhs_us - jac_us).max(0.0) / sim_us;
+            rest_shares.push(rest);
+            let pct = |v: f64| format!("{:.0} %", 100.0 * v);
+            t.push([
+                exp.to_string(),
+                solver.to_string(),
+                r.rhs_evals.to_string(),
+                r.jac_evals.to_string(),
+                format!("{:.1}", sim_us / 1e3),
+                pct(rhs_us / sim_us),
+                pct(jac_us / sim_us),
+                pct(rest),
+            ]);
+        }
+    }
+    if t.is_empty() {
+        return String::new();
+    }
+    let lo = rest_shares.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = rest_shares.iter().copied().fold(0.0, f64::max);
+    format!(
+        "### Where the simulation time goes\n\nEach run's simulation time (`sim_s`) split by its \
+         counts: RHS evaluations at the measured cost of one network RHS plus one QP assembly \
+         ({} us), network Jacobians at the measured cost of one ({} us; LVI-PDNN at N = \
+         {JACO2_N} on jia2019's VLTCO, the closest measured shape, standing in for each \
+         network), and the rest: the integrator's own work (LU factorisations of the Newton \
+         matrix, Newton iterations, step-size control, dense output) and the run's contention \
+         with the other runs in parallel. The rest is {:.0}-{:.0} % of these runs: the networks \
+         are cheap; the stiff integrator around them is what separates the simulation from the \
+         speedup targets above.\n\n{}\n",
+        sci(rhs + build),
+        sci(jac),
+        100.0 * lo,
+        100.0 * hi,
+        t.render()
+    )
 }
 
 /// The machine and revision of the measurement.
