@@ -199,27 +199,8 @@ fn a_killed_run_resumes_without_redoing_finished_runs() {
     let (experiments, results) = (base.join("experiments"), base.join("res"));
     std::fs::create_dir_all(&experiments).unwrap();
     std::fs::create_dir_all(&results).unwrap();
-    // One slow run (the finite-time network integrated by Dormand-Prince, held to steps of
-    // ~1e-5 s by the sign-power band's eigenvalues near -2.5e5: ~690,000 steps, ~10 s; with BDF
-    // it takes ~3,000 steps) and three quick ones.
-    let mut toml = String::from(
-        r#"paper = "kong2019"
-title = "resume"
-[[experiment]]
-id = "kong2019-resume"
-paper_output = "none"
-robot = "katana6m180"
-path = { name = "circle", duration = 9.0 }
-theta0 = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.5471975511965976]
-theta_ref = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.0471975511965976]
-[[experiment.variant]]
-label = "finite-time"
-exact = false
-scheme = { kind = "kong2019-finite-time", beta_theta = 1.0, k_p = 1.0, alpha = 0.1 }
-solvers = [{ kind = "finite-time", beta = 1.0, alpha = 0.1, smoothing = 1e-6 }]
-integrator = { method = "dopri5", rtol = 1e-6, atol = 1e-8 }
-"#,
-    );
+    // The slow run of `common::RESUME_EXPERIMENT` and three quick ones.
+    let mut toml = String::from(common::RESUME_EXPERIMENT);
     for mu in [1, 2, 4] {
         toml.push_str(&format!(
             "[[experiment.variant]]\nlabel = \"ZNN mu={mu}\"\nexact = false\nscheme = {{ kind = \"kong2019-znn\", mu = {mu}.0, k_p = 1.0 }}\nsolvers = [{{ kind = \"znn\", gamma = 1.0 }}]\n"

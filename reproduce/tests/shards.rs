@@ -159,33 +159,20 @@ fn a_killed_shard_resumes_without_redoing_finished_runs() {
     let base = temp("resume");
     let (experiments, results) = (base.join("experiments"), base.join("shard"));
     std::fs::create_dir_all(&experiments).unwrap();
-    // One slow run (the finite-time network integrated by Dormand-Prince, held to steps of
-    // ~1e-5 s by the sign-power band's eigenvalues near -2.5e5: ~690,000 steps, ~10 s; with BDF
-    // it takes ~3,000 steps) and three quick ones (a sweep).
+    // The slow run of `common::RESUME_EXPERIMENT` and three quick ones (a sweep).
     std::fs::write(
         experiments.join("kong2019.toml"),
-        r#"paper = "kong2019"
-title = "resume"
-[[experiment]]
-id = "kong2019-resume"
-paper_output = "none"
-robot = "katana6m180"
-path = { name = "circle", duration = 9.0 }
-theta0 = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.5471975511965976]
-theta_ref = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.0471975511965976]
-[[experiment.variant]]
-label = "finite-time"
-exact = false
-scheme = { kind = "kong2019-finite-time", beta_theta = 1.0, k_p = 1.0, alpha = 0.1 }
-solvers = [{ kind = "finite-time", beta = 1.0, alpha = 0.1, smoothing = 1e-6 }]
-integrator = { method = "dopri5", rtol = 1e-6, atol = 1e-8 }
-[[experiment.variant]]
+        format!(
+            "{}{}",
+            common::RESUME_EXPERIMENT,
+            r#"[[experiment.variant]]
 label = "ZNN"
 exact = false
 scheme = { kind = "kong2019-znn", k_p = 1.0 }
 solvers = [{ kind = "znn", gamma = 1.0 }]
 sweep = { "scheme.mu" = [1, 2, 4] }
-"#,
+"#
+        ),
     )
     .unwrap();
     let run = || {

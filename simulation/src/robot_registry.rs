@@ -110,6 +110,18 @@ macro_rules! visit_nlink {
     };
 }
 
+/// `theta` as the joint vector of `robot`, or an error naming both counts.
+fn angles<const N: usize>(robot: &dyn Robot<N>, theta: &[f64]) -> Result<SVector<f64, N>, String> {
+    if theta.len() != N {
+        return Err(format!(
+            "{}: {} joint angles given, the robot has {N} joints",
+            robot.name(),
+            theta.len()
+        ));
+    }
+    Ok(SVector::from_column_slice(theta))
+}
+
 impl AnyRobot {
     /// Runs `visitor` on this model with its joint count.
     pub fn visit<V: RobotVisitor>(&self, visitor: V) -> V::Output {
@@ -190,14 +202,7 @@ impl AnyRobot {
                 robot: Arc<dyn Robot<N>>,
                 _: Option<Arc<dyn Dynamics<N>>>,
             ) -> Self::Output {
-                if self.0.len() != N {
-                    return Err(format!(
-                        "{}: {} joint angles given, the robot has {N} joints",
-                        robot.name(),
-                        self.0.len()
-                    ));
-                }
-                Ok(robot.skeleton(&SVector::<f64, N>::from_column_slice(self.0)))
+                Ok(robot.skeleton(&angles(robot.as_ref(), self.0)?))
             }
         }
         self.visit(Skeleton(theta))
@@ -214,14 +219,7 @@ impl AnyRobot {
                 robot: Arc<dyn Robot<N>>,
                 _: Option<Arc<dyn Dynamics<N>>>,
             ) -> Self::Output {
-                if self.0.len() != N {
-                    return Err(format!(
-                        "{}: {} joint angles given, the robot has {N} joints",
-                        robot.name(),
-                        self.0.len()
-                    ));
-                }
-                let theta = SVector::<f64, N>::from_column_slice(self.0);
+                let theta = angles(robot.as_ref(), self.0)?;
                 let j =
                     nalgebra::DMatrix::from_column_slice(3, N, robot.jacobian(&theta).as_slice());
                 let mut sv: Vec<f64> = j.singular_values().iter().copied().collect();

@@ -4,6 +4,27 @@
 use std::path::Path;
 use std::process::Command;
 
+/// An experiment file with one slow run first (the finite-time network integrated by
+/// Dormand-Prince, held to steps of ~1e-5 s by the sign-power band's eigenvalues near -2.5e5:
+/// ~690,000 steps, ~10 s; with BDF it takes ~3,000 steps), for tests that kill a run while it
+/// is in flight; a test appends its quick runs as further variants.
+pub const RESUME_EXPERIMENT: &str = r#"paper = "kong2019"
+title = "resume"
+[[experiment]]
+id = "kong2019-resume"
+paper_output = "none"
+robot = "katana6m180"
+path = { name = "circle", duration = 9.0 }
+theta0 = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.5471975511965976]
+theta_ref = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.0471975511965976]
+[[experiment.variant]]
+label = "finite-time"
+exact = false
+scheme = { kind = "kong2019-finite-time", beta_theta = 1.0, k_p = 1.0, alpha = 0.1 }
+solvers = [{ kind = "finite-time", beta = 1.0, alpha = 0.1, smoothing = 1e-6 }]
+integrator = { method = "dopri5", rtol = 1e-6, atol = 1e-8 }
+"#;
+
 /// The `reproduce` binary, started in the workspace root.
 pub fn reproduce() -> Command {
     let mut c = Command::new(env!("CARGO_BIN_EXE_reproduce"));
