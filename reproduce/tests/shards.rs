@@ -186,26 +186,12 @@ sweep = { "scheme.mu" = [1, 2, 4] }
         c
     };
     common::kill_after_checkpoints(run, &results, 3);
-    let journal = records::journal::path(&results);
     assert!(
         !results.join("shard.toml").exists(),
         "an unfinished shard has no manifest"
     );
 
-    let second = run().output().unwrap();
-    let err = String::from_utf8_lossy(&second.stderr);
-    assert!(second.status.success(), "{err}");
-    assert!(
-        err.contains("resuming: 3 of the selected runs already done"),
-        "{err}"
-    );
-    let rows = read_runs(&results.join("runs.csv")).unwrap();
-    assert_eq!(rows.len(), 4);
-    let mut keys: Vec<_> = rows.iter().map(|r| r.key()).collect();
-    keys.sort();
-    keys.dedup();
-    assert_eq!(keys.len(), 4, "no duplicate row");
-    assert!(!journal.exists());
+    common::resume_completes(run, &results, 3, 4);
     let manifest = records::shard::Manifest::read(&results).unwrap();
     assert_eq!(
         (manifest.shard, manifest.shards, manifest.runs.len()),

@@ -156,7 +156,7 @@ impl AnyRobot {
             AnyRobot::Jaco2(_) => vec![1.675, 2.79, -3.216, 4.187, -1.71, -2.95],
             AnyRobot::Katana(_) => vec![2.0 * pi / 5.0, pi / 2.0, 0.0, -pi / 6.0, pi / 3.0],
             AnyRobot::Panda(_) => Panda::READY.to_vec(),
-            AnyRobot::NLink(n) => visit_nlink!(*n, Home, [3, 5, 6, 7, 10, 15, 20, 30]),
+            AnyRobot::NLink(_) => self.visit(Home),
         }
     }
 

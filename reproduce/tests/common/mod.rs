@@ -1,6 +1,7 @@
 //! What the binary's process tests share: starting `reproduce`, and killing a run once it has
 //! checkpointed some runs.
 
+use records::runs::read_runs;
 use std::path::Path;
 use std::process::Command;
 
@@ -55,4 +56,26 @@ pub fn kill_after_checkpoints(run: impl Fn() -> Command, results: &Path, rows: u
         "the {rows} quick runs are checkpointed before the kill"
     );
     assert!(!results.join("runs.csv").exists());
+}
+
+/// Starts `run()` again after [`kill_after_checkpoints`] and checks that it resumes: it says
+/// the `done` checkpointed runs are already done, completes, writes `total` rows without a
+/// duplicate, and removes the journal.
+pub fn resume_completes(run: impl Fn() -> Command, results: &Path, done: usize, total: usize) {
+    let second = run().output().unwrap();
+    let err = String::from_utf8_lossy(&second.stderr);
+    assert!(second.status.success(), "{err}");
+    assert!(
+        err.contains(&format!(
+            "resuming: {done} of the selected runs already done"
+        )),
+        "{err}"
+    );
+    let rows = read_runs(&results.join("runs.csv")).unwrap();
+    assert_eq!(rows.len(), total);
+    let mut keys: Vec<_> = rows.iter().map(|r| r.key()).collect();
+    keys.sort();
+    keys.dedup();
+    assert_eq!(keys.len(), total, "no duplicate row");
+    assert!(!records::journal::path(results).exists());
 }
