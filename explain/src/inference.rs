@@ -4,7 +4,7 @@
 //!
 //! A published drift table gives, per column c and joint i, d_paper[c, i] = theta_i(T) -
 //! theta_i(0). The papers do not publish the pose of their paths (in-plane rotation psi, the
-//! start phase on the curve, the size where paths.md marks it "assumed", the direction) nor
+//! start phase on the curve, the size where docs/paths.md marks it "assumed", the direction) nor
 //! which reading of the RMP coefficient they integrated (jia2019 (2.11): tau Lambda as printed,
 //! tau Lambda / 2 by the expansion with Lambda = 2 mu, or tau mu with the text's mu = 5). With a
 //! setup s the scheme's exact drift is d(s)[c, i] (the exact column: the scheme decides the

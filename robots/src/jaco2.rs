@@ -1,4 +1,4 @@
-//! Kinova Jaco2 (j2n6s300), 6 revolute joints, in classical DH convention (`shared/spec/robots.md`).
+//! Kinova Jaco2 (j2n6s300), 6 revolute joints, in classical DH convention (`docs/robots.md`).
 //!
 //! DH table (`a_i`, `alpha_i`, `d_i`), with wrist half-angle `aa = pi/6` and
 //! `k = sin(aa)/sin(2aa) = 1/sqrt(3)`:
@@ -15,9 +15,9 @@
 //! Variants:
 //! - `jaco2-pen` ([`Jaco2::pen`], the papers' model): D6 = 0.1425, task point = pen tip
 //!   (0, -0.075, 0) in frame 6, world = `Rx(-0.02) Ry(-0.05)` times DH frame 0.
-//! - `jaco2-pen-exp2` ([`Jaco2::pen_exp2`], the group's EXP2 code, `shared/spec/group-code.md`):
+//! - `jaco2-pen-exp2` ([`Jaco2::pen_exp2`], the group's EXP2 code, `docs/group-code.md`):
 //!   the same chain, pen tip and tilt with D4 = D5 = 0.07433, D6 = 0.13 and aa = 11 pi / 72
-//!   (so k = sin(aa)/sin(2aa) = 1/(2 cos(11 pi/72)) = 0.5807 instead of 1/sqrt(3)).
+//!   (so k = sin(aa)/sin(2aa) = 1/(2 cos(11 pi/72)) = 0.5637 instead of 1/sqrt(3)).
 //! - `jaco2-hand` ([`Jaco2::hand`]): Kinova's kinematics with the papers' limits.
 //! - `jaco2` ([`Jaco2::kinova`], Kinova's model): D6 = 0.16, task point = origin of frame 6,
 //!   no tilt.
@@ -78,7 +78,7 @@ pub struct Wrist {
     pub half_angle: f64,
 }
 
-/// The papers' pen model's wrist (`robots.md`): D4 = D5 = 0.0741, D6 = 0.1425, aa = pi/6.
+/// The papers' pen model's wrist (`docs/robots.md`): D4 = D5 = 0.0741, D6 = 0.1425, aa = pi/6.
 pub const PEN_WRIST: Wrist = Wrist {
     d4: D4,
     d5: D5,
@@ -86,7 +86,7 @@ pub const PEN_WRIST: Wrist = Wrist {
     half_angle: WRIST_HALF_ANGLE,
 };
 
-/// The group's EXP2 wrist (`group-code.md`): D4 = D5 = 0.07433, D6 = 0.13, aa = 11 pi / 72.
+/// The group's EXP2 wrist (`docs/group-code.md`): D4 = D5 = 0.07433, D6 = 0.13, aa = 11 pi / 72.
 pub const EXP2_WRIST: Wrist = Wrist {
     d4: 0.07433,
     d5: 0.07433,
@@ -102,7 +102,7 @@ pub fn jaco2_dh(d6: f64) -> [DhParam; 6] {
     jaco2_dh_wrist(Wrist { d6, ..PEN_WRIST })
 }
 
-/// The Jaco2 DH table (`robots.md`) for a given wrist, with k = sin(aa)/sin(2aa).
+/// The Jaco2 DH table (`docs/robots.md`) for a given wrist, with k = sin(aa)/sin(2aa).
 pub fn jaco2_dh_wrist(w: Wrist) -> [DhParam; 6] {
     let aa = w.half_angle;
     let k = aa.sin() / (2.0 * aa).sin();
@@ -161,7 +161,7 @@ impl Jaco2 {
         Self::pen_with_wrist(JACO2_PEN, PEN_WRIST)
     }
 
-    /// The group's EXP2 model `jaco2-pen-exp2` (`group-code.md`): `jaco2-pen` with the wrist
+    /// The group's EXP2 model `jaco2-pen-exp2` (`docs/group-code.md`): `jaco2-pen` with the wrist
     /// D4 = D5 = 0.07433, D6 = 0.13, aa = 11 pi / 72 ([`EXP2_WRIST`]); same pen tip, tilt and
     /// limits, and the same rigid-body model (the group's code does no dynamics).
     pub fn pen_exp2() -> Self {

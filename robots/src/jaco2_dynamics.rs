@@ -1,7 +1,7 @@
 //! Rigid-body dynamics of the Jaco2 (zhang2018's torque-level criterion).
 //!
 //! Inertial parameters: Kinova's URDF cylinder approximations (`kinova_inertial.xacro`),
-//! re-expressed in the DH frames of the **D6 = 0.16** chain (`shared/spec/robots.md`). Because
+//! re-expressed in the DH frames of the **D6 = 0.16** chain (`docs/robots.md`). Because
 //! the table belongs to the physical arm, the dynamics of *both* variants are computed on the
 //! D6 = 0.16 chain with DH frame 0 as the (untilted) base and gravity `(0, 0, -9.81)` m/s^2 in
 //! it: the `jaco2-pen` model's shorter D6, pen tip and base tilt only change the task point,

@@ -1,4 +1,4 @@
-//! Katana 6M180, 5 joints, exactly as kong2019's eq. (2) (`shared/spec/robots.md`).
+//! Katana 6M180, 5 joints, exactly as kong2019's eq. (2) (`docs/robots.md`).
 //!
 //! With `C1 = cos theta1`, `C23 = cos(theta2 + theta3)`, `S234 = sin(theta2 + theta3 + theta4)`
 //! etc. and `L = l4 + l5`:

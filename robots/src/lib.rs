@@ -5,7 +5,7 @@
 //! `Vector3<f64>` for task-space points and `SMatrix<f64, 3, N>` for Jacobians, so no call in
 //! the simulation's hot path allocates.
 //!
-//! Models (see `shared/spec/robots.md`):
+//! Models (see `docs/robots.md`):
 //! - [`Jaco2::pen`] — the papers' Jaco2 (`jaco2-pen`): D6 = 0.1425, pen tip (0, -0.075, 0) in
 //!   frame 6, base tilt Rx(-0.02) Ry(-0.05).
 //! - [`Jaco2::pen_exp2`] — the group's EXP2 variant (`jaco2-pen-exp2`): D4 = D5 = 0.07433,

@@ -1,4 +1,4 @@
-//! Jaco2 kinematics: check values of `robots.md`, an independent DH transcription, the
+//! Jaco2 kinematics: check values of `docs/robots.md`, an independent DH transcription, the
 //! Jacobian and its time derivative against finite differences, and the joint limits.
 
 mod common;
@@ -153,7 +153,7 @@ fn kinova_limits() {
     assert_eq!(lim.thetadot_min, -lim.thetadot_max);
 }
 
-/// The group's EXP2 chain (group-code.md) transcribed independently: D4 = D5 = 0.07433,
+/// The group's EXP2 chain (docs/group-code.md) transcribed independently: D4 = D5 = 0.07433,
 /// D6 = 0.13, aa = 11 pi / 72, k = sin(aa) / sin(2 aa); pen tip and tilt as jaco2-pen.
 fn exp2_independent(theta: &SVector<f64, 6>) -> Vector3<f64> {
     use std::f64::consts::PI;

@@ -1,4 +1,4 @@
-//! Katana 6M180: check values of `robots.md`, an independent transcription of kong2019's
+//! Katana 6M180: check values of `docs/robots.md`, an independent transcription of kong2019's
 //! eq. (2), the Jacobian and its time derivative against finite differences, the wrist roll,
 //! the stretched singular pose and the (unenforced) limits.
 

@@ -1,4 +1,4 @@
-//! Tests of the desired paths (shared/spec/paths.md): closure, rest at both ends, analytic
+//! Tests of the desired paths (docs/paths.md): closure, rest at both ends, analytic
 //! derivatives against finite differences, corner behaviour, segment timing, construction errors.
 
 use nalgebra::Vector3;

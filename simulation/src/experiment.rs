@@ -1,6 +1,6 @@
 //! Experiments as data: one TOML file per paper in `experiments/`, read with serde.
 //!
-//! A file holds a paper id and a list of experiments (ids as in `shared/spec/experiments.md`).
+//! A file holds a paper id and a list of experiments (ids as in `docs/experiments.md`).
 //! An experiment fixes the robot, the path, theta0 (and the scheme's reference theta*0 where a
 //! paper distinguishes it) and the integrators, and lists *variants*: each variant is one scheme
 //! (with its parameters by the paper's names) run exactly (Clarabel in the loop) and by each of
@@ -30,7 +30,7 @@ pub struct PaperFile {
     pub experiments: Vec<Experiment>,
 }
 
-/// One experiment of experiments.md.
+/// One experiment of docs/experiments.md.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Experiment {

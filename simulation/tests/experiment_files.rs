@@ -1,4 +1,4 @@
-//! The experiment files: every committed file loads, every experiment of experiments.md is
+//! The experiment files: every committed file loads, every experiment of docs/experiments.md is
 //! there, and a malformed file is rejected with an error naming the file and the field.
 
 use simulation::experiment::{load_dir, PaperFile};

@@ -806,7 +806,7 @@ fn vp_rnn_pf_error_follows_its_design_formula_on_moving_qps() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// the reference perturbation (zhang2018 eq. 3.1-3.2, experiments.md)
+// the reference perturbation (zhang2018 eq. 3.1-3.2, docs/experiments.md)
 
 #[test]
 fn reference_perturbation_matches_experiments_md_and_enters_as_eq_3_1() {
@@ -889,7 +889,7 @@ fn reference_perturbation_matches_experiments_md_and_enters_as_eq_3_1() {
 }
 
 /// The group's network is Q ydot = -Qdot y - gamma Phi(E) + udot - nu t E + Delta_s(t)
-/// (group-code.md), with udot = [-qdot; bdot] or, with udot_rmp = false, [0; bdot], and no DeltaD.
+/// (docs/group-code.md), with udot = [-qdot; bdot] or, with udot_rmp = false, [0; bdot], and no DeltaD.
 #[test]
 fn group_znn_is_the_groups_equation() {
     let mut rng = ChaCha8Rng::seed_from_u64(32);
@@ -916,7 +916,7 @@ fn group_znn_is_the_groups_equation() {
     let (qm, qdm, u) = (kkt(&qp), kkt(&qd), rhs_vec(&qp));
     let e = &qm * &y - &u;
     let phi = e.map(|v| act.value(v));
-    // Delta_s written out from group-code.md, w = pi t / T.
+    // Delta_s written out from docs/group-code.md, w = pi t / T.
     let w = std::f64::consts::PI * t / 8.0;
     let ds = DVector::from_vec(vec![
         2.0 * w.sin(),

@@ -1,4 +1,4 @@
-//! The claims checklist: every claim of experiments.md evaluated from the stored runs.
+//! The claims checklist: every claim of docs/experiments.md evaluated from the stored runs.
 //!
 //! A claim is PASS or FAIL with the measured numbers as evidence, or N/A when the suite does
 //! not measure what it is about (or its runs are missing). Verdicts refer to the paper's own

@@ -274,7 +274,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
     out
 }
 
-/// The group-code reference experiments (`experiments/group.toml`, shared/spec/group-code.md):
+/// The group-code reference experiments (`experiments/group.toml`, docs/group-code.md):
 /// every run, its attribution and ladder. Their numbers are the code's own metrics (drift and
 /// max end-effector error), not published values.
 fn group_section(
@@ -289,7 +289,7 @@ fn group_section(
         return String::new();
     }
     let mut out = String::from(
-        "## The group's own code (reference experiment)\n\nThe only public code of this family (shared/spec/group-code.md) computes a star (EXP1) and a butterfly (EXP2) with a zeroing network that has a growing-gain term -nu t E, the group's power-sigmoid and an injected perturbation, on the Jaco2 with kong2019's eq. 22 scheme (k = 6 and 5, no joint limits, no feedback). We compute exactly what it describes, and switch each of its ingredients off in its own variant (nu = 0, no perturbation, linear activation, udot with and without the -k thetadot term, the butterfly closed), so each ingredient's share of the drift is measured, not guessed. These are not published numbers: the group's stored results are not part of the papers.\n\n",
+        "## The group's own code (reference experiment)\n\nThe only public code of this family (docs/group-code.md) computes a star (EXP1) and a butterfly (EXP2) with a zeroing network that has a growing-gain term -nu t E, the group's power-sigmoid and an injected perturbation, on the Jaco2 with kong2019's eq. 22 scheme (k = 6 and 5, no joint limits, no feedback). We compute exactly what it describes, and switch each of its ingredients off in its own variant (nu = 0, no perturbation, linear activation, udot with and without the -k thetadot term, the butterfly closed), so each ingredient's share of the drift is measured, not guessed. These are not published numbers: the group's stored results are not part of the papers.\n\n",
     );
     for exp in &experiments {
         out.push_str(&format!(

@@ -1,4 +1,4 @@
-//! jia2019's path check: the clover's size and orientation are assumed (paths.md), so the
+//! jia2019's path check: the clover's size and orientation are assumed (docs/paths.md), so the
 //! report sets Table 2 beside the exact column of `jia2019-clover-sweep` (forward and reversed
 //! clover, a = 0.1, 0.15, 0.2 m): per-joint sign agreement with the paper and the drift norm
 //! ratio, computed from the rows.
@@ -87,7 +87,7 @@ pub fn clover_sweep(runs: &Runs, values: &[PaperValue]) -> String {
     }
     format!(
         "\n### Path direction and size (`{SWEEP}`)\n\n\
-         The clover's size (a = 0.15 m) and orientation are assumptions (paths.md). Travelling the same \
+         The clover's size (a = 0.15 m) and orientation are assumptions (docs/paths.md). Travelling the same \
          curve backwards, and scaling it, moves Table 2's drifts as below (exact column; the drift is \
          the scheme's, the solver adds < 1 %). A peak |θ̇| of 1.5 rad/s means the velocity bound is active.\n\n{}",
         t.render()

@@ -47,7 +47,7 @@ pub fn dh4(a: f64, alpha: f64, d: f64, theta: f64) -> Matrix4<f64> {
         * Rotation3::from_axis_angle(&Vector3::x_axis(), alpha).to_homogeneous()
 }
 
-/// Independent transcription of the Jaco2 DH table (`robots.md`), D6 given, as (a, alpha, d) rows.
+/// Independent transcription of the Jaco2 DH table (`docs/robots.md`), D6 given, as (a, alpha, d) rows.
 pub fn jaco2_table(d6: f64) -> [(f64, f64, f64); 6] {
     use std::f64::consts::PI;
     let (d1, d2, d3, d4, d5, e2) = (0.2755, 0.41, 0.2073, 0.0741, 0.0741, 0.0098);

@@ -1,4 +1,4 @@
-//! The Chinese characters "ping" (平) and "dai" (呆) as stroke tours (proposal; paths.md).
+//! The Chinese characters "ping" (平) and "dai" (呆) as stroke tours (proposal; docs/paths.md).
 //!
 //! Each character is a set of named points in a unit box (x right, y up) and a closed tour through
 //! them (pen down throughout, retracing strokes where needed). A tour point p maps to the base

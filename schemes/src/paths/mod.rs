@@ -1,4 +1,4 @@
-//! Desired end-effector paths r*(t), rdot*(t), rddot*(t) (see `shared/spec/paths.md`).
+//! Desired end-effector paths r*(t), rdot*(t), rddot*(t) (see `docs/paths.md`).
 //!
 //! # Mathematics
 //!

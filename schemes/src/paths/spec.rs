@@ -1,6 +1,6 @@
 //! Building a path from its serde-readable description.
 //!
-//! | name | built as | default scale (m) | provenance of the scale | T in paths.md (s) |
+//! | name | built as | default scale (m) | provenance of the scale | T in docs/paths.md (s) |
 //! |---|---|---|---|---|
 //! | `four-leaf-clover` | [`CurveShape::FourLeafClover`], a | 0.15 | assumed | 5 |
 //! | `five-point-star` | [`CurveShape::FivePointStar`], a | 0.08 | group's code | 5 |
@@ -110,7 +110,7 @@ pub const PATH_NAMES: &[&str] = &[
     "circle",
 ];
 
-/// (name, default scale, provenance of the scale, duration in paths.md), in [`PATH_NAMES`] order.
+/// (name, default scale, provenance of the scale, duration in docs/paths.md), in [`PATH_NAMES`] order.
 const TABLE: [(&str, f64, &str, f64); 10] = [
     ("four-leaf-clover", 0.15, "assumed", 5.0),
     ("five-point-star", 0.08, "group's code", 5.0),
@@ -128,7 +128,7 @@ fn entry(name: &str) -> Option<&'static (&'static str, f64, &'static str, f64)> 
     TABLE.iter().find(|e| e.0 == name)
 }
 
-/// The size paths.md gives the path (a, R, s, side or r in metres), `None` for an unknown name.
+/// The size docs/paths.md gives the path (a, R, s, side or r in metres), `None` for an unknown name.
 pub fn default_scale(name: &str) -> Option<f64> {
     entry(name).map(|e| e.1)
 }
@@ -139,7 +139,7 @@ pub fn scale_provenance(name: &str) -> Option<&'static str> {
     entry(name).map(|e| e.2)
 }
 
-/// The duration T paths.md lists for the path, `None` for an unknown name.
+/// The duration T docs/paths.md lists for the path, `None` for an unknown name.
 pub fn default_duration(name: &str) -> Option<f64> {
     entry(name).map(|e| e.3)
 }

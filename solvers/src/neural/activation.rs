@@ -8,7 +8,7 @@
 //! | [`Activation::Linear`] | e | zhong2021 eq. 2.27; zhang2018 ("linear unless stated"); the ZNN |
 //! | [`Activation::Sinh`] | (exp(e) - exp(-e))/2 | zhong2021 eq. 2.28 |
 //! | [`Activation::PowerSigmoid`] | (1+exp(-alpha))(1-exp(-alpha e)) / ((1-exp(-alpha))(1+exp(-alpha e))) for abs(e) <= 1, sgn(e) abs(e)^chi for abs(e) > 1 | zhong2021 eq. 2.29 (alpha >= 2, chi >= 3) |
-//! | [`Activation::GroupPowerSigmoid`] | e^p for abs(e) >= 1, ((1+exp(-xi))/(1-exp(-xi))) (1-exp(-xi e))/(1+exp(-xi e)) otherwise | the group's `AFMpowersigmoid(e, xi, p)` (`shared/spec/group-code.md`) |
+//! | [`Activation::GroupPowerSigmoid`] | e^p for abs(e) >= 1, ((1+exp(-xi))/(1-exp(-xi))) (1-exp(-xi e))/(1+exp(-xi e)) otherwise | the group's `AFMpowersigmoid(e, xi, p)` (`docs/group-code.md`) |
 //! | [`Activation::SignPower`] | abs(e)^r sgn(e) | kong2019 eq. 6 and 20 (r = the paper's alpha, 0 < r < 1) |
 //!
 //! Power-sigmoid: the paper prints e^chi for abs(e) > 1, which is odd only for odd integer chi;
@@ -19,7 +19,7 @@
 //!
 //! # The group's power-sigmoid, and how it maps onto zhong2021's
 //!
-//! The papers' group's MATLAB code (`AFMpowersigmoid.m`, see `shared/spec/group-code.md`) computes,
+//! The papers' group's MATLAB code (`AFMpowersigmoid.m`, see `docs/group-code.md`) computes,
 //! elementwise, phi(e) = e^p where abs(e) >= 1 and
 //! ((1 + exp(-xi)) / (1 - exp(-xi))) (1 - exp(-xi e)) / (1 + exp(-xi e)) otherwise; called with
 //! one argument it uses xi = 1, p = 1, with two p = 3 ([`GROUP_POWER_SIGMOID_XI`],

@@ -17,7 +17,7 @@
 //!
 //! # The reference perturbation
 //!
-//! The paper only says "sine or cosine functions". We use the one of experiments.md (from the
+//! The paper only says "sine or cosine functions". We use the one of docs/experiments.md (from the
 //! group's own VP-CDNN code), with w = pi t / T, T the task duration, for n + m = 9:
 //!
 //! ```text
@@ -87,7 +87,7 @@ impl Trig {
     }
 }
 
-/// D0(t) of experiments.md, row by row, as functions of w = pi t / T.
+/// D0(t) of the reference perturbation (docs/experiments.md), row by row, as functions of w = pi t / T.
 pub const D0_TABLE: [[Trig; 9]; 9] = [
     [
         s(1.),
@@ -190,7 +190,7 @@ pub const D0_TABLE: [[Trig; 9]; 9] = [
     ],
 ];
 
-/// Delta s(t) / A_s of experiments.md.
+/// Delta s(t) / A_s of the reference perturbation (docs/experiments.md).
 pub const DELTA_S_TABLE: [(f64, Trig); 9] = [
     (2.0, s(1.)),
     (4.0, c(2.)),

@@ -1,5 +1,5 @@
 //! The papers' group's own network, as its public MATLAB code computes it
-//! (`shared/spec/group-code.md`: `ldkong1205/numerical-planning`, `code/EXP1`, `code/EXP2`,
+//! (`docs/group-code.md`: `ldkong1205/numerical-planning`, `code/EXP1`, `code/EXP2`,
 //! `mvn_ZZJLJrebi1_net.m`).
 //!
 //! On the equality-constrained velocity-level QP min x'Px/2 + q'x s.t. A x = b:

@@ -10,7 +10,7 @@
 //! | VP-RNN-PF | zhong2021 eq. 2.19-2.30 | [x; lambda] (nx + n_eq) | [`vp_rnn_pf`] |
 //! | FP-CDNN / VP-CDNN | zhang2018 eq. 2.15 / 2.11, perturbed 3.2 / 3.1 | [x; lambda] | [`cdnn`], [`zeroing`] |
 //! | FTNN (finite-time) / ZNN | kong2019 eq. 17-20 / its eq. 22 comparison | [x; lambda] | [`znn`], [`zeroing`] |
-//! | group ZNN | the group's MATLAB code (`shared/spec/group-code.md`) | [x; lambda] | [`group`], [`zeroing`] |
+//! | group ZNN | the group's MATLAB code (`docs/group-code.md`) | [x; lambda] | [`group`], [`zeroing`] |
 //!
 //! Activation functions: [`activation`]. Experiment-file specifications and the factory:
 //! [`spec`]. Every network starts from y = 0 (none of the papers says otherwise).

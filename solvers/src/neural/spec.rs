@@ -136,7 +136,7 @@ pub enum SolverSpec {
     },
     /// Linear ZNN (kong2019's comparison solver).
     Znn { gamma: f64 },
-    /// The papers' group's own network (`shared/spec/group-code.md`, [`super::group`]):
+    /// The papers' group's own network (`docs/group-code.md`, [`super::group`]):
     /// Q ydot = -Qdot y - gamma Phi(E) + udot - nu t E + Delta_s(t).
     GroupZnn {
         #[serde(default = "default_group_gamma")]

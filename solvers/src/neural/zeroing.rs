@@ -1,7 +1,7 @@
 //! The zeroing core shared by every equality-only network of the papers: FP-CDNN and VP-CDNN
 //! (zhang2018 eq. 2.15, 2.11, perturbed 3.2, 3.1), kong2019's finite-time network (eq. 17-20)
 //! the plain ZNN of kong2019's comparison scheme (eq. 22) and the papers' group's own network
-//! ([`super::group`], `shared/spec/group-code.md`).
+//! ([`super::group`], `docs/group-code.md`).
 //!
 //! # The equation they zero
 //!
