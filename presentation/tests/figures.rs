@@ -325,12 +325,27 @@ fn panel_a_draws_the_arm_where_the_robot_is_known_and_fits_the_trace() {
 fn rendering_twice_gives_identical_bytes_and_removes_stale_figures() {
     let root = scratch("determinism");
     synthetic_results(&root);
+    // Figures of a run that is gone, as an earlier rendering wrote them (recorded in
+    // report/manifest.toml).
+    let report = records::tracked_dir::TrackedDir::open_within(&root, "report").unwrap();
+    report
+        .write(
+            Path::new("figures/exp-old__gone__solver.svg"),
+            b"<svg></svg>",
+        )
+        .unwrap();
+    report
+        .write(Path::new("figures/exp-old__gone__solver.png"), b"\x89PNG")
+        .unwrap();
+    report.save().unwrap();
+    drop(report);
     let stale = root.join("report/figures/exp-old__gone__solver.svg");
-    write_atomic(&stale, b"<svg></svg>").unwrap();
     let stale_png = stale.with_extension("png");
-    write_atomic(&stale_png, b"\x89PNG").unwrap();
     let mine = root.join("report/figures/notes.png");
     write_atomic(&mine, b"not a figure").unwrap();
+    // Named like a figure, but the user's: the program did not write it, so it stays.
+    let users = root.join("report/figures/my__own__plot.svg");
+    write_atomic(&users, b"<svg>mine</svg>").unwrap();
     let bytes = |svgs: Vec<PathBuf>| -> Vec<(Vec<u8>, Vec<u8>)> {
         svgs.iter()
             .map(|p| {
@@ -346,6 +361,10 @@ fn rendering_twice_gives_identical_bytes_and_removes_stale_figures() {
         "the PNG of a run that is gone was kept"
     );
     assert!(mine.exists(), "a file not named as a figure was deleted");
+    assert!(
+        users.exists(),
+        "a file the program did not write was deleted"
+    );
     let second = bytes(render_all(&root).unwrap());
     assert_eq!(first, second);
     std::fs::remove_dir_all(&root).unwrap();

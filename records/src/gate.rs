@@ -28,13 +28,20 @@ fn close(a: Option<f64>, b: Option<f64>) -> bool {
     }
 }
 
-/// Every difference between `committed` and `fresh` that the gate rejects, one line each.
-/// `committed` should hold the rows of the same selection of runs as `fresh`.
-pub fn compare(committed: &[RunRow], fresh: &[RunRow]) -> Vec<String> {
+/// Every difference between `committed` (read from the baseline called `baseline`, for the
+/// messages) and `fresh` that the gate rejects, one line each. `committed` should hold the rows
+/// of the same selection of runs as `fresh`. Linear in the rows (keys in hash maps).
+pub fn compare(committed: &[RunRow], fresh: &[RunRow], baseline: &str) -> Vec<String> {
     let mut problems = Vec::new();
+    let fresh_by_key: std::collections::HashMap<_, &RunRow> =
+        fresh.iter().map(|f| (f.key(), f)).collect();
+    let committed_keys: std::collections::HashSet<_> = committed.iter().map(RunRow::key).collect();
     for c in committed {
-        let Some(f) = fresh.iter().find(|f| f.key() == c.key()) else {
-            problems.push(format!("{:?}: committed run no longer produced", c.key()));
+        let Some(&f) = fresh_by_key.get(&c.key()) else {
+            problems.push(format!(
+                "{:?}: in {baseline} but no longer produced",
+                c.key()
+            ));
             continue;
         };
         if f.status != c.status {
@@ -74,9 +81,9 @@ pub fn compare(committed: &[RunRow], fresh: &[RunRow]) -> Vec<String> {
         }
     }
     for f in fresh {
-        if !committed.iter().any(|c| c.key() == f.key()) {
+        if !committed_keys.contains(&f.key()) {
             problems.push(format!(
-                "{:?}: new run not in results/runs.csv (run the reproduction and commit results/)",
+                "{:?}: new run, not in {baseline} (run the reproduction and commit results/)",
                 f.key()
             ));
         }

@@ -1,12 +1,15 @@
 //! The checkpoint journal: `results/journal.csv`, one `runs.csv` row appended (and flushed) as
 //! each run finishes, its trace written beside it at once. A run that is interrupted (SIGINT,
 //! SIGKILL, a pre-empted job) loses only the runs that were in flight: the next start folds the
-//! journal into `runs.csv` (atomically) and skips the runs it holds when they were produced by
-//! the same code revision. A normal end merges everything into `runs.csv` and removes the
-//! journal. A line cut short by a kill (the last one) is dropped; any other bad line is an error
-//! naming the file and the line.
+//! journal into `runs.csv` (atomically) and skips the runs it holds. Only rows of the current
+//! code revision are folded: a row of another revision (an old journal, or one copied in) is
+//! not, and the start says so run by run; those runs are run again. A normal end merges
+//! everything into `runs.csv` and removes the journal. A line cut short by a kill (the last
+//! one) is dropped; any other bad line, a name that cannot name a file, or a run listed twice
+//! is an error naming the file and the line (a journal this program wrote has each run once).
 
-use crate::runs::{trace_csv, trace_file, write_atomic, RunRow};
+use crate::results_dir::ResultsDir;
+use crate::runs::{check_rows, RunRow};
 use crate::table;
 use simulation::run::RunRecord;
 use std::fs::{File, OpenOptions};
@@ -14,26 +17,32 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
+/// The journal's file name in a results directory.
+pub const FILE: &str = "journal.csv";
+
 /// The journal of the results directory `dir`.
 pub fn path(dir: &Path) -> PathBuf {
-    dir.join("journal.csv")
+    dir.join(FILE)
 }
 
 /// An open journal, shared by the worker threads.
-pub struct Journal {
-    dir: PathBuf,
+pub struct Journal<'a> {
+    results: &'a ResultsDir,
     /// Per-joint columns of its header (the most joints among the runs it will hold).
     joints: usize,
     file: Mutex<File>,
     git_rev: String,
 }
 
-impl Journal {
-    /// Opens (creating, with the header) the journal of `dir` for appending rows of arms with
-    /// at most `joints` joints. An existing journal keeps its header: a run resumed with arms
-    /// of more joints than it was started with starts a new journal.
-    pub fn open(dir: &Path, git_rev: &str, joints: usize) -> Result<Self, String> {
-        let path = path(dir);
+impl<'a> Journal<'a> {
+    /// Opens (creating, with the header) the journal of `results` for appending rows of arms
+    /// with at most `joints` joints. An existing journal keeps its header: a run resumed with
+    /// arms of more joints than it was started with starts a new journal.
+    pub fn open(results: &'a ResultsDir, git_rev: &str, joints: usize) -> Result<Self, String> {
+        let path = results
+            .tracked()
+            .resolve(Path::new(FILE))
+            .map_err(|e| e.to_string())?;
         let mut file = OpenOptions::new()
             .create(true)
             .append(true)
@@ -56,7 +65,7 @@ impl Journal {
             }
         }
         Ok(Self {
-            dir: dir.to_path_buf(),
+            results,
             joints,
             file: Mutex::new(file),
             git_rev: git_rev.to_string(),
@@ -65,9 +74,7 @@ impl Journal {
 
     /// Checkpoints one finished run: its trace, then its row (one write, flushed).
     pub fn record(&self, r: &RunRecord) -> Result<(), String> {
-        let trace = self.dir.join("traces").join(trace_file(r));
-        let bytes = trace_csv(r).map_err(|e| e.to_string())?;
-        write_atomic(&trace, &bytes).map_err(|e| format!("{}: {e}", trace.display()))?;
+        self.results.write_trace(r).map_err(|e| e.to_string())?;
         let mut w = csv::WriterBuilder::new()
             .has_headers(false)
             .from_writer(Vec::new());
@@ -81,16 +88,25 @@ impl Journal {
             .map_err(|_| "journal lock poisoned".to_string())?;
         file.write_all(&line)
             .and_then(|()| file.flush())
-            .map_err(|e| format!("{}: {e}", path(&self.dir).display()))
+            .map_err(|e| format!("{}: {e}", path(self.results.path()).display()))
     }
 }
 
-/// The rows of an interrupted run's journal (none without one). A last line cut short by a
-/// kill is dropped.
-pub fn recover(dir: &Path) -> Result<Vec<RunRow>, String> {
+/// What an interrupted run's journal holds.
+#[derive(Debug, Default)]
+pub struct Recovered {
+    /// Rows of the current code revision: folded into `runs.csv`, not run again.
+    pub current: Vec<RunRow>,
+    /// Rows of another revision: not folded (run again).
+    pub other_revision: Vec<RunRow>,
+}
+
+/// The rows of an interrupted run's journal in `dir` (none without one), split by code
+/// revision (`git_rev`: the current one). A last line cut short by a kill is dropped.
+pub fn recover(dir: &Path, git_rev: &str) -> Result<Recovered, String> {
     let journal = path(dir);
     if !journal.exists() {
-        return Ok(Vec::new());
+        return Ok(Recovered::default());
     }
     let text = std::fs::read_to_string(&journal)
         .map_err(|e| format!("{}: cannot read: {e}", journal.display()))?;
@@ -99,12 +115,23 @@ pub fn recover(dir: &Path) -> Result<Vec<RunRow>, String> {
         Some(end) => &text[..=end],
         None => "",
     };
-    table::from_reader(complete.as_bytes()).map_err(|e| {
+    let rows: Vec<RunRow> = table::from_reader(complete.as_bytes()).map_err(|e| {
         table::TableError {
             path: Some(journal.clone()),
             ..e
         }
         .to_string()
+    })?;
+    check_rows(&rows).map_err(|e| {
+        format!(
+            "{}: {e}; this is not a journal this program wrote: remove it (its runs are run again)",
+            journal.display()
+        )
+    })?;
+    let (current, other_revision) = rows.into_iter().partition(|r| r.git_rev == git_rev);
+    Ok(Recovered {
+        current,
+        other_revision,
     })
 }
 

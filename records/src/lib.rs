@@ -8,6 +8,12 @@
 //! - [`index`]: the stored runs indexed as the report and the analyses look them up.
 //! - [`leaderboard`]: every velocity-level solver on the standard task set, scored as
 //!   qpbenchmark scores QP solvers (`results/leaderboard.csv`).
+//! - [`owned_dir`]: a directory the program owns; the only way a name read from a file becomes
+//!   a path under it (plain names, no symbolic link leaving it).
+//! - [`integrity`]: the manifest of what the program wrote (line count, size, SHA-256 per file).
+//! - [`tracked_dir`]: an owned directory with its manifest: writes recorded, edits found,
+//!   deletions only of files the program provably wrote.
+//! - [`results_dir`]: `results/` as one type: lock, layout, traces, pruning.
 //! - [`journal`]: the checkpoint of finished runs that an interrupted run resumes from.
 //! - [`shard`]: cluster runs: which shard a run belongs to, the shard manifest, the merge checks.
 //! - [`gate`]: the regression gate (fresh rows against committed ones).
@@ -17,9 +23,13 @@
 pub mod dof_cost;
 pub mod gate;
 pub mod index;
+pub mod integrity;
 pub mod journal;
 pub mod leaderboard;
+pub mod owned_dir;
 pub mod paper_values;
+pub mod results_dir;
 pub mod runs;
 pub mod shard;
 pub mod table;
+pub mod tracked_dir;

@@ -13,7 +13,7 @@
 use crate::table;
 use serde::{Deserialize, Serialize};
 use simulation::error::FailureKind;
-use simulation::naming::run_stem;
+use simulation::naming::check_run_names;
 use simulation::run::RunRecord;
 use simulation::simulate::Outcome;
 use std::path::Path;
@@ -316,31 +316,34 @@ fn recovery_hint(path: &Path) -> String {
 
 /// Reads `results/runs.csv`. Any problem is an error naming the file, the line and how to
 /// recover, never a silently shorter list: an unreadable file, a header that is not this
-/// version's columns (an old schema: a missing or an unknown column), or a row that does not
-/// parse. An empty file has no rows.
+/// version's columns (an old schema: a missing or an unknown column), a row that does not
+/// parse, a name that cannot name a file ([`check_rows`]) or a run listed twice. An empty file
+/// has no rows.
 pub fn read_runs(path: &Path) -> Result<Vec<RunRow>, String> {
-    table::read(path).map_err(|e| format!("{e}; {}", recovery_hint(path)))
+    let rows = table::read(path).map_err(|e| format!("{e}; {}", recovery_hint(path)))?;
+    check_rows(&rows).map_err(|e| format!("{}: {e}; {}", path.display(), recovery_hint(path)))?;
+    Ok(rows)
 }
 
-/// Removes the temporary files ([`write_atomic`]'s `<name>.<pid>.<n>.tmp`) that killed runs
-/// left anywhere under `dir`; returns the paths removed. A missing `dir` has none.
-pub fn remove_stale_tmp(dir: &Path) -> std::io::Result<Vec<std::path::PathBuf>> {
-    let mut removed = Vec::new();
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return Ok(removed);
-    };
-    for entry in entries {
-        let entry = entry?;
-        let path = entry.path();
-        let kind = entry.file_type()?;
-        if kind.is_dir() {
-            removed.extend(remove_stale_tmp(&path)?);
-        } else if kind.is_file() && path.extension().is_some_and(|x| x == "tmp") {
-            std::fs::remove_file(&path)?;
-            removed.push(path);
+/// Checks what a results file says before any of it becomes a path: every row's paper id,
+/// experiment id, variant label and solver label can name a file
+/// ([`simulation::naming::check_run_names`]), and no run is listed twice. The error names the
+/// line (the header is line 1).
+pub fn check_rows(rows: &[RunRow]) -> Result<(), String> {
+    let mut seen = std::collections::HashMap::with_capacity(rows.len());
+    for (i, r) in rows.iter().enumerate() {
+        let line = i + 2;
+        simulation::naming::check_name(&r.paper, simulation::naming::MAX_EXPERIMENT_ID)
+            .and_then(|()| check_run_names(&r.experiment, &r.variant, &r.solver))
+            .map_err(|e| format!("line {line}: {e}"))?;
+        if let Some(first) = seen.insert(r.key(), line) {
+            return Err(format!(
+                "line {line}: the run {} / {} / {} is listed twice (first on line {first})",
+                r.experiment, r.variant, r.solver
+            ));
         }
     }
-    Ok(removed)
+    Ok(())
 }
 
 /// Checks that files can be created in `dir` (created if absent): writes and removes a probe
@@ -355,23 +358,16 @@ pub fn check_writable(dir: &Path) -> Result<(), String> {
 
 /// Merges freshly computed rows into the stored ones: a fresh row replaces the stored row with
 /// the same key; other stored rows are kept (so running one paper does not erase the others).
+/// Linear in the rows (a set of the fresh keys), then one sort.
 pub fn merge(stored: Vec<RunRow>, fresh: Vec<RunRow>) -> Vec<RunRow> {
+    let fresh_keys: std::collections::HashSet<_> = fresh.iter().map(RunRow::key).collect();
     let mut all: Vec<RunRow> = stored
         .into_iter()
-        .filter(|s| !fresh.iter().any(|f| f.key() == s.key()))
+        .filter(|s| !fresh_keys.contains(&s.key()))
         .collect();
     all.extend(fresh);
     all.sort_by_key(|r| r.key());
     all
-}
-
-/// File name of a run's trace, relative to `results/traces/`.
-pub fn trace_file(r: &RunRecord) -> String {
-    format!(
-        "{}/{}.csv",
-        r.job.experiment,
-        run_stem(&r.job.variant, &r.job.solver.label())
-    )
 }
 
 /// A run's trace as CSV: t, theta_i, thetadot_i, [thetaddot_i, tau_i], desired and actual

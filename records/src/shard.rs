@@ -16,7 +16,6 @@
 
 use crate::runs::{read_runs, RunRow};
 use serde::{Deserialize, Serialize};
-use simulation::naming::run_stem;
 use std::path::{Path, PathBuf};
 
 /// The manifest's file name in a shard directory.
@@ -224,35 +223,79 @@ pub fn row_key(r: &RunRow) -> String {
 pub struct ShardDir {
     pub dir: PathBuf,
     pub manifest: Manifest,
+    /// Its integrity manifest (every file it wrote, traces included).
+    pub files: crate::integrity::Manifest,
     pub rows: Vec<RunRow>,
 }
 
-pub fn read_shard(dir: &Path) -> Result<ShardDir, String> {
+/// Reads a finished shard: its `shard.toml`, its integrity manifest, and its `runs.csv`.
+/// Every file the integrity manifest lists (the rows and every trace) must still be what the
+/// shard wrote, unless `edits` accepts edits; a directory that does not exist, or a shard
+/// without an integrity manifest, is an error saying so.
+pub fn read_shard(dir: &Path, edits: crate::tracked_dir::Edits) -> Result<ShardDir, String> {
+    if !dir.is_dir() {
+        return Err(format!(
+            "{}: no such directory (give the directories that `reproduce --shard K/N` wrote)",
+            dir.display()
+        ));
+    }
     let manifest = Manifest::read(dir)?;
+    let files = crate::integrity::Manifest::read(dir)
+        .map_err(|e| e.to_string())?
+        .ok_or_else(|| {
+            format!(
+                "{}: no {}: not a shard this version wrote, so its files cannot be checked; run the shard again",
+                dir.display(),
+                crate::integrity::FILE
+            )
+        })?;
+    if edits == crate::tracked_dir::Edits::Refuse {
+        let mismatches = files.mismatches(dir, |_| true);
+        if !mismatches.is_empty() {
+            return Err(format!(
+                "{}: {} file(s) differ from what the shard wrote:\n{}\nrun the shard again, or merge with --accept-edited if the edit is deliberate",
+                dir.display(),
+                mismatches.len(),
+                mismatches
+                    .iter()
+                    .map(|m| format!("  {m}"))
+                    .collect::<Vec<_>>()
+                    .join("\n")
+            ));
+        }
+    }
     let rows = read_runs(&dir.join("runs.csv"))?;
     Ok(ShardDir {
         dir: dir.to_path_buf(),
         manifest,
+        files,
         rows,
     })
 }
 
-/// Copies the traces of every shard's rows into `results` (each written atomically); returns
-/// how many. A run without a trace file (none was written) is skipped.
-pub fn copy_traces(shards: &[ShardDir], results: &Path) -> Result<usize, String> {
+/// A row's trace, relative to its results directory.
+fn trace_rel(r: &RunRow) -> Result<PathBuf, String> {
+    crate::results_dir::ResultsDir::trace_rel(&r.experiment, &r.variant, &r.solver)
+        .map_err(|e| e.to_string())
+}
+
+/// Copies the traces of every shard's rows into `results` (each written atomically and
+/// recorded); returns how many. [`check_shards`] has checked that each one is there.
+pub fn copy_traces(
+    shards: &[ShardDir],
+    results: &crate::results_dir::ResultsDir,
+) -> Result<usize, String> {
     let mut n = 0;
     for s in shards {
+        let owned = crate::owned_dir::OwnedDir::open(&s.dir).map_err(|e| e.to_string())?;
         for r in &s.rows {
-            let rel = Path::new("traces")
-                .join(&r.experiment)
-                .join(format!("{}.csv", run_stem(&r.variant, &r.solver)));
-            let from = s.dir.join(&rel);
-            if !from.exists() {
-                continue;
-            }
+            let rel = trace_rel(r)?;
+            let from = owned.resolve(&rel).map_err(|e| e.to_string())?;
             let bytes = std::fs::read(&from).map_err(|e| format!("{}: {e}", from.display()))?;
-            let to = results.join(&rel);
-            crate::runs::write_atomic(&to, &bytes).map_err(|e| format!("{}: {e}", to.display()))?;
+            results
+                .tracked()
+                .write(&rel, &bytes)
+                .map_err(|e| e.to_string())?;
             n += 1;
         }
     }
@@ -297,8 +340,55 @@ pub fn check_shards(shards: &[ShardDir], expected: &[String], hash: &str) -> Res
             ));
         }
     }
+    let revisions: std::collections::BTreeSet<&str> =
+        shards.iter().map(|s| s.manifest.git_rev.as_str()).collect();
+    if revisions.len() > 1 {
+        problems.push(format!(
+            "the shards were run by different code revisions ({}), so their results are not comparable: run them again from one revision",
+            shards
+                .iter()
+                .map(|s| format!("{}: {}", s.dir.display(), s.manifest.git_rev))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
+    for s in shards {
+        let assigned: std::collections::HashSet<&str> =
+            s.manifest.runs.iter().map(String::as_str).collect();
+        for r in &s.rows {
+            let key = row_key(r);
+            let owner = Shard::of(&key, n);
+            if owner != s.manifest.shard || !assigned.contains(key.as_str()) {
+                problems.push(format!(
+                    "{}: holds {key}, which belongs to shard {owner}/{n}{}",
+                    s.dir.display(),
+                    if assigned.contains(key.as_str()) {
+                        ""
+                    } else {
+                        " and is not among the runs its shard.toml lists"
+                    }
+                ));
+            }
+            match trace_rel(r) {
+                Ok(rel) => {
+                    let listed = rel.to_string_lossy().replace('\\', "/");
+                    if !s.files.files.contains_key(&listed) {
+                        problems.push(format!(
+                            "{}: the trace of {key} ({}) is not among the files the shard wrote",
+                            s.dir.display(),
+                            rel.display()
+                        ));
+                    }
+                }
+                Err(e) => problems.push(format!("{}: {e}", s.dir.display())),
+            }
+        }
+    }
     if !problems.is_empty() {
-        return Err(problems.join("\n"));
+        return Err(format!(
+            "cannot merge; nothing was written:\n{}",
+            problems.join("\n")
+        ));
     }
     let mut given: Vec<usize> = shards.iter().map(|s| s.manifest.shard).collect();
     given.sort_unstable();
@@ -332,7 +422,8 @@ pub fn check_shards(shards: &[ShardDir], expected: &[String], hash: &str) -> Res
             )),
         }
     }
-    let mut foreign: Vec<&String> = found.keys().filter(|k| !expected.contains(k)).collect();
+    let expected_set: std::collections::HashSet<&String> = expected.iter().collect();
+    let mut foreign: Vec<&String> = found.keys().filter(|k| !expected_set.contains(k)).collect();
     foreign.sort();
     let mut out = Vec::new();
     if !absent.is_empty() {

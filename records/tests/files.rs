@@ -87,19 +87,24 @@ fn a_corrupt_runs_csv_is_an_error_never_an_empty_list() {
 }
 
 #[test]
-fn stale_temporary_files_are_removed() {
-    use records::runs::{check_writable, remove_stale_tmp, write_atomic};
+fn stale_temporary_files_are_removed_and_nothing_else() {
+    use records::owned_dir::OwnedDir;
+    use records::results_dir::remove_own_tmp;
+    use records::runs::{check_writable, write_atomic};
     let dir = std::env::temp_dir().join(format!("driftbench-test-{}-tmp", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let nested = dir.join("traces").join("x");
     std::fs::create_dir_all(&nested).unwrap();
     std::fs::write(dir.join("runs.csv.123.0.tmp"), "half").unwrap();
     std::fs::write(nested.join("a__b.csv.123.7.tmp"), "half").unwrap();
+    // The user's own files, named *.tmp too.
+    std::fs::write(dir.join("notes.tmp"), "mine").unwrap();
+    std::fs::write(nested.join("draft.tmp"), "mine").unwrap();
     write_atomic(&nested.join("a__b.csv"), b"t\n").unwrap();
-    let removed = remove_stale_tmp(&dir).unwrap();
+    let removed = remove_own_tmp(&OwnedDir::open(&dir).unwrap());
     assert_eq!(removed.len(), 2, "{removed:?}");
     assert!(nested.join("a__b.csv").exists());
-    assert!(remove_stale_tmp(&dir.join("absent")).unwrap().is_empty());
+    assert!(dir.join("notes.tmp").exists() && nested.join("draft.tmp").exists());
     check_writable(&dir.join("new")).unwrap();
     assert!(dir.join("new").is_dir());
     assert!(std::fs::read_dir(dir.join("new")).unwrap().next().is_none());

@@ -1,14 +1,13 @@
 //! `cargo run --release -p reproduce`: runs driftbench's experiments and writes `results/`.
 
 use clap::Parser;
-use records::runs::{
-    check_writable, merge, read_runs, remove_stale_tmp, runs_csv, trace_csv, trace_file,
-    write_atomic, RunRow,
-};
+use records::results_dir::ResultsDir;
+use records::runs::{check_rows, merge, read_runs, RunRow};
+use records::tracked_dir::Edits;
 use simulation::experiment::{load_dir, Job, PaperFile};
-use simulation::naming::run_stem;
 use simulation::run::RunRecord;
 use simulation::runner::run_jobs_with;
+use std::collections::HashSet;
 use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::PathBuf;
@@ -68,19 +67,30 @@ struct Cli {
     #[arg(long)]
     check: bool,
     /// The gate's baseline (default: git HEAD's committed results/runs.csv, or the results
-    /// directory's runs.csv outside a checkout).
-    #[arg(long, value_name = "FILE")]
+    /// directory's runs.csv outside a checkout). Read before anything runs.
+    #[arg(long, value_name = "FILE", requires = "check")]
     baseline: Option<PathBuf>,
     /// Re-render report/REPORT.md and report/figures/ from the stored results/ without running
     /// anything, then exit.
-    #[arg(long)]
+    #[arg(long, conflicts_with_all = ["paper", "experiment", "exact_only", "list", "check", "baseline", "skip_explain", "explain_only", "infer", "dof_cost", "shard", "shards", "merge", "dry_run", "prune"])]
     report_only: bool,
-    /// Worker threads (default: all cores).
+    /// Worker threads (default: all cores; at most MAX_THREADS_PER_CORE times the cores).
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+    threads: Option<u64>,
+    /// Take result files that differ from results/manifest.toml (edited, truncated, copied in
+    /// by hand) as they are, instead of refusing to start. Say it only when the edit is
+    /// deliberate; the manifest is then written anew.
     #[arg(long)]
-    threads: Option<usize>,
+    accept_edited: bool,
+    /// Allow pruning more than a quarter of the stored runs (those no experiment file
+    /// describes any more). Without it such a run stops before anything runs, naming the
+    /// experiments directory and the count: an empty or wrong --experiments-dir must not wipe
+    /// the results.
+    #[arg(long)]
+    prune: bool,
     /// Skip the explanation runs (tolerance ladders, drift attribution) that a normal run
     /// adds for the selected runs of the papers' solvers and of the group-code experiments.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "explain_only")]
     skip_explain: bool,
     /// Run only the explanation runs of the selection (ladders and attribution; writes
     /// results/ladder.csv and results/attribution.csv and the report), not the runs themselves.
@@ -122,12 +132,16 @@ struct Cli {
     /// exits 2. Does not run the explanation layer: run `reproduce --explain-only` afterwards
     /// if wanted.
     #[arg(long, value_name = "DIR", num_args = 1..,
-          conflicts_with_all = ["check", "report_only", "explain_only", "infer", "paper", "experiment", "exact_only", "dry_run"])]
+          conflicts_with_all = ["check", "report_only", "explain_only", "infer", "paper", "experiment", "exact_only", "dry_run", "list", "skip_explain"])]
     merge: Vec<PathBuf>,
     /// The resolved shard of `--shard`.
     #[arg(skip)]
     shard_resolved: Option<records::shard::Shard>,
 }
+
+/// `--threads` may ask for at most this many worker threads per core: more only adds
+/// contention, and a mistyped count (100000) must not stall the machine before it says so.
+const MAX_THREADS_PER_CORE: usize = 4;
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
@@ -141,8 +155,17 @@ fn main() -> ExitCode {
 }
 
 /// Fills in the project root (`--root`, else found from the working directory) and the
-/// experiments and results directories under it, unless given.
+/// experiments and results directories under it, unless given; checks the thread count.
 fn resolve_dirs(mut cli: Cli) -> Result<Cli, String> {
+    if let Some(t) = cli.threads {
+        let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+        let max = MAX_THREADS_PER_CORE * cores;
+        if t as usize > max {
+            return Err(format!(
+                "--threads {t}: at most {max} ({MAX_THREADS_PER_CORE} per core; this machine has {cores})"
+            ));
+        }
+    }
     let root = match &cli.root {
         Some(r) => r.clone(),
         None => simulation::root::from_current_dir().map_err(|e| e.to_string())?,
@@ -171,29 +194,48 @@ fn resolve_dirs(mut cli: Cli) -> Result<Cli, String> {
     Ok(cli)
 }
 
+/// Opens the results directory for writing (records::results_dir): the lock, the integrity
+/// check of its tables, the removal of this program's own stale temporary files.
+fn open_results(cli: &Cli, git_rev: &str) -> Result<ResultsDir, String> {
+    let edits = if cli.accept_edited {
+        Edits::Accept
+    } else {
+        Edits::Refuse
+    };
+    let (results, removed) =
+        ResultsDir::open(&cli.results_dir, git_rev, edits).map_err(|e| e.to_string())?;
+    if !removed.is_empty() {
+        eprintln!(
+            "removed {} stale temporary file(s) of interrupted runs under {}",
+            removed.len(),
+            cli.results_dir.display()
+        );
+    }
+    Ok(results)
+}
+
 fn real_main(cli: Cli) -> Result<ExitCode, String> {
     if cli.robots {
         print_robot_check_values();
         return Ok(ExitCode::SUCCESS);
     }
+    let git_rev = simulation::root::git_revision(&cli.project_root);
     if cli.report_only {
         let root = report_root(&cli)?;
-        let report = root.join("report");
-        check_writable(&report)?;
-        remove_stale_tmp(&report)
-            .map_err(|e| format!("{}: cannot clean: {e}", report.display()))?;
-        render_report(&root)?;
+        let results = open_results(&cli, &git_rev)?;
+        render_report(&root, &results)?;
         return Ok(ExitCode::SUCCESS);
     }
     if cli.dof_cost {
-        dof_cost(&cli)?;
+        dof_cost(&cli, &git_rev)?;
         return Ok(ExitCode::SUCCESS);
     }
     let files = load_dir(&cli.experiments_dir).map_err(|e| e.to_string())?;
+    let all: Vec<Job> = files.iter().flat_map(|f| f.jobs()).collect();
     if !cli.merge.is_empty() {
-        return merge_shards(&cli, &files);
+        return merge_shards(&cli, &files, &all, &git_rev);
     }
-    let mut jobs = select_jobs(&files, &selection(&cli))?;
+    let mut jobs = select_jobs(&all, &files, &selection(&cli))?;
     let selected = jobs.len();
     if let Some(shard) = cli.shard_resolved {
         jobs.retain(|j| shard.owns(&j.key()));
@@ -214,83 +256,109 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
         }
         return Ok(ExitCode::SUCCESS);
     }
-    // Before anything runs: the stored results must be readable (they are merged with the new
-    // rows, never dropped), and results/ and report/ writable; stale temporary files of killed
-    // runs are removed.
-    // One writer at a time: held until the process ends.
-    let _lock = if cli.check || cli.dry_run {
-        None
-    } else {
-        Some(lock_results(&cli.results_dir)?)
-    };
-    let stored = if cli.check || cli.dry_run {
-        None
-    } else {
-        Some(prepare_output(&cli)?)
-    };
-    // A shard directory is finished only once its manifest is written again, at the end.
-    if cli.shard_resolved.is_some() && stored.is_some() {
-        records::shard::Manifest::remove(&cli.results_dir)?;
+    // Everything that can be checked is checked before anything runs: the gate's baseline,
+    // the report directory, the stored results (readable, unedited, not pruned wholesale).
+    let baseline = cli
+        .check
+        .then(|| baseline(&cli.project_root, &cli.results_dir, cli.baseline.as_deref()))
+        .transpose()?;
+    if !cli.check && !cli.dry_run && cli.shard_resolved.is_none() {
+        match report_root(&cli) {
+            Ok(root) => {
+                records::tracked_dir::TrackedDir::open_within(&root, "report")
+                    .map_err(|e| e.to_string())?;
+            }
+            Err(why) => eprintln!(
+                "note: results go to {}, but {why}",
+                cli.results_dir.display()
+            ),
+        }
     }
     if let Some(t) = cli.threads {
         rayon::ThreadPoolBuilder::new()
-            .num_threads(t)
+            .num_threads(t as usize)
             .build_global()
             .map_err(|e| e.to_string())?;
     }
-    let git_rev = simulation::root::git_revision(&cli.project_root);
+    // One writer at a time: the lock is held until the process ends.
+    let results = (!cli.check && !cli.dry_run)
+        .then(|| open_results(&cli, &git_rev))
+        .transpose()?;
     if let Some(which) = &cli.infer {
-        infer(
-            &cli,
-            which,
-            &files.iter().flat_map(|f| f.jobs()).collect::<Vec<_>>(),
-        )?;
+        infer(&cli, which, &all, results.as_ref())?;
         return Ok(ExitCode::SUCCESS);
     }
-    let all: Vec<Job> = files.iter().flat_map(|f| f.jobs()).collect();
     if cli.explain_only {
-        explain(&cli, &jobs, &all, &git_rev)?;
+        explain(&cli, &jobs, &all, &git_rev, results.as_ref())?;
         return Ok(ExitCode::SUCCESS);
+    }
+    let described = described_keys(&all);
+    let mut stored = match &results {
+        Some(r) => Some(
+            r.plan_pruning(
+                r.read_runs().map_err(|e| e.to_string())?,
+                |row| described.contains(&row.key()),
+                cli.prune,
+                &cli.experiments_dir,
+            )
+            .map_err(|e| e.to_string())?,
+        ),
+        None => None,
+    };
+    // A shard directory is finished only once its manifest is written again, at the end.
+    if cli.shard_resolved.is_some() && results.is_some() {
+        records::shard::Manifest::remove(&cli.results_dir)?;
     }
     // Resume: fold the journal of an interrupted run into runs.csv; the runs it holds from this
-    // code revision are not run again (reproduce::journal).
-    let mut stored = stored;
+    // code revision are not run again (records::journal).
     let mut to_run: Vec<Job> = jobs.clone();
-    if let Some(rows) = stored.as_mut() {
-        let recovered = records::journal::recover(&cli.results_dir)?;
-        if !recovered.is_empty() {
-            let done: Vec<(String, String, String)> = recovered
-                .iter()
-                .filter(|r| r.git_rev == git_rev)
-                .map(RunRow::key)
-                .collect();
-            *rows = merge(std::mem::take(rows), recovered.clone());
-            let path = cli.results_dir.join("runs.csv");
-            let bytes = runs_csv(rows).map_err(|e| e.to_string())?;
-            write_atomic(&path, &bytes).map_err(|e| format!("{}: {e}", path.display()))?;
-            records::journal::remove(&cli.results_dir)?;
+    if let (Some(results), Some((kept, _))) = (&results, stored.as_mut()) {
+        let recovered = records::journal::recover(results.path(), &git_rev)?;
+        for r in &recovered.other_revision {
+            eprintln!(
+                "not folded from {}: {} (written by revision {}, this is {git_rev}); it is run again",
+                records::journal::path(results.path()).display(),
+                records::shard::row_key(r),
+                r.git_rev
+            );
+        }
+        let (fold, undescribed): (Vec<RunRow>, Vec<RunRow>) = recovered
+            .current
+            .into_iter()
+            .partition(|r| described.contains(&r.key()));
+        for r in &undescribed {
+            eprintln!(
+                "not folded from {}: {} (no experiment file describes it)",
+                records::journal::path(results.path()).display(),
+                records::shard::row_key(r)
+            );
+        }
+        if !fold.is_empty() {
+            let done: HashSet<String> = fold.iter().map(records::shard::row_key).collect();
+            *kept = merge(std::mem::take(kept), fold);
+            results.write_runs(kept).map_err(|e| e.to_string())?;
+            results.save().map_err(|e| e.to_string())?;
             let before = to_run.len();
-            to_run.retain(|j| {
-                !done.contains(&(j.experiment.clone(), j.variant.clone(), j.solver.label()))
-            });
+            to_run.retain(|j| !done.contains(&j.key()));
             eprintln!(
                 "folded {} run(s) of an interrupted run into {}; resuming: {} of the selected runs already done",
-                recovered.len(),
-                path.display(),
+                done.len(),
+                results.runs_path().display(),
                 before - to_run.len()
             );
         }
+        records::journal::remove(results.path())?;
     }
-    let journal = stored
-        .is_some()
-        .then(|| {
+    let journal = results
+        .as_ref()
+        .map(|r| {
             let joints = jobs
                 .iter()
                 .filter_map(|j| {
                     simulation::robot_registry::robot_by_name(&j.robot).map(|r| r.dof())
                 })
                 .max();
-            records::journal::Journal::open(&cli.results_dir, &git_rev, joints.unwrap_or(0))
+            records::journal::Journal::open(r, &git_rev, joints.unwrap_or(0))
         })
         .transpose()?;
     let records = run_jobs_with(&to_run, true, |r| {
@@ -300,37 +368,29 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
             }
         }
     });
+    drop(journal);
     let rows: Vec<RunRow> = records
         .iter()
         .map(|r| RunRow::from_record(r, &git_rev))
         .collect();
     print_summary(&rows);
-    // Failed runs, and whether the experiment files' findings expect them (reproduce::gate).
+    // Failed runs, and whether the experiment files' findings expect them (records::gate).
     let failed: Vec<(String, bool)> = rows
         .iter()
         .filter(|r| !r.completed())
         .map(|r| {
             (
-                format!(
-                    "{} / {} / {}: {}",
-                    r.experiment, r.variant, r.solver, r.failure
-                ),
+                format!("{}: {}", records::shard::row_key(r), r.failure),
                 records::gate::expected_to_diverge(r),
             )
         })
         .collect();
-    if cli.check {
-        return check(
-            &cli.project_root,
-            &cli.results_dir,
-            cli.baseline.as_deref(),
-            &rows,
-            cli.exact_only,
-        );
+    if let Some((baseline_rows, baseline_name)) = baseline {
+        return Ok(check(baseline_rows, &baseline_name, &rows, cli.exact_only));
     }
-    if let Some(stored) = stored {
-        write_results(&cli.results_dir, &records, stored, rows, &all)?;
-        records::journal::remove(&cli.results_dir)?;
+    if let (Some(results), Some((kept, pruned))) = (&results, stored) {
+        write_results(results, &records, kept, &pruned, rows)?;
+        records::journal::remove(results.path())?;
         if let Some(shard) = cli.shard_resolved {
             records::shard::Manifest {
                 shard: shard.k,
@@ -347,10 +407,10 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
             );
         } else {
             if !cli.skip_explain && !cli.exact_only {
-                explain(&cli, &jobs, &all, &git_rev)?;
+                explain(&cli, &jobs, &all, &git_rev, Some(results))?;
             }
             match report_root(&cli) {
-                Ok(root) => render_report(&root)?,
+                Ok(root) => render_report(&root, results)?,
                 Err(why) => eprintln!("report not rendered: {why}"),
             }
         }
@@ -378,9 +438,22 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// The run keys (`experiment / variant / solver`) the experiment files describe.
+fn described_keys(all: &[Job]) -> HashSet<(String, String, String)> {
+    all.iter()
+        .map(|j| (j.experiment.clone(), j.variant.clone(), j.solver.label()))
+        .collect()
+}
+
 /// The ladders and attributions of the selected runs of the papers' solvers (see
 /// `explain`), written to results/ and rendered into the report.
-fn explain(cli: &Cli, jobs: &[Job], all: &[Job], git_rev: &str) -> Result<(), String> {
+fn explain(
+    cli: &Cli,
+    jobs: &[Job],
+    all: &[Job],
+    git_rev: &str,
+    results: Option<&ResultsDir>,
+) -> Result<(), String> {
     let targets = explain::targets(jobs);
     if targets.is_empty() {
         return Ok(());
@@ -390,23 +463,24 @@ fn explain(cli: &Cli, jobs: &[Job], all: &[Job], git_rev: &str) -> Result<(), St
         targets.len()
     );
     let explained = explain::explain(&targets, all, true, git_rev);
-    if cli.dry_run {
+    let Some(results) = results else {
         return Ok(());
-    }
-    explain::write(&cli.results_dir, &explained, all)?;
+    };
+    explain::write(results.path(), &explained, all)?;
+    results.save().map_err(|e| e.to_string())?;
     eprintln!(
         "wrote {} ladder rows and {} attribution rows",
         explained.ladder.len(),
         explained.attribution.len()
     );
     if cli.explain_only {
-        render_report(&report_root(cli)?)?;
+        render_report(&report_root(cli)?, results)?;
     }
     Ok(())
 }
 
 /// `--infer`: fits the selected published tables (see `explain::inference`).
-fn infer(cli: &Cli, which: &str, jobs: &[Job]) -> Result<(), String> {
+fn infer(cli: &Cli, which: &str, jobs: &[Job], results: Option<&ResultsDir>) -> Result<(), String> {
     use explain::inference::{fit, problem, rows, table_ids, Budget};
     let root = report_root(cli)?;
     let values =
@@ -444,21 +518,26 @@ fn infer(cli: &Cli, which: &str, jobs: &[Job]) -> Result<(), String> {
         // Each table is written as soon as it is fitted: an interrupted --infer all keeps the
         // tables it finished.
         let (r, e) = rows(&p, &f);
-        if !cli.dry_run {
-            explain::write_inference(&cli.results_dir, &r, &e)?;
+        if let Some(results) = results {
+            explain::write_inference(results.path(), &r, &e)?;
+            results.save().map_err(|e| e.to_string())?;
         }
     }
-    if cli.dry_run {
-        return Ok(());
+    match results {
+        Some(results) => render_report(&root, results),
+        None => Ok(()),
     }
-    render_report(&root)
 }
 
 /// `--dof-cost`: measures the cost against the number of joints (`simulation::dof_cost`),
 /// writes results/dof-cost.csv and re-renders the report.
-fn dof_cost(cli: &Cli) -> Result<(), String> {
+fn dof_cost(cli: &Cli, git_rev: &str) -> Result<(), String> {
     use simulation::dof_cost::{machine, measure_all, Budget};
     let (cpu, cores) = machine();
+    let root = report_root(cli)?;
+    let results = (!cli.dry_run)
+        .then(|| open_results(cli, git_rev))
+        .transpose()?;
     eprintln!("measuring the cost against the number of joints on {cpu} ({cores} cores)");
     let started = std::time::Instant::now();
     let measurements = measure_all(&Budget::default(), |case| {
@@ -469,8 +548,7 @@ fn dof_cost(cli: &Cli) -> Result<(), String> {
             started.elapsed().as_secs_f64()
         );
     });
-    let git_rev = simulation::root::git_revision(&cli.project_root);
-    let rows = records::dof_cost::rows(&measurements, &cpu, cores, &git_rev);
+    let rows = records::dof_cost::rows(&measurements, &cpu, cores, git_rev);
     for fit in rows.iter().filter(|r| r.is_fit()) {
         eprintln!(
             "  {} {}: cost ~ N^{:.2}",
@@ -479,28 +557,34 @@ fn dof_cost(cli: &Cli) -> Result<(), String> {
             fit.exponent.unwrap_or(f64::NAN)
         );
     }
-    if cli.dry_run {
+    let Some(results) = results else {
         return Ok(());
-    }
-    let root = report_root(cli)?;
-    let _lock = lock_results(&cli.results_dir)?;
-    let path = records::dof_cost::write(&cli.results_dir, &rows)?;
+    };
+    let path = records::dof_cost::write(results.path(), &rows)?;
+    results.save().map_err(|e| e.to_string())?;
     eprintln!("wrote {} ({} rows)", path.display(), rows.len());
-    render_report(&root)
+    render_report(&root, &results)
 }
 
-/// Compares `fresh` with the committed rows of the same runs (see `reproduce::gate`).
-/// The gate's baseline: `file` when given; otherwise the committed `results/runs.csv` of git
-/// HEAD (so a run followed by `--check` compares with what is committed, not with what the run
-/// just wrote); outside a checkout, or for another results directory, its `runs.csv`. Returns
-/// the rows and a name for messages.
+/// The gate's baseline, read before anything runs: `file` when given; otherwise the committed
+/// `results/runs.csv` of git HEAD (so a run followed by `--check` compares with what is
+/// committed, not with what the run just wrote); outside a checkout, or for another results
+/// directory, its `runs.csv`. Returns the rows and a name for messages.
 fn baseline(
     root: &std::path::Path,
     results_dir: &std::path::Path,
     file: Option<&std::path::Path>,
 ) -> Result<(Vec<RunRow>, String), String> {
     if let Some(f) = file {
-        return Ok((read_runs(f)?, f.display().to_string()));
+        if f.is_dir() {
+            return Err(format!(
+                "--baseline {}: is a directory; give a runs.csv file (e.g. {})",
+                f.display(),
+                f.join("runs.csv").display()
+            ));
+        }
+        let rows = read_runs(f).map_err(|e| format!("--baseline: {e}"))?;
+        return Ok((rows, f.display().to_string()));
     }
     let in_tree = results_dir == root.join("results");
     let committed = in_tree
@@ -515,12 +599,11 @@ fn baseline(
         .flatten();
     match committed {
         Some(out) => {
-            let tmp = std::env::temp_dir()
-                .join(format!("driftbench-baseline-{}.csv", std::process::id()));
-            std::fs::write(&tmp, &out.stdout).map_err(|e| format!("{}: {e}", tmp.display()))?;
-            let rows = read_runs(&tmp).map_err(|e| format!("HEAD:results/runs.csv ({e})"));
-            let _ = std::fs::remove_file(&tmp);
-            Ok((rows?, "git HEAD:results/runs.csv".to_string()))
+            let name = "git HEAD:results/runs.csv".to_string();
+            let rows: Vec<RunRow> = records::table::from_reader(out.stdout.as_slice())
+                .map_err(|e| format!("{name}: {e}"))?;
+            check_rows(&rows).map_err(|e| format!("{name}: {e}"))?;
+            Ok((rows, name))
         }
         None => {
             let path = results_dir.join("runs.csv");
@@ -529,33 +612,33 @@ fn baseline(
     }
 }
 
+/// Compares `fresh` with the baseline's rows of the same experiments (records::gate).
 fn check(
-    root: &std::path::Path,
-    results_dir: &std::path::Path,
-    baseline_file: Option<&std::path::Path>,
+    baseline_rows: Vec<RunRow>,
+    baseline_name: &str,
     fresh: &[RunRow],
     exact_only: bool,
-) -> Result<ExitCode, String> {
-    let (baseline_rows, baseline_name) = baseline(root, results_dir, baseline_file)?;
+) -> ExitCode {
+    let experiments: HashSet<&str> = fresh.iter().map(|f| f.experiment.as_str()).collect();
     let committed: Vec<RunRow> = baseline_rows
         .into_iter()
-        .filter(|c| fresh.iter().any(|f| f.experiment == c.experiment))
+        .filter(|c| experiments.contains(c.experiment.as_str()))
         .filter(|c| !exact_only || c.is_exact())
         .collect();
-    let problems = records::gate::compare(&committed, fresh);
+    let problems = records::gate::compare(&committed, fresh, baseline_name);
     if problems.is_empty() {
         println!(
             "regression gate: {} runs agree with {baseline_name}",
             fresh.len(),
         );
-        Ok(ExitCode::SUCCESS)
+        ExitCode::SUCCESS
     } else {
         println!(
             "regression gate: {} differences\n{}",
             problems.len(),
             problems.join("\n")
         );
-        Ok(ExitCode::from(1))
+        ExitCode::from(1)
     }
 }
 
@@ -572,14 +655,16 @@ fn report_root(cli: &Cli) -> Result<PathBuf, String> {
     }
 }
 
-/// Figures first (the report links them), then REPORT.md.
-fn render_report(root: &std::path::Path) -> Result<(), String> {
+/// Figures first (the report links them), then REPORT.md, then the leaderboard table (recorded
+/// in the results directory's manifest).
+fn render_report(root: &std::path::Path, results: &ResultsDir) -> Result<(), String> {
     let figures = presentation::figures::render_all(root)?;
     let report = presentation::report::render(root)?;
     records::leaderboard::write(
-        &root.join("results"),
-        &read_runs(&root.join("results/runs.csv"))?,
+        results.path(),
+        &results.read_runs().map_err(|e| e.to_string())?,
     )?;
+    results.save().map_err(|e| e.to_string())?;
     eprintln!("wrote {} figures and {}", figures.len(), report.display());
     Ok(())
 }
@@ -593,39 +678,60 @@ fn selection(cli: &Cli) -> records::shard::Selection {
     }
 }
 
-/// `--merge`: checks the shard directories (records::shard), then merges their rows and traces
-/// into the results directory and renders the report, as a normal run does.
-fn merge_shards(cli: &Cli, files: &[PaperFile]) -> Result<ExitCode, String> {
+/// `--merge`: checks the shard directories (records::shard: manifests, integrity, revision,
+/// ownership, traces) before anything is written, then merges their rows and traces into the
+/// results directory and renders the report, as a normal run does.
+fn merge_shards(
+    cli: &Cli,
+    files: &[PaperFile],
+    all: &[Job],
+    git_rev: &str,
+) -> Result<ExitCode, String> {
+    let edits = if cli.accept_edited {
+        Edits::Accept
+    } else {
+        Edits::Refuse
+    };
     let shards = cli
         .merge
         .iter()
-        .map(|d| records::shard::read_shard(d))
+        .map(|d| records::shard::read_shard(d, edits))
         .collect::<Result<Vec<_>, _>>()?;
     let sel = shards
         .first()
         .map(|s| s.manifest.selection.clone())
         .unwrap_or_default();
-    let expected: Vec<String> = select_jobs(files, &sel)?.iter().map(Job::key).collect();
+    let expected: Vec<String> = select_jobs(all, files, &sel)?
+        .iter()
+        .map(Job::key)
+        .collect();
     let hash = records::shard::experiments_hash(&cli.experiments_dir)?;
     records::shard::check_shards(&shards, &expected, &hash)?;
-    let _lock = lock_results(&cli.results_dir)?;
-    let stored = prepare_output(cli)?;
-    let traces = records::shard::copy_traces(&shards, &cli.results_dir)?;
+    let results = open_results(cli, git_rev)?;
+    let described = described_keys(all);
+    let (kept, pruned) = results
+        .plan_pruning(
+            results.read_runs().map_err(|e| e.to_string())?,
+            |row| described.contains(&row.key()),
+            cli.prune,
+            &cli.experiments_dir,
+        )
+        .map_err(|e| e.to_string())?;
+    let traces = records::shard::copy_traces(&shards, &results)?;
     let rows: Vec<RunRow> = shards.iter().flat_map(|s| s.rows.clone()).collect();
     let unexpected: Vec<String> = rows
         .iter()
         .filter(|r| !r.completed() && !records::gate::expected_to_diverge(r))
         .map(|r| format!("{}: {}", records::shard::row_key(r), r.failure))
         .collect();
-    let all: Vec<Job> = files.iter().flat_map(|f| f.jobs()).collect();
     eprintln!(
         "merging {} shard(s): {} runs, {traces} traces",
         shards.len(),
         rows.len()
     );
-    write_results(&cli.results_dir, &[], stored, rows, &all)?;
+    write_results(&results, &[], kept, &pruned, rows)?;
     match report_root(cli) {
-        Ok(root) => render_report(&root)?,
+        Ok(root) => render_report(&root, &results)?,
         Err(why) => eprintln!("report not rendered: {why}"),
     }
     if !unexpected.is_empty() {
@@ -638,8 +744,11 @@ fn merge_shards(cli: &Cli, files: &[PaperFile]) -> Result<ExitCode, String> {
     Ok(ExitCode::SUCCESS)
 }
 
-fn select_jobs(files: &[PaperFile], cli: &records::shard::Selection) -> Result<Vec<Job>, String> {
-    let all: Vec<Job> = files.iter().flat_map(|f| f.jobs()).collect();
+fn select_jobs(
+    all: &[Job],
+    files: &[PaperFile],
+    cli: &records::shard::Selection,
+) -> Result<Vec<Job>, String> {
     if let Some(p) = &cli.paper {
         if !files.iter().any(|f| &f.paper == p) {
             let known: Vec<&str> = files.iter().map(|f| f.paper.as_str()).collect();
@@ -649,135 +758,54 @@ fn select_jobs(files: &[PaperFile], cli: &records::shard::Selection) -> Result<V
             ));
         }
     }
+    let ids: HashSet<&str> = all.iter().map(|j| j.experiment.as_str()).collect();
     for e in &cli.experiments {
-        if !all.iter().any(|j| &j.experiment == e) {
-            let mut ids: Vec<&str> = all.iter().map(|j| j.experiment.as_str()).collect();
-            ids.dedup();
+        if !ids.contains(e.as_str()) {
+            let mut known: Vec<&str> = ids.iter().copied().collect();
+            known.sort_unstable();
             return Err(format!(
                 "unknown experiment \"{e}\" (known: {})",
-                ids.join(", ")
+                known.join(", ")
             ));
         }
     }
     Ok(all
-        .into_iter()
+        .iter()
         .filter(|j| cli.paper.as_ref().is_none_or(|p| &j.paper == p))
         .filter(|j| cli.experiments.is_empty() || cli.experiments.contains(&j.experiment))
         .filter(|j| !cli.exact_only || j.solver == simulation::experiment::SolverChoice::Exact)
+        .cloned()
         .collect())
 }
 
-/// Checks, before any run, that results can be written without losing anything: reads the
-/// stored results/runs.csv (an unreadable or old-schema file is an error naming the file, the
-/// An advisory lock on the results directory (`<dir>/.lock`, the operating system's file lock
-/// through `std::fs::File::try_lock`): a second writer refuses at once, naming the directory,
-/// instead of overwriting the first one's results with its own. The lock ends with the process.
-fn lock_results(dir: &std::path::Path) -> Result<std::fs::File, String> {
-    std::fs::create_dir_all(dir).map_err(|e| format!("{}: cannot create: {e}", dir.display()))?;
-    let path = dir.join(".lock");
-    let file = std::fs::OpenOptions::new()
-        .create(true)
-        .truncate(false)
-        .write(true)
-        .open(&path)
-        .map_err(|e| format!("{}: cannot open the lock file: {e}", path.display()))?;
-    match file.try_lock() {
-        Ok(()) => Ok(file),
-        Err(std::fs::TryLockError::WouldBlock) => Err(format!(
-            "another reproduce is writing to {} (lock {}): wait for it to finish, or give this run another --results-dir",
-            dir.display(),
-            path.display()
-        )),
-        Err(std::fs::TryLockError::Error(e)) => {
-            Err(format!("{}: cannot lock: {e}", path.display()))
-        }
-    }
-}
-
-/// line and how to recover), checks that results/ and report/ are writable, and removes the
-/// temporary files killed runs left there. Returns the stored rows.
-fn prepare_output(cli: &Cli) -> Result<Vec<RunRow>, String> {
-    let runs_path = cli.results_dir.join("runs.csv");
-    let stored = if runs_path.exists() {
-        read_runs(&runs_path)?
-    } else {
-        Vec::new()
-    };
-    let mut dirs = vec![cli.results_dir.clone()];
-    match report_root(cli) {
-        Ok(root) => dirs.push(root.join("report")),
-        // A shard renders no report.
-        Err(_) if cli.shard_resolved.is_some() => {}
-        // Said before anything runs, not after.
-        Err(why) => eprintln!(
-            "note: results go to {}, but {why}",
-            cli.results_dir.display()
-        ),
-    }
-    for dir in &dirs {
-        check_writable(dir)?;
-        let removed =
-            remove_stale_tmp(dir).map_err(|e| format!("{}: cannot clean: {e}", dir.display()))?;
-        if !removed.is_empty() {
-            eprintln!(
-                "removed {} stale temporary file(s) of interrupted runs under {}",
-                removed.len(),
-                dir.display()
-            );
-        }
-    }
-    Ok(stored)
-}
-
-/// Merges the fresh rows into the stored ones and writes runs.csv and the fresh traces. Stored
-/// rows of runs the experiment files no longer describe (`all`: every job of the files) are
-/// pruned with their traces, and said so: results reflect the experiment files.
+/// Prunes the stored rows no experiment file describes (said run by run; their traces only if
+/// this program wrote them), merges the fresh rows into the kept ones, writes the fresh traces
+/// and runs.csv, and saves the manifest.
 fn write_results(
-    dir: &std::path::Path,
+    results: &ResultsDir,
     records: &[RunRecord],
-    stored: Vec<RunRow>,
+    kept: Vec<RunRow>,
+    pruned: &[RunRow],
     rows: Vec<RunRow>,
-    all: &[Job],
 ) -> Result<(), String> {
-    let runs_path = dir.join("runs.csv");
-    let exists = |r: &RunRow| {
-        all.iter().any(|j| {
-            j.experiment == r.experiment && j.variant == r.variant && j.solver.label() == r.solver
-        })
-    };
-    let (kept, pruned): (Vec<RunRow>, Vec<RunRow>) = stored.into_iter().partition(exists);
-    for r in &pruned {
-        let trace = dir
-            .join("traces")
-            .join(&r.experiment)
-            .join(format!("{}.csv", run_stem(&r.variant, &r.solver)));
-        if trace.exists() {
-            std::fs::remove_file(&trace).map_err(|e| format!("{}: {e}", trace.display()))?;
-        }
-        let _ = std::fs::remove_dir(dir.join("traces").join(&r.experiment));
+    for line in results.prune(pruned).map_err(|e| e.to_string())? {
+        eprintln!("{line}");
     }
     if !pruned.is_empty() {
         eprintln!(
-            "pruned {} stored run(s) that no experiment file describes any more: {}",
-            pruned.len(),
-            pruned
-                .iter()
-                .map(|r| format!("{} / {} / {}", r.experiment, r.variant, r.solver))
-                .collect::<Vec<_>>()
-                .join("; ")
+            "pruned {} stored run(s) that no experiment file describes any more",
+            pruned.len()
         );
     }
     let merged = merge(kept, rows);
     for r in records {
-        let bytes = trace_csv(r).map_err(|e| e.to_string())?;
-        let path = dir.join("traces").join(trace_file(r));
-        write_atomic(&path, &bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+        results.write_trace(r).map_err(|e| e.to_string())?;
     }
-    let bytes = runs_csv(&merged).map_err(|e| e.to_string())?;
-    write_atomic(&runs_path, &bytes).map_err(|e| format!("{}: {e}", runs_path.display()))?;
+    results.write_runs(&merged).map_err(|e| e.to_string())?;
+    results.save().map_err(|e| e.to_string())?;
     eprintln!(
         "wrote {} ({} rows) and {} traces",
-        runs_path.display(),
+        results.runs_path().display(),
         merged.len(),
         records.len()
     );

@@ -19,7 +19,7 @@ fn fresh_run_matches_the_committed_results() {
         .map(|r| RunRow::from_record(r, "test"))
         .collect();
 
-    let problems = compare(&committed, &fresh);
+    let problems = compare(&committed, &fresh, "results/runs.csv");
     assert!(
         problems.is_empty(),
         "{} regressions:\n{}",
@@ -37,20 +37,36 @@ fn the_gate_catches_changes() {
             .join("results/runs.csv"),
     )
     .unwrap();
-    assert!(compare(&committed, &committed).is_empty());
+    assert!(compare(&committed, &committed, "test baseline").is_empty());
     let ok = committed
         .iter()
         .position(|r| r.completed() && r.drift_norm.is_some())
         .unwrap();
     let mut changed = committed.clone();
     changed[ok].drift[2] = changed[ok].drift[2] * (1.0 + 1e-4) + 1e-9;
-    assert_eq!(compare(&committed, &changed).len(), 1, "a drift change");
+    assert_eq!(
+        compare(&committed, &changed, "test baseline").len(),
+        1,
+        "a drift change"
+    );
     let mut failed = committed.clone();
     failed[ok].status = records::runs::Status::Failed;
-    assert!(!compare(&committed, &failed).is_empty(), "a status change");
+    assert!(
+        !compare(&committed, &failed, "test baseline").is_empty(),
+        "a status change"
+    );
     let mut missing = committed.clone();
     missing.remove(ok);
-    assert!(!compare(&committed, &missing).is_empty(), "a missing run");
+    assert!(
+        !compare(&committed, &missing, "test baseline").is_empty(),
+        "a missing run"
+    );
+    // A run the baseline lacks is blamed on the baseline, by its name.
+    let problems = compare(&missing, &committed, "my-baseline.csv");
+    assert!(
+        problems.len() == 1 && problems[0].contains("not in my-baseline.csv"),
+        "{problems:?}"
+    );
 }
 
 #[test]

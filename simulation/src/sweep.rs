@@ -194,7 +194,9 @@ pub fn expand_variant(variant: &Table) -> Result<Vec<Table>, String> {
     let names = placeholder_names(&axes);
     check_template(&template, &names)?;
     let mut out: Vec<Table> = Vec::with_capacity(total);
-    let mut labels: Vec<(String, usize)> = Vec::with_capacity(total);
+    // A map, not a list: 10^6 labels are checked in linear time.
+    let mut labels: std::collections::HashMap<String, usize> =
+        std::collections::HashMap::with_capacity(total);
     let mut idx = vec![0usize; axes.len()];
     for n in 0..total {
         // Odometer: the last axis varies fastest.
@@ -210,14 +212,14 @@ pub fn expand_variant(variant: &Table) -> Result<Vec<Table>, String> {
             }
         }
         let label = make_label(&template, &axes, &idx, &names);
-        if let Some((_, m)) = labels.iter().find(|(l, _)| *l == label) {
+        if let Some(m) = labels.get(&label) {
             return Err(format!(
                 "field `sweep`: expanded variants {m} and {n} both get the label \"{label}\"; the label template must tell every value of every key apart (keys: {})",
                 axes.iter().map(|a| format!("`{}`", a.key)).collect::<Vec<_>>().join(", ")
             ));
         }
         t.insert("label".to_string(), Value::String(label.clone()));
-        labels.push((label, n));
+        labels.insert(label, n);
         out.push(t);
     }
     Ok(out)

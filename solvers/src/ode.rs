@@ -120,9 +120,9 @@ impl IntegratorSettings {
         if self.max_rhs_evals == 0 {
             return Err("max_rhs_evals must be at least 1, got 0".to_string());
         }
-        if !(self.max_wall_s > 0.0) {
+        if !(self.max_wall_s > 0.0 && self.max_wall_s.is_finite()) {
             return Err(format!(
-                "max_wall_s must be positive, got {}",
+                "max_wall_s must be positive and finite (a budget that cannot run out is none), got {}",
                 self.max_wall_s
             ));
         }

@@ -40,10 +40,14 @@ use explain::inference::InferenceRow;
 use layout::Rendered;
 use rayon::prelude::*;
 use records::dof_cost::DofCostRow;
-use records::runs::{read_runs, write_atomic, RunRow};
+use records::runs::{read_runs, RunRow};
+use records::tracked_dir::{Removal, TrackedDir};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use trace::Trace;
+
+/// The figures' directory inside `report/`.
+pub const FIGURES: &str = "figures";
 
 /// The run's file stem (see [`simulation::naming::run_stem`]).
 fn run_stem(run: &RunRow) -> String {
@@ -85,7 +89,9 @@ impl Job<'_> {
 
 /// Renders every figure of the results under `root` into `root/report/figures/`, each as an SVG
 /// and a PNG with the same stem, and returns the SVGs' paths, sorted. Figures (SVG or PNG) in
-/// that directory that no longer correspond to a run or an experiment are deleted. Fails, naming the file, on an unreadable `runs.csv`, a missing or
+/// that directory that no longer correspond to a run or an experiment are deleted if this
+/// program wrote them and nobody edited them since (`report/manifest.toml`); a `report/` or
+/// `report/figures/` that is a symbolic link leading out of the project is refused. Fails, naming the file, on an unreadable `runs.csv`, a missing or
 /// malformed trace, or two runs whose names give the same file name.
 pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, String> {
     let mut runs = read_runs(&root.join("results").join("runs.csv"))?;
@@ -165,31 +171,29 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, String> {
         })
         .collect::<Result<_, _>>()?;
 
-    let out_dir = root.join("report").join("figures");
-    std::fs::create_dir_all(&out_dir).map_err(|e| format!("{}: {e}", out_dir.display()))?;
-    let stale = std::fs::read_dir(&out_dir).map_err(|e| format!("{}: {e}", out_dir.display()))?;
-    for entry in stale {
-        let path = entry
-            .map_err(|e| format!("{}: {e}", out_dir.display()))?
-            .path();
-        let name = path
-            .file_name()
-            .and_then(|n| n.to_str())
-            .unwrap_or_default();
+    let report = TrackedDir::open_within(root, "report").map_err(|e| e.to_string())?;
+    let rel = |name: &str| Path::new(FIGURES).join(name);
+    // Stale figures: only those this program wrote (listed in report/manifest.toml) and nobody
+    // edited since; anything else in the directory is left alone.
+    for listed in report.listed(&format!("{FIGURES}/")) {
+        let name = listed.trim_start_matches(&format!("{FIGURES}/"));
         if figure_of(name).is_some_and(|svg| !figures.contains_key(&svg)) {
-            std::fs::remove_file(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+            if let Removal::Kept(why) = report.remove(&rel(name)).map_err(|e| e.to_string())? {
+                eprintln!("note: {why}");
+            }
         }
     }
-    let write = |path: &Path, bytes: &[u8]| {
-        write_atomic(path, bytes).map_err(|e| format!("{}: {e}", path.display()))
-    };
-    figures
+    let write =
+        |name: &str, bytes: &[u8]| report.write(&rel(name), bytes).map_err(|e| e.to_string());
+    let written = figures
         .into_iter()
         .map(|(name, figure)| {
-            let svg = out_dir.join(name);
-            write(&svg, figure.svg.as_bytes())?;
-            write(&svg.with_extension("png"), &figure.png)?;
-            Ok(svg)
+            write(&name, figure.svg.as_bytes())?;
+            let png = Path::new(&name).with_extension("png");
+            write(&png.to_string_lossy(), &figure.png)?;
+            Ok(report.path().join(rel(&name)))
         })
-        .collect()
+        .collect::<Result<Vec<PathBuf>, String>>()?;
+    report.save().map_err(|e| e.to_string())?;
+    Ok(written)
 }

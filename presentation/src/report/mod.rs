@@ -36,7 +36,7 @@ use explain::read_csv;
 use markdown::{sci, Table};
 use records::index::Runs;
 use records::paper_values::{read_paper_values, PaperValue};
-use records::runs::{read_runs, write_atomic};
+use records::runs::read_runs;
 use std::path::{Path, PathBuf};
 
 /// The four papers, as (id, title), in report order.
@@ -100,10 +100,13 @@ impl Inputs {
 /// Renders `root/report/REPORT.md` from the stored results and returns its path.
 pub fn render(root: &Path) -> Result<PathBuf, String> {
     let inputs = Inputs::load(root)?;
-    let path = root.join("report").join("REPORT.md");
-    write_atomic(&path, to_markdown(&inputs).as_bytes())
-        .map_err(|e| format!("{}: {e}", path.display()))?;
-    Ok(path)
+    let report =
+        records::tracked_dir::TrackedDir::open_within(root, "report").map_err(|e| e.to_string())?;
+    report
+        .write(Path::new("REPORT.md"), to_markdown(&inputs).as_bytes())
+        .and_then(|()| report.save())
+        .map_err(|e| e.to_string())?;
+    Ok(report.path().join("REPORT.md"))
 }
 
 /// The whole report as Markdown.

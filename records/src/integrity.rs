@@ -1,0 +1,227 @@
+//! The integrity manifest of a directory the program writes: `manifest.toml`, one entry per
+//! file it wrote (line count, byte count and SHA-256 of the content), and the code revision
+//! that wrote them.
+//!
+//! The manifest is updated whenever the program writes or removes a file through a
+//! [`crate::tracked_dir::TrackedDir`] and saved (atomically) at the end of each step that
+//! changes the directory, so it always describes what the program left there. Reading it back
+//! tells two things:
+//!
+//! - **edits**: a listed file whose content no longer hashes to its entry was changed by
+//!   someone else (a hand edit, a truncation, a merge conflict, a file copied in from another
+//!   run). [`Manifest::mismatches`] lists every such file with what differs;
+//! - **ownership**: a file the program may delete (a stale trace or figure) must be listed
+//!   *and* still hash to its entry; anything else is left in place, so a user's own file is
+//!   never removed.
+//!
+//! SHA-256 is used as a content fingerprint (collisions are not a practical concern); the
+//! manifest is not a signature: whoever can write the directory can rewrite it too. What it
+//! prevents is a silent mistake, not a determined forger.
+
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// The manifest's file name inside the directory it describes.
+pub const FILE: &str = "manifest.toml";
+
+/// What the program wrote into one directory.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Manifest {
+    /// The code revision (git, `-dirty` when the tree had changes) of the last writer.
+    pub git_rev: String,
+    /// Relative path (with `/`) -> fingerprint.
+    pub files: BTreeMap<String, Fingerprint>,
+}
+
+/// A file's size and content hash.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Fingerprint {
+    /// Newline-terminated lines (for a CSV: the header plus one per row).
+    pub lines: usize,
+    pub bytes: u64,
+    /// Lower-case hex.
+    pub sha256: String,
+}
+
+impl Fingerprint {
+    pub fn of(bytes: &[u8]) -> Self {
+        let digest = Sha256::digest(bytes);
+        let mut hex = String::with_capacity(64);
+        for b in digest {
+            hex.push_str(&format!("{b:02x}"));
+        }
+        Self {
+            lines: bytes.iter().filter(|&&b| b == b'\n').count(),
+            bytes: bytes.len() as u64,
+            sha256: hex,
+        }
+    }
+}
+
+/// A problem with a manifest or with a file it lists.
+#[derive(Debug, thiserror::Error)]
+pub enum IntegrityError {
+    #[error("{path}: cannot read: {source}")]
+    Read {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("{path}: not a manifest this program writes: {message}")]
+    Parse { path: PathBuf, message: String },
+    #[error("{path}: cannot write: {message}")]
+    Write { path: PathBuf, message: String },
+}
+
+/// How a listed file differs from its entry.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Mismatch {
+    Missing {
+        file: String,
+    },
+    Changed {
+        file: String,
+        listed: Fingerprint,
+        found: Fingerprint,
+    },
+}
+
+impl std::fmt::Display for Mismatch {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Mismatch::Missing { file } => write!(f, "{file}: listed in {FILE} but missing"),
+            Mismatch::Changed { file, listed, found } => write!(
+                f,
+                "{file}: {} lines / {} bytes / sha256 {}... in {FILE}, but the file has {} lines / {} bytes / sha256 {}...",
+                listed.lines,
+                listed.bytes,
+                &listed.sha256[..12.min(listed.sha256.len())],
+                found.lines,
+                found.bytes,
+                &found.sha256[..12.min(found.sha256.len())]
+            ),
+        }
+    }
+}
+
+impl Manifest {
+    /// The manifest of `dir`, or `None` if it has none.
+    pub fn read(dir: &Path) -> Result<Option<Self>, IntegrityError> {
+        let path = dir.join(FILE);
+        let text = match std::fs::read_to_string(&path) {
+            Ok(t) => t,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+            Err(source) => return Err(IntegrityError::Read { path, source }),
+        };
+        let m: Manifest = toml::from_str(&text).map_err(|e| IntegrityError::Parse {
+            path: path.clone(),
+            message: e.to_string().trim_end().to_string(),
+        })?;
+        if let Some(bad) = m.files.keys().find(|k| !is_plain(k)) {
+            return Err(IntegrityError::Parse {
+                path,
+                message: format!("it lists {bad:?}, which is not a plain relative path"),
+            });
+        }
+        Ok(Some(m))
+    }
+
+    /// Saves the manifest into `dir` (atomically).
+    pub fn write(&self, dir: &Path) -> Result<(), IntegrityError> {
+        let path = dir.join(FILE);
+        let text = toml::to_string(self).map_err(|e| IntegrityError::Write {
+            path: path.clone(),
+            message: e.to_string(),
+        })?;
+        crate::runs::write_atomic(&path, text.as_bytes()).map_err(|e| IntegrityError::Write {
+            path,
+            message: e.to_string(),
+        })
+    }
+
+    /// Every listed file of `dir` whose name `select` accepts and whose content is not what
+    /// the manifest says.
+    pub fn mismatches(&self, dir: &Path, select: impl Fn(&str) -> bool) -> Vec<Mismatch> {
+        self.files
+            .iter()
+            .filter(|(file, _)| select(file))
+            .filter_map(|(file, listed)| match std::fs::read(dir.join(file)) {
+                Err(_) => Some(Mismatch::Missing { file: file.clone() }),
+                Ok(bytes) => {
+                    let found = Fingerprint::of(&bytes);
+                    (found != *listed).then(|| Mismatch::Changed {
+                        file: file.clone(),
+                        listed: listed.clone(),
+                        found,
+                    })
+                }
+            })
+            .collect()
+    }
+}
+
+/// Relative, `/`-separated, every segment a plain name.
+fn is_plain(p: &str) -> bool {
+    !p.is_empty()
+        && !p.starts_with('/')
+        && p.split('/')
+            .all(|s| !s.is_empty() && s != "." && s != ".." && !s.contains('\\'))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sha256_is_the_standard_function() {
+        // FIPS 180-2 test vector.
+        assert_eq!(
+            Fingerprint::of(b"abc").sha256,
+            "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad"
+        );
+        assert_eq!(Fingerprint::of(b"a,b\n1,2\n").lines, 2);
+    }
+
+    #[test]
+    fn edits_truncations_and_removals_are_found() {
+        let dir = std::env::temp_dir().join(format!("driftbench-integrity-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let text = b"a,b\n1,2\n3,4\n";
+        std::fs::write(dir.join("runs.csv"), text).unwrap();
+        std::fs::write(dir.join("other.csv"), text).unwrap();
+        let mut m = Manifest {
+            git_rev: "abc".into(),
+            ..Default::default()
+        };
+        for f in ["runs.csv", "other.csv"] {
+            m.files.insert(f.into(), Fingerprint::of(text));
+        }
+        m.write(&dir).unwrap();
+        let m = Manifest::read(&dir).unwrap().unwrap();
+        assert!(m.mismatches(&dir, |_| true).is_empty());
+        // Cut at a row boundary.
+        std::fs::write(dir.join("runs.csv"), b"a,b\n1,2\n").unwrap();
+        std::fs::remove_file(dir.join("other.csv")).unwrap();
+        let found = m.mismatches(&dir, |_| true);
+        assert_eq!(found.len(), 2);
+        assert!(found[0].to_string().contains("missing"), "{}", found[0]);
+        assert!(
+            found[1].to_string().contains("3 lines") && found[1].to_string().contains("2 lines"),
+            "{}",
+            found[1]
+        );
+        assert!(m.mismatches(&dir, |f| f == "absent.csv").is_empty());
+        // A manifest that lists a path outside the directory is refused.
+        std::fs::write(
+            dir.join(FILE),
+            "git_rev = \"x\"\n[files.\"../x.csv\"]\nlines = 1\nbytes = 1\nsha256 = \"00\"\n",
+        )
+        .unwrap();
+        assert!(Manifest::read(&dir).is_err());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}

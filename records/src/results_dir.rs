@@ -1,0 +1,394 @@
+//! `results/` (or a shard directory) as one type: every path under it, the one-writer lock,
+//! the integrity manifest, the journal's place, the traces and pruning.
+//!
+//! Layout:
+//!
+//! ```text
+//! results/
+//!   .lock                     advisory lock: one writer at a time
+//!   manifest.toml             what the program wrote (crate::integrity), saved last
+//!   runs.csv                  one row per run (crate::runs)
+//!   journal.csv               the checkpoint of an interrupted run (crate::journal)
+//!   traces/<experiment>/<variant>__<solver>.csv
+//!   *.csv                     the explanation layer's and other tables
+//! ```
+//!
+//! Opening ([`ResultsDir::open`]) takes the lock, refuses tables that differ from the
+//! manifest (a truncated or hand-edited `runs.csv`), and removes only the temporary files of
+//! the program's own interrupted writes. Every name read from a row is checked before it
+//! becomes a path ([`simulation::naming::check_run_names`], [`OwnedDir::resolve`]), and a
+//! file is deleted only if the manifest proves the program wrote it
+//! ([`TrackedDir::remove`]).
+
+use crate::owned_dir::{OwnedDir, PathError};
+use crate::runs::{read_runs, runs_csv, trace_csv, RunRow};
+use crate::tracked_dir::{Edits, Removal, TrackedDir, TrackedError};
+use simulation::naming::{check_run_names, run_stem};
+use simulation::run::RunRecord;
+use std::path::{Path, PathBuf};
+
+/// `runs.csv`.
+pub const RUNS: &str = "runs.csv";
+/// `traces/`.
+pub const TRACES: &str = "traces";
+/// The advisory lock's file name.
+pub const LOCK: &str = ".lock";
+
+/// Pruning removes at most this percentage of the stored runs unless asked to (`--prune`): an
+/// empty or mistaken experiments directory must not wipe the results.
+pub const PRUNE_LIMIT_PERCENT: usize = 25;
+
+/// A problem with the results directory.
+#[derive(Debug, thiserror::Error)]
+pub enum ResultsError {
+    #[error(transparent)]
+    Tracked(#[from] TrackedError),
+    #[error(transparent)]
+    Path(#[from] PathError),
+    #[error("another reproduce is writing to {dir} (lock {lock}): wait for it to finish, or give this run another --results-dir")]
+    Locked { dir: PathBuf, lock: PathBuf },
+    #[error("{path}: cannot lock: {source}")]
+    Lock {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("{0}")]
+    Read(String),
+    #[error("{path}: {message}")]
+    Write { path: PathBuf, message: String },
+    #[error("{count} of the {stored} stored runs in {runs} are described by no experiment file of {experiments} ({percent} %, more than the {PRUNE_LIMIT_PERCENT} % pruned without asking); nothing was run or written. If the experiment files are right and those runs should go, run again with --prune; otherwise point --experiments-dir at the right directory. The first of them: {first}")]
+    TooMuchPruning {
+        count: usize,
+        stored: usize,
+        percent: usize,
+        runs: PathBuf,
+        experiments: PathBuf,
+        first: String,
+    },
+}
+
+/// The results directory, locked for this process.
+#[derive(Debug)]
+pub struct ResultsDir {
+    tracked: TrackedDir,
+    /// Held until the process ends (or the value is dropped).
+    _lock: std::fs::File,
+}
+
+impl ResultsDir {
+    /// Opens (creating) `dir` for writing: takes the lock, checks the tables against the
+    /// manifest (see the module doc) and removes the program's own stale temporary files
+    /// (returned, for a message).
+    pub fn open(
+        dir: &Path,
+        git_rev: &str,
+        edits: Edits,
+    ) -> Result<(Self, Vec<PathBuf>), ResultsError> {
+        let owned = OwnedDir::open(dir)?;
+        let lock = lock(&owned)?;
+        let removed = remove_own_tmp(&owned);
+        // Tables are checked at every start; traces only when a shard is merged (a killed run
+        // may have rewritten some before it could save the manifest).
+        let tracked = TrackedDir::open(dir, git_rev, edits, Some(RUNS), |f| !f.contains('/'))?;
+        let results = Self {
+            tracked,
+            _lock: lock,
+        };
+        if edits == Edits::Accept {
+            for f in results.layout_files() {
+                results.tracked.adopt(&f)?;
+            }
+        }
+        Ok((results, removed))
+    }
+
+    /// Every file of the layout present: top-level `*.csv` but the journal, and the traces
+    /// (regular files in real directories only).
+    fn layout_files(&self) -> Vec<PathBuf> {
+        let entries = |dir: &Path| -> Vec<std::fs::DirEntry> {
+            std::fs::read_dir(dir)
+                .into_iter()
+                .flatten()
+                .flatten()
+                .collect()
+        };
+        let is = |e: &std::fs::DirEntry, f: fn(&std::fs::FileType) -> bool| {
+            e.file_type().is_ok_and(|k| f(&k))
+        };
+        let csv = |e: &std::fs::DirEntry| e.path().extension().is_some_and(|x| x == "csv");
+        let mut out = self.tables();
+        if let Ok(traces) = self.tracked.resolve(Path::new(TRACES)) {
+            for exp in entries(&traces)
+                .iter()
+                .filter(|e| is(e, std::fs::FileType::is_dir))
+            {
+                let rel = Path::new(TRACES).join(exp.file_name());
+                out.extend(
+                    entries(&exp.path())
+                        .iter()
+                        .filter(|e| is(e, std::fs::FileType::is_file) && csv(e))
+                        .map(|e| rel.join(e.file_name())),
+                );
+            }
+        }
+        out.sort();
+        out
+    }
+
+    /// The top-level tables present: `*.csv` but the journal.
+    fn tables(&self) -> Vec<PathBuf> {
+        std::fs::read_dir(self.path())
+            .into_iter()
+            .flatten()
+            .flatten()
+            .filter(|e| e.file_type().is_ok_and(|k| k.is_file()))
+            .filter(|e| e.path().extension().is_some_and(|x| x == "csv"))
+            .filter(|e| e.file_name() != crate::journal::FILE)
+            .map(|e| PathBuf::from(e.file_name()))
+            .collect()
+    }
+
+    /// The directory as given.
+    pub fn path(&self) -> &Path {
+        self.tracked.path()
+    }
+
+    /// The tracked directory (for the journal and other writers).
+    pub fn tracked(&self) -> &TrackedDir {
+        &self.tracked
+    }
+
+    /// `runs.csv`'s path.
+    pub fn runs_path(&self) -> PathBuf {
+        self.path().join(RUNS)
+    }
+
+    /// The stored rows (none without a `runs.csv`), every name checked.
+    pub fn read_runs(&self) -> Result<Vec<RunRow>, ResultsError> {
+        let path = self.runs_path();
+        if !path.exists() {
+            return Ok(Vec::new());
+        }
+        read_runs(&path).map_err(ResultsError::Read)
+    }
+
+    /// Writes `runs.csv` (atomically, recorded in the manifest).
+    pub fn write_runs(&self, rows: &[RunRow]) -> Result<(), ResultsError> {
+        let bytes = runs_csv(rows).map_err(|e| ResultsError::Write {
+            path: self.runs_path(),
+            message: e.to_string(),
+        })?;
+        self.tracked.write(Path::new(RUNS), &bytes)?;
+        Ok(())
+    }
+
+    /// A run's trace, relative to the directory: `traces/<experiment>/<variant>__<solver>.csv`,
+    /// its names checked.
+    pub fn trace_rel(experiment: &str, variant: &str, solver: &str) -> Result<PathBuf, PathError> {
+        check_run_names(experiment, variant, solver).map_err(|e| PathError::NotPlain {
+            dir: PathBuf::from(TRACES),
+            name: PathBuf::from(format!("{experiment} / {variant} / {solver}: {e}")),
+        })?;
+        Ok(Path::new(TRACES)
+            .join(experiment)
+            .join(format!("{}.csv", run_stem(variant, solver))))
+    }
+
+    /// Writes a run's trace.
+    pub fn write_trace(&self, r: &RunRecord) -> Result<(), ResultsError> {
+        let rel = Self::trace_rel(&r.job.experiment, &r.job.variant, &r.job.solver.label())?;
+        let bytes = trace_csv(r).map_err(|e| ResultsError::Write {
+            path: self.path().join(&rel),
+            message: e.to_string(),
+        })?;
+        self.tracked.write(&rel, &bytes)?;
+        Ok(())
+    }
+
+    /// Saves the manifest: call after each step that changed the directory. The top-level
+    /// tables are fingerprinted as they are now: the layers that write them (the explanation
+    /// layer, the leaderboard, the cost curve) write while this process holds the lock, and
+    /// they were checked against the manifest when it was taken.
+    pub fn save(&self) -> Result<(), ResultsError> {
+        for t in self.tables() {
+            self.tracked.adopt(&t)?;
+        }
+        Ok(self.tracked.save()?)
+    }
+
+    /// Splits `stored` into the rows `describes` keeps and the rows to prune, refusing (before
+    /// anything is changed) to prune more than [`PRUNE_LIMIT_PERCENT`] of them unless `allow`.
+    pub fn plan_pruning(
+        &self,
+        stored: Vec<RunRow>,
+        describes: impl Fn(&RunRow) -> bool,
+        allow: bool,
+        experiments: &Path,
+    ) -> Result<(Vec<RunRow>, Vec<RunRow>), ResultsError> {
+        let total = stored.len();
+        let (kept, pruned): (Vec<RunRow>, Vec<RunRow>) = stored.into_iter().partition(describes);
+        let percent = if total == 0 {
+            0
+        } else {
+            (100 * pruned.len()).div_ceil(total)
+        };
+        if !allow && percent > PRUNE_LIMIT_PERCENT {
+            return Err(ResultsError::TooMuchPruning {
+                count: pruned.len(),
+                stored: total,
+                percent,
+                runs: self.runs_path(),
+                experiments: experiments.to_path_buf(),
+                first: crate::shard::row_key(&pruned[0]),
+            });
+        }
+        Ok((kept, pruned))
+    }
+
+    /// Removes the traces of pruned rows (only those the program wrote and nobody edited since)
+    /// and returns one line per run for the user.
+    pub fn prune(&self, pruned: &[RunRow]) -> Result<Vec<String>, ResultsError> {
+        let mut said = Vec::with_capacity(pruned.len());
+        for r in pruned {
+            let key = crate::shard::row_key(r);
+            let rel = Self::trace_rel(&r.experiment, &r.variant, &r.solver)?;
+            said.push(match self.tracked.remove(&rel)? {
+                Removal::Removed => {
+                    format!("pruned {key} and its trace (no experiment file describes it)")
+                }
+                Removal::Absent => {
+                    format!("pruned {key} (no experiment file describes it; it had no trace)")
+                }
+                Removal::Kept(why) => {
+                    format!("pruned {key} (no experiment file describes it); its trace {why}")
+                }
+            });
+        }
+        Ok(said)
+    }
+}
+
+/// The advisory lock on `dir` (`<dir>/.lock`, the operating system's file lock through
+/// `std::fs::File::try_lock`): a second writer refuses at once, naming the directory, instead
+/// of overwriting the first one's results with its own. The lock ends with the process.
+fn lock(dir: &OwnedDir) -> Result<std::fs::File, ResultsError> {
+    let path = dir.resolve(Path::new(LOCK))?;
+    let file = std::fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(&path)
+        .map_err(|source| ResultsError::Lock {
+            path: path.clone(),
+            source,
+        })?;
+    match file.try_lock() {
+        Ok(()) => Ok(file),
+        Err(std::fs::TryLockError::WouldBlock) => Err(ResultsError::Locked {
+            dir: dir.path().to_path_buf(),
+            lock: path,
+        }),
+        Err(std::fs::TryLockError::Error(source)) => Err(ResultsError::Lock { path, source }),
+    }
+}
+
+/// Whether `name` is a temporary file of the program's own atomic writes,
+/// `<name>.<pid>.<counter>.tmp` (`crate::runs::write_atomic`), or of its writability probe,
+/// `.write-probe.<pid>.tmp`.
+pub fn is_own_tmp(name: &str) -> bool {
+    let Some(stem) = name.strip_suffix(".tmp") else {
+        return false;
+    };
+    let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
+    if let Some(pid) = stem.strip_prefix(".write-probe.") {
+        return digits(pid);
+    }
+    let mut parts = stem.rsplitn(3, '.');
+    let (Some(counter), Some(pid), Some(base)) = (parts.next(), parts.next(), parts.next()) else {
+        return false;
+    };
+    digits(counter) && digits(pid) && !base.is_empty()
+}
+
+/// Removes the program's own temporary files ([`is_own_tmp`]) that a killed run left in `dir`
+/// and its sub-directories down to two levels (`traces/<experiment>/`, `figures/`): regular
+/// files only, never through a symbolic link, never anything else. Returns what it removed.
+pub fn remove_own_tmp(dir: &OwnedDir) -> Vec<PathBuf> {
+    fn walk(dir: &Path, depth: usize, out: &mut Vec<PathBuf>) {
+        for entry in std::fs::read_dir(dir).into_iter().flatten().flatten() {
+            let Ok(kind) = entry.file_type() else {
+                continue;
+            };
+            let path = entry.path();
+            if kind.is_dir() && depth < 2 {
+                walk(&path, depth + 1, out);
+            } else if kind.is_file()
+                && is_own_tmp(&entry.file_name().to_string_lossy())
+                && std::fs::remove_file(&path).is_ok()
+            {
+                out.push(path);
+            }
+        }
+    }
+    let mut out = Vec::new();
+    walk(dir.path(), 0, &mut out);
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_the_programs_own_temporary_files_are_recognised() {
+        assert!(is_own_tmp("runs.csv.1234.0.tmp"));
+        assert!(is_own_tmp("v__s.csv.99.17.tmp"));
+        assert!(is_own_tmp(".write-probe.42.tmp"));
+        for user in [
+            "notes.tmp",
+            "draft.tmp",
+            "work.tmp",
+            "a.b.tmp",
+            "x.12.tmp",
+            "runs.csv.1a.0.tmp",
+            ".12.3.tmp",
+        ] {
+            assert!(!is_own_tmp(user), "{user}");
+        }
+    }
+
+    #[test]
+    fn stale_temporary_files_are_removed_only_near_the_top_and_only_ours() {
+        let base = std::env::temp_dir().join(format!("driftbench-tmp-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&base);
+        for f in [
+            "runs.csv.1.0.tmp",
+            "traces/e/v__s.csv.1.2.tmp",
+            "notes.tmp",
+            "a/b/c/work.tmp",
+            "a/b/c/x.csv.1.0.tmp",
+        ] {
+            let p = base.join(f);
+            std::fs::create_dir_all(p.parent().unwrap()).unwrap();
+            std::fs::write(&p, b"x").unwrap();
+        }
+        let dir = OwnedDir::open(&base).unwrap();
+        let mut removed: Vec<String> = remove_own_tmp(&dir)
+            .iter()
+            .map(|p| {
+                p.strip_prefix(&base)
+                    .unwrap()
+                    .to_string_lossy()
+                    .into_owned()
+            })
+            .collect();
+        removed.sort();
+        assert_eq!(removed, ["runs.csv.1.0.tmp", "traces/e/v__s.csv.1.2.tmp"]);
+        assert!(base.join("notes.tmp").exists() && base.join("a/b/c/work.tmp").exists());
+        assert!(
+            base.join("a/b/c/x.csv.1.0.tmp").exists(),
+            "deeper than two levels is not ours"
+        );
+        let _ = std::fs::remove_dir_all(&base);
+    }
+}

@@ -1,0 +1,298 @@
+//! A directory the program owns ([`OwnedDir`]: every path checked) together with the manifest
+//! of what it wrote there ([`Manifest`]). Every write and every removal goes through it:
+//!
+//! - [`TrackedDir::write`] writes atomically and records the file's fingerprint;
+//! - [`TrackedDir::adopt`] records a file another layer wrote at a path obtained from
+//!   [`TrackedDir::resolve`];
+//! - [`TrackedDir::remove`] deletes a file only if the manifest lists it and it still hashes to
+//!   its entry: a file the program cannot prove it wrote, or one edited since, is left in place
+//!   and reported;
+//! - [`TrackedDir::save`] writes the manifest; call it at the end of each step that changed
+//!   the directory.
+//!
+//! Opening checks the listed files that a caller selects against their entries
+//! ([`TrackedDir::open`]): a file edited, truncated or removed behind the program's back is an
+//! error naming the file and what differs, unless the caller accepts edits
+//! ([`Edits::Accept`]), in which case the present files are fingerprinted anew.
+
+use crate::integrity::{Fingerprint, IntegrityError, Manifest, Mismatch, FILE};
+use crate::owned_dir::{OwnedDir, PathError};
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+/// Whether files that differ from the manifest are an error.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Edits {
+    /// Refuse (the default).
+    Refuse,
+    /// Deliberate edits (`--accept-edited`): take the files as they are.
+    Accept,
+}
+
+/// A problem with a tracked directory.
+#[derive(Debug, thiserror::Error)]
+pub enum TrackedError {
+    #[error(transparent)]
+    Path(#[from] PathError),
+    #[error(transparent)]
+    Integrity(#[from] IntegrityError),
+    #[error("{path}: {source}")]
+    Io {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("{dir}: {count} file(s) differ from what this program wrote ({dir}/{FILE}), so they were edited, truncated or replaced by hand:\n{list}\nnothing was run or written; restore them (e.g. `git checkout -- {dir}`) or, if the edit is deliberate, run again with --accept-edited")]
+    Edited {
+        dir: PathBuf,
+        count: usize,
+        list: String,
+    },
+    #[error("{dir}: holds {file} but no {FILE}, so this program cannot tell whether it wrote it or whether it was edited since; nothing was run or written; restore the directory from git, or run again with --accept-edited to take its files as they are")]
+    Unsealed { dir: PathBuf, file: String },
+}
+
+/// What [`TrackedDir::remove`] did.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Removal {
+    Removed,
+    /// Not there (nothing to do).
+    Absent,
+    /// Left in place, with the reason.
+    Kept(String),
+}
+
+/// A directory the program owns, with the manifest of what it wrote there.
+#[derive(Debug)]
+pub struct TrackedDir {
+    dir: OwnedDir,
+    manifest: Mutex<Manifest>,
+}
+
+impl TrackedDir {
+    /// Opens `dir` (creating it). Listed files whose names `verify` accepts must match their
+    /// entries ([`TrackedError::Edited`] otherwise, under [`Edits::Refuse`]); a directory that
+    /// holds `guarded` (e.g. `runs.csv`) but no manifest is refused too. Under
+    /// [`Edits::Accept`] the differing files are fingerprinted as they are. `git_rev` is recorded
+    /// as the writer's revision at the next [`TrackedDir::save`].
+    pub fn open(
+        dir: &Path,
+        git_rev: &str,
+        edits: Edits,
+        guarded: Option<&str>,
+        verify: impl Fn(&str) -> bool,
+    ) -> Result<Self, TrackedError> {
+        let owned = OwnedDir::open(dir)?;
+        let manifest = match Manifest::read(dir)? {
+            Some(m) => m,
+            None if edits == Edits::Refuse && guarded.is_some_and(|g| dir.join(g).exists()) => {
+                return Err(TrackedError::Unsealed {
+                    dir: dir.to_path_buf(),
+                    file: guarded.unwrap_or_default().to_string(),
+                })
+            }
+            None => Manifest::default(),
+        };
+        let tracked = Self {
+            dir: owned,
+            manifest: Mutex::new(Manifest {
+                git_rev: git_rev.to_string(),
+                ..manifest
+            }),
+        };
+        let mismatches = tracked.lock().mismatches(dir, &verify);
+        match edits {
+            Edits::Refuse if !mismatches.is_empty() => Err(TrackedError::Edited {
+                dir: dir.to_path_buf(),
+                count: mismatches.len(),
+                list: mismatches
+                    .iter()
+                    .map(|m| format!("  {m}"))
+                    .collect::<Vec<_>>()
+                    .join("\n"),
+            }),
+            Edits::Refuse => Ok(tracked),
+            Edits::Accept => {
+                for m in &mismatches {
+                    let file = match m {
+                        Mismatch::Missing { file } | Mismatch::Changed { file, .. } => file,
+                    };
+                    tracked.adopt(Path::new(file))?;
+                }
+                Ok(tracked)
+            }
+        }
+    }
+
+    /// Opens `parent/name` as [`TrackedDir::open`] does (nothing verified, nothing guarded),
+    /// after checking that it lies inside `parent` once symbolic links are resolved: the report
+    /// directory of a project, which must not lead elsewhere.
+    pub fn open_within(parent: &Path, name: &str) -> Result<Self, TrackedError> {
+        let parent = OwnedDir::open(parent)?;
+        let dir = OwnedDir::open_within(&parent, Path::new(name))?;
+        Self::open(dir.path(), "", Edits::Refuse, None, |_| false)
+    }
+
+    fn lock(&self) -> std::sync::MutexGuard<'_, Manifest> {
+        // A panic while the lock was held leaves a consistent map (entries are replaced whole).
+        self.manifest.lock().unwrap_or_else(|p| p.into_inner())
+    }
+
+    /// The directory as given.
+    pub fn path(&self) -> &Path {
+        self.dir.path()
+    }
+
+    /// The owned directory (for checking further directories inside it).
+    pub fn owned(&self) -> &OwnedDir {
+        &self.dir
+    }
+
+    /// `dir/rel`, checked ([`OwnedDir::resolve`]).
+    pub fn resolve(&self, rel: &Path) -> Result<PathBuf, PathError> {
+        self.dir.resolve(rel)
+    }
+
+    /// Writes `bytes` to `rel` atomically and records it.
+    pub fn write(&self, rel: &Path, bytes: &[u8]) -> Result<(), TrackedError> {
+        let path = self.resolve(rel)?;
+        crate::runs::write_atomic(&path, bytes).map_err(|source| TrackedError::Io {
+            path: path.clone(),
+            source,
+        })?;
+        self.lock().files.insert(key(rel), Fingerprint::of(bytes));
+        Ok(())
+    }
+
+    /// Records the file at `rel` as written by the program (another layer wrote it at a path
+    /// from [`TrackedDir::resolve`]); a file that is not there is dropped from the manifest.
+    pub fn adopt(&self, rel: &Path) -> Result<(), TrackedError> {
+        let path = self.resolve(rel)?;
+        match std::fs::read(&path) {
+            Ok(bytes) => {
+                self.lock().files.insert(key(rel), Fingerprint::of(&bytes));
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                self.lock().files.remove(&key(rel));
+            }
+            Err(source) => return Err(TrackedError::Io { path, source }),
+        }
+        Ok(())
+    }
+
+    /// Removes `rel` if the program can prove it wrote it (see the module doc).
+    pub fn remove(&self, rel: &Path) -> Result<Removal, TrackedError> {
+        let path = self.resolve(rel)?;
+        let bytes = match std::fs::read(&path) {
+            Ok(b) => b,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                self.lock().files.remove(&key(rel));
+                return Ok(Removal::Absent);
+            }
+            Err(source) => return Err(TrackedError::Io { path, source }),
+        };
+        let mut m = self.lock();
+        match m.files.get(&key(rel)) {
+            None => {
+                return Ok(Removal::Kept(format!(
+                    "{}: left in place: not written by this program (not in {FILE})",
+                    path.display()
+                )))
+            }
+            Some(f) if *f != Fingerprint::of(&bytes) => {
+                return Ok(Removal::Kept(format!(
+                    "{}: left in place: edited since this program wrote it",
+                    path.display()
+                )))
+            }
+            Some(_) => {}
+        }
+        std::fs::remove_file(&path).map_err(|source| TrackedError::Io {
+            path: path.clone(),
+            source,
+        })?;
+        m.files.remove(&key(rel));
+        // An emptied sub-directory goes too (a non-empty one stays).
+        if let Some(parent) = rel.parent().filter(|p| !p.as_os_str().is_empty()) {
+            if let Ok(dir) = self.resolve(parent) {
+                let _ = std::fs::remove_dir(dir);
+            }
+        }
+        Ok(Removal::Removed)
+    }
+
+    /// The listed files whose names start with `prefix`.
+    pub fn listed(&self, prefix: &str) -> Vec<String> {
+        self.lock()
+            .files
+            .keys()
+            .filter(|k| k.starts_with(prefix))
+            .cloned()
+            .collect()
+    }
+
+    /// Saves the manifest.
+    pub fn save(&self) -> Result<(), TrackedError> {
+        let m = self.lock().clone();
+        m.write(self.path())?;
+        Ok(())
+    }
+}
+
+/// A manifest key: the relative path with `/`.
+fn key(rel: &Path) -> String {
+    rel.components()
+        .map(|c| c.as_os_str().to_string_lossy())
+        .collect::<Vec<_>>()
+        .join("/")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn removes_only_what_it_wrote_unchanged() {
+        let base = std::env::temp_dir().join(format!("driftbench-tracked-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&base);
+        let t = TrackedDir::open(&base, "r1", Edits::Refuse, Some("runs.csv"), |_| true).unwrap();
+        t.write(Path::new("traces/e/a.csv"), b"x\n").unwrap();
+        t.write(Path::new("traces/e/b.csv"), b"y\n").unwrap();
+        t.write(Path::new("runs.csv"), b"h\n1\n").unwrap();
+        t.save().unwrap();
+        std::fs::write(base.join("traces/e/user.csv"), b"mine").unwrap();
+        std::fs::write(base.join("traces/e/b.csv"), b"edited").unwrap();
+        assert_eq!(
+            t.remove(Path::new("traces/e/a.csv")).unwrap(),
+            Removal::Removed
+        );
+        assert!(matches!(
+            t.remove(Path::new("traces/e/user.csv")).unwrap(),
+            Removal::Kept(_)
+        ));
+        assert!(matches!(
+            t.remove(Path::new("traces/e/b.csv")).unwrap(),
+            Removal::Kept(_)
+        ));
+        assert!(base.join("traces/e/user.csv").exists() && base.join("traces/e/b.csv").exists());
+        t.save().unwrap();
+        drop(t);
+        // Reopening finds the edit, unless it is accepted.
+        let err =
+            TrackedDir::open(&base, "r2", Edits::Refuse, Some("runs.csv"), |_| true).unwrap_err();
+        assert!(err.to_string().contains("traces/e/b.csv"), "{err}");
+        assert!(
+            TrackedDir::open(&base, "r2", Edits::Refuse, Some("runs.csv"), |f| f
+                == "runs.csv")
+            .is_ok()
+        );
+        let t = TrackedDir::open(&base, "r2", Edits::Accept, Some("runs.csv"), |_| true).unwrap();
+        t.save().unwrap();
+        assert!(TrackedDir::open(&base, "r3", Edits::Refuse, Some("runs.csv"), |_| true).is_ok());
+        // Without a manifest, a directory holding runs.csv is refused.
+        std::fs::remove_file(base.join(FILE)).unwrap();
+        let err =
+            TrackedDir::open(&base, "r3", Edits::Refuse, Some("runs.csv"), |_| true).unwrap_err();
+        assert!(matches!(err, TrackedError::Unsealed { .. }), "{err}");
+        let _ = std::fs::remove_dir_all(&base);
+    }
+}
