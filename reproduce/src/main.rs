@@ -10,7 +10,7 @@ use simulation::runner::run_jobs_with;
 use std::collections::HashSet;
 use std::fmt::Write as _;
 use std::io::Write as _;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 /// Regenerates the tables and error data of four papers on drift-free redundancy resolution
@@ -222,6 +222,7 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
     let git_rev = simulation::root::git_revision(&cli.project_root);
     if cli.report_only {
         let root = report_root(&cli)?;
+        check_report_dir(&root)?;
         let results = open_results(&cli, &git_rev)?;
         render_report(&root, &results)?;
         return Ok(ExitCode::SUCCESS);
@@ -264,10 +265,7 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
         .transpose()?;
     if !cli.check && !cli.dry_run && cli.shard_resolved.is_none() {
         match report_root(&cli) {
-            Ok(root) => {
-                records::tracked_dir::TrackedDir::open_within(&root, "report")
-                    .map_err(|e| e.to_string())?;
-            }
+            Ok(root) => check_report_dir(&root)?,
             Err(why) => eprintln!(
                 "note: results go to {}, but {why}",
                 cli.results_dir.display()
@@ -653,6 +651,15 @@ fn report_root(cli: &Cli) -> Result<PathBuf, String> {
             cli.results_dir.display()
         )),
     }
+}
+
+/// Checks, before anything runs, that `root/report` and its figures directory lie inside the
+/// project (no symbolic link leading elsewhere).
+fn check_report_dir(root: &Path) -> Result<(), String> {
+    records::tracked_dir::TrackedDir::open_within(root, "report")
+        .and_then(|r| Ok(r.resolve(Path::new(presentation::figures::FIGURES))?))
+        .map(|_| ())
+        .map_err(|e| e.to_string())
 }
 
 /// Figures first (the report links them), then REPORT.md, then the leaderboard table (recorded

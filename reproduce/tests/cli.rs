@@ -171,13 +171,24 @@ scheme = { kind = "kong2019-znn", mu = 1.0, k_p = 1.0 }
     ));
     std::fs::write(&trace, "t\n0\n").unwrap();
 
-    let out = reproduce()
-        .args(["--experiments-dir"])
-        .arg(&experiments)
-        .arg("--results-dir")
-        .arg(&results)
-        .output()
-        .unwrap();
+    // Written by hand, so taken as it is (--accept-edited); every stored run goes, which must
+    // be said (--prune).
+    let run = |extra: &[&str]| {
+        reproduce()
+            .args(["--experiments-dir"])
+            .arg(&experiments)
+            .arg("--results-dir")
+            .arg(&results)
+            .arg("--accept-edited")
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    let out = run(&[]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--prune"));
+    assert!(trace.exists());
+    let out = run(&["--prune"]);
     assert!(
         out.status.success(),
         "{}",
