@@ -27,7 +27,7 @@ struct Cli {
     /// scheme and path).
     #[arg(long)]
     paper: Option<String>,
-    /// Run only this experiment (an id of experiments.md, e.g. jia2019-clover). Repeatable.
+    /// Run only this experiment (an id of docs/experiments.md, e.g. jia2019-clover). Repeatable.
     #[arg(long)]
     experiment: Vec<String>,
     /// Run only the exact column (Clarabel in the loop), no neural solvers.
