@@ -5,6 +5,8 @@
 //! anything runs. Each case gives a clear error or a correct result, and nothing outside the
 //! project is touched.
 
+// The shared helpers are compiled into each test crate; this one uses only `reproduce()`.
+#[allow(dead_code)]
 mod common;
 
 use common::reproduce;
