@@ -654,12 +654,14 @@ fn report_root(cli: &Cli) -> Result<PathBuf, String> {
 }
 
 /// Checks, before anything runs, that `root/report` and its figures directory lie inside the
-/// project (no symbolic link leading elsewhere).
+/// project (no symbolic link leading elsewhere) and that the report can be written there.
 fn check_report_dir(root: &Path) -> Result<(), String> {
-    records::tracked_dir::TrackedDir::open_within(root, "report")
-        .and_then(|r| Ok(r.resolve(Path::new(presentation::figures::FIGURES))?))
-        .map(|_| ())
-        .map_err(|e| e.to_string())
+    let report =
+        records::tracked_dir::TrackedDir::open_within(root, "report").map_err(|e| e.to_string())?;
+    report
+        .resolve(Path::new(presentation::figures::FIGURES))
+        .map_err(|e| e.to_string())?;
+    records::runs::check_writable(report.path())
 }
 
 /// Figures first (the report links them), then REPORT.md, then the leaderboard table (recorded
