@@ -72,6 +72,14 @@ impl Project {
             .arg(self.results());
         c
     }
+    /// `reproduce --report-only` on this project's results.
+    fn report_only(&self) -> Command {
+        let mut c = reproduce();
+        c.arg("--report-only")
+            .arg("--results-dir")
+            .arg(self.results());
+        c
+    }
     /// A first, clean run: results/ sealed with its manifest.
     fn seeded(name: &str) -> Self {
         let p = Self::new(name);
@@ -204,14 +212,7 @@ fn symbolic_links_leading_out_of_the_project_are_refused() {
     std::os::unix::fs::symlink(p.outside(), &figures).unwrap();
     let before: Vec<_> = std::fs::read_dir(p.outside()).unwrap().collect();
     refused(p.run().output().unwrap(), "leads outside");
-    refused(
-        reproduce()
-            .args(["--report-only", "--results-dir"])
-            .arg(p.results())
-            .output()
-            .unwrap(),
-        "leads outside",
-    );
+    refused(p.report_only().output().unwrap(), "leads outside");
     let after: Vec<_> = std::fs::read_dir(p.outside()).unwrap().collect();
     assert_eq!(
         before.len(),
@@ -420,11 +421,7 @@ fn report_only_takes_the_lock() {
         .unwrap();
     lock.lock().unwrap();
     refused(
-        reproduce()
-            .args(["--report-only", "--results-dir"])
-            .arg(p.results())
-            .output()
-            .unwrap(),
+        p.report_only().output().unwrap(),
         "another reproduce is writing",
     );
 }
