@@ -100,12 +100,12 @@ impl Default for Family {
                 robots::JACO2_PEN.to_string(),
                 vec![robots::JACO2_PEN_EXP2.to_string()],
             )]),
-            global_per_combo: 24,
-            joint_starts: 3,
+            global_per_combo: 16,
+            joint_starts: 4,
             column_starts: 1,
-            iterations: 40,
+            iterations: 50,
             profiles: true,
-            profile_iterations: 12,
+            profile_iterations: 10,
         }
     }
 }

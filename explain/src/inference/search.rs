@@ -9,8 +9,9 @@
 //!
 //! # The stages
 //!
-//! 1. **Global:** every combination at the same G points of a Halton sequence over the box
-//!    (common points, so combinations compare fairly), plus the declared point.
+//! 1. **Global:** every combination at G points of one Halton sequence over the box, the
+//!    sequence dealt out in turn to the combinations (so the K G points all differ and
+//!    cover the box K times more finely than G points would), plus the declared point.
 //! 2. **Local:** Nelder-Mead (argmin) over x, k fixed, from the best few global points of each
 //!    objective (distinct: another combination, or at least [`DISTINCT`] apart in the box's
 //!    unit coordinates).
@@ -428,11 +429,12 @@ pub fn search<O: Objective>(objective: &O, budget: Budget) -> Outcome<O::Detail>
         }
     };
     // 1. Global.
-    let mut grid: Vec<Point> = (0..objective.combos())
+    let combos = objective.combos();
+    let mut grid: Vec<Point> = (0..combos)
         .flat_map(|combo| {
-            (1..=budget.global_per_combo).map(move |k| Point {
+            (0..budget.global_per_combo).map(move |k| Point {
                 combo,
-                x: halton(k, dims)
+                x: halton(1 + k * combos + combo, dims)
                     .iter()
                     .zip(coords)
                     .map(|(u, c)| c.lo + u * c.width())
