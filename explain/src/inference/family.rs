@@ -176,8 +176,8 @@ mod tests {
 
     #[test]
     fn the_committed_family_file_reads_and_names_known_robots() {
-        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../experiments/inference/family.toml");
+        let path =
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("../experiments/inference/family.toml");
         assert!(path.exists());
         let f = Family::load(&path).unwrap();
         assert!(f.tilt && !f.network.is_empty());

@@ -404,8 +404,8 @@ pub fn evaluate(p: &TableProblem, setup: Setup) -> Evaluation {
         });
         entries.push((column.name.clone(), pairs));
     }
-    let mean_square = column_residuals.iter().map(|r| r * r).sum::<f64>()
-        / column_residuals.len().max(1) as f64;
+    let mean_square =
+        column_residuals.iter().map(|r| r * r).sum::<f64>() / column_residuals.len().max(1) as f64;
     Evaluation {
         setup,
         rel_residual: if failure.is_some() {
@@ -483,6 +483,8 @@ impl<'a> TableObjective<'a> {
             .iter()
             .all(|j| schemes::paths::phase_supported(&j.path.name));
         let mut coordinates = Vec::new();
+        // Profile grids: every 45 degrees of rotation, every sixth of the cycle, seven sizes
+        // (geometric) and seven tilts, 30 degrees apart.
         let mut add = |on: bool, name, lo, hi, periodic, grid| {
             if on {
                 coordinates.push(Coordinate {
@@ -494,13 +496,20 @@ impl<'a> TableObjective<'a> {
                 });
             }
         };
-        add(family.rotation, ROTATION, 0.0, 2.0 * PI, true, 12);
-        add(family.phase && phase, PHASE, 0.0, 1.0, true, 8);
+        add(family.rotation, ROTATION, 0.0, 2.0 * PI, true, 8);
+        add(family.phase && phase, PHASE, 0.0, 1.0, true, 6);
         // Sizes between a quarter and four times the declared one.
         let four = 4f64.ln();
-        add(family.scale && problem.fit_scale, SCALE, -four, four, false, 9);
-        add(family.tilt, TILT_X, -PI / 2.0, PI / 2.0, false, 9);
-        add(family.tilt, TILT_Y, -PI / 2.0, PI / 2.0, false, 9);
+        add(
+            family.scale && problem.fit_scale,
+            SCALE,
+            -four,
+            four,
+            false,
+            7,
+        );
+        add(family.tilt, TILT_X, -PI / 2.0, PI / 2.0, false, 7);
+        add(family.tilt, TILT_Y, -PI / 2.0, PI / 2.0, false, 7);
         Self {
             problem,
             combos,
@@ -751,7 +760,8 @@ pub fn rows(p: &TableProblem, f: &Fit) -> (Vec<InferenceRow>, Vec<EntryRow>) {
     }
     for (robot, integration) in &hypotheses {
         for &t in &targets {
-            let of = |k: usize| f.combos[k].robot == *robot && f.combos[k].integration == *integration;
+            let of =
+                |k: usize| f.combos[k].robot == *robot && f.combos[k].integration == *integration;
             if let Some(b) = out_.best_where(t, of) {
                 out.push(row(HYPOTHESIS, t, &b.point, &b.scores, Some(&b.detail)));
             }
@@ -764,7 +774,11 @@ pub fn rows(p: &TableProblem, f: &Fit) -> (Vec<InferenceRow>, Vec<EntryRow>) {
         let name = f.coordinates[profile.coordinate].name;
         let kind = format!(
             "{PROFILE} ({}): {name}",
-            if profile.refitted { "re-fitted" } else { "slice" }
+            if profile.refitted {
+                "re-fitted"
+            } else {
+                "slice"
+            }
         );
         for q in &profile.points {
             out.push(row(&kind, Target::Joint, &q.point, &q.scores, None));

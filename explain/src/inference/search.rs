@@ -21,6 +21,8 @@
 //!    by Nelder-Mead over the other coordinates, warm-started from the neighbouring grid
 //!    point's optimum, walking outward from x*_j (the construction of a profile likelihood).
 //!    With no iterations allowed, p_j is a slice (the others held at x*), and is labelled so.
+//! 4. **Polish:** if a profile point beat (k*, x*), Nelder-Mead from it once more (so the
+//!    profiles are those of (k*, x*), and the optimum reported may lie below them).
 //!
 //! Every evaluation of every stage passes through one [`Tracker`], which keeps, per
 //! combination and objective, the best point seen: the reported optimum of an objective is
@@ -147,10 +149,7 @@ impl<D: Clone> Tracker<D> {
         let targets =
             std::iter::once(Target::Joint).chain((0..s.columns.len()).map(Target::Column));
         for (slot, t) in slots.iter_mut().zip(targets) {
-            if slot
-                .as_ref()
-                .is_none_or(|b| s.get(t) < b.scores.get(t))
-            {
+            if slot.as_ref().is_none_or(|b| s.get(t) < b.scores.get(t)) {
                 *slot = Some(Best {
                     point: p.clone(),
                     scores: s.clone(),
@@ -273,6 +272,18 @@ impl<O: Objective> Search<'_, O> {
             .unwrap_or_else(|e| e.into_inner())
             .record(&p, &s, &d);
         (p, s, d)
+    }
+
+    /// The best point of the joint objective evaluated so far.
+    fn joint_best(&self) -> (Point, Scores) {
+        let tracker = self.tracker.lock().unwrap_or_else(|e| e.into_inner());
+        tracker
+            .best
+            .iter()
+            .filter_map(|b| b[0].as_ref())
+            .min_by(|a, b| a.scores.joint.total_cmp(&b.scores.joint))
+            .map(|b| (b.point.clone(), b.scores.clone()))
+            .expect("the declared point is recorded")
     }
 
     /// Nelder-Mead on objective `target` over the coordinates `free` from `start` (the other
@@ -453,15 +464,11 @@ pub fn search<O: Objective>(objective: &O, budget: Budget) -> Outcome<O::Detail>
     evaluated.push((declared.point.clone(), declared.scores.clone()));
     // 2. Local.
     let all: Vec<usize> = (0..dims).collect();
-    let mut starts: Vec<(Target, Point)> = distinct_starts(
-        &evaluated,
-        coords,
-        Target::Joint,
-        budget.joint_starts,
-    )
-    .into_iter()
-    .map(|p| (Target::Joint, p))
-    .collect();
+    let mut starts: Vec<(Target, Point)> =
+        distinct_starts(&evaluated, coords, Target::Joint, budget.joint_starts)
+            .into_iter()
+            .map(|p| (Target::Joint, p))
+            .collect();
     for c in 0..objective.columns() {
         starts.extend(
             distinct_starts(&evaluated, coords, Target::Column(c), budget.column_starts)
@@ -481,18 +488,21 @@ pub fn search<O: Objective>(objective: &O, budget: Budget) -> Outcome<O::Detail>
         })
         .collect();
     // 3. Profiles of the joint optimum so far.
+    let mut local = local;
     let profiles = if budget.profiles && dims > 0 {
-        let best = {
-            let tracker = s.tracker.lock().unwrap_or_else(|e| e.into_inner());
-            tracker
-                .best
-                .iter()
-                .filter_map(|b| b[0].as_ref())
-                .min_by(|a, b| a.scores.joint.total_cmp(&b.scores.joint))
-                .map(|b| (b.point.clone(), b.scores.clone()))
-                .expect("the declared point is recorded")
-        };
-        profiles(&s, &best, budget.profile_iterations)
+        let best = s.joint_best();
+        let profiles = profiles(&s, &best, budget.profile_iterations);
+        // 4. A profile point that beat the optimum is a start the local stage missed.
+        let after = s.joint_best();
+        if after.1.joint < best.1.joint {
+            let (point, scores) = s.nelder_mead(&after.0, &all, Target::Joint, budget.iterations);
+            local.push(LocalOptimum {
+                target: Target::Joint,
+                point,
+                scores,
+            });
+        }
+        profiles
     } else {
         Vec::new()
     };
@@ -713,7 +723,10 @@ mod tests {
                 .map(|(_, s)| s.joint)
                 .fold(f64::INFINITY, f64::min);
             assert_eq!(
-                out.best_where(Target::Joint, |c| c == k).unwrap().scores.joint,
+                out.best_where(Target::Joint, |c| c == k)
+                    .unwrap()
+                    .scores
+                    .joint,
                 min
             );
         }
@@ -758,7 +771,10 @@ mod tests {
         assert_eq!(halton(1, 2), vec![0.5, 1.0 / 3.0]);
         for d in 0..3 {
             let low = pts.iter().filter(|p| p[d] < 0.5).count();
-            assert!((28..=36).contains(&low), "dimension {d}: {low} of 64 below 0.5");
+            assert!(
+                (28..=36).contains(&low),
+                "dimension {d}: {low} of 64 below 0.5"
+            );
         }
     }
 }

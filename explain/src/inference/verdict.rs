@@ -79,7 +79,10 @@ pub fn table_verdict(rows: &[&InferenceRow]) -> Option<Vec<String>> {
     };
     let joint = find(BEST, TABLE)?;
     let mut columns: Vec<&str> = Vec::new();
-    for r in rows.iter().filter(|r| r.kind == BEST && r.objective != TABLE) {
+    for r in rows
+        .iter()
+        .filter(|r| r.kind == BEST && r.objective != TABLE)
+    {
         columns.push(&r.objective);
     }
     let mut out = Vec::new();
@@ -111,17 +114,20 @@ pub fn table_verdict(rows: &[&InferenceRow]) -> Option<Vec<String>> {
         .zip(&at_joint)
         .map(|(c, r)| format!("{c} {}", percent(*r)))
         .collect();
+    let all = match columns.len() {
+        1 => "the column".to_string(),
+        2 => "both columns".to_string(),
+        n => format!("all {n} columns"),
+    };
     out.push(if worst <= REPRODUCED {
         format!(
-            "One inferred setup explains all {} columns together, each within {} ({}).",
-            columns.len(),
+            "One inferred setup explains {all} together, each within {} ({}).",
             percent(worst),
             describe_setup(joint)
         )
     } else {
         format!(
-            "No single setup tried explains all {} columns{}: the best shared setup (table residual {}; {}) leaves {}.",
-            columns.len(),
+            "No single setup tried explains {all}{}: the best shared setup (table residual {}; {}) leaves {}.",
             if alone == columns.len() {
                 ", though each is reproduced alone"
             } else {
@@ -133,4 +139,76 @@ pub fn table_verdict(rows: &[&InferenceRow]) -> Option<Vec<String>> {
         )
     });
     Some(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::inference::family::Integration;
+
+    fn row(kind: &str, objective: &str, r: f64, columns: &str) -> InferenceRow {
+        InferenceRow {
+            paper: "p".into(),
+            table: "T".into(),
+            kind: kind.into(),
+            objective: objective.into(),
+            robot: "jaco2-pen".into(),
+            integration: Integration::Exact,
+            rotation: 0.5,
+            phase: 0.0,
+            scale_factor: 1.0,
+            tilt_x: 0.0,
+            tilt_y: 0.0,
+            reverse: false,
+            rmp: "printed".into(),
+            rel_residual: r,
+            table_residual: r,
+            column_residuals: columns.into(),
+            max_entry_error: None,
+            signs_matched: None,
+            entries: None,
+            evaluations: 0,
+            wall_s: 0.0,
+        }
+    }
+
+    fn table(joint: f64, at_joint: &str, a: f64, b: f64) -> Vec<InferenceRow> {
+        vec![
+            row(DECLARED, TABLE, 1.0, "1;1"),
+            row(DECLARED, "A", 1.0, "1;1"),
+            row(DECLARED, "B", 1.0, "1;1"),
+            row(BEST, TABLE, joint, at_joint),
+            row(BEST, "A", a, "0.1;0.9"),
+            row(BEST, "B", b, "0.9;0.6"),
+        ]
+    }
+
+    #[test]
+    fn columns_and_tables_get_their_verdicts() {
+        let rows = table(0.45, "0.3;0.57", 0.1, 0.6);
+        let refs: Vec<&InferenceRow> = rows.iter().collect();
+        let v = table_verdict(&refs).unwrap();
+        assert_eq!(v.len(), 3);
+        assert!(v[0].starts_with("A: reproduced within 10 %"), "{}", v[0]);
+        assert!(v[1].starts_with("B: not reproduced under any setup tried (best 60 %"));
+        assert!(v[2].starts_with("No single setup tried explains both columns:"));
+        assert!(v[2].ends_with("leaves A 30 %, B 57 %."), "{}", v[2]);
+
+        let rows = table(0.2, "0.15;0.24", 0.1, 0.2);
+        let refs: Vec<&InferenceRow> = rows.iter().collect();
+        let v = table_verdict(&refs).unwrap();
+        assert!(
+            v[2].starts_with("One inferred setup explains both columns together, each within 24 %")
+        );
+
+        assert!(table_verdict(&refs[..2]).is_none());
+    }
+
+    #[test]
+    fn profile_spreads_leave_failed_points_out() {
+        assert_eq!(spread([0.5, 0.6, super::super::FAILED]), 1.2);
+        assert!(profile_verdict(1.2).starts_with("flat"));
+        assert!(profile_verdict(1.5).starts_with("weakly"));
+        assert_eq!(profile_verdict(2.5), "determined");
+    }
 }

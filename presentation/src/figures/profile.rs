@@ -41,9 +41,7 @@ pub fn figure(paper: &str, table: &str, rows: &[&InferenceRow]) -> Figure<Profil
             names.push(k);
         }
     }
-    let best = rows
-        .iter()
-        .find(|r| r.kind == BEST && r.objective == TABLE);
+    let best = rows.iter().find(|r| r.kind == BEST && r.objective == TABLE);
     let panels: Vec<ProfilePanel> = names
         .iter()
         .map(|&(name, refitted)| {
@@ -63,7 +61,11 @@ pub fn figure(paper: &str, table: &str, rows: &[&InferenceRow]) -> Figure<Profil
             ProfilePanel {
                 caption: format!(
                     "{name} ({})",
-                    if refitted { "others re-fitted" } else { "slice" }
+                    if refitted {
+                        "others re-fitted"
+                    } else {
+                        "slice"
+                    }
                 ),
                 x_desc,
                 x,

@@ -96,7 +96,10 @@ mod tests {
     fn log_ticks_are_dense_on_short_ranges() {
         assert_eq!(log_ticks(&(0.1..1.0)), vec![0.1, 0.2, 0.5, 1.0]);
         assert_eq!(log_ticks(&(1e-3..1e-1)).len(), 7);
-        assert_eq!(log_ticks(&(1e-4..1.0)), vec![1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2, 0.1, 0.3, 1.0]);
+        assert_eq!(
+            log_ticks(&(1e-4..1.0)),
+            vec![1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2, 0.1, 0.3, 1.0]
+        );
         assert_eq!(log_ticks(&(1e-9..1.0)).len(), 10);
     }
 

@@ -244,17 +244,31 @@ pub fn inference_section(paper: &str, x: &Explanations) -> String {
                 .copied()
                 .find(|r| r.kind == kind && r.objective == objective)
         };
-        let (Some(declared), Some(best)) = (find(inference::DECLARED, inference::TABLE), find(inference::BEST, inference::TABLE)) else {
+        let (Some(declared), Some(best)) = (
+            find(inference::DECLARED, inference::TABLE),
+            find(inference::BEST, inference::TABLE),
+        ) else {
             continue;
         };
         let _ = writeln!(out, "**{table}.**\n");
         for v in &verdicts {
             let _ = writeln!(out, "- {v}");
         }
+        let column_starts = of_table
+            .iter()
+            .any(|r| r.kind == inference::LOCAL && r.objective != inference::TABLE);
+        let profiled = of_table.iter().any(|r| r.profile().is_some());
         let _ = writeln!(
             out,
-            "\nSearch: {} evaluations in {:.0} s (a Halton sample of the continuous parameters for every discrete combination, then Nelder-Mead from the best few of the whole table and of each column alone, then the profiles); every optimum below is the best of all evaluations.\n",
-            best.evaluations, best.wall_s
+            "\nSearch: {} evaluations in {:.0} s (a Halton sample of the continuous parameters for every discrete combination, then Nelder-Mead from the best few of the whole table{}{}); every optimum below is the best of all evaluations.\n",
+            best.evaluations,
+            best.wall_s,
+            if column_starts { " and of each column alone" } else { "" },
+            if profiled {
+                ", then the profiles, and Nelder-Mead once more from a profile point that beat the optimum, if one did"
+            } else {
+                ""
+            }
         );
         let columns: Vec<&str> = of_table
             .iter()
@@ -285,7 +299,10 @@ pub fn inference_section(paper: &str, x: &Explanations) -> String {
         ];
         for c in &columns {
             if let Some(r) = find(inference::BEST, c) {
-                setups.push((format!("inferred setup (fitted to the paper): {c} alone"), r));
+                setups.push((
+                    format!("inferred setup (fitted to the paper): {c} alone"),
+                    r,
+                ));
             }
         }
         for (label, r) in setups {
@@ -398,7 +415,7 @@ pub fn inference_section(paper: &str, x: &Explanations) -> String {
     }
     let _ = writeln!(
         out,
-        "A column or table counts as reproduced when its relative residual ‖d − d_paper‖ / ‖d_paper‖ is at most {:.0} %; the table residual is the root mean square of the column residuals, so every column weighs alike whatever its magnitude. A profile is flat when its largest residual is below {}x its smallest, weakly determined below {}x. Every evaluated setup's residuals: `results/inference.csv`; the entries of the declared, joint and column fits: `results/inference-entries.csv`.",
+        "A column or table counts as reproduced when its relative residual ‖d − d_paper‖ / ‖d_paper‖ is at most {:.0} %; the table residual is the root mean square of the column residuals, so every column weighs alike whatever its magnitude. A column fitted alone has as many entries as the arm has joints against up to five continuous parameters and the discrete ones: a close column fit is weak evidence by itself; one setup that explains every column of a table is the stronger test. A profile is flat when its largest residual is below {}x its smallest, weakly determined below {}x. Every evaluated setup's residuals: `results/inference.csv`; the entries of the declared, joint and column fits: `results/inference-entries.csv`.",
         100.0 * verdict::REPRODUCED,
         verdict::FLAT,
         verdict::WEAK
