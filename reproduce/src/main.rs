@@ -96,8 +96,10 @@ struct Cli {
     /// results/ladder.csv and results/attribution.csv and the report), not the runs themselves.
     #[arg(long)]
     explain_only: bool,
-    /// Setup inference: fit the parameters the papers leave open (path pose, size where it is
-    /// assumed, direction, RMP reading) to a published drift table; `all`, a paper
+    /// Setup inference: fit the parameters the papers leave open (path pose and plane tilt,
+    /// size where it is assumed, direction, RMP reading; robot variant and MATLAB-default
+    /// tolerances as discrete hypotheses; experiments/inference/family.toml) to a published
+    /// drift table, jointly and column by column; `all`, a paper
     /// (`jia2019`), one table (`jia2019:T2`) or a comma-separated list of these. Writes
     /// results/inference.csv and
     /// results/inference-entries.csv (each table as it finishes), then re-renders the report.
@@ -477,12 +479,15 @@ fn explain(
     Ok(())
 }
 
-/// `--infer`: fits the selected published tables (see `explain::inference`).
+/// `--infer`: fits the selected published tables with the family of
+/// `experiments/inference/family.toml` (see `explain::inference`).
 fn infer(cli: &Cli, which: &str, jobs: &[Job], results: Option<&ResultsDir>) -> Result<(), String> {
-    use explain::inference::{fit, problem, rows, table_ids, Budget};
+    use explain::inference::{family::Family, fit, problem, rows, search::Target, table_ids};
     let root = report_root(cli)?;
     let values =
         records::paper_values::read_paper_values(&root.join("report").join("paper-values.csv"))?;
+    let family = Family::load(&cli.experiments_dir.join("inference").join("family.toml"))
+        .map_err(|e| e.to_string())?;
     let ids = table_ids(&values);
     let wanted: Vec<&str> = which.split(',').map(str::trim).collect();
     let selected: Vec<&(String, String)> = ids
@@ -501,17 +506,22 @@ fn infer(cli: &Cli, which: &str, jobs: &[Job], results: Option<&ResultsDir>) -> 
         ));
     }
     for (paper, table) in selected {
-        let p = problem(paper, table, &values, jobs)?;
+        let p = problem(paper, table, &values, jobs).map_err(|e| e.to_string())?;
         eprintln!(
-            "inferring the setup of {paper} {table}: {} columns, {} exact runs per evaluation",
+            "inferring the setup of {paper} {table}: {} columns, {} exact and {} network runs",
             p.columns.len(),
-            p.runs.len()
+            p.exact.len(),
+            p.network.len()
         );
-        let f = fit(&p, Budget::default());
-        let best = f.best();
+        let f = fit(&p, &family);
+        let best = f.outcome.best(Target::Joint);
         eprintln!(
             "  declared: residual {:.3}; best fit: residual {:.3} ({:?}), {} evaluations in {:.0} s",
-            f.declared.rel_residual, best.rel_residual, best.setup, f.evaluations, f.wall_s
+            f.outcome.declared.scores.joint,
+            best.scores.joint,
+            best.detail.setup,
+            f.outcome.evaluations,
+            f.wall_s
         );
         // Each table is written as soon as it is fitted: an interrupted --infer all keeps the
         // tables it finished.

@@ -145,7 +145,7 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, String> {
             .iter()
             .filter(|r| r.paper == paper && r.table == table)
             .collect();
-        if rows.iter().any(|r| r.kind.starts_with("profile: ")) {
+        if rows.iter().any(|r| r.profile().is_some()) {
             add(
                 profile::file_name(paper, table),
                 Job::Profiles(paper, table, rows),

@@ -261,35 +261,44 @@ impl PathPanel {
     }
 }
 
-/// One profile of the setup inference: the best relative residual (log scale) against the
-/// value of one parameter, the others re-fitted at each point.
+/// One profile of the setup inference: the best relative residual (log scale, ticks at 1, 2
+/// and 5 times each power of ten over a span of at most two decades) against the value of one
+/// parameter, and the best fit marked by a vertical and a horizontal line crossing at it.
 pub struct ProfilePanel {
     pub caption: String,
     /// The parameter and its unit.
     pub x_desc: String,
     pub x: Range<f64>,
     pub points: Vec<(f64, f64)>,
+    /// The best fit (parameter value, residual), if known.
+    pub best: Option<(f64, f64)>,
 }
 
 impl ProfilePanel {
     /// Draws the panel into `area`.
     pub fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), String> {
         let (inner, _) = titled(area, &self.caption)?;
-        let points: Vec<(f64, f64)> = self
-            .points
-            .iter()
-            .copied()
-            .filter(|&(x, v)| x.is_finite() && v.is_finite() && v > 0.0)
-            .collect();
-        let y = scale::log(points.iter().map(|p| p.1));
-        plot(
+        let ok = |&(x, v): &(f64, f64)| x.is_finite() && v.is_finite() && v > 0.0;
+        let points: Vec<(f64, f64)> = self.points.iter().copied().filter(ok).collect();
+        let best = self.best.filter(ok);
+        let y = scale::log(points.iter().chain(&best).map(|p| p.1));
+        let mut lines = vec![(super::style::colour(0).stroke_width(2), points)];
+        if let Some((bx, by)) = best {
+            let mark = super::style::colour(1).stroke_width(1);
+            lines.push((mark, vec![(bx, y.start), (bx, y.end)]));
+            lines.push((mark, vec![(self.x.start, by), (self.x.end, by)]));
+        }
+        let x_labels = ticks(&self.x);
+        let key_points = scale::log_ticks(&y);
+        plot_xy(
             &inner,
             self.x.clone(),
             &self.x_desc,
-            y.log_scale(),
+            &x_labels,
+            y.log_scale().with_key_points(key_points),
             "relative residual",
-            &decade,
-            &[(super::style::colour(0).stroke_width(2), points)],
+            &|v: &f64| tick(*v),
+            &lines,
         )
     }
 }
