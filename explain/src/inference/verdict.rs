@@ -66,7 +66,11 @@ pub fn describe_setup(r: &InferenceRow) -> String {
     if r.reverse {
         parts.push("reversed".to_string());
     }
-    parts.push(format!("RMP {}", r.rmp));
+    // The reading as printed is the declared one (and the only one of schemes without an RMP
+    // term): named only when another was inferred.
+    if r.rmp != schemes::spec::RmpReading::Printed.label() {
+        parts.push(format!("RMP read as {}", r.rmp));
+    }
     parts.join(", ")
 }
 
@@ -190,6 +194,16 @@ mod tests {
         let v = table_verdict(&refs).unwrap();
         assert_eq!(v.len(), 3);
         assert!(v[0].starts_with("A: reproduced within 10 %"), "{}", v[0]);
+        assert!(
+            !v[0].contains("RMP"),
+            "the declared reading goes unnamed: {}",
+            v[0]
+        );
+        let other = InferenceRow {
+            rmp: "expansion".into(),
+            ..rows[4].clone()
+        };
+        assert!(describe_setup(&other).ends_with("RMP read as expansion"));
         assert!(v[1].starts_with("B: not reproduced under any setup tried (best 60 %"));
         assert!(v[2].starts_with("No single setup tried explains both columns:"));
         assert!(v[2].ends_with("leaves A 30 %, B 57 %."), "{}", v[2]);

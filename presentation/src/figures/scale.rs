@@ -59,7 +59,8 @@ pub fn log_ticks(range: &Range<f64>) -> Vec<f64> {
     let mut e = lo;
     while e <= hi {
         for m in mantissas {
-            let v = m * 10f64.powf(e);
+            // Parsed from its decimal form: 3e-4 exactly, not 3 * 1e-4 with its rounding.
+            let v: f64 = format!("{m}e{e}").parse().unwrap_or(m * 10f64.powf(e));
             if v >= range.start * (1.0 - 1e-9) && v <= range.end * (1.0 + 1e-9) {
                 out.push(v);
             }

@@ -339,7 +339,7 @@ pub fn inference_section(paper: &str, x: &Explanations) -> String {
                 crate::figures::profile::file_name(paper, table)
             );
             out.push_str(
-                "\nProfiles of the whole-table optimum (each point: the best table residual with that parameter held at the value; \"re-fitted\": the other continuous parameters re-fitted there by Nelder-Mead, warm-started from the neighbouring point; \"slice\": held at the optimum):\n\n",
+                "\nProfiles of the whole-table optimum (each point: the best table residual with that parameter held at the value; \"re-fitted\": the other continuous parameters re-fitted there by Nelder-Mead, warm-started from the neighbouring point; \"slice\": held at the optimum). They are taken at the optimum of the global and local stages; where a profile point beat it, Nelder-Mead went on from there, and the optimum reported (marked in the figure) can lie below the profiles:\n\n",
             );
             let mut names: Vec<(&str, bool)> = Vec::new();
             for r in &profiles {
