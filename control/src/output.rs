@@ -45,8 +45,11 @@ pub struct ControlRow {
     pub tick_max_us: f64,
     pub max_track_err: f64,
     pub rms_track_err: f64,
+    /// |x - x*| of the joint command, relative (see [`crate::control_loop`]).
     pub max_dx: f64,
     pub rms_dx: f64,
+    /// max |x - x*| after the first second.
+    pub max_dx_settled: f64,
     /// |theta(T) - theta_0|_2 after the cycle (empty when the run stopped early).
     pub drift: Option<f64>,
     pub products_mean: Option<f64>,

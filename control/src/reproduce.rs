@@ -57,7 +57,10 @@ pub struct Summary {
 
 /// Whether a network is a zeroing network (its Taylor-type discrete form is defined).
 fn is_zeroing(spec: &SolverSpec) -> bool {
-    !matches!(spec, SolverSpec::LviPdnn { .. } | SolverSpec::SLviPdnn { .. })
+    !matches!(
+        spec,
+        SolverSpec::LviPdnn { .. } | SolverSpec::SLviPdnn { .. }
+    )
 }
 
 /// The network forms run on a task: Euler for every network, Taylor for the zeroing ones.
@@ -193,6 +196,7 @@ fn control_row(task: &Task, method: &Method, h: f64, mut out: LoopOutcome) -> Co
         rms_track_err: out.rms_track_err,
         max_dx: out.max_dx,
         rms_dx: out.rms_dx,
+        max_dx_settled: out.max_dx_settled,
         drift: out.drift.first().copied(),
         products_mean: out.products_mean,
         products_max: out.products_max,
@@ -201,14 +205,15 @@ fn control_row(task: &Task, method: &Method, h: f64, mut out: LoopOutcome) -> Co
     }
 }
 
-/// Runs everything (module docs) on the tasks of `root/experiments` and writes the result files
-/// into `root/results`; `progress` is told what runs.
+/// Runs everything (module docs) on the tasks of the experiment files in `experiments` and writes
+/// the result files into `results`; `progress` is told what runs.
 pub fn reproduce(
-    root: &std::path::Path,
+    experiments: &std::path::Path,
+    results: &std::path::Path,
     budget: &Budget,
     mut progress: impl FnMut(&str),
 ) -> Result<Summary, ControlError> {
-    let tasks = load_tasks(&root.join("experiments"), &TASKS)?;
+    let tasks = load_tasks(experiments, &TASKS)?;
     let h = budget.h;
     let mut control = Vec::new();
     let mut stability = Vec::new();
@@ -230,7 +235,10 @@ pub fn reproduce(
 
     for task in &tasks {
         progress(&format!("control: {} at {} ms", task.id(), h * 1e3));
-        let mut methods: Vec<Method> = Numerical::all().into_iter().map(Method::Numerical).collect();
+        let mut methods: Vec<Method> = Numerical::all()
+            .into_iter()
+            .map(Method::Numerical)
+            .collect();
         methods.extend(network_methods(task, 1));
         for method in &methods {
             control.push(control_row(task, method, h, run(task, method, h, 1, None)?));
@@ -240,7 +248,12 @@ pub fn reproduce(
         swept.push(Method::Numerical(Numerical::ActiveSet));
         for &hs in &budget.sweep {
             for method in &swept {
-                control.push(control_row(task, method, hs, run(task, method, hs, 1, None)?));
+                control.push(control_row(
+                    task,
+                    method,
+                    hs,
+                    run(task, method, hs, 1, None)?,
+                ));
             }
         }
         for spec in &task.networks {
@@ -283,7 +296,11 @@ pub fn reproduce(
             else {
                 continue;
             };
-            progress(&format!("claim: {} with {}", task.id(), spec.display_name()));
+            progress(&format!(
+                "claim: {} with {}",
+                task.id(),
+                spec.display_name()
+            ));
             let needed = steps_needed(h, limit);
             let check_steps = 2 * needed;
             let check = Method::Network {
@@ -335,9 +352,12 @@ pub fn reproduce(
         progress(&format!("cycles: {} x{}", task.id(), budget.cycles));
         let mut methods = vec![Method::Numerical(Numerical::ActiveSet)];
         methods.extend(network_methods(task, 1).into_iter().filter(|m| {
-            control
-                .iter()
-                .any(|r| r.task == task.id() && r.method == m.label() && r.h_ms == h * 1e3 && r.status == "ok")
+            control.iter().any(|r| {
+                r.task == task.id()
+                    && r.method == m.label()
+                    && r.h_ms == h * 1e3
+                    && r.status == "ok"
+            })
         }));
         for method in &methods {
             let out = run(task, method, h, budget.cycles, None)?;
@@ -368,12 +388,11 @@ pub fn reproduce(
         }
     }
 
-    let results = root.join("results");
-    output::write(&results, output::CONTROL_CSV, &control)?;
-    output::write(&results, output::STABILITY_CSV, &stability)?;
-    output::write(&results, output::CLAIM_CSV, &claims)?;
-    output::write(&results, output::CYCLES_CSV, &cycles)?;
-    output::write(&results, output::TREND_CSV, &trends)?;
+    output::write(results, output::CONTROL_CSV, &control)?;
+    output::write(results, output::STABILITY_CSV, &stability)?;
+    output::write(results, output::CLAIM_CSV, &claims)?;
+    output::write(results, output::CYCLES_CSV, &cycles)?;
+    output::write(results, output::TREND_CSV, &trends)?;
     let verdicts: Vec<Verdict> = claims
         .iter()
         .filter_map(|c| Verdict::from_label(&c.verdict))

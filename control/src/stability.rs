@@ -25,7 +25,7 @@
 //! limit, and the product gain x s_max is the figure of merit beside the papers' gains.
 
 use crate::control_loop::Observer;
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, Schur};
 use schemes::qp::Qp;
 use solvers::neural::{NeuralSolver, SolverSpec};
 
@@ -45,13 +45,24 @@ pub fn gain(spec: &SolverSpec) -> (&'static str, f64) {
     }
 }
 
-/// s_max of one Jacobian (module docs); `None` when no eigenvalue has a negative real part.
+/// Iteration limit of the Schur decomposition the eigenvalues come from.
+const SCHUR_ITERATIONS: usize = 100_000;
+
+/// s_max of one Jacobian (module docs); `None` when no eigenvalue has a negative real part or
+/// the eigenvalues cannot be computed. The matrix is first scaled to unit largest entry c
+/// (eigenvalues lambda = c mu, so s_max = (1/c) min -2 Re(mu) / |mu|^2), which keeps the Schur
+/// iteration well scaled for gains of 1e7.
 pub fn euler_limit(jac: &DMatrix<f64>) -> Option<f64> {
-    jac.clone()
+    let c = jac.amax();
+    if !(c > 0.0 && c.is_finite()) {
+        return None;
+    }
+    let schur = Schur::try_new(jac / c, 1e-14, SCHUR_ITERATIONS)?;
+    schur
         .complex_eigenvalues()
         .iter()
-        .filter(|l| l.re < 0.0)
-        .map(|l| -2.0 * l.re / l.norm_sqr())
+        .filter(|mu| mu.re < -1e-12 * mu.norm())
+        .map(|mu| -2.0 * mu.re / mu.norm_sqr() / c)
         .reduce(f64::min)
 }
 

@@ -86,9 +86,9 @@ pub fn load_tasks(dir: &std::path::Path, refs: &[TaskRef]) -> Result<Vec<Task>, 
                 .iter()
                 .filter(|j| j.experiment == r.experiment && j.variant == r.variant)
                 .collect();
-            let first = mine
-                .first()
-                .ok_or_else(|| ControlError::UnknownTask(format!("{} / {}", r.experiment, r.variant)))?;
+            let first = mine.first().ok_or_else(|| {
+                ControlError::UnknownTask(format!("{} / {}", r.experiment, r.variant))
+            })?;
             let networks = mine
                 .iter()
                 .filter_map(|j| match &j.solver {
@@ -147,9 +147,13 @@ pub fn with_task<V: TaskVisitor>(
                 })?;
             let theta0 = SVector::<f64, N>::from_column_slice(&job.theta0);
             let period = path.duration() / self.cycles.max(1) as f64;
-            Ok(self
-                .visitor
-                .visit(robot.as_ref(), path.as_ref(), scheme.as_ref(), &theta0, period))
+            Ok(self.visitor.visit(
+                robot.as_ref(),
+                path.as_ref(),
+                scheme.as_ref(),
+                &theta0,
+                period,
+            ))
         }
     }
     let robot = robot_by_name(&task.job.robot)

@@ -99,9 +99,15 @@ mod tests {
         assert_eq!(t.class, TrendClass::Accumulating);
         assert!((t.rate - 0.01).abs() < 1e-12);
         let settled: Vec<f64> = (1..=20).map(|c| 0.1 * (1.0 - 0.2f64.powi(c))).collect();
-        assert_eq!(classify(&settled, &changes(&settled)).unwrap().class, TrendClass::LimitCycle);
+        assert_eq!(
+            classify(&settled, &changes(&settled)).unwrap().class,
+            TrendClass::LimitCycle
+        );
         let wobble: Vec<f64> = (1..=20).map(|c| 0.1 + 0.01 * (c as f64).sin()).collect();
-        assert_eq!(classify(&wobble, &changes(&wobble)).unwrap().class, TrendClass::Bounded);
+        assert_eq!(
+            classify(&wobble, &changes(&wobble)).unwrap().class,
+            TrendClass::Bounded
+        );
         assert!(classify(&[0.1, 0.2], &[0.1, 0.1]).is_none());
     }
 }

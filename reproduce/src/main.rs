@@ -349,6 +349,19 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
             if !cli.skip_explain && !cli.exact_only {
                 explain(&cli, &jobs, &all, &git_rev)?;
             }
+            if !cli.exact_only {
+                let budget = control::Budget::default();
+                let s = control::reproduce(&cli.experiments_dir, &cli.results_dir, &budget, |m| {
+                    eprintln!("{m}")
+                })
+                .map_err(|e| e.to_string())?;
+                eprintln!(
+                    "control: {} runs, {} many-cycles runs, efficiency claim {}",
+                    s.control_runs,
+                    s.cycle_runs,
+                    s.verdict.label()
+                );
+            }
             match report_root(&cli) {
                 Ok(root) => render_report(&root)?,
                 Err(why) => eprintln!("report not rendered: {why}"),
