@@ -124,9 +124,19 @@ impl OsqpQp {
         let w = &self.w;
         QpDuals {
             lambda: w[..n_eq].iter().copied().collect::<Vec<_>>().into(),
-            mu: w[n_eq..n_eq + n_in].iter().copied().collect::<Vec<_>>().into(),
-            z_lower: (0..nx).map(|i| (-w[n_eq + n_in + i]).max(0.0)).collect::<Vec<_>>().into(),
-            z_upper: (0..nx).map(|i| w[n_eq + n_in + i].max(0.0)).collect::<Vec<_>>().into(),
+            mu: w[n_eq..n_eq + n_in]
+                .iter()
+                .copied()
+                .collect::<Vec<_>>()
+                .into(),
+            z_lower: (0..nx)
+                .map(|i| (-w[n_eq + n_in + i]).max(0.0))
+                .collect::<Vec<_>>()
+                .into(),
+            z_upper: (0..nx)
+                .map(|i| w[n_eq + n_in + i].max(0.0))
+                .collect::<Vec<_>>()
+                .into(),
         }
     }
 

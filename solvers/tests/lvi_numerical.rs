@@ -112,8 +112,14 @@ fn osqp_agrees_with_clarabel_warm() {
             osqp.solve(&qp)
                 .unwrap_or_else(|e| panic!("{shape:?} seed {seed}: {e}"));
             let dx = rel_dx(osqp.x(), exact.x.as_slice());
-            assert!(dx <= AGREE_TOL, "OSQP {shape:?} seed {seed}: |x - x_clarabel| = {dx:e}");
-            let kkt = qp.kkt_residuals(&osqp.x().iter().copied().collect::<Vec<_>>().into(), &osqp.duals());
+            assert!(
+                dx <= AGREE_TOL,
+                "OSQP {shape:?} seed {seed}: |x - x_clarabel| = {dx:e}"
+            );
+            let kkt = qp.kkt_residuals(
+                &osqp.x().iter().copied().collect::<Vec<_>>().into(),
+                &osqp.duals(),
+            );
             assert!(kkt.max() <= 1e-5, "OSQP {shape:?} seed {seed}: {kkt:?}");
             worst = worst.max(dx);
         }
