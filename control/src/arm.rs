@@ -2,9 +2,10 @@
 //! zero-order hold, as a controller applies it).
 //!
 //! Velocity level (the command is thetadot): theta(t_k + h) = theta_k + h u, thetadot = u.
-//! Acceleration level (the command is thetaddot): theta(t_k + h) = theta_k + h thetadot_k
-//! + (h^2 / 2) u, thetadot(t_k + h) = thetadot_k + h u. Both are the exact solutions of the
-//! arm's kinematic ODE (theta' = u, resp. theta'' = u) for constant u: no integration error.
+//! Acceleration level (the command is thetaddot):
+//! theta(t_k + h) = theta_k + h thetadot_k + (h^2 / 2) u, thetadot(t_k + h) = thetadot_k + h u.
+//! Both are the exact solutions of the arm's kinematic ODE (theta' = u, resp. theta'' = u) for
+//! constant u: no integration error.
 
 use nalgebra::SVector;
 use schemes::scheme::Level;

@@ -107,7 +107,7 @@ impl Observer for LimitProbe {
     }
 
     fn observe(&mut self, k: usize, t: f64, qp: &Qp, qp_dot: Option<&Qp>, x_star: &[f64]) {
-        if k % SAMPLE_EVERY != 0 || !self.analytic {
+        if !k.is_multiple_of(SAMPLE_EVERY) || !self.analytic {
             return;
         }
         let qp_dot = qp_dot.filter(|_| self.net.needs_qp_dot());

@@ -27,6 +27,7 @@
 //! (default here) OSQP then solves the KKT system of the guessed active set, which gives
 //! answers to ~1e-9 when the guess is right. [`OsqpSettings`] states the defaults.
 
+use nalgebra::DVector;
 use osqp::{CscMatrix, Problem, Settings, Status};
 use schemes::qp::{Qp, QpDims, QpDuals};
 use std::borrow::Cow;
@@ -122,21 +123,12 @@ impl OsqpQp {
     pub fn duals(&self) -> QpDuals {
         let QpDims { nx, n_eq, n_in } = self.dims;
         let w = &self.w;
+        let bound = |i: usize| w[n_eq + n_in + i];
         QpDuals {
-            lambda: w[..n_eq].iter().copied().collect::<Vec<_>>().into(),
-            mu: w[n_eq..n_eq + n_in]
-                .iter()
-                .copied()
-                .collect::<Vec<_>>()
-                .into(),
-            z_lower: (0..nx)
-                .map(|i| (-w[n_eq + n_in + i]).max(0.0))
-                .collect::<Vec<_>>()
-                .into(),
-            z_upper: (0..nx)
-                .map(|i| w[n_eq + n_in + i].max(0.0))
-                .collect::<Vec<_>>()
-                .into(),
+            lambda: DVector::from_column_slice(&w[..n_eq]),
+            mu: DVector::from_column_slice(&w[n_eq..n_eq + n_in]),
+            z_lower: DVector::from_fn(nx, |i, _| (-bound(i)).max(0.0)),
+            z_upper: DVector::from_fn(nx, |i, _| bound(i).max(0.0)),
         }
     }
 

@@ -117,7 +117,7 @@ fn osqp_agrees_with_clarabel_warm() {
                 "OSQP {shape:?} seed {seed}: |x - x_clarabel| = {dx:e}"
             );
             let kkt = qp.kkt_residuals(
-                &osqp.x().iter().copied().collect::<Vec<_>>().into(),
+                &nalgebra::DVector::from_column_slice(osqp.x()),
                 &osqp.duals(),
             );
             assert!(kkt.max() <= 1e-5, "OSQP {shape:?} seed {seed}: {kkt:?}");
