@@ -15,7 +15,8 @@
 //!   papers' gains;
 //! - [`claim`]: zhong2021's claim that the networks are more efficient than E47 and 94LVI,
 //!   decided on operation counts;
-//! - [`trend`]: the drift after each of K cycles and its trend;
+//! - [`trend`]: the drift after each of K cycles and its trend, at the control period and in
+//!   continuous time ([`continuous`], the exact column as the papers integrate);
 //! - [`reproduce`]: the entry point that runs all of it and writes `results/control*.csv`,
 //!   `results/cycles.csv` ([`output`]).
 //!
@@ -23,6 +24,7 @@
 
 pub mod arm;
 pub mod claim;
+pub mod continuous;
 pub mod control_loop;
 pub mod error;
 pub mod latency;

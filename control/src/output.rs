@@ -114,7 +114,8 @@ pub struct CycleRow {
     pub task: String,
     pub scheme: String,
     pub method: String,
-    pub h_ms: f64,
+    /// The control period; empty for a continuous-time run.
+    pub h_ms: Option<f64>,
     pub cycle: usize,
     pub drift: f64,
     pub change: f64,
@@ -126,7 +127,8 @@ pub struct TrendRow {
     pub task: String,
     pub scheme: String,
     pub method: String,
-    pub h_ms: f64,
+    /// The control period; empty for a continuous-time run.
+    pub h_ms: Option<f64>,
     pub status: String,
     pub cycles: usize,
     pub drift_first: Option<f64>,

@@ -7,6 +7,7 @@
 //! OSQP runs at 1 ms and the 20-cycle runs).
 
 use crate::claim::{self, decide, steps_needed, Verdict, ACCURACY, CHECK_TICKS};
+use crate::continuous::ExactCycles;
 use crate::control_loop::{run_loop, LoopOutcome, LoopSettings, Observer, Status};
 use crate::error::ControlError;
 use crate::latency::Latency;
@@ -23,6 +24,9 @@ use schemes::paths::Path;
 use schemes::scheme::Scheme;
 use solvers::lvi_numerical::LviMethod;
 use solvers::neural::{build_solver, SolverSpec};
+
+/// The method label of the continuous-time exact column in the many-cycles results.
+pub const CONTINUOUS_EXACT: &str = "exact (continuous)";
 
 /// How much is run.
 #[derive(Clone, Debug, PartialEq)]
@@ -359,33 +363,57 @@ pub fn reproduce(
                     && r.status == "ok"
             })
         }));
-        for method in &methods {
-            let out = run(task, method, h, budget.cycles, None)?;
-            for (c, (d, ch)) in out.drift.iter().zip(&out.cycle_change).enumerate() {
+        let mut record = |method: String, h_ms: Option<f64>, status: &str, drift: &[f64], change: &[f64]| {
+            for (c, (d, ch)) in drift.iter().zip(change).enumerate() {
                 cycles.push(CycleRow {
                     task: task.id(),
                     scheme: task.scheme(),
-                    method: method.label(),
-                    h_ms: h * 1e3,
+                    method: method.clone(),
+                    h_ms,
                     cycle: c + 1,
                     drift: *d,
                     change: *ch,
                 });
             }
-            let trend = classify(&out.drift, &out.cycle_change);
+            let trend = classify(drift, change);
             trends.push(TrendRow {
                 task: task.id(),
                 scheme: task.scheme(),
-                method: method.label(),
-                h_ms: h * 1e3,
-                status: out.status.label().to_string(),
-                cycles: out.drift.len(),
-                drift_first: out.drift.first().copied(),
-                drift_last: out.drift.last().copied(),
+                method,
+                h_ms,
+                status: status.to_string(),
+                cycles: drift.len(),
+                drift_first: drift.first().copied(),
+                drift_last: drift.last().copied(),
                 rate: trend.map(|t| t.rate),
                 class: trend.map(|t| t.class.label().to_string()),
             });
+        };
+        for method in &methods {
+            let out = run(task, method, h, budget.cycles, None)?;
+            record(
+                method.label(),
+                Some(h * 1e3),
+                out.status.label(),
+                &out.drift,
+                &out.cycle_change,
+            );
         }
+        let continuous = with_task(
+            task,
+            budget.cycles,
+            ExactCycles {
+                task,
+                cycles: budget.cycles,
+            },
+        )?;
+        record(
+            CONTINUOUS_EXACT.to_string(),
+            None,
+            &continuous.status,
+            &continuous.drift,
+            &continuous.change,
+        );
     }
 
     output::write(results, output::CONTROL_CSV, &control)?;

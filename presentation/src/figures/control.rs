@@ -158,16 +158,23 @@ pub fn cycles(rows: &[CycleRow]) -> Figure<PanelBody> {
     let series = keys
         .into_iter()
         .map(|(task, method)| {
-            let points = rows
+            let mine: Vec<&CycleRow> = rows
                 .iter()
                 .filter(|r| r.task == task && r.method == method)
+                .collect();
+            let period = mine
+                .first()
+                .and_then(|r| r.h_ms)
+                .map_or("continuous".to_string(), |h| format!("{h} ms"));
+            let points = mine
+                .iter()
                 .map(|r| (r.cycle as f64, r.drift.max(FLOOR)))
                 .collect();
-            (format!("{method} · {task}"), points)
+            (format!("{method} ({period}) · {task}"), points)
         })
         .collect();
     figure(
-        "Drift after each cycle at h = 1 ms".to_string(),
+        "Drift after each cycle".to_string(),
         "|theta(cT) - theta0| after cycle c",
         "cycle c",
         "drift (rad)",
