@@ -85,8 +85,10 @@ fn per_tick(c: &mut Criterion) {
     let tasks = load_tasks(&root.join("experiments"), &TASKS).expect("the experiment files");
     for task in &tasks {
         let qps = with_task(task, 1, Sample).expect("the task builds");
-        let mut methods: Vec<Method> =
-            Numerical::all().into_iter().map(Method::Numerical).collect();
+        let mut methods: Vec<Method> = Numerical::all()
+            .into_iter()
+            .map(Method::Numerical)
+            .collect();
         for spec in &task.networks {
             methods.push(Method::Network {
                 spec: spec.clone(),

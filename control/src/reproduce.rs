@@ -363,32 +363,33 @@ pub fn reproduce(
                     && r.status == "ok"
             })
         }));
-        let mut record = |method: String, h_ms: Option<f64>, status: &str, drift: &[f64], change: &[f64]| {
-            for (c, (d, ch)) in drift.iter().zip(change).enumerate() {
-                cycles.push(CycleRow {
+        let mut record =
+            |method: String, h_ms: Option<f64>, status: &str, drift: &[f64], change: &[f64]| {
+                for (c, (d, ch)) in drift.iter().zip(change).enumerate() {
+                    cycles.push(CycleRow {
+                        task: task.id(),
+                        scheme: task.scheme(),
+                        method: method.clone(),
+                        h_ms,
+                        cycle: c + 1,
+                        drift: *d,
+                        change: *ch,
+                    });
+                }
+                let trend = classify(drift, change);
+                trends.push(TrendRow {
                     task: task.id(),
                     scheme: task.scheme(),
-                    method: method.clone(),
+                    method,
                     h_ms,
-                    cycle: c + 1,
-                    drift: *d,
-                    change: *ch,
+                    status: status.to_string(),
+                    cycles: drift.len(),
+                    drift_first: drift.first().copied(),
+                    drift_last: drift.last().copied(),
+                    rate: trend.map(|t| t.rate),
+                    class: trend.map(|t| t.class.label().to_string()),
                 });
-            }
-            let trend = classify(drift, change);
-            trends.push(TrendRow {
-                task: task.id(),
-                scheme: task.scheme(),
-                method,
-                h_ms,
-                status: status.to_string(),
-                cycles: drift.len(),
-                drift_first: drift.first().copied(),
-                drift_last: drift.last().copied(),
-                rate: trend.map(|t| t.rate),
-                class: trend.map(|t| t.class.label().to_string()),
-            });
-        };
+            };
         for method in &methods {
             let out = run(task, method, h, budget.cycles, None)?;
             record(
@@ -401,7 +402,7 @@ pub fn reproduce(
         }
         let continuous = with_task(
             task,
-            budget.cycles,
+            1,
             ExactCycles {
                 task,
                 cycles: budget.cycles,

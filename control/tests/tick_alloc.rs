@@ -52,7 +52,12 @@ fn ticks_do_not_allocate() {
                 let n = count(|| result = solver.tick(k as f64 * 1e-3, qp, Some(qp), 1e-3));
                 // The scaled networks may blow up on random data; only allocation matters here.
                 let _ = result;
-                assert_eq!(n, 0, "{} on {shape:?} QP {k}: {n} allocations", method.label());
+                assert_eq!(
+                    n,
+                    0,
+                    "{} on {shape:?} QP {k}: {n} allocations",
+                    method.label()
+                );
             }
         }
     }
