@@ -33,3 +33,34 @@ pub fn advance<const N: usize>(
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_held_acceleration_moves_the_arm_along_its_parabola() {
+        let (mut theta, mut thetadot) = (
+            SVector::<f64, 2>::new(0.1, -0.2),
+            SVector::<f64, 2>::new(0.5, 0.0),
+        );
+        advance(
+            Level::Acceleration,
+            0.01,
+            &mut theta,
+            &mut thetadot,
+            &[2.0, -4.0, 9.0],
+        );
+        assert!((theta[0] - (0.1 + 0.005 + 0.0001)).abs() < 1e-15);
+        assert!((theta[1] - (-0.2 - 0.0002)).abs() < 1e-15);
+        assert_eq!(thetadot, SVector::<f64, 2>::new(0.52, -0.04));
+        advance(
+            Level::Velocity,
+            0.01,
+            &mut theta,
+            &mut thetadot,
+            &[1.0, 1.0],
+        );
+        assert_eq!(thetadot, SVector::<f64, 2>::new(1.0, 1.0));
+    }
+}

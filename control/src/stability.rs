@@ -117,3 +117,22 @@ impl Observer for LimitProbe {
         self.probe(t, qp, qp_dot);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_euler_limit_of_known_spectra() {
+        // A linear ZNN: J = -gamma I, limit 2 / gamma.
+        let j = DMatrix::from_diagonal_element(3, 3, -200.0);
+        assert!((euler_limit(&j).unwrap() - 0.01).abs() < 1e-15);
+        // A damped rotation: lambda = -a +- i w, limit 2a / (a^2 + w^2).
+        let (a, w) = (1e6, 3e6);
+        let j = DMatrix::from_row_slice(2, 2, &[-a, w, -w, -a]);
+        let expected = 2.0 * a / (a * a + w * w);
+        assert!((euler_limit(&j).unwrap() / expected - 1.0).abs() < 1e-12);
+        // Nothing contracts: no limit.
+        assert!(euler_limit(&DMatrix::from_diagonal_element(2, 2, 1.0)).is_none());
+    }
+}

@@ -57,3 +57,30 @@ impl Path for Cyclic {
         &self.breakpoints
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::paths::{build_path, PathSpec};
+    use nalgebra::Vector3;
+
+    #[test]
+    fn the_cycles_repeat_the_path() {
+        let once = || build_path(&PathSpec::new("star-lines", 5.0), Vector3::zeros()).unwrap();
+        let inner = once();
+        let cyclic = Cyclic::new(once(), 3);
+        assert_eq!(cyclic.duration(), 15.0);
+        assert_eq!(cyclic.period(), 5.0);
+        for t in [0.0, 0.7, 2.5, 4.9] {
+            for k in 0..3 {
+                let (a, b) = (cyclic.at(t + 5.0 * k as f64), inner.at(t));
+                let d = (a.r - b.r).norm() + (a.rdot - b.rdot).norm() + (a.rddot - b.rddot).norm();
+                assert!(d < 1e-9, "t = {t}, cycle {k}: {d:e}");
+            }
+        }
+        assert_eq!(cyclic.at(15.0), inner.at(5.0));
+        let n = inner.breakpoints().len();
+        assert_eq!(cyclic.breakpoints().len(), 3 * n + 2);
+        assert!(cyclic.breakpoints().windows(2).all(|w| w[0] < w[1]));
+    }
+}
