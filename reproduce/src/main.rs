@@ -409,6 +409,24 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
             if !cli.skip_explain && !cli.exact_only {
                 explain(&cli, &jobs, &all, &git_rev, Some(results))?;
             }
+            // The control experiments (control crate) with a whole, unselected reproduction.
+            if !cli.exact_only && cli.paper.is_none() && cli.experiment.is_empty() {
+                let budget = control::Budget::default();
+                match control::reproduce(&cli.experiments_dir, &cli.results_dir, &budget, |m| {
+                    eprintln!("{m}")
+                }) {
+                    Ok(s) => eprintln!(
+                        "control: {} runs, {} many-cycles runs, efficiency claim {}",
+                        s.control_runs,
+                        s.cycle_runs,
+                        s.verdict.label()
+                    ),
+                    Err(e @ control::ControlError::UnknownTask(_)) => {
+                        eprintln!("control experiments skipped: {e}")
+                    }
+                    Err(e) => return Err(e.to_string()),
+                }
+            }
             match report_root(&cli) {
                 Ok(root) => render_report(&root, results)?,
                 Err(why) => eprintln!("report not rendered: {why}"),

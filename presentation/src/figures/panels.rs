@@ -19,6 +19,9 @@ const X_LABEL_AREA: u32 = 40;
 const Y_LABEL_AREA: u32 = 72;
 /// Tick labels per axis.
 const TICKS: usize = 6;
+/// Width (px) and relative x extent of a [`LogLogPanel`]'s point marks.
+const MARK_WIDTH: u32 = 9;
+const MARK_SPAN: f64 = 1.015;
 
 /// One line of a panel.
 pub struct Series {
@@ -313,6 +316,8 @@ pub struct LogLogPanel {
     /// The y quantity and its unit.
     pub y_desc: String,
     pub series: Vec<Series>,
+    /// A dot at every point besides the lines (for series of one point).
+    pub marks: bool,
 }
 
 impl LogLogPanel {
@@ -348,6 +353,18 @@ impl LogLogPanel {
         x_ticks.sort_by(f64::total_cmp);
         x_ticks.dedup();
         let y = scale::log(lines.iter().flat_map(|(_, p)| p.iter().map(|q| q.1)));
+        let mut shapes = lines.clone();
+        if self.marks {
+            // A dot is a short segment of the series' colour, wide as a marker.
+            for (style, points) in &lines {
+                for &(px, py) in points {
+                    shapes.push((
+                        style.color.stroke_width(MARK_WIDTH),
+                        vec![(px / MARK_SPAN, py), (px * MARK_SPAN, py)],
+                    ));
+                }
+            }
+        }
         plot_xy(
             &inner,
             x.log_scale().with_key_points(x_ticks),
@@ -356,7 +373,7 @@ impl LogLogPanel {
             y.log_scale(),
             &self.y_desc,
             &decade,
-            &lines,
+            &shapes,
         )
     }
 }
