@@ -4,7 +4,11 @@
 //! Zhang, Li, Mao, Li and Fu, "Complete theory for E47 and 94LVI algorithms ...", CAC 2015).
 //! Both descend from He's projection-and-contraction methods for linear variational
 //! inequalities (B. He, Math. Programming 66, 1994: "94"; B. He, Appl. Math. Optim. 35, 1997).
-//! Written here from their published definitions.
+//! Written here, not copied: 94LVI is He's 1994 projection-and-contraction step; for E47 the
+//! public copies we could read gave the ICAL 2011 paper's abstract (an LVI/PLPE-based method
+//! with global linear convergence), not its update rule, so the E47 iteration below is the
+//! projected member of the same family as we understand it, and is recorded as such in
+//! report/deviations.md. Both are tested as QP solvers against Clarabel.
 //!
 //! # The problem they solve
 //!
