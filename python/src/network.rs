@@ -13,8 +13,10 @@
 //! where it returns None, the library differences F. Only these calls cross into Python: the
 //! arm, the scheme, the integrator and the exact scoring stay in Rust.
 //!
-//! A Python exception inside a call cannot unwind through the integrator: the call returns NaN
-//! (which stops the run as non-finite) and the first exception is kept ([`Callbacks::take_error`])
+//! A Python exception inside a call cannot unwind through the integrator: from then on the
+//! network answers ydot = 0 (and a zero Jacobian) without calling Python, so the run ends at
+//! once with the network frozen (NaN would leave the integrator shrinking its step), and the
+//! first exception is kept ([`Callbacks::take_error`])
 //! to be raised to the caller once the run has stopped.
 
 use nalgebra::{DMatrix, DVector};
@@ -153,6 +155,10 @@ impl PyNetwork {
         qp_dot: Option<&Qp>,
         read: impl FnOnce(&Bound<'_, PyAny>) -> PyResult<T>,
     ) -> Option<T> {
+        // After an exception the run is lost: answer at once (module docs).
+        if self.callbacks.lock().map_or(true, |c| c.error.is_some()) {
+            return None;
+        }
         let started = Instant::now();
         let out = Python::attach(|py| {
             let object = self.object.bind(py);
@@ -246,7 +252,7 @@ impl NeuralSolver for PyNetwork {
         let n = y.len();
         match self.call("rhs", t, y, qp, qp_dot, |r| read_vector(r, n, "rhs")) {
             Some(v) => ydot.copy_from_slice(&v),
-            None => ydot.fill(f64::NAN),
+            None => ydot.fill(0.0),
         }
     }
 
@@ -306,7 +312,7 @@ impl NeuralSolver for PyNetwork {
             }
             Some(None) => false,
             None => {
-                jac.fill(f64::NAN);
+                jac.fill(0.0);
                 true
             }
         }

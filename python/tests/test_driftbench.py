@@ -109,19 +109,25 @@ def test_numpy_znn_on_the_circle_matches_the_suites_znn():
 
 def test_a_numpy_network_on_the_leaderboard_beside_the_built_in_ones(tmp_path):
     standard = driftbench.standard_tasks(root=ROOT)
-    board = driftbench.leaderboard(
-        {"GNN (numpy)": Gnn()}, tasks=standard[:2], root=ROOT, out_dir=tmp_path
-    )
+    board = driftbench.leaderboard({"GNN (numpy)": Gnn()}, root=ROOT, out_dir=tmp_path)
     rows = board["leaderboard"]
     header = (ROOT / "results" / "leaderboard.csv").read_text().splitlines()[0]
     assert list(rows[0].keys()) == header.split(",")
-    ours = [r for r in rows if r["solver"] == "GNN (numpy)"]
-    assert len(ours) == 1 and ours[0]["solver_kind"] == "python" and ours[0]["tasks"] == 2
-    mates = [r["solver"] for r in rows if r["task_set"] == ours[0]["task_set"]]
+    # Ranked in the standard set (and in the zeroing networks' set of 5 tasks, as every
+    # solver that ran on all of them is).
+    ours = [r for r in rows if r["solver"] == "GNN (numpy)" and r["task_set"] == "standard"]
+    assert len(ours) == 1 and ours[0]["solver_kind"] == "python"
+    assert ours[0]["tasks"] == len(standard)
+    mates = [r["solver"] for r in rows if r["task_set"] == "standard"]
     assert "LVI-PDNN" in mates and len(mates) > 2
-    assert len(board["runs"]) == 2 and all(r["solver_kind"] == "python" for r in board["runs"])
+    assert sorted(r["rank"] for r in rows if r["task_set"] == "standard") == list(
+        range(1, len(mates) + 1)
+    )
+    assert len(board["runs"]) == len(standard)
+    assert all(r["solver_kind"] == "python" for r in board["runs"])
     written = (tmp_path / "leaderboard.csv").read_text().splitlines()
     assert written[0] == header and len(written) == len(rows) + 1
+
     # The runs.csv schema: as many drift_k columns as the rows' arms have joints.
     def columns(path):
         header = path.read_text().splitlines()[0].split(",")
@@ -130,6 +136,30 @@ def test_a_numpy_network_on_the_leaderboard_beside_the_built_in_ones(tmp_path):
     assert columns(tmp_path / "runs.csv") == columns(ROOT / "results" / "runs.csv")
     with pytest.raises(driftbench.DriftbenchError, match="already on the leaderboard"):
         driftbench.leaderboard({"LVI-PDNN": Gnn()}, tasks=standard[:1], root=ROOT)
+    clover = driftbench.task(CLOVER, root=ROOT)
+    with pytest.raises(driftbench.DriftbenchError, match="not in the standard task set"):
+        driftbench.leaderboard([Gnn()], tasks=[clover], root=ROOT)
+
+
+def test_a_trajectory_scores_as_the_run_that_made_it(tmp_path):
+    circle = driftbench.task(CIRCLE, root=ROOT)
+    run = driftbench.simulate(circle, Znn())
+    trace = run["trace"]
+    n = circle.dof
+    path = tmp_path / "znn.csv"
+    columns = ["t"] + [f"theta_{i + 1}" for i in range(n)] + [f"thetadot_{i + 1}" for i in range(n)]
+    table = np.column_stack([trace["t"], trace["theta"], trace["thetadot"]])
+    np.savetxt(path, table, delimiter=",", header=",".join(columns), comments="", fmt="%.17g")
+    scored = driftbench.score(circle, str(path), out_dir=tmp_path / "out")
+    assert scored["solver_kind"] == "trajectory" and scored["score_samples"] == len(trace["t"])
+    np.testing.assert_array_equal(scored["drift"], run["drift"])
+    assert within(scored["score_max_dx"], run["score_max_dx"], 1.0 + 1e-6)
+    assert (tmp_path / "out" / "scores.csv").exists()
+    assert list((tmp_path / "out" / "figures").glob("*.svg"))
+    arrays = driftbench.score(circle, {"t": trace["t"], "theta": trace["theta"]})
+    np.testing.assert_array_equal(arrays["drift"], run["drift"])
+    with pytest.raises(driftbench.DriftbenchError, match="ends at t ="):
+        driftbench.score(circle, {"t": trace["t"][:-1], "theta": trace["theta"][:-1]})
 
 
 def test_cost_of_a_python_call_is_reported():

@@ -18,7 +18,9 @@ A network is any object with
 
 ``simulate`` returns the run's ``results/runs.csv`` columns as a dict (``drift`` and ``trace``
 as numpy arrays, ``python_calls`` and ``python_seconds`` the cost of the Python calls);
-``frame`` turns a list of such rows into a pandas DataFrame when pandas is installed.
+``score(task, trajectory)`` scores a trajectory made elsewhere (a CSV file with columns ``t,
+theta_1..n[, thetadot_1..n]``, or a dict of arrays) with the same metrics and the same score
+against the exact optimum at the trajectory's own states. ``frame`` turns a list of such rows into a pandas DataFrame when pandas is installed.
 """
 
 from ._driftbench import (
@@ -26,6 +28,7 @@ from ._driftbench import (
     QpDims,
     Task,
     leaderboard,
+    score,
     simulate,
     standard_tasks,
     task,
@@ -38,6 +41,7 @@ __all__ = [
     "Task",
     "frame",
     "leaderboard",
+    "score",
     "simulate",
     "standard_tasks",
     "task",
