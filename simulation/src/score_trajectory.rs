@@ -127,11 +127,11 @@ impl Trajectory {
                 });
             }
         }
-        if !(self.t[0].abs() <= TIME_TOLERANCE * duration) {
+        if !self.t[0].is_finite() || self.t[0].abs() > TIME_TOLERANCE * duration {
             return Err(TrajectoryError::Start(self.t[0]));
         }
         let end = self.t[m - 1];
-        if !((end - duration).abs() <= TIME_TOLERANCE * duration) {
+        if (end - duration).abs() > TIME_TOLERANCE * duration {
             return Err(TrajectoryError::End { t: end, duration });
         }
         for (i, (a, b)) in self.theta[0].iter().zip(theta0).enumerate() {
@@ -234,7 +234,7 @@ fn score_with<const N: usize>(
                 observer.score(
                     t,
                     &ScoreSample {
-                        dx: (&command - x_star.rows(0, N)).amax(),
+                        dx: (command - x_star.rows(0, N)).amax(),
                         objective_gap: (qp.objective(&x) - f_star) / f_star.abs().max(1.0),
                         violation: qp.constraint_violation(&x),
                     },
