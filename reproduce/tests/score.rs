@@ -2,12 +2,17 @@
 //! suite's own ZNN run) is scored with the run's drift, and its row, trace and figure are
 //! written under --score-out; a task that does not exist is refused with the library's message.
 
-mod common;
-
-use common::reproduce;
 use simulation::experiment::{load_dir, PaperFile, SolverChoice};
 use simulation::run::run_job;
 use simulation::simulate::Outcome;
+use std::process::Command;
+
+/// The binary, in the workspace root.
+fn reproduce() -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_reproduce"));
+    c.current_dir(simulation::root::from_current_dir().unwrap());
+    c
+}
 
 #[test]
 fn a_trajectory_file_is_scored_on_its_task() {
