@@ -4,8 +4,10 @@
 //!   exact column to 1e-12): which digits are integration noise, and the converged drifts.
 //! - [`attribution`]: each run's drift split into scheme + network lag + integration error
 //!   (exact, telescoping), with the effect of each switched ingredient beside it.
-//! - [`inference`]: the setup the papers leave open (path pose, RMP reading) fitted to a
-//!   published table, always shown beside the declared setup, never instead of it.
+//! - [`inference`]: the setup the papers leave open (path pose and plane tilt, size, direction,
+//!   RMP reading; robot variant and MATLAB-default tolerances as discrete hypotheses) fitted to
+//!   a published table, jointly and column by column, always shown beside the declared setup,
+//!   never instead of it.
 //!
 //! The runs explained ([`targets`]) are those of the papers' solvers that a published column
 //! maps onto (`records::paper_values::MAPPINGS`), zhang2018's perturbed runs (its robustness

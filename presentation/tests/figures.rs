@@ -464,6 +464,13 @@ fn the_committed_figures_are_those_the_committed_results_give() {
         )
         .unwrap();
     }
+    // The control experiments' results (the `control` crate), where they exist.
+    for file in [control::output::CONTROL_CSV, control::output::CYCLES_CSV] {
+        let path = committed.join("results").join(file);
+        if path.exists() {
+            std::fs::copy(&path, root.join("results").join(file)).unwrap();
+        }
+    }
     copy_tree(
         &committed.join("results/traces"),
         &root.join("results/traces"),

@@ -41,6 +41,10 @@ fn renders_every_paper_and_experiment_from_the_committed_results() {
         "## Cost",
         "## Cross experiment",
         "## Published numbers without a run",
+        "## At a robot's control rate",
+        "### The efficiency claim: ",
+        "### Leaderboard: control rate",
+        "## Many cycles",
     ] {
         assert!(md.contains(heading), "missing {heading}");
     }

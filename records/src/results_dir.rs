@@ -94,6 +94,17 @@ impl ResultsDir {
             tracked,
             _lock: lock,
         };
+        // Every experiment's trace directory must stay inside (checked before anything runs,
+        // not when the first trace is written).
+        for e in std::fs::read_dir(dir.join(TRACES))
+            .into_iter()
+            .flatten()
+            .flatten()
+        {
+            results
+                .tracked
+                .resolve(&Path::new(TRACES).join(e.file_name()))?;
+        }
         if edits == Edits::Accept {
             for f in results.layout_files() {
                 results.tracked.adopt(&f)?;

@@ -10,7 +10,7 @@ use simulation::runner::run_jobs_with;
 use std::collections::HashSet;
 use std::fmt::Write as _;
 use std::io::Write as _;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 /// Regenerates the tables and error data of four papers on drift-free redundancy resolution
@@ -27,7 +27,7 @@ struct Cli {
     /// scheme and path).
     #[arg(long)]
     paper: Option<String>,
-    /// Run only this experiment (an id of experiments.md, e.g. jia2019-clover). Repeatable.
+    /// Run only this experiment (an id of docs/experiments.md, e.g. jia2019-clover). Repeatable.
     #[arg(long)]
     experiment: Vec<String>,
     /// Run only the exact column (Clarabel in the loop), no neural solvers.
@@ -96,8 +96,10 @@ struct Cli {
     /// results/ladder.csv and results/attribution.csv and the report), not the runs themselves.
     #[arg(long)]
     explain_only: bool,
-    /// Setup inference: fit the parameters the papers leave open (path pose, size where it is
-    /// assumed, direction, RMP reading) to a published drift table; `all`, a paper
+    /// Setup inference: fit the parameters the papers leave open (path pose and plane tilt,
+    /// size where it is assumed, direction, RMP reading; robot variant and MATLAB-default
+    /// tolerances as discrete hypotheses; experiments/inference/family.toml) to a published
+    /// drift table, jointly and column by column; `all`, a paper
     /// (`jia2019`), one table (`jia2019:T2`) or a comma-separated list of these. Writes
     /// results/inference.csv and
     /// results/inference-entries.csv (each table as it finishes), then re-renders the report.
@@ -245,6 +247,7 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
     }
     if cli.report_only {
         let root = report_root(&cli)?;
+        check_report_dir(&root)?;
         let results = open_results(&cli, &git_rev)?;
         render_report(&root, &results)?;
         return Ok(ExitCode::SUCCESS);
@@ -287,10 +290,7 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
         .transpose()?;
     if !cli.check && !cli.dry_run && cli.shard_resolved.is_none() {
         match report_root(&cli) {
-            Ok(root) => {
-                records::tracked_dir::TrackedDir::open_within(&root, "report")
-                    .map_err(|e| e.to_string())?;
-            }
+            Ok(root) => check_report_dir(&root)?,
             Err(why) => eprintln!(
                 "note: results go to {}, but {why}",
                 cli.results_dir.display()
@@ -432,6 +432,24 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
             if !cli.skip_explain && !cli.exact_only {
                 explain(&cli, &jobs, &all, &git_rev, Some(results))?;
             }
+            // The control experiments (control crate) with a whole, unselected reproduction.
+            if !cli.exact_only && cli.paper.is_none() && cli.experiment.is_empty() {
+                let budget = control::Budget::default();
+                match control::reproduce(&cli.experiments_dir, &cli.results_dir, &budget, |m| {
+                    eprintln!("{m}")
+                }) {
+                    Ok(s) => eprintln!(
+                        "control: {} runs, {} many-cycles runs, efficiency claim {}",
+                        s.control_runs,
+                        s.cycle_runs,
+                        s.verdict.label()
+                    ),
+                    Err(e @ control::ControlError::UnknownTask(_)) => {
+                        eprintln!("control experiments skipped: {e}")
+                    }
+                    Err(e) => return Err(e.to_string()),
+                }
+            }
             match report_root(&cli) {
                 Ok(root) => render_report(&root, results)?,
                 Err(why) => eprintln!("report not rendered: {why}"),
@@ -502,12 +520,15 @@ fn explain(
     Ok(())
 }
 
-/// `--infer`: fits the selected published tables (see `explain::inference`).
+/// `--infer`: fits the selected published tables with the family of
+/// `experiments/inference/family.toml` (see `explain::inference`).
 fn infer(cli: &Cli, which: &str, jobs: &[Job], results: Option<&ResultsDir>) -> Result<(), String> {
-    use explain::inference::{fit, problem, rows, table_ids, Budget};
+    use explain::inference::{family::Family, fit, problem, rows, search::Target, table_ids};
     let root = report_root(cli)?;
     let values =
         records::paper_values::read_paper_values(&root.join("report").join("paper-values.csv"))?;
+    let family = Family::load(&cli.experiments_dir.join("inference").join("family.toml"))
+        .map_err(|e| e.to_string())?;
     let ids = table_ids(&values);
     let wanted: Vec<&str> = which.split(',').map(str::trim).collect();
     let selected: Vec<&(String, String)> = ids
@@ -526,17 +547,22 @@ fn infer(cli: &Cli, which: &str, jobs: &[Job], results: Option<&ResultsDir>) -> 
         ));
     }
     for (paper, table) in selected {
-        let p = problem(paper, table, &values, jobs)?;
+        let p = problem(paper, table, &values, jobs).map_err(|e| e.to_string())?;
         eprintln!(
-            "inferring the setup of {paper} {table}: {} columns, {} exact runs per evaluation",
+            "inferring the setup of {paper} {table}: {} columns, {} exact and {} network runs",
             p.columns.len(),
-            p.runs.len()
+            p.exact.len(),
+            p.network.len()
         );
-        let f = fit(&p, Budget::default());
-        let best = f.best();
+        let f = fit(&p, &family);
+        let best = f.outcome.best(Target::Joint);
         eprintln!(
             "  declared: residual {:.3}; best fit: residual {:.3} ({:?}), {} evaluations in {:.0} s",
-            f.declared.rel_residual, best.rel_residual, best.setup, f.evaluations, f.wall_s
+            f.outcome.declared.scores.joint,
+            best.scores.joint,
+            best.detail.setup,
+            f.outcome.evaluations,
+            f.wall_s
         );
         // Each table is written as soon as it is fitted: an interrupted --infer all keeps the
         // tables it finished.
@@ -676,6 +702,17 @@ fn report_root(cli: &Cli) -> Result<PathBuf, String> {
             cli.results_dir.display()
         )),
     }
+}
+
+/// Checks, before anything runs, that `root/report` and its figures directory lie inside the
+/// project (no symbolic link leading elsewhere) and that the report can be written there.
+fn check_report_dir(root: &Path) -> Result<(), String> {
+    let report =
+        records::tracked_dir::TrackedDir::open_within(root, "report").map_err(|e| e.to_string())?;
+    report
+        .resolve(Path::new(presentation::figures::FIGURES))
+        .map_err(|e| e.to_string())?;
+    records::runs::check_writable(report.path())
 }
 
 /// Figures first (the report links them), then REPORT.md, then the leaderboard table (recorded

@@ -135,19 +135,7 @@ fn runs_of_deleted_experiments_are_pruned() {
     std::fs::create_dir_all(&results).unwrap();
     std::fs::write(
         experiments.join("kong2019.toml"),
-        r#"paper = "kong2019"
-title = "one cheap run"
-[[experiment]]
-id = "kong2019-kept"
-paper_output = "none"
-robot = "katana6m180"
-path = { name = "circle", duration = 9.0 }
-theta0 = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.0471975511965976]
-exact_integrator = { method = "bdf", rtol = 1e-8, atol = 1e-10 }
-[[experiment.variant]]
-label = "ZNN (eq. 22)"
-scheme = { kind = "kong2019-znn", mu = 1.0, k_p = 1.0 }
-"#,
+        common::CHEAP_EXPERIMENT.replace("kong2019-cheap", "kong2019-kept"),
     )
     .unwrap();
     let committed = read_runs(
@@ -171,13 +159,24 @@ scheme = { kind = "kong2019-znn", mu = 1.0, k_p = 1.0 }
     ));
     std::fs::write(&trace, "t\n0\n").unwrap();
 
-    let out = reproduce()
-        .args(["--experiments-dir"])
-        .arg(&experiments)
-        .arg("--results-dir")
-        .arg(&results)
-        .output()
-        .unwrap();
+    // Written by hand, so taken as it is (--accept-edited); every stored run goes, which must
+    // be said (--prune).
+    let run = |extra: &[&str]| {
+        reproduce()
+            .args(["--experiments-dir"])
+            .arg(&experiments)
+            .arg("--results-dir")
+            .arg(&results)
+            .arg("--accept-edited")
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    let out = run(&[]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--prune"));
+    assert!(trace.exists());
+    let out = run(&["--prune"]);
     assert!(
         out.status.success(),
         "{}",

@@ -3,25 +3,15 @@
 
 mod common;
 
-use common::reproduce;
+use common::{ok, reproduce};
 use records::runs::{read_runs, RunRow};
 use std::path::{Path, PathBuf};
-use std::process::Output;
 
 fn temp(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("driftbench-shards-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
-}
-
-fn ok(out: Output) -> Output {
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out
 }
 
 /// A cheap selection: kong2019's exact columns (11 runs, well under a second each).

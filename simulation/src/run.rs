@@ -7,7 +7,7 @@ use crate::robot_registry::{robot_by_name, RobotVisitor};
 use crate::simulate::{simulate, Outcome, Run, Settings, Solver};
 use nalgebra::SVector;
 use robots::{Dynamics, Robot};
-use schemes::paths::{build_path, Path};
+use schemes::paths::{build_path, Cyclic, Path};
 use schemes::qp::QpDims;
 use schemes::scheme::Scheme;
 use schemes::spec::build_scheme;
@@ -159,9 +159,26 @@ pub(crate) fn build_parts<const N: usize>(
     robot: Arc<dyn Robot<N>>,
     dynamics: Option<Arc<dyn Dynamics<N>>>,
 ) -> Result<(Arc<dyn Path>, Box<dyn Scheme<N>>), SetupError> {
+    build_cyclic_parts(job, robot, dynamics, 1)
+}
+
+/// [`build_parts`] with the job's path repeated `cycles` times ([`Cyclic`]; the path itself
+/// when `cycles` is 1), the scheme built on the repeated path.
+#[allow(clippy::type_complexity)]
+pub fn build_cyclic_parts<const N: usize>(
+    job: &Job,
+    robot: Arc<dyn Robot<N>>,
+    dynamics: Option<Arc<dyn Dynamics<N>>>,
+    cycles: usize,
+) -> Result<(Arc<dyn Path>, Box<dyn Scheme<N>>), SetupError> {
     let theta_ref = SVector::<f64, N>::from_column_slice(&job.theta_ref);
     let start = robot.position(&theta_ref);
-    let path: Arc<dyn Path> = Arc::from(build_path(&job.path, start)?);
+    let once = build_path(&job.path, start)?;
+    let path: Arc<dyn Path> = if cycles > 1 {
+        Arc::new(Cyclic::new(once, cycles))
+    } else {
+        Arc::from(once)
+    };
     let scheme = build_scheme::<N>(
         &job.scheme,
         robot.clone(),

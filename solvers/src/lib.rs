@@ -11,8 +11,10 @@
 pub mod active_set;
 pub mod exact;
 pub mod exact_path;
+pub mod lvi_numerical;
 pub mod neural;
 pub mod ode;
+pub mod osqp_qp;
 pub mod random_qp;
 
 pub use active_set::{

@@ -88,12 +88,14 @@ pub fn figure(scheme: &str, rows: &[&DofCostRow]) -> Figure<DofCostBody> {
                 x_desc: "joints N".to_string(),
                 y_desc: "median per call (us)".to_string(),
                 series: calls,
+                marks: false,
             },
             runs: LogLogPanel {
                 caption: "(b) one whole run".to_string(),
                 x_desc: "joints N".to_string(),
                 y_desc: "median per run (us)".to_string(),
                 series: runs,
+                marks: false,
             },
         },
     }

@@ -18,6 +18,8 @@
 //!   setup inference's profiles ([`profile`]).
 //! - `dof-cost__<scheme>.svg`, one per scheme of `results/dof-cost.csv`: the cost against the
 //!   number of joints ([`dof_cost`]).
+//! - `control__pareto__<task>.svg`, `control__stability.svg`, `control__cycles.svg`: the
+//!   control experiments ([`control`]).
 //!
 //! Each figure is drawn once against a generic plotters backend ([`layout::Body`]) and emitted
 //! both ways; figures are drawn in parallel. The output is a function of the inputs only (no
@@ -25,6 +27,7 @@
 //! byte-identical figures.
 
 mod arm;
+pub mod control;
 pub mod dof_cost;
 mod layout;
 mod legend;
@@ -36,6 +39,7 @@ mod scale;
 mod style;
 mod trace;
 
+use ::control::output::{ControlRow, CycleRow};
 use explain::inference::InferenceRow;
 use layout::Rendered;
 use rayon::prelude::*;
@@ -79,6 +83,9 @@ enum Job<'a> {
     Overview(&'a str, Vec<(&'a RunRow, &'a Trace)>),
     Profiles(&'a str, &'a str, Vec<&'a InferenceRow>),
     DofCost(&'a str, Vec<&'a DofCostRow>),
+    Pareto(&'a str, f64, Vec<&'a ControlRow>),
+    Stability(Vec<&'a ControlRow>),
+    Cycles(&'a [CycleRow]),
 }
 
 impl Job<'_> {
@@ -89,6 +96,9 @@ impl Job<'_> {
             Job::Overview(experiment, members) => overview::figure(experiment, members).render(),
             Job::Profiles(paper, table, rows) => profile::figure(paper, table, rows).render(),
             Job::DofCost(scheme, rows) => dof_cost::figure(scheme, rows).render(),
+            Job::Pareto(task, h, rows) => control::pareto(task, *h, rows).render(),
+            Job::Stability(rows) => control::stability(rows).render(),
+            Job::Cycles(rows) => control::cycles(rows).render(),
         }
     }
 }
@@ -151,7 +161,7 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, String> {
             .iter()
             .filter(|r| r.paper == paper && r.table == table)
             .collect();
-        if rows.iter().any(|r| r.kind.starts_with("profile: ")) {
+        if rows.iter().any(|r| r.profile().is_some()) {
             add(
                 profile::file_name(paper, table),
                 Job::Profiles(paper, table, rows),
@@ -166,6 +176,29 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, String> {
     for scheme in schemes {
         let rows: Vec<&DofCostRow> = dof_rows.iter().filter(|r| r.scheme == scheme).collect();
         add(dof_cost::file_name(scheme), Job::DofCost(scheme, rows))?;
+    }
+
+    let results = root.join("results");
+    let read_error = |e: ::control::ControlError| e.to_string();
+    let control_rows: Vec<ControlRow> =
+        ::control::output::read(&results, ::control::output::CONTROL_CSV).map_err(read_error)?;
+    let cycle_rows: Vec<CycleRow> =
+        ::control::output::read(&results, ::control::output::CYCLES_CSV).map_err(read_error)?;
+    let mut tasks: Vec<&str> = control_rows.iter().map(|r| r.task.as_str()).collect();
+    tasks.dedup();
+    let h_main = ::control::Budget::default().h * 1e3;
+    for task in tasks {
+        let rows: Vec<&ControlRow> = control_rows.iter().filter(|r| r.task == task).collect();
+        add(control::pareto_name(task), Job::Pareto(task, h_main, rows))?;
+    }
+    if !control_rows.is_empty() {
+        add(
+            control::STABILITY_NAME.to_string(),
+            Job::Stability(control_rows.iter().collect()),
+        )?;
+    }
+    if !cycle_rows.is_empty() {
+        add(control::CYCLES_NAME.to_string(), Job::Cycles(&cycle_rows))?;
     }
 
     let figures: BTreeMap<String, Rendered> = jobs

@@ -19,6 +19,9 @@ const X_LABEL_AREA: u32 = 40;
 const Y_LABEL_AREA: u32 = 72;
 /// Tick labels per axis.
 const TICKS: usize = 6;
+/// Width (px) and relative x extent of a [`LogLogPanel`]'s point marks.
+const MARK_WIDTH: u32 = 9;
+const MARK_SPAN: f64 = 1.015;
 
 /// One line of a panel.
 pub struct Series {
@@ -261,35 +264,44 @@ impl PathPanel {
     }
 }
 
-/// One profile of the setup inference: the best relative residual (log scale) against the
-/// value of one parameter, the others re-fitted at each point.
+/// One profile of the setup inference: the best relative residual (log scale, ticks at 1, 2
+/// and 5 times each power of ten over a span of at most two decades) against the value of one
+/// parameter, and the best fit marked by a vertical and a horizontal line crossing at it.
 pub struct ProfilePanel {
     pub caption: String,
     /// The parameter and its unit.
     pub x_desc: String,
     pub x: Range<f64>,
     pub points: Vec<(f64, f64)>,
+    /// The best fit (parameter value, residual), if known.
+    pub best: Option<(f64, f64)>,
 }
 
 impl ProfilePanel {
     /// Draws the panel into `area`.
     pub fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), String> {
         let (inner, _) = titled(area, &self.caption)?;
-        let points: Vec<(f64, f64)> = self
-            .points
-            .iter()
-            .copied()
-            .filter(|&(x, v)| x.is_finite() && v.is_finite() && v > 0.0)
-            .collect();
-        let y = scale::log(points.iter().map(|p| p.1));
-        plot(
+        let ok = |&(x, v): &(f64, f64)| x.is_finite() && v.is_finite() && v > 0.0;
+        let points: Vec<(f64, f64)> = self.points.iter().copied().filter(ok).collect();
+        let best = self.best.filter(ok);
+        let y = scale::log(points.iter().chain(&best).map(|p| p.1));
+        let mut lines = vec![(super::style::colour(0).stroke_width(2), points)];
+        if let Some((bx, by)) = best {
+            let mark = super::style::colour(1).stroke_width(1);
+            lines.push((mark, vec![(bx, y.start), (bx, y.end)]));
+            lines.push((mark, vec![(self.x.start, by), (self.x.end, by)]));
+        }
+        let x_labels = ticks(&self.x);
+        let key_points = scale::log_ticks(&y);
+        plot_xy(
             &inner,
             self.x.clone(),
             &self.x_desc,
-            y.log_scale(),
+            &x_labels,
+            y.log_scale().with_key_points(key_points),
             "relative residual",
-            &decade,
-            &[(super::style::colour(0).stroke_width(2), points)],
+            &|v: &f64| tick(*v),
+            &lines,
         )
     }
 }
@@ -304,6 +316,8 @@ pub struct LogLogPanel {
     /// The y quantity and its unit.
     pub y_desc: String,
     pub series: Vec<Series>,
+    /// A dot at every point besides the lines (for series of one point).
+    pub marks: bool,
 }
 
 impl LogLogPanel {
@@ -339,6 +353,18 @@ impl LogLogPanel {
         x_ticks.sort_by(f64::total_cmp);
         x_ticks.dedup();
         let y = scale::log(lines.iter().flat_map(|(_, p)| p.iter().map(|q| q.1)));
+        let mut shapes = lines.clone();
+        if self.marks {
+            // A dot is a short segment of the series' colour, wide as a marker.
+            for (style, points) in &lines {
+                for &(px, py) in points {
+                    shapes.push((
+                        style.color.stroke_width(MARK_WIDTH),
+                        vec![(px / MARK_SPAN, py), (px * MARK_SPAN, py)],
+                    ));
+                }
+            }
+        }
         plot_xy(
             &inner,
             x.log_scale().with_key_points(x_ticks),
@@ -347,7 +373,7 @@ impl LogLogPanel {
             y.log_scale(),
             &self.y_desc,
             &decade,
-            &lines,
+            &shapes,
         )
     }
 }

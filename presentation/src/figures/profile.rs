@@ -1,10 +1,11 @@
 //! The setup inference's profiles of one published table (`results/inference.csv`): one panel
-//! per fitted parameter, the best relative residual with the other parameters re-fitted (points
-//! where a run of the table failed are left out).
+//! per profiled parameter, the best table residual with that parameter held at each value
+//! (the others re-fitted there, or held at the optimum for a slice, as the panel says), the
+//! best fit of the whole table marked (points where a run of the table failed are left out).
 
 use super::layout::{Area, Body, Figure};
 use super::panels::ProfilePanel;
-use explain::inference::{InferenceRow, FAILED};
+use explain::inference::{InferenceRow, BEST, FAILED, PHASE, ROTATION, SCALE, TABLE};
 use plotters::prelude::*;
 use std::f64::consts::PI;
 
@@ -13,7 +14,7 @@ pub fn file_name(paper: &str, table: &str) -> String {
     format!("inference-{paper}-{table}__profiles.svg")
 }
 
-/// What a profile figure draws under its title: one panel per parameter, side by side.
+/// What a profile figure draws under its title: one panel per parameter, three to a row.
 pub struct ProfilesBody {
     panels: Vec<ProfilePanel>,
 }
@@ -23,7 +24,8 @@ impl Body for ProfilesBody {
         if self.panels.is_empty() {
             return Ok(());
         }
-        let cells = area.split_evenly((1, self.panels.len()));
+        let cols = self.panels.len().min(3);
+        let cells = area.split_evenly((self.panels.len().div_ceil(cols), cols));
         for (panel, cell) in self.panels.iter().zip(&cells) {
             panel.draw(cell)?;
         }
@@ -33,43 +35,47 @@ impl Body for ProfilesBody {
 
 /// The figure of one table's profiles; `rows` are that table's rows of `inference.csv`.
 pub fn figure(paper: &str, table: &str, rows: &[&InferenceRow]) -> Figure<ProfilesBody> {
-    let mut names: Vec<&str> = rows
-        .iter()
-        .filter_map(|r| r.kind.strip_prefix("profile: "))
-        .collect();
-    names.dedup();
+    let mut names: Vec<(&str, bool)> = Vec::new();
+    for k in rows.iter().filter_map(|r| r.profile()) {
+        if !names.contains(&k) {
+            names.push(k);
+        }
+    }
+    let best = rows.iter().find(|r| r.kind == BEST && r.objective == TABLE);
     let panels: Vec<ProfilePanel> = names
         .iter()
-        .map(|&name| {
+        .map(|&(name, refitted)| {
             let points = rows
                 .iter()
-                .filter(|r| r.kind.strip_prefix("profile: ") == Some(name))
+                .filter(|r| r.profile() == Some((name, refitted)))
                 // A point whose run failed carries the penalty residual: not drawn.
                 .filter(|r| r.rel_residual < FAILED)
-                .map(|r| {
-                    let x = match name {
-                        "rotation" => r.rotation,
-                        "phase" => r.phase,
-                        _ => r.scale_factor,
-                    };
-                    (x, r.rel_residual)
-                })
+                .map(|r| (r.parameter(name), r.rel_residual))
                 .collect();
             let (x_desc, x) = match name {
-                "rotation" => ("in-plane rotation (rad)", 0.0..2.0 * PI),
-                "phase" => ("start phase (cycle fraction)", 0.0..1.0),
-                _ => ("size factor", 0.0..2.2),
+                ROTATION => ("in-plane rotation (rad)".to_string(), 0.0..2.0 * PI),
+                PHASE => ("start phase (cycle fraction)".to_string(), 0.0..1.0),
+                SCALE => ("size factor".to_string(), 0.0..4.2),
+                tilt => (format!("{tilt} (rad)"), -PI / 2.0..PI / 2.0),
             };
             ProfilePanel {
-                caption: format!("residual against {name}"),
-                x_desc: x_desc.to_string(),
+                caption: format!(
+                    "{name} ({})",
+                    if refitted {
+                        "others re-fitted"
+                    } else {
+                        "slice"
+                    }
+                ),
+                x_desc,
                 x,
                 points,
+                best: best.map(|b| (b.parameter(name), b.rel_residual)),
             }
         })
         .collect();
     Figure {
-        title: format!("{paper} {table}: setup inference profiles (others re-fitted)"),
+        title: format!("{paper} {table}: setup inference profiles, best fit marked"),
         body: ProfilesBody { panels },
     }
 }

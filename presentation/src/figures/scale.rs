@@ -46,6 +46,30 @@ pub fn log(values: impl IntoIterator<Item = f64>) -> Range<f64> {
     }
 }
 
+/// Ticks of a log axis over `range` (from [`log`]): 1, 2 and 5 times each power of ten when the
+/// range spans at most two decades, 1 and 3 times up to four, the powers of ten beyond.
+pub fn log_ticks(range: &Range<f64>) -> Vec<f64> {
+    let (lo, hi) = (range.start.log10().floor(), range.end.log10().ceil());
+    let mantissas: &[f64] = match hi - lo {
+        d if d <= 2.0 => &[1.0, 2.0, 5.0],
+        d if d <= 4.0 => &[1.0, 3.0],
+        _ => &[1.0],
+    };
+    let mut out = Vec::new();
+    let mut e = lo;
+    while e <= hi {
+        for m in mantissas {
+            // Parsed from its decimal form: 3e-4 exactly, not 3 * 1e-4 with its rounding.
+            let v: f64 = format!("{m}e{e}").parse().unwrap_or(m * 10f64.powf(e));
+            if v >= range.start * (1.0 - 1e-9) && v <= range.end * (1.0 + 1e-9) {
+                out.push(v);
+            }
+        }
+        e += 1.0;
+    }
+    out
+}
+
 /// Widens the shorter of two linear ranges (about its centre) so that one metre spans as many
 /// pixels along x as along y on a plot of `pixels` = (width, height).
 pub fn equal_aspect(x: Range<f64>, y: Range<f64>, pixels: (u32, u32)) -> (Range<f64>, Range<f64>) {
@@ -67,6 +91,17 @@ mod tests {
         assert_eq!(log([0.0, 3e-7, 2e-4, f64::NAN]), 1e-7..1e-3);
         assert_eq!(log([0.0]), 1e-16..1.0);
         assert_eq!(log([1e-5]), 1e-5..1e-4);
+    }
+
+    #[test]
+    fn log_ticks_are_dense_on_short_ranges() {
+        assert_eq!(log_ticks(&(0.1..1.0)), vec![0.1, 0.2, 0.5, 1.0]);
+        assert_eq!(log_ticks(&(1e-3..1e-1)).len(), 7);
+        assert_eq!(
+            log_ticks(&(1e-4..1.0)),
+            vec![1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2, 0.1, 0.3, 1.0]
+        );
+        assert_eq!(log_ticks(&(1e-9..1.0)).len(), 10);
     }
 
     #[test]

@@ -13,12 +13,15 @@
 //! - the [`score`] of every neural run against the exact optimum;
 //! - the [`leaderboard`]: every velocity-level solver on the standard task set, qpbenchmark-style;
 //! - the [`cost`] of every run, and zhong2021's MATLAB comparison as ratios;
+//! - [`control`]: every solver at a robot's control rate, zhong2021's efficiency claim, and
+//!   many cycles (`results/control*.csv`, `results/cycles*.csv`);
 //! - [`performance`]: per-instant costs against the exact solvers and the KKT floor, the cost
 //!   against the number of joints, whole runs against the MATLAB times, and the machine;
 //! - the [`cross`] experiment matrices;
 //! - the published numbers without a run (`records::paper_values`), and the deviations.
 
 pub mod claims;
+pub mod control;
 pub mod cost;
 pub mod cross;
 pub mod figures;
@@ -72,6 +75,8 @@ pub struct Inputs {
     pub explanations: why::Explanations,
     /// `results/dof-cost.csv` (absent = empty).
     pub dof_cost: Vec<records::dof_cost::DofCostRow>,
+    /// The control experiments' result files (absent = empty).
+    pub control: control::ControlResults,
 }
 
 impl Inputs {
@@ -93,6 +98,7 @@ impl Inputs {
                 entries: read_csv(&results.join("inference-entries.csv"))?,
             },
             dof_cost: records::dof_cost::read(&results)?,
+            control: control::ControlResults::load(&results)?,
         })
     }
 }
@@ -118,6 +124,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
         figures,
         explanations,
         dof_cost,
+        control,
     } = inputs;
     let mut out = header::header(runs, values.len(), figures.len());
 
@@ -225,6 +232,8 @@ pub fn to_markdown(inputs: &Inputs) -> String {
     out.push('\n');
 
     out.push_str(&performance::section(dof_cost, runs, values, figures));
+    out.push_str(&control::section(control, runs, figures));
+    out.push_str(&control::cycles_section(control, figures));
 
     out.push_str("## Cross experiment\n\nEvery velocity-level solver on every velocity-level scheme and path (ids: ");
     out.push_str(

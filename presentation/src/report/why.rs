@@ -5,7 +5,8 @@
 
 use super::markdown::{sci, sci_opt, Table, MISSING};
 use explain::attribution::AttributionRow;
-use explain::inference::{EntryRow, InferenceRow};
+use explain::inference::family::Integration;
+use explain::inference::{self, verdict, EntryRow, InferenceRow};
 use explain::ladder::LadderRow;
 use records::paper_values::{published, PaperValue, MAPPINGS};
 use std::fmt::Write as _;
@@ -232,34 +233,91 @@ pub fn inference_section(paper: &str, x: &Explanations) -> String {
     tables.dedup();
     let mut out = String::new();
     for table in tables {
-        let of = |kind: &str| rows.iter().find(|r| r.table == table && r.kind == kind);
-        let (Some(declared), Some(best)) = (of("declared"), of("best fit")) else {
+        let of_table: Vec<&InferenceRow> =
+            rows.iter().copied().filter(|r| r.table == table).collect();
+        let Some(verdicts) = verdict::table_verdict(&of_table) else {
             continue;
         };
-        let _ = writeln!(out, "**{table}.** {}\n", sentence(declared, best));
+        let find = |kind: &str, objective: &str| {
+            of_table
+                .iter()
+                .copied()
+                .find(|r| r.kind == kind && r.objective == objective)
+        };
+        let (Some(declared), Some(best)) = (
+            find(inference::DECLARED, inference::TABLE),
+            find(inference::BEST, inference::TABLE),
+        ) else {
+            continue;
+        };
+        let _ = writeln!(out, "**{table}.**\n");
+        for v in &verdicts {
+            let _ = writeln!(out, "- {v}");
+        }
+        let column_starts = of_table
+            .iter()
+            .any(|r| r.kind == inference::LOCAL && r.objective != inference::TABLE);
+        let profiled = of_table.iter().any(|r| r.profile().is_some());
+        let _ = writeln!(
+            out,
+            "\nSearch: {} evaluations in {:.0} s (a Halton sample of the continuous parameters for every discrete combination, then Nelder-Mead from the best few of the whole table{}{}); every optimum below is the best of all evaluations.\n",
+            best.evaluations,
+            best.wall_s,
+            if column_starts { " and of each column alone" } else { "" },
+            if profiled {
+                ", then the profiles, and Nelder-Mead once more from a profile point that beat the optimum, if one did"
+            } else {
+                ""
+            }
+        );
+        let columns: Vec<&str> = of_table
+            .iter()
+            .filter(|r| r.kind == inference::BEST && r.objective != inference::TABLE)
+            .map(|r| r.objective.as_str())
+            .collect();
         let mut t = Table::new([
             "setup",
+            "robot",
+            "drift computed by",
             "rotation (rad)",
+            "tilt x / y (rad)",
             "phase",
             "size factor",
             "reversed",
             "RMP reading",
-            "rel. residual",
+            "rel. residual (of what it is fitted to)",
+            "table residual",
             "max entry error",
             "signs as the paper",
         ]);
-        for (label, r) in [
-            ("declared", declared),
-            ("inferred setup (fitted to the paper)", best),
-        ] {
+        let mut setups = vec![
+            ("declared".to_string(), declared),
+            (
+                "inferred setup (fitted to the paper): whole table".to_string(),
+                best,
+            ),
+        ];
+        for c in &columns {
+            if let Some(r) = find(inference::BEST, c) {
+                setups.push((
+                    format!("inferred setup (fitted to the paper): {c} alone"),
+                    r,
+                ));
+            }
+        }
+        for (label, r) in setups {
             t.push([
-                label.to_string(),
+                label,
+                r.robot.clone(),
+                integration_words(r.integration).to_string(),
                 format!("{:.3}", r.rotation),
+                format!("{:.3} / {:.3}", r.tilt_x, r.tilt_y),
                 format!("{:.3}", r.phase),
                 format!("{:.3}", r.scale_factor),
                 r.reverse.to_string(),
                 r.rmp.clone(),
-                sci(r.rel_residual),
+                residual(r.rel_residual),
+                residual(r.table_residual),
                 sci_opt(r.max_entry_error),
                 match (r.signs_matched, r.entries) {
                     (Some(s), Some(n)) => format!("{s} of {n}"),
@@ -268,9 +326,11 @@ pub fn inference_section(paper: &str, x: &Explanations) -> String {
             ]);
         }
         out.push_str(&t.render());
-        let profiles: Vec<&&InferenceRow> = rows
+        out.push_str(&hypotheses_table(&of_table, &columns));
+        let profiles: Vec<&InferenceRow> = of_table
             .iter()
-            .filter(|r| r.table == table && r.kind.starts_with("profile: "))
+            .copied()
+            .filter(|r| r.profile().is_some())
             .collect();
         if !profiles.is_empty() {
             let _ = writeln!(
@@ -278,22 +338,25 @@ pub fn inference_section(paper: &str, x: &Explanations) -> String {
                 "\n![{paper} {table}: inference profiles](figures/{})",
                 crate::figures::profile::file_name(paper, table)
             );
-            let mut names: Vec<&str> = profiles
-                .iter()
-                .map(|r| r.kind.trim_start_matches("profile: "))
-                .collect();
-            names.dedup();
-            out.push_str("\nProfiles (residual with the other parameters re-fitted):\n\n");
-            for name in names {
-                let pts: Vec<String> = profiles
+            out.push_str(
+                "\nProfiles of the whole-table optimum (each point: the best table residual with that parameter held at the value; \"re-fitted\": the other continuous parameters re-fitted there by Nelder-Mead, warm-started from the neighbouring point; \"slice\": held at the optimum). They are taken at the optimum of the global and local stages; where a profile point beat it, Nelder-Mead went on from there, and the optimum reported (marked in the figure) can lie below the profiles:\n\n",
+            );
+            let mut names: Vec<(&str, bool)> = Vec::new();
+            for r in &profiles {
+                let k = r.profile().expect("a profile row");
+                if !names.contains(&k) {
+                    names.push(k);
+                }
+            }
+            for (name, refitted) in names {
+                let along: Vec<&&InferenceRow> = profiles
                     .iter()
-                    .filter(|r| r.kind.trim_start_matches("profile: ") == name)
+                    .filter(|r| r.profile() == Some((name, refitted)))
+                    .collect();
+                let pts: Vec<String> = along
+                    .iter()
                     .map(|r| {
-                        let v = match name {
-                            "rotation" => r.rotation,
-                            "phase" => r.phase,
-                            _ => r.scale_factor,
-                        };
+                        let v = r.parameter(name);
                         if r.rel_residual >= FAILED_RESIDUAL {
                             format!("{v:.2} → failed (a run of the table failed)")
                         } else {
@@ -301,28 +364,25 @@ pub fn inference_section(paper: &str, x: &Explanations) -> String {
                         }
                     })
                     .collect();
-                let spread = profile_spread(&profiles, name);
+                let spread = verdict::spread(along.iter().map(|r| r.rel_residual));
                 let _ = writeln!(
                     out,
-                    "- {name}: {} ({})",
+                    "- {name} ({}): {} ({})",
+                    if refitted { "re-fitted" } else { "slice" },
                     pts.join(", "),
-                    if spread < 1.25 {
-                        "flat: the table does not determine it"
-                    } else if spread < 2.0 {
-                        "weakly determined: the residual moves by less than 2x over the range"
-                    } else {
-                        "determined"
-                    }
+                    verdict::profile_verdict(spread)
                 );
             }
         }
         let entries: Vec<&EntryRow> = x
             .entries
             .iter()
-            .filter(|e| e.paper == paper && e.table == table && e.setup == "best fit")
+            .filter(|e| e.paper == paper && e.table == table && e.setup == inference::BEST)
             .collect();
         if !entries.is_empty() {
-            out.push_str("\nPer-entry residuals of the inferred setup (ours / paper):\n\n");
+            out.push_str(
+                "\nPer-entry residuals of the inferred setup of the whole table (ours / paper):\n\n",
+            );
             let mut columns: Vec<&str> = entries.iter().map(|e| e.column.as_str()).collect();
             columns.dedup();
             let n = entries.iter().map(|e| e.joint).max().unwrap_or(0);
@@ -353,56 +413,78 @@ pub fn inference_section(paper: &str, x: &Explanations) -> String {
         }
         out.push('\n');
     }
+    let _ = writeln!(
+        out,
+        "A column or table counts as reproduced when its relative residual ‖d − d_paper‖ / ‖d_paper‖ is at most {:.0} %; the table residual is the root mean square of the column residuals, so every column weighs alike whatever its magnitude. A column fitted alone has as many entries as the arm has joints against up to five continuous parameters and the discrete ones: a close column fit is weak evidence by itself; one setup that explains every column of a table is the stronger test. A profile is flat when its largest residual is below {}x its smallest, weakly determined below {}x. Every evaluated setup's residuals: `results/inference.csv`; the entries of the declared, joint and column fits: `results/inference-entries.csv`.",
+        100.0 * verdict::REPRODUCED,
+        verdict::FLAT,
+        verdict::WEAK
+    );
+    out
+}
+
+/// A residual, or "failed" for the penalty of a setup whose run failed.
+fn residual(r: f64) -> String {
+    if r >= FAILED_RESIDUAL {
+        "failed".to_string()
+    } else {
+        sci(r)
+    }
+}
+
+fn integration_words(i: Integration) -> &'static str {
+    match i {
+        Integration::Exact => "exact column",
+        Integration::NetworkMatlabDefault => "network, MATLAB defaults",
+        Integration::NetworkStated => "network, stated tolerances",
+    }
+}
+
+/// The best of each hypothesis (robot x how the drift is computed): the whole table and each
+/// column alone; empty with a single hypothesis.
+fn hypotheses_table(rows: &[&InferenceRow], columns: &[&str]) -> String {
+    let hyp: Vec<&&InferenceRow> = rows
+        .iter()
+        .filter(|r| r.kind == inference::HYPOTHESIS)
+        .collect();
+    let mut keys: Vec<(&str, Integration)> = Vec::new();
+    for r in &hyp {
+        if !keys.contains(&(r.robot.as_str(), r.integration)) {
+            keys.push((r.robot.as_str(), r.integration));
+        }
+    }
+    if keys.len() < 2 {
+        return String::new();
+    }
+    let mut header = vec![
+        "hypothesis (robot, drift computed by)".to_string(),
+        "best table residual".to_string(),
+    ];
+    header.extend(columns.iter().map(|c| format!("best {c} alone")));
+    let mut t = Table::new(header);
+    for (robot, integration) in keys {
+        let cell = |objective: &str| {
+            hyp.iter()
+                .find(|r| {
+                    r.robot == robot && r.integration == integration && r.objective == objective
+                })
+                .map_or(MISSING.to_string(), |r| residual(r.rel_residual))
+        };
+        let mut row = vec![
+            format!("{robot}, {}", integration_words(integration)),
+            cell(inference::TABLE),
+        ];
+        row.extend(columns.iter().map(|c| cell(c)));
+        t.push(row);
+    }
+    let mut out = String::from(
+        "\nThe best of each discrete hypothesis (the pose re-fitted under each; relative residuals):\n\n",
+    );
+    out.push_str(&t.render());
     out
 }
 
 use explain::inference::FAILED as FAILED_RESIDUAL;
-
-/// Largest over smallest residual along one profile (failed points left out).
-fn profile_spread(profiles: &[&&InferenceRow], name: &str) -> f64 {
-    let r: Vec<f64> = profiles
-        .iter()
-        .filter(|r| r.kind.trim_start_matches("profile: ") == name)
-        .map(|r| r.rel_residual)
-        .filter(|r| *r < FAILED_RESIDUAL)
-        .collect();
-    let lo = r.iter().copied().fold(f64::INFINITY, f64::min);
-    let hi = r.iter().copied().fold(0.0, f64::max);
-    hi / lo.max(f64::MIN_POSITIVE)
-}
-
-/// Entries within this relative error count as reproduced.
-const WITHIN: f64 = 0.25;
-
-/// The verdict of one table's inference in one sentence.
-pub fn sentence(declared: &InferenceRow, best: &InferenceRow) -> String {
-    let max = best.max_entry_error.unwrap_or(f64::INFINITY);
-    let head = if max <= WITHIN {
-        format!(
-            "Reproduced under an inferred setup (every entry within {:.0} %).",
-            100.0 * max
-        )
-    } else if best.rel_residual <= WITHIN {
-        format!(
-            "Close under an inferred setup: the table as a whole within {:.0} % (relative residual), single entries up to {:.0} % off.",
-            100.0 * best.rel_residual,
-            100.0 * max
-        )
-    } else {
-        format!(
-            "No setup in this family (rotation, start phase, size, direction, RMP reading) comes within {:.0} % (best relative residual {:.0} %): the table is not consistent with the stated scheme under any pose tried.",
-            100.0 * WITHIN,
-            100.0 * best.rel_residual
-        )
-    };
-    format!(
-        "{head} Declared setup: residual {}; inferred: {} after {} exact-run evaluations ({:.0} s).",
-        sci(declared.rel_residual),
-        sci(best.rel_residual),
-        best.evaluations,
-        best.wall_s
-    )
-}
 
 /// The whole "Why the numbers differ" subsection of one paper.
 pub fn section(paper: &str, x: &Explanations, values: &[PaperValue]) -> String {
@@ -537,18 +619,21 @@ pub fn summary(paper: &str, x: &Explanations, values: &[PaperValue]) -> String {
             sci(hi)
         ));
     }
-    let best: Vec<&InferenceRow> = x
+    let mut tables: Vec<&str> = x
         .inference
         .iter()
-        .filter(|r| r.paper == paper && r.kind == "best fit")
+        .filter(|r| r.paper == paper)
+        .map(|r| r.table.as_str())
         .collect();
-    for b in best {
-        if let Some(d) = x
+    tables.dedup();
+    for table in tables {
+        let rows: Vec<&InferenceRow> = x
             .inference
             .iter()
-            .find(|r| r.paper == paper && r.table == b.table && r.kind == "declared")
-        {
-            out.push_str(&format!(" {}: {}", b.table, sentence(d, b)));
+            .filter(|r| r.paper == paper && r.table == table)
+            .collect();
+        if let Some(v) = verdict::table_verdict(&rows).and_then(|v| v.last().cloned()) {
+            out.push_str(&format!(" {table}: {v}"));
         }
     }
     out.push('\n');

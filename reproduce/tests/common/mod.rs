@@ -1,5 +1,7 @@
-//! What the binary's process tests share: starting `reproduce`, and killing a run once it has
-//! checkpointed some runs.
+//! What the binary's process tests share: a cheap experiment, starting `reproduce` and checking
+//! it succeeded, and killing a run once it has checkpointed some runs.
+// Compiled into each test crate of the binary; each uses a part of it.
+#![allow(dead_code)]
 
 use records::runs::read_runs;
 use std::path::Path;
@@ -25,6 +27,32 @@ scheme = { kind = "kong2019-finite-time", beta_theta = 1.0, k_p = 1.0, alpha = 0
 solvers = [{ kind = "finite-time", beta = 1.0, alpha = 0.1, smoothing = 1e-6 }]
 integrator = { method = "dopri5", rtol = 1e-6, atol = 1e-8 }
 "#;
+
+/// One cheap experiment (kong2019's ZNN scheme, exact column only, BDF at 1e-8: well under a
+/// second); tests append variants or rename it.
+pub const CHEAP_EXPERIMENT: &str = r#"paper = "kong2019"
+title = "one cheap run"
+[[experiment]]
+id = "kong2019-cheap"
+paper_output = "none"
+robot = "katana6m180"
+path = { name = "circle", duration = 9.0 }
+theta0 = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.0471975511965976]
+exact_integrator = { method = "bdf", rtol = 1e-8, atol = 1e-10 }
+[[experiment.variant]]
+label = "ZNN (eq. 22)"
+scheme = { kind = "kong2019-znn", mu = 1.0, k_p = 1.0 }
+"#;
+
+/// The process succeeded (its standard error otherwise in the panic).
+pub fn ok(out: std::process::Output) -> std::process::Output {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
 
 /// The `reproduce` binary, started in the workspace root.
 pub fn reproduce() -> Command {

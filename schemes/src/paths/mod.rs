@@ -35,6 +35,7 @@
 
 pub mod characters;
 pub mod curve;
+pub mod cyclic;
 pub mod error;
 pub mod polyline_global;
 pub mod pose;
@@ -45,6 +46,7 @@ pub mod time_law;
 
 pub use characters::{Character, DAI, PING};
 pub use curve::{ClosedCurve, CurveShape};
+pub use cyclic::Cyclic;
 pub use error::PathError;
 pub use polyline_global::{shift_closed_loop, GlobalPolyline};
 pub use pose::{pose_rotation, Posed};

@@ -142,9 +142,23 @@ impl LviCore {
         &self.e
     }
 
+    /// z = y - (M y + q) of the last [`LviCore::residual`] call (so M y + q = y - z there).
+    pub fn z(&self) -> &[f64] {
+        &self.z
+    }
+
+    /// Projects `v` onto Omega in place (the clamp of the module docs).
+    pub fn project(&self, qp: &Qp, v: &mut [f64]) {
+        let QpDims { nx, n_eq, .. } = self.dims;
+        for (i, vi) in v.iter_mut().enumerate() {
+            let (lo, hi) = omega(qp, nx, n_eq, i);
+            *vi = vi.max(lo).min(hi);
+        }
+    }
+
     /// out = scale * (I + M') e with the e of the last [`LviCore::residual`] call:
     /// M' e = [P' e_x + A' e_u - G' e_v; -A e_x; G e_x].
-    fn i_plus_mt_e(&self, qp: &Qp, scale: f64, out: &mut [f64]) {
+    pub fn i_plus_mt_e(&self, qp: &Qp, scale: f64, out: &mut [f64]) {
         let QpDims { nx, n_eq, n_in } = self.dims;
         let e = &self.e;
         let (ex, rest) = e.split_at(nx);

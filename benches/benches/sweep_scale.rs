@@ -1,0 +1,89 @@
+//! Sweeps at scale: expanding, validating, listing and sharding 10^4, 10^5 and 10^6 runs, and
+//! merging 10^5 stored rows, each timed once with the process's peak memory after it
+//! (`VmHWM`). Every step is linear in the runs (hash maps, no pairwise scans), which this
+//! bench shows as time per run staying flat across the three sizes.
+//!
+//! `cargo bench -p driftbench-benches --bench sweep_scale` (about a minute; the numbers are in
+//! docs/cluster.md). Under `cargo test --benches` it runs the smallest size only.
+
+use records::runs::{merge, RunRow};
+use simulation::experiment::{Job, PaperFile};
+use std::time::Instant;
+
+/// An experiment file whose one variant sweeps kong2019's mu over `n` values (exact column
+/// only: one run per value).
+fn sweep_file(n: usize) -> String {
+    format!(
+        r#"paper = "kong2019"
+title = "sweep at scale"
+[[experiment]]
+id = "kong2019-scale"
+paper_output = "none"
+robot = "katana6m180"
+path = {{ name = "circle", duration = 9.0 }}
+theta0 = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.0471975511965976]
+[[experiment.variant]]
+label = "ZNN"
+scheme = {{ kind = "kong2019-znn", mu = 1.0, k_p = 1.0 }}
+sweep = {{ "scheme.mu" = {{ from = 1, to = {n}, step = 1 }} }}
+"#
+    )
+}
+
+/// Peak resident memory of this process so far, in MB (Linux; 0 elsewhere).
+fn peak_mb() -> f64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("VmHWM:"))
+                .and_then(|l| l.split_whitespace().nth(1))
+                .and_then(|kb| kb.parse::<f64>().ok())
+        })
+        .map_or(0.0, |kb| kb / 1024.0)
+}
+
+fn timed<T>(what: &str, n: usize, f: impl FnOnce() -> T) -> T {
+    let t = Instant::now();
+    let out = f();
+    let s = t.elapsed().as_secs_f64();
+    println!(
+        "{what:<34} {n:>9} runs {s:>8.2} s {:>8.2} us/run   peak {:>7.0} MB",
+        1e6 * s / n as f64,
+        peak_mb()
+    );
+    out
+}
+
+fn main() {
+    let full = std::env::args().any(|a| a == "--bench");
+    let sizes: &[usize] = if full {
+        &[10_000, 100_000, 1_000_000]
+    } else {
+        &[1_000]
+    };
+    for &n in sizes {
+        let text = sweep_file(n);
+        let file = timed("expand + validate (load)", n, || {
+            PaperFile::from_toml(&text).expect("a valid sweep")
+        });
+        let jobs: Vec<Job> = timed("jobs + keys (list)", n, || {
+            let jobs = file.jobs();
+            let keys: usize = jobs.iter().map(|j| j.key().len()).sum();
+            assert!(keys > 0);
+            jobs
+        });
+        timed("shard plan (8 shards)", n, || {
+            let keys: Vec<String> = jobs.iter().map(Job::key).collect();
+            records::shard::plan(keys.iter().map(String::as_str), 8)
+        });
+        if n <= 100_000 {
+            let rows: Vec<RunRow> = jobs
+                .iter()
+                .map(|j| RunRow::blank(&j.experiment, &j.variant, "exact (Clarabel)", "exact"))
+                .collect();
+            let half = rows[..n / 2].to_vec();
+            timed("merge stored + fresh rows", n, || merge(rows, half).len());
+        }
+    }
+}

@@ -1,0 +1,102 @@
+//! The many-cycles runs in continuous time, as the papers simulate: the exact column (the QP's
+//! optimum in the loop, [`simulation::simulate`] with the experiment's exact integrator,
+//! Dormand-Prince 5(4) at RelTol 1e-11) over the task's path repeated K times.
+//!
+//! The K cycles are K runs of one cycle each, every run started where the previous ended (its
+//! last accepted state, at t = T exactly), with the same scheme and path (the scheme's
+//! reference pose stays the experiment's): at the velocity level, where the arm's state is
+//! theta alone, that is exactly the K-cycle motion; at the acceleration level each cycle
+//! starts from rest, dropping the arm's residual speed at c T (the path itself rests there).
+//! The drift after cycle c is |theta(c T) - theta_0|.
+
+use crate::task::{Task, TaskVisitor};
+use nalgebra::SVector;
+use robots::Robot;
+use schemes::paths::Path;
+use schemes::scheme::Scheme;
+use simulation::experiment::NetworkInit;
+use simulation::simulate::{simulate, Outcome, Scoring, Settings, Solver};
+
+/// The drifts and per-cycle changes of a continuous run, and how it ended.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContinuousCycles {
+    /// `ok`, or the failure with its instant.
+    pub status: String,
+    pub drift: Vec<f64>,
+    pub change: Vec<f64>,
+}
+
+fn distance(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).powi(2))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// Runs the exact column of `task` for `cycles` cycles (a [`TaskVisitor`]; use with
+/// [`crate::task::with_task`] and one cycle: the runs are chained here).
+pub struct ExactCycles<'a> {
+    pub task: &'a Task,
+    pub cycles: usize,
+}
+
+impl TaskVisitor for ExactCycles<'_> {
+    type Output = ContinuousCycles;
+    fn visit<const N: usize>(
+        self,
+        robot: &dyn Robot<N>,
+        path: &dyn Path,
+        scheme: &dyn Scheme<N>,
+        theta0: &SVector<f64, N>,
+        _period: f64,
+    ) -> Self::Output {
+        let job = &self.task.job;
+        let theta_ref = SVector::<f64, N>::from_column_slice(&job.theta_ref);
+        let settings = Settings {
+            integrator: job.integrator,
+            scoring: Scoring::Off,
+            network_init: NetworkInit::Zero,
+        };
+        let mut out = ContinuousCycles {
+            status: "ok".to_string(),
+            drift: Vec::new(),
+            change: Vec::new(),
+        };
+        let mut start = *theta0;
+        for _ in 0..self.cycles {
+            let run = simulate(
+                robot,
+                path,
+                scheme,
+                Solver::Exact,
+                &start,
+                &theta_ref,
+                &settings,
+            );
+            let end = match run {
+                Ok(r) => match (&r.outcome, r.trace.last()) {
+                    (Outcome::Completed(_), Some(last)) => {
+                        SVector::<f64, N>::from_column_slice(&last.theta)
+                    }
+                    (Outcome::Failed { t, error, .. }, _) => {
+                        out.status = format!("failed at t = {t}: {error}");
+                        break;
+                    }
+                    (Outcome::Completed(_), None) => {
+                        out.status = "failed: no trace".to_string();
+                        break;
+                    }
+                },
+                Err(e) => {
+                    out.status = format!("failed: {e}");
+                    break;
+                }
+            };
+            out.drift.push(distance(end.as_slice(), theta0.as_slice()));
+            out.change.push(distance(end.as_slice(), start.as_slice()));
+            start = end;
+        }
+        out
+    }
+}

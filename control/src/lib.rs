@@ -1,0 +1,41 @@
+//! The controller's view of the four papers' redundancy-resolution schemes (issue 19).
+//!
+//! Every run of the rest of the suite is continuous time and one cycle, integrated by a
+//! variable-step ODE solver, as the papers simulate. A robot runs its redundancy resolution as a
+//! discrete loop at a fixed rate and repeats its task. Here:
+//!
+//! - [`control_loop`]: a scheme run at a fixed control period h (default 1 ms), the command
+//!   held over each tick and the arm integrated exactly between ticks ([`arm`]), with the
+//!   per-tick solver ([`method`]) either a network stepped in discrete time ([`network_tick`]:
+//!   forward Euler; for the zeroing networks also the Taylor-type discrete-time ZNN) or a
+//!   numerical QP method ([`numerical_tick`]: E47, 94LVI, the hot-started active set, Clarabel,
+//!   OSQP); latency per tick ([`latency`]), tracking error, |x - x*| and drift;
+//! - [`stability`]: each network's largest stable step, from the spectrum of its Jacobian
+//!   (forward Euler is stable iff |1 + s lambda| <= 1 for every eigenvalue lambda), beside the
+//!   papers' gains;
+//! - [`claim`]: zhong2021's claim that the networks are more efficient than E47 and 94LVI,
+//!   decided on operation counts;
+//! - [`trend`]: the drift after each of K cycles and its trend, at the control period and in
+//!   continuous time ([`continuous`], the exact column as the papers integrate);
+//! - [`reproduce`]: the entry point that runs all of it and writes `results/control*.csv`,
+//!   `results/cycles.csv` ([`output`]).
+//!
+//! The standard task set is [`task::TASKS`].
+
+pub mod arm;
+pub mod claim;
+pub mod continuous;
+pub mod control_loop;
+pub mod error;
+pub mod latency;
+pub mod method;
+pub mod network_tick;
+pub mod numerical_tick;
+pub mod output;
+pub mod reproduce;
+pub mod stability;
+pub mod task;
+pub mod trend;
+
+pub use error::ControlError;
+pub use reproduce::{reproduce, Budget, Summary};

@@ -1,0 +1,123 @@
+//! What runs at every control tick: a network stepped in discrete time
+//! ([`crate::network_tick`]) or a numerical QP method ([`crate::numerical_tick`]), behind one
+//! interface, [`TickSolver`].
+
+use crate::error::ControlError;
+use crate::network_tick::{Discretisation, NetworkTick};
+use crate::numerical_tick::{ActiveSetTick, ClarabelTick, LviTick, OsqpTick};
+use schemes::qp::{Qp, QpDims};
+use solvers::lvi_numerical::{LviMethod, LviSettings};
+use solvers::neural::SolverSpec;
+use solvers::osqp_qp::OsqpSettings;
+
+/// A numerical QP method, solved to its tolerance at every tick.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Numerical {
+    /// E47 or 94LVI ([`solvers::lvi_numerical`]), warm-started from the previous tick.
+    Lvi(LviMethod, LviSettings),
+    /// The dense active-set solver hot-started from the previous tick's working set.
+    ActiveSet,
+    /// Clarabel (interior point: no warm start).
+    Clarabel,
+    /// OSQP, data updated in place and warm-started.
+    Osqp(OsqpSettings),
+}
+
+impl Numerical {
+    /// The methods of the control experiments, at their default settings.
+    pub fn all() -> [Numerical; 5] {
+        [
+            Numerical::Lvi(LviMethod::E47, LviSettings::default()),
+            Numerical::Lvi(LviMethod::Lvi94, LviSettings::default()),
+            Numerical::ActiveSet,
+            Numerical::Clarabel,
+            Numerical::Osqp(OsqpSettings::default()),
+        ]
+    }
+
+    /// Display name.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Numerical::Lvi(m, _) => m.name(),
+            Numerical::ActiveSet => "active set",
+            Numerical::Clarabel => "Clarabel",
+            Numerical::Osqp(_) => "OSQP",
+        }
+    }
+}
+
+/// What computes the joint command at each tick.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Method {
+    /// A network, `substeps` steps of its discrete form per tick (step h / substeps).
+    Network {
+        spec: SolverSpec,
+        form: Discretisation,
+        substeps: u32,
+    },
+    Numerical(Numerical),
+}
+
+impl Method {
+    /// The label in results: the method's name, a network's form and its substeps when not 1.
+    pub fn label(&self) -> String {
+        match self {
+            Method::Network {
+                spec,
+                form,
+                substeps,
+            } => {
+                let sub = if *substeps > 1 {
+                    format!(" x{substeps}")
+                } else {
+                    String::new()
+                };
+                format!("{} [{}{sub}]", spec.display_name(), form.name())
+            }
+            Method::Numerical(n) => n.name().to_string(),
+        }
+    }
+
+    /// `network` or `numerical`.
+    pub fn family(&self) -> &'static str {
+        match self {
+            Method::Network { .. } => "network",
+            Method::Numerical(_) => "numerical",
+        }
+    }
+
+    /// The per-tick solver for QPs of sizes `dims`.
+    pub fn build(&self, dims: QpDims) -> Result<Box<dyn TickSolver>, ControlError> {
+        Ok(match self {
+            Method::Network {
+                spec,
+                form,
+                substeps,
+            } => Box::new(NetworkTick::new(spec, *form, *substeps, dims)?),
+            Method::Numerical(Numerical::Lvi(m, s)) => Box::new(LviTick::new(*m, dims, *s)),
+            Method::Numerical(Numerical::ActiveSet) => Box::new(ActiveSetTick::new(dims)),
+            Method::Numerical(Numerical::Clarabel) => Box::new(ClarabelTick::new(dims)),
+            Method::Numerical(Numerical::Osqp(s)) => Box::new(OsqpTick::new(dims, *s)),
+        })
+    }
+}
+
+/// One solver as a controller calls it: once per tick, with the tick's QP.
+pub trait TickSolver {
+    /// Whether [`TickSolver::tick`] needs dQP/dt (the zeroing networks).
+    fn needs_qp_dot(&self) -> bool {
+        false
+    }
+    /// Computes this tick's answer from the tick's QP (and its time derivative where needed),
+    /// h being the control period.
+    fn tick(&mut self, t: f64, qp: &Qp, qp_dot: Option<&Qp>, h: f64) -> Result<(), ControlError>;
+    /// The answer x of the last tick (its first N entries are the joint command).
+    fn x(&self) -> &[f64];
+    /// Work of the last tick in products with the LVI matrix M (or M'), for the methods built
+    /// on jia2019's LVI (E47, 94LVI, LVI-PDNN, S-LVI-PDNN); `None` for the others.
+    fn products(&self) -> Option<u64> {
+        None
+    }
+    /// Iterations (or network steps) of the last tick.
+    fn iterations(&self) -> u32;
+}

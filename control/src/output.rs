@@ -1,0 +1,174 @@
+//! The result files of the control experiments, one row type each, written as CSV:
+//!
+//! - `results/control.csv` ([`ControlRow`]): every (task, method, h) run: latency, accuracy,
+//!   drift, work per tick;
+//! - `results/control-stability.csv` ([`StabilityRow`]): each network's Euler stability limit
+//!   beside its gain;
+//! - `results/control-claim.csv` ([`ClaimRow`]): zhong2021's efficiency claim, per task;
+//! - `results/cycles.csv` ([`CycleRow`]): the drift after every cycle of the many-cycles runs,
+//!   and `results/cycles-trend.csv` ([`TrendRow`]): each run's trend.
+//!
+//! The same types read the files back ([`read`]) for the report.
+
+use crate::error::ControlError;
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+pub const CONTROL_CSV: &str = "control.csv";
+pub const STABILITY_CSV: &str = "control-stability.csv";
+pub const CLAIM_CSV: &str = "control-claim.csv";
+pub const CYCLES_CSV: &str = "cycles.csv";
+pub const TREND_CSV: &str = "cycles-trend.csv";
+
+/// One controller run.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ControlRow {
+    pub task: String,
+    pub paper: String,
+    pub scheme: String,
+    pub method: String,
+    /// `network` or `numerical`.
+    pub family: String,
+    pub h_ms: f64,
+    pub substeps: u32,
+    /// `ok`, `diverged` or `failed`.
+    pub status: String,
+    /// When it diverged or failed (s); empty otherwise.
+    pub stopped_at: Option<f64>,
+    pub ticks: usize,
+    pub solve_p50_us: f64,
+    pub solve_p99_us: f64,
+    pub solve_max_us: f64,
+    pub tick_p50_us: f64,
+    pub tick_p99_us: f64,
+    pub tick_max_us: f64,
+    pub max_track_err: f64,
+    pub rms_track_err: f64,
+    /// |x - x*| of the joint command, relative (see [`crate::control_loop`]).
+    pub max_dx: f64,
+    pub rms_dx: f64,
+    /// max |x - x*| after the first second.
+    pub max_dx_settled: f64,
+    /// |theta(T) - theta_0|_2 after the cycle (empty when the run stopped early).
+    pub drift: Option<f64>,
+    pub products_mean: Option<f64>,
+    pub products_max: Option<u64>,
+    pub iterations_mean: f64,
+    pub iterations_max: u32,
+}
+
+/// A network's Euler stability limit on a task.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StabilityRow {
+    pub task: String,
+    pub network: String,
+    pub gain_name: String,
+    /// The paper's gain.
+    pub gain: f64,
+    /// Largest stable Euler step (s), smallest over the sampled states; empty when the
+    /// network gives no Jacobian.
+    pub euler_limit_s: Option<f64>,
+    /// The instant the smallest limit was found at.
+    pub limit_at_s: Option<f64>,
+    /// gain x limit (dimensionless).
+    pub gain_x_limit: Option<f64>,
+    /// The largest control period of the sweep at which the network ran (Euler, one step per
+    /// tick) without diverging; empty when it diverged at every period.
+    pub largest_stable_h_ms: Option<f64>,
+}
+
+/// The efficiency claim on one task (see [`crate::claim`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ClaimRow {
+    pub task: String,
+    pub network: String,
+    pub h_ms: f64,
+    pub accuracy: f64,
+    pub products_per_step: u64,
+    pub euler_limit_s: f64,
+    /// Euler steps per tick the network needs to be stable at all: ceil(h / limit).
+    pub steps_needed: u64,
+    /// Products per tick at that step count (a lower bound on the network's cost).
+    pub network_products: f64,
+    /// The check run: steps per tick, its largest |x - x*| and its solve latency p50.
+    pub check_steps: u64,
+    pub check_ticks: usize,
+    pub check_status: String,
+    pub check_max_dx: f64,
+    pub check_solve_p50_us: f64,
+    pub numerical: String,
+    pub numerical_products_mean: f64,
+    pub numerical_products_max: u64,
+    pub numerical_max_dx: f64,
+    pub numerical_solve_p50_us: f64,
+    /// network products per tick over the numerical method's mean.
+    pub cost_ratio: f64,
+    /// `PASS`, `FAIL` or `UNDECIDED` (see [`crate::claim`]).
+    pub verdict: String,
+}
+
+/// The drift after one cycle of a many-cycles run.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CycleRow {
+    pub task: String,
+    pub scheme: String,
+    pub method: String,
+    /// The control period; empty for a continuous-time run.
+    pub h_ms: Option<f64>,
+    pub cycle: usize,
+    pub drift: f64,
+    pub change: f64,
+}
+
+/// The trend of one many-cycles run.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TrendRow {
+    pub task: String,
+    pub scheme: String,
+    pub method: String,
+    /// The control period; empty for a continuous-time run.
+    pub h_ms: Option<f64>,
+    pub status: String,
+    pub cycles: usize,
+    pub drift_first: Option<f64>,
+    pub drift_last: Option<f64>,
+    /// rad/cycle, fitted over the second half.
+    pub rate: Option<f64>,
+    /// `limit cycle`, `bounded`, `accumulating`; empty with fewer than three cycles.
+    pub class: Option<String>,
+}
+
+/// Writes `rows` to `dir/name`.
+pub fn write<T: Serialize>(dir: &Path, name: &str, rows: &[T]) -> Result<(), ControlError> {
+    let path = dir.join(name);
+    let csv_error = |source| ControlError::Csv {
+        path: path.display().to_string(),
+        source,
+    };
+    let mut w = csv::Writer::from_path(&path).map_err(csv_error)?;
+    for r in rows {
+        w.serialize(r).map_err(csv_error)?;
+    }
+    w.flush().map_err(|source| ControlError::Io {
+        path: path.display().to_string(),
+        source,
+    })
+}
+
+/// Reads `dir/name`; empty when the file does not exist.
+pub fn read<T: DeserializeOwned>(dir: &Path, name: &str) -> Result<Vec<T>, ControlError> {
+    let path = dir.join(name);
+    if !path.exists() {
+        return Ok(Vec::new());
+    }
+    let csv_error = |source| ControlError::Csv {
+        path: path.display().to_string(),
+        source,
+    };
+    csv::Reader::from_path(&path)
+        .map_err(csv_error)?
+        .deserialize()
+        .map(|r| r.map_err(csv_error))
+        .collect()
+}

@@ -1,0 +1,434 @@
+//! The control experiments end to end: every method on the standard task set at the control
+//! period, the period sweep, the networks' stability limits, the efficiency claim and the
+//! many-cycles runs, written to `results/` ([`crate::output`]).
+//!
+//! Cost on 2 cores of a 2020s server CPU at the [`Budget::default`]: see the report's section
+//! "At a robot's control rate" (the whole takes about a minute, most of it the Clarabel and
+//! OSQP runs at 1 ms and the 20-cycle runs).
+
+use crate::claim::{self, decide, steps_needed, Verdict, ACCURACY, CHECK_TICKS};
+use crate::continuous::ExactCycles;
+use crate::control_loop::{run_loop, LoopOutcome, LoopSettings, Observer, Status};
+use crate::error::ControlError;
+use crate::latency::Latency;
+use crate::method::{Method, Numerical, TickSolver};
+use crate::network_tick::{products_per_evaluation, Discretisation};
+use crate::numerical_tick::ActiveSetTick;
+use crate::output::{self, ClaimRow, ControlRow, CycleRow, StabilityRow, TrendRow};
+use crate::stability::{gain, LimitProbe};
+use crate::task::{load_tasks, with_task, Task, TaskVisitor, TASKS};
+use crate::trend::classify;
+use nalgebra::SVector;
+use robots::Robot;
+use schemes::paths::Path;
+use schemes::scheme::Scheme;
+use solvers::lvi_numerical::LviMethod;
+use solvers::neural::{build_solver, SolverSpec};
+
+/// The method label of the continuous-time exact column in the many-cycles results.
+pub const CONTINUOUS_EXACT: &str = "exact (continuous)";
+
+/// How much is run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Budget {
+    /// The control period every method runs at (s).
+    pub h: f64,
+    /// The other periods of the sweep (s): networks and the active set only.
+    pub sweep: Vec<f64>,
+    /// Cycles of the many-cycles runs.
+    pub cycles: usize,
+}
+
+impl Default for Budget {
+    /// h = 1 ms; sweep 0.1, 0.2, 0.5, 2, 5, 10 ms; 20 cycles.
+    fn default() -> Self {
+        Budget {
+            h: 1e-3,
+            sweep: vec![1e-4, 2e-4, 5e-4, 2e-3, 5e-3, 1e-2],
+            cycles: 20,
+        }
+    }
+}
+
+/// What the reproduction found, in brief.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Summary {
+    pub control_runs: usize,
+    pub cycle_runs: usize,
+    /// The efficiency claim over all tasks.
+    pub verdict: Verdict,
+}
+
+/// Whether a network is a zeroing network (its Taylor-type discrete form is defined).
+fn is_zeroing(spec: &SolverSpec) -> bool {
+    !matches!(
+        spec,
+        SolverSpec::LviPdnn { .. } | SolverSpec::SLviPdnn { .. }
+    )
+}
+
+/// The network forms run on a task: Euler for every network, Taylor for the zeroing ones.
+fn network_methods(task: &Task, substeps: u32) -> Vec<Method> {
+    let mut out = Vec::new();
+    for spec in &task.networks {
+        out.push(Method::Network {
+            spec: spec.clone(),
+            form: Discretisation::Euler,
+            substeps,
+        });
+        if is_zeroing(spec) {
+            out.push(Method::Network {
+                spec: spec.clone(),
+                form: Discretisation::Taylor,
+                substeps,
+            });
+        }
+    }
+    out
+}
+
+/// Runs one method on a task's arm (a [`TaskVisitor`]).
+struct RunMethod<'a> {
+    method: &'a Method,
+    h: f64,
+    cycles: usize,
+    max_ticks: Option<usize>,
+}
+
+impl TaskVisitor for RunMethod<'_> {
+    type Output = Result<LoopOutcome, ControlError>;
+    fn visit<const N: usize>(
+        self,
+        robot: &dyn Robot<N>,
+        path: &dyn Path,
+        scheme: &dyn Scheme<N>,
+        theta0: &SVector<f64, N>,
+        period: f64,
+    ) -> Self::Output {
+        let mut solver = self.method.build(scheme.dims())?;
+        let settings = LoopSettings {
+            h: self.h,
+            period,
+            cycles: self.cycles,
+            max_ticks: self.max_ticks,
+        };
+        Ok(run_loop(
+            robot,
+            path,
+            scheme,
+            solver.as_mut(),
+            theta0,
+            &settings,
+            None,
+        ))
+    }
+}
+
+/// A network's Euler limit on a task (a [`TaskVisitor`] running the exact optimum in the loop
+/// with a [`LimitProbe`]): (limit, instant), or `None`.
+struct ProbeLimit<'a> {
+    spec: &'a SolverSpec,
+    h: f64,
+}
+
+impl TaskVisitor for ProbeLimit<'_> {
+    type Output = Result<Option<(f64, f64)>, ControlError>;
+    fn visit<const N: usize>(
+        self,
+        robot: &dyn Robot<N>,
+        path: &dyn Path,
+        scheme: &dyn Scheme<N>,
+        theta0: &SVector<f64, N>,
+        period: f64,
+    ) -> Self::Output {
+        let dims = scheme.dims();
+        let net = build_solver(self.spec, dims).map_err(|message| ControlError::Setup {
+            task: self.spec.display_name(),
+            message,
+        })?;
+        let dim = net.state_dim(dims);
+        let mut probe = LimitProbe::new(net, dim);
+        let mut solver = ActiveSetTick::new(dims);
+        let settings = LoopSettings {
+            h: self.h,
+            period,
+            cycles: 1,
+            max_ticks: None,
+        };
+        run_loop(
+            robot,
+            path,
+            scheme,
+            &mut solver as &mut dyn TickSolver,
+            theta0,
+            &settings,
+            Some(&mut probe as &mut dyn Observer),
+        );
+        Ok(probe.limit)
+    }
+}
+
+/// The row of one run.
+fn control_row(task: &Task, method: &Method, h: f64, mut out: LoopOutcome) -> ControlRow {
+    let solve = Latency::of(&mut out.solve_us);
+    let tick = Latency::of(&mut out.tick_us);
+    let stopped_at = match out.status {
+        Status::Completed => None,
+        Status::Diverged { t } | Status::Failed { t, .. } => Some(t),
+    };
+    ControlRow {
+        task: task.id(),
+        paper: task.paper().to_string(),
+        scheme: task.scheme(),
+        method: method.label(),
+        family: method.family().to_string(),
+        h_ms: h * 1e3,
+        substeps: match method {
+            Method::Network { substeps, .. } => *substeps,
+            Method::Numerical(_) => 1,
+        },
+        status: out.status.label().to_string(),
+        stopped_at,
+        ticks: out.ticks,
+        solve_p50_us: solve.p50_us,
+        solve_p99_us: solve.p99_us,
+        solve_max_us: solve.max_us,
+        tick_p50_us: tick.p50_us,
+        tick_p99_us: tick.p99_us,
+        tick_max_us: tick.max_us,
+        max_track_err: out.max_track_err,
+        rms_track_err: out.rms_track_err,
+        max_dx: out.max_dx,
+        rms_dx: out.rms_dx,
+        max_dx_settled: out.max_dx_settled,
+        drift: out.drift.first().copied(),
+        products_mean: out.products_mean,
+        products_max: out.products_max,
+        iterations_mean: out.iterations_mean,
+        iterations_max: out.iterations_max,
+    }
+}
+
+/// Runs everything (module docs) on the tasks of the experiment files in `experiments` and writes
+/// the result files into `results`; `progress` is told what runs.
+pub fn reproduce(
+    experiments: &std::path::Path,
+    results: &std::path::Path,
+    budget: &Budget,
+    mut progress: impl FnMut(&str),
+) -> Result<Summary, ControlError> {
+    let tasks = load_tasks(experiments, &TASKS)?;
+    let h = budget.h;
+    let mut control = Vec::new();
+    let mut stability = Vec::new();
+    let mut claims = Vec::new();
+    let mut cycles = Vec::new();
+    let mut trends = Vec::new();
+    let run = |task: &Task, method: &Method, h: f64, cycles: usize, max_ticks| {
+        with_task(
+            task,
+            cycles,
+            RunMethod {
+                method,
+                h,
+                cycles,
+                max_ticks,
+            },
+        )?
+    };
+
+    for task in &tasks {
+        progress(&format!("control: {} at {} ms", task.id(), h * 1e3));
+        let mut methods: Vec<Method> = Numerical::all()
+            .into_iter()
+            .map(Method::Numerical)
+            .collect();
+        methods.extend(network_methods(task, 1));
+        for method in &methods {
+            control.push(control_row(task, method, h, run(task, method, h, 1, None)?));
+        }
+        progress(&format!("control: {} period sweep", task.id()));
+        let mut swept = network_methods(task, 1);
+        swept.push(Method::Numerical(Numerical::ActiveSet));
+        for &hs in &budget.sweep {
+            for method in &swept {
+                control.push(control_row(
+                    task,
+                    method,
+                    hs,
+                    run(task, method, hs, 1, None)?,
+                ));
+            }
+        }
+        for spec in &task.networks {
+            let limit = with_task(task, 1, ProbeLimit { spec, h })??;
+            let (gain_name, g) = gain(spec);
+            let euler = Method::Network {
+                spec: spec.clone(),
+                form: Discretisation::Euler,
+                substeps: 1,
+            }
+            .label();
+            let largest = control
+                .iter()
+                .filter(|r| r.task == task.id() && r.method == euler && r.status == "ok")
+                .map(|r| r.h_ms)
+                .reduce(f64::max);
+            stability.push(StabilityRow {
+                task: task.id(),
+                network: spec.display_name(),
+                gain_name: gain_name.to_string(),
+                gain: g,
+                euler_limit_s: limit.map(|l| l.0),
+                limit_at_s: limit.map(|l| l.1),
+                gain_x_limit: limit.map(|l| l.0 * g),
+                largest_stable_h_ms: largest,
+            });
+        }
+    }
+
+    // The efficiency claim, on the tasks run by a network built on the LVI.
+    for task in &tasks {
+        for spec in &task.networks {
+            let Some(per_step) = products_per_evaluation(spec) else {
+                continue;
+            };
+            let Some(limit) = stability
+                .iter()
+                .find(|s| s.task == task.id() && s.network == spec.display_name())
+                .and_then(|s| s.euler_limit_s)
+            else {
+                continue;
+            };
+            progress(&format!(
+                "claim: {} with {}",
+                task.id(),
+                spec.display_name()
+            ));
+            let needed = steps_needed(h, limit);
+            let check_steps = 2 * needed;
+            let check = Method::Network {
+                spec: spec.clone(),
+                form: Discretisation::Euler,
+                substeps: u32::try_from(check_steps).unwrap_or(u32::MAX),
+            };
+            let mut out = run(task, &check, h, 1, Some(CHECK_TICKS))?;
+            let check_solve = Latency::of(&mut out.solve_us);
+            let numerical = control
+                .iter()
+                .filter(|r| r.task == task.id() && r.h_ms == h * 1e3 && r.status == "ok")
+                .filter(|r| LviMethod::ALL.iter().any(|m| m.name() == r.method))
+                .filter_map(|r| r.products_mean.map(|p| (r, p)))
+                .min_by(|a, b| a.1.total_cmp(&b.1));
+            let Some((num, num_mean)) = numerical else {
+                continue;
+            };
+            let lower = (needed * per_step) as f64;
+            let checked = (check_steps * per_step) as f64;
+            let verdict = decide(lower, checked, out.max_dx, num_mean);
+            claims.push(ClaimRow {
+                task: task.id(),
+                network: spec.display_name(),
+                h_ms: h * 1e3,
+                accuracy: ACCURACY,
+                products_per_step: per_step,
+                euler_limit_s: limit,
+                steps_needed: needed,
+                network_products: lower,
+                check_steps,
+                check_ticks: out.ticks,
+                check_status: out.status.label().to_string(),
+                check_max_dx: out.max_dx,
+                check_solve_p50_us: check_solve.p50_us,
+                numerical: num.method.clone(),
+                numerical_products_mean: num_mean,
+                numerical_products_max: num.products_max.unwrap_or(0),
+                numerical_max_dx: num.max_dx,
+                numerical_solve_p50_us: num.solve_p50_us,
+                cost_ratio: lower / num_mean,
+                verdict: verdict.label().to_string(),
+            });
+        }
+    }
+
+    // Many cycles: the exact optimum and every network form that was stable at h.
+    for task in &tasks {
+        progress(&format!("cycles: {} x{}", task.id(), budget.cycles));
+        let mut methods = vec![Method::Numerical(Numerical::ActiveSet)];
+        methods.extend(network_methods(task, 1).into_iter().filter(|m| {
+            control.iter().any(|r| {
+                r.task == task.id()
+                    && r.method == m.label()
+                    && r.h_ms == h * 1e3
+                    && r.status == "ok"
+            })
+        }));
+        let mut record =
+            |method: String, h_ms: Option<f64>, status: &str, drift: &[f64], change: &[f64]| {
+                for (c, (d, ch)) in drift.iter().zip(change).enumerate() {
+                    cycles.push(CycleRow {
+                        task: task.id(),
+                        scheme: task.scheme(),
+                        method: method.clone(),
+                        h_ms,
+                        cycle: c + 1,
+                        drift: *d,
+                        change: *ch,
+                    });
+                }
+                let trend = classify(drift, change);
+                trends.push(TrendRow {
+                    task: task.id(),
+                    scheme: task.scheme(),
+                    method,
+                    h_ms,
+                    status: status.to_string(),
+                    cycles: drift.len(),
+                    drift_first: drift.first().copied(),
+                    drift_last: drift.last().copied(),
+                    rate: trend.map(|t| t.rate),
+                    class: trend.map(|t| t.class.label().to_string()),
+                });
+            };
+        for method in &methods {
+            let out = run(task, method, h, budget.cycles, None)?;
+            record(
+                method.label(),
+                Some(h * 1e3),
+                out.status.label(),
+                &out.drift,
+                &out.cycle_change,
+            );
+        }
+        let continuous = with_task(
+            task,
+            1,
+            ExactCycles {
+                task,
+                cycles: budget.cycles,
+            },
+        )?;
+        record(
+            CONTINUOUS_EXACT.to_string(),
+            None,
+            &continuous.status,
+            &continuous.drift,
+            &continuous.change,
+        );
+    }
+
+    output::write(results, output::CONTROL_CSV, &control)?;
+    output::write(results, output::STABILITY_CSV, &stability)?;
+    output::write(results, output::CLAIM_CSV, &claims)?;
+    output::write(results, output::CYCLES_CSV, &cycles)?;
+    output::write(results, output::TREND_CSV, &trends)?;
+    let verdicts: Vec<Verdict> = claims
+        .iter()
+        .filter_map(|c| Verdict::from_label(&c.verdict))
+        .collect();
+    Ok(Summary {
+        control_runs: control.len(),
+        cycle_runs: trends.len(),
+        verdict: claim::overall(&verdicts),
+    })
+}

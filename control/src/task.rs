@@ -1,0 +1,166 @@
+//! The standard task set of the control experiments: one run of each paper's scheme, as the
+//! experiment files define it (robot, closed path, theta0, scheme and the paper's networks),
+//! and the way to run generic code on a task's arm ([`TaskVisitor`]).
+
+use crate::error::ControlError;
+use nalgebra::SVector;
+use robots::{Dynamics, Robot};
+use schemes::paths::Path;
+use schemes::scheme::Scheme;
+use simulation::experiment::{load_dir, Job, SolverChoice};
+use simulation::robot_registry::{robot_by_name, RobotVisitor};
+use simulation::run::build_cyclic_parts;
+use solvers::neural::SolverSpec;
+use std::sync::Arc;
+
+/// A task: an experiment and one of its variants.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TaskRef {
+    pub experiment: &'static str,
+    pub variant: &'static str,
+}
+
+/// The standard task set: every paper's scheme once (jia2019's MVN beside its VLTCO, the
+/// scheme expected to drift).
+pub const TASKS: [TaskRef; 6] = [
+    TaskRef {
+        experiment: "jia2019-clover",
+        variant: "VLTCO",
+    },
+    TaskRef {
+        experiment: "jia2019-clover",
+        variant: "MVN",
+    },
+    TaskRef {
+        experiment: "zhong2021-clover-a",
+        variant: "CMCO (eta=0.2, delta=0.4)",
+    },
+    TaskRef {
+        experiment: "zhang2018-butterfly-scheme",
+        variant: "HL-JDF (zeta=0.6)",
+    },
+    TaskRef {
+        experiment: "kong2019-circle",
+        variant: "ZNN (eq. 22)",
+    },
+    TaskRef {
+        experiment: "kong2019-circle",
+        variant: "finite-time (eq. 14)",
+    },
+];
+
+/// A task resolved from the experiment files.
+#[derive(Clone, Debug)]
+pub struct Task {
+    pub reference: TaskRef,
+    /// The variant's first job (its robot, path, theta0, scheme).
+    pub job: Job,
+    /// The networks the paper runs on it.
+    pub networks: Vec<SolverSpec>,
+}
+
+impl Task {
+    /// `experiment / variant`.
+    pub fn id(&self) -> String {
+        format!("{} / {}", self.reference.experiment, self.reference.variant)
+    }
+
+    /// The scheme's name (`VLTCO`, `CMCO`, ...).
+    pub fn scheme(&self) -> String {
+        self.job.scheme.display_name()
+    }
+
+    /// The paper id.
+    pub fn paper(&self) -> &str {
+        &self.job.paper
+    }
+}
+
+/// The tasks of `refs` from the experiment files in `dir`.
+pub fn load_tasks(dir: &std::path::Path, refs: &[TaskRef]) -> Result<Vec<Task>, ControlError> {
+    let files = load_dir(dir).map_err(|e| ControlError::Experiments(e.to_string()))?;
+    let jobs: Vec<Job> = files.iter().flat_map(|f| f.jobs()).collect();
+    refs.iter()
+        .map(|r| {
+            let mine: Vec<&Job> = jobs
+                .iter()
+                .filter(|j| j.experiment == r.experiment && j.variant == r.variant)
+                .collect();
+            let first = mine.first().ok_or_else(|| {
+                ControlError::UnknownTask(format!("{} / {}", r.experiment, r.variant))
+            })?;
+            let networks = mine
+                .iter()
+                .filter_map(|j| match &j.solver {
+                    SolverChoice::Neural(s) => Some(s.clone()),
+                    SolverChoice::Exact => None,
+                })
+                .collect();
+            Ok(Task {
+                reference: *r,
+                job: (*first).clone(),
+                networks,
+            })
+        })
+        .collect()
+}
+
+/// Generic code run on a task's arm with its joint count N.
+pub trait TaskVisitor {
+    type Output;
+    /// `path` is the task's path repeated `cycles` times ([`with_task`]); `period` is one
+    /// cycle's duration.
+    fn visit<const N: usize>(
+        self,
+        robot: &dyn Robot<N>,
+        path: &dyn Path,
+        scheme: &dyn Scheme<N>,
+        theta0: &SVector<f64, N>,
+        period: f64,
+    ) -> Self::Output;
+}
+
+/// Builds `task`'s arm, its path repeated `cycles` times and its scheme on it, and runs
+/// `visitor` on them.
+pub fn with_task<V: TaskVisitor>(
+    task: &Task,
+    cycles: usize,
+    visitor: V,
+) -> Result<V::Output, ControlError> {
+    struct Visit<'a, V> {
+        task: &'a Task,
+        cycles: usize,
+        visitor: V,
+    }
+    impl<V: TaskVisitor> RobotVisitor for Visit<'_, V> {
+        type Output = Result<V::Output, ControlError>;
+        fn visit<const N: usize>(
+            self,
+            robot: Arc<dyn Robot<N>>,
+            dynamics: Option<Arc<dyn Dynamics<N>>>,
+        ) -> Self::Output {
+            let job = &self.task.job;
+            let (path, scheme) = build_cyclic_parts::<N>(job, robot.clone(), dynamics, self.cycles)
+                .map_err(|e| ControlError::Setup {
+                    task: self.task.id(),
+                    message: e.to_string(),
+                })?;
+            let theta0 = SVector::<f64, N>::from_column_slice(&job.theta0);
+            let period = path.duration() / self.cycles.max(1) as f64;
+            Ok(self.visitor.visit(
+                robot.as_ref(),
+                path.as_ref(),
+                scheme.as_ref(),
+                &theta0,
+                period,
+            ))
+        }
+    }
+    let robot = robot_by_name(&task.job.robot)
+        .ok_or_else(|| ControlError::UnknownTask(format!("robot {}", task.job.robot)))?;
+    robot.visit(Visit {
+        task,
+        cycles,
+        visitor,
+    })
+}

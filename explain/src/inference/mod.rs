@@ -1,0 +1,814 @@
+//! Setup inference: the parameters the papers leave open, fitted to one published table.
+//!
+//! # The problem
+//!
+//! A published drift table gives, per column c and joint i, d_paper[c, i] = theta_i(T) -
+//! theta_i(0). The papers do not publish the pose of their paths (in-plane rotation psi, the
+//! tilt of the drawing plane about the base x and y axes, the start phase on the curve, the
+//! size where the path's size is our assumption, the direction), nor which reading of the RMP
+//! coefficient they integrated (jia2019 (2.11): tau Lambda as printed, tau Lambda / 2 by the
+//! expansion with Lambda = 2 mu, or tau mu with the text's mu = 5). Beside the pose, the family
+//! holds discrete hypotheses ([`family`]): the robot model (the declared one or a variant the
+//! group's code documents) and how the drift was computed: the scheme's exact optimum at
+//! tight tolerances (the exact column), or the paper's network integrated at MATLAB's default
+//! tolerances (BDF, RelTol 1e-3 / AbsTol 1e-6) or at the stated ones. With a setup s the
+//! drift is d(s)[c, i]; per column
+//!
+//! ```text
+//!   r_c(s) = || d(s)[c, :] - d_paper[c, :] || / || d_paper[c, :] ||
+//! ```
+//!
+//! and for the table, every column weighted alike whatever its magnitude,
+//!
+//! ```text
+//!   r(s) = sqrt( mean_c r_c(s)^2 ).
+//! ```
+//!
+//! The joint fit minimises r (one setup shared by all columns, as the papers imply); each
+//! column fit minimises its r_c alone (its own setup). The search ([`search`]) is global
+//! (a Halton sample of the continuous box for every discrete combination), then local
+//! (Nelder-Mead from the best few of each objective), then profiles of the joint optimum
+//! with the other continuous parameters re-fitted at each grid point. The optimum reported
+//! for each objective is the minimum over every evaluation of every stage.
+//!
+//! One evaluation is one run per distinct run of the table (the exact runs are shared by the
+//! columns of one scheme; the network runs are one per column), run in parallel. The exact
+//! runs use RelTol 1e-6 / AbsTol 1e-8 ([`inference_integrator`], with the experiment's
+//! method): the ladder shows their drift within ~1e-4 relative of the converged one, far below
+//! the residuals a fit can reach. An inferred setup is always shown as "inferred setup (fitted
+//! to the paper)" beside the declared one, never instead of it.
+
+pub mod family;
+pub mod search;
+pub mod verdict;
+
+use family::{Family, Integration};
+use rayon::prelude::*;
+use records::paper_values::{PaperValue, MAPPINGS};
+use records::runs::RunRow;
+use schemes::spec::{RmpReading, SchemeSpec};
+use search::{Coordinate, Objective, Outcome, Point, Scores, Target};
+use serde::{Deserialize, Serialize};
+use simulation::experiment::{Job, SolverChoice};
+use simulation::run::run_job;
+use simulation::simulate::Scoring;
+use solvers::ode::{IntegratorSettings, Method};
+use std::f64::consts::PI;
+use std::time::Instant;
+
+/// What can go wrong in building or reading an inference.
+#[derive(Debug, thiserror::Error)]
+pub enum InferenceError {
+    #[error("{paper} {table}: no published per-joint drifts map onto a run")]
+    NoColumns { paper: String, table: String },
+    #[error("{paper} {table}: no {what} run of {experiment} / {variant}")]
+    NoRun {
+        paper: String,
+        table: String,
+        what: &'static str,
+        experiment: String,
+        variant: String,
+    },
+    #[error("inference family {file}: {message}")]
+    Family { file: String, message: String },
+}
+
+/// The exact column's tolerances during inference (see the module doc); the method stays the
+/// experiment's (Dormand-Prince, BDF for kong2019's stiff finite-time scheme).
+pub fn inference_integrator() -> IntegratorSettings {
+    IntegratorSettings {
+        method: Method::Dopri5,
+        rtol: 1e-6,
+        atol: 1e-8,
+        max_steps: 200_000,
+        max_step: None,
+        ..IntegratorSettings::default()
+    }
+}
+
+/// Penalty residual of a setup whose run fails (an unreachable pose, an infeasible QP); the
+/// report prints such points as failed.
+pub const FAILED: f64 = 10.0;
+
+/// One candidate setup of a table.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Setup {
+    /// In-plane rotation of every path of the table (rad).
+    pub rotation: f64,
+    /// Start phase on the closed curves (fraction of the cycle).
+    pub phase: f64,
+    /// Factor on every path's size (1 = the declared size).
+    pub scale_factor: f64,
+    /// Tilt of the drawing plane about the base x axis (rad).
+    pub tilt_x: f64,
+    /// Tilt of the drawing plane about the base y axis (rad).
+    pub tilt_y: f64,
+    /// Paths travelled backwards.
+    pub reverse: bool,
+    /// Reading of the RMP coefficient (schemes that have one).
+    pub rmp: RmpReading,
+    /// Robot model id.
+    pub robot: String,
+    /// How the drift is computed.
+    pub integration: Integration,
+}
+
+impl Setup {
+    /// The declared setup on `robot`: the experiment files as they are, exact column.
+    pub fn declared(robot: &str) -> Self {
+        Self {
+            rotation: 0.0,
+            phase: 0.0,
+            scale_factor: 1.0,
+            tilt_x: 0.0,
+            tilt_y: 0.0,
+            reverse: false,
+            rmp: RmpReading::Printed,
+            robot: robot.to_string(),
+            integration: Integration::Exact,
+        }
+    }
+
+    /// `job` under this setup (the job's own pose is the origin of rotation, tilt and phase).
+    /// The integrator is the caller's business ([`TableProblem::jobs`]).
+    pub fn apply(&self, job: &Job) -> Job {
+        let mut j = job.clone();
+        j.robot = self.robot.clone();
+        j.path.rotation += self.rotation;
+        j.path.tilt_x += self.tilt_x;
+        j.path.tilt_y += self.tilt_y;
+        j.path.phase = (j.path.phase + self.phase).rem_euclid(1.0);
+        if self.scale_factor != 1.0 {
+            let base = j
+                .path
+                .scale
+                .or_else(|| schemes::paths::default_scale(&j.path.name))
+                .unwrap_or(1.0);
+            j.path.scale = Some(base * self.scale_factor);
+        }
+        j.path.reverse ^= self.reverse;
+        match &mut j.scheme {
+            SchemeSpec::Jia2019 { rmp, .. } | SchemeSpec::Zhong2021 { rmp, .. } => *rmp = self.rmp,
+            _ => {}
+        }
+        j
+    }
+}
+
+/// One published column of a table.
+#[derive(Clone, Debug)]
+pub struct Column {
+    pub name: String,
+    /// Index into [`TableProblem::exact`].
+    pub exact: usize,
+    /// Index into [`TableProblem::network`].
+    pub network: usize,
+    /// Published per-joint drifts.
+    pub paper: Vec<f64>,
+}
+
+/// One table's fit: its published per-joint drifts and the runs that give ours.
+#[derive(Clone, Debug)]
+pub struct TableProblem {
+    pub paper: String,
+    pub table: String,
+    /// The distinct exact runs (one per scheme variant of the table).
+    pub exact: Vec<Job>,
+    /// The paper's network run of each column (as the experiment integrates it).
+    pub network: Vec<Job>,
+    pub columns: Vec<Column>,
+    /// Fit the size factor (false where the paper prints the path's size).
+    pub fit_scale: bool,
+    /// Try the RMP readings (the table has a scheme with an RMP term).
+    pub fit_rmp: bool,
+}
+
+impl TableProblem {
+    /// The declared robot (every run of a table uses one).
+    pub fn robot(&self) -> &str {
+        &self.exact[0].robot
+    }
+
+    /// The runs of one evaluation under `setup`, and per column the index of its run.
+    pub fn jobs(&self, setup: &Setup) -> (Vec<Job>, Vec<usize>) {
+        match setup.integration {
+            Integration::Exact => (
+                self.exact.iter().map(|j| setup.apply(j)).collect(),
+                self.columns.iter().map(|c| c.exact).collect(),
+            ),
+            network => (
+                self.network
+                    .iter()
+                    .map(|j| Job {
+                        integrator: network.integrator(&j.integrator),
+                        ..setup.apply(j)
+                    })
+                    .collect(),
+                self.columns.iter().map(|c| c.network).collect(),
+            ),
+        }
+    }
+}
+
+/// The tables [`problem`] can build: (paper, table).
+pub fn table_ids(values: &[PaperValue]) -> Vec<(String, String)> {
+    let mut ids: Vec<(String, String)> = values
+        .iter()
+        .filter(|v| v.table != "text" && v.metric.starts_with("drift_") && v.metric != "drift_norm")
+        .map(|v| (v.paper.clone(), v.table.clone()))
+        .collect();
+    ids.dedup();
+    ids
+}
+
+/// The fit problem of one published table, from the paper values and the experiment files'
+/// jobs (the exact column and the paper's solver of each mapped variant).
+pub fn problem(
+    paper: &str,
+    table: &str,
+    values: &[PaperValue],
+    jobs: &[Job],
+) -> Result<TableProblem, InferenceError> {
+    let mut p = TableProblem {
+        paper: paper.to_string(),
+        table: table.to_string(),
+        exact: Vec::new(),
+        network: Vec::new(),
+        columns: Vec::new(),
+        fit_scale: true,
+        fit_rmp: false,
+    };
+    let no_run = |what, experiment: &str, variant: &str| InferenceError::NoRun {
+        paper: paper.to_string(),
+        table: table.to_string(),
+        what,
+        experiment: experiment.to_string(),
+        variant: variant.to_string(),
+    };
+    let mut seen: Vec<(&str, &str)> = Vec::new();
+    for v in values
+        .iter()
+        .filter(|v| v.paper == paper && v.table == table)
+    {
+        if seen.contains(&(&v.experiment, &v.column)) {
+            continue;
+        }
+        seen.push((&v.experiment, &v.column));
+        let Some(m) = MAPPINGS.iter().find(|m| {
+            m.paper == paper
+                && m.published_experiment == v.experiment
+                && m.published_column == v.column
+        }) else {
+            continue;
+        };
+        let drifts: Vec<f64> = (1..=6)
+            .map_while(|i| {
+                values
+                    .iter()
+                    .find(|w| {
+                        w.paper == paper
+                            && w.table == table
+                            && w.experiment == v.experiment
+                            && w.column == v.column
+                            && w.metric == format!("drift_{i}")
+                    })
+                    .map(|w| w.value)
+            })
+            .collect();
+        if drifts.is_empty() {
+            continue;
+        }
+        let of_variant = |j: &&Job| j.experiment == m.experiment && j.variant == m.variant;
+        let exact = jobs
+            .iter()
+            .filter(of_variant)
+            .find(|j| j.solver == SolverChoice::Exact)
+            .ok_or_else(|| no_run("exact", m.experiment, m.variant))?;
+        let network = jobs
+            .iter()
+            .filter(of_variant)
+            .find(|j| j.solver.label() == m.solver)
+            .ok_or_else(|| no_run("network", m.experiment, m.variant))?;
+        let exact = Job {
+            integrator: IntegratorSettings {
+                method: exact.integrator.method,
+                ..inference_integrator()
+            },
+            scoring: Scoring::Off,
+            ..exact.clone()
+        };
+        let index = match p.exact.iter().position(|r| r.key() == exact.key()) {
+            Some(i) => i,
+            None => {
+                p.exact.push(exact.clone());
+                p.exact.len() - 1
+            }
+        };
+        p.network.push(Job {
+            scoring: Scoring::Off,
+            ..network.clone()
+        });
+        if schemes::paths::scale_provenance(&exact.path.name) == Some("paper") {
+            p.fit_scale = false;
+        }
+        if matches!(exact.scheme, SchemeSpec::Jia2019 { tau, .. } if tau > 0.0)
+            || matches!(exact.scheme, SchemeSpec::Zhong2021 { delta, .. } if delta > 0.0)
+        {
+            p.fit_rmp = true;
+        }
+        p.columns.push(Column {
+            name: v.column.clone(),
+            exact: index,
+            network: p.network.len() - 1,
+            paper: drifts,
+        });
+    }
+    if p.columns.is_empty() {
+        return Err(InferenceError::NoColumns {
+            paper: paper.to_string(),
+            table: table.to_string(),
+        });
+    }
+    Ok(p)
+}
+
+/// How one setup does on a table.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Evaluation {
+    pub setup: Setup,
+    /// r(s) of the module doc ([`FAILED`] if a run failed).
+    pub rel_residual: f64,
+    /// r_c(s) per column ([`FAILED`] where the column's run failed).
+    pub column_residuals: Vec<f64>,
+    /// Per column, per joint: (ours, paper).
+    pub entries: Vec<(String, Vec<(f64, f64)>)>,
+    /// Why a run failed, if one did.
+    pub failure: Option<String>,
+}
+
+impl Evaluation {
+    /// The entries of objective `t` (every column, or one).
+    fn pairs(&self, t: Target) -> Vec<(f64, f64)> {
+        self.entries
+            .iter()
+            .enumerate()
+            .filter(|(c, _)| t == Target::Joint || t == Target::Column(*c))
+            .flat_map(|(_, (_, e))| e.iter().copied())
+            .collect()
+    }
+
+    /// Largest |d - d_paper| / |d_paper| over the entries of objective `t`.
+    pub fn max_entry_error(&self, t: Target) -> f64 {
+        self.pairs(t)
+            .iter()
+            .map(|(o, p)| (o - p).abs() / p.abs().max(f64::MIN_POSITIVE))
+            .fold(0.0, f64::max)
+    }
+
+    /// Entries of objective `t` whose sign agrees with the paper's, and their number.
+    pub fn signs_matched(&self, t: Target) -> (usize, usize) {
+        let all = self.pairs(t);
+        let same = all.iter().filter(|(o, p)| o.signum() == p.signum()).count();
+        (same, all.len())
+    }
+}
+
+/// Runs the table's runs under `setup` (in parallel) and compares with the paper.
+pub fn evaluate(p: &TableProblem, setup: Setup) -> Evaluation {
+    let (jobs, index) = p.jobs(&setup);
+    let rows: Vec<RunRow> = jobs
+        .par_iter()
+        .map(|j| RunRow::from_record(&run_job(j), ""))
+        .collect();
+    let failure = rows
+        .iter()
+        .find(|r| !r.completed())
+        .map(|r| format!("{} / {}: {}", r.experiment, r.variant, r.failure));
+    let mut entries = Vec::new();
+    let mut column_residuals = Vec::new();
+    for (column, &i) in p.columns.iter().zip(&index) {
+        let ours = &rows[i].drift;
+        let pairs: Vec<(f64, f64)> = column
+            .paper
+            .iter()
+            .enumerate()
+            .map(|(k, &d)| (ours.get(k).copied().unwrap_or(f64::NAN), d))
+            .collect();
+        let num: f64 = pairs.iter().map(|(o, d)| (o - d).powi(2)).sum();
+        let den: f64 = pairs.iter().map(|(_, d)| d * d).sum();
+        let r = (num / den).sqrt();
+        column_residuals.push(if rows[i].completed() && r.is_finite() {
+            r
+        } else {
+            FAILED
+        });
+        entries.push((column.name.clone(), pairs));
+    }
+    let mean_square =
+        column_residuals.iter().map(|r| r * r).sum::<f64>() / column_residuals.len().max(1) as f64;
+    Evaluation {
+        setup,
+        rel_residual: if failure.is_some() {
+            FAILED
+        } else {
+            mean_square.sqrt()
+        },
+        column_residuals,
+        entries,
+        failure,
+    }
+}
+
+/// One discrete combination of the family.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Discrete {
+    pub robot: String,
+    pub integration: Integration,
+    pub reverse: bool,
+    pub rmp: RmpReading,
+}
+
+/// A table as the search sees it: the discrete combinations of the family and its box.
+pub struct TableObjective<'a> {
+    pub problem: &'a TableProblem,
+    pub combos: Vec<Discrete>,
+    pub coordinates: Vec<Coordinate>,
+}
+
+/// Names of the continuous coordinates (the size factor is searched as its logarithm).
+pub const ROTATION: &str = "rotation";
+pub const PHASE: &str = "phase";
+pub const SCALE: &str = "scale_factor";
+pub const TILT_X: &str = "tilt_x";
+pub const TILT_Y: &str = "tilt_y";
+
+impl<'a> TableObjective<'a> {
+    /// The family's combinations (the declared one first) and box on `problem`.
+    pub fn new(problem: &'a TableProblem, family: &Family) -> Self {
+        let mut robots = vec![problem.robot().to_string()];
+        robots.extend(family.variants_of(problem.robot()).iter().cloned());
+        let mut integrations = vec![Integration::Exact];
+        integrations.extend(family.network.iter().copied());
+        let directions: &[bool] = if family.direction {
+            &[false, true]
+        } else {
+            &[false]
+        };
+        let readings: &[RmpReading] = if family.rmp_readings && problem.fit_rmp {
+            &[
+                RmpReading::Printed,
+                RmpReading::Expansion,
+                RmpReading::TextGain,
+            ]
+        } else {
+            &[RmpReading::Printed]
+        };
+        let mut combos = Vec::new();
+        for robot in &robots {
+            for &integration in &integrations {
+                for &reverse in directions {
+                    for &rmp in readings {
+                        combos.push(Discrete {
+                            robot: robot.clone(),
+                            integration,
+                            reverse,
+                            rmp,
+                        });
+                    }
+                }
+            }
+        }
+        let phase = problem
+            .exact
+            .iter()
+            .all(|j| schemes::paths::phase_supported(&j.path.name));
+        let mut coordinates = Vec::new();
+        // Profile grids: every 45 degrees of rotation, every sixth of the cycle, seven sizes
+        // (geometric) and seven tilts, 30 degrees apart.
+        let mut add = |on: bool, name, lo, hi, periodic, grid| {
+            if on {
+                coordinates.push(Coordinate {
+                    name,
+                    lo,
+                    hi,
+                    periodic,
+                    grid,
+                });
+            }
+        };
+        add(family.rotation, ROTATION, 0.0, 2.0 * PI, true, 8);
+        add(family.phase && phase, PHASE, 0.0, 1.0, true, 6);
+        // Sizes between a quarter and four times the declared one.
+        let four = 4f64.ln();
+        add(
+            family.scale && problem.fit_scale,
+            SCALE,
+            -four,
+            four,
+            false,
+            7,
+        );
+        add(family.tilt, TILT_X, -PI / 2.0, PI / 2.0, false, 7);
+        add(family.tilt, TILT_Y, -PI / 2.0, PI / 2.0, false, 7);
+        Self {
+            problem,
+            combos,
+            coordinates,
+        }
+    }
+
+    /// The setup of a search point.
+    pub fn setup(&self, p: &Point) -> Setup {
+        let d = &self.combos[p.combo];
+        let mut s = Setup {
+            reverse: d.reverse,
+            rmp: d.rmp,
+            integration: d.integration,
+            ..Setup::declared(&d.robot)
+        };
+        for (c, &v) in self.coordinates.iter().zip(&p.x) {
+            match c.name {
+                ROTATION => s.rotation = v,
+                PHASE => s.phase = v,
+                SCALE => s.scale_factor = v.exp(),
+                TILT_X => s.tilt_x = v,
+                _ => s.tilt_y = v,
+            }
+        }
+        s
+    }
+}
+
+impl Objective for TableObjective<'_> {
+    type Detail = Evaluation;
+
+    fn combos(&self) -> usize {
+        self.combos.len()
+    }
+
+    fn coordinates(&self) -> &[Coordinate] {
+        &self.coordinates
+    }
+
+    fn columns(&self) -> usize {
+        self.problem.columns.len()
+    }
+
+    fn declared(&self) -> Point {
+        Point {
+            combo: 0,
+            x: vec![0.0; self.coordinates.len()],
+        }
+    }
+
+    fn evaluate(&self, p: &Point) -> (Scores, Evaluation) {
+        let e = evaluate(self.problem, self.setup(p));
+        (
+            Scores {
+                joint: e.rel_residual,
+                columns: e.column_residuals.clone(),
+            },
+            e,
+        )
+    }
+}
+
+/// Everything a fit finds.
+#[derive(Clone, Debug)]
+pub struct Fit {
+    pub outcome: Outcome<Evaluation>,
+    pub combos: Vec<Discrete>,
+    pub coordinates: Vec<Coordinate>,
+    pub wall_s: f64,
+}
+
+/// Fits one table with the family's search (see the module doc).
+pub fn fit(p: &TableProblem, family: &Family) -> Fit {
+    let started = Instant::now();
+    let objective = TableObjective::new(p, family);
+    let outcome = search::search(&objective, family.budget());
+    Fit {
+        outcome,
+        combos: objective.combos,
+        coordinates: objective.coordinates,
+        wall_s: started.elapsed().as_secs_f64(),
+    }
+}
+
+/// `objective` of the rows of the whole table.
+pub const TABLE: &str = "table";
+/// Row kinds.
+pub const DECLARED: &str = "declared";
+pub const BEST: &str = "best fit";
+pub const HYPOTHESIS: &str = "hypothesis best";
+pub const LOCAL: &str = "local optimum";
+/// Prefix of a profile row's kind: `profile (re-fitted): <parameter>` or
+/// `profile (slice): <parameter>`.
+pub const PROFILE: &str = "profile";
+
+/// One row of `results/inference.csv`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct InferenceRow {
+    pub paper: String,
+    pub table: String,
+    /// [`DECLARED`], [`BEST`], [`HYPOTHESIS`], [`LOCAL`] or a profile (see [`PROFILE`]).
+    pub kind: String,
+    /// What the row's `rel_residual` measures: [`TABLE`] (r) or a column's name (its r_c).
+    pub objective: String,
+    pub robot: String,
+    pub integration: Integration,
+    pub rotation: f64,
+    pub phase: f64,
+    pub scale_factor: f64,
+    pub tilt_x: f64,
+    pub tilt_y: f64,
+    pub reverse: bool,
+    pub rmp: String,
+    pub rel_residual: f64,
+    /// r of the whole table at this setup.
+    pub table_residual: f64,
+    /// r_c of every column at this setup, in column order, `;`-separated.
+    pub column_residuals: String,
+    pub max_entry_error: Option<f64>,
+    pub signs_matched: Option<usize>,
+    pub entries: Option<usize>,
+    pub evaluations: usize,
+    pub wall_s: f64,
+}
+
+impl records::table::Row for InferenceRow {}
+
+impl InferenceRow {
+    /// The profiled parameter and whether the others were re-fitted, for a profile row.
+    pub fn profile(&self) -> Option<(&str, bool)> {
+        let rest = self.kind.strip_prefix(PROFILE)?;
+        if let Some(name) = rest.strip_prefix(" (re-fitted): ") {
+            Some((name, true))
+        } else {
+            rest.strip_prefix(" (slice): ").map(|name| (name, false))
+        }
+    }
+
+    /// The value of parameter `name` (a coordinate's name) in this row.
+    pub fn parameter(&self, name: &str) -> f64 {
+        match name {
+            ROTATION => self.rotation,
+            PHASE => self.phase,
+            SCALE => self.scale_factor,
+            TILT_X => self.tilt_x,
+            _ => self.tilt_y,
+        }
+    }
+
+    /// r_c of every column, parsed back.
+    pub fn columns(&self) -> Vec<f64> {
+        self.column_residuals
+            .split(';')
+            .filter_map(|v| v.parse().ok())
+            .collect()
+    }
+}
+
+/// One entry of a reported setup, for `results/inference-entries.csv`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct EntryRow {
+    pub paper: String,
+    pub table: String,
+    /// [`DECLARED`], [`BEST`] (the joint fit) or [`COLUMN_FIT`] (that column alone).
+    pub setup: String,
+    pub column: String,
+    pub joint: usize,
+    pub ours: f64,
+    pub paper_value: f64,
+    pub rel_error: f64,
+    pub sign_matched: bool,
+}
+
+/// `setup` of the entries of a column's own fit.
+pub const COLUMN_FIT: &str = "column fit";
+
+impl records::table::Row for EntryRow {}
+
+/// The rows of one fit.
+pub fn rows(p: &TableProblem, f: &Fit) -> (Vec<InferenceRow>, Vec<EntryRow>) {
+    let names: Vec<&str> = p.columns.iter().map(|c| c.name.as_str()).collect();
+    let objective_name = |t: Target| match t {
+        Target::Joint => TABLE.to_string(),
+        Target::Column(c) => names[c].to_string(),
+    };
+    let objective = TableObjective {
+        problem: p,
+        combos: f.combos.clone(),
+        coordinates: f.coordinates.clone(),
+    };
+    let row = |kind: &str, t: Target, point: &Point, s: &Scores, e: Option<&Evaluation>| {
+        let setup = objective.setup(point);
+        let signs = e.map(|e| e.signs_matched(t));
+        InferenceRow {
+            paper: p.paper.clone(),
+            table: p.table.clone(),
+            kind: kind.to_string(),
+            objective: objective_name(t),
+            robot: setup.robot.clone(),
+            integration: setup.integration,
+            rotation: setup.rotation,
+            phase: setup.phase,
+            scale_factor: setup.scale_factor,
+            tilt_x: setup.tilt_x,
+            tilt_y: setup.tilt_y,
+            reverse: setup.reverse,
+            rmp: setup.rmp.label().to_string(),
+            rel_residual: s.get(t),
+            table_residual: s.joint,
+            column_residuals: s
+                .columns
+                .iter()
+                .map(|r| r.to_string())
+                .collect::<Vec<_>>()
+                .join(";"),
+            max_entry_error: e.map(|e| e.max_entry_error(t)),
+            signs_matched: signs.map(|s| s.0),
+            entries: signs.map(|s| s.1),
+            evaluations: 0,
+            wall_s: 0.0,
+        }
+    };
+    let out_ = &f.outcome;
+    let targets: Vec<Target> = std::iter::once(Target::Joint)
+        .chain((0..names.len()).map(Target::Column))
+        .collect();
+    let mut out = Vec::new();
+    let d = &out_.declared;
+    for &t in &targets {
+        out.push(row(DECLARED, t, &d.point, &d.scores, Some(&d.detail)));
+    }
+    for &t in &targets {
+        let b = out_.best(t);
+        let mut r = row(BEST, t, &b.point, &b.scores, Some(&b.detail));
+        if t == Target::Joint {
+            r.evaluations = out_.evaluations;
+            r.wall_s = f.wall_s;
+        }
+        out.push(r);
+    }
+    // The best of each hypothesis (robot x integration), every objective.
+    let mut hypotheses: Vec<(&str, Integration)> = Vec::new();
+    for c in &f.combos {
+        if !hypotheses.contains(&(c.robot.as_str(), c.integration)) {
+            hypotheses.push((c.robot.as_str(), c.integration));
+        }
+    }
+    for (robot, integration) in &hypotheses {
+        for &t in &targets {
+            let of =
+                |k: usize| f.combos[k].robot == *robot && f.combos[k].integration == *integration;
+            if let Some(b) = out_.best_where(t, of) {
+                out.push(row(HYPOTHESIS, t, &b.point, &b.scores, Some(&b.detail)));
+            }
+        }
+    }
+    for l in &out_.local {
+        out.push(row(LOCAL, l.target, &l.point, &l.scores, None));
+    }
+    for profile in &out_.profiles {
+        let name = f.coordinates[profile.coordinate].name;
+        let kind = format!(
+            "{PROFILE} ({}): {name}",
+            if profile.refitted {
+                "re-fitted"
+            } else {
+                "slice"
+            }
+        );
+        for q in &profile.points {
+            out.push(row(&kind, Target::Joint, &q.point, &q.scores, None));
+        }
+    }
+    let mut entries = Vec::new();
+    let mut push = |label: &str, e: &Evaluation, only: Option<usize>| {
+        for (c, (column, pairs)) in e.entries.iter().enumerate() {
+            if only.is_some_and(|o| o != c) {
+                continue;
+            }
+            for (k, (o, d)) in pairs.iter().enumerate() {
+                entries.push(EntryRow {
+                    paper: p.paper.clone(),
+                    table: p.table.clone(),
+                    setup: label.to_string(),
+                    column: column.clone(),
+                    joint: k + 1,
+                    ours: *o,
+                    paper_value: *d,
+                    rel_error: (o - d).abs() / d.abs().max(f64::MIN_POSITIVE),
+                    sign_matched: o.signum() == d.signum(),
+                });
+            }
+        }
+    };
+    push(DECLARED, &d.detail, None);
+    push(BEST, &out_.best(Target::Joint).detail, None);
+    for c in 0..names.len() {
+        push(COLUMN_FIT, &out_.best(Target::Column(c)).detail, Some(c));
+    }
+    (out, entries)
+}

@@ -1,0 +1,114 @@
+//! Fuzzing what the program reads back from results directories: the committed runs.csv cut,
+//! its cells replaced by hostile names (paths, `..`, absolute paths, control characters, very
+//! long ids) or duplicated; arbitrary shard manifests (`shard.toml`) and integrity manifests
+//! (`manifest.toml`). Every input is either rejected with an error or accepted with every name
+//! safe to use as a file name; nothing panics. Bounded (200 cases each) to run in seconds.
+
+use proptest::prelude::*;
+use records::runs::read_runs;
+use simulation::naming::check_run_names;
+use std::path::PathBuf;
+
+fn committed_runs() -> Vec<String> {
+    let path = simulation::root::from_current_dir()
+        .unwrap()
+        .join("results/runs.csv");
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .take(12)
+        .map(String::from)
+        .collect()
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("driftbench-fuzz-results-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+/// Names an attacker would put in a row.
+fn hostile_name() -> impl Strategy<Value = String> {
+    prop_oneof![
+        Just("../../../somewhere".to_string()),
+        Just("/etc".to_string()),
+        Just("..".to_string()),
+        Just("a\\b".to_string()),
+        Just("a\nb".to_string()),
+        Just(String::new()),
+        (1usize..400).prop_map(|n| "x".repeat(n)),
+        "[a-zA-Z0-9 ()./_-]{0,40}",
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+
+    #[test]
+    fn hostile_rows_are_rejected_or_safe(
+        line in 1usize..12,
+        column in 0usize..4,
+        name in hostile_name(),
+        keep in 1usize..13,
+        duplicate in any::<bool>(),
+    ) {
+        let mut lines = committed_runs();
+        let mut cells: Vec<String> = lines[line].split(',').map(String::from).collect();
+        // paper, experiment, variant are the first columns, solver the fifth.
+        let index = [0, 1, 2, 4][column];
+        let quoted = format!("\"{}\"", name.replace('"', "\"\""));
+        if index < cells.len() {
+            cells[index] = quoted;
+        }
+        lines[line] = cells.join(",");
+        if duplicate {
+            let copy = lines[line].clone();
+            lines.push(copy);
+        }
+        lines.truncate(keep.max(1));
+        let path = scratch(&format!("runs-{line}-{column}-{keep}.csv"));
+        std::fs::write(&path, lines.join("\n") + "\n").unwrap();
+        if let Ok(rows) = read_runs(&path) {
+            for r in &rows {
+                prop_assert!(check_run_names(&r.experiment, &r.variant, &r.solver).is_ok());
+            }
+            let mut keys: Vec<_> = rows.iter().map(|r| r.key()).collect();
+            keys.sort();
+            keys.dedup();
+            prop_assert_eq!(keys.len(), rows.len());
+        }
+    }
+
+    #[test]
+    fn arbitrary_shard_manifests_never_panic(text in "(shard|shards|git_rev|runs|selection|experiments_hash|paper|=|\\[|\\]|\"|[0-9]|\n| |\\.\\./x|[a-z]){0,120}") {
+        let dir = scratch("shard-manifest");
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join(records::shard::MANIFEST), &text).unwrap();
+        let _ = records::shard::Manifest::read(&dir);
+    }
+
+    #[test]
+    fn integrity_manifests_list_only_plain_paths(
+        key in prop_oneof![
+            Just("runs.csv".to_string()),
+            Just("../x.csv".to_string()),
+            Just("/etc/passwd".to_string()),
+            Just("traces/../../x".to_string()),
+            Just("traces/e/v__s.csv".to_string()),
+            "[a-z./]{0,20}",
+        ],
+        lines in 0usize..5,
+    ) {
+        let dir = scratch("integrity-manifest");
+        std::fs::create_dir_all(&dir).unwrap();
+        let text = format!(
+            "git_rev = \"x\"\n[files.\"{key}\"]\nlines = {lines}\nbytes = 1\nsha256 = \"00\"\n"
+        );
+        std::fs::write(dir.join(records::integrity::FILE), text).unwrap();
+        if let Ok(Some(m)) = records::integrity::Manifest::read(&dir) {
+            for k in m.files.keys() {
+                prop_assert!(!k.starts_with('/') && !k.split('/').any(|s| s == ".." || s.is_empty()), "{}", k);
+            }
+        }
+    }
+}
