@@ -1,6 +1,8 @@
 //! driftbench's presentation layer: `report/REPORT.md` ([`report`]) and every figure
 //! ([`figures`]), rendered from what `results/` holds (never from a simulation in memory), so
-//! the committed report is always a function of the committed results.
+//! the committed report is always a function of the committed results; [`score`] writes the
+//! row, trace and figure of a trajectory scored from a file.
 
 pub mod figures;
 pub mod report;
+pub mod score;

@@ -33,3 +33,4 @@ pub mod runs;
 pub mod shard;
 pub mod table;
 pub mod tracked_dir;
+pub mod trajectory;

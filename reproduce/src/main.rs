@@ -139,6 +139,17 @@ struct Cli {
     /// The resolved shard of `--shard`.
     #[arg(skip)]
     shard_resolved: Option<records::shard::Shard>,
+    /// Score a trajectory produced elsewhere (CSV: t, theta_1..n, optionally thetadot_1..n) on
+    /// the task --task, as a run is scored; writes scores.csv, its trace and figure under
+    /// --score-out, then exits (presentation::score).
+    #[arg(long, value_name = "FILE", requires = "task")]
+    score: Option<PathBuf>,
+    /// The task of --score: "<experiment> / <variant>".
+    #[arg(long, value_name = "ID", requires = "score")]
+    task: Option<String>,
+    /// Where --score writes (default: scores/ in the working directory).
+    #[arg(long = "score-out", value_name = "DIR", default_value = "scores")]
+    score_out: PathBuf,
 }
 
 /// `--threads` may ask for at most this many worker threads per core: more only adds
@@ -222,6 +233,18 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
         return Ok(ExitCode::SUCCESS);
     }
     let git_rev = simulation::root::git_revision(&cli.project_root);
+    if let (Some(file), Some(task)) = (&cli.score, &cli.task) {
+        let task = presentation::score::find_task(&cli.experiments_dir, task)?;
+        let s = presentation::score::score_file(&task, file, &cli.score_out, &git_rev)?;
+        print_summary(std::slice::from_ref(&s.row));
+        eprintln!(
+            "wrote {}, {} and {}",
+            s.scores.display(),
+            s.trace.display(),
+            s.figure.display()
+        );
+        return Ok(ExitCode::SUCCESS);
+    }
     if cli.report_only {
         let root = report_root(&cli)?;
         check_report_dir(&root)?;

@@ -193,6 +193,11 @@ pub struct Job {
 }
 
 impl Job {
+    /// The run's task (what every solver of a variant shares): `"<experiment> / <variant>"`.
+    pub fn task_id(&self) -> String {
+        format!("{} / {}", self.experiment, self.variant)
+    }
+
     /// Stable key of a run: experiment / variant / solver.
     pub fn key(&self) -> String {
         format!(

@@ -8,7 +8,8 @@
 //! returns a [`run::RunRecord`]; [`runner`] runs many in parallel. Writing the records is the
 //! `records` crate's work, presenting them the `presentation` crate's. [`root`] finds the
 //! project (experiments/, results/, report/) and the code revision runs are stamped with.
-//! [`dof_cost`] measures what an instant and a run cost against the number of joints.
+//! [`score_trajectory`] scores a trajectory produced elsewhere on a task, with the metrics and
+//! the score of a run. [`dof_cost`] measures what an instant and a run cost against the number of joints.
 
 pub mod coupled;
 pub mod dof_cost;
@@ -20,5 +21,6 @@ pub mod robot_registry;
 pub mod root;
 pub mod run;
 pub mod runner;
+pub mod score_trajectory;
 pub mod simulate;
 pub mod sweep;

@@ -8,9 +8,11 @@ use crate::simulate::{simulate, Outcome, Run, Settings, Solver};
 use nalgebra::SVector;
 use robots::{Dynamics, Robot};
 use schemes::paths::{build_path, Cyclic, Path};
+use schemes::qp::QpDims;
 use schemes::scheme::Scheme;
 use schemes::spec::build_scheme;
 use solvers::exact_path::ExactPathStats;
+use solvers::neural::NeuralSolver;
 use solvers::ode::OdeStats;
 use std::sync::Arc;
 
@@ -21,9 +23,23 @@ pub struct RunRecord {
     pub run: Run,
 }
 
+/// Builds a network written outside the suite for the QP sizes of a task's scheme.
+pub type NetworkBuilder<'a> = &'a dyn Fn(QpDims) -> Result<Box<dyn NeuralSolver>, String>;
+
 /// Runs one job to completion or failure; never panics on bad numerics.
 pub fn run_job(job: &Job) -> RunRecord {
-    struct FromJob<'a>(&'a Job);
+    run_job_as(job, None)
+}
+
+/// Runs the task of `job` (robot, path, scheme, poses, integrator, scoring, network start) with
+/// the network `network` builds in place of the job's solver, as [`run_job`] runs the job's own
+/// (a network written outside the suite, e.g. in Python). The record keeps `job` as given.
+pub fn run_job_with_network(job: &Job, network: NetworkBuilder<'_>) -> RunRecord {
+    run_job_as(job, Some(network))
+}
+
+fn run_job_as(job: &Job, network: Option<NetworkBuilder<'_>>) -> RunRecord {
+    struct FromJob<'a>(&'a Job, Option<NetworkBuilder<'a>>);
     impl RobotVisitor for FromJob<'_> {
         type Output = Result<Run, RunError>;
         fn visit<const N: usize>(
@@ -31,11 +47,11 @@ pub fn run_job(job: &Job) -> RunRecord {
             robot: Arc<dyn Robot<N>>,
             dynamics: Option<Arc<dyn Dynamics<N>>>,
         ) -> Self::Output {
-            run_with::<N>(self.0, robot, dynamics)
+            run_with::<N>(self.0, self.1, robot, dynamics)
         }
     }
     let result = match robot_by_name(&job.robot) {
-        Some(robot) => robot.visit(FromJob(job)),
+        Some(robot) => robot.visit(FromJob(job, network)),
         None => Err(SetupError::UnknownRobot(job.robot.clone()).into()),
     };
     let run = result.unwrap_or_else(|error| Run {
@@ -138,7 +154,7 @@ pub fn check_job(job: &Job) -> Result<(), SetupError> {
 
 /// The path (starting at f(theta_ref)) and the scheme of a run.
 #[allow(clippy::type_complexity)]
-fn build_parts<const N: usize>(
+pub(crate) fn build_parts<const N: usize>(
     job: &Job,
     robot: Arc<dyn Robot<N>>,
     dynamics: Option<Arc<dyn Dynamics<N>>>,
@@ -186,6 +202,7 @@ pub fn build_cyclic_parts<const N: usize>(
 
 fn run_with<const N: usize>(
     job: &Job,
+    custom: Option<NetworkBuilder<'_>>,
     robot: Arc<dyn Robot<N>>,
     dynamics: Option<Arc<dyn Dynamics<N>>>,
 ) -> Result<Run, RunError> {
@@ -196,10 +213,14 @@ fn run_with<const N: usize>(
     let network = |spec: &solvers::neural::SolverSpec| {
         solvers::neural::build_solver(spec, dims).map_err(|e| e.to_string())
     };
-    let build;
-    let solver = match &job.solver {
-        SolverChoice::Exact => Solver::Exact,
-        SolverChoice::Neural(spec) => {
+    let (build, build_custom);
+    let solver = match (custom, &job.solver) {
+        (Some(custom), _) => {
+            build_custom = move || custom(dims);
+            Solver::Network(&build_custom)
+        }
+        (None, SolverChoice::Exact) => Solver::Exact,
+        (None, SolverChoice::Neural(spec)) => {
             build = move || network(spec);
             Solver::Network(&build)
         }

@@ -288,13 +288,14 @@ fn finish<const N: usize>(
     }
 }
 
-/// Turns accepted steps into metrics and a thinned trace.
-struct Observer<'a, const N: usize> {
+/// Turns accepted steps into metrics and a thinned trace (also the samples of a trajectory
+/// scored by [`crate::score_trajectory`]).
+pub(crate) struct Observer<'a, const N: usize> {
     robot: &'a dyn Robot<N>,
     scheme: &'a dyn Scheme<N>,
     path: &'a dyn Path,
-    metrics: MetricsAccumulator<N>,
-    trace: Vec<TracePoint>,
+    pub(crate) metrics: MetricsAccumulator<N>,
+    pub(crate) trace: Vec<TracePoint>,
     next_trace_t: f64,
     last_t: f64,
     /// Joint velocities at the last accepted step (for [`Self::divergence`]).
@@ -307,7 +308,7 @@ struct Observer<'a, const N: usize> {
 }
 
 impl<'a, const N: usize> Observer<'a, N> {
-    fn new(
+    pub(crate) fn new(
         robot: &'a dyn Robot<N>,
         scheme: &'a dyn Scheme<N>,
         path: &'a dyn Path,
@@ -334,7 +335,7 @@ impl<'a, const N: usize> Observer<'a, N> {
         !self.trace.is_empty()
     }
 
-    fn score(&mut self, t: f64, s: &ScoreSample) {
+    pub(crate) fn score(&mut self, t: f64, s: &ScoreSample) {
         self.metrics.push_score(t, s);
         self.last_dx = Some(s.dx);
     }
@@ -367,7 +368,7 @@ impl<'a, const N: usize> Observer<'a, N> {
     }
 
     /// Records the accepted state y at t with joint command x (x[..n] = thetadot or thetaddot).
-    fn sample(&mut self, t: f64, y: &[f64], x: &DVector<f64>, level: Level) {
+    pub(crate) fn sample(&mut self, t: f64, y: &[f64], x: &DVector<f64>, level: Level) {
         let (theta, thetadot) = arm_state::<N>(level, y, x.as_slice());
         let thetaddot = (level == Level::Acceleration)
             .then(|| SVector::<f64, N>::from_column_slice(&x.as_slice()[..N]));

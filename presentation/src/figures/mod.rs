@@ -58,6 +58,12 @@ fn run_stem(run: &RunRow) -> String {
     simulation::naming::run_stem(&run.variant, &run.solver)
 }
 
+/// The run figure of the report for `run` with its trace file `trace`, as SVG text (for a run
+/// outside `results/`: a scored trajectory, [`crate::score`]).
+pub fn run_svg(run: &RunRow, trace: &Path) -> Result<String, String> {
+    run_figure::figure(run, &Trace::read(trace)?).svg()
+}
+
 /// The SVG name of the figure that file `name` belongs to, if `name` follows this module's
 /// naming scheme (`<experiment>__<...>.svg` or its `.png`), i.e. is a file that [`render_all`]
 /// owns and may replace or delete.

@@ -1,0 +1,85 @@
+//! `reproduce --score FILE --task ID` (and `driftbench.score` in Python): a trajectory produced
+//! elsewhere, scored on a task of the suite (`simulation::score_trajectory`), written as a run
+//! is: its row in `<out>/scores.csv` (the `results/runs.csv` schema, one row per task and file,
+//! replaced when scored again), its trace in `<out>/traces/<experiment>/<variant>__<solver>.csv`
+//! and its figure (the report's run figure) in `<out>/figures/<experiment>__<variant>__<solver>.svg`.
+
+use crate::figures::run_svg;
+use records::runs::{merge, trace_csv, write_atomic, RunRow};
+use records::trajectory::{read_csv, score_row};
+use simulation::experiment::{load_dir, Job, PaperFile};
+use simulation::naming::run_stem;
+use simulation::run::RunRecord;
+use simulation::score_trajectory::score_trajectory;
+use std::path::{Path, PathBuf};
+
+/// What scoring a file wrote.
+#[derive(Clone, Debug)]
+pub struct Scored {
+    pub record: RunRecord,
+    pub row: RunRow,
+    pub scores: PathBuf,
+    pub trace: PathBuf,
+    pub figure: PathBuf,
+}
+
+/// The task `"<experiment> / <variant>"` of the experiment files in `experiments_dir`, as its
+/// first run (a trajectory is scored on its robot, path, scheme and poses only).
+pub fn find_task(experiments_dir: &Path, id: &str) -> Result<Job, String> {
+    load_dir(experiments_dir)
+        .map_err(|e| e.to_string())?
+        .iter()
+        .flat_map(PaperFile::jobs)
+        .find(|j| j.task_id() == id)
+        .ok_or_else(|| {
+            format!(
+                "no task \"{id}\" (a task is \"<experiment> / <variant>\"; `reproduce --list` lists them)"
+            )
+        })
+}
+
+/// Scores the trajectory CSV `file` on `task` and writes the row, trace and figure under `out`.
+pub fn score_file(task: &Job, file: &Path, out: &Path, git_rev: &str) -> Result<Scored, String> {
+    let trajectory = read_csv(file)?;
+    let record = score_trajectory(task, &trajectory)
+        .map_err(|e| format!("{}: {e} (task \"{}\")", file.display(), task.task_id()))?;
+    let source = file.file_name().map_or_else(
+        || file.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    );
+    let row = score_row(&record, &source, git_rev);
+    let scores = out.join("scores.csv");
+    let stored: Vec<RunRow> = if scores.exists() {
+        records::table::read(&scores).map_err(|e| e.to_string())?
+    } else {
+        Vec::new()
+    };
+    let rows = merge(stored, vec![row.clone()]);
+    let stem = run_stem(&row.variant, &row.solver);
+    let trace = out
+        .join("traces")
+        .join(&row.experiment)
+        .join(format!("{stem}.csv"));
+    let figure = out
+        .join("figures")
+        .join(format!("{}__{stem}.svg", row.experiment));
+    let io = |path: &Path, bytes: &[u8]| -> Result<(), String> {
+        if let Some(dir) = path.parent() {
+            std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        }
+        write_atomic(path, bytes).map_err(|e| format!("{}: {e}", path.display()))
+    };
+    io(
+        &scores,
+        &records::runs::runs_csv(&rows).map_err(|e| e.to_string())?,
+    )?;
+    io(&trace, &trace_csv(&record).map_err(|e| e.to_string())?)?;
+    io(&figure, run_svg(&row, &trace)?.as_bytes())?;
+    Ok(Scored {
+        record,
+        row,
+        scores,
+        trace,
+        figure,
+    })
+}

@@ -1,0 +1,429 @@
+//! driftbench for Python (`import driftbench`): the library's tasks, a run of a network written
+//! in Python, and the leaderboard, as bindings (PyO3) to the Rust crates, not a second
+//! implementation.
+//!
+//! - [`tasks`] / [`task`] / [`standard_tasks`]: every (experiment, variant) of the experiment
+//!   files as a `Task` ([`task_set::PyTask`]); the standard task set is the leaderboard's
+//!   (`records::leaderboard::standard_tasks` over `results/runs.csv`).
+//! - [`simulate`]: one run of a task with a Python network ([`network`]) or one of the suite's
+//!   own solvers (by label). Arm, scheme, integrator and the score against the exact optimum are
+//!   `simulation::run`'s; the result is the run's `results/runs.csv` row
+//!   (`records::runs::RunRow`) as a dict, with the drift and the trace as numpy arrays and the
+//!   cost of the Python calls.
+//! - [`leaderboard`]: Python networks on the standard task set, ranked with the suite's own runs
+//!   by `records::leaderboard::leaderboard`, rows in `results/leaderboard.csv`'s schema.
+//!
+//! Errors of the library are raised as `driftbench.DriftbenchError` with the library's message;
+//! an exception raised inside a network's method is raised again once the run stops (with the
+//! method and instant as context).
+
+mod network;
+mod task_set;
+
+use network::{network_name, Callbacks, PyNetwork, PyQpDims, SharedCallbacks};
+use numpy::IntoPyArray;
+use pyo3::create_exception;
+use pyo3::exceptions::PyException;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use records::runs::RunRow;
+use records::trajectory::{read_csv, score_row};
+use simulation::error::RunError;
+use simulation::run::{run_job, run_job_with_network, RunRecord};
+use simulation::score_trajectory::{score_trajectory, Trajectory};
+use simulation::simulate::{Outcome, Scoring};
+use solvers::neural::NeuralSolver;
+use std::path::{Path, PathBuf};
+use task_set::{load_tasks, PyTask};
+
+create_exception!(
+    driftbench,
+    DriftbenchError,
+    PyException,
+    "An error of the driftbench library (the message is the library's own)."
+);
+
+/// The `solver_kind` of a Python network's rows.
+const PYTHON_KIND: &str = "python";
+
+fn lib_err(e: impl std::fmt::Display) -> PyErr {
+    DriftbenchError::new_err(e.to_string())
+}
+
+/// `root`, or the project root found from the working directory upwards.
+fn project_root(root: Option<PathBuf>) -> PyResult<PathBuf> {
+    match root {
+        Some(r) => Ok(r),
+        None => simulation::root::from_current_dir().map_err(lib_err),
+    }
+}
+
+/// Every task of the experiment files (`<root>/experiments`; root: found from the working
+/// directory upwards), in file order.
+#[pyfunction]
+#[pyo3(signature = (root=None))]
+fn tasks(root: Option<PathBuf>) -> PyResult<Vec<PyTask>> {
+    load_tasks(&project_root(root)?).map_err(lib_err)
+}
+
+/// The task `"<experiment> / <variant>"`.
+#[pyfunction]
+#[pyo3(signature = (id, root=None))]
+fn task(id: &str, root: Option<PathBuf>) -> PyResult<PyTask> {
+    let all = tasks(root)?;
+    find_task(&all, id).cloned()
+}
+
+fn find_task<'a>(all: &'a [PyTask], id: &str) -> PyResult<&'a PyTask> {
+    all.iter()
+        .find(|t| t.job.task_id() == id)
+        .ok_or_else(|| {
+            lib_err(format!(
+                "no task \"{id}\" (ids are \"<experiment> / <variant>\"; driftbench.tasks() lists them)"
+            ))
+        })
+}
+
+/// The rows of `<root>/results/runs.csv`.
+fn stored_runs(root: &Path) -> PyResult<Vec<RunRow>> {
+    records::runs::read_runs(&root.join("results").join("runs.csv")).map_err(lib_err)
+}
+
+/// The leaderboard's standard task set (the cross experiment's tasks whose exact column
+/// completed in `<root>/results/runs.csv`).
+#[pyfunction]
+#[pyo3(signature = (root=None))]
+fn standard_tasks(root: Option<PathBuf>) -> PyResult<Vec<PyTask>> {
+    let root = project_root(root)?;
+    let all = load_tasks(&root).map_err(lib_err)?;
+    records::leaderboard::standard_tasks(&stored_runs(&root)?)
+        .iter()
+        .map(|s| {
+            all.iter()
+                .find(|t| t.job.experiment == s.experiment && t.job.variant == s.variant)
+                .cloned()
+                .ok_or_else(|| {
+                    lib_err(format!(
+                        "results/runs.csv has the standard task \"{} / {}\", the experiment files do not",
+                        s.experiment, s.variant
+                    ))
+                })
+        })
+        .collect()
+}
+
+/// Parses CSV text (a header, then rows) into dicts: empty fields None, integers int, numbers
+/// float, the rest str.
+fn csv_dicts<'py>(py: Python<'py>, bytes: &[u8]) -> PyResult<Vec<Bound<'py, PyDict>>> {
+    let mut reader = csv::Reader::from_reader(bytes);
+    let header = reader.headers().map_err(lib_err)?.clone();
+    let mut out = Vec::new();
+    for record in reader.records() {
+        let record = record.map_err(lib_err)?;
+        let d = PyDict::new(py);
+        for (key, field) in header.iter().zip(record.iter()) {
+            if field.is_empty() {
+                d.set_item(key, py.None())?;
+            } else if let Ok(i) = field.parse::<i64>() {
+                d.set_item(key, i)?;
+            } else if let Ok(f) = field.parse::<f64>() {
+                d.set_item(key, f)?;
+            } else {
+                d.set_item(key, field)?;
+            }
+        }
+        out.push(d);
+    }
+    Ok(out)
+}
+
+/// The run as a dict: its runs.csv columns, `drift` (per joint), `trace` (arrays over the
+/// thinned trace) and the Python calls' count and time.
+fn result_dict<'py>(
+    py: Python<'py>,
+    record: &RunRecord,
+    row: &RunRow,
+    calls: &Callbacks,
+) -> PyResult<Bound<'py, PyDict>> {
+    let bytes = records::runs::runs_csv(std::slice::from_ref(row)).map_err(lib_err)?;
+    let d = csv_dicts(py, &bytes)?
+        .pop()
+        .ok_or_else(|| lib_err("no row"))?;
+    d.set_item("drift", row.drift.clone().into_pyarray(py))?;
+    let trace = &record.run.trace;
+    let n = record.job.theta0.len();
+    let rows = |f: &dyn Fn(&simulation::simulate::TracePoint) -> Vec<f64>, width: usize| {
+        let flat: Vec<f64> = trace.iter().flat_map(f).collect();
+        numpy::ndarray::Array2::from_shape_vec((trace.len(), width), flat)
+            .map(|a| a.into_pyarray(py))
+            .map_err(lib_err)
+    };
+    let t = PyDict::new(py);
+    let column = |f: &dyn Fn(&simulation::simulate::TracePoint) -> f64| {
+        trace.iter().map(f).collect::<Vec<f64>>().into_pyarray(py)
+    };
+    t.set_item("t", column(&|p| p.t))?;
+    t.set_item("theta", rows(&|p| p.theta.clone(), n)?)?;
+    t.set_item("thetadot", rows(&|p| p.thetadot.clone(), n)?)?;
+    t.set_item("desired", rows(&|p| p.desired.to_vec(), 3)?)?;
+    t.set_item("actual", rows(&|p| p.actual.to_vec(), 3)?)?;
+    t.set_item("score_dx", column(&|p| p.score_dx.unwrap_or(f64::NAN)))?;
+    d.set_item("trace", t)?;
+    d.set_item("python_calls", calls.calls)?;
+    d.set_item("python_seconds", calls.seconds)?;
+    Ok(d)
+}
+
+/// Runs `job`'s task with the Python network `network`; raises what the network raised, or
+/// the library's error when the run could not be set up. The row is named after the network.
+fn run_python(
+    job: &simulation::experiment::Job,
+    network: &Bound<'_, PyAny>,
+    root: &Path,
+) -> PyResult<(RunRecord, RunRow, Callbacks)> {
+    let name = network_name(network)?;
+    let callbacks = SharedCallbacks::default();
+    let build = |dims| {
+        PyNetwork::new(network, dims, callbacks.clone())
+            .map(|n| Box::new(n) as Box<dyn NeuralSolver>)
+            .map_err(|e| e.to_string())
+    };
+    let record = run_job_with_network(job, &build);
+    let mut calls = std::mem::take(&mut *callbacks.lock().unwrap_or_else(|p| p.into_inner()));
+    if let Some(e) = calls.take_error() {
+        return Err(e);
+    }
+    check_setup(&record)?;
+    let mut row = RunRow::from_record(&record, &simulation::root::git_revision(root));
+    row.solver = name;
+    row.solver_kind = PYTHON_KIND.to_string();
+    Ok((record, row, calls))
+}
+
+/// A run that could not be set up raises the library's error.
+fn check_setup(record: &RunRecord) -> PyResult<()> {
+    match &record.run.outcome {
+        Outcome::Failed {
+            error: e @ RunError::Setup(_),
+            ..
+        } => Err(lib_err(e)),
+        _ => Ok(()),
+    }
+}
+
+/// `scoring`: None (the task's), "every-step", "off", or a number of instants.
+fn parse_scoring(value: &Bound<'_, PyAny>) -> PyResult<Scoring> {
+    if let Ok(n) = value.extract::<usize>() {
+        return Ok(Scoring::MaxInstants(n));
+    }
+    match value.extract::<String>()?.as_str() {
+        "every-step" => Ok(Scoring::EveryStep),
+        "off" => Ok(Scoring::Off),
+        other => Err(lib_err(format!(
+            "scoring must be \"every-step\", \"off\" or a number of instants, got \"{other}\""
+        ))),
+    }
+}
+
+/// Simulates `task` with `network`: a Python network (see the package docs) or the label of
+/// one of the task's own solvers (`task.solvers`, e.g. "exact (Clarabel)"). Keyword arguments
+/// override the task's integrator tolerances and step limit, the scoring ("every-step", "off"
+/// or a number of instants) and where the network starts ("zero" or "exact"). Returns the
+/// run's runs.csv columns as a dict, with `drift` and `trace` as numpy arrays.
+#[pyfunction]
+#[pyo3(signature = (task, network, *, rtol=None, atol=None, max_step=None, scoring=None, network_init=None))]
+#[allow(clippy::too_many_arguments)]
+fn simulate<'py>(
+    py: Python<'py>,
+    task: &PyTask,
+    network: &Bound<'py, PyAny>,
+    rtol: Option<f64>,
+    atol: Option<f64>,
+    max_step: Option<f64>,
+    scoring: Option<&Bound<'py, PyAny>>,
+    network_init: Option<&str>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let builtin = network.extract::<String>().ok();
+    let mut job = match &builtin {
+        Some(label) => task.run_labelled(label).map_err(lib_err)?.clone(),
+        None => task.job.clone(),
+    };
+    job.integrator.rtol = rtol.unwrap_or(job.integrator.rtol);
+    job.integrator.atol = atol.unwrap_or(job.integrator.atol);
+    job.integrator.max_step = max_step.or(job.integrator.max_step);
+    job.integrator.validate().map_err(lib_err)?;
+    if let Some(s) = scoring {
+        job.scoring = parse_scoring(s)?;
+    }
+    if let Some(init) = network_init {
+        job.network_init = serde_json::from_value(serde_json::Value::String(init.to_string()))
+            .map_err(|_| {
+                lib_err(format!(
+                    "network_init must be \"zero\" or \"exact\", got \"{init}\""
+                ))
+            })?;
+    }
+    let (record, row, calls) = if builtin.is_some() {
+        let record = run_job(&job);
+        check_setup(&record)?;
+        let row = RunRow::from_record(&record, &simulation::root::git_revision(&task.root));
+        (record, row, Callbacks::default())
+    } else {
+        run_python(&job, network, &task.root)?
+    };
+    result_dict(py, &record, &row, &calls)
+}
+
+/// Scores Python networks on the standard task set (or on `tasks`, a subset of it) the way the
+/// leaderboard scores the suite's own networks: each runs every task, its rows join the stored
+/// `results/runs.csv`, and `records::leaderboard::leaderboard` ranks them all. `entries` is a
+/// dict name -> network or a list of networks (named by their `name`, else their class).
+/// Returns {"leaderboard": rows, "runs": the networks' rows}, each a list of dicts in the
+/// schema of results/leaderboard.csv and results/runs.csv; with `out_dir`, writes both files
+/// there.
+#[pyfunction]
+#[pyo3(signature = (entries, *, tasks=None, root=None, out_dir=None))]
+fn leaderboard<'py>(
+    py: Python<'py>,
+    entries: &Bound<'py, PyAny>,
+    tasks: Option<Vec<PyTask>>,
+    root: Option<PathBuf>,
+    out_dir: Option<PathBuf>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let root = project_root(root)?;
+    let stored = stored_runs(&root)?;
+    let standard = standard_tasks(Some(root.clone()))?;
+    let chosen = match tasks {
+        None => standard,
+        Some(given) => {
+            for t in &given {
+                let id = t.job.task_id();
+                if !standard.iter().any(|s| s.job.task_id() == id) {
+                    return Err(lib_err(format!(
+                        "task \"{id}\" is not in the standard task set (driftbench.standard_tasks())"
+                    )));
+                }
+            }
+            given
+        }
+    };
+    let named: Vec<(String, Bound<'py, PyAny>)> = match entries.cast::<PyDict>() {
+        Ok(d) => d
+            .iter()
+            .map(|(k, v)| Ok((k.extract::<String>()?, v)))
+            .collect::<PyResult<_>>()?,
+        Err(_) => entries
+            .try_iter()?
+            .map(|n| {
+                let n = n?;
+                Ok((network_name(&n)?, n))
+            })
+            .collect::<PyResult<_>>()?,
+    };
+    let mut fresh = Vec::new();
+    for (name, network) in &named {
+        if stored.iter().any(|r| &r.solver == name)
+            || fresh.iter().any(|r: &RunRow| &r.solver == name)
+        {
+            return Err(lib_err(format!(
+                "a solver called \"{name}\" is already on the leaderboard; give the network another name"
+            )));
+        }
+        for t in &chosen {
+            let (_, mut row, _) = run_python(&t.job, network, &root)?;
+            row.solver = name.clone();
+            fresh.push(row);
+        }
+    }
+    let mut all = stored;
+    all.extend(fresh.iter().cloned());
+    let board = records::leaderboard::leaderboard(&all);
+    let board_csv = records::leaderboard::leaderboard_csv(&board).map_err(lib_err)?;
+    let runs_csv = records::runs::runs_csv(&fresh).map_err(lib_err)?;
+    if let Some(dir) = out_dir {
+        std::fs::create_dir_all(&dir).map_err(|e| lib_err(format!("{}: {e}", dir.display())))?;
+        for (name, bytes) in [("leaderboard.csv", &board_csv), ("runs.csv", &runs_csv)] {
+            let path = dir.join(name);
+            records::runs::write_atomic(&path, bytes)
+                .map_err(|e| lib_err(format!("{}: {e}", path.display())))?;
+        }
+    }
+    let out = PyDict::new(py);
+    out.set_item("leaderboard", PyList::new(py, csv_dicts(py, &board_csv)?)?)?;
+    out.set_item("runs", PyList::new(py, csv_dicts(py, &runs_csv)?)?)?;
+    Ok(out)
+}
+
+/// Scores a trajectory produced elsewhere on `task` with the metrics and the score of a run
+/// (`simulation::score_trajectory`). `trajectory` is a CSV file (columns t, theta_1..n,
+/// optionally thetadot_1..n) or a dict of arrays `t` (m), `theta` (m x n) and optionally
+/// `thetadot` (m x n). With `out_dir` (a file only), writes `scores.csv`, the trace and the
+/// figure there as `reproduce --score` does. Returns the row as `simulate` does.
+#[pyfunction]
+#[pyo3(signature = (task, trajectory, *, out_dir=None))]
+fn score<'py>(
+    py: Python<'py>,
+    task: &PyTask,
+    trajectory: &Bound<'py, PyAny>,
+    out_dir: Option<PathBuf>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let git_rev = simulation::root::git_revision(&task.root);
+    let (record, row) = if let Ok(file) = trajectory.extract::<PathBuf>() {
+        match out_dir {
+            Some(out) => {
+                let s = presentation::score::score_file(&task.job, &file, &out, &git_rev)
+                    .map_err(lib_err)?;
+                (s.record, s.row)
+            }
+            None => {
+                let record = score_trajectory(&task.job, &read_csv(&file).map_err(lib_err)?)
+                    .map_err(|e| lib_err(format!("{}: {e}", file.display())))?;
+                let row = score_row(&record, &file.display().to_string(), &git_rev);
+                (record, row)
+            }
+        }
+    } else {
+        if out_dir.is_some() {
+            return Err(lib_err("out_dir is for a trajectory file"));
+        }
+        let d = trajectory.cast::<PyDict>()?;
+        let get = |key: &str| -> PyResult<Option<Bound<'py, PyAny>>> { d.get_item(key) };
+        let rows = |v: Bound<'py, PyAny>| -> PyResult<Vec<Vec<f64>>> {
+            let a: numpy::PyArrayLike2<'py, f64, numpy::AllowTypeChange> = v.extract()?;
+            Ok(a.as_array()
+                .rows()
+                .into_iter()
+                .map(|r| r.to_vec())
+                .collect())
+        };
+        let t: numpy::PyArrayLike1<'py, f64, numpy::AllowTypeChange> = get("t")?
+            .ok_or_else(|| lib_err("the trajectory dict needs \"t\" and \"theta\""))?
+            .extract()?;
+        let theta =
+            rows(get("theta")?.ok_or_else(|| lib_err("the trajectory dict needs \"theta\""))?)?;
+        let thetadot = get("thetadot")?.map(rows).transpose()?;
+        let traj = Trajectory {
+            t: t.as_array().to_vec(),
+            theta,
+            thetadot,
+        };
+        let record = score_trajectory(&task.job, &traj).map_err(lib_err)?;
+        let row = score_row(&record, "arrays", &git_rev);
+        (record, row)
+    };
+    result_dict(py, &record, &row, &Callbacks::default())
+}
+
+#[pymodule]
+fn _driftbench(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("DriftbenchError", m.py().get_type::<DriftbenchError>())?;
+    m.add_class::<PyTask>()?;
+    m.add_class::<PyQpDims>()?;
+    m.add_function(wrap_pyfunction!(tasks, m)?)?;
+    m.add_function(wrap_pyfunction!(task, m)?)?;
+    m.add_function(wrap_pyfunction!(standard_tasks, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(leaderboard, m)?)?;
+    m.add_function(wrap_pyfunction!(score, m)?)?;
+    Ok(())
+}

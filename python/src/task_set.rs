@@ -1,0 +1,171 @@
+//! The tasks as Python objects: one per (experiment, variant) of the experiment files, with the
+//! runs the suite makes of it (the exact column and the papers' networks) and everything a
+//! network run of the task uses (robot, path, poses, scheme, the variant's network integrator,
+//! scoring and network start).
+
+use pyo3::prelude::*;
+use serde::Serialize;
+use simulation::experiment::{load_dir, Job, SolverChoice};
+use std::path::{Path, PathBuf};
+
+/// One task of the suite (module docs). Attributes are read-only; `path`, `scheme` and
+/// `integrator` are dicts in the experiment files' own fields.
+#[pyclass(name = "Task", module = "driftbench", frozen)]
+#[derive(Clone)]
+pub struct PyTask {
+    /// The task as a network run of it: the variant's integrator, scoring and network start.
+    pub job: Job,
+    /// The suite's own runs of the task, exact column first where it has one.
+    pub runs: Vec<Job>,
+    /// The project root the task was read from.
+    pub root: PathBuf,
+}
+
+/// A value the experiment files serialise, as the Python object JSON makes of it.
+fn to_py<'py>(py: Python<'py>, value: &impl Serialize) -> PyResult<Bound<'py, PyAny>> {
+    let text = serde_json::to_string(value)
+        .map_err(|e| pyo3::exceptions::PyValueError::new_err(e.to_string()))?;
+    py.import("json")?.call_method1("loads", (text,))
+}
+
+#[pymethods]
+impl PyTask {
+    /// `"<experiment> / <variant>"`: what `driftbench.task` takes.
+    #[getter]
+    fn id(&self) -> String {
+        self.job.task_id()
+    }
+    #[getter]
+    fn paper(&self) -> &str {
+        &self.job.paper
+    }
+    #[getter]
+    fn experiment(&self) -> &str {
+        &self.job.experiment
+    }
+    #[getter]
+    fn variant(&self) -> &str {
+        &self.job.variant
+    }
+    /// The robot's registry name (`jaco2-pen`, `katana6m180`, ...).
+    #[getter]
+    fn robot(&self) -> &str {
+        &self.job.robot
+    }
+    /// Joint count.
+    #[getter]
+    fn dof(&self) -> usize {
+        self.job.theta0.len()
+    }
+    /// The path: name, duration and the pose fields (rotation, phase, scale, ...).
+    #[getter]
+    fn path<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_py(py, &self.job.path)
+    }
+    /// Duration T of the task (s).
+    #[getter]
+    fn duration(&self) -> f64 {
+        self.job.path.duration
+    }
+    #[getter]
+    fn theta0(&self) -> Vec<f64> {
+        self.job.theta0.clone()
+    }
+    /// The scheme's joint reference (the path starts at f(theta_ref)).
+    #[getter]
+    fn theta_ref(&self) -> Vec<f64> {
+        self.job.theta_ref.clone()
+    }
+    /// The scheme: `kind` and its parameters.
+    #[getter]
+    fn scheme<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_py(py, &self.job.scheme)
+    }
+    /// The scheme's display name with its parameters (`VLTCO (phi=0.2, tau=0.4)`).
+    #[getter]
+    fn scheme_name(&self) -> String {
+        self.job.scheme.display_name()
+    }
+    /// The integrator of a network run: method, tolerances, budgets.
+    #[getter]
+    fn integrator<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_py(py, &self.job.integrator)
+    }
+    /// Where a network run is scored against the exact optimum.
+    #[getter]
+    fn scoring<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_py(py, &self.job.scoring)
+    }
+    /// Where a network's state starts (`zero` or `exact`).
+    #[getter]
+    fn network_init<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        to_py(py, &self.job.network_init)
+    }
+    /// The labels of the suite's own runs of the task (`exact (Clarabel)`, `ZNN (gamma = 1)`,
+    /// ...): each can be given to `simulate` in place of a Python network.
+    #[getter]
+    fn solvers(&self) -> Vec<String> {
+        self.runs.iter().map(|j| j.solver.label()).collect()
+    }
+    fn __repr__(&self) -> String {
+        format!(
+            "Task('{}', robot='{}', path='{}', T={} s, scheme='{}')",
+            self.id(),
+            self.job.robot,
+            self.job.path.name,
+            self.job.path.duration,
+            self.scheme_name()
+        )
+    }
+}
+
+impl PyTask {
+    /// The suite's run of this task whose solver label is `label`.
+    pub fn run_labelled(&self, label: &str) -> Result<&Job, String> {
+        self.runs
+            .iter()
+            .find(|j| j.solver.label() == label)
+            .ok_or_else(|| {
+                format!(
+                    "task \"{}\" has no solver \"{label}\"; its solvers: {}",
+                    self.id(),
+                    self.solvers().join(", ")
+                )
+            })
+    }
+}
+
+/// Every task of the experiment files under `root/experiments`, in file order.
+pub fn load_tasks(root: &Path) -> Result<Vec<PyTask>, String> {
+    let files = load_dir(&root.join("experiments")).map_err(|e| e.to_string())?;
+    let mut tasks = Vec::new();
+    for file in &files {
+        let jobs = file.jobs();
+        for e in &file.experiments {
+            for v in &e.variants {
+                let runs: Vec<Job> = jobs
+                    .iter()
+                    .filter(|j| j.experiment == e.id && j.variant == v.label)
+                    .cloned()
+                    .collect();
+                let Some(first) = runs.first() else {
+                    continue;
+                };
+                // A network run of the variant, as the experiment file makes its networks'.
+                let job = Job {
+                    solver: SolverChoice::Exact,
+                    integrator: v.integrator.unwrap_or(e.integrator),
+                    network_init: v.network_init,
+                    expected_failure: None,
+                    ..first.clone()
+                };
+                tasks.push(PyTask {
+                    job,
+                    runs,
+                    root: root.to_path_buf(),
+                });
+            }
+        }
+    }
+    Ok(tasks)
+}

@@ -1,0 +1,158 @@
+//! Trajectories produced elsewhere (MATLAB, Octave, Python), as files, and their score as a row.
+//!
+//! **Input** ([`read_csv`]): a CSV file with a header row naming the columns `t`,
+//! `theta_1 .. theta_n` and optionally `thetadot_1 .. thetadot_n` (in any order; n the task's
+//! joint count; no other column), one row per sample: t in seconds from 0 to the task's
+//! duration, joint angles in rad, velocities in rad/s. `simulation::score_trajectory` says what
+//! is checked and how it is scored.
+//!
+//! **Output** ([`score_row`]): the score is a row of the `results/runs.csv` schema
+//! ([`RunRow`]): the run's metrics (drift, position error, margins, peaks) and score
+//! (`score_*`), with `solver` = `trajectory <file name>`, `solver_kind` = [`TRAJECTORY_KIND`] and
+//! `integrator` = [`TRAJECTORY_KIND`] (nothing was integrated: `rtol` and `atol` are 0, `steps`
+//! is the number of samples).
+
+use crate::runs::RunRow;
+use simulation::run::RunRecord;
+use simulation::score_trajectory::Trajectory;
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// The `solver_kind` (and `integrator`) of a scored trajectory's row.
+pub const TRAJECTORY_KIND: &str = "trajectory";
+
+/// Reads a trajectory CSV (module docs). Errors name the file and, where it applies, the line.
+pub fn read_csv(path: &Path) -> Result<Trajectory, String> {
+    let at = |e: String| format!("{}: {e}", path.display());
+    let mut reader = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .from_path(path)
+        .map_err(|e| at(e.to_string()))?;
+    let header = reader.headers().map_err(|e| at(e.to_string()))?.clone();
+    // Column index of t, and of each numbered theta_i / thetadot_i.
+    let mut t_col = None;
+    let mut numbered: BTreeMap<&str, BTreeMap<usize, usize>> = BTreeMap::new();
+    for (col, name) in header.iter().enumerate() {
+        let (stem, index) = match name.rsplit_once('_') {
+            Some((stem @ ("theta" | "thetadot"), i)) => (stem, i.parse::<usize>().ok()),
+            _ if name == "t" => {
+                t_col = Some(col);
+                continue;
+            }
+            _ => (name, None),
+        };
+        match index {
+            Some(i) if i >= 1 => {
+                numbered.entry(stem).or_default().insert(i, col);
+            }
+            _ => {
+                return Err(at(format!(
+                    "unknown column \"{name}\" (the columns are t, theta_1 .. theta_n and optionally thetadot_1 .. thetadot_n)"
+                )))
+            }
+        }
+    }
+    let t_col = t_col.ok_or_else(|| at("no column \"t\"".to_string()))?;
+    let columns = |stem: &str| -> Result<Option<Vec<usize>>, String> {
+        let Some(map) = numbered.get(stem) else {
+            return Ok(None);
+        };
+        if map.keys().copied().ne(1..=map.len()) {
+            return Err(at(format!(
+                "the {stem}_i columns must be numbered 1 .. n without gaps, got {:?}",
+                map.keys().collect::<Vec<_>>()
+            )));
+        }
+        Ok(Some(map.values().copied().collect()))
+    };
+    let theta_cols = columns("theta")?.ok_or_else(|| at("no column \"theta_1\"".to_string()))?;
+    let thetadot_cols = columns("thetadot")?;
+    if let Some(v) = &thetadot_cols {
+        if v.len() != theta_cols.len() {
+            return Err(at(format!(
+                "{} theta_i columns but {} thetadot_i columns",
+                theta_cols.len(),
+                v.len()
+            )));
+        }
+    }
+    let mut trajectory = Trajectory {
+        thetadot: thetadot_cols.as_ref().map(|_| Vec::new()),
+        ..Trajectory::default()
+    };
+    for (row, record) in reader.records().enumerate() {
+        let line = row + 2;
+        let record = record.map_err(|e| at(format!("line {line}: {e}")))?;
+        let number = |col: usize| -> Result<f64, String> {
+            let field = record.get(col).unwrap_or("");
+            field.parse::<f64>().map_err(|_| {
+                at(format!(
+                    "line {line}: column \"{}\" is \"{field}\", not a number",
+                    &header[col]
+                ))
+            })
+        };
+        let numbers = |cols: &[usize]| {
+            cols.iter()
+                .map(|&c| number(c))
+                .collect::<Result<Vec<_>, _>>()
+        };
+        trajectory.t.push(number(t_col)?);
+        trajectory.theta.push(numbers(&theta_cols)?);
+        if let (Some(cols), Some(v)) = (&thetadot_cols, trajectory.thetadot.as_mut()) {
+            v.push(numbers(cols)?);
+        }
+    }
+    Ok(trajectory)
+}
+
+/// The row of a scored trajectory (module docs); `source` names the file it came from.
+pub fn score_row(record: &RunRecord, source: &str, git_rev: &str) -> RunRow {
+    let mut row = RunRow::from_record(record, git_rev);
+    row.solver = format!("{TRAJECTORY_KIND} {source}");
+    row.solver_kind = TRAJECTORY_KIND.to_string();
+    row.integrator = TRAJECTORY_KIND.to_string();
+    row.rtol = 0.0;
+    row.atol = 0.0;
+    row.max_step = None;
+    row
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn read(text: &str) -> Result<Trajectory, String> {
+        let dir = std::env::temp_dir().join(format!("driftbench-traj-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join(format!("{}.csv", text.len()));
+        std::fs::write(&path, text).unwrap();
+        let out = read_csv(&path);
+        std::fs::remove_file(&path).unwrap();
+        out
+    }
+
+    #[test]
+    fn columns_in_any_order_with_or_without_velocities() {
+        let tr = read("theta_2,t,theta_1\n1,0,2\n3,0.5,4\n").unwrap();
+        assert_eq!(tr.t, [0.0, 0.5]);
+        assert_eq!(tr.theta, [vec![2.0, 1.0], vec![4.0, 3.0]]);
+        assert!(tr.thetadot.is_none());
+        let tr = read("t, theta_1, thetadot_1\n0, 1, -1\n").unwrap();
+        assert_eq!(tr.thetadot, Some(vec![vec![-1.0]]));
+    }
+
+    #[test]
+    fn bad_files_are_refused_with_the_line_and_column() {
+        let e = read("t,theta_1,x\n0,1,2\n").unwrap_err();
+        assert!(e.contains("unknown column \"x\""), "{e}");
+        let e = read("t,theta_1,theta_3\n0,1,2\n").unwrap_err();
+        assert!(e.contains("numbered 1 .. n without gaps"), "{e}");
+        let e = read("t,theta_1\n0,1\n0.1,abc\n").unwrap_err();
+        assert!(e.contains("line 3: column \"theta_1\" is \"abc\""), "{e}");
+        let e = read("theta_1\n1\n").unwrap_err();
+        assert!(e.contains("no column \"t\""), "{e}");
+        let e = read("t,theta_1,theta_2,thetadot_1\n0,1,2,3\n").unwrap_err();
+        assert!(e.contains("2 theta_i columns but 1 thetadot_i"), "{e}");
+    }
+}

@@ -1,0 +1,80 @@
+//! `reproduce --score FILE --task ID`: a trajectory written as CSV (here the trace of the
+//! suite's own ZNN run) is scored with the run's drift, and its row, trace and figure are
+//! written under --score-out; a task that does not exist is refused with the library's message.
+
+use simulation::experiment::{load_dir, PaperFile, SolverChoice};
+use simulation::run::run_job;
+use simulation::simulate::Outcome;
+use std::process::Command;
+
+/// The binary, in the workspace root.
+fn reproduce() -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_reproduce"));
+    c.current_dir(simulation::root::from_current_dir().unwrap());
+    c
+}
+
+#[test]
+fn a_trajectory_file_is_scored_on_its_task() {
+    let root = simulation::root::from_current_dir().unwrap();
+    let job = load_dir(&root.join("experiments"))
+        .unwrap()
+        .iter()
+        .flat_map(PaperFile::jobs)
+        .find(|j| {
+            j.task_id() == "kong2019-circle / ZNN (eq. 22)" && j.solver != SolverChoice::Exact
+        })
+        .unwrap();
+    let run = run_job(&job).run;
+    let Outcome::Completed(metrics) = &run.outcome else {
+        panic!("{:?}", run.outcome)
+    };
+    let dir = std::env::temp_dir().join(format!("driftbench-score-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let n = job.theta0.len();
+    let mut csv = String::from("t");
+    for i in 1..=n {
+        csv.push_str(&format!(",theta_{i}"));
+    }
+    csv.push('\n');
+    for p in &run.trace {
+        csv.push_str(&format!("{:e}", p.t));
+        for v in &p.theta {
+            csv.push_str(&format!(",{v:e}"));
+        }
+        csv.push('\n');
+    }
+    let file = dir.join("znn.csv");
+    std::fs::write(&file, csv).unwrap();
+    let out = dir.join("out");
+    let ok = reproduce()
+        .args(["--task", &job.task_id(), "--score"])
+        .arg(&file)
+        .arg("--score-out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        ok.status.success(),
+        "{}",
+        String::from_utf8_lossy(&ok.stderr)
+    );
+    let rows: Vec<records::runs::RunRow> = records::table::read(&out.join("scores.csv")).unwrap();
+    assert_eq!(rows.len(), 1);
+    assert_eq!(rows[0].drift, metrics.drift);
+    assert_eq!(rows[0].solver, "trajectory znn.csv");
+    assert!(rows[0].score_rms_dx.is_some());
+    let figures: Vec<_> = std::fs::read_dir(out.join("figures")).unwrap().collect();
+    assert_eq!(figures.len(), 1);
+
+    let refused = reproduce()
+        .args(["--task", "nope / nope", "--score"])
+        .arg(&file)
+        .arg("--score-out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("no task \"nope / nope\""));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -1,0 +1,328 @@
+//! Scoring a trajectory produced anywhere (MATLAB, Octave, Python, a real arm) on a task of the
+//! suite, with the same metrics as a run and the same score against the exact optimum.
+//!
+//! A [`Trajectory`] is samples (t_k, theta_k) with 0 = t_0 < t_1 < ... < t_m = T (the task's
+//! duration) and theta_0 = the task's theta0, optionally with the joint velocities thetadot_k
+//! (the command x[..n] the trajectory's solver gave). Without them thetadot_k is taken by the
+//! second-order finite difference of theta on the (possibly non-uniform) grid: with
+//! h_1 = t_k - t_{k-1}, h_2 = t_{k+1} - t_k,
+//!
+//! ```text
+//! thetadot_k = (h_1^2 theta_{k+1} - h_2^2 theta_{k-1} + (h_2^2 - h_1^2) theta_k) / (h_1 h_2 (h_1 + h_2)),
+//! ```
+//!
+//! and the one-sided second-order formula at both ends.
+//!
+//! Every sample goes through the run's own observer (`simulate`): drift theta(T) - theta0,
+//! position error |r*(t) - f(theta)| against the task's path, joint and velocity margins,
+//! peaks, sigma_min(J). Every sample is also scored as a network's accepted step is: the task's
+//! QP is built at (t_k, theta_k), its exact optimum x* solved, and the trajectory's command
+//! x = [thetadot_k; x*[n..]] (its auxiliary entries, which a trajectory does not carry, taken
+//! from x*) compared with it: |x[..n] - x*[..n]|_inf, the relative objective gap
+//! (f(x) - f(x*)) / max(1, |f(x*)|) and the constraint violation of x.
+//!
+//! Only velocity-level schemes are scored (there x = thetadot and the QP depends on (t, theta)
+//! alone); at the acceleration level the command would be a second difference of the samples.
+
+use crate::coupled::ExactLoop;
+use crate::error::SetupError;
+use crate::experiment::Job;
+use crate::metrics::ScoreSample;
+use crate::robot_registry::{robot_by_name, RobotVisitor};
+use crate::run::{build_parts, RunRecord};
+use crate::simulate::{Observer, Outcome, Run};
+use nalgebra::{DVector, SVector};
+use robots::{Dynamics, Robot};
+use schemes::scheme::Level;
+use solvers::ode::OdeStats;
+use std::sync::Arc;
+use std::time::Instant;
+
+/// Samples of a joint trajectory (module docs): `theta[k]` (and `thetadot[k]`) at `t[k]`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Trajectory {
+    pub t: Vec<f64>,
+    pub theta: Vec<Vec<f64>>,
+    pub thetadot: Option<Vec<Vec<f64>>>,
+}
+
+/// Relative tolerance on the first and last instants (t_0 = 0, t_m = T) in units of T.
+pub const TIME_TOLERANCE: f64 = 1e-9;
+
+/// Tolerance on |theta_0 - theta0|_inf (rad): a trajectory started elsewhere drifts from
+/// another pose, and its drift would not be the task's.
+pub const START_TOLERANCE: f64 = 1e-6;
+
+/// Why a trajectory cannot be scored on a task.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TrajectoryError {
+    #[error("a trajectory needs at least 3 samples, got {0}")]
+    TooShort(usize),
+    #[error("sample {row}: {what} has {given} entries, the task's robot has {joints} joints")]
+    Width {
+        row: usize,
+        what: &'static str,
+        given: usize,
+        joints: usize,
+    },
+    #[error("sample {row}: t = {t} does not follow t = {previous} (t must increase strictly)")]
+    NotIncreasing { row: usize, t: f64, previous: f64 },
+    #[error("sample {row}: a value is not finite")]
+    NotFinite { row: usize },
+    #[error("the trajectory starts at t = {0}, the task at t = 0")]
+    Start(f64),
+    #[error("the trajectory ends at t = {t}, the task at its duration T = {duration} s")]
+    End { t: f64, duration: f64 },
+    #[error(
+        "theta at t = 0 differs from the task's theta0 by {diff:.3e} rad at joint {joint} (tolerance {START_TOLERANCE:e})"
+    )]
+    StartPose { joint: usize, diff: f64 },
+    #[error("scoring a trajectory needs a velocity-level scheme (x = thetadot); {0} is acceleration-level")]
+    AccelerationLevel(String),
+    #[error(transparent)]
+    Setup(#[from] SetupError),
+}
+
+impl Trajectory {
+    /// Checks the samples against a task of `joints` joints, duration `duration` and start
+    /// `theta0` (module docs).
+    pub fn check(
+        &self,
+        joints: usize,
+        duration: f64,
+        theta0: &[f64],
+    ) -> Result<(), TrajectoryError> {
+        let m = self.t.len();
+        if m < 3 {
+            return Err(TrajectoryError::TooShort(m));
+        }
+        let mut columns: Vec<(&'static str, &Vec<Vec<f64>>)> = vec![("theta", &self.theta)];
+        if let Some(v) = &self.thetadot {
+            columns.push(("thetadot", v));
+        }
+        for (what, rows) in columns {
+            if rows.len() != m {
+                return Err(TrajectoryError::TooShort(rows.len().min(m)));
+            }
+            for (row, v) in rows.iter().enumerate() {
+                if v.len() != joints {
+                    return Err(TrajectoryError::Width {
+                        row,
+                        what,
+                        given: v.len(),
+                        joints,
+                    });
+                }
+                if v.iter().any(|x| !x.is_finite()) {
+                    return Err(TrajectoryError::NotFinite { row });
+                }
+            }
+        }
+        for (row, w) in self.t.windows(2).enumerate() {
+            if !w[1].is_finite() || w[1] <= w[0] {
+                return Err(TrajectoryError::NotIncreasing {
+                    row: row + 1,
+                    t: w[1],
+                    previous: w[0],
+                });
+            }
+        }
+        if !self.t[0].is_finite() || self.t[0].abs() > TIME_TOLERANCE * duration {
+            return Err(TrajectoryError::Start(self.t[0]));
+        }
+        let end = self.t[m - 1];
+        if (end - duration).abs() > TIME_TOLERANCE * duration {
+            return Err(TrajectoryError::End { t: end, duration });
+        }
+        for (i, (a, b)) in self.theta[0].iter().zip(theta0).enumerate() {
+            let diff = (a - b).abs();
+            if diff > START_TOLERANCE {
+                return Err(TrajectoryError::StartPose { joint: i + 1, diff });
+            }
+        }
+        Ok(())
+    }
+
+    /// thetadot at every sample: the given one, else the finite difference of the module docs.
+    pub fn velocities(&self) -> Vec<Vec<f64>> {
+        if let Some(v) = &self.thetadot {
+            return v.clone();
+        }
+        let (t, y) = (&self.t, &self.theta);
+        let m = t.len();
+        let n = y[0].len();
+        // Weights of y[a], y[b], y[c] in the derivative at t[at] of the parabola through them.
+        let parabola = |a: usize, b: usize, c: usize, at: usize| -> Vec<f64> {
+            let (ta, tb, tc, x) = (t[a], t[b], t[c], t[at]);
+            let wa = ((x - tb) + (x - tc)) / ((ta - tb) * (ta - tc));
+            let wb = ((x - ta) + (x - tc)) / ((tb - ta) * (tb - tc));
+            let wc = ((x - ta) + (x - tb)) / ((tc - ta) * (tc - tb));
+            (0..n)
+                .map(|i| wa * y[a][i] + wb * y[b][i] + wc * y[c][i])
+                .collect()
+        };
+        (0..m)
+            .map(|k| match k {
+                0 => parabola(0, 1, 2, 0),
+                k if k == m - 1 => parabola(m - 3, m - 2, m - 1, m - 1),
+                k => parabola(k - 1, k, k + 1, k),
+            })
+            .collect()
+    }
+}
+
+/// Scores `trajectory` on the task of `job` (its robot, path, scheme, theta0 and theta_ref;
+/// its solver and integrator play no part). The record's run has the metrics and the score of
+/// the module docs; its `stats.steps` is the number of samples.
+pub fn score_trajectory(job: &Job, trajectory: &Trajectory) -> Result<RunRecord, TrajectoryError> {
+    struct Score<'a>(&'a Job, &'a Trajectory);
+    impl RobotVisitor for Score<'_> {
+        type Output = Result<Run, TrajectoryError>;
+        fn visit<const N: usize>(
+            self,
+            robot: Arc<dyn Robot<N>>,
+            dynamics: Option<Arc<dyn Dynamics<N>>>,
+        ) -> Self::Output {
+            score_with::<N>(self.0, self.1, robot, dynamics)
+        }
+    }
+    let run = match robot_by_name(&job.robot) {
+        Some(robot) => robot.visit(Score(job, trajectory))?,
+        None => return Err(SetupError::UnknownRobot(job.robot.clone()).into()),
+    };
+    Ok(RunRecord {
+        job: job.clone(),
+        run,
+    })
+}
+
+fn score_with<const N: usize>(
+    job: &Job,
+    trajectory: &Trajectory,
+    robot: Arc<dyn Robot<N>>,
+    dynamics: Option<Arc<dyn Dynamics<N>>>,
+) -> Result<Run, TrajectoryError> {
+    let started = Instant::now();
+    trajectory.check(N, job.path.duration, &job.theta0)?;
+    let theta0 = SVector::<f64, N>::from_column_slice(&job.theta0);
+    let theta_ref = SVector::<f64, N>::from_column_slice(&job.theta_ref);
+    let (path, scheme) = build_parts::<N>(job, robot.clone(), dynamics)?;
+    if scheme.level() != Level::Velocity {
+        return Err(TrajectoryError::AccelerationLevel(scheme.name()));
+    }
+    let mut observer = Observer::new(
+        robot.as_ref(),
+        scheme.as_ref(),
+        path.as_ref(),
+        theta0,
+        theta_ref,
+    );
+    let mut scorer = ExactLoop::new(scheme.as_ref());
+    let mut failures = 0usize;
+    let velocities = trajectory.velocities();
+    let nx = scheme.dims().nx;
+    for ((&t, theta), thetadot) in trajectory.t.iter().zip(&trajectory.theta).zip(&velocities) {
+        let theta = SVector::<f64, N>::from_column_slice(theta);
+        let command = SVector::<f64, N>::from_column_slice(thetadot);
+        let mut x = DVector::zeros(nx);
+        match scorer.optimum(t, &theta, &command) {
+            Ok(x_star) => {
+                x.copy_from(&x_star);
+                x.rows_mut(0, N).copy_from(&command);
+                let qp = &scorer.qp;
+                let f_star = qp.objective(&x_star);
+                observer.score(
+                    t,
+                    &ScoreSample {
+                        dx: (command - x_star.rows(0, N)).amax(),
+                        objective_gap: (qp.objective(&x) - f_star) / f_star.abs().max(1.0),
+                        violation: qp.constraint_violation(&x),
+                    },
+                );
+            }
+            Err(_) => {
+                failures += 1;
+                x.rows_mut(0, N).copy_from(&command);
+            }
+        }
+        observer.sample(t, theta.as_slice(), &x, Level::Velocity);
+    }
+    let seconds = started.elapsed().as_secs_f64();
+    Ok(Run {
+        scheme_name: scheme.name(),
+        outcome: Outcome::Completed(observer.metrics.finish(0.0)),
+        stats: OdeStats {
+            steps: trajectory.t.len(),
+            wall_seconds: seconds,
+            ..OdeStats::default()
+        },
+        qp: scorer.stats(),
+        score_failures: failures,
+        observe_seconds: seconds,
+        trace: observer.trace,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn quadratic(m: usize) -> Trajectory {
+        // theta(t) = (t^2, 3 - t) on a non-uniform grid of [0, 2].
+        let t: Vec<f64> = (0..m)
+            .map(|k| 2.0 * (k as f64 / (m - 1) as f64).powi(2))
+            .collect();
+        Trajectory {
+            theta: t.iter().map(|&s| vec![s * s, 3.0 - s]).collect(),
+            t,
+            thetadot: None,
+        }
+    }
+
+    #[test]
+    fn finite_differences_are_exact_on_parabolas() {
+        let tr = quadratic(7);
+        for (t, v) in tr.t.iter().zip(tr.velocities()) {
+            assert!(
+                (v[0] - 2.0 * t).abs() < 1e-12 && (v[1] + 1.0).abs() < 1e-12,
+                "{t}: {v:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn samples_are_checked_against_the_task() {
+        let tr = quadratic(5);
+        assert_eq!(tr.check(2, 2.0, &[0.0, 3.0]), Ok(()));
+        assert_eq!(
+            tr.check(3, 2.0, &[0.0, 3.0, 0.0]),
+            Err(TrajectoryError::Width {
+                row: 0,
+                what: "theta",
+                given: 2,
+                joints: 3
+            })
+        );
+        assert_eq!(
+            tr.check(2, 3.0, &[0.0, 3.0]),
+            Err(TrajectoryError::End {
+                t: 2.0,
+                duration: 3.0
+            })
+        );
+        assert!(matches!(
+            tr.check(2, 2.0, &[0.0, 2.0]),
+            Err(TrajectoryError::StartPose { joint: 2, .. })
+        ));
+        let mut back = tr.clone();
+        back.t[2] = back.t[1];
+        assert!(matches!(
+            back.check(2, 2.0, &[0.0, 3.0]),
+            Err(TrajectoryError::NotIncreasing { row: 2, .. })
+        ));
+        assert_eq!(
+            quadratic(2).check(2, 2.0, &[0.0, 3.0]),
+            Err(TrajectoryError::TooShort(2))
+        );
+    }
+}
