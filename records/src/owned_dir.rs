@@ -34,6 +34,11 @@ pub enum PathError {
         path: PathBuf,
         target: PathBuf,
     },
+    #[error("{what}: {source}")]
+    Name {
+        what: String,
+        source: simulation::naming::NameError,
+    },
     #[error("{path}: cannot inspect: {source}")]
     Inspect {
         path: PathBuf,

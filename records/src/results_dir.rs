@@ -196,9 +196,9 @@ impl ResultsDir {
     /// A run's trace, relative to the directory: `traces/<experiment>/<variant>__<solver>.csv`,
     /// its names checked.
     pub fn trace_rel(experiment: &str, variant: &str, solver: &str) -> Result<PathBuf, PathError> {
-        check_run_names(experiment, variant, solver).map_err(|e| PathError::NotPlain {
-            dir: PathBuf::from(TRACES),
-            name: PathBuf::from(format!("{experiment} / {variant} / {solver}: {e}")),
+        check_run_names(experiment, variant, solver).map_err(|source| PathError::Name {
+            what: format!("the trace of {experiment} / {variant} / {solver}"),
+            source,
         })?;
         Ok(Path::new(TRACES)
             .join(experiment)

@@ -384,14 +384,22 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
             records::journal::Journal::open(r, &git_rev, joints.unwrap_or(0))
         })
         .transpose()?;
+    // The journal writes each run's trace as the run finishes; the runs it could not
+    // checkpoint are remembered, and only their traces are written again at the end.
+    let unjournaled = std::sync::Mutex::new(HashSet::new());
     let records = run_jobs_with(&to_run, true, |r| {
         if let Some(j) = &journal {
             if let Err(e) = j.record(r) {
                 eprintln!("warning: run not checkpointed: {e}");
+                unjournaled
+                    .lock()
+                    .unwrap_or_else(|p| p.into_inner())
+                    .insert(r.job.key());
             }
         }
     });
     drop(journal);
+    let unjournaled = unjournaled.into_inner().unwrap_or_else(|p| p.into_inner());
     let rows: Vec<RunRow> = records
         .iter()
         .map(|r| RunRow::from_record(r, &git_rev))
@@ -412,7 +420,11 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
         return Ok(check(baseline_rows, &baseline_name, &rows, cli.exact_only));
     }
     if let (Some(results), Some((kept, pruned))) = (&results, stored) {
-        write_results(results, &records, kept, &pruned, rows)?;
+        let untraced: Vec<&RunRecord> = records
+            .iter()
+            .filter(|r| unjournaled.contains(&r.job.key()))
+            .collect();
+        write_results(results, &untraced, kept, &pruned, rows)?;
         records::journal::remove(results.path())?;
         if let Some(shard) = cli.shard_resolved {
             records::shard::Manifest {
@@ -839,11 +851,11 @@ fn select_jobs(
 }
 
 /// Prunes the stored rows no experiment file describes (said run by run; their traces only if
-/// this program wrote them), merges the fresh rows into the kept ones, writes the fresh traces
-/// and runs.csv, and saves the manifest.
+/// this program wrote them), merges the fresh rows into the kept ones, writes the traces of
+/// `untraced` (the runs the journal could not checkpoint) and runs.csv, and saves the manifest.
 fn write_results(
     results: &ResultsDir,
-    records: &[RunRecord],
+    untraced: &[&RunRecord],
     kept: Vec<RunRow>,
     pruned: &[RunRow],
     rows: Vec<RunRow>,
@@ -858,16 +870,15 @@ fn write_results(
         );
     }
     let merged = merge(kept, rows);
-    for r in records {
+    for r in untraced {
         results.write_trace(r).map_err(|e| e.to_string())?;
     }
     results.write_runs(&merged).map_err(|e| e.to_string())?;
     results.save().map_err(|e| e.to_string())?;
     eprintln!(
-        "wrote {} ({} rows) and {} traces",
+        "wrote {} ({} rows)",
         results.runs_path().display(),
-        merged.len(),
-        records.len()
+        merged.len()
     );
     Ok(())
 }
