@@ -69,18 +69,18 @@ fn main() {
         });
         let jobs: Vec<Job> = timed("jobs + keys (list)", n, || {
             let jobs = file.jobs();
-            let keys: usize = jobs.iter().map(|j| j.key().len()).sum();
+            let keys: usize = jobs.iter().map(|j| j.key().to_string().len()).sum();
             assert!(keys > 0);
             jobs
         });
         timed("shard plan (8 shards)", n, || {
-            let keys: Vec<String> = jobs.iter().map(Job::key).collect();
+            let keys: Vec<String> = jobs.iter().map(|j| j.key().to_string()).collect();
             records::shard::plan(keys.iter().map(String::as_str), 8)
         });
         if n <= 100_000 {
             let rows: Vec<RunRow> = jobs
                 .iter()
-                .map(|j| RunRow::blank(&j.experiment, &j.variant, "exact (Clarabel)", "exact"))
+                .map(|j| RunRow::blank(&j.experiment, &j.variant_id, "exact", "exact"))
                 .collect();
             let half = rows[..n / 2].to_vec();
             timed("merge stored + fresh rows", n, || merge(rows, half).len());

@@ -168,11 +168,12 @@ pub fn experiment_jobs() -> Vec<Job> {
         .collect()
 }
 
-/// The job of `experiment` / `variant` run by the solver labelled `solver`
-/// ([`SolverChoice::label`], e.g. `exact (Clarabel)`, `VP-RNN-PF (linear)`).
+/// The job with key `experiment / variant / solver` (ids, e.g. `jia2019-star / vltco /
+/// exact`).
 pub fn find_job(jobs: &[Job], experiment: &str, variant: &str, solver: &str) -> Job {
+    let key = simulation::run_key::RunKey::new(experiment, variant, solver);
     jobs.iter()
-        .find(|j| j.experiment == experiment && j.variant == variant && j.solver.label() == solver)
+        .find(|j| j.key() == key)
         .cloned()
         .unwrap_or_else(|| panic!("no job {experiment} / {variant} / {solver} in experiments/"))
 }
@@ -206,29 +207,21 @@ pub fn paper_networks(jobs: &[Job], shape: QpShape) -> Vec<(String, SolverSpec)>
     out
 }
 
-/// The whole runs `runs.rs` times, as (experiment, variant, solver label): the exact column and
+/// The whole runs `runs.rs` times, as (experiment, variant, solver) ids: the exact column and
 /// the neural run of jia2019-star VLTCO, zhong2021-clover-b (VP-RNN-PF linear, S-LVI-PDNN) and
 /// kong2019-circle ZNN. No FTNN run: it takes ~10 s (650k steps).
 pub const RUN_CASES: [(&str, &str, &str); 7] = [
-    ("jia2019-star", "VLTCO", "exact (Clarabel)"),
-    ("jia2019-star", "VLTCO", "LVI-PDNN"),
+    ("jia2019-star", "vltco", "exact"),
+    ("jia2019-star", "vltco", "lvi-pdnn"),
+    ("zhong2021-clover-b", "cmco-eta-0.1-delta-0.8", "exact"),
     (
         "zhong2021-clover-b",
-        "CMCO (eta=0.1, delta=0.8)",
-        "exact (Clarabel)",
+        "cmco-eta-0.1-delta-0.8",
+        "vp-rnn-pf-linear",
     ),
-    (
-        "zhong2021-clover-b",
-        "CMCO (eta=0.1, delta=0.8)",
-        "VP-RNN-PF (linear)",
-    ),
-    (
-        "zhong2021-clover-b",
-        "CMCO (eta=0.1, delta=0.8)",
-        "S-LVI-PDNN",
-    ),
-    ("kong2019-circle", "ZNN (eq. 22)", "exact (Clarabel)"),
-    ("kong2019-circle", "ZNN (eq. 22)", "ZNN"),
+    ("zhong2021-clover-b", "cmco-eta-0.1-delta-0.8", "s-lvi-pdnn"),
+    ("kong2019-circle", "znn-eq22", "exact"),
+    ("kong2019-circle", "znn-eq22", "znn"),
 ];
 
 // ---------------------------------------------------------------------------------------------
@@ -325,21 +318,21 @@ impl<const N: usize> SchemeCase<N> {
 /// (zhong2021-clover-b), zhang2018 HL-JDF zeta = 0.6 (zhang2018-butterfly-scheme).
 pub fn jaco2_scheme_cases(jobs: &[Job]) -> Vec<SchemeCase<6>> {
     [
-        ("jia2019-VLTCO", "jia2019-star", "VLTCO"),
+        ("jia2019-VLTCO", "jia2019-star", "vltco"),
         (
             "zhong2021-CMCO",
             "zhong2021-clover-b",
-            "CMCO (eta=0.1, delta=0.8)",
+            "cmco-eta-0.1-delta-0.8",
         ),
         (
             "zhang2018-HL-JDF",
             "zhang2018-butterfly-scheme",
-            "HL-JDF (zeta=0.6)",
+            "hl-jdf-zeta-0.6",
         ),
     ]
     .iter()
     .map(|&(label, e, v)| {
-        let job = find_job(jobs, e, v, "exact (Clarabel)");
+        let job = find_job(jobs, e, v, "exact");
         let arm = Arc::new(jaco2_model(&job.robot));
         SchemeCase::new(label, &job, arm.clone(), Some(arm))
     })
@@ -350,12 +343,12 @@ pub fn jaco2_scheme_cases(jobs: &[Job]) -> Vec<SchemeCase<6>> {
 /// baseline (eq. 22).
 pub fn katana_scheme_cases(jobs: &[Job]) -> Vec<SchemeCase<5>> {
     [
-        ("kong2019-finite-time", "finite-time (eq. 14)"),
-        ("kong2019-ZNN", "ZNN (eq. 22)"),
+        ("kong2019-finite-time", "finite-time-eq14"),
+        ("kong2019-ZNN", "znn-eq22"),
     ]
     .iter()
     .map(|&(label, v)| {
-        let job = find_job(jobs, "kong2019-circle", v, "exact (Clarabel)");
+        let job = find_job(jobs, "kong2019-circle", v, "exact");
         SchemeCase::new(label, &job, Arc::new(Katana6m180::new()), None)
     })
     .collect()

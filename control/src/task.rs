@@ -13,7 +13,7 @@ use simulation::run::build_cyclic_parts;
 use solvers::neural::SolverSpec;
 use std::sync::Arc;
 
-/// A task: an experiment and one of its variants.
+/// A task: an experiment and one of its variants (ids).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TaskRef {
     pub experiment: &'static str,
@@ -25,27 +25,27 @@ pub struct TaskRef {
 pub const TASKS: [TaskRef; 6] = [
     TaskRef {
         experiment: "jia2019-clover",
-        variant: "VLTCO",
+        variant: "vltco",
     },
     TaskRef {
         experiment: "jia2019-clover",
-        variant: "MVN",
+        variant: "mvn",
     },
     TaskRef {
         experiment: "zhong2021-clover-a",
-        variant: "CMCO (eta=0.2, delta=0.4)",
+        variant: "cmco-eta-0.2-delta-0.4",
     },
     TaskRef {
         experiment: "zhang2018-butterfly-scheme",
-        variant: "HL-JDF (zeta=0.6)",
+        variant: "hl-jdf-zeta-0.6",
     },
     TaskRef {
         experiment: "kong2019-circle",
-        variant: "ZNN (eq. 22)",
+        variant: "znn-eq22",
     },
     TaskRef {
         experiment: "kong2019-circle",
-        variant: "finite-time (eq. 14)",
+        variant: "finite-time-eq14",
     },
 ];
 
@@ -60,7 +60,7 @@ pub struct Task {
 }
 
 impl Task {
-    /// `experiment / variant`.
+    /// `experiment / variant` (ids).
     pub fn id(&self) -> String {
         format!("{} / {}", self.reference.experiment, self.reference.variant)
     }
@@ -84,7 +84,7 @@ pub fn load_tasks(dir: &std::path::Path, refs: &[TaskRef]) -> Result<Vec<Task>, 
         .map(|r| {
             let mine: Vec<&Job> = jobs
                 .iter()
-                .filter(|j| j.experiment == r.experiment && j.variant == r.variant)
+                .filter(|j| j.experiment == r.experiment && j.variant_id == r.variant)
                 .collect();
             let first = mine.first().ok_or_else(|| {
                 ControlError::UnknownTask(format!("{} / {}", r.experiment, r.variant))

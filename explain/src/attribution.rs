@@ -121,6 +121,10 @@ fn without_perturbation(spec: &SolverSpec) -> Option<SolverSpec> {
 pub struct AttributionRow {
     pub paper: String,
     pub experiment: String,
+    /// The run's variant and solver ids (with `experiment`, its key).
+    pub variant_id: String,
+    pub solver_id: String,
+    /// Labels (display only).
     pub variant: String,
     pub solver: String,
     /// `run`, `scheme (exact, converged)`, `network lag`, `integration error`, or an
@@ -139,6 +143,13 @@ pub struct AttributionRow {
     pub max_pos_err: Option<f64>,
     /// Why a component is missing (a rung or switch run that did not complete).
     pub note: String,
+}
+
+impl AttributionRow {
+    /// The key of the run the row explains.
+    pub fn key(&self) -> simulation::run_key::RunKey {
+        simulation::run_key::RunKey::new(&self.experiment, &self.variant_id, &self.solver_id)
+    }
 }
 
 records::drift_columns!(AttributionRow, drift, "drift_norm");
@@ -180,6 +191,8 @@ pub fn attribution_rows(
         AttributionRow {
             paper: run.paper.clone(),
             experiment: run.experiment.clone(),
+            variant_id: run.variant_id.clone(),
+            solver_id: run.solver_id.clone(),
             variant: run.variant.clone(),
             solver: run.solver.clone(),
             component: component.to_string(),

@@ -122,6 +122,10 @@ pub fn jobs(job: &Job) -> Vec<Job> {
 pub struct LadderRow {
     pub paper: String,
     pub experiment: String,
+    /// The run's variant and solver ids (with `experiment`, its key).
+    pub variant_id: String,
+    pub solver_id: String,
+    /// Labels (display only).
     pub variant: String,
     pub solver: String,
     pub method: String,
@@ -148,6 +152,13 @@ pub struct LadderRow {
     pub rejected: usize,
     pub rhs_evals: usize,
     pub wall_s: f64,
+}
+
+impl LadderRow {
+    /// The key of the run the row explains.
+    pub fn key(&self) -> simulation::run_key::RunKey {
+        simulation::run_key::RunKey::new(&self.experiment, &self.variant_id, &self.solver_id)
+    }
 }
 
 impl LadderRow {
@@ -204,6 +215,8 @@ pub fn ladder_rows(base: &Job, rungs: &[IntegratorSettings], rows: &[RunRow]) ->
             LadderRow {
                 paper: r.paper.clone(),
                 experiment: r.experiment.clone(),
+                variant_id: r.variant_id.clone(),
+                solver_id: r.solver_id.clone(),
                 variant: r.variant.clone(),
                 solver: r.solver.clone(),
                 method: s.method.label().to_string(),

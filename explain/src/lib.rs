@@ -9,10 +9,11 @@
 //!   a published table, jointly and column by column, always shown beside the declared setup,
 //!   never instead of it.
 //!
-//! The runs explained ([`targets`]) are those of the papers' solvers that a published column
-//! maps onto (`records::paper_values::MAPPINGS`), zhang2018's perturbed runs (its robustness
-//! experiments: the paper prints no table, but the perturbation is an ingredient to attribute)
-//! and the group-code experiments' "as coded" runs (paper id `group`). Results: `results/ladder.csv`, `results/attribution.csv`
+//! The runs explained ([`targets`]) are the neural runs a published column maps onto
+//! (`papers/<paper>/paper.toml`, [`records::papers::Papers`]) and those of the variants an
+//! experiment file marks `explain = true` (zhang2018's perturbed runs: the paper prints no
+//! table, but the perturbation is an ingredient to attribute; the group-code experiments'
+//! "as coded" runs). Results: `results/ladder.csv`, `results/attribution.csv`
 //! (written by [`write`]), `results/inference.csv` (by `reproduce --infer`).
 
 pub mod attribution;
@@ -21,32 +22,24 @@ pub mod ladder;
 
 use attribution::{attribution_rows, exact_counterpart, switch_jobs, AttributionRow, Switch};
 use ladder::LadderRow;
-use records::paper_values::MAPPINGS;
+use records::papers::Papers;
 use records::runs::{write_atomic, RunRow};
 use records::table::Row;
 use simulation::experiment::{Job, SolverChoice};
+use simulation::run_key::RunKey;
 use simulation::runner::run_jobs;
 use std::path::Path;
 
 /// Paper id of the group-code reference experiments (`experiments/group.toml`).
 pub const GROUP: &str = "group";
-/// Label prefix of the group-code variants that compute what the code computes (the others
-/// switch one ingredient off and are attributed through their own rows).
-pub const GROUP_AS_CODED: &str = "as coded";
 
-/// The neural runs to explain among `jobs`, in `jobs` order.
-pub fn targets(jobs: &[Job]) -> Vec<Job> {
+/// The neural runs to explain among `jobs`, in `jobs` order: those a published column maps
+/// onto and those of variants marked `explain = true`.
+pub fn targets(jobs: &[Job], papers: &Papers) -> Vec<Job> {
+    let mapped: std::collections::HashSet<_> = papers.mappings.iter().map(|m| &m.run).collect();
     jobs.iter()
         .filter(|j| matches!(j.solver, SolverChoice::Neural(_)))
-        .filter(|j| {
-            (j.paper == GROUP && j.variant.starts_with(GROUP_AS_CODED))
-                || (j.paper == "zhang2018" && j.experiment.ends_with("-robust"))
-                || MAPPINGS.iter().any(|m| {
-                    m.experiment == j.experiment
-                        && m.variant == j.variant
-                        && m.solver == j.solver.label()
-                })
-        })
+        .filter(|j| j.explain || mapped.contains(&j.key()))
         .cloned()
         .collect()
 }
@@ -149,20 +142,13 @@ pub fn read_csv<T: Row>(path: &Path) -> Result<Vec<T>, String> {
 pub fn write(results_dir: &Path, fresh: &Explained, all: &[Job]) -> Result<(), String> {
     let ladder_path = results_dir.join("ladder.csv");
     let attribution_path = results_dir.join("attribution.csv");
-    let exists = |e: &str, v: &str, s: &str| {
-        all.iter()
-            .any(|j| j.experiment == e && j.variant == v && j.solver.label() == s)
-    };
+    let keys: std::collections::HashSet<RunKey> = all.iter().map(Job::key).collect();
     let mut stored_ladder = read_csv::<LadderRow>(&ladder_path)?;
-    stored_ladder.retain(|r| exists(&r.experiment, &r.variant, &r.solver));
+    stored_ladder.retain(|r| keys.contains(&r.key()));
     let mut stored_attribution = read_csv::<AttributionRow>(&attribution_path)?;
-    stored_attribution.retain(|r| exists(&r.experiment, &r.variant, &r.solver));
-    let ladder = merge(stored_ladder, &fresh.ladder, |r| {
-        (r.experiment.clone(), r.variant.clone(), r.solver.clone())
-    });
-    let attribution = merge(stored_attribution, &fresh.attribution, |r| {
-        (r.experiment.clone(), r.variant.clone(), r.solver.clone())
-    });
+    stored_attribution.retain(|r| keys.contains(&r.key()));
+    let ladder = merge(stored_ladder, &fresh.ladder, LadderRow::key);
+    let attribution = merge(stored_attribution, &fresh.attribution, AttributionRow::key);
     for (path, bytes) in [
         (&ladder_path, to_csv(&ladder)?),
         (&attribution_path, to_csv(&attribution)?),

@@ -21,19 +21,14 @@ fn jobs() -> Vec<Job> {
 
 fn find(jobs: &[Job], experiment: &str, variant: &str, solver: &str) -> Job {
     jobs.iter()
-        .find(|j| j.experiment == experiment && j.variant == variant && j.solver.label() == solver)
+        .find(|j| j.key() == simulation::run_key::RunKey::new(experiment, variant, solver))
         .unwrap_or_else(|| panic!("{experiment} / {variant} / {solver}"))
         .clone()
 }
 
 /// kong2019's ZNN on the circle from theta*0: cheap (a few hundred steps), not stiff.
 fn znn_circle(jobs: &[Job]) -> Job {
-    find(
-        jobs,
-        "kong2019-circle",
-        "ZNN (eq. 22) [start on theta*0]",
-        "ZNN",
-    )
+    find(jobs, "kong2019-circle", "znn-eq22-start-on-theta-0", "znn")
 }
 
 #[test]
@@ -44,7 +39,7 @@ fn ladder_converges_and_attribution_adds_up() {
 
     // The ladder: the reference is the finest BDF rung, and tightening the tolerance by six
     // decades gains digits.
-    let neural: Vec<_> = x.ladder.iter().filter(|r| r.solver == "ZNN").collect();
+    let neural: Vec<_> = x.ladder.iter().filter(|r| r.solver_id == "znn").collect();
     let reference = neural
         .iter()
         .find(|r| r.reference)
@@ -145,12 +140,7 @@ fn switches_change_one_ingredient_only() {
 #[test]
 fn inference_recovers_a_known_setup() {
     let jobs = jobs();
-    let exact = find(
-        &jobs,
-        "kong2019-triangle",
-        "ZNN (eq. 22)",
-        "exact (Clarabel)",
-    );
+    let exact = find(&jobs, "kong2019-triangle", "znn-eq22", "exact");
     // Tight tolerances: the drift here is ~1e-5, so AbsTol 1e-8 would leave 1e-3 of noise.
     let run = Job {
         integrator: solvers::ode::IntegratorSettings {
@@ -238,7 +228,7 @@ fn network_can_start_at_the_exact_optimum() {
     use simulation::run::run_job;
     let jobs = jobs();
     // The deviated start: x*(0) = -mu (theta0 - theta*0) + ... is not zero.
-    let zero = find(&jobs, "kong2019-circle", "ZNN (eq. 22)", "ZNN");
+    let zero = find(&jobs, "kong2019-circle", "znn-eq22", "znn");
     let exact = Job {
         network_init: NetworkInit::Exact,
         ..zero.clone()

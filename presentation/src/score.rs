@@ -8,8 +8,9 @@ use crate::figures::run_svg;
 use records::runs::{merge, trace_csv, write_atomic, RunRow};
 use records::trajectory::{read_csv, score_row};
 use simulation::experiment::{load_dir, Job, PaperFile};
-use simulation::naming::run_stem;
+
 use simulation::run::RunRecord;
+use simulation::run_key::TaskKey;
 use simulation::score_trajectory::score_trajectory;
 use std::path::{Path, PathBuf};
 
@@ -23,14 +24,15 @@ pub struct Scored {
     pub figure: PathBuf,
 }
 
-/// The task `"<experiment> / <variant>"` of the experiment files in `experiments_dir`, as its
-/// first run (a trajectory is scored on its robot, path, scheme and poses only).
+/// The task `"<experiment> / <variant>"` (ids) of the experiment files in `experiments_dir`, as
+/// its first run (a trajectory is scored on its robot, path, scheme and poses only).
 pub fn find_task(experiments_dir: &Path, id: &str) -> Result<Job, String> {
+    let key = TaskKey::parse(id);
     load_dir(experiments_dir)
         .map_err(|e| e.to_string())?
         .iter()
         .flat_map(PaperFile::jobs)
-        .find(|j| j.task_id() == id)
+        .find(|j| Some(j.task()) == key)
         .ok_or_else(|| {
             format!(
                 "no task \"{id}\" (a task is \"<experiment> / <variant>\"; `reproduce --list` lists them)"
@@ -42,7 +44,7 @@ pub fn find_task(experiments_dir: &Path, id: &str) -> Result<Job, String> {
 pub fn score_file(task: &Job, file: &Path, out: &Path, git_rev: &str) -> Result<Scored, String> {
     let trajectory = read_csv(file)?;
     let record = score_trajectory(task, &trajectory)
-        .map_err(|e| format!("{}: {e} (task \"{}\")", file.display(), task.task_id()))?;
+        .map_err(|e| format!("{}: {e} (task \"{}\")", file.display(), task.task()))?;
     let source = file.file_name().map_or_else(
         || file.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
@@ -55,7 +57,7 @@ pub fn score_file(task: &Job, file: &Path, out: &Path, git_rev: &str) -> Result<
         Vec::new()
     };
     let rows = merge(stored, vec![row.clone()]);
-    let stem = run_stem(&row.variant, &row.solver);
+    let stem = row.key().stem();
     let trace = out
         .join("traces")
         .join(&row.experiment)

@@ -8,10 +8,13 @@ use records::runs::{runs_csv, write_atomic, RunRow, Status};
 use simulation::error::FailureKind;
 use std::path::{Path, PathBuf};
 
-/// A run row with the identity and outcome given and every metric empty.
+/// A run row with the identity and outcome given and every metric empty; the ids are the
+/// labels' slugs.
 fn row(experiment: &str, variant: &str, solver: &str, failed_at: Option<f64>) -> RunRow {
     RunRow {
         paper: "synthetic".into(),
+        variant_id: simulation::naming::slug(variant),
+        solver_id: simulation::naming::slug(solver),
         duration: 2.0,
         status: if failed_at.is_some() {
             Status::Failed

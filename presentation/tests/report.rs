@@ -4,9 +4,9 @@
 //! published number that has a mapping onto an existing run.
 
 use presentation::report::claims::{self, Verdict};
-use presentation::report::{render, to_markdown, Inputs, PAPERS};
+use presentation::report::{render, to_markdown, Inputs};
 use records::index::Runs;
-use records::paper_values::{mapping_of, read_paper_values, resolve, Resolution};
+use records::papers::Resolution;
 use records::runs::{read_runs, RunRow};
 use std::path::{Path, PathBuf};
 
@@ -14,14 +14,17 @@ use std::path::{Path, PathBuf};
 const REGENERATE: &str = "regenerate with `cargo run --release -p reproduce -- --report-only`";
 
 fn committed() -> Inputs {
-    Inputs::load(&simulation::root::from_current_dir().unwrap()).expect("committed inputs load")
+    let root = simulation::root::from_current_dir().unwrap();
+    Inputs::load(&root, &root.join("papers")).expect("committed inputs load")
 }
 
 #[test]
 fn renders_every_paper_and_experiment_from_the_committed_results() {
     let root = simulation::root::from_current_dir().unwrap();
-    let md = to_markdown(&committed());
-    for (paper, _) in PAPERS {
+    let inputs = committed();
+    let md = to_markdown(&inputs);
+    assert!(inputs.papers.papers.len() >= 4);
+    for paper in inputs.papers.papers.iter().map(|p| &p.id) {
         assert!(
             md.contains(&format!("\n## {paper}\n")),
             "no section for {paper}"
@@ -89,7 +92,7 @@ fn the_committed_report_is_the_one_the_committed_results_give() {
     let committed = std::fs::read_to_string(committed_root.join("report/REPORT.md"))
         .expect("report/REPORT.md is committed");
     let scratch = scratch_copy_of_the_inputs(&committed_root);
-    let path = render(&scratch).expect("report renders");
+    let path = render(&scratch, &committed_root.join("papers")).expect("report renders");
     assert!(
         path.starts_with(&scratch),
         "rendered outside the scratch root"
@@ -122,16 +125,11 @@ fn rendering_twice_gives_identical_bytes() {
 #[test]
 fn every_mapped_published_number_finds_its_run() {
     let inputs = committed();
-    let values = read_paper_values(
-        &simulation::root::from_current_dir()
-            .unwrap()
-            .join("report/paper-values.csv"),
-    )
-    .unwrap();
+    let papers = &inputs.papers;
     let mut mapped = 0;
-    for v in &values {
-        if mapping_of(v).is_some() {
-            match resolve(v, &inputs.runs) {
+    for v in &papers.values {
+        if papers.mapping_of(v).is_some() {
+            match papers.resolve(v, &inputs.runs) {
                 Resolution::Found { .. } => mapped += 1,
                 Resolution::Unmapped(why) if why.contains("does not record") => {}
                 Resolution::Unmapped(why) => panic!(
@@ -153,7 +151,8 @@ fn every_mapped_published_number_finds_its_run() {
     );
 }
 
-/// A completed run with the given drift norm (everything else neutral).
+/// A completed run with the given drift norm (everything else neutral); variant and solver are
+/// ids.
 fn row(experiment: &str, variant: &str, solver: &str, drift: f64) -> RunRow {
     let kind = if solver == records::index::EXACT {
         "exact"
@@ -184,21 +183,19 @@ fn row(experiment: &str, variant: &str, solver: &str, drift: f64) -> RunRow {
 
 fn synthetic() -> Vec<RunRow> {
     vec![
-        row("jia2019-clover", "MVN", "LVI-PDNN", 0.3),
-        row("jia2019-clover", "MVN", "exact (Clarabel)", 0.3),
-        row("jia2019-clover", "MVN-INVM", "LVI-PDNN", 0.1),
-        row("jia2019-clover", "VLTCO", "LVI-PDNN", 1e-3),
-        row(
-            "jia2019-clover",
-            "MVN [jaco2-hand]",
-            "exact (Clarabel)",
-            0.0,
-        ),
+        row("jia2019-clover", "mvn", "lvi-pdnn", 0.3),
+        row("jia2019-clover", "mvn", "exact", 0.3),
+        row("jia2019-clover", "mvn-invm", "lvi-pdnn", 0.1),
+        row("jia2019-clover", "vltco", "lvi-pdnn", 1e-3),
+        row("jia2019-clover", "mvn-jaco2-hand", "exact", 0.0),
     ]
 }
 
+/// jia2019's claims (`papers/jia2019/paper.toml`) on `rows`.
 fn verdicts(rows: Vec<RunRow>) -> Vec<(String, Verdict)> {
-    claims::jia2019(&Runs::new(rows))
+    let root = simulation::root::from_current_dir().unwrap();
+    let papers = records::papers::Papers::load(&root.join("papers")).unwrap();
+    claims::evaluate("jia2019", &Runs::new(rows), &papers)
         .into_iter()
         .map(|c| (c.short, c.verdict))
         .collect()
@@ -232,13 +229,13 @@ fn claims_pass_on_synthetic_rows_and_fail_when_a_number_changes() {
     assert!(
         changed
             .iter()
-            .any(|(s, v)| s == "joints inside their limits" && *v == Verdict::Fail),
+            .any(|(s, v)| s == "joint velocities inside their limits" && *v == Verdict::Fail),
         "{changed:?}"
     );
 
     // A missing run makes a claim N/A, never PASS.
     let mut rows = synthetic();
-    rows.retain(|r| r.variant != "MVN [jaco2-hand]");
+    rows.retain(|r| r.variant_id != "mvn-jaco2-hand");
     let changed = verdicts(rows);
     assert!(
         changed
@@ -255,9 +252,11 @@ fn verdicts_do_not_depend_on_timing() {
     let inputs = committed();
     let verdicts = |rows: Vec<RunRow>| -> Vec<(String, Verdict)> {
         let runs = Runs::new(rows);
-        PAPERS
+        inputs
+            .papers
+            .papers
             .iter()
-            .flat_map(|(p, _)| claims::evaluate(p, &runs, &inputs.values))
+            .flat_map(|p| claims::evaluate(&p.id, &runs, &inputs.papers))
             .map(|c| (c.short, c.verdict))
             .collect()
     };

@@ -6,7 +6,7 @@
 //!   files as a `Task` ([`task_set::PyTask`]); the standard task set is the leaderboard's
 //!   (`records::leaderboard::standard_tasks` over `results/runs.csv`).
 //! - [`simulate`]: one run of a task with a Python network ([`network`]) or one of the suite's
-//!   own solvers (by label). Arm, scheme, integrator and the score against the exact optimum are
+//!   own solvers (by id). Arm, scheme, integrator and the score against the exact optimum are
 //!   `simulation::run`'s; the result is the run's `results/runs.csv` row
 //!   (`records::runs::RunRow`) as a dict, with the drift and the trace as numpy arrays and the
 //!   cost of the Python calls.
@@ -76,7 +76,7 @@ fn task(id: &str, root: Option<PathBuf>) -> PyResult<PyTask> {
 
 fn find_task<'a>(all: &'a [PyTask], id: &str) -> PyResult<&'a PyTask> {
     all.iter()
-        .find(|t| t.job.task_id() == id)
+        .find(|t| Some(t.job.task()) == simulation::run_key::TaskKey::parse(id))
         .ok_or_else(|| {
             lib_err(format!(
                 "no task \"{id}\" (ids are \"<experiment> / <variant>\"; driftbench.tasks() lists them)"
@@ -195,6 +195,7 @@ fn run_python(
     }
     check_setup(&record)?;
     let mut row = RunRow::from_record(&record, &simulation::root::git_revision(root));
+    row.solver_id = format!("{PYTHON_KIND}-{}", schemes::slug::slug(&name));
     row.solver = name;
     row.solver_kind = PYTHON_KIND.to_string();
     Ok((record, row, calls))
@@ -226,7 +227,7 @@ fn parse_scoring(value: &Bound<'_, PyAny>) -> PyResult<Scoring> {
 }
 
 /// Simulates `task` with `network`: a Python network (see the package docs) or the label of
-/// one of the task's own solvers (`task.solvers`, e.g. "exact (Clarabel)"). Keyword arguments
+/// one of the task's own solvers by id (`task.solvers`, e.g. "exact"). Keyword arguments
 /// override the task's integrator tolerances and step limit, the scoring ("every-step", "off"
 /// or a number of instants) and where the network starts ("zero" or "exact"). Returns the
 /// run's runs.csv columns as a dict, with `drift` and `trace` as numpy arrays.
@@ -245,7 +246,7 @@ fn simulate<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let builtin = network.extract::<String>().ok();
     let mut job = match &builtin {
-        Some(label) => task.run_labelled(label).map_err(lib_err)?.clone(),
+        Some(id) => task.run_of(id).map_err(lib_err)?.clone(),
         None => task.job.clone(),
     };
     job.integrator.rtol = rtol.unwrap_or(job.integrator.rtol);
@@ -297,8 +298,8 @@ fn leaderboard<'py>(
         None => standard,
         Some(given) => {
             for t in &given {
-                let id = t.job.task_id();
-                if !standard.iter().any(|s| s.job.task_id() == id) {
+                let id = t.job.task();
+                if !standard.iter().any(|s| s.job.task() == id) {
                     return Err(lib_err(format!(
                         "task \"{id}\" is not in the standard task set (driftbench.standard_tasks())"
                     )));
@@ -322,8 +323,13 @@ fn leaderboard<'py>(
     };
     let mut fresh = Vec::new();
     for (name, network) in &named {
-        if stored.iter().any(|r| &r.solver == name)
-            || fresh.iter().any(|r: &RunRow| &r.solver == name)
+        let id = format!("{PYTHON_KIND}-{}", schemes::slug::slug(name));
+        if stored
+            .iter()
+            .any(|r| r.solver == *name || r.solver_id == id)
+            || fresh
+                .iter()
+                .any(|r: &RunRow| r.solver == *name || r.solver_id == id)
         {
             return Err(lib_err(format!(
                 "a solver called \"{name}\" is already on the leaderboard; give the network another name"
@@ -332,6 +338,7 @@ fn leaderboard<'py>(
         for t in &chosen {
             let (_, mut row, _) = run_python(&t.job, network, &root)?;
             row.solver = name.clone();
+            row.solver_id = id.clone();
             fresh.push(row);
         }
     }

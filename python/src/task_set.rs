@@ -30,10 +30,10 @@ fn to_py<'py>(py: Python<'py>, value: &impl Serialize) -> PyResult<Bound<'py, Py
 
 #[pymethods]
 impl PyTask {
-    /// `"<experiment> / <variant>"`: what `driftbench.task` takes.
+    /// `"<experiment> / <variant>"` (ids): what `driftbench.task` takes.
     #[getter]
     fn id(&self) -> String {
-        self.job.task_id()
+        self.job.task().to_string()
     }
     #[getter]
     fn paper(&self) -> &str {
@@ -101,11 +101,11 @@ impl PyTask {
     fn network_init<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         to_py(py, &self.job.network_init)
     }
-    /// The labels of the suite's own runs of the task (`exact (Clarabel)`, `ZNN (gamma = 1)`,
-    /// ...): each can be given to `simulate` in place of a Python network.
+    /// The ids of the suite's own solvers of the task (`exact`, `znn`, ...): each can be given
+    /// to `simulate` in place of a Python network.
     #[getter]
     fn solvers(&self) -> Vec<String> {
-        self.runs.iter().map(|j| j.solver.label()).collect()
+        self.runs.iter().map(|j| j.solver.id()).collect()
     }
     fn __repr__(&self) -> String {
         format!(
@@ -120,14 +120,14 @@ impl PyTask {
 }
 
 impl PyTask {
-    /// The suite's run of this task whose solver label is `label`.
-    pub fn run_labelled(&self, label: &str) -> Result<&Job, String> {
+    /// The suite's run of this task whose solver id is `id`.
+    pub fn run_of(&self, id: &str) -> Result<&Job, String> {
         self.runs
             .iter()
-            .find(|j| j.solver.label() == label)
+            .find(|j| j.solver.id() == id)
             .ok_or_else(|| {
                 format!(
-                    "task \"{}\" has no solver \"{label}\"; its solvers: {}",
+                    "task \"{}\" has no solver \"{id}\"; its solvers: {}",
                     self.id(),
                     self.solvers().join(", ")
                 )

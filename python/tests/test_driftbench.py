@@ -14,8 +14,8 @@ import driftbench
 from driftbench.networks import Gnn, Znn
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-CLOVER = "jia2019-clover / VLTCO"
-CIRCLE = "kong2019-circle / ZNN (eq. 22)"
+CLOVER = "jia2019-clover / vltco"
+CIRCLE = "kong2019-circle / znn-eq22"
 
 # Agreement with the Rust twins (stated in python/README.md): the same network, integrator and
 # tolerances, so the numbers differ only by round-off and by the Jacobian the integrator gets
@@ -35,7 +35,7 @@ def test_tasks_are_objects_with_the_experiment_files_fields():
     assert clover.scheme["kind"] == "jia2019" and clover.scheme["tau"] == 0.4
     assert clover.theta0 == clover.theta_ref and len(clover.theta0) == 6
     assert clover.integrator["method"] == "bdf" and clover.integrator["rtol"] == 1e-6
-    assert "exact (Clarabel)" in clover.solvers and "VLTCO" in clover.scheme_name
+    assert "exact" in clover.solvers and "VLTCO" in clover.scheme_name
     ids = [t.id for t in driftbench.tasks(root=ROOT)]
     assert CLOVER in ids and CIRCLE in ids and len(ids) == len(set(ids))
     standard = driftbench.standard_tasks(root=ROOT)
@@ -96,7 +96,7 @@ def test_numpy_gnn_on_the_clover_matches_its_rust_twin():
 
 def test_numpy_znn_on_the_circle_matches_the_suites_znn():
     circle = driftbench.task(CIRCLE, root=ROOT)
-    twin_label = next(s for s in circle.solvers if s.startswith("ZNN"))
+    twin_label = next(s for s in circle.solvers if s.startswith("znn"))
     twin = driftbench.simulate(circle, twin_label)
     run = driftbench.simulate(circle, Znn(gamma=1.0))
     assert run["status"] == "ok" and twin["status"] == "ok"

@@ -1,10 +1,10 @@
-//! The stored runs, indexed the way the report looks them up: by (experiment, variant,
-//! solver), by paper and by experiment; metric access by column name; a run's status in words.
+//! The stored runs, indexed the way the report looks them up: by their key (experiment,
+//! variant and solver ids), by paper and by experiment; metric access by column name; a run's status in words.
 
 use crate::runs::RunRow;
 
-/// The solver label of the exact column (Clarabel in the loop).
-pub const EXACT: &str = "exact (Clarabel)";
+/// The solver id of the exact column.
+pub use simulation::run_key::EXACT_ID as EXACT;
 
 /// All rows of `results/runs.csv`, sorted by (experiment, variant, solver).
 #[derive(Clone, Debug)]
@@ -24,11 +24,11 @@ impl Runs {
         &self.rows
     }
 
-    /// The run of `solver` on `variant` of `experiment`.
+    /// The run of solver id `solver` on variant id `variant` of `experiment`.
     pub fn find(&self, experiment: &str, variant: &str, solver: &str) -> Option<&RunRow> {
-        self.rows
-            .iter()
-            .find(|r| r.experiment == experiment && r.variant == variant && r.solver == solver)
+        self.rows.iter().find(|r| {
+            r.experiment == experiment && r.variant_id == variant && r.solver_id == solver
+        })
     }
 
     /// Like [`Runs::find`], with the missing run as an error message.
@@ -105,6 +105,9 @@ pub fn metric(r: &RunRow, name: &str) -> Option<f64> {
         "peak_thetadot" => r.peak_thetadot,
         "peak_thetaddot" => r.peak_thetaddot,
         "peak_torque" => r.peak_torque,
+        "min_sigma_j" => r.min_sigma_j,
+        "net_error_final" => r.net_error_final,
+        "net_error_max_after_1s" => r.net_error_max_after_1s,
         "score_max_dx" => r.score_max_dx,
         "score_rms_dx" => r.score_rms_dx,
         "score_max_obj_gap" => r.score_max_obj_gap,

@@ -8,8 +8,8 @@
 //! robot, the 7-joint Panda included) whose exact column completed, so every neural run has the
 //! exact optimum to be scored against.
 //!
-//! **Solvers.** A solver is a `solver` label (the parameterised network, e.g. "VP-RNN-PF
-//! (sinh)"); the exact column is the reference, not a competitor. A solver that ran on every
+//! **Solvers.** A solver is a solver id (the parameterised network, e.g.
+//! `vp-rnn-pf-sinh`, shown by its label "VP-RNN-PF (sinh)"); the exact column is the reference, not a competitor. A solver that ran on every
 //! standard task is ranked in the `standard` set. A solver that ran on some of them only (the
 //! zeroing networks, which solve equality-only QPs, run on kong2019's schemes only) is not put
 //! in the standard normalisation: it is ranked in a separate set, the tasks it ran on, against
@@ -97,7 +97,7 @@ impl Task {
     fn of(r: &RunRow) -> Self {
         Task {
             experiment: r.experiment.clone(),
-            variant: r.variant.clone(),
+            variant: r.variant_id.clone(),
         }
     }
 }
@@ -237,6 +237,8 @@ pub struct LeaderboardRow {
     /// 1 = best of the set: by success rate (higher first), then the normalised shifted
     /// geometric means of |x − x*|, of the drift error and of time (lower first), then label.
     pub rank: usize,
+    /// The solver's id (identity); `solver` is its label.
+    pub solver_id: String,
     pub solver: String,
     pub solver_kind: String,
     /// Runs of this solver on the standard task set.
@@ -271,6 +273,7 @@ impl Row for LeaderboardRow {}
 
 /// One solver's runs on the standard tasks.
 struct Entrant<'a> {
+    id: &'a str,
     solver: &'a str,
     kind: &'a str,
     runs: BTreeMap<Task, &'a RunRow>,
@@ -292,8 +295,9 @@ pub fn leaderboard(rows: &[RunRow]) -> Vec<LeaderboardRow> {
         let task = Task::of(r);
         if exact.contains_key(&task) {
             entrants
-                .entry(r.solver.as_str())
+                .entry(r.solver_id.as_str())
                 .or_insert_with(|| Entrant {
+                    id: &r.solver_id,
                     solver: &r.solver,
                     kind: &r.solver_kind,
                     runs: BTreeMap::new(),
@@ -357,6 +361,7 @@ fn rank_set(
                 task_set: name.to_string(),
                 tasks: n,
                 rank: 0,
+                solver_id: e.id.to_string(),
                 solver: e.solver.to_string(),
                 solver_kind: e.kind.to_string(),
                 standard_runs: e.runs.len(),
@@ -593,7 +598,7 @@ mod tests {
         let rows = leaderboard(&board());
         let text = String::from_utf8(leaderboard_csv(&rows).unwrap()).unwrap();
         assert!(
-            text.starts_with("task_set,tasks,rank,solver,solver_kind,"),
+            text.starts_with("task_set,tasks,rank,solver_id,solver,solver_kind,"),
             "{text}"
         );
         assert_eq!(text.lines().count(), rows.len() + 1);

@@ -17,17 +17,22 @@
 //! - [`journal`]: the checkpoint of finished runs that an interrupted run resumes from.
 //! - [`shard`]: cluster runs: which shard a run belongs to, the shard manifest, the merge checks.
 //! - [`gate`]: the regression gate (fresh rows against committed ones).
-//! - [`paper_values`]: the published numbers (`report/paper-values.csv`) and which run each
+//! - [`claims`]: a paper's claims as data (a metric of a selection of runs against a threshold
+//!   or another selection).
+//! - [`migrate`]: results written before run ids (labels as identities), brought up to date once.
+//! - [`papers`]: the papers as data (`papers/<paper>/`): metadata, published numbers and which run each
 //!   one is compared with.
 
+pub mod claims;
 pub mod dof_cost;
 pub mod gate;
 pub mod index;
 pub mod integrity;
 pub mod journal;
 pub mod leaderboard;
+pub mod migrate;
 pub mod owned_dir;
-pub mod paper_values;
+pub mod papers;
 pub mod results_dir;
 pub mod runs;
 pub mod shard;

@@ -16,15 +16,15 @@
 //! Opening ([`ResultsDir::open`]) takes the lock, refuses tables that differ from the
 //! manifest (a truncated or hand-edited `runs.csv`), and removes only the temporary files of
 //! the program's own interrupted writes. Every name read from a row is checked before it
-//! becomes a path ([`simulation::naming::check_run_names`], [`OwnedDir::resolve`]), and a
+//! becomes a path ([`simulation::naming::RunKey::check`], [`OwnedDir::resolve`]), and a
 //! file is deleted only if the manifest proves the program wrote it
 //! ([`TrackedDir::remove`]).
 
 use crate::owned_dir::{OwnedDir, PathError};
 use crate::runs::{read_runs, runs_csv, trace_csv, RunRow};
 use crate::tracked_dir::{Edits, Removal, TrackedDir, TrackedError};
-use simulation::naming::{check_run_names, run_stem};
 use simulation::run::RunRecord;
+use simulation::run_key::RunKey;
 use std::path::{Path, PathBuf};
 
 /// `runs.csv`.
@@ -183,6 +183,56 @@ impl ResultsDir {
         read_runs(&path).map_err(ResultsError::Read)
     }
 
+    /// Brings tables written before run ids up to date (see [`crate::migrate`]): `runs.csv`,
+    /// `ladder.csv` and `attribution.csv` get their id columns, and each run's trace moves to
+    /// its id-named file. Returns what was done, for a message; nothing when already current.
+    pub fn migrate_ids(
+        &self,
+        jobs: &[simulation::experiment::Job],
+    ) -> Result<Vec<String>, ResultsError> {
+        let index = crate::migrate::LabelIndex::new(jobs);
+        let mut done = Vec::new();
+        for table in [RUNS, "ladder.csv", "attribution.csv"] {
+            let path = self.path().join(table);
+            let Ok(text) = std::fs::read(&path) else {
+                continue;
+            };
+            let migrated = crate::migrate::add_ids(&text, &index)
+                .map_err(|e| ResultsError::Read(format!("{}: {e}", path.display())))?;
+            let Some((bytes, keys)) = migrated else {
+                continue;
+            };
+            self.tracked.write(Path::new(table), &bytes)?;
+            done.push(format!("{table}: {} rows given run ids", keys.len()));
+            if table != RUNS {
+                continue;
+            }
+            let mut moved = 0;
+            for ((e, v, s), key) in &keys {
+                let old = crate::migrate::legacy_trace_rel(e, v, s);
+                let new = Self::trace_rel(key)?;
+                let Ok(old_path) = self.tracked.resolve(&old) else {
+                    continue;
+                };
+                if old == new || !old_path.is_file() {
+                    continue;
+                }
+                let bytes = std::fs::read(&old_path).map_err(|e| ResultsError::Write {
+                    path: old_path.clone(),
+                    message: e.to_string(),
+                })?;
+                self.tracked.write(&new, &bytes)?;
+                self.tracked.remove(&old)?;
+                moved += 1;
+            }
+            done.push(format!("{moved} traces renamed to their run ids"));
+        }
+        if !done.is_empty() {
+            self.save()?;
+        }
+        Ok(done)
+    }
+
     /// Writes `runs.csv` (atomically, recorded in the manifest).
     pub fn write_runs(&self, rows: &[RunRow]) -> Result<(), ResultsError> {
         let bytes = runs_csv(rows).map_err(|e| ResultsError::Write {
@@ -195,19 +245,19 @@ impl ResultsDir {
 
     /// A run's trace, relative to the directory: `traces/<experiment>/<variant>__<solver>.csv`,
     /// its names checked.
-    pub fn trace_rel(experiment: &str, variant: &str, solver: &str) -> Result<PathBuf, PathError> {
-        check_run_names(experiment, variant, solver).map_err(|source| PathError::Name {
-            what: format!("the trace of {experiment} / {variant} / {solver}"),
+    pub fn trace_rel(key: &RunKey) -> Result<PathBuf, PathError> {
+        key.check().map_err(|source| PathError::Name {
+            what: format!("the trace of {key}"),
             source,
         })?;
         Ok(Path::new(TRACES)
-            .join(experiment)
-            .join(format!("{}.csv", run_stem(variant, solver))))
+            .join(&key.experiment)
+            .join(format!("{}.csv", key.stem())))
     }
 
     /// Writes a run's trace.
     pub fn write_trace(&self, r: &RunRecord) -> Result<(), ResultsError> {
-        let rel = Self::trace_rel(&r.job.experiment, &r.job.variant, &r.job.solver.label())?;
+        let rel = Self::trace_rel(&r.job.key())?;
         let bytes = trace_csv(r).map_err(|e| ResultsError::Write {
             path: self.path().join(&rel),
             message: e.to_string(),
@@ -250,7 +300,7 @@ impl ResultsDir {
                 percent,
                 runs: self.runs_path(),
                 experiments: experiments.to_path_buf(),
-                first: crate::shard::row_key(&pruned[0]),
+                first: pruned[0].key().to_string(),
             });
         }
         Ok((kept, pruned))
@@ -261,8 +311,8 @@ impl ResultsDir {
     pub fn prune(&self, pruned: &[RunRow]) -> Result<Vec<String>, ResultsError> {
         let mut said = Vec::with_capacity(pruned.len());
         for r in pruned {
-            let key = crate::shard::row_key(r);
-            let rel = Self::trace_rel(&r.experiment, &r.variant, &r.solver)?;
+            let key = r.key().to_string();
+            let rel = Self::trace_rel(&r.key())?;
             said.push(match self.tracked.remove(&rel)? {
                 Removal::Removed => {
                     format!("pruned {key} and its trace (no experiment file describes it)")

@@ -3,18 +3,19 @@
 //! - `results/runs.csv`: one row per run ([`RunRow`]): identity, outcome, every metric, the
 //!   score against the exact optimum, and provenance (integrator, tolerances, steps,
 //!   evaluations, wall time, crate version, git revision).
-//! - `results/traces/<experiment>/<variant>__<solver>.csv`: the thinned time history of each
-//!   run for the figures.
+//! - `results/traces/<experiment>/<variant id>__<solver id>.csv`: the thinned time history of
+//!   each run for the figures.
 //!
 //! Files are written to a temporary name and renamed, so an interrupted run never leaves a
-//! half-written file. Rows are sorted by (experiment, variant, solver) so that two runs give
+//! half-written file. Rows are sorted by their [`RunKey`] (ids) so that two runs give
 //! byte-identical files except for the timing columns (`wall_s`, `sim_s`, `observe_s`) and `git_rev`.
 
 use crate::table;
 use serde::{Deserialize, Serialize};
 use simulation::error::FailureKind;
-use simulation::naming::check_run_names;
+use simulation::naming::{check_name, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
 use simulation::run::RunRecord;
+use simulation::run_key::RunKey;
 use simulation::simulate::Outcome;
 use std::path::Path;
 
@@ -23,11 +24,17 @@ use std::path::Path;
 pub struct RunRow {
     pub paper: String,
     pub experiment: String,
+    /// The variant's id (with `experiment` and `solver_id`, the run's [`RunKey`]).
+    pub variant_id: String,
+    /// The solver's id: `exact`, or the network's id (kind and distinguishing parameters).
+    pub solver_id: String,
+    /// The variant's label (display only).
     pub variant: String,
     pub scheme: String,
+    /// The solver's label with its parameters (display only).
     pub solver: String,
-    /// The solver's identity: `exact`, or the network's kind as experiment files name it
-    /// (`lvi-pdnn`, ...); `solver` is a label with its parameters.
+    /// The solver's kind: `exact`, or the network's kind as experiment files name it
+    /// (`lvi-pdnn`, ...).
     pub solver_kind: String,
     pub robot: String,
     pub path: String,
@@ -117,6 +124,8 @@ impl RunRow {
         RunRow {
             paper: j.paper.clone(),
             experiment: j.experiment.clone(),
+            variant_id: j.variant_id.clone(),
+            solver_id: j.solver.id(),
             variant: j.variant.clone(),
             scheme: r.run.scheme_name.clone(),
             solver: j.solver.label(),
@@ -176,22 +185,20 @@ impl RunRow {
         }
     }
 
-    /// Stable sort key.
-    pub fn key(&self) -> (String, String, String) {
-        (
-            self.experiment.clone(),
-            self.variant.clone(),
-            self.solver.clone(),
-        )
+    /// The run's identity (ids; also the sort key).
+    pub fn key(&self) -> RunKey {
+        RunKey::new(&self.experiment, &self.variant_id, &self.solver_id)
     }
 
     /// A completed row with this identity and every measurement empty or zero (paper `test`,
-    /// robot `jaco2-pen`, BDF at 1e-6 / 1e-8): the starting point of rows built by hand, as in
-    /// tests of what reads results.
+    /// robot `jaco2-pen`, BDF at 1e-6 / 1e-8; labels equal to the ids): the starting point of
+    /// rows built by hand, as in tests of what reads results.
     pub fn blank(experiment: &str, variant: &str, solver: &str, solver_kind: &str) -> Self {
         RunRow {
             paper: "test".into(),
             experiment: experiment.into(),
+            variant_id: variant.into(),
+            solver_id: solver.into(),
             variant: variant.into(),
             scheme: variant.into(),
             solver: solver.into(),
@@ -325,21 +332,22 @@ pub fn read_runs(path: &Path) -> Result<Vec<RunRow>, String> {
     Ok(rows)
 }
 
-/// Checks what a results file says before any of it becomes a path: every row's paper id,
-/// experiment id, variant label and solver label can name a file
-/// ([`simulation::naming::check_run_names`]), and no run is listed twice. The error names the
-/// line (the header is line 1).
+/// Checks what a results file says before any of it becomes a path: every row's paper id and
+/// run key can name a file ([`RunKey::check`]), its labels are within their limits, and no run
+/// is listed twice. The error names the line (the header is line 1).
 pub fn check_rows(rows: &[RunRow]) -> Result<(), String> {
     let mut seen = std::collections::HashMap::with_capacity(rows.len());
     for (i, r) in rows.iter().enumerate() {
         let line = i + 2;
-        simulation::naming::check_name(&r.paper, simulation::naming::MAX_EXPERIMENT_ID)
-            .and_then(|()| check_run_names(&r.experiment, &r.variant, &r.solver))
+        check_name(&r.paper, MAX_EXPERIMENT_ID)
+            .and_then(|()| r.key().check())
+            .and_then(|()| check_name(&r.variant, MAX_VARIANT_LABEL))
+            .and_then(|()| check_name(&r.solver, MAX_SOLVER_LABEL))
             .map_err(|e| format!("line {line}: {e}"))?;
         if let Some(first) = seen.insert(r.key(), line) {
             return Err(format!(
-                "line {line}: the run {} / {} / {} is listed twice (first on line {first})",
-                r.experiment, r.variant, r.solver
+                "line {line}: the run {} is listed twice (first on line {first})",
+                r.key()
             ));
         }
     }

@@ -213,11 +213,6 @@ pub fn experiments_hash(dir: &Path) -> Result<String, String> {
     Ok(format!("{:016x}", fnv1a64(&bytes)))
 }
 
-/// The run key of a row, as `Job::key()` writes it.
-pub fn row_key(r: &RunRow) -> String {
-    format!("{} / {} / {}", r.experiment, r.variant, r.solver)
-}
-
 /// One finished shard directory.
 #[derive(Clone, Debug)]
 pub struct ShardDir {
@@ -275,8 +270,7 @@ pub fn read_shard(dir: &Path, edits: crate::tracked_dir::Edits) -> Result<ShardD
 
 /// A row's trace, relative to its results directory.
 fn trace_rel(r: &RunRow) -> Result<PathBuf, String> {
-    crate::results_dir::ResultsDir::trace_rel(&r.experiment, &r.variant, &r.solver)
-        .map_err(|e| e.to_string())
+    crate::results_dir::ResultsDir::trace_rel(&r.key()).map_err(|e| e.to_string())
 }
 
 /// Copies the traces of every shard's rows into `results` (each written atomically and
@@ -356,7 +350,7 @@ pub fn check_shards(shards: &[ShardDir], expected: &[String], hash: &str) -> Res
         let assigned: std::collections::HashSet<&str> =
             s.manifest.runs.iter().map(String::as_str).collect();
         for r in &s.rows {
-            let key = row_key(r);
+            let key = r.key().to_string();
             let owner = Shard::of(&key, n);
             if owner != s.manifest.shard || !assigned.contains(key.as_str()) {
                 problems.push(format!(
@@ -396,7 +390,7 @@ pub fn check_shards(shards: &[ShardDir], expected: &[String], hash: &str) -> Res
     let mut found: std::collections::HashMap<String, Vec<&Path>> = Default::default();
     for s in shards {
         for r in &s.rows {
-            found.entry(row_key(r)).or_default().push(&s.dir);
+            found.entry(r.key().to_string()).or_default().push(&s.dir);
         }
     }
     let mut missing = Vec::new();

@@ -6,7 +6,7 @@
 
 use proptest::prelude::*;
 use records::runs::read_runs;
-use simulation::naming::check_run_names;
+
 use std::path::PathBuf;
 
 fn committed_runs() -> Vec<String> {
@@ -70,7 +70,7 @@ proptest! {
         std::fs::write(&path, lines.join("\n") + "\n").unwrap();
         if let Ok(rows) = read_runs(&path) {
             for r in &rows {
-                prop_assert!(check_run_names(&r.experiment, &r.variant, &r.solver).is_ok());
+                prop_assert!(r.key().check().is_ok());
             }
             let mut keys: Vec<_> = rows.iter().map(|r| r.key()).collect();
             keys.sort();

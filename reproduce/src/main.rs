@@ -2,10 +2,11 @@
 
 use clap::Parser;
 use records::results_dir::ResultsDir;
-use records::runs::{check_rows, merge, read_runs, RunRow};
+use records::runs::{check_rows, merge, RunRow};
 use records::tracked_dir::Edits;
 use simulation::experiment::{load_dir, Job, PaperFile};
 use simulation::run::RunRecord;
+use simulation::run_key::RunKey;
 use simulation::runner::run_jobs_with;
 use std::collections::HashSet;
 use std::fmt::Write as _;
@@ -224,6 +225,18 @@ fn open_results(cli: &Cli, git_rev: &str) -> Result<ResultsDir, String> {
             cli.results_dir.display()
         );
     }
+    // Results written before run ids are migrated once (records::migrate).
+    let all: Vec<Job> = load_dir(&cli.experiments_dir)
+        .map_err(|e| e.to_string())?
+        .iter()
+        .flat_map(|f| f.jobs())
+        .collect();
+    for done in results.migrate_ids(&all).map_err(|e| e.to_string())? {
+        eprintln!(
+            "migrated to run ids under {}: {done}",
+            cli.results_dir.display()
+        );
+    }
     Ok(results)
 }
 
@@ -249,7 +262,7 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
         let root = report_root(&cli)?;
         check_report_dir(&root)?;
         let results = open_results(&cli, &git_rev)?;
-        render_report(&root, &results)?;
+        render_report(&cli, &root, &results)?;
         return Ok(ExitCode::SUCCESS);
     }
     if cli.dof_cost {
@@ -264,7 +277,7 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
     let mut jobs = select_jobs(&all, &files, &selection(&cli))?;
     let selected = jobs.len();
     if let Some(shard) = cli.shard_resolved {
-        jobs.retain(|j| shard.owns(&j.key()));
+        jobs.retain(|j| shard.owns(&j.key().to_string()));
         eprintln!(
             "shard {shard}: {} of the {selected} selected runs, into {}",
             jobs.len(),
@@ -274,7 +287,7 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
     if cli.list {
         print_list(&files, &jobs);
         if let (Some(n), None) = (cli.shards, cli.shard_resolved) {
-            let keys: Vec<String> = jobs.iter().map(Job::key).collect();
+            let keys: Vec<String> = jobs.iter().map(|j| j.key().to_string()).collect();
             let counts = records::shard::plan(keys.iter().map(String::as_str), n);
             for (k, c) in counts.iter().enumerate() {
                 println!("shard {}/{n}: {c} runs", k + 1);
@@ -286,7 +299,14 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
     // the report directory, the stored results (readable, unedited, not pruned wholesale).
     let baseline = cli
         .check
-        .then(|| baseline(&cli.project_root, &cli.results_dir, cli.baseline.as_deref()))
+        .then(|| {
+            baseline(
+                &cli.project_root,
+                &cli.results_dir,
+                cli.baseline.as_deref(),
+                &all,
+            )
+        })
         .transpose()?;
     if !cli.check && !cli.dry_run && cli.shard_resolved.is_none() {
         match report_root(&cli) {
@@ -341,7 +361,7 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
             eprintln!(
                 "not folded from {}: {} (written by revision {}, this is {git_rev}); it is run again",
                 records::journal::path(results.path()).display(),
-                records::shard::row_key(r),
+                r.key(),
                 r.git_rev
             );
         }
@@ -353,11 +373,11 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
             eprintln!(
                 "not folded from {}: {} (no experiment file describes it)",
                 records::journal::path(results.path()).display(),
-                records::shard::row_key(r)
+                r.key()
             );
         }
         if !fold.is_empty() {
-            let done: HashSet<String> = fold.iter().map(records::shard::row_key).collect();
+            let done: HashSet<RunKey> = fold.iter().map(RunRow::key).collect();
             *kept = merge(std::mem::take(kept), fold);
             results.write_runs(kept).map_err(|e| e.to_string())?;
             results.save().map_err(|e| e.to_string())?;
@@ -411,7 +431,7 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
         .filter(|r| !r.completed())
         .map(|r| {
             (
-                format!("{}: {}", records::shard::row_key(r), r.failure),
+                format!("{}: {}", r.key(), r.failure),
                 records::gate::expected_to_diverge(r),
             )
         })
@@ -432,7 +452,7 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
                 shards: shard.n,
                 git_rev: git_rev.clone(),
                 experiments_hash: records::shard::experiments_hash(&cli.experiments_dir)?,
-                runs: jobs.iter().map(Job::key).collect(),
+                runs: jobs.iter().map(|j| j.key().to_string()).collect(),
                 selection: selection(&cli),
             }
             .write(&cli.results_dir)?;
@@ -461,9 +481,11 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
                     }
                     Err(e) => return Err(e.to_string()),
                 }
+                // Its tables are recorded before the report (which may fail) is rendered.
+                results.save().map_err(|e| e.to_string())?;
             }
             match report_root(&cli) {
-                Ok(root) => render_report(&root, results)?,
+                Ok(root) => render_report(&cli, &root, results)?,
                 Err(why) => eprintln!("report not rendered: {why}"),
             }
         }
@@ -492,10 +514,13 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
 }
 
 /// The run keys (`experiment / variant / solver`) the experiment files describe.
-fn described_keys(all: &[Job]) -> HashSet<(String, String, String)> {
-    all.iter()
-        .map(|j| (j.experiment.clone(), j.variant.clone(), j.solver.label()))
-        .collect()
+fn described_keys(all: &[Job]) -> HashSet<RunKey> {
+    all.iter().map(Job::key).collect()
+}
+
+/// The papers as data (`papers/` under the project root).
+fn load_papers(cli: &Cli) -> Result<records::papers::Papers, String> {
+    records::papers::Papers::load(&cli.project_root.join("papers")).map_err(|e| e.to_string())
 }
 
 /// The ladders and attributions of the selected runs of the papers' solvers (see
@@ -507,7 +532,8 @@ fn explain(
     git_rev: &str,
     results: Option<&ResultsDir>,
 ) -> Result<(), String> {
-    let targets = explain::targets(jobs);
+    let papers = load_papers(cli)?;
+    let targets = explain::targets(jobs, &papers);
     if targets.is_empty() {
         return Ok(());
     }
@@ -527,7 +553,7 @@ fn explain(
         explained.attribution.len()
     );
     if cli.explain_only {
-        render_report(&report_root(cli)?, results)?;
+        render_report(cli, &report_root(cli)?, results)?;
     }
     Ok(())
 }
@@ -537,11 +563,10 @@ fn explain(
 fn infer(cli: &Cli, which: &str, jobs: &[Job], results: Option<&ResultsDir>) -> Result<(), String> {
     use explain::inference::{family::Family, fit, problem, rows, search::Target, table_ids};
     let root = report_root(cli)?;
-    let values =
-        records::paper_values::read_paper_values(&root.join("report").join("paper-values.csv"))?;
+    let papers = load_papers(cli)?;
     let family = Family::load(&cli.experiments_dir.join("inference").join("family.toml"))
         .map_err(|e| e.to_string())?;
-    let ids = table_ids(&values);
+    let ids = table_ids(&papers.values);
     let wanted: Vec<&str> = which.split(',').map(str::trim).collect();
     let selected: Vec<&(String, String)> = ids
         .iter()
@@ -559,7 +584,7 @@ fn infer(cli: &Cli, which: &str, jobs: &[Job], results: Option<&ResultsDir>) -> 
         ));
     }
     for (paper, table) in selected {
-        let p = problem(paper, table, &values, jobs).map_err(|e| e.to_string())?;
+        let p = problem(paper, table, &papers, jobs).map_err(|e| e.to_string())?;
         eprintln!(
             "inferring the setup of {paper} {table}: {} columns, {} exact and {} network runs",
             p.columns.len(),
@@ -585,7 +610,7 @@ fn infer(cli: &Cli, which: &str, jobs: &[Job], results: Option<&ResultsDir>) -> 
         }
     }
     match results {
-        Some(results) => render_report(&root, results),
+        Some(results) => render_report(cli, &root, results),
         None => Ok(()),
     }
 }
@@ -624,7 +649,7 @@ fn dof_cost(cli: &Cli, git_rev: &str) -> Result<(), String> {
     let path = records::dof_cost::write(results.path(), &rows)?;
     results.save().map_err(|e| e.to_string())?;
     eprintln!("wrote {} ({} rows)", path.display(), rows.len());
-    render_report(&root, &results)
+    render_report(cli, &root, &results)
 }
 
 /// The gate's baseline, read before anything runs: `file` when given; otherwise the committed
@@ -635,7 +660,25 @@ fn baseline(
     root: &std::path::Path,
     results_dir: &std::path::Path,
     file: Option<&std::path::Path>,
+    all: &[Job],
 ) -> Result<(Vec<RunRow>, String), String> {
+    // A baseline written before run ids is read with its ids recovered (records::migrate).
+    let index = records::migrate::LabelIndex::new(all);
+    let parse = |bytes: Vec<u8>, name: &str| -> Result<Vec<RunRow>, String> {
+        let bytes = match records::migrate::add_ids(&bytes, &index) {
+            Ok(Some((migrated, _))) => migrated,
+            Ok(None) => bytes,
+            Err(e) => return Err(format!("{name}: {e}")),
+        };
+        let rows: Vec<RunRow> =
+            records::table::from_reader(bytes.as_slice()).map_err(|e| format!("{name}: {e}"))?;
+        check_rows(&rows).map_err(|e| format!("{name}: {e}"))?;
+        Ok(rows)
+    };
+    let read = |path: &std::path::Path| -> Result<Vec<RunRow>, String> {
+        let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        parse(bytes, &path.display().to_string())
+    };
     if let Some(f) = file {
         if f.is_dir() {
             return Err(format!(
@@ -644,7 +687,7 @@ fn baseline(
                 f.join("runs.csv").display()
             ));
         }
-        let rows = read_runs(f).map_err(|e| format!("--baseline: {e}"))?;
+        let rows = read(f).map_err(|e| format!("--baseline: {e}"))?;
         return Ok((rows, f.display().to_string()));
     }
     let in_tree = results_dir == root.join("results");
@@ -661,14 +704,11 @@ fn baseline(
     match committed {
         Some(out) => {
             let name = "git HEAD:results/runs.csv".to_string();
-            let rows: Vec<RunRow> = records::table::from_reader(out.stdout.as_slice())
-                .map_err(|e| format!("{name}: {e}"))?;
-            check_rows(&rows).map_err(|e| format!("{name}: {e}"))?;
-            Ok((rows, name))
+            Ok((parse(out.stdout, &name)?, name))
         }
         None => {
             let path = results_dir.join("runs.csv");
-            Ok((read_runs(&path)?, path.display().to_string()))
+            Ok((read(&path)?, path.display().to_string()))
         }
     }
 }
@@ -729,9 +769,9 @@ fn check_report_dir(root: &Path) -> Result<(), String> {
 
 /// Figures first (the report links them), then REPORT.md, then the leaderboard table (recorded
 /// in the results directory's manifest).
-fn render_report(root: &std::path::Path, results: &ResultsDir) -> Result<(), String> {
+fn render_report(cli: &Cli, root: &std::path::Path, results: &ResultsDir) -> Result<(), String> {
     let figures = presentation::figures::render_all(root)?;
-    let report = presentation::report::render(root)?;
+    let report = presentation::report::render(root, &cli.project_root.join("papers"))?;
     records::leaderboard::write(
         results.path(),
         &results.read_runs().map_err(|e| e.to_string())?,
@@ -775,7 +815,7 @@ fn merge_shards(
         .unwrap_or_default();
     let expected: Vec<String> = select_jobs(all, files, &sel)?
         .iter()
-        .map(Job::key)
+        .map(|j| j.key().to_string())
         .collect();
     let hash = records::shard::experiments_hash(&cli.experiments_dir)?;
     records::shard::check_shards(&shards, &expected, &hash)?;
@@ -794,7 +834,7 @@ fn merge_shards(
     let unexpected: Vec<String> = rows
         .iter()
         .filter(|r| !r.completed() && !records::gate::expected_to_diverge(r))
-        .map(|r| format!("{}: {}", records::shard::row_key(r), r.failure))
+        .map(|r| format!("{}: {}", r.key(), r.failure))
         .collect();
     eprintln!(
         "merging {} shard(s): {} runs, {traces} traces",
@@ -803,7 +843,7 @@ fn merge_shards(
     );
     write_results(&results, &[], kept, &pruned, rows)?;
     match report_root(cli) {
-        Ok(root) => render_report(&root, &results)?,
+        Ok(root) => render_report(cli, &root, &results)?,
         Err(why) => eprintln!("report not rendered: {why}"),
     }
     if !unexpected.is_empty() {
@@ -963,8 +1003,16 @@ fn print_list(files: &[PaperFile], jobs: &[Job]) {
                 "  {:<28} {} on {} (T = {} s), {}: {n} runs",
                 e.id, e.robot, e.path.name, e.path.duration, e.paper_output
             );
+            // The key (ids: what --task, papers/ and the results use), then the labels.
             for j in jobs.iter().filter(|j| j.experiment == e.id) {
-                let _ = writeln!(out, "      {:<30} {}", j.variant, j.solver.label());
+                let k = j.key();
+                let _ = writeln!(
+                    out,
+                    "      {:<48} {} · {}",
+                    format!("{} / {}", k.variant, k.solver),
+                    j.variant,
+                    j.solver.label()
+                );
             }
         }
     }

@@ -153,10 +153,7 @@ fn runs_of_deleted_experiments_are_pruned() {
     .unwrap();
     let trace_dir = results.join("traces").join("kong2019-deleted");
     std::fs::create_dir_all(&trace_dir).unwrap();
-    let trace = trace_dir.join(format!(
-        "{}.csv",
-        simulation::naming::run_stem(&stale.variant, &stale.solver)
-    ));
+    let trace = trace_dir.join(format!("{}.csv", stale.key().stem()));
     std::fs::write(&trace, "t\n0\n").unwrap();
 
     // Written by hand, so taken as it is (--accept-edited); every stored run goes, which must

@@ -35,11 +35,22 @@ impl Project {
         std::fs::create_dir_all(base.join("experiments")).unwrap();
         std::fs::create_dir_all(base.join("outside")).unwrap();
         std::fs::write(base.join("experiments/kong2019.toml"), cheap()).unwrap();
-        // What the report reads besides results/: the published values and the deviations.
-        let repo = simulation::root::from_current_dir().unwrap().join("report");
+        // What the report reads besides results/: the papers and the deviations.
+        let repo = simulation::root::from_current_dir().unwrap();
         std::fs::create_dir_all(base.join("report")).unwrap();
-        for f in ["paper-values.csv", "deviations.md"] {
-            std::fs::copy(repo.join(f), base.join("report").join(f)).unwrap();
+        std::fs::copy(
+            repo.join("report/deviations.md"),
+            base.join("report/deviations.md"),
+        )
+        .unwrap();
+        for paper in std::fs::read_dir(repo.join("papers")).unwrap() {
+            let paper = paper.unwrap().path();
+            let to = base.join("papers").join(paper.file_name().unwrap());
+            std::fs::create_dir_all(&to).unwrap();
+            for f in std::fs::read_dir(&paper).unwrap() {
+                let f = f.unwrap().path();
+                std::fs::copy(&f, to.join(f.file_name().unwrap())).unwrap();
+            }
         }
         Self { base }
     }
@@ -527,12 +538,7 @@ mod shards {
         std::fs::write(&manifest, text).unwrap();
 
         // A trace missing: refused before anything is written.
-        let trace = records::results_dir::ResultsDir::trace_rel(
-            &r1[0].experiment,
-            &r1[0].variant,
-            &r1[0].solver,
-        )
-        .unwrap();
+        let trace = records::results_dir::ResultsDir::trace_rel(&r1[0].key()).unwrap();
         let saved = std::fs::read(dirs[0].join(&trace)).unwrap();
         std::fs::remove_file(dirs[0].join(&trace)).unwrap();
         refused(merge(&p, &dirs, &[]), "missing");

@@ -22,7 +22,7 @@ fn a_trajectory_file_is_scored_on_its_task() {
         .iter()
         .flat_map(PaperFile::jobs)
         .find(|j| {
-            j.task_id() == "kong2019-circle / ZNN (eq. 22)" && j.solver != SolverChoice::Exact
+            j.task().to_string() == "kong2019-circle / znn-eq22" && j.solver != SolverChoice::Exact
         })
         .unwrap();
     let run = run_job(&job).run;
@@ -48,7 +48,7 @@ fn a_trajectory_file_is_scored_on_its_task() {
     std::fs::write(&file, csv).unwrap();
     let out = dir.join("out");
     let ok = reproduce()
-        .args(["--task", &job.task_id(), "--score"])
+        .args(["--task", &job.task().to_string(), "--score"])
         .arg(&file)
         .arg("--score-out")
         .arg(&out)

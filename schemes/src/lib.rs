@@ -12,6 +12,7 @@ pub mod qp_dot;
 pub mod rmp;
 pub mod scheme;
 pub mod sign_power;
+pub mod slug;
 pub mod spec;
 pub mod zhang2018;
 pub mod zhong2021;

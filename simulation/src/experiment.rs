@@ -9,8 +9,9 @@
 //! written. A variant with a `sweep` table stands for many (the grammar: [`crate::sweep`]).
 //! Every run an experiment file describes is a [`Job`].
 
-use crate::naming::{run_stem, slug, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
+use crate::naming::{slug, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
 use crate::run::JobPart;
+use crate::run_key::{RunKey, TaskKey, EXACT_ID};
 use crate::simulate::Scoring;
 use schemes::paths::PathSpec;
 use schemes::spec::SchemeSpec;
@@ -79,7 +80,11 @@ pub fn default_exact_integrator() -> IntegratorSettings {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Variant {
-    /// Label as the paper's table column writes it (e.g. "VLTCO").
+    /// The variant's id in run keys, results and file names (a slug, e.g. `vltco`); when
+    /// absent, `slug(label)` ([`Variant::id`]). Declare it to rename the label freely.
+    #[serde(default)]
+    pub id: Option<String>,
+    /// Label as the paper's table column writes it (e.g. "VLTCO"): display only.
     pub label: String,
     pub scheme: SchemeSpec,
     #[serde(default)]
@@ -105,10 +110,14 @@ pub struct Variant {
     /// make the binary exit non-zero nor the regression gate complain.
     #[serde(default)]
     pub expected_failure: Option<ExpectedFailure>,
+    /// Explain this variant's neural runs (tolerance ladder, drift attribution) even though no
+    /// published column maps onto them (those that are mapped are explained anyway).
+    #[serde(default)]
+    pub explain: bool,
 }
 
-/// An expected failure: why, and which of the variant's runs (solver label prefixes, e.g.
-/// `"FP-CDNN"` or `"exact"`; empty: every run of the variant).
+/// An expected failure: why, and which of the variant's runs (solver kinds, e.g. `"fp-cdnn"`
+/// or `"exact"`; empty: every run of the variant).
 #[derive(Clone, Debug, PartialEq, Eq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ExpectedFailure {
@@ -118,10 +127,17 @@ pub struct ExpectedFailure {
 }
 
 impl ExpectedFailure {
-    /// The reason, if the run with solver label `label` is one of the expected failures.
-    fn of(&self, label: &str) -> Option<String> {
-        (self.solvers.is_empty() || self.solvers.iter().any(|s| label.starts_with(s.as_str())))
+    /// The reason, if the run of `solver` is one of the expected failures.
+    fn of(&self, solver: &SolverChoice) -> Option<String> {
+        (self.solvers.is_empty() || self.solvers.iter().any(|s| s == solver.kind()))
             .then(|| self.why.clone())
+    }
+}
+
+impl Variant {
+    /// The variant's id: the declared `id`, or `slug(label)`.
+    pub fn id(&self) -> String {
+        self.id.clone().unwrap_or_else(|| slug(&self.label))
     }
 }
 
@@ -148,8 +164,12 @@ pub enum SolverChoice {
     Neural(SolverSpec),
 }
 
-/// The solver kind of the exact column (`solver_kind` in results).
-pub const EXACT_KIND: &str = "exact";
+/// The solver kind of the exact column (`solver_kind` in results); also its id.
+pub const EXACT_KIND: &str = EXACT_ID;
+
+/// The exact column's label: x*(t) from the certified active set, Clarabel where it cannot
+/// certify (`qp_fallbacks` in results counts those instants).
+pub const EXACT_LABEL: &str = "exact (active set + Clarabel)";
 
 impl SolverChoice {
     /// The solver's identity: [`EXACT_KIND`], or the network's kind (`lvi-pdnn`, ...).
@@ -160,10 +180,19 @@ impl SolverChoice {
         }
     }
 
-    /// The solver's label in tables and run keys: the network with its parameters.
+    /// The solver's id in run keys: [`EXACT_ID`], or the network's
+    /// [`SolverSpec::id`](solvers::neural::spec::SolverSpec::id).
+    pub fn id(&self) -> String {
+        match self {
+            SolverChoice::Exact => EXACT_ID.to_string(),
+            SolverChoice::Neural(s) => s.id(),
+        }
+    }
+
+    /// The solver's label in tables (display only): the network with its parameters.
     pub fn label(&self) -> String {
         match self {
-            SolverChoice::Exact => "exact (Clarabel)".to_string(),
+            SolverChoice::Exact => EXACT_LABEL.to_string(),
             SolverChoice::Neural(s) => s.display_name(),
         }
     }
@@ -174,6 +203,9 @@ impl SolverChoice {
 pub struct Job {
     pub paper: String,
     pub experiment: String,
+    /// The variant's id ([`Variant::id`]).
+    pub variant_id: String,
+    /// The variant's label (display only).
     pub variant: String,
     pub robot: String,
     pub path: PathSpec,
@@ -190,22 +222,22 @@ pub struct Job {
     pub network_init: NetworkInit,
     /// Why this run is expected to fail, if it is (the variant's `expected_failure`).
     pub expected_failure: Option<String>,
+    /// The variant's `explain` flag.
+    pub explain: bool,
 }
 
 impl Job {
-    /// The run's task (what every solver of a variant shares): `"<experiment> / <variant>"`.
-    pub fn task_id(&self) -> String {
-        format!("{} / {}", self.experiment, self.variant)
+    /// The run's task (what every solver of a variant shares).
+    pub fn task(&self) -> TaskKey {
+        TaskKey {
+            experiment: self.experiment.clone(),
+            variant: self.variant_id.clone(),
+        }
     }
 
-    /// Stable key of a run: experiment / variant / solver.
-    pub fn key(&self) -> String {
-        format!(
-            "{} / {} / {}",
-            self.experiment,
-            self.variant,
-            self.solver.label()
-        )
+    /// The run's identity: experiment / variant / solver ids.
+    pub fn key(&self) -> RunKey {
+        RunKey::new(&self.experiment, &self.variant_id, self.solver.id())
     }
 }
 
@@ -318,9 +350,9 @@ impl PaperFile {
                     at("variant")
                 ));
             }
-            let mut label_slugs: HashMap<String, &str> = HashMap::new();
-            let mut keys: HashSet<String> = HashSet::new();
-            let mut stems: HashMap<String, String> = HashMap::new();
+            let mut labels: HashSet<&str> = HashSet::new();
+            let mut ids: HashMap<String, &str> = HashMap::new();
+            let mut keys: HashSet<RunKey> = HashSet::new();
             for (j, v) in e.variants.iter().enumerate() {
                 let vat = |field: &str| {
                     format!(
@@ -329,23 +361,33 @@ impl PaperFile {
                     )
                 };
                 check_name(&v.label, MAX_VARIANT_LABEL, &vat("label"))?;
-                if let Some(other) = label_slugs.get(&slug(&v.label)) {
-                    return Err(if *other == v.label {
-                        format!(
-                            "{}: label \"{}\" is used by two variants of the experiment",
-                            vat("label"),
-                            v.label
-                        )
-                    } else {
-                        format!(
-                            "{}: \"{}\" and \"{other}\" have the same file name \"{}\" within the experiment; rename one",
-                            vat("label"),
-                            v.label,
-                            slug(&v.label)
-                        )
-                    });
+                if !labels.insert(&v.label) {
+                    return Err(format!(
+                        "{}: label \"{}\" is used by two variants of the experiment",
+                        vat("label"),
+                        v.label
+                    ));
                 }
-                label_slugs.insert(slug(&v.label), &v.label);
+                if let Some(id) = &v.id {
+                    check_name(id, MAX_VARIANT_LABEL, &vat("id"))?;
+                    if !schemes::slug::is_slug(id) {
+                        return Err(format!(
+                            "{}: \"{id}\" is not an id: use lower-case ASCII letters, digits, `.` and single `-` (e.g. \"{}\")",
+                            vat("id"),
+                            slug(id)
+                        ));
+                    }
+                }
+                let id = v.id();
+                if let Some(other) = ids.get(&id) {
+                    return Err(format!(
+                        "{}: variants \"{}\" and \"{other}\" both have the id \"{id}\"{}; give one an `id`",
+                        vat("id"),
+                        v.label,
+                        if v.id.is_none() { " (derived from the label)" } else { "" }
+                    ));
+                }
+                ids.insert(id, &v.label);
                 let robot = v.robot.as_deref().unwrap_or(&e.robot);
                 let vn = robot_dof(robot).ok_or_else(|| {
                     format!(
@@ -395,26 +437,32 @@ impl PaperFile {
                         };
                         format!("{}: {message}", vat(&field))
                     })?;
-                    let label = job.solver.label();
-                    check_name(&label, MAX_SOLVER_LABEL, &vat("solvers"))?;
+                    check_name(&job.solver.label(), MAX_SOLVER_LABEL, &vat("solvers"))?;
                     let key = job.key();
+                    if let Err(e) = key.check() {
+                        return Err(format!("{}: {e}", vat("solvers")));
+                    }
                     if keys.contains(&key) {
                         return Err(format!(
-                            "{}: run \"{}\" is listed twice (experiment / variant / solver must be unique)",
+                            "{}: run \"{key}\" is listed twice (experiment / variant / solver ids must be unique)",
                             vat("solvers"),
-                            job.key()
                         ));
                     }
-                    let stem = run_stem(&v.label, &label);
-                    if let Some(other) = stems.get(&stem) {
-                        return Err(format!(
-                            "{}: runs \"{}\" and \"{other}\" have the same file name \"{stem}\" within the experiment; rename the variant",
-                            vat("solvers"),
-                            job.key()
-                        ));
-                    }
-                    stems.insert(stem, key.clone());
                     keys.insert(key);
+                }
+                if let Some(f) = &v.expected_failure {
+                    let kinds: Vec<String> = self
+                        .variant_jobs(e, v)
+                        .iter()
+                        .map(|j| j.solver.kind().to_string())
+                        .collect();
+                    if let Some(bad) = f.solvers.iter().find(|s| !kinds.contains(s)) {
+                        return Err(format!(
+                            "{}: \"{bad}\" is not a solver kind of this variant (its runs: {})",
+                            vat("expected_failure"),
+                            kinds.join(", ")
+                        ));
+                    }
                 }
             }
         }
@@ -433,6 +481,7 @@ impl PaperFile {
         let base = Job {
             paper: self.paper.clone(),
             experiment: e.id.clone(),
+            variant_id: v.id(),
             variant: v.label.clone(),
             robot: v.robot.clone().unwrap_or_else(|| e.robot.clone()),
             path: v.path.clone().unwrap_or_else(|| e.path.clone()),
@@ -443,24 +492,23 @@ impl PaperFile {
             integrator: e.exact_integrator,
             scoring: e.scoring,
             network_init: NetworkInit::Zero,
+            explain: v.explain,
             expected_failure: v
                 .expected_failure
                 .as_ref()
-                .and_then(|f| f.of(&SolverChoice::Exact.label())),
+                .and_then(|f| f.of(&SolverChoice::Exact)),
         };
         if v.exact {
             jobs.push(base.clone());
         }
         for s in &v.solvers {
             let integrator = v.integrator.unwrap_or(e.integrator);
+            let solver = SolverChoice::Neural(s.clone());
             jobs.push(Job {
-                solver: SolverChoice::Neural(s.clone()),
+                expected_failure: v.expected_failure.as_ref().and_then(|f| f.of(&solver)),
+                solver,
                 integrator,
                 network_init: v.network_init,
-                expected_failure: v
-                    .expected_failure
-                    .as_ref()
-                    .and_then(|f| f.of(&SolverChoice::Neural(s.clone()).label())),
                 ..base.clone()
             });
         }

@@ -20,6 +20,7 @@ pub mod naming;
 pub mod robot_registry;
 pub mod root;
 pub mod run;
+pub mod run_key;
 pub mod runner;
 pub mod score_trajectory;
 pub mod simulate;

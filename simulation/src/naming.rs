@@ -1,18 +1,7 @@
 //! File-safe names: a run's slugs, shared by the experiment files' validation (two labels that
 //! would share a file are an error), the traces and the figures.
 
-/// Lower-case ASCII letters, digits and dashes.
-pub fn slug(s: &str) -> String {
-    let mut out = String::new();
-    for c in s.chars() {
-        if c.is_ascii_alphanumeric() || c == '.' {
-            out.push(c.to_ascii_lowercase());
-        } else if !out.ends_with('-') {
-            out.push('-');
-        }
-    }
-    out.trim_matches('-').to_string()
-}
+pub use schemes::slug::slug;
 
 /// Longest experiment id (and paper id), in bytes.
 pub const MAX_EXPERIMENT_ID: usize = 64;
@@ -67,26 +56,13 @@ pub fn check_name(name: &str, max: usize) -> Result<(), NameError> {
     Ok(())
 }
 
-/// Checks the three names of one run (experiment id, variant label, solver label).
-pub fn check_run_names(experiment: &str, variant: &str, solver: &str) -> Result<(), NameError> {
-    check_name(experiment, MAX_EXPERIMENT_ID)?;
-    check_name(variant, MAX_VARIANT_LABEL)?;
-    check_name(solver, MAX_SOLVER_LABEL)
-}
-
-/// `<variant-slug>__<solver-slug>`: a run's file stem inside its experiment's directory, shared
-/// by the traces and the figures.
-pub fn run_stem(variant: &str, solver: &str) -> String {
-    format!("{}__{}", slug(variant), slug(solver))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn unsafe_empty_and_long_names_are_refused() {
-        assert!(check_run_names("jia2019-clover", "VLTCO", "exact (Clarabel)").is_ok());
+        assert!(check_name("VLTCO [star-lines]", MAX_VARIANT_LABEL).is_ok());
         for bad in ["../x", "a/b", "a\\b", "..", "a\nb"] {
             assert!(
                 matches!(check_name(bad, 64), Err(NameError::Unsafe { .. })),
@@ -99,7 +75,7 @@ mod tests {
         ));
         let long = "x".repeat(MAX_VARIANT_LABEL + 1);
         assert!(matches!(
-            check_run_names("e", &long, "s"),
+            check_name(&long, MAX_VARIANT_LABEL),
             Err(NameError::TooLong { len: 101, .. })
         ));
         let longest = format!(
@@ -109,12 +85,5 @@ mod tests {
             "s".repeat(MAX_SOLVER_LABEL)
         );
         assert!(longest.len() <= MAX_FILE_NAME);
-    }
-
-    #[test]
-    fn slugs_are_file_safe() {
-        assert_eq!(slug("VP-RNN-PF (sinh)"), "vp-rnn-pf-sinh");
-        assert_eq!(slug("exact (Clarabel)"), "exact-clarabel");
-        assert_eq!(slug("MVN [jaco2 hand centre]"), "mvn-jaco2-hand-centre");
     }
 }

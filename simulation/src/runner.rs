@@ -45,7 +45,7 @@ pub fn run_jobs_with(
         .map(|&i| {
             let r = run_job(&jobs[i]);
             finished(&r);
-            bar.set_message(jobs[i].key());
+            bar.set_message(jobs[i].key().to_string());
             if let Some(log) = &log {
                 log.finished(&jobs[i].experiment);
             }

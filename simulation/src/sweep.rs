@@ -44,6 +44,11 @@
 //! value as TOML writes it: `2` for the integer 2, `2.0` for the float 2.0, `0.25`, `true`,
 //! strings without quotes.
 //!
+//! **Ids.** When the variant declares an `id`, each expanded variant's id is that id followed
+//! by every swept path's last segment and raw value, slugged: `id = "znn"` with
+//! `"scheme.mu" = [0.25]` gives `znn-mu-0.25`. Labelled values enter by their value, so ids do
+//! not move when labels are reworded. Without an `id`, the expanded label's slug is the id.
+//!
 //! **Order.** Keys keep the order written in the file: the workspace enables the `toml` crate's
 //! `preserve_order` feature, so tables are insertion-ordered.
 //!
@@ -66,6 +71,7 @@ const VARIANT_FIELDS: &[&str] = &[
     "integrator",
     "network_init",
     "expected_failure",
+    "explain",
 ];
 
 /// Most runs one variant may expand into (a typo in a range should not eat the memory).
@@ -182,6 +188,16 @@ pub fn expand_variant(variant: &Table) -> Result<Vec<Table>, String> {
                 .to_string(),
         ),
     };
+    let id_template = match base.get("id") {
+        None => None,
+        Some(Value::String(s)) => Some(s.clone()),
+        Some(other) => {
+            return Err(format!(
+                "field `id`: must be a string, not {}",
+                other.type_str()
+            ))
+        }
+    };
     let mut axes = Vec::with_capacity(sweep.len());
     for (key, val) in &sweep {
         axes.push(parse_axis(&base, key, val)?);
@@ -217,6 +233,9 @@ pub fn expand_variant(variant: &Table) -> Result<Vec<Table>, String> {
                 "field `sweep`: expanded variants {m} and {n} both get the label \"{label}\"; the label template must tell every value of every key apart (keys: {})",
                 axes.iter().map(|a| format!("`{}`", a.key)).collect::<Vec<_>>().join(", ")
             ));
+        }
+        if let Some(id) = &id_template {
+            t.insert("id".to_string(), Value::String(make_id(id, &axes, &idx)));
         }
         t.insert("label".to_string(), Value::String(label.clone()));
         labels.insert(label, n);
@@ -468,6 +487,23 @@ fn make_label(
         }
     }
     format!("{template} [{}]", parts.join(", "))
+}
+
+/// The id of one expanded variant: the base `id` followed by every swept path's last segment
+/// and raw value (labelled values by their value, not their text), as a slug: ids do not move
+/// when a label or a labelled value's text is reworded.
+fn make_id(base: &str, axes: &[Axis], idx: &[usize]) -> String {
+    let mut text = base.to_string();
+    for (ai, a) in axes.iter().enumerate() {
+        for (p, v) in a.paths.iter().zip(&a.values[idx[ai]].0) {
+            text.push_str(&format!(
+                " {}={}",
+                p.last().expect("non-empty path"),
+                display(v)
+            ));
+        }
+    }
+    schemes::slug::slug(&text)
 }
 
 /// A value as TOML writes it: `2`, `2.0`, `0.25`, `true`; strings without quotes.

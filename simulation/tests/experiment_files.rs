@@ -419,7 +419,28 @@ fn names_must_be_unique_and_file_safe() {
     assert_rejected(
         "label_slug_collision",
         &two_variants.replacen("label = \"VLTCO\"", "label = \"vltco\"", 1),
-        &["field `label`", "same file name", "\"vltco\""],
+        &[
+            "field `id`",
+            "both have the id \"vltco\"",
+            "derived from the label",
+        ],
+    );
+    assert_rejected(
+        "id_not_a_slug",
+        &GOOD.replace("label = \"VLTCO\"", "id = \"VLTCO x\"\nlabel = \"VLTCO\""),
+        &["field `id`", "is not an id", "\"vltco-x\""],
+    );
+    assert_rejected(
+        "expected_failure_of_no_solver",
+        &GOOD.replace(
+            "label = \"VLTCO\"",
+            "label = \"VLTCO\"\nexpected_failure = { why = \"w\", solvers = [\"LVI-PDNN\"] }",
+        ),
+        &[
+            "field `expected_failure`",
+            "not a solver kind",
+            "exact, lvi-pdnn",
+        ],
     );
     assert_rejected(
         "dup_run_key",
@@ -427,7 +448,7 @@ fn names_must_be_unique_and_file_safe() {
             "solvers = [{ kind = \"lvi-pdnn\", gamma = 1e7 }]",
             "solvers = [{ kind = \"lvi-pdnn\", gamma = 1e7 }, { kind = \"lvi-pdnn\", gamma = 1e6 }]",
         ),
-        &["jia2019-x / VLTCO / LVI-PDNN", "listed twice"],
+        &["jia2019-x / vltco / lvi-pdnn", "listed twice"],
     );
     assert_rejected(
         "escaping_id",

@@ -44,7 +44,7 @@ pub mod verdict;
 
 use family::{Family, Integration};
 use rayon::prelude::*;
-use records::paper_values::{PaperValue, MAPPINGS};
+use records::papers::{PaperValue, Papers};
 use records::runs::RunRow;
 use schemes::spec::{RmpReading, SchemeSpec};
 use search::{Coordinate, Objective, Outcome, Point, Scores, Target};
@@ -226,9 +226,10 @@ pub fn table_ids(values: &[PaperValue]) -> Vec<(String, String)> {
 pub fn problem(
     paper: &str,
     table: &str,
-    values: &[PaperValue],
+    papers: &Papers,
     jobs: &[Job],
 ) -> Result<TableProblem, InferenceError> {
+    let values = &papers.values;
     let mut p = TableProblem {
         paper: paper.to_string(),
         table: table.to_string(),
@@ -254,13 +255,10 @@ pub fn problem(
             continue;
         }
         seen.push((&v.experiment, &v.column));
-        let Some(m) = MAPPINGS.iter().find(|m| {
-            m.paper == paper
-                && m.published_experiment == v.experiment
-                && m.published_column == v.column
-        }) else {
+        let Some(m) = papers.mapping_of(v) else {
             continue;
         };
+        let key = &m.run;
         let drifts: Vec<f64> = (1..=6)
             .map_while(|i| {
                 values
@@ -278,17 +276,14 @@ pub fn problem(
         if drifts.is_empty() {
             continue;
         }
-        let of_variant = |j: &&Job| j.experiment == m.experiment && j.variant == m.variant;
         let exact = jobs
             .iter()
-            .filter(of_variant)
-            .find(|j| j.solver == SolverChoice::Exact)
-            .ok_or_else(|| no_run("exact", m.experiment, m.variant))?;
+            .find(|j| j.task() == key.task() && j.solver == SolverChoice::Exact)
+            .ok_or_else(|| no_run("exact", &key.experiment, &key.variant))?;
         let network = jobs
             .iter()
-            .filter(of_variant)
-            .find(|j| j.solver.label() == m.solver)
-            .ok_or_else(|| no_run("network", m.experiment, m.variant))?;
+            .find(|j| j.key() == *key)
+            .ok_or_else(|| no_run("network", &key.experiment, &key.variant))?;
         let exact = Job {
             integrator: IntegratorSettings {
                 method: exact.integrator.method,

@@ -55,7 +55,7 @@ pub const FIGURES: &str = "figures";
 
 /// The run's file stem (see [`simulation::naming::run_stem`]).
 fn run_stem(run: &RunRow) -> String {
-    simulation::naming::run_stem(&run.variant, &run.solver)
+    run.key().stem()
 }
 
 /// The run figure of the report for `run` with its trace file `trace`, as SVG text (for a run

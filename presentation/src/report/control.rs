@@ -240,11 +240,11 @@ fn papers_integration(results: &ControlResults, runs: &Runs) -> String {
         let per_step = c.products_per_step as f64;
         for r in runs
             .of_experiment(experiment)
-            .filter(|r| r.variant == variant && r.solver == c.network && completed(r))
+            .filter(|r| r.variant_id == variant && r.solver == c.network && completed(r))
         {
             any = true;
             t.push([
-                format!("{experiment} / {variant} / {}", r.solver),
+                format!("{experiment} / {} / {}", r.variant, r.solver),
                 r.rhs_evals.to_string(),
                 r.jac_evals.to_string(),
                 sci(r.duration),

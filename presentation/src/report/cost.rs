@@ -7,7 +7,7 @@
 
 use super::markdown::{sci, sci_opt, Table, MISSING};
 use records::index::{completed, Runs};
-use records::paper_values::{mapping_of, our_metric, PaperValue};
+use records::papers::{our_metric, Papers};
 
 /// One cost table per paper: every run's integrator, tolerances and effort.
 pub fn cost_table(runs: &Runs, paper: &str) -> String {
@@ -65,27 +65,40 @@ pub struct Slowdown {
 }
 
 /// The mean of the VP-RNN-PF variants' times among (solver label, seconds) pairs.
+/// Solver ids of zhong2021's efficiency claim: S-LVI-PDNN against the VP-RNN-PF variants.
+const S_LVI_PDNN: &str = "s-lvi-pdnn";
+const VP_RNN_PF: &str = "vp-rnn-pf";
+
+/// The label of solver id `solver` in `experiment` (its first run's), or the id.
+pub(crate) fn solver_label(runs: &Runs, experiment: &str, solver: &str) -> String {
+    runs.of_experiment(experiment)
+        .find(|r| r.solver_id == solver)
+        .map_or_else(|| solver.to_string(), |r| r.solver.clone())
+}
+
 fn vp_mean(times: &[(&str, f64)]) -> Option<f64> {
     let vp: Vec<f64> = times
         .iter()
-        .filter(|(s, _)| s.starts_with("VP-RNN-PF"))
+        .filter(|(s, _)| s.starts_with(VP_RNN_PF))
         .map(|(_, t)| *t)
         .collect();
     (!vp.is_empty()).then(|| vp.iter().sum::<f64>() / vp.len() as f64)
 }
 
-/// The published MATLAB times of one of our experiments, as (our solver label, seconds).
+/// The published MATLAB times of one of our experiments, as (our solver id, seconds).
 pub(crate) fn paper_times<'a>(
-    values: &'a [PaperValue],
+    papers: &'a Papers,
     experiment: &'a str,
-) -> impl Iterator<Item = (&'static str, f64)> + 'a {
-    values
+) -> impl Iterator<Item = (&'a str, f64)> + 'a {
+    papers
+        .values
         .iter()
         .filter(|v| our_metric(&v.metric) == Some("sim_s"))
         .filter_map(move |v| {
-            mapping_of(v)
-                .filter(|m| m.experiment == experiment)
-                .map(|m| (m.solver, v.value))
+            papers
+                .mapping_of(v)
+                .filter(|m| m.run.experiment == experiment)
+                .map(|m| (m.run.solver.as_str(), v.value))
         })
 }
 
@@ -96,30 +109,30 @@ pub fn evaluation_ratio(runs: &Runs, experiment: &str) -> Option<f64> {
     let evals: Vec<(&str, f64)> = runs
         .of_experiment(experiment)
         .filter(|r| completed(r))
-        .map(|r| (r.solver.as_str(), r.rhs_evals as f64))
+        .map(|r| (r.solver_id.as_str(), r.rhs_evals as f64))
         .collect();
     let s = evals
         .iter()
-        .find(|(s, _)| *s == "S-LVI-PDNN")
+        .find(|(s, _)| *s == S_LVI_PDNN)
         .map(|(_, e)| *e)?;
     vp_mean(&evals).map(|vp| s / vp)
 }
 
 /// [`Slowdown`] of one zhong2021 experiment.
-pub fn slowdown(runs: &Runs, values: &[PaperValue], experiment: &str) -> Slowdown {
+pub fn slowdown(runs: &Runs, papers: &Papers, experiment: &str) -> Slowdown {
     let ratio = |times: &[(&str, f64)]| {
         let s = times
             .iter()
-            .find(|(s, _)| *s == "S-LVI-PDNN")
+            .find(|(s, _)| *s == S_LVI_PDNN)
             .map(|(_, t)| *t)?;
         vp_mean(times).map(|vp| s / vp)
     };
     let ours: Vec<(&str, f64)> = runs
         .of_experiment(experiment)
         .filter(|r| completed(r))
-        .map(|r| (r.solver.as_str(), r.sim_s))
+        .map(|r| (r.solver_id.as_str(), r.sim_s))
         .collect();
-    let paper: Vec<(&str, f64)> = paper_times(values, experiment).collect();
+    let paper: Vec<(&str, f64)> = paper_times(papers, experiment).collect();
     Slowdown {
         ours: ratio(&ours),
         paper: ratio(&paper),
@@ -128,12 +141,13 @@ pub fn slowdown(runs: &Runs, values: &[PaperValue], experiment: &str) -> Slowdow
 
 /// Our experiments that a published MATLAB compute time maps onto, in the published values'
 /// order.
-pub(crate) fn matlab_experiments(values: &[PaperValue]) -> Vec<&'static str> {
-    let mut experiments: Vec<&str> = values
+pub(crate) fn matlab_experiments(papers: &Papers) -> Vec<&str> {
+    let mut experiments: Vec<&str> = papers
+        .values
         .iter()
         .filter(|v| our_metric(&v.metric) == Some("sim_s"))
-        .filter_map(mapping_of)
-        .map(|m| m.experiment)
+        .filter_map(|v| papers.mapping_of(v))
+        .map(|m| m.run.experiment.as_str())
         .collect();
     experiments.dedup();
     experiments
@@ -141,7 +155,7 @@ pub(crate) fn matlab_experiments(values: &[PaperValue]) -> Vec<&'static str> {
 
 /// zhong2021's compute times: per experiment and solver, the paper's MATLAB seconds and
 /// ours, each also divided by the mean of the VP-RNN-PF variants.
-pub fn matlab_comparison(runs: &Runs, values: &[PaperValue]) -> String {
+pub fn matlab_comparison(runs: &Runs, papers: &Papers) -> String {
     let mut t = Table::new([
         "experiment",
         "solver",
@@ -150,19 +164,19 @@ pub fn matlab_comparison(runs: &Runs, values: &[PaperValue]) -> String {
         "ours (s)",
         "ours ÷ VP-RNN-PF mean",
     ]);
-    for exp in matlab_experiments(values) {
-        let paper: Vec<(&str, f64)> = paper_times(values, exp).collect();
+    for exp in matlab_experiments(papers) {
+        let paper: Vec<(&str, f64)> = paper_times(papers, exp).collect();
         let ours: Vec<(&str, f64)> = runs
             .of_experiment(exp)
-            .filter(|r| paper.iter().any(|(s, _)| *s == r.solver))
-            .map(|r| (r.solver.as_str(), r.sim_s))
+            .filter(|r| paper.iter().any(|(s, _)| *s == r.solver_id))
+            .map(|r| (r.solver_id.as_str(), r.sim_s))
             .collect();
         let (paper_vp, ours_vp) = (vp_mean(&paper), vp_mean(&ours));
         for (solver, p) in &paper {
             let o = ours.iter().find(|(s, _)| s == solver).map(|(_, t)| *t);
             t.push([
                 exp.to_string(),
-                solver.to_string(),
+                solver_label(runs, exp, solver),
                 sci(*p),
                 sci_opt(paper_vp.map(|m| p / m)),
                 o.map(sci).unwrap_or_else(|| MISSING.to_string()),

@@ -32,19 +32,23 @@ pub fn section(runs: &Runs, paper: &str) -> String {
     let rows: Vec<&RunRow> = runs.of_paper(paper).collect();
     let mut columns: Vec<(&str, &str)> = rows
         .iter()
-        .map(|r| (r.experiment.as_str(), r.variant.as_str()))
+        .map(|r| (r.experiment.as_str(), r.variant_id.as_str()))
         .collect();
     columns.dedup();
-    let mut solvers: Vec<&str> = rows.iter().map(|r| r.solver.as_str()).collect();
-    solvers.sort_by_key(|s| (*s != EXACT, *s));
-    solvers.dedup();
+    // (id, label), the exact column first, then by label.
+    let mut solvers: Vec<(&str, &str)> = rows
+        .iter()
+        .map(|r| (r.solver_id.as_str(), r.solver.as_str()))
+        .collect();
+    solvers.sort_by_key(|s| (s.0 != EXACT, s.1, s.0));
+    solvers.dedup_by_key(|s| s.0);
     if columns.is_empty() {
         return String::new();
     }
     let label = |(e, v): (&str, &str)| {
         let r = rows
             .iter()
-            .find(|r| r.experiment == e && r.variant == v)
+            .find(|r| r.experiment == e && r.variant_id == v)
             .expect("column taken from the rows");
         format!("{} · {}", r.scheme, r.path)
     };
@@ -53,10 +57,10 @@ pub fn section(runs: &Runs, paper: &str) -> String {
         let mut header = vec!["solver".to_string()];
         header.extend(columns.iter().map(|c| label(*c)));
         let mut t = Table::new(header);
-        for s in &solvers {
-            let mut row = vec![s.to_string()];
+        for (id, shown) in &solvers {
+            let mut row = vec![shown.to_string()];
             row.extend(columns.iter().map(|(e, v)| {
-                match runs.find(e, v, s) {
+                match runs.find(e, v, id) {
                     None => MISSING.to_string(),
                     Some(r) if !completed(r) => failed_at(r),
                     Some(r) => metric(r, column)
@@ -90,7 +94,7 @@ fn best_in(runs: &Runs, experiment: &str, variant: &str, column: &str, rule: Bes
     };
     let mut ranked: Vec<(&RunRow, f64)> = runs
         .of_experiment(experiment)
-        .filter(|r| r.variant == variant && is_neural(r) && completed(r))
+        .filter(|r| r.variant_id == variant && is_neural(r) && completed(r))
         .filter_map(|r| metric(r, column).and_then(key).map(|k| (r, k)))
         .collect();
     ranked.sort_by(|a, b| a.1.total_cmp(&b.1));

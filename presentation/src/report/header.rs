@@ -23,7 +23,7 @@ against the measured numbers; then every neural run scored against the exact opt
 computational cost, a cross experiment (every solver on every scheme and path), and the deviations from the papers.\n\n",
     );
     out.push_str(&format!(
-        "**Provenance.** Generated from `results/runs.csv` ({} runs), `report/paper-values.csv` ({published} published numbers), \
+        "**Provenance.** Generated from `results/runs.csv` ({} runs), `papers/*/values.csv` ({published} published numbers), \
 `report/deviations.md` and {figures} figures in `report/figures/`. Runs produced at git revision {} by reproduce {}.\n\n",
         runs.all().len(),
         distinct(|r| &r.git_rev),

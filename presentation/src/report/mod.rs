@@ -1,7 +1,7 @@
 //! `report/REPORT.md`: the reproduction report, rendered from stored results only.
 //!
 //! Inputs: `results/runs.csv` (one row per run), `results/dof-cost.csv` (the cost against the
-//! number of joints, when measured), `report/paper-values.csv` (the papers'
+//! number of joints, when measured), `papers/<paper>/` (the papers'
 //! published numbers), `report/deviations.md` (hand-written, included verbatim) and the SVG
 //! names in `report/figures/`. Nothing is re-run and nothing depends on the clock, so
 //! identical inputs give a byte-identical report ([`render`] writes it atomically).
@@ -38,26 +38,9 @@ pub mod why;
 use explain::read_csv;
 use markdown::{sci, Table};
 use records::index::Runs;
-use records::paper_values::{read_paper_values, PaperValue};
+use records::papers::Papers;
 use records::runs::read_runs;
 use std::path::{Path, PathBuf};
-
-/// The four papers, as (id, title), in report order.
-pub const PAPERS: &[(&str, &str)] = &[
-    ("jia2019", "VLTCO scheme solved by LVI-PDNN (Jaco2)"),
-    (
-        "zhang2018",
-        "HL-JDF scheme solved by VP-CDNN vs FP-CDNN (Jaco2 with dynamics)",
-    ),
-    (
-        "zhong2021",
-        "CMCO scheme solved by VP-RNN-PF vs S-LVI-PDNN (Jaco2)",
-    ),
-    (
-        "kong2019",
-        "Finite-time repeatable motion planning (Katana 6M180)",
-    ),
-];
 
 /// The `paper` value of the suite's own cross experiment.
 pub const CROSS: &str = "cross";
@@ -66,7 +49,8 @@ pub const CROSS: &str = "cross";
 #[derive(Clone, Debug)]
 pub struct Inputs {
     pub runs: Runs,
-    pub values: Vec<PaperValue>,
+    /// `papers/`: each paper's metadata, published values and mappings.
+    pub papers: Papers,
     /// `report/deviations.md`, verbatim.
     pub deviations: String,
     /// SVG file names in `report/figures/`, sorted.
@@ -80,14 +64,15 @@ pub struct Inputs {
 }
 
 impl Inputs {
-    /// Reads the inputs under the workspace root `root`.
-    pub fn load(root: &Path) -> Result<Self, String> {
+    /// Reads the inputs under the workspace root `root` (results/, report/), and the papers of
+    /// `papers` (the project's `papers/`).
+    pub fn load(root: &Path, papers: &Path) -> Result<Self, String> {
         let report = root.join("report");
         let results = root.join("results");
         let deviations_path = report.join("deviations.md");
         Ok(Inputs {
             runs: Runs::new(read_runs(&results.join("runs.csv"))?),
-            values: read_paper_values(&report.join("paper-values.csv"))?,
+            papers: Papers::load(papers).map_err(|e| e.to_string())?,
             deviations: std::fs::read_to_string(&deviations_path)
                 .map_err(|e| format!("{}: {e}", deviations_path.display()))?,
             figures: figures::list(&report.join("figures"))?,
@@ -104,8 +89,8 @@ impl Inputs {
 }
 
 /// Renders `root/report/REPORT.md` from the stored results and returns its path.
-pub fn render(root: &Path) -> Result<PathBuf, String> {
-    let inputs = Inputs::load(root)?;
+pub fn render(root: &Path, papers: &Path) -> Result<PathBuf, String> {
+    let inputs = Inputs::load(root, papers)?;
     let report =
         records::tracked_dir::TrackedDir::open_within(root, "report").map_err(|e| e.to_string())?;
     report
@@ -119,18 +104,22 @@ pub fn render(root: &Path) -> Result<PathBuf, String> {
 pub fn to_markdown(inputs: &Inputs) -> String {
     let Inputs {
         runs,
-        values,
+        papers,
         deviations,
         figures,
         explanations,
         dof_cost,
         control,
     } = inputs;
-    let mut out = header::header(runs, values.len(), figures.len());
+    let mut out = header::header(runs, papers.values.len(), figures.len());
 
-    let evaluated: Vec<(&str, &str, Vec<claims::Claim>)> = PAPERS
+    let evaluated: Vec<(&str, &str, Vec<claims::Claim>)> = papers
+        .papers
         .iter()
-        .map(|&(p, title)| (p, title, claims::evaluate(p, runs, values)))
+        .map(|p| {
+            let (id, title) = (p.id.as_str(), p.title.as_str());
+            (id, title, claims::evaluate(id, runs, papers))
+        })
         .collect();
     out.push_str("## Summary\n\n");
     let mut summary = Table::new([
@@ -141,7 +130,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
     ]);
     for (paper, _, c) in &evaluated {
         let n = |v: claims::Verdict| c.iter().filter(|x| x.verdict == v).count();
-        let ratios = verdict::drift_ratios(paper, runs, values);
+        let ratios = verdict::drift_ratios(paper, runs, papers);
         let range = match (
             ratios.iter().map(|r| r.1).reduce(f64::min),
             ratios.iter().map(|r| r.1).reduce(f64::max),
@@ -166,11 +155,15 @@ pub fn to_markdown(inputs: &Inputs) -> String {
 
     for (paper, title, c) in &evaluated {
         out.push_str(&format!("## {paper}\n\n*{title}.*\n\n"));
-        out.push_str(&verdict::paragraph(paper, c, runs, values));
-        out.push_str(&why::summary(paper, explanations, values));
-        let tables: Vec<String> = tables::published_tables(paper, values)
+        let citation = papers.papers.iter().find(|p| p.id == *paper);
+        if let Some(c) = citation.and_then(|p| p.citation.as_ref()) {
+            out.push_str(&format!("Paper: {c}.\n\n"));
+        }
+        out.push_str(&verdict::paragraph(paper, c, runs, papers));
+        out.push_str(&why::summary(paper, explanations, papers));
+        let tables: Vec<String> = tables::published_tables(paper, papers)
             .iter()
-            .map(|t| tables::side_by_side(paper, t, values, runs))
+            .map(|t| tables::side_by_side(paper, t, papers, runs))
             .filter(|t| !t.is_empty())
             .collect();
         if !tables.is_empty() {
@@ -178,9 +171,9 @@ pub fn to_markdown(inputs: &Inputs) -> String {
             out.push_str(&tables.join("\n"));
         }
         if *paper == "jia2019" {
-            out.push_str(&sweep::clover_sweep(runs, values));
+            out.push_str(&sweep::clover_sweep(runs, papers));
         }
-        out.push_str(&why::section(paper, explanations, values));
+        out.push_str(&why::section(paper, explanations, papers));
         out.push_str("\n### Claims\n\n");
         out.push_str(&claims::checklist(c));
         out.push_str(if tables.is_empty() {
@@ -198,13 +191,13 @@ pub fn to_markdown(inputs: &Inputs) -> String {
         }
     }
 
-    out.push_str(&group_section(runs, explanations, values, figures));
+    out.push_str(&group_section(runs, explanations, papers, figures));
 
     out.push_str(&format!(
         "## Score against the exact optimum\n\n{}\n\n",
         score::NOTE
     ));
-    for paper in PAPERS.iter().map(|p| p.0).chain([CROSS]) {
+    for paper in papers.papers.iter().map(|p| p.id.as_str()).chain([CROSS]) {
         let t = score::score_table(runs, paper);
         if !t.is_empty() {
             out.push_str(&format!("### {paper}\n\n{t}\n"));
@@ -214,7 +207,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
     out.push_str(&leaderboard::section(runs));
 
     out.push_str("## Cost\n\nSteps, evaluations and QP solves are counted by the integrator and the scorer (the exact QP is solved at every RHS evaluation of the exact column and at every accepted step of a neural run). Wall times come from runs executed in parallel: compare them within one table, not across machines.\n\n");
-    for paper in PAPERS.iter().map(|p| p.0).chain([CROSS]) {
+    for paper in papers.papers.iter().map(|p| p.id.as_str()).chain([CROSS]) {
         out.push_str(&format!(
             "### {paper}\n\n{}\n",
             cost::cost_table(runs, paper)
@@ -228,10 +221,10 @@ pub fn to_markdown(inputs: &Inputs) -> String {
          network evaluation). Absolute times are not comparable across machines and languages; \
          the ratios are.\n\n",
     );
-    out.push_str(&cost::matlab_comparison(runs, values));
+    out.push_str(&cost::matlab_comparison(runs, papers));
     out.push('\n');
 
-    out.push_str(&performance::section(dof_cost, runs, values, figures));
+    out.push_str(&performance::section(dof_cost, runs, papers, figures));
     out.push_str(&control::section(control, runs, figures));
     out.push_str(&control::cycles_section(control, figures));
 
@@ -251,7 +244,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
     }
 
     out.push_str("\n## Published numbers without a run\n\n");
-    let missing = records::paper_values::unmapped(values, runs);
+    let missing = papers.unmapped(runs);
     if missing.is_empty() {
         out.push_str("Every published number maps to a run.\n");
     } else {
@@ -292,7 +285,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
 fn group_section(
     runs: &Runs,
     explanations: &why::Explanations,
-    values: &[PaperValue],
+    papers: &Papers,
     figures: &[String],
 ) -> String {
     let group = explain::GROUP;
@@ -311,7 +304,7 @@ fn group_section(
         out.push('\n');
         out.push_str(&figures::links(figures, exp));
     }
-    out.push_str(&why::section(group, explanations, values));
+    out.push_str(&why::section(group, explanations, papers));
     out.push('\n');
     out
 }

@@ -14,11 +14,11 @@
 //! Every number is read from `results/`; without `dof-cost.csv` the section says how to
 //! produce it and shows what `runs.csv` gives.
 
-use super::cost::{matlab_experiments, paper_times};
+use super::cost::{matlab_experiments, paper_times, solver_label};
 use super::markdown::{sci, sci_opt, Table, MISSING};
 use records::dof_cost::DofCostRow;
 use records::index::{completed, Runs};
-use records::paper_values::PaperValue;
+use records::papers::Papers;
 use simulation::dof_cost::{Quantity, Summary};
 use std::collections::BTreeMap;
 
@@ -71,12 +71,7 @@ fn schemes(dof: &[DofCostRow]) -> Vec<&str> {
 }
 
 /// The `## Performance` section.
-pub fn section(
-    dof: &[DofCostRow],
-    runs: &Runs,
-    values: &[PaperValue],
-    figures: &[String],
-) -> String {
+pub fn section(dof: &[DofCostRow], runs: &Runs, papers: &Papers, figures: &[String]) -> String {
     let mut out = String::from(
         "## Performance\n\nWhat an instant and a run cost: the networks' evaluations against \
          the exact solvers, against the number of joints, and the whole runs against the papers' \
@@ -99,9 +94,9 @@ pub fn section(
         out.push_str(&dof_curve(dof, figures));
         out.push_str(&dof_runs(dof));
     }
-    out.push_str(&matlab(runs, values));
+    out.push_str(&matlab(runs, papers));
     if !dof.is_empty() {
-        out.push_str(&where_time_goes(dof, runs, values));
+        out.push_str(&where_time_goes(dof, runs, papers));
     }
     out
 }
@@ -110,7 +105,7 @@ pub fn section(
 /// scheme build, at the per-call medians measured at N = [`JACO2_N`] on jia2019's VLTCO, the
 /// QP shape closest to zhong2021's), its network Jacobians (same), and the rest, which is the
 /// integrator's own work: LU factorisations, Newton iterations, step control.
-fn where_time_goes(dof: &[DofCostRow], runs: &Runs, values: &[PaperValue]) -> String {
+fn where_time_goes(dof: &[DofCostRow], runs: &Runs, papers: &Papers) -> String {
     let median = |q| find(dof, "jia2019", JACO2_N, q).and_then(|r| r.median_us);
     let (Some(rhs), Some(build), Some(jac)) = (
         median(Quantity::NetworkRhs),
@@ -130,11 +125,11 @@ fn where_time_goes(dof: &[DofCostRow], runs: &Runs, values: &[PaperValue]) -> St
         "integrator and the rest",
     ]);
     let mut rest_shares = Vec::new();
-    for exp in matlab_experiments(values) {
-        for (solver, _) in paper_times(values, exp) {
+    for exp in matlab_experiments(papers) {
+        for (solver, _) in paper_times(papers, exp) {
             let Some(r) = runs
                 .of_experiment(exp)
-                .find(|r| r.solver == solver && completed(r))
+                .find(|r| r.solver_id == solver && completed(r))
             else {
                 continue;
             };
@@ -459,7 +454,7 @@ fn dof_runs(dof: &[DofCostRow]) -> String {
 
 /// The whole runs against the papers' MATLAB compute times: simulation (`sim_s`) and total
 /// (`wall_s`, scoring and observation included), with the smallest speedups.
-fn matlab(runs: &Runs, values: &[PaperValue]) -> String {
+fn matlab(runs: &Runs, papers: &Papers) -> String {
     let mut t = Table::new([
         "experiment",
         "solver",
@@ -470,9 +465,9 @@ fn matlab(runs: &Runs, values: &[PaperValue]) -> String {
         "paper ÷ total",
     ]);
     let (mut min_sim, mut min_total) = (f64::INFINITY, f64::INFINITY);
-    for exp in matlab_experiments(values) {
-        for (solver, paper) in paper_times(values, exp) {
-            let ours = runs.of_experiment(exp).find(|r| r.solver == solver);
+    for exp in matlab_experiments(papers) {
+        for (solver, paper) in paper_times(papers, exp) {
+            let ours = runs.of_experiment(exp).find(|r| r.solver_id == solver);
             let sim = ours.filter(|r| completed(r)).map(|r| (r.sim_s, r.wall_s));
             if let Some((s, w)) = sim {
                 min_sim = min_sim.min(paper / s);
@@ -480,7 +475,7 @@ fn matlab(runs: &Runs, values: &[PaperValue]) -> String {
             }
             t.push([
                 exp.to_string(),
-                solver.to_string(),
+                solver_label(runs, exp, solver),
                 sci(paper),
                 sci_opt(sim.map(|p| p.0)),
                 sci_opt(sim.map(|p| p.1)),
@@ -556,7 +551,7 @@ mod tests {
     fn the_section_renders_from_a_synthetic_csv() {
         let dof = synthetic();
         let figures = vec!["dof-cost__jia2019.svg".to_string()];
-        let md = section(&dof, &Runs::new(Vec::new()), &[], &figures);
+        let md = section(&dof, &Runs::new(Vec::new()), &Papers::default(), &figures);
         assert!(md.starts_with("## Performance\n"), "{md}");
         assert!(
             md.contains("Test CPU (2 logical cores available) at revision `abc`"),
@@ -594,7 +589,7 @@ mod tests {
 
     #[test]
     fn without_the_csv_the_section_says_how_to_produce_it() {
-        let md = section(&[], &Runs::new(Vec::new()), &[], &[]);
+        let md = section(&[], &Runs::new(Vec::new()), &Papers::default(), &[]);
         assert!(md.contains("`results/dof-cost.csv` is absent"), "{md}");
         assert!(md.contains("-- --dof-cost"), "{md}");
         assert!(md.contains("No completed run"), "{md}");

@@ -5,23 +5,24 @@
 
 use super::markdown::{sci, Table};
 use records::index::{completed, metric, Runs};
-use records::paper_values::PaperValue;
+use records::papers::Papers;
 
 /// The sweep experiment.
 const SWEEP: &str = "jia2019-clover-sweep";
-/// Table 2's columns as (paper-values experiment, our variant label prefix).
+/// Table 2's columns as (published experiment, the end of our variant ids: the swept phi, tau).
 const COLUMNS: [(&str, &str); 3] = [
-    ("clover-mvn", "MVN ["),
-    ("clover-mvn-invm", "MVN-INVM ["),
-    ("clover-vltco", "VLTCO ["),
+    ("clover-mvn", "-phi-1.0-tau-0.0"),
+    ("clover-mvn-invm", "-phi-0.2-tau-0.0"),
+    ("clover-vltco", "-phi-0.2-tau-0.4"),
 ];
 const JOINTS: [&str; 6] = [
     "drift_1", "drift_2", "drift_3", "drift_4", "drift_5", "drift_6",
 ];
 
 /// Table 2's drift of one column and joint.
-fn published(values: &[PaperValue], experiment: &str, joint: &str) -> Option<f64> {
-    values
+fn published(papers: &Papers, experiment: &str, joint: &str) -> Option<f64> {
+    papers
+        .values
         .iter()
         .find(|v| {
             v.paper == "jia2019"
@@ -33,7 +34,7 @@ fn published(values: &[PaperValue], experiment: &str, joint: &str) -> Option<f64
 }
 
 /// The markdown section, or an empty string when the sweep was not run.
-pub fn clover_sweep(runs: &Runs, values: &[PaperValue]) -> String {
+pub fn clover_sweep(runs: &Runs, papers: &Papers) -> String {
     let rows: Vec<_> = runs.of_experiment(SWEEP).collect();
     if rows.is_empty() {
         return String::new();
@@ -49,13 +50,13 @@ pub fn clover_sweep(runs: &Runs, values: &[PaperValue]) -> String {
     for r in rows {
         let Some((paper_experiment, _)) = COLUMNS
             .iter()
-            .find(|(_, prefix)| r.variant.starts_with(prefix))
+            .find(|(_, suffix)| r.variant_id.ends_with(suffix))
         else {
             continue;
         };
         let paper: Vec<f64> = JOINTS
             .iter()
-            .filter_map(|j| published(values, paper_experiment, j))
+            .filter_map(|j| published(papers, paper_experiment, j))
             .collect();
         let paper_norm = paper.iter().map(|v| v * v).sum::<f64>().sqrt();
         if !completed(r) {

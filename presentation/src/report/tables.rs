@@ -1,6 +1,6 @@
 //! The papers' tables side by side with ours, and the suite's own table of every run.
 //!
-//! A published table (one `(paper, table)` of `paper-values.csv`) becomes one Markdown table:
+//! A published table (one `(paper, table)` of `papers/<paper>/values.csv`) becomes one Markdown table:
 //! rows are the quantities (joint drifts, drift norm, and whatever else the paper prints),
 //! and for each published column there are the paper's number, our exact (Clarabel) run, our
 //! run of the paper's solver, and the ratio ours/paper — then the same for each companion
@@ -9,7 +9,7 @@
 use super::markdown::metric_cell;
 use super::markdown::{sci, sci_opt, Table, MISSING};
 use records::index::{metric, status_text, Runs, EXACT};
-use records::paper_values::{mapping_of, our_metric, published, Mapping, PaperValue};
+use records::papers::{our_metric, Mapping, Papers};
 use records::runs::RunRow;
 
 /// A quantity's row label.
@@ -28,9 +28,9 @@ pub fn quantity_label(metric: &str) -> String {
 }
 
 /// The published tables of `paper`, in the order the CSV lists them (`text` last).
-pub fn published_tables(paper: &str, values: &[PaperValue]) -> Vec<String> {
+pub fn published_tables(paper: &str, papers: &Papers) -> Vec<String> {
     let mut tables: Vec<String> = Vec::new();
-    for v in values.iter().filter(|v| v.paper == paper) {
+    for v in papers.values.iter().filter(|v| v.paper == paper) {
         if !tables.contains(&v.table) {
             tables.push(v.table.clone());
         }
@@ -40,12 +40,13 @@ pub fn published_tables(paper: &str, values: &[PaperValue]) -> Vec<String> {
 }
 
 /// The mapped columns of one published table, in the CSV's order.
-fn columns_of(paper: &str, table: &str, values: &[PaperValue]) -> Vec<&'static Mapping> {
-    let mut cols: Vec<&'static Mapping> = Vec::new();
-    let measured = values
+fn columns_of<'a>(paper: &str, table: &str, papers: &'a Papers) -> Vec<&'a Mapping> {
+    let mut cols: Vec<&Mapping> = Vec::new();
+    let measured = papers
+        .values
         .iter()
         .filter(|v| v.paper == paper && v.table == table && our_metric(&v.metric).is_some());
-    for m in measured.filter_map(mapping_of) {
+    for m in measured.filter_map(|v| papers.mapping_of(v)) {
         if !cols.contains(&m) {
             cols.push(m);
         }
@@ -59,13 +60,14 @@ fn columns_of(paper: &str, table: &str, values: &[PaperValue]) -> Vec<&'static M
 fn quantities_of(
     paper: &str,
     table: &str,
-    values: &[PaperValue],
+    papers: &Papers,
     shown: &[&RunRow],
 ) -> Vec<&'static str> {
     let mut q: Vec<&'static str> = Vec::new();
-    for m in values
+    for m in papers
+        .values
         .iter()
-        .filter(|v| v.paper == paper && v.table == table && mapping_of(v).is_some())
+        .filter(|v| v.paper == paper && v.table == table && papers.mapping_of(v).is_some())
         .filter_map(|v| our_metric(&v.metric))
     {
         if !q.contains(&m) {
@@ -99,18 +101,28 @@ fn quantities_of(
 struct OursColumn<'a> {
     header: String,
     run: Option<&'a RunRow>,
-    ratio_of: Option<&'static Mapping>,
+    ratio_of: Option<&'a Mapping>,
 }
 
 /// One published table side by side with ours, as Markdown (empty when nothing maps).
-pub fn side_by_side(paper: &str, table: &str, values: &[PaperValue], runs: &Runs) -> String {
-    let columns = columns_of(paper, table, values);
+pub fn side_by_side(paper: &str, table: &str, papers: &Papers, runs: &Runs) -> String {
+    let columns = columns_of(paper, table, papers);
     if columns.is_empty() {
         return String::new();
     }
     let one_variant = columns
         .iter()
-        .all(|c| c.variant == columns[0].variant && c.companions.is_empty());
+        .all(|c| c.run.variant == columns[0].run.variant && c.companions.is_empty());
+    // Headers show labels: the run's own when it exists, the id otherwise.
+    let label = |r: Option<&RunRow>, id: &str, solver: bool| {
+        r.map_or(id.to_string(), |r| {
+            if solver {
+                r.solver.clone()
+            } else {
+                r.variant.clone()
+            }
+        })
+    };
     let name = |solver: &str, variant: &str| {
         if one_variant {
             solver.to_string()
@@ -122,25 +134,31 @@ pub fn side_by_side(paper: &str, table: &str, values: &[PaperValue], runs: &Runs
     // Column layout: per published column, the paper's number then, per variant, the exact
     // run (once per variant), the paper's solver and the ratio.
     enum Col<'a> {
-        Paper(&'static Mapping),
+        Paper(&'a Mapping),
         Ours(OursColumn<'a>),
     }
     let mut cols: Vec<Col> = Vec::new();
     let mut exact_shown: Vec<(&str, &str)> = Vec::new();
     for m in &columns {
         cols.push(Col::Paper(m));
-        for variant in std::iter::once(&m.variant).chain(m.companions.iter()) {
-            if !exact_shown.contains(&(m.experiment, variant)) {
-                exact_shown.push((m.experiment, variant));
+        let e = m.run.experiment.as_str();
+        for variant in std::iter::once(&m.run.variant).chain(m.companions.iter()) {
+            let exact = runs.find(e, variant, EXACT);
+            let shown_label = label(exact, variant, false);
+            if !exact_shown.contains(&(e, variant)) {
+                exact_shown.push((e, variant));
                 cols.push(Col::Ours(OursColumn {
-                    header: name("exact", variant),
-                    run: runs.find(m.experiment, variant, EXACT),
+                    header: name("exact", &shown_label),
+                    run: exact,
                     ratio_of: None,
                 }));
             }
-            let run = runs.find(m.experiment, variant, m.solver);
+            let run = runs.find(e, variant, &m.run.solver);
             cols.push(Col::Ours(OursColumn {
-                header: name(m.solver, variant),
+                header: name(
+                    &label(run, &m.run.solver, true),
+                    &label(run.or(exact), variant, false),
+                ),
                 run,
                 ratio_of: None,
             }));
@@ -163,11 +181,11 @@ pub fn side_by_side(paper: &str, table: &str, values: &[PaperValue], runs: &Runs
     }));
     let mut t = Table::new(header);
     let mut derived = false;
-    for q in quantities_of(paper, table, values, &shown) {
+    for q in quantities_of(paper, table, papers, &shown) {
         let mut row = vec![quantity_label(q)];
         for c in &cols {
             row.push(match c {
-                Col::Paper(m) => match published(values, m, q) {
+                Col::Paper(m) => match papers.published(m, q) {
                     Some((v, d)) => {
                         derived |= d;
                         format!("{}{}", sci(v), if d { "*" } else { "" })
@@ -186,7 +204,7 @@ pub fn side_by_side(paper: &str, table: &str, values: &[PaperValue], runs: &Runs
                     ..
                 }) => {
                     let ratio = metric(r, q)
-                        .zip(published(values, m, q))
+                        .zip(papers.published(m, q))
                         .map(|(o, (p, _))| o / p);
                     sci_opt(ratio)
                 }
@@ -195,15 +213,16 @@ pub fn side_by_side(paper: &str, table: &str, values: &[PaperValue], runs: &Runs
         t.push(row);
     }
     let mut out = String::new();
-    let ids: Vec<&str> = columns
-        .iter()
-        .map(|c| c.experiment)
-        .fold(Vec::new(), |mut v, e| {
-            if !v.contains(&e) {
-                v.push(e);
-            }
-            v
-        });
+    let ids: Vec<&str> =
+        columns
+            .iter()
+            .map(|c| c.run.experiment.as_str())
+            .fold(Vec::new(), |mut v, e| {
+                if !v.contains(&e) {
+                    v.push(e);
+                }
+                v
+            });
     let caption = if table == "text" {
         "Numbers quoted in the text".to_string()
     } else {
@@ -218,7 +237,12 @@ pub fn side_by_side(paper: &str, table: &str, values: &[PaperValue], runs: &Runs
             .join(", ")
     ));
     if one_variant {
-        out.push_str(&format!(", variant \"{}\"", columns[0].variant));
+        let k = &columns[0].run;
+        let shown = runs.find(&k.experiment, &k.variant, EXACT);
+        out.push_str(&format!(
+            ", variant \"{}\"",
+            label(shown, &k.variant, false)
+        ));
     }
     out.push_str(". Ratio = our run of the paper's solver / paper.\n\n");
     out.push_str(&t.render());

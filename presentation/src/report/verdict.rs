@@ -9,7 +9,7 @@
 use super::claims::{Claim, Verdict};
 use super::markdown::sci;
 use records::index::{metric, Runs, EXACT};
-use records::paper_values::{published, Mapping, PaperValue, MAPPINGS};
+use records::papers::{Mapping, Papers};
 use records::runs::RunRow;
 
 /// Magnitudes within this factor of the paper's count as agreeing.
@@ -39,19 +39,21 @@ pub fn level(claims: &[Claim], ratios: &[(String, f64)]) -> &'static str {
 fn mapped_runs<'a>(
     paper: &'a str,
     runs: &'a Runs,
-) -> impl Iterator<Item = (&'static Mapping, &'a RunRow)> + 'a {
-    MAPPINGS
-        .iter()
-        .filter(move |m| m.paper == paper)
-        .filter_map(move |m| runs.find(m.experiment, m.variant, m.solver).map(|r| (m, r)))
+    papers: &'a Papers,
+) -> impl Iterator<Item = (&'a Mapping, &'a RunRow)> + 'a {
+    papers.mappings_of(paper).filter_map(move |m| {
+        let k = &m.run;
+        runs.find(&k.experiment, &k.variant, &k.solver)
+            .map(|r| (m, r))
+    })
 }
 
 /// Our drift norm (the paper's solver, primary variant) over the paper's, per mapped column,
 /// labelled "experiment, published column".
-pub fn drift_ratios(paper: &str, runs: &Runs, values: &[PaperValue]) -> Vec<(String, f64)> {
-    mapped_runs(paper, runs)
+pub fn drift_ratios(paper: &str, runs: &Runs, papers: &Papers) -> Vec<(String, f64)> {
+    mapped_runs(paper, runs, papers)
         .filter_map(|(m, r)| {
-            let (p, _) = published(values, m, "drift_norm")?;
+            let (p, _) = papers.published(m, "drift_norm")?;
             Some((
                 format!("{}, {}", r.experiment, m.published_column),
                 r.drift_norm? / p,
@@ -61,14 +63,14 @@ pub fn drift_ratios(paper: &str, runs: &Runs, values: &[PaperValue]) -> Vec<(Str
 }
 
 /// How many published per-joint drifts have the sign of ours, out of how many compared.
-fn sign_agreement(paper: &str, runs: &Runs, values: &[PaperValue]) -> (usize, usize) {
+fn sign_agreement(paper: &str, runs: &Runs, papers: &Papers) -> (usize, usize) {
     let mut same = 0;
     let mut compared = 0;
-    for (m, r) in mapped_runs(paper, runs) {
+    for (m, r) in mapped_runs(paper, runs, papers) {
         for joint in [
             "drift_1", "drift_2", "drift_3", "drift_4", "drift_5", "drift_6",
         ] {
-            if let (Some((p, _)), Some(o)) = (published(values, m, joint), metric(r, joint)) {
+            if let (Some((p, _)), Some(o)) = (papers.published(m, joint), metric(r, joint)) {
                 compared += 1;
                 same += usize::from(p.signum() == o.signum());
             }
@@ -78,18 +80,24 @@ fn sign_agreement(paper: &str, runs: &Runs, values: &[PaperValue]) -> (usize, us
 }
 
 /// The largest |solver − exact| / exact drift norm over the paper's mapped runs, and the run.
-fn solver_effect<'a>(paper: &'a str, runs: &'a Runs) -> Option<(f64, &'a RunRow)> {
-    mapped_runs(paper, runs)
+fn solver_effect<'a>(
+    paper: &'a str,
+    runs: &'a Runs,
+    papers: &'a Papers,
+) -> Option<(f64, &'a RunRow)> {
+    mapped_runs(paper, runs, papers)
         .filter_map(|(m, r)| {
-            let ex = runs.find(m.experiment, m.variant, EXACT)?.drift_norm?;
+            let ex = runs
+                .find(&m.run.experiment, &m.run.variant, EXACT)?
+                .drift_norm?;
             Some(((r.drift_norm? - ex).abs() / ex, r))
         })
         .max_by(|a, b| a.0.total_cmp(&b.0))
 }
 
 /// The verdict paragraph of one paper.
-pub fn paragraph(paper: &str, claims: &[Claim], runs: &Runs, values: &[PaperValue]) -> String {
-    let ratios = drift_ratios(paper, runs, values);
+pub fn paragraph(paper: &str, claims: &[Claim], runs: &Runs, papers: &Papers) -> String {
+    let ratios = drift_ratios(paper, runs, papers);
     let of = |v: Verdict| {
         claims
             .iter()
@@ -135,12 +143,12 @@ pub fn paragraph(paper: &str, claims: &[Claim], runs: &Runs, values: &[PaperValu
             hi.0,
             if lo.1 >= 1.0 / CLOSE && hi.1 <= CLOSE { format!("within a factor {CLOSE}") } else { format!("beyond a factor {CLOSE}") }
         ));
-        let (same, compared) = sign_agreement(paper, runs, values);
+        let (same, compared) = sign_agreement(paper, runs, papers);
         out.push_str(&format!(
             " The per-joint drifts have the paper's sign in {same} of {compared} entries."
         ));
     }
-    if let Some((e, r)) = solver_effect(paper, runs) {
+    if let Some((e, r)) = solver_effect(paper, runs, papers) {
         if e <= SOLVER_MATTERS {
             out.push_str(&format!(
                 " The exact (Clarabel) column gives the same drift norm within {:.1} %, so what differs from the paper comes from the scheme, model and paths as implemented (see Deviations), not from the solver.",

@@ -8,7 +8,7 @@ use explain::attribution::AttributionRow;
 use explain::inference::family::Integration;
 use explain::inference::{self, verdict, EntryRow, InferenceRow};
 use explain::ladder::LadderRow;
-use records::paper_values::{published, PaperValue, MAPPINGS};
+use records::papers::Papers;
 use std::fmt::Write as _;
 
 /// The stored explanation results.
@@ -27,10 +27,23 @@ const SUM: [&str; 3] = [
     "integration error",
 ];
 
+/// "`experiment` variant / solver" of a run, by its labels (`key`, ids, when no row is found).
+fn shown(row: Option<&AttributionRow>, key: (&str, &str, &str)) -> String {
+    match row {
+        Some(r) => format!("`{}` {} / {}", r.experiment, r.variant, r.solver),
+        None => format!("`{}` {} / {}", key.0, key.1, key.2),
+    }
+}
+
+/// The runs (ids: experiment, variant, solver) the attribution rows of `paper` explain.
 fn runs_of<'a>(rows: &'a [AttributionRow], paper: &str) -> Vec<(&'a str, &'a str, &'a str)> {
     let mut out: Vec<(&str, &str, &str)> = Vec::new();
     for r in rows.iter().filter(|r| r.paper == paper) {
-        let k = (r.experiment.as_str(), r.variant.as_str(), r.solver.as_str());
+        let k = (
+            r.experiment.as_str(),
+            r.variant_id.as_str(),
+            r.solver_id.as_str(),
+        );
         if !out.contains(&k) {
             out.push(k);
         }
@@ -44,7 +57,12 @@ fn component<'a>(
     name: &str,
 ) -> Option<&'a AttributionRow> {
     rows.iter().find(|r| {
-        (r.experiment.as_str(), r.variant.as_str(), r.solver.as_str()) == key && r.component == name
+        (
+            r.experiment.as_str(),
+            r.variant_id.as_str(),
+            r.solver_id.as_str(),
+        ) == key
+            && r.component == name
     })
 }
 
@@ -71,7 +89,7 @@ fn short(s: &str) -> String {
 
 /// The attribution table of one paper's runs: published norm, ours, and the "of which"
 /// columns.
-pub fn attribution_table(paper: &str, x: &Explanations, values: &[PaperValue]) -> String {
+pub fn attribution_table(paper: &str, x: &Explanations, papers: &Papers) -> String {
     let keys = runs_of(&x.attribution, paper);
     if keys.is_empty() {
         return String::new();
@@ -98,19 +116,30 @@ pub fn attribution_table(paper: &str, x: &Explanations, values: &[PaperValue]) -
     header.push("max pos. err: run / exact / converged net (m)".to_string());
     let mut t = Table::new(header);
     for key in keys {
-        let paper_norm = MAPPINGS
+        let paper_norm = papers
+            .mappings
             .iter()
-            .find(|m| (m.experiment, m.variant, m.solver) == key)
-            .and_then(|m| published(values, m, "drift_norm"))
+            .find(|m| {
+                (
+                    m.run.experiment.as_str(),
+                    m.run.variant.as_str(),
+                    m.run.solver.as_str(),
+                ) == key
+            })
+            .and_then(|m| papers.published(m, "drift_norm"))
             .map(|(v, derived)| format!("{}{}", sci(v), if derived { "*" } else { "" }))
             .unwrap_or_else(|| MISSING.to_string());
         let run = component(&x.attribution, key, "run");
         let matlab = x.ladder.iter().find(|r| {
-            (r.experiment.as_str(), r.variant.as_str(), r.solver.as_str()) == key
+            (
+                r.experiment.as_str(),
+                r.variant_id.as_str(),
+                r.solver_id.as_str(),
+            ) == key
                 && is_matlab_default(r)
         });
         let mut row = vec![
-            format!("`{}` {} / {}", key.0, key.1, key.2),
+            shown(run, key),
             paper_norm,
             sci_opt(run.and_then(|r| r.drift_norm)),
             match matlab {
@@ -161,7 +190,11 @@ pub fn ladder_table(paper: &str, x: &Explanations) -> String {
     });
     let mut keys: Vec<(&str, &str, &str)> = Vec::new();
     for r in &rows {
-        let k = (r.experiment.as_str(), r.variant.as_str(), r.solver.as_str());
+        let k = (
+            r.experiment.as_str(),
+            r.variant_id.as_str(),
+            r.solver_id.as_str(),
+        );
         if !keys.contains(&k) {
             keys.push(k);
         }
@@ -178,10 +211,24 @@ pub fn ladder_table(paper: &str, x: &Explanations) -> String {
     }));
     let mut t = Table::new(header);
     for key in keys {
-        let mut row = vec![format!("`{}` {} / {}", key.0, key.1, key.2)];
+        let first = rows.iter().find(|r| {
+            (
+                r.experiment.as_str(),
+                r.variant_id.as_str(),
+                r.solver_id.as_str(),
+            ) == key
+        });
+        let mut row = vec![match first {
+            Some(r) => format!("`{}` {} / {}", r.experiment, r.variant, r.solver),
+            None => format!("`{}` {} / {}", key.0, key.1, key.2),
+        }];
         for (m, rt, at) in &rungs {
             let r = rows.iter().find(|r| {
-                (r.experiment.as_str(), r.variant.as_str(), r.solver.as_str()) == key
+                (
+                    r.experiment.as_str(),
+                    r.variant_id.as_str(),
+                    r.solver_id.as_str(),
+                ) == key
                     && &r.method == m
                     && r.rtol == *rt
                     && r.atol == *at
@@ -487,15 +534,15 @@ fn hypotheses_table(rows: &[&InferenceRow], columns: &[&str]) -> String {
 use explain::inference::FAILED as FAILED_RESIDUAL;
 
 /// The whole "Why the numbers differ" subsection of one paper.
-pub fn section(paper: &str, x: &Explanations, values: &[PaperValue]) -> String {
-    let attribution = attribution_table(paper, x, values);
+pub fn section(paper: &str, x: &Explanations, papers: &Papers) -> String {
+    let attribution = attribution_table(paper, x, papers);
     let ladder = ladder_table(paper, x);
     if attribution.is_empty() && ladder.is_empty() {
         return String::new();
     }
     let mut out = String::from("\n### Why the numbers differ\n\n");
     if paper == explain::GROUP {
-        out.push_str(&summary(paper, x, values));
+        out.push_str(&summary(paper, x, papers));
     }
     if !attribution.is_empty() {
         out.push_str("\n#### Drift attribution\n\n");
@@ -505,7 +552,7 @@ pub fn section(paper: &str, x: &Explanations, values: &[PaperValue]) -> String {
         out.push_str("\n#### Tolerance ladder\n\n");
         out.push_str(&ladder);
     }
-    let has_tables = explain::inference::table_ids(values)
+    let has_tables = explain::inference::table_ids(&papers.values)
         .iter()
         .any(|(p, _)| p == paper);
     if has_tables {
@@ -517,7 +564,7 @@ pub fn section(paper: &str, x: &Explanations, values: &[PaperValue]) -> String {
 
 /// One paragraph (placed after the verdict): which share of the drift each ingredient carries,
 /// across the paper's runs, and what the setup inference found; empty without explanations.
-pub fn summary(paper: &str, x: &Explanations, values: &[PaperValue]) -> String {
+pub fn summary(paper: &str, x: &Explanations, papers: &Papers) -> String {
     let keys = runs_of(&x.attribution, paper);
     if keys.is_empty() {
         return String::new();
@@ -554,13 +601,16 @@ pub fn summary(paper: &str, x: &Explanations, values: &[PaperValue]) -> String {
     let mut compared = 0;
     let mut ratios = Vec::new();
     for key in &keys {
-        let Some(m) = MAPPINGS
-            .iter()
-            .find(|m| (m.experiment, m.variant, m.solver) == *key)
-        else {
+        let Some(m) = papers.mappings.iter().find(|m| {
+            (
+                m.run.experiment.as_str(),
+                m.run.variant.as_str(),
+                m.run.solver.as_str(),
+            ) == *key
+        }) else {
             continue;
         };
-        let Some((published_norm, _)) = published(values, m, "drift_norm") else {
+        let Some((published_norm, _)) = papers.published(m, "drift_norm") else {
             continue;
         };
         let run = component(&x.attribution, *key, "run").and_then(|r| r.drift_norm);
@@ -568,7 +618,11 @@ pub fn summary(paper: &str, x: &Explanations, values: &[PaperValue]) -> String {
             .ladder
             .iter()
             .find(|r| {
-                (r.experiment.as_str(), r.variant.as_str(), r.solver.as_str()) == *key
+                (
+                    r.experiment.as_str(),
+                    r.variant_id.as_str(),
+                    r.solver_id.as_str(),
+                ) == *key
                     && is_matlab_default(r)
                     && r.completed()
             })
@@ -585,13 +639,19 @@ pub fn summary(paper: &str, x: &Explanations, values: &[PaperValue]) -> String {
     let mut schemes: Vec<(&str, &str)> = keys.iter().map(|k| (k.0, k.1)).collect();
     schemes.dedup();
     for (experiment, variant) in schemes {
-        let norms: Vec<(f64, f64)> = MAPPINGS
+        let norms: Vec<(f64, f64)> = papers
+            .mappings
             .iter()
-            .filter(|m| m.experiment == experiment && m.variant == variant)
+            .filter(|m| m.run.experiment == experiment && m.run.variant == variant)
             .filter_map(|m| {
-                let theirs = published(values, m, "drift_norm")?.0;
-                let ours = component(&x.attribution, (m.experiment, m.variant, m.solver), "run")?
-                    .drift_norm?;
+                let theirs = papers.published(m, "drift_norm")?.0;
+                let k = &m.run;
+                let ours = component(
+                    &x.attribution,
+                    (&k.experiment, &k.variant, &k.solver),
+                    "run",
+                )?
+                .drift_norm?;
                 Some((theirs, ours))
             })
             .collect();
@@ -604,7 +664,11 @@ pub fn summary(paper: &str, x: &Explanations, values: &[PaperValue]) -> String {
         let theirs: Vec<f64> = norms.iter().map(|n| n.0).collect();
         let ours: Vec<f64> = norms.iter().map(|n| n.1).collect();
         out.push_str(&format!(
-            " On `{experiment}` {variant} the paper's {} solvers' drift norms span a factor {:.1}, ours {:.2}: one scheme, so solvers that converge cannot differ by more than their lag.",
+            " On `{experiment}` {} the paper's {} solvers' drift norms span a factor {:.1}, ours {:.2}: one scheme, so solvers that converge cannot differ by more than their lag.",
+            x.attribution
+                .iter()
+                .find(|r| r.experiment == experiment && r.variant_id == variant)
+                .map_or(variant, |r| r.variant.as_str()),
             norms.len(),
             spread(&theirs),
             spread(&ours)

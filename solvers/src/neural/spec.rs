@@ -222,6 +222,81 @@ impl SolverSpec {
         }
     }
 
+    /// The network's stable id in run keys, results rows and file names: its kind, followed by
+    /// the parameters that tell two networks of one kind apart in the experiment files (a
+    /// non-default activation, a perturbation, the group ZNN's gains and switches). Lower-case
+    /// ASCII, digits, `.` and `-` only. Derived from the specification, never from
+    /// [`SolverSpec::display_name`], so display names can change without orphaning results.
+    pub fn id(&self) -> String {
+        let mut parts: Vec<String> = vec![self.kind().to_string()];
+        let act = |kind: ActivationKind, alpha: f64, chi: f64, xi: f64, power: f64| {
+            schemes::slug::slug(&activation_name(kind, alpha, chi, xi, power))
+        };
+        match self {
+            SolverSpec::LviPdnn { .. }
+            | SolverSpec::SLviPdnn { .. }
+            | SolverSpec::FiniteTime { .. }
+            | SolverSpec::Znn { .. } => {}
+            SolverSpec::VpRnnPf {
+                activation,
+                alpha,
+                chi,
+                xi,
+                power,
+                ..
+            } => parts.push(act(*activation, *alpha, *chi, *xi, *power)),
+            SolverSpec::FpCdnn {
+                activation,
+                alpha,
+                chi,
+                xi,
+                power,
+                perturbation,
+                ..
+            }
+            | SolverSpec::VpCdnn {
+                activation,
+                alpha,
+                chi,
+                xi,
+                power,
+                perturbation,
+                ..
+            } => {
+                if *activation != ActivationKind::Linear {
+                    parts.push(act(*activation, *alpha, *chi, *xi, *power));
+                }
+                if let Some(p) = perturbation {
+                    parts.push(format!("perturbed-ad-{}-as-{}", p.a_d, p.a_s));
+                }
+            }
+            SolverSpec::GroupZnn {
+                gamma,
+                nu,
+                activation,
+                alpha,
+                chi,
+                xi,
+                power,
+                perturbation,
+                udot_rmp,
+            } => {
+                parts.push(format!("gamma-{gamma}-nu-{nu}"));
+                let a = activation_name(*activation, *alpha, *chi, *xi, *power);
+                if a != kind_label(default_group_activation()) {
+                    parts.push(schemes::slug::slug(&a));
+                }
+                if let Some(p) = perturbation {
+                    parts.push(format!("perturbed-as-{}", p.a_s));
+                }
+                if !udot_rmp {
+                    parts.push("udot-without-qdot".into());
+                }
+            }
+        }
+        parts.join("-")
+    }
+
     /// The network's name as the papers write it, with the variant where it matters,
     /// e.g. `VP-RNN-PF (sinh)`, `FP-CDNN (perturbed)`.
     pub fn display_name(&self) -> String {

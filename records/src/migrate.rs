@@ -1,0 +1,148 @@
+//! Results written before run ids, brought up to date once.
+//!
+//! Until run ids existed, a run was named by display labels: `runs.csv`, `ladder.csv` and
+//! `attribution.csv` had `experiment, variant, solver` (the variant's and the solver's labels,
+//! the exact column's solver `exact (Clarabel)`) and no `variant_id, solver_id`; traces were
+//! `traces/<experiment>/<slug(variant label)>__<slug(solver label)>.csv`. [`LabelIndex`] maps
+//! each (experiment, variant label, solver label) of the experiment files' runs to its
+//! [`RunKey`]; [`add_ids`] inserts the two id columns after `experiment` in a legacy table and
+//! leaves a current one alone. A row no experiment file describes gets the slugs of its labels
+//! (it is then pruned as any undescribed run is). `ResultsDir::migrate_ids` applies this to a
+//! results directory and renames the traces.
+
+use schemes::slug::slug;
+use simulation::experiment::Job;
+use simulation::run_key::{RunKey, EXACT_ID};
+use std::collections::HashMap;
+
+/// The exact column's label before run ids.
+pub const LEGACY_EXACT_LABEL: &str = "exact (Clarabel)";
+
+/// A problem reading a legacy table.
+#[derive(Debug, thiserror::Error)]
+pub enum MigrateError {
+    #[error("{0}")]
+    Csv(#[from] csv::Error),
+    #[error(
+        "a table with ids needs the columns `experiment`, `variant` and `solver`; `{0}` is missing"
+    )]
+    Column(&'static str),
+    #[error("{0}")]
+    Utf8(#[from] std::string::FromUtf8Error),
+}
+
+/// (experiment, variant label, solver label) -> run key, over the experiment files' runs.
+#[derive(Clone, Debug, Default)]
+pub struct LabelIndex(HashMap<(String, String, String), RunKey>);
+
+impl LabelIndex {
+    pub fn new(jobs: &[Job]) -> Self {
+        let mut map = HashMap::with_capacity(jobs.len());
+        for j in jobs {
+            let label = if j.solver.id() == EXACT_ID {
+                LEGACY_EXACT_LABEL.to_string()
+            } else {
+                j.solver.label()
+            };
+            map.insert((j.experiment.clone(), j.variant.clone(), label), j.key());
+        }
+        LabelIndex(map)
+    }
+
+    /// The key of a legacy row: the described run's, or the slugs of its labels.
+    pub fn key(&self, experiment: &str, variant: &str, solver: &str) -> RunKey {
+        self.0
+            .get(&(experiment.into(), variant.into(), solver.into()))
+            .cloned()
+            .unwrap_or_else(|| {
+                let solver = if solver == LEGACY_EXACT_LABEL {
+                    EXACT_ID.to_string()
+                } else {
+                    slug(solver)
+                };
+                RunKey::new(experiment, slug(variant), solver)
+            })
+    }
+}
+
+/// A legacy row's identity: (experiment, variant label, solver label).
+pub type LegacyKey = (String, String, String);
+
+/// A migrated table: its text, and each row's legacy key beside its run key.
+pub type Migrated = (Vec<u8>, Vec<(LegacyKey, RunKey)>);
+
+/// A legacy table's text with `variant_id, solver_id` after `experiment`, each row's ids from
+/// `index`; `None` when the table already has ids (or is empty).
+pub fn add_ids(text: &[u8], index: &LabelIndex) -> Result<Option<Migrated>, MigrateError> {
+    let mut r = csv::ReaderBuilder::new().flexible(false).from_reader(text);
+    let header = r.headers()?.clone();
+    if header.is_empty() || header.iter().any(|h| h == "variant_id") {
+        return Ok(None);
+    }
+    let col = |name: &'static str| {
+        header
+            .iter()
+            .position(|h| h == name)
+            .ok_or(MigrateError::Column(name))
+    };
+    let (e, v, s) = (col("experiment")?, col("variant")?, col("solver")?);
+    let mut w = csv::WriterBuilder::new().from_writer(Vec::new());
+    let with_ids = |rec: &csv::StringRecord, ids: [&str; 2]| -> Vec<String> {
+        let mut out: Vec<String> = Vec::with_capacity(rec.len() + 2);
+        for (i, f) in rec.iter().enumerate() {
+            out.push(f.to_string());
+            if i == e {
+                out.extend(ids.iter().map(|x| x.to_string()));
+            }
+        }
+        out
+    };
+    w.write_record(with_ids(&header, ["variant_id", "solver_id"]))?;
+    let mut keys = Vec::new();
+    for rec in r.records() {
+        let rec = rec?;
+        let legacy = (rec[e].to_string(), rec[v].to_string(), rec[s].to_string());
+        let key = index.key(&legacy.0, &legacy.1, &legacy.2);
+        w.write_record(with_ids(&rec, [&key.variant, &key.solver]))?;
+        keys.push((legacy, key));
+    }
+    let bytes = w
+        .into_inner()
+        .map_err(|e| csv::Error::from(e.into_error()))?;
+    Ok(Some((bytes, keys)))
+}
+
+/// A legacy trace's path under results/: `traces/<experiment>/<slug(variant)>__<slug(solver)>.csv`.
+pub fn legacy_trace_rel(experiment: &str, variant: &str, solver: &str) -> std::path::PathBuf {
+    std::path::Path::new("traces")
+        .join(experiment)
+        .join(format!("{}__{}.csv", slug(variant), slug(solver)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn legacy_tables_get_ids_and_current_ones_are_left_alone() {
+        let legacy = b"paper,experiment,variant,scheme,solver,x\np,p-e,VLTCO [star-lines],S,exact (Clarabel),1\np,p-e,Gone,S,LVI-PDNN,2\n";
+        let (text, keys) = add_ids(legacy, &LabelIndex::default()).unwrap().unwrap();
+        let text = String::from_utf8(text).unwrap();
+        assert_eq!(
+            text,
+            "paper,experiment,variant_id,solver_id,variant,scheme,solver,x\np,p-e,vltco-star-lines,exact,VLTCO [star-lines],S,exact (Clarabel),1\np,p-e,gone,lvi-pdnn,Gone,S,LVI-PDNN,2\n"
+        );
+        assert_eq!(keys[0].1, RunKey::new("p-e", "vltco-star-lines", "exact"));
+        assert!(add_ids(text.as_bytes(), &LabelIndex::default())
+            .unwrap()
+            .is_none());
+        assert!(matches!(
+            add_ids(b"paper,variant,solver\n", &LabelIndex::default()),
+            Err(MigrateError::Column("experiment"))
+        ));
+        assert_eq!(
+            legacy_trace_rel("e", "VLTCO", "exact (Clarabel)"),
+            std::path::Path::new("traces/e/vltco__exact-clarabel.csv")
+        );
+    }
+}

@@ -1,0 +1,300 @@
+//! The papers as data: `papers/<paper>/paper.toml` (metadata and which run reproduces each
+//! published column) and `papers/<paper>/values.csv` (the published numbers).
+//!
+//! `values.csv` is long: one number per row, named by (paper, table, experiment, column,
+//! metric). Each `[[mapping]]` of `paper.toml` says which of our runs reproduces one
+//! (experiment, column) of a paper, by its run key (`"<experiment> / <variant> / <solver>"`,
+//! ids, see `simulation::run_key`), with companion variants shown beside it. [`our_metric`]
+//! names the `runs.csv` column of each published metric. [`Papers::resolve`] combines both; a
+//! published number that finds no run is listed in the report under "published numbers without
+//! a run", never dropped silently. Its `[[claim]]` tables are the claims checked against the
+//! runs ([`crate::claims`]). Adding a paper is adding a folder: no Rust.
+
+use crate::index::Runs;
+use crate::runs::RunRow;
+use serde::Deserialize;
+use simulation::run_key::RunKey;
+use std::path::{Path, PathBuf};
+
+/// One published number.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+pub struct PaperValue {
+    pub paper: String,
+    /// `T2`, `T3`, ... for a printed table, `text` for a number quoted in the text.
+    pub table: String,
+    /// The paper's experiment name (not our id).
+    pub experiment: String,
+    /// The paper's column header.
+    pub column: String,
+    pub metric: String,
+    pub value: f64,
+    pub note: String,
+}
+
+/// A problem with the papers' files, naming the file.
+#[derive(Debug, thiserror::Error)]
+pub enum PapersError {
+    #[error("{}: cannot read: {source}", path.display())]
+    Io {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("{}: {source}", path.display())]
+    Csv { path: PathBuf, source: csv::Error },
+    #[error("{}: {}", path.display(), source.to_string().trim_end())]
+    Toml {
+        path: PathBuf,
+        source: toml::de::Error,
+    },
+    #[error("{}: {message}", path.display())]
+    Invalid { path: PathBuf, message: String },
+}
+
+/// One paper's `paper.toml`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PaperFile {
+    paper: String,
+    title: String,
+    #[serde(default)]
+    citation: Option<String>,
+    #[serde(default, rename = "mapping")]
+    mappings: Vec<MappingFile>,
+    #[serde(default, rename = "claim")]
+    claims: Vec<crate::claims::ClaimFile>,
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MappingFile {
+    published_experiment: String,
+    published_column: String,
+    run: String,
+    #[serde(default)]
+    companions: Vec<String>,
+}
+
+/// A paper's metadata and claims.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Paper {
+    pub id: String,
+    pub title: String,
+    /// Authors, title, venue, year, DOI (as the paper is cited).
+    pub citation: Option<String>,
+    /// Its claims, in file order ([`crate::claims`]).
+    pub claims: Vec<crate::claims::ClaimSpec>,
+}
+
+/// Which of our runs reproduces one column of a published table.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mapping {
+    pub paper: String,
+    /// The values' `experiment`.
+    pub published_experiment: String,
+    /// The values' `column`.
+    pub published_column: String,
+    /// Our run (its variant is the one the ratios and the verdict use; its solver the paper's).
+    pub run: RunKey,
+    /// Further variant ids of the same experiment shown beside it.
+    pub companions: Vec<String>,
+}
+
+/// Every paper of `papers/`: metadata, published values and mappings.
+#[derive(Clone, Debug, Default)]
+pub struct Papers {
+    pub papers: Vec<Paper>,
+    pub values: Vec<PaperValue>,
+    pub mappings: Vec<Mapping>,
+}
+
+impl Papers {
+    /// Reads every `papers/<paper>/` folder (sorted by name): `paper.toml` is required,
+    /// `values.csv` optional (a paper may publish only figures). The folder's name must be the
+    /// paper id, every value's `paper` too, and a run key must be three ids.
+    pub fn load(dir: &Path) -> Result<Papers, PapersError> {
+        let io = |path: &Path| {
+            let path = path.to_path_buf();
+            move |source| PapersError::Io { path, source }
+        };
+        let mut folders: Vec<PathBuf> = std::fs::read_dir(dir)
+            .map_err(io(dir))?
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| p.is_dir())
+            .collect();
+        folders.sort();
+        let mut out = Papers::default();
+        for folder in folders {
+            let path = folder.join("paper.toml");
+            let text = std::fs::read_to_string(&path).map_err(io(&path))?;
+            let file: PaperFile = toml::from_str(&text).map_err(|source| PapersError::Toml {
+                path: path.clone(),
+                source,
+            })?;
+            let invalid = |message: String| PapersError::Invalid {
+                path: path.clone(),
+                message,
+            };
+            let name = folder.file_name().and_then(|n| n.to_str()).unwrap_or("");
+            if file.paper != name {
+                return Err(invalid(format!(
+                    "field `paper`: \"{}\" must be the folder's name \"{name}\"",
+                    file.paper
+                )));
+            }
+            for (i, m) in file.mappings.into_iter().enumerate() {
+                let run = RunKey::parse(&m.run).ok_or_else(|| {
+                    invalid(format!(
+                        "mapping[{i}] field `run`: \"{}\" is not \"<experiment> / <variant> / <solver>\" (ids)",
+                        m.run
+                    ))
+                })?;
+                out.mappings.push(Mapping {
+                    paper: file.paper.clone(),
+                    published_experiment: m.published_experiment,
+                    published_column: m.published_column,
+                    run,
+                    companions: m.companions,
+                });
+            }
+            let values = folder.join("values.csv");
+            if values.exists() {
+                let csv_err = |source| PapersError::Csv {
+                    path: values.clone(),
+                    source,
+                };
+                let mut r = csv::Reader::from_path(&values).map_err(csv_err)?;
+                for row in r.deserialize() {
+                    let v: PaperValue = row.map_err(csv_err)?;
+                    if v.paper != file.paper {
+                        return Err(PapersError::Invalid {
+                            path: values.clone(),
+                            message: format!(
+                                "a value of paper \"{}\" in the folder of \"{}\"",
+                                v.paper, file.paper
+                            ),
+                        });
+                    }
+                    out.values.push(v);
+                }
+            }
+            let claims = file
+                .claims
+                .into_iter()
+                .enumerate()
+                .map(|(i, c)| {
+                    c.into_spec().map_err(|e| PapersError::Invalid {
+                        path: path.clone(),
+                        message: format!("claim[{i}]: {e}"),
+                    })
+                })
+                .collect::<Result<_, _>>()?;
+            out.papers.push(Paper {
+                id: file.paper,
+                title: file.title,
+                citation: file.citation,
+                claims,
+            });
+        }
+        Ok(out)
+    }
+
+    /// The mapping of a published number's (paper, experiment, column), if any.
+    pub fn mapping_of(&self, v: &PaperValue) -> Option<&Mapping> {
+        self.mappings.iter().find(|m| {
+            m.paper == v.paper
+                && m.published_experiment == v.experiment
+                && m.published_column == v.column
+        })
+    }
+
+    /// The mappings of one paper, in file order.
+    pub fn mappings_of<'a>(&'a self, paper: &'a str) -> impl Iterator<Item = &'a Mapping> + 'a {
+        self.mappings.iter().filter(move |m| m.paper == paper)
+    }
+
+    /// Finds the run (and column) that reproduces a published number.
+    pub fn resolve<'a>(&'a self, v: &PaperValue, runs: &'a Runs) -> Resolution<'a> {
+        let Some(mapping) = self.mapping_of(v) else {
+            return Resolution::Unmapped(
+                "no single run corresponds (see the claims checklist)".to_string(),
+            );
+        };
+        let Some(metric) = our_metric(&v.metric) else {
+            return Resolution::Unmapped(format!("the suite does not record `{}`", v.metric));
+        };
+        let k = &mapping.run;
+        match runs.find(&k.experiment, &k.variant, &k.solver) {
+            Some(run) => Resolution::Found {
+                mapping,
+                run,
+                metric,
+            },
+            None => Resolution::Unmapped(format!(
+                "mapped to {k}, but that run is missing from results/runs.csv"
+            )),
+        }
+    }
+
+    /// The published numbers that find no run, with the reason.
+    pub fn unmapped<'a>(&'a self, runs: &Runs) -> Vec<(&'a PaperValue, String)> {
+        self.values
+            .iter()
+            .filter_map(|v| match self.resolve(v, runs) {
+                Resolution::Unmapped(why) => Some((v, why)),
+                Resolution::Found { .. } => None,
+            })
+            .collect()
+    }
+
+    /// The published value of `metric` (a `runs.csv` column name) for one mapped column, and
+    /// whether it was derived: a drift norm the paper does not print is computed from its
+    /// per-joint entries (flagged `true`).
+    pub fn published(&self, mapping: &Mapping, metric: &str) -> Option<(f64, bool)> {
+        let of_column = || {
+            self.values
+                .iter()
+                .filter(move |v| self.mapping_of(v) == Some(mapping))
+        };
+        if let Some(v) = of_column().find(|v| our_metric(&v.metric) == Some(metric)) {
+            return Some((v.value, false));
+        }
+        if metric != "drift_norm" {
+            return None;
+        }
+        let joints: Vec<f64> = of_column()
+            .filter(|v| v.metric.starts_with("drift_") && v.metric != "drift_norm")
+            .map(|v| v.value)
+            .collect();
+        (!joints.is_empty()).then(|| (joints.iter().map(|d| d * d).sum::<f64>().sqrt(), true))
+    }
+}
+
+/// The `runs.csv` column that measures a published metric, if we measure it.
+pub fn our_metric(published_metric: &str) -> Option<&'static str> {
+    Some(match published_metric {
+        "drift_1" => "drift_1",
+        "drift_2" => "drift_2",
+        "drift_3" => "drift_3",
+        "drift_4" => "drift_4",
+        "drift_5" => "drift_5",
+        "drift_6" => "drift_6",
+        "drift_norm" => "drift_norm",
+        "compute_time_s" => "sim_s",
+        "max_position_error_m" => "max_pos_err",
+        "final_position_error_m" => "final_pos_err",
+        _ => return None,
+    })
+}
+
+/// Where a published number lands among our runs.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Resolution<'a> {
+    /// Our run and the `runs.csv` column that measures the number.
+    Found {
+        mapping: &'a Mapping,
+        run: &'a RunRow,
+        metric: &'static str,
+    },
+    /// No run reproduces it (with the reason, for the report).
+    Unmapped(String),
+}

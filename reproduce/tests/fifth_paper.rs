@@ -1,0 +1,77 @@
+//! A fifth paper without writing Rust: the fixture `tests/fixtures/fifth-paper/` (an experiment
+//! file, `papers/demo2026/` with its published values, mappings and claims, and the report's
+//! deviations) gets its report section: the published table side by side with our runs, the
+//! claims checked, a verdict and the drift attribution.
+
+mod common;
+use common::{ok, reproduce};
+use std::path::Path;
+
+fn copy_tree(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for e in std::fs::read_dir(from).unwrap() {
+        let e = e.unwrap();
+        let target = to.join(e.file_name());
+        if e.path().is_dir() {
+            copy_tree(&e.path(), &target);
+        } else {
+            std::fs::copy(e.path(), target).unwrap();
+        }
+    }
+}
+
+#[test]
+fn a_paper_added_as_data_gets_its_report_section() {
+    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/fifth-paper");
+    let root = std::env::temp_dir().join(format!("driftbench-fifth-paper-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&root);
+    copy_tree(&fixture, &root);
+    ok(reproduce()
+        .arg("--root")
+        .arg(&root)
+        .args(["--threads", "2"])
+        .output()
+        .unwrap());
+    let md = std::fs::read_to_string(root.join("report/REPORT.md")).unwrap();
+    let section = md
+        .split("\n## demo2026\n")
+        .nth(1)
+        .expect("a section for the fifth paper")
+        .split("\n## ")
+        .next()
+        .unwrap();
+    assert!(section.contains("A fixture paper: the ZNN scheme on the Katana circle"));
+    // The published table beside ours (the paper's numbers, our runs, ratios).
+    assert!(
+        section.contains("### Published tables side by side"),
+        "{section}"
+    );
+    assert!(section.contains("**Table 1**"), "{section}");
+    assert!(section.contains("paper: ZNN, mu = 1"), "{section}");
+    assert!(section.contains("2.00e-5"), "{section}");
+    // The claims, decided from the runs: two hold, the third is false by construction.
+    assert!(
+        section.contains("- **PASS** circle, ZNN: ‖drift‖ with mu = 4"),
+        "{section}"
+    );
+    assert!(
+        section.contains("- **PASS** every run: max position error below 1e-6 m"),
+        "{section}"
+    );
+    assert!(
+        section.contains("- **FAIL** every run: max position error below 1e-9 m"),
+        "{section}"
+    );
+    assert!(
+        section.contains("**Verdict: partly reproduced.** 2 of 3 evaluated claims hold"),
+        "{section}"
+    );
+    // The explanation layer ran on the mapped runs.
+    assert!(section.contains("#### Drift attribution"), "{section}");
+    assert!(section.contains("#### Tolerance ladder"), "{section}");
+    assert!(
+        md.contains("| [demo2026](#demo2026) | partly reproduced | 2 / 1 / 0 |"),
+        "{md}"
+    );
+    std::fs::remove_dir_all(&root).unwrap();
+}
