@@ -21,6 +21,7 @@
 //!   one is compared with.
 
 pub mod dof_cost;
+pub mod error;
 pub mod gate;
 pub mod index;
 pub mod integrity;

@@ -123,9 +123,16 @@ impl RunError {
 }
 
 /// A TOML (or serde) error of an experiment file, shown without its trailing newline.
+/// (Boxed: a TOML error is large, and errors travel up through `Result`s.)
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[error("{}", .0.to_string().trim_end())]
-pub struct TomlError(#[from] pub toml::de::Error);
+pub struct TomlError(pub Box<toml::de::Error>);
+
+impl From<toml::de::Error> for TomlError {
+    fn from(e: toml::de::Error) -> Self {
+        TomlError(Box::new(e))
+    }
+}
 
 /// Why a `sweep` of an experiment file does not expand (see [`crate::sweep`]); each variant
 /// names the field, and [`SweepError::In`] the experiment and variant.
@@ -346,9 +353,19 @@ pub enum ExperimentError {
     #[error(transparent)]
     Toml(#[from] TomlError),
     #[error(transparent)]
-    Sweep(#[from] SweepError),
+    Sweep(Box<SweepError>),
+    /// (Boxed, as the sweep's: the field's place and error are large.)
     #[error("{at}: {error}")]
-    Field { at: FieldAt, error: FieldError },
+    Field {
+        at: Box<FieldAt>,
+        error: Box<FieldError>,
+    },
+}
+
+impl From<SweepError> for ExperimentError {
+    fn from(e: SweepError) -> Self {
+        ExperimentError::Sweep(Box::new(e))
+    }
 }
 
 /// A problem with an experiment file or the directory of them, naming the file (and, through
@@ -381,12 +398,11 @@ pub enum ExperimentFileError {
         other_file: PathBuf,
     },
     /// Two experiments of two files whose ids have the same slug (file name).
-    #[error("{}: experiment[{index}] (id \"{id}\") field `id`: \"{id}\" has the same file name \"{slug}\" as \"{other}\" of {}; rename one", file.display(), other_file.display())]
+    #[error("{}: experiment[{index}] (id \"{id}\") field `id`: \"{id}\" has the same file name \"{}\" as \"{other}\" of {}; rename one", file.display(), crate::naming::slug(id), other_file.display())]
     SameFileName {
         file: PathBuf,
         index: usize,
         id: String,
-        slug: String,
         other: String,
         other_file: PathBuf,
     },

@@ -227,16 +227,16 @@ impl PaperFile {
     /// Parses and validates the text of an experiment file (errors without the file name;
     /// [`PaperFile::load`] adds it).
     pub fn from_toml(text: &str) -> Result<Self, ExperimentError> {
-        let mut doc: toml::Table = toml::from_str(text).map_err(TomlError)?;
+        let mut doc: toml::Table = toml::from_str(text).map_err(TomlError::from)?;
         // Sweeps (crate::sweep) expand at the TOML level; a file without one is read from its
         // text, so serde's errors keep their line numbers.
         let file: PaperFile = if crate::sweep::has_sweeps(&doc) {
             crate::sweep::expand_file(&mut doc, |v| {
                 Variant::deserialize(toml::Value::Table(v.clone())).map(|_| ())
             })?;
-            PaperFile::deserialize(toml::Value::Table(doc)).map_err(TomlError)?
+            PaperFile::deserialize(toml::Value::Table(doc)).map_err(TomlError::from)?
         } else {
-            toml::from_str(text).map_err(TomlError)?
+            toml::from_str(text).map_err(TomlError::from)?
         };
         file.validate()?;
         Ok(file)
@@ -454,8 +454,8 @@ fn check_name(name: &str, max: usize, at: FieldAt) -> Result<(), ExperimentError
 /// The error `error` at the field `at`.
 fn field(at: FieldAt, error: impl Into<FieldError>) -> ExperimentError {
     ExperimentError::Field {
-        at,
-        error: error.into(),
+        at: Box::new(at),
+        error: Box::new(error.into()),
     }
 }
 
@@ -533,7 +533,6 @@ pub fn load_dir(dir: &Path) -> Result<Vec<PaperFile>, ExperimentFileError> {
                     ExperimentFileError::SameFileName {
                         file,
                         index: i,
-                        slug: slug(&id),
                         id,
                         other: other.clone(),
                         other_file,

@@ -135,7 +135,10 @@ const LIMIT_TOL: f64 = 1e-9;
 
 /// jia2019: drift ordering, position error, joint limits, MVN's velocity, the model check.
 pub fn jia2019(runs: &Runs) -> Vec<Claim> {
-    let clover = |variant: &str| runs.need("jia2019-clover", variant, "LVI-PDNN");
+    let clover = |variant: &str| {
+        runs.need("jia2019-clover", variant, "LVI-PDNN")
+            .map_err(|e| e.to_string())
+    };
     let drift = |r: &RunRow| value(r, r.drift_norm, "drift");
     vec![
         check("drift(VLTCO) << drift(MVN-INVM)", "clover, LVI-PDNN: ‖drift‖ of VLTCO at least 10x smaller than MVN-INVM's", || {
@@ -167,8 +170,8 @@ pub fn jia2019(runs: &Runs) -> Vec<Claim> {
             },
         ),
         check("jaco2-hand leaves joint 6 still", "MVN, exact: |θ6(T) − θ6(0)| on jaco2-hand at most 1e-3 x that on jaco2-pen (joint 6 cannot move a tool point on its axis)", || {
-            let hand = runs.need("jia2019-clover", "MVN [jaco2-hand]", EXACT)?;
-            let pen = runs.need("jia2019-clover", "MVN", EXACT)?;
+            let hand = runs.need("jia2019-clover", "MVN [jaco2-hand]", EXACT).map_err(|e| e.to_string())?;
+            let pen = runs.need("jia2019-clover", "MVN", EXACT).map_err(|e| e.to_string())?;
             let (h, p) = (value(hand, hand.drift.get(5).copied(), "θ6 drift")?.abs(), value(pen, pen.drift.get(5).copied(), "θ6 drift")?.abs());
             Ok((h <= 1e-3 * p, format!("|θ6 drift|: jaco2-hand {}, jaco2-pen {}", sci(h), sci(p))))
         }),
@@ -326,8 +329,12 @@ const KONG_SETTLE_ERR: f64 = 2e-4;
 /// kong2019: finite-time drift vs ZNN drift, return to theta*0, final position error.
 pub fn kong2019(runs: &Runs) -> Vec<Claim> {
     let ratio_claim = |exp: &str, suffix: &str| -> Result<(f64, f64, String), String> {
-        let ft = runs.need(exp, &format!("{FT}{suffix}"), "FTNN")?;
-        let zn = runs.need(exp, &format!("{ZN}{suffix}"), "ZNN")?;
+        let ft = runs
+            .need(exp, &format!("{FT}{suffix}"), "FTNN")
+            .map_err(|e| e.to_string())?;
+        let zn = runs
+            .need(exp, &format!("{ZN}{suffix}"), "ZNN")
+            .map_err(|e| e.to_string())?;
         let (a, b) = (
             value(ft, ft.drift_ref_norm, "drift")?,
             value(zn, zn.drift_ref_norm, "drift")?,
@@ -357,7 +364,7 @@ pub fn kong2019(runs: &Runs) -> Vec<Claim> {
             Ok((all.iter().all(|(a, b, _)| a * MUCH <= *b), all.into_iter().map(|(_, _, e)| e).collect::<Vec<_>>().join("; ")))
         }),
         check("joints return to θ*0", "FTNN from the deviated start (circle, triangle): ‖θ(T) − θ*0‖ < 1e-4 rad", || {
-            let rows: Vec<&RunRow> = deviated.iter().map(|e| runs.need(e, FT, "FTNN")).collect::<Result<_, _>>()?;
+            let rows: Vec<&RunRow> = deviated.iter().map(|e| runs.need(e, FT, "FTNN").map_err(|e| e.to_string())).collect::<Result<_, _>>()?;
             let vals: Vec<f64> = rows.iter().map(|r| value(r, r.drift_ref_norm, "drift")).collect::<Result<_, _>>()?;
             let ev = rows.iter().zip(&vals).map(|(r, v)| format!("{}: {} (‖θ(T) − θ(0)‖ {})", r.experiment.trim_start_matches("kong2019-"), sci(*v), r.drift_norm.map(sci).unwrap_or_default()));
             Ok((vals.iter().all(|v| *v < KONG_RETURN), ev.collect::<Vec<_>>().join("; ")))
