@@ -26,8 +26,9 @@ use schemes::jia2019::Jia2019;
 use schemes::paths::{build_path, PathSpec};
 use schemes::qp::{Qp, QpDims};
 use simulation::experiment::{default_exact_integrator, NetworkInit};
+use simulation::run::build_network;
 use simulation::simulate::{simulate, Outcome, Scoring, Settings, Solver};
-use solvers::neural::{build_solver, NeuralSolver, SolverSpec};
+use solvers::neural::{NeuralSolver, SolverSpec};
 use solvers::ode::IntegratorSettings;
 use std::sync::Arc;
 
@@ -147,7 +148,8 @@ fn run() -> Vec<Line> {
         ..networks.clone()
     };
     let gnn = move || Ok(Box::new(Gnn::new(1e4, 1e3, dims)) as Box<dyn NeuralSolver>);
-    let lvi = move || build_solver(&SolverSpec::LviPdnn { gamma: 1e7 }, dims);
+    let scheme_name = schemes::scheme::Scheme::name(&scheme);
+    let lvi = move || build_network(&SolverSpec::LviPdnn { gamma: 1e7 }, dims, &scheme_name);
     let solvers: [(&str, Solver); 3] = [
         ("exact (certified active set / Clarabel)", Solver::Exact),
         ("LVI-PDNN (jia2019, gamma = 1e7)", Solver::Network(&lvi)),

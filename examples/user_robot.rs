@@ -23,8 +23,9 @@ use robots::{JointLimits, Robot};
 use schemes::kong2019::Kong2019;
 use schemes::paths::{build_path, PathSpec};
 use simulation::experiment::{default_exact_integrator, NetworkInit};
+use simulation::run::build_network;
 use simulation::simulate::{simulate, Outcome, Scoring, Settings, Solver};
-use solvers::neural::{build_solver, NeuralSolver, SolverSpec};
+use solvers::neural::SolverSpec;
 use solvers::ode::IntegratorSettings;
 use std::sync::Arc;
 
@@ -120,9 +121,8 @@ fn run() -> Vec<(String, f64, f64)> {
         integrator: default_exact_integrator(),
         ..networks.clone()
     };
-    let znn = move || -> Result<Box<dyn NeuralSolver>, String> {
-        build_solver(&SolverSpec::Znn { gamma: 1.0 }, dims)
-    };
+    let scheme_name = schemes::scheme::Scheme::name(&scheme);
+    let znn = move || build_network(&SolverSpec::Znn { gamma: 1.0 }, dims, &scheme_name);
     [
         ("exact", Solver::Exact),
         ("ZNN (kong2019, gamma = 1)", Solver::Network(&znn)),

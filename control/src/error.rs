@@ -1,6 +1,9 @@
-//! The errors of the control experiments.
+//! The errors of the control experiments: [`ControlError`] wraps the simulation layer's
+//! (experiment files) and the solvers' (networks, LVI, OSQP, the exact QP).
 
+use simulation::error::ExperimentFileError;
 use solvers::lvi_numerical::LviError;
+use solvers::neural::NetworkError;
 use solvers::osqp_qp::OsqpError;
 use solvers::ExactError;
 
@@ -8,11 +11,14 @@ use solvers::ExactError;
 #[derive(Debug, thiserror::Error)]
 pub enum ControlError {
     #[error("experiment files: {0}")]
-    Experiments(String),
+    Experiments(#[from] ExperimentFileError),
     #[error("task {0} is not in the experiment files")]
     UnknownTask(String),
     #[error("task {task}: {message}")]
     Setup { task: String, message: String },
+    /// The task's network could not be built (`task` names the network).
+    #[error("task {task}: {error}")]
+    Network { task: String, error: NetworkError },
     #[error(transparent)]
     Lvi(#[from] LviError),
     #[error(transparent)]

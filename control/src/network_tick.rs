@@ -76,9 +76,9 @@ impl NetworkTick {
         substeps: u32,
         dims: QpDims,
     ) -> Result<Self, ControlError> {
-        let net = build_solver(spec, dims).map_err(|message| ControlError::Setup {
+        let net = build_solver(spec, dims).map_err(|error| ControlError::Network {
             task: spec.display_name(),
-            message,
+            error,
         })?;
         let n = net.state_dim(dims);
         let mut y = vec![0.0; n];

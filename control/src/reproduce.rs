@@ -142,9 +142,9 @@ impl TaskVisitor for ProbeLimit<'_> {
         period: f64,
     ) -> Self::Output {
         let dims = scheme.dims();
-        let net = build_solver(self.spec, dims).map_err(|message| ControlError::Setup {
+        let net = build_solver(self.spec, dims).map_err(|error| ControlError::Network {
             task: self.spec.display_name(),
-            message,
+            error,
         })?;
         let dim = net.state_dim(dims);
         let mut probe = LimitProbe::new(net, dim);

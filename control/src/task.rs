@@ -78,7 +78,7 @@ impl Task {
 
 /// The tasks of `refs` from the experiment files in `dir`.
 pub fn load_tasks(dir: &std::path::Path, refs: &[TaskRef]) -> Result<Vec<Task>, ControlError> {
-    let files = load_dir(dir).map_err(|e| ControlError::Experiments(e.to_string()))?;
+    let files = load_dir(dir)?;
     let jobs: Vec<Job> = files.iter().flat_map(|f| f.jobs()).collect();
     refs.iter()
         .map(|r| {

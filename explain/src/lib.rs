@@ -17,11 +17,14 @@
 //! (written by [`write`]), `results/inference.csv` (by `reproduce --infer`).
 
 pub mod attribution;
+pub mod error;
 pub mod inference;
 pub mod ladder;
 
 use attribution::{attribution_rows, exact_counterpart, switch_jobs, AttributionRow, Switch};
+use error::ExplainError;
 use ladder::LadderRow;
+use records::error::{IoAction, IoError};
 use records::papers::Papers;
 use records::runs::{write_atomic, RunRow};
 use records::table::Row;
@@ -124,22 +127,22 @@ pub fn explain(targets: &[Job], all: &[Job], progress: bool, git_rev: &str) -> E
 }
 
 /// Serialises rows as CSV (per-joint columns as [`records::table`] writes them).
-pub fn to_csv<T: Row>(rows: &[T]) -> Result<Vec<u8>, String> {
-    records::table::to_csv(rows).map_err(|e| e.to_string())
+pub fn to_csv<T: Row>(rows: &[T]) -> Result<Vec<u8>, ExplainError> {
+    Ok(records::table::to_csv(rows)?)
 }
 
 /// Reads a CSV of `T`; an absent file is empty, an unreadable one an error naming it.
-pub fn read_csv<T: Row>(path: &Path) -> Result<Vec<T>, String> {
+pub fn read_csv<T: Row>(path: &Path) -> Result<Vec<T>, ExplainError> {
     if !path.exists() {
         return Ok(Vec::new());
     }
-    records::table::read(path).map_err(|e| e.to_string())
+    Ok(records::table::read(path)?)
 }
 
 /// Writes `results/ladder.csv` and `results/attribution.csv`: fresh rows replace the stored
 /// rows of the same runs (experiment, variant, solver); other stored rows are kept if their run
 /// still exists among `all` (every job of the experiment files), pruned otherwise.
-pub fn write(results_dir: &Path, fresh: &Explained, all: &[Job]) -> Result<(), String> {
+pub fn write(results_dir: &Path, fresh: &Explained, all: &[Job]) -> Result<(), ExplainError> {
     let ladder_path = results_dir.join("ladder.csv");
     let attribution_path = results_dir.join("attribution.csv");
     let keys: std::collections::HashSet<RunKey> = all.iter().map(Job::key).collect();
@@ -153,7 +156,7 @@ pub fn write(results_dir: &Path, fresh: &Explained, all: &[Job]) -> Result<(), S
         (&ladder_path, to_csv(&ladder)?),
         (&attribution_path, to_csv(&attribution)?),
     ] {
-        write_atomic(path, &bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+        write_atomic(path, &bytes).map_err(IoError::at(path, IoAction::Write))?;
     }
     Ok(())
 }
@@ -164,7 +167,7 @@ pub fn write_inference(
     results_dir: &Path,
     fresh: &[inference::InferenceRow],
     fresh_entries: &[inference::EntryRow],
-) -> Result<(), String> {
+) -> Result<(), ExplainError> {
     let path = results_dir.join("inference.csv");
     let entries_path = results_dir.join("inference-entries.csv");
     let rows = merge(read_csv(&path)?, fresh, |r: &inference::InferenceRow| {
@@ -176,7 +179,7 @@ pub fn write_inference(
         |r: &inference::EntryRow| (r.paper.clone(), r.table.clone()),
     );
     for (p, bytes) in [(&path, to_csv(&rows)?), (&entries_path, to_csv(&entries)?)] {
-        write_atomic(p, &bytes).map_err(|e| format!("{}: {e}", p.display()))?;
+        write_atomic(p, &bytes).map_err(IoError::at(p, IoAction::Write))?;
     }
     Ok(())
 }

@@ -3,6 +3,7 @@
 //! the committed report is always a function of the committed results; [`score`] writes the
 //! row, trace and figure of a trajectory scored from a file.
 
+pub mod error;
 pub mod figures;
 pub mod report;
 pub mod score;

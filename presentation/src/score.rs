@@ -4,7 +4,9 @@
 //! replaced when scored again), its trace in `<out>/traces/<experiment>/<variant>__<solver>.csv`
 //! and its figure (the report's run figure) in `<out>/figures/<experiment>__<variant>__<solver>.svg`.
 
+use crate::error::ScoreError;
 use crate::figures::run_svg;
+use records::error::{IoAction, IoError};
 use records::runs::{merge, trace_csv, write_atomic, RunRow};
 use records::trajectory::{read_csv, score_row};
 use simulation::experiment::{load_dir, Job, PaperFile};
@@ -26,25 +28,28 @@ pub struct Scored {
 
 /// The task `"<experiment> / <variant>"` (ids) of the experiment files in `experiments_dir`, as
 /// its first run (a trajectory is scored on its robot, path, scheme and poses only).
-pub fn find_task(experiments_dir: &Path, id: &str) -> Result<Job, String> {
+pub fn find_task(experiments_dir: &Path, id: &str) -> Result<Job, ScoreError> {
     let key = TaskKey::parse(id);
-    load_dir(experiments_dir)
-        .map_err(|e| e.to_string())?
+    load_dir(experiments_dir)?
         .iter()
         .flat_map(PaperFile::jobs)
         .find(|j| Some(j.task()) == key)
-        .ok_or_else(|| {
-            format!(
-                "no task \"{id}\" (a task is \"<experiment> / <variant>\"; `reproduce --list` lists them)"
-            )
-        })
+        .ok_or_else(|| ScoreError::NoTask(id.to_string()))
 }
 
 /// Scores the trajectory CSV `file` on `task` and writes the row, trace and figure under `out`.
-pub fn score_file(task: &Job, file: &Path, out: &Path, git_rev: &str) -> Result<Scored, String> {
+pub fn score_file(
+    task: &Job,
+    file: &Path,
+    out: &Path,
+    git_rev: &str,
+) -> Result<Scored, ScoreError> {
     let trajectory = read_csv(file)?;
-    let record = score_trajectory(task, &trajectory)
-        .map_err(|e| format!("{}: {e} (task \"{}\")", file.display(), task.task()))?;
+    let record = score_trajectory(task, &trajectory).map_err(|error| ScoreError::Score {
+        file: file.to_path_buf(),
+        task: task.task().to_string(),
+        error: Box::new(error),
+    })?;
     let source = file.file_name().map_or_else(
         || file.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
@@ -52,7 +57,7 @@ pub fn score_file(task: &Job, file: &Path, out: &Path, git_rev: &str) -> Result<
     let row = score_row(&record, &source, git_rev);
     let scores = out.join("scores.csv");
     let stored: Vec<RunRow> = if scores.exists() {
-        records::table::read(&scores).map_err(|e| e.to_string())?
+        records::table::read(&scores)?
     } else {
         Vec::new()
     };
@@ -65,17 +70,21 @@ pub fn score_file(task: &Job, file: &Path, out: &Path, git_rev: &str) -> Result<
     let figure = out
         .join("figures")
         .join(format!("{}__{stem}.svg", row.experiment));
-    let io = |path: &Path, bytes: &[u8]| -> Result<(), String> {
+    let io = |path: &Path, bytes: &[u8]| -> Result<(), IoError> {
         if let Some(dir) = path.parent() {
-            std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+            std::fs::create_dir_all(dir).map_err(IoError::at(dir, IoAction::Write))?;
         }
-        write_atomic(path, bytes).map_err(|e| format!("{}: {e}", path.display()))
+        write_atomic(path, bytes).map_err(IoError::at(path, IoAction::Write))
+    };
+    let csv_error = |path: &Path| {
+        let path = path.to_path_buf();
+        move |source| ScoreError::Csv { path, source }
     };
     io(
         &scores,
-        &records::runs::runs_csv(&rows).map_err(|e| e.to_string())?,
+        &records::runs::runs_csv(&rows).map_err(csv_error(&scores))?,
     )?;
-    io(&trace, &trace_csv(&record).map_err(|e| e.to_string())?)?;
+    io(&trace, &trace_csv(&record).map_err(csv_error(&trace))?)?;
     io(&figure, run_svg(&row, &trace)?.as_bytes())?;
     Ok(Scored {
         record,

@@ -380,21 +380,21 @@ fn a_malformed_trace_is_an_error_naming_the_file() {
     let bad = root.join("results/traces/exp-vel/vltco__lvi-pdnn.csv");
     let text = read(&bad).replacen("\n0,", "\nnot-a-number,", 1);
     std::fs::write(&bad, text).unwrap();
-    let err = render_all(&root).unwrap_err();
+    let err = render_all(&root).unwrap_err().to_string();
     assert!(
         err.contains("vltco__lvi-pdnn.csv") && err.contains("not a number"),
         "{err}"
     );
 
     std::fs::write(&bad, "t,theta_1\n0,1\n").unwrap();
-    let err = render_all(&root).unwrap_err();
+    let err = render_all(&root).unwrap_err().to_string();
     assert!(
         err.contains("vltco__lvi-pdnn.csv") && err.contains("thetadot"),
         "{err}"
     );
 
     std::fs::remove_file(&bad).unwrap();
-    let err = render_all(&root).unwrap_err();
+    let err = render_all(&root).unwrap_err().to_string();
     assert!(err.contains("vltco__lvi-pdnn.csv"), "{err}");
     std::fs::remove_dir_all(&root).unwrap();
 }

@@ -17,6 +17,7 @@
 //! an exception raised inside a network's method is raised again once the run stops (with the
 //! method and instant as context).
 
+mod error;
 mod network;
 mod task_set;
 
@@ -28,7 +29,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use records::runs::RunRow;
 use records::trajectory::{read_csv, score_row};
-use simulation::error::RunError;
+use simulation::error::{RunError, SetupError};
 use simulation::run::{run_job, run_job_with_network, RunRecord};
 use simulation::score_trajectory::{score_trajectory, Trajectory};
 use simulation::simulate::{Outcome, Scoring};
@@ -186,7 +187,7 @@ fn run_python(
     let build = |dims| {
         PyNetwork::new(network, dims, callbacks.clone())
             .map(|n| Box::new(n) as Box<dyn NeuralSolver>)
-            .map_err(|e| e.to_string())
+            .map_err(|e| SetupError::CustomNetwork(e.to_string()))
     };
     let record = run_job_with_network(job, &build);
     let mut calls = std::mem::take(&mut *callbacks.lock().unwrap_or_else(|p| p.into_inner()));

@@ -3,8 +3,10 @@
 //! network run of the task uses (robot, path, poses, scheme, the variant's network integrator,
 //! scoring and network start).
 
+use crate::error::NoSolver;
 use pyo3::prelude::*;
 use serde::Serialize;
+use simulation::error::ExperimentFileError;
 use simulation::experiment::{load_dir, Job, SolverChoice};
 use std::path::{Path, PathBuf};
 
@@ -121,23 +123,21 @@ impl PyTask {
 
 impl PyTask {
     /// The suite's run of this task whose solver id is `id`.
-    pub fn run_of(&self, id: &str) -> Result<&Job, String> {
+    pub fn run_of(&self, id: &str) -> Result<&Job, NoSolver> {
         self.runs
             .iter()
             .find(|j| j.solver.id() == id)
-            .ok_or_else(|| {
-                format!(
-                    "task \"{}\" has no solver \"{id}\"; its solvers: {}",
-                    self.id(),
-                    self.solvers().join(", ")
-                )
+            .ok_or_else(|| NoSolver {
+                task: self.id(),
+                label: id.to_string(),
+                solvers: self.solvers(),
             })
     }
 }
 
 /// Every task of the experiment files under `root/experiments`, in file order.
-pub fn load_tasks(root: &Path) -> Result<Vec<PyTask>, String> {
-    let files = load_dir(&root.join("experiments")).map_err(|e| e.to_string())?;
+pub fn load_tasks(root: &Path) -> Result<Vec<PyTask>, ExperimentFileError> {
+    let files = load_dir(&root.join("experiments"))?;
     let mut tasks = Vec::new();
     for file in &files {
         let jobs = file.jobs();

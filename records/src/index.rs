@@ -1,6 +1,7 @@
 //! The stored runs, indexed the way the report looks them up: by their key (experiment,
 //! variant and solver ids), by paper and by experiment; metric access by column name; a run's status in words.
 
+use crate::error::MissingRun;
 use crate::runs::RunRow;
 
 /// The solver id of the exact column.
@@ -31,10 +32,19 @@ impl Runs {
         })
     }
 
-    /// Like [`Runs::find`], with the missing run as an error message.
-    pub fn need(&self, experiment: &str, variant: &str, solver: &str) -> Result<&RunRow, String> {
+    /// Like [`Runs::find`], with the missing run as an error.
+    pub fn need(
+        &self,
+        experiment: &str,
+        variant: &str,
+        solver: &str,
+    ) -> Result<&RunRow, MissingRun> {
         self.find(experiment, variant, solver)
-            .ok_or_else(|| format!("no run of {solver} on {experiment} / {variant}"))
+            .ok_or_else(|| MissingRun {
+                experiment: experiment.to_string(),
+                variant: variant.to_string(),
+                solver: solver.to_string(),
+            })
     }
 
     /// The runs of one paper (the `paper` column).

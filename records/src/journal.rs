@@ -8,6 +8,7 @@
 //! one) is dropped; any other bad line, a name that cannot name a file, or a run listed twice
 //! is an error naming the file and the line (a journal this program wrote has each run once).
 
+use crate::error::{IoAction, IoError, JournalError};
 use crate::results_dir::ResultsDir;
 use crate::runs::{check_rows, RunRow};
 use crate::table;
@@ -38,30 +39,26 @@ impl<'a> Journal<'a> {
     /// Opens (creating, with the header) the journal of `results` for appending rows of arms
     /// with at most `joints` joints. An existing journal keeps its header: a run resumed with
     /// arms of more joints than it was started with starts a new journal.
-    pub fn open(results: &'a ResultsDir, git_rev: &str, joints: usize) -> Result<Self, String> {
-        let path = results
-            .tracked()
-            .resolve(Path::new(FILE))
-            .map_err(|e| e.to_string())?;
+    pub fn open(
+        results: &'a ResultsDir,
+        git_rev: &str,
+        joints: usize,
+    ) -> Result<Self, JournalError> {
+        let path = results.tracked().resolve(Path::new(FILE))?;
         let mut file = OpenOptions::new()
             .create(true)
             .append(true)
             .open(&path)
-            .map_err(|e| format!("{}: cannot open: {e}", path.display()))?;
+            .map_err(IoError::at(&path, IoAction::Open))?;
         let empty = file.metadata().map(|m| m.len() == 0).unwrap_or(true);
         let header = table::header::<RunRow>(joints);
         if empty {
-            writeln!(file, "{}", header.join(","))
-                .map_err(|e| format!("{}: {e}", path.display()))?;
+            writeln!(file, "{}", header.join(",")).map_err(IoError::at(&path, IoAction::Write))?;
         } else {
-            let text = std::fs::read_to_string(&path)
-                .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
+            let text =
+                std::fs::read_to_string(&path).map_err(IoError::at(&path, IoAction::Read))?;
             if text.lines().next() != Some(header.join(",").as_str()) {
-                return Err(format!(
-                    "{}: its header is not that of this run (more joints, or another version); \
-                     fold it in by running the same selection again, or remove it",
-                    path.display()
-                ));
+                return Err(JournalError::Header { path });
             }
         }
         Ok(Self {
@@ -73,22 +70,27 @@ impl<'a> Journal<'a> {
     }
 
     /// Checkpoints one finished run: its trace, then its row (one write, flushed).
-    pub fn record(&self, r: &RunRecord) -> Result<(), String> {
-        self.results.write_trace(r).map_err(|e| e.to_string())?;
+    pub fn record(&self, r: &RunRecord) -> Result<(), JournalError> {
+        self.results.write_trace(r)?;
+        let journal = path(self.results.path());
+        let csv_error = |source| JournalError::Csv {
+            path: journal.clone(),
+            source,
+        };
         let mut w = csv::WriterBuilder::new()
             .has_headers(false)
             .from_writer(Vec::new());
         let row = RunRow::from_record(r, &self.git_rev);
-        w.write_record(table::record(&row, self.joints).map_err(|e| e.to_string())?)
-            .map_err(|e| e.to_string())?;
-        let line = w.into_inner().map_err(|e| e.to_string())?;
-        let mut file = self
-            .file
-            .lock()
-            .map_err(|_| "journal lock poisoned".to_string())?;
+        w.write_record(table::record(&row, self.joints).map_err(csv_error)?)
+            .map_err(csv_error)?;
+        let line = w
+            .into_inner()
+            .map_err(|e| csv_error(csv::Error::from(e.into_error())))?;
+        let mut file = self.file.lock().map_err(|_| JournalError::Poisoned)?;
         file.write_all(&line)
             .and_then(|()| file.flush())
-            .map_err(|e| format!("{}: {e}", path(self.results.path()).display()))
+            .map_err(IoError::at(journal, IoAction::Write))?;
+        Ok(())
     }
 }
 
@@ -103,30 +105,25 @@ pub struct Recovered {
 
 /// The rows of an interrupted run's journal in `dir` (none without one), split by code
 /// revision (`git_rev`: the current one). A last line cut short by a kill is dropped.
-pub fn recover(dir: &Path, git_rev: &str) -> Result<Recovered, String> {
+pub fn recover(dir: &Path, git_rev: &str) -> Result<Recovered, JournalError> {
     let journal = path(dir);
     if !journal.exists() {
         return Ok(Recovered::default());
     }
-    let text = std::fs::read_to_string(&journal)
-        .map_err(|e| format!("{}: cannot read: {e}", journal.display()))?;
+    let text = std::fs::read_to_string(&journal).map_err(IoError::at(&journal, IoAction::Read))?;
     // Keep only complete lines: a kill can cut the last one short.
     let complete = match text.rfind('\n') {
         Some(end) => &text[..=end],
         None => "",
     };
-    let rows: Vec<RunRow> = table::from_reader(complete.as_bytes()).map_err(|e| {
-        table::TableError {
+    let rows: Vec<RunRow> =
+        table::from_reader(complete.as_bytes()).map_err(|e| table::TableError {
             path: Some(journal.clone()),
             ..e
-        }
-        .to_string()
-    })?;
-    check_rows(&rows).map_err(|e| {
-        format!(
-            "{}: {e}; this is not a journal this program wrote: remove it (its runs are run again)",
-            journal.display()
-        )
+        })?;
+    check_rows(&rows).map_err(|error| JournalError::Rows {
+        path: journal,
+        error,
     })?;
     let (current, other_revision) = rows.into_iter().partition(|r| r.git_rev == git_rev);
     Ok(Recovered {
@@ -136,11 +133,11 @@ pub fn recover(dir: &Path, git_rev: &str) -> Result<Recovered, String> {
 }
 
 /// Removes the journal of `dir` (after its rows are in runs.csv).
-pub fn remove(dir: &Path) -> Result<(), String> {
+pub fn remove(dir: &Path) -> Result<(), IoError> {
     let journal = path(dir);
     match std::fs::remove_file(&journal) {
         Ok(()) => Ok(()),
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
-        Err(e) => Err(format!("{}: {e}", journal.display())),
+        Err(e) => Err(IoError::at(journal, IoAction::Remove)(e)),
     }
 }

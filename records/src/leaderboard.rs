@@ -33,6 +33,7 @@
 //! capped at it (qpbenchmark counts a failure at its time limit), so no completed run counts
 //! worse than a failure.
 
+use crate::error::{IoAction, IoError, RunsError};
 use crate::runs::RunRow;
 use crate::table::Row;
 use serde::{Deserialize, Serialize};
@@ -415,10 +416,13 @@ pub fn leaderboard_csv(rows: &[LeaderboardRow]) -> Result<Vec<u8>, csv::Error> {
 }
 
 /// Writes `results_dir/leaderboard.csv` (atomically) from `runs`; returns its path.
-pub fn write(results_dir: &Path, runs: &[RunRow]) -> Result<PathBuf, String> {
+pub fn write(results_dir: &Path, runs: &[RunRow]) -> Result<PathBuf, RunsError> {
     let path = results_dir.join("leaderboard.csv");
-    let bytes = leaderboard_csv(&leaderboard(runs)).map_err(|e| e.to_string())?;
-    crate::runs::write_atomic(&path, &bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+    let bytes = leaderboard_csv(&leaderboard(runs)).map_err(|source| RunsError::Write {
+        path: path.clone(),
+        source,
+    })?;
+    crate::runs::write_atomic(&path, &bytes).map_err(IoError::at(&path, IoAction::Write))?;
     Ok(path)
 }
 

@@ -25,6 +25,7 @@
 
 pub mod claims;
 pub mod dof_cost;
+pub mod error;
 pub mod gate;
 pub mod index;
 pub mod integrity;

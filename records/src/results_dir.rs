@@ -52,10 +52,17 @@ pub enum ResultsError {
         path: PathBuf,
         source: std::io::Error,
     },
-    #[error("{0}")]
-    Read(String),
-    #[error("{path}: {message}")]
-    Write { path: PathBuf, message: String },
+    #[error(transparent)]
+    Read(#[from] crate::error::RunsError),
+    #[error("{path}: {source}")]
+    Write { path: PathBuf, source: csv::Error },
+    #[error(transparent)]
+    Io(#[from] crate::error::IoError),
+    #[error("{}: {source}", path.display())]
+    Migrate {
+        path: PathBuf,
+        source: crate::migrate::MigrateError,
+    },
     #[error("{count} of the {stored} stored runs in {runs} are described by no experiment file of {experiments} ({percent} %, more than the {PRUNE_LIMIT_PERCENT} % pruned without asking); nothing was run or written. If the experiment files are right and those runs should go, run again with --prune; otherwise point --experiments-dir at the right directory. The first of them: {first}")]
     TooMuchPruning {
         count: usize,
@@ -198,7 +205,7 @@ impl ResultsDir {
                 continue;
             };
             let migrated = crate::migrate::add_ids(&text, &index)
-                .map_err(|e| ResultsError::Read(format!("{}: {e}", path.display())))?;
+                .map_err(|source| ResultsError::Migrate { path, source })?;
             let Some((bytes, keys)) = migrated else {
                 continue;
             };
@@ -217,10 +224,10 @@ impl ResultsDir {
                 if old == new || !old_path.is_file() {
                     continue;
                 }
-                let bytes = std::fs::read(&old_path).map_err(|e| ResultsError::Write {
-                    path: old_path.clone(),
-                    message: e.to_string(),
-                })?;
+                let bytes = std::fs::read(&old_path).map_err(crate::error::IoError::at(
+                    &old_path,
+                    crate::error::IoAction::Read,
+                ))?;
                 self.tracked.write(&new, &bytes)?;
                 self.tracked.remove(&old)?;
                 moved += 1;
@@ -235,9 +242,9 @@ impl ResultsDir {
 
     /// Writes `runs.csv` (atomically, recorded in the manifest).
     pub fn write_runs(&self, rows: &[RunRow]) -> Result<(), ResultsError> {
-        let bytes = runs_csv(rows).map_err(|e| ResultsError::Write {
+        let bytes = runs_csv(rows).map_err(|source| ResultsError::Write {
             path: self.runs_path(),
-            message: e.to_string(),
+            source,
         })?;
         self.tracked.write(Path::new(RUNS), &bytes)?;
         Ok(())
@@ -258,9 +265,9 @@ impl ResultsDir {
     /// Writes a run's trace.
     pub fn write_trace(&self, r: &RunRecord) -> Result<(), ResultsError> {
         let rel = Self::trace_rel(&r.job.key())?;
-        let bytes = trace_csv(r).map_err(|e| ResultsError::Write {
+        let bytes = trace_csv(r).map_err(|source| ResultsError::Write {
             path: self.path().join(&rel),
-            message: e.to_string(),
+            source,
         })?;
         self.tracked.write(&rel, &bytes)?;
         Ok(())

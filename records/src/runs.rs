@@ -10,6 +10,7 @@
 //! half-written file. Rows are sorted by their [`RunKey`] (ids) so that two runs give
 //! byte-identical files except for the timing columns (`wall_s`, `sim_s`, `observe_s`) and `git_rev`.
 
+use crate::error::{RowsError, RunsError};
 use crate::table;
 use serde::{Deserialize, Serialize};
 use simulation::error::FailureKind;
@@ -312,30 +313,27 @@ pub fn runs_csv(rows: &[RunRow]) -> Result<Vec<u8>, csv::Error> {
     table::to_csv(rows)
 }
 
-/// How to recover from a `runs.csv` this version cannot read.
-fn recovery_hint(path: &Path) -> String {
-    format!(
-        "nothing was run or written; restore the committed file with `git checkout {0}` or move \
-         it away (e.g. `mv {0} {0}.old`) and run again",
-        path.display()
-    )
-}
-
 /// Reads `results/runs.csv`. Any problem is an error naming the file, the line and how to
 /// recover, never a silently shorter list: an unreadable file, a header that is not this
 /// version's columns (an old schema: a missing or an unknown column), a row that does not
 /// parse, a name that cannot name a file ([`check_rows`]) or a run listed twice. An empty file
 /// has no rows.
-pub fn read_runs(path: &Path) -> Result<Vec<RunRow>, String> {
-    let rows = table::read(path).map_err(|e| format!("{e}; {}", recovery_hint(path)))?;
-    check_rows(&rows).map_err(|e| format!("{}: {e}; {}", path.display(), recovery_hint(path)))?;
+pub fn read_runs(path: &Path) -> Result<Vec<RunRow>, RunsError> {
+    let rows = table::read(path).map_err(|error| RunsError::Table {
+        path: path.to_path_buf(),
+        error,
+    })?;
+    check_rows(&rows).map_err(|error| RunsError::Rows {
+        path: path.to_path_buf(),
+        error,
+    })?;
     Ok(rows)
 }
 
 /// Checks what a results file says before any of it becomes a path: every row's paper id and
 /// run key can name a file ([`RunKey::check`]), its labels are within their limits, and no run
 /// is listed twice. The error names the line (the header is line 1).
-pub fn check_rows(rows: &[RunRow]) -> Result<(), String> {
+pub fn check_rows(rows: &[RunRow]) -> Result<(), RowsError> {
     let mut seen = std::collections::HashMap::with_capacity(rows.len());
     for (i, r) in rows.iter().enumerate() {
         let line = i + 2;
@@ -343,12 +341,13 @@ pub fn check_rows(rows: &[RunRow]) -> Result<(), String> {
             .and_then(|()| r.key().check())
             .and_then(|()| check_name(&r.variant, MAX_VARIANT_LABEL))
             .and_then(|()| check_name(&r.solver, MAX_SOLVER_LABEL))
-            .map_err(|e| format!("line {line}: {e}"))?;
+            .map_err(|error| RowsError::Name { line, error })?;
         if let Some(first) = seen.insert(r.key(), line) {
-            return Err(format!(
-                "line {line}: the run {} is listed twice (first on line {first})",
-                r.key()
-            ));
+            return Err(RowsError::Twice {
+                line,
+                key: r.key().to_string(),
+                first,
+            });
         }
     }
     Ok(())
@@ -356,8 +355,11 @@ pub fn check_rows(rows: &[RunRow]) -> Result<(), String> {
 
 /// Checks that files can be created in `dir` (created if absent): writes and removes a probe
 /// file. The error names the directory.
-pub fn check_writable(dir: &Path) -> Result<(), String> {
-    let fail = |e: std::io::Error| format!("{}: not writable: {e}", dir.display());
+pub fn check_writable(dir: &Path) -> Result<(), RunsError> {
+    let fail = |source| RunsError::NotWritable {
+        dir: dir.to_path_buf(),
+        source,
+    };
     std::fs::create_dir_all(dir).map_err(fail)?;
     let probe = dir.join(format!(".write-probe.{}.tmp", std::process::id()));
     std::fs::write(&probe, b"").map_err(fail)?;

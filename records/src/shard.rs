@@ -14,6 +14,8 @@
 //!   and that every selected run appears exactly once; otherwise it says which runs are missing
 //!   (and which shard should have produced them) or duplicated, and nothing is written.
 
+use crate::error::{IoAction, IoError, ShardError};
+use crate::owned_dir::PathError;
 use crate::runs::{read_runs, RunRow};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -39,27 +41,25 @@ pub struct Shard {
 }
 
 impl Shard {
-    pub fn new(k: usize, n: usize) -> Result<Self, String> {
+    pub fn new(k: usize, n: usize) -> Result<Self, ShardError> {
         if n == 0 {
-            return Err("the number of shards N must be at least 1".to_string());
+            return Err(ShardError::NoShards);
         }
         if k == 0 || k > n {
-            return Err(format!(
-                "shard {k} of {n}: K must be in 1..={n} (K is 1-based)"
-            ));
+            return Err(ShardError::OutOfRange { k, n });
         }
         Ok(Self { k, n })
     }
 
     /// `"K/N"`.
-    pub fn parse(s: &str) -> Result<Self, String> {
+    pub fn parse(s: &str) -> Result<Self, ShardError> {
         let (k, n) = s
             .split_once('/')
-            .ok_or_else(|| format!("--shard {s}: expected K/N, e.g. 2/8"))?;
+            .ok_or_else(|| ShardError::Syntax(s.to_string()))?;
         let num = |x: &str| {
             x.trim()
                 .parse::<usize>()
-                .map_err(|_| format!("--shard {s}: expected K/N with whole numbers, e.g. 2/8"))
+                .map_err(|_| ShardError::NotWhole(s.to_string()))
         };
         Self::new(num(k)?, num(n)?)
     }
@@ -71,36 +71,38 @@ impl Shard {
     pub fn from_env(
         get: impl Fn(&str) -> Option<String>,
         shards: Option<usize>,
-    ) -> Result<Self, String> {
-        let num =
-            |name: &str| -> Result<Option<usize>, String> {
-                match get(name) {
-                    None => Ok(None),
-                    Some(v) => v.trim().parse::<usize>().map(Some).map_err(|_| {
-                        format!("environment variable {name}={v} is not a whole number")
-                    }),
+    ) -> Result<Self, ShardError> {
+        let num = |name: &str| -> Result<Option<usize>, ShardError> {
+            match get(name) {
+                None => Ok(None),
+                Some(v) => {
+                    v.trim()
+                        .parse::<usize>()
+                        .map(Some)
+                        .map_err(|_| ShardError::Environment {
+                            name: name.to_string(),
+                            value: v,
+                        })
                 }
-            };
-        let n_from = |fallback: Option<usize>| -> Result<usize, String> {
+            }
+        };
+        let n_from = |fallback: Option<usize>| -> Result<usize, ShardError> {
             shards
                 .or(fallback)
                 .or(num("DRIFTBENCH_SHARDS")?)
-                .ok_or_else(|| {
-                    "the number of shards is not known: give --shards N or set DRIFTBENCH_SHARDS"
-                        .to_string()
-                })
+                .ok_or(ShardError::UnknownCount)
         };
         if let Some(id) = num("SLURM_ARRAY_TASK_ID")? {
             let min = num("SLURM_ARRAY_TASK_MIN")?.unwrap_or(1);
-            let k = (id + 1).checked_sub(min).ok_or_else(|| {
-                format!("SLURM_ARRAY_TASK_ID={id} is below SLURM_ARRAY_TASK_MIN={min}")
-            })?;
+            let k = (id + 1)
+                .checked_sub(min)
+                .ok_or(ShardError::BelowMin { id, min })?;
             return Self::new(k, n_from(num("SLURM_ARRAY_TASK_COUNT")?)?);
         }
         if let Some(index) = num("JOB_COMPLETION_INDEX")? {
             return Self::new(index + 1, n_from(None)?);
         }
-        Err("--shard without K/N reads the scheduler's environment, but neither SLURM_ARRAY_TASK_ID nor JOB_COMPLETION_INDEX is set; give --shard K/N".to_string())
+        Err(ShardError::NoScheduler)
     }
 
     /// The shard (1-based) a run key belongs to among `n`.
@@ -160,34 +162,37 @@ pub struct Manifest {
 }
 
 impl Manifest {
-    pub fn write(&self, dir: &Path) -> Result<(), String> {
+    pub fn write(&self, dir: &Path) -> Result<(), ShardError> {
         let path = dir.join(MANIFEST);
-        let text = toml::to_string(self).map_err(|e| format!("{}: {e}", path.display()))?;
+        let text = toml::to_string(self).map_err(|source| ShardError::WriteManifest {
+            path: path.clone(),
+            source,
+        })?;
         crate::runs::write_atomic(&path, text.as_bytes())
-            .map_err(|e| format!("{}: {e}", path.display()))
+            .map_err(IoError::at(&path, IoAction::Write))?;
+        Ok(())
     }
 
-    pub fn read(dir: &Path) -> Result<Self, String> {
+    pub fn read(dir: &Path) -> Result<Self, ShardError> {
         let path = dir.join(MANIFEST);
         let text = std::fs::read_to_string(&path).map_err(|e| {
             if e.kind() == std::io::ErrorKind::NotFound {
-                format!(
-                    "{}: no {MANIFEST}: the shard has not finished (run it again; it resumes where it stopped)",
-                    dir.display()
-                )
+                ShardError::Unfinished {
+                    dir: dir.to_path_buf(),
+                }
             } else {
-                format!("{}: cannot read: {e}", path.display())
+                IoError::at(&path, IoAction::Read)(e).into()
             }
         })?;
-        toml::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
+        toml::from_str(&text).map_err(|source| ShardError::ReadManifest { path, source })
     }
 
     /// Removes a directory's manifest (a shard starting again is unfinished until it ends).
-    pub fn remove(dir: &Path) -> Result<(), String> {
+    pub fn remove(dir: &Path) -> Result<(), ShardError> {
         let path = dir.join(MANIFEST);
         match std::fs::remove_file(&path) {
             Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
-                Err(format!("{}: {e}", path.display()))
+                Err(IoError::at(&path, IoAction::Remove)(e).into())
             }
             _ => Ok(()),
         }
@@ -196,9 +201,9 @@ impl Manifest {
 
 /// FNV-1a 64 of the experiment files of `dir` (every `*.toml`, by file name: name and
 /// contents), as 16 hex digits: shards to be merged must have run the same files.
-pub fn experiments_hash(dir: &Path) -> Result<String, String> {
+pub fn experiments_hash(dir: &Path) -> Result<String, IoError> {
     let mut paths: Vec<PathBuf> = std::fs::read_dir(dir)
-        .map_err(|e| format!("{}: cannot list: {e}", dir.display()))?
+        .map_err(IoError::at(dir, IoAction::List))?
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.extension().is_some_and(|x| x == "toml"))
         .collect();
@@ -207,7 +212,7 @@ pub fn experiments_hash(dir: &Path) -> Result<String, String> {
     for p in &paths {
         bytes.extend(p.file_name().unwrap_or_default().as_encoded_bytes());
         bytes.push(0);
-        bytes.extend(std::fs::read(p).map_err(|e| format!("{}: cannot read: {e}", p.display()))?);
+        bytes.extend(std::fs::read(p).map_err(IoError::at(p, IoAction::Read))?);
         bytes.push(0);
     }
     Ok(format!("{:016x}", fnv1a64(&bytes)))
@@ -227,36 +232,23 @@ pub struct ShardDir {
 /// Every file the integrity manifest lists (the rows and every trace) must still be what the
 /// shard wrote, unless `edits` accepts edits; a directory that does not exist, or a shard
 /// without an integrity manifest, is an error saying so.
-pub fn read_shard(dir: &Path, edits: crate::tracked_dir::Edits) -> Result<ShardDir, String> {
+pub fn read_shard(dir: &Path, edits: crate::tracked_dir::Edits) -> Result<ShardDir, ShardError> {
     if !dir.is_dir() {
-        return Err(format!(
-            "{}: no such directory (give the directories that `reproduce --shard K/N` wrote)",
-            dir.display()
-        ));
+        return Err(ShardError::NoDirectory {
+            dir: dir.to_path_buf(),
+        });
     }
     let manifest = Manifest::read(dir)?;
-    let files = crate::integrity::Manifest::read(dir)
-        .map_err(|e| e.to_string())?
-        .ok_or_else(|| {
-            format!(
-                "{}: no {}: not a shard this version wrote, so its files cannot be checked; run the shard again",
-                dir.display(),
-                crate::integrity::FILE
-            )
-        })?;
+    let files = crate::integrity::Manifest::read(dir)?.ok_or_else(|| ShardError::NoIntegrity {
+        dir: dir.to_path_buf(),
+    })?;
     if edits == crate::tracked_dir::Edits::Refuse {
         let mismatches = files.mismatches(dir, |_| true);
         if !mismatches.is_empty() {
-            return Err(format!(
-                "{}: {} file(s) differ from what the shard wrote:\n{}\nrun the shard again, or merge with --accept-edited if the edit is deliberate",
-                dir.display(),
-                mismatches.len(),
-                mismatches
-                    .iter()
-                    .map(|m| format!("  {m}"))
-                    .collect::<Vec<_>>()
-                    .join("\n")
-            ));
+            return Err(ShardError::Edited {
+                dir: dir.to_path_buf(),
+                mismatches,
+            });
         }
     }
     let rows = read_runs(&dir.join("runs.csv"))?;
@@ -269,8 +261,8 @@ pub fn read_shard(dir: &Path, edits: crate::tracked_dir::Edits) -> Result<ShardD
 }
 
 /// A row's trace, relative to its results directory.
-fn trace_rel(r: &RunRow) -> Result<PathBuf, String> {
-    crate::results_dir::ResultsDir::trace_rel(&r.key()).map_err(|e| e.to_string())
+fn trace_rel(r: &RunRow) -> Result<PathBuf, PathError> {
+    crate::results_dir::ResultsDir::trace_rel(&r.key())
 }
 
 /// Copies the traces of every shard's rows into `results` (each written atomically and
@@ -278,18 +270,15 @@ fn trace_rel(r: &RunRow) -> Result<PathBuf, String> {
 pub fn copy_traces(
     shards: &[ShardDir],
     results: &crate::results_dir::ResultsDir,
-) -> Result<usize, String> {
+) -> Result<usize, ShardError> {
     let mut n = 0;
     for s in shards {
-        let owned = crate::owned_dir::OwnedDir::open(&s.dir).map_err(|e| e.to_string())?;
+        let owned = crate::owned_dir::OwnedDir::open(&s.dir)?;
         for r in &s.rows {
             let rel = trace_rel(r)?;
-            let from = owned.resolve(&rel).map_err(|e| e.to_string())?;
-            let bytes = std::fs::read(&from).map_err(|e| format!("{}: {e}", from.display()))?;
-            results
-                .tracked()
-                .write(&rel, &bytes)
-                .map_err(|e| e.to_string())?;
+            let from = owned.resolve(&rel)?;
+            let bytes = std::fs::read(&from).map_err(IoError::at(&from, IoAction::Read))?;
+            results.tracked().write(&rel, &bytes)?;
             n += 1;
         }
     }
@@ -299,9 +288,13 @@ pub fn copy_traces(
 /// Checks shards before a merge: the same N, experiment files (`hash`: the current files')
 /// and selection; every run of `expected` (the keys the selection describes) in exactly one
 /// shard, and no other run. The error lists every problem.
-pub fn check_shards(shards: &[ShardDir], expected: &[String], hash: &str) -> Result<(), String> {
+pub fn check_shards(
+    shards: &[ShardDir],
+    expected: &[String],
+    hash: &str,
+) -> Result<(), ShardError> {
     let Some(first) = shards.first() else {
-        return Err("--merge needs at least one shard directory".to_string());
+        return Err(ShardError::NoShardDirectories);
     };
     let n = first.manifest.shards;
     let mut problems = Vec::new();
@@ -379,10 +372,7 @@ pub fn check_shards(shards: &[ShardDir], expected: &[String], hash: &str) -> Res
         }
     }
     if !problems.is_empty() {
-        return Err(format!(
-            "cannot merge; nothing was written:\n{}",
-            problems.join("\n")
-        ));
+        return Err(ShardError::CannotMerge { problems });
     }
     let mut given: Vec<usize> = shards.iter().map(|s| s.manifest.shard).collect();
     given.sort_unstable();
@@ -458,10 +448,7 @@ pub fn check_shards(shards: &[ShardDir], expected: &[String], hash: &str) -> Res
     if out.is_empty() {
         Ok(())
     } else {
-        Err(format!(
-            "cannot merge; nothing was written:\n{}",
-            out.join("\n")
-        ))
+        Err(ShardError::CannotMerge { problems: out })
     }
 }
 
@@ -580,6 +567,7 @@ mod tests {
         Manifest::remove(&dir).unwrap();
         assert!(Manifest::read(&dir)
             .unwrap_err()
+            .to_string()
             .contains("has not finished"));
         let _ = std::fs::remove_dir_all(&dir);
     }

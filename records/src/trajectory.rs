@@ -12,6 +12,7 @@
 //! `integrator` = [`TRAJECTORY_KIND`] (nothing was integrated: `rtol` and `atol` are 0, `steps`
 //! is the number of samples).
 
+use crate::error::{TrajectoryFileError, TrajectoryProblem};
 use crate::runs::RunRow;
 use simulation::run::RunRecord;
 use simulation::score_trajectory::Trajectory;
@@ -22,13 +23,20 @@ use std::path::Path;
 pub const TRAJECTORY_KIND: &str = "trajectory";
 
 /// Reads a trajectory CSV (module docs). Errors name the file and, where it applies, the line.
-pub fn read_csv(path: &Path) -> Result<Trajectory, String> {
-    let at = |e: String| format!("{}: {e}", path.display());
+pub fn read_csv(path: &Path) -> Result<Trajectory, TrajectoryFileError> {
+    let at_line = |line: Option<usize>| {
+        move |problem: TrajectoryProblem| TrajectoryFileError {
+            path: path.to_path_buf(),
+            line,
+            problem,
+        }
+    };
+    let at = |problem: TrajectoryProblem| at_line(None)(problem);
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
         .from_path(path)
-        .map_err(|e| at(e.to_string()))?;
-    let header = reader.headers().map_err(|e| at(e.to_string()))?.clone();
+        .map_err(|e| at(e.into()))?;
+    let header = reader.headers().map_err(|e| at(e.into()))?.clone();
     // Column index of t, and of each numbered theta_i / thetadot_i.
     let mut t_col = None;
     let mut numbered: BTreeMap<&str, BTreeMap<usize, usize>> = BTreeMap::new();
@@ -45,35 +53,30 @@ pub fn read_csv(path: &Path) -> Result<Trajectory, String> {
             Some(i) if i >= 1 => {
                 numbered.entry(stem).or_default().insert(i, col);
             }
-            _ => {
-                return Err(at(format!(
-                    "unknown column \"{name}\" (the columns are t, theta_1 .. theta_n and optionally thetadot_1 .. thetadot_n)"
-                )))
-            }
+            _ => return Err(at(TrajectoryProblem::UnknownColumn(name.to_string()))),
         }
     }
-    let t_col = t_col.ok_or_else(|| at("no column \"t\"".to_string()))?;
-    let columns = |stem: &str| -> Result<Option<Vec<usize>>, String> {
+    let t_col = t_col.ok_or_else(|| at(TrajectoryProblem::NoColumn("t")))?;
+    let columns = |stem: &'static str| -> Result<Option<Vec<usize>>, TrajectoryFileError> {
         let Some(map) = numbered.get(stem) else {
             return Ok(None);
         };
         if map.keys().copied().ne(1..=map.len()) {
-            return Err(at(format!(
-                "the {stem}_i columns must be numbered 1 .. n without gaps, got {:?}",
-                map.keys().collect::<Vec<_>>()
-            )));
+            return Err(at(TrajectoryProblem::Gaps {
+                stem,
+                numbers: map.keys().copied().collect(),
+            }));
         }
         Ok(Some(map.values().copied().collect()))
     };
-    let theta_cols = columns("theta")?.ok_or_else(|| at("no column \"theta_1\"".to_string()))?;
+    let theta_cols = columns("theta")?.ok_or_else(|| at(TrajectoryProblem::NoColumn("theta_1")))?;
     let thetadot_cols = columns("thetadot")?;
     if let Some(v) = &thetadot_cols {
         if v.len() != theta_cols.len() {
-            return Err(at(format!(
-                "{} theta_i columns but {} thetadot_i columns",
-                theta_cols.len(),
-                v.len()
-            )));
+            return Err(at(TrajectoryProblem::ColumnCounts {
+                theta: theta_cols.len(),
+                thetadot: v.len(),
+            }));
         }
     }
     let mut trajectory = Trajectory {
@@ -82,14 +85,14 @@ pub fn read_csv(path: &Path) -> Result<Trajectory, String> {
     };
     for (row, record) in reader.records().enumerate() {
         let line = row + 2;
-        let record = record.map_err(|e| at(format!("line {line}: {e}")))?;
-        let number = |col: usize| -> Result<f64, String> {
+        let record = record.map_err(|e| at_line(Some(line))(e.into()))?;
+        let number = |col: usize| -> Result<f64, TrajectoryFileError> {
             let field = record.get(col).unwrap_or("");
             field.parse::<f64>().map_err(|_| {
-                at(format!(
-                    "line {line}: column \"{}\" is \"{field}\", not a number",
-                    &header[col]
-                ))
+                at_line(Some(line))(TrajectoryProblem::NotANumber {
+                    column: header[col].to_string(),
+                    value: field.to_string(),
+                })
             })
         };
         let numbers = |cols: &[usize]| {
@@ -122,7 +125,7 @@ pub fn score_row(record: &RunRecord, source: &str, git_rev: &str) -> RunRow {
 mod tests {
     use super::*;
 
-    fn read(text: &str) -> Result<Trajectory, String> {
+    fn read(text: &str) -> Result<Trajectory, TrajectoryFileError> {
         let dir = std::env::temp_dir().join(format!("driftbench-traj-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join(format!("{}.csv", text.len()));
@@ -144,15 +147,17 @@ mod tests {
 
     #[test]
     fn bad_files_are_refused_with_the_line_and_column() {
-        let e = read("t,theta_1,x\n0,1,2\n").unwrap_err();
+        let e = read("t,theta_1,x\n0,1,2\n").unwrap_err().to_string();
         assert!(e.contains("unknown column \"x\""), "{e}");
-        let e = read("t,theta_1,theta_3\n0,1,2\n").unwrap_err();
+        let e = read("t,theta_1,theta_3\n0,1,2\n").unwrap_err().to_string();
         assert!(e.contains("numbered 1 .. n without gaps"), "{e}");
-        let e = read("t,theta_1\n0,1\n0.1,abc\n").unwrap_err();
+        let e = read("t,theta_1\n0,1\n0.1,abc\n").unwrap_err().to_string();
         assert!(e.contains("line 3: column \"theta_1\" is \"abc\""), "{e}");
-        let e = read("theta_1\n1\n").unwrap_err();
+        let e = read("theta_1\n1\n").unwrap_err().to_string();
         assert!(e.contains("no column \"t\""), "{e}");
-        let e = read("t,theta_1,theta_2,thetadot_1\n0,1,2,3\n").unwrap_err();
+        let e = read("t,theta_1,theta_2,thetadot_1\n0,1,2,3\n")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("2 theta_i columns but 1 thetadot_i"), "{e}");
     }
 }

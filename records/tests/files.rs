@@ -21,7 +21,7 @@ fn read_edited_runs(
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join(format!("{name}.csv"));
     std::fs::write(&path, edit(head).join("\n") + "\n").unwrap();
-    let result = records::runs::read_runs(&path);
+    let result = records::runs::read_runs(&path).map_err(|e| e.to_string());
     (path, result)
 }
 
@@ -82,7 +82,7 @@ fn a_corrupt_runs_csv_is_an_error_never_an_empty_list() {
     let missing = std::env::temp_dir()
         .join("driftbench-no-such-dir")
         .join("runs.csv");
-    let err = read_runs(&missing).expect_err("missing file");
+    let err = read_runs(&missing).expect_err("missing file").to_string();
     assert!(err.contains("runs.csv"), "{err}");
 }
 

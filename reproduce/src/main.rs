@@ -190,11 +190,11 @@ fn resolve_dirs(mut cli: Cli) -> Result<Cli, String> {
         .unwrap_or_else(|| root.join("experiments"));
     cli.shard_resolved = match cli.shard.as_deref() {
         None => None,
-        Some("auto") => Some(records::shard::Shard::from_env(
-            |v| std::env::var(v).ok(),
-            cli.shards,
-        )?),
-        Some(kn) => Some(records::shard::Shard::parse(kn)?),
+        Some("auto") => Some(
+            records::shard::Shard::from_env(|v| std::env::var(v).ok(), cli.shards)
+                .map_err(|e| e.to_string())?,
+        ),
+        Some(kn) => Some(records::shard::Shard::parse(kn).map_err(|e| e.to_string())?),
     };
     let results = match cli.shard_resolved {
         Some(s) => s.dir_name(),
@@ -247,8 +247,10 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
     }
     let git_rev = simulation::root::git_revision(&cli.project_root);
     if let (Some(file), Some(task)) = (&cli.score, &cli.task) {
-        let task = presentation::score::find_task(&cli.experiments_dir, task)?;
-        let s = presentation::score::score_file(&task, file, &cli.score_out, &git_rev)?;
+        let task = presentation::score::find_task(&cli.experiments_dir, task)
+            .map_err(|e| e.to_string())?;
+        let s = presentation::score::score_file(&task, file, &cli.score_out, &git_rev)
+            .map_err(|e| e.to_string())?;
         print_summary(std::slice::from_ref(&s.row));
         eprintln!(
             "wrote {}, {} and {}",
@@ -350,13 +352,14 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
     };
     // A shard directory is finished only once its manifest is written again, at the end.
     if cli.shard_resolved.is_some() && results.is_some() {
-        records::shard::Manifest::remove(&cli.results_dir)?;
+        records::shard::Manifest::remove(&cli.results_dir).map_err(|e| e.to_string())?;
     }
     // Resume: fold the journal of an interrupted run into runs.csv; the runs it holds from this
     // code revision are not run again (records::journal).
     let mut to_run: Vec<Job> = jobs.clone();
     if let (Some(results), Some((kept, _))) = (&results, stored.as_mut()) {
-        let recovered = records::journal::recover(results.path(), &git_rev)?;
+        let recovered =
+            records::journal::recover(results.path(), &git_rev).map_err(|e| e.to_string())?;
         for r in &recovered.other_revision {
             eprintln!(
                 "not folded from {}: {} (written by revision {}, this is {git_rev}); it is run again",
@@ -390,7 +393,7 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
                 before - to_run.len()
             );
         }
-        records::journal::remove(results.path())?;
+        records::journal::remove(results.path()).map_err(|e| e.to_string())?;
     }
     let journal = results
         .as_ref()
@@ -403,7 +406,8 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
                 .max();
             records::journal::Journal::open(r, &git_rev, joints.unwrap_or(0))
         })
-        .transpose()?;
+        .transpose()
+        .map_err(|e| e.to_string())?;
     // The journal writes each run's trace as the run finishes; the runs it could not
     // checkpoint are remembered, and only their traces are written again at the end.
     let unjournaled = std::sync::Mutex::new(HashSet::new());
@@ -445,17 +449,19 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
             .filter(|r| unjournaled.contains(&r.job.key()))
             .collect();
         write_results(results, &untraced, kept, &pruned, rows)?;
-        records::journal::remove(results.path())?;
+        records::journal::remove(results.path()).map_err(|e| e.to_string())?;
         if let Some(shard) = cli.shard_resolved {
             records::shard::Manifest {
                 shard: shard.k,
                 shards: shard.n,
                 git_rev: git_rev.clone(),
-                experiments_hash: records::shard::experiments_hash(&cli.experiments_dir)?,
+                experiments_hash: records::shard::experiments_hash(&cli.experiments_dir)
+                    .map_err(|e| e.to_string())?,
                 runs: jobs.iter().map(|j| j.key().to_string()).collect(),
                 selection: selection(&cli),
             }
-            .write(&cli.results_dir)?;
+            .write(&cli.results_dir)
+            .map_err(|e| e.to_string())?;
             eprintln!(
                 "shard {shard} done: merge with `reproduce --merge {}...`",
                 cli.results_dir.display()
@@ -545,7 +551,7 @@ fn explain(
     let Some(results) = results else {
         return Ok(());
     };
-    explain::write(results.path(), &explained, all)?;
+    explain::write(results.path(), &explained, all).map_err(|e| e.to_string())?;
     results.save().map_err(|e| e.to_string())?;
     eprintln!(
         "wrote {} ladder rows and {} attribution rows",
@@ -605,7 +611,7 @@ fn infer(cli: &Cli, which: &str, jobs: &[Job], results: Option<&ResultsDir>) -> 
         // tables it finished.
         let (r, e) = rows(&p, &f);
         if let Some(results) = results {
-            explain::write_inference(results.path(), &r, &e)?;
+            explain::write_inference(results.path(), &r, &e).map_err(|e| e.to_string())?;
             results.save().map_err(|e| e.to_string())?;
         }
     }
@@ -764,18 +770,20 @@ fn check_report_dir(root: &Path) -> Result<(), String> {
     report
         .resolve(Path::new(presentation::figures::FIGURES))
         .map_err(|e| e.to_string())?;
-    records::runs::check_writable(report.path())
+    records::runs::check_writable(report.path()).map_err(|e| e.to_string())
 }
 
 /// Figures first (the report links them), then REPORT.md, then the leaderboard table (recorded
 /// in the results directory's manifest).
 fn render_report(cli: &Cli, root: &std::path::Path, results: &ResultsDir) -> Result<(), String> {
-    let figures = presentation::figures::render_all(root)?;
-    let report = presentation::report::render(root, &cli.project_root.join("papers"))?;
+    let figures = presentation::figures::render_all(root).map_err(|e| e.to_string())?;
+    let report = presentation::report::render(root, &cli.project_root.join("papers"))
+        .map_err(|e| e.to_string())?;
     records::leaderboard::write(
         results.path(),
         &results.read_runs().map_err(|e| e.to_string())?,
-    )?;
+    )
+    .map_err(|e| e.to_string())?;
     results.save().map_err(|e| e.to_string())?;
     eprintln!("wrote {} figures and {}", figures.len(), report.display());
     Ok(())
@@ -808,7 +816,8 @@ fn merge_shards(
         .merge
         .iter()
         .map(|d| records::shard::read_shard(d, edits))
-        .collect::<Result<Vec<_>, _>>()?;
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| e.to_string())?;
     let sel = shards
         .first()
         .map(|s| s.manifest.selection.clone())
@@ -817,8 +826,8 @@ fn merge_shards(
         .iter()
         .map(|j| j.key().to_string())
         .collect();
-    let hash = records::shard::experiments_hash(&cli.experiments_dir)?;
-    records::shard::check_shards(&shards, &expected, &hash)?;
+    let hash = records::shard::experiments_hash(&cli.experiments_dir).map_err(|e| e.to_string())?;
+    records::shard::check_shards(&shards, &expected, &hash).map_err(|e| e.to_string())?;
     let results = open_results(cli, git_rev)?;
     let described = described_keys(all);
     let (kept, pruned) = results
@@ -829,7 +838,7 @@ fn merge_shards(
             &cli.experiments_dir,
         )
         .map_err(|e| e.to_string())?;
-    let traces = records::shard::copy_traces(&shards, &results)?;
+    let traces = records::shard::copy_traces(&shards, &results).map_err(|e| e.to_string())?;
     let rows: Vec<RunRow> = shards.iter().flat_map(|s| s.rows.clone()).collect();
     let unexpected: Vec<String> = rows
         .iter()

@@ -199,7 +199,7 @@ fn shard_lists_partition_the_selection() {
             .unwrap());
         String::from_utf8_lossy(&out.stdout)
             .lines()
-            .filter(|l| l.trim_start().split_whitespace().nth(2) == Some("exact"))
+            .filter(|l| l.split_whitespace().nth(2) == Some("exact"))
             .count()
     };
     let all = count(&[]);

@@ -1,8 +1,10 @@
 //! Desired paths and the four papers' redundancy-resolution schemes, each turning
 //! (t, robot state) into one QP ([`qp::Qp`], which the solvers take).
 
+pub use error::QpError;
 pub use qp::{KktResiduals, Qp, QpDims, QpDuals};
 
+pub mod error;
 pub mod jia2019;
 pub mod joint_limits;
 pub mod kong2019;

@@ -16,6 +16,7 @@
 //! primal        A x = b, G x <= h, l <= x <= u,
 //! complementarity mu_i (h - Gx)_i = 0, z_l (x - l) = 0, z_u (u - x) = 0.
 
+use crate::error::QpError;
 use nalgebra::{DMatrix, DVector};
 
 /// Sizes of a QP: variables, equality rows, inequality rows.
@@ -85,7 +86,7 @@ impl Qp {
     /// Checks the data: every matrix and vector of the sizes q, b and h imply, P, q, A, b and G
     /// finite, and the one-sided data on its own side (h_i, u_i never -inf, l_i never +inf; no
     /// NaN). The message names the offending field.
-    pub fn validate(&self) -> Result<(), String> {
+    pub fn validate(&self) -> Result<(), QpError> {
         let (nx, n_eq, n_in) = (self.q.len(), self.b.len(), self.h.len());
         let shapes = [
             ("P", self.p.shape(), (nx, nx)),
@@ -96,7 +97,11 @@ impl Qp {
         ];
         for (name, got, want) in shapes {
             if got != want {
-                return Err(format!("{name} is {got:?}, expected {want:?}"));
+                return Err(QpError::Shape {
+                    field: name,
+                    got,
+                    expected: want,
+                });
             }
         }
         let finite = [
@@ -108,7 +113,7 @@ impl Qp {
         ];
         for (name, data) in finite {
             if data.iter().any(|v| !v.is_finite()) {
-                return Err(format!("{name} has a non-finite entry"));
+                return Err(QpError::NonFinite { field: name });
             }
         }
         let one_sided = [
@@ -118,7 +123,7 @@ impl Qp {
         ];
         for (name, data, wrong) in one_sided {
             if data.iter().any(|&v| v.is_nan() || v == wrong) {
-                return Err(format!("{name} has a NaN or {wrong} entry"));
+                return Err(QpError::WrongSide { field: name, wrong });
             }
         }
         Ok(())

@@ -734,8 +734,8 @@ impl<const N: usize> PreparedCase for Prepared<N> {
             Quantity::RunExact => self.run(Solver::Exact, &exact_settings()),
             Quantity::RunNetwork => {
                 let spec = self.network_spec.clone();
-                let dims = self.scheme.dims();
-                let build = move || build_solver(&spec, dims);
+                let (dims, scheme) = (self.scheme.dims(), self.scheme.name());
+                let build = move || crate::run::build_network(&spec, dims, &scheme);
                 self.run(Solver::Network(&build), &network_settings());
             }
         }

@@ -9,6 +9,7 @@
 //! written. A variant with a `sweep` table stands for many (the grammar: [`crate::sweep`]).
 //! Every run an experiment file describes is a [`Job`].
 
+use crate::error::{ExperimentError, ExperimentFileError, FieldAt, FieldError, TomlError};
 use crate::naming::{slug, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
 use crate::run::JobPart;
 use crate::run_key::{RunKey, TaskKey, EXACT_ID};
@@ -241,49 +242,33 @@ impl Job {
     }
 }
 
-/// A problem with an experiment file, naming the file and the field.
-#[derive(Debug)]
-pub struct ExperimentFileError {
-    pub file: PathBuf,
-    pub message: String,
-}
-
-impl std::fmt::Display for ExperimentFileError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{}: {}", self.file.display(), self.message)
-    }
-}
-
-impl std::error::Error for ExperimentFileError {}
-
 impl PaperFile {
     /// Reads and validates one experiment file: everything a run would reject is rejected here,
     /// before anything runs (see [`PaperFile::validate`]).
     pub fn load(path: &Path) -> Result<Self, ExperimentFileError> {
-        let err = |message: String| ExperimentFileError {
+        let text = std::fs::read_to_string(path).map_err(|source| ExperimentFileError::Read {
             file: path.to_path_buf(),
-            message,
-        };
-        let text = std::fs::read_to_string(path).map_err(|e| err(format!("cannot read: {e}")))?;
-        Self::from_toml(&text).map_err(err)
+            source,
+        })?;
+        Self::from_toml(&text).map_err(|error| ExperimentFileError::Invalid {
+            file: path.to_path_buf(),
+            error,
+        })
     }
 
     /// Parses and validates the text of an experiment file (errors without the file name;
     /// [`PaperFile::load`] adds it).
-    pub fn from_toml(text: &str) -> Result<Self, String> {
-        let trim = |e: toml::de::Error| e.to_string().trim_end().to_string();
-        let mut doc: toml::Table = toml::from_str(text).map_err(trim)?;
+    pub fn from_toml(text: &str) -> Result<Self, ExperimentError> {
+        let mut doc: toml::Table = toml::from_str(text).map_err(TomlError::from)?;
         // Sweeps (crate::sweep) expand at the TOML level; a file without one is read from its
         // text, so serde's errors keep their line numbers.
         let file: PaperFile = if crate::sweep::has_sweeps(&doc) {
             crate::sweep::expand_file(&mut doc, |v| {
-                Variant::deserialize(toml::Value::Table(v.clone()))
-                    .map(|_| ())
-                    .map_err(trim)
+                Variant::deserialize(toml::Value::Table(v.clone())).map(|_| ())
             })?;
-            PaperFile::deserialize(toml::Value::Table(doc)).map_err(trim)?
+            PaperFile::deserialize(toml::Value::Table(doc)).map_err(TomlError::from)?
         } else {
-            toml::from_str(text).map_err(trim)?
+            toml::from_str(text).map_err(TomlError::from)?
         };
         file.validate()?;
         Ok(file)
@@ -297,155 +282,146 @@ impl PaperFile {
     /// (the zeroing networks take equality-only QPs; a perturbation needs n + m = 9). Then the
     /// names: ids and labels that are unsafe as file names, experiment ids, variant labels and
     /// run keys that repeat, and slugs (file names of traces and figures) that collide.
-    fn validate(&self) -> Result<(), String> {
-        check_name(&self.paper, MAX_EXPERIMENT_ID, "field `paper`")?;
+    fn validate(&self) -> Result<(), ExperimentError> {
+        check_name(&self.paper, MAX_EXPERIMENT_ID, FieldAt::Paper)?;
         // Hash maps, not lists: a sweep of 10^6 variants is validated in linear time.
         let mut id_slugs: HashMap<String, &str> = HashMap::new();
         for (i, e) in self.experiments.iter().enumerate() {
-            let at = |field: &str| format!("experiment[{i}] (id \"{}\") field `{field}`", e.id);
-            check_name(&e.id, MAX_EXPERIMENT_ID, &at("id"))?;
+            let at = |field: &str| FieldAt::Experiment {
+                index: i,
+                id: e.id.clone(),
+                field: field.to_string(),
+            };
+            check_name(&e.id, MAX_EXPERIMENT_ID, at("id"))?;
             if !e.id.starts_with(&format!("{}-", self.paper)) {
-                return Err(format!(
-                    "{}: must start with the paper id \"{}-\"",
-                    at("id"),
-                    self.paper
-                ));
+                let paper = self.paper.clone();
+                return Err(field(at("id"), FieldError::PaperPrefix { paper }));
             }
             if let Some(other) = id_slugs.get(&slug(&e.id)) {
-                return Err(if *other == e.id {
-                    format!("{}: experiment id \"{}\" is used twice", at("id"), e.id)
-                } else {
-                    format!(
-                        "{}: \"{}\" and \"{other}\" have the same file name \"{}\" (results/traces/ and report/figures/); rename one",
-                        at("id"),
-                        e.id,
-                        slug(&e.id)
-                    )
-                });
+                let id = e.id.clone();
+                return Err(field(
+                    at("id"),
+                    if *other == e.id {
+                        FieldError::IdTwice { id }
+                    } else {
+                        FieldError::IdSlug {
+                            slug: slug(&id),
+                            id,
+                            other: other.to_string(),
+                        }
+                    },
+                ));
             }
             id_slugs.insert(slug(&e.id), &e.id);
-            let n = robot_dof(&e.robot).ok_or_else(|| {
-                format!(
-                    "{}: unknown robot \"{}\" (known: {})",
-                    at("robot"),
-                    e.robot,
-                    robot_names()
-                )
-            })?;
-            check_len(&e.theta0, n, &at("theta0"))?;
+            let n =
+                robot_dof(&e.robot).ok_or_else(|| field(at("robot"), unknown_robot(&e.robot)))?;
+            check_len(&e.theta0, n, at("theta0"))?;
             if let Some(r) = &e.theta_ref {
-                check_len(r, n, &at("theta_ref"))?;
+                check_len(r, n, at("theta_ref"))?;
             }
-            check_integrator(&e.integrator, &at("integrator"))?;
-            check_integrator(&e.exact_integrator, &at("exact_integrator"))?;
+            check_integrator(&e.integrator, at("integrator"))?;
+            check_integrator(&e.exact_integrator, at("exact_integrator"))?;
             if e.scoring == Scoring::MaxInstants(0) {
-                return Err(format!(
-                    "{}: max-instants must be at least 1 (use scoring = \"off\" for no scoring)",
-                    at("scoring")
-                ));
+                return Err(field(at("scoring"), FieldError::NoInstants));
             }
             if e.variants.is_empty() {
-                return Err(format!(
-                    "{}: at least one [[experiment.variant]] is needed",
-                    at("variant")
-                ));
+                return Err(field(at("variant"), FieldError::NoVariants));
             }
             let mut labels: HashSet<&str> = HashSet::new();
             let mut ids: HashMap<String, &str> = HashMap::new();
             let mut keys: HashSet<RunKey> = HashSet::new();
             for (j, v) in e.variants.iter().enumerate() {
-                let vat = |field: &str| {
-                    format!(
-                        "experiment[{i}] (id \"{}\") variant[{j}] (\"{}\") field `{field}`",
-                        e.id, v.label
-                    )
+                let vat = |field: &str| FieldAt::Variant {
+                    experiment: i,
+                    id: e.id.clone(),
+                    index: j,
+                    label: v.label.clone(),
+                    field: field.to_string(),
                 };
-                check_name(&v.label, MAX_VARIANT_LABEL, &vat("label"))?;
+                check_name(&v.label, MAX_VARIANT_LABEL, vat("label"))?;
                 if !labels.insert(&v.label) {
-                    return Err(format!(
-                        "{}: label \"{}\" is used by two variants of the experiment",
+                    return Err(field(
                         vat("label"),
-                        v.label
+                        FieldError::LabelTwice {
+                            label: v.label.clone(),
+                        },
                     ));
                 }
                 if let Some(id) = &v.id {
-                    check_name(id, MAX_VARIANT_LABEL, &vat("id"))?;
+                    check_name(id, MAX_VARIANT_LABEL, vat("id"))?;
                     if !schemes::slug::is_slug(id) {
-                        return Err(format!(
-                            "{}: \"{id}\" is not an id: use lower-case ASCII letters, digits, `.` and single `-` (e.g. \"{}\")",
+                        return Err(field(
                             vat("id"),
-                            slug(id)
+                            FieldError::NotAnId {
+                                id: id.clone(),
+                                suggestion: slug(id),
+                            },
                         ));
                     }
                 }
                 let id = v.id();
                 if let Some(other) = ids.get(&id) {
-                    return Err(format!(
-                        "{}: variants \"{}\" and \"{other}\" both have the id \"{id}\"{}; give one an `id`",
+                    return Err(field(
                         vat("id"),
-                        v.label,
-                        if v.id.is_none() { " (derived from the label)" } else { "" }
+                        FieldError::IdClash {
+                            label: v.label.clone(),
+                            other: other.to_string(),
+                            id,
+                            derived: v.id.is_none(),
+                        },
                     ));
                 }
                 ids.insert(id, &v.label);
                 let robot = v.robot.as_deref().unwrap_or(&e.robot);
-                let vn = robot_dof(robot).ok_or_else(|| {
-                    format!(
-                        "{}: unknown robot \"{robot}\" (known: {})",
-                        vat("robot"),
-                        robot_names()
-                    )
-                })?;
+                let vn =
+                    robot_dof(robot).ok_or_else(|| field(vat("robot"), unknown_robot(robot)))?;
                 if vn != n
                     && (v.theta0.is_none() || (e.theta_ref.is_some() && v.theta_ref.is_none()))
                 {
-                    return Err(format!(
-                        "{}: robot \"{robot}\" has {vn} joints; give theta0/theta_ref for it",
-                        vat("robot")
+                    return Err(field(
+                        vat("robot"),
+                        FieldError::RobotJoints {
+                            robot: robot.to_string(),
+                            joints: vn,
+                        },
                     ));
                 }
                 if let Some(t) = &v.theta0 {
-                    check_len(t, vn, &vat("theta0"))?;
+                    check_len(t, vn, vat("theta0"))?;
                 }
                 if let Some(t) = &v.theta_ref {
-                    check_len(t, vn, &vat("theta_ref"))?;
+                    check_len(t, vn, vat("theta_ref"))?;
                 }
                 if let Some(s) = &v.integrator {
-                    check_integrator(s, &vat("integrator"))?;
+                    check_integrator(s, vat("integrator"))?;
                 }
                 v.scheme
                     .validate()
-                    .map_err(|err| format!("{}: {err}", vat("scheme")))?;
+                    .map_err(|err| field(vat("scheme"), err))?;
                 if !v.exact && v.solvers.is_empty() {
-                    return Err(format!(
-                        "{}: variant runs nothing (exact = false and no solvers)",
-                        vat("solvers")
-                    ));
+                    return Err(field(vat("solvers"), FieldError::RunsNothing));
                 }
                 for (k, job) in self.variant_jobs(e, v).iter().enumerate() {
-                    crate::run::check_job(job).map_err(|e| {
-                        let (part, message) = (e.part(), e.to_string());
-                        let field = match (&part, &job.solver) {
-                            (JobPart::Solver, _) => {
-                                format!("solvers[{}]", k - usize::from(v.exact))
+                    crate::run::check_job(job).map_err(|err| {
+                        let place = match err.part() {
+                            JobPart::Solver => {
+                                vat(&format!("solvers[{}]", k - usize::from(v.exact)))
                             }
-                            (JobPart::Path, _) if v.path.is_some() => "path".to_string(),
-                            (JobPart::Path, _) => {
-                                return format!("{}: {message}", at("path"));
-                            }
-                            _ => part.field().to_string(),
+                            JobPart::Path if v.path.is_some() => vat("path"),
+                            JobPart::Path => at("path"),
+                            part => vat(part.field()),
                         };
-                        format!("{}: {message}", vat(&field))
+                        field(place, err)
                     })?;
-                    check_name(&job.solver.label(), MAX_SOLVER_LABEL, &vat("solvers"))?;
+                    check_name(&job.solver.label(), MAX_SOLVER_LABEL, vat("solvers"))?;
                     let key = job.key();
-                    if let Err(e) = key.check() {
-                        return Err(format!("{}: {e}", vat("solvers")));
-                    }
+                    key.check().map_err(|e| field(vat("solvers"), e))?;
                     if keys.contains(&key) {
-                        return Err(format!(
-                            "{}: run \"{key}\" is listed twice (experiment / variant / solver ids must be unique)",
+                        return Err(field(
                             vat("solvers"),
+                            FieldError::RunTwice {
+                                key: key.to_string(),
+                            },
                         ));
                     }
                     keys.insert(key);
@@ -457,10 +433,12 @@ impl PaperFile {
                         .map(|j| j.solver.kind().to_string())
                         .collect();
                     if let Some(bad) = f.solvers.iter().find(|s| !kinds.contains(s)) {
-                        return Err(format!(
-                            "{}: \"{bad}\" is not a solver kind of this variant (its runs: {})",
+                        return Err(field(
                             vat("expected_failure"),
-                            kinds.join(", ")
+                            FieldError::UnknownFailureKind {
+                                kind: bad.clone(),
+                                kinds: kinds.join(", "),
+                            },
                         ));
                     }
                 }
@@ -527,8 +505,23 @@ impl PaperFile {
 
 /// An id or label becomes a directory or file name (results/traces/<id>/<label>__<solver>.csv,
 /// report/figures/): see [`crate::naming::check_name`].
-fn check_name(name: &str, max: usize, at: &str) -> Result<(), String> {
-    crate::naming::check_name(name, max).map_err(|e| format!("{at}: {e}"))
+fn check_name(name: &str, max: usize, at: FieldAt) -> Result<(), ExperimentError> {
+    crate::naming::check_name(name, max).map_err(|e| field(at, e))
+}
+
+/// The error `error` at the field `at`.
+fn field(at: FieldAt, error: impl Into<FieldError>) -> ExperimentError {
+    ExperimentError::Field {
+        at: Box::new(at),
+        error: Box::new(error.into()),
+    }
+}
+
+fn unknown_robot(robot: &str) -> FieldError {
+    FieldError::UnknownRobot {
+        robot: robot.to_string(),
+        known: robot_names(),
+    }
 }
 
 /// Joint count of the robot called `name` (see [`crate::robot_registry`]).
@@ -547,29 +540,28 @@ fn robot_names() -> String {
         .join(", ")
 }
 
-fn check_len(v: &[f64], n: usize, at: &str) -> Result<(), String> {
+fn check_len(v: &[f64], n: usize, at: FieldAt) -> Result<(), ExperimentError> {
     if v.len() != n {
-        return Err(format!(
-            "{at}: has {} entries, the robot has {n} joints",
-            v.len()
-        ));
+        let given = v.len();
+        return Err(field(at, FieldError::Length { given, joints: n }));
     }
     if v.iter().any(|x| !x.is_finite()) {
-        return Err(format!("{at}: entries must be finite"));
+        return Err(field(at, FieldError::NotFinite));
     }
     Ok(())
 }
 
-fn check_integrator(s: &IntegratorSettings, at: &str) -> Result<(), String> {
-    s.validate().map_err(|e| format!("{at}: {e}"))
+fn check_integrator(s: &IntegratorSettings, at: FieldAt) -> Result<(), ExperimentError> {
+    s.validate()
+        .map_err(|e| field(at, FieldError::Integrator(e)))
 }
 
 /// Loads every `*.toml` of `dir`, sorted by file name, and checks what spans files: an
 /// experiment id (or its file name, the slug) is defined in one file only.
 pub fn load_dir(dir: &Path) -> Result<Vec<PaperFile>, ExperimentFileError> {
-    let entries = std::fs::read_dir(dir).map_err(|e| ExperimentFileError {
-        file: dir.to_path_buf(),
-        message: format!("cannot list: {e}"),
+    let entries = std::fs::read_dir(dir).map_err(|source| ExperimentFileError::List {
+        dir: dir.to_path_buf(),
+        source,
     })?;
     let mut paths: Vec<PathBuf> = entries
         .filter_map(|e| e.ok().map(|e| e.path()))
@@ -577,9 +569,8 @@ pub fn load_dir(dir: &Path) -> Result<Vec<PaperFile>, ExperimentFileError> {
         .collect();
     paths.sort();
     if paths.is_empty() {
-        return Err(ExperimentFileError {
-            file: dir.to_path_buf(),
-            message: "holds no experiment file (*.toml): nothing to run; give the directory of the experiment files (--experiments-dir)".to_string(),
+        return Err(ExperimentFileError::NoFiles {
+            dir: dir.to_path_buf(),
         });
     }
     let mut files = Vec::with_capacity(paths.len());
@@ -588,19 +579,22 @@ pub fn load_dir(dir: &Path) -> Result<Vec<PaperFile>, ExperimentFileError> {
         let file = PaperFile::load(path)?;
         for (i, e) in file.experiments.iter().enumerate() {
             if let Some((other, other_file)) = seen.get(&slug(&e.id)) {
-                let what = if *other == e.id {
-                    format!("\"{}\" is also defined in {}", e.id, other_file.display())
+                let (file, id, other_file) = (path.clone(), e.id.clone(), other_file.to_path_buf());
+                return Err(if *other == e.id {
+                    ExperimentFileError::DefinedTwice {
+                        file,
+                        index: i,
+                        id,
+                        other_file,
+                    }
                 } else {
-                    format!(
-                        "\"{}\" has the same file name \"{}\" as \"{other}\" of {}; rename one",
-                        e.id,
-                        slug(&e.id),
-                        other_file.display()
-                    )
-                };
-                return Err(ExperimentFileError {
-                    file: path.clone(),
-                    message: format!("experiment[{i}] (id \"{}\") field `id`: {what}", e.id),
+                    ExperimentFileError::SameFileName {
+                        file,
+                        index: i,
+                        id,
+                        other: other.clone(),
+                        other_file,
+                    }
                 });
             }
             seen.insert(slug(&e.id), (e.id.clone(), path));

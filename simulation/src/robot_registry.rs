@@ -10,6 +10,7 @@
 //! robots' `nlink-3 ..= nlink-30` in eight steps (a cost-versus-joints curve needs a spread of N,
 //! not every N). Adding an N is one entry in that list and in `visit`'s.
 
+use crate::error::JointCountError;
 use nalgebra::{SVector, Vector3};
 use robots::{Dynamics, Jaco2, Katana6m180, NLink, Panda, Robot};
 use std::sync::Arc;
@@ -111,13 +112,16 @@ macro_rules! visit_nlink {
 }
 
 /// `theta` as the joint vector of `robot`, or an error naming both counts.
-fn angles<const N: usize>(robot: &dyn Robot<N>, theta: &[f64]) -> Result<SVector<f64, N>, String> {
+fn angles<const N: usize>(
+    robot: &dyn Robot<N>,
+    theta: &[f64],
+) -> Result<SVector<f64, N>, JointCountError> {
     if theta.len() != N {
-        return Err(format!(
-            "{}: {} joint angles given, the robot has {N} joints",
-            robot.name(),
-            theta.len()
-        ));
+        return Err(JointCountError {
+            robot: robot.name(),
+            given: theta.len(),
+            joints: N,
+        });
     }
     Ok(SVector::from_column_slice(theta))
 }
@@ -193,10 +197,10 @@ impl AnyRobot {
 
     /// The arm's points from the base to the task point at joint angles `theta` (see
     /// [`Robot::skeleton`]); an error if `theta` does not have [`Self::dof`] entries.
-    pub fn skeleton(&self, theta: &[f64]) -> Result<Vec<Vector3<f64>>, String> {
+    pub fn skeleton(&self, theta: &[f64]) -> Result<Vec<Vector3<f64>>, JointCountError> {
         struct Skeleton<'a>(&'a [f64]);
         impl RobotVisitor for Skeleton<'_> {
-            type Output = Result<Vec<Vector3<f64>>, String>;
+            type Output = Result<Vec<Vector3<f64>>, JointCountError>;
             fn visit<const N: usize>(
                 self,
                 robot: Arc<dyn Robot<N>>,
@@ -210,10 +214,10 @@ impl AnyRobot {
 
     /// Tip position and the singular values of J at `theta` (the check values `reproduce
     /// --robots` prints); an error if `theta` does not have [`Self::dof`] entries.
-    pub fn check_values(&self, theta: &[f64]) -> Result<(Vector3<f64>, Vec<f64>), String> {
+    pub fn check_values(&self, theta: &[f64]) -> Result<(Vector3<f64>, Vec<f64>), JointCountError> {
         struct Check<'a>(&'a [f64]);
         impl RobotVisitor for Check<'_> {
-            type Output = Result<(Vector3<f64>, Vec<f64>), String>;
+            type Output = Result<(Vector3<f64>, Vec<f64>), JointCountError>;
             fn visit<const N: usize>(
                 self,
                 robot: Arc<dyn Robot<N>>,

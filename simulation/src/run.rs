@@ -12,7 +12,7 @@ use schemes::qp::QpDims;
 use schemes::scheme::Scheme;
 use schemes::spec::build_scheme;
 use solvers::exact_path::ExactPathStats;
-use solvers::neural::NeuralSolver;
+use solvers::neural::{NeuralSolver, SolverSpec};
 use solvers::ode::OdeStats;
 use std::sync::Arc;
 
@@ -24,7 +24,22 @@ pub struct RunRecord {
 }
 
 /// Builds a network written outside the suite for the QP sizes of a task's scheme.
-pub type NetworkBuilder<'a> = &'a dyn Fn(QpDims) -> Result<Box<dyn NeuralSolver>, String>;
+/// Its error is the run's setup error ([`SetupError::CustomNetwork`] for its own message).
+pub type NetworkBuilder<'a> = &'a dyn Fn(QpDims) -> Result<Box<dyn NeuralSolver>, SetupError>;
+
+/// The suite's network `spec` for the QPs (of sizes `dims`) of the scheme named `scheme`; the
+/// error names the network and the scheme.
+pub fn build_network(
+    spec: &SolverSpec,
+    dims: QpDims,
+    scheme: &str,
+) -> Result<Box<dyn NeuralSolver>, SetupError> {
+    solvers::neural::build_solver(spec, dims).map_err(|error| SetupError::Network {
+        network: spec.display_name(),
+        scheme: scheme.to_string(),
+        error,
+    })
+}
 
 /// Runs one job to completion or failure; never panics on bad numerics.
 pub fn run_job(job: &Job) -> RunRecord {
@@ -125,13 +140,7 @@ pub fn check_job(job: &Job) -> Result<(), SetupError> {
         }
         let (_, scheme) = build_parts::<N>(job, robot, dynamics)?;
         if let SolverChoice::Neural(spec) = &job.solver {
-            solvers::neural::build_solver(spec, scheme.dims()).map_err(|e| {
-                SetupError::Network(format!(
-                    "{}: {e} (scheme {})",
-                    spec.display_name(),
-                    scheme.name()
-                ))
-            })?;
+            build_network(spec, scheme.dims(), &scheme.name())?;
         }
         Ok(())
     }
@@ -210,9 +219,8 @@ fn run_with<const N: usize>(
     let theta_ref = SVector::<f64, N>::from_column_slice(&job.theta_ref);
     let (path, scheme) = build_parts::<N>(job, robot.clone(), dynamics)?;
     let dims = scheme.dims();
-    let network = |spec: &solvers::neural::SolverSpec| {
-        solvers::neural::build_solver(spec, dims).map_err(|e| e.to_string())
-    };
+    let scheme_name = scheme.name();
+    let network = |spec: &SolverSpec| build_network(spec, dims, &scheme_name);
     let (build, build_custom);
     let solver = match (custom, &job.solver) {
         (Some(custom), _) => {

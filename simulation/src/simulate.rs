@@ -34,7 +34,7 @@ pub enum Solver<'a> {
     /// A recurrent network integrated together with the arm, scored against the exact optimum
     /// at every accepted step. The closure builds it (called twice: the network, and a probe
     /// that reads the network's own error at accepted states).
-    Network(&'a dyn Fn() -> Result<Box<dyn NeuralSolver>, String>),
+    Network(&'a dyn Fn() -> Result<Box<dyn NeuralSolver>, SetupError>),
 }
 
 /// Where a network run is compared with the exact optimum (one exact QP solve each).
@@ -177,7 +177,7 @@ pub fn simulate<const N: usize>(
             )
         }
         Solver::Network(build) => {
-            let network = build().map_err(SetupError::Network)?;
+            let network = build()?;
             let mut sys = NeuralLoop::new(scheme, network);
             let k = sys.net_offset();
             let mut y0 = vec![0.0; sys.dim()];
@@ -196,7 +196,7 @@ pub fn simulate<const N: usize>(
                 y0[k..k + x0.len()].copy_from_slice(x0.as_slice());
             }
             // A second instance of the network, to read its own error at accepted states.
-            let mut probe = build().map_err(SetupError::Network)?;
+            let mut probe = build()?;
             let mut failures = 0usize;
             let mut next_score_t = 0.0;
             let result = integrate(&mut sys, &y0, 0.0, t1, &settings.integrator, |t, y| {

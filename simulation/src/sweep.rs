@@ -57,10 +57,11 @@
 //! that is neither a list nor a range, a bad range, a zipped value of the wrong length, a
 //! placeholder that names no swept key, and two expanded variants with the same label.
 
+use crate::error::{KeyPathError, RangeError, SweepError, SweepKeyError};
 use toml::{Table, Value};
 
 /// The fields of a variant a sweep may set (`label` is the template, not a parameter).
-const VARIANT_FIELDS: &[&str] = &[
+pub(crate) const VARIANT_FIELDS: &[&str] = &[
     "scheme",
     "solvers",
     "exact",
@@ -103,8 +104,8 @@ fn variants(e: &Table) -> impl Iterator<Item = &Table> {
 /// variant as the experiment file does (a misspelt swept field fails there).
 pub fn expand_file(
     doc: &mut Table,
-    check: impl Fn(&Table) -> Result<(), String>,
-) -> Result<(), String> {
+    check: impl Fn(&Table) -> Result<(), toml::de::Error>,
+) -> Result<(), SweepError> {
     let Some(Value::Array(exps)) = doc.get_mut("experiment") else {
         return Ok(());
     };
@@ -127,15 +128,25 @@ pub fn expand_file(
                         .and_then(Value::as_str)
                         .unwrap_or("?")
                         .to_string();
-                    let at = format!("experiment[{i}] (id \"{id}\") variant[{j}] (\"{label}\")");
-                    let expanded = expand_variant(&t).map_err(|e| format!("{at} {e}"))?;
+                    let at = |error| SweepError::In {
+                        experiment: i,
+                        id: id.clone(),
+                        variant: j,
+                        label: label.clone(),
+                        error: Box::new(error),
+                    };
+                    let expanded = expand_variant(&t).map_err(at)?;
                     if let Some(first) = expanded.first() {
-                        check(first).map_err(|err| {
-                            format!(
-                                "{at} field `sweep`: the expanded variant \"{}\" does not read: {err} (check the swept keys: {})",
-                                first.get("label").and_then(Value::as_str).unwrap_or("?"),
-                                sweep_keys(&t).join(", ")
-                            )
+                        check(first).map_err(|error| {
+                            at(SweepError::DoesNotRead {
+                                expanded: first
+                                    .get("label")
+                                    .and_then(Value::as_str)
+                                    .unwrap_or("?")
+                                    .to_string(),
+                                error: error.into(),
+                                keys: sweep_keys(&t),
+                            })
                         })?;
                     }
                     out.extend(expanded.into_iter().map(Value::Table));
@@ -166,36 +177,31 @@ struct Axis {
 
 /// Expands one variant table (with its `sweep`) into the variants of the product. Errors start
 /// with the field (`field `sweep` key `...``), the caller prefixes experiment and variant.
-pub fn expand_variant(variant: &Table) -> Result<Vec<Table>, String> {
+pub fn expand_variant(variant: &Table) -> Result<Vec<Table>, SweepError> {
     let mut base = variant.clone();
     let sweep = match base.remove("sweep") {
         Some(Value::Table(s)) => s,
         Some(other) => {
-            return Err(format!(
-                "field `sweep`: must be a table of dotted keys and value lists, e.g. sweep = {{ \"scheme.mu\" = [0.5, 1, 2] }} (got {})",
-                other.type_str()
-            ))
+            return Err(SweepError::NotATable {
+                got: other.type_str(),
+            })
         }
         None => return Ok(vec![base]),
     };
     if sweep.is_empty() {
-        return Err("field `sweep`: is empty (give at least one key)".to_string());
+        return Err(SweepError::Empty);
     }
     let template = match base.get("label") {
         Some(Value::String(s)) => s.clone(),
-        _ => return Err(
-            "field `label`: a sweep variant needs a label (the template of the generated labels)"
-                .to_string(),
-        ),
+        _ => return Err(SweepError::NoLabel),
     };
     let id_template = match base.get("id") {
         None => None,
         Some(Value::String(s)) => Some(s.clone()),
         Some(other) => {
-            return Err(format!(
-                "field `id`: must be a string, not {}",
-                other.type_str()
-            ))
+            return Err(SweepError::IdNotAString {
+                got: other.type_str(),
+            })
         }
     };
     let mut axes = Vec::with_capacity(sweep.len());
@@ -206,7 +212,7 @@ pub fn expand_variant(variant: &Table) -> Result<Vec<Table>, String> {
         .iter()
         .try_fold(1usize, |n, a| n.checked_mul(a.values.len()))
         .filter(|n| *n <= MAX_EXPANSION)
-        .ok_or_else(|| format!("field `sweep`: expands into more than {MAX_EXPANSION} variants"))?;
+        .ok_or(SweepError::TooMany { max: MAX_EXPANSION })?;
     let names = placeholder_names(&axes);
     check_template(&template, &names)?;
     let mut out: Vec<Table> = Vec::with_capacity(total);
@@ -229,10 +235,12 @@ pub fn expand_variant(variant: &Table) -> Result<Vec<Table>, String> {
         }
         let label = make_label(&template, &axes, &idx, &names);
         if let Some(m) = labels.get(&label) {
-            return Err(format!(
-                "field `sweep`: expanded variants {m} and {n} both get the label \"{label}\"; the label template must tell every value of every key apart (keys: {})",
-                axes.iter().map(|a| format!("`{}`", a.key)).collect::<Vec<_>>().join(", ")
-            ));
+            return Err(SweepError::SameLabel {
+                first: *m,
+                second: n,
+                label,
+                keys: axes.iter().map(|a| format!("`{}`", a.key)).collect(),
+            });
         }
         if let Some(id) = &id_template {
             t.insert("id".to_string(), Value::String(make_id(id, &axes, &idx)));
@@ -244,31 +252,27 @@ pub fn expand_variant(variant: &Table) -> Result<Vec<Table>, String> {
     Ok(out)
 }
 
-fn parse_axis(base: &Table, key: &str, val: &Value) -> Result<Axis, String> {
-    let at = format!("field `sweep` key `{key}`");
+fn parse_axis(base: &Table, key: &str, val: &Value) -> Result<Axis, SweepError> {
+    let at = |error| SweepError::Key {
+        key: key.to_string(),
+        error,
+    };
     let paths: Vec<Vec<String>> = key
         .split(',')
         .map(|p| p.trim().split('.').map(|s| s.trim().to_string()).collect())
         .collect();
     for path in &paths {
-        check_path(base, path).map_err(|e| format!("{at}: {e}"))?;
+        check_path(base, path).map_err(|e| at(SweepKeyError::Path(e)))?;
     }
     let raw: Vec<Value> = match val {
-        Value::Array(a) if a.is_empty() => {
-            return Err(format!("{at}: the list of values is empty"))
-        }
+        Value::Array(a) if a.is_empty() => return Err(at(SweepKeyError::NoValues)),
         Value::Array(a) => a.clone(),
-        Value::Table(t) if paths.len() == 1 => range(t).map_err(|e| format!("{at}: {e}"))?,
+        Value::Table(t) if paths.len() == 1 => range(t).map_err(|e| at(e.into()))?,
         other => {
-            return Err(format!(
-                "{at}: must be a list of values{} (got {})",
-                if paths.len() == 1 {
-                    " or a range { from = a, to = b, step = s }"
-                } else {
-                    " (each a list with one entry per path of the group)"
-                },
-                other.type_str()
-            ))
+            return Err(at(SweepKeyError::NotAList {
+                group: paths.len() != 1,
+                got: other.type_str(),
+            }))
         }
     };
     let mut values = Vec::with_capacity(raw.len());
@@ -279,7 +283,7 @@ fn parse_axis(base: &Table, key: &str, val: &Value) -> Result<Axis, String> {
             {
                 let text = match t.get("label") {
                     Some(Value::String(s)) => s.clone(),
-                    _ => return Err(format!("{at}: value [{k}]: `label` must be a string")),
+                    _ => return Err(at(SweepKeyError::LabelNotString { index: k })),
                 };
                 (t["value"].clone(), Some(text))
             }
@@ -291,11 +295,11 @@ fn parse_axis(base: &Table, key: &str, val: &Value) -> Result<Axis, String> {
             match v {
                 Value::Array(a) if a.len() == paths.len() => a,
                 other => {
-                    return Err(format!(
-                        "{at}: value [{k}] must be a list of {} entries, one per path of the group (got {})",
-                        paths.len(),
-                        display(&other)
-                    ))
+                    return Err(at(SweepKeyError::GroupValue {
+                        index: k,
+                        paths: paths.len(),
+                        got: display(&other),
+                    }))
                 }
             }
         };
@@ -310,18 +314,17 @@ fn parse_axis(base: &Table, key: &str, val: &Value) -> Result<Axis, String> {
 
 /// A path is known when its first segment is a variant field and every table or array on the
 /// way is there (the last segment may be new in a table).
-fn check_path(base: &Table, path: &[String]) -> Result<(), String> {
+fn check_path(base: &Table, path: &[String]) -> Result<(), KeyPathError> {
     let first = &path[0];
     if path.iter().any(String::is_empty) {
-        return Err("unknown key path: an empty segment".to_string());
+        return Err(KeyPathError::EmptySegment);
     }
     if !VARIANT_FIELDS.contains(&first.as_str()) {
-        return Err(format!(
-            "unknown key path: `{first}` is not a field of a variant (fields: {})",
-            VARIANT_FIELDS.join(", ")
-        ));
+        return Err(KeyPathError::NotAField {
+            first: first.clone(),
+        });
     }
-    fn walk(v: Option<&Value>, rest: &[String], done: &str) -> Result<(), String> {
+    fn walk(v: Option<&Value>, rest: &[String], done: &str) -> Result<(), KeyPathError> {
         let Some((seg, rest)) = rest.split_first() else {
             return Ok(());
         };
@@ -333,38 +336,43 @@ fn check_path(base: &Table, path: &[String]) -> Result<(), String> {
                 } else {
                     match t.get(seg.as_str()) {
                         Some(x) => walk(Some(x), rest, &here),
-                        None => Err(format!(
-                            "unknown key path: `{done}` has no `{seg}` (give it on the variant to sweep inside it)"
-                        )),
+                        None => Err(KeyPathError::NoKey {
+                            done: done.to_string(),
+                            segment: seg.clone(),
+                        }),
                     }
                 }
             }
             Some(Value::Array(a)) => {
                 if seg == "*" {
                     if a.is_empty() {
-                        return Err(format!("unknown key path: `{done}` is an empty list"));
+                        return Err(KeyPathError::EmptyList {
+                            done: done.to_string(),
+                        });
                     }
                     a.iter().try_for_each(|x| walk(Some(x), rest, &here))
                 } else {
-                    let i: usize = seg.parse().map_err(|_| {
-                        format!("unknown key path: `{done}` is a list: index it with 0, 1, ... or `*`, not `{seg}`")
+                    let i: usize = seg.parse().map_err(|_| KeyPathError::BadIndex {
+                        done: done.to_string(),
+                        segment: seg.clone(),
                     })?;
                     match a.get(i) {
                         Some(x) => walk(Some(x), rest, &here),
-                        None => Err(format!(
-                            "unknown key path: `{done}` has {} entries, no [{i}]",
-                            a.len()
-                        )),
+                        None => Err(KeyPathError::NoEntry {
+                            done: done.to_string(),
+                            len: a.len(),
+                            index: i,
+                        }),
                     }
                 }
             }
-            Some(other) => Err(format!(
-                "unknown key path: `{done}` is a {}, not a table or a list",
-                other.type_str()
-            )),
-            None => Err(format!(
-                "unknown key path: the variant gives no `{done}` (write it on the variant, e.g. {done} = {{ ... }}, to sweep inside it)"
-            )),
+            Some(other) => Err(KeyPathError::NotContainer {
+                done: done.to_string(),
+                kind: other.type_str(),
+            }),
+            None => Err(KeyPathError::Missing {
+                done: done.to_string(),
+            }),
         }
     }
     walk(base.get(first.as_str()), &path[1..], first)
@@ -437,15 +445,15 @@ fn placeholders(template: &str) -> Vec<String> {
     out
 }
 
-fn check_template(template: &str, names: &[(String, usize, usize)]) -> Result<(), String> {
+fn check_template(template: &str, names: &[(String, usize, usize)]) -> Result<(), SweepError> {
     for p in placeholders(template) {
         if !names.iter().any(|(n, _, _)| *n == p) {
-            let mut known: Vec<&str> = names.iter().map(|(n, _, _)| n.as_str()).collect();
+            let mut known: Vec<String> = names.iter().map(|(n, _, _)| n.clone()).collect();
             known.dedup();
-            return Err(format!(
-                "field `label`: placeholder {{{p}}} names no swept key (known: {})",
-                known.join(", ")
-            ));
+            return Err(SweepError::Placeholder {
+                placeholder: p,
+                known,
+            });
         }
     }
     Ok(())
@@ -525,33 +533,34 @@ pub fn display(v: &Value) -> String {
 }
 
 /// The values of a range table `{ from, to, step }`.
-fn range(t: &Table) -> Result<Vec<Value>, String> {
+fn range(t: &Table) -> Result<Vec<Value>, RangeError> {
     let keys: Vec<&str> = t.keys().map(String::as_str).collect();
     if keys.len() != 3 || !["from", "to", "step"].iter().all(|k| keys.contains(k)) {
-        return Err(format!(
-            "a range is {{ from = a, to = b, step = s }} (got keys: {})",
-            keys.join(", ")
-        ));
+        return Err(RangeError::Keys {
+            keys: keys.iter().map(|k| k.to_string()).collect(),
+        });
     }
     if let (Some(Value::Integer(a)), Some(Value::Integer(b)), Some(Value::Integer(s))) =
         (t.get("from"), t.get("to"), t.get("step"))
     {
         let (a, b, s) = (*a, *b, *s);
         if s == 0 || (b - a) % s != 0 || (b - a) / s < 0 {
-            return Err(format!(
-                "range from {a} to {b}: step {s} does not divide the interval"
-            ));
+            return Err(RangeError::IntegerStep {
+                from: a,
+                to: b,
+                step: s,
+            });
         }
         let n = (b - a) / s;
         if n as u64 >= MAX_EXPANSION as u64 {
-            return Err(format!("range has more than {MAX_EXPANSION} values"));
+            return Err(RangeError::TooMany { max: MAX_EXPANSION });
         }
         return Ok((0..=n).map(|k| Value::Integer(a + k * s)).collect());
     }
-    let num = |k: &str| match t.get(k) {
+    let num = |key: &'static str| match t.get(key) {
         Some(Value::Integer(i)) => Ok(*i as f64),
         Some(Value::Float(f)) if f.is_finite() => Ok(*f),
-        _ => Err(format!("range `{k}` must be a finite number")),
+        _ => Err(RangeError::NotANumber { key }),
     };
     let (a, b, s) = (num("from")?, num("to")?, num("step")?);
     float_range(a, b, s)?
@@ -562,24 +571,29 @@ fn range(t: &Table) -> Result<Vec<Value>, String> {
 
 /// a, a + s, ..., b: n = round((b - a) / s), which must be an integer to 1e-9; values in
 /// decimal arithmetic.
-pub fn float_range(a: f64, b: f64, s: f64) -> Result<Vec<f64>, String> {
+pub fn float_range(a: f64, b: f64, s: f64) -> Result<Vec<f64>, RangeError> {
     if s == 0.0 {
-        return Err("range step is 0".to_string());
+        return Err(RangeError::ZeroStep);
     }
     let q = (b - a) / s;
     let n = q.round();
     if (q - n).abs() > 1e-9 {
-        return Err(format!(
-            "range from {a} to {b}: step {s} does not divide the interval ((to - from) / step = {q})"
-        ));
+        return Err(RangeError::FloatStep {
+            from: a,
+            to: b,
+            step: s,
+            quotient: q,
+        });
     }
     if n < 0.0 {
-        return Err(format!(
-            "range from {a} to {b}: step {s} points away from `to`"
-        ));
+        return Err(RangeError::Away {
+            from: a,
+            to: b,
+            step: s,
+        });
     }
     if n >= MAX_EXPANSION as f64 {
-        return Err(format!("range has more than {MAX_EXPANSION} values"));
+        return Err(RangeError::TooMany { max: MAX_EXPANSION });
     }
     let n = n as i64;
     Ok(match (decimal(a), decimal(s)) {
@@ -736,7 +750,7 @@ sweep = { "scheme.mu" = { from = 0.1, to = 0.3, step = 0.1 }, "scheme.n" = { fro
             let v = variant(&format!(
                 "label = \"L\"\nscheme = {{ kind = \"x\", mu = 1.0 }}\nsolvers = [{{ kind = \"znn\" }}]\nsweep = {sweep}"
             ));
-            expand_variant(&v).unwrap_err()
+            expand_variant(&v).unwrap_err().to_string()
         };
         let e = err(r#"{ "schem.mu" = [1.0] }"#);
         assert!(
@@ -781,7 +795,7 @@ sweep = { "scheme.mu" = { from = 0.1, to = 0.3, step = 0.1 }, "scheme.n" = { fro
         let v = variant(
             "label = \"L {nu}\"\nscheme = { kind = \"x\" }\nsweep = { \"scheme.mu\" = [1] }",
         );
-        let e = expand_variant(&v).unwrap_err();
+        let e = expand_variant(&v).unwrap_err().to_string();
         assert!(e.contains("placeholder {nu}"), "{e}");
     }
 
@@ -813,7 +827,7 @@ label = "last"
             "paper = \"p\"\n[[experiment]]\nid = \"p-e\"\n[[experiment.variant]]\nlabel = \"S\"\nscheme = { kind = \"x\" }\nsweep = { \"scheme.mu\" = [] }\n",
         )
         .unwrap();
-        let e = expand_file(&mut doc, |_| Ok(())).unwrap_err();
+        let e = expand_file(&mut doc, |_| Ok(())).unwrap_err().to_string();
         assert!(
             e.starts_with(
                 "experiment[0] (id \"p-e\") variant[0] (\"S\") field `sweep` key `scheme.mu`"

@@ -172,7 +172,7 @@ proptest! {
                 keys.dedup();
                 prop_assert_eq!(keys.len(), jobs.len(), "{}: duplicate run keys", name);
             }
-            Err(e) => prop_assert!(!e.trim().is_empty(), "{}: empty error", name),
+            Err(e) => prop_assert!(!e.to_string().trim().is_empty(), "{}: empty error", name),
         }
     }
 }

@@ -74,7 +74,11 @@ solvers = [{{ kind = "znn", gamma = 1.0 }}]
 "#
         )
     };
-    let scoring_of = |text: &str| PaperFile::from_toml(text).map(|f| f.jobs()[1].scoring);
+    let scoring_of = |text: &str| {
+        PaperFile::from_toml(text)
+            .map(|f| f.jobs()[1].scoring)
+            .map_err(|e| e.to_string())
+    };
     assert_eq!(scoring_of(&file("")), Ok(Scoring::EveryStep));
     assert_eq!(
         scoring_of(&file("scoring = { max-instants = 500 }")),

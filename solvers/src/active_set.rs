@@ -134,6 +134,7 @@
 
 use nalgebra::DVector;
 use schemes::qp::{KktResiduals, Qp, QpDims, QpDuals};
+use schemes::QpError;
 use std::fmt;
 
 /// Default relative tolerance of the certification (see the module docs).
@@ -314,7 +315,7 @@ impl ActiveSetSolution {
 pub enum ActiveSetError {
     /// Inconsistent sizes, a NaN or infinite entry in P, q, A, b or G, or an infinite bound on
     /// the wrong side.
-    InvalidData(String),
+    InvalidData(QpError),
     /// The dual iterations proved the constraints inconsistent (module docs, step 4).
     Infeasible,
     /// A KKT matrix was singular: A rank deficient, or P not positive definite on the null

@@ -50,6 +50,7 @@ use clarabel::solver::{
 };
 use nalgebra::{DMatrix, DVector};
 use schemes::qp::{KktResiduals, Qp, QpDuals};
+use schemes::QpError;
 use std::fmt;
 
 /// Clarabel's gap and feasibility tolerances, tried in turn (see the module docs).
@@ -131,7 +132,9 @@ impl fmt::Display for ExactStatus {
 pub enum ExactError {
     /// The QP data is malformed: inconsistent sizes, NaN, an infinite entry in P, q, A, b or G,
     /// or an infinite bound on the wrong side (h_i = -inf, l_i = +inf, u_i = -inf).
-    InvalidData(String),
+    InvalidData(QpError),
+    /// Clarabel refused to set the problem up (its own message).
+    Rejected(String),
     /// Clarabel proved the constraints infeasible (status PrimalInfeasible or
     /// AlmostPrimalInfeasible).
     PrimalInfeasible(ExactStatus),
@@ -154,7 +157,8 @@ pub enum ExactError {
 impl fmt::Display for ExactError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            Self::InvalidData(msg) => write!(f, "invalid QP data: {msg}"),
+            Self::InvalidData(e) => write!(f, "invalid QP data: {e}"),
+            Self::Rejected(msg) => write!(f, "invalid QP data: {msg}"),
             Self::PrimalInfeasible(s) => write!(f, "QP is primal infeasible (Clarabel status {s})"),
             Self::DualInfeasible(s) => {
                 write!(
@@ -274,7 +278,7 @@ impl ExactSolver {
                 &form.cones,
                 self.settings.clone(),
             )
-            .map_err(|e| ExactError::InvalidData(e.to_string()))?;
+            .map_err(|e| ExactError::Rejected(e.to_string()))?;
             solver.solve();
             iterations += solver.solution.iterations;
             let status = ExactStatus::from(solver.solution.status);

@@ -11,6 +11,7 @@
 
 use super::search::Budget;
 use super::InferenceError;
+use crate::error::FamilyError;
 use serde::{Deserialize, Serialize};
 use solvers::ode::{IntegratorSettings, Method};
 use std::collections::BTreeMap;
@@ -113,38 +114,39 @@ impl Default for Family {
 impl Family {
     /// Reads `path` (an absent file: the default family); checks the robot ids.
     pub fn load(path: &Path) -> Result<Self, InferenceError> {
-        let err = |message: String| InferenceError::Family {
-            file: path.display().to_string(),
-            message,
+        let err = |error: FamilyError| InferenceError::Family {
+            file: path.to_path_buf(),
+            error,
         };
         let family: Family = match std::fs::read_to_string(path) {
-            Ok(text) => toml::from_str(&text).map_err(|e| err(e.to_string()))?,
+            Ok(text) => toml::from_str(&text).map_err(|e| err(e.into()))?,
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => Family::default(),
-            Err(e) => return Err(err(e.to_string())),
+            Err(e) => return Err(err(e.into())),
         };
         family.check().map_err(err)?;
         Ok(family)
     }
 
     /// Every robot id known to the registry, with the declared robot's joint count.
-    fn check(&self) -> Result<(), String> {
+    fn check(&self) -> Result<(), FamilyError> {
         for (declared, variants) in &self.robot_variants {
             let dof = |name: &str| {
                 simulation::robot_registry::robot_by_name(name)
                     .map(|r| r.dof())
-                    .ok_or_else(|| format!("unknown robot \"{name}\""))
+                    .ok_or_else(|| FamilyError::UnknownRobot(name.to_string()))
             };
             let n = dof(declared)?;
             for v in variants {
                 if dof(v)? != n {
-                    return Err(format!(
-                        "robot variant \"{v}\" has another joint count than \"{declared}\""
-                    ));
+                    return Err(FamilyError::JointCount {
+                        variant: v.clone(),
+                        declared: declared.clone(),
+                    });
                 }
             }
         }
         if self.network.contains(&Integration::Exact) {
-            return Err("`network` lists \"exact\": the exact column is always tried".into());
+            return Err(FamilyError::ExactNetwork);
         }
         Ok(())
     }

@@ -69,8 +69,11 @@ pub enum InferenceError {
         experiment: String,
         variant: String,
     },
-    #[error("inference family {file}: {message}")]
-    Family { file: String, message: String },
+    #[error("inference family {}: {error}", file.display())]
+    Family {
+        file: std::path::PathBuf,
+        error: crate::error::FamilyError,
+    },
 }
 
 /// The exact column's tolerances during inference (see the module doc); the method stays the

@@ -13,6 +13,7 @@ use super::layout::{Area, Body, Figure};
 use super::legend::{self, Arrangement, Entry};
 use super::panels::{LogLogPanel, Series};
 use super::style::{colour, LEGEND_LINE_WIDTH};
+use crate::error::FigureError;
 use control::output::{ControlRow, CycleRow};
 use plotters::prelude::*;
 use simulation::naming::slug;
@@ -39,7 +40,7 @@ pub struct PanelBody {
 }
 
 impl Body for PanelBody {
-    fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), String> {
+    fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), FigureError> {
         let (width, _) = area.dim_in_pixel();
         let (plot, legend_area) = area.split_horizontally(width.saturating_sub(LEGEND_WIDTH));
         legend::draw(&legend_area, &self.entries, Arrangement::Column)?;

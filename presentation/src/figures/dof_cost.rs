@@ -7,6 +7,7 @@ use super::layout::{Area, Body, Figure};
 use super::legend::{self, Arrangement, Entry};
 use super::panels::{LogLogPanel, Series};
 use super::style::{colour, LEGEND_LINE_WIDTH};
+use crate::error::FigureError;
 use crate::report::performance::quantity_label;
 use plotters::prelude::*;
 use records::dof_cost::DofCostRow;
@@ -28,7 +29,7 @@ pub struct DofCostBody {
 }
 
 impl Body for DofCostBody {
-    fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), String> {
+    fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), FigureError> {
         let (width, _) = area.dim_in_pixel();
         let (plots, legend_area) = area.split_horizontally(width.saturating_sub(LEGEND_WIDTH));
         legend::draw(&legend_area, &self.entries, Arrangement::Column)?;

@@ -7,6 +7,7 @@
 //! embedded DejaVu Sans and lays text out with its real metrics.
 
 use super::style::{font, register_font, CANVAS, TITLE_HEIGHT, TITLE_SIZE};
+use crate::error::FigureError;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -17,14 +18,14 @@ use plotters_backend::{
 /// A region of a figure that a panel, a title or a legend draws into, on backend `DB`.
 pub type Area<DB> = DrawingArea<DB, Shift>;
 
-/// Turns a plotters error into the module's error type.
-pub fn draw_error(e: impl std::fmt::Display) -> String {
-    format!("drawing a figure: {e}")
+/// Turns a plotters error (generic over the backend) into the module's error type.
+pub fn draw_error(e: impl std::fmt::Display) -> FigureError {
+    FigureError::Draw(e.to_string())
 }
 
 /// What a figure draws under its title, on any backend.
 pub trait Body {
-    fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), String>;
+    fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), FigureError>;
 }
 
 /// A figure of [`CANVAS`] size: `title` centred at the top, `body` filling the rest.
@@ -41,7 +42,7 @@ pub struct Rendered {
 
 impl<B: Body> Figure<B> {
     /// The figure as SVG text and as PNG bytes.
-    pub fn render(&self) -> Result<Rendered, String> {
+    pub fn render(&self) -> Result<Rendered, FigureError> {
         Ok(Rendered {
             svg: self.svg()?,
             png: self.png()?,
@@ -49,7 +50,7 @@ impl<B: Body> Figure<B> {
     }
 
     /// The SVG text.
-    pub fn svg(&self) -> Result<String, String> {
+    pub fn svg(&self) -> Result<String, FigureError> {
         let mut svg = String::new();
         {
             let canvas = SvgText(SVGBackend::with_string(&mut svg, CANVAS)).into_drawing_area();
@@ -59,7 +60,7 @@ impl<B: Body> Figure<B> {
     }
 
     /// The PNG bytes: 8-bit RGB, the text in the embedded font.
-    pub fn png(&self) -> Result<Vec<u8>, String> {
+    pub fn png(&self) -> Result<Vec<u8>, FigureError> {
         let (width, height) = CANVAS;
         let mut rgb = vec![0u8; 3 * width as usize * height as usize];
         {
@@ -70,7 +71,7 @@ impl<B: Body> Figure<B> {
     }
 
     /// Draws the white background, the title and the body on `canvas`, then presents it.
-    fn draw<DB: DrawingBackend>(&self, canvas: &Area<DB>) -> Result<(), String> {
+    fn draw<DB: DrawingBackend>(&self, canvas: &Area<DB>) -> Result<(), FigureError> {
         register_font()?;
         canvas.fill(&WHITE).map_err(draw_error)?;
         let (strip, rest) = canvas.split_vertically(TITLE_HEIGHT);
@@ -93,8 +94,7 @@ impl<B: Body> Figure<B> {
 /// level took three times as long for files of about the same size; a palette does not fit, as
 /// the anti-aliased lines and text give nearly every figure more than 256 colours). No timestamp
 /// or other metadata, so equal pixels give equal bytes.
-fn encode_png(rgb: &[u8], (width, height): (u32, u32)) -> Result<Vec<u8>, String> {
-    let png_error = |e: png::EncodingError| format!("encoding a PNG: {e}");
+fn encode_png(rgb: &[u8], (width, height): (u32, u32)) -> Result<Vec<u8>, FigureError> {
     let mut bytes = Vec::new();
     {
         let mut encoder = png::Encoder::new(&mut bytes, width, height);
@@ -102,9 +102,9 @@ fn encode_png(rgb: &[u8], (width, height): (u32, u32)) -> Result<Vec<u8>, String
         encoder.set_depth(png::BitDepth::Eight);
         encoder.set_compression(png::Compression::Default);
         encoder.set_adaptive_filter(png::AdaptiveFilterType::Adaptive);
-        let mut writer = encoder.write_header().map_err(png_error)?;
-        writer.write_image_data(rgb).map_err(png_error)?;
-        writer.finish().map_err(png_error)?;
+        let mut writer = encoder.write_header()?;
+        writer.write_image_data(rgb)?;
+        writer.finish()?;
     }
     Ok(bytes)
 }

@@ -3,6 +3,7 @@
 
 use super::layout::{draw_error, Area};
 use super::style::{font, LABEL_SIZE};
+use crate::error::FigureError;
 use plotters::prelude::*;
 
 /// Length of an entry's line sample (px).
@@ -34,7 +35,7 @@ pub fn draw<DB: DrawingBackend>(
     area: &Area<DB>,
     entries: &[Entry],
     arrangement: Arrangement,
-) -> Result<(), String> {
+) -> Result<(), FigureError> {
     let px = |v: u32| i32::try_from(v).unwrap_or(i32::MAX);
     let (width, height) = area.dim_in_pixel();
     let (width, height) = (px(width), px(height));

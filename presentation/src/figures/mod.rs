@@ -39,13 +39,14 @@ mod scale;
 mod style;
 mod trace;
 
+use crate::error::{FigureError, ReportError};
 use ::control::output::{ControlRow, CycleRow};
 use explain::inference::InferenceRow;
 use layout::Rendered;
 use rayon::prelude::*;
 use records::dof_cost::DofCostRow;
 use records::runs::{read_runs, RunRow};
-use records::tracked_dir::{Removal, TrackedDir};
+use records::tracked_dir::{Removal, TrackedDir, TrackedError};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use trace::Trace;
@@ -60,7 +61,7 @@ fn run_stem(run: &RunRow) -> String {
 
 /// The run figure of the report for `run` with its trace file `trace`, as SVG text (for a run
 /// outside `results/`: a scored trajectory, [`crate::score`]).
-pub fn run_svg(run: &RunRow, trace: &Path) -> Result<String, String> {
+pub fn run_svg(run: &RunRow, trace: &Path) -> Result<String, FigureError> {
     run_figure::figure(run, &Trace::read(trace)?).svg()
 }
 
@@ -90,7 +91,7 @@ enum Job<'a> {
 
 impl Job<'_> {
     /// The figure as SVG and PNG.
-    fn render(&self) -> Result<Rendered, String> {
+    fn render(&self) -> Result<Rendered, FigureError> {
         match self {
             Job::Run(run, trace) => run_figure::figure(run, trace).render(),
             Job::Overview(experiment, members) => overview::figure(experiment, members).render(),
@@ -109,7 +110,7 @@ impl Job<'_> {
 /// program wrote them and nobody edited them since (`report/manifest.toml`); a `report/` or
 /// `report/figures/` that is a symbolic link leading out of the project is refused. Fails, naming the file, on an unreadable `runs.csv`, a missing or
 /// malformed trace, or two runs whose names give the same file name.
-pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, String> {
+pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, ReportError> {
     let mut runs = read_runs(&root.join("results").join("runs.csv"))?;
     runs.sort_by_key(RunRow::key);
     let traces_dir = root.join("results").join("traces");
@@ -127,9 +128,7 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, String> {
     let mut jobs: BTreeMap<String, Job> = BTreeMap::new();
     let mut add = |name: String, job| match jobs.insert(name.clone(), job) {
         None => Ok(()),
-        Some(_) => Err(format!(
-            "two figures would be written to {name}: rename a variant or a solver"
-        )),
+        Some(_) => Err(ReportError::SameFigure(name)),
     };
     let mut by_experiment: BTreeMap<&str, Vec<(&RunRow, &Trace)>> = BTreeMap::new();
     for (run, trace) in runs.iter().zip(&traces) {
@@ -169,7 +168,7 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, String> {
         }
     }
 
-    let dof_rows = records::dof_cost::read(&root.join("results"))?;
+    let dof_rows = records::dof_cost::read(&root.join("results")).map_err(ReportError::Records)?;
     let mut schemes: Vec<&str> = dof_rows.iter().map(|r| r.scheme.as_str()).collect();
     schemes.sort_unstable();
     schemes.dedup();
@@ -179,11 +178,10 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, String> {
     }
 
     let results = root.join("results");
-    let read_error = |e: ::control::ControlError| e.to_string();
     let control_rows: Vec<ControlRow> =
-        ::control::output::read(&results, ::control::output::CONTROL_CSV).map_err(read_error)?;
+        ::control::output::read(&results, ::control::output::CONTROL_CSV)?;
     let cycle_rows: Vec<CycleRow> =
-        ::control::output::read(&results, ::control::output::CYCLES_CSV).map_err(read_error)?;
+        ::control::output::read(&results, ::control::output::CYCLES_CSV)?;
     let mut tasks: Vec<&str> = control_rows.iter().map(|r| r.task.as_str()).collect();
     tasks.dedup();
     let h_main = ::control::Budget::default().h * 1e3;
@@ -206,24 +204,26 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, String> {
         .map(|(name, job)| {
             job.render()
                 .map(|figure| (name.clone(), figure))
-                .map_err(|e| format!("{name}: {e}"))
+                .map_err(|error| ReportError::Figure {
+                    name: name.clone(),
+                    error,
+                })
         })
         .collect::<Result<_, _>>()?;
 
-    let report = TrackedDir::open_within(root, "report").map_err(|e| e.to_string())?;
+    let report = TrackedDir::open_within(root, "report")?;
     let rel = |name: &str| Path::new(FIGURES).join(name);
     // Stale figures: only those this program wrote (listed in report/manifest.toml) and nobody
     // edited since; anything else in the directory is left alone.
     for listed in report.listed(&format!("{FIGURES}/")) {
         let name = listed.trim_start_matches(&format!("{FIGURES}/"));
         if figure_of(name).is_some_and(|svg| !figures.contains_key(&svg)) {
-            if let Removal::Kept(why) = report.remove(&rel(name)).map_err(|e| e.to_string())? {
+            if let Removal::Kept(why) = report.remove(&rel(name))? {
                 eprintln!("note: {why}");
             }
         }
     }
-    let write =
-        |name: &str, bytes: &[u8]| report.write(&rel(name), bytes).map_err(|e| e.to_string());
+    let write = |name: &str, bytes: &[u8]| report.write(&rel(name), bytes);
     let written = figures
         .into_iter()
         .map(|(name, figure)| {
@@ -232,7 +232,7 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, String> {
             write(&png.to_string_lossy(), &figure.png)?;
             Ok(report.path().join(rel(&name)))
         })
-        .collect::<Result<Vec<PathBuf>, String>>()?;
-    report.save().map_err(|e| e.to_string())?;
+        .collect::<Result<Vec<PathBuf>, TrackedError>>()?;
+    report.save()?;
     Ok(written)
 }

@@ -6,6 +6,7 @@ use super::legend::{self, Arrangement, Entry};
 use super::panels::{Series, TimePanel, YAxis};
 use super::style::{colour, LEGEND_LINE_WIDTH};
 use super::trace::Trace;
+use crate::error::FigureError;
 use plotters::prelude::*;
 use records::runs::RunRow;
 
@@ -29,7 +30,7 @@ pub struct OverviewBody {
 }
 
 impl Body for OverviewBody {
-    fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), String> {
+    fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), FigureError> {
         let (width, _) = area.dim_in_pixel();
         let (plots, legend_area) = area.split_horizontally(width.saturating_sub(LEGEND_WIDTH));
         legend::draw(&legend_area, &self.entries, Arrangement::Column)?;

@@ -7,6 +7,7 @@ use super::style::{
     font, ARM_COLOUR, ARM_START_COLOUR, CAPTION_SIZE, DESIRED_COLOUR, DESIRED_WIDTH, GRID_COLOUR,
     LABEL_SIZE, LINE_WIDTH,
 };
+use crate::error::FigureError;
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::prelude::*;
 use std::ops::Range;
@@ -62,7 +63,7 @@ pub struct PathPanel {
 fn titled<DB: DrawingBackend>(
     area: &Area<DB>,
     caption: &str,
-) -> Result<(Area<DB>, (u32, u32)), String> {
+) -> Result<(Area<DB>, (u32, u32)), FigureError> {
     let inner = area
         .titled(caption, font(CAPTION_SIZE))
         .map_err(draw_error)?;
@@ -116,7 +117,7 @@ fn plot<DB: DrawingBackend, Y>(
     y_desc: &str,
     y_labels: &dyn Fn(&f64) -> String,
     lines: &[(ShapeStyle, Vec<(f64, f64)>)],
-) -> Result<(), String>
+) -> Result<(), FigureError>
 where
     Y: AsRangedCoord<Value = f64>,
     Y::CoordDescType: ValueFormatter<f64>,
@@ -136,7 +137,7 @@ fn plot_xy<DB: DrawingBackend, X, Y>(
     y_desc: &str,
     y_labels: &dyn Fn(&f64) -> String,
     lines: &[(ShapeStyle, Vec<(f64, f64)>)],
-) -> Result<(), String>
+) -> Result<(), FigureError>
 where
     X: AsRangedCoord<Value = f64>,
     X::CoordDescType: ValueFormatter<f64>,
@@ -173,7 +174,7 @@ where
 
 impl TimePanel {
     /// Draws the panel into `area`.
-    pub fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), String> {
+    pub fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), FigureError> {
         let (inner, _) = titled(area, &self.caption)?;
         let keep = |v: f64| v.is_finite() && (self.y_axis == YAxis::Linear || v > 0.0);
         let lines: Vec<(ShapeStyle, Vec<(f64, f64)>)> = self
@@ -224,7 +225,7 @@ impl PathPanel {
     /// Draws the panel into `area`: the arm's poses thin and light with the start pose darker,
     /// over them the desired path wide and pale, and the actual path on top. The equal-aspect
     /// ranges cover the arm as well as the paths.
-    pub fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), String> {
+    pub fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), FigureError> {
         let (inner, pixels) = titled(area, &self.caption)?;
         let all = || {
             self.desired
@@ -279,7 +280,7 @@ pub struct ProfilePanel {
 
 impl ProfilePanel {
     /// Draws the panel into `area`.
-    pub fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), String> {
+    pub fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), FigureError> {
         let (inner, _) = titled(area, &self.caption)?;
         let ok = |&(x, v): &(f64, f64)| x.is_finite() && v.is_finite() && v > 0.0;
         let points: Vec<(f64, f64)> = self.points.iter().copied().filter(ok).collect();
@@ -322,7 +323,7 @@ pub struct LogLogPanel {
 
 impl LogLogPanel {
     /// Draws the panel into `area`; non-positive or non-finite points are left out.
-    pub fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), String> {
+    pub fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), FigureError> {
         let (inner, _) = titled(area, &self.caption)?;
         let lines: Vec<(ShapeStyle, Vec<(f64, f64)>)> = self
             .series

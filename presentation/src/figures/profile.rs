@@ -5,6 +5,7 @@
 
 use super::layout::{Area, Body, Figure};
 use super::panels::ProfilePanel;
+use crate::error::FigureError;
 use explain::inference::{InferenceRow, BEST, FAILED, PHASE, ROTATION, SCALE, TABLE};
 use plotters::prelude::*;
 use std::f64::consts::PI;
@@ -20,7 +21,7 @@ pub struct ProfilesBody {
 }
 
 impl Body for ProfilesBody {
-    fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), String> {
+    fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), FigureError> {
         if self.panels.is_empty() {
             return Ok(());
         }

@@ -10,6 +10,7 @@ use super::style::{
     colour, ARM_COLOUR, ARM_START_COLOUR, DESIRED_COLOUR, DESIRED_WIDTH, LEGEND_LINE_WIDTH,
 };
 use super::trace::Trace;
+use crate::error::FigureError;
 use plotters::prelude::*;
 use records::runs::RunRow;
 
@@ -56,7 +57,7 @@ pub struct RunBody {
 }
 
 impl Body for RunBody {
-    fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), String> {
+    fn draw<DB: DrawingBackend>(&self, area: &Area<DB>) -> Result<(), FigureError> {
         let (strip, body) = area.split_vertically(LEGEND_HEIGHT);
         legend::draw(&strip, &self.entries, Arrangement::Strip)?;
         let cells = body.split_evenly(((self.panels.len() + 1).div_ceil(2), 2));

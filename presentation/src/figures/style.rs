@@ -1,5 +1,6 @@
 //! The figures' look: canvas sizes, fonts, line widths and the colour cycle.
 
+use crate::error::FigureError;
 use plotters::style::{FontDesc, FontFamily, FontStyle, RGBColor};
 use std::sync::OnceLock;
 
@@ -65,14 +66,13 @@ pub fn colour(k: usize) -> RGBColor {
 /// Registers the embedded font as plotters' `sans-serif` (once a process; later calls return
 /// the first outcome). Must run before [`font`] builds a font description, since plotters
 /// resolves the family when the description is made.
-pub fn register_font() -> Result<(), String> {
+pub fn register_font() -> Result<(), FigureError> {
     static REGISTERED: OnceLock<bool> = OnceLock::new();
     let ok = *REGISTERED.get_or_init(|| {
         plotters::style::register_font(FontFamily::SansSerif.as_str(), FontStyle::Normal, FONT)
             .is_ok()
     });
-    ok.then_some(())
-        .ok_or_else(|| "the embedded font DejaVuSans.ttf does not parse".to_string())
+    ok.then_some(()).ok_or(FigureError::Font)
 }
 
 /// A sans-serif font of the given size: the embedded DejaVu Sans in a PNG, the viewer's

@@ -1,6 +1,7 @@
 //! Reading one run's trace CSV (`results/traces/<experiment>/<variant>__<solver>.csv`, written by
 //! [`records::runs::trace_csv`]) into columns the panels can plot.
 
+use crate::error::{TraceError, TraceProblem};
 use std::path::Path;
 
 /// Most samples a figure plots per series; longer traces are thinned evenly (the last sample is
@@ -33,16 +34,20 @@ pub struct Trace {
 impl Trace {
     /// Reads a trace CSV. An empty file (a run that produced no sample) is an empty trace; any
     /// other malformation (missing column, short row, non-numeric field) is an error naming the file.
-    pub fn read(path: &Path) -> Result<Trace, String> {
-        let fail = |what: String| format!("{}: {what}", path.display());
-        let bytes = std::fs::read(path).map_err(|e| fail(e.to_string()))?;
+    pub fn read(path: &Path) -> Result<Trace, TraceError> {
+        let fail = |problem: TraceProblem| TraceError {
+            path: path.to_path_buf(),
+            problem,
+        };
+        let bytes = std::fs::read(path).map_err(|e| fail(e.into()))?;
         if bytes.is_empty() {
             return Ok(Trace::default());
         }
         let mut reader = csv::Reader::from_reader(bytes.as_slice());
-        let header = reader.headers().map_err(|e| fail(e.to_string()))?.clone();
+        let header = reader.headers().map_err(|e| fail(e.into()))?.clone();
         let column = |name: &str| header.iter().position(|h| h == name);
-        let required = |name: &str| column(name).ok_or_else(|| fail(format!("no column `{name}`")));
+        let required =
+            |name: &'static str| column(name).ok_or_else(|| fail(TraceProblem::NoColumn(name)));
         let joints = |prefix: &str| -> Vec<usize> {
             (1..)
                 .map_while(|i| column(&format!("{prefix}_{i}")))
@@ -51,11 +56,10 @@ impl Trace {
         let theta = joints("theta");
         let thetadot = joints("thetadot");
         if theta.is_empty() || thetadot.len() != theta.len() {
-            return Err(fail(format!(
-                "expected theta_1..n and thetadot_1..n, found {} and {}",
-                theta.len(),
-                thetadot.len()
-            )));
+            return Err(fail(TraceProblem::Joints {
+                theta: theta.len(),
+                thetadot: thetadot.len(),
+            }));
         }
         let thetaddot = joints("thetaddot");
         let tau = joints("tau");
@@ -72,29 +76,35 @@ impl Trace {
             ..Trace::default()
         };
         for (row, record) in reader.records().enumerate() {
-            let record = record.map_err(|e| fail(e.to_string()))?;
-            let field = |c: usize| -> Result<Option<f64>, String> {
+            let record = record.map_err(|e| fail(e.into()))?;
+            let field = |c: usize| -> Result<Option<f64>, TraceError> {
                 let text = record.get(c).unwrap_or("").trim();
                 if text.is_empty() {
                     return Ok(None);
                 }
                 text.parse().map(Some).map_err(|_| {
-                    fail(format!(
-                        "row {}: `{}` = {text:?} is not a number",
-                        row + 2,
-                        &header[c]
-                    ))
+                    fail(TraceProblem::NotANumber {
+                        row: row + 2,
+                        column: header[c].to_string(),
+                        text: text.to_string(),
+                    })
                 })
             };
             let number = |c: usize| {
-                field(c)?.ok_or_else(|| fail(format!("row {}: `{}` is empty", row + 2, &header[c])))
+                field(c)?.ok_or_else(|| {
+                    fail(TraceProblem::Empty {
+                        row: row + 2,
+                        column: header[c].to_string(),
+                    })
+                })
             };
-            let push_joints = |into: &mut Vec<Vec<f64>>, columns: &[usize]| -> Result<(), String> {
-                for (series, &c) in into.iter_mut().zip(columns) {
-                    series.push(number(c)?);
-                }
-                Ok(())
-            };
+            let push_joints =
+                |into: &mut Vec<Vec<f64>>, columns: &[usize]| -> Result<(), TraceError> {
+                    for (series, &c) in into.iter_mut().zip(columns) {
+                        series.push(number(c)?);
+                    }
+                    Ok(())
+                };
             trace.t.push(number(t)?);
             push_joints(&mut trace.theta, &theta)?;
             push_joints(&mut trace.thetadot, &thetadot)?;

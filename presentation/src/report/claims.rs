@@ -45,16 +45,33 @@ pub struct Claim {
     pub evidence: String,
 }
 
+/// Why a claim could not be evaluated (its verdict is N/A): the reason, shown as its evidence.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{0}")]
+pub struct NotApplicable(pub String);
+
+impl From<&str> for NotApplicable {
+    fn from(why: &str) -> Self {
+        NotApplicable(why.to_string())
+    }
+}
+
+impl From<String> for NotApplicable {
+    fn from(why: String) -> Self {
+        NotApplicable(why)
+    }
+}
+
 /// Evaluates a claim: `Ok((holds, evidence))`, or `Err(why)` for N/A.
 fn check(
     short: &str,
     statement: &str,
-    eval: impl FnOnce() -> Result<(bool, String), String>,
+    eval: impl FnOnce() -> Result<(bool, String), NotApplicable>,
 ) -> Claim {
     let (verdict, evidence) = match eval() {
         Ok((true, e)) => (Verdict::Pass, e),
         Ok((false, e)) => (Verdict::Fail, e),
-        Err(e) => (Verdict::NotApplicable, e),
+        Err(NotApplicable(e)) => (Verdict::NotApplicable, e),
     };
     Claim {
         short: short.to_string(),
@@ -103,7 +120,7 @@ fn selected<'a>(runs: &'a Runs, s: &Selection) -> Vec<&'a RunRow> {
 /// One run's metric for a claim: `Ok(Some(x))`; `Ok(None)` when the run failed before the
 /// metric could be measured (the claim fails); `Err` when a completed run did not measure it
 /// (N/A).
-fn claim_metric(r: &RunRow, name: &str, abs: bool) -> Result<Option<f64>, String> {
+fn claim_metric(r: &RunRow, name: &str, abs: bool) -> Result<Option<f64>, NotApplicable> {
     match metric(r, name) {
         Some(x) => Ok(Some(if abs { x.abs() } else { x })),
         None if !completed(r) => Ok(None),
@@ -118,7 +135,7 @@ fn compare(
     abs: bool,
     selection: &Selection,
     test: &Test,
-) -> Result<(bool, String), String> {
+) -> Result<(bool, String), NotApplicable> {
     let rows = nonempty(selected(runs, selection))?;
     let shown = |x: f64| if abs { format!("|{}|", sci(x)) } else { sci(x) };
     let mut holds = true;
@@ -146,11 +163,11 @@ fn compare(
                     .filter(|o| other.matches(&o.experiment, &o.variant_id, &o.solver_id))
                     .collect();
                 if counterparts.is_empty() {
-                    return Err(format!("no run to compare {} with", name(r)));
+                    return Err(format!("no run to compare {} with", name(r)).into());
                 }
                 for o in counterparts {
                     let Some(y) = claim_metric(o, name_of_metric, abs)? else {
-                        return Err(format!("{}: {}", name(o), failed_at(o)));
+                        return Err(format!("{}: {}", name(o), failed_at(o)).into());
                     };
                     holds &= match factor {
                         Some(f) => x * f <= y,
@@ -199,7 +216,7 @@ fn with_exact(runs: &Runs, r: &RunRow, x: f64, name_of_metric: &str, abs: bool) 
 }
 
 /// A metric that must exist (a completed run's drift, a measured error).
-fn value(r: &RunRow, v: Option<f64>, what: &str) -> Result<f64, String> {
+fn value(r: &RunRow, v: Option<f64>, what: &str) -> Result<f64, NotApplicable> {
     v.ok_or_else(|| {
         format!(
             "{} / {} / {}: no {what} ({})",
@@ -212,13 +229,14 @@ fn value(r: &RunRow, v: Option<f64>, what: &str) -> Result<f64, String> {
                 failed_at(r)
             }
         )
+        .into()
     })
 }
 
 /// `rows`, or an error when there are none (the claim is then N/A).
-fn nonempty(rows: Vec<&RunRow>) -> Result<Vec<&RunRow>, String> {
+fn nonempty(rows: Vec<&RunRow>) -> Result<Vec<&RunRow>, NotApplicable> {
     if rows.is_empty() {
-        Err("no such runs".to_string())
+        Err("no such runs".into())
     } else {
         Ok(rows)
     }
@@ -237,8 +255,8 @@ fn rust_claim(
     papers: &Papers,
     selection: Option<&Selection>,
     value_arg: Option<f64>,
-) -> Result<(bool, String), String> {
-    let rows = || -> Result<Vec<&RunRow>, String> {
+) -> Result<(bool, String), NotApplicable> {
+    let rows = || -> Result<Vec<&RunRow>, NotApplicable> {
         nonempty(selected(runs, selection.ok_or("the claim needs `runs`")?))
     };
     match id {
@@ -305,7 +323,8 @@ fn rust_claim(
         other => Err(format!(
             "no Rust claim \"{other}\" (known: {})",
             RUST_CLAIMS.join(", ")
-        )),
+        )
+        .into()),
     }
 }
 

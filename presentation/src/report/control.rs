@@ -20,13 +20,12 @@ pub struct ControlResults {
 
 impl ControlResults {
     /// Reads the files in `results`.
-    pub fn load(results: &Path) -> Result<Self, String> {
-        let e = |e: control::ControlError| e.to_string();
+    pub fn load(results: &Path) -> Result<Self, control::ControlError> {
         Ok(ControlResults {
-            runs: output::read(results, output::CONTROL_CSV).map_err(e)?,
-            stability: output::read(results, output::STABILITY_CSV).map_err(e)?,
-            claims: output::read(results, output::CLAIM_CSV).map_err(e)?,
-            trends: output::read(results, output::TREND_CSV).map_err(e)?,
+            runs: output::read(results, output::CONTROL_CSV)?,
+            stability: output::read(results, output::STABILITY_CSV)?,
+            claims: output::read(results, output::CLAIM_CSV)?,
+            trends: output::read(results, output::TREND_CSV)?,
         })
     }
 }

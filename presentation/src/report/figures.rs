@@ -2,17 +2,18 @@
 //! report under their experiment: `<experiment>__<variant>__<solver>.svg` and
 //! `<experiment>__overview.svg`.
 
+use records::error::{IoAction, IoError};
 use std::path::Path;
 
 /// The `.svg` file names in `dir`, sorted; none when the folder does not exist.
-pub fn list(dir: &Path) -> Result<Vec<String>, String> {
+pub fn list(dir: &Path) -> Result<Vec<String>, IoError> {
     if !dir.is_dir() {
         return Ok(Vec::new());
     }
     let mut names = Vec::new();
-    for entry in std::fs::read_dir(dir).map_err(|e| format!("{}: {e}", dir.display()))? {
+    for entry in std::fs::read_dir(dir).map_err(IoError::at(dir, IoAction::List))? {
         let name = entry
-            .map_err(|e| format!("{}: {e}", dir.display()))?
+            .map_err(IoError::at(dir, IoAction::List))?
             .file_name()
             .to_string_lossy()
             .into_owned();

@@ -35,8 +35,10 @@ pub mod tables;
 pub mod verdict;
 pub mod why;
 
+use crate::error::ReportError;
 use explain::read_csv;
 use markdown::{sci, Table};
+use records::error::{IoAction, IoError};
 use records::index::Runs;
 use records::papers::Papers;
 use records::runs::read_runs;
@@ -66,15 +68,15 @@ pub struct Inputs {
 impl Inputs {
     /// Reads the inputs under the workspace root `root` (results/, report/), and the papers of
     /// `papers` (the project's `papers/`).
-    pub fn load(root: &Path, papers: &Path) -> Result<Self, String> {
+    pub fn load(root: &Path, papers: &Path) -> Result<Self, ReportError> {
         let report = root.join("report");
         let results = root.join("results");
         let deviations_path = report.join("deviations.md");
         Ok(Inputs {
             runs: Runs::new(read_runs(&results.join("runs.csv"))?),
-            papers: Papers::load(papers).map_err(|e| e.to_string())?,
+            papers: Papers::load(papers)?,
             deviations: std::fs::read_to_string(&deviations_path)
-                .map_err(|e| format!("{}: {e}", deviations_path.display()))?,
+                .map_err(IoError::at(&deviations_path, IoAction::Read))?,
             figures: figures::list(&report.join("figures"))?,
             explanations: why::Explanations {
                 ladder: read_csv(&results.join("ladder.csv"))?,
@@ -82,21 +84,19 @@ impl Inputs {
                 inference: read_csv(&results.join("inference.csv"))?,
                 entries: read_csv(&results.join("inference-entries.csv"))?,
             },
-            dof_cost: records::dof_cost::read(&results)?,
+            dof_cost: records::dof_cost::read(&results).map_err(ReportError::Records)?,
             control: control::ControlResults::load(&results)?,
         })
     }
 }
 
 /// Renders `root/report/REPORT.md` from the stored results and returns its path.
-pub fn render(root: &Path, papers: &Path) -> Result<PathBuf, String> {
+pub fn render(root: &Path, papers: &Path) -> Result<PathBuf, ReportError> {
     let inputs = Inputs::load(root, papers)?;
-    let report =
-        records::tracked_dir::TrackedDir::open_within(root, "report").map_err(|e| e.to_string())?;
+    let report = records::tracked_dir::TrackedDir::open_within(root, "report")?;
     report
         .write(Path::new("REPORT.md"), to_markdown(&inputs).as_bytes())
-        .and_then(|()| report.save())
-        .map_err(|e| e.to_string())?;
+        .and_then(|()| report.save())?;
     Ok(report.path().join("REPORT.md"))
 }
 

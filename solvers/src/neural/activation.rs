@@ -50,6 +50,7 @@
 //! slope then evaluated at max(abs(e), [`SIGN_POWER_MIN_ABS`](schemes::sign_power::SIGN_POWER_MIN_ABS)) so Jacobians stay finite). The same
 //! function is kong2019's c in its finite-time scheme (`schemes::kong2019`).
 
+use super::error::NetworkError;
 use schemes::sign_power::{sign_power, sign_power_slope};
 use serde::Deserialize;
 
@@ -118,30 +119,28 @@ impl Activation {
     }
 
     /// Check the papers' parameter ranges (written `!(x > 0 && finite)` so that NaN fails).
-    pub fn validate(&self) -> Result<(), String> {
+    pub fn validate(&self) -> Result<(), NetworkError> {
         match *self {
             Activation::Linear | Activation::Sinh => Ok(()),
             Activation::PowerSigmoid { alpha, chi } => {
                 if !(alpha > 0.0 && alpha.is_finite()) || !(chi >= 1.0 && chi.is_finite()) {
-                    Err(format!("power-sigmoid needs alpha > 0 and chi >= 1 (paper: alpha >= 2, chi >= 3), got alpha = {alpha}, chi = {chi}"))
+                    Err(NetworkError::PowerSigmoid { alpha, chi })
                 } else {
                     Ok(())
                 }
             }
             Activation::GroupPowerSigmoid { xi, p } => {
                 if !(xi > 0.0 && xi.is_finite() && p >= 1.0 && p.is_finite()) {
-                    Err(format!("group power-sigmoid needs xi > 0 and p >= 1 (the group's code: xi = 1, p = 1 or 3), got xi = {xi}, p = {p}"))
+                    Err(NetworkError::GroupPowerSigmoid { xi, p })
                 } else {
                     Ok(())
                 }
             }
             Activation::SignPower { r, smoothing } => {
                 if !(r > 0.0 && r.is_finite()) {
-                    Err(format!("sign-power needs an exponent r > 0, got {r}"))
+                    Err(NetworkError::SignPowerExponent(r))
                 } else if !(smoothing >= 0.0 && smoothing.is_finite()) {
-                    Err(format!(
-                        "sign-power linear zone must be >= 0, got {smoothing}"
-                    ))
+                    Err(NetworkError::SignPowerZone(smoothing))
                 } else {
                     Ok(())
                 }

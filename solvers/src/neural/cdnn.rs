@@ -29,6 +29,7 @@
 //! (the robustness claim is about how the networks degrade as they grow).
 
 use super::activation::Activation;
+use super::error::NetworkError;
 use super::zeroing::{Gain, ZeroingNetwork};
 use nalgebra::DMatrix;
 use schemes::qp::QpDims;
@@ -234,20 +235,18 @@ impl ReferencePerturbation {
         }
     }
 
-    pub fn validate(&self, state_dim: usize) -> Result<(), String> {
+    pub fn validate(&self, state_dim: usize) -> Result<(), NetworkError> {
         if state_dim != PERTURBATION_DIM {
-            return Err(format!(
-                "the reference perturbation is {PERTURBATION_DIM}-dimensional (n + m = 6 + 3); this network's state has {state_dim} entries"
-            ));
+            return Err(NetworkError::PerturbationDim {
+                expected: PERTURBATION_DIM,
+                state_dim,
+            });
         }
         if !(self.task_duration > 0.0 && self.task_duration.is_finite()) {
-            return Err(format!(
-                "perturbation task_duration must be positive, got {}",
-                self.task_duration
-            ));
+            return Err(NetworkError::PerturbationDuration(self.task_duration));
         }
         if !self.a_d.is_finite() || !self.a_s.is_finite() {
-            return Err("perturbation amplitudes must be finite".into());
+            return Err(NetworkError::PerturbationAmplitudes);
         }
         Ok(())
     }
@@ -282,7 +281,7 @@ pub fn fp_cdnn(
     activation: Activation,
     perturbation: Option<ReferencePerturbation>,
     dims: QpDims,
-) -> Result<ZeroingNetwork, String> {
+) -> Result<ZeroingNetwork, NetworkError> {
     ZeroingNetwork::new(
         "FP-CDNN",
         Gain::Fixed(gamma),
@@ -298,7 +297,7 @@ pub fn vp_cdnn(
     activation: Activation,
     perturbation: Option<ReferencePerturbation>,
     dims: QpDims,
-) -> Result<ZeroingNetwork, String> {
+) -> Result<ZeroingNetwork, NetworkError> {
     ZeroingNetwork::new(
         "VP-CDNN",
         Gain::Exponential(gamma),

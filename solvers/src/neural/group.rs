@@ -30,6 +30,7 @@
 
 use super::activation::Activation;
 use super::cdnn::ReferencePerturbation;
+use super::error::NetworkError;
 use super::zeroing::{Gain, ZeroingNetwork};
 use schemes::qp::QpDims;
 
@@ -47,7 +48,7 @@ pub fn group_znn(
     perturbation: Option<ReferencePerturbation>,
     udot_rmp: bool,
     dims: QpDims,
-) -> Result<ZeroingNetwork, String> {
+) -> Result<ZeroingNetwork, NetworkError> {
     let net = ZeroingNetwork::new(
         "group ZNN",
         Gain::Fixed(gamma),

@@ -17,6 +17,7 @@
 
 pub mod activation;
 pub mod cdnn;
+pub mod error;
 pub mod group;
 pub mod lu;
 pub mod projection;
@@ -27,6 +28,7 @@ pub mod znn;
 
 pub use activation::{Activation, ActivationKind};
 pub use cdnn::{fp_cdnn, vp_cdnn, ReferencePerturbation};
+pub use error::NetworkError;
 pub use group::group_znn;
 pub use projection::{LviPdnn, SLviPdnn};
 pub use spec::{build_solver, SolverSpec};

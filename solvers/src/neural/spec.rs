@@ -30,6 +30,7 @@ use super::activation::{
     POWER_SIGMOID_CHI,
 };
 use super::cdnn::{fp_cdnn, vp_cdnn, ReferencePerturbation};
+use super::error::NetworkError;
 use super::group::{group_znn, GROUP_GAMMA, GROUP_NU};
 use super::projection::{LviPdnn, SLviPdnn};
 use super::vp_rnn_pf::VpRnnPf;
@@ -196,13 +197,15 @@ fn activation_name(kind: ActivationKind, alpha: f64, chi: f64, xi: f64, power: f
     }
 }
 
-fn check_gain(name: &str, symbol: &str, v: f64) -> Result<(), String> {
+fn check_gain(network: &'static str, symbol: &'static str, v: f64) -> Result<(), NetworkError> {
     if v > 0.0 && v.is_finite() {
         Ok(())
     } else {
-        Err(format!(
-            "{name}: {symbol} must be positive and finite, got {v}"
-        ))
+        Err(NetworkError::Gain {
+            network,
+            symbol,
+            value: v,
+        })
     }
 }
 
@@ -420,7 +423,10 @@ fn cdnn_name(
 }
 
 /// Build the network of `spec` for QPs of sizes `dims` (scratch preallocated for them).
-pub fn build_solver(spec: &SolverSpec, dims: QpDims) -> Result<Box<dyn NeuralSolver>, String> {
+pub fn build_solver(
+    spec: &SolverSpec,
+    dims: QpDims,
+) -> Result<Box<dyn NeuralSolver>, NetworkError> {
     Ok(match *spec {
         SolverSpec::LviPdnn { gamma } => {
             check_gain("LVI-PDNN", "gamma", gamma)?;

@@ -69,6 +69,7 @@
 //! ```
 
 use super::activation::Activation;
+use super::error::NetworkError;
 use super::lu;
 use super::zeroing::Gain;
 use super::NeuralSolver;
@@ -119,7 +120,7 @@ impl VpRnnPf {
         gamma: f64,
         activation: Activation,
         dims: QpDims,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, NetworkError> {
         Self::with_gain(p, sigma, gamma, Gain::Exponential(gamma), activation, dims)
     }
 
@@ -132,11 +133,9 @@ impl VpRnnPf {
         gain: Gain,
         activation: Activation,
         dims: QpDims,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, NetworkError> {
         if !(p >= 0.0 && p.is_finite()) || !(sigma > 0.0 && sigma.is_finite()) {
-            return Err(format!(
-                "VP-RNN-PF needs p >= 0 and sigma > 0 (eq. 2.19), got p = {p}, sigma = {sigma}"
-            ));
+            return Err(NetworkError::VpRnnPf { p, sigma });
         }
         activation.validate()?;
         let rows = dims.n_in + 2 * dims.nx;

@@ -51,6 +51,7 @@
 
 use super::activation::Activation;
 use super::cdnn::ReferencePerturbation;
+use super::error::NetworkError;
 use super::lu;
 use super::{euclidean_norm, NeuralSolver};
 use nalgebra::DMatrix;
@@ -110,13 +111,13 @@ impl ZeroingNetwork {
         activation: Activation,
         perturbation: Option<ReferencePerturbation>,
         dims: QpDims,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, NetworkError> {
         let name = name.into();
         if dims.n_in != 0 {
-            return Err(format!(
-                "{name} solves equality-constrained QPs only (Q y = u); this QP has {} inequality rows",
-                dims.n_in
-            ));
+            return Err(NetworkError::EqualityOnly {
+                network: name,
+                n_in: dims.n_in,
+            });
         }
         activation.validate()?;
         let n = dims.nx + dims.n_eq;
@@ -143,12 +144,12 @@ impl ZeroingNetwork {
 
     /// Adds the growing-gain term -nu t E to the right-hand side (the group's network;
     /// nu = 0 leaves the network unchanged). nu must be finite and >= 0.
-    pub fn with_growing_gain(mut self, nu: f64) -> Result<Self, String> {
+    pub fn with_growing_gain(mut self, nu: f64) -> Result<Self, NetworkError> {
         if !(nu >= 0.0 && nu.is_finite()) {
-            return Err(format!(
-                "{}: nu must be finite and >= 0, got {nu}",
-                self.name
-            ));
+            return Err(NetworkError::GrowingGain {
+                network: self.name,
+                nu,
+            });
         }
         self.nu = nu;
         Ok(self)

@@ -46,6 +46,7 @@
 //! W ydot = -Wdot y + vdot - gamma (W y - v).
 
 use super::activation::Activation;
+use super::error::NetworkError;
 use super::zeroing::{Gain, ZeroingNetwork};
 use schemes::qp::QpDims;
 
@@ -60,11 +61,9 @@ pub fn finite_time(
     alpha: f64,
     smoothing: f64,
     dims: QpDims,
-) -> Result<ZeroingNetwork, String> {
+) -> Result<ZeroingNetwork, NetworkError> {
     if !(alpha > 0.0 && alpha < 1.0) {
-        return Err(format!(
-            "finite-time network needs 0 < alpha < 1 (kong2019), got {alpha}"
-        ));
+        return Err(NetworkError::FiniteTimeAlpha(alpha));
     }
     ZeroingNetwork::new(
         "FTNN",
@@ -79,6 +78,6 @@ pub fn finite_time(
 }
 
 /// The linear ZNN (kong2019's comparison solver): W ydot = -Wdot y + vdot - gamma (W y - v).
-pub fn znn(gamma: f64, dims: QpDims) -> Result<ZeroingNetwork, String> {
+pub fn znn(gamma: f64, dims: QpDims) -> Result<ZeroingNetwork, NetworkError> {
     ZeroingNetwork::new("ZNN", Gain::Fixed(gamma), Activation::Linear, None, dims)
 }

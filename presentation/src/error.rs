@@ -1,0 +1,110 @@
+//! The presentation layer's errors: drawing a figure ([`FigureError`], with a trace that cannot
+//! be read: [`TraceError`]), rendering the report and the figures ([`ReportError`], wrapping
+//! the records, explanation and control layers' errors) and scoring a trajectory
+//! ([`ScoreError`], wrapping the simulation's and records' errors).
+
+use records::error::{IoError, RunsError, TrajectoryFileError};
+use records::table::TableError;
+use records::tracked_dir::TrackedError;
+use simulation::error::ExperimentFileError;
+use simulation::score_trajectory::TrajectoryError;
+use std::path::PathBuf;
+
+/// Why a figure could not be drawn or encoded.
+#[derive(Debug, thiserror::Error)]
+pub enum FigureError {
+    /// plotters' error (generic over the drawing backend), by its message.
+    #[error("drawing a figure: {0}")]
+    Draw(String),
+    #[error("encoding a PNG: {0}")]
+    Png(#[from] png::EncodingError),
+    #[error("the embedded font DejaVuSans.ttf does not parse")]
+    Font,
+    #[error(transparent)]
+    Trace(#[from] TraceError),
+}
+
+/// A trace CSV that cannot be drawn, naming the file.
+#[derive(Debug, thiserror::Error)]
+#[error("{}: {problem}", path.display())]
+pub struct TraceError {
+    pub path: PathBuf,
+    pub problem: TraceProblem,
+}
+
+/// What is wrong with a trace CSV.
+#[derive(Debug, thiserror::Error)]
+pub enum TraceProblem {
+    #[error(transparent)]
+    Read(#[from] std::io::Error),
+    #[error(transparent)]
+    Csv(#[from] csv::Error),
+    #[error("no column `{0}`")]
+    NoColumn(&'static str),
+    #[error("expected theta_1..n and thetadot_1..n, found {theta} and {thetadot}")]
+    Joints { theta: usize, thetadot: usize },
+    #[error("row {row}: `{column}` = {text:?} is not a number")]
+    NotANumber {
+        row: usize,
+        column: String,
+        text: String,
+    },
+    #[error("row {row}: `{column}` is empty")]
+    Empty { row: usize, column: String },
+}
+
+/// Why the report or its figures could not be rendered.
+#[derive(Debug, thiserror::Error)]
+pub enum ReportError {
+    #[error(transparent)]
+    Runs(#[from] RunsError),
+    #[error(transparent)]
+    Explain(#[from] explain::error::ExplainError),
+    #[error(transparent)]
+    Control(#[from] control::ControlError),
+    #[error(transparent)]
+    Tracked(#[from] TrackedError),
+    #[error(transparent)]
+    Io(#[from] IoError),
+    #[error(transparent)]
+    Trace(#[from] TraceError),
+    /// The figure `name` could not be drawn.
+    #[error("{name}: {error}")]
+    Figure { name: String, error: FigureError },
+    #[error("two figures would be written to {0}: rename a variant or a solver")]
+    SameFigure(String),
+    #[error(transparent)]
+    Papers(#[from] records::papers::PapersError),
+    /// `records::dof_cost` could not read its file (its message: that module still reports
+    /// errors as text).
+    #[error("{0}")]
+    Records(String),
+}
+
+/// Why a trajectory could not be scored on a task, or its files written.
+#[derive(Debug, thiserror::Error)]
+pub enum ScoreError {
+    #[error(transparent)]
+    Experiments(#[from] ExperimentFileError),
+    #[error(
+        "no task \"{0}\" (a task is \"<experiment> / <variant>\", ids; `reproduce --list` lists them)"
+    )]
+    NoTask(String),
+    #[error(transparent)]
+    Trajectory(#[from] TrajectoryFileError),
+    /// (The scoring error boxed: it is large.)
+    #[error("{}: {error} (task \"{task}\")", file.display())]
+    Score {
+        file: PathBuf,
+        task: String,
+        error: Box<TrajectoryError>,
+    },
+    #[error(transparent)]
+    Table(#[from] TableError),
+    #[error("{}: {source}", path.display())]
+    Csv { path: PathBuf, source: csv::Error },
+    #[error(transparent)]
+    Io(#[from] IoError),
+    #[error(transparent)]
+    Figure(#[from] FigureError),
+}
