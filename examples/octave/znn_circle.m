@@ -4,7 +4,9 @@ function znn_circle(out)
 %   znn_circle(out) integrates kong2019's ZNN repetitive scheme (22) on the Katana 6M180
 %   tracing kong2019's circle, solved by a linear zeroing network, and writes the trajectory to
 %   the CSV file out (default 'znn_circle.csv') in the columns `reproduce --score` reads:
-%   t, theta_1..theta_5 (rad), thetadot_1..thetadot_5 (rad/s, the network's command x).
+%   t, theta_1..theta_5 (rad), thetadot_1..thetadot_5 (rad/s, the network's command x); an
+%   out ending in '.mat' is a MAT-file (v7) with the variables t (m x 1) and
+%   y = [theta, thetadot] (m x 10, a row per instant) instead.
 %   Everything is written here from the papers' equations (docs/robots.md, docs/paths.md,
 %   docs/experiments.md); nothing is read from driftbench. It is the task
 %   "kong2019-circle / ZNN (eq. 22)" of experiments/kong2019.toml:
@@ -21,6 +23,7 @@ function znn_circle(out)
 %   Run from the repository root (Octave or MATLAB):
 %     octave --no-gui --quiet --eval "addpath('examples/octave'); znn_circle('znn.csv')"
 %     cargo run --release -p reproduce -- --score znn.csv --task "kong2019-circle / ZNN (eq. 22)"
+%   (the same with znn.mat for a MAT-file).
 if nargin < 1
   out = 'znn_circle.csv';
 end
@@ -37,12 +40,18 @@ opts = odeset('RelTol', 1e-10, 'AbsTol', 1e-12);
 t_out = linspace(0, T, 451)';
 [t, y] = ode45(rhs, t_out, [theta0; zeros(n + m, 1)], opts);
 
+t_and_y = [t, y(:, 1:2 * n)];
+if numel(out) > 4 && strcmpi(out(end - 3:end), '.mat')
+  y = t_and_y(:, 2:end);
+  save(out, 't', 'y', '-v7');
+  return
+end
 fid = fopen(out, 'w');
 fprintf(fid, 't');
 fprintf(fid, ',theta_%d', 1:n);
 fprintf(fid, ',thetadot_%d', 1:n);
 fprintf(fid, '\n');
-fprintf(fid, [repmat('%.17g,', 1, 2 * n) '%.17g\n'], [t, y(:, 1:2 * n)]');
+fprintf(fid, [repmat('%.17g,', 1, 2 * n) '%.17g\n'], t_and_y');
 fclose(fid);
 end
 

@@ -6,7 +6,7 @@
 
 use crate::figures::run_svg;
 use records::runs::{merge, trace_csv, write_atomic, RunRow};
-use records::trajectory::{read_csv, score_row};
+use records::trajectory::{read, score_row};
 use simulation::experiment::{load_dir, Job, PaperFile};
 use simulation::naming::run_stem;
 use simulation::run::RunRecord;
@@ -38,9 +38,9 @@ pub fn find_task(experiments_dir: &Path, id: &str) -> Result<Job, String> {
         })
 }
 
-/// Scores the trajectory CSV `file` on `task` and writes the row, trace and figure under `out`.
+/// Scores the trajectory file `file` (CSV, or a MAT-file: `records::trajectory::read`) on `task` and writes the row, trace and figure under `out`.
 pub fn score_file(task: &Job, file: &Path, out: &Path, git_rev: &str) -> Result<Scored, String> {
-    let trajectory = read_csv(file)?;
+    let trajectory = read(file, task.theta0.len()).map_err(|e| e.to_string())?;
     let record = score_trajectory(task, &trajectory)
         .map_err(|e| format!("{}: {e} (task \"{}\")", file.display(), task.task_id()))?;
     let source = file.file_name().map_or_else(

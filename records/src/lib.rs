@@ -17,6 +17,8 @@
 //! - [`journal`]: the checkpoint of finished runs that an interrupted run resumes from.
 //! - [`shard`]: cluster runs: which shard a run belongs to, the shard manifest, the merge checks.
 //! - [`gate`]: the regression gate (fresh rows against committed ones).
+//! - [`trajectory`], [`trajectory_mat`]: trajectories made elsewhere (CSV, MAT-files) and
+//!   their score as a row.
 //! - [`paper_values`]: the published numbers (`report/paper-values.csv`) and which run each
 //!   one is compared with.
 
@@ -34,3 +36,4 @@ pub mod shard;
 pub mod table;
 pub mod tracked_dir;
 pub mod trajectory;
+pub mod trajectory_mat;

@@ -12,6 +12,9 @@
 //! wrong robot or path puts the Octave arm millimetres off the task's path) and the largest
 //! |x - x*| (at t = 0, where both networks start from x = 0) equal to 1e-9 relative.
 //!
+//! The same trajectory written as a MAT-file (`save -v7`, variables t and y) scores exactly as
+//! the CSV (both carry every digit).
+//!
 //! Octave is run as `octave-cli` (Debian's `octave` package; `.ci/run` installs it). Without
 //! it the test says it is skipped, and why, and passes.
 
@@ -100,6 +103,12 @@ fn an_octave_trajectory_scores_as_driftbench_own_run() {
     let file = dir.join("znn_circle.csv");
     run_octave(&octave, &root, &file);
     let scored = score(&root, &file, &dir.join("out"));
+    let mat = dir.join("znn_circle.mat");
+    run_octave(&octave, &root, &mat);
+    let scored_mat = score(&root, &mat, &dir.join("out-mat"));
+    assert_eq!(scored_mat.drift, scored.drift);
+    assert_eq!(scored_mat.score_max_dx, scored.score_max_dx);
+    assert_eq!(scored_mat.solver, "trajectory znn_circle.mat");
     let own = own_run(&root);
     std::fs::remove_dir_all(&dir).unwrap();
 
