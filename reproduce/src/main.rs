@@ -732,6 +732,7 @@ fn check_report_dir(root: &Path) -> Result<(), String> {
 fn render_report(root: &std::path::Path, results: &ResultsDir) -> Result<(), String> {
     let figures = presentation::figures::render_all(root)?;
     let report = presentation::report::render(root)?;
+    presentation::task_card::write_all(root).map_err(|e| e.to_string())?;
     records::leaderboard::write(
         results.path(),
         &results.read_runs().map_err(|e| e.to_string())?,
