@@ -41,8 +41,8 @@ pub enum TaskCardError {
     Setup { task: String, source: SetupError },
     #[error("task \"{task}\": robot \"{robot}\" is not in the registry")]
     Robot { task: String, robot: String },
-    #[error("{0}")]
-    Serialize(String),
+    #[error(transparent)]
+    Serialize(#[from] toml::ser::Error),
     #[error(transparent)]
     Report(#[from] TrackedError),
 }
@@ -424,7 +424,5 @@ fn inline<T: serde::Serialize>(value: &T) -> Result<String, TaskCardError> {
             other => other.to_string(),
         }
     }
-    toml::Value::try_from(value)
-        .map(|v| write(&v))
-        .map_err(|e| TaskCardError::Serialize(e.to_string()))
+    Ok(write(&toml::Value::try_from(value)?))
 }
