@@ -3,7 +3,7 @@
 //! the records, explanation and control layers' errors) and scoring a trajectory
 //! ([`ScoreError`], wrapping the simulation's and records' errors).
 
-use records::error::{IoError, RunsError, TrajectoryFileError};
+use records::error::{IoError, RunsError};
 use records::table::TableError;
 use records::tracked_dir::TrackedError;
 use simulation::error::ExperimentFileError;
@@ -91,7 +91,7 @@ pub enum ScoreError {
     )]
     NoTask(String),
     #[error(transparent)]
-    Trajectory(#[from] TrajectoryFileError),
+    Trajectory(#[from] records::trajectory::ReadError),
     /// (The scoring error boxed: it is large.)
     #[error("{}: {error} (task \"{task}\")", file.display())]
     Score {

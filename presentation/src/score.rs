@@ -8,7 +8,7 @@ use crate::error::ScoreError;
 use crate::figures::run_svg;
 use records::error::{IoAction, IoError};
 use records::runs::{merge, trace_csv, write_atomic, RunRow};
-use records::trajectory::{read_csv, score_row};
+use records::trajectory::{read, score_row};
 use simulation::experiment::{load_dir, Job, PaperFile};
 
 use simulation::run::RunRecord;
@@ -37,14 +37,15 @@ pub fn find_task(experiments_dir: &Path, id: &str) -> Result<Job, ScoreError> {
         .ok_or_else(|| ScoreError::NoTask(id.to_string()))
 }
 
-/// Scores the trajectory CSV `file` on `task` and writes the row, trace and figure under `out`.
+/// Scores the trajectory file `file` (CSV, or a MAT-file: `records::trajectory::read`) on
+/// `task` and writes the row, trace and figure under `out`.
 pub fn score_file(
     task: &Job,
     file: &Path,
     out: &Path,
     git_rev: &str,
 ) -> Result<Scored, ScoreError> {
-    let trajectory = read_csv(file)?;
+    let trajectory = read(file, task.theta0.len())?;
     let record = score_trajectory(task, &trajectory).map_err(|error| ScoreError::Score {
         file: file.to_path_buf(),
         task: task.task().to_string(),

@@ -28,7 +28,7 @@ use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use records::runs::RunRow;
-use records::trajectory::{read_csv, score_row};
+use records::trajectory::{read, score_row};
 use simulation::error::{RunError, SetupError};
 use simulation::run::{run_job, run_job_with_network, RunRecord};
 use simulation::score_trajectory::{score_trajectory, Trajectory};
@@ -384,8 +384,11 @@ fn score<'py>(
                 (s.record, s.row)
             }
             None => {
-                let record = score_trajectory(&task.job, &read_csv(&file).map_err(lib_err)?)
-                    .map_err(|e| lib_err(format!("{}: {e}", file.display())))?;
+                let record = score_trajectory(
+                    &task.job,
+                    &read(&file, task.job.theta0.len()).map_err(lib_err)?,
+                )
+                .map_err(|e| lib_err(format!("{}: {e}", file.display())))?;
                 let row = score_row(&record, &file.display().to_string(), &git_rev);
                 (record, row)
             }

@@ -167,3 +167,27 @@ def test_cost_of_a_python_call_is_reported():
     per_call = run["python_seconds"] / run["python_calls"]
     print(f"\nPython call (ZNN rhs/jacobian, QP conversion included): {per_call * 1e6:.1f} us")
     assert 0 < per_call < 1e-2
+
+
+OCTAVE = shutil.which("octave-cli") or shutil.which("octave")
+
+
+@pytest.mark.skipif(
+    OCTAVE is None,
+    reason="Octave is not installed (Debian: apt-get install octave; .ci/run installs it)",
+)
+def test_an_octave_mat_file_scores_as_its_csv(tmp_path):
+    # examples/octave/znn_circle.m writes the same trajectory as CSV and as a v7 MAT-file.
+    for name in ("znn.csv", "znn.mat"):
+        script = f"addpath('{ROOT / 'examples' / 'octave'}'); znn_circle('{tmp_path / name}')"
+        subprocess.run(
+            [OCTAVE, "--no-gui", "--quiet", "--no-init-file", "--eval", script],
+            check=True,
+            capture_output=True,
+        )
+    task = driftbench.task(CIRCLE, root=ROOT)
+    from_csv = driftbench.score(task, str(tmp_path / "znn.csv"))
+    from_mat = driftbench.score(task, str(tmp_path / "znn.mat"))
+    np.testing.assert_array_equal(from_mat["drift"], from_csv["drift"])
+    assert from_mat["score_max_dx"] == from_csv["score_max_dx"]
+    assert from_mat["max_pos_err"] < 1e-9

@@ -20,6 +20,8 @@
 //! - [`claims`]: a paper's claims as data (a metric of a selection of runs against a threshold
 //!   or another selection).
 //! - [`migrate`]: results written before run ids (labels as identities), brought up to date once.
+//! - [`trajectory`], [`trajectory_mat`]: trajectories made elsewhere (CSV, MAT-files) and
+//!   their score as a row.
 //! - [`papers`]: the papers as data (`papers/<paper>/`): metadata, published numbers and which run each
 //!   one is compared with.
 
@@ -40,3 +42,4 @@ pub mod shard;
 pub mod table;
 pub mod tracked_dir;
 pub mod trajectory;
+pub mod trajectory_mat;

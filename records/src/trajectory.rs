@@ -1,6 +1,6 @@
 //! Trajectories produced elsewhere (MATLAB, Octave, Python), as files, and their score as a row.
 //!
-//! **Input** ([`read_csv`]): a CSV file with a header row naming the columns `t`,
+//! **Input** ([`read`]): a MAT-file (`crate::trajectory_mat`: variables `t` and `y`) or ([`read_csv`]) a CSV file with a header row naming the columns `t`,
 //! `theta_1 .. theta_n` and optionally `thetadot_1 .. thetadot_n` (in any order; n the task's
 //! joint count; no other column), one row per sample: t in seconds from 0 to the task's
 //! duration, joint angles in rad, velocities in rad/s. `simulation::score_trajectory` says what
@@ -14,6 +14,7 @@
 
 use crate::error::{TrajectoryFileError, TrajectoryProblem};
 use crate::runs::RunRow;
+use crate::trajectory_mat::{read_mat, MatError};
 use simulation::run::RunRecord;
 use simulation::score_trajectory::Trajectory;
 use std::collections::BTreeMap;
@@ -21,6 +22,29 @@ use std::path::Path;
 
 /// The `solver_kind` (and `integrator`) of a scored trajectory's row.
 pub const TRAJECTORY_KIND: &str = "trajectory";
+
+/// Why a trajectory file cannot be read.
+#[derive(Debug, thiserror::Error)]
+pub enum ReadError {
+    /// The CSV file's problem (file, line, column).
+    #[error(transparent)]
+    Csv(#[from] TrajectoryFileError),
+    #[error(transparent)]
+    Mat(#[from] MatError),
+}
+
+/// Reads the trajectory of a `joints`-joint task from `path`: a MAT-file when the name ends in
+/// `.mat` (any case), a CSV file otherwise.
+pub fn read(path: &Path, joints: usize) -> Result<Trajectory, ReadError> {
+    let is_mat = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("mat"));
+    if is_mat {
+        Ok(read_mat(path, joints)?)
+    } else {
+        read_csv(path).map_err(ReadError::Csv)
+    }
+}
 
 /// Reads a trajectory CSV (module docs). Errors name the file and, where it applies, the line.
 pub fn read_csv(path: &Path) -> Result<Trajectory, TrajectoryFileError> {
@@ -159,5 +183,50 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("2 theta_i columns but 1 thetadot_i"), "{e}");
+    }
+
+    fn fixture(name: &str) -> std::path::PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/fixtures")
+            .join(name)
+    }
+
+    /// Written by Octave 7.3: `t = [0; 0.5; 1]`, `y = [1 2 10 20; 3 4 30 40; 5 6 50 60]` and a
+    /// string `s` as `save -v7` (compressed); `t'` and `y(:, 1:2)` as `save -v6`.
+    #[test]
+    fn mat_files_of_octave_are_read_with_and_without_velocities() {
+        let tr = super::read(&fixture("trajectory-v7.mat"), 2).unwrap();
+        assert_eq!(tr.t, [0.0, 0.5, 1.0]);
+        assert_eq!(tr.theta, [vec![1.0, 2.0], vec![3.0, 4.0], vec![5.0, 6.0]]);
+        assert_eq!(
+            tr.thetadot,
+            Some(vec![vec![10.0, 20.0], vec![30.0, 40.0], vec![50.0, 60.0]])
+        );
+        let tr = super::read(&fixture("trajectory-v6.mat"), 2).unwrap();
+        assert_eq!(tr.t, [0.0, 0.5, 1.0]);
+        assert_eq!(tr.theta[2], [5.0, 6.0]);
+        assert!(tr.thetadot.is_none());
+    }
+
+    #[test]
+    fn mat_files_of_the_wrong_shape_are_refused() {
+        let e = super::read(&fixture("trajectory-v7.mat"), 3)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("y is 3 x 4; for 3 instants of a 3-joint task"),
+            "{e}"
+        );
+        let e = super::read(&fixture("trajectory-v6.mat"), 3)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("y is 3 x 2"), "{e}");
+        let e = super::read(&fixture("missing.mat"), 2)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("missing.mat"), "{e}");
+        let csv = fixture("trajectory-v7.csv");
+        let e = super::read(&csv, 2).unwrap_err();
+        assert!(matches!(e, ReadError::Csv(_)), "{e}");
     }
 }

@@ -779,6 +779,7 @@ fn render_report(cli: &Cli, root: &std::path::Path, results: &ResultsDir) -> Res
     let figures = presentation::figures::render_all(root).map_err(|e| e.to_string())?;
     let report = presentation::report::render(root, &cli.project_root.join("papers"))
         .map_err(|e| e.to_string())?;
+    presentation::task_card::write_all(root).map_err(|e| e.to_string())?;
     records::leaderboard::write(
         results.path(),
         &results.read_runs().map_err(|e| e.to_string())?,

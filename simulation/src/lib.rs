@@ -9,7 +9,8 @@
 //! `records` crate's work, presenting them the `presentation` crate's. [`root`] finds the
 //! project (experiments/, results/, report/) and the code revision runs are stamped with.
 //! [`score_trajectory`] scores a trajectory produced elsewhere on a task, with the metrics and
-//! the score of a run. [`dof_cost`] measures what an instant and a run cost against the number of joints.
+//! the score of a run. [`task_numbers`] computes a task's check values (its task card's).
+//! [`dof_cost`] measures what an instant and a run cost against the number of joints.
 
 pub mod coupled;
 pub mod dof_cost;
@@ -25,3 +26,4 @@ pub mod runner;
 pub mod score_trajectory;
 pub mod simulate;
 pub mod sweep;
+pub mod task_numbers;

@@ -84,7 +84,7 @@ fn pct(v: f64) -> String {
 }
 
 /// The ranking table of one set.
-fn ranking(rows: &[&LeaderboardRow]) -> String {
+pub fn ranking(rows: &[&LeaderboardRow]) -> String {
     let mut t = Table::new([
         "rank",
         "solver",

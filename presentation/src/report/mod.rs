@@ -17,6 +17,8 @@
 //!   many cycles (`results/control*.csv`, `results/cycles*.csv`);
 //! - [`performance`]: per-instant costs against the exact solvers and the KKT floor, the cost
 //!   against the number of joints, whole runs against the MATLAB times, and the machine;
+//! - [`python`]: the Python package's numpy entry on the leaderboard and the cost of a Python
+//!   call (`results/leaderboard-python.csv`, `results/python-call-cost.csv`);
 //! - the [`cross`] experiment matrices;
 //! - the published numbers without a run (`records::paper_values`), and the deviations.
 
@@ -29,6 +31,7 @@ pub mod header;
 pub mod leaderboard;
 pub mod markdown;
 pub mod performance;
+pub mod python;
 pub mod score;
 pub mod sweep;
 pub mod tables;
@@ -63,6 +66,8 @@ pub struct Inputs {
     pub dof_cost: Vec<records::dof_cost::DofCostRow>,
     /// The control experiments' result files (absent = empty).
     pub control: control::ControlResults,
+    /// The Python package's result files (absent = empty).
+    pub python: python::PythonResults,
 }
 
 impl Inputs {
@@ -86,6 +91,7 @@ impl Inputs {
             },
             dof_cost: records::dof_cost::read(&results).map_err(ReportError::Records)?,
             control: control::ControlResults::load(&results)?,
+            python: python::PythonResults::load(&results)?,
         })
     }
 }
@@ -110,6 +116,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
         explanations,
         dof_cost,
         control,
+        python,
     } = inputs;
     let mut out = header::header(runs, papers.values.len(), figures.len());
 
@@ -204,7 +211,11 @@ pub fn to_markdown(inputs: &Inputs) -> String {
         }
     }
 
-    out.push_str(&leaderboard::section(runs));
+    let board = leaderboard::section(runs);
+    if !board.is_empty() {
+        out.push_str(&board);
+        out.push_str(&python::leaderboard(&python.leaderboard));
+    }
 
     out.push_str("## Cost\n\nSteps, evaluations and QP solves are counted by the integrator and the scorer (the exact QP is solved at every RHS evaluation of the exact column and at every accepted step of a neural run). Wall times come from runs executed in parallel: compare them within one table, not across machines.\n\n");
     for paper in papers.papers.iter().map(|p| p.id.as_str()).chain([CROSS]) {
@@ -225,6 +236,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
     out.push('\n');
 
     out.push_str(&performance::section(dof_cost, runs, papers, figures));
+    out.push_str(&python::call_cost(&python.call_cost));
     out.push_str(&control::section(control, runs, figures));
     out.push_str(&control::cycles_section(control, figures));
 

@@ -1,0 +1,34 @@
+"""A numpy network on the leaderboard beside the suite's own: the gradient network written in
+numpy (``driftbench.networks.Gnn``) runs every task of the standard task set through
+``driftbench.leaderboard``, which ranks it with the suite's networks exactly as
+``results/leaderboard.csv`` ranks them, and the ranking is written to
+``results/leaderboard-python.csv`` (the schema of ``results/leaderboard.csv``), which the
+report's Leaderboard section shows as the Python entry.
+
+Run from the repository root, with the package installed (``pip install ./python``)::
+
+    python python/examples/leaderboard.py
+"""
+
+import pathlib
+import shutil
+import tempfile
+
+import driftbench
+from driftbench.networks import Gnn
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+OUT = ROOT / "results" / "leaderboard-python.csv"
+
+
+def main():
+    with tempfile.TemporaryDirectory() as scratch:
+        board = driftbench.leaderboard({"GNN (numpy)": Gnn()}, root=ROOT, out_dir=scratch)
+        shutil.copyfile(pathlib.Path(scratch) / "leaderboard.csv", OUT)
+    for row in board["leaderboard"]:
+        print(row["task_set"], row["rank"], row["solver"], row["success_pct"], row["dx_rel"])
+    print(f"wrote {OUT}")
+
+
+if __name__ == "__main__":
+    main()

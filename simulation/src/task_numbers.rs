@@ -1,0 +1,112 @@
+//! The numbers of a task, computed by the suite's own models, that someone setting the same task
+//! up in their own code checks theirs against (the task cards of `presentation::task_card`):
+//! the robot's limits, the task point and Jacobian at theta0, the path at a few instants, and
+//! the scheme's QP at t = 0 (at the velocity level at theta0; at the acceleration level at
+//! theta0 with thetadot = 0).
+
+use crate::error::SetupError;
+use crate::experiment::Job;
+use crate::robot_registry::{robot_by_name, RobotVisitor};
+use crate::run::build_parts;
+use nalgebra::SVector;
+use robots::{Dynamics, Robot};
+use schemes::qp::Qp;
+use schemes::scheme::Level;
+use std::sync::Arc;
+
+/// Instants of the path samples, as fractions of the duration T.
+pub const PATH_FRACTIONS: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
+
+/// The path at one instant.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PathSample {
+    pub t: f64,
+    pub r: [f64; 3],
+    pub rdot: [f64; 3],
+    pub rddot: [f64; 3],
+}
+
+/// The numbers of a task (module docs).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TaskNumbers {
+    pub joints: usize,
+    /// theta-, theta+, thetadot-, thetadot+ per joint (infinite where unlimited).
+    pub theta_min: Vec<f64>,
+    pub theta_max: Vec<f64>,
+    pub thetadot_min: Vec<f64>,
+    pub thetadot_max: Vec<f64>,
+    /// f(theta0), and J(theta0) by rows.
+    pub position0: [f64; 3],
+    pub jacobian0: Vec<Vec<f64>>,
+    /// f(theta_ref), where the path starts.
+    pub path_start: [f64; 3],
+    /// The path at [`PATH_FRACTIONS`] of T.
+    pub path: Vec<PathSample>,
+    /// The scheme's name, level and QP at t = 0.
+    pub scheme: String,
+    pub level: Level,
+    pub qp0: Qp,
+}
+
+/// The numbers of `job`'s task (its robot, path, scheme and poses; solver and integrator play
+/// no part).
+pub fn task_numbers(job: &Job) -> Result<TaskNumbers, SetupError> {
+    struct Numbers<'a>(&'a Job);
+    impl RobotVisitor for Numbers<'_> {
+        type Output = Result<TaskNumbers, SetupError>;
+        fn visit<const N: usize>(
+            self,
+            robot: Arc<dyn Robot<N>>,
+            dynamics: Option<Arc<dyn Dynamics<N>>>,
+        ) -> Self::Output {
+            numbers::<N>(self.0, robot, dynamics)
+        }
+    }
+    robot_by_name(&job.robot)
+        .ok_or_else(|| SetupError::UnknownRobot(job.robot.clone()))?
+        .visit(Numbers(job))
+}
+
+fn numbers<const N: usize>(
+    job: &Job,
+    robot: Arc<dyn Robot<N>>,
+    dynamics: Option<Arc<dyn Dynamics<N>>>,
+) -> Result<TaskNumbers, SetupError> {
+    let theta0 = SVector::<f64, N>::from_column_slice(&job.theta0);
+    let theta_ref = SVector::<f64, N>::from_column_slice(&job.theta_ref);
+    let (path, scheme) = build_parts::<N>(job, robot.clone(), dynamics)?;
+    let mut qp0 = Qp::zeros(scheme.dims());
+    scheme.build(0.0, &theta0, &SVector::zeros(), &mut qp0);
+    let point = |v: nalgebra::Vector3<f64>| [v.x, v.y, v.z];
+    let limits = robot.limits();
+    let jacobian = robot.jacobian(&theta0);
+    Ok(TaskNumbers {
+        joints: N,
+        theta_min: limits.theta_min.as_slice().to_vec(),
+        theta_max: limits.theta_max.as_slice().to_vec(),
+        thetadot_min: limits.thetadot_min.as_slice().to_vec(),
+        thetadot_max: limits.thetadot_max.as_slice().to_vec(),
+        position0: point(robot.position(&theta0)),
+        jacobian0: jacobian
+            .row_iter()
+            .map(|r| r.iter().copied().collect())
+            .collect(),
+        path_start: point(robot.position(&theta_ref)),
+        path: PATH_FRACTIONS
+            .iter()
+            .map(|f| {
+                let t = f * job.path.duration;
+                let p = path.at(t);
+                PathSample {
+                    t,
+                    r: point(p.r),
+                    rdot: point(p.rdot),
+                    rddot: point(p.rddot),
+                }
+            })
+            .collect(),
+        scheme: scheme.name(),
+        level: scheme.level(),
+        qp0,
+    })
+}
