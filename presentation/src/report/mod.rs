@@ -75,6 +75,8 @@ pub struct Inputs {
     pub explanations: why::Explanations,
     /// `results/dof-cost.csv` (absent = empty).
     pub dof_cost: Vec<records::dof_cost::DofCostRow>,
+    /// `results/profile-zhong2021.csv` (absent = empty).
+    pub profile: Vec<records::profile::ProfileRow>,
     /// The control experiments' result files (absent = empty).
     pub control: control::ControlResults,
 }
@@ -98,6 +100,7 @@ impl Inputs {
                 entries: read_csv(&results.join("inference-entries.csv"))?,
             },
             dof_cost: records::dof_cost::read(&results)?,
+            profile: read_csv(&results.join(records::profile::FILE))?,
             control: control::ControlResults::load(&results)?,
         })
     }
@@ -124,6 +127,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
         figures,
         explanations,
         dof_cost,
+        profile,
         control,
     } = inputs;
     let mut out = header::header(runs, values.len(), figures.len());
@@ -231,7 +235,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
     out.push_str(&cost::matlab_comparison(runs, values));
     out.push('\n');
 
-    out.push_str(&performance::section(dof_cost, runs, values, figures));
+    out.push_str(&performance::section(dof_cost, profile, runs, values, figures));
     out.push_str(&control::section(control, runs, figures));
     out.push_str(&control::cycles_section(control, figures));
 
