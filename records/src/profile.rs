@@ -50,7 +50,10 @@ impl ProfileRow {
 pub fn floor_ratio(rows: &[ProfileRow]) -> Option<f64> {
     let simulation = rows.iter().filter(|r| r.part == SIMULATION);
     let (all, floor) = simulation.fold((0usize, 0usize), |(all, floor), r| {
-        (all + r.samples, floor + if r.in_floor() { r.samples } else { 0 })
+        (
+            all + r.samples,
+            floor + if r.in_floor() { r.samples } else { 0 },
+        )
     });
     (floor > 0).then(|| all as f64 / floor as f64)
 }

@@ -235,7 +235,9 @@ pub fn to_markdown(inputs: &Inputs) -> String {
     out.push_str(&cost::matlab_comparison(runs, values));
     out.push('\n');
 
-    out.push_str(&performance::section(dof_cost, profile, runs, values, figures));
+    out.push_str(&performance::section(
+        dof_cost, profile, runs, values, figures,
+    ));
     out.push_str(&control::section(control, runs, figures));
     out.push_str(&control::cycles_section(control, figures));
 

@@ -138,9 +138,8 @@ fn where_time_goes(profile: &[ProfileRow]) -> String {
             format!("{:.1}", r.ms_per_pass),
         ]);
     }
-    let ratio = records::profile::floor_ratio(profile).map_or(MISSING.to_string(), |v| {
-        format!("{v:.2}")
-    });
+    let ratio =
+        records::profile::floor_ratio(profile).map_or(MISSING.to_string(), |v| format!("{v:.2}"));
     format!(
         "### Where the time goes\n\nA sampling profile of `reproduce --paper zhong2021 \
          --skip-explain --threads 1 --dry-run`, {} passes pinned to one CPU at {} Hz, revision \
