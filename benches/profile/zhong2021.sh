@@ -6,7 +6,9 @@
 # pinned to one CPU, and classify.py sorts every sample by what it was doing (classify.py's
 # module doc lists the categories). Run from the repository root after
 #   cargo build --release -p reproduce
-# Needs `perf` (Debian: linux-perf) and python3. Usage: benches/profile/zhong2021.sh [PASSES]
+# and re-render the report with `reproduce --report-only --accept-edited` (the new file differs
+# from results/manifest.toml by intent). Needs `perf` (Debian: linux-perf) and python3.
+# Usage: benches/profile/zhong2021.sh [PASSES]
 set -eu
 passes="${1:-5}"
 freq=1999
