@@ -29,9 +29,9 @@ impl OdeSystem for Forced {
     }
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
         let n = self.n;
-        for i in 0..n {
-            let e = |k: usize| y[k] - (t + k as f64).sin();
-            dy[i] = -self.gamma * e(i) - (e(i) - e((i + 1) % n));
+        let e = |k: usize| y[k] - (t + k as f64).sin();
+        for (i, d) in dy.iter_mut().enumerate() {
+            *d = -self.gamma * e(i) - (e(i) - e((i + 1) % n));
         }
     }
     fn jacobian(&mut self, _t: f64, _y: &[f64], jac: &mut DMatrix<f64>) -> bool {
