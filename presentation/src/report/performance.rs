@@ -572,7 +572,25 @@ mod tests {
     fn the_section_renders_from_a_synthetic_csv() {
         let dof = synthetic();
         let figures = vec!["dof-cost__jia2019.svg".to_string()];
-        let md = section(&dof, &[], &Runs::new(Vec::new()), &[], &figures);
+        let profile_csv = "part,category,floor,samples,share_of_process,share_of_simulation,\
+                           ms_per_pass,passes,frequency_hz,git_rev\n\
+                           simulation,RHS,yes,60,0.5,0.75,30.0,2,1000,abc\n\
+                           simulation,BDF method,no,20,0.1667,0.25,10.0,2,1000,abc\n\
+                           observer,metrics,no,40,0.3333,,20.0,2,1000,abc\n";
+        let profile: Vec<ProfileRow> = records::table::from_reader(profile_csv.as_bytes()).unwrap();
+        let md = section(&dof, &profile, &Runs::new(Vec::new()), &[], &figures);
+        assert!(
+            md.contains("| simulation | BDF method | no | 16.7 % | 25.0 % | 10.0 |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("| observer | metrics | no | 33.3 % | — | 20.0 |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("The simulation takes 1.33 times its floor"),
+            "{md}"
+        );
         assert!(md.starts_with("## Performance\n"), "{md}");
         assert!(
             md.contains("Test CPU (2 logical cores available) at revision `abc`"),
