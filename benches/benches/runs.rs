@@ -30,11 +30,12 @@ fn whole_runs(c: &mut Criterion) {
             panic!("{}: failed at t = {t}: {error}", job.key());
         }
         eprintln!(
-            "run {}: {} steps, {} rhs, {} jacobians, {} Clarabel solves, {} allocations",
+            "run {}: {} steps, {} rhs, {} jacobians, {} LU, {} Clarabel solves, {} allocations",
             job.key(),
             record.run.stats.steps,
             record.run.stats.rhs_evals,
             record.run.stats.jac_evals,
+            record.run.stats.lu_factorisations,
             record.run.qp.solves,
             allocations
         );

@@ -5,6 +5,7 @@
 //!   with the schema checked.
 //! - [`table`]: CSV tables whose per-joint columns follow the robot's joint count.
 //! - [`dof_cost`]: the cost against the number of joints (`results/dof-cost.csv`).
+//! - [`profile`]: where a zhong2021 reproduction's time goes (`results/profile-zhong2021.csv`).
 //! - [`index`]: the stored runs indexed as the report and the analyses look them up.
 //! - [`leaderboard`]: every velocity-level solver on the standard task set, scored as
 //!   qpbenchmark scores QP solvers (`results/leaderboard.csv`).
@@ -36,6 +37,7 @@ pub mod leaderboard;
 pub mod migrate;
 pub mod owned_dir;
 pub mod papers;
+pub mod profile;
 pub mod results_dir;
 pub mod runs;
 pub mod shard;

@@ -156,7 +156,7 @@ pub(crate) fn write_tri_criteria<const N: usize>(
     w2: f64,
     c: f64,
 ) {
-    qp.p.fill(0.0);
+    qp.p.as_mut_slice().fill(0.0);
     for i in 0..N {
         qp.p[(i, i)] = w1 + w2;
         qp.q[i] = c * (theta[i] - theta0[i]);
@@ -182,7 +182,7 @@ pub(crate) fn write_tri_criteria_dot<const N: usize>(
     thetadot: &SVector<f64, N>,
     c: f64,
 ) {
-    qp_dot.p.fill(0.0);
+    qp_dot.p.as_mut_slice().fill(0.0);
     for i in 0..N {
         qp_dot.q[i] = c * thetadot[i];
     }
@@ -255,8 +255,8 @@ impl<const N: usize> Scheme<N> for Jia2019<N> {
             thetadot,
             self.rmp_coefficient(),
         );
-        qp_dot.g.fill(0.0);
-        qp_dot.h.fill(0.0);
+        qp_dot.g.as_mut_slice().fill(0.0);
+        qp_dot.h.as_mut_slice().fill(0.0);
         let (lo, hi) = merged_bounds_dot(&self.robot.limits(), theta, thetadot, self.kappa);
         qp_dot.lower.rows_mut(0, N).copy_from(&lo);
         qp_dot.upper.rows_mut(0, N).copy_from(&hi);

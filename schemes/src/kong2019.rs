@@ -163,8 +163,8 @@ impl<const N: usize> Scheme<N> for Kong2019<N> {
         qp.a.copy_from(&self.robot.jacobian(theta));
         let pp = self.path.at(t);
         qp.b.copy_from(&(pp.rdot + (pp.r - self.robot.position(theta)) * self.k_p));
-        qp.lower.fill(f64::NEG_INFINITY);
-        qp.upper.fill(f64::INFINITY);
+        qp.lower.as_mut_slice().fill(f64::NEG_INFINITY);
+        qp.upper.as_mut_slice().fill(f64::INFINITY);
     }
 
     /// Analytic (see the module docs for the finite-time regularisation at e = 0).
@@ -178,7 +178,7 @@ impl<const N: usize> Scheme<N> for Kong2019<N> {
         _scratch: &mut QpDotScratch,
     ) {
         debug_assert_eq!(qp_dot.dims(), self.dims());
-        qp_dot.p.fill(0.0);
+        qp_dot.p.as_mut_slice().fill(0.0);
         match self.term {
             Repetitive::FiniteTime {
                 beta_theta,
@@ -204,7 +204,7 @@ impl<const N: usize> Scheme<N> for Kong2019<N> {
         qp_dot
             .b
             .copy_from(&(pp.rddot + (pp.rdot - jthd) * self.k_p));
-        qp_dot.lower.fill(0.0);
-        qp_dot.upper.fill(0.0);
+        qp_dot.lower.as_mut_slice().fill(0.0);
+        qp_dot.upper.as_mut_slice().fill(0.0);
     }
 }

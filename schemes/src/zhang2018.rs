@@ -131,8 +131,8 @@ impl<const N: usize> Scheme<N> for Zhang2018<N> {
             + (pp.r - self.robot.position(theta)) * self.rho_p;
         qp.b.copy_from(&b);
         // No inequalities (n_in = 0) and no bounds.
-        qp.lower.fill(f64::NEG_INFINITY);
-        qp.upper.fill(f64::INFINITY);
+        qp.lower.as_mut_slice().fill(f64::NEG_INFINITY);
+        qp.upper.as_mut_slice().fill(f64::INFINITY);
     }
 
     fn torque(

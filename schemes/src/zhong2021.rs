@@ -153,7 +153,11 @@ impl<const N: usize> Scheme<N> for Zhong2021<N> {
         // E rows (x <= x+) and -E rows (-x <= -x-).
         let (lo, hi) = piecewise_bounds(&self.robot.limits(), theta, self.upsilon);
         let (e0, m0) = (2 * N, 3 * N + 1);
-        qp.g.rows_mut(e0, 2 * N + 2).fill(0.0);
+        // Column by column: nalgebra's fill of a strided row view goes element by element.
+        let rows = qp.g.nrows();
+        for column in qp.g.as_mut_slice().chunks_exact_mut(rows) {
+            column[e0..e0 + 2 * N + 2].fill(0.0);
+        }
         for i in 0..=N {
             qp.g[(e0 + i, i)] = 1.0;
             qp.g[(m0 + i, i)] = -1.0;
@@ -164,8 +168,8 @@ impl<const N: usize> Scheme<N> for Zhong2021<N> {
         }
         qp.h[e0 + N] = self.varpi;
         qp.h[m0 + N] = 0.0;
-        qp.lower.fill(f64::NEG_INFINITY);
-        qp.upper.fill(f64::INFINITY);
+        qp.lower.as_mut_slice().fill(f64::NEG_INFINITY);
+        qp.upper.as_mut_slice().fill(f64::INFINITY);
     }
 
     /// Analytic: Qdot = 0, gdot = [c thetadot; 0] (c = [`Zhong2021::rmp_coefficient`]),
@@ -191,15 +195,15 @@ impl<const N: usize> Scheme<N> for Zhong2021<N> {
             thetadot,
             self.rmp_coefficient(),
         );
-        qp_dot.g.fill(0.0);
-        qp_dot.h.fill(0.0);
+        qp_dot.g.as_mut_slice().fill(0.0);
+        qp_dot.h.as_mut_slice().fill(0.0);
         let (lo, hi) = merged_bounds_dot(&self.robot.limits(), theta, thetadot, self.upsilon);
         let (e0, m0) = (2 * N, 3 * N + 1);
         for i in 0..N {
             qp_dot.h[e0 + i] = hi[i];
             qp_dot.h[m0 + i] = -lo[i];
         }
-        qp_dot.lower.fill(0.0);
-        qp_dot.upper.fill(0.0);
+        qp_dot.lower.as_mut_slice().fill(0.0);
+        qp_dot.upper.as_mut_slice().fill(0.0);
     }
 }

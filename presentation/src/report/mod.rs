@@ -64,6 +64,8 @@ pub struct Inputs {
     pub explanations: why::Explanations,
     /// `results/dof-cost.csv` (absent = empty).
     pub dof_cost: Vec<records::dof_cost::DofCostRow>,
+    /// `results/profile-zhong2021.csv` (absent = empty).
+    pub profile: Vec<records::profile::ProfileRow>,
     /// The control experiments' result files (absent = empty).
     pub control: control::ControlResults,
     /// The Python package's result files (absent = empty).
@@ -90,6 +92,7 @@ impl Inputs {
                 entries: read_csv(&results.join("inference-entries.csv"))?,
             },
             dof_cost: records::dof_cost::read(&results).map_err(ReportError::Records)?,
+            profile: read_csv(&results.join(records::profile::FILE))?,
             control: control::ControlResults::load(&results)?,
             python: python::PythonResults::load(&results)?,
         })
@@ -115,6 +118,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
         figures,
         explanations,
         dof_cost,
+        profile,
         control,
         python,
     } = inputs;
@@ -235,7 +239,9 @@ pub fn to_markdown(inputs: &Inputs) -> String {
     out.push_str(&cost::matlab_comparison(runs, papers));
     out.push('\n');
 
-    out.push_str(&performance::section(dof_cost, runs, papers, figures));
+    out.push_str(&performance::section(
+        dof_cost, profile, runs, papers, figures,
+    ));
     out.push_str(&python::call_cost(&python.call_cost));
     out.push_str(&control::section(control, runs, figures));
     out.push_str(&control::cycles_section(control, figures));

@@ -38,6 +38,11 @@
 //! the QP is frozen. ydot is solved for with an in-place LU ([`super::lu`]).
 //! Activation: linear (2.27), sinh (2.28) or power-sigmoid (2.29), see [`Activation`].
 //!
+//! Sparse rows (ours): most rows of B are bounds, sign e_j'. Every sum over rows and columns
+//! above runs over the entries where B or Bdot is nonzero only, in the same order as the dense
+//! sums, whose other terms are exact zeros: the same numbers (up to the sign of a zero) at
+//! O(nx nnz(B)) instead of O(nx^2 rows).
+//!
 //! Numerical guard (ours): the exponent -sigma N_i is capped at [`EXPONENT_CAP`] so a deep
 //! violation (N_i < -700/sigma) gives a huge but finite penalty instead of +inf.
 //!
@@ -97,6 +102,9 @@ pub struct VpRnnPf {
     h: Vec<f64>,
     hdot: Vec<f64>,
     rows: usize,
+    /// For each joint-command index j, the rows r with B_rj or Bdot_rj nonzero, in increasing
+    /// r (module docs, sparse rows); capacity `rows` each, so refilling never allocates.
+    rows_of: Vec<Vec<usize>>,
     /// c_i = p sigma exp(-sigma N_i).
     c: Vec<f64>,
     /// Bdot_i x.
@@ -152,6 +160,7 @@ impl VpRnnPf {
             h: vec![0.0; rows],
             hdot: vec![0.0; rows],
             rows: 0,
+            rows_of: vec![Vec::with_capacity(rows); dims.nx],
             c: vec![0.0; rows],
             bdot_x: vec![0.0; rows],
             w: DMatrix::zeros(n, n),
@@ -201,6 +210,10 @@ impl VpRnnPf {
             }
         }
         self.rows = r;
+        for (j, rows) in self.rows_of.iter_mut().enumerate() {
+            rows.clear();
+            rows.extend((0..r).filter(|&k| self.b[(k, j)] != 0.0 || self.bdot[(k, j)] != 0.0));
+        }
     }
 
     /// Evaluate phi, W, the right-hand side of eq. 2.30 and solve for F = ydot.
@@ -215,22 +228,24 @@ impl VpRnnPf {
         self.gather_rows(qp, qp_dot);
         let (x, lambda) = y.split_at(nx);
         let (p, sigma) = (self.p, self.sigma);
-        for i in 0..self.rows {
-            let mut bx = 0.0;
-            let mut bdx = 0.0;
-            for j in 0..nx {
-                bx += self.b[(i, j)] * x[j];
-                bdx += self.bdot[(i, j)] * x[j];
+        // B x and Bdot x over each row's nonzeros (c holds B x until it is overwritten).
+        self.c[..self.rows].fill(0.0);
+        self.bdot_x[..self.rows].fill(0.0);
+        for (j, rows) in self.rows_of.iter().enumerate() {
+            for &r in rows {
+                self.c[r] += self.b[(r, j)] * x[j];
+                self.bdot_x[r] += self.bdot[(r, j)] * x[j];
             }
-            let n_i = self.h[i] - bx;
+        }
+        for i in 0..self.rows {
+            let n_i = self.h[i] - self.c[i];
             self.c[i] = p * sigma * (-sigma * n_i).min(EXPONENT_CAP).exp();
-            self.bdot_x[i] = bdx;
         }
         // W and phi.
         for i in 0..nx {
             for j in 0..nx {
                 let mut s = qp.p[(i, j)];
-                for r in 0..self.rows {
+                for &r in &self.rows_of[i] {
                     s += sigma * self.c[r] * self.b[(r, i)] * self.b[(r, j)];
                 }
                 self.w[(i, j)] = s;
@@ -253,7 +268,7 @@ impl VpRnnPf {
             for k in 0..n_eq {
                 s += qp.a[(k, i)] * lambda[k];
             }
-            for r in 0..self.rows {
+            for &r in &self.rows_of[i] {
                 s += self.c[r] * self.b[(r, i)];
             }
             self.phi[i] = s;
@@ -279,7 +294,7 @@ impl VpRnnPf {
                 for k in 0..n_eq {
                     s -= d.a[(k, i)] * lambda[k];
                 }
-                for r in 0..self.rows {
+                for &r in &self.rows_of[i] {
                     let c = self.c[r];
                     s -= sigma * c * self.b[(r, i)] * self.bdot_x[r];
                     s -= c * (self.bdot[(r, i)] - sigma * self.b[(r, i)] * self.hdot[r]);

@@ -1,0 +1,26 @@
+#!/bin/sh
+# Profiles the zhong2021 runs and writes results/profile-zhong2021.csv (the table of the
+# report's Performance section, "Where the time goes"): perf samples the release binary
+# (built with debug info, `[profile.release] debug = 1`) over PASSES passes of
+#   reproduce --paper zhong2021 --skip-explain --threads 1 --dry-run
+# pinned to one CPU, and classify.py sorts every sample by what it was doing (classify.py's
+# module doc lists the categories). Run from the repository root after
+#   cargo build --release -p reproduce
+# and re-render the report with `reproduce --report-only --accept-edited` (the new file differs
+# from results/manifest.toml by intent). Needs `perf` (Debian: linux-perf) and python3.
+# Usage: benches/profile/zhong2021.sh [PASSES]
+set -eu
+passes="${1:-5}"
+freq=1999
+target="${CARGO_TARGET_DIR:-target}"
+bin="$target/release/reproduce"
+out="$target/profile"
+mkdir -p "$out"
+cpu=$(( $(nproc) - 1 ))
+perf record -q -F "$freq" -g --call-graph dwarf,16384 -o "$out/zhong2021.data" -- \
+    taskset -c "$cpu" sh -c "i=0; while [ \$i -lt $passes ]; do \"$bin\" --paper zhong2021 --skip-explain --threads 1 --dry-run >/dev/null 2>&1; i=\$((i+1)); done"
+perf script -i "$out/zhong2021.data" -F comm,ip,sym 2>/dev/null > "$out/zhong2021.stacks"
+rev=$(git rev-parse --short=12 HEAD)
+python3 benches/profile/classify.py "$out/zhong2021.stacks" "$passes" "$freq" "$rev" \
+    > results/profile-zhong2021.csv
+echo "wrote results/profile-zhong2021.csv"

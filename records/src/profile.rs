@@ -1,0 +1,90 @@
+//! `results/profile-zhong2021.csv`: where a zhong2021 reproduction's time goes, by sampling
+//! profile (written by `benches/profile/zhong2021.sh`, which runs perf over the release binary
+//! and sorts each sample with `benches/profile/classify.py`).
+//!
+//! One [`ProfileRow`] per (part, category): the part of the program (the neural runs'
+//! `simulation`, the `exact column`'s right-hand side, the `observer` of accepted steps,
+//! `other`), the category inside it, whether it is part of the simulation's floor (the RHS,
+//! Jacobian and LU work the run's counts require), and its samples. A share of the simulation
+//! is the category's samples over all the simulation's samples; the floor ratio of the
+//! simulation is all its samples over its floor's ([`floor_ratio`]).
+
+use crate::table::Row;
+use serde::{Deserialize, Serialize};
+
+/// The file name inside `results/`.
+pub const FILE: &str = "profile-zhong2021.csv";
+/// [`ProfileRow::part`] of the neural runs' integration.
+pub const SIMULATION: &str = "simulation";
+
+/// One row of `results/profile-zhong2021.csv`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ProfileRow {
+    /// `simulation`, `exact column`, `observer` or `other`.
+    pub part: String,
+    /// What the samples were doing (`RHS (network and QP assembly)`, `LU factorisation`, ...).
+    pub category: String,
+    /// `yes` when the category is part of the floor.
+    pub floor: String,
+    pub samples: usize,
+    /// Samples over all the process's samples.
+    pub share_of_process: f64,
+    /// Samples over the simulation's (simulation rows only).
+    pub share_of_simulation: Option<f64>,
+    /// Samples / frequency / passes: CPU milliseconds per pass of the zhong2021 runs.
+    pub ms_per_pass: f64,
+    pub passes: usize,
+    pub frequency_hz: f64,
+    pub git_rev: String,
+}
+
+impl Row for ProfileRow {}
+
+impl ProfileRow {
+    pub fn in_floor(&self) -> bool {
+        self.floor == "yes"
+    }
+}
+
+/// The simulation's samples over its floor's (None without simulation or floor samples).
+pub fn floor_ratio(rows: &[ProfileRow]) -> Option<f64> {
+    let simulation = rows.iter().filter(|r| r.part == SIMULATION);
+    let (all, floor) = simulation.fold((0usize, 0usize), |(all, floor), r| {
+        (
+            all + r.samples,
+            floor + if r.in_floor() { r.samples } else { 0 },
+        )
+    });
+    (floor > 0).then(|| all as f64 / floor as f64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(part: &str, floor: bool, samples: usize) -> ProfileRow {
+        ProfileRow {
+            part: part.into(),
+            category: "c".into(),
+            floor: if floor { "yes" } else { "no" }.into(),
+            samples,
+            share_of_process: 0.0,
+            share_of_simulation: None,
+            ms_per_pass: 0.0,
+            passes: 1,
+            frequency_hz: 1.0,
+            git_rev: "r".into(),
+        }
+    }
+
+    #[test]
+    fn the_floor_ratio_counts_the_simulation_only() {
+        let rows = [
+            row(SIMULATION, true, 60),
+            row(SIMULATION, false, 20),
+            row("observer", false, 500),
+        ];
+        assert_eq!(floor_ratio(&rows), Some(80.0 / 60.0));
+        assert_eq!(floor_ratio(&rows[1..]), None);
+    }
+}
