@@ -101,7 +101,7 @@ fn standard_tasks(root: Option<PathBuf>) -> PyResult<Vec<PyTask>> {
         .iter()
         .map(|s| {
             all.iter()
-                .find(|t| t.job.experiment == s.experiment && t.job.variant == s.variant)
+                .find(|t| t.job.experiment == s.experiment && t.job.variant_id == s.variant)
                 .cloned()
                 .ok_or_else(|| {
                     lib_err(format!(

@@ -145,7 +145,7 @@ pub fn load_tasks(root: &Path) -> Result<Vec<PyTask>, ExperimentFileError> {
             for v in &e.variants {
                 let runs: Vec<Job> = jobs
                     .iter()
-                    .filter(|j| j.experiment == e.id && j.variant == v.label)
+                    .filter(|j| j.experiment == e.id && j.variant_id == v.id())
                     .cloned()
                     .collect();
                 let Some(first) = runs.first() else {

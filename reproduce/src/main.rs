@@ -1,6 +1,8 @@
 //! `cargo run --release -p reproduce`: runs driftbench's experiments and writes `results/`.
 
-use clap::Parser;
+mod commands;
+
+use clap::{CommandFactory, FromArgMatches, Parser};
 use records::results_dir::ResultsDir;
 use records::runs::{check_rows, merge, RunRow};
 use records::tracked_dir::Edits;
@@ -18,8 +20,9 @@ use std::process::ExitCode;
 /// (jia2019, zhang2018, zhong2021, kong2019), solving every scheme's QP exactly with Clarabel
 /// along every run and scoring each paper's neural solver against that optimum.
 ///
-/// With no flags: runs every experiment in experiments/*.toml (in parallel), writes
-/// results/runs.csv (one row per run) and results/traces/, and prints a summary table.
+/// With no flags (or `run`): runs every experiment in experiments/*.toml (in parallel), writes
+/// results/runs.csv (one row per run) and results/traces/, and prints a summary table. Each
+/// other mode is a subcommand or, equally, its flag (listed below the options).
 #[derive(Parser, Debug)]
 #[command(version, about, long_about)]
 struct Cli {
@@ -158,7 +161,14 @@ struct Cli {
 const MAX_THREADS_PER_CORE: usize = 4;
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let args = commands::to_flags(std::env::args().collect());
+    let cli = Cli::command()
+        .after_help(commands::help())
+        .get_matches_from(args);
+    let cli = match Cli::from_arg_matches(&cli) {
+        Ok(cli) => cli,
+        Err(e) => e.exit(),
+    };
     match resolve_dirs(cli).and_then(real_main) {
         Ok(code) => code,
         Err(e) => {
