@@ -43,7 +43,7 @@ fn every_task_has_a_card_with_its_check_values() {
     for task in &tasks {
         assert!(index.contains(&format!("| {task} |")), "{task} not indexed");
     }
-    let card = &generated["kong2019-circle--znn-eq.-22.md"];
+    let card = &generated["kong2019-circle--znn-eq22.md"];
     // docs/robots.md's check value: the Katana's task point at theta*0 is
     // (0.081034, 0.249398, 0.379100) m, where the circle starts.
     assert!(card.contains("r_start = f(theta_ref) = [0.08103"), "{card}");
