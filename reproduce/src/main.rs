@@ -34,7 +34,7 @@ struct Cli {
     /// Run only this experiment (an id of docs/experiments.md, e.g. jia2019-clover). Repeatable.
     #[arg(long)]
     experiment: Vec<String>,
-    /// Run only the exact column (Clarabel in the loop), no neural solvers.
+    /// Run only the exact column (the QP solved to optimality in the loop: certified active set, Clarabel where it cannot certify), no neural solvers.
     #[arg(long)]
     exact_only: bool,
     /// List the experiments and their runs, then exit.

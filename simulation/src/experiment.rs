@@ -3,8 +3,8 @@
 //! A file holds a paper id and a list of experiments (ids as in `docs/experiments.md`).
 //! An experiment fixes the robot, the path, theta0 (and the scheme's reference theta*0 where a
 //! paper distinguishes it) and the integrators, and lists *variants*: each variant is one scheme
-//! (with its parameters by the paper's names) run exactly (Clarabel in the loop) and by each of
-//! its neural solvers. A variant may override the robot, path, theta0 or theta_ref, which is how
+//! (with its parameters by the paper's names) run exactly (the QP solved to optimality in the
+//! loop) and by each of its neural solvers. A variant may override the robot, path, theta0 or theta_ref, which is how
 //! the model check (jaco2 vs jaco2-pen), the star-lines variant and kong2019's two starts are
 //! written. A variant with a `sweep` table stands for many (the grammar: [`crate::sweep`]).
 //! Every run an experiment file describes is a [`Job`].
@@ -50,7 +50,7 @@ pub struct Experiment {
     /// Integrator of the neural runs (default: BDF/NDF, RelTol 1e-6, AbsTol 1e-8, as ode15s).
     #[serde(default)]
     pub integrator: IntegratorSettings,
-    /// Integrator of the exact column (Clarabel in the loop; by default explicit, since
+    /// Integrator of the exact column (the QP solved to optimality in the loop; by default explicit, since
     /// x*(t, theta) is only piecewise smooth and has no cheap Jacobian).
     #[serde(default = "default_exact_integrator")]
     pub exact_integrator: IntegratorSettings,

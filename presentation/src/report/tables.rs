@@ -2,7 +2,7 @@
 //!
 //! A published table (one `(paper, table)` of `papers/<paper>/values.csv`) becomes one Markdown table:
 //! rows are the quantities (joint drifts, drift norm, and whatever else the paper prints),
-//! and for each published column there are the paper's number, our exact (Clarabel) run, our
+//! and for each published column there are the paper's number, our exact run, our
 //! run of the paper's solver, and the ratio ours/paper — then the same for each companion
 //! variant. The exact column separates what the scheme does from what the solver adds.
 

@@ -151,7 +151,7 @@ pub fn paragraph(paper: &str, claims: &[Claim], runs: &Runs, papers: &Papers) ->
     if let Some((e, r)) = solver_effect(paper, runs, papers) {
         if e <= SOLVER_MATTERS {
             out.push_str(&format!(
-                " The exact (Clarabel) column gives the same drift norm within {:.1} %, so what differs from the paper comes from the scheme, model and paths as implemented (see Deviations), not from the solver.",
+                " The exact column (the QP solved to optimality in the loop) gives the same drift norm within {:.1} %, so what differs from the paper comes from the scheme, model and paths as implemented (see Deviations), not from the solver.",
                 100.0 * e
             ));
         } else {
