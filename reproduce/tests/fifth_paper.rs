@@ -4,21 +4,8 @@
 //! claims checked, a verdict and the drift attribution.
 
 mod common;
-use common::{ok, reproduce};
+use common::{copy_tree, ok, reproduce};
 use std::path::Path;
-
-fn copy_tree(from: &Path, to: &Path) {
-    std::fs::create_dir_all(to).unwrap();
-    for e in std::fs::read_dir(from).unwrap() {
-        let e = e.unwrap();
-        let target = to.join(e.file_name());
-        if e.path().is_dir() {
-            copy_tree(&e.path(), &target);
-        } else {
-            std::fs::copy(e.path(), target).unwrap();
-        }
-    }
-}
 
 #[test]
 fn a_paper_added_as_data_gets_its_report_section() {

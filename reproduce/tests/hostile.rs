@@ -43,15 +43,7 @@ impl Project {
             base.join("report/deviations.md"),
         )
         .unwrap();
-        for paper in std::fs::read_dir(repo.join("papers")).unwrap() {
-            let paper = paper.unwrap().path();
-            let to = base.join("papers").join(paper.file_name().unwrap());
-            std::fs::create_dir_all(&to).unwrap();
-            for f in std::fs::read_dir(&paper).unwrap() {
-                let f = f.unwrap().path();
-                std::fs::copy(&f, to.join(f.file_name().unwrap())).unwrap();
-            }
-        }
+        common::copy_tree(&repo.join("papers"), &base.join("papers"));
         Self { base }
     }
     fn experiments(&self) -> PathBuf {

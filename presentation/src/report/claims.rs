@@ -137,7 +137,6 @@ fn compare(
     test: &Test,
 ) -> Result<(bool, String), NotApplicable> {
     let rows = nonempty(selected(runs, selection))?;
-    let shown = |x: f64| if abs { format!("|{}|", sci(x)) } else { sci(x) };
     let mut holds = true;
     let mut evidence = Vec::new();
     // Threshold tests: the run nearest the bound stands for the others.
@@ -176,9 +175,9 @@ fn compare(
                     evidence.push(format!(
                         "{} {} vs {} {} (ratio {})",
                         name(r),
-                        shown(x),
+                        shown(x, abs),
                         name(o),
-                        shown(y),
+                        shown(y, abs),
                         sci(y / x)
                     ));
                 }
@@ -205,14 +204,22 @@ fn compare(
 
 /// "value (exact value)" of one run's metric, the exact column's beside it when it has one.
 fn with_exact(runs: &Runs, r: &RunRow, x: f64, name_of_metric: &str, abs: bool) -> String {
-    let fmt = |x: f64| if abs { format!("|{}|", sci(x)) } else { sci(x) };
     let exact = (r.solver_id != EXACT)
         .then(|| runs.find(&r.experiment, &r.variant_id, EXACT))
         .flatten()
-        .and_then(|e| metric(e, name_of_metric))
-        .map(|e| format!(" (exact {})", fmt(if abs { e.abs() } else { e })))
+        .and_then(|e| claim_metric(e, name_of_metric, abs).ok().flatten())
+        .map(|e| format!(" (exact {})", shown(e, abs)))
         .unwrap_or_default();
-    format!("{}{exact}", fmt(x))
+    format!("{}{exact}", shown(x, abs))
+}
+
+/// A metric's value as a claim shows it: `|x|` when the claim compares absolute values.
+fn shown(x: f64, abs: bool) -> String {
+    if abs {
+        format!("|{}|", sci(x))
+    } else {
+        sci(x)
+    }
 }
 
 /// A metric that must exist (a completed run's drift, a measured error).

@@ -107,3 +107,17 @@ pub fn resume_completes(run: impl Fn() -> Command, results: &Path, done: usize, 
     assert_eq!(keys.len(), total, "no duplicate row");
     assert!(!records::journal::path(results).exists());
 }
+
+/// Copies the directory tree `from` to `to` (created).
+pub fn copy_tree(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for e in std::fs::read_dir(from).unwrap() {
+        let e = e.unwrap();
+        let target = to.join(e.file_name());
+        if e.path().is_dir() {
+            copy_tree(&e.path(), &target);
+        } else {
+            std::fs::copy(e.path(), target).unwrap();
+        }
+    }
+}

@@ -226,15 +226,69 @@ impl SolverSpec {
     }
 
     /// The network's stable id in run keys, results rows and file names: its kind, followed by
-    /// the parameters that tell two networks of one kind apart in the experiment files (a
-    /// non-default activation, a perturbation, the group ZNN's gains and switches). Lower-case
-    /// ASCII, digits, `.` and `-` only. Derived from the specification, never from
-    /// [`SolverSpec::display_name`], so display names can change without orphaning results.
+    /// the parameters that tell two networks of one kind apart in the experiment files
+    /// ([`Distinguishing`]). Lower-case ASCII, digits, `.` and `-` only. Derived from the
+    /// specification, never from [`SolverSpec::display_name`], so display names can change
+    /// without orphaning results.
     pub fn id(&self) -> String {
+        let d = self.distinguishing();
         let mut parts: Vec<String> = vec![self.kind().to_string()];
-        let act = |kind: ActivationKind, alpha: f64, chi: f64, xi: f64, power: f64| {
-            schemes::slug::slug(&activation_name(kind, alpha, chi, xi, power))
+        if let Some((gamma, nu)) = d.gains {
+            parts.push(format!("gamma-{gamma}-nu-{nu}"));
+        }
+        if let Some(a) = &d.activation {
+            parts.push(schemes::slug::slug(a));
+        }
+        match d.perturbation {
+            Some((Some(a_d), a_s)) => parts.push(format!("perturbed-ad-{a_d}-as-{a_s}")),
+            Some((None, a_s)) => parts.push(format!("perturbed-as-{a_s}")),
+            None => {}
+        }
+        if d.udot_without_qdot {
+            parts.push("udot-without-qdot".into());
+        }
+        parts.join("-")
+    }
+
+    /// The network's name as the papers write it, with the variant where it matters,
+    /// e.g. `VP-RNN-PF (sinh)`, `FP-CDNN (perturbed A_D=1, A_s=1.5)`.
+    pub fn display_name(&self) -> String {
+        let d = self.distinguishing();
+        let mut parts: Vec<String> = Vec::new();
+        if let Some((gamma, nu)) = d.gains {
+            parts.push(format!("gamma={gamma}"));
+            parts.push(format!("nu={nu}"));
+        }
+        parts.extend(d.activation);
+        match d.perturbation {
+            Some((Some(a_d), a_s)) => parts.push(format!("perturbed A_D={a_d}, A_s={a_s}")),
+            Some((None, a_s)) => parts.push(format!("perturbed A_s={a_s}")),
+            None => {}
+        }
+        if d.udot_without_qdot {
+            parts.push("udot without -qdot".into());
+        }
+        let base = match self {
+            SolverSpec::LviPdnn { .. } => "LVI-PDNN",
+            SolverSpec::SLviPdnn { .. } => "S-LVI-PDNN",
+            SolverSpec::VpRnnPf { .. } => "VP-RNN-PF",
+            SolverSpec::FpCdnn { .. } => "FP-CDNN",
+            SolverSpec::VpCdnn { .. } => "VP-CDNN",
+            SolverSpec::FiniteTime { .. } => "FTNN",
+            SolverSpec::Znn { .. } => "ZNN",
+            SolverSpec::GroupZnn { .. } => "group ZNN",
         };
+        if parts.is_empty() {
+            base.to_string()
+        } else {
+            format!("{base} ({})", parts.join(", "))
+        }
+    }
+
+    /// What tells this network apart from others of its kind, for [`SolverSpec::id`] and
+    /// [`SolverSpec::display_name`] (which only format it).
+    fn distinguishing(&self) -> Distinguishing {
+        let mut d = Distinguishing::default();
         match self {
             SolverSpec::LviPdnn { .. }
             | SolverSpec::SLviPdnn { .. }
@@ -247,7 +301,7 @@ impl SolverSpec {
                 xi,
                 power,
                 ..
-            } => parts.push(act(*activation, *alpha, *chi, *xi, *power)),
+            } => d.activation = Some(activation_name(*activation, *alpha, *chi, *xi, *power)),
             SolverSpec::FpCdnn {
                 activation,
                 alpha,
@@ -266,12 +320,9 @@ impl SolverSpec {
                 perturbation,
                 ..
             } => {
-                if *activation != ActivationKind::Linear {
-                    parts.push(act(*activation, *alpha, *chi, *xi, *power));
-                }
-                if let Some(p) = perturbation {
-                    parts.push(format!("perturbed-ad-{}-as-{}", p.a_d, p.a_s));
-                }
+                d.activation = (*activation != ActivationKind::Linear)
+                    .then(|| activation_name(*activation, *alpha, *chi, *xi, *power));
+                d.perturbation = perturbation.as_ref().map(|p| (Some(p.a_d), p.a_s));
             }
             SolverSpec::GroupZnn {
                 gamma,
@@ -284,96 +335,14 @@ impl SolverSpec {
                 perturbation,
                 udot_rmp,
             } => {
-                parts.push(format!("gamma-{gamma}-nu-{nu}"));
                 let a = activation_name(*activation, *alpha, *chi, *xi, *power);
-                if a != kind_label(default_group_activation()) {
-                    parts.push(schemes::slug::slug(&a));
-                }
-                if let Some(p) = perturbation {
-                    parts.push(format!("perturbed-as-{}", p.a_s));
-                }
-                if !udot_rmp {
-                    parts.push("udot-without-qdot".into());
-                }
+                d.activation = (a != kind_label(default_group_activation())).then_some(a);
+                d.perturbation = perturbation.as_ref().map(|p| (None, p.a_s));
+                d.gains = Some((*gamma, *nu));
+                d.udot_without_qdot = !udot_rmp;
             }
         }
-        parts.join("-")
-    }
-
-    /// The network's name as the papers write it, with the variant where it matters,
-    /// e.g. `VP-RNN-PF (sinh)`, `FP-CDNN (perturbed)`.
-    pub fn display_name(&self) -> String {
-        match self {
-            SolverSpec::LviPdnn { .. } => "LVI-PDNN".into(),
-            SolverSpec::SLviPdnn { .. } => "S-LVI-PDNN".into(),
-            SolverSpec::VpRnnPf {
-                activation,
-                alpha,
-                chi,
-                xi,
-                power,
-                ..
-            } => {
-                format!(
-                    "VP-RNN-PF ({})",
-                    activation_name(*activation, *alpha, *chi, *xi, *power)
-                )
-            }
-            SolverSpec::FpCdnn {
-                activation,
-                alpha,
-                chi,
-                xi,
-                power,
-                perturbation,
-                ..
-            } => cdnn_name(
-                "FP-CDNN",
-                activation_name(*activation, *alpha, *chi, *xi, *power),
-                *activation == ActivationKind::Linear,
-                perturbation,
-            ),
-            SolverSpec::VpCdnn {
-                activation,
-                alpha,
-                chi,
-                xi,
-                power,
-                perturbation,
-                ..
-            } => cdnn_name(
-                "VP-CDNN",
-                activation_name(*activation, *alpha, *chi, *xi, *power),
-                *activation == ActivationKind::Linear,
-                perturbation,
-            ),
-            SolverSpec::FiniteTime { .. } => "FTNN".into(),
-            SolverSpec::Znn { .. } => "ZNN".into(),
-            SolverSpec::GroupZnn {
-                gamma,
-                nu,
-                activation,
-                alpha,
-                chi,
-                xi,
-                power,
-                perturbation,
-                udot_rmp,
-            } => {
-                let mut parts = vec![format!("gamma={gamma}"), format!("nu={nu}")];
-                let act = activation_name(*activation, *alpha, *chi, *xi, *power);
-                if act != kind_label(default_group_activation()) {
-                    parts.push(act);
-                }
-                if let Some(p) = perturbation {
-                    parts.push(format!("perturbed A_s={}", p.a_s));
-                }
-                if !udot_rmp {
-                    parts.push("udot without -qdot".into());
-                }
-                format!("group ZNN ({})", parts.join(", "))
-            }
-        }
+        d
     }
 
     /// Whether the network needs dQP/dt (zeroing networks).
@@ -393,6 +362,21 @@ impl SolverSpec {
     }
 }
 
+/// What tells two networks of one kind apart in the experiment files.
+#[derive(Default)]
+struct Distinguishing {
+    /// The activation's name where it is named: always for VP-RNN-PF, when not linear for the
+    /// CDNNs, when not the group's power-sigmoid for the group ZNN.
+    activation: Option<String>,
+    /// A reference perturbation: (A_D, A_s) for the CDNNs, A_s alone for the group ZNN (the
+    /// group's code uses no A_D).
+    perturbation: Option<(Option<f64>, f64)>,
+    /// The group ZNN's gamma and nu.
+    gains: Option<(f64, f64)>,
+    /// The group ZNN's udot without its -k thetadot term.
+    udot_without_qdot: bool,
+}
+
 fn kind_label(k: ActivationKind) -> &'static str {
     match k {
         ActivationKind::Linear => "linear",
@@ -400,26 +384,6 @@ fn kind_label(k: ActivationKind) -> &'static str {
         ActivationKind::PowerSigmoid => "power-sigmoid",
         ActivationKind::GroupPowerSigmoid => "group-power-sigmoid",
     }
-}
-
-fn cdnn_name(
-    base: &str,
-    act: String,
-    linear: bool,
-    pert: &Option<ReferencePerturbation>,
-) -> String {
-    let mut s = base.to_string();
-    let mut extra = Vec::new();
-    if !linear {
-        extra.push(act);
-    }
-    if let Some(p) = pert {
-        extra.push(format!("perturbed A_D={}, A_s={}", p.a_d, p.a_s));
-    }
-    if !extra.is_empty() {
-        s.push_str(&format!(" ({})", extra.join(", ")));
-    }
-    s
 }
 
 /// Build the network of `spec` for QPs of sizes `dims` (scratch preallocated for them).
