@@ -220,7 +220,19 @@ fn resolve_dirs(mut cli: Cli) -> Result<Cli, String> {
 
 /// Opens the results directory for writing (records::results_dir): the lock, the integrity
 /// check of its tables, the removal of this program's own stale temporary files.
-fn open_results(cli: &Cli, git_rev: &str) -> Result<ResultsDir, String> {
+/// Every run the experiment files describe (what migration and pruning compare the stored
+/// runs with).
+fn all_jobs(cli: &Cli) -> Result<Vec<Job>, String> {
+    Ok(load_dir(&cli.experiments_dir)
+        .map_err(|e| e.to_string())?
+        .iter()
+        .flat_map(|f| f.jobs())
+        .collect())
+}
+
+/// `all`: every run of the experiment files ([`all_jobs`]), by which results written before
+/// run ids are migrated.
+fn open_results(cli: &Cli, git_rev: &str, all: &[Job]) -> Result<ResultsDir, String> {
     let edits = if cli.accept_edited {
         Edits::Accept
     } else {
@@ -236,12 +248,7 @@ fn open_results(cli: &Cli, git_rev: &str) -> Result<ResultsDir, String> {
         );
     }
     // Results written before run ids are migrated once (records::migrate).
-    let all: Vec<Job> = load_dir(&cli.experiments_dir)
-        .map_err(|e| e.to_string())?
-        .iter()
-        .flat_map(|f| f.jobs())
-        .collect();
-    for done in results.migrate_ids(&all).map_err(|e| e.to_string())? {
+    for done in results.migrate_ids(all).map_err(|e| e.to_string())? {
         eprintln!(
             "migrated to run ids under {}: {done}",
             cli.results_dir.display()
@@ -273,7 +280,7 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
     if cli.report_only {
         let root = report_root(&cli)?;
         check_report_dir(&root)?;
-        let results = open_results(&cli, &git_rev)?;
+        let results = open_results(&cli, &git_rev, &all_jobs(&cli)?)?;
         render_report(&cli, &root, &results)?;
         return Ok(ExitCode::SUCCESS);
     }
@@ -337,7 +344,7 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
     }
     // One writer at a time: the lock is held until the process ends.
     let results = (!cli.check && !cli.dry_run)
-        .then(|| open_results(&cli, &git_rev))
+        .then(|| open_results(&cli, &git_rev, &all))
         .transpose()?;
     if let Some(which) = &cli.infer {
         infer(&cli, which, &all, results.as_ref())?;
@@ -638,7 +645,7 @@ fn dof_cost(cli: &Cli, git_rev: &str) -> Result<(), String> {
     let (cpu, cores) = machine();
     let root = report_root(cli)?;
     let results = (!cli.dry_run)
-        .then(|| open_results(cli, git_rev))
+        .then(|| open_results(cli, git_rev, &all_jobs(cli)?))
         .transpose()?;
     eprintln!("measuring the cost against the number of joints on {cpu} ({cores} cores)");
     let started = std::time::Instant::now();
@@ -839,7 +846,7 @@ fn merge_shards(
         .collect();
     let hash = records::shard::experiments_hash(&cli.experiments_dir).map_err(|e| e.to_string())?;
     records::shard::check_shards(&shards, &expected, &hash).map_err(|e| e.to_string())?;
-    let results = open_results(cli, git_rev)?;
+    let results = open_results(cli, git_rev, all)?;
     let described = described_keys(all);
     let (kept, pruned) = results
         .plan_pruning(
