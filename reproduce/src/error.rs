@@ -1,0 +1,118 @@
+//! The binary's errors: each lower crate's error wrapped as it is (its message names the file,
+//! line or field), and the few the command line itself finds: a thread count, paper,
+//! experiment or table no file knows, a gate baseline that cannot be read, a results directory
+//! the report cannot go beside.
+
+use records::error::{IoError, JournalError, RunsError, ShardError};
+use records::owned_dir::PathError;
+use records::results_dir::ResultsError;
+use records::tracked_dir::TrackedError;
+use std::path::PathBuf;
+
+/// Why `reproduce` stopped (printed as `error: ...`, exit code 2).
+#[derive(Debug, thiserror::Error)]
+pub enum ReproduceError {
+    /// `--threads` beyond [`crate::cli::MAX_THREADS_PER_CORE`] per core.
+    #[error(
+        "--threads {threads}: at most {max} ({} per core; this machine has {cores})",
+        crate::cli::MAX_THREADS_PER_CORE
+    )]
+    TooManyThreads {
+        threads: u64,
+        max: usize,
+        cores: usize,
+    },
+    /// `--paper` names no experiment file's paper.
+    #[error("unknown paper \"{paper}\" (known: {})", known.join(", "))]
+    UnknownPaper { paper: String, known: Vec<String> },
+    /// `--experiment` names no experiment.
+    #[error("unknown experiment \"{experiment}\" (known: {})", known.join(", "))]
+    UnknownExperiment {
+        experiment: String,
+        known: Vec<String>,
+    },
+    /// `--infer` selects no published table.
+    #[error("--infer {which}: no such table (known: all, a paper, or one of {})", known.join(", "))]
+    UnknownTable { which: String, known: Vec<String> },
+    /// The report is written beside a results directory named `results` only.
+    #[error(
+        "the report needs a results directory named `results` (got {}); use --dry-run for a scratch run",
+        .0.display()
+    )]
+    ResultsNotNamedResults(PathBuf),
+    /// `--baseline` names a directory.
+    #[error(
+        "--baseline {}: is a directory; give a runs.csv file (e.g. {})",
+        .0.display(),
+        .0.join("runs.csv").display()
+    )]
+    BaselineIsDirectory(PathBuf),
+    /// The file given as `--baseline` cannot be read as runs.
+    #[error("--baseline: {0}")]
+    GivenBaseline(#[source] BaselineError),
+    /// The gate's default baseline cannot be read as runs.
+    #[error(transparent)]
+    Baseline(#[from] BaselineError),
+    #[error(transparent)]
+    Root(#[from] simulation::root::RootNotFound),
+    #[error(transparent)]
+    Experiments(#[from] simulation::error::ExperimentFileError),
+    #[error(transparent)]
+    Shard(#[from] ShardError),
+    #[error(transparent)]
+    Results(#[from] ResultsError),
+    #[error(transparent)]
+    Journal(#[from] JournalError),
+    #[error(transparent)]
+    Runs(#[from] RunsError),
+    #[error(transparent)]
+    Io(#[from] IoError),
+    #[error(transparent)]
+    Tracked(#[from] TrackedError),
+    #[error(transparent)]
+    Path(#[from] PathError),
+    #[error(transparent)]
+    Papers(#[from] records::papers::PapersError),
+    #[error(transparent)]
+    Explain(#[from] explain::error::ExplainError),
+    #[error(transparent)]
+    Inference(#[from] explain::inference::InferenceError),
+    #[error(transparent)]
+    Report(#[from] presentation::error::ReportError),
+    #[error(transparent)]
+    TaskCard(#[from] presentation::task_card::TaskCardError),
+    #[error(transparent)]
+    Score(#[from] presentation::error::ScoreError),
+    #[error(transparent)]
+    Control(#[from] control::ControlError),
+    #[error(transparent)]
+    ThreadPool(#[from] rayon::ThreadPoolBuildError),
+    /// results/dof-cost.csv could not be written (the cost harness's own message).
+    #[error("{0}")]
+    DofCost(String),
+}
+
+/// Why a gate baseline's rows cannot be used; each names the file (or `git HEAD:...`).
+#[derive(Debug, thiserror::Error)]
+pub enum BaselineError {
+    #[error("{name}: {source}")]
+    Read {
+        name: String,
+        source: std::io::Error,
+    },
+    #[error("{name}: {source}")]
+    Migrate {
+        name: String,
+        source: records::migrate::MigrateError,
+    },
+    #[error("{name}: {source}")]
+    Table {
+        name: String,
+        source: records::table::TableError,
+    },
+    #[error("{name}: {source}")]
+    Rows {
+        name: String,
+        source: records::error::RowsError,
+    },
+}

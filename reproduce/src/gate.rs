@@ -1,0 +1,218 @@
+//! `reproduce check` (`--check`): the regression gate (records::gate). The baseline is read
+//! before anything runs; the fresh rows of the selection are compared with the baseline's rows
+//! of the same experiments, and any difference is exit code 1.
+
+use crate::error::{BaselineError, ReproduceError};
+use records::runs::{check_rows, RunRow};
+use simulation::experiment::Job;
+use std::collections::HashSet;
+use std::path::Path;
+use std::process::ExitCode;
+
+/// The rows the gate compares with, and a name for its messages (a file, or
+/// `git HEAD:results/runs.csv`).
+#[derive(Debug)]
+pub struct Baseline {
+    pub rows: Vec<RunRow>,
+    pub name: String,
+}
+
+impl Baseline {
+    /// The gate's baseline, read before anything runs: `file` when given; otherwise the
+    /// committed `results/runs.csv` of git HEAD (so a run followed by `--check` compares with
+    /// what is committed, not with what the run just wrote); outside a checkout, or for another
+    /// results directory, its `runs.csv`. `all`: every run of the experiment files, by which a
+    /// baseline written before run ids is read with its ids recovered (records::migrate).
+    pub fn read(
+        root: &Path,
+        results_dir: &Path,
+        file: Option<&Path>,
+        all: &[Job],
+    ) -> Result<Self, ReproduceError> {
+        let index = records::migrate::LabelIndex::new(all);
+        if let Some(f) = file {
+            if f.is_dir() {
+                return Err(ReproduceError::BaselineIsDirectory(f.to_path_buf()));
+            }
+            let name = f.display().to_string();
+            let rows = read(f, &index).map_err(ReproduceError::GivenBaseline)?;
+            return Ok(Self { rows, name });
+        }
+        let in_tree = results_dir == root.join("results");
+        let committed = in_tree
+            .then(|| {
+                std::process::Command::new("git")
+                    .args(["show", "HEAD:results/runs.csv"])
+                    .current_dir(root)
+                    .output()
+                    .ok()
+                    .filter(|o| o.status.success())
+            })
+            .flatten();
+        Ok(match committed {
+            Some(out) => {
+                let name = "git HEAD:results/runs.csv".to_string();
+                Self {
+                    rows: parse(out.stdout, &name, &index)?,
+                    name,
+                }
+            }
+            None => {
+                let path = results_dir.join("runs.csv");
+                Self {
+                    rows: read(&path, &index)?,
+                    name: path.display().to_string(),
+                }
+            }
+        })
+    }
+
+    /// Every difference the gate finds between `fresh` and the baseline's rows of the same
+    /// experiments (only its exact rows with `exact_only`), one line each.
+    pub fn problems(self, fresh: &[RunRow], exact_only: bool) -> Vec<String> {
+        let experiments: HashSet<&str> = fresh.iter().map(|f| f.experiment.as_str()).collect();
+        let committed: Vec<RunRow> = self
+            .rows
+            .into_iter()
+            .filter(|c| experiments.contains(c.experiment.as_str()))
+            .filter(|c| !exact_only || c.is_exact())
+            .collect();
+        records::gate::compare(&committed, fresh, &self.name)
+    }
+
+    /// Prints the gate's verdict on `fresh`: exit code 1 on any difference.
+    pub fn verdict(self, fresh: &[RunRow], exact_only: bool) -> ExitCode {
+        let name = self.name.clone();
+        let problems = self.problems(fresh, exact_only);
+        if problems.is_empty() {
+            println!("regression gate: {} runs agree with {name}", fresh.len());
+            ExitCode::SUCCESS
+        } else {
+            println!(
+                "regression gate: {} differences\n{}",
+                problems.len(),
+                problems.join("\n")
+            );
+            ExitCode::from(1)
+        }
+    }
+}
+
+/// The rows of the runs file `path`.
+fn read(path: &Path, index: &records::migrate::LabelIndex) -> Result<Vec<RunRow>, BaselineError> {
+    let name = path.display().to_string();
+    let bytes = std::fs::read(path).map_err(|source| BaselineError::Read {
+        name: name.clone(),
+        source,
+    })?;
+    parse(bytes, &name, index)
+}
+
+/// The rows of a runs file's `bytes` (called `name`), with ids recovered if it predates them.
+fn parse(
+    bytes: Vec<u8>,
+    name: &str,
+    index: &records::migrate::LabelIndex,
+) -> Result<Vec<RunRow>, BaselineError> {
+    let name = || name.to_string();
+    let bytes = match records::migrate::add_ids(&bytes, index) {
+        Ok(Some((migrated, _))) => migrated,
+        Ok(None) => bytes,
+        Err(source) => {
+            return Err(BaselineError::Migrate {
+                name: name(),
+                source,
+            })
+        }
+    };
+    let rows: Vec<RunRow> =
+        records::table::from_reader(bytes.as_slice()).map_err(|source| BaselineError::Table {
+            name: name(),
+            source,
+        })?;
+    check_rows(&rows).map_err(|source| BaselineError::Rows {
+        name: name(),
+        source,
+    })?;
+    Ok(rows)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::PathBuf;
+
+    fn root() -> PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+    }
+
+    /// The committed results/runs.csv, read as a given baseline.
+    fn committed() -> Baseline {
+        let file = root().join("results").join("runs.csv");
+        Baseline::read(&root(), Path::new("elsewhere"), Some(&file), &[]).unwrap()
+    }
+
+    #[test]
+    fn the_baseline_agrees_with_itself_and_sees_a_doctored_drift() {
+        let fresh: Vec<RunRow> = committed().rows;
+        let experiment = fresh[0].experiment.clone();
+        let fresh: Vec<RunRow> = fresh
+            .into_iter()
+            .filter(|r| r.experiment == experiment)
+            .collect();
+        assert!(committed().problems(&fresh, false).is_empty());
+        let mut doctored = fresh.clone();
+        let row = doctored
+            .iter_mut()
+            .find(|r| r.drift_norm.is_some())
+            .expect("a completed run");
+        row.drift_norm = row.drift_norm.map(|d| d * 1.1 + 1e-9);
+        let problems = committed().problems(&doctored, false);
+        assert_eq!(problems.len(), 1, "{problems:?}");
+        assert!(problems[0].contains(&row.key().to_string()), "{problems:?}");
+    }
+
+    #[test]
+    fn only_the_fresh_experiments_and_with_exact_only_only_exact_rows_are_compared() {
+        let rows = committed().rows;
+        let experiment = rows[0].experiment.clone();
+        let exact: Vec<RunRow> = rows
+            .iter()
+            .filter(|r| r.experiment == experiment && r.is_exact())
+            .cloned()
+            .collect();
+        assert!(
+            !exact.is_empty()
+                && exact.len() < rows.iter().filter(|r| r.experiment == experiment).count()
+        );
+        assert!(committed().problems(&exact, true).is_empty());
+        // Without --exact-only the experiment's network runs are missing from the fresh rows.
+        let missing = committed().problems(&exact, false);
+        let networks = rows
+            .iter()
+            .filter(|r| r.experiment == experiment && !r.is_exact())
+            .count();
+        assert_eq!(missing.len(), networks, "{missing:?}");
+    }
+
+    #[test]
+    fn a_baseline_that_is_a_directory_or_missing_is_refused_by_name() {
+        let dir = root().join("results");
+        let err = Baseline::read(&root(), &dir, Some(&dir), &[]).unwrap_err();
+        assert!(
+            matches!(&err, ReproduceError::BaselineIsDirectory(d) if d == &dir),
+            "{err:?}"
+        );
+        let missing = root().join("no-such-baseline.csv");
+        let err = Baseline::read(&root(), &dir, Some(&missing), &[]).unwrap_err();
+        assert!(
+            matches!(&err, ReproduceError::GivenBaseline(BaselineError::Read { name, .. }) if name == &missing.display().to_string()),
+            "{err:?}"
+        );
+        assert!(
+            err.to_string()
+                .starts_with(&format!("--baseline: {}: ", missing.display())),
+            "{err}"
+        );
+    }
+}

@@ -1,0 +1,117 @@
+//! `reproduce infer TABLE` (`--infer`): setup inference (explain::inference) of the selected
+//! published tables with the family of `experiments/inference/family.toml`, each table written
+//! as it is fitted, then the report re-rendered.
+
+use crate::cli::Cli;
+use crate::error::ReproduceError;
+use crate::explanation::load_papers;
+use crate::report::{render_report, report_root};
+use records::results_dir::ResultsDir;
+use simulation::experiment::Job;
+
+/// The tables of `ids` (paper, table) that `which` selects: `all`, a paper, `paper:table`, or
+/// a comma-separated list of these.
+pub fn select_tables<'a>(
+    ids: &'a [(String, String)],
+    which: &str,
+) -> Result<Vec<&'a (String, String)>, ReproduceError> {
+    let wanted: Vec<&str> = which.split(',').map(str::trim).collect();
+    let selected: Vec<&(String, String)> = ids
+        .iter()
+        .filter(|(p, t)| {
+            wanted
+                .iter()
+                .any(|w| *w == "all" || w == p || *w == format!("{p}:{t}"))
+        })
+        .collect();
+    if selected.is_empty() {
+        return Err(ReproduceError::UnknownTable {
+            which: which.to_string(),
+            known: ids.iter().map(|(p, t)| format!("{p}:{t}")).collect(),
+        });
+    }
+    Ok(selected)
+}
+
+/// Fits the tables `which` selects over the runs `jobs`; writes each to `results` when given.
+pub fn infer(
+    cli: &Cli,
+    which: &str,
+    jobs: &[Job],
+    results: Option<&ResultsDir>,
+) -> Result<(), ReproduceError> {
+    use explain::inference::{family::Family, fit, problem, rows, search::Target, table_ids};
+    let root = report_root(cli)?;
+    let papers = load_papers(cli)?;
+    let family = Family::load(&cli.experiments_dir.join("inference").join("family.toml"))?;
+    let ids = table_ids(&papers.values);
+    for (paper, table) in select_tables(&ids, which)? {
+        let p = problem(paper, table, &papers, jobs)?;
+        eprintln!(
+            "inferring the setup of {paper} {table}: {} columns, {} exact and {} network runs",
+            p.columns.len(),
+            p.exact.len(),
+            p.network.len()
+        );
+        let f = fit(&p, &family);
+        let best = f.outcome.best(Target::Joint);
+        eprintln!(
+            "  declared: residual {:.3}; best fit: residual {:.3} ({:?}), {} evaluations in {:.0} s",
+            f.outcome.declared.scores.joint,
+            best.scores.joint,
+            best.detail.setup,
+            f.outcome.evaluations,
+            f.wall_s
+        );
+        // Each table is written as soon as it is fitted: an interrupted --infer all keeps the
+        // tables it finished.
+        let (r, e) = rows(&p, &f);
+        if let Some(results) = results {
+            explain::write_inference(results.path(), &r, &e)?;
+            results.save()?;
+        }
+    }
+    match results {
+        Some(results) => render_report(cli, &root, results),
+        None => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ids() -> Vec<(String, String)> {
+        [("a", "T1"), ("a", "T2"), ("b", "T1")]
+            .iter()
+            .map(|(p, t)| (p.to_string(), t.to_string()))
+            .collect()
+    }
+
+    fn names(which: &str) -> Vec<String> {
+        let ids = ids();
+        select_tables(&ids, which)
+            .unwrap()
+            .iter()
+            .map(|(p, t)| format!("{p}:{t}"))
+            .collect()
+    }
+
+    #[test]
+    fn tables_are_selected_by_all_paper_or_id_lists() {
+        assert_eq!(names("all"), ["a:T1", "a:T2", "b:T1"]);
+        assert_eq!(names("a"), ["a:T1", "a:T2"]);
+        assert_eq!(names("a:T2, b"), ["a:T2", "b:T1"]);
+        assert_eq!(names("b:T1"), ["b:T1"]);
+    }
+
+    #[test]
+    fn no_such_table_lists_the_known_ones() {
+        let ids = ids();
+        let err = select_tables(&ids, "a:T3").unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "--infer a:T3: no such table (known: all, a paper, or one of a:T1, a:T2, b:T1)"
+        );
+    }
+}

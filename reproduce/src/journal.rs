@@ -1,0 +1,98 @@
+//! The journal of a run (records::journal): an interrupted run's journal folded into runs.csv
+//! before anything runs (its runs of this code revision are not run again), and each run
+//! checkpointed, with its trace, as it finishes.
+
+use crate::error::ReproduceError;
+use crate::results::described_keys;
+use records::results_dir::ResultsDir;
+use records::runs::{merge, RunRow};
+use simulation::experiment::Job;
+use simulation::run::RunRecord;
+use simulation::run_key::RunKey;
+use simulation::runner::run_jobs_with;
+use std::collections::HashSet;
+
+/// Folds the journal of an interrupted run into `kept` (the stored rows, written back) and
+/// removes from `to_run` the runs it holds from revision `git_rev`; rows of another revision,
+/// or that no experiment file describes (`all`), are said and not folded.
+pub fn resume(
+    results: &ResultsDir,
+    git_rev: &str,
+    all: &[Job],
+    kept: &mut Vec<RunRow>,
+    to_run: &mut Vec<Job>,
+) -> Result<(), ReproduceError> {
+    let recovered = records::journal::recover(results.path(), git_rev)?;
+    for r in &recovered.other_revision {
+        eprintln!(
+            "not folded from {}: {} (written by revision {}, this is {git_rev}); it is run again",
+            records::journal::path(results.path()).display(),
+            r.key(),
+            r.git_rev
+        );
+    }
+    let described = described_keys(all);
+    let (fold, undescribed): (Vec<RunRow>, Vec<RunRow>) = recovered
+        .current
+        .into_iter()
+        .partition(|r| described.contains(&r.key()));
+    for r in &undescribed {
+        eprintln!(
+            "not folded from {}: {} (no experiment file describes it)",
+            records::journal::path(results.path()).display(),
+            r.key()
+        );
+    }
+    if !fold.is_empty() {
+        let done: HashSet<RunKey> = fold.iter().map(RunRow::key).collect();
+        *kept = merge(std::mem::take(kept), fold);
+        results.write_runs(kept)?;
+        results.save()?;
+        let before = to_run.len();
+        to_run.retain(|j| !done.contains(&j.key()));
+        eprintln!(
+            "folded {} run(s) of an interrupted run into {}; resuming: {} of the selected runs already done",
+            done.len(),
+            results.runs_path().display(),
+            before - to_run.len()
+        );
+    }
+    Ok(records::journal::remove(results.path())?)
+}
+
+/// Runs `to_run` (in parallel), each checkpointed in a journal of `results` when given (sized
+/// for the most joints among `jobs`, the selection). Returns the records and the keys of the
+/// runs the journal could not checkpoint (whose traces are written again at the end).
+pub fn run_journaled(
+    results: Option<&ResultsDir>,
+    jobs: &[Job],
+    to_run: &[Job],
+    git_rev: &str,
+) -> Result<(Vec<RunRecord>, HashSet<RunKey>), ReproduceError> {
+    let journal = results
+        .map(|r| {
+            let joints = jobs
+                .iter()
+                .filter_map(|j| {
+                    simulation::robot_registry::robot_by_name(&j.robot).map(|r| r.dof())
+                })
+                .max();
+            records::journal::Journal::open(r, git_rev, joints.unwrap_or(0))
+        })
+        .transpose()?;
+    let unjournaled = std::sync::Mutex::new(HashSet::new());
+    let records = run_jobs_with(to_run, true, |r| {
+        if let Some(j) = &journal {
+            if let Err(e) = j.record(r) {
+                eprintln!("warning: run not checkpointed: {e}");
+                unjournaled
+                    .lock()
+                    .unwrap_or_else(|p| p.into_inner())
+                    .insert(r.job.key());
+            }
+        }
+    });
+    drop(journal);
+    let unjournaled = unjournaled.into_inner().unwrap_or_else(|p| p.into_inner());
+    Ok((records, unjournaled))
+}

@@ -1,0 +1,77 @@
+//! The logic of the `reproduce` binary: runs driftbench's experiments and writes `results/` and
+//! `report/`. The binary (`main.rs`) parses the command line ([`Cli`]), calls [`run`] and
+//! prints the [`ReproduceError`] it may return.
+//!
+//! One module per mode: [`run`](mod@run) (the default, the gate of [`gate`], a shard, with its
+//! [`journal`]), [`report`], [`explanation`], [`inference`], [`merge`], [`list`] (and robots),
+//! [`cost`], [`score`]; beside them what the modes share: the command line ([`cli`],
+//! [`commands`]), the selection of runs ([`select`]), the results directory ([`results`]) and
+//! the summary printed ([`summary`]).
+
+pub mod cli;
+pub mod commands;
+pub mod cost;
+pub mod error;
+pub mod explanation;
+pub mod gate;
+pub mod inference;
+pub mod journal;
+pub mod list;
+pub mod merge;
+pub mod report;
+pub mod results;
+pub mod run;
+pub mod score;
+pub mod select;
+pub mod summary;
+
+pub use cli::Cli;
+pub use error::ReproduceError;
+
+use simulation::experiment::{load_dir, Job};
+use std::process::ExitCode;
+use summary::emit;
+
+/// Runs the mode `cli` (resolved: [`Cli::resolve`]) asks for; its exit code.
+pub fn run(cli: &Cli) -> Result<ExitCode, ReproduceError> {
+    if cli.robots {
+        emit(&list::robots());
+        return Ok(ExitCode::SUCCESS);
+    }
+    let git_rev = simulation::root::git_revision(&cli.project_root);
+    if let (Some(file), Some(task)) = (&cli.score, &cli.task) {
+        score::score(cli, file, task, &git_rev)?;
+        return Ok(ExitCode::SUCCESS);
+    }
+    if cli.report_only {
+        report::report_only(cli, &git_rev)?;
+        return Ok(ExitCode::SUCCESS);
+    }
+    if cli.dof_cost {
+        cost::dof_cost(cli, &git_rev)?;
+        return Ok(ExitCode::SUCCESS);
+    }
+    let files = load_dir(&cli.experiments_dir)?;
+    let all: Vec<Job> = files.iter().flat_map(|f| f.jobs()).collect();
+    if !cli.merge.is_empty() {
+        return merge::merge_shards(cli, &files, &all, &git_rev);
+    }
+    let mut jobs = select::select_jobs(&all, &files, &cli.selection())?;
+    let selected = jobs.len();
+    if let Some(shard) = cli.shard_resolved {
+        jobs.retain(|j| shard.owns(&j.key().to_string()));
+        eprintln!(
+            "shard {shard}: {} of the {selected} selected runs, into {}",
+            jobs.len(),
+            cli.results_dir.display()
+        );
+    }
+    if cli.list {
+        emit(&list::list(&files, &jobs));
+        if let (Some(n), None) = (cli.shards, cli.shard_resolved) {
+            emit(&list::shard_plan(&jobs, n));
+        }
+        return Ok(ExitCode::SUCCESS);
+    }
+    run::run(cli, &all, &jobs, &git_rev)
+}

@@ -1,0 +1,156 @@
+//! `reproduce list` and `reproduce robots`: what the experiment files describe (each paper's
+//! experiments with their runs, by key and by label; with `--shards N`, how many runs each
+//! shard gets) and the robots they can name, with the check values of each (tip position and
+//! singular values of J at the stated pose).
+
+use simulation::experiment::{Job, PaperFile};
+use std::fmt::Write as _;
+
+/// The experiments of `files` that have runs among `jobs`, each with its runs.
+pub fn list(files: &[PaperFile], jobs: &[Job]) -> String {
+    let mut out = String::new();
+    for f in files {
+        let _ = writeln!(out, "{} — {}", f.paper, f.title);
+        for e in &f.experiments {
+            let n = jobs.iter().filter(|j| j.experiment == e.id).count();
+            if n == 0 {
+                continue;
+            }
+            let _ = writeln!(
+                out,
+                "  {:<28} {} on {} (T = {} s), {}: {n} runs",
+                e.id, e.robot, e.path.name, e.path.duration, e.paper_output
+            );
+            // The key (ids: what --task, papers/ and the results use), then the labels.
+            for j in jobs.iter().filter(|j| j.experiment == e.id) {
+                let k = j.key();
+                let _ = writeln!(
+                    out,
+                    "      {:<48} {} · {}",
+                    format!("{} / {}", k.variant, k.solver),
+                    j.variant,
+                    j.solver.label()
+                );
+            }
+        }
+    }
+    out
+}
+
+/// How many of `jobs` each of `n` shards gets (`--list --shards N`).
+pub fn shard_plan(jobs: &[Job], n: usize) -> String {
+    let keys: Vec<String> = jobs.iter().map(|j| j.key().to_string()).collect();
+    let counts = records::shard::plan(keys.iter().map(String::as_str), n);
+    counts
+        .iter()
+        .enumerate()
+        .map(|(k, c)| format!("shard {}/{n}: {c} runs\n", k + 1))
+        .collect()
+}
+
+/// Every robot of the registry with its joint count and check values at its stated pose.
+pub fn robots() -> String {
+    use simulation::robot_registry::{robot_by_name, robot_names};
+    let mut out = String::new();
+    for name in robot_names() {
+        let robot = robot_by_name(&name).expect("a registry name");
+        let theta = robot.stated_pose();
+        let (p, sv) = robot
+            .check_values(&theta)
+            .expect("the stated pose has the robot's joint count");
+        let _ = writeln!(
+            out,
+            "{name:<14} {} joints{}, theta = {theta:.4?}\n               f = ({:.6}, {:.6}, {:.6}), sigma(J) = {sv:.6?}",
+            robot.dof(),
+            if robot.has_dynamics() { ", dynamics" } else { "" },
+            p.x,
+            p.y,
+            p.z,
+        );
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::Path;
+
+    /// The fixture paper of tests/fixtures/fifth-paper (one experiment, two variants).
+    fn fixture() -> (Vec<PaperFile>, Vec<Job>) {
+        let dir =
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/fifth-paper/experiments");
+        let files = simulation::experiment::load_dir(&dir).unwrap();
+        let jobs = files.iter().flat_map(|f| f.jobs()).collect();
+        (files, jobs)
+    }
+
+    #[test]
+    fn the_list_names_each_run_by_key_then_label() {
+        let (files, jobs) = fixture();
+        let text = list(&files, &jobs);
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines[0], format!("{} — {}", files[0].paper, files[0].title));
+        assert_eq!(
+            lines[1],
+            format!(
+                "  {:<28} katana6m180 on circle (T = 9 s), Table 1: {} runs",
+                "demo2026-circle",
+                jobs.len()
+            )
+        );
+        assert_eq!(lines.len(), 2 + jobs.len());
+        for (line, job) in lines[2..].iter().zip(&jobs) {
+            let key = job.key();
+            assert!(
+                line.trim_start()
+                    .starts_with(&format!("{} / {}", key.variant, key.solver)),
+                "{line}"
+            );
+            assert!(
+                line.ends_with(&format!("{} · {}", job.variant, job.solver.label())),
+                "{line}"
+            );
+        }
+    }
+
+    #[test]
+    fn an_experiment_without_selected_runs_is_left_out() {
+        let (files, jobs) = fixture();
+        let text = list(&files, &[]);
+        assert_eq!(text, format!("{} — {}\n", files[0].paper, files[0].title));
+        let one = list(&files, &jobs[..1]);
+        assert!(one.contains(": 1 runs\n"), "{one}");
+    }
+
+    #[test]
+    fn the_shard_plan_counts_every_run_once() {
+        let (_, jobs) = fixture();
+        let plan = shard_plan(&jobs, 3);
+        let counts: Vec<usize> = plan
+            .lines()
+            .enumerate()
+            .map(|(k, l)| {
+                let rest = l.strip_prefix(&format!("shard {}/3: ", k + 1)).expect(l);
+                rest.strip_suffix(" runs").unwrap().parse().unwrap()
+            })
+            .collect();
+        assert_eq!(counts.len(), 3);
+        assert_eq!(counts.iter().sum::<usize>(), jobs.len());
+    }
+
+    #[test]
+    fn every_robot_is_listed_with_its_joint_count() {
+        use simulation::robot_registry::{robot_by_name, robot_names};
+        let text = robots();
+        let names = robot_names();
+        assert_eq!(text.lines().count(), 2 * names.len());
+        for (name, line) in names.iter().zip(text.lines().step_by(2)) {
+            let dof = robot_by_name(name).unwrap().dof();
+            assert!(
+                line.starts_with(&format!("{name:<14} {dof} joints")),
+                "{line}"
+            );
+        }
+    }
+}

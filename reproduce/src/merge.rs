@@ -1,0 +1,54 @@
+//! `reproduce merge DIR...` (`--merge`): finished shard directories (records::shard: manifests,
+//! integrity, revision, ownership, traces) checked before anything is written, then their rows
+//! and traces merged into the results directory and the report rendered, as a normal run does.
+
+use crate::cli::Cli;
+use crate::error::ReproduceError;
+use crate::report::render_report_if_named;
+use crate::results::{open_results, plan_pruning, write_results};
+use crate::run::report_unexpected;
+use crate::select::select_jobs;
+use records::runs::RunRow;
+use simulation::experiment::{Job, PaperFile};
+use std::process::ExitCode;
+
+/// Merges the shards of `--merge` (`files`, `all`: the experiment files and their runs).
+pub fn merge_shards(
+    cli: &Cli,
+    files: &[PaperFile],
+    all: &[Job],
+    git_rev: &str,
+) -> Result<ExitCode, ReproduceError> {
+    let shards = cli
+        .merge
+        .iter()
+        .map(|d| records::shard::read_shard(d, cli.edits()))
+        .collect::<Result<Vec<_>, _>>()?;
+    let sel = shards
+        .first()
+        .map(|s| s.manifest.selection.clone())
+        .unwrap_or_default();
+    let expected: Vec<String> = select_jobs(all, files, &sel)?
+        .iter()
+        .map(|j| j.key().to_string())
+        .collect();
+    let hash = records::shard::experiments_hash(&cli.experiments_dir)?;
+    records::shard::check_shards(&shards, &expected, &hash)?;
+    let results = open_results(cli, git_rev, all)?;
+    let (kept, pruned) = plan_pruning(cli, &results, all)?;
+    let traces = records::shard::copy_traces(&shards, &results)?;
+    let rows: Vec<RunRow> = shards.iter().flat_map(|s| s.rows.clone()).collect();
+    let unexpected: Vec<String> = rows
+        .iter()
+        .filter(|r| !r.completed() && !records::gate::expected_to_diverge(r))
+        .map(|r| format!("{}: {}", r.key(), r.failure))
+        .collect();
+    eprintln!(
+        "merging {} shard(s): {} runs, {traces} traces",
+        shards.len(),
+        rows.len()
+    );
+    write_results(&results, &[], kept, &pruned, rows)?;
+    render_report_if_named(cli, &results)?;
+    Ok(report_unexpected(&unexpected))
+}

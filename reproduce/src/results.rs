@@ -1,0 +1,98 @@
+//! The results directory as the modes use it (records::results_dir): opened for writing once
+//! per mode (the lock, the integrity check of its tables, the migration of rows written before
+//! run ids), and written at the end of a run or merge (pruning, merging, runs.csv, manifest).
+
+use crate::cli::Cli;
+use crate::error::ReproduceError;
+use records::results_dir::ResultsDir;
+use records::runs::{merge, RunRow};
+use simulation::experiment::{load_dir, Job};
+use simulation::run::RunRecord;
+use simulation::run_key::RunKey;
+use std::collections::HashSet;
+
+/// Every run the experiment files describe (what migration and pruning compare the stored
+/// runs with).
+pub fn all_jobs(cli: &Cli) -> Result<Vec<Job>, ReproduceError> {
+    Ok(load_dir(&cli.experiments_dir)?
+        .iter()
+        .flat_map(|f| f.jobs())
+        .collect())
+}
+
+/// The run keys (`experiment / variant / solver`) the experiment files describe.
+pub fn described_keys(all: &[Job]) -> HashSet<RunKey> {
+    all.iter().map(Job::key).collect()
+}
+
+/// Opens the results directory for writing (records::results_dir): the lock, the integrity
+/// check of its tables, the removal of this program's own stale temporary files.
+/// `all`: every run of the experiment files ([`all_jobs`]), by which results written before
+/// run ids are migrated.
+pub fn open_results(cli: &Cli, git_rev: &str, all: &[Job]) -> Result<ResultsDir, ReproduceError> {
+    let (results, removed) = ResultsDir::open(&cli.results_dir, git_rev, cli.edits())?;
+    if !removed.is_empty() {
+        eprintln!(
+            "removed {} stale temporary file(s) of interrupted runs under {}",
+            removed.len(),
+            cli.results_dir.display()
+        );
+    }
+    // Results written before run ids are migrated once (records::migrate).
+    for done in results.migrate_ids(all)? {
+        eprintln!(
+            "migrated to run ids under {}: {done}",
+            cli.results_dir.display()
+        );
+    }
+    Ok(results)
+}
+
+/// The stored rows split into those an experiment file still describes (kept) and those it
+/// does not (to prune); refuses to prune more than a quarter of them without `--prune`.
+pub fn plan_pruning(
+    cli: &Cli,
+    results: &ResultsDir,
+    all: &[Job],
+) -> Result<(Vec<RunRow>, Vec<RunRow>), ReproduceError> {
+    let described = described_keys(all);
+    Ok(results.plan_pruning(
+        results.read_runs()?,
+        |row| described.contains(&row.key()),
+        cli.prune,
+        &cli.experiments_dir,
+    )?)
+}
+
+/// Prunes the stored rows no experiment file describes (said run by run; their traces only if
+/// this program wrote them), merges the fresh rows into the kept ones, writes the traces of
+/// `untraced` (the runs the journal could not checkpoint) and runs.csv, and saves the manifest.
+pub fn write_results(
+    results: &ResultsDir,
+    untraced: &[&RunRecord],
+    kept: Vec<RunRow>,
+    pruned: &[RunRow],
+    rows: Vec<RunRow>,
+) -> Result<(), ReproduceError> {
+    for line in results.prune(pruned)? {
+        eprintln!("{line}");
+    }
+    if !pruned.is_empty() {
+        eprintln!(
+            "pruned {} stored run(s) that no experiment file describes any more",
+            pruned.len()
+        );
+    }
+    let merged = merge(kept, rows);
+    for r in untraced {
+        results.write_trace(r)?;
+    }
+    results.write_runs(&merged)?;
+    results.save()?;
+    eprintln!(
+        "wrote {} ({} rows)",
+        results.runs_path().display(),
+        merged.len()
+    );
+    Ok(())
+}

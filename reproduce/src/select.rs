@@ -1,0 +1,131 @@
+//! The runs a command line selects: `--paper`, `--experiment` (repeatable) and `--exact-only`
+//! narrow the runs the experiment files describe; a paper or experiment no file names is an
+//! error that lists the known ones.
+
+use crate::error::ReproduceError;
+use records::shard::Selection;
+use simulation::experiment::{Job, PaperFile, SolverChoice};
+use std::collections::HashSet;
+
+/// The runs of `all` (the runs of `files`) that `selection` keeps, in their order.
+pub fn select_jobs(
+    all: &[Job],
+    files: &[PaperFile],
+    selection: &Selection,
+) -> Result<Vec<Job>, ReproduceError> {
+    if let Some(p) = &selection.paper {
+        if !files.iter().any(|f| &f.paper == p) {
+            return Err(ReproduceError::UnknownPaper {
+                paper: p.clone(),
+                known: files.iter().map(|f| f.paper.clone()).collect(),
+            });
+        }
+    }
+    let ids: HashSet<&str> = all.iter().map(|j| j.experiment.as_str()).collect();
+    for e in &selection.experiments {
+        if !ids.contains(e.as_str()) {
+            let mut known: Vec<String> = ids.iter().map(|id| id.to_string()).collect();
+            known.sort_unstable();
+            return Err(ReproduceError::UnknownExperiment {
+                experiment: e.clone(),
+                known,
+            });
+        }
+    }
+    Ok(all
+        .iter()
+        .filter(|j| selection.paper.as_ref().is_none_or(|p| &j.paper == p))
+        .filter(|j| {
+            selection.experiments.is_empty() || selection.experiments.contains(&j.experiment)
+        })
+        .filter(|j| !selection.exact_only || j.solver == SolverChoice::Exact)
+        .cloned()
+        .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use simulation::experiment::load_dir;
+    use std::path::Path;
+
+    /// The project's experiment files and their runs.
+    fn project() -> (Vec<PaperFile>, Vec<Job>) {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../experiments");
+        let files = load_dir(&dir).expect("the project's experiment files");
+        let all = files.iter().flat_map(|f| f.jobs()).collect();
+        (files, all)
+    }
+
+    fn select(
+        paper: Option<&str>,
+        experiments: &[&str],
+        exact_only: bool,
+    ) -> Result<Vec<Job>, ReproduceError> {
+        let (files, all) = project();
+        let selection = Selection {
+            paper: paper.map(String::from),
+            experiments: experiments.iter().map(|e| e.to_string()).collect(),
+            exact_only,
+        };
+        select_jobs(&all, &files, &selection)
+    }
+
+    #[test]
+    fn no_flag_selects_every_run() {
+        let (_, all) = project();
+        let keys = |jobs: &[Job]| jobs.iter().map(Job::key).collect::<Vec<_>>();
+        assert_eq!(keys(&select(None, &[], false).unwrap()), keys(&all));
+    }
+
+    #[test]
+    fn a_paper_selects_exactly_its_runs() {
+        let (files, all) = project();
+        let paper = &files[0].paper;
+        let jobs = select(Some(paper), &[], false).unwrap();
+        assert!(!jobs.is_empty());
+        assert!(jobs.iter().all(|j| &j.paper == paper));
+        assert_eq!(jobs.len(), all.iter().filter(|j| &j.paper == paper).count());
+        assert!(jobs.len() < all.len(), "one paper of several");
+    }
+
+    #[test]
+    fn experiments_and_exact_only_narrow_the_selection() {
+        let (_, all) = project();
+        let (a, b) = (&all[0].experiment, &all.last().unwrap().experiment);
+        assert_ne!(a, b);
+        let jobs = select(None, &[a, b], false).unwrap();
+        let expected = all
+            .iter()
+            .filter(|j| &j.experiment == a || &j.experiment == b)
+            .count();
+        assert_eq!(jobs.len(), expected);
+        let exact = select(None, &[a, b], true).unwrap();
+        assert!(!exact.is_empty() && exact.len() < jobs.len());
+        assert!(exact.iter().all(|j| j.solver == SolverChoice::Exact));
+    }
+
+    #[test]
+    fn an_unknown_paper_or_experiment_names_the_known_ones() {
+        let (files, _) = project();
+        match select(Some("nopaper"), &[], false) {
+            Err(ReproduceError::UnknownPaper { paper, known }) => {
+                assert_eq!(paper, "nopaper");
+                assert_eq!(
+                    known,
+                    files.iter().map(|f| f.paper.clone()).collect::<Vec<_>>()
+                );
+            }
+            other => panic!("{other:?}"),
+        }
+        let err = select(None, &["nope"], false).unwrap_err();
+        let ReproduceError::UnknownExperiment { experiment, known } = &err else {
+            panic!("{err:?}");
+        };
+        assert_eq!(experiment, "nope");
+        assert!(known.windows(2).all(|w| w[0] < w[1]), "sorted and distinct");
+        assert!(err
+            .to_string()
+            .starts_with("unknown experiment \"nope\" (known: "));
+    }
+}
