@@ -167,9 +167,13 @@ mod tests {
             .find(|r| r.drift_norm.is_some())
             .expect("a completed run");
         row.drift_norm = row.drift_norm.map(|d| d * 1.1 + 1e-9);
+        let key = format!("{:?}", row.key());
         let problems = committed().problems(&doctored, false);
         assert_eq!(problems.len(), 1, "{problems:?}");
-        assert!(problems[0].contains(&row.key().to_string()), "{problems:?}");
+        assert!(
+            problems[0].starts_with(&format!("{key}: drift_norm ")),
+            "{problems:?}"
+        );
     }
 
     #[test]

@@ -1,11 +1,11 @@
 //! The logic of the `reproduce` binary: runs driftbench's experiments and writes `results/` and
-//! `report/`. The binary (`main.rs`) parses the command line ([`Cli`]), calls [`run`] and
-//! prints the [`ReproduceError`] it may return.
+//! `report/`. The binary (`main.rs`) parses the command line ([`Cli`]), calls [`run`](fn@run)
+//! and prints the [`ReproduceError`] it may return.
 //!
 //! One module per mode: [`run`](mod@run) (the default, the gate of [`gate`], a shard, with its
 //! [`journal`]), [`report`], [`explanation`], [`inference`], [`merge`], [`list`] (and robots),
 //! [`cost`], [`score`]; beside them what the modes share: the command line ([`cli`],
-//! [`commands`]), the selection of runs ([`select`]), the results directory ([`results`]) and
+//! [`commands`], [`resolve`]), the selection of runs ([`select`]), the results directory ([`results`]) and
 //! the summary printed ([`summary`]).
 
 pub mod cli;
@@ -19,6 +19,7 @@ pub mod journal;
 pub mod list;
 pub mod merge;
 pub mod report;
+pub mod resolve;
 pub mod results;
 pub mod run;
 pub mod score;
@@ -32,8 +33,10 @@ use simulation::experiment::{load_dir, Job};
 use std::process::ExitCode;
 use summary::emit;
 
-/// Runs the mode `cli` (resolved: [`Cli::resolve`]) asks for; its exit code.
-pub fn run(cli: &Cli) -> Result<ExitCode, ReproduceError> {
+/// Runs the mode the command line `cli` asks for (its directories resolved first:
+/// [`Cli::resolve`]); the exit code.
+pub fn run(cli: Cli) -> Result<ExitCode, ReproduceError> {
+    let cli = &cli.resolve()?;
     if cli.robots {
         emit(&list::robots());
         return Ok(ExitCode::SUCCESS);

@@ -143,7 +143,7 @@ mod tests {
     fn every_robot_is_listed_with_its_joint_count() {
         use simulation::robot_registry::{robot_by_name, robot_names};
         let text = robots();
-        let names = robot_names();
+        let names: Vec<String> = robot_names().collect();
         assert_eq!(text.lines().count(), 2 * names.len());
         for (name, line) in names.iter().zip(text.lines().step_by(2)) {
             let dof = robot_by_name(name).unwrap().dof();

@@ -9,7 +9,7 @@ fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(e) => e.exit(),
     };
-    match cli.resolve().and_then(|cli| reproduce::run(&cli)) {
+    match reproduce::run(cli) {
         Ok(code) => code,
         Err(e) => {
             eprintln!("error: {e}");
