@@ -5,8 +5,8 @@
 //! One module per mode: [`run`](mod@run) (the default, the gate of [`gate`], a shard, with its
 //! [`journal`]), [`report`], [`explanation`], [`inference`], [`merge`], [`list`] (and robots),
 //! [`cost`], [`score`]; beside them what the modes share: the command line ([`cli`],
-//! [`commands`], [`resolve`]), the selection of runs ([`select`]), the results directory ([`results`]) and
-//! the summary printed ([`summary`]).
+//! [`commands`], [`resolve`]), the selection of runs ([`select`]), the results directory
+//! ([`results`]) and the summary printed ([`summary`]).
 
 pub mod cli;
 pub mod commands;
