@@ -517,7 +517,7 @@ fn matlab(runs: &Runs, papers: &Papers) -> String {
          machines and languages: the speedups say how far apart, not which implementation is \
          better.\n\n",
         timed_papers(papers)
-    ));
+    );
     out.push_str(&t.render());
     out.push('\n');
     if min_sim.is_finite() && min_total.is_finite() {
