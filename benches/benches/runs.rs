@@ -1,7 +1,7 @@
 //! Whole runs through `simulation::run::run_job`, exactly as `reproduce` runs them (the ODE
 //! integration of arm + solver, the metrics, the score against the exact optimum along the run),
-//! for the jobs of [`RUN_CASES`]: the exact column and the neural runs of jia2019-star VLTCO,
-//! zhong2021-clover-b and kong2019-circle ZNN. Group `runs`, ids `<experiment>/<solver>`.
+//! for the runs `benches/cases.toml` lists (`runs`): the exact column and the neural runs of one
+//! experiment per velocity-level paper. Group `runs`, ids `<experiment>/<solver>`.
 //!
 //! Each job is run once before timing and must complete, so a bench never times a failure; that
 //! run's counts (steps, RHS and Jacobian evaluations, Clarabel solves, allocations) go to stderr.
@@ -10,8 +10,8 @@
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion, SamplingMode};
 use driftbench_benches::{
-    allocations_in, bench_id, experiment_jobs, find_job, whole_run_config, CountingAllocator,
-    RUN_CASES,
+    allocations_in, bench_cases, bench_id, experiment_jobs, find_run, whole_run_config,
+    CountingAllocator,
 };
 use simulation::run::run_job;
 use simulation::simulate::Outcome;
@@ -23,8 +23,8 @@ fn whole_runs(c: &mut Criterion) {
     let jobs = experiment_jobs();
     let mut g = c.benchmark_group("runs");
     g.sampling_mode(SamplingMode::Flat);
-    for (experiment, variant, solver) in RUN_CASES {
-        let job = find_job(&jobs, experiment, variant, solver);
+    for key in bench_cases().runs {
+        let job = find_run(&jobs, &key);
         let (record, allocations) = allocations_in(|| run_job(&job));
         if let Outcome::Failed { t, error, .. } = &record.run.outcome {
             panic!("{}: failed at t = {t}: {error}", job.key());

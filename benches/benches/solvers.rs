@@ -13,8 +13,8 @@
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use driftbench_benches::{
-    bench_id, experiment_jobs, fast_config, paper_networks, paper_of, report_allocations,
-    CountingAllocator, RepresentativeQp, EVAL_TIME,
+    bench_id, experiment_jobs, fast_config, paper_networks, report_allocations, CountingAllocator,
+    RepresentativeQp, EVAL_TIME,
 };
 use nalgebra::DMatrix;
 use solvers::neural::build_solver;
@@ -26,7 +26,7 @@ static ALLOC: CountingAllocator = CountingAllocator;
 fn per_evaluation(c: &mut Criterion) {
     let jobs = experiment_jobs();
     for rep in RepresentativeQp::all() {
-        let paper = paper_of(rep.shape);
+        let paper = rep.shape.paper();
         let mut group = c.benchmark_group(paper);
         for (name, spec) in paper_networks(&jobs, rep.shape) {
             let id = bench_id(&name);

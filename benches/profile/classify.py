@@ -67,7 +67,8 @@ def samples(path):
 
 
 def main():
-    path, passes, freq, rev = sys.argv[1], int(sys.argv[2]), float(sys.argv[3]), sys.argv[4]
+    path, paper, passes, freq, rev = (sys.argv[1], sys.argv[2], int(sys.argv[3]),
+                                     float(sys.argv[4]), sys.argv[5])
     counts = collections.Counter()
     floor = {}
     for frames in samples(path):
@@ -78,12 +79,12 @@ def main():
     simulation = sum(c for (part, _), c in counts.items() if part == "simulation")
     out = csv.writer(sys.stdout, lineterminator="\n")
     out.writerow(["part", "category", "floor", "samples", "share_of_process",
-                  "share_of_simulation", "ms_per_pass", "passes", "frequency_hz", "git_rev"])
+                  "share_of_simulation", "ms_per_pass", "paper", "passes", "frequency_hz", "git_rev"])
     order = ["simulation", "exact column", "observer", "other"]
     for key, c in sorted(counts.items(), key=lambda kc: (order.index(kc[0][0]), -kc[1])):
         part, name = key
         sim_share = f"{c / simulation:.4f}" if part == "simulation" and simulation else ""
         out.writerow([part, name, "yes" if floor[key] else "no", c, f"{c / total:.4f}",
-                      sim_share, f"{1e3 * c / freq / passes:.3f}", passes, f"{freq:g}", rev])
+                      sim_share, f"{1e3 * c / freq / passes:.3f}", paper, passes, f"{freq:g}", rev])
 
 main()

@@ -10,7 +10,8 @@
 //!   (`experiments/<paper>.toml`), so the benches never restate a gain.
 //! * [`ArmState`] and [`SchemeCase`] — a realistic arm state (an experiment's theta0 nudged, with
 //!   nonzero velocity and acceleration) and each paper's scheme built at it as a run builds it.
-//! * [`experiment_jobs`], [`find_job`], [`RUN_CASES`] — jobs of the experiment files, by name.
+//! * [`experiment_jobs`], [`find_job`], [`bench_cases`] — jobs of the experiment files, by id;
+//!   what the benches run is data (`benches/cases.toml`).
 //! * [`CountingAllocator`], [`allocations_per_call`] — a global-allocator wrapper that counts
 //!   allocations, so each bench can print how many allocations one timed call makes.
 //! * [`fast_config`], [`whole_run_config`] — criterion settings that keep the full
@@ -66,17 +67,6 @@ pub const QP_SEED: u64 = 1;
 /// gamma e, a mid-run value.
 pub const EVAL_TIME: f64 = 1.0;
 
-/// The paper id of a QP shape (`jia2019`, `zhong2021`, `zhang2018`, `kong2019`), used as the
-/// benchmark group name so `cargo bench -- jia2019` selects one paper.
-pub fn paper_of(shape: QpShape) -> &'static str {
-    match shape {
-        QpShape::Jia2019 => "jia2019",
-        QpShape::Zhong2021 => "zhong2021",
-        QpShape::Zhang2018 => "zhang2018",
-        QpShape::Kong2019 => "kong2019",
-    }
-}
-
 /// One QP of a paper's shape with everything a network evaluation needs.
 #[derive(Clone, Debug)]
 pub struct RepresentativeQp {
@@ -114,12 +104,7 @@ impl RepresentativeQp {
         qp_dot.upper.zip_apply(&next.upper, |a, b| *a = diff(*a, b));
         let x_star = ExactSolver::new()
             .solve(&qp)
-            .unwrap_or_else(|e| {
-                panic!(
-                    "representative {} QP: Clarabel failed: {e}",
-                    paper_of(shape)
-                )
-            })
+            .unwrap_or_else(|e| panic!("representative {} QP: Clarabel failed: {e}", shape.paper()))
             .x;
         Self {
             shape,
@@ -195,7 +180,7 @@ pub fn paper_networks(jobs: &[Job], shape: QpShape) -> Vec<(String, SolverSpec)>
     // The paper's own experiments, not the parameter sweeps beside them.
     for j in jobs
         .iter()
-        .filter(|j| j.paper == paper_of(shape) && !j.experiment.ends_with("-sweep"))
+        .filter(|j| j.paper == shape.paper() && !j.experiment.ends_with("-sweep"))
     {
         if let SolverChoice::Neural(spec) = &j.solver {
             let name = spec.display_name();
@@ -207,22 +192,66 @@ pub fn paper_networks(jobs: &[Job], shape: QpShape) -> Vec<(String, SolverSpec)>
     out
 }
 
-/// The whole runs `runs.rs` times, as (experiment, variant, solver) ids: the exact column and
-/// the neural run of jia2019-star VLTCO, zhong2021-clover-b (VP-RNN-PF linear, S-LVI-PDNN) and
-/// kong2019-circle ZNN. No FTNN run: it takes ~10 s (650k steps).
-pub const RUN_CASES: [(&str, &str, &str); 7] = [
-    ("jia2019-star", "vltco", "exact"),
-    ("jia2019-star", "vltco", "lvi-pdnn"),
-    ("zhong2021-clover-b", "cmco-eta-0.1-delta-0.8", "exact"),
-    (
-        "zhong2021-clover-b",
-        "cmco-eta-0.1-delta-0.8",
-        "vp-rnn-pf-linear",
-    ),
-    ("zhong2021-clover-b", "cmco-eta-0.1-delta-0.8", "s-lvi-pdnn"),
-    ("kong2019-circle", "znn-eq22", "exact"),
-    ("kong2019-circle", "znn-eq22", "znn"),
-];
+/// What the benches run, declared in `benches/`[`CASES_FILE`] by the experiment files' ids.
+#[derive(Clone, Debug, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BenchCases {
+    /// The whole runs `runs.rs` times (`experiment / variant / solver`).
+    pub runs: Vec<String>,
+    /// The Jaco2 schemes `kinematics.rs` builds.
+    pub jaco2_schemes: Vec<SchemeRef>,
+    /// The Katana schemes `kinematics.rs` builds.
+    pub katana_schemes: Vec<SchemeRef>,
+}
+
+/// A scheme bench: its label and the task (`experiment / variant`) whose scheme it builds.
+#[derive(Clone, Debug, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SchemeRef {
+    pub label: String,
+    pub task: String,
+}
+
+/// The benches' cases file, relative to the project root.
+pub const CASES_FILE: &str = "benches/cases.toml";
+
+/// The cases of [`CASES_FILE`] (panics with the file's name when it is missing or malformed:
+/// benches have no user to report to).
+pub fn bench_cases() -> BenchCases {
+    let path = simulation::root::from_current_dir()
+        .unwrap()
+        .join(CASES_FILE);
+    let text = std::fs::read_to_string(&path)
+        .unwrap_or_else(|e| panic!("reading {}: {e}", path.display()));
+    toml::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// The job of a run key written `experiment / variant / solver`.
+pub fn find_run(jobs: &[Job], key: &str) -> Job {
+    let k = simulation::run_key::RunKey::parse(key)
+        .unwrap_or_else(|| panic!("{CASES_FILE}: {key:?} is not experiment / variant / solver"));
+    find_job(jobs, &k.experiment, &k.variant, &k.solver)
+}
+
+/// The exact column's job of each scheme reference.
+fn scheme_jobs<'a>(
+    jobs: &'a [Job],
+    refs: &'a [SchemeRef],
+) -> impl Iterator<Item = (&'a str, Job)> + 'a {
+    refs.iter().map(|r| {
+        let t = simulation::run_key::TaskKey::parse(&r.task)
+            .unwrap_or_else(|| panic!("{CASES_FILE}: {:?} is not experiment / variant", r.task));
+        (
+            r.label.as_str(),
+            find_job(
+                jobs,
+                &t.experiment,
+                &t.variant,
+                simulation::run_key::EXACT_ID,
+            ),
+        )
+    })
+}
 
 // ---------------------------------------------------------------------------------------------
 // Arm states and schemes
@@ -314,44 +343,23 @@ impl<const N: usize> SchemeCase<N> {
     }
 }
 
-/// The Jaco2 schemes, one per paper: jia2019 VLTCO (jia2019-star), zhong2021 CMCO
-/// (zhong2021-clover-b), zhang2018 HL-JDF zeta = 0.6 (zhang2018-butterfly-scheme).
+/// The Jaco2 schemes of [`BenchCases::jaco2_schemes`], each with the Jaco2 model its job names.
 pub fn jaco2_scheme_cases(jobs: &[Job]) -> Vec<SchemeCase<6>> {
-    [
-        ("jia2019-VLTCO", "jia2019-star", "vltco"),
-        (
-            "zhong2021-CMCO",
-            "zhong2021-clover-b",
-            "cmco-eta-0.1-delta-0.8",
-        ),
-        (
-            "zhang2018-HL-JDF",
-            "zhang2018-butterfly-scheme",
-            "hl-jdf-zeta-0.6",
-        ),
-    ]
-    .iter()
-    .map(|&(label, e, v)| {
-        let job = find_job(jobs, e, v, "exact");
-        let arm = Arc::new(jaco2_model(&job.robot));
-        SchemeCase::new(label, &job, arm.clone(), Some(arm))
-    })
-    .collect()
+    let cases = bench_cases();
+    scheme_jobs(jobs, &cases.jaco2_schemes)
+        .map(|(label, job)| {
+            let arm = Arc::new(jaco2_model(&job.robot));
+            SchemeCase::new(label, &job, arm.clone(), Some(arm))
+        })
+        .collect()
 }
 
-/// The Katana schemes of kong2019 (kong2019-circle): the finite-time scheme (eq. 14) and the ZNN
-/// baseline (eq. 22).
+/// The Katana schemes of [`BenchCases::katana_schemes`].
 pub fn katana_scheme_cases(jobs: &[Job]) -> Vec<SchemeCase<5>> {
-    [
-        ("kong2019-finite-time", "finite-time-eq14"),
-        ("kong2019-ZNN", "znn-eq22"),
-    ]
-    .iter()
-    .map(|&(label, v)| {
-        let job = find_job(jobs, "kong2019-circle", v, "exact");
-        SchemeCase::new(label, &job, Arc::new(Katana6m180::new()), None)
-    })
-    .collect()
+    let cases = bench_cases();
+    scheme_jobs(jobs, &cases.katana_schemes)
+        .map(|(label, job)| SchemeCase::new(label, &job, Arc::new(Katana6m180::new()), None))
+        .collect()
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -458,8 +466,8 @@ mod tests {
     #[test]
     fn run_cases_and_schemes_exist() {
         let jobs = experiment_jobs();
-        for (e, v, s) in RUN_CASES {
-            find_job(&jobs, e, v, s);
+        for key in bench_cases().runs {
+            find_run(&jobs, &key);
         }
         assert_eq!(jaco2_scheme_cases(&jobs).len(), 3);
         assert_eq!(katana_scheme_cases(&jobs).len(), 2);

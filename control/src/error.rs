@@ -14,6 +14,14 @@ pub enum ControlError {
     Experiments(#[from] ExperimentFileError),
     #[error("task {0} is not in the experiment files")]
     UnknownTask(String),
+    /// The standard task set file could not be parsed (`path` names it).
+    #[error("{path}: {source}")]
+    TaskSet {
+        path: String,
+        source: toml::de::Error,
+    },
+    #[error("{0}: the task set lists no [[task]]")]
+    EmptyTaskSet(String),
     #[error("task {task}: {message}")]
     Setup { task: String, message: String },
     /// The task's network could not be built (`task` names the network).

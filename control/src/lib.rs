@@ -20,7 +20,7 @@
 //! - [`reproduce`]: the entry point that runs all of it and writes `results/control*.csv`,
 //!   `results/cycles.csv` ([`output`]).
 //!
-//! The standard task set is [`task::TASKS`].
+//! The standard task set is declared in `experiments/control/tasks.toml` ([`task::standard_task_refs`]).
 
 pub mod arm;
 pub mod claim;

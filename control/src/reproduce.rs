@@ -16,7 +16,7 @@ use crate::network_tick::{products_per_evaluation, Discretisation};
 use crate::numerical_tick::ActiveSetTick;
 use crate::output::{self, ClaimRow, ControlRow, CycleRow, StabilityRow, TrendRow};
 use crate::stability::{gain, LimitProbe};
-use crate::task::{load_tasks, with_task, Task, TaskVisitor, TASKS};
+use crate::task::{load_tasks, standard_task_refs, with_task, Task, TaskVisitor};
 use crate::trend::classify;
 use nalgebra::SVector;
 use robots::Robot;
@@ -217,7 +217,7 @@ pub fn reproduce(
     budget: &Budget,
     mut progress: impl FnMut(&str),
 ) -> Result<Summary, ControlError> {
-    let tasks = load_tasks(experiments, &TASKS)?;
+    let tasks = load_tasks(experiments, &standard_task_refs(experiments)?)?;
     let h = budget.h;
     let mut control = Vec::new();
     let mut stability = Vec::new();

@@ -1,6 +1,7 @@
-//! The standard task set of the control experiments: one run of each paper's scheme, as the
-//! experiment files define it (robot, closed path, theta0, scheme and the paper's networks),
-//! and the way to run generic code on a task's arm ([`TaskVisitor`]).
+//! The standard task set of the control experiments: one run of each paper's scheme, declared as
+//! data in `experiments/`[`TASK_SET_FILE`] (experiment and variant ids) and resolved against the
+//! experiment files (robot, closed path, theta0, scheme and the paper's networks), and the way to
+//! run generic code on a task's arm ([`TaskVisitor`]).
 
 use crate::error::ControlError;
 use nalgebra::SVector;
@@ -14,40 +15,42 @@ use solvers::neural::SolverSpec;
 use std::sync::Arc;
 
 /// A task: an experiment and one of its variants (ids).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct TaskRef {
-    pub experiment: &'static str,
-    pub variant: &'static str,
+    pub experiment: String,
+    pub variant: String,
 }
 
-/// The standard task set: every paper's scheme once (jia2019's MVN beside its VLTCO, the
-/// scheme expected to drift).
-pub const TASKS: [TaskRef; 6] = [
-    TaskRef {
-        experiment: "jia2019-clover",
-        variant: "vltco",
-    },
-    TaskRef {
-        experiment: "jia2019-clover",
-        variant: "mvn",
-    },
-    TaskRef {
-        experiment: "zhong2021-clover-a",
-        variant: "cmco-eta-0.2-delta-0.4",
-    },
-    TaskRef {
-        experiment: "zhang2018-butterfly-scheme",
-        variant: "hl-jdf-zeta-0.6",
-    },
-    TaskRef {
-        experiment: "kong2019-circle",
-        variant: "znn-eq22",
-    },
-    TaskRef {
-        experiment: "kong2019-circle",
-        variant: "finite-time-eq14",
-    },
-];
+/// Where the standard task set is declared, relative to the experiments directory (a
+/// subdirectory, which the experiment loader does not read).
+pub const TASK_SET_FILE: &str = "control/tasks.toml";
+
+/// The task set file: a list of `[[task]]` tables.
+#[derive(Debug, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TaskSetFile {
+    task: Vec<TaskRef>,
+}
+
+/// The standard task set declared in `experiments/`[`TASK_SET_FILE`]: every paper's scheme
+/// once, in the file's order.
+pub fn standard_task_refs(experiments: &std::path::Path) -> Result<Vec<TaskRef>, ControlError> {
+    let path = experiments.join(TASK_SET_FILE);
+    let shown = path.display().to_string();
+    let text = std::fs::read_to_string(&path).map_err(|source| ControlError::Io {
+        path: shown.clone(),
+        source,
+    })?;
+    let file: TaskSetFile = toml::from_str(&text).map_err(|source| ControlError::TaskSet {
+        path: shown.clone(),
+        source,
+    })?;
+    if file.task.is_empty() {
+        return Err(ControlError::EmptyTaskSet(shown));
+    }
+    Ok(file.task)
+}
 
 /// A task resolved from the experiment files.
 #[derive(Clone, Debug)]
@@ -97,7 +100,7 @@ pub fn load_tasks(dir: &std::path::Path, refs: &[TaskRef]) -> Result<Vec<Task>, 
                 })
                 .collect();
             Ok(Task {
-                reference: *r,
+                reference: r.clone(),
                 job: (*first).clone(),
                 networks,
             })

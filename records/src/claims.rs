@@ -37,6 +37,11 @@ use serde::Deserialize;
 pub struct Pattern(String);
 
 impl Pattern {
+    /// The pattern written as `text`.
+    pub fn new(text: &str) -> Pattern {
+        Pattern(text.to_string())
+    }
+
     /// Whether `id` matches.
     pub fn matches(&self, id: &str) -> bool {
         let parts: Vec<&str> = self.0.split('*').collect();

@@ -5,7 +5,7 @@
 //!   with the schema checked.
 //! - [`table`]: CSV tables whose per-joint columns follow the robot's joint count.
 //! - [`dof_cost`]: the cost against the number of joints (`results/dof-cost.csv`).
-//! - [`profile`]: where a zhong2021 reproduction's time goes (`results/profile-zhong2021.csv`).
+//! - [`profile`]: where a paper's reproduction spends its time (`results/profile.csv`).
 //! - [`index`]: the stored runs indexed as the report and the analyses look them up.
 //! - [`leaderboard`]: every velocity-level solver on the standard task set, scored as
 //!   qpbenchmark scores QP solvers (`results/leaderboard.csv`).
@@ -25,6 +25,7 @@
 //!   their score as a row.
 //! - [`papers`]: the papers as data (`papers/<paper>/`): metadata, published numbers and which run each
 //!   one is compared with.
+//! - [`sweep_check`]: a published table set beside a sweep's runs.
 
 pub mod claims;
 pub mod dof_cost;
@@ -41,6 +42,7 @@ pub mod profile;
 pub mod results_dir;
 pub mod runs;
 pub mod shard;
+pub mod sweep_check;
 pub mod table;
 pub mod tracked_dir;
 pub mod trajectory;

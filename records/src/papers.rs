@@ -8,10 +8,12 @@
 //! names the `runs.csv` column of each published metric. [`Papers::resolve`] combines both; a
 //! published number that finds no run is listed in the report under "published numbers without
 //! a run", never dropped silently. Its `[[claim]]` tables are the claims checked against the
-//! runs ([`crate::claims`]). Adding a paper is adding a folder: no Rust.
+//! runs ([`crate::claims`]); its `[[sweep_check]]` tables set a published table beside a sweep's
+//! runs ([`crate::sweep_check`]). Adding a paper is adding a folder: no Rust.
 
 use crate::index::Runs;
 use crate::runs::RunRow;
+use crate::sweep_check::SweepCheck;
 use serde::Deserialize;
 use simulation::run_key::RunKey;
 use std::path::{Path, PathBuf};
@@ -62,6 +64,8 @@ struct PaperFile {
     mappings: Vec<MappingFile>,
     #[serde(default, rename = "claim")]
     claims: Vec<crate::claims::ClaimFile>,
+    #[serde(default, rename = "sweep_check")]
+    sweep_checks: Vec<crate::sweep_check::SweepCheckFile>,
 }
 
 #[derive(Clone, Debug, Deserialize)]
@@ -105,6 +109,8 @@ pub struct Papers {
     pub papers: Vec<Paper>,
     pub values: Vec<PaperValue>,
     pub mappings: Vec<Mapping>,
+    /// Published tables set beside a sweep's runs ([`crate::sweep_check`]).
+    pub sweep_checks: Vec<SweepCheck>,
 }
 
 impl Papers {
@@ -188,6 +194,11 @@ impl Papers {
                     })
                 })
                 .collect::<Result<_, _>>()?;
+            out.sweep_checks.extend(
+                file.sweep_checks
+                    .into_iter()
+                    .map(|c| c.into_check(&file.paper)),
+            );
             out.papers.push(Paper {
                 id: file.paper,
                 title: file.title,

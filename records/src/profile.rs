@@ -1,6 +1,6 @@
-//! `results/profile-zhong2021.csv`: where a zhong2021 reproduction's time goes, by sampling
-//! profile (written by `benches/profile/zhong2021.sh`, which runs perf over the release binary
-//! and sorts each sample with `benches/profile/classify.py`).
+//! `results/profile.csv`: where one paper's reproduction spends its time, by sampling profile
+//! (written by `benches/profile/paper.sh PAPER`, which runs perf over the release binary and
+//! sorts each sample with `benches/profile/classify.py`; the row's `paper` says which).
 //!
 //! One [`ProfileRow`] per (part, category): the part of the program (the neural runs'
 //! `simulation`, the `exact column`'s right-hand side, the `observer` of accepted steps,
@@ -13,11 +13,11 @@ use crate::table::Row;
 use serde::{Deserialize, Serialize};
 
 /// The file name inside `results/`.
-pub const FILE: &str = "profile-zhong2021.csv";
+pub const FILE: &str = "profile.csv";
 /// [`ProfileRow::part`] of the neural runs' integration.
 pub const SIMULATION: &str = "simulation";
 
-/// One row of `results/profile-zhong2021.csv`.
+/// One row of `results/profile.csv`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ProfileRow {
     /// `simulation`, `exact column`, `observer` or `other`.
@@ -31,8 +31,10 @@ pub struct ProfileRow {
     pub share_of_process: f64,
     /// Samples over the simulation's (simulation rows only).
     pub share_of_simulation: Option<f64>,
-    /// Samples / frequency / passes: CPU milliseconds per pass of the zhong2021 runs.
+    /// Samples / frequency / passes: CPU milliseconds per pass of the paper's runs.
     pub ms_per_pass: f64,
+    /// The paper whose runs were profiled (`reproduce --paper <paper>`).
+    pub paper: String,
     pub passes: usize,
     pub frequency_hz: f64,
     pub git_rev: String,
@@ -71,6 +73,7 @@ mod tests {
             share_of_process: 0.0,
             share_of_simulation: None,
             ms_per_pass: 0.0,
+            paper: "p".into(),
             passes: 1,
             frequency_hz: 1.0,
             git_rev: "r".into(),

@@ -49,6 +49,17 @@ pub enum QpShape {
 }
 
 impl QpShape {
+    /// The paper whose scheme's QP the shape is (`jia2019`, `zhong2021`, `zhang2018`,
+    /// `kong2019`): the benches group by it, so `cargo bench -- jia2019` selects one paper.
+    pub fn paper(self) -> &'static str {
+        match self {
+            QpShape::Jia2019 => "jia2019",
+            QpShape::Zhong2021 => "zhong2021",
+            QpShape::Zhang2018 => "zhang2018",
+            QpShape::Kong2019 => "kong2019",
+        }
+    }
+
     /// All four shapes.
     pub const ALL: [QpShape; 4] = [
         QpShape::Jia2019,

@@ -167,7 +167,7 @@ fn claim_section(results: &ControlResults, runs: &Runs) -> String {
     out.push_str(
         "zhong2021 §1: \"compared with numerical methods [26], [27], neural network methods can \
          process information in parallel and have higher computational efficiency\". [26] and \
-         [27] are E47 and 94LVI. All four methods work on jia2019's LVI of the same QP and spend \
+         [27] are E47 and 94LVI. All four methods work on the LVI of the same QP (the one LVI-PDNN solves) and spend \
          their time in one operation, a product of the LVI matrix M with a vector, so the cost \
          per tick is counted in those products: the same on every machine and under any load, \
          so the verdict does not depend on either. A network needs at least ceil(h / s_max) \

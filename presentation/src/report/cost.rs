@@ -142,18 +142,34 @@ pub fn slowdown(runs: &Runs, papers: &Papers, experiment: &str) -> Slowdown {
 /// Our experiments that a published MATLAB compute time maps onto, in the published values'
 /// order.
 pub(crate) fn matlab_experiments(papers: &Papers) -> Vec<&str> {
-    let mut experiments: Vec<&str> = papers
-        .values
-        .iter()
-        .filter(|v| our_metric(&v.metric) == Some("sim_s"))
-        .filter_map(|v| papers.mapping_of(v))
-        .map(|m| m.run.experiment.as_str())
+    let mut experiments: Vec<&str> = timed_values(papers)
+        .map(|(_, m)| m.run.experiment.as_str())
         .collect();
     experiments.dedup();
     experiments
 }
 
-/// zhong2021's compute times: per experiment and solver, the paper's MATLAB seconds and
+/// The papers that publish compute times (in file order), for the headings.
+pub(crate) fn timed_papers(papers: &Papers) -> String {
+    let mut ids: Vec<&str> = timed_values(papers)
+        .map(|(v, _)| v.paper.as_str())
+        .collect();
+    ids.dedup();
+    ids.join(", ")
+}
+
+/// The published compute times with their mappings.
+fn timed_values(
+    papers: &Papers,
+) -> impl Iterator<Item = (&records::papers::PaperValue, &records::papers::Mapping)> {
+    papers
+        .values
+        .iter()
+        .filter(|v| our_metric(&v.metric) == Some("sim_s"))
+        .filter_map(|v| papers.mapping_of(v).map(|m| (v, m)))
+}
+
+/// The published compute times: per experiment and solver, the paper's MATLAB seconds and
 /// ours, each also divided by the mean of the VP-RNN-PF variants.
 pub fn matlab_comparison(runs: &Runs, papers: &Papers) -> String {
     let mut t = Table::new([

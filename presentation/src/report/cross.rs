@@ -21,9 +21,9 @@ enum Best {
 
 /// The matrices, as (title, runs.csv column, best rule).
 const MATRICES: &[(&str, &str, Best)] = &[
-    ("Drift ‖θ(T) − θ_ref‖ (rad; θ_ref = θ0, or θ*0 for kong2019's schemes)", "drift_ref_norm", Best::ClosestToExact),
+    ("Drift ‖θ(T) − θ_ref‖ (rad; θ_ref = θ0, or θ*0 where the experiment declares one)", "drift_ref_norm", Best::ClosestToExact),
     ("Max position error (m)", "max_pos_err", Best::Smallest),
-    ("Score: max |x − x*| against the exact optimum (includes the start-up transient from the zero network state: on kong2019's deviated start every solver ties at |x*(0)|)", "score_max_dx", Best::Smallest),
+    ("Score: max |x − x*| against the exact optimum (includes the start-up transient from the zero network state: on a deviated start, θ0 ≠ θ*0, every solver ties at |x*(0)|)", "score_max_dx", Best::Smallest),
     ("Score: RMS |x − x*| over the run (time-weighted, so the start-up transient counts for its duration only)", "score_rms_dx", Best::Smallest),
 ];
 

@@ -3,9 +3,21 @@
 
 use super::markdown::{sci, Table};
 use records::index::Runs;
+use records::papers::Papers;
+
+/// A count as an English word below ten (`four papers`), digits above.
+fn count_word(n: usize) -> String {
+    const WORDS: [&str; 10] = [
+        "no", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine",
+    ];
+    WORDS
+        .get(n)
+        .map_or_else(|| n.to_string(), |w| w.to_string())
+}
 
 /// The header as Markdown.
-pub fn header(runs: &Runs, published: usize, figures: usize) -> String {
+pub fn header(runs: &Runs, papers: &Papers, figures: usize) -> String {
+    let published = papers.values.len();
     let distinct = |f: fn(&records::runs::RunRow) -> &str| {
         let mut v: Vec<&str> = runs.all().iter().map(f).collect();
         v.sort();
@@ -16,12 +28,15 @@ pub fn header(runs: &Runs, published: usize, figures: usize) -> String {
             .join(", ")
     };
     let mut out = String::from("# driftbench — reproduction report\n\n");
-    out.push_str(
-        "A reproduction of four papers on drift-free (repetitive) redundancy resolution: jia2019, zhang2018, \
-zhong2021, kong2019. For each paper: a verdict, its tables side by side with ours, and its claims checked \
+    let ids: Vec<&str> = papers.papers.iter().map(|p| p.id.as_str()).collect();
+    out.push_str(&format!(
+        "A reproduction of {} paper{} on drift-free (repetitive) redundancy resolution: {}. For each paper: a verdict, its tables side by side with ours, and its claims checked \
 against the measured numbers; then every neural run scored against the exact optimum of the same QP, the \
 computational cost, a cross experiment (every solver on every scheme and path), and the deviations from the papers.\n\n",
-    );
+        count_word(ids.len()),
+        if ids.len() == 1 { "" } else { "s" },
+        ids.join(", ")
+    ));
     out.push_str(&format!(
         "**Provenance.** Generated from `results/runs.csv` ({} runs), `papers/*/values.csv` ({published} published numbers), \
 `report/deviations.md` and {figures} figures in `report/figures/`. Runs produced at git revision {} by reproduce {}.\n\n",

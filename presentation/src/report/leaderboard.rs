@@ -314,8 +314,8 @@ fn definitions() -> String {
          - *Success rate*: share of the set's tasks where the run completed and its RMS \
          |x − x*|_inf along the run (`score_rms_dx`) is at most {tol} rad/s — a thousandth of \
          the arms' joint-velocity limits. The RMS, not the max: the max includes the start-up \
-         from the zero network state (on kong2019's deviated start every network ties at \
-         |x*(0)|). VP-RNN-PF's equilibrium is the exponential-penalty optimum, not x*: it sits \
+         from the zero network state (on a deviated start, θ0 ≠ θ*0, every network ties \
+         at |x*(0)|). VP-RNN-PF's equilibrium is the exponential-penalty optimum, not x*: it sits \
          ~1e-2 rad/s from x* by design, and the tolerance counts that against it.\n\
          - *Correct rate* (qpbenchmark's): share of the set's tasks where the run's verdict is \
          right — it failed, or it completed within tolerance; a run that completes outside the \

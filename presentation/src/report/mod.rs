@@ -64,7 +64,7 @@ pub struct Inputs {
     pub explanations: why::Explanations,
     /// `results/dof-cost.csv` (absent = empty).
     pub dof_cost: Vec<records::dof_cost::DofCostRow>,
-    /// `results/profile-zhong2021.csv` (absent = empty).
+    /// `results/profile.csv` (absent = empty).
     pub profile: Vec<records::profile::ProfileRow>,
     /// The control experiments' result files (absent = empty).
     pub control: control::ControlResults,
@@ -122,7 +122,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
         control,
         python,
     } = inputs;
-    let mut out = header::header(runs, papers.values.len(), figures.len());
+    let mut out = header::header(runs, papers, figures.len());
 
     let evaluated: Vec<(&str, &str, Vec<claims::Claim>)> = papers
         .papers
@@ -181,8 +181,8 @@ pub fn to_markdown(inputs: &Inputs) -> String {
             out.push_str("\n### Published tables side by side\n\n");
             out.push_str(&tables.join("\n"));
         }
-        if *paper == "jia2019" {
-            out.push_str(&sweep::clover_sweep(runs, papers));
+        for check in papers.sweep_checks.iter().filter(|c| c.paper == *paper) {
+            out.push_str(&sweep::section(check, runs, papers));
         }
         out.push_str(&why::section(paper, explanations, papers));
         out.push_str("\n### Claims\n\n");
@@ -228,7 +228,10 @@ pub fn to_markdown(inputs: &Inputs) -> String {
             cost::cost_table(runs, paper)
         ));
     }
-    out.push_str("### zhong2021: compute time against the paper's MATLAB times\n\n");
+    out.push_str(&format!(
+        "### {}: compute time against the paper's MATLAB times\n\n",
+        cost::timed_papers(papers)
+    ));
     out.push_str(
         "Ours is `sim_s`: the wall time of the simulation proper (arm, network, integrator), \
          without the observation at accepted steps (metrics and the Clarabel solves that score \
@@ -312,7 +315,7 @@ fn group_section(
         return String::new();
     }
     let mut out = String::from(
-        "## The group's own code (reference experiment)\n\nThe only public code of this family (docs/group-code.md) computes a star (EXP1) and a butterfly (EXP2) with a zeroing network that has a growing-gain term -nu t E, the group's power-sigmoid and an injected perturbation, on the Jaco2 with kong2019's eq. 22 scheme (k = 6 and 5, no joint limits, no feedback). We compute exactly what it describes, and switch each of its ingredients off in its own variant (nu = 0, no perturbation, linear activation, udot with and without the -k thetadot term, the butterfly closed), so each ingredient's share of the drift is measured, not guessed. These are not published numbers: the group's stored results are not part of the papers.\n\n",
+        "## The group's own code (reference experiment)\n\nThe only public code of this family (docs/group-code.md) computes a star (EXP1) and a butterfly (EXP2) with a zeroing network that has a growing-gain term -nu t E, the group's power-sigmoid and an injected perturbation, on the Jaco2 with the ZNN scheme of kong2019 (22) (k = 6 and 5, no joint limits, no feedback). We compute exactly what it describes, and switch each of its ingredients off in its own variant (nu = 0, no perturbation, linear activation, udot with and without the -k thetadot term, the butterfly closed), so each ingredient's share of the drift is measured, not guessed. These are not published numbers: the group's stored results are not part of the papers.\n\n",
     );
     for exp in &experiments {
         out.push_str(&format!(

@@ -10,13 +10,13 @@
 //! - the whole-run times against the papers' MATLAB times (the published compute times that
 //!   [`super::cost`] maps), simulation and total;
 //! - the machine the DOF measurement ran on;
-//! - where a zhong2021 reproduction's time goes, from the sampling profile of
-//!   `results/profile-zhong2021.csv` ([`records::profile`]).
+//! - where a paper's reproduction spends its time, from the sampling profile of
+//!   `results/profile.csv` ([`records::profile`]).
 //!
 //! Every number is read from `results/`; without `dof-cost.csv` the section says how to
 //! produce it and shows what `runs.csv` gives.
 
-use super::cost::{matlab_experiments, paper_times, solver_label};
+use super::cost::{matlab_experiments, paper_times, solver_label, timed_papers};
 use super::markdown::{sci, sci_opt, Table, MISSING};
 use records::dof_cost::DofCostRow;
 use records::index::{completed, Runs};
@@ -108,14 +108,14 @@ pub fn section(
     out
 }
 
-/// Where a zhong2021 reproduction's time goes, from `results/profile-zhong2021.csv`
+/// Where a paper's reproduction spends its time, from `results/profile.csv`
 /// ([`records::profile`]): every part and category with its share and CPU time per pass, and
 /// the simulation's ratio to its floor (RHS, Jacobian and LU work) and the papers' MATLAB
 /// times over the simulation's CPU time.
 fn where_time_goes(profile: &[ProfileRow], papers: &Papers) -> String {
     let Some(first) = profile.first() else {
         return format!(
-            "### Where the time goes\n\n`results/{}` is absent: `benches/profile/zhong2021.sh` \
+            "### Where the time goes\n\n`results/{}` is absent: `benches/profile/paper.sh PAPER` \
              (perf over the release binary) measures it.\n\n",
             records::profile::FILE
         );
@@ -165,10 +165,11 @@ fn where_time_goes(profile: &[ProfileRow], papers: &Papers) -> String {
     } else {
         String::new()
     };
+    let paper = &first.paper;
     format!(
-        "### Where the time goes\n\nA sampling profile of `reproduce --paper zhong2021 \
+        "### Where the time goes\n\nA sampling profile of `reproduce --paper {paper} \
          --skip-explain --threads 1 --dry-run`, {} passes pinned to one CPU at {} Hz, revision \
-         `{}` (`benches/profile/zhong2021.sh` writes `results/{}`; perf with call graphs over the \
+         `{}` (`benches/profile/paper.sh {paper}` writes `results/{}`; perf with call graphs over the \
          release build's debug info, each sample sorted by the innermost frame that names a \
          category). The *simulation* is the network runs' integration (diffsol's BDF around \
          the arm and the network); the *exact column* integrates the exact optimum; the \
@@ -360,9 +361,9 @@ fn per_solver_kind(runs: &Runs) -> String {
 fn dof_curve(dof: &[DofCostRow], figures: &[String]) -> String {
     let mut out = String::from(
         "### Cost against the number of joints\n\nThe n-link arms `nlink-N` (N = 3 ... 30, a yaw \
-         joint and a planar pitch chain, from their stated home pose) with jia2019's VLTCO \
-         scheme on a four-leaf clover (nx = N + 1, 2N inequality rows, bounds) and kong2019's \
-         ZNN scheme (eq. 22) on a circle (nx = N, equalities only). k is the growth exponent of \
+         joint and a planar pitch chain, from their stated home pose) with the VLTCO scheme \
+         of jia2019 (2.17) on a four-leaf clover (nx = N + 1, 2N inequality rows, bounds) and \
+         the ZNN scheme of kong2019 (22) on a circle (nx = N, equalities only). k is the growth exponent of \
          median cost ~ c N^k, fitted by least squares on log-log over the measured N.\n\n",
     );
     for scheme in schemes(dof) {
@@ -508,13 +509,14 @@ fn matlab(runs: &Runs, papers: &Papers) -> String {
     if t.is_empty() {
         return String::new();
     }
-    let mut out = String::from(
+    let mut out = format!(
         "### Whole runs against the papers' MATLAB times\n\nThe published compute times \
-         (zhong2021) beside our runs of `results/runs.csv`: the simulation alone (`sim_s`: arm, \
+         ({}) beside our runs of `results/runs.csv`: the simulation alone (`sim_s`: arm, \
          network, integrator) and the whole run (`wall_s`: with the observation at every \
          accepted step, i.e. metrics and the exact solves that score the run). Different \
          machines and languages: the speedups say how far apart, not which implementation is \
          better.\n\n",
+        timed_papers(papers)
     );
     out.push_str(&t.render());
     out.push('\n');

@@ -1,41 +1,30 @@
-//! jia2019's path check: the clover's size and orientation are assumed (docs/paths.md), so the
-//! report sets Table 2 beside the exact column of `jia2019-clover-sweep` (forward and reversed
-//! clover, a = 0.1, 0.15, 0.2 m): per-joint sign agreement with the paper and the drift norm
-//! ratio, computed from the rows.
+//! A published table beside a sweep's runs (`[[sweep_check]]` of a paper's `paper.toml`,
+//! `records::sweep_check`): where the paper's setup is an assumption the sweep varies, every
+//! swept variant is set beside the published column its id matches: per-joint sign agreement
+//! with the paper and the drift norm ratio, computed from the rows.
 
 use super::markdown::{sci, Table};
 use records::index::{completed, metric, Runs};
 use records::papers::Papers;
+use records::sweep_check::SweepCheck;
 
-/// The sweep experiment.
-const SWEEP: &str = "jia2019-clover-sweep";
-/// Table 2's columns as (published experiment, the end of our variant ids: the swept phi, tau).
-const COLUMNS: [(&str, &str); 3] = [
-    ("clover-mvn", "-phi-1.0-tau-0.0"),
-    ("clover-mvn-invm", "-phi-0.2-tau-0.0"),
-    ("clover-vltco", "-phi-0.2-tau-0.4"),
-];
-const JOINTS: [&str; 6] = [
-    "drift_1", "drift_2", "drift_3", "drift_4", "drift_5", "drift_6",
-];
-
-/// Table 2's drift of one column and joint.
-fn published(papers: &Papers, experiment: &str, joint: &str) -> Option<f64> {
+/// The published value of one column and metric of the check's table.
+fn published(papers: &Papers, check: &SweepCheck, experiment: &str, metric: &str) -> Option<f64> {
     papers
         .values
         .iter()
         .find(|v| {
-            v.paper == "jia2019"
-                && v.table == "T2"
+            v.paper == check.paper
+                && v.table == check.table
                 && v.experiment == experiment
-                && v.metric == joint
+                && v.metric == metric
         })
         .map(|v| v.value)
 }
 
 /// The markdown section, or an empty string when the sweep was not run.
-pub fn clover_sweep(runs: &Runs, papers: &Papers) -> String {
-    let rows: Vec<_> = runs.of_experiment(SWEEP).collect();
+pub fn section(check: &SweepCheck, runs: &Runs, papers: &Papers) -> String {
+    let rows: Vec<_> = runs.of_experiment(&check.experiment).collect();
     if rows.is_empty() {
         return String::new();
     }
@@ -48,15 +37,13 @@ pub fn clover_sweep(runs: &Runs, papers: &Papers) -> String {
         "peak |θ̇| (rad/s)",
     ]);
     for r in rows {
-        let Some((paper_experiment, _)) = COLUMNS
-            .iter()
-            .find(|(_, suffix)| r.variant_id.ends_with(suffix))
-        else {
+        let Some(column) = check.column_of(&r.variant_id) else {
             continue;
         };
-        let paper: Vec<f64> = JOINTS
+        let paper: Vec<f64> = check
+            .metrics
             .iter()
-            .filter_map(|j| published(papers, paper_experiment, j))
+            .filter_map(|m| published(papers, check, &column.published_experiment, m))
             .collect();
         let paper_norm = paper.iter().map(|v| v * v).sum::<f64>().sqrt();
         if !completed(r) {
@@ -70,7 +57,7 @@ pub fn clover_sweep(runs: &Runs, papers: &Papers) -> String {
             ]);
             continue;
         }
-        let ours: Vec<f64> = JOINTS.iter().filter_map(|j| metric(r, j)).collect();
+        let ours: Vec<f64> = check.metrics.iter().filter_map(|m| metric(r, m)).collect();
         let same = ours
             .iter()
             .zip(&paper)
@@ -87,10 +74,10 @@ pub fn clover_sweep(runs: &Runs, papers: &Papers) -> String {
         ]);
     }
     format!(
-        "\n### Path direction and size (`{SWEEP}`)\n\n\
-         The clover's size (a = 0.15 m) and orientation are assumptions (docs/paths.md). Travelling the same \
-         curve backwards, and scaling it, moves Table 2's drifts as below (exact column; the drift is \
-         the scheme's, the solver adds < 1 %). A peak |θ̇| of 1.5 rad/s means the velocity bound is active.\n\n{}",
+        "\n### {} (`{}`)\n\n{}\n\n{}",
+        check.heading,
+        check.experiment,
+        check.text,
         t.render()
     )
 }

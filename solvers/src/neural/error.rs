@@ -34,6 +34,6 @@ pub enum NetworkError {
     GrowingGain { network: String, nu: f64 },
     #[error("VP-RNN-PF needs p >= 0 and sigma > 0 (eq. 2.19), got p = {p}, sigma = {sigma}")]
     VpRnnPf { p: f64, sigma: f64 },
-    #[error("finite-time network needs 0 < alpha < 1 (kong2019), got {0}")]
+    #[error("finite-time network needs 0 < alpha < 1 (kong2019 (20)), got {0}")]
     FiniteTimeAlpha(f64),
 }

@@ -1,0 +1,312 @@
+//! A paper is data: no paper id, experiment id, variant id or variant label appears as a string
+//! literal in library code. What the suite knows of a paper lives in `experiments/*.toml`,
+//! `papers/<paper>/` and `experiments/control/tasks.toml`; code reads it from there, so
+//! renaming a paper's variant or adding a fifth paper never needs a code change.
+//!
+//! Searched: every string literal (plain, escaped and raw) in the `src/` of every workspace
+//! member (read from the root `Cargo.toml`), outside comments and outside the trailing
+//! `#[cfg(test)] mod tests` (tests may name the data they test). The names come from the data
+//! itself: the paper ids of `experiments/*.toml` and `papers/`, and the experiment, variant
+//! (id and label) of every run the experiment files describe.
+//!
+//! - A paper id or an experiment id must not occur inside any literal (they contain a year or a
+//!   dash, so a match is never an accident of English), except as a citation in the canonical
+//!   form `jia2019 (2.17)` or `zhong2021 §1` / `zhong2021 refs. [26]`: where code cites the
+//!   equation it implements, the citation is the provenance the standards ask for;
+//! - a variant id or label must not *be* a literal. A label that is also the name of a scheme or
+//!   solver ("VLTCO", "ZNN") is exempt: those name code (the schemes' and networks'
+//!   implementations print their own names), not a paper's data.
+//!
+//! Exempt files ([`EXEMPT`]), each with its reason.
+
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+
+/// Files whose literals are not searched, with the reason.
+const EXEMPT: &[(&str, &str)] = &[
+    (
+        "schemes/src/spec.rs",
+        "the schemes' kind tags (`kind = \"jia2019\"`) name the implementation of the paper's \
+         equations, as a solver's kind names its network: code, not data about the paper",
+    ),
+    (
+        "solvers/src/random_qp.rs",
+        "the random QP shapes are the papers' schemes' QP forms, named after them (the benches \
+         group by that name)",
+    ),
+];
+
+fn repo_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("reproduce/ has a parent")
+        .to_path_buf()
+}
+
+/// The workspace members of the root `Cargo.toml`.
+fn members(root: &Path) -> Vec<String> {
+    let text = std::fs::read_to_string(root.join("Cargo.toml")).expect("the root Cargo.toml");
+    let doc: toml::Table = text.parse().expect("the root Cargo.toml parses");
+    doc["workspace"]["members"]
+        .as_array()
+        .expect("workspace.members")
+        .iter()
+        .map(|m| m.as_str().expect("a member path").to_string())
+        .collect()
+}
+
+/// Every `.rs` file under `dir`, relative to `root` with `/` separators.
+fn rust_files(root: &Path, dir: &Path, out: &mut Vec<String>) {
+    let Ok(entries) = std::fs::read_dir(root.join(dir)) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let rel = dir.join(entry.file_name());
+        match entry.file_type() {
+            Ok(t) if t.is_dir() => rust_files(root, &rel, out),
+            Ok(_) if rel.extension().is_some_and(|e| e == "rs") => {
+                out.push(rel.to_string_lossy().replace('\\', "/"))
+            }
+            _ => {}
+        }
+    }
+}
+
+/// The library part of a source file: everything before its `#[cfg(test)]` test module.
+fn library_part(text: &str) -> &str {
+    let lines: Vec<&str> = text.lines().collect();
+    let mut offset = 0;
+    for (i, line) in lines.iter().enumerate() {
+        let next = lines.get(i + 1).map(|l| l.trim_start()).unwrap_or("");
+        if line.trim() == "#[cfg(test)]" && next.starts_with("mod ") {
+            return &text[..offset];
+        }
+        offset += line.len() + 1;
+    }
+    text
+}
+
+/// The string literals of Rust source `code`, with their 1-based lines: `"..."` (escapes kept
+/// as written), `r"..."` and `r#"..."#`; comments, char literals and lifetimes are skipped.
+fn literals(code: &str) -> Vec<(usize, String)> {
+    let c: Vec<char> = code.chars().collect();
+    let (mut i, mut line, mut out) = (0usize, 1usize, Vec::new());
+    let newlines = |s: &[char]| s.iter().filter(|&&ch| ch == '\n').count();
+    while i < c.len() {
+        match c[i] {
+            '\n' => {
+                line += 1;
+                i += 1;
+            }
+            '/' if c.get(i + 1) == Some(&'/') => {
+                while i < c.len() && c[i] != '\n' {
+                    i += 1;
+                }
+            }
+            '/' if c.get(i + 1) == Some(&'*') => {
+                let start = i;
+                i += 2;
+                while i + 1 < c.len() && !(c[i] == '*' && c[i + 1] == '/') {
+                    i += 1;
+                }
+                i = (i + 2).min(c.len());
+                line += newlines(&c[start..i]);
+            }
+            '\'' => {
+                // A char literal ('x', '\n', '\u{..}') or a lifetime ('a).
+                if c.get(i + 1) == Some(&'\\') {
+                    i += 2;
+                    while i < c.len() && c[i] != '\'' {
+                        i += 1;
+                    }
+                    i += 1;
+                } else if c.get(i + 2) == Some(&'\'') {
+                    i += 3;
+                } else {
+                    i += 1;
+                }
+            }
+            'r' if (c.get(i + 1) == Some(&'"') || c.get(i + 1) == Some(&'#'))
+                && (i == 0 || !(c[i - 1].is_alphanumeric() || c[i - 1] == '_')) =>
+            {
+                let mut j = i + 1;
+                let mut hashes = 0;
+                while c.get(j) == Some(&'#') {
+                    hashes += 1;
+                    j += 1;
+                }
+                if c.get(j) != Some(&'"') {
+                    i = j;
+                    continue;
+                }
+                let start = j + 1;
+                let mut k = start;
+                loop {
+                    if k >= c.len() {
+                        break;
+                    }
+                    if c[k] == '"' && (1..=hashes).all(|h| c.get(k + h) == Some(&'#')) {
+                        break;
+                    }
+                    k += 1;
+                }
+                let end = k.min(c.len());
+                out.push((line, c[start..end].iter().collect()));
+                line += newlines(&c[i..end]);
+                i = end + 1 + hashes;
+            }
+            '"' => {
+                let start = i + 1;
+                let mut k = start;
+                while k < c.len() && c[k] != '"' {
+                    k += if c[k] == '\\' { 2 } else { 1 };
+                }
+                let end = k.min(c.len());
+                out.push((line, c[start..end].iter().collect()));
+                line += newlines(&c[i..end]);
+                i = end + 1;
+            }
+            _ => i += 1,
+        }
+    }
+    out
+}
+
+/// The names the data declares.
+struct Names {
+    /// Paper and experiment ids: forbidden inside any literal.
+    inside: BTreeSet<String>,
+    /// Variant ids and labels: forbidden as a whole literal.
+    whole: BTreeSet<String>,
+}
+
+fn names(root: &Path) -> Names {
+    let files = simulation::experiment::load_dir(&root.join("experiments"))
+        .expect("the experiment files load");
+    let mut inside = BTreeSet::new();
+    let mut whole = BTreeSet::new();
+    let mut code_names = BTreeSet::new();
+    for f in &files {
+        for job in f.jobs() {
+            inside.insert(job.paper.clone());
+            inside.insert(job.experiment.clone());
+            whole.insert(job.variant_id.clone());
+            whole.insert(job.variant.clone());
+            code_names.insert(job.scheme.display_name());
+            if let Some(head) = job.scheme.display_name().split(" (").next() {
+                code_names.insert(head.to_string());
+            }
+            code_names.insert(job.solver.label());
+        }
+    }
+    for entry in std::fs::read_dir(root.join("papers"))
+        .expect("papers/")
+        .flatten()
+    {
+        inside.insert(entry.file_name().to_string_lossy().into_owned());
+    }
+    // Experiment files that are not a paper's (the cross-paper and the group's code) carry a
+    // plain word as their `paper`: such a word is a role in the code, only a dashed or dated id
+    // is searched inside literals.
+    inside.retain(|n| n.contains('-') || n.chars().any(|c| c.is_ascii_digit()));
+    whole.retain(|n| !code_names.contains(n) && n.len() > 2);
+    Names { inside, whole }
+}
+
+/// Whether `name` occurs in `lit` other than as a citation (`name (2.17)`, `name §1`,
+/// `name refs. [26]`).
+fn names_outside_citations(lit: &str, name: &str) -> bool {
+    lit.match_indices(name).any(|(i, _)| {
+        let after = &lit[i + name.len()..];
+        let cited = after
+            .strip_prefix(" (")
+            .is_some_and(|r| r.starts_with(|c: char| c.is_ascii_digit()))
+            || after.starts_with(" §")
+            || after.starts_with(" refs. [")
+            || after.starts_with(" ref. [");
+        !cited
+    })
+}
+
+#[test]
+fn a_citation_is_not_a_use() {
+    assert!(!names_outside_citations(
+        "see jia2019 (2.17)-(2.20), kong2019 (22)",
+        "jia2019"
+    ));
+    assert!(!names_outside_citations(
+        "zhong2021 §1: \"...\"",
+        "zhong2021"
+    ));
+    assert!(names_outside_citations("if paper == jia2019", "jia2019"));
+    assert!(names_outside_citations("jia2019 (VLTCO)", "jia2019"));
+    assert!(names_outside_citations("jia2019-clover", "jia2019"));
+}
+
+#[test]
+fn the_scanner_finds_literals_and_skips_comments() {
+    let code = "let a = \"x\"; // \"y\"\n/* \"z\" */ let b = r#\"w\"#; let c = '\"'; fn f<'a>() {}\nlet d = \"e\\\"f\";\n";
+    let found: Vec<(usize, String)> = literals(code);
+    assert_eq!(
+        found,
+        [
+            (1, "x".to_string()),
+            (2, "w".to_string()),
+            (3, "e\\\"f".to_string())
+        ]
+    );
+    let text = "fn a() { \"lib\" }\n#[cfg(test)]\nmod tests { \"test\" }\n";
+    assert_eq!(literals(library_part(text)), [(1, "lib".to_string())]);
+}
+
+#[test]
+fn the_names_come_from_the_data() {
+    let names = names(&repo_root());
+    for id in ["jia2019", "kong2019-circle", "zhong2021-clover-a"] {
+        assert!(
+            names.inside.contains(id),
+            "{id} not among {:?}",
+            names.inside
+        );
+    }
+    assert!(names.whole.contains("cmco-eta-0.2-delta-0.4"));
+    assert!(
+        !names.whole.contains("VLTCO"),
+        "a scheme's own name is code"
+    );
+}
+
+#[test]
+fn library_code_names_no_paper_experiment_or_variant() {
+    let root = repo_root();
+    let names = names(&root);
+    let mut files = Vec::new();
+    for member in members(&root) {
+        rust_files(&root, &Path::new(&member).join("src"), &mut files);
+    }
+    assert!(
+        files.iter().any(|f| f == "reproduce/src/main.rs"),
+        "the crates' sources were not found under {}",
+        root.display()
+    );
+    files.sort();
+    let mut sites = Vec::new();
+    for f in files.iter().filter(|f| !EXEMPT.iter().any(|(e, _)| e == f)) {
+        let text = std::fs::read_to_string(root.join(f)).expect("a readable source file");
+        for (line, lit) in literals(library_part(&text)) {
+            let hit = names
+                .inside
+                .iter()
+                .find(|n| names_outside_citations(&lit, n))
+                .or_else(|| names.whole.iter().find(|n| **n == lit));
+            if let Some(n) = hit {
+                sites.push(format!("  {f}:{line}: {n:?} in {lit:?}"));
+            }
+        }
+    }
+    assert!(
+        sites.is_empty(),
+        "paper data written into library code (move it into experiments/ or papers/):\n{}",
+        sites.join("\n")
+    );
+}
