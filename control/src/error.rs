@@ -20,6 +20,9 @@ pub enum ControlError {
         path: String,
         source: toml::de::Error,
     },
+    /// The project declares no standard task set (a project of its own papers may have none).
+    #[error("{0} does not exist: the project declares no control task set")]
+    NoTaskSet(String),
     #[error("{0}: the task set lists no [[task]]")]
     EmptyTaskSet(String),
     #[error("task {task}: {message}")]

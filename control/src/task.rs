@@ -34,13 +34,20 @@ struct TaskSetFile {
 }
 
 /// The standard task set declared in `experiments/`[`TASK_SET_FILE`]: every paper's scheme
-/// once, in the file's order.
+/// once, in the file's order. A project without the file has no control experiments
+/// ([`ControlError::NoTaskSet`]).
 pub fn standard_task_refs(experiments: &std::path::Path) -> Result<Vec<TaskRef>, ControlError> {
     let path = experiments.join(TASK_SET_FILE);
     let shown = path.display().to_string();
-    let text = std::fs::read_to_string(&path).map_err(|source| ControlError::Io {
-        path: shown.clone(),
-        source,
+    let text = std::fs::read_to_string(&path).map_err(|source| {
+        if source.kind() == std::io::ErrorKind::NotFound {
+            ControlError::NoTaskSet(shown.clone())
+        } else {
+            ControlError::Io {
+                path: shown.clone(),
+                source,
+            }
+        }
     })?;
     let file: TaskSetFile = toml::from_str(&text).map_err(|source| ControlError::TaskSet {
         path: shown.clone(),

@@ -163,7 +163,9 @@ fn publish(
                 s.cycle_runs,
                 s.verdict.label()
             ),
-            Err(e @ control::ControlError::UnknownTask(_)) => {
+            Err(
+                e @ (control::ControlError::UnknownTask(_) | control::ControlError::NoTaskSet(_)),
+            ) => {
                 eprintln!("control experiments skipped: {e}")
             }
             Err(e) => return Err(e.into()),
