@@ -575,10 +575,10 @@ mod tests {
         let dof = synthetic();
         let figures = vec!["dof-cost__jia2019.svg".to_string()];
         let profile_csv = "part,category,floor,samples,share_of_process,share_of_simulation,\
-                           ms_per_pass,passes,frequency_hz,git_rev\n\
-                           simulation,RHS,yes,60,0.5,0.75,30.0,2,1000,abc\n\
-                           simulation,BDF method,no,20,0.1667,0.25,10.0,2,1000,abc\n\
-                           observer,metrics,no,40,0.3333,,20.0,2,1000,abc\n";
+                           ms_per_pass,paper,passes,frequency_hz,git_rev\n\
+                           simulation,RHS,yes,60,0.5,0.75,30.0,demo,2,1000,abc\n\
+                           simulation,BDF method,no,20,0.1667,0.25,10.0,demo,2,1000,abc\n\
+                           observer,metrics,no,40,0.3333,,20.0,demo,2,1000,abc\n";
         let profile: Vec<ProfileRow> = records::table::from_reader(profile_csv.as_bytes()).unwrap();
         let md = section(
             &dof,
@@ -593,6 +593,11 @@ mod tests {
         );
         assert!(
             md.contains("| observer | metrics | no | 33.3 % | — | 20.0 |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("`reproduce --paper demo --skip-explain")
+                && md.contains("`benches/profile/paper.sh demo`"),
             "{md}"
         );
         assert!(
