@@ -74,7 +74,7 @@
 //! ```
 
 use super::activation::Activation;
-use super::error::NetworkError;
+use catalog::error::NetworkError;
 use super::lu;
 use super::zeroing::Gain;
 use super::NeuralSolver;
