@@ -8,6 +8,7 @@
 //! A network whose one step per tick diverges on the task is timed all the same (a step costs
 //! the same whether or not it converges).
 
+use catalog::naming::slug;
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use driftbench_benches::{fast_config, CountingAllocator};
 use nalgebra::SVector;
@@ -15,7 +16,6 @@ use robots::Robot;
 use schemes::paths::Path;
 use schemes::qp::Qp;
 use schemes::scheme::Scheme;
-use simulation::naming::slug;
 
 use control::control_loop::{run_loop, LoopSettings, Observer};
 use control::method::{Method, Numerical};

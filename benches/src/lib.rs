@@ -16,19 +16,21 @@
 //! * [`fast_config`], [`whole_run_config`] — criterion settings that keep the full
 //!   `cargo bench -p driftbench-benches` to a few minutes on two cores.
 
+use simulation::run::check_job;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
 use std::time::Duration;
 
+use catalog::experiment::{load_dir, Job, SolverChoice};
+use catalog::solver_spec::SolverSpec;
 use criterion::Criterion;
 use nalgebra::{DVector, SVector};
 use robots::{Dynamics, Jaco2, Katana6m180, Robot};
 use schemes::paths::{build_path, Path};
 use schemes::scheme::Scheme;
 use schemes::spec::build_scheme;
-use simulation::experiment::{load_dir, Job, SolverChoice};
-use solvers::neural::{NeuralSolver, SolverSpec};
+use solvers::neural::NeuralSolver;
 use solvers::{random_qp, ExactSolver, Qp, QpShape};
 
 // ---------------------------------------------------------------------------------------------
@@ -161,7 +163,7 @@ pub fn experiment_jobs() -> Vec<Job> {
     let dir = simulation::root::from_current_dir()
         .unwrap()
         .join("experiments");
-    load_dir(&dir)
+    load_dir(&dir, check_job)
         .unwrap_or_else(|e| panic!("loading {}: {e}", dir.display()))
         .iter()
         .flat_map(|f| f.jobs())
@@ -171,7 +173,7 @@ pub fn experiment_jobs() -> Vec<Job> {
 /// The job with key `experiment / variant / solver` (ids, e.g. `jia2019-star / vltco /
 /// exact`).
 pub fn find_job(jobs: &[Job], experiment: &str, variant: &str, solver: &str) -> Job {
-    let key = simulation::run_key::RunKey::new(experiment, variant, solver);
+    let key = catalog::run_key::RunKey::new(experiment, variant, solver);
     jobs.iter()
         .find(|j| j.key() == key)
         .cloned()

@@ -21,8 +21,8 @@
 //! ignored for the other activations. Every network that takes an activation (VP-RNN-PF, the
 //! CDNNs, the group's network) takes all four. The CDNNs' runs in the paper are linear.
 //!
-//! `group-znn` (the group's network, `solvers::neural::group`): `gamma` (default 500), `nu` (default
-//! 2500), `activation`, `perturbation` (optional, as the CDNNs; only `a_s` and `task_duration`
+//! `group-znn` (the group's network, `solvers::neural::group`): `gamma` (default 500), `nu`
+//! (default 2500), `activation`, `perturbation` (optional, as the CDNNs; only `a_s` and `task_duration`
 //! are used, its DeltaD is not) and `udot_rmp` (default true; false drops the -qdot part of
 //! udot, as the group's EXP1 file).
 
@@ -71,7 +71,8 @@ fn default_a_s() -> f64 {
     REFERENCE_A_S
 }
 
-/// zhang2018's reference perturbation DeltaD(t), Delta s(t) (its terms: `solvers::neural::cdnn`): amplitudes A_D, A_s and the task duration T.
+/// zhang2018's reference perturbation DeltaD(t), Delta s(t) (its terms: `solvers::neural::cdnn`):
+/// amplitudes A_D, A_s and the task duration T.
 #[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct ReferencePerturbation {
@@ -202,7 +203,7 @@ pub enum SolverSpec {
         perturbation: Option<ReferencePerturbation>,
     },
     /// kong2019 eq. 20 (derived form): gain beta, sign-power exponent alpha (paper: 1 and 0.1),
-    /// linear zone |e| < smoothing of the sign-power (ours, see [`super::znn`]).
+    /// linear zone |e| < smoothing of the sign-power (ours, see `solvers::neural::znn`).
     FiniteTime {
         beta: f64,
         alpha: f64,
@@ -211,7 +212,7 @@ pub enum SolverSpec {
     },
     /// Linear ZNN (kong2019's comparison solver).
     Znn { gamma: f64 },
-    /// The papers' group's own network (`docs/group-code.md`, [`super::group`]):
+    /// The papers' group's own network (`docs/group-code.md`, `solvers::neural::group`):
     /// Q ydot = -Qdot y - gamma Phi(E) + udot - nu t E + Delta_s(t).
     GroupZnn {
         #[serde(default = "default_group_gamma")]
@@ -241,7 +242,9 @@ pub enum SolverSpec {
 /// existing names are unchanged), the label with its parameters otherwise.
 fn activation_name(kind: ActivationKind, alpha: f64, chi: f64, xi: f64, power: f64) -> String {
     match kind {
-        ActivationKind::PowerSigmoid if alpha != POWER_SIGMOID_ALPHA || chi != POWER_SIGMOID_CHI => {
+        ActivationKind::PowerSigmoid
+            if alpha != POWER_SIGMOID_ALPHA || chi != POWER_SIGMOID_CHI =>
+        {
             format!("power-sigmoid(alpha={alpha},chi={chi})")
         }
         ActivationKind::GroupPowerSigmoid
@@ -429,4 +432,3 @@ fn kind_label(k: ActivationKind) -> &'static str {
         ActivationKind::GroupPowerSigmoid => "group-power-sigmoid",
     }
 }
-

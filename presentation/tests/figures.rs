@@ -13,8 +13,8 @@ use std::path::{Path, PathBuf};
 fn row(experiment: &str, variant: &str, solver: &str, failed_at: Option<f64>) -> RunRow {
     RunRow {
         paper: "synthetic".into(),
-        variant_id: simulation::naming::slug(variant),
-        solver_id: simulation::naming::slug(solver),
+        variant_id: catalog::naming::slug(variant),
+        solver_id: catalog::naming::slug(solver),
         duration: 2.0,
         status: if failed_at.is_some() {
             Status::Failed

@@ -2,13 +2,14 @@
 
 mod commands;
 
+use catalog::experiment::{load_dir, Job, PaperFile};
+use catalog::run_key::RunKey;
 use clap::{CommandFactory, FromArgMatches, Parser};
 use records::results_dir::ResultsDir;
 use records::runs::{check_rows, merge, RunRow};
 use records::tracked_dir::Edits;
-use simulation::experiment::{load_dir, Job, PaperFile};
+use simulation::run::check_job;
 use simulation::run::RunRecord;
-use simulation::run_key::RunKey;
 use simulation::runner::run_jobs_with;
 use std::collections::HashSet;
 use std::fmt::Write as _;
@@ -223,7 +224,7 @@ fn resolve_dirs(mut cli: Cli) -> Result<Cli, String> {
 /// Every run the experiment files describe (what migration and pruning compare the stored
 /// runs with).
 fn all_jobs(cli: &Cli) -> Result<Vec<Job>, String> {
-    Ok(load_dir(&cli.experiments_dir)
+    Ok(load_dir(&cli.experiments_dir, check_job)
         .map_err(|e| e.to_string())?
         .iter()
         .flat_map(|f| f.jobs())
@@ -288,7 +289,7 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
         dof_cost(&cli, &git_rev)?;
         return Ok(ExitCode::SUCCESS);
     }
-    let files = load_dir(&cli.experiments_dir).map_err(|e| e.to_string())?;
+    let files = load_dir(&cli.experiments_dir, check_job).map_err(|e| e.to_string())?;
     let all: Vec<Job> = files.iter().flat_map(|f| f.jobs()).collect();
     if !cli.merge.is_empty() {
         return merge_shards(&cli, &files, &all, &git_rev);
@@ -417,9 +418,7 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
         .map(|r| {
             let joints = jobs
                 .iter()
-                .filter_map(|j| {
-                    simulation::robot_registry::robot_by_name(&j.robot).map(|r| r.dof())
-                })
+                .filter_map(|j| catalog::robot_registry::robot_by_name(&j.robot).map(|r| r.dof()))
                 .max();
             records::journal::Journal::open(r, &git_rev, joints.unwrap_or(0))
         })
@@ -912,7 +911,7 @@ fn select_jobs(
         .iter()
         .filter(|j| cli.paper.as_ref().is_none_or(|p| &j.paper == p))
         .filter(|j| cli.experiments.is_empty() || cli.experiments.contains(&j.experiment))
-        .filter(|j| !cli.exact_only || j.solver == simulation::experiment::SolverChoice::Exact)
+        .filter(|j| !cli.exact_only || j.solver == catalog::experiment::SolverChoice::Exact)
         .cloned()
         .collect())
 }
@@ -1047,7 +1046,7 @@ fn print_list(files: &[PaperFile], jobs: &[Job]) {
 }
 
 fn print_robot_check_values() {
-    use simulation::robot_registry::{robot_by_name, robot_names};
+    use catalog::robot_registry::{robot_by_name, robot_names};
     for name in robot_names() {
         let robot = robot_by_name(&name).expect("a registry name");
         let theta = robot.stated_pose();

@@ -18,8 +18,9 @@
 //! Octave is run as `octave-cli` (Debian's `octave` package; `.ci/run` installs it). Without
 //! it the test says it is skipped, and why, and passes.
 
+use catalog::experiment::{load_dir, PaperFile, SolverChoice};
 use records::runs::RunRow;
-use simulation::experiment::{load_dir, PaperFile, SolverChoice};
+use simulation::run::check_job;
 use simulation::run::run_job;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -78,7 +79,7 @@ fn score(root: &Path, file: &Path, out: &Path) -> RunRow {
 
 /// driftbench's own run of the task's `ZNN` at tight tolerances.
 fn own_run(root: &Path) -> RunRow {
-    let mut job = load_dir(&root.join("experiments"))
+    let mut job = load_dir(&root.join("experiments"), check_job)
         .unwrap()
         .iter()
         .flat_map(PaperFile::jobs)

@@ -2,7 +2,8 @@
 //! suite's own ZNN run) is scored with the run's drift, and its row, trace and figure are
 //! written under --score-out; a task that does not exist is refused with the library's message.
 
-use simulation::experiment::{load_dir, PaperFile, SolverChoice};
+use catalog::experiment::{load_dir, PaperFile, SolverChoice};
+use simulation::run::check_job;
 use simulation::run::run_job;
 use simulation::simulate::Outcome;
 use std::process::Command;
@@ -17,7 +18,7 @@ fn reproduce() -> Command {
 #[test]
 fn a_trajectory_file_is_scored_on_its_task() {
     let root = simulation::root::from_current_dir().unwrap();
-    let job = load_dir(&root.join("experiments"))
+    let job = load_dir(&root.join("experiments"), check_job)
         .unwrap()
         .iter()
         .flat_map(PaperFile::jobs)

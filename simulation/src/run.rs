@@ -2,11 +2,11 @@
 //! scheme and solver from the file's specifications, then [`simulate`] them.
 
 use crate::error::RunError;
+use crate::simulate::{simulate, Outcome, Run, Settings, Solver};
 use catalog::error::SetupError;
 use catalog::experiment::{Job, JobPart, SolverChoice};
 use catalog::robot_registry::{robot_by_name, RobotVisitor};
 use catalog::solver_spec::SolverSpec;
-use crate::simulate::{simulate, Outcome, Run, Settings, Solver};
 use nalgebra::SVector;
 use robots::{Dynamics, Robot};
 use schemes::paths::{build_path, Cyclic, Path};

@@ -11,19 +11,17 @@
 
 use crate::coupled::{arm_dim, arm_state, ExactLoop, NeuralLoop};
 use crate::error::RunError;
+use crate::metrics::{MetricsAccumulator, RunMetrics, Sample, ScoreSample};
 use catalog::error::SetupError;
 use catalog::experiment::{NetworkInit, Scoring};
 use catalog::integrator::IntegratorSettings;
-use crate::metrics::{MetricsAccumulator, RunMetrics, Sample, ScoreSample};
 use nalgebra::{DVector, SVector};
 use robots::Robot;
 use schemes::paths::Path;
 use schemes::scheme::{Level, Scheme};
 use solvers::exact_path::ExactPathStats;
 use solvers::neural::NeuralSolver;
-use solvers::ode::{
-    integrate, Control, OdeError, OdeFailure, OdeStats, OdeSystem,
-};
+use solvers::ode::{integrate, Control, OdeError, OdeFailure, OdeStats, OdeSystem};
 use solvers::ExactError;
 use std::time::Instant;
 

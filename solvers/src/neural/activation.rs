@@ -22,8 +22,10 @@
 //! The papers' group's MATLAB code (`AFMpowersigmoid.m`, see `docs/group-code.md`) computes,
 //! elementwise, phi(e) = e^p where abs(e) >= 1 and
 //! ((1 + exp(-xi)) / (1 - exp(-xi))) (1 - exp(-xi e)) / (1 + exp(-xi e)) otherwise; called with
-//! one argument it uses xi = 1, p = 1, with two p = 3 ([`catalog::solver_spec::GROUP_POWER_SIGMOID_XI`],
-//! [`catalog::solver_spec::GROUP_POWER_SIGMOID_P`] are the one-argument defaults, the ones its network uses).
+//! one argument it uses xi = 1, p = 1, with two p = 3
+//! ([`catalog::solver_spec::GROUP_POWER_SIGMOID_XI`],
+//! [`catalog::solver_spec::GROUP_POWER_SIGMOID_P`] are the one-argument defaults, the ones its
+//! network uses).
 //! This is zhong2021's eq. 2.29 with **alpha = xi and chi = p**: the same sigmoid branch
 //! (= coth(xi/2) tanh(xi e/2)) inside, the same power outside. The two differ only at
 //! abs(e) = 1 exactly, which the group gives to the power branch (>= 1) and zhong2021 to the

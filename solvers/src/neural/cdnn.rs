@@ -29,9 +29,9 @@
 //! (the robustness claim is about how the networks degrade as they grow).
 
 use super::activation::Activation;
+use super::zeroing::{Gain, ZeroingNetwork};
 use catalog::error::NetworkError;
 use catalog::solver_spec::ReferencePerturbation;
-use super::zeroing::{Gain, ZeroingNetwork};
 use nalgebra::DMatrix;
 use schemes::qp::QpDims;
 use std::f64::consts::PI;

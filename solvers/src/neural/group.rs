@@ -29,9 +29,9 @@
 //! The network is built only for equality-only QPs (n_in = 0, bounds ignored), as the core.
 
 use super::activation::Activation;
-use catalog::solver_spec::ReferencePerturbation;
-use catalog::error::NetworkError;
 use super::zeroing::{Gain, ZeroingNetwork};
+use catalog::error::NetworkError;
+use catalog::solver_spec::ReferencePerturbation;
 use schemes::qp::QpDims;
 
 /// The group's network (module docs): gain gamma, growing gain nu, activation Phi, optional

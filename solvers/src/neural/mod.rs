@@ -14,7 +14,8 @@
 //!
 //! Activation functions: [`activation`]. The factory that builds a network from its
 //! experiment-file specification (`catalog::solver_spec`): [`spec`]. A network's parameter
-//! errors: `catalog::error::NetworkError`. Every network starts from y = 0 (none of the papers says otherwise).
+//! errors: `catalog::error::NetworkError`. Every network starts from y = 0 (none of the papers
+//! says otherwise).
 
 pub mod activation;
 pub mod cdnn;
