@@ -81,7 +81,7 @@ impl TaskVisitor for Sample {
 }
 
 fn per_tick(c: &mut Criterion) {
-    let root = simulation::root::from_current_dir().expect("run inside the workspace");
+    let root = catalog::root::from_current_dir().expect("run inside the workspace");
     let tasks = load_tasks(&root.join("experiments"), &TASKS).expect("the experiment files");
     for task in &tasks {
         let qps = with_task(task, 1, Sample).expect("the task builds");

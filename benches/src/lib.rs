@@ -160,7 +160,7 @@ impl RepresentativeQp {
 /// Every job of every file in `experiments/` (panics on an unreadable file: the reproduction's
 /// own tests report those).
 pub fn experiment_jobs() -> Vec<Job> {
-    let dir = simulation::root::from_current_dir()
+    let dir = catalog::root::from_current_dir()
         .unwrap()
         .join("experiments");
     load_dir(&dir, check_job)

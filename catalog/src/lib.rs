@@ -6,7 +6,8 @@
 //! ([`integrator`]) and where the run is scored. A variant may stand for many through a `sweep`
 //! table ([`sweep`], expanded at the TOML level). Every run is identified by ids, not labels
 //! ([`run_key`]), and every id or label that becomes a file name obeys [`naming`]. The errors of
-//! all of it are in [`error`].
+//! all of it are in [`error`]. [`root`] finds the project (the directory of `experiments/`,
+//! `results/` and `report/`) and the code revision runs are stamped with.
 //!
 //! Nothing here builds or runs a solver: the engine (crate `simulation`) builds the runs, and
 //! loading a file takes its check ([`experiment::CheckJob`]) to reject what a run would reject.
@@ -17,6 +18,7 @@ pub mod experiment;
 pub mod integrator;
 pub mod naming;
 pub mod robot_registry;
+pub mod root;
 pub mod run_key;
 pub mod solver_spec;
 pub mod sweep;

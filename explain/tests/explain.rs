@@ -12,7 +12,7 @@ use explain::{explain, ladder};
 use simulation::run::check_job;
 
 fn jobs() -> Vec<Job> {
-    let root = simulation::root::from_current_dir().unwrap();
+    let root = catalog::root::from_current_dir().unwrap();
     load_dir(&root.join("experiments"), check_job)
         .unwrap()
         .iter()

@@ -11,7 +11,7 @@ const REGENERATE: &str = "regenerate with `cargo run --release -p reproduce -- -
 
 #[test]
 fn the_committed_cards_are_the_generated_ones() {
-    let root = simulation::root::from_current_dir().unwrap();
+    let root = catalog::root::from_current_dir().unwrap();
     let generated = cards(&root.join("experiments")).unwrap();
     let dir = root.join("report").join(TASKS);
     let committed: BTreeSet<String> = std::fs::read_dir(&dir)
@@ -31,7 +31,7 @@ fn the_committed_cards_are_the_generated_ones() {
 
 #[test]
 fn every_task_has_a_card_with_its_check_values() {
-    let root = simulation::root::from_current_dir().unwrap();
+    let root = catalog::root::from_current_dir().unwrap();
     let generated = cards(&root.join("experiments")).unwrap();
     let tasks: BTreeSet<String> = load_dir(&root.join("experiments"), check_job)
         .unwrap()

@@ -57,7 +57,7 @@ fn lib_err(e: impl std::fmt::Display) -> PyErr {
 fn project_root(root: Option<PathBuf>) -> PyResult<PathBuf> {
     match root {
         Some(r) => Ok(r),
-        None => simulation::root::from_current_dir().map_err(lib_err),
+        None => catalog::root::from_current_dir().map_err(lib_err),
     }
 }
 
@@ -197,7 +197,7 @@ fn run_python(
         return Err(e);
     }
     check_setup(&record)?;
-    let mut row = RunRow::from_record(&record, &simulation::root::git_revision(root));
+    let mut row = RunRow::from_record(&record, &catalog::root::git_revision(root));
     row.solver_id = format!("{PYTHON_KIND}-{}", schemes::slug::slug(&name));
     row.solver = name;
     row.solver_kind = PYTHON_KIND.to_string();
@@ -270,7 +270,7 @@ fn simulate<'py>(
     let (record, row, calls) = if builtin.is_some() {
         let record = run_job(&job);
         check_setup(&record)?;
-        let row = RunRow::from_record(&record, &simulation::root::git_revision(&task.root));
+        let row = RunRow::from_record(&record, &catalog::root::git_revision(&task.root));
         (record, row, Callbacks::default())
     } else {
         run_python(&job, network, &task.root)?
@@ -377,7 +377,7 @@ fn score<'py>(
     trajectory: &Bound<'py, PyAny>,
     out_dir: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let git_rev = simulation::root::git_revision(&task.root);
+    let git_rev = catalog::root::git_revision(&task.root);
     let (record, row) = if let Ok(file) = trajectory.extract::<PathBuf>() {
         match out_dir {
             Some(out) => {

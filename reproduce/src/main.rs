@@ -193,7 +193,7 @@ fn resolve_dirs(mut cli: Cli) -> Result<Cli, String> {
     }
     let root = match &cli.root {
         Some(r) => r.clone(),
-        None => simulation::root::from_current_dir().map_err(|e| e.to_string())?,
+        None => catalog::root::from_current_dir().map_err(|e| e.to_string())?,
     };
     cli.experiments_dir = cli
         .experiments_dir_arg
@@ -263,7 +263,7 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
         print_robot_check_values();
         return Ok(ExitCode::SUCCESS);
     }
-    let git_rev = simulation::root::git_revision(&cli.project_root);
+    let git_rev = catalog::root::git_revision(&cli.project_root);
     if let (Some(file), Some(task)) = (&cli.score, &cli.task) {
         let task = presentation::score::find_task(&cli.experiments_dir, task)
             .map_err(|e| e.to_string())?;

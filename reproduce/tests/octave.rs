@@ -98,7 +98,7 @@ fn an_octave_trajectory_scores_as_driftbench_own_run() {
         );
         return;
     };
-    let root = simulation::root::from_current_dir().unwrap();
+    let root = catalog::root::from_current_dir().unwrap();
     let dir = std::env::temp_dir().join(format!("driftbench-octave-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("znn_circle.csv");

@@ -10,7 +10,7 @@ use simulation::runner::run_jobs;
 
 #[test]
 fn fresh_run_matches_the_committed_results() {
-    let root = simulation::root::from_current_dir().unwrap();
+    let root = catalog::root::from_current_dir().unwrap();
     let committed =
         read_runs(&root.join("results/runs.csv")).expect("results/runs.csv is committed");
     let files = load_dir(&root.join("experiments"), check_job).unwrap();
@@ -33,7 +33,7 @@ fn fresh_run_matches_the_committed_results() {
 #[test]
 fn the_gate_catches_changes() {
     let committed = read_runs(
-        &simulation::root::from_current_dir()
+        &catalog::root::from_current_dir()
             .unwrap()
             .join("results/runs.csv"),
     )
@@ -72,7 +72,7 @@ fn the_gate_catches_changes() {
 
 #[test]
 fn two_runs_give_identical_rows() {
-    let root = simulation::root::from_current_dir().unwrap();
+    let root = catalog::root::from_current_dir().unwrap();
     let files = load_dir(&root.join("experiments"), check_job).unwrap();
     let jobs: Vec<_> = files
         .iter()

@@ -11,13 +11,13 @@ use std::process::Command;
 /// The binary, in the workspace root.
 fn reproduce() -> Command {
     let mut c = Command::new(env!("CARGO_BIN_EXE_reproduce"));
-    c.current_dir(simulation::root::from_current_dir().unwrap());
+    c.current_dir(catalog::root::from_current_dir().unwrap());
     c
 }
 
 #[test]
 fn a_trajectory_file_is_scored_on_its_task() {
-    let root = simulation::root::from_current_dir().unwrap();
+    let root = catalog::root::from_current_dir().unwrap();
     let job = load_dir(&root.join("experiments"), check_job)
         .unwrap()
         .iter()

@@ -9,9 +9,8 @@
 //! [`run::RunRecord`]; [`runner`] runs many in parallel. [`run::check_job`] builds a run's parts
 //! without integrating: loading an experiment file takes it, to reject what a run would
 //! reject. Why a run failed: [`error`]. Writing the records is the `records` crate's work,
-//! presenting them the `presentation` crate's. [`root`] finds the project (experiments/,
-//! results/, report/) and the code revision runs are stamped with. [`score_trajectory`] scores
-//! a trajectory produced elsewhere on a task, with the metrics and the score of a run.
+//! presenting them the `presentation` crate's. [`score_trajectory`] scores a trajectory
+//! produced elsewhere on a task, with the metrics and the score of a run.
 //! [`task_numbers`] computes a task's check values (its task card's). [`dof_cost`] measures
 //! what an instant and a run cost against the number of joints.
 
@@ -19,7 +18,6 @@ pub mod coupled;
 pub mod dof_cost;
 pub mod error;
 pub mod metrics;
-pub mod root;
 pub mod run;
 pub mod runner;
 pub mod score_trajectory;

@@ -6,7 +6,7 @@ use simulation::run::check_job;
 use std::path::PathBuf;
 
 fn experiments_dir() -> PathBuf {
-    simulation::root::from_current_dir()
+    catalog::root::from_current_dir()
         .unwrap()
         .join("experiments")
 }

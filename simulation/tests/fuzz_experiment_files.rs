@@ -7,7 +7,7 @@ use proptest::prelude::*;
 use simulation::run::check_job;
 
 fn committed_files() -> Vec<(String, String)> {
-    let dir = simulation::root::from_current_dir()
+    let dir = catalog::root::from_current_dir()
         .unwrap()
         .join("experiments");
     let mut files: Vec<(String, String)> = std::fs::read_dir(&dir)

@@ -9,7 +9,7 @@ use simulation::score_trajectory::{score_trajectory, Trajectory, TrajectoryError
 use simulation::simulate::{Outcome, Run};
 
 fn job(experiment: &str, variant: &str, neural: bool) -> Job {
-    let root = simulation::root::from_current_dir().unwrap();
+    let root = catalog::root::from_current_dir().unwrap();
     load_dir(&root.join("experiments"), check_job)
         .unwrap()
         .iter()

@@ -8,7 +8,7 @@ use simulation::run::run_job;
 use simulation::simulate::Outcome;
 
 fn znn_job() -> Job {
-    let root = simulation::root::from_current_dir().unwrap();
+    let root = catalog::root::from_current_dir().unwrap();
     load_dir(&root.join("experiments"), check_job)
         .unwrap()
         .iter()

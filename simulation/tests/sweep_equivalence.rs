@@ -8,7 +8,7 @@ use simulation::run::check_job;
 
 #[test]
 fn sweep_experiments_expand_to_the_hand_written_runs() {
-    let root = simulation::root::from_current_dir().unwrap();
+    let root = catalog::root::from_current_dir().unwrap();
     let files = load_dir(&root.join("experiments"), check_job).unwrap();
     let committed: Vec<String> = files
         .iter()
