@@ -10,6 +10,7 @@
 //!   a file is checked ([`crate::experiment::CheckJob`]).
 //! - A network's parameters: [`NetworkError`], returned by the networks' constructors (crate
 //!   `solvers`) and by the specifications' own checks ([`crate::solver_spec`]).
+//! - The integrator settings: [`IntegratorError`].
 //! - The robot registry: [`JointCountError`].
 
 use crate::experiment::JobPart;
@@ -255,9 +256,9 @@ pub enum FieldError {
     Length { given: usize, joints: usize },
     #[error("entries must be finite")]
     NotFinite,
-    /// The integrator settings' own check (its message names the setting and its range).
-    #[error("{0}")]
-    Integrator(String),
+    /// The integrator settings' own check.
+    #[error(transparent)]
+    Integrator(IntegratorError),
     #[error("max-instants must be at least 1 (use scoring = \"off\" for no scoring)")]
     NoInstants,
     #[error("at least one [[experiment.variant]] is needed")]
@@ -286,6 +287,26 @@ pub enum FieldError {
     Setup(#[from] SetupError),
     #[error("run \"{key}\" is listed twice (experiment / variant / solver ids must be unique)")]
     RunTwice { key: String },
+}
+
+/// Integrator settings out of their range ([`crate::integrator::IntegratorSettings::validate`]);
+/// each message names the setting and its valid range.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum IntegratorError {
+    #[error("rtol must be in (0, 1), got {0}")]
+    Rtol(f64),
+    #[error("atol must be positive and finite, got {0}")]
+    Atol(f64),
+    #[error("max_steps must be at least 1, got 0")]
+    NoSteps,
+    #[error("max_rhs_evals must be at least 1, got 0")]
+    NoRhsEvals,
+    #[error(
+        "max_wall_s must be positive and finite (a budget that cannot run out is none), got {0}"
+    )]
+    WallBudget(f64),
+    #[error("max_step must be positive and finite, got {0}")]
+    MaxStep(f64),
 }
 
 /// Why the text of an experiment file is not a valid experiment file (without the file name;

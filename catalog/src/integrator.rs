@@ -4,6 +4,8 @@
 //! MATLAB's `ode15s` (RelTol 1e-6, AbsTol 1e-8), whose method is diffsol's [`Method::Bdf`] (the
 //! default here).
 
+use crate::error::IntegratorError;
+
 /// Integration method.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -66,31 +68,26 @@ impl IntegratorSettings {
     /// Checks what the integrator itself needs: 0 < `rtol` < 1, a positive finite `atol`,
     /// `max_steps` >= 1 and a positive, finite `max_step` where given. Each message names the
     /// field and its valid range.
-    pub fn validate(&self) -> Result<(), String> {
+    pub fn validate(&self) -> Result<(), IntegratorError> {
         let rtol = self.rtol;
         if !(rtol > 0.0 && rtol < 1.0) {
-            return Err(format!("rtol must be in (0, 1), got {rtol}"));
+            return Err(IntegratorError::Rtol(rtol));
         }
         let atol = self.atol;
         if !(atol > 0.0 && atol.is_finite()) {
-            return Err(format!("atol must be positive and finite, got {atol}"));
+            return Err(IntegratorError::Atol(atol));
         }
         if self.max_steps == 0 {
-            return Err("max_steps must be at least 1, got 0".to_string());
+            return Err(IntegratorError::NoSteps);
         }
         if self.max_rhs_evals == 0 {
-            return Err("max_rhs_evals must be at least 1, got 0".to_string());
+            return Err(IntegratorError::NoRhsEvals);
         }
         if !(self.max_wall_s > 0.0 && self.max_wall_s.is_finite()) {
-            return Err(format!(
-                "max_wall_s must be positive and finite (a budget that cannot run out is none), got {}",
-                self.max_wall_s
-            ));
+            return Err(IntegratorError::WallBudget(self.max_wall_s));
         }
         match self.max_step {
-            Some(h) if !(h > 0.0 && h.is_finite()) => {
-                Err(format!("max_step must be positive and finite, got {h}"))
-            }
+            Some(h) if !(h > 0.0 && h.is_finite()) => Err(IntegratorError::MaxStep(h)),
             _ => Ok(()),
         }
     }

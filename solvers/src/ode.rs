@@ -280,9 +280,12 @@ pub fn integrate<S: OdeSystem>(
     let n = sys.dim();
     assert_eq!(y0.len(), n, "initial state has the wrong dimension");
     let start = Instant::now();
-    if let Err(message) = settings.validate() {
+    if let Err(e) = settings.validate() {
         return Err(OdeFailure {
-            error: OdeError::Solver { t: t0, message },
+            error: OdeError::Solver {
+                t: t0,
+                message: e.to_string(),
+            },
             stats: OdeStats::default(),
         });
     }
