@@ -20,16 +20,18 @@
 //!
 //! `cargo run --release --example gnn_clover`
 
+use catalog::experiment::Scoring;
+use catalog::experiment::{default_exact_integrator, NetworkInit};
+use catalog::integrator::IntegratorSettings;
+use catalog::solver_spec::SolverSpec;
 use nalgebra::{DMatrix, DVector};
 use robots::{Jaco2, Robot};
 use schemes::jia2019::Jia2019;
 use schemes::paths::{build_path, PathSpec};
 use schemes::qp::{Qp, QpDims};
-use simulation::experiment::{default_exact_integrator, NetworkInit};
 use simulation::run::build_network;
-use simulation::simulate::{simulate, Outcome, Scoring, Settings, Solver};
-use solvers::neural::{NeuralSolver, SolverSpec};
-use solvers::ode::IntegratorSettings;
+use simulation::simulate::{simulate, Outcome, Settings, Solver};
+use solvers::neural::NeuralSolver;
 use std::sync::Arc;
 
 /// The gradient neural network (module docs). Scratch buffers live in the struct, so `rhs`

@@ -18,15 +18,16 @@
 //!
 //! `cargo run --release --example user_robot`
 
+use catalog::experiment::Scoring;
+use catalog::experiment::{default_exact_integrator, NetworkInit};
+use catalog::integrator::IntegratorSettings;
+use catalog::solver_spec::SolverSpec;
 use nalgebra::{SMatrix, SVector, Vector3};
 use robots::{JointLimits, Robot};
 use schemes::kong2019::Kong2019;
 use schemes::paths::{build_path, PathSpec};
-use simulation::experiment::{default_exact_integrator, NetworkInit};
 use simulation::run::build_network;
-use simulation::simulate::{simulate, Outcome, Scoring, Settings, Solver};
-use solvers::neural::SolverSpec;
-use solvers::ode::IntegratorSettings;
+use simulation::simulate::{simulate, Outcome, Settings, Solver};
 use std::sync::Arc;
 
 /// The 4-joint arm of the module docs.

@@ -8,6 +8,7 @@
 //! A network whose one step per tick diverges on the task is timed all the same (a step costs
 //! the same whether or not it converges).
 
+use catalog::naming::slug;
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use driftbench_benches::{fast_config, CountingAllocator};
 use nalgebra::SVector;
@@ -15,7 +16,6 @@ use robots::Robot;
 use schemes::paths::Path;
 use schemes::qp::Qp;
 use schemes::scheme::Scheme;
-use simulation::naming::slug;
 
 use control::control_loop::{run_loop, LoopSettings, Observer};
 use control::method::{Method, Numerical};
@@ -81,7 +81,7 @@ impl TaskVisitor for Sample {
 }
 
 fn per_tick(c: &mut Criterion) {
-    let root = simulation::root::from_current_dir().expect("run inside the workspace");
+    let root = catalog::root::from_current_dir().expect("run inside the workspace");
     let experiments = root.join("experiments");
     let refs = standard_task_refs(&experiments).expect("the standard task set");
     let tasks = load_tasks(&experiments, &refs).expect("the experiment files");

@@ -6,8 +6,9 @@
 //! `cargo bench -p driftbench-benches --bench sweep_scale` (about a minute; the numbers are in
 //! docs/cluster.md). Under `cargo test --benches` it runs the smallest size only.
 
+use catalog::experiment::{Job, PaperFile};
 use records::runs::{merge, RunRow};
-use simulation::experiment::{Job, PaperFile};
+use simulation::run::check_job;
 use std::time::Instant;
 
 /// An experiment file whose one variant sweeps kong2019's mu over `n` values (exact column
@@ -65,7 +66,7 @@ fn main() {
     for &n in sizes {
         let text = sweep_file(n);
         let file = timed("expand + validate (load)", n, || {
-            PaperFile::from_toml(&text).expect("a valid sweep")
+            PaperFile::from_toml(&text, check_job).expect("a valid sweep")
         });
         let jobs: Vec<Job> = timed("jobs + keys (list)", n, || {
             let jobs = file.jobs();

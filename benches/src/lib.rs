@@ -17,19 +17,21 @@
 //! * [`fast_config`], [`whole_run_config`] — criterion settings that keep the full
 //!   `cargo bench -p driftbench-benches` to a few minutes on two cores.
 
+use simulation::run::check_job;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
 use std::time::Duration;
 
+use catalog::experiment::{load_dir, Job, SolverChoice};
+use catalog::solver_spec::SolverSpec;
 use criterion::Criterion;
 use nalgebra::{DVector, SVector};
 use robots::{Dynamics, Jaco2, Katana6m180, Robot};
 use schemes::paths::{build_path, Path};
 use schemes::scheme::Scheme;
 use schemes::spec::build_scheme;
-use simulation::experiment::{load_dir, Job, SolverChoice};
-use solvers::neural::{NeuralSolver, SolverSpec};
+use solvers::neural::NeuralSolver;
 use solvers::{random_qp, ExactSolver, Qp, QpShape};
 
 // ---------------------------------------------------------------------------------------------
@@ -143,10 +145,10 @@ impl RepresentativeQp {
 /// Every job of every file in `experiments/` (panics on an unreadable file: the reproduction's
 /// own tests report those).
 pub fn experiment_jobs() -> Vec<Job> {
-    let dir = simulation::root::from_current_dir()
+    let dir = catalog::root::from_current_dir()
         .unwrap()
         .join("experiments");
-    load_dir(&dir)
+    load_dir(&dir, check_job)
         .unwrap_or_else(|e| panic!("loading {}: {e}", dir.display()))
         .iter()
         .flat_map(|f| f.jobs())
@@ -156,7 +158,7 @@ pub fn experiment_jobs() -> Vec<Job> {
 /// The job with key `experiment / variant / solver` (ids, e.g. `jia2019-star / vltco /
 /// exact`).
 pub fn find_job(jobs: &[Job], experiment: &str, variant: &str, solver: &str) -> Job {
-    let key = simulation::run_key::RunKey::new(experiment, variant, solver);
+    let key = catalog::run_key::RunKey::new(experiment, variant, solver);
     jobs.iter()
         .find(|j| j.key() == key)
         .cloned()
@@ -218,9 +220,7 @@ pub const CASES_FILE: &str = "benches/cases.toml";
 /// The cases of [`CASES_FILE`] (panics with the file's name when it is missing or malformed:
 /// benches have no user to report to).
 pub fn bench_cases() -> BenchCases {
-    let path = simulation::root::from_current_dir()
-        .unwrap()
-        .join(CASES_FILE);
+    let path = catalog::root::from_current_dir().unwrap().join(CASES_FILE);
     let text = std::fs::read_to_string(&path)
         .unwrap_or_else(|e| panic!("reading {}: {e}", path.display()));
     toml::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
@@ -228,7 +228,7 @@ pub fn bench_cases() -> BenchCases {
 
 /// The job of a run key written `experiment / variant / solver`.
 pub fn find_run(jobs: &[Job], key: &str) -> Job {
-    let k = simulation::run_key::RunKey::parse(key)
+    let k = catalog::run_key::RunKey::parse(key)
         .unwrap_or_else(|| panic!("{CASES_FILE}: {key:?} is not experiment / variant / solver"));
     find_job(jobs, &k.experiment, &k.variant, &k.solver)
 }
@@ -239,16 +239,11 @@ fn scheme_jobs<'a>(
     refs: &'a [SchemeRef],
 ) -> impl Iterator<Item = (&'a str, Job)> + 'a {
     refs.iter().map(|r| {
-        let t = simulation::run_key::TaskKey::parse(&r.task)
+        let t = catalog::run_key::TaskKey::parse(&r.task)
             .unwrap_or_else(|| panic!("{CASES_FILE}: {:?} is not experiment / variant", r.task));
         (
             r.label.as_str(),
-            find_job(
-                jobs,
-                &t.experiment,
-                &t.variant,
-                simulation::run_key::EXACT_ID,
-            ),
+            find_job(jobs, &t.experiment, &t.variant, catalog::run_key::EXACT_ID),
         )
     })
 }

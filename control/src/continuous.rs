@@ -10,12 +10,13 @@
 //! The drift after cycle c is |theta(c T) - theta_0|.
 
 use crate::task::{Task, TaskVisitor};
+use catalog::experiment::NetworkInit;
+use catalog::experiment::Scoring;
 use nalgebra::SVector;
 use robots::Robot;
 use schemes::paths::Path;
 use schemes::scheme::Scheme;
-use simulation::experiment::NetworkInit;
-use simulation::simulate::{simulate, Outcome, Scoring, Settings, Solver};
+use simulation::simulate::{simulate, Outcome, Settings, Solver};
 
 /// The drifts and per-cycle changes of a continuous run, and how it ended.
 #[derive(Clone, Debug, PartialEq)]

@@ -1,9 +1,9 @@
 //! The errors of the control experiments: [`ControlError`] wraps the simulation layer's
 //! (experiment files) and the solvers' (networks, LVI, OSQP, the exact QP).
 
-use simulation::error::ExperimentFileError;
+use catalog::error::ExperimentFileError;
+use catalog::error::NetworkError;
 use solvers::lvi_numerical::LviError;
-use solvers::neural::NetworkError;
 use solvers::osqp_qp::OsqpError;
 use solvers::ExactError;
 

@@ -5,9 +5,9 @@
 use crate::error::ControlError;
 use crate::network_tick::{Discretisation, NetworkTick};
 use crate::numerical_tick::{ActiveSetTick, ClarabelTick, LviTick, OsqpTick};
+use catalog::solver_spec::SolverSpec;
 use schemes::qp::{Qp, QpDims};
 use solvers::lvi_numerical::{LviMethod, LviSettings};
-use solvers::neural::SolverSpec;
 use solvers::osqp_qp::OsqpSettings;
 
 /// A numerical QP method, solved to its tolerance at every tick.

@@ -23,8 +23,9 @@
 
 use crate::error::ControlError;
 use crate::method::TickSolver;
+use catalog::solver_spec::SolverSpec;
 use schemes::qp::{Qp, QpDims};
-use solvers::neural::{build_solver, NeuralSolver, SolverSpec};
+use solvers::neural::{build_solver, NeuralSolver};
 use std::mem;
 
 /// How a network's dynamics are discretised (module docs).

@@ -18,12 +18,13 @@ use crate::output::{self, ClaimRow, ControlRow, CycleRow, StabilityRow, TrendRow
 use crate::stability::{gain, LimitProbe};
 use crate::task::{load_tasks, standard_task_refs, with_task, Task, TaskVisitor};
 use crate::trend::classify;
+use catalog::solver_spec::SolverSpec;
 use nalgebra::SVector;
 use robots::Robot;
 use schemes::paths::Path;
 use schemes::scheme::Scheme;
 use solvers::lvi_numerical::LviMethod;
-use solvers::neural::{build_solver, SolverSpec};
+use solvers::neural::build_solver;
 
 /// The method label of the continuous-time exact column in the many-cycles results.
 pub const CONTINUOUS_EXACT: &str = "exact (continuous)";

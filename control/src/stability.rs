@@ -25,9 +25,10 @@
 //! limit, and the product gain x s_max is the figure of merit beside the papers' gains.
 
 use crate::control_loop::Observer;
+use catalog::solver_spec::SolverSpec;
 use nalgebra::{DMatrix, Schur};
 use schemes::qp::Qp;
-use solvers::neural::{NeuralSolver, SolverSpec};
+use solvers::neural::NeuralSolver;
 
 /// Ticks between two states the Jacobian is evaluated at.
 pub const SAMPLE_EVERY: usize = 250;

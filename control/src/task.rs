@@ -4,14 +4,15 @@
 //! run generic code on a task's arm ([`TaskVisitor`]).
 
 use crate::error::ControlError;
+use catalog::experiment::{load_dir, Job, SolverChoice};
+use catalog::robot_registry::{robot_by_name, RobotVisitor};
+use catalog::solver_spec::SolverSpec;
 use nalgebra::SVector;
 use robots::{Dynamics, Robot};
 use schemes::paths::Path;
 use schemes::scheme::Scheme;
-use simulation::experiment::{load_dir, Job, SolverChoice};
-use simulation::robot_registry::{robot_by_name, RobotVisitor};
 use simulation::run::build_cyclic_parts;
-use solvers::neural::SolverSpec;
+use simulation::run::check_job;
 use std::sync::Arc;
 
 /// A task: an experiment and one of its variants (ids).
@@ -88,7 +89,7 @@ impl Task {
 
 /// The tasks of `refs` from the experiment files in `dir`.
 pub fn load_tasks(dir: &std::path::Path, refs: &[TaskRef]) -> Result<Vec<Task>, ControlError> {
-    let files = load_dir(dir)?;
+    let files = load_dir(dir, check_job)?;
     let jobs: Vec<Job> = files.iter().flat_map(|f| f.jobs()).collect();
     refs.iter()
         .map(|r| {

@@ -23,11 +23,11 @@
 //! max_t |r* - f(theta)| of each; a switch row holds the difference of the two maxima.
 
 use super::ladder::LadderRow;
+use catalog::experiment::Scoring;
+use catalog::experiment::{Job, SolverChoice};
+use catalog::solver_spec::SolverSpec;
 use records::runs::RunRow;
 use serde::{Deserialize, Serialize};
-use simulation::experiment::{Job, SolverChoice};
-use simulation::simulate::Scoring;
-use solvers::neural::spec::SolverSpec;
 
 /// The largest RelTol whose rung may serve as a converged reference.
 pub const CONVERGED_RTOL: f64 = 1e-8;
@@ -147,8 +147,8 @@ pub struct AttributionRow {
 
 impl AttributionRow {
     /// The key of the run the row explains.
-    pub fn key(&self) -> simulation::run_key::RunKey {
-        simulation::run_key::RunKey::new(&self.experiment, &self.variant_id, &self.solver_id)
+    pub fn key(&self) -> catalog::run_key::RunKey {
+        catalog::run_key::RunKey::new(&self.experiment, &self.variant_id, &self.solver_id)
     }
 }
 

@@ -22,12 +22,12 @@
 //! [`LADDER_MAX_STEPS`] (explicit: [`LADDER_MAX_EXPLICIT_STEPS`]) accepted steps and an
 //! unfinished rung is reported as such, not dropped.
 
+use catalog::experiment::Scoring;
+use catalog::experiment::{Job, SolverChoice};
+use catalog::integrator::{IntegratorSettings, Method};
+use catalog::solver_spec::SolverSpec;
 use records::runs::{RunRow, Status};
 use serde::{Deserialize, Serialize};
-use simulation::experiment::{Job, SolverChoice};
-use simulation::simulate::Scoring;
-use solvers::neural::spec::SolverSpec;
-use solvers::ode::{IntegratorSettings, Method};
 
 /// Accepted steps after which an implicit ladder rung is abandoned (every implicit run of the
 /// papers' experiments needs a few thousand; the finite-time network needed ~650,000 BDF steps
@@ -156,8 +156,8 @@ pub struct LadderRow {
 
 impl LadderRow {
     /// The key of the run the row explains.
-    pub fn key(&self) -> simulation::run_key::RunKey {
-        simulation::run_key::RunKey::new(&self.experiment, &self.variant_id, &self.solver_id)
+    pub fn key(&self) -> catalog::run_key::RunKey {
+        catalog::run_key::RunKey::new(&self.experiment, &self.variant_id, &self.solver_id)
     }
 }
 

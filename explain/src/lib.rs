@@ -22,14 +22,14 @@ pub mod inference;
 pub mod ladder;
 
 use attribution::{attribution_rows, exact_counterpart, switch_jobs, AttributionRow, Switch};
+use catalog::experiment::{Job, SolverChoice};
+use catalog::run_key::RunKey;
 use error::ExplainError;
 use ladder::LadderRow;
 use records::error::{IoAction, IoError};
 use records::papers::Papers;
 use records::runs::{write_atomic, RunRow};
 use records::table::Row;
-use simulation::experiment::{Job, SolverChoice};
-use simulation::run_key::RunKey;
 use simulation::runner::run_jobs;
 use std::path::Path;
 

@@ -2,17 +2,18 @@
 //! attribution adds up joint by joint, switches switch exactly one ingredient, and setup
 //! inference recovers a known setup from a synthetic table made by the suite itself.
 
+use catalog::experiment::{load_dir, Job, SolverChoice};
+use catalog::solver_spec::SolverSpec;
 use explain::attribution::Switch;
 use explain::inference::family::Family;
 use explain::inference::search::Target;
 use explain::inference::{evaluate, fit, Column, Setup, TableProblem};
 use explain::{explain, ladder};
-use simulation::experiment::{load_dir, Job, SolverChoice};
-use solvers::neural::spec::SolverSpec;
+use simulation::run::check_job;
 
 fn jobs() -> Vec<Job> {
-    let root = simulation::root::from_current_dir().unwrap();
-    load_dir(&root.join("experiments"))
+    let root = catalog::root::from_current_dir().unwrap();
+    load_dir(&root.join("experiments"), check_job)
         .unwrap()
         .iter()
         .flat_map(|f| f.jobs())
@@ -21,7 +22,7 @@ fn jobs() -> Vec<Job> {
 
 fn find(jobs: &[Job], experiment: &str, variant: &str, solver: &str) -> Job {
     jobs.iter()
-        .find(|j| j.key() == simulation::run_key::RunKey::new(experiment, variant, solver))
+        .find(|j| j.key() == catalog::run_key::RunKey::new(experiment, variant, solver))
         .unwrap_or_else(|| panic!("{experiment} / {variant} / {solver}"))
         .clone()
 }
@@ -129,7 +130,7 @@ fn switches_change_one_ingredient_only() {
             (j.solver.clone(), j.path.clone()),
             (perturbed.solver.clone(), perturbed.path.clone())
         );
-        assert_eq!(j.scoring, simulation::simulate::Scoring::Off);
+        assert_eq!(j.scoring, catalog::experiment::Scoring::Off);
     }
 }
 
@@ -143,12 +144,12 @@ fn inference_recovers_a_known_setup() {
     let exact = find(&jobs, "kong2019-triangle", "znn-eq22", "exact");
     // Tight tolerances: the drift here is ~1e-5, so AbsTol 1e-8 would leave 1e-3 of noise.
     let run = Job {
-        integrator: solvers::ode::IntegratorSettings {
+        integrator: catalog::integrator::IntegratorSettings {
             rtol: 1e-10,
             atol: 1e-13,
             ..explain::inference::inference_integrator()
         },
-        scoring: simulation::simulate::Scoring::Off,
+        scoring: catalog::experiment::Scoring::Off,
         theta0: exact.theta_ref.clone(),
         ..exact
     };
@@ -224,7 +225,7 @@ fn inference_recovers_a_known_setup() {
 /// first scored distance to the optimum is at round-off, where the zero start's is |x*(0)|.
 #[test]
 fn network_can_start_at_the_exact_optimum() {
-    use simulation::experiment::NetworkInit;
+    use catalog::experiment::NetworkInit;
     use simulation::run::run_job;
     let jobs = jobs();
     // The deviated start: x*(0) = -mu (theta0 - theta*0) + ... is not zero.

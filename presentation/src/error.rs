@@ -3,10 +3,10 @@
 //! the records, explanation and control layers' errors) and scoring a trajectory
 //! ([`ScoreError`], wrapping the simulation's and records' errors).
 
+use catalog::error::ExperimentFileError;
 use records::error::{IoError, RunsError};
 use records::table::TableError;
 use records::tracked_dir::TrackedError;
-use simulation::error::ExperimentFileError;
 use simulation::score_trajectory::TrajectoryError;
 use std::path::PathBuf;
 

@@ -6,13 +6,14 @@
 
 use crate::error::ScoreError;
 use crate::figures::run_svg;
+use catalog::experiment::{load_dir, Job, PaperFile};
 use records::error::{IoAction, IoError};
 use records::runs::{merge, trace_csv, write_atomic, RunRow};
 use records::trajectory::{read, score_row};
-use simulation::experiment::{load_dir, Job, PaperFile};
+use simulation::run::check_job;
 
+use catalog::run_key::TaskKey;
 use simulation::run::RunRecord;
-use simulation::run_key::TaskKey;
 use simulation::score_trajectory::score_trajectory;
 use std::path::{Path, PathBuf};
 
@@ -30,7 +31,7 @@ pub struct Scored {
 /// its first run (a trajectory is scored on its robot, path, scheme and poses only).
 pub fn find_task(experiments_dir: &Path, id: &str) -> Result<Job, ScoreError> {
     let key = TaskKey::parse(id);
-    load_dir(experiments_dir)?
+    load_dir(experiments_dir, check_job)?
         .iter()
         .flat_map(PaperFile::jobs)
         .find(|j| Some(j.task()) == key)

@@ -10,14 +10,15 @@
 //! `report/tasks/README.md`, recorded in `report/manifest.toml` like the figures (a stale card
 //! that the program wrote and nobody edited is removed). [`cards`] renders them in memory.
 
+use catalog::error::ExperimentFileError;
+use catalog::error::SetupError;
+use catalog::experiment::{load_dir, Job, PaperFile, SolverChoice};
+use catalog::robot_registry::{robot_by_name, AnyRobot};
 use records::tracked_dir::{Removal, TrackedDir, TrackedError};
 use schemes::qp::Qp;
 use schemes::scheme::Level;
 use schemes::spec::SchemeSpec;
-use simulation::error::ExperimentFileError;
-use simulation::error::SetupError;
-use simulation::experiment::{load_dir, Job, PaperFile, SolverChoice};
-use simulation::robot_registry::{robot_by_name, AnyRobot};
+use simulation::run::check_job;
 use simulation::task_numbers::{task_numbers, TaskNumbers};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -50,7 +51,7 @@ pub enum TaskCardError {
 /// The cards of every task of the experiment files in `experiments_dir`: file name -> Markdown,
 /// the index ([`INDEX`]) included.
 pub fn cards(experiments_dir: &Path) -> Result<BTreeMap<String, String>, TaskCardError> {
-    let files = load_dir(experiments_dir)?;
+    let files = load_dir(experiments_dir, check_job)?;
     // Every run of a task, in the files' order; the first one describes the task.
     let mut tasks: Vec<(String, Vec<Job>)> = Vec::new();
     for job in files.iter().flat_map(PaperFile::jobs) {

@@ -13,8 +13,8 @@ use std::path::{Path, PathBuf};
 fn row(experiment: &str, variant: &str, solver: &str, failed_at: Option<f64>) -> RunRow {
     RunRow {
         paper: "synthetic".into(),
-        variant_id: simulation::naming::slug(variant),
-        solver_id: simulation::naming::slug(solver),
+        variant_id: catalog::naming::slug(variant),
+        solver_id: catalog::naming::slug(solver),
         duration: 2.0,
         status: if failed_at.is_some() {
             Status::Failed
@@ -403,7 +403,7 @@ fn a_malformed_trace_is_an_error_naming_the_file() {
 /// with the PNG signature and a header of non-zero size, and decodes.
 #[test]
 fn every_committed_figure_has_its_png() {
-    let dir = simulation::root::from_current_dir()
+    let dir = catalog::root::from_current_dir()
         .unwrap()
         .join("report/figures");
     let (svgs, pngs) = (stems(&dir, "svg"), stems(&dir, "png"));
@@ -448,7 +448,7 @@ fn copy_tree(from: &Path, to: &Path) {
 /// a copy of `results/` in a scratch directory, so nothing in the repository is written.
 #[test]
 fn the_committed_figures_are_those_the_committed_results_give() {
-    let committed = simulation::root::from_current_dir().unwrap();
+    let committed = catalog::root::from_current_dir().unwrap();
     let root = scratch("committed");
     std::fs::create_dir_all(root.join("results")).unwrap();
     for file in ["runs.csv", "inference.csv"] {

@@ -14,13 +14,13 @@ use std::path::{Path, PathBuf};
 const REGENERATE: &str = "regenerate with `cargo run --release -p reproduce -- --report-only`";
 
 fn committed() -> Inputs {
-    let root = simulation::root::from_current_dir().unwrap();
+    let root = catalog::root::from_current_dir().unwrap();
     Inputs::load(&root, &root.join("papers")).expect("committed inputs load")
 }
 
 #[test]
 fn renders_every_paper_and_experiment_from_the_committed_results() {
-    let root = simulation::root::from_current_dir().unwrap();
+    let root = catalog::root::from_current_dir().unwrap();
     let inputs = committed();
     let md = to_markdown(&inputs);
     assert!(inputs.papers.papers.len() >= 4);
@@ -88,7 +88,7 @@ fn scratch_copy_of_the_inputs(committed: &Path) -> PathBuf {
 /// the committed file).
 #[test]
 fn the_committed_report_is_the_one_the_committed_results_give() {
-    let committed_root = simulation::root::from_current_dir().unwrap();
+    let committed_root = catalog::root::from_current_dir().unwrap();
     let committed = std::fs::read_to_string(committed_root.join("report/REPORT.md"))
         .expect("report/REPORT.md is committed");
     let scratch = scratch_copy_of_the_inputs(&committed_root);
@@ -193,7 +193,7 @@ fn synthetic() -> Vec<RunRow> {
 
 /// jia2019's claims (`papers/jia2019/paper.toml`) on `rows`.
 fn verdicts(rows: Vec<RunRow>) -> Vec<(String, Verdict)> {
-    let root = simulation::root::from_current_dir().unwrap();
+    let root = catalog::root::from_current_dir().unwrap();
     let papers = records::papers::Papers::load(&root.join("papers")).unwrap();
     claims::evaluate("jia2019", &Runs::new(rows), &papers)
         .into_iter()

@@ -2,15 +2,16 @@
 //! in memory, never over the committed files), one card per task, and a card carries the
 //! suite's own check values.
 
+use catalog::experiment::{load_dir, PaperFile};
 use presentation::task_card::{cards, INDEX, TASKS};
-use simulation::experiment::{load_dir, PaperFile};
+use simulation::run::check_job;
 use std::collections::BTreeSet;
 
 const REGENERATE: &str = "regenerate with `cargo run --release -p reproduce -- --report-only`";
 
 #[test]
 fn the_committed_cards_are_the_generated_ones() {
-    let root = simulation::root::from_current_dir().unwrap();
+    let root = catalog::root::from_current_dir().unwrap();
     let generated = cards(&root.join("experiments")).unwrap();
     let dir = root.join("report").join(TASKS);
     let committed: BTreeSet<String> = std::fs::read_dir(&dir)
@@ -30,9 +31,9 @@ fn the_committed_cards_are_the_generated_ones() {
 
 #[test]
 fn every_task_has_a_card_with_its_check_values() {
-    let root = simulation::root::from_current_dir().unwrap();
+    let root = catalog::root::from_current_dir().unwrap();
     let generated = cards(&root.join("experiments")).unwrap();
-    let tasks: BTreeSet<String> = load_dir(&root.join("experiments"))
+    let tasks: BTreeSet<String> = load_dir(&root.join("experiments"), check_job)
         .unwrap()
         .iter()
         .flat_map(PaperFile::jobs)

@@ -21,6 +21,8 @@ mod error;
 mod network;
 mod task_set;
 
+use catalog::error::SetupError;
+use catalog::experiment::Scoring;
 use network::{network_name, Callbacks, PyNetwork, PyQpDims, SharedCallbacks};
 use numpy::IntoPyArray;
 use pyo3::create_exception;
@@ -29,10 +31,10 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use records::runs::RunRow;
 use records::trajectory::{read, score_row};
-use simulation::error::{RunError, SetupError};
+use simulation::error::RunError;
 use simulation::run::{run_job, run_job_with_network, RunRecord};
 use simulation::score_trajectory::{score_trajectory, Trajectory};
-use simulation::simulate::{Outcome, Scoring};
+use simulation::simulate::Outcome;
 use solvers::neural::NeuralSolver;
 use std::path::{Path, PathBuf};
 use task_set::{load_tasks, PyTask};
@@ -55,7 +57,7 @@ fn lib_err(e: impl std::fmt::Display) -> PyErr {
 fn project_root(root: Option<PathBuf>) -> PyResult<PathBuf> {
     match root {
         Some(r) => Ok(r),
-        None => simulation::root::from_current_dir().map_err(lib_err),
+        None => catalog::root::from_current_dir().map_err(lib_err),
     }
 }
 
@@ -77,7 +79,7 @@ fn task(id: &str, root: Option<PathBuf>) -> PyResult<PyTask> {
 
 fn find_task<'a>(all: &'a [PyTask], id: &str) -> PyResult<&'a PyTask> {
     all.iter()
-        .find(|t| Some(t.job.task()) == simulation::run_key::TaskKey::parse(id))
+        .find(|t| Some(t.job.task()) == catalog::run_key::TaskKey::parse(id))
         .ok_or_else(|| {
             lib_err(format!(
                 "no task \"{id}\" (ids are \"<experiment> / <variant>\"; driftbench.tasks() lists them)"
@@ -178,7 +180,7 @@ fn result_dict<'py>(
 /// Runs `job`'s task with the Python network `network`; raises what the network raised, or
 /// the library's error when the run could not be set up. The row is named after the network.
 fn run_python(
-    job: &simulation::experiment::Job,
+    job: &catalog::experiment::Job,
     network: &Bound<'_, PyAny>,
     root: &Path,
 ) -> PyResult<(RunRecord, RunRow, Callbacks)> {
@@ -195,7 +197,7 @@ fn run_python(
         return Err(e);
     }
     check_setup(&record)?;
-    let mut row = RunRow::from_record(&record, &simulation::root::git_revision(root));
+    let mut row = RunRow::from_record(&record, &catalog::root::git_revision(root));
     row.solver_id = format!("{PYTHON_KIND}-{}", schemes::slug::slug(&name));
     row.solver = name;
     row.solver_kind = PYTHON_KIND.to_string();
@@ -268,7 +270,7 @@ fn simulate<'py>(
     let (record, row, calls) = if builtin.is_some() {
         let record = run_job(&job);
         check_setup(&record)?;
-        let row = RunRow::from_record(&record, &simulation::root::git_revision(&task.root));
+        let row = RunRow::from_record(&record, &catalog::root::git_revision(&task.root));
         (record, row, Callbacks::default())
     } else {
         run_python(&job, network, &task.root)?
@@ -375,7 +377,7 @@ fn score<'py>(
     trajectory: &Bound<'py, PyAny>,
     out_dir: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let git_rev = simulation::root::git_revision(&task.root);
+    let git_rev = catalog::root::git_revision(&task.root);
     let (record, row) = if let Ok(file) = trajectory.extract::<PathBuf>() {
         match out_dir {
             Some(out) => {

@@ -4,10 +4,11 @@
 //! scoring and network start).
 
 use crate::error::NoSolver;
+use catalog::error::ExperimentFileError;
+use catalog::experiment::{load_dir, Job, SolverChoice};
 use pyo3::prelude::*;
 use serde::Serialize;
-use simulation::error::ExperimentFileError;
-use simulation::experiment::{load_dir, Job, SolverChoice};
+use simulation::run::check_job;
 use std::path::{Path, PathBuf};
 
 /// One task of the suite (module docs). Attributes are read-only; `path`, `scheme` and
@@ -137,7 +138,7 @@ impl PyTask {
 
 /// Every task of the experiment files under `root/experiments`, in file order.
 pub fn load_tasks(root: &Path) -> Result<Vec<PyTask>, ExperimentFileError> {
-    let files = load_dir(&root.join("experiments"))?;
+    let files = load_dir(&root.join("experiments"), check_job)?;
     let mut tasks = Vec::new();
     for file in &files {
         let jobs = file.jobs();

@@ -1,6 +1,6 @@
 //! The records layer's errors: reading and writing the results files (`runs.csv`, the journal,
 //! shards, trajectories, the leaderboard). They wrap the layer below them: the simulation's
-//! naming errors ([`simulation::naming::NameError`]), the tables' [`TableError`] and the
+//! naming errors ([`catalog::naming::NameError`]), the tables' [`TableError`] and the
 //! results directory's own errors ([`PathError`], [`TrackedError`], [`IntegrityError`]).
 //! Each names the file and, where it applies, the line.
 
@@ -8,7 +8,7 @@ use crate::integrity::{IntegrityError, Mismatch};
 use crate::owned_dir::PathError;
 use crate::table::TableError;
 use crate::tracked_dir::TrackedError;
-use simulation::naming::NameError;
+use catalog::naming::NameError;
 use std::path::PathBuf;
 
 /// What was being done to a file when the system refused.

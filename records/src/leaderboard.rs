@@ -437,7 +437,7 @@ mod tests {
         let mut r = RunRow::blank(exp, "v", solver, "k");
         r.paper = "cross".into();
         r.solver_kind = if solver == "exact" {
-            simulation::experiment::EXACT_KIND.to_string()
+            catalog::experiment::EXACT_KIND.to_string()
         } else {
             solver.to_lowercase()
         };

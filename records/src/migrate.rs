@@ -10,9 +10,9 @@
 //! (it is then pruned as any undescribed run is). `ResultsDir::migrate_ids` applies this to a
 //! results directory and renames the traces.
 
+use catalog::experiment::Job;
+use catalog::run_key::{RunKey, EXACT_ID};
 use schemes::slug::slug;
-use simulation::experiment::Job;
-use simulation::run_key::{RunKey, EXACT_ID};
 use std::collections::HashMap;
 
 /// The exact column's label before run ids.

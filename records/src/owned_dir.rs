@@ -37,7 +37,7 @@ pub enum PathError {
     #[error("{what}: {source}")]
     Name {
         what: String,
-        source: simulation::naming::NameError,
+        source: catalog::naming::NameError,
     },
     #[error("{path}: cannot inspect: {source}")]
     Inspect {

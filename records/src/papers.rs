@@ -4,7 +4,7 @@
 //! `values.csv` is long: one number per row, named by (paper, table, experiment, column,
 //! metric). Each `[[mapping]]` of `paper.toml` says which of our runs reproduces one
 //! (experiment, column) of a paper, by its run key (`"<experiment> / <variant> / <solver>"`,
-//! ids, see `simulation::run_key`), with companion variants shown beside it. [`our_metric`]
+//! ids, see `catalog::run_key`), with companion variants shown beside it. [`our_metric`]
 //! names the `runs.csv` column of each published metric. [`Papers::resolve`] combines both; a
 //! published number that finds no run is listed in the report under "published numbers without
 //! a run", never dropped silently. Its `[[claim]]` tables are the claims checked against the
@@ -14,8 +14,8 @@
 use crate::index::Runs;
 use crate::runs::RunRow;
 use crate::sweep_check::SweepCheck;
+use catalog::run_key::RunKey;
 use serde::Deserialize;
-use simulation::run_key::RunKey;
 use std::path::{Path, PathBuf};
 
 /// One published number.

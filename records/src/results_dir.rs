@@ -16,15 +16,15 @@
 //! Opening ([`ResultsDir::open`]) takes the lock, refuses tables that differ from the
 //! manifest (a truncated or hand-edited `runs.csv`), and removes only the temporary files of
 //! the program's own interrupted writes. Every name read from a row is checked before it
-//! becomes a path ([`simulation::naming::RunKey::check`], [`OwnedDir::resolve`]), and a
+//! becomes a path ([`catalog::run_key::RunKey::check`], [`OwnedDir::resolve`]), and a
 //! file is deleted only if the manifest proves the program wrote it
 //! ([`TrackedDir::remove`]).
 
 use crate::owned_dir::{OwnedDir, PathError};
 use crate::runs::{read_runs, runs_csv, trace_csv, RunRow};
 use crate::tracked_dir::{Edits, Removal, TrackedDir, TrackedError};
+use catalog::run_key::RunKey;
 use simulation::run::RunRecord;
-use simulation::run_key::RunKey;
 use std::path::{Path, PathBuf};
 
 /// `runs.csv`.
@@ -195,7 +195,7 @@ impl ResultsDir {
     /// its id-named file. Returns what was done, for a message; nothing when already current.
     pub fn migrate_ids(
         &self,
-        jobs: &[simulation::experiment::Job],
+        jobs: &[catalog::experiment::Job],
     ) -> Result<Vec<String>, ResultsError> {
         let index = crate::migrate::LabelIndex::new(jobs);
         let mut done = Vec::new();

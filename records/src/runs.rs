@@ -12,11 +12,11 @@
 
 use crate::error::{RowsError, RunsError};
 use crate::table;
+use catalog::naming::{check_name, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
+use catalog::run_key::RunKey;
 use serde::{Deserialize, Serialize};
 use simulation::error::FailureKind;
-use simulation::naming::{check_name, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
 use simulation::run::RunRecord;
-use simulation::run_key::RunKey;
 use simulation::simulate::Outcome;
 use std::path::Path;
 
@@ -260,7 +260,7 @@ impl RunRow {
 
     /// Whether the run is the exact column (the optimum in the loop).
     pub fn is_exact(&self) -> bool {
-        self.solver_kind == simulation::experiment::EXACT_KIND
+        self.solver_kind == catalog::experiment::EXACT_KIND
     }
 }
 

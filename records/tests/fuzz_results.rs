@@ -10,7 +10,7 @@ use records::runs::read_runs;
 use std::path::PathBuf;
 
 fn committed_runs() -> Vec<String> {
-    let path = simulation::root::from_current_dir()
+    let path = catalog::root::from_current_dir()
         .unwrap()
         .join("results/runs.csv");
     std::fs::read_to_string(path)

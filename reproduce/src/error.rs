@@ -54,7 +54,7 @@ pub enum ReproduceError {
     #[error(transparent)]
     Baseline(#[from] BaselineError),
     #[error(transparent)]
-    Root(#[from] simulation::root::RootNotFound),
+    Root(#[from] catalog::root::RootNotFound),
     #[error(transparent)]
     Experiments(#[from] simulation::error::ExperimentFileError),
     #[error(transparent)]

@@ -5,8 +5,8 @@
 use crate::cli::Cli;
 use crate::error::ReproduceError;
 use crate::report::{render_report, report_root};
+use catalog::experiment::Job;
 use records::results_dir::ResultsDir;
-use simulation::experiment::Job;
 
 /// The papers as data (`papers/` under the project root).
 pub fn load_papers(cli: &Cli) -> Result<records::papers::Papers, ReproduceError> {

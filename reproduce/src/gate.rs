@@ -3,8 +3,8 @@
 //! of the same experiments, and any difference is exit code 1.
 
 use crate::error::{BaselineError, ReproduceError};
+use catalog::experiment::Job;
 use records::runs::{check_rows, RunRow};
-use simulation::experiment::Job;
 use std::collections::HashSet;
 use std::path::Path;
 use std::process::ExitCode;

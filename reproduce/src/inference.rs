@@ -6,8 +6,8 @@ use crate::cli::Cli;
 use crate::error::ReproduceError;
 use crate::explanation::load_papers;
 use crate::report::{render_report, report_root};
+use catalog::experiment::Job;
 use records::results_dir::ResultsDir;
-use simulation::experiment::Job;
 
 /// The tables of `ids` (paper, table) that `which` selects: `all`, a paper, `paper:table`, or
 /// a comma-separated list of these.

@@ -4,11 +4,11 @@
 
 use crate::error::ReproduceError;
 use crate::results::described_keys;
+use catalog::experiment::Job;
+use catalog::run_key::RunKey;
 use records::results_dir::ResultsDir;
 use records::runs::{merge, RunRow};
-use simulation::experiment::Job;
 use simulation::run::RunRecord;
-use simulation::run_key::RunKey;
 use simulation::runner::run_jobs_with;
 use std::collections::HashSet;
 
@@ -73,9 +73,7 @@ pub fn run_journaled(
         .map(|r| {
             let joints = jobs
                 .iter()
-                .filter_map(|j| {
-                    simulation::robot_registry::robot_by_name(&j.robot).map(|r| r.dof())
-                })
+                .filter_map(|j| catalog::robot_registry::robot_by_name(&j.robot).map(|r| r.dof()))
                 .max();
             records::journal::Journal::open(r, git_rev, joints.unwrap_or(0))
         })

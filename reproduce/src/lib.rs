@@ -29,7 +29,7 @@ pub mod summary;
 pub use cli::Cli;
 pub use error::ReproduceError;
 
-use simulation::experiment::{load_dir, Job};
+use catalog::experiment::{load_dir, Job};
 use std::process::ExitCode;
 use summary::emit;
 
@@ -41,7 +41,7 @@ pub fn run(cli: Cli) -> Result<ExitCode, ReproduceError> {
         emit(&list::robots());
         return Ok(ExitCode::SUCCESS);
     }
-    let git_rev = simulation::root::git_revision(&cli.project_root);
+    let git_rev = catalog::root::git_revision(&cli.project_root);
     if let (Some(file), Some(task)) = (&cli.score, &cli.task) {
         score::score(cli, file, task, &git_rev)?;
         return Ok(ExitCode::SUCCESS);
@@ -54,7 +54,7 @@ pub fn run(cli: Cli) -> Result<ExitCode, ReproduceError> {
         cost::dof_cost(cli, &git_rev)?;
         return Ok(ExitCode::SUCCESS);
     }
-    let files = load_dir(&cli.experiments_dir)?;
+    let files = load_dir(&cli.experiments_dir, simulation::run::check_job)?;
     let all: Vec<Job> = files.iter().flat_map(|f| f.jobs()).collect();
     if !cli.merge.is_empty() {
         return merge::merge_shards(cli, &files, &all, &git_rev);

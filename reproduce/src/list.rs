@@ -3,7 +3,7 @@
 //! shard gets) and the robots they can name, with the check values of each (tip position and
 //! singular values of J at the stated pose).
 
-use simulation::experiment::{Job, PaperFile};
+use catalog::experiment::{Job, PaperFile};
 use std::fmt::Write as _;
 
 /// The experiments of `files` that have runs among `jobs`, each with its runs.
@@ -50,7 +50,7 @@ pub fn shard_plan(jobs: &[Job], n: usize) -> String {
 
 /// Every robot of the registry with its joint count and check values at its stated pose.
 pub fn robots() -> String {
-    use simulation::robot_registry::{robot_by_name, robot_names};
+    use catalog::robot_registry::{robot_by_name, robot_names};
     let mut out = String::new();
     for name in robot_names() {
         let robot = robot_by_name(&name).expect("a registry name");
@@ -80,7 +80,7 @@ mod tests {
     fn fixture() -> (Vec<PaperFile>, Vec<Job>) {
         let dir =
             Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/fifth-paper/experiments");
-        let files = simulation::experiment::load_dir(&dir).unwrap();
+        let files = catalog::experiment::load_dir(&dir, simulation::run::check_job).unwrap();
         let jobs = files.iter().flat_map(|f| f.jobs()).collect();
         (files, jobs)
     }
@@ -141,7 +141,7 @@ mod tests {
 
     #[test]
     fn every_robot_is_listed_with_its_joint_count() {
-        use simulation::robot_registry::{robot_by_name, robot_names};
+        use catalog::robot_registry::{robot_by_name, robot_names};
         let text = robots();
         let names: Vec<String> = robot_names().collect();
         assert_eq!(text.lines().count(), 2 * names.len());

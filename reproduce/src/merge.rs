@@ -8,8 +8,8 @@ use crate::report::render_report_if_named;
 use crate::results::{open_results, plan_pruning, write_results};
 use crate::run::report_unexpected;
 use crate::select::select_jobs;
+use catalog::experiment::{Job, PaperFile};
 use records::runs::RunRow;
-use simulation::experiment::{Job, PaperFile};
 use std::process::ExitCode;
 
 /// Merges the shards of `--merge` (`files`, `all`: the experiment files and their runs).

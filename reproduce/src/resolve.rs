@@ -37,7 +37,7 @@ impl Cli {
         }
         let root = match &self.root {
             Some(r) => r.clone(),
-            None => simulation::root::from_current_dir()?,
+            None => catalog::root::from_current_dir()?,
         };
         self.experiments_dir = self
             .experiments_dir_arg

@@ -4,17 +4,17 @@
 
 use crate::cli::Cli;
 use crate::error::ReproduceError;
+use catalog::experiment::{load_dir, Job};
+use catalog::run_key::RunKey;
 use records::results_dir::ResultsDir;
 use records::runs::{merge, RunRow};
-use simulation::experiment::{load_dir, Job};
 use simulation::run::RunRecord;
-use simulation::run_key::RunKey;
 use std::collections::HashSet;
 
 /// Every run the experiment files describe (what migration and pruning compare the stored
 /// runs with).
 pub fn all_jobs(cli: &Cli) -> Result<Vec<Job>, ReproduceError> {
-    Ok(load_dir(&cli.experiments_dir)?
+    Ok(load_dir(&cli.experiments_dir, simulation::run::check_job)?
         .iter()
         .flat_map(|f| f.jobs())
         .collect())

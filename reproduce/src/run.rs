@@ -15,9 +15,9 @@ use crate::journal::{resume, run_journaled};
 use crate::report::{check_report_dir, render_report_if_named, report_root};
 use crate::results::{open_results, plan_pruning, write_results};
 use crate::summary::{emit, summary};
+use catalog::experiment::Job;
 use records::results_dir::ResultsDir;
 use records::runs::RunRow;
-use simulation::experiment::Job;
 use simulation::run::RunRecord;
 use std::process::ExitCode;
 

@@ -3,8 +3,8 @@
 //! error that lists the known ones.
 
 use crate::error::ReproduceError;
+use catalog::experiment::{Job, PaperFile, SolverChoice};
 use records::shard::Selection;
-use simulation::experiment::{Job, PaperFile, SolverChoice};
 use std::collections::HashSet;
 
 /// The runs of `all` (the runs of `files`) that `selection` keeps, in their order.
@@ -46,13 +46,14 @@ pub fn select_jobs(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use simulation::experiment::load_dir;
+    use catalog::experiment::load_dir;
     use std::path::Path;
 
     /// The project's experiment files and their runs.
     fn project() -> (Vec<PaperFile>, Vec<Job>) {
         let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../experiments");
-        let files = load_dir(&dir).expect("the project's experiment files");
+        let files =
+            load_dir(&dir, simulation::run::check_job).expect("the project's experiment files");
         let all = files.iter().flat_map(|f| f.jobs()).collect();
         (files, all)
     }

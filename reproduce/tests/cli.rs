@@ -9,7 +9,7 @@ use records::runs::{read_runs, runs_csv};
 
 #[test]
 fn the_gate_compares_with_the_stated_baseline() {
-    let root = simulation::root::from_current_dir().unwrap();
+    let root = catalog::root::from_current_dir().unwrap();
     let committed = read_runs(&root.join("results/runs.csv")).unwrap();
     let dir = std::env::temp_dir().join(format!("driftbench-cli-gate-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -139,7 +139,7 @@ fn runs_of_deleted_experiments_are_pruned() {
     )
     .unwrap();
     let committed = read_runs(
-        &simulation::root::from_current_dir()
+        &catalog::root::from_current_dir()
             .unwrap()
             .join("results/runs.csv"),
     )

@@ -36,7 +36,7 @@ impl Project {
         std::fs::create_dir_all(base.join("outside")).unwrap();
         std::fs::write(base.join("experiments/kong2019.toml"), cheap()).unwrap();
         // What the report reads besides results/: the papers and the deviations.
-        let repo = simulation::root::from_current_dir().unwrap();
+        let repo = catalog::root::from_current_dir().unwrap();
         std::fs::create_dir_all(base.join("report")).unwrap();
         std::fs::copy(
             repo.join("report/deviations.md"),
@@ -306,7 +306,7 @@ fn a_journal_row_of_another_revision_is_not_folded() {
     );
 
     // A journal with one run twice is not one this program wrote.
-    let rev = simulation::root::git_revision(&simulation::root::from_current_dir().unwrap());
+    let rev = catalog::root::git_revision(&catalog::root::from_current_dir().unwrap());
     let mut twice = honest[0].clone();
     twice.git_rev = rev;
     write_journal(&p, &[twice.clone(), twice]);

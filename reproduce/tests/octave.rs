@@ -18,8 +18,9 @@
 //! Octave is run as `octave-cli` (Debian's `octave` package; `.ci/run` installs it). Without
 //! it the test says it is skipped, and why, and passes.
 
+use catalog::experiment::{load_dir, PaperFile, SolverChoice};
 use records::runs::RunRow;
-use simulation::experiment::{load_dir, PaperFile, SolverChoice};
+use simulation::run::check_job;
 use simulation::run::run_job;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -78,7 +79,7 @@ fn score(root: &Path, file: &Path, out: &Path) -> RunRow {
 
 /// driftbench's own run of the task's `ZNN` at tight tolerances.
 fn own_run(root: &Path) -> RunRow {
-    let mut job = load_dir(&root.join("experiments"))
+    let mut job = load_dir(&root.join("experiments"), check_job)
         .unwrap()
         .iter()
         .flat_map(PaperFile::jobs)
@@ -97,7 +98,7 @@ fn an_octave_trajectory_scores_as_driftbench_own_run() {
         );
         return;
     };
-    let root = simulation::root::from_current_dir().unwrap();
+    let root = catalog::root::from_current_dir().unwrap();
     let dir = std::env::temp_dir().join(format!("driftbench-octave-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("znn_circle.csv");

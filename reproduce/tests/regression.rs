@@ -2,17 +2,18 @@
 //! committed `results/runs.csv`; and two fresh runs of the same jobs give identical rows,
 //! timing columns aside.
 
+use catalog::experiment::load_dir;
 use records::gate::compare;
 use records::runs::{read_runs, RunRow};
-use simulation::experiment::load_dir;
+use simulation::run::check_job;
 use simulation::runner::run_jobs;
 
 #[test]
 fn fresh_run_matches_the_committed_results() {
-    let root = simulation::root::from_current_dir().unwrap();
+    let root = catalog::root::from_current_dir().unwrap();
     let committed =
         read_runs(&root.join("results/runs.csv")).expect("results/runs.csv is committed");
-    let files = load_dir(&root.join("experiments")).unwrap();
+    let files = load_dir(&root.join("experiments"), check_job).unwrap();
     let jobs: Vec<_> = files.iter().flat_map(|f| f.jobs()).collect();
     let fresh: Vec<RunRow> = run_jobs(&jobs, false)
         .iter()
@@ -32,7 +33,7 @@ fn fresh_run_matches_the_committed_results() {
 #[test]
 fn the_gate_catches_changes() {
     let committed = read_runs(
-        &simulation::root::from_current_dir()
+        &catalog::root::from_current_dir()
             .unwrap()
             .join("results/runs.csv"),
     )
@@ -71,8 +72,8 @@ fn the_gate_catches_changes() {
 
 #[test]
 fn two_runs_give_identical_rows() {
-    let root = simulation::root::from_current_dir().unwrap();
-    let files = load_dir(&root.join("experiments")).unwrap();
+    let root = catalog::root::from_current_dir().unwrap();
+    let files = load_dir(&root.join("experiments"), check_job).unwrap();
     let jobs: Vec<_> = files
         .iter()
         .flat_map(|f| f.jobs())

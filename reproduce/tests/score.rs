@@ -2,7 +2,8 @@
 //! suite's own ZNN run) is scored with the run's drift, and its row, trace and figure are
 //! written under --score-out; a task that does not exist is refused with the library's message.
 
-use simulation::experiment::{load_dir, PaperFile, SolverChoice};
+use catalog::experiment::{load_dir, PaperFile, SolverChoice};
+use simulation::run::check_job;
 use simulation::run::run_job;
 use simulation::simulate::Outcome;
 use std::process::Command;
@@ -10,14 +11,14 @@ use std::process::Command;
 /// The binary, in the workspace root.
 fn reproduce() -> Command {
     let mut c = Command::new(env!("CARGO_BIN_EXE_reproduce"));
-    c.current_dir(simulation::root::from_current_dir().unwrap());
+    c.current_dir(catalog::root::from_current_dir().unwrap());
     c
 }
 
 #[test]
 fn a_trajectory_file_is_scored_on_its_task() {
-    let root = simulation::root::from_current_dir().unwrap();
-    let job = load_dir(&root.join("experiments"))
+    let root = catalog::root::from_current_dir().unwrap();
+    let job = load_dir(&root.join("experiments"), check_job)
         .unwrap()
         .iter()
         .flat_map(PaperFile::jobs)

@@ -41,9 +41,11 @@
 //! ([`Summary`]). Nothing here asserts a speed: the numbers go to `results/dof-cost.csv` and the
 //! report.
 
-use crate::experiment::{default_exact_integrator, NetworkInit};
-use crate::robot_registry::{nlink_name, robot_by_name, RobotVisitor, NLINK_SIZES};
-use crate::simulate::{simulate, Outcome, Scoring, Settings, Solver};
+use crate::simulate::{simulate, Outcome, Settings, Solver};
+use catalog::experiment::{default_exact_integrator, NetworkInit, Scoring};
+use catalog::integrator::IntegratorSettings;
+use catalog::robot_registry::{nlink_name, robot_by_name, RobotVisitor, NLINK_SIZES};
+use catalog::solver_spec::SolverSpec;
 use nalgebra::{DMatrix, DVector, SVector};
 use robots::{Dynamics, Robot};
 use schemes::jia2019::Jia2019;
@@ -51,8 +53,7 @@ use schemes::kong2019::Kong2019;
 use schemes::paths::{build_path, Path, PathSpec};
 use schemes::qp::{Qp, QpDims};
 use schemes::scheme::Scheme;
-use solvers::neural::{build_solver, NeuralSolver, SolverSpec};
-use solvers::ode::IntegratorSettings;
+use solvers::neural::{build_solver, NeuralSolver};
 use solvers::{solve_equality_kkt, ActiveSetSolution, ActiveSetSolver, ExactSolver, WorkingSet};
 use std::sync::Arc;
 use std::time::Instant;

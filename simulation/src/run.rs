@@ -1,10 +1,12 @@
 //! Running one [`Job`] of an experiment file: build its robot (from the registry), path,
 //! scheme and solver from the file's specifications, then [`simulate`] them.
 
-use crate::error::{RunError, SetupError};
-use crate::experiment::{Job, SolverChoice};
-use crate::robot_registry::{robot_by_name, RobotVisitor};
+use crate::error::RunError;
 use crate::simulate::{simulate, Outcome, Run, Settings, Solver};
+use catalog::error::SetupError;
+use catalog::experiment::{Job, JobPart, SolverChoice};
+use catalog::robot_registry::{robot_by_name, RobotVisitor};
+use catalog::solver_spec::SolverSpec;
 use nalgebra::SVector;
 use robots::{Dynamics, Robot};
 use schemes::paths::{build_path, Cyclic, Path};
@@ -12,7 +14,7 @@ use schemes::qp::QpDims;
 use schemes::scheme::Scheme;
 use schemes::spec::build_scheme;
 use solvers::exact_path::ExactPathStats;
-use solvers::neural::{NeuralSolver, SolverSpec};
+use solvers::neural::NeuralSolver;
 use solvers::ode::OdeStats;
 use std::sync::Arc;
 
@@ -85,31 +87,6 @@ fn run_job_as(job: &Job, network: Option<NetworkBuilder<'_>>) -> RunRecord {
     RunRecord {
         job: job.clone(),
         run,
-    }
-}
-
-/// Which part of a [`Job`] could not be built (see [`check_job`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum JobPart {
-    Robot,
-    Theta0,
-    ThetaRef,
-    Path,
-    Scheme,
-    Solver,
-}
-
-impl JobPart {
-    /// The experiment-file field the part comes from.
-    pub fn field(&self) -> &'static str {
-        match self {
-            JobPart::Robot => "robot",
-            JobPart::Theta0 => "theta0",
-            JobPart::ThetaRef => "theta_ref",
-            JobPart::Path => "path",
-            JobPart::Scheme => "scheme",
-            JobPart::Solver => "solvers",
-        }
     }
 }
 
@@ -200,7 +177,7 @@ pub fn build_cyclic_parts<const N: usize>(
             schemes::spec::SchemeError::MissingDynamics { .. } => format!(
                 " (robot \"{}\" is kinematic only; robots with dynamics: {})",
                 job.robot,
-                crate::robot_registry::robots_with_dynamics().join(", ")
+                catalog::robot_registry::robots_with_dynamics().join(", ")
             ),
             _ => String::new(),
         };

@@ -1,8 +1,8 @@
 //! Running many jobs: in parallel across runs (rayon), longest first, with a progress bar.
 //! Each run is independent and deterministic, so the order of execution never changes a number.
 
-use crate::experiment::{Job, SolverChoice};
 use crate::run::{run_job, RunRecord};
+use catalog::experiment::{Job, SolverChoice};
 use indicatif::{ParallelProgressIterator, ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use std::collections::BTreeMap;

@@ -25,12 +25,12 @@
 //! alone); at the acceleration level the command would be a second difference of the samples.
 
 use crate::coupled::ExactLoop;
-use crate::error::SetupError;
-use crate::experiment::Job;
 use crate::metrics::ScoreSample;
-use crate::robot_registry::{robot_by_name, RobotVisitor};
 use crate::run::{build_parts, RunRecord};
 use crate::simulate::{Observer, Outcome, Run};
+use catalog::error::SetupError;
+use catalog::experiment::Job;
+use catalog::robot_registry::{robot_by_name, RobotVisitor};
 use nalgebra::{DVector, SVector};
 use robots::{Dynamics, Robot};
 use schemes::scheme::Level;

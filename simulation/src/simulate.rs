@@ -10,19 +10,18 @@
 //! x[..N]. The exact column integrates theta alone with x = x*(t, theta).
 
 use crate::coupled::{arm_dim, arm_state, ExactLoop, NeuralLoop};
-use crate::error::{RunError, SetupError};
-use crate::experiment::NetworkInit;
+use crate::error::RunError;
 use crate::metrics::{MetricsAccumulator, RunMetrics, Sample, ScoreSample};
+use catalog::error::SetupError;
+use catalog::experiment::{NetworkInit, Scoring};
+use catalog::integrator::IntegratorSettings;
 use nalgebra::{DVector, SVector};
 use robots::Robot;
 use schemes::paths::Path;
 use schemes::scheme::{Level, Scheme};
-use serde::{Deserialize, Serialize};
 use solvers::exact_path::ExactPathStats;
 use solvers::neural::NeuralSolver;
-use solvers::ode::{
-    integrate, Control, IntegratorSettings, OdeError, OdeFailure, OdeStats, OdeSystem,
-};
+use solvers::ode::{integrate, Control, OdeError, OdeFailure, OdeStats, OdeSystem};
 use solvers::ExactError;
 use std::time::Instant;
 
@@ -35,22 +34,6 @@ pub enum Solver<'a> {
     /// at every accepted step. The closure builds it (called twice: the network, and a probe
     /// that reads the network's own error at accepted states).
     Network(&'a dyn Fn() -> Result<Box<dyn NeuralSolver>, SetupError>),
-}
-
-/// Where a network run is compared with the exact optimum (one exact QP solve each).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case", deny_unknown_fields)]
-pub enum Scoring {
-    /// At every accepted step of the integrator (the default: the score sees every state the
-    /// network reaches).
-    #[default]
-    EveryStep,
-    /// At most this many instants: the first accepted step at or after each point of a uniform
-    /// grid of the run's duration (and the last step), so a run of 10^5 steps costs a bounded
-    /// number of exact solves; `score_samples` in results says how many were taken.
-    MaxInstants(usize),
-    /// Not scored (the explanation layer's controlled re-runs need only drift and error).
-    Off,
 }
 
 /// How a run is integrated and observed.

@@ -4,10 +4,10 @@
 //! the scheme's QP at t = 0 (at the velocity level at theta0; at the acceleration level at
 //! theta0 with thetadot = 0).
 
-use crate::error::SetupError;
-use crate::experiment::Job;
-use crate::robot_registry::{robot_by_name, RobotVisitor};
 use crate::run::build_parts;
+use catalog::error::SetupError;
+use catalog::experiment::Job;
+use catalog::robot_registry::{robot_by_name, RobotVisitor};
 use nalgebra::SVector;
 use robots::{Dynamics, Robot};
 use schemes::qp::Qp;

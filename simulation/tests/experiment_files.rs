@@ -1,18 +1,19 @@
 //! The experiment files: every committed file loads, every experiment of docs/experiments.md is
 //! there, and a malformed file is rejected with an error naming the file and the field.
 
-use simulation::experiment::{load_dir, PaperFile};
+use catalog::experiment::{load_dir, PaperFile};
+use simulation::run::check_job;
 use std::path::PathBuf;
 
 fn experiments_dir() -> PathBuf {
-    simulation::root::from_current_dir()
+    catalog::root::from_current_dir()
         .unwrap()
         .join("experiments")
 }
 
 #[test]
 fn every_experiment_of_the_spec_is_in_the_files() {
-    let files = load_dir(&experiments_dir()).expect("committed experiment files load");
+    let files = load_dir(&experiments_dir(), check_job).expect("committed experiment files load");
     let ids: Vec<String> = files
         .iter()
         .flat_map(|f| f.experiments.iter().map(|e| e.id.clone()))
@@ -48,7 +49,7 @@ fn load_text(name: &str, text: &str) -> Result<PaperFile, String> {
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join(format!("{name}.toml"));
     std::fs::write(&path, text).unwrap();
-    PaperFile::load(&path).map_err(|e| e.to_string())
+    PaperFile::load(&path, check_job).map_err(|e| e.to_string())
 }
 
 const GOOD: &str = r#"
@@ -478,7 +479,7 @@ fn experiment_ids_are_unique_across_files() {
         GOOD.replace("label = \"VLTCO\"", "label = \"other\""),
     )
     .unwrap();
-    let err = load_dir(&dir)
+    let err = load_dir(&dir, check_job)
         .expect_err("an id defined in two files")
         .to_string();
     assert!(err.contains("b.toml") && err.contains("a.toml"), "{err}");
@@ -492,12 +493,14 @@ fn experiment_ids_are_unique_across_files() {
         GOOD.replace("id = \"jia2019-x\"", "id = \"jia2019-X\""),
     )
     .unwrap();
-    let err = load_dir(&dir).expect_err("colliding slugs").to_string();
+    let err = load_dir(&dir, check_job)
+        .expect_err("colliding slugs")
+        .to_string();
     assert!(
         err.contains("same file name") && err.contains("a.toml"),
         "{err}"
     );
     std::fs::remove_file(dir.join("b.toml")).unwrap();
-    assert_eq!(load_dir(&dir).unwrap().len(), 1);
+    assert_eq!(load_dir(&dir, check_job).unwrap().len(), 1);
     let _ = std::fs::remove_dir_all(&dir);
 }

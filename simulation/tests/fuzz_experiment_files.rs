@@ -2,11 +2,12 @@
 //! inf, nan, huge or tiny; lines deleted or duplicated; quoted names swapped), either load or
 //! are rejected with an error; the loader never panics. Bounded (200 cases) to run in seconds.
 
+use catalog::experiment::PaperFile;
 use proptest::prelude::*;
-use simulation::experiment::PaperFile;
+use simulation::run::check_job;
 
 fn committed_files() -> Vec<(String, String)> {
-    let dir = simulation::root::from_current_dir()
+    let dir = catalog::root::from_current_dir()
         .unwrap()
         .join("experiments");
     let mut files: Vec<(String, String)> = std::fs::read_dir(&dir)
@@ -163,11 +164,11 @@ proptest! {
         let files = committed_files();
         let (name, text) = &files[file % files.len()];
         let mutated = mutations.iter().fold(text.clone(), |t, m| apply(&t, m));
-        match PaperFile::from_toml(&mutated) {
+        match PaperFile::from_toml(&mutated, check_job) {
             Ok(f) => {
                 // A file that loads expands into runs, each with a unique key.
                 let jobs = f.jobs();
-                let mut keys: Vec<simulation::run_key::RunKey> = jobs.iter().map(|j| j.key()).collect();
+                let mut keys: Vec<catalog::run_key::RunKey> = jobs.iter().map(|j| j.key()).collect();
                 keys.sort();
                 keys.dedup();
                 prop_assert_eq!(keys.len(), jobs.len(), "{}: duplicate run keys", name);
@@ -185,6 +186,6 @@ fn the_mutators_find_what_they_mutate() {
     let s: Vec<&str> = strings(text).iter().map(|&(a, b)| &text[a..b]).collect();
     assert_eq!(s, ["\"x-1\""]);
     for (_, t) in committed_files() {
-        PaperFile::from_toml(&t).unwrap();
+        PaperFile::from_toml(&t, check_job).unwrap();
     }
 }

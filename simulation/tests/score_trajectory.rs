@@ -2,14 +2,15 @@
 //! trace (theta, thetadot at ~400 instants), scored as an external trajectory, has the run's
 //! drift exactly and its error and score to the resolution of the thinned samples.
 
-use simulation::experiment::{load_dir, Job, PaperFile, SolverChoice};
+use catalog::experiment::{load_dir, Job, PaperFile, SolverChoice};
+use simulation::run::check_job;
 use simulation::run::run_job;
 use simulation::score_trajectory::{score_trajectory, Trajectory, TrajectoryError};
 use simulation::simulate::{Outcome, Run};
 
 fn job(experiment: &str, variant: &str, neural: bool) -> Job {
-    let root = simulation::root::from_current_dir().unwrap();
-    load_dir(&root.join("experiments"))
+    let root = catalog::root::from_current_dir().unwrap();
+    load_dir(&root.join("experiments"), check_job)
         .unwrap()
         .iter()
         .flat_map(PaperFile::jobs)

@@ -1,13 +1,15 @@
 //! The scoring grid: a network run scored at every accepted step, at a bounded number of
 //! instants, or not at all, as the experiment file's `scoring` says.
 
-use simulation::experiment::{load_dir, Job, PaperFile, SolverChoice};
+use catalog::experiment::Scoring;
+use catalog::experiment::{load_dir, Job, PaperFile, SolverChoice};
+use simulation::run::check_job;
 use simulation::run::run_job;
-use simulation::simulate::{Outcome, Scoring};
+use simulation::simulate::Outcome;
 
 fn znn_job() -> Job {
-    let root = simulation::root::from_current_dir().unwrap();
-    load_dir(&root.join("experiments"))
+    let root = catalog::root::from_current_dir().unwrap();
+    load_dir(&root.join("experiments"), check_job)
         .unwrap()
         .iter()
         .flat_map(PaperFile::jobs)
@@ -75,7 +77,7 @@ solvers = [{{ kind = "znn", gamma = 1.0 }}]
         )
     };
     let scoring_of = |text: &str| {
-        PaperFile::from_toml(text)
+        PaperFile::from_toml(text, check_job)
             .map(|f| f.jobs()[1].scoring)
             .map_err(|e| e.to_string())
     };

@@ -1,14 +1,15 @@
-//! The committed `-sweep` experiments, written with the sweep grammar (simulation::sweep),
+//! The committed `-sweep` experiments, written with the sweep grammar (catalog::sweep),
 //! describe exactly the runs their hand-expanded form (one block per value, as the files were
 //! written before the grammar; kept in tests/fixtures/) described: same keys, same order, every
 //! field of every Job equal.
 
-use simulation::experiment::{load_dir, PaperFile};
+use catalog::experiment::{load_dir, PaperFile};
+use simulation::run::check_job;
 
 #[test]
 fn sweep_experiments_expand_to_the_hand_written_runs() {
-    let root = simulation::root::from_current_dir().unwrap();
-    let files = load_dir(&root.join("experiments")).unwrap();
+    let root = catalog::root::from_current_dir().unwrap();
+    let files = load_dir(&root.join("experiments"), check_job).unwrap();
     let committed: Vec<String> = files
         .iter()
         .flat_map(|f| f.jobs())
@@ -22,7 +23,7 @@ fn sweep_experiments_expand_to_the_hand_written_runs() {
     ];
     let mut hand: Vec<String> = Vec::new();
     for text in fixtures {
-        let file = PaperFile::from_toml(text).unwrap();
+        let file = PaperFile::from_toml(text, check_job).unwrap();
         hand.extend(file.jobs().iter().map(|j| format!("{j:?}")));
     }
     // The committed files order papers by file name, as the fixtures are listed.

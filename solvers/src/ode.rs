@@ -25,6 +25,7 @@
 //! finite-difference Jacobians), Jacobian evaluations, LU factorisations of the Newton matrix
 //! and wall time.
 
+use catalog::integrator::{IntegratorSettings, Method};
 use diffsol::{
     DiffsolError, NalgebraLU, NalgebraMat, OdeBuilder, OdeEquations, OdeSolverMethod,
     OdeSolverStopReason, Tableau, TableauMat, TableauVec, VectorCommon,
@@ -41,133 +42,6 @@ pub trait OdeSystem {
     /// Dense dF/dy at (t, y) into `jac`; false to let the integrator use finite differences.
     fn jacobian(&mut self, _t: f64, _y: &[f64], _jac: &mut DMatrix<f64>) -> bool {
         false
-    }
-}
-
-/// Integration method.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Method {
-    /// Variable-order BDF/NDF (ode15s's method), stiff.
-    Bdf,
-    /// ESDIRK3(4), stiff, one-step.
-    Esdirk34,
-    /// TR-BDF2, stiff, one-step (ode23tb's method).
-    TrBdf2,
-    /// Dormand-Prince 5(4), explicit (ode45's method).
-    Dopri5,
-    /// Tsitouras 5(4), explicit.
-    Tsit45,
-}
-
-impl Method {
-    pub fn label(self) -> &'static str {
-        match self {
-            Method::Bdf => "bdf",
-            Method::Esdirk34 => "esdirk34",
-            Method::TrBdf2 => "tr-bdf2",
-            Method::Dopri5 => "dopri5",
-            Method::Tsit45 => "tsit45",
-        }
-    }
-}
-
-impl std::fmt::Display for Method {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.label())
-    }
-}
-
-/// Method and tolerances (mixed error test |e_i| <= rtol |y_i| + atol).
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct IntegratorSettings {
-    pub method: Method,
-    pub rtol: f64,
-    pub atol: f64,
-    /// Accepted steps after which the run is abandoned as diverging.
-    #[serde(default = "default_max_steps")]
-    pub max_steps: usize,
-    /// Wall-time budget of one integration in seconds: a run past it fails with that reason,
-    /// so no input can keep the binary busy for good (default [`DEFAULT_MAX_WALL_S`]).
-    #[serde(default = "default_max_wall_s")]
-    pub max_wall_s: f64,
-    /// Evaluation budget: right-hand-side evaluations (finite-difference Jacobian columns
-    /// included) after which the run fails with that reason (default [`DEFAULT_MAX_RHS_EVALS`]).
-    #[serde(default = "default_max_rhs_evals")]
-    pub max_rhs_evals: usize,
-    /// Largest step (ode15s's `MaxStep`; the group's code: 0.05 s). `None` (the default):
-    /// unlimited. Must be positive and finite.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub max_step: Option<f64>,
-}
-
-impl IntegratorSettings {
-    /// Checks what the integrator itself needs: 0 < `rtol` < 1, a positive finite `atol`,
-    /// `max_steps` >= 1 and a positive, finite `max_step` where given. Each message names the
-    /// field and its valid range.
-    pub fn validate(&self) -> Result<(), String> {
-        let rtol = self.rtol;
-        if !(rtol > 0.0 && rtol < 1.0) {
-            return Err(format!("rtol must be in (0, 1), got {rtol}"));
-        }
-        let atol = self.atol;
-        if !(atol > 0.0 && atol.is_finite()) {
-            return Err(format!("atol must be positive and finite, got {atol}"));
-        }
-        if self.max_steps == 0 {
-            return Err("max_steps must be at least 1, got 0".to_string());
-        }
-        if self.max_rhs_evals == 0 {
-            return Err("max_rhs_evals must be at least 1, got 0".to_string());
-        }
-        if !(self.max_wall_s > 0.0 && self.max_wall_s.is_finite()) {
-            return Err(format!(
-                "max_wall_s must be positive and finite (a budget that cannot run out is none), got {}",
-                self.max_wall_s
-            ));
-        }
-        match self.max_step {
-            Some(h) if !(h > 0.0 && h.is_finite()) => {
-                Err(format!("max_step must be positive and finite, got {h}"))
-            }
-            _ => Ok(()),
-        }
-    }
-}
-
-fn default_max_steps() -> usize {
-    2_000_000
-}
-
-/// The default wall-time budget of one integration (s): generous, 30x the longest run of the
-/// papers' experiments on a 2-core machine.
-pub const DEFAULT_MAX_WALL_S: f64 = 600.0;
-
-fn default_max_wall_s() -> f64 {
-    DEFAULT_MAX_WALL_S
-}
-
-/// The default evaluation budget: 20x the heaviest run of the papers' experiments (the
-/// finite-time network, ~5 million).
-pub const DEFAULT_MAX_RHS_EVALS: usize = 100_000_000;
-
-fn default_max_rhs_evals() -> usize {
-    DEFAULT_MAX_RHS_EVALS
-}
-
-impl Default for IntegratorSettings {
-    /// ode15s with the papers' group tolerances (RelTol 1e-6, AbsTol 1e-8).
-    fn default() -> Self {
-        Self {
-            method: Method::Bdf,
-            rtol: 1e-6,
-            atol: 1e-8,
-            max_steps: default_max_steps(),
-            max_wall_s: DEFAULT_MAX_WALL_S,
-            max_rhs_evals: DEFAULT_MAX_RHS_EVALS,
-            max_step: None,
-        }
     }
 }
 
@@ -406,9 +280,12 @@ pub fn integrate<S: OdeSystem>(
     let n = sys.dim();
     assert_eq!(y0.len(), n, "initial state has the wrong dimension");
     let start = Instant::now();
-    if let Err(message) = settings.validate() {
+    if let Err(e) = settings.validate() {
         return Err(OdeFailure {
-            error: OdeError::Solver { t: t0, message },
+            error: OdeError::Solver {
+                t: t0,
+                message: e.to_string(),
+            },
             stats: OdeStats::default(),
         });
     }

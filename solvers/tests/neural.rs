@@ -2,18 +2,21 @@
 //! steady states on frozen random QPs against the exact optimum, tracking of time-varying QPs,
 //! the reference perturbation, and the experiment-file specifications.
 
+use catalog::integrator::{IntegratorSettings, Method};
+use catalog::solver_spec::ReferencePerturbation;
+use catalog::solver_spec::SolverSpec;
 use nalgebra::{DMatrix, DVector};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use schemes::sign_power::SIGN_POWER_MIN_ABS;
 use solvers::neural::activation::Activation;
-use solvers::neural::cdnn::ReferencePerturbation;
 use solvers::neural::projection::{primal_dual_dim, LviPdnn, SLviPdnn};
 use solvers::neural::zeroing::Gain;
 use solvers::neural::{
-    build_solver, finite_time, fp_cdnn, group_znn, vp_cdnn, znn, NeuralSolver, SolverSpec, VpRnnPf,
+    build_solver, finite_time, fp_cdnn, group_znn, vp_cdnn, znn, NeuralSolver, PerturbationTerms,
+    VpRnnPf,
 };
-use solvers::ode::{integrate, Control, IntegratorSettings, Method, OdeSystem};
+use solvers::ode::{integrate, Control, OdeSystem};
 use solvers::{random_qp, ExactSolver, Qp, QpDims, QpShape};
 
 // ---------------------------------------------------------------------------------------------

@@ -5,9 +5,10 @@
 
 mod common;
 
+use catalog::solver_spec::SolverSpec;
 use common::count;
 use nalgebra::DMatrix;
-use solvers::neural::{build_solver, SolverSpec};
+use solvers::neural::build_solver;
 use solvers::{random_qp, Qp, QpShape};
 
 #[derive(serde::Deserialize)]

@@ -8,9 +8,10 @@
 
 mod common;
 
+use catalog::integrator::{IntegratorSettings, Method};
 use common::count;
 use nalgebra::DMatrix;
-use solvers::ode::{integrate, Control, IntegratorSettings, Method, OdeStats, OdeSystem};
+use solvers::ode::{integrate, Control, OdeStats, OdeSystem};
 
 /// Allocations of one dense Jacobian evaluation inside diffsol (module docs).
 const PER_JACOBIAN: usize = 2;

@@ -12,8 +12,8 @@
 use super::search::Budget;
 use super::InferenceError;
 use crate::error::FamilyError;
+use catalog::integrator::{IntegratorSettings, Method};
 use serde::{Deserialize, Serialize};
-use solvers::ode::{IntegratorSettings, Method};
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -131,7 +131,7 @@ impl Family {
     fn check(&self) -> Result<(), FamilyError> {
         for (declared, variants) in &self.robot_variants {
             let dof = |name: &str| {
-                simulation::robot_registry::robot_by_name(name)
+                catalog::robot_registry::robot_by_name(name)
                     .map(|r| r.dof())
                     .ok_or_else(|| FamilyError::UnknownRobot(name.to_string()))
             };

@@ -42,6 +42,9 @@ pub mod family;
 pub mod search;
 pub mod verdict;
 
+use catalog::experiment::Scoring;
+use catalog::experiment::{Job, SolverChoice};
+use catalog::integrator::{IntegratorSettings, Method};
 use family::{Family, Integration};
 use rayon::prelude::*;
 use records::papers::{PaperValue, Papers};
@@ -49,10 +52,7 @@ use records::runs::RunRow;
 use schemes::spec::{RmpReading, SchemeSpec};
 use search::{Coordinate, Objective, Outcome, Point, Scores, Target};
 use serde::{Deserialize, Serialize};
-use simulation::experiment::{Job, SolverChoice};
 use simulation::run::run_job;
-use simulation::simulate::Scoring;
-use solvers::ode::{IntegratorSettings, Method};
 use std::f64::consts::PI;
 use std::time::Instant;
 

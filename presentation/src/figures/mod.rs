@@ -54,7 +54,7 @@ use trace::Trace;
 /// The figures' directory inside `report/`.
 pub const FIGURES: &str = "figures";
 
-/// The run's file stem (see [`simulation::naming::run_stem`]).
+/// The run's file stem (see [`catalog::naming::run_stem`]).
 fn run_stem(run: &RunRow) -> String {
     run.key().stem()
 }

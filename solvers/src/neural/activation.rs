@@ -22,8 +22,10 @@
 //! The papers' group's MATLAB code (`AFMpowersigmoid.m`, see `docs/group-code.md`) computes,
 //! elementwise, phi(e) = e^p where abs(e) >= 1 and
 //! ((1 + exp(-xi)) / (1 - exp(-xi))) (1 - exp(-xi e)) / (1 + exp(-xi e)) otherwise; called with
-//! one argument it uses xi = 1, p = 1, with two p = 3 ([`GROUP_POWER_SIGMOID_XI`],
-//! [`GROUP_POWER_SIGMOID_P`] are the one-argument defaults, the ones its network uses).
+//! one argument it uses xi = 1, p = 1, with two p = 3
+//! ([`catalog::solver_spec::GROUP_POWER_SIGMOID_XI`],
+//! [`catalog::solver_spec::GROUP_POWER_SIGMOID_P`] are the one-argument defaults, the ones its
+//! network uses).
 //! This is zhong2021's eq. 2.29 with **alpha = xi and chi = p**: the same sigmoid branch
 //! (= coth(xi/2) tanh(xi e/2)) inside, the same power outside. The two differ only at
 //! abs(e) = 1 exactly, which the group gives to the power branch (>= 1) and zhong2021 to the
@@ -50,18 +52,9 @@
 //! slope then evaluated at max(abs(e), [`SIGN_POWER_MIN_ABS`](schemes::sign_power::SIGN_POWER_MIN_ABS)) so Jacobians stay finite). The same
 //! function is kong2019's c in its finite-time scheme (`schemes::kong2019`).
 
-use super::error::NetworkError;
+use catalog::error::NetworkError;
+use catalog::solver_spec::{POWER_SIGMOID_ALPHA, POWER_SIGMOID_CHI};
 use schemes::sign_power::{sign_power, sign_power_slope};
-use serde::Deserialize;
-
-/// Default power-sigmoid alpha (zhong2021 eq. 2.29 asks only alpha >= 2).
-pub const POWER_SIGMOID_ALPHA: f64 = 4.0;
-/// Default power-sigmoid chi (zhong2021 eq. 2.29 asks only chi >= 3).
-pub const POWER_SIGMOID_CHI: f64 = 3.0;
-/// Default xi of the group's power-sigmoid (`AFMpowersigmoid` called with one argument).
-pub const GROUP_POWER_SIGMOID_XI: f64 = 1.0;
-/// Default p of the group's power-sigmoid (`AFMpowersigmoid` called with one argument).
-pub const GROUP_POWER_SIGMOID_P: f64 = 1.0;
 
 /// The sigmoid branch shared by both power-sigmoids at a = abs(e) <= 1, steepness `s` (zhong2021's
 /// alpha, the group's xi): (1 + exp(-s)) (1 - exp(-s a)) / ((1 - exp(-s)) (1 + exp(-s a))).
@@ -95,18 +88,6 @@ pub enum Activation {
     /// phi(e) = abs(e)^r sgn(e) (kong2019 eq. 6, 20), optionally made linear,
     /// phi(e) = e delta^(r-1), for abs(e) < delta = `smoothing` (0: the exact form).
     SignPower { r: f64, smoothing: f64 },
-}
-
-/// The serde name of an activation in experiment files (parameters given beside it).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default, Deserialize, serde::Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum ActivationKind {
-    #[default]
-    Linear,
-    Sinh,
-    PowerSigmoid,
-    /// [`Activation::GroupPowerSigmoid`] (`group-power-sigmoid`, parameters `xi` and `power`).
-    GroupPowerSigmoid,
 }
 
 impl Activation {
@@ -143,27 +124,6 @@ impl Activation {
                     Err(NetworkError::SignPowerZone(smoothing))
                 } else {
                     Ok(())
-                }
-            }
-        }
-    }
-
-    /// Short label, e.g. `sinh`.
-    pub fn label(&self) -> String {
-        match *self {
-            Activation::Linear => "linear".into(),
-            Activation::Sinh => "sinh".into(),
-            Activation::PowerSigmoid { alpha, chi } => {
-                format!("power-sigmoid(alpha={alpha},chi={chi})")
-            }
-            Activation::GroupPowerSigmoid { xi, p } => {
-                format!("group-power-sigmoid(xi={xi},p={p})")
-            }
-            Activation::SignPower { r, smoothing } => {
-                if smoothing > 0.0 {
-                    format!("sign-power(r={r},linear below {smoothing:e})")
-                } else {
-                    format!("sign-power(r={r})")
                 }
             }
         }

@@ -29,19 +29,12 @@
 //! (the robustness claim is about how the networks degrade as they grow).
 
 use super::activation::Activation;
-use super::error::NetworkError;
 use super::zeroing::{Gain, ZeroingNetwork};
+use catalog::error::NetworkError;
+use catalog::solver_spec::ReferencePerturbation;
 use nalgebra::DMatrix;
 use schemes::qp::QpDims;
-use serde::Deserialize;
 use std::f64::consts::PI;
-
-/// Size of the reference perturbation: n + m = 6 + 3 (Jaco2, position task).
-pub const PERTURBATION_DIM: usize = 9;
-/// Reference amplitude A_D of DeltaD.
-pub const REFERENCE_A_D: f64 = 1.0;
-/// Reference amplitude A_s of Delta s.
-pub const REFERENCE_A_S: f64 = 1.5;
 
 /// One entry of D0: sign * (sin | cos)(k w).
 #[derive(Clone, Copy, Debug)]
@@ -204,61 +197,24 @@ pub const DELTA_S_TABLE: [(f64, Trig); 9] = [
     (1.0, c(1.)),
 ];
 
-fn default_a_d() -> f64 {
-    REFERENCE_A_D
-}
-fn default_a_s() -> f64 {
-    REFERENCE_A_S
-}
-
-/// The reference perturbation (module docs): amplitudes A_D, A_s and the task duration T.
-#[derive(Clone, Copy, Debug, PartialEq, Deserialize, serde::Serialize)]
-#[serde(deny_unknown_fields)]
-pub struct ReferencePerturbation {
-    /// A_D: DeltaD(t) = A_D D0(t) (reference 1.0).
-    #[serde(default = "default_a_d")]
-    pub a_d: f64,
-    /// A_s: the factor in front of Delta s's vector (reference 1.5).
-    #[serde(default = "default_a_s")]
-    pub a_s: f64,
-    /// T in w = pi t / T (the task duration; 8 s in zhang2018).
-    pub task_duration: f64,
-}
-
-impl ReferencePerturbation {
-    /// The reference amplitudes (A_D = 1, A_s = 1.5) for a task of duration T.
-    pub fn reference(task_duration: f64) -> Self {
-        Self {
-            a_d: REFERENCE_A_D,
-            a_s: REFERENCE_A_S,
-            task_duration,
-        }
-    }
-
-    pub fn validate(&self, state_dim: usize) -> Result<(), NetworkError> {
-        if state_dim != PERTURBATION_DIM {
-            return Err(NetworkError::PerturbationDim {
-                expected: PERTURBATION_DIM,
-                state_dim,
-            });
-        }
-        if !(self.task_duration > 0.0 && self.task_duration.is_finite()) {
-            return Err(NetworkError::PerturbationDuration(self.task_duration));
-        }
-        if !self.a_d.is_finite() || !self.a_s.is_finite() {
-            return Err(NetworkError::PerturbationAmplitudes);
-        }
-        Ok(())
-    }
-
-    #[inline]
-    fn w(&self, t: f64) -> f64 {
-        PI * t / self.task_duration
-    }
-
+/// The terms of zhang2018's reference perturbation ([`ReferencePerturbation`], the experiment
+/// files' data) at time t.
+pub trait PerturbationTerms {
     /// DeltaD(t) = A_D D0(t) into `out` (9 x 9).
-    pub fn delta_d(&self, t: f64, out: &mut DMatrix<f64>) {
-        let w = self.w(t);
+    fn delta_d(&self, t: f64, out: &mut DMatrix<f64>);
+    /// Delta s(t) into `out` (9 entries).
+    fn delta_s(&self, t: f64, out: &mut [f64]);
+}
+
+/// w = pi t / T.
+#[inline]
+fn w(p: &ReferencePerturbation, t: f64) -> f64 {
+    PI * t / p.task_duration
+}
+
+impl PerturbationTerms for ReferencePerturbation {
+    fn delta_d(&self, t: f64, out: &mut DMatrix<f64>) {
+        let w = w(self, t);
         for (i, row) in D0_TABLE.iter().enumerate() {
             for (j, e) in row.iter().enumerate() {
                 out[(i, j)] = self.a_d * e.eval(w);
@@ -266,9 +222,8 @@ impl ReferencePerturbation {
         }
     }
 
-    /// Delta s(t) into `out` (9 entries).
-    pub fn delta_s(&self, t: f64, out: &mut [f64]) {
-        let w = self.w(t);
+    fn delta_s(&self, t: f64, out: &mut [f64]) {
+        let w = w(self, t);
         for (o, (scale, e)) in out.iter_mut().zip(DELTA_S_TABLE.iter()) {
             *o = self.a_s * scale * e.eval(w);
         }

@@ -12,12 +12,13 @@
 //! | FTNN (finite-time) / ZNN | kong2019 eq. 17-20 / its eq. 22 comparison | [x; lambda] | [`znn`], [`zeroing`] |
 //! | group ZNN | the group's MATLAB code (`docs/group-code.md`) | [x; lambda] | [`group`], [`zeroing`] |
 //!
-//! Activation functions: [`activation`]. Experiment-file specifications and the factory:
-//! [`spec`]. Every network starts from y = 0 (none of the papers says otherwise).
+//! Activation functions: [`activation`]. The factory that builds a network from its
+//! experiment-file specification (`catalog::solver_spec`): [`spec`]. A network's parameter
+//! errors: `catalog::error::NetworkError`. Every network starts from y = 0 (none of the papers
+//! says otherwise).
 
 pub mod activation;
 pub mod cdnn;
-pub mod error;
 pub mod group;
 pub mod lu;
 pub mod projection;
@@ -26,12 +27,11 @@ pub mod vp_rnn_pf;
 pub mod zeroing;
 pub mod znn;
 
-pub use activation::{Activation, ActivationKind};
-pub use cdnn::{fp_cdnn, vp_cdnn, ReferencePerturbation};
-pub use error::NetworkError;
+pub use activation::Activation;
+pub use cdnn::{fp_cdnn, vp_cdnn, PerturbationTerms};
 pub use group::group_znn;
 pub use projection::{LviPdnn, SLviPdnn};
-pub use spec::{build_solver, SolverSpec};
+pub use spec::build_solver;
 pub use vp_rnn_pf::VpRnnPf;
 pub use zeroing::{Gain, ZeroingNetwork};
 pub use znn::{finite_time, znn};

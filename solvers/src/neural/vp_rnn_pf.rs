@@ -74,10 +74,10 @@
 //! ```
 
 use super::activation::Activation;
-use super::error::NetworkError;
 use super::lu;
 use super::zeroing::Gain;
 use super::NeuralSolver;
+use catalog::error::NetworkError;
 use nalgebra::DMatrix;
 use schemes::qp::{Qp, QpDims};
 

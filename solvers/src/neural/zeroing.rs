@@ -50,10 +50,11 @@
 //! Q dF = dr - dQ F with dr = -(g(t) diag(Phi'(E)) + nu t I)(dQ y - du) - dQdot y + dudot.
 
 use super::activation::Activation;
-use super::cdnn::ReferencePerturbation;
-use super::error::NetworkError;
+use super::cdnn::PerturbationTerms;
 use super::lu;
 use super::{euclidean_norm, NeuralSolver};
+use catalog::error::NetworkError;
+use catalog::solver_spec::ReferencePerturbation;
 use nalgebra::DMatrix;
 use schemes::qp::{Qp, QpDims};
 

@@ -36,22 +36,20 @@
 //! |e|^alpha sgn(e) overshoots the root by a factor 1/alpha - 1 = 9 and diverges; explicit ones
 //! chatter around E = 0 with tiny steps. We therefore make the activation linear with the
 //! matching value, phi(e) = e delta^(alpha-1), inside |e| < delta = `smoothing`
-//! (default [`FINITE_TIME_SMOOTHING`] = 1e-8: slope 1.6e7 for alpha = 0.1, as stiff as the
-//! gamma = 1e7 projection networks). The finite-time phase is untouched down to |E_i| = 1e-8,
-//! then E_i decays exponentially with rate beta * 1.6e7; 0 gives the exact form. In our tests
-//! BDF fails on every QP with delta = 0 and 1e-10 and succeeds on all with 1e-8.
+//! (default [`catalog::solver_spec::FINITE_TIME_SMOOTHING`] = 1e-8: slope 1.6e7 for
+//! alpha = 0.1, as stiff as the gamma = 1e7 projection networks). The finite-time phase is
+//! untouched down to |E_i| = 1e-8, then E_i decays exponentially with rate beta * 1.6e7; 0 gives
+//! the exact form. In our tests BDF fails on every QP with delta = 0 and 1e-10 and succeeds on
+//! all with 1e-8.
 //!
 //! The ZNN of the comparison (eq. 22 is a scheme; kong2019 solves it with "ZNN", the linear
 //! zeroing design of its eq. 4) is the same core with the linear activation and gain gamma:
 //! W ydot = -Wdot y + vdot - gamma (W y - v).
 
 use super::activation::Activation;
-use super::error::NetworkError;
 use super::zeroing::{Gain, ZeroingNetwork};
+use catalog::error::NetworkError;
 use schemes::qp::QpDims;
-
-/// Default half-width of the sign-power's linear zone (module docs).
-pub const FINITE_TIME_SMOOTHING: f64 = 1e-8;
 
 /// kong2019's finite-time network (eq. 20 as derived in the module docs).
 /// `smoothing` is the half-width delta of the linear zone of the sign-power (module docs;

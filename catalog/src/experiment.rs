@@ -9,16 +9,16 @@
 //! written. A variant with a `sweep` table stands for many (the grammar: [`crate::sweep`]).
 //! Every run an experiment file describes is a [`Job`].
 
-use crate::error::{ExperimentError, ExperimentFileError, FieldAt, FieldError, TomlError};
+use crate::error::{
+    ExperimentError, ExperimentFileError, FieldAt, FieldError, SetupError, TomlError,
+};
+use crate::integrator::{IntegratorSettings, Method};
 use crate::naming::{slug, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
-use crate::run::JobPart;
 use crate::run_key::{RunKey, TaskKey, EXACT_ID};
-use crate::simulate::Scoring;
+use crate::solver_spec::SolverSpec;
 use schemes::paths::PathSpec;
 use schemes::spec::SchemeSpec;
-use serde::Deserialize;
-use solvers::neural::spec::SolverSpec;
-use solvers::ode::IntegratorSettings;
+use serde::{Deserialize, Serialize};
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
@@ -70,7 +70,7 @@ pub struct Experiment {
 /// the fourth digit, at 1e-11 every exact drift that is not itself zero holds four digits.
 pub fn default_exact_integrator() -> IntegratorSettings {
     IntegratorSettings {
-        method: solvers::ode::Method::Dopri5,
+        method: Method::Dopri5,
         rtol: 1e-11,
         atol: 1e-13,
         ..IntegratorSettings::default()
@@ -158,6 +158,22 @@ fn yes() -> bool {
     true
 }
 
+/// Where a network run is compared with the exact optimum (one exact QP solve each).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case", deny_unknown_fields)]
+pub enum Scoring {
+    /// At every accepted step of the integrator (the default: the score sees every state the
+    /// network reaches).
+    #[default]
+    EveryStep,
+    /// At most this many instants: the first accepted step at or after each point of a uniform
+    /// grid of the run's duration (and the last step), so a run of 10^5 steps costs a bounded
+    /// number of exact solves; `score_samples` in results says how many were taken.
+    MaxInstants(usize),
+    /// Not scored (the explanation layer's controlled re-runs need only drift and error).
+    Off,
+}
+
 /// The solver of one run: the exact optimum or a neural network.
 #[derive(Clone, Debug, PartialEq)]
 pub enum SolverChoice {
@@ -181,8 +197,7 @@ impl SolverChoice {
         }
     }
 
-    /// The solver's id in run keys: [`EXACT_ID`], or the network's
-    /// [`SolverSpec::id`](solvers::neural::spec::SolverSpec::id).
+    /// The solver's id in run keys: [`EXACT_ID`], or the network's [`SolverSpec::id`].
     pub fn id(&self) -> String {
         match self {
             SolverChoice::Exact => EXACT_ID.to_string(),
@@ -242,15 +257,47 @@ impl Job {
     }
 }
 
+/// Which part of a [`Job`] could not be built (see [`CheckJob`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum JobPart {
+    Robot,
+    Theta0,
+    ThetaRef,
+    Path,
+    Scheme,
+    Solver,
+}
+
+impl JobPart {
+    /// The experiment-file field the part comes from.
+    pub fn field(&self) -> &'static str {
+        match self {
+            JobPart::Robot => "robot",
+            JobPart::Theta0 => "theta0",
+            JobPart::ThetaRef => "theta_ref",
+            JobPart::Path => "path",
+            JobPart::Scheme => "scheme",
+            JobPart::Solver => "solvers",
+        }
+    }
+}
+
+/// Checks one run by building its parts as the run would (robot, path from f(theta_ref),
+/// scheme, network), integrating nothing: the engine's `simulation::run::check_job`. The
+/// experiment format cannot build a run itself; loading a file takes the check, so that a file
+/// is rejected at load for exactly what would make one of its runs fail at t = 0, the error
+/// placed at the field at fault ([`SetupError::part`]).
+pub type CheckJob = fn(&Job) -> Result<(), SetupError>;
+
 impl PaperFile {
     /// Reads and validates one experiment file: everything a run would reject is rejected here,
     /// before anything runs (see [`PaperFile::validate`]).
-    pub fn load(path: &Path) -> Result<Self, ExperimentFileError> {
+    pub fn load(path: &Path, check: CheckJob) -> Result<Self, ExperimentFileError> {
         let text = std::fs::read_to_string(path).map_err(|source| ExperimentFileError::Read {
             file: path.to_path_buf(),
             source,
         })?;
-        Self::from_toml(&text).map_err(|error| ExperimentFileError::Invalid {
+        Self::from_toml(&text, check).map_err(|error| ExperimentFileError::Invalid {
             file: path.to_path_buf(),
             error,
         })
@@ -258,7 +305,7 @@ impl PaperFile {
 
     /// Parses and validates the text of an experiment file (errors without the file name;
     /// [`PaperFile::load`] adds it).
-    pub fn from_toml(text: &str) -> Result<Self, ExperimentError> {
+    pub fn from_toml(text: &str, check: CheckJob) -> Result<Self, ExperimentError> {
         let mut doc: toml::Table = toml::from_str(text).map_err(TomlError::from)?;
         // Sweeps (crate::sweep) expand at the TOML level; a file without one is read from its
         // text, so serde's errors keep their line numbers.
@@ -270,19 +317,19 @@ impl PaperFile {
         } else {
             toml::from_str(text).map_err(TomlError::from)?
         };
-        file.validate()?;
+        file.validate(check)?;
         Ok(file)
     }
 
     /// Every check, in one place. Field ranges are the crates' own validators
     /// ([`IntegratorSettings::validate`], [`SchemeSpec::validate`]); the rest is checked by
     /// building each run's path (from f(theta_ref)), scheme and network exactly as the run
-    /// does ([`crate::run::check_job`]): path names, durations, scales and pose, solver gains,
+    /// does (`check`, see [`CheckJob`]): path names, durations, scales and pose, solver gains,
     /// scheme/robot compatibility (zhang2018 needs dynamics) and solver/scheme compatibility
     /// (the zeroing networks take equality-only QPs; a perturbation needs n + m = 9). Then the
     /// names: ids and labels that are unsafe as file names, experiment ids, variant labels and
     /// run keys that repeat, and slugs (file names of traces and figures) that collide.
-    fn validate(&self) -> Result<(), ExperimentError> {
+    fn validate(&self, check: CheckJob) -> Result<(), ExperimentError> {
         check_name(&self.paper, MAX_EXPERIMENT_ID, FieldAt::Paper)?;
         // Hash maps, not lists: a sweep of 10^6 variants is validated in linear time.
         let mut id_slugs: HashMap<String, &str> = HashMap::new();
@@ -402,7 +449,7 @@ impl PaperFile {
                     return Err(field(vat("solvers"), FieldError::RunsNothing));
                 }
                 for (k, job) in self.variant_jobs(e, v).iter().enumerate() {
-                    crate::run::check_job(job).map_err(|err| {
+                    check(job).map_err(|err| {
                         let place = match err.part() {
                             JobPart::Solver => {
                                 vat(&format!("solvers[{}]", k - usize::from(v.exact)))
@@ -558,7 +605,7 @@ fn check_integrator(s: &IntegratorSettings, at: FieldAt) -> Result<(), Experimen
 
 /// Loads every `*.toml` of `dir`, sorted by file name, and checks what spans files: an
 /// experiment id (or its file name, the slug) is defined in one file only.
-pub fn load_dir(dir: &Path) -> Result<Vec<PaperFile>, ExperimentFileError> {
+pub fn load_dir(dir: &Path, check: CheckJob) -> Result<Vec<PaperFile>, ExperimentFileError> {
     let entries = std::fs::read_dir(dir).map_err(|source| ExperimentFileError::List {
         dir: dir.to_path_buf(),
         source,
@@ -576,7 +623,7 @@ pub fn load_dir(dir: &Path) -> Result<Vec<PaperFile>, ExperimentFileError> {
     let mut files = Vec::with_capacity(paths.len());
     let mut seen: HashMap<String, (String, &Path)> = HashMap::new();
     for path in &paths {
-        let file = PaperFile::load(path)?;
+        let file = PaperFile::load(path, check)?;
         for (i, e) in file.experiments.iter().enumerate() {
             if let Some((other, other_file)) = seen.get(&slug(&e.id)) {
                 let (file, id, other_file) = (path.clone(), e.id.clone(), other_file.to_path_buf());

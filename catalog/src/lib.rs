@@ -1,0 +1,24 @@
+//! driftbench's catalog: what runs exist and what they are called, as data.
+//!
+//! An experiment file ([`experiment`]) describes runs ([`experiment::Job`]): a robot from the
+//! registry ([`robot_registry`]), a path and a scheme (crate `schemes`), a solver (the exact
+//! optimum in the loop, or a network as [`solver_spec`] writes it), an integrator
+//! ([`integrator`]) and where the run is scored. A variant may stand for many through a `sweep`
+//! table ([`sweep`], expanded at the TOML level). Every run is identified by ids, not labels
+//! ([`run_key`]), and every id or label that becomes a file name obeys [`naming`]. The errors of
+//! all of it are in [`error`]. [`root`] finds the project (the directory of `experiments/`,
+//! `results/` and `report/`) and the code revision runs are stamped with.
+//!
+//! Nothing here builds or runs a solver: the engine (crate `simulation`) builds the runs, and
+//! loading a file takes its check ([`experiment::CheckJob`]) to reject what a run would reject.
+//! Crates that only read or present results depend on this crate, not on the engine.
+
+pub mod error;
+pub mod experiment;
+pub mod integrator;
+pub mod naming;
+pub mod robot_registry;
+pub mod root;
+pub mod run_key;
+pub mod solver_spec;
+pub mod sweep;
