@@ -56,7 +56,7 @@ pub enum ReproduceError {
     #[error(transparent)]
     Root(#[from] catalog::root::RootNotFound),
     #[error(transparent)]
-    Experiments(#[from] simulation::error::ExperimentFileError),
+    Experiments(#[from] catalog::error::ExperimentFileError),
     #[error(transparent)]
     Shard(#[from] ShardError),
     #[error(transparent)]
