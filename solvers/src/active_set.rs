@@ -127,10 +127,8 @@
 //!
 //! Every buffer is sized at construction for the largest [`QpDims`] given (and grown, once,
 //! if a larger QP comes). [`ActiveSetSolver::solve_into`] writes into a caller-owned
-//! [`ActiveSetSolution`] and, with certification disabled, allocates nothing (checked by a
-//! test). Certification calls [`Qp::kkt_residuals`], which allocates a few temporaries of
-//! length n and m_in; [`ActiveSetSolver::solve`] also allocates the returned solution. An
-//! error allocates its message.
+//! [`ActiveSetSolution`] and allocates nothing, certification ([`Qp::kkt_residuals`]) included
+//! (checked by a test); [`ActiveSetSolver::solve`] allocates the returned solution.
 
 use nalgebra::DVector;
 use schemes::qp::{KktResiduals, Qp, QpDims, QpDuals};
@@ -435,7 +433,7 @@ impl ActiveSetSolver {
     }
 
     /// Turns certification off (answers then have `certified == false`, `kkt == None`) or on.
-    /// Off, [`Self::solve_into`] allocates nothing; the answers are then unchecked.
+    /// Off, the answers are unchecked.
     pub fn with_certification(mut self, certify: bool) -> Self {
         self.certify = certify;
         self

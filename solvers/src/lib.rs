@@ -23,6 +23,6 @@ pub use active_set::{
 };
 pub use auxiliary::AuxiliaryElimination;
 pub use exact::{solve_equality_kkt, ExactError, ExactSolution, ExactSolver, ExactStatus};
-pub use exact_path::{ExactPath, ExactPathStats};
+pub use exact_path::{ExactPath, ExactPathStats, CHECK_EVERY};
 pub use random_qp::{random_feasible, random_qp, QpShape};
 pub use schemes::qp::{KktResiduals, Qp, QpDims, QpDuals};
