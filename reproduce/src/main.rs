@@ -1,6 +1,7 @@
 //! `cargo run --release -p reproduce`: runs driftbench's experiments and writes `results/`.
 
 mod commands;
+mod timing;
 
 use clap::{CommandFactory, FromArgMatches, Parser};
 use records::results_dir::ResultsDir;
@@ -504,6 +505,8 @@ fn real_main(cli: Cli) -> Result<ExitCode, String> {
                     }
                     Err(e) => return Err(e.to_string()),
                 }
+                timing::time_alone(&all, results, &cli.project_root.join("papers"), &git_rev)
+                    .map_err(|e| e.to_string())?;
                 // Its tables are recorded before the report (which may fail) is rendered.
                 results.save().map_err(|e| e.to_string())?;
             }
