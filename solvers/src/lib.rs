@@ -12,6 +12,7 @@ pub mod active_set;
 pub mod auxiliary;
 pub mod exact;
 pub mod exact_path;
+pub mod kkt_schur;
 pub mod lvi_numerical;
 pub mod neural;
 pub mod ode;
