@@ -28,8 +28,8 @@
 //!   the RMS distance to the optimum ([`RunScore::dx`]), the drift's distance from the exact
 //!   column's ([`RunScore::drift`]) and the simulation's wall time ([`RunScore::time`]): the
 //!   median of the run's repetitions timed alone ([`crate::timing`]), not the parallel
-//!   reproduction's `sim_s` (used only for a run without an alone timing, counted in
-//!   [`LeaderboardRow::timed_alone`]);
+//!   reproduction's `sim_s` (used only for a run without an alone timing; [`alone_timing`]
+//!   counts them and gives the repetitions' spread);
 //! - the p50 and p95 of each over the set's tasks (the distribution, not only a mean).
 //!
 //! A failed run, or a missing value, is counted at the metric's penalty, and every value is
@@ -171,8 +171,6 @@ pub struct RunScore {
     /// `sim_s` (s): the median timed alone if there is one, else the parallel run's; counted
     /// at the time limit ([`TIME_LIMIT_FACTOR`] × duration).
     pub time: f64,
-    /// (max − min) / median of the alone-timed repetitions' `sim_s`; `None` if not timed alone.
-    pub time_spread: Option<f64>,
 }
 
 /// Scores `run` against the exact column `exact` of the same task, its time from `timings`.
@@ -187,7 +185,6 @@ pub fn score_run(run: &RunRow, exact: &RunRow, timings: &Timings) -> RunScore {
         dx: counted(run.score_rms_dx, completed, PENALTY_DX),
         drift: counted(relative_drift(run, exact), completed, PENALTY_DRIFT),
         time: counted(Some(sim_s), completed, TIME_LIMIT_FACTOR * run.duration),
-        time_spread: alone.map(|t| t.sim_spread()),
     }
 }
 
@@ -278,11 +275,6 @@ pub struct LeaderboardRow {
     pub time_rel: f64,
     pub time_p50: f64,
     pub time_p95: f64,
-    /// The set's runs timed alone ([`crate::timing`]; the others count their parallel `sim_s`).
-    pub timed_alone: usize,
-    /// The largest (max − min) / median of the alone-timed repetitions over the set's runs
-    /// (NaN when none is timed alone).
-    pub time_spread_max: f64,
 }
 
 impl Row for LeaderboardRow {}
@@ -400,12 +392,6 @@ fn rank_set(
                 time_rel: f64::NAN,
                 time_p50: percentile(&time, 0.5),
                 time_p95: percentile(&time, 0.95),
-                timed_alone: scores.iter().filter(|s| s.time_spread.is_some()).count(),
-                time_spread_max: scores
-                    .iter()
-                    .filter_map(|s| s.time_spread)
-                    .reduce(f64::max)
-                    .unwrap_or(f64::NAN),
             }
         })
         .collect();
@@ -432,6 +418,24 @@ fn rank_set(
         r.rank = i + 1;
     }
     rows
+}
+
+/// How many of `solver_id`'s runs on `tasks` were timed alone, and the largest
+/// (max − min) / median of their repetitions' `sim_s` (NaN when none was).
+pub fn alone_timing(timings: &Timings, solver_id: &str, tasks: &[Task]) -> (usize, f64) {
+    let spreads: Vec<f64> = tasks
+        .iter()
+        .filter_map(|t| {
+            timings.get(&simulation::run_key::RunKey::new(
+                &t.experiment,
+                &t.variant,
+                solver_id,
+            ))
+        })
+        .map(|r| r.sim_spread())
+        .collect();
+    let max = spreads.iter().copied().reduce(f64::max).unwrap_or(f64::NAN);
+    (spreads.len(), max)
 }
 
 /// The leaderboard as CSV (see [`crate::table`]).
@@ -646,8 +650,11 @@ mod tests {
         let (a, b) = (get("A"), get("B"));
         assert!(close(a.time_shm, 0.05) && close(b.time_shm, 0.02));
         assert!(close(a.time_rel, 2.5) && b.time_rel == 1.0);
-        assert_eq!((a.timed_alone, b.timed_alone), (2, 0));
-        assert!(close(a.time_spread_max, 1.0) && b.time_spread_max.is_nan());
+        let tasks = standard_tasks(&board());
+        let (a_alone, a_spread) = alone_timing(&timings, "A", &tasks);
+        let (b_alone, b_spread) = alone_timing(&timings, "B", &tasks);
+        assert_eq!((a_alone, b_alone), (2, 0));
+        assert!(close(a_spread, 1.0) && b_spread.is_nan());
     }
 
     #[test]

@@ -11,7 +11,7 @@
 //!
 //! is solved by u = L^-1 r1, S y = Y u - r2, x = L^-T (u - Y'y): from P x + C'y = r1,
 //! x = P^-1 (r1 - C'y), and C x = r2 gives C P^-1 r1 - S y = r2. The cost is n^3/6 + m n^2 / 2
-//! + m^2 n / 2 + m^3 / 6 multiply-adds against (n + m)^3 / 3 for an LU of the whole matrix, and
+//! plus m^2 n / 2 + m^3 / 6 multiply-adds against (n + m)^3 / 3 for an LU of the whole matrix, and
 //! both Cholesky factorisations need no pivoting. A pivot of L or M at or below
 //! [`PIVOT_TOL`] times the largest diagonal entry of P or S refuses the factorisation (P not
 //! positive definite, or C rank deficient): the caller then factorises the whole matrix by LU.

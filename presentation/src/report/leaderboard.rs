@@ -30,7 +30,7 @@ pub fn section(runs: &Runs, timings: &Timings) -> String {
     );
     out.push_str(&reading(&rows, tasks.len()));
     out.push('\n');
-    out.push_str(&timing(&rows, timings));
+    out.push_str(&timing(&rows, timings, &tasks));
     for set in sets(&rows) {
         let members: Vec<&LeaderboardRow> = rows.iter().filter(|r| r.task_set == set).collect();
         let n = members[0].tasks;
@@ -53,7 +53,23 @@ pub fn section(runs: &Runs, timings: &Timings) -> String {
         }
         out.push_str(&ranking(&members));
         out.push('\n');
-        out.push_str(&distributions(&members));
+        // The set's tasks: the standard ones, or those its partial solvers ran on.
+        let set_tasks: Vec<board::Task> =
+            match members.iter().find(|r| r.standard_runs < tasks.len()) {
+                Some(partial) => tasks
+                    .iter()
+                    .filter(|t| {
+                        runs.all().iter().any(|r| {
+                            r.solver_id == partial.solver_id
+                                && r.experiment == t.experiment
+                                && r.variant_id == t.variant
+                        })
+                    })
+                    .cloned()
+                    .collect(),
+                None => tasks.clone(),
+            };
+        out.push_str(&distributions(&members, timings, &set_tasks));
         out.push('\n');
     }
     out.push_str(&definitions());
@@ -123,7 +139,7 @@ pub fn ranking(rows: &[&LeaderboardRow]) -> String {
 }
 
 /// The absolute shifted geometric means, medians and 95th percentiles of one set.
-fn distributions(rows: &[&LeaderboardRow]) -> String {
+fn distributions(rows: &[&LeaderboardRow], timings: &Timings, tasks: &[board::Task]) -> String {
     let mut t = Table::new([
         "solver",
         "RMS |x − x*| shm (rad/s)",
@@ -139,6 +155,7 @@ fn distributions(rows: &[&LeaderboardRow]) -> String {
         "largest spread of the repetitions",
     ]);
     for r in rows {
+        let (alone, spread) = board::alone_timing(timings, &r.solver_id, tasks);
         t.push([
             r.solver.clone(),
             sci(r.dx_shm),
@@ -150,11 +167,11 @@ fn distributions(rows: &[&LeaderboardRow]) -> String {
             sci(r.time_shm),
             sci(r.time_p50),
             sci(r.time_p95),
-            format!("{} / {}", r.timed_alone, r.tasks),
-            if r.time_spread_max.is_nan() {
+            format!("{alone} / {}", r.tasks),
+            if spread.is_nan() {
                 super::markdown::MISSING.to_string()
             } else {
-                format!("{:.0} %", 100.0 * r.time_spread_max)
+                format!("{:.0} %", 100.0 * spread)
             },
         ]);
     }
@@ -314,16 +331,11 @@ pub fn reading(rows: &[LeaderboardRow], standard_tasks: usize) -> String {
 
 /// How the times the ranking uses were measured: alone, repeated ([`records::timing`]), on
 /// which machine and revision; or that they come from the parallel reproduction.
-fn timing(rows: &[LeaderboardRow], timings: &Timings) -> String {
-    let runs: usize = rows
-        .iter()
-        .filter(|r| r.task_set == STANDARD_SET)
-        .map(|r| r.tasks)
-        .sum();
-    let alone: usize = rows
-        .iter()
-        .filter(|r| r.task_set == STANDARD_SET)
-        .map(|r| r.timed_alone)
+fn timing(rows: &[LeaderboardRow], timings: &Timings, tasks: &[board::Task]) -> String {
+    let standard = rows.iter().filter(|r| r.task_set == STANDARD_SET);
+    let runs: usize = standard.clone().map(|r| r.tasks).sum();
+    let alone: usize = standard
+        .map(|r| board::alone_timing(timings, &r.solver_id, tasks).0)
         .sum();
     let Some(first) = timings.rows().next() else {
         return format!(
