@@ -347,7 +347,8 @@ fn leaderboard<'py>(
     }
     let mut all = stored;
     all.extend(fresh.iter().cloned());
-    let board = records::leaderboard::leaderboard(&all);
+    let timings = records::timing::read(&root.join("results")).map_err(lib_err)?;
+    let board = records::leaderboard::leaderboard(&all, &timings);
     let board_csv = records::leaderboard::leaderboard_csv(&board).map_err(lib_err)?;
     let runs_csv = records::runs::runs_csv(&fresh).map_err(lib_err)?;
     if let Some(dir) = out_dir {

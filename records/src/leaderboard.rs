@@ -26,7 +26,10 @@
 //! - the shifted geometric mean ([`shifted_geometric_mean`]) over the set's tasks of three
 //!   per-run values, each divided by the best (smallest) solver's mean of the set (best = 1.0):
 //!   the RMS distance to the optimum ([`RunScore::dx`]), the drift's distance from the exact
-//!   column's ([`RunScore::drift`]) and the simulation's wall time ([`RunScore::time`]);
+//!   column's ([`RunScore::drift`]) and the simulation's wall time ([`RunScore::time`]): the
+//!   median of the run's repetitions timed alone ([`crate::timing`]), not the parallel
+//!   reproduction's `sim_s` (used only for a run without an alone timing; [`alone_timing`]
+//!   counts them and gives the repetitions' spread);
 //! - the p50 and p95 of each over the set's tasks (the distribution, not only a mean).
 //!
 //! A failed run, or a missing value, is counted at the metric's penalty, and every value is
@@ -36,6 +39,7 @@
 use crate::error::{IoAction, IoError, RunsError};
 use crate::runs::RunRow;
 use crate::table::Row;
+use crate::timing::Timings;
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -78,8 +82,8 @@ pub const SHIFT_DRIFT: f64 = 1e-3;
 pub const PENALTY_DRIFT: f64 = 1.0;
 
 /// Shift of the shifted geometric mean of wall time (s): 10 ms. qpbenchmark shifts its runtimes
-/// by 10 s; ours are 1 ms to 15 s of simulation on 5–15 s tasks, and below ~10 ms the times of
-/// runs executed in parallel are mostly setup and scheduling noise.
+/// by 10 s; ours are 1 ms to 15 s of simulation on 5–15 s tasks, and below ~10 ms a run's time
+/// is mostly setup, and its repetitions differ by a large fraction of it.
 pub const SHIFT_TIME_S: f64 = 1e-2;
 
 /// The time limit, as a multiple of the task's simulated duration: a failed run counts at
@@ -164,20 +168,23 @@ pub struct RunScore {
     pub dx: f64,
     /// [`relative_drift`] against the task's exact column, counted ([`PENALTY_DRIFT`]).
     pub drift: f64,
-    /// `sim_s` (s), counted at the time limit ([`TIME_LIMIT_FACTOR`] × duration).
+    /// `sim_s` (s): the median timed alone if there is one, else the parallel run's; counted
+    /// at the time limit ([`TIME_LIMIT_FACTOR`] × duration).
     pub time: f64,
 }
 
-/// Scores `run` against the exact column `exact` of the same task.
-pub fn score_run(run: &RunRow, exact: &RunRow) -> RunScore {
+/// Scores `run` against the exact column `exact` of the same task, its time from `timings`.
+pub fn score_run(run: &RunRow, exact: &RunRow, timings: &Timings) -> RunScore {
     let completed = run.completed();
+    let alone = timings.get(&run.key());
+    let sim_s = alone.map_or(run.sim_s, |t| t.sim_s_median);
     RunScore {
         task: Task::of(run),
         completed,
         within_tolerance: within_tolerance(run),
         dx: counted(run.score_rms_dx, completed, PENALTY_DX),
         drift: counted(relative_drift(run, exact), completed, PENALTY_DRIFT),
-        time: counted(Some(run.sim_s), completed, TIME_LIMIT_FACTOR * run.duration),
+        time: counted(Some(sim_s), completed, TIME_LIMIT_FACTOR * run.duration),
     }
 }
 
@@ -283,7 +290,7 @@ struct Entrant<'a> {
 /// The leaderboard of `rows` (all of `results/runs.csv`): the standard set first, then one set
 /// per distinct task subset of the solvers that did not run on every standard task (larger
 /// subsets first); within a set, by rank.
-pub fn leaderboard(rows: &[RunRow]) -> Vec<LeaderboardRow> {
+pub fn leaderboard(rows: &[RunRow], timings: &Timings) -> Vec<LeaderboardRow> {
     let tasks = standard_tasks(rows);
     let exact: BTreeMap<Task, &RunRow> = rows
         .iter()
@@ -332,7 +339,7 @@ pub fn leaderboard(rows: &[RunRow]) -> Vec<LeaderboardRow> {
         if set.is_empty() || members.is_empty() {
             continue;
         }
-        out.extend(rank_set(&name, &set, &members, &exact));
+        out.extend(rank_set(&name, &set, &members, &exact, timings));
     }
     out
 }
@@ -343,12 +350,15 @@ fn rank_set(
     set: &[Task],
     members: &[&Entrant],
     exact: &BTreeMap<Task, &RunRow>,
+    timings: &Timings,
 ) -> Vec<LeaderboardRow> {
     let mut rows: Vec<LeaderboardRow> = members
         .iter()
         .map(|e| {
-            let scores: Vec<RunScore> =
-                set.iter().map(|t| score_run(e.runs[t], exact[t])).collect();
+            let scores: Vec<RunScore> = set
+                .iter()
+                .map(|t| score_run(e.runs[t], exact[t], timings))
+                .collect();
             let n = scores.len();
             let completed = scores.iter().filter(|s| s.completed).count();
             let within = scores.iter().filter(|s| s.within_tolerance).count();
@@ -410,6 +420,24 @@ fn rank_set(
     rows
 }
 
+/// How many of `solver_id`'s runs on `tasks` were timed alone, and the largest
+/// (max − min) / median of their repetitions' `sim_s` (NaN when none was).
+pub fn alone_timing(timings: &Timings, solver_id: &str, tasks: &[Task]) -> (usize, f64) {
+    let spreads: Vec<f64> = tasks
+        .iter()
+        .filter_map(|t| {
+            timings.get(&simulation::run_key::RunKey::new(
+                &t.experiment,
+                &t.variant,
+                solver_id,
+            ))
+        })
+        .map(|r| r.sim_spread())
+        .collect();
+    let max = spreads.iter().copied().reduce(f64::max).unwrap_or(f64::NAN);
+    (spreads.len(), max)
+}
+
 /// The leaderboard as CSV (see [`crate::table`]).
 pub fn leaderboard_csv(rows: &[LeaderboardRow]) -> Result<Vec<u8>, csv::Error> {
     crate::table::to_csv(rows)
@@ -417,11 +445,13 @@ pub fn leaderboard_csv(rows: &[LeaderboardRow]) -> Result<Vec<u8>, csv::Error> {
 
 /// Writes `results_dir/leaderboard.csv` (atomically) from `runs`; returns its path.
 pub fn write(results_dir: &Path, runs: &[RunRow]) -> Result<PathBuf, RunsError> {
+    let timings = crate::timing::read(results_dir)?;
     let path = results_dir.join("leaderboard.csv");
-    let bytes = leaderboard_csv(&leaderboard(runs)).map_err(|source| RunsError::Write {
-        path: path.clone(),
-        source,
-    })?;
+    let bytes =
+        leaderboard_csv(&leaderboard(runs, &timings)).map_err(|source| RunsError::Write {
+            path: path.clone(),
+            source,
+        })?;
     crate::runs::write_atomic(&path, &bytes).map_err(IoError::at(&path, IoAction::Write))?;
     Ok(path)
 }
@@ -490,7 +520,7 @@ mod tests {
         assert_eq!(counted(None, true, 1.0), 1.0);
         let exact = run("exact", "t", 0.0, &[0.3, 0.4], 1.0);
         let f = failed(run("A", "t", 1e-6, &[0.3, 0.4], 0.2));
-        let s = score_run(&f, &exact);
+        let s = score_run(&f, &exact, &Timings::default());
         assert!(!s.completed && !s.within_tolerance);
         assert_eq!(
             (s.dx, s.drift, s.time),
@@ -535,7 +565,7 @@ mod tests {
 
     #[test]
     fn success_correct_normalisation_and_sets() {
-        let rows = leaderboard(&board());
+        let rows = leaderboard(&board(), &Timings::default());
         let get = |set: &str, s: &str| {
             rows.iter()
                 .find(|r| r.task_set == set && r.solver == s)
@@ -598,8 +628,38 @@ mod tests {
     }
 
     #[test]
+    fn alone_timings_replace_the_parallel_times() {
+        use crate::timing::TimingRow;
+        use simulation::run_key::RunKey;
+        // A timed alone at 40, 50 and 90 ms on t1 (median 50 ms), 50 ms three times on t2;
+        // B not timed alone keeps its parallel 20 ms and now ranks faster.
+        let timed = |task: &str, s: [f64; 3]| {
+            let samples: Vec<(f64, f64)> = s.iter().map(|&v| (v, v)).collect();
+            TimingRow::from_samples(&RunKey::new(task, "v", "A"), &samples, "cpu", 2, "r")
+        };
+        let timings = Timings::new(vec![
+            timed("t1", [0.04, 0.09, 0.05]),
+            timed("t2", [0.05; 3]),
+        ]);
+        let rows = leaderboard(&board(), &timings);
+        let get = |s: &str| {
+            rows.iter()
+                .find(|r| r.task_set == STANDARD_SET && r.solver == s)
+                .unwrap()
+        };
+        let (a, b) = (get("A"), get("B"));
+        assert!(close(a.time_shm, 0.05) && close(b.time_shm, 0.02));
+        assert!(close(a.time_rel, 2.5) && b.time_rel == 1.0);
+        let tasks = standard_tasks(&board());
+        let (a_alone, a_spread) = alone_timing(&timings, "A", &tasks);
+        let (b_alone, b_spread) = alone_timing(&timings, "B", &tasks);
+        assert_eq!((a_alone, b_alone), (2, 0));
+        assert!(close(a_spread, 1.0) && b_spread.is_nan());
+    }
+
+    #[test]
     fn the_csv_has_a_header_and_one_line_per_row() {
-        let rows = leaderboard(&board());
+        let rows = leaderboard(&board(), &Timings::default());
         let text = String::from_utf8(leaderboard_csv(&rows).unwrap()).unwrap();
         assert!(
             text.starts_with("task_set,tasks,rank,solver_id,solver,solver_kind,"),

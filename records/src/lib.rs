@@ -9,6 +9,8 @@
 //! - [`index`]: the stored runs indexed as the report and the analyses look them up.
 //! - [`leaderboard`]: every velocity-level solver on the standard task set, scored as
 //!   qpbenchmark scores QP solvers (`results/leaderboard.csv`).
+//! - [`timing`]: the compared runs timed alone, repeated (`results/leaderboard-timing.csv`),
+//!   which the leaderboard ranks by.
 //! - [`owned_dir`]: a directory the program owns; the only way a name read from a file becomes
 //!   a path under it (plain names, no symbolic link leaving it).
 //! - [`integrity`]: the manifest of what the program wrote (line count, size, SHA-256 per file).
@@ -44,6 +46,7 @@ pub mod runs;
 pub mod shard;
 pub mod sweep_check;
 pub mod table;
+pub mod timing;
 pub mod tracked_dir;
 pub mod trajectory;
 pub mod trajectory_mat;

@@ -86,6 +86,8 @@ pub enum ReproduceError {
     #[error(transparent)]
     Control(#[from] control::ControlError),
     #[error(transparent)]
+    Timing(#[from] crate::timing::TimingError),
+    #[error(transparent)]
     ThreadPool(#[from] rayon::ThreadPoolBuildError),
     /// results/dof-cost.csv could not be written (the cost harness's own message).
     #[error("{0}")]

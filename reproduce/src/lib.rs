@@ -25,6 +25,7 @@ pub mod run;
 pub mod score;
 pub mod select;
 pub mod summary;
+pub mod timing;
 
 pub use cli::Cli;
 pub use error::ReproduceError;

@@ -170,6 +170,7 @@ fn publish(
             }
             Err(e) => return Err(e.into()),
         }
+        crate::timing::time_alone(all, results, &cli.project_root.join("papers"), git_rev)?;
         // Its tables are recorded before the report (which may fail) is rendered.
         results.save()?;
     }

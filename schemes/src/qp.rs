@@ -184,34 +184,54 @@ impl Qp {
         v
     }
 
-    /// KKT residuals of (x, duals) (see the module docs).
+    /// KKT residuals of (x, duals) (see the module docs). Allocates nothing (the certification
+    /// of every hot-started exact solve calls it).
     pub fn kkt_residuals(&self, x: &DVector<f64>, d: &QpDuals) -> KktResiduals {
-        let primal = self.constraint_violation(x);
-        let mut stat = &self.p * x + &self.q - &d.z_lower + &d.z_upper;
-        if !self.b.is_empty() {
-            stat += self.a.tr_mul(&d.lambda);
-        }
-        if !self.h.is_empty() {
-            stat += self.g.tr_mul(&d.mu);
-        }
-        let mut dual = stat.amax();
-        for m in d.mu.iter().chain(d.z_lower.iter()).chain(d.z_upper.iter()) {
-            dual = dual.max(-m);
-        }
+        let nx = x.len();
+        let mut primal: f64 = 0.0;
         let mut comp: f64 = 0.0;
-        if !self.h.is_empty() {
-            let slack = &self.h - &self.g * x;
-            for i in 0..slack.len() {
-                comp = comp.max((d.mu[i] * slack[i]).abs());
+        for r in 0..self.b.len() {
+            let mut ax = 0.0;
+            for j in 0..nx {
+                ax += self.a[(r, j)] * x[j];
+            }
+            primal = primal.max((ax - self.b[r]).abs());
+        }
+        for r in 0..self.h.len() {
+            let mut gx = 0.0;
+            for j in 0..nx {
+                gx += self.g[(r, j)] * x[j];
+            }
+            primal = primal.max(gx - self.h[r]);
+            // (An absent row, h = +inf, counts only if its multiplier is not zero.)
+            if d.mu[r] != 0.0 {
+                comp = comp.max((d.mu[r] * (self.h[r] - gx)).abs());
             }
         }
-        for i in 0..x.len() {
+        let mut dual: f64 = 0.0;
+        for i in 0..nx {
+            primal = primal.max(self.lower[i] - x[i]).max(x[i] - self.upper[i]);
+            // Row i of P x + q + A'lambda + G'mu - z_l + z_u.
+            let mut stat = self.q[i] - d.z_lower[i] + d.z_upper[i];
+            for j in 0..nx {
+                stat += self.p[(i, j)] * x[j];
+            }
+            for r in 0..self.b.len() {
+                stat += self.a[(r, i)] * d.lambda[r];
+            }
+            for r in 0..self.h.len() {
+                stat += self.g[(r, i)] * d.mu[r];
+            }
+            dual = dual.max(stat.abs());
             if self.lower[i].is_finite() {
                 comp = comp.max((d.z_lower[i] * (x[i] - self.lower[i])).abs());
             }
             if self.upper[i].is_finite() {
                 comp = comp.max((d.z_upper[i] * (self.upper[i] - x[i])).abs());
             }
+        }
+        for m in d.mu.iter().chain(d.z_lower.iter()).chain(d.z_upper.iter()) {
+            dual = dual.max(-m);
         }
         KktResiduals {
             primal,

@@ -36,11 +36,14 @@
 //! ```
 //!
 //! which is nonsingular when C has full row rank and P is positive definite on the null space
-//! of C. The matrix (order n + m_eq + |W| <= 2n) is assembled in a buffer sized at
-//! construction and factorised by an in-place LU with partial pivoting (our own few lines:
-//! nalgebra's `LU` takes an owned matrix of exactly the system's order and allocates its
-//! permutation at every factorisation), followed by one step of iterative refinement against
-//! the unfactorised matrix. "One KKT solve" below means one such factorisation; the second
+//! of C. When P is positive definite (every scheme's QP but MVN's, which
+//! [`crate::auxiliary`] reduces to one) it is factorised through the Schur complement
+//! C P^-1 C' ([`crate::kkt_schur`]: two small Cholesky factorisations, about a third of the
+//! work of an LU of the whole matrix); otherwise, or when that fails, the matrix (order
+//! n + m_eq + |W| <= 2n) is assembled in a buffer sized at construction and factorised by an
+//! in-place LU with partial pivoting (our own few lines: nalgebra's `LU` takes an owned matrix
+//! of exactly the system's order and allocates its permutation at every factorisation). Either
+//! is followed by one step of iterative refinement against the unfactorised matrix. "One KKT solve" below means one such factorisation; the second
 //! right-hand side of a dual step reuses it.
 //!
 //! # Primal iterations (from a feasible point)
@@ -127,11 +130,10 @@
 //!
 //! Every buffer is sized at construction for the largest [`QpDims`] given (and grown, once,
 //! if a larger QP comes). [`ActiveSetSolver::solve_into`] writes into a caller-owned
-//! [`ActiveSetSolution`] and, with certification disabled, allocates nothing (checked by a
-//! test). Certification calls [`Qp::kkt_residuals`], which allocates a few temporaries of
-//! length n and m_in; [`ActiveSetSolver::solve`] also allocates the returned solution. An
-//! error allocates its message.
+//! [`ActiveSetSolution`] and allocates nothing, certification ([`Qp::kkt_residuals`]) included
+//! (checked by a test); [`ActiveSetSolver::solve`] allocates the returned solution.
 
+use crate::kkt_schur::SchurKkt;
 use nalgebra::DVector;
 use schemes::qp::{KktResiduals, Qp, QpDims, QpDuals};
 use schemes::QpError;
@@ -358,6 +360,12 @@ pub struct ActiveSetSolver {
     cap: QpDims,
     /// KKT matrix (row-major, order k, packed), overwritten by its LU factors.
     lu: Vec<f64>,
+    /// The Schur-complement factors ([`crate::kkt_schur`]), and whether the last
+    /// factorisation used them (else `lu`).
+    schur: SchurKkt,
+    schur_ok: bool,
+    /// C = [A; C_W], row-major (n_eq + |W|) x n.
+    c: Vec<f64>,
     /// The unfactorised KKT matrix, for iterative refinement.
     kkt: Vec<f64>,
     piv: Vec<usize>,
@@ -405,6 +413,9 @@ impl ActiveSetSolver {
                 n_in: 0,
             },
             lu: Vec::new(),
+            schur: SchurKkt::default(),
+            schur_ok: false,
+            c: Vec::new(),
             kkt: Vec::new(),
             piv: Vec::new(),
             rhs: Vec::new(),
@@ -435,7 +446,7 @@ impl ActiveSetSolver {
     }
 
     /// Turns certification off (answers then have `certified == false`, `kkt == None`) or on.
-    /// Off, [`Self::solve_into`] allocates nothing; the answers are then unchecked.
+    /// Off, the answers are unchecked.
     pub fn with_certification(mut self, certify: bool) -> Self {
         self.certify = certify;
         self
@@ -457,6 +468,8 @@ impl ActiveSetSolver {
         let kmax = 2 * cap.nx;
         let m_total = cap.n_in + 2 * cap.nx;
         self.lu.resize(kmax * kmax, 0.0);
+        self.schur.reserve(cap.nx, cap.nx);
+        self.c.resize(cap.nx * cap.nx, 0.0);
         self.kkt.resize(kmax * kmax, 0.0);
         self.piv.resize(kmax, 0);
         self.rhs.resize(kmax, 0.0);
@@ -809,30 +822,42 @@ impl ActiveSetSolver {
         let k = nx + n_eq + self.w.len();
         self.k = k;
         self.kkt_solves += 1;
-        let kk = &mut self.kkt[..k * k];
-        kk.fill(0.0);
-        for i in 0..nx {
-            for j in 0..nx {
-                kk[i * k + j] = qp.p[(i, j)];
-            }
-        }
+        // C = [A; C_W], row-major; the Schur complement first, the whole matrix's LU if P is
+        // not positive definite or C not of full row rank.
+        let m = n_eq + self.w.len();
+        let c = &mut self.c[..m * nx];
         for r in 0..n_eq {
             for j in 0..nx {
-                let a = qp.a[(r, j)];
-                kk[(nx + r) * k + j] = a;
-                kk[j * k + nx + r] = a;
+                c[r * nx + j] = qp.a[(r, j)];
             }
         }
         for (s, &row) in self.w.iter().enumerate() {
-            let pos = nx + n_eq + s;
-            fill_row(qp, ctx, row, |j, c| {
-                kk[pos * k + j] = c;
-                kk[j * k + pos] = c;
-            });
+            let base = (n_eq + s) * nx;
+            c[base..base + nx].fill(0.0);
+            fill_row(qp, ctx, row, |j, v| c[base + j] = v);
         }
-        self.lu[..k * k].copy_from_slice(&self.kkt[..k * k]);
-        if !lu_factor(&mut self.lu[..k * k], k, &mut self.piv[..k]) {
-            return Err(ActiveSetError::Singular);
+        self.schur_ok = self
+            .schur
+            .factor(nx, m, |i, j| qp.p[(i, j)], &self.c[..m * nx]);
+        if !self.schur_ok {
+            let kk = &mut self.kkt[..k * k];
+            kk.fill(0.0);
+            for i in 0..nx {
+                for j in 0..nx {
+                    kk[i * k + j] = qp.p[(i, j)];
+                }
+            }
+            for r in 0..m {
+                for j in 0..nx {
+                    let v = self.c[r * nx + j];
+                    kk[(nx + r) * k + j] = v;
+                    kk[j * k + nx + r] = v;
+                }
+            }
+            self.lu[..k * k].copy_from_slice(&self.kkt[..k * k]);
+            if !lu_factor(&mut self.lu[..k * k], k, &mut self.piv[..k]) {
+                return Err(ActiveSetError::Singular);
+            }
         }
         for j in 0..nx {
             self.rhs[j] = -qp.q[j];
@@ -846,7 +871,7 @@ impl ActiveSetSolver {
         for (s, &row) in self.w.iter().enumerate() {
             self.rhs[nx + n_eq + s] = rhs(qp, ctx, row);
         }
-        self.solve_refined(false);
+        self.solve_refined(qp, nx, false);
         Ok(())
     }
 
@@ -854,11 +879,13 @@ impl ActiveSetSolver {
     fn solve_direction(&mut self, qp: &Qp, ctx: &Ctx, p: usize) {
         self.rhs[..self.k].fill(0.0);
         fill_row(qp, ctx, p, |j, c| self.rhs[j] = -c);
-        self.solve_refined(true);
+        self.solve_refined(qp, ctx.nx, true);
     }
 
-    /// LU solve of `rhs` plus one step of iterative refinement, into `dz` (direction) or `z`.
-    fn solve_refined(&mut self, direction: bool) {
+    /// Solve of `rhs` (by the Schur complement or the LU of the last factorisation) plus one
+    /// step of iterative refinement against the unfactorised matrix, into `dz` (direction) or
+    /// `z`.
+    fn solve_refined(&mut self, qp: &Qp, nx: usize, direction: bool) {
         let k = self.k;
         let out = if direction {
             &mut self.dz[..k]
@@ -866,16 +893,40 @@ impl ActiveSetSolver {
             &mut self.z[..k]
         };
         out.copy_from_slice(&self.rhs[..k]);
-        lu_solve(&self.lu[..k * k], k, &self.piv[..k], out);
-        for i in 0..k {
-            let row = &self.kkt[i * k..(i + 1) * k];
-            let mut s = self.rhs[i];
-            for j in 0..k {
-                s -= row[j] * out[j];
+        if self.schur_ok {
+            self.schur.solve(out);
+            // res = rhs - [P C'; C 0] out.
+            let m = k - nx;
+            let c = &self.c[..m * nx];
+            let (x, y) = out.split_at(nx);
+            for i in 0..nx {
+                let mut s = self.rhs[i];
+                for j in 0..nx {
+                    s -= qp.p[(i, j)] * x[j];
+                }
+                for r in 0..m {
+                    s -= c[r * nx + i] * y[r];
+                }
+                self.res[i] = s;
             }
-            self.res[i] = s;
+            for r in 0..m {
+                let row = &c[r * nx..(r + 1) * nx];
+                let cx: f64 = row.iter().zip(x).map(|(a, b)| a * b).sum();
+                self.res[nx + r] = self.rhs[nx + r] - cx;
+            }
+            self.schur.solve(&mut self.res[..k]);
+        } else {
+            lu_solve(&self.lu[..k * k], k, &self.piv[..k], out);
+            for i in 0..k {
+                let row = &self.kkt[i * k..(i + 1) * k];
+                let mut s = self.rhs[i];
+                for j in 0..k {
+                    s -= row[j] * out[j];
+                }
+                self.res[i] = s;
+            }
+            lu_solve(&self.lu[..k * k], k, &self.piv[..k], &mut self.res[..k]);
         }
-        lu_solve(&self.lu[..k * k], k, &self.piv[..k], &mut self.res[..k]);
         for (o, r) in out.iter_mut().zip(&self.res[..k]) {
             *o += r;
         }

@@ -7,15 +7,23 @@
 //! For the convex QPs of [`schemes::qp`] the KKT conditions (stationarity, primal and dual
 //! feasibility, complementarity) are necessary and sufficient for optimality. The active-set
 //! solver returns an answer only if its own residuals meet them to 1e-10 (relative to
-//! 1 + max(|q|, |b|)); otherwise (a singular KKT matrix, as MVN's QP whose p has no weight, an
-//! iteration limit, a failed certification) the QP goes to Clarabel, which stays the reference
-//! of record.
+//! 1 + max(|q|, |b|)); otherwise (a singular KKT matrix, an iteration limit, a failed
+//! certification) the QP goes to Clarabel, which stays the reference of record.
+//!
+//! # MVN's unweighted p
+//!
+//! A QP with a variable that has no weight and appears only in max-norm rows and bounds (MVN's
+//! p, jia2019 (2.17) with phi = 1, tau = 0; recognised from the data's structure, not the
+//! scheme) has a singular P. It is solved in reduced form without that variable
+//! ([`crate::auxiliary`]), and the lifted answer, with p* the smallest feasible value
+//! (|thetadot*|_inf for MVN), is certified on the original QP to the same tolerance. Any p in
+//! [p*, its upper bound] is as optimal, so the Clarabel check below leaves that variable out.
 //!
 //! # The sample
 //!
 //! The first solve and every [`CHECK_EVERY`]-th one are also solved by Clarabel, and the largest
 //! |x_fast - x_clarabel|_inf / max(1, |x_clarabel|_inf) is kept in [`ExactPathStats`] (each run
-//! records it). Clarabel's own x is accurate to ~1e-8 (near degenerate bounds ~1e-7, see the
+//! records it; over every variable but an eliminated one, whose optimum is not unique). Clarabel's own x is accurate to ~1e-8 (near degenerate bounds ~1e-7, see the
 //! active-set tests), so that is the size of difference to expect.
 //!
 //! # Hot start
@@ -24,10 +32,13 @@
 //! answer's working set is tried first: usually one dense KKT solve. After a fallback the next
 //! solve starts cold.
 
-use crate::active_set::{ActiveSetSolution, ActiveSetSolver, WorkingSet};
+use crate::active_set::{
+    ActiveSetError, ActiveSetSolution, ActiveSetSolver, WorkingSet, DEFAULT_CERT_TOL,
+};
+use crate::auxiliary::AuxiliaryElimination;
 use crate::exact::{ExactError, ExactSolver};
 use nalgebra::DVector;
-use schemes::qp::Qp;
+use schemes::qp::{Qp, QpDuals};
 
 /// Every this many solves (and on the first), Clarabel solves the same QP as a check.
 pub const CHECK_EVERY: usize = 100;
@@ -62,6 +73,12 @@ pub struct ExactPath {
     out: ActiveSetSolution,
     warm: WorkingSet,
     has_warm: bool,
+    /// The elimination of an unweighted auxiliary variable, while the QPs have one.
+    elimination: Option<AuxiliaryElimination>,
+    /// Whether `warm` is a working set of the reduced QP.
+    warm_reduced: bool,
+    /// The lifted multipliers of a reduced solve (certified on the original QP).
+    duals: QpDuals,
     clarabel: ExactSolver,
     x: DVector<f64>,
     pub stats: ExactPathStats,
@@ -76,6 +93,14 @@ impl ExactPath {
             out: ActiveSetSolution::zeros(dims),
             warm: WorkingSet::with_capacity(dims.n_in + 2 * dims.nx),
             has_warm: false,
+            elimination: None,
+            warm_reduced: false,
+            duals: QpDuals {
+                lambda: DVector::zeros(dims.n_eq),
+                mu: DVector::zeros(dims.n_in),
+                z_lower: DVector::zeros(dims.nx),
+                z_upper: DVector::zeros(dims.nx),
+            },
             clarabel: ExactSolver::new(),
             x: DVector::zeros(dims.nx),
             stats: ExactPathStats::default(),
@@ -85,17 +110,23 @@ impl ExactPath {
     /// The optimum of `qp`, or Clarabel's error when neither solver answers.
     pub fn solve(&mut self, qp: &Qp) -> Result<&DVector<f64>, ExactError> {
         self.stats.solves += 1;
-        let warm = self.has_warm.then_some(&self.warm);
-        match self.fast.solve_into(qp, warm, &mut self.out) {
+        match self.solve_fast(qp) {
             Ok(()) => {
-                self.warm.clone_from(&self.out.working_set);
-                self.has_warm = true;
-                self.x.copy_from(&self.out.x);
                 if self.stats.solves % CHECK_EVERY == 1 {
                     if let Ok(reference) = self.clarabel.solve(qp) {
-                        let dx = (&self.x - &reference.x).amax() / reference.x.amax().max(1.0);
+                        // An eliminated variable's optimum is not unique: left out.
+                        let free = self
+                            .elimination
+                            .as_ref()
+                            .filter(|_| self.warm_reduced)
+                            .map(AuxiliaryElimination::variable);
+                        let (mut dx, mut scale) = (0.0f64, 1.0f64);
+                        for i in (0..self.x.len()).filter(|&i| Some(i) != free) {
+                            dx = dx.max((self.x[i] - reference.x[i]).abs());
+                            scale = scale.max(reference.x[i].abs());
+                        }
                         self.stats.checks += 1;
-                        self.stats.check_max_dx = self.stats.check_max_dx.max(dx);
+                        self.stats.check_max_dx = self.stats.check_max_dx.max(dx / scale);
                     }
                 }
                 Ok(&self.x)
@@ -108,5 +139,36 @@ impl ExactPath {
                 Ok(&self.x)
             }
         }
+    }
+
+    /// The certified active-set answer into `x`, in reduced form when `qp` has an eliminable
+    /// variable (module docs), hot-started from the previous answer of the same form.
+    fn solve_fast(&mut self, qp: &Qp) -> Result<(), ActiveSetError> {
+        let still = self.elimination.as_mut().is_some_and(|e| e.reduce(qp));
+        if !still {
+            self.elimination = AuxiliaryElimination::recognise(qp);
+        }
+        let reduced = self.elimination.is_some();
+        let warm = (self.has_warm && self.warm_reduced == reduced).then_some(&self.warm);
+        self.has_warm = false;
+        match &self.elimination {
+            Some(e) => {
+                self.fast.solve_into(e.reduced(), warm, &mut self.out)?;
+                e.lift(qp, &self.out, &mut self.x, &mut self.duals);
+                let kkt = qp.kkt_residuals(&self.x, &self.duals);
+                let tolerance = DEFAULT_CERT_TOL * (1.0 + qp.q.amax().max(qp.b.amax()));
+                if kkt.max().is_nan() || kkt.max() > tolerance {
+                    return Err(ActiveSetError::NotCertified { kkt, tolerance });
+                }
+            }
+            None => {
+                self.fast.solve_into(qp, warm, &mut self.out)?;
+                self.x.copy_from(&self.out.x);
+            }
+        }
+        self.warm.clone_from(&self.out.working_set);
+        self.has_warm = true;
+        self.warm_reduced = reduced;
+        Ok(())
     }
 }

@@ -9,8 +9,10 @@
 #![allow(clippy::nonminimal_bool, clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod active_set;
+pub mod auxiliary;
 pub mod exact;
 pub mod exact_path;
+pub mod kkt_schur;
 pub mod lvi_numerical;
 pub mod neural;
 pub mod ode;
@@ -20,7 +22,8 @@ pub mod random_qp;
 pub use active_set::{
     ActiveSetError, ActiveSetSolution, ActiveSetSolver, ActiveSetStart, Constraint, WorkingSet,
 };
+pub use auxiliary::AuxiliaryElimination;
 pub use exact::{solve_equality_kkt, ExactError, ExactSolution, ExactSolver, ExactStatus};
-pub use exact_path::{ExactPath, ExactPathStats};
+pub use exact_path::{ExactPath, ExactPathStats, CHECK_EVERY};
 pub use random_qp::{random_feasible, random_qp, QpShape};
 pub use schemes::qp::{KktResiduals, Qp, QpDims, QpDuals};

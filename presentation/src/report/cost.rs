@@ -141,7 +141,7 @@ pub fn slowdown(runs: &Runs, papers: &Papers, experiment: &str) -> Slowdown {
 
 /// Our experiments that a published MATLAB compute time maps onto, in the published values'
 /// order.
-pub(crate) fn matlab_experiments(papers: &Papers) -> Vec<&str> {
+pub fn matlab_experiments(papers: &Papers) -> Vec<&str> {
     let mut experiments: Vec<&str> = timed_values(papers)
         .map(|(_, m)| m.run.experiment.as_str())
         .collect();

@@ -1,6 +1,7 @@
 //! The leaderboard section: every velocity-level solver on the standard task set, scored as
 //! qpbenchmark scores QP solvers ([`records::leaderboard`], also `results/leaderboard.csv`):
-//! the ranking, the distributions, a reading generated from the numbers, and the definitions.
+//! the ranking, the distributions, a reading generated from the numbers, how the times were
+//! measured (alone, repeated: [`records::timing`]) and the definitions.
 
 use super::markdown::{sci, Table};
 use records::index::Runs;
@@ -8,11 +9,12 @@ use records::leaderboard::{
     self as board, LeaderboardRow, PENALTY_DRIFT, PENALTY_DX, SHIFT_DRIFT, SHIFT_DX, SHIFT_TIME_S,
     STANDARD_PAPER, STANDARD_SET, TIME_LIMIT_FACTOR, TOL_RMS_DX,
 };
+use records::timing::{Timings, REPETITIONS};
 
 /// The whole section (`## Leaderboard`), empty when there is no standard task.
-pub fn section(runs: &Runs) -> String {
+pub fn section(runs: &Runs, timings: &Timings) -> String {
     let tasks = board::standard_tasks(runs.all());
-    let rows = board::leaderboard(runs.all());
+    let rows = board::leaderboard(runs.all(), timings);
     if tasks.is_empty() || rows.is_empty() {
         return String::new();
     }
@@ -28,6 +30,7 @@ pub fn section(runs: &Runs) -> String {
     );
     out.push_str(&reading(&rows, tasks.len()));
     out.push('\n');
+    out.push_str(&timing(&rows, timings, &tasks));
     for set in sets(&rows) {
         let members: Vec<&LeaderboardRow> = rows.iter().filter(|r| r.task_set == set).collect();
         let n = members[0].tasks;
@@ -50,7 +53,23 @@ pub fn section(runs: &Runs) -> String {
         }
         out.push_str(&ranking(&members));
         out.push('\n');
-        out.push_str(&distributions(&members));
+        // The set's tasks: the standard ones, or those its partial solvers ran on.
+        let set_tasks: Vec<board::Task> =
+            match members.iter().find(|r| r.standard_runs < tasks.len()) {
+                Some(partial) => tasks
+                    .iter()
+                    .filter(|t| {
+                        runs.all().iter().any(|r| {
+                            r.solver_id == partial.solver_id
+                                && r.experiment == t.experiment
+                                && r.variant_id == t.variant
+                        })
+                    })
+                    .cloned()
+                    .collect(),
+                None => tasks.clone(),
+            };
+        out.push_str(&distributions(&members, timings, &set_tasks));
         out.push('\n');
     }
     out.push_str(&definitions());
@@ -120,7 +139,7 @@ pub fn ranking(rows: &[&LeaderboardRow]) -> String {
 }
 
 /// The absolute shifted geometric means, medians and 95th percentiles of one set.
-fn distributions(rows: &[&LeaderboardRow]) -> String {
+fn distributions(rows: &[&LeaderboardRow], timings: &Timings, tasks: &[board::Task]) -> String {
     let mut t = Table::new([
         "solver",
         "RMS |x − x*| shm (rad/s)",
@@ -132,8 +151,11 @@ fn distributions(rows: &[&LeaderboardRow]) -> String {
         "sim time shm (s)",
         "p50",
         "p95",
+        "timed alone",
+        "largest spread of the repetitions",
     ]);
     for r in rows {
+        let (alone, spread) = board::alone_timing(timings, &r.solver_id, tasks);
         t.push([
             r.solver.clone(),
             sci(r.dx_shm),
@@ -145,6 +167,12 @@ fn distributions(rows: &[&LeaderboardRow]) -> String {
             sci(r.time_shm),
             sci(r.time_p50),
             sci(r.time_p95),
+            format!("{alone} / {}", r.tasks),
+            if spread.is_nan() {
+                super::markdown::MISSING.to_string()
+            } else {
+                format!("{:.0} %", 100.0 * spread)
+            },
         ]);
     }
     t.render()
@@ -253,8 +281,7 @@ pub fn reading(rows: &[LeaderboardRow], standard_tasks: usize) -> String {
         let fast = best_by(&std, |r| r.time_rel);
         s.push(format!(
             "{} {} fastest (shifted geometric mean of the simulation time {} s, median {} s); the \
-             others take {} as long. Times come from runs executed in parallel, so single runs \
-             can be slowed by their neighbours: read the medians beside the means.",
+             others take {} as long.",
             names(&fast),
             if fast.len() == 1 { "is" } else { "are" },
             sci(fast[0].time_shm),
@@ -302,6 +329,42 @@ pub fn reading(rows: &[LeaderboardRow], standard_tasks: usize) -> String {
     format!("{}\n", s.join(" "))
 }
 
+/// How the times the ranking uses were measured: alone, repeated ([`records::timing`]), on
+/// which machine and revision; or that they come from the parallel reproduction.
+fn timing(rows: &[LeaderboardRow], timings: &Timings, tasks: &[board::Task]) -> String {
+    let standard = rows.iter().filter(|r| r.task_set == STANDARD_SET);
+    let runs: usize = standard.clone().map(|r| r.tasks).sum();
+    let alone: usize = standard
+        .map(|r| board::alone_timing(timings, &r.solver_id, tasks).0)
+        .sum();
+    let Some(first) = timings.rows().next() else {
+        return format!(
+            "**Times.** `results/{}` is absent: the times are the parallel reproduction's \
+             `sim_s`, where a run shares the cores with its neighbours.\n\n",
+            records::timing::FILE
+        );
+    };
+    let spreads: Vec<f64> = timings.rows().map(|r| r.sim_spread()).collect();
+    let median_spread = board::percentile(&spreads, 0.5);
+    format!(
+        "**Times.** After the parallel reproduction, every run of the leaderboard (and every run \
+         the papers publish a MATLAB time for) was run again {REPETITIONS} times, one run at a \
+         time on one thread, on {} ({} logical cores available) at revision `{}`; the ranking \
+         uses the median of the repetitions' `sim_s` ({alone} of the {runs} standard-set runs \
+         timed so; any other counts its parallel `sim_s`). The repetitions' spread, \
+         (max − min) / median, is {:.0} % at the median over the {} timed runs and at most \
+         {:.0} %: time ratios closer to 1 than that do not order two solvers. Every timed run \
+         with its median, minimum and maximum: `results/{}`.\n\n",
+        first.machine,
+        first.cores,
+        first.git_rev,
+        100.0 * median_spread,
+        spreads.len(),
+        100.0 * spreads.iter().copied().fold(0.0, f64::max),
+        records::timing::FILE
+    )
+}
+
 /// The definitions: task set, tolerances, shifts, penalties, ranking.
 fn definitions() -> String {
     format!(
@@ -325,12 +388,13 @@ fn definitions() -> String {
          hundredth of the tolerance: solvers both far inside it count as about equal); drift \
          error sh = {sdrift} (drift is printed with three significant digits); sim time sh = \
          {stime} s (qpbenchmark shifts its runtimes by 10 s; ours are 1 ms to 15 s \
-         on 5–15 s tasks, and below ~10 ms parallel runs' times are mostly noise).\n\
+         on 5–15 s tasks, and below ~10 ms a run's time is mostly setup).\n\
          - *Drift error*: the relative distance of the per-joint drift vectors, \
          |θ(T) − θ(0) − d*| / |d*|, d* the exact column's drift on the same task (from the \
          norms when the joint counts differ).\n\
          - *Sim time*: `sim_s`, the wall time of the simulation proper (arm, network, \
-         integrator), without the scoring.\n\
+         integrator), without the scoring: the median of the run's repetitions timed alone \
+         (**Times** above).\n\
          - *Penalties.* A failed run counts at {pdx} rad/s for |x − x*| (the order of the joint \
          velocity limits), {pdrift} for the drift error (a drift as far from the exact one as that \
          is from zero) and at the time limit, {limit} × the task's duration, for time \

@@ -62,6 +62,8 @@ pub struct Inputs {
     pub figures: Vec<String>,
     /// Ladders, attribution and inference (`results/*.csv` beside runs.csv; absent = empty).
     pub explanations: why::Explanations,
+    /// `results/leaderboard-timing.csv`: the compared runs timed alone (absent = empty).
+    pub timings: records::timing::Timings,
     /// `results/dof-cost.csv` (absent = empty).
     pub dof_cost: Vec<records::dof_cost::DofCostRow>,
     /// `results/profile.csv` (absent = empty).
@@ -91,6 +93,7 @@ impl Inputs {
                 inference: read_csv(&results.join("inference.csv"))?,
                 entries: read_csv(&results.join("inference-entries.csv"))?,
             },
+            timings: records::timing::read(&results)?,
             dof_cost: records::dof_cost::read(&results).map_err(ReportError::Records)?,
             profile: read_csv(&results.join(records::profile::FILE))?,
             control: control::ControlResults::load(&results)?,
@@ -117,6 +120,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
         deviations,
         figures,
         explanations,
+        timings,
         dof_cost,
         profile,
         control,
@@ -215,7 +219,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
         }
     }
 
-    let board = leaderboard::section(runs);
+    let board = leaderboard::section(runs, timings);
     if !board.is_empty() {
         out.push_str(&board);
         out.push_str(&python::leaderboard(&python.leaderboard));
@@ -243,7 +247,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
     out.push('\n');
 
     out.push_str(&performance::section(
-        dof_cost, profile, runs, papers, figures,
+        dof_cost, profile, runs, timings, papers, figures,
     ));
     out.push_str(&python::call_cost(&python.call_cost));
     out.push_str(&control::section(control, runs, figures));

@@ -8,7 +8,8 @@
 //! - the cost against the number of joints (figure `dof-cost__<scheme>.svg`) with the fitted
 //!   growth exponents, and the whole runs on the n-link arms;
 //! - the whole-run times against the papers' MATLAB times (the published compute times that
-//!   [`super::cost`] maps), simulation and total;
+//!   [`super::cost`] maps), simulation and total, each run timed alone
+//!   (`results/leaderboard-timing.csv`, [`records::timing`]);
 //! - the machine the DOF measurement ran on;
 //! - where a paper's reproduction spends its time, from the sampling profile of
 //!   `results/profile.csv` ([`records::profile`]).
@@ -22,6 +23,7 @@ use records::dof_cost::DofCostRow;
 use records::index::{completed, Runs};
 use records::papers::Papers;
 use records::profile::ProfileRow;
+use records::timing::{Timings, REPETITIONS};
 use simulation::dof_cost::{Quantity, Summary};
 use std::collections::BTreeMap;
 
@@ -78,6 +80,7 @@ pub fn section(
     dof: &[DofCostRow],
     profile: &[ProfileRow],
     runs: &Runs,
+    timings: &Timings,
     papers: &Papers,
     figures: &[String],
 ) -> String {
@@ -103,7 +106,7 @@ pub fn section(
         out.push_str(&dof_curve(dof, figures));
         out.push_str(&dof_runs(dof));
     }
-    out.push_str(&matlab(runs, papers));
+    out.push_str(&matlab(runs, timings, papers));
     out.push_str(&where_time_goes(profile, papers));
     out
 }
@@ -475,32 +478,53 @@ fn dof_runs(dof: &[DofCostRow]) -> String {
 }
 
 /// The whole runs against the papers' MATLAB compute times: simulation (`sim_s`) and total
-/// (`wall_s`, scoring and observation included), with the smallest speedups.
-fn matlab(runs: &Runs, papers: &Papers) -> String {
+/// (`wall_s`, scoring and observation included), the medians of the runs timed alone
+/// ([`records::timing`]; the parallel reproduction's times for a run without), with the
+/// smallest speedups.
+fn matlab(runs: &Runs, timings: &Timings, papers: &Papers) -> String {
     let mut t = Table::new([
         "experiment",
         "solver",
         "paper (MATLAB, s)",
         "ours: simulation (s)",
         "ours: total (s)",
+        "spread of the repetitions (sim, total)",
         "paper ÷ simulation",
         "paper ÷ total",
     ]);
     let (mut min_sim, mut min_total) = (f64::INFINITY, f64::INFINITY);
+    let (mut alone, mut shown) = (0, 0);
     for exp in matlab_experiments(papers) {
         for (solver, paper) in paper_times(papers, exp) {
-            let ours = runs.of_experiment(exp).find(|r| r.solver_id == solver);
-            let sim = ours.filter(|r| completed(r)).map(|r| (r.sim_s, r.wall_s));
+            let ours = runs
+                .of_experiment(exp)
+                .find(|r| r.solver_id == solver)
+                .filter(|r| completed(r));
+            let timed = ours.and_then(|r| timings.get(&r.key()));
+            let sim = match (ours, timed) {
+                (_, Some(t)) => Some((t.sim_s_median, t.wall_s_median)),
+                (Some(r), None) => Some((r.sim_s, r.wall_s)),
+                (None, None) => None,
+            };
             if let Some((s, w)) = sim {
                 min_sim = min_sim.min(paper / s);
                 min_total = min_total.min(paper / w);
+                shown += 1;
             }
+            alone += usize::from(timed.is_some());
             t.push([
                 exp.to_string(),
                 solver_label(runs, exp, solver),
                 sci(paper),
                 sci_opt(sim.map(|p| p.0)),
                 sci_opt(sim.map(|p| p.1)),
+                timed.map_or(MISSING.to_string(), |t| {
+                    format!(
+                        "{:.0} %, {:.0} %",
+                        100.0 * t.sim_spread(),
+                        100.0 * t.wall_spread()
+                    )
+                }),
                 sci_opt(sim.map(|(s, _)| paper / s)),
                 sci_opt(sim.map(|(_, w)| paper / w)),
             ]);
@@ -511,12 +535,16 @@ fn matlab(runs: &Runs, papers: &Papers) -> String {
     }
     let mut out = format!(
         "### Whole runs against the papers' MATLAB times\n\nThe published compute times \
-         ({}) beside our runs of `results/runs.csv`: the simulation alone (`sim_s`: arm, \
-         network, integrator) and the whole run (`wall_s`: with the observation at every \
-         accepted step, i.e. metrics and the exact solves that score the run). Different \
-         machines and languages: the speedups say how far apart, not which implementation is \
-         better.\n\n",
-        timed_papers(papers)
+         ({}) beside our runs: the simulation alone (`sim_s`: arm, network, integrator) \
+         and the whole run (`wall_s`: with the observation at every accepted step, i.e. metrics \
+         and the exact solves that score the run). Each run was timed alone: run {REPETITIONS} \
+         times, one run at a time on one thread, after the parallel reproduction; the median is \
+         shown, with the spread (max − min) / median of the repetitions ({alone} of the {shown} \
+         runs so timed, `results/{}`; any other shows the parallel reproduction's time, where it \
+         shared the cores). Different machines and languages: the speedups say how far apart, \
+         not which implementation is better.\n\n",
+        timed_papers(papers),
+        records::timing::FILE
     );
     out.push_str(&t.render());
     out.push('\n');
@@ -584,6 +612,7 @@ mod tests {
             &dof,
             &profile,
             &Runs::new(Vec::new()),
+            &Timings::default(),
             &Papers::default(),
             &figures,
         );
@@ -641,7 +670,14 @@ mod tests {
 
     #[test]
     fn without_the_csv_the_section_says_how_to_produce_it() {
-        let md = section(&[], &[], &Runs::new(Vec::new()), &Papers::default(), &[]);
+        let md = section(
+            &[],
+            &[],
+            &Runs::new(Vec::new()),
+            &Timings::default(),
+            &Papers::default(),
+            &[],
+        );
         assert!(md.contains("`results/dof-cost.csv` is absent"), "{md}");
         assert!(md.contains("-- --dof-cost"), "{md}");
         assert!(md.contains("No completed run"), "{md}");

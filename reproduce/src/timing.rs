@@ -1,0 +1,86 @@
+//! The timing pass: after the parallel reproduction, the runs whose times are compared — the
+//! leaderboard's (every non-exact run on a standard task, [`records::leaderboard`]) and every
+//! run of the experiments the papers publish a MATLAB time for — run again
+//! [`records::timing::REPETITIONS`] times each, one run at a time on this (one) thread, into
+//! `results/leaderboard-timing.csv` ([`records::timing`]), which the leaderboard ranks by and
+//! the report's MATLAB comparison shows.
+//!
+//! Only the times are kept: a repetition recomputes the same run, and `results/runs.csv` keeps
+//! the reproduction's row.
+
+use catalog::experiment::Job;
+use catalog::run_key::RunKey;
+use presentation::report::cost::matlab_experiments;
+use records::leaderboard::standard_tasks;
+use records::papers::{Papers, PapersError};
+use records::results_dir::{ResultsDir, ResultsError};
+use records::runs::RunRow;
+use records::timing::{TimingRow, Timings, REPETITIONS};
+use simulation::run::run_job;
+use std::collections::BTreeSet;
+use std::path::Path;
+
+/// Why the timing pass could not run or write its table.
+#[derive(Debug, thiserror::Error)]
+pub enum TimingError {
+    #[error(transparent)]
+    Results(#[from] ResultsError),
+    #[error(transparent)]
+    Runs(#[from] records::error::RunsError),
+    #[error(transparent)]
+    Papers(#[from] PapersError),
+    #[error("{0}: a stored run no experiment file describes cannot be timed")]
+    Undescribed(RunKey),
+}
+
+/// The keys of the runs to time (sorted): the leaderboard's and the MATLAB experiments'.
+pub fn timed_keys(rows: &[RunRow], papers: &Papers) -> BTreeSet<RunKey> {
+    let tasks = standard_tasks(rows);
+    let matlab = matlab_experiments(papers);
+    rows.iter()
+        .filter(|r| {
+            let standard = !r.is_exact()
+                && tasks
+                    .iter()
+                    .any(|t| t.experiment == r.experiment && t.variant == r.variant_id);
+            standard || matlab.contains(&r.experiment.as_str())
+        })
+        .map(RunRow::key)
+        .collect()
+}
+
+/// Times the compared runs alone (module docs) and writes `results/leaderboard-timing.csv`
+/// into `results` (papers read from `papers_dir`); `all` are the experiment files' jobs.
+pub fn time_alone(
+    all: &[Job],
+    results: &ResultsDir,
+    papers_dir: &Path,
+    git_rev: &str,
+) -> Result<(), TimingError> {
+    let papers = Papers::load(papers_dir)?;
+    let keys = timed_keys(&results.read_runs()?, &papers);
+    let (machine, cores) = simulation::dof_cost::machine();
+    let mut rows = Vec::with_capacity(keys.len());
+    eprintln!(
+        "timing {} runs alone, {REPETITIONS} times each, one at a time",
+        keys.len()
+    );
+    for key in keys {
+        let job = all
+            .iter()
+            .find(|j| j.key() == key)
+            .ok_or_else(|| TimingError::Undescribed(key.clone()))?;
+        let samples: Vec<(f64, f64)> = (0..REPETITIONS)
+            .map(|_| {
+                let row = RunRow::from_record(&run_job(job), git_rev);
+                (row.sim_s, row.wall_s)
+            })
+            .collect();
+        rows.push(TimingRow::from_samples(
+            &key, &samples, &machine, cores, git_rev,
+        ));
+    }
+    records::timing::write(results.path(), &Timings::new(rows))?;
+    results.save()?;
+    Ok(())
+}
