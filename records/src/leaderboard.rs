@@ -426,7 +426,7 @@ pub fn alone_timing(timings: &Timings, solver_id: &str, tasks: &[Task]) -> (usiz
     let spreads: Vec<f64> = tasks
         .iter()
         .filter_map(|t| {
-            timings.get(&simulation::run_key::RunKey::new(
+            timings.get(&catalog::run_key::RunKey::new(
                 &t.experiment,
                 &t.variant,
                 solver_id,
@@ -630,7 +630,7 @@ mod tests {
     #[test]
     fn alone_timings_replace_the_parallel_times() {
         use crate::timing::TimingRow;
-        use simulation::run_key::RunKey;
+        use catalog::run_key::RunKey;
         // A timed alone at 40, 50 and 90 ms on t1 (median 50 ms), 50 ms three times on t2;
         // B not timed alone keeps its parallel 20 ms and now ranks faster.
         let timed = |task: &str, s: [f64; 3]| {

@@ -15,7 +15,7 @@
 use crate::error::{IoAction, IoError, RunsError};
 use crate::table::Row;
 use serde::{Deserialize, Serialize};
-use simulation::run_key::RunKey;
+use catalog::run_key::RunKey;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
