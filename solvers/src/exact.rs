@@ -50,6 +50,7 @@ use clarabel::solver::{
 };
 use nalgebra::{DMatrix, DVector};
 use schemes::qp::{KktResiduals, Qp, QpDuals};
+use crate::dense_lu::{Backend, DenseLu};
 use schemes::QpError;
 use std::fmt;
 
@@ -338,12 +339,18 @@ pub fn cone_sizes(qp: &Qp) -> Result<ConeSizes, ExactError> {
 }
 
 /// Solves an equality-only QP (no inequality rows, every bound infinite) through its KKT system
-/// `[[P, A'], [A, 0]] [x; lambda] = [-q; b]` by LU with partial pivoting, and returns x.
+/// `[[P, A'], [A, 0]] [x; lambda] = [-q; b]` by LU with partial pivoting on the faster backend
+/// for its size ([`Backend::for_size`] of nx + n_eq), and returns x.
 ///
 /// Independent of Clarabel, as a check. `None` when the QP has inequalities or finite bounds,
 /// or when the KKT matrix is singular (P not positive definite on the null space of A, or A
 /// rank deficient).
 pub fn solve_equality_kkt(qp: &Qp) -> Option<DVector<f64>> {
+    solve_equality_kkt_with(qp, Backend::for_size(qp.q.len() + qp.b.len()))
+}
+
+/// [`solve_equality_kkt`] on a given backend (assembly, factorisation and solve allocate).
+pub fn solve_equality_kkt_with(qp: &Qp, backend: Backend) -> Option<DVector<f64>> {
     let nx = qp.q.len();
     let n_eq = qp.b.len();
     let has_bounds =
@@ -358,8 +365,12 @@ pub fn solve_equality_kkt(qp: &Qp) -> Option<DVector<f64>> {
     let mut rhs = DVector::zeros(nx + n_eq);
     rhs.rows_mut(0, nx).copy_from(&(-&qp.q));
     rhs.rows_mut(nx, n_eq).copy_from(&qp.b);
-    let sol = kkt.lu().solve(&rhs)?;
-    Some(sol.rows(0, nx).into_owned())
+    let mut lu = DenseLu::new(nx + n_eq, backend);
+    if !lu.factor(&kkt) {
+        return None;
+    }
+    lu.solve(rhs.as_mut_slice());
+    Some(rhs.rows(0, nx).into_owned())
 }
 
 /// The QP stacked into Clarabel's form (see the module docs for the row order).

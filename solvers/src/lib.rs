@@ -9,6 +9,7 @@
 #![allow(clippy::nonminimal_bool, clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod active_set;
+pub mod dense_lu;
 pub mod exact;
 pub mod exact_path;
 pub mod lvi_numerical;
@@ -20,7 +21,8 @@ pub mod random_qp;
 pub use active_set::{
     ActiveSetError, ActiveSetSolution, ActiveSetSolver, ActiveSetStart, Constraint, WorkingSet,
 };
-pub use exact::{solve_equality_kkt, ExactError, ExactSolution, ExactSolver, ExactStatus};
+pub use dense_lu::{Backend, DenseLu, FAER_CROSSOVER};
+pub use exact::{solve_equality_kkt, solve_equality_kkt_with, ExactError, ExactSolution, ExactSolver, ExactStatus};
 pub use exact_path::{ExactPath, ExactPathStats};
 pub use random_qp::{random_feasible, random_qp, QpShape};
 pub use schemes::qp::{KktResiduals, Qp, QpDims, QpDuals};
