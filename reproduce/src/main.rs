@@ -112,7 +112,8 @@ struct Cli {
     infer: Option<String>,
     /// Cost against the number of joints: time scheme build, network RHS and Jacobian, the
     /// exact solve (active set and Clarabel), the dense KKT floor and whole runs on the n-link
-    /// arms (N = 3 ... 30) with jia2019's and kong2019's schemes (simulation::dof_cost), write
+    /// arms (N = 3 ... 30; kong2019 to N = 200 on dynamic-size types, the dense LUs on nalgebra
+    /// and faer) with jia2019's and kong2019's schemes (crate cost), write
     /// results/dof-cost.csv (with the fitted growth exponents and the machine), then re-render
     /// the report. Takes about a minute; run it on an otherwise idle machine.
     #[arg(long, conflicts_with_all = ["check", "report_only", "explain_only", "infer", "merge", "shard"])]
@@ -638,10 +639,10 @@ fn infer(cli: &Cli, which: &str, jobs: &[Job], results: Option<&ResultsDir>) -> 
     }
 }
 
-/// `--dof-cost`: measures the cost against the number of joints (`simulation::dof_cost`),
+/// `--dof-cost`: measures the cost against the number of joints (crate `cost`),
 /// writes results/dof-cost.csv and re-renders the report.
 fn dof_cost(cli: &Cli, git_rev: &str) -> Result<(), String> {
-    use simulation::dof_cost::{machine, measure_all, Budget};
+    use cost::{machine, measure_all, Budget};
     let (cpu, cores) = machine();
     let root = report_root(cli)?;
     let results = (!cli.dry_run)
@@ -660,16 +661,17 @@ fn dof_cost(cli: &Cli, git_rev: &str) -> Result<(), String> {
     let rows = records::dof_cost::rows(&measurements, &cpu, cores, git_rev);
     for fit in rows.iter().filter(|r| r.is_fit()) {
         eprintln!(
-            "  {} {}: cost ~ N^{:.2}",
+            "  {} {} ({}): cost ~ N^{:.2}",
             fit.scheme,
             fit.quantity,
+            fit.backend,
             fit.exponent.unwrap_or(f64::NAN)
         );
     }
     let Some(results) = results else {
         return Ok(());
     };
-    let path = records::dof_cost::write(results.path(), &rows)?;
+    let path = records::dof_cost::write(results.path(), &rows).map_err(|e| e.to_string())?;
     results.save().map_err(|e| e.to_string())?;
     eprintln!("wrote {} ({} rows)", path.display(), rows.len());
     render_report(cli, &root, &results)

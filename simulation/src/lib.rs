@@ -10,10 +10,8 @@
 //! project (experiments/, results/, report/) and the code revision runs are stamped with.
 //! [`score_trajectory`] scores a trajectory produced elsewhere on a task, with the metrics and
 //! the score of a run. [`task_numbers`] computes a task's check values (its task card's).
-//! [`dof_cost`] measures what an instant and a run cost against the number of joints.
 
 pub mod coupled;
-pub mod dof_cost;
 pub mod error;
 pub mod experiment;
 pub mod metrics;

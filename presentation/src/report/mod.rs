@@ -91,7 +91,7 @@ impl Inputs {
                 inference: read_csv(&results.join("inference.csv"))?,
                 entries: read_csv(&results.join("inference-entries.csv"))?,
             },
-            dof_cost: records::dof_cost::read(&results).map_err(ReportError::Records)?,
+            dof_cost: records::dof_cost::read(&results)?,
             profile: read_csv(&results.join(records::profile::FILE))?,
             control: control::ControlResults::load(&results)?,
             python: python::PythonResults::load(&results)?,

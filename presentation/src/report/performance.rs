@@ -18,11 +18,11 @@
 
 use super::cost::{matlab_experiments, paper_times, solver_label};
 use super::markdown::{sci, sci_opt, Table, MISSING};
-use records::dof_cost::DofCostRow;
+use records::dof_cost::{DofCostRow, Quantity, Summary};
+use solvers::Backend;
 use records::index::{completed, Runs};
 use records::papers::Papers;
 use records::profile::ProfileRow;
-use simulation::dof_cost::{Quantity, Summary};
 use std::collections::BTreeMap;
 
 /// The joint count the per-instant table is shown at: the Jaco2's.
@@ -42,6 +42,7 @@ pub fn quantity_label(quantity: Quantity, network: &str) -> String {
         Quantity::SchemeBuild => "scheme build (QP assembly)".to_string(),
         Quantity::NetworkRhs => format!("{network} RHS"),
         Quantity::NetworkJacobian => format!("{network} Jacobian"),
+        Quantity::NetworkLu => format!("{network} Jacobian's LU"),
         Quantity::ExactActiveSet => "exact: active set, hot-started".to_string(),
         Quantity::ExactClarabel => "exact: Clarabel".to_string(),
         Quantity::KktFloor => "dense KKT floor (one LU)".to_string(),
@@ -50,7 +51,8 @@ pub fn quantity_label(quantity: Quantity, network: &str) -> String {
     }
 }
 
-/// The measured row of (scheme, N, quantity).
+/// The measured row of (scheme, N, quantity) on nalgebra (the backend of every quantity; the
+/// dense LUs on faer are read by [`dof_curve`]).
 fn find<'a>(
     dof: &'a [DofCostRow],
     scheme: &str,
@@ -58,7 +60,11 @@ fn find<'a>(
     quantity: Quantity,
 ) -> Option<&'a DofCostRow> {
     dof.iter().find(|r| {
-        !r.is_fit() && r.scheme == scheme && r.n == Some(n) && r.quantity == quantity.id()
+        !r.is_fit()
+            && r.scheme == scheme
+            && r.n == Some(n)
+            && r.quantity == quantity.id()
+            && r.backend == Backend::Nalgebra.id()
     })
 }
 
@@ -356,14 +362,23 @@ fn per_solver_kind(runs: &Runs) -> String {
     out
 }
 
-/// The figures of the cost against N and the fitted exponents.
+/// The figures of the cost against N, the fitted exponents per backend and the crossover of
+/// the dense LUs.
 fn dof_curve(dof: &[DofCostRow], figures: &[String]) -> String {
-    let mut out = String::from(
-        "### Cost against the number of joints\n\nThe n-link arms `nlink-N` (N = 3 ... 30, a yaw \
-         joint and a planar pitch chain, from their stated home pose) with jia2019's VLTCO \
-         scheme on a four-leaf clover (nx = N + 1, 2N inequality rows, bounds) and kong2019's \
-         ZNN scheme (eq. 22) on a circle (nx = N, equalities only). k is the growth exponent of \
-         median cost ~ c N^k, fitted by least squares on log-log over the measured N.\n\n",
+    let largest = dof.iter().filter_map(|r| r.n).max().unwrap_or(0);
+    let mut out = format!(
+        "### Cost against the number of joints\n\nThe n-link arms `nlink-N` (a yaw joint and a \
+         planar pitch chain, from their stated home pose) with jia2019's VLTCO scheme on a \
+         four-leaf clover (nx = N + 1, 2N inequality rows, bounds) and kong2019's ZNN scheme \
+         (eq. 22) on a circle (nx = N, equalities only). Up to N = 30 each N is a const-generic \
+         instantiation of the registry, timed at states of an exact run, whole runs included; \
+         beyond, up to N = {largest}, kong2019's per-instant quantities come from the \
+         dynamic-size path (crate `cost`, module `dynamic`: `robots::NLinkDyn` on nalgebra's \
+         `DVector`/`Matrix3xX`, no instantiation per size; states near the home pose, no whole \
+         runs, no jia2019: its scheme is const-generic only). The dense LUs (the network \
+         Jacobian's LU, the KKT floor) are timed on nalgebra and on faer. k is the growth \
+         exponent of median cost ~ c N^k, fitted by least squares on log-log over the measured \
+         N, per backend.\n\n"
     );
     for scheme in schemes(dof) {
         let name = crate::figures::dof_cost::file_name(scheme);
@@ -374,6 +389,7 @@ fn dof_curve(dof: &[DofCostRow], figures: &[String]) -> String {
     let mut t = Table::new([
         "scheme",
         "quantity",
+        "backend",
         "k",
         "c (us)",
         "median at the smallest N (us)",
@@ -382,7 +398,12 @@ fn dof_curve(dof: &[DofCostRow], figures: &[String]) -> String {
     for fit in dof.iter().filter(|r| r.is_fit()) {
         let measured: Vec<&DofCostRow> = dof
             .iter()
-            .filter(|r| !r.is_fit() && r.scheme == fit.scheme && r.quantity == fit.quantity)
+            .filter(|r| {
+                !r.is_fit()
+                    && r.scheme == fit.scheme
+                    && r.quantity == fit.quantity
+                    && r.backend == fit.backend
+            })
             .collect();
         let at = |pick: fn(usize, usize) -> bool| {
             measured
@@ -398,6 +419,7 @@ fn dof_curve(dof: &[DofCostRow], figures: &[String]) -> String {
         t.push([
             format!("{} {}", fit.scheme, fit.scheme_name),
             label,
+            fit.backend.clone(),
             fit.exponent
                 .map_or(MISSING.to_string(), |k| format!("{k:.2}")),
             sci_opt(fit.factor_us),
@@ -409,7 +431,50 @@ fn dof_curve(dof: &[DofCostRow], figures: &[String]) -> String {
         out.push_str(&t.render());
         out.push('\n');
     }
+    out.push_str(&crossovers(dof));
     out
+}
+
+/// Where faer's LU overtakes nalgebra's, per scheme and dense LU quantity
+/// ([`records::dof_cost::crossover`]), and the size production code switches at.
+fn crossovers(dof: &[DofCostRow]) -> String {
+    let mut t = Table::new([
+        "scheme",
+        "quantity",
+        "faer faster from N",
+        "KKT size nx + n_eq there",
+        "nalgebra ÷ faer at the largest N",
+    ]);
+    for scheme in schemes(dof) {
+        for quantity in [Quantity::NetworkLu, Quantity::KktFloor] {
+            let Some(c) = records::dof_cost::crossover(dof, scheme, quantity) else {
+                continue;
+            };
+            let network = dof
+                .iter()
+                .find(|r| r.scheme == scheme)
+                .map_or("", |r| r.network.as_str());
+            t.push([
+                scheme.to_string(),
+                quantity_label(quantity, network),
+                c.n.map_or("never (up to the largest N)".to_string(), |n| n.to_string()),
+                c.kkt_size.map_or(MISSING.to_string(), |n| n.to_string()),
+                format!("{} (N = {})", sci(c.speedup_at_largest), c.largest_n),
+            ]);
+        }
+    }
+    if t.is_empty() {
+        return String::new();
+    }
+    format!(
+        "**Crossover.** The smallest measured N from which faer's median is below nalgebra's at \
+         that and every larger N (for kong2019 the network Jacobian is (N + 3) x (N + 3), the \
+         size of its KKT system). Production code (`solvers::dense_lu`) factorises on faer from \
+         a system size of `FAER_CROSSOVER` = {} on, nalgebra below, a constant set from this \
+         measurement.\n\n{}\n",
+        solvers::FAER_CROSSOVER,
+        t.render()
+    )
 }
 
 /// The whole runs of the DOF measurement, per N: time, steps and time per step.
