@@ -11,9 +11,9 @@
 //! quantity (`run-exact`, `run-network`) is one whole `simulate` call (flat sampling, the
 //! minimum of 10 samples: the jia2019 runs at N = 30 take seconds each).
 
+use cost::{Case, PreparedCase};
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode};
 use driftbench_benches::{fast_config, whole_run_config};
-use cost::{Case, PreparedCase};
 use records::dof_cost::{Quantity, SchemeKind};
 use solvers::Backend;
 

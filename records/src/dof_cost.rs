@@ -12,8 +12,8 @@
 use crate::error::{DofCostError, IoAction, IoError};
 use crate::percentile::percentile;
 use crate::table::Row;
-use serde::{Deserialize, Serialize};
 use schemes::qp::QpDims;
+use serde::{Deserialize, Serialize};
 use solvers::Backend;
 use std::path::{Path, PathBuf};
 
@@ -411,8 +411,7 @@ pub fn write(results_dir: &Path, rows: &[DofCostRow]) -> Result<PathBuf, DofCost
         path: path.clone(),
         source,
     })?;
-    crate::runs::write_atomic(&path, &bytes)
-        .map_err(IoError::at(path.clone(), IoAction::Write))?;
+    crate::runs::write_atomic(&path, &bytes).map_err(IoError::at(path.clone(), IoAction::Write))?;
     Ok(path)
 }
 
@@ -504,7 +503,12 @@ mod tests {
         for n in [3, 30, 100, 200] {
             let n3 = (n * n * n) as f64;
             ms.push(on(Backend::Nalgebra, n, Quantity::KktFloor, 0.01 * n3));
-            ms.push(on(Backend::Faer, n, Quantity::KktFloor, 5.0 * (n * n) as f64));
+            ms.push(on(
+                Backend::Faer,
+                n,
+                Quantity::KktFloor,
+                5.0 * (n * n) as f64,
+            ));
         }
         let rows = rows(&ms, "Test CPU", 2, "abc123");
         let fit = |backend: &str| {
@@ -588,12 +592,12 @@ mod tests {
         assert_eq!((c.n, c.kkt_size, c.largest_n), (Some(100), Some(104), 200));
         assert!((c.speedup_at_largest - 7.0).abs() < 1e-12);
         assert!(crossover(&rows, "jia2019", Quantity::NetworkLu).is_none());
-        let slower: Vec<_> = ms
-            .iter()
-            .filter(|m| m.n < 30)
-            .cloned()
-            .collect();
-        let c = crossover(&super::rows(&slower, "Test CPU", 2, "abc"), "jia2019", Quantity::KktFloor);
+        let slower: Vec<_> = ms.iter().filter(|m| m.n < 30).cloned().collect();
+        let c = crossover(
+            &super::rows(&slower, "Test CPU", 2, "abc"),
+            "jia2019",
+            Quantity::KktFloor,
+        );
         assert_eq!(c.map(|c| c.n), Some(None));
     }
 }

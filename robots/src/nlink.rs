@@ -196,13 +196,12 @@ pub(crate) fn home_into(theta: &mut [f64]) {
 
 /// f(theta).
 pub(crate) fn position_of(theta: &[f64]) -> Vector3<f64> {
-    let n = theta.len();
-    let l = link_length(n);
+    let l = link_length(theta.len());
     let mut r = 0.0;
     let mut z = H0;
     let mut phi = 0.0;
-    for k in 1..n {
-        phi += theta[k];
+    for t in &theta[1..] {
+        phi += t;
         let (s, c) = f64::sin_cos(phi);
         r += l * c;
         z += l * s;

@@ -11,7 +11,9 @@ use robots::{NLink, NLinkDyn, Robot};
 /// A deterministic state: theta = home + 0.3 sin(1.7 (k + 1)), thetadot_k = cos(0.9 (k + 1)).
 fn state(arm: &NLinkDyn) -> (DVector<f64>, DVector<f64>) {
     let home = arm.home();
-    let theta = DVector::from_fn(arm.joints(), |k, _| home[k] + 0.3 * (1.7 * (k + 1) as f64).sin());
+    let theta = DVector::from_fn(arm.joints(), |k, _| {
+        home[k] + 0.3 * (1.7 * (k + 1) as f64).sin()
+    });
     let thetadot = DVector::from_fn(arm.joints(), |k, _| (0.9 * (k + 1) as f64).cos());
     (theta, thetadot)
 }
@@ -30,10 +32,13 @@ fn finite_differences(
         let mut minus = theta.clone();
         plus[k] += h;
         minus[k] -= h;
-        jac.set_column(k, &((arm.position(&plus) - arm.position(&minus)) / (2.0 * h)));
+        jac.set_column(
+            k,
+            &((arm.position(&plus) - arm.position(&minus)) / (2.0 * h)),
+        );
     }
-    let jdot = (arm.jacobian(&(theta + thetadot * h)) - arm.jacobian(&(theta - thetadot * h)))
-        / (2.0 * h);
+    let jdot =
+        (arm.jacobian(&(theta + thetadot * h)) - arm.jacobian(&(theta - thetadot * h))) / (2.0 * h);
     (jac, jdot)
 }
 
@@ -53,7 +58,10 @@ fn the_dynamic_arm_is_the_fixed_size_one_at_n_7() {
             DVector::from_column_slice(thetadot.as_slice()),
         );
         assert_eq!(arm.position(&dt), fixed.position(&theta), "state {seed}");
-        assert_eq!(arm.jacobian(&dt).as_slice(), fixed.jacobian(&theta).as_slice());
+        assert_eq!(
+            arm.jacobian(&dt).as_slice(),
+            fixed.jacobian(&theta).as_slice()
+        );
         assert_eq!(
             arm.jacobian_dot(&dt, &dtd).as_slice(),
             fixed.jacobian_dot(&theta, &thetadot).as_slice()
@@ -80,7 +88,10 @@ fn jacobians_match_finite_differences_at_7_100_and_200_joints() {
         assert!(err < 1e-6, "N = {n}: relative |Jdot - Jdot_fd| = {err:e}");
         // The home tip stays in front of the yaw axis, above the base, within reach.
         let p = arm.position(&arm.home());
-        assert!(p.x > 0.5 && p.z > 0.05 && p.y == 0.0, "N = {n}: home tip {p:?}");
+        assert!(
+            p.x > 0.5 && p.z > 0.05 && p.y == 0.0,
+            "N = {n}: home tip {p:?}"
+        );
     }
 }
 

@@ -9,11 +9,16 @@
 //!   reproduction runs one simulation per core), on the same column-major storage viewed as a
 //!   `faer::MatMut`, so no copy between the two.
 //!
-//! [`Backend::for_size`] takes faer for n >= [`FAER_CROSSOVER`]: the smallest system size n from
-//! which faer's factor-and-solve was faster than nalgebra's at every larger size measured, for
-//! both the KKT floor solve and the network Jacobian's LU of `results/dof-cost.csv` (kong2019's
-//! scheme on the n-link arms, n = N + 3; see the report's "Cost against the number of joints").
-//! Both backends give the same solution to rounding (`tests/dense_lu.rs`).
+//! [`Backend::for_size`] takes faer for n >= [`FAER_CROSSOVER`] = 64, read from the network
+//! Jacobian's LU (`network-lu`) of `results/dof-cost.csv` (see the report's "Cost against the
+//! number of joints"): faer was faster from jia2019's N = 20 (LVI-PDNN state of size 64) and
+//! kong2019's N = 70 (size 73) on, at every larger N, and slower at kong2019's N = 50 (size 53),
+//! 2.6 times faster at N = 200. Users: the VP-RNN-PF network's W (eq. 2.30) and any dense,
+//! unstructured matrix. Not the KKT solve ([`crate::solve_equality_kkt`]): its matrix
+//! `[[P, A'], [A, 0]]` is mostly P's identity or diagonal block and zeros, which the in-place
+//! elimination skips (an update column whose pivot-row entry is 0 costs nothing), so nalgebra
+//! stayed faster there at every measured N up to 200 (`kkt-floor`). Both backends give the same
+//! solution to rounding (`tests/dense_lu.rs`).
 //!
 //! [`DenseLu`] holds the factors and faer's scratch, preallocated for one size, so factorising
 //! and solving allocate nothing.
@@ -25,7 +30,7 @@ use nalgebra::DMatrix;
 
 /// The system size n (rows of the square matrix) from which [`Backend::for_size`] takes faer:
 /// measured (see the module docs), not tuned by hand.
-pub const FAER_CROSSOVER: usize = 40;
+pub const FAER_CROSSOVER: usize = 64;
 
 /// Which library factorises.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -79,19 +84,12 @@ pub struct DenseLu {
 impl DenseLu {
     /// Buffers for n x n systems on `backend`.
     pub fn new(n: usize, backend: Backend) -> Self {
-        let scratch = match backend {
-            Backend::Nalgebra => MemBuffer::new(StackReq::EMPTY),
-            Backend::Faer => MemBuffer::new(
-                factor::lu_in_place_scratch::<usize, f64>(n, n, Par::Seq, Default::default())
-                    .or(solve::solve_in_place_scratch::<usize, f64>(n, 1, Par::Seq)),
-            ),
-        };
         DenseLu {
             backend,
             lu: DMatrix::zeros(n, n),
             piv: vec![0; n],
             piv_inv: vec![0; n],
-            scratch,
+            scratch: scratch(n, backend),
             factored: false,
         }
     }
@@ -113,7 +111,11 @@ impl DenseLu {
     /// Factorises `a` (n x n, copied); false when a pivot is zero or not finite (the matrix is
     /// singular to working precision), and then [`Self::solve`] must not be called.
     pub fn factor(&mut self, a: &DMatrix<f64>) -> bool {
-        assert_eq!(a.shape(), self.lu.shape(), "DenseLu: matrix of another size");
+        assert_eq!(
+            a.shape(),
+            self.lu.shape(),
+            "DenseLu: matrix of another size"
+        );
         self.lu.copy_from(a);
         let n = self.size();
         self.factored = match self.backend {
@@ -158,6 +160,51 @@ impl DenseLu {
             }
         }
     }
+}
+
+impl DenseLu {
+    /// Solves A X = B in place for every column of `b` (n rows), with the same factors.
+    pub fn solve_columns(&mut self, b: &mut DMatrix<f64>) {
+        let n = b.nrows();
+        for j in 0..b.ncols() {
+            // A DMatrix is stored column-major: column j is one contiguous slice.
+            self.solve(&mut b.as_mut_slice()[j * n..(j + 1) * n]);
+        }
+    }
+}
+
+impl Clone for DenseLu {
+    fn clone(&self) -> Self {
+        DenseLu {
+            backend: self.backend,
+            lu: self.lu.clone(),
+            piv: self.piv.clone(),
+            piv_inv: self.piv_inv.clone(),
+            scratch: scratch(self.size(), self.backend),
+            factored: self.factored,
+        }
+    }
+}
+
+impl std::fmt::Debug for DenseLu {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("DenseLu")
+            .field("backend", &self.backend)
+            .field("size", &self.size())
+            .field("factored", &self.factored)
+            .finish_non_exhaustive()
+    }
+}
+
+/// faer's scratch for factorising and solving an n x n system (none for nalgebra).
+fn scratch(n: usize, backend: Backend) -> MemBuffer {
+    MemBuffer::new(match backend {
+        Backend::Nalgebra => StackReq::EMPTY,
+        Backend::Faer => {
+            factor::lu_in_place_scratch::<usize, f64>(n, n, Par::Seq, Default::default())
+                .or(solve::solve_in_place_scratch::<usize, f64>(n, 1, Par::Seq))
+        }
+    })
 }
 
 /// `a` viewed as a faer matrix (same column-major storage).

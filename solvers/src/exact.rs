@@ -44,13 +44,13 @@
 //! inequality and bound right-hand sides are left out because the papers fill them with large
 //! constants standing for +inf (varpi = 1e3 and more), which would make the check meaningless.
 
+use crate::dense_lu::{Backend, DenseLu};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettings, DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
 };
 use nalgebra::{DMatrix, DVector};
 use schemes::qp::{KktResiduals, Qp, QpDuals};
-use crate::dense_lu::{Backend, DenseLu};
 use schemes::QpError;
 use std::fmt;
 
@@ -339,14 +339,18 @@ pub fn cone_sizes(qp: &Qp) -> Result<ConeSizes, ExactError> {
 }
 
 /// Solves an equality-only QP (no inequality rows, every bound infinite) through its KKT system
-/// `[[P, A'], [A, 0]] [x; lambda] = [-q; b]` by LU with partial pivoting on the faster backend
-/// for its size ([`Backend::for_size`] of nx + n_eq), and returns x.
+/// `[[P, A'], [A, 0]] [x; lambda] = [-q; b]` by LU with partial pivoting, and returns x.
+///
+/// On nalgebra at every size: the matrix's zero blocks (and P's, identity or diagonal in the
+/// papers' schemes) are skipped by the in-place elimination, and faer's dense LU was slower at
+/// every measured size up to nx + n_eq = 203 (`kkt-floor` of `results/dof-cost.csv`;
+/// [`crate::dense_lu`]).
 ///
 /// Independent of Clarabel, as a check. `None` when the QP has inequalities or finite bounds,
 /// or when the KKT matrix is singular (P not positive definite on the null space of A, or A
 /// rank deficient).
 pub fn solve_equality_kkt(qp: &Qp) -> Option<DVector<f64>> {
-    solve_equality_kkt_with(qp, Backend::for_size(qp.q.len() + qp.b.len()))
+    solve_equality_kkt_with(qp, Backend::Nalgebra)
 }
 
 /// [`solve_equality_kkt`] on a given backend (assembly, factorisation and solve allocate).

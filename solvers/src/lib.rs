@@ -22,7 +22,10 @@ pub use active_set::{
     ActiveSetError, ActiveSetSolution, ActiveSetSolver, ActiveSetStart, Constraint, WorkingSet,
 };
 pub use dense_lu::{Backend, DenseLu, FAER_CROSSOVER};
-pub use exact::{solve_equality_kkt, solve_equality_kkt_with, ExactError, ExactSolution, ExactSolver, ExactStatus};
+pub use exact::{
+    solve_equality_kkt, solve_equality_kkt_with, ExactError, ExactSolution, ExactSolver,
+    ExactStatus,
+};
 pub use exact_path::{ExactPath, ExactPathStats};
 pub use random_qp::{random_feasible, random_qp, QpShape};
 pub use schemes::qp::{KktResiduals, Qp, QpDims, QpDuals};

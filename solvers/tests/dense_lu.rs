@@ -39,7 +39,10 @@ fn faer_solves_as_nalgebra_does() {
             let err = (&x - &reference).amax() / reference.amax();
             assert!(err < 1e-12, "n = {n}, {backend:?}: relative error {err:e}");
             let residual = (&a * &x - &b).amax();
-            assert!(residual < 1e-12 * n as f64, "n = {n}, {backend:?}: {residual:e}");
+            assert!(
+                residual < 1e-12 * n as f64,
+                "n = {n}, {backend:?}: {residual:e}"
+            );
             // Refactorising another matrix of the same size reuses the buffers.
             let (a2, b2) = system(n, 1000 + seed as u64);
             assert!(lu.factor(&a2));
@@ -63,7 +66,10 @@ fn a_singular_matrix_is_reported_by_both_backends() {
 
 #[test]
 fn backends_are_chosen_by_the_crossover_and_named() {
-    assert_eq!(Backend::for_size(solvers::FAER_CROSSOVER - 1), Backend::Nalgebra);
+    assert_eq!(
+        Backend::for_size(solvers::FAER_CROSSOVER - 1),
+        Backend::Nalgebra
+    );
     assert_eq!(Backend::for_size(solvers::FAER_CROSSOVER), Backend::Faer);
     assert_eq!(DenseLu::for_size(3).backend(), Backend::Nalgebra);
     for backend in Backend::ALL {

@@ -53,9 +53,8 @@ pub fn figure(scheme: &str, rows: &[&DofCostRow]) -> Figure<DofCostBody> {
     let mut runs = Vec::new();
     for (k, quantity) in Quantity::ALL.into_iter().enumerate() {
         for (b, backend) in quantity.backends().iter().enumerate() {
-            let of_series = |r: &&&DofCostRow| {
-                r.quantity == quantity.id() && r.backend == backend.id()
-            };
+            let of_series =
+                |r: &&&DofCostRow| r.quantity == quantity.id() && r.backend == backend.id();
             let points: Vec<(f64, f64)> = rows
                 .iter()
                 .filter(|r| !r.is_fit() && of_series(r))

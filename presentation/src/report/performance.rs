@@ -1,5 +1,5 @@
 //! Performance: what an instant and a run cost, from `results/dof-cost.csv` (written by
-//! `reproduce --dof-cost`, see `simulation::dof_cost`) and from the per-run counts and times of
+//! `reproduce --dof-cost`, see the crate `cost`) and from the per-run counts and times of
 //! `results/runs.csv`:
 //!
 //! - per instant at the Jaco2's size (N = 6): each network evaluation against the exact
@@ -19,10 +19,10 @@
 use super::cost::{matlab_experiments, paper_times, solver_label};
 use super::markdown::{sci, sci_opt, Table, MISSING};
 use records::dof_cost::{DofCostRow, Quantity, Summary};
-use solvers::Backend;
 use records::index::{completed, Runs};
 use records::papers::Papers;
 use records::profile::ProfileRow;
+use solvers::Backend;
 use std::collections::BTreeMap;
 
 /// The joint count the per-instant table is shown at: the Jaco2's.
@@ -229,7 +229,7 @@ fn machine(dof: &[DofCostRow]) -> String {
 fn per_instant(dof: &[DofCostRow]) -> String {
     let mut out = format!(
         "### Per instant at N = {JACO2_N} (the Jaco2's size)\n\nOne call at states sampled from \
-         an exact run of `nlink-{JACO2_N}` (`simulation::dof_cost`): the network's right-hand \
+         an exact run of `nlink-{JACO2_N}` (crate `cost`): the network's right-hand \
          side and Jacobian, the scheme's QP assembly, the exact optimum by the hot-started \
          active set (what the exact column and the scorer call) and by Clarabel (the reference \
          of record), and the dense KKT floor (one LU solve of the equality-constrained KKT \
@@ -469,9 +469,12 @@ fn crossovers(dof: &[DofCostRow]) -> String {
     format!(
         "**Crossover.** The smallest measured N from which faer's median is below nalgebra's at \
          that and every larger N (for kong2019 the network Jacobian is (N + 3) x (N + 3), the \
-         size of its KKT system). Production code (`solvers::dense_lu`) factorises on faer from \
-         a system size of `FAER_CROSSOVER` = {} on, nalgebra below, a constant set from this \
-         measurement.\n\n{}\n",
+         size of its KKT system; for jia2019 the LVI-PDNN state has nx + n_eq + n_in = 3N + 4 \
+         entries). Production code (`solvers::dense_lu`) factorises dense, unstructured matrices \
+         (VP-RNN-PF's W) on faer from a system size of `FAER_CROSSOVER` = {}, set from the \
+         network Jacobian's LU above, and on nalgebra below; the KKT solve stays on nalgebra at \
+         every size, since its zero and identity blocks are skipped by the in-place \
+         elimination and faer's dense LU was slower there at every measured N.\n\n{}\n",
         solvers::FAER_CROSSOVER,
         t.render()
     )
@@ -606,8 +609,9 @@ mod tests {
     /// A synthetic dof-cost.csv: jia2019 at N = 3, 6, 12 with cost = N^2 us (network RHS) and
     /// 3 N^2 (active set), plus the fits.
     fn synthetic() -> Vec<DofCostRow> {
-        let header = "scheme,scheme_name,network,quantity,kind,n,nx,n_eq,n_in,median_us,p95_us,\
-                      samples,exponent,factor_us,steps,rhs_evals,completed,machine,cores,git_rev\n";
+        let header = "scheme,scheme_name,network,quantity,backend,kind,n,nx,n_eq,n_in,median_us,\
+                      p95_us,samples,exponent,factor_us,steps,rhs_evals,completed,machine,cores,\
+                      git_rev\n";
         let mut text = header.to_string();
         for n in [3usize, 6, 12] {
             let (nx, n_in, m) = (n + 1, 2 * n, (n * n) as f64);
@@ -617,13 +621,19 @@ mod tests {
                 ("kkt-floor", 0.5),
             ] {
                 text.push_str(&format!(
-                    "jia2019,VLTCO,LVI-PDNN,{q},measured,{n},{nx},3,{n_in},{},{},300,,,,,,Test CPU,2,abc\n",
+                    "jia2019,VLTCO,LVI-PDNN,{q},nalgebra,measured,{n},{nx},3,{n_in},{},{},300,,,,,,Test CPU,2,abc\n",
                     f * m,
                     1.5 * f * m
                 ));
             }
+            // faer's KKT floor: slower than nalgebra's (0.5 N^2) below N = 12, faster there.
             text.push_str(&format!(
-                "jia2019,VLTCO,LVI-PDNN,run-exact,measured,{n},{nx},3,{n_in},{},{},5,,,1000,7000,true,Test CPU,2,abc\n",
+                "jia2019,VLTCO,LVI-PDNN,kkt-floor,faer,measured,{n},{nx},3,{n_in},{},{},300,,,,,,Test CPU,2,abc\n",
+                if n < 12 { m } else { 0.25 * m },
+                2.0 * m
+            ));
+            text.push_str(&format!(
+                "jia2019,VLTCO,LVI-PDNN,run-exact,nalgebra,measured,{n},{nx},3,{n_in},{},{},5,,,1000,7000,true,Test CPU,2,abc\n",
                 1e4 * n as f64,
                 1.1e4 * n as f64
             ));
@@ -684,9 +694,19 @@ mod tests {
             "{md}"
         );
         // Exact power laws: k = 2 and k = 1.
-        assert!(md.contains("| jia2019 VLTCO | LVI-PDNN RHS | 2.00 | 1.00e0 | 9.00e0 (N = 3) | 1.44e2 (N = 12) |"), "{md}");
+        assert!(md.contains("| jia2019 VLTCO | LVI-PDNN RHS | nalgebra | 2.00 | 1.00e0 | 9.00e0 (N = 3) | 1.44e2 (N = 12) |"), "{md}");
         assert!(
-            md.contains("| jia2019 VLTCO | whole run, exact column | 1.00 |"),
+            md.contains("| jia2019 VLTCO | whole run, exact column | nalgebra | 1.00 |"),
+            "{md}"
+        );
+        // The faer floor has its own fit and a crossover at N = 12 (KKT size 13 + 3), where
+        // nalgebra's 72 us over faer's 36 us is 2.
+        assert!(
+            md.contains("| jia2019 VLTCO | dense KKT floor (one LU) | faer |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("| jia2019 | dense KKT floor (one LU) | 12 | 16 | 2.00e0 (N = 12) |"),
             "{md}"
         );
         // Whole runs: 6e4 us = 6e-2 s over 1000 steps = 60 us a step.
