@@ -337,8 +337,9 @@ pub struct Crossover {
     /// The smallest measured N from which faer's median is below nalgebra's at this and every
     /// larger N measured on both (`None`: faer is slower at the largest N).
     pub n: Option<usize>,
-    /// The KKT system's size nx + n_eq at that N.
-    pub kkt_size: Option<usize>,
+    /// The size of the matrix factorised at that N: nx + n_eq for the KKT floor, the
+    /// primal-dual network state nx + n_eq + n_in for the network Jacobian (LVI-PDNN's).
+    pub lu_size: Option<usize>,
     /// nalgebra's median over faer's at the largest N measured on both, and that N.
     pub speedup_at_largest: f64,
     pub largest_n: usize,
@@ -365,13 +366,18 @@ pub fn crossover(rows: &[DofCostRow], scheme: &str, quantity: Quantity) -> Optio
         .collect();
     ns.sort_unstable();
     ns.dedup();
-    // (N, nalgebra / faer, KKT size) where both were measured, by increasing N.
+    // (N, nalgebra / faer, LU size) where both were measured, by increasing N.
     let both: Vec<(usize, f64, Option<usize>)> = ns
         .into_iter()
         .filter_map(|n| {
             let (nalgebra, row) = median(Backend::Nalgebra, n)?;
             let (faer, _) = median(Backend::Faer, n)?;
-            Some((n, nalgebra / faer, row.nx.zip(row.n_eq).map(|(a, b)| a + b)))
+            let kkt = row.nx.zip(row.n_eq).map(|(a, b)| a + b);
+            let size = match quantity {
+                Quantity::NetworkLu => kkt.zip(row.n_in).map(|(a, c)| a + c),
+                _ => kkt,
+            };
+            Some((n, nalgebra / faer, size))
         })
         .collect();
     let &(largest_n, speedup_at_largest, _) = both.last()?;
@@ -382,7 +388,7 @@ pub fn crossover(rows: &[DofCostRow], scheme: &str, quantity: Quantity) -> Optio
     let first = both.get(from);
     Some(Crossover {
         n: first.map(|c| c.0),
-        kkt_size: first.and_then(|c| c.2),
+        lu_size: first.and_then(|c| c.2),
         speedup_at_largest,
         largest_n,
     })
@@ -589,7 +595,7 @@ mod tests {
         }
         let rows = rows(&ms, "Test CPU", 2, "abc123");
         let c = crossover(&rows, "jia2019", Quantity::KktFloor).unwrap();
-        assert_eq!((c.n, c.kkt_size, c.largest_n), (Some(100), Some(104), 200));
+        assert_eq!((c.n, c.lu_size, c.largest_n), (Some(100), Some(104), 200));
         assert!((c.speedup_at_largest - 7.0).abs() < 1e-12);
         assert!(crossover(&rows, "jia2019", Quantity::NetworkLu).is_none());
         let slower: Vec<_> = ms.iter().filter(|m| m.n < 30).cloned().collect();

@@ -11,10 +11,10 @@
 //!
 //! [`Backend::for_size`] takes faer for n >= [`FAER_CROSSOVER`] = 64, read from the network
 //! Jacobian's LU (`network-lu`) of `results/dof-cost.csv` (see the report's "Cost against the
-//! number of joints"): faer was faster from jia2019's N = 20 (LVI-PDNN state of size 64) and
-//! kong2019's N = 70 (size 73) on, at every larger N, and slower at kong2019's N = 50 (size 53),
-//! 2.6 times faster at N = 200. Users: the VP-RNN-PF network's W (eq. 2.30) and any dense,
-//! unstructured matrix. Not the KKT solve ([`crate::solve_equality_kkt`]): its matrix
+//! number of joints"): in two measurements faer was faster at every size from 64 on (jia2019's
+//! N = 20 and 30, LVI-PDNN states of 64 and 94; kong2019's N = 70 to 200, sizes 73 to 203,
+//! 2.6-2.8 times at 203), at parity or slower at 43-53 (0.76-1.01 times), and slower below.
+//! Users: the VP-RNN-PF network's W (eq. 2.30) and any dense, unstructured matrix. Not the KKT solve ([`crate::solve_equality_kkt`]): its matrix
 //! `[[P, A'], [A, 0]]` is mostly P's identity or diagonal block and zeros, which the in-place
 //! elimination skips (an update column whose pivot-row entry is 0 costs nothing), so nalgebra
 //! stayed faster there at every measured N up to 200 (`kkt-floor`). Both backends give the same

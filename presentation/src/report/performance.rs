@@ -442,7 +442,7 @@ fn crossovers(dof: &[DofCostRow]) -> String {
         "scheme",
         "quantity",
         "faer faster from N",
-        "KKT size nx + n_eq there",
+        "LU size there",
         "nalgebra ÷ faer at the largest N",
     ]);
     for scheme in schemes(dof) {
@@ -458,7 +458,7 @@ fn crossovers(dof: &[DofCostRow]) -> String {
                 scheme.to_string(),
                 quantity_label(quantity, network),
                 c.n.map_or("never (up to the largest N)".to_string(), |n| n.to_string()),
-                c.kkt_size.map_or(MISSING.to_string(), |n| n.to_string()),
+                c.lu_size.map_or(MISSING.to_string(), |n| n.to_string()),
                 format!("{} (N = {})", sci(c.speedup_at_largest), c.largest_n),
             ]);
         }
@@ -468,9 +468,10 @@ fn crossovers(dof: &[DofCostRow]) -> String {
     }
     format!(
         "**Crossover.** The smallest measured N from which faer's median is below nalgebra's at \
-         that and every larger N (for kong2019 the network Jacobian is (N + 3) x (N + 3), the \
-         size of its KKT system; for jia2019 the LVI-PDNN state has nx + n_eq + n_in = 3N + 4 \
-         entries). Production code (`solvers::dense_lu`) factorises dense, unstructured matrices \
+         that and every larger N, and the size of the matrix factorised there (the KKT system: \
+         nx + n_eq; the LVI-PDNN Jacobian: nx + n_eq + n_in, N + 3 for kong2019 and 3N + 4 for \
+         jia2019). Near the crossover the two are within a few per cent and its N moves between \
+         measurements. Production code (`solvers::dense_lu`) factorises dense, unstructured matrices \
          (VP-RNN-PF's W) on faer from a system size of `FAER_CROSSOVER` = {}, set from the \
          network Jacobian's LU above, and on nalgebra below; the KKT solve stays on nalgebra at \
          every size, since its zero and identity blocks are skipped by the in-place \
