@@ -1,68 +1,88 @@
-//! Cost against the number of joints, with criterion's statistics: the quantities of
-//! `simulation::dof_cost` (and of `reproduce --dof-cost`, which writes them to
-//! `results/dof-cost.csv` for the report) on the n-link arms `nlink-N` for N = 3, 7, 15, 30,
-//! with jia2019's VLTCO scheme (four-leaf clover) and kong2019's ZNN scheme (circle).
+//! Cost against the number of joints, with criterion's statistics: the quantities of the cost
+//! harness (crate `cost`, which `reproduce cost` writes to `results/dof-cost.csv` for the
+//! report) on the n-link arms `nlink-N` for N = 3, 7, 15, 30 (fixed-size path), with jia2019's
+//! VLTCO scheme (four-leaf clover) and kong2019's ZNN scheme (circle), and kong2019 at N = 100
+//! and 200 (dynamic-size path, per-instant quantities only).
 //!
-//! Groups are `dof/<scheme>/<quantity>`, ids the joint count N, so a full id reads
-//! `dof/jia2019/exact-active-set/15` and `cargo bench -p driftbench-benches --bench dof --
-//! dof/jia2019` selects one scheme. A per-call quantity (`scheme-build`, `network-rhs`,
-//! `network-jacobian`, `exact-active-set`, `exact-clarabel`, `kkt-floor`) cycles through the
-//! states sampled from one exact run, so its mean is over a trajectory, not one point; a run
+//! Groups are `dof/<scheme>/<quantity>/<backend>`, ids the joint count N, so a full id reads
+//! `dof/jia2019/exact-active-set/nalgebra/15` and `cargo bench -p driftbench-benches --bench
+//! dof -- dof/kong2019/kkt-floor` compares the backends of one quantity. A per-call quantity
+//! cycles through the sampled states, so its mean is over a trajectory, not one point; a run
 //! quantity (`run-exact`, `run-network`) is one whole `simulate` call (flat sampling, the
 //! minimum of 10 samples: the jia2019 runs at N = 30 take seconds each).
 
+use cost::{Case, PreparedCase};
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode};
 use driftbench_benches::{fast_config, whole_run_config};
-use simulation::dof_cost::{prepare, Case, Quantity, SchemeKind};
+use records::dof_cost::{Quantity, SchemeKind};
+use solvers::Backend;
 
-/// The joint counts benched (a subset of the registry's `NLINK_SIZES`).
+/// The joint counts benched on the fixed-size path (a subset of the registry's `NLINK_SIZES`).
 const SIZES: [usize; 4] = [3, 7, 15, 30];
+/// The joint counts benched on the dynamic-size path (kong2019 only).
+const LARGE_SIZES: [usize; 2] = [100, 200];
 /// States sampled from the exact run of each case.
 const STATES: usize = 100;
 
+/// The prepared cases of `scheme`, with their N.
+fn cases(scheme: SchemeKind, states: usize) -> Vec<(usize, Box<dyn PreparedCase>)> {
+    let fixed = SIZES.iter().map(|&n| {
+        let p = cost::fixed::prepare(&Case::new(scheme, n), states);
+        (n, p.unwrap_or_else(|e| panic!("{e}")))
+    });
+    let dynamic = LARGE_SIZES
+        .iter()
+        .filter(|_| scheme == SchemeKind::Kong2019)
+        .map(|&n| {
+            let p = cost::dynamic::prepare(&Case::new(scheme, n), cost::dynamic::STATES);
+            (n, p.unwrap_or_else(|e| panic!("{e}")))
+        });
+    fixed.chain(dynamic).collect()
+}
+
 fn per_call(c: &mut Criterion) {
     for scheme in SchemeKind::ALL {
-        let mut cases: Vec<_> = SIZES
-            .iter()
-            .map(|&n| {
-                prepare(&Case::new(scheme, n), STATES)
-                    .unwrap_or_else(|e| panic!("{} nlink-{n}: {e}", scheme.id()))
-            })
-            .collect();
+        let mut cases = cases(scheme, STATES);
         for quantity in Quantity::ALL.into_iter().filter(|q| !q.is_run()) {
-            let mut group = c.benchmark_group(format!("dof/{}/{}", scheme.id(), quantity.id()));
-            for (case, n) in cases.iter_mut().zip(SIZES) {
-                if !case.supports(quantity) {
-                    continue;
+            for &backend in quantity.backends() {
+                let mut group = c.benchmark_group(format!(
+                    "dof/{}/{}/{}",
+                    scheme.id(),
+                    quantity.id(),
+                    backend.id()
+                ));
+                for (n, case) in cases.iter_mut() {
+                    if !case.supports(quantity) {
+                        continue;
+                    }
+                    let mut i = 0usize;
+                    group.bench_function(BenchmarkId::from_parameter(*n), |b| {
+                        b.iter(|| {
+                            i = i.wrapping_add(1);
+                            case.call(quantity, backend, i);
+                        })
+                    });
                 }
-                let mut i = 0usize;
-                group.bench_function(BenchmarkId::from_parameter(n), |b| {
-                    b.iter(|| {
-                        i = i.wrapping_add(1);
-                        case.call(quantity, i);
-                    })
-                });
+                group.finish();
             }
-            group.finish();
         }
     }
 }
 
 fn whole_runs(c: &mut Criterion) {
     for scheme in SchemeKind::ALL {
-        let mut cases: Vec<_> = SIZES
-            .iter()
-            .map(|&n| {
-                prepare(&Case::new(scheme, n), 1)
-                    .unwrap_or_else(|e| panic!("{} nlink-{n}: {e}", scheme.id()))
-            })
-            .collect();
+        let mut cases = cases(scheme, 1);
         for quantity in Quantity::ALL.into_iter().filter(|q| q.is_run()) {
-            let mut group = c.benchmark_group(format!("dof/{}/{}", scheme.id(), quantity.id()));
+            let mut group = c.benchmark_group(format!(
+                "dof/{}/{}/{}",
+                scheme.id(),
+                quantity.id(),
+                Backend::Nalgebra.id()
+            ));
             group.sampling_mode(SamplingMode::Flat);
-            for (case, n) in cases.iter_mut().zip(SIZES) {
-                group.bench_function(BenchmarkId::from_parameter(n), |b| {
-                    b.iter(|| case.call(quantity, 0))
+            for (n, case) in cases.iter_mut().filter(|(_, c)| c.supports(quantity)) {
+                group.bench_function(BenchmarkId::from_parameter(*n), |b| {
+                    b.iter(|| case.call(quantity, Backend::Nalgebra, 0))
                 });
             }
             group.finish();

@@ -1,8 +1,9 @@
 //! Latency percentiles of a run's ticks.
 
+use records::percentile::percentile;
 use serde::Serialize;
 
-/// p50, p99 and max of a set of durations, in microseconds (nearest-rank percentiles).
+/// p50, p99 and max of a set of durations, in microseconds (the workspace's percentile, `records::percentile`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct Latency {
     pub p50_us: f64,
@@ -18,8 +19,8 @@ impl Latency {
         }
         samples_us.sort_by(f64::total_cmp);
         Latency {
-            p50_us: simulation::dof_cost::quantile(samples_us, 0.50),
-            p99_us: simulation::dof_cost::quantile(samples_us, 0.99),
+            p50_us: percentile(samples_us, 0.50),
+            p99_us: percentile(samples_us, 0.99),
             max_us: samples_us[samples_us.len() - 1],
         }
     }

@@ -75,10 +75,9 @@ pub enum ReportError {
     SameFigure(String),
     #[error(transparent)]
     Papers(#[from] records::papers::PapersError),
-    /// `records::dof_cost` could not read its file (its message: that module still reports
-    /// errors as text).
-    #[error("{0}")]
-    Records(String),
+    /// `records::dof_cost` could not read its file.
+    #[error(transparent)]
+    DofCost(#[from] records::error::DofCostError),
 }
 
 /// Why a trajectory could not be scored on a task, or its files written.

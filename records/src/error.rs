@@ -211,3 +211,14 @@ pub enum ShardError {
     #[error("cannot merge; nothing was written:\n{}", problems.join("\n"))]
     CannotMerge { problems: Vec<String> },
 }
+
+/// Why `results/dof-cost.csv` could not be written or read.
+#[derive(Debug, thiserror::Error)]
+pub enum DofCostError {
+    #[error("{}: {source}", path.display())]
+    Csv { path: PathBuf, source: csv::Error },
+    #[error(transparent)]
+    Io(#[from] IoError),
+    #[error(transparent)]
+    Table(#[from] TableError),
+}

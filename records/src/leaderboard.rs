@@ -37,6 +37,7 @@
 //! worse than a failure.
 
 use crate::error::{IoAction, IoError, RunsError};
+use crate::percentile::percentile;
 use crate::runs::RunRow;
 use crate::table::Row;
 use crate::timing::Timings;
@@ -207,22 +208,6 @@ pub fn shifted_geometric_mean(values: &[f64], shift: f64) -> f64 {
     let lo = values.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
     (mean_log.exp() - shift).clamp(lo, hi)
-}
-
-/// The `p`-quantile (0 ≤ p ≤ 1) of `values`, linearly interpolated between the closest ranks
-/// (numpy's default: position p (n − 1) in the sorted values); NaN for no values.
-pub fn percentile(values: &[f64], p: f64) -> f64 {
-    let mut v = values.to_vec();
-    v.sort_by(f64::total_cmp);
-    match v.len() {
-        0 => f64::NAN,
-        n => {
-            let pos = p.clamp(0.0, 1.0) * (n - 1) as f64;
-            let lo = pos.floor() as usize;
-            let hi = (lo + 1).min(n - 1);
-            v[lo] + (pos - lo as f64) * (v[hi] - v[lo])
-        }
-    }
 }
 
 /// `value` relative to the best (smallest) of its set: 1.0 for the best.
@@ -501,15 +486,6 @@ mod tests {
         assert_eq!(shifted_geometric_mean(&[0.25; 4], 1e-3), 0.25);
         assert_eq!(shifted_geometric_mean(&[0.0; 3], 1e-3), 0.0);
         assert!(shifted_geometric_mean(&[], 1.0).is_nan());
-    }
-
-    #[test]
-    fn percentiles_interpolate_between_ranks() {
-        let v = [5.0, 1.0, 4.0, 2.0, 3.0];
-        assert!(close(percentile(&v, 0.5), 3.0));
-        // position 0.95 * 4 = 3.8: 4 + 0.8 (5 - 4).
-        assert!(close(percentile(&v, 0.95), 4.8));
-        assert!(close(percentile(&[7.0], 0.95), 7.0));
     }
 
     #[test]

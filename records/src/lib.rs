@@ -25,6 +25,7 @@
 //! - [`migrate`]: results written before run ids (labels as identities), brought up to date once.
 //! - [`trajectory`], [`trajectory_mat`]: trajectories made elsewhere (CSV, MAT-files) and
 //!   their score as a row.
+//! - [`percentile`]: the one percentile definition of the workspace (numpy's default).
 //! - [`papers`]: the papers as data (`papers/<paper>/`): metadata, published numbers and which run each
 //!   one is compared with.
 //! - [`sweep_check`]: a published table set beside a sweep's runs.
@@ -40,6 +41,7 @@ pub mod leaderboard;
 pub mod migrate;
 pub mod owned_dir;
 pub mod papers;
+pub mod percentile;
 pub mod profile;
 pub mod results_dir;
 pub mod runs;

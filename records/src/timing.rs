@@ -14,8 +14,8 @@
 
 use crate::error::{IoAction, IoError, RunsError};
 use crate::table::Row;
-use serde::{Deserialize, Serialize};
 use catalog::run_key::RunKey;
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 

@@ -105,7 +105,8 @@ pub struct Cli {
     pub infer: Option<String>,
     /// Cost against the number of joints: time scheme build, network RHS and Jacobian, the
     /// exact solve (active set and Clarabel), the dense KKT floor and whole runs on the n-link
-    /// arms (N = 3 ... 30) with jia2019's and kong2019's schemes (simulation::dof_cost), write
+    /// arms (N = 3 ... 30; kong2019 to N = 200 on dynamic-size types, the dense LUs on nalgebra
+    /// and faer) with jia2019's and kong2019's schemes (crate cost), write
     /// results/dof-cost.csv (with the fitted growth exponents and the machine), then re-render
     /// the report. Takes about a minute; run it on an otherwise idle machine.
     #[arg(long, conflicts_with_all = ["check", "report_only", "explain_only", "infer", "merge", "shard"])]

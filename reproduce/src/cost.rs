@@ -1,5 +1,5 @@
 //! `reproduce cost` (`--dof-cost`): the cost against the number of joints
-//! (`simulation::dof_cost`) measured on the n-link arms, written to results/dof-cost.csv with
+//! (crate `cost`) measured on the n-link arms, written to results/dof-cost.csv with
 //! the fitted growth exponents and the machine, then the report re-rendered.
 
 use crate::cli::Cli;
@@ -9,7 +9,7 @@ use crate::results::{all_jobs, open_results};
 
 /// Measures, prints the fitted exponents and (unless `--dry-run`) writes and re-renders.
 pub fn dof_cost(cli: &Cli, git_rev: &str) -> Result<(), ReproduceError> {
-    use simulation::dof_cost::{machine, measure_all, Budget};
+    use cost::{machine, measure_all, Budget};
     let (cpu, cores) = machine();
     let root = report_root(cli)?;
     let results = (!cli.dry_run)
@@ -28,16 +28,17 @@ pub fn dof_cost(cli: &Cli, git_rev: &str) -> Result<(), ReproduceError> {
     let rows = records::dof_cost::rows(&measurements, &cpu, cores, git_rev);
     for fit in rows.iter().filter(|r| r.is_fit()) {
         eprintln!(
-            "  {} {}: cost ~ N^{:.2}",
+            "  {} {} ({}): cost ~ N^{:.2}",
             fit.scheme,
             fit.quantity,
+            fit.backend,
             fit.exponent.unwrap_or(f64::NAN)
         );
     }
     let Some(results) = results else {
         return Ok(());
     };
-    let path = records::dof_cost::write(results.path(), &rows).map_err(ReproduceError::DofCost)?;
+    let path = records::dof_cost::write(results.path(), &rows)?;
     results.save()?;
     eprintln!("wrote {} ({} rows)", path.display(), rows.len());
     render_report(cli, &root, &results)

@@ -89,9 +89,8 @@ pub enum ReproduceError {
     Timing(#[from] crate::timing::TimingError),
     #[error(transparent)]
     ThreadPool(#[from] rayon::ThreadPoolBuildError),
-    /// results/dof-cost.csv could not be written (the cost harness's own message).
-    #[error("{0}")]
-    DofCost(String),
+    #[error(transparent)]
+    DofCost(#[from] records::error::DofCostError),
 }
 
 /// Why a gate baseline's rows cannot be used; each names the file (or `git HEAD:...`).

@@ -31,12 +31,14 @@ pub mod jaco2;
 pub mod jaco2_dynamics;
 pub mod katana;
 pub mod nlink;
+pub mod nlink_dyn;
 pub mod panda;
 pub mod rigid_body;
 
 pub use jaco2::{Jaco2, JACO2, JACO2_HAND, JACO2_PEN, JACO2_PEN_EXP2};
 pub use katana::{Katana6m180, KATANA6M180};
 pub use nlink::NLink;
+pub use nlink_dyn::NLinkDyn;
 pub use panda::{Panda, PANDA};
 
 /// Number of task-space coordinates (end-effector position only) in every paper.

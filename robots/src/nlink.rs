@@ -100,31 +100,15 @@ impl<const N: usize> NLink<N> {
 
     /// Length of every pitch link, `L / (N - 1)` (m).
     pub fn link_length() -> f64 {
-        REACH / (N - 1) as f64
+        link_length(N)
     }
 
     /// The stated home pose: `theta_1 = 0`, `theta_2 = 1.2`, `theta_k = -3 / (N - 1)` for
     /// k = 3..=N (module documentation).
     pub fn home() -> SVector<f64, N> {
-        let bend = -3.0 / (N - 1) as f64;
-        SVector::from_fn(|k, _| match k {
-            0 => 0.0,
-            1 => 1.2,
-            _ => bend,
-        })
-    }
-
-    /// `(sin phi_k, cos phi_k)` of the cumulative pitch angles, stored at index `k - 1`
-    /// (entry 0 unused).
-    fn pitch_trig(theta: &SVector<f64, N>) -> ([f64; N], [f64; N]) {
-        let mut s = [0.0; N];
-        let mut c = [0.0; N];
-        let mut phi = 0.0;
-        for k in 1..N {
-            phi += theta[k];
-            (s[k], c[k]) = phi.sin_cos();
-        }
-        (s, c)
+        let mut theta = SVector::<f64, N>::zeros();
+        home_into(theta.as_mut_slice());
+        theta
     }
 }
 
@@ -140,35 +124,12 @@ impl<const N: usize> Robot<N> for NLink<N> {
     }
 
     fn position(&self, theta: &SVector<f64, N>) -> Vector3<f64> {
-        let l = Self::link_length();
-        let mut r = 0.0;
-        let mut z = H0;
-        let mut phi = 0.0;
-        for k in 1..N {
-            phi += theta[k];
-            let (s, c) = f64::sin_cos(phi);
-            r += l * c;
-            z += l * s;
-        }
-        let (s1, c1) = theta[0].sin_cos();
-        Vector3::new(c1 * r, s1 * r, z)
+        position_of(theta.as_slice())
     }
 
     fn jacobian(&self, theta: &SVector<f64, N>) -> SMatrix<f64, 3, N> {
-        let l = Self::link_length();
-        let (s, c) = Self::pitch_trig(theta);
-        let (s1, c1) = theta[0].sin_cos();
         let mut jac = SMatrix::<f64, 3, N>::zeros();
-        let (mut sj, mut cj) = (0.0, 0.0);
-        for j in (1..N).rev() {
-            sj += l * s[j];
-            cj += l * c[j];
-            jac[(0, j)] = -c1 * sj;
-            jac[(1, j)] = -s1 * sj;
-            jac[(2, j)] = cj;
-        }
-        jac[(0, 0)] = -s1 * cj;
-        jac[(1, 0)] = c1 * cj;
+        jacobian_into(theta.as_slice(), jac.as_mut_slice());
         jac
     }
 
@@ -177,31 +138,8 @@ impl<const N: usize> Robot<N> for NLink<N> {
         theta: &SVector<f64, N>,
         thetadot: &SVector<f64, N>,
     ) -> SMatrix<f64, 3, N> {
-        let l = Self::link_length();
-        let (s, c) = Self::pitch_trig(theta);
-        let mut w = [0.0; N];
-        w[0] = thetadot[0];
-        let mut rate = 0.0;
-        for k in 1..N {
-            rate += thetadot[k];
-            w[k] = rate;
-        }
-        let (s1, c1) = theta[0].sin_cos();
-        let w1 = w[0];
         let mut jdot = SMatrix::<f64, 3, N>::zeros();
-        let (mut sj, mut cj, mut swj, mut cwj) = (0.0, 0.0, 0.0, 0.0);
-        for j in (1..N).rev() {
-            sj += l * s[j];
-            cj += l * c[j];
-            swj += l * s[j] * w[j];
-            cwj += l * c[j] * w[j];
-            jdot[(0, j)] = s1 * w1 * sj - c1 * cwj;
-            jdot[(1, j)] = -c1 * w1 * sj - s1 * cwj;
-            jdot[(2, j)] = -swj;
-        }
-        let (r, rdot) = (cj, -swj);
-        jdot[(0, 0)] = -c1 * w1 * r - s1 * rdot;
-        jdot[(1, 0)] = -s1 * w1 * r + c1 * rdot;
+        jacobian_dot_into(theta.as_slice(), thetadot.as_slice(), jdot.as_mut_slice());
         jdot
     }
 
@@ -234,4 +172,99 @@ impl<const N: usize> Robot<N> for NLink<N> {
         }
         points
     }
+}
+
+// The kinematics of the module docs on slices, for any n >= 2 joints: the fixed-size
+// [`NLink`] and the dynamic-size [`crate::NLinkDyn`] both call them (one implementation).
+
+/// Length of every pitch link of an n-joint arm, `L / (n - 1)` (m).
+pub(crate) fn link_length(n: usize) -> f64 {
+    REACH / (n - 1) as f64
+}
+
+/// Writes the home pose of an `theta.len()`-joint arm (module documentation).
+pub(crate) fn home_into(theta: &mut [f64]) {
+    let bend = -3.0 / (theta.len() - 1) as f64;
+    for (k, t) in theta.iter_mut().enumerate() {
+        *t = match k {
+            0 => 0.0,
+            1 => 1.2,
+            _ => bend,
+        };
+    }
+}
+
+/// f(theta).
+pub(crate) fn position_of(theta: &[f64]) -> Vector3<f64> {
+    let l = link_length(theta.len());
+    let mut r = 0.0;
+    let mut z = H0;
+    let mut phi = 0.0;
+    for t in &theta[1..] {
+        phi += t;
+        let (s, c) = f64::sin_cos(phi);
+        r += l * c;
+        z += l * s;
+    }
+    let (s1, c1) = theta[0].sin_cos();
+    Vector3::new(c1 * r, s1 * r, z)
+}
+
+/// Writes J(theta) into `jac`, the 3 x n column-major storage (length 3n). A first pass stores
+/// (sin phi_k, cos phi_k) in column k's rows 0 and 1; the backward pass over the suffix sums
+/// reads column j before it overwrites it, so no other scratch is needed.
+pub(crate) fn jacobian_into(theta: &[f64], jac: &mut [f64]) {
+    let n = theta.len();
+    assert_eq!(jac.len(), 3 * n, "nlink: J is 3 x n");
+    let l = link_length(n);
+    let mut phi = 0.0;
+    for k in 1..n {
+        phi += theta[k];
+        (jac[3 * k], jac[3 * k + 1]) = phi.sin_cos();
+    }
+    let (s1, c1) = theta[0].sin_cos();
+    let (mut sj, mut cj) = (0.0, 0.0);
+    for j in (1..n).rev() {
+        let (s, c) = (jac[3 * j], jac[3 * j + 1]);
+        sj += l * s;
+        cj += l * c;
+        jac[3 * j] = -c1 * sj;
+        jac[3 * j + 1] = -s1 * sj;
+        jac[3 * j + 2] = cj;
+    }
+    jac[0] = -s1 * cj;
+    jac[1] = c1 * cj;
+    jac[2] = 0.0;
+}
+
+/// Writes Jdot(theta, thetadot) into `jdot`, the 3 x n column-major storage: as
+/// [`jacobian_into`], column k first holds (sin phi_k, cos phi_k, w_k).
+pub(crate) fn jacobian_dot_into(theta: &[f64], thetadot: &[f64], jdot: &mut [f64]) {
+    let n = theta.len();
+    assert_eq!(jdot.len(), 3 * n, "nlink: Jdot is 3 x n");
+    let l = link_length(n);
+    let (mut phi, mut rate) = (0.0, 0.0);
+    for k in 1..n {
+        phi += theta[k];
+        rate += thetadot[k];
+        (jdot[3 * k], jdot[3 * k + 1]) = phi.sin_cos();
+        jdot[3 * k + 2] = rate;
+    }
+    let (s1, c1) = theta[0].sin_cos();
+    let w1 = thetadot[0];
+    let (mut sj, mut cj, mut swj, mut cwj) = (0.0, 0.0, 0.0, 0.0);
+    for j in (1..n).rev() {
+        let (s, c, w) = (jdot[3 * j], jdot[3 * j + 1], jdot[3 * j + 2]);
+        sj += l * s;
+        cj += l * c;
+        swj += l * s * w;
+        cwj += l * c * w;
+        jdot[3 * j] = s1 * w1 * sj - c1 * cwj;
+        jdot[3 * j + 1] = -c1 * w1 * sj - s1 * cwj;
+        jdot[3 * j + 2] = -swj;
+    }
+    let (r, rdot) = (cj, -swj);
+    jdot[0] = -c1 * w1 * r - s1 * rdot;
+    jdot[1] = -s1 * w1 * r + c1 * rdot;
+    jdot[2] = 0.0;
 }

@@ -35,10 +35,10 @@ use std::sync::Arc;
 
 use crate::qp::{Qp, QpDims};
 use crate::sign_power::{sign_power, sign_power_slope};
-use nalgebra::SVector;
+use nalgebra::{SVector, Vector3};
 use robots::Robot;
 
-use crate::paths::Path;
+use crate::paths::{Path, PathPoint};
 use crate::qp_dot::QpDotScratch;
 use crate::scheme::{Level, Scheme};
 
@@ -77,6 +77,26 @@ pub fn finite_time_c<const N: usize>(
     smoothing: f64,
 ) -> SVector<f64, N> {
     (theta - theta_star0).map(|e| sign_power(e, alpha, smoothing))
+}
+
+/// Writes the QP of (14)/(22) from its parts, as slices so that fixed- and dynamic-size
+/// storage both fit (the const-generic [`Kong2019`] and the cost harness's arms of hundreds of
+/// joints): P = I, q = `q`, A = J (`jac`: 3 x n, column-major), b = rdot* + k_p (r* - f(theta)),
+/// no bounds.
+pub fn fill_qp(
+    qp: &mut Qp,
+    q: &[f64],
+    jac: &[f64],
+    f: &Vector3<f64>,
+    desired: &PathPoint,
+    k_p: f64,
+) {
+    qp.p.fill_with_identity();
+    qp.q.as_mut_slice().copy_from_slice(q);
+    qp.a.as_mut_slice().copy_from_slice(jac);
+    qp.b.copy_from(&(desired.rdot + (desired.r - f) * k_p));
+    qp.lower.as_mut_slice().fill(f64::NEG_INFINITY);
+    qp.upper.as_mut_slice().fill(f64::INFINITY);
 }
 
 impl<const N: usize> Kong2019<N> {
@@ -158,13 +178,14 @@ impl<const N: usize> Scheme<N> for Kong2019<N> {
 
     fn build(&self, t: f64, theta: &SVector<f64, N>, _thetadot: &SVector<f64, N>, qp: &mut Qp) {
         debug_assert_eq!(qp.dims(), self.dims());
-        qp.p.fill_with_identity();
-        qp.q.copy_from(&self.linear_term(theta));
-        qp.a.copy_from(&self.robot.jacobian(theta));
-        let pp = self.path.at(t);
-        qp.b.copy_from(&(pp.rdot + (pp.r - self.robot.position(theta)) * self.k_p));
-        qp.lower.as_mut_slice().fill(f64::NEG_INFINITY);
-        qp.upper.as_mut_slice().fill(f64::INFINITY);
+        fill_qp(
+            qp,
+            self.linear_term(theta).as_slice(),
+            self.robot.jacobian(theta).as_slice(),
+            &self.robot.position(theta),
+            &self.path.at(t),
+            self.k_p,
+        );
     }
 
     /// Analytic (see the module docs for the finite-time regularisation at e = 0).

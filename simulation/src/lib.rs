@@ -11,11 +11,9 @@
 //! reject. Why a run failed: [`error`]. Writing the records is the `records` crate's work,
 //! presenting them the `presentation` crate's. [`score_trajectory`] scores a trajectory
 //! produced elsewhere on a task, with the metrics and the score of a run.
-//! [`task_numbers`] computes a task's check values (its task card's). [`dof_cost`] measures
-//! what an instant and a run cost against the number of joints.
+//! [`task_numbers`] computes a task's check values (its task card's).
 
 pub mod coupled;
-pub mod dof_cost;
 pub mod error;
 pub mod metrics;
 pub mod run;

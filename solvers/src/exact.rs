@@ -44,6 +44,7 @@
 //! inequality and bound right-hand sides are left out because the papers fill them with large
 //! constants standing for +inf (varpi = 1e3 and more), which would make the check meaningless.
 
+use crate::dense_lu::{Backend, DenseLu};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettings, DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
@@ -340,10 +341,20 @@ pub fn cone_sizes(qp: &Qp) -> Result<ConeSizes, ExactError> {
 /// Solves an equality-only QP (no inequality rows, every bound infinite) through its KKT system
 /// `[[P, A'], [A, 0]] [x; lambda] = [-q; b]` by LU with partial pivoting, and returns x.
 ///
+/// On nalgebra at every size: the matrix's zero blocks (and P's, identity or diagonal in the
+/// papers' schemes) are skipped by the in-place elimination, and faer's dense LU was slower at
+/// every measured size up to nx + n_eq = 203 (`kkt-floor` of `results/dof-cost.csv`;
+/// [`crate::dense_lu`]).
+///
 /// Independent of Clarabel, as a check. `None` when the QP has inequalities or finite bounds,
 /// or when the KKT matrix is singular (P not positive definite on the null space of A, or A
 /// rank deficient).
 pub fn solve_equality_kkt(qp: &Qp) -> Option<DVector<f64>> {
+    solve_equality_kkt_with(qp, Backend::Nalgebra)
+}
+
+/// [`solve_equality_kkt`] on a given backend (assembly, factorisation and solve allocate).
+pub fn solve_equality_kkt_with(qp: &Qp, backend: Backend) -> Option<DVector<f64>> {
     let nx = qp.q.len();
     let n_eq = qp.b.len();
     let has_bounds =
@@ -358,8 +369,12 @@ pub fn solve_equality_kkt(qp: &Qp) -> Option<DVector<f64>> {
     let mut rhs = DVector::zeros(nx + n_eq);
     rhs.rows_mut(0, nx).copy_from(&(-&qp.q));
     rhs.rows_mut(nx, n_eq).copy_from(&qp.b);
-    let sol = kkt.lu().solve(&rhs)?;
-    Some(sol.rows(0, nx).into_owned())
+    let mut lu = DenseLu::new(nx + n_eq, backend);
+    if !lu.factor(&kkt) {
+        return None;
+    }
+    lu.solve(rhs.as_mut_slice());
+    Some(rhs.rows(0, nx).into_owned())
 }
 
 /// The QP stacked into Clarabel's form (see the module docs for the row order).

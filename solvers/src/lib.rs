@@ -10,6 +10,7 @@
 
 pub mod active_set;
 pub mod auxiliary;
+pub mod dense_lu;
 pub mod exact;
 pub mod exact_path;
 pub mod kkt_schur;
@@ -23,7 +24,11 @@ pub use active_set::{
     ActiveSetError, ActiveSetSolution, ActiveSetSolver, ActiveSetStart, Constraint, WorkingSet,
 };
 pub use auxiliary::AuxiliaryElimination;
-pub use exact::{solve_equality_kkt, ExactError, ExactSolution, ExactSolver, ExactStatus};
+pub use dense_lu::{Backend, DenseLu, FAER_CROSSOVER};
+pub use exact::{
+    solve_equality_kkt, solve_equality_kkt_with, ExactError, ExactSolution, ExactSolver,
+    ExactStatus,
+};
 pub use exact_path::{ExactPath, ExactPathStats, CHECK_EVERY};
 pub use random_qp::{random_feasible, random_qp, QpShape};
 pub use schemes::qp::{KktResiduals, Qp, QpDims, QpDuals};

@@ -1,7 +1,8 @@
 //! The cost against the number of joints of one scheme (`results/dof-cost.csv`): the median
 //! cost of each per-call quantity (top) and of each whole run (bottom) against N, both axes
 //! logarithmic, so a power law c N^k is a straight line of slope k; the legend gives each
-//! quantity's fitted k.
+//! quantity's fitted k. The dense LU quantities are drawn once per backend: nalgebra in the
+//! quantity's colour, faer in the light shade of the same hue.
 
 use super::layout::{Area, Body, Figure};
 use super::legend::{self, Arrangement, Entry};
@@ -11,7 +12,7 @@ use crate::error::FigureError;
 use crate::report::performance::quantity_label;
 use plotters::prelude::*;
 use records::dof_cost::DofCostRow;
-use simulation::dof_cost::Quantity;
+use records::dof_cost::Quantity;
 
 /// Width of the legend column on the right (px).
 const LEGEND_WIDTH: u32 = 360;
@@ -39,42 +40,53 @@ impl Body for DofCostBody {
     }
 }
 
+/// The palette's offset from a hue to its light shade (`style::colour`'s 20 colours: ten
+/// hues, then their light shades).
+const LIGHT_SHADE: usize = 10;
+
 /// The figure of one scheme; `rows` are that scheme's rows of `dof-cost.csv` (measured and
-/// fitted). Quantity k (in [`Quantity::ALL`] order) is drawn in colour k.
+/// fitted). Quantity k (in [`Quantity::ALL`] order) is drawn in colour k on nalgebra and in
+/// colour k + [`LIGHT_SHADE`] on faer.
 pub fn figure(scheme: &str, rows: &[&DofCostRow]) -> Figure<DofCostBody> {
     let mut entries = Vec::new();
     let mut calls = Vec::new();
     let mut runs = Vec::new();
     for (k, quantity) in Quantity::ALL.into_iter().enumerate() {
-        let points: Vec<(f64, f64)> = rows
-            .iter()
-            .filter(|r| !r.is_fit() && r.quantity == quantity.id())
-            .filter_map(|r| Some((r.n? as f64, r.median_us?)))
-            .collect();
-        if points.is_empty() {
-            continue;
-        }
-        let network = rows
-            .iter()
-            .find(|r| r.quantity == quantity.id())
-            .map_or("", |r| r.network.as_str());
-        let exponent = rows
-            .iter()
-            .find(|r| r.is_fit() && r.quantity == quantity.id())
-            .and_then(|r| r.exponent)
-            .map_or(String::new(), |e| format!(" (k = {e:.2})"));
-        entries.push(Entry {
-            style: colour(k).stroke_width(LEGEND_LINE_WIDTH),
-            label: format!("{}{exponent}", quantity_label(quantity, network)),
-        });
-        let series = Series {
-            colour: colour(k),
-            points,
-        };
-        if quantity.is_run() {
-            runs.push(series);
-        } else {
-            calls.push(series);
+        for (b, backend) in quantity.backends().iter().enumerate() {
+            let of_series =
+                |r: &&&DofCostRow| r.quantity == quantity.id() && r.backend == backend.id();
+            let points: Vec<(f64, f64)> = rows
+                .iter()
+                .filter(|r| !r.is_fit() && of_series(r))
+                .filter_map(|r| Some((r.n? as f64, r.median_us?)))
+                .collect();
+            if points.is_empty() {
+                continue;
+            }
+            let network = rows
+                .iter()
+                .find(of_series)
+                .map_or("", |r| r.network.as_str());
+            let exponent = rows
+                .iter()
+                .find(|r| r.is_fit() && of_series(r))
+                .and_then(|r| r.exponent)
+                .map_or(String::new(), |e| format!(" (k = {e:.2})"));
+            let on = match quantity.backends() {
+                [_] => String::new(),
+                _ => format!(", {}", backend.id()),
+            };
+            let colour = colour(k + b * LIGHT_SHADE);
+            entries.push(Entry {
+                style: colour.stroke_width(LEGEND_LINE_WIDTH),
+                label: format!("{}{on}{exponent}", quantity_label(quantity, network)),
+            });
+            let series = Series { colour, points };
+            if quantity.is_run() {
+                runs.push(series);
+            } else {
+                calls.push(series);
+            }
         }
     }
     let scheme_name = rows.first().map_or("", |r| r.scheme_name.as_str());
@@ -85,7 +97,7 @@ pub fn figure(scheme: &str, rows: &[&DofCostRow]) -> Figure<DofCostBody> {
         body: DofCostBody {
             entries,
             calls: LogLogPanel {
-                caption: "(a) one call along the exact run".to_string(),
+                caption: "(a) one call at the sampled states".to_string(),
                 x_desc: "joints N".to_string(),
                 y_desc: "median per call (us)".to_string(),
                 series: calls,

@@ -168,7 +168,7 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, ReportError> {
         }
     }
 
-    let dof_rows = records::dof_cost::read(&root.join("results")).map_err(ReportError::Records)?;
+    let dof_rows = records::dof_cost::read(&root.join("results"))?;
     let mut schemes: Vec<&str> = dof_rows.iter().map(|r| r.scheme.as_str()).collect();
     schemes.sort_unstable();
     schemes.dedup();

@@ -94,7 +94,7 @@ impl Inputs {
                 entries: read_csv(&results.join("inference-entries.csv"))?,
             },
             timings: records::timing::read(&results)?,
-            dof_cost: records::dof_cost::read(&results).map_err(ReportError::Records)?,
+            dof_cost: records::dof_cost::read(&results)?,
             profile: read_csv(&results.join(records::profile::FILE))?,
             control: control::ControlResults::load(&results)?,
             python: python::PythonResults::load(&results)?,

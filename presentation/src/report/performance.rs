@@ -1,5 +1,5 @@
 //! Performance: what an instant and a run cost, from `results/dof-cost.csv` (written by
-//! `reproduce --dof-cost`, see `simulation::dof_cost`) and from the per-run counts and times of
+//! `reproduce --dof-cost`, see the crate `cost`) and from the per-run counts and times of
 //! `results/runs.csv`:
 //!
 //! - per instant at the Jaco2's size (N = 6): each network evaluation against the exact
@@ -19,12 +19,12 @@
 
 use super::cost::{matlab_experiments, paper_times, solver_label, timed_papers};
 use super::markdown::{sci, sci_opt, Table, MISSING};
-use records::dof_cost::DofCostRow;
+use records::dof_cost::{DofCostRow, Quantity, Summary};
 use records::index::{completed, Runs};
 use records::papers::Papers;
 use records::profile::ProfileRow;
 use records::timing::{Timings, REPETITIONS};
-use simulation::dof_cost::{Quantity, Summary};
+use solvers::Backend;
 use std::collections::BTreeMap;
 
 /// The joint count the per-instant table is shown at: the Jaco2's.
@@ -44,6 +44,7 @@ pub fn quantity_label(quantity: Quantity, network: &str) -> String {
         Quantity::SchemeBuild => "scheme build (QP assembly)".to_string(),
         Quantity::NetworkRhs => format!("{network} RHS"),
         Quantity::NetworkJacobian => format!("{network} Jacobian"),
+        Quantity::NetworkLu => format!("{network} Jacobian's LU"),
         Quantity::ExactActiveSet => "exact: active set, hot-started".to_string(),
         Quantity::ExactClarabel => "exact: Clarabel".to_string(),
         Quantity::KktFloor => "dense KKT floor (one LU)".to_string(),
@@ -52,7 +53,8 @@ pub fn quantity_label(quantity: Quantity, network: &str) -> String {
     }
 }
 
-/// The measured row of (scheme, N, quantity).
+/// The measured row of (scheme, N, quantity) on nalgebra (the backend of every quantity; the
+/// dense LUs on faer are read by [`dof_curve`]).
 fn find<'a>(
     dof: &'a [DofCostRow],
     scheme: &str,
@@ -60,7 +62,11 @@ fn find<'a>(
     quantity: Quantity,
 ) -> Option<&'a DofCostRow> {
     dof.iter().find(|r| {
-        !r.is_fit() && r.scheme == scheme && r.n == Some(n) && r.quantity == quantity.id()
+        !r.is_fit()
+            && r.scheme == scheme
+            && r.n == Some(n)
+            && r.quantity == quantity.id()
+            && r.backend == Backend::Nalgebra.id()
     })
 }
 
@@ -227,7 +233,7 @@ fn machine(dof: &[DofCostRow]) -> String {
 fn per_instant(dof: &[DofCostRow]) -> String {
     let mut out = format!(
         "### Per instant at N = {JACO2_N} (the Jaco2's size)\n\nOne call at states sampled from \
-         an exact run of `nlink-{JACO2_N}` (`simulation::dof_cost`): the network's right-hand \
+         an exact run of `nlink-{JACO2_N}` (crate `cost`): the network's right-hand \
          side and Jacobian, the scheme's QP assembly, the exact optimum by the hot-started \
          active set (what the exact column and the scorer call) and by Clarabel (the reference \
          of record), and the dense KKT floor (one LU solve of the equality-constrained KKT \
@@ -360,14 +366,23 @@ fn per_solver_kind(runs: &Runs) -> String {
     out
 }
 
-/// The figures of the cost against N and the fitted exponents.
+/// The figures of the cost against N, the fitted exponents per backend and the crossover of
+/// the dense LUs.
 fn dof_curve(dof: &[DofCostRow], figures: &[String]) -> String {
-    let mut out = String::from(
-        "### Cost against the number of joints\n\nThe n-link arms `nlink-N` (N = 3 ... 30, a yaw \
-         joint and a planar pitch chain, from their stated home pose) with the VLTCO scheme \
-         of jia2019 (2.17) on a four-leaf clover (nx = N + 1, 2N inequality rows, bounds) and \
-         the ZNN scheme of kong2019 (22) on a circle (nx = N, equalities only). k is the growth exponent of \
-         median cost ~ c N^k, fitted by least squares on log-log over the measured N.\n\n",
+    let largest = dof.iter().filter_map(|r| r.n).max().unwrap_or(0);
+    let mut out = format!(
+        "### Cost against the number of joints\n\nThe n-link arms `nlink-N` (a yaw joint and a \
+         planar pitch chain, from their stated home pose) with the VLTCO scheme of \
+         jia2019 (2.17) on a four-leaf clover (nx = N + 1, 2N inequality rows, bounds) and the \
+         ZNN scheme of kong2019 (22) on a circle (nx = N, equalities only). Up to N = 30 each N is a const-generic \
+         instantiation of the registry, timed at states of an exact run, whole runs included; \
+         beyond, up to N = {largest}, the ZNN scheme's per-instant quantities come from the \
+         dynamic-size path (crate `cost`, module `dynamic`: `robots::NLinkDyn` on nalgebra's \
+         `DVector`/`Matrix3xX`, no instantiation per size; states near the home pose, no whole \
+         runs, no VLTCO: its scheme is const-generic only). The dense LUs (the network \
+         Jacobian's LU, the KKT floor) are timed on nalgebra and on faer. k is the growth \
+         exponent of median cost ~ c N^k, fitted by least squares on log-log over the measured \
+         N, per backend.\n\n"
     );
     for scheme in schemes(dof) {
         let name = crate::figures::dof_cost::file_name(scheme);
@@ -378,6 +393,7 @@ fn dof_curve(dof: &[DofCostRow], figures: &[String]) -> String {
     let mut t = Table::new([
         "scheme",
         "quantity",
+        "backend",
         "k",
         "c (us)",
         "median at the smallest N (us)",
@@ -386,7 +402,12 @@ fn dof_curve(dof: &[DofCostRow], figures: &[String]) -> String {
     for fit in dof.iter().filter(|r| r.is_fit()) {
         let measured: Vec<&DofCostRow> = dof
             .iter()
-            .filter(|r| !r.is_fit() && r.scheme == fit.scheme && r.quantity == fit.quantity)
+            .filter(|r| {
+                !r.is_fit()
+                    && r.scheme == fit.scheme
+                    && r.quantity == fit.quantity
+                    && r.backend == fit.backend
+            })
             .collect();
         let at = |pick: fn(usize, usize) -> bool| {
             measured
@@ -402,6 +423,7 @@ fn dof_curve(dof: &[DofCostRow], figures: &[String]) -> String {
         t.push([
             format!("{} {}", fit.scheme, fit.scheme_name),
             label,
+            fit.backend.clone(),
             fit.exponent
                 .map_or(MISSING.to_string(), |k| format!("{k:.2}")),
             sci_opt(fit.factor_us),
@@ -413,7 +435,54 @@ fn dof_curve(dof: &[DofCostRow], figures: &[String]) -> String {
         out.push_str(&t.render());
         out.push('\n');
     }
+    out.push_str(&crossovers(dof));
     out
+}
+
+/// Where faer's LU overtakes nalgebra's, per scheme and dense LU quantity
+/// ([`records::dof_cost::crossover`]), and the size production code switches at.
+fn crossovers(dof: &[DofCostRow]) -> String {
+    let mut t = Table::new([
+        "scheme",
+        "quantity",
+        "faer faster from N",
+        "LU size there",
+        "nalgebra ÷ faer at the largest N",
+    ]);
+    for scheme in schemes(dof) {
+        for quantity in [Quantity::NetworkLu, Quantity::KktFloor] {
+            let Some(c) = records::dof_cost::crossover(dof, scheme, quantity) else {
+                continue;
+            };
+            let network = dof
+                .iter()
+                .find(|r| r.scheme == scheme)
+                .map_or("", |r| r.network.as_str());
+            t.push([
+                scheme.to_string(),
+                quantity_label(quantity, network),
+                c.n.map_or("never (up to the largest N)".to_string(), |n| n.to_string()),
+                c.lu_size.map_or(MISSING.to_string(), |n| n.to_string()),
+                format!("{} (N = {})", sci(c.speedup_at_largest), c.largest_n),
+            ]);
+        }
+    }
+    if t.is_empty() {
+        return String::new();
+    }
+    format!(
+        "**Crossover.** The smallest measured N from which faer's median is below nalgebra's at \
+         that and every larger N, and the size of the matrix factorised there (the KKT system: \
+         nx + n_eq; the LVI-PDNN Jacobian: nx + n_eq + n_in, N + 3 for kong2019 and 3N + 4 for \
+         jia2019). Near the crossover the two are within a few per cent and its N moves between \
+         measurements. Production code (`solvers::dense_lu`) factorises dense, unstructured matrices \
+         (VP-RNN-PF's W) on faer from a system size of `FAER_CROSSOVER` = {}, set from the \
+         network Jacobian's LU above, and on nalgebra below; the KKT solve stays on nalgebra at \
+         every size, since its zero and identity blocks are skipped by the in-place \
+         elimination and faer's dense LU was slower there at every measured N.\n\n{}\n",
+        solvers::FAER_CROSSOVER,
+        t.render()
+    )
 }
 
 /// The whole runs of the DOF measurement, per N: time, steps and time per step.
@@ -571,8 +640,9 @@ mod tests {
     /// A synthetic dof-cost.csv: jia2019 at N = 3, 6, 12 with cost = N^2 us (network RHS) and
     /// 3 N^2 (active set), plus the fits.
     fn synthetic() -> Vec<DofCostRow> {
-        let header = "scheme,scheme_name,network,quantity,kind,n,nx,n_eq,n_in,median_us,p95_us,\
-                      samples,exponent,factor_us,steps,rhs_evals,completed,machine,cores,git_rev\n";
+        let header = "scheme,scheme_name,network,quantity,backend,kind,n,nx,n_eq,n_in,median_us,\
+                      p95_us,samples,exponent,factor_us,steps,rhs_evals,completed,machine,cores,\
+                      git_rev\n";
         let mut text = header.to_string();
         for n in [3usize, 6, 12] {
             let (nx, n_in, m) = (n + 1, 2 * n, (n * n) as f64);
@@ -582,13 +652,19 @@ mod tests {
                 ("kkt-floor", 0.5),
             ] {
                 text.push_str(&format!(
-                    "jia2019,VLTCO,LVI-PDNN,{q},measured,{n},{nx},3,{n_in},{},{},300,,,,,,Test CPU,2,abc\n",
+                    "jia2019,VLTCO,LVI-PDNN,{q},nalgebra,measured,{n},{nx},3,{n_in},{},{},300,,,,,,Test CPU,2,abc\n",
                     f * m,
                     1.5 * f * m
                 ));
             }
+            // faer's KKT floor: slower than nalgebra's (0.5 N^2) below N = 12, faster there.
             text.push_str(&format!(
-                "jia2019,VLTCO,LVI-PDNN,run-exact,measured,{n},{nx},3,{n_in},{},{},5,,,1000,7000,true,Test CPU,2,abc\n",
+                "jia2019,VLTCO,LVI-PDNN,kkt-floor,faer,measured,{n},{nx},3,{n_in},{},{},300,,,,,,Test CPU,2,abc\n",
+                if n < 12 { m } else { 0.25 * m },
+                2.0 * m
+            ));
+            text.push_str(&format!(
+                "jia2019,VLTCO,LVI-PDNN,run-exact,nalgebra,measured,{n},{nx},3,{n_in},{},{},5,,,1000,7000,true,Test CPU,2,abc\n",
                 1e4 * n as f64,
                 1.1e4 * n as f64
             ));
@@ -655,9 +731,19 @@ mod tests {
             "{md}"
         );
         // Exact power laws: k = 2 and k = 1.
-        assert!(md.contains("| jia2019 VLTCO | LVI-PDNN RHS | 2.00 | 1.00e0 | 9.00e0 (N = 3) | 1.44e2 (N = 12) |"), "{md}");
+        assert!(md.contains("| jia2019 VLTCO | LVI-PDNN RHS | nalgebra | 2.00 | 1.00e0 | 9.00e0 (N = 3) | 1.44e2 (N = 12) |"), "{md}");
         assert!(
-            md.contains("| jia2019 VLTCO | whole run, exact column | 1.00 |"),
+            md.contains("| jia2019 VLTCO | whole run, exact column | nalgebra | 1.00 |"),
+            "{md}"
+        );
+        // The faer floor has its own fit and a crossover at N = 12 (KKT size 13 + 3), where
+        // nalgebra's 72 us over faer's 36 us is 2.
+        assert!(
+            md.contains("| jia2019 VLTCO | dense KKT floor (one LU) | faer |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("| jia2019 | dense KKT floor (one LU) | 12 | 16 | 2.00e0 (N = 12) |"),
             "{md}"
         );
         // Whole runs: 6e4 us = 6e-2 s over 1000 steps = 60 us a step.

@@ -35,7 +35,8 @@
 //!
 //! (W is dphi/dy; pσ² e^{-σN} in the paper = sigma c_i here.) The data derivatives come from
 //! `qp_dot` (P, q, A, b, G, h, and the bounds' derivatives for the bound rows); with no `qp_dot`
-//! the QP is frozen. ydot is solved for with an in-place LU ([`super::lu`]).
+//! the QP is frozen. ydot is solved for with a preallocated LU ([`crate::dense_lu`]: the in-place
+//! elimination of [`super::lu`] at the papers' sizes, faer's past its measured crossover).
 //! Activation: linear (2.27), sinh (2.28) or power-sigmoid (2.29), see [`Activation`].
 //!
 //! Sparse rows (ours): most rows of B are bounds, sign e_j'. Every sum over rows and columns
@@ -74,9 +75,9 @@
 //! ```
 
 use super::activation::Activation;
-use super::lu;
 use super::zeroing::Gain;
 use super::NeuralSolver;
+use crate::dense_lu::DenseLu;
 use catalog::error::NetworkError;
 use nalgebra::DMatrix;
 use schemes::qp::{Qp, QpDims};
@@ -109,10 +110,9 @@ pub struct VpRnnPf {
     c: Vec<f64>,
     /// Bdot_i x.
     bdot_x: Vec<f64>,
-    /// W (eq. 2.30), its LU factors, pivots.
+    /// W (eq. 2.30) and its LU factors (nalgebra or faer by size, preallocated).
     w: DMatrix<f64>,
-    lu: DMatrix<f64>,
-    piv: Vec<usize>,
+    lu: DenseLu,
     /// phi = D y - u (eq. 2.25).
     phi: Vec<f64>,
     /// F = ydot.
@@ -164,8 +164,7 @@ impl VpRnnPf {
             c: vec![0.0; rows],
             bdot_x: vec![0.0; rows],
             w: DMatrix::zeros(n, n),
-            lu: DMatrix::zeros(n, n),
-            piv: vec![0; n],
+            lu: DenseLu::for_size(n),
             phi: vec![0.0; n],
             f: vec![0.0; n],
             factored: false,
@@ -309,10 +308,9 @@ impl VpRnnPf {
                 self.f[nx + k] += s;
             }
         }
-        self.lu.copy_from(&self.w);
-        self.factored = lu::factor(&mut self.lu, &mut self.piv);
+        self.factored = self.lu.factor(&self.w);
         if self.factored {
-            lu::solve(&self.lu, &self.piv, &mut self.f);
+            self.lu.solve(&mut self.f);
         } else {
             self.f.fill(f64::NAN);
         }
@@ -397,7 +395,7 @@ impl NeuralSolver for VpRnnPf {
                 }
             }
         }
-        lu::solve_columns(&self.lu, &self.piv, jac);
+        self.lu.solve_columns(jac);
         true
     }
 }

@@ -1,0 +1,277 @@
+//! The fixed-size path: N = 3 ... 30, each N a const-generic instantiation of the registry's
+//! `NLink<N>` ([`catalog::robot_registry::NLINK_SIZES`]), so the scheme (jia2019 VLTCO or
+//! kong2019 ZNN), the exact column and whole runs are the ones the reproduction runs.
+//!
+//! [`prepare`] builds the case's robot, path, scheme and network, runs the exact column once
+//! ([`simulate`] with [`Solver::Exact`]) and samples up to `states` instants of its trace,
+//! evenly spread: every per-call quantity is timed at those states, so the costs are those of
+//! a real trajectory (active sets, conditioning), not of one hand-picked point. Besides the
+//! per-instant quantities of [`Instants`]:
+//!
+//! - `scheme-build`: [`Scheme::build`], the QP assembly (J, bounds, objective) at the state;
+//! - `run-exact`, `run-network`: one whole [`simulate`] call with the experiment files'
+//!   defaults (the exact column with [`default_exact_integrator`], the network with
+//!   [`IntegratorSettings::default`], scored at every accepted step), wall time.
+
+use crate::case::{path_of, Case, PreparedCase, KONG2019_KP, KONG2019_MU};
+use crate::error::CostError;
+use crate::instants::Instants;
+use catalog::experiment::{default_exact_integrator, NetworkInit};
+use catalog::robot_registry::{nlink_name, robot_by_name, RobotVisitor};
+use nalgebra::SVector;
+use records::dof_cost::{Quantity, RunCounts, SchemeKind};
+use robots::{Dynamics, Robot};
+use schemes::jia2019::Jia2019;
+use schemes::kong2019::Kong2019;
+use schemes::paths::{build_path, Path};
+use schemes::qp::{Qp, QpDims};
+use schemes::scheme::Scheme;
+use simulation::simulate::{simulate, Outcome, Run, Scoring, Settings, Solver};
+use catalog::solver_spec::SolverSpec;
+use catalog::integrator::IntegratorSettings;
+use solvers::Backend;
+use std::sync::Arc;
+
+/// Prepares `case` (an N of the registry) on the fixed-size path, sampling up to `states`
+/// states of one exact run (see the module docs). An error when N is not in the registry, or
+/// the exact run does not start or leaves no trace.
+pub fn prepare(case: &Case, states: usize) -> Result<Box<dyn PreparedCase>, CostError> {
+    let robot = robot_by_name(&nlink_name(case.n)).ok_or(CostError::NotRegistered(case.n))?;
+    let home = robot.stated_pose();
+    robot.visit(Prepare {
+        case,
+        states,
+        home: &home,
+    })
+}
+
+/// [`prepare`] generic in N.
+struct Prepare<'a> {
+    case: &'a Case,
+    states: usize,
+    home: &'a [f64],
+}
+
+impl RobotVisitor for Prepare<'_> {
+    type Output = Result<Box<dyn PreparedCase>, CostError>;
+
+    fn visit<const N: usize>(
+        self,
+        robot: Arc<dyn Robot<N>>,
+        _: Option<Arc<dyn Dynamics<N>>>,
+    ) -> Self::Output {
+        Ok(Box::new(Prepared::<N>::new(
+            self.case,
+            robot,
+            self.home,
+            self.states,
+        )?))
+    }
+}
+
+/// A state of the arm at an instant: (t, theta, thetadot).
+type State<const N: usize> = (f64, SVector<f64, N>, SVector<f64, N>);
+
+/// [`PreparedCase`] for an N-joint arm.
+struct Prepared<const N: usize> {
+    label: String,
+    robot: Arc<dyn Robot<N>>,
+    path: Arc<dyn Path>,
+    scheme: Box<dyn Scheme<N>>,
+    theta0: SVector<f64, N>,
+    network_spec: SolverSpec,
+    states: Vec<State<N>>,
+    instants: Instants,
+    scratch_qp: Qp,
+    last_run: Option<RunCounts>,
+}
+
+impl<const N: usize> Prepared<N> {
+    fn new(
+        case: &Case,
+        robot: Arc<dyn Robot<N>>,
+        home: &[f64],
+        states: usize,
+    ) -> Result<Self, CostError> {
+        let label = case.label();
+        let theta0 = SVector::<f64, N>::from_column_slice(home);
+        let path: Arc<dyn Path> = Arc::from(
+            build_path(&path_of(case.scheme), robot.position(&theta0)).map_err(|error| {
+                CostError::Path {
+                    label: label.clone(),
+                    error,
+                }
+            })?,
+        );
+        let scheme: Box<dyn Scheme<N>> = match case.scheme {
+            SchemeKind::Jia2019 => Box::new(Jia2019::new(
+                robot.clone(),
+                path.clone(),
+                theta0,
+                0.2,
+                0.4,
+                20.0,
+                20.0,
+            )),
+            SchemeKind::Kong2019 => Box::new(Kong2019::znn(
+                robot.clone(),
+                path.clone(),
+                theta0,
+                KONG2019_MU,
+                KONG2019_KP,
+            )),
+        };
+
+        // The states: evenly spread trace points of one exact run.
+        let run = simulate(
+            robot.as_ref(),
+            path.as_ref(),
+            scheme.as_ref(),
+            Solver::Exact,
+            &theta0,
+            &theta0,
+            &exact_settings(),
+        )
+        .map_err(|error| CostError::Run {
+            label: label.clone(),
+            error,
+        })?;
+        if let Outcome::Failed { t, error, .. } = &run.outcome {
+            eprintln!("{label}: the exact run failed at t = {t}: {error}");
+        }
+        let trace = &run.trace;
+        let count = states.clamp(1, trace.len().max(1));
+        let states: Vec<State<N>> = (0..count)
+            .filter_map(|i| trace.get(i * trace.len() / count))
+            .map(|p| {
+                (
+                    p.t,
+                    SVector::from_column_slice(&p.theta),
+                    SVector::from_column_slice(&p.thetadot),
+                )
+            })
+            .collect();
+        if states.is_empty() {
+            return Err(CostError::NoTrace(label));
+        }
+        let mut qps = Vec::with_capacity(states.len());
+        let mut qp_dots = Vec::with_capacity(states.len());
+        let mut scratch = scheme.new_dot_scratch();
+        for (t, theta, thetadot) in &states {
+            let mut qp = scheme.new_qp();
+            scheme.build(*t, theta, thetadot, &mut qp);
+            qps.push(qp);
+            let mut qp_dot = scheme.new_qp();
+            let thetaddot = SVector::zeros();
+            scheme.build_dot(*t, theta, thetadot, &thetaddot, &mut qp_dot, &mut scratch);
+            qp_dots.push(qp_dot);
+        }
+        let ts = states.iter().map(|s| s.0).collect();
+        let instants = Instants::new(&label, &case.network, ts, qps, qp_dots)?;
+        Ok(Prepared {
+            label,
+            scratch_qp: scheme.new_qp(),
+            robot,
+            path,
+            scheme,
+            theta0,
+            network_spec: case.network.clone(),
+            states,
+            instants,
+            last_run: Some(counts(&run)),
+        })
+    }
+
+    /// A whole run with `solver` and `settings`; records its counts.
+    fn run(&mut self, solver: Solver<'_>, settings: &Settings) {
+        let run = simulate(
+            self.robot.as_ref(),
+            self.path.as_ref(),
+            self.scheme.as_ref(),
+            solver,
+            &self.theta0,
+            &self.theta0,
+            settings,
+        );
+        self.last_run = run.ok().map(|r| counts(&r));
+    }
+}
+
+/// The counts of a whole run.
+fn counts(run: &Run) -> RunCounts {
+    RunCounts {
+        steps: run.stats.steps,
+        rhs_evals: run.stats.rhs_evals,
+        completed: matches!(run.outcome, Outcome::Completed(_)),
+    }
+}
+
+/// The experiment files' default settings of an exact column: [`default_exact_integrator`],
+/// scored (the exact column has nothing to score), network at zero.
+pub fn exact_settings() -> Settings {
+    Settings {
+        integrator: default_exact_integrator(),
+        scoring: Scoring::EveryStep,
+        network_init: NetworkInit::Zero,
+    }
+}
+
+/// The experiment files' default settings of a network run: [`IntegratorSettings::default`]
+/// (BDF, RelTol 1e-6, AbsTol 1e-8, as ode15s), scored against the exact optimum at every
+/// accepted step, network state starting at zero.
+pub fn network_settings() -> Settings {
+    Settings {
+        integrator: IntegratorSettings::default(),
+        ..exact_settings()
+    }
+}
+
+impl<const N: usize> PreparedCase for Prepared<N> {
+    fn label(&self) -> String {
+        self.label.clone()
+    }
+
+    fn scheme_name(&self) -> String {
+        self.scheme.name()
+    }
+
+    fn network_name(&self) -> String {
+        self.network_spec.display_name()
+    }
+
+    fn dims(&self) -> QpDims {
+        self.scheme.dims()
+    }
+
+    fn states(&self) -> usize {
+        self.states.len()
+    }
+
+    fn supports(&self, quantity: Quantity) -> bool {
+        match quantity {
+            Quantity::SchemeBuild | Quantity::RunExact | Quantity::RunNetwork => true,
+            _ => self.instants.supports(quantity),
+        }
+    }
+
+    fn call(&mut self, quantity: Quantity, backend: Backend, i: usize) {
+        match quantity {
+            Quantity::SchemeBuild => {
+                let (t, theta, thetadot) = &self.states[i % self.states.len()];
+                self.scheme.build(*t, theta, thetadot, &mut self.scratch_qp)
+            }
+            Quantity::RunExact => self.run(Solver::Exact, &exact_settings()),
+            Quantity::RunNetwork => {
+                let spec = self.network_spec.clone();
+                let (dims, scheme) = (self.scheme.dims(), self.scheme.name());
+                let build = move || simulation::run::build_network(&spec, dims, &scheme);
+                self.run(Solver::Network(&build), &network_settings());
+            }
+            _ => self.instants.call(quantity, backend, i),
+        }
+    }
+
+    fn last_run(&self) -> Option<RunCounts> {
+        self.last_run
+    }
+}
