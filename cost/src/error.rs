@@ -1,8 +1,8 @@
 //! Why a case could not be prepared for timing.
 
+use catalog::error::NetworkError;
 use schemes::paths::PathError;
 use simulation::error::RunError;
-use catalog::error::NetworkError;
 
 #[derive(Debug, thiserror::Error)]
 pub enum CostError {

@@ -16,8 +16,11 @@
 use crate::case::{path_of, Case, PreparedCase, KONG2019_KP, KONG2019_MU};
 use crate::error::CostError;
 use crate::instants::Instants;
+use catalog::experiment::Scoring;
 use catalog::experiment::{default_exact_integrator, NetworkInit};
+use catalog::integrator::IntegratorSettings;
 use catalog::robot_registry::{nlink_name, robot_by_name, RobotVisitor};
+use catalog::solver_spec::SolverSpec;
 use nalgebra::SVector;
 use records::dof_cost::{Quantity, RunCounts, SchemeKind};
 use robots::{Dynamics, Robot};
@@ -26,9 +29,7 @@ use schemes::kong2019::Kong2019;
 use schemes::paths::{build_path, Path};
 use schemes::qp::{Qp, QpDims};
 use schemes::scheme::Scheme;
-use simulation::simulate::{simulate, Outcome, Run, Scoring, Settings, Solver};
-use catalog::solver_spec::SolverSpec;
-use catalog::integrator::IntegratorSettings;
+use simulation::simulate::{simulate, Outcome, Run, Settings, Solver};
 use solvers::Backend;
 use std::sync::Arc;
 

@@ -24,7 +24,7 @@ pub const MEASURED: &str = "measured";
 /// [`DofCostRow::kind`] of a fitted exponent.
 pub const FIT: &str = "fit";
 
-/// The schemes measured, by paper id.
+/// The schemes measured, by their scheme kind (`schemes::spec`'s `kind` tag).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub enum SchemeKind {
     /// jia2019 VLTCO (phi = 0.2, tau = 0.4, kappa = 20, Lambda = 20) on a four-leaf clover:
@@ -38,11 +38,11 @@ pub enum SchemeKind {
 impl SchemeKind {
     pub const ALL: [SchemeKind; 2] = [SchemeKind::Jia2019, SchemeKind::Kong2019];
 
-    /// The paper id (`jia2019`, `kong2019`).
+    /// The scheme's `kind` tag (`jia2019`, `kong2019-znn`), as experiment files write it.
     pub fn id(self) -> &'static str {
         match self {
-            SchemeKind::Jia2019 => "jia2019",
-            SchemeKind::Kong2019 => "kong2019",
+            SchemeKind::Jia2019 => schemes::spec::JIA2019_KIND,
+            SchemeKind::Kong2019 => schemes::spec::KONG2019_ZNN_KIND,
         }
     }
 }

@@ -59,7 +59,7 @@ pub fn time_alone(
 ) -> Result<(), TimingError> {
     let papers = Papers::load(papers_dir)?;
     let keys = timed_keys(&results.read_runs()?, &papers);
-    let (machine, cores) = simulation::dof_cost::machine();
+    let (machine, cores) = cost::machine();
     let mut rows = Vec::with_capacity(keys.len());
     eprintln!(
         "timing {} runs alone, {REPETITIONS} times each, one at a time",

@@ -181,15 +181,20 @@ fn check(
     }
 }
 
+/// The `kind` tag of jia2019's tri-criteria scheme ([`SchemeSpec::Jia2019`]).
+pub const JIA2019_KIND: &str = "jia2019";
+/// The `kind` tag of kong2019's ZNN scheme ([`SchemeSpec::Kong2019Znn`]).
+pub const KONG2019_ZNN_KIND: &str = "kong2019-znn";
+
 impl SchemeSpec {
     /// The spec's `kind` tag.
     pub fn kind(&self) -> &'static str {
         match self {
-            SchemeSpec::Jia2019 { .. } => "jia2019",
+            SchemeSpec::Jia2019 { .. } => JIA2019_KIND,
             SchemeSpec::Zhong2021 { .. } => "zhong2021",
             SchemeSpec::Zhang2018 { .. } => "zhang2018",
             SchemeSpec::Kong2019FiniteTime { .. } => "kong2019-finite-time",
-            SchemeSpec::Kong2019Znn { .. } => "kong2019-znn",
+            SchemeSpec::Kong2019Znn { .. } => KONG2019_ZNN_KIND,
         }
     }
 

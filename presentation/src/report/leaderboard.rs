@@ -345,7 +345,7 @@ fn timing(rows: &[LeaderboardRow], timings: &Timings, tasks: &[board::Task]) -> 
         );
     };
     let spreads: Vec<f64> = timings.rows().map(|r| r.sim_spread()).collect();
-    let median_spread = board::percentile(&spreads, 0.5);
+    let median_spread = records::percentile::percentile(&spreads, 0.5);
     format!(
         "**Times.** After the parallel reproduction, every run of the leaderboard (and every run \
          the papers publish a MATLAB time for) was run again {REPETITIONS} times, one run at a \
