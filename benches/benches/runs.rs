@@ -39,9 +39,11 @@ fn whole_runs(c: &mut Criterion) {
             record.run.qp.solves,
             allocations
         );
-        g.bench_function(format!("{experiment}/{}", bench_id(solver)), |b| {
-            b.iter(|| black_box(run_job(black_box(&job))))
-        });
+        let key = job.key();
+        g.bench_function(
+            format!("{}/{}", key.experiment, bench_id(&key.solver)),
+            |b| b.iter(|| black_box(run_job(black_box(&job)))),
+        );
     }
     g.finish();
 }

@@ -18,7 +18,8 @@ pub enum ControlError {
     #[error("{path}: {source}")]
     TaskSet {
         path: String,
-        source: toml::de::Error,
+        /// (Boxed: a TOML error is large.)
+        source: Box<toml::de::Error>,
     },
     /// The project declares no standard task set (a project of its own papers may have none).
     #[error("{0} does not exist: the project declares no control task set")]

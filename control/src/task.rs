@@ -52,7 +52,7 @@ pub fn standard_task_refs(experiments: &std::path::Path) -> Result<Vec<TaskRef>,
     })?;
     let file: TaskSetFile = toml::from_str(&text).map_err(|source| ControlError::TaskSet {
         path: shown.clone(),
-        source,
+        source: Box::new(source),
     })?;
     if file.task.is_empty() {
         return Err(ControlError::EmptyTaskSet(shown));
