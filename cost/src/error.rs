@@ -10,7 +10,7 @@ pub enum CostError {
     #[error("nlink-{0} is not in the registry (NLINK_SIZES); the dynamic path measures it")]
     NotRegistered(usize),
     /// The dynamic path was asked for a scheme it does not build (jia2019).
-    #[error("{0}: the dynamic-size path builds kong2019's QP only")]
+    #[error("{0}: the dynamic-size path builds the QP of kong2019 (22) only")]
     NoDynamicScheme(&'static str),
     #[error("an n-link arm has at least 3 joints, not {0}")]
     TooFewJoints(usize),

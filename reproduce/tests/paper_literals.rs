@@ -19,8 +19,11 @@
 //!
 //! Exempt files ([`EXEMPT`]), each with its reason.
 
+mod common;
+
+use common::{repo_root, rust_files};
 use std::collections::BTreeSet;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Files whose literals are not searched, with the reason.
 const EXEMPT: &[(&str, &str)] = &[
@@ -36,13 +39,6 @@ const EXEMPT: &[(&str, &str)] = &[
     ),
 ];
 
-fn repo_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .expect("reproduce/ has a parent")
-        .to_path_buf()
-}
-
 /// The workspace members of the root `Cargo.toml`.
 fn members(root: &Path) -> Vec<String> {
     let text = std::fs::read_to_string(root.join("Cargo.toml")).expect("the root Cargo.toml");
@@ -53,23 +49,6 @@ fn members(root: &Path) -> Vec<String> {
         .iter()
         .map(|m| m.as_str().expect("a member path").to_string())
         .collect()
-}
-
-/// Every `.rs` file under `dir`, relative to `root` with `/` separators.
-fn rust_files(root: &Path, dir: &Path, out: &mut Vec<String>) {
-    let Ok(entries) = std::fs::read_dir(root.join(dir)) else {
-        return;
-    };
-    for entry in entries.flatten() {
-        let rel = dir.join(entry.file_name());
-        match entry.file_type() {
-            Ok(t) if t.is_dir() => rust_files(root, &rel, out),
-            Ok(_) if rel.extension().is_some_and(|e| e == "rs") => {
-                out.push(rel.to_string_lossy().replace('\\', "/"))
-            }
-            _ => {}
-        }
-    }
 }
 
 /// The library part of a source file: everything before its `#[cfg(test)]` test module.

@@ -5,7 +5,10 @@
 //!
 //! Not searched: the files of [`ALLOWED`], each with its reason.
 
-use std::path::{Path, PathBuf};
+mod common;
+
+use common::{repo_root, rust_files};
+use std::path::Path;
 
 /// Files that may still return `Result<_, String>`, each being replaced or rewritten elsewhere:
 /// remove an entry when its file is replaced (the test then holds the new file to the rule).
@@ -27,30 +30,6 @@ const CRATES: &[&str] = &[
     "cost",
     "python",
 ];
-
-fn repo_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .expect("reproduce/ has a parent")
-        .to_path_buf()
-}
-
-/// Every `.rs` file under `dir`, as paths relative to `root` with `/` separators.
-fn rust_files(root: &Path, dir: &Path, out: &mut Vec<String>) {
-    let Ok(entries) = std::fs::read_dir(root.join(dir)) else {
-        return;
-    };
-    for entry in entries.flatten() {
-        let rel = dir.join(entry.file_name());
-        match entry.file_type() {
-            Ok(t) if t.is_dir() => rust_files(root, &rel, out),
-            Ok(_) if rel.extension().is_some_and(|e| e == "rs") => {
-                out.push(rel.to_string_lossy().replace('\\', "/"))
-            }
-            _ => {}
-        }
-    }
-}
 
 /// The 1-based lines of `text` where a `Result<T, String>` starts (outside `//` comments).
 fn string_results(text: &str) -> Vec<usize> {

@@ -473,8 +473,8 @@ fn crossovers(dof: &[DofCostRow]) -> String {
     format!(
         "**Crossover.** The smallest measured N from which faer's median is below nalgebra's at \
          that and every larger N, and the size of the matrix factorised there (the KKT system: \
-         nx + n_eq; the LVI-PDNN Jacobian: nx + n_eq + n_in, N + 3 for kong2019 and 3N + 4 for \
-         jia2019). Near the crossover the two are within a few per cent and its N moves between \
+         nx + n_eq; the LVI-PDNN Jacobian: nx + n_eq + n_in, N + 3 for the ZNN scheme and 3N + \
+         4 for VLTCO). Near the crossover the two are within a few per cent and its N moves between \
          measurements. Production code (`solvers::dense_lu`) factorises dense, unstructured matrices \
          (VP-RNN-PF's W) on faer from a system size of `FAER_CROSSOVER` = {}, set from the \
          network Jacobian's LU above, and on nalgebra below; the KKT solve stays on nalgebra at \

@@ -121,3 +121,28 @@ pub fn copy_tree(from: &Path, to: &Path) {
         }
     }
 }
+
+/// The workspace root (the parent of `reproduce/`).
+pub fn repo_root() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("reproduce/ has a parent")
+        .to_path_buf()
+}
+
+/// Every `.rs` file under `dir`, as paths relative to `root` with `/` separators.
+pub fn rust_files(root: &Path, dir: &Path, out: &mut Vec<String>) {
+    let Ok(entries) = std::fs::read_dir(root.join(dir)) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let rel = dir.join(entry.file_name());
+        match entry.file_type() {
+            Ok(t) if t.is_dir() => rust_files(root, &rel, out),
+            Ok(_) if rel.extension().is_some_and(|e| e == "rs") => {
+                out.push(rel.to_string_lossy().replace('\\', "/"))
+            }
+            _ => {}
+        }
+    }
+}
