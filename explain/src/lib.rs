@@ -143,8 +143,8 @@ pub fn read_csv<T: Row>(path: &Path) -> Result<Vec<T>, ExplainError> {
 /// rows of the same runs (experiment, variant, solver); other stored rows are kept if their run
 /// still exists among `all` (every job of the experiment files), pruned otherwise.
 pub fn write(results_dir: &Path, fresh: &Explained, all: &[Job]) -> Result<(), ExplainError> {
-    let ladder_path = results_dir.join("ladder.csv");
-    let attribution_path = results_dir.join("attribution.csv");
+    let ladder_path = results_dir.join(records::results_dir::LADDER);
+    let attribution_path = results_dir.join(records::results_dir::ATTRIBUTION);
     let keys: std::collections::HashSet<RunKey> = all.iter().map(Job::key).collect();
     let mut stored_ladder = read_csv::<LadderRow>(&ladder_path)?;
     stored_ladder.retain(|r| keys.contains(&r.key()));
@@ -168,8 +168,8 @@ pub fn write_inference(
     fresh: &[inference::InferenceRow],
     fresh_entries: &[inference::EntryRow],
 ) -> Result<(), ExplainError> {
-    let path = results_dir.join("inference.csv");
-    let entries_path = results_dir.join("inference-entries.csv");
+    let path = results_dir.join(records::results_dir::INFERENCE);
+    let entries_path = results_dir.join(records::results_dir::INFERENCE_ENTRIES);
     let rows = merge(read_csv(&path)?, fresh, |r: &inference::InferenceRow| {
         (r.paper.clone(), r.table.clone())
     });

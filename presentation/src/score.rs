@@ -66,7 +66,7 @@ pub fn score_file(
     let rows = merge(stored, vec![row.clone()]);
     let stem = row.key().stem();
     let trace = out
-        .join("traces")
+        .join(records::results_dir::TRACES)
         .join(&row.experiment)
         .join(format!("{stem}.csv"));
     let figure = out

@@ -89,7 +89,12 @@ fn find_task<'a>(all: &'a [PyTask], id: &str) -> PyResult<&'a PyTask> {
 
 /// The rows of `<root>/results/runs.csv`.
 fn stored_runs(root: &Path) -> PyResult<Vec<RunRow>> {
-    records::runs::read_runs(&root.join("results").join("runs.csv")).map_err(lib_err)
+    records::runs::read_runs(
+        &root
+            .join(records::results_dir::DIR)
+            .join(records::results_dir::RUNS),
+    )
+    .map_err(lib_err)
 }
 
 /// The leaderboard's standard task set (the cross experiment's tasks whose exact column
@@ -347,13 +352,16 @@ fn leaderboard<'py>(
     }
     let mut all = stored;
     all.extend(fresh.iter().cloned());
-    let timings = records::timing::read(&root.join("results")).map_err(lib_err)?;
+    let timings = records::timing::read(&root.join(records::results_dir::DIR)).map_err(lib_err)?;
     let board = records::leaderboard::leaderboard(&all, &timings);
     let board_csv = records::leaderboard::leaderboard_csv(&board).map_err(lib_err)?;
     let runs_csv = records::runs::runs_csv(&fresh).map_err(lib_err)?;
     if let Some(dir) = out_dir {
         std::fs::create_dir_all(&dir).map_err(|e| lib_err(format!("{}: {e}", dir.display())))?;
-        for (name, bytes) in [("leaderboard.csv", &board_csv), ("runs.csv", &runs_csv)] {
+        for (name, bytes) in [
+            (records::results_dir::LEADERBOARD, &board_csv),
+            (records::results_dir::RUNS, &runs_csv),
+        ] {
             let path = dir.join(name);
             records::runs::write_atomic(&path, bytes)
                 .map_err(|e| lib_err(format!("{}: {e}", path.display())))?;

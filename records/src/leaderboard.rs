@@ -431,7 +431,7 @@ pub fn leaderboard_csv(rows: &[LeaderboardRow]) -> Result<Vec<u8>, csv::Error> {
 /// Writes `results_dir/leaderboard.csv` (atomically) from `runs`; returns its path.
 pub fn write(results_dir: &Path, runs: &[RunRow]) -> Result<PathBuf, RunsError> {
     let timings = crate::timing::read(results_dir)?;
-    let path = results_dir.join("leaderboard.csv");
+    let path = results_dir.join(crate::results_dir::LEADERBOARD);
     let bytes =
         leaderboard_csv(&leaderboard(runs, &timings)).map_err(|source| RunsError::Write {
             path: path.clone(),

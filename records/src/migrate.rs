@@ -114,7 +114,7 @@ pub fn add_ids(text: &[u8], index: &LabelIndex) -> Result<Option<Migrated>, Migr
 
 /// A legacy trace's path under results/: `traces/<experiment>/<slug(variant)>__<slug(solver)>.csv`.
 pub fn legacy_trace_rel(experiment: &str, variant: &str, solver: &str) -> std::path::PathBuf {
-    std::path::Path::new("traces")
+    std::path::Path::new(crate::results_dir::TRACES)
         .join(experiment)
         .join(format!("{}__{}.csv", slug(variant), slug(solver)))
 }

@@ -27,10 +27,26 @@ use catalog::run_key::RunKey;
 use simulation::run::RunRecord;
 use std::path::{Path, PathBuf};
 
+/// The results directory's name under the project root.
+pub const DIR: &str = "results";
 /// `runs.csv`.
 pub const RUNS: &str = "runs.csv";
 /// `traces/`.
 pub const TRACES: &str = "traces";
+/// The explanation layer's tolerance ladder.
+pub const LADDER: &str = "ladder.csv";
+/// The explanation layer's drift attribution.
+pub const ATTRIBUTION: &str = "attribution.csv";
+/// The setup inference's best fits.
+pub const INFERENCE: &str = "inference.csv";
+/// The setup inference's per-entry table.
+pub const INFERENCE_ENTRIES: &str = "inference-entries.csv";
+/// The leaderboard.
+pub const LEADERBOARD: &str = "leaderboard.csv";
+/// The leaderboard with the Python package's entry (written by `python/examples/leaderboard.py`).
+pub const LEADERBOARD_PYTHON: &str = "leaderboard-python.csv";
+/// The cost of a Python call (written by `python/bench/call_cost.py`).
+pub const PYTHON_CALL_COST: &str = "python-call-cost.csv";
 /// The advisory lock's file name.
 pub const LOCK: &str = ".lock";
 
@@ -199,7 +215,7 @@ impl ResultsDir {
     ) -> Result<Vec<String>, ResultsError> {
         let index = crate::migrate::LabelIndex::new(jobs);
         let mut done = Vec::new();
-        for table in [RUNS, "ladder.csv", "attribution.csv"] {
+        for table in [RUNS, LADDER, ATTRIBUTION] {
             let path = self.path().join(table);
             let Ok(text) = std::fs::read(&path) else {
                 continue;

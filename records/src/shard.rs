@@ -251,7 +251,7 @@ pub fn read_shard(dir: &Path, edits: crate::tracked_dir::Edits) -> Result<ShardD
             });
         }
     }
-    let rows = read_runs(&dir.join("runs.csv"))?;
+    let rows = read_runs(&dir.join(crate::results_dir::RUNS))?;
     Ok(ShardDir {
         dir: dir.to_path_buf(),
         manifest,

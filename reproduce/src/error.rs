@@ -44,7 +44,7 @@ pub enum ReproduceError {
     #[error(
         "--baseline {}: is a directory; give a runs.csv file (e.g. {})",
         .0.display(),
-        .0.join("runs.csv").display()
+        .0.join(records::results_dir::RUNS).display()
     )]
     BaselineIsDirectory(PathBuf),
     /// The file given as `--baseline` cannot be read as runs.

@@ -38,7 +38,7 @@ impl Baseline {
             let rows = read(f, &index).map_err(ReproduceError::GivenBaseline)?;
             return Ok(Self { rows, name });
         }
-        let in_tree = results_dir == root.join("results");
+        let in_tree = results_dir == root.join(records::results_dir::DIR);
         let committed = in_tree
             .then(|| {
                 std::process::Command::new("git")
@@ -58,7 +58,7 @@ impl Baseline {
                 }
             }
             None => {
-                let path = results_dir.join("runs.csv");
+                let path = results_dir.join(records::results_dir::RUNS);
                 Self {
                     rows: read(&path, &index)?,
                     name: path.display().to_string(),

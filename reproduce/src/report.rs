@@ -19,7 +19,7 @@ pub fn report_only(cli: &Cli, git_rev: &str) -> Result<(), ReproduceError> {
 /// The report is rendered beside the results directory: `<root>/results` -> `<root>/report`.
 pub fn report_root(cli: &Cli) -> Result<PathBuf, ReproduceError> {
     match cli.results_dir.file_name() {
-        Some(name) if name == "results" => Ok(cli
+        Some(name) if name == records::results_dir::DIR => Ok(cli
             .results_dir
             .parent()
             .map(PathBuf::from)

@@ -50,7 +50,7 @@ impl Cli {
         };
         let results = match self.shard_resolved {
             Some(s) => s.dir_name(),
-            None => "results".to_string(),
+            None => records::results_dir::DIR.to_string(),
         };
         self.results_dir = self
             .results_dir_arg

@@ -111,9 +111,15 @@ impl Job<'_> {
 /// `report/figures/` that is a symbolic link leading out of the project is refused. Fails, naming the file, on an unreadable `runs.csv`, a missing or
 /// malformed trace, or two runs whose names give the same file name.
 pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, ReportError> {
-    let mut runs = read_runs(&root.join("results").join("runs.csv"))?;
+    let mut runs = read_runs(
+        &root
+            .join(records::results_dir::DIR)
+            .join(records::results_dir::RUNS),
+    )?;
     runs.sort_by_key(RunRow::key);
-    let traces_dir = root.join("results").join("traces");
+    let traces_dir = root
+        .join(records::results_dir::DIR)
+        .join(records::results_dir::TRACES);
     let traces = runs
         .iter()
         .map(|run| {
@@ -148,8 +154,11 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, ReportError> {
         )?;
     }
 
-    let inference: Vec<InferenceRow> =
-        explain::read_csv(&root.join("results").join("inference.csv"))?;
+    let inference: Vec<InferenceRow> = explain::read_csv(
+        &root
+            .join(records::results_dir::DIR)
+            .join(records::results_dir::INFERENCE),
+    )?;
     let mut tables: Vec<(&str, &str)> = inference
         .iter()
         .map(|r| (r.paper.as_str(), r.table.as_str()))
@@ -168,7 +177,7 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, ReportError> {
         }
     }
 
-    let dof_rows = records::dof_cost::read(&root.join("results"))?;
+    let dof_rows = records::dof_cost::read(&root.join(records::results_dir::DIR))?;
     let mut schemes: Vec<&str> = dof_rows.iter().map(|r| r.scheme.as_str()).collect();
     schemes.sort_unstable();
     schemes.dedup();
@@ -177,7 +186,7 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, ReportError> {
         add(dof_cost::file_name(scheme), Job::DofCost(scheme, rows))?;
     }
 
-    let results = root.join("results");
+    let results = root.join(records::results_dir::DIR);
     let control_rows: Vec<ControlRow> =
         ::control::output::read(&results, ::control::output::CONTROL_CSV)?;
     let cycle_rows: Vec<CycleRow> =

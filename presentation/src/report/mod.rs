@@ -79,19 +79,19 @@ impl Inputs {
     /// `papers` (the project's `papers/`).
     pub fn load(root: &Path, papers: &Path) -> Result<Self, ReportError> {
         let report = root.join("report");
-        let results = root.join("results");
+        let results = root.join(records::results_dir::DIR);
         let deviations_path = report.join("deviations.md");
         Ok(Inputs {
-            runs: Runs::new(read_runs(&results.join("runs.csv"))?),
+            runs: Runs::new(read_runs(&results.join(records::results_dir::RUNS))?),
             papers: Papers::load(papers)?,
             deviations: std::fs::read_to_string(&deviations_path)
                 .map_err(IoError::at(&deviations_path, IoAction::Read))?,
             figures: figures::list(&report.join("figures"))?,
             explanations: why::Explanations {
-                ladder: read_csv(&results.join("ladder.csv"))?,
-                attribution: read_csv(&results.join("attribution.csv"))?,
-                inference: read_csv(&results.join("inference.csv"))?,
-                entries: read_csv(&results.join("inference-entries.csv"))?,
+                ladder: read_csv(&results.join(records::results_dir::LADDER))?,
+                attribution: read_csv(&results.join(records::results_dir::ATTRIBUTION))?,
+                inference: read_csv(&results.join(records::results_dir::INFERENCE))?,
+                entries: read_csv(&results.join(records::results_dir::INFERENCE_ENTRIES))?,
             },
             timings: records::timing::read(&results)?,
             dof_cost: records::dof_cost::read(&results)?,

@@ -48,8 +48,10 @@ impl PythonResults {
     /// Reads both files from the results directory.
     pub fn load(results: &std::path::Path) -> Result<Self, explain::error::ExplainError> {
         Ok(PythonResults {
-            leaderboard: explain::read_csv(&results.join("leaderboard-python.csv"))?,
-            call_cost: explain::read_csv(&results.join("python-call-cost.csv"))?,
+            leaderboard: explain::read_csv(
+                &results.join(records::results_dir::LEADERBOARD_PYTHON),
+            )?,
+            call_cost: explain::read_csv(&results.join(records::results_dir::PYTHON_CALL_COST))?,
         })
     }
 }
