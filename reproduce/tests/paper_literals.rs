@@ -21,7 +21,7 @@
 
 mod common;
 
-use common::{repo_root, rust_files};
+use common::{members, repo_root, rust_files};
 use std::collections::BTreeSet;
 use std::path::Path;
 
@@ -38,18 +38,6 @@ const EXEMPT: &[(&str, &str)] = &[
          group by that name)",
     ),
 ];
-
-/// The workspace members of the root `Cargo.toml`.
-fn members(root: &Path) -> Vec<String> {
-    let text = std::fs::read_to_string(root.join("Cargo.toml")).expect("the root Cargo.toml");
-    let doc: toml::Table = text.parse().expect("the root Cargo.toml parses");
-    doc["workspace"]["members"]
-        .as_array()
-        .expect("workspace.members")
-        .iter()
-        .map(|m| m.as_str().expect("a member path").to_string())
-        .collect()
-}
 
 /// The library part of a source file: everything before its `#[cfg(test)]` test module.
 fn library_part(text: &str) -> &str {

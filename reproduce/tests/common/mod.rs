@@ -146,3 +146,15 @@ pub fn rust_files(root: &Path, dir: &Path, out: &mut Vec<String>) {
         }
     }
 }
+
+/// The workspace members of the root `Cargo.toml`.
+pub fn members(root: &Path) -> Vec<String> {
+    let text = std::fs::read_to_string(root.join("Cargo.toml")).expect("the root Cargo.toml");
+    let doc: toml::Table = text.parse().expect("the root Cargo.toml parses");
+    doc["workspace"]["members"]
+        .as_array()
+        .expect("workspace.members")
+        .iter()
+        .map(|m| m.as_str().expect("a member path").to_string())
+        .collect()
+}
