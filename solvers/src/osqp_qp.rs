@@ -35,6 +35,11 @@ use std::borrow::Cow;
 /// OSQP's infinity: bounds at or beyond it are absent.
 pub const OSQP_INFINITY: f64 = 1e30;
 
+/// Iterations between OSQP's rho adaptations, fixed (OSQP's own multiple of its termination
+/// check): left automatic, OSQP sets it from the measured setup time, so its iterates and
+/// iteration counts would change from run to run with the machine's load.
+pub const ADAPTIVE_RHO_INTERVAL: u32 = 25;
+
 /// OSQP's stopping rule.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct OsqpSettings {
@@ -202,6 +207,7 @@ impl OsqpQp {
                     .max_iter(self.settings.max_iter)
                     .polish(self.settings.polish)
                     .warm_start(true)
+                    .adaptive_rho_interval(Some(ADAPTIVE_RHO_INTERVAL))
                     .verbose(false);
                 let problem = Problem::new(
                     self.p_csc(),
