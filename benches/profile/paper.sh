@@ -1,28 +1,34 @@
 #!/bin/sh
-# Profiles one paper's runs and writes results/profile.csv (the table of the report's
-# Performance section, "Where the time goes"; the report's profile is of the paper that
-# publishes compute times): perf samples the release binary (built with debug info,
-# `[profile.release] debug = 1`) over PASSES passes of
+# Profiles each named paper's runs and writes results/profile.csv (the tables of the report's
+# Performance section, "Where the time goes", one per paper): perf samples the release binary
+# (built with debug info, `[profile.release] debug = 1`) over PASSES passes of
 #   reproduce --paper PAPER --skip-explain --threads 1 --dry-run
 # pinned to one CPU, and classify.py sorts every sample by what it was doing (classify.py's
 # module doc lists the categories). Run from the repository root after
 #   cargo build --release -p reproduce
 # and re-render the report with `reproduce --report-only --accept-edited` (the new file differs
 # from results/manifest.toml by intent). Needs `perf` (Debian: linux-perf) and python3.
-# Usage: benches/profile/paper.sh PAPER [PASSES]
+# Usage: [PASSES=5] benches/profile/paper.sh PAPER [PAPER ...]
 set -eu
-paper="$1"
-passes="${2:-5}"
+passes="${PASSES:-5}"
 freq=1999
 target="${CARGO_TARGET_DIR:-target}"
 bin="$target/release/reproduce"
 out="$target/profile"
 mkdir -p "$out"
 cpu=$(( $(nproc) - 1 ))
-perf record -q -F "$freq" -g --call-graph dwarf,16384 -o "$out/$paper.data" -- \
-    taskset -c "$cpu" sh -c "i=0; while [ \$i -lt $passes ]; do \"$bin\" --paper $paper --skip-explain --threads 1 --dry-run >/dev/null 2>&1; i=\$((i+1)); done"
-perf script -i "$out/$paper.data" -F comm,ip,sym 2>/dev/null > "$out/$paper.stacks"
 rev=$(git rev-parse --short=12 HEAD)
-python3 benches/profile/classify.py "$out/$paper.stacks" "$paper" "$passes" "$freq" "$rev" \
-    > results/profile.csv
+csv="$out/profile.csv"
+rm -f "$csv"
+for paper in "$@"; do
+    echo "profiling $paper ($passes passes)" >&2
+    perf record -q -F "$freq" -g --call-graph dwarf,16384 -o "$out/$paper.data" -- \
+        taskset -c "$cpu" sh -c "i=0; while [ \$i -lt $passes ]; do \"$bin\" --paper $paper --skip-explain --threads 1 --dry-run >/dev/null 2>&1; i=\$((i+1)); done"
+    perf script -i "$out/$paper.data" -F comm,ip,sym 2>/dev/null > "$out/$paper.stacks"
+    # One header: the first paper's.
+    if [ -e "$csv" ]; then from=2; else from=1; fi
+    python3 benches/profile/classify.py "$out/$paper.stacks" "$paper" "$passes" "$freq" "$rev" \
+        | tail -n +"$from" >> "$csv"
+done
+mv "$csv" results/profile.csv
 echo "wrote results/profile.csv"

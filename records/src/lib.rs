@@ -11,6 +11,8 @@
 //!   qpbenchmark scores QP solvers (`results/leaderboard.csv`).
 //! - [`timing`]: the compared runs timed alone, repeated (`results/leaderboard-timing.csv`),
 //!   which the leaderboard ranks by.
+//! - [`speedup`]: every run timed alone under an earlier revision and this one
+//!   (`results/speedup.csv`).
 //! - [`owned_dir`]: a directory the program owns; the only way a name read from a file becomes
 //!   a path under it (plain names, no symbolic link leaving it).
 //! - [`integrity`]: the manifest of what the program wrote (line count, size, SHA-256 per file).
@@ -46,6 +48,7 @@ pub mod profile;
 pub mod results_dir;
 pub mod runs;
 pub mod shard;
+pub mod speedup;
 pub mod sweep_check;
 pub mod table;
 pub mod timing;

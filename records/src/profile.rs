@@ -16,6 +16,10 @@ use serde::{Deserialize, Serialize};
 pub const FILE: &str = "profile.csv";
 /// [`ProfileRow::part`] of the neural runs' integration.
 pub const SIMULATION: &str = "simulation";
+/// [`ProfileRow::part`] of the exact column's right-hand side: its QP solves.
+pub const EXACT_COLUMN: &str = "exact column";
+/// [`ProfileRow::category`] of the right-hand side (the network and the QP assembly).
+pub const RHS: &str = "RHS (network and QP assembly)";
 
 /// One row of `results/profile.csv`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -60,6 +64,21 @@ pub fn floor_ratio(rows: &[ProfileRow]) -> Option<f64> {
     (floor > 0).then(|| all as f64 / floor as f64)
 }
 
+/// The integration's samples (the simulation's and the exact column's: what a run's `sim_s`
+/// times) over its floor's (the simulation's floor, and the whole exact column, every sample of
+/// which is a right-hand side, i.e. a QP solve); None without floor samples.
+pub fn integration_floor_ratio(rows: &[ProfileRow]) -> Option<f64> {
+    let (all, floor) =
+        rows.iter()
+            .fold((0usize, 0usize), |(all, floor), r| match r.part.as_str() {
+                SIMULATION if r.in_floor() => (all + r.samples, floor + r.samples),
+                SIMULATION => (all + r.samples, floor),
+                EXACT_COLUMN => (all + r.samples, floor + r.samples),
+                _ => (all, floor),
+            });
+    (floor > 0).then(|| all as f64 / floor as f64)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -89,5 +108,17 @@ mod tests {
         ];
         assert_eq!(floor_ratio(&rows), Some(80.0 / 60.0));
         assert_eq!(floor_ratio(&rows[1..]), None);
+    }
+
+    #[test]
+    fn the_integration_floor_ratio_counts_the_exact_column_as_floor() {
+        let rows = [
+            row(SIMULATION, true, 60),
+            row(SIMULATION, false, 20),
+            row(EXACT_COLUMN, false, 100),
+            row("observer", false, 500),
+        ];
+        assert_eq!(integration_floor_ratio(&rows), Some(180.0 / 160.0));
+        assert_eq!(integration_floor_ratio(&rows[3..]), None);
     }
 }

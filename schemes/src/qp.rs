@@ -190,44 +190,33 @@ impl Qp {
         let nx = x.len();
         let mut primal: f64 = 0.0;
         let mut comp: f64 = 0.0;
-        for r in 0..self.b.len() {
-            let mut ax = 0.0;
-            for j in 0..nx {
-                ax += self.a[(r, j)] * x[j];
-            }
-            primal = primal.max((ax - self.b[r]).abs());
+        for (r, b) in self.b.iter().enumerate() {
+            primal = primal.max((self.a.row(r).tr_dot(x) - b).abs());
         }
-        for r in 0..self.h.len() {
-            let mut gx = 0.0;
-            for j in 0..nx {
-                gx += self.g[(r, j)] * x[j];
-            }
-            primal = primal.max(gx - self.h[r]);
+        for (r, (h, mu)) in self.h.iter().zip(d.mu.iter()).enumerate() {
+            let gx = self.g.row(r).tr_dot(x);
+            primal = primal.max(gx - h);
             // (An absent row, h = +inf, counts only if its multiplier is not zero.)
-            if d.mu[r] != 0.0 {
-                comp = comp.max((d.mu[r] * (self.h[r] - gx)).abs());
+            if *mu != 0.0 {
+                comp = comp.max((mu * (h - gx)).abs());
             }
         }
         let mut dual: f64 = 0.0;
         for i in 0..nx {
-            primal = primal.max(self.lower[i] - x[i]).max(x[i] - self.upper[i]);
+            let (xi, lower, upper) = (x[i], self.lower[i], self.upper[i]);
+            primal = primal.max(lower - xi).max(xi - upper);
             // Row i of P x + q + A'lambda + G'mu - z_l + z_u.
-            let mut stat = self.q[i] - d.z_lower[i] + d.z_upper[i];
-            for j in 0..nx {
-                stat += self.p[(i, j)] * x[j];
-            }
-            for r in 0..self.b.len() {
-                stat += self.a[(r, i)] * d.lambda[r];
-            }
-            for r in 0..self.h.len() {
-                stat += self.g[(r, i)] * d.mu[r];
-            }
+            let stat = self.q[i] - d.z_lower[i]
+                + d.z_upper[i]
+                + self.p.row(i).tr_dot(x)
+                + self.a.column(i).dot(&d.lambda)
+                + self.g.column(i).dot(&d.mu);
             dual = dual.max(stat.abs());
-            if self.lower[i].is_finite() {
-                comp = comp.max((d.z_lower[i] * (x[i] - self.lower[i])).abs());
+            if lower.is_finite() {
+                comp = comp.max((d.z_lower[i] * (xi - lower)).abs());
             }
-            if self.upper[i].is_finite() {
-                comp = comp.max((d.z_upper[i] * (self.upper[i] - x[i])).abs());
+            if upper.is_finite() {
+                comp = comp.max((d.z_upper[i] * (upper - xi)).abs());
             }
         }
         for m in d.mu.iter().chain(d.z_lower.iter()).chain(d.z_upper.iter()) {

@@ -151,11 +151,16 @@ pub fn matlab_experiments(papers: &Papers) -> Vec<&str> {
 
 /// The papers that publish compute times (in file order), for the headings.
 pub(crate) fn timed_papers(papers: &Papers) -> String {
+    timed_paper_ids(papers).join(", ")
+}
+
+/// The ids of the papers that publish compute times, in file order.
+pub(crate) fn timed_paper_ids(papers: &Papers) -> Vec<&str> {
     let mut ids: Vec<&str> = timed_values(papers)
         .map(|(v, _)| v.paper.as_str())
         .collect();
     ids.dedup();
-    ids.join(", ")
+    ids
 }
 
 /// The published compute times with their mappings.

@@ -33,6 +33,7 @@ pub mod markdown;
 pub mod performance;
 pub mod python;
 pub mod score;
+pub mod speedup;
 pub mod sweep;
 pub mod tables;
 pub mod verdict;
@@ -68,6 +69,8 @@ pub struct Inputs {
     pub dof_cost: Vec<records::dof_cost::DofCostRow>,
     /// `results/profile.csv` (absent = empty).
     pub profile: Vec<records::profile::ProfileRow>,
+    /// `results/speedup.csv` (absent = empty).
+    pub speedup: Vec<records::speedup::SpeedupRow>,
     /// The control experiments' result files (absent = empty).
     pub control: control::ControlResults,
     /// The Python package's result files (absent = empty).
@@ -96,6 +99,7 @@ impl Inputs {
             timings: records::timing::read(&results)?,
             dof_cost: records::dof_cost::read(&results)?,
             profile: read_csv(&results.join(records::profile::FILE))?,
+            speedup: read_csv(&results.join(records::speedup::FILE))?,
             control: control::ControlResults::load(&results)?,
             python: python::PythonResults::load(&results)?,
         })
@@ -123,6 +127,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
         timings,
         dof_cost,
         profile,
+        speedup,
         control,
         python,
     } = inputs;
@@ -247,7 +252,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
     out.push('\n');
 
     out.push_str(&performance::section(
-        dof_cost, profile, runs, timings, papers, figures,
+        dof_cost, profile, speedup, runs, timings, papers, figures,
     ));
     out.push_str(&python::call_cost(&python.call_cost));
     out.push_str(&control::section(control, runs, figures));

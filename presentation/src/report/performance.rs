@@ -11,18 +11,21 @@
 //!   [`super::cost`] maps), simulation and total, each run timed alone
 //!   (`results/leaderboard-timing.csv`, [`records::timing`]);
 //! - the machine the DOF measurement ran on;
-//! - where a paper's reproduction spends its time, from the sampling profile of
+//! - every paper's runs against an earlier revision, each timed alone (`results/speedup.csv`,
+//!   [`super::speedup`]);
+//! - where each profiled paper's reproduction spends its time, from the sampling profile of
 //!   `results/profile.csv` ([`records::profile`]).
 //!
 //! Every number is read from `results/`; without `dof-cost.csv` the section says how to
 //! produce it and shows what `runs.csv` gives.
 
-use super::cost::{matlab_experiments, paper_times, solver_label, timed_papers};
+use super::cost::{matlab_experiments, paper_times, solver_label, timed_paper_ids, timed_papers};
 use super::markdown::{sci, sci_opt, Table, MISSING};
 use records::dof_cost::{DofCostRow, Quantity, Summary};
 use records::index::{completed, Runs};
 use records::papers::Papers;
 use records::profile::ProfileRow;
+use records::speedup::SpeedupRow;
 use records::timing::{Timings, REPETITIONS};
 use solvers::Backend;
 use std::collections::BTreeMap;
@@ -85,6 +88,7 @@ fn schemes(dof: &[DofCostRow]) -> Vec<&str> {
 pub fn section(
     dof: &[DofCostRow],
     profile: &[ProfileRow],
+    speedup: &[SpeedupRow],
     runs: &Runs,
     timings: &Timings,
     papers: &Papers,
@@ -113,14 +117,16 @@ pub fn section(
         out.push_str(&dof_runs(dof));
     }
     out.push_str(&matlab(runs, timings, papers));
+    out.push_str(&super::speedup::section(speedup, profile, papers));
     out.push_str(&where_time_goes(profile, papers));
     out
 }
 
-/// Where a paper's reproduction spends its time, from `results/profile.csv`
-/// ([`records::profile`]): every part and category with its share and CPU time per pass, and
-/// the simulation's ratio to its floor (RHS, Jacobian and LU work) and the papers' MATLAB
-/// times over the simulation's CPU time.
+/// Where each profiled paper's reproduction spends its time, from `results/profile.csv`
+/// ([`records::profile`]): the method once, then per paper (in file order) every part and
+/// category with its share and CPU time per pass, the simulation's ratio to its floor (RHS,
+/// Jacobian and LU work) and, for a paper that publishes compute times, the MATLAB times over
+/// the simulation's CPU time.
 fn where_time_goes(profile: &[ProfileRow], papers: &Papers) -> String {
     let Some(first) = profile.first() else {
         return format!(
@@ -129,6 +135,44 @@ fn where_time_goes(profile: &[ProfileRow], papers: &Papers) -> String {
             records::profile::FILE
         );
     };
+    let mut profiled: Vec<&str> = Vec::new();
+    for r in profile {
+        if !profiled.contains(&r.paper.as_str()) {
+            profiled.push(&r.paper);
+        }
+    }
+    let mut out = format!(
+        "### Where the time goes\n\nA sampling profile of `reproduce --paper PAPER \
+         --skip-explain --threads 1 --dry-run` for each of {}, {} passes pinned to one CPU at {} \
+         Hz, revision `{}` (`benches/profile/paper.sh {}` writes `results/{}`; perf with call \
+         graphs over the release build's debug info, each sample sorted by the innermost frame \
+         that names a category). The *simulation* is the network runs' integration (diffsol's \
+         BDF around the arm and the network); the *exact column* integrates the exact optimum; \
+         the *observer* scores every accepted step against the exact optimum and keeps metrics \
+         and the trace; *other* is start-up, the experiment files and output. The floor is the \
+         work the runs' counts require: RHS evaluations (network and QP assembly), network \
+         Jacobians, LU factorisations and solves of the Newton matrix.\n\n",
+        profiled.join(", "),
+        first.passes,
+        first.frequency_hz,
+        first.git_rev,
+        profiled.join(" "),
+        records::profile::FILE,
+    );
+    let timed = timed_paper_ids(papers);
+    for paper in profiled {
+        let rows: Vec<ProfileRow> = profile
+            .iter()
+            .filter(|r| r.paper == paper)
+            .cloned()
+            .collect();
+        out.push_str(&paper_profile(&rows, timed.contains(&paper), papers));
+    }
+    out
+}
+
+/// One paper's profile table and what it says (`timed`: the paper publishes compute times).
+fn paper_profile(profile: &[ProfileRow], timed: bool, papers: &Papers) -> String {
     let mut t = Table::new([
         "part",
         "category",
@@ -160,8 +204,9 @@ fn where_time_goes(profile: &[ProfileRow], papers: &Papers) -> String {
         .flat_map(|exp| paper_times(papers, exp))
         .map(|(_, t)| t)
         .sum();
-    let speedup = if simulation_s > 0.0 && paper_s > 0.0 {
-        format!(
+    let mut said = String::new();
+    if timed && simulation_s > 0.0 && paper_s > 0.0 {
+        said.push_str(&format!(
             " Over the {} runs the papers time, together, the MATLAB times ({} s) are {} times \
              the simulation's CPU time per pass ({} s); the target of {}x applies to each run's \
              simulation.",
@@ -170,29 +215,23 @@ fn where_time_goes(profile: &[ProfileRow], papers: &Papers) -> String {
             sci(paper_s / simulation_s),
             sci(simulation_s),
             TARGET_SIMULATION_SPEEDUP
-        )
-    } else {
-        String::new()
-    };
-    let paper = &first.paper;
+        ));
+    }
+    let largest = profile
+        .iter()
+        .filter(|r| r.part == records::profile::SIMULATION)
+        .max_by(|a, b| a.samples.cmp(&b.samples));
+    if timed && largest.is_some_and(|r| r.category == records::profile::RHS) {
+        said.push_str(
+            " The RHS is the larger part of it: VP-RNN-PF's RHS forms and solves its (nx + n_eq) \
+             system W at every evaluation, several times LVI-PDNN's RHS, so a floor priced at \
+             LVI-PDNN's per-call cost understates it.",
+        );
+    }
     format!(
-        "### Where the time goes\n\nA sampling profile of `reproduce --paper {paper} \
-         --skip-explain --threads 1 --dry-run`, {} passes pinned to one CPU at {} Hz, revision \
-         `{}` (`benches/profile/paper.sh {paper}` writes `results/{}`; perf with call graphs over the \
-         release build's debug info, each sample sorted by the innermost frame that names a \
-         category). The *simulation* is the network runs' integration (diffsol's BDF around \
-         the arm and the network); the *exact column* integrates the exact optimum; the \
-         *observer* scores every accepted step against the exact optimum and keeps metrics and \
-         the trace. The floor is the work the runs' counts require: RHS evaluations (network \
-         and QP assembly), network Jacobians, LU factorisations and solves of the Newton \
-         matrix.\n\n{}\nThe simulation takes {ratio} times its floor (the target: within 2).\
-         {speedup} The RHS is the larger part of it: VP-RNN-PF's RHS forms and solves its (nx + n_eq) \
-         system W at every evaluation, several times LVI-PDNN's RHS, so a floor priced at \
-         LVI-PDNN's per-call cost understates it.\n\n",
-        first.passes,
-        first.frequency_hz,
-        first.git_rev,
-        records::profile::FILE,
+        "#### {}\n\n{}\nThe simulation takes {ratio} times its floor (the target: within 2).\
+         {said}\n\n",
+        profile[0].paper,
         t.render()
     )
 }
@@ -684,9 +723,17 @@ mod tests {
                            simulation,BDF method,no,20,0.1667,0.25,10.0,demo,2,1000,abc\n\
                            observer,metrics,no,40,0.3333,,20.0,demo,2,1000,abc\n";
         let profile: Vec<ProfileRow> = records::table::from_reader(profile_csv.as_bytes()).unwrap();
+        // Two runs of `demo`, 2x and 4x faster: the 3x target is missed by the first.
+        let speedup_csv = "paper,experiment,variant,solver,old_rev,new_rev,passes,old_sim_s,\
+                           new_sim_s,sim_speedup,old_wall_s,new_wall_s,wall_speedup,old_status,\
+                           new_status,old_drift_norm,new_drift_norm\n\
+                           demo,e,v,a,old,new,3,2.0,1.0,2.0,3.0,1.5,2.0,ok,ok,0.5,0.5\n\
+                           demo,e,v,b,old,new,3,4.0,1.0,4.0,5.0,2.0,2.5,ok,ok,0.25,0.2500001\n";
+        let speedup: Vec<SpeedupRow> = records::table::from_reader(speedup_csv.as_bytes()).unwrap();
         let md = section(
             &dof,
             &profile,
+            &speedup,
             &Runs::new(Vec::new()),
             &Timings::default(),
             &Papers::default(),
@@ -701,8 +748,18 @@ mod tests {
             "{md}"
         );
         assert!(
-            md.contains("`reproduce --paper demo --skip-explain")
-                && md.contains("`benches/profile/paper.sh demo`"),
+            md.contains("--dry-run` for each of demo,")
+                && md.contains("`benches/profile/paper.sh demo`")
+                && md.contains("#### demo\n"),
+            "{md}"
+        );
+        // 6 s before, 2 s now; per run 2 and 4; the drift moved by 1e-7 rad.
+        assert!(
+            md.contains("| demo | 2 | 6.00e0 | 2.00e0 | 3.00 | 2.00, 3.00, 4.00 | 8.00e0 | 3.50e0 | 2.29 | 0 | 1.00e-7 | 3x not met |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("**demo.** Its profile (below) splits the process into simulation 67 %, observer 33 %; its integration (the simulation and the exact column: what `sim_s` times) runs at 1.33 times its floor"),
             "{md}"
         );
         assert!(
@@ -759,6 +816,7 @@ mod tests {
         let md = section(
             &[],
             &[],
+            &[],
             &Runs::new(Vec::new()),
             &Timings::default(),
             &Papers::default(),
@@ -767,5 +825,6 @@ mod tests {
         assert!(md.contains("`results/dof-cost.csv` is absent"), "{md}");
         assert!(md.contains("-- --dof-cost"), "{md}");
         assert!(md.contains("No completed run"), "{md}");
+        assert!(md.contains("`results/speedup.csv` is absent"), "{md}");
     }
 }

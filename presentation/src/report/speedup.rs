@@ -1,0 +1,140 @@
+//! Against an earlier revision: every paper's runs timed alone under an earlier revision of
+//! driftbench and under this one (`results/speedup.csv`, [`records::speedup`]).
+//!
+//! Per paper: the runs' summed median times, old and new, for the simulation (`sim_s`) and the
+//! whole run (`wall_s`); the speed-up old / new, and its smallest, median and largest value over
+//! the runs; the runs whose status changed and the largest change of a drift norm. The target
+//! applies to the papers that publish no compute time (the timed papers have theirs against the
+//! MATLAB times). Where a paper misses it, the paper's sampling profile (`results/profile.csv`,
+//! [`records::profile`]) says where its time goes: the share of each part of the process, and
+//! the integration's ratio to its floor r ([`records::profile::integration_floor_ratio`]: the
+//! samples of the simulation and the exact column over those of the RHS, Jacobian and LU work,
+//! the exact column's QP solves included). Removing every sample outside the floor divides the
+//! integration's time by r at most, so a paper with r below the target cannot meet it by
+//! removing overhead alone.
+
+use super::cost::timed_paper_ids;
+use super::markdown::{sci, Table, MISSING};
+use records::papers::Papers;
+use records::profile::ProfileRow;
+use records::speedup::{by_paper, SpeedupRow};
+
+/// Every run of a paper that publishes no compute time this many times faster in simulation
+/// than at the earlier revision.
+pub const TARGET_OTHER_SPEEDUP: f64 = 3.0;
+
+/// The `### Against an earlier revision` subsection.
+pub fn section(rows: &[SpeedupRow], profile: &[ProfileRow], papers: &Papers) -> String {
+    let Some(first) = rows.first() else {
+        return format!(
+            "### Against an earlier revision\n\n`results/{}` is absent: \
+             `benches/speedup/papers.sh OLD_CHECKOUT OLD_BINARY` measures it.\n\n",
+            records::speedup::FILE
+        );
+    };
+    let timed = timed_paper_ids(papers);
+    let mut t = Table::new([
+        "paper",
+        "runs",
+        "simulation: earlier (s)",
+        "simulation: now (s)",
+        "speed-up",
+        "per run: min, median, max",
+        "whole runs: earlier (s)",
+        "whole runs: now (s)",
+        "speed-up",
+        "status changes",
+        "largest drift change (rad)",
+        "target",
+    ]);
+    let mut missed = Vec::new();
+    for p in by_paper(rows) {
+        let speedup = p.old_sim_s / p.new_sim_s;
+        let target = if timed.contains(&p.paper.as_str()) {
+            "MATLAB times".to_string()
+        } else if p.min_sim_speedup >= TARGET_OTHER_SPEEDUP {
+            format!("{TARGET_OTHER_SPEEDUP}x met")
+        } else {
+            missed.push(p.paper.clone());
+            format!("{TARGET_OTHER_SPEEDUP}x not met")
+        };
+        t.push([
+            p.paper.clone(),
+            p.runs.to_string(),
+            sci(p.old_sim_s),
+            sci(p.new_sim_s),
+            format!("{speedup:.2}"),
+            format!(
+                "{:.2}, {:.2}, {:.2}",
+                p.min_sim_speedup, p.median_sim_speedup, p.max_sim_speedup
+            ),
+            sci(p.old_wall_s),
+            sci(p.new_wall_s),
+            format!("{:.2}", p.old_wall_s / p.new_wall_s),
+            p.status_changes.to_string(),
+            sci(p.max_drift_change),
+            target,
+        ]);
+    }
+    let mut out = format!(
+        "### Against an earlier revision\n\n`benches/speedup/papers.sh` ran each paper's runs \
+         (`reproduce --paper PAPER --shard 1/1 --threads 1`: no explanation runs, no timing \
+         pass) under revision `{}` and under revision `{}`, on one thread pinned to one CPU, {} \
+         passes per revision, the two revisions alternating pass by pass. A run's time is the \
+         median over its passes and a paper's the sum over its runs (`results/{}`). Runs are \
+         matched by experiment, variant and solver label, the exact column by its kind (it was \
+         renamed). The target: every run of a paper that publishes no compute time at least \
+         {TARGET_OTHER_SPEEDUP}x faster in simulation, with the same status and drifts.\n\n{}\n",
+        first.old_rev,
+        first.new_rev,
+        first.passes,
+        records::speedup::FILE,
+        t.render()
+    );
+    for paper in missed {
+        out.push_str(&why_missed(&paper, profile));
+    }
+    out
+}
+
+/// Where a paper that missed the target spends its time, from its profile.
+fn why_missed(paper: &str, profile: &[ProfileRow]) -> String {
+    let rows: Vec<ProfileRow> = profile
+        .iter()
+        .filter(|r| r.paper == paper)
+        .cloned()
+        .collect();
+    if rows.is_empty() {
+        return format!(
+            "**{paper}** has no profile in `results/{}`.\n\n",
+            records::profile::FILE
+        );
+    }
+    let mut parts: Vec<(String, f64)> = Vec::new();
+    for r in &rows {
+        match parts.iter_mut().find(|(p, _)| *p == r.part) {
+            Some((_, share)) => *share += r.share_of_process,
+            None => parts.push((r.part.clone(), r.share_of_process)),
+        }
+    }
+    let shares: Vec<String> = parts
+        .iter()
+        .map(|(part, share)| format!("{part} {:.0} %", 100.0 * share))
+        .collect();
+    let ratio = records::profile::integration_floor_ratio(&rows);
+    let bound = match ratio {
+        Some(r) if r < TARGET_OTHER_SPEEDUP => format!(
+            "; its integration (the simulation and the exact column: what `sim_s` times) runs at \
+             {r:.2} times its floor (RHS, Jacobian and LU work; every exact-column sample is a \
+             right-hand side, i.e. a QP solve), so removing every sample outside the floor would \
+             make it at most {r:.2}x faster: the target needs fewer or cheaper RHS, Jacobian and \
+             LU evaluations"
+        ),
+        Some(r) => format!("; its integration runs at {r:.2} times its floor"),
+        None => format!("; the profile has no floor samples ({MISSING})"),
+    };
+    format!(
+        "**{paper}.** Its profile (below) splits the process into {}{bound}.\n\n",
+        shares.join(", ")
+    )
+}
