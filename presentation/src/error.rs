@@ -1,13 +1,9 @@
 //! The presentation layer's errors: drawing a figure ([`FigureError`], with a trace that cannot
 //! be read: [`TraceError`]), rendering the report and the figures ([`ReportError`], wrapping
-//! the records, explanation and control layers' errors) and scoring a trajectory
-//! ([`ScoreError`], wrapping the simulation's and records' errors).
+//! the records, explanation and control layers' errors).
 
-use catalog::error::ExperimentFileError;
 use records::error::{IoError, RunsError};
-use records::table::TableError;
 use records::tracked_dir::TrackedError;
-use simulation::score_trajectory::TrajectoryError;
 use std::path::PathBuf;
 
 /// Why a figure could not be drawn or encoded.
@@ -80,30 +76,3 @@ pub enum ReportError {
     DofCost(#[from] records::error::DofCostError),
 }
 
-/// Why a trajectory could not be scored on a task, or its files written.
-#[derive(Debug, thiserror::Error)]
-pub enum ScoreError {
-    #[error(transparent)]
-    Experiments(#[from] ExperimentFileError),
-    #[error(
-        "no task \"{0}\" (a task is \"<experiment> / <variant>\", ids; `reproduce --list` lists them)"
-    )]
-    NoTask(String),
-    #[error(transparent)]
-    Trajectory(#[from] records::trajectory::ReadError),
-    /// (The scoring error boxed: it is large.)
-    #[error("{}: {error} (task \"{task}\")", file.display())]
-    Score {
-        file: PathBuf,
-        task: String,
-        error: Box<TrajectoryError>,
-    },
-    #[error(transparent)]
-    Table(#[from] TableError),
-    #[error("{}: {source}", path.display())]
-    Csv { path: PathBuf, source: csv::Error },
-    #[error(transparent)]
-    Io(#[from] IoError),
-    #[error(transparent)]
-    Figure(#[from] FigureError),
-}

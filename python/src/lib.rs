@@ -390,7 +390,7 @@ fn score<'py>(
     let (record, row) = if let Ok(file) = trajectory.extract::<PathBuf>() {
         match out_dir {
             Some(out) => {
-                let s = presentation::score::score_file(&task.job, &file, &out, &git_rev)
+                let s = reproduce::score::score_file(&task.job, &file, &out, &git_rev)
                     .map_err(lib_err)?;
                 (s.record, s.row)
             }

@@ -139,7 +139,7 @@ pub struct Cli {
     pub shard_resolved: Option<records::shard::Shard>,
     /// Score a trajectory produced elsewhere (CSV: t, theta_1..n, optionally thetadot_1..n) on
     /// the task --task, as a run is scored; writes scores.csv, its trace and figure under
-    /// --score-out, then exits (presentation::score).
+    /// --score-out, then exits (reproduce::score).
     #[arg(long, value_name = "FILE", requires = "task")]
     pub score: Option<PathBuf>,
     /// The task of --score: "<experiment> / <variant>".

@@ -80,9 +80,9 @@ pub enum ReproduceError {
     #[error(transparent)]
     Report(#[from] presentation::error::ReportError),
     #[error(transparent)]
-    TaskCard(#[from] presentation::task_card::TaskCardError),
+    TaskCard(#[from] crate::task_card::TaskCardError),
     #[error(transparent)]
-    Score(#[from] presentation::error::ScoreError),
+    Score(#[from] ScoreError),
     #[error(transparent)]
     Control(#[from] control::ControlError),
     #[error(transparent)]
@@ -91,6 +91,37 @@ pub enum ReproduceError {
     ThreadPool(#[from] rayon::ThreadPoolBuildError),
     #[error(transparent)]
     DofCost(#[from] records::error::DofCostError),
+}
+
+/// Why a trajectory could not be scored on a task, or its files written.
+#[derive(Debug, thiserror::Error)]
+pub enum ScoreError {
+    #[error(transparent)]
+    Experiments(#[from] catalog::error::ExperimentFileError),
+    #[error(
+        "no task \"{0}\" (a task is \"<experiment> / <variant>\", ids; `reproduce --list` lists them)"
+    )]
+    NoTask(String),
+    #[error(transparent)]
+    Trajectory(#[from] records::trajectory::ReadError),
+    /// (The scoring error boxed: it is large.)
+    #[error("{}: {error} (task \"{task}\")", file.display())]
+    Score {
+        file: std::path::PathBuf,
+        task: String,
+        error: Box<simulation::score_trajectory::TrajectoryError>,
+    },
+    #[error(transparent)]
+    Table(#[from] records::table::TableError),
+    #[error("{}: {source}", path.display())]
+    Csv {
+        path: std::path::PathBuf,
+        source: csv::Error,
+    },
+    #[error(transparent)]
+    Io(#[from] records::error::IoError),
+    #[error(transparent)]
+    Figure(#[from] presentation::error::FigureError),
 }
 
 /// Why a gate baseline's rows cannot be used; each names the file (or `git HEAD:...`).

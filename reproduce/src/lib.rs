@@ -4,9 +4,10 @@
 //!
 //! One module per mode: [`run`](mod@run) (the default, the gate of [`gate`], a shard, with its
 //! [`journal`]), [`report`], [`explanation`], [`inference`], [`merge`], [`list`] (and robots),
-//! [`cost`], [`score`]; beside them what the modes share: the command line ([`cli`],
-//! [`commands`], [`resolve`]), the selection of runs ([`select`]), the results directory
-//! ([`results`]) and the summary printed ([`summary`]).
+//! [`cost`], [`score`] (a trajectory made elsewhere, also `driftbench.score` in Python); the
+//! task cards the report mode writes ([`task_card`]); beside them what the modes share: the
+//! command line ([`cli`], [`commands`], [`resolve`]), the selection of runs ([`select`]), the
+//! results directory ([`results`]) and the summary printed ([`summary`]).
 
 pub mod cli;
 pub mod commands;
@@ -25,6 +26,7 @@ pub mod run;
 pub mod score;
 pub mod select;
 pub mod summary;
+pub mod task_card;
 pub mod timing;
 
 pub use cli::Cli;

@@ -43,7 +43,7 @@ pub fn check_report_dir(root: &Path) -> Result<(), ReproduceError> {
 pub fn render_report(cli: &Cli, root: &Path, results: &ResultsDir) -> Result<(), ReproduceError> {
     let figures = presentation::figures::render_all(root)?;
     let report = presentation::report::render(root, &cli.project_root.join("papers"))?;
-    presentation::task_card::write_all(root)?;
+    crate::task_card::write_all(root)?;
     records::leaderboard::write(results.path(), &results.read_runs()?)?;
     results.save()?;
     eprintln!("wrote {} figures and {}", figures.len(), report.display());

@@ -1,5 +1,5 @@
 //! The numbers of a task, computed by the suite's own models, that someone setting the same task
-//! up in their own code checks theirs against (the task cards of `presentation::task_card`):
+//! up in their own code checks theirs against (the task cards of `reproduce::task_card`):
 //! the robot's limits, the task point and Jacobian at theta0, the path at a few instants, and
 //! the scheme's QP at t = 0 (at the velocity level at theta0; at the acceleration level at
 //! theta0 with thetadot = 0).

@@ -3,7 +3,7 @@
 //! suite's own check values.
 
 use catalog::experiment::{load_dir, PaperFile};
-use presentation::task_card::{cards, INDEX, TASKS};
+use reproduce::task_card::{cards, INDEX, TASKS};
 use simulation::run::check_job;
 use std::collections::BTreeSet;
 
