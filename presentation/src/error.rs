@@ -1,10 +1,10 @@
 //! The presentation layer's errors: drawing a figure ([`FigureError`], with a trace that cannot
 //! be read: [`TraceError`]), rendering the report and the figures ([`ReportError`], wrapping
-//! the records, explanation and control layers' errors) and scoring a trajectory
+//! the records layer's errors: every results file is read through it) and scoring a trajectory
 //! ([`ScoreError`], wrapping the simulation's and records' errors).
 
 use catalog::error::ExperimentFileError;
-use records::error::{IoError, RunsError};
+use records::error::{ControlFileError, IoError, RunsError};
 use records::table::TableError;
 use records::tracked_dir::TrackedError;
 use simulation::score_trajectory::TrajectoryError;
@@ -58,10 +58,12 @@ pub enum TraceProblem {
 pub enum ReportError {
     #[error(transparent)]
     Runs(#[from] RunsError),
+    /// A table of the explanation, the setup inference or the Python package.
     #[error(transparent)]
-    Explain(#[from] explain::error::ExplainError),
+    Table(#[from] TableError),
+    /// A result file of the control experiments.
     #[error(transparent)]
-    Control(#[from] control::ControlError),
+    ControlFile(#[from] ControlFileError),
     #[error(transparent)]
     Tracked(#[from] TrackedError),
     #[error(transparent)]
