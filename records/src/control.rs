@@ -10,7 +10,7 @@
 //! - `results/cycles.csv` ([`CycleRow`]): the drift after every cycle of the many-cycles runs,
 //!   and `results/cycles-trend.csv` ([`TrendRow`]): each run's trend.
 //!
-//! The control experiments write them ([`write`]); the report reads them back ([`read`]) with
+//! The control experiments write them ([`write()`]); the report reads them back ([`read()`]) with
 //! the same types, without linking the solvers that made them. The file names are
 //! [`crate::results_dir`]'s (`CONTROL`, `CONTROL_STABILITY`, `CONTROL_CLAIM`, `CYCLES`,
 //! `CYCLES_TREND`).

@@ -1,5 +1,5 @@
-//! zhong2021 §1: "compared with numerical methods [26], [27] (E47, 94LVI), neural network
-//! methods can process information in parallel and have higher computational efficiency [28]".
+//! zhong2021 §1: "compared with numerical methods \[26\], \[27\] (E47, 94LVI), neural network
+//! methods can process information in parallel and have higher computational efficiency \[28\]".
 //! Decided here as a claim about the cost per control tick of reaching a stated accuracy: the
 //! rule and its thresholds, computed from numbers alone, shared by the control experiments
 //! (crate `control`, which run it and write [`crate::control::ClaimRow`]) and the report.
