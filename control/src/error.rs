@@ -1,8 +1,10 @@
 //! The errors of the control experiments: [`ControlError`] wraps the simulation layer's
-//! (experiment files) and the solvers' (networks, LVI, OSQP, the exact QP).
+//! (experiment files), the solvers' (networks, LVI, OSQP, the exact QP) and the records
+//! layer's (the result files).
 
 use catalog::error::ExperimentFileError;
 use catalog::error::NetworkError;
+use records::error::ControlFileError;
 use solvers::lvi_numerical::LviError;
 use solvers::osqp_qp::OsqpError;
 use solvers::ExactError;
@@ -37,8 +39,9 @@ pub enum ControlError {
     Osqp(#[from] OsqpError),
     #[error("exact solver: {0}")]
     Exact(#[from] ExactError),
-    #[error("{path}: {source}")]
-    Csv { path: String, source: csv::Error },
+    /// A result file could not be written.
+    #[error(transparent)]
+    Results(#[from] ControlFileError),
     #[error("{path}: {source}")]
     Io {
         path: String,

@@ -13,17 +13,16 @@
 //! - [`stability`]: each network's largest stable step, from the spectrum of its Jacobian
 //!   (forward Euler is stable iff |1 + s lambda| <= 1 for every eigenvalue lambda), beside the
 //!   papers' gains;
-//! - [`claim`]: zhong2021's claim that the networks are more efficient than E47 and 94LVI,
-//!   decided on operation counts;
+//! - zhong2021's claim that the networks are more efficient than E47 and 94LVI, decided on
+//!   operation counts ([`records::control_claim`]);
 //! - [`trend`]: the drift after each of K cycles and its trend, at the control period and in
 //!   continuous time ([`continuous`], the exact column as the papers integrate);
 //! - [`reproduce`]: the entry point that runs all of it and writes `results/control*.csv`,
-//!   `results/cycles.csv` ([`output`]).
+//!   `results/cycles.csv` (the rows: [`records::control`]).
 //!
 //! The standard task set is declared in `experiments/control/tasks.toml` ([`task::standard_task_refs`]).
 
 pub mod arm;
-pub mod claim;
 pub mod continuous;
 pub mod control_loop;
 pub mod error;
@@ -31,7 +30,6 @@ pub mod latency;
 pub mod method;
 pub mod network_tick;
 pub mod numerical_tick;
-pub mod output;
 pub mod reproduce;
 pub mod stability;
 pub mod task;

@@ -1,12 +1,11 @@
 //! The control experiments end to end: every method on the standard task set at the control
 //! period, the period sweep, the networks' stability limits, the efficiency claim and the
-//! many-cycles runs, written to `results/` ([`crate::output`]).
+//! many-cycles runs, written to `results/` ([`records::control`]).
 //!
 //! Cost on 2 cores of a 2020s server CPU at the [`Budget::default`]: see the report's section
 //! "At a robot's control rate" (the whole takes about a minute, most of it the Clarabel and
 //! OSQP runs at 1 ms and the 20-cycle runs).
 
-use crate::claim::{self, decide, steps_needed, Verdict, ACCURACY, CHECK_TICKS};
 use crate::continuous::ExactCycles;
 use crate::control_loop::{run_loop, LoopOutcome, LoopSettings, Observer, Status};
 use crate::error::ControlError;
@@ -14,12 +13,14 @@ use crate::latency::Latency;
 use crate::method::{Method, Numerical, TickSolver};
 use crate::network_tick::{products_per_evaluation, Discretisation};
 use crate::numerical_tick::ActiveSetTick;
-use crate::output::{self, ClaimRow, ControlRow, CycleRow, StabilityRow, TrendRow};
 use crate::stability::{gain, LimitProbe};
 use crate::task::{load_tasks, standard_task_refs, with_task, Task, TaskVisitor};
 use crate::trend::classify;
 use catalog::solver_spec::SolverSpec;
 use nalgebra::SVector;
+use records::control::{ClaimRow, ControlRow, CycleRow, StabilityRow, TrendRow};
+use records::control_claim::{decide, overall, steps_needed, Verdict, ACCURACY, CHECK_TICKS};
+use records::results_dir;
 use robots::Robot;
 use schemes::paths::Path;
 use schemes::scheme::Scheme;
@@ -44,7 +45,7 @@ impl Default for Budget {
     /// h = 1 ms; sweep 0.1, 0.2, 0.5, 2, 5, 10 ms; 20 cycles.
     fn default() -> Self {
         Budget {
-            h: 1e-3,
+            h: records::control::MAIN_H,
             sweep: vec![1e-4, 2e-4, 5e-4, 2e-3, 5e-3, 1e-2],
             cycles: 20,
         }
@@ -418,11 +419,11 @@ pub fn reproduce(
         );
     }
 
-    output::write(results, output::CONTROL_CSV, &control)?;
-    output::write(results, output::STABILITY_CSV, &stability)?;
-    output::write(results, output::CLAIM_CSV, &claims)?;
-    output::write(results, output::CYCLES_CSV, &cycles)?;
-    output::write(results, output::TREND_CSV, &trends)?;
+    records::control::write(results, results_dir::CONTROL, &control)?;
+    records::control::write(results, results_dir::CONTROL_STABILITY, &stability)?;
+    records::control::write(results, results_dir::CONTROL_CLAIM, &claims)?;
+    records::control::write(results, results_dir::CYCLES, &cycles)?;
+    records::control::write(results, results_dir::CYCLES_TREND, &trends)?;
     let verdicts: Vec<Verdict> = claims
         .iter()
         .filter_map(|c| Verdict::from_label(&c.verdict))
@@ -430,6 +431,6 @@ pub fn reproduce(
     Ok(Summary {
         control_runs: control.len(),
         cycle_runs: trends.len(),
-        verdict: claim::overall(&verdicts),
+        verdict: overall(&verdicts),
     })
 }

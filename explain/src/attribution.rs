@@ -22,12 +22,12 @@
 //! are "of which" columns, not further summands. For the position error the same runs give
 //! max_t |r* - f(theta)| of each; a switch row holds the difference of the two maxima.
 
-use super::ladder::LadderRow;
 use catalog::experiment::Scoring;
 use catalog::experiment::{Job, SolverChoice};
 use catalog::solver_spec::SolverSpec;
+use records::attribution::AttributionRow;
+use records::ladder::LadderRow;
 use records::runs::RunRow;
-use serde::{Deserialize, Serialize};
 
 /// The largest RelTol whose rung may serve as a converged reference.
 pub const CONVERGED_RTOL: f64 = 1e-8;
@@ -115,44 +115,6 @@ fn without_perturbation(spec: &SolverSpec) -> Option<SolverSpec> {
     }?;
     Some(s)
 }
-
-/// One component of one run's drift, as stored in `results/attribution.csv`.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct AttributionRow {
-    pub paper: String,
-    pub experiment: String,
-    /// The run's variant and solver ids (with `experiment`, its key).
-    pub variant_id: String,
-    pub solver_id: String,
-    /// Labels (display only).
-    pub variant: String,
-    pub solver: String,
-    /// `run`, `scheme (exact, converged)`, `network lag`, `integration error`, or an
-    /// `of which: ...` switch effect.
-    pub component: String,
-    /// The component's drift per joint (none where it could not be formed): the columns
-    /// `drift_1 .. drift_K`.
-    #[serde(skip)]
-    pub drift: Vec<f64>,
-    /// 2-norm of the component (of the drift itself for `run` and `scheme`).
-    pub drift_norm: Option<f64>,
-    /// |component| / |d_run|.
-    pub share: Option<f64>,
-    /// Max position error of the run (`run`, `scheme`, `network lag` = converged network), or
-    /// the change of it the ingredient causes (switch rows).
-    pub max_pos_err: Option<f64>,
-    /// Why a component is missing (a rung or switch run that did not complete).
-    pub note: String,
-}
-
-impl AttributionRow {
-    /// The key of the run the row explains.
-    pub fn key(&self) -> catalog::run_key::RunKey {
-        catalog::run_key::RunKey::new(&self.experiment, &self.variant_id, &self.solver_id)
-    }
-}
-
-records::drift_columns!(AttributionRow, drift, "drift_norm");
 
 /// The controlled re-runs of one target besides its ladders: (switch, job).
 pub fn switch_jobs(job: &Job) -> Vec<(Switch, Job)> {

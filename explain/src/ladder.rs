@@ -26,8 +26,8 @@ use catalog::experiment::Scoring;
 use catalog::experiment::{Job, SolverChoice};
 use catalog::integrator::{IntegratorSettings, Method};
 use catalog::solver_spec::SolverSpec;
-use records::runs::{RunRow, Status};
-use serde::{Deserialize, Serialize};
+use records::ladder::LadderRow;
+use records::runs::RunRow;
 
 /// Accepted steps after which an implicit ladder rung is abandoned (every implicit run of the
 /// papers' experiments needs a few thousand; the finite-time network needed ~650,000 BDF steps
@@ -116,59 +116,6 @@ pub fn jobs(job: &Job) -> Vec<Job> {
         })
         .collect()
 }
-
-/// One rung's result, as stored in `results/ladder.csv`.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct LadderRow {
-    pub paper: String,
-    pub experiment: String,
-    /// The run's variant and solver ids (with `experiment`, its key).
-    pub variant_id: String,
-    pub solver_id: String,
-    /// Labels (display only).
-    pub variant: String,
-    pub solver: String,
-    pub method: String,
-    pub rtol: f64,
-    pub atol: f64,
-    pub max_step: Option<f64>,
-    /// The run's own setting (the rung results/runs.csv holds).
-    pub as_run: bool,
-    pub status: Status,
-    pub failure: String,
-    /// theta(T) - theta(0) per joint (none for a rung that did not complete): the columns
-    /// `drift_1 .. drift_K`.
-    #[serde(skip)]
-    pub drift: Vec<f64>,
-    pub drift_norm: Option<f64>,
-    pub max_pos_err: Option<f64>,
-    /// |d - d*| / |d*| against the converged drift d* (the finest completed rung).
-    pub rel_change: Option<f64>,
-    /// -log10(rel_change): significant digits shared with the converged drift.
-    pub stable_digits: Option<f64>,
-    /// This rung is the converged reference d*.
-    pub reference: bool,
-    pub steps: usize,
-    pub rejected: usize,
-    pub rhs_evals: usize,
-    pub wall_s: f64,
-}
-
-impl LadderRow {
-    /// The key of the run the row explains.
-    pub fn key(&self) -> catalog::run_key::RunKey {
-        catalog::run_key::RunKey::new(&self.experiment, &self.variant_id, &self.solver_id)
-    }
-}
-
-impl LadderRow {
-    /// Whether the rung completed.
-    pub fn completed(&self) -> bool {
-        self.status == Status::Ok
-    }
-}
-
-records::drift_columns!(LadderRow, drift, "drift_norm");
 
 /// Relative 2-norm distance |a - b| / |b| of two drift vectors.
 pub fn rel_distance(a: &[f64], b: &[f64]) -> f64 {

@@ -14,27 +14,27 @@
 //! experiment file marks `explain = true` (zhang2018's perturbed runs: the paper prints no
 //! table, but the perturbation is an ingredient to attribute; the group-code experiments'
 //! "as coded" runs). Results: `results/ladder.csv`, `results/attribution.csv`
-//! (written by [`write`]), `results/inference.csv` (by `reproduce --infer`).
+//! (written by [`write`]), `results/inference.csv` (by `reproduce --infer`); their rows are
+//! [`records::ladder`], [`records::attribution`] and [`records::inference`]'s.
 
 pub mod attribution;
 pub mod error;
 pub mod inference;
 pub mod ladder;
 
-use attribution::{attribution_rows, exact_counterpart, switch_jobs, AttributionRow, Switch};
+use attribution::{attribution_rows, exact_counterpart, switch_jobs, Switch};
 use catalog::experiment::{Job, SolverChoice};
 use catalog::run_key::RunKey;
 use error::ExplainError;
-use ladder::LadderRow;
+use records::attribution::AttributionRow;
 use records::error::{IoAction, IoError};
+use records::inference::{EntryRow, InferenceRow};
+use records::ladder::LadderRow;
 use records::papers::Papers;
 use records::runs::{write_atomic, RunRow};
-use records::table::Row;
+use records::table::{read_if_present, Row};
 use simulation::runner::run_jobs;
 use std::path::Path;
-
-/// Paper id of the group-code reference experiments (`experiments/group.toml`).
-pub const GROUP: &str = "group";
 
 /// The neural runs to explain among `jobs`, in `jobs` order: those a published column maps
 /// onto and those of variants marked `explain = true`.
@@ -131,14 +131,6 @@ pub fn to_csv<T: Row>(rows: &[T]) -> Result<Vec<u8>, ExplainError> {
     Ok(records::table::to_csv(rows)?)
 }
 
-/// Reads a CSV of `T`; an absent file is empty, an unreadable one an error naming it.
-pub fn read_csv<T: Row>(path: &Path) -> Result<Vec<T>, ExplainError> {
-    if !path.exists() {
-        return Ok(Vec::new());
-    }
-    Ok(records::table::read(path)?)
-}
-
 /// Writes `results/ladder.csv` and `results/attribution.csv`: fresh rows replace the stored
 /// rows of the same runs (experiment, variant, solver); other stored rows are kept if their run
 /// still exists among `all` (every job of the experiment files), pruned otherwise.
@@ -146,9 +138,9 @@ pub fn write(results_dir: &Path, fresh: &Explained, all: &[Job]) -> Result<(), E
     let ladder_path = results_dir.join(records::results_dir::LADDER);
     let attribution_path = results_dir.join(records::results_dir::ATTRIBUTION);
     let keys: std::collections::HashSet<RunKey> = all.iter().map(Job::key).collect();
-    let mut stored_ladder = read_csv::<LadderRow>(&ladder_path)?;
+    let mut stored_ladder = read_if_present::<LadderRow>(&ladder_path)?;
     stored_ladder.retain(|r| keys.contains(&r.key()));
-    let mut stored_attribution = read_csv::<AttributionRow>(&attribution_path)?;
+    let mut stored_attribution = read_if_present::<AttributionRow>(&attribution_path)?;
     stored_attribution.retain(|r| keys.contains(&r.key()));
     let ladder = merge(stored_ladder, &fresh.ladder, LadderRow::key);
     let attribution = merge(stored_attribution, &fresh.attribution, AttributionRow::key);
@@ -165,18 +157,18 @@ pub fn write(results_dir: &Path, fresh: &Explained, all: &[Job]) -> Result<(), E
 /// stored rows of the same tables.
 pub fn write_inference(
     results_dir: &Path,
-    fresh: &[inference::InferenceRow],
-    fresh_entries: &[inference::EntryRow],
+    fresh: &[InferenceRow],
+    fresh_entries: &[EntryRow],
 ) -> Result<(), ExplainError> {
     let path = results_dir.join(records::results_dir::INFERENCE);
     let entries_path = results_dir.join(records::results_dir::INFERENCE_ENTRIES);
-    let rows = merge(read_csv(&path)?, fresh, |r: &inference::InferenceRow| {
+    let rows = merge(read_if_present(&path)?, fresh, |r: &InferenceRow| {
         (r.paper.clone(), r.table.clone())
     });
     let entries = merge(
-        read_csv(&entries_path)?,
+        read_if_present(&entries_path)?,
         fresh_entries,
-        |r: &inference::EntryRow| (r.paper.clone(), r.table.clone()),
+        |r: &EntryRow| (r.paper.clone(), r.table.clone()),
     );
     for (p, bytes) in [(&path, to_csv(&rows)?), (&entries_path, to_csv(&entries)?)] {
         write_atomic(p, &bytes).map_err(IoError::at(p, IoAction::Write))?;

@@ -3,12 +3,12 @@
 //! file holds (every row carries the table residual and every column's residual at its
 //! setup), each table has its declared setup, and every profile says whether it re-fits.
 
-use explain::inference::{InferenceRow, BEST, DECLARED, HYPOTHESIS, LOCAL, TABLE};
+use records::inference::{InferenceRow, BEST, DECLARED, HYPOTHESIS, LOCAL, TABLE};
 use std::path::Path;
 
 fn committed() -> Vec<InferenceRow> {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../results/inference.csv");
-    explain::read_csv(&path).unwrap()
+    records::table::read_if_present(&path).unwrap()
 }
 
 #[test]

@@ -1,8 +1,9 @@
 //! The presentation layer's errors: drawing a figure ([`FigureError`], with a trace that cannot
 //! be read: [`TraceError`]), rendering the report and the figures ([`ReportError`], wrapping
-//! the records, explanation and control layers' errors).
+//! the records layer's errors: every results file is read through it).
 
-use records::error::{IoError, RunsError};
+use records::error::{ControlFileError, IoError, RunsError};
+use records::table::TableError;
 use records::tracked_dir::TrackedError;
 use std::path::PathBuf;
 
@@ -54,10 +55,12 @@ pub enum TraceProblem {
 pub enum ReportError {
     #[error(transparent)]
     Runs(#[from] RunsError),
+    /// A table of the explanation, the setup inference or the Python package.
     #[error(transparent)]
-    Explain(#[from] explain::error::ExplainError),
+    Table(#[from] TableError),
+    /// A result file of the control experiments.
     #[error(transparent)]
-    Control(#[from] control::ControlError),
+    ControlFile(#[from] ControlFileError),
     #[error(transparent)]
     Tracked(#[from] TrackedError),
     #[error(transparent)]

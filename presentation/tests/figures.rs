@@ -468,7 +468,7 @@ fn the_committed_figures_are_those_the_committed_results_give() {
         .unwrap();
     }
     // The control experiments' results (the `control` crate), where they exist.
-    for file in [control::output::CONTROL_CSV, control::output::CYCLES_CSV] {
+    for file in [records::results_dir::CONTROL, records::results_dir::CYCLES] {
         let path = committed.join("results").join(file);
         if path.exists() {
             std::fs::copy(&path, root.join("results").join(file)).unwrap();

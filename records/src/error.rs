@@ -1,5 +1,5 @@
 //! The records layer's errors: reading and writing the results files (`runs.csv`, the journal,
-//! shards, trajectories, the leaderboard). They wrap the layer below them: the simulation's
+//! shards, trajectories, the leaderboard, the control experiments' files). They wrap the layer below them: the simulation's
 //! naming errors ([`catalog::naming::NameError`]), the tables' [`TableError`] and the
 //! results directory's own errors ([`PathError`], [`TrackedError`], [`IntegrityError`]).
 //! Each names the file and, where it applies, the line.
@@ -221,4 +221,14 @@ pub enum DofCostError {
     Io(#[from] IoError),
     #[error(transparent)]
     Table(#[from] TableError),
+}
+
+/// Why a result file of the control experiments (`results/control*.csv`, `results/cycles*.csv`,
+/// [`crate::control`]) could not be written or read.
+#[derive(Debug, thiserror::Error)]
+pub enum ControlFileError {
+    #[error("{}: {source}", path.display())]
+    Csv { path: PathBuf, source: csv::Error },
+    #[error(transparent)]
+    Io(#[from] IoError),
 }

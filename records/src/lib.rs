@@ -31,14 +31,28 @@
 //! - [`papers`]: the papers as data (`papers/<paper>/`): metadata, published numbers and which run each
 //!   one is compared with.
 //! - [`sweep_check`]: a published table set beside a sweep's runs.
+//! - [`control`]: the control experiments' result files (`results/control*.csv`,
+//!   `results/cycles*.csv`); [`control_claim`]: zhong2021's efficiency claim decided from them.
+//! - [`ladder`], [`attribution`]: the explanation's result files (`results/ladder.csv`,
+//!   `results/attribution.csv`); [`inference`]: the setup inference's (`results/inference.csv`,
+//!   `results/inference-entries.csv`), with its verdicts in words ([`inference_verdict`]).
+//!
+//! The report reads every one of these files through this crate alone: rendering needs the
+//! records, not the solvers that made them.
 
+pub mod attribution;
 pub mod claims;
+pub mod control;
+pub mod control_claim;
 pub mod dof_cost;
 pub mod error;
 pub mod gate;
 pub mod index;
+pub mod inference;
+pub mod inference_verdict;
 pub mod integrity;
 pub mod journal;
+pub mod ladder;
 pub mod leaderboard;
 pub mod migrate;
 pub mod owned_dir;

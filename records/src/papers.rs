@@ -18,6 +18,10 @@ use catalog::run_key::RunKey;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
+/// Paper id of the group-code reference experiments (`experiments/group.toml`): not a paper of
+/// `papers/`, but the id their runs and explanations are filed under.
+pub const GROUP: &str = "group";
+
 /// One published number.
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 pub struct PaperValue {

@@ -41,6 +41,16 @@ pub const ATTRIBUTION: &str = "attribution.csv";
 pub const INFERENCE: &str = "inference.csv";
 /// The setup inference's per-entry table.
 pub const INFERENCE_ENTRIES: &str = "inference-entries.csv";
+/// The control experiments' runs ([`crate::control::ControlRow`]).
+pub const CONTROL: &str = "control.csv";
+/// The networks' Euler stability limits ([`crate::control::StabilityRow`]).
+pub const CONTROL_STABILITY: &str = "control-stability.csv";
+/// zhong2021's efficiency claim per task ([`crate::control::ClaimRow`]).
+pub const CONTROL_CLAIM: &str = "control-claim.csv";
+/// The drift after every cycle of the many-cycles runs ([`crate::control::CycleRow`]).
+pub const CYCLES: &str = "cycles.csv";
+/// The many-cycles runs' trends ([`crate::control::TrendRow`]).
+pub const CYCLES_TREND: &str = "cycles-trend.csv";
 /// The leaderboard.
 pub const LEADERBOARD: &str = "leaderboard.csv";
 /// The leaderboard with the Python package's entry (written by `python/examples/leaderboard.py`).

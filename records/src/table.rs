@@ -281,6 +281,15 @@ pub fn read<T: Row>(path: &Path) -> Result<Vec<T>, TableError> {
     })
 }
 
+/// Reads a table of `T` from `path` like [`read`], an absent file as no rows (a results file
+/// the reproduction has not written yet).
+pub fn read_if_present<T: Row>(path: &Path) -> Result<Vec<T>, TableError> {
+    if !path.exists() {
+        return Ok(Vec::new());
+    }
+    read(path)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

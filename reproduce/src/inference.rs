@@ -40,7 +40,8 @@ pub fn infer(
     jobs: &[Job],
     results: Option<&ResultsDir>,
 ) -> Result<(), ReproduceError> {
-    use explain::inference::{family::Family, fit, problem, rows, search::Target, table_ids};
+    use explain::inference::{family::Family, fit, problem, rows, search::Target};
+    use records::inference::table_ids;
     let root = report_root(cli)?;
     let papers = load_papers(cli)?;
     let family = Family::load(&cli.experiments_dir.join("inference").join("family.toml"))?;

@@ -7,55 +7,16 @@
 //! the drawing plane about the base x and y axes, each in [-pi/2, pi/2] (the plane's offsets
 //! are mapped by R = Ry(tilt_y) Rx(tilt_x) Rz(psi)). Discrete members: the direction, the RMP
 //! reading (tables with an RMP term), the robot model (the declared one and the variants
-//! listed per declared robot), and how the drift is computed ([`Integration`]).
+//! listed per declared robot), and how the drift is computed
+//! ([`records::inference::Integration`]).
 
 use super::search::Budget;
 use super::InferenceError;
 use crate::error::FamilyError;
-use catalog::integrator::{IntegratorSettings, Method};
+use records::inference::Integration;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::Path;
-
-/// How a setup's drift is computed.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Integration {
-    /// The scheme's exact optimum in the loop at tight tolerances (the exact column).
-    Exact,
-    /// The paper's network integrated by BDF (ode15s's method) at MATLAB's default tolerances,
-    /// RelTol 1e-3 / AbsTol 1e-6.
-    NetworkMatlabDefault,
-    /// The paper's network integrated as the experiment states (the papers' RelTol 1e-6 /
-    /// AbsTol 1e-8).
-    NetworkStated,
-}
-
-impl Integration {
-    /// The network run's integrator (the exact column's is set by the problem).
-    pub fn integrator(self, stated: &IntegratorSettings) -> IntegratorSettings {
-        match self {
-            Integration::NetworkMatlabDefault => IntegratorSettings {
-                method: Method::Bdf,
-                rtol: 1e-3,
-                atol: 1e-6,
-                ..*stated
-            },
-            Integration::Exact | Integration::NetworkStated => *stated,
-        }
-    }
-
-    /// Words for the report.
-    pub fn describe(self) -> &'static str {
-        match self {
-            Integration::Exact => "exact column (scheme's optimum, tight tolerances)",
-            Integration::NetworkMatlabDefault => {
-                "paper's network at MATLAB's default tolerances (BDF, RelTol 1e-3 / AbsTol 1e-6)"
-            }
-            Integration::NetworkStated => "paper's network at the stated tolerances",
-        }
-    }
-}
 
 /// The family and the search budget.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -205,17 +166,5 @@ mod tests {
             Family::default()
         );
         std::fs::remove_dir_all(&dir).unwrap();
-    }
-
-    #[test]
-    fn matlab_defaults_keep_the_stated_step_limit() {
-        let stated = IntegratorSettings {
-            max_step: Some(0.05),
-            ..IntegratorSettings::default()
-        };
-        let m = Integration::NetworkMatlabDefault.integrator(&stated);
-        assert_eq!((m.method, m.rtol, m.atol), (Method::Bdf, 1e-3, 1e-6));
-        assert_eq!(m.max_step, Some(0.05));
-        assert_eq!(Integration::NetworkStated.integrator(&stated), stated);
     }
 }

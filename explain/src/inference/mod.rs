@@ -40,18 +40,20 @@
 
 pub mod family;
 pub mod search;
-pub mod verdict;
 
 use catalog::experiment::Scoring;
 use catalog::experiment::{Job, SolverChoice};
 use catalog::integrator::{IntegratorSettings, Method};
-use family::{Family, Integration};
+use family::Family;
 use rayon::prelude::*;
-use records::papers::{PaperValue, Papers};
+use records::inference::{
+    EntryRow, InferenceRow, Integration, BEST, COLUMN_FIT, DECLARED, FAILED, HYPOTHESIS, LOCAL,
+    PHASE, PROFILE, ROTATION, SCALE, TABLE, TILT_X, TILT_Y,
+};
+use records::papers::Papers;
 use records::runs::RunRow;
 use schemes::spec::{RmpReading, SchemeSpec};
 use search::{Coordinate, Objective, Outcome, Point, Scores, Target};
-use serde::{Deserialize, Serialize};
 use simulation::run::run_job;
 use std::f64::consts::PI;
 use std::time::Instant;
@@ -88,10 +90,6 @@ pub fn inference_integrator() -> IntegratorSettings {
         ..IntegratorSettings::default()
     }
 }
-
-/// Penalty residual of a setup whose run fails (an unreachable pose, an infeasible QP); the
-/// report prints such points as failed.
-pub const FAILED: f64 = 10.0;
 
 /// One candidate setup of a table.
 #[derive(Clone, Debug, PartialEq)]
@@ -211,17 +209,6 @@ impl TableProblem {
             ),
         }
     }
-}
-
-/// The tables [`problem`] can build: (paper, table).
-pub fn table_ids(values: &[PaperValue]) -> Vec<(String, String)> {
-    let mut ids: Vec<(String, String)> = values
-        .iter()
-        .filter(|v| v.table != "text" && v.metric.starts_with("drift_") && v.metric != "drift_norm")
-        .map(|v| (v.paper.clone(), v.table.clone()))
-        .collect();
-    ids.dedup();
-    ids
 }
 
 /// The fit problem of one published table, from the paper values and the experiment files'
@@ -433,13 +420,6 @@ pub struct TableObjective<'a> {
     pub coordinates: Vec<Coordinate>,
 }
 
-/// Names of the continuous coordinates (the size factor is searched as its logarithm).
-pub const ROTATION: &str = "rotation";
-pub const PHASE: &str = "phase";
-pub const SCALE: &str = "scale_factor";
-pub const TILT_X: &str = "tilt_x";
-pub const TILT_Y: &str = "tilt_y";
-
 impl<'a> TableObjective<'a> {
     /// The family's combinations (the declared one first) and box on `problem`.
     pub fn new(problem: &'a TableProblem, family: &Family) -> Self {
@@ -592,100 +572,6 @@ pub fn fit(p: &TableProblem, family: &Family) -> Fit {
         wall_s: started.elapsed().as_secs_f64(),
     }
 }
-
-/// `objective` of the rows of the whole table.
-pub const TABLE: &str = "table";
-/// Row kinds.
-pub const DECLARED: &str = "declared";
-pub const BEST: &str = "best fit";
-pub const HYPOTHESIS: &str = "hypothesis best";
-pub const LOCAL: &str = "local optimum";
-/// Prefix of a profile row's kind: `profile (re-fitted): <parameter>` or
-/// `profile (slice): <parameter>`.
-pub const PROFILE: &str = "profile";
-
-/// One row of `results/inference.csv`.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct InferenceRow {
-    pub paper: String,
-    pub table: String,
-    /// [`DECLARED`], [`BEST`], [`HYPOTHESIS`], [`LOCAL`] or a profile (see [`PROFILE`]).
-    pub kind: String,
-    /// What the row's `rel_residual` measures: [`TABLE`] (r) or a column's name (its r_c).
-    pub objective: String,
-    pub robot: String,
-    pub integration: Integration,
-    pub rotation: f64,
-    pub phase: f64,
-    pub scale_factor: f64,
-    pub tilt_x: f64,
-    pub tilt_y: f64,
-    pub reverse: bool,
-    pub rmp: String,
-    pub rel_residual: f64,
-    /// r of the whole table at this setup.
-    pub table_residual: f64,
-    /// r_c of every column at this setup, in column order, `;`-separated.
-    pub column_residuals: String,
-    pub max_entry_error: Option<f64>,
-    pub signs_matched: Option<usize>,
-    pub entries: Option<usize>,
-    pub evaluations: usize,
-    pub wall_s: f64,
-}
-
-impl records::table::Row for InferenceRow {}
-
-impl InferenceRow {
-    /// The profiled parameter and whether the others were re-fitted, for a profile row.
-    pub fn profile(&self) -> Option<(&str, bool)> {
-        let rest = self.kind.strip_prefix(PROFILE)?;
-        if let Some(name) = rest.strip_prefix(" (re-fitted): ") {
-            Some((name, true))
-        } else {
-            rest.strip_prefix(" (slice): ").map(|name| (name, false))
-        }
-    }
-
-    /// The value of parameter `name` (a coordinate's name) in this row.
-    pub fn parameter(&self, name: &str) -> f64 {
-        match name {
-            ROTATION => self.rotation,
-            PHASE => self.phase,
-            SCALE => self.scale_factor,
-            TILT_X => self.tilt_x,
-            _ => self.tilt_y,
-        }
-    }
-
-    /// r_c of every column, parsed back.
-    pub fn columns(&self) -> Vec<f64> {
-        self.column_residuals
-            .split(';')
-            .filter_map(|v| v.parse().ok())
-            .collect()
-    }
-}
-
-/// One entry of a reported setup, for `results/inference-entries.csv`.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct EntryRow {
-    pub paper: String,
-    pub table: String,
-    /// [`DECLARED`], [`BEST`] (the joint fit) or [`COLUMN_FIT`] (that column alone).
-    pub setup: String,
-    pub column: String,
-    pub joint: usize,
-    pub ours: f64,
-    pub paper_value: f64,
-    pub rel_error: f64,
-    pub sign_matched: bool,
-}
-
-/// `setup` of the entries of a column's own fit.
-pub const COLUMN_FIT: &str = "column fit";
-
-impl records::table::Row for EntryRow {}
 
 /// The rows of one fit.
 pub fn rows(p: &TableProblem, f: &Fit) -> (Vec<InferenceRow>, Vec<EntryRow>) {

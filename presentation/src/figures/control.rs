@@ -15,8 +15,8 @@ use super::panels::{LogLogPanel, Series};
 use super::style::{colour, LEGEND_LINE_WIDTH};
 use crate::error::FigureError;
 use catalog::naming::slug;
-use control::output::{ControlRow, CycleRow};
 use plotters::prelude::*;
+use records::control::{ControlRow, CycleRow};
 
 /// Width of the legend column on the right (px).
 const LEGEND_WIDTH: u32 = 420;

@@ -40,11 +40,11 @@ mod style;
 mod trace;
 
 use crate::error::{FigureError, ReportError};
-use ::control::output::{ControlRow, CycleRow};
-use explain::inference::InferenceRow;
 use layout::Rendered;
 use rayon::prelude::*;
+use records::control::{ControlRow, CycleRow, MAIN_H};
 use records::dof_cost::DofCostRow;
+use records::inference::InferenceRow;
 use records::runs::{read_runs, RunRow};
 use records::tracked_dir::{Removal, TrackedDir, TrackedError};
 use std::collections::BTreeMap;
@@ -154,7 +154,7 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, ReportError> {
         )?;
     }
 
-    let inference: Vec<InferenceRow> = explain::read_csv(
+    let inference: Vec<InferenceRow> = records::table::read_if_present(
         &root
             .join(records::results_dir::DIR)
             .join(records::results_dir::INFERENCE),
@@ -188,12 +188,11 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, ReportError> {
 
     let results = root.join(records::results_dir::DIR);
     let control_rows: Vec<ControlRow> =
-        ::control::output::read(&results, ::control::output::CONTROL_CSV)?;
-    let cycle_rows: Vec<CycleRow> =
-        ::control::output::read(&results, ::control::output::CYCLES_CSV)?;
+        records::control::read(&results, records::results_dir::CONTROL)?;
+    let cycle_rows: Vec<CycleRow> = records::control::read(&results, records::results_dir::CYCLES)?;
     let mut tasks: Vec<&str> = control_rows.iter().map(|r| r.task.as_str()).collect();
     tasks.dedup();
-    let h_main = ::control::Budget::default().h * 1e3;
+    let h_main = MAIN_H * 1e3;
     for task in tasks {
         let rows: Vec<&ControlRow> = control_rows.iter().filter(|r| r.task == task).collect();
         add(control::pareto_name(task), Job::Pareto(task, h_main, rows))?;

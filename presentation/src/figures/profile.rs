@@ -6,8 +6,8 @@
 use super::layout::{Area, Body, Figure};
 use super::panels::ProfilePanel;
 use crate::error::FigureError;
-use explain::inference::{InferenceRow, BEST, FAILED, PHASE, ROTATION, SCALE, TABLE};
 use plotters::prelude::*;
+use records::inference::{InferenceRow, BEST, FAILED, PHASE, ROTATION, SCALE, TABLE};
 use std::f64::consts::PI;
 
 /// File name of a table's profile figure inside `report/figures/`.

@@ -4,9 +4,11 @@
 
 use super::markdown::{sci, sci_opt, Table, MISSING};
 use crate::figures::control::{pareto_name, CYCLES_NAME, STABILITY_NAME};
-use control::claim::{overall, Verdict, ACCURACY};
-use control::output::{self, ClaimRow, ControlRow, StabilityRow, TrendRow};
+use records::control::{read, ClaimRow, ControlRow, StabilityRow, TrendRow, MAIN_H};
+use records::control_claim::{overall, steps_needed, Verdict, ACCURACY};
+use records::error::ControlFileError;
 use records::index::{completed, Runs};
+use records::results_dir;
 use std::path::Path;
 
 /// The control experiments' results (each file empty when absent).
@@ -20,19 +22,19 @@ pub struct ControlResults {
 
 impl ControlResults {
     /// Reads the files in `results`.
-    pub fn load(results: &Path) -> Result<Self, control::ControlError> {
+    pub fn load(results: &Path) -> Result<Self, ControlFileError> {
         Ok(ControlResults {
-            runs: output::read(results, output::CONTROL_CSV)?,
-            stability: output::read(results, output::STABILITY_CSV)?,
-            claims: output::read(results, output::CLAIM_CSV)?,
-            trends: output::read(results, output::TREND_CSV)?,
+            runs: read(results, results_dir::CONTROL)?,
+            stability: read(results, results_dir::CONTROL_STABILITY)?,
+            claims: read(results, results_dir::CONTROL_CLAIM)?,
+            trends: read(results, results_dir::CYCLES_TREND)?,
         })
     }
 }
 
 /// The control period the verdicts are given at (ms).
 fn main_h_ms() -> f64 {
-    control::Budget::default().h * 1e3
+    MAIN_H * 1e3
 }
 
 /// Whether a run at the main period is a success of the control-rate track: it completed
@@ -299,7 +301,7 @@ fn stability_section(results: &ControlResults, figures: &[String]) -> String {
             sci_opt(s.euler_limit_s),
             sci_opt(s.gain_x_limit),
             s.euler_limit_s
-                .map(|l| control::claim::steps_needed(h * 1e-3, l).to_string())
+                .map(|l| steps_needed(h * 1e-3, l).to_string())
                 .unwrap_or_else(|| MISSING.to_string()),
             s.largest_stable_h_ms
                 .map(sci)

@@ -40,12 +40,12 @@ pub mod verdict;
 pub mod why;
 
 use crate::error::ReportError;
-use explain::read_csv;
 use markdown::{sci, Table};
 use records::error::{IoAction, IoError};
 use records::index::Runs;
-use records::papers::Papers;
+use records::papers::{Papers, GROUP};
 use records::runs::read_runs;
+use records::table::read_if_present;
 use std::path::{Path, PathBuf};
 
 /// The `paper` value of the suite's own cross experiment.
@@ -91,15 +91,15 @@ impl Inputs {
                 .map_err(IoError::at(&deviations_path, IoAction::Read))?,
             figures: figures::list(&report.join("figures"))?,
             explanations: why::Explanations {
-                ladder: read_csv(&results.join(records::results_dir::LADDER))?,
-                attribution: read_csv(&results.join(records::results_dir::ATTRIBUTION))?,
-                inference: read_csv(&results.join(records::results_dir::INFERENCE))?,
-                entries: read_csv(&results.join(records::results_dir::INFERENCE_ENTRIES))?,
+                ladder: read_if_present(&results.join(records::results_dir::LADDER))?,
+                attribution: read_if_present(&results.join(records::results_dir::ATTRIBUTION))?,
+                inference: read_if_present(&results.join(records::results_dir::INFERENCE))?,
+                entries: read_if_present(&results.join(records::results_dir::INFERENCE_ENTRIES))?,
             },
             timings: records::timing::read(&results)?,
             dof_cost: records::dof_cost::read(&results)?,
-            profile: read_csv(&results.join(records::profile::FILE))?,
-            speedup: read_csv(&results.join(records::speedup::FILE))?,
+            profile: read_if_present(&results.join(records::profile::FILE))?,
+            speedup: read_if_present(&results.join(records::speedup::FILE))?,
             control: control::ControlResults::load(&results)?,
             python: python::PythonResults::load(&results)?,
         })
@@ -318,7 +318,7 @@ fn group_section(
     papers: &Papers,
     figures: &[String],
 ) -> String {
-    let group = explain::GROUP;
+    let group = GROUP;
     let experiments = runs.experiments(group);
     if experiments.is_empty() {
         return String::new();

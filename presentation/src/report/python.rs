@@ -13,7 +13,7 @@
 use super::leaderboard::ranking;
 use super::markdown::{Table, MISSING};
 use records::leaderboard::{LeaderboardRow, STANDARD_SET};
-use records::table::Row;
+use records::table::{read_if_present, Row, TableError};
 use serde::{Deserialize, Serialize};
 
 /// One case of `results/python-call-cost.csv` (definitions: `python/bench/call_cost.py`).
@@ -46,12 +46,10 @@ pub struct PythonResults {
 
 impl PythonResults {
     /// Reads both files from the results directory.
-    pub fn load(results: &std::path::Path) -> Result<Self, explain::error::ExplainError> {
+    pub fn load(results: &std::path::Path) -> Result<Self, TableError> {
         Ok(PythonResults {
-            leaderboard: explain::read_csv(
-                &results.join(records::results_dir::LEADERBOARD_PYTHON),
-            )?,
-            call_cost: explain::read_csv(&results.join(records::results_dir::PYTHON_CALL_COST))?,
+            leaderboard: read_if_present(&results.join(records::results_dir::LEADERBOARD_PYTHON))?,
+            call_cost: read_if_present(&results.join(records::results_dir::PYTHON_CALL_COST))?,
         })
     }
 }

@@ -4,11 +4,11 @@
 //! the group-code reference experiments. See `explain` for the mathematics.
 
 use super::markdown::{sci, sci_opt, Table, MISSING};
-use explain::attribution::AttributionRow;
-use explain::inference::family::Integration;
-use explain::inference::{self, verdict, EntryRow, InferenceRow};
-use explain::ladder::LadderRow;
-use records::papers::Papers;
+use records::attribution::AttributionRow;
+use records::inference::{self, EntryRow, InferenceRow, Integration};
+use records::inference_verdict as verdict;
+use records::ladder::LadderRow;
+use records::papers::{Papers, GROUP};
 use std::fmt::Write as _;
 
 /// The stored explanation results.
@@ -531,7 +531,7 @@ fn hypotheses_table(rows: &[&InferenceRow], columns: &[&str]) -> String {
     out
 }
 
-use explain::inference::FAILED as FAILED_RESIDUAL;
+use records::inference::FAILED as FAILED_RESIDUAL;
 
 /// The whole "Why the numbers differ" subsection of one paper.
 pub fn section(paper: &str, x: &Explanations, papers: &Papers) -> String {
@@ -541,7 +541,7 @@ pub fn section(paper: &str, x: &Explanations, papers: &Papers) -> String {
         return String::new();
     }
     let mut out = String::from("\n### Why the numbers differ\n\n");
-    if paper == explain::GROUP {
+    if paper == GROUP {
         out.push_str(&summary(paper, x, papers));
     }
     if !attribution.is_empty() {
@@ -552,7 +552,7 @@ pub fn section(paper: &str, x: &Explanations, papers: &Papers) -> String {
         out.push_str("\n#### Tolerance ladder\n\n");
         out.push_str(&ladder);
     }
-    let has_tables = explain::inference::table_ids(&papers.values)
+    let has_tables = inference::table_ids(&papers.values)
         .iter()
         .any(|(p, _)| p == paper);
     if has_tables {
@@ -587,7 +587,7 @@ pub fn summary(paper: &str, x: &Explanations, papers: &Papers) -> String {
     let mut out = format!(
         "\n**Why** (see \"Why the numbers differ\" below). Over {} runs of {}, the scheme itself (exact column, converged) carries {} of the drift (|d_exact| / |d_run|), the network's lag {} and integration error {}.",
         keys.len(),
-        if paper == explain::GROUP {
+        if paper == GROUP {
             "the group's network"
         } else {
             "the paper's solver"

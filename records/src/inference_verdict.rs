@@ -1,10 +1,11 @@
 //! The verdicts of the setup inference in words, and the thresholds behind them, stated once
-//! here: a column (or a table) counts as reproduced when its relative residual r_c (or r, see
-//! the module doc of [`super`]) is at most [`REPRODUCED`]; a profile is flat when its largest
+//! here, from the rows of `results/inference.csv` alone: a column (or a table) counts as
+//! reproduced when its relative residual r_c (or r, see the module doc of [`crate::inference`])
+//! is at most [`REPRODUCED`]; a profile is flat when its largest
 //! residual is below [`FLAT`] times its smallest, weakly determined below [`WEAK`] times,
 //! determined otherwise.
 
-use super::{InferenceRow, BEST, DECLARED, TABLE};
+use crate::inference::{InferenceRow, BEST, DECLARED, FAILED, TABLE};
 
 /// Largest relative residual that counts as reproduced.
 pub const REPRODUCED: f64 = 0.25;
@@ -14,12 +15,9 @@ pub const FLAT: f64 = 1.25;
 /// A profile spread below this (and at least [`FLAT`]): weakly determined.
 pub const WEAK: f64 = 2.0;
 
-/// Largest over smallest of `residuals`, failed points ([`super::FAILED`]) left out.
+/// Largest over smallest of `residuals`, failed points ([`FAILED`]) left out.
 pub fn spread(residuals: impl IntoIterator<Item = f64>) -> f64 {
-    let r: Vec<f64> = residuals
-        .into_iter()
-        .filter(|r| *r < super::FAILED)
-        .collect();
+    let r: Vec<f64> = residuals.into_iter().filter(|r| *r < FAILED).collect();
     let lo = r.iter().copied().fold(f64::INFINITY, f64::min);
     let hi = r.iter().copied().fold(0.0, f64::max);
     hi / lo.max(f64::MIN_POSITIVE)
@@ -37,7 +35,7 @@ pub fn profile_verdict(s: f64) -> &'static str {
 }
 
 fn percent(r: f64) -> String {
-    if r >= super::FAILED {
+    if r >= FAILED {
         "failed".to_string()
     } else {
         format!("{:.0} %", 100.0 * r)
@@ -148,7 +146,7 @@ pub fn table_verdict(rows: &[&InferenceRow]) -> Option<Vec<String>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::inference::family::Integration;
+    use crate::inference::Integration;
 
     fn row(kind: &str, objective: &str, r: f64, columns: &str) -> InferenceRow {
         InferenceRow {
@@ -220,7 +218,7 @@ mod tests {
 
     #[test]
     fn profile_spreads_leave_failed_points_out() {
-        assert_eq!(spread([0.5, 0.6, super::super::FAILED]), 1.2);
+        assert_eq!(spread([0.5, 0.6, super::FAILED]), 1.2);
         assert!(profile_verdict(1.2).starts_with("flat"));
         assert!(profile_verdict(1.5).starts_with("weakly"));
         assert_eq!(profile_verdict(2.5), "determined");

@@ -1,25 +1,30 @@
-//! The result files of the control experiments, one row type each, written as CSV:
+//! The result files of the control experiments (crate `control`), one row type each, written
+//! as CSV:
 //!
 //! - `results/control.csv` ([`ControlRow`]): every (task, method, h) run: latency, accuracy,
 //!   drift, work per tick;
 //! - `results/control-stability.csv` ([`StabilityRow`]): each network's Euler stability limit
 //!   beside its gain;
-//! - `results/control-claim.csv` ([`ClaimRow`]): zhong2021's efficiency claim, per task;
+//! - `results/control-claim.csv` ([`ClaimRow`]): zhong2021's efficiency claim, per task
+//!   ([`crate::control_claim`]);
 //! - `results/cycles.csv` ([`CycleRow`]): the drift after every cycle of the many-cycles runs,
 //!   and `results/cycles-trend.csv` ([`TrendRow`]): each run's trend.
 //!
-//! The same types read the files back ([`read`]) for the report.
+//! The control experiments write them ([`write()`]); the report reads them back ([`read()`]) with
+//! the same types, without linking the solvers that made them. The file names are
+//! [`crate::results_dir`]'s (`CONTROL`, `CONTROL_STABILITY`, `CONTROL_CLAIM`, `CYCLES`,
+//! `CYCLES_TREND`).
 
-use crate::error::ControlError;
+use crate::error::{ControlFileError, IoAction, IoError};
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
-pub const CONTROL_CSV: &str = "control.csv";
-pub const STABILITY_CSV: &str = "control-stability.csv";
-pub const CLAIM_CSV: &str = "control-claim.csv";
-pub const CYCLES_CSV: &str = "cycles.csv";
-pub const TREND_CSV: &str = "cycles-trend.csv";
+/// The control period of the control experiments' verdicts (s): the period every method runs
+/// at, beside the sweep of the networks and the active set over other periods. The rows carry
+/// each run's period (`h_ms`) but not which period is the main one, so the experiments (their
+/// default budget) and the report take it from here.
+pub const MAIN_H: f64 = 1e-3;
 
 /// One controller run.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -45,7 +50,7 @@ pub struct ControlRow {
     pub tick_max_us: f64,
     pub max_track_err: f64,
     pub rms_track_err: f64,
-    /// |x - x*| of the joint command, relative (see [`crate::control_loop`]).
+    /// |x - x*| of the joint command, relative (see `control::control_loop`).
     pub max_dx: f64,
     pub rms_dx: f64,
     /// max |x - x*| after the first second.
@@ -78,7 +83,7 @@ pub struct StabilityRow {
     pub largest_stable_h_ms: Option<f64>,
 }
 
-/// The efficiency claim on one task (see [`crate::claim`]).
+/// The efficiency claim on one task (see [`crate::control_claim`]).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ClaimRow {
     pub task: String,
@@ -104,7 +109,7 @@ pub struct ClaimRow {
     pub numerical_solve_p50_us: f64,
     /// network products per tick over the numerical method's mean.
     pub cost_ratio: f64,
-    /// `PASS`, `FAIL` or `UNDECIDED` (see [`crate::claim`]).
+    /// `PASS`, `FAIL` or `UNDECIDED` (see [`crate::control_claim::Verdict`]).
     pub verdict: String,
 }
 
@@ -140,30 +145,28 @@ pub struct TrendRow {
 }
 
 /// Writes `rows` to `dir/name`.
-pub fn write<T: Serialize>(dir: &Path, name: &str, rows: &[T]) -> Result<(), ControlError> {
+pub fn write<T: Serialize>(dir: &Path, name: &str, rows: &[T]) -> Result<(), ControlFileError> {
     let path = dir.join(name);
-    let csv_error = |source| ControlError::Csv {
-        path: path.display().to_string(),
+    let csv_error = |source| ControlFileError::Csv {
+        path: path.clone(),
         source,
     };
     let mut w = csv::Writer::from_path(&path).map_err(csv_error)?;
     for r in rows {
         w.serialize(r).map_err(csv_error)?;
     }
-    w.flush().map_err(|source| ControlError::Io {
-        path: path.display().to_string(),
-        source,
-    })
+    w.flush().map_err(IoError::at(&path, IoAction::Write))?;
+    Ok(())
 }
 
 /// Reads `dir/name`; empty when the file does not exist.
-pub fn read<T: DeserializeOwned>(dir: &Path, name: &str) -> Result<Vec<T>, ControlError> {
+pub fn read<T: DeserializeOwned>(dir: &Path, name: &str) -> Result<Vec<T>, ControlFileError> {
     let path = dir.join(name);
     if !path.exists() {
         return Ok(Vec::new());
     }
-    let csv_error = |source| ControlError::Csv {
-        path: path.display().to_string(),
+    let csv_error = |source| ControlFileError::Csv {
+        path: path.clone(),
         source,
     };
     csv::Reader::from_path(&path)

@@ -1,6 +1,8 @@
-//! zhong2021 §1: "compared with numerical methods [26], [27] (E47, 94LVI), neural network
-//! methods can process information in parallel and have higher computational efficiency [28]".
-//! Decided here as a claim about the cost per control tick of reaching a stated accuracy.
+//! zhong2021 §1: "compared with numerical methods \[26\], \[27\] (E47, 94LVI), neural network
+//! methods can process information in parallel and have higher computational efficiency \[28\]".
+//! Decided here as a claim about the cost per control tick of reaching a stated accuracy: the
+//! rule and its thresholds, computed from numbers alone, shared by the control experiments
+//! (crate `control`, which run it and write [`crate::control::ClaimRow`]) and the report.
 //!
 //! # The common unit
 //!
@@ -8,15 +10,15 @@
 //! spend their time in the same operation: a product of the LVI matrix M (or M') with a vector
 //! (dense, (nx + n_eq + n_in)^2 multiply-adds at most); everything else per step or iteration is
 //! O(dim). So the cost per tick is counted in products with M: a network's forward-Euler step
-//! costs [`crate::network_tick::products_per_evaluation`] (LVI-PDNN 2, S-LVI-PDNN 1), an E47 or
-//! 94LVI iteration 2 ([`solvers::lvi_numerical::PRODUCTS_PER_ITERATION`]). The counts are the
+//! costs `control::network_tick::products_per_evaluation` (LVI-PDNN 2, S-LVI-PDNN 1), an E47 or
+//! 94LVI iteration 2 (`solvers::lvi_numerical::PRODUCTS_PER_ITERATION`). The counts are the
 //! same on every machine and under any load, so the verdict does not depend on either; the
 //! latencies are reported beside them for the record.
 //!
-//! # The comparison (per task, at the control period h, default 1 ms)
+//! # The comparison (per task, at the control period h, [`crate::control::MAIN_H`] = 1 ms)
 //!
 //! - A network needs at least n = ceil(h / s_max) Euler steps per tick to be stable at all
-//!   (s_max its Euler stability limit on the task, [`crate::stability`]): at least
+//!   (s_max its Euler stability limit on the task, `control::stability`): at least
 //!   n x (products per step) per tick, whatever its accuracy. A check run at 2n steps per tick
 //!   over the first [`CHECK_TICKS`] ticks measures the accuracy it then reaches.
 //! - E47 and 94LVI are run over the whole task at h, warm-started, to their tolerance; their

@@ -1,0 +1,120 @@
+//! Presentation must not link the solvers (issue 16): rendering the report and its figures
+//! needs only the records of the runs. Read from the workspace's `Cargo.toml` files, no crate
+//! that simulates or solves (solvers, simulation, control, explain, cost) may be among
+//! presentation's workspace dependencies, direct or transitive (normal and build dependencies,
+//! target-specific ones included; dev-dependencies do not link into the library).
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+/// The crates that run simulations or solvers.
+const FORBIDDEN: [&str; 5] = ["solvers", "simulation", "control", "explain", "cost"];
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
+}
+
+fn manifest(dir: &Path) -> toml::Table {
+    let path = dir.join("Cargo.toml");
+    let text = std::fs::read_to_string(&path)
+        .unwrap_or_else(|e| panic!("{}: cannot read: {e}", path.display()));
+    text.parse()
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// The package names a dependency table names (a renamed dependency by its `package`).
+fn names(table: Option<&toml::Value>) -> Vec<String> {
+    let Some(table) = table.and_then(toml::Value::as_table) else {
+        return Vec::new();
+    };
+    table
+        .iter()
+        .map(|(key, spec)| {
+            spec.get("package")
+                .and_then(toml::Value::as_str)
+                .unwrap_or(key)
+                .to_string()
+        })
+        .collect()
+}
+
+/// The dependencies that link into a package: `[dependencies]`, `[build-dependencies]` and
+/// their `[target.<cfg>.…]` forms.
+fn linked(manifest: &toml::Table) -> Vec<String> {
+    let kinds = ["dependencies", "build-dependencies"];
+    let mut out: Vec<String> = kinds.iter().flat_map(|k| names(manifest.get(*k))).collect();
+    if let Some(targets) = manifest.get("target").and_then(toml::Value::as_table) {
+        for target in targets.values() {
+            out.extend(kinds.iter().flat_map(|k| names(target.get(*k))));
+        }
+    }
+    out
+}
+
+/// Every workspace member by package name: its linked dependencies.
+fn workspace() -> BTreeMap<String, Vec<String>> {
+    let root_manifest = manifest(&root());
+    let members = root_manifest["workspace"]["members"]
+        .as_array()
+        .expect("the root Cargo.toml lists [workspace] members");
+    members
+        .iter()
+        .map(|m| {
+            let m = manifest(&root().join(m.as_str().expect("a member is a path")));
+            let name = m["package"]["name"]
+                .as_str()
+                .expect("a member has a package name")
+                .to_string();
+            (name, linked(&m))
+        })
+        .collect()
+}
+
+/// The workspace members `package` depends on, directly or transitively, each with the chain
+/// that reaches it.
+fn closure(graph: &BTreeMap<String, Vec<String>>, package: &str) -> BTreeMap<String, Vec<String>> {
+    let mut reached: BTreeMap<String, Vec<String>> = BTreeMap::new();
+    let mut stack = vec![vec![package.to_string()]];
+    let mut seen = BTreeSet::from([package.to_string()]);
+    while let Some(chain) = stack.pop() {
+        let last = chain.last().expect("a chain is never empty");
+        for dep in graph.get(last).into_iter().flatten() {
+            if graph.contains_key(dep) && seen.insert(dep.clone()) {
+                let mut longer = chain.clone();
+                longer.push(dep.clone());
+                reached.insert(dep.clone(), longer.clone());
+                stack.push(longer);
+            }
+        }
+    }
+    reached
+}
+
+#[test]
+fn the_workspace_graph_is_read() {
+    let graph = workspace();
+    assert!(
+        graph["presentation"].iter().any(|d| d == "records"),
+        "presentation reads the results through records"
+    );
+    assert!(
+        closure(&graph, "control").contains_key("solvers"),
+        "control runs the solvers: the graph must show it"
+    );
+}
+
+#[test]
+fn presentation_links_no_solver() {
+    let graph = workspace();
+    let reached = closure(&graph, "presentation");
+    let offending: Vec<String> = FORBIDDEN
+        .iter()
+        .filter_map(|f| reached.get(*f))
+        .map(|chain| chain.join(" -> "))
+        .collect();
+    assert!(
+        offending.is_empty(),
+        "presentation links crates that simulate or solve:\n  {}",
+        offending.join("\n  ")
+    );
+}

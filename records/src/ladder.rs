@@ -1,0 +1,62 @@
+//! `results/ladder.csv`: the tolerance ladder's rows (crate `explain`, module `ladder`), one run
+//! re-integrated at a sequence of tolerances and methods to tell which published digits could
+//! be integration noise. One row per rung: its method and tolerances, whether it is the run's
+//! own setting, its drift theta(T) - theta(0) per joint (`drift_1 .. drift_K`), and against the
+//! converged drift d* (the finest completed rung, `reference`) the relative change
+//! |d - d*| / |d*| and the digits shared with d*, -log10 of that change.
+
+use crate::runs::Status;
+use serde::{Deserialize, Serialize};
+
+/// One rung's result, as stored in `results/ladder.csv`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LadderRow {
+    pub paper: String,
+    pub experiment: String,
+    /// The run's variant and solver ids (with `experiment`, its key).
+    pub variant_id: String,
+    pub solver_id: String,
+    /// Labels (display only).
+    pub variant: String,
+    pub solver: String,
+    pub method: String,
+    pub rtol: f64,
+    pub atol: f64,
+    pub max_step: Option<f64>,
+    /// The run's own setting (the rung results/runs.csv holds).
+    pub as_run: bool,
+    pub status: Status,
+    pub failure: String,
+    /// theta(T) - theta(0) per joint (none for a rung that did not complete): the columns
+    /// `drift_1 .. drift_K`.
+    #[serde(skip)]
+    pub drift: Vec<f64>,
+    pub drift_norm: Option<f64>,
+    pub max_pos_err: Option<f64>,
+    /// |d - d*| / |d*| against the converged drift d* (the finest completed rung).
+    pub rel_change: Option<f64>,
+    /// -log10(rel_change): significant digits shared with the converged drift.
+    pub stable_digits: Option<f64>,
+    /// This rung is the converged reference d*.
+    pub reference: bool,
+    pub steps: usize,
+    pub rejected: usize,
+    pub rhs_evals: usize,
+    pub wall_s: f64,
+}
+
+impl LadderRow {
+    /// The key of the run the row explains.
+    pub fn key(&self) -> catalog::run_key::RunKey {
+        catalog::run_key::RunKey::new(&self.experiment, &self.variant_id, &self.solver_id)
+    }
+}
+
+impl LadderRow {
+    /// Whether the rung completed.
+    pub fn completed(&self) -> bool {
+        self.status == Status::Ok
+    }
+}
+
+crate::drift_columns!(LadderRow, drift, "drift_norm");
