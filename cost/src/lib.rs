@@ -36,6 +36,6 @@ pub mod fixed;
 pub mod instants;
 pub mod measure;
 
-pub use case::{Case, PreparedCase};
+pub use case::{backends, Case, PreparedCase};
 pub use error::CostError;
 pub use measure::{machine, measure, measure_all, Budget};

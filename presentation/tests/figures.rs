@@ -5,7 +5,7 @@
 
 use presentation::figures::render_all;
 use records::runs::{runs_csv, write_atomic, RunRow, Status};
-use simulation::error::FailureKind;
+use records::failure_kind::FailureKind;
 use std::path::{Path, PathBuf};
 
 /// A run row with the identity and outcome given and every metric empty; the ids are the

@@ -52,6 +52,7 @@ use records::runs::RunRow;
 use schemes::spec::{RmpReading, SchemeSpec};
 use search::{Coordinate, Objective, Outcome, Point, Scores, Target};
 use serde::{Deserialize, Serialize};
+use simulation::row::run_row;
 use simulation::run::run_job;
 use std::f64::consts::PI;
 use std::time::Instant;
@@ -376,7 +377,7 @@ pub fn evaluate(p: &TableProblem, setup: Setup) -> Evaluation {
     let (jobs, index) = p.jobs(&setup);
     let rows: Vec<RunRow> = jobs
         .par_iter()
-        .map(|j| RunRow::from_record(&run_job(j), ""))
+        .map(|j| run_row(&run_job(j), ""))
         .collect();
     let failure = rows
         .iter()

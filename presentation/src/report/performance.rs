@@ -19,12 +19,11 @@
 
 use super::cost::{matlab_experiments, paper_times, solver_label, timed_papers};
 use super::markdown::{sci, sci_opt, Table, MISSING};
-use records::dof_cost::{DofCostRow, Quantity, Summary};
+use records::dof_cost::{DofCostRow, Quantity, Summary, NALGEBRA};
 use records::index::{completed, Runs};
 use records::papers::Papers;
 use records::profile::ProfileRow;
 use records::timing::{Timings, REPETITIONS};
-use solvers::Backend;
 use std::collections::BTreeMap;
 
 /// The joint count the per-instant table is shown at: the Jaco2's.
@@ -66,7 +65,7 @@ fn find<'a>(
             && r.scheme == scheme
             && r.n == Some(n)
             && r.quantity == quantity.id()
-            && r.backend == Backend::Nalgebra.id()
+            && r.backend == NALGEBRA
     })
 }
 
