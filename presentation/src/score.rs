@@ -88,7 +88,10 @@ pub fn score_file(
         &scores,
         &records::runs::runs_csv(&rows).map_err(csv_error(&scores))?,
     )?;
-    io(&trace, &trace_csv(&record.run.trace).map_err(csv_error(&trace))?)?;
+    io(
+        &trace,
+        &trace_csv(&record.run.trace).map_err(csv_error(&trace))?,
+    )?;
     io(&figure, run_svg(&row, &trace)?.as_bytes())?;
     Ok(Scored {
         record,

@@ -169,9 +169,8 @@ fn result_dict<'py>(
             .map_err(lib_err)
     };
     let t = PyDict::new(py);
-    let column = |f: &dyn Fn(&TracePoint) -> f64| {
-        trace.iter().map(f).collect::<Vec<f64>>().into_pyarray(py)
-    };
+    let column =
+        |f: &dyn Fn(&TracePoint) -> f64| trace.iter().map(f).collect::<Vec<f64>>().into_pyarray(py);
     t.set_item("t", column(&|p| p.t))?;
     t.set_item("theta", rows(&|p| p.theta.clone(), n)?)?;
     t.set_item("thetadot", rows(&|p| p.thetadot.clone(), n)?)?;

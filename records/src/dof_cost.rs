@@ -295,8 +295,7 @@ pub fn backends<'a>(
 ) -> Vec<&'a str> {
     let mut out: Vec<&str> = Vec::new();
     for r in rows {
-        if r.kind == MEASURED && r.quantity == quantity.id() && !out.contains(&r.backend.as_str())
-        {
+        if r.kind == MEASURED && r.quantity == quantity.id() && !out.contains(&r.backend.as_str()) {
             out.push(&r.backend);
         }
     }
@@ -523,12 +522,7 @@ mod tests {
         for n in [3, 30, 100, 200] {
             let n3 = (n * n * n) as f64;
             ms.push(on(NALGEBRA, n, Quantity::KktFloor, 0.01 * n3));
-            ms.push(on(
-                FAER,
-                n,
-                Quantity::KktFloor,
-                5.0 * (n * n) as f64,
-            ));
+            ms.push(on(FAER, n, Quantity::KktFloor, 5.0 * (n * n) as f64));
         }
         let rows = rows(&ms, "Test CPU", 2, "abc123");
         let fit = |backend: &str| {
@@ -544,7 +538,10 @@ mod tests {
         assert_eq!(back, rows);
         assert_eq!(back.iter().filter(|r| r.backend == "faer").count(), 4 + 1);
         assert_eq!(backends(&rows, Quantity::KktFloor), [NALGEBRA, FAER]);
-        assert_eq!(backends(rows.iter().rev(), Quantity::KktFloor), [NALGEBRA, FAER]);
+        assert_eq!(
+            backends(rows.iter().rev(), Quantity::KktFloor),
+            [NALGEBRA, FAER]
+        );
         assert!(backends(&rows, Quantity::NetworkRhs).is_empty());
     }
 

@@ -84,83 +84,83 @@ pub fn check(
     duration: f64,
     theta0: &[f64],
 ) -> Result<(), TrajectoryError> {
-        let m = trajectory.t.len();
-        if m < 3 {
-            return Err(TrajectoryError::TooShort(m));
+    let m = trajectory.t.len();
+    if m < 3 {
+        return Err(TrajectoryError::TooShort(m));
+    }
+    let mut columns: Vec<(&'static str, &Vec<Vec<f64>>)> = vec![("theta", &trajectory.theta)];
+    if let Some(v) = &trajectory.thetadot {
+        columns.push(("thetadot", v));
+    }
+    for (what, rows) in columns {
+        if rows.len() != m {
+            return Err(TrajectoryError::TooShort(rows.len().min(m)));
         }
-        let mut columns: Vec<(&'static str, &Vec<Vec<f64>>)> = vec![("theta", &trajectory.theta)];
-        if let Some(v) = &trajectory.thetadot {
-            columns.push(("thetadot", v));
-        }
-        for (what, rows) in columns {
-            if rows.len() != m {
-                return Err(TrajectoryError::TooShort(rows.len().min(m)));
-            }
-            for (row, v) in rows.iter().enumerate() {
-                if v.len() != joints {
-                    return Err(TrajectoryError::Width {
-                        row,
-                        what,
-                        given: v.len(),
-                        joints,
-                    });
-                }
-                if v.iter().any(|x| !x.is_finite()) {
-                    return Err(TrajectoryError::NotFinite { row });
-                }
-            }
-        }
-        for (row, w) in trajectory.t.windows(2).enumerate() {
-            if !w[1].is_finite() || w[1] <= w[0] {
-                return Err(TrajectoryError::NotIncreasing {
-                    row: row + 1,
-                    t: w[1],
-                    previous: w[0],
+        for (row, v) in rows.iter().enumerate() {
+            if v.len() != joints {
+                return Err(TrajectoryError::Width {
+                    row,
+                    what,
+                    given: v.len(),
+                    joints,
                 });
             }
-        }
-        if !trajectory.t[0].is_finite() || trajectory.t[0].abs() > TIME_TOLERANCE * duration {
-            return Err(TrajectoryError::Start(trajectory.t[0]));
-        }
-        let end = trajectory.t[m - 1];
-        if (end - duration).abs() > TIME_TOLERANCE * duration {
-            return Err(TrajectoryError::End { t: end, duration });
-        }
-        for (i, (a, b)) in trajectory.theta[0].iter().zip(theta0).enumerate() {
-            let diff = (a - b).abs();
-            if diff > START_TOLERANCE {
-                return Err(TrajectoryError::StartPose { joint: i + 1, diff });
+            if v.iter().any(|x| !x.is_finite()) {
+                return Err(TrajectoryError::NotFinite { row });
             }
         }
-        Ok(())
+    }
+    for (row, w) in trajectory.t.windows(2).enumerate() {
+        if !w[1].is_finite() || w[1] <= w[0] {
+            return Err(TrajectoryError::NotIncreasing {
+                row: row + 1,
+                t: w[1],
+                previous: w[0],
+            });
+        }
+    }
+    if !trajectory.t[0].is_finite() || trajectory.t[0].abs() > TIME_TOLERANCE * duration {
+        return Err(TrajectoryError::Start(trajectory.t[0]));
+    }
+    let end = trajectory.t[m - 1];
+    if (end - duration).abs() > TIME_TOLERANCE * duration {
+        return Err(TrajectoryError::End { t: end, duration });
+    }
+    for (i, (a, b)) in trajectory.theta[0].iter().zip(theta0).enumerate() {
+        let diff = (a - b).abs();
+        if diff > START_TOLERANCE {
+            return Err(TrajectoryError::StartPose { joint: i + 1, diff });
+        }
+    }
+    Ok(())
 }
 
 /// thetadot at every sample of `trajectory`: the given one, else the finite difference of the
 /// module docs.
 pub fn velocities(trajectory: &Trajectory) -> Vec<Vec<f64>> {
-        if let Some(v) = &trajectory.thetadot {
-            return v.clone();
-        }
-        let (t, y) = (&trajectory.t, &trajectory.theta);
-        let m = t.len();
-        let n = y[0].len();
-        // Weights of y[a], y[b], y[c] in the derivative at t[at] of the parabola through them.
-        let parabola = |a: usize, b: usize, c: usize, at: usize| -> Vec<f64> {
-            let (ta, tb, tc, x) = (t[a], t[b], t[c], t[at]);
-            let wa = ((x - tb) + (x - tc)) / ((ta - tb) * (ta - tc));
-            let wb = ((x - ta) + (x - tc)) / ((tb - ta) * (tb - tc));
-            let wc = ((x - ta) + (x - tb)) / ((tc - ta) * (tc - tb));
-            (0..n)
-                .map(|i| wa * y[a][i] + wb * y[b][i] + wc * y[c][i])
-                .collect()
-        };
-        (0..m)
-            .map(|k| match k {
-                0 => parabola(0, 1, 2, 0),
-                k if k == m - 1 => parabola(m - 3, m - 2, m - 1, m - 1),
-                k => parabola(k - 1, k, k + 1, k),
-            })
+    if let Some(v) = &trajectory.thetadot {
+        return v.clone();
+    }
+    let (t, y) = (&trajectory.t, &trajectory.theta);
+    let m = t.len();
+    let n = y[0].len();
+    // Weights of y[a], y[b], y[c] in the derivative at t[at] of the parabola through them.
+    let parabola = |a: usize, b: usize, c: usize, at: usize| -> Vec<f64> {
+        let (ta, tb, tc, x) = (t[a], t[b], t[c], t[at]);
+        let wa = ((x - tb) + (x - tc)) / ((ta - tb) * (ta - tc));
+        let wb = ((x - ta) + (x - tc)) / ((tb - ta) * (tb - tc));
+        let wc = ((x - ta) + (x - tb)) / ((tc - ta) * (tc - tb));
+        (0..n)
+            .map(|i| wa * y[a][i] + wb * y[b][i] + wc * y[c][i])
             .collect()
+    };
+    (0..m)
+        .map(|k| match k {
+            0 => parabola(0, 1, 2, 0),
+            k if k == m - 1 => parabola(m - 3, m - 2, m - 1, m - 1),
+            k => parabola(k - 1, k, k + 1, k),
+        })
+        .collect()
 }
 
 /// Scores `trajectory` on the task of `job` (its robot, path, scheme, theta0 and theta_ref;

@@ -375,10 +375,7 @@ impl Evaluation {
 /// Runs the table's runs under `setup` (in parallel) and compares with the paper.
 pub fn evaluate(p: &TableProblem, setup: Setup) -> Evaluation {
     let (jobs, index) = p.jobs(&setup);
-    let rows: Vec<RunRow> = jobs
-        .par_iter()
-        .map(|j| run_row(&run_job(j), ""))
-        .collect();
+    let rows: Vec<RunRow> = jobs.par_iter().map(|j| run_row(&run_job(j), "")).collect();
     let failure = rows
         .iter()
         .find(|r| !r.completed())
