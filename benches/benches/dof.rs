@@ -44,7 +44,7 @@ fn per_call(c: &mut Criterion) {
     for scheme in SchemeKind::ALL {
         let mut cases = cases(scheme, STATES);
         for quantity in Quantity::ALL.into_iter().filter(|q| !q.is_run()) {
-            for &backend in quantity.backends() {
+            for &backend in cost::backends(quantity) {
                 let mut group = c.benchmark_group(format!(
                     "dof/{}/{}/{}",
                     scheme.id(),

@@ -7,7 +7,8 @@
 //! table ([`sweep`], expanded at the TOML level). Every run is identified by ids, not labels
 //! ([`run_key`]), and every id or label that becomes a file name obeys [`naming`]. The errors of
 //! all of it are in [`error`]. [`root`] finds the project (the directory of `experiments/`,
-//! `results/` and `report/`) and the code revision runs are stamped with.
+//! `results/` and `report/`) and the code revision runs are stamped with. [`linear_algebra`]
+//! holds the one dense linear algebra setting the solvers and the report share.
 //!
 //! Nothing here builds or runs a solver: the engine (crate `simulation`) builds the runs, and
 //! loading a file takes its check ([`experiment::CheckJob`]) to reject what a run would reject.
@@ -16,6 +17,7 @@
 pub mod error;
 pub mod experiment;
 pub mod integrator;
+pub mod linear_algebra;
 pub mod naming;
 pub mod robot_registry;
 pub mod root;

@@ -23,6 +23,16 @@ pub fn path_of(scheme: SchemeKind) -> PathSpec {
     }
 }
 
+/// The backends `quantity` is measured on: both [`Backend`]s for the dense LU quantities,
+/// nalgebra alone for the rest (the schemes, networks and exact solvers are written on
+/// nalgebra). Each is written as its id ([`Backend::id`]) in `results/dof-cost.csv`.
+pub fn backends(quantity: Quantity) -> &'static [Backend] {
+    match quantity {
+        Quantity::NetworkLu | Quantity::KktFloor => &Backend::ALL,
+        _ => &[Backend::Nalgebra],
+    }
+}
+
 /// kong2019's ZNN gains: mu = 1, k_p = 1.
 pub const KONG2019_MU: f64 = 1.0;
 pub const KONG2019_KP: f64 = 1.0;
@@ -66,9 +76,23 @@ pub trait PreparedCase {
     /// Whether `quantity` can be timed (the path computes it, the network has an analytic
     /// Jacobian, the equality KKT matrix is regular).
     fn supports(&self, quantity: Quantity) -> bool;
-    /// One call of `quantity` on `backend` (one of [`Quantity::backends`]) at state `i` (a
+    /// One call of `quantity` on `backend` (one of [`backends`]) at state `i` (a
     /// whole run, for the run quantities; `i` unused).
     fn call(&mut self, quantity: Quantity, backend: Backend, i: usize);
     /// Counts of the last whole run [`Self::call`] made.
     fn last_run(&self) -> Option<RunCounts>;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use records::dof_cost::{FAER, NALGEBRA};
+
+    #[test]
+    fn the_dense_lu_quantities_are_measured_on_every_backend_under_the_ids_records_reads() {
+        assert_eq!(Backend::ALL.map(Backend::id), [NALGEBRA, FAER]);
+        assert_eq!(backends(Quantity::KktFloor), &Backend::ALL);
+        assert_eq!(backends(Quantity::NetworkLu), &Backend::ALL);
+        assert_eq!(backends(Quantity::NetworkRhs), &[Backend::Nalgebra]);
+    }
 }

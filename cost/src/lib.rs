@@ -25,7 +25,7 @@
 //!
 //! Both share [`instants::Instants`], the per-instant quantities on a list of QPs; the dense LU
 //! quantities (`network-lu`, `kkt-floor`) are timed on both [`solvers::Backend`]s, from which
-//! the report reads the crossover that [`solvers::FAER_CROSSOVER`] records.
+//! the report reads the crossover that [`catalog::linear_algebra::FAER_CROSSOVER`] records.
 //!
 //! [`measure`] holds the timing ([`measure::Budget`], how samples are taken and summarised).
 
@@ -36,6 +36,6 @@ pub mod fixed;
 pub mod instants;
 pub mod measure;
 
-pub use case::{Case, PreparedCase};
+pub use case::{backends, Case, PreparedCase};
 pub use error::CostError;
 pub use measure::{machine, measure, measure_all, Budget};

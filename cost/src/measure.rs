@@ -9,7 +9,7 @@
 //! percentile), in microseconds. Nothing here asserts a speed: the numbers go to
 //! `results/dof-cost.csv` and the report.
 
-use crate::case::{Case, PreparedCase};
+use crate::case::{backends, Case, PreparedCase};
 use catalog::robot_registry::NLINK_SIZES;
 use records::dof_cost::{Measurement, Quantity, SchemeKind, Summary};
 use std::time::Instant;
@@ -101,7 +101,7 @@ pub fn measure(
         if !prepared.supports(quantity) {
             continue;
         }
-        for &backend in quantity.backends() {
+        for &backend in backends(quantity) {
             let (samples, run) = if quantity.is_run() {
                 let samples = repeat_runs(budget.runs, || prepared.call(quantity, backend, 0));
                 (samples, prepared.last_run())
@@ -111,14 +111,17 @@ pub fn measure(
                 (samples, None)
             };
             if let Some(summary) = Summary::of(&samples) {
+                let dims = prepared.dims();
                 out.push(Measurement {
                     scheme,
                     scheme_name: prepared.scheme_name(),
                     network: prepared.network_name(),
                     n,
-                    dims: prepared.dims(),
+                    nx: dims.nx,
+                    n_eq: dims.n_eq,
+                    n_in: dims.n_in,
                     quantity,
-                    backend,
+                    backend: backend.id().to_string(),
                     summary,
                     run,
                 });

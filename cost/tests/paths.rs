@@ -32,7 +32,7 @@ fn the_dynamic_path_computes_the_per_instant_quantities_at_100_joints() {
         let per_instant = !quantity.is_run() && quantity != Quantity::SchemeBuild;
         assert_eq!(case.supports(quantity), per_instant, "{quantity:?}");
         if per_instant {
-            for &backend in quantity.backends() {
+            for &backend in cost::backends(quantity) {
                 for i in 0..case.states() {
                     case.call(quantity, backend, i);
                 }

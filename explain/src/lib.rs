@@ -33,6 +33,7 @@ use records::ladder::LadderRow;
 use records::papers::Papers;
 use records::runs::{write_atomic, RunRow};
 use records::table::{read_if_present, Row};
+use simulation::row::run_row;
 use simulation::runner::run_jobs;
 use std::path::Path;
 
@@ -91,7 +92,7 @@ pub fn explain(targets: &[Job], all: &[Job], progress: bool, git_rev: &str) -> E
     }
     let rows: Vec<RunRow> = run_jobs(&jobs, progress)
         .iter()
-        .map(|r| RunRow::from_record(r, git_rev))
+        .map(|r| run_row(r, git_rev))
         .collect();
     let mut out = Explained::default();
     let mut per_base: Vec<Vec<LadderRow>> = Vec::new();

@@ -30,10 +30,12 @@ use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use records::runs::RunRow;
-use records::trajectory::{read, score_row};
+use records::trace::TracePoint;
+use records::trajectory::{read, score_row, Trajectory};
 use simulation::error::RunError;
+use simulation::row::run_row;
 use simulation::run::{run_job, run_job_with_network, RunRecord};
-use simulation::score_trajectory::{score_trajectory, Trajectory};
+use simulation::score_trajectory::score_trajectory;
 use simulation::simulate::Outcome;
 use solvers::neural::NeuralSolver;
 use std::path::{Path, PathBuf};
@@ -160,16 +162,15 @@ fn result_dict<'py>(
     d.set_item("drift", row.drift.clone().into_pyarray(py))?;
     let trace = &record.run.trace;
     let n = record.job.theta0.len();
-    let rows = |f: &dyn Fn(&simulation::simulate::TracePoint) -> Vec<f64>, width: usize| {
+    let rows = |f: &dyn Fn(&TracePoint) -> Vec<f64>, width: usize| {
         let flat: Vec<f64> = trace.iter().flat_map(f).collect();
         numpy::ndarray::Array2::from_shape_vec((trace.len(), width), flat)
             .map(|a| a.into_pyarray(py))
             .map_err(lib_err)
     };
     let t = PyDict::new(py);
-    let column = |f: &dyn Fn(&simulation::simulate::TracePoint) -> f64| {
-        trace.iter().map(f).collect::<Vec<f64>>().into_pyarray(py)
-    };
+    let column =
+        |f: &dyn Fn(&TracePoint) -> f64| trace.iter().map(f).collect::<Vec<f64>>().into_pyarray(py);
     t.set_item("t", column(&|p| p.t))?;
     t.set_item("theta", rows(&|p| p.theta.clone(), n)?)?;
     t.set_item("thetadot", rows(&|p| p.thetadot.clone(), n)?)?;
@@ -202,7 +203,7 @@ fn run_python(
         return Err(e);
     }
     check_setup(&record)?;
-    let mut row = RunRow::from_record(&record, &catalog::root::git_revision(root));
+    let mut row = run_row(&record, &catalog::root::git_revision(root));
     row.solver_id = format!("{PYTHON_KIND}-{}", schemes::slug::slug(&name));
     row.solver = name;
     row.solver_kind = PYTHON_KIND.to_string();
@@ -275,7 +276,7 @@ fn simulate<'py>(
     let (record, row, calls) = if builtin.is_some() {
         let record = run_job(&job);
         check_setup(&record)?;
-        let row = RunRow::from_record(&record, &catalog::root::git_revision(&task.root));
+        let row = run_row(&record, &catalog::root::git_revision(&task.root));
         (record, row, Callbacks::default())
     } else {
         run_python(&job, network, &task.root)?
@@ -400,7 +401,7 @@ fn score<'py>(
                     &read(&file, task.job.theta0.len()).map_err(lib_err)?,
                 )
                 .map_err(|e| lib_err(format!("{}: {e}", file.display())))?;
-                let row = score_row(&record, &file.display().to_string(), &git_rev);
+                let row = score_row(run_row(&record, &git_rev), &file.display().to_string());
                 (record, row)
             }
         }
@@ -430,7 +431,7 @@ fn score<'py>(
             thetadot,
         };
         let record = score_trajectory(&task.job, &traj).map_err(lib_err)?;
-        let row = score_row(&record, "arrays", &git_rev);
+        let row = score_row(run_row(&record, &git_rev), "arrays");
         (record, row)
     };
     result_dict(py, &record, &row, &Callbacks::default())

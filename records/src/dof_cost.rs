@@ -12,9 +12,7 @@
 use crate::error::{DofCostError, IoAction, IoError};
 use crate::percentile::percentile;
 use crate::table::Row;
-use schemes::qp::QpDims;
 use serde::{Deserialize, Serialize};
-use solvers::Backend;
 use std::path::{Path, PathBuf};
 
 /// The file name inside `results/`.
@@ -23,6 +21,11 @@ pub const FILE: &str = "dof-cost.csv";
 pub const MEASURED: &str = "measured";
 /// [`DofCostRow::kind`] of a fitted exponent.
 pub const FIT: &str = "fit";
+/// [`DofCostRow::backend`] of nalgebra's dense LU (`solvers::Backend::Nalgebra`'s id, which the
+/// cost harness writes; its tests check the two agree): the backend of every quantity.
+pub const NALGEBRA: &str = "nalgebra";
+/// [`DofCostRow::backend`] of faer's dense LU (`solvers::Backend::Faer`'s id).
+pub const FAER: &str = "faer";
 
 /// The schemes measured, by their scheme kind (`schemes::spec`'s `kind` tag).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
@@ -108,15 +111,6 @@ impl Quantity {
     pub fn is_run(self) -> bool {
         matches!(self, Quantity::RunExact | Quantity::RunNetwork)
     }
-
-    /// The backends it is measured on: both [`Backend`]s for the dense LU quantities, nalgebra
-    /// alone for the rest (the schemes, networks and exact solvers are written on nalgebra).
-    pub fn backends(self) -> &'static [Backend] {
-        match self {
-            Quantity::NetworkLu | Quantity::KktFloor => &Backend::ALL,
-            _ => &[Backend::Nalgebra],
-        }
-    }
 }
 
 /// Median and 95th percentile of a set of samples.
@@ -195,9 +189,13 @@ pub struct Measurement {
     /// The network's display name (`LVI-PDNN`).
     pub network: String,
     pub n: usize,
-    pub dims: QpDims,
+    /// The QP's sizes: variables, equality rows, inequality rows.
+    pub nx: usize,
+    pub n_eq: usize,
+    pub n_in: usize,
     pub quantity: Quantity,
-    pub backend: Backend,
+    /// The dense LU backend's id ([`DofCostRow::backend`]).
+    pub backend: String,
     pub summary: Summary,
     /// For runs: accepted steps, RHS evaluations and whether the run completed (of the first
     /// repetition; every repetition is the same deterministic run).
@@ -223,7 +221,7 @@ pub struct DofCostRow {
     pub network: String,
     /// `scheme-build`, `network-rhs`, ... ([`Quantity::id`]).
     pub quantity: String,
-    /// The dense LU backend (`nalgebra`, `faer`: [`Backend::id`]); `nalgebra` for the
+    /// The dense LU backend ([`NALGEBRA`], [`FAER`]: `solvers::Backend::id`); nalgebra for the
     /// quantities computed on nalgebra alone.
     pub backend: String,
     /// [`MEASURED`] or [`FIT`].
@@ -262,12 +260,12 @@ impl DofCostRow {
             scheme_name: m.scheme_name.clone(),
             network: m.network.clone(),
             quantity: m.quantity.id().to_string(),
-            backend: m.backend.id().to_string(),
+            backend: m.backend.clone(),
             kind: MEASURED.to_string(),
             n: Some(m.n),
-            nx: Some(m.dims.nx),
-            n_eq: Some(m.dims.n_eq),
-            n_in: Some(m.dims.n_in),
+            nx: Some(m.nx),
+            n_eq: Some(m.n_eq),
+            n_in: Some(m.n_in),
             median_us: Some(m.summary.median_us),
             p95_us: Some(m.summary.p95_us),
             samples: m.summary.samples,
@@ -286,6 +284,23 @@ impl DofCostRow {
     pub fn is_fit(&self) -> bool {
         self.kind == FIT
     }
+}
+
+/// The backends `quantity` was measured on among `rows`: [`NALGEBRA`] first (every quantity's
+/// backend), then the others in order of first appearance. Which backends a quantity is
+/// measured on is the cost harness's choice; what was measured is in the file.
+pub fn backends<'a>(
+    rows: impl IntoIterator<Item = &'a DofCostRow>,
+    quantity: Quantity,
+) -> Vec<&'a str> {
+    let mut out: Vec<&str> = Vec::new();
+    for r in rows {
+        if r.kind == MEASURED && r.quantity == quantity.id() && !out.contains(&r.backend.as_str()) {
+            out.push(&r.backend);
+        }
+    }
+    out.sort_by_key(|b| *b != NALGEBRA);
+    out
 }
 
 /// One fit row per (scheme, quantity, backend) of the measured rows among `rows` with at least
@@ -348,13 +363,13 @@ pub struct Crossover {
 /// The [`Crossover`] of `quantity` for `scheme` among the measured rows: `None` when no N was
 /// measured on both backends.
 pub fn crossover(rows: &[DofCostRow], scheme: &str, quantity: Quantity) -> Option<Crossover> {
-    let median = |backend: Backend, n: usize| {
+    let median = |backend: &str, n: usize| {
         rows.iter()
             .find(|r| {
                 r.kind == MEASURED
                     && r.scheme == scheme
                     && r.quantity == quantity.id()
-                    && r.backend == backend.id()
+                    && r.backend == backend
                     && r.n == Some(n)
             })
             .and_then(|r| Some((r.median_us?, r)))
@@ -370,8 +385,8 @@ pub fn crossover(rows: &[DofCostRow], scheme: &str, quantity: Quantity) -> Optio
     let both: Vec<(usize, f64, Option<usize>)> = ns
         .into_iter()
         .filter_map(|n| {
-            let (nalgebra, row) = median(Backend::Nalgebra, n)?;
-            let (faer, _) = median(Backend::Faer, n)?;
+            let (nalgebra, row) = median(NALGEBRA, n)?;
+            let (faer, _) = median(FAER, n)?;
             let kkt = row.nx.zip(row.n_eq).map(|(a, b)| a + b);
             let size = match quantity {
                 Quantity::NetworkLu => kkt.zip(row.n_in).map(|(a, c)| a + c),
@@ -435,21 +450,19 @@ mod tests {
     use super::*;
 
     fn measurement(n: usize, quantity: Quantity, median_us: f64) -> Measurement {
-        on(Backend::Nalgebra, n, quantity, median_us)
+        on(NALGEBRA, n, quantity, median_us)
     }
 
-    fn on(backend: Backend, n: usize, quantity: Quantity, median_us: f64) -> Measurement {
+    fn on(backend: &str, n: usize, quantity: Quantity, median_us: f64) -> Measurement {
         Measurement {
-            backend,
+            backend: backend.to_string(),
             scheme: SchemeKind::Jia2019,
             scheme_name: "VLTCO".into(),
             network: "LVI-PDNN".into(),
             n,
-            dims: QpDims {
-                nx: n + 1,
-                n_eq: 3,
-                n_in: 2 * n,
-            },
+            nx: n + 1,
+            n_eq: 3,
+            n_in: 2 * n,
             quantity,
             summary: Summary {
                 median_us,
@@ -508,13 +521,8 @@ mod tests {
         let mut ms = Vec::new();
         for n in [3, 30, 100, 200] {
             let n3 = (n * n * n) as f64;
-            ms.push(on(Backend::Nalgebra, n, Quantity::KktFloor, 0.01 * n3));
-            ms.push(on(
-                Backend::Faer,
-                n,
-                Quantity::KktFloor,
-                5.0 * (n * n) as f64,
-            ));
+            ms.push(on(NALGEBRA, n, Quantity::KktFloor, 0.01 * n3));
+            ms.push(on(FAER, n, Quantity::KktFloor, 5.0 * (n * n) as f64));
         }
         let rows = rows(&ms, "Test CPU", 2, "abc123");
         let fit = |backend: &str| {
@@ -529,6 +537,12 @@ mod tests {
             crate::table::from_reader(crate::table::to_csv(&rows).unwrap().as_slice()).unwrap();
         assert_eq!(back, rows);
         assert_eq!(back.iter().filter(|r| r.backend == "faer").count(), 4 + 1);
+        assert_eq!(backends(&rows, Quantity::KktFloor), [NALGEBRA, FAER]);
+        assert_eq!(
+            backends(rows.iter().rev(), Quantity::KktFloor),
+            [NALGEBRA, FAER]
+        );
+        assert!(backends(&rows, Quantity::NetworkRhs).is_empty());
     }
 
     #[test]
@@ -574,8 +588,6 @@ mod tests {
             assert_eq!(Quantity::from_id(q.id()), Some(q));
         }
         assert_eq!(Quantity::from_id("fit"), None);
-        assert_eq!(Quantity::KktFloor.backends(), &Backend::ALL);
-        assert_eq!(Quantity::NetworkRhs.backends(), &[Backend::Nalgebra]);
     }
 
     #[test]
@@ -590,8 +602,8 @@ mod tests {
             (100, 90.0, 30.0),
             (200, 700.0, 100.0),
         ] {
-            ms.push(on(Backend::Nalgebra, n, Quantity::KktFloor, nalgebra));
-            ms.push(on(Backend::Faer, n, Quantity::KktFloor, faer));
+            ms.push(on(NALGEBRA, n, Quantity::KktFloor, nalgebra));
+            ms.push(on(FAER, n, Quantity::KktFloor, faer));
         }
         let rows = rows(&ms, "Test CPU", 2, "abc123");
         let c = crossover(&rows, "jia2019", Quantity::KktFloor).unwrap();

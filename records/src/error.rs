@@ -1,5 +1,6 @@
 //! The records layer's errors: reading and writing the results files (`runs.csv`, the journal,
-//! shards, trajectories, the leaderboard, the control experiments' files). They wrap the layer below them: the simulation's
+//! shards, trajectories, the leaderboard, the control experiments' files). They wrap the layer
+//! below them: the catalog's
 //! naming errors ([`catalog::naming::NameError`]), the tables' [`TableError`] and the
 //! results directory's own errors ([`PathError`], [`TrackedError`], [`IntegrityError`]).
 //! Each names the file and, where it applies, the line.

@@ -12,7 +12,7 @@ use crate::error::{IoAction, IoError, JournalError};
 use crate::results_dir::ResultsDir;
 use crate::runs::{check_rows, RunRow};
 use crate::table;
-use simulation::run::RunRecord;
+use crate::trace::TracePoint;
 use std::fs::{File, OpenOptions};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -32,18 +32,13 @@ pub struct Journal<'a> {
     /// Per-joint columns of its header (the most joints among the runs it will hold).
     joints: usize,
     file: Mutex<File>,
-    git_rev: String,
 }
 
 impl<'a> Journal<'a> {
     /// Opens (creating, with the header) the journal of `results` for appending rows of arms
     /// with at most `joints` joints. An existing journal keeps its header: a run resumed with
     /// arms of more joints than it was started with starts a new journal.
-    pub fn open(
-        results: &'a ResultsDir,
-        git_rev: &str,
-        joints: usize,
-    ) -> Result<Self, JournalError> {
+    pub fn open(results: &'a ResultsDir, joints: usize) -> Result<Self, JournalError> {
         let path = results.tracked().resolve(Path::new(FILE))?;
         let mut file = OpenOptions::new()
             .create(true)
@@ -65,13 +60,12 @@ impl<'a> Journal<'a> {
             results,
             joints,
             file: Mutex::new(file),
-            git_rev: git_rev.to_string(),
         })
     }
 
     /// Checkpoints one finished run: its trace, then its row (one write, flushed).
-    pub fn record(&self, r: &RunRecord) -> Result<(), JournalError> {
-        self.results.write_trace(r)?;
+    pub fn record(&self, row: &RunRow, trace: &[TracePoint]) -> Result<(), JournalError> {
+        self.results.write_trace(&row.key(), trace)?;
         let journal = path(self.results.path());
         let csv_error = |source| JournalError::Csv {
             path: journal.clone(),
@@ -80,8 +74,7 @@ impl<'a> Journal<'a> {
         let mut w = csv::WriterBuilder::new()
             .has_headers(false)
             .from_writer(Vec::new());
-        let row = RunRow::from_record(r, &self.git_rev);
-        w.write_record(table::record(&row, self.joints).map_err(csv_error)?)
+        w.write_record(table::record(row, self.joints).map_err(csv_error)?)
             .map_err(csv_error)?;
         let line = w
             .into_inner()

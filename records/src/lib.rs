@@ -1,8 +1,9 @@
 //! driftbench's results layer: what a run leaves behind and how it is kept.
 //!
-//! - [`runs`]: the schema of `results/runs.csv` ([`runs::RunRow`], one row per run, from a
-//!   simulation's [`simulation::run::RunRecord`]) and of the traces; atomic writes; reading
-//!   with the schema checked.
+//! - [`runs`]: the schema of `results/runs.csv` ([`runs::RunRow`], one row per run, made by the
+//!   engine from its record of the run); atomic writes; reading with the schema checked.
+//! - [`failure_kind`]: the `failure_kind` column, what stopped a run.
+//! - [`trace`]: a run's trace ([`trace::TracePoint`], `results/traces/`).
 //! - [`table`]: CSV tables whose per-joint columns follow the robot's joint count.
 //! - [`dof_cost`]: the cost against the number of joints (`results/dof-cost.csv`).
 //! - [`profile`]: where a paper's reproduction spends its time (`results/profile.csv`).
@@ -25,8 +26,8 @@
 //! - [`claims`]: a paper's claims as data (a metric of a selection of runs against a threshold
 //!   or another selection).
 //! - [`migrate`]: results written before run ids (labels as identities), brought up to date once.
-//! - [`trajectory`], [`trajectory_mat`]: trajectories made elsewhere (CSV, MAT-files) and
-//!   their score as a row.
+//! - [`trajectory`], [`trajectory_mat`]: trajectories made elsewhere (CSV, MAT-files: the
+//!   samples [`trajectory::Trajectory`] the engine scores) and their score as a row.
 //! - [`percentile`]: the one percentile definition of the workspace (numpy's default).
 //! - [`papers`]: the papers as data (`papers/<paper>/`): metadata, published numbers and which run each
 //!   one is compared with.
@@ -46,6 +47,7 @@ pub mod control;
 pub mod control_claim;
 pub mod dof_cost;
 pub mod error;
+pub mod failure_kind;
 pub mod gate;
 pub mod index;
 pub mod inference;
@@ -66,6 +68,7 @@ pub mod speedup;
 pub mod sweep_check;
 pub mod table;
 pub mod timing;
+pub mod trace;
 pub mod tracked_dir;
 pub mod trajectory;
 pub mod trajectory_mat;

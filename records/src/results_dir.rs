@@ -10,6 +10,7 @@
 //!   runs.csv                  one row per run (crate::runs)
 //!   journal.csv               the checkpoint of an interrupted run (crate::journal)
 //!   traces/<experiment>/<variant>__<solver>.csv
+//!                             one run's trace (crate::trace)
 //!   *.csv                     the explanation layer's and other tables
 //! ```
 //!
@@ -21,10 +22,10 @@
 //! ([`TrackedDir::remove`]).
 
 use crate::owned_dir::{OwnedDir, PathError};
-use crate::runs::{read_runs, runs_csv, trace_csv, RunRow};
+use crate::runs::{read_runs, runs_csv, RunRow};
+use crate::trace::{trace_csv, TracePoint};
 use crate::tracked_dir::{Edits, Removal, TrackedDir, TrackedError};
 use catalog::run_key::RunKey;
-use simulation::run::RunRecord;
 use std::path::{Path, PathBuf};
 
 /// The results directory's name under the project root.
@@ -288,10 +289,10 @@ impl ResultsDir {
             .join(format!("{}.csv", key.stem())))
     }
 
-    /// Writes a run's trace.
-    pub fn write_trace(&self, r: &RunRecord) -> Result<(), ResultsError> {
-        let rel = Self::trace_rel(&r.job.key())?;
-        let bytes = trace_csv(r).map_err(|source| ResultsError::Write {
+    /// Writes the trace of the run `key` ([`crate::trace`]).
+    pub fn write_trace(&self, key: &RunKey, trace: &[TracePoint]) -> Result<(), ResultsError> {
+        let rel = Self::trace_rel(key)?;
+        let bytes = trace_csv(trace).map_err(|source| ResultsError::Write {
             path: self.path().join(&rel),
             source,
         })?;

@@ -4,23 +4,22 @@
 //!   score against the exact optimum, and provenance (integrator, tolerances, steps,
 //!   evaluations, wall time, crate version, git revision).
 //! - `results/traces/<experiment>/<variant id>__<solver id>.csv`: the thinned time history of
-//!   each run for the figures.
+//!   each run for the figures ([`crate::trace`]).
 //!
 //! Files are written to a temporary name and renamed, so an interrupted run never leaves a
 //! half-written file. Rows are sorted by their [`RunKey`] (ids) so that two runs give
 //! byte-identical files except for the timing columns (`wall_s`, `sim_s`, `observe_s`) and `git_rev`.
 
 use crate::error::{RowsError, RunsError};
+use crate::failure_kind::FailureKind;
 use crate::table;
 use catalog::naming::{check_name, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
 use catalog::run_key::RunKey;
 use serde::{Deserialize, Serialize};
-use simulation::error::FailureKind;
-use simulation::run::RunRecord;
-use simulation::simulate::Outcome;
 use std::path::Path;
 
-/// One run, as stored in `results/runs.csv`.
+/// One run, as stored in `results/runs.csv` (the engine makes it from a run's record:
+/// `simulation::row::run_row`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RunRow {
     pub paper: String,
@@ -106,86 +105,6 @@ pub struct RunRow {
 }
 
 impl RunRow {
-    pub fn from_record(r: &RunRecord, git_rev: &str) -> Self {
-        let j = &r.job;
-        // A failed run keeps its metrics up to the failure (peaks, errors, margins), but no
-        // drift: theta(T) was never reached.
-        let (status, failure, failure_kind, failed_at, m, completed) = match &r.run.outcome {
-            Outcome::Completed(m) => (Status::Ok, String::new(), None, None, Some(m), true),
-            Outcome::Failed { t, error, partial } => (
-                Status::Failed,
-                error.to_string(),
-                Some(error.kind()),
-                Some(*t),
-                partial.as_ref(),
-                false,
-            ),
-        };
-        let score = m.and_then(|m| m.score);
-        RunRow {
-            paper: j.paper.clone(),
-            experiment: j.experiment.clone(),
-            variant_id: j.variant_id.clone(),
-            solver_id: j.solver.id(),
-            variant: j.variant.clone(),
-            scheme: r.run.scheme_name.clone(),
-            solver: j.solver.label(),
-            solver_kind: j.solver.kind().to_string(),
-            robot: j.robot.clone(),
-            path: j.path.name.clone(),
-            path_scale: j
-                .path
-                .scale
-                .or_else(|| schemes::paths::default_scale(&j.path.name)),
-            duration: j.path.duration,
-            status,
-            failure,
-            failure_kind,
-            expected_failure: j.expected_failure.clone().unwrap_or_default(),
-            failed_at,
-            drift: m
-                .filter(|_| completed)
-                .map(|m| m.drift.clone())
-                .unwrap_or_default(),
-            drift_norm: m.filter(|_| completed).map(|m| m.drift_norm),
-            drift_ref_norm: m.filter(|_| completed).map(|m| m.drift_ref_norm),
-            max_pos_err: m.map(|m| m.max_position_error),
-            rms_pos_err: m.map(|m| m.rms_position_error),
-            final_pos_err: m.map(|m| m.final_position_error),
-            theta_margin: m.map(|m| m.theta_margin).filter(|v| v.is_finite()),
-            thetadot_margin: m.map(|m| m.thetadot_margin).filter(|v| v.is_finite()),
-            peak_thetadot: m.map(|m| m.peak_thetadot),
-            peak_thetaddot: m.and_then(|m| m.peak_thetaddot),
-            peak_torque: m.and_then(|m| m.peak_torque),
-            min_sigma_j: m.map(|m| m.min_sigma_j),
-            score_samples: score.map(|s| s.samples),
-            score_max_dx: score.map(|s| s.max_dx),
-            score_rms_dx: score.map(|s| s.rms_dx),
-            score_max_obj_gap: score.map(|s| s.max_objective_gap),
-            score_max_violation: score.map(|s| s.max_violation),
-            score_failures: r.run.score_failures,
-            net_error_final: m.and_then(|m| m.network_error).map(|e| e.final_value),
-            net_error_max_after_1s: m.and_then(|m| m.network_error).map(|e| e.max_after_settle),
-            integrator: j.integrator.method.label().to_string(),
-            rtol: j.integrator.rtol,
-            atol: j.integrator.atol,
-            max_step: j.integrator.max_step,
-            steps: r.run.stats.steps,
-            rejected: r.run.stats.rejected,
-            rhs_evals: r.run.stats.rhs_evals,
-            jac_evals: r.run.stats.jac_evals,
-            qp_solves: r.run.qp.solves,
-            qp_fallbacks: r.run.qp.fallbacks,
-            qp_checks: r.run.qp.checks,
-            qp_check_max_dx: (r.run.qp.checks > 0).then_some(r.run.qp.check_max_dx),
-            wall_s: r.run.stats.wall_seconds,
-            sim_s: (r.run.stats.wall_seconds - r.run.observe_seconds).max(0.0),
-            observe_s: r.run.observe_seconds,
-            crate_version: env!("CARGO_PKG_VERSION").to_string(),
-            git_rev: git_rev.to_string(),
-        }
-    }
-
     /// The run's identity (ids; also the sort key).
     pub fn key(&self) -> RunKey {
         RunKey::new(&self.experiment, &self.variant_id, &self.solver_id)
@@ -378,58 +297,4 @@ pub fn merge(stored: Vec<RunRow>, fresh: Vec<RunRow>) -> Vec<RunRow> {
     all.extend(fresh);
     all.sort_by_key(|r| r.key());
     all
-}
-
-/// A run's trace as CSV: t, theta_i, thetadot_i, [thetaddot_i, tau_i], desired and actual
-/// position, position error, score dx.
-pub fn trace_csv(r: &RunRecord) -> Result<Vec<u8>, csv::Error> {
-    let mut w = csv::Writer::from_writer(Vec::new());
-    let Some(first) = r.run.trace.first() else {
-        return w.into_inner().map_err(|e| csv::Error::from(e.into_error()));
-    };
-    let n = first.theta.len();
-    let mut header = vec!["t".to_string()];
-    header.extend((1..=n).map(|i| format!("theta_{i}")));
-    header.extend((1..=n).map(|i| format!("thetadot_{i}")));
-    if first.thetaddot.is_some() {
-        header.extend((1..=n).map(|i| format!("thetaddot_{i}")));
-    }
-    if first.torque.is_some() {
-        header.extend((1..=n).map(|i| format!("tau_{i}")));
-    }
-    header.extend(
-        [
-            "rx_des",
-            "ry_des",
-            "rz_des",
-            "rx",
-            "ry",
-            "rz",
-            "pos_err",
-            "score_dx",
-            "net_error",
-        ]
-        .map(String::from),
-    );
-    w.write_record(&header)?;
-    for p in &r.run.trace {
-        let mut rec: Vec<String> = vec![p.t.to_string()];
-        rec.extend(p.theta.iter().chain(&p.thetadot).map(f64::to_string));
-        if let Some(a) = &p.thetaddot {
-            rec.extend(a.iter().map(f64::to_string));
-        }
-        if let Some(a) = &p.torque {
-            rec.extend(a.iter().map(f64::to_string));
-        }
-        rec.extend(p.desired.iter().chain(&p.actual).map(f64::to_string));
-        let err = ((p.desired[0] - p.actual[0]).powi(2)
-            + (p.desired[1] - p.actual[1]).powi(2)
-            + (p.desired[2] - p.actual[2]).powi(2))
-        .sqrt();
-        rec.push(err.to_string());
-        rec.push(p.score_dx.map(|v| v.to_string()).unwrap_or_default());
-        rec.push(p.network_error.map(|v| v.to_string()).unwrap_or_default());
-        w.write_record(&rec)?;
-    }
-    w.into_inner().map_err(|e| csv::Error::from(e.into_error()))
 }

@@ -1,6 +1,7 @@
 //! Trajectories produced elsewhere (MATLAB, Octave, Python), as files, and their score as a row.
 //!
-//! **Input** ([`read`]): a MAT-file (`crate::trajectory_mat`: variables `t` and `y`) or ([`read_csv`]) a CSV file with a header row naming the columns `t`,
+//! **Input** ([`read`]): a [`Trajectory`], from a MAT-file (`crate::trajectory_mat`: variables
+//! `t` and `y`) or ([`read_csv`]) a CSV file with a header row naming the columns `t`,
 //! `theta_1 .. theta_n` and optionally `thetadot_1 .. thetadot_n` (in any order; n the task's
 //! joint count; no other column), one row per sample: t in seconds from 0 to the task's
 //! duration, joint angles in rad, velocities in rad/s. `simulation::score_trajectory` says what
@@ -15,10 +16,17 @@
 use crate::error::{TrajectoryFileError, TrajectoryProblem};
 use crate::runs::RunRow;
 use crate::trajectory_mat::{read_mat, MatError};
-use simulation::run::RunRecord;
-use simulation::score_trajectory::Trajectory;
 use std::collections::BTreeMap;
 use std::path::Path;
+
+/// Samples of a joint trajectory (module docs): `theta[k]` (rad) and optionally `thetadot[k]`
+/// (rad/s) at `t[k]` (s), one entry per joint.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Trajectory {
+    pub t: Vec<f64>,
+    pub theta: Vec<Vec<f64>>,
+    pub thetadot: Option<Vec<Vec<f64>>>,
+}
 
 /// The `solver_kind` (and `integrator`) of a scored trajectory's row.
 pub const TRAJECTORY_KIND: &str = "trajectory";
@@ -133,9 +141,9 @@ pub fn read_csv(path: &Path) -> Result<Trajectory, TrajectoryFileError> {
     Ok(trajectory)
 }
 
-/// The row of a scored trajectory (module docs); `source` names the file it came from.
-pub fn score_row(record: &RunRecord, source: &str, git_rev: &str) -> RunRow {
-    let mut row = RunRow::from_record(record, git_rev);
+/// The row of a scored trajectory (module docs) from the row of its score's record (the
+/// engine's `simulation::row::run_row`); `source` names the file it came from.
+pub fn score_row(mut row: RunRow, source: &str) -> RunRow {
     row.solver = format!("{TRAJECTORY_KIND} {source}");
     row.solver_kind = TRAJECTORY_KIND.to_string();
     row.integrator = TRAJECTORY_KIND.to_string();

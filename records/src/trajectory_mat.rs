@@ -7,7 +7,7 @@
 //! them for a state that starts with theta and thetadot); n is the task's joint count. Other
 //! variables are ignored.
 
-use simulation::score_trajectory::Trajectory;
+use crate::trajectory::Trajectory;
 use std::path::{Path, PathBuf};
 
 /// Why a MAT-file cannot be read as a trajectory.

@@ -8,6 +8,7 @@ use catalog::experiment::Job;
 use catalog::run_key::RunKey;
 use records::results_dir::ResultsDir;
 use records::runs::{merge, RunRow};
+use simulation::row::run_row;
 use simulation::run::RunRecord;
 use simulation::runner::run_jobs_with;
 use std::collections::HashSet;
@@ -75,13 +76,13 @@ pub fn run_journaled(
                 .iter()
                 .filter_map(|j| catalog::robot_registry::robot_by_name(&j.robot).map(|r| r.dof()))
                 .max();
-            records::journal::Journal::open(r, git_rev, joints.unwrap_or(0))
+            records::journal::Journal::open(r, joints.unwrap_or(0))
         })
         .transpose()?;
     let unjournaled = std::sync::Mutex::new(HashSet::new());
     let records = run_jobs_with(to_run, true, |r| {
         if let Some(j) = &journal {
-            if let Err(e) = j.record(r) {
+            if let Err(e) = j.record(&run_row(r, git_rev), &r.run.trace) {
                 eprintln!("warning: run not checkpointed: {e}");
                 unjournaled
                     .lock()

@@ -85,7 +85,7 @@ pub fn write_results(
     }
     let merged = merge(kept, rows);
     for r in untraced {
-        results.write_trace(r)?;
+        results.write_trace(&r.job.key(), &r.run.trace)?;
     }
     results.write_runs(&merged)?;
     results.save()?;

@@ -18,6 +18,7 @@ use crate::summary::{emit, summary};
 use catalog::experiment::Job;
 use records::results_dir::ResultsDir;
 use records::runs::RunRow;
+use simulation::row::run_row;
 use simulation::run::RunRecord;
 use std::process::ExitCode;
 
@@ -78,10 +79,7 @@ pub fn run(
         resume(results, git_rev, all, kept, &mut to_run)?;
     }
     let (records, unjournaled) = run_journaled(results.as_ref(), jobs, &to_run, git_rev)?;
-    let rows: Vec<RunRow> = records
-        .iter()
-        .map(|r| RunRow::from_record(r, git_rev))
-        .collect();
+    let rows: Vec<RunRow> = records.iter().map(|r| run_row(r, git_rev)).collect();
     emit(&summary(&rows));
     // Failed runs, and whether the experiment files' findings expect them (records::gate).
     let failed: Vec<(String, bool)> = rows

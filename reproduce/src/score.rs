@@ -13,8 +13,10 @@ use catalog::experiment::{load_dir, Job, PaperFile};
 use catalog::run_key::TaskKey;
 use presentation::figures::run_svg;
 use records::error::{IoAction, IoError};
-use records::runs::{merge, trace_csv, write_atomic, RunRow};
+use records::runs::{merge, write_atomic, RunRow};
+use records::trace::trace_csv;
 use records::trajectory::{read, score_row};
+use simulation::row::run_row;
 use simulation::run::{check_job, RunRecord};
 use simulation::score_trajectory::score_trajectory;
 use std::path::{Path, PathBuf};
@@ -72,7 +74,7 @@ pub fn score_file(
         || file.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
-    let row = score_row(&record, &source, git_rev);
+    let row = score_row(run_row(&record, git_rev), &source);
     let scores = out.join("scores.csv");
     let stored: Vec<RunRow> = if scores.exists() {
         records::table::read(&scores)?
@@ -102,7 +104,10 @@ pub fn score_file(
         &scores,
         &records::runs::runs_csv(&rows).map_err(csv_error(&scores))?,
     )?;
-    io(&trace, &trace_csv(&record).map_err(csv_error(&trace))?)?;
+    io(
+        &trace,
+        &trace_csv(&record.run.trace).map_err(csv_error(&trace))?,
+    )?;
     io(&figure, run_svg(&row, &trace)?.as_bytes())?;
     Ok(Scored {
         record,

@@ -16,6 +16,7 @@ use records::papers::{Papers, PapersError};
 use records::results_dir::{ResultsDir, ResultsError};
 use records::runs::RunRow;
 use records::timing::{TimingRow, Timings, REPETITIONS};
+use simulation::row::run_row;
 use simulation::run::run_job;
 use std::collections::BTreeSet;
 use std::path::Path;
@@ -72,7 +73,7 @@ pub fn time_alone(
             .ok_or_else(|| TimingError::Undescribed(key.clone()))?;
         let samples: Vec<(f64, f64)> = (0..REPETITIONS)
             .map(|_| {
-                let row = RunRow::from_record(&run_job(job), git_rev);
+                let row = run_row(&run_job(job), git_rev);
                 (row.sim_s, row.wall_s)
             })
             .collect();

@@ -20,6 +20,7 @@
 
 use catalog::experiment::{load_dir, PaperFile, SolverChoice};
 use records::runs::RunRow;
+use simulation::row::run_row;
 use simulation::run::check_job;
 use simulation::run::run_job;
 use std::path::{Path, PathBuf};
@@ -87,7 +88,7 @@ fn own_run(root: &Path) -> RunRow {
         .unwrap();
     job.integrator.rtol = 1e-10;
     job.integrator.atol = 1e-12;
-    RunRow::from_record(&run_job(&job), "test")
+    run_row(&run_job(&job), "test")
 }
 
 #[test]

@@ -5,6 +5,7 @@
 use catalog::experiment::load_dir;
 use records::gate::compare;
 use records::runs::{read_runs, RunRow};
+use simulation::row::run_row;
 use simulation::run::check_job;
 use simulation::runner::run_jobs;
 
@@ -17,7 +18,7 @@ fn fresh_run_matches_the_committed_results() {
     let jobs: Vec<_> = files.iter().flat_map(|f| f.jobs()).collect();
     let fresh: Vec<RunRow> = run_jobs(&jobs, false)
         .iter()
-        .map(|r| RunRow::from_record(r, "test"))
+        .map(|r| run_row(r, "test"))
         .collect();
 
     let problems = compare(&committed, &fresh, "results/runs.csv");
@@ -94,7 +95,7 @@ fn two_runs_give_identical_rows() {
                 wall_s: 0.0,
                 sim_s: 0.0,
                 observe_s: 0.0,
-                ..RunRow::from_record(r, "test")
+                ..run_row(r, "test")
             })
             .collect()
     };

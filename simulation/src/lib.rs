@@ -8,14 +8,16 @@
 //! drift, position error, margins, the score against the exact optimum) and returns a
 //! [`run::RunRecord`]; [`runner`] runs many in parallel. [`run::check_job`] builds a run's parts
 //! without integrating: loading an experiment file takes it, to reject what a run would
-//! reject. Why a run failed: [`error`]. Writing the records is the `records` crate's work,
-//! presenting them the `presentation` crate's. [`score_trajectory`] scores a trajectory
+//! reject. Why a run failed: [`error`]. A record as a row of `results/runs.csv`: [`row`];
+//! the row's schema, the trace's and writing them are the `records` crate's work, presenting
+//! them the `presentation` crate's. [`score_trajectory`] scores a trajectory
 //! produced elsewhere on a task, with the metrics and the score of a run.
 //! [`task_numbers`] computes a task's check values (its task card's).
 
 pub mod coupled;
 pub mod error;
 pub mod metrics;
+pub mod row;
 pub mod run;
 pub mod runner;
 pub mod score_trajectory;

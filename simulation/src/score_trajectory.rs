@@ -1,7 +1,7 @@
 //! Scoring a trajectory produced anywhere (MATLAB, Octave, Python, a real arm) on a task of the
 //! suite, with the same metrics as a run and the same score against the exact optimum.
 //!
-//! A [`Trajectory`] is samples (t_k, theta_k) with 0 = t_0 < t_1 < ... < t_m = T (the task's
+//! A [`Trajectory`] (records' type, as read from a file) is samples (t_k, theta_k) with 0 = t_0 < t_1 < ... < t_m = T (the task's
 //! duration) and theta_0 = the task's theta0, optionally with the joint velocities thetadot_k
 //! (the command x[..n] the trajectory's solver gave). Without them thetadot_k is taken by the
 //! second-order finite difference of theta on the (possibly non-uniform) grid: with
@@ -32,19 +32,12 @@ use catalog::error::SetupError;
 use catalog::experiment::Job;
 use catalog::robot_registry::{robot_by_name, RobotVisitor};
 use nalgebra::{DVector, SVector};
+use records::trajectory::Trajectory;
 use robots::{Dynamics, Robot};
 use schemes::scheme::Level;
 use solvers::ode::OdeStats;
 use std::sync::Arc;
 use std::time::Instant;
-
-/// Samples of a joint trajectory (module docs): `theta[k]` (and `thetadot[k]`) at `t[k]`.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Trajectory {
-    pub t: Vec<f64>,
-    pub theta: Vec<Vec<f64>>,
-    pub thetadot: Option<Vec<Vec<f64>>>,
-}
 
 /// Relative tolerance on the first and last instants (t_0 = 0, t_m = T) in units of T.
 pub const TIME_TOLERANCE: f64 = 1e-9;
@@ -83,92 +76,91 @@ pub enum TrajectoryError {
     Setup(#[from] SetupError),
 }
 
-impl Trajectory {
-    /// Checks the samples against a task of `joints` joints, duration `duration` and start
-    /// `theta0` (module docs).
-    pub fn check(
-        &self,
-        joints: usize,
-        duration: f64,
-        theta0: &[f64],
-    ) -> Result<(), TrajectoryError> {
-        let m = self.t.len();
-        if m < 3 {
-            return Err(TrajectoryError::TooShort(m));
+/// Checks the samples of `trajectory` against a task of `joints` joints, duration `duration`
+/// and start `theta0` (module docs).
+pub fn check(
+    trajectory: &Trajectory,
+    joints: usize,
+    duration: f64,
+    theta0: &[f64],
+) -> Result<(), TrajectoryError> {
+    let m = trajectory.t.len();
+    if m < 3 {
+        return Err(TrajectoryError::TooShort(m));
+    }
+    let mut columns: Vec<(&'static str, &Vec<Vec<f64>>)> = vec![("theta", &trajectory.theta)];
+    if let Some(v) = &trajectory.thetadot {
+        columns.push(("thetadot", v));
+    }
+    for (what, rows) in columns {
+        if rows.len() != m {
+            return Err(TrajectoryError::TooShort(rows.len().min(m)));
         }
-        let mut columns: Vec<(&'static str, &Vec<Vec<f64>>)> = vec![("theta", &self.theta)];
-        if let Some(v) = &self.thetadot {
-            columns.push(("thetadot", v));
-        }
-        for (what, rows) in columns {
-            if rows.len() != m {
-                return Err(TrajectoryError::TooShort(rows.len().min(m)));
-            }
-            for (row, v) in rows.iter().enumerate() {
-                if v.len() != joints {
-                    return Err(TrajectoryError::Width {
-                        row,
-                        what,
-                        given: v.len(),
-                        joints,
-                    });
-                }
-                if v.iter().any(|x| !x.is_finite()) {
-                    return Err(TrajectoryError::NotFinite { row });
-                }
-            }
-        }
-        for (row, w) in self.t.windows(2).enumerate() {
-            if !w[1].is_finite() || w[1] <= w[0] {
-                return Err(TrajectoryError::NotIncreasing {
-                    row: row + 1,
-                    t: w[1],
-                    previous: w[0],
+        for (row, v) in rows.iter().enumerate() {
+            if v.len() != joints {
+                return Err(TrajectoryError::Width {
+                    row,
+                    what,
+                    given: v.len(),
+                    joints,
                 });
             }
-        }
-        if !self.t[0].is_finite() || self.t[0].abs() > TIME_TOLERANCE * duration {
-            return Err(TrajectoryError::Start(self.t[0]));
-        }
-        let end = self.t[m - 1];
-        if (end - duration).abs() > TIME_TOLERANCE * duration {
-            return Err(TrajectoryError::End { t: end, duration });
-        }
-        for (i, (a, b)) in self.theta[0].iter().zip(theta0).enumerate() {
-            let diff = (a - b).abs();
-            if diff > START_TOLERANCE {
-                return Err(TrajectoryError::StartPose { joint: i + 1, diff });
+            if v.iter().any(|x| !x.is_finite()) {
+                return Err(TrajectoryError::NotFinite { row });
             }
         }
-        Ok(())
     }
-
-    /// thetadot at every sample: the given one, else the finite difference of the module docs.
-    pub fn velocities(&self) -> Vec<Vec<f64>> {
-        if let Some(v) = &self.thetadot {
-            return v.clone();
+    for (row, w) in trajectory.t.windows(2).enumerate() {
+        if !w[1].is_finite() || w[1] <= w[0] {
+            return Err(TrajectoryError::NotIncreasing {
+                row: row + 1,
+                t: w[1],
+                previous: w[0],
+            });
         }
-        let (t, y) = (&self.t, &self.theta);
-        let m = t.len();
-        let n = y[0].len();
-        // Weights of y[a], y[b], y[c] in the derivative at t[at] of the parabola through them.
-        let parabola = |a: usize, b: usize, c: usize, at: usize| -> Vec<f64> {
-            let (ta, tb, tc, x) = (t[a], t[b], t[c], t[at]);
-            let wa = ((x - tb) + (x - tc)) / ((ta - tb) * (ta - tc));
-            let wb = ((x - ta) + (x - tc)) / ((tb - ta) * (tb - tc));
-            let wc = ((x - ta) + (x - tb)) / ((tc - ta) * (tc - tb));
-            (0..n)
-                .map(|i| wa * y[a][i] + wb * y[b][i] + wc * y[c][i])
-                .collect()
-        };
-        (0..m)
-            .map(|k| match k {
-                0 => parabola(0, 1, 2, 0),
-                k if k == m - 1 => parabola(m - 3, m - 2, m - 1, m - 1),
-                k => parabola(k - 1, k, k + 1, k),
-            })
-            .collect()
     }
+    if !trajectory.t[0].is_finite() || trajectory.t[0].abs() > TIME_TOLERANCE * duration {
+        return Err(TrajectoryError::Start(trajectory.t[0]));
+    }
+    let end = trajectory.t[m - 1];
+    if (end - duration).abs() > TIME_TOLERANCE * duration {
+        return Err(TrajectoryError::End { t: end, duration });
+    }
+    for (i, (a, b)) in trajectory.theta[0].iter().zip(theta0).enumerate() {
+        let diff = (a - b).abs();
+        if diff > START_TOLERANCE {
+            return Err(TrajectoryError::StartPose { joint: i + 1, diff });
+        }
+    }
+    Ok(())
+}
+
+/// thetadot at every sample of `trajectory`: the given one, else the finite difference of the
+/// module docs.
+pub fn velocities(trajectory: &Trajectory) -> Vec<Vec<f64>> {
+    if let Some(v) = &trajectory.thetadot {
+        return v.clone();
+    }
+    let (t, y) = (&trajectory.t, &trajectory.theta);
+    let m = t.len();
+    let n = y[0].len();
+    // Weights of y[a], y[b], y[c] in the derivative at t[at] of the parabola through them.
+    let parabola = |a: usize, b: usize, c: usize, at: usize| -> Vec<f64> {
+        let (ta, tb, tc, x) = (t[a], t[b], t[c], t[at]);
+        let wa = ((x - tb) + (x - tc)) / ((ta - tb) * (ta - tc));
+        let wb = ((x - ta) + (x - tc)) / ((tb - ta) * (tb - tc));
+        let wc = ((x - ta) + (x - tb)) / ((tc - ta) * (tc - tb));
+        (0..n)
+            .map(|i| wa * y[a][i] + wb * y[b][i] + wc * y[c][i])
+            .collect()
+    };
+    (0..m)
+        .map(|k| match k {
+            0 => parabola(0, 1, 2, 0),
+            k if k == m - 1 => parabola(m - 3, m - 2, m - 1, m - 1),
+            k => parabola(k - 1, k, k + 1, k),
+        })
+        .collect()
 }
 
 /// Scores `trajectory` on the task of `job` (its robot, path, scheme, theta0 and theta_ref;
@@ -203,7 +195,7 @@ fn score_with<const N: usize>(
     dynamics: Option<Arc<dyn Dynamics<N>>>,
 ) -> Result<Run, TrajectoryError> {
     let started = Instant::now();
-    trajectory.check(N, job.path.duration, &job.theta0)?;
+    check(trajectory, N, job.path.duration, &job.theta0)?;
     let theta0 = SVector::<f64, N>::from_column_slice(&job.theta0);
     let theta_ref = SVector::<f64, N>::from_column_slice(&job.theta_ref);
     let (path, scheme) = build_parts::<N>(job, robot.clone(), dynamics)?;
@@ -219,9 +211,9 @@ fn score_with<const N: usize>(
     );
     let mut scorer = ExactLoop::new(scheme.as_ref());
     let mut failures = 0usize;
-    let velocities = trajectory.velocities();
+    let thetadots = velocities(trajectory);
     let nx = scheme.dims().nx;
-    for ((&t, theta), thetadot) in trajectory.t.iter().zip(&trajectory.theta).zip(&velocities) {
+    for ((&t, theta), thetadot) in trajectory.t.iter().zip(&trajectory.theta).zip(&thetadots) {
         let theta = SVector::<f64, N>::from_column_slice(theta);
         let command = SVector::<f64, N>::from_column_slice(thetadot);
         let mut x = DVector::zeros(nx);
@@ -282,7 +274,7 @@ mod tests {
     #[test]
     fn finite_differences_are_exact_on_parabolas() {
         let tr = quadratic(7);
-        for (t, v) in tr.t.iter().zip(tr.velocities()) {
+        for (t, v) in tr.t.iter().zip(velocities(&tr)) {
             assert!(
                 (v[0] - 2.0 * t).abs() < 1e-12 && (v[1] + 1.0).abs() < 1e-12,
                 "{t}: {v:?}"
@@ -293,9 +285,9 @@ mod tests {
     #[test]
     fn samples_are_checked_against_the_task() {
         let tr = quadratic(5);
-        assert_eq!(tr.check(2, 2.0, &[0.0, 3.0]), Ok(()));
+        assert_eq!(check(&tr, 2, 2.0, &[0.0, 3.0]), Ok(()));
         assert_eq!(
-            tr.check(3, 2.0, &[0.0, 3.0, 0.0]),
+            check(&tr, 3, 2.0, &[0.0, 3.0, 0.0]),
             Err(TrajectoryError::Width {
                 row: 0,
                 what: "theta",
@@ -304,24 +296,24 @@ mod tests {
             })
         );
         assert_eq!(
-            tr.check(2, 3.0, &[0.0, 3.0]),
+            check(&tr, 2, 3.0, &[0.0, 3.0]),
             Err(TrajectoryError::End {
                 t: 2.0,
                 duration: 3.0
             })
         );
         assert!(matches!(
-            tr.check(2, 2.0, &[0.0, 2.0]),
+            check(&tr, 2, 2.0, &[0.0, 2.0]),
             Err(TrajectoryError::StartPose { joint: 2, .. })
         ));
         let mut back = tr.clone();
         back.t[2] = back.t[1];
         assert!(matches!(
-            back.check(2, 2.0, &[0.0, 3.0]),
+            check(&back, 2, 2.0, &[0.0, 3.0]),
             Err(TrajectoryError::NotIncreasing { row: 2, .. })
         ));
         assert_eq!(
-            quadratic(2).check(2, 2.0, &[0.0, 3.0]),
+            check(&quadratic(2), 2, 2.0, &[0.0, 3.0]),
             Err(TrajectoryError::TooShort(2))
         );
     }

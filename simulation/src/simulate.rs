@@ -16,6 +16,7 @@ use catalog::error::SetupError;
 use catalog::experiment::{NetworkInit, Scoring};
 use catalog::integrator::IntegratorSettings;
 use nalgebra::{DVector, SVector};
+use records::trace::TracePoint;
 use robots::Robot;
 use schemes::paths::Path;
 use schemes::scheme::{Level, Scheme};
@@ -56,22 +57,6 @@ const TRACE_POINTS: usize = 400;
 pub const DIVERGENCE_FACTOR: f64 = 10.0;
 /// ... or when an entry of the integrated state (angles, velocities, network state) exceeds this.
 pub const DIVERGENCE_STATE: f64 = 1e6;
-
-/// One row of a run's trace.
-#[derive(Clone, Debug, PartialEq)]
-pub struct TracePoint {
-    pub t: f64,
-    pub theta: Vec<f64>,
-    pub thetadot: Vec<f64>,
-    pub thetaddot: Option<Vec<f64>>,
-    pub torque: Option<Vec<f64>>,
-    pub desired: [f64; 3],
-    pub actual: [f64; 3],
-    /// |x_nn - x*|_inf at this instant (neural runs).
-    pub score_dx: Option<f64>,
-    /// The network's own error norm at this instant (where it has one).
-    pub network_error: Option<f64>,
-}
 
 /// Outcome of a run.
 #[derive(Clone, Debug)]

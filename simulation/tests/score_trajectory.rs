@@ -3,9 +3,10 @@
 //! drift exactly and its error and score to the resolution of the thinned samples.
 
 use catalog::experiment::{load_dir, Job, PaperFile, SolverChoice};
+use records::trajectory::Trajectory;
 use simulation::run::check_job;
 use simulation::run::run_job;
-use simulation::score_trajectory::{score_trajectory, Trajectory, TrajectoryError};
+use simulation::score_trajectory::{score_trajectory, TrajectoryError};
 use simulation::simulate::{Outcome, Run};
 
 fn job(experiment: &str, variant: &str, neural: bool) -> Job {

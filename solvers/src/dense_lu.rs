@@ -28,9 +28,7 @@ use faer::linalg::lu::partial_pivoting::{factor, solve};
 use faer::{MatMut, MatRef, Par};
 use nalgebra::DMatrix;
 
-/// The system size n (rows of the square matrix) from which [`Backend::for_size`] takes faer:
-/// measured (see the module docs), not tuned by hand.
-pub const FAER_CROSSOVER: usize = 64;
+use catalog::linear_algebra::FAER_CROSSOVER;
 
 /// Which library factorises.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]

@@ -24,7 +24,7 @@ pub use active_set::{
     ActiveSetError, ActiveSetSolution, ActiveSetSolver, ActiveSetStart, Constraint, WorkingSet,
 };
 pub use auxiliary::AuxiliaryElimination;
-pub use dense_lu::{Backend, DenseLu, FAER_CROSSOVER};
+pub use dense_lu::{Backend, DenseLu};
 pub use exact::{
     solve_equality_kkt, solve_equality_kkt_with, ExactError, ExactSolution, ExactSolver,
     ExactStatus,

@@ -54,6 +54,7 @@ use records::papers::Papers;
 use records::runs::RunRow;
 use schemes::spec::{RmpReading, SchemeSpec};
 use search::{Coordinate, Objective, Outcome, Point, Scores, Target};
+use simulation::row::run_row;
 use simulation::run::run_job;
 use std::f64::consts::PI;
 use std::time::Instant;
@@ -361,10 +362,7 @@ impl Evaluation {
 /// Runs the table's runs under `setup` (in parallel) and compares with the paper.
 pub fn evaluate(p: &TableProblem, setup: Setup) -> Evaluation {
     let (jobs, index) = p.jobs(&setup);
-    let rows: Vec<RunRow> = jobs
-        .par_iter()
-        .map(|j| RunRow::from_record(&run_job(j), ""))
-        .collect();
+    let rows: Vec<RunRow> = jobs.par_iter().map(|j| run_row(&run_job(j), "")).collect();
     let failure = rows
         .iter()
         .find(|r| !r.completed())

@@ -52,9 +52,9 @@ pub fn figure(scheme: &str, rows: &[&DofCostRow]) -> Figure<DofCostBody> {
     let mut calls = Vec::new();
     let mut runs = Vec::new();
     for (k, quantity) in Quantity::ALL.into_iter().enumerate() {
-        for (b, backend) in quantity.backends().iter().enumerate() {
-            let of_series =
-                |r: &&&DofCostRow| r.quantity == quantity.id() && r.backend == backend.id();
+        let backends = records::dof_cost::backends(rows.iter().copied(), quantity);
+        for (b, backend) in backends.iter().enumerate() {
+            let of_series = |r: &&&DofCostRow| r.quantity == quantity.id() && r.backend == *backend;
             let points: Vec<(f64, f64)> = rows
                 .iter()
                 .filter(|r| !r.is_fit() && of_series(r))
@@ -72,9 +72,9 @@ pub fn figure(scheme: &str, rows: &[&DofCostRow]) -> Figure<DofCostBody> {
                 .find(|r| r.is_fit() && of_series(r))
                 .and_then(|r| r.exponent)
                 .map_or(String::new(), |e| format!(" (k = {e:.2})"));
-            let on = match quantity.backends() {
+            let on = match backends[..] {
                 [_] => String::new(),
-                _ => format!(", {}", backend.id()),
+                _ => format!(", {backend}"),
             };
             let colour = colour(k + b * LIGHT_SHADE);
             entries.push(Entry {

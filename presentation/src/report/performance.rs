@@ -21,13 +21,12 @@
 
 use super::cost::{matlab_experiments, paper_times, solver_label, timed_paper_ids, timed_papers};
 use super::markdown::{sci, sci_opt, Table, MISSING};
-use records::dof_cost::{DofCostRow, Quantity, Summary};
+use records::dof_cost::{DofCostRow, Quantity, Summary, NALGEBRA};
 use records::index::{completed, Runs};
 use records::papers::Papers;
 use records::profile::ProfileRow;
 use records::speedup::SpeedupRow;
 use records::timing::{Timings, REPETITIONS};
-use solvers::Backend;
 use std::collections::BTreeMap;
 
 /// The joint count the per-instant table is shown at: the Jaco2's.
@@ -69,7 +68,7 @@ fn find<'a>(
             && r.scheme == scheme
             && r.n == Some(n)
             && r.quantity == quantity.id()
-            && r.backend == Backend::Nalgebra.id()
+            && r.backend == NALGEBRA
     })
 }
 
@@ -519,7 +518,7 @@ fn crossovers(dof: &[DofCostRow]) -> String {
          network Jacobian's LU above, and on nalgebra below; the KKT solve stays on nalgebra at \
          every size, since its zero and identity blocks are skipped by the in-place \
          elimination and faer's dense LU was slower there at every measured N.\n\n{}\n",
-        solvers::FAER_CROSSOVER,
+        catalog::linear_algebra::FAER_CROSSOVER,
         t.render()
     )
 }

@@ -1,0 +1,28 @@
+//! The `failure_kind` column of `results/runs.csv`: what stopped a run, as a category a table
+//! can be grouped by (kebab-case in the file: `setup`, `exact-qp`, `diverged`, `non-finite`,
+//! `integrator`, `step-limit`, `wall-time`, `eval-budget`; empty for a completed run). The
+//! engine (`simulation::error::RunError::kind`) says which category each of its errors is.
+
+use serde::{Deserialize, Serialize};
+
+/// What stopped a run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum FailureKind {
+    /// The run could not be built (robot, path, scheme or network).
+    Setup,
+    /// The exact QP had no solution (infeasible, or the solver failed).
+    ExactQp,
+    /// A joint velocity or the state left the stated divergence bounds.
+    Diverged,
+    /// The state became NaN or infinite.
+    NonFinite,
+    /// The integrator gave up (step size underflow, Newton failure).
+    Integrator,
+    /// More than `max_steps` accepted steps.
+    StepLimit,
+    /// The wall-time budget (`max_wall_s`) ran out.
+    WallTime,
+    /// The right-hand-side evaluation budget (`max_rhs_evals`) ran out.
+    EvalBudget,
+}
