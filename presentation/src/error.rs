@@ -78,4 +78,3 @@ pub enum ReportError {
     #[error(transparent)]
     DofCost(#[from] records::error::DofCostError),
 }
-

@@ -222,6 +222,43 @@ impl Papers {
         })
     }
 
+    /// The published compute times (values whose metric is ours `sim_s`) with their mappings,
+    /// in the published values' order.
+    pub fn timed_values(&self) -> impl Iterator<Item = (&PaperValue, &Mapping)> {
+        self.values
+            .iter()
+            .filter(|v| our_metric(&v.metric) == Some("sim_s"))
+            .filter_map(|v| self.mapping_of(v).map(|m| (v, m)))
+    }
+
+    /// Our experiments that a published compute time maps onto, in the published values'
+    /// order.
+    pub fn timed_experiments(&self) -> Vec<&str> {
+        let mut experiments: Vec<&str> = self
+            .timed_values()
+            .map(|(_, m)| m.run.experiment.as_str())
+            .collect();
+        experiments.dedup();
+        experiments
+    }
+
+    /// The ids of the papers that publish compute times, in file order.
+    pub fn timed_papers(&self) -> Vec<&str> {
+        let mut ids: Vec<&str> = self.timed_values().map(|(v, _)| v.paper.as_str()).collect();
+        ids.dedup();
+        ids
+    }
+
+    /// The published compute times of one of our experiments, as (our solver id, seconds).
+    pub fn times_of<'a>(
+        &'a self,
+        experiment: &'a str,
+    ) -> impl Iterator<Item = (&'a str, f64)> + 'a {
+        self.timed_values()
+            .filter(move |(_, m)| m.run.experiment == experiment)
+            .map(|(v, m)| (m.run.solver.as_str(), v.value))
+    }
+
     /// The mappings of one paper, in file order.
     pub fn mappings_of<'a>(&'a self, paper: &'a str) -> impl Iterator<Item = &'a Mapping> + 'a {
         self.mappings.iter().filter(move |m| m.paper == paper)

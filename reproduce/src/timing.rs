@@ -10,7 +10,6 @@
 
 use catalog::experiment::Job;
 use catalog::run_key::RunKey;
-use presentation::report::cost::matlab_experiments;
 use records::leaderboard::standard_tasks;
 use records::papers::{Papers, PapersError};
 use records::results_dir::{ResultsDir, ResultsError};
@@ -37,7 +36,7 @@ pub enum TimingError {
 /// The keys of the runs to time (sorted): the leaderboard's and the MATLAB experiments'.
 pub fn timed_keys(rows: &[RunRow], papers: &Papers) -> BTreeSet<RunKey> {
     let tasks = standard_tasks(rows);
-    let matlab = matlab_experiments(papers);
+    let matlab = papers.timed_experiments();
     rows.iter()
         .filter(|r| {
             let standard = !r.is_exact()

@@ -7,7 +7,7 @@
 
 use super::markdown::{sci, sci_opt, Table, MISSING};
 use records::index::{completed, Runs};
-use records::papers::{our_metric, Papers};
+use records::papers::Papers;
 
 /// One cost table per paper: every run's integrator, tolerances and effort.
 pub fn cost_table(runs: &Runs, paper: &str) -> String {
@@ -85,23 +85,6 @@ fn vp_mean(times: &[(&str, f64)]) -> Option<f64> {
     (!vp.is_empty()).then(|| vp.iter().sum::<f64>() / vp.len() as f64)
 }
 
-/// The published MATLAB times of one of our experiments, as (our solver id, seconds).
-pub(crate) fn paper_times<'a>(
-    papers: &'a Papers,
-    experiment: &'a str,
-) -> impl Iterator<Item = (&'a str, f64)> + 'a {
-    papers
-        .values
-        .iter()
-        .filter(|v| our_metric(&v.metric) == Some("sim_s"))
-        .filter_map(move |v| {
-            papers
-                .mapping_of(v)
-                .filter(|m| m.run.experiment == experiment)
-                .map(|m| (m.run.solver.as_str(), v.value))
-        })
-}
-
 /// S-LVI-PDNN's right-hand-side evaluations over the mean of the VP-RNN-PF variants' in one
 /// experiment: the deterministic measure of relative cost (the same on every machine and under
 /// any load), which the compute-time claim is decided by.
@@ -132,46 +115,16 @@ pub fn slowdown(runs: &Runs, papers: &Papers, experiment: &str) -> Slowdown {
         .filter(|r| completed(r))
         .map(|r| (r.solver_id.as_str(), r.sim_s))
         .collect();
-    let paper: Vec<(&str, f64)> = paper_times(papers, experiment).collect();
+    let paper: Vec<(&str, f64)> = papers.times_of(experiment).collect();
     Slowdown {
         ours: ratio(&ours),
         paper: ratio(&paper),
     }
 }
 
-/// Our experiments that a published MATLAB compute time maps onto, in the published values'
-/// order.
-pub fn matlab_experiments(papers: &Papers) -> Vec<&str> {
-    let mut experiments: Vec<&str> = timed_values(papers)
-        .map(|(_, m)| m.run.experiment.as_str())
-        .collect();
-    experiments.dedup();
-    experiments
-}
-
 /// The papers that publish compute times (in file order), for the headings.
 pub(crate) fn timed_papers(papers: &Papers) -> String {
-    timed_paper_ids(papers).join(", ")
-}
-
-/// The ids of the papers that publish compute times, in file order.
-pub(crate) fn timed_paper_ids(papers: &Papers) -> Vec<&str> {
-    let mut ids: Vec<&str> = timed_values(papers)
-        .map(|(v, _)| v.paper.as_str())
-        .collect();
-    ids.dedup();
-    ids
-}
-
-/// The published compute times with their mappings.
-fn timed_values(
-    papers: &Papers,
-) -> impl Iterator<Item = (&records::papers::PaperValue, &records::papers::Mapping)> {
-    papers
-        .values
-        .iter()
-        .filter(|v| our_metric(&v.metric) == Some("sim_s"))
-        .filter_map(|v| papers.mapping_of(v).map(|m| (v, m)))
+    papers.timed_papers().join(", ")
 }
 
 /// The published compute times: per experiment and solver, the paper's MATLAB seconds and
@@ -185,8 +138,8 @@ pub fn matlab_comparison(runs: &Runs, papers: &Papers) -> String {
         "ours (s)",
         "ours ÷ VP-RNN-PF mean",
     ]);
-    for exp in matlab_experiments(papers) {
-        let paper: Vec<(&str, f64)> = paper_times(papers, exp).collect();
+    for exp in papers.timed_experiments() {
+        let paper: Vec<(&str, f64)> = papers.times_of(exp).collect();
         let ours: Vec<(&str, f64)> = runs
             .of_experiment(exp)
             .filter(|r| paper.iter().any(|(s, _)| *s == r.solver_id))

@@ -19,7 +19,7 @@
 //! Every number is read from `results/`; without `dof-cost.csv` the section says how to
 //! produce it and shows what `runs.csv` gives.
 
-use super::cost::{matlab_experiments, paper_times, solver_label, timed_paper_ids, timed_papers};
+use super::cost::{solver_label, timed_papers};
 use super::markdown::{sci, sci_opt, Table, MISSING};
 use records::dof_cost::{DofCostRow, Quantity, Summary, NALGEBRA};
 use records::index::{completed, Runs};
@@ -158,7 +158,7 @@ fn where_time_goes(profile: &[ProfileRow], papers: &Papers) -> String {
         profiled.join(" "),
         records::profile::FILE,
     );
-    let timed = timed_paper_ids(papers);
+    let timed = papers.timed_papers();
     for paper in profiled {
         let rows: Vec<ProfileRow> = profile
             .iter()
@@ -198,9 +198,10 @@ fn paper_profile(profile: &[ProfileRow], timed: bool, papers: &Papers) -> String
         .filter(|r| r.part == records::profile::SIMULATION)
         .map(|r| r.ms_per_pass / 1e3)
         .sum();
-    let paper_s: f64 = matlab_experiments(papers)
+    let paper_s: f64 = papers
+        .timed_experiments()
         .iter()
-        .flat_map(|exp| paper_times(papers, exp))
+        .flat_map(|exp| papers.times_of(exp))
         .map(|(_, t)| t)
         .sum();
     let mut said = String::new();
@@ -237,9 +238,10 @@ fn paper_profile(profile: &[ProfileRow], timed: bool, papers: &Papers) -> String
 
 /// The network runs the papers publish a MATLAB time for.
 fn profile_runs(papers: &Papers) -> usize {
-    matlab_experiments(papers)
+    papers
+        .timed_experiments()
         .iter()
-        .map(|exp| paper_times(papers, exp).count())
+        .map(|exp| papers.times_of(exp).count())
         .sum()
 }
 
@@ -601,8 +603,8 @@ fn matlab(runs: &Runs, timings: &Timings, papers: &Papers) -> String {
     ]);
     let (mut min_sim, mut min_total) = (f64::INFINITY, f64::INFINITY);
     let (mut alone, mut shown) = (0, 0);
-    for exp in matlab_experiments(papers) {
-        for (solver, paper) in paper_times(papers, exp) {
+    for exp in papers.timed_experiments() {
+        for (solver, paper) in papers.times_of(exp) {
             let ours = runs
                 .of_experiment(exp)
                 .find(|r| r.solver_id == solver)

@@ -13,7 +13,6 @@
 //! integration's time by r at most, so a paper with r below the target cannot meet it by
 //! removing overhead alone.
 
-use super::cost::timed_paper_ids;
 use super::markdown::{sci, Table, MISSING};
 use records::papers::Papers;
 use records::profile::ProfileRow;
@@ -32,7 +31,7 @@ pub fn section(rows: &[SpeedupRow], profile: &[ProfileRow], papers: &Papers) -> 
             records::speedup::FILE
         );
     };
-    let timed = timed_paper_ids(papers);
+    let timed = papers.timed_papers();
     let mut t = Table::new([
         "paper",
         "runs",
