@@ -7,6 +7,8 @@
 //! - [`table`]: CSV tables whose per-joint columns follow the robot's joint count.
 //! - [`dof_cost`]: the cost against the number of joints (`results/dof-cost.csv`).
 //! - [`profile`]: where a paper's reproduction spends its time (`results/profile.csv`).
+//! - [`profile_active_set`]: where the hot-started active-set solve spends its time
+//!   (`results/profile-active-set.csv`).
 //! - [`index`]: the stored runs indexed as the report and the analyses look them up.
 //! - [`leaderboard`]: every velocity-level solver on the standard task set, scored as
 //!   qpbenchmark scores QP solvers (`results/leaderboard.csv`).
@@ -61,6 +63,7 @@ pub mod owned_dir;
 pub mod papers;
 pub mod percentile;
 pub mod profile;
+pub mod profile_active_set;
 pub mod results_dir;
 pub mod runs;
 pub mod shard;

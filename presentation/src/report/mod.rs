@@ -71,6 +71,8 @@ pub struct Inputs {
     pub profile: Vec<records::profile::ProfileRow>,
     /// `results/speedup.csv` (absent = empty).
     pub speedup: Vec<records::speedup::SpeedupRow>,
+    /// `results/profile-active-set.csv` (absent = empty).
+    pub hot_solve: Vec<records::profile_active_set::HotSolveRow>,
     /// The control experiments' result files (absent = empty).
     pub control: control::ControlResults,
     /// The Python package's result files (absent = empty).
@@ -100,6 +102,7 @@ impl Inputs {
             dof_cost: records::dof_cost::read(&results)?,
             profile: read_if_present(&results.join(records::profile::FILE))?,
             speedup: read_if_present(&results.join(records::speedup::FILE))?,
+            hot_solve: read_if_present(&results.join(records::profile_active_set::FILE))?,
             control: control::ControlResults::load(&results)?,
             python: python::PythonResults::load(&results)?,
         })
@@ -128,6 +131,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
         dof_cost,
         profile,
         speedup,
+        hot_solve,
         control,
         python,
     } = inputs;
@@ -252,7 +256,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
     out.push('\n');
 
     out.push_str(&performance::section(
-        dof_cost, profile, speedup, runs, timings, papers, figures,
+        dof_cost, profile, hot_solve, speedup, runs, timings, papers, figures,
     ));
     out.push_str(&python::call_cost(&python.call_cost));
     out.push_str(&control::section(control, runs, figures));

@@ -25,6 +25,7 @@ use records::dof_cost::{DofCostRow, Quantity, Summary, NALGEBRA};
 use records::index::{completed, Runs};
 use records::papers::Papers;
 use records::profile::ProfileRow;
+use records::profile_active_set::HotSolveRow;
 use records::speedup::SpeedupRow;
 use records::timing::{Timings, REPETITIONS};
 use std::collections::BTreeMap;
@@ -87,6 +88,7 @@ fn schemes(dof: &[DofCostRow]) -> Vec<&str> {
 pub fn section(
     dof: &[DofCostRow],
     profile: &[ProfileRow],
+    hot: &[HotSolveRow],
     speedup: &[SpeedupRow],
     runs: &Runs,
     timings: &Timings,
@@ -108,7 +110,7 @@ pub fn section(
         );
     } else {
         out.push_str(&machine(dof));
-        out.push_str(&per_instant(dof));
+        out.push_str(&per_instant(dof, hot));
     }
     out.push_str(&per_solver_kind(runs));
     if !dof.is_empty() {
@@ -270,7 +272,7 @@ fn machine(dof: &[DofCostRow]) -> String {
 
 /// Median and p95 of each per-call quantity at N = [`JACO2_N`], with ratios to the network RHS
 /// and to the KKT floor, and the 7-variable target.
-fn per_instant(dof: &[DofCostRow]) -> String {
+fn per_instant(dof: &[DofCostRow], hot: &[HotSolveRow]) -> String {
     let mut out = format!(
         "### Per instant at N = {JACO2_N} (the Jaco2's size)\n\nOne call at states sampled from \
          an exact run of `nlink-{JACO2_N}` (crate `cost`): the network's right-hand \
@@ -341,10 +343,49 @@ fn per_instant(dof: &[DofCostRow]) -> String {
                         "not met (the gap is the ratio above)"
                     }
                 ));
+                out.push_str(&hot_solve_profile(hot, ratio, &r.network));
             }
         }
     }
     out
+}
+
+/// Where the hot solve's time goes (`results/profile-active-set.csv`,
+/// [`records::profile_active_set`]), and what the solve without its certification would cost
+/// in RHS evaluations (`ratio` × the share outside certification).
+fn hot_solve_profile(hot: &[HotSolveRow], ratio: f64, network: &str) -> String {
+    let Some(first) = hot.first() else {
+        return format!(
+            "`results/{}` is absent: `benches/profile/active_set.sh` (perf over the bench) \
+             measures where the hot solve's time goes.\n\n",
+            records::profile_active_set::FILE
+        );
+    };
+    let mut t = Table::new(["category", "share of the hot solve"]);
+    for r in hot {
+        t.push([r.category.clone(), format!("{:.1} %", 100.0 * r.share)]);
+    }
+    let without =
+        records::profile_active_set::certification_share(hot).map_or(String::new(), |c| {
+            format!(
+                " The certification (every answer's KKT residuals, so that the exact column is \
+                 exact by proof, not by trust) takes {:.1} % of it: the rest would take {} times \
+                 one {network} RHS evaluation.",
+                100.0 * c,
+                sci(ratio * (1.0 - c))
+            )
+        });
+    format!(
+        "Where the hot solve's time goes: a sampling profile of the criterion bench \
+         `jia2019/exact-active-set/hot` ({} s at {} Hz, one pinned CPU, revision `{}`; \
+         `benches/profile/active_set.sh` writes `results/{}`), each sample by the function it \
+         was in, the bench harness left out.{without}\n\n{}\n",
+        first.seconds,
+        first.frequency_hz,
+        first.git_rev,
+        records::profile_active_set::FILE,
+        t.render()
+    )
 }
 
 /// Per accepted step and per RHS evaluation in the completed runs of `runs.csv`, by solver
@@ -731,9 +772,14 @@ mod tests {
                            demo,e,v,a,old,new,3,2.0,1.0,2.0,3.0,1.5,2.0,ok,ok,0.5,0.5\n\
                            demo,e,v,b,old,new,3,4.0,1.0,4.0,5.0,2.0,2.5,ok,ok,0.25,0.2500001\n";
         let speedup: Vec<SpeedupRow> = records::table::from_reader(speedup_csv.as_bytes()).unwrap();
+        let hot_csv = "category,share,seconds,frequency_hz,git_rev\n\
+                       KKT solves,0.75,8,4999,abc\n\
+                       certification (KKT residuals),0.25,8,4999,abc\n";
+        let hot: Vec<HotSolveRow> = records::table::from_reader(hot_csv.as_bytes()).unwrap();
         let md = section(
             &dof,
             &profile,
+            &hot,
             &speedup,
             &Runs::new(Vec::new()),
             &Timings::default(),
@@ -784,6 +830,12 @@ mod tests {
             ),
             "{md}"
         );
+        // Certification a quarter of the hot solve: the rest is 3 x 0.75 RHS evaluations.
+        assert!(
+            md.contains("takes 25.0 % of it: the rest would take 2.25e0 times one LVI-PDNN RHS")
+                && md.contains("| certification (KKT residuals) | 25.0 % |"),
+            "{md}"
+        );
         assert!(
             md.contains("![jia2019: cost against N](figures/dof-cost__jia2019.svg)"),
             "{md}"
@@ -815,6 +867,7 @@ mod tests {
     #[test]
     fn without_the_csv_the_section_says_how_to_produce_it() {
         let md = section(
+            &[],
             &[],
             &[],
             &[],

@@ -1,0 +1,58 @@
+"""Sorts the self-time lines of `perf report --no-children --sort sym --stdio` over the
+active-set bench (benches/profile/active_set.sh) by what the solver was doing, and prints one CSV
+row per category with its share of the solve's samples (the bench harness excluded).
+
+Categories, by the function a sample's instruction pointer was in:
+- KKT factorisation and solves: the Schur-complement factorisation of the working set's KKT
+  matrix (Cholesky of P, Y = L^-1 C', Cholesky of S), its triangular solves and the one step of
+  iterative refinement (solvers::kkt_schur, the active set's factor_and_solve and
+  solve_refined, the LU fallback);
+- certification: the KKT residuals every answer is checked by (schemes::qp::Qp::kkt_residuals);
+- QP validation: the shapes and finiteness of the QP's data (schemes::qp::Qp::validate);
+- working-set logic: loading the warm set, the primal feasibility and multiplier checks, the
+  rows' right-hand sides and dot products (the rest of solvers::active_set but finish);
+- the answer: x, the multipliers and the objective written out (ActiveSetSolver::finish);
+- other: anything else in the solver's process (copies, allocation).
+The bench harness itself (criterion, the closure's loop) is left out of the shares.
+
+Usage: active_set.py REPORT SECONDS FREQ_HZ GIT_REV
+"""
+import csv
+import re
+import sys
+
+CATEGORIES = [  # (category, pattern), first match wins
+    ("certification (KKT residuals)", re.compile(r"kkt_residuals")),
+    ("QP validation", re.compile(r"Qp::validate")),
+    ("KKT factorisation and solves (Schur complement, refinement)",
+     re.compile(r"kkt_schur|factor_and_solve|solve_refined|lu_factor|lu_solve")),
+    ("the answer (x, multipliers, objective)", re.compile(r"ActiveSetSolver::finish")),
+    ("working-set logic (warm set, feasibility and multiplier checks)",
+     re.compile(r"solvers::active_set::")),
+]
+HARNESS = re.compile(r"criterion|Bencher|iter_batched|black_box")
+LINE = re.compile(r"^\s*([0-9.]+)%\s+\[\.\]\s+(.*)$")
+
+
+def main():
+    path, seconds, freq, rev = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4]
+    shares = {name: 0.0 for name, _ in CATEGORIES}
+    shares["other"] = 0.0
+    with open(path) as f:
+        for line in f:
+            m = LINE.match(line)
+            if not m:
+                continue
+            pct, sym = float(m.group(1)), m.group(2)
+            if HARNESS.search(sym):
+                continue
+            name = next((n for n, p in CATEGORIES if p.search(sym)), "other")
+            shares[name] += pct
+    total = sum(shares.values())
+    out = csv.writer(sys.stdout, lineterminator="\n")
+    out.writerow(["category", "share", "seconds", "frequency_hz", "git_rev"])
+    for name, pct in sorted(shares.items(), key=lambda kv: -kv[1]):
+        out.writerow([name, f"{pct / total:.4f}", seconds, freq, rev])
+
+
+main()

@@ -1,0 +1,31 @@
+#!/bin/sh
+# Profiles the hot-started active-set solve of the 7-variable QP (criterion bench
+# `jia2019/exact-active-set/hot` of benches/benches/solvers.rs) and writes
+# results/profile-active-set.csv (the table under the report's per-instant costs, "Where the hot
+# solve's time goes"): perf samples the bench binary (release build with debug info) for
+# PROFILE_SECONDS seconds of criterion's --profile-time loop, pinned to one CPU, and active_set.py sorts
+# the samples by the function they were in (self time; the module doc of active_set.py lists
+# the categories). Run from the repository root; re-render the report with
+# `reproduce report --accept-edited`. Needs `perf` (Debian: linux-perf) and python3.
+# Usage: [PROFILE_SECONDS=10] benches/profile/active_set.sh
+set -eu
+seconds="${PROFILE_SECONDS:-10}"
+freq=4999
+target="${CARGO_TARGET_DIR:-target}"
+out="$target/profile"
+mkdir -p "$out"
+bench=$(cargo bench -p driftbench-benches --bench solvers --no-run --message-format=json 2>/dev/null \
+    | python3 -c 'import json,sys
+for line in sys.stdin:
+    m = json.loads(line)
+    if m.get("reason") == "compiler-artifact" and m.get("target", {}).get("name") == "solvers" and m.get("executable"):
+        print(m["executable"])')
+cpu=$(( $(nproc) - 1 ))
+perf record -q -F "$freq" -o "$out/active-set.data" -- taskset -c "$cpu" "$bench" --bench \
+    --profile-time "$seconds" 'jia2019/exact-active-set/hot' >/dev/null 2>&1
+perf report -i "$out/active-set.data" --no-children --sort sym --stdio 2>/dev/null \
+    > "$out/active-set.report"
+rev=$(git rev-parse --short=12 HEAD)
+python3 benches/profile/active_set.py "$out/active-set.report" "$seconds" "$freq" "$rev" \
+    > results/profile-active-set.csv
+echo "wrote results/profile-active-set.csv"
