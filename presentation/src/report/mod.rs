@@ -256,7 +256,16 @@ pub fn to_markdown(inputs: &Inputs) -> String {
     out.push('\n');
 
     out.push_str(&performance::section(
-        dof_cost, profile, hot_solve, speedup, runs, timings, papers, figures,
+        &performance::Measurements {
+            dof: dof_cost,
+            profile,
+            hot: hot_solve,
+            speedup,
+            timings,
+        },
+        runs,
+        papers,
+        figures,
     ));
     out.push_str(&python::call_cost(&python.call_cost));
     out.push_str(&control::section(control, runs, figures));

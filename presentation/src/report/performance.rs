@@ -84,17 +84,31 @@ fn schemes(dof: &[DofCostRow]) -> Vec<&str> {
     out
 }
 
+/// The measurements the `## Performance` section reads besides the runs: each a results file,
+/// empty where absent.
+#[derive(Clone, Copy, Debug)]
+pub struct Measurements<'a> {
+    /// `results/dof-cost.csv`.
+    pub dof: &'a [DofCostRow],
+    /// `results/profile.csv`.
+    pub profile: &'a [ProfileRow],
+    /// `results/profile-active-set.csv`.
+    pub hot: &'a [HotSolveRow],
+    /// `results/speedup.csv`.
+    pub speedup: &'a [SpeedupRow],
+    /// `results/leaderboard-timing.csv`.
+    pub timings: &'a Timings,
+}
+
 /// The `## Performance` section.
-pub fn section(
-    dof: &[DofCostRow],
-    profile: &[ProfileRow],
-    hot: &[HotSolveRow],
-    speedup: &[SpeedupRow],
-    runs: &Runs,
-    timings: &Timings,
-    papers: &Papers,
-    figures: &[String],
-) -> String {
+pub fn section(m: &Measurements, runs: &Runs, papers: &Papers, figures: &[String]) -> String {
+    let Measurements {
+        dof,
+        profile,
+        hot,
+        speedup,
+        timings,
+    } = *m;
     let mut out = String::from(
         "## Performance\n\nWhat an instant and a run cost: the networks' evaluations against \
          the exact solvers, against the number of joints, and the whole runs against the papers' \
@@ -777,12 +791,14 @@ mod tests {
                        certification (KKT residuals),0.25,8,4999,abc\n";
         let hot: Vec<HotSolveRow> = records::table::from_reader(hot_csv.as_bytes()).unwrap();
         let md = section(
-            &dof,
-            &profile,
-            &hot,
-            &speedup,
+            &Measurements {
+                dof: &dof,
+                profile: &profile,
+                hot: &hot,
+                speedup: &speedup,
+                timings: &Timings::default(),
+            },
             &Runs::new(Vec::new()),
-            &Timings::default(),
             &Papers::default(),
             &figures,
         );
@@ -867,12 +883,14 @@ mod tests {
     #[test]
     fn without_the_csv_the_section_says_how_to_produce_it() {
         let md = section(
-            &[],
-            &[],
-            &[],
-            &[],
+            &Measurements {
+                dof: &[],
+                profile: &[],
+                hot: &[],
+                speedup: &[],
+                timings: &Timings::default(),
+            },
             &Runs::new(Vec::new()),
-            &Timings::default(),
             &Papers::default(),
             &[],
         );
