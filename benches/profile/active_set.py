@@ -15,7 +15,7 @@ Categories, by the function a sample's instruction pointer was in:
 - other: anything else in the solver's process (copies, allocation).
 The bench harness itself (criterion, the closure's loop) is left out of the shares.
 
-Usage: active_set.py REPORT SECONDS FREQ_HZ GIT_REV
+Usage: active_set.py REPORT BENCH SECONDS FREQ_HZ GIT_REV
 """
 import csv
 import re
@@ -35,7 +35,7 @@ LINE = re.compile(r"^\s*([0-9.]+)%\s+\[\.\]\s+(.*)$")
 
 
 def main():
-    path, seconds, freq, rev = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4]
+    path, bench, seconds, freq, rev = sys.argv[1:6]
     shares = {name: 0.0 for name, _ in CATEGORIES}
     shares["other"] = 0.0
     with open(path) as f:
@@ -50,9 +50,9 @@ def main():
             shares[name] += pct
     total = sum(shares.values())
     out = csv.writer(sys.stdout, lineterminator="\n")
-    out.writerow(["category", "share", "seconds", "frequency_hz", "git_rev"])
+    out.writerow(["category", "share", "bench", "seconds", "frequency_hz", "git_rev"])
     for name, pct in sorted(shares.items(), key=lambda kv: -kv[1]):
-        out.writerow([name, f"{pct / total:.4f}", seconds, freq, rev])
+        out.writerow([name, f"{pct / total:.4f}", bench, seconds, freq, rev])
 
 
 main()

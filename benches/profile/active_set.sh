@@ -20,12 +20,13 @@ for line in sys.stdin:
     m = json.loads(line)
     if m.get("reason") == "compiler-artifact" and m.get("target", {}).get("name") == "solvers" and m.get("executable"):
         print(m["executable"])')
+bench_id='jia2019/exact-active-set/hot'
 cpu=$(( $(nproc) - 1 ))
 perf record -q -F "$freq" -o "$out/active-set.data" -- taskset -c "$cpu" "$bench" --bench \
-    --profile-time "$seconds" 'jia2019/exact-active-set/hot' >/dev/null 2>&1
+    --profile-time "$seconds" "$bench_id" >/dev/null 2>&1
 perf report -i "$out/active-set.data" --no-children --sort sym --stdio 2>/dev/null \
     > "$out/active-set.report"
 rev=$(git rev-parse --short=12 HEAD)
-python3 benches/profile/active_set.py "$out/active-set.report" "$seconds" "$freq" "$rev" \
+python3 benches/profile/active_set.py "$out/active-set.report" "$bench_id" "$seconds" "$freq" "$rev" \
     > results/profile-active-set.csv
 echo "wrote results/profile-active-set.csv"

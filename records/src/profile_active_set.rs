@@ -23,6 +23,8 @@ pub struct HotSolveRow {
     pub category: String,
     /// Samples over the solve's samples.
     pub share: f64,
+    /// The criterion bench profiled (group/function).
+    pub bench: String,
     /// Seconds of criterion's profiling loop the samples were taken over.
     pub seconds: f64,
     pub frequency_hz: f64,

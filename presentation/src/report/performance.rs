@@ -390,10 +390,11 @@ fn hot_solve_profile(hot: &[HotSolveRow], ratio: f64, network: &str) -> String {
             )
         });
     format!(
-        "Where the hot solve's time goes: a sampling profile of the criterion bench \
-         `jia2019/exact-active-set/hot` ({} s at {} Hz, one pinned CPU, revision `{}`; \
+        "Where the hot solve's time goes: a sampling profile of the criterion bench `{}` ({} s \
+         at {} Hz, one pinned CPU, revision `{}`; \
          `benches/profile/active_set.sh` writes `results/{}`), each sample by the function it \
          was in, the bench harness left out.{without}\n\n{}\n",
+        first.bench,
         first.seconds,
         first.frequency_hz,
         first.git_rev,
@@ -786,9 +787,9 @@ mod tests {
                            demo,e,v,a,old,new,3,2.0,1.0,2.0,3.0,1.5,2.0,ok,ok,0.5,0.5\n\
                            demo,e,v,b,old,new,3,4.0,1.0,4.0,5.0,2.0,2.5,ok,ok,0.25,0.2500001\n";
         let speedup: Vec<SpeedupRow> = records::table::from_reader(speedup_csv.as_bytes()).unwrap();
-        let hot_csv = "category,share,seconds,frequency_hz,git_rev\n\
-                       KKT solves,0.75,8,4999,abc\n\
-                       certification (KKT residuals),0.25,8,4999,abc\n";
+        let hot_csv = "category,share,bench,seconds,frequency_hz,git_rev\n\
+                       KKT solves,0.75,demo/hot,8,4999,abc\n\
+                       certification (KKT residuals),0.25,demo/hot,8,4999,abc\n";
         let hot: Vec<HotSolveRow> = records::table::from_reader(hot_csv.as_bytes()).unwrap();
         let md = section(
             &Measurements {
