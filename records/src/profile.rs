@@ -52,6 +52,11 @@ impl ProfileRow {
     }
 }
 
+/// The rows of one paper's profile, in file order.
+pub fn of_paper(rows: &[ProfileRow], paper: &str) -> Vec<ProfileRow> {
+    rows.iter().filter(|r| r.paper == paper).cloned().collect()
+}
+
 /// The simulation's samples over its floor's (None without simulation or floor samples).
 pub fn floor_ratio(rows: &[ProfileRow]) -> Option<f64> {
     let simulation = rows.iter().filter(|r| r.part == SIMULATION);

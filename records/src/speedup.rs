@@ -67,13 +67,7 @@ pub struct PaperSpeedup {
 
 /// Per paper, in the order the papers first appear in `rows`.
 pub fn by_paper(rows: &[SpeedupRow]) -> Vec<PaperSpeedup> {
-    let mut papers: Vec<&str> = Vec::new();
-    for r in rows {
-        if !papers.contains(&r.paper.as_str()) {
-            papers.push(&r.paper);
-        }
-    }
-    papers
+    crate::table::distinct(rows, |r| &r.paper)
         .into_iter()
         .map(|paper| {
             let runs: Vec<&SpeedupRow> = rows.iter().filter(|r| r.paper == paper).collect();

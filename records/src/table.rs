@@ -290,6 +290,19 @@ pub fn read_if_present<T: Row>(path: &Path) -> Result<Vec<T>, TableError> {
     read(path)
 }
 
+/// The distinct values of `key` over `rows`, in the order they first appear (the papers of a
+/// profile, the schemes of a cost measurement, the task sets of a leaderboard).
+pub fn distinct<'a, T>(rows: &'a [T], key: impl Fn(&'a T) -> &'a str) -> Vec<&'a str> {
+    let mut out: Vec<&str> = Vec::new();
+    for r in rows {
+        let k = key(r);
+        if !out.contains(&k) {
+            out.push(k);
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -320,6 +333,13 @@ mod tests {
             drift: drift.to_vec(),
             norm: (!drift.is_empty()).then_some(1.5),
         }
+    }
+
+    #[test]
+    fn distinct_keeps_the_first_appearance_order() {
+        let rows = ["b", "a", "b", "c", "a"];
+        assert_eq!(distinct(&rows, |r| r), ["b", "a", "c"]);
+        assert!(distinct(&[] as &[&str], |r| r).is_empty());
     }
 
     #[test]

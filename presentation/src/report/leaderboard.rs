@@ -78,13 +78,7 @@ pub fn section(runs: &Runs, timings: &Timings) -> String {
 
 /// The task sets in the rows' order.
 fn sets(rows: &[LeaderboardRow]) -> Vec<&str> {
-    let mut out: Vec<&str> = Vec::new();
-    for r in rows {
-        if !out.contains(&r.task_set.as_str()) {
-            out.push(&r.task_set);
-        }
-    }
-    out
+    records::table::distinct(rows, |r| &r.task_set)
 }
 
 /// A ratio to the best with three significant digits (`1.00`, `12.3`, `456`), scientific above.

@@ -75,13 +75,7 @@ fn find<'a>(
 
 /// The schemes of the measurement, in file order.
 fn schemes(dof: &[DofCostRow]) -> Vec<&str> {
-    let mut out: Vec<&str> = Vec::new();
-    for r in dof {
-        if !out.contains(&r.scheme.as_str()) {
-            out.push(&r.scheme);
-        }
-    }
-    out
+    records::table::distinct(dof, |r| &r.scheme)
 }
 
 /// The measurements the `## Performance` section reads besides the runs: each a results file,
@@ -150,12 +144,7 @@ fn where_time_goes(profile: &[ProfileRow], papers: &Papers) -> String {
             records::profile::FILE
         );
     };
-    let mut profiled: Vec<&str> = Vec::new();
-    for r in profile {
-        if !profiled.contains(&r.paper.as_str()) {
-            profiled.push(&r.paper);
-        }
-    }
+    let profiled = records::table::distinct(profile, |r| &r.paper);
     let mut out = format!(
         "### Where the time goes\n\nA sampling profile of `reproduce --paper PAPER \
          --skip-explain --threads 1 --dry-run` for each of {}, {} passes pinned to one CPU at {} \
@@ -176,11 +165,7 @@ fn where_time_goes(profile: &[ProfileRow], papers: &Papers) -> String {
     );
     let timed = papers.timed_papers();
     for paper in profiled {
-        let rows: Vec<ProfileRow> = profile
-            .iter()
-            .filter(|r| r.paper == paper)
-            .cloned()
-            .collect();
+        let rows = records::profile::of_paper(profile, paper);
         out.push_str(&paper_profile(&rows, timed.contains(&paper), papers));
     }
     out
@@ -214,19 +199,14 @@ fn paper_profile(profile: &[ProfileRow], timed: bool, papers: &Papers) -> String
         .filter(|r| r.part == records::profile::SIMULATION)
         .map(|r| r.ms_per_pass / 1e3)
         .sum();
-    let paper_s: f64 = papers
-        .timed_experiments()
-        .iter()
-        .flat_map(|exp| papers.times_of(exp))
-        .map(|(_, t)| t)
-        .sum();
+    let paper_s: f64 = papers.timed_values().map(|(v, _)| v.value).sum();
     let mut said = String::new();
     if timed && simulation_s > 0.0 && paper_s > 0.0 {
         said.push_str(&format!(
             " Over the {} runs the papers time, together, the MATLAB times ({} s) are {} times \
              the simulation's CPU time per pass ({} s); the target of {}x applies to each run's \
              simulation.",
-            profile_runs(papers),
+            papers.timed_values().count(),
             sci(paper_s),
             sci(paper_s / simulation_s),
             sci(simulation_s),
@@ -250,15 +230,6 @@ fn paper_profile(profile: &[ProfileRow], timed: bool, papers: &Papers) -> String
         profile[0].paper,
         t.render()
     )
-}
-
-/// The network runs the papers publish a MATLAB time for.
-fn profile_runs(papers: &Papers) -> usize {
-    papers
-        .timed_experiments()
-        .iter()
-        .map(|exp| papers.times_of(exp).count())
-        .sum()
 }
 
 /// The machine and revision of the measurement.

@@ -98,11 +98,7 @@ pub fn section(rows: &[SpeedupRow], profile: &[ProfileRow], papers: &Papers) -> 
 
 /// Where a paper that missed the target spends its time, from its profile.
 fn why_missed(paper: &str, profile: &[ProfileRow]) -> String {
-    let rows: Vec<ProfileRow> = profile
-        .iter()
-        .filter(|r| r.paper == paper)
-        .cloned()
-        .collect();
+    let rows = records::profile::of_paper(profile, paper);
     if rows.is_empty() {
         return format!(
             "**{paper}** has no profile in `results/{}`.\n\n",
