@@ -24,7 +24,7 @@ use catalog::integrator::IntegratorSettings;
 use catalog::solver_spec::SolverSpec;
 use nalgebra::{SMatrix, SVector, Vector3};
 use robots::{JointLimits, Robot};
-use schemes::kong2019::Kong2019;
+use schemes::velocity_rmp::VelocityRmp;
 use schemes::paths::{build_path, PathSpec};
 use simulation::run::build_network;
 use simulation::simulate::{simulate, Outcome, Settings, Solver};
@@ -109,7 +109,7 @@ fn run() -> Vec<(String, f64, f64)> {
             .expect("the circle is a known path"),
     );
     // kong2019 eq. 22 with mu = 1, k_p = 1.
-    let scheme = Kong2019::znn(robot.clone(), path.clone(), theta_star, 1.0, 1.0);
+    let scheme = VelocityRmp::znn(robot.clone(), path.clone(), theta_star, 1.0, 1.0);
     let dims = schemes::scheme::Scheme::dims(&scheme);
     // The networks as the papers integrate them (BDF, RelTol 1e-6, AbsTol 1e-8, as ode15s);
     // the exact column as the suite does (Dormand-Prince, RelTol 1e-11: converged).

@@ -49,6 +49,9 @@ pub enum SetupError {
     /// A network given by the caller (e.g. a Python network) could not be built: its message.
     #[error("{0}")]
     CustomNetwork(String),
+    /// Limits were given for a robot whose dynamics model the scheme reads its limits from.
+    #[error("joint_limits / velocity_limits cannot replace the limits of \"{robot}\" for the acceleration-level scheme, which reads them from the robot's dynamics model")]
+    LimitsWithDynamics { robot: String },
 }
 
 impl SetupError {
@@ -60,6 +63,7 @@ impl SetupError {
             SetupError::Path(_) => JobPart::Path,
             SetupError::Scheme { .. } => JobPart::Scheme,
             SetupError::Network { .. } | SetupError::CustomNetwork(_) => JobPart::Solver,
+            SetupError::LimitsWithDynamics { .. } => JobPart::Limits,
         }
     }
 }
@@ -282,6 +286,15 @@ pub enum FieldError {
     Scheme(#[from] SchemeError),
     #[error("variant runs nothing (exact = false and no solvers)")]
     RunsNothing,
+    #[error("joint {joint}: lower = {lower}, upper = {upper} (must be {requirement})")]
+    LimitOrder {
+        joint: usize,
+        lower: f64,
+        upper: f64,
+        requirement: &'static str,
+    },
+    #[error(transparent)]
+    Numerical(#[from] crate::numerical_spec::NumericalSpecError),
     /// A run of the variant cannot be built (robot, pose, path, scheme or network).
     #[error(transparent)]
     Setup(#[from] SetupError),

@@ -14,6 +14,7 @@ use crate::error::{
 };
 use crate::integrator::{IntegratorSettings, Method};
 use crate::naming::{slug, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
+use crate::numerical_spec::NumericalSpec;
 use crate::run_key::{RunKey, TaskKey, EXACT_ID};
 use crate::solver_spec::SolverSpec;
 use schemes::paths::PathSpec;
@@ -54,6 +55,12 @@ pub struct Experiment {
     /// x*(t, theta) is only piecewise smooth and has no cheap Jacobian).
     #[serde(default = "default_exact_integrator")]
     pub exact_integrator: IntegratorSettings,
+    /// Joint-angle limits that replace the robot's for every variant (rad).
+    #[serde(default)]
+    pub joint_limits: Option<LimitsSpec>,
+    /// Joint-velocity limits that replace the robot's for every variant (rad/s).
+    #[serde(default)]
+    pub velocity_limits: Option<LimitsSpec>,
     /// Where the neural runs are scored against the exact optimum: `"every-step"` (default),
     /// `{ max-instants = 2000 }` (a bounded number of exact solves per run) or `"off"`.
     #[serde(default)]
@@ -90,6 +97,9 @@ pub struct Variant {
     pub scheme: SchemeSpec,
     #[serde(default)]
     pub solvers: Vec<SolverSpec>,
+    /// Numerical QP methods run as this variant's solvers ([`crate::numerical_spec`]).
+    #[serde(default)]
+    pub numerical: Vec<NumericalSpec>,
     /// Run the exact column (default true).
     #[serde(default = "yes")]
     pub exact: bool,
@@ -101,6 +111,12 @@ pub struct Variant {
     pub theta0: Option<Vec<f64>>,
     #[serde(default)]
     pub theta_ref: Option<Vec<f64>>,
+    /// Joint-angle limits of this variant (override the experiment's and the robot's).
+    #[serde(default)]
+    pub joint_limits: Option<LimitsSpec>,
+    /// Joint-velocity limits of this variant (override the experiment's and the robot's).
+    #[serde(default)]
+    pub velocity_limits: Option<LimitsSpec>,
     /// Integrator of this variant's neural runs (overrides the experiment's).
     #[serde(default)]
     pub integrator: Option<IntegratorSettings>,
@@ -142,6 +158,50 @@ impl Variant {
     }
 }
 
+/// Elementwise limits `lower <= value <= upper`, one entry per joint (an experiment's
+/// `joint_limits` in rad, `velocity_limits` in rad/s), replacing the robot model's.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct LimitsSpec {
+    pub lower: Vec<f64>,
+    pub upper: Vec<f64>,
+}
+
+impl LimitsSpec {
+    /// Checks `n` finite entries on each side with lower < upper; velocity limits (`velocity`)
+    /// must also hold 0 (lower < 0 < upper: the arm can stop, and the bound conversion of
+    /// robio2018 (10) stays feasible at rest).
+    fn check(&self, n: usize, velocity: bool) -> Result<(), FieldError> {
+        for v in [&self.lower, &self.upper] {
+            if v.len() != n {
+                return Err(FieldError::Length {
+                    given: v.len(),
+                    joints: n,
+                });
+            }
+            if v.iter().any(|x| !x.is_finite()) {
+                return Err(FieldError::NotFinite);
+            }
+        }
+        for (i, (lo, hi)) in self.lower.iter().zip(&self.upper).enumerate() {
+            let ok = lo < hi && (!velocity || (*lo < 0.0 && *hi > 0.0));
+            if !ok {
+                return Err(FieldError::LimitOrder {
+                    joint: i + 1,
+                    lower: *lo,
+                    upper: *hi,
+                    requirement: if velocity {
+                        "lower < 0 < upper"
+                    } else {
+                        "lower < upper"
+                    },
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
 /// Where a network's state starts: the papers leave it open, the group's code starts from zero.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
@@ -179,6 +239,8 @@ pub enum Scoring {
 pub enum SolverChoice {
     Exact,
     Neural(SolverSpec),
+    /// A numerical QP method iterated at every instant of a fixed-step loop.
+    Numerical(NumericalSpec),
 }
 
 /// The solver kind of the exact column (`solver_kind` in results); also its id.
@@ -194,6 +256,7 @@ impl SolverChoice {
         match self {
             SolverChoice::Exact => EXACT_KIND,
             SolverChoice::Neural(s) => s.kind(),
+            SolverChoice::Numerical(s) => s.method.id(),
         }
     }
 
@@ -202,6 +265,7 @@ impl SolverChoice {
         match self {
             SolverChoice::Exact => EXACT_ID.to_string(),
             SolverChoice::Neural(s) => s.id(),
+            SolverChoice::Numerical(s) => s.method.id().to_string(),
         }
     }
 
@@ -210,6 +274,7 @@ impl SolverChoice {
         match self {
             SolverChoice::Exact => EXACT_LABEL.to_string(),
             SolverChoice::Neural(s) => s.display_name(),
+            SolverChoice::Numerical(s) => s.display_name(),
         }
     }
 }
@@ -227,6 +292,10 @@ pub struct Job {
     pub path: PathSpec,
     pub theta0: Vec<f64>,
     pub theta_ref: Vec<f64>,
+    /// Joint-angle limits replacing the robot's (the variant's or experiment's `joint_limits`).
+    pub joint_limits: Option<LimitsSpec>,
+    /// Joint-velocity limits replacing the robot's.
+    pub velocity_limits: Option<LimitsSpec>,
     pub scheme: SchemeSpec,
     pub solver: SolverChoice,
     pub integrator: IntegratorSettings,
@@ -266,6 +335,8 @@ pub enum JobPart {
     Path,
     Scheme,
     Solver,
+    /// The `joint_limits` / `velocity_limits` override.
+    Limits,
 }
 
 impl JobPart {
@@ -278,6 +349,7 @@ impl JobPart {
             JobPart::Path => "path",
             JobPart::Scheme => "scheme",
             JobPart::Solver => "solvers",
+            JobPart::Limits => "joint_limits",
         }
     }
 }
@@ -368,6 +440,14 @@ impl PaperFile {
             }
             check_integrator(&e.integrator, at("integrator"))?;
             check_integrator(&e.exact_integrator, at("exact_integrator"))?;
+            for (name, limits, velocity) in [
+                ("joint_limits", &e.joint_limits, false),
+                ("velocity_limits", &e.velocity_limits, true),
+            ] {
+                if let Some(l) = limits {
+                    l.check(n, velocity).map_err(|err| field(at(name), err))?;
+                }
+            }
             if e.scoring == Scoring::MaxInstants(0) {
                 return Err(field(at("scoring"), FieldError::NoInstants));
             }
@@ -445,15 +525,32 @@ impl PaperFile {
                 v.scheme
                     .validate()
                     .map_err(|err| field(vat("scheme"), err))?;
-                if !v.exact && v.solvers.is_empty() {
+                if !v.exact && v.solvers.is_empty() && v.numerical.is_empty() {
                     return Err(field(vat("solvers"), FieldError::RunsNothing));
+                }
+                for (name, limits, velocity) in [
+                    ("joint_limits", &v.joint_limits, false),
+                    ("velocity_limits", &v.velocity_limits, true),
+                ] {
+                    if let Some(l) = limits {
+                        l.check(vn, velocity).map_err(|err| field(vat(name), err))?;
+                    }
+                }
+                let duration = v.path.as_ref().unwrap_or(&e.path).duration;
+                for (k, s) in v.numerical.iter().enumerate() {
+                    s.validate(duration)
+                        .map_err(|err| field(vat(&format!("numerical[{k}]")), err))?;
                 }
                 for (k, job) in self.variant_jobs(e, v).iter().enumerate() {
                     check(job).map_err(|err| {
                         let place = match err.part() {
-                            JobPart::Solver => {
+                            JobPart::Solver if k - usize::from(v.exact) < v.solvers.len() => {
                                 vat(&format!("solvers[{}]", k - usize::from(v.exact)))
                             }
+                            JobPart::Solver => vat(&format!(
+                                "numerical[{}]",
+                                k - usize::from(v.exact) - v.solvers.len()
+                            )),
                             JobPart::Path if v.path.is_some() => vat("path"),
                             JobPart::Path => at("path"),
                             part => vat(part.field()),
@@ -512,6 +609,11 @@ impl PaperFile {
             path: v.path.clone().unwrap_or_else(|| e.path.clone()),
             theta0,
             theta_ref,
+            joint_limits: v.joint_limits.clone().or_else(|| e.joint_limits.clone()),
+            velocity_limits: v
+                .velocity_limits
+                .clone()
+                .or_else(|| e.velocity_limits.clone()),
             scheme: v.scheme.clone(),
             solver: SolverChoice::Exact,
             integrator: e.exact_integrator,
@@ -534,6 +636,14 @@ impl PaperFile {
                 solver,
                 integrator,
                 network_init: v.network_init,
+                ..base.clone()
+            });
+        }
+        for s in &v.numerical {
+            let solver = SolverChoice::Numerical(*s);
+            jobs.push(Job {
+                expected_failure: v.expected_failure.as_ref().and_then(|f| f.of(&solver)),
+                solver,
                 ..base.clone()
             });
         }

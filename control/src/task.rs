@@ -11,7 +11,7 @@ use nalgebra::SVector;
 use robots::{Dynamics, Robot};
 use schemes::paths::Path;
 use schemes::scheme::Scheme;
-use simulation::run::build_cyclic_parts;
+use simulation::run::{build_cyclic_parts, job_robot};
 use simulation::run::check_job;
 use std::sync::Arc;
 
@@ -151,11 +151,13 @@ pub fn with_task<V: TaskVisitor>(
             dynamics: Option<Arc<dyn Dynamics<N>>>,
         ) -> Self::Output {
             let job = &self.task.job;
+            let setup = |e: catalog::error::SetupError| ControlError::Setup {
+                task: self.task.id(),
+                message: e.to_string(),
+            };
+            let robot = job_robot(job, robot, dynamics.is_some()).map_err(setup)?;
             let (path, scheme) = build_cyclic_parts::<N>(job, robot.clone(), dynamics, self.cycles)
-                .map_err(|e| ControlError::Setup {
-                    task: self.task.id(),
-                    message: e.to_string(),
-                })?;
+                .map_err(setup)?;
             let theta0 = SVector::<f64, N>::from_column_slice(&job.theta0);
             let period = path.duration() / self.cycles.max(1) as f64;
             Ok(self.visitor.visit(

@@ -27,7 +27,7 @@ use crate::instants::Instants;
 use nalgebra::{DVector, Matrix3xX};
 use records::dof_cost::{Quantity, RunCounts, SchemeKind};
 use robots::NLinkDyn;
-use schemes::kong2019::fill_qp;
+use schemes::velocity_rmp::fill_qp;
 use schemes::paths::build_path;
 use schemes::qp::{Qp, QpDims};
 use solvers::Backend;
@@ -38,7 +38,7 @@ pub const SIZES: [usize; 6] = [40, 50, 70, 100, 140, 200];
 /// States per case (fewer than the fixed path's: each holds an N x N network Jacobian).
 pub const STATES: usize = 20;
 
-/// kong2019's scheme name ([`schemes::kong2019::Kong2019::name`] of the ZNN variant).
+/// kong2019's scheme name ([`schemes::velocity_rmp::VelocityRmp::name`] of the ZNN variant).
 const KONG2019_NAME: &str = "ZNN";
 
 /// Prepares `case` (kong2019, any N >= 3) on the dynamic-size path with up to `states` states.

@@ -25,7 +25,7 @@ use nalgebra::SVector;
 use records::dof_cost::{Quantity, RunCounts, SchemeKind};
 use robots::{Dynamics, Robot};
 use schemes::jia2019::Jia2019;
-use schemes::kong2019::Kong2019;
+use schemes::velocity_rmp::VelocityRmp;
 use schemes::paths::{build_path, Path};
 use schemes::qp::{Qp, QpDims};
 use schemes::scheme::Scheme;
@@ -114,7 +114,7 @@ impl<const N: usize> Prepared<N> {
                 20.0,
                 20.0,
             )),
-            SchemeKind::Kong2019 => Box::new(Kong2019::znn(
+            SchemeKind::Kong2019 => Box::new(VelocityRmp::znn(
                 robot.clone(),
                 path.clone(),
                 theta0,

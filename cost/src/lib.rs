@@ -20,7 +20,7 @@
 //!   runs included, at states sampled from one exact run.
 //! - [`dynamic`]: N = [`dynamic::SIZES`] (40 ... 200), no instantiation per size: the arm is
 //!   [`robots::NLinkDyn`] (nalgebra `DVector`/`Matrix3xX`), kong2019's QP is written by
-//!   [`schemes::kong2019::fill_qp`], the one the scheme itself uses. Per-instant quantities
+//!   [`schemes::velocity_rmp::fill_qp`], the one the scheme itself uses. Per-instant quantities
 //!   only (see [`dynamic`] for why, and why not jia2019).
 //!
 //! Both share [`instants::Instants`], the per-instant quantities on a list of QPs; the dense LU

@@ -1,6 +1,6 @@
 //! The `failure_kind` column of `results/runs.csv`: what stopped a run, as a category a table
 //! can be grouped by (kebab-case in the file: `setup`, `exact-qp`, `diverged`, `non-finite`,
-//! `integrator`, `step-limit`, `wall-time`, `eval-budget`; empty for a completed run). The
+//! `integrator`, `step-limit`, `wall-time`, `eval-budget`, `numerical-method`; empty for a completed run). The
 //! engine (`simulation::error::RunError::kind`) says which category each of its errors is.
 
 use serde::{Deserialize, Serialize};
@@ -25,4 +25,7 @@ pub enum FailureKind {
     WallTime,
     /// The right-hand-side evaluation budget (`max_rhs_evals`) ran out.
     EvalBudget,
+    /// A numerical run solver did not meet its stopping rule at an instant (iteration limit,
+    /// a singular matrix its rule inverts, or a non-finite iterate).
+    NumericalMethod,
 }

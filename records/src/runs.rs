@@ -92,6 +92,11 @@ pub struct RunRow {
     pub qp_checks: usize,
     /// Largest relative |x_active_set - x_clarabel|_inf over those checks.
     pub qp_check_max_dx: Option<f64>,
+    /// A numerical run solver's iterations over the whole run (robio2018 (21) steps; empty for
+    /// the exact column and the networks).
+    pub solver_iterations: Option<u64>,
+    /// Its largest iteration count at one instant.
+    pub solver_iterations_max: Option<u64>,
     /// Wall time of the whole integration.
     pub wall_s: f64,
     /// Wall time of the simulation proper (arm + solver + integrator): `wall_s - observe_s`.
@@ -164,6 +169,8 @@ impl RunRow {
             qp_fallbacks: 0,
             qp_checks: 0,
             qp_check_max_dx: None,
+            solver_iterations: None,
+            solver_iterations_max: None,
             wall_s: 0.0,
             sim_s: 0.0,
             observe_s: 0.0,

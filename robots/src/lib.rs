@@ -30,6 +30,7 @@ pub mod geometric_jacobian;
 pub mod jaco2;
 pub mod jaco2_dynamics;
 pub mod katana;
+pub mod limited;
 pub mod nlink;
 pub mod nlink_dyn;
 pub mod panda;

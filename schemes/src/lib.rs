@@ -1,5 +1,7 @@
-//! Desired paths and the four papers' redundancy-resolution schemes, each turning
-//! (t, robot state) into one QP ([`qp::Qp`], which the solvers take).
+//! Desired paths and the papers' redundancy-resolution schemes, each turning (t, robot state)
+//! into one QP ([`qp::Qp`], which the solvers take). The velocity-level repetitive-motion
+//! scheme is composed from the vocabulary's terms ([`velocity_rmp`]); kong2019's two schemes
+//! and robio2018's RMP are presets of it.
 
 pub use error::QpError;
 pub use qp::{KktResiduals, Qp, QpDims, QpDuals};
@@ -7,7 +9,6 @@ pub use qp::{KktResiduals, Qp, QpDims, QpDuals};
 pub mod error;
 pub mod jia2019;
 pub mod joint_limits;
-pub mod kong2019;
 pub mod paths;
 pub mod qp;
 pub mod qp_dot;
@@ -16,5 +17,6 @@ pub mod scheme;
 pub mod sign_power;
 pub mod slug;
 pub mod spec;
+pub mod velocity_rmp;
 pub mod zhang2018;
 pub mod zhong2021;

@@ -2,7 +2,8 @@
 //!
 //! ```toml
 //! [scheme]
-//! kind = "jia2019"            # or zhong2021, zhang2018, kong2019-finite-time, kong2019-znn
+//! kind = "jia2019"            # or zhong2021, zhang2018, kong2019-finite-time, kong2019-znn,
+//!                             # velocity-rmp (the vocabulary's composed scheme)
 //! phi = 0.2
 //! tau = 0.4
 //! kappa = 20.0
@@ -13,6 +14,15 @@
 //! delta, upsilon, lambda = Lambda, default 20 as in every zhong2021 run), zhang2018 (zeta,
 //! alpha, beta, rho_v, rho_p), kong2019 finite time (beta_theta, k_p, alpha), kong2019 ZNN (mu,
 //! k_p). Unknown fields are rejected.
+//!
+//! `velocity-rmp` composes the velocity-level scheme from the vocabulary's terms
+//! ([`crate::velocity_rmp`], docs/schemes.md): `weight` (w of the velocity norm, default 1),
+//! `repetitive = "linear"` (default; g = lambda (theta - theta_ref)) or `"sign-power"` (g =
+//! lambda |e|^alpha sgn(e), with `alpha`), `lambda` (>= 0; 0 drops the term), `k_p` (tracking
+//! feedback, default 0) and `upsilon` (the bound conversion of the joint limits, robio2018 (10);
+//! absent: no bounds). kong2019's two schemes are presets of it. Every kind is also accepted
+//! under a name that says what it is: `vltco` (jia2019), `cmco` (zhong2021), `hl-jdf`
+//! (zhang2018), `finite-time-rmp` (kong2019-finite-time), `znn-rmp` (kong2019-znn).
 //!
 //! The RMP term's linear coefficient has three readings ([`RmpReading`], see [`crate::rmp`]):
 //! jia2019 takes `rmp = "printed"` (default, g = tau Lambda (theta - theta0)), `"expansion"`
@@ -30,10 +40,10 @@ use robots::{Dynamics, Robot};
 use serde::{Deserialize, Serialize};
 
 use crate::jia2019::Jia2019;
-use crate::kong2019::Kong2019;
 use crate::paths::Path;
 pub use crate::rmp::RmpReading;
 use crate::scheme::Scheme;
+use crate::velocity_rmp::{Repetitive, VelocityRmp, SMOOTHING};
 use crate::zhang2018::Zhang2018;
 use crate::zhong2021::Zhong2021;
 
@@ -64,6 +74,7 @@ fn is_default_zhong_tau(tau: &f64) -> bool {
 #[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum SchemeSpec {
     /// jia2019 eq. 2.17–2.20: MVN (phi = 1, tau = 0), MVN-INVM (0.2, 0), VLTCO (0.2, 0.4).
+    #[serde(alias = "vltco")]
     Jia2019 {
         phi: f64,
         tau: f64,
@@ -77,6 +88,7 @@ pub enum SchemeSpec {
         mu: f64,
     },
     /// zhong2021 CMCO eq. 2.16–2.18.
+    #[serde(alias = "cmco")]
     Zhong2021 {
         eta: f64,
         delta: f64,
@@ -95,6 +107,7 @@ pub enum SchemeSpec {
         tau: f64,
     },
     /// zhang2018 HL-JDF eq. 2.5–2.6 (MTN when zeta = 0).
+    #[serde(alias = "hl-jdf")]
     Zhang2018 {
         zeta: f64,
         alpha: f64,
@@ -102,14 +115,65 @@ pub enum SchemeSpec {
         rho_v: f64,
         rho_p: f64,
     },
-    /// kong2019 finite-time repeatable scheme, eq. 14.
+    /// kong2019 finite-time repeatable scheme, eq. 14 (a preset of [`SchemeSpec::VelocityRmp`]).
+    #[serde(alias = "finite-time-rmp")]
     Kong2019FiniteTime {
         beta_theta: f64,
         k_p: f64,
         alpha: f64,
     },
-    /// kong2019's ZNN repetitive baseline, eq. 22.
+    /// kong2019's ZNN repetitive baseline, eq. 22 (a preset of [`SchemeSpec::VelocityRmp`]).
+    #[serde(alias = "znn-rmp")]
     Kong2019Znn { mu: f64, k_p: f64 },
+    /// The velocity-level scheme composed from the vocabulary ([`crate::velocity_rmp`]).
+    VelocityRmp {
+        /// Weight w of the velocity norm (P = w I).
+        #[serde(default = "one", skip_serializing_if = "is_one")]
+        weight: f64,
+        /// Form of the repetitive term.
+        #[serde(default, skip_serializing_if = "RepetitiveForm::is_linear")]
+        repetitive: RepetitiveForm,
+        /// Gain lambda of the repetitive term (0: none).
+        lambda: f64,
+        /// Exponent alpha of the sign-power form (ignored by the linear form).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        alpha: Option<f64>,
+        /// Position feedback gain k_p (default 0: b = rdot*).
+        #[serde(default, skip_serializing_if = "is_zero")]
+        k_p: f64,
+        /// Gain upsilon of the bound conversion robio2018 (10) (absent: no bounds).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        upsilon: Option<f64>,
+    },
+}
+
+/// The form of the vocabulary's repetitive term ([`Repetitive`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum RepetitiveForm {
+    /// g = lambda (theta - theta_ref).
+    #[default]
+    Linear,
+    /// g = lambda |e|^alpha sgn(e), e = theta - theta_ref.
+    SignPower,
+}
+
+impl RepetitiveForm {
+    fn is_linear(&self) -> bool {
+        *self == RepetitiveForm::Linear
+    }
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+fn is_one(v: &f64) -> bool {
+    *v == 1.0
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
 }
 
 /// Why a [`SchemeSpec`] could not be turned into a scheme.
@@ -185,8 +249,16 @@ fn check(
 pub const JIA2019_KIND: &str = "jia2019";
 /// The `kind` tag of kong2019's ZNN scheme ([`SchemeSpec::Kong2019Znn`]).
 pub const KONG2019_ZNN_KIND: &str = "kong2019-znn";
+/// The `kind` tag of the vocabulary's composed scheme ([`SchemeSpec::VelocityRmp`]).
+pub const VELOCITY_RMP_KIND: &str = "velocity-rmp";
 
 impl SchemeSpec {
+    /// Whether the scheme reads kinematics and limits from a dynamics model (zhang2018's
+    /// acceleration-level HL-JDF).
+    pub fn needs_dynamics(&self) -> bool {
+        matches!(self, SchemeSpec::Zhang2018 { .. })
+    }
+
     /// The spec's `kind` tag.
     pub fn kind(&self) -> &'static str {
         match self {
@@ -195,6 +267,7 @@ impl SchemeSpec {
             SchemeSpec::Zhang2018 { .. } => "zhang2018",
             SchemeSpec::Kong2019FiniteTime { .. } => "kong2019-finite-time",
             SchemeSpec::Kong2019Znn { .. } => KONG2019_ZNN_KIND,
+            SchemeSpec::VelocityRmp { .. } => VELOCITY_RMP_KIND,
         }
     }
 
@@ -241,6 +314,29 @@ impl SchemeSpec {
                 format!("finite-time (beta_theta={beta_theta}, alpha={alpha})")
             }
             SchemeSpec::Kong2019Znn { mu, .. } => format!("ZNN (mu={mu})"),
+            SchemeSpec::VelocityRmp {
+                weight,
+                repetitive,
+                lambda,
+                alpha,
+                k_p,
+                upsilon,
+            } => {
+                let mut parts = vec![format!("lambda={lambda}")];
+                if repetitive == RepetitiveForm::SignPower {
+                    parts.push(format!("alpha={}", alpha.unwrap_or(f64::NAN)));
+                }
+                if weight != 1.0 {
+                    parts.push(format!("w={weight}"));
+                }
+                if k_p != 0.0 {
+                    parts.push(format!("k_p={k_p}"));
+                }
+                if let Some(u) = upsilon {
+                    parts.push(format!("upsilon={u}"));
+                }
+                format!("RMP ({})", parts.join(", "))
+            }
         }
     }
 
@@ -330,7 +426,7 @@ impl SchemeSpec {
                 )
             }
             SchemeSpec::Kong2019Znn { mu, k_p } => {
-                check(s, "mu", mu, mu > 0.0, "finite and > 0")?;
+                check(s, "mu", mu, mu >= 0.0, "finite and >= 0 (0: no repetitive term)")?;
                 check(
                     s,
                     "k_p",
@@ -338,6 +434,56 @@ impl SchemeSpec {
                     k_p >= 0.0,
                     "finite and >= 0 (0: no position feedback)",
                 )
+            }
+            SchemeSpec::VelocityRmp {
+                weight,
+                repetitive,
+                lambda,
+                alpha,
+                k_p,
+                upsilon,
+            } => {
+                check(s, "weight", weight, weight > 0.0, "finite and > 0")?;
+                check(
+                    s,
+                    "lambda",
+                    lambda,
+                    lambda >= 0.0,
+                    "finite and >= 0 (0: no repetitive term)",
+                )?;
+                match (repetitive, alpha) {
+                    (RepetitiveForm::SignPower, Some(a)) => {
+                        check(s, "alpha", a, a > 0.0 && a <= 1.0, "in (0, 1]")?
+                    }
+                    (RepetitiveForm::SignPower, None) => {
+                        return Err(SchemeError::InvalidParameter {
+                            scheme: s,
+                            field: "alpha",
+                            value: f64::NAN,
+                            requirement: "given, in (0, 1], for repetitive = \"sign-power\"",
+                        })
+                    }
+                    (RepetitiveForm::Linear, Some(a)) => {
+                        return Err(SchemeError::InvalidParameter {
+                            scheme: s,
+                            field: "alpha",
+                            value: a,
+                            requirement: "absent for repetitive = \"linear\" (it has no exponent)",
+                        })
+                    }
+                    (RepetitiveForm::Linear, None) => {}
+                }
+                check(
+                    s,
+                    "k_p",
+                    k_p,
+                    k_p >= 0.0,
+                    "finite and >= 0 (0: no position feedback)",
+                )?;
+                if let Some(u) = upsilon {
+                    check(s, "upsilon", u, u > 0.0, "finite and > 0 (absent: no bounds)")?;
+                }
+                Ok(())
             }
         }
     }
@@ -403,11 +549,31 @@ pub fn build_scheme<const N: usize>(
             beta_theta,
             k_p,
             alpha,
-        } => Box::new(Kong2019::finite_time(
+        } => Box::new(VelocityRmp::finite_time(
             robot, path, theta_ref, beta_theta, alpha, k_p,
         )),
         SchemeSpec::Kong2019Znn { mu, k_p } => {
-            Box::new(Kong2019::znn(robot, path, theta_ref, mu, k_p))
+            Box::new(VelocityRmp::znn(robot, path, theta_ref, mu, k_p))
+        }
+        SchemeSpec::VelocityRmp {
+            weight,
+            repetitive,
+            lambda,
+            alpha,
+            k_p,
+            upsilon,
+        } => {
+            let term = match repetitive {
+                RepetitiveForm::Linear => Repetitive::Linear { lambda },
+                RepetitiveForm::SignPower => Repetitive::SignPower {
+                    beta: lambda,
+                    alpha: alpha.unwrap_or(1.0),
+                    smoothing: SMOOTHING,
+                },
+            };
+            Box::new(VelocityRmp::new(
+                robot, path, theta_ref, weight, term, k_p, upsilon, "RMP",
+            ))
         }
     })
 }

@@ -12,7 +12,7 @@ use nalgebra::{DMatrix, SVector, Vector3};
 use robots::{Dynamics, JointLimits, Robot};
 use schemes::jia2019::Jia2019;
 use schemes::joint_limits::{merged_bounds, piecewise_bounds};
-use schemes::kong2019::{finite_time_c, Kong2019};
+use schemes::velocity_rmp::{finite_time_c, VelocityRmp};
 use schemes::paths::Path;
 use schemes::qp_dot::{self, QpDotScratch};
 use schemes::scheme::{Level, Scheme};
@@ -458,8 +458,8 @@ fn kong2019_c_is_odd_and_zero_at_the_reference() {
             assert!(cp[i] * e[i] >= 0.0, "c has the sign of e");
         }
     }
-    let ft = Kong2019::<N>::finite_time(robot(), path(), star, 1.0, alpha, 1.0);
-    let znn = Kong2019::<N>::znn(robot(), path(), star, 2.0, 1.0);
+    let ft = VelocityRmp::<N>::finite_time(robot(), path(), star, 1.0, alpha, 1.0);
+    let znn = VelocityRmp::<N>::znn(robot(), path(), star, 2.0, 1.0);
     let mut qp = ft.new_qp();
     for s in [&ft as &dyn Scheme<N>, &znn] {
         s.build(0.5, &star, &star, &mut qp);

@@ -5,6 +5,7 @@
 
 use catalog::error::SetupError;
 use records::failure_kind::FailureKind;
+use solvers::lvi_numerical::LviError;
 use solvers::ode::OdeError;
 use solvers::ExactError;
 
@@ -23,6 +24,9 @@ pub enum RunError {
     /// The integrator stopped.
     #[error(transparent)]
     Integration(#[from] OdeError),
+    /// A numerical run solver failed at the instant t.
+    #[error("numerical method at t = {t:.6}: {error}")]
+    Numerical { t: f64, error: LviError },
 }
 
 impl RunError {
@@ -32,6 +36,7 @@ impl RunError {
             RunError::Setup(_) => FailureKind::Setup,
             RunError::ExactQp { .. } => FailureKind::ExactQp,
             RunError::Diverged { .. } => FailureKind::Diverged,
+            RunError::Numerical { .. } => FailureKind::NumericalMethod,
             RunError::Integration(e) => match e {
                 OdeError::Solver { .. } | OdeError::Stopped { .. } => FailureKind::Integrator,
                 OdeError::NonFinite { .. } => FailureKind::NonFinite,

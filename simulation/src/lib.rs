@@ -17,6 +17,7 @@
 pub mod coupled;
 pub mod error;
 pub mod metrics;
+pub mod numerical;
 pub mod row;
 pub mod run;
 pub mod runner;

@@ -83,6 +83,7 @@ fn run_job_as(job: &Job, network: Option<NetworkBuilder<'_>>) -> RunRecord {
         score_failures: 0,
         observe_seconds: 0.0,
         trace: Vec::new(),
+        iterations: None,
     });
     RunRecord {
         job: job.clone(),
@@ -115,6 +116,7 @@ pub fn check_job(job: &Job) -> Result<(), SetupError> {
                 return Err(SetupError::PoseNotFinite { part });
             }
         }
+        let robot = job_robot(job, robot, dynamics.is_some())?;
         let (_, scheme) = build_parts::<N>(job, robot, dynamics)?;
         if let SolverChoice::Neural(spec) = &job.solver {
             build_network(spec, scheme.dims(), &scheme.name())?;
@@ -136,6 +138,55 @@ pub fn check_job(job: &Job) -> Result<(), SetupError> {
         Some(robot) => robot.visit(Check(job)),
         None => Err(SetupError::UnknownRobot(job.robot.clone())),
     }
+}
+
+/// The job's robot: the registry's model `robot`, with the job's `joint_limits` and
+/// `velocity_limits` in place of its own where the job gives them ([`robots::limited`]).
+/// A model that carries dynamics (`has_dynamics`: the acceleration-level scheme takes its
+/// kinematics and limits from the dynamics model) keeps its own limits: overriding them is an
+/// error rather than a silent half-override.
+pub fn job_robot<const N: usize>(
+    job: &Job,
+    robot: Arc<dyn Robot<N>>,
+    has_dynamics: bool,
+) -> Result<Arc<dyn Robot<N>>, SetupError> {
+    if job.joint_limits.is_none() && job.velocity_limits.is_none() {
+        return Ok(robot);
+    }
+    if has_dynamics && job.scheme.needs_dynamics() {
+        return Err(SetupError::LimitsWithDynamics {
+            robot: job.robot.clone(),
+        });
+    }
+    let mut limits = robot.limits();
+    let mut set = |spec: &Option<catalog::experiment::LimitsSpec>,
+                   lo: &mut SVector<f64, N>,
+                   hi: &mut SVector<f64, N>|
+     -> Result<(), SetupError> {
+        if let Some(l) = spec {
+            if l.lower.len() != N || l.upper.len() != N {
+                return Err(SetupError::PoseLength {
+                    part: JobPart::Limits,
+                    given: l.lower.len().max(l.upper.len()),
+                    joints: N,
+                });
+            }
+            *lo = SVector::from_column_slice(&l.lower);
+            *hi = SVector::from_column_slice(&l.upper);
+        }
+        Ok(())
+    };
+    set(
+        &job.joint_limits,
+        &mut limits.theta_min,
+        &mut limits.theta_max,
+    )?;
+    set(
+        &job.velocity_limits,
+        &mut limits.thetadot_min,
+        &mut limits.thetadot_max,
+    )?;
+    Ok(Arc::new(robots::limited::Limited::new(robot, limits)))
 }
 
 /// The path (starting at f(theta_ref)) and the scheme of a run.
@@ -194,6 +245,7 @@ fn run_with<const N: usize>(
 ) -> Result<Run, RunError> {
     let theta0 = SVector::<f64, N>::from_column_slice(&job.theta0);
     let theta_ref = SVector::<f64, N>::from_column_slice(&job.theta_ref);
+    let robot = job_robot(job, robot, dynamics.is_some())?;
     let (path, scheme) = build_parts::<N>(job, robot.clone(), dynamics)?;
     let dims = scheme.dims();
     let scheme_name = scheme.name();
@@ -209,6 +261,7 @@ fn run_with<const N: usize>(
             build = move || network(spec);
             Solver::Network(&build)
         }
+        (None, SolverChoice::Numerical(spec)) => Solver::Numerical(spec),
     };
     let settings = Settings {
         integrator: job.integrator,

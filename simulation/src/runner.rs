@@ -64,6 +64,8 @@ fn expected_cost(j: &Job) -> f64 {
         SolverChoice::Exact => 1.0,
         SolverChoice::Neural(s) if s.display_name() == "FTNN" => 100.0,
         SolverChoice::Neural(_) => 4.0,
+        // Every instant of the fixed-step loop iterates the method (thousands of instants).
+        SolverChoice::Numerical(_) => 20.0,
     };
     solver * j.path.duration
 }

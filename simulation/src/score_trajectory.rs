@@ -198,6 +198,7 @@ fn score_with<const N: usize>(
     check(trajectory, N, job.path.duration, &job.theta0)?;
     let theta0 = SVector::<f64, N>::from_column_slice(&job.theta0);
     let theta_ref = SVector::<f64, N>::from_column_slice(&job.theta_ref);
+    let robot = crate::run::job_robot(job, robot, dynamics.is_some())?;
     let (path, scheme) = build_parts::<N>(job, robot.clone(), dynamics)?;
     if scheme.level() != Level::Velocity {
         return Err(TrajectoryError::AccelerationLevel(scheme.name()));

@@ -15,6 +15,7 @@ use crate::metrics::{MetricsAccumulator, RunMetrics, Sample, ScoreSample};
 use catalog::error::SetupError;
 use catalog::experiment::{NetworkInit, Scoring};
 use catalog::integrator::IntegratorSettings;
+use catalog::numerical_spec::NumericalSpec;
 use nalgebra::{DVector, SVector};
 use records::trace::TracePoint;
 use robots::Robot;
@@ -35,6 +36,18 @@ pub enum Solver<'a> {
     /// at every accepted step. The closure builds it (called twice: the network, and a probe
     /// that reads the network's own error at accepted states).
     Network(&'a dyn Fn() -> Result<Box<dyn NeuralSolver>, SetupError>),
+    /// A numerical QP method iterated at every instant of a fixed-step loop
+    /// ([`crate::numerical`]), scored like a network.
+    Numerical(&'a NumericalSpec),
+}
+
+/// A numerical run solver's iterations (robio2018 (21) steps).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct IterationStats {
+    /// Over the whole run.
+    pub total: u64,
+    /// At the instant that needed most.
+    pub max: u64,
 }
 
 /// How a run is integrated and observed.
@@ -87,6 +100,8 @@ pub struct Run {
     /// score the run or give the exact column's thetadot); part of the ODE's wall time.
     pub observe_seconds: f64,
     pub trace: Vec<TracePoint>,
+    /// A numerical run solver's iterations; none for the exact column and the networks.
+    pub iterations: Option<IterationStats>,
 }
 
 /// Simulates `robot` following `path` under `scheme`, its QP solved by `solver`, from joint
@@ -109,7 +124,21 @@ pub fn simulate<const N: usize>(
     let mut observer = Observer::new(robot, scheme, path, theta0, *theta_ref);
     let t1 = path.duration();
     let level = scheme.level();
+    let mut iterations = None;
     let (outcome, stats, qp) = match solver {
+        Solver::Numerical(spec) => {
+            let r = crate::numerical::run_numerical(
+                scheme,
+                spec,
+                &theta0,
+                t1,
+                settings,
+                &mut observer,
+            );
+            iterations = Some(r.iterations);
+            observer.score_failures = r.score_failures;
+            (r.outcome, r.stats, r.qp)
+        }
         Solver::Exact => {
             let mut sys = ExactLoop::new(scheme);
             let mut y0 = vec![0.0; arm_dim::<N>(level)];
@@ -171,40 +200,25 @@ pub fn simulate<const N: usize>(
                 let started = Instant::now();
                 let x_nn = DVector::from_column_slice(&y[k..k + scheme.dims().nx]);
                 let (theta, thetadot) = arm_state::<N>(level, y, &y[k..]);
-                let due = match settings.scoring {
-                    Scoring::EveryStep => true,
-                    Scoring::Off => false,
-                    Scoring::MaxInstants(n) => {
-                        let due = t >= next_score_t || t >= t1 * (1.0 - 1e-12);
-                        if due {
-                            next_score_t = t + t1 / n.max(1) as f64;
-                        }
-                        due
+                let scored = score_instant(
+                    &mut observer,
+                    &mut scorer,
+                    settings.scoring,
+                    &mut next_score_t,
+                    t1,
+                    (t, &theta, &thetadot),
+                    &x_nn,
+                );
+                match scored {
+                    None => {
+                        observer.sample(t, y, &x_nn, level);
+                        observer.seconds += started.elapsed().as_secs_f64();
+                        return observer
+                            .divergence(y)
+                            .map_or(Control::Continue, Control::Stop);
                     }
-                };
-                if !due {
-                    observer.sample(t, y, &x_nn, level);
-                    observer.seconds += started.elapsed().as_secs_f64();
-                    return observer
-                        .divergence(y)
-                        .map_or(Control::Continue, Control::Stop);
-                }
-                match scorer.optimum(t, &theta, &thetadot) {
-                    Ok(x_star) => {
-                        let qp = &scorer.qp;
-                        let f_star = qp.objective(&x_star);
-                        let dx = (x_nn.rows(0, N) - x_star.rows(0, N)).amax();
-                        observer.score(
-                            t,
-                            &ScoreSample {
-                                dx,
-                                objective_gap: (qp.objective(&x_nn) - f_star)
-                                    / f_star.abs().max(1.0),
-                                violation: qp.constraint_violation(&x_nn),
-                            },
-                        );
-                    }
-                    Err(_) => failures += 1,
+                    Some(false) => failures += 1,
+                    Some(true) => {}
                 }
                 // scorer.qp holds the QP at this state even when Clarabel failed on it.
                 if let Some(e) = probe.error_norm(&scorer.qp, &y[k..]) {
@@ -230,7 +244,52 @@ pub fn simulate<const N: usize>(
         score_failures: observer.score_failures,
         observe_seconds: observer.seconds,
         trace: observer.trace,
+        iterations,
     })
+}
+
+/// Scores the command `x` at the state `(t, theta, thetadot)` against the exact optimum there,
+/// when `scoring` says the instant is due (`next_score_t` keeps the grid of
+/// [`Scoring::MaxInstants`]): `None` when not due, `Some(false)` when the exact solver failed
+/// (the instant is left out of the score), `Some(true)` when scored.
+pub(crate) fn score_instant<const N: usize>(
+    observer: &mut Observer<'_, N>,
+    scorer: &mut ExactLoop<'_, N>,
+    scoring: Scoring,
+    next_score_t: &mut f64,
+    t1: f64,
+    (t, theta, thetadot): (f64, &SVector<f64, N>, &SVector<f64, N>),
+    x: &DVector<f64>,
+) -> Option<bool> {
+    let due = match scoring {
+        Scoring::EveryStep => true,
+        Scoring::Off => false,
+        Scoring::MaxInstants(n) => {
+            let due = t >= *next_score_t || t >= t1 * (1.0 - 1e-12);
+            if due {
+                *next_score_t = t + t1 / n.max(1) as f64;
+            }
+            due
+        }
+    };
+    if !due {
+        return None;
+    }
+    let Ok(x_star) = scorer.optimum(t, theta, thetadot) else {
+        return Some(false);
+    };
+    let qp = &scorer.qp;
+    let f_star = qp.objective(&x_star);
+    let dx = (x.rows(0, N) - x_star.rows(0, N)).amax();
+    observer.score(
+        t,
+        &ScoreSample {
+            dx,
+            objective_gap: (qp.objective(x) - f_star) / f_star.abs().max(1.0),
+            violation: qp.constraint_violation(x),
+        },
+    );
+    Some(true)
 }
 
 fn finish<const N: usize>(
@@ -270,9 +329,9 @@ pub(crate) struct Observer<'a, const N: usize> {
     last_thetadot: SVector<f64, N>,
     last_dx: Option<f64>,
     last_network_error: Option<f64>,
-    score_failures: usize,
+    pub(crate) score_failures: usize,
     /// Wall time spent in the observer (see [`RunRecord::observe_seconds`]).
-    seconds: f64,
+    pub(crate) seconds: f64,
 }
 
 impl<'a, const N: usize> Observer<'a, N> {
@@ -299,7 +358,7 @@ impl<'a, const N: usize> Observer<'a, N> {
         }
     }
 
-    fn has_samples(&self) -> bool {
+    pub(crate) fn has_samples(&self) -> bool {
         !self.trace.is_empty()
     }
 
@@ -316,7 +375,7 @@ impl<'a, const N: usize> Observer<'a, N> {
     /// Why the run is diverging at the state just sampled, if it is: a joint velocity beyond
     /// [`DIVERGENCE_FACTOR`] times its bound, or a state entry beyond [`DIVERGENCE_STATE`]. The
     /// run stops there with that reason instead of integrating a blow-up to the step limit.
-    fn divergence(&self, y: &[f64]) -> Option<String> {
+    pub(crate) fn divergence(&self, y: &[f64]) -> Option<String> {
         let limits = self.robot.limits();
         for i in 0..N {
             let v = self.last_thetadot[i];

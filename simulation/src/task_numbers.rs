@@ -74,6 +74,7 @@ fn numbers<const N: usize>(
 ) -> Result<TaskNumbers, SetupError> {
     let theta0 = SVector::<f64, N>::from_column_slice(&job.theta0);
     let theta_ref = SVector::<f64, N>::from_column_slice(&job.theta_ref);
+    let robot = crate::run::job_robot(job, robot, dynamics.is_some())?;
     let (path, scheme) = build_parts::<N>(job, robot.clone(), dynamics)?;
     let mut qp0 = Qp::zeros(scheme.dims());
     scheme.build(0.0, &theta0, &SVector::zeros(), &mut qp0);

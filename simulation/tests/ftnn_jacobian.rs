@@ -8,7 +8,7 @@ use catalog::integrator::IntegratorSettings;
 use nalgebra::{DMatrix, SVector};
 use robots::katana::Katana6m180;
 use robots::Robot;
-use schemes::kong2019::Kong2019;
+use schemes::velocity_rmp::VelocityRmp;
 use schemes::paths::{build_path, Path, PathSpec};
 use schemes::scheme::Scheme;
 use simulation::coupled::NeuralLoop;
@@ -26,7 +26,7 @@ fn coupled_ftnn_jacobian_matches_fine_central_differences() {
     theta0[4] += 0.5;
     let spec: PathSpec = toml::from_str("name = \"circle\"\nduration = 9.0").unwrap();
     let path: Arc<dyn Path> = Arc::from(build_path(&spec, robot.position(&theta_ref)).unwrap());
-    let scheme = Kong2019::finite_time(robot.clone(), path, theta_ref, 1.0, 0.1, 1.0);
+    let scheme = VelocityRmp::finite_time(robot.clone(), path, theta_ref, 1.0, 0.1, 1.0);
     let net = finite_time(1.0, 0.1, 1e-6, scheme.dims()).unwrap();
     let mut sys = NeuralLoop::new(&scheme, Box::new(net));
     let n = sys.dim();

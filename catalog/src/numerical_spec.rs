@@ -1,0 +1,203 @@
+//! Numerical QP methods as run solvers, as experiment files name them:
+//!
+//! ```toml
+//! numerical = [{ method = "94lvi" }, { method = "m5", tolerance = 1e-3, step = 1e-3 }]
+//! ```
+//!
+//! A numerical run follows robio2018's Algorithm 1 at every sampling instant t_k = k h of a
+//! fixed-step loop: the scheme's QP at (t_k, theta_k) is written as its piecewise-linear
+//! projection equation e(U) = 0 (robio2018 (20)), the method iterates U <- U - rho(U) Q e(U)
+//! (robio2018 (21)) from the previous instant's U (a warm start; U = 0 at t = 0) until
+//! |e(U)|_2 <= `tolerance` (robio2018 Algorithm 1, step 3: 1e-3), and the arm moves on with the
+//! first n entries of U held over the step: theta_{k+1} = theta_k + h thetadot_k. The run's
+//! drift therefore includes the method's own error. The methods themselves are crate
+//! `solvers`' (`solvers::lvi_numerical`); this file only names them and their settings.
+
+use serde::{Deserialize, Serialize};
+
+/// robio2018's stopping rule |e(U)|_2 <= 1e-3 (Algorithm 1, step 3).
+pub const DEFAULT_TOLERANCE: f64 = 1e-3;
+/// Iterations after which one instant's solve fails (the run then fails with that reason).
+pub const DEFAULT_MAX_ITERATIONS: u32 = 100_000;
+/// Sampling gap h of the fixed-step loop (s); the paper does not print one (report/deviations.md).
+pub const DEFAULT_STEP: f64 = 1e-3;
+
+/// The six methods of robio2018 (22)-(27), by the ids experiment files use.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+pub enum NumericalMethod {
+    /// robio2018 (22).
+    #[serde(rename = "94lvi")]
+    Lvi94,
+    /// robio2018 (23).
+    #[serde(rename = "e47")]
+    E47,
+    /// robio2018 (24).
+    #[serde(rename = "m3")]
+    M3,
+    /// robio2018 (25).
+    #[serde(rename = "m4")]
+    M4,
+    /// robio2018 (26).
+    #[serde(rename = "m5")]
+    M5,
+    /// robio2018 (27).
+    #[serde(rename = "m6")]
+    M6,
+}
+
+impl NumericalMethod {
+    /// Every method, in the paper's order.
+    pub const ALL: [NumericalMethod; 6] = [
+        NumericalMethod::Lvi94,
+        NumericalMethod::E47,
+        NumericalMethod::M3,
+        NumericalMethod::M4,
+        NumericalMethod::M5,
+        NumericalMethod::M6,
+    ];
+
+    /// The id in experiment files, run keys and results (`94lvi`, `e47`, `m3`, ...).
+    pub fn id(self) -> &'static str {
+        match self {
+            NumericalMethod::Lvi94 => "94lvi",
+            NumericalMethod::E47 => "e47",
+            NumericalMethod::M3 => "m3",
+            NumericalMethod::M4 => "m4",
+            NumericalMethod::M5 => "m5",
+            NumericalMethod::M6 => "m6",
+        }
+    }
+
+    /// The name the paper prints (`94LVI`, `E47`, `M3`, ...): display only.
+    pub fn name(self) -> &'static str {
+        match self {
+            NumericalMethod::Lvi94 => "94LVI",
+            NumericalMethod::E47 => "E47",
+            NumericalMethod::M3 => "M3",
+            NumericalMethod::M4 => "M4",
+            NumericalMethod::M5 => "M5",
+            NumericalMethod::M6 => "M6",
+        }
+    }
+}
+
+fn default_tolerance() -> f64 {
+    DEFAULT_TOLERANCE
+}
+fn default_max_iterations() -> u32 {
+    DEFAULT_MAX_ITERATIONS
+}
+fn default_step() -> f64 {
+    DEFAULT_STEP
+}
+
+/// One numerical run solver of a variant (module docs).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NumericalSpec {
+    pub method: NumericalMethod,
+    /// Stop one instant's iteration at |e(U)|_2 <= tolerance.
+    #[serde(default = "default_tolerance")]
+    pub tolerance: f64,
+    /// Fail the instant (and the run) after this many iterations.
+    #[serde(default = "default_max_iterations")]
+    pub max_iterations: u32,
+    /// Sampling gap h of the fixed-step loop (s).
+    #[serde(default = "default_step")]
+    pub step: f64,
+}
+
+/// A [`NumericalSpec`] field out of its range.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum NumericalSpecError {
+    #[error("numerical {method}: tolerance = {value} must be finite and > 0")]
+    Tolerance { method: &'static str, value: f64 },
+    #[error("numerical {method}: max_iterations must be at least 1")]
+    MaxIterations { method: &'static str },
+    #[error("numerical {method}: step = {value} must be finite, > 0 and at most the path's duration {duration}")]
+    Step {
+        method: &'static str,
+        value: f64,
+        duration: f64,
+    },
+    #[error("numerical {method}: {steps} steps of {step} s exceed the cap of {cap} per run")]
+    TooManySteps {
+        method: &'static str,
+        step: f64,
+        steps: f64,
+        cap: f64,
+    },
+}
+
+/// Most sampling instants one numerical run may take (a bound on its work).
+pub const MAX_STEPS: f64 = 1e7;
+
+impl NumericalSpec {
+    /// The solver's label in tables (display only), e.g. `94LVI (|e| <= 0.001)`.
+    pub fn display_name(&self) -> String {
+        format!("{} (|e| <= {})", self.method.name(), self.tolerance)
+    }
+
+    /// Checks the settings for a path of `duration` seconds.
+    pub fn validate(&self, duration: f64) -> Result<(), NumericalSpecError> {
+        let method = self.method.name();
+        if !(self.tolerance.is_finite() && self.tolerance > 0.0) {
+            return Err(NumericalSpecError::Tolerance {
+                method,
+                value: self.tolerance,
+            });
+        }
+        if self.max_iterations == 0 {
+            return Err(NumericalSpecError::MaxIterations { method });
+        }
+        if !(self.step.is_finite() && self.step > 0.0 && self.step <= duration) {
+            return Err(NumericalSpecError::Step {
+                method,
+                value: self.step,
+                duration,
+            });
+        }
+        let steps = (duration / self.step).ceil();
+        if steps > MAX_STEPS {
+            return Err(NumericalSpecError::TooManySteps {
+                method,
+                step: self.step,
+                steps,
+                cap: MAX_STEPS,
+            });
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ids_round_trip_and_bad_settings_are_refused() {
+        for m in NumericalMethod::ALL {
+            let text = format!("method = \"{}\"", m.id());
+            let spec: NumericalSpec = toml::from_str(&text).unwrap();
+            assert_eq!(spec.method, m);
+            assert_eq!(spec.tolerance, DEFAULT_TOLERANCE);
+            assert!(spec.validate(15.0).is_ok());
+        }
+        let unknown = toml::from_str::<NumericalSpec>("method = \"m7\"").unwrap_err();
+        assert!(unknown.to_string().contains("94lvi"), "{unknown}");
+        let typo = toml::from_str::<NumericalSpec>("method = \"m3\"\ntolerence = 1e-3");
+        assert!(typo.is_err());
+        let spec = |tolerance: f64, step: f64| NumericalSpec {
+            method: NumericalMethod::M4,
+            tolerance,
+            max_iterations: 10,
+            step,
+        };
+        assert!(spec(f64::NAN, 1e-3).validate(15.0).is_err());
+        assert!(spec(0.0, 1e-3).validate(15.0).is_err());
+        assert!(spec(1e-3, 0.0).validate(15.0).is_err());
+        assert!(spec(1e-3, 20.0).validate(15.0).is_err());
+        assert!(spec(1e-3, 1e-9).validate(15.0).is_err());
+        assert!(spec(1e-3, 1e-3).validate(15.0).is_ok());
+    }
+}

@@ -1,0 +1,157 @@
+//! A numerical QP method as a run's solver: robio2018's Algorithm 1 at every instant of a
+//! fixed-step loop (the organisation of the papers' numerical-method simulations; the
+//! networks' runs are the coupled ODE of [`crate::coupled`] instead).
+//!
+//! With sampling gap h and t_k = min(k h, T), k = 0 .. K = ceil(T / h):
+//!
+//! ```text
+//! QP_k = scheme(t_k, theta_k)                       the scheme's QP at the sampled state
+//! U_k  = method iterated from U_{k-1} until |e(U)|_2 <= tolerance   robio2018 (21), Alg. 1
+//! theta_{k+1} = theta_k + (t_{k+1} - t_k) U_k[..n]  the command held over the step
+//! ```
+//!
+//! (at the acceleration level the arm state [theta; thetadot] moves the same way with
+//! thetaddot = U_k[..n]). U_0 starts from zero. So the run's drift is the scheme's drift plus
+//! what the method's stopping rule and the sampling add. Every instant is observed like an
+//! accepted step of an integrated run, and scored against the exact optimum x*(t_k, theta_k)
+//! where the experiment's `scoring` says.
+
+use crate::coupled::{arm_dim, arm_state, ExactLoop};
+use crate::error::RunError;
+use crate::simulate::{score_instant, IterationStats, Observer, Outcome, Settings};
+use catalog::numerical_spec::{NumericalMethod, NumericalSpec};
+use nalgebra::{DVector, SVector};
+use schemes::scheme::{Level, Scheme};
+use solvers::exact_path::ExactPathStats;
+use solvers::lvi_numerical::{LviMethod, LviSettings, LviSolver};
+use solvers::ode::OdeStats;
+use std::time::Instant;
+
+/// The solver crate's method of an experiment file's id.
+pub fn lvi_method(method: NumericalMethod) -> LviMethod {
+    match method {
+        NumericalMethod::Lvi94 => LviMethod::Lvi94,
+        NumericalMethod::E47 => LviMethod::E47,
+        NumericalMethod::M3 => LviMethod::M3,
+        NumericalMethod::M4 => LviMethod::M4,
+        NumericalMethod::M5 => LviMethod::M5,
+        NumericalMethod::M6 => LviMethod::M6,
+    }
+}
+
+/// What the loop produced: the outcome, counts in the integrator's terms (steps = instants
+/// after the first), the exact solves that scored it, and the method's iterations.
+pub(crate) struct NumericalRun {
+    pub outcome: Outcome,
+    pub stats: OdeStats,
+    pub qp: ExactPathStats,
+    pub iterations: IterationStats,
+    pub score_failures: usize,
+}
+
+/// Runs the loop of the module docs from `theta0` over the path's duration `t1`.
+pub(crate) fn run_numerical<const N: usize>(
+    scheme: &dyn Scheme<N>,
+    spec: &NumericalSpec,
+    theta0: &SVector<f64, N>,
+    t1: f64,
+    settings: &Settings,
+    observer: &mut Observer<'_, N>,
+) -> NumericalRun {
+    let started = Instant::now();
+    let level = scheme.level();
+    let dims = scheme.dims();
+    let mut solver = LviSolver::new(
+        lvi_method(spec.method),
+        dims,
+        LviSettings {
+            tolerance: spec.tolerance,
+            max_iterations: spec.max_iterations,
+        },
+    );
+    let mut qp = scheme.new_qp();
+    let mut scorer = ExactLoop::new(scheme);
+    let mut y = vec![0.0; arm_dim::<N>(level)];
+    y[..N].copy_from_slice(theta0.as_slice());
+    let mut x = DVector::<f64>::zeros(dims.nx);
+    let instants = (t1 / spec.step).ceil().max(1.0) as usize;
+    let mut iterations = IterationStats::default();
+    let mut failures = 0usize;
+    let mut next_score_t = 0.0;
+    let mut failure: Option<(f64, RunError)> = None;
+    for k in 0..=instants {
+        let t = (k as f64 * spec.step).min(t1);
+        let (theta, thetadot) = arm_state::<N>(level, &y, &y);
+        scheme.build(t, &theta, &thetadot, &mut qp);
+        match solver.solve(&qp) {
+            Ok(it) => {
+                iterations.total += u64::from(it);
+                iterations.max = iterations.max.max(u64::from(it));
+            }
+            Err(error) => {
+                failure = Some((t, RunError::Numerical { t, error }));
+                break;
+            }
+        }
+        x.as_mut_slice().copy_from_slice(solver.x());
+        let observe = Instant::now();
+        let (_, thetadot) = arm_state::<N>(level, &y, x.as_slice());
+        if !score_instant(
+            observer,
+            &mut scorer,
+            settings.scoring,
+            &mut next_score_t,
+            t1,
+            (t, &theta, &thetadot),
+            &x,
+        ) {
+            failures += 1;
+        }
+        observer.sample(t, &y, &x, level);
+        observer.seconds += observe.elapsed().as_secs_f64();
+        if let Some(reason) = observer.divergence(&y) {
+            failure = Some((t, RunError::Diverged { t, reason }));
+            break;
+        }
+        if k == instants {
+            break;
+        }
+        let h = (((k + 1) as f64) * spec.step).min(t1) - t;
+        match level {
+            Level::Velocity => {
+                for i in 0..N {
+                    y[i] += h * x[i];
+                }
+            }
+            Level::Acceleration => {
+                for i in 0..N {
+                    y[i] += h * y[N + i];
+                    y[N + i] += h * x[i];
+                }
+            }
+        }
+    }
+    let stats = OdeStats {
+        steps: instants,
+        rhs_evals: instants + 1,
+        wall_seconds: started.elapsed().as_secs_f64(),
+        ..OdeStats::default()
+    };
+    let outcome = match failure {
+        None => Outcome::Completed(observer.metrics.finish(0.0)),
+        Some((t, error)) => Outcome::Failed {
+            t,
+            error,
+            partial: observer
+                .has_samples()
+                .then(|| observer.metrics.finish(0.0)),
+        },
+    };
+    NumericalRun {
+        outcome,
+        stats,
+        qp: scorer.stats(),
+        iterations,
+        score_failures: failures,
+    }
+}
