@@ -118,7 +118,7 @@ fn angles<const N: usize>(
 ) -> Result<SVector<f64, N>, JointCountError> {
     if theta.len() != N {
         return Err(JointCountError {
-            robot: robot.name(),
+            robot: robot.name().to_string(),
             given: theta.len(),
             joints: N,
         });
