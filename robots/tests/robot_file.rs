@@ -124,9 +124,12 @@ fn oversized_files_are_refused_before_parsing() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// Whether an error is the one a case expects.
+type Expected = fn(&RobotFileError) -> bool;
+
 #[test]
 fn other_invalid_values_are_refused() {
-    let cases: [(&str, &str, fn(&RobotFileError) -> bool); 8] = [
+    let cases: [(&str, &str, Expected); 8] = [
         ("name = \"puma560\"", "name = \"Puma 560\"", |e| matches!(e, RobotFileError::Name { .. })),
         ("name = \"puma560\"", "name = \"puma--560\"", |e| matches!(e, RobotFileError::Name { .. })),
         ("velocity_max = 1.5", "velocity_max = 0.0", |e| {
