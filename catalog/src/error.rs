@@ -388,7 +388,7 @@ pub enum ExperimentFileError {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[error("{robot}: {given} joint angles given, the robot has {joints} joints")]
 pub struct JointCountError {
-    pub robot: &'static str,
+    pub robot: String,
     pub given: usize,
     pub joints: usize,
 }

@@ -9,10 +9,18 @@
 //! (Katana), 6 (Jaco2), 7 (Panda), and the n-link family at [`NLINK_SIZES`], which spans
 //! robots' `nlink-3 ..= nlink-30` in eight steps (a cost-versus-joints curve needs a spread of N,
 //! not every N). Adding an N is one entry in that list and in `visit`'s.
+//!
+//! Robots declared by robot files (`robots/data/*.toml`, embedded in the library; see
+//! [`robots::robot_file`]) are registered by their file's name, e.g. `puma560`. A robot file may
+//! only have one of the instantiated joint counts ([`robots::data_robot::JOINT_COUNTS`], checked
+//! against this list by a test), so a data robot adds no N. Where an arm exists both in Rust and as
+//! data (the Jaco2 variants, the Panda, the n-link arms) the Rust model is the registered one: the
+//! Jaco2 carries dynamics, and robots' `tests/data_robots.rs` shows the data twins equal.
 
 use crate::error::JointCountError;
 use nalgebra::{SVector, Vector3};
-use robots::{Dynamics, Jaco2, Katana6m180, NLink, Panda, Robot};
+use robots::data_robot::{builtin_models, DataRobot, DataVisitor};
+use robots::{DataModel, Dynamics, Jaco2, Katana6m180, NLink, Panda, Robot};
 use std::sync::Arc;
 
 /// A robot model of any joint count.
@@ -26,6 +34,8 @@ pub enum AnyRobot {
     Panda(Arc<Panda>),
     /// The synthetic n-link arm `nlink-N` with N joints (kinematics only).
     NLink(usize),
+    /// A robot declared by a built-in robot file (kinematics only).
+    Data(DataModel),
 }
 
 /// Code generic in the joint count, run on a robot of the registry ([`AnyRobot::visit`]).
@@ -69,6 +79,16 @@ pub fn nlink_name(n: usize) -> String {
     format!("nlink-{n}")
 }
 
+/// Whether `name` is a Rust model's (those take precedence over a robot file of that name).
+fn is_rust_model(name: &str) -> bool {
+    name.starts_with("nlink-") || ROBOTS.iter().any(|(n, _)| *n == name)
+}
+
+/// The built-in data robots registered by name: those without a Rust model of that name.
+fn data_robots() -> impl Iterator<Item = &'static DataModel> {
+    builtin_models().iter().filter(|m| !is_rust_model(m.name()))
+}
+
 /// The model called `name` in experiment files, if the suite knows it.
 pub fn robot_by_name(name: &str) -> Option<AnyRobot> {
     if let Some(n) = name
@@ -81,13 +101,21 @@ pub fn robot_by_name(name: &str) -> Option<AnyRobot> {
         .iter()
         .find(|(n, _)| *n == name)
         .map(|(_, build)| build())
+        .or_else(|| {
+            data_robots()
+                .find(|m| m.name() == name)
+                .cloned()
+                .map(AnyRobot::Data)
+        })
 }
 
-/// The robot names the suite knows, in a fixed order (the n-link family last, by N).
+/// The robot names the suite knows, in a fixed order: the Rust models, the data robots (by file
+/// name), the n-link family last, by N.
 pub fn robot_names() -> impl Iterator<Item = String> {
     ROBOTS
         .iter()
         .map(|(n, _)| n.to_string())
+        .chain(data_robots().map(|m| m.name().to_string()))
         .chain(NLINK_SIZES.iter().map(|&n| nlink_name(n)))
 }
 
@@ -118,12 +146,22 @@ fn angles<const N: usize>(
 ) -> Result<SVector<f64, N>, JointCountError> {
     if theta.len() != N {
         return Err(JointCountError {
-            robot: robot.name(),
+            robot: robot.name().to_string(),
             given: theta.len(),
             joints: N,
         });
     }
     Ok(SVector::from_column_slice(theta))
+}
+
+/// A [`RobotVisitor`] run on a data robot (which has no dynamics).
+struct OnData<V>(V);
+
+impl<V: RobotVisitor> DataVisitor for OnData<V> {
+    type Output = V::Output;
+    fn visit<const N: usize>(self, robot: Arc<DataRobot<N>>) -> V::Output {
+        self.0.visit::<N>(robot, None)
+    }
 }
 
 impl AnyRobot {
@@ -134,12 +172,14 @@ impl AnyRobot {
             AnyRobot::Katana(r) => visitor.visit::<5>(r.clone(), None),
             AnyRobot::Panda(r) => visitor.visit::<7>(r.clone(), None),
             AnyRobot::NLink(n) => visit_nlink!(*n, visitor, [3, 5, 6, 7, 10, 15, 20, 30]),
+            AnyRobot::Data(m) => m.visit(OnData(visitor)),
         }
     }
 
     /// The pose the model's check values are stated at: the papers' theta0 for the Jaco2
     /// models (the group's EXP2 theta0 for `jaco2-pen-exp2`), kong2019's theta*0 for the
-    /// Katana, Franka's "ready" pose for the Panda, [`NLink::home`] for the n-link arms.
+    /// Katana, Franka's "ready" pose for the Panda, [`NLink::home`] for the n-link arms, the
+    /// file's `stated_pose` for a data robot (zero if it states none).
     pub fn stated_pose(&self) -> Vec<f64> {
         struct Home;
         impl RobotVisitor for Home {
@@ -161,6 +201,7 @@ impl AnyRobot {
             AnyRobot::Katana(_) => vec![2.0 * pi / 5.0, pi / 2.0, 0.0, -pi / 6.0, pi / 3.0],
             AnyRobot::Panda(_) => Panda::READY.to_vec(),
             AnyRobot::NLink(_) => self.visit(Home),
+            AnyRobot::Data(m) => m.stated_pose().to_vec(),
         }
     }
 
@@ -176,6 +217,7 @@ impl AnyRobot {
             AnyRobot::Katana(_) => 5,
             AnyRobot::Panda(_) => 7,
             AnyRobot::NLink(n) => *n,
+            AnyRobot::Data(m) => m.dof(),
         }
     }
 
@@ -255,8 +297,58 @@ mod tests {
             names.iter().filter(|n| n.starts_with("nlink-")).count(),
             NLINK_SIZES.len()
         );
-        for unknown in ["puma560", "nlink-2", "nlink-4", "nlink-31", "nlink-x"] {
+        assert!(names.iter().any(|n| n == "puma560"));
+        for unknown in ["puma", "nlink-2", "nlink-4", "nlink-31", "nlink-x"] {
             assert!(robot_by_name(unknown).is_none(), "{unknown}");
+        }
+        let unique: std::collections::BTreeSet<&String> = names.iter().collect();
+        assert_eq!(unique.len(), names.len(), "names are unique");
+    }
+
+    #[test]
+    fn puma560_is_a_data_robot_with_check_values() {
+        let puma = robot_by_name("puma560").unwrap();
+        assert!(matches!(puma, AnyRobot::Data(_)) && !puma.has_dynamics());
+        assert_eq!(puma.dof(), 6);
+        let pi = std::f64::consts::PI;
+        assert_eq!(
+            puma.stated_pose(),
+            [0.0, -pi / 4.0, 0.0, pi / 2.0, -pi / 4.0, 0.0]
+        );
+        let (tip, sv) = puma.check_values(&puma.stated_pose()).unwrap();
+        assert!(
+            (tip - Vector3::new(0.653136683891, -0.110275243558, 0.013770732342)).norm() < 1e-11
+        );
+        assert_eq!(sv.len(), 3);
+        assert!(puma.check_values(&[0.0; 5]).is_err());
+    }
+
+    #[test]
+    fn data_robots_have_instantiated_joint_counts() {
+        for n in robots::data_robot::JOINT_COUNTS {
+            assert!([5, 6, 7].contains(n) || NLINK_SIZES.contains(n), "{n}");
+        }
+    }
+
+    #[test]
+    fn data_twins_of_rust_models_state_the_same_pose_and_check_values() {
+        for model in builtin_models() {
+            let Some(rust) = robot_by_name(model.name()) else {
+                continue;
+            };
+            if matches!(rust, AnyRobot::Data(_)) {
+                continue;
+            }
+            let data = AnyRobot::Data(model.clone());
+            let pose = rust.stated_pose();
+            let close = |a: &[f64], b: &[f64]| {
+                a.len() == b.len() && a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-12)
+            };
+            assert!(close(&pose, &data.stated_pose()), "{}", model.name());
+            let (tip_r, sv_r) = rust.check_values(&pose).unwrap();
+            let (tip_d, sv_d) = data.check_values(&pose).unwrap();
+            assert!((tip_r - tip_d).norm() < 1e-12, "{}", model.name());
+            assert!(close(&sv_r, &sv_d), "{}", model.name());
         }
     }
 }

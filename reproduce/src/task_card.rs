@@ -255,7 +255,7 @@ fn card(jobs: &[Job], n: &TaskNumbers, robot: &AnyRobot) -> Result<String, TaskC
 /// The robot's kinematics: the DH table and tool, or the closed form.
 fn kinematics(robot: &AnyRobot) -> String {
     let mut s = String::new();
-    let dh = |s: &mut String, chain: &robots::dh::DhChain<6>| {
+    fn dh<const N: usize>(s: &mut String, chain: &robots::dh::DhChain<N>) {
         s.push_str("Classical DH, link i = Rz(theta_i) Tz(d_i) Tx(a_i) Rx(alpha_i):\n\n| i | a_i (m) | alpha_i (rad) | d_i (m) |\n|---|---|---|---|\n");
         for (i, p) in chain.params.iter().enumerate() {
             let _ = writeln!(s, "| {} | {} | {} | {} |", i + 1, p.a, p.alpha, p.d);
@@ -272,7 +272,29 @@ fn kinematics(robot: &AnyRobot) -> String {
                     .collect::<Vec<_>>()
             )
         );
-    };
+    }
+    /// A data robot: its file, its classical chain (base included), offsets and tool point.
+    struct DataTable<'a>(&'a mut String);
+    impl robots::data_robot::DataVisitor for DataTable<'_> {
+        type Output = ();
+        fn visit<const N: usize>(self, r: std::sync::Arc<robots::DataRobot<N>>) {
+            use robots::Robot as _;
+            let _ = writeln!(
+                self.0,
+                "Declared by the robot file `robots/data/{}.toml` (its `source` gives the numbers' origin).\n",
+                r.name()
+            );
+            dh(self.0, r.chain());
+            let (o, t) = (r.chain().base.origin, r.tool());
+            let _ = writeln!(
+                self.0,
+                "Base frame origin {} m; joint offsets {} rad; task point in DH frame {N}: {} m.",
+                vector(&[o.x, o.y, o.z]),
+                vector(r.offset().as_slice()),
+                vector(&[t.x, t.y, t.z])
+            );
+        }
+    }
     match robot {
         AnyRobot::Jaco2(r) => {
             dh(&mut s, r.chain());
@@ -320,6 +342,7 @@ fn kinematics(robot: &AnyRobot) -> String {
                 n - 1
             );
         }
+        AnyRobot::Data(m) => m.visit(DataTable(&mut s)),
     }
     s
 }

@@ -16,15 +16,20 @@
 //!   centre.
 //! - [`NLink`] — the synthetic n-link family (`nlink-3` .. `nlink-30`): a yaw joint and a planar
 //!   pitch chain, for cost scaling.
+//! - [`DataRobot`] — any serial arm declared by a robot file ([`robot_file`], TOML): the
+//!   built-in files `robots/data/*.toml` (e.g. `puma560`, and data twins of the DH models above)
+//!   are embedded in the library ([`data_robot::builtin_models`]).
 //!
 //! Modules: [`dh`] (classical DH forward kinematics), [`geometric_jacobian`] (point and body
 //! Jacobians and their time derivatives), [`rigid_body`] (recursive Newton–Euler, inertia and
 //! Coriolis matrices), [`jaco2`] (Jaco2 kinematics), [`jaco2_dynamics`] (Jaco2 inertial table and
 //! [`Dynamics`] implementation), [`katana`] (Katana 6M180), [`panda`] (Franka Emika Panda),
-//! [`nlink`] (the n-link family).
+//! [`nlink`] (the n-link family), [`robot_file`] (the robot file format and its validation),
+//! [`data_robot`] (the model of a robot file, the built-in files).
 
 use nalgebra::{SMatrix, SVector, Vector3};
 
+pub mod data_robot;
 pub mod dh;
 pub mod geometric_jacobian;
 pub mod jaco2;
@@ -35,7 +40,9 @@ pub mod nlink;
 pub mod nlink_dyn;
 pub mod panda;
 pub mod rigid_body;
+pub mod robot_file;
 
+pub use data_robot::{DataModel, DataRobot};
 pub use jaco2::{Jaco2, JACO2, JACO2_HAND, JACO2_PEN, JACO2_PEN_EXP2};
 pub use katana::{Katana6m180, KATANA6M180};
 pub use nlink::NLink;
@@ -61,8 +68,8 @@ pub struct JointLimits<const N: usize> {
 /// A serial arm whose task point is tracked in position (m = 3).
 pub trait Robot<const N: usize>: Send + Sync {
     /// Model name as used in experiment files (`jaco2-pen`, `jaco2`, `katana6m180`, `panda`,
-    /// `nlink-7`).
-    fn name(&self) -> &'static str;
+    /// `nlink-7`, `puma560`); a data robot's name is read from its file.
+    fn name(&self) -> &str;
     /// Task-point position f(theta) in the world frame.
     fn position(&self, theta: &SVector<f64, N>) -> Vector3<f64>;
     /// Position Jacobian J(theta) = df/dtheta.

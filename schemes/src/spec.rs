@@ -184,8 +184,8 @@ pub enum SchemeError {
     /// The dynamics model is not the kinematic robot.
     RobotMismatch {
         scheme: &'static str,
-        robot: &'static str,
-        dynamics: &'static str,
+        robot: String,
+        dynamics: String,
     },
     /// A parameter is out of its range.
     InvalidParameter {
@@ -537,8 +537,8 @@ pub fn build_scheme<const N: usize>(
             if dynamics.name() != robot.name() {
                 return Err(SchemeError::RobotMismatch {
                     scheme: "zhang2018",
-                    robot: robot.name(),
-                    dynamics: dynamics.name(),
+                    robot: robot.name().to_string(),
+                    dynamics: dynamics.name().to_string(),
                 });
             }
             Box::new(Zhang2018::new(

@@ -1,0 +1,664 @@
+//! The robot file: one TOML file declares one serial arm of revolute joints by its
+//! Denavit–Hartenberg table, so that an arm is data, not Rust (`docs/robots.md`).
+//!
+//! ```toml
+//! name = "puma560"                    # a slug: the model name experiment files use
+//! source = "Corke, mdl_puma560; ..."  # where the numbers come from (free text)
+//! convention = "standard"             # or "modified" (stated, required)
+//! tool = [0.0, 0.0, 0.05625]          # task point in the last frame (m)
+//! stated_pose = [0.0, -0.785, 0.0, 1.571, -0.785, 0.0]   # optional (rad)
+//! # flange = { a = 0.0, alpha = 0.0, d = 0.107 }        # modified DH only, required there
+//!
+//! [base]                              # optional: world from DH frame 0 (default identity)
+//! translation = [0.0, 0.0, 0.0]       # optional (m)
+//! rotation = [{ axis = "x", angle = -0.02 }, { axis = "y", angle = -0.05 }]
+//! # or: matrix = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]   (rows; not both)
+//!
+//! [[joint]]                           # one table per joint, base to tip
+//! a = 0.0                             # m
+//! alpha = 1.5707963267948966          # rad
+//! d = 0.0                             # m
+//! offset = 0.0                        # optional joint-angle offset (rad), default 0
+//! theta_min = -2.7751                 # optional (rad); omitted = unlimited
+//! theta_max = 2.7751                  # optional (rad); omitted = unlimited
+//! velocity_max = 1.5                  # optional (rad/s); omitted = unlimited
+//! # velocity_min = -1.0               # optional (rad/s); default -velocity_max
+//! # acceleration_max = 10.0           # optional (rad/s^2), symmetric; omitted = unlimited
+//! # link = { mass = 17.4, center_of_mass = [0.068, 0.006, -0.016],
+//! #          inertia = [0.13, 0.524, 0.539, 0.0, 0.0, 0.0] }   # optional, validated only
+//! ```
+//!
+//! # Mathematics
+//!
+//! With `q_i = theta_i + offset_i`:
+//!
+//! - `convention = "standard"` (classical DH): link `i` is `A_i = Rz(q_i) Tz(d_i) Tx(a_i)
+//!   Rx(alpha_i)`, and the world frame of link `k` is `T_k = B A_1 ... A_k` with `B` the base
+//!   transform; the task point is `f = T_N tool`.
+//! - `convention = "modified"` (Craig): row `i` is `Rx(alpha_i) Tx(a_i) Rz(q_i) Tz(d_i)` and the
+//!   flange row `F = Rx(alpha_f) Tx(a_f) Tz(d_f)` follows joint `N`; the task point is
+//!   `f = B M_1 ... M_N F tool` (`tool` in the flange frame). It is evaluated as the equivalent
+//!   classical chain ([`crate::dh::DhChain::from_modified`], derivation in [`crate::dh`]).
+//! - The base is `B = Trans(translation) R` with `R` the product of the elementary rotations in
+//!   the order listed (`R = R_1 R_2 ...`, e.g. the Jaco2 pen model's `Rx(-0.02) Ry(-0.05)`), or
+//!   the given matrix (rows), which must be a rotation (orthonormal to 1e-9, determinant +1).
+//!
+//! The Jacobian and its derivative are those of [`crate::geometric_jacobian`]
+//! (`J_j = z_{j-1} x (f - o_{j-1})`); the model is [`crate::data_robot::DataRobot`].
+//!
+//! # Validation
+//!
+//! [`RobotSpec::parse`] refuses, with a [`RobotFileError`] naming the file and the field:
+//! unknown fields and unknown choices (`convention`, `axis`: the message lists the valid ones),
+//! missing required fields, non-finite numbers (TOML's `nan` and `inf`; an unlimited bound is
+//! written by omitting it), `theta_min >= theta_max`, `velocity_max <= 0`, `velocity_min >= 0`,
+//! `acceleration_max <= 0`, a joint count the simulation is not built for
+//! ([`crate::data_robot::JOINT_COUNTS`]), a name that is not a slug, a flange row missing from a
+//! modified table or given with a standard one, a `stated_pose` of the wrong length, a base with
+//! both `rotation` and `matrix` or a matrix that is not a rotation, and link inertias with a
+//! non-positive mass or a tensor that is not symmetric positive semi-definite. Files above
+//! [`MAX_FILE_BYTES`] are refused before parsing. Joints are numbered from 1, base to tip.
+//!
+//! Link inertias (`link`) are parsed and validated but not used: a data robot has kinematics
+//! only (no [`crate::Dynamics`]).
+
+use std::io::Read;
+use std::path::Path;
+
+use nalgebra::{Matrix3, Vector3};
+use serde::Deserialize;
+
+use crate::data_robot::JOINT_COUNTS;
+use crate::dh::Frame;
+
+/// Largest robot file accepted (bytes): 1 MiB.
+pub const MAX_FILE_BYTES: u64 = 1 << 20;
+
+/// Longest model name accepted (characters).
+pub const MAX_NAME_LEN: usize = 64;
+
+/// The DH convention a table is written in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Convention {
+    /// Classical DH: `Rz(theta) Tz(d) Tx(a) Rx(alpha)`.
+    Standard,
+    /// Modified (Craig) DH: `Rx(alpha) Tx(a) Rz(theta) Tz(d)`, then a flange row.
+    Modified,
+}
+
+impl std::fmt::Display for Convention {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Convention::Standard => "standard",
+            Convention::Modified => "modified",
+        })
+    }
+}
+
+/// A coordinate axis of an elementary rotation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Axis {
+    X,
+    Y,
+    Z,
+}
+
+/// A rotation by `angle` (rad) about a coordinate axis.
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ElementaryRotation {
+    pub axis: Axis,
+    pub angle: f64,
+}
+
+impl ElementaryRotation {
+    /// The rotation matrix.
+    pub fn matrix(&self) -> Matrix3<f64> {
+        let (s, c) = self.angle.sin_cos();
+        match self.axis {
+            Axis::X => Matrix3::new(1.0, 0.0, 0.0, 0.0, c, -s, 0.0, s, c),
+            Axis::Y => Matrix3::new(c, 0.0, s, 0.0, 1.0, 0.0, -s, 0.0, c),
+            Axis::Z => Matrix3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0),
+        }
+    }
+}
+
+/// One DH row `(a, alpha, d)` as written in the file (a modified table's flange row).
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DhRow {
+    /// m.
+    pub a: f64,
+    /// rad.
+    pub alpha: f64,
+    /// m.
+    pub d: f64,
+}
+
+/// Mass properties of the link a joint moves (parsed and validated, not used: see the module
+/// documentation).
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LinkInertia {
+    /// kg, > 0.
+    pub mass: f64,
+    /// Centre of mass in the link's frame (m).
+    pub center_of_mass: [f64; 3],
+    /// Inertia tensor about the centre of mass, `[Ixx, Iyy, Izz, Ixy, Iyz, Ixz]` (kg m^2), as
+    /// Corke's toolbox lists it; positive semi-definite.
+    pub inertia: [f64; 6],
+}
+
+/// One joint of a validated file: its DH row, offset, limits (infinite where unlimited) and
+/// optional link inertia.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JointSpec {
+    /// The joint's DH row `(a, alpha, d)` in the file's convention.
+    pub row: DhRow,
+    /// Joint-angle offset (rad): the DH angle is `theta + offset`.
+    pub offset: f64,
+    /// Lower joint-angle limit (rad).
+    pub theta_min: f64,
+    /// Upper joint-angle limit (rad).
+    pub theta_max: f64,
+    /// Lower joint-velocity limit (rad/s), < 0.
+    pub velocity_min: f64,
+    /// Upper joint-velocity limit (rad/s), > 0.
+    pub velocity_max: f64,
+    /// Symmetric joint-acceleration limit (rad/s^2), > 0.
+    pub acceleration_max: f64,
+    /// Mass properties of the link, if the file gives them.
+    pub link: Option<LinkInertia>,
+}
+
+/// A validated robot file (see the module documentation).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RobotSpec {
+    file: String,
+    name: String,
+    source: String,
+    convention: Convention,
+    flange: Option<DhRow>,
+    base: Frame,
+    tool: Vector3<f64>,
+    stated_pose: Option<Vec<f64>>,
+    joints: Vec<JointSpec>,
+}
+
+/// Why a robot file was refused. Every variant names the file; joints are numbered from 1.
+#[derive(Debug, thiserror::Error)]
+pub enum RobotFileError {
+    #[error("{file}: cannot read the robot file: {source}")]
+    Read {
+        file: String,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("{file}: {bytes} bytes; a robot file may have at most {limit} bytes")]
+    TooLarge {
+        file: String,
+        bytes: u64,
+        limit: u64,
+    },
+    /// TOML syntax, a missing or unknown field, a wrong type, or an unknown choice (the message
+    /// names the field and lists the valid choices).
+    #[error("{file}: {source}")]
+    Syntax {
+        file: String,
+        #[source]
+        source: toml::de::Error,
+    },
+    #[error(
+        "{file}: name = {name:?} is not a slug (lowercase ASCII letters and digits in words \
+         joined by single '-', at most {MAX_NAME_LEN} characters)"
+    )]
+    Name { file: String, name: String },
+    #[error("{file}: name = {name:?} differs from the file's stem {stem:?}")]
+    NameNotStem {
+        file: String,
+        name: String,
+        stem: String,
+    },
+    #[error(
+        "{file}: {field} = {value} is not a finite number (omit a limit to leave it unlimited)"
+    )]
+    NotFinite {
+        file: String,
+        field: String,
+        value: f64,
+    },
+    #[error("{file}: joint {joint}: theta_min = {min} is not below theta_max = {max}")]
+    EmptyRange {
+        file: String,
+        joint: usize,
+        min: f64,
+        max: f64,
+    },
+    #[error("{file}: joint {joint}: {field} = {value}, must be {requirement}")]
+    Limit {
+        file: String,
+        joint: usize,
+        field: &'static str,
+        value: f64,
+        requirement: &'static str,
+    },
+    #[error(
+        "{file}: {joints} joints; a robot file may have {supported:?} joints (the joint counts \
+         the simulation is built for)"
+    )]
+    JointCount {
+        file: String,
+        joints: usize,
+        supported: &'static [usize],
+    },
+    #[error(
+        "{file}: convention = \"modified\" needs the flange row flange = {{ a, alpha, d }}; \
+         convention = \"standard\" takes none (the tool point is in frame N)"
+    )]
+    Flange {
+        file: String,
+        convention: Convention,
+    },
+    #[error("{file}: stated_pose has {given} angles, the robot has {joints} joints")]
+    StatedPose {
+        file: String,
+        given: usize,
+        joints: usize,
+    },
+    #[error("{file}: base: give the rotation as either `rotation` (elementary rotations) or `matrix`, not both")]
+    TwoRotations { file: String },
+    #[error("{file}: base.matrix is not a rotation (|R^T R - I| = {deviation:e}, det R = {det}); its rows must be orthonormal with det +1")]
+    NotARotation {
+        file: String,
+        deviation: f64,
+        det: f64,
+    },
+    #[error("{file}: joint {joint}: link.{field} is {problem}")]
+    Link {
+        file: String,
+        joint: usize,
+        field: &'static str,
+        problem: &'static str,
+    },
+}
+
+/// The file as written, before validation.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawFile {
+    name: String,
+    source: String,
+    convention: Convention,
+    tool: [f64; 3],
+    stated_pose: Option<Vec<f64>>,
+    flange: Option<DhRow>,
+    base: Option<RawBase>,
+    joint: Vec<RawJoint>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawBase {
+    translation: Option<[f64; 3]>,
+    rotation: Option<Vec<ElementaryRotation>>,
+    matrix: Option<[[f64; 3]; 3]>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawJoint {
+    a: f64,
+    alpha: f64,
+    d: f64,
+    offset: Option<f64>,
+    theta_min: Option<f64>,
+    theta_max: Option<f64>,
+    velocity_min: Option<f64>,
+    velocity_max: Option<f64>,
+    acceleration_max: Option<f64>,
+    link: Option<LinkInertia>,
+}
+
+/// Whether `name` is a slug: words of `[a-z0-9]` joined by single `-`.
+fn is_slug(name: &str) -> bool {
+    name.len() <= MAX_NAME_LEN
+        && name.split('-').all(|w| {
+            !w.is_empty()
+                && w.bytes()
+                    .all(|b| b.is_ascii_lowercase() || b.is_ascii_digit())
+        })
+}
+
+/// Collects the non-finite-number check over every number of the file.
+struct Finite<'a> {
+    file: &'a str,
+}
+
+impl Finite<'_> {
+    fn check(&self, field: impl FnOnce() -> String, value: f64) -> Result<f64, RobotFileError> {
+        if value.is_finite() {
+            Ok(value)
+        } else {
+            Err(RobotFileError::NotFinite {
+                file: self.file.to_string(),
+                field: field(),
+                value,
+            })
+        }
+    }
+
+    fn all(&self, field: &str, values: &[f64]) -> Result<(), RobotFileError> {
+        for (k, &v) in values.iter().enumerate() {
+            self.check(|| format!("{field}[{k}]"), v)?;
+        }
+        Ok(())
+    }
+}
+
+impl RobotSpec {
+    /// Parses and validates the robot file `text`; `file` names it in errors.
+    pub fn parse(file: &str, text: &str) -> Result<Self, RobotFileError> {
+        let bytes = text.len() as u64;
+        if bytes > MAX_FILE_BYTES {
+            return Err(RobotFileError::TooLarge {
+                file: file.to_string(),
+                bytes,
+                limit: MAX_FILE_BYTES,
+            });
+        }
+        let raw: RawFile = toml::from_str(text).map_err(|source| RobotFileError::Syntax {
+            file: file.to_string(),
+            source,
+        })?;
+        Self::validate(file, raw)
+    }
+
+    /// Reads, parses and validates the robot file at `path` (at most [`MAX_FILE_BYTES`]); the
+    /// name must be the file's stem (`puma560.toml` declares `puma560`).
+    pub fn read(path: &Path) -> Result<Self, RobotFileError> {
+        let file = path.display().to_string();
+        let read_error = |source| RobotFileError::Read {
+            file: file.clone(),
+            source,
+        };
+        let mut text = String::new();
+        std::fs::File::open(path)
+            .map_err(read_error)?
+            .take(MAX_FILE_BYTES + 1)
+            .read_to_string(&mut text)
+            .map_err(read_error)?;
+        let stem = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        Self::parse_named(&file, &stem, &text)
+    }
+
+    /// [`RobotSpec::parse`], and the name must be `stem`.
+    pub(crate) fn parse_named(file: &str, stem: &str, text: &str) -> Result<Self, RobotFileError> {
+        let spec = Self::parse(file, text)?;
+        if spec.name != stem {
+            return Err(RobotFileError::NameNotStem {
+                file: file.to_string(),
+                name: spec.name,
+                stem: stem.to_string(),
+            });
+        }
+        Ok(spec)
+    }
+
+    fn validate(file: &str, raw: RawFile) -> Result<Self, RobotFileError> {
+        let fail_file = || file.to_string();
+        if !is_slug(&raw.name) {
+            return Err(RobotFileError::Name {
+                file: fail_file(),
+                name: raw.name,
+            });
+        }
+        let n = raw.joint.len();
+        if !JOINT_COUNTS.contains(&n) {
+            return Err(RobotFileError::JointCount {
+                file: fail_file(),
+                joints: n,
+                supported: JOINT_COUNTS,
+            });
+        }
+        let finite = Finite { file };
+        finite.all("tool", &raw.tool)?;
+        if let Some(pose) = &raw.stated_pose {
+            if pose.len() != n {
+                return Err(RobotFileError::StatedPose {
+                    file: fail_file(),
+                    given: pose.len(),
+                    joints: n,
+                });
+            }
+            finite.all("stated_pose", pose)?;
+        }
+        let flange = match (raw.convention, raw.flange) {
+            (Convention::Modified, Some(f)) => {
+                finite.all("flange", &[f.a, f.alpha, f.d])?;
+                Some(f)
+            }
+            (Convention::Standard, None) => None,
+            (convention, _) => {
+                return Err(RobotFileError::Flange {
+                    file: fail_file(),
+                    convention,
+                })
+            }
+        };
+        let base = Self::parse_base(file, &finite, raw.base)?;
+        let joints = raw
+            .joint
+            .into_iter()
+            .enumerate()
+            .map(|(i, j)| Self::parse_joint(file, &finite, i + 1, j))
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(RobotSpec {
+            file: file.to_string(),
+            name: raw.name,
+            source: raw.source,
+            convention: raw.convention,
+            flange,
+            base,
+            tool: Vector3::from(raw.tool),
+            stated_pose: raw.stated_pose,
+            joints,
+        })
+    }
+
+    fn parse_base(
+        file: &str,
+        finite: &Finite,
+        raw: Option<RawBase>,
+    ) -> Result<Frame, RobotFileError> {
+        let Some(raw) = raw else {
+            return Ok(Frame::identity());
+        };
+        let translation = raw.translation.unwrap_or([0.0; 3]);
+        finite.all("base.translation", &translation)?;
+        let rot = match (raw.rotation, raw.matrix) {
+            (Some(_), Some(_)) => {
+                return Err(RobotFileError::TwoRotations {
+                    file: file.to_string(),
+                })
+            }
+            (Some(list), None) => {
+                let mut rot = Matrix3::identity();
+                for (k, r) in list.iter().enumerate() {
+                    finite.check(|| format!("base.rotation[{k}].angle"), r.angle)?;
+                    rot *= r.matrix();
+                }
+                rot
+            }
+            (None, Some(rows)) => {
+                for (k, row) in rows.iter().enumerate() {
+                    finite.all(&format!("base.matrix[{k}]"), row)?;
+                }
+                let m = Matrix3::from_fn(|r, c| rows[r][c]);
+                let deviation = (m.transpose() * m - Matrix3::identity()).norm();
+                let det = m.determinant();
+                if deviation > 1e-9 || det <= 0.0 {
+                    return Err(RobotFileError::NotARotation {
+                        file: file.to_string(),
+                        deviation,
+                        det,
+                    });
+                }
+                m
+            }
+            (None, None) => Matrix3::identity(),
+        };
+        Ok(Frame {
+            rot,
+            origin: Vector3::from(translation),
+        })
+    }
+
+    fn parse_joint(
+        file: &str,
+        finite: &Finite,
+        joint: usize,
+        j: RawJoint,
+    ) -> Result<JointSpec, RobotFileError> {
+        let number = |name: &str, v: f64| finite.check(|| format!("joint {joint}: {name}"), v);
+        let optional = |name: &str, v: Option<f64>, unlimited: f64| match v {
+            Some(v) => number(name, v),
+            None => Ok(unlimited),
+        };
+        let limit = |field: &'static str, value: f64, ok: bool, requirement: &'static str| {
+            if ok {
+                Ok(value)
+            } else {
+                Err(RobotFileError::Limit {
+                    file: file.to_string(),
+                    joint,
+                    field,
+                    value,
+                    requirement,
+                })
+            }
+        };
+        let inf = f64::INFINITY;
+        let row = DhRow {
+            a: number("a", j.a)?,
+            alpha: number("alpha", j.alpha)?,
+            d: number("d", j.d)?,
+        };
+        let offset = optional("offset", j.offset, 0.0)?;
+        let theta_min = optional("theta_min", j.theta_min, -inf)?;
+        let theta_max = optional("theta_max", j.theta_max, inf)?;
+        if theta_min >= theta_max {
+            return Err(RobotFileError::EmptyRange {
+                file: file.to_string(),
+                joint,
+                min: theta_min,
+                max: theta_max,
+            });
+        }
+        let velocity_max = optional("velocity_max", j.velocity_max, inf)?;
+        let velocity_max = limit("velocity_max", velocity_max, velocity_max > 0.0, "> 0")?;
+        let velocity_min = optional("velocity_min", j.velocity_min, -velocity_max)?;
+        let velocity_min = limit("velocity_min", velocity_min, velocity_min < 0.0, "< 0")?;
+        let acceleration_max = optional("acceleration_max", j.acceleration_max, inf)?;
+        let acceleration_max = limit(
+            "acceleration_max",
+            acceleration_max,
+            acceleration_max > 0.0,
+            "> 0",
+        )?;
+        if let Some(link) = &j.link {
+            Self::check_link(file, finite, joint, link)?;
+        }
+        Ok(JointSpec {
+            row,
+            offset,
+            theta_min,
+            theta_max,
+            velocity_min,
+            velocity_max,
+            acceleration_max,
+            link: j.link,
+        })
+    }
+
+    fn check_link(
+        file: &str,
+        finite: &Finite,
+        joint: usize,
+        link: &LinkInertia,
+    ) -> Result<(), RobotFileError> {
+        let bad = |field: &'static str, problem: &'static str| {
+            Err(RobotFileError::Link {
+                file: file.to_string(),
+                joint,
+                field,
+                problem,
+            })
+        };
+        finite.check(|| format!("joint {joint}: link.mass"), link.mass)?;
+        finite.all(
+            &format!("joint {joint}: link.center_of_mass"),
+            &link.center_of_mass,
+        )?;
+        finite.all(&format!("joint {joint}: link.inertia"), &link.inertia)?;
+        if link.mass <= 0.0 {
+            return bad("mass", "not positive");
+        }
+        let [ixx, iyy, izz, ixy, iyz, ixz] = link.inertia;
+        let tensor = Matrix3::new(ixx, ixy, ixz, ixy, iyy, iyz, ixz, iyz, izz);
+        let scale = tensor.norm().max(f64::MIN_POSITIVE);
+        if tensor.symmetric_eigenvalues().min() < -1e-12 * scale {
+            return bad("inertia", "not positive semi-definite");
+        }
+        Ok(())
+    }
+
+    /// The file's name as given to [`RobotSpec::parse`] or its path.
+    pub fn file(&self) -> &str {
+        &self.file
+    }
+
+    /// The model name (a slug).
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// Where the numbers come from.
+    pub fn source(&self) -> &str {
+        &self.source
+    }
+
+    /// The DH convention of the table.
+    pub fn convention(&self) -> Convention {
+        self.convention
+    }
+
+    /// The flange row of a modified table (`None` for a standard one).
+    pub fn flange(&self) -> Option<DhRow> {
+        self.flange
+    }
+
+    /// World from DH frame 0 (the file's `base`).
+    pub fn base(&self) -> Frame {
+        self.base
+    }
+
+    /// The task point in the last frame (frame N, or the flange frame of a modified table).
+    pub fn tool(&self) -> Vector3<f64> {
+        self.tool
+    }
+
+    /// The pose the check values are stated at, if the file states one.
+    pub fn stated_pose(&self) -> Option<&[f64]> {
+        self.stated_pose.as_deref()
+    }
+
+    /// The joints, base to tip.
+    pub fn joints(&self) -> &[JointSpec] {
+        &self.joints
+    }
+}

@@ -1,0 +1,207 @@
+//! Hostile robot files: each is refused with an error naming the file and the field, and no
+//! input panics.
+
+use robots::data_robot::{builtin_files, DataModel};
+use robots::robot_file::{RobotFileError, RobotSpec, MAX_FILE_BYTES};
+
+/// The built-in PUMA 560 file, the base of every mutation here.
+fn puma_text() -> &'static str {
+    builtin_files()
+        .iter()
+        .find(|(f, _)| *f == "puma560.toml")
+        .map(|(_, t)| *t)
+        .unwrap()
+}
+
+/// The PUMA file with `from` replaced by `to` (which must occur).
+fn mutated(from: &str, to: &str) -> String {
+    let text = puma_text();
+    assert!(text.contains(from), "{from:?} not in puma560.toml");
+    text.replacen(from, to, 1)
+}
+
+fn refuse(text: &str) -> RobotFileError {
+    let err = RobotSpec::parse("hostile.toml", text).expect_err("the file must be refused");
+    let message = err.to_string();
+    assert!(message.starts_with("hostile.toml: "), "{message}");
+    println!("{message}");
+    err
+}
+
+#[test]
+fn the_unmodified_file_parses() {
+    let spec = RobotSpec::parse("puma560.toml", puma_text()).unwrap();
+    assert_eq!(spec.name(), "puma560");
+    assert_eq!(spec.joints().len(), 6);
+    assert!(DataModel::new(&spec).is_ok());
+}
+
+#[test]
+fn nan_is_refused_naming_the_field() {
+    let err = refuse(&mutated("a = 0.4318", "a = nan"));
+    assert!(
+        matches!(&err, RobotFileError::NotFinite { field, value, .. } if field == "joint 2: a" && value.is_nan()),
+        "{err:?}"
+    );
+    let err = refuse(&mutated(
+        "tool = [0.0, 0.0, 0.05625]",
+        "tool = [0.0, inf, 0.05625]",
+    ));
+    assert!(matches!(&err, RobotFileError::NotFinite { field, .. } if field == "tool[1]"));
+}
+
+#[test]
+fn theta_min_above_theta_max_is_refused() {
+    let err = refuse(&mutated("theta_min = -2.7751", "theta_min = 2.8"));
+    assert!(
+        matches!(err, RobotFileError::EmptyRange { joint: 1, .. }),
+        "{err:?}"
+    );
+}
+
+#[test]
+fn unknown_convention_lists_the_valid_ones() {
+    let err = refuse(&mutated(
+        "convention = \"standard\"",
+        "convention = \"craig\"",
+    ));
+    let message = err.to_string();
+    assert!(matches!(err, RobotFileError::Syntax { .. }));
+    assert!(
+        message.contains("craig") && message.contains("standard") && message.contains("modified")
+    );
+    let err = refuse(&mutated("convention = \"standard\"\n", ""));
+    assert!(err.to_string().contains("convention"), "{err}");
+}
+
+#[test]
+fn eight_joints_are_refused_listing_the_counts() {
+    let text = format!(
+        "{}\n[[joint]]\na = 0.0\nalpha = 0.0\nd = 0.1\n\n[[joint]]\na = 0.0\nalpha = 0.0\nd = 0.1\n",
+        puma_text().replace("stated_pose", "# stated_pose")
+    );
+    let err = refuse(&text);
+    assert!(
+        matches!(err, RobotFileError::JointCount { joints: 8, supported, .. } if supported.contains(&7)),
+        "{err:?}"
+    );
+}
+
+#[test]
+fn unknown_fields_are_refused() {
+    let err = refuse(&mutated("name = ", "colour = \"red\"\nname = "));
+    assert!(err.to_string().contains("colour"), "{err}");
+    let err = refuse(&mutated(
+        "velocity_max = 1.5",
+        "velocity_max = 1.5\nvelocity_maximum = 2.0",
+    ));
+    assert!(err.to_string().contains("velocity_maximum"), "{err}");
+}
+
+#[test]
+fn oversized_files_are_refused_before_parsing() {
+    let big = format!(
+        "{}\n#{}\n",
+        puma_text(),
+        "x".repeat(MAX_FILE_BYTES as usize)
+    );
+    let err = refuse(&big);
+    assert!(matches!(err, RobotFileError::TooLarge { .. }), "{err:?}");
+    let dir = std::env::temp_dir().join(format!("robots-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("puma560.toml");
+    std::fs::write(&path, &big).unwrap();
+    let err = RobotSpec::read(&path).unwrap_err();
+    assert!(matches!(err, RobotFileError::TooLarge { .. }), "{err:?}");
+    std::fs::write(&path, puma_text()).unwrap();
+    assert_eq!(RobotSpec::read(&path).unwrap().name(), "puma560");
+    let renamed = dir.join("puma.toml");
+    std::fs::write(&renamed, puma_text()).unwrap();
+    let err = RobotSpec::read(&renamed).unwrap_err();
+    assert!(matches!(err, RobotFileError::NameNotStem { .. }), "{err:?}");
+    let err = RobotSpec::read(&dir.join("absent.toml")).unwrap_err();
+    assert!(matches!(err, RobotFileError::Read { .. }), "{err:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Whether an error is the one a case expects.
+type Expected = fn(&RobotFileError) -> bool;
+
+#[test]
+fn other_invalid_values_are_refused() {
+    let cases: [(&str, &str, Expected); 8] = [
+        ("name = \"puma560\"", "name = \"Puma 560\"", |e| matches!(e, RobotFileError::Name { .. })),
+        ("name = \"puma560\"", "name = \"puma--560\"", |e| matches!(e, RobotFileError::Name { .. })),
+        ("velocity_max = 1.5", "velocity_max = 0.0", |e| {
+            matches!(e, RobotFileError::Limit { field: "velocity_max", joint: 1, .. })
+        }),
+        ("velocity_max = 1.5", "velocity_max = 1.5\nvelocity_min = 0.5", |e| {
+            matches!(e, RobotFileError::Limit { field: "velocity_min", .. })
+        }),
+        ("velocity_max = 1.5", "velocity_max = 1.5\nacceleration_max = -1.0", |e| {
+            matches!(e, RobotFileError::Limit { field: "acceleration_max", .. })
+        }),
+        ("convention = \"standard\"", "convention = \"modified\"", |e| {
+            matches!(e, RobotFileError::Flange { .. })
+        }),
+        ("stated_pose = [", "stated_pose = [0.0, ", |e| {
+            matches!(e, RobotFileError::StatedPose { given: 7, joints: 6, .. })
+        }),
+        ("velocity_max = 1.5", "velocity_max = 1.5\nlink = { mass = -1.0, center_of_mass = [0.0, 0.0, 0.0], inertia = [1.0, 1.0, 1.0, 0.0, 0.0, 0.0] }", |e| {
+            matches!(e, RobotFileError::Link { field: "mass", .. })
+        }),
+    ];
+    for (from, to, expected) in cases {
+        let err = refuse(&mutated(from, to));
+        assert!(expected(&err), "{to}: {err:?}");
+    }
+}
+
+#[test]
+fn base_rotations_are_validated() {
+    let with_base = |base: &str| mutated("\n[[joint]]", &format!("\n[base]\n{base}\n\n[[joint]]"));
+    let ok = RobotSpec::parse(
+        "base.toml",
+        &with_base("translation = [0.1, 0.0, 0.0]\nmatrix = [[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]"),
+    )
+    .unwrap();
+    let list = RobotSpec::parse(
+        "base.toml",
+        &with_base("translation = [0.1, 0.0, 0.0]\nrotation = [{ axis = \"z\", angle = 1.5707963267948966 }]"),
+    )
+    .unwrap();
+    assert!((ok.base().rot - list.base().rot).amax() < 1e-15);
+    let err = refuse(&with_base(
+        "matrix = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, -1.0]]",
+    ));
+    assert!(
+        matches!(err, RobotFileError::NotARotation { .. }),
+        "{err:?}"
+    );
+    let err = refuse(&with_base(
+        "matrix = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]\nrotation = []",
+    ));
+    assert!(
+        matches!(err, RobotFileError::TwoRotations { .. }),
+        "{err:?}"
+    );
+    let err = refuse(&with_base("rotation = [{ axis = \"w\", angle = 0.1 }]"));
+    assert!(err.to_string().contains("`x`"), "{err}");
+}
+
+#[test]
+fn no_input_panics() {
+    let text = puma_text();
+    // Every prefix (cut at character boundaries), and every single-character corruption by a
+    // few hostile characters.
+    for cut in (0..text.len()).filter(|&k| text.is_char_boundary(k)) {
+        let _ = RobotSpec::parse("cut.toml", &text[..cut]).and_then(|s| DataModel::new(&s));
+    }
+    for (k, _) in text.char_indices().step_by(3) {
+        for c in ["-", "9", "]", "\"", "\n", "e"] {
+            let mut t = text.to_string();
+            t.replace_range(k..k + t[k..].chars().next().unwrap().len_utf8(), c);
+            let _ = RobotSpec::parse("corrupt.toml", &t).and_then(|s| DataModel::new(&s));
+        }
+    }
+}
