@@ -265,7 +265,7 @@ impl SolverChoice {
         match self {
             SolverChoice::Exact => EXACT_ID.to_string(),
             SolverChoice::Neural(s) => s.id(),
-            SolverChoice::Numerical(s) => s.method.id().to_string(),
+            SolverChoice::Numerical(s) => s.id(),
         }
     }
 

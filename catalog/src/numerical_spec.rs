@@ -133,9 +133,31 @@ pub enum NumericalSpecError {
 pub const MAX_STEPS: f64 = 1e7;
 
 impl NumericalSpec {
+    /// The solver's id in run keys: the method's id, with each setting that differs from its
+    /// default appended (`94lvi`, `94lvi-h-0.0001`, `m5-tol-1e-6-h-0.01`), so that one variant
+    /// can run a method at several settings.
+    pub fn id(&self) -> String {
+        let mut id = self.method.id().to_string();
+        if self.tolerance != DEFAULT_TOLERANCE {
+            id.push_str(&format!("-tol-{:e}", self.tolerance));
+        }
+        if self.max_iterations != DEFAULT_MAX_ITERATIONS {
+            id.push_str(&format!("-iter-{}", self.max_iterations));
+        }
+        if self.step != DEFAULT_STEP {
+            id.push_str(&format!("-h-{}", self.step));
+        }
+        id
+    }
+
     /// The solver's label in tables (display only), e.g. `94LVI (|e| <= 0.001)`.
     pub fn display_name(&self) -> String {
-        format!("{} (|e| <= {})", self.method.name(), self.tolerance)
+        let h = if self.step == DEFAULT_STEP {
+            String::new()
+        } else {
+            format!(", h = {} s", self.step)
+        };
+        format!("{} (|e| <= {}{h})", self.method.name(), self.tolerance)
     }
 
     /// Checks the settings for a path of `duration` seconds.
@@ -199,5 +221,8 @@ mod tests {
         assert!(spec(1e-3, 20.0).validate(15.0).is_err());
         assert!(spec(1e-3, 1e-9).validate(15.0).is_err());
         assert!(spec(1e-3, 1e-3).validate(15.0).is_ok());
+        assert_eq!(spec(1e-3, 1e-4).id(), "m4-iter-10-h-0.0001");
+        let plain: NumericalSpec = toml::from_str("method = \"e47\"").unwrap();
+        assert_eq!(plain.id(), "e47");
     }
 }

@@ -20,7 +20,7 @@ impl<const N: usize> Limited<N> {
 }
 
 impl<const N: usize> Robot<N> for Limited<N> {
-    fn name(&self) -> &'static str {
+    fn name(&self) -> &str {
         self.robot.name()
     }
 
