@@ -11,8 +11,8 @@ use nalgebra::SVector;
 use robots::{Dynamics, Robot};
 use schemes::paths::Path;
 use schemes::scheme::Scheme;
-use simulation::run::{build_cyclic_parts, job_robot};
 use simulation::run::check_job;
+use simulation::run::{build_cyclic_parts, job_robot};
 use std::sync::Arc;
 
 /// A task: an experiment and one of its variants (ids).

@@ -27,9 +27,9 @@ use crate::instants::Instants;
 use nalgebra::{DVector, Matrix3xX};
 use records::dof_cost::{Quantity, RunCounts, SchemeKind};
 use robots::NLinkDyn;
-use schemes::velocity_rmp::fill_qp;
 use schemes::paths::build_path;
 use schemes::qp::{Qp, QpDims};
+use schemes::velocity_rmp::fill_qp;
 use solvers::Backend;
 
 /// The joint counts of the dynamic path (above the registry's largest, 30).

@@ -107,8 +107,9 @@ pub fn metric(r: &RunRow, name: &str) -> Option<f64> {
     match name {
         "drift_norm" => r.drift_norm,
         // The largest |theta_k(T) - theta_k(0)| over the joints ("every joint drift < x").
-        "drift_max_abs" => (!r.drift.is_empty())
-            .then(|| r.drift.iter().fold(0.0f64, |m, d| m.max(d.abs()))),
+        "drift_max_abs" => {
+            (!r.drift.is_empty()).then(|| r.drift.iter().fold(0.0f64, |m, d| m.max(d.abs())))
+        }
         "solver_iterations" => r.solver_iterations.map(|v| v as f64),
         "solver_iterations_max" => r.solver_iterations_max.map(|v| v as f64),
         "drift_ref_norm" => r.drift_ref_norm,

@@ -35,6 +35,99 @@ pub struct PaperValue {
     pub metric: String,
     pub value: f64,
     pub note: String,
+    /// Why the number contradicts the paper's own others, when it does (set at load by
+    /// [`inconsistencies`]): the report shows it marked and computes nothing from it.
+    #[serde(skip)]
+    pub inconsistent: Option<String>,
+}
+
+/// A published number that contradicts the paper's own (file, line, what), warned at load.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ValueWarning {
+    pub file: PathBuf,
+    /// The line of values.csv (the header is line 1).
+    pub line: usize,
+    pub message: String,
+}
+
+impl std::fmt::Display for ValueWarning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}:{}: {}", self.file.display(), self.line, self.message)
+    }
+}
+
+/// Marks the values of one paper (`values[i]` read from line `i + 2`) that contradict the
+/// paper's own numbers, and returns one warning per mark:
+/// - a second entry for the same (table, experiment, column, metric) (the first is kept);
+/// - a negative `drift_norm` (a norm is >= 0);
+/// - a `drift_norm` below the largest |drift_k| of its own (table, experiment, column) (a
+///   2-norm is at least every entry).
+pub fn inconsistencies(file: &Path, values: &mut [PaperValue]) -> Vec<ValueWarning> {
+    let mut warnings = Vec::new();
+    let mut mark = |values: &mut [PaperValue], i: usize, message: String| {
+        warnings.push(ValueWarning {
+            file: file.to_path_buf(),
+            line: i + 2,
+            message: message.clone(),
+        });
+        values[i].inconsistent = Some(message);
+    };
+    let mut seen = std::collections::HashMap::new();
+    for i in 0..values.len() {
+        let v = &values[i];
+        let key = (
+            v.table.clone(),
+            v.experiment.clone(),
+            v.column.clone(),
+            v.metric.clone(),
+        );
+        if let Some(first) = seen.get(&key) {
+            let message = format!(
+                "{} / {} / {} / {} is given twice (first on line {}); this entry is not used",
+                v.table,
+                v.experiment,
+                v.column,
+                v.metric,
+                first + 2
+            );
+            mark(values, i, message);
+            continue;
+        }
+        seen.insert(key, i);
+    }
+    for i in 0..values.len() {
+        let v = &values[i];
+        if v.metric != "drift_norm" || v.inconsistent.is_some() {
+            continue;
+        }
+        if v.value < 0.0 {
+            let message = format!("the printed norm {:e} is negative", v.value);
+            mark(values, i, message);
+            continue;
+        }
+        let largest = values
+            .iter()
+            .filter(|w| {
+                w.table == v.table
+                    && w.experiment == v.experiment
+                    && w.column == v.column
+                    && w.metric.starts_with("drift_")
+                    && w.metric != "drift_norm"
+                    && w.inconsistent.is_none()
+            })
+            .map(|w| (w.value.abs(), w.metric.clone()))
+            .max_by(|a, b| a.0.total_cmp(&b.0));
+        if let Some((entry, metric)) = largest {
+            if v.value < entry {
+                let message = format!(
+                    "the printed norm {:e} is below its own {metric} entry {:e}",
+                    v.value, entry
+                );
+                mark(values, i, message);
+            }
+        }
+    }
+    warnings
 }
 
 /// A problem with the papers' files, naming the file.
@@ -115,6 +208,8 @@ pub struct Papers {
     pub mappings: Vec<Mapping>,
     /// Published tables set beside a sweep's runs ([`crate::sweep_check`]).
     pub sweep_checks: Vec<SweepCheck>,
+    /// Published numbers that contradict the paper's own ([`inconsistencies`]).
+    pub warnings: Vec<ValueWarning>,
 }
 
 impl Papers {
@@ -173,8 +268,29 @@ impl Papers {
                     source,
                 };
                 let mut r = csv::Reader::from_path(&values).map_err(csv_err)?;
-                for row in r.deserialize() {
+                let mut read = Vec::new();
+                for (i, row) in r.deserialize().enumerate() {
                     let v: PaperValue = row.map_err(csv_err)?;
+                    let line = i + 2;
+                    if !v.value.is_finite() {
+                        return Err(PapersError::Invalid {
+                            path: values.clone(),
+                            message: format!(
+                                "line {line}: value {} is not a finite number",
+                                v.value
+                            ),
+                        });
+                    }
+                    if our_metric(&v.metric).is_none() {
+                        return Err(PapersError::Invalid {
+                            path: values.clone(),
+                            message: format!(
+                                "line {line}: unknown metric \"{}\" (valid: {})",
+                                v.metric,
+                                PUBLISHED_METRICS.join(", ")
+                            ),
+                        });
+                    }
                     if v.paper != file.paper {
                         return Err(PapersError::Invalid {
                             path: values.clone(),
@@ -184,8 +300,10 @@ impl Papers {
                             ),
                         });
                     }
-                    out.values.push(v);
+                    read.push(v);
                 }
+                out.warnings.extend(inconsistencies(&values, &mut read));
+                out.values.extend(read);
             }
             let claims = file
                 .claims
@@ -307,17 +425,47 @@ impl Papers {
                 .iter()
                 .filter(move |v| self.mapping_of(v) == Some(mapping))
         };
-        if let Some(v) = of_column().find(|v| our_metric(&v.metric) == Some(metric)) {
+        if let Some(v) = of_column()
+            .filter(|v| v.inconsistent.is_none())
+            .find(|v| our_metric(&v.metric) == Some(metric))
+        {
             return Some((v.value, false));
         }
         if metric != "drift_norm" {
             return None;
         }
         let joints: Vec<f64> = of_column()
+            .filter(|v| v.inconsistent.is_none())
             .filter(|v| v.metric.starts_with("drift_") && v.metric != "drift_norm")
             .map(|v| v.value)
             .collect();
         (!joints.is_empty()).then(|| (joints.iter().map(|d| d * d).sum::<f64>().sqrt(), true))
+    }
+}
+
+/// The metrics a values.csv row may name ([`our_metric`] knows each).
+pub const PUBLISHED_METRICS: [&str; 10] = [
+    "drift_1",
+    "drift_2",
+    "drift_3",
+    "drift_4",
+    "drift_5",
+    "drift_6",
+    "drift_norm",
+    "compute_time_s",
+    "max_position_error_m",
+    "final_position_error_m",
+];
+
+impl Papers {
+    /// The printed entry of `mapping`'s column for `metric` that contradicts the paper's own
+    /// numbers, with the reason ([`inconsistencies`]).
+    pub fn inconsistent(&self, mapping: &Mapping, metric: &str) -> Option<(f64, &str)> {
+        self.values
+            .iter()
+            .filter(|v| self.mapping_of(v) == Some(mapping))
+            .filter(|v| our_metric(&v.metric) == Some(metric))
+            .find_map(|v| v.inconsistent.as_deref().map(|why| (v.value, why)))
     }
 }
 

@@ -8,11 +8,19 @@ use crate::report::{render_report, report_root};
 use catalog::experiment::Job;
 use records::results_dir::ResultsDir;
 
-/// The papers as data (`papers/` under the project root).
+/// The papers as data (`papers/` under the project root). Their published numbers that
+/// contradict the paper's own are warned on stderr, once per process, with file and line.
 pub fn load_papers(cli: &Cli) -> Result<records::papers::Papers, ReproduceError> {
-    Ok(records::papers::Papers::load(
-        &cli.project_root.join("papers"),
-    )?)
+    static WARNED: std::sync::Once = std::sync::Once::new();
+    let root = &cli.project_root;
+    let papers = records::papers::Papers::load(&root.join("papers"))?;
+    WARNED.call_once(|| {
+        for w in &papers.warnings {
+            let file = w.file.strip_prefix(root).unwrap_or(&w.file);
+            eprintln!("warning: {}:{}: {}", file.display(), w.line, w.message);
+        }
+    });
+    Ok(papers)
 }
 
 /// The ladders and attributions of the selected runs `jobs` of the papers' solvers (`all`:

@@ -426,7 +426,13 @@ impl SchemeSpec {
                 )
             }
             SchemeSpec::Kong2019Znn { mu, k_p } => {
-                check(s, "mu", mu, mu >= 0.0, "finite and >= 0 (0: no repetitive term)")?;
+                check(
+                    s,
+                    "mu",
+                    mu,
+                    mu >= 0.0,
+                    "finite and >= 0 (0: no repetitive term)",
+                )?;
                 check(
                     s,
                     "k_p",
@@ -481,7 +487,13 @@ impl SchemeSpec {
                     "finite and >= 0 (0: no position feedback)",
                 )?;
                 if let Some(u) = upsilon {
-                    check(s, "upsilon", u, u > 0.0, "finite and > 0 (absent: no bounds)")?;
+                    check(
+                        s,
+                        "upsilon",
+                        u,
+                        u > 0.0,
+                        "finite and > 0 (absent: no bounds)",
+                    )?;
                 }
                 Ok(())
             }

@@ -164,7 +164,16 @@ impl<const N: usize> VelocityRmp<N> {
             alpha,
             smoothing: SMOOTHING,
         };
-        Self::new(robot, path, theta_star0, 1.0, term, k_p, None, "finite-time")
+        Self::new(
+            robot,
+            path,
+            theta_star0,
+            1.0,
+            term,
+            k_p,
+            None,
+            "finite-time",
+        )
     }
 
     /// kong2019's ZNN repetitive scheme (22) with gain mu and feedback k_p (a preset).

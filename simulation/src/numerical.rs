@@ -142,9 +142,7 @@ pub(crate) fn run_numerical<const N: usize>(
         Some((t, error)) => Outcome::Failed {
             t,
             error,
-            partial: observer
-                .has_samples()
-                .then(|| observer.metrics.finish(0.0)),
+            partial: observer.has_samples().then(|| observer.metrics.finish(0.0)),
         },
     };
     NumericalRun {

@@ -127,14 +127,8 @@ pub fn simulate<const N: usize>(
     let mut iterations = None;
     let (outcome, stats, qp) = match solver {
         Solver::Numerical(spec) => {
-            let r = crate::numerical::run_numerical(
-                scheme,
-                spec,
-                &theta0,
-                t1,
-                settings,
-                &mut observer,
-            );
+            let r =
+                crate::numerical::run_numerical(scheme, spec, &theta0, t1, settings, &mut observer);
             iterations = Some(r.iterations);
             observer.score_failures = r.score_failures;
             (r.outcome, r.stats, r.qp)

@@ -314,6 +314,44 @@ pub fn to_markdown(inputs: &Inputs) -> String {
         out.push_str(&t.render());
     }
 
+    out.push_str("\n## Published numbers the papers contradict\n\n");
+    let contradicted: Vec<_> = papers
+        .values
+        .iter()
+        .filter_map(|v| v.inconsistent.as_ref().map(|why| (v, why)))
+        .collect();
+    if contradicted.is_empty() {
+        out.push_str("No published number contradicts its paper's own.\n");
+    } else {
+        out.push_str(
+            "Checked at load (`records::papers::inconsistencies`): a norm below one of its own \
+             entries, a negative norm, a number given twice. These are shown marked † in their \
+             tables and no ratio, range or verdict is computed from them (a drift norm falls \
+             back to the norm of the printed joints).\n\n",
+        );
+        let mut t = Table::new([
+            "paper",
+            "table",
+            "experiment",
+            "column",
+            "metric",
+            "printed",
+            "why",
+        ]);
+        for (v, why) in contradicted {
+            t.push([
+                v.paper.clone(),
+                v.table.clone(),
+                v.experiment.clone(),
+                v.column.clone(),
+                v.metric.clone(),
+                sci(v.value),
+                why.clone(),
+            ]);
+        }
+        out.push_str(&t.render());
+    }
+
     out.push_str("\n---\n\n");
     out.push_str(deviations);
     if !deviations.ends_with('\n') {

@@ -181,17 +181,27 @@ pub fn side_by_side(paper: &str, table: &str, papers: &Papers, runs: &Runs) -> S
     }));
     let mut t = Table::new(header);
     let mut derived = false;
+    let mut inconsistent = false;
     for q in quantities_of(paper, table, papers, &shown) {
         let mut row = vec![quantity_label(q)];
         for c in &cols {
             row.push(match c {
-                Col::Paper(m) => match papers.published(m, q) {
-                    Some((v, d)) => {
-                        derived |= d;
-                        format!("{}{}", sci(v), if d { "*" } else { "" })
+                Col::Paper(m) => {
+                    let printed = match papers.published(m, q) {
+                        Some((v, d)) => {
+                            derived |= d;
+                            format!("{}{}", sci(v), if d { "*" } else { "" })
+                        }
+                        None => MISSING.to_string(),
+                    };
+                    match papers.inconsistent(m, q) {
+                        Some((v, _)) => {
+                            inconsistent = true;
+                            format!("{printed} (printed {}†)", sci(v))
+                        }
+                        None => printed,
                     }
-                    None => MISSING.to_string(),
-                },
+                }
                 Col::Ours(OursColumn { run: None, .. }) => "no run".to_string(),
                 Col::Ours(OursColumn {
                     run: Some(r),
@@ -248,6 +258,13 @@ pub fn side_by_side(paper: &str, table: &str, papers: &Papers, runs: &Runs) -> S
     out.push_str(&t.render());
     if derived {
         out.push_str("\n\\* not printed by the paper: the norm of its per-joint entries.\n");
+    }
+    if inconsistent {
+        out.push_str(
+            "\n† printed, but contradicted by the paper's own numbers (a norm below one of its \
+             entries, a negative norm, or a number given twice; the warnings are listed under \
+             the paper): no ratio is taken from it.\n",
+        );
     }
     out
 }

@@ -1,0 +1,87 @@
+//! values.csv as other people write it: the numbers that contradict their own paper are marked
+//! and warned with file and line (robio2018 prints three such: a norm below its own entry, a
+//! negative norm), and numbers that cannot be compared are refused before anything runs.
+
+use records::papers::Papers;
+use std::path::PathBuf;
+
+/// A scratch `papers/` with one paper `demo` whose values.csv is `values`.
+fn papers_dir(name: &str, values: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!(
+        "driftbench-paper-values-{name}-{}",
+        std::process::id()
+    ));
+    let _ = std::fs::remove_dir_all(&dir);
+    let paper = dir.join("demo");
+    std::fs::create_dir_all(&paper).unwrap();
+    std::fs::write(
+        paper.join("paper.toml"),
+        "paper = \"demo\"\ntitle = \"Demo\"\n\n[[mapping]]\npublished_experiment = \"e\"\npublished_column = \"A\"\nrun = \"demo-e / v / exact\"\n",
+    )
+    .unwrap();
+    std::fs::write(paper.join("values.csv"), values).unwrap();
+    dir
+}
+
+const HEADER: &str = "paper,table,experiment,column,metric,value,note\n";
+
+#[test]
+fn contradictions_are_marked_with_their_line_and_not_used() {
+    let values = format!(
+        "{HEADER}demo,T1,e,A,drift_1,3e-6,\ndemo,T1,e,A,drift_2,5.6e-6,\ndemo,T1,e,A,drift_norm,2.45e-6,\n\
+         demo,T1,e,B,drift_1,1e-6,\ndemo,T1,e,B,drift_norm,-2.5e-5,\n\
+         demo,T2,e,A,compute_time_s,1.0,\ndemo,T2,e,A,compute_time_s,2.0,\n\
+         demo,T1,e,C,drift_1,1e-6,\ndemo,T1,e,C,drift_norm,2e-6,\n"
+    );
+    let dir = papers_dir("marks", &values);
+    let papers = Papers::load(&dir).unwrap();
+    let lines: Vec<usize> = papers.warnings.iter().map(|w| w.line).collect();
+    assert_eq!(lines, vec![8, 4, 6], "{:?}", papers.warnings);
+    assert!(
+        papers.warnings[0].message.contains("twice"),
+        "{}",
+        papers.warnings[0]
+    );
+    assert!(papers.warnings[1].message.contains("below its own drift_2"));
+    assert!(papers.warnings[2].message.contains("negative"));
+    assert!(papers.warnings[0].to_string().contains("values.csv:8"));
+    // The column's norm falls back to the norm of its printed joints; the duplicate is unused.
+    let m = &papers.mappings[0];
+    let (norm, derived) = papers.published(m, "drift_norm").unwrap();
+    assert!(derived && (norm - (3e-6f64.powi(2) + 5.6e-6f64.powi(2)).sqrt()).abs() < 1e-18);
+    assert_eq!(papers.published(m, "sim_s"), Some((1.0, false)));
+    assert_eq!(
+        papers.inconsistent(m, "drift_norm").map(|v| v.0),
+        Some(2.45e-6)
+    );
+    // A consistent column is left alone.
+    assert!(papers
+        .values
+        .iter()
+        .filter(|v| v.column == "C")
+        .all(|v| v.inconsistent.is_none()));
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn non_finite_values_and_unknown_metrics_are_refused_naming_the_line() {
+    for (bad, expect) in [
+        (
+            "demo,T1,e,A,drift_1,NaN,\n",
+            "line 3: value NaN is not a finite number",
+        ),
+        ("demo,T1,e,A,drift_1,inf,\n", "line 3: value inf"),
+        (
+            "demo,T1,e,A,max_pos_err,1e-3,\n",
+            "unknown metric \"max_pos_err\" (valid: drift_1",
+        ),
+    ] {
+        let dir = papers_dir(
+            "refused",
+            &format!("{HEADER}demo,T1,e,A,drift_2,1e-6,\n{bad}"),
+        );
+        let err = Papers::load(&dir).unwrap_err().to_string();
+        assert!(err.contains(expect) && err.contains("values.csv"), "{err}");
+        std::fs::remove_dir_all(dir).unwrap();
+    }
+}
