@@ -20,7 +20,7 @@ use schemes::scheme::Scheme;
 use control::control_loop::{run_loop, LoopSettings, Observer};
 use control::method::{Method, Numerical};
 use control::network_tick::Discretisation;
-use control::numerical_tick::ActiveSetTick;
+use control::numerical_tick::QpTick;
 use control::task::{load_tasks, standard_task_refs, with_task, TaskVisitor};
 
 #[global_allocator]
@@ -60,7 +60,7 @@ impl TaskVisitor for Sample {
         period: f64,
     ) -> Self::Output {
         let mut collect = Collect { qps: Vec::new() };
-        let mut solver = ActiveSetTick::new(scheme.dims());
+        let mut solver = QpTick::new(solvers::HotActiveSet::new(scheme.dims()));
         let settings = LoopSettings {
             h: H,
             period,

@@ -5,9 +5,7 @@
 use catalog::error::ExperimentFileError;
 use catalog::error::NetworkError;
 use records::error::ControlFileError;
-use solvers::lvi_numerical::LviError;
-use solvers::osqp_qp::OsqpError;
-use solvers::ExactError;
+use solvers::{ExactError, QpSolverError};
 
 /// Why a control run, or the whole reproduction, could not go on.
 #[derive(Debug, thiserror::Error)]
@@ -33,10 +31,9 @@ pub enum ControlError {
     /// The task's network could not be built (`task` names the network).
     #[error("task {task}: {error}")]
     Network { task: String, error: NetworkError },
+    /// A numerical QP method's solve at a tick.
     #[error(transparent)]
-    Lvi(#[from] LviError),
-    #[error(transparent)]
-    Osqp(#[from] OsqpError),
+    Solver(#[from] QpSolverError),
     #[error("exact solver: {0}")]
     Exact(#[from] ExactError),
     /// A result file could not be written.

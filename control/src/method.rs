@@ -4,16 +4,18 @@
 
 use crate::error::ControlError;
 use crate::network_tick::{Discretisation, NetworkTick};
-use crate::numerical_tick::{ActiveSetTick, ClarabelTick, LviTick, OsqpTick};
+use crate::numerical_tick::QpTick;
 use catalog::solver_spec::SolverSpec;
 use schemes::qp::{Qp, QpDims};
-use solvers::lvi_numerical::{LviMethod, LviSettings};
-use solvers::osqp_qp::OsqpSettings;
+use solvers::lvi_numerical::{LviMethod, LviSettings, LviSolver};
+use solvers::osqp_qp::{OsqpQp, OsqpSettings};
+use solvers::{ExactSolver, HotActiveSet};
 
 /// A numerical QP method, solved to its tolerance at every tick.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Numerical {
-    /// E47 or 94LVI ([`solvers::lvi_numerical`]), warm-started from the previous tick.
+    /// One of robio2018's six PLPE methods ([`solvers::lvi_numerical`]), warm-started from the
+    /// previous tick.
     Lvi(LviMethod, LviSettings),
     /// The dense active-set solver hot-started from the previous tick's working set.
     ActiveSet,
@@ -24,11 +26,18 @@ pub enum Numerical {
 }
 
 impl Numerical {
-    /// The methods of the control experiments, at their default settings.
-    pub fn all() -> [Numerical; 5] {
+    /// The methods of the control experiments, at their default settings: the six PLPE
+    /// methods in robio2018's order, then the active set, Clarabel and OSQP.
+    pub fn all() -> [Numerical; 9] {
+        let [lvi94, e47, m3, m4, m5, m6] =
+            LviMethod::ALL.map(|m| Numerical::Lvi(m, LviSettings::default()));
         [
-            Numerical::Lvi(LviMethod::E47, LviSettings::default()),
-            Numerical::Lvi(LviMethod::Lvi94, LviSettings::default()),
+            lvi94,
+            e47,
+            m3,
+            m4,
+            m5,
+            m6,
             Numerical::ActiveSet,
             Numerical::Clarabel,
             Numerical::Osqp(OsqpSettings::default()),
@@ -94,10 +103,14 @@ impl Method {
                 form,
                 substeps,
             } => Box::new(NetworkTick::new(spec, *form, *substeps, dims)?),
-            Method::Numerical(Numerical::Lvi(m, s)) => Box::new(LviTick::new(*m, dims, *s)),
-            Method::Numerical(Numerical::ActiveSet) => Box::new(ActiveSetTick::new(dims)),
-            Method::Numerical(Numerical::Clarabel) => Box::new(ClarabelTick::new(dims)),
-            Method::Numerical(Numerical::Osqp(s)) => Box::new(OsqpTick::new(dims, *s)),
+            Method::Numerical(Numerical::Lvi(m, s)) => {
+                Box::new(QpTick::new(LviSolver::new(*m, dims, *s)))
+            }
+            Method::Numerical(Numerical::ActiveSet) => {
+                Box::new(QpTick::new(HotActiveSet::new(dims)))
+            }
+            Method::Numerical(Numerical::Clarabel) => Box::new(QpTick::new(ExactSolver::new())),
+            Method::Numerical(Numerical::Osqp(s)) => Box::new(QpTick::new(OsqpQp::new(dims, *s))),
         })
     }
 }
@@ -113,8 +126,9 @@ pub trait TickSolver {
     fn tick(&mut self, t: f64, qp: &Qp, qp_dot: Option<&Qp>, h: f64) -> Result<(), ControlError>;
     /// The answer x of the last tick (its first N entries are the joint command).
     fn x(&self) -> &[f64];
-    /// Work of the last tick in products with the LVI matrix M (or M'), for the methods built
-    /// on jia2019's LVI (E47, 94LVI, LVI-PDNN, S-LVI-PDNN); `None` for the others.
+    /// Work of the last tick in products with the LVI matrix M (or M', or LU solves with M or
+    /// I + M: [`solvers::lvi_numerical`]'s unit), for the methods built on jia2019's LVI (the six
+    /// PLPE methods, LVI-PDNN, S-LVI-PDNN); `None` for the others.
     fn products(&self) -> Option<u64> {
         None
     }

@@ -12,7 +12,7 @@ use crate::error::ControlError;
 use crate::latency::Latency;
 use crate::method::{Method, Numerical, TickSolver};
 use crate::network_tick::{products_per_evaluation, Discretisation};
-use crate::numerical_tick::ActiveSetTick;
+use crate::numerical_tick::QpTick;
 use crate::stability::{gain, LimitProbe};
 use crate::task::{load_tasks, standard_task_refs, with_task, Task, TaskVisitor};
 use crate::trend::classify;
@@ -26,6 +26,7 @@ use schemes::paths::Path;
 use schemes::scheme::Scheme;
 use solvers::lvi_numerical::LviMethod;
 use solvers::neural::build_solver;
+use solvers::HotActiveSet;
 
 /// The method label of the continuous-time exact column in the many-cycles results.
 pub const CONTINUOUS_EXACT: &str = "exact (continuous)";
@@ -150,7 +151,7 @@ impl TaskVisitor for ProbeLimit<'_> {
         })?;
         let dim = net.state_dim(dims);
         let mut probe = LimitProbe::new(net, dim);
-        let mut solver = ActiveSetTick::new(dims);
+        let mut solver = QpTick::new(HotActiveSet::new(dims));
         let settings = LoopSettings {
             h: self.h,
             period,

@@ -16,7 +16,7 @@
 //! so they are no limit of the discretisation). It is evaluated at y = 0 (every network's
 //! start) and at y = [x*; 0] (the command at the exact optimum, multipliers zero) at every
 //! [`SAMPLE_EVERY`]-th tick of a run of the task at the control period with the exact
-//! optimum in the loop ([`crate::numerical_tick::ActiveSetTick`]), and the smallest value is
+//! optimum in the loop ([`solvers::HotActiveSet`]), and the smallest value is
 //! the network's stability limit on the task. The Jacobians are the networks' analytic ones
 //! ([`solvers::neural::NeuralSolver::jacobian`]).
 //!

@@ -104,7 +104,8 @@ pub fn load_tasks(dir: &std::path::Path, refs: &[TaskRef]) -> Result<Vec<Task>, 
                 .iter()
                 .filter_map(|j| match &j.solver {
                     SolverChoice::Neural(s) => Some(s.clone()),
-                    SolverChoice::Exact => None,
+                    // The numerical methods run at every tick anyway (control::method).
+                    SolverChoice::Exact | SolverChoice::Numerical(_) => None,
                 })
                 .collect();
             Ok(Task {

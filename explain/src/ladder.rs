@@ -58,7 +58,7 @@ fn rung(method: Method, rtol: f64, atol: f64, max_step: Option<f64>) -> Integrat
     }
 }
 
-/// The rungs of `job`'s ladder. A neural run: BDF at MATLAB's defaults and at every RelTol,
+/// The rungs of `job`'s ladder (none for a numerical run). A neural run: BDF at MATLAB's defaults and at every RelTol,
 /// then a second method at every RelTol (ESDIRK3(4) for the finite-time network, stiff in the
 /// sign-power's band, where an explicit method cannot finish; Dormand-Prince otherwise), then
 /// its own setting (with the group's MaxStep where it has one). The exact column: its
@@ -68,6 +68,9 @@ pub fn rungs(job: &Job) -> Vec<IntegratorSettings> {
     let max_step = job.integrator.max_step;
     let mut out = Vec::new();
     match &job.solver {
+        // A numerical run has no integrator tolerance to ladder: its fixed-step loop is set by
+        // its step and stopping rule (the experiment file's variants vary those instead).
+        SolverChoice::Numerical(_) => return out,
         SolverChoice::Exact => {
             out.extend(
                 EXACT_RTOLS

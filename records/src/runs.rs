@@ -190,7 +190,12 @@ impl RunRow {
     }
 }
 
-crate::drift_columns!(RunRow, drift, "drift_norm");
+crate::drift_columns!(
+    RunRow,
+    drift,
+    "drift_norm",
+    ["solver_iterations", "solver_iterations_max"]
+);
 
 /// Whether a run reached its path's end.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]

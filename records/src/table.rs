@@ -28,6 +28,9 @@ pub trait Row: Serialize + DeserializeOwned {
     }
     /// Sets the per-joint values read from a file.
     fn set_joints(&mut self, _values: Vec<f64>) {}
+    /// Optional columns added after a file of this type was first committed: a file that
+    /// lacks them is read with them empty (an older file, not a foreign one).
+    const ADDED: &'static [&'static str] = &[];
 }
 
 /// Implements [`Row`] for a struct whose per-joint vector is its field `$field` (a
@@ -35,8 +38,12 @@ pub trait Row: Serialize + DeserializeOwned {
 #[macro_export]
 macro_rules! drift_columns {
     ($row:ty, $field:ident, $before:literal) => {
+        $crate::drift_columns!($row, $field, $before, []);
+    };
+    ($row:ty, $field:ident, $before:literal, [$($added:literal),*]) => {
         impl $crate::table::Row for $row {
             const JOINTS: Option<&'static str> = Some("drift");
+            const ADDED: &'static [&'static str] = &[$($added),*];
             const JOINTS_BEFORE: &'static str = $before;
             fn joints(&self) -> &[f64] {
                 &self.$field
@@ -190,7 +197,7 @@ pub fn from_reader<T: Row, R: std::io::Read>(input: R) -> Result<Vec<T>, TableEr
             ));
         }
     }
-    let fixed_header: csv::StringRecord = header
+    let mut fixed_header: csv::StringRecord = header
         .iter()
         .enumerate()
         .filter(|(i, _)| !joint_cols.contains(i))
@@ -206,6 +213,16 @@ pub fn from_reader<T: Row, R: std::io::Read>(input: R) -> Result<Vec<T>, TableEr
         .iter()
         .filter(|h| !expected.contains(h))
         .collect();
+    // Optional columns of a later version that an older file lacks are read as empty cells.
+    let padded: Vec<&str> = missing
+        .iter()
+        .copied()
+        .filter(|c| T::ADDED.contains(c))
+        .collect();
+    let missing: Vec<&str> = missing
+        .into_iter()
+        .filter(|c| !T::ADDED.contains(c))
+        .collect();
     if !missing.is_empty() || !unknown.is_empty() {
         let mut what =
             vec!["the header is not this version's schema (an old or a foreign file)".to_string()];
@@ -217,6 +234,9 @@ pub fn from_reader<T: Row, R: std::io::Read>(input: R) -> Result<Vec<T>, TableEr
         }
         return Err(err(1, what.join("; ")));
     }
+    for c in &padded {
+        fixed_header.push_field(c);
+    }
     let mut rows = Vec::new();
     for (i, record) in r.records().enumerate() {
         let fallback = i as u64 + 2;
@@ -227,12 +247,15 @@ pub fn from_reader<T: Row, R: std::io::Read>(input: R) -> Result<Vec<T>, TableEr
             )
         })?;
         let line = record.position().map_or(fallback, |p| p.line());
-        let fixed: csv::StringRecord = record
+        let mut fixed: csv::StringRecord = record
             .iter()
             .enumerate()
             .filter(|(i, _)| !joint_cols.contains(i))
             .map(|(_, c)| c)
             .collect();
+        for _ in &padded {
+            fixed.push_field("");
+        }
         let mut row: T = fixed.deserialize(Some(&fixed_header)).map_err(|e| {
             let what = match e.kind() {
                 csv::ErrorKind::Deserialize { err, .. } => format!("row does not parse: {err}"),

@@ -9,9 +9,10 @@ use records::shard::Selection;
 use records::tracked_dir::Edits;
 use std::path::PathBuf;
 
-/// Regenerates the tables and error data of four papers on drift-free redundancy resolution
-/// (jia2019, zhang2018, zhong2021, kong2019), solving every scheme's QP exactly with Clarabel
-/// along every run and scoring each paper's neural solver against that optimum.
+/// Regenerates the tables and error data of the papers on drift-free redundancy resolution
+/// in papers/ (jia2019, zhang2018, zhong2021, kong2019, robio2018, and any paper added as
+/// data), solving every scheme's QP exactly along every run and scoring each paper's neural
+/// or numerical solver against that optimum.
 ///
 /// With no flags (or `run`): runs every experiment in experiments/*.toml (in parallel), writes
 /// results/runs.csv (one row per run) and results/traces/, and prints a summary table. Each
@@ -19,7 +20,8 @@ use std::path::PathBuf;
 #[derive(Parser, Debug)]
 #[command(version, about, long_about)]
 pub struct Cli {
-    /// Run only this paper's experiments (jia2019, zhang2018, zhong2021, kong2019; `cross` is
+    /// Run only this paper's experiments: the `paper` id of an experiment file (jia2019,
+    /// zhang2018, zhong2021, kong2019, robio2018, group, or a paper added as data; `cross` is
     /// the suite's own cross experiment: every velocity-level solver on every velocity-level
     /// scheme and path).
     #[arg(long)]
@@ -34,8 +36,9 @@ pub struct Cli {
     #[arg(long)]
     pub list: bool,
     /// List the robots experiment files can name (Jaco2 variants, Katana 6M180, Franka Panda,
-    /// the n-link family) with their joint counts and check values (tip position and singular
-    /// values of J at a stated pose), then exit.
+    /// the n-link family, and every robot file of robots/data/, e.g. puma560) with their joint
+    /// counts and check values (tip position and singular values of J at a stated pose), then
+    /// exit. Needs no project.
     #[arg(long)]
     pub robots: bool,
     /// The project root: the directory with experiments/, results/ and report/ (default: the

@@ -39,11 +39,13 @@ use summary::emit;
 /// Runs the mode the command line `cli` asks for (its directories resolved first:
 /// [`Cli::resolve`]); the exit code.
 pub fn run(cli: Cli) -> Result<ExitCode, ReproduceError> {
-    let cli = &cli.resolve()?;
+    // The robots are compiled in (built-in models and the embedded robot files): listing them
+    // needs no project.
     if cli.robots {
         emit(&list::robots());
         return Ok(ExitCode::SUCCESS);
     }
+    let cli = &cli.resolve()?;
     let git_rev = catalog::root::git_revision(&cli.project_root);
     if let (Some(file), Some(task)) = (&cli.score, &cli.task) {
         score::score(cli, file, task, &git_rev)?;

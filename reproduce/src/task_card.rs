@@ -153,6 +153,15 @@ fn card(jobs: &[Job], n: &TaskNumbers, robot: &AnyRobot) -> Result<String, TaskC
         let spec = match &j.solver {
             SolverChoice::Exact => String::new(),
             SolverChoice::Neural(spec) => format!(" `{}`,", inline(spec)?),
+            SolverChoice::Numerical(spec) => {
+                let _ = writeln!(
+                    s,
+                    "  - {}: `{}`, a fixed-step loop (catalog::numerical_spec)",
+                    j.solver.label(),
+                    inline(spec)?
+                );
+                continue;
+            }
         };
         let _ = writeln!(
             s,
@@ -348,8 +357,8 @@ fn kinematics(robot: &AnyRobot) -> String {
 }
 
 /// The scheme's QP as formulas (the scheme modules' docs; parameters by the papers' names).
-fn formula(spec: &SchemeSpec) -> &'static str {
-    match spec {
+fn formula(spec: &SchemeSpec) -> String {
+    let fixed = match spec {
         SchemeSpec::Jia2019 { .. } => {
             "jia2019 (2.17)-(2.20), x = [thetadot; p] in R^(n+1), p = |thetadot|_inf:\n\
              P = diag((phi + tau) I_n, 1 - phi - tau)\n\
@@ -393,7 +402,51 @@ fn formula(spec: &SchemeSpec) -> &'static str {
              A = J,  b = rdot* + k_p (r* - f(theta))\n\
              no inequalities, no bounds\n"
         }
-    }
+        SchemeSpec::VelocityRmp {
+            weight,
+            repetitive,
+            lambda,
+            alpha,
+            k_p,
+            upsilon,
+        } => return composed_formula(*weight, *repetitive, *lambda, *alpha, *k_p, *upsilon),
+    };
+    fixed.to_string()
+}
+
+/// The QP of the vocabulary's composed scheme (docs/schemes.md), term by term.
+fn composed_formula(
+    weight: f64,
+    repetitive: schemes::spec::RepetitiveForm,
+    lambda: f64,
+    alpha: Option<f64>,
+    k_p: f64,
+    upsilon: Option<f64>,
+) -> String {
+    let q = match (repetitive, alpha) {
+        (schemes::spec::RepetitiveForm::SignPower, Some(a)) => format!(
+            "q = {lambda} c,  c_i = |e_i|^{a} sgn(e_i),  e = theta - theta_ref   (repetitive, sign-power)"
+        ),
+        _ if lambda == 0.0 => "q = 0   (no repetitive term: lambda = 0)".to_string(),
+        _ => format!("q = {lambda} (theta - theta_ref)   (repetitive, linear)"),
+    };
+    let b = if k_p == 0.0 {
+        "b = rdot*".to_string()
+    } else {
+        format!("b = rdot* + {k_p} (r* - f(theta))")
+    };
+    let bounds = match upsilon {
+        Some(u) => format!(
+            "lower_i = max{{thetadot-_i, {u} (theta-_i - theta_i)}},  upper_i = min{{thetadot+_i, {u} (theta+_i - theta_i)}}   (bound conversion, robio2018 (10))"
+        ),
+        None => "no bounds".to_string(),
+    };
+    format!(
+        "velocity-rmp (docs/schemes.md), x = thetadot in R^n:\n\
+         P = {weight} I   (velocity norm)\n{q}\n\
+         A = J,  {b}   (tracking)\n\
+         no inequalities;  {bounds}\n"
+    )
 }
 
 /// The QP's numbers, one block per non-empty part.

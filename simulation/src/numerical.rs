@@ -96,7 +96,7 @@ pub(crate) fn run_numerical<const N: usize>(
         x.as_mut_slice().copy_from_slice(solver.x());
         let observe = Instant::now();
         let (_, thetadot) = arm_state::<N>(level, &y, x.as_slice());
-        if !score_instant(
+        if score_instant(
             observer,
             &mut scorer,
             settings.scoring,
@@ -104,7 +104,8 @@ pub(crate) fn run_numerical<const N: usize>(
             t1,
             (t, &theta, &thetadot),
             &x,
-        ) {
+        ) == Some(false)
+        {
             failures += 1;
         }
         observer.sample(t, &y, &x, level);

@@ -159,9 +159,9 @@ pub fn job_robot<const N: usize>(
         });
     }
     let mut limits = robot.limits();
-    let mut set = |spec: &Option<catalog::experiment::LimitsSpec>,
-                   lo: &mut SVector<f64, N>,
-                   hi: &mut SVector<f64, N>|
+    let set = |spec: &Option<catalog::experiment::LimitsSpec>,
+               lo: &mut SVector<f64, N>,
+               hi: &mut SVector<f64, N>|
      -> Result<(), SetupError> {
         if let Some(l) = spec {
             if l.lower.len() != N || l.upper.len() != N {

@@ -253,6 +253,7 @@ fn score_with<const N: usize>(
         score_failures: failures,
         observe_seconds: seconds,
         trace: observer.trace,
+        iterations: None,
     })
 }
 

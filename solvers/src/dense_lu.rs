@@ -136,6 +136,24 @@ impl DenseLu {
         self.factored
     }
 
+    /// min_k |u_kk| / max_k |u_kk| over U's diagonal of the last [`Self::factor`] (1 for an
+    /// empty matrix): a cheap singularity indicator, tiny (to rounding, about 1e-16) when the
+    /// factored matrix is singular but rounding left every pivot nonzero.
+    pub fn pivot_ratio(&self) -> f64 {
+        let (lo, hi) = (0..self.size())
+            .map(|k| self.lu[(k, k)].abs())
+            .fold((f64::INFINITY, 0.0f64), |(lo, hi), u| {
+                (lo.min(u), hi.max(u))
+            });
+        if hi > 0.0 {
+            lo / hi
+        } else if self.size() == 0 {
+            1.0
+        } else {
+            0.0
+        }
+    }
+
     /// Solves A x = b in place (`b` becomes x) with the factors of the last successful
     /// [`Self::factor`].
     pub fn solve(&mut self, b: &mut [f64]) {

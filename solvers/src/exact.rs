@@ -227,6 +227,8 @@ pub struct ConeSizes {
 pub struct ExactSolver {
     settings: DefaultSettings<f64>,
     kkt_tol: f64,
+    /// x of the last solve through [`crate::qp_solver::QpSolver`] (empty before one).
+    last_x: Vec<f64>,
 }
 
 impl Default for ExactSolver {
@@ -245,7 +247,18 @@ impl ExactSolver {
         Self {
             settings,
             kkt_tol: DEFAULT_KKT_TOL,
+            last_x: Vec::new(),
         }
+    }
+
+    /// x of the last solve through [`crate::qp_solver::QpSolver`] (empty before one).
+    pub(crate) fn last_x(&self) -> &[f64] {
+        &self.last_x
+    }
+
+    pub(crate) fn set_last_x(&mut self, x: &[f64]) {
+        self.last_x.clear();
+        self.last_x.extend_from_slice(x);
     }
 
     /// Changes the relative KKT acceptance tolerance (see the module docs).

@@ -18,6 +18,7 @@ pub mod lvi_numerical;
 pub mod neural;
 pub mod ode;
 pub mod osqp_qp;
+pub mod qp_solver;
 pub mod random_qp;
 
 pub use active_set::{
@@ -30,5 +31,6 @@ pub use exact::{
     ExactStatus,
 };
 pub use exact_path::{ExactPath, ExactPathStats, CHECK_EVERY};
+pub use qp_solver::{HotActiveSet, QpSolve, QpSolver, QpSolverError};
 pub use random_qp::{random_feasible, random_qp, QpShape};
 pub use schemes::qp::{KktResiduals, Qp, QpDims, QpDuals};

@@ -119,6 +119,13 @@ impl OsqpQp {
         }
     }
 
+    /// Forgets OSQP's workspace and iterate: the next solve sets OSQP up again, cold.
+    pub fn reset(&mut self) {
+        self.problem = None;
+        self.x.fill(0.0);
+        self.w.fill(0.0);
+    }
+
     /// The last solution's x.
     pub fn x(&self) -> &[f64] {
         &self.x

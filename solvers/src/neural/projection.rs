@@ -44,6 +44,31 @@ pub fn primal_dual_dim(dims: QpDims) -> usize {
     dims.nx + dims.n_eq + dims.n_in
 }
 
+/// Writes the LVI matrix M of `qp` (module docs) into `m`, which must be square of
+/// [`primal_dual_dim`]`(qp.dims())` (no allocation).
+pub fn lvi_matrix_into(qp: &Qp, m: &mut DMatrix<f64>) {
+    let QpDims { nx, n_eq, n_in } = qp.dims();
+    debug_assert_eq!(m.shape(), (nx + n_eq + n_in, nx + n_eq + n_in));
+    m.fill(0.0);
+    for i in 0..nx {
+        for j in 0..nx {
+            m[(i, j)] = qp.p[(i, j)];
+        }
+    }
+    for k in 0..n_eq {
+        for j in 0..nx {
+            m[(j, nx + k)] = -qp.a[(k, j)];
+            m[(nx + k, j)] = qp.a[(k, j)];
+        }
+    }
+    for k in 0..n_in {
+        for j in 0..nx {
+            m[(j, nx + n_eq + k)] = qp.g[(k, j)];
+            m[(nx + n_eq + k, j)] = -qp.g[(k, j)];
+        }
+    }
+}
+
 /// Omega's limits (y_i^-, y_i^+) for entry i of y (see the module docs).
 #[inline]
 fn omega(qp: &Qp, nx: usize, n_eq: usize, i: usize) -> (f64, f64) {
@@ -156,63 +181,43 @@ impl LviCore {
         }
     }
 
-    /// out = scale * (I + M') e with the e of the last [`LviCore::residual`] call:
-    /// M' e = [P' e_x + A' e_u - G' e_v; -A e_x; G e_x].
+    /// out = scale * (I + M') e with the e of the last [`LviCore::residual`] call.
     pub fn i_plus_mt_e(&self, qp: &Qp, scale: f64, out: &mut [f64]) {
+        self.i_plus_mt(qp, scale, &self.e, out);
+    }
+
+    /// out = scale * (I + M') w for any w of y's size, blockwise:
+    /// M' w = [P' w_x + A' w_u - G' w_v; -A w_x; G w_x].
+    pub fn i_plus_mt(&self, qp: &Qp, scale: f64, w: &[f64], out: &mut [f64]) {
         let QpDims { nx, n_eq, n_in } = self.dims;
-        let e = &self.e;
-        let (ex, rest) = e.split_at(nx);
-        let (eu, ev) = rest.split_at(n_eq);
+        let (wx, rest) = w.split_at(nx);
+        let (wu, wv) = rest.split_at(n_eq);
         for i in 0..nx {
-            let mut s = ex[i];
+            let mut s = wx[i];
             for j in 0..nx {
-                s += qp.p[(j, i)] * ex[j];
+                s += qp.p[(j, i)] * wx[j];
             }
             for k in 0..n_eq {
-                s += qp.a[(k, i)] * eu[k];
+                s += qp.a[(k, i)] * wu[k];
             }
             for k in 0..n_in {
-                s -= qp.g[(k, i)] * ev[k];
+                s -= qp.g[(k, i)] * wv[k];
             }
             out[i] = scale * s;
         }
         for k in 0..n_eq {
-            let mut s = eu[k];
+            let mut s = wu[k];
             for j in 0..nx {
-                s -= qp.a[(k, j)] * ex[j];
+                s -= qp.a[(k, j)] * wx[j];
             }
             out[nx + k] = scale * s;
         }
         for k in 0..n_in {
-            let mut s = ev[k];
+            let mut s = wv[k];
             for j in 0..nx {
-                s += qp.g[(k, j)] * ex[j];
+                s += qp.g[(k, j)] * wx[j];
             }
             out[nx + n_eq + k] = scale * s;
-        }
-    }
-
-    /// Assemble M (module docs) into `self.m`.
-    fn assemble_m(&mut self, qp: &Qp) {
-        let QpDims { nx, n_eq, n_in } = self.dims;
-        let m = &mut self.m;
-        m.fill(0.0);
-        for i in 0..nx {
-            for j in 0..nx {
-                m[(i, j)] = qp.p[(i, j)];
-            }
-        }
-        for k in 0..n_eq {
-            for j in 0..nx {
-                m[(j, nx + k)] = -qp.a[(k, j)];
-                m[(nx + k, j)] = qp.a[(k, j)];
-            }
-        }
-        for k in 0..n_in {
-            for j in 0..nx {
-                m[(j, nx + n_eq + k)] = qp.g[(k, j)];
-                m[(nx + n_eq + k, j)] = -qp.g[(k, j)];
-            }
         }
     }
 
@@ -220,7 +225,7 @@ impl LviCore {
     fn residual_jacobian(&mut self, qp: &Qp, y: &[f64]) {
         self.check(qp, y);
         self.compute_z(qp, y);
-        self.assemble_m(qp);
+        lvi_matrix_into(qp, &mut self.m);
         let QpDims { nx, n_eq, .. } = self.dims;
         let n = y.len();
         for i in 0..n {
