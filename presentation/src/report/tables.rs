@@ -213,8 +213,10 @@ pub fn side_by_side(paper: &str, table: &str, papers: &Papers, runs: &Runs) -> S
                     ratio_of: Some(m),
                     ..
                 }) => {
+                    // A printed 0 (robio2018's theta_6) has no ratio.
                     let ratio = metric(r, q)
                         .zip(papers.published(m, q))
+                        .filter(|(_, (p, _))| *p != 0.0)
                         .map(|(o, (p, _))| o / p);
                     sci_opt(ratio)
                 }
