@@ -155,6 +155,16 @@ fn qp_shapes_per_scheme() {
                 assert!(qp.lower.iter().all(|&v| v == f64::NEG_INFINITY));
                 assert!(qp.upper.iter().all(|&v| v == f64::INFINITY));
             }
+            SchemeSpec::VelocityRmp {
+                upsilon: Some(_), ..
+            } => {
+                // Bound conversion on: finite joint bounds with zeta- < zeta+.
+                assert!(qp.h.is_empty());
+                for i in 0..N {
+                    assert!(qp.lower[i].is_finite() && qp.upper[i].is_finite());
+                    assert!(qp.lower[i] < qp.upper[i], "{}", spec.display_name());
+                }
+            }
             _ => {
                 assert!(qp.lower.iter().all(|&v| v == f64::NEG_INFINITY));
                 assert!(qp.upper.iter().all(|&v| v == f64::INFINITY));
@@ -308,7 +318,8 @@ fn exact_optimum_tracks_the_task_velocity() {
             let expected = match spec {
                 SchemeSpec::Jia2019 { .. } | SchemeSpec::Zhong2021 { .. } => pp.rdot,
                 SchemeSpec::Kong2019FiniteTime { k_p, .. }
-                | SchemeSpec::Kong2019Znn { k_p, .. } => {
+                | SchemeSpec::Kong2019Znn { k_p, .. }
+                | SchemeSpec::VelocityRmp { k_p, .. } => {
                     pp.rdot + (pp.r - PlanarZ::<N>.position(&th)) * k_p
                 }
                 SchemeSpec::Zhang2018 { rho_v, rho_p, .. } => {

@@ -285,5 +285,23 @@ pub fn paper_specs() -> Vec<SchemeSpec> {
             alpha: 0.1,
         },
         SchemeSpec::Kong2019Znn { mu: 1.0, k_p: 1.0 },
+        // The vocabulary's composed scheme with every term on (robio2018's RMP with a weight and
+        // feedback), and its sign-power form.
+        SchemeSpec::VelocityRmp {
+            weight: 2.0,
+            repetitive: schemes::spec::RepetitiveForm::Linear,
+            lambda: 4.0,
+            alpha: None,
+            k_p: 1.0,
+            upsilon: Some(2.0),
+        },
+        SchemeSpec::VelocityRmp {
+            weight: 1.0,
+            repetitive: schemes::spec::RepetitiveForm::SignPower,
+            lambda: 1.0,
+            alpha: Some(0.5),
+            k_p: 0.0,
+            upsilon: None,
+        },
     ]
 }
