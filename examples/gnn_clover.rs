@@ -26,9 +26,9 @@ use catalog::integrator::IntegratorSettings;
 use catalog::solver_spec::SolverSpec;
 use nalgebra::{DMatrix, DVector};
 use robots::{Jaco2, Robot};
-use schemes::jia2019::Jia2019;
 use schemes::paths::{build_path, PathSpec};
 use schemes::qp::{Qp, QpDims};
+use schemes::tri_criteria::TriCriteria;
 use simulation::run::build_network;
 use simulation::simulate::{simulate, Outcome, Settings, Solver};
 use solvers::neural::NeuralSolver;
@@ -136,7 +136,7 @@ fn run() -> Vec<Line> {
         .expect("the clover is a known path"),
     );
     // jia2019's VLTCO (phi = 0.2, tau = 0.4, kappa = lambda = 20).
-    let scheme = Jia2019::new(robot.clone(), path.clone(), theta0, 0.2, 0.4, 20.0, 20.0);
+    let scheme = TriCriteria::vltco(robot.clone(), path.clone(), theta0, 0.2, 0.4, 20.0, 20.0);
     let dims = schemes::scheme::Scheme::dims(&scheme);
     // The networks as the papers integrate them (BDF, RelTol 1e-6, AbsTol 1e-8, as ode15s);
     // the exact column as the suite does (Dormand-Prince, RelTol 1e-11: converged).

@@ -2,7 +2,7 @@
 # Profiles the hot-started active-set solve of the 7-variable QP (criterion bench
 # `jia2019/exact-active-set/hot` of benches/benches/solvers.rs) and writes
 # results/profile-active-set.csv (the table under the report's per-instant costs, "Where the hot
-# solve's time goes"): perf samples the bench binary (release build with debug info) for
+# solve's time goes"): perf samples the bench binary (the `profiling` profile: release with debug info) for
 # PROFILE_SECONDS seconds of criterion's --profile-time loop, pinned to one CPU, and active_set.py sorts
 # the samples by the function they were in (self time; the module doc of active_set.py lists
 # the categories). Run from the repository root; re-render the report with
@@ -14,7 +14,7 @@ freq=4999
 target="${CARGO_TARGET_DIR:-target}"
 out="$target/profile"
 mkdir -p "$out"
-bench=$(cargo bench -p driftbench-benches --bench solvers --no-run --message-format=json 2>/dev/null \
+bench=$(cargo bench --profile profiling -p driftbench-benches --bench solvers --no-run --message-format=json 2>/dev/null \
     | python3 -c 'import json,sys
 for line in sys.stdin:
     m = json.loads(line)

@@ -1,11 +1,12 @@
 #!/bin/sh
 # Profiles each named paper's runs and writes results/profile.csv (the tables of the report's
-# Performance section, "Where the time goes", one per paper): perf samples the release binary
-# (built with debug info, `[profile.release] debug = 1`) over PASSES passes of
+# Performance section, "Where the time goes", one per paper): perf samples the optimised binary
+# with debug info (Cargo.toml's `profiling` profile: release plus `debug = 1`) over PASSES
+# passes of
 #   reproduce --paper PAPER --skip-explain --threads 1 --dry-run
 # pinned to one CPU, and classify.py sorts every sample by what it was doing (classify.py's
 # module doc lists the categories). Run from the repository root after
-#   cargo build --release -p reproduce
+#   cargo build --profile profiling -p reproduce
 # and re-render the report with `reproduce --report-only --accept-edited` (the new file differs
 # from results/manifest.toml by intent). Needs `perf` (Debian: linux-perf) and python3.
 # Usage: [PASSES=5] benches/profile/paper.sh PAPER [PAPER ...]
@@ -13,7 +14,7 @@ set -eu
 passes="${PASSES:-5}"
 freq=1999
 target="${CARGO_TARGET_DIR:-target}"
-bin="$target/release/reproduce"
+bin="$target/profiling/reproduce"
 out="$target/profile"
 mkdir -p "$out"
 cpu=$(( $(nproc) - 1 ))

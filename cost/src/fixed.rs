@@ -24,10 +24,10 @@ use catalog::solver_spec::SolverSpec;
 use nalgebra::SVector;
 use records::dof_cost::{Quantity, RunCounts, SchemeKind};
 use robots::{Dynamics, Robot};
-use schemes::jia2019::Jia2019;
 use schemes::paths::{build_path, Path};
 use schemes::qp::{Qp, QpDims};
 use schemes::scheme::Scheme;
+use schemes::tri_criteria::TriCriteria;
 use schemes::velocity_rmp::VelocityRmp;
 use simulation::simulate::{simulate, Outcome, Run, Settings, Solver};
 use solvers::Backend;
@@ -105,7 +105,7 @@ impl<const N: usize> Prepared<N> {
             })?,
         );
         let scheme: Box<dyn Scheme<N>> = match case.scheme {
-            SchemeKind::Jia2019 => Box::new(Jia2019::new(
+            SchemeKind::Jia2019 => Box::new(TriCriteria::vltco(
                 robot.clone(),
                 path.clone(),
                 theta0,

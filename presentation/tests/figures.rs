@@ -308,7 +308,7 @@ fn panel_a_draws_the_arm_where_the_robot_is_known_and_fits_the_trace() {
     let mut katana = row("exp-acc", "MTN (zeta=0)", "FP-CDNN", Some(0.5));
     katana.robot = "katana6m180".into();
     let mut unknown = row("exp-vel", "VLTCO", "LVI-PDNN", None);
-    unknown.robot = "puma560".into();
+    unknown.robot = "no-such-arm".into();
     let runs = [
         row("exp-vel", "VLTCO", "exact (Clarabel)", None),
         unknown,

@@ -112,6 +112,7 @@ pub fn metric(r: &RunRow, name: &str) -> Option<f64> {
         }
         "solver_iterations" => r.solver_iterations.map(|v| v as f64),
         "solver_iterations_max" => r.solver_iterations_max.map(|v| v as f64),
+        "solver_products" => r.solver_products.map(|v| v as f64),
         "drift_ref_norm" => r.drift_ref_norm,
         "max_pos_err" => r.max_pos_err,
         "rms_pos_err" => r.rms_pos_err,

@@ -157,6 +157,8 @@ struct PaperFile {
     title: String,
     #[serde(default)]
     citation: Option<String>,
+    #[serde(default)]
+    assumed_setup: Option<String>,
     #[serde(default, rename = "mapping")]
     mappings: Vec<MappingFile>,
     #[serde(default, rename = "claim")]
@@ -182,6 +184,9 @@ pub struct Paper {
     pub title: String,
     /// Authors, title, venue, year, DOI (as the paper is cited).
     pub citation: Option<String>,
+    /// What of the setup was substituted because the paper does not print it (an assumed
+    /// robot model, path size, ...): the verdict is then given "under an assumed setup".
+    pub assumed_setup: Option<String>,
     /// Its claims, in file order ([`crate::claims`]).
     pub claims: Vec<crate::claims::ClaimSpec>,
 }
@@ -270,8 +275,11 @@ impl Papers {
                 let mut r = csv::Reader::from_path(&values).map_err(csv_err)?;
                 let mut read = Vec::new();
                 for (i, row) in r.deserialize().enumerate() {
-                    let v: PaperValue = row.map_err(csv_err)?;
+                    let mut v: PaperValue = row.map_err(csv_err)?;
                     let line = i + 2;
+                    if let Some((_, name)) = METRIC_ALIASES.iter().find(|(a, _)| *a == v.metric) {
+                        v.metric = name.to_string();
+                    }
                     if !v.value.is_finite() {
                         return Err(PapersError::Invalid {
                             path: values.clone(),
@@ -325,6 +333,7 @@ impl Papers {
                 id: file.paper,
                 title: file.title,
                 citation: file.citation,
+                assumed_setup: file.assumed_setup,
                 claims,
             });
         }
@@ -443,9 +452,9 @@ impl Papers {
     }
 }
 
-/// The metrics a values.csv row may name: those [`our_metric`] maps onto a `runs.csv` column,
-/// and `error_norm_settle_s` (a settling time no run measures: listed under "published
-/// numbers without a run").
+/// The metrics a values.csv row may name: the `runs.csv` column that measures the published
+/// number (one name per metric, as claims and runs.csv write it), and `error_norm_settle_s`
+/// (a settling time no run measures: listed under "published numbers without a run").
 pub const PUBLISHED_METRICS: [&str; 11] = [
     "drift_1",
     "drift_2",
@@ -454,10 +463,20 @@ pub const PUBLISHED_METRICS: [&str; 11] = [
     "drift_5",
     "drift_6",
     "drift_norm",
-    "compute_time_s",
-    "max_position_error_m",
-    "final_position_error_m",
-    "error_norm_settle_s",
+    "sim_s",
+    "max_pos_err",
+    "final_pos_err",
+    ERROR_NORM_SETTLE,
+];
+
+/// The published metric no run measures.
+const ERROR_NORM_SETTLE: &str = "error_norm_settle_s";
+
+/// Metric names of earlier values.csv files, read as the `runs.csv` name they stand for.
+pub const METRIC_ALIASES: [(&str, &str); 3] = [
+    ("compute_time_s", "sim_s"),
+    ("max_position_error_m", "max_pos_err"),
+    ("final_position_error_m", "final_pos_err"),
 ];
 
 impl Papers {
@@ -472,21 +491,12 @@ impl Papers {
     }
 }
 
-/// The `runs.csv` column that measures a published metric, if we measure it.
+/// The `runs.csv` column that measures a published metric, if we measure it (the metric's own
+/// name: values.csv uses runs.csv's names).
 pub fn our_metric(published_metric: &str) -> Option<&'static str> {
-    Some(match published_metric {
-        "drift_1" => "drift_1",
-        "drift_2" => "drift_2",
-        "drift_3" => "drift_3",
-        "drift_4" => "drift_4",
-        "drift_5" => "drift_5",
-        "drift_6" => "drift_6",
-        "drift_norm" => "drift_norm",
-        "compute_time_s" => "sim_s",
-        "max_position_error_m" => "max_pos_err",
-        "final_position_error_m" => "final_pos_err",
-        _ => return None,
-    })
+    PUBLISHED_METRICS
+        .into_iter()
+        .find(|&m| m == published_metric && m != ERROR_NORM_SETTLE)
 }
 
 /// Where a published number lands among our runs.

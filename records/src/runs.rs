@@ -97,6 +97,9 @@ pub struct RunRow {
     pub solver_iterations: Option<u64>,
     /// Its largest iteration count at one instant.
     pub solver_iterations_max: Option<u64>,
+    /// Its work over the run in products with the LVI matrix (the unit of the control
+    /// tables: the same on every machine and under any load).
+    pub solver_products: Option<u64>,
     /// Wall time of the whole integration.
     pub wall_s: f64,
     /// Wall time of the simulation proper (arm + solver + integrator): `wall_s - observe_s`.
@@ -171,6 +174,7 @@ impl RunRow {
             qp_check_max_dx: None,
             solver_iterations: None,
             solver_iterations_max: None,
+            solver_products: None,
             wall_s: 0.0,
             sim_s: 0.0,
             observe_s: 0.0,
@@ -194,7 +198,11 @@ crate::drift_columns!(
     RunRow,
     drift,
     "drift_norm",
-    ["solver_iterations", "solver_iterations_max"]
+    [
+        "solver_iterations",
+        "solver_iterations_max",
+        "solver_products"
+    ]
 );
 
 /// Whether a run reached its path's end.

@@ -6,10 +6,16 @@
 use catalog::experiment::{Job, PaperFile};
 use std::fmt::Write as _;
 
-/// The experiments of `files` that have runs among `jobs`, each with its runs.
+/// The experiments of `files` that have runs among `jobs`, each with its runs, under its
+/// paper's header (a paper with no selected run is left out, header and all).
 pub fn list(files: &[PaperFile], jobs: &[Job]) -> String {
     let mut out = String::new();
     for f in files {
+        let selected =
+            |e: &catalog::experiment::Experiment| jobs.iter().any(|j| j.experiment == e.id);
+        if !f.experiments.iter().any(selected) {
+            continue;
+        }
         let _ = writeln!(out, "{} — {}", f.paper, f.title);
         for e in &f.experiments {
             let n = jobs.iter().filter(|j| j.experiment == e.id).count();
@@ -117,8 +123,8 @@ mod tests {
     #[test]
     fn an_experiment_without_selected_runs_is_left_out() {
         let (files, jobs) = fixture();
-        let text = list(&files, &[]);
-        assert_eq!(text, format!("{} — {}\n", files[0].paper, files[0].title));
+        // No selected run: not even the paper's header (`list --paper X` shows X alone).
+        assert_eq!(list(&files, &[]), "");
         let one = list(&files, &jobs[..1]);
         assert!(one.contains(": 1 runs\n"), "{one}");
     }

@@ -359,7 +359,7 @@ fn kinematics(robot: &AnyRobot) -> String {
 /// The scheme's QP as formulas (the scheme modules' docs; parameters by the papers' names).
 fn formula(spec: &SchemeSpec) -> String {
     let fixed = match spec {
-        SchemeSpec::Jia2019 { .. } => {
+        SchemeSpec::Vltco { .. } => {
             "jia2019 (2.17)-(2.20), x = [thetadot; p] in R^(n+1), p = |thetadot|_inf:\n\
              P = diag((phi + tau) I_n, 1 - phi - tau)\n\
              q = [tau Lambda (theta - theta0); 0]        (Lambda = lambda; rmp: the reading of it)\n\
@@ -369,7 +369,7 @@ fn formula(spec: &SchemeSpec) -> String {
              zeta-_i = max{kappa (theta-_i - theta_i), thetadot-_i}\n\
              zeta+_i = min{kappa (theta+_i - theta_i), thetadot+_i}\n"
         }
-        SchemeSpec::Zhong2021 { .. } => {
+        SchemeSpec::Cmco { .. } => {
             "zhong2021 (2.16)-(2.18), x = [thetadot; k] in R^(n+1), k = |thetadot|_inf:\n\
              P = diag((eta + delta) I_n, 1 - eta - delta)\n\
              q = [delta Lambda (theta - theta0); 0]      (Lambda = lambda; rmp: the reading of it)\n\
@@ -380,14 +380,14 @@ fn formula(spec: &SchemeSpec) -> String {
              zeta+_i = thetadot+_i if theta_i <= theta+_i - thetadot+_i / upsilon, else upsilon (theta+_i - theta_i)\n\
              lower, upper = -inf, +inf (every bound is a row of G)\n"
         }
-        SchemeSpec::Zhang2018 { .. } => {
+        SchemeSpec::HlJdf { .. } => {
             "zhang2018 (2.5)-(2.6), acceleration level, x = thetaddot in R^n:\n\
              P = zeta I + (1 - zeta) H^2\n\
              q = zeta sigma + (1 - zeta) H'(c + g),  sigma = (alpha + beta) thetadot + alpha beta (theta - theta0)\n\
              A = J,  b = rddot* - Jdot thetadot + rho_v (rdot* - J thetadot) + rho_p (r* - f(theta))\n\
              no inequalities, no bounds (H, c, g: the arm's inertia, Coriolis and gravity terms)\n"
         }
-        SchemeSpec::Kong2019FiniteTime { .. } => {
+        SchemeSpec::FiniteTimeRmp { .. } => {
             "kong2019 (14), x = thetadot in R^n:\n\
              P = I\n\
              q = beta_theta c,  c_i = |e_i|^alpha sgn(e_i),  e = theta - theta*0\n\
@@ -395,7 +395,7 @@ fn formula(spec: &SchemeSpec) -> String {
              A = J,  b = rdot* + k_p (r* - f(theta))\n\
              no inequalities, no bounds\n"
         }
-        SchemeSpec::Kong2019Znn { .. } => {
+        SchemeSpec::ZnnRmp { .. } => {
             "kong2019 (22), x = thetadot in R^n:\n\
              P = I\n\
              q = mu (theta - theta*0)\n\

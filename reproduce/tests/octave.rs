@@ -16,7 +16,9 @@
 //! the CSV (both carry every digit).
 //!
 //! Octave is run as `octave-cli` (Debian's `octave` package; `.ci/run` installs it). Without
-//! it the test says it is skipped, and why, and passes.
+//! it the test says it is skipped, and why, and passes, except where `DRIFTBENCH_REQUIRE_OCTAVE`
+//! is set (`.ci/run` sets it): there a missing Octave fails the test, so CI cannot pass
+//! vacuously.
 
 use catalog::experiment::{load_dir, PaperFile, SolverChoice};
 use records::runs::RunRow;
@@ -94,6 +96,10 @@ fn own_run(root: &Path) -> RunRow {
 #[test]
 fn an_octave_trajectory_scores_as_driftbench_own_run() {
     let Some(octave) = octave() else {
+        assert!(
+            std::env::var_os("DRIFTBENCH_REQUIRE_OCTAVE").is_none(),
+            "DRIFTBENCH_REQUIRE_OCTAVE is set but neither octave-cli nor octave is installed"
+        );
         eprintln!(
             "skipped: neither octave-cli nor octave is installed (Debian: apt-get install octave; .ci/run installs it)"
         );

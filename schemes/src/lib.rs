@@ -1,13 +1,14 @@
 //! Desired paths and the papers' redundancy-resolution schemes, each turning (t, robot state)
 //! into one QP ([`qp::Qp`], which the solvers take). The velocity-level repetitive-motion
 //! scheme is composed from the vocabulary's terms ([`velocity_rmp`]); kong2019's two schemes
-//! and robio2018's RMP are presets of it.
+//! and robio2018's RMP are presets of it. jia2019's VLTCO family and zhong2021's CMCO are the
+//! two presets of the tri-criteria scheme ([`tri_criteria`]); zhang2018's acceleration-level
+//! HL-JDF stays a scheme of its own ([`zhang2018`]).
 
 pub use error::QpError;
 pub use qp::{KktResiduals, Qp, QpDims, QpDuals};
 
 pub mod error;
-pub mod jia2019;
 pub mod joint_limits;
 pub mod paths;
 pub mod qp;
@@ -17,6 +18,6 @@ pub mod scheme;
 pub mod sign_power;
 pub mod slug;
 pub mod spec;
+pub mod tri_criteria;
 pub mod velocity_rmp;
 pub mod zhang2018;
-pub mod zhong2021;

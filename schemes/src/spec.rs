@@ -2,7 +2,7 @@
 //!
 //! ```toml
 //! [scheme]
-//! kind = "jia2019"            # or zhong2021, zhang2018, kong2019-finite-time, kong2019-znn,
+//! kind = "vltco"              # or cmco, hl-jdf, finite-time-rmp, znn-rmp (presets), or
 //!                             # velocity-rmp (the vocabulary's composed scheme)
 //! phi = 0.2
 //! tau = 0.4
@@ -20,9 +20,12 @@
 //! `repetitive = "linear"` (default; g = lambda (theta - theta_ref)) or `"sign-power"` (g =
 //! lambda |e|^alpha sgn(e), with `alpha`), `lambda` (>= 0; 0 drops the term), `k_p` (tracking
 //! feedback, default 0) and `upsilon` (the bound conversion of the joint limits, robio2018 (10);
-//! absent: no bounds). kong2019's two schemes are presets of it. Every kind is also accepted
-//! under a name that says what it is: `vltco` (jia2019), `cmco` (zhong2021), `hl-jdf`
-//! (zhang2018), `finite-time-rmp` (kong2019-finite-time), `znn-rmp` (kong2019-znn).
+//! absent: no bounds). kong2019's two schemes are presets of it; jia2019's and zhong2021's are
+//! the two presets of the tri-criteria scheme ([`crate::tri_criteria`]); zhang2018's HL-JDF
+//! stays a scheme of its own ([`SchemeSpec::HlJdf`] says why). Kinds are named for what they
+//! are; the papers' names are accepted as aliases: `jia2019` (= `vltco`), `zhong2021`
+//! (`cmco`), `zhang2018` (`hl-jdf`), `kong2019-finite-time` (`finite-time-rmp`),
+//! `kong2019-znn` (`znn-rmp`).
 //!
 //! The RMP term's linear coefficient has three readings ([`RmpReading`], see [`crate::rmp`]):
 //! jia2019 takes `rmp = "printed"` (default, g = tau Lambda (theta - theta0)), `"expansion"`
@@ -39,13 +42,12 @@ use nalgebra::SVector;
 use robots::{Dynamics, Robot};
 use serde::{Deserialize, Serialize};
 
-use crate::jia2019::Jia2019;
 use crate::paths::Path;
 pub use crate::rmp::RmpReading;
 use crate::scheme::Scheme;
+use crate::tri_criteria::TriCriteria;
 use crate::velocity_rmp::{Repetitive, VelocityRmp, SMOOTHING};
 use crate::zhang2018::Zhang2018;
-use crate::zhong2021::Zhong2021;
 
 fn default_zhong_lambda() -> f64 {
     20.0
@@ -73,9 +75,10 @@ fn is_default_zhong_tau(tau: &f64) -> bool {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum SchemeSpec {
-    /// jia2019 eq. 2.17–2.20: MVN (phi = 1, tau = 0), MVN-INVM (0.2, 0), VLTCO (0.2, 0.4).
-    #[serde(alias = "vltco")]
-    Jia2019 {
+    /// The tri-criteria preset of jia2019 (2.17)-(2.20) ([`TriCriteria::vltco`]): MVN
+    /// (phi = 1, tau = 0), MVN-INVM (0.2, 0), VLTCO (0.2, 0.4). Alias `jia2019`.
+    #[serde(alias = "jia2019")]
+    Vltco {
         phi: f64,
         tau: f64,
         kappa: f64,
@@ -87,9 +90,10 @@ pub enum SchemeSpec {
         #[serde(default = "default_jia_mu", skip_serializing_if = "is_default_jia_mu")]
         mu: f64,
     },
-    /// zhong2021 CMCO eq. 2.16–2.18.
-    #[serde(alias = "cmco")]
-    Zhong2021 {
+    /// The tri-criteria preset of zhong2021 (2.16)-(2.18) ([`TriCriteria::cmco`]): every
+    /// inequality as rows of G. Alias `zhong2021`.
+    #[serde(alias = "zhong2021")]
+    Cmco {
         eta: f64,
         delta: f64,
         upsilon: f64,
@@ -106,25 +110,31 @@ pub enum SchemeSpec {
         )]
         tau: f64,
     },
-    /// zhang2018 HL-JDF eq. 2.5–2.6 (MTN when zeta = 0).
-    #[serde(alias = "hl-jdf")]
-    Zhang2018 {
+    /// zhang2018 (2.5)-(2.6), HL-JDF (MTN when zeta = 0). It stays a scheme of its own in Rust
+    /// ([`Zhang2018`]): an acceleration-level QP whose objective is a torque-weighted
+    /// combination through the inertia matrix H(theta) and whose bounds come from the velocity
+    /// and acceleration limits of a dynamics model, none of which the velocity-level
+    /// vocabulary says. Alias `zhang2018`.
+    #[serde(alias = "zhang2018")]
+    HlJdf {
         zeta: f64,
         alpha: f64,
         beta: f64,
         rho_v: f64,
         rho_p: f64,
     },
-    /// kong2019 finite-time repeatable scheme, eq. 14 (a preset of [`SchemeSpec::VelocityRmp`]).
-    #[serde(alias = "finite-time-rmp")]
-    Kong2019FiniteTime {
+    /// kong2019 (14), the finite-time repeatable scheme (a preset of
+    /// [`SchemeSpec::VelocityRmp`]). Alias `kong2019-finite-time`.
+    #[serde(alias = "kong2019-finite-time")]
+    FiniteTimeRmp {
         beta_theta: f64,
         k_p: f64,
         alpha: f64,
     },
-    /// kong2019's ZNN repetitive baseline, eq. 22 (a preset of [`SchemeSpec::VelocityRmp`]).
-    #[serde(alias = "znn-rmp")]
-    Kong2019Znn { mu: f64, k_p: f64 },
+    /// kong2019 (22), the ZNN repetitive baseline (a preset of [`SchemeSpec::VelocityRmp`]).
+    /// Alias `kong2019-znn`.
+    #[serde(alias = "kong2019-znn")]
+    ZnnRmp { mu: f64, k_p: f64 },
     /// The velocity-level scheme composed from the vocabulary ([`crate::velocity_rmp`]).
     VelocityRmp {
         /// Weight w of the velocity norm (P = w I).
@@ -245,10 +255,10 @@ fn check(
     }
 }
 
-/// The `kind` tag of jia2019's tri-criteria scheme ([`SchemeSpec::Jia2019`]).
-pub const JIA2019_KIND: &str = "jia2019";
-/// The `kind` tag of kong2019's ZNN scheme ([`SchemeSpec::Kong2019Znn`]).
-pub const KONG2019_ZNN_KIND: &str = "kong2019-znn";
+/// The `kind` tag of jia2019's tri-criteria preset ([`SchemeSpec::Vltco`]).
+pub const VLTCO_KIND: &str = "vltco";
+/// The `kind` tag of kong2019's ZNN preset ([`SchemeSpec::ZnnRmp`]).
+pub const ZNN_RMP_KIND: &str = "znn-rmp";
 /// The `kind` tag of the vocabulary's composed scheme ([`SchemeSpec::VelocityRmp`]).
 pub const VELOCITY_RMP_KIND: &str = "velocity-rmp";
 
@@ -256,17 +266,17 @@ impl SchemeSpec {
     /// Whether the scheme reads kinematics and limits from a dynamics model (zhang2018's
     /// acceleration-level HL-JDF).
     pub fn needs_dynamics(&self) -> bool {
-        matches!(self, SchemeSpec::Zhang2018 { .. })
+        matches!(self, SchemeSpec::HlJdf { .. })
     }
 
     /// The spec's `kind` tag.
     pub fn kind(&self) -> &'static str {
         match self {
-            SchemeSpec::Jia2019 { .. } => JIA2019_KIND,
-            SchemeSpec::Zhong2021 { .. } => "zhong2021",
-            SchemeSpec::Zhang2018 { .. } => "zhang2018",
-            SchemeSpec::Kong2019FiniteTime { .. } => "kong2019-finite-time",
-            SchemeSpec::Kong2019Znn { .. } => KONG2019_ZNN_KIND,
+            SchemeSpec::Vltco { .. } => VLTCO_KIND,
+            SchemeSpec::Cmco { .. } => "cmco",
+            SchemeSpec::HlJdf { .. } => "hl-jdf",
+            SchemeSpec::FiniteTimeRmp { .. } => "finite-time-rmp",
+            SchemeSpec::ZnnRmp { .. } => ZNN_RMP_KIND,
             SchemeSpec::VelocityRmp { .. } => VELOCITY_RMP_KIND,
         }
     }
@@ -278,7 +288,7 @@ impl SchemeSpec {
     /// tau=10)`.
     pub fn display_name(&self) -> String {
         match *self {
-            SchemeSpec::Jia2019 {
+            SchemeSpec::Vltco {
                 phi, tau, rmp, mu, ..
             } => {
                 let reading = match rmp {
@@ -288,10 +298,10 @@ impl SchemeSpec {
                 };
                 format!(
                     "{} (phi={phi}, tau={tau}{reading})",
-                    Jia2019::<1>::scheme_name(phi, tau)
+                    TriCriteria::<1>::vltco_name(phi, tau)
                 )
             }
-            SchemeSpec::Zhong2021 {
+            SchemeSpec::Cmco {
                 eta,
                 delta,
                 rmp,
@@ -305,15 +315,15 @@ impl SchemeSpec {
                 };
                 format!("CMCO (eta={eta}, delta={delta}{reading})")
             }
-            SchemeSpec::Zhang2018 { zeta, .. } => {
+            SchemeSpec::HlJdf { zeta, .. } => {
                 format!("{} (zeta={zeta})", Zhang2018::<1>::scheme_name(zeta))
             }
-            SchemeSpec::Kong2019FiniteTime {
+            SchemeSpec::FiniteTimeRmp {
                 beta_theta, alpha, ..
             } => {
                 format!("finite-time (beta_theta={beta_theta}, alpha={alpha})")
             }
-            SchemeSpec::Kong2019Znn { mu, .. } => format!("ZNN (mu={mu})"),
+            SchemeSpec::ZnnRmp { mu, .. } => format!("ZNN (mu={mu})"),
             SchemeSpec::VelocityRmp {
                 weight,
                 repetitive,
@@ -345,7 +355,7 @@ impl SchemeSpec {
     pub fn validate(&self) -> Result<(), SchemeError> {
         let s = self.kind();
         match *self {
-            SchemeSpec::Jia2019 {
+            SchemeSpec::Vltco {
                 phi,
                 tau,
                 kappa,
@@ -365,7 +375,7 @@ impl SchemeSpec {
                 check(s, "kappa", kappa, kappa > 0.0, "finite and > 0")?;
                 check(s, "lambda", lambda, lambda > 0.0, "finite and > 0")
             }
-            SchemeSpec::Zhong2021 {
+            SchemeSpec::Cmco {
                 eta,
                 delta,
                 upsilon,
@@ -385,7 +395,7 @@ impl SchemeSpec {
                 check(s, "upsilon", upsilon, upsilon > 0.0, "finite and > 0")?;
                 check(s, "lambda", lambda, lambda > 0.0, "finite and > 0")
             }
-            SchemeSpec::Zhang2018 {
+            SchemeSpec::HlJdf {
                 zeta,
                 alpha,
                 beta,
@@ -398,7 +408,7 @@ impl SchemeSpec {
                 check(s, "rho_v", rho_v, rho_v > 0.0, "finite and > 0")?;
                 check(s, "rho_p", rho_p, rho_p > 0.0, "finite and > 0")
             }
-            SchemeSpec::Kong2019FiniteTime {
+            SchemeSpec::FiniteTimeRmp {
                 beta_theta,
                 k_p,
                 alpha,
@@ -425,7 +435,7 @@ impl SchemeSpec {
                     "finite and > 0 (the paper: 0 < alpha < 1)",
                 )
             }
-            SchemeSpec::Kong2019Znn { mu, k_p } => {
+            SchemeSpec::ZnnRmp { mu, k_p } => {
                 check(
                     s,
                     "mu",
@@ -516,7 +526,7 @@ pub fn build_scheme<const N: usize>(
 ) -> Result<Box<dyn Scheme<N>>, SchemeError> {
     spec.validate()?;
     Ok(match *spec {
-        SchemeSpec::Jia2019 {
+        SchemeSpec::Vltco {
             phi,
             tau,
             kappa,
@@ -524,9 +534,9 @@ pub fn build_scheme<const N: usize>(
             rmp,
             mu,
         } => Box::new(
-            Jia2019::new(robot, path, theta_ref, phi, tau, kappa, lambda).with_rmp(rmp, mu),
+            TriCriteria::vltco(robot, path, theta_ref, phi, tau, kappa, lambda).with_rmp(rmp, mu),
         ),
-        SchemeSpec::Zhong2021 {
+        SchemeSpec::Cmco {
             eta,
             delta,
             upsilon,
@@ -534,21 +544,20 @@ pub fn build_scheme<const N: usize>(
             rmp,
             tau,
         } => Box::new(
-            Zhong2021::new(robot, path, theta_ref, eta, delta, upsilon, lambda).with_rmp(rmp, tau),
+            TriCriteria::cmco(robot, path, theta_ref, eta, delta, upsilon, lambda)
+                .with_rmp(rmp, tau),
         ),
-        SchemeSpec::Zhang2018 {
+        SchemeSpec::HlJdf {
             zeta,
             alpha,
             beta,
             rho_v,
             rho_p,
         } => {
-            let dynamics = dynamics.ok_or(SchemeError::MissingDynamics {
-                scheme: "zhang2018",
-            })?;
+            let dynamics = dynamics.ok_or(SchemeError::MissingDynamics { scheme: "hl-jdf" })?;
             if dynamics.name() != robot.name() {
                 return Err(SchemeError::RobotMismatch {
-                    scheme: "zhang2018",
+                    scheme: "hl-jdf",
                     robot: robot.name().to_string(),
                     dynamics: dynamics.name().to_string(),
                 });
@@ -557,14 +566,14 @@ pub fn build_scheme<const N: usize>(
                 dynamics, path, theta_ref, zeta, alpha, beta, rho_v, rho_p,
             ))
         }
-        SchemeSpec::Kong2019FiniteTime {
+        SchemeSpec::FiniteTimeRmp {
             beta_theta,
             k_p,
             alpha,
         } => Box::new(VelocityRmp::finite_time(
             robot, path, theta_ref, beta_theta, alpha, k_p,
         )),
-        SchemeSpec::Kong2019Znn { mu, k_p } => {
+        SchemeSpec::ZnnRmp { mu, k_p } => {
             Box::new(VelocityRmp::znn(robot, path, theta_ref, mu, k_p))
         }
         SchemeSpec::VelocityRmp {

@@ -10,15 +10,14 @@ use std::sync::Arc;
 use common::{admm, kkt_solve, paper_specs as specs, Circle, PlanarZ};
 use nalgebra::{DMatrix, SVector, Vector3};
 use robots::{Dynamics, JointLimits, Robot};
-use schemes::jia2019::Jia2019;
 use schemes::joint_limits::{merged_bounds, piecewise_bounds};
 use schemes::paths::Path;
 use schemes::qp_dot::{self, QpDotScratch};
 use schemes::scheme::{Level, Scheme};
 use schemes::spec::{build_scheme, RmpReading, SchemeError, SchemeSpec};
+use schemes::tri_criteria::TriCriteria;
 use schemes::velocity_rmp::{finite_time_c, VelocityRmp};
 use schemes::zhang2018::Zhang2018;
-use schemes::zhong2021::Zhong2021;
 use schemes::{Qp, QpDims};
 
 const N: usize = 6;
@@ -47,7 +46,7 @@ fn make(spec: &SchemeSpec) -> Box<dyn Scheme<N>> {
 
 fn expected_dims(spec: &SchemeSpec) -> (QpDims, Level) {
     match spec {
-        SchemeSpec::Jia2019 { .. } => (
+        SchemeSpec::Vltco { .. } => (
             QpDims {
                 nx: N + 1,
                 n_eq: 3,
@@ -55,7 +54,7 @@ fn expected_dims(spec: &SchemeSpec) -> (QpDims, Level) {
             },
             Level::Velocity,
         ),
-        SchemeSpec::Zhong2021 { .. } => (
+        SchemeSpec::Cmco { .. } => (
             QpDims {
                 nx: N + 1,
                 n_eq: 3,
@@ -63,7 +62,7 @@ fn expected_dims(spec: &SchemeSpec) -> (QpDims, Level) {
             },
             Level::Velocity,
         ),
-        SchemeSpec::Zhang2018 { .. } => (
+        SchemeSpec::HlJdf { .. } => (
             QpDims {
                 nx: N,
                 n_eq: 3,
@@ -113,7 +112,7 @@ fn qp_shapes_per_scheme() {
             }
         }
         match spec {
-            SchemeSpec::Jia2019 { .. } => {
+            SchemeSpec::Vltco { .. } => {
                 // G = [I -1; -I -1], h = 0; bounds x- = [zeta-; 0], x+ = [zeta+; +inf].
                 for i in 0..N {
                     for c in 0..=N {
@@ -135,7 +134,7 @@ fn qp_shapes_per_scheme() {
                 assert!(qp.lower.rows(0, N).iter().all(|v| v.is_finite()));
                 assert!(qp.upper.rows(0, N).iter().all(|v| v.is_finite()));
             }
-            SchemeSpec::Zhong2021 { .. } => {
+            SchemeSpec::Cmco { .. } => {
                 // B = [s; E; -E], everything in G/h, no variable bounds.
                 let mut b = DMatrix::zeros(4 * N + 2, N + 1);
                 for i in 0..N {
@@ -177,7 +176,7 @@ fn qp_shapes_per_scheme() {
 fn jia2019_objective_data() {
     let (th, thd, _) = state();
     for (phi, tau) in [(1.0, 0.0), (0.2, 0.0), (0.2, 0.4)] {
-        let s = Jia2019::<N>::new(robot(), path(), theta0(), phi, tau, 20.0, 20.0);
+        let s = TriCriteria::<N>::vltco(robot(), path(), theta0(), phi, tau, 20.0, 20.0);
         let mut qp = s.new_qp();
         // At theta = theta0 the joint part of q vanishes.
         s.build(0.7, &theta0(), &thd, &mut qp);
@@ -201,15 +200,15 @@ fn jia2019_objective_data() {
             nalgebra::DVector::from_column_slice(path().at(0.7).rdot.as_slice())
         );
     }
-    assert_eq!(Jia2019::<N>::scheme_name(1.0, 0.0), "MVN");
-    assert_eq!(Jia2019::<N>::scheme_name(0.2, 0.0), "MVN-INVM");
-    assert_eq!(Jia2019::<N>::scheme_name(0.2, 0.4), "VLTCO");
+    assert_eq!(TriCriteria::<N>::vltco_name(1.0, 0.0), "MVN");
+    assert_eq!(TriCriteria::<N>::vltco_name(0.2, 0.0), "MVN-INVM");
+    assert_eq!(TriCriteria::<N>::vltco_name(0.2, 0.4), "VLTCO");
 }
 
 #[test]
 fn merged_bounds_tighten_near_joint_limits() {
-    let s = Jia2019::<N>::new(robot(), path(), theta0(), 0.2, 0.4, 20.0, 20.0);
-    let z = Zhong2021::<N>::new(robot(), path(), theta0(), 0.2, 0.4, 20.0, 20.0);
+    let s = TriCriteria::<N>::vltco(robot(), path(), theta0(), 0.2, 0.4, 20.0, 20.0);
+    let z = TriCriteria::<N>::cmco(robot(), path(), theta0(), 0.2, 0.4, 20.0, 20.0);
     let lim = PlanarZ::<N>.limits();
     let mut qp = s.new_qp();
     let mut zqp = z.new_qp();
@@ -316,13 +315,13 @@ fn exact_optimum_tracks_the_task_velocity() {
             let xd = V::from_iterator(x.iter().take(N).copied());
             let pp = path().at(t);
             let expected = match spec {
-                SchemeSpec::Jia2019 { .. } | SchemeSpec::Zhong2021 { .. } => pp.rdot,
-                SchemeSpec::Kong2019FiniteTime { k_p, .. }
-                | SchemeSpec::Kong2019Znn { k_p, .. }
+                SchemeSpec::Vltco { .. } | SchemeSpec::Cmco { .. } => pp.rdot,
+                SchemeSpec::FiniteTimeRmp { k_p, .. }
+                | SchemeSpec::ZnnRmp { k_p, .. }
                 | SchemeSpec::VelocityRmp { k_p, .. } => {
                     pp.rdot + (pp.r - PlanarZ::<N>.position(&th)) * k_p
                 }
-                SchemeSpec::Zhang2018 { rho_v, rho_p, .. } => {
+                SchemeSpec::HlJdf { rho_v, rho_p, .. } => {
                     pp.rddot - PlanarZ::<N>.jacobian_dot(&th, &thd) * thd
                         + (pp.rdot - j * thd) * rho_v
                         + (pp.r - PlanarZ::<N>.position(&th)) * rho_p
@@ -346,7 +345,7 @@ fn exact_optimum_tracks_the_task_velocity() {
                 );
             }
             // Velocity-level schemes with bounds: the optimum respects the merged limits.
-            if matches!(spec, SchemeSpec::Jia2019 { .. }) {
+            if matches!(spec, SchemeSpec::Vltco { .. }) {
                 let lim = PlanarZ::<N>.limits();
                 for i in 0..N {
                     assert!(
@@ -354,7 +353,7 @@ fn exact_optimum_tracks_the_task_velocity() {
                     );
                 }
                 // p = |thetadot|_inf when the INVM term has weight.
-                if let SchemeSpec::Jia2019 { phi, tau, .. } = spec {
+                if let SchemeSpec::Vltco { phi, tau, .. } = spec {
                     if phi + tau < 1.0 {
                         assert!(
                             (x[N] - xd.amax()).abs() < 1e-6,
@@ -372,7 +371,7 @@ fn exact_optimum_tracks_the_task_velocity() {
 #[test]
 fn mvn_optimum_is_the_minimum_norm_solution() {
     // MVN with inactive bounds: thetadot = J^+ rdot*.
-    let s = make(&SchemeSpec::Jia2019 {
+    let s = make(&SchemeSpec::Vltco {
         phi: 1.0,
         tau: 0.0,
         kappa: 20.0,
@@ -418,7 +417,7 @@ fn zhang2018_weight_is_spd_and_torque_is_the_dynamics() {
     assert_eq!(Zhang2018::<N>::scheme_name(0.0), "MTN");
     assert_eq!(Zhang2018::<N>::scheme_name(0.6), "HL-JDF");
     // Schemes without dynamics report no torque.
-    let k = make(&SchemeSpec::Kong2019Znn { mu: 1.0, k_p: 1.0 });
+    let k = make(&SchemeSpec::ZnnRmp { mu: 1.0, k_p: 1.0 });
     assert!(k.torque(&th, &thd, &thdd).is_none());
 }
 
@@ -545,14 +544,14 @@ fn build_dot_matches_a_higher_order_difference() {
             );
             // The derivative is not trivially zero.
             assert!(dot.b.amax() > 0.0);
-            if t == 3.7 && matches!(spec, SchemeSpec::Jia2019 { .. }) {
+            if t == 3.7 && matches!(spec, SchemeSpec::Vltco { .. }) {
                 assert!(
                     (dot.upper[1] + 20.0 * thd[1]).abs() < 1e-12,
                     "zeta+ dot = {}",
                     dot.upper[1]
                 );
             }
-            if t == 3.7 && matches!(spec, SchemeSpec::Zhong2021 { .. }) {
+            if t == 3.7 && matches!(spec, SchemeSpec::Cmco { .. }) {
                 assert!((dot.h[2 * N + 1] + 20.0 * thd[1]).abs() < 1e-12);
             }
             // The default central difference agrees with the analytic overrides too.
@@ -571,7 +570,7 @@ fn build_dot_matches_a_higher_order_difference() {
 
 #[test]
 fn infinite_entries_have_zero_derivative() {
-    let s = make(&SchemeSpec::Zhong2021 {
+    let s = make(&SchemeSpec::Cmco {
         eta: 0.2,
         delta: 0.4,
         upsilon: 20.0,
@@ -660,7 +659,7 @@ fn spec_parses_every_kind() {
         toml::from_str("kind = \"zhong2021\"\neta = 0.1\ndelta = 0.8\nupsilon = 20.0").unwrap();
     assert_eq!(
         z,
-        SchemeSpec::Zhong2021 {
+        SchemeSpec::Cmco {
             eta: 0.1,
             delta: 0.8,
             upsilon: 20.0,
@@ -687,7 +686,7 @@ fn spec_rejects_unknown_and_missing_fields() {
 #[test]
 fn build_scheme_reports_clear_errors() {
     let r = robot();
-    let zhang = SchemeSpec::Zhang2018 {
+    let zhang = SchemeSpec::HlJdf {
         zeta: 0.6,
         alpha: 20.0,
         beta: 20.0,
@@ -697,16 +696,11 @@ fn build_scheme_reports_clear_errors() {
     let err = build_scheme::<N>(&zhang, r.clone(), None, path(), theta0())
         .err()
         .unwrap();
-    assert_eq!(
-        err,
-        SchemeError::MissingDynamics {
-            scheme: "zhang2018"
-        }
-    );
+    assert_eq!(err, SchemeError::MissingDynamics { scheme: "hl-jdf" });
     assert!(err.to_string().contains("dynamics"), "{err}");
     let _: &dyn std::error::Error = &err;
 
-    let bad = SchemeSpec::Jia2019 {
+    let bad = SchemeSpec::Vltco {
         phi: 0.8,
         tau: 0.4,
         kappa: 20.0,
@@ -718,7 +712,7 @@ fn build_scheme_reports_clear_errors() {
         .err()
         .unwrap();
     assert!(err.to_string().contains("'tau'"), "{err}");
-    let bad = SchemeSpec::Zhong2021 {
+    let bad = SchemeSpec::Cmco {
         eta: 0.2,
         delta: 0.4,
         upsilon: -1.0,
@@ -730,7 +724,7 @@ fn build_scheme_reports_clear_errors() {
         .err()
         .unwrap();
     assert!(err.to_string().contains("'upsilon'"), "{err}");
-    let bad = SchemeSpec::Kong2019FiniteTime {
+    let bad = SchemeSpec::FiniteTimeRmp {
         beta_theta: 1.0,
         k_p: f64::NAN,
         alpha: 0.1,
@@ -739,7 +733,7 @@ fn build_scheme_reports_clear_errors() {
         .err()
         .unwrap();
     assert!(err.to_string().contains("'k_p'"), "{err}");
-    let bad = SchemeSpec::Zhang2018 {
+    let bad = SchemeSpec::HlJdf {
         zeta: 1.5,
         alpha: 20.0,
         beta: 20.0,
@@ -755,7 +749,7 @@ fn build_scheme_reports_clear_errors() {
     // Non-dynamics schemes do not need dynamics.
     for spec in specs()
         .into_iter()
-        .filter(|s| !matches!(s, SchemeSpec::Zhang2018 { .. }))
+        .filter(|s| !matches!(s, SchemeSpec::HlJdf { .. }))
     {
         assert!(build_scheme::<N>(&spec, r.clone(), None, path(), theta0()).is_ok());
     }
@@ -773,7 +767,7 @@ fn random_theta(seed: u64) -> V {
 }
 
 fn jia(tau: f64, rmp: RmpReading, mu: f64) -> SchemeSpec {
-    SchemeSpec::Jia2019 {
+    SchemeSpec::Vltco {
         phi: 0.2,
         tau,
         kappa: 20.0,
@@ -784,7 +778,7 @@ fn jia(tau: f64, rmp: RmpReading, mu: f64) -> SchemeSpec {
 }
 
 fn zhong(delta: f64, rmp: RmpReading, tau: f64) -> SchemeSpec {
-    SchemeSpec::Zhong2021 {
+    SchemeSpec::Cmco {
         eta: 0.1,
         delta,
         upsilon: 20.0,
@@ -845,7 +839,7 @@ fn rmp_readings_set_the_linear_term_as_the_expansion_predicts() {
     let mut a = make(&jia(0.4, RmpReading::Printed, 5.0)).new_qp();
     let mut b = a.clone();
     make(&jia(0.4, RmpReading::Printed, 5.0)).build(2.0, &theta, &theta, &mut a);
-    let direct = Jia2019::new(robot(), path(), theta0(), 0.2, 0.4, 20.0, 20.0);
+    let direct = TriCriteria::vltco(robot(), path(), theta0(), 0.2, 0.4, 20.0, 20.0);
     direct.build(2.0, &theta, &theta, &mut b);
     assert_eq!(a.q, b.q);
     assert_eq!(a.p, b.p);

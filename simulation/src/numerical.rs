@@ -24,6 +24,7 @@ use nalgebra::{DVector, SVector};
 use schemes::scheme::{Level, Scheme};
 use solvers::exact_path::ExactPathStats;
 use solvers::lvi_numerical::{LviMethod, LviSettings, LviSolver};
+use solvers::neural::projection::primal_dual_dim;
 use solvers::ode::OdeStats;
 use std::time::Instant;
 
@@ -87,6 +88,7 @@ pub(crate) fn run_numerical<const N: usize>(
             Ok(it) => {
                 iterations.total += u64::from(it);
                 iterations.max = iterations.max.max(u64::from(it));
+                iterations.products += solver.method().products(it, primal_dual_dim(dims));
             }
             Err(error) => {
                 failure = Some((t, RunError::Numerical { t, error }));

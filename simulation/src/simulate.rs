@@ -48,6 +48,10 @@ pub struct IterationStats {
     pub total: u64,
     /// At the instant that needed most.
     pub max: u64,
+    /// The work of the whole run in products with the LVI matrix
+    /// (`solvers::lvi_numerical::LviMethod::products` summed over the instants): the
+    /// machine-independent cost, in the unit of the control tables.
+    pub products: u64,
 }
 
 /// How a run is integrated and observed.

@@ -259,12 +259,17 @@ fn gains_are_checked_at_load() {
             &ZHANG.replace("alpha = 20.0", &format!("alpha = {bad}")),
             &["field `scheme`", "alpha"],
         );
-        assert_rejected(
-            "kong_gain",
-            &KATANA.replace("mu = 1.0", &format!("mu = {bad}")),
-            &["field `scheme`", "mu"],
-        );
+        // mu = 0 (no repetitive term) is a scheme the mathematics allows.
+        if bad != "0.0" {
+            assert_rejected(
+                "kong_gain",
+                &KATANA.replace("mu = 1.0", &format!("mu = {bad}")),
+                &["field `scheme`", "mu"],
+            );
+        }
     }
+    load_text("kong_mu_0", &KATANA.replace("mu = 1.0", "mu = 0.0"))
+        .expect("mu = 0 is allowed: the scheme without its repetitive term");
     assert_rejected(
         "vp_rnn_pf_sigma",
         &GOOD.replace(

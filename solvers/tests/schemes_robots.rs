@@ -59,7 +59,7 @@ fn jaco2_schemes_exact_optimum_and_derivative() {
     let butterfly = path("butterfly", 8.0, robot.position(&theta0));
     let specs = [
         (
-            SchemeSpec::Jia2019 {
+            SchemeSpec::Vltco {
                 phi: 1.0,
                 tau: 0.0,
                 kappa: 20.0,
@@ -70,7 +70,7 @@ fn jaco2_schemes_exact_optimum_and_derivative() {
             &clover,
         ),
         (
-            SchemeSpec::Jia2019 {
+            SchemeSpec::Vltco {
                 phi: 0.2,
                 tau: 0.0,
                 kappa: 20.0,
@@ -81,7 +81,7 @@ fn jaco2_schemes_exact_optimum_and_derivative() {
             &clover,
         ),
         (
-            SchemeSpec::Jia2019 {
+            SchemeSpec::Vltco {
                 phi: 0.2,
                 tau: 0.4,
                 kappa: 20.0,
@@ -92,7 +92,7 @@ fn jaco2_schemes_exact_optimum_and_derivative() {
             &clover,
         ),
         (
-            SchemeSpec::Zhong2021 {
+            SchemeSpec::Cmco {
                 eta: 0.2,
                 delta: 0.4,
                 upsilon: 20.0,
@@ -103,7 +103,7 @@ fn jaco2_schemes_exact_optimum_and_derivative() {
             &clover,
         ),
         (
-            SchemeSpec::Zhang2018 {
+            SchemeSpec::HlJdf {
                 zeta: 0.0,
                 alpha: 20.0,
                 beta: 20.0,
@@ -113,7 +113,7 @@ fn jaco2_schemes_exact_optimum_and_derivative() {
             &butterfly,
         ),
         (
-            SchemeSpec::Zhang2018 {
+            SchemeSpec::HlJdf {
                 zeta: 0.6,
                 alpha: 20.0,
                 beta: 20.0,
@@ -194,12 +194,12 @@ fn katana_kong2019_schemes() {
     let th = star + SVector::<f64, 5>::from([0.0, 0.0, 0.0, 0.0, 0.5]);
     let thd = SVector::<f64, 5>::from([0.1, -0.05, 0.08, 0.02, -0.2]);
     for spec in [
-        SchemeSpec::Kong2019FiniteTime {
+        SchemeSpec::FiniteTimeRmp {
             beta_theta: 1.0,
             k_p: 1.0,
             alpha: 0.1,
         },
-        SchemeSpec::Kong2019Znn { mu: 1.0, k_p: 1.0 },
+        SchemeSpec::ZnnRmp { mu: 1.0, k_p: 1.0 },
     ] {
         let s = build_scheme::<5>(&spec, robot.clone(), None, circle.clone(), star).unwrap();
         let mut qp = s.new_qp();

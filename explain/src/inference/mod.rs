@@ -150,7 +150,7 @@ impl Setup {
         }
         j.path.reverse ^= self.reverse;
         match &mut j.scheme {
-            SchemeSpec::Jia2019 { rmp, .. } | SchemeSpec::Zhong2021 { rmp, .. } => *rmp = self.rmp,
+            SchemeSpec::Vltco { rmp, .. } | SchemeSpec::Cmco { rmp, .. } => *rmp = self.rmp,
             _ => {}
         }
         j
@@ -297,8 +297,8 @@ pub fn problem(
         if schemes::paths::scale_provenance(&exact.path.name) == Some("paper") {
             p.fit_scale = false;
         }
-        if matches!(exact.scheme, SchemeSpec::Jia2019 { tau, .. } if tau > 0.0)
-            || matches!(exact.scheme, SchemeSpec::Zhong2021 { delta, .. } if delta > 0.0)
+        if matches!(exact.scheme, SchemeSpec::Vltco { tau, .. } if tau > 0.0)
+            || matches!(exact.scheme, SchemeSpec::Cmco { delta, .. } if delta > 0.0)
         {
             p.fit_rmp = true;
         }

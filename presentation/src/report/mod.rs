@@ -164,7 +164,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
         };
         summary.push([
             format!("[{paper}](#{paper})"),
-            verdict::level(c, &ratios).to_string(),
+            verdict::level_under_setup(paper, c, &ratios, papers),
             format!(
                 "{} / {} / {}",
                 n(claims::Verdict::Pass),

@@ -149,7 +149,7 @@ fn where_time_goes(profile: &[ProfileRow], papers: &Papers) -> String {
         "### Where the time goes\n\nA sampling profile of `reproduce --paper PAPER \
          --skip-explain --threads 1 --dry-run` for each of {}, {} passes pinned to one CPU at {} \
          Hz, revision `{}` (`benches/profile/paper.sh {}` writes `results/{}`; perf with call \
-         graphs over the release build's debug info, each sample sorted by the innermost frame \
+         graphs over the `profiling` build's debug info (release optimisation), each sample sorted by the innermost frame \
          that names a category). The *simulation* is the network runs' integration (diffsol's \
          BDF around the arm and the network); the *exact column* integrates the exact optimum; \
          the *observer* scores every accepted step against the exact optimum and keeps metrics \

@@ -35,6 +35,29 @@ pub fn level(claims: &[Claim], ratios: &[(String, f64)]) -> &'static str {
     }
 }
 
+/// What of `paper`'s setup was substituted (paper.toml's `assumed_setup`), if anything.
+pub fn assumed_setup<'a>(paper: &str, papers: &'a Papers) -> Option<&'a str> {
+    papers
+        .papers
+        .iter()
+        .find(|p| p.id == paper)
+        .and_then(|p| p.assumed_setup.as_deref())
+}
+
+/// The verdict level, with ", under an assumed setup" where the paper's setup was substituted.
+pub fn level_under_setup(
+    paper: &str,
+    claims: &[Claim],
+    ratios: &[(String, f64)],
+    papers: &Papers,
+) -> String {
+    let level = level(claims, ratios);
+    match assumed_setup(paper, papers) {
+        Some(_) => format!("{level}, under an assumed setup"),
+        None => level.to_string(),
+    }
+}
+
 /// Our run of the paper's solver for each mapped column of `paper`, with its mapping.
 fn mapped_runs<'a>(
     paper: &'a str,
@@ -112,7 +135,7 @@ pub fn paragraph(paper: &str, claims: &[Claim], runs: &Runs, papers: &Papers) ->
     );
     let mut out = format!(
         "**Verdict: {}.** {} of {} evaluated claims hold",
-        level(claims, &ratios),
+        level_under_setup(paper, claims, &ratios, papers),
         pass.len(),
         pass.len() + fail.len()
     );
@@ -120,6 +143,11 @@ pub fn paragraph(paper: &str, claims: &[Claim], runs: &Runs, papers: &Papers) ->
         out.push_str(&format!(" ({})", pass.join("; ")));
     }
     out.push('.');
+    if let Some(assumed) = assumed_setup(paper, papers) {
+        out.push_str(&format!(
+            " The paper does not print all of its setup; assumed: {assumed}."
+        ));
+    }
     if !fail.is_empty() {
         out.push_str(&format!(" Not reproduced: {}.", fail.join("; ")));
     }

@@ -225,7 +225,7 @@ pub fn kkt_solve(qp: &Qp) -> DVector<f64> {
 /// Every paper's scheme at the parameters the papers use (and MVN / MVN-INVM / MTN).
 pub fn paper_specs() -> Vec<SchemeSpec> {
     vec![
-        SchemeSpec::Jia2019 {
+        SchemeSpec::Vltco {
             phi: 1.0,
             tau: 0.0,
             kappa: 20.0,
@@ -233,7 +233,7 @@ pub fn paper_specs() -> Vec<SchemeSpec> {
             rmp: RmpReading::Printed,
             mu: 5.0,
         },
-        SchemeSpec::Jia2019 {
+        SchemeSpec::Vltco {
             phi: 0.2,
             tau: 0.0,
             kappa: 20.0,
@@ -241,7 +241,7 @@ pub fn paper_specs() -> Vec<SchemeSpec> {
             rmp: RmpReading::Printed,
             mu: 5.0,
         },
-        SchemeSpec::Jia2019 {
+        SchemeSpec::Vltco {
             phi: 0.2,
             tau: 0.4,
             kappa: 20.0,
@@ -249,7 +249,7 @@ pub fn paper_specs() -> Vec<SchemeSpec> {
             rmp: RmpReading::Printed,
             mu: 5.0,
         },
-        SchemeSpec::Zhong2021 {
+        SchemeSpec::Cmco {
             eta: 0.2,
             delta: 0.4,
             upsilon: 20.0,
@@ -257,7 +257,7 @@ pub fn paper_specs() -> Vec<SchemeSpec> {
             rmp: RmpReading::Printed,
             tau: 10.0,
         },
-        SchemeSpec::Zhong2021 {
+        SchemeSpec::Cmco {
             eta: 0.1,
             delta: 0.8,
             upsilon: 20.0,
@@ -265,26 +265,26 @@ pub fn paper_specs() -> Vec<SchemeSpec> {
             rmp: RmpReading::Printed,
             tau: 10.0,
         },
-        SchemeSpec::Zhang2018 {
+        SchemeSpec::HlJdf {
             zeta: 0.0,
             alpha: 20.0,
             beta: 20.0,
             rho_v: 20.0,
             rho_p: 20.0,
         },
-        SchemeSpec::Zhang2018 {
+        SchemeSpec::HlJdf {
             zeta: 0.6,
             alpha: 20.0,
             beta: 20.0,
             rho_v: 20.0,
             rho_p: 20.0,
         },
-        SchemeSpec::Kong2019FiniteTime {
+        SchemeSpec::FiniteTimeRmp {
             beta_theta: 1.0,
             k_p: 1.0,
             alpha: 0.1,
         },
-        SchemeSpec::Kong2019Znn { mu: 1.0, k_p: 1.0 },
+        SchemeSpec::ZnnRmp { mu: 1.0, k_p: 1.0 },
         // The vocabulary's composed scheme with every term on (robio2018's RMP with a weight and
         // feedback), and its sign-power form.
         SchemeSpec::VelocityRmp {
