@@ -32,7 +32,7 @@ fn cases(scheme: SchemeKind, states: usize) -> Vec<(usize, Box<dyn PreparedCase>
     });
     let dynamic = LARGE_SIZES
         .iter()
-        .filter(|_| scheme == SchemeKind::Kong2019)
+        .filter(|_| scheme == SchemeKind::ZnnRmp)
         .map(|&n| {
             let p = cost::dynamic::prepare(&Case::new(scheme, n), cost::dynamic::STATES);
             (n, p.unwrap_or_else(|e| panic!("{e}")))

@@ -25,7 +25,7 @@ path = {{ name = "circle", duration = 9.0 }}
 theta0 = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.0471975511965976]
 [[experiment.variant]]
 label = "ZNN"
-scheme = {{ kind = "kong2019-znn", mu = 1.0, k_p = 1.0 }}
+scheme = {{ kind = "znn-rmp", mu = 1.0, k_p = 1.0 }}
 sweep = {{ "scheme.mu" = {{ from = 1, to = {n}, step = 1 }} }}
 "#
     )

@@ -10,7 +10,7 @@
 //! ```toml
 //! [[experiment.variant]]
 //! label = "ZNN (eq. 22)"
-//! scheme = { kind = "kong2019-znn", k_p = 1.0 }
+//! scheme = { kind = "znn-rmp", k_p = 1.0 }
 //! solvers = [{ kind = "znn", gamma = 1.0 }]
 //! sweep = { "scheme.mu" = [0.25, 0.5, 2, 4, 8] }
 //! # -> "ZNN (eq. 22) [mu=0.25]", "ZNN (eq. 22) [mu=0.5]", "ZNN (eq. 22) [mu=2]", ...
@@ -643,7 +643,7 @@ mod tests {
         let v = variant(
             r#"label = "VLTCO"
 path = { name = "circle", duration = 9.0 }
-scheme = { kind = "jia2019" }
+scheme = { kind = "vltco" }
 sweep = { "path.scale" = [0.1, 0.15], "path.reverse" = [false, true] }"#,
         );
         let out = expand_variant(&v).unwrap();
@@ -666,7 +666,7 @@ sweep = { "path.scale" = [0.1, 0.15], "path.reverse" = [false, true] }"#,
     fn values_are_named_as_written() {
         let v = variant(
             r#"label = "ZNN"
-scheme = { kind = "kong2019-znn", mu = 1.0 }
+scheme = { kind = "znn-rmp", mu = 1.0 }
 sweep = { "scheme.mu" = [0.25, 2, 2.0, 1e7] }"#,
         );
         let out = expand_variant(&v).unwrap();
@@ -686,7 +686,7 @@ sweep = { "scheme.mu" = [0.25, 2, 2.0, 1e7] }"#,
         let v = variant(
             r#"label = "{phi} [{reverse}a={scale}] k={a_d}"
 path = { name = "circle", duration = 9.0 }
-scheme = { kind = "jia2019", kappa = 20.0 }
+scheme = { kind = "vltco", kappa = 20.0 }
 solvers = [{ kind = "fp-cdnn", perturbation = { a_d = 0.0, a_s = 0.0 } }, { kind = "vp-cdnn", perturbation = { a_d = 0.0, a_s = 0.0 } }]
 sweep = { "path.reverse" = [{ value = false, label = "" }, { value = true, label = "reversed, " }], "path.scale" = [0.1], "scheme.phi, scheme.tau" = [{ value = [1.0, 0.0], label = "MVN" }, { value = [0.2, 0.4], label = "VLTCO" }], "solvers.*.perturbation.a_d, solvers.*.perturbation.a_s" = [[0.5, 0.75]] }"#,
         );

@@ -15,11 +15,11 @@ pub const CLOVER_SCALE: f64 = 0.1;
 /// [`CLOVER_SCALE`] (5 s), kong2019 a circle of radius 0.05 m (9 s).
 pub fn path_of(scheme: SchemeKind) -> PathSpec {
     match scheme {
-        SchemeKind::Jia2019 => PathSpec {
+        SchemeKind::Vltco => PathSpec {
             scale: Some(CLOVER_SCALE),
             ..PathSpec::new("four-leaf-clover", 5.0)
         },
-        SchemeKind::Kong2019 => PathSpec::new("circle", 9.0),
+        SchemeKind::ZnnRmp => PathSpec::new("circle", 9.0),
     }
 }
 

@@ -55,7 +55,7 @@ struct Dynamic {
 
 impl Dynamic {
     fn new(case: &Case, states: usize) -> Result<Self, CostError> {
-        if case.scheme != SchemeKind::Kong2019 {
+        if case.scheme != SchemeKind::ZnnRmp {
             return Err(CostError::NoDynamicScheme(case.scheme.id()));
         }
         let label = case.label();

@@ -105,7 +105,7 @@ impl<const N: usize> Prepared<N> {
             })?,
         );
         let scheme: Box<dyn Scheme<N>> = match case.scheme {
-            SchemeKind::Jia2019 => Box::new(TriCriteria::vltco(
+            SchemeKind::Vltco => Box::new(TriCriteria::vltco(
                 robot.clone(),
                 path.clone(),
                 theta0,
@@ -114,7 +114,7 @@ impl<const N: usize> Prepared<N> {
                 20.0,
                 20.0,
             )),
-            SchemeKind::Kong2019 => Box::new(VelocityRmp::znn(
+            SchemeKind::ZnnRmp => Box::new(VelocityRmp::znn(
                 robot.clone(),
                 path.clone(),
                 theta0,

@@ -78,7 +78,7 @@ pub fn measure_all(budget: &Budget, mut progress: impl FnMut(&Case)) -> Vec<Meas
         }
     }
     for n in crate::dynamic::SIZES {
-        let case = Case::new(SchemeKind::Kong2019, n);
+        let case = Case::new(SchemeKind::ZnnRmp, n);
         match crate::dynamic::prepare(&case, budget.dynamic_states) {
             Ok(mut p) => out.extend(measure(case.scheme, case.n, p.as_mut(), budget)),
             Err(e) => eprintln!("{e}; nothing measured"),

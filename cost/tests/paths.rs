@@ -8,22 +8,22 @@ use records::dof_cost::{Quantity, SchemeKind};
 #[test]
 fn each_path_prepares_its_own_cases() {
     assert!(matches!(
-        fixed::prepare(&Case::new(SchemeKind::Kong2019, 100), 1),
+        fixed::prepare(&Case::new(SchemeKind::ZnnRmp, 100), 1),
         Err(CostError::NotRegistered(100))
     ));
     assert!(matches!(
-        dynamic::prepare(&Case::new(SchemeKind::Jia2019, 100), 1),
-        Err(CostError::NoDynamicScheme("jia2019"))
+        dynamic::prepare(&Case::new(SchemeKind::Vltco, 100), 1),
+        Err(CostError::NoDynamicScheme("vltco"))
     ));
     assert!(matches!(
-        dynamic::prepare(&Case::new(SchemeKind::Kong2019, 2), 1),
+        dynamic::prepare(&Case::new(SchemeKind::ZnnRmp, 2), 1),
         Err(CostError::TooFewJoints(2))
     ));
 }
 
 #[test]
 fn the_dynamic_path_computes_the_per_instant_quantities_at_100_joints() {
-    let mut case = dynamic::prepare(&Case::new(SchemeKind::Kong2019, 100), 3).unwrap();
+    let mut case = dynamic::prepare(&Case::new(SchemeKind::ZnnRmp, 100), 3).unwrap();
     assert_eq!(case.label(), "kong2019-znn nlink-100");
     assert_eq!(case.states(), 3);
     let dims = case.dims();

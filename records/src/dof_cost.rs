@@ -32,22 +32,22 @@ pub const FAER: &str = "faer";
 pub enum SchemeKind {
     /// jia2019 VLTCO (phi = 0.2, tau = 0.4, kappa = 20, Lambda = 20) on a four-leaf clover:
     /// nx = N + 1, n_eq = 3, n_in = 2N, bounds on every variable.
-    Jia2019,
+    Vltco,
     /// kong2019 ZNN scheme (eq. 22, mu = 1, k_p = 1) on a circle: nx = N, n_eq = 3, no
     /// inequalities.
-    Kong2019,
+    ZnnRmp,
 }
 
 impl SchemeKind {
-    pub const ALL: [SchemeKind; 2] = [SchemeKind::Jia2019, SchemeKind::Kong2019];
+    pub const ALL: [SchemeKind; 2] = [SchemeKind::Vltco, SchemeKind::ZnnRmp];
 
-    /// The scheme's id in dof-cost.csv: its paper-named `kind` tag (`jia2019`, `kong2019-znn`),
-    /// which experiment files accept as aliases of `vltco` and `znn-rmp`; kept so that the
-    /// committed measurements stay readable.
+    /// The scheme's id in dof-cost.csv: its canonical `kind` tag (`vltco`, `znn-rmp`).
+    /// Files written before the kinds were renamed carry the paper-named tags, which
+    /// [`read`] maps onto these ([`LEGACY_IDS`]).
     pub fn id(self) -> &'static str {
         match self {
-            SchemeKind::Jia2019 => "jia2019",
-            SchemeKind::Kong2019 => "kong2019-znn",
+            SchemeKind::Vltco => "vltco",
+            SchemeKind::ZnnRmp => "znn-rmp",
         }
     }
 }
@@ -438,13 +438,27 @@ pub fn write(results_dir: &Path, rows: &[DofCostRow]) -> Result<PathBuf, DofCost
     Ok(path)
 }
 
-/// Reads `results_dir/dof-cost.csv`; an absent file is no rows.
+/// Scheme ids of dof-cost.csv files written before the scheme kinds were named for what they
+/// are, each with the [`SchemeKind`] it was: `(old id, kind)`.
+const LEGACY_IDS: [(&str, SchemeKind); 2] = [
+    ("jia2019", SchemeKind::Vltco),
+    ("kong2019-znn", SchemeKind::ZnnRmp),
+];
+
+/// Reads `results_dir/dof-cost.csv`; an absent file is no rows. A legacy scheme id
+/// ([`LEGACY_IDS`]) is read as its kind's id.
 pub fn read(results_dir: &Path) -> Result<Vec<DofCostRow>, DofCostError> {
     let path = results_dir.join(FILE);
     if !path.exists() {
         return Ok(Vec::new());
     }
-    Ok(crate::table::read(&path)?)
+    let mut rows: Vec<DofCostRow> = crate::table::read(&path)?;
+    for r in &mut rows {
+        if let Some((_, kind)) = LEGACY_IDS.iter().find(|(old, _)| *old == r.scheme) {
+            r.scheme = kind.id().to_string();
+        }
+    }
+    Ok(rows)
 }
 
 #[cfg(test)]
@@ -458,7 +472,7 @@ mod tests {
     fn on(backend: &str, n: usize, quantity: Quantity, median_us: f64) -> Measurement {
         Measurement {
             backend: backend.to_string(),
-            scheme: SchemeKind::Jia2019,
+            scheme: SchemeKind::Vltco,
             scheme_name: "VLTCO".into(),
             network: "LVI-PDNN".into(),
             n,
@@ -608,10 +622,10 @@ mod tests {
             ms.push(on(FAER, n, Quantity::KktFloor, faer));
         }
         let rows = rows(&ms, "Test CPU", 2, "abc123");
-        let c = crossover(&rows, "jia2019", Quantity::KktFloor).unwrap();
+        let c = crossover(&rows, "vltco", Quantity::KktFloor).unwrap();
         assert_eq!((c.n, c.lu_size, c.largest_n), (Some(100), Some(104), 200));
         assert!((c.speedup_at_largest - 7.0).abs() < 1e-12);
-        assert!(crossover(&rows, "jia2019", Quantity::NetworkLu).is_none());
+        assert!(crossover(&rows, "vltco", Quantity::NetworkLu).is_none());
         let slower: Vec<_> = ms.iter().filter(|m| m.n < 30).cloned().collect();
         let c = crossover(
             &super::rows(&slower, "Test CPU", 2, "abc"),

@@ -72,8 +72,8 @@ fn non_finite_values_and_unknown_metrics_are_refused_naming_the_line() {
         ),
         ("demo,T1,e,A,drift_1,inf,\n", "line 3: value inf"),
         (
-            "demo,T1,e,A,max_pos_err,1e-3,\n",
-            "unknown metric \"max_pos_err\" (valid: drift_1",
+            "demo,T1,e,A,max_pos_error,1e-3,\n",
+            "unknown metric \"max_pos_error\" (valid: drift_1",
         ),
     ] {
         let dir = papers_dir(

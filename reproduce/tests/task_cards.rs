@@ -50,7 +50,7 @@ fn every_task_has_a_card_with_its_check_values() {
     assert!(card.contains("r_start = f(theta_ref) = [0.08103"), "{card}");
     for part in [
         "q = mu (theta - theta*0)",
-        "`{ kind = \"kong2019-znn\", mu = 1.0, k_p = 1.0 }`",
+        "`{ kind = \"znn-rmp\", mu = 1.0, k_p = 1.0 }`",
         "l1 = 0.2015, l2 = 0.19, l3 = 0.139",
         "- theta0 = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.5471975511965976] rad",
     ] {
