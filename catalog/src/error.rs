@@ -68,17 +68,9 @@ impl SetupError {
     }
 }
 
-/// A TOML (or serde) error of an experiment file, shown without its trailing newline.
-/// (Boxed: a TOML error is large, and errors travel up through `Result`s.)
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("{}", .0.to_string().trim_end())]
-pub struct TomlError(pub Box<toml::de::Error>);
-
-impl From<toml::de::Error> for TomlError {
-    fn from(e: toml::de::Error) -> Self {
-        TomlError(Box::new(e))
-    }
-}
+/// A TOML (or serde) error of an experiment file: its message, line and column, never the
+/// source line (the input reader's, crate `inputs`).
+pub use inputs::TomlError;
 
 /// Why a `sweep` of an experiment file does not expand (see [`crate::sweep`]); each variant
 /// names the field, and [`SweepError::In`] the experiment and variant.
@@ -348,11 +340,10 @@ impl From<SweepError> for ExperimentError {
 /// [`ExperimentError`], the field).
 #[derive(Debug, thiserror::Error)]
 pub enum ExperimentFileError {
-    #[error("{}: cannot read: {source}", file.display())]
-    Read {
-        file: PathBuf,
-        source: std::io::Error,
-    },
+    /// The file could not be read, or was refused (a link outside the experiments directory, a
+    /// FIFO or device, over its cap): the input reader's error names the file.
+    #[error(transparent)]
+    Read(#[from] inputs::InputError),
     #[error("{}: {error}", file.display())]
     Invalid {
         file: PathBuf,

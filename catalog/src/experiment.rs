@@ -362,13 +362,16 @@ impl JobPart {
 pub type CheckJob = fn(&Job) -> Result<(), SetupError>;
 
 impl PaperFile {
-    /// Reads and validates one experiment file: everything a run would reject is rejected here,
-    /// before anything runs (see [`PaperFile::validate`]).
+    /// Reads (with the input reader, crate `inputs`: a regular file that does not lead out of
+    /// its directory, at most [`inputs::Kind::Experiment`]'s cap) and validates one experiment
+    /// file: everything a run would reject is rejected here, before anything runs (see
+    /// [`PaperFile::validate`]).
     pub fn load(path: &Path, check: CheckJob) -> Result<Self, ExperimentFileError> {
-        let text = std::fs::read_to_string(path).map_err(|source| ExperimentFileError::Read {
-            file: path.to_path_buf(),
-            source,
-        })?;
+        let dir = path
+            .parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        let text = inputs::read_text(path, inputs::Kind::Experiment, inputs::Origin::Under(dir))?;
         Self::from_toml(&text, check).map_err(|error| ExperimentFileError::Invalid {
             file: path.to_path_buf(),
             error,
@@ -378,7 +381,7 @@ impl PaperFile {
     /// Parses and validates the text of an experiment file (errors without the file name;
     /// [`PaperFile::load`] adds it).
     pub fn from_toml(text: &str, check: CheckJob) -> Result<Self, ExperimentError> {
-        let mut doc: toml::Table = toml::from_str(text).map_err(TomlError::from)?;
+        let mut doc: toml::Table = inputs::toml_error::from_str(text)?;
         // Sweeps (crate::sweep) expand at the TOML level; a file without one is read from its
         // text, so serde's errors keep their line numbers.
         let file: PaperFile = if crate::sweep::has_sweeps(&doc) {
@@ -387,7 +390,7 @@ impl PaperFile {
             })?;
             PaperFile::deserialize(toml::Value::Table(doc)).map_err(TomlError::from)?
         } else {
-            toml::from_str(text).map_err(TomlError::from)?
+            inputs::toml_error::from_str(text)?
         };
         file.validate(check)?;
         Ok(file)
@@ -403,6 +406,7 @@ impl PaperFile {
     /// run keys that repeat, and slugs (file names of traces and figures) that collide.
     fn validate(&self, check: CheckJob) -> Result<(), ExperimentError> {
         check_name(&self.paper, MAX_EXPERIMENT_ID, FieldAt::Paper)?;
+        check_id(&self.paper, FieldAt::Paper)?;
         // Hash maps, not lists: a sweep of 10^6 variants is validated in linear time.
         let mut id_slugs: HashMap<String, &str> = HashMap::new();
         for (i, e) in self.experiments.iter().enumerate() {
@@ -412,6 +416,7 @@ impl PaperFile {
                 field: field.to_string(),
             };
             check_name(&e.id, MAX_EXPERIMENT_ID, at("id"))?;
+            check_id(&e.id, at("id"))?;
             if !e.id.starts_with(&format!("{}-", self.paper)) {
                 let paper = self.paper.clone();
                 return Err(field(at("id"), FieldError::PaperPrefix { paper }));
@@ -476,15 +481,7 @@ impl PaperFile {
                 }
                 if let Some(id) = &v.id {
                     check_name(id, MAX_VARIANT_LABEL, vat("id"))?;
-                    if !schemes::slug::is_slug(id) {
-                        return Err(field(
-                            vat("id"),
-                            FieldError::NotAnId {
-                                id: id.clone(),
-                                suggestion: slug(id),
-                            },
-                        ));
-                    }
+                    check_id(id, vat("id"))?;
                 }
                 let id = v.id();
                 if let Some(other) = ids.get(&id) {
@@ -664,6 +661,16 @@ impl PaperFile {
 /// report/figures/): see [`crate::naming::check_name`].
 fn check_name(name: &str, max: usize, at: FieldAt) -> Result<(), ExperimentError> {
     crate::naming::check_name(name, max).map_err(|e| field(at, e))
+}
+
+/// An id (paper, experiment, variant) must already be a slug: ids name files and reach the
+/// report's links as they are.
+fn check_id(id: &str, at: FieldAt) -> Result<(), ExperimentError> {
+    if schemes::slug::is_slug(id) {
+        return Ok(());
+    }
+    let (id, suggestion) = (id.to_string(), slug(id));
+    Err(field(at, FieldError::NotAnId { id, suggestion }))
 }
 
 /// The error `error` at the field `at`.
