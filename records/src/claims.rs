@@ -246,7 +246,11 @@ impl ClaimFile {
                 metric: metric.clone(),
             });
         }
-        if let Some(id) = self.rust.as_ref().filter(|id| !RUST_CLAIMS.contains(&id.as_str())) {
+        if let Some(id) = self
+            .rust
+            .as_ref()
+            .filter(|id| !RUST_CLAIMS.contains(&id.as_str()))
+        {
             return Err(ClaimError::UnknownRust { id: id.clone() });
         }
         let selection = |field: &'static str, text: &str| {
@@ -373,7 +377,9 @@ mod tests {
             Err(ClaimError::Factor)
         );
         assert_eq!(
-            claim("metric = \"drift_2\"\nruns = \"e / v / s\"\nthan = \"e / v / t\"\nfactor = -1.0"),
+            claim(
+                "metric = \"drift_2\"\nruns = \"e / v / s\"\nthan = \"e / v / t\"\nfactor = -1.0"
+            ),
             Err(ClaimError::Factor)
         );
         assert_eq!(claim("rust = \"diverges\""), Err(ClaimError::Shape));
@@ -390,11 +396,20 @@ mod tests {
             }
         );
         let shown = e.to_string();
-        assert!(shown.contains("drift_norm") && shown.contains("max_pos_err"), "{shown}");
+        assert!(
+            shown.contains("drift_norm") && shown.contains("max_pos_err"),
+            "{shown}"
+        );
         let e = claim("rust = \"divreges\"\nwhy = \"y\"").unwrap_err();
         assert!(e.to_string().contains("known: diverges"), "{e}");
-        for (number, field) in [("below = nan", "below"), ("above = inf", "above"), ("at_least = -inf", "at_least")] {
-            let e = claim(&format!("metric = \"drift_1\"\nruns = \"e / v / s\"\n{number}"));
+        for (number, field) in [
+            ("below = nan", "below"),
+            ("above = inf", "above"),
+            ("at_least = -inf", "at_least"),
+        ] {
+            let e = claim(&format!(
+                "metric = \"drift_1\"\nruns = \"e / v / s\"\n{number}"
+            ));
             assert_eq!(e, Err(ClaimError::NotFinite { field }), "{number}");
         }
         let e = claim("rust = \"evaluation-ratio\"\nwhy = \"y\"\nvalue = nan");

@@ -125,7 +125,9 @@ pub const METRICS: &[(&str, fn(&RunRow) -> Option<f64>)] = &[
     ("drift_max_abs", |r| {
         (!r.drift.is_empty()).then(|| r.drift.iter().fold(0.0f64, |m, d| m.max(d.abs())))
     }),
-    ("solver_iterations", |r| r.solver_iterations.map(|v| v as f64)),
+    ("solver_iterations", |r| {
+        r.solver_iterations.map(|v| v as f64)
+    }),
     ("solver_iterations_max", |r| {
         r.solver_iterations_max.map(|v| v as f64)
     }),

@@ -58,7 +58,10 @@ pub fn check_paper_id(id: &str) -> Result<(), PaperProblem> {
     if !schemes::slug::is_slug(id) || id.len() > MAX_EXPERIMENT_ID {
         return Err(PaperProblem::NotAnId {
             id: id.to_string(),
-            suggestion: schemes::slug::slug(id).chars().take(MAX_EXPERIMENT_ID).collect(),
+            suggestion: schemes::slug::slug(id)
+                .chars()
+                .take(MAX_EXPERIMENT_ID)
+                .collect(),
         });
     }
     if RESERVED_PAPER_IDS.contains(&id) {
@@ -82,14 +85,25 @@ mod tests {
         for good in ["jia2019", "kong2019", "a.b-2"] {
             assert_eq!(check_paper_id(good), Ok(()), "{good}");
         }
-        for bad in ["Jia2019", "a b", "a](javascript:alert(1))", "café", "-a", "a--b", ""] {
+        for bad in [
+            "Jia2019",
+            "a b",
+            "a](javascript:alert(1))",
+            "café",
+            "-a",
+            "a--b",
+            "",
+        ] {
             assert!(
                 matches!(check_paper_id(bad), Err(PaperProblem::NotAnId { .. })),
                 "{bad:?}"
             );
         }
         let long = "p".repeat(MAX_EXPERIMENT_ID + 1);
-        assert!(matches!(check_paper_id(&long), Err(PaperProblem::NotAnId { .. })));
+        assert!(matches!(
+            check_paper_id(&long),
+            Err(PaperProblem::NotAnId { .. })
+        ));
         assert!(check_paper_id(&long[1..]).is_ok());
         for reserved in RESERVED_PAPER_IDS {
             let e = check_paper_id(reserved).unwrap_err();

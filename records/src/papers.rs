@@ -394,7 +394,10 @@ fn load_folder(dir: &Path, folder: &Path) -> Result<Folder, PapersError> {
             folder: name.to_string(),
         }));
     }
-    let lines = [("title", Some(&file.title)), ("citation", file.citation.as_ref())];
+    let lines = [
+        ("title", Some(&file.title)),
+        ("citation", file.citation.as_ref()),
+    ];
     if let Some((field, _)) = lines
         .iter()
         .find(|(_, text)| text.is_some_and(|t| !is_one_line(t)))

@@ -193,10 +193,15 @@ mod tests {
         assert!(e.contains("no column \"t\""), "{e}");
         for twice in ["t,theta_1,theta_1\n0,1,2\n", "t,theta_1,t\n0,1,2\n"] {
             let e = read(twice).unwrap_err();
-            assert!(matches!(e.problem, TrajectoryProblem::ColumnTwice(_)), "{e}");
+            assert!(
+                matches!(e.problem, TrajectoryProblem::ColumnTwice(_)),
+                "{e}"
+            );
             assert!(e.to_string().contains("is given twice"), "{e}");
         }
-        let e = read("t,theta_1, theta_1 \n0,1,2\n").unwrap_err().to_string();
+        let e = read("t,theta_1, theta_1 \n0,1,2\n")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("column \"theta_1\" is given twice"), "{e}");
         let e = read("t,theta_1,theta_2,thetadot_1\n0,1,2,3\n")
             .unwrap_err()

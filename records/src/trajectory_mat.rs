@@ -204,7 +204,10 @@ mod tests {
         let file = v7(&inflated);
         assert!(file.len() < 16 << 10, "{}", file.len());
         let e = inflate(file.clone(), path, max).unwrap_err();
-        assert!(matches!(e, MatError::Inflated { max: m, .. } if m == max), "{e}");
+        assert!(
+            matches!(e, MatError::Inflated { max: m, .. } if m == max),
+            "{e}"
+        );
         // Within the bound, the element is inflated in place (a v6 file).
         let v6 = inflate(file, path, 4 * max).unwrap();
         assert_eq!(v6.len(), 128 + inflated.len());
@@ -220,6 +223,9 @@ mod tests {
         let e = inflate(cut, path, max).unwrap_err();
         assert!(e.to_string().contains("cut off"), "{e}");
         // Not a MAT-file: left for matfile to refuse.
-        assert_eq!(inflate(b"t,theta_1".to_vec(), path, max).unwrap(), b"t,theta_1");
+        assert_eq!(
+            inflate(b"t,theta_1".to_vec(), path, max).unwrap(),
+            b"t,theta_1"
+        );
     }
 }
