@@ -102,6 +102,9 @@ pub enum SweepError {
     NoLabel,
     #[error("field `sweep`: expands into more than {max} variants")]
     TooMany { max: usize },
+    /// The variant's sweep fits on its own, but not beside the sweeps read before it.
+    #[error("field `sweep`: with the sweeps before it (in this file and the files read before), the experiment files expand into more than {max} variants in all")]
+    TooManyInAll { max: usize },
     #[error("field `sweep`: expanded variants {first} and {second} both get the label \"{label}\"; the label template must tell every value of every key apart (keys: {})", keys.join(", "))]
     SameLabel {
         first: usize,

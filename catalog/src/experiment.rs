@@ -367,12 +367,22 @@ impl PaperFile {
     /// file: everything a run would reject is rejected here, before anything runs (see
     /// [`PaperFile::validate`]).
     pub fn load(path: &Path, check: CheckJob) -> Result<Self, ExperimentFileError> {
+        Self::load_within(path, check, &mut crate::sweep::MAX_EXPANSION.clone())
+    }
+
+    /// [`PaperFile::load`], its sweeps expanding into at most `budget` variants (reduced by
+    /// what they take; [`crate::sweep::expand_file`]).
+    fn load_within(
+        path: &Path,
+        check: CheckJob,
+        budget: &mut usize,
+    ) -> Result<Self, ExperimentFileError> {
         let dir = path
             .parent()
             .filter(|d| !d.as_os_str().is_empty())
             .unwrap_or(Path::new("."));
         let text = inputs::read_text(path, inputs::Kind::Experiment, inputs::Origin::Under(dir))?;
-        Self::from_toml(&text, check).map_err(|error| ExperimentFileError::Invalid {
+        Self::from_toml_within(&text, check, budget).map_err(|error| ExperimentFileError::Invalid {
             file: path.to_path_buf(),
             error,
         })
@@ -381,13 +391,24 @@ impl PaperFile {
     /// Parses and validates the text of an experiment file (errors without the file name;
     /// [`PaperFile::load`] adds it).
     pub fn from_toml(text: &str, check: CheckJob) -> Result<Self, ExperimentError> {
+        Self::from_toml_within(text, check, &mut crate::sweep::MAX_EXPANSION.clone())
+    }
+
+    /// [`PaperFile::from_toml`], its sweeps expanding into at most `budget` variants.
+    fn from_toml_within(
+        text: &str,
+        check: CheckJob,
+        budget: &mut usize,
+    ) -> Result<Self, ExperimentError> {
         let mut doc: toml::Table = inputs::toml_error::from_str(text)?;
         // Sweeps (crate::sweep) expand at the TOML level; a file without one is read from its
         // text, so serde's errors keep their line numbers.
         let file: PaperFile = if crate::sweep::has_sweeps(&doc) {
-            crate::sweep::expand_file(&mut doc, |v| {
-                Variant::deserialize(toml::Value::Table(v.clone())).map(|_| ())
-            })?;
+            crate::sweep::expand_file(
+                &mut doc,
+                |v| Variant::deserialize(toml::Value::Table(v.clone())).map(|_| ()),
+                budget,
+            )?;
             PaperFile::deserialize(toml::Value::Table(doc)).map_err(TomlError::from)?
         } else {
             inputs::toml_error::from_str(text)?
@@ -721,7 +742,8 @@ fn check_integrator(s: &IntegratorSettings, at: FieldAt) -> Result<(), Experimen
 }
 
 /// Loads every `*.toml` of `dir`, sorted by file name, and checks what spans files: an
-/// experiment id (or its file name, the slug) is defined in one file only.
+/// experiment id (or its file name, the slug) is defined in one file only, and the sweeps of
+/// all files expand into at most [`crate::sweep::MAX_EXPANSION`] variants together.
 pub fn load_dir(dir: &Path, check: CheckJob) -> Result<Vec<PaperFile>, ExperimentFileError> {
     let entries = std::fs::read_dir(dir).map_err(|source| ExperimentFileError::List {
         dir: dir.to_path_buf(),
@@ -739,8 +761,10 @@ pub fn load_dir(dir: &Path, check: CheckJob) -> Result<Vec<PaperFile>, Experimen
     }
     let mut files = Vec::with_capacity(paths.len());
     let mut seen: HashMap<String, (String, &Path)> = HashMap::new();
+    // The sweeps of every file share one budget of variants.
+    let mut budget = crate::sweep::MAX_EXPANSION;
     for path in &paths {
-        let file = PaperFile::load(path, check)?;
+        let file = PaperFile::load_within(path, check, &mut budget)?;
         for (i, e) in file.experiments.iter().enumerate() {
             if let Some((other, other_file)) = seen.get(&slug(&e.id)) {
                 let (file, id, other_file) = (path.clone(), e.id.clone(), other_file.to_path_buf());
