@@ -243,12 +243,6 @@ pub enum FieldError {
     PaperPrefix { paper: String },
     #[error("experiment id \"{id}\" is used twice")]
     IdTwice { id: String },
-    #[error("\"{id}\" and \"{other}\" have the same file name \"{slug}\" (results/traces/ and report/figures/); rename one")]
-    IdSlug {
-        id: String,
-        other: String,
-        slug: String,
-    },
     #[error("unknown robot \"{robot}\" (known: {known})")]
     UnknownRobot { robot: String, known: String },
     #[error("has {given} entries, the robot has {joints} joints")]
@@ -365,15 +359,6 @@ pub enum ExperimentFileError {
         file: PathBuf,
         index: usize,
         id: String,
-        other_file: PathBuf,
-    },
-    /// Two experiments of two files whose ids have the same slug (file name).
-    #[error("{}: experiment[{index}] (id \"{id}\") field `id`: \"{id}\" has the same file name \"{}\" as \"{other}\" of {}; rename one", file.display(), crate::naming::slug(id), other_file.display())]
-    SameFileName {
-        file: PathBuf,
-        index: usize,
-        id: String,
-        other: String,
         other_file: PathBuf,
     },
 }

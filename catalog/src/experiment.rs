@@ -428,8 +428,9 @@ impl PaperFile {
     fn validate(&self, check: CheckJob) -> Result<(), ExperimentError> {
         check_name(&self.paper, MAX_EXPERIMENT_ID, FieldAt::Paper)?;
         check_id(&self.paper, FieldAt::Paper)?;
-        // Hash maps, not lists: a sweep of 10^6 variants is validated in linear time.
-        let mut id_slugs: HashMap<String, &str> = HashMap::new();
+        // Hash sets, not lists: a sweep of 10^6 variants is validated in linear time. (An
+        // experiment id is its own slug, so two ids share a file name only when they are equal.)
+        let mut ids_seen: HashSet<&str> = HashSet::new();
         for (i, e) in self.experiments.iter().enumerate() {
             let at = |field: &str| FieldAt::Experiment {
                 index: i,
@@ -442,22 +443,10 @@ impl PaperFile {
                 let paper = self.paper.clone();
                 return Err(field(at("id"), FieldError::PaperPrefix { paper }));
             }
-            if let Some(other) = id_slugs.get(&slug(&e.id)) {
+            if !ids_seen.insert(&e.id) {
                 let id = e.id.clone();
-                return Err(field(
-                    at("id"),
-                    if *other == e.id {
-                        FieldError::IdTwice { id }
-                    } else {
-                        FieldError::IdSlug {
-                            slug: slug(&id),
-                            id,
-                            other: other.to_string(),
-                        }
-                    },
-                ));
+                return Err(field(at("id"), FieldError::IdTwice { id }));
             }
-            id_slugs.insert(slug(&e.id), &e.id);
             let n =
                 robot_dof(&e.robot).ok_or_else(|| field(at("robot"), unknown_robot(&e.robot)))?;
             check_len(&e.theta0, n, at("theta0"))?;
@@ -760,32 +749,21 @@ pub fn load_dir(dir: &Path, check: CheckJob) -> Result<Vec<PaperFile>, Experimen
         });
     }
     let mut files = Vec::with_capacity(paths.len());
-    let mut seen: HashMap<String, (String, &Path)> = HashMap::new();
+    let mut seen: HashMap<String, &Path> = HashMap::new();
     // The sweeps of every file share one budget of variants.
     let mut budget = crate::sweep::MAX_EXPANSION;
     for path in &paths {
         let file = PaperFile::load_within(path, check, &mut budget)?;
         for (i, e) in file.experiments.iter().enumerate() {
-            if let Some((other, other_file)) = seen.get(&slug(&e.id)) {
-                let (file, id, other_file) = (path.clone(), e.id.clone(), other_file.to_path_buf());
-                return Err(if *other == e.id {
-                    ExperimentFileError::DefinedTwice {
-                        file,
-                        index: i,
-                        id,
-                        other_file,
-                    }
-                } else {
-                    ExperimentFileError::SameFileName {
-                        file,
-                        index: i,
-                        id,
-                        other: other.clone(),
-                        other_file,
-                    }
+            if let Some(other_file) = seen.get(&e.id) {
+                return Err(ExperimentFileError::DefinedTwice {
+                    file: path.clone(),
+                    index: i,
+                    id: e.id.clone(),
+                    other_file: other_file.to_path_buf(),
                 });
             }
-            seen.insert(slug(&e.id), (e.id.clone(), path));
+            seen.insert(e.id.clone(), path);
         }
         files.push(file);
     }
