@@ -68,17 +68,9 @@ impl SetupError {
     }
 }
 
-/// A TOML (or serde) error of an experiment file, shown without its trailing newline.
-/// (Boxed: a TOML error is large, and errors travel up through `Result`s.)
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("{}", .0.to_string().trim_end())]
-pub struct TomlError(pub Box<toml::de::Error>);
-
-impl From<toml::de::Error> for TomlError {
-    fn from(e: toml::de::Error) -> Self {
-        TomlError(Box::new(e))
-    }
-}
+/// A TOML (or serde) error of an experiment file: its message, line and column, never the
+/// source line (the input reader's, crate `inputs`).
+pub use inputs::TomlError;
 
 /// Why a `sweep` of an experiment file does not expand (see [`crate::sweep`]); each variant
 /// names the field, and [`SweepError::In`] the experiment and variant.
@@ -110,6 +102,9 @@ pub enum SweepError {
     NoLabel,
     #[error("field `sweep`: expands into more than {max} variants")]
     TooMany { max: usize },
+    /// The variant's sweep fits on its own, but not beside the sweeps read before it.
+    #[error("field `sweep`: with the sweeps before it (in this file and the files read before), the experiment files expand into more than {max} variants in all")]
+    TooManyInAll { max: usize },
     #[error("field `sweep`: expanded variants {first} and {second} both get the label \"{label}\"; the label template must tell every value of every key apart (keys: {})", keys.join(", "))]
     SameLabel {
         first: usize,
@@ -248,12 +243,6 @@ pub enum FieldError {
     PaperPrefix { paper: String },
     #[error("experiment id \"{id}\" is used twice")]
     IdTwice { id: String },
-    #[error("\"{id}\" and \"{other}\" have the same file name \"{slug}\" (results/traces/ and report/figures/); rename one")]
-    IdSlug {
-        id: String,
-        other: String,
-        slug: String,
-    },
     #[error("unknown robot \"{robot}\" (known: {known})")]
     UnknownRobot { robot: String, known: String },
     #[error("has {given} entries, the robot has {joints} joints")]
@@ -348,11 +337,10 @@ impl From<SweepError> for ExperimentError {
 /// [`ExperimentError`], the field).
 #[derive(Debug, thiserror::Error)]
 pub enum ExperimentFileError {
-    #[error("{}: cannot read: {source}", file.display())]
-    Read {
-        file: PathBuf,
-        source: std::io::Error,
-    },
+    /// The file could not be read, or was refused (a link outside the experiments directory, a
+    /// FIFO or device, over its cap): the input reader's error names the file.
+    #[error(transparent)]
+    Read(#[from] inputs::InputError),
     #[error("{}: {error}", file.display())]
     Invalid {
         file: PathBuf,
@@ -371,15 +359,6 @@ pub enum ExperimentFileError {
         file: PathBuf,
         index: usize,
         id: String,
-        other_file: PathBuf,
-    },
-    /// Two experiments of two files whose ids have the same slug (file name).
-    #[error("{}: experiment[{index}] (id \"{id}\") field `id`: \"{id}\" has the same file name \"{}\" as \"{other}\" of {}; rename one", file.display(), crate::naming::slug(id), other_file.display())]
-    SameFileName {
-        file: PathBuf,
-        index: usize,
-        id: String,
-        other: String,
         other_file: PathBuf,
     },
 }

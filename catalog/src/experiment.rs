@@ -362,14 +362,27 @@ impl JobPart {
 pub type CheckJob = fn(&Job) -> Result<(), SetupError>;
 
 impl PaperFile {
-    /// Reads and validates one experiment file: everything a run would reject is rejected here,
-    /// before anything runs (see [`PaperFile::validate`]).
+    /// Reads (with the input reader, crate `inputs`: a regular file that does not lead out of
+    /// its directory, at most [`inputs::Kind::Experiment`]'s cap) and validates one experiment
+    /// file: everything a run would reject is rejected here, before anything runs (see
+    /// [`PaperFile::validate`]).
     pub fn load(path: &Path, check: CheckJob) -> Result<Self, ExperimentFileError> {
-        let text = std::fs::read_to_string(path).map_err(|source| ExperimentFileError::Read {
-            file: path.to_path_buf(),
-            source,
-        })?;
-        Self::from_toml(&text, check).map_err(|error| ExperimentFileError::Invalid {
+        Self::load_within(path, check, &mut crate::sweep::MAX_EXPANSION.clone())
+    }
+
+    /// [`PaperFile::load`], its sweeps expanding into at most `budget` variants (reduced by
+    /// what they take; [`crate::sweep::expand_file`]).
+    fn load_within(
+        path: &Path,
+        check: CheckJob,
+        budget: &mut usize,
+    ) -> Result<Self, ExperimentFileError> {
+        let dir = path
+            .parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        let text = inputs::read_text(path, inputs::Kind::Experiment, inputs::Origin::Under(dir))?;
+        Self::from_toml_within(&text, check, budget).map_err(|error| ExperimentFileError::Invalid {
             file: path.to_path_buf(),
             error,
         })
@@ -378,16 +391,27 @@ impl PaperFile {
     /// Parses and validates the text of an experiment file (errors without the file name;
     /// [`PaperFile::load`] adds it).
     pub fn from_toml(text: &str, check: CheckJob) -> Result<Self, ExperimentError> {
-        let mut doc: toml::Table = toml::from_str(text).map_err(TomlError::from)?;
+        Self::from_toml_within(text, check, &mut crate::sweep::MAX_EXPANSION.clone())
+    }
+
+    /// [`PaperFile::from_toml`], its sweeps expanding into at most `budget` variants.
+    fn from_toml_within(
+        text: &str,
+        check: CheckJob,
+        budget: &mut usize,
+    ) -> Result<Self, ExperimentError> {
+        let mut doc: toml::Table = inputs::toml_error::from_str(text)?;
         // Sweeps (crate::sweep) expand at the TOML level; a file without one is read from its
         // text, so serde's errors keep their line numbers.
         let file: PaperFile = if crate::sweep::has_sweeps(&doc) {
-            crate::sweep::expand_file(&mut doc, |v| {
-                Variant::deserialize(toml::Value::Table(v.clone())).map(|_| ())
-            })?;
+            crate::sweep::expand_file(
+                &mut doc,
+                |v| Variant::deserialize(toml::Value::Table(v.clone())).map(|_| ()),
+                budget,
+            )?;
             PaperFile::deserialize(toml::Value::Table(doc)).map_err(TomlError::from)?
         } else {
-            toml::from_str(text).map_err(TomlError::from)?
+            inputs::toml_error::from_str(text)?
         };
         file.validate(check)?;
         Ok(file)
@@ -403,8 +427,10 @@ impl PaperFile {
     /// run keys that repeat, and slugs (file names of traces and figures) that collide.
     fn validate(&self, check: CheckJob) -> Result<(), ExperimentError> {
         check_name(&self.paper, MAX_EXPERIMENT_ID, FieldAt::Paper)?;
-        // Hash maps, not lists: a sweep of 10^6 variants is validated in linear time.
-        let mut id_slugs: HashMap<String, &str> = HashMap::new();
+        check_id(&self.paper, FieldAt::Paper)?;
+        // Hash sets, not lists: a sweep of 10^6 variants is validated in linear time. (An
+        // experiment id is its own slug, so two ids share a file name only when they are equal.)
+        let mut ids_seen: HashSet<&str> = HashSet::new();
         for (i, e) in self.experiments.iter().enumerate() {
             let at = |field: &str| FieldAt::Experiment {
                 index: i,
@@ -412,26 +438,15 @@ impl PaperFile {
                 field: field.to_string(),
             };
             check_name(&e.id, MAX_EXPERIMENT_ID, at("id"))?;
+            check_id(&e.id, at("id"))?;
             if !e.id.starts_with(&format!("{}-", self.paper)) {
                 let paper = self.paper.clone();
                 return Err(field(at("id"), FieldError::PaperPrefix { paper }));
             }
-            if let Some(other) = id_slugs.get(&slug(&e.id)) {
+            if !ids_seen.insert(&e.id) {
                 let id = e.id.clone();
-                return Err(field(
-                    at("id"),
-                    if *other == e.id {
-                        FieldError::IdTwice { id }
-                    } else {
-                        FieldError::IdSlug {
-                            slug: slug(&id),
-                            id,
-                            other: other.to_string(),
-                        }
-                    },
-                ));
+                return Err(field(at("id"), FieldError::IdTwice { id }));
             }
-            id_slugs.insert(slug(&e.id), &e.id);
             let n =
                 robot_dof(&e.robot).ok_or_else(|| field(at("robot"), unknown_robot(&e.robot)))?;
             check_len(&e.theta0, n, at("theta0"))?;
@@ -476,15 +491,7 @@ impl PaperFile {
                 }
                 if let Some(id) = &v.id {
                     check_name(id, MAX_VARIANT_LABEL, vat("id"))?;
-                    if !schemes::slug::is_slug(id) {
-                        return Err(field(
-                            vat("id"),
-                            FieldError::NotAnId {
-                                id: id.clone(),
-                                suggestion: slug(id),
-                            },
-                        ));
-                    }
+                    check_id(id, vat("id"))?;
                 }
                 let id = v.id();
                 if let Some(other) = ids.get(&id) {
@@ -666,6 +673,16 @@ fn check_name(name: &str, max: usize, at: FieldAt) -> Result<(), ExperimentError
     crate::naming::check_name(name, max).map_err(|e| field(at, e))
 }
 
+/// An id (paper, experiment, variant) must already be a slug: ids name files and reach the
+/// report's links as they are.
+fn check_id(id: &str, at: FieldAt) -> Result<(), ExperimentError> {
+    if schemes::slug::is_slug(id) {
+        return Ok(());
+    }
+    let (id, suggestion) = (id.to_string(), slug(id));
+    Err(field(at, FieldError::NotAnId { id, suggestion }))
+}
+
 /// The error `error` at the field `at`.
 fn field(at: FieldAt, error: impl Into<FieldError>) -> ExperimentError {
     ExperimentError::Field {
@@ -714,7 +731,8 @@ fn check_integrator(s: &IntegratorSettings, at: FieldAt) -> Result<(), Experimen
 }
 
 /// Loads every `*.toml` of `dir`, sorted by file name, and checks what spans files: an
-/// experiment id (or its file name, the slug) is defined in one file only.
+/// experiment id (or its file name, the slug) is defined in one file only, and the sweeps of
+/// all files expand into at most [`crate::sweep::MAX_EXPANSION`] variants together.
 pub fn load_dir(dir: &Path, check: CheckJob) -> Result<Vec<PaperFile>, ExperimentFileError> {
     let entries = std::fs::read_dir(dir).map_err(|source| ExperimentFileError::List {
         dir: dir.to_path_buf(),
@@ -731,30 +749,21 @@ pub fn load_dir(dir: &Path, check: CheckJob) -> Result<Vec<PaperFile>, Experimen
         });
     }
     let mut files = Vec::with_capacity(paths.len());
-    let mut seen: HashMap<String, (String, &Path)> = HashMap::new();
+    let mut seen: HashMap<String, &Path> = HashMap::new();
+    // The sweeps of every file share one budget of variants.
+    let mut budget = crate::sweep::MAX_EXPANSION;
     for path in &paths {
-        let file = PaperFile::load(path, check)?;
+        let file = PaperFile::load_within(path, check, &mut budget)?;
         for (i, e) in file.experiments.iter().enumerate() {
-            if let Some((other, other_file)) = seen.get(&slug(&e.id)) {
-                let (file, id, other_file) = (path.clone(), e.id.clone(), other_file.to_path_buf());
-                return Err(if *other == e.id {
-                    ExperimentFileError::DefinedTwice {
-                        file,
-                        index: i,
-                        id,
-                        other_file,
-                    }
-                } else {
-                    ExperimentFileError::SameFileName {
-                        file,
-                        index: i,
-                        id,
-                        other: other.clone(),
-                        other_file,
-                    }
+            if let Some(other_file) = seen.get(&e.id) {
+                return Err(ExperimentFileError::DefinedTwice {
+                    file: path.clone(),
+                    index: i,
+                    id: e.id.clone(),
+                    other_file: other_file.to_path_buf(),
                 });
             }
-            seen.insert(slug(&e.id), (e.id.clone(), path));
+            seen.insert(e.id.clone(), path);
         }
         files.push(file);
     }

@@ -75,7 +75,9 @@ pub(crate) const VARIANT_FIELDS: &[&str] = &[
     "explain",
 ];
 
-/// Most runs one variant may expand into (a typo in a range should not eat the memory).
+/// Most variants one variant may expand into (a typo in a range should not eat the memory),
+/// and most the sweeps of a whole experiments directory may expand into together (twenty
+/// variants of 999,999 each must not either): [`expand_file`] takes what is left of it.
 pub const MAX_EXPANSION: usize = 1_000_000;
 
 /// Whether any variant of the parsed file gives a `sweep`.
@@ -100,11 +102,15 @@ fn variants(e: &Table) -> impl Iterator<Item = &Table> {
 }
 
 /// Expands every variant with a `sweep` in the parsed experiment file `doc`, in place (the
-/// expanded variants take the sweep variant's place, in order). `check` reads one expanded
-/// variant as the experiment file does (a misspelt swept field fails there).
+/// expanded variants take the sweep variant's place, in order), into at most `budget` variants
+/// in all (what is left of [`MAX_EXPANSION`] for the files read so far; reduced by what this
+/// file takes), each variant's product checked against it before anything is built. `check`
+/// reads one expanded variant as the experiment file does (a misspelt swept field fails
+/// there).
 pub fn expand_file(
     doc: &mut Table,
     check: impl Fn(&Table) -> Result<(), toml::de::Error>,
+    budget: &mut usize,
 ) -> Result<(), SweepError> {
     let Some(Value::Array(exps)) = doc.get_mut("experiment") else {
         return Ok(());
@@ -135,7 +141,8 @@ pub fn expand_file(
                         label: label.clone(),
                         error: Box::new(error),
                     };
-                    let expanded = expand_variant(&t).map_err(at)?;
+                    let expanded = expand_within(&t, *budget).map_err(at)?;
+                    *budget -= expanded.len();
                     if let Some(first) = expanded.first() {
                         check(first).map_err(|error| {
                             at(SweepError::DoesNotRead {
@@ -175,9 +182,16 @@ struct Axis {
     values: Vec<(Vec<Value>, Option<String>)>,
 }
 
-/// Expands one variant table (with its `sweep`) into the variants of the product. Errors start
-/// with the field (`field `sweep` key `...``), the caller prefixes experiment and variant.
+/// Expands one variant table (with its `sweep`) into the variants of the product (at most
+/// [`MAX_EXPANSION`]). Errors start with the field (`field `sweep` key `...``), the caller
+/// prefixes experiment and variant.
 pub fn expand_variant(variant: &Table) -> Result<Vec<Table>, SweepError> {
+    expand_within(variant, MAX_EXPANSION)
+}
+
+/// [`expand_variant`] into at most `budget` variants (of the [`MAX_EXPANSION`] a directory's
+/// sweeps share), the product checked as each axis is read, before the variants are built.
+fn expand_within(variant: &Table, budget: usize) -> Result<Vec<Table>, SweepError> {
     let mut base = variant.clone();
     let sweep = match base.remove("sweep") {
         Some(Value::Table(s)) => s,
@@ -205,14 +219,18 @@ pub fn expand_variant(variant: &Table) -> Result<Vec<Table>, SweepError> {
         }
     };
     let mut axes = Vec::with_capacity(sweep.len());
+    let mut total = 1usize;
     for (key, val) in &sweep {
-        axes.push(parse_axis(&base, key, val)?);
+        let axis = parse_axis(&base, key, val)?;
+        total = total
+            .checked_mul(axis.values.len())
+            .filter(|n| *n <= MAX_EXPANSION)
+            .ok_or(SweepError::TooMany { max: MAX_EXPANSION })?;
+        if total > budget {
+            return Err(SweepError::TooManyInAll { max: MAX_EXPANSION });
+        }
+        axes.push(axis);
     }
-    let total = axes
-        .iter()
-        .try_fold(1usize, |n, a| n.checked_mul(a.values.len()))
-        .filter(|n| *n <= MAX_EXPANSION)
-        .ok_or(SweepError::TooMany { max: MAX_EXPANSION })?;
     let names = placeholder_names(&axes);
     check_template(&template, &names)?;
     let mut out: Vec<Table> = Vec::with_capacity(total);
@@ -544,18 +562,23 @@ fn range(t: &Table) -> Result<Vec<Value>, RangeError> {
         (t.get("from"), t.get("to"), t.get("step"))
     {
         let (a, b, s) = (*a, *b, *s);
-        if s == 0 || (b - a) % s != 0 || (b - a) / s < 0 {
+        // In i128: no difference or quotient of two i64 overflows it.
+        let (wa, wb, ws) = (i128::from(a), i128::from(b), i128::from(s));
+        if s == 0 || (wb - wa) % ws != 0 || (wb - wa) / ws < 0 {
             return Err(RangeError::IntegerStep {
                 from: a,
                 to: b,
                 step: s,
             });
         }
-        let n = (b - a) / s;
-        if n as u64 >= MAX_EXPANSION as u64 {
+        let n = (wb - wa) / ws;
+        if n >= MAX_EXPANSION as i128 {
             return Err(RangeError::TooMany { max: MAX_EXPANSION });
         }
-        return Ok((0..=n).map(|k| Value::Integer(a + k * s)).collect());
+        // a + k s lies between a and b: an i64 (k s alone may not be).
+        return Ok((0..=n)
+            .map(|k| Value::Integer((wa + k * ws) as i64))
+            .collect());
     }
     let num = |key: &'static str| match t.get(key) {
         Some(Value::Integer(i)) => Ok(*i as f64),
@@ -596,19 +619,22 @@ pub fn float_range(a: f64, b: f64, s: f64) -> Result<Vec<f64>, RangeError> {
         return Err(RangeError::TooMany { max: MAX_EXPANSION });
     }
     let n = n as i64;
-    Ok(match (decimal(a), decimal(s)) {
-        (Some((ma, ea)), Some((ms, es))) => {
-            let e = ea.max(es);
-            let (ma, ms) = (ma * 10i128.pow(e - ea), ms * 10i128.pow(e - es));
-            (0..=n)
-                .map(|k| {
-                    let m = ma + ms * k as i128;
-                    format!("{m}e-{e}").parse::<f64>().expect("a decimal")
-                })
-                .collect()
-        }
-        _ => (0..=n).map(|k| a + k as f64 * s).collect(),
-    })
+    Ok(decimal_range(a, s, n).unwrap_or_else(|| (0..=n).map(|k| a + k as f64 * s).collect()))
+}
+
+/// a + k s for k = 0..=n in decimal arithmetic (m * 10^-e, exact in i128), or None when a
+/// mantissa does not fit (a float range of extreme magnitudes is then computed in f64).
+fn decimal_range(a: f64, s: f64, n: i64) -> Option<Vec<f64>> {
+    let ((ma, ea), (ms, es)) = (decimal(a)?, decimal(s)?);
+    let e = ea.max(es);
+    let scale = |m: i128, from: u32| 10i128.checked_pow(e - from)?.checked_mul(m);
+    let (ma, ms) = (scale(ma, ea)?, scale(ms, es)?);
+    (0..=n)
+        .map(|k| {
+            let m = ms.checked_mul(i128::from(k))?.checked_add(ma)?;
+            format!("{m}e-{e}").parse::<f64>().ok()
+        })
+        .collect()
 }
 
 /// x as m * 10^-e from its shortest decimal form (None when that does not fit).
@@ -721,6 +747,53 @@ sweep = { "solvers.0.gamma" = [20.0, 2000.0], "theta0.1" = [{ value = 3.0, label
     }
 
     #[test]
+    fn extreme_ranges_neither_overflow_nor_panic() {
+        // The decimal mantissas would overflow i128: computed in f64 instead.
+        assert_eq!(float_range(1e29, 1e29, 1e-20).unwrap(), [1e29]);
+        assert_eq!(float_range(-1e29, 1e29, 1e29).unwrap(), [-1e29, 0.0, 1e29]);
+        assert!(float_range(-1e308, 1e308, 1e-308).is_err());
+        let ints = |text: &str| {
+            range(&toml::from_str::<Table>(text).unwrap()).map(|v| {
+                v.iter()
+                    .map(|x| x.as_integer().unwrap())
+                    .collect::<Vec<_>>()
+            })
+        };
+        let (min, max) = (i64::MIN, i64::MAX);
+        assert_eq!(
+            ints(&format!("from = {}\nto = {max}\nstep = {max}", -max)).unwrap(),
+            [-max, 0, max]
+        );
+        assert!(ints(&format!("from = {min}\nto = {max}\nstep = {max}")).is_err());
+        assert!(ints(&format!("from = {min}\nto = {max}\nstep = 1")).is_err());
+        assert!(ints(&format!("from = {max}\nto = {min}\nstep = -1")).is_err());
+        assert!(ints(&format!("from = 0\nto = {min}\nstep = -1")).is_err());
+    }
+
+    #[test]
+    fn the_sweeps_of_a_file_share_one_budget() {
+        let text = |n: usize| {
+            format!(
+                "paper = \"p\"\n[[experiment]]\nid = \"p-e\"\n{}",
+                (0..n)
+                    .map(|i| format!("[[experiment.variant]]\nlabel = \"S{i}\"\nscheme = {{ kind = \"x\" }}\nsweep = {{ \"scheme.mu\" = {{ from = 1, to = 3, step = 1 }} }}\n"))
+                    .collect::<String>()
+            )
+        };
+        let mut doc: Table = toml::from_str(&text(2)).unwrap();
+        let mut budget = 6;
+        expand_file(&mut doc, |_| Ok(()), &mut budget).unwrap();
+        assert_eq!(budget, 0);
+        let mut doc: Table = toml::from_str(&text(3)).unwrap();
+        let e = expand_file(&mut doc, |_| Ok(()), &mut 8).unwrap_err();
+        assert!(
+            matches!(&e, SweepError::In { variant: 2, error, .. } if matches!(**error, SweepError::TooManyInAll { .. })),
+            "{e}"
+        );
+        assert!(e.to_string().contains("in all"), "{e}");
+    }
+
+    #[test]
     fn ranges_are_decimal_safe() {
         assert_eq!(float_range(0.1, 0.3, 0.1).unwrap(), [0.1, 0.2, 0.3]);
         assert_eq!(
@@ -817,7 +890,9 @@ label = "last"
         )
         .unwrap();
         assert!(has_sweeps(&doc));
-        expand_file(&mut doc, |_| Ok(())).unwrap();
+        let mut budget = MAX_EXPANSION;
+        expand_file(&mut doc, |_| Ok(()), &mut budget).unwrap();
+        assert_eq!(budget, MAX_EXPANSION - 2);
         let labels: Vec<&str> = variants(experiments(&doc).next().unwrap())
             .map(|v| v["label"].as_str().unwrap())
             .collect();
@@ -827,7 +902,9 @@ label = "last"
             "paper = \"p\"\n[[experiment]]\nid = \"p-e\"\n[[experiment.variant]]\nlabel = \"S\"\nscheme = { kind = \"x\" }\nsweep = { \"scheme.mu\" = [] }\n",
         )
         .unwrap();
-        let e = expand_file(&mut doc, |_| Ok(())).unwrap_err().to_string();
+        let e = expand_file(&mut doc, |_| Ok(()), &mut MAX_EXPANSION.clone())
+            .unwrap_err()
+            .to_string();
         assert!(
             e.starts_with(
                 "experiment[0] (id \"p-e\") variant[0] (\"S\") field `sweep` key `scheme.mu`"

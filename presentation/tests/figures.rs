@@ -399,6 +399,39 @@ fn a_malformed_trace_is_an_error_naming_the_file() {
     std::fs::remove_dir_all(&root).unwrap();
 }
 
+/// A trace with finite extreme values (theta = 9e307 and -9e307, velocities near f64::MAX, a
+/// position error of 1e308) is drawn, its axes clipped to finite spans: plotters loops forever
+/// on an axis whose span overflows, so the rendering runs under a timeout.
+#[test]
+fn extreme_finite_values_in_a_trace_are_drawn_without_hanging() {
+    let root = scratch("extreme");
+    synthetic_results(&root);
+    let path = root.join("results/traces/exp-vel/vltco__lvi-pdnn.csv");
+    let text = read(&path);
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    for (row, sign) in [(1, ""), (2, "-")] {
+        let mut fields: Vec<String> = lines[row].split(',').map(String::from).collect();
+        fields[1] = format!("{sign}9e307");
+        fields[7] = format!("{sign}1.7976931348623157e308");
+        let n = fields.len();
+        fields[n - 2] = "1e308".into();
+        lines[row] = fields.join(",");
+    }
+    std::fs::write(&path, lines.join("\n") + "\n").unwrap();
+    let (tx, rx) = std::sync::mpsc::channel();
+    let dir = root.clone();
+    std::thread::spawn(move || {
+        let _ = tx.send(render_all(&dir).map(|_| ()).map_err(|e| e.to_string()));
+    });
+    let rendered = rx
+        .recv_timeout(std::time::Duration::from_secs(120))
+        .expect("the figures are drawn within 120 s");
+    assert_eq!(rendered, Ok(()));
+    let svg = read(&root.join("report/figures/exp-vel__vltco__lvi-pdnn.svg"));
+    assert!(svg.contains("<svg") && !svg.contains("inf") && !svg.contains("NaN"));
+    std::fs::remove_dir_all(&root).unwrap();
+}
+
 /// Every committed SVG figure has its PNG (same stem) and every PNG its SVG; every PNG starts
 /// with the PNG signature and a header of non-zero size, and decodes.
 #[test]

@@ -193,9 +193,24 @@ pub struct ClaimFile {
     value: Option<f64>,
 }
 
+/// The ids of the claims implemented in Rust (the report's claims module implements each).
+pub const RUST_CLAIMS: &[&str] = &[
+    "diverges",
+    "fails-or-much-worse-than-vp-cdnn",
+    "evaluation-ratio",
+];
+
 /// What is wrong with a `[[claim]]` (the field and the valid choices).
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum ClaimError {
+    #[error("field `metric`: unknown metric \"{metric}\" (valid: drift_k for joint k, {})", crate::index::METRICS.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", "))]
+    UnknownMetric { metric: String },
+    #[error("field `rust`: no Rust claim \"{id}\" (known: {})", RUST_CLAIMS.join(", "))]
+    UnknownRust { id: String },
+    #[error("field `{field}`: must be a finite number")]
+    NotFinite { field: &'static str },
+    #[error("field `{field}`: must be one line of text (no line breaks or control characters)")]
+    NotOneLine { field: &'static str },
     #[error("field `{field}`: \"{text}\" is not \"<experiment> / <variant> / <solver>\" (id patterns, `*` for any text)")]
     Selection { field: &'static str, text: String },
     #[error("needs `metric` and `runs` and exactly one of `below`, `at_most`, `at_least`, `above`, `than` (or `rust` and `why` for a claim in Rust)")]
@@ -205,8 +220,39 @@ pub enum ClaimError {
 }
 
 impl ClaimFile {
-    /// The claim, checked.
+    /// The claim, checked: its selections parse, its metric and `rust` id are known, its
+    /// numbers are finite and its texts are one line each.
     pub fn into_spec(self) -> Result<ClaimSpec, ClaimError> {
+        for (field, text) in [("short", &self.short), ("text", &self.text)] {
+            if !crate::paper_rules::is_one_line(text) {
+                return Err(ClaimError::NotOneLine { field });
+            }
+        }
+        let numbers = [
+            ("below", self.below),
+            ("at_most", self.at_most),
+            ("at_least", self.at_least),
+            ("above", self.above),
+            ("value", self.value),
+        ];
+        if let Some((field, _)) = numbers
+            .iter()
+            .find(|(_, x)| x.is_some_and(|x| !x.is_finite()))
+        {
+            return Err(ClaimError::NotFinite { field });
+        }
+        if let Some(metric) = self.metric.as_ref().filter(|m| !crate::index::is_metric(m)) {
+            return Err(ClaimError::UnknownMetric {
+                metric: metric.clone(),
+            });
+        }
+        if let Some(id) = self
+            .rust
+            .as_ref()
+            .filter(|id| !RUST_CLAIMS.contains(&id.as_str()))
+        {
+            return Err(ClaimError::UnknownRust { id: id.clone() });
+        }
         let selection = |field: &'static str, text: &str| {
             Selection::parse(text).ok_or_else(|| ClaimError::Selection {
                 field,
@@ -304,22 +350,22 @@ mod tests {
             matches!(c.check, Check::Compare { test: Test::Threshold(Op::Below, t), .. } if t == 1e-4)
         );
         assert!(matches!(
-            claim("rust = \"x\"\nwhy = \"y\"").unwrap().check,
+            claim("rust = \"diverges\"\nwhy = \"y\"").unwrap().check,
             Check::Rust { .. }
         ));
         assert_eq!(
-            claim("metric = \"m\"\nruns = \"e / v\"\nbelow = 1.0"),
+            claim("metric = \"drift_norm\"\nruns = \"e / v\"\nbelow = 1.0"),
             Err(ClaimError::Selection {
                 field: "runs",
                 text: "e / v".into()
             })
         );
         assert_eq!(
-            claim("metric = \"m\"\nruns = \"e / v / s\"\nbelow = 1.0\nabove = 0.0"),
+            claim("metric = \"drift_2\"\nruns = \"e / v / s\"\nbelow = 1.0\nabove = 0.0"),
             Err(ClaimError::Shape)
         );
         assert_eq!(
-            claim("metric = \"m\"\nruns = \"e / v / s\""),
+            claim("metric = \"drift_2\"\nruns = \"e / v / s\""),
             Err(ClaimError::Shape)
         );
         assert_eq!(
@@ -327,14 +373,55 @@ mod tests {
             Err(ClaimError::Shape)
         );
         assert_eq!(
-            claim("metric = \"m\"\nruns = \"e / v / s\"\nbelow = 1.0\nfactor = 2.0"),
+            claim("metric = \"drift_2\"\nruns = \"e / v / s\"\nbelow = 1.0\nfactor = 2.0"),
             Err(ClaimError::Factor)
         );
         assert_eq!(
-            claim("metric = \"m\"\nruns = \"e / v / s\"\nthan = \"e / v / t\"\nfactor = -1.0"),
+            claim(
+                "metric = \"drift_2\"\nruns = \"e / v / s\"\nthan = \"e / v / t\"\nfactor = -1.0"
+            ),
             Err(ClaimError::Factor)
         );
-        assert_eq!(claim("rust = \"x\""), Err(ClaimError::Shape));
+        assert_eq!(claim("rust = \"diverges\""), Err(ClaimError::Shape));
         assert!(Op::AtMost.holds(1.0, 1.0) && !Op::Below.holds(1.0, 1.0));
+    }
+
+    #[test]
+    fn typos_non_finite_numbers_and_line_breaks_are_refused_naming_the_field() {
+        let e = claim("metric = \"drift_nrom\"\nruns = \"e / v / s\"\nbelow = 1.0").unwrap_err();
+        assert_eq!(
+            e,
+            ClaimError::UnknownMetric {
+                metric: "drift_nrom".into()
+            }
+        );
+        let shown = e.to_string();
+        assert!(
+            shown.contains("drift_norm") && shown.contains("max_pos_err"),
+            "{shown}"
+        );
+        let e = claim("rust = \"divreges\"\nwhy = \"y\"").unwrap_err();
+        assert!(e.to_string().contains("known: diverges"), "{e}");
+        for (number, field) in [
+            ("below = nan", "below"),
+            ("above = inf", "above"),
+            ("at_least = -inf", "at_least"),
+        ] {
+            let e = claim(&format!(
+                "metric = \"drift_1\"\nruns = \"e / v / s\"\n{number}"
+            ));
+            assert_eq!(e, Err(ClaimError::NotFinite { field }), "{number}");
+        }
+        let e = claim("rust = \"evaluation-ratio\"\nwhy = \"y\"\nvalue = nan");
+        assert_eq!(e, Err(ClaimError::NotFinite { field: "value" }));
+        let two = toml::from_str::<ClaimFile>(
+            "short = \"s\"\ntext = \"a\\n## Summary\"\nrust = \"diverges\"\nwhy = \"y\"",
+        )
+        .unwrap()
+        .into_spec();
+        assert_eq!(two, Err(ClaimError::NotOneLine { field: "text" }));
+        // drift_k names any joint; drift_0 does not.
+        assert!(claim("metric = \"drift_7\"\nruns = \"e / v / s\"\nbelow = 1.0").is_ok());
+        assert!(claim("metric = \"drift_0\"\nruns = \"e / v / s\"\nbelow = 1.0").is_err());
     }
 }

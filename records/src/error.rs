@@ -145,6 +145,9 @@ pub enum TrajectoryProblem {
     UnknownColumn(String),
     #[error("no column \"{0}\"")]
     NoColumn(&'static str),
+    /// A column named twice (which would silently win otherwise).
+    #[error("column \"{0}\" is given twice (each column once)")]
+    ColumnTwice(String),
     #[error("the {stem}_i columns must be numbered 1 .. n without gaps, got {numbers:?}")]
     Gaps {
         stem: &'static str,
@@ -185,8 +188,12 @@ pub enum ShardError {
     #[error("{}: {source}", path.display())]
     ReadManifest {
         path: PathBuf,
-        source: toml::de::Error,
+        source: inputs::TomlError,
     },
+    /// `shard.toml` refused or unreadable by the input reader (a link outside the shard
+    /// directory, a FIFO, over its cap).
+    #[error(transparent)]
+    Input(#[from] inputs::InputError),
     #[error("{}: no {}: the shard has not finished (run it again; it resumes where it stopped)", dir.display(), crate::shard::MANIFEST)]
     Unfinished { dir: PathBuf },
     #[error("{}: no such directory (give the directories that `reproduce --shard K/N` wrote)", dir.display())]

@@ -95,42 +95,59 @@ pub fn failed_at(r: &RunRow) -> String {
     }
 }
 
-/// A numeric column of a run by its `runs.csv` name (`drift_k` for joint k); `None` when not
-/// measured or unknown.
+/// A numeric column of a run by its `runs.csv` name (`drift_k` for joint k, or one of
+/// [`METRICS`]); `None` when not measured or unknown.
 pub fn metric(r: &RunRow, name: &str) -> Option<f64> {
-    if let Some(k) = name
-        .strip_prefix("drift_")
-        .and_then(|k| k.parse::<usize>().ok())
-    {
+    if let Some(k) = joint_drift(name) {
         return k.checked_sub(1).and_then(|i| r.drift.get(i).copied());
     }
-    match name {
-        "drift_norm" => r.drift_norm,
-        // The largest |theta_k(T) - theta_k(0)| over the joints ("every joint drift < x").
-        "drift_max_abs" => {
-            (!r.drift.is_empty()).then(|| r.drift.iter().fold(0.0f64, |m, d| m.max(d.abs())))
-        }
-        "solver_iterations" => r.solver_iterations.map(|v| v as f64),
-        "solver_iterations_max" => r.solver_iterations_max.map(|v| v as f64),
-        "solver_products" => r.solver_products.map(|v| v as f64),
-        "drift_ref_norm" => r.drift_ref_norm,
-        "max_pos_err" => r.max_pos_err,
-        "rms_pos_err" => r.rms_pos_err,
-        "final_pos_err" => r.final_pos_err,
-        "theta_margin" => r.theta_margin,
-        "thetadot_margin" => r.thetadot_margin,
-        "peak_thetadot" => r.peak_thetadot,
-        "peak_thetaddot" => r.peak_thetaddot,
-        "peak_torque" => r.peak_torque,
-        "min_sigma_j" => r.min_sigma_j,
-        "net_error_final" => r.net_error_final,
-        "net_error_max_after_1s" => r.net_error_max_after_1s,
-        "score_max_dx" => r.score_max_dx,
-        "score_rms_dx" => r.score_rms_dx,
-        "score_max_obj_gap" => r.score_max_obj_gap,
-        "score_max_violation" => r.score_max_violation,
-        "wall_s" => Some(r.wall_s),
-        "sim_s" => Some(r.sim_s),
-        _ => None,
-    }
+    METRICS
+        .iter()
+        .find(|(n, _)| *n == name)
+        .and_then(|(_, column)| column(r))
 }
+
+/// Whether `name` is a metric [`metric`] knows: `drift_k` (k >= 1) or one of [`METRICS`].
+pub fn is_metric(name: &str) -> bool {
+    joint_drift(name).is_some_and(|k| k >= 1) || METRICS.iter().any(|(n, _)| *n == name)
+}
+
+/// k of `drift_k`.
+fn joint_drift(name: &str) -> Option<usize> {
+    name.strip_prefix("drift_")?.parse::<usize>().ok()
+}
+
+/// The metrics of a run besides the joint drifts `drift_k`, by name, and how each is read.
+#[allow(clippy::type_complexity)]
+pub const METRICS: &[(&str, fn(&RunRow) -> Option<f64>)] = &[
+    ("drift_norm", |r| r.drift_norm),
+    // The largest |theta_k(T) - theta_k(0)| over the joints ("every joint drift < x").
+    ("drift_max_abs", |r| {
+        (!r.drift.is_empty()).then(|| r.drift.iter().fold(0.0f64, |m, d| m.max(d.abs())))
+    }),
+    ("solver_iterations", |r| {
+        r.solver_iterations.map(|v| v as f64)
+    }),
+    ("solver_iterations_max", |r| {
+        r.solver_iterations_max.map(|v| v as f64)
+    }),
+    ("solver_products", |r| r.solver_products.map(|v| v as f64)),
+    ("drift_ref_norm", |r| r.drift_ref_norm),
+    ("max_pos_err", |r| r.max_pos_err),
+    ("rms_pos_err", |r| r.rms_pos_err),
+    ("final_pos_err", |r| r.final_pos_err),
+    ("theta_margin", |r| r.theta_margin),
+    ("thetadot_margin", |r| r.thetadot_margin),
+    ("peak_thetadot", |r| r.peak_thetadot),
+    ("peak_thetaddot", |r| r.peak_thetaddot),
+    ("peak_torque", |r| r.peak_torque),
+    ("min_sigma_j", |r| r.min_sigma_j),
+    ("net_error_final", |r| r.net_error_final),
+    ("net_error_max_after_1s", |r| r.net_error_max_after_1s),
+    ("score_max_dx", |r| r.score_max_dx),
+    ("score_rms_dx", |r| r.score_rms_dx),
+    ("score_max_obj_gap", |r| r.score_max_obj_gap),
+    ("score_max_violation", |r| r.score_max_violation),
+    ("wall_s", |r| Some(r.wall_s)),
+    ("sim_s", |r| Some(r.sim_s)),
+];

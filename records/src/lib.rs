@@ -33,6 +33,8 @@
 //! - [`percentile`]: the one percentile definition of the workspace (numpy's default).
 //! - [`papers`]: the papers as data (`papers/<paper>/`): metadata, published numbers and which run each
 //!   one is compared with.
+//!   [`paper_rules`]: what a paper folder must satisfy (ids, one-line texts, unique mappings,
+//!   checked values), checked before anything runs.
 //! - [`sweep_check`]: a published table set beside a sweep's runs.
 //! - [`control`]: the control experiments' result files (`results/control*.csv`,
 //!   `results/cycles*.csv`); [`control_claim`]: zhong2021's efficiency claim decided from them.
@@ -60,6 +62,7 @@ pub mod ladder;
 pub mod leaderboard;
 pub mod migrate;
 pub mod owned_dir;
+pub mod paper_rules;
 pub mod papers;
 pub mod percentile;
 pub mod profile;

@@ -12,6 +12,7 @@
 //! runs ([`crate::sweep_check`]). Adding a paper is adding a folder: no Rust.
 
 use crate::index::Runs;
+use crate::paper_rules::{check_paper_id, is_one_line, PaperProblem};
 use crate::runs::RunRow;
 use crate::sweep_check::SweepCheck;
 use catalog::run_key::RunKey;
@@ -133,20 +134,27 @@ pub fn inconsistencies(file: &Path, values: &mut [PaperValue]) -> Vec<ValueWarni
 /// A problem with the papers' files, naming the file.
 #[derive(Debug, thiserror::Error)]
 pub enum PapersError {
-    #[error("{}: cannot read: {source}", path.display())]
+    #[error("{}: cannot list: {source}", path.display())]
     Io {
         path: PathBuf,
         source: std::io::Error,
     },
+    /// A file refused or unreadable by the input reader (a link leading out of papers/, a
+    /// FIFO or device, over its cap).
+    #[error(transparent)]
+    Input(#[from] inputs::InputError),
     #[error("{}: {source}", path.display())]
     Csv { path: PathBuf, source: csv::Error },
-    #[error("{}: {}", path.display(), source.to_string().trim_end())]
+    #[error("{}: {source}", path.display())]
     Toml {
         path: PathBuf,
-        source: toml::de::Error,
+        source: inputs::TomlError,
     },
-    #[error("{}: {message}", path.display())]
-    Invalid { path: PathBuf, message: String },
+    #[error("{}: {problem}", path.display())]
+    Invalid {
+        path: PathBuf,
+        problem: PaperProblem,
+    },
 }
 
 /// One paper's `paper.toml`.
@@ -218,124 +226,28 @@ pub struct Papers {
 }
 
 impl Papers {
-    /// Reads every `papers/<paper>/` folder (sorted by name): `paper.toml` is required,
-    /// `values.csv` optional (a paper may publish only figures). The folder's name must be the
-    /// paper id, every value's `paper` too, and a run key must be three ids.
+    /// Reads every `papers/<paper>/` folder (sorted by name), each file with the input reader
+    /// (crate `inputs`: regular files inside `dir`, at most their kind's cap): `paper.toml` is
+    /// required, `values.csv` optional (a paper may publish only figures). Everything
+    /// [`crate::paper_rules`] states is checked here, before anything runs.
     pub fn load(dir: &Path) -> Result<Papers, PapersError> {
-        let io = |path: &Path| {
-            let path = path.to_path_buf();
-            move |source| PapersError::Io { path, source }
-        };
         let mut folders: Vec<PathBuf> = std::fs::read_dir(dir)
-            .map_err(io(dir))?
+            .map_err(|source| PapersError::Io {
+                path: dir.to_path_buf(),
+                source,
+            })?
             .filter_map(|e| e.ok().map(|e| e.path()))
             .filter(|p| p.is_dir())
             .collect();
         folders.sort();
         let mut out = Papers::default();
         for folder in folders {
-            let path = folder.join("paper.toml");
-            let text = std::fs::read_to_string(&path).map_err(io(&path))?;
-            let file: PaperFile = toml::from_str(&text).map_err(|source| PapersError::Toml {
-                path: path.clone(),
-                source,
-            })?;
-            let invalid = |message: String| PapersError::Invalid {
-                path: path.clone(),
-                message,
-            };
-            let name = folder.file_name().and_then(|n| n.to_str()).unwrap_or("");
-            if file.paper != name {
-                return Err(invalid(format!(
-                    "field `paper`: \"{}\" must be the folder's name \"{name}\"",
-                    file.paper
-                )));
-            }
-            for (i, m) in file.mappings.into_iter().enumerate() {
-                let run = RunKey::parse(&m.run).ok_or_else(|| {
-                    invalid(format!(
-                        "mapping[{i}] field `run`: \"{}\" is not \"<experiment> / <variant> / <solver>\" (ids)",
-                        m.run
-                    ))
-                })?;
-                out.mappings.push(Mapping {
-                    paper: file.paper.clone(),
-                    published_experiment: m.published_experiment,
-                    published_column: m.published_column,
-                    run,
-                    companions: m.companions,
-                });
-            }
-            let values = folder.join("values.csv");
-            if values.exists() {
-                let csv_err = |source| PapersError::Csv {
-                    path: values.clone(),
-                    source,
-                };
-                let mut r = csv::Reader::from_path(&values).map_err(csv_err)?;
-                let mut read = Vec::new();
-                for (i, row) in r.deserialize().enumerate() {
-                    let mut v: PaperValue = row.map_err(csv_err)?;
-                    let line = i + 2;
-                    if let Some((_, name)) = METRIC_ALIASES.iter().find(|(a, _)| *a == v.metric) {
-                        v.metric = name.to_string();
-                    }
-                    if !v.value.is_finite() {
-                        return Err(PapersError::Invalid {
-                            path: values.clone(),
-                            message: format!(
-                                "line {line}: value {} is not a finite number",
-                                v.value
-                            ),
-                        });
-                    }
-                    if !PUBLISHED_METRICS.contains(&v.metric.as_str()) {
-                        return Err(PapersError::Invalid {
-                            path: values.clone(),
-                            message: format!(
-                                "line {line}: unknown metric \"{}\" (valid: {})",
-                                v.metric,
-                                PUBLISHED_METRICS.join(", ")
-                            ),
-                        });
-                    }
-                    if v.paper != file.paper {
-                        return Err(PapersError::Invalid {
-                            path: values.clone(),
-                            message: format!(
-                                "a value of paper \"{}\" in the folder of \"{}\"",
-                                v.paper, file.paper
-                            ),
-                        });
-                    }
-                    read.push(v);
-                }
-                out.warnings.extend(inconsistencies(&values, &mut read));
-                out.values.extend(read);
-            }
-            let claims = file
-                .claims
-                .into_iter()
-                .enumerate()
-                .map(|(i, c)| {
-                    c.into_spec().map_err(|e| PapersError::Invalid {
-                        path: path.clone(),
-                        message: format!("claim[{i}]: {e}"),
-                    })
-                })
-                .collect::<Result<_, _>>()?;
-            out.sweep_checks.extend(
-                file.sweep_checks
-                    .into_iter()
-                    .map(|c| c.into_check(&file.paper)),
-            );
-            out.papers.push(Paper {
-                id: file.paper,
-                title: file.title,
-                citation: file.citation,
-                assumed_setup: file.assumed_setup,
-                claims,
-            });
+            let read = load_folder(dir, &folder)?;
+            out.mappings.extend(read.mappings);
+            out.sweep_checks.extend(read.sweep_checks);
+            out.warnings.extend(read.warnings);
+            out.values.extend(read.values);
+            out.papers.push(read.paper);
         }
         Ok(out)
     }
@@ -450,6 +362,172 @@ impl Papers {
             .collect();
         (!joints.is_empty()).then(|| (joints.iter().map(|d| d * d).sum::<f64>().sqrt(), true))
     }
+}
+
+/// One paper folder as read: its paper, mappings, sweep checks, published values and their
+/// warnings.
+struct Folder {
+    paper: Paper,
+    mappings: Vec<Mapping>,
+    values: Vec<PaperValue>,
+    sweep_checks: Vec<SweepCheck>,
+    warnings: Vec<ValueWarning>,
+}
+
+/// Reads and checks one folder `folder` of `dir` (its `paper.toml` and `values.csv`).
+fn load_folder(dir: &Path, folder: &Path) -> Result<Folder, PapersError> {
+    let path = folder.join("paper.toml");
+    let invalid = |path: &Path| {
+        let path = path.to_path_buf();
+        move |problem| PapersError::Invalid { path, problem }
+    };
+    let name = folder
+        .file_name()
+        .and_then(|n| n.to_str())
+        .ok_or(PaperProblem::FolderNotUtf8)
+        .map_err(invalid(&path))?;
+    check_paper_id(name).map_err(invalid(&path))?;
+    let text = inputs::read_text(&path, inputs::Kind::PaperToml, inputs::Origin::Under(dir))?;
+    let file: PaperFile =
+        inputs::toml_error::from_str(&text).map_err(|source| PapersError::Toml {
+            path: path.clone(),
+            source,
+        })?;
+    if file.paper != name {
+        return Err(invalid(&path)(PaperProblem::NotTheFolder {
+            paper: file.paper,
+            folder: name.to_string(),
+        }));
+    }
+    let lines = [
+        ("title", Some(&file.title)),
+        ("citation", file.citation.as_ref()),
+        ("assumed_setup", file.assumed_setup.as_ref()),
+    ];
+    if let Some((field, _)) = lines
+        .iter()
+        .find(|(_, text)| text.is_some_and(|t| !is_one_line(t)))
+    {
+        return Err(invalid(&path)(PaperProblem::NotOneLine { field }));
+    }
+    let mut mappings: Vec<Mapping> = Vec::new();
+    for (index, m) in file.mappings.into_iter().enumerate() {
+        let run = RunKey::parse(&m.run).ok_or_else(|| {
+            invalid(&path)(PaperProblem::Run {
+                index,
+                run: m.run.clone(),
+            })
+        })?;
+        if let Some(first) = mappings.iter().position(|o| {
+            o.published_experiment == m.published_experiment
+                && o.published_column == m.published_column
+        }) {
+            return Err(invalid(&path)(PaperProblem::MappingTwice {
+                index,
+                first,
+                experiment: m.published_experiment,
+                column: m.published_column,
+            }));
+        }
+        mappings.push(Mapping {
+            paper: file.paper.clone(),
+            published_experiment: m.published_experiment,
+            published_column: m.published_column,
+            run,
+            companions: m.companions,
+        });
+    }
+    let values_path = folder.join("values.csv");
+    let (values, warnings) = if values_path.symlink_metadata().is_ok() {
+        let mut values = read_values(dir, &values_path, &file.paper)?;
+        let warnings = inconsistencies(&values_path, &mut values);
+        (values, warnings)
+    } else {
+        (Vec::new(), Vec::new())
+    };
+    let claims = file
+        .claims
+        .into_iter()
+        .enumerate()
+        .map(|(index, c)| {
+            c.into_spec()
+                .map_err(|error| invalid(&path)(PaperProblem::Claim { index, error }))
+        })
+        .collect::<Result<_, _>>()?;
+    let sweep_checks = file
+        .sweep_checks
+        .into_iter()
+        .map(|c| c.into_check(&file.paper))
+        .collect();
+    let paper = Paper {
+        id: file.paper,
+        title: file.title,
+        citation: file.citation,
+        assumed_setup: file.assumed_setup,
+        claims,
+    };
+    Ok(Folder {
+        paper,
+        mappings,
+        values,
+        sweep_checks,
+        warnings,
+    })
+}
+
+/// The published values of `paper` in `path` (a values.csv of `dir`), each checked: finite, of
+/// a known metric, of this paper, its texts one line.
+fn read_values(dir: &Path, path: &Path, paper: &str) -> Result<Vec<PaperValue>, PapersError> {
+    let bytes = inputs::read(path, inputs::Kind::PaperValues, inputs::Origin::Under(dir))?;
+    let csv_err = |source| PapersError::Csv {
+        path: path.to_path_buf(),
+        source,
+    };
+    let invalid = |problem| PapersError::Invalid {
+        path: path.to_path_buf(),
+        problem,
+    };
+    let mut values = Vec::new();
+    for (i, row) in csv::Reader::from_reader(bytes.as_slice())
+        .deserialize()
+        .enumerate()
+    {
+        let mut v: PaperValue = row.map_err(csv_err)?;
+        let line = i + 2;
+        if let Some((_, name)) = METRIC_ALIASES.iter().find(|(a, _)| *a == v.metric) {
+            v.metric = name.to_string();
+        }
+        if !v.value.is_finite() {
+            return Err(invalid(PaperProblem::ValueNotFinite {
+                line,
+                value: v.value,
+            }));
+        }
+        if !PUBLISHED_METRICS.contains(&v.metric.as_str()) {
+            return Err(invalid(PaperProblem::UnknownMetric {
+                line,
+                metric: v.metric,
+            }));
+        }
+        if v.paper != paper {
+            return Err(invalid(PaperProblem::OtherPaper {
+                line,
+                paper: v.paper,
+                folder: paper.to_string(),
+            }));
+        }
+        let texts = [
+            ("table", &v.table),
+            ("experiment", &v.experiment),
+            ("column", &v.column),
+            ("note", &v.note),
+        ];
+        if let Some((field, _)) = texts.iter().find(|(_, t)| !is_one_line(t)) {
+            return Err(invalid(PaperProblem::ValueNotOneLine { line, field }));
+        }
+        values.push(v);
+    }
+    Ok(values)
 }
 
 /// The metrics a values.csv row may name: the `runs.csv` column that measures the published

@@ -175,16 +175,18 @@ impl Manifest {
 
     pub fn read(dir: &Path) -> Result<Self, ShardError> {
         let path = dir.join(MANIFEST);
-        let text = std::fs::read_to_string(&path).map_err(|e| {
-            if e.kind() == std::io::ErrorKind::NotFound {
+        let kind = inputs::Kind::ShardManifest;
+        let text = inputs::read_text(&path, kind, inputs::Origin::Under(dir)).map_err(|e| {
+            if e.is_not_found() {
                 ShardError::Unfinished {
                     dir: dir.to_path_buf(),
                 }
             } else {
-                IoError::at(&path, IoAction::Read)(e).into()
+                e.into()
             }
         })?;
-        toml::from_str(&text).map_err(|source| ShardError::ReadManifest { path, source })
+        inputs::toml_error::from_str(&text)
+            .map_err(|source| ShardError::ReadManifest { path, source })
     }
 
     /// Removes a directory's manifest (a shard starting again is unfinished until it ends).

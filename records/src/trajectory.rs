@@ -1,8 +1,9 @@
 //! Trajectories produced elsewhere (MATLAB, Octave, Python), as files, and their score as a row.
 //!
-//! **Input** ([`read`]): a [`Trajectory`], from a MAT-file (`crate::trajectory_mat`: variables
-//! `t` and `y`) or ([`read_csv`]) a CSV file with a header row naming the columns `t`,
-//! `theta_1 .. theta_n` and optionally `thetadot_1 .. thetadot_n` (in any order; n the task's
+//! **Input** ([`read`], with the input reader of crate `inputs`: a regular file, at most its
+//! kind's cap): a [`Trajectory`], from a MAT-file (`crate::trajectory_mat`: variables `t` and
+//! `y`) or ([`parse_csv`]) a CSV file with a header row naming the columns `t`, `theta_1 ..
+//! theta_n` and optionally `thetadot_1 .. thetadot_n` (in any order, each once; n the task's
 //! joint count; no other column), one row per sample: t in seconds from 0 to the task's
 //! duration, joint angles in rad, velocities in rad/s. `simulation::score_trajectory` says what
 //! is checked and how it is scored.
@@ -34,6 +35,10 @@ pub const TRAJECTORY_KIND: &str = "trajectory";
 /// Why a trajectory file cannot be read.
 #[derive(Debug, thiserror::Error)]
 pub enum ReadError {
+    /// The file was refused or could not be read (a FIFO, a device, over
+    /// [`inputs::Kind::TrajectoryCsv`]'s cap).
+    #[error(transparent)]
+    Input(#[from] inputs::InputError),
     /// The CSV file's problem (file, line, column).
     #[error(transparent)]
     Csv(#[from] TrajectoryFileError),
@@ -50,12 +55,14 @@ pub fn read(path: &Path, joints: usize) -> Result<Trajectory, ReadError> {
     if is_mat {
         Ok(read_mat(path, joints)?)
     } else {
-        read_csv(path).map_err(ReadError::Csv)
+        let bytes = inputs::read(path, inputs::Kind::TrajectoryCsv, inputs::Origin::Named)?;
+        Ok(parse_csv(&bytes, path)?)
     }
 }
 
-/// Reads a trajectory CSV (module docs). Errors name the file and, where it applies, the line.
-pub fn read_csv(path: &Path) -> Result<Trajectory, TrajectoryFileError> {
+/// Parses a trajectory CSV (module docs) read from `path`. Errors name the file and, where it
+/// applies, the line.
+pub fn parse_csv(bytes: &[u8], path: &Path) -> Result<Trajectory, TrajectoryFileError> {
     let at_line = |line: Option<usize>| {
         move |problem: TrajectoryProblem| TrajectoryFileError {
             path: path.to_path_buf(),
@@ -66,8 +73,7 @@ pub fn read_csv(path: &Path) -> Result<Trajectory, TrajectoryFileError> {
     let at = |problem: TrajectoryProblem| at_line(None)(problem);
     let mut reader = csv::ReaderBuilder::new()
         .trim(csv::Trim::All)
-        .from_path(path)
-        .map_err(|e| at(e.into()))?;
+        .from_reader(bytes);
     let header = reader.headers().map_err(|e| at(e.into()))?.clone();
     // Column index of t, and of each numbered theta_i / thetadot_i.
     let mut t_col = None;
@@ -76,14 +82,18 @@ pub fn read_csv(path: &Path) -> Result<Trajectory, TrajectoryFileError> {
         let (stem, index) = match name.rsplit_once('_') {
             Some((stem @ ("theta" | "thetadot"), i)) => (stem, i.parse::<usize>().ok()),
             _ if name == "t" => {
-                t_col = Some(col);
+                if t_col.replace(col).is_some() {
+                    return Err(at(TrajectoryProblem::ColumnTwice(name.to_string())));
+                }
                 continue;
             }
             _ => (name, None),
         };
         match index {
             Some(i) if i >= 1 => {
-                numbered.entry(stem).or_default().insert(i, col);
+                if numbered.entry(stem).or_default().insert(i, col).is_some() {
+                    return Err(at(TrajectoryProblem::ColumnTwice(name.to_string())));
+                }
             }
             _ => return Err(at(TrajectoryProblem::UnknownColumn(name.to_string()))),
         }
@@ -158,13 +168,7 @@ mod tests {
     use super::*;
 
     fn read(text: &str) -> Result<Trajectory, TrajectoryFileError> {
-        let dir = std::env::temp_dir().join(format!("driftbench-traj-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join(format!("{}.csv", text.len()));
-        std::fs::write(&path, text).unwrap();
-        let out = read_csv(&path);
-        std::fs::remove_file(&path).unwrap();
-        out
+        parse_csv(text.as_bytes(), Path::new("t.csv"))
     }
 
     #[test]
@@ -187,6 +191,18 @@ mod tests {
         assert!(e.contains("line 3: column \"theta_1\" is \"abc\""), "{e}");
         let e = read("theta_1\n1\n").unwrap_err().to_string();
         assert!(e.contains("no column \"t\""), "{e}");
+        for twice in ["t,theta_1,theta_1\n0,1,2\n", "t,theta_1,t\n0,1,2\n"] {
+            let e = read(twice).unwrap_err();
+            assert!(
+                matches!(e.problem, TrajectoryProblem::ColumnTwice(_)),
+                "{e}"
+            );
+            assert!(e.to_string().contains("is given twice"), "{e}");
+        }
+        let e = read("t,theta_1, theta_1 \n0,1,2\n")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("column \"theta_1\" is given twice"), "{e}");
         let e = read("t,theta_1,theta_2,thetadot_1\n0,1,2,3\n")
             .unwrap_err()
             .to_string();
@@ -233,8 +249,18 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("missing.mat"), "{e}");
+        // A name that does not end in .mat is read as CSV (here, one that is not there).
         let csv = fixture("trajectory-v7.csv");
         let e = super::read(&csv, 2).unwrap_err();
-        assert!(matches!(e, ReadError::Csv(_)), "{e}");
+        assert!(
+            matches!(
+                e,
+                ReadError::Input(inputs::InputError::Open {
+                    kind: inputs::Kind::TrajectoryCsv,
+                    ..
+                })
+            ),
+            "{e}"
+        );
     }
 }

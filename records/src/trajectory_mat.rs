@@ -6,18 +6,33 @@
 //! optionally the velocities thetadot_1 .. thetadot_n (as MATLAB's `[t, y] = ode45(...)` returns
 //! them for a state that starts with theta and thetadot); n is the task's joint count. Other
 //! variables are ignored.
+//!
+//! The file is read by the input reader (crate `inputs`: a regular file, at most
+//! [`inputs::Kind::TrajectoryMat`]'s cap). A v7 file's compressed variables are inflated here,
+//! before `matfile` sees the file, and never past [`MAX_INFLATED_BYTES`] in all: a small file
+//! that inflates to gigabytes is refused after at most that many bytes, not parsed.
 
 use crate::trajectory::Trajectory;
+use std::io::Read;
 use std::path::{Path, PathBuf};
+
+/// The most bytes the compressed variables of one MAT-file may inflate to, together (256 MiB:
+/// 10^7 samples of a 3-joint trajectory with velocities).
+pub const MAX_INFLATED_BYTES: u64 = 256 << 20;
+
+/// The MAT-file data types of a top-level element: a matrix, or a compressed element that holds
+/// one.
+const MI_MATRIX: u32 = 14;
+const MI_COMPRESSED: u32 = 15;
 
 /// Why a MAT-file cannot be read as a trajectory.
 #[derive(Debug, thiserror::Error)]
 pub enum MatError {
-    #[error("{}: {source}", path.display())]
-    Io {
-        path: PathBuf,
-        source: std::io::Error,
-    },
+    /// The file was refused or could not be read by the input reader.
+    #[error(transparent)]
+    Input(#[from] inputs::InputError),
+    #[error("{}: its compressed variables inflate to more than {max} bytes; it is not read", path.display())]
+    Inflated { path: PathBuf, max: u64 },
     #[error("{}: not a MAT-file of format v5 or v7 ({reason}; a v7.3 file is HDF5: save with -v7)", path.display())]
     Parse { path: PathBuf, reason: String },
     #[error("{}: no variable \"{name}\" (a trajectory MAT-file holds t and y)", path.display())]
@@ -42,15 +57,12 @@ pub enum MatError {
 
 /// Reads the trajectory of a `joints`-joint task from the MAT-file `path` (module docs).
 pub fn read_mat(path: &Path, joints: usize) -> Result<Trajectory, MatError> {
-    let file = std::fs::File::open(path).map_err(|source| MatError::Io {
+    let bytes = inputs::read(path, inputs::Kind::TrajectoryMat, inputs::Origin::Named)?;
+    let bytes = inflate(bytes, path, MAX_INFLATED_BYTES)?;
+    let mat = matfile::MatFile::parse(bytes.as_slice()).map_err(|e| MatError::Parse {
         path: path.to_path_buf(),
-        source,
+        reason: e.to_string(),
     })?;
-    let mat =
-        matfile::MatFile::parse(std::io::BufReader::new(file)).map_err(|e| MatError::Parse {
-            path: path.to_path_buf(),
-            reason: e.to_string(),
-        })?;
     let matrix = |name: &'static str| -> Result<(&[usize], &[f64]), MatError> {
         let array = mat.find_by_name(name).ok_or(MatError::Missing {
             path: path.to_path_buf(),
@@ -95,4 +107,125 @@ pub fn read_mat(path: &Path, joints: usize) -> Result<Trajectory, MatError> {
         thetadot: (cols == 2 * joints)
             .then(|| (0..rows).map(|k| row(k, joints..2 * joints)).collect()),
     })
+}
+
+/// The MAT-file `bytes` with every top-level compressed element replaced by the element it
+/// inflates to (a v6 file, which `matfile` parses without inflating anything), at most
+/// `max` bytes ([`MAX_INFLATED_BYTES`]) inflated in all. A compressed element must hold a matrix (MATLAB
+/// never nests them; a nested one would inflate unbounded inside `matfile`). Bytes that do not
+/// read as elements are left as they are, for `matfile` to refuse.
+fn inflate(bytes: Vec<u8>, path: &Path, max: u64) -> Result<Vec<u8>, MatError> {
+    let little = match bytes.get(126..128) {
+        Some(b"IM") => true,
+        Some(b"MI") => false,
+        _ => return Ok(bytes),
+    };
+    let word = |at: usize| u32_at(&bytes, at, little);
+    let parse_error = |reason: &str| MatError::Parse {
+        path: path.to_path_buf(),
+        reason: reason.to_string(),
+    };
+    let mut out = bytes[..128].to_vec();
+    let mut at = 128;
+    let mut budget = max;
+    while let (Some(kind), Some(size)) = (word(at), word(at + 4)) {
+        let end = (at + 8).saturating_add(size as usize);
+        if kind != MI_COMPRESSED {
+            // An uncompressed element with its padding to 8 bytes (or a truncated one): as is.
+            let next = end.min(bytes.len()).next_multiple_of(8).min(bytes.len());
+            out.extend_from_slice(&bytes[at..next]);
+            at = next;
+            continue;
+        }
+        if end > bytes.len() {
+            return Err(parse_error("a compressed variable is cut off"));
+        }
+        let mut inflated = Vec::new();
+        libflate::zlib::Decoder::new(&bytes[at + 8..end])
+            .map_err(|_| parse_error("a compressed variable is not a zlib stream"))?
+            .take(budget + 1)
+            .read_to_end(&mut inflated)
+            .map_err(|_| parse_error("a compressed variable does not inflate"))?;
+        if inflated.len() as u64 > budget {
+            return Err(MatError::Inflated {
+                path: path.to_path_buf(),
+                max,
+            });
+        }
+        budget -= inflated.len() as u64;
+        if u32_at(&inflated, 0, little) != Some(MI_MATRIX) {
+            return Err(parse_error("a compressed variable does not hold a matrix"));
+        }
+        out.extend_from_slice(&inflated);
+        out.resize(out.len().next_multiple_of(8), 0);
+        at = end;
+    }
+    out.extend_from_slice(&bytes[at.min(bytes.len())..]);
+    Ok(out)
+}
+
+/// The 32-bit word of `bytes` at `at`, in the file's byte order.
+fn u32_at(bytes: &[u8], at: usize, little: bool) -> Option<u32> {
+    let b: [u8; 4] = bytes.get(at..at.checked_add(4)?)?.try_into().ok()?;
+    Some(if little {
+        u32::from_le_bytes(b)
+    } else {
+        u32::from_be_bytes(b)
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A v7 header (little-endian) and one compressed element of `inflated` bytes.
+    fn v7(inflated: &[u8]) -> Vec<u8> {
+        let mut file = vec![b' '; 128];
+        file[124..126].copy_from_slice(&0x0100u16.to_le_bytes());
+        file[126..128].copy_from_slice(b"IM");
+        let mut z = libflate::zlib::Encoder::new(Vec::new()).unwrap();
+        std::io::Write::write_all(&mut z, inflated).unwrap();
+        let z = z.finish().into_result().unwrap();
+        file.extend_from_slice(&MI_COMPRESSED.to_le_bytes());
+        file.extend_from_slice(&(z.len() as u32).to_le_bytes());
+        file.extend_from_slice(&z);
+        file
+    }
+
+    #[test]
+    fn a_bomb_is_refused_after_the_bound_and_a_nested_element_at_once() {
+        let path = Path::new("bomb.mat");
+        // A matrix tag claiming the rest, then zeros past a bound of 1 MiB: 4 kB compressed.
+        let max = 1 << 20;
+        let mut inflated = Vec::new();
+        inflated.extend_from_slice(&MI_MATRIX.to_le_bytes());
+        inflated.extend_from_slice(&u32::MAX.to_le_bytes());
+        inflated.resize(2 * max as usize, 0);
+        let file = v7(&inflated);
+        assert!(file.len() < 16 << 10, "{}", file.len());
+        let e = inflate(file.clone(), path, max).unwrap_err();
+        assert!(
+            matches!(e, MatError::Inflated { max: m, .. } if m == max),
+            "{e}"
+        );
+        // Within the bound, the element is inflated in place (a v6 file).
+        let v6 = inflate(file, path, 4 * max).unwrap();
+        assert_eq!(v6.len(), 128 + inflated.len());
+        assert_eq!(&v6[128..], &inflated[..]);
+        let mut nested = Vec::new();
+        nested.extend_from_slice(&MI_COMPRESSED.to_le_bytes());
+        nested.extend_from_slice(&8u32.to_le_bytes());
+        nested.extend_from_slice(&[0; 8]);
+        let e = inflate(v7(&nested), path, max).unwrap_err();
+        assert!(e.to_string().contains("does not hold a matrix"), "{e}");
+        let mut cut = v7(&inflated);
+        cut.truncate(cut.len() - 1);
+        let e = inflate(cut, path, max).unwrap_err();
+        assert!(e.to_string().contains("cut off"), "{e}");
+        // Not a MAT-file: left for matfile to refuse.
+        assert_eq!(
+            inflate(b"t,theta_1".to_vec(), path, max).unwrap(),
+            b"t,theta_1"
+        );
+    }
 }

@@ -127,11 +127,9 @@ pub enum ScoreError {
 /// Why a gate baseline's rows cannot be used; each names the file (or `git HEAD:...`).
 #[derive(Debug, thiserror::Error)]
 pub enum BaselineError {
-    #[error("{name}: {source}")]
-    Read {
-        name: String,
-        source: std::io::Error,
-    },
+    /// Refused or unreadable by the input reader (it names the file).
+    #[error(transparent)]
+    Read(#[from] inputs::InputError),
     #[error("{name}: {source}")]
     Migrate {
         name: String,

@@ -35,7 +35,8 @@ impl Baseline {
                 return Err(ReproduceError::BaselineIsDirectory(f.to_path_buf()));
             }
             let name = f.display().to_string();
-            let rows = read(f, &index).map_err(ReproduceError::GivenBaseline)?;
+            let rows =
+                read(f, inputs::Origin::Named, &index).map_err(ReproduceError::GivenBaseline)?;
             return Ok(Self { rows, name });
         }
         let in_tree = results_dir == root.join(records::results_dir::DIR);
@@ -60,7 +61,7 @@ impl Baseline {
             None => {
                 let path = results_dir.join(records::results_dir::RUNS);
                 Self {
-                    rows: read(&path, &index)?,
+                    rows: read(&path, inputs::Origin::Under(results_dir), &index)?,
                     name: path.display().to_string(),
                 }
             }
@@ -98,14 +99,15 @@ impl Baseline {
     }
 }
 
-/// The rows of the runs file `path`.
-fn read(path: &Path, index: &records::migrate::LabelIndex) -> Result<Vec<RunRow>, BaselineError> {
-    let name = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|source| BaselineError::Read {
-        name: name.clone(),
-        source,
-    })?;
-    parse(bytes, &name, index)
+/// The rows of the runs file `path` (from `origin`), read with the input reader (a regular
+/// file, at most [`inputs::Kind::Baseline`]'s cap, never blocking).
+fn read(
+    path: &Path,
+    origin: inputs::Origin,
+    index: &records::migrate::LabelIndex,
+) -> Result<Vec<RunRow>, BaselineError> {
+    let bytes = inputs::read(path, inputs::Kind::Baseline, origin)?;
+    parse(bytes, &path.display().to_string(), index)
 }
 
 /// The rows of a runs file's `bytes` (called `name`), with ids recovered if it predates them.
@@ -210,7 +212,7 @@ mod tests {
         let missing = root().join("no-such-baseline.csv");
         let err = Baseline::read(&root(), &dir, Some(&missing), &[]).unwrap_err();
         assert!(
-            matches!(&err, ReproduceError::GivenBaseline(BaselineError::Read { name, .. }) if name == &missing.display().to_string()),
+            matches!(&err, ReproduceError::GivenBaseline(BaselineError::Read(inputs::InputError::Open { path, .. })) if path == &missing),
             "{err:?}"
         );
         assert!(

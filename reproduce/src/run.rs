@@ -1,6 +1,6 @@
 //! `reproduce run` (the default; also `check`, `shard`, `explain`, `infer`): everything that
 //! can be checked is checked before anything runs (the gate's baseline, the report directory,
-//! the stored results); then the selected runs run, resumed from and checkpointed in a journal;
+//! the papers, the stored results); then the selected runs run, resumed from and checkpointed in a journal;
 //! the summary is printed; and the rows are compared with the baseline (the gate) or written
 //! with what follows them (a shard's manifest, or the explanation layer, the control
 //! experiments and the report). Runs that fail without their experiment file expecting it are
@@ -8,7 +8,7 @@
 
 use crate::cli::Cli;
 use crate::error::ReproduceError;
-use crate::explanation::explain;
+use crate::explanation::{explain, load_papers};
 use crate::gate::Baseline;
 use crate::inference::infer;
 use crate::journal::{resume, run_journaled};
@@ -42,7 +42,11 @@ pub fn run(
         .transpose()?;
     if !cli.check && !cli.dry_run && cli.shard_resolved.is_none() {
         match report_root(cli) {
-            Ok(root) => check_report_dir(&root)?,
+            // The report reads papers/ after the runs: a malformed paper is refused before.
+            Ok(root) => {
+                check_report_dir(&root)?;
+                load_papers(cli)?;
+            }
             Err(why) => eprintln!(
                 "note: results go to {}, but {why}",
                 cli.results_dir.display()

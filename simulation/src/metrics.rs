@@ -83,6 +83,28 @@ pub struct RunMetrics {
     pub network_error: Option<NetworkError>,
 }
 
+impl RunMetrics {
+    /// The first of the metrics a run is judged by (drift, drift norms, position errors, peak
+    /// joint velocity) that is not finite, by its `runs.csv` name: finite samples can still
+    /// overflow them (samples of 1e300 give an infinite drift norm).
+    pub fn non_finite(&self) -> Option<&'static str> {
+        if self.drift.iter().any(|d| !d.is_finite()) {
+            return Some("drift");
+        }
+        [
+            ("drift_norm", self.drift_norm),
+            ("drift_ref_norm", self.drift_ref_norm),
+            ("max_pos_err", self.max_position_error),
+            ("rms_pos_err", self.rms_position_error),
+            ("final_pos_err", self.final_position_error),
+            ("peak_thetadot", self.peak_thetadot),
+        ]
+        .into_iter()
+        .find(|(_, v)| !v.is_finite())
+        .map(|(name, _)| name)
+    }
+}
+
 /// Streaming accumulator of [`RunMetrics`].
 pub struct MetricsAccumulator<const N: usize> {
     limits: JointLimits<N>,

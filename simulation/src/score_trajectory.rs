@@ -72,6 +72,9 @@ pub enum TrajectoryError {
     StartPose { joint: usize, diff: f64 },
     #[error("scoring a trajectory needs a velocity-level scheme (x = thetadot); {0} is acceleration-level")]
     AccelerationLevel(String),
+    /// The samples are finite, but a metric of them is not (it overflowed).
+    #[error("its {metric} is not finite (the samples overflow it); the trajectory is not scored")]
+    MetricNotFinite { metric: &'static str },
     #[error(transparent)]
     Setup(#[from] SetupError),
 }
@@ -241,9 +244,13 @@ fn score_with<const N: usize>(
         observer.sample(t, theta.as_slice(), &x, Level::Velocity);
     }
     let seconds = started.elapsed().as_secs_f64();
+    let metrics = observer.metrics.finish(0.0);
+    if let Some(metric) = metrics.non_finite() {
+        return Err(TrajectoryError::MetricNotFinite { metric });
+    }
     Ok(Run {
         scheme_name: scheme.name(),
-        outcome: Outcome::Completed(observer.metrics.finish(0.0)),
+        outcome: Outcome::Completed(metrics),
         stats: OdeStats {
             steps: trajectory.t.len(),
             wall_seconds: seconds,

@@ -413,7 +413,7 @@ fn names_must_be_unique_and_file_safe() {
     assert_rejected(
         "id_slug_collision",
         &format!("{GOOD}{}", second_experiment("jia2019-X", "VLTCO")),
-        &["field `id`", "jia2019-X", "jia2019-x", "same file name"],
+        &["field `id`", "\"jia2019-X\" is not an id", "(e.g. \"jia2019-x\")"],
     );
     let mut two_variants = GOOD.to_string();
     two_variants.push_str(&GOOD[GOOD.find("[[experiment.variant]]").unwrap()..]);
@@ -492,17 +492,17 @@ fn experiment_ids_are_unique_across_files() {
         err.contains("jia2019-x") && err.contains("also defined"),
         "{err}"
     );
-    // Ids that differ only in what their file name drops collide too.
+    // An id that is not a slug (it would share a file name with its slug) is refused.
     std::fs::write(
         dir.join("b.toml"),
         GOOD.replace("id = \"jia2019-x\"", "id = \"jia2019-X\""),
     )
     .unwrap();
     let err = load_dir(&dir, check_job)
-        .expect_err("colliding slugs")
+        .expect_err("an id that is not a slug")
         .to_string();
     assert!(
-        err.contains("same file name") && err.contains("a.toml"),
+        err.contains("is not an id") && err.contains("b.toml"),
         "{err}"
     );
     std::fs::remove_file(dir.join("b.toml")).unwrap();

@@ -88,3 +88,20 @@ fn a_trajectory_of_another_task_is_refused() {
         Err(TrajectoryError::End { .. })
     ));
 }
+
+/// Finite samples whose metrics overflow (theta = 1e300 after the start: the drift norm is
+/// infinite) are refused naming the metric, never scored as ok.
+#[test]
+fn samples_whose_metrics_overflow_are_refused() {
+    let job = job("kong2019-circle", "ZNN (eq. 22)", false);
+    let run = run_job(&job).run;
+    let mut huge = trace_of(&run, true);
+    let last = huge.t.len() - 1;
+    for k in 1..=last {
+        huge.theta[k][0] = 1e300;
+        huge.theta[k][1] = -1e300;
+    }
+    let e = score_trajectory(&job, &huge).unwrap_err();
+    assert!(matches!(e, TrajectoryError::MetricNotFinite { .. }), "{e}");
+    assert!(e.to_string().contains("not finite"), "{e}");
+}

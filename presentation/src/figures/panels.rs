@@ -194,7 +194,7 @@ impl TimePanel {
         let values = lines
             .iter()
             .flat_map(|(_, points)| points.iter().map(|&(_, v)| v));
-        let t = 0.0..self.t_end.max(f64::MIN_POSITIVE);
+        let t = scale::bounded(0.0..self.t_end.max(f64::MIN_POSITIVE));
         match self.y_axis {
             YAxis::Linear => {
                 let y = scale::linear(values);

@@ -9,7 +9,7 @@
 
 use super::cost::{evaluation_ratio, slowdown};
 use super::markdown::sci;
-use records::claims::{Check, ClaimSpec, Op, Selection, Test};
+use records::claims::{Check, ClaimSpec, Op, Selection, Test, RUST_CLAIMS};
 use records::index::{completed, failed_at, metric, Runs, EXACT};
 use records::papers::Papers;
 use records::runs::RunRow;
@@ -334,13 +334,6 @@ fn rust_claim(
         .into()),
     }
 }
-
-/// The ids [`rust_claim`] implements.
-pub const RUST_CLAIMS: &[&str] = &[
-    "diverges",
-    "fails-or-much-worse-than-vp-cdnn",
-    "evaluation-ratio",
-];
 
 /// "experiment: drift or failure, peak |θ̇|, |θ̈|, |τ|" of a zhang2018-style run.
 fn peaks(r: &RunRow) -> String {

@@ -95,6 +95,31 @@ impl Table {
     }
 }
 
+/// Text from an input (a paper's title, citation, claim, a published table's names and notes)
+/// as Markdown that shows it literally and carries no HTML: `&`, `<` and `>` become entities,
+/// the characters that open Markdown's emphasis, code, links, headings and strike-through
+/// (`\`, `` ` ``, `*`, `_`, `[`, `]`, `#`, `~`) are backslash-escaped, and a line break or other
+/// control character becomes a space, so the text can neither end the line, heading or list
+/// item it is in nor open a link or a tag. (`|` is left to [`Table`], which escapes it in cells;
+/// outside a table it is text.) The one escaping function of the report.
+pub fn text(input: &str) -> String {
+    let mut out = String::with_capacity(input.len());
+    for c in input.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '\\' | '`' | '*' | '_' | '[' | ']' | '#' | '~' => {
+                out.push('\\');
+                out.push(c);
+            }
+            c if c.is_control() => out.push(' '),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
 /// A cell's text with the characters that would break a pipe table escaped.
 fn escape(cell: &str) -> String {
     cell.replace('|', "\\|").replace('\n', " ")
@@ -112,6 +137,30 @@ pub fn metric_cell(r: &records::runs::RunRow, name: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn input_text_shows_literally_without_html_links_or_line_breaks() {
+        assert_eq!(text("plain text, 1e-4 (m)"), "plain text, 1e-4 (m)");
+        assert_eq!(
+            text("a\n## Summary\r<script>x & y</script>"),
+            "a \\#\\# Summary &lt;script&gt;x &amp; y&lt;/script&gt;"
+        );
+        assert_eq!(
+            text("[click](javascript:alert(1))"),
+            "\\[click\\](javascript:alert(1))"
+        );
+        assert_eq!(
+            text("θ*0, theta_4, `x`, ~~s~~, \\"),
+            "θ\\*0, theta\\_4, \\`x\\`, \\~\\~s\\~\\~, \\\\"
+        );
+        let mut t = Table::new(["a", "b"]);
+        t.push([text("x | y"), text("<img src=x onerror=alert(1)>")]);
+        let md = t.render();
+        assert_eq!(
+            md.lines().nth(2),
+            Some("| x \\| y | &lt;img src=x onerror=alert(1)&gt; |")
+        );
+    }
 
     #[test]
     fn three_significant_digits() {

@@ -6,6 +6,9 @@
 //! names in `report/figures/`. Nothing is re-run and nothing depends on the clock, so
 //! identical inputs give a byte-identical report ([`render`] writes it atomically).
 //!
+//! Every text of `papers/` reaches the report through [`shown`] (escaped by
+//! [`markdown::text`]): an input shows as text, never as Markdown structure or HTML.
+//!
 //! Layout (one concept per module):
 //! - [`header`]: what this is, provenance (git revision, integrators, tolerances), how to regenerate;
 //! - per paper: the [`verdict`] paragraph, the published [`tables`] side by side with ours,
@@ -33,6 +36,7 @@ pub mod markdown;
 pub mod performance;
 pub mod python;
 pub mod score;
+pub mod shown;
 pub mod speedup;
 pub mod sweep;
 pub mod tables;
@@ -135,6 +139,8 @@ pub fn to_markdown(inputs: &Inputs) -> String {
         control,
         python,
     } = inputs;
+    // Every text of papers/ escaped once, before any section shows it.
+    let papers = &shown::papers(papers);
     let mut out = header::header(runs, papers, figures.len());
 
     let evaluated: Vec<(&str, &str, Vec<claims::Claim>)> = papers

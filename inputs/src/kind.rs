@@ -1,0 +1,57 @@
+//! The kinds of input file and the size cap of each: a file larger than its cap is refused
+//! before it is parsed (and never read past the cap). The caps are stated in
+//! `docs/experiments.md` and `docs/papers.md`; each is orders of magnitude above the largest
+//! file of its kind the suite ships, and small enough that reading one cannot exhaust memory.
+
+/// What an input file is, which sets its cap and how errors call it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// `experiments/*.toml` (the largest shipped is 12 kB).
+    Experiment,
+    /// `papers/<paper>/paper.toml` (5 kB).
+    PaperToml,
+    /// `papers/<paper>/values.csv` (7 kB).
+    PaperValues,
+    /// A trajectory to score, as CSV (a sample per row).
+    TrajectoryCsv,
+    /// A trajectory to score, as a MAT-file (compressed or not; its decompressed size has its
+    /// own bound, in `records::trajectory_mat`).
+    TrajectoryMat,
+    /// The regression gate's `--baseline` runs file.
+    Baseline,
+    /// A shard's `shard.toml` (it lists the shard's run keys).
+    ShardManifest,
+}
+
+const MIB: u64 = 1 << 20;
+
+impl Kind {
+    /// The largest file of this kind that is read, in bytes.
+    pub fn cap(self) -> u64 {
+        match self {
+            Kind::Experiment | Kind::PaperToml => MIB,
+            Kind::PaperValues => 4 * MIB,
+            Kind::TrajectoryCsv | Kind::TrajectoryMat | Kind::Baseline => 256 * MIB,
+            Kind::ShardManifest => 64 * MIB,
+        }
+    }
+
+    /// What the file is called in messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            Kind::Experiment => "experiment file",
+            Kind::PaperToml => "paper.toml",
+            Kind::PaperValues => "values.csv",
+            Kind::TrajectoryCsv => "trajectory CSV",
+            Kind::TrajectoryMat => "trajectory MAT-file",
+            Kind::Baseline => "baseline runs file",
+            Kind::ShardManifest => "shard manifest",
+        }
+    }
+}
+
+impl std::fmt::Display for Kind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}

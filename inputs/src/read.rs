@@ -1,0 +1,131 @@
+//! Reading an input file: where it may be, what it may be, and how much of it is read
+//! (crate docs).
+
+use crate::error::InputError;
+use crate::kind::Kind;
+use std::io::Read;
+use std::path::{Path, PathBuf};
+
+/// Where an input file comes from, which says where it may lead: after following symbolic
+/// links it must still be inside that directory.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Origin<'a> {
+    /// Found in this directory (the project's `experiments/`, `papers/`, a shard directory
+    /// given on the command line).
+    Under(&'a Path),
+    /// Named on the command line (a trajectory to score, a baseline): the directory it is
+    /// named in, so a link there cannot lead a run (a CI job on a pull request, say) to a file
+    /// elsewhere, such as `/proc/self/environ`.
+    Named,
+}
+
+/// The bytes of the input file `path` of kind `kind` (crate docs: regular files only, inside
+/// `origin`'s directory, at most [`Kind::cap`] bytes, opened without blocking).
+pub fn read(path: &Path, kind: Kind, origin: Origin) -> Result<Vec<u8>, InputError> {
+    let open_error = |source| InputError::Open {
+        path: path.to_path_buf(),
+        kind,
+        source,
+    };
+    let target = std::fs::canonicalize(path).map_err(open_error)?;
+    let dir = match origin {
+        Origin::Under(dir) => dir,
+        Origin::Named => path
+            .parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .unwrap_or(Path::new(".")),
+    };
+    let dir = std::fs::canonicalize(dir).map_err(open_error)?;
+    if !target.starts_with(&dir) {
+        return Err(InputError::Outside {
+            path: path.to_path_buf(),
+            kind,
+            dir,
+            target,
+        });
+    }
+    let file = open_nonblocking(&target).map_err(open_error)?;
+    let read_error = |source| InputError::Read {
+        path: path.to_path_buf(),
+        kind,
+        source,
+    };
+    let meta = file.metadata().map_err(read_error)?;
+    if !meta.is_file() {
+        return Err(InputError::NotRegular {
+            path: path.to_path_buf(),
+            kind,
+            found: file_type_name(&meta.file_type()),
+        });
+    }
+    let cap = kind.cap();
+    let too_large = || InputError::TooLarge {
+        path: path.to_path_buf(),
+        kind,
+        cap,
+    };
+    if meta.len() > cap {
+        return Err(too_large());
+    }
+    // A regular file may still grow, or report no size (/proc): read one byte past the cap.
+    let mut bytes = Vec::new();
+    file.take(cap + 1)
+        .read_to_end(&mut bytes)
+        .map_err(read_error)?;
+    if bytes.len() as u64 > cap {
+        return Err(too_large());
+    }
+    Ok(bytes)
+}
+
+/// [`read()`], as UTF-8 text.
+pub fn read_text(path: &Path, kind: Kind, origin: Origin) -> Result<String, InputError> {
+    String::from_utf8(read(path, kind, origin)?).map_err(|e| {
+        let valid = &e.as_bytes()[..e.utf8_error().valid_up_to()];
+        InputError::NotUtf8 {
+            path: PathBuf::from(path),
+            kind,
+            line: valid.iter().filter(|&&b| b == b'\n').count() + 1,
+        }
+    })
+}
+
+/// Opens `path` for reading without waiting for a writer (a FIFO) or a carrier (a terminal).
+#[cfg(unix)]
+fn open_nonblocking(path: &Path) -> std::io::Result<std::fs::File> {
+    use std::os::unix::fs::OpenOptionsExt;
+    std::fs::OpenOptions::new()
+        .read(true)
+        .custom_flags(libc::O_NONBLOCK | libc::O_NOCTTY)
+        .open(path)
+}
+
+#[cfg(not(unix))]
+fn open_nonblocking(path: &Path) -> std::io::Result<std::fs::File> {
+    std::fs::File::open(path)
+}
+
+/// What a file that is not a regular file is, for the message.
+fn file_type_name(t: &std::fs::FileType) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_fifo() {
+            return "a FIFO";
+        }
+        if t.is_char_device() {
+            return "a character device";
+        }
+        if t.is_block_device() {
+            return "a block device";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+    }
+    if t.is_dir() {
+        "a directory"
+    } else {
+        "not a regular file"
+    }
+}

@@ -1,0 +1,115 @@
+//! What a paper folder of `papers/` must satisfy before anything runs, and the typed problem
+//! when it does not ([`PaperProblem`]): the paper id is a slug of at most
+//! [`catalog::naming::MAX_EXPERIMENT_ID`] bytes, the folder's name, and not one of the
+//! [`RESERVED_PAPER_IDS`]; texts that reach the report (title, citation, claims) are one line;
+//! each published (experiment, column) has at most one `[[mapping]]`; every values.csv entry is
+//! finite, of a known metric, and of this paper. [`crate::papers::Papers::load`] applies them.
+
+use crate::claims::ClaimError;
+use crate::leaderboard::STANDARD_PAPER;
+use crate::papers::{GROUP, PUBLISHED_METRICS};
+use catalog::naming::MAX_EXPERIMENT_ID;
+
+/// Paper ids the suite files its own runs under (the group-code reference experiments and
+/// the cross experiment): no folder of `papers/` may take them.
+pub const RESERVED_PAPER_IDS: [&str; 2] = [GROUP, STANDARD_PAPER];
+
+/// What is wrong with a paper's `paper.toml` or `values.csv` (the field or line, and the valid
+/// choices); [`crate::papers::PapersError::Invalid`] adds the file.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum PaperProblem {
+    #[error("the folder's name is not UTF-8; a paper id is lower-case ASCII letters, digits, `.` and single `-`")]
+    FolderNotUtf8,
+    #[error("the folder's name \"{id}\" is not a paper id: use lower-case ASCII letters, digits, `.` and single `-`, at most {MAX_EXPERIMENT_ID} bytes (e.g. \"{suggestion}\")")]
+    NotAnId { id: String, suggestion: String },
+    #[error("the folder's name \"{id}\" is reserved (the suite's own: {})", RESERVED_PAPER_IDS.join(", "))]
+    Reserved { id: String },
+    #[error("field `paper`: \"{paper}\" must be the folder's name \"{folder}\"")]
+    NotTheFolder { paper: String, folder: String },
+    #[error("field `{field}`: must be one line of text (no line breaks or control characters)")]
+    NotOneLine { field: &'static str },
+    #[error("mapping[{index}] field `run`: \"{run}\" is not \"<experiment> / <variant> / <solver>\" (ids)")]
+    Run { index: usize, run: String },
+    #[error("mapping[{index}]: published experiment \"{experiment}\" column \"{column}\" is already mapped by mapping[{first}] (one run per published column)")]
+    MappingTwice {
+        index: usize,
+        first: usize,
+        experiment: String,
+        column: String,
+    },
+    #[error("claim[{index}]: {error}")]
+    Claim { index: usize, error: ClaimError },
+    #[error("line {line}: value {value} is not a finite number")]
+    ValueNotFinite { line: usize, value: f64 },
+    #[error("line {line}: unknown metric \"{metric}\" (valid: {})", PUBLISHED_METRICS.join(", "))]
+    UnknownMetric { line: usize, metric: String },
+    #[error("line {line}: a value of paper \"{paper}\" in the folder of \"{folder}\"")]
+    OtherPaper {
+        line: usize,
+        paper: String,
+        folder: String,
+    },
+    #[error("line {line}: field `{field}` must be one line of text (no line breaks or control characters)")]
+    ValueNotOneLine { line: usize, field: &'static str },
+}
+
+/// Checks a paper folder's name as a paper id (module docs).
+pub fn check_paper_id(id: &str) -> Result<(), PaperProblem> {
+    if !schemes::slug::is_slug(id) || id.len() > MAX_EXPERIMENT_ID {
+        return Err(PaperProblem::NotAnId {
+            id: id.to_string(),
+            suggestion: schemes::slug::slug(id)
+                .chars()
+                .take(MAX_EXPERIMENT_ID)
+                .collect(),
+        });
+    }
+    if RESERVED_PAPER_IDS.contains(&id) {
+        return Err(PaperProblem::Reserved { id: id.to_string() });
+    }
+    Ok(())
+}
+
+/// Whether `text` is one line: no line break or other control character (text that reaches the
+/// report's headings, table cells and list items must not end them).
+pub fn is_one_line(text: &str) -> bool {
+    !text.contains(char::is_control)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn paper_ids_are_short_unreserved_slugs() {
+        for good in ["jia2019", "kong2019", "a.b-2"] {
+            assert_eq!(check_paper_id(good), Ok(()), "{good}");
+        }
+        for bad in [
+            "Jia2019",
+            "a b",
+            "a](javascript:alert(1))",
+            "café",
+            "-a",
+            "a--b",
+            "",
+        ] {
+            assert!(
+                matches!(check_paper_id(bad), Err(PaperProblem::NotAnId { .. })),
+                "{bad:?}"
+            );
+        }
+        let long = "p".repeat(MAX_EXPERIMENT_ID + 1);
+        assert!(matches!(
+            check_paper_id(&long),
+            Err(PaperProblem::NotAnId { .. })
+        ));
+        assert!(check_paper_id(&long[1..]).is_ok());
+        for reserved in RESERVED_PAPER_IDS {
+            let e = check_paper_id(reserved).unwrap_err();
+            assert!(e.to_string().contains("reserved"), "{e}");
+        }
+        assert!(is_one_line("Jia & Li, “Drift-free…”, 2019"));
+        assert!(!is_one_line("a\n## Summary") && !is_one_line("a\rb"));
+    }
+}

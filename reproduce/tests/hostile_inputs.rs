@@ -1,0 +1,285 @@
+//! Every reader of outside input, given what a hostile pull request or a careless user puts in
+//! its place: a symbolic link to a secret outside the project (and to `/proc/self/environ`),
+//! `/dev/zero`, a FIFO and a file over its cap, as an experiment file, a `paper.toml` or
+//! `values.csv`, a trajectory to score (CSV and MAT-file), a `--baseline` and a shard's
+//! `shard.toml`. Each is refused with exit code 2, the path and the rule, before anything
+//! runs; no process hangs (each is killed after [`TIMEOUT`] and the test fails), and no error
+//! shows the secret.
+
+#![cfg(unix)]
+
+mod common;
+
+use common::reproduce;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::time::{Duration, Instant};
+
+const CANARY: &str = "CANARY_SECRET_5d1c9a";
+const TIMEOUT: Duration = Duration::from_secs(120);
+const TASK: &str = "kong2019-cheap / znn";
+
+/// A scratch project (`experiments/` with [`common::CHEAP_EXPERIMENT`], its variant given the
+/// id `znn`; `papers/` copied from the workspace; `report/`) beside `outside/secret`, which
+/// stands for a secret elsewhere on the disk.
+struct Project {
+    base: PathBuf,
+}
+
+impl Project {
+    fn new(name: &str) -> Self {
+        let base = std::env::temp_dir().join(format!(
+            "driftbench-hostile-inputs-{name}-{}",
+            std::process::id()
+        ));
+        let _ = std::fs::remove_dir_all(&base);
+        let p = Project { base };
+        std::fs::create_dir_all(p.root().join("experiments")).unwrap();
+        std::fs::create_dir_all(p.root().join("report")).unwrap();
+        std::fs::create_dir_all(p.base.join("outside")).unwrap();
+        std::fs::write(p.secret(), format!("TOKEN={CANARY}\nmore = \"{CANARY}\"\n")).unwrap();
+        let experiment = common::CHEAP_EXPERIMENT.replace(
+            "label = \"ZNN (eq. 22)\"",
+            "label = \"ZNN (eq. 22)\"\nid = \"znn\"",
+        );
+        std::fs::write(p.experiments().join("kong2019.toml"), experiment).unwrap();
+        common::copy_tree(
+            &common::repo_root().join("papers"),
+            &p.root().join("papers"),
+        );
+        p
+    }
+    fn root(&self) -> PathBuf {
+        self.base.join("project")
+    }
+    fn experiments(&self) -> PathBuf {
+        self.root().join("experiments")
+    }
+    fn results(&self) -> PathBuf {
+        self.root().join("results")
+    }
+    fn secret(&self) -> PathBuf {
+        self.base.join("outside/secret")
+    }
+    /// `reproduce` on this project.
+    fn cmd(&self) -> Command {
+        let mut c = reproduce();
+        c.arg("--root")
+            .arg(self.root())
+            .arg("--results-dir")
+            .arg(self.results())
+            .env("DRIFTBENCH_TEST_CANARY", CANARY);
+        c
+    }
+}
+
+impl Drop for Project {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.base);
+    }
+}
+
+/// What each hostile file is, made at a path.
+#[derive(Clone, Copy, Debug)]
+enum Hostile {
+    /// A link to the secret outside the project.
+    LinkOutside,
+    /// A link to `/proc/self/environ` (the process's environment holds the canary).
+    Environ,
+    /// A link to `/dev/zero`.
+    DevZero,
+    Fifo,
+    /// A sparse file one byte over the cap.
+    Oversize(u64),
+}
+
+impl Hostile {
+    fn make(self, p: &Project, at: &Path) {
+        let _ = std::fs::remove_file(at);
+        std::fs::create_dir_all(at.parent().unwrap()).unwrap();
+        match self {
+            Hostile::LinkOutside => std::os::unix::fs::symlink(p.secret(), at).unwrap(),
+            Hostile::Environ => std::os::unix::fs::symlink("/proc/self/environ", at).unwrap(),
+            Hostile::DevZero => std::os::unix::fs::symlink("/dev/zero", at).unwrap(),
+            Hostile::Fifo => {
+                let c = std::ffi::CString::new(at.as_os_str().as_encoded_bytes()).unwrap();
+                assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0);
+            }
+            Hostile::Oversize(cap) => std::fs::File::create(at).unwrap().set_len(cap + 1).unwrap(),
+        }
+    }
+    /// What the refusal says.
+    fn needle(self) -> &'static str {
+        match self {
+            Hostile::LinkOutside | Hostile::Environ | Hostile::DevZero => "leads outside",
+            Hostile::Fifo => "is a FIFO, not a regular file",
+            Hostile::Oversize(_) => "larger than its cap",
+        }
+    }
+}
+
+/// Every hostile file, with `cap` the cap of the kind it stands for.
+fn all(cap: inputs::Kind) -> [Hostile; 5] {
+    [
+        Hostile::LinkOutside,
+        Hostile::Environ,
+        Hostile::DevZero,
+        Hostile::Fifo,
+        Hostile::Oversize(cap.cap()),
+    ]
+}
+
+/// Runs `cmd` to its end, killing it (and failing) after [`TIMEOUT`].
+fn bounded(mut cmd: Command) -> Output {
+    let mut child = cmd
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let started = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if started.elapsed() > TIMEOUT {
+            child.kill().unwrap();
+            let _ = child.wait();
+            panic!("the process did not end within {TIMEOUT:?}: it blocks on its input");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    child.wait_with_output().unwrap()
+}
+
+/// Exit 2 naming `path` and the rule of `hostile`, without the canary.
+fn refused(out: Output, hostile: Hostile, path: &Path) {
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{hostile:?}: {err}");
+    assert!(err.contains(hostile.needle()), "{hostile:?}: {err}");
+    let name = path.file_name().unwrap().to_string_lossy();
+    assert!(err.contains(name.as_ref()), "{hostile:?}: {err}");
+    assert!(!err.contains(CANARY), "{hostile:?} shows the secret: {err}");
+    assert!(!String::from_utf8_lossy(&out.stdout).contains(CANARY));
+}
+
+#[test]
+fn experiment_files_are_read_as_inputs() {
+    let p = Project::new("experiments");
+    let at = p.experiments().join("evil.toml");
+    for h in all(inputs::Kind::Experiment) {
+        h.make(&p, &at);
+        let mut list = p.cmd();
+        list.arg("--list");
+        refused(bounded(list), h, &at);
+    }
+}
+
+#[test]
+fn papers_are_read_as_inputs_before_anything_runs() {
+    let p = Project::new("papers");
+    let folder = p.root().join("papers/kong2019");
+    for (file, kind) in [
+        ("paper.toml", inputs::Kind::PaperToml),
+        ("values.csv", inputs::Kind::PaperValues),
+    ] {
+        let at = folder.join(file);
+        let original = std::fs::read(&at).unwrap();
+        for h in all(kind) {
+            h.make(&p, &at);
+            let mut run = p.cmd();
+            run.arg("--skip-explain");
+            refused(bounded(run), h, &at);
+            assert!(!p.results().join("runs.csv").exists(), "{h:?}: it ran");
+        }
+        std::fs::remove_file(&at).unwrap();
+        std::fs::write(&at, original).unwrap();
+    }
+}
+
+#[test]
+fn a_malformed_paper_is_refused_before_anything_runs() {
+    let p = Project::new("malformed");
+    let at = p.root().join("papers/kong2019/paper.toml");
+    let original = std::fs::read_to_string(&at).unwrap();
+    for (edit, needle) in [
+        (
+            original.replacen("metric = \"", "metric = \"x", 1),
+            "unknown metric \"x",
+        ),
+        (
+            original.replacen("title = \"", "title = \"a\\n## Summary\\n<script>", 1),
+            "field `title`: must be one line",
+        ),
+        (
+            format!("{original}\n[[mapping]]\npublished_experiment = \"e\"\npublished_column = \"c\"\nrun = \"a / b / c\"\n[[mapping]]\npublished_experiment = \"e\"\npublished_column = \"c\"\nrun = \"a / b / d\"\n"),
+            "is already mapped by mapping[",
+        ),
+    ] {
+        std::fs::write(&at, edit).unwrap();
+        let mut run = p.cmd();
+        run.arg("--skip-explain");
+        let out = bounded(run);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(err.contains(needle) && err.contains("paper.toml"), "{needle}: {err}");
+        assert!(!p.results().join("runs.csv").exists(), "{needle}: it ran");
+    }
+}
+
+#[test]
+fn a_trajectory_to_score_is_read_as_an_input() {
+    let p = Project::new("score");
+    for (name, kind) in [
+        ("t.csv", inputs::Kind::TrajectoryCsv),
+        ("t.mat", inputs::Kind::TrajectoryMat),
+    ] {
+        let at = p.root().join("contrib").join(name);
+        for h in all(kind) {
+            h.make(&p, &at);
+            let mut score = p.cmd();
+            score
+                .args(["--task", TASK, "--score"])
+                .arg(&at)
+                .arg("--score-out")
+                .arg(p.root().join("scores"));
+            refused(bounded(score), h, &at);
+        }
+    }
+    // /dev/zero named as it is: a character device, refused at once.
+    let mut score = p.cmd();
+    score
+        .args(["--task", TASK, "--score", "/dev/zero"])
+        .arg("--score-out")
+        .arg(p.root().join("scores"));
+    let out = bounded(score);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("is a character device, not a regular file"),
+        "{err}"
+    );
+    assert!(!p.root().join("scores").exists());
+}
+
+#[test]
+fn a_baseline_is_read_as_an_input_before_anything_runs() {
+    let p = Project::new("baseline");
+    let at = p.root().join("contrib/baseline.csv");
+    for h in all(inputs::Kind::Baseline) {
+        h.make(&p, &at);
+        let mut check = p.cmd();
+        check.args(["--check", "--baseline"]).arg(&at);
+        refused(bounded(check), h, &at);
+    }
+}
+
+#[test]
+fn a_shard_manifest_is_read_as_an_input() {
+    let p = Project::new("shard");
+    let shard = p.root().join("results-shard-1-of-2");
+    let at = shard.join(records::shard::MANIFEST);
+    for h in all(inputs::Kind::ShardManifest) {
+        h.make(&p, &at);
+        let mut merge = p.cmd();
+        merge.arg("--merge").arg(&shard);
+        refused(bounded(merge), h, &at);
+        assert!(!p.results().join("runs.csv").exists());
+    }
+}
