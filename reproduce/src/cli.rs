@@ -18,7 +18,11 @@ use std::path::PathBuf;
 /// results/runs.csv (one row per run) and results/traces/, and prints a summary table. Each
 /// other mode is a subcommand or, equally, its flag (listed below the options).
 #[derive(Parser, Debug)]
-#[command(version, about, long_about)]
+#[command(
+    version = concat!(env!("CARGO_PKG_VERSION"), " (revision ", env!("DRIFTBENCH_REVISION"), ")"),
+    about,
+    long_about
+)]
 pub struct Cli {
     /// Run only this paper's experiments: the `paper` id of an experiment file (jia2019,
     /// zhang2018, zhong2021, kong2019, robio2018, group, or a paper added as data; `cross` is
