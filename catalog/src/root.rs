@@ -36,40 +36,6 @@ pub fn from_current_dir() -> Result<PathBuf, RootNotFound> {
     find(&cwd)
 }
 
-/// The git revision of the checkout at `root`, with `-dirty` when the code differs from it (any
-/// tracked file outside `results/` and `report/`, which a run itself rewrites), or "unknown"
-/// outside a checkout.
-pub fn git_revision(root: &Path) -> String {
-    let git = |args: &[&str]| {
-        std::process::Command::new("git")
-            .args(args)
-            .current_dir(root)
-            .output()
-            .ok()
-    };
-    let Some(rev) = git(&["rev-parse", "--short=12", "HEAD"])
-        .filter(|o| o.status.success())
-        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
-    else {
-        return "unknown".to_string();
-    };
-    let dirty = git(&[
-        "diff",
-        "--quiet",
-        "HEAD",
-        "--",
-        ".",
-        ":(exclude)results",
-        ":(exclude)report",
-    ])
-    .is_some_and(|o| o.status.code() == Some(1));
-    if dirty {
-        format!("{rev}-dirty")
-    } else {
-        rev
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

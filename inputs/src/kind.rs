@@ -21,6 +21,8 @@ pub enum Kind {
     Baseline,
     /// A shard's `shard.toml` (it lists the shard's run keys).
     ShardManifest,
+    /// A shard's `shard-binding.toml` (its shard, selection and experiments hash).
+    ShardBinding,
 }
 
 const MIB: u64 = 1 << 20;
@@ -29,7 +31,7 @@ impl Kind {
     /// The largest file of this kind that is read, in bytes.
     pub fn cap(self) -> u64 {
         match self {
-            Kind::Experiment | Kind::PaperToml => MIB,
+            Kind::Experiment | Kind::PaperToml | Kind::ShardBinding => MIB,
             Kind::PaperValues => 4 * MIB,
             Kind::TrajectoryCsv | Kind::TrajectoryMat | Kind::Baseline => 256 * MIB,
             Kind::ShardManifest => 64 * MIB,
@@ -46,6 +48,7 @@ impl Kind {
             Kind::TrajectoryMat => "trajectory MAT-file",
             Kind::Baseline => "baseline runs file",
             Kind::ShardManifest => "shard manifest",
+            Kind::ShardBinding => "shard binding",
         }
     }
 }

@@ -188,7 +188,6 @@ fn result_dict<'py>(
 fn run_python(
     job: &catalog::experiment::Job,
     network: &Bound<'_, PyAny>,
-    root: &Path,
 ) -> PyResult<(RunRecord, RunRow, Callbacks)> {
     let name = network_name(network)?;
     let callbacks = SharedCallbacks::default();
@@ -203,7 +202,7 @@ fn run_python(
         return Err(e);
     }
     check_setup(&record)?;
-    let mut row = run_row(&record, &catalog::root::git_revision(root));
+    let mut row = run_row(&record, reproduce::revision::REVISION);
     row.solver_id = format!("{PYTHON_KIND}-{}", schemes::slug::slug(&name));
     row.solver = name;
     row.solver_kind = PYTHON_KIND.to_string();
@@ -276,10 +275,10 @@ fn simulate<'py>(
     let (record, row, calls) = if builtin.is_some() {
         let record = run_job(&job);
         check_setup(&record)?;
-        let row = run_row(&record, &catalog::root::git_revision(&task.root));
+        let row = run_row(&record, reproduce::revision::REVISION);
         (record, row, Callbacks::default())
     } else {
-        run_python(&job, network, &task.root)?
+        run_python(&job, network)?
     };
     result_dict(py, &record, &row, &calls)
 }
@@ -345,7 +344,7 @@ fn leaderboard<'py>(
             )));
         }
         for t in &chosen {
-            let (_, mut row, _) = run_python(&t.job, network, &root)?;
+            let (_, mut row, _) = run_python(&t.job, network)?;
             row.solver = name.clone();
             row.solver_id = id.clone();
             fresh.push(row);
@@ -387,11 +386,11 @@ fn score<'py>(
     trajectory: &Bound<'py, PyAny>,
     out_dir: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let git_rev = catalog::root::git_revision(&task.root);
+    let git_rev = reproduce::revision::REVISION;
     let (record, row) = if let Ok(file) = trajectory.extract::<PathBuf>() {
         match out_dir {
             Some(out) => {
-                let s = reproduce::score::score_file(&task.job, &file, &out, &git_rev)
+                let s = reproduce::score::score_file(&task.job, &file, &out, git_rev)
                     .map_err(lib_err)?;
                 (s.record, s.row)
             }
@@ -401,7 +400,7 @@ fn score<'py>(
                     &read(&file, task.job.theta0.len()).map_err(lib_err)?,
                 )
                 .map_err(|e| lib_err(format!("{}: {e}", file.display())))?;
-                let row = score_row(run_row(&record, &git_rev), &file.display().to_string());
+                let row = score_row(run_row(&record, git_rev), &file.display().to_string());
                 (record, row)
             }
         }
@@ -431,7 +430,7 @@ fn score<'py>(
             thetadot,
         };
         let record = score_trajectory(&task.job, &traj).map_err(lib_err)?;
-        let row = score_row(run_row(&record, &git_rev), "arrays");
+        let row = score_row(run_row(&record, git_rev), "arrays");
         (record, row)
     };
     result_dict(py, &record, &row, &Callbacks::default())

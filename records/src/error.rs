@@ -124,6 +124,10 @@ pub enum JournalError {
     Table(#[from] TableError),
     #[error("{}: {error}; this is not a journal this program wrote: remove it (its runs are run again)", path.display())]
     Rows { path: PathBuf, error: RowsError },
+    #[error(transparent)]
+    Tracked(#[from] TrackedError),
+    #[error("{}: line {line}: not `<sha256>  <trace path>`, so not a seal this program wrote: remove it and the journal beside it (their runs are run again)", path.display())]
+    Seal { path: PathBuf, line: usize },
 }
 
 /// Why a trajectory CSV cannot be read (module docs of [`crate::trajectory`]).
@@ -172,10 +176,12 @@ pub enum ShardError {
     NotWhole(String),
     #[error("environment variable {name}={value} is not a whole number")]
     Environment { name: String, value: String },
-    #[error("the number of shards is not known: give --shards N or set DRIFTBENCH_SHARDS")]
-    UnknownCount,
-    #[error("SLURM_ARRAY_TASK_ID={id} is below SLURM_ARRAY_TASK_MIN={min}")]
-    BelowMin { id: usize, min: usize },
+    #[error("JOB_COMPLETION_INDEX={index} (a Kubernetes Indexed Job) gives K but not the number of shards N: give --shards N or set DRIFTBENCH_SHARDS=N (the Job's completions)")]
+    IndexWithoutCount { index: usize },
+    #[error("the Slurm array ({said}) does not tell the number of shards N: only an array of exactly 1-N with N >= 2 does, not one task (a resubmitted one), a part of an array, or a stepped, sparse or 0-based array; give --shards N or set DRIFTBENCH_SHARDS=N")]
+    ArrayWithoutCount { said: String },
+    #[error("SLURM_ARRAY_TASK_ID={id}: task ids are shard numbers 1..={n} (submit --array=1-{n}; resubmit one task as --array=K)")]
+    TaskId { id: usize, n: usize },
     #[error("--shard without K/N reads the scheduler's environment, but neither SLURM_ARRAY_TASK_ID nor JOB_COMPLETION_INDEX is set; give --shard K/N")]
     NoScheduler,
     #[error(transparent)]
@@ -194,6 +200,32 @@ pub enum ShardError {
     /// directory, a FIFO, over its cap).
     #[error(transparent)]
     Input(#[from] inputs::InputError),
+    #[error("{}: `shard = {shard}`, `shards = {shards}`: {source}", path.display())]
+    ManifestShard {
+        path: PathBuf,
+        shard: usize,
+        shards: usize,
+        source: Box<ShardError>,
+    },
+    #[error("{}: `runs`, entry {index} \"{entry}\": {problem}", path.display())]
+    ManifestRun {
+        path: PathBuf,
+        index: usize,
+        entry: String,
+        problem: RunEntryProblem,
+    },
+    #[error("{}: {source}", path.display())]
+    ReadBinding {
+        path: PathBuf,
+        source: inputs::TomlError,
+    },
+    #[error("{}: bound to another shard, so nothing was run: {}; one directory serves one shard of one selection: give this shard its own --results-dir, or remove {} if its runs are not wanted", dir.display(), differences.join("; "), dir.display())]
+    BoundElsewhere {
+        dir: PathBuf,
+        differences: Vec<String>,
+    },
+    #[error("{}: holds {file} but no {}, so which selection it ran cannot be told (a directory of an older version, or not a shard's); nothing was run: give this shard its own --results-dir, or remove the directory", dir.display(), crate::shard::BINDING)]
+    Unbound { dir: PathBuf, file: &'static str },
     #[error("{}: no {}: the shard has not finished (run it again; it resumes where it stopped)", dir.display(), crate::shard::MANIFEST)]
     Unfinished { dir: PathBuf },
     #[error("{}: no such directory (give the directories that `reproduce --shard K/N` wrote)", dir.display())]
@@ -213,11 +245,26 @@ pub enum ShardError {
     Path(#[from] PathError),
     #[error(transparent)]
     Tracked(#[from] TrackedError),
+    #[error(transparent)]
+    Results(#[from] crate::results_dir::ResultsError),
     #[error("--merge needs at least one shard directory")]
     NoShardDirectories,
     /// The shards do not fit together; every problem, one a line.
     #[error("cannot merge; nothing was written:\n{}", problems.join("\n"))]
     CannotMerge { problems: Vec<String> },
+}
+
+/// What is wrong with an entry of a shard manifest's `runs`.
+#[derive(Debug, thiserror::Error)]
+pub enum RunEntryProblem {
+    #[error("not a run key `<experiment> / <variant> / <solver>`")]
+    NotAKey,
+    #[error("cannot name a file: {0}")]
+    Name(NameError),
+    #[error("belongs to shard {owner}/{n}, not to this shard")]
+    OtherShard { owner: usize, n: usize },
+    #[error("listed twice")]
+    Twice,
 }
 
 /// Why `results/dof-cost.csv` could not be written or read.

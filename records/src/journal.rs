@@ -7,12 +7,21 @@
 //! everything into `runs.csv` and removes the journal. A line cut short by a kill (the last
 //! one) is dropped; any other bad line, a name that cannot name a file, or a run listed twice
 //! is an error naming the file and the line (a journal this program wrote has each run once).
-
+//!
+//! **The seal.** The integrity manifest (crate::integrity) is saved only at the end of a step,
+//! so a killed run never records the traces it checkpointed. The journal seals them itself:
+//! `results/journal-traces.sha256` gets the line `<sha256>  <trace path>` (the format of
+//! `sha256sum`) once the trace is written and before its row is appended. Folding a row
+//! records its trace in the manifest only if the trace still hashes to its seal; a row whose
+//! trace is missing, changed since, or was never sealed (a journal of an older version) is not
+//! folded, is said, and is run again. So a resumed directory's manifest covers every row and
+//! trace it holds, and a resumed shard merges.
 use crate::error::{IoAction, IoError, JournalError};
 use crate::results_dir::ResultsDir;
 use crate::runs::{check_rows, RunRow};
 use crate::table;
 use crate::trace::TracePoint;
+use std::collections::HashMap;
 use std::fs::{File, OpenOptions};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -21,9 +30,17 @@ use std::sync::Mutex;
 /// The journal's file name in a results directory.
 pub const FILE: &str = "journal.csv";
 
+/// The seal of the journal's traces (see the module doc).
+pub const SEAL: &str = "journal-traces.sha256";
+
 /// The journal of the results directory `dir`.
 pub fn path(dir: &Path) -> PathBuf {
     dir.join(FILE)
+}
+
+/// The seal of the journal of `dir`.
+pub fn seal_path(dir: &Path) -> PathBuf {
+    dir.join(SEAL)
 }
 
 /// An open journal, shared by the worker threads.
@@ -31,7 +48,17 @@ pub struct Journal<'a> {
     results: &'a ResultsDir,
     /// Per-joint columns of its header (the most joints among the runs it will hold).
     joints: usize,
-    file: Mutex<File>,
+    /// The journal and its seal, appended together.
+    files: Mutex<(File, File)>,
+}
+
+/// Opens `path` for appending, creating it.
+fn append(path: &Path) -> Result<File, IoError> {
+    OpenOptions::new()
+        .create(true)
+        .append(true)
+        .open(path)
+        .map_err(IoError::at(path, IoAction::Open))
 }
 
 impl<'a> Journal<'a> {
@@ -40,11 +67,8 @@ impl<'a> Journal<'a> {
     /// arms of more joints than it was started with starts a new journal.
     pub fn open(results: &'a ResultsDir, joints: usize) -> Result<Self, JournalError> {
         let path = results.tracked().resolve(Path::new(FILE))?;
-        let mut file = OpenOptions::new()
-            .create(true)
-            .append(true)
-            .open(&path)
-            .map_err(IoError::at(&path, IoAction::Open))?;
+        let seal = append(&results.tracked().resolve(Path::new(SEAL))?)?;
+        let mut file = append(&path)?;
         let empty = file.metadata().map(|m| m.len() == 0).unwrap_or(true);
         let header = table::header::<RunRow>(joints);
         if empty {
@@ -59,13 +83,19 @@ impl<'a> Journal<'a> {
         Ok(Self {
             results,
             joints,
-            file: Mutex::new(file),
+            files: Mutex::new((file, seal)),
         })
     }
 
-    /// Checkpoints one finished run: its trace, then its row (one write, flushed).
+    /// Checkpoints one finished run: its trace, then its seal, then its row (one write each,
+    /// flushed).
     pub fn record(&self, row: &RunRow, trace: &[TracePoint]) -> Result<(), JournalError> {
-        self.results.write_trace(&row.key(), trace)?;
+        let sealed = self.results.write_trace(&row.key(), trace)?;
+        let seal_line = format!(
+            "{}  {}\n",
+            sealed.sha256,
+            trace_name(&ResultsDir::trace_rel(&row.key())?)
+        );
         let journal = path(self.results.path());
         let csv_error = |source| JournalError::Csv {
             path: journal.clone(),
@@ -79,7 +109,11 @@ impl<'a> Journal<'a> {
         let line = w
             .into_inner()
             .map_err(|e| csv_error(csv::Error::from(e.into_error())))?;
-        let mut file = self.file.lock().map_err(|_| JournalError::Poisoned)?;
+        let mut files = self.files.lock().map_err(|_| JournalError::Poisoned)?;
+        let (file, seal) = &mut *files;
+        seal.write_all(seal_line.as_bytes())
+            .and_then(|()| seal.flush())
+            .map_err(IoError::at(seal_path(self.results.path()), IoAction::Write))?;
         file.write_all(&line)
             .and_then(|()| file.flush())
             .map_err(IoError::at(journal, IoAction::Write))?;
@@ -87,50 +121,186 @@ impl<'a> Journal<'a> {
     }
 }
 
+/// A trace's path as the seal names it: relative, with `/`.
+fn trace_name(rel: &Path) -> String {
+    rel.to_string_lossy().replace('\\', "/")
+}
+
 /// What an interrupted run's journal holds.
 #[derive(Debug, Default)]
 pub struct Recovered {
-    /// Rows of the current code revision: folded into `runs.csv`, not run again.
+    /// Rows of the current code revision whose traces match their seal (now recorded in the
+    /// results directory's manifest): folded into `runs.csv`, not run again.
     pub current: Vec<RunRow>,
     /// Rows of another revision: not folded (run again).
     pub other_revision: Vec<RunRow>,
+    /// Rows of the current revision whose trace is missing, changed since it was sealed, or
+    /// was never sealed: not folded (run again).
+    pub unsealed: Vec<RunRow>,
 }
 
-/// The rows of an interrupted run's journal in `dir` (none without one), split by code
-/// revision (`git_rev`: the current one). A last line cut short by a kill is dropped.
-pub fn recover(dir: &Path, git_rev: &str) -> Result<Recovered, JournalError> {
-    let journal = path(dir);
+/// The rows of an interrupted run's journal in `results` (none without one), split by code
+/// revision (`git_rev`: the current one) and by whether their traces match the seal; the
+/// traces of [`Recovered::current`] are recorded in the manifest of `results` (saved by the
+/// caller). A last line cut short by a kill is dropped, in the journal and in the seal.
+pub fn recover(results: &ResultsDir, git_rev: &str) -> Result<Recovered, JournalError> {
+    let journal = path(results.path());
     if !journal.exists() {
         return Ok(Recovered::default());
     }
     let text = std::fs::read_to_string(&journal).map_err(IoError::at(&journal, IoAction::Read))?;
-    // Keep only complete lines: a kill can cut the last one short.
-    let complete = match text.rfind('\n') {
-        Some(end) => &text[..=end],
-        None => "",
-    };
-    let rows: Vec<RunRow> =
-        table::from_reader(complete.as_bytes()).map_err(|e| table::TableError {
+    let rows: Vec<RunRow> = table::from_reader(complete_lines(&text).as_bytes()).map_err(|e| {
+        table::TableError {
             path: Some(journal.clone()),
             ..e
-        })?;
+        }
+    })?;
     check_rows(&rows).map_err(|error| JournalError::Rows {
         path: journal,
         error,
     })?;
-    let (current, other_revision) = rows.into_iter().partition(|r| r.git_rev == git_rev);
-    Ok(Recovered {
-        current,
-        other_revision,
-    })
+    let seals = read_seal(results.path())?;
+    let mut out = Recovered::default();
+    for row in rows {
+        if row.git_rev != git_rev {
+            out.other_revision.push(row);
+            continue;
+        }
+        let rel = ResultsDir::trace_rel(&row.key())?;
+        let sealed = match seals.get(&trace_name(&rel)) {
+            Some(sha256) => results.tracked().adopt_sealed(&rel, sha256)?,
+            None => false,
+        };
+        if sealed {
+            out.current.push(row);
+        } else {
+            out.unsealed.push(row);
+        }
+    }
+    Ok(out)
 }
 
-/// Removes the journal of `dir` (after its rows are in runs.csv).
+/// `text` up to its last newline: a kill can cut the last line short.
+fn complete_lines(text: &str) -> &str {
+    match text.rfind('\n') {
+        Some(end) => &text[..=end],
+        None => "",
+    }
+}
+
+/// The seal of `dir`'s journal: trace path -> SHA-256 (none without a seal; a later line for
+/// the same trace wins, as the later write did).
+fn read_seal(dir: &Path) -> Result<HashMap<String, String>, JournalError> {
+    let path = seal_path(dir);
+    let text = match std::fs::read_to_string(&path) {
+        Ok(text) => text,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(HashMap::new()),
+        Err(e) => return Err(IoError::at(&path, IoAction::Read)(e).into()),
+    };
+    let mut seals = HashMap::new();
+    for (i, line) in complete_lines(&text).lines().enumerate() {
+        let parsed = line.split_once("  ").filter(|(sha, name)| {
+            sha.len() == 64
+                && sha.bytes().all(|b| b.is_ascii_digit() || (b'a'..=b'f').contains(&b))
+                && !name.is_empty()
+        });
+        let Some((sha, name)) = parsed else {
+            return Err(JournalError::Seal {
+                path,
+                line: i + 1,
+            });
+        };
+        seals.insert(name.to_string(), sha.to_string());
+    }
+    Ok(seals)
+}
+
+/// Removes the journal of `dir` and its seal (after its rows are in runs.csv).
 pub fn remove(dir: &Path) -> Result<(), IoError> {
-    let journal = path(dir);
-    match std::fs::remove_file(&journal) {
-        Ok(()) => Ok(()),
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
-        Err(e) => Err(IoError::at(journal, IoAction::Remove)(e)),
+    for file in [path(dir), seal_path(dir)] {
+        match std::fs::remove_file(&file) {
+            Ok(()) => {}
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+            Err(e) => return Err(IoError::at(file, IoAction::Remove)(e)),
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::integrity::Fingerprint;
+    use crate::tracked_dir::Edits;
+
+    fn point(t: f64) -> TracePoint {
+        TracePoint {
+            t,
+            theta: vec![0.1, 0.2],
+            thetadot: vec![0.0, t],
+            thetaddot: None,
+            torque: None,
+            desired: [0.0, 0.0, t],
+            actual: [0.0, 0.0, t],
+            score_dx: None,
+            network_error: None,
+        }
+    }
+
+    /// A run killed after checkpointing four runs saved no manifest; the seal names each trace
+    /// with its hash (as `sha256sum` writes), and only the rows whose trace still matches
+    /// their seal are folded, their traces then recorded in the manifest.
+    #[test]
+    fn only_runs_whose_trace_matches_its_seal_are_folded() {
+        let dir = std::env::temp_dir().join(format!("driftbench-seal-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let rows: Vec<RunRow> = ["a", "b", "c", "d", "e"]
+            .iter()
+            .map(|v| RunRow {
+                git_rev: if *v == "e" { "r0" } else { "r1" }.into(),
+                ..RunRow::blank("exp", v, "exact", "exact")
+            })
+            .collect();
+        {
+            let (results, _) = ResultsDir::open(&dir, "r1", Edits::Refuse).unwrap();
+            let journal = Journal::open(&results, 2).unwrap();
+            for r in &rows {
+                journal.record(r, &[point(0.0), point(1.0)]).unwrap();
+            }
+        } // killed: nothing saved
+        assert!(!dir.join(crate::integrity::FILE).exists());
+        let seal = std::fs::read_to_string(seal_path(&dir)).unwrap();
+        let trace = |v: &str| format!("traces/exp/{v}__exact.csv");
+        for (line, r) in seal.lines().zip(&rows) {
+            let bytes = std::fs::read(dir.join(trace(&r.variant))).unwrap();
+            let want = format!("{}  {}", Fingerprint::of(&bytes).sha256, trace(&r.variant));
+            assert_eq!(line, want);
+        }
+        // b's trace edited, c's removed, d's seal line the last one, cut short by the kill.
+        std::fs::write(dir.join(trace("b")), "t\n").unwrap();
+        std::fs::remove_file(dir.join(trace("c"))).unwrap();
+        let lines: Vec<&str> = seal.lines().collect();
+        let e_line = lines[4];
+        let reordered = format!("{}\n{}\n{}\n{e_line}\n{}", lines[0], lines[1], lines[2], &lines[3][..20]);
+        std::fs::write(seal_path(&dir), reordered).unwrap();
+
+        let (results, _) = ResultsDir::open(&dir, "r1", Edits::Refuse).unwrap();
+        let got = recover(&results, "r1").unwrap();
+        let variants = |rows: &[RunRow]| rows.iter().map(|r| r.variant.clone()).collect::<Vec<_>>();
+        assert_eq!(variants(&got.current), ["a"]);
+        assert_eq!(variants(&got.unsealed), ["b", "c", "d"]);
+        assert_eq!(variants(&got.other_revision), ["e"]);
+        results.save().unwrap();
+        let listed = results.tracked().listed("traces/");
+        assert_eq!(listed, [trace("a")]);
+
+        // A whole line that is not `<sha256>  <path>` is not a seal this program wrote.
+        std::fs::write(seal_path(&dir), format!("{e_line}\nnot a seal\n")).unwrap();
+        let e = recover(&results, "r1").unwrap_err();
+        assert!(matches!(e, JournalError::Seal { line: 2, .. }), "{e}");
+        assert!(e.to_string().contains(SEAL), "{e}");
+        remove(&dir).unwrap();
+        assert!(!path(&dir).exists() && !seal_path(&dir).exists());
+        let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -23,7 +23,8 @@
 //!   deletions only of files the program provably wrote.
 //! - [`results_dir`]: `results/` as one type: lock, layout, traces, pruning.
 //! - [`journal`]: the checkpoint of finished runs that an interrupted run resumes from.
-//! - [`shard`]: cluster runs: which shard a run belongs to, the shard manifest, the merge checks.
+//! - [`shard`]: cluster runs: which shard a run belongs to, the shard directory's binding and
+//!   manifest, the merge checks; [`fnv`]: the stable hash they use.
 //! - [`gate`]: the regression gate (fresh rows against committed ones).
 //! - [`claims`]: a paper's claims as data (a metric of a selection of runs against a threshold
 //!   or another selection).
@@ -52,6 +53,7 @@ pub mod control_claim;
 pub mod dof_cost;
 pub mod error;
 pub mod failure_kind;
+pub mod fnv;
 pub mod gate;
 pub mod index;
 pub mod inference;

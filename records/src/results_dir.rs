@@ -9,6 +9,7 @@
 //!   manifest.toml             what the program wrote (crate::integrity), saved last
 //!   runs.csv                  one row per run (crate::runs)
 //!   journal.csv               the checkpoint of an interrupted run (crate::journal)
+//!   journal-traces.sha256     the seal of the journal's traces (crate::journal)
 //!   traces/<experiment>/<variant>__<solver>.csv
 //!                             one run's trace (crate::trace)
 //!   *.csv                     the explanation layer's and other tables
@@ -21,6 +22,7 @@
 //! file is deleted only if the manifest proves the program wrote it
 //! ([`TrackedDir::remove`]).
 
+use crate::integrity::Fingerprint;
 use crate::owned_dir::{OwnedDir, PathError};
 use crate::runs::{read_runs, runs_csv, RunRow};
 use crate::trace::{trace_csv, TracePoint};
@@ -289,15 +291,18 @@ impl ResultsDir {
             .join(format!("{}.csv", key.stem())))
     }
 
-    /// Writes the trace of the run `key` ([`crate::trace`]).
-    pub fn write_trace(&self, key: &RunKey, trace: &[TracePoint]) -> Result<(), ResultsError> {
+    /// Writes the trace of the run `key` ([`crate::trace`]); returns its fingerprint.
+    pub fn write_trace(
+        &self,
+        key: &RunKey,
+        trace: &[TracePoint],
+    ) -> Result<Fingerprint, ResultsError> {
         let rel = Self::trace_rel(key)?;
         let bytes = trace_csv(trace).map_err(|source| ResultsError::Write {
             path: self.path().join(&rel),
             source,
         })?;
-        self.tracked.write(&rel, &bytes)?;
-        Ok(())
+        Ok(self.tracked.write_fingerprinted(&rel, &bytes)?)
     }
 
     /// Saves the manifest: call after each step that changed the directory. The top-level

@@ -2,19 +2,32 @@
 //! `results-shard-K-of-N/`, `reproduce --merge DIR...` combines the shards into `results/`.
 //!
 //! - **Assignment.** A run belongs to shard `fnv1a64(Job::key()) % N + 1` (K is 1-based). The
-//!   hash is FNV-1a 64 written out here (std's `DefaultHasher` is not stable across Rust
+//!   hash is FNV-1a 64 ([`crate::fnv`]; std's `DefaultHasher` is not stable across Rust
 //!   releases), so a run's shard depends only on its key and N: not on the order of the files,
 //!   on the other runs, or on the machine.
+//! - **K and N from a scheduler** ([`Shard::from_env`], `--shard auto`): a Slurm task id *is*
+//!   the shard number K (arrays are `--array=1-N`; one task is resubmitted as `--array=K`); N is
+//!   `--shards`, else `DRIFTBENCH_SHARDS`, else the array's size, but only when the array is
+//!   exactly 1..N with N >= 2. Any other array (one task, a part of an array, a stepped, sparse
+//!   or 0-based one) does not tell N and is refused, naming the variables, unless N is given.
+//!   A Kubernetes Indexed Job's `JOB_COMPLETION_INDEX` is K - 1; N must be given.
+//! - **Binding.** A shard starts by binding its directory ([`Binding::claim`]):
+//!   `shard-binding.toml` records K, N, the selection and the experiment files' hash, and a
+//!   directory bound to anything else (another selection or sweep, other experiment files,
+//!   another K or N), or holding results without a binding, is refused before anything runs.
+//!   The same shard started again (a requeue) finds its own binding and resumes.
 //! - **Manifest.** A shard directory holds `runs.csv`, `traces/` and, written last and
 //!   atomically, `shard.toml` ([`Manifest`]): K, N, the selection the shard was given, the run
 //!   keys assigned to it, the code revision and a hash of the experiment files. A directory
 //!   without a manifest is a shard that has not finished. A shard resumes through the ordinary
-//!   journal ([`crate::journal`]) of its directory.
+//!   journal ([`crate::journal`]) of its directory. A manifest is checked as it is read: K in
+//!   1..=N, N >= 1, every run key one that can name a file, belongs to shard K and is listed
+//!   once; otherwise it is an error naming the file, the field and the entry.
 //! - **Merge.** [`check_shards`] verifies that the shards agree (N, experiment files, selection)
 //!   and that every selected run appears exactly once; otherwise it says which runs are missing
 //!   (and which shard should have produced them) or duplicated, and nothing is written.
 
-use crate::error::{IoAction, IoError, ShardError};
+use crate::error::{IoAction, IoError, RunEntryProblem, ShardError};
 use crate::owned_dir::PathError;
 use crate::runs::{read_runs, RunRow};
 use serde::{Deserialize, Serialize};
@@ -23,15 +36,7 @@ use std::path::{Path, PathBuf};
 /// The manifest's file name in a shard directory.
 pub const MANIFEST: &str = "shard.toml";
 
-/// FNV-1a, 64 bits (offset basis 0xcbf29ce484222325, prime 0x100000001b3).
-pub fn fnv1a64(bytes: &[u8]) -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
-    for b in bytes {
-        h ^= u64::from(*b);
-        h = h.wrapping_mul(0x0000_0100_0000_01b3);
-    }
-    h
-}
+pub use crate::fnv::fnv1a64;
 
 /// Shard K of N (K in 1..=N).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -64,10 +69,9 @@ impl Shard {
         Self::new(num(k)?, num(n)?)
     }
 
-    /// K and N from a scheduler's environment (`get` reads a variable): a Slurm job array
-    /// (`SLURM_ARRAY_TASK_ID`, offset by `SLURM_ARRAY_TASK_MIN` when set so that the first task
-    /// is shard 1; N = `SLURM_ARRAY_TASK_COUNT`, or `shards`) or a Kubernetes Indexed Job
-    /// (`JOB_COMPLETION_INDEX`, 0-based; N = `shards`, else `DRIFTBENCH_SHARDS`).
+    /// K and N from a scheduler's environment (`get` reads a variable; `shards`: `--shards`),
+    /// by the rules of the module doc: a Slurm job array (`SLURM_ARRAY_TASK_ID`, `_MIN`, `_MAX`,
+    /// `_COUNT`) or a Kubernetes Indexed Job (`JOB_COMPLETION_INDEX`).
     pub fn from_env(
         get: impl Fn(&str) -> Option<String>,
         shards: Option<usize>,
@@ -86,21 +90,42 @@ impl Shard {
                 }
             }
         };
-        let n_from = |fallback: Option<usize>| -> Result<usize, ShardError> {
-            shards
-                .or(fallback)
-                .or(num("DRIFTBENCH_SHARDS")?)
-                .ok_or(ShardError::UnknownCount)
+        let given = match shards {
+            Some(n) => Some(n),
+            None => num("DRIFTBENCH_SHARDS")?,
         };
         if let Some(id) = num("SLURM_ARRAY_TASK_ID")? {
-            let min = num("SLURM_ARRAY_TASK_MIN")?.unwrap_or(1);
-            let k = (id + 1)
-                .checked_sub(min)
-                .ok_or(ShardError::BelowMin { id, min })?;
-            return Self::new(k, n_from(num("SLURM_ARRAY_TASK_COUNT")?)?);
+            let array = [
+                "SLURM_ARRAY_TASK_MIN",
+                "SLURM_ARRAY_TASK_MAX",
+                "SLURM_ARRAY_TASK_COUNT",
+            ]
+            .map(|name| num(name).map(|v| (name, v)));
+            let [min, max, count] = array;
+            let (min, max, count) = (min?, max?, count?);
+            let n = match (given, min.1, max.1, count.1) {
+                (Some(n), ..) => n,
+                (None, Some(1), Some(max), Some(count)) if max == count && count >= 2 => count,
+                _ => {
+                    let said = [("SLURM_ARRAY_TASK_ID", Some(id)), min, max, count]
+                        .iter()
+                        .map(|(name, v)| match v {
+                            Some(v) => format!("{name}={v}"),
+                            None => format!("{name} unset"),
+                        })
+                        .collect::<Vec<_>>()
+                        .join(", ");
+                    return Err(ShardError::ArrayWithoutCount { said });
+                }
+            };
+            if id == 0 || id > n {
+                return Err(ShardError::TaskId { id, n });
+            }
+            return Self::new(id, n);
         }
         if let Some(index) = num("JOB_COMPLETION_INDEX")? {
-            return Self::new(index + 1, n_from(None)?);
+            let n = given.ok_or(ShardError::IndexWithoutCount { index })?;
+            return Self::new(index + 1, n);
         }
         Err(ShardError::NoScheduler)
     }
@@ -147,6 +172,120 @@ pub struct Selection {
     pub exact_only: bool,
 }
 
+impl std::fmt::Display for Selection {
+    /// The selection as its command-line flags (`every run` without any).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let mut flags = Vec::new();
+        if let Some(p) = &self.paper {
+            flags.push(format!("--paper {p}"));
+        }
+        flags.extend(self.experiments.iter().map(|e| format!("--experiment {e}")));
+        if self.exact_only {
+            flags.push("--exact-only".to_string());
+        }
+        if flags.is_empty() {
+            f.write_str("every run (no selection flags)")
+        } else {
+            f.write_str(&flags.join(" "))
+        }
+    }
+}
+
+/// The binding file's name in a shard directory.
+pub const BINDING: &str = "shard-binding.toml";
+
+/// `shard-binding.toml`: what a shard directory is for, written when the shard first starts.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Binding {
+    pub shard: usize,
+    pub shards: usize,
+    /// [`experiments_hash`] of the experiment files the shard runs.
+    pub experiments_hash: String,
+    pub selection: Selection,
+}
+
+impl Binding {
+    /// Binds the shard directory `results` to this shard before anything runs: a directory
+    /// bound to the same shard is resumed; one bound to another shard, selection or set of
+    /// experiment files, or holding results (`runs.csv`, a journal, `shard.toml`) but no
+    /// binding, is refused; an empty one is bound (the binding written and recorded in its
+    /// integrity manifest, which the opening of `results` checked it against).
+    pub fn claim(&self, results: &crate::results_dir::ResultsDir) -> Result<(), ShardError> {
+        let dir = results.path();
+        let path = dir.join(BINDING);
+        match inputs::read_text(&path, inputs::Kind::ShardBinding, inputs::Origin::Under(dir)) {
+            Ok(text) => {
+                let found: Binding = inputs::toml_error::from_str(&text)
+                    .map_err(|source| ShardError::ReadBinding { path, source })?;
+                if found == *self {
+                    return Ok(());
+                }
+                return Err(ShardError::BoundElsewhere {
+                    dir: dir.to_path_buf(),
+                    differences: self.differences(&found),
+                });
+            }
+            Err(e) if e.is_not_found() => {}
+            Err(e) => return Err(e.into()),
+        }
+        let held = [
+            crate::results_dir::RUNS,
+            crate::journal::FILE,
+            MANIFEST,
+        ];
+        if let Some(file) = held.into_iter().find(|f| dir.join(f).exists()) {
+            return Err(ShardError::Unbound {
+                dir: dir.to_path_buf(),
+                file,
+            });
+        }
+        let text = toml::to_string(self).map_err(|source| ShardError::WriteManifest {
+            path: path.clone(),
+            source,
+        })?;
+        results.tracked().write(Path::new(BINDING), text.as_bytes())?;
+        results.save()?;
+        Ok(())
+    }
+
+    /// How `found` (a directory's binding) differs from this shard, one item each.
+    fn differences(&self, found: &Binding) -> Vec<String> {
+        let mut out = Vec::new();
+        if (found.shard, found.shards) != (self.shard, self.shards) {
+            out.push(format!(
+                "it is shard {}/{}'s, this is shard {}/{}",
+                found.shard, found.shards, self.shard, self.shards
+            ));
+        }
+        if found.selection != self.selection {
+            out.push(format!(
+                "it ran the selection `{}`, this runs `{}`",
+                found.selection, self.selection
+            ));
+        }
+        if found.experiments_hash != self.experiments_hash {
+            out.push(format!(
+                "it ran other experiment files (hash {}, the current ones hash {}): a sweep edited since, or another checkout",
+                found.experiments_hash, self.experiments_hash
+            ));
+        }
+        out
+    }
+
+    /// The manifest of the finished shard: this binding, the code revision and the run keys.
+    pub fn manifest(&self, git_rev: &str, runs: Vec<String>) -> Manifest {
+        Manifest {
+            shard: self.shard,
+            shards: self.shards,
+            git_rev: git_rev.to_string(),
+            experiments_hash: self.experiments_hash.clone(),
+            runs,
+            selection: self.selection.clone(),
+        }
+    }
+}
+
 /// `shard.toml`: written last, so a shard directory with one holds a finished shard.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -185,8 +324,48 @@ impl Manifest {
                 e.into()
             }
         })?;
-        inputs::toml_error::from_str(&text)
-            .map_err(|source| ShardError::ReadManifest { path, source })
+        let manifest: Self = inputs::toml_error::from_str(&text).map_err(|source| ShardError::ReadManifest {
+            path: path.clone(),
+            source,
+        })?;
+        manifest.check(&path)?;
+        Ok(manifest)
+    }
+
+    /// Checks a manifest read from `path` (the rules of the module doc).
+    fn check(&self, path: &Path) -> Result<(), ShardError> {
+        let shard = Shard::new(self.shard, self.shards).map_err(|source| {
+            ShardError::ManifestShard {
+                path: path.to_path_buf(),
+                shard: self.shard,
+                shards: self.shards,
+                source: Box::new(source),
+            }
+        })?;
+        let mut seen = std::collections::HashSet::new();
+        for (index, entry) in self.runs.iter().enumerate() {
+            let problem = match catalog::run_key::RunKey::parse(entry) {
+                None => Some(RunEntryProblem::NotAKey),
+                Some(key) => match key.check() {
+                    Err(e) => Some(RunEntryProblem::Name(e)),
+                    Ok(()) if !shard.owns(&key.to_string()) => Some(RunEntryProblem::OtherShard {
+                        owner: Shard::of(&key.to_string(), shard.n),
+                        n: shard.n,
+                    }),
+                    Ok(()) if !seen.insert(key) => Some(RunEntryProblem::Twice),
+                    Ok(()) => None,
+                },
+            };
+            if let Some(problem) = problem {
+                return Err(ShardError::ManifestRun {
+                    path: path.to_path_buf(),
+                    index: index + 1,
+                    entry: entry.clone(),
+                    problem,
+                });
+            }
+        }
+        Ok(())
     }
 
     /// Removes a directory's manifest (a shard starting again is unfinished until it ends).
@@ -321,7 +500,7 @@ pub fn check_shards(
         }
         if m.selection != first.manifest.selection {
             problems.push(format!(
-                "{} ran the selection {:?}, {} ran {:?}",
+                "{} ran the selection `{}`, {} ran `{}`",
                 s.dir.display(),
                 m.selection,
                 first.dir.display(),
@@ -458,14 +637,6 @@ pub fn check_shards(
 mod tests {
     use super::*;
 
-    #[test]
-    fn fnv1a64_is_the_published_function() {
-        // Test vectors of the FNV reference (draft-eastlake-fnv).
-        assert_eq!(fnv1a64(b""), 0xcbf29ce484222325);
-        assert_eq!(fnv1a64(b"a"), 0xaf63dc4c8601ec8c);
-        assert_eq!(fnv1a64(b"foobar"), 0x85944171f73967e8);
-    }
-
     /// Computed once; a change of the hash (or of the key format) moves runs between shards
     /// and must fail here.
     #[test]
@@ -514,28 +685,81 @@ mod tests {
                     .map(|(_, v)| v.to_string())
             }
         };
-        // --array=1-4
-        let s = Shard::from_env(
-            env(&[
-                ("SLURM_ARRAY_TASK_ID", "4"),
-                ("SLURM_ARRAY_TASK_MIN", "1"),
-                ("SLURM_ARRAY_TASK_COUNT", "4"),
-            ]),
-            None,
-        );
+        let slurm = |id: &'static str, min: &'static str, max: &'static str, count: &'static str| {
+            move |name: &str| {
+                match name {
+                    "SLURM_ARRAY_TASK_ID" => Some(id),
+                    "SLURM_ARRAY_TASK_MIN" => Some(min),
+                    "SLURM_ARRAY_TASK_MAX" => Some(max),
+                    "SLURM_ARRAY_TASK_COUNT" => Some(count),
+                    _ => None,
+                }
+                .map(String::from)
+            }
+        };
+        // --array=1-4: the array tells N.
+        let s = Shard::from_env(slurm("4", "1", "4", "4"), None);
         assert_eq!(s.unwrap(), Shard { k: 4, n: 4 });
-        // --array=0-3
-        let s = Shard::from_env(
-            env(&[
-                ("SLURM_ARRAY_TASK_ID", "0"),
-                ("SLURM_ARRAY_TASK_MIN", "0"),
-                ("SLURM_ARRAY_TASK_COUNT", "4"),
-            ]),
-            None,
+        // A resubmitted task (--array=2), part of an array (--array=2-3), a stepped, sparse or
+        // 0-based array: N is not told, and the error names the variables.
+        for (id, min, max, count) in [
+            ("2", "2", "2", "1"),
+            ("1", "1", "1", "1"),
+            ("3", "2", "3", "2"),
+            ("3", "1", "7", "4"),
+            ("5", "1", "9", "3"),
+            ("0", "0", "3", "4"),
+        ] {
+            let e = Shard::from_env(slurm(id, min, max, count), None).unwrap_err();
+            assert!(matches!(e, ShardError::ArrayWithoutCount { .. }), "{e}");
+            let msg = e.to_string();
+            for said in [
+                format!("SLURM_ARRAY_TASK_ID={id}"),
+                format!("SLURM_ARRAY_TASK_COUNT={count}"),
+                format!("SLURM_ARRAY_TASK_MIN={min}"),
+                "--shards N".to_string(),
+                "DRIFTBENCH_SHARDS".to_string(),
+            ] {
+                assert!(msg.contains(&said), "{said} not in {msg}");
+            }
+        }
+        assert!(Shard::from_env(env(&[("SLURM_ARRAY_TASK_ID", "2")]), None)
+            .unwrap_err()
+            .to_string()
+            .contains("SLURM_ARRAY_TASK_COUNT unset"));
+        // ... unless N is given: the task id is the shard number.
+        let s = Shard::from_env(slurm("2", "2", "2", "1"), Some(4));
+        assert_eq!(s.unwrap(), Shard { k: 2, n: 4 });
+        let with_env = |name: &str| match name {
+            "DRIFTBENCH_SHARDS" => Some("4".to_string()),
+            _ => slurm("3", "3", "3", "1")(name),
+        };
+        assert_eq!(
+            Shard::from_env(with_env, None).unwrap(),
+            Shard { k: 3, n: 4 }
         );
-        assert_eq!(s.unwrap(), Shard { k: 1, n: 4 });
+        // --shards wins over DRIFTBENCH_SHARDS and over the array.
+        assert_eq!(
+            Shard::from_env(with_env, Some(8)).unwrap(),
+            Shard { k: 3, n: 8 }
+        );
+        assert_eq!(
+            Shard::from_env(slurm("2", "1", "4", "4"), Some(2)).unwrap(),
+            Shard { k: 2, n: 2 }
+        );
+        // A task id outside 1..=N.
+        for (id, n) in [("0", 4), ("5", 4)] {
+            let e = Shard::from_env(slurm(id, id, id, "1"), Some(n)).unwrap_err();
+            assert!(matches!(e, ShardError::TaskId { .. }), "{e}");
+            assert!(e.to_string().contains("--array=1-4"), "{e}");
+        }
         let s = Shard::from_env(env(&[("SLURM_ARRAY_TASK_ID", "2")]), Some(5));
         assert_eq!(s.unwrap(), Shard { k: 2, n: 5 });
+        assert!(matches!(
+            Shard::from_env(slurm("x", "1", "4", "4"), None),
+            Err(ShardError::Environment { .. })
+        ));
+        // Kubernetes: the index is K - 1 and N must be given.
         let s = Shard::from_env(
             env(&[("JOB_COMPLETION_INDEX", "0"), ("DRIFTBENCH_SHARDS", "3")]),
             None,
@@ -543,9 +767,18 @@ mod tests {
         assert_eq!(s.unwrap(), Shard { k: 1, n: 3 });
         let s = Shard::from_env(env(&[("JOB_COMPLETION_INDEX", "2")]), Some(3));
         assert_eq!(s.unwrap(), Shard { k: 3, n: 3 });
-        assert!(Shard::from_env(env(&[("JOB_COMPLETION_INDEX", "0")]), None).is_err());
+        let e = Shard::from_env(env(&[("JOB_COMPLETION_INDEX", "0")]), None).unwrap_err();
+        assert!(e.to_string().contains("JOB_COMPLETION_INDEX=0"), "{e}");
         assert!(Shard::from_env(env(&[("JOB_COMPLETION_INDEX", "3")]), Some(3)).is_err());
         assert!(Shard::from_env(env(&[]), Some(3)).is_err());
+    }
+
+    /// A run key of shard `k` of `n`.
+    fn key_of(k: usize, n: usize, from: usize) -> String {
+        (from..)
+            .map(|i| format!("e / v{i} / s"))
+            .find(|key| Shard::of(key, n) == k)
+            .unwrap()
     }
 
     #[test]
@@ -555,7 +788,7 @@ mod tests {
             shards: 3,
             git_rev: "abc".into(),
             experiments_hash: "0123456789abcdef".into(),
-            runs: vec!["e / v / s".into()],
+            runs: vec![key_of(2, 3, 0)],
             selection: Selection {
                 paper: Some("kong2019".into()),
                 experiments: vec![],
@@ -571,6 +804,82 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("has not finished"));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// A manifest that no shard could have written is refused as it is read, naming the file,
+    /// the field and the entry: never a panic, never a path outside the directory.
+    #[test]
+    fn impossible_manifests_are_refused_naming_the_field() {
+        let dir = std::env::temp_dir().join(format!(
+            "driftbench-bad-manifest-{}",
+            std::process::id()
+        ));
+        std::fs::create_dir_all(&dir).unwrap();
+        let good = Manifest {
+            shard: 1,
+            shards: 2,
+            git_rev: "abc".into(),
+            experiments_hash: "0123456789abcdef".into(),
+            runs: vec![key_of(1, 2, 0), key_of(1, 2, 1000)],
+            selection: Selection::default(),
+        };
+        let refused = |m: &Manifest, wants: &[&str]| {
+            m.write(&dir).unwrap();
+            let e = Manifest::read(&dir).unwrap_err();
+            let msg = e.to_string();
+            assert!(msg.contains(&dir.join(MANIFEST).display().to_string()), "{msg}");
+            for w in wants {
+                assert!(msg.contains(w), "{w} not in {msg}");
+            }
+            e
+        };
+        let e = refused(
+            &Manifest {
+                shards: 0,
+                ..good.clone()
+            },
+            &["`shards = 0`", "at least 1"],
+        );
+        assert!(matches!(e, ShardError::ManifestShard { .. }), "{e}");
+        refused(
+            &Manifest {
+                shard: 3,
+                ..good.clone()
+            },
+            &["`shard = 3`", "1..=2"],
+        );
+        refused(
+            &Manifest {
+                shard: 0,
+                ..good.clone()
+            },
+            &["`shard = 0`"],
+        );
+        let entry = |runs: Vec<String>, wants: &[&str]| {
+            let e = refused(
+                &Manifest {
+                    runs,
+                    ..good.clone()
+                },
+                wants,
+            );
+            assert!(matches!(e, ShardError::ManifestRun { .. }), "{e}");
+        };
+        let first = good.runs[0].clone();
+        entry(
+            vec![first.clone(), "../../../outside / x / y".into()],
+            &["`runs`, entry 2", "../../../outside", "not a run key"],
+        );
+        entry(vec![".. / x / y".into()], &["entry 1", "cannot name a file"]);
+        entry(vec!["no key".into()], &["entry 1", "not a run key"]);
+        entry(
+            vec![key_of(2, 2, 0)],
+            &["entry 1", "belongs to shard 2/2"],
+        );
+        entry(vec![first.clone(), first], &["entry 2", "listed twice"]);
+        good.write(&dir).unwrap();
+        assert_eq!(Manifest::read(&dir).unwrap(), good);
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -3,7 +3,8 @@
 //!
 //! - [`TrackedDir::write`] writes atomically and records the file's fingerprint;
 //! - [`TrackedDir::adopt`] records a file another layer wrote at a path obtained from
-//!   [`TrackedDir::resolve`];
+//!   [`TrackedDir::resolve`]; [`TrackedDir::adopt_sealed`] records one only if it still hashes
+//!   to a fingerprint taken when it was written (the journal's seal of its traces);
 //! - [`TrackedDir::remove`] deletes a file only if the manifest lists it and it still hashes to
 //!   its entry: a file the program cannot prove it wrote, or one edited since, is left in place
 //!   and reported;
@@ -154,13 +155,23 @@ impl TrackedDir {
 
     /// Writes `bytes` to `rel` atomically and records it.
     pub fn write(&self, rel: &Path, bytes: &[u8]) -> Result<(), TrackedError> {
+        self.write_fingerprinted(rel, bytes).map(drop)
+    }
+
+    /// [`TrackedDir::write`], returning the fingerprint recorded (for a seal).
+    pub fn write_fingerprinted(
+        &self,
+        rel: &Path,
+        bytes: &[u8],
+    ) -> Result<Fingerprint, TrackedError> {
         let path = self.resolve(rel)?;
         crate::runs::write_atomic(&path, bytes).map_err(|source| TrackedError::Io {
             path: path.clone(),
             source,
         })?;
-        self.lock().files.insert(key(rel), Fingerprint::of(bytes));
-        Ok(())
+        let fingerprint = Fingerprint::of(bytes);
+        self.lock().files.insert(key(rel), fingerprint.clone());
+        Ok(fingerprint)
     }
 
     /// Records the file at `rel` as written by the program (another layer wrote it at a path
@@ -177,6 +188,24 @@ impl TrackedDir {
             Err(source) => return Err(TrackedError::Io { path, source }),
         }
         Ok(())
+    }
+
+    /// Records the file at `rel` if it is there and its content still hashes to `sha256` (taken
+    /// when the program wrote it, e.g. from the journal's seal); returns whether it did. A file
+    /// missing or changed since is not recorded.
+    pub fn adopt_sealed(&self, rel: &Path, sha256: &str) -> Result<bool, TrackedError> {
+        let path = self.resolve(rel)?;
+        let bytes = match std::fs::read(&path) {
+            Ok(bytes) => bytes,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(false),
+            Err(source) => return Err(TrackedError::Io { path, source }),
+        };
+        let found = Fingerprint::of(&bytes);
+        if found.sha256 != sha256 {
+            return Ok(false);
+        }
+        self.lock().files.insert(key(rel), found);
+        Ok(true)
     }
 
     /// Removes `rel` if the program can prove it wrote it (see the module doc).

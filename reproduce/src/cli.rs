@@ -18,7 +18,11 @@ use std::path::PathBuf;
 /// results/runs.csv (one row per run) and results/traces/, and prints a summary table. Each
 /// other mode is a subcommand or, equally, its flag (listed below the options).
 #[derive(Parser, Debug)]
-#[command(version, about, long_about)]
+#[command(
+    version = concat!(env!("CARGO_PKG_VERSION"), " (revision ", env!("DRIFTBENCH_REVISION"), ")"),
+    about,
+    long_about
+)]
 pub struct Cli {
     /// Run only this paper's experiments: the `paper` id of an experiment file (jia2019,
     /// zhang2018, zhong2021, kong2019, robio2018, group, or a paper added as data; `cross` is
@@ -116,16 +120,19 @@ pub struct Cli {
     pub dof_cost: bool,
     /// Cluster runs (docs/cluster.md): run only shard K of N of the selected runs (K = 1..N; a
     /// run's shard is a stable hash of its key) into ROOT/results-shard-K-of-N/ (or
-    /// --results-dir): runs.csv, traces/ and, written last, shard.toml. Implies --skip-explain
-    /// and renders no report. A shard started again resumes from its journal. `--shard auto` (or
-    /// `--shard` alone) takes K and N from a Slurm job array (SLURM_ARRAY_TASK_ID, minus
-    /// SLURM_ARRAY_TASK_MIN - 1, of SLURM_ARRAY_TASK_COUNT) or a Kubernetes Indexed Job
-    /// (JOB_COMPLETION_INDEX + 1, of --shards or DRIFTBENCH_SHARDS). With --list: the shard's runs.
+    /// --results-dir), bound to this shard and selection at the start (another selection's or
+    /// sweep's directory is refused): runs.csv, traces/ and, written last, shard.toml. Implies
+    /// --skip-explain and renders no report. A shard started again resumes from its journal.
+    /// `--shard auto` (or `--shard` alone) takes K and N from a Slurm job array (K =
+    /// SLURM_ARRAY_TASK_ID; N = --shards, else DRIFTBENCH_SHARDS, else SLURM_ARRAY_TASK_COUNT
+    /// for an array of exactly 1-N) or a Kubernetes Indexed Job (K = JOB_COMPLETION_INDEX + 1;
+    /// N = --shards or DRIFTBENCH_SHARDS). With --list: the shard's runs.
     #[arg(long, value_name = "K/N", num_args = 0..=1, default_missing_value = "auto",
           conflicts_with_all = ["check", "report_only", "explain_only", "infer", "merge"])]
     pub shard: Option<String>,
-    /// The number of shards N for `--shard auto` under Kubernetes; with --list and no --shard:
-    /// print how many of the selected runs each of N shards gets.
+    /// The number of shards N for `--shard auto`: needed under Kubernetes and for a Slurm task
+    /// resubmitted alone (`sbatch --array=K`); with --list and no --shard: print how many of
+    /// the selected runs each of N shards gets.
     #[arg(long, value_name = "N")]
     pub shards: Option<usize>,
     /// Merge finished shard directories (of `--shard K/N`) into results/ and render the report:

@@ -1,6 +1,7 @@
 //! The journal of a run (records::journal): an interrupted run's journal folded into runs.csv
-//! before anything runs (its runs of this code revision are not run again), and each run
-//! checkpointed, with its trace, as it finishes.
+//! before anything runs (its runs of this code revision whose traces match the journal's seal
+//! are not run again, and their traces are recorded in the results directory's manifest), and
+//! each run checkpointed, with its trace and its seal, as it finishes.
 
 use crate::error::ReproduceError;
 use crate::results::described_keys;
@@ -13,9 +14,10 @@ use simulation::run::RunRecord;
 use simulation::runner::run_jobs_with;
 use std::collections::HashSet;
 
-/// Folds the journal of an interrupted run into `kept` (the stored rows, written back) and
-/// removes from `to_run` the runs it holds from revision `git_rev`; rows of another revision,
-/// or that no experiment file describes (`all`), are said and not folded.
+/// Folds the journal of an interrupted run into `kept` (the stored rows, written back, with
+/// the manifest) and removes from `to_run` the runs it holds from revision `git_rev`; rows of
+/// another revision, whose trace does not match its seal, or that no experiment file
+/// describes (`all`), are said and not folded.
 pub fn resume(
     results: &ResultsDir,
     git_rev: &str,
@@ -23,13 +25,22 @@ pub fn resume(
     kept: &mut Vec<RunRow>,
     to_run: &mut Vec<Job>,
 ) -> Result<(), ReproduceError> {
-    let recovered = records::journal::recover(results.path(), git_rev)?;
+    let recovered = records::journal::recover(results, git_rev)?;
+    let journal = records::journal::path(results.path());
     for r in &recovered.other_revision {
         eprintln!(
             "not folded from {}: {} (written by revision {}, this is {git_rev}); it is run again",
-            records::journal::path(results.path()).display(),
+            journal.display(),
             r.key(),
             r.git_rev
+        );
+    }
+    for r in &recovered.unsealed {
+        eprintln!(
+            "not folded from {}: {} (its trace is missing, or not the one {} sealed); it is run again",
+            journal.display(),
+            r.key(),
+            records::journal::seal_path(results.path()).display()
         );
     }
     let described = described_keys(all);
@@ -40,7 +51,7 @@ pub fn resume(
     for r in &undescribed {
         eprintln!(
             "not folded from {}: {} (no experiment file describes it)",
-            records::journal::path(results.path()).display(),
+            journal.display(),
             r.key()
         );
     }

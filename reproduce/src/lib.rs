@@ -7,7 +7,8 @@
 //! [`cost`], [`score`] (a trajectory made elsewhere, also `driftbench.score` in Python); the
 //! task cards the report mode writes ([`task_card`]); beside them what the modes share: the
 //! command line ([`cli`], [`commands`], [`resolve`]), the selection of runs ([`select`]), the
-//! results directory ([`results`]) and the summary printed ([`summary`]).
+//! results directory ([`results`]), the summary printed ([`summary`]) and the code revision
+//! embedded at build time ([`revision`]).
 
 pub mod cli;
 pub mod commands;
@@ -22,6 +23,7 @@ pub mod merge;
 pub mod report;
 pub mod resolve;
 pub mod results;
+pub mod revision;
 pub mod run;
 pub mod score;
 pub mod select;
@@ -46,23 +48,23 @@ pub fn run(cli: Cli) -> Result<ExitCode, ReproduceError> {
         return Ok(ExitCode::SUCCESS);
     }
     let cli = &cli.resolve()?;
-    let git_rev = catalog::root::git_revision(&cli.project_root);
+    let git_rev = revision::REVISION;
     if let (Some(file), Some(task)) = (&cli.score, &cli.task) {
-        score::score(cli, file, task, &git_rev)?;
+        score::score(cli, file, task, git_rev)?;
         return Ok(ExitCode::SUCCESS);
     }
     if cli.report_only {
-        report::report_only(cli, &git_rev)?;
+        report::report_only(cli, git_rev)?;
         return Ok(ExitCode::SUCCESS);
     }
     if cli.dof_cost {
-        cost::dof_cost(cli, &git_rev)?;
+        cost::dof_cost(cli, git_rev)?;
         return Ok(ExitCode::SUCCESS);
     }
     let files = load_dir(&cli.experiments_dir, simulation::run::check_job)?;
     let all: Vec<Job> = files.iter().flat_map(|f| f.jobs()).collect();
     if !cli.merge.is_empty() {
-        return merge::merge_shards(cli, &files, &all, &git_rev);
+        return merge::merge_shards(cli, &files, &all, git_rev);
     }
     let mut jobs = select::select_jobs(&all, &files, &cli.selection())?;
     let selected = jobs.len();
@@ -81,5 +83,5 @@ pub fn run(cli: Cli) -> Result<ExitCode, ReproduceError> {
         }
         return Ok(ExitCode::SUCCESS);
     }
-    run::run(cli, &all, &jobs, &git_rev)
+    run::run(cli, &all, &jobs, git_rev)
 }

@@ -74,10 +74,22 @@ pub fn run(
         .as_ref()
         .map(|r| plan_pruning(cli, r, all))
         .transpose()?;
-    // A shard directory is finished only once its manifest is written again, at the end.
-    if cli.shard_resolved.is_some() && results.is_some() {
-        records::shard::Manifest::remove(&cli.results_dir)?;
-    }
+    // A shard binds its directory before anything runs (records::shard::Binding); the
+    // directory is finished only once its manifest is written again, at the end.
+    let binding = match (cli.shard_resolved, &results) {
+        (Some(shard), Some(results)) => {
+            let binding = records::shard::Binding {
+                shard: shard.k,
+                shards: shard.n,
+                experiments_hash: records::shard::experiments_hash(&cli.experiments_dir)?,
+                selection: cli.selection(),
+            };
+            binding.claim(results)?;
+            records::shard::Manifest::remove(&cli.results_dir)?;
+            Some(binding)
+        }
+        _ => None,
+    };
     let mut to_run: Vec<Job> = jobs.to_vec();
     if let (Some(results), Some((kept, _))) = (&results, stored.as_mut()) {
         resume(results, git_rev, all, kept, &mut to_run)?;
@@ -106,7 +118,7 @@ pub fn run(
             .collect();
         write_results(results, &untraced, kept, &pruned, rows)?;
         records::journal::remove(results.path())?;
-        publish(cli, results, all, jobs, git_rev)?;
+        publish(cli, results, binding.as_ref(), all, jobs, git_rev)?;
     }
     let unexpected: Vec<String> = failed
         .iter()
@@ -124,28 +136,25 @@ pub fn run(
     Ok(report_unexpected(&unexpected))
 }
 
-/// What follows the written rows: a shard's manifest (written last: the shard is finished);
-/// otherwise the explanation layer (unless skipped), the control experiments of a whole,
-/// unselected reproduction, and the report.
+/// What follows the written rows: a shard's manifest (of its `binding`, written last: the
+/// shard is finished); otherwise the explanation layer (unless skipped), the control
+/// experiments of a whole, unselected reproduction, and the report.
 fn publish(
     cli: &Cli,
     results: &ResultsDir,
+    binding: Option<&records::shard::Binding>,
     all: &[Job],
     jobs: &[Job],
     git_rev: &str,
 ) -> Result<(), ReproduceError> {
-    if let Some(shard) = cli.shard_resolved {
-        records::shard::Manifest {
-            shard: shard.k,
-            shards: shard.n,
-            git_rev: git_rev.to_string(),
-            experiments_hash: records::shard::experiments_hash(&cli.experiments_dir)?,
-            runs: jobs.iter().map(|j| j.key().to_string()).collect(),
-            selection: cli.selection(),
-        }
-        .write(&cli.results_dir)?;
+    if let Some(binding) = binding {
+        binding
+            .manifest(git_rev, jobs.iter().map(|j| j.key().to_string()).collect())
+            .write(&cli.results_dir)?;
         eprintln!(
-            "shard {shard} done: merge with `reproduce --merge {}...`",
+            "shard {}/{} done: merge with `reproduce --merge {}...`",
+            binding.shard,
+            binding.shards,
             cli.results_dir.display()
         );
         return Ok(());

@@ -306,7 +306,7 @@ fn a_journal_row_of_another_revision_is_not_folded() {
     );
 
     // A journal with one run twice is not one this program wrote.
-    let rev = catalog::root::git_revision(&catalog::root::from_current_dir().unwrap());
+    let rev = reproduce::revision::REVISION.to_string();
     let mut twice = honest[0].clone();
     twice.git_rev = rev;
     write_journal(&p, &[twice.clone(), twice]);

@@ -1,5 +1,7 @@
-//! Cluster runs as a user runs them: shards as separate processes, merged; a shard killed and
-//! started again; a merge with a shard missing.
+//! Cluster runs as a user runs them: shards as separate processes, merged; a shard killed
+//! (SIGKILL) mid-run, started again and merged, against one process; a merge with a shard
+//! missing; a shard directory of another selection or sweep refused at the start; K and N from
+//! a Slurm array that does not tell N.
 
 mod common;
 
@@ -17,13 +19,12 @@ fn temp(name: &str) -> PathBuf {
 /// A cheap selection: kong2019's exact columns (11 runs, well under a second each).
 const SELECTION: [&str; 3] = ["--paper", "kong2019", "--exact-only"];
 
-/// Rows without what differs between two runs of the same code: timing and revision.
+/// Rows without what differs between two runs of the same binary: the timing columns.
 fn comparable(mut rows: Vec<RunRow>) -> Vec<String> {
     for r in &mut rows {
         r.wall_s = 0.0;
         r.sim_s = 0.0;
         r.observe_s = 0.0;
-        r.git_rev.clear();
     }
     rows.iter().map(|r| format!("{r:?}")).collect()
 }
@@ -138,11 +139,12 @@ fn three_shards_merged_equal_one_unsharded_run_and_a_missing_shard_is_named() {
     let _ = std::fs::remove_dir_all(&base);
 }
 
-/// A shard killed (SIGKILL) half-way and started again runs only its unfinished runs (through
-/// the journal of its directory) and writes no duplicate row; its manifest appears only at
-/// the end.
+/// Pre-emption that saves work: a shard killed (SIGKILL) once it has checkpointed some runs,
+/// started again, runs only its unfinished runs (through the journal of its directory), writes
+/// no duplicate row and its manifest only at the end; and it merges, equal to one process: the
+/// same cells but the timing columns, byte-identical traces.
 #[test]
-fn a_killed_shard_resumes_without_redoing_finished_runs() {
+fn a_shard_killed_mid_run_resumes_and_merges_equal_to_one_process() {
     let base = temp("resume");
     let (experiments, results) = (base.join("experiments"), base.join("shard"));
     std::fs::create_dir_all(&experiments).unwrap();
@@ -184,7 +186,178 @@ sweep = { "scheme.mu" = [1, 2, 4] }
         (manifest.shard, manifest.shards, manifest.runs.len()),
         (1, 1, 4)
     );
+    assert_eq!(manifest.git_rev, reproduce::revision::REVISION);
+
+    // The resumed shard merges (its manifest covers the folded runs' traces) ...
+    let merged = base.join("merged");
+    ok(reproduce()
+        .arg("--merge")
+        .arg(&results)
+        .arg("--experiments-dir")
+        .arg(&experiments)
+        .arg("--results-dir")
+        .arg(&merged)
+        .output()
+        .unwrap());
+    // ... into what one process writes.
+    let whole = base.join("whole");
+    ok(reproduce()
+        .args(["--paper", "kong2019", "--skip-explain", "--experiments-dir"])
+        .arg(&experiments)
+        .arg("--results-dir")
+        .arg(&whole)
+        .output()
+        .unwrap());
+    let want = read_runs(&whole.join("runs.csv")).unwrap();
+    assert_eq!(want.len(), 4);
+    assert_eq!(
+        comparable(read_runs(&merged.join("runs.csv")).unwrap()),
+        comparable(want)
+    );
+    let (t_whole, t_merged) = (traces(&whole), traces(&merged));
+    assert_eq!(t_whole.len(), 4);
+    assert!(t_whole == t_merged, "trace files differ");
     let _ = std::fs::remove_dir_all(&base);
+}
+
+/// A shard directory serves one shard of one selection: started for another selection, or
+/// after its sweep was edited, the shard refuses before anything runs and the directory is
+/// left as it was; a manifest no shard could write (`shards = 0`) is refused by the merge.
+#[test]
+fn a_shard_directory_of_another_selection_or_sweep_is_refused_at_the_start() {
+    let base = temp("binding");
+    let (experiments, dir) = (base.join("experiments"), base.join("shard"));
+    std::fs::create_dir_all(&experiments).unwrap();
+    let file = experiments.join("kong2019.toml");
+    std::fs::write(&file, common::CHEAP_EXPERIMENT).unwrap();
+    let shard = |extra: &[&str]| {
+        reproduce()
+            .args(["--shard", "1/1", "--experiments-dir"])
+            .arg(&experiments)
+            .arg("--results-dir")
+            .arg(&dir)
+            .args(extra)
+            .output()
+            .unwrap()
+    };
+    ok(shard(&[]));
+    let before = std::fs::read(dir.join("runs.csv")).unwrap();
+    let refused = |out: std::process::Output, wants: &[&str]| {
+        let err = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        for w in wants {
+            assert!(err.contains(w), "{w} not in {err}");
+        }
+        assert_eq!(std::fs::read(dir.join("runs.csv")).unwrap(), before);
+        assert!(dir.join("shard.toml").exists(), "the finished shard is kept");
+    };
+    refused(
+        shard(&["--exact-only"]),
+        &["bound to another shard", "--exact-only", "--results-dir"],
+    );
+    // The sweep edited: other experiment files.
+    std::fs::write(
+        &file,
+        format!(
+            "{}{}",
+            common::CHEAP_EXPERIMENT,
+            r#"[[experiment.variant]]
+label = "ZNN swept"
+scheme = { kind = "kong2019-znn", k_p = 1.0 }
+sweep = { "scheme.mu" = [1, 2] }
+"#
+        ),
+    )
+    .unwrap();
+    refused(shard(&[]), &["bound to another shard", "other experiment files"]);
+    std::fs::write(&file, common::CHEAP_EXPERIMENT).unwrap();
+    // Another K/N given the same directory.
+    let out = reproduce()
+        .args(["--shard", "1/2", "--experiments-dir"])
+        .arg(&experiments)
+        .arg("--results-dir")
+        .arg(&dir)
+        .output()
+        .unwrap();
+    refused(out, &["it is shard 1/1's, this is shard 1/2"]);
+    // The same shard started again resumes in its own directory.
+    ok(shard(&[]));
+
+    // shards = 0 in shard.toml: refused, naming the file and the field (no panic).
+    let manifest = dir.join("shard.toml");
+    let text = std::fs::read_to_string(&manifest).unwrap();
+    std::fs::write(&manifest, text.replace("shards = 1", "shards = 0")).unwrap();
+    let out = reproduce()
+        .arg("--merge")
+        .arg(&dir)
+        .arg("--experiments-dir")
+        .arg(&experiments)
+        .arg("--results-dir")
+        .arg(base.join("merged"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("shard.toml") && err.contains("`shards = 0`"), "{err}");
+    assert!(!base.join("merged").join("runs.csv").exists());
+    let _ = std::fs::remove_dir_all(&base);
+}
+
+/// `--shard auto` in a resubmitted Slurm task (`sbatch --array=2`: one task, MIN = MAX = 2)
+/// does not guess N: it is refused naming the variables, and runs shard 2 of N once N is said.
+#[test]
+fn a_resubmitted_slurm_task_needs_the_number_of_shards() {
+    let auto = |extra: &[(&str, &str)]| {
+        let mut c = reproduce();
+        for v in [
+            "SLURM_ARRAY_TASK_ID",
+            "SLURM_ARRAY_TASK_MIN",
+            "SLURM_ARRAY_TASK_MAX",
+            "SLURM_ARRAY_TASK_COUNT",
+            "DRIFTBENCH_SHARDS",
+            "JOB_COMPLETION_INDEX",
+        ] {
+            c.env_remove(v);
+        }
+        c.envs([
+            ("SLURM_ARRAY_TASK_ID", "2"),
+            ("SLURM_ARRAY_TASK_MIN", "2"),
+            ("SLURM_ARRAY_TASK_MAX", "2"),
+            ("SLURM_ARRAY_TASK_COUNT", "1"),
+        ])
+        .envs(extra.iter().copied())
+        .args(SELECTION)
+        .args(["--list", "--shard", "auto"])
+        .output()
+        .unwrap()
+    };
+    let out = auto(&[]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    for v in [
+        "SLURM_ARRAY_TASK_ID=2",
+        "SLURM_ARRAY_TASK_COUNT=1",
+        "--shards N",
+        "DRIFTBENCH_SHARDS",
+    ] {
+        assert!(err.contains(v), "{v} not in {err}");
+    }
+    let out = ok(auto(&[("DRIFTBENCH_SHARDS", "3")]));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("shard 2/3:"), "{err}");
+}
+
+/// The binary names the revision it was built from (embedded at build time), the one its
+/// rows and manifests carry.
+#[test]
+fn the_binary_knows_its_revision() {
+    let out = ok(reproduce().arg("--version").output().unwrap());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains(&format!("(revision {})", reproduce::revision::REVISION)),
+        "{text}"
+    );
+    assert!(!text.contains("unknown"), "{text}");
 }
 
 /// `--shard K/N --list` lists the shard's runs; the shards' lists partition the selection.

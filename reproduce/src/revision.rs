@@ -1,0 +1,135 @@
+//! The code revision the binary was built from ([`REVISION`]), embedded at build time by
+//! `build.rs` by the rules of [`source`]: it needs no git checkout at run time, so a binary in
+//! a container image or a copied tree still knows it, and two different trees never share
+//! one. Rows, journals, shard manifests and result manifests carry it; resume and merge
+//! compare it.
+
+pub mod source;
+
+/// The revision of the sources this binary was built from.
+pub const REVISION: &str = env!("DRIFTBENCH_REVISION");
+
+#[cfg(test)]
+mod tests {
+    use super::source::{revision, sources, sources_hash};
+    use super::REVISION;
+    use records::fnv::fnv1a64;
+    use std::path::Path;
+    use std::process::Command;
+
+    fn hex(s: &str, n: usize) -> bool {
+        s.len() == n && s.bytes().all(|b| b.is_ascii_hexdigit())
+    }
+
+    /// The shapes [`source::revision`] can give.
+    fn well_formed(rev: &str) -> bool {
+        match rev.split_once("-dirty-") {
+            Some((commit, hash)) => hex(commit, 12) && hex(hash, 16),
+            None => rev.strip_prefix("src-").map_or(hex(rev, 12), |h| hex(h, 16)),
+        }
+    }
+
+    #[test]
+    fn the_embedded_revision_is_well_formed_and_never_unknown() {
+        assert!(well_formed(REVISION), "{REVISION}");
+        assert!(!REVISION.contains("unknown"));
+    }
+
+    fn write(root: &Path, rel: &str, text: &str) {
+        let p = root.join(rel);
+        std::fs::create_dir_all(p.parent().unwrap()).unwrap();
+        std::fs::write(p, text).unwrap();
+    }
+
+    /// A small workspace: a root manifest and lock, one member, and files that are not sources.
+    fn tree(name: &str) -> std::path::PathBuf {
+        let root = std::env::temp_dir().join(format!(
+            "driftbench-revision-{name}-{}",
+            std::process::id()
+        ));
+        let _ = std::fs::remove_dir_all(&root);
+        write(&root, "Cargo.toml", "[workspace]\nmembers = [\"a\"]\n");
+        write(&root, "Cargo.lock", "version = 4\n");
+        write(&root, "a/Cargo.toml", "[package]\nname = \"a\"\n");
+        write(&root, "a/src/lib.rs", "pub fn f() {}\n");
+        write(&root, "a/data/arm.toml", "dof = 3\n");
+        write(&root, "a/tests/t.rs", "\n");
+        write(&root, "results/runs.csv", "h\n");
+        root
+    }
+
+    #[test]
+    fn without_git_the_revision_is_the_hash_of_the_sources() {
+        let root = tree("nogit");
+        if Command::new("git")
+            .arg("-C")
+            .arg(&root)
+            .args(["rev-parse", "HEAD"])
+            .output()
+            .is_ok_and(|o| o.status.success())
+        {
+            eprintln!("skipped: the temporary directory lies inside a git checkout");
+            return;
+        }
+        assert_eq!(
+            sources(&root),
+            [
+                "Cargo.lock",
+                "Cargo.toml",
+                "a/Cargo.toml",
+                "a/data/arm.toml",
+                "a/src/lib.rs"
+            ]
+        );
+        let first = revision(&root, fnv1a64);
+        assert!(first.starts_with("src-") && well_formed(&first), "{first}");
+        assert_eq!(revision(&root, fnv1a64), first, "repeatable");
+        // What is not a source does not change it; a source does, and so does a new one.
+        write(&root, "results/runs.csv", "h\n1\n");
+        write(&root, "a/tests/t.rs", "// more\n");
+        assert_eq!(revision(&root, fnv1a64), first);
+        write(&root, "a/src/lib.rs", "pub fn f() { }\n");
+        let edited = revision(&root, fnv1a64);
+        assert_ne!(edited, first);
+        write(&root, "a/src/new.rs", "\n");
+        assert_ne!(revision(&root, fnv1a64), edited);
+        let _ = std::fs::remove_dir_all(&root);
+    }
+
+    #[test]
+    fn in_a_checkout_the_revision_is_the_commit_and_a_dirty_tree_adds_its_hash() {
+        let root = tree("git");
+        let git = |args: &[&str]| {
+            Command::new("git")
+                .arg("-C")
+                .arg(&root)
+                .args(["-c", "user.name=t", "-c", "user.email=t@example.org"])
+                .args(args)
+                .output()
+                .is_ok_and(|o| o.status.success())
+        };
+        if !git(&["init", "-q"]) {
+            eprintln!("skipped: git is not installed");
+            return;
+        }
+        assert!(git(&["add", "."]) && git(&["commit", "-q", "-m", "one"]));
+        let clean = revision(&root, fnv1a64);
+        assert!(hex(&clean, 12), "{clean}");
+        // Outside the sources, a change (tracked or not) leaves the tree clean.
+        write(&root, "results/runs.csv", "h\n1\n");
+        write(&root, "results-shard-1-of-2/runs.csv", "h\n");
+        assert_eq!(revision(&root, fnv1a64), clean);
+        // An untracked source makes it dirty, with the hash of the sources as they are.
+        write(&root, "a/src/new.rs", "\n");
+        let dirty = revision(&root, fnv1a64);
+        assert_eq!(
+            dirty,
+            format!("{clean}-dirty-{}", sources_hash(&root, fnv1a64))
+        );
+        // Another edit of the same commit is another revision.
+        write(&root, "a/src/new.rs", "// other\n");
+        let other = revision(&root, fnv1a64);
+        assert!(other.starts_with(&format!("{clean}-dirty-")) && other != dirty);
+        let _ = std::fs::remove_dir_all(&root);
+    }
+}
