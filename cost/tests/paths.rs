@@ -24,7 +24,7 @@ fn each_path_prepares_its_own_cases() {
 #[test]
 fn the_dynamic_path_computes_the_per_instant_quantities_at_100_joints() {
     let mut case = dynamic::prepare(&Case::new(SchemeKind::ZnnRmp, 100), 3).unwrap();
-    assert_eq!(case.label(), "kong2019-znn nlink-100");
+    assert_eq!(case.label(), "znn-rmp nlink-100");
     assert_eq!(case.states(), 3);
     let dims = case.dims();
     assert_eq!((dims.nx, dims.n_eq, dims.n_in), (100, 3, 0));

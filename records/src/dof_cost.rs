@@ -629,7 +629,7 @@ mod tests {
         let slower: Vec<_> = ms.iter().filter(|m| m.n < 30).cloned().collect();
         let c = crossover(
             &super::rows(&slower, "Test CPU", 2, "abc"),
-            "jia2019",
+            "vltco",
             Quantity::KktFloor,
         );
         assert_eq!(c.map(|c| c.n), Some(None));

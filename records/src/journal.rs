@@ -149,12 +149,11 @@ pub fn recover(results: &ResultsDir, git_rev: &str) -> Result<Recovered, Journal
         return Ok(Recovered::default());
     }
     let text = std::fs::read_to_string(&journal).map_err(IoError::at(&journal, IoAction::Read))?;
-    let rows: Vec<RunRow> = table::from_reader(complete_lines(&text).as_bytes()).map_err(|e| {
-        table::TableError {
+    let rows: Vec<RunRow> =
+        table::from_reader(complete_lines(&text).as_bytes()).map_err(|e| table::TableError {
             path: Some(journal.clone()),
             ..e
-        }
-    })?;
+        })?;
     check_rows(&rows).map_err(|error| JournalError::Rows {
         path: journal,
         error,
@@ -201,14 +200,13 @@ fn read_seal(dir: &Path) -> Result<HashMap<String, String>, JournalError> {
     for (i, line) in complete_lines(&text).lines().enumerate() {
         let parsed = line.split_once("  ").filter(|(sha, name)| {
             sha.len() == 64
-                && sha.bytes().all(|b| b.is_ascii_digit() || (b'a'..=b'f').contains(&b))
+                && sha
+                    .bytes()
+                    .all(|b| b.is_ascii_digit() || (b'a'..=b'f').contains(&b))
                 && !name.is_empty()
         });
         let Some((sha, name)) = parsed else {
-            return Err(JournalError::Seal {
-                path,
-                line: i + 1,
-            });
+            return Err(JournalError::Seal { path, line: i + 1 });
         };
         seals.insert(name.to_string(), sha.to_string());
     }
@@ -281,7 +279,13 @@ mod tests {
         std::fs::remove_file(dir.join(trace("c"))).unwrap();
         let lines: Vec<&str> = seal.lines().collect();
         let e_line = lines[4];
-        let reordered = format!("{}\n{}\n{}\n{e_line}\n{}", lines[0], lines[1], lines[2], &lines[3][..20]);
+        let reordered = format!(
+            "{}\n{}\n{}\n{e_line}\n{}",
+            lines[0],
+            lines[1],
+            lines[2],
+            &lines[3][..20]
+        );
         std::fs::write(seal_path(&dir), reordered).unwrap();
 
         let (results, _) = ResultsDir::open(&dir, "r1", Edits::Refuse).unwrap();

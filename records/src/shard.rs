@@ -214,7 +214,11 @@ impl Binding {
     pub fn claim(&self, results: &crate::results_dir::ResultsDir) -> Result<(), ShardError> {
         let dir = results.path();
         let path = dir.join(BINDING);
-        match inputs::read_text(&path, inputs::Kind::ShardBinding, inputs::Origin::Under(dir)) {
+        match inputs::read_text(
+            &path,
+            inputs::Kind::ShardBinding,
+            inputs::Origin::Under(dir),
+        ) {
             Ok(text) => {
                 let found: Binding = inputs::toml_error::from_str(&text)
                     .map_err(|source| ShardError::ReadBinding { path, source })?;
@@ -229,11 +233,7 @@ impl Binding {
             Err(e) if e.is_not_found() => {}
             Err(e) => return Err(e.into()),
         }
-        let held = [
-            crate::results_dir::RUNS,
-            crate::journal::FILE,
-            MANIFEST,
-        ];
+        let held = [crate::results_dir::RUNS, crate::journal::FILE, MANIFEST];
         if let Some(file) = held.into_iter().find(|f| dir.join(f).exists()) {
             return Err(ShardError::Unbound {
                 dir: dir.to_path_buf(),
@@ -244,7 +244,9 @@ impl Binding {
             path: path.clone(),
             source,
         })?;
-        results.tracked().write(Path::new(BINDING), text.as_bytes())?;
+        results
+            .tracked()
+            .write(Path::new(BINDING), text.as_bytes())?;
         results.save()?;
         Ok(())
     }
@@ -324,24 +326,24 @@ impl Manifest {
                 e.into()
             }
         })?;
-        let manifest: Self = inputs::toml_error::from_str(&text).map_err(|source| ShardError::ReadManifest {
-            path: path.clone(),
-            source,
-        })?;
+        let manifest: Self =
+            inputs::toml_error::from_str(&text).map_err(|source| ShardError::ReadManifest {
+                path: path.clone(),
+                source,
+            })?;
         manifest.check(&path)?;
         Ok(manifest)
     }
 
     /// Checks a manifest read from `path` (the rules of the module doc).
     fn check(&self, path: &Path) -> Result<(), ShardError> {
-        let shard = Shard::new(self.shard, self.shards).map_err(|source| {
-            ShardError::ManifestShard {
+        let shard =
+            Shard::new(self.shard, self.shards).map_err(|source| ShardError::ManifestShard {
                 path: path.to_path_buf(),
                 shard: self.shard,
                 shards: self.shards,
                 source: Box::new(source),
-            }
-        })?;
+            })?;
         let mut seen = std::collections::HashSet::new();
         for (index, entry) in self.runs.iter().enumerate() {
             let problem = match catalog::run_key::RunKey::parse(entry) {
@@ -685,18 +687,19 @@ mod tests {
                     .map(|(_, v)| v.to_string())
             }
         };
-        let slurm = |id: &'static str, min: &'static str, max: &'static str, count: &'static str| {
-            move |name: &str| {
-                match name {
-                    "SLURM_ARRAY_TASK_ID" => Some(id),
-                    "SLURM_ARRAY_TASK_MIN" => Some(min),
-                    "SLURM_ARRAY_TASK_MAX" => Some(max),
-                    "SLURM_ARRAY_TASK_COUNT" => Some(count),
-                    _ => None,
+        let slurm =
+            |id: &'static str, min: &'static str, max: &'static str, count: &'static str| {
+                move |name: &str| {
+                    match name {
+                        "SLURM_ARRAY_TASK_ID" => Some(id),
+                        "SLURM_ARRAY_TASK_MIN" => Some(min),
+                        "SLURM_ARRAY_TASK_MAX" => Some(max),
+                        "SLURM_ARRAY_TASK_COUNT" => Some(count),
+                        _ => None,
+                    }
+                    .map(String::from)
                 }
-                .map(String::from)
-            }
-        };
+            };
         // --array=1-4: the array tells N.
         let s = Shard::from_env(slurm("4", "1", "4", "4"), None);
         assert_eq!(s.unwrap(), Shard { k: 4, n: 4 });
@@ -811,10 +814,8 @@ mod tests {
     /// the field and the entry: never a panic, never a path outside the directory.
     #[test]
     fn impossible_manifests_are_refused_naming_the_field() {
-        let dir = std::env::temp_dir().join(format!(
-            "driftbench-bad-manifest-{}",
-            std::process::id()
-        ));
+        let dir =
+            std::env::temp_dir().join(format!("driftbench-bad-manifest-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let good = Manifest {
             shard: 1,
@@ -828,7 +829,10 @@ mod tests {
             m.write(&dir).unwrap();
             let e = Manifest::read(&dir).unwrap_err();
             let msg = e.to_string();
-            assert!(msg.contains(&dir.join(MANIFEST).display().to_string()), "{msg}");
+            assert!(
+                msg.contains(&dir.join(MANIFEST).display().to_string()),
+                "{msg}"
+            );
             for w in wants {
                 assert!(msg.contains(w), "{w} not in {msg}");
             }
@@ -871,12 +875,12 @@ mod tests {
             vec![first.clone(), "../../../outside / x / y".into()],
             &["`runs`, entry 2", "../../../outside", "not a run key"],
         );
-        entry(vec![".. / x / y".into()], &["entry 1", "cannot name a file"]);
-        entry(vec!["no key".into()], &["entry 1", "not a run key"]);
         entry(
-            vec![key_of(2, 2, 0)],
-            &["entry 1", "belongs to shard 2/2"],
+            vec![".. / x / y".into()],
+            &["entry 1", "cannot name a file"],
         );
+        entry(vec!["no key".into()], &["entry 1", "not a run key"]);
+        entry(vec![key_of(2, 2, 0)], &["entry 1", "belongs to shard 2/2"]);
         entry(vec![first.clone(), first], &["entry 2", "listed twice"]);
         good.write(&dir).unwrap();
         assert_eq!(Manifest::read(&dir).unwrap(), good);

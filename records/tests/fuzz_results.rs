@@ -125,7 +125,8 @@ fn the_fuzzed_readers_accept_well_formed_files() {
 
     let dir = scratch("integrity-manifest-plain");
     std::fs::create_dir_all(&dir).unwrap();
-    let text = "git_rev = \"x\"\n[files.\"traces/e/v__s.csv\"]\nlines = 1\nbytes = 1\nsha256 = \"00\"\n";
+    let text =
+        "git_rev = \"x\"\n[files.\"traces/e/v__s.csv\"]\nlines = 1\nbytes = 1\nsha256 = \"00\"\n";
     std::fs::write(dir.join(records::integrity::FILE), text).unwrap();
     let m = records::integrity::Manifest::read(&dir)
         .expect("a well-formed manifest reads")

@@ -25,7 +25,9 @@ mod tests {
     fn well_formed(rev: &str) -> bool {
         match rev.split_once("-dirty-") {
             Some((commit, hash)) => hex(commit, 12) && hex(hash, 16),
-            None => rev.strip_prefix("src-").map_or(hex(rev, 12), |h| hex(h, 16)),
+            None => rev
+                .strip_prefix("src-")
+                .map_or(hex(rev, 12), |h| hex(h, 16)),
         }
     }
 
@@ -43,10 +45,8 @@ mod tests {
 
     /// A small workspace: a root manifest and lock, one member, and files that are not sources.
     fn tree(name: &str) -> std::path::PathBuf {
-        let root = std::env::temp_dir().join(format!(
-            "driftbench-revision-{name}-{}",
-            std::process::id()
-        ));
+        let root =
+            std::env::temp_dir().join(format!("driftbench-revision-{name}-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&root);
         write(&root, "Cargo.toml", "[workspace]\nmembers = [\"a\"]\n");
         write(&root, "Cargo.lock", "version = 4\n");

@@ -249,10 +249,18 @@ fn need(out: &mut Vec<String>, ok: bool, what: &str) {
 /// Every rule of the Job API and of the project the manifest breaks, one line each.
 fn problems(job: &Yaml, cluster_md: &str) -> Vec<String> {
     let mut out = Vec::new();
-    need(&mut out, job.str_at("apiVersion") == Some("batch/v1"), "apiVersion: batch/v1");
+    need(
+        &mut out,
+        job.str_at("apiVersion") == Some("batch/v1"),
+        "apiVersion: batch/v1",
+    );
     need(&mut out, job.str_at("kind") == Some("Job"), "kind: Job");
     let indexed = job.str_at("spec.completionMode") == Some("Indexed");
-    need(&mut out, indexed, "spec.completionMode: Indexed (shards are indexes)");
+    need(
+        &mut out,
+        indexed,
+        "spec.completionMode: Indexed (shards are indexes)",
+    );
     let completions = job.int_at("spec.completions").unwrap_or(0);
     need(&mut out, completions >= 1, "spec.completions: N >= 1");
     let parallelism = job.int_at("spec.parallelism").unwrap_or(1);
@@ -277,18 +285,30 @@ fn problems(job: &Yaml, cluster_md: &str) -> Vec<String> {
     if per_index {
         need(
             &mut out,
-            job.int_at("spec.backoffLimitPerIndex").is_some_and(|b| b >= 0),
+            job.int_at("spec.backoffLimitPerIndex")
+                .is_some_and(|b| b >= 0),
             "spec.backoffLimitPerIndex: a whole number >= 0",
         );
-        need(&mut out, indexed, "spec.backoffLimitPerIndex requires completionMode: Indexed");
+        need(
+            &mut out,
+            indexed,
+            "spec.backoffLimitPerIndex requires completionMode: Indexed",
+        );
         need(
             &mut out,
             restart == "Never",
             "spec.backoffLimitPerIndex requires restartPolicy: Never",
         );
     }
-    if let Some(max) = job.at("spec.maxFailedIndexes").map(|_| job.int_at("spec.maxFailedIndexes")) {
-        need(&mut out, per_index, "spec.maxFailedIndexes requires backoffLimitPerIndex");
+    if let Some(max) = job
+        .at("spec.maxFailedIndexes")
+        .map(|_| job.int_at("spec.maxFailedIndexes"))
+    {
+        need(
+            &mut out,
+            per_index,
+            "spec.maxFailedIndexes requires backoffLimitPerIndex",
+        );
         need(
             &mut out,
             max.is_some_and(|m| (0..=completions).contains(&m)),
@@ -304,7 +324,11 @@ fn problems(job: &Yaml, cluster_md: &str) -> Vec<String> {
             "spec.podFailurePolicy requires restartPolicy: Never",
         );
         let rules = job.seq_at("spec.podFailurePolicy.rules");
-        need(&mut out, rules.len() <= 20, "spec.podFailurePolicy.rules: at most 20");
+        need(
+            &mut out,
+            rules.len() <= 20,
+            "spec.podFailurePolicy.rules: at most 20",
+        );
         for (i, rule) in rules.iter().enumerate() {
             let at = format!("spec.podFailurePolicy.rules[{i}]");
             let action = rule.str_at("action").unwrap_or("");
@@ -314,7 +338,11 @@ fn problems(job: &Yaml, cluster_md: &str) -> Vec<String> {
                 &format!("{at}.action: Count, FailIndex, FailJob or Ignore"),
             );
             if action == "FailIndex" {
-                need(&mut out, per_index, &format!("{at}: FailIndex requires backoffLimitPerIndex"));
+                need(
+                    &mut out,
+                    per_index,
+                    &format!("{at}: FailIndex requires backoffLimitPerIndex"),
+                );
             }
             let (codes, conditions) = (rule.at("onExitCodes"), rule.at("onPodConditions"));
             need(
@@ -496,25 +524,59 @@ spec:
 "#;
     let docs = read("docs/cluster.md");
     let old = problems(&Parser::new(OLD).parse(), &docs);
-    for want in ["requires restartPolicy: Never", "--threads from the CPU request"] {
+    for want in [
+        "requires restartPolicy: Never",
+        "--threads from the CPU request",
+    ] {
         assert!(old.iter().any(|p| p.contains(want)), "{want}: {old:#?}");
     }
     let current = read("docs/kubernetes/driftbench-job.yaml");
     for (from, to, want) in [
         ("values: [1, 2]", "values: [2, 1]", "ordered"),
         ("values: [1, 2]", "values: [0, 2]", "not 0 with In"),
-        ("containerName: reproduce\n          operator", "containerName: other\n          operator", "a container of the pod"),
-        ("  backoffLimitPerIndex: 3\n", "", "FailIndex requires backoffLimitPerIndex"),
-        ("completions: 16", "completions: 8", "DRIFTBENCH_SHARDS equals spec.completions"),
-        ("resource: requests.cpu", "resource: limits.memory", "--threads from the CPU request"),
-        ("$(DRIFTBENCH_THREADS)", "$(THREADS)", "names an env variable"),
-        ("status: \"True\"", "status: \"Yes\"", "True, False or Unknown"),
-        ("memory: \"4Gi\" }\n            limits", "memory: \"1Gi\" }\n            limits", "docs/cluster.md states"),
+        (
+            "containerName: reproduce\n          operator",
+            "containerName: other\n          operator",
+            "a container of the pod",
+        ),
+        (
+            "  backoffLimitPerIndex: 3\n",
+            "",
+            "FailIndex requires backoffLimitPerIndex",
+        ),
+        (
+            "completions: 16",
+            "completions: 8",
+            "DRIFTBENCH_SHARDS equals spec.completions",
+        ),
+        (
+            "resource: requests.cpu",
+            "resource: limits.memory",
+            "--threads from the CPU request",
+        ),
+        (
+            "$(DRIFTBENCH_THREADS)",
+            "$(THREADS)",
+            "names an env variable",
+        ),
+        (
+            "status: \"True\"",
+            "status: \"Yes\"",
+            "True, False or Unknown",
+        ),
+        (
+            "memory: \"4Gi\" }\n            limits",
+            "memory: \"1Gi\" }\n            limits",
+            "docs/cluster.md states",
+        ),
     ] {
         assert!(current.contains(from), "{from}");
         let broken = Parser::new(&current.replacen(from, to, 1)).parse();
         let found = problems(&broken, &docs);
-        assert!(found.iter().any(|p| p.contains(want)), "{to}: {want}: {found:#?}");
+        assert!(
+            found.iter().any(|p| p.contains(want)),
+            "{to}: {want}: {found:#?}"
+        );
     }
 }
 
@@ -529,7 +591,12 @@ fn the_parser_reads_the_subset_and_refuses_the_rest() {
     assert_eq!(doc.seq_at("b")[1].str_at("k"), Some("v # not a comment"));
     assert_eq!(doc.seq_at("b")[1].seq_at("l").len(), 2);
     assert_eq!(doc.str_at("c.d"), Some("e"));
-    for bad in ["a: &x 1\n", "a: |\n  text\n", "a: 1\n   b: 2\n", "a: 1\na: 2\n"] {
+    for bad in [
+        "a: &x 1\n",
+        "a: |\n  text\n",
+        "a: 1\n   b: 2\n",
+        "a: 1\na: 2\n",
+    ] {
         assert!(
             std::panic::catch_unwind(|| Parser::new(bad).parse()).is_err(),
             "{bad}"

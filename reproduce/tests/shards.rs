@@ -249,7 +249,10 @@ fn a_shard_directory_of_another_selection_or_sweep_is_refused_at_the_start() {
             assert!(err.contains(w), "{w} not in {err}");
         }
         assert_eq!(std::fs::read(dir.join("runs.csv")).unwrap(), before);
-        assert!(dir.join("shard.toml").exists(), "the finished shard is kept");
+        assert!(
+            dir.join("shard.toml").exists(),
+            "the finished shard is kept"
+        );
     };
     refused(
         shard(&["--exact-only"]),
@@ -269,7 +272,10 @@ sweep = { "scheme.mu" = [1, 2] }
         ),
     )
     .unwrap();
-    refused(shard(&[]), &["bound to another shard", "other experiment files"]);
+    refused(
+        shard(&[]),
+        &["bound to another shard", "other experiment files"],
+    );
     std::fs::write(&file, common::CHEAP_EXPERIMENT).unwrap();
     // Another K/N given the same directory.
     let out = reproduce()
@@ -298,7 +304,10 @@ sweep = { "scheme.mu" = [1, 2] }
         .unwrap();
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(err.contains("shard.toml") && err.contains("`shards = 0`"), "{err}");
+    assert!(
+        err.contains("shard.toml") && err.contains("`shards = 0`"),
+        "{err}"
+    );
     assert!(!base.join("merged").join("runs.csv").exists());
     let _ = std::fs::remove_dir_all(&base);
 }

@@ -413,7 +413,11 @@ fn names_must_be_unique_and_file_safe() {
     assert_rejected(
         "id_slug_collision",
         &format!("{GOOD}{}", second_experiment("jia2019-X", "VLTCO")),
-        &["field `id`", "\"jia2019-X\" is not an id", "(e.g. \"jia2019-x\")"],
+        &[
+            "field `id`",
+            "\"jia2019-X\" is not an id",
+            "(e.g. \"jia2019-x\")",
+        ],
     );
     let mut two_variants = GOOD.to_string();
     two_variants.push_str(&GOOD[GOOD.find("[[experiment.variant]]").unwrap()..]);
