@@ -2,8 +2,8 @@
 //! per mode (the lock, the integrity check of its tables, the migration of rows written before
 //! run ids), and written at the end of a run or merge (pruning, merging, runs.csv, manifest).
 
-use crate::cli::Cli;
 use crate::error::ReproduceError;
+use crate::project::Project;
 use catalog::experiment::{load_dir, Job};
 use catalog::run_key::RunKey;
 use records::results_dir::ResultsDir;
@@ -13,11 +13,13 @@ use std::collections::HashSet;
 
 /// Every run the experiment files describe (what migration and pruning compare the stored
 /// runs with).
-pub fn all_jobs(cli: &Cli) -> Result<Vec<Job>, ReproduceError> {
-    Ok(load_dir(&cli.experiments_dir, simulation::run::check_job)?
-        .iter()
-        .flat_map(|f| f.jobs())
-        .collect())
+pub fn all_jobs(project: &Project) -> Result<Vec<Job>, ReproduceError> {
+    Ok(
+        load_dir(&project.experiments_dir, simulation::run::check_job)?
+            .iter()
+            .flat_map(|f| f.jobs())
+            .collect(),
+    )
 }
 
 /// The run keys (`experiment / variant / solver`) the experiment files describe.
@@ -29,29 +31,34 @@ pub fn described_keys(all: &[Job]) -> HashSet<RunKey> {
 /// check of its tables, the removal of this program's own stale temporary files.
 /// `all`: every run of the experiment files ([`all_jobs`]), by which results written before
 /// run ids are migrated.
-pub fn open_results(cli: &Cli, git_rev: &str, all: &[Job]) -> Result<ResultsDir, ReproduceError> {
-    let (results, removed) = ResultsDir::open(&cli.results_dir, git_rev, cli.edits())?;
+pub fn open_results(
+    project: &Project,
+    git_rev: &str,
+    all: &[Job],
+) -> Result<ResultsDir, ReproduceError> {
+    let (results, removed) = ResultsDir::open(&project.results_dir, git_rev, project.edits)?;
     if !removed.is_empty() {
         eprintln!(
             "removed {} stale temporary file(s) of interrupted runs under {}",
             removed.len(),
-            cli.results_dir.display()
+            project.results_dir.display()
         );
     }
     // Results written before run ids are migrated once (records::migrate).
     for done in results.migrate_ids(all)? {
         eprintln!(
             "migrated to run ids under {}: {done}",
-            cli.results_dir.display()
+            project.results_dir.display()
         );
     }
     Ok(results)
 }
 
 /// The stored rows split into those an experiment file still describes (kept) and those it
-/// does not (to prune); refuses to prune more than a quarter of them without `--prune`.
+/// does not (to prune); refuses to prune more than a quarter of them without `--prune`
+/// ([`Project::prune`]).
 pub fn plan_pruning(
-    cli: &Cli,
+    project: &Project,
     results: &ResultsDir,
     all: &[Job],
 ) -> Result<(Vec<RunRow>, Vec<RunRow>), ReproduceError> {
@@ -59,8 +66,8 @@ pub fn plan_pruning(
     Ok(results.plan_pruning(
         results.read_runs()?,
         |row| described.contains(&row.key()),
-        cli.prune,
-        &cli.experiments_dir,
+        project.prune,
+        &project.experiments_dir,
     )?)
 }
 

@@ -6,8 +6,9 @@
 //! in `<out>/figures/<experiment>__<variant>__<solver>.svg`; its summary line is printed like a
 //! run's.
 
-use crate::cli::Cli;
 use crate::error::{ReproduceError, ScoreError};
+use crate::options::ScoreOptions;
+use crate::project::Project;
 use crate::summary::{emit, summary};
 use catalog::experiment::{load_dir, Job, PaperFile};
 use catalog::run_key::TaskKey;
@@ -21,10 +22,14 @@ use simulation::run::{check_job, RunRecord};
 use simulation::score_trajectory::score_trajectory;
 use std::path::{Path, PathBuf};
 
-/// Scores `file` on `task` (an id `experiment / variant`) into `--score-out`.
-pub fn score(cli: &Cli, file: &Path, task: &str, git_rev: &str) -> Result<(), ReproduceError> {
-    let task = find_task(&cli.experiments_dir, task)?;
-    let s = score_file(&task, file, &cli.score_out, git_rev)?;
+/// Scores `options.file` on `options.task` (an id `experiment / variant`) into `options.out`.
+pub fn score(
+    project: &Project,
+    options: &ScoreOptions,
+    git_rev: &str,
+) -> Result<(), ReproduceError> {
+    let task = find_task(&project.experiments_dir, &options.task)?;
+    let s = score_file(&task, &options.file, &options.out, git_rev)?;
     emit(&summary(std::slice::from_ref(&s.row)));
     eprintln!(
         "wrote {}, {} and {}",
