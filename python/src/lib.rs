@@ -390,14 +390,14 @@ fn score<'py>(
     let (record, row) = if let Ok(file) = trajectory.extract::<PathBuf>() {
         match out_dir {
             Some(out) => {
-                let s = reproduce::score::score_file(&task.job, &file, &out, git_rev)
+                let s = reproduce::score::score_file(&task.job, &file, None, &out, git_rev)
                     .map_err(lib_err)?;
                 (s.record, s.row)
             }
             None => {
                 let record = score_trajectory(
                     &task.job,
-                    &read(&file, task.job.theta0.len()).map_err(lib_err)?,
+                    &read(&file, task.job.theta0.len(), None).map_err(lib_err)?,
                 )
                 .map_err(|e| lib_err(format!("{}: {e}", file.display())))?;
                 let row = score_row(run_row(&record, git_rev), &file.display().to_string());

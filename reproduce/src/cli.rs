@@ -119,6 +119,7 @@ mod tests {
             Mode::Score(ScoreOptions {
                 file: PathBuf::from("f.csv"),
                 task: "e/v".into(),
+                columns: None,
                 out: PathBuf::from("scores"),
             }),
         );

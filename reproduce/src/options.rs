@@ -186,8 +186,13 @@ pub struct ScoreOptions {
     /// The task: "<experiment> / <variant>" (`reproduce list` names them).
     #[arg(long, value_name = "ID")]
     pub task: String,
+    /// Which columns of a MAT-file's `y` hold theta and thetadot, 1-based and inclusive as
+    /// MATLAB counts: `theta=1:6,thetadot=7:12` (the rest, e.g. a network's own state, is
+    /// ignored). Without it `y` must be n or 2n columns wide.
+    #[arg(long, value_name = "SPEC")]
+    pub columns: Option<records::trajectory_mat::Columns>,
     /// Where the score, its trace and figure are written (default: scores/ in the working
-    /// directory; never results/ or report/ of a project).
+    /// directory).
     #[arg(
         long,
         alias = "score-out",
