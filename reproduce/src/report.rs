@@ -38,7 +38,7 @@ pub fn check_report_dir(root: &Path) -> Result<(), ReproduceError> {
     Ok(records::runs::check_writable(report.path())?)
 }
 
-/// Figures first (the report links them), then REPORT.md, then the leaderboard table (recorded
+/// Figures first (the report links them), then the report's pages, then the leaderboard table (recorded
 /// in the results directory's manifest).
 pub fn render_report(
     project: &Project,
