@@ -2,15 +2,15 @@
 //! in Python, and the leaderboard, as bindings (PyO3) to the Rust crates, not a second
 //! implementation.
 //!
-//! - [`tasks`] / [`task`] / [`standard_tasks`]: every (experiment, variant) of the experiment
-//!   files as a `Task` ([`task_set::PyTask`]); the standard task set is the leaderboard's
+//! - `tasks` / `task` / `standard_tasks`: every (experiment, variant) of the experiment
+//!   files as a `Task` (`task_set::PyTask`); the standard task set is the leaderboard's
 //!   (`records::leaderboard::standard_tasks` over `results/runs.csv`).
-//! - [`simulate`]: one run of a task with a Python network ([`network`]) or one of the suite's
+//! - `simulate`: one run of a task with a Python network (`network`) or one of the suite's
 //!   own solvers (by id). Arm, scheme, integrator and the score against the exact optimum are
 //!   `simulation::run`'s; the result is the run's `results/runs.csv` row
 //!   (`records::runs::RunRow`) as a dict, with the drift and the trace as numpy arrays and the
 //!   cost of the Python calls.
-//! - [`leaderboard`]: Python networks on the standard task set, ranked with the suite's own runs
+//! - `leaderboard`: Python networks on the standard task set, ranked with the suite's own runs
 //!   by `records::leaderboard::leaderboard`, rows in `results/leaderboard.csv`'s schema.
 //!
 //! Errors of the library are raised as `driftbench.DriftbenchError` with the library's message;

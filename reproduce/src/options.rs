@@ -183,7 +183,7 @@ pub struct ScoreOptions {
     /// The trajectory: CSV (t, theta_1..n, optionally thetadot_1..n) or a MAT-file.
     #[arg(value_name = "FILE")]
     pub file: PathBuf,
-    /// The task: "<experiment> / <variant>" (`reproduce list` names them).
+    /// The task: `"<experiment> / <variant>"` (`reproduce list` names them).
     #[arg(long, value_name = "ID")]
     pub task: String,
     /// Which columns of a MAT-file's `y` hold theta and thetadot, 1-based and inclusive as
