@@ -390,8 +390,15 @@ fn score<'py>(
     let (record, row) = if let Ok(file) = trajectory.extract::<PathBuf>() {
         match out_dir {
             Some(out) => {
-                let s = reproduce::score::score_file(&task.job, &file, None, &out, git_rev)
-                    .map_err(lib_err)?;
+                let s = reproduce::score::score_file(
+                    &task.job,
+                    &file,
+                    None,
+                    records::trajectory::TRAJECTORY_KIND,
+                    &out,
+                    git_rev,
+                )
+                .map_err(lib_err)?;
                 (s.record, s.row)
             }
             None => {
@@ -400,7 +407,11 @@ fn score<'py>(
                     &read(&file, task.job.theta0.len(), None).map_err(lib_err)?,
                 )
                 .map_err(|e| lib_err(format!("{}: {e}", file.display())))?;
-                let row = score_row(run_row(&record, git_rev), &file.display().to_string());
+                let row = score_row(
+                    run_row(&record, git_rev),
+                    &file.display().to_string(),
+                    records::trajectory::TRAJECTORY_KIND,
+                );
                 (record, row)
             }
         }
@@ -430,7 +441,11 @@ fn score<'py>(
             thetadot,
         };
         let record = score_trajectory(&task.job, &traj).map_err(lib_err)?;
-        let row = score_row(run_row(&record, git_rev), "arrays");
+        let row = score_row(
+            run_row(&record, git_rev),
+            "arrays",
+            records::trajectory::TRAJECTORY_KIND,
+        );
         (record, row)
     };
     result_dict(py, &record, &row, &Callbacks::default())

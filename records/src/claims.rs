@@ -203,7 +203,7 @@ pub const RUST_CLAIMS: &[&str] = &[
 /// What is wrong with a `[[claim]]` (the field and the valid choices).
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum ClaimError {
-    #[error("field `metric`: unknown metric \"{metric}\" (valid: drift_k for joint k, {})", crate::index::METRICS.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", "))]
+    #[error("field `metric`: unknown metric \"{metric}\" (valid: drift_k for joint k, {})", crate::index::metrics().map(|(n, _)| *n).collect::<Vec<_>>().join(", "))]
     UnknownMetric { metric: String },
     #[error("field `rust`: no Rust claim \"{id}\" (known: {})", RUST_CLAIMS.join(", "))]
     UnknownRust { id: String },

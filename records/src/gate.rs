@@ -3,9 +3,10 @@
 //! A fresh row is compared with the committed row of the same (experiment, variant, solver):
 //! - the status must be the same (a run that completed must still complete, a run that failed
 //!   is a recorded finding and must still fail);
-//! - for completed runs the drift per joint, its norm and the max position error must agree to
-//!   a relative 1e-6 (absolute 1e-12): the simulation is deterministic, so anything beyond
-//!   floating-point noise across machines is a change of behaviour;
+//! - for completed runs the drift per joint and every measured metric (`crate::index::MEASURED`:
+//!   every number the report's claims and tables use, timings aside) must agree to a relative
+//!   1e-6 (absolute 1e-12): the simulation is deterministic, so anything beyond floating-point
+//!   noise across machines is a change of behaviour;
 //! - every committed run must still be produced, and every fresh run must be committed;
 //! - every neural run must complete, except those whose divergence is itself the finding
 //!   (declared in the experiment files as `expected_failure`, recorded in each row).
@@ -69,10 +70,9 @@ pub fn compare(committed: &[RunRow], fresh: &[RunRow], baseline: &str) -> Vec<St
                 .zip(&f.drift)
                 .enumerate()
                 .map(|(i, (a, b))| (format!("drift_{}", i + 1), Some(*a), Some(*b)));
-            let totals = [
-                ("drift_norm".to_string(), c.drift_norm, f.drift_norm),
-                ("max_pos_err".to_string(), c.max_pos_err, f.max_pos_err),
-            ];
+            let totals = crate::index::MEASURED
+                .iter()
+                .map(|(name, column)| (name.to_string(), column(c), column(f)));
             for (name, a, b) in joints.chain(totals) {
                 if !close(a, b) {
                     problems.push(format!("{:?}: {name} {a:?} -> {b:?}", c.key()));
@@ -92,4 +92,32 @@ pub fn compare(committed: &[RunRow], fresh: &[RunRow], baseline: &str) -> Vec<St
         }
     }
     problems
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The audit's case: a doctored `final_pos_err` (which a kong2019 claim reads) is a gate
+    /// difference, as is every other measured metric; a timing is not.
+    #[test]
+    fn every_measured_metric_is_compared_and_no_timing() {
+        let mut row = RunRow::blank("e", "v", "s", "znn");
+        row.final_pos_err = Some(1e-5);
+        row.score_rms_dx = Some(2e-4);
+        let committed = vec![row.clone()];
+        assert!(compare(&committed, &committed, "b").is_empty());
+        let mut doctored = row.clone();
+        doctored.final_pos_err = Some(0.99);
+        let problems = compare(&committed, &[doctored], "b");
+        assert_eq!(problems.len(), 1, "{problems:?}");
+        assert!(problems[0].contains("final_pos_err"), "{problems:?}");
+        let mut lost = row.clone();
+        lost.score_rms_dx = None;
+        assert!(compare(&committed, &[lost], "b")[0].contains("score_rms_dx"));
+        let mut slower = row;
+        slower.wall_s += 10.0;
+        slower.sim_s += 10.0;
+        assert!(compare(&committed, &[slower], "b").is_empty());
+    }
 }

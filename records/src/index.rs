@@ -95,21 +95,28 @@ pub fn failed_at(r: &RunRow) -> String {
     }
 }
 
+/// A metric's name and how it is read from a row.
+pub type Column = (&'static str, fn(&RunRow) -> Option<f64>);
+
+/// Every metric besides the joint drifts: the [`MEASURED`] ones, then the [`TIMINGS`].
+pub fn metrics() -> impl Iterator<Item = &'static Column> {
+    MEASURED.iter().chain(TIMINGS)
+}
+
 /// A numeric column of a run by its `runs.csv` name (`drift_k` for joint k, or one of
-/// [`METRICS`]); `None` when not measured or unknown.
+/// [`metrics`]); `None` when not measured or unknown.
 pub fn metric(r: &RunRow, name: &str) -> Option<f64> {
     if let Some(k) = joint_drift(name) {
         return k.checked_sub(1).and_then(|i| r.drift.get(i).copied());
     }
-    METRICS
-        .iter()
+    metrics()
         .find(|(n, _)| *n == name)
         .and_then(|(_, column)| column(r))
 }
 
-/// Whether `name` is a metric [`metric`] knows: `drift_k` (k >= 1) or one of [`METRICS`].
+/// Whether `name` is a metric [`metric`] knows: `drift_k` (k >= 1) or one of [`metrics`].
 pub fn is_metric(name: &str) -> bool {
-    joint_drift(name).is_some_and(|k| k >= 1) || METRICS.iter().any(|(n, _)| *n == name)
+    joint_drift(name).is_some_and(|k| k >= 1) || metrics().any(|(n, _)| *n == name)
 }
 
 /// k of `drift_k`.
@@ -117,9 +124,9 @@ fn joint_drift(name: &str) -> Option<usize> {
     name.strip_prefix("drift_")?.parse::<usize>().ok()
 }
 
-/// The metrics of a run besides the joint drifts `drift_k`, by name, and how each is read.
-#[allow(clippy::type_complexity)]
-pub const METRICS: &[(&str, fn(&RunRow) -> Option<f64>)] = &[
+/// The measured metrics of a run besides the joint drifts `drift_k`, by name, and how each is
+/// read: what the simulation computes, identical from run to run (the gate compares them all).
+pub const MEASURED: &[Column] = &[
     ("drift_norm", |r| r.drift_norm),
     // The largest |theta_k(T) - theta_k(0)| over the joints ("every joint drift < x").
     ("drift_max_abs", |r| {
@@ -148,6 +155,7 @@ pub const METRICS: &[(&str, fn(&RunRow) -> Option<f64>)] = &[
     ("score_rms_dx", |r| r.score_rms_dx),
     ("score_max_obj_gap", |r| r.score_max_obj_gap),
     ("score_max_violation", |r| r.score_max_violation),
-    ("wall_s", |r| Some(r.wall_s)),
-    ("sim_s", |r| Some(r.sim_s)),
 ];
+
+/// The timings of a run (s): measured on a machine, different from run to run.
+pub const TIMINGS: &[Column] = &[("wall_s", |r| Some(r.wall_s)), ("sim_s", |r| Some(r.sim_s))];

@@ -10,7 +10,8 @@
 //!
 //! **Output** ([`score_row`]): the score is a row of the `results/runs.csv` schema
 //! ([`RunRow`]): the run's metrics (drift, position error, margins, peaks) and score
-//! (`score_*`), with `solver` = `trajectory <file name>`, `solver_kind` = [`TRAJECTORY_KIND`] and
+//! (`score_*`), with `solver_id` = the trajectory's name (`trajectory` unless named),
+//! `solver` = `trajectory <file name>`, `solver_kind` = [`TRAJECTORY_KIND`] and
 //! `integrator` = [`TRAJECTORY_KIND`] (nothing was integrated: `rtol` and `atol` are 0, `steps`
 //! is the number of samples).
 
@@ -167,8 +168,11 @@ pub fn parse_csv(bytes: &[u8], path: &Path) -> Result<Trajectory, TrajectoryFile
 }
 
 /// The row of a scored trajectory (module docs) from the row of its score's record (the
-/// engine's `simulation::row::run_row`); `source` names the file it came from.
-pub fn score_row(mut row: RunRow, source: &str) -> RunRow {
+/// engine's `simulation::row::run_row`); `source` names the file it came from, `name` (a slug,
+/// [`TRAJECTORY_KIND`] by default) is its solver id: the row's key is the task and the name,
+/// never the exact column's.
+pub fn score_row(mut row: RunRow, source: &str, name: &str) -> RunRow {
+    row.solver_id = name.to_string();
     row.solver = format!("{TRAJECTORY_KIND} {source}");
     row.solver_kind = TRAJECTORY_KIND.to_string();
     row.integrator = TRAJECTORY_KIND.to_string();

@@ -120,6 +120,7 @@ mod tests {
                 file: PathBuf::from("f.csv"),
                 task: "e/v".into(),
                 columns: None,
+                name: "trajectory".into(),
                 out: PathBuf::from("scores"),
             }),
         );

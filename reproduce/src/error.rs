@@ -122,6 +122,19 @@ pub enum ScoreError {
     Io(#[from] records::error::IoError),
     #[error(transparent)]
     Figure(#[from] presentation::error::FigureError),
+    #[error(transparent)]
+    Path(#[from] records::owned_dir::PathError),
+    #[error("--name {name:?}: a scored trajectory's name is its solver id, a slug (lower-case letters, digits, `.` and `-`, at most {max} bytes), e.g. {suggestion:?}")]
+    Name {
+        name: String,
+        suggestion: String,
+        max: usize,
+    },
+    #[error("{}: the scores go into a directory of their own, not into {} (sealed by this program's manifest.toml: results/, report/ or a shard)", out.display(), sealed.display())]
+    Sealed {
+        out: std::path::PathBuf,
+        sealed: std::path::PathBuf,
+    },
 }
 
 /// Why a gate baseline's rows cannot be used; each names the file (or `git HEAD:...`).

@@ -191,8 +191,12 @@ pub struct ScoreOptions {
     /// ignored). Without it `y` must be n or 2n columns wide.
     #[arg(long, value_name = "SPEC")]
     pub columns: Option<records::trajectory_mat::Columns>,
+    /// The scored trajectory's solver id, a slug (its row's key is the task and this name, so
+    /// trajectories of one task scored under different names keep their own rows).
+    #[arg(long, value_name = "ID", default_value = records::trajectory::TRAJECTORY_KIND)]
+    pub name: String,
     /// Where the score, its trace and figure are written (default: scores/ in the working
-    /// directory).
+    /// directory; never a directory this program seals, such as results/ or report/).
     #[arg(
         long,
         alias = "score-out",
@@ -208,7 +212,7 @@ pub enum Mode {
     /// Run the selected experiments, the explanation layer and the report (the default).
     Run(RunOptions),
     /// The regression gate: run the selection and compare it with git HEAD's committed
-    /// results/runs.csv (or --baseline; status, drifts, max position error); write nothing;
+    /// results/runs.csv (or --baseline; status, drifts and every measured metric); write nothing;
     /// exit 1 on any difference.
     Check(CheckOptions),
     /// Re-render report/ and its figures from the stored results, running nothing.

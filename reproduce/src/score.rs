@@ -1,10 +1,12 @@
 //! `reproduce score FILE --task EXPERIMENT/VARIANT` (and `driftbench.score` in Python): a
 //! trajectory produced elsewhere, scored on a task of the suite
 //! (`simulation::score_trajectory`), written as a run is: its row in `<out>/scores.csv` (the
-//! `results/runs.csv` schema, one row per task and file, replaced when scored again), its trace in
-//! `<out>/traces/<experiment>/<variant>__<solver>.csv` and its figure (the report's run figure)
-//! in `<out>/figures/<experiment>__<variant>__<solver>.svg`; its summary line is printed like a
-//! run's.
+//! `results/runs.csv` schema, one row per task and name: `--name`, the row's solver id,
+//! `trajectory` by default; replaced when scored again), its trace in
+//! `<out>/traces/<experiment>/<variant>__<name>.csv` and its figure (the report's run figure)
+//! in `<out>/figures/<experiment>__<variant>__<name>.svg` and `.png`; its summary line is printed
+//! like a run's, with warnings for what looks wrong ([`Warning`]). `<out>` is a directory of its
+//! own: never results/, report/ or another directory this program seals.
 
 use crate::error::{ReproduceError, ScoreError};
 use crate::options::ScoreOptions;
@@ -12,8 +14,9 @@ use crate::project::Project;
 use crate::summary::{emit, summary};
 use catalog::experiment::{load_dir, Job, PaperFile};
 use catalog::run_key::TaskKey;
-use presentation::figures::run_svg;
+use presentation::figures::run_figure;
 use records::error::{IoAction, IoError};
+use records::owned_dir::OwnedDir;
 use records::runs::{merge, write_atomic, RunRow};
 use records::trace::trace_csv;
 use records::trajectory::{read, score_row};
@@ -34,6 +37,7 @@ pub fn score(
         &task,
         &options.file,
         options.columns.as_ref(),
+        &options.name,
         &options.out,
         git_rev,
     )?;
@@ -130,14 +134,20 @@ pub fn find_task(experiments_dir: &Path, id: &str) -> Result<Job, ScoreError> {
 }
 
 /// Scores the trajectory file `file` (CSV, or a MAT-file: `records::trajectory::read`) on
-/// `task` (a MAT-file's `columns` when given) and writes the row, trace and figure under `out`.
+/// `task` (a MAT-file's `columns` when given) under the solver id `name` (a slug), and writes
+/// the row, trace and figure (SVG and PNG) under `out`: a directory of its own, never one this
+/// program seals ([`check_out`]), every path inside it checked (`records::owned_dir`: a
+/// `traces/<experiment>` that is a symbolic link elsewhere is refused).
 pub fn score_file(
     task: &Job,
     file: &Path,
     columns: Option<&Columns>,
+    name: &str,
     out: &Path,
     git_rev: &str,
 ) -> Result<Scored, ScoreError> {
+    check_name(name)?;
+    check_out(out)?;
     let trajectory = read(file, task.theta0.len(), columns)?;
     let record = score_trajectory(task, &trajectory).map_err(|error| ScoreError::Score {
         file: file.to_path_buf(),
@@ -148,9 +158,10 @@ pub fn score_file(
         || file.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
-    let row = score_row(run_row(&record, git_rev), &source);
+    let row = score_row(run_row(&record, git_rev), &source, name);
     let warnings = warnings(&row, &trajectory);
-    let scores = out.join("scores.csv");
+    let dir = OwnedDir::open(out)?;
+    let scores = dir.resolve(Path::new(SCORES))?;
     let stored: Vec<RunRow> = if scores.exists() {
         records::table::read(&scores)?
     } else {
@@ -158,32 +169,35 @@ pub fn score_file(
     };
     let rows = merge(stored, vec![row.clone()]);
     let stem = row.key().stem();
-    let trace = out
-        .join(records::results_dir::TRACES)
+    let rel_trace = Path::new(records::results_dir::TRACES)
         .join(&row.experiment)
         .join(format!("{stem}.csv"));
-    let figure = out
-        .join("figures")
-        .join(format!("{}__{stem}.svg", row.experiment));
-    let io = |path: &Path, bytes: &[u8]| -> Result<(), IoError> {
-        if let Some(dir) = path.parent() {
-            std::fs::create_dir_all(dir).map_err(IoError::at(dir, IoAction::Write))?;
+    let rel_figure = Path::new("figures").join(format!("{}__{stem}.svg", row.experiment));
+    let io = |rel: &Path, bytes: &[u8]| -> Result<PathBuf, ScoreError> {
+        if let Some(parent) = rel.parent().filter(|p| !p.as_os_str().is_empty()) {
+            let parent = dir.resolve(parent)?;
+            std::fs::create_dir_all(&parent).map_err(IoError::at(&parent, IoAction::Write))?;
         }
-        write_atomic(path, bytes).map_err(IoError::at(path, IoAction::Write))
+        // Resolved again once the directories exist: none of them may lead elsewhere.
+        let path = dir.resolve(rel)?;
+        write_atomic(&path, bytes).map_err(IoError::at(&path, IoAction::Write))?;
+        Ok(path)
     };
     let csv_error = |path: &Path| {
         let path = path.to_path_buf();
         move |source| ScoreError::Csv { path, source }
     };
-    io(
-        &scores,
+    let scores = io(
+        Path::new(SCORES),
         &records::runs::runs_csv(&rows).map_err(csv_error(&scores))?,
     )?;
-    io(
-        &trace,
-        &trace_csv(&record.run.trace).map_err(csv_error(&trace))?,
+    let trace = io(
+        &rel_trace,
+        &trace_csv(&record.run.trace).map_err(csv_error(&rel_trace))?,
     )?;
-    io(&figure, run_svg(&row, &trace)?.as_bytes())?;
+    let (svg, png) = run_figure(&row, &trace)?;
+    let figure = io(&rel_figure, svg.as_bytes())?;
+    io(&rel_figure.with_extension("png"), &png)?;
     Ok(Scored {
         record,
         row,
@@ -192,6 +206,48 @@ pub fn score_file(
         figure,
         warnings,
     })
+}
+
+/// The table of scores in an out directory.
+pub const SCORES: &str = "scores.csv";
+
+/// A scored trajectory's name: a slug that can name its files.
+fn check_name(name: &str) -> Result<(), ScoreError> {
+    let max = catalog::naming::MAX_SOLVER_LABEL;
+    if schemes::slug::is_slug(name) && name.len() <= max {
+        return Ok(());
+    }
+    let mut suggestion = schemes::slug::slug(name);
+    suggestion.truncate(max);
+    Err(ScoreError::Name {
+        name: name.to_string(),
+        suggestion: if suggestion.is_empty() {
+            records::trajectory::TRAJECTORY_KIND.to_string()
+        } else {
+            suggestion
+        },
+        max,
+    })
+}
+
+/// Refuses an out directory that is, or lies inside, a directory this program seals with a
+/// manifest (results/, report/, a shard directory): scores written there would pass for runs.
+/// The directory and each of its existing ancestors are looked at once symbolic links are
+/// resolved.
+pub fn check_out(out: &Path) -> Result<(), ScoreError> {
+    let absolute = std::path::absolute(out).unwrap_or_else(|_| out.to_path_buf());
+    let mut at = Some(absolute.as_path());
+    while let Some(dir) = at {
+        let resolved = dir.canonicalize().unwrap_or_else(|_| dir.to_path_buf());
+        if resolved.join(records::integrity::FILE).is_file() {
+            return Err(ScoreError::Sealed {
+                out: out.to_path_buf(),
+                sealed: dir.to_path_buf(),
+            });
+        }
+        at = dir.parent();
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -65,8 +65,19 @@ fn a_trajectory_file_is_scored_on_its_task() {
     assert_eq!(rows[0].drift, metrics.drift);
     assert_eq!(rows[0].solver, "trajectory znn.csv");
     assert!(rows[0].score_rms_dx.is_some());
-    let figures: Vec<_> = std::fs::read_dir(out.join("figures")).unwrap().collect();
-    assert_eq!(figures.len(), 1);
+    assert_eq!(rows[0].solver_id, "trajectory");
+    let mut figures: Vec<String> = std::fs::read_dir(out.join("figures"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    figures.sort();
+    assert_eq!(
+        figures,
+        [
+            "kong2019-circle__znn-eq22__trajectory.png",
+            "kong2019-circle__znn-eq22__trajectory.svg"
+        ]
+    );
     assert!(!String::from_utf8_lossy(&ok.stderr).contains("warning"));
 
     // The subcommand, with a global option after it and from outside the project: the same
@@ -124,5 +135,77 @@ fn a_trajectory_file_is_scored_on_its_task() {
         .unwrap();
     assert_eq!(refused.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&refused.stderr).contains("no task \"nope / nope\""));
+
+    // A second name keeps its own row beside the first; a name that is not a slug, and an
+    // out directory this program seals (results/), are refused before anything is written.
+    let task = job.task().to_string();
+    let named = reproduce()
+        .arg("score")
+        .arg(&file)
+        .args(["--task", &task, "--name", "octave-znn", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        named.status.success(),
+        "{}",
+        String::from_utf8_lossy(&named.stderr)
+    );
+    let rows: Vec<records::runs::RunRow> = records::table::read(&out.join("scores.csv")).unwrap();
+    let ids: Vec<&str> = rows
+        .iter()
+        .filter(|r| r.experiment == job.experiment)
+        .map(|r| r.solver_id.as_str())
+        .collect();
+    assert_eq!(ids, ["octave-znn", "trajectory"]);
+    for (args, said) in [
+        (vec!["--name", "Octave ZNN"], "a slug"),
+        (
+            vec!["--out", "results"],
+            "sealed by this program's manifest.toml",
+        ),
+        (
+            vec!["--out", "results/traces/x"],
+            "sealed by this program's manifest.toml",
+        ),
+    ] {
+        let before = std::fs::read(root.join("results/runs.csv")).unwrap();
+        let out = reproduce()
+            .arg("score")
+            .arg(&file)
+            .args(["--task", &task])
+            .args(&args)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(said), "{args:?}: {err}");
+        assert_eq!(
+            std::fs::read(root.join("results/runs.csv")).unwrap(),
+            before
+        );
+        assert!(!root.join("results/traces/x").exists());
+    }
+    // An out directory whose traces/<experiment> is a symbolic link elsewhere: refused, and
+    // nothing is written there.
+    let linked = dir.join("linked");
+    let elsewhere = dir.join("elsewhere");
+    std::fs::create_dir_all(linked.join("traces")).unwrap();
+    std::fs::create_dir_all(&elsewhere).unwrap();
+    std::os::unix::fs::symlink(&elsewhere, linked.join("traces").join(&job.experiment)).unwrap();
+    let out = reproduce()
+        .arg("score")
+        .arg(&file)
+        .args(["--task", &task, "--out"])
+        .arg(&linked)
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(std::fs::read_dir(&elsewhere).unwrap().count(), 0);
     std::fs::remove_dir_all(&dir).unwrap();
 }

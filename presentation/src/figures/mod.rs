@@ -59,10 +59,11 @@ fn run_stem(run: &RunRow) -> String {
     run.key().stem()
 }
 
-/// The run figure of the report for `run` with its trace file `trace`, as SVG text (for a run
-/// outside `results/`: a scored trajectory, `reproduce::score`).
-pub fn run_svg(run: &RunRow, trace: &Path) -> Result<String, FigureError> {
-    run_figure::figure(run, &Trace::read(trace)?).svg()
+/// The run figure of the report for `run` with its trace file `trace`, as SVG text and PNG
+/// bytes (for a run outside `results/`: a scored trajectory, `reproduce::score`).
+pub fn run_figure(run: &RunRow, trace: &Path) -> Result<(String, Vec<u8>), FigureError> {
+    let figure = run_figure::figure(run, &Trace::read(trace)?);
+    Ok((figure.svg()?, figure.png()?))
 }
 
 /// The SVG name of the figure that file `name` belongs to, if `name` follows this module's
