@@ -47,7 +47,7 @@ pub fn render_report(
 ) -> Result<(), ReproduceError> {
     let figures = presentation::figures::render_all(root)?;
     let report = presentation::report::render(root, &project.root.join("papers"))?;
-    crate::task_card::write_all(root)?;
+    crate::task_card::write_all(&project.experiments_dir, root)?;
     records::leaderboard::write(results.path(), &results.read_runs()?)?;
     results.save()?;
     eprintln!("wrote {} figures and {}", figures.len(), report.display());

@@ -100,10 +100,11 @@ pub fn cards(experiments_dir: &Path) -> Result<BTreeMap<String, String>, TaskCar
     Ok(out)
 }
 
-/// Writes every card and the index under `root/report/tasks/` (module docs), removing stale
-/// cards this program wrote; returns the directory.
-pub fn write_all(root: &Path) -> Result<PathBuf, TaskCardError> {
-    let cards = cards(&root.join("experiments"))?;
+/// Writes the card of every task of the experiment files in `experiments` and the index under
+/// `root/report/tasks/` (module docs), removing stale cards this program wrote; returns the
+/// directory.
+pub fn write_all(experiments: &Path, root: &Path) -> Result<PathBuf, TaskCardError> {
+    let cards = cards(experiments)?;
     let report = TrackedDir::open_within(root, "report")?;
     let rel = |name: &str| Path::new(TASKS).join(name);
     let prefix = format!("{TASKS}/");

@@ -217,3 +217,33 @@ fn a_killed_run_resumes_without_redoing_finished_runs() {
     common::resume_completes(run, &results, 3, 4);
     let _ = std::fs::remove_dir_all(&base);
 }
+
+/// The audit's case: `--results-dir` outside the project runs, and its report is rendered
+/// beside it (from the project's papers and experiment files), exit 0; nothing is read from
+/// beside the results that is not there.
+#[test]
+fn a_results_directory_outside_the_project_gets_its_report() {
+    let base = std::env::temp_dir().join(format!("driftbench-elsewhere-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&base);
+    let out = reproduce()
+        .args([
+            "run",
+            "--experiment",
+            "kong2019-circle",
+            "--skip-explain",
+            "--results-dir",
+        ])
+        .arg(base.join("results"))
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(base.join("results/runs.csv").is_file());
+    let front = std::fs::read_to_string(base.join("report/REPORT.md")).unwrap();
+    assert!(front.contains("kong2019"), "{front}");
+    assert!(base.join("report/tasks/README.md").is_file());
+    std::fs::remove_dir_all(&base).unwrap();
+}

@@ -39,7 +39,7 @@ computational cost, a cross experiment (every solver on every scheme and path), 
     ));
     out.push_str(&format!(
         "**Provenance.** Generated from `results/runs.csv` ({} runs), `papers/*/values.csv` ({published} published numbers), \
-`report/deviations.md` and {figures} figures in `report/figures/`. Runs produced at git revision {} by reproduce {}.\n\n",
+and {figures} figures in `report/figures/`. Runs produced at git revision {} by reproduce {}.\n\n",
         runs.all().len(),
         distinct(|r| &r.git_rev),
         distinct(|r| &r.crate_version),

@@ -6,7 +6,7 @@
 //!
 //! Inputs: `results/runs.csv` (one row per run), `results/dof-cost.csv` (the cost against the
 //! number of joints, when measured), `papers/<paper>/` (the papers'
-//! published numbers), `report/deviations.md` (hand-written, included verbatim) and the SVG
+//! published numbers), whether `report/deviations.md` (hand-written) is there, and the SVG
 //! names in `report/figures/`. Nothing is re-run and nothing depends on the clock, so
 //! identical inputs give a byte-identical report ([`render`] writes it atomically).
 //!
@@ -50,7 +50,6 @@ pub mod why;
 
 use crate::error::ReportError;
 use markdown::{sci, Table};
-use records::error::{IoAction, IoError};
 use records::index::Runs;
 use records::papers::{Papers, GROUP};
 use records::runs::read_runs;
@@ -66,8 +65,8 @@ pub struct Inputs {
     pub runs: Runs,
     /// `papers/`: each paper's metadata, published values and mappings.
     pub papers: Papers,
-    /// `report/deviations.md`, verbatim.
-    pub deviations: String,
+    /// Whether `report/deviations.md` (hand-written) is there: the front page links it.
+    pub deviations: bool,
     /// SVG file names in `report/figures/`, sorted.
     pub figures: Vec<String>,
     /// Ladders, attribution and inference (`results/*.csv` beside runs.csv; absent = empty).
@@ -94,12 +93,10 @@ impl Inputs {
     pub fn load(root: &Path, papers: &Path) -> Result<Self, ReportError> {
         let report = root.join("report");
         let results = root.join(records::results_dir::DIR);
-        let deviations_path = report.join("deviations.md");
         Ok(Inputs {
             runs: Runs::new(read_runs(&results.join(records::results_dir::RUNS))?),
             papers: Papers::load(papers)?,
-            deviations: std::fs::read_to_string(&deviations_path)
-                .map_err(IoError::at(&deviations_path, IoAction::Read))?,
+            deviations: report.join(DEVIATIONS).is_file(),
             figures: figures::list(&report.join("figures"))?,
             explanations: why::Explanations {
                 ladder: read_if_present(&results.join(records::results_dir::LADDER))?,
@@ -179,7 +176,7 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
     let Inputs {
         runs,
         papers,
-        deviations: _,
+        deviations,
         figures,
         explanations,
         timings,
@@ -430,16 +427,20 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
 
     pages.push(topic("published.md", out));
 
-    let front = front_page(front, &top, &pages);
+    let front = front_page(front, &top, &pages, *deviations);
     std::iter::once(front).chain(pages).collect()
 }
 
 /// How many solvers of the leaderboard the front page shows.
 pub const FRONT_TOP: usize = 5;
 
+/// The hand-written page of decisions, beside the report's pages.
+pub const DEVIATIONS: &str = "deviations.md";
+
 /// The front page: `head` (provenance and the summary), the leaderboard's `top`, and the
-/// contents: every page, and the deviations (`report/deviations.md`, written by hand).
-fn front_page(head: String, top: &str, pages: &[Page]) -> Page {
+/// contents: every page, and the deviations (`report/deviations.md`, written by hand) where
+/// they are.
+fn front_page(head: String, top: &str, pages: &[Page], deviations: bool) -> Page {
     let mut out = head;
     if !top.is_empty() {
         out.push_str(&format!(
@@ -456,10 +457,12 @@ fn front_page(head: String, top: &str, pages: &[Page]) -> Page {
             .unwrap_or(&page.file);
         out.push_str(&format!("- [{title}]({})\n", page.file));
     }
-    out.push_str(
-        "- [Deviations and decisions](deviations.md): every decision where a paper is silent \
-         or contradicts itself (written by hand)\n",
-    );
+    if deviations {
+        out.push_str(&format!(
+            "- [Deviations and decisions]({DEVIATIONS}): every decision where a paper is silent \
+             or contradicts itself (written by hand)\n"
+        ));
+    }
     Page {
         file: FRONT.to_string(),
         markdown: out,
