@@ -62,6 +62,10 @@ pub fn run(cli: Cli) -> Result<ExitCode, ReproduceError> {
         return Ok(ExitCode::SUCCESS);
     }
     let files = load_dir(&cli.experiments_dir, simulation::run::check_job)?;
+    if cli.list && cli.merge.is_empty() {
+        list_runs(cli, &files)?;
+        return Ok(ExitCode::SUCCESS);
+    }
     let all: Vec<Job> = files.iter().flat_map(|f| f.jobs()).collect();
     if !cli.merge.is_empty() {
         return merge::merge_shards(cli, &files, &all, git_rev);
@@ -70,18 +74,48 @@ pub fn run(cli: Cli) -> Result<ExitCode, ReproduceError> {
     let selected = jobs.len();
     if let Some(shard) = cli.shard_resolved {
         jobs.retain(|j| shard.owns(&j.key().to_string()));
-        eprintln!(
-            "shard {shard}: {} of the {selected} selected runs, into {}",
-            jobs.len(),
-            cli.results_dir.display()
-        );
-    }
-    if cli.list {
-        emit(&list::list(&files, &jobs));
-        if let (Some(n), None) = (cli.shards, cli.shard_resolved) {
-            emit(&list::shard_plan(&jobs, n));
-        }
-        return Ok(ExitCode::SUCCESS);
+        say_shard(cli, shard, jobs.len(), selected);
     }
     run::run(cli, &all, &jobs, git_rev)
+}
+
+/// `--list` (with `--shard K/N`: the shard's runs; with `--shards N`: the count per shard),
+/// the runs made from `files` as they are written rather than collected: a list of 10^6 runs
+/// holds none of them (docs/cluster.md).
+fn list_runs(cli: &Cli, files: &[catalog::experiment::PaperFile]) -> Result<(), ReproduceError> {
+    let selection = cli.selection();
+    select::check_selection(files, &selection)?;
+    let selected = || {
+        files
+            .iter()
+            .flat_map(|f| f.iter_jobs())
+            .filter(|j| select::selects(&selection, j))
+    };
+    let owns = |j: &Job| {
+        cli.shard_resolved
+            .is_none_or(|shard| shard.owns(&j.key().to_string()))
+    };
+    if let Some(shard) = cli.shard_resolved {
+        let (owned, all) = selected().fold((0, 0), |(o, a), j| (o + usize::from(owns(&j)), a + 1));
+        say_shard(cli, shard, owned, all);
+    }
+    // As `summary::emit`: a closed standard output (`reproduce --list | head`) ends the list
+    // and is no error.
+    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    let _ = list::list(&mut out, files, |j| {
+        select::selects(&selection, j) && owns(j)
+    })
+    .and_then(|()| std::io::Write::flush(&mut out));
+    if let (Some(n), None) = (cli.shards, cli.shard_resolved) {
+        emit(&list::shard_plan(selected(), n));
+    }
+    Ok(())
+}
+
+/// The line a shard starts with: how many of the selected runs are its, and where it writes.
+fn say_shard(cli: &Cli, shard: records::shard::Shard, owned: usize, selected: usize) {
+    eprintln!(
+        "shard {shard}: {owned} of the {selected} selected runs, into {}",
+        cli.results_dir.display()
+    );
 }
