@@ -975,6 +975,52 @@ sweep = { "scheme.mu" = { from = 0.1, to = 0.3, step = 0.1 }, "scheme.n" = { fro
     }
 
     #[test]
+    fn every_expanded_variant_is_read_in_place_and_one_that_does_not_read_is_named() {
+        let text = r#"paper = "p"
+[[experiment]]
+id = "p-e"
+[[experiment.variant]]
+label = "A"
+scheme = { kind = "x" }
+sweep = { "scheme.mu" = [1, 2] }
+[[experiment.variant]]
+label = "plain"
+[[experiment.variant]]
+label = "B"
+scheme = { kind = "x" }
+sweep = { "scheme.mu" = [3, 4, 5] }
+"#;
+        let mut doc: Table = toml::from_str(text).unwrap();
+        let sweeps = take_sweeps(&mut doc);
+        let read = |t: Table| -> Result<String, toml::de::Error> {
+            let label = t["label"].as_str().unwrap().to_string();
+            if label == "B [mu=4]" {
+                return Err(serde::de::Error::custom("mu 4 refused"));
+            }
+            Ok(label)
+        };
+        let mut lists = vec![vec!["plain".to_string()]];
+        let e = sweeps
+            .expand_into(lists.iter_mut(), read, &mut MAX_EXPANSION.clone())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("experiment[0] (id \"p-e\") variant[2] (\"B\") field `sweep`: the expanded variant \"B [mu=4]\" does not read: mu 4 refused"),
+            "{e}"
+        );
+        let mut doc: Table = toml::from_str(&text.replace("[3, 4, 5]", "[3, 5]")).unwrap();
+        let mut lists = vec![vec!["plain".to_string()]];
+        take_sweeps(&mut doc)
+            .expand_into(lists.iter_mut(), read, &mut MAX_EXPANSION.clone())
+            .unwrap();
+        assert_eq!(
+            lists[0],
+            ["A [mu=1]", "A [mu=2]", "plain", "B [mu=3]", "B [mu=5]"]
+        );
+        assert_eq!(lists[0].capacity(), 5, "one allocation of the final size");
+    }
+
+    #[test]
     fn expand_file_names_experiment_and_variant() {
         let text = r#"paper = "p"
 [[experiment]]

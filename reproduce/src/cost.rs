@@ -5,7 +5,7 @@
 use crate::cli::Cli;
 use crate::error::ReproduceError;
 use crate::report::{render_report, report_root};
-use crate::results::{all_jobs, open_results};
+use crate::results::{experiment_files, open_results, Described};
 
 /// Measures, prints the fitted exponents and (unless `--dry-run`) writes and re-renders.
 pub fn dof_cost(cli: &Cli, git_rev: &str) -> Result<(), ReproduceError> {
@@ -13,7 +13,7 @@ pub fn dof_cost(cli: &Cli, git_rev: &str) -> Result<(), ReproduceError> {
     let (cpu, cores) = machine();
     let root = report_root(cli)?;
     let results = (!cli.dry_run)
-        .then(|| open_results(cli, git_rev, &all_jobs(cli)?))
+        .then(|| open_results(cli, git_rev, &Described::new(&experiment_files(cli)?)))
         .transpose()?;
     eprintln!("measuring the cost against the number of joints on {cpu} ({cores} cores)");
     let started = std::time::Instant::now();

@@ -34,7 +34,7 @@ pub mod timing;
 pub use cli::Cli;
 pub use error::ReproduceError;
 
-use catalog::experiment::{load_dir, Job};
+use catalog::experiment::Job;
 use std::process::ExitCode;
 use summary::emit;
 
@@ -61,22 +61,27 @@ pub fn run(cli: Cli) -> Result<ExitCode, ReproduceError> {
         cost::dof_cost(cli, git_rev)?;
         return Ok(ExitCode::SUCCESS);
     }
-    let files = load_dir(&cli.experiments_dir, simulation::run::check_job)?;
+    let files = results::experiment_files(cli)?;
     if cli.list && cli.merge.is_empty() {
         list_runs(cli, &files)?;
         return Ok(ExitCode::SUCCESS);
     }
-    let all: Vec<Job> = files.iter().flat_map(|f| f.jobs()).collect();
     if !cli.merge.is_empty() {
-        return merge::merge_shards(cli, &files, &all, git_rev);
+        return merge::merge_shards(cli, &files, git_rev);
     }
-    let mut jobs = select::select_jobs(&all, &files, &cli.selection())?;
-    let selected = jobs.len();
+    let selection = cli.selection();
+    select::check_selection(&files, &selection)?;
+    // Only the runs this process runs are collected (a shard's: an eighth of a 10^6-run
+    // selection); every other run is made from the files when needed (results::Described).
+    let mut selected = 0;
+    let jobs: Vec<Job> = select::selected(&files, &selection)
+        .inspect(|_| selected += 1)
+        .filter(|j| owns(cli, j))
+        .collect();
     if let Some(shard) = cli.shard_resolved {
-        jobs.retain(|j| shard.owns(&j.key().to_string()));
         say_shard(cli, shard, jobs.len(), selected);
     }
-    run::run(cli, &all, &jobs, git_rev)
+    run::run(cli, &results::Described::new(&files), &jobs, git_rev)
 }
 
 /// `--list` (with `--shard K/N`: the shard's runs; with `--shards N`: the count per shard),
@@ -85,31 +90,34 @@ pub fn run(cli: Cli) -> Result<ExitCode, ReproduceError> {
 fn list_runs(cli: &Cli, files: &[catalog::experiment::PaperFile]) -> Result<(), ReproduceError> {
     let selection = cli.selection();
     select::check_selection(files, &selection)?;
-    let selected = || {
-        files
-            .iter()
-            .flat_map(|f| f.iter_jobs())
-            .filter(|j| select::selects(&selection, j))
-    };
-    let owns = |j: &Job| {
-        cli.shard_resolved
-            .is_none_or(|shard| shard.owns(&j.key().to_string()))
-    };
     if let Some(shard) = cli.shard_resolved {
-        let (owned, all) = selected().fold((0, 0), |(o, a), j| (o + usize::from(owns(&j)), a + 1));
-        say_shard(cli, shard, owned, all);
+        let owned = select::selected(files, &selection)
+            .filter(|j| owns(cli, j))
+            .count();
+        say_shard(
+            cli,
+            shard,
+            owned,
+            select::selected(files, &selection).count(),
+        );
     }
     // As `summary::emit`: a closed standard output (`reproduce --list | head`) ends the list
     // and is no error.
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
     let _ = list::list(&mut out, files, |j| {
-        select::selects(&selection, j) && owns(j)
+        select::selects(&selection, j) && owns(cli, j)
     })
     .and_then(|()| std::io::Write::flush(&mut out));
     if let (Some(n), None) = (cli.shards, cli.shard_resolved) {
-        emit(&list::shard_plan(selected(), n));
+        emit(&list::shard_plan(select::selected(files, &selection), n));
     }
     Ok(())
+}
+
+/// Whether `job` is the shard's of `--shard` (every job is, without it).
+fn owns(cli: &Cli, job: &Job) -> bool {
+    cli.shard_resolved
+        .is_none_or(|shard| shard.owns(&job.key().to_string()))
 }
 
 /// The line a shard starts with: how many of the selected runs are its, and where it writes.

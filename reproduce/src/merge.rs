@@ -5,18 +5,17 @@
 use crate::cli::Cli;
 use crate::error::ReproduceError;
 use crate::report::render_report_if_named;
-use crate::results::{open_results, plan_pruning, write_results};
+use crate::results::{open_results, plan_pruning, write_results, Described};
 use crate::run::report_unexpected;
-use crate::select::select_jobs;
-use catalog::experiment::{Job, PaperFile};
+use crate::select::{check_selection, selected};
+use catalog::experiment::PaperFile;
 use records::runs::RunRow;
 use std::process::ExitCode;
 
-/// Merges the shards of `--merge` (`files`, `all`: the experiment files and their runs).
+/// Merges the shards of `--merge` (`files`: the experiment files).
 pub fn merge_shards(
     cli: &Cli,
     files: &[PaperFile],
-    all: &[Job],
     git_rev: &str,
 ) -> Result<ExitCode, ReproduceError> {
     let shards = cli
@@ -28,10 +27,9 @@ pub fn merge_shards(
         .first()
         .map(|s| s.manifest.selection.clone())
         .unwrap_or_default();
-    let expected: Vec<String> = select_jobs(all, files, &sel)?
-        .iter()
-        .map(|j| j.key().to_string())
-        .collect();
+    check_selection(files, &sel)?;
+    let expected: Vec<String> = selected(files, &sel).map(|j| j.key().to_string()).collect();
+    let all = &Described::new(files);
     let hash = records::shard::experiments_hash(&cli.experiments_dir)?;
     records::shard::check_shards(&shards, &expected, &hash)?;
     let results = open_results(cli, git_rev, all)?;

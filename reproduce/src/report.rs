@@ -4,7 +4,7 @@
 
 use crate::cli::Cli;
 use crate::error::ReproduceError;
-use crate::results::{all_jobs, open_results};
+use crate::results::{experiment_files, open_results, Described};
 use records::results_dir::ResultsDir;
 use std::path::{Path, PathBuf};
 
@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 pub fn report_only(cli: &Cli, git_rev: &str) -> Result<(), ReproduceError> {
     let root = report_root(cli)?;
     check_report_dir(&root)?;
-    let results = open_results(cli, git_rev, &all_jobs(cli)?)?;
+    let results = open_results(cli, git_rev, &Described::new(&experiment_files(cli)?))?;
     render_report(cli, &root, &results)
 }
 

@@ -13,7 +13,7 @@ use crate::gate::Baseline;
 use crate::inference::infer;
 use crate::journal::{resume, run_journaled};
 use crate::report::{check_report_dir, render_report_if_named, report_root};
-use crate::results::{open_results, plan_pruning, write_results};
+use crate::results::{open_results, plan_pruning, write_results, Described};
 use crate::summary::{emit, summary};
 use catalog::experiment::Job;
 use records::results_dir::ResultsDir;
@@ -25,7 +25,7 @@ use std::process::ExitCode;
 /// Runs `jobs`, the selection of `all` (every run of the experiment files).
 pub fn run(
     cli: &Cli,
-    all: &[Job],
+    all: &Described,
     jobs: &[Job],
     git_rev: &str,
 ) -> Result<ExitCode, ReproduceError> {
@@ -36,7 +36,7 @@ pub fn run(
                 &cli.project_root,
                 &cli.results_dir,
                 cli.baseline.as_deref(),
-                all,
+                all.jobs(),
             )
         })
         .transpose()?;
@@ -63,11 +63,11 @@ pub fn run(
         .then(|| open_results(cli, git_rev, all))
         .transpose()?;
     if let Some(which) = &cli.infer {
-        infer(cli, which, all, results.as_ref())?;
+        infer(cli, which, all.jobs(), results.as_ref())?;
         return Ok(ExitCode::SUCCESS);
     }
     if cli.explain_only {
-        explain(cli, jobs, all, git_rev, results.as_ref())?;
+        explain(cli, jobs, all.jobs(), git_rev, results.as_ref())?;
         return Ok(ExitCode::SUCCESS);
     }
     let mut stored = results
@@ -143,7 +143,7 @@ fn publish(
     cli: &Cli,
     results: &ResultsDir,
     binding: Option<&records::shard::Binding>,
-    all: &[Job],
+    all: &Described,
     jobs: &[Job],
     git_rev: &str,
 ) -> Result<(), ReproduceError> {
@@ -160,7 +160,7 @@ fn publish(
         return Ok(());
     }
     if !cli.skip_explain && !cli.exact_only {
-        explain(cli, jobs, all, git_rev, Some(results))?;
+        explain(cli, jobs, all.jobs(), git_rev, Some(results))?;
     }
     // The control experiments (control crate) with a whole, unselected reproduction.
     if !cli.exact_only && cli.paper.is_none() && cli.experiment.is_empty() {
@@ -181,7 +181,12 @@ fn publish(
             }
             Err(e) => return Err(e.into()),
         }
-        crate::timing::time_alone(all, results, &cli.project_root.join("papers"), git_rev)?;
+        crate::timing::time_alone(
+            all.jobs(),
+            results,
+            &cli.project_root.join("papers"),
+            git_rev,
+        )?;
         // Its tables are recorded before the report (which may fail) is rendered.
         results.save()?;
     }

@@ -7,18 +7,16 @@ use catalog::experiment::{Job, PaperFile, SolverChoice};
 use records::shard::Selection;
 use std::collections::HashSet;
 
-/// The runs of `all` (the runs of `files`) that `selection` keeps, in their order.
-pub fn select_jobs(
-    all: &[Job],
-    files: &[PaperFile],
-    selection: &Selection,
-) -> Result<Vec<Job>, ReproduceError> {
-    check_selection(files, selection)?;
-    Ok(all
+/// The runs of `files` that `selection` keeps, in file order, made as they are taken (a
+/// caller collects what it needs: a shard only its own runs). [`check_selection`] first.
+pub fn selected<'a>(
+    files: &'a [PaperFile],
+    selection: &'a Selection,
+) -> impl Iterator<Item = Job> + 'a {
+    files
         .iter()
+        .flat_map(PaperFile::iter_jobs)
         .filter(|j| selects(selection, j))
-        .cloned()
-        .collect())
 }
 
 /// A paper or experiment of `selection` that no file of `files` names is an error listing the
@@ -78,13 +76,14 @@ mod tests {
         experiments: &[&str],
         exact_only: bool,
     ) -> Result<Vec<Job>, ReproduceError> {
-        let (files, all) = project();
+        let (files, _) = project();
         let selection = Selection {
             paper: paper.map(String::from),
             experiments: experiments.iter().map(|e| e.to_string()).collect(),
             exact_only,
         };
-        select_jobs(&all, &files, &selection)
+        check_selection(&files, &selection)?;
+        Ok(selected(&files, &selection).collect())
     }
 
     #[test]
