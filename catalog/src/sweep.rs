@@ -999,7 +999,7 @@ sweep = { "scheme.mu" = [3, 4, 5] }
             }
             Ok(label)
         };
-        let mut lists = vec![vec!["plain".to_string()]];
+        let mut lists = [vec!["plain".to_string()]];
         let e = sweeps
             .expand_into(lists.iter_mut(), read, &mut MAX_EXPANSION.clone())
             .unwrap_err()
@@ -1009,7 +1009,7 @@ sweep = { "scheme.mu" = [3, 4, 5] }
             "{e}"
         );
         let mut doc: Table = toml::from_str(&text.replace("[3, 4, 5]", "[3, 5]")).unwrap();
-        let mut lists = vec![vec!["plain".to_string()]];
+        let mut lists = [vec!["plain".to_string()]];
         take_sweeps(&mut doc)
             .expand_into(lists.iter_mut(), read, &mut MAX_EXPANSION.clone())
             .unwrap();
