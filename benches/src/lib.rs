@@ -61,7 +61,7 @@ pub fn whole_run_config() -> Criterion {
 // Representative QPs
 // ---------------------------------------------------------------------------------------------
 
-/// Seed of the representative QP of every shape ([`solvers::random_qp`]); for
+/// Seed of the representative QP of every shape ([`solvers::random_qp()`]); for
 /// [`QpShape::Jia2019`] it draws a finite varpi, as the papers' runs have.
 pub const QP_SEED: u64 = 1;
 

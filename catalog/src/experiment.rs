@@ -367,7 +367,7 @@ impl PaperFile {
     /// Reads (with the input reader, crate `inputs`: a regular file that does not lead out of
     /// its directory, at most [`inputs::Kind::Experiment`]'s cap) and validates one experiment
     /// file: everything a run would reject is rejected here, before anything runs (see
-    /// [`PaperFile::validate`]).
+    /// `PaperFile::validate`).
     pub fn load(path: &Path, check: CheckJob) -> Result<Self, ExperimentFileError> {
         Self::load_within(path, check, &mut crate::sweep::MAX_EXPANSION.clone())
     }

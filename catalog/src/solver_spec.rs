@@ -274,7 +274,7 @@ impl SolverSpec {
 
     /// The network's stable id in run keys, results rows and file names: its kind, followed by
     /// the parameters that tell two networks of one kind apart in the experiment files
-    /// ([`Distinguishing`]). Lower-case ASCII, digits, `.` and `-` only. Derived from the
+    /// (`Distinguishing`). Lower-case ASCII, digits, `.` and `-` only. Derived from the
     /// specification, never from [`SolverSpec::display_name`], so display names can change
     /// without orphaning results.
     pub fn id(&self) -> String {

@@ -54,11 +54,13 @@ pub enum Status {
 }
 
 impl Status {
-    pub fn label(&self) -> &'static str {
+    /// The status column of the run's row.
+    pub fn column(&self) -> records::control::ControlStatus {
+        use records::control::ControlStatus;
         match self {
-            Status::Completed => "ok",
-            Status::Diverged { .. } => "diverged",
-            Status::Failed { .. } => "failed",
+            Status::Completed => ControlStatus::Ok,
+            Status::Diverged { .. } => ControlStatus::Diverged,
+            Status::Failed { .. } => ControlStatus::Failed,
         }
     }
 }

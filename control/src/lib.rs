@@ -17,7 +17,7 @@
 //!   operation counts ([`records::control_claim`]);
 //! - [`trend`]: the drift after each of K cycles and its trend, at the control period and in
 //!   continuous time ([`continuous`], the exact column as the papers integrate);
-//! - [`reproduce`]: the entry point that runs all of it and writes `results/control*.csv`,
+//! - [`reproduce`](mod@reproduce): the entry point that runs all of it and writes `results/control*.csv`,
 //!   `results/cycles.csv` (the rows: [`records::control`]).
 //!
 //! The standard task set is declared in `experiments/control/tasks.toml` ([`task::standard_task_refs`]).

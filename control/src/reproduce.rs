@@ -18,7 +18,7 @@ use crate::task::{load_tasks, standard_task_refs, with_task, Task, TaskVisitor};
 use crate::trend::classify;
 use catalog::solver_spec::SolverSpec;
 use nalgebra::SVector;
-use records::control::{ClaimRow, ControlRow, CycleRow, StabilityRow, TrendRow};
+use records::control::{ClaimRow, ControlRow, ControlStatus, CycleRow, StabilityRow, TrendRow};
 use records::control_claim::{decide, overall, steps_needed, Verdict, ACCURACY, CHECK_TICKS};
 use records::results_dir;
 use robots::Robot;
@@ -190,7 +190,7 @@ fn control_row(task: &Task, method: &Method, h: f64, mut out: LoopOutcome) -> Co
             Method::Network { substeps, .. } => *substeps,
             Method::Numerical(_) => 1,
         },
-        status: out.status.label().to_string(),
+        status: out.status.column(),
         stopped_at,
         ticks: out.ticks,
         solve_p50_us: solve.p50_us,
@@ -274,7 +274,9 @@ pub fn reproduce(
             .label();
             let largest = control
                 .iter()
-                .filter(|r| r.task == task.id() && r.method == euler && r.status == "ok")
+                .filter(|r| {
+                    r.task == task.id() && r.method == euler && r.status == ControlStatus::Ok
+                })
                 .map(|r| r.h_ms)
                 .reduce(f64::max);
             stability.push(StabilityRow {
@@ -319,7 +321,9 @@ pub fn reproduce(
             let check_solve = Latency::of(&mut out.solve_us);
             let numerical = control
                 .iter()
-                .filter(|r| r.task == task.id() && r.h_ms == h * 1e3 && r.status == "ok")
+                .filter(|r| {
+                    r.task == task.id() && r.h_ms == h * 1e3 && r.status == ControlStatus::Ok
+                })
                 .filter(|r| LviMethod::ALL.iter().any(|m| m.name() == r.method))
                 .filter_map(|r| r.products_mean.map(|p| (r, p)))
                 .min_by(|a, b| a.1.total_cmp(&b.1));
@@ -340,7 +344,7 @@ pub fn reproduce(
                 network_products: lower,
                 check_steps,
                 check_ticks: out.ticks,
-                check_status: out.status.label().to_string(),
+                check_status: out.status.column(),
                 check_max_dx: out.max_dx,
                 check_solve_p50_us: check_solve.p50_us,
                 numerical: num.method.clone(),
@@ -363,7 +367,7 @@ pub fn reproduce(
                 r.task == task.id()
                     && r.method == m.label()
                     && r.h_ms == h * 1e3
-                    && r.status == "ok"
+                    && r.status == ControlStatus::Ok
             })
         }));
         let mut record =
@@ -398,7 +402,7 @@ pub fn reproduce(
             record(
                 method.label(),
                 Some(h * 1e3),
-                out.status.label(),
+                &out.status.column().to_string(),
                 &out.drift,
                 &out.cycle_change,
             );

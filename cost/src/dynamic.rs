@@ -8,7 +8,7 @@
 //! exact solvers, the KKT floor on both backends). Not measured, and why:
 //!
 //! - `scheme-build` and whole runs: the [`schemes::scheme::Scheme`] trait, the integrators'
-//!   state and [`simulation::simulate()`] are const-generic in N (stack vectors, no allocation
+//!   state and `simulation::simulate` are const-generic in N (stack vectors, no allocation
 //!   per step at the papers' 5-7 joints), so a run at N = 200 needs `NLink<200>` and every
 //!   scheme instantiated for it; registering such sizes in the registry would be one
 //!   instantiation per size, which this path exists to avoid. A run would also cost minutes

@@ -27,7 +27,7 @@
 //! quantities (`network-lu`, `kkt-floor`) are timed on both [`solvers::Backend`]s, from which
 //! the report reads the crossover that [`catalog::linear_algebra::FAER_CROSSOVER`] records.
 //!
-//! [`measure`] holds the timing ([`measure::Budget`], how samples are taken and summarised).
+//! [`measure`](mod@measure) holds the timing ([`measure::Budget`], how samples are taken and summarised).
 
 pub mod case;
 pub mod dynamic;

@@ -1,33 +1,67 @@
-//! The report generator: renders from the committed results, the committed report is the one
-//! they give (rendered into a scratch directory, never over the committed file), is byte-stable,
+//! The report generator: renders from the committed results a front page and a page per paper
+//! and topic; the committed pages are the ones they give (rendered into a scratch directory,
+//! never over the committed files), are byte-stable,
 //! evaluates claims from the numbers (a changed number flips a verdict), and maps every
 //! published number that has a mapping onto an existing run.
 
 use presentation::report::claims::{self, Verdict};
-use presentation::report::{render, to_markdown, Inputs};
+use presentation::report::{pages, paper_page, render, Inputs, Page, FRONT};
 use records::index::Runs;
 use records::papers::Resolution;
 use records::runs::{read_runs, RunRow};
 use std::path::{Path, PathBuf};
 
 /// How to bring a stale committed report or figure up to date.
-const REGENERATE: &str = "regenerate with `cargo run --release -p reproduce -- --report-only`";
+const REGENERATE: &str = "regenerate with `cargo run --release -p reproduce -- report`";
 
 fn committed() -> Inputs {
     let root = catalog::root::from_current_dir().unwrap();
     Inputs::load(&root, &root.join("papers")).expect("committed inputs load")
 }
 
+/// The page `file` of `pages`.
+fn page<'a>(pages: &'a [Page], file: &str) -> &'a str {
+    &pages
+        .iter()
+        .find(|p| p.file == file)
+        .unwrap_or_else(|| panic!("no page {file}"))
+        .markdown
+}
+
+/// Every page, one after the other.
+fn whole(pages: &[Page]) -> String {
+    pages.iter().map(|p| p.markdown.as_str()).collect()
+}
+
 #[test]
 fn renders_every_paper_and_experiment_from_the_committed_results() {
     let root = catalog::root::from_current_dir().unwrap();
     let inputs = committed();
-    let md = to_markdown(&inputs);
+    let pages = pages(&inputs);
+    let md = whole(&pages);
     assert!(inputs.papers.papers.len() >= 4);
+    let front = page(&pages, FRONT);
     for paper in inputs.papers.papers.iter().map(|p| &p.id) {
         assert!(
-            md.contains(&format!("\n## {paper}\n")),
-            "no section for {paper}"
+            page(&pages, &paper_page(paper)).contains(&format!("\n# {paper}\n")),
+            "no page for {paper}"
+        );
+        assert!(
+            front.contains(&format!("[{paper}]({})", paper_page(paper))),
+            "the front page does not link {paper}"
+        );
+    }
+    // Every page is linked from the front page, and links back.
+    for p in pages.iter().filter(|p| p.file != FRONT) {
+        assert!(
+            front.contains(&format!("]({})", p.file)),
+            "{} not linked",
+            p.file
+        );
+        assert!(
+            p.markdown.starts_with("[← the report](REPORT.md)"),
+            "{}",
+            p.file
         );
     }
     let rows = read_runs(&root.join("results/runs.csv")).unwrap();
@@ -38,24 +72,26 @@ fn renders_every_paper_and_experiment_from_the_committed_results() {
             r.experiment
         );
     }
-    for heading in [
-        "## Score against the exact optimum",
-        "## Leaderboard",
-        "## Cost",
-        "## Cross experiment",
-        "## Published numbers without a run",
-        "## At a robot's control rate",
-        "### The efficiency claim: ",
-        "### Leaderboard: control rate",
-        "## Many cycles",
+    for (file, heading) in [
+        ("score.md", "# Score against the exact optimum"),
+        ("leaderboard.md", "# Leaderboard"),
+        ("cost.md", "# Cost"),
+        ("cross.md", "# Cross experiment"),
+        ("published.md", "# Published numbers without a run"),
+        ("control.md", "# At a robot's control rate"),
+        ("control.md", "### The efficiency claim: "),
+        ("control.md", "### Leaderboard: control rate"),
+        ("control.md", "## Many cycles"),
+        ("group.md", "# The group's own code (reference experiment)"),
+        (FRONT, "## Leaderboard, top 5"),
     ] {
-        assert!(md.contains(heading), "missing {heading}");
+        assert!(
+            page(&pages, file).contains(heading),
+            "{file}: missing {heading}"
+        );
     }
-    let deviations = std::fs::read_to_string(root.join("report/deviations.md")).unwrap();
-    assert!(
-        md.contains(&deviations),
-        "deviations.md not included verbatim"
-    );
+    assert!(front.contains("[Deviations and decisions](deviations.md)"));
+    assert!(root.join("report/deviations.md").is_file());
 }
 
 /// A scratch project root holding copies of what the report is rendered from: the files directly
@@ -83,22 +119,35 @@ fn scratch_copy_of_the_inputs(committed: &Path) -> PathBuf {
     root
 }
 
-/// The committed `report/REPORT.md` is byte for byte the report the committed results give:
-/// rendered into a scratch directory, so a stale committed report fails (the test never writes
-/// the committed file).
+/// Every committed page of the report is byte for byte the page the committed results give:
+/// rendered into a scratch directory, so a stale committed page fails (the test never writes
+/// the committed files).
 #[test]
 fn the_committed_report_is_the_one_the_committed_results_give() {
     let committed_root = catalog::root::from_current_dir().unwrap();
-    let committed = std::fs::read_to_string(committed_root.join("report/REPORT.md"))
-        .expect("report/REPORT.md is committed");
     let scratch = scratch_copy_of_the_inputs(&committed_root);
     let path = render(&scratch, &committed_root.join("papers")).expect("report renders");
     assert!(
         path.starts_with(&scratch),
         "rendered outside the scratch root"
     );
-    let rendered = std::fs::read_to_string(&path).unwrap();
+    let files = pages(&committed()).into_iter().map(|p| p.file);
+    let read = |root: &Path, file: &str| std::fs::read_to_string(root.join("report").join(file));
+    let compared: Vec<(String, String, String)> = files
+        .map(|file| {
+            let committed = read(&committed_root, &file)
+                .unwrap_or_else(|_| panic!("report/{file} is not committed; {REGENERATE}"));
+            (read(&scratch, &file).unwrap(), committed, file)
+        })
+        .collect();
     std::fs::remove_dir_all(&scratch).unwrap();
+    for (rendered, committed, file) in compared {
+        check_page(&file, &rendered, &committed);
+    }
+}
+
+/// Fails naming the first line where `rendered` and `committed` of `file` differ.
+fn check_page(file: &str, rendered: &str, committed: &str) {
     if rendered != committed {
         let line = rendered
             .lines()
@@ -106,7 +155,7 @@ fn the_committed_report_is_the_one_the_committed_results_give() {
             .position(|(a, b)| a != b)
             .unwrap_or(rendered.lines().count().min(committed.lines().count()));
         panic!(
-            "report/REPORT.md is stale: it differs from the report the committed results give \
+            "report/{file} is stale: it differs from the page the committed results give \
              from line {} on\n  committed: {:?}\n  rendered:  {:?}\n{REGENERATE}",
             line + 1,
             committed.lines().nth(line).unwrap_or("(end of file)"),
@@ -117,8 +166,8 @@ fn the_committed_report_is_the_one_the_committed_results_give() {
 
 #[test]
 fn rendering_twice_gives_identical_bytes() {
-    let first = to_markdown(&committed());
-    let second = to_markdown(&committed());
+    let first = pages(&committed());
+    let second = pages(&committed());
     assert_eq!(first, second);
 }
 
@@ -140,11 +189,8 @@ fn every_mapped_published_number_finds_its_run() {
         }
     }
     assert!(mapped > 100, "only {mapped} published numbers mapped");
-    let md = to_markdown(&inputs);
-    let section = md
-        .split("## Published numbers without a run")
-        .nth(1)
-        .unwrap();
+    let pages = pages(&inputs);
+    let section = page(&pages, "published.md");
     assert!(
         section.contains("all-vltco") && section.contains("error_norm_settle_s"),
         "unmapped numbers not listed"
@@ -275,28 +321,20 @@ fn verdicts_do_not_depend_on_timing() {
 /// section, from the committed ladder, attribution and inference results.
 #[test]
 fn the_report_explains_every_paper_with_a_table() {
-    let md = to_markdown(&committed());
+    let pages = pages(&committed());
     for paper in ["jia2019", "zhong2021", "kong2019", "zhang2018"] {
-        let start = md.find(&format!("\n## {paper}\n")).expect("paper section");
-        let end = md[start + 1..]
-            .find("\n## ")
-            .map_or(md.len(), |e| start + 1 + e);
-        let section = &md[start..end];
+        let section = page(&pages, &paper_page(paper));
         assert!(section.contains("### Why the numbers differ"), "{paper}");
         assert!(section.contains("#### Drift attribution"), "{paper}");
         assert!(section.contains("#### Tolerance ladder"), "{paper}");
     }
     for paper in ["jia2019", "zhong2021", "kong2019"] {
-        let start = md.find(&format!("\n## {paper}\n")).unwrap();
-        let end = md[start + 1..]
-            .find("\n## ")
-            .map_or(md.len(), |e| start + 1 + e);
         assert!(
-            md[start..end].contains("inferred setup (fitted to the paper)"),
+            page(&pages, &paper_page(paper)).contains("inferred setup (fitted to the paper)"),
             "{paper}"
         );
     }
-    assert!(md.contains("## The group's own code (reference experiment)"));
+    assert!(page(&pages, "group.md").contains("# The group's own code (reference experiment)"));
 }
 
 /// Every claim `papers/` leaves to Rust names one that exists, with its reason; every data

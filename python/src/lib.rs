@@ -2,15 +2,15 @@
 //! in Python, and the leaderboard, as bindings (PyO3) to the Rust crates, not a second
 //! implementation.
 //!
-//! - [`tasks`] / [`task`] / [`standard_tasks`]: every (experiment, variant) of the experiment
-//!   files as a `Task` ([`task_set::PyTask`]); the standard task set is the leaderboard's
+//! - `tasks` / `task` / `standard_tasks`: every (experiment, variant) of the experiment
+//!   files as a `Task` (`task_set::PyTask`); the standard task set is the leaderboard's
 //!   (`records::leaderboard::standard_tasks` over `results/runs.csv`).
-//! - [`simulate`]: one run of a task with a Python network ([`network`]) or one of the suite's
+//! - `simulate`: one run of a task with a Python network (`network`) or one of the suite's
 //!   own solvers (by id). Arm, scheme, integrator and the score against the exact optimum are
 //!   `simulation::run`'s; the result is the run's `results/runs.csv` row
 //!   (`records::runs::RunRow`) as a dict, with the drift and the trace as numpy arrays and the
 //!   cost of the Python calls.
-//! - [`leaderboard`]: Python networks on the standard task set, ranked with the suite's own runs
+//! - `leaderboard`: Python networks on the standard task set, ranked with the suite's own runs
 //!   by `records::leaderboard::leaderboard`, rows in `results/leaderboard.csv`'s schema.
 //!
 //! Errors of the library are raised as `driftbench.DriftbenchError` with the library's message;
@@ -390,14 +390,14 @@ fn score<'py>(
     let (record, row) = if let Ok(file) = trajectory.extract::<PathBuf>() {
         match out_dir {
             Some(out) => {
-                let s = reproduce::score::score_file(&task.job, &file, &out, git_rev)
+                let s = reproduce::score::score_file(&task.job, &file, None, &out, git_rev)
                     .map_err(lib_err)?;
                 (s.record, s.row)
             }
             None => {
                 let record = score_trajectory(
                     &task.job,
-                    &read(&file, task.job.theta0.len()).map_err(lib_err)?,
+                    &read(&file, task.job.theta0.len(), None).map_err(lib_err)?,
                 )
                 .map_err(|e| lib_err(format!("{}: {e}", file.display())))?;
                 let row = score_row(run_row(&record, git_rev), &file.display().to_string());

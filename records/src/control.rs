@@ -26,6 +26,28 @@ use std::path::Path;
 /// default budget) and the report take it from here.
 pub const MAIN_H: f64 = 1e-3;
 
+/// How a run at a control rate ended (the `status` column).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ControlStatus {
+    /// Every tick ran.
+    Ok,
+    /// The command blew up (`stopped_at` says when).
+    Diverged,
+    /// The solver failed (`stopped_at` says when).
+    Failed,
+}
+
+impl std::fmt::Display for ControlStatus {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            ControlStatus::Ok => "ok",
+            ControlStatus::Diverged => "diverged",
+            ControlStatus::Failed => "failed",
+        })
+    }
+}
+
 /// One controller run.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ControlRow {
@@ -37,8 +59,7 @@ pub struct ControlRow {
     pub family: String,
     pub h_ms: f64,
     pub substeps: u32,
-    /// `ok`, `diverged` or `failed`.
-    pub status: String,
+    pub status: ControlStatus,
     /// When it diverged or failed (s); empty otherwise.
     pub stopped_at: Option<f64>,
     pub ticks: usize,
@@ -99,7 +120,7 @@ pub struct ClaimRow {
     /// The check run: steps per tick, its largest |x - x*| and its solve latency p50.
     pub check_steps: u64,
     pub check_ticks: usize,
-    pub check_status: String,
+    pub check_status: ControlStatus,
     pub check_max_dx: f64,
     pub check_solve_p50_us: f64,
     pub numerical: String,

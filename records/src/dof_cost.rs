@@ -43,7 +43,7 @@ impl SchemeKind {
 
     /// The scheme's id in dof-cost.csv: its canonical `kind` tag (`vltco`, `znn-rmp`).
     /// Files written before the kinds were renamed carry the paper-named tags, which
-    /// [`read`] maps onto these ([`LEGACY_IDS`]).
+    /// [`read`] maps onto these (`LEGACY_IDS`).
     pub fn id(self) -> &'static str {
         match self {
             SchemeKind::Vltco => "vltco",
@@ -446,7 +446,7 @@ const LEGACY_IDS: [(&str, SchemeKind); 2] = [
 ];
 
 /// Reads `results_dir/dof-cost.csv`; an absent file is no rows. A legacy scheme id
-/// ([`LEGACY_IDS`]) is read as its kind's id.
+/// (`LEGACY_IDS`) is read as its kind's id.
 pub fn read(results_dir: &Path) -> Result<Vec<DofCostRow>, DofCostError> {
     let path = results_dir.join(FILE);
     if !path.exists() {

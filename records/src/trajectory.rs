@@ -16,7 +16,7 @@
 
 use crate::error::{TrajectoryFileError, TrajectoryProblem};
 use crate::runs::RunRow;
-use crate::trajectory_mat::{read_mat, MatError};
+use crate::trajectory_mat::{read_mat, Columns, MatError};
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -44,16 +44,31 @@ pub enum ReadError {
     Csv(#[from] TrajectoryFileError),
     #[error(transparent)]
     Mat(#[from] MatError),
+    /// A column selection for a CSV file, whose header names its columns.
+    #[error("{}: a column selection ({columns}) applies to MAT-files; a CSV file names its columns in its header", path.display())]
+    ColumnsOfCsv {
+        path: std::path::PathBuf,
+        columns: Columns,
+    },
 }
 
 /// Reads the trajectory of a `joints`-joint task from `path`: a MAT-file when the name ends in
-/// `.mat` (any case), a CSV file otherwise.
-pub fn read(path: &Path, joints: usize) -> Result<Trajectory, ReadError> {
+/// `.mat` (any case; `columns`: which columns of its `y` to read), a CSV file otherwise.
+pub fn read(
+    path: &Path,
+    joints: usize,
+    columns: Option<&Columns>,
+) -> Result<Trajectory, ReadError> {
     let is_mat = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("mat"));
     if is_mat {
-        Ok(read_mat(path, joints)?)
+        Ok(read_mat(path, joints, columns)?)
+    } else if let Some(columns) = columns {
+        Err(ReadError::ColumnsOfCsv {
+            path: path.to_path_buf(),
+            columns: columns.clone(),
+        })
     } else {
         let bytes = inputs::read(path, inputs::Kind::TrajectoryCsv, inputs::Origin::Named)?;
         Ok(parse_csv(&bytes, path)?)
@@ -219,14 +234,14 @@ mod tests {
     /// string `s` as `save -v7` (compressed); `t'` and `y(:, 1:2)` as `save -v6`.
     #[test]
     fn mat_files_of_octave_are_read_with_and_without_velocities() {
-        let tr = super::read(&fixture("trajectory-v7.mat"), 2).unwrap();
+        let tr = super::read(&fixture("trajectory-v7.mat"), 2, None).unwrap();
         assert_eq!(tr.t, [0.0, 0.5, 1.0]);
         assert_eq!(tr.theta, [vec![1.0, 2.0], vec![3.0, 4.0], vec![5.0, 6.0]]);
         assert_eq!(
             tr.thetadot,
             Some(vec![vec![10.0, 20.0], vec![30.0, 40.0], vec![50.0, 60.0]])
         );
-        let tr = super::read(&fixture("trajectory-v6.mat"), 2).unwrap();
+        let tr = super::read(&fixture("trajectory-v6.mat"), 2, None).unwrap();
         assert_eq!(tr.t, [0.0, 0.5, 1.0]);
         assert_eq!(tr.theta[2], [5.0, 6.0]);
         assert!(tr.thetadot.is_none());
@@ -234,24 +249,24 @@ mod tests {
 
     #[test]
     fn mat_files_of_the_wrong_shape_are_refused() {
-        let e = super::read(&fixture("trajectory-v7.mat"), 3)
+        let e = super::read(&fixture("trajectory-v7.mat"), 3, None)
             .unwrap_err()
             .to_string();
         assert!(
             e.contains("y is 3 x 4; for 3 instants of a 3-joint task"),
             "{e}"
         );
-        let e = super::read(&fixture("trajectory-v6.mat"), 3)
+        let e = super::read(&fixture("trajectory-v6.mat"), 3, None)
             .unwrap_err()
             .to_string();
         assert!(e.contains("y is 3 x 2"), "{e}");
-        let e = super::read(&fixture("missing.mat"), 2)
+        let e = super::read(&fixture("missing.mat"), 2, None)
             .unwrap_err()
             .to_string();
         assert!(e.contains("missing.mat"), "{e}");
         // A name that does not end in .mat is read as CSV (here, one that is not there).
         let csv = fixture("trajectory-v7.csv");
-        let e = super::read(&csv, 2).unwrap_err();
+        let e = super::read(&csv, 2, None).unwrap_err();
         assert!(
             matches!(
                 e,
@@ -262,5 +277,73 @@ mod tests {
             ),
             "{e}"
         );
+    }
+
+    /// The Octave fixture's y is 3 x 4: a selection reads theta from any of its columns, and
+    /// thetadot beside it or not at all.
+    #[test]
+    fn a_column_selection_reads_the_columns_it_names() {
+        let select = |spec: &str| spec.parse::<Columns>().unwrap();
+        let v7 = fixture("trajectory-v7.mat");
+        let tr = super::read(&v7, 2, Some(&select("theta=3:4"))).unwrap();
+        assert_eq!(
+            tr.theta,
+            [vec![10.0, 20.0], vec![30.0, 40.0], vec![50.0, 60.0]]
+        );
+        assert!(tr.thetadot.is_none());
+        let tr = super::read(&v7, 1, Some(&select("thetadot=4:4, theta=2:2"))).unwrap();
+        assert_eq!(tr.theta, [vec![2.0], vec![4.0], vec![6.0]]);
+        assert_eq!(tr.thetadot, Some(vec![vec![20.0], vec![40.0], vec![60.0]]));
+        // Past the last column, or not one theta column per joint.
+        for (joints, spec) in [(2, "theta=4:5"), (3, "theta=1:2")] {
+            let e = super::read(&v7, joints, Some(&select(spec))).unwrap_err();
+            assert!(
+                matches!(&e, ReadError::Mat(MatError::Selected { cols: 4, .. })),
+                "{spec}: {e}"
+            );
+        }
+        // A CSV names its columns: a selection for one is refused, not ignored.
+        let e = super::read(Path::new("x.csv"), 2, Some(&select("theta=1:2"))).unwrap_err();
+        assert!(matches!(e, ReadError::ColumnsOfCsv { .. }), "{e}");
+    }
+
+    #[test]
+    fn column_selections_are_parsed_strictly() {
+        use crate::trajectory_mat::ColumnsError as E;
+        let parsed = |s: &str| s.parse::<Columns>();
+        assert_eq!(
+            parsed("theta=1:6,thetadot=7:12").unwrap(),
+            Columns {
+                theta: (1, 6),
+                thetadot: Some((7, 12))
+            }
+        );
+        assert_eq!(
+            parsed("theta=1:6,thetadot=7:12").unwrap().to_string(),
+            "theta=1:6,thetadot=7:12"
+        );
+        assert!(matches!(parsed("theta=1-6"), Err(E::Syntax { .. })));
+        assert!(matches!(parsed("theta=0:5"), Err(E::Range { .. })));
+        assert!(matches!(parsed("theta=6:1"), Err(E::Range { .. })));
+        assert!(matches!(parsed("thetadot=1:6"), Err(E::NoTheta { .. })));
+        assert!(matches!(
+            parsed("theta=1:6,theta=1:6"),
+            Err(E::Twice { .. })
+        ));
+        assert!(matches!(
+            parsed("theta=1:6,omega=7:12"),
+            Err(E::Unknown { .. })
+        ));
+        assert!(matches!(
+            parsed("theta=1:6,thetadot=7:11"),
+            Err(E::Unequal {
+                theta: 6,
+                thetadot: 5
+            })
+        ));
+        assert!(matches!(
+            parsed("theta=1:99999999999999999999999"),
+            Err(E::Syntax { .. })
+        ));
     }
 }

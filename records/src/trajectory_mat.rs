@@ -5,7 +5,10 @@
 //! `y`, m x n or m x 2n with a row per instant: the joint angles theta_1 .. theta_n, then
 //! optionally the velocities thetadot_1 .. thetadot_n (as MATLAB's `[t, y] = ode45(...)` returns
 //! them for a state that starts with theta and thetadot); n is the task's joint count. Other
-//! variables are ignored.
+//! variables are ignored. A `y` that carries more (the group's own `ode15s` state holds the
+//! network's state after theta and thetadot) is read through a [`Columns`] selection:
+//! `theta=1:6,thetadot=7:12` takes those columns (1-based, inclusive, as MATLAB counts them)
+//! and ignores the rest.
 //!
 //! The file is read by the input reader (crate `inputs`: a regular file, at most
 //! [`inputs::Kind::TrajectoryMat`]'s cap). A v7 file's compressed variables are inflated here,
@@ -42,7 +45,7 @@ pub enum MatError {
     #[error("{}: t has size {t:?}, it must be a vector", path.display())]
     TimeShape { path: PathBuf, t: Vec<usize> },
     #[error(
-        "{}: y is {rows} x {cols}; for {samples} instants of a {joints}-joint task it must be {samples} x {joints} (theta) or {samples} x {} (theta, thetadot)",
+        "{}: y is {rows} x {cols}; for {samples} instants of a {joints}-joint task it must be {samples} x {joints} (theta) or {samples} x {} (theta, thetadot), or name its columns (`--columns theta=1:{joints},thetadot=...`)",
         path.display(),
         2 * joints
     )]
@@ -53,10 +56,135 @@ pub enum MatError {
         samples: usize,
         joints: usize,
     },
+    #[error(
+        "{}: y is {rows} x {cols}; the selection {columns} needs {samples} rows (one per instant of t), at least {} columns and {joints} theta columns (the task's joints)",
+        path.display(),
+        columns.last_column()
+    )]
+    Selected {
+        path: PathBuf,
+        rows: usize,
+        cols: usize,
+        samples: usize,
+        joints: usize,
+        columns: Columns,
+    },
 }
 
-/// Reads the trajectory of a `joints`-joint task from the MAT-file `path` (module docs).
-pub fn read_mat(path: &Path, joints: usize) -> Result<Trajectory, MatError> {
+/// Which columns of `y` hold theta and, optionally, thetadot (module docs): 1-based, inclusive
+/// ranges, each as long as the task has joints.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Columns {
+    /// theta_1 .. theta_n: columns `theta.0 ..= theta.1`.
+    pub theta: (usize, usize),
+    /// thetadot_1 .. thetadot_n, when the file has them.
+    pub thetadot: Option<(usize, usize)>,
+}
+
+/// Why a column selection cannot be read.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum ColumnsError {
+    #[error("{given:?}: a column selection is `theta=A:B` or `theta=A:B,thetadot=C:D` (1-based, inclusive)")]
+    Syntax { given: String },
+    #[error("{given:?}: {name} is given twice")]
+    Twice { given: String, name: String },
+    #[error("{given:?}: {name} is not a quantity of a trajectory (theta, thetadot)")]
+    Unknown { given: String, name: String },
+    #[error("{given:?}: no theta range")]
+    NoTheta { given: String },
+    #[error("{given:?}: the range {from}:{to} must satisfy 1 <= A <= B")]
+    Range {
+        given: String,
+        from: usize,
+        to: usize,
+    },
+    #[error("theta takes {theta} columns and thetadot {thetadot}: both take one per joint")]
+    Unequal { theta: usize, thetadot: usize },
+}
+
+impl Columns {
+    /// The highest column the selection reads (1-based).
+    pub fn last_column(&self) -> usize {
+        self.theta.1.max(self.thetadot.map_or(0, |d| d.1))
+    }
+
+    /// The joints the selection reads (the length of its theta range).
+    pub fn joints(&self) -> usize {
+        self.theta.1 - self.theta.0 + 1
+    }
+}
+
+impl std::fmt::Display for Columns {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "theta={}:{}", self.theta.0, self.theta.1)?;
+        if let Some((a, b)) = self.thetadot {
+            write!(f, ",thetadot={a}:{b}")?;
+        }
+        Ok(())
+    }
+}
+
+impl std::str::FromStr for Columns {
+    type Err = ColumnsError;
+
+    fn from_str(given: &str) -> Result<Self, ColumnsError> {
+        let syntax = || ColumnsError::Syntax {
+            given: given.to_string(),
+        };
+        let mut theta = None;
+        let mut thetadot = None;
+        for part in given.split(',') {
+            let (name, range) = part.trim().split_once('=').ok_or_else(syntax)?;
+            let (a, b) = range.split_once(':').ok_or_else(syntax)?;
+            let number = |s: &str| s.trim().parse::<usize>().map_err(|_| syntax());
+            let (from, to) = (number(a)?, number(b)?);
+            if from == 0 || to < from {
+                return Err(ColumnsError::Range {
+                    given: given.to_string(),
+                    from,
+                    to,
+                });
+            }
+            let slot = match name.trim() {
+                "theta" => &mut theta,
+                "thetadot" => &mut thetadot,
+                other => {
+                    return Err(ColumnsError::Unknown {
+                        given: given.to_string(),
+                        name: other.to_string(),
+                    })
+                }
+            };
+            if slot.replace((from, to)).is_some() {
+                return Err(ColumnsError::Twice {
+                    given: given.to_string(),
+                    name: name.trim().to_string(),
+                });
+            }
+        }
+        let theta = theta.ok_or_else(|| ColumnsError::NoTheta {
+            given: given.to_string(),
+        })?;
+        let columns = Columns { theta, thetadot };
+        if let Some((a, b)) = thetadot {
+            if b - a + 1 != columns.joints() {
+                return Err(ColumnsError::Unequal {
+                    theta: columns.joints(),
+                    thetadot: b - a + 1,
+                });
+            }
+        }
+        Ok(columns)
+    }
+}
+
+/// Reads the trajectory of a `joints`-joint task from the MAT-file `path` (module docs), its
+/// columns those of `columns` when given, else the whole of `y` (n or 2n columns).
+pub fn read_mat(
+    path: &Path,
+    joints: usize,
+    columns: Option<&Columns>,
+) -> Result<Trajectory, MatError> {
     let bytes = inputs::read(path, inputs::Kind::TrajectoryMat, inputs::Origin::Named)?;
     let bytes = inflate(bytes, path, MAX_INFLATED_BYTES)?;
     let mat = matfile::MatFile::parse(bytes.as_slice()).map_err(|e| MatError::Parse {
@@ -88,24 +216,43 @@ pub fn read_mat(path: &Path, joints: usize) -> Result<Trajectory, MatError> {
         [rows, cols] => (*rows, *cols),
         _ => (0, 0),
     };
-    if rows != t.len() || (cols != joints && cols != 2 * joints) || joints == 0 {
-        return Err(MatError::Shape {
-            path: path.to_path_buf(),
-            rows,
-            cols,
-            samples: t.len(),
-            joints,
-        });
-    }
-    // Column-major: y(k, j) = y[k + j rows].
-    let row = |k: usize, columns: std::ops::Range<usize>| -> Vec<f64> {
-        columns.map(|j| y[k + j * rows]).collect()
+    let whole = Columns {
+        theta: (1, joints),
+        thetadot: (cols == 2 * joints).then_some((joints + 1, 2 * joints)),
+    };
+    let selection = match columns {
+        Some(c) if rows != t.len() || c.last_column() > cols || c.joints() != joints => {
+            return Err(MatError::Selected {
+                path: path.to_path_buf(),
+                rows,
+                cols,
+                samples: t.len(),
+                joints,
+                columns: c.clone(),
+            })
+        }
+        Some(c) => c,
+        None if rows != t.len() || (cols != joints && cols != 2 * joints) || joints == 0 => {
+            return Err(MatError::Shape {
+                path: path.to_path_buf(),
+                rows,
+                cols,
+                samples: t.len(),
+                joints,
+            })
+        }
+        None => &whole,
+    };
+    // Column-major: y(k, j) = y[k + j rows] (j 0-based; the selection's ranges are 1-based).
+    let row = |k: usize, (from, to): (usize, usize)| -> Vec<f64> {
+        (from - 1..to).map(|j| y[k + j * rows]).collect()
     };
     Ok(Trajectory {
         t: t.to_vec(),
-        theta: (0..rows).map(|k| row(k, 0..joints)).collect(),
-        thetadot: (cols == 2 * joints)
-            .then(|| (0..rows).map(|k| row(k, joints..2 * joints)).collect()),
+        theta: (0..rows).map(|k| row(k, selection.theta)).collect(),
+        thetadot: selection
+            .thetadot
+            .map(|d| (0..rows).map(|k| row(k, d)).collect()),
     })
 }
 

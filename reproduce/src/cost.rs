@@ -2,18 +2,24 @@
 //! (crate `cost`) measured on the n-link arms, written to results/dof-cost.csv with
 //! the fitted growth exponents and the machine, then the report re-rendered.
 
-use crate::cli::Cli;
 use crate::error::ReproduceError;
+use crate::project::Project;
 use crate::report::{render_report, report_root};
 use crate::results::{experiment_files, open_results, Described};
 
-/// Measures, prints the fitted exponents and (unless `--dry-run`) writes and re-renders.
-pub fn dof_cost(cli: &Cli, git_rev: &str) -> Result<(), ReproduceError> {
+/// Measures, prints the fitted exponents and (unless `dry_run`) writes and re-renders.
+pub fn dof_cost(project: &Project, dry_run: bool, git_rev: &str) -> Result<(), ReproduceError> {
     use cost::{machine, measure_all, Budget};
     let (cpu, cores) = machine();
-    let root = report_root(cli)?;
-    let results = (!cli.dry_run)
-        .then(|| open_results(cli, git_rev, &Described::new(&experiment_files(cli)?)))
+    let root = report_root(project)?;
+    let results = (!dry_run)
+        .then(|| {
+            open_results(
+                project,
+                git_rev,
+                &Described::new(&experiment_files(project)?),
+            )
+        })
         .transpose()?;
     eprintln!("measuring the cost against the number of joints on {cpu} ({cores} cores)");
     let started = std::time::Instant::now();
@@ -41,5 +47,5 @@ pub fn dof_cost(cli: &Cli, git_rev: &str) -> Result<(), ReproduceError> {
     let path = records::dof_cost::write(results.path(), &rows)?;
     results.save()?;
     eprintln!("wrote {} ({} rows)", path.display(), rows.len());
-    render_report(cli, &root, &results)
+    render_report(project, &root, &results)
 }

@@ -12,10 +12,10 @@ use std::path::PathBuf;
 /// Why `reproduce` stopped (printed as `error: ...`, exit code 2).
 #[derive(Debug, thiserror::Error)]
 pub enum ReproduceError {
-    /// `--threads` beyond [`crate::resolve::MAX_THREADS_PER_CORE`] per core.
+    /// `--threads` beyond [`crate::project::MAX_THREADS_PER_CORE`] per core.
     #[error(
         "--threads {threads}: at most {max} ({} per core; this machine has {cores})",
-        crate::resolve::MAX_THREADS_PER_CORE
+        crate::project::MAX_THREADS_PER_CORE
     )]
     TooManyThreads {
         threads: u64,

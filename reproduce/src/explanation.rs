@@ -2,17 +2,20 @@
 //! of the selected runs of the papers' solvers, written to results/ (ladder.csv,
 //! attribution.csv); alone (`reproduce explain`) it re-renders the report too.
 
-use crate::cli::Cli;
 use crate::error::ReproduceError;
+use crate::options::ExplainOptions;
+use crate::project::Project;
 use crate::report::{render_report, report_root};
+use crate::results::{open_results, Described};
+use crate::run::precheck_report;
 use catalog::experiment::Job;
 use records::results_dir::ResultsDir;
 
 /// The papers as data (`papers/` under the project root). Their published numbers that
 /// contradict the paper's own are warned on stderr, once per process, with file and line.
-pub fn load_papers(cli: &Cli) -> Result<records::papers::Papers, ReproduceError> {
+pub fn load_papers(project: &Project) -> Result<records::papers::Papers, ReproduceError> {
     static WARNED: std::sync::Once = std::sync::Once::new();
-    let root = &cli.project_root;
+    let root = &project.root;
     let papers = records::papers::Papers::load(&root.join("papers"))?;
     WARNED.call_once(|| {
         for w in &papers.warnings {
@@ -26,13 +29,13 @@ pub fn load_papers(cli: &Cli) -> Result<records::papers::Papers, ReproduceError>
 /// The ladders and attributions of the selected runs `jobs` of the papers' solvers (`all`:
 /// every run of the experiment files), written to `results` when given.
 pub fn explain(
-    cli: &Cli,
+    project: &Project,
     jobs: &[Job],
     all: &[Job],
     git_rev: &str,
     results: Option<&ResultsDir>,
 ) -> Result<(), ReproduceError> {
-    let papers = load_papers(cli)?;
+    let papers = load_papers(project)?;
     let targets = explain::targets(jobs, &papers);
     if targets.is_empty() {
         return Ok(());
@@ -52,8 +55,23 @@ pub fn explain(
         explained.ladder.len(),
         explained.attribution.len()
     );
-    if cli.explain_only {
-        render_report(cli, &report_root(cli)?, results)?;
-    }
     Ok(())
+}
+
+/// `reproduce explain`: the ladders and attributions of the selected runs `jobs` (`all`: every
+/// run of the experiment files), written and followed by the report unless `--dry-run`.
+pub fn explain_mode(
+    project: &Project,
+    options: &ExplainOptions,
+    jobs: &[Job],
+    all: &Described,
+    git_rev: &str,
+) -> Result<(), ReproduceError> {
+    if options.dry_run {
+        return explain(project, jobs, all.jobs(), git_rev, None);
+    }
+    precheck_report(project)?;
+    let results = open_results(project, git_rev, all)?;
+    explain(project, jobs, all.jobs(), git_rev, Some(&results))?;
+    render_report(project, &report_root(project)?, &results)
 }

@@ -2,10 +2,13 @@
 //! published tables with the family of `experiments/inference/family.toml`, each table written
 //! as it is fitted, then the report re-rendered.
 
-use crate::cli::Cli;
 use crate::error::ReproduceError;
 use crate::explanation::load_papers;
+use crate::options::InferOptions;
+use crate::project::Project;
 use crate::report::{render_report, report_root};
+use crate::results::{open_results, Described};
+use crate::run::precheck_report;
 use catalog::experiment::Job;
 use records::results_dir::ResultsDir;
 
@@ -33,18 +36,40 @@ pub fn select_tables<'a>(
     Ok(selected)
 }
 
+/// `reproduce infer TABLE`: the tables `options.table` selects fitted over `all` (every run of
+/// the experiment files), each written as it is fitted and the report re-rendered, unless
+/// `--dry-run`.
+pub fn infer_mode(
+    project: &Project,
+    options: &InferOptions,
+    all: &Described,
+    git_rev: &str,
+) -> Result<(), ReproduceError> {
+    if options.dry_run {
+        return infer(project, &options.table, all.jobs(), None);
+    }
+    precheck_report(project)?;
+    let results = open_results(project, git_rev, all)?;
+    infer(project, &options.table, all.jobs(), Some(&results))
+}
+
 /// Fits the tables `which` selects over the runs `jobs`; writes each to `results` when given.
 pub fn infer(
-    cli: &Cli,
+    project: &Project,
     which: &str,
     jobs: &[Job],
     results: Option<&ResultsDir>,
 ) -> Result<(), ReproduceError> {
     use explain::inference::{family::Family, fit, problem, rows, search::Target};
     use records::inference::table_ids;
-    let root = report_root(cli)?;
-    let papers = load_papers(cli)?;
-    let family = Family::load(&cli.experiments_dir.join("inference").join("family.toml"))?;
+    let root = report_root(project)?;
+    let papers = load_papers(project)?;
+    let family = Family::load(
+        &project
+            .experiments_dir
+            .join("inference")
+            .join("family.toml"),
+    )?;
     let ids = table_ids(&papers.values);
     for (paper, table) in select_tables(&ids, which)? {
         let p = problem(paper, table, &papers, jobs)?;
@@ -64,7 +89,7 @@ pub fn infer(
             f.outcome.evaluations,
             f.wall_s
         );
-        // Each table is written as soon as it is fitted: an interrupted --infer all keeps the
+        // Each table is written as soon as it is fitted: an interrupted `infer all` keeps the
         // tables it finished.
         let (r, e) = rows(&p, &f);
         if let Some(results) = results {
@@ -73,7 +98,7 @@ pub fn infer(
         }
     }
     match results {
-        Some(results) => render_report(cli, &root, results),
+        Some(results) => render_report(project, &root, results),
         None => Ok(()),
     }
 }

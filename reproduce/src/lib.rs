@@ -1,17 +1,19 @@
 //! The logic of the `reproduce` binary: runs driftbench's experiments and writes `results/` and
-//! `report/`. The binary (`main.rs`) parses the command line ([`Cli`]), calls [`run`](fn@run)
-//! and prints the [`ReproduceError`] it may return.
+//! `report/`. The binary (`main.rs`) parses the command line ([`Cli`]) into the global options
+//! and a [`Mode`] with its options ([`options`]), calls [`run`](fn@run) and prints the
+//! [`ReproduceError`] it may return. A program may call [`run`](fn@run) with options it built
+//! itself: the library never sees the command line.
 //!
 //! One module per mode: [`run`](mod@run) (the default, the gate of [`gate`], a shard, with its
 //! [`journal`]), [`report`], [`explanation`], [`inference`], [`merge`], [`list`] (and robots),
 //! [`cost`], [`score`] (a trajectory made elsewhere, also `driftbench.score` in Python); the
 //! task cards the report mode writes ([`task_card`]); beside them what the modes share: the
-//! command line ([`cli`], [`commands`], [`resolve`]), the selection of runs ([`select`]), the
-//! results directory ([`results`]), the summary printed ([`summary`]) and the code revision
-//! embedded at build time ([`revision`]).
+//! options ([`options`]), the command line ([`cli`], [`aliases`]), the project's directories
+//! ([`project`]), the selection of runs ([`select`]), the results directory ([`results`]), the
+//! summary printed ([`summary`]) and the code revision embedded at build time ([`revision`]).
 
+pub mod aliases;
 pub mod cli;
-pub mod commands;
 pub mod cost;
 pub mod error;
 pub mod explanation;
@@ -20,8 +22,9 @@ pub mod inference;
 pub mod journal;
 pub mod list;
 pub mod merge;
+pub mod options;
+pub mod project;
 pub mod report;
-pub mod resolve;
 pub mod results;
 pub mod revision;
 pub mod run;
@@ -33,97 +36,188 @@ pub mod timing;
 
 pub use cli::Cli;
 pub use error::ReproduceError;
+pub use options::{GlobalOptions, Mode};
 
-use catalog::experiment::Job;
+use catalog::experiment::{Job, PaperFile};
+use options::SelectionOptions;
+use project::{resolve_shard, set_threads, Project};
+use records::shard::Shard;
+use results::{experiment_files, Described};
+use run::{Output, Plan};
 use std::process::ExitCode;
 use summary::emit;
 
-/// Runs the mode the command line `cli` asks for (its directories resolved first:
-/// [`Cli::resolve`]); the exit code.
-pub fn run(cli: Cli) -> Result<ExitCode, ReproduceError> {
-    // The robots are compiled in (built-in models and the embedded robot files): listing them
-    // needs no project.
-    if cli.robots {
-        emit(&list::robots());
-        return Ok(ExitCode::SUCCESS);
-    }
-    let cli = &cli.resolve()?;
+/// Runs `mode` on the project of `global`; the exit code.
+pub fn run(global: &GlobalOptions, mode: Mode) -> Result<ExitCode, ReproduceError> {
+    set_threads(global.threads)?;
     let git_rev = revision::REVISION;
-    if let (Some(file), Some(task)) = (&cli.score, &cli.task) {
-        score::score(cli, file, task, git_rev)?;
-        return Ok(ExitCode::SUCCESS);
+    let env = |v: &str| std::env::var(v).ok();
+    let project = |shard: Option<Shard>| Project::resolve(global, shard);
+
+    match mode {
+        // The robots are compiled in (built-in models and the embedded robot files): listing
+        // them needs no project.
+        Mode::Robots => {
+            emit(&list::robots());
+            Ok(ExitCode::SUCCESS)
+        }
+        Mode::Score(o) => {
+            score::score(&project(None)?, &o, git_rev)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Mode::Report => {
+            report::report_only(&project(None)?, git_rev)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Mode::Cost(o) => {
+            cost::dof_cost(&project(None)?, o.dry_run, git_rev)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Mode::Merge(o) => {
+            let project = project(None)?;
+            let files = experiment_files(&project)?;
+            merge::merge_shards(&project, &o.dirs, &files, git_rev)
+        }
+        Mode::Infer(o) => {
+            let project = project(None)?;
+            let files = experiment_files(&project)?;
+            inference::infer_mode(&project, &o, &Described::new(&files), git_rev)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Mode::Explain(o) => {
+            let project = project(None)?;
+            let files = experiment_files(&project)?;
+            let jobs = selected(&files, &o.selection, None, &project)?;
+            explanation::explain_mode(&project, &o, &jobs, &Described::new(&files), git_rev)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Mode::List(o) => {
+            let shard = o
+                .shard
+                .as_deref()
+                .map(|s| resolve_shard(s, o.shards, env))
+                .transpose()?;
+            let project = project(shard)?;
+            let files = experiment_files(&project)?;
+            list_runs(&project, &files, &o.selection, shard, o.shards)?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Mode::Run(o) => {
+            let project = project(None)?;
+            let files = experiment_files(&project)?;
+            let jobs = selected(&files, &o.selection, None, &project)?;
+            let output = if o.dry_run {
+                Output::DryRun
+            } else {
+                Output::Results
+            };
+            let plan = Plan {
+                selection: &o.selection,
+                output,
+                explain: !o.skip_explain,
+            };
+            run::run(&project, plan, &Described::new(&files), &jobs, git_rev)
+        }
+        Mode::Check(o) => {
+            let project = project(None)?;
+            let files = experiment_files(&project)?;
+            let all = Described::new(&files);
+            let jobs = selected(&files, &o.selection, None, &project)?;
+            let baseline = gate::Baseline::read(
+                &project.root,
+                &project.results_dir,
+                o.baseline.as_deref(),
+                all.jobs(),
+            )?;
+            let plan = Plan {
+                selection: &o.selection,
+                output: Output::Gate(baseline),
+                explain: false,
+            };
+            run::run(&project, plan, &all, &jobs, git_rev)
+        }
+        Mode::Shard(o) => {
+            let shard = resolve_shard(&o.shard, o.shards, env)?;
+            let project = project(Some(shard))?;
+            let files = experiment_files(&project)?;
+            let jobs = selected(&files, &o.selection, Some(shard), &project)?;
+            let plan = Plan {
+                selection: &o.selection,
+                output: Output::Shard(shard),
+                explain: false,
+            };
+            run::run(&project, plan, &Described::new(&files), &jobs, git_rev)
+        }
     }
-    if cli.report_only {
-        report::report_only(cli, git_rev)?;
-        return Ok(ExitCode::SUCCESS);
-    }
-    if cli.dof_cost {
-        cost::dof_cost(cli, git_rev)?;
-        return Ok(ExitCode::SUCCESS);
-    }
-    let files = results::experiment_files(cli)?;
-    if cli.list && cli.merge.is_empty() {
-        list_runs(cli, &files)?;
-        return Ok(ExitCode::SUCCESS);
-    }
-    if !cli.merge.is_empty() {
-        return merge::merge_shards(cli, &files, git_rev);
-    }
-    let selection = cli.selection();
-    select::check_selection(&files, &selection)?;
-    // Only the runs this process runs are collected (a shard's: an eighth of a 10^6-run
-    // selection); every other run is made from the files when needed (results::Described).
-    let mut selected = 0;
-    let jobs: Vec<Job> = select::selected(&files, &selection)
-        .inspect(|_| selected += 1)
-        .filter(|j| owns(cli, j))
-        .collect();
-    if let Some(shard) = cli.shard_resolved {
-        say_shard(cli, shard, jobs.len(), selected);
-    }
-    run::run(cli, &results::Described::new(&files), &jobs, git_rev)
 }
 
-/// `--list` (with `--shard K/N`: the shard's runs; with `--shards N`: the count per shard),
-/// the runs made from `files` as they are written rather than collected: a list of 10^6 runs
-/// holds none of them (docs/cluster.md).
-fn list_runs(cli: &Cli, files: &[catalog::experiment::PaperFile]) -> Result<(), ReproduceError> {
-    let selection = cli.selection();
+/// The runs of `files` that `selection` keeps and `shard` owns (all of them without a shard;
+/// said on stderr with one). Only these are collected (a shard's: an eighth of a 10^6-run
+/// selection); every other run is made from the files when needed (results::Described).
+fn selected(
+    files: &[PaperFile],
+    selection: &SelectionOptions,
+    shard: Option<Shard>,
+    project: &Project,
+) -> Result<Vec<Job>, ReproduceError> {
+    let selection = selection.selection();
     select::check_selection(files, &selection)?;
-    if let Some(shard) = cli.shard_resolved {
+    let mut count = 0;
+    let jobs: Vec<Job> = select::selected(files, &selection)
+        .inspect(|_| count += 1)
+        .filter(|j| owns(shard, j))
+        .collect();
+    if let Some(shard) = shard {
+        say_shard(project, shard, jobs.len(), count);
+    }
+    Ok(jobs)
+}
+
+/// `list` (with a shard: the shard's runs; with `shards`: the count per shard), the runs made
+/// from `files` as they are written rather than collected: a list of 10^6 runs holds none of
+/// them (docs/cluster.md).
+fn list_runs(
+    project: &Project,
+    files: &[PaperFile],
+    selection: &SelectionOptions,
+    shard: Option<Shard>,
+    shards: Option<usize>,
+) -> Result<(), ReproduceError> {
+    let selection = selection.selection();
+    select::check_selection(files, &selection)?;
+    if let Some(shard) = shard {
         let owned = select::selected(files, &selection)
-            .filter(|j| owns(cli, j))
+            .filter(|j| owns(Some(shard), j))
             .count();
         say_shard(
-            cli,
+            project,
             shard,
             owned,
             select::selected(files, &selection).count(),
         );
     }
-    // As `summary::emit`: a closed standard output (`reproduce --list | head`) ends the list
-    // and is no error.
+    // As `summary::emit`: a closed standard output (`reproduce list | head`) ends the list and
+    // is no error.
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
     let _ = list::list(&mut out, files, |j| {
-        select::selects(&selection, j) && owns(cli, j)
+        select::selects(&selection, j) && owns(shard, j)
     })
     .and_then(|()| std::io::Write::flush(&mut out));
-    if let (Some(n), None) = (cli.shards, cli.shard_resolved) {
+    if let (Some(n), None) = (shards, shard) {
         emit(&list::shard_plan(select::selected(files, &selection), n));
     }
     Ok(())
 }
 
-/// Whether `job` is the shard's of `--shard` (every job is, without it).
-fn owns(cli: &Cli, job: &Job) -> bool {
-    cli.shard_resolved
-        .is_none_or(|shard| shard.owns(&job.key().to_string()))
+/// Whether `job` is `shard`'s (every job is, without a shard).
+fn owns(shard: Option<Shard>, job: &Job) -> bool {
+    shard.is_none_or(|shard| shard.owns(&job.key().to_string()))
 }
 
 /// The line a shard starts with: how many of the selected runs are its, and where it writes.
-fn say_shard(cli: &Cli, shard: records::shard::Shard, owned: usize, selected: usize) {
+fn say_shard(project: &Project, shard: Shard, owned: usize, selected: usize) {
     eprintln!(
         "shard {shard}: {owned} of the {selected} selected runs, into {}",
-        cli.results_dir.display()
+        project.results_dir.display()
     );
 }

@@ -9,7 +9,8 @@ fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(e) => e.exit(),
     };
-    match reproduce::run(cli) {
+    let (global, mode) = cli.into_parts();
+    match reproduce::run(&global, mode) {
         Ok(code) => code,
         Err(e) => {
             eprintln!("error: {e}");

@@ -2,8 +2,8 @@
 //! integrity, revision, ownership, traces) checked before anything is written, then their rows
 //! and traces merged into the results directory and the report rendered, as a normal run does.
 
-use crate::cli::Cli;
 use crate::error::ReproduceError;
+use crate::project::Project;
 use crate::report::render_report_if_named;
 use crate::results::{open_results, plan_pruning, write_results, Described};
 use crate::run::report_unexpected;
@@ -12,16 +12,16 @@ use catalog::experiment::PaperFile;
 use records::runs::RunRow;
 use std::process::ExitCode;
 
-/// Merges the shards of `--merge` (`files`: the experiment files).
+/// Merges the shard directories `dirs` (`files`: the experiment files).
 pub fn merge_shards(
-    cli: &Cli,
+    project: &Project,
+    dirs: &[std::path::PathBuf],
     files: &[PaperFile],
     git_rev: &str,
 ) -> Result<ExitCode, ReproduceError> {
-    let shards = cli
-        .merge
+    let shards = dirs
         .iter()
-        .map(|d| records::shard::read_shard(d, cli.edits()))
+        .map(|d| records::shard::read_shard(d, project.edits))
         .collect::<Result<Vec<_>, _>>()?;
     let sel = shards
         .first()
@@ -30,10 +30,10 @@ pub fn merge_shards(
     check_selection(files, &sel)?;
     let expected: Vec<String> = selected(files, &sel).map(|j| j.key().to_string()).collect();
     let all = &Described::new(files);
-    let hash = records::shard::experiments_hash(&cli.experiments_dir)?;
+    let hash = records::shard::experiments_hash(&project.experiments_dir)?;
     records::shard::check_shards(&shards, &expected, &hash)?;
-    let results = open_results(cli, git_rev, all)?;
-    let (kept, pruned) = plan_pruning(cli, &results, all)?;
+    let results = open_results(project, git_rev, all)?;
+    let (kept, pruned) = plan_pruning(project, &results, all)?;
     let traces = records::shard::copy_traces(&shards, &results)?;
     let rows: Vec<RunRow> = shards.iter().flat_map(|s| s.rows.clone()).collect();
     let unexpected: Vec<String> = rows
@@ -47,6 +47,6 @@ pub fn merge_shards(
         rows.len()
     );
     write_results(&results, &[], kept, &pruned, rows)?;
-    render_report_if_named(cli, &results)?;
+    render_report_if_named(project, &results)?;
     Ok(report_unexpected(&unexpected))
 }

@@ -2,30 +2,34 @@
 //! `<root>/report`) after every mode that writes results, or alone (`reproduce report`) from
 //! the stored results without running anything.
 
-use crate::cli::Cli;
 use crate::error::ReproduceError;
+use crate::project::Project;
 use crate::results::{experiment_files, open_results, Described};
 use records::results_dir::ResultsDir;
 use std::path::{Path, PathBuf};
 
 /// `reproduce report` (`--report-only`): re-renders report/ from the stored results.
-pub fn report_only(cli: &Cli, git_rev: &str) -> Result<(), ReproduceError> {
-    let root = report_root(cli)?;
+pub fn report_only(project: &Project, git_rev: &str) -> Result<(), ReproduceError> {
+    let root = report_root(project)?;
     check_report_dir(&root)?;
-    let results = open_results(cli, git_rev, &Described::new(&experiment_files(cli)?))?;
-    render_report(cli, &root, &results)
+    let results = open_results(
+        project,
+        git_rev,
+        &Described::new(&experiment_files(project)?),
+    )?;
+    render_report(project, &root, &results)
 }
 
 /// The report is rendered beside the results directory: `<root>/results` -> `<root>/report`.
-pub fn report_root(cli: &Cli) -> Result<PathBuf, ReproduceError> {
-    match cli.results_dir.file_name() {
-        Some(name) if name == records::results_dir::DIR => Ok(cli
+pub fn report_root(project: &Project) -> Result<PathBuf, ReproduceError> {
+    match project.results_dir.file_name() {
+        Some(name) if name == records::results_dir::DIR => Ok(project
             .results_dir
             .parent()
             .map(PathBuf::from)
             .unwrap_or_else(|| PathBuf::from("."))),
         _ => Err(ReproduceError::ResultsNotNamedResults(
-            cli.results_dir.clone(),
+            project.results_dir.clone(),
         )),
     }
 }
@@ -38,11 +42,15 @@ pub fn check_report_dir(root: &Path) -> Result<(), ReproduceError> {
     Ok(records::runs::check_writable(report.path())?)
 }
 
-/// Figures first (the report links them), then REPORT.md, then the leaderboard table (recorded
+/// Figures first (the report links them), then the report's pages, then the leaderboard table (recorded
 /// in the results directory's manifest).
-pub fn render_report(cli: &Cli, root: &Path, results: &ResultsDir) -> Result<(), ReproduceError> {
+pub fn render_report(
+    project: &Project,
+    root: &Path,
+    results: &ResultsDir,
+) -> Result<(), ReproduceError> {
     let figures = presentation::figures::render_all(root)?;
-    let report = presentation::report::render(root, &cli.project_root.join("papers"))?;
+    let report = presentation::report::render(root, &project.root.join("papers"))?;
     crate::task_card::write_all(root)?;
     records::leaderboard::write(results.path(), &results.read_runs()?)?;
     results.save()?;
@@ -51,9 +59,12 @@ pub fn render_report(cli: &Cli, root: &Path, results: &ResultsDir) -> Result<(),
 }
 
 /// [`render_report`] where the results directory allows a report; otherwise says why not.
-pub fn render_report_if_named(cli: &Cli, results: &ResultsDir) -> Result<(), ReproduceError> {
-    match report_root(cli) {
-        Ok(root) => render_report(cli, &root, results),
+pub fn render_report_if_named(
+    project: &Project,
+    results: &ResultsDir,
+) -> Result<(), ReproduceError> {
+    match report_root(project) {
+        Ok(root) => render_report(project, &root, results),
         Err(why) => {
             eprintln!("report not rendered: {why}");
             Ok(())
@@ -65,12 +76,13 @@ pub fn render_report_if_named(cli: &Cli, results: &ResultsDir) -> Result<(), Rep
 mod tests {
     use super::*;
 
-    fn cli(results: &str) -> Cli {
-        let args = ["reproduce", "--root", "/p", "--results-dir", results];
-        Cli::parse_from_args(args.iter().map(|a| a.to_string()).collect())
-            .unwrap()
-            .resolve()
-            .unwrap()
+    fn cli(results: &str) -> Project {
+        let global = crate::options::GlobalOptions {
+            root: Some("/p".into()),
+            results_dir: Some(results.into()),
+            ..Default::default()
+        };
+        Project::resolve(&global, None).unwrap()
     }
 
     #[test]

@@ -2,8 +2,8 @@
 //! per mode (the lock, the integrity check of its tables, the migration of rows written before
 //! run ids), and written at the end of a run or merge (pruning, merging, runs.csv, manifest).
 
-use crate::cli::Cli;
 use crate::error::ReproduceError;
+use crate::project::Project;
 use catalog::experiment::{load_dir, Job, PaperFile};
 use catalog::run_key::RunKey;
 use records::migrate::LabelIndex;
@@ -13,9 +13,12 @@ use simulation::run::RunRecord;
 use std::cell::OnceCell;
 use std::collections::HashSet;
 
-/// The experiment files of `--experiments-dir`, loaded and validated.
-pub fn experiment_files(cli: &Cli) -> Result<Vec<PaperFile>, ReproduceError> {
-    Ok(load_dir(&cli.experiments_dir, simulation::run::check_job)?)
+/// The experiment files of the project, loaded and validated.
+pub fn experiment_files(project: &Project) -> Result<Vec<PaperFile>, ReproduceError> {
+    Ok(load_dir(
+        &project.experiments_dir,
+        simulation::run::check_job,
+    )?)
 }
 
 /// Every run the experiment files describe (what migration and pruning compare the stored
@@ -63,32 +66,33 @@ impl<'a> Described<'a> {
 /// `all`: every run of the experiment files, by which results written before run ids are
 /// migrated.
 pub fn open_results(
-    cli: &Cli,
+    project: &Project,
     git_rev: &str,
     all: &Described,
 ) -> Result<ResultsDir, ReproduceError> {
-    let (results, removed) = ResultsDir::open(&cli.results_dir, git_rev, cli.edits())?;
+    let (results, removed) = ResultsDir::open(&project.results_dir, git_rev, project.edits)?;
     if !removed.is_empty() {
         eprintln!(
             "removed {} stale temporary file(s) of interrupted runs under {}",
             removed.len(),
-            cli.results_dir.display()
+            project.results_dir.display()
         );
     }
     // Results written before run ids are migrated once (records::migrate).
     for done in results.migrate_ids(|| all.label_index())? {
         eprintln!(
             "migrated to run ids under {}: {done}",
-            cli.results_dir.display()
+            project.results_dir.display()
         );
     }
     Ok(results)
 }
 
 /// The stored rows split into those an experiment file still describes (kept) and those it
-/// does not (to prune); refuses to prune more than a quarter of them without `--prune`.
+/// does not (to prune); refuses to prune more than a quarter of them without `--prune`
+/// ([`Project::prune`]).
 pub fn plan_pruning(
-    cli: &Cli,
+    project: &Project,
     results: &ResultsDir,
     all: &Described,
 ) -> Result<(Vec<RunRow>, Vec<RunRow>), ReproduceError> {
@@ -96,8 +100,8 @@ pub fn plan_pruning(
     Ok(results.plan_pruning(
         results.read_runs()?,
         |row| described.contains(&row.key()),
-        cli.prune,
-        &cli.experiments_dir,
+        project.prune,
+        &project.experiments_dir,
     )?)
 }
 

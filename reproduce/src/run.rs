@@ -1,4 +1,4 @@
-//! `reproduce run` (the default; also `check`, `shard`, `explain`, `infer`): everything that
+//! `reproduce run` (the default; also `check` and `shard`): everything that
 //! can be checked is checked before anything runs (the gate's baseline, the report directory,
 //! the papers, the stored results); then the selected runs run, resumed from and checkpointed in a journal;
 //! the summary is printed; and the rows are compared with the baseline (the gate) or written
@@ -6,86 +6,81 @@
 //! experiments and the report). Runs that fail without their experiment file expecting it are
 //! exit code 1.
 
-use crate::cli::Cli;
 use crate::error::ReproduceError;
 use crate::explanation::{explain, load_papers};
 use crate::gate::Baseline;
-use crate::inference::infer;
 use crate::journal::{resume, run_journaled};
+use crate::options::SelectionOptions;
+use crate::project::Project;
 use crate::report::{check_report_dir, render_report_if_named, report_root};
 use crate::results::{open_results, plan_pruning, write_results, Described};
 use crate::summary::{emit, summary};
 use catalog::experiment::Job;
 use records::results_dir::ResultsDir;
 use records::runs::RunRow;
+use records::shard::Shard;
 use simulation::row::run_row;
 use simulation::run::RunRecord;
 use std::process::ExitCode;
 
-/// Runs `jobs`, the selection of `all` (every run of the experiment files).
+/// Where a run's rows go.
+#[derive(Debug)]
+pub enum Output {
+    /// Into the results directory, followed by the explanation layer, the control experiments
+    /// (of a whole reproduction) and the report.
+    Results,
+    /// Nowhere: the summary is printed only.
+    DryRun,
+    /// Compared with a baseline (the gate); nothing written.
+    Gate(Baseline),
+    /// Into the shard's own results directory, bound to the shard, with its manifest last.
+    Shard(Shard),
+}
+
+/// What `reproduce run`, `check` and `shard` do with the selected runs.
+#[derive(Debug)]
+pub struct Plan<'a> {
+    /// The selection the runs were chosen by (a shard records it; a whole one adds the control
+    /// experiments).
+    pub selection: &'a SelectionOptions,
+    /// Where the rows go.
+    pub output: Output,
+    /// Whether the explanation layer follows written results.
+    pub explain: bool,
+}
+
+/// Runs `jobs`, the selection of `all` (every run of the experiment files), as `plan` says.
 pub fn run(
-    cli: &Cli,
+    project: &Project,
+    plan: Plan<'_>,
     all: &Described,
     jobs: &[Job],
     git_rev: &str,
 ) -> Result<ExitCode, ReproduceError> {
-    let baseline = cli
-        .check
-        .then(|| {
-            Baseline::read(
-                &cli.project_root,
-                &cli.results_dir,
-                cli.baseline.as_deref(),
-                all.jobs(),
-            )
-        })
-        .transpose()?;
-    if !cli.check && !cli.dry_run && cli.shard_resolved.is_none() {
-        match report_root(cli) {
-            // The report reads papers/ after the runs: a malformed paper is refused before.
-            Ok(root) => {
-                check_report_dir(&root)?;
-                load_papers(cli)?;
-            }
-            Err(why) => eprintln!(
-                "note: results go to {}, but {why}",
-                cli.results_dir.display()
-            ),
-        }
+    if matches!(plan.output, Output::Results) {
+        precheck_report(project)?;
     }
-    if let Some(t) = cli.threads {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(t as usize)
-            .build_global()?;
-    }
+    let writes = matches!(plan.output, Output::Results | Output::Shard(_));
     // One writer at a time: the lock is held until the process ends.
-    let results = (!cli.check && !cli.dry_run)
-        .then(|| open_results(cli, git_rev, all))
+    let results = writes
+        .then(|| open_results(project, git_rev, all))
         .transpose()?;
-    if let Some(which) = &cli.infer {
-        infer(cli, which, all.jobs(), results.as_ref())?;
-        return Ok(ExitCode::SUCCESS);
-    }
-    if cli.explain_only {
-        explain(cli, jobs, all.jobs(), git_rev, results.as_ref())?;
-        return Ok(ExitCode::SUCCESS);
-    }
     let mut stored = results
         .as_ref()
-        .map(|r| plan_pruning(cli, r, all))
+        .map(|r| plan_pruning(project, r, all))
         .transpose()?;
     // A shard binds its directory before anything runs (records::shard::Binding); the
     // directory is finished only once its manifest is written again, at the end.
-    let binding = match (cli.shard_resolved, &results) {
-        (Some(shard), Some(results)) => {
+    let binding = match (&plan.output, &results) {
+        (Output::Shard(shard), Some(results)) => {
             let binding = records::shard::Binding {
                 shard: shard.k,
                 shards: shard.n,
-                experiments_hash: records::shard::experiments_hash(&cli.experiments_dir)?,
-                selection: cli.selection(),
+                experiments_hash: records::shard::experiments_hash(&project.experiments_dir)?,
+                selection: plan.selection.selection(),
             };
             binding.claim(results)?;
-            records::shard::Manifest::remove(&cli.results_dir)?;
+            records::shard::Manifest::remove(&project.results_dir)?;
             Some(binding)
         }
         _ => None,
@@ -108,9 +103,10 @@ pub fn run(
             )
         })
         .collect();
-    if let Some(baseline) = baseline {
-        return Ok(baseline.verdict(&rows, cli.exact_only));
-    }
+    let plan = match plan.output {
+        Output::Gate(baseline) => return Ok(baseline.verdict(&rows, plan.selection.exact_only)),
+        output => Plan { output, ..plan },
+    };
     if let (Some(results), Some((kept, pruned))) = (&results, stored) {
         let untraced: Vec<&RunRecord> = records
             .iter()
@@ -118,7 +114,15 @@ pub fn run(
             .collect();
         write_results(results, &untraced, kept, &pruned, rows)?;
         records::journal::remove(results.path())?;
-        publish(cli, results, binding.as_ref(), all, jobs, git_rev)?;
+        publish(
+            project,
+            &plan,
+            results,
+            binding.as_ref(),
+            all,
+            jobs,
+            git_rev,
+        )?;
     }
     let unexpected: Vec<String> = failed
         .iter()
@@ -136,11 +140,30 @@ pub fn run(
     Ok(report_unexpected(&unexpected))
 }
 
+/// Before anything runs in a mode that renders the report: its directory lies inside the
+/// project and can be written, and papers/ loads (the report reads it after the runs, so a
+/// malformed paper is refused now). A results directory not named `results` gets no report,
+/// which is said.
+pub fn precheck_report(project: &Project) -> Result<(), ReproduceError> {
+    match report_root(project) {
+        Ok(root) => {
+            check_report_dir(&root)?;
+            load_papers(project)?;
+        }
+        Err(why) => eprintln!(
+            "note: results go to {}, but {why}",
+            project.results_dir.display()
+        ),
+    }
+    Ok(())
+}
+
 /// What follows the written rows: a shard's manifest (of its `binding`, written last: the
 /// shard is finished); otherwise the explanation layer (unless skipped), the control
 /// experiments of a whole, unselected reproduction, and the report.
 fn publish(
-    cli: &Cli,
+    project: &Project,
+    plan: &Plan<'_>,
     results: &ResultsDir,
     binding: Option<&records::shard::Binding>,
     all: &Described,
@@ -150,24 +173,27 @@ fn publish(
     if let Some(binding) = binding {
         binding
             .manifest(git_rev, jobs.iter().map(|j| j.key().to_string()).collect())
-            .write(&cli.results_dir)?;
+            .write(&project.results_dir)?;
         eprintln!(
-            "shard {}/{} done: merge with `reproduce --merge {}...`",
+            "shard {}/{} done: merge with `reproduce merge {}...`",
             binding.shard,
             binding.shards,
-            cli.results_dir.display()
+            project.results_dir.display()
         );
         return Ok(());
     }
-    if !cli.skip_explain && !cli.exact_only {
-        explain(cli, jobs, all.jobs(), git_rev, Some(results))?;
+    if plan.explain && !plan.selection.exact_only {
+        explain(project, jobs, all.jobs(), git_rev, Some(results))?;
     }
     // The control experiments (control crate) with a whole, unselected reproduction.
-    if !cli.exact_only && cli.paper.is_none() && cli.experiment.is_empty() {
+    if plan.selection.is_whole() {
         let budget = control::Budget::default();
-        match control::reproduce(&cli.experiments_dir, &cli.results_dir, &budget, |m| {
-            eprintln!("{m}")
-        }) {
+        match control::reproduce(
+            &project.experiments_dir,
+            &project.results_dir,
+            &budget,
+            |m| eprintln!("{m}"),
+        ) {
             Ok(s) => eprintln!(
                 "control: {} runs, {} many-cycles runs, efficiency claim {}",
                 s.control_runs,
@@ -181,16 +207,11 @@ fn publish(
             }
             Err(e) => return Err(e.into()),
         }
-        crate::timing::time_alone(
-            all.jobs(),
-            results,
-            &cli.project_root.join("papers"),
-            git_rev,
-        )?;
+        crate::timing::time_alone(all.jobs(), results, &project.root.join("papers"), git_rev)?;
         // Its tables are recorded before the report (which may fail) is rendered.
         results.save()?;
     }
-    render_report_if_named(cli, results)
+    render_report_if_named(project, results)
 }
 
 /// Says the failures no experiment file expects (`unexpected`, one line each): exit code 1 if

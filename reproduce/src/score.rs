@@ -6,8 +6,9 @@
 //! in `<out>/figures/<experiment>__<variant>__<solver>.svg`; its summary line is printed like a
 //! run's.
 
-use crate::cli::Cli;
 use crate::error::{ReproduceError, ScoreError};
+use crate::options::ScoreOptions;
+use crate::project::Project;
 use crate::summary::{emit, summary};
 use catalog::experiment::{load_dir, Job, PaperFile};
 use catalog::run_key::TaskKey;
@@ -16,16 +17,30 @@ use records::error::{IoAction, IoError};
 use records::runs::{merge, write_atomic, RunRow};
 use records::trace::trace_csv;
 use records::trajectory::{read, score_row};
+use records::trajectory_mat::Columns;
 use simulation::row::run_row;
 use simulation::run::{check_job, RunRecord};
 use simulation::score_trajectory::score_trajectory;
 use std::path::{Path, PathBuf};
 
-/// Scores `file` on `task` (an id `experiment / variant`) into `--score-out`.
-pub fn score(cli: &Cli, file: &Path, task: &str, git_rev: &str) -> Result<(), ReproduceError> {
-    let task = find_task(&cli.experiments_dir, task)?;
-    let s = score_file(&task, file, &cli.score_out, git_rev)?;
+/// Scores `options.file` on `options.task` (an id `experiment / variant`) into `options.out`.
+pub fn score(
+    project: &Project,
+    options: &ScoreOptions,
+    git_rev: &str,
+) -> Result<(), ReproduceError> {
+    let task = find_task(&project.experiments_dir, &options.task)?;
+    let s = score_file(
+        &task,
+        &options.file,
+        options.columns.as_ref(),
+        &options.out,
+        git_rev,
+    )?;
     emit(&summary(std::slice::from_ref(&s.row)));
+    for w in &s.warnings {
+        eprintln!("warning: {}: {w}", options.file.display());
+    }
     eprintln!(
         "wrote {}, {} and {}",
         s.scores.display(),
@@ -43,6 +58,64 @@ pub struct Scored {
     pub scores: PathBuf,
     pub trace: PathBuf,
     pub figure: PathBuf,
+    /// What looks wrong with the trajectory though it could be scored ([`Warning`]).
+    pub warnings: Vec<Warning>,
+}
+
+/// A position error above this fraction of the task's path size suggests the trajectory was
+/// made for another task (another path, pose or robot).
+pub const WRONG_TASK_FRACTION: f64 = 0.1;
+
+/// Samples whose joint angles all carry at most this many significant decimal digits look
+/// rounded (an integrator's output carries 15-17): MATLAB's `csvwrite` keeps 5.
+pub const ROUNDED_DIGITS: usize = 8;
+
+/// How many joint-angle values [`significant_digits`] inspects at most (the first ones).
+const INSPECTED_VALUES: usize = 20_000;
+
+/// What looks wrong with a scored trajectory.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum Warning {
+    /// The position error is large against the path: the wrong task?
+    #[error("its largest position error, {max_pos_err:.3e} m, is over {:.0} % of the task's path size ({path_size} m): is this the right task?", 100.0 * WRONG_TASK_FRACTION)]
+    WrongTask { max_pos_err: f64, path_size: f64 },
+    /// The samples were rounded before they were written.
+    #[error("its joint angles carry at most {digits} significant digits: the samples look rounded (MATLAB's csvwrite keeps 5; write with writematrix, or dlmwrite(..., 'precision', 17)), and the score measures the rounding")]
+    Rounded { digits: usize },
+}
+
+/// The warnings of a trajectory scored into `row`.
+pub fn warnings(row: &RunRow, trajectory: &records::trajectory::Trajectory) -> Vec<Warning> {
+    let mut out = Vec::new();
+    if let (Some(max_pos_err), Some(path_size)) = (row.max_pos_err, row.path_scale) {
+        if max_pos_err > WRONG_TASK_FRACTION * path_size {
+            out.push(Warning::WrongTask {
+                max_pos_err,
+                path_size,
+            });
+        }
+    }
+    let values = trajectory.theta.iter().flatten().copied();
+    let digits = values
+        .take(INSPECTED_VALUES)
+        .map(significant_digits)
+        .max()
+        .unwrap_or(0);
+    if (1..=ROUNDED_DIGITS).contains(&digits) {
+        out.push(Warning::Rounded { digits });
+    }
+    out
+}
+
+/// The fewest significant decimal digits that write `v` exactly (0 for 0 and non-finite
+/// values; at most 17, which every double needs at most).
+pub fn significant_digits(v: f64) -> usize {
+    if v == 0.0 || !v.is_finite() {
+        return 0;
+    }
+    (1..=17)
+        .find(|&d| format!("{v:.*e}", d - 1).parse::<f64>() == Ok(v))
+        .unwrap_or(17)
 }
 
 /// The task `"<experiment> / <variant>"` (ids) of the experiment files in `experiments_dir`, as
@@ -57,14 +130,15 @@ pub fn find_task(experiments_dir: &Path, id: &str) -> Result<Job, ScoreError> {
 }
 
 /// Scores the trajectory file `file` (CSV, or a MAT-file: `records::trajectory::read`) on
-/// `task` and writes the row, trace and figure under `out`.
+/// `task` (a MAT-file's `columns` when given) and writes the row, trace and figure under `out`.
 pub fn score_file(
     task: &Job,
     file: &Path,
+    columns: Option<&Columns>,
     out: &Path,
     git_rev: &str,
 ) -> Result<Scored, ScoreError> {
-    let trajectory = read(file, task.theta0.len())?;
+    let trajectory = read(file, task.theta0.len(), columns)?;
     let record = score_trajectory(task, &trajectory).map_err(|error| ScoreError::Score {
         file: file.to_path_buf(),
         task: task.task().to_string(),
@@ -75,6 +149,7 @@ pub fn score_file(
         |n| n.to_string_lossy().into_owned(),
     );
     let row = score_row(run_row(&record, git_rev), &source);
+    let warnings = warnings(&row, &trajectory);
     let scores = out.join("scores.csv");
     let stored: Vec<RunRow> = if scores.exists() {
         records::table::read(&scores)?
@@ -115,5 +190,52 @@ pub fn score_file(
         scores,
         trace,
         figure,
+        warnings,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use records::trajectory::Trajectory;
+
+    #[test]
+    fn significant_digits_are_the_fewest_that_write_the_value() {
+        assert_eq!(significant_digits(0.5), 1);
+        assert_eq!(significant_digits(-1.2346), 5);
+        assert_eq!(significant_digits(0.0), 0);
+        assert_eq!(significant_digits(f64::NAN), 0);
+        assert!(significant_digits(std::f64::consts::PI) >= 16);
+        assert!(significant_digits(0.1 + 0.2) == 17);
+    }
+
+    #[test]
+    fn a_far_trajectory_and_rounded_samples_are_warned() {
+        let trajectory = |theta: Vec<Vec<f64>>| Trajectory {
+            t: (0..theta.len()).map(|k| k as f64).collect(),
+            theta,
+            thetadot: None,
+        };
+        let row = |max_pos_err: f64| RunRow {
+            max_pos_err: Some(max_pos_err),
+            path_scale: Some(0.2),
+            ..RunRow::blank("e", "v", "trajectory", "trajectory")
+        };
+        let exact = trajectory(vec![vec![std::f64::consts::PI, 0.0], vec![1.0 / 3.0, 0.5]]);
+        assert_eq!(warnings(&row(1e-6), &exact), []);
+        assert_eq!(
+            warnings(&row(0.186), &exact),
+            [Warning::WrongTask {
+                max_pos_err: 0.186,
+                path_size: 0.2
+            }]
+        );
+        let rounded = trajectory(vec![vec![1.2346, 0.0], vec![0.33333, 0.5]]);
+        assert_eq!(
+            warnings(&row(1e-6), &rounded),
+            [Warning::Rounded { digits: 5 }]
+        );
+        // A still arm (every angle 0) is not "rounded".
+        assert_eq!(warnings(&row(1e-6), &trajectory(vec![vec![0.0]; 3])), []);
+    }
 }

@@ -57,8 +57,18 @@ impl Project {
     }
     /// `reproduce` on this project's experiments and results (the report beside them).
     fn run(&self) -> Command {
+        let mut c = self.mode("run");
+        c.arg("--skip-explain");
+        c
+    }
+    /// The gate (`reproduce check`) on this project's experiments and results.
+    fn check(&self) -> Command {
+        self.mode("check")
+    }
+    /// `reproduce <mode>` on this project's experiments and results.
+    fn mode(&self, mode: &str) -> Command {
         let mut c = reproduce();
-        c.arg("--skip-explain")
+        c.arg(mode)
             .arg("--experiments-dir")
             .arg(self.experiments())
             .arg("--results-dir")
@@ -367,8 +377,7 @@ fn arguments_are_checked_before_anything_runs() {
     let p = Project::seeded("args");
     // A baseline that is a directory, or missing: said before any run, naming the right file.
     let err = refused(
-        p.run()
-            .arg("--check")
+        p.check()
             .arg("--baseline")
             .arg(p.results())
             .output()
@@ -380,8 +389,8 @@ fn arguments_are_checked_before_anything_runs() {
         "{err}"
     );
     refused(
-        p.run()
-            .args(["--check", "--baseline"])
+        p.check()
+            .arg("--baseline")
             .arg(p.base.join("absent.csv"))
             .output()
             .unwrap(),
@@ -400,18 +409,23 @@ fn arguments_are_checked_before_anything_runs() {
             .unwrap(),
         "no such directory",
     );
-    // Flags that cannot go together are refused, not silently ignored.
-    for pair in [
-        ["--skip-explain", "--explain-only"],
-        ["--report-only", "--paper=kong2019"],
-        ["--list", "--merge=x"],
+    // Options a mode does not take, and two modes at once, are refused, not silently ignored.
+    for (pair, said) in [
+        (
+            ["--skip-explain", "--explain-only"],
+            "unexpected argument '--skip-explain'",
+        ),
+        (
+            ["--report-only", "--paper=kong2019"],
+            "unexpected argument '--paper'",
+        ),
+        (["--list", "--merge=x"], "--list and --merge are two modes"),
+        (["--robots", "--list"], "--list and --robots are two modes"),
     ] {
         let out = reproduce().args(pair).output().unwrap();
         assert_eq!(out.status.code(), Some(2), "{pair:?}");
-        assert!(
-            String::from_utf8_lossy(&out.stderr).contains("cannot be used with"),
-            "{pair:?}"
-        );
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(said), "{pair:?}: {err}");
     }
 }
 

@@ -49,16 +49,19 @@ fn renaming_every_label_orphans_nothing_and_moves_no_result() {
     let original = std::fs::read_to_string(root.join("experiments/kong2019.toml")).unwrap();
     let file = experiments.join("kong2019.toml");
     std::fs::write(&file, &original).unwrap();
-    let run = |extra: &[&str]| {
+    // `run` (without the explanation layer) or `check`, on these experiments and results.
+    let run = |mode: &str, extra: &[&str]| {
         let mut c = reproduce();
-        c.args(["--skip-explain", "--experiments-dir"])
+        c.arg(mode)
+            .args((mode == "run").then_some("--skip-explain"))
+            .arg("--experiments-dir")
             .arg(&experiments)
             .arg("--results-dir")
             .arg(&results)
             .args(extra);
         c.output().unwrap()
     };
-    ok(run(&[]));
+    ok(run("run", &[]));
     let before = read_runs(&results.join("runs.csv")).unwrap();
     let traces_before = files_under(&results.join("traces"));
     assert!(before.len() > 10 && !traces_before.is_empty());
@@ -68,11 +71,10 @@ fn renaming_every_label_orphans_nothing_and_moves_no_result() {
     std::fs::write(&file, &renamed).unwrap();
 
     // The gate, against the rows written under the old labels.
-    let gate = ok(run(&[
-        "--check",
-        "--baseline",
-        results.join("runs.csv").to_str().unwrap(),
-    ]));
+    let gate = ok(run(
+        "check",
+        &["--baseline", results.join("runs.csv").to_str().unwrap()],
+    ));
     assert!(
         String::from_utf8_lossy(&gate.stdout).contains(&format!("{} runs agree", before.len())),
         "{}",
@@ -80,7 +82,7 @@ fn renaming_every_label_orphans_nothing_and_moves_no_result() {
     );
 
     // Written again: the same runs under the same keys and file names, new labels only.
-    let again = ok(run(&[]));
+    let again = ok(run("run", &[]));
     let stderr = String::from_utf8_lossy(&again.stderr);
     assert!(!stderr.contains("pruned"), "{stderr}");
     let after = read_runs(&results.join("runs.csv")).unwrap();

@@ -67,6 +67,53 @@ fn a_trajectory_file_is_scored_on_its_task() {
     assert!(rows[0].score_rms_dx.is_some());
     let figures: Vec<_> = std::fs::read_dir(out.join("figures")).unwrap().collect();
     assert_eq!(figures.len(), 1);
+    assert!(!String::from_utf8_lossy(&ok.stderr).contains("warning"));
+
+    // The subcommand, with a global option after it and from outside the project: the same
+    // file on another task of the same arm and start is scored, and warned as far off it; the
+    // file rounded to 7 digits (as a short format writes it) is warned as rounded.
+    let rounded = dir.join("rounded.csv");
+    let seven_digits: String = std::fs::read_to_string(&file)
+        .unwrap()
+        .lines()
+        .map(|line| match line.starts_with('t') {
+            true => format!("{line}\n"),
+            false => {
+                let cells: Vec<String> = line
+                    .split(',')
+                    .map(|c| format!("{:.6e}", c.parse::<f64>().unwrap()))
+                    .collect();
+                format!("{}\n", cells.join(","))
+            }
+        })
+        .collect();
+    std::fs::write(&rounded, seven_digits).unwrap();
+    for (task, trajectory, warned) in [
+        (
+            "kong2019-triangle / znn-eq22",
+            &file,
+            "is this the right task?",
+        ),
+        (
+            "kong2019-circle / znn-eq22",
+            &rounded,
+            "the samples look rounded",
+        ),
+    ] {
+        let scored = Command::new(env!("CARGO_BIN_EXE_reproduce"))
+            .current_dir(&dir)
+            .arg("score")
+            .arg(trajectory)
+            .args(["--task", task, "--out"])
+            .arg(&out)
+            .arg("--root")
+            .arg(&root)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&scored.stderr);
+        assert!(scored.status.success(), "{task}: {err}");
+        assert!(err.contains(warned), "{task}: {err}");
+    }
 
     let refused = reproduce()
         .args(["--task", "nope / nope", "--score"])

@@ -199,7 +199,7 @@ pub(crate) fn build_parts<const N: usize>(
     build_cyclic_parts(job, robot, dynamics, 1)
 }
 
-/// [`build_parts`] with the job's path repeated `cycles` times ([`Cyclic`]; the path itself
+/// `build_parts` with the job's path repeated `cycles` times ([`Cyclic`]; the path itself
 /// when `cycles` is 1), the scheme built on the repeated path.
 #[allow(clippy::type_complexity)]
 pub fn build_cyclic_parts<const N: usize>(

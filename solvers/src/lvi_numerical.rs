@@ -2,7 +2,7 @@
 //! robio2018: Z. Zhang, L. Kong, Z. Yan, K. Chen, S. Li, X. Qu and N. Tan, "Comparisons among
 //! Six Numerical Methods for Solving Repetitive Motion Planning of Redundant Robot
 //! Manipulators", IEEE ROBIO 2018. Two of them, **94LVI** and **E47**, are the numerical methods
-//! zhong2021 compares its networks with (its refs. [26], [27]); robio2018 adds **M3** to **M6**.
+//! zhong2021 compares its networks with (its refs. \[26\], \[27\]); robio2018 adds **M3** to **M6**.
 //! Every rule below is robio2018's printed one, written here (no crate has them).
 //!
 //! # The problem they solve

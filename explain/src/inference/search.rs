@@ -24,7 +24,7 @@
 //! 4. **Polish:** if a profile point beat (k*, x*), Nelder-Mead from it once more (so the
 //!    profiles are those of (k*, x*), and the optimum reported may lie below them).
 //!
-//! Every evaluation of every stage passes through one [`Tracker`], which keeps, per
+//! Every evaluation of every stage passes through one `Tracker`, which keeps, per
 //! combination and objective, the best point seen: the reported optimum of an objective is
 //! the minimum over all evaluations, never only a stage's end point.
 

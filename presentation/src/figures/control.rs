@@ -16,7 +16,7 @@ use super::style::{colour, LEGEND_LINE_WIDTH};
 use crate::error::FigureError;
 use catalog::naming::slug;
 use plotters::prelude::*;
-use records::control::{ControlRow, CycleRow};
+use records::control::{ControlRow, ControlStatus, CycleRow};
 
 /// Width of the legend column on the right (px).
 const LEGEND_WIDTH: u32 = 420;
@@ -92,7 +92,7 @@ fn figure(
 pub fn pareto(task: &str, h_ms: f64, rows: &[&ControlRow]) -> Figure<PanelBody> {
     let series = rows
         .iter()
-        .filter(|r| r.task == task && r.h_ms == h_ms && r.status == "ok")
+        .filter(|r| r.task == task && r.h_ms == h_ms && r.status == ControlStatus::Ok)
         .map(|r| {
             (
                 r.method.clone(),
@@ -126,7 +126,7 @@ pub fn stability(rows: &[&ControlRow]) -> Figure<PanelBody> {
                 .iter()
                 .filter(|r| r.task == task && r.method == method && r.substeps == 1)
                 .map(|r| {
-                    let y = if r.status == "ok" {
+                    let y = if r.status == ControlStatus::Ok {
                         r.rms_dx.max(FLOOR)
                     } else {
                         DIVERGED_Y

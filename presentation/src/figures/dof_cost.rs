@@ -46,7 +46,7 @@ const LIGHT_SHADE: usize = 10;
 
 /// The figure of one scheme; `rows` are that scheme's rows of `dof-cost.csv` (measured and
 /// fitted). Quantity k (in [`Quantity::ALL`] order) is drawn in colour k on nalgebra and in
-/// colour k + [`LIGHT_SHADE`] on faer.
+/// colour k + `LIGHT_SHADE` on faer.
 pub fn figure(scheme: &str, rows: &[&DofCostRow]) -> Figure<DofCostBody> {
     let mut entries = Vec::new();
     let mut calls = Vec::new();

@@ -21,7 +21,7 @@
 //! - `control__pareto__<task>.svg`, `control__stability.svg`, `control__cycles.svg`: the
 //!   control experiments ([`control`]).
 //!
-//! Each figure is drawn once against a generic plotters backend ([`layout::Body`]) and emitted
+//! Each figure is drawn once against a generic plotters backend (`layout::Body`) and emitted
 //! both ways; figures are drawn in parallel. The output is a function of the inputs only (no
 //! timestamps, sorted inputs, integer pixel coordinates), so unchanged results give
 //! byte-identical figures.
@@ -60,7 +60,7 @@ fn run_stem(run: &RunRow) -> String {
 }
 
 /// The run figure of the report for `run` with its trace file `trace`, as SVG text (for a run
-/// outside `results/`: a scored trajectory, [`crate::score`]).
+/// outside `results/`: a scored trajectory, `reproduce::score`).
 pub fn run_svg(run: &RunRow, trace: &Path) -> Result<String, FigureError> {
     run_figure::figure(run, &Trace::read(trace)?).svg()
 }

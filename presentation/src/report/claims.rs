@@ -4,8 +4,8 @@
 //! A claim is PASS or FAIL with the measured numbers as evidence, or N/A when the suite does
 //! not measure what it is about (or its runs are missing). A data claim compares a metric of a
 //! selection of runs with a threshold or, experiment by experiment, with another selection
-//! ([`compare`]); the exact column's value is given beside each run's. The few claims the
-//! grammar cannot say are Rust functions under a named id ([`rust_claim`]).
+//! (`compare`); the exact column's value is given beside each run's. The few claims the
+//! grammar cannot say are Rust functions under a named id (`rust_claim`).
 
 use super::cost::{evaluation_ratio, slowdown};
 use super::markdown::sci;

@@ -4,7 +4,7 @@
 
 use super::markdown::{sci, sci_opt, Table, MISSING};
 use crate::figures::control::{pareto_name, CYCLES_NAME, STABILITY_NAME};
-use records::control::{read, ClaimRow, ControlRow, StabilityRow, TrendRow, MAIN_H};
+use records::control::{read, ClaimRow, ControlRow, ControlStatus, StabilityRow, TrendRow, MAIN_H};
 use records::control_claim::{overall, steps_needed, Verdict, ACCURACY};
 use records::error::ControlFileError;
 use records::index::{completed, Runs};
@@ -40,7 +40,7 @@ fn main_h_ms() -> f64 {
 /// Whether a run at the main period is a success of the control-rate track: it completed
 /// and its command stayed within [`ACCURACY`] of the exact optimum after the first second.
 fn success(r: &ControlRow) -> bool {
-    r.status == "ok" && r.max_dx_settled <= ACCURACY
+    r.status == ControlStatus::Ok && r.max_dx_settled <= ACCURACY
 }
 
 /// An inline figure if it was rendered.
@@ -109,7 +109,7 @@ pub fn section(results: &ControlResults, runs: &Runs, figures: &[String]) -> Str
             r.task.clone(),
             r.method.clone(),
             yes(r.tick_p50_us <= h * 1e3),
-            if r.status == "ok" {
+            if r.status == ControlStatus::Ok {
                 "yes".to_string()
             } else {
                 format!("{} at t = {}", r.status, sci_opt(r.stopped_at))

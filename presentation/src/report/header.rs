@@ -78,7 +78,7 @@ computational cost, a cross experiment (every solver on every scheme and path), 
     out.push_str(
         "\n**Regenerate.** `cargo run --release -p reproduce` re-runs every experiment and rewrites `results/` and this \
 report; the report alone is re-rendered from the stored results, without re-running anything, by \
-`cargo run --release -p reproduce -- --report-only`. Identical inputs give a byte-identical report.\n\n\
+`cargo run --release -p reproduce -- report`. Identical inputs give a byte-identical report. This page is the front page: each paper and each topic has its own page (Contents, below).\n\n\
 **Reading it.** Numbers have three significant digits. \"exact\" is the same scheme with Clarabel's exact QP solution \
 in the loop: it separates what the scheme does from what the neural solver adds. Ratios are ours / paper. Drift is \
 θ(T) − θ(0) in rad; position errors in m; times in s.\n\n",

@@ -77,6 +77,21 @@ pub fn section(runs: &Runs, timings: &Timings) -> String {
 }
 
 /// The task sets in the rows' order.
+/// The first `n` solvers of the standard set's ranking (the front page), empty without a
+/// leaderboard.
+pub fn top(runs: &Runs, timings: &Timings, n: usize) -> String {
+    let rows = board::leaderboard(runs.all(), timings);
+    let top: Vec<&LeaderboardRow> = rows
+        .iter()
+        .filter(|r| r.task_set == STANDARD_SET)
+        .take(n)
+        .collect();
+    if top.is_empty() {
+        return String::new();
+    }
+    ranking(&top)
+}
+
 fn sets(rows: &[LeaderboardRow]) -> Vec<&str> {
     records::table::distinct(rows, |r| &r.task_set)
 }

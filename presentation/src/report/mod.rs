@@ -1,4 +1,8 @@
-//! `report/REPORT.md`: the reproduction report, rendered from stored results only.
+//! The reproduction report, rendered from stored results only, as pages ([`pages`]):
+//! `report/REPORT.md`, the front page (provenance, each paper's verdict and why in one line,
+//! the leaderboard's top, the contents), `report/paper-<id>.md` per paper, and one page per
+//! topic (`group.md`, `score.md`, `leaderboard.md`, `cost.md`, `performance.md`, `control.md`,
+//! `cross.md`, `published.md`); the hand-written `report/deviations.md` is linked, not copied.
 //!
 //! Inputs: `results/runs.csv` (one row per run), `results/dof-cost.csv` (the cost against the
 //! number of joints, when measured), `papers/<paper>/` (the papers'
@@ -11,7 +15,7 @@
 //!
 //! Layout (one concept per module):
 //! - [`header`]: what this is, provenance (git revision, integrators, tolerances), how to regenerate;
-//! - per paper: the [`verdict`] paragraph, the published [`tables`] side by side with ours,
+//! - per paper (its page): the [`verdict`] paragraph, the published [`tables`] side by side with ours,
 //!   the [`claims`] checklist, the suite's table of every run, and the [`figures`];
 //! - the [`score`] of every neural run against the exact optimum;
 //! - the [`leaderboard`]: every velocity-level solver on the standard task set, qpbenchmark-style;
@@ -23,7 +27,8 @@
 //! - [`python`]: the Python package's numpy entry on the leaderboard and the cost of a Python
 //!   call (`results/leaderboard-python.csv`, `results/python-call-cost.csv`);
 //! - the [`cross`] experiment matrices;
-//! - the published numbers without a run (`records::paper_values`), and the deviations.
+//! - the published numbers without a run (`records::paper_values`) and those the papers
+//!   contradict.
 
 pub mod claims;
 pub mod control;
@@ -113,22 +118,68 @@ impl Inputs {
     }
 }
 
-/// Renders `root/report/REPORT.md` from the stored results and returns its path.
+/// One page of the report: its file under `report/` and its Markdown.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Page {
+    /// The file name (`REPORT.md`, `paper-<id>.md`, `leaderboard.md`, ...).
+    pub file: String,
+    /// The page.
+    pub markdown: String,
+}
+
+/// The front page.
+pub const FRONT: &str = "REPORT.md";
+
+/// The prefix of a paper's page (`paper-jia2019.md`).
+pub const PAPER_PAGE: &str = "paper-";
+
+/// The file of `paper`'s page.
+pub fn paper_page(paper: &str) -> String {
+    format!("{PAPER_PAGE}{paper}.md")
+}
+
+/// Renders the report's pages under `root/report/` from the stored results (a paper's page
+/// that no paper has any more is removed, if this program wrote it and nobody edited it) and
+/// returns the front page's path.
 pub fn render(root: &Path, papers: &Path) -> Result<PathBuf, ReportError> {
     let inputs = Inputs::load(root, papers)?;
     let report = records::tracked_dir::TrackedDir::open_within(root, "report")?;
-    report
-        .write(Path::new("REPORT.md"), to_markdown(&inputs).as_bytes())
-        .and_then(|()| report.save())?;
-    Ok(report.path().join("REPORT.md"))
+    let pages = pages(&inputs);
+    for listed in report.listed(PAPER_PAGE) {
+        if !pages.iter().any(|p| p.file == listed) {
+            if let records::tracked_dir::Removal::Kept(why) = report.remove(Path::new(&listed))? {
+                eprintln!("note: {why}");
+            }
+        }
+    }
+    for page in &pages {
+        report.write(Path::new(&page.file), page.markdown.as_bytes())?;
+    }
+    report.save()?;
+    Ok(report.path().join(FRONT))
 }
 
-/// The whole report as Markdown.
-pub fn to_markdown(inputs: &Inputs) -> String {
+/// A topic page: `markdown`'s first `## ` heading made the page's title, a link back to the
+/// front page above it.
+fn topic(file: &str, markdown: String) -> Page {
+    let markdown = match markdown.strip_prefix("## ") {
+        Some(rest) => format!("# {rest}"),
+        None => markdown,
+    };
+    Page {
+        file: file.to_string(),
+        markdown: format!("[← the report](REPORT.md)\n\n{markdown}"),
+    }
+}
+
+/// The report's pages: the front page (verdicts, why in one line, the leaderboard's top,
+/// links), one page per paper, and one per topic (the group's code, scores, leaderboard, cost,
+/// performance, control, cross experiment, published numbers without a run or contradicted).
+pub fn pages(inputs: &Inputs) -> Vec<Page> {
     let Inputs {
         runs,
         papers,
-        deviations,
+        deviations: _,
         figures,
         explanations,
         timings,
@@ -141,6 +192,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
     } = inputs;
     // Every text of papers/ escaped once, before any section shows it.
     let papers = &shown::papers(papers);
+    let mut pages = Vec::new();
     let mut out = header::header(runs, papers, figures.len());
 
     let evaluated: Vec<(&str, &str, Vec<claims::Claim>)> = papers
@@ -157,6 +209,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
         "verdict",
         "claims PASS / FAIL / N/A",
         "our drift ÷ paper's",
+        "why, in one line",
     ]);
     for (paper, _, c) in &evaluated {
         let n = |v: claims::Verdict| c.iter().filter(|x| x.verdict == v).count();
@@ -169,7 +222,7 @@ pub fn to_markdown(inputs: &Inputs) -> String {
             _ => "no published table".to_string(),
         };
         summary.push([
-            format!("[{paper}](#{paper})"),
+            format!("[{paper}]({})", paper_page(paper)),
             verdict::level_under_setup(paper, c, &ratios, papers),
             format!(
                 "{} / {} / {}",
@@ -178,13 +231,17 @@ pub fn to_markdown(inputs: &Inputs) -> String {
                 n(claims::Verdict::NotApplicable)
             ),
             range,
+            Some(why::one_line(paper, explanations))
+                .filter(|w| !w.is_empty())
+                .unwrap_or_else(|| "no drift attribution of its solvers".to_string()),
         ]);
     }
     out.push_str(&summary.render());
     out.push('\n');
+    let front = out;
 
     for (paper, title, c) in &evaluated {
-        out.push_str(&format!("## {paper}\n\n*{title}.*\n\n"));
+        let mut out = format!("[← the report](REPORT.md)\n\n# {paper}\n\n*{title}.*\n\n");
         let citation = papers.papers.iter().find(|p| p.id == *paper);
         if let Some(c) = citation.and_then(|p| p.citation.as_ref()) {
             out.push_str(&format!("Paper: {c}.\n\n"));
@@ -219,14 +276,18 @@ pub fn to_markdown(inputs: &Inputs) -> String {
             out.push('\n');
             out.push_str(&figures::links(figures, &exp));
         }
+        pages.push(Page {
+            file: paper_page(paper),
+            markdown: out,
+        });
     }
 
-    out.push_str(&group_section(runs, explanations, papers, figures));
+    let group = group_section(runs, explanations, papers, figures);
+    if !group.is_empty() {
+        pages.push(topic("group.md", group));
+    }
 
-    out.push_str(&format!(
-        "## Score against the exact optimum\n\n{}\n\n",
-        score::NOTE
-    ));
+    let mut out = format!("## Score against the exact optimum\n\n{}\n\n", score::NOTE);
     for paper in papers.papers.iter().map(|p| p.id.as_str()).chain([CROSS]) {
         let t = score::score_table(runs, paper);
         if !t.is_empty() {
@@ -234,13 +295,18 @@ pub fn to_markdown(inputs: &Inputs) -> String {
         }
     }
 
+    pages.push(topic("score.md", out));
+
     let board = leaderboard::section(runs, timings);
+    let top = leaderboard::top(runs, timings, FRONT_TOP);
     if !board.is_empty() {
-        out.push_str(&board);
-        out.push_str(&python::leaderboard(&python.leaderboard));
+        pages.push(topic(
+            "leaderboard.md",
+            board + &python::leaderboard(&python.leaderboard),
+        ));
     }
 
-    out.push_str("## Cost\n\nSteps, evaluations and QP solves are counted by the integrator and the scorer (the exact QP is solved at every RHS evaluation of the exact column and at every accepted step of a neural run). Wall times come from runs executed in parallel: compare them within one table, not across machines.\n\n");
+    let mut out = String::from("## Cost\n\nSteps, evaluations and QP solves are counted by the integrator and the scorer (the exact QP is solved at every RHS evaluation of the exact column and at every accepted step of a neural run). Wall times come from runs executed in parallel: compare them within one table, not across machines.\n\n");
     for paper in papers.papers.iter().map(|p| p.id.as_str()).chain([CROSS]) {
         out.push_str(&format!(
             "### {paper}\n\n{}\n",
@@ -260,8 +326,9 @@ pub fn to_markdown(inputs: &Inputs) -> String {
     );
     out.push_str(&cost::matlab_comparison(runs, papers));
     out.push('\n');
+    pages.push(topic("cost.md", out));
 
-    out.push_str(&performance::section(
+    let mut out = performance::section(
         &performance::Measurements {
             dof: dof_cost,
             profile,
@@ -272,12 +339,14 @@ pub fn to_markdown(inputs: &Inputs) -> String {
         runs,
         papers,
         figures,
-    ));
+    );
     out.push_str(&python::call_cost(&python.call_cost));
-    out.push_str(&control::section(control, runs, figures));
+    pages.push(topic("performance.md", out));
+    let mut out = control::section(control, runs, figures);
     out.push_str(&control::cycles_section(control, figures));
+    pages.push(topic("control.md", out));
 
-    out.push_str("## Cross experiment\n\nEvery velocity-level solver on every velocity-level scheme and path (ids: ");
+    let mut out = String::from("## Cross experiment\n\nEvery velocity-level solver on every velocity-level scheme and path (ids: ");
     out.push_str(
         &runs
             .experiments(CROSS)
@@ -291,8 +360,9 @@ pub fn to_markdown(inputs: &Inputs) -> String {
     for exp in runs.experiments(CROSS) {
         out.push_str(&figures::links(figures, &exp));
     }
+    pages.push(topic("cross.md", out));
 
-    out.push_str("\n## Published numbers without a run\n\n");
+    let mut out = String::from("## Published numbers without a run\n\n");
     let missing = papers.unmapped(runs);
     if missing.is_empty() {
         out.push_str("Every published number maps to a run.\n");
@@ -358,12 +428,42 @@ pub fn to_markdown(inputs: &Inputs) -> String {
         out.push_str(&t.render());
     }
 
-    out.push_str("\n---\n\n");
-    out.push_str(deviations);
-    if !deviations.ends_with('\n') {
-        out.push('\n');
+    pages.push(topic("published.md", out));
+
+    let front = front_page(front, &top, &pages);
+    std::iter::once(front).chain(pages).collect()
+}
+
+/// How many solvers of the leaderboard the front page shows.
+pub const FRONT_TOP: usize = 5;
+
+/// The front page: `head` (provenance and the summary), the leaderboard's `top`, and the
+/// contents: every page, and the deviations (`report/deviations.md`, written by hand).
+fn front_page(head: String, top: &str, pages: &[Page]) -> Page {
+    let mut out = head;
+    if !top.is_empty() {
+        out.push_str(&format!(
+            "## Leaderboard, top {FRONT_TOP}\n\n{top}\nThe whole table, its definitions and \
+             the other task sets: [leaderboard.md](leaderboard.md).\n\n"
+        ));
     }
-    out
+    out.push_str("## Contents\n\n");
+    for page in pages {
+        let title = page
+            .markdown
+            .lines()
+            .find_map(|l| l.strip_prefix("# "))
+            .unwrap_or(&page.file);
+        out.push_str(&format!("- [{title}]({})\n", page.file));
+    }
+    out.push_str(
+        "- [Deviations and decisions](deviations.md): every decision where a paper is silent \
+         or contradicts itself (written by hand)\n",
+    );
+    Page {
+        file: FRONT.to_string(),
+        markdown: out,
+    }
 }
 
 /// The group-code reference experiments (`experiments/group.toml`, docs/group-code.md):

@@ -562,6 +562,44 @@ pub fn section(paper: &str, x: &Explanations, papers: &Papers) -> String {
     out
 }
 
+/// The shares of the drift (|d_component| / |d_run|) that the scheme, the network's lag and
+/// integration error carry over the explained runs `keys`, in that order.
+fn shares(x: &Explanations, keys: &[(&str, &str, &str)]) -> [Vec<f64>; 3] {
+    SUM.map(|name| {
+        keys.iter()
+            .filter_map(|k| component(&x.attribution, *k, name).and_then(|r| r.share))
+            .collect()
+    })
+}
+
+/// `lo % to hi %` of `v` (shares), or [`MISSING`].
+fn range(v: &[f64]) -> String {
+    let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = v.iter().copied().fold(0.0, f64::max);
+    if v.is_empty() {
+        MISSING.to_string()
+    } else {
+        format!("{:.3} % to {:.3} %", 100.0 * lo, 100.0 * hi)
+    }
+}
+
+/// Why a paper's drifts are what they are, in one line (the front page): the share of the
+/// drift that the scheme, the lag and integration error carry over its explained runs; empty
+/// where none was explained.
+pub fn one_line(paper: &str, x: &Explanations) -> String {
+    let keys = runs_of(&x.attribution, paper);
+    if keys.is_empty() {
+        return String::new();
+    }
+    let [s, l, i] = shares(x, &keys);
+    format!(
+        "scheme {}, lag {}, integration {} of the drift",
+        range(&s),
+        range(&l),
+        range(&i)
+    )
+}
+
 /// One paragraph (placed after the verdict): which share of the drift each ingredient carries,
 /// across the paper's runs, and what the setup inference found; empty without explanations.
 pub fn summary(paper: &str, x: &Explanations, papers: &Papers) -> String {
@@ -569,21 +607,7 @@ pub fn summary(paper: &str, x: &Explanations, papers: &Papers) -> String {
     if keys.is_empty() {
         return String::new();
     }
-    let shares = |name: &str| -> Vec<f64> {
-        keys.iter()
-            .filter_map(|k| component(&x.attribution, *k, name).and_then(|r| r.share))
-            .collect()
-    };
-    let range = |v: &[f64]| -> String {
-        let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
-        let hi = v.iter().copied().fold(0.0, f64::max);
-        if v.is_empty() {
-            MISSING.to_string()
-        } else {
-            format!("{:.3} % to {:.3} %", 100.0 * lo, 100.0 * hi)
-        }
-    };
-    let (s, l, i) = (shares(SUM[0]), shares(SUM[1]), shares(SUM[2]));
+    let [s, l, i] = shares(x, &keys);
     let mut out = format!(
         "\n**Why** (see \"Why the numbers differ\" below). Over {} runs of {}, the scheme itself (exact column, converged) carries {} of the drift (|d_exact| / |d_run|), the network's lag {} and integration error {}.",
         keys.len(),

@@ -9,7 +9,7 @@
 //! | S-LVI-PDNN | zhong2021 eq. 2.35 | [x; u; v] | [`projection`] |
 //! | VP-RNN-PF | zhong2021 eq. 2.19-2.30 | [x; lambda] (nx + n_eq) | [`vp_rnn_pf`] |
 //! | FP-CDNN / VP-CDNN | zhang2018 eq. 2.15 / 2.11, perturbed 3.2 / 3.1 | [x; lambda] | [`cdnn`], [`zeroing`] |
-//! | FTNN (finite-time) / ZNN | kong2019 eq. 17-20 / its eq. 22 comparison | [x; lambda] | [`znn`], [`zeroing`] |
+//! | FTNN (finite-time) / ZNN | kong2019 eq. 17-20 / its eq. 22 comparison | [x; lambda] | [`znn`](mod@znn), [`zeroing`] |
 //! | group ZNN | the group's MATLAB code (`docs/group-code.md`) | [x; lambda] | [`group`], [`zeroing`] |
 //!
 //! Activation functions: [`activation`]. The factory that builds a network from its

@@ -11,7 +11,7 @@
 //! For our [`Qp`] the inequality set is G x <= h followed by one row per finite bound:
 //! e_j' x <= upper_j and -e_j' x <= -lower_j (zhong2021's B = [s; E; -E], h = [d; x+; -x-] is
 //! exactly this with s = G when the scheme passes the bounds as bounds; the zhong2021-shaped QPs
-//! of [`crate::random_qp`] pass them as G rows already). Infinite bounds contribute no row
+//! of [`crate::random_qp()`] pass them as G rows already). Infinite bounds contribute no row
 //! (exp(-sigma * inf) = 0, as the paper's varpi intends).
 //!
 //! # Network (eq. 2.23-2.30)

@@ -1,0 +1,131 @@
+//! The flags of earlier versions, kept as documented aliases of the subcommands:
+//! `reproduce --check --paper kong2019` is `reproduce check --paper kong2019`,
+//! `reproduce --infer jia2019:T2` is `reproduce infer jia2019:T2`, `--list --shard 2/4` is
+//! `list --shard 2/4`. [`to_subcommand`] turns the one mode flag of an argument list into its
+//! subcommand before clap parses it; the flag's values stay where they are and become the
+//! subcommand's arguments. Two modes at once are refused ([`TwoModes`]), never silently one.
+
+/// (old flag, the subcommand it stands for).
+pub const ALIASES: &[(&str, &str)] = &[
+    ("--list", "list"),
+    ("--check", "check"),
+    ("--report-only", "report"),
+    ("--explain-only", "explain"),
+    ("--infer", "infer"),
+    ("--shard", "shard"),
+    ("--merge", "merge"),
+    ("--robots", "robots"),
+    ("--dof-cost", "cost"),
+    ("--score", "score"),
+];
+
+/// The subcommand names (the modes of [`crate::options::Mode`]).
+pub const SUBCOMMANDS: &[&str] = &[
+    "run", "check", "report", "explain", "infer", "shard", "merge", "list", "robots", "cost",
+    "score",
+];
+
+/// Two modes asked for at once (two old mode flags, or a subcommand and an old mode flag).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{first} and {second} are two modes: give one (`reproduce --help` lists them)")]
+pub struct TwoModes {
+    pub first: String,
+    pub second: String,
+}
+
+/// Where in `args` (after the program, before a `--`) the old flag `flag` stands, alone or
+/// as `flag=value`.
+fn position(args: &[String], flag: &str) -> Option<usize> {
+    args.iter()
+        .take_while(|a| *a != "--")
+        .position(|a| a == flag || a.strip_prefix(flag).is_some_and(|v| v.starts_with('=')))
+        .filter(|&i| i > 0)
+}
+
+/// The arguments with an old mode flag replaced by its subcommand, written first (`args[0]` is
+/// the program). `--shard` beside `--list` is the list's option, as it always was.
+pub fn to_subcommand(mut args: Vec<String>) -> Result<Vec<String>, TwoModes> {
+    let found: Vec<(usize, &str, &str)> = ALIASES
+        .iter()
+        .filter_map(|(flag, sub)| position(&args, flag).map(|i| (i, *flag, *sub)))
+        .filter(|(_, flag, _)| !(*flag == "--shard" && position(&args, "--list").is_some()))
+        .collect();
+    let Some(&(at, flag, sub)) = found.first() else {
+        return Ok(args);
+    };
+    if let Some((_, second, _)) = found.get(1) {
+        return Err(TwoModes {
+            first: flag.to_string(),
+            second: second.to_string(),
+        });
+    }
+    if let Some(given) = args.get(1).filter(|a| SUBCOMMANDS.contains(&a.as_str())) {
+        return Err(TwoModes {
+            first: given.clone(),
+            second: flag.to_string(),
+        });
+    }
+    match args[at].split_once('=') {
+        Some((_, value)) => args[at] = value.to_string(),
+        None => {
+            args.remove(at);
+        }
+    }
+    args.insert(1, sub.to_string());
+    Ok(args)
+}
+
+/// The aliases, for `--help`.
+pub fn help() -> String {
+    let mut out = String::from("Old flags, still accepted (each stands for its subcommand):\n");
+    for (flag, sub) in ALIASES {
+        out.push_str(&format!("  {flag:<15} {sub}\n"));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(s: &str) -> Vec<String> {
+        s.split_whitespace().map(String::from).collect()
+    }
+
+    #[test]
+    fn old_flags_become_their_subcommands_wherever_they_stand() {
+        let to = |s: &str| to_subcommand(args(s)).unwrap();
+        assert_eq!(to("r --check --paper x"), args("r check --paper x"));
+        assert_eq!(to("r --paper x --check"), args("r check --paper x"));
+        assert_eq!(to("r --infer jia2019:T2"), args("r infer jia2019:T2"));
+        assert_eq!(to("r --infer=jia2019:T2"), args("r infer jia2019:T2"));
+        assert_eq!(to("r --shard"), args("r shard"));
+        assert_eq!(to("r --root p --shard 2/4"), args("r shard --root p 2/4"));
+        assert_eq!(to("r --list --shard 2/4"), args("r list --shard 2/4"));
+        assert_eq!(
+            to("r --score f.csv --task e/v"),
+            args("r score f.csv --task e/v")
+        );
+        assert_eq!(to("r --merge a b"), args("r merge a b"));
+        assert_eq!(to("r check --paper x"), args("r check --paper x"));
+        assert_eq!(to("r"), args("r"));
+        // A value that spells a subcommand is left alone, and so is what follows `--`.
+        assert_eq!(to("r --paper list"), args("r --paper list"));
+        assert_eq!(to("r -- --check"), args("r -- --check"));
+    }
+
+    #[test]
+    fn two_modes_are_refused_naming_both() {
+        let err = to_subcommand(args("r --list --robots")).unwrap_err();
+        assert_eq!(
+            (err.first.as_str(), err.second.as_str()),
+            ("--list", "--robots")
+        );
+        let err = to_subcommand(args("r merge a --check")).unwrap_err();
+        assert_eq!(
+            (err.first.as_str(), err.second.as_str()),
+            ("merge", "--check")
+        );
+        assert!(help().contains("--dof-cost") && help().contains("cost"));
+    }
+}
