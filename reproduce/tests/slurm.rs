@@ -25,7 +25,8 @@
 //! Debian's `slurmctld`, `slurmd`, `slurm-client` and `munge` provide the daemons and clients
 //! (`.ci/run` installs them). Where they are missing or the cluster does not come up, the test
 //! says it is skipped, and why, and passes, except where `DRIFTBENCH_REQUIRE_SLURM` is set
-//! (`.ci/run` sets it): there it fails, so CI cannot pass vacuously. About a minute.
+//! (`.ci/run` sets it): there it fails, so CI cannot pass vacuously. About 20 s here (a
+//! 2-core machine), well within the 3 minutes [`RUN_TIMEOUT`] and [`START_TIMEOUT`] allow.
 
 mod common;
 
