@@ -105,18 +105,20 @@ pub struct Variant {
     pub exact: bool,
     #[serde(default)]
     pub robot: Option<String>,
+    /// Boxed, as the other overrides a variant seldom gives (limits, expected failure): a
+    /// sweep of 10^6 variants holds 10^6 of these structs, each 200 bytes smaller so.
     #[serde(default)]
-    pub path: Option<PathSpec>,
+    pub path: Option<Box<PathSpec>>,
     #[serde(default)]
     pub theta0: Option<Vec<f64>>,
     #[serde(default)]
     pub theta_ref: Option<Vec<f64>>,
     /// Joint-angle limits of this variant (override the experiment's and the robot's).
     #[serde(default)]
-    pub joint_limits: Option<LimitsSpec>,
+    pub joint_limits: Option<Box<LimitsSpec>>,
     /// Joint-velocity limits of this variant (override the experiment's and the robot's).
     #[serde(default)]
-    pub velocity_limits: Option<LimitsSpec>,
+    pub velocity_limits: Option<Box<LimitsSpec>>,
     /// Integrator of this variant's neural runs (overrides the experiment's).
     #[serde(default)]
     pub integrator: Option<IntegratorSettings>,
@@ -126,7 +128,7 @@ pub struct Variant {
     /// Runs of this variant that are expected to fail (a finding, not a fault): they do not
     /// make the binary exit non-zero nor the regression gate complain.
     #[serde(default)]
-    pub expected_failure: Option<ExpectedFailure>,
+    pub expected_failure: Option<Box<ExpectedFailure>>,
     /// Explain this variant's neural runs (tolerance ladder, drift attribution) even though no
     /// published column maps onto them (those that are mapped are explained anyway).
     #[serde(default)]
@@ -371,7 +373,7 @@ impl PaperFile {
     }
 
     /// [`PaperFile::load`], its sweeps expanding into at most `budget` variants (reduced by
-    /// what they take; [`crate::sweep::expand_file`]).
+    /// what they take; [`crate::sweep::Sweeps::expand_into`]).
     fn load_within(
         path: &Path,
         check: CheckJob,
@@ -401,15 +403,19 @@ impl PaperFile {
         budget: &mut usize,
     ) -> Result<Self, ExperimentError> {
         let mut doc: toml::Table = inputs::toml_error::from_str(text)?;
-        // Sweeps (crate::sweep) expand at the TOML level; a file without one is read from its
-        // text, so serde's errors keep their line numbers.
+        // Sweeps (crate::sweep) are taken out of the parsed TOML, the rest is read, and each
+        // expanded variant is read into its place as it is made; a file without one is read
+        // from its text, so serde's errors keep their line numbers.
         let file: PaperFile = if crate::sweep::has_sweeps(&doc) {
-            crate::sweep::expand_file(
-                &mut doc,
-                |v| Variant::deserialize(toml::Value::Table(v.clone())).map(|_| ()),
+            let sweeps = crate::sweep::take_sweeps(&mut doc);
+            let mut file =
+                PaperFile::deserialize(toml::Value::Table(doc)).map_err(TomlError::from)?;
+            sweeps.expand_into(
+                file.experiments.iter_mut().map(|e| &mut e.variants),
+                |v| Variant::deserialize(toml::Value::Table(v)),
                 budget,
             )?;
-            PaperFile::deserialize(toml::Value::Table(doc)).map_err(TomlError::from)?
+            file
         } else {
             inputs::toml_error::from_str(text)?
         };
@@ -471,7 +477,6 @@ impl PaperFile {
             }
             let mut labels: HashSet<&str> = HashSet::new();
             let mut ids: HashMap<String, &str> = HashMap::new();
-            let mut keys: HashSet<RunKey> = HashSet::new();
             for (j, v) in e.variants.iter().enumerate() {
                 let vat = |field: &str| FieldAt::Variant {
                     experiment: i,
@@ -536,14 +541,18 @@ impl PaperFile {
                     return Err(field(vat("solvers"), FieldError::RunsNothing));
                 }
                 for (name, limits, velocity) in [
-                    ("joint_limits", &v.joint_limits, false),
-                    ("velocity_limits", &v.velocity_limits, true),
+                    ("joint_limits", v.joint_limits.as_deref(), false),
+                    ("velocity_limits", v.velocity_limits.as_deref(), true),
                 ] {
                     if let Some(l) = limits {
                         l.check(vn, velocity).map_err(|err| field(vat(name), err))?;
                     }
                 }
-                let duration = v.path.as_ref().unwrap_or(&e.path).duration;
+                let duration = v.path.as_deref().unwrap_or(&e.path).duration;
+                // Run keys are experiment / variant / solver ids, and an experiment's variant
+                // ids are distinct (above): two runs can share a key only within one variant,
+                // so the set is the variant's (not 10^6 keys held for a sweep's validation).
+                let mut keys: HashSet<RunKey> = HashSet::new();
                 for (k, s) in v.numerical.iter().enumerate() {
                     s.validate(duration)
                         .map_err(|err| field(vat(&format!("numerical[{k}]")), err))?;
@@ -613,14 +622,19 @@ impl PaperFile {
             variant_id: v.id(),
             variant: v.label.clone(),
             robot: v.robot.clone().unwrap_or_else(|| e.robot.clone()),
-            path: v.path.clone().unwrap_or_else(|| e.path.clone()),
+            path: v.path.as_deref().unwrap_or(&e.path).clone(),
             theta0,
             theta_ref,
-            joint_limits: v.joint_limits.clone().or_else(|| e.joint_limits.clone()),
+            joint_limits: v
+                .joint_limits
+                .as_deref()
+                .or(e.joint_limits.as_ref())
+                .cloned(),
             velocity_limits: v
                 .velocity_limits
-                .clone()
-                .or_else(|| e.velocity_limits.clone()),
+                .as_deref()
+                .or(e.velocity_limits.as_ref())
+                .cloned(),
             scheme: v.scheme.clone(),
             solver: SolverChoice::Exact,
             integrator: e.exact_integrator,
@@ -659,11 +673,20 @@ impl PaperFile {
 
     /// Every run of the file, in file order (variant by variant, exact column first).
     pub fn jobs(&self) -> Vec<Job> {
+        self.iter_jobs().collect()
+    }
+
+    /// [`PaperFile::jobs`] made one variant at a time as they are taken: a caller that
+    /// filters, counts or prints them (listing a sweep of 10^6 runs) holds none of them.
+    pub fn iter_jobs(&self) -> impl Iterator<Item = Job> + '_ {
         self.experiments
             .iter()
-            .flat_map(|e| e.variants.iter().map(move |v| (e, v)))
-            .flat_map(|(e, v)| self.variant_jobs(e, v))
-            .collect()
+            .flat_map(|e| self.experiment_jobs(e))
+    }
+
+    /// The runs of `e`, one of this file's experiments, as [`PaperFile::iter_jobs`] makes them.
+    pub fn experiment_jobs<'a>(&'a self, e: &'a Experiment) -> impl Iterator<Item = Job> + 'a {
+        e.variants.iter().flat_map(move |v| self.variant_jobs(e, v))
     }
 }
 

@@ -4,8 +4,11 @@
 //! the variant table and lists the values it takes; the variant expands into the cartesian
 //! product of the entries (the first entry outermost, the last one varying fastest), each copy
 //! with its parameters set and its label generated. Expansion happens on the parsed TOML
-//! (`toml::Table`), before the file is deserialised into [`crate::experiment::PaperFile`], so an
-//! expanded variant is exactly the variant one would have written by hand.
+//! (`toml::Table`): each expanded variant is built as a table and deserialised at once into
+//! the [`crate::experiment::PaperFile`]'s variant list (the rest of the file is read first), so
+//! an expanded variant is exactly the variant one would have written by hand, and no table is
+//! kept per expanded variant (a sweep of 10^6 variants holds 10^6 read variants, not 10^6
+//! tables as well; docs/cluster.md has the numbers).
 //!
 //! ```toml
 //! [[experiment.variant]]
@@ -77,7 +80,7 @@ pub(crate) const VARIANT_FIELDS: &[&str] = &[
 
 /// Most variants one variant may expand into (a typo in a range should not eat the memory),
 /// and most the sweeps of a whole experiments directory may expand into together (twenty
-/// variants of 999,999 each must not either): [`expand_file`] takes what is left of it.
+/// variants of 999,999 each must not either): [`Sweeps::expand_into`] takes what is left of it.
 pub const MAX_EXPANSION: usize = 1_000_000;
 
 /// Whether any variant of the parsed file gives a `sweep`.
@@ -101,19 +104,29 @@ fn variants(e: &Table) -> impl Iterator<Item = &Table> {
         .filter_map(Value::as_table)
 }
 
-/// Expands every variant with a `sweep` in the parsed experiment file `doc`, in place (the
-/// expanded variants take the sweep variant's place, in order), into at most `budget` variants
-/// in all (what is left of [`MAX_EXPANSION`] for the files read so far; reduced by what this
-/// file takes), each variant's product checked against it before anything is built. `check`
-/// reads one expanded variant as the experiment file does (a misspelt swept field fails
-/// there).
-pub fn expand_file(
-    doc: &mut Table,
-    check: impl Fn(&Table) -> Result<(), toml::de::Error>,
-    budget: &mut usize,
-) -> Result<(), SweepError> {
+/// The sweep variants of a parsed experiment file, taken out of it ([`take_sweeps`]) so that
+/// the rest of the file is read as usual, and expanded afterwards straight into the read
+/// variants ([`Sweeps::expand_into`]): no expanded variant is ever held as a TOML table.
+#[derive(Debug)]
+pub struct Sweeps(Vec<SweepAt>);
+
+/// One sweep variant and where it stood.
+#[derive(Debug)]
+struct SweepAt {
+    /// Index of its experiment in the file, and the experiment's id (for errors).
+    experiment: usize,
+    id: String,
+    /// Its index among the experiment's variants as written.
+    variant: usize,
+    table: Table,
+}
+
+/// Takes every variant with a `sweep` out of the parsed experiment file `doc` (the other
+/// variants stay, in order), to be expanded by [`Sweeps::expand_into`] once the file is read.
+pub fn take_sweeps(doc: &mut Table) -> Sweeps {
+    let mut out = Vec::new();
     let Some(Value::Array(exps)) = doc.get_mut("experiment") else {
-        return Ok(());
+        return Sweeps(out);
     };
     for (i, e) in exps.iter_mut().enumerate() {
         let Value::Table(e) = e else { continue };
@@ -125,52 +138,87 @@ pub fn expand_file(
         let Some(Value::Array(vars)) = e.get_mut("variant") else {
             continue;
         };
-        let mut out = Vec::with_capacity(vars.len());
+        let mut kept = Vec::with_capacity(vars.len());
         for (j, v) in std::mem::take(vars).into_iter().enumerate() {
             match v {
-                Value::Table(t) if t.contains_key("sweep") => {
-                    let label = t
+                Value::Table(table) if table.contains_key("sweep") => out.push(SweepAt {
+                    experiment: i,
+                    id: id.clone(),
+                    variant: j,
+                    table,
+                }),
+                other => kept.push(other),
+            }
+        }
+        *vars = kept;
+    }
+    Sweeps(out)
+}
+
+impl Sweeps {
+    /// Puts the expansion of every sweep back where its variant stood: `variants` are the
+    /// variant lists of the file's experiments, in order, as read without the sweeps; each
+    /// expanded table is read by `read` as it is made and dropped. At most `budget` variants
+    /// in all (what is left of [`MAX_EXPANSION`] for the files read so far; reduced by what
+    /// this file takes), each sweep's product checked against it before anything is built.
+    pub fn expand_into<'a, V: 'a>(
+        self,
+        variants: impl Iterator<Item = &'a mut Vec<V>>,
+        read: impl Fn(Table) -> Result<V, toml::de::Error>,
+        budget: &mut usize,
+    ) -> Result<(), SweepError> {
+        let mut sweeps = self.0.into_iter().peekable();
+        for (i, list) in variants.enumerate() {
+            let mut planned = Vec::new();
+            while let Some(s) = sweeps.next_if(|s| s.experiment == i) {
+                let label = s
+                    .table
+                    .get("label")
+                    .and_then(Value::as_str)
+                    .unwrap_or("?")
+                    .to_string();
+                let at = move |error| SweepError::In {
+                    experiment: i,
+                    id: s.id.clone(),
+                    variant: s.variant,
+                    label: label.clone(),
+                    error: Box::new(error),
+                };
+                let plan = Plan::new(&s.table, *budget).map_err(&at)?;
+                *budget -= plan.total;
+                planned.push((s.variant, plan, at));
+            }
+            if planned.is_empty() {
+                continue;
+            }
+            // One allocation of the final size: the expansions are read into it directly.
+            let total = list.len() + planned.iter().map(|(_, p, _)| p.total).sum::<usize>();
+            let mut fixed = std::mem::take(list).into_iter();
+            let mut out = Vec::with_capacity(total);
+            let mut written = 0;
+            for (position, plan, at) in planned {
+                out.extend(fixed.by_ref().take(position - written));
+                written = position + 1;
+                plan.for_each(|t| {
+                    let expanded = t
                         .get("label")
                         .and_then(Value::as_str)
                         .unwrap_or("?")
                         .to_string();
-                    let at = |error| SweepError::In {
-                        experiment: i,
-                        id: id.clone(),
-                        variant: j,
-                        label: label.clone(),
-                        error: Box::new(error),
-                    };
-                    let expanded = expand_within(&t, *budget).map_err(at)?;
-                    *budget -= expanded.len();
-                    if let Some(first) = expanded.first() {
-                        check(first).map_err(|error| {
-                            at(SweepError::DoesNotRead {
-                                expanded: first
-                                    .get("label")
-                                    .and_then(Value::as_str)
-                                    .unwrap_or("?")
-                                    .to_string(),
-                                error: error.into(),
-                                keys: sweep_keys(&t),
-                            })
-                        })?;
-                    }
-                    out.extend(expanded.into_iter().map(Value::Table));
-                }
-                other => out.push(other),
+                    out.push(read(t).map_err(|error| SweepError::DoesNotRead {
+                        expanded,
+                        error: error.into(),
+                        keys: plan.keys(),
+                    })?);
+                    Ok(())
+                })
+                .map_err(&at)?;
             }
+            out.extend(fixed);
+            *list = out;
         }
-        *vars = out;
+        Ok(())
     }
-    Ok(())
-}
-
-fn sweep_keys(t: &Table) -> Vec<String> {
-    t.get("sweep")
-        .and_then(Value::as_table)
-        .map(|s| s.keys().map(|k| format!("`{k}`")).collect())
-        .unwrap_or_default()
 }
 
 /// One axis of a sweep: the paths it sets (several: a zipped group) and its values.
@@ -186,88 +234,131 @@ struct Axis {
 /// [`MAX_EXPANSION`]). Errors start with the field (`field `sweep` key `...``), the caller
 /// prefixes experiment and variant.
 pub fn expand_variant(variant: &Table) -> Result<Vec<Table>, SweepError> {
-    expand_within(variant, MAX_EXPANSION)
+    if !variant.contains_key("sweep") {
+        return Ok(vec![variant.clone()]);
+    }
+    let plan = Plan::new(variant, MAX_EXPANSION)?;
+    let mut out = Vec::with_capacity(plan.total);
+    plan.for_each(|t| {
+        out.push(t);
+        Ok(())
+    })?;
+    Ok(out)
 }
 
-/// [`expand_variant`] into at most `budget` variants (of the [`MAX_EXPANSION`] a directory's
-/// sweeps share), the product checked as each axis is read, before the variants are built.
-fn expand_within(variant: &Table, budget: usize) -> Result<Vec<Table>, SweepError> {
-    let mut base = variant.clone();
-    let sweep = match base.remove("sweep") {
-        Some(Value::Table(s)) => s,
-        Some(other) => {
-            return Err(SweepError::NotATable {
-                got: other.type_str(),
-            })
-        }
-        None => return Ok(vec![base]),
-    };
-    if sweep.is_empty() {
-        return Err(SweepError::Empty);
-    }
-    let template = match base.get("label") {
-        Some(Value::String(s)) => s.clone(),
-        _ => return Err(SweepError::NoLabel),
-    };
-    let id_template = match base.get("id") {
-        None => None,
-        Some(Value::String(s)) => Some(s.clone()),
-        Some(other) => {
-            return Err(SweepError::IdNotAString {
-                got: other.type_str(),
-            })
-        }
-    };
-    let mut axes = Vec::with_capacity(sweep.len());
-    let mut total = 1usize;
-    for (key, val) in &sweep {
-        let axis = parse_axis(&base, key, val)?;
-        total = total
-            .checked_mul(axis.values.len())
-            .filter(|n| *n <= MAX_EXPANSION)
-            .ok_or(SweepError::TooMany { max: MAX_EXPANSION })?;
-        if total > budget {
-            return Err(SweepError::TooManyInAll { max: MAX_EXPANSION });
-        }
-        axes.push(axis);
-    }
-    let names = placeholder_names(&axes);
-    check_template(&template, &names)?;
-    let mut out: Vec<Table> = Vec::with_capacity(total);
-    // A map, not a list: 10^6 labels are checked in linear time.
-    let mut labels: std::collections::HashMap<String, usize> =
-        std::collections::HashMap::with_capacity(total);
-    let mut idx = vec![0usize; axes.len()];
-    for n in 0..total {
-        // Odometer: the last axis varies fastest.
-        let mut rest = n;
-        for (a, i) in axes.iter().zip(idx.iter_mut()).rev() {
-            *i = rest % a.values.len();
-            rest /= a.values.len();
-        }
-        let mut t = base.clone();
-        for (a, &i) in axes.iter().zip(&idx) {
-            for (path, value) in a.paths.iter().zip(&a.values[i].0) {
-                set(&mut t, path, value.clone());
+/// A sweep read and checked, its variants not yet built: the base variant (without `sweep`),
+/// the axes, the label and id templates and the size of the product.
+struct Plan {
+    base: Table,
+    axes: Vec<Axis>,
+    template: String,
+    names: Vec<(String, usize, usize)>,
+    id_template: Option<String>,
+    total: usize,
+}
+
+impl Plan {
+    /// Reads the sweep of `variant` into at most `budget` variants (of the [`MAX_EXPANSION`] a
+    /// directory's sweeps share), the product checked as each axis is read.
+    fn new(variant: &Table, budget: usize) -> Result<Self, SweepError> {
+        let mut base = variant.clone();
+        let sweep = match base.remove("sweep") {
+            Some(Value::Table(s)) if !s.is_empty() => s,
+            Some(Value::Table(_)) | None => return Err(SweepError::Empty),
+            Some(other) => {
+                return Err(SweepError::NotATable {
+                    got: other.type_str(),
+                })
             }
+        };
+        let template = match base.get("label") {
+            Some(Value::String(s)) => s.clone(),
+            _ => return Err(SweepError::NoLabel),
+        };
+        let id_template = match base.get("id") {
+            None => None,
+            Some(Value::String(s)) => Some(s.clone()),
+            Some(other) => {
+                return Err(SweepError::IdNotAString {
+                    got: other.type_str(),
+                })
+            }
+        };
+        let mut axes = Vec::with_capacity(sweep.len());
+        let mut total = 1usize;
+        for (key, val) in &sweep {
+            let axis = parse_axis(&base, key, val)?;
+            total = total
+                .checked_mul(axis.values.len())
+                .filter(|n| *n <= MAX_EXPANSION)
+                .ok_or(SweepError::TooMany { max: MAX_EXPANSION })?;
+            if total > budget {
+                return Err(SweepError::TooManyInAll { max: MAX_EXPANSION });
+            }
+            axes.push(axis);
         }
-        let label = make_label(&template, &axes, &idx, &names);
-        if let Some(m) = labels.get(&label) {
-            return Err(SweepError::SameLabel {
-                first: *m,
-                second: n,
-                label,
-                keys: axes.iter().map(|a| format!("`{}`", a.key)).collect(),
-            });
-        }
-        if let Some(id) = &id_template {
-            t.insert("id".to_string(), Value::String(make_id(id, &axes, &idx)));
-        }
-        t.insert("label".to_string(), Value::String(label.clone()));
-        labels.insert(label, n);
-        out.push(t);
+        let names = placeholder_names(&axes);
+        check_template(&template, &names)?;
+        Ok(Plan {
+            base,
+            axes,
+            template,
+            names,
+            id_template,
+            total,
+        })
     }
-    Ok(out)
+
+    /// The swept keys, quoted (for errors).
+    fn keys(&self) -> Vec<String> {
+        self.axes.iter().map(|a| format!("`{}`", a.key)).collect()
+    }
+
+    /// Builds the variants of the product one at a time, in order (the last axis varying
+    /// fastest), each with its parameters, label and id set, and gives each to `each`; two
+    /// with the same label are an error.
+    fn for_each(
+        &self,
+        mut each: impl FnMut(Table) -> Result<(), SweepError>,
+    ) -> Result<(), SweepError> {
+        // A map, not a list: 10^6 labels are checked in linear time.
+        let mut labels: std::collections::HashMap<String, usize> =
+            std::collections::HashMap::with_capacity(self.total);
+        let mut idx = vec![0usize; self.axes.len()];
+        for n in 0..self.total {
+            // Odometer: the last axis varies fastest.
+            let mut rest = n;
+            for (a, i) in self.axes.iter().zip(idx.iter_mut()).rev() {
+                *i = rest % a.values.len();
+                rest /= a.values.len();
+            }
+            let mut t = self.base.clone();
+            for (a, &i) in self.axes.iter().zip(&idx) {
+                for (path, value) in a.paths.iter().zip(&a.values[i].0) {
+                    set(&mut t, path, value.clone());
+                }
+            }
+            let label = make_label(&self.template, &self.axes, &idx, &self.names);
+            if let Some(m) = labels.get(&label) {
+                return Err(SweepError::SameLabel {
+                    first: *m,
+                    second: n,
+                    label,
+                    keys: self.keys(),
+                });
+            }
+            if let Some(id) = &self.id_template {
+                t.insert(
+                    "id".to_string(),
+                    Value::String(make_id(id, &self.axes, &idx)),
+                );
+            }
+            t.insert("label".to_string(), Value::String(label.clone()));
+            labels.insert(label, n);
+            each(t)?;
+        }
+        Ok(())
+    }
 }
 
 fn parse_axis(base: &Table, key: &str, val: &Value) -> Result<Axis, SweepError> {
@@ -664,6 +755,19 @@ mod tests {
         t.iter().map(|v| v["label"].as_str().unwrap()).collect()
     }
 
+    /// The variant lists of the file `text`, its sweeps taken out and expanded back in place
+    /// (as tables: what `PaperFile` does with variants).
+    fn expand_file(text: &str, budget: &mut usize) -> Result<Vec<Vec<Table>>, SweepError> {
+        let mut doc: Table = toml::from_str(text).unwrap();
+        let sweeps = take_sweeps(&mut doc);
+        assert!(!has_sweeps(&doc));
+        let mut lists: Vec<Vec<Table>> = experiments(&doc)
+            .map(|e| variants(e).cloned().collect())
+            .collect();
+        sweeps.expand_into(lists.iter_mut(), Ok, budget)?;
+        Ok(lists)
+    }
+
     #[test]
     fn default_labels_in_written_order() {
         let v = variant(
@@ -780,12 +884,10 @@ sweep = { "solvers.0.gamma" = [20.0, 2000.0], "theta0.1" = [{ value = 3.0, label
                     .collect::<String>()
             )
         };
-        let mut doc: Table = toml::from_str(&text(2)).unwrap();
         let mut budget = 6;
-        expand_file(&mut doc, |_| Ok(()), &mut budget).unwrap();
+        expand_file(&text(2), &mut budget).unwrap();
         assert_eq!(budget, 0);
-        let mut doc: Table = toml::from_str(&text(3)).unwrap();
-        let e = expand_file(&mut doc, |_| Ok(()), &mut 8).unwrap_err();
+        let e = expand_file(&text(3), &mut 8).unwrap_err();
         assert!(
             matches!(&e, SweepError::In { variant: 2, error, .. } if matches!(**error, SweepError::TooManyInAll { .. })),
             "{e}"
@@ -873,9 +975,54 @@ sweep = { "scheme.mu" = { from = 0.1, to = 0.3, step = 0.1 }, "scheme.n" = { fro
     }
 
     #[test]
+    fn every_expanded_variant_is_read_in_place_and_one_that_does_not_read_is_named() {
+        let text = r#"paper = "p"
+[[experiment]]
+id = "p-e"
+[[experiment.variant]]
+label = "A"
+scheme = { kind = "x" }
+sweep = { "scheme.mu" = [1, 2] }
+[[experiment.variant]]
+label = "plain"
+[[experiment.variant]]
+label = "B"
+scheme = { kind = "x" }
+sweep = { "scheme.mu" = [3, 4, 5] }
+"#;
+        let mut doc: Table = toml::from_str(text).unwrap();
+        let sweeps = take_sweeps(&mut doc);
+        let read = |t: Table| -> Result<String, toml::de::Error> {
+            let label = t["label"].as_str().unwrap().to_string();
+            if label == "B [mu=4]" {
+                return Err(serde::de::Error::custom("mu 4 refused"));
+            }
+            Ok(label)
+        };
+        let mut lists = [vec!["plain".to_string()]];
+        let e = sweeps
+            .expand_into(lists.iter_mut(), read, &mut MAX_EXPANSION.clone())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with("experiment[0] (id \"p-e\") variant[2] (\"B\") field `sweep`: the expanded variant \"B [mu=4]\" does not read: mu 4 refused"),
+            "{e}"
+        );
+        let mut doc: Table = toml::from_str(&text.replace("[3, 4, 5]", "[3, 5]")).unwrap();
+        let mut lists = [vec!["plain".to_string()]];
+        take_sweeps(&mut doc)
+            .expand_into(lists.iter_mut(), read, &mut MAX_EXPANSION.clone())
+            .unwrap();
+        assert_eq!(
+            lists[0],
+            ["A [mu=1]", "A [mu=2]", "plain", "B [mu=3]", "B [mu=5]"]
+        );
+        assert_eq!(lists[0].capacity(), 5, "one allocation of the final size");
+    }
+
+    #[test]
     fn expand_file_names_experiment_and_variant() {
-        let mut doc: Table = toml::from_str(
-            r#"paper = "p"
+        let text = r#"paper = "p"
 [[experiment]]
 id = "p-e"
 [[experiment.variant]]
@@ -886,25 +1033,19 @@ scheme = { kind = "x" }
 sweep = { "scheme.mu" = [1, 2] }
 [[experiment.variant]]
 label = "last"
-"#,
-        )
-        .unwrap();
-        assert!(has_sweeps(&doc));
+"#;
+        assert!(has_sweeps(&toml::from_str(text).unwrap()));
         let mut budget = MAX_EXPANSION;
-        expand_file(&mut doc, |_| Ok(()), &mut budget).unwrap();
+        let lists = expand_file(text, &mut budget).unwrap();
         assert_eq!(budget, MAX_EXPANSION - 2);
-        let labels: Vec<&str> = variants(experiments(&doc).next().unwrap())
-            .map(|v| v["label"].as_str().unwrap())
-            .collect();
-        assert_eq!(labels, ["plain", "S [mu=1]", "S [mu=2]", "last"]);
-        assert!(!has_sweeps(&doc));
-        let mut doc: Table = toml::from_str(
+        assert_eq!(labels(&lists[0]), ["plain", "S [mu=1]", "S [mu=2]", "last"]);
+        assert!(lists[0][1..3].iter().all(|v| !v.contains_key("sweep")));
+        let e = expand_file(
             "paper = \"p\"\n[[experiment]]\nid = \"p-e\"\n[[experiment.variant]]\nlabel = \"S\"\nscheme = { kind = \"x\" }\nsweep = { \"scheme.mu\" = [] }\n",
+            &mut MAX_EXPANSION.clone(),
         )
-        .unwrap();
-        let e = expand_file(&mut doc, |_| Ok(()), &mut MAX_EXPANSION.clone())
-            .unwrap_err()
-            .to_string();
+        .unwrap_err()
+        .to_string();
         assert!(
             e.starts_with(
                 "experiment[0] (id \"p-e\") variant[0] (\"S\") field `sweep` key `scheme.mu`"

@@ -36,9 +36,13 @@ pub enum MigrateError {
 pub struct LabelIndex(HashMap<(String, String, String), RunKey>);
 
 impl LabelIndex {
-    pub fn new(jobs: &[Job]) -> Self {
-        let mut map = HashMap::with_capacity(jobs.len());
+    /// The index of `jobs` (borrowed or made as they are taken: the runs of the experiment
+    /// files need not be collected for it).
+    pub fn new(jobs: impl IntoIterator<Item = impl std::borrow::Borrow<Job>>) -> Self {
+        let jobs = jobs.into_iter();
+        let mut map = HashMap::with_capacity(jobs.size_hint().0);
         for j in jobs {
+            let j = j.borrow();
             let label = if j.solver.id() == EXACT_ID {
                 LEGACY_EXACT_LABEL.to_string()
             } else {
@@ -72,8 +76,12 @@ pub type LegacyKey = (String, String, String);
 pub type Migrated = (Vec<u8>, Vec<(LegacyKey, RunKey)>);
 
 /// A legacy table's text with `variant_id, solver_id` after `experiment`, each row's ids from
-/// `index`; `None` when the table already has ids (or is empty).
-pub fn add_ids(text: &[u8], index: &LabelIndex) -> Result<Option<Migrated>, MigrateError> {
+/// the index `index()` makes (only for a legacy table: building it costs a pass over every
+/// run of the experiment files); `None` when the table already has ids (or is empty).
+pub fn add_ids(
+    text: &[u8],
+    index: impl FnOnce() -> LabelIndex,
+) -> Result<Option<Migrated>, MigrateError> {
     let mut r = csv::ReaderBuilder::new().flexible(false).from_reader(text);
     let header = r.headers()?.clone();
     if header.is_empty() || header.iter().any(|h| h == "variant_id") {
@@ -86,6 +94,7 @@ pub fn add_ids(text: &[u8], index: &LabelIndex) -> Result<Option<Migrated>, Migr
             .ok_or(MigrateError::Column(name))
     };
     let (e, v, s) = (col("experiment")?, col("variant")?, col("solver")?);
+    let index = index();
     let mut w = csv::WriterBuilder::new().from_writer(Vec::new());
     let with_ids = |rec: &csv::StringRecord, ids: [&str; 2]| -> Vec<String> {
         let mut out: Vec<String> = Vec::with_capacity(rec.len() + 2);
@@ -126,18 +135,18 @@ mod tests {
     #[test]
     fn legacy_tables_get_ids_and_current_ones_are_left_alone() {
         let legacy = b"paper,experiment,variant,scheme,solver,x\np,p-e,VLTCO [star-lines],S,exact (Clarabel),1\np,p-e,Gone,S,LVI-PDNN,2\n";
-        let (text, keys) = add_ids(legacy, &LabelIndex::default()).unwrap().unwrap();
+        let (text, keys) = add_ids(legacy, LabelIndex::default).unwrap().unwrap();
         let text = String::from_utf8(text).unwrap();
         assert_eq!(
             text,
             "paper,experiment,variant_id,solver_id,variant,scheme,solver,x\np,p-e,vltco-star-lines,exact,VLTCO [star-lines],S,exact (Clarabel),1\np,p-e,gone,lvi-pdnn,Gone,S,LVI-PDNN,2\n"
         );
         assert_eq!(keys[0].1, RunKey::new("p-e", "vltco-star-lines", "exact"));
-        assert!(add_ids(text.as_bytes(), &LabelIndex::default())
-            .unwrap()
-            .is_none());
+        // A current table is left alone without the index being made (a pass over every run).
+        let unused = || -> LabelIndex { panic!("the index of a current table was made") };
+        assert!(add_ids(text.as_bytes(), unused).unwrap().is_none());
         assert!(matches!(
-            add_ids(b"paper,variant,solver\n", &LabelIndex::default()),
+            add_ids(b"paper,variant,solver\n", LabelIndex::default),
             Err(MigrateError::Column("experiment"))
         ));
         assert_eq!(

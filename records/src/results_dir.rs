@@ -221,12 +221,13 @@ impl ResultsDir {
 
     /// Brings tables written before run ids up to date (see [`crate::migrate`]): `runs.csv`,
     /// `ladder.csv` and `attribution.csv` get their id columns, and each run's trace moves to
-    /// its id-named file. Returns what was done, for a message; nothing when already current.
+    /// its id-named file, by the index `index()` makes of the experiment files' runs (made
+    /// only for a table that lacks ids). Returns what was done, for a message; nothing when
+    /// already current.
     pub fn migrate_ids(
         &self,
-        jobs: &[catalog::experiment::Job],
+        index: impl Fn() -> crate::migrate::LabelIndex,
     ) -> Result<Vec<String>, ResultsError> {
-        let index = crate::migrate::LabelIndex::new(jobs);
         let mut done = Vec::new();
         for table in [RUNS, LADDER, ATTRIBUTION] {
             let path = self.path().join(table);

@@ -152,10 +152,10 @@ impl std::fmt::Display for Shard {
 }
 
 /// Runs per shard (index 0: shard 1) when `keys` are split `n` ways.
-pub fn plan<'a>(keys: impl IntoIterator<Item = &'a str>, n: usize) -> Vec<usize> {
+pub fn plan(keys: impl IntoIterator<Item = impl AsRef<str>>, n: usize) -> Vec<usize> {
     let mut counts = vec![0; n];
     for k in keys {
-        counts[Shard::of(k, n) - 1] += 1;
+        counts[Shard::of(k.as_ref(), n) - 1] += 1;
     }
     counts
 }

@@ -5,7 +5,7 @@
 use crate::error::ReproduceError;
 use crate::project::Project;
 use crate::report::{render_report, report_root};
-use crate::results::{all_jobs, open_results};
+use crate::results::{experiment_files, open_results, Described};
 
 /// Measures, prints the fitted exponents and (unless `dry_run`) writes and re-renders.
 pub fn dof_cost(project: &Project, dry_run: bool, git_rev: &str) -> Result<(), ReproduceError> {
@@ -13,7 +13,13 @@ pub fn dof_cost(project: &Project, dry_run: bool, git_rev: &str) -> Result<(), R
     let (cpu, cores) = machine();
     let root = report_root(project)?;
     let results = (!dry_run)
-        .then(|| open_results(project, git_rev, &all_jobs(project)?))
+        .then(|| {
+            open_results(
+                project,
+                git_rev,
+                &Described::new(&experiment_files(project)?),
+            )
+        })
         .transpose()?;
     eprintln!("measuring the cost against the number of joints on {cpu} ({cores} cores)");
     let started = std::time::Instant::now();

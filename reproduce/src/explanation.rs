@@ -6,7 +6,7 @@ use crate::error::ReproduceError;
 use crate::options::ExplainOptions;
 use crate::project::Project;
 use crate::report::{render_report, report_root};
-use crate::results::open_results;
+use crate::results::{open_results, Described};
 use crate::run::precheck_report;
 use catalog::experiment::Job;
 use records::results_dir::ResultsDir;
@@ -64,14 +64,14 @@ pub fn explain_mode(
     project: &Project,
     options: &ExplainOptions,
     jobs: &[Job],
-    all: &[Job],
+    all: &Described,
     git_rev: &str,
 ) -> Result<(), ReproduceError> {
     if options.dry_run {
-        return explain(project, jobs, all, git_rev, None);
+        return explain(project, jobs, all.jobs(), git_rev, None);
     }
     precheck_report(project)?;
     let results = open_results(project, git_rev, all)?;
-    explain(project, jobs, all, git_rev, Some(&results))?;
+    explain(project, jobs, all.jobs(), git_rev, Some(&results))?;
     render_report(project, &report_root(project)?, &results)
 }

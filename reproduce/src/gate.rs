@@ -29,14 +29,13 @@ impl Baseline {
         file: Option<&Path>,
         all: &[Job],
     ) -> Result<Self, ReproduceError> {
-        let index = records::migrate::LabelIndex::new(all);
         if let Some(f) = file {
             if f.is_dir() {
                 return Err(ReproduceError::BaselineIsDirectory(f.to_path_buf()));
             }
             let name = f.display().to_string();
             let rows =
-                read(f, inputs::Origin::Named, &index).map_err(ReproduceError::GivenBaseline)?;
+                read(f, inputs::Origin::Named, all).map_err(ReproduceError::GivenBaseline)?;
             return Ok(Self { rows, name });
         }
         let in_tree = results_dir == root.join(records::results_dir::DIR);
@@ -54,14 +53,14 @@ impl Baseline {
             Some(out) => {
                 let name = "git HEAD:results/runs.csv".to_string();
                 Self {
-                    rows: parse(out.stdout, &name, &index)?,
+                    rows: parse(out.stdout, &name, all)?,
                     name,
                 }
             }
             None => {
                 let path = results_dir.join(records::results_dir::RUNS);
                 Self {
-                    rows: read(&path, inputs::Origin::Under(results_dir), &index)?,
+                    rows: read(&path, inputs::Origin::Under(results_dir), all)?,
                     name: path.display().to_string(),
                 }
             }
@@ -101,23 +100,16 @@ impl Baseline {
 
 /// The rows of the runs file `path` (from `origin`), read with the input reader (a regular
 /// file, at most [`inputs::Kind::Baseline`]'s cap, never blocking).
-fn read(
-    path: &Path,
-    origin: inputs::Origin,
-    index: &records::migrate::LabelIndex,
-) -> Result<Vec<RunRow>, BaselineError> {
+fn read(path: &Path, origin: inputs::Origin, all: &[Job]) -> Result<Vec<RunRow>, BaselineError> {
     let bytes = inputs::read(path, inputs::Kind::Baseline, origin)?;
-    parse(bytes, &path.display().to_string(), index)
+    parse(bytes, &path.display().to_string(), all)
 }
 
-/// The rows of a runs file's `bytes` (called `name`), with ids recovered if it predates them.
-fn parse(
-    bytes: Vec<u8>,
-    name: &str,
-    index: &records::migrate::LabelIndex,
-) -> Result<Vec<RunRow>, BaselineError> {
+/// The rows of a runs file's `bytes` (called `name`), with ids recovered if it predates them
+/// (by the labels of `all`, every run of the experiment files).
+fn parse(bytes: Vec<u8>, name: &str, all: &[Job]) -> Result<Vec<RunRow>, BaselineError> {
     let name = || name.to_string();
-    let bytes = match records::migrate::add_ids(&bytes, index) {
+    let bytes = match records::migrate::add_ids(&bytes, || records::migrate::LabelIndex::new(all)) {
         Ok(Some((migrated, _))) => migrated,
         Ok(None) => bytes,
         Err(source) => {

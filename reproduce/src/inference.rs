@@ -7,7 +7,7 @@ use crate::explanation::load_papers;
 use crate::options::InferOptions;
 use crate::project::Project;
 use crate::report::{render_report, report_root};
-use crate::results::open_results;
+use crate::results::{open_results, Described};
 use crate::run::precheck_report;
 use catalog::experiment::Job;
 use records::results_dir::ResultsDir;
@@ -42,15 +42,15 @@ pub fn select_tables<'a>(
 pub fn infer_mode(
     project: &Project,
     options: &InferOptions,
-    all: &[Job],
+    all: &Described,
     git_rev: &str,
 ) -> Result<(), ReproduceError> {
     if options.dry_run {
-        return infer(project, &options.table, all, None);
+        return infer(project, &options.table, all.jobs(), None);
     }
     precheck_report(project)?;
     let results = open_results(project, git_rev, all)?;
-    infer(project, &options.table, all, Some(&results))
+    infer(project, &options.table, all.jobs(), Some(&results))
 }
 
 /// Fits the tables `which` selects over the runs `jobs`; writes each to `results` when given.

@@ -4,7 +4,7 @@
 //! each run checkpointed, with its trace and its seal, as it finishes.
 
 use crate::error::ReproduceError;
-use crate::results::described_keys;
+use crate::results::Described;
 use catalog::experiment::Job;
 use catalog::run_key::RunKey;
 use records::results_dir::ResultsDir;
@@ -21,7 +21,7 @@ use std::collections::HashSet;
 pub fn resume(
     results: &ResultsDir,
     git_rev: &str,
-    all: &[Job],
+    all: &Described,
     kept: &mut Vec<RunRow>,
     to_run: &mut Vec<Job>,
 ) -> Result<(), ReproduceError> {
@@ -43,7 +43,7 @@ pub fn resume(
             records::journal::seal_path(results.path()).display()
         );
     }
-    let described = described_keys(all);
+    let described = all.keys();
     let (fold, undescribed): (Vec<RunRow>, Vec<RunRow>) = recovered
         .current
         .into_iter()

@@ -38,10 +38,11 @@ pub use cli::Cli;
 pub use error::ReproduceError;
 pub use options::{GlobalOptions, Mode};
 
-use catalog::experiment::{load_dir, Job, PaperFile};
+use catalog::experiment::{Job, PaperFile};
 use options::SelectionOptions;
 use project::{resolve_shard, set_threads, Project};
 use records::shard::Shard;
+use results::{experiment_files, Described};
 use run::{Output, Plan};
 use std::process::ExitCode;
 use summary::emit;
@@ -52,14 +53,7 @@ pub fn run(global: &GlobalOptions, mode: Mode) -> Result<ExitCode, ReproduceErro
     let git_rev = revision::REVISION;
     let env = |v: &str| std::env::var(v).ok();
     let project = |shard: Option<Shard>| Project::resolve(global, shard);
-    let loaded = |project: &Project| -> Result<(Vec<PaperFile>, Vec<Job>), ReproduceError> {
-        let files = load_dir(&project.experiments_dir, simulation::run::check_job)?;
-        let all = files.iter().flat_map(|f| f.jobs()).collect();
-        Ok((files, all))
-    };
-    let selected = |files: &[PaperFile], all: &[Job], selection: &SelectionOptions| {
-        select::select_jobs(all, files, &selection.selection())
-    };
+
     match mode {
         // The robots are compiled in (built-in models and the embedded robot files): listing
         // them needs no project.
@@ -81,20 +75,20 @@ pub fn run(global: &GlobalOptions, mode: Mode) -> Result<ExitCode, ReproduceErro
         }
         Mode::Merge(o) => {
             let project = project(None)?;
-            let (files, all) = loaded(&project)?;
-            merge::merge_shards(&project, &o.dirs, &files, &all, git_rev)
+            let files = experiment_files(&project)?;
+            merge::merge_shards(&project, &o.dirs, &files, git_rev)
         }
         Mode::Infer(o) => {
             let project = project(None)?;
-            let (_, all) = loaded(&project)?;
-            inference::infer_mode(&project, &o, &all, git_rev)?;
+            let files = experiment_files(&project)?;
+            inference::infer_mode(&project, &o, &Described::new(&files), git_rev)?;
             Ok(ExitCode::SUCCESS)
         }
         Mode::Explain(o) => {
             let project = project(None)?;
-            let (files, all) = loaded(&project)?;
-            let jobs = selected(&files, &all, &o.selection)?;
-            explanation::explain_mode(&project, &o, &jobs, &all, git_rev)?;
+            let files = experiment_files(&project)?;
+            let jobs = selected(&files, &o.selection, None, &project)?;
+            explanation::explain_mode(&project, &o, &jobs, &Described::new(&files), git_rev)?;
             Ok(ExitCode::SUCCESS)
         }
         Mode::List(o) => {
@@ -104,18 +98,14 @@ pub fn run(global: &GlobalOptions, mode: Mode) -> Result<ExitCode, ReproduceErro
                 .map(|s| resolve_shard(s, o.shards, env))
                 .transpose()?;
             let project = project(shard)?;
-            let (files, all) = loaded(&project)?;
-            let jobs = shard_of(shard, selected(&files, &all, &o.selection)?, &project);
-            emit(&list::list(&files, &jobs));
-            if let (Some(n), None) = (o.shards, shard) {
-                emit(&list::shard_plan(&jobs, n));
-            }
+            let files = experiment_files(&project)?;
+            list_runs(&project, &files, &o.selection, shard, o.shards)?;
             Ok(ExitCode::SUCCESS)
         }
         Mode::Run(o) => {
             let project = project(None)?;
-            let (files, all) = loaded(&project)?;
-            let jobs = selected(&files, &all, &o.selection)?;
+            let files = experiment_files(&project)?;
+            let jobs = selected(&files, &o.selection, None, &project)?;
             let output = if o.dry_run {
                 Output::DryRun
             } else {
@@ -126,17 +116,18 @@ pub fn run(global: &GlobalOptions, mode: Mode) -> Result<ExitCode, ReproduceErro
                 output,
                 explain: !o.skip_explain,
             };
-            run::run(&project, plan, &all, &jobs, git_rev)
+            run::run(&project, plan, &Described::new(&files), &jobs, git_rev)
         }
         Mode::Check(o) => {
             let project = project(None)?;
-            let (files, all) = loaded(&project)?;
-            let jobs = selected(&files, &all, &o.selection)?;
+            let files = experiment_files(&project)?;
+            let all = Described::new(&files);
+            let jobs = selected(&files, &o.selection, None, &project)?;
             let baseline = gate::Baseline::read(
                 &project.root,
                 &project.results_dir,
                 o.baseline.as_deref(),
-                &all,
+                all.jobs(),
             )?;
             let plan = Plan {
                 selection: &o.selection,
@@ -148,28 +139,85 @@ pub fn run(global: &GlobalOptions, mode: Mode) -> Result<ExitCode, ReproduceErro
         Mode::Shard(o) => {
             let shard = resolve_shard(&o.shard, o.shards, env)?;
             let project = project(Some(shard))?;
-            let (files, all) = loaded(&project)?;
-            let jobs = shard_of(Some(shard), selected(&files, &all, &o.selection)?, &project);
+            let files = experiment_files(&project)?;
+            let jobs = selected(&files, &o.selection, Some(shard), &project)?;
             let plan = Plan {
                 selection: &o.selection,
                 output: Output::Shard(shard),
                 explain: false,
             };
-            run::run(&project, plan, &all, &jobs, git_rev)
+            run::run(&project, plan, &Described::new(&files), &jobs, git_rev)
         }
     }
 }
 
-/// The runs of `jobs` that `shard` owns (all of them without a shard), said on stderr.
-fn shard_of(shard: Option<Shard>, mut jobs: Vec<Job>, project: &Project) -> Vec<Job> {
+/// The runs of `files` that `selection` keeps and `shard` owns (all of them without a shard;
+/// said on stderr with one). Only these are collected (a shard's: an eighth of a 10^6-run
+/// selection); every other run is made from the files when needed (results::Described).
+fn selected(
+    files: &[PaperFile],
+    selection: &SelectionOptions,
+    shard: Option<Shard>,
+    project: &Project,
+) -> Result<Vec<Job>, ReproduceError> {
+    let selection = selection.selection();
+    select::check_selection(files, &selection)?;
+    let mut count = 0;
+    let jobs: Vec<Job> = select::selected(files, &selection)
+        .inspect(|_| count += 1)
+        .filter(|j| owns(shard, j))
+        .collect();
     if let Some(shard) = shard {
-        let selected = jobs.len();
-        jobs.retain(|j| shard.owns(&j.key().to_string()));
-        eprintln!(
-            "shard {shard}: {} of the {selected} selected runs, into {}",
-            jobs.len(),
-            project.results_dir.display()
+        say_shard(project, shard, jobs.len(), count);
+    }
+    Ok(jobs)
+}
+
+/// `list` (with a shard: the shard's runs; with `shards`: the count per shard), the runs made
+/// from `files` as they are written rather than collected: a list of 10^6 runs holds none of
+/// them (docs/cluster.md).
+fn list_runs(
+    project: &Project,
+    files: &[PaperFile],
+    selection: &SelectionOptions,
+    shard: Option<Shard>,
+    shards: Option<usize>,
+) -> Result<(), ReproduceError> {
+    let selection = selection.selection();
+    select::check_selection(files, &selection)?;
+    if let Some(shard) = shard {
+        let owned = select::selected(files, &selection)
+            .filter(|j| owns(Some(shard), j))
+            .count();
+        say_shard(
+            project,
+            shard,
+            owned,
+            select::selected(files, &selection).count(),
         );
     }
-    jobs
+    // As `summary::emit`: a closed standard output (`reproduce list | head`) ends the list and
+    // is no error.
+    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    let _ = list::list(&mut out, files, |j| {
+        select::selects(&selection, j) && owns(shard, j)
+    })
+    .and_then(|()| std::io::Write::flush(&mut out));
+    if let (Some(n), None) = (shards, shard) {
+        emit(&list::shard_plan(select::selected(files, &selection), n));
+    }
+    Ok(())
+}
+
+/// Whether `job` is `shard`'s (every job is, without a shard).
+fn owns(shard: Option<Shard>, job: &Job) -> bool {
+    shard.is_none_or(|shard| shard.owns(&job.key().to_string()))
+}
+
+/// The line a shard starts with: how many of the selected runs are its, and where it writes.
+fn say_shard(project: &Project, shard: Shard, owned: usize, selected: usize) {
+    eprintln!(
+        "shard {shard}: {owned} of the {selected} selected runs, into {}",
+        project.results_dir.display()
+    );
 }

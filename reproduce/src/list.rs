@@ -5,48 +5,55 @@
 
 use catalog::experiment::{Job, PaperFile};
 use std::fmt::Write as _;
+use std::io::Write;
 
-/// The experiments of `files` that have runs among `jobs`, each with its runs, under its
-/// paper's header (a paper with no selected run is left out, header and all).
-pub fn list(files: &[PaperFile], jobs: &[Job]) -> String {
-    let mut out = String::new();
+/// Writes to `out` the experiments of `files` that have runs `keep` accepts, each with those
+/// runs, under its paper's header (a paper with no run kept is left out, header and all). The
+/// runs are made from the files as they are counted and written, and none is held: listing a
+/// sweep of 10^6 runs costs the memory of its experiment files alone.
+pub fn list(
+    out: &mut impl Write,
+    files: &[PaperFile],
+    keep: impl Fn(&Job) -> bool,
+) -> std::io::Result<()> {
     for f in files {
-        let selected =
-            |e: &catalog::experiment::Experiment| jobs.iter().any(|j| j.experiment == e.id);
-        if !f.experiments.iter().any(selected) {
+        let counts: Vec<usize> = f
+            .experiments
+            .iter()
+            .map(|e| f.experiment_jobs(e).filter(|j| keep(j)).count())
+            .collect();
+        if counts.iter().all(|&n| n == 0) {
             continue;
         }
-        let _ = writeln!(out, "{} — {}", f.paper, f.title);
-        for e in &f.experiments {
-            let n = jobs.iter().filter(|j| j.experiment == e.id).count();
+        writeln!(out, "{} — {}", f.paper, f.title)?;
+        for (e, n) in f.experiments.iter().zip(counts) {
             if n == 0 {
                 continue;
             }
-            let _ = writeln!(
+            writeln!(
                 out,
                 "  {:<28} {} on {} (T = {} s), {}: {n} runs",
                 e.id, e.robot, e.path.name, e.path.duration, e.paper_output
-            );
+            )?;
             // The key (ids: what --task, papers/ and the results use), then the labels.
-            for j in jobs.iter().filter(|j| j.experiment == e.id) {
+            for j in f.experiment_jobs(e).filter(|j| keep(j)) {
                 let k = j.key();
-                let _ = writeln!(
+                writeln!(
                     out,
                     "      {:<48} {} · {}",
                     format!("{} / {}", k.variant, k.solver),
                     j.variant,
                     j.solver.label()
-                );
+                )?;
             }
         }
     }
-    out
+    Ok(())
 }
 
 /// How many of `jobs` each of `n` shards gets (`--list --shards N`).
-pub fn shard_plan(jobs: &[Job], n: usize) -> String {
-    let keys: Vec<String> = jobs.iter().map(|j| j.key().to_string()).collect();
-    let counts = records::shard::plan(keys.iter().map(String::as_str), n);
+pub fn shard_plan(jobs: impl Iterator<Item = Job>, n: usize) -> String {
+    let counts = records::shard::plan(jobs.map(|j| j.key().to_string()), n);
     counts
         .iter()
         .enumerate()
@@ -91,10 +98,17 @@ mod tests {
         (files, jobs)
     }
 
+    /// The list of the runs of `files` that `keep` accepts.
+    fn text(files: &[PaperFile], keep: impl Fn(&Job) -> bool) -> String {
+        let mut out = Vec::new();
+        list(&mut out, files, keep).unwrap();
+        String::from_utf8(out).unwrap()
+    }
+
     #[test]
     fn the_list_names_each_run_by_key_then_label() {
         let (files, jobs) = fixture();
-        let text = list(&files, &jobs);
+        let text = text(&files, |_| true);
         let lines: Vec<&str> = text.lines().collect();
         assert_eq!(lines[0], format!("{} — {}", files[0].paper, files[0].title));
         assert_eq!(
@@ -124,15 +138,15 @@ mod tests {
     fn an_experiment_without_selected_runs_is_left_out() {
         let (files, jobs) = fixture();
         // No selected run: not even the paper's header (`list --paper X` shows X alone).
-        assert_eq!(list(&files, &[]), "");
-        let one = list(&files, &jobs[..1]);
+        assert_eq!(text(&files, |_| false), "");
+        let one = text(&files, |j| j.key() == jobs[0].key());
         assert!(one.contains(": 1 runs\n"), "{one}");
     }
 
     #[test]
     fn the_shard_plan_counts_every_run_once() {
         let (_, jobs) = fixture();
-        let plan = shard_plan(&jobs, 3);
+        let plan = shard_plan(jobs.iter().cloned(), 3);
         let counts: Vec<usize> = plan
             .lines()
             .enumerate()

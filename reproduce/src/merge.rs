@@ -5,19 +5,18 @@
 use crate::error::ReproduceError;
 use crate::project::Project;
 use crate::report::render_report_if_named;
-use crate::results::{open_results, plan_pruning, write_results};
+use crate::results::{open_results, plan_pruning, write_results, Described};
 use crate::run::report_unexpected;
-use crate::select::select_jobs;
-use catalog::experiment::{Job, PaperFile};
+use crate::select::{check_selection, selected};
+use catalog::experiment::PaperFile;
 use records::runs::RunRow;
 use std::process::ExitCode;
 
-/// Merges the shard directories `dirs` (`files`, `all`: the experiment files and their runs).
+/// Merges the shard directories `dirs` (`files`: the experiment files).
 pub fn merge_shards(
     project: &Project,
     dirs: &[std::path::PathBuf],
     files: &[PaperFile],
-    all: &[Job],
     git_rev: &str,
 ) -> Result<ExitCode, ReproduceError> {
     let shards = dirs
@@ -28,10 +27,9 @@ pub fn merge_shards(
         .first()
         .map(|s| s.manifest.selection.clone())
         .unwrap_or_default();
-    let expected: Vec<String> = select_jobs(all, files, &sel)?
-        .iter()
-        .map(|j| j.key().to_string())
-        .collect();
+    check_selection(files, &sel)?;
+    let expected: Vec<String> = selected(files, &sel).map(|j| j.key().to_string()).collect();
+    let all = &Described::new(files);
     let hash = records::shard::experiments_hash(&project.experiments_dir)?;
     records::shard::check_shards(&shards, &expected, &hash)?;
     let results = open_results(project, git_rev, all)?;

@@ -4,7 +4,7 @@
 
 use crate::error::ReproduceError;
 use crate::project::Project;
-use crate::results::{all_jobs, open_results};
+use crate::results::{experiment_files, open_results, Described};
 use records::results_dir::ResultsDir;
 use std::path::{Path, PathBuf};
 
@@ -12,7 +12,11 @@ use std::path::{Path, PathBuf};
 pub fn report_only(project: &Project, git_rev: &str) -> Result<(), ReproduceError> {
     let root = report_root(project)?;
     check_report_dir(&root)?;
-    let results = open_results(project, git_rev, &all_jobs(project)?)?;
+    let results = open_results(
+        project,
+        git_rev,
+        &Described::new(&experiment_files(project)?),
+    )?;
     render_report(project, &root, &results)
 }
 

@@ -4,37 +4,71 @@
 
 use crate::error::ReproduceError;
 use crate::project::Project;
-use catalog::experiment::{load_dir, Job};
+use catalog::experiment::{load_dir, Job, PaperFile};
 use catalog::run_key::RunKey;
+use records::migrate::LabelIndex;
 use records::results_dir::ResultsDir;
 use records::runs::{merge, RunRow};
 use simulation::run::RunRecord;
+use std::cell::OnceCell;
 use std::collections::HashSet;
 
-/// Every run the experiment files describe (what migration and pruning compare the stored
-/// runs with).
-pub fn all_jobs(project: &Project) -> Result<Vec<Job>, ReproduceError> {
-    Ok(
-        load_dir(&project.experiments_dir, simulation::run::check_job)?
-            .iter()
-            .flat_map(|f| f.jobs())
-            .collect(),
-    )
+/// The experiment files of the project, loaded and validated.
+pub fn experiment_files(project: &Project) -> Result<Vec<PaperFile>, ReproduceError> {
+    Ok(load_dir(
+        &project.experiments_dir,
+        simulation::run::check_job,
+    )?)
 }
 
-/// The run keys (`experiment / variant / solver`) the experiment files describe.
-pub fn described_keys(all: &[Job]) -> HashSet<RunKey> {
-    all.iter().map(Job::key).collect()
+/// Every run the experiment files describe (what migration and pruning compare the stored
+/// runs with), made from the files when asked: as keys or a label index, taken as the runs
+/// are made (what a shard needs), or as jobs, collected once on first use (what the gate, the
+/// explanation layer, inference and the timing pass need). A shard of a 10^6-run sweep so never
+/// holds every run as a [`Job`] (docs/cluster.md).
+pub struct Described<'a> {
+    files: &'a [PaperFile],
+    jobs: OnceCell<Vec<Job>>,
+}
+
+impl<'a> Described<'a> {
+    pub fn new(files: &'a [PaperFile]) -> Self {
+        Described {
+            files,
+            jobs: OnceCell::new(),
+        }
+    }
+
+    /// Every run, in file order, collected on the first call.
+    pub fn jobs(&self) -> &[Job] {
+        self.jobs
+            .get_or_init(|| self.files.iter().flat_map(PaperFile::jobs).collect())
+    }
+
+    /// The run keys (`experiment / variant / solver`).
+    pub fn keys(&self) -> HashSet<RunKey> {
+        self.runs().map(|j| j.key()).collect()
+    }
+
+    /// The index by labels by which results written before run ids are migrated.
+    fn label_index(&self) -> LabelIndex {
+        LabelIndex::new(self.runs())
+    }
+
+    /// The runs, made one variant at a time.
+    fn runs(&self) -> impl Iterator<Item = Job> + '_ {
+        self.files.iter().flat_map(PaperFile::iter_jobs)
+    }
 }
 
 /// Opens the results directory for writing (records::results_dir): the lock, the integrity
 /// check of its tables, the removal of this program's own stale temporary files.
-/// `all`: every run of the experiment files ([`all_jobs`]), by which results written before
-/// run ids are migrated.
+/// `all`: every run of the experiment files, by which results written before run ids are
+/// migrated.
 pub fn open_results(
     project: &Project,
     git_rev: &str,
-    all: &[Job],
+    all: &Described,
 ) -> Result<ResultsDir, ReproduceError> {
     let (results, removed) = ResultsDir::open(&project.results_dir, git_rev, project.edits)?;
     if !removed.is_empty() {
@@ -45,7 +79,7 @@ pub fn open_results(
         );
     }
     // Results written before run ids are migrated once (records::migrate).
-    for done in results.migrate_ids(all)? {
+    for done in results.migrate_ids(|| all.label_index())? {
         eprintln!(
             "migrated to run ids under {}: {done}",
             project.results_dir.display()
@@ -60,9 +94,9 @@ pub fn open_results(
 pub fn plan_pruning(
     project: &Project,
     results: &ResultsDir,
-    all: &[Job],
+    all: &Described,
 ) -> Result<(Vec<RunRow>, Vec<RunRow>), ReproduceError> {
-    let described = described_keys(all);
+    let described = all.keys();
     Ok(results.plan_pruning(
         results.read_runs()?,
         |row| described.contains(&row.key()),

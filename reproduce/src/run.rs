@@ -13,7 +13,7 @@ use crate::journal::{resume, run_journaled};
 use crate::options::SelectionOptions;
 use crate::project::Project;
 use crate::report::{check_report_dir, render_report_if_named, report_root};
-use crate::results::{open_results, plan_pruning, write_results};
+use crate::results::{open_results, plan_pruning, write_results, Described};
 use crate::summary::{emit, summary};
 use catalog::experiment::Job;
 use records::results_dir::ResultsDir;
@@ -53,7 +53,7 @@ pub struct Plan<'a> {
 pub fn run(
     project: &Project,
     plan: Plan<'_>,
-    all: &[Job],
+    all: &Described,
     jobs: &[Job],
     git_rev: &str,
 ) -> Result<ExitCode, ReproduceError> {
@@ -166,7 +166,7 @@ fn publish(
     plan: &Plan<'_>,
     results: &ResultsDir,
     binding: Option<&records::shard::Binding>,
-    all: &[Job],
+    all: &Described,
     jobs: &[Job],
     git_rev: &str,
 ) -> Result<(), ReproduceError> {
@@ -183,7 +183,7 @@ fn publish(
         return Ok(());
     }
     if plan.explain && !plan.selection.exact_only {
-        explain(project, jobs, all, git_rev, Some(results))?;
+        explain(project, jobs, all.jobs(), git_rev, Some(results))?;
     }
     // The control experiments (control crate) with a whole, unselected reproduction.
     if plan.selection.is_whole() {
@@ -207,7 +207,7 @@ fn publish(
             }
             Err(e) => return Err(e.into()),
         }
-        crate::timing::time_alone(all, results, &project.root.join("papers"), git_rev)?;
+        crate::timing::time_alone(all.jobs(), results, &project.root.join("papers"), git_rev)?;
         // Its tables are recorded before the report (which may fail) is rendered.
         results.save()?;
     }

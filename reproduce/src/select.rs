@@ -7,12 +7,22 @@ use catalog::experiment::{Job, PaperFile, SolverChoice};
 use records::shard::Selection;
 use std::collections::HashSet;
 
-/// The runs of `all` (the runs of `files`) that `selection` keeps, in their order.
-pub fn select_jobs(
-    all: &[Job],
-    files: &[PaperFile],
-    selection: &Selection,
-) -> Result<Vec<Job>, ReproduceError> {
+/// The runs of `files` that `selection` keeps, in file order, made as they are taken (a
+/// caller collects what it needs: a shard only its own runs). [`check_selection`] first.
+pub fn selected<'a>(
+    files: &'a [PaperFile],
+    selection: &'a Selection,
+) -> impl Iterator<Item = Job> + 'a {
+    files
+        .iter()
+        .flat_map(PaperFile::iter_jobs)
+        .filter(|j| selects(selection, j))
+}
+
+/// A paper or experiment of `selection` that no file of `files` names is an error listing the
+/// known ones (every experiment of a file has runs: a variant that runs nothing is refused at
+/// load).
+pub fn check_selection(files: &[PaperFile], selection: &Selection) -> Result<(), ReproduceError> {
     if let Some(p) = &selection.paper {
         if !files.iter().any(|f| &f.paper == p) {
             return Err(ReproduceError::UnknownPaper {
@@ -21,7 +31,11 @@ pub fn select_jobs(
             });
         }
     }
-    let ids: HashSet<&str> = all.iter().map(|j| j.experiment.as_str()).collect();
+    let ids: HashSet<&str> = files
+        .iter()
+        .flat_map(|f| &f.experiments)
+        .map(|e| e.id.as_str())
+        .collect();
     for e in &selection.experiments {
         if !ids.contains(e.as_str()) {
             let mut known: Vec<String> = ids.iter().map(|id| id.to_string()).collect();
@@ -32,15 +46,14 @@ pub fn select_jobs(
             });
         }
     }
-    Ok(all
-        .iter()
-        .filter(|j| selection.paper.as_ref().is_none_or(|p| &j.paper == p))
-        .filter(|j| {
-            selection.experiments.is_empty() || selection.experiments.contains(&j.experiment)
-        })
-        .filter(|j| !selection.exact_only || j.solver == SolverChoice::Exact)
-        .cloned()
-        .collect())
+    Ok(())
+}
+
+/// Whether `selection` keeps `job` (its paper, its experiment, the exact column only).
+pub fn selects(selection: &Selection, job: &Job) -> bool {
+    selection.paper.as_ref().is_none_or(|p| &job.paper == p)
+        && (selection.experiments.is_empty() || selection.experiments.contains(&job.experiment))
+        && (!selection.exact_only || job.solver == SolverChoice::Exact)
 }
 
 #[cfg(test)]
@@ -63,13 +76,14 @@ mod tests {
         experiments: &[&str],
         exact_only: bool,
     ) -> Result<Vec<Job>, ReproduceError> {
-        let (files, all) = project();
+        let (files, _) = project();
         let selection = Selection {
             paper: paper.map(String::from),
             experiments: experiments.iter().map(|e| e.to_string()).collect(),
             exact_only,
         };
-        select_jobs(&all, &files, &selection)
+        check_selection(&files, &selection)?;
+        Ok(selected(&files, &selection).collect())
     }
 
     #[test]

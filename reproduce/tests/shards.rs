@@ -6,8 +6,8 @@
 mod common;
 
 use common::{ok, reproduce};
-use records::runs::{read_runs, RunRow};
-use std::path::{Path, PathBuf};
+use records::runs::read_runs;
+use std::path::PathBuf;
 
 fn temp(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("driftbench-shards-{name}-{}", std::process::id()));
@@ -18,37 +18,6 @@ fn temp(name: &str) -> PathBuf {
 
 /// A cheap selection: kong2019's exact columns (11 runs, well under a second each).
 const SELECTION: [&str; 3] = ["--paper", "kong2019", "--exact-only"];
-
-/// Rows without what differs between two runs of the same binary: the timing columns.
-fn comparable(mut rows: Vec<RunRow>) -> Vec<String> {
-    for r in &mut rows {
-        r.wall_s = 0.0;
-        r.sim_s = 0.0;
-        r.observe_s = 0.0;
-    }
-    rows.iter().map(|r| format!("{r:?}")).collect()
-}
-
-/// Every file under `dir/traces`, relative path and bytes.
-fn traces(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
-    fn walk(base: &Path, d: &Path, out: &mut Vec<(PathBuf, Vec<u8>)>) {
-        for e in std::fs::read_dir(d).unwrap() {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                walk(base, &p, out);
-            } else {
-                out.push((
-                    p.strip_prefix(base).unwrap().to_path_buf(),
-                    std::fs::read(&p).unwrap(),
-                ));
-            }
-        }
-    }
-    let mut out = Vec::new();
-    walk(&dir.join("traces"), &dir.join("traces"), &mut out);
-    out.sort();
-    out
-}
 
 #[test]
 fn three_shards_merged_equal_one_unsharded_run_and_a_missing_shard_is_named() {
@@ -127,15 +96,7 @@ fn three_shards_merged_equal_one_unsharded_run_and_a_missing_shard_is_named() {
         .arg(&merged)
         .output()
         .unwrap());
-    let want = read_runs(&whole.join("runs.csv")).unwrap();
-    assert_eq!(want.len(), 11);
-    assert_eq!(
-        comparable(read_runs(&merged.join("runs.csv")).unwrap()),
-        comparable(want)
-    );
-    let (t_whole, t_merged) = (traces(&whole), traces(&merged));
-    assert_eq!(t_whole.len(), 11);
-    assert!(t_whole == t_merged, "trace files differ");
+    common::assert_same_results(&merged, &whole, 11);
     let _ = std::fs::remove_dir_all(&base);
 }
 
@@ -208,15 +169,7 @@ sweep = { "scheme.mu" = [1, 2, 4] }
         .arg(&whole)
         .output()
         .unwrap());
-    let want = read_runs(&whole.join("runs.csv")).unwrap();
-    assert_eq!(want.len(), 4);
-    assert_eq!(
-        comparable(read_runs(&merged.join("runs.csv")).unwrap()),
-        comparable(want)
-    );
-    let (t_whole, t_merged) = (traces(&whole), traces(&merged));
-    assert_eq!(t_whole.len(), 4);
-    assert!(t_whole == t_merged, "trace files differ");
+    common::assert_same_results(&merged, &whole, 4);
     let _ = std::fs::remove_dir_all(&base);
 }
 

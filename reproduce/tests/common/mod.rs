@@ -1,10 +1,11 @@
 //! What the binary's process tests share: a cheap experiment, starting `reproduce` and checking
-//! it succeeded, and killing a run once it has checkpointed some runs.
+//! it succeeded, killing a run once it has checkpointed some runs, and comparing a merged
+//! results directory with one process's (rows but their timing, traces byte for byte).
 // Compiled into each test crate of the binary; each uses a part of it.
 #![allow(dead_code)]
 
-use records::runs::read_runs;
-use std::path::Path;
+use records::runs::{read_runs, RunRow};
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 /// An experiment file with one slow run first (the finite-time network integrated by
@@ -157,4 +158,49 @@ pub fn members(root: &Path) -> Vec<String> {
         .iter()
         .map(|m| m.as_str().expect("a member path").to_string())
         .collect()
+}
+
+/// Rows without what differs between two runs of the same binary: the timing columns.
+pub fn comparable(mut rows: Vec<RunRow>) -> Vec<String> {
+    for r in &mut rows {
+        r.wall_s = 0.0;
+        r.sim_s = 0.0;
+        r.observe_s = 0.0;
+    }
+    rows.iter().map(|r| format!("{r:?}")).collect()
+}
+
+/// Every file under `dir/traces`, relative path and bytes.
+pub fn traces(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
+    fn walk(base: &Path, d: &Path, out: &mut Vec<(PathBuf, Vec<u8>)>) {
+        for e in std::fs::read_dir(d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                walk(base, &p, out);
+            } else {
+                out.push((
+                    p.strip_prefix(base).unwrap().to_path_buf(),
+                    std::fs::read(&p).unwrap(),
+                ));
+            }
+        }
+    }
+    let mut out = Vec::new();
+    walk(&dir.join("traces"), &dir.join("traces"), &mut out);
+    out.sort();
+    out
+}
+
+/// `merged` holds what one process wrote into `whole`, which has `runs` runs: the same rows
+/// (every cell but the timing columns, in the same order) and byte-identical traces.
+pub fn assert_same_results(merged: &Path, whole: &Path, runs: usize) {
+    let want = read_runs(&whole.join("runs.csv")).unwrap();
+    assert_eq!(want.len(), runs);
+    assert_eq!(
+        comparable(read_runs(&merged.join("runs.csv")).unwrap()),
+        comparable(want)
+    );
+    let (t_whole, t_merged) = (traces(whole), traces(merged));
+    assert_eq!(t_whole.len(), runs);
+    assert!(t_whole == t_merged, "trace files differ");
 }
