@@ -19,8 +19,11 @@
 //! first exception is kept ([`Callbacks::take_error`])
 //! to be raised to the caller once the run has stopped.
 
+use crate::arrays::real_array;
 use nalgebra::{DMatrix, DVector};
-use numpy::{AllowTypeChange, IntoPyArray, PyArrayLike1, PyArrayLike2};
+use numpy::ndarray::{Ix1, Ix2};
+use numpy::IntoPyArray;
+use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use schemes::qp::{Qp, QpDims};
@@ -28,7 +31,9 @@ use solvers::neural::NeuralSolver;
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
-/// The sizes of a task's QP, handed to a network's `state_dim`.
+/// The sizes of a task's QP, handed to a network's `state_dim` and `handles` (and a task's
+/// `dims`): x has `nx` entries, the joint command x[:dof] first, then the scheme's auxiliary
+/// variables.
 #[pyclass(name = "QpDims", module = "driftbench", frozen, get_all)]
 #[derive(Clone, Copy)]
 pub struct PyQpDims {
@@ -45,6 +50,16 @@ impl PyQpDims {
     fn __repr__(&self) -> String {
         format!(
             "QpDims(nx={}, n_eq={}, n_in={})",
+            self.nx, self.n_eq, self.n_in
+        )
+    }
+}
+
+impl PyQpDims {
+    /// `nx = .., n_eq = .., n_in = ..`, for messages.
+    pub fn describe(&self) -> String {
+        format!(
+            "nx = {}, n_eq = {}, n_in = {}",
             self.nx, self.n_eq, self.n_in
         )
     }
@@ -74,6 +89,11 @@ impl Callbacks {
     /// The first exception of the run, if any.
     pub fn take_error(&mut self) -> Option<PyErr> {
         self.error.take()
+    }
+
+    /// Keeps `e` unless an earlier exception is kept.
+    pub fn keep_error(&mut self, e: PyErr) {
+        self.error.get_or_insert(e);
     }
 }
 
@@ -134,9 +154,15 @@ impl PyNetwork {
             Some(v) => v.is_truthy()?,
             None => false,
         };
+        let name = network_name(object)?;
+        for method in ["rhs", "jacobian"] {
+            if let Some(m) = object.getattr_opt(method)? {
+                check_arity(&m, &name, method, needs_qp_dot)?;
+            }
+        }
         Ok(PyNetwork {
             object: object.clone().unbind(),
-            name: network_name(object)?,
+            name,
             state_dim,
             needs_qp_dot,
             has_jacobian: object.hasattr("jacobian")?,
@@ -218,14 +244,86 @@ fn matrix<'py>(py: Python<'py>, m: &DMatrix<f64>) -> Bound<'py, numpy::PyArray2<
     numpy::ndarray::Array2::from_shape_fn(m.shape(), |(i, j)| m[(i, j)]).into_pyarray(py)
 }
 
+/// How many positional arguments a callable takes: (required, most; None for `*args`), or
+/// None when Python cannot tell (a builtin without a signature).
+fn positional_arity(f: &Bound<'_, PyAny>) -> PyResult<Option<(usize, Option<usize>)>> {
+    let inspect = f.py().import("inspect")?;
+    let Ok(signature) = inspect.call_method1("signature", (f,)) else {
+        return Ok(None);
+    };
+    let parameter = inspect.getattr("Parameter")?;
+    let kind_of = |k: &str| parameter.getattr(k);
+    let (only, either, var) = (
+        kind_of("POSITIONAL_ONLY")?,
+        kind_of("POSITIONAL_OR_KEYWORD")?,
+        kind_of("VAR_POSITIONAL")?,
+    );
+    let empty = parameter.getattr("empty")?;
+    let (mut required, mut most) = (0, Some(0));
+    for p in signature
+        .getattr("parameters")?
+        .call_method0("values")?
+        .try_iter()?
+    {
+        let p = p?;
+        let kind = p.getattr("kind")?;
+        if kind.eq(&var)? {
+            most = None;
+        } else if kind.eq(&only)? || kind.eq(&either)? {
+            most = most.map(|m| m + 1);
+            if p.getattr("default")?.is(&empty) {
+                required += 1;
+            }
+        }
+    }
+    Ok(Some((required, most)))
+}
+
+/// Checks that the network's `method` (`rhs` or `jacobian`) can be called as the library
+/// calls it: `(t, y, qp)`, or `(t, y, qp, qp_dot)` where the network sets `needs_qp_dot`.
+/// The error says which of the two the method takes and what to set.
+fn check_arity(
+    method: &Bound<'_, PyAny>,
+    network: &str,
+    name: &str,
+    needs_qp_dot: bool,
+) -> PyResult<()> {
+    let Some((required, most)) = positional_arity(method)? else {
+        return Ok(());
+    };
+    let takes = |n: usize| required <= n && most.is_none_or(|m| n <= m);
+    let given = if needs_qp_dot { 4 } else { 3 };
+    if takes(given) {
+        return Ok(());
+    }
+    let hint = if !needs_qp_dot && takes(4) {
+        format!(
+            "{network}.{name} takes (t, y, qp, qp_dot) but the network does not set \
+             needs_qp_dot = True, so the library would call it with (t, y, qp): set \
+             needs_qp_dot = True (e.g. a class attribute) to get dQP/dt as the fourth argument"
+        )
+    } else if needs_qp_dot && takes(3) {
+        format!(
+            "{network}.{name} takes (t, y, qp) but the network sets needs_qp_dot = True, so \
+             the library would call it with (t, y, qp, qp_dot): add the qp_dot argument, or \
+             drop needs_qp_dot"
+        )
+    } else {
+        format!(
+            "{network}.{name} must take (t, y, qp), or (t, y, qp, qp_dot) with needs_qp_dot = \
+             True; it takes {required} to {} positional arguments",
+            most.map_or("any number of".to_string(), |m| m.to_string())
+        )
+    };
+    Err(PyTypeError::new_err(hint))
+}
+
 /// Reads a 1-D float array of length `n` (lists and integer arrays are converted).
 fn read_vector(value: &Bound<'_, PyAny>, n: usize, what: &str) -> PyResult<Vec<f64>> {
-    let a: PyArrayLike1<'_, f64, AllowTypeChange> = value.extract().map_err(|_| {
-        pyo3::exceptions::PyTypeError::new_err(format!(
-            "{what} must return a 1-D array of {n} floats"
-        ))
-    })?;
-    let v: Vec<f64> = a.as_array().iter().copied().collect();
+    let v: Vec<f64> = real_array::<Ix1>(value, &format!("the result of {what}"))?
+        .iter()
+        .copied()
+        .collect();
     if v.len() != n {
         return Err(pyo3::exceptions::PyValueError::new_err(format!(
             "{what} returned {} entries, the network's state has {n}",
@@ -291,12 +389,7 @@ impl NeuralSolver for PyNetwork {
             if r.is_none() {
                 return Ok(None);
             }
-            let a: PyArrayLike2<'_, f64, AllowTypeChange> = r.extract().map_err(|_| {
-                pyo3::exceptions::PyTypeError::new_err(format!(
-                    "jacobian must return a {n} x {n} float array or None"
-                ))
-            })?;
-            let a = a.as_array();
+            let a = real_array::<Ix2>(r, "the result of jacobian (an n x n array or None)")?;
             if a.shape() != [n, n] {
                 return Err(pyo3::exceptions::PyValueError::new_err(format!(
                     "jacobian returned shape {:?}, the network's state has {n} entries",
