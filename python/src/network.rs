@@ -13,6 +13,8 @@
 //! where it returns None, the library differences F. Only these calls cross into Python: the
 //! arm, the scheme, the integrator and the exact scoring stay in Rust.
 //!
+//! A result that is not a real array of the state's size, or that holds NaN or inf, is an
+//! exception of the call (a NaN would leave the integrator shrinking its step for ever).
 //! A Python exception inside a call cannot unwind through the integrator: from then on the
 //! network answers ydot = 0 (and a zero Jacobian) without calling Python, so the run ends at
 //! once with the network frozen (NaN would leave the integrator shrinking its step), and the
@@ -330,6 +332,12 @@ fn read_vector(value: &Bound<'_, PyAny>, n: usize, what: &str) -> PyResult<Vec<f
             v.len()
         )));
     }
+    if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+        return Err(pyo3::exceptions::PyValueError::new_err(format!(
+            "{what} returned a non-finite entry ({} at index {i}): the run stops here",
+            v[i]
+        )));
+    }
     Ok(v)
 }
 
@@ -395,6 +403,11 @@ impl NeuralSolver for PyNetwork {
                     "jacobian returned shape {:?}, the network's state has {n} entries",
                     a.shape()
                 )));
+            }
+            if a.iter().any(|x| !x.is_finite()) {
+                return Err(pyo3::exceptions::PyValueError::new_err(
+                    "jacobian returned a non-finite entry (NaN or inf): the run stops here",
+                ));
             }
             Ok(Some(DMatrix::from_fn(n, n, |i, j| a[[i, j]])))
         };
