@@ -322,15 +322,23 @@ fn check_setup(record: &RunRecord) -> PyResult<()> {
 
 /// `scoring`: None (the task's), "every-step", "off", or a number of instants.
 fn parse_scoring(value: &Bound<'_, PyAny>) -> PyResult<Scoring> {
-    if let Ok(n) = value.extract::<usize>() {
-        return Ok(Scoring::MaxInstants(n));
+    let says = "scoring must be \"every-step\", \"off\" or a number of instants (an int >= 0)";
+    if value.is_instance_of::<pyo3::types::PyInt>() {
+        return value
+            .extract::<usize>()
+            .map(Scoring::MaxInstants)
+            .map_err(|_| pyo3::exceptions::PyValueError::new_err(format!("{says}, got {value}")));
     }
-    match value.extract::<String>()?.as_str() {
+    let Ok(text) = value.extract::<String>() else {
+        return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+            "{says}, got {}",
+            type_name(value)
+        )));
+    };
+    match text.as_str() {
         "every-step" => Ok(Scoring::EveryStep),
         "off" => Ok(Scoring::Off),
-        other => Err(lib_err(format!(
-            "scoring must be \"every-step\", \"off\" or a number of instants, got \"{other}\""
-        ))),
+        other => Err(lib_err(format!("{says}, got \"{other}\""))),
     }
 }
 
@@ -441,6 +449,12 @@ fn leaderboard<'py>(
         None => standard,
         Some(given) => chosen_tasks(&standard, given)?,
     };
+    if chosen.is_empty() {
+        return Err(pyo3::exceptions::PyValueError::new_err(
+            "tasks= is empty: give the tasks to run (Task objects or ids), or leave it out for \
+             the standard task set",
+        ));
+    }
     let named: Vec<(String, Bound<'py, PyAny>)> = match entries.cast::<PyDict>() {
         Ok(d) => d
             .iter()
@@ -609,6 +623,17 @@ fn score<'py>(
             .get_item("thetadot")?
             .map(|v| rows(&v, "thetadot"))
             .transpose()?;
+        let lengths = std::iter::once(("theta", theta.len()))
+            .chain(thetadot.as_ref().map(|v| ("thetadot", v.len())));
+        for (key, m) in lengths {
+            if m != t.len() {
+                return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                    "trajectory[\"{key}\"] has {m} rows, trajectory[\"t\"] {} instants: one row \
+                     per instant",
+                    t.len()
+                )));
+            }
+        }
         let traj = Trajectory { t, theta, thetadot };
         let record = score_trajectory(&task.job, &traj).map_err(lib_err)?;
         let row = score_row(run_row(&record, git_rev), "arrays");

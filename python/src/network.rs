@@ -140,18 +140,12 @@ impl PyNetwork {
                 "a network needs state_dim: an int, or a method state_dim(dims) -> int",
             )
         })?;
-        let state_dim: usize = if dim.is_callable() {
-            dim.call1((PyQpDims::from(dims),))?.extract()?
+        let value = if dim.is_callable() {
+            dim.call1((PyQpDims::from(dims),))?
         } else {
-            dim.extract()?
+            dim
         };
-        if state_dim < dims.nx {
-            return Err(pyo3::exceptions::PyValueError::new_err(format!(
-                "state_dim {state_dim} is below the QP's {} unknowns: the network's state must \
-                 start with the joint command x",
-                dims.nx
-            )));
-        }
+        let state_dim = read_state_dim(&value, dims.nx)?;
         let needs_qp_dot = match object.getattr_opt("needs_qp_dot")? {
             Some(v) => v.is_truthy()?,
             None => false,
@@ -244,6 +238,33 @@ fn vector<'py>(py: Python<'py>, v: &DVector<f64>) -> Bound<'py, numpy::PyArray1<
 /// A matrix as a C-ordered 2-D array.
 fn matrix<'py>(py: Python<'py>, m: &DMatrix<f64>) -> Bound<'py, numpy::PyArray2<f64>> {
     numpy::ndarray::Array2::from_shape_fn(m.shape(), |(i, j)| m[(i, j)]).into_pyarray(py)
+}
+
+/// The largest state a network may declare: its dense Jacobian (state_dim^2 floats) is then at
+/// most 128 MiB. The papers' networks have at most a few dozen states (x, multipliers,
+/// auxiliary variables); a larger `state_dim` is a mistake, not a network.
+const MAX_STATE_DIM: usize = 4096;
+
+/// `state_dim` (the attribute, or what the method returned): an int from `nx` (the state starts
+/// with the QP's unknowns x) to [`MAX_STATE_DIM`].
+fn read_state_dim(value: &Bound<'_, PyAny>, nx: usize) -> PyResult<usize> {
+    if !value.is_instance_of::<pyo3::types::PyInt>() {
+        return Err(PyTypeError::new_err(format!(
+            "state_dim must be an int (or a method state_dim(dims) returning one), got {}",
+            value
+                .get_type()
+                .name()
+                .map_or_else(|_| "an object".to_string(), |n| n.to_string())
+        )));
+    }
+    match value.extract::<usize>() {
+        Ok(n) if (nx..=MAX_STATE_DIM).contains(&n) => Ok(n),
+        _ => Err(pyo3::exceptions::PyValueError::new_err(format!(
+            "state_dim {value} is outside {nx}..={MAX_STATE_DIM}: the network's state starts with \
+             the QP's {nx} unknowns x, and a dense Jacobian of more than {MAX_STATE_DIM} states is \
+             refused"
+        ))),
+    }
 }
 
 /// How many positional arguments a callable takes: (required, most; None for `*args`), or

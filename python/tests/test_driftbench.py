@@ -324,6 +324,17 @@ def test_bad_input_from_python_raises_errors_naming_the_field():
         driftbench.score(circle, {"t": t})
     with pytest.raises(TypeError, match="a file .* or a dict of arrays"):
         driftbench.score(circle, 3.0)
+    with pytest.raises(ValueError, match=r'theta"\] has 7 rows, trajectory\["t"\] '):
+        driftbench.score(circle, {"t": t, "theta": theta[:7]})
+    for bad, error in ((-1, ValueError), (10**12, ValueError), ("7", TypeError)):
+        with pytest.raises(error, match=r"state_dim"):
+            driftbench.simulate(circle, type("Sized", (Gnn,), {"state_dim": bad})())
+    with pytest.raises(ValueError, match=r"scoring must be .* got -3"):
+        driftbench.simulate(circle, Znn(), scoring=-3)
+    with pytest.raises(TypeError, match=r"scoring must be .* got float"):
+        driftbench.simulate(circle, Znn(), scoring=2.5)
+    with pytest.raises(ValueError, match="tasks= is empty"):
+        driftbench.leaderboard([Gnn()], tasks=[], root=ROOT)
     with pytest.raises(TypeError, match="rtoll"):
         driftbench.simulate(circle, Znn(), rtoll=1e-6)
 
