@@ -69,8 +69,10 @@ fn unpack(dir: &Path) -> Result<(), UnpackError> {
             let parent = path.parent().unwrap_or(dir);
             std::fs::create_dir_all(parent).map_err(at(parent))?;
             let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
+            // Not ending in the file's own extension: a file left by a crashed process is
+            // never read as an experiment file.
             let tmp = parent.join(format!(
-                "{TMP_MARK}{}-{}",
+                "{TMP_MARK}{}-{}.partial",
                 std::process::id(),
                 name.unwrap_or_default()
             ));
