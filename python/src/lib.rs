@@ -4,26 +4,34 @@
 //!
 //! - `tasks` / `task` / `standard_tasks`: every (experiment, variant) of the experiment
 //!   files as a `Task` (`task_set::PyTask`); the standard task set is the leaderboard's
-//!   (`records::leaderboard::standard_tasks` over `results/runs.csv`).
+//!   (`records::leaderboard::standard_tasks` over `results/runs.csv`). The project root is
+//!   `root=` (a checkout) where given, else the data the package carries (`packaged`).
 //! - `simulate`: one run of a task with a Python network (`network`) or one of the suite's
 //!   own solvers (by id). Arm, scheme, integrator and the score against the exact optimum are
 //!   `simulation::run`'s; the result is the run's `results/runs.csv` row
 //!   (`records::runs::RunRow`) as a dict, with the drift and the trace as numpy arrays and the
 //!   cost of the Python calls.
 //! - `leaderboard`: Python networks on the standard task set, ranked with the suite's own runs
-//!   by `records::leaderboard::leaderboard`, rows in `results/leaderboard.csv`'s schema.
+//!   by `records::leaderboard::leaderboard`, rows in `results/leaderboard.csv`'s schema. A
+//!   network ranks on the tasks it handles (`handles(dims)`, or `NotApplicable` raised while it
+//!   is built); the rest are N/A, as for the suite's zeroing networks.
 //!
 //! Errors of the library are raised as `driftbench.DriftbenchError` with the library's message;
 //! an exception raised inside a network's method is raised again once the run stops (with the
 //! method and instant as context).
 
+mod arrays;
 mod error;
 mod network;
+mod packaged;
 mod task_set;
 
+use arrays::real_array;
 use catalog::error::SetupError;
 use catalog::experiment::Scoring;
+use error::{RootError, UnknownTask};
 use network::{network_name, Callbacks, PyNetwork, PyQpDims, SharedCallbacks};
+use numpy::ndarray::{Ix1, Ix2};
 use numpy::IntoPyArray;
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
@@ -48,23 +56,63 @@ create_exception!(
     "An error of the driftbench library (the message is the library's own)."
 );
 
+create_exception!(
+    driftbench,
+    NotApplicable,
+    DriftbenchError,
+    "A network does not handle a task's QP: raised by the network itself (from `handles(dims)` or \
+     `state_dim(dims)`) or by driftbench where `handles(dims)` returns False. `simulate` raises \
+     it; `leaderboard` counts the task as N/A for the network, as for the suite's networks on \
+     tasks they do not handle."
+);
+
 /// The `solver_kind` of a Python network's rows.
 const PYTHON_KIND: &str = "python";
+
+/// The name of `value`'s type, for messages.
+fn type_name(value: &Bound<'_, PyAny>) -> String {
+    value
+        .get_type()
+        .name()
+        .map_or_else(|_| "an object".to_string(), |n| n.to_string())
+}
 
 fn lib_err(e: impl std::fmt::Display) -> PyErr {
     DriftbenchError::new_err(e.to_string())
 }
 
-/// `root`, or the project root found from the working directory upwards.
+/// The project root of a call: `root` (a checkout, or any directory with
+/// `experiments/*.toml`) where given, else the data the package carries ([`packaged`]). The
+/// working directory plays no part: a folder called `experiments/` above it is not taken for
+/// driftbench's.
 fn project_root(root: Option<PathBuf>) -> PyResult<PathBuf> {
-    match root {
-        Some(r) => Ok(r),
-        None => catalog::root::from_current_dir().map_err(lib_err),
+    let Some(root) = root else {
+        return packaged::root().map_err(lib_err);
+    };
+    let experiments = root.join("experiments");
+    if !experiments.is_dir() {
+        return Err(lib_err(RootError::NoExperiments { root }));
     }
+    let has_file = std::fs::read_dir(&experiments)
+        .map_err(|e| lib_err(format!("root={}: {e}", root.display())))?
+        .filter_map(Result::ok)
+        .any(|e| e.path().extension().is_some_and(|x| x == "toml"));
+    if !has_file {
+        return Err(lib_err(RootError::NoFiles { root }));
+    }
+    Ok(root)
 }
 
-/// Every task of the experiment files (`<root>/experiments`; root: found from the working
-/// directory upwards), in file order.
+/// The directory of the project data the package carries (the experiment files, `papers/`
+/// and the committed results), unpacked into the user's cache: the root used where `root=`
+/// is not given.
+#[pyfunction]
+fn data_root() -> PyResult<PathBuf> {
+    packaged::root().map_err(lib_err)
+}
+
+/// Every task of the experiment files (`<root>/experiments`; without `root`, the packaged
+/// ones), in file order.
 #[pyfunction]
 #[pyo3(signature = (root=None))]
 fn tasks(root: Option<PathBuf>) -> PyResult<Vec<PyTask>> {
@@ -76,16 +124,20 @@ fn tasks(root: Option<PathBuf>) -> PyResult<Vec<PyTask>> {
 #[pyo3(signature = (id, root=None))]
 fn task(id: &str, root: Option<PathBuf>) -> PyResult<PyTask> {
     let all = tasks(root)?;
-    find_task(&all, id).cloned()
+    find_task(&all, id, "").cloned()
 }
 
-fn find_task<'a>(all: &'a [PyTask], id: &str) -> PyResult<&'a PyTask> {
+/// The task of `all` whose id is `id`; the error lists the ids of `all` (`set` names it).
+fn find_task<'a>(all: &'a [PyTask], id: &str, set: &'static str) -> PyResult<&'a PyTask> {
+    let key = catalog::run_key::TaskKey::parse(id);
     all.iter()
-        .find(|t| Some(t.job.task()) == catalog::run_key::TaskKey::parse(id))
+        .find(|t| Some(t.job.task()) == key)
         .ok_or_else(|| {
-            lib_err(format!(
-                "no task \"{id}\" (ids are \"<experiment> / <variant>\"; driftbench.tasks() lists them)"
-            ))
+            lib_err(UnknownTask {
+                id: id.to_string(),
+                set,
+                valid: all.iter().map(|t| t.job.task().to_string()).collect(),
+            })
         })
 }
 
@@ -183,18 +235,66 @@ fn result_dict<'py>(
     Ok(d)
 }
 
-/// Runs `job`'s task with the Python network `network`; raises what the network raised, or
-/// the library's error when the run could not be set up. The row is named after the network.
+/// `e` with the task named in front of its message (`task "<id>": ...`), of the same type
+/// where the type can be built from a message (else a `RuntimeError`); the cause is `e`'s own
+/// cause, or `e` itself where it has none (so a network's own exception and its traceback stay
+/// reachable as `__cause__`).
+fn in_task(py: Python<'_>, e: PyErr, task: &str) -> PyErr {
+    let message = format!("task \"{task}\": {}", e.value(py));
+    let cause = e.cause(py).unwrap_or_else(|| e.clone_ref(py));
+    let renamed = e
+        .get_type(py)
+        .call1((message.clone(),))
+        .ok()
+        .filter(|v| v.is_instance_of::<pyo3::exceptions::PyBaseException>())
+        .map(PyErr::from_value)
+        .unwrap_or_else(|| pyo3::exceptions::PyRuntimeError::new_err(message));
+    renamed.set_cause(py, Some(cause));
+    renamed
+}
+
+/// Runs `task` (as `job`: the task's job, possibly with other integrator settings) with the
+/// Python network `network`; raises what the network raised, or the library's error when the
+/// run could not be set up, with the task named ([`in_task`]). A network whose
+/// `handles(dims)` returns False, or that raises `NotApplicable` while it is built, raises
+/// `NotApplicable`. The row is named after the network.
 fn run_python(
+    py: Python<'_>,
+    task: &PyTask,
+    job: &catalog::experiment::Job,
+    network: &Bound<'_, PyAny>,
+) -> PyResult<(RunRecord, RunRow, Callbacks)> {
+    let id = task.job.task().to_string();
+    run_python_unnamed(task, job, network).map_err(|e| in_task(py, e, &id))
+}
+
+/// [`run_python`] without the task in its errors.
+fn run_python_unnamed(
+    task: &PyTask,
     job: &catalog::experiment::Job,
     network: &Bound<'_, PyAny>,
 ) -> PyResult<(RunRecord, RunRow, Callbacks)> {
     let name = network_name(network)?;
+    if let Some(handles) = network.getattr_opt("handles")? {
+        if !handles.call1((task.dims,))?.is_truthy()? {
+            return Err(NotApplicable::new_err(format!(
+                "{name} does not handle this task's QP ({}): its handles(dims) returned False",
+                task.dims.describe()
+            )));
+        }
+    }
     let callbacks = SharedCallbacks::default();
     let build = |dims| {
         PyNetwork::new(network, dims, callbacks.clone())
             .map(|n| Box::new(n) as Box<dyn NeuralSolver>)
-            .map_err(|e| SetupError::CustomNetwork(e.to_string()))
+            .map_err(|e| {
+                let message = e.to_string();
+                callbacks
+                    .lock()
+                    .unwrap_or_else(|p| p.into_inner())
+                    .keep_error(e);
+                SetupError::CustomNetwork(message)
+            })
     };
     let record = run_job_with_network(job, &build);
     let mut calls = std::mem::take(&mut *callbacks.lock().unwrap_or_else(|p| p.into_inner()));
@@ -222,15 +322,23 @@ fn check_setup(record: &RunRecord) -> PyResult<()> {
 
 /// `scoring`: None (the task's), "every-step", "off", or a number of instants.
 fn parse_scoring(value: &Bound<'_, PyAny>) -> PyResult<Scoring> {
-    if let Ok(n) = value.extract::<usize>() {
-        return Ok(Scoring::MaxInstants(n));
+    let says = "scoring must be \"every-step\", \"off\" or a number of instants (an int >= 0)";
+    if value.is_instance_of::<pyo3::types::PyInt>() {
+        return value
+            .extract::<usize>()
+            .map(Scoring::MaxInstants)
+            .map_err(|_| pyo3::exceptions::PyValueError::new_err(format!("{says}, got {value}")));
     }
-    match value.extract::<String>()?.as_str() {
+    let Ok(text) = value.extract::<String>() else {
+        return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+            "{says}, got {}",
+            type_name(value)
+        )));
+    };
+    match text.as_str() {
         "every-step" => Ok(Scoring::EveryStep),
         "off" => Ok(Scoring::Off),
-        other => Err(lib_err(format!(
-            "scoring must be \"every-step\", \"off\" or a number of instants, got \"{other}\""
-        ))),
+        other => Err(lib_err(format!("{says}, got \"{other}\""))),
     }
 }
 
@@ -278,24 +386,59 @@ fn simulate<'py>(
         let row = run_row(&record, reproduce::revision::REVISION);
         (record, row, Callbacks::default())
     } else {
-        run_python(&job, network)?
+        run_python(py, task, &job, network)?
     };
     result_dict(py, &record, &row, &calls)
 }
 
-/// Scores Python networks on the standard task set (or on `tasks`, a subset of it) the way the
-/// leaderboard scores the suite's own networks: each runs every task, its rows join the stored
-/// `results/runs.csv`, and `records::leaderboard::leaderboard` ranks them all. `entries` is a
-/// dict name -> network or a list of networks (named by their `name`, else their class).
-/// Returns {"leaderboard": rows, "runs": the networks' rows}, each a list of dicts in the
-/// schema of results/leaderboard.csv and results/runs.csv; with `out_dir`, writes both files
-/// there.
+/// The tasks of `tasks=`: each a `Task` or an id (`"<experiment> / <variant>"`), every one in
+/// the standard task set `standard`; the error lists the standard ids.
+fn chosen_tasks(standard: &[PyTask], given: &Bound<'_, PyAny>) -> PyResult<Vec<PyTask>> {
+    if given.is_instance_of::<pyo3::types::PyString>() {
+        return Err(pyo3::exceptions::PyTypeError::new_err(
+            "tasks= takes a list of tasks or ids, not one id: write tasks=[\"<experiment> / <variant>\"]",
+        ));
+    }
+    let items = given.try_iter().map_err(|_| {
+        pyo3::exceptions::PyTypeError::new_err(
+            "tasks= takes a list of Task objects or ids (\"<experiment> / <variant>\")",
+        )
+    })?;
+    items
+        .map(|item| {
+            let item = item?;
+            let id = if let Ok(t) = item.cast::<PyTask>() {
+                t.get().job.task().to_string()
+            } else if let Ok(id) = item.extract::<String>() {
+                id
+            } else {
+                return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+                    "tasks= takes Task objects or ids (\"<experiment> / <variant>\"), got {}",
+                    type_name(&item)
+                )));
+            };
+            find_task(standard, &id, "standard ").cloned()
+        })
+        .collect()
+}
+
+/// Scores Python networks on the standard task set (or on `tasks`, a subset of it, as Task
+/// objects or ids) the way the leaderboard scores the suite's own networks: each runs every
+/// task it handles, its rows join the stored `results/runs.csv`, and
+/// `records::leaderboard::leaderboard` ranks them all. A task a network does not handle
+/// (`handles(dims)` False, or `NotApplicable` raised while it is built) is N/A for it: no row,
+/// so it is ranked on the tasks it ran, as the suite's zeroing networks are. Any other
+/// exception stops the call, the task named. `entries` is a dict name -> network or a list of
+/// networks (named by their `name`, else their class). Returns {"leaderboard": rows, "runs":
+/// the networks' rows (with `python_calls` and `python_seconds`), "not_applicable": a list of
+/// {"solver", "task", "reason"}}, the rows dicts in the schema of results/leaderboard.csv and
+/// results/runs.csv; with `out_dir`, writes both files there.
 #[pyfunction]
 #[pyo3(signature = (entries, *, tasks=None, root=None, out_dir=None))]
 fn leaderboard<'py>(
     py: Python<'py>,
     entries: &Bound<'py, PyAny>,
-    tasks: Option<Vec<PyTask>>,
+    tasks: Option<&Bound<'py, PyAny>>,
     root: Option<PathBuf>,
     out_dir: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyDict>> {
@@ -304,25 +447,34 @@ fn leaderboard<'py>(
     let standard = standard_tasks(Some(root.clone()))?;
     let chosen = match tasks {
         None => standard,
-        Some(given) => {
-            for t in &given {
-                let id = t.job.task();
-                if !standard.iter().any(|s| s.job.task() == id) {
-                    return Err(lib_err(format!(
-                        "task \"{id}\" is not in the standard task set (driftbench.standard_tasks())"
-                    )));
-                }
-            }
-            given
-        }
+        Some(given) => chosen_tasks(&standard, given)?,
     };
+    if chosen.is_empty() {
+        return Err(pyo3::exceptions::PyValueError::new_err(
+            "tasks= is empty: give the tasks to run (Task objects or ids), or leave it out for \
+             the standard task set",
+        ));
+    }
     let named: Vec<(String, Bound<'py, PyAny>)> = match entries.cast::<PyDict>() {
         Ok(d) => d
             .iter()
-            .map(|(k, v)| Ok((k.extract::<String>()?, v)))
+            .map(|(k, v)| {
+                let name = k.extract::<String>().map_err(|_| {
+                    pyo3::exceptions::PyTypeError::new_err(format!(
+                        "leaderboard's entries: the keys are the networks' names (str), got {}",
+                        type_name(&k)
+                    ))
+                })?;
+                Ok((name, v))
+            })
             .collect::<PyResult<_>>()?,
         Err(_) => entries
-            .try_iter()?
+            .try_iter()
+            .map_err(|_| {
+                pyo3::exceptions::PyTypeError::new_err(
+                    "leaderboard's entries: a dict name -> network, or a list of networks",
+                )
+            })?
             .map(|n| {
                 let n = n?;
                 Ok((network_name(&n)?, n))
@@ -330,6 +482,8 @@ fn leaderboard<'py>(
             .collect::<PyResult<_>>()?,
     };
     let mut fresh = Vec::new();
+    let mut costs = Vec::new();
+    let not_applicable = PyList::empty(py);
     for (name, network) in &named {
         let id = format!("{PYTHON_KIND}-{}", schemes::slug::slug(name));
         if stored
@@ -344,10 +498,22 @@ fn leaderboard<'py>(
             )));
         }
         for t in &chosen {
-            let (_, mut row, _) = run_python(&t.job, network)?;
-            row.solver = name.clone();
-            row.solver_id = id.clone();
-            fresh.push(row);
+            match run_python(py, t, &t.job, network) {
+                Ok((_, mut row, calls)) => {
+                    row.solver = name.clone();
+                    row.solver_id = id.clone();
+                    fresh.push(row);
+                    costs.push(calls);
+                }
+                Err(e) if e.is_instance_of::<NotApplicable>(py) => {
+                    let skipped = PyDict::new(py);
+                    skipped.set_item("solver", name)?;
+                    skipped.set_item("task", t.job.task().to_string())?;
+                    skipped.set_item("reason", e.value(py).str()?)?;
+                    not_applicable.append(skipped)?;
+                }
+                Err(e) => return Err(e),
+            }
         }
     }
     let mut all = stored;
@@ -367,9 +533,15 @@ fn leaderboard<'py>(
                 .map_err(|e| lib_err(format!("{}: {e}", path.display())))?;
         }
     }
+    let runs = csv_dicts(py, &runs_csv)?;
+    for (d, calls) in runs.iter().zip(&costs) {
+        d.set_item("python_calls", calls.calls)?;
+        d.set_item("python_seconds", calls.seconds)?;
+    }
     let out = PyDict::new(py);
     out.set_item("leaderboard", PyList::new(py, csv_dicts(py, &board_csv)?)?)?;
-    out.set_item("runs", PyList::new(py, csv_dicts(py, &runs_csv)?)?)?;
+    out.set_item("runs", PyList::new(py, runs)?)?;
+    out.set_item("not_applicable", not_applicable)?;
     Ok(out)
 }
 
@@ -419,27 +591,61 @@ fn score<'py>(
         if out_dir.is_some() {
             return Err(lib_err("out_dir is for a trajectory file"));
         }
-        let d = trajectory.cast::<PyDict>()?;
-        let get = |key: &str| -> PyResult<Option<Bound<'py, PyAny>>> { d.get_item(key) };
-        let rows = |v: Bound<'py, PyAny>| -> PyResult<Vec<Vec<f64>>> {
-            let a: numpy::PyArrayLike2<'py, f64, numpy::AllowTypeChange> = v.extract()?;
-            Ok(a.as_array()
+        let d = trajectory.cast::<PyDict>().map_err(|_| {
+            pyo3::exceptions::PyTypeError::new_err(format!(
+                "trajectory must be a file (a path: str or os.PathLike) or a dict of arrays \
+                 {{\"t\", \"theta\"[, \"thetadot\"]}}, got {}",
+                type_name(trajectory)
+            ))
+        })?;
+        const KEYS: [&str; 3] = ["t", "theta", "thetadot"];
+        for key in d.keys() {
+            let known = key
+                .extract::<String>()
+                .is_ok_and(|k| KEYS.contains(&k.as_str()));
+            if !known {
+                return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                    "the trajectory dict has the key {}; its keys are \"t\", \"theta\" and \
+                     optionally \"thetadot\"",
+                    key.repr()?
+                )));
+            }
+        }
+        let required = |key: &str| -> PyResult<Bound<'py, PyAny>> {
+            d.get_item(key)?.ok_or_else(|| {
+                pyo3::exceptions::PyValueError::new_err(format!(
+                    "the trajectory dict needs \"{key}\" (keys: \"t\", \"theta\", optionally \
+                     \"thetadot\")"
+                ))
+            })
+        };
+        let rows = |v: &Bound<'py, PyAny>, key: &str| -> PyResult<Vec<Vec<f64>>> {
+            let what =
+                format!("trajectory[\"{key}\"] (m x n: a row per instant, a column per joint)");
+            Ok(real_array::<Ix2>(v, &what)?
                 .rows()
                 .into_iter()
                 .map(|r| r.to_vec())
                 .collect())
         };
-        let t: numpy::PyArrayLike1<'py, f64, numpy::AllowTypeChange> = get("t")?
-            .ok_or_else(|| lib_err("the trajectory dict needs \"t\" and \"theta\""))?
-            .extract()?;
-        let theta =
-            rows(get("theta")?.ok_or_else(|| lib_err("the trajectory dict needs \"theta\""))?)?;
-        let thetadot = get("thetadot")?.map(rows).transpose()?;
-        let traj = Trajectory {
-            t: t.as_array().to_vec(),
-            theta,
-            thetadot,
-        };
+        let t: Vec<f64> = real_array::<Ix1>(&required("t")?, "trajectory[\"t\"]")?.to_vec();
+        let theta = rows(&required("theta")?, "theta")?;
+        let thetadot = d
+            .get_item("thetadot")?
+            .map(|v| rows(&v, "thetadot"))
+            .transpose()?;
+        let lengths = std::iter::once(("theta", theta.len()))
+            .chain(thetadot.as_ref().map(|v| ("thetadot", v.len())));
+        for (key, m) in lengths {
+            if m != t.len() {
+                return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                    "trajectory[\"{key}\"] has {m} rows, trajectory[\"t\"] {} instants: one row \
+                     per instant",
+                    t.len()
+                )));
+            }
+        }
+        let traj = Trajectory { t, theta, thetadot };
         let record = score_trajectory(&task.job, &traj).map_err(lib_err)?;
         let row = score_row(
             run_row(&record, git_rev),
@@ -454,6 +660,7 @@ fn score<'py>(
 #[pymodule]
 fn _driftbench(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("DriftbenchError", m.py().get_type::<DriftbenchError>())?;
+    m.add("NotApplicable", m.py().get_type::<NotApplicable>())?;
     m.add_class::<PyTask>()?;
     m.add_class::<PyQpDims>()?;
     m.add_function(wrap_pyfunction!(tasks, m)?)?;
@@ -462,5 +669,6 @@ fn _driftbench(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(leaderboard, m)?)?;
     m.add_function(wrap_pyfunction!(score, m)?)?;
+    m.add_function(wrap_pyfunction!(data_root, m)?)?;
     Ok(())
 }

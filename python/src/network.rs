@@ -13,14 +13,19 @@
 //! where it returns None, the library differences F. Only these calls cross into Python: the
 //! arm, the scheme, the integrator and the exact scoring stay in Rust.
 //!
+//! A result that is not a real array of the state's size, or that holds NaN or inf, is an
+//! exception of the call (a NaN would leave the integrator shrinking its step for ever).
 //! A Python exception inside a call cannot unwind through the integrator: from then on the
 //! network answers ydot = 0 (and a zero Jacobian) without calling Python, so the run ends at
 //! once with the network frozen (NaN would leave the integrator shrinking its step), and the
 //! first exception is kept ([`Callbacks::take_error`])
 //! to be raised to the caller once the run has stopped.
 
+use crate::arrays::real_array;
 use nalgebra::{DMatrix, DVector};
-use numpy::{AllowTypeChange, IntoPyArray, PyArrayLike1, PyArrayLike2};
+use numpy::ndarray::{Ix1, Ix2};
+use numpy::IntoPyArray;
+use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use schemes::qp::{Qp, QpDims};
@@ -28,7 +33,9 @@ use solvers::neural::NeuralSolver;
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
-/// The sizes of a task's QP, handed to a network's `state_dim`.
+/// The sizes of a task's QP, handed to a network's `state_dim` and `handles` (and a task's
+/// `dims`): x has `nx` entries, the joint command x[:dof] first, then the scheme's auxiliary
+/// variables.
 #[pyclass(name = "QpDims", module = "driftbench", frozen, get_all)]
 #[derive(Clone, Copy)]
 pub struct PyQpDims {
@@ -45,6 +52,16 @@ impl PyQpDims {
     fn __repr__(&self) -> String {
         format!(
             "QpDims(nx={}, n_eq={}, n_in={})",
+            self.nx, self.n_eq, self.n_in
+        )
+    }
+}
+
+impl PyQpDims {
+    /// `nx = .., n_eq = .., n_in = ..`, for messages.
+    pub fn describe(&self) -> String {
+        format!(
+            "nx = {}, n_eq = {}, n_in = {}",
             self.nx, self.n_eq, self.n_in
         )
     }
@@ -74,6 +91,11 @@ impl Callbacks {
     /// The first exception of the run, if any.
     pub fn take_error(&mut self) -> Option<PyErr> {
         self.error.take()
+    }
+
+    /// Keeps `e` unless an earlier exception is kept.
+    pub fn keep_error(&mut self, e: PyErr) {
+        self.error.get_or_insert(e);
     }
 }
 
@@ -118,25 +140,25 @@ impl PyNetwork {
                 "a network needs state_dim: an int, or a method state_dim(dims) -> int",
             )
         })?;
-        let state_dim: usize = if dim.is_callable() {
-            dim.call1((PyQpDims::from(dims),))?.extract()?
+        let value = if dim.is_callable() {
+            dim.call1((PyQpDims::from(dims),))?
         } else {
-            dim.extract()?
+            dim
         };
-        if state_dim < dims.nx {
-            return Err(pyo3::exceptions::PyValueError::new_err(format!(
-                "state_dim {state_dim} is below the QP's {} unknowns: the network's state must \
-                 start with the joint command x",
-                dims.nx
-            )));
-        }
+        let state_dim = read_state_dim(&value, dims.nx)?;
         let needs_qp_dot = match object.getattr_opt("needs_qp_dot")? {
             Some(v) => v.is_truthy()?,
             None => false,
         };
+        let name = network_name(object)?;
+        for method in ["rhs", "jacobian"] {
+            if let Some(m) = object.getattr_opt(method)? {
+                check_arity(&m, &name, method, needs_qp_dot)?;
+            }
+        }
         Ok(PyNetwork {
             object: object.clone().unbind(),
-            name: network_name(object)?,
+            name,
             state_dim,
             needs_qp_dot,
             has_jacobian: object.hasattr("jacobian")?,
@@ -218,18 +240,123 @@ fn matrix<'py>(py: Python<'py>, m: &DMatrix<f64>) -> Bound<'py, numpy::PyArray2<
     numpy::ndarray::Array2::from_shape_fn(m.shape(), |(i, j)| m[(i, j)]).into_pyarray(py)
 }
 
+/// The largest state a network may declare: its dense Jacobian (state_dim^2 floats) is then at
+/// most 128 MiB. The papers' networks have at most a few dozen states (x, multipliers,
+/// auxiliary variables); a larger `state_dim` is a mistake, not a network.
+const MAX_STATE_DIM: usize = 4096;
+
+/// `state_dim` (the attribute, or what the method returned): an int from `nx` (the state starts
+/// with the QP's unknowns x) to [`MAX_STATE_DIM`].
+fn read_state_dim(value: &Bound<'_, PyAny>, nx: usize) -> PyResult<usize> {
+    if !value.is_instance_of::<pyo3::types::PyInt>() {
+        return Err(PyTypeError::new_err(format!(
+            "state_dim must be an int (or a method state_dim(dims) returning one), got {}",
+            value
+                .get_type()
+                .name()
+                .map_or_else(|_| "an object".to_string(), |n| n.to_string())
+        )));
+    }
+    match value.extract::<usize>() {
+        Ok(n) if (nx..=MAX_STATE_DIM).contains(&n) => Ok(n),
+        _ => Err(pyo3::exceptions::PyValueError::new_err(format!(
+            "state_dim {value} is outside {nx}..={MAX_STATE_DIM}: the network's state starts with \
+             the QP's {nx} unknowns x, and a dense Jacobian of more than {MAX_STATE_DIM} states is \
+             refused"
+        ))),
+    }
+}
+
+/// How many positional arguments a callable takes: (required, most; None for `*args`), or
+/// None when Python cannot tell (a builtin without a signature).
+fn positional_arity(f: &Bound<'_, PyAny>) -> PyResult<Option<(usize, Option<usize>)>> {
+    let inspect = f.py().import("inspect")?;
+    let Ok(signature) = inspect.call_method1("signature", (f,)) else {
+        return Ok(None);
+    };
+    let parameter = inspect.getattr("Parameter")?;
+    let kind_of = |k: &str| parameter.getattr(k);
+    let (only, either, var) = (
+        kind_of("POSITIONAL_ONLY")?,
+        kind_of("POSITIONAL_OR_KEYWORD")?,
+        kind_of("VAR_POSITIONAL")?,
+    );
+    let empty = parameter.getattr("empty")?;
+    let (mut required, mut most) = (0, Some(0));
+    for p in signature
+        .getattr("parameters")?
+        .call_method0("values")?
+        .try_iter()?
+    {
+        let p = p?;
+        let kind = p.getattr("kind")?;
+        if kind.eq(&var)? {
+            most = None;
+        } else if kind.eq(&only)? || kind.eq(&either)? {
+            most = most.map(|m| m + 1);
+            if p.getattr("default")?.is(&empty) {
+                required += 1;
+            }
+        }
+    }
+    Ok(Some((required, most)))
+}
+
+/// Checks that the network's `method` (`rhs` or `jacobian`) can be called as the library
+/// calls it: `(t, y, qp)`, or `(t, y, qp, qp_dot)` where the network sets `needs_qp_dot`.
+/// The error says which of the two the method takes and what to set.
+fn check_arity(
+    method: &Bound<'_, PyAny>,
+    network: &str,
+    name: &str,
+    needs_qp_dot: bool,
+) -> PyResult<()> {
+    let Some((required, most)) = positional_arity(method)? else {
+        return Ok(());
+    };
+    let takes = |n: usize| required <= n && most.is_none_or(|m| n <= m);
+    let given = if needs_qp_dot { 4 } else { 3 };
+    if takes(given) {
+        return Ok(());
+    }
+    let hint = if !needs_qp_dot && takes(4) {
+        format!(
+            "{network}.{name} takes (t, y, qp, qp_dot) but the network does not set \
+             needs_qp_dot = True, so the library would call it with (t, y, qp): set \
+             needs_qp_dot = True (e.g. a class attribute) to get dQP/dt as the fourth argument"
+        )
+    } else if needs_qp_dot && takes(3) {
+        format!(
+            "{network}.{name} takes (t, y, qp) but the network sets needs_qp_dot = True, so \
+             the library would call it with (t, y, qp, qp_dot): add the qp_dot argument, or \
+             drop needs_qp_dot"
+        )
+    } else {
+        format!(
+            "{network}.{name} must take (t, y, qp), or (t, y, qp, qp_dot) with needs_qp_dot = \
+             True; it takes {required} to {} positional arguments",
+            most.map_or("any number of".to_string(), |m| m.to_string())
+        )
+    };
+    Err(PyTypeError::new_err(hint))
+}
+
 /// Reads a 1-D float array of length `n` (lists and integer arrays are converted).
 fn read_vector(value: &Bound<'_, PyAny>, n: usize, what: &str) -> PyResult<Vec<f64>> {
-    let a: PyArrayLike1<'_, f64, AllowTypeChange> = value.extract().map_err(|_| {
-        pyo3::exceptions::PyTypeError::new_err(format!(
-            "{what} must return a 1-D array of {n} floats"
-        ))
-    })?;
-    let v: Vec<f64> = a.as_array().iter().copied().collect();
+    let v: Vec<f64> = real_array::<Ix1>(value, &format!("the result of {what}"))?
+        .iter()
+        .copied()
+        .collect();
     if v.len() != n {
         return Err(pyo3::exceptions::PyValueError::new_err(format!(
             "{what} returned {} entries, the network's state has {n}",
             v.len()
+        )));
+    }
+    if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+        return Err(pyo3::exceptions::PyValueError::new_err(format!(
+            "{what} returned a non-finite entry ({} at index {i}): the run stops here",
+            v[i]
         )));
     }
     Ok(v)
@@ -291,17 +418,17 @@ impl NeuralSolver for PyNetwork {
             if r.is_none() {
                 return Ok(None);
             }
-            let a: PyArrayLike2<'_, f64, AllowTypeChange> = r.extract().map_err(|_| {
-                pyo3::exceptions::PyTypeError::new_err(format!(
-                    "jacobian must return a {n} x {n} float array or None"
-                ))
-            })?;
-            let a = a.as_array();
+            let a = real_array::<Ix2>(r, "the result of jacobian (an n x n array or None)")?;
             if a.shape() != [n, n] {
                 return Err(pyo3::exceptions::PyValueError::new_err(format!(
                     "jacobian returned shape {:?}, the network's state has {n} entries",
                     a.shape()
                 )));
+            }
+            if a.iter().any(|x| !x.is_finite()) {
+                return Err(pyo3::exceptions::PyValueError::new_err(
+                    "jacobian returned a non-finite entry (NaN or inf): the run stops here",
+                ));
             }
             Ok(Some(DMatrix::from_fn(n, n, |i, j| a[[i, j]])))
         };

@@ -1,18 +1,29 @@
 //! The tasks as Python objects: one per (experiment, variant) of the experiment files, with the
-//! runs the suite makes of it (the exact column and the papers' networks) and everything a
+//! runs the suite makes of it (the exact column and the papers' networks), everything a
 //! network run of the task uses (robot, path, poses, scheme, the variant's network integrator,
-//! scoring and network start).
+//! scoring and network start) and the shape of the QP the scheme poses at every instant.
 
-use crate::error::NoSolver;
-use catalog::error::ExperimentFileError;
+use crate::error::{NoSolver, TaskError};
+use crate::network::PyQpDims;
 use catalog::experiment::{load_dir, Job, SolverChoice};
 use pyo3::prelude::*;
+use schemes::scheme::Level;
 use serde::Serialize;
-use simulation::run::check_job;
-use std::path::{Path, PathBuf};
+use simulation::run::{check_job, qp_shape};
+use std::path::Path;
 
-/// One task of the suite (module docs). Attributes are read-only; `path`, `scheme` and
-/// `integrator` are dicts in the experiment files' own fields.
+/// One task of the suite: a scheme on a path with a robot, as an experiment file's variant
+/// defines it. Attributes are read-only; `path`, `scheme` and `integrator` are dicts in the
+/// experiment files' own fields.
+///
+/// At every instant the scheme poses the QP
+/// `min x'Px/2 + q'x  s.t.  A x = b,  G x <= h,  lower <= x <= upper` with `nx` unknowns,
+/// `n_eq` equality rows and `n_in` inequality rows (`dims`, what a network's `state_dim` and
+/// `handles` get). x starts with the joint command: its first `dof` entries are thetadot
+/// (`level == "velocity"`) or thetaddot (`level == "acceleration"`, zhang2018); the remaining
+/// `nx - dof` entries (`n_aux`) are the scheme's auxiliary variables, e.g. the bound
+/// p = |thetadot|_inf of the infinity norm on the jia2019 and zhong2021 tasks (nx = dof + 1).
+/// Only x[:dof] drives the arm; the score compares x[:dof] with the exact optimum's.
 #[pyclass(name = "Task", module = "driftbench", frozen)]
 #[derive(Clone)]
 pub struct PyTask {
@@ -20,8 +31,10 @@ pub struct PyTask {
     pub job: Job,
     /// The suite's own runs of the task, exact column first where it has one.
     pub runs: Vec<Job>,
-    /// The project root the task was read from.
-    pub root: PathBuf,
+    /// The sizes of the scheme's QP.
+    pub dims: PyQpDims,
+    /// Whether x starts with thetadot or thetaddot.
+    pub level: Level,
 }
 
 /// A value the experiment files serialise, as the Python object JSON makes of it.
@@ -55,10 +68,44 @@ impl PyTask {
     fn robot(&self) -> &str {
         &self.job.robot
     }
-    /// Joint count.
+    /// Joint count: the joint command is x[:dof].
     #[getter]
     fn dof(&self) -> usize {
         self.job.theta0.len()
+    }
+    /// Unknowns of the QP: the joint command x[:dof], then `n_aux` auxiliary variables.
+    #[getter]
+    fn nx(&self) -> usize {
+        self.dims.nx
+    }
+    /// Equality rows of the QP (A x = b).
+    #[getter]
+    fn n_eq(&self) -> usize {
+        self.dims.n_eq
+    }
+    /// Inequality rows of the QP (G x <= h).
+    #[getter]
+    fn n_in(&self) -> usize {
+        self.dims.n_in
+    }
+    /// Auxiliary variables of the QP: `nx - dof` (1 on the jia2019 and zhong2021 tasks: the
+    /// infinity norm's bound p = |thetadot|_inf).
+    #[getter]
+    fn n_aux(&self) -> usize {
+        self.dims.nx - self.job.theta0.len()
+    }
+    /// The QP's sizes as a `QpDims` (what `state_dim(dims)` and `handles(dims)` get).
+    #[getter]
+    fn dims(&self) -> PyQpDims {
+        self.dims
+    }
+    /// `"velocity"` (x[:dof] is thetadot) or `"acceleration"` (x[:dof] is thetaddot).
+    #[getter]
+    fn level(&self) -> &'static str {
+        match self.level {
+            Level::Velocity => "velocity",
+            Level::Acceleration => "acceleration",
+        }
     }
     /// The path: name, duration and the pose fields (rotation, phase, scale, ...).
     #[getter]
@@ -112,12 +159,15 @@ impl PyTask {
     }
     fn __repr__(&self) -> String {
         format!(
-            "Task('{}', robot='{}', path='{}', T={} s, scheme='{}')",
+            "Task('{}', robot='{}', path='{}', T={} s, scheme='{}', nx={}, n_eq={}, n_in={})",
             self.id(),
             self.job.robot,
             self.job.path.name,
             self.job.path.duration,
-            self.scheme_name()
+            self.scheme_name(),
+            self.dims.nx,
+            self.dims.n_eq,
+            self.dims.n_in
         )
     }
 }
@@ -137,7 +187,7 @@ impl PyTask {
 }
 
 /// Every task of the experiment files under `root/experiments`, in file order.
-pub fn load_tasks(root: &Path) -> Result<Vec<PyTask>, ExperimentFileError> {
+pub fn load_tasks(root: &Path) -> Result<Vec<PyTask>, TaskError> {
     let files = load_dir(&root.join("experiments"), check_job)?;
     let mut tasks = Vec::new();
     for file in &files {
@@ -160,10 +210,15 @@ pub fn load_tasks(root: &Path) -> Result<Vec<PyTask>, ExperimentFileError> {
                     expected_failure: None,
                     ..first.clone()
                 };
+                let (dims, level) = qp_shape(&job).map_err(|source| TaskError::Shape {
+                    task: job.task().to_string(),
+                    source,
+                })?;
                 tasks.push(PyTask {
                     job,
                     runs,
-                    root: root.to_path_buf(),
+                    dims: dims.into(),
+                    level,
                 });
             }
         }

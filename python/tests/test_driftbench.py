@@ -1,11 +1,16 @@
 """driftbench from Python: tasks, runs of numpy networks against their Rust twins, errors, the
-leaderboard. Run from anywhere: the project root is this checkout."""
+leaderboard, the package outside the checkout. Run from anywhere: the tests name this checkout
+as root= where they compare with it."""
 
+import ast
 import math
+import os
 import pathlib
 import re
 import shutil
 import subprocess
+import sys
+import textwrap
 
 import numpy as np
 import pytest
@@ -32,7 +37,7 @@ def test_tasks_are_objects_with_the_experiment_files_fields():
     clover = driftbench.task(CLOVER, root=ROOT)
     assert clover.paper == "jia2019" and clover.robot == "jaco2-pen" and clover.dof == 6
     assert clover.path["name"] == "four-leaf-clover" and clover.duration == 5.0
-    assert clover.scheme["kind"] == "jia2019" and clover.scheme["tau"] == 0.4
+    assert clover.scheme["kind"] == "vltco" and clover.scheme["tau"] == 0.4
     assert clover.theta0 == clover.theta_ref and len(clover.theta0) == 6
     assert clover.integrator["method"] == "bdf" and clover.integrator["rtol"] == 1e-6
     assert "exact" in clover.solvers and "VLTCO" in clover.scheme_name
@@ -50,8 +55,8 @@ def test_library_errors_are_python_exceptions_with_the_library_messages():
         driftbench.simulate(clover, Gnn(), rtol=-1.0)
     with pytest.raises(driftbench.DriftbenchError, match='has no solver "FOO"'):
         driftbench.simulate(clover, "FOO")
-    # The ZNN cannot be built for the clover's inequality-constrained QP: a setup error.
-    with pytest.raises(driftbench.DriftbenchError, match="equality-only"):
+    # The ZNN does not handle the clover's inequality-constrained QP (its handles(dims)).
+    with pytest.raises(driftbench.NotApplicable, match=rf'task "{CLOVER}": .*handles\(dims\) returned False'):
         driftbench.simulate(clover, Znn())
 
 
@@ -60,7 +65,7 @@ def test_an_exception_in_the_network_is_raised_after_the_run():
         def rhs(self, t, y, qp):
             raise ZeroDivisionError("inside rhs")
 
-    with pytest.raises(RuntimeError, match=r"rhs at t = ") as info:
+    with pytest.raises(RuntimeError, match=rf'task "{CLOVER}": GNN \(numpy\)\.rhs at t = ') as info:
         driftbench.simulate(driftbench.task(CLOVER, root=ROOT), Broken())
     assert isinstance(info.value.__cause__, ZeroDivisionError)
 
@@ -134,10 +139,14 @@ def test_a_numpy_network_on_the_leaderboard_beside_the_built_in_ones(tmp_path):
         return [c for c in header if not re.fullmatch(r"drift_\d+", c)]
 
     assert columns(tmp_path / "runs.csv") == columns(ROOT / "results" / "runs.csv")
+    # The Python call counts stay on the runs' rows.
+    assert all(r["python_calls"] > 0 and r["python_seconds"] > 0 for r in board["runs"])
+    assert board["not_applicable"] == []
     with pytest.raises(driftbench.DriftbenchError, match="already on the leaderboard"):
         driftbench.leaderboard({"LVI-PDNN": Gnn()}, tasks=standard[:1], root=ROOT)
     clover = driftbench.task(CLOVER, root=ROOT)
-    with pytest.raises(driftbench.DriftbenchError, match="not in the standard task set"):
+    valid = re.escape(standard[0].id)
+    with pytest.raises(driftbench.DriftbenchError, match=rf'no standard task "{CLOVER}".*valid ids: .*{valid}'):
         driftbench.leaderboard([Gnn()], tasks=[clover], root=ROOT)
 
 
@@ -191,3 +200,221 @@ def test_an_octave_mat_file_scores_as_its_csv(tmp_path):
     np.testing.assert_array_equal(from_mat["drift"], from_csv["drift"])
     assert from_mat["score_max_dx"] == from_csv["score_max_dx"]
     assert from_mat["max_pos_err"] < 1e-9
+
+
+def test_tasks_expose_the_qp_dimensions_and_the_meaning_of_x():
+    clover = driftbench.task(CLOVER, root=ROOT)
+    # jia2019's VLTCO: x = [thetadot; p], p = |thetadot|_inf; G holds |thetadot_i| <= p.
+    assert (clover.nx, clover.n_aux, clover.n_eq, clover.n_in) == (7, 1, 3, 12)
+    assert clover.level == "velocity" and clover.nx == clover.dof + 1
+    assert (clover.dims.nx, clover.dims.n_eq, clover.dims.n_in) == (7, 3, 12)
+    circle = driftbench.task(CIRCLE, root=ROOT)
+    assert (circle.nx, circle.n_aux, circle.n_in) == (circle.dof, 0, 0)
+    zhong = [t for t in driftbench.tasks(root=ROOT) if t.paper == "zhong2021"]
+    assert zhong and all(t.nx == t.dof + 1 for t in zhong)
+    zhang = [t for t in driftbench.tasks(root=ROOT) if t.paper == "zhang2018"]
+    assert zhang and all(t.level == "acceleration" for t in zhang)
+    for text in (driftbench.Task.__doc__, (ROOT / "python" / "README.md").read_text()):
+        assert "auxiliary" in text and "dof + 1" in text
+
+
+def test_a_network_that_handles_some_tasks_is_ranked_on_those(tmp_path):
+    standard = driftbench.standard_tasks(root=ROOT)
+    equality = [t for t in standard if t.n_in == 0]
+    inequality = [t for t in standard if t.n_in > 0]
+    assert equality and inequality
+    chosen = [equality[0].id, inequality[0].id]  # ids, not Task objects
+
+    class Declines(Gnn):
+        """Says N/A by raising NotApplicable while it is built, on the inequality tasks."""
+
+        def state_dim(self, dims):
+            if dims.n_in:
+                raise driftbench.NotApplicable("no inequality rows, please")
+            return dims.nx
+
+    board = driftbench.leaderboard(
+        {"ZNN (numpy)": Znn(), "GNN declining": Declines()}, tasks=chosen, root=ROOT
+    )
+    for name in ("ZNN (numpy)", "GNN declining"):
+        runs = [r for r in board["runs"] if r["solver"] == name]
+        assert [f"{r['experiment']} / {r['variant_id']}" for r in runs] == [equality[0].id]
+        skipped = [n for n in board["not_applicable"] if n["solver"] == name]
+        assert [n["task"] for n in skipped] == [inequality[0].id]
+        ranked = [r for r in board["leaderboard"] if r["solver"] == name]
+        assert len(ranked) == 1 and ranked[0]["task_set"] != "standard"
+        assert ranked[0]["tasks"] == 1 and ranked[0]["standard_runs"] == 1
+    reasons = {n["solver"]: n["reason"] for n in board["not_applicable"]}
+    assert "handles(dims) returned False" in reasons["ZNN (numpy)"]
+    assert "no inequality rows, please" in reasons["GNN declining"]
+
+    class Broken(Gnn):
+        def rhs(self, t, y, qp):
+            raise ZeroDivisionError("inside rhs")
+
+    with pytest.raises(RuntimeError, match=rf'task "{re.escape(equality[0].id)}"') as info:
+        driftbench.leaderboard({"Broken": Broken()}, tasks=chosen, root=ROOT)
+    assert isinstance(info.value.__cause__, ZeroDivisionError)
+
+
+def test_tasks_are_given_by_id_and_unknown_ids_are_listed():
+    standard = driftbench.standard_tasks(root=ROOT)
+    with pytest.raises(driftbench.DriftbenchError, match=r'no standard task "nope / x".*valid ids: ') as info:
+        driftbench.leaderboard([Gnn()], tasks=["nope / x"], root=ROOT)
+    assert all(t.id in str(info.value) for t in standard)
+    with pytest.raises(TypeError, match="not one id"):
+        driftbench.leaderboard([Gnn()], tasks=standard[0].id, root=ROOT)
+    with pytest.raises(TypeError, match="Task objects or ids"):
+        driftbench.leaderboard([Gnn()], tasks=[3], root=ROOT)
+    with pytest.raises(driftbench.DriftbenchError, match=re.escape(CIRCLE)):
+        driftbench.task("kong2019-circle / nope", root=ROOT)
+
+
+def test_a_missing_needs_qp_dot_is_diagnosed_with_a_hint():
+    class NoQpDot(Znn):
+        needs_qp_dot = False
+
+    circle = driftbench.task(CIRCLE, root=ROOT)
+    with pytest.raises(TypeError, match=r"\.rhs takes \(t, y, qp, qp_dot\).*set needs_qp_dot = True"):
+        driftbench.simulate(circle, NoQpDot())
+
+    class Extra(Gnn):
+        needs_qp_dot = True
+
+    with pytest.raises(TypeError, match=r"\.rhs takes \(t, y, qp\) but the network sets needs_qp_dot"):
+        driftbench.simulate(circle, Extra())
+
+
+def test_bad_input_from_python_raises_errors_naming_the_field():
+    circle = driftbench.task(CIRCLE, root=ROOT)
+
+    class Complex(Gnn):
+        def rhs(self, t, y, qp):
+            return y * 1j
+
+    with pytest.raises(RuntimeError, match="rhs at t = 0") as info:
+        driftbench.simulate(circle, Complex())
+    assert isinstance(info.value.__cause__, TypeError)
+    assert "real numbers" in str(info.value.__cause__)
+
+    class Flat(Gnn):
+        def jacobian(self, t, y, qp):
+            return np.zeros(len(y))
+
+    with pytest.raises(RuntimeError, match="jacobian at t = ") as info:
+        driftbench.simulate(circle, Flat())
+    assert "2-D array" in str(info.value.__cause__)
+
+    class Nan(Gnn):
+        def rhs(self, t, y, qp):
+            return np.full(len(y), np.nan)
+
+    with pytest.raises(RuntimeError, match="rhs at t = 0") as info:
+        driftbench.simulate(circle, Nan())
+    assert "non-finite entry (NaN at index 0)" in str(info.value.__cause__)
+    run = driftbench.simulate(circle, Znn())
+    t, theta = run["trace"]["t"], run["trace"]["theta"]
+    with pytest.raises(ValueError, match=r"'thetadott'"):
+        driftbench.score(circle, {"t": t, "theta": theta, "thetadott": theta})
+    with pytest.raises(ValueError, match=r'trajectory\["theta"\].*2-D array'):
+        driftbench.score(circle, {"t": t, "theta": theta[:, 0]})
+    with pytest.raises(TypeError, match=r'trajectory\["theta"\].* must be real numbers'):
+        driftbench.score(circle, {"t": t, "theta": theta + 0j})
+    with pytest.raises(ValueError, match='needs "theta"'):
+        driftbench.score(circle, {"t": t})
+    with pytest.raises(TypeError, match="a file .* or a dict of arrays"):
+        driftbench.score(circle, 3.0)
+    with pytest.raises(ValueError, match=r'theta"\] has 7 rows, trajectory\["t"\] '):
+        driftbench.score(circle, {"t": t, "theta": theta[:7]})
+    for bad, error in ((-1, ValueError), (10**12, ValueError), ("7", TypeError)):
+        with pytest.raises(error, match=r"state_dim"):
+            driftbench.simulate(circle, type("Sized", (Gnn,), {"state_dim": bad})())
+    with pytest.raises(ValueError, match=r"scoring must be .* got -3"):
+        driftbench.simulate(circle, Znn(), scoring=-3)
+    with pytest.raises(TypeError, match=r"scoring must be .* got float"):
+        driftbench.simulate(circle, Znn(), scoring=2.5)
+    with pytest.raises(ValueError, match="tasks= is empty"):
+        driftbench.leaderboard([Gnn()], tasks=[], root=ROOT)
+    with pytest.raises(TypeError, match="rtoll"):
+        driftbench.simulate(circle, Znn(), rtoll=1e-6)
+
+
+def test_errors_about_the_root_name_root_not_a_command_line_flag(tmp_path):
+    with pytest.raises(driftbench.DriftbenchError, match=r"root=.*no experiments/ folder") as info:
+        driftbench.tasks(root=tmp_path)
+    assert "--root" not in str(info.value)
+    (tmp_path / "experiments").mkdir()
+    with pytest.raises(driftbench.DriftbenchError, match=r"root=.*holds no experiment file") as info:
+        driftbench.standard_tasks(root=tmp_path)
+    assert "--" not in str(info.value)
+
+
+OUTSIDE = textwrap.dedent(
+    """
+    import json, driftbench
+    from driftbench.networks import Gnn
+    standard = driftbench.standard_tasks()
+    board = driftbench.leaderboard([Gnn()], tasks=[standard[0].id])
+    print(json.dumps({
+        "tasks": len(driftbench.tasks()),
+        "standard": [t.id for t in standard],
+        "root": str(driftbench.data_root()),
+        "ranked": any(r["solver"] == "GNN (numpy)" for r in board["leaderboard"]),
+    }))
+    """
+)
+
+
+def outside(tmp_path, code):
+    """Runs `code` with the installed package from a directory outside the checkout, with a
+    fresh cache (where the package unpacks its data)."""
+    cwd = tmp_path / "elsewhere"
+    cwd.mkdir(exist_ok=True)
+    assert not any((d / "experiments").is_dir() for d in [cwd, *cwd.parents])
+    env = dict(os.environ, XDG_CACHE_HOME=str(tmp_path / "cache"))
+    out = subprocess.run(
+        [sys.executable, "-c", code], cwd=cwd, env=env, capture_output=True, text=True
+    )
+    assert out.returncode == 0, out.stderr
+    return out.stdout
+
+
+def test_the_installed_package_works_outside_the_checkout(tmp_path):
+    import json
+
+    # The acceptance command, as a user types it.
+    count = outside(tmp_path, "import driftbench; print(len(driftbench.tasks()))")
+    assert int(count) == len(driftbench.tasks(root=ROOT))
+    got = json.loads(outside(tmp_path, OUTSIDE))
+    assert got["tasks"] == len(driftbench.tasks(root=ROOT))
+    assert got["standard"] == [t.id for t in driftbench.standard_tasks(root=ROOT)]
+    assert got["ranked"]
+    # The package's data is the repository's own files, byte for byte (the wheel embeds them
+    # at build time), and an edit in the unpacked copy does not survive the next process.
+    data = pathlib.Path(got["root"])
+    assert data.is_relative_to(tmp_path / "cache")
+    files = sorted(p.relative_to(data) for p in data.rglob("*") if p.is_file())
+    assert pathlib.Path("experiments/cross.toml") in files
+    assert pathlib.Path("results/runs.csv") in files
+    assert any(p.parts[0] == "papers" for p in files)
+    for rel in files:
+        assert (data / rel).read_bytes() == (ROOT / rel).read_bytes(), rel
+    (data / "experiments" / "stray.toml").write_text("not an experiment file")
+    (data / "results" / "runs.csv").write_text("edited")
+    outside(tmp_path, "import driftbench; driftbench.standard_tasks()")
+    assert not (data / "experiments" / "stray.toml").exists()
+    assert (data / "results" / "runs.csv").read_bytes() == (ROOT / "results" / "runs.csv").read_bytes()
+
+
+def test_the_type_stubs_cover_the_module():
+    package = pathlib.Path(driftbench.__file__).parent
+    assert (package / "py.typed").exists()
+    stub = ast.parse((package / "_driftbench.pyi").read_text())
+    stubbed = {n.name for n in stub.body if isinstance(n, (ast.FunctionDef, ast.ClassDef))}
+    public = {n for n in dir(driftbench._driftbench) if not n.startswith("_")}
+    assert public == stubbed
+    task_props = {
+        n.name for c in stub.body if isinstance(c, ast.ClassDef) and c.name == "Task" for n in c.body
+        if isinstance(n, ast.FunctionDef)
+    }
+    assert task_props == {n for n in dir(driftbench.Task) if not n.startswith("_")}

@@ -153,6 +153,7 @@ pub const MEASURED: &[Column] = &[
     ("net_error_max_after_1s", |r| r.net_error_max_after_1s),
     ("score_max_dx", |r| r.score_max_dx),
     ("score_rms_dx", |r| r.score_rms_dx),
+    ("score_rms_dx_after_1s", |r| r.score_rms_dx_after_1s),
     ("score_max_obj_gap", |r| r.score_max_obj_gap),
     ("score_max_violation", |r| r.score_max_violation),
 ];

@@ -18,7 +18,8 @@
 //!
 //! **Scores**, per set, as qpbenchmark's `results.py`:
 //! - success rate: share of the set's tasks where the run completed *and* is within tolerance
-//!   of the exact optimum ([`within_tolerance`]);
+//!   of the exact optimum once settled ([`within_tolerance`]: the RMS distance over t >= 1 s,
+//!   after the start-up transient of a network started from zero);
 //! - correct rate: share of the set's tasks where the run's own verdict is right: it failed, or
 //!   it completed within tolerance. A run that completes but misses the tolerance is the one
 //!   incorrect outcome (qpbenchmark: "found" equals "found and valid"). With no failed run it
@@ -51,14 +52,19 @@ pub const STANDARD_PAPER: &str = "cross";
 /// The [`LeaderboardRow::task_set`] of the standard set.
 pub const STANDARD_SET: &str = "standard";
 
-/// Tolerance on the RMS of |x − x*|_inf along the run (`score_rms_dx`, rad/s): a run is within
-/// tolerance when it completed and its RMS distance to the exact optimum is at most this.
+/// Tolerance on the RMS of |x − x*|_inf after the settling time (`score_rms_dx_after_1s`: over
+/// t >= 1 s, rad/s): a run is within tolerance when it completed and its settled RMS distance to
+/// the exact optimum is at most this.
 ///
 /// The suite's choice: 1 mrad/s, a thousandth of the arms' joint-velocity limits (1.5 rad/s on
 /// the Jaco2, 2.2–2.6 rad/s on the Panda), the scale at which a joint-velocity loop resolves a
-/// command. The RMS, not the max (`score_max_dx`), because the max includes the start-up from
-/// the zero network state: on kong2019's deviated start every network ties at |x*(0)| (0.5 and
-/// 0.93 rad/s), which measures the initial condition, not the solver. A strictly convex QP has a
+/// command. After the settling time (1 s, kong2019's for its network error, the same instant as
+/// `net_error_max_after_1s`), because a network starts from the zero state while x*(0) is not
+/// zero: over the whole run (`score_rms_dx`) the start-up transient alone can exceed the
+/// tolerance (1 rad/s for 5 ms of a 5 s task is RMS 3e-2 rad/s), which measures the initial
+/// condition, not how well the network tracks the optimum. How fast a network settles still
+/// counts in the ranking: the accuracy mean ([`RunScore::dx`]) is the whole-run RMS. The RMS,
+/// not the max, so that a brief excursion does not decide alone. A strictly convex QP has a
 /// unique minimiser, so a small distance to it also bounds the objective gap and the violation.
 /// VP-RNN-PF's equilibrium is the exponential-penalty optimum, not x*: it sits ~1e-2 rad/s
 /// from x* by design, and this tolerance counts that against it.
@@ -118,9 +124,11 @@ pub fn standard_tasks(rows: &[RunRow]) -> Vec<Task> {
     set.into_iter().collect()
 }
 
-/// Whether a run completed within [`TOL_RMS_DX`] of the exact optimum.
+/// Whether a run completed within [`TOL_RMS_DX`] of the exact optimum once settled (its
+/// `score_rms_dx_after_1s`; a row without it, e.g. of a results file older than the column, is
+/// not within tolerance).
 pub fn within_tolerance(r: &RunRow) -> bool {
-    r.completed() && r.score_rms_dx.is_some_and(|v| v <= TOL_RMS_DX)
+    r.completed() && r.score_rms_dx_after_1s.is_some_and(|v| v <= TOL_RMS_DX)
 }
 
 /// The value a metric counts at: a failed run or a missing (or NaN) value at `penalty`, every
@@ -163,9 +171,9 @@ pub fn relative_drift(run: &RunRow, exact: &RunRow) -> Option<f64> {
 pub struct RunScore {
     pub task: Task,
     pub completed: bool,
-    /// Completed within [`TOL_RMS_DX`].
+    /// Completed within [`TOL_RMS_DX`] once settled ([`within_tolerance`]).
     pub within_tolerance: bool,
-    /// RMS |x − x*|_inf (rad/s), counted ([`counted`], [`PENALTY_DX`]).
+    /// RMS |x − x*|_inf over the whole run (rad/s), counted ([`counted`], [`PENALTY_DX`]).
     pub dx: f64,
     /// [`relative_drift`] against the task's exact column, counted ([`PENALTY_DRIFT`]).
     pub drift: f64,
@@ -460,6 +468,7 @@ mod tests {
         r.drift_norm = Some(drift.iter().map(|d| d * d).sum::<f64>().sqrt());
         if solver != "exact" {
             r.score_rms_dx = Some(rms);
+            r.score_rms_dx_after_1s = Some(rms);
         }
         r.sim_s = sim_s;
         r
@@ -474,6 +483,23 @@ mod tests {
 
     fn close(a: f64, b: f64) -> bool {
         (a - b).abs() <= 1e-12 * a.abs().max(b.abs()).max(1e-300)
+    }
+
+    #[test]
+    fn success_is_judged_after_the_settling_time_accuracy_over_the_whole_run() {
+        // A start-up transient puts the whole-run RMS above the tolerance; settled, the run is
+        // well inside it.
+        let mut r = run("A", "t1", 3e-2, &[0.1], 1.0);
+        r.score_rms_dx_after_1s = Some(1e-5);
+        assert!(within_tolerance(&r));
+        let exact = run("exact", "t1", 0.0, &[0.1], 1.0);
+        let s = score_run(&r, &exact, &Timings::default());
+        assert!(s.within_tolerance && s.dx == 3e-2);
+        // Settled outside the tolerance, or without the settled value (an older file): not.
+        r.score_rms_dx_after_1s = Some(2e-3);
+        assert!(!within_tolerance(&r));
+        r.score_rms_dx_after_1s = None;
+        assert!(!within_tolerance(&r));
     }
 
     #[test]

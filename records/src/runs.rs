@@ -67,7 +67,11 @@ pub struct RunRow {
     pub min_sigma_j: Option<f64>,
     pub score_samples: Option<usize>,
     pub score_max_dx: Option<f64>,
+    /// RMS of |x − x*|_inf over the run, time-weighted (rad/s).
     pub score_rms_dx: Option<f64>,
+    /// The same over t >= 1 s only (`simulation::metrics::SETTLE_TIME`): after the start-up
+    /// transient of a network started from zero. The leaderboard's success test.
+    pub score_rms_dx_after_1s: Option<f64>,
     pub score_max_obj_gap: Option<f64>,
     pub score_max_violation: Option<f64>,
     pub score_failures: usize,
@@ -155,6 +159,7 @@ impl RunRow {
             score_samples: None,
             score_max_dx: None,
             score_rms_dx: None,
+            score_rms_dx_after_1s: None,
             score_max_obj_gap: None,
             score_max_violation: None,
             score_failures: 0,
@@ -201,7 +206,8 @@ crate::drift_columns!(
     [
         "solver_iterations",
         "solver_iterations_max",
-        "solver_products"
+        "solver_products",
+        "score_rms_dx_after_1s"
     ]
 );
 

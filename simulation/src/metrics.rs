@@ -48,7 +48,12 @@ pub struct ScoreSample {
 pub struct Score {
     pub samples: usize,
     pub max_dx: f64,
+    /// RMS of dx over the run, time-weighted (trapezoid of dx^2 in t, divided by the span).
     pub rms_dx: f64,
+    /// The same over t >= [`SETTLE_TIME`] only, after the start-up transient of a network
+    /// started from zero (dx^2 interpolated linearly at the settling instant); `None` when no
+    /// score sample lies at or after it.
+    pub rms_dx_after_settle: Option<f64>,
     pub max_objective_gap: f64,
     pub max_violation: f64,
 }
@@ -61,7 +66,8 @@ pub struct NetworkError {
     pub max_after_settle: f64,
 }
 
-/// kong2019's settling time of its network error (s).
+/// The settling time (s): kong2019's for its network error ("settles within ~1 s"), also the
+/// start of the settled score ([`Score::rms_dx_after_settle`]).
 pub const SETTLE_TIME: f64 = 1.0;
 
 /// Final metrics of a run.
@@ -124,6 +130,10 @@ pub struct MetricsAccumulator<const N: usize> {
     /// (t, dx) of the last score sample and the trapezoidal integral of dx^2.
     last_score: Option<(f64, f64)>,
     dx_sq_integral: f64,
+    /// The integral of dx^2 over t >= SETTLE_TIME, and dx at the first sample there when it is
+    /// the only one (a span of zero).
+    settled_sq_integral: f64,
+    settled_first: Option<f64>,
     network_error: Option<NetworkError>,
 }
 
@@ -150,6 +160,8 @@ impl<const N: usize> MetricsAccumulator<N> {
             score: Score::default(),
             last_score: None,
             dx_sq_integral: 0.0,
+            settled_sq_integral: 0.0,
+            settled_first: None,
             network_error: None,
         }
     }
@@ -193,7 +205,17 @@ impl<const N: usize> MetricsAccumulator<N> {
         sc.max_objective_gap = sc.max_objective_gap.max(c.objective_gap);
         sc.max_violation = sc.max_violation.max(c.violation);
         if let Some((t0, dx0)) = self.last_score {
-            self.dx_sq_integral += 0.5 * (t - t0) * (dx0 * dx0 + c.dx * c.dx);
+            let (e0, e1) = (dx0 * dx0, c.dx * c.dx);
+            self.dx_sq_integral += 0.5 * (t - t0) * (e0 + e1);
+            if t > SETTLE_TIME && t > t0 {
+                // The part of the segment at or after the settling instant, dx^2 linear in t.
+                let s = t0.max(SETTLE_TIME);
+                let es = e0 + (e1 - e0) * (s - t0) / (t - t0);
+                self.settled_sq_integral += 0.5 * (t - s) * (es + e1);
+            }
+        }
+        if t >= SETTLE_TIME && self.settled_first.is_none() {
+            self.settled_first = Some(c.dx);
         }
         self.last_score = Some((t, c.dx));
     }
@@ -219,8 +241,15 @@ impl<const N: usize> MetricsAccumulator<N> {
                 }
                 _ => self.score.max_dx,
             };
+            let rms_dx_after_settle = match (self.last_score, self.settled_first) {
+                (Some((t_last, _)), Some(_)) if t_last > SETTLE_TIME => {
+                    Some((self.settled_sq_integral / (t_last - SETTLE_TIME)).sqrt())
+                }
+                (_, first) => first,
+            };
             Score {
                 rms_dx,
+                rms_dx_after_settle,
                 ..self.score
             }
         });
@@ -313,8 +342,49 @@ mod tests {
             "time-weighted, not per sample: {}",
             s.rms_dx
         );
+        // Nothing after the transient: the settled RMS is zero.
+        assert_eq!(s.rms_dx_after_settle, Some(0.0));
         let e = r.network_error.unwrap();
         assert_eq!((e.final_value, e.max_after_settle), (1e-6, 2e-4));
+    }
+
+    #[test]
+    fn the_settled_rms_counts_from_the_settling_time_only() {
+        let score = |dx: f64| ScoreSample {
+            dx,
+            objective_gap: 0.0,
+            violation: 0.0,
+        };
+        let run = |samples: &[(f64, f64)]| {
+            let mut m = MetricsAccumulator::new(limits(), SVector::zeros(), SVector::zeros());
+            m.push(&sample(0.0, [0.0, 0.0], 0.0));
+            for &(t, dx) in samples {
+                m.push_score(t, &score(dx));
+            }
+            m.push(&sample(samples.last().unwrap().0, [0.0, 0.0], 0.0));
+            m.finish(0.0).score.unwrap()
+        };
+        // A transient of 1 rad/s until t = 0.5, then 1e-4 rad/s: the whole-run RMS sees the
+        // transient, the settled one only the 1e-4.
+        let s = run(&[
+            (0.0, 1.0),
+            (0.5, 1.0),
+            (0.5, 1e-4),
+            (3.0, 1e-4),
+            (5.0, 1e-4),
+        ]);
+        assert!(s.rms_dx > 0.3, "{}", s.rms_dx);
+        assert!((s.rms_dx_after_settle.unwrap() - 1e-4).abs() < 1e-15);
+        // A segment across t = 1: dx^2 from 0 at t = 0 to 4 at t = 2 (linear), so on [1, 2]
+        // dx^2 runs from 2 to 4 and its mean is 3.
+        let s = run(&[(0.0, 0.0), (2.0, 2.0)]);
+        assert!((s.rms_dx_after_settle.unwrap() - 3f64.sqrt()).abs() < 1e-12);
+        // Only one sample at the settling time: its dx; none at or after it: no value.
+        assert_eq!(
+            run(&[(0.0, 5.0), (1.0, 0.25)]).rms_dx_after_settle,
+            Some(0.25)
+        );
+        assert_eq!(run(&[(0.0, 5.0), (0.9, 0.25)]).rms_dx_after_settle, None);
     }
 
     #[test]

@@ -64,6 +64,7 @@ pub fn run_row(r: &RunRecord, git_rev: &str) -> RunRow {
         score_samples: score.map(|s| s.samples),
         score_max_dx: score.map(|s| s.max_dx),
         score_rms_dx: score.map(|s| s.rms_dx),
+        score_rms_dx_after_1s: score.and_then(|s| s.rms_dx_after_settle),
         score_max_obj_gap: score.map(|s| s.max_objective_gap),
         score_max_violation: score.map(|s| s.max_violation),
         score_failures: r.run.score_failures,

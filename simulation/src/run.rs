@@ -140,6 +140,29 @@ pub fn check_job(job: &Job) -> Result<(), SetupError> {
     }
 }
 
+/// The shape of the QP the job's scheme poses at every instant: its sizes and whether its
+/// decision variable starts with thetadot or thetaddot ([`schemes::scheme::Level`]). Built as
+/// [`check_job`] builds the scheme (robot, path from f(theta_ref), scheme), without running.
+pub fn qp_shape(job: &Job) -> Result<(QpDims, schemes::scheme::Level), SetupError> {
+    struct Shape<'a>(&'a Job);
+    impl RobotVisitor for Shape<'_> {
+        type Output = Result<(QpDims, schemes::scheme::Level), SetupError>;
+        fn visit<const N: usize>(
+            self,
+            robot: Arc<dyn Robot<N>>,
+            dynamics: Option<Arc<dyn Dynamics<N>>>,
+        ) -> Self::Output {
+            let robot = job_robot(self.0, robot, dynamics.is_some())?;
+            let (_, scheme) = build_parts::<N>(self.0, robot, dynamics)?;
+            Ok((scheme.dims(), scheme.level()))
+        }
+    }
+    match robot_by_name(&job.robot) {
+        Some(robot) => robot.visit(Shape(job)),
+        None => Err(SetupError::UnknownRobot(job.robot.clone())),
+    }
+}
+
 /// The job's robot: the registry's model `robot`, with the job's `joint_limits` and
 /// `velocity_limits` in place of its own where the job gives them ([`robots::limited`]).
 /// A model that carries dynamics (`has_dynamics`: the acceleration-level scheme takes its

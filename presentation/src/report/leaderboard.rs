@@ -229,7 +229,7 @@ pub fn reading(rows: &[LeaderboardRow], standard_tasks: usize) -> String {
         }
         let (w, top) = &groups[0];
         s.push(format!(
-            "On the standard set, {} {} within tolerance (RMS |x − x*| ≤ {} rad/s) on {w} of \
+            "On the standard set, {} {} within tolerance (RMS |x − x*| after 1 s ≤ {} rad/s) on {w} of \
              {n} tasks",
             names(top),
             if top.len() == 1 { "is" } else { "are" },
@@ -384,11 +384,15 @@ fn definitions() -> String {
          solver that did not run on every standard task is ranked separately, on the tasks it ran \
          on, against every solver that also ran on all of them, and normalised there.\n\
          - *Success rate*: share of the set's tasks where the run completed and its RMS \
-         |x − x*|_inf along the run (`score_rms_dx`) is at most {tol} rad/s — a thousandth of \
-         the arms' joint-velocity limits. The RMS, not the max: the max includes the start-up \
-         from the zero network state (on a deviated start, θ0 ≠ θ*0, every network ties \
-         at |x*(0)|). VP-RNN-PF's equilibrium is the exponential-penalty optimum, not x*: it sits \
-         ~1e-2 rad/s from x* by design, and the tolerance counts that against it.\n\
+         |x − x*|_inf after the settling time (over t ≥ 1 s, `score_rms_dx_after_1s`) is \
+         at most {tol} rad/s — a thousandth of the arms' joint-velocity limits. After the \
+         settling time, because a network starts from the zero state while x*(0) is not zero: \
+         over the whole run the start-up transient alone can exceed the tolerance, which \
+         measures the initial condition, not the tracking; how fast a network settles still \
+         counts in the rank, through the whole-run RMS below. The RMS, not the max, so that a \
+         brief excursion does not decide alone. VP-RNN-PF's equilibrium is the \
+         exponential-penalty optimum, not x*: it sits ~1e-2 rad/s from x* by design, and the \
+         tolerance counts that against it.\n\
          - *Correct rate* (qpbenchmark's): share of the set's tasks where the run's verdict is \
          right — it failed, or it completed within tolerance; a run that completes outside the \
          tolerance is the one incorrect outcome.\n\

@@ -5,16 +5,29 @@ a run of a network written in Python on any of them, and the leaderboard, as bin
 Rust library: the arm, the scheme, the integrator and the score against the exact optimum are
 the library's; only the network's methods are Python.
 
+The project data (the experiment files, ``papers/`` and the committed results the leaderboard
+ranks against) comes with the package: without ``root=`` every function uses that copy
+(``data_root()`` says where it is unpacked), from any working directory. ``root=`` names a
+driftbench checkout (or any directory with ``experiments/*.toml``) to use instead.
+
 A network is any object with
 
 - ``state_dim``: an int, or a method ``state_dim(dims)`` of the QP's sizes (``dims.nx``,
-  ``dims.n_eq``, ``dims.n_in``); its state starts with the joint command x (``nx`` entries);
+  ``dims.n_eq``, ``dims.n_in``); its state starts with the QP's unknowns x (``nx`` entries:
+  the joint command x[:dof], thetadot or thetaddot, then the scheme's auxiliary variables,
+  e.g. p = |thetadot|_inf on the jia2019 and zhong2021 tasks, where nx = dof + 1; see
+  ``Task``);
 - ``rhs(t, y, qp)`` returning dy/dt (a 1-D array), ``qp`` a dict of numpy arrays for
   ``min x'Px/2 + q'x  s.t.  A x = b,  G x <= h,  lower <= x <= upper`` (keys ``P q A b G h
   lower upper``);
 - optionally ``needs_qp_dot = True`` (then ``rhs`` and ``jacobian`` get dQP/dt as a fourth
   argument, a dict of the same form), ``jacobian(t, y, qp)`` (dF/dy with the QP frozen; without
-  it the library takes finite differences), ``error_norm(qp, y)`` and ``name``.
+  it the library takes finite differences), ``error_norm(qp, y)`` and ``name``;
+- optionally ``handles(dims)``: False for the QPs the network cannot solve (e.g. ``dims.n_in >
+  0`` for an equality-only network). ``simulate`` then raises ``NotApplicable``, and
+  ``leaderboard`` counts the task as N/A for the network and ranks it on the others, as it
+  ranks the suite's zeroing networks. Raising ``NotApplicable`` from ``handles`` or
+  ``state_dim`` means the same.
 
 ``simulate`` returns the run's ``results/runs.csv`` columns as a dict (``drift`` and ``trace``
 as numpy arrays, ``python_calls`` and ``python_seconds`` the cost of the Python calls);
@@ -25,8 +38,10 @@ against the exact optimum at the trajectory's own states. ``frame`` turns a list
 
 from ._driftbench import (
     DriftbenchError,
+    NotApplicable,
     QpDims,
     Task,
+    data_root,
     leaderboard,
     score,
     simulate,
@@ -37,8 +52,10 @@ from ._driftbench import (
 
 __all__ = [
     "DriftbenchError",
+    "NotApplicable",
     "QpDims",
     "Task",
+    "data_root",
     "frame",
     "leaderboard",
     "score",

@@ -12,7 +12,7 @@ whose equilibrium is within O(1/rho) of x*; its Jacobian is
 -gamma (P + rho A'A + rho G_act'G_act + rho D_act) (active rows and violated bounds).
 
 ``Znn``: the zeroing neural network of kong2019's comparison (its twin is the suite's ``ZNN``),
-for equality-only QPs. With y = [x; lambda], Q = [[P, A'], [A, 0]] and u = [-q; b] the
+for equality-only QPs (``handles(dims)``: no inequality rows). With y = [x; lambda], Q = [[P, A'], [A, 0]] and u = [-q; b] the
 Lagrange conditions are Q y = u; the error E = Q y - u is made to obey Edot = -gamma E, so
 
     Q ydot = -Qdot y + udot - gamma (Q y - u),
@@ -63,9 +63,12 @@ class Znn:
     def __init__(self, gamma=1.0, name="ZNN (numpy)"):
         self.gamma, self.name = gamma, name
 
+    @staticmethod
+    def handles(dims):
+        """Equality-only QPs (no G x <= h): the other tasks are N/A for it."""
+        return dims.n_in == 0
+
     def state_dim(self, dims):
-        if dims.n_in:
-            raise ValueError("the ZNN solves equality-only QPs (no G x <= h)")
         return dims.nx + dims.n_eq
 
     @staticmethod
