@@ -22,7 +22,7 @@ pub enum CostError {
     Run { label: String, error: RunError },
     #[error("{0}: the exact run left no trace")]
     NoTrace(String),
-    /// The dynamic path builds no dQP/dt.
-    #[error("{0}: the network needs dQP/dt, which the dynamic-size path does not build")]
+    /// The network needs dQP/dt at the states and none was given.
+    #[error("{0}: the network needs dQP/dt at the states, and none was given")]
     NeedsQpDot(String),
 }

@@ -19,9 +19,10 @@
 //!   four-leaf clover and kong2019's ZNN scheme (eq. 22) on a circle; every quantity, whole
 //!   runs included, at states sampled from one exact run.
 //! - [`dynamic`]: N = [`dynamic::SIZES`] (40 ... 200), no instantiation per size: the arm is
-//!   [`robots::NLinkDyn`] (nalgebra `DVector`/`Matrix3xX`), kong2019's QP is written by
-//!   [`schemes::velocity_rmp::fill_qp`], the one the scheme itself uses. Per-instant quantities
-//!   only (see [`dynamic`] for why, and why not jia2019).
+//!   [`robots::NLinkDyn`] and kong2019's scheme [`schemes::velocity_rmp_dyn::NLinkZnn`], both on
+//!   slices; every quantity, whole runs included, through the same coupled ODE
+//!   (`simulation::coupled`) as the fixed path (see [`dynamic`] for what a whole run there
+//!   leaves out, and why not jia2019).
 //!
 //! Both share [`instants::Instants`], the per-instant quantities on a list of QPs; the dense LU
 //! quantities (`network-lu`, `kkt-floor`) are timed on both [`solvers::Backend`]s, from which

@@ -3,9 +3,10 @@
 //! dynamic-size types (`DVector`, `Matrix3xX`), for arms of hundreds of joints that no
 //! const-generic instantiation `NLink<N>` (N = 3..=30) is compiled for.
 //!
-//! It is not a [`crate::Robot`]: that trait, the schemes and the simulation are const-generic in
-//! N (stack-allocated vectors, no allocation per step for the papers' 5-7 joints). The cost
-//! harness (`cost`) builds the per-instant quantities at large N from it directly.
+//! It is not a [`crate::Robot`]: that trait and the schemes written on it are const-generic in
+//! N (stack-allocated vectors, no allocation per step for the papers' 5-7 joints). kong2019's
+//! ZNN scheme is written on it for any N (`schemes::velocity_rmp_dyn`), which the cost harness
+//! (`cost`) runs whole at N = 40 ... 200 through the same coupled ODE as every run.
 
 use nalgebra::{DVector, Matrix3xX, Vector3};
 
@@ -47,14 +48,33 @@ impl NLinkDyn {
 
     /// f(theta), the tip position.
     pub fn position(&self, theta: &DVector<f64>) -> Vector3<f64> {
+        self.tip(theta.as_slice())
+    }
+
+    /// f(theta) from a slice of n joint angles.
+    pub fn tip(&self, theta: &[f64]) -> Vector3<f64> {
         assert_eq!(theta.len(), self.n, "nlink: theta has n entries");
-        position_of(theta.as_slice())
+        position_of(theta)
+    }
+
+    /// Writes J(theta) into `jac`, 3 x n column-major storage (length 3n), from a slice of n
+    /// joint angles, without allocating.
+    pub fn jacobian_to(&self, theta: &[f64], jac: &mut [f64]) {
+        assert_eq!(theta.len(), self.n, "nlink: theta has n entries");
+        jacobian_into(theta, jac);
+    }
+
+    /// Writes Jdot(theta, thetadot) into `jdot`, 3 x n column-major storage, without
+    /// allocating.
+    pub fn jacobian_dot_to(&self, theta: &[f64], thetadot: &[f64], jdot: &mut [f64]) {
+        assert_eq!(theta.len(), self.n, "nlink: theta has n entries");
+        assert_eq!(thetadot.len(), self.n, "nlink: thetadot has n entries");
+        jacobian_dot_into(theta, thetadot, jdot);
     }
 
     /// Writes J(theta) (3 x n) into `jac` without allocating.
     pub fn jacobian_into(&self, theta: &DVector<f64>, jac: &mut Matrix3xX<f64>) {
-        assert_eq!(theta.len(), self.n, "nlink: theta has n entries");
-        jacobian_into(theta.as_slice(), jac.as_mut_slice());
+        self.jacobian_to(theta.as_slice(), jac.as_mut_slice());
     }
 
     /// J(theta), 3 x n.
@@ -66,10 +86,8 @@ impl NLinkDyn {
 
     /// Jdot(theta, thetadot), 3 x n.
     pub fn jacobian_dot(&self, theta: &DVector<f64>, thetadot: &DVector<f64>) -> Matrix3xX<f64> {
-        assert_eq!(theta.len(), self.n, "nlink: theta has n entries");
-        assert_eq!(thetadot.len(), self.n, "nlink: thetadot has n entries");
         let mut jdot = Matrix3xX::zeros(self.n);
-        jacobian_dot_into(theta.as_slice(), thetadot.as_slice(), jdot.as_mut_slice());
+        self.jacobian_dot_to(theta.as_slice(), thetadot.as_slice(), jdot.as_mut_slice());
         jdot
     }
 }

@@ -103,21 +103,12 @@ pub fn finite_time_c<const N: usize>(
     (theta - theta_star0).map(|e| sign_power(e, alpha, smoothing))
 }
 
-/// Writes the unbounded QP of the scheme with w = 1 from its parts, as slices so that fixed-
-/// and dynamic-size storage both fit (the const-generic [`VelocityRmp`] and the cost harness's
-/// arms of hundreds of joints): P = I, q = `q`, A = J (`jac`: 3 x n, column-major),
-/// b = rdot* + k_p (r* - f(theta)), no bounds.
-pub fn fill_qp(
-    qp: &mut Qp,
-    q: &[f64],
-    jac: &[f64],
-    f: &Vector3<f64>,
-    desired: &PathPoint,
-    k_p: f64,
-) {
+/// Writes the parts of the scheme's QP with w = 1 that do not depend on how the arm's
+/// vectors are stored: P = I, b = rdot* + k_p (r* - f(theta)), no bounds. q and A (= J) are
+/// the caller's, so the const-generic [`VelocityRmp`] and the dynamic-size
+/// [`crate::velocity_rmp_dyn::NLinkZnn`] share this.
+pub fn fill_tracking(qp: &mut Qp, f: &Vector3<f64>, desired: &PathPoint, k_p: f64) {
     qp.p.fill_with_identity();
-    qp.q.as_mut_slice().copy_from_slice(q);
-    qp.a.as_mut_slice().copy_from_slice(jac);
     qp.b.copy_from(&(desired.rdot + (desired.r - f) * k_p));
     qp.lower.as_mut_slice().fill(f64::NEG_INFINITY);
     qp.upper.as_mut_slice().fill(f64::INFINITY);
@@ -225,14 +216,9 @@ impl<const N: usize> Scheme<N> for VelocityRmp<N> {
 
     fn build(&self, t: f64, theta: &SVector<f64, N>, _thetadot: &SVector<f64, N>, qp: &mut Qp) {
         debug_assert_eq!(qp.dims(), self.dims());
-        fill_qp(
-            qp,
-            self.linear_term(theta).as_slice(),
-            self.robot.jacobian(theta).as_slice(),
-            &self.robot.position(theta),
-            &self.path.at(t),
-            self.k_p,
-        );
+        qp.q.copy_from(&self.linear_term(theta));
+        qp.a.copy_from(&self.robot.jacobian(theta));
+        fill_tracking(qp, &self.robot.position(theta), &self.path.at(t), self.k_p);
         if self.weight != 1.0 {
             qp.p.fill_diagonal(self.weight);
         }

@@ -80,3 +80,24 @@ fn build_and_build_dot_do_not_allocate() {
         );
     }
 }
+
+#[test]
+fn the_dynamic_size_znn_scheme_does_not_allocate_at_200_joints() {
+    use schemes::slice_scheme::SliceScheme;
+    let arm = robots::NLinkDyn::new(200).unwrap();
+    let home = arm.home();
+    let path = Arc::new(Circle {
+        r0: arm.position(&home),
+        a: 0.05,
+        t_end: 5.0,
+    });
+    let s = schemes::velocity_rmp_dyn::NLinkZnn::new(arm, path, home.as_slice(), 1.0, 1.0).unwrap();
+    let th: Vec<f64> = home.iter().map(|v| v + 0.05).collect();
+    let thd = vec![0.2; 200];
+    let (mut qp, mut dot, mut scratch) = (s.new_qp(), s.new_qp(), s.new_dot_scratch());
+    assert_eq!(count(|| s.build(1.0, &th, &thd, &mut qp)), 0);
+    assert_eq!(
+        count(|| s.build_dot(1.0, &th, &thd, &thd, &mut dot, &mut scratch)),
+        0
+    );
+}

@@ -24,17 +24,19 @@
 
 use nalgebra::{DMatrix, DVector, SVector};
 use schemes::qp_dot::QpDotScratch;
-use schemes::scheme::{Level, Scheme};
+use schemes::scheme::Level;
+use schemes::slice_scheme::SliceScheme;
 use solvers::exact_path::{ExactPath, ExactPathStats};
 use solvers::neural::NeuralSolver;
 use solvers::ode::OdeSystem;
 use solvers::{ExactError, Qp};
 
-/// Number of arm-state entries: n at the velocity level, 2n at the acceleration level.
-pub fn arm_dim<const N: usize>(level: Level) -> usize {
+/// Number of arm-state entries of an n-joint arm: n at the velocity level, 2n at the
+/// acceleration level.
+pub fn arm_dim(n: usize, level: Level) -> usize {
     match level {
-        Level::Velocity => N,
-        Level::Acceleration => 2 * N,
+        Level::Velocity => n,
+        Level::Acceleration => 2 * n,
     }
 }
 
@@ -53,36 +55,52 @@ pub fn arm_state<const N: usize>(
     (theta, thetadot)
 }
 
-/// Writes the arm part of y' given the joint command x[..n].
-fn arm_rhs<const N: usize>(level: Level, y: &[f64], command: &[f64], dy: &mut [f64]) {
+/// (theta, thetadot) of an n-joint arm as slices of a state vector, as [`arm_state`].
+pub fn arm_slices<'y>(
+    n: usize,
+    level: Level,
+    y: &'y [f64],
+    command: &'y [f64],
+) -> (&'y [f64], &'y [f64]) {
     match level {
-        Level::Velocity => dy[..N].copy_from_slice(&command[..N]),
+        Level::Velocity => (&y[..n], &command[..n]),
+        Level::Acceleration => (&y[..n], &y[n..2 * n]),
+    }
+}
+
+/// Writes the arm part of y' of an n-joint arm given the joint command x[..n].
+fn arm_rhs(n: usize, level: Level, y: &[f64], command: &[f64], dy: &mut [f64]) {
+    match level {
+        Level::Velocity => dy[..n].copy_from_slice(&command[..n]),
         Level::Acceleration => {
-            dy[..N].copy_from_slice(&y[N..2 * N]);
-            dy[N..2 * N].copy_from_slice(&command[..N]);
+            dy[..n].copy_from_slice(&y[n..2 * n]);
+            dy[n..2 * n].copy_from_slice(&command[..n]);
         }
     }
 }
 
 /// The scheme with its exact optimum in the loop ([`ExactPath`]: the certified active-set
 /// solver, Clarabel when it fails and on a sample).
-pub struct ExactLoop<'a, const N: usize> {
-    pub scheme: &'a dyn Scheme<N>,
+pub struct ExactLoop<'a> {
+    pub scheme: &'a dyn SliceScheme,
     pub qp: Qp,
     pub solver: ExactPath,
     /// First failure of the exact solver, with its instant (the run is then reported as
     /// failed with it).
     pub failure: Option<(f64, ExactError)>,
+    /// thetadot = 0, the velocity level's unused argument of the scheme.
+    zeros: Vec<f64>,
 }
 
-impl<'a, const N: usize> ExactLoop<'a, N> {
-    pub fn new(scheme: &'a dyn Scheme<N>) -> Self {
+impl<'a> ExactLoop<'a> {
+    pub fn new(scheme: &'a dyn SliceScheme) -> Self {
         let qp = scheme.new_qp();
         Self {
             scheme,
             solver: ExactPath::new(&qp),
             qp,
             failure: None,
+            zeros: vec![0.0; scheme.joints()],
         }
     }
 
@@ -90,8 +108,8 @@ impl<'a, const N: usize> ExactLoop<'a, N> {
     pub fn optimum(
         &mut self,
         t: f64,
-        theta: &SVector<f64, N>,
-        thetadot: &SVector<f64, N>,
+        theta: &[f64],
+        thetadot: &[f64],
     ) -> Result<DVector<f64>, ExactError> {
         self.scheme.build(t, theta, thetadot, &mut self.qp);
         self.solver.solve(&self.qp).cloned()
@@ -103,20 +121,20 @@ impl<'a, const N: usize> ExactLoop<'a, N> {
     }
 }
 
-impl<const N: usize> OdeSystem for ExactLoop<'_, N> {
+impl OdeSystem for ExactLoop<'_> {
     fn dim(&self) -> usize {
-        arm_dim::<N>(self.scheme.level())
+        arm_dim(self.scheme.joints(), self.scheme.level())
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
         let level = self.scheme.level();
-        let theta = SVector::<f64, N>::from_column_slice(&y[..N]);
-        let thetadot = match level {
-            Level::Velocity => SVector::zeros(),
-            Level::Acceleration => SVector::from_column_slice(&y[N..2 * N]),
-        };
-        match self.optimum(t, &theta, &thetadot) {
-            Ok(x) => arm_rhs::<N>(level, y, x.as_slice(), dy),
+        let n = self.scheme.joints();
+        let zeros = std::mem::take(&mut self.zeros);
+        let (theta, thetadot) = arm_slices(n, level, y, &zeros);
+        let optimum = self.optimum(t, theta, thetadot);
+        self.zeros = zeros;
+        match optimum {
+            Ok(x) => arm_rhs(n, level, y, x.as_slice(), dy),
             Err(e) => {
                 if self.failure.is_none() {
                     self.failure = Some((t, e));
@@ -128,8 +146,8 @@ impl<const N: usize> OdeSystem for ExactLoop<'_, N> {
 }
 
 /// The scheme solved by a recurrent network, integrated together with the arm.
-pub struct NeuralLoop<'a, const N: usize> {
-    pub scheme: &'a dyn Scheme<N>,
+pub struct NeuralLoop<'a> {
+    pub scheme: &'a dyn SliceScheme,
     pub network: Box<dyn NeuralSolver>,
     qp: Qp,
     qp_dot: Qp,
@@ -147,30 +165,35 @@ pub struct NeuralLoop<'a, const N: usize> {
     qp_dot_lo: Qp,
     qp_dot_hi: Qp,
     dcol: Vec<f64>,
+    /// The zero thetaddot of the velocity level's dQP/dt.
+    zeros: Vec<f64>,
 }
 
 /// The QP (and, with `dot`, dQP/dt along the command) at the state y, as [`NeuralLoop`]'s
 /// right-hand side builds them.
+/// `zeros` holds n zeros (the velocity level's thetaddot).
 #[allow(clippy::too_many_arguments)]
-fn qp_data_at<const N: usize>(
-    scheme: &dyn Scheme<N>,
+fn qp_data_at(
+    scheme: &dyn SliceScheme,
     k: usize,
     t: f64,
     y: &[f64],
     qp: &mut Qp,
     dot: Option<&mut Qp>,
     scratch: &mut QpDotScratch,
+    zeros: &[f64],
 ) {
     let level = scheme.level();
-    let (theta, thetadot) = arm_state::<N>(level, y, &y[k..]);
-    scheme.build(t, &theta, &thetadot, qp);
+    let n = scheme.joints();
+    let (theta, thetadot) = arm_slices(n, level, y, &y[k..]);
+    scheme.build(t, theta, thetadot, qp);
     if let Some(qp_dot) = dot {
-        let command = SVector::<f64, N>::from_column_slice(&y[k..k + N]);
+        let command = &y[k..k + n];
         let (thetadot_m, thetaddot) = match level {
-            Level::Velocity => (command, SVector::zeros()),
+            Level::Velocity => (command, zeros),
             Level::Acceleration => (thetadot, command),
         };
-        scheme.build_dot(t, &theta, &thetadot_m, &thetaddot, qp_dot, scratch);
+        scheme.build_dot(t, theta, thetadot_m, thetaddot, qp_dot, scratch);
     }
 }
 
@@ -187,10 +210,10 @@ fn central_difference(hi: &mut Qp, lo: &Qp, h: f64) {
     }
 }
 
-impl<'a, const N: usize> NeuralLoop<'a, N> {
-    pub fn new(scheme: &'a dyn Scheme<N>, network: Box<dyn NeuralSolver>) -> Self {
+impl<'a> NeuralLoop<'a> {
+    pub fn new(scheme: &'a dyn SliceScheme, network: Box<dyn NeuralSolver>) -> Self {
         let net_dim = network.state_dim(scheme.dims());
-        let dim = arm_dim::<N>(scheme.level()) + net_dim;
+        let dim = arm_dim(scheme.joints(), scheme.level()) + net_dim;
         Self {
             scheme,
             network,
@@ -208,53 +231,38 @@ impl<'a, const N: usize> NeuralLoop<'a, N> {
             qp_dot_lo: scheme.new_qp(),
             qp_dot_hi: scheme.new_qp(),
             dcol: vec![0.0; net_dim],
+            zeros: vec![0.0; scheme.joints()],
         }
     }
 
     /// Offset of the network state in the ODE state.
     pub fn net_offset(&self) -> usize {
-        arm_dim::<N>(self.scheme.level())
-    }
-
-    /// The QP at the state's (t, theta, thetadot) (thetadot read from the network at the
-    /// velocity level), left in `self.qp`, returned with (theta, thetadot).
-    pub fn qp_at(&mut self, t: f64, y: &[f64]) -> (&Qp, SVector<f64, N>, SVector<f64, N>) {
-        let k = self.net_offset();
-        let (theta, thetadot) = arm_state::<N>(self.scheme.level(), y, &y[k..]);
-        self.scheme.build(t, &theta, &thetadot, &mut self.qp);
-        (&self.qp, theta, thetadot)
+        arm_dim(self.scheme.joints(), self.scheme.level())
     }
 
     fn eval(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
         let k = self.net_offset();
         let level = self.scheme.level();
-        let (theta, thetadot) = arm_state::<N>(level, y, &y[k..]);
-        self.scheme.build(t, &theta, &thetadot, &mut self.qp);
-        let qp_dot = if self.network.needs_qp_dot() {
-            let command = SVector::<f64, N>::from_column_slice(&y[k..k + N]);
-            let (thetadot_m, thetaddot) = match level {
-                Level::Velocity => (command, SVector::zeros()),
-                Level::Acceleration => (thetadot, command),
-            };
-            self.scheme.build_dot(
-                t,
-                &theta,
-                &thetadot_m,
-                &thetaddot,
-                &mut self.qp_dot,
-                &mut self.dot_scratch,
-            );
-            Some(&self.qp_dot)
-        } else {
-            None
-        };
+        let n = self.scheme.joints();
+        let dot = self.network.needs_qp_dot();
+        qp_data_at(
+            self.scheme,
+            k,
+            t,
+            y,
+            &mut self.qp,
+            dot.then_some(&mut self.qp_dot),
+            &mut self.dot_scratch,
+            &self.zeros,
+        );
+        let qp_dot = dot.then_some(&self.qp_dot);
         let (arm, net) = dy.split_at_mut(k);
         self.network.rhs(t, &y[k..], &self.qp, qp_dot, net);
-        arm_rhs::<N>(level, y, &y[k..], arm);
+        arm_rhs(n, level, y, &y[k..], arm);
     }
 }
 
-impl<const N: usize> NeuralLoop<'_, N> {
+impl NeuralLoop<'_> {
     /// The network rows of the first `columns` columns of the Jacobian by the chain rule (module
     /// docs): the network's analytic block (already in `jac`, for the command columns) plus its
     /// derivative along the QP data, differenced centrally with step sqrt(eps) max(|y_j|, 1).
@@ -276,7 +284,7 @@ impl<const N: usize> NeuralLoop<'_, N> {
             let h = f64::EPSILON.sqrt() * y[j].abs().max(1.0);
             self.yp[j] = y[j] + h;
             let hi = self.yp[j];
-            qp_data_at::<N>(
+            qp_data_at(
                 scheme,
                 k,
                 t,
@@ -284,10 +292,11 @@ impl<const N: usize> NeuralLoop<'_, N> {
                 &mut self.qp_hi,
                 dot.then_some(&mut self.qp_dot_hi),
                 &mut self.dot_scratch,
+                &self.zeros,
             );
             self.yp[j] = y[j] - h;
             let lo = self.yp[j];
-            qp_data_at::<N>(
+            qp_data_at(
                 scheme,
                 k,
                 t,
@@ -295,6 +304,7 @@ impl<const N: usize> NeuralLoop<'_, N> {
                 &mut self.qp_lo,
                 dot.then_some(&mut self.qp_dot_lo),
                 &mut self.dot_scratch,
+                &self.zeros,
             );
             self.yp[j] = y[j];
             // The step actually taken (y_j +- h rounded).
@@ -330,7 +340,7 @@ impl<const N: usize> NeuralLoop<'_, N> {
     }
 }
 
-impl<const N: usize> OdeSystem for NeuralLoop<'_, N> {
+impl OdeSystem for NeuralLoop<'_> {
     fn dim(&self) -> usize {
         self.net_offset() + self.net_dim
     }
@@ -342,6 +352,7 @@ impl<const N: usize> OdeSystem for NeuralLoop<'_, N> {
     fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut DMatrix<f64>) -> bool {
         let k = self.net_offset();
         let level = self.scheme.level();
+        let arm = self.scheme.joints();
         // F at y: the base of the differences below, and it leaves the QP (and, for the
         // zeroing networks, dQP/dt) at this state for the network's analytic block.
         let mut f0 = std::mem::take(&mut self.f0);
@@ -362,16 +373,16 @@ impl<const N: usize> OdeSystem for NeuralLoop<'_, N> {
             .copy_from(&self.jac_net);
         // Arm rows: theta' = x[..n] (velocity) or theta' = thetadot, thetadot' = x[..n].
         match level {
-            Level::Velocity => (0..N).for_each(|i| jac[(i, k + i)] = 1.0),
-            Level::Acceleration => (0..N).for_each(|i| {
-                jac[(i, N + i)] = 1.0;
-                jac[(N + i, k + i)] = 1.0;
+            Level::Velocity => (0..arm).for_each(|i| jac[(i, k + i)] = 1.0),
+            Level::Acceleration => (0..arm).for_each(|i| {
+                jac[(i, arm + i)] = 1.0;
+                jac[(arm + i, k + i)] = 1.0;
             }),
         }
         // Network rows, by forward differences, for the arm-state columns and (for networks fed
         // with dQP/dt) the joint-command columns: dQP/dt is taken along the network's own
         // command, a dependence the frozen-QP block above does not see.
-        let fd_columns = if qp_dot_needed { k + N } else { k };
+        let fd_columns = if qp_dot_needed { k + arm } else { k };
         if self.chain_rule_columns(t, y, fd_columns, jac) {
             // F at y above (the network's data derivatives are not evaluations of F).
             self.jacobian_rhs_evals += 1;

@@ -22,6 +22,7 @@ use crate::simulate::{score_instant, IterationStats, Observer, Outcome, Settings
 use catalog::numerical_spec::{NumericalMethod, NumericalSpec};
 use nalgebra::{DVector, SVector};
 use schemes::scheme::{Level, Scheme};
+use schemes::slice_scheme::Fixed;
 use solvers::exact_path::ExactPathStats;
 use solvers::lvi_numerical::{LviMethod, LviSettings, LviSolver};
 use solvers::neural::projection::primal_dual_dim;
@@ -71,8 +72,9 @@ pub(crate) fn run_numerical<const N: usize>(
         },
     );
     let mut qp = scheme.new_qp();
-    let mut scorer = ExactLoop::new(scheme);
-    let mut y = vec![0.0; arm_dim::<N>(level)];
+    let fixed = Fixed(scheme);
+    let mut scorer = ExactLoop::new(&fixed);
+    let mut y = vec![0.0; arm_dim(N, level)];
     y[..N].copy_from_slice(theta0.as_slice());
     let mut x = DVector::<f64>::zeros(dims.nx);
     let instants = (t1 / spec.step).ceil().max(1.0) as usize;

@@ -35,6 +35,7 @@ use nalgebra::{DVector, SVector};
 use records::trajectory::Trajectory;
 use robots::{Dynamics, Robot};
 use schemes::scheme::Level;
+use schemes::slice_scheme::Fixed;
 use solvers::ode::OdeStats;
 use std::sync::Arc;
 use std::time::Instant;
@@ -213,7 +214,8 @@ fn score_with<const N: usize>(
         theta0,
         theta_ref,
     );
-    let mut scorer = ExactLoop::new(scheme.as_ref());
+    let fixed = Fixed(scheme.as_ref());
+    let mut scorer = ExactLoop::new(&fixed);
     let mut failures = 0usize;
     let thetadots = velocities(trajectory);
     let nx = scheme.dims().nx;
@@ -221,7 +223,7 @@ fn score_with<const N: usize>(
         let theta = SVector::<f64, N>::from_column_slice(theta);
         let command = SVector::<f64, N>::from_column_slice(thetadot);
         let mut x = DVector::zeros(nx);
-        match scorer.optimum(t, &theta, &command) {
+        match scorer.optimum(t, theta.as_slice(), command.as_slice()) {
             Ok(x_star) => {
                 x.copy_from(&x_star);
                 x.rows_mut(0, N).copy_from(&command);

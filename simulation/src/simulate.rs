@@ -21,6 +21,7 @@ use records::trace::TracePoint;
 use robots::Robot;
 use schemes::paths::Path;
 use schemes::scheme::{Level, Scheme};
+use schemes::slice_scheme::Fixed;
 use solvers::exact_path::ExactPathStats;
 use solvers::neural::NeuralSolver;
 use solvers::ode::{integrate, Control, OdeError, OdeFailure, OdeStats, OdeSystem};
@@ -125,6 +126,7 @@ pub fn simulate<const N: usize>(
     settings: &Settings,
 ) -> Result<Run, RunError> {
     let theta0 = *theta0;
+    let fixed = Fixed(scheme);
     let mut observer = Observer::new(robot, scheme, path, theta0, *theta_ref);
     let t1 = path.duration();
     let level = scheme.level();
@@ -138,15 +140,15 @@ pub fn simulate<const N: usize>(
             (r.outcome, r.stats, r.qp)
         }
         Solver::Exact => {
-            let mut sys = ExactLoop::new(scheme);
-            let mut y0 = vec![0.0; arm_dim::<N>(level)];
+            let mut sys = ExactLoop::new(&fixed);
+            let mut y0 = vec![0.0; arm_dim(N, level)];
             y0[..N].copy_from_slice(theta0.as_slice());
-            let mut probe = ExactLoop::new(scheme);
+            let mut probe = ExactLoop::new(&fixed);
             let mut exact_failure = None;
             let result = integrate(&mut sys, &y0, 0.0, t1, &settings.integrator, |t, y| {
                 let started = Instant::now();
                 let (theta, thetadot) = arm_state::<N>(level, y, y);
-                let control = match probe.optimum(t, &theta, &thetadot) {
+                let control = match probe.optimum(t, theta.as_slice(), thetadot.as_slice()) {
                     Ok(x) => {
                         observer.sample(t, y, &x, level);
                         observer
@@ -173,20 +175,20 @@ pub fn simulate<const N: usize>(
         }
         Solver::Network(build) => {
             let network = build()?;
-            let mut sys = NeuralLoop::new(scheme, network);
+            let mut sys = NeuralLoop::new(&fixed, network);
             let k = sys.net_offset();
             let mut y0 = vec![0.0; sys.dim()];
             y0[..N].copy_from_slice(theta0.as_slice());
-            let mut scorer = ExactLoop::new(scheme);
+            let mut scorer = ExactLoop::new(&fixed);
             if settings.network_init == NetworkInit::Exact {
                 // x*(0) at the arm's initial state (at the velocity level thetadot is the
                 // command itself, which the QP does not depend on).
-                let thetadot0 = match level {
+                let thetadot0: SVector<f64, N> = match level {
                     Level::Velocity => SVector::zeros(),
                     Level::Acceleration => SVector::from_column_slice(&y0[N..2 * N]),
                 };
                 let x0 = scorer
-                    .optimum(0.0, &theta0, &thetadot0)
+                    .optimum(0.0, theta0.as_slice(), thetadot0.as_slice())
                     .map_err(|error| RunError::ExactQp { t: 0.0, error })?;
                 y0[k..k + x0.len()].copy_from_slice(x0.as_slice());
             }
@@ -252,7 +254,7 @@ pub fn simulate<const N: usize>(
 /// (the instant is left out of the score), `Some(true)` when scored.
 pub(crate) fn score_instant<const N: usize>(
     observer: &mut Observer<'_, N>,
-    scorer: &mut ExactLoop<'_, N>,
+    scorer: &mut ExactLoop<'_>,
     scoring: Scoring,
     next_score_t: &mut f64,
     t1: f64,
@@ -273,7 +275,7 @@ pub(crate) fn score_instant<const N: usize>(
     if !due {
         return None;
     }
-    let Ok(x_star) = scorer.optimum(t, theta, thetadot) else {
+    let Ok(x_star) = scorer.optimum(t, theta.as_slice(), thetadot.as_slice()) else {
         return Some(false);
     };
     let qp = &scorer.qp;

@@ -10,6 +10,7 @@ use robots::katana::Katana6m180;
 use robots::Robot;
 use schemes::paths::{build_path, Path, PathSpec};
 use schemes::scheme::Scheme;
+use schemes::slice_scheme::Fixed;
 use schemes::velocity_rmp::VelocityRmp;
 use simulation::coupled::NeuralLoop;
 use solvers::neural::finite_time;
@@ -28,7 +29,8 @@ fn coupled_ftnn_jacobian_matches_fine_central_differences() {
     let path: Arc<dyn Path> = Arc::from(build_path(&spec, robot.position(&theta_ref)).unwrap());
     let scheme = VelocityRmp::finite_time(robot.clone(), path, theta_ref, 1.0, 0.1, 1.0);
     let net = finite_time(1.0, 0.1, 1e-6, scheme.dims()).unwrap();
-    let mut sys = NeuralLoop::new(&scheme, Box::new(net));
+    let fixed = Fixed(&scheme as &dyn Scheme<5>);
+    let mut sys = NeuralLoop::new(&fixed, Box::new(net));
     let n = sys.dim();
     let mut y0 = vec![0.0; n];
     y0[..5].copy_from_slice(theta0.as_slice());

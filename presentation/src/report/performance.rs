@@ -443,10 +443,11 @@ fn dof_curve(dof: &[DofCostRow], figures: &[String]) -> String {
          jia2019 (2.17) on a four-leaf clover (nx = N + 1, 2N inequality rows, bounds) and the \
          ZNN scheme of kong2019 (22) on a circle (nx = N, equalities only). Up to N = 30 each N is a const-generic \
          instantiation of the registry, timed at states of an exact run, whole runs included; \
-         beyond, up to N = {largest}, the ZNN scheme's per-instant quantities come from the \
-         dynamic-size path (crate `cost`, module `dynamic`: `robots::NLinkDyn` on nalgebra's \
-         `DVector`/`Matrix3xX`, no instantiation per size; states near the home pose, no whole \
-         runs, no VLTCO: its scheme is const-generic only). The dense LUs (the network \
+         beyond, up to N = {largest}, the ZNN scheme's quantities, whole runs included, come \
+         from the dynamic-size path (crate `cost`, module `dynamic`: `robots::NLinkDyn` and \
+         `schemes::velocity_rmp_dyn::NLinkZnn` on slices, no instantiation per size; \
+         per-instant states near the home pose; no VLTCO: its scheme is const-generic only). \
+         The dense LUs (the network \
          Jacobian's LU, the KKT floor) are timed on nalgebra and on faer. k is the growth \
          exponent of median cost ~ c N^k, fitted by least squares on log-log over the measured \
          N, per backend.\n\n"
@@ -608,8 +609,59 @@ fn dof_runs(dof: &[DofCostRow]) -> String {
     format!(
         "Whole runs on the n-link arms (`simulate` with the experiment files' defaults: the \
          exact column by Dormand-Prince at RelTol 1e-11, {network} by BDF at RelTol 1e-6 scored \
-         at every accepted step), median of the repetitions:\n\n{}\n",
+         at every accepted step), median of the repetitions. Past the registry's joint counts \
+         the runs are the dynamic-size path's: the same coupled ODE (`simulation::coupled`), \
+         integrator and per-step solves as `simulate`, without the metrics' bookkeeping \
+         (`cost/tests/paths.rs` checks that both paths take the same steps and RHS \
+         evaluations where both exist). The Newton matrix of the BDF runs is factorised by \
+         diffsol's nalgebra LU at every N; faer is not measured for whole runs.{}\n\n{}\n",
+        large_n_fits(dof),
         t.render()
+    )
+}
+
+/// The growth exponents of the whole runs over the dynamic path's joint counts alone (N > the
+/// registry's largest), where the per-step cost is past its small-N floor: one sentence, empty
+/// when fewer than two such N were measured.
+fn large_n_fits(dof: &[DofCostRow]) -> String {
+    let largest_fixed = catalog::robot_registry::NLINK_SIZES
+        .iter()
+        .copied()
+        .max()
+        .unwrap_or(0);
+    let mut parts = Vec::new();
+    for scheme in schemes(dof) {
+        for quantity in [Quantity::RunExact, Quantity::RunNetwork] {
+            let points: Vec<(f64, f64)> = dof
+                .iter()
+                .filter(|r| {
+                    !r.is_fit()
+                        && r.scheme == scheme
+                        && r.quantity == quantity.id()
+                        && r.n.is_some_and(|n| n > largest_fixed)
+                })
+                .filter_map(|r| Some((r.n? as f64, r.median_us?)))
+                .collect();
+            if let Some(fit) = records::dof_cost::fit_power_law(&points) {
+                let network = dof
+                    .iter()
+                    .find(|r| r.scheme == scheme)
+                    .map_or("", |r| r.network.as_str());
+                parts.push(format!(
+                    "{scheme} {}: k = {:.2} over {} N",
+                    quantity_label(quantity, network),
+                    fit.k,
+                    fit.points
+                ));
+            }
+        }
+    }
+    if parts.is_empty() {
+        return String::new();
+    }
+    format!(
+        " Fitted over N > {largest_fixed} alone (median ~ c N^k): {}.",
+        parts.join("; ")
     )
 }
 
