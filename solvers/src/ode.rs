@@ -189,8 +189,8 @@ pub fn dopri5_tableau() -> Tableau<f64> {
 }
 
 /// The system plus the cached dense Jacobian and the evaluation counters.
-struct Counted<'s, S: OdeSystem> {
-    sys: &'s mut S,
+struct Counted<'s> {
+    sys: &'s mut dyn OdeSystem,
     rhs_evals: usize,
     jac_evals: usize,
     jac: DMatrix<f64>,
@@ -202,7 +202,7 @@ struct Counted<'s, S: OdeSystem> {
     yp: Vec<f64>,
 }
 
-impl<'s, S: OdeSystem> Counted<'s, S> {
+impl Counted<'_> {
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
         self.rhs_evals += 1;
         self.sys.rhs(t, y, dy);
@@ -269,6 +269,11 @@ fn unit_index(v: &[f64]) -> Option<usize> {
 /// Integrates `sys` from `t0` to `t1` starting at `y0`. `observe(t, y)` is called at t0 and after
 /// every accepted step (the last one at t1) and may stop the run. Returns y(t1) and the cost;
 /// a failure carries the cost spent until it stopped.
+///
+/// Generic for the caller's convenience only: the integration itself ([`integrate_dyn`]) takes
+/// the system and the observer as trait objects, so diffsol's solvers are compiled once, here,
+/// not again in every crate and test binary for every system and observer type (one virtual
+/// call per RHS evaluation and per accepted step; the numbers are the same).
 pub fn integrate<S: OdeSystem>(
     sys: &mut S,
     y0: &[f64],
@@ -276,6 +281,18 @@ pub fn integrate<S: OdeSystem>(
     t1: f64,
     settings: &IntegratorSettings,
     mut observe: impl FnMut(f64, &[f64]) -> Control,
+) -> Result<(Vec<f64>, OdeStats), OdeFailure> {
+    integrate_dyn(sys, y0, t0, t1, settings, &mut observe)
+}
+
+/// [`integrate`] on trait objects.
+pub fn integrate_dyn(
+    sys: &mut dyn OdeSystem,
+    y0: &[f64],
+    t0: f64,
+    t1: f64,
+    settings: &IntegratorSettings,
+    observe: &mut dyn FnMut(f64, &[f64]) -> Control,
 ) -> Result<(Vec<f64>, OdeStats), OdeFailure> {
     let n = sys.dim();
     assert_eq!(y0.len(), n, "initial state has the wrong dimension");
@@ -438,7 +455,7 @@ fn drive<'a, Eqn, M>(
     mut solver: M,
     t1: f64,
     settings: &IntegratorSettings,
-    observe: &mut impl FnMut(f64, &[f64]) -> Control,
+    observe: &mut dyn FnMut(f64, &[f64]) -> Control,
 ) -> Result<Driven, OdeError>
 where
     Eqn: OdeEquations<T = f64, V = diffsol::NalgebraVec<f64>> + 'a,
