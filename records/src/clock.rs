@@ -72,8 +72,9 @@ mod tests {
 
     #[test]
     fn a_row_as_the_script_writes_it() {
+        // The script quotes the revision and the machine (either may hold a comma or a quote).
         let csv = "revision,commit,step,seconds,exit_code,machine,cores,date\n\
-                   HEAD,0123456789ab,reproduce,130.25,0,\"Test CPU, 2 GHz\",2,2026-12-03T13:00:00Z\n";
+                   \"HEAD\",0123456789ab,reproduce,130.250,0,\"Test CPU, 2 GHz\",2,2026-12-03T13:00:00Z\n";
         let rows: Vec<ClockRow> = crate::table::from_reader(csv.as_bytes()).unwrap();
         assert_eq!(rows[0].step, Step::Reproduce);
         assert_eq!(rows[0].machine, "Test CPU, 2 GHz");

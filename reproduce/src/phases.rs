@@ -2,6 +2,7 @@
 //! printed at the end of the run and written to `results/phases.csv` ([`records::phases`]).
 
 use records::phases::{Measured, Phase, PhaseRow, PhaseStatus, RunContext};
+use std::path::Path;
 use std::time::Instant;
 
 /// The phases measured so far, each from the end of the one before (the first from `started`).
@@ -54,16 +55,16 @@ impl PhaseClock {
     }
 }
 
-/// The per-phase table printed at the end of a run (stderr), with the total and whether the
-/// run was complete.
-pub fn table(rows: &[PhaseRow]) -> String {
+/// The per-phase table printed at the end of a run (stderr), with the total, whether the run
+/// was complete, and where it was written (`written`).
+pub fn table(rows: &[PhaseRow], written: &Path) -> String {
     let total: f64 = rows.iter().filter_map(|r| r.seconds).sum();
     let scope = match rows.first() {
         Some(_) if records::phases::complete(rows) => "a whole reproduction".to_string(),
         Some(r) => format!("partial: {}", r.selection),
         None => String::new(),
     };
-    let mut out = format!("phases ({scope}), {}:\n", records::phases::FILE);
+    let mut out = format!("phases of this run ({scope}), in {}:\n", written.display());
     for r in rows {
         let line = match r.status {
             PhaseStatus::Ran => format!(
@@ -108,9 +109,11 @@ mod tests {
         let rows = clock.rows(&context);
         assert!(rows[0].seconds.unwrap() >= 0.02, "{rows:?}");
         assert_eq!(rows[1].status, PhaseStatus::Skipped);
-        let printed = table(&rows);
+        let printed = table(&rows, Path::new("results/phases.csv"));
         assert!(
-            printed.starts_with("phases (partial: --paper demo)"),
+            printed.starts_with(
+                "phases of this run (partial: --paper demo), in results/phases.csv:\n"
+            ),
             "{printed}"
         );
         assert!(

@@ -277,14 +277,14 @@ fn publish(
         cores,
         git_rev: git_rev.to_string(),
     });
-    records::phases::write(results.path(), &rows)?;
+    let written = records::phases::write(results.path(), &rows)?;
     results.save()?;
     // The Performance page shows the table just written: its pages rendered once more,
     // untimed (the report phase above is the first rendering).
     if let Some(root) = rendered {
         presentation::report::render(&root, &project.root.join("papers"))?;
     }
-    eprint!("{}", crate::phases::table(&rows));
+    eprint!("{}", crate::phases::table(&rows, &written));
     Ok(())
 }
 

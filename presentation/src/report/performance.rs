@@ -227,7 +227,7 @@ fn clock_table(clock: &[ClockRow]) -> String {
             "`results/{}` is absent: `benches/clock/clock.sh` measures, for each revision given \
              (default `cc915b9 HEAD`), a fresh clone's cold `{}`, the whole reproduction (`{}`) \
              and `{}`, on an otherwise idle machine (about half an hour of the whole machine per \
-             revision; docs/guide/clock.md).\n\n",
+             revision; `docs/guide/clock.md`).\n\n",
             records::clock::FILE,
             records::clock::Step::Build.command(),
             records::clock::Step::Reproduce.command(),
