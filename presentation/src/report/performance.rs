@@ -203,8 +203,8 @@ fn phase_table(phases: &[PhaseRow]) -> String {
     }
     format!(
         "Where the wall time of the last `reproduce run` went (`results/{}`, rewritten at the \
-         end of every run that writes `results/`): {scope}, on {} ({} logical cores available) \
-         at revision `{}`, {:.1} s in all. Each phase runs from the end of the one before: \
+         end of every run that writes `results/`): {scope}. Measured on {} ({} logical cores \
+         available) at revision `{}`, {:.1} s in all. Each phase runs from the end of the one before: \
          *setup* reads the experiment files, checks everything before a run starts and opens \
          `results/`; *runs* is the selected runs in parallel with `runs.csv` and the traces \
          written; *explain*, the explanation layer; *control*, the control experiments; \
