@@ -15,7 +15,7 @@ Cases: kong2019's ZNN in numpy (``driftbench.networks.Znn``) against the suite's
 binding's own overhead: no numpy work); the numpy GNN (``Gnn``) on ``jia2019-clover / vltco``,
 whose twin (``examples/gnn_clover.rs``) is not a suite network, so it has no twin columns.
 
-Run from the repository root, with the package installed (``pip install ./python``)::
+Run from the repository root, with the package installed (``pip install -v ./python``)::
 
     python python/bench/call_cost.py
 """

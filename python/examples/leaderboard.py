@@ -5,7 +5,7 @@ numpy (``driftbench.networks.Gnn``) runs every task of the standard task set thr
 ``results/leaderboard-python.csv`` (the schema of ``results/leaderboard.csv``), which the
 report's Leaderboard section shows as the Python entry.
 
-Run from the repository root, with the package installed (``pip install ./python``)::
+Run from the repository root, with the package installed (``pip install -v ./python``)::
 
     python python/examples/leaderboard.py
 """

@@ -14,6 +14,9 @@
 //!   qpbenchmark scores QP solvers (`results/leaderboard.csv`).
 //! - [`timing`]: the compared runs timed alone, repeated (`results/leaderboard-timing.csv`),
 //!   which the leaderboard ranks by.
+//! - [`phases`]: where one `reproduce run`'s wall time went, phase by phase
+//!   (`results/phases.csv`); [`clock`]: the newcomer's clock from clone to report per revision
+//!   (`results/clock.csv`, written by `benches/clock/clock.sh`).
 //! - [`speedup`]: every run timed alone under an earlier revision and this one
 //!   (`results/speedup.csv`).
 //! - [`owned_dir`]: a directory the program owns; the only way a name read from a file becomes
@@ -48,6 +51,7 @@
 
 pub mod attribution;
 pub mod claims;
+pub mod clock;
 pub mod control;
 pub mod control_claim;
 pub mod dof_cost;
@@ -67,6 +71,7 @@ pub mod owned_dir;
 pub mod paper_rules;
 pub mod papers;
 pub mod percentile;
+pub mod phases;
 pub mod profile;
 pub mod profile_active_set;
 pub mod results_dir;

@@ -27,18 +27,19 @@ pub fn load_papers(project: &Project) -> Result<records::papers::Papers, Reprodu
 }
 
 /// The ladders and attributions of the selected runs `jobs` of the papers' solvers (`all`:
-/// every run of the experiment files), written to `results` when given.
+/// every run of the experiment files), written to `results` when given; how many runs were
+/// explained.
 pub fn explain(
     project: &Project,
     jobs: &[Job],
     all: &[Job],
     git_rev: &str,
     results: Option<&ResultsDir>,
-) -> Result<(), ReproduceError> {
+) -> Result<usize, ReproduceError> {
     let papers = load_papers(project)?;
     let targets = explain::targets(jobs, &papers);
     if targets.is_empty() {
-        return Ok(());
+        return Ok(0);
     }
     eprintln!(
         "explaining {} runs of the papers' solvers (tolerance ladders, attribution)",
@@ -46,7 +47,7 @@ pub fn explain(
     );
     let explained = explain::explain(&targets, all, true, git_rev);
     let Some(results) = results else {
-        return Ok(());
+        return Ok(targets.len());
     };
     explain::write(results.path(), &explained, all)?;
     results.save()?;
@@ -55,7 +56,7 @@ pub fn explain(
         explained.ladder.len(),
         explained.attribution.len()
     );
-    Ok(())
+    Ok(targets.len())
 }
 
 /// `reproduce explain`: the ladders and attributions of the selected runs `jobs` (`all`: every
@@ -68,7 +69,7 @@ pub fn explain_mode(
     git_rev: &str,
 ) -> Result<(), ReproduceError> {
     if options.dry_run {
-        return explain(project, jobs, all.jobs(), git_rev, None);
+        return explain(project, jobs, all.jobs(), git_rev, None).map(drop);
     }
     precheck_report(project)?;
     let results = open_results(project, git_rev, all)?;

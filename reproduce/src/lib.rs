@@ -5,7 +5,7 @@
 //! itself: the library never sees the command line.
 //!
 //! One module per mode: [`run`](mod@run) (the default, the gate of [`gate`], a shard, with its
-//! [`journal`]), [`report`], [`explanation`], [`inference`], [`merge`], [`list`] (and robots),
+//! [`journal`] and its [`phases`] clock), [`report`], [`explanation`], [`inference`], [`merge`], [`list`] (and robots),
 //! [`cost`], [`score`] (a trajectory made elsewhere, also `driftbench.score` in Python); the
 //! task cards the report mode writes ([`task_card`]); beside them what the modes share: the
 //! options ([`options`]), the command line ([`cli`], [`aliases`]), the project's directories
@@ -23,6 +23,7 @@ pub mod journal;
 pub mod list;
 pub mod merge;
 pub mod options;
+pub mod phases;
 pub mod project;
 pub mod report;
 pub mod results;
@@ -49,6 +50,8 @@ use summary::emit;
 
 /// Runs `mode` on the project of `global`; the exit code.
 pub fn run(global: &GlobalOptions, mode: Mode) -> Result<ExitCode, ReproduceError> {
+    // The setup phase of a run's clock (results/phases.csv) begins here.
+    let started = std::time::Instant::now();
     set_threads(global.threads)?;
     let git_rev = revision::REVISION;
     let env = |v: &str| std::env::var(v).ok();
@@ -115,6 +118,7 @@ pub fn run(global: &GlobalOptions, mode: Mode) -> Result<ExitCode, ReproduceErro
                 selection: &o.selection,
                 output,
                 explain: !o.skip_explain,
+                started,
             };
             run::run(&project, plan, &Described::new(&files), &jobs, git_rev)
         }
@@ -133,6 +137,7 @@ pub fn run(global: &GlobalOptions, mode: Mode) -> Result<ExitCode, ReproduceErro
                 selection: &o.selection,
                 output: Output::Gate(baseline),
                 explain: false,
+                started,
             };
             run::run(&project, plan, &all, &jobs, git_rev)
         }
@@ -145,6 +150,7 @@ pub fn run(global: &GlobalOptions, mode: Mode) -> Result<ExitCode, ReproduceErro
                 selection: &o.selection,
                 output: Output::Shard(shard),
                 explain: false,
+                started,
             };
             run::run(&project, plan, &Described::new(&files), &jobs, git_rev)
         }

@@ -42,19 +42,35 @@ pub fn check_report_dir(root: &Path) -> Result<(), ReproduceError> {
     Ok(records::runs::check_writable(report.path())?)
 }
 
-/// Figures first (the report links them), then the report's pages, then the leaderboard table (recorded
-/// in the results directory's manifest).
+/// Figures first (the report links them), then the report's pages ([`render_pages`]).
 pub fn render_report(
     project: &Project,
     root: &Path,
     results: &ResultsDir,
 ) -> Result<(), ReproduceError> {
-    let figures = presentation::figures::render_all(root)?;
+    render_figures(root)?;
+    render_pages(project, root, results)
+}
+
+/// The report's figures under `root/report/figures/`; how many, said on stderr.
+pub fn render_figures(root: &Path) -> Result<usize, ReproduceError> {
+    let figures = presentation::figures::render_all(root)?.len();
+    eprintln!("wrote {figures} figures");
+    Ok(figures)
+}
+
+/// The report's pages, its task cards, then the leaderboard table (recorded in the results
+/// directory's manifest).
+pub fn render_pages(
+    project: &Project,
+    root: &Path,
+    results: &ResultsDir,
+) -> Result<(), ReproduceError> {
     let report = presentation::report::render(root, &project.root.join("papers"))?;
     crate::task_card::write_all(&project.experiments_dir, root)?;
     records::leaderboard::write(results.path(), &results.read_runs()?)?;
     results.save()?;
-    eprintln!("wrote {} figures and {}", figures.len(), report.display());
+    eprintln!("wrote {}", report.display());
     Ok(())
 }
 

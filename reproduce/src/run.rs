@@ -3,7 +3,8 @@
 //! the papers, the stored results); then the selected runs run, resumed from and checkpointed in a journal;
 //! the summary is printed; and the rows are compared with the baseline (the gate) or written
 //! with what follows them (a shard's manifest, or the explanation layer, the control
-//! experiments and the report). Runs that fail without their experiment file expecting it are
+//! experiments and the report), a run into `results/` timed phase by phase ([`crate::phases`],
+//! `results/phases.csv`). Runs that fail without their experiment file expecting it are
 //! exit code 1.
 
 use crate::error::ReproduceError;
@@ -11,17 +12,20 @@ use crate::explanation::{explain, load_papers};
 use crate::gate::Baseline;
 use crate::journal::{resume, run_journaled};
 use crate::options::SelectionOptions;
+use crate::phases::PhaseClock;
 use crate::project::Project;
-use crate::report::{check_report_dir, render_report_if_named, report_root};
+use crate::report::{check_report_dir, render_figures, render_pages, report_root};
 use crate::results::{open_results, plan_pruning, write_results, Described};
 use crate::summary::{emit, summary};
 use catalog::experiment::Job;
+use records::phases::Phase;
 use records::results_dir::ResultsDir;
 use records::runs::RunRow;
 use records::shard::Shard;
 use simulation::row::run_row;
 use simulation::run::RunRecord;
 use std::process::ExitCode;
+use std::time::Instant;
 
 /// Where a run's rows go.
 #[derive(Debug)]
@@ -47,6 +51,9 @@ pub struct Plan<'a> {
     pub output: Output,
     /// Whether the explanation layer follows written results.
     pub explain: bool,
+    /// When the mode began: the start of the setup phase of the run's clock
+    /// (`results/phases.csv`, written with the report).
+    pub started: Instant,
 }
 
 /// Runs `jobs`, the selection of `all` (every run of the experiment files), as `plan` says.
@@ -89,6 +96,9 @@ pub fn run(
     if let (Some(results), Some((kept, _))) = (&results, stored.as_mut()) {
         resume(results, git_rev, all, kept, &mut to_run)?;
     }
+    let mut clock = PhaseClock::since(plan.started);
+    clock.lap(Phase::Setup, None);
+    let resumed = jobs.len() - to_run.len();
     let (records, unjournaled) = run_journaled(results.as_ref(), jobs, &to_run, git_rev)?;
     let rows: Vec<RunRow> = records.iter().map(|r| run_row(r, git_rev)).collect();
     emit(&summary(&rows));
@@ -114,15 +124,19 @@ pub fn run(
             .collect();
         write_results(results, &untraced, kept, &pruned, rows)?;
         records::journal::remove(results.path())?;
-        publish(
-            project,
-            &plan,
-            results,
-            binding.as_ref(),
-            all,
-            jobs,
-            git_rev,
-        )?;
+        clock.lap_noted(
+            Phase::Runs,
+            Some(jobs.len()),
+            if resumed > 0 {
+                format!("{resumed} of them resumed from the journal, not run again")
+            } else {
+                String::new()
+            },
+        );
+        match &binding {
+            Some(binding) => finish_shard(project, binding, jobs, git_rev)?,
+            None => publish(project, &plan, results, all, jobs, git_rev, clock)?,
+        }
     }
     let unexpected: Vec<String> = failed
         .iter()
@@ -158,32 +172,48 @@ pub fn precheck_report(project: &Project) -> Result<(), ReproduceError> {
     Ok(())
 }
 
-/// What follows the written rows: a shard's manifest (of its `binding`, written last: the
-/// shard is finished); otherwise the explanation layer (unless skipped), the control
-/// experiments of a whole, unselected reproduction, and the report.
+/// A shard's manifest (of its `binding`), written last: the shard is finished.
+fn finish_shard(
+    project: &Project,
+    binding: &records::shard::Binding,
+    jobs: &[Job],
+    git_rev: &str,
+) -> Result<(), ReproduceError> {
+    binding
+        .manifest(git_rev, jobs.iter().map(|j| j.key().to_string()).collect())
+        .write(&project.results_dir)?;
+    eprintln!(
+        "shard {}/{} done: merge with `reproduce merge {}...`",
+        binding.shard,
+        binding.shards,
+        project.results_dir.display()
+    );
+    Ok(())
+}
+
+/// What follows the written rows of a run into `results/`: the explanation layer (unless
+/// skipped), the control experiments and the timing pass of a whole, unselected reproduction,
+/// and the report, each a phase of `clock`, whose table ends the run (`results/phases.csv`,
+/// and printed).
 fn publish(
     project: &Project,
     plan: &Plan<'_>,
     results: &ResultsDir,
-    binding: Option<&records::shard::Binding>,
     all: &Described,
     jobs: &[Job],
     git_rev: &str,
+    mut clock: PhaseClock,
 ) -> Result<(), ReproduceError> {
-    if let Some(binding) = binding {
-        binding
-            .manifest(git_rev, jobs.iter().map(|j| j.key().to_string()).collect())
-            .write(&project.results_dir)?;
-        eprintln!(
-            "shard {}/{} done: merge with `reproduce merge {}...`",
-            binding.shard,
-            binding.shards,
-            project.results_dir.display()
+    if !plan.explain {
+        clock.skip(Phase::Explain, "--skip-explain".to_string());
+    } else if plan.selection.exact_only {
+        clock.skip(
+            Phase::Explain,
+            "--exact-only: no solver runs to explain".to_string(),
         );
-        return Ok(());
-    }
-    if plan.explain && !plan.selection.exact_only {
-        explain(project, jobs, all.jobs(), git_rev, Some(results))?;
+    } else {
+        let explained = explain(project, jobs, all.jobs(), git_rev, Some(results))?;
+        clock.lap(Phase::Explain, Some(explained));
     }
     // The control experiments (control crate) with a whole, unselected reproduction.
     if plan.selection.is_whole() {
@@ -194,24 +224,65 @@ fn publish(
             &budget,
             |m| eprintln!("{m}"),
         ) {
-            Ok(s) => eprintln!(
-                "control: {} runs, {} many-cycles runs, efficiency claim {}",
-                s.control_runs,
-                s.cycle_runs,
-                s.verdict.label()
-            ),
+            Ok(s) => {
+                eprintln!(
+                    "control: {} runs, {} many-cycles runs, efficiency claim {}",
+                    s.control_runs,
+                    s.cycle_runs,
+                    s.verdict.label()
+                );
+                clock.lap(Phase::Control, Some(s.control_runs + s.cycle_runs));
+            }
             Err(
                 e @ (control::ControlError::UnknownTask(_) | control::ControlError::NoTaskSet(_)),
             ) => {
-                eprintln!("control experiments skipped: {e}")
+                eprintln!("control experiments skipped: {e}");
+                clock.skip(Phase::Control, e.to_string());
             }
             Err(e) => return Err(e.into()),
         }
-        crate::timing::time_alone(all.jobs(), results, &project.root.join("papers"), git_rev)?;
+        let timed =
+            crate::timing::time_alone(all.jobs(), results, &project.root.join("papers"), git_rev)?;
         // Its tables are recorded before the report (which may fail) is rendered.
         results.save()?;
+        clock.lap(Phase::Timing, Some(timed));
+    } else {
+        let why = "only with a whole reproduction (no selection flags)";
+        clock.skip(Phase::Control, why.to_string());
+        clock.skip(Phase::Timing, why.to_string());
     }
-    render_report_if_named(project, results)
+    let rendered = match report_root(project) {
+        Ok(root) => {
+            let figures = render_figures(&root)?;
+            clock.lap(Phase::Figures, Some(figures));
+            render_pages(project, &root, results)?;
+            clock.lap(Phase::Report, None);
+            Some(root)
+        }
+        Err(why) => {
+            eprintln!("report not rendered: {why}");
+            clock.skip(Phase::Figures, why.to_string());
+            clock.skip(Phase::Report, why.to_string());
+            None
+        }
+    };
+    let (machine, cores) = cost::machine();
+    let rows = clock.rows(&records::phases::RunContext {
+        selection: plan.selection.selection().to_string(),
+        whole: plan.selection.is_whole(),
+        machine,
+        cores,
+        git_rev: git_rev.to_string(),
+    });
+    let written = records::phases::write(results.path(), &rows)?;
+    results.save()?;
+    // The Performance page shows the table just written: its pages rendered once more,
+    // untimed (the report phase above is the first rendering).
+    if let Some(root) = rendered {
+        presentation::report::render(&root, &project.root.join("papers"))?;
+    }
+    eprint!("{}", crate::phases::table(&rows, &written));
+    Ok(())
 }
 
 /// Says the failures no experiment file expects (`unexpected`, one line each): exit code 1 if

@@ -50,13 +50,14 @@ pub fn timed_keys(rows: &[RunRow], papers: &Papers) -> BTreeSet<RunKey> {
 }
 
 /// Times the compared runs alone (module docs) and writes `results/leaderboard-timing.csv`
-/// into `results` (papers read from `papers_dir`); `all` are the experiment files' jobs.
+/// into `results` (papers read from `papers_dir`); `all` are the experiment files' jobs. Returns
+/// how many runs were timed.
 pub fn time_alone(
     all: &[Job],
     results: &ResultsDir,
     papers_dir: &Path,
     git_rev: &str,
-) -> Result<(), TimingError> {
+) -> Result<usize, TimingError> {
     let papers = Papers::load(papers_dir)?;
     let keys = timed_keys(&results.read_runs()?, &papers);
     let (machine, cores) = cost::machine();
@@ -80,7 +81,8 @@ pub fn time_alone(
             &key, &samples, &machine, cores, git_rev,
         ));
     }
+    let timed = rows.len();
     records::timing::write(results.path(), &Timings::new(rows))?;
     results.save()?;
-    Ok(())
+    Ok(timed)
 }

@@ -85,6 +85,10 @@ pub struct Inputs {
     pub control: control::ControlResults,
     /// The Python package's result files (absent = empty).
     pub python: python::PythonResults,
+    /// `results/phases.csv`: the last run's phases (absent = empty).
+    pub phases: Vec<records::phases::PhaseRow>,
+    /// `results/clock.csv`: fresh clones timed per revision (absent = empty).
+    pub clock: Vec<records::clock::ClockRow>,
 }
 
 impl Inputs {
@@ -111,6 +115,8 @@ impl Inputs {
             hot_solve: read_if_present(&results.join(records::profile_active_set::FILE))?,
             control: control::ControlResults::load(&results)?,
             python: python::PythonResults::load(&results)?,
+            phases: records::phases::read(&results)?,
+            clock: read_if_present(&results.join(records::clock::FILE))?,
         })
     }
 }
@@ -186,6 +192,8 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
         hot_solve,
         control,
         python,
+        phases,
+        clock,
     } = inputs;
     // Every text of papers/ escaped once, before any section shows it.
     let papers = &shown::papers(papers);
@@ -332,6 +340,8 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
             hot: hot_solve,
             speedup,
             timings,
+            phases,
+            clock,
         },
         runs,
         papers,

@@ -71,7 +71,7 @@ pub fn leaderboard(rows: &[LeaderboardRow]) -> String {
         out.push_str(
             "`results/leaderboard-python.csv` is absent or has no standard-set row: run \
              `python python/examples/leaderboard.py` with the package installed \
-             (`pip install ./python`).\n\n",
+             (`pip install -v ./python`).\n\n",
         );
     } else {
         out.push_str(&ranking(&standard));
@@ -86,7 +86,7 @@ pub fn call_cost(rows: &[CallCostRow]) -> String {
     let Some(first) = rows.first() else {
         out.push_str(
             "`results/python-call-cost.csv` is absent: `python python/bench/call_cost.py` \
-             measures it (with the package installed, `pip install ./python`).\n\n",
+             measures it (with the package installed, `pip install -v ./python`).\n\n",
         );
         return out;
     };
