@@ -125,7 +125,7 @@ impl Dynamic {
     }
 
     /// One whole exact run (module docs).
-    fn run_exact(&self) -> Option<RunCounts> {
+    fn run_exact(&self) -> RunCounts {
         let n = self.scheme.joints();
         let mut sys = ExactLoop::new(&self.scheme);
         let mut probe = ExactLoop::new(&self.scheme);
@@ -141,7 +141,7 @@ impl Dynamic {
                 Err(e) => Control::Stop(format!("exact QP at t = {t:.6}: {e}")),
             },
         );
-        Some(counts(result, 0, sys.failure.is_none()))
+        counts(result, 0, sys.failure.is_none())
     }
 
     /// One whole network run (module docs); `None` when the network cannot be built.
@@ -233,7 +233,7 @@ impl PreparedCase for Dynamic {
                 let (t, theta) = &self.states[i % self.states.len()];
                 self.scheme.build(*t, theta, theta, &mut self.scratch_qp)
             }
-            Quantity::RunExact => self.last_run = self.run_exact(),
+            Quantity::RunExact => self.last_run = Some(self.run_exact()),
             Quantity::RunNetwork => self.last_run = self.run_network(),
             _ => self.instants.call(quantity, backend, i),
         }

@@ -53,11 +53,6 @@ impl NLinkZnn {
             k_p,
         })
     }
-
-    /// The arm.
-    pub fn arm(&self) -> NLinkDyn {
-        self.arm
-    }
 }
 
 impl SliceScheme for NLinkZnn {
