@@ -21,11 +21,23 @@
 //! effects overlap the three terms above (they are part of the scheme or of the network): they
 //! are "of which" columns, not further summands. For the position error the same runs give
 //! max_t |r* - f(theta)| of each; a switch row holds the difference of the two maxima.
+//!
+//! A numerical run (a method of robio2018 at every instant of a fixed-step loop of step h,
+//! stopped at |e(U)|_2 <= tol) has no network and no integrator tolerance. With d*(h) the
+//! finest completed rung of its ladder (the same loop and h, stopped at 1e-10):
+//!
+//! ```text
+//!   d_run = d_exact + (d*(h) - d_exact) + (d_run - d*(h))
+//!         = scheme  + sampling gap       + stopping rule
+//! ```
+//!
+//! The sampling gap is what holding each instant's command over h adds (the loop's forward
+//! Euler step), the stopping rule what ending each instant's iteration at tol adds.
 
 use catalog::experiment::Scoring;
 use catalog::experiment::{Job, SolverChoice};
 use catalog::solver_spec::SolverSpec;
-use records::attribution::AttributionRow;
+use records::attribution::{AttributionRow, Component};
 use records::ladder::LadderRow;
 use records::runs::RunRow;
 
@@ -45,11 +57,11 @@ pub enum Switch {
 
 impl Switch {
     /// The attribution component this switch measures.
-    pub fn component(self) -> &'static str {
+    pub fn component(self) -> Component {
         match self {
-            Switch::NoPerturbation => "of which: injected perturbation",
-            Switch::ClosedPath => "of which: path non-closure",
-            Switch::FinerSmoothing => "of which: sign-power smoothing (ours)",
+            Switch::NoPerturbation => Component::InjectedPerturbation,
+            Switch::ClosedPath => Component::PathNonClosure,
+            Switch::FinerSmoothing => Component::SignPowerSmoothing,
         }
     }
 
@@ -128,13 +140,25 @@ fn norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
 
-/// The attribution rows of one neural run from its ladder, its exact column's ladder and its
-/// switch runs.
+/// The attribution rows of one run from its ladder, its exact column's ladder and its switch
+/// runs. `numerical`: the run is a numerical method's (its sum is scheme + sampling gap +
+/// stopping rule), not a network's (scheme + network lag + integration error).
 pub fn attribution_rows(
     neural: &[LadderRow],
     exact: &[LadderRow],
     switches: &[(Switch, RunRow)],
+    numerical: bool,
 ) -> Vec<AttributionRow> {
+    let [_, lag, error] = if numerical {
+        Component::NUMERICAL_SUM
+    } else {
+        Component::NETWORK_SUM
+    };
+    let converged_what = if numerical {
+        "method at |e| <= 1e-10"
+    } else {
+        "converged network"
+    };
     let Some(run) = neural.iter().find(|r| r.as_run) else {
         return Vec::new();
     };
@@ -148,7 +172,7 @@ pub fn attribution_rows(
     let d_net = net_ref.and_then(drifts);
     let d_exact = exact_ref.and_then(drifts);
     let run_norm = d_run.as_deref().map(norm);
-    let row = |component: &str, d: Option<Vec<f64>>, err: Option<f64>, note: &str| {
+    let row = |component: Component, d: Option<Vec<f64>>, err: Option<f64>, note: &str| {
         let n = d.as_deref().map(norm);
         AttributionRow {
             paper: run.paper.clone(),
@@ -157,7 +181,7 @@ pub fn attribution_rows(
             solver_id: run.solver_id.clone(),
             variant: run.variant.clone(),
             solver: run.solver.clone(),
-            component: component.to_string(),
+            component,
             drift: d.clone().unwrap_or_default(),
             drift_norm: n,
             share: n.zip(run_norm).map(|(a, b)| a / b),
@@ -178,24 +202,24 @@ pub fn attribution_rows(
         Some(r) => format!("{what}: {}", r.failure),
     };
     let mut rows = vec![
-        row("run", d_run.clone(), run.max_pos_err, &run.failure),
+        row(Component::Run, d_run.clone(), run.max_pos_err, &run.failure),
         row(
-            "scheme (exact, converged)",
+            Component::Scheme,
             d_exact.clone(),
             exact_ref.and_then(|r| r.max_pos_err),
             &unfinished(exact_ref, "exact"),
         ),
         row(
-            "network lag",
+            lag,
             diff(&d_net, &d_exact),
             net_ref.and_then(|r| r.max_pos_err),
-            &unfinished(net_ref, "converged network"),
+            &unfinished(net_ref, converged_what),
         ),
         row(
-            "integration error",
+            error,
             diff(&d_run, &d_net),
             None,
-            &unfinished(net_ref, "converged network"),
+            &unfinished(net_ref, converged_what),
         ),
     ];
     for (s, r) in switches {

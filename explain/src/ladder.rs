@@ -21,12 +21,19 @@
 //! on the stiff networks (gamma = 1e7) cannot finish: rungs are capped at
 //! [`LADDER_MAX_STEPS`] (explicit: [`LADDER_MAX_EXPLICIT_STEPS`]) accepted steps and an
 //! unfinished rung is reported as such, not dropped.
+//!
+//! A numerical run (robio2018's methods in a fixed-step loop, `simulation::numerical`) has no
+//! integrator tolerance: its error control is the stopping rule |e(U)|_2 <= tolerance at every
+//! instant. Its rungs are the same loop, at the run's own step h, stopped at
+//! [`NUMERICAL_TOLERANCES`] (1e-3 ... 1e-10); the finest completed one is d*(h), the drift of
+//! the sampled scheme with the QP solved to 1e-10. Its rows carry the method
+//! [`FIXED_STEP`], the stopping tolerance in `rtol`, `atol` = 0 and h in `max_step`.
 
 use catalog::experiment::Scoring;
 use catalog::experiment::{Job, SolverChoice};
 use catalog::integrator::{IntegratorSettings, Method};
 use catalog::solver_spec::SolverSpec;
-use records::ladder::LadderRow;
+use records::ladder::{LadderRow, FIXED_STEP};
 use records::runs::RunRow;
 
 /// Accepted steps after which an implicit ladder rung is abandoned (every implicit run of the
@@ -41,6 +48,8 @@ pub const LADDER_MAX_EXPLICIT_STEPS: usize = 20_000;
 const NEURAL_RTOLS: [f64; 8] = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10];
 /// RelTol of the rungs of the exact column (its run is at 1e-11; 1e-12 is the reference).
 const EXACT_RTOLS: [f64; 7] = [1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12];
+/// Stopping tolerances |e(U)|_2 <= tol of the rungs of a numerical run (robio2018 prints 1e-3).
+pub const NUMERICAL_TOLERANCES: [f64; 8] = [1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10];
 
 /// One rung: method and tolerances.
 fn rung(method: Method, rtol: f64, atol: f64, max_step: Option<f64>) -> IntegratorSettings {
@@ -58,7 +67,7 @@ fn rung(method: Method, rtol: f64, atol: f64, max_step: Option<f64>) -> Integrat
     }
 }
 
-/// The rungs of `job`'s ladder (none for a numerical run). A neural run: BDF at MATLAB's defaults and at every RelTol,
+/// The integrator rungs of `job`'s ladder (none for a numerical run: see [`jobs`]). A neural run: BDF at MATLAB's defaults and at every RelTol,
 /// then a second method at every RelTol (ESDIRK3(4) for the finite-time network, stiff in the
 /// sign-power's band, where an explicit method cannot finish; Dormand-Prince otherwise), then
 /// its own setting (with the group's MaxStep where it has one). The exact column: its
@@ -68,8 +77,7 @@ pub fn rungs(job: &Job) -> Vec<IntegratorSettings> {
     let max_step = job.integrator.max_step;
     let mut out = Vec::new();
     match &job.solver {
-        // A numerical run has no integrator tolerance to ladder: its fixed-step loop is set by
-        // its step and stopping rule (the experiment file's variants vary those instead).
+        // A numerical run has no integrator tolerance: its rungs vary the stopping rule (jobs).
         SolverChoice::Numerical(_) => return out,
         SolverChoice::Exact => {
             out.extend(
@@ -108,16 +116,51 @@ pub fn rungs(job: &Job) -> Vec<IntegratorSettings> {
     out
 }
 
-/// The jobs of `job`'s ladder (scoring off: only drift and position error are read).
+/// The jobs of `job`'s ladder (scoring off: only drift and position error are read): its
+/// [`rungs`], or for a numerical run the same loop stopped at each of
+/// [`NUMERICAL_TOLERANCES`] (the run's own tolerance kept where it is not among them).
 pub fn jobs(job: &Job) -> Vec<Job> {
+    let base = Job {
+        scoring: Scoring::Off,
+        ..job.clone()
+    };
+    if let SolverChoice::Numerical(spec) = &job.solver {
+        let mut tolerances = NUMERICAL_TOLERANCES.to_vec();
+        if !tolerances.contains(&spec.tolerance) {
+            tolerances.push(spec.tolerance);
+        }
+        return tolerances
+            .into_iter()
+            .map(|tolerance| Job {
+                solver: SolverChoice::Numerical(catalog::numerical_spec::NumericalSpec {
+                    tolerance,
+                    ..*spec
+                }),
+                ..base.clone()
+            })
+            .collect();
+    }
     rungs(job)
         .into_iter()
         .map(|integrator| Job {
             integrator,
-            scoring: Scoring::Off,
-            ..job.clone()
+            ..base.clone()
         })
         .collect()
+}
+
+/// What a rung is, as its ladder row states it: (method, rtol, atol, max_step). For a
+/// numerical run: ([`FIXED_STEP`], stopping tolerance, 0, Some(h)).
+fn setting(job: &Job) -> (String, f64, f64, Option<f64>) {
+    match &job.solver {
+        SolverChoice::Numerical(spec) => {
+            (FIXED_STEP.to_string(), spec.tolerance, 0.0, Some(spec.step))
+        }
+        _ => {
+            let s = job.integrator;
+            (s.method.label().to_string(), s.rtol, s.atol, s.max_step)
+        }
+    }
 }
 
 /// Relative 2-norm distance |a - b| / |b| of two drift vectors.
@@ -128,55 +171,60 @@ pub fn rel_distance(a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// The converged reference among one run's rungs: the completed rung with the smallest
-/// RelTol (ties: BDF before ESDIRK3(4) before Dormand-Prince, then the smaller AbsTol), as an
-/// index into `rows`.
-pub fn reference(rows: &[RunRow]) -> Option<usize> {
-    let preferred = |r: &RunRow| match r.integrator.as_str() {
+/// tolerance (RelTol, or a numerical run's stopping tolerance; ties: BDF before ESDIRK3(4)
+/// before Dormand-Prince, then the smaller AbsTol), as an index into `rows` (`rows[i]` is the
+/// run of `rungs[i]`).
+pub fn reference(rungs: &[Job], rows: &[RunRow]) -> Option<usize> {
+    let preferred = |m: &str| match m {
         "bdf" => 0,
         "esdirk34" => 1,
         "dopri5" => 2,
         _ => 3,
     };
+    let settings: Vec<_> = rungs.iter().map(setting).collect();
     rows.iter()
         .enumerate()
         .filter(|(_, r)| r.completed())
-        .min_by(|a, b| {
-            a.1.rtol
-                .total_cmp(&b.1.rtol)
-                .then(preferred(a.1).cmp(&preferred(b.1)))
-                .then(a.1.atol.total_cmp(&b.1.atol))
+        .min_by(|(a, _), (b, _)| {
+            let (a, b) = (&settings[*a], &settings[*b]);
+            a.1.total_cmp(&b.1)
+                .then(preferred(&a.0).cmp(&preferred(&b.0)))
+                .then(a.2.total_cmp(&b.2))
         })
         .map(|(i, _)| i)
 }
 
-/// The ladder rows of one run from its rungs' results (`rows[i]` is the run of `rungs[i]`).
-pub fn ladder_rows(base: &Job, rungs: &[IntegratorSettings], rows: &[RunRow]) -> Vec<LadderRow> {
-    let reference = reference(rows);
+/// The ladder rows of one run from its rungs' results (`rows[i]` is the run of `rungs[i]`,
+/// one of [`jobs`]`(base)`). The rows carry `base`'s key and labels: a numerical rung's own
+/// solver id names its tolerance.
+pub fn ladder_rows(base: &Job, rungs: &[Job], rows: &[RunRow]) -> Vec<LadderRow> {
+    let reference = reference(rungs, rows);
     let d_star = reference.map(|i| &rows[i].drift);
+    let own = setting(base);
     rungs
         .iter()
         .zip(rows)
         .enumerate()
-        .map(|(i, (s, r))| {
+        .map(|(i, (job, r))| {
             let rel_change = d_star
                 .as_ref()
                 .filter(|_| r.completed())
                 .map(|d| rel_distance(&r.drift, d));
+            let (method, rtol, atol, max_step) = setting(job);
+            let as_run =
+                (method.as_str(), rtol, atol, max_step) == (own.0.as_str(), own.1, own.2, own.3);
             LadderRow {
                 paper: r.paper.clone(),
                 experiment: r.experiment.clone(),
                 variant_id: r.variant_id.clone(),
-                solver_id: r.solver_id.clone(),
+                solver_id: base.solver.id(),
                 variant: r.variant.clone(),
-                solver: r.solver.clone(),
-                method: s.method.label().to_string(),
-                rtol: s.rtol,
-                atol: s.atol,
-                max_step: s.max_step,
-                as_run: s.method == base.integrator.method
-                    && s.rtol == base.integrator.rtol
-                    && s.atol == base.integrator.atol
-                    && s.max_step == base.integrator.max_step,
+                solver: base.solver.label(),
+                method,
+                rtol,
+                atol,
+                max_step,
+                as_run,
                 status: r.status,
                 failure: r.failure.clone(),
                 drift: r.drift.clone(),

@@ -1,15 +1,17 @@
 //! Why the published numbers differ: controlled re-runs around every run of a paper's solver.
 //!
 //! - [`ladder`]: each run re-integrated from RelTol 1e-3 to 1e-10 (BDF and Dormand-Prince; the
-//!   exact column to 1e-12): which digits are integration noise, and the converged drifts.
+//!   exact column to 1e-12; a numerical method's loop stopped at 1e-3 to 1e-10): which digits
+//!   are integration (or stopping-rule) noise, and the converged drifts.
 //! - [`attribution`]: each run's drift split into scheme + network lag + integration error
-//!   (exact, telescoping), with the effect of each switched ingredient beside it.
+//!   (a numerical method's: scheme + sampling gap + stopping rule; exact, telescoping), with
+//!   the effect of each switched ingredient beside it.
 //! - [`inference`]: the setup the papers leave open (path pose and plane tilt, size, direction,
 //!   RMP reading; robot variant and MATLAB-default tolerances as discrete hypotheses) fitted to
 //!   a published table, jointly and column by column, always shown beside the declared setup,
 //!   never instead of it.
 //!
-//! The runs explained ([`targets`]) are the neural runs a published column maps onto
+//! The runs explained ([`targets`]) are the neural and numerical runs a published column maps onto
 //! (`papers/<paper>/paper.toml`, [`records::papers::Papers`]) and those of the variants an
 //! experiment file marks `explain = true` (zhang2018's perturbed runs: the paper prints no
 //! table, but the perturbation is an ingredient to attribute; the group-code experiments'
@@ -37,12 +39,12 @@ use simulation::row::run_row;
 use simulation::runner::run_jobs;
 use std::path::Path;
 
-/// The neural runs to explain among `jobs`, in `jobs` order: those a published column maps
-/// onto and those of variants marked `explain = true`.
+/// The runs to explain among `jobs`, in `jobs` order: the neural and numerical runs a
+/// published column maps onto and those of variants marked `explain = true`.
 pub fn targets(jobs: &[Job], papers: &Papers) -> Vec<Job> {
     let mapped: std::collections::HashSet<_> = papers.mappings.iter().map(|m| &m.run).collect();
     jobs.iter()
-        .filter(|j| matches!(j.solver, SolverChoice::Neural(_)))
+        .filter(|j| !matches!(j.solver, SolverChoice::Exact))
         .filter(|j| j.explain || mapped.contains(&j.key()))
         .cloned()
         .collect()
@@ -97,11 +99,8 @@ pub fn explain(targets: &[Job], all: &[Job], progress: bool, git_rev: &str) -> E
     let mut out = Explained::default();
     let mut per_base: Vec<Vec<LadderRow>> = Vec::new();
     for (base, (start, len)) in ladders.iter().zip(&spans) {
-        let settings: Vec<_> = jobs[*start..start + len]
-            .iter()
-            .map(|j| j.integrator)
-            .collect();
-        let l = ladder::ladder_rows(base, &settings, &rows[*start..start + len]);
+        let span = *start..start + len;
+        let l = ladder::ladder_rows(base, &jobs[span.clone()], &rows[span]);
         out.ladder.extend(l.iter().cloned());
         per_base.push(l);
     }
@@ -122,6 +121,7 @@ pub fn explain(targets: &[Job], all: &[Job], progress: bool, git_rev: &str) -> E
             ladder_of(t),
             ladder_of(&exact_counterpart(t)),
             &switched,
+            matches!(t.solver, SolverChoice::Numerical(_)),
         ));
     }
     out

@@ -9,6 +9,8 @@ use explain::inference::family::Family;
 use explain::inference::search::Target;
 use explain::inference::{evaluate, fit, Column, Setup, TableProblem};
 use explain::{explain, ladder};
+use records::attribution::Component;
+use records::ladder::FIXED_STEP;
 use simulation::run::check_job;
 
 fn jobs() -> Vec<Job> {
@@ -62,19 +64,19 @@ fn ladder_converges_and_attribution_adds_up() {
     assert_eq!(neural.iter().filter(|r| r.as_run).count(), 1);
 
     // The attribution: scheme + lag + integration = the run, per joint.
-    let comp = |name: &str| {
+    let comp = |name: Component| {
         let r = x
             .attribution
             .iter()
             .find(|r| r.component == name)
-            .unwrap_or_else(|| panic!("component {name}"));
+            .unwrap_or_else(|| panic!("component {name:?}"));
         <[f64; 5]>::try_from(r.drift.as_slice()).expect("every joint")
     };
-    let run = comp("run");
+    let run = comp(Component::Run);
     let (s, l, i) = (
-        comp("scheme (exact, converged)"),
-        comp("network lag"),
-        comp("integration error"),
+        comp(Component::Scheme),
+        comp(Component::NetworkLag),
+        comp(Component::IntegrationError),
     );
     for k in 0..5 {
         let sum = s[k] + l[k] + i[k];
@@ -86,6 +88,72 @@ fn ladder_converges_and_attribution_adds_up() {
     }
     // The run at RelTol 1e-6 is not the converged one: the integration error is measured.
     assert!(i.iter().any(|v| v.abs() > 0.0));
+}
+
+/// A numerical run (robio2018's 94LVI in its fixed-step loop): the ladder varies the stopping
+/// rule at the run's own step, the reference is the finest tolerance, and scheme + sampling
+/// gap + stopping rule = the run, per joint.
+#[test]
+fn numerical_runs_are_laddered_on_their_stopping_rule() {
+    let jobs = jobs();
+    let target = find(&jobs, "robio2018-five-pointed-star", "rmp", "94lvi");
+    let x = explain(std::slice::from_ref(&target), &jobs, false, "test");
+    let rungs: Vec<_> = x.ladder.iter().filter(|r| r.solver_id == "94lvi").collect();
+    assert_eq!(rungs.len(), ladder::NUMERICAL_TOLERANCES.len());
+    assert!(rungs
+        .iter()
+        .all(|r| r.method == FIXED_STEP && r.max_step == Some(1e-3)));
+    let own: Vec<_> = rungs.iter().filter(|r| r.as_run).collect();
+    assert_eq!(own.len(), 1);
+    assert_eq!(own[0].rtol, 1e-3);
+    let reference = rungs.iter().find(|r| r.reference).unwrap_or_else(|| {
+        let why: Vec<_> = rungs.iter().map(|r| (r.rtol, &r.failure)).collect();
+        panic!("no reference rung: {why:?}")
+    });
+    assert_eq!(reference.rtol, 1e-10);
+    // Tightening the stopping rule by six decades gains digits.
+    let digits = |tol: f64| {
+        rungs
+            .iter()
+            .find(|r| r.rtol == tol)
+            .and_then(|r| r.stable_digits)
+            .expect("completed rung")
+    };
+    assert!(
+        digits(1e-9) > digits(1e-3) + 2.0,
+        "{} vs {}",
+        digits(1e-9),
+        digits(1e-3)
+    );
+    let comp = |name: Component| {
+        x.attribution
+            .iter()
+            .find(|r| r.component == name)
+            .unwrap_or_else(|| panic!("component {name:?}"))
+            .drift
+            .clone()
+    };
+    assert!(!x
+        .attribution
+        .iter()
+        .any(|r| r.component == Component::NetworkLag));
+    let (run, s, g, e) = (
+        comp(Component::Run),
+        comp(Component::Scheme),
+        comp(Component::SamplingGap),
+        comp(Component::StoppingRule),
+    );
+    assert_eq!(run.len(), 6);
+    for k in 0..6 {
+        let sum = s[k] + g[k] + e[k];
+        assert!(
+            (sum - run[k]).abs() <= 1e-12 * run[k].abs().max(1e-9),
+            "joint {k}: {sum} vs {}",
+            run[k]
+        );
+    }
+    // At |e| <= 1e-3 the stopping rule is measured, not zero.
+    assert!(e.iter().any(|v| v.abs() > 0.0));
 }
 
 #[test]

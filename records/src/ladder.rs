@@ -4,8 +4,15 @@
 //! own setting, its drift theta(T) - theta(0) per joint (`drift_1 .. drift_K`), and against the
 //! converged drift d* (the finest completed rung, `reference`) the relative change
 //! |d - d*| / |d*| and the digits shared with d*, -log10 of that change.
+//!
+//! A numerical run's rungs are its fixed-step loop stopped at a sequence of tolerances: their
+//! `method` is [`FIXED_STEP`], `rtol` holds the stopping tolerance (|e(U)|_2 <= rtol), `atol`
+//! is 0 and `max_step` the loop's step h.
 
 use crate::runs::Status;
+
+/// The `method` of a numerical run's rungs (module docs).
+pub const FIXED_STEP: &str = "fixed-step";
 use serde::{Deserialize, Serialize};
 
 /// One rung's result, as stored in `results/ladder.csv`.
@@ -19,9 +26,13 @@ pub struct LadderRow {
     /// Labels (display only).
     pub variant: String,
     pub solver: String,
+    /// The integrator's id (`bdf`, `dopri5`, ...), or [`FIXED_STEP`].
     pub method: String,
+    /// RelTol, or a numerical rung's stopping tolerance.
     pub rtol: f64,
+    /// AbsTol (0 for a numerical rung).
     pub atol: f64,
+    /// The integrator's MaxStep, or a numerical rung's step h.
     pub max_step: Option<f64>,
     /// The run's own setting (the rung results/runs.csv holds).
     pub as_run: bool,

@@ -30,6 +30,8 @@ pub enum PaperProblem {
     NotOneLine { field: &'static str },
     #[error("mapping[{index}] field `run`: \"{run}\" is not \"<experiment> / <variant> / <solver>\" (ids)")]
     Run { index: usize, run: String },
+    #[error("mapping[{index}] field `companions`: \"{companion}\" is not \"<variant>\" or \"<variant> / <solver>\" (ids)")]
+    Companion { index: usize, companion: String },
     #[error("mapping[{index}]: published experiment \"{experiment}\" column \"{column}\" is already mapped by mapping[{first}] (one run per published column)")]
     MappingTwice {
         index: usize,

@@ -209,8 +209,9 @@ pub struct Mapping {
     pub published_column: String,
     /// Our run (its variant is the one the ratios and the verdict use; its solver the paper's).
     pub run: RunKey,
-    /// Further variant ids of the same experiment shown beside it.
-    pub companions: Vec<String>,
+    /// Further runs of the same experiment shown beside it: `"<variant>"` (the same solver)
+    /// or `"<variant> / <solver>"` in the file (a solver whose settings, and so id, differ).
+    pub companions: Vec<RunKey>,
 }
 
 /// Every paper of `papers/`: metadata, published values and mappings.
@@ -429,12 +430,30 @@ fn load_folder(dir: &Path, folder: &Path) -> Result<Folder, PapersError> {
                 column: m.published_column,
             }));
         }
+        let companions = m
+            .companions
+            .iter()
+            .map(|c| {
+                let key = if c.contains('/') {
+                    RunKey::parse(&format!("{} / {c}", run.experiment))
+                } else {
+                    Some(RunKey::new(&run.experiment, c.trim(), &run.solver))
+                };
+                key.filter(|k| !k.variant.is_empty() && k.check().is_ok())
+                    .ok_or_else(|| {
+                        invalid(&path)(PaperProblem::Companion {
+                            index,
+                            companion: c.clone(),
+                        })
+                    })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
         mappings.push(Mapping {
             paper: file.paper.clone(),
             published_experiment: m.published_experiment,
             published_column: m.published_column,
             run,
-            companions: m.companions,
+            companions,
         });
     }
     let values_path = folder.join("values.csv");

@@ -85,3 +85,30 @@ fn non_finite_values_and_unknown_metrics_are_refused_naming_the_line() {
         std::fs::remove_dir_all(dir).unwrap();
     }
 }
+
+/// A mapping's companions name a variant (the mapped solver) or a variant and a solver, in the
+/// mapping's experiment; anything else is refused naming the field.
+#[test]
+fn companions_name_variants_or_runs() {
+    let dir = papers_dir("companions", HEADER);
+    let toml = |companions: &str| {
+        format!(
+            "paper = \"demo\"\ntitle = \"Demo\"\n\n[[mapping]]\npublished_experiment = \"e\"\npublished_column = \"A\"\nrun = \"demo-e / v / m3\"\ncompanions = {companions}\n"
+        )
+    };
+    let paper_toml = dir.join("demo").join("paper.toml");
+    std::fs::write(&paper_toml, toml(r#"["w", "x / m3-tol-1e-6"]"#)).unwrap();
+    let papers = Papers::load(&dir).unwrap();
+    let shown: Vec<String> = papers.mappings[0]
+        .companions
+        .iter()
+        .map(|k| k.to_string())
+        .collect();
+    assert_eq!(shown, ["demo-e / w / m3", "demo-e / x / m3-tol-1e-6"]);
+    for bad in [r#"["x / "]"#, r#"["a / b / c"]"#, r#"["../x"]"#, r#"[""]"#] {
+        std::fs::write(&paper_toml, toml(bad)).unwrap();
+        let err = Papers::load(&dir).expect_err(bad).to_string();
+        assert!(err.contains("companions"), "{bad}: {err}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -142,10 +142,13 @@ pub fn side_by_side(paper: &str, table: &str, papers: &Papers, runs: &Runs) -> S
     for m in &columns {
         cols.push(Col::Paper(m));
         let e = m.run.experiment.as_str();
-        for variant in std::iter::once(&m.run.variant).chain(m.companions.iter()) {
+        for shown_run in std::iter::once(&m.run).chain(m.companions.iter()) {
+            let variant = &shown_run.variant;
             let exact = runs.find(e, variant, EXACT);
             let shown_label = label(exact, variant, false);
-            if !exact_shown.contains(&(e, variant)) {
+            // A companion variant without an exact column (`exact = false`) shows none.
+            let companion = shown_run != &m.run;
+            if !exact_shown.contains(&(e, variant)) && !(companion && exact.is_none()) {
                 exact_shown.push((e, variant));
                 cols.push(Col::Ours(OursColumn {
                     header: name("exact", &shown_label),
@@ -153,10 +156,10 @@ pub fn side_by_side(paper: &str, table: &str, papers: &Papers, runs: &Runs) -> S
                     ratio_of: None,
                 }));
             }
-            let run = runs.find(e, variant, &m.run.solver);
+            let run = runs.find(e, variant, &shown_run.solver);
             cols.push(Col::Ours(OursColumn {
                 header: name(
-                    &label(run, &m.run.solver, true),
+                    &label(run, &shown_run.solver, true),
                     &label(run.or(exact), variant, false),
                 ),
                 run,

@@ -4,10 +4,10 @@
 //! the group-code reference experiments. See `explain` for the mathematics.
 
 use super::markdown::{sci, sci_opt, Table, MISSING};
-use records::attribution::AttributionRow;
+use records::attribution::{AttributionRow, Component};
 use records::inference::{self, EntryRow, InferenceRow, Integration};
 use records::inference_verdict as verdict;
-use records::ladder::LadderRow;
+use records::ladder::{LadderRow, FIXED_STEP};
 use records::papers::{Papers, GROUP};
 use std::fmt::Write as _;
 
@@ -20,12 +20,50 @@ pub struct Explanations {
     pub entries: Vec<EntryRow>,
 }
 
-/// The component names of the attribution, in column order (switches after the sum).
-const SUM: [&str; 3] = [
-    "scheme (exact, converged)",
-    "network lag",
-    "integration error",
-];
+/// The terms of the sums the attribution rows of `keys` use, in column order: the scheme,
+/// then a network's lag and integration error and/or a numerical method's sampling gap and
+/// stopping rule.
+fn sum_components(rows: &[AttributionRow], keys: &[(&str, &str, &str)]) -> Vec<Component> {
+    let mut out: Vec<Component> = rows
+        .iter()
+        .filter(|r| {
+            keys.contains(&(
+                r.experiment.as_str(),
+                r.variant_id.as_str(),
+                r.solver_id.as_str(),
+            ))
+        })
+        .map(|r| r.component)
+        .filter(|c| *c != Component::Run && !c.is_switch())
+        .collect();
+    out.sort();
+    out.dedup();
+    out
+}
+
+/// How the summary paragraph names a term of the sum.
+fn described(c: Component) -> &'static str {
+    match c {
+        Component::Scheme => "the scheme itself (exact column, converged)",
+        Component::NetworkLag => "the network's lag",
+        Component::IntegrationError => "integration error",
+        Component::SamplingGap => "the fixed-step loop's sampling gap",
+        Component::StoppingRule => "the stopping rule",
+        other => other.label(),
+    }
+}
+
+/// How the front page's one line names a term of the sum.
+fn brief(c: Component) -> &'static str {
+    match c {
+        Component::Scheme => "scheme",
+        Component::NetworkLag => "lag",
+        Component::IntegrationError => "integration",
+        Component::SamplingGap => "sampling",
+        Component::StoppingRule => "stopping rule",
+        other => other.label(),
+    }
+}
 
 /// "`experiment` variant / solver" of a run, by its labels (`key`, ids, when no row is found).
 fn shown(row: Option<&AttributionRow>, key: (&str, &str, &str)) -> String {
@@ -54,7 +92,7 @@ fn runs_of<'a>(rows: &'a [AttributionRow], paper: &str) -> Vec<(&'a str, &'a str
 fn component<'a>(
     rows: &'a [AttributionRow],
     key: (&str, &str, &str),
-    name: &str,
+    name: Component,
 ) -> Option<&'a AttributionRow> {
     rows.iter().find(|r| {
         (
@@ -94,26 +132,30 @@ pub fn attribution_table(paper: &str, x: &Explanations, papers: &Papers) -> Stri
     if keys.is_empty() {
         return String::new();
     }
-    let switches: Vec<String> = {
-        let mut s: Vec<String> = x
-            .attribution
-            .iter()
-            .filter(|r| r.paper == paper && r.component.starts_with("of which"))
-            .map(|r| r.component.clone())
-            .collect();
-        s.sort();
-        s.dedup();
-        s
-    };
+    let mut switches: Vec<Component> = x
+        .attribution
+        .iter()
+        .filter(|r| r.paper == paper && r.component.is_switch())
+        .map(|r| r.component)
+        .collect();
+    switches.sort();
+    switches.dedup();
+    let sums = sum_components(&x.attribution, &keys);
+    let networks = sums.contains(&Component::NetworkLag);
+    let numerical = sums.contains(&Component::SamplingGap);
     let mut header = vec![
         "run (variant / solver)".to_string(),
         "paper ‖d‖".to_string(),
         "ours ‖d‖ (as run)".to_string(),
         "ours ‖d‖ at MATLAB's default tolerances".to_string(),
     ];
-    header.extend(SUM.iter().map(|s| format!("{s} ‖·‖ (share)")));
-    header.extend(switches.iter().map(|s| format!("{s} ‖·‖")));
-    header.push("max pos. err: run / exact / converged net (m)".to_string());
+    header.extend(sums.iter().map(|s| format!("{} ‖·‖ (share)", s.label())));
+    header.extend(switches.iter().map(|s| format!("{} ‖·‖", s.label())));
+    header.push(match (networks, numerical) {
+        (true, false) => "max pos. err: run / exact / converged net (m)".to_string(),
+        (false, true) => "max pos. err: run / exact / at |e| <= 1e-10 (m)".to_string(),
+        _ => "max pos. err: run / exact / converged solver (m)".to_string(),
+    });
     let mut t = Table::new(header);
     for key in keys {
         let paper_norm = papers
@@ -129,7 +171,7 @@ pub fn attribution_table(paper: &str, x: &Explanations, papers: &Papers) -> Stri
             .and_then(|m| papers.published(m, "drift_norm"))
             .map(|(v, derived)| format!("{}{}", sci(v), if derived { "*" } else { "" }))
             .unwrap_or_else(|| MISSING.to_string());
-        let run = component(&x.attribution, key, "run");
+        let run = component(&x.attribution, key, Component::Run);
         let matlab = x.ladder.iter().find(|r| {
             (
                 r.experiment.as_str(),
@@ -148,24 +190,47 @@ pub fn attribution_table(paper: &str, x: &Explanations, papers: &Papers) -> Stri
                 None => MISSING.to_string(),
             },
         ];
-        row.extend(SUM.iter().map(|c| cell(component(&x.attribution, key, c))));
+        row.extend(
+            sums.iter()
+                .map(|c| cell(component(&x.attribution, key, *c))),
+        );
         row.extend(
             switches
                 .iter()
-                .map(|c| cell(component(&x.attribution, key, c))),
+                .map(|c| cell(component(&x.attribution, key, *c))),
         );
-        let err = |c: &str| sci_opt(component(&x.attribution, key, c).and_then(|r| r.max_pos_err));
+        let err =
+            |c: Component| sci_opt(component(&x.attribution, key, c).and_then(|r| r.max_pos_err));
+        // The converged solver's error sits on the sum's second term of this run.
+        let converged = [Component::NetworkLag, Component::SamplingGap]
+            .into_iter()
+            .find(|c| component(&x.attribution, key, *c).is_some())
+            .unwrap_or(Component::NetworkLag);
         row.push(format!(
             "{} / {} / {}",
-            err("run"),
-            err(SUM[0]),
-            err(SUM[1])
+            err(Component::Run),
+            err(Component::Scheme),
+            err(converged)
         ));
         t.push(row);
     }
     let mut out = t.without_empty_columns().render();
+    out.push_str("\nShares are |component| / |d_run|; ");
+    if networks {
+        out.push_str("for a network, scheme + network lag + integration error = the run's drift, joint by joint; ");
+    }
+    if numerical {
+        out.push_str("for a numerical method in its fixed-step loop of step h, scheme + sampling gap + stopping rule = the run's drift, joint by joint (the sampling gap is the same loop stopped at |e| <= 1e-10 against the exact column, the stopping rule the run against that loop); ");
+    }
+    out.push_str("the three need not add up in norm.");
+    if networks {
+        out.push_str(" The MATLAB-default column is the paper's solver integrated by ode15s's method at RelTol 1e-3 / AbsTol 1e-6, MATLAB's defaults, for the case that the papers' runs used them.");
+    }
+    if !switches.is_empty() {
+        out.push_str(" \"of which\" columns are the effect of switching one ingredient off with everything else held (they are part of the first three, not further terms).");
+    }
     out.push_str(
-        "\nShares are |component| / |d_run|; scheme + network lag + integration error = the run's drift, joint by joint (the three need not add up in norm). The MATLAB-default column is the paper's solver integrated by ode15s's method at RelTol 1e-3 / AbsTol 1e-6, MATLAB's defaults, for the case that the papers' runs used them. \"of which\" columns are the effect of switching one ingredient off with everything else held (they are part of the first three, not further terms). \\* the paper prints no norm: the norm of its per-joint entries. Per-joint components: `results/attribution.csv`.\n",
+        " \\* the paper prints no norm: the norm of its per-joint entries. Per-joint components: `results/attribution.csv`.\n",
     );
     out
 }
@@ -201,6 +266,9 @@ pub fn ladder_table(paper: &str, x: &Explanations) -> String {
     }
     let mut header = vec!["run".to_string()];
     header.extend(rungs.iter().map(|(m, r, a)| {
+        if m == FIXED_STEP {
+            return format!("{m} \\|e\\| <= {}", short_tol(*r));
+        }
         let matlab = m == "bdf" && *r == 1e-3 && *a == 1e-6;
         format!(
             "{m} {}/{}{}",
@@ -254,8 +322,12 @@ pub fn ladder_table(paper: &str, x: &Explanations) -> String {
     }
     let mut out = t.without_empty_columns().render();
     out.push_str(
-        "\nCells: significant digits the drift shares with the converged drift (\"ref\", the finest completed rung; -log10 of the relative change), **bold** at the run's own setting; × the rung did not finish (an explicit method on a stiff network, or the step cap). A published digit beyond the digits at the paper's setting (ode15s = bdf at RelTol 1e-6 / AbsTol 1e-8; MATLAB's default is 1e-3 / 1e-6) can be integration noise. A run with the group's MaxStep keeps it on every rung. Every rung with its drifts, steps and wall time: `results/ladder.csv`.\n",
+        "\nCells: significant digits the drift shares with the converged drift (\"ref\", the finest completed rung; -log10 of the relative change), **bold** at the run's own setting; × the rung did not finish (an explicit method on a stiff network, or the step cap). A published digit beyond the digits at the paper's setting (ode15s = bdf at RelTol 1e-6 / AbsTol 1e-8; MATLAB's default is 1e-3 / 1e-6) can be integration noise. A run with the group's MaxStep keeps it on every rung.",
     );
+    if rows.iter().any(|r| r.method == FIXED_STEP) {
+        out.push_str(" A numerical method's rungs (fixed-step) are its loop at the run's own step h, each instant's iteration stopped at |e(U)|_2 <= the rung's tolerance: its digits at the paper's 1e-3 are those the stopping rule leaves (the sampling gap is in the attribution).");
+    }
+    out.push_str(" Every rung with its drifts, steps and wall time: `results/ladder.csv`.\n");
     out
 }
 
@@ -562,14 +634,19 @@ pub fn section(paper: &str, x: &Explanations, papers: &Papers) -> String {
     out
 }
 
-/// The shares of the drift (|d_component| / |d_run|) that the scheme, the network's lag and
-/// integration error carry over the explained runs `keys`, in that order.
-fn shares(x: &Explanations, keys: &[(&str, &str, &str)]) -> [Vec<f64>; 3] {
-    SUM.map(|name| {
-        keys.iter()
-            .filter_map(|k| component(&x.attribution, *k, name).and_then(|r| r.share))
-            .collect()
-    })
+/// The shares of the drift (|d_component| / |d_run|) that each term of the sums carries over
+/// the explained runs `keys`, in [`sum_components`]' order.
+fn shares(x: &Explanations, keys: &[(&str, &str, &str)]) -> Vec<(Component, Vec<f64>)> {
+    sum_components(&x.attribution, keys)
+        .into_iter()
+        .map(|c| {
+            let v = keys
+                .iter()
+                .filter_map(|k| component(&x.attribution, *k, c).and_then(|r| r.share))
+                .collect();
+            (c, v)
+        })
+        .collect()
 }
 
 /// `lo % to hi %` of `v` (shares), or [`MISSING`].
@@ -591,13 +668,11 @@ pub fn one_line(paper: &str, x: &Explanations) -> String {
     if keys.is_empty() {
         return String::new();
     }
-    let [s, l, i] = shares(x, &keys);
-    format!(
-        "scheme {}, lag {}, integration {} of the drift",
-        range(&s),
-        range(&l),
-        range(&i)
-    )
+    let parts: Vec<String> = shares(x, &keys)
+        .iter()
+        .map(|(c, v)| format!("{} {}", brief(*c), range(v)))
+        .collect();
+    format!("{} of the drift", parts.join(", "))
 }
 
 /// One paragraph (placed after the verdict): which share of the drift each ingredient carries,
@@ -607,18 +682,30 @@ pub fn summary(paper: &str, x: &Explanations, papers: &Papers) -> String {
     if keys.is_empty() {
         return String::new();
     }
-    let [s, l, i] = shares(x, &keys);
+    let shares = shares(x, &keys);
+    let rest: Vec<String> = shares
+        .iter()
+        .filter(|(c, _)| *c != Component::Scheme)
+        .map(|(c, v)| format!("{} {}", described(*c), range(v)))
+        .collect();
+    let scheme = shares
+        .iter()
+        .find(|(c, _)| *c == Component::Scheme)
+        .map_or(MISSING.to_string(), |(_, v)| range(v));
     let mut out = format!(
-        "\n**Why** (see \"Why the numbers differ\" below). Over {} runs of {}, the scheme itself (exact column, converged) carries {} of the drift (|d_exact| / |d_run|), the network's lag {} and integration error {}.",
+        "\n**Why** (see \"Why the numbers differ\" below). Over {} runs of {}, {} carries {scheme} of the drift (|d_exact| / |d_run|), {}.",
         keys.len(),
         if paper == GROUP {
             "the group's network"
         } else {
             "the paper's solver"
         },
-        range(&s),
-        range(&l),
-        range(&i)
+        described(Component::Scheme),
+        match rest.split_last() {
+            Some((last, [])) => last.clone(),
+            Some((last, init)) => format!("{} and {last}", init.join(", ")),
+            None => String::new(),
+        }
     );
     // The paper's norm against ours as run and ours at MATLAB's default tolerances.
     let mut closer = 0;
@@ -637,7 +724,7 @@ pub fn summary(paper: &str, x: &Explanations, papers: &Papers) -> String {
         let Some((published_norm, _)) = papers.published(m, "drift_norm") else {
             continue;
         };
-        let run = component(&x.attribution, *key, "run").and_then(|r| r.drift_norm);
+        let run = component(&x.attribution, *key, Component::Run).and_then(|r| r.drift_norm);
         let matlab = x
             .ladder
             .iter()
@@ -673,7 +760,7 @@ pub fn summary(paper: &str, x: &Explanations, papers: &Papers) -> String {
                 let ours = component(
                     &x.attribution,
                     (&k.experiment, &k.variant, &k.solver),
-                    "run",
+                    Component::Run,
                 )?
                 .drift_norm?;
                 Some((theirs, ours))
