@@ -147,8 +147,8 @@ pub fn side_by_side(paper: &str, table: &str, papers: &Papers, runs: &Runs) -> S
             let exact = runs.find(e, variant, EXACT);
             let shown_label = label(exact, variant, false);
             // A companion variant without an exact column (`exact = false`) shows none.
-            let companion = shown_run != &m.run;
-            if !exact_shown.contains(&(e, variant)) && !(companion && exact.is_none()) {
+            let without_exact = shown_run != &m.run && exact.is_none();
+            if !without_exact && !exact_shown.contains(&(e, variant)) {
                 exact_shown.push((e, variant));
                 cols.push(Col::Ours(OursColumn {
                     header: name("exact", &shown_label),

@@ -267,7 +267,7 @@ pub fn ladder_table(paper: &str, x: &Explanations) -> String {
     let mut header = vec!["run".to_string()];
     header.extend(rungs.iter().map(|(m, r, a)| {
         if m == FIXED_STEP {
-            return format!("{m} \\|e\\| <= {}", short_tol(*r));
+            return format!("{m} |e| <= {}", short_tol(*r));
         }
         let matlab = m == "bdf" && *r == 1e-3 && *a == 1e-6;
         format!(
