@@ -38,7 +38,7 @@ use catalog::experiment::Scoring;
 use catalog::experiment::{Job, SolverChoice};
 use catalog::solver_spec::SolverSpec;
 use records::attribution::{AttributionRow, Component};
-use records::ladder::LadderRow;
+use records::ladder::{LadderRow, FIXED_STEP};
 use records::runs::RunRow;
 
 /// The largest RelTol whose rung may serve as a converged reference.
@@ -141,26 +141,26 @@ fn norm(v: &[f64]) -> f64 {
 }
 
 /// The attribution rows of one run from its ladder, its exact column's ladder and its switch
-/// runs. `numerical`: the run is a numerical method's (its sum is scheme + sampling gap +
-/// stopping rule), not a network's (scheme + network lag + integration error).
+/// runs. A numerical method's ladder ([`FIXED_STEP`] rungs) gives the sum scheme + sampling
+/// gap + stopping rule, a network's scheme + network lag + integration error.
 pub fn attribution_rows(
     neural: &[LadderRow],
     exact: &[LadderRow],
     switches: &[(Switch, RunRow)],
-    numerical: bool,
 ) -> Vec<AttributionRow> {
+    let Some(run) = neural.iter().find(|r| r.as_run) else {
+        return Vec::new();
+    };
+    let numerical = run.method == FIXED_STEP;
     let [_, lag, error] = if numerical {
         Component::NUMERICAL_SUM
     } else {
         Component::NETWORK_SUM
     };
     let converged_what = if numerical {
-        "method at |e| <= 1e-10"
+        "method at its finest stopping tolerance"
     } else {
         "converged network"
-    };
-    let Some(run) = neural.iter().find(|r| r.as_run) else {
-        return Vec::new();
     };
     let drifts = |r: &LadderRow| r.completed().then(|| r.drift.clone());
     let d_run = drifts(run);

@@ -121,7 +121,6 @@ pub fn explain(targets: &[Job], all: &[Job], progress: bool, git_rev: &str) -> E
             ladder_of(t),
             ladder_of(&exact_counterpart(t)),
             &switched,
-            matches!(t.solver, SolverChoice::Numerical(_)),
         ));
     }
     out

@@ -34,6 +34,17 @@ fn znn_circle(jobs: &[Job]) -> Job {
     find(jobs, "kong2019-circle", "znn-eq22-start-on-theta-0", "znn")
 }
 
+/// The three terms of an attribution's sum add up to the run's drift, joint by joint.
+fn assert_adds_up(run: &[f64], terms: [&[f64]; 3]) {
+    for (k, d) in run.iter().enumerate() {
+        let sum: f64 = terms.iter().map(|t| t[k]).sum();
+        assert!(
+            (sum - d).abs() <= 1e-12 * d.abs().max(1e-9),
+            "joint {k}: {sum} vs {d}"
+        );
+    }
+}
+
 #[test]
 fn ladder_converges_and_attribution_adds_up() {
     let jobs = jobs();
@@ -78,14 +89,7 @@ fn ladder_converges_and_attribution_adds_up() {
         comp(Component::NetworkLag),
         comp(Component::IntegrationError),
     );
-    for k in 0..5 {
-        let sum = s[k] + l[k] + i[k];
-        assert!(
-            (sum - run[k]).abs() <= 1e-12 * run[k].abs().max(1e-9),
-            "joint {k}: {sum} vs {}",
-            run[k]
-        );
-    }
+    assert_adds_up(&run, [&s, &l, &i]);
     // The run at RelTol 1e-6 is not the converged one: the integration error is measured.
     assert!(i.iter().any(|v| v.abs() > 0.0));
 }
@@ -144,14 +148,7 @@ fn numerical_runs_are_laddered_on_their_stopping_rule() {
         comp(Component::StoppingRule),
     );
     assert_eq!(run.len(), 6);
-    for k in 0..6 {
-        let sum = s[k] + g[k] + e[k];
-        assert!(
-            (sum - run[k]).abs() <= 1e-12 * run[k].abs().max(1e-9),
-            "joint {k}: {sum} vs {}",
-            run[k]
-        );
-    }
+    assert_adds_up(&run, [&s, &g, &e]);
     // At |e| <= 1e-3 the stopping rule is measured, not zero.
     assert!(e.iter().any(|v| v.abs() > 0.0));
 }

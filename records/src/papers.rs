@@ -439,13 +439,12 @@ fn load_folder(dir: &Path, folder: &Path) -> Result<Folder, PapersError> {
                 } else {
                     Some(RunKey::new(&run.experiment, c.trim(), &run.solver))
                 };
-                key.filter(|k| !k.variant.is_empty() && k.check().is_ok())
-                    .ok_or_else(|| {
-                        invalid(&path)(PaperProblem::Companion {
-                            index,
-                            companion: c.clone(),
-                        })
+                key.filter(|k| k.check().is_ok()).ok_or_else(|| {
+                    invalid(&path)(PaperProblem::Companion {
+                        index,
+                        companion: c.clone(),
                     })
+                })
             })
             .collect::<Result<Vec<_>, _>>()?;
         mappings.push(Mapping {

@@ -153,7 +153,7 @@ pub fn attribution_table(paper: &str, x: &Explanations, papers: &Papers) -> Stri
     header.extend(switches.iter().map(|s| format!("{} ‖·‖", s.label())));
     header.push(match (networks, numerical) {
         (true, false) => "max pos. err: run / exact / converged net (m)".to_string(),
-        (false, true) => "max pos. err: run / exact / at |e| <= 1e-10 (m)".to_string(),
+        (false, true) => "max pos. err: run / exact / converged method (m)".to_string(),
         _ => "max pos. err: run / exact / converged solver (m)".to_string(),
     });
     let mut t = Table::new(header);
@@ -220,7 +220,7 @@ pub fn attribution_table(paper: &str, x: &Explanations, papers: &Papers) -> Stri
         out.push_str("for a network, scheme + network lag + integration error = the run's drift, joint by joint; ");
     }
     if numerical {
-        out.push_str("for a numerical method in its fixed-step loop of step h, scheme + sampling gap + stopping rule = the run's drift, joint by joint (the sampling gap is the same loop stopped at |e| <= 1e-10 against the exact column, the stopping rule the run against that loop); ");
+        out.push_str("for a numerical method in its fixed-step loop of step h, scheme + sampling gap + stopping rule = the run's drift, joint by joint (the sampling gap is the same loop at its finest stopping tolerance of the ladder against the exact column, the stopping rule the run against that loop); ");
     }
     out.push_str("the three need not add up in norm.");
     if networks {
