@@ -42,6 +42,11 @@ impl Pattern {
         Pattern(text.to_string())
     }
 
+    /// Whether it has a `*` (else it matches one id only).
+    pub fn is_pattern(&self) -> bool {
+        self.0.contains('*')
+    }
+
     /// Whether `id` matches.
     pub fn matches(&self, id: &str) -> bool {
         let parts: Vec<&str> = self.0.split('*').collect();
@@ -89,6 +94,16 @@ impl Selection {
         self.experiment.matches(experiment)
             && self.variant.matches(variant)
             && self.solver.matches(solver)
+    }
+}
+
+impl std::fmt::Display for Selection {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} / {} / {}",
+            self.experiment.0, self.variant.0, self.solver.0
+        )
     }
 }
 

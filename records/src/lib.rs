@@ -69,6 +69,7 @@ pub mod leaderboard;
 pub mod migrate;
 pub mod owned_dir;
 pub mod paper_rules;
+pub mod paper_runs;
 pub mod papers;
 pub mod percentile;
 pub mod phases;

@@ -3,7 +3,9 @@
 //! [`catalog::naming::MAX_EXPERIMENT_ID`] bytes, the folder's name, and not one of the
 //! [`RESERVED_PAPER_IDS`]; texts that reach the report (title, citation, claims) are one line;
 //! each published (experiment, column) has at most one `[[mapping]]`; every values.csv entry is
-//! finite, of a known metric, and of this paper. [`crate::papers::Papers::load`] applies them.
+//! finite, of a known metric, of this paper, and given once; a paper has at most [`MAX_CLAIMS`]
+//! claims. [`crate::papers::Papers::load`] applies them; what the files name among the runs
+//! is checked by [`crate::paper_runs::check_runs`].
 
 use crate::claims::ClaimError;
 use crate::leaderboard::STANDARD_PAPER;
@@ -13,6 +15,10 @@ use catalog::naming::MAX_EXPERIMENT_ID;
 /// Paper ids the suite files its own runs under (the group-code reference experiments and
 /// the cross experiment): no folder of `papers/` may take them.
 pub const RESERVED_PAPER_IDS: [&str; 2] = [GROUP, STANDARD_PAPER];
+
+/// The most claims one `paper.toml` may hold: the report evaluates each over every run (and a
+/// `than` claim over pairs of runs), so claims times runs stays bounded.
+pub const MAX_CLAIMS: usize = 200;
 
 /// What is wrong with a paper's `paper.toml` or `values.csv` (the field or line, and the valid
 /// choices); [`crate::papers::PapersError::Invalid`] adds the file.
@@ -41,6 +47,17 @@ pub enum PaperProblem {
     },
     #[error("claim[{index}]: {error}")]
     Claim { index: usize, error: ClaimError },
+    #[error("{count} claims: at most {MAX_CLAIMS} per paper (each is evaluated over every run)")]
+    TooManyClaims { count: usize },
+    #[error("mapping[{index}] field `{field}`: no run \"{run}\" in the experiment files (valid {valid})")]
+    NoSuchRun {
+        index: usize,
+        field: &'static str,
+        run: String,
+        valid: String,
+    },
+    #[error("claim[{index}] field `{field}`: selects no run of the experiment files")]
+    SelectsNothing { index: usize, field: &'static str },
     #[error("line {line}: value {value} is not a finite number")]
     ValueNotFinite { line: usize, value: f64 },
     #[error("line {line}: unknown metric \"{metric}\" (valid: {})", PUBLISHED_METRICS.join(", "))]
@@ -50,6 +67,15 @@ pub enum PaperProblem {
         line: usize,
         paper: String,
         folder: String,
+    },
+    #[error("line {line}: the {metric} of {experiment} / {column} in table {table} is given already on line {first}")]
+    ValueTwice {
+        line: usize,
+        first: usize,
+        table: String,
+        experiment: String,
+        column: String,
+        metric: String,
     },
     #[error("line {line}: field `{field}` must be one line of text (no line breaks or control characters)")]
     ValueNotOneLine { line: usize, field: &'static str },

@@ -58,8 +58,8 @@ impl std::fmt::Display for ValueWarning {
 }
 
 /// Marks the values of one paper (`values[i]` read from line `i + 2`) that contradict the
-/// paper's own numbers, and returns one warning per mark:
-/// - a second entry for the same (table, experiment, column, metric) (the first is kept);
+/// paper's own numbers, and returns one warning per mark (a second entry for the same
+/// (table, experiment, column, metric) is refused when the file is read):
 /// - a negative `drift_norm` (a norm is >= 0);
 /// - a `drift_norm` below the largest |drift_k| of its own (table, experiment, column) (a
 ///   2-norm is at least every entry).
@@ -73,29 +73,6 @@ pub fn inconsistencies(file: &Path, values: &mut [PaperValue]) -> Vec<ValueWarni
         });
         values[i].inconsistent = Some(message);
     };
-    let mut seen = std::collections::HashMap::new();
-    for i in 0..values.len() {
-        let v = &values[i];
-        let key = (
-            v.table.clone(),
-            v.experiment.clone(),
-            v.column.clone(),
-            v.metric.clone(),
-        );
-        if let Some(first) = seen.get(&key) {
-            let message = format!(
-                "{} / {} / {} / {} is given twice (first on line {}); this entry is not used",
-                v.table,
-                v.experiment,
-                v.column,
-                v.metric,
-                first + 2
-            );
-            mark(values, i, message);
-            continue;
-        }
-        seen.insert(key, i);
-    }
     for i in 0..values.len() {
         let v = &values[i];
         if v.metric != "drift_norm" || v.inconsistent.is_some() {
@@ -463,6 +440,11 @@ fn load_folder(dir: &Path, folder: &Path) -> Result<Folder, PapersError> {
     } else {
         (Vec::new(), Vec::new())
     };
+    if file.claims.len() > crate::paper_rules::MAX_CLAIMS {
+        return Err(invalid(&path)(PaperProblem::TooManyClaims {
+            count: file.claims.len(),
+        }));
+    }
     let claims = file
         .claims
         .into_iter()
@@ -506,6 +488,8 @@ fn read_values(dir: &Path, path: &Path, paper: &str) -> Result<Vec<PaperValue>, 
         problem,
     };
     let mut values = Vec::new();
+    // Each published number's (table, experiment, column, metric), and the line giving it.
+    let mut first_line = std::collections::HashMap::new();
     for (i, row) in csv::Reader::from_reader(bytes.as_slice())
         .deserialize()
         .enumerate()
@@ -542,6 +526,17 @@ fn read_values(dir: &Path, path: &Path, paper: &str) -> Result<Vec<PaperValue>, 
         ];
         if let Some((field, _)) = texts.iter().find(|(_, t)| !is_one_line(t)) {
             return Err(invalid(PaperProblem::ValueNotOneLine { line, field }));
+        }
+        let id = [&v.table, &v.experiment, &v.column, &v.metric].map(String::clone);
+        if let Some(first) = first_line.insert(id, line) {
+            return Err(invalid(PaperProblem::ValueTwice {
+                line,
+                first,
+                table: v.table,
+                experiment: v.experiment,
+                column: v.column,
+                metric: v.metric,
+            }));
         }
         values.push(v);
     }

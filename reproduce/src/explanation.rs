@@ -26,6 +26,40 @@ pub fn load_papers(project: &Project) -> Result<records::papers::Papers, Reprodu
     Ok(papers)
 }
 
+/// The papers as data ([`load_papers`]), with what they name checked against every run of the
+/// experiment files (`all`), before anything runs: a mapping that names no run of a defined
+/// experiment, or a claim that selects none, is refused; what names an experiment the files do
+/// not define is said on stderr, once per process ([`records::paper_runs::check_runs`]).
+pub fn load_checked_papers(
+    project: &Project,
+    all: &Described,
+) -> Result<records::papers::Papers, ReproduceError> {
+    static NOTED: std::sync::Once = std::sync::Once::new();
+    let papers = load_papers(project)?;
+    let keys: Vec<_> = all.jobs().iter().map(Job::key).collect();
+    let absent = records::paper_runs::check_runs(&papers, &project.root.join("papers"), &keys)?;
+    NOTED.call_once(|| {
+        if let Some(first) = absent.first() {
+            let file = first
+                .file
+                .strip_prefix(&project.root)
+                .unwrap_or(&first.file);
+            let first = records::paper_runs::Absent {
+                file: file.to_path_buf(),
+                ..first.clone()
+            };
+            eprintln!(
+                "note: {first}{}",
+                match absent.len() {
+                    1 => String::new(),
+                    n => format!(" (and {} more such names)", n - 1),
+                }
+            );
+        }
+    });
+    Ok(papers)
+}
+
 /// The ladders and attributions of the selected runs `jobs` of the papers' solvers (`all`:
 /// every run of the experiment files), written to `results` when given; how many runs were
 /// explained.
@@ -71,7 +105,7 @@ pub fn explain_mode(
     if options.dry_run {
         return explain(project, jobs, all.jobs(), git_rev, None).map(drop);
     }
-    precheck_report(project)?;
+    precheck_report(project, all)?;
     let results = open_results(project, git_rev, all)?;
     explain(project, jobs, all.jobs(), git_rev, Some(&results))?;
     render_report(project, &report_root(project)?, &results)

@@ -48,7 +48,7 @@ pub fn infer_mode(
     if options.dry_run {
         return infer(project, &options.table, all.jobs(), None);
     }
-    precheck_report(project)?;
+    precheck_report(project, all)?;
     let results = open_results(project, git_rev, all)?;
     infer(project, &options.table, all.jobs(), Some(&results))
 }

@@ -12,11 +12,10 @@ use std::path::{Path, PathBuf};
 pub fn report_only(project: &Project, git_rev: &str) -> Result<(), ReproduceError> {
     let root = report_root(project)?;
     check_report_dir(&root)?;
-    let results = open_results(
-        project,
-        git_rev,
-        &Described::new(&experiment_files(project)?),
-    )?;
+    let files = experiment_files(project)?;
+    let all = Described::new(&files);
+    crate::explanation::load_checked_papers(project, &all)?;
+    let results = open_results(project, git_rev, &all)?;
     render_report(project, &root, &results)
 }
 

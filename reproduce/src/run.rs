@@ -8,7 +8,7 @@
 //! exit code 1.
 
 use crate::error::ReproduceError;
-use crate::explanation::{explain, load_papers};
+use crate::explanation::{explain, load_checked_papers};
 use crate::gate::Baseline;
 use crate::journal::{resume, run_journaled};
 use crate::options::SelectionOptions;
@@ -65,7 +65,7 @@ pub fn run(
     git_rev: &str,
 ) -> Result<ExitCode, ReproduceError> {
     if matches!(plan.output, Output::Results) {
-        precheck_report(project)?;
+        precheck_report(project, all)?;
     }
     let writes = matches!(plan.output, Output::Results | Output::Shard(_));
     // One writer at a time: the lock is held until the process ends.
@@ -155,14 +155,14 @@ pub fn run(
 }
 
 /// Before anything runs in a mode that renders the report: its directory lies inside the
-/// project and can be written, and papers/ loads (the report reads it after the runs, so a
-/// malformed paper is refused now). A results directory not named `results` gets no report,
-/// which is said.
-pub fn precheck_report(project: &Project) -> Result<(), ReproduceError> {
+/// project and can be written, and papers/ loads and names only runs of the experiment files
+/// `all` (the report reads it after the runs, so a malformed paper is refused now). A results
+/// directory not named `results` gets no report, which is said.
+pub fn precheck_report(project: &Project, all: &Described) -> Result<(), ReproduceError> {
     match report_root(project) {
         Ok(root) => {
             check_report_dir(&root)?;
-            load_papers(project)?;
+            load_checked_papers(project, all)?;
         }
         Err(why) => eprintln!(
             "note: results go to {}, but {why}",

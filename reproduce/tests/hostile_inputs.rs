@@ -211,6 +211,23 @@ fn a_malformed_paper_is_refused_before_anything_runs() {
             format!("{original}\n[[mapping]]\npublished_experiment = \"e\"\npublished_column = \"c\"\nrun = \"a / b / c\"\n[[mapping]]\npublished_experiment = \"e\"\npublished_column = \"c\"\nrun = \"a / b / d\"\n"),
             "is already mapped by mapping[",
         ),
+        // A typo in a run of an experiment the files define: the valid choices are named.
+        (
+            format!("{original}\n[[mapping]]\npublished_experiment = \"e\"\npublished_column = \"typo\"\nrun = \"kong2019-cheap / zn / exact\"\n"),
+            "field `run`: no run \"kong2019-cheap / zn / exact\" in the experiment files (valid variants of kong2019-cheap: znn)",
+        ),
+        (
+            format!("{original}\n[[mapping]]\npublished_experiment = \"e\"\npublished_column = \"typo\"\nrun = \"kong2019-cheap / znn / exact\"\ncompanions = [\"znn / exakt\"]\n"),
+            "field `companions`: no run \"kong2019-cheap / znn / exakt\" in the experiment files (valid solvers of kong2019-cheap / znn: exact",
+        ),
+        (
+            format!("{original}\n[[claim]]\nshort = \"s\"\ntext = \"t\"\nmetric = \"drift_norm\"\nruns = \"kong2019-cheap / zzz-* / *\"\nbelow = 1.0\n"),
+            "field `runs`: selects no run of the experiment files",
+        ),
+        (
+            format!("{original}{}", "\n[[claim]]\nshort = \"s\"\ntext = \"t\"\nrust = \"diverges\"\nwhy = \"w\"\n".repeat(201)),
+            "claims: at most 200 per paper",
+        ),
     ] {
         std::fs::write(&at, edit).unwrap();
         let mut run = p.cmd();
@@ -221,6 +238,41 @@ fn a_malformed_paper_is_refused_before_anything_runs() {
         assert!(err.contains(needle) && err.contains("paper.toml"), "{needle}: {err}");
         assert!(!p.results().join("runs.csv").exists(), "{needle}: it ran");
     }
+    std::fs::write(&at, &original).unwrap();
+    // The same published number twice in values.csv.
+    let values = p.root().join("papers/kong2019/values.csv");
+    let text = std::fs::read_to_string(&values).unwrap();
+    let again = text.lines().nth(1).unwrap();
+    std::fs::write(&values, format!("{text}{again}\n")).unwrap();
+    let mut run = p.cmd();
+    run.arg("--skip-explain");
+    let out = bounded(run);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("values.csv") && err.contains("is given already on line 2"),
+        "{err}"
+    );
+    assert!(
+        !p.results().join("runs.csv").exists(),
+        "a duplicate value: it ran"
+    );
+}
+
+#[test]
+fn a_paper_naming_experiments_the_project_lacks_is_noted_and_runs() {
+    let p = Project::new("subset");
+    let mut run = p.cmd();
+    run.arg("--skip-explain");
+    let out = bounded(run);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert!(
+        err.contains("names no experiment of the experiment files (shown as missing)")
+            && err.contains("more such names"),
+        "{err}"
+    );
+    assert!(p.results().join("runs.csv").exists());
 }
 
 #[test]
