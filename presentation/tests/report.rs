@@ -291,6 +291,40 @@ fn claims_pass_on_synthetic_rows_and_fail_when_a_number_changes() {
     );
 }
 
+/// A `than` claim over every pair of runs is cut at `claims::MAX_PAIRS` pairs: N/A, saying
+/// so, in bounded time and memory (a paper holds at most `MAX_CLAIMS` such claims).
+#[test]
+fn a_claim_over_too_many_pairs_of_runs_is_not_applicable() {
+    use records::claims::{Check, Selection, Test};
+    let root = catalog::root::from_current_dir().unwrap();
+    let mut papers = records::papers::Papers::load(&root.join("papers")).unwrap();
+    let every = Selection::parse("* / * / *").unwrap();
+    let jia = papers.papers.iter_mut().find(|p| p.id == "jia2019").unwrap();
+    jia.claims.truncate(1);
+    jia.claims[0].check = Check::Compare {
+        metric: "drift_norm".into(),
+        abs: false,
+        runs: every.clone(),
+        test: Test::Than {
+            other: every,
+            factor: None,
+        },
+    };
+    let n = 150; // 150^2 pairs in one experiment, above MAX_PAIRS
+    assert!(n * n > claims::MAX_PAIRS);
+    let rows = (0..n)
+        .map(|i| row("jia2019-clover", &format!("v{i}"), "lvi-pdnn", 0.1))
+        .collect();
+    let out = claims::evaluate("jia2019", &Runs::new(rows), &papers);
+    assert_eq!(out[0].verdict, Verdict::NotApplicable, "{:?}", out[0]);
+    assert!(out[0].evidence.contains("pairs of runs"), "{}", out[0].evidence);
+    let rows = (0..10)
+        .map(|i| row("jia2019-clover", &format!("v{i}"), "lvi-pdnn", 0.1))
+        .collect();
+    let out = claims::evaluate("jia2019", &Runs::new(rows), &papers);
+    assert_ne!(out[0].verdict, Verdict::NotApplicable, "{:?}", out[0]);
+}
+
 /// Verdicts do not depend on machine load: scaling every run's timing columns by its own factor
 /// (0.3x to 3.3x) leaves every claim's verdict as it was.
 #[test]

@@ -14,6 +14,11 @@ use records::index::{completed, failed_at, metric, Runs, EXACT};
 use records::papers::Papers;
 use records::runs::RunRow;
 
+/// The most pairs of runs one `than` claim compares (each pair is a line of its evidence): a
+/// paper has at most [`records::paper_rules::MAX_CLAIMS`] claims, so claims times runs is
+/// bounded.
+pub const MAX_PAIRS: usize = 10_000;
+
 /// The outcome of one claim.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Verdict {
@@ -142,6 +147,7 @@ fn compare(
     // Threshold tests: the run nearest the bound stands for the others.
     let mut nearest: Option<(&RunRow, f64)> = None;
     let total = rows.len();
+    let mut pairs = 0usize;
     for r in rows {
         let Some(x) = claim_metric(r, name_of_metric, abs)? else {
             holds = false;
@@ -163,6 +169,13 @@ fn compare(
                     .collect();
                 if counterparts.is_empty() {
                     return Err(format!("no run to compare {} with", name(r)).into());
+                }
+                pairs += counterparts.len();
+                if pairs > MAX_PAIRS {
+                    return Err(format!(
+                        "the claim compares more than {MAX_PAIRS} pairs of runs; select fewer"
+                    )
+                    .into());
                 }
                 for o in counterparts {
                     let Some(y) = claim_metric(o, name_of_metric, abs)? else {
