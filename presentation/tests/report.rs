@@ -299,7 +299,11 @@ fn a_claim_over_too_many_pairs_of_runs_is_not_applicable() {
     let root = catalog::root::from_current_dir().unwrap();
     let mut papers = records::papers::Papers::load(&root.join("papers")).unwrap();
     let every = Selection::parse("* / * / *").unwrap();
-    let jia = papers.papers.iter_mut().find(|p| p.id == "jia2019").unwrap();
+    let jia = papers
+        .papers
+        .iter_mut()
+        .find(|p| p.id == "jia2019")
+        .unwrap();
     jia.claims.truncate(1);
     jia.claims[0].check = Check::Compare {
         metric: "drift_norm".into(),
@@ -317,7 +321,11 @@ fn a_claim_over_too_many_pairs_of_runs_is_not_applicable() {
         .collect();
     let out = claims::evaluate("jia2019", &Runs::new(rows), &papers);
     assert_eq!(out[0].verdict, Verdict::NotApplicable, "{:?}", out[0]);
-    assert!(out[0].evidence.contains("pairs of runs"), "{}", out[0].evidence);
+    assert!(
+        out[0].evidence.contains("pairs of runs"),
+        "{}",
+        out[0].evidence
+    );
     let rows = (0..10)
         .map(|i| row("jia2019-clover", &format!("v{i}"), "lvi-pdnn", 0.1))
         .collect();
