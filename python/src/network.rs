@@ -19,7 +19,9 @@
 //! network answers ydot = 0 (and a zero Jacobian) without calling Python, so the run ends at
 //! once with the network frozen (NaN would leave the integrator shrinking its step), and the
 //! first exception is kept ([`Callbacks::take_error`])
-//! to be raised to the caller once the run has stopped.
+//! to be raised to the caller once the run has stopped. Ctrl-C is one such exception: each call
+//! first lets the interpreter run its signal handlers, so a pending SIGINT raises
+//! `KeyboardInterrupt` (unwrapped) and the run stops at its next call into Python.
 
 use crate::arrays::real_array;
 use nalgebra::{DMatrix, DVector};
@@ -183,6 +185,9 @@ impl PyNetwork {
         }
         let started = Instant::now();
         let out = Python::attach(|py| {
+            // Ctrl-C (SIGINT) waits in the interpreter until this thread looks: it then raises
+            // KeyboardInterrupt here, which stops the run like any exception (module docs).
+            py.check_signals()?;
             let object = self.object.bind(py);
             let y = y.to_vec().into_pyarray(py);
             let qp = qp_dict(py, qp)?;
@@ -199,6 +204,9 @@ impl PyNetwork {
             Ok(v) => Some(v),
             Err(e) => {
                 let e = Python::attach(|py| {
+                    if e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) {
+                        return e;
+                    }
                     let wrapped = pyo3::exceptions::PyRuntimeError::new_err(format!(
                         "{}.{method} at t = {t}",
                         self.name

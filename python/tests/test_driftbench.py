@@ -70,6 +70,49 @@ def test_an_exception_in_the_network_is_raised_after_the_run():
     assert isinstance(info.value.__cause__, ZeroDivisionError)
 
 
+def test_ctrl_c_stops_a_run_of_a_python_network():
+    """SIGINT during a long run of a slow network: KeyboardInterrupt within seconds, as any
+    Python loop would stop, not after the run."""
+    import signal
+    import time
+
+    script = textwrap.dedent(
+        f"""
+        import sys, time
+        import driftbench
+        from driftbench.networks import Gnn
+
+        class Slow(Gnn):
+            def rhs(self, t, y, qp):
+                time.sleep(0.002)
+                return super().rhs(t, y, qp)
+
+        print("started", flush=True)
+        try:
+            driftbench.simulate(driftbench.task({CLOVER!r}, root={str(ROOT)!r}), Slow())
+        except KeyboardInterrupt:
+            print("interrupted", flush=True)
+            sys.exit(3)
+        print("finished", flush=True)
+        """
+    )
+    proc = subprocess.Popen(
+        [sys.executable, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+    )
+    assert proc.stdout.readline().strip() == "started"
+    time.sleep(1.0)
+    sent = time.monotonic()
+    proc.send_signal(signal.SIGINT)
+    try:
+        out, err = proc.communicate(timeout=60)
+    except subprocess.TimeoutExpired:
+        proc.kill()
+        pytest.fail("the run went on for 60 s after Ctrl-C")
+    assert proc.returncode == 3, (out, err)
+    assert "interrupted" in out
+    assert time.monotonic() - sent < 30
+
+
 def rust_gnn_clover():
     """The Rust twin's line of `cargo run --example gnn_clover`: drift, max error, max |x - x*|."""
     if shutil.which("cargo") is None:
