@@ -19,6 +19,7 @@ pub mod experiment;
 pub mod integrator;
 pub mod linear_algebra;
 pub mod naming;
+pub mod network_kind;
 pub mod numerical_spec;
 pub mod robot_registry;
 pub mod root;

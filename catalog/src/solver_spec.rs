@@ -27,6 +27,7 @@
 //! udot, as the group's EXP1 file).
 
 use crate::error::NetworkError;
+use crate::network_kind::NetworkKind;
 use serde::{Deserialize, Serialize};
 
 /// Default power-sigmoid alpha (zhong2021 eq. 2.29 asks only alpha >= 2).
@@ -260,15 +261,20 @@ impl SolverSpec {
     /// The network's kind as experiment files name it (`kind = "lvi-pdnn"`): its identity, where
     /// [`SolverSpec::display_name`] is a label with its parameters.
     pub fn kind(&self) -> &'static str {
+        self.network_kind().id()
+    }
+
+    /// The network's kind as an enum ([`NetworkKind`]).
+    pub fn network_kind(&self) -> NetworkKind {
         match self {
-            SolverSpec::LviPdnn { .. } => "lvi-pdnn",
-            SolverSpec::SLviPdnn { .. } => "s-lvi-pdnn",
-            SolverSpec::VpRnnPf { .. } => "vp-rnn-pf",
-            SolverSpec::FpCdnn { .. } => "fp-cdnn",
-            SolverSpec::VpCdnn { .. } => "vp-cdnn",
-            SolverSpec::FiniteTime { .. } => "finite-time",
-            SolverSpec::Znn { .. } => "znn",
-            SolverSpec::GroupZnn { .. } => "group-znn",
+            SolverSpec::LviPdnn { .. } => NetworkKind::LviPdnn,
+            SolverSpec::SLviPdnn { .. } => NetworkKind::SLviPdnn,
+            SolverSpec::VpRnnPf { .. } => NetworkKind::VpRnnPf,
+            SolverSpec::FpCdnn { .. } => NetworkKind::FpCdnn,
+            SolverSpec::VpCdnn { .. } => NetworkKind::VpCdnn,
+            SolverSpec::FiniteTime { .. } => NetworkKind::FiniteTime,
+            SolverSpec::Znn { .. } => NetworkKind::Znn,
+            SolverSpec::GroupZnn { .. } => NetworkKind::GroupZnn,
         }
     }
 

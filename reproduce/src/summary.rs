@@ -2,6 +2,7 @@
 //! errors, distance to the exact optimum, peak joint speed, steps, wall time), failed runs with
 //! their reason.
 
+use catalog::network_kind::NetworkKind;
 use records::runs::RunRow;
 use std::fmt::Write as _;
 use std::io::Write as _;
@@ -64,7 +65,7 @@ pub fn summary(rows: &[RunRow]) -> String {
             r.wall_s
         );
     }
-    if rows.iter().any(|r| r.solver.starts_with("VP-RNN-PF")) {
+    if rows.iter().any(is_vp_rnn_pf) {
         out.push_str(
             "\n|x-x*|max: largest |x_nn - x*|_inf of the joint command against Clarabel along the run. For \
              VP-RNN-PF it measures the exponential-penalty approximation (its equilibrium is the penalised \
@@ -72,6 +73,11 @@ pub fn summary(rows: &[RunRow]) -> String {
         );
     }
     out
+}
+
+/// Whether the run is of a VP-RNN-PF network (by its `solver_kind`).
+fn is_vp_rnn_pf(r: &RunRow) -> bool {
+    r.solver_kind.parse() == Ok(NetworkKind::VpRnnPf)
 }
 
 /// Writes to stdout, ending quietly when the reader has gone (e.g. `| head`).
@@ -121,9 +127,6 @@ mod tests {
             1,
             "{line}"
         );
-        assert_eq!(
-            text.contains("VP-RNN-PF it measures"),
-            row.solver.starts_with("VP-RNN-PF")
-        );
+        assert_eq!(text.contains("VP-RNN-PF it measures"), is_vp_rnn_pf(&row));
     }
 }

@@ -3,6 +3,7 @@
 
 use crate::run::{run_job, RunRecord};
 use catalog::experiment::{Job, SolverChoice};
+use catalog::network_kind::NetworkKind;
 use indicatif::{ParallelProgressIterator, ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use std::collections::BTreeMap;
@@ -62,7 +63,7 @@ pub fn run_jobs_with(
 fn expected_cost(j: &Job) -> f64 {
     let solver = match &j.solver {
         SolverChoice::Exact => 1.0,
-        SolverChoice::Neural(s) if s.display_name() == "FTNN" => 100.0,
+        SolverChoice::Neural(s) if s.network_kind() == NetworkKind::FiniteTime => 100.0,
         SolverChoice::Neural(_) => 4.0,
         // Every instant of the fixed-step loop iterates the method (thousands of instants).
         SolverChoice::Numerical(_) => 20.0,

@@ -6,6 +6,7 @@
 //! zhong2021 claims (about 2x on the clover, 7x on "dai").
 
 use super::markdown::{sci, sci_opt, Table, MISSING};
+use catalog::network_kind::NetworkKind;
 use records::index::{completed, Runs};
 use records::papers::Papers;
 
@@ -64,10 +65,12 @@ pub struct Slowdown {
     pub paper: Option<f64>,
 }
 
-/// The mean of the VP-RNN-PF variants' times among (solver label, seconds) pairs.
-/// Solver ids of zhong2021's efficiency claim: S-LVI-PDNN against the VP-RNN-PF variants.
-const S_LVI_PDNN: &str = "s-lvi-pdnn";
-const VP_RNN_PF: &str = "vp-rnn-pf";
+/// The network kind of solver id `solver` in `experiment` (its first run's `solver_kind`).
+fn kind_of(runs: &Runs, experiment: &str, solver: &str) -> Option<NetworkKind> {
+    runs.of_experiment(experiment)
+        .find(|r| r.solver_id == solver)
+        .and_then(|r| r.solver_kind.parse().ok())
+}
 
 /// The label of solver id `solver` in `experiment` (its first run's), or the id.
 pub(crate) fn solver_label(runs: &Runs, experiment: &str, solver: &str) -> String {
@@ -76,11 +79,22 @@ pub(crate) fn solver_label(runs: &Runs, experiment: &str, solver: &str) -> Strin
         .map_or_else(|| solver.to_string(), |r| r.solver.clone())
 }
 
-fn vp_mean(times: &[(&str, f64)]) -> Option<f64> {
-    let vp: Vec<f64> = times
+/// zhong2021's efficiency measure among (network kind, quantity) pairs: S-LVI-PDNN's quantity
+/// over the mean of the VP-RNN-PF variants'.
+fn s_over_vp_mean(of: &[(Option<NetworkKind>, f64)]) -> Option<f64> {
+    let s = of
         .iter()
-        .filter(|(s, _)| s.starts_with(VP_RNN_PF))
-        .map(|(_, t)| *t)
+        .find(|(k, _)| *k == Some(NetworkKind::SLviPdnn))
+        .map(|(_, x)| *x)?;
+    vp_mean(of).map(|vp| s / vp)
+}
+
+/// The mean quantity of the VP-RNN-PF variants among (network kind, quantity) pairs.
+fn vp_mean(of: &[(Option<NetworkKind>, f64)]) -> Option<f64> {
+    let vp: Vec<f64> = of
+        .iter()
+        .filter(|(k, _)| *k == Some(NetworkKind::VpRnnPf))
+        .map(|(_, x)| *x)
         .collect();
     (!vp.is_empty()).then(|| vp.iter().sum::<f64>() / vp.len() as f64)
 }
@@ -89,36 +103,28 @@ fn vp_mean(times: &[(&str, f64)]) -> Option<f64> {
 /// experiment: the deterministic measure of relative cost (the same on every machine and under
 /// any load), which the compute-time claim is decided by.
 pub fn evaluation_ratio(runs: &Runs, experiment: &str) -> Option<f64> {
-    let evals: Vec<(&str, f64)> = runs
+    let evals: Vec<(Option<NetworkKind>, f64)> = runs
         .of_experiment(experiment)
         .filter(|r| completed(r))
-        .map(|r| (r.solver_id.as_str(), r.rhs_evals as f64))
+        .map(|r| (r.solver_kind.parse().ok(), r.rhs_evals as f64))
         .collect();
-    let s = evals
-        .iter()
-        .find(|(s, _)| *s == S_LVI_PDNN)
-        .map(|(_, e)| *e)?;
-    vp_mean(&evals).map(|vp| s / vp)
+    s_over_vp_mean(&evals)
 }
 
 /// [`Slowdown`] of one zhong2021 experiment.
 pub fn slowdown(runs: &Runs, papers: &Papers, experiment: &str) -> Slowdown {
-    let ratio = |times: &[(&str, f64)]| {
-        let s = times
-            .iter()
-            .find(|(s, _)| *s == S_LVI_PDNN)
-            .map(|(_, t)| *t)?;
-        vp_mean(times).map(|vp| s / vp)
-    };
-    let ours: Vec<(&str, f64)> = runs
+    let ours: Vec<(Option<NetworkKind>, f64)> = runs
         .of_experiment(experiment)
         .filter(|r| completed(r))
-        .map(|r| (r.solver_id.as_str(), r.sim_s))
+        .map(|r| (r.solver_kind.parse().ok(), r.sim_s))
         .collect();
-    let paper: Vec<(&str, f64)> = papers.times_of(experiment).collect();
+    let paper: Vec<(Option<NetworkKind>, f64)> = papers
+        .times_of(experiment)
+        .map(|(solver, t)| (kind_of(runs, experiment, solver), t))
+        .collect();
     Slowdown {
-        ours: ratio(&ours),
-        paper: ratio(&paper),
+        ours: s_over_vp_mean(&ours),
+        paper: s_over_vp_mean(&paper),
     }
 }
 
@@ -145,7 +151,12 @@ pub fn matlab_comparison(runs: &Runs, papers: &Papers) -> String {
             .filter(|r| paper.iter().any(|(s, _)| *s == r.solver_id))
             .map(|r| (r.solver_id.as_str(), r.sim_s))
             .collect();
-        let (paper_vp, ours_vp) = (vp_mean(&paper), vp_mean(&ours));
+        let kinds = |of: &[(&str, f64)]| -> Vec<(Option<NetworkKind>, f64)> {
+            of.iter()
+                .map(|(s, x)| (kind_of(runs, exp, s), *x))
+                .collect()
+        };
+        let (paper_vp, ours_vp) = (vp_mean(&kinds(&paper)), vp_mean(&kinds(&ours)));
         for (solver, p) in &paper {
             let o = ours.iter().find(|(s, _)| s == solver).map(|(_, t)| *t);
             t.push([
