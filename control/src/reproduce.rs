@@ -353,7 +353,7 @@ pub fn reproduce(
                 numerical_max_dx: num.max_dx,
                 numerical_solve_p50_us: num.solve_p50_us,
                 cost_ratio: lower / num_mean,
-                verdict: verdict.label().to_string(),
+                verdict,
             });
         }
     }
@@ -429,10 +429,7 @@ pub fn reproduce(
     records::control::write(results, results_dir::CONTROL_CLAIM, &claims)?;
     records::control::write(results, results_dir::CYCLES, &cycles)?;
     records::control::write(results, results_dir::CYCLES_TREND, &trends)?;
-    let verdicts: Vec<Verdict> = claims
-        .iter()
-        .filter_map(|c| Verdict::from_label(&c.verdict))
-        .collect();
+    let verdicts: Vec<Verdict> = claims.iter().map(|c| c.verdict).collect();
     Ok(Summary {
         control_runs: control.len(),
         cycle_runs: trends.len(),

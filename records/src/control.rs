@@ -130,8 +130,8 @@ pub struct ClaimRow {
     pub numerical_solve_p50_us: f64,
     /// network products per tick over the numerical method's mean.
     pub cost_ratio: f64,
-    /// `PASS`, `FAIL` or `UNDECIDED` (see [`crate::control_claim::Verdict`]).
-    pub verdict: String,
+    /// `PASS`, `FAIL` or `UNDECIDED` in the file.
+    pub verdict: crate::control_claim::Verdict,
 }
 
 /// The drift after one cycle of a many-cycles run.

@@ -36,8 +36,9 @@ pub const ACCURACY: f64 = 1e-6;
 /// Ticks of a network's check run.
 pub const CHECK_TICKS: usize = 20;
 
-/// The claim's outcome on one task.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// The claim's outcome on one task, stored in `control-claims.csv` as its label.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "UPPERCASE")]
 pub enum Verdict {
     Pass,
     Fail,
@@ -51,13 +52,6 @@ impl Verdict {
             Verdict::Fail => "FAIL",
             Verdict::Undecided => "UNDECIDED",
         }
-    }
-
-    /// The verdict of a label written by [`Verdict::label`].
-    pub fn from_label(label: &str) -> Option<Self> {
-        [Verdict::Pass, Verdict::Fail, Verdict::Undecided]
-            .into_iter()
-            .find(|v| v.label() == label)
     }
 }
 

@@ -157,11 +157,7 @@ fn task_list(results: &ControlResults) -> String {
 
 /// zhong2021's efficiency claim, with its numbers.
 fn claim_section(results: &ControlResults, runs: &Runs) -> String {
-    let verdicts: Vec<Verdict> = results
-        .claims
-        .iter()
-        .filter_map(|c| Verdict::from_label(&c.verdict))
-        .collect();
+    let verdicts: Vec<Verdict> = results.claims.iter().map(|c| c.verdict).collect();
     let mut out = format!(
         "### The efficiency claim: {}\n\n",
         overall(&verdicts).label()
@@ -213,7 +209,7 @@ fn claim_section(results: &ControlResults, runs: &Runs) -> String {
                 sci(c.numerical_solve_p50_us)
             ),
             sci(c.cost_ratio),
-            c.verdict.clone(),
+            c.verdict.label().to_string(),
         ]);
     }
     out.push_str(&t.render());
