@@ -75,6 +75,7 @@ pub mod percentile;
 pub mod phases;
 pub mod profile;
 pub mod profile_active_set;
+pub mod qp_replay;
 pub mod results_dir;
 pub mod runs;
 pub mod shard;

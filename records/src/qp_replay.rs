@@ -1,0 +1,45 @@
+//! `results/qp-replay.csv`: the exact reference per tick against DAQP, on the same QPs.
+//!
+//! `benches/qp_replay/replay.sh` records, through the Python package, the QPs a network is
+//! handed along a run (one per distinct instant, the first [`QPS`] of each task), then replays
+//! the same sequence to the suite's active set (`benches/src/bin/qp_replay.rs`, timed in Rust)
+//! and to DAQP (installed from PyPI in the script's own environment, timed by DAQP's own C
+//! timers). Warm means each solve starts from the previous QP's answer (the suite's working
+//! set; DAQP's workspace updated in place), cold from nothing (the suite with an empty working
+//! set; DAQP set up afresh). One [`QpReplayRow`] per task, solver and start.
+
+use crate::table::Row;
+use serde::{Deserialize, Serialize};
+
+/// The file name inside `results/`.
+pub const FILE: &str = "qp-replay.csv";
+/// QPs recorded per task.
+pub const QPS: usize = 2000;
+
+/// One row of `results/qp-replay.csv` (module docs).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct QpReplayRow {
+    /// The task the QPs were recorded on (`<experiment> / <variant>`).
+    pub task: String,
+    /// The QP's sizes: variables, equalities, general inequalities, finite bounds.
+    pub nx: usize,
+    pub n_eq: usize,
+    pub n_in: usize,
+    pub n_bounds: usize,
+    /// QPs replayed, and how many times the whole sequence was.
+    pub qps: usize,
+    pub repeats: usize,
+    /// `active-set` (the suite's) or `daqp <version>`.
+    pub solver: String,
+    /// `warm` or `cold`.
+    pub start: String,
+    /// Microseconds per solve: the mean over the QPs of each QP's median over the repeats,
+    /// and the 95th percentile of those medians.
+    pub mean_us: f64,
+    pub p95_us: f64,
+    /// The largest |x - x_other|_inf against the other solver's answers on the same QPs.
+    pub max_dx_vs_other: f64,
+    pub git_rev: String,
+}
+
+impl Row for QpReplayRow {}
