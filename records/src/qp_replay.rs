@@ -13,6 +13,8 @@ use serde::{Deserialize, Serialize};
 
 /// The file name inside `results/`.
 pub const FILE: &str = "qp-replay.csv";
+/// [`QpReplayRow::solver`] of the suite's active set (the other rows are DAQP's).
+pub const SUITE: &str = "active-set";
 /// QPs recorded per task.
 pub const QPS: usize = 2000;
 
@@ -29,7 +31,7 @@ pub struct QpReplayRow {
     /// QPs replayed, and how many times the whole sequence was.
     pub qps: usize,
     pub repeats: usize,
-    /// `active-set` (the suite's) or `daqp <version>`.
+    /// [`SUITE`] or `daqp <version>`.
     pub solver: String,
     /// `warm` or `cold`.
     pub start: String,

@@ -81,6 +81,8 @@ pub struct Inputs {
     pub speedup: Vec<records::speedup::SpeedupRow>,
     /// `results/profile-active-set.csv` (absent = empty).
     pub hot_solve: Vec<records::profile_active_set::HotSolveRow>,
+    /// `results/qp-replay.csv` (absent = empty).
+    pub qp_replay: Vec<records::qp_replay::QpReplayRow>,
     /// The control experiments' result files (absent = empty).
     pub control: control::ControlResults,
     /// The Python package's result files (absent = empty).
@@ -113,6 +115,7 @@ impl Inputs {
             profile: read_if_present(&results.join(records::profile::FILE))?,
             speedup: read_if_present(&results.join(records::speedup::FILE))?,
             hot_solve: read_if_present(&results.join(records::profile_active_set::FILE))?,
+            qp_replay: read_if_present(&results.join(records::qp_replay::FILE))?,
             control: control::ControlResults::load(&results)?,
             python: python::PythonResults::load(&results)?,
             phases: records::phases::read(&results)?,
@@ -190,6 +193,7 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
         profile,
         speedup,
         hot_solve,
+        qp_replay,
         control,
         python,
         phases,
@@ -338,6 +342,7 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
             dof: dof_cost,
             profile,
             hot: hot_solve,
+            qp_replay,
             speedup,
             timings,
             phases,

@@ -32,6 +32,7 @@ use records::papers::Papers;
 use records::phases::{PhaseRow, PhaseStatus};
 use records::profile::ProfileRow;
 use records::profile_active_set::HotSolveRow;
+use records::qp_replay::{QpReplayRow, SUITE};
 use records::speedup::SpeedupRow;
 use records::timing::{Timings, REPETITIONS};
 use std::collections::BTreeMap;
@@ -94,6 +95,8 @@ pub struct Measurements<'a> {
     pub profile: &'a [ProfileRow],
     /// `results/profile-active-set.csv`.
     pub hot: &'a [HotSolveRow],
+    /// `results/qp-replay.csv`.
+    pub qp_replay: &'a [QpReplayRow],
     /// `results/speedup.csv`.
     pub speedup: &'a [SpeedupRow],
     /// `results/leaderboard-timing.csv`.
@@ -110,6 +113,7 @@ pub fn section(m: &Measurements, runs: &Runs, papers: &Papers, figures: &[String
         dof,
         profile,
         hot,
+        qp_replay,
         speedup,
         timings,
         phases,
@@ -132,6 +136,7 @@ pub fn section(m: &Measurements, runs: &Runs, papers: &Papers, figures: &[String
         out.push_str(&machine(dof));
         out.push_str(&per_instant(dof, hot));
     }
+    out.push_str(&replay_table(qp_replay, hot));
     out.push_str(&per_solver_kind(runs));
     if !dof.is_empty() {
         out.push_str(&dof_curve(dof, figures));
@@ -526,6 +531,110 @@ fn hot_solve_profile(hot: &[HotSolveRow], ratio: f64, network: &str) -> String {
         records::profile_active_set::FILE,
         t.render()
     )
+}
+
+/// `### The exact reference per tick against DAQP` (`results/qp-replay.csv`,
+/// [`records::qp_replay`]): per task, the suite's active set and DAQP, warm and cold, on the
+/// same recorded QPs, and how far their answers are apart. Every text read is escaped.
+fn replay_table(rows: &[QpReplayRow], hot: &[HotSolveRow]) -> String {
+    let mut out = String::from("### The exact reference per tick against DAQP\n\n");
+    let Some(first) = rows.first() else {
+        out.push_str(&format!(
+            "`results/{}` is absent: `benches/qp_replay/replay.sh` records the QPs along runs \
+             and replays them to the suite's active set and to DAQP.\n\n",
+            records::qp_replay::FILE
+        ));
+        return out;
+    };
+    out.push_str(&format!(
+        "The same {} consecutive QPs of each task, recorded through the Python package along a \
+         run (one per distinct instant), replayed {} times to the suite's active set (timed in \
+         Rust, every answer certified) and to DAQP (installed from PyPI by the bench script \
+         only, timed by its own C timers, its primal tolerance tightened to 1e-12). Warm starts \
+         each solve from the previous QP's working set, cold from nothing; microseconds per \
+         solve, the mean over the QPs of each QP's median, revision `{}` \
+         (`benches/qp_replay/replay.sh`).\n\n",
+        first.qps,
+        first.repeats,
+        text(&first.git_rev)
+    ));
+    let mut t = Table::new([
+        "task",
+        "QP (n, equalities, inequalities, bounds)",
+        "solver",
+        "warm (us)",
+        "cold (us)",
+        "warm ÷ DAQP",
+        "cold ÷ DAQP",
+        "max |x - x_other|",
+    ]);
+    let find = |task: &str, solver: &str, start: &str| {
+        rows.iter()
+            .find(|r| r.task == task && r.solver == solver && r.start == start)
+            .map(|r| r.mean_us)
+    };
+    let daqp = |task: &str, start: &str| {
+        rows.iter()
+            .find(|r| r.task == task && r.solver != SUITE && r.start == start)
+            .map(|r| r.mean_us)
+    };
+    let mut seen: Vec<(&str, &str)> = Vec::new();
+    for r in rows {
+        if seen.contains(&(r.task.as_str(), r.solver.as_str())) {
+            continue;
+        }
+        seen.push((&r.task, &r.solver));
+        let (warm, cold) = (
+            find(&r.task, &r.solver, "warm"),
+            find(&r.task, &r.solver, "cold"),
+        );
+        let ratio = |x: Option<f64>, d: Option<f64>| sci_opt(x.zip(d).map(|(x, d)| x / d));
+        t.push([
+            text(&r.task),
+            format!("{}, {}, {}, {}", r.nx, r.n_eq, r.n_in, r.n_bounds),
+            text(&r.solver),
+            sci_opt(warm),
+            sci_opt(cold),
+            ratio(warm, daqp(&r.task, "warm")),
+            ratio(cold, daqp(&r.task, "cold")),
+            sci(r.max_dx_vs_other),
+        ]);
+    }
+    out.push_str(&t.render());
+    out.push('\n');
+    // The suite's ratios to DAQP over the tasks, warm and cold: the target is at most 1.
+    let span = |start: &str| -> Option<(f64, f64)> {
+        let ratios: Vec<f64> = rows
+            .iter()
+            .filter(|r| r.solver == SUITE && r.start == start)
+            .filter_map(|r| daqp(&r.task, start).map(|d| r.mean_us / d))
+            .collect();
+        let lo = ratios.iter().copied().reduce(f64::min)?;
+        Some((lo, ratios.iter().copied().fold(lo, f64::max)))
+    };
+    if let (Some((wl, wh)), Some((cl, ch))) = (span("warm"), span("cold")) {
+        let met = wh <= 1.0 && ch <= 1.0;
+        let certification =
+            records::profile_active_set::certification_share(hot).map_or(String::new(), |c| {
+                format!(
+                    " The sampling profile of the hot solve (`results/{}`) gives the \
+                     certification {:.1} % of it.",
+                    records::profile_active_set::FILE,
+                    100.0 * c
+                )
+            });
+        out.push_str(&format!(
+            "The target, the suite at or below DAQP warm and cold with its answer still \
+             certified, is {}: the suite takes {:.2}-{:.2} times DAQP's time warm and \
+             {:.2}-{:.2} times cold.{certification}\n\n",
+            if met { "met" } else { "not met" },
+            wl,
+            wh,
+            cl,
+            ch
+        ));
+    }
+    out
 }
 
 /// Per accepted step and per RHS evaluation in the completed runs of `runs.csv`, by solver
@@ -968,11 +1077,35 @@ mod tests {
                        KKT solves,0.75,demo/hot,8,4999,abc\n\
                        certification (KKT residuals),0.25,demo/hot,8,4999,abc\n";
         let hot: Vec<HotSolveRow> = records::table::from_reader(hot_csv.as_bytes()).unwrap();
+        let replay: Vec<QpReplayRow> = [
+            (SUITE, "warm", 1.5),
+            (SUITE, "cold", 3.0),
+            ("daqp 9", "warm", 1.0),
+            ("daqp 9", "cold", 1.5),
+        ]
+        .into_iter()
+        .map(|(solver, start, mean_us)| QpReplayRow {
+            task: "t / v".into(),
+            nx: 7,
+            n_eq: 3,
+            n_in: 12,
+            n_bounds: 13,
+            qps: 2000,
+            repeats: 20,
+            solver: solver.into(),
+            start: start.into(),
+            mean_us,
+            p95_us: mean_us,
+            max_dx_vs_other: 1e-15,
+            git_rev: "abc".into(),
+        })
+        .collect();
         let md = section(
             &Measurements {
                 dof: &dof,
                 profile: &profile,
                 hot: &hot,
+                qp_replay: &replay,
                 speedup: &speedup,
                 timings: &Timings::default(),
                 phases: &[],
@@ -1057,6 +1190,15 @@ mod tests {
             md.contains("| jia2019 | 6 | 6.00e-2 | 1000 | 6.00e1 | — | — | — |"),
             "{md}"
         );
+        // The replay against DAQP: the suite's ratios, and the target's verdict.
+        assert!(
+            md.contains("| t / v | 7, 3, 12, 13 | active-set | 1.50e0 | 3.00e0 | 1.50e0 | 2.00e0 | 1.00e-15 |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("is not met: the suite takes 1.50-1.50 times DAQP's time warm and 2.00-2.00 times cold"),
+            "{md}"
+        );
         // Every measurement but the clock's (its own test) is there.
         let (measured, clock) = md.split_once("### The newcomer's clock").unwrap();
         assert!(!measured.contains("is absent"), "{md}");
@@ -1135,6 +1277,7 @@ mod tests {
                 dof: &[],
                 profile: &[],
                 hot: &[],
+                qp_replay: &[],
                 speedup: &[],
                 timings: &Timings::default(),
                 phases: &[],
