@@ -130,6 +130,8 @@ pub enum ScoreError {
         suggestion: String,
         max: usize,
     },
+    #[error("--name {name:?}: the exact column's solver id is reserved (a scored trajectory would pass for the exact optimum); use another name, e.g. \"trajectory\"")]
+    ReservedName { name: String },
     #[error("{}: the scores go into a directory of their own, not into {} (sealed by this program's manifest.toml: results/, report/ or a shard)", out.display(), sealed.display())]
     Sealed {
         out: std::path::PathBuf,

@@ -211,8 +211,13 @@ pub fn score_file(
 /// The table of scores in an out directory.
 pub const SCORES: &str = "scores.csv";
 
-/// A scored trajectory's name: a slug that can name its files.
+/// A scored trajectory's name: a slug that can name its files, and not the exact column's id.
 fn check_name(name: &str) -> Result<(), ScoreError> {
+    if name == catalog::run_key::EXACT_ID {
+        return Err(ScoreError::ReservedName {
+            name: name.to_string(),
+        });
+    }
     let max = catalog::naming::MAX_SOLVER_LABEL;
     if schemes::slug::is_slug(name) && name.len() <= max {
         return Ok(());

@@ -161,6 +161,10 @@ fn a_trajectory_file_is_scored_on_its_task() {
     for (args, said) in [
         (vec!["--name", "Octave ZNN"], "a slug"),
         (
+            vec!["--name", "exact"],
+            "the exact column's solver id is reserved",
+        ),
+        (
             vec!["--out", "results"],
             "sealed by this program's manifest.toml",
         ),
