@@ -393,22 +393,22 @@ fn lock(dir: &OwnedDir) -> Result<std::fs::File, ResultsError> {
     }
 }
 
-/// Whether `name` is a temporary file of the program's own atomic writes,
-/// `<name>.<pid>.<counter>.tmp` (`crate::runs::write_atomic`), or of its writability probe,
-/// `.write-probe.<pid>.tmp`.
+/// Whether `name` is a temporary file of the program's own (module docs of
+/// [`crate::runs::TMP_PREFIX`]): `.driftbench-tmp.<pid>.<counter>.<name>` of an atomic write, or
+/// `.driftbench-tmp.<pid>.probe` of a writability probe, pid and counter decimal.
 pub fn is_own_tmp(name: &str) -> bool {
-    let Some(stem) = name.strip_suffix(".tmp") else {
+    let Some(rest) = name.strip_prefix(crate::runs::TMP_PREFIX) else {
         return false;
     };
     let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
-    if let Some(pid) = stem.strip_prefix(".write-probe.") {
-        return digits(pid);
+    let mut parts = rest.splitn(3, '.');
+    match (parts.next(), parts.next(), parts.next()) {
+        (Some(pid), Some("probe"), None) => digits(pid),
+        (Some(pid), Some(counter), Some(base)) => {
+            digits(pid) && digits(counter) && !base.is_empty()
+        }
+        _ => false,
     }
-    let mut parts = stem.rsplitn(3, '.');
-    let (Some(counter), Some(pid), Some(base)) = (parts.next(), parts.next(), parts.next()) else {
-        return false;
-    };
-    digits(counter) && digits(pid) && !base.is_empty()
 }
 
 /// Removes the program's own temporary files ([`is_own_tmp`]) that a killed run left in `dir`
@@ -442,10 +442,17 @@ mod tests {
 
     #[test]
     fn only_the_programs_own_temporary_files_are_recognised() {
-        assert!(is_own_tmp("runs.csv.1234.0.tmp"));
-        assert!(is_own_tmp("v__s.csv.99.17.tmp"));
-        assert!(is_own_tmp(".write-probe.42.tmp"));
+        assert!(is_own_tmp(".driftbench-tmp.1234.0.runs.csv"));
+        assert!(is_own_tmp(".driftbench-tmp.99.17.v__s.csv"));
+        assert!(is_own_tmp(".driftbench-tmp.42.probe"));
         for user in [
+            "notes.2024.12.tmp",
+            "backup.2025.1.tmp",
+            "runs.csv.1234.0.tmp",
+            ".driftbench-tmp.12.notes",
+            ".driftbench-tmp.x.1.a",
+            ".driftbench-tmp.1.2.",
+            ".write-probe.42.tmp",
             "notes.tmp",
             "draft.tmp",
             "work.tmp",
@@ -463,11 +470,13 @@ mod tests {
         let base = std::env::temp_dir().join(format!("driftbench-tmp-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&base);
         for f in [
-            "runs.csv.1.0.tmp",
-            "traces/e/v__s.csv.1.2.tmp",
+            ".driftbench-tmp.1.0.runs.csv",
+            "traces/e/.driftbench-tmp.1.2.v__s.csv",
             "notes.tmp",
+            "notes.2024.12.tmp",
+            "traces/e/backup.2025.1.tmp",
             "a/b/c/work.tmp",
-            "a/b/c/x.csv.1.0.tmp",
+            "a/b/c/.driftbench-tmp.1.0.x.csv",
         ] {
             let p = base.join(f);
             std::fs::create_dir_all(p.parent().unwrap()).unwrap();
@@ -484,10 +493,23 @@ mod tests {
             })
             .collect();
         removed.sort();
-        assert_eq!(removed, ["runs.csv.1.0.tmp", "traces/e/v__s.csv.1.2.tmp"]);
-        assert!(base.join("notes.tmp").exists() && base.join("a/b/c/work.tmp").exists());
+        assert_eq!(
+            removed,
+            [
+                ".driftbench-tmp.1.0.runs.csv",
+                "traces/e/.driftbench-tmp.1.2.v__s.csv"
+            ]
+        );
+        for user in [
+            "notes.tmp",
+            "notes.2024.12.tmp",
+            "traces/e/backup.2025.1.tmp",
+            "a/b/c/work.tmp",
+        ] {
+            assert!(base.join(user).exists(), "{user}");
+        }
         assert!(
-            base.join("a/b/c/x.csv.1.0.tmp").exists(),
+            base.join("a/b/c/.driftbench-tmp.1.0.x.csv").exists(),
             "deeper than two levels is not ours"
         );
         let _ = std::fs::remove_dir_all(&base);

@@ -230,22 +230,27 @@ impl std::fmt::Display for Status {
     }
 }
 
-/// Writes `bytes` to `path` atomically: to a temporary file unique to this call (process id and
-/// a counter, so concurrent writers of the same file never share one), then renamed over `path`.
+/// The start of every temporary file name the program writes: `.driftbench-tmp.<pid>.<counter>.
+/// <name>` for an atomic write of `<name>`, `.driftbench-tmp.<pid>.probe` for a writability
+/// probe. Only names of this exact shape are the program's own
+/// ([`crate::results_dir::is_own_tmp`]); a user's `notes.2024.12.tmp` never is.
+pub const TMP_PREFIX: &str = ".driftbench-tmp.";
+
+/// Writes `bytes` to `path` atomically: to a temporary file unique to this call ([`TMP_PREFIX`],
+/// the process id and a counter, so concurrent writers of the same file never share one), then
+/// renamed over `path`.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     use std::sync::atomic::{AtomicUsize, Ordering};
     static COUNTER: AtomicUsize = AtomicUsize::new(0);
     if let Some(dir) = path.parent() {
         std::fs::create_dir_all(dir)?;
     }
-    let unique = format!(
-        "{}.{}.tmp",
+    let mut name = std::ffi::OsString::from(format!(
+        "{TMP_PREFIX}{}.{}.",
         std::process::id(),
         COUNTER.fetch_add(1, Ordering::Relaxed)
-    );
-    let mut name = path.file_name().unwrap_or_default().to_os_string();
-    name.push(".");
-    name.push(unique);
+    ));
+    name.push(path.file_name().unwrap_or_default());
     let tmp = path.with_file_name(name);
     std::fs::write(&tmp, bytes)?;
     std::fs::rename(&tmp, path).inspect_err(|_| {
@@ -306,7 +311,7 @@ pub fn check_writable(dir: &Path) -> Result<(), RunsError> {
         source,
     };
     std::fs::create_dir_all(dir).map_err(fail)?;
-    let probe = dir.join(format!(".write-probe.{}.tmp", std::process::id()));
+    let probe = dir.join(format!("{TMP_PREFIX}{}.probe", std::process::id()));
     std::fs::write(&probe, b"").map_err(fail)?;
     std::fs::remove_file(&probe).map_err(fail)
 }

@@ -95,16 +95,18 @@ fn stale_temporary_files_are_removed_and_nothing_else() {
     let _ = std::fs::remove_dir_all(&dir);
     let nested = dir.join("traces").join("x");
     std::fs::create_dir_all(&nested).unwrap();
-    std::fs::write(dir.join("runs.csv.123.0.tmp"), "half").unwrap();
-    std::fs::write(nested.join("a__b.csv.123.7.tmp"), "half").unwrap();
-    // The user's own files, named *.tmp too.
+    std::fs::write(dir.join(".driftbench-tmp.123.0.runs.csv"), "half").unwrap();
+    std::fs::write(nested.join(".driftbench-tmp.123.7.a__b.csv"), "half").unwrap();
+    // The user's own files, named *.tmp too (some as the old pattern did).
     std::fs::write(dir.join("notes.tmp"), "mine").unwrap();
+    std::fs::write(dir.join("notes.2024.12.tmp"), "mine").unwrap();
     std::fs::write(nested.join("draft.tmp"), "mine").unwrap();
     write_atomic(&nested.join("a__b.csv"), b"t\n").unwrap();
     let removed = remove_own_tmp(&OwnedDir::open(&dir).unwrap());
     assert_eq!(removed.len(), 2, "{removed:?}");
     assert!(nested.join("a__b.csv").exists());
     assert!(dir.join("notes.tmp").exists() && nested.join("draft.tmp").exists());
+    assert!(dir.join("notes.2024.12.tmp").exists());
     check_writable(&dir.join("new")).unwrap();
     assert!(dir.join("new").is_dir());
     assert!(std::fs::read_dir(dir.join("new")).unwrap().next().is_none());

@@ -190,6 +190,8 @@ fn the_users_tmp_files_are_left_alone() {
     let p = Project::seeded("tmp");
     let mine = [
         p.results().join("notes.tmp"),
+        p.results().join("notes.2024.12.tmp"),
+        p.results().join("traces/kong2019-cheap/backup.2025.1.tmp"),
         p.results().join("a/b/c/work.tmp"),
         p.base.join("report/draft.tmp"),
     ];
@@ -197,7 +199,7 @@ fn the_users_tmp_files_are_left_alone() {
         write(f, b"mine");
     }
     // A temporary file of the program's own, left by a killed write, goes.
-    let stale = p.results().join("runs.csv.99999.0.tmp");
+    let stale = p.results().join(".driftbench-tmp.99999.0.runs.csv");
     write(&stale, b"half");
     ok(p.run().output().unwrap());
     for f in &mine {
