@@ -68,14 +68,12 @@ pub enum PaperProblem {
         paper: String,
         folder: String,
     },
-    #[error("line {line}: the {metric} of {experiment} / {column} in table {table} is given already on line {first}")]
+    /// `value`: which published number, "the <metric> of <experiment> / <column> in table <table>".
+    #[error("line {line}: {value} is given already on line {first}")]
     ValueTwice {
         line: usize,
         first: usize,
-        table: String,
-        experiment: String,
-        column: String,
-        metric: String,
+        value: String,
     },
     #[error("line {line}: field `{field}` must be one line of text (no line breaks or control characters)")]
     ValueNotOneLine { line: usize, field: &'static str },

@@ -532,10 +532,10 @@ fn read_values(dir: &Path, path: &Path, paper: &str) -> Result<Vec<PaperValue>, 
             return Err(invalid(PaperProblem::ValueTwice {
                 line,
                 first,
-                table: v.table,
-                experiment: v.experiment,
-                column: v.column,
-                metric: v.metric,
+                value: format!(
+                    "the {} of {} / {} in table {}",
+                    v.metric, v.experiment, v.column, v.table
+                ),
             }));
         }
         values.push(v);

@@ -111,10 +111,8 @@ fn main() {
     let mut solver = ActiveSetSolver::new(max);
     let mut sol = ActiveSetSolution::zeros(qps[0].dims());
     let mut prev = WorkingSet::with_capacity(max.nx + max.n_in);
-    let mut times = [
-        vec![vec![0.0; repeats]; qps.len()],
-        vec![vec![0.0; repeats]; qps.len()],
-    ];
+    let per_qp = || vec![Vec::with_capacity(repeats); qps.len()];
+    let mut times: [Vec<Vec<f64>>; 2] = [per_qp(), per_qp()];
     let mut answers: Vec<DVector<f64>> = Vec::with_capacity(qps.len());
     for rep in 0..repeats {
         for (start, warm) in [(0, true), (1, false)] {
@@ -125,7 +123,7 @@ fn main() {
                 solver
                     .solve_into(qp, from, &mut sol)
                     .unwrap_or_else(|e| fail(format!("QP {k}: {e}")));
-                times[start][k][rep] = t0.elapsed().as_secs_f64() * 1e6;
+                times[start][k].push(t0.elapsed().as_secs_f64() * 1e6);
                 prev.clone_from(&sol.working_set);
                 if rep == 0 && start == 0 {
                     answers.push(sol.x.clone());
