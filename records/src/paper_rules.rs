@@ -68,7 +68,7 @@ pub enum PaperProblem {
         paper: String,
         folder: String,
     },
-    /// `value`: which published number, "the <metric> of <experiment> / <column> in table <table>".
+    /// `value`: which published number, `"the <metric> of <experiment> / <column> in table <table>"`.
     #[error("line {line}: {value} is given already on line {first}")]
     ValueTwice {
         line: usize,
