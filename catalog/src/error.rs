@@ -11,7 +11,6 @@
 //! - A network's parameters: [`NetworkError`], returned by the networks' constructors (crate
 //!   `solvers`) and by the specifications' own checks ([`crate::solver_spec`]).
 //! - The integrator settings: [`IntegratorError`].
-//! - The robot registry: [`JointCountError`].
 
 use crate::experiment::JobPart;
 use crate::naming::NameError;
@@ -364,13 +363,6 @@ pub enum ExperimentFileError {
 }
 
 /// Joint angles that do not fit the robot they are given to.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("{robot}: {given} joint angles given, the robot has {joints} joints")]
-pub struct JointCountError {
-    pub robot: String,
-    pub given: usize,
-    pub joints: usize,
-}
 
 /// A network parameter out of its range, or a QP the network cannot solve.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]

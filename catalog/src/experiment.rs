@@ -16,6 +16,7 @@ use crate::integrator::{IntegratorSettings, Method};
 use crate::naming::{slug, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
 use crate::numerical_spec::NumericalSpec;
 use crate::run_key::{RunKey, TaskKey, EXACT_ID};
+use crate::solver_kind::SolverKind;
 use crate::solver_spec::SolverSpec;
 use schemes::paths::PathSpec;
 use schemes::spec::SchemeSpec;
@@ -148,7 +149,7 @@ pub struct ExpectedFailure {
 impl ExpectedFailure {
     /// The reason, if the run of `solver` is one of the expected failures.
     fn of(&self, solver: &SolverChoice) -> Option<String> {
-        (self.solvers.is_empty() || self.solvers.iter().any(|s| s == solver.kind()))
+        (self.solvers.is_empty() || self.solvers.iter().any(|s| s == solver.kind().id()))
             .then(|| self.why.clone())
     }
 }
@@ -245,20 +246,17 @@ pub enum SolverChoice {
     Numerical(NumericalSpec),
 }
 
-/// The solver kind of the exact column (`solver_kind` in results); also its id.
-pub const EXACT_KIND: &str = EXACT_ID;
-
 /// The exact column's label: x*(t) from the certified active set, Clarabel where it cannot
 /// certify (`qp_fallbacks` in results counts those instants).
 pub const EXACT_LABEL: &str = "exact (active set + Clarabel)";
 
 impl SolverChoice {
-    /// The solver's identity: [`EXACT_KIND`], or the network's kind (`lvi-pdnn`, ...).
-    pub fn kind(&self) -> &'static str {
+    /// The solver's kind: the exact column, the network's kind or the numerical method.
+    pub fn kind(&self) -> SolverKind {
         match self {
-            SolverChoice::Exact => EXACT_KIND,
-            SolverChoice::Neural(s) => s.kind(),
-            SolverChoice::Numerical(s) => s.method.id(),
+            SolverChoice::Exact => SolverKind::Exact,
+            SolverChoice::Neural(s) => SolverKind::Network(s.network_kind()),
+            SolverChoice::Numerical(s) => SolverKind::Numerical(s.method),
         }
     }
 
@@ -590,7 +588,7 @@ impl PaperFile {
                     let kinds: Vec<String> = self
                         .variant_jobs(e, v)
                         .iter()
-                        .map(|j| j.solver.kind().to_string())
+                        .map(|j| j.solver.kind().id().to_string())
                         .collect();
                     if let Some(bad) = f.solvers.iter().find(|s| !kinds.contains(s)) {
                         return Err(field(
@@ -721,17 +719,17 @@ fn unknown_robot(robot: &str) -> FieldError {
     }
 }
 
-/// Joint count of the robot called `name` (see [`crate::robot_registry`]).
+/// Joint count of the robot called `name` (see [`robots::registry`]).
 fn robot_dof(name: &str) -> Option<usize> {
-    crate::robot_registry::robot_by_name(name).map(|r| r.dof())
+    robots::registry::robot_by_name(name).map(|r| r.dof())
 }
 
 fn robot_names() -> String {
-    crate::robot_registry::robot_names()
+    robots::registry::robot_names()
         .filter(|n| !n.starts_with("nlink-"))
         .chain([format!(
             "nlink-N (N in {:?})",
-            crate::robot_registry::NLINK_SIZES
+            robots::registry::NLINK_SIZES
         )])
         .collect::<Vec<_>>()
         .join(", ")

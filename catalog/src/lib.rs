@@ -1,8 +1,9 @@
 //! driftbench's catalog: what runs exist and what they are called, as data.
 //!
 //! An experiment file ([`experiment`]) describes runs ([`experiment::Job`]): a robot from the
-//! registry ([`robot_registry`]), a path and a scheme (crate `schemes`), a solver (the exact
-//! optimum in the loop, or a network as [`solver_spec`] writes it), an integrator
+//! registry (`robots::registry`), a path and a scheme (crate `schemes`), a solver (the exact
+//! optimum in the loop, or a network as [`solver_spec`] writes it; its kind is a
+//! [`solver_kind::SolverKind`]), an integrator
 //! ([`integrator`]) and where the run is scored. A variant may stand for many through a `sweep`
 //! table ([`sweep`], expanded at the TOML level). Every run is identified by ids, not labels
 //! ([`run_key`]), and every id or label that becomes a file name obeys [`naming`]. The errors of
@@ -21,8 +22,8 @@ pub mod linear_algebra;
 pub mod naming;
 pub mod network_kind;
 pub mod numerical_spec;
-pub mod robot_registry;
 pub mod root;
 pub mod run_key;
+pub mod solver_kind;
 pub mod solver_spec;
 pub mod sweep;

@@ -13,6 +13,7 @@ use crate::task::{Task, TaskVisitor};
 use catalog::experiment::NetworkInit;
 use catalog::experiment::Scoring;
 use nalgebra::SVector;
+use records::control::ControlStatus;
 use robots::Robot;
 use schemes::paths::Path;
 use schemes::scheme::Scheme;
@@ -21,10 +22,21 @@ use simulation::simulate::{simulate, Outcome, Settings, Solver};
 /// The drifts and per-cycle changes of a continuous run, and how it ended.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ContinuousCycles {
-    /// `ok`, or the failure with its instant.
-    pub status: String,
+    /// Why the runs stopped before the last cycle, with the instant (none: every cycle ran).
+    pub failure: Option<String>,
     pub drift: Vec<f64>,
     pub change: Vec<f64>,
+}
+
+impl ContinuousCycles {
+    /// The trend row's status and failure: failed when a cycle did not complete.
+    pub fn end(&self) -> (ControlStatus, Option<String>) {
+        let status = match self.failure {
+            Some(_) => ControlStatus::Failed,
+            None => ControlStatus::Ok,
+        };
+        (status, self.failure.clone())
+    }
 }
 
 fn distance(a: &[f64], b: &[f64]) -> f64 {
@@ -60,7 +72,7 @@ impl TaskVisitor for ExactCycles<'_> {
             network_init: NetworkInit::Zero,
         };
         let mut out = ContinuousCycles {
-            status: "ok".to_string(),
+            failure: None,
             drift: Vec::new(),
             change: Vec::new(),
         };
@@ -81,16 +93,16 @@ impl TaskVisitor for ExactCycles<'_> {
                         SVector::<f64, N>::from_column_slice(&last.theta)
                     }
                     (Outcome::Failed { t, error, .. }, _) => {
-                        out.status = format!("failed at t = {t}: {error}");
+                        out.failure = Some(format!("failed at t = {t}: {error}"));
                         break;
                     }
                     (Outcome::Completed(_), None) => {
-                        out.status = "failed: no trace".to_string();
+                        out.failure = Some("failed: no trace".to_string());
                         break;
                     }
                 },
                 Err(e) => {
-                    out.status = format!("failed: {e}");
+                    out.failure = Some(format!("failed: {e}"));
                     break;
                 }
             };

@@ -63,6 +63,15 @@ impl Status {
             Status::Failed { .. } => ControlStatus::Failed,
         }
     }
+
+    /// Why the run stopped early, with the instant (none when it completed).
+    pub fn failure(&self) -> Option<String> {
+        match self {
+            Status::Completed => None,
+            Status::Diverged { t } => Some(format!("diverged at t = {t}")),
+            Status::Failed { t, message } => Some(format!("failed at t = {t}: {message}")),
+        }
+    }
 }
 
 /// The run's setting.

@@ -14,7 +14,7 @@
 //!   (forward Euler is stable iff |1 + s lambda| <= 1 for every eigenvalue lambda), beside the
 //!   papers' gains;
 //! - zhong2021's claim that the networks are more efficient than E47 and 94LVI, decided on
-//!   operation counts ([`records::control_claim`]);
+//!   operation counts ([`analysis::control_claim`]);
 //! - [`trend`]: the drift after each of K cycles and its trend, at the control period and in
 //!   continuous time ([`continuous`], the exact column as the papers integrate);
 //! - [`reproduce`](mod@reproduce): the entry point that runs all of it and writes `results/control*.csv`,

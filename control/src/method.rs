@@ -6,6 +6,7 @@ use crate::error::ControlError;
 use crate::network_tick::{Discretisation, NetworkTick};
 use crate::numerical_tick::QpTick;
 use catalog::solver_spec::SolverSpec;
+use records::control::Family;
 use schemes::qp::{Qp, QpDims};
 use solvers::lvi_numerical::{LviMethod, LviSettings, LviSolver};
 use solvers::osqp_qp::{OsqpQp, OsqpSettings};
@@ -87,11 +88,11 @@ impl Method {
         }
     }
 
-    /// `network` or `numerical`.
-    pub fn family(&self) -> &'static str {
+    /// Whether the method is a network or a numerical QP method.
+    pub fn family(&self) -> Family {
         match self {
-            Method::Network { .. } => "network",
-            Method::Numerical(_) => "numerical",
+            Method::Network { .. } => Family::Network,
+            Method::Numerical(_) => Family::Numerical,
         }
     }
 

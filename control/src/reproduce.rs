@@ -16,15 +16,15 @@ use crate::numerical_tick::QpTick;
 use crate::stability::{gain, LimitProbe};
 use crate::task::{load_tasks, standard_task_refs, with_task, Task, TaskVisitor};
 use crate::trend::classify;
+use analysis::control_claim::{decide, overall, steps_needed, ACCURACY, CHECK_TICKS};
 use catalog::solver_spec::SolverSpec;
 use nalgebra::SVector;
+use records::control::Verdict;
 use records::control::{ClaimRow, ControlRow, ControlStatus, CycleRow, StabilityRow, TrendRow};
-use records::control_claim::{decide, overall, steps_needed, Verdict, ACCURACY, CHECK_TICKS};
 use records::results_dir;
 use robots::Robot;
 use schemes::paths::Path;
 use schemes::scheme::Scheme;
-use solvers::lvi_numerical::LviMethod;
 use solvers::neural::build_solver;
 use solvers::HotActiveSet;
 
@@ -184,7 +184,7 @@ fn control_row(task: &Task, method: &Method, h: f64, mut out: LoopOutcome) -> Co
         paper: task.paper().to_string(),
         scheme: task.scheme(),
         method: method.label(),
-        family: method.family().to_string(),
+        family: method.family(),
         h_ms: h * 1e3,
         substeps: match method {
             Method::Network { substeps, .. } => *substeps,
@@ -222,7 +222,9 @@ pub fn reproduce(
 ) -> Result<Summary, ControlError> {
     let tasks = load_tasks(experiments, &standard_task_refs(experiments)?)?;
     let h = budget.h;
-    let mut control = Vec::new();
+    // Each controller run's row beside its method: later passes select runs by method (an
+    // identity), never by the row's label.
+    let mut control: Vec<(Method, ControlRow)> = Vec::new();
     let mut stability = Vec::new();
     let mut claims = Vec::new();
     let mut cycles = Vec::new();
@@ -248,19 +250,16 @@ pub fn reproduce(
             .collect();
         methods.extend(network_methods(task, 1));
         for method in &methods {
-            control.push(control_row(task, method, h, run(task, method, h, 1, None)?));
+            let row = control_row(task, method, h, run(task, method, h, 1, None)?);
+            control.push((method.clone(), row));
         }
         progress(&format!("control: {} period sweep", task.id()));
         let mut swept = network_methods(task, 1);
         swept.push(Method::Numerical(Numerical::ActiveSet));
         for &hs in &budget.sweep {
             for method in &swept {
-                control.push(control_row(
-                    task,
-                    method,
-                    hs,
-                    run(task, method, hs, 1, None)?,
-                ));
+                let row = control_row(task, method, hs, run(task, method, hs, 1, None)?);
+                control.push((method.clone(), row));
             }
         }
         for spec in &task.networks {
@@ -270,18 +269,18 @@ pub fn reproduce(
                 spec: spec.clone(),
                 form: Discretisation::Euler,
                 substeps: 1,
-            }
-            .label();
+            };
             let largest = control
                 .iter()
-                .filter(|r| {
-                    r.task == task.id() && r.method == euler && r.status == ControlStatus::Ok
+                .filter(|(m, r)| {
+                    r.task == task.id() && *m == euler && r.status == ControlStatus::Ok
                 })
-                .map(|r| r.h_ms)
+                .map(|(_, r)| r.h_ms)
                 .reduce(f64::max);
             stability.push(StabilityRow {
                 task: task.id(),
                 network: spec.display_name(),
+                solver_id: spec.id(),
                 gain_name: gain_name.to_string(),
                 gain: g,
                 euler_limit_s: limit.map(|l| l.0),
@@ -300,7 +299,7 @@ pub fn reproduce(
             };
             let Some(limit) = stability
                 .iter()
-                .find(|s| s.task == task.id() && s.network == spec.display_name())
+                .find(|s| s.task == task.id() && s.solver_id == spec.id())
                 .and_then(|s| s.euler_limit_s)
             else {
                 continue;
@@ -321,11 +320,13 @@ pub fn reproduce(
             let check_solve = Latency::of(&mut out.solve_us);
             let numerical = control
                 .iter()
-                .filter(|r| {
-                    r.task == task.id() && r.h_ms == h * 1e3 && r.status == ControlStatus::Ok
+                .filter(|(m, r)| {
+                    matches!(m, Method::Numerical(Numerical::Lvi(..)))
+                        && r.task == task.id()
+                        && r.h_ms == h * 1e3
+                        && r.status == ControlStatus::Ok
                 })
-                .filter(|r| LviMethod::ALL.iter().any(|m| m.name() == r.method))
-                .filter_map(|r| r.products_mean.map(|p| (r, p)))
+                .filter_map(|(_, r)| r.products_mean.map(|p| (r, p)))
                 .min_by(|a, b| a.1.total_cmp(&b.1));
             let Some((num, num_mean)) = numerical else {
                 continue;
@@ -336,6 +337,9 @@ pub fn reproduce(
             claims.push(ClaimRow {
                 task: task.id(),
                 network: spec.display_name(),
+                experiment: task.reference.experiment.clone(),
+                variant_id: task.reference.variant.clone(),
+                solver_id: spec.id(),
                 h_ms: h * 1e3,
                 accuracy: ACCURACY,
                 products_per_step: per_step,
@@ -363,46 +367,50 @@ pub fn reproduce(
         progress(&format!("cycles: {} x{}", task.id(), budget.cycles));
         let mut methods = vec![Method::Numerical(Numerical::ActiveSet)];
         methods.extend(network_methods(task, 1).into_iter().filter(|m| {
-            control.iter().any(|r| {
+            control.iter().any(|(method, r)| {
                 r.task == task.id()
-                    && r.method == m.label()
+                    && method == m
                     && r.h_ms == h * 1e3
                     && r.status == ControlStatus::Ok
             })
         }));
-        let mut record =
-            |method: String, h_ms: Option<f64>, status: &str, drift: &[f64], change: &[f64]| {
-                for (c, (d, ch)) in drift.iter().zip(change).enumerate() {
-                    cycles.push(CycleRow {
-                        task: task.id(),
-                        scheme: task.scheme(),
-                        method: method.clone(),
-                        h_ms,
-                        cycle: c + 1,
-                        drift: *d,
-                        change: *ch,
-                    });
-                }
-                let trend = classify(drift, change);
-                trends.push(TrendRow {
+        let mut record = |method: String,
+                          h_ms: Option<f64>,
+                          end: (ControlStatus, Option<String>),
+                          drift: &[f64],
+                          change: &[f64]| {
+            for (c, (d, ch)) in drift.iter().zip(change).enumerate() {
+                cycles.push(CycleRow {
                     task: task.id(),
                     scheme: task.scheme(),
-                    method,
+                    method: method.clone(),
                     h_ms,
-                    status: status.to_string(),
-                    cycles: drift.len(),
-                    drift_first: drift.first().copied(),
-                    drift_last: drift.last().copied(),
-                    rate: trend.map(|t| t.rate),
-                    class: trend.map(|t| t.class.label().to_string()),
+                    cycle: c + 1,
+                    drift: *d,
+                    change: *ch,
                 });
-            };
+            }
+            let trend = classify(drift, change);
+            trends.push(TrendRow {
+                task: task.id(),
+                scheme: task.scheme(),
+                method,
+                h_ms,
+                status: end.0,
+                failure: end.1,
+                cycles: drift.len(),
+                drift_first: drift.first().copied(),
+                drift_last: drift.last().copied(),
+                rate: trend.map(|t| t.rate),
+                class: trend.map(|t| t.class),
+            });
+        };
         for method in &methods {
             let out = run(task, method, h, budget.cycles, None)?;
             record(
                 method.label(),
                 Some(h * 1e3),
-                &out.status.column().to_string(),
+                (out.status.column(), out.status.failure()),
                 &out.drift,
                 &out.cycle_change,
             );
@@ -418,12 +426,13 @@ pub fn reproduce(
         record(
             CONTINUOUS_EXACT.to_string(),
             None,
-            &continuous.status,
+            continuous.end(),
             &continuous.drift,
             &continuous.change,
         );
     }
 
+    let control: Vec<ControlRow> = control.into_iter().map(|(_, r)| r).collect();
     records::control::write(results, results_dir::CONTROL, &control)?;
     records::control::write(results, results_dir::CONTROL_STABILITY, &stability)?;
     records::control::write(results, results_dir::CONTROL_CLAIM, &claims)?;

@@ -5,9 +5,9 @@
 
 use crate::error::ControlError;
 use catalog::experiment::{load_dir, Job, SolverChoice};
-use catalog::robot_registry::{robot_by_name, RobotVisitor};
 use catalog::solver_spec::SolverSpec;
 use nalgebra::SVector;
+use robots::registry::{robot_by_name, RobotVisitor};
 use robots::{Dynamics, Robot};
 use schemes::paths::Path;
 use schemes::scheme::Scheme;

@@ -12,29 +12,10 @@
 //!
 //! The fitted rate b is reported for every class.
 
-use serde::Serialize;
+pub use records::control::TrendClass;
 
 /// The per-cycle change below which the motion repeats itself (rad).
 pub const REPEAT_TOL: f64 = 1e-9;
-
-/// The class of a drift sequence (module docs).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum TrendClass {
-    LimitCycle,
-    Bounded,
-    Accumulating,
-}
-
-impl TrendClass {
-    pub fn label(self) -> &'static str {
-        match self {
-            TrendClass::LimitCycle => "limit cycle",
-            TrendClass::Bounded => "bounded",
-            TrendClass::Accumulating => "accumulating",
-        }
-    }
-}
 
 /// A drift sequence's class and fitted rate.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -1,5 +1,5 @@
 //! The fixed-size path: N = 3 ... 30, each N a const-generic instantiation of the registry's
-//! `NLink<N>` ([`catalog::robot_registry::NLINK_SIZES`]), so the scheme (jia2019 VLTCO or
+//! `NLink<N>` ([`robots::registry::NLINK_SIZES`]), so the scheme (jia2019 VLTCO or
 //! kong2019 ZNN), the exact column and whole runs are the ones the reproduction runs.
 //!
 //! [`prepare`] builds the case's robot, path, scheme and network, runs the exact column once
@@ -19,10 +19,10 @@ use crate::instants::Instants;
 use catalog::experiment::Scoring;
 use catalog::experiment::{default_exact_integrator, NetworkInit};
 use catalog::integrator::IntegratorSettings;
-use catalog::robot_registry::{nlink_name, robot_by_name, RobotVisitor};
 use catalog::solver_spec::SolverSpec;
 use nalgebra::SVector;
 use records::dof_cost::{Quantity, RunCounts, SchemeKind};
+use robots::registry::{nlink_name, robot_by_name, RobotVisitor};
 use robots::{Dynamics, Robot};
 use schemes::paths::{build_path, Path};
 use schemes::qp::{Qp, QpDims};

@@ -14,7 +14,7 @@
 //!
 //! # The two paths
 //!
-//! - [`fixed`]: N = 3 ... 30 ([`catalog::robot_registry::NLINK_SIZES`]), each N a
+//! - [`fixed`]: N = 3 ... 30 ([`robots::registry::NLINK_SIZES`]), each N a
 //!   const-generic instantiation `NLink<N>` of the registry, with jia2019's VLTCO scheme on a
 //!   four-leaf clover and kong2019's ZNN scheme (eq. 22) on a circle; every quantity, whole
 //!   runs included, at states sampled from one exact run.

@@ -10,8 +10,8 @@
 //! `results/dof-cost.csv` and the report.
 
 use crate::case::{backends, Case, PreparedCase};
-use catalog::robot_registry::NLINK_SIZES;
 use records::dof_cost::{Measurement, Quantity, SchemeKind, Summary};
+use robots::registry::NLINK_SIZES;
 use std::time::Instant;
 
 /// How much is measured: the defaults take about a minute for every case on one core of a

@@ -38,7 +38,7 @@ use catalog::experiment::Scoring;
 use catalog::experiment::{Job, SolverChoice};
 use catalog::solver_spec::SolverSpec;
 use records::attribution::{AttributionRow, Component};
-use records::ladder::{LadderRow, FIXED_STEP};
+use records::ladder::{LadderMethod, LadderRow};
 use records::runs::RunRow;
 
 /// The largest RelTol whose rung may serve as a converged reference.
@@ -141,7 +141,7 @@ fn norm(v: &[f64]) -> f64 {
 }
 
 /// The attribution rows of one run from its ladder, its exact column's ladder and its switch
-/// runs. A numerical method's ladder ([`FIXED_STEP`] rungs) gives the sum scheme + sampling
+/// runs. A numerical method's ladder ([`LadderMethod::FixedStep`] rungs) gives the sum scheme + sampling
 /// gap + stopping rule, a network's scheme + network lag + integration error.
 pub fn attribution_rows(
     neural: &[LadderRow],
@@ -151,7 +151,7 @@ pub fn attribution_rows(
     let Some(run) = neural.iter().find(|r| r.as_run) else {
         return Vec::new();
     };
-    let numerical = run.method == FIXED_STEP;
+    let numerical = run.method == LadderMethod::FixedStep;
     let [_, lag, error] = if numerical {
         Component::NUMERICAL_SUM
     } else {

@@ -33,7 +33,7 @@ use catalog::experiment::Scoring;
 use catalog::experiment::{Job, SolverChoice};
 use catalog::integrator::{IntegratorSettings, Method};
 use catalog::solver_spec::SolverSpec;
-use records::ladder::{LadderRow, FIXED_STEP};
+use records::ladder::{LadderMethod, LadderRow};
 use records::runs::RunRow;
 
 /// Accepted steps after which an implicit ladder rung is abandoned (every implicit run of the
@@ -150,15 +150,23 @@ pub fn jobs(job: &Job) -> Vec<Job> {
 }
 
 /// What a rung is, as its ladder row states it: (method, rtol, atol, max_step). For a
-/// numerical run: ([`FIXED_STEP`], stopping tolerance, 0, Some(h)).
-fn setting(job: &Job) -> (String, f64, f64, Option<f64>) {
+/// numerical run: ([`LadderMethod::FixedStep`], stopping tolerance, 0, Some(h)).
+fn setting(job: &Job) -> (LadderMethod, f64, f64, Option<f64>) {
     match &job.solver {
-        SolverChoice::Numerical(spec) => {
-            (FIXED_STEP.to_string(), spec.tolerance, 0.0, Some(spec.step))
-        }
+        SolverChoice::Numerical(spec) => (
+            LadderMethod::FixedStep,
+            spec.tolerance,
+            0.0,
+            Some(spec.step),
+        ),
         _ => {
             let s = job.integrator;
-            (s.method.label().to_string(), s.rtol, s.atol, s.max_step)
+            (
+                LadderMethod::Integrator(s.method),
+                s.rtol,
+                s.atol,
+                s.max_step,
+            )
         }
     }
 }
@@ -175,10 +183,10 @@ pub fn rel_distance(a: &[f64], b: &[f64]) -> f64 {
 /// before Dormand-Prince, then the smaller AbsTol), as an index into `rows` (`rows[i]` is the
 /// run of `rungs[i]`).
 pub fn reference(rungs: &[Job], rows: &[RunRow]) -> Option<usize> {
-    let preferred = |m: &str| match m {
-        "bdf" => 0,
-        "esdirk34" => 1,
-        "dopri5" => 2,
+    let preferred = |m: LadderMethod| match m {
+        LadderMethod::Integrator(Method::Bdf) => 0,
+        LadderMethod::Integrator(Method::Esdirk34) => 1,
+        LadderMethod::Integrator(Method::Dopri5) => 2,
         _ => 3,
     };
     let settings: Vec<_> = rungs.iter().map(setting).collect();
@@ -188,7 +196,7 @@ pub fn reference(rungs: &[Job], rows: &[RunRow]) -> Option<usize> {
         .min_by(|(a, _), (b, _)| {
             let (a, b) = (&settings[*a], &settings[*b]);
             a.1.total_cmp(&b.1)
-                .then(preferred(&a.0).cmp(&preferred(&b.0)))
+                .then(preferred(a.0).cmp(&preferred(b.0)))
                 .then(a.2.total_cmp(&b.2))
         })
         .map(|(i, _)| i)
@@ -211,8 +219,7 @@ pub fn ladder_rows(base: &Job, rungs: &[Job], rows: &[RunRow]) -> Vec<LadderRow>
                 .filter(|_| r.completed())
                 .map(|d| rel_distance(&r.drift, d));
             let (method, rtol, atol, max_step) = setting(job);
-            let as_run =
-                (method.as_str(), rtol, atol, max_step) == (own.0.as_str(), own.1, own.2, own.3);
+            let as_run = (method, rtol, atol, max_step) == own;
             LadderRow {
                 paper: r.paper.clone(),
                 experiment: r.experiment.clone(),

@@ -12,7 +12,7 @@
 //!   never instead of it.
 //!
 //! The runs explained ([`targets`]) are the neural and numerical runs a published column maps onto
-//! (`papers/<paper>/paper.toml`, [`records::papers::Papers`]) and those of the variants an
+//! (`papers/<paper>/paper.toml`, [`analysis::papers::Papers`]) and those of the variants an
 //! experiment file marks `explain = true` (zhang2018's perturbed runs: the paper prints no
 //! table, but the perturbation is an ingredient to attribute; the group-code experiments'
 //! "as coded" runs). Results: `results/ladder.csv`, `results/attribution.csv`
@@ -24,6 +24,7 @@ pub mod error;
 pub mod inference;
 pub mod ladder;
 
+use analysis::papers::Papers;
 use attribution::{attribution_rows, exact_counterpart, switch_jobs, Switch};
 use catalog::experiment::{Job, SolverChoice};
 use catalog::run_key::RunKey;
@@ -32,7 +33,6 @@ use records::attribution::AttributionRow;
 use records::error::{IoAction, IoError};
 use records::inference::{EntryRow, InferenceRow};
 use records::ladder::LadderRow;
-use records::papers::Papers;
 use records::runs::{write_atomic, RunRow};
 use records::table::{read_if_present, Row};
 use simulation::row::run_row;

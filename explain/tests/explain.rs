@@ -3,6 +3,7 @@
 //! inference recovers a known setup from a synthetic table made by the suite itself.
 
 use catalog::experiment::{load_dir, Job, SolverChoice};
+use catalog::integrator::Method;
 use catalog::solver_spec::SolverSpec;
 use explain::attribution::Switch;
 use explain::inference::family::Family;
@@ -10,7 +11,7 @@ use explain::inference::search::Target;
 use explain::inference::{evaluate, fit, Column, Setup, TableProblem};
 use explain::{explain, ladder};
 use records::attribution::Component;
-use records::ladder::FIXED_STEP;
+use records::ladder::LadderMethod;
 use simulation::run::check_job;
 
 fn jobs() -> Vec<Job> {
@@ -58,11 +59,18 @@ fn ladder_converges_and_attribution_adds_up() {
         .iter()
         .find(|r| r.reference)
         .expect("a reference rung");
-    assert_eq!((reference.method.as_str(), reference.rtol), ("bdf", 1e-10));
+    assert_eq!(
+        (reference.method, reference.rtol),
+        (LadderMethod::Integrator(Method::Bdf), 1e-10)
+    );
     let digits = |rtol: f64| {
         neural
             .iter()
-            .find(|r| r.method == "bdf" && r.rtol == rtol && r.atol == rtol / 100.0)
+            .find(|r| {
+                r.method == LadderMethod::Integrator(Method::Bdf)
+                    && r.rtol == rtol
+                    && r.atol == rtol / 100.0
+            })
             .and_then(|r| r.stable_digits)
             .expect("completed rung")
     };
@@ -106,7 +114,7 @@ fn numerical_runs_are_laddered_on_their_stopping_rule() {
     assert_eq!(rungs.len(), ladder::NUMERICAL_TOLERANCES.len());
     assert!(rungs
         .iter()
-        .all(|r| r.method == FIXED_STEP && r.max_step == Some(1e-3)));
+        .all(|r| r.method == LadderMethod::FixedStep && r.max_step == Some(1e-3)));
     let own: Vec<_> = rungs.iter().filter(|r| r.as_run).collect();
     assert_eq!(own.len(), 1);
     assert_eq!(own[0].rtol, 1e-3);

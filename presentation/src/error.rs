@@ -73,7 +73,7 @@ pub enum ReportError {
     #[error("two figures would be written to {0}: rename a variant or a solver")]
     SameFigure(String),
     #[error(transparent)]
-    Papers(#[from] records::papers::PapersError),
+    Papers(#[from] analysis::papers::PapersError),
     /// `records::dof_cost` could not read its file.
     #[error(transparent)]
     DofCost(#[from] records::error::DofCostError),

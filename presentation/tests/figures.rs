@@ -26,7 +26,12 @@ fn row(experiment: &str, variant: &str, solver: &str, failed_at: Option<f64>) ->
             .unwrap_or_default(),
         failure_kind: failed_at.map(|_| FailureKind::Integrator),
         failed_at,
-        ..RunRow::blank(experiment, variant, solver, "lvi-pdnn")
+        ..RunRow::blank(
+            experiment,
+            variant,
+            solver,
+            catalog::solver_kind::SolverKind::Network(catalog::network_kind::NetworkKind::LviPdnn),
+        )
     }
 }
 
@@ -219,12 +224,17 @@ fn panels_follow_the_level_and_the_overview_scores_neural_runs() {
     render_all(&root).unwrap();
     let figure = |name: &str| read(&root.join("report/figures").join(name));
 
+    // A scored run's figure has the distance to the optimum as its third panel; the exact
+    // column's has none.
+    let exact = figure("exp-vel__vltco__exact-clarabel.svg");
+    assert!(exact.contains("(c) joint angles") && !exact.contains("|x - x*|"));
     let velocity = figure("exp-vel__vltco__lvi-pdnn.svg");
     for label in [
         "(a) end-effector path",
         "(b) position error",
-        "(c) joint angles",
-        "(d) joint velocities",
+        "(c) distance to the exact QP optimum |x - x*|",
+        "(d) joint angles",
+        "(e) joint velocities",
         "x (m)",
         "y (m)",
         "t (s)",
@@ -243,8 +253,8 @@ fn panels_follow_the_level_and_the_overview_scores_neural_runs() {
     let series = data_lines(&velocity);
     assert_eq!(
         series.len(),
-        2 + 1 + 6 + 6,
-        "path x2, error, angles x6, velocities x6"
+        2 + 1 + 1 + 6 + 6,
+        "path x2, error, |x - x*|, angles x6, velocities x6"
     );
     assert!(
         series.iter().all(|&points| points <= 400),
@@ -253,8 +263,8 @@ fn panels_follow_the_level_and_the_overview_scores_neural_runs() {
 
     let acceleration = figure("exp-acc__mtn-zeta-0__fp-cdnn.svg");
     for label in [
-        "(e) joint accelerations",
-        "(f) joint torques",
+        "(f) joint accelerations",
+        "(g) joint torques",
         "acceleration (rad/s^2)",
         "torque (N m)",
         "joint 5",

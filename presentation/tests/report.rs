@@ -4,10 +4,10 @@
 //! evaluates claims from the numbers (a changed number flips a verdict), and maps every
 //! published number that has a mapping onto an existing run.
 
-use presentation::report::claims::{self, Verdict};
+use analysis::claim_verdict::{self as claims, Verdict};
+use analysis::papers::Resolution;
 use presentation::report::{pages, paper_page, render, Inputs, Page, FRONT};
 use records::index::Runs;
-use records::papers::Resolution;
 use records::runs::{read_runs, RunRow};
 use std::path::{Path, PathBuf};
 
@@ -201,9 +201,9 @@ fn every_mapped_published_number_finds_its_run() {
 /// ids.
 fn row(experiment: &str, variant: &str, solver: &str, drift: f64) -> RunRow {
     let kind = if solver == records::index::EXACT {
-        "exact"
+        catalog::solver_kind::SolverKind::Exact
     } else {
-        "lvi-pdnn"
+        catalog::solver_kind::SolverKind::Network(catalog::network_kind::NetworkKind::LviPdnn)
     };
     RunRow {
         paper: "jia2019".into(),
@@ -240,7 +240,7 @@ fn synthetic() -> Vec<RunRow> {
 /// jia2019's claims (`papers/jia2019/paper.toml`) on `rows`.
 fn verdicts(rows: Vec<RunRow>) -> Vec<(String, Verdict)> {
     let root = catalog::root::from_current_dir().unwrap();
-    let papers = records::papers::Papers::load(&root.join("papers")).unwrap();
+    let papers = analysis::papers::Papers::load(&root.join("papers")).unwrap();
     claims::evaluate("jia2019", &Runs::new(rows), &papers)
         .into_iter()
         .map(|c| (c.short, c.verdict))
@@ -295,9 +295,9 @@ fn claims_pass_on_synthetic_rows_and_fail_when_a_number_changes() {
 /// so, in bounded time and memory (a paper holds at most `MAX_CLAIMS` such claims).
 #[test]
 fn a_claim_over_too_many_pairs_of_runs_is_not_applicable() {
-    use records::claims::{Check, Selection, Test};
+    use analysis::claims::{Check, Selection, Test};
     let root = catalog::root::from_current_dir().unwrap();
-    let mut papers = records::papers::Papers::load(&root.join("papers")).unwrap();
+    let mut papers = analysis::papers::Papers::load(&root.join("papers")).unwrap();
     let every = Selection::parse("* / * / *").unwrap();
     let jia = papers
         .papers
@@ -388,15 +388,15 @@ fn every_claim_of_the_papers_is_implemented_and_decided() {
     for p in &inputs.papers.papers {
         for c in &p.claims {
             match &c.check {
-                records::claims::Check::Rust { id, why, .. } => {
+                analysis::claims::Check::Rust { id, why, .. } => {
                     assert!(
-                        records::claims::RUST_CLAIMS.contains(&id.as_str()),
+                        analysis::claims::RUST_CLAIMS.contains(&id.as_str()),
                         "{}: {id}",
                         p.id
                     );
                     assert!(!why.is_empty());
                 }
-                records::claims::Check::Compare { .. } => data += 1,
+                analysis::claims::Check::Compare { .. } => data += 1,
             }
         }
         for c in claims::evaluate(&p.id, &inputs.runs, &inputs.papers) {

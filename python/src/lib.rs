@@ -4,7 +4,7 @@
 //!
 //! - `tasks` / `task` / `standard_tasks`: every (experiment, variant) of the experiment
 //!   files as a `Task` (`task_set::PyTask`); the standard task set is the leaderboard's
-//!   (`records::leaderboard::standard_tasks` over `results/runs.csv`). The project root is
+//!   (`analysis::leaderboard::standard_tasks` over `results/runs.csv`). The project root is
 //!   `root=` (a checkout) where given, else the data the package carries (`packaged`).
 //! - `simulate`: one run of a task with a Python network (`network`) or one of the suite's
 //!   own solvers (by id). Arm, scheme, integrator and the score against the exact optimum are
@@ -12,7 +12,7 @@
 //!   (`records::runs::RunRow`) as a dict, with the drift and the trace as numpy arrays and the
 //!   cost of the Python calls.
 //! - `leaderboard`: Python networks on the standard task set, ranked with the suite's own runs
-//!   by `records::leaderboard::leaderboard`, rows in `results/leaderboard.csv`'s schema. A
+//!   by `analysis::leaderboard::leaderboard`, rows in `results/leaderboard.csv`'s schema. A
 //!   network ranks on the tasks it handles (`handles(dims)`, or `NotApplicable` raised while it
 //!   is built); the rest are N/A, as for the suite's zeroing networks.
 //!
@@ -66,7 +66,7 @@ create_exception!(
      tasks they do not handle."
 );
 
-/// The `solver_kind` of a Python network's rows.
+/// The prefix of a Python network's solver id (`python-<name>`); its rows' kind is `SolverKind::Python`.
 const PYTHON_KIND: &str = "python";
 
 /// The name of `value`'s type, for messages.
@@ -158,7 +158,7 @@ fn stored_runs(root: &Path) -> PyResult<Vec<RunRow>> {
 fn standard_tasks(root: Option<PathBuf>) -> PyResult<Vec<PyTask>> {
     let root = project_root(root)?;
     let all = load_tasks(&root).map_err(lib_err)?;
-    records::leaderboard::standard_tasks(&stored_runs(&root)?)
+    analysis::leaderboard::standard_tasks(&stored_runs(&root)?)
         .iter()
         .map(|s| {
             all.iter()
@@ -305,7 +305,7 @@ fn run_python_unnamed(
     let mut row = run_row(&record, reproduce::revision::REVISION);
     row.solver_id = format!("{PYTHON_KIND}-{}", schemes::slug::slug(&name));
     row.solver = name;
-    row.solver_kind = PYTHON_KIND.to_string();
+    row.solver_kind = catalog::solver_kind::SolverKind::Python;
     Ok((record, row, calls))
 }
 
@@ -425,7 +425,7 @@ fn chosen_tasks(standard: &[PyTask], given: &Bound<'_, PyAny>) -> PyResult<Vec<P
 /// Scores Python networks on the standard task set (or on `tasks`, a subset of it, as Task
 /// objects or ids) the way the leaderboard scores the suite's own networks: each runs every
 /// task it handles, its rows join the stored `results/runs.csv`, and
-/// `records::leaderboard::leaderboard` ranks them all. A task a network does not handle
+/// `analysis::leaderboard::leaderboard` ranks them all. A task a network does not handle
 /// (`handles(dims)` False, or `NotApplicable` raised while it is built) is N/A for it: no row,
 /// so it is ranked on the tasks it ran, as the suite's zeroing networks are. Any other
 /// exception stops the call, the task named. `entries` is a dict name -> network or a list of
@@ -519,8 +519,8 @@ fn leaderboard<'py>(
     let mut all = stored;
     all.extend(fresh.iter().cloned());
     let timings = records::timing::read(&root.join(records::results_dir::DIR)).map_err(lib_err)?;
-    let board = records::leaderboard::leaderboard(&all, &timings);
-    let board_csv = records::leaderboard::leaderboard_csv(&board).map_err(lib_err)?;
+    let board = analysis::leaderboard::leaderboard(&all, &timings);
+    let board_csv = analysis::leaderboard::leaderboard_csv(&board).map_err(lib_err)?;
     let runs_csv = records::runs::runs_csv(&fresh).map_err(lib_err)?;
     if let Some(dir) = out_dir {
         std::fs::create_dir_all(&dir).map_err(|e| lib_err(format!("{}: {e}", dir.display())))?;

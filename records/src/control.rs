@@ -6,7 +6,7 @@
 //! - `results/control-stability.csv` ([`StabilityRow`]): each network's Euler stability limit
 //!   beside its gain;
 //! - `results/control-claim.csv` ([`ClaimRow`]): zhong2021's efficiency claim, per task
-//!   ([`crate::control_claim`]);
+//!   (crate `analysis`, `control_claim`);
 //! - `results/cycles.csv` ([`CycleRow`]): the drift after every cycle of the many-cycles runs,
 //!   and `results/cycles-trend.csv` ([`TrendRow`]): each run's trend.
 //!
@@ -40,11 +40,79 @@ pub enum ControlStatus {
 
 impl std::fmt::Display for ControlStatus {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
+        f.write_str(self.id())
+    }
+}
+
+impl ControlStatus {
+    /// The column's text (`ok`, `diverged`, `failed`).
+    pub fn id(self) -> &'static str {
+        match self {
             ControlStatus::Ok => "ok",
             ControlStatus::Diverged => "diverged",
             ControlStatus::Failed => "failed",
-        })
+        }
+    }
+}
+
+/// Whether a controller run's method is a network or a numerical QP method (the `family`
+/// column).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Family {
+    /// A recurrent network stepped at the control rate.
+    Network,
+    /// A numerical QP method (the active set, Clarabel, OSQP, robio2018's methods).
+    Numerical,
+}
+
+/// The class of a many-cycles run's drift sequence (the `class` column; crate `control`'s
+/// `trend` module defines the classes and decides them).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum TrendClass {
+    /// The motion repeats itself.
+    #[serde(rename = "limit cycle")]
+    LimitCycle,
+    /// The drift neither settles to a repeat nor keeps growing.
+    #[serde(rename = "bounded")]
+    Bounded,
+    /// The drift grows with the number of cycles.
+    #[serde(rename = "accumulating")]
+    Accumulating,
+}
+
+impl TrendClass {
+    /// The class in words, as the column stores it.
+    pub fn label(self) -> &'static str {
+        match self {
+            TrendClass::LimitCycle => "limit cycle",
+            TrendClass::Bounded => "bounded",
+            TrendClass::Accumulating => "accumulating",
+        }
+    }
+}
+
+/// zhong2021's efficiency claim's outcome on one task (the `verdict` column of
+/// `control-claim.csv`, stored as its label); crate `analysis`'s `control_claim` decides it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "UPPERCASE")]
+pub enum Verdict {
+    /// The network is cheaper at the stated accuracy.
+    Pass,
+    /// The network cannot be cheaper, even before accuracy is asked for.
+    Fail,
+    /// Neither.
+    Undecided,
+}
+
+impl Verdict {
+    /// `PASS`, `FAIL` or `UNDECIDED`.
+    pub fn label(self) -> &'static str {
+        match self {
+            Verdict::Pass => "PASS",
+            Verdict::Fail => "FAIL",
+            Verdict::Undecided => "UNDECIDED",
+        }
     }
 }
 
@@ -55,8 +123,7 @@ pub struct ControlRow {
     pub paper: String,
     pub scheme: String,
     pub method: String,
-    /// `network` or `numerical`.
-    pub family: String,
+    pub family: Family,
     pub h_ms: f64,
     pub substeps: u32,
     pub status: ControlStatus,
@@ -88,7 +155,10 @@ pub struct ControlRow {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct StabilityRow {
     pub task: String,
+    /// The network's display name.
     pub network: String,
+    /// The network's solver id (its identity).
+    pub solver_id: String,
     pub gain_name: String,
     /// The paper's gain.
     pub gain: f64,
@@ -104,11 +174,18 @@ pub struct StabilityRow {
     pub largest_stable_h_ms: Option<f64>,
 }
 
-/// The efficiency claim on one task (see [`crate::control_claim`]).
+/// The efficiency claim on one task (crate `analysis`'s `control_claim` decides it).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ClaimRow {
+    /// The task's label (`<experiment> / <variant>`, display only).
     pub task: String,
+    /// The network's display name.
     pub network: String,
+    /// The task's experiment and variant ids, and the network's solver id: the run of
+    /// `results/runs.csv` the claim is about.
+    pub experiment: String,
+    pub variant_id: String,
+    pub solver_id: String,
     pub h_ms: f64,
     pub accuracy: f64,
     pub products_per_step: u64,
@@ -131,7 +208,7 @@ pub struct ClaimRow {
     /// network products per tick over the numerical method's mean.
     pub cost_ratio: f64,
     /// `PASS`, `FAIL` or `UNDECIDED` in the file.
-    pub verdict: crate::control_claim::Verdict,
+    pub verdict: Verdict,
 }
 
 /// The drift after one cycle of a many-cycles run.
@@ -155,14 +232,16 @@ pub struct TrendRow {
     pub method: String,
     /// The control period; empty for a continuous-time run.
     pub h_ms: Option<f64>,
-    pub status: String,
+    pub status: ControlStatus,
+    /// Why the run stopped before its last cycle, in words (empty when it completed).
+    pub failure: Option<String>,
     pub cycles: usize,
     pub drift_first: Option<f64>,
     pub drift_last: Option<f64>,
     /// rad/cycle, fitted over the second half.
     pub rate: Option<f64>,
-    /// `limit cycle`, `bounded`, `accumulating`; empty with fewer than three cycles.
-    pub class: Option<String>,
+    /// Empty with fewer than three cycles.
+    pub class: Option<TrendClass>,
 }
 
 /// Writes `rows` to `dir/name`.

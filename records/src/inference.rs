@@ -11,25 +11,12 @@
 //! itself and its residuals. An [`EntryRow`] is one published entry beside ours under a reported
 //! setup.
 
-use crate::papers::PaperValue;
 use catalog::integrator::{IntegratorSettings, Method};
 use serde::{Deserialize, Serialize};
 
 /// Penalty residual of a setup whose run fails (an unreachable pose, an infeasible QP); the
-/// report prints such points as failed, and [`crate::inference_verdict`] leaves them out.
+/// report prints such points as failed, and crate `analysis`'s `inference_verdict` leaves them out.
 pub const FAILED: f64 = 10.0;
-
-/// The tables a setup can be fitted to (crate `explain`, `inference::problem`): (paper, table),
-/// each published table with per-joint drifts.
-pub fn table_ids(values: &[PaperValue]) -> Vec<(String, String)> {
-    let mut ids: Vec<(String, String)> = values
-        .iter()
-        .filter(|v| v.table != "text" && v.metric.starts_with("drift_") && v.metric != "drift_norm")
-        .map(|v| (v.paper.clone(), v.table.clone()))
-        .collect();
-    ids.dedup();
-    ids
-}
 
 /// How a setup's drift is computed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -106,7 +93,8 @@ pub struct InferenceRow {
     pub tilt_x: f64,
     pub tilt_y: f64,
     pub reverse: bool,
-    pub rmp: String,
+    /// How the RMP term's coefficient was read (stored by its serde name: `printed`, ...).
+    pub rmp: schemes::spec::RmpReading,
     pub rel_residual: f64,
     /// r of the whole table at this setup.
     pub table_residual: f64,

@@ -256,7 +256,7 @@ mod tests {
             .iter()
             .map(|v| RunRow {
                 git_rev: if *v == "e" { "r0" } else { "r1" }.into(),
-                ..RunRow::blank("exp", v, "exact", "exact")
+                ..RunRow::blank("exp", v, "exact", catalog::solver_kind::SolverKind::Exact)
             })
             .collect();
         {

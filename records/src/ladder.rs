@@ -6,14 +6,55 @@
 //! |d - d*| / |d*| and the digits shared with d*, -log10 of that change.
 //!
 //! A numerical run's rungs are its fixed-step loop stopped at a sequence of tolerances: their
-//! `method` is [`FIXED_STEP`], `rtol` holds the stopping tolerance (|e(U)|_2 <= rtol), `atol`
-//! is 0 and `max_step` the loop's step h.
+//! `method` is [`LadderMethod::FixedStep`], `rtol` holds the stopping tolerance
+//! (|e(U)|_2 <= rtol), `atol` is 0 and `max_step` the loop's step h.
 
 use crate::runs::Status;
+use catalog::integrator::Method;
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-/// The `method` of a numerical run's rungs (module docs).
-pub const FIXED_STEP: &str = "fixed-step";
-use serde::{Deserialize, Serialize};
+/// How a rung integrated (the `method` column): an integrator, stored by its id (`bdf`,
+/// `dopri5`, ...), or a numerical run's fixed-step loop, stored as `fixed-step`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum LadderMethod {
+    /// An adaptive integrator at the rung's tolerances.
+    Integrator(Method),
+    /// A numerical run's fixed-step loop, stopped at the rung's tolerance (module docs).
+    FixedStep,
+}
+
+impl LadderMethod {
+    /// The id the column stores.
+    pub fn id(self) -> &'static str {
+        match self {
+            LadderMethod::Integrator(m) => m.label(),
+            LadderMethod::FixedStep => "fixed-step",
+        }
+    }
+}
+
+impl std::fmt::Display for LadderMethod {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.id())
+    }
+}
+
+impl Serialize for LadderMethod {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.id())
+    }
+}
+
+impl<'de> Deserialize<'de> for LadderMethod {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let text = std::borrow::Cow::<str>::deserialize(d)?;
+        if text == LadderMethod::FixedStep.id() {
+            return Ok(LadderMethod::FixedStep);
+        }
+        Method::deserialize(serde::de::value::StrDeserializer::<D::Error>::new(&text))
+            .map(LadderMethod::Integrator)
+    }
+}
 
 /// One rung's result, as stored in `results/ladder.csv`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -26,8 +67,7 @@ pub struct LadderRow {
     /// Labels (display only).
     pub variant: String,
     pub solver: String,
-    /// The integrator's id (`bdf`, `dopri5`, ...), or [`FIXED_STEP`].
-    pub method: String,
+    pub method: LadderMethod,
     /// RelTol, or a numerical rung's stopping tolerance.
     pub rtol: f64,
     /// AbsTol (0 for a numerical rung).

@@ -10,8 +10,6 @@
 //! - [`profile_active_set`]: where the hot-started active-set solve spends its time
 //!   (`results/profile-active-set.csv`).
 //! - [`index`]: the stored runs indexed as the report and the analyses look them up.
-//! - [`leaderboard`]: every velocity-level solver on the standard task set, scored as
-//!   qpbenchmark scores QP solvers (`results/leaderboard.csv`).
 //! - [`timing`]: the compared runs timed alone, repeated (`results/leaderboard-timing.csv`),
 //!   which the leaderboard ranks by.
 //! - [`phases`]: where one `reproduce run`'s wall time went, phase by phase
@@ -28,49 +26,35 @@
 //! - [`journal`]: the checkpoint of finished runs that an interrupted run resumes from.
 //! - [`shard`]: cluster runs: which shard a run belongs to, the shard directory's binding and
 //!   manifest, the merge checks; [`fnv`]: the stable hash they use.
-//! - [`gate`]: the regression gate (fresh rows against committed ones).
-//! - [`claims`]: a paper's claims as data (a metric of a selection of runs against a threshold
-//!   or another selection).
 //! - [`migrate`]: results written before run ids (labels as identities), brought up to date once.
 //! - [`trajectory`], [`trajectory_mat`]: trajectories made elsewhere (CSV, MAT-files: the
 //!   samples [`trajectory::Trajectory`] the engine scores) and their score as a row.
 //! - [`percentile`]: the one percentile definition of the workspace (numpy's default).
-//! - [`papers`]: the papers as data (`papers/<paper>/`): metadata, published numbers and which run each
-//!   one is compared with.
-//!   [`paper_rules`]: what a paper folder must satisfy (ids, one-line texts, unique mappings,
-//!   checked values), checked before anything runs.
-//! - [`sweep_check`]: a published table set beside a sweep's runs.
 //! - [`control`]: the control experiments' result files (`results/control*.csv`,
-//!   `results/cycles*.csv`); [`control_claim`]: zhong2021's efficiency claim decided from them.
+//!   `results/cycles*.csv`).
 //! - [`ladder`], [`attribution`]: the explanation's result files (`results/ladder.csv`,
 //!   `results/attribution.csv`); [`inference`]: the setup inference's (`results/inference.csv`,
-//!   `results/inference-entries.csv`), with its verdicts in words ([`inference_verdict`]).
+//!   `results/inference-entries.csv`).
 //!
 //! The report reads every one of these files through this crate alone: rendering needs the
-//! records, not the solvers that made them.
+//! records, not the solvers that made them. What is decided from them (claims, the leaderboard,
+//! the regression gate, verdicts, fits) and the papers as data are crate `analysis`'s: this
+//! crate holds the schemas and the store, no verdict.
 
 pub mod attribution;
-pub mod claims;
 pub mod clock;
 pub mod control;
-pub mod control_claim;
 pub mod dof_cost;
 pub mod error;
 pub mod failure_kind;
 pub mod fnv;
-pub mod gate;
 pub mod index;
 pub mod inference;
-pub mod inference_verdict;
 pub mod integrity;
 pub mod journal;
 pub mod ladder;
-pub mod leaderboard;
 pub mod migrate;
 pub mod owned_dir;
-pub mod paper_rules;
-pub mod paper_runs;
-pub mod papers;
 pub mod percentile;
 pub mod phases;
 pub mod profile;
@@ -80,7 +64,6 @@ pub mod results_dir;
 pub mod runs;
 pub mod shard;
 pub mod speedup;
-pub mod sweep_check;
 pub mod table;
 pub mod timing;
 pub mod trace;

@@ -15,6 +15,7 @@ use crate::failure_kind::FailureKind;
 use crate::table;
 use catalog::naming::{check_name, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
 use catalog::run_key::RunKey;
+use catalog::solver_kind::SolverKind;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
@@ -33,9 +34,8 @@ pub struct RunRow {
     pub scheme: String,
     /// The solver's label with its parameters (display only).
     pub solver: String,
-    /// The solver's kind: `exact`, or the network's kind as experiment files name it
-    /// (`lvi-pdnn`, ...).
-    pub solver_kind: String,
+    /// The solver's kind (stored as its id: `exact`, `lvi-pdnn`, `94lvi`, ...).
+    pub solver_kind: SolverKind,
     pub robot: String,
     pub path: String,
     pub path_scale: Option<f64>,
@@ -125,7 +125,7 @@ impl RunRow {
     /// A completed row with this identity and every measurement empty or zero (paper `test`,
     /// robot `jaco2-pen`, BDF at 1e-6 / 1e-8; labels equal to the ids): the starting point of
     /// rows built by hand, as in tests of what reads results.
-    pub fn blank(experiment: &str, variant: &str, solver: &str, solver_kind: &str) -> Self {
+    pub fn blank(experiment: &str, variant: &str, solver: &str, solver_kind: SolverKind) -> Self {
         RunRow {
             paper: "test".into(),
             experiment: experiment.into(),
@@ -134,7 +134,7 @@ impl RunRow {
             variant: variant.into(),
             scheme: variant.into(),
             solver: solver.into(),
-            solver_kind: solver_kind.into(),
+            solver_kind,
             robot: "jaco2-pen".into(),
             path: "circle".into(),
             path_scale: None,
@@ -195,7 +195,7 @@ impl RunRow {
 
     /// Whether the run is the exact column (the optimum in the loop).
     pub fn is_exact(&self) -> bool {
-        self.solver_kind == catalog::experiment::EXACT_KIND
+        self.solver_kind == SolverKind::Exact
     }
 }
 

@@ -174,7 +174,7 @@ pub fn parse_csv(bytes: &[u8], path: &Path) -> Result<Trajectory, TrajectoryFile
 pub fn score_row(mut row: RunRow, source: &str, name: &str) -> RunRow {
     row.solver_id = name.to_string();
     row.solver = format!("{TRAJECTORY_KIND} {source}");
-    row.solver_kind = TRAJECTORY_KIND.to_string();
+    row.solver_kind = catalog::solver_kind::SolverKind::Trajectory;
     row.integrator = TRAJECTORY_KIND.to_string();
     row.rtol = 0.0;
     row.atol = 0.0;

@@ -133,3 +133,27 @@ fn the_fuzzed_readers_accept_well_formed_files() {
         .expect("and is found");
     assert!(m.files.contains_key("traces/e/v__s.csv"));
 }
+
+/// The fuzzed readers above accept well-formed inputs, so their checks on what was read cannot
+/// pass only because every input was refused: the committed rows they start from read, and a
+/// manifest of one plain path reads with that path.
+#[test]
+fn the_unmutated_inputs_read() {
+    let lines = committed_runs();
+    let path = scratch("runs-unmutated.csv");
+    std::fs::write(&path, lines.join("\n") + "\n").unwrap();
+    let rows = read_runs(&path).expect("the committed rows read");
+    assert_eq!(rows.len(), lines.len() - 1);
+
+    let dir = scratch("integrity-manifest-plain");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join(records::integrity::FILE),
+        "git_rev = \"x\"\n[files.\"traces/e/v__s.csv\"]\nlines = 1\nbytes = 1\nsha256 = \"00\"\n",
+    )
+    .unwrap();
+    let manifest = records::integrity::Manifest::read(&dir)
+        .expect("a plain manifest reads")
+        .expect("the manifest exists");
+    assert!(manifest.files.contains_key("traces/e/v__s.csv"));
+}

@@ -31,7 +31,7 @@ pub fn dof_cost(project: &Project, dry_run: bool, git_rev: &str) -> Result<(), R
             started.elapsed().as_secs_f64()
         );
     });
-    let rows = records::dof_cost::rows(&measurements, &cpu, cores, git_rev);
+    let rows = analysis::fits::rows(&measurements, &cpu, cores, git_rev);
     for fit in rows.iter().filter(|r| r.is_fit()) {
         eprintln!(
             "  {} {} ({}): cost ~ N^{:.2}",

@@ -72,7 +72,7 @@ pub enum ReproduceError {
     #[error(transparent)]
     Path(#[from] PathError),
     #[error(transparent)]
-    Papers(#[from] records::papers::PapersError),
+    Papers(#[from] analysis::papers::PapersError),
     #[error(transparent)]
     Explain(#[from] explain::error::ExplainError),
     #[error(transparent)]

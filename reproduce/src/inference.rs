@@ -60,8 +60,8 @@ pub fn infer(
     jobs: &[Job],
     results: Option<&ResultsDir>,
 ) -> Result<(), ReproduceError> {
+    use analysis::papers::table_ids;
     use explain::inference::{family::Family, fit, problem, rows, search::Target};
-    use records::inference::table_ids;
     let root = report_root(project)?;
     let papers = load_papers(project)?;
     let family = Family::load(

@@ -4,7 +4,7 @@
 //! [`ReproduceError`] it may return. A program may call [`run`](fn@run) with options it built
 //! itself: the library never sees the command line.
 //!
-//! One module per mode: [`run`](mod@run) (the default, the gate of [`gate`], a shard, with its
+//! One module per mode: [`run`](mod@run) (the default, the gate against a [`baseline`], a shard, with its
 //! [`journal`] and its [`phases`] clock), [`report`], [`explanation`], [`inference`], [`merge`], [`list`] (and robots),
 //! [`cost`], [`score`] (a trajectory made elsewhere, also `driftbench.score` in Python); the
 //! task cards the report mode writes ([`task_card`]); beside them what the modes share: the
@@ -13,11 +13,11 @@
 //! summary printed ([`summary`]) and the code revision embedded at build time ([`revision`]).
 
 pub mod aliases;
+pub mod baseline;
 pub mod cli;
 pub mod cost;
 pub mod error;
 pub mod explanation;
-pub mod gate;
 pub mod inference;
 pub mod journal;
 pub mod list;
@@ -127,7 +127,7 @@ pub fn run(global: &GlobalOptions, mode: Mode) -> Result<ExitCode, ReproduceErro
             let files = experiment_files(&project)?;
             let all = Described::new(&files);
             let jobs = selected(&files, &o.selection, None, &project)?;
-            let baseline = gate::Baseline::read(
+            let baseline = baseline::Baseline::read(
                 &project.root,
                 &project.results_dir,
                 o.baseline.as_deref(),

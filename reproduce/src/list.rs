@@ -63,7 +63,7 @@ pub fn shard_plan(jobs: impl Iterator<Item = Job>, n: usize) -> String {
 
 /// Every robot of the registry with its joint count and check values at its stated pose.
 pub fn robots() -> String {
-    use catalog::robot_registry::{robot_by_name, robot_names};
+    use robots::registry::{robot_by_name, robot_names};
     let mut out = String::new();
     for name in robot_names() {
         let robot = robot_by_name(&name).expect("a registry name");
@@ -161,7 +161,7 @@ mod tests {
 
     #[test]
     fn every_robot_is_listed_with_its_joint_count() {
-        use catalog::robot_registry::{robot_by_name, robot_names};
+        use robots::registry::{robot_by_name, robot_names};
         let text = robots();
         let names: Vec<String> = robot_names().collect();
         assert_eq!(text.lines().count(), 2 * names.len());

@@ -38,7 +38,7 @@ pub fn merge_shards(
     let rows: Vec<RunRow> = shards.iter().flat_map(|s| s.rows.clone()).collect();
     let unexpected: Vec<String> = rows
         .iter()
-        .filter(|r| !r.completed() && !records::gate::expected_to_diverge(r))
+        .filter(|r| !r.completed() && !analysis::gate::expected_to_diverge(r))
         .map(|r| format!("{}: {}", r.key(), r.failure))
         .collect();
     eprintln!(

@@ -67,7 +67,7 @@ pub fn render_pages(
 ) -> Result<(), ReproduceError> {
     let report = presentation::report::render(root, &project.root.join("papers"))?;
     crate::task_card::write_all(&project.experiments_dir, root)?;
-    records::leaderboard::write(results.path(), &results.read_runs()?)?;
+    analysis::leaderboard::write(results.path(), &results.read_runs()?)?;
     results.save()?;
     eprintln!("wrote {}", report.display());
     Ok(())

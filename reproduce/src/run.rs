@@ -7,9 +7,9 @@
 //! `results/phases.csv`). Runs that fail without their experiment file expecting it are
 //! exit code 1.
 
+use crate::baseline::Baseline;
 use crate::error::ReproduceError;
 use crate::explanation::{explain, load_checked_papers};
-use crate::gate::Baseline;
 use crate::journal::{resume, run_journaled};
 use crate::options::SelectionOptions;
 use crate::phases::PhaseClock;
@@ -102,14 +102,14 @@ pub fn run(
     let (records, unjournaled) = run_journaled(results.as_ref(), jobs, &to_run, git_rev)?;
     let rows: Vec<RunRow> = records.iter().map(|r| run_row(r, git_rev)).collect();
     emit(&summary(&rows));
-    // Failed runs, and whether the experiment files' findings expect them (records::gate).
+    // Failed runs, and whether the experiment files' findings expect them (analysis::gate).
     let failed: Vec<(String, bool)> = rows
         .iter()
         .filter(|r| !r.completed())
         .map(|r| {
             (
                 format!("{}: {}", r.key(), r.failure),
-                records::gate::expected_to_diverge(r),
+                analysis::gate::expected_to_diverge(r),
             )
         })
         .collect();

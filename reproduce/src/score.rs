@@ -172,7 +172,7 @@ pub fn score_file(
     let rel_trace = Path::new(records::results_dir::TRACES)
         .join(&row.experiment)
         .join(format!("{stem}.csv"));
-    let rel_figure = Path::new("figures").join(format!("{}__{stem}.svg", row.experiment));
+    let rel_figure = Path::new("figures").join(presentation::figures::run_figure_name(&row.key()));
     let io = |rel: &Path, bytes: &[u8]| -> Result<PathBuf, ScoreError> {
         if let Some(parent) = rel.parent().filter(|p| !p.as_os_str().is_empty()) {
             let parent = dir.resolve(parent)?;
@@ -280,7 +280,12 @@ mod tests {
         let row = |max_pos_err: f64| RunRow {
             max_pos_err: Some(max_pos_err),
             path_scale: Some(0.2),
-            ..RunRow::blank("e", "v", "trajectory", "trajectory")
+            ..RunRow::blank(
+                "e",
+                "v",
+                "trajectory",
+                catalog::solver_kind::SolverKind::Trajectory,
+            )
         };
         let exact = trajectory(vec![vec![std::f64::consts::PI, 0.0], vec![1.0 / 3.0, 0.5]]);
         assert_eq!(warnings(&row(1e-6), &exact), []);

@@ -77,7 +77,7 @@ pub fn summary(rows: &[RunRow]) -> String {
 
 /// Whether the run is of a VP-RNN-PF network (by its `solver_kind`).
 fn is_vp_rnn_pf(r: &RunRow) -> bool {
-    r.solver_kind.parse() == Ok(NetworkKind::VpRnnPf)
+    r.solver_kind.network() == Some(NetworkKind::VpRnnPf)
 }
 
 /// Writes to stdout, ending quietly when the reader has gone (e.g. `| head`).

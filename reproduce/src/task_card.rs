@@ -13,8 +13,8 @@
 use catalog::error::ExperimentFileError;
 use catalog::error::SetupError;
 use catalog::experiment::{load_dir, Job, PaperFile, SolverChoice};
-use catalog::robot_registry::{robot_by_name, AnyRobot};
 use records::tracked_dir::{Removal, TrackedDir, TrackedError};
+use robots::registry::{robot_by_name, AnyRobot};
 use schemes::qp::Qp;
 use schemes::scheme::Level;
 use schemes::spec::SchemeSpec;

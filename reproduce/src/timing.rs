@@ -1,5 +1,5 @@
 //! The timing pass: after the parallel reproduction, the runs whose times are compared — the
-//! leaderboard's (every non-exact run on a standard task, [`records::leaderboard`]) and every
+//! leaderboard's (every non-exact run on a standard task, [`analysis::leaderboard`]) and every
 //! run of the experiments the papers publish a MATLAB time for — run again
 //! [`records::timing::REPETITIONS`] times each, one run at a time on this (one) thread, into
 //! `results/leaderboard-timing.csv` ([`records::timing`]), which the leaderboard ranks by and
@@ -8,10 +8,10 @@
 //! Only the times are kept: a repetition recomputes the same run, and `results/runs.csv` keeps
 //! the reproduction's row.
 
+use analysis::leaderboard::standard_tasks;
+use analysis::papers::{Papers, PapersError};
 use catalog::experiment::Job;
 use catalog::run_key::RunKey;
-use records::leaderboard::standard_tasks;
-use records::papers::{Papers, PapersError};
 use records::results_dir::{ResultsDir, ResultsError};
 use records::runs::RunRow;
 use records::timing::{TimingRow, Timings, REPETITIONS};

@@ -1,9 +1,9 @@
-//! The regression gate ([`reproduce::gate`]): a fresh run of every experiment against the
+//! The regression gate ([`analysis::gate`], its baseline [`reproduce::baseline`]): a fresh run of every experiment against the
 //! committed `results/runs.csv`; and two fresh runs of the same jobs give identical rows,
 //! timing columns aside.
 
+use analysis::gate::compare;
 use catalog::experiment::load_dir;
-use records::gate::compare;
 use records::runs::{read_runs, RunRow};
 use simulation::row::run_row;
 use simulation::run::check_job;

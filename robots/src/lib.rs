@@ -25,7 +25,8 @@
 //! Coriolis matrices), [`jaco2`] (Jaco2 kinematics), [`jaco2_dynamics`] (Jaco2 inertial table and
 //! [`Dynamics`] implementation), [`katana`] (Katana 6M180), [`panda`] (Franka Emika Panda),
 //! [`nlink`] (the n-link family), [`robot_file`] (the robot file format and its validation),
-//! [`data_robot`] (the model of a robot file, the built-in files).
+//! [`data_robot`] (the model of a robot file, the built-in files), [`registry`] (the one map from
+//! the robot names of experiment files to models).
 
 use nalgebra::{SMatrix, SVector, Vector3};
 
@@ -39,6 +40,7 @@ pub mod limited;
 pub mod nlink;
 pub mod nlink_dyn;
 pub mod panda;
+pub mod registry;
 pub mod rigid_body;
 pub mod robot_file;
 

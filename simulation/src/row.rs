@@ -33,7 +33,7 @@ pub fn run_row(r: &RunRecord, git_rev: &str) -> RunRow {
         variant: j.variant.clone(),
         scheme: r.run.scheme_name.clone(),
         solver: j.solver.label(),
-        solver_kind: j.solver.kind().to_string(),
+        solver_kind: j.solver.kind(),
         robot: j.robot.clone(),
         path: j.path.name.clone(),
         path_scale: j

@@ -5,9 +5,9 @@ use crate::error::RunError;
 use crate::simulate::{simulate, Outcome, Run, Settings, Solver};
 use catalog::error::SetupError;
 use catalog::experiment::{Job, JobPart, SolverChoice};
-use catalog::robot_registry::{robot_by_name, RobotVisitor};
 use catalog::solver_spec::SolverSpec;
 use nalgebra::SVector;
+use robots::registry::{robot_by_name, RobotVisitor};
 use robots::{Dynamics, Robot};
 use schemes::paths::{build_path, Cyclic, Path};
 use schemes::qp::QpDims;
@@ -251,7 +251,7 @@ pub fn build_cyclic_parts<const N: usize>(
             schemes::spec::SchemeError::MissingDynamics { .. } => format!(
                 " (robot \"{}\" is kinematic only; robots with dynamics: {})",
                 job.robot,
-                catalog::robot_registry::robots_with_dynamics().join(", ")
+                robots::registry::robots_with_dynamics().join(", ")
             ),
             _ => String::new(),
         };

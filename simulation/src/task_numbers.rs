@@ -7,8 +7,8 @@
 use crate::run::build_parts;
 use catalog::error::SetupError;
 use catalog::experiment::Job;
-use catalog::robot_registry::{robot_by_name, RobotVisitor};
 use nalgebra::SVector;
+use robots::registry::{robot_by_name, RobotVisitor};
 use robots::{Dynamics, Robot};
 use schemes::qp::Qp;
 use schemes::scheme::Level;

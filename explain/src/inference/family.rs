@@ -92,7 +92,7 @@ impl Family {
     fn check(&self) -> Result<(), FamilyError> {
         for (declared, variants) in &self.robot_variants {
             let dof = |name: &str| {
-                catalog::robot_registry::robot_by_name(name)
+                robots::registry::robot_by_name(name)
                     .map(|r| r.dof())
                     .ok_or_else(|| FamilyError::UnknownRobot(name.to_string()))
             };

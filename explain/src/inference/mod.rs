@@ -41,6 +41,7 @@
 pub mod family;
 pub mod search;
 
+use analysis::papers::Papers;
 use catalog::experiment::Scoring;
 use catalog::experiment::{Job, SolverChoice};
 use catalog::integrator::{IntegratorSettings, Method};
@@ -50,7 +51,6 @@ use records::inference::{
     EntryRow, InferenceRow, Integration, BEST, COLUMN_FIT, DECLARED, FAILED, HYPOTHESIS, LOCAL,
     PHASE, PROFILE, ROTATION, SCALE, TABLE, TILT_X, TILT_Y,
 };
-use records::papers::Papers;
 use records::runs::RunRow;
 use schemes::spec::{RmpReading, SchemeSpec};
 use search::{Coordinate, Objective, Outcome, Point, Scores, Target};
@@ -599,7 +599,7 @@ pub fn rows(p: &TableProblem, f: &Fit) -> (Vec<InferenceRow>, Vec<EntryRow>) {
             tilt_x: setup.tilt_x,
             tilt_y: setup.tilt_y,
             reverse: setup.reverse,
-            rmp: setup.rmp.label().to_string(),
+            rmp: setup.rmp,
             rel_residual: s.get(t),
             table_residual: s.joint,
             column_residuals: s

@@ -16,7 +16,7 @@ use super::style::{colour, LEGEND_LINE_WIDTH};
 use crate::error::FigureError;
 use catalog::naming::slug;
 use plotters::prelude::*;
-use records::control::{ControlRow, ControlStatus, CycleRow};
+use records::control::{ControlRow, ControlStatus, CycleRow, Family};
 
 /// Width of the legend column on the right (px).
 const LEGEND_WIDTH: u32 = 420;
@@ -114,7 +114,7 @@ pub fn pareto(task: &str, h_ms: f64, rows: &[&ControlRow]) -> Figure<PanelBody> 
 pub fn stability(rows: &[&ControlRow]) -> Figure<PanelBody> {
     let mut keys: Vec<(String, String)> = rows
         .iter()
-        .filter(|r| r.family == "network" && r.substeps == 1)
+        .filter(|r| r.family == Family::Network && r.substeps == 1)
         .map(|r| (r.task.clone(), r.method.clone()))
         .collect();
     keys.sort();

@@ -54,7 +54,7 @@ pub fn figure(scheme: &str, rows: &[&DofCostRow]) -> Figure<DofCostBody> {
     for (k, quantity) in Quantity::ALL.into_iter().enumerate() {
         let backends = records::dof_cost::backends(rows.iter().copied(), quantity);
         for (b, backend) in backends.iter().enumerate() {
-            let of_series = |r: &&&DofCostRow| r.quantity == quantity.id() && r.backend == *backend;
+            let of_series = |r: &&&DofCostRow| r.quantity == quantity && r.backend == *backend;
             let points: Vec<(f64, f64)> = rows
                 .iter()
                 .filter(|r| !r.is_fit() && of_series(r))

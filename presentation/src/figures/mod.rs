@@ -40,6 +40,7 @@ mod style;
 mod trace;
 
 use crate::error::{FigureError, ReportError};
+use catalog::run_key::RunKey;
 use layout::Rendered;
 use rayon::prelude::*;
 use records::control::{ControlRow, CycleRow, MAIN_H};
@@ -57,6 +58,17 @@ pub const FIGURES: &str = "figures";
 /// The run's file stem (see [`catalog::naming::run_stem`]).
 fn run_stem(run: &RunRow) -> String {
     run.key().stem()
+}
+
+/// The file name of the run figure of the run keyed `key` (`<experiment>__<variant>__<solver>.svg`):
+/// the one naming rule of run figures, for the report's own and a scored trajectory's.
+pub fn run_figure_name(key: &RunKey) -> String {
+    format!("{}__{}.svg", key.experiment, key.stem())
+}
+
+/// The file name of the overview figure of `experiment` (`<experiment>__overview.svg`).
+pub fn overview_name(experiment: &str) -> String {
+    format!("{experiment}__overview.svg")
 }
 
 /// The run figure of the report for `run` with its trace file `trace`, as SVG text and PNG
@@ -139,10 +151,7 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, ReportError> {
     };
     let mut by_experiment: BTreeMap<&str, Vec<(&RunRow, &Trace)>> = BTreeMap::new();
     for (run, trace) in runs.iter().zip(&traces) {
-        add(
-            format!("{}__{}.svg", run.experiment, run_stem(run)),
-            Job::Run(run, trace),
-        )?;
+        add(run_figure_name(&run.key()), Job::Run(run, trace))?;
         by_experiment
             .entry(&run.experiment)
             .or_default()
@@ -150,7 +159,7 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, ReportError> {
     }
     for (experiment, members) in by_experiment {
         add(
-            format!("{experiment}__overview.svg"),
+            overview_name(experiment),
             Job::Overview(experiment, members),
         )?;
     }

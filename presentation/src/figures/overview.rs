@@ -78,11 +78,7 @@ pub fn figure(experiment: &str, runs: &[(&RunRow, &Trace)]) -> Figure<OverviewBo
             .enumerate()
             .map(|(k, (_, trace))| Series {
                 colour: colour(k),
-                points: trace
-                    .thinned()
-                    .into_iter()
-                    .filter_map(|i| trace.score_dx[i].map(|dx| (trace.t[i], dx)))
-                    .collect(),
+                points: trace.score_over_time(),
             })
             .collect(),
     });

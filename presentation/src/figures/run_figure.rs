@@ -1,6 +1,8 @@
-//! The figure of one run: (a) end-effector path over the arm's motion, (b) position error, (c) joint angles relative
-//! to theta(0), (d) joint velocities, and at the acceleration level (e) joint accelerations and
-//! (f) torques, as in the papers' per-run figures.
+//! The figure of one run: (a) end-effector path over the arm's motion, (b) position error,
+//! then for a scored run the distance of its solver's command to the exact QP optimum
+//! |x - x*| (the headline score), joint angles relative to theta(0), joint velocities, and at
+//! the acceleration level joint accelerations and torques, as in the papers' per-run figures.
+//! Panels are lettered in the order they are drawn.
 
 use super::arm;
 use super::layout::{Area, Body, Figure};
@@ -94,45 +96,59 @@ pub fn figure(run: &RunRow, trace: &Trace) -> Figure<RunBody> {
         actual_colour: ACTUAL_COLOUR,
         arm: arm::poses(run, trace),
     };
-    let mut panels = vec![
-        time(
-            "(b) position error |r* - f(theta)|",
-            "error (m)",
+    // (caption, y axis, scale, series) in drawing order; lettered from (b) below.
+    let mut panels: Vec<(&str, &str, YAxis, Vec<Series>)> = vec![(
+        "position error |r* - f(theta)|",
+        "error (m)",
+        YAxis::Log,
+        vec![Series {
+            colour: ACTUAL_COLOUR,
+            points: trace.over_time(&trace.pos_err),
+        }],
+    )];
+    if trace.is_scored() {
+        panels.push((
+            "distance to the exact QP optimum |x - x*|",
+            "|x - x*|",
             YAxis::Log,
             vec![Series {
                 colour: ACTUAL_COLOUR,
-                points: trace.over_time(&trace.pos_err),
+                points: trace.score_over_time(),
             }],
-        ),
-        time(
-            "(c) joint angles theta_i(t) - theta_i(0)",
+        ));
+    }
+    panels.extend([
+        (
+            "joint angles theta_i(t) - theta_i(0)",
             "angle change (rad)",
             YAxis::Linear,
             per_joint(trace, &trace.theta, |i, v| v - trace.theta[i][0]),
         ),
-        time(
-            "(d) joint velocities",
+        (
+            "joint velocities",
             "velocity (rad/s)",
             YAxis::Linear,
             joints(&trace.thetadot),
         ),
-    ];
+    ]);
     if let Some(thetaddot) = &trace.thetaddot {
-        panels.push(time(
-            "(e) joint accelerations",
+        panels.push((
+            "joint accelerations",
             "acceleration (rad/s^2)",
             YAxis::Linear,
             joints(thetaddot),
         ));
     }
     if let Some(tau) = &trace.tau {
-        panels.push(time(
-            "(f) joint torques",
-            "torque (N m)",
-            YAxis::Linear,
-            joints(tau),
-        ));
+        panels.push(("joint torques", "torque (N m)", YAxis::Linear, joints(tau)));
     }
+    let panels: Vec<TimePanel> = panels
+        .into_iter()
+        .zip('b'..)
+        .map(|((caption, y_desc, y_axis, series), letter)| {
+            time(&format!("({letter}) {caption}"), y_desc, y_axis, series)
+        })
+        .collect();
 
     let mut entries = vec![
         Entry {

@@ -157,6 +157,14 @@ impl Trace {
         self.theta.iter().map(|joint| joint[k]).collect()
     }
 
+    /// `(t, |x - x*|)` at the thinned samples that were scored (none for an unscored run).
+    pub fn score_over_time(&self) -> Vec<(f64, f64)> {
+        self.thinned()
+            .into_iter()
+            .filter_map(|k| self.score_dx[k].map(|dx| (self.t[k], dx)))
+            .collect()
+    }
+
     /// `(t, value)` pairs of one column at the thinned samples.
     pub fn over_time(&self, values: &[f64]) -> Vec<(f64, f64)> {
         self.thinned()

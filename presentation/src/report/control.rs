@@ -4,8 +4,9 @@
 
 use super::markdown::{sci, sci_opt, Table, MISSING};
 use crate::figures::control::{pareto_name, CYCLES_NAME, STABILITY_NAME};
+use analysis::control_claim::{overall, steps_needed, ACCURACY};
+use records::control::Verdict;
 use records::control::{read, ClaimRow, ControlRow, ControlStatus, StabilityRow, TrendRow, MAIN_H};
-use records::control_claim::{overall, steps_needed, Verdict, ACCURACY};
 use records::error::ControlFileError;
 use records::index::{completed, Runs};
 use records::results_dir;
@@ -231,17 +232,14 @@ fn papers_integration(results: &ControlResults, runs: &Runs) -> String {
     ]);
     let mut any = false;
     for c in &results.claims {
-        let Some((experiment, variant)) = c.task.split_once(" / ") else {
-            continue;
-        };
         let per_step = c.products_per_step as f64;
         for r in runs
-            .of_experiment(experiment)
-            .filter(|r| r.variant_id == variant && r.solver == c.network && completed(r))
+            .of_experiment(&c.experiment)
+            .filter(|r| r.variant_id == c.variant_id && r.solver_id == c.solver_id && completed(r))
         {
             any = true;
             t.push([
-                format!("{experiment} / {} / {}", r.variant, r.solver),
+                format!("{} / {} / {}", c.experiment, r.variant, r.solver),
                 r.rhs_evals.to_string(),
                 r.jac_evals.to_string(),
                 sci(r.duration),
@@ -391,12 +389,13 @@ pub fn cycles_section(results: &ControlResults, figures: &[String]) -> String {
             r.h_ms
                 .map(|h| format!("{h} ms"))
                 .unwrap_or_else(|| "continuous".to_string()),
-            r.status.clone(),
+            r.failure.clone().unwrap_or_else(|| r.status.to_string()),
             r.cycles.to_string(),
             sci_opt(r.drift_first),
             sci_opt(r.drift_last),
             sci_opt(r.rate),
-            r.class.clone().unwrap_or_else(|| MISSING.to_string()),
+            r.class
+                .map_or_else(|| MISSING.to_string(), |c| c.label().to_string()),
         ]);
     }
     out.push_str(&t.render());

@@ -2,7 +2,9 @@
 //! report under their experiment: `<experiment>__<variant>__<solver>.svg` and
 //! `<experiment>__overview.svg`.
 
+use catalog::run_key::RunKey;
 use records::error::{IoAction, IoError};
+use records::index::Runs;
 use std::path::Path;
 
 /// The `.svg` file names in `dir`, sorted; none when the folder does not exist.
@@ -25,31 +27,28 @@ pub fn list(dir: &Path) -> Result<Vec<String>, IoError> {
     Ok(names)
 }
 
-/// The figures of one experiment as Markdown: the overview shown inline, then every figure
-/// linked, as a paragraph; nothing when it has none.
-pub fn links(figures: &[String], experiment: &str) -> String {
-    let prefix = format!("{experiment}__");
-    let mine: Vec<&String> = figures.iter().filter(|f| f.starts_with(&prefix)).collect();
-    if mine.is_empty() {
-        return String::new();
-    }
+/// The figures of one experiment as Markdown: the overview shown inline, then every run's
+/// figure linked (by its variant and solver ids, in file-name order), as a paragraph; only the
+/// figures present in `figures` (the names in `report/figures/`); nothing when there are none.
+pub fn links(figures: &[String], runs: &Runs, experiment: &str) -> String {
+    let present = |name: &String| figures.contains(name);
     let mut out = String::new();
-    if let Some(overview) = mine.iter().find(|f| f.ends_with("__overview.svg")) {
+    let overview = crate::figures::overview_name(experiment);
+    if present(&overview) {
         out.push_str(&format!(
             "![{experiment}: overview](figures/{overview})\n\n"
         ));
     }
-    let items: Vec<String> = mine
+    let mut named: Vec<(String, RunKey)> = runs
+        .of_experiment(experiment)
+        .map(|r| (crate::figures::run_figure_name(&r.key()), r.key()))
+        .filter(|(name, _)| present(name))
+        .collect();
+    named.sort();
+    named.dedup();
+    let items: Vec<String> = named
         .iter()
-        .filter(|f| !f.ends_with("__overview.svg"))
-        .map(|f| {
-            format!(
-                "[{}](figures/{f})",
-                f.trim_start_matches(&prefix)
-                    .trim_end_matches(".svg")
-                    .replace("__", " / ")
-            )
-        })
+        .map(|(name, key)| format!("[{} / {}](figures/{name})", key.variant, key.solver))
         .collect();
     if !items.is_empty() {
         out.push_str(&format!(

@@ -2,8 +2,8 @@
 //! version, integrators and tolerances, all read from the rows), and how to regenerate it.
 
 use super::markdown::{sci, Table};
+use analysis::papers::Papers;
 use records::index::Runs;
-use records::papers::Papers;
 
 /// A count as an English word below ten (`four papers`), digits above.
 fn count_word(n: usize) -> String {

@@ -1,14 +1,14 @@
 //! The leaderboard section: every velocity-level solver on the standard task set, scored as
-//! qpbenchmark scores QP solvers ([`records::leaderboard`], also `results/leaderboard.csv`):
+//! qpbenchmark scores QP solvers ([`analysis::leaderboard`], also `results/leaderboard.csv`):
 //! the ranking, the distributions, a reading generated from the numbers, how the times were
 //! measured (alone, repeated: [`records::timing`]) and the definitions.
 
 use super::markdown::{sci, Table};
-use records::index::Runs;
-use records::leaderboard::{
+use analysis::leaderboard::{
     self as board, LeaderboardRow, PENALTY_DRIFT, PENALTY_DX, SHIFT_DRIFT, SHIFT_DX, SHIFT_TIME_S,
     STANDARD_PAPER, STANDARD_SET, TIME_LIMIT_FACTOR, TOL_RMS_DX,
 };
+use records::index::Runs;
 use records::timing::{Timings, REPETITIONS};
 
 /// The whole section (`## Leaderboard`), empty when there is no standard task.
@@ -129,7 +129,7 @@ pub fn ranking(rows: &[&LeaderboardRow]) -> String {
         t.push([
             r.rank.to_string(),
             r.solver.clone(),
-            r.solver_kind.clone(),
+            r.solver_kind.to_string(),
             r.standard_runs.to_string(),
             format!("{} / {}", r.completed, r.tasks),
             format!(
@@ -377,7 +377,7 @@ fn timing(rows: &[LeaderboardRow], timings: &Timings, tasks: &[board::Task]) -> 
 /// The definitions: task set, tolerances, shifts, penalties, ranking.
 fn definitions() -> String {
     format!(
-        "**Definitions** (constants in `records::leaderboard`; the suite's choices, not tuned to \
+        "**Definitions** (constants in `analysis::leaderboard`; the suite's choices, not tuned to \
          the results):\n\n\
          - *Task set.* The standard set is every task of the `{STANDARD_PAPER}` experiment whose \
          exact column completed. Solvers are grouped by label (the parameterised network); a \

@@ -7,16 +7,7 @@
 /// The placeholder for a number that does not exist (not measured, not printed by the paper).
 pub const MISSING: &str = "—";
 
-/// `v` with three significant digits in scientific notation, e.g. `-1.23e-4`.
-pub fn sci(v: f64) -> String {
-    if v == 0.0 {
-        "0.00e0".to_string()
-    } else if v.is_finite() {
-        format!("{v:.2e}")
-    } else {
-        v.to_string()
-    }
-}
+pub use analysis::number::sci;
 
 /// [`sci`] of an optional number, [`MISSING`] when absent.
 pub fn sci_opt(v: Option<f64>) -> String {

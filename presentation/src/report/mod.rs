@@ -49,9 +49,9 @@ pub mod verdict;
 pub mod why;
 
 use crate::error::ReportError;
+use analysis::papers::{Papers, GROUP};
 use markdown::{sci, Table};
 use records::index::Runs;
-use records::papers::{Papers, GROUP};
 use records::runs::read_runs;
 use records::table::read_if_present;
 use std::path::{Path, PathBuf};
@@ -204,12 +204,16 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
     let mut pages = Vec::new();
     let mut out = header::header(runs, papers, figures.len());
 
-    let evaluated: Vec<(&str, &str, Vec<claims::Claim>)> = papers
+    let evaluated: Vec<(&str, &str, Vec<analysis::claim_verdict::Claim>)> = papers
         .papers
         .iter()
         .map(|p| {
             let (id, title) = (p.id.as_str(), p.title.as_str());
-            (id, title, claims::evaluate(id, runs, papers))
+            (
+                id,
+                title,
+                analysis::claim_verdict::evaluate(id, runs, papers),
+            )
         })
         .collect();
     out.push_str("## Summary\n\n");
@@ -221,8 +225,8 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
         "why, in one line",
     ]);
     for (paper, _, c) in &evaluated {
-        let n = |v: claims::Verdict| c.iter().filter(|x| x.verdict == v).count();
-        let ratios = verdict::drift_ratios(paper, runs, papers);
+        let n = |v: analysis::claim_verdict::Verdict| c.iter().filter(|x| x.verdict == v).count();
+        let ratios = analysis::paper_verdict::drift_ratios(paper, runs, papers);
         let range = match (
             ratios.iter().map(|r| r.1).reduce(f64::min),
             ratios.iter().map(|r| r.1).reduce(f64::max),
@@ -232,12 +236,12 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
         };
         summary.push([
             format!("[{paper}]({})", paper_page(paper)),
-            verdict::level_under_setup(paper, c, &ratios, papers),
+            analysis::paper_verdict::level_under_setup(paper, c, &ratios, papers),
             format!(
                 "{} / {} / {}",
-                n(claims::Verdict::Pass),
-                n(claims::Verdict::Fail),
-                n(claims::Verdict::NotApplicable)
+                n(analysis::claim_verdict::Verdict::Pass),
+                n(analysis::claim_verdict::Verdict::Fail),
+                n(analysis::claim_verdict::Verdict::NotApplicable)
             ),
             range,
             Some(why::one_line(paper, explanations))
@@ -283,7 +287,7 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
                 tables::runs_table(runs, &exp)
             ));
             out.push('\n');
-            out.push_str(&figures::links(figures, &exp));
+            out.push_str(&figures::links(figures, runs, &exp));
         }
         pages.push(Page {
             file: paper_page(paper),
@@ -370,7 +374,7 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
     out.push_str("). Columns are scheme · path; a failed run shows its failure time.\n\n");
     out.push_str(&cross::section(runs, CROSS));
     for exp in runs.experiments(CROSS) {
-        out.push_str(&figures::links(figures, &exp));
+        out.push_str(&figures::links(figures, runs, &exp));
     }
     pages.push(topic("cross.md", out));
 
@@ -412,7 +416,7 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
         out.push_str("No published number contradicts its paper's own.\n");
     } else {
         out.push_str(
-            "Checked at load (`records::papers::inconsistencies`): a norm below one of its own \
+            "Checked at load (`analysis::papers::inconsistencies`): a norm below one of its own \
              entries, a negative norm, a number given twice. These are shown marked † in their \
              tables and no ratio, range or verdict is computed from them (a drift norm falls \
              back to the norm of the printed joints).\n\n",
@@ -507,7 +511,7 @@ fn group_section(
             tables::runs_table(runs, exp)
         ));
         out.push('\n');
-        out.push_str(&figures::links(figures, exp));
+        out.push_str(&figures::links(figures, runs, exp));
     }
     out.push_str(&why::section(group, explanations, papers));
     out.push('\n');

@@ -25,10 +25,10 @@
 
 use super::cost::{solver_label, timed_papers};
 use super::markdown::{sci, sci_opt, text, Table, MISSING};
+use analysis::papers::Papers;
 use records::clock::ClockRow;
 use records::dof_cost::{DofCostRow, Quantity, Summary, NALGEBRA};
 use records::index::{completed, Runs};
-use records::papers::Papers;
 use records::phases::{PhaseRow, PhaseStatus};
 use records::profile::ProfileRow;
 use records::profile_active_set::HotSolveRow;
@@ -75,7 +75,7 @@ fn find<'a>(
         !r.is_fit()
             && r.scheme == scheme
             && r.n == Some(n)
-            && r.quantity == quantity.id()
+            && r.quantity == quantity
             && r.backend == NALGEBRA
     })
 }
@@ -643,7 +643,7 @@ fn per_solver_kind(runs: &Runs) -> String {
     let mut kinds: BTreeMap<&str, Vec<&records::runs::RunRow>> = BTreeMap::new();
     for r in runs.all() {
         if completed(r) && r.steps > 0 && r.rhs_evals > 0 {
-            kinds.entry(r.solver_kind.as_str()).or_default().push(r);
+            kinds.entry(r.solver_kind.id()).or_default().push(r);
         }
     }
     let mut out = String::from(
@@ -749,8 +749,7 @@ fn dof_curve(dof: &[DofCostRow], figures: &[String]) -> String {
                     format!("{} (N = {n})", sci(m))
                 })
         };
-        let label = Quantity::from_id(&fit.quantity)
-            .map_or(fit.quantity.clone(), |q| quantity_label(q, &fit.network));
+        let label = quantity_label(fit.quantity, &fit.network);
         t.push([
             format!("{} {}", fit.scheme, fit.scheme_name),
             label,
@@ -771,7 +770,7 @@ fn dof_curve(dof: &[DofCostRow], figures: &[String]) -> String {
 }
 
 /// Where faer's LU overtakes nalgebra's, per scheme and dense LU quantity
-/// ([`records::dof_cost::crossover`]), and the size production code switches at.
+/// ([`analysis::fits::crossover`]), and the size production code switches at.
 fn crossovers(dof: &[DofCostRow]) -> String {
     let mut t = Table::new([
         "scheme",
@@ -782,7 +781,7 @@ fn crossovers(dof: &[DofCostRow]) -> String {
     ]);
     for scheme in schemes(dof) {
         for quantity in [Quantity::NetworkLu, Quantity::KktFloor] {
-            let Some(c) = records::dof_cost::crossover(dof, scheme, quantity) else {
+            let Some(c) = analysis::fits::crossover(dof, scheme, quantity) else {
                 continue;
             };
             let network = dof
@@ -867,7 +866,7 @@ fn dof_runs(dof: &[DofCostRow]) -> String {
     }
     let network = dof
         .iter()
-        .find(|r| r.quantity == Quantity::RunNetwork.id())
+        .find(|r| r.quantity == Quantity::RunNetwork)
         .map_or("the network", |r| r.network.as_str());
     format!(
         "Whole runs on the n-link arms (`simulate` with the experiment files' defaults: the \
@@ -887,7 +886,7 @@ fn dof_runs(dof: &[DofCostRow]) -> String {
 /// registry's largest), where the per-step cost is past its small-N floor: one sentence, empty
 /// when fewer than two such N were measured.
 fn large_n_fits(dof: &[DofCostRow]) -> String {
-    let largest_fixed = catalog::robot_registry::NLINK_SIZES
+    let largest_fixed = robots::registry::NLINK_SIZES
         .iter()
         .copied()
         .max()
@@ -900,12 +899,12 @@ fn large_n_fits(dof: &[DofCostRow]) -> String {
                 .filter(|r| {
                     !r.is_fit()
                         && r.scheme == scheme
-                        && r.quantity == quantity.id()
+                        && r.quantity == quantity
                         && r.n.is_some_and(|n| n > largest_fixed)
                 })
                 .filter_map(|r| Some((r.n? as f64, r.median_us?)))
                 .collect();
-            if let Some(fit) = records::dof_cost::fit_power_law(&points) {
+            if let Some(fit) = analysis::fits::fit_power_law(&points) {
                 let network = dof
                     .iter()
                     .find(|r| r.scheme == scheme)
@@ -1052,7 +1051,7 @@ mod tests {
             ));
         }
         let rows: Vec<DofCostRow> = records::table::from_reader(text.as_bytes()).unwrap();
-        let fits = records::dof_cost::fit_rows(&rows);
+        let fits = analysis::fits::fit_rows(&rows);
         rows.into_iter().chain(fits).collect()
     }
 

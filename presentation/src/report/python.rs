@@ -12,7 +12,7 @@
 
 use super::leaderboard::ranking;
 use super::markdown::{Table, MISSING};
-use records::leaderboard::{LeaderboardRow, STANDARD_SET};
+use analysis::leaderboard::{LeaderboardRow, STANDARD_SET};
 use records::table::{read_if_present, Row, TableError};
 use serde::{Deserialize, Serialize};
 

@@ -9,7 +9,7 @@
 //! shown as written text and stay as they are.
 
 use super::markdown::text;
-use records::papers::Papers;
+use analysis::papers::Papers;
 
 /// `papers` with every text escaped (module docs).
 pub fn papers(papers: &Papers) -> Papers {

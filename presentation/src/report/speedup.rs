@@ -14,7 +14,7 @@
 //! removing overhead alone.
 
 use super::markdown::{sci, Table, MISSING};
-use records::papers::Papers;
+use analysis::papers::Papers;
 use records::profile::ProfileRow;
 use records::speedup::{by_paper, SpeedupRow};
 

@@ -1,12 +1,12 @@
 //! A published table beside a sweep's runs (`[[sweep_check]]` of a paper's `paper.toml`,
-//! `records::sweep_check`): where the paper's setup is an assumption the sweep varies, every
+//! `analysis::sweep_check`): where the paper's setup is an assumption the sweep varies, every
 //! swept variant is set beside the published column its id matches: per-joint sign agreement
 //! with the paper and the drift norm ratio, computed from the rows.
 
 use super::markdown::{sci, Table};
+use analysis::papers::Papers;
+use analysis::sweep_check::SweepCheck;
 use records::index::{completed, metric, Runs};
-use records::papers::Papers;
-use records::sweep_check::SweepCheck;
 
 /// The published value of one column and metric of the check's table.
 fn published(papers: &Papers, check: &SweepCheck, experiment: &str, metric: &str) -> Option<f64> {

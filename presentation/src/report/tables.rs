@@ -8,8 +8,8 @@
 
 use super::markdown::metric_cell;
 use super::markdown::{sci, sci_opt, Table, MISSING};
+use analysis::papers::{our_metric, Mapping, Papers};
 use records::index::{metric, status_text, Runs, EXACT};
-use records::papers::{our_metric, Mapping, Papers};
 use records::runs::RunRow;
 
 /// A quantity's row label.

@@ -4,11 +4,12 @@
 //! the group-code reference experiments. See `explain` for the mathematics.
 
 use super::markdown::{sci, sci_opt, Table, MISSING};
+use analysis::inference_verdict as verdict;
+use analysis::papers::{Papers, GROUP};
+use catalog::integrator::Method;
 use records::attribution::{AttributionRow, Component};
 use records::inference::{self, EntryRow, InferenceRow, Integration};
-use records::inference_verdict as verdict;
-use records::ladder::{LadderRow, FIXED_STEP};
-use records::papers::{Papers, GROUP};
+use records::ladder::{LadderMethod, LadderRow};
 use std::fmt::Write as _;
 
 /// The stored explanation results.
@@ -241,15 +242,16 @@ pub fn ladder_table(paper: &str, x: &Explanations) -> String {
     if rows.is_empty() {
         return String::new();
     }
-    let mut rungs: Vec<(String, f64, f64)> = Vec::new();
+    let mut rungs: Vec<(LadderMethod, f64, f64)> = Vec::new();
     for r in &rows {
-        let k = (r.method.clone(), r.rtol, r.atol);
+        let k = (r.method, r.rtol, r.atol);
         if !rungs.contains(&k) {
             rungs.push(k);
         }
     }
     rungs.sort_by(|a, b| {
-        a.0.cmp(&b.0)
+        a.0.id()
+            .cmp(b.0.id())
             .then(b.1.total_cmp(&a.1))
             .then(b.2.total_cmp(&a.2))
     });
@@ -266,10 +268,10 @@ pub fn ladder_table(paper: &str, x: &Explanations) -> String {
     }
     let mut header = vec!["run".to_string()];
     header.extend(rungs.iter().map(|(m, r, a)| {
-        if m == FIXED_STEP {
+        if *m == LadderMethod::FixedStep {
             return format!("{m} |e| <= {}", short_tol(*r));
         }
-        let matlab = m == "bdf" && *r == 1e-3 && *a == 1e-6;
+        let matlab = is_matlab_setting(*m, *r, *a);
         format!(
             "{m} {}/{}{}",
             short_tol(*r),
@@ -297,7 +299,7 @@ pub fn ladder_table(paper: &str, x: &Explanations) -> String {
                     r.variant_id.as_str(),
                     r.solver_id.as_str(),
                 ) == key
-                    && &r.method == m
+                    && r.method == *m
                     && r.rtol == *rt
                     && r.atol == *at
             });
@@ -324,7 +326,7 @@ pub fn ladder_table(paper: &str, x: &Explanations) -> String {
     out.push_str(
         "\nCells: significant digits the drift shares with the converged drift (\"ref\", the finest completed rung; -log10 of the relative change), **bold** at the run's own setting; × the rung did not finish (an explicit method on a stiff network, or the step cap). A published digit beyond the digits at the paper's setting (ode15s = bdf at RelTol 1e-6 / AbsTol 1e-8; MATLAB's default is 1e-3 / 1e-6) can be integration noise. A run with the group's MaxStep keeps it on every rung.",
     );
-    if rows.iter().any(|r| r.method == FIXED_STEP) {
+    if rows.iter().any(|r| r.method == LadderMethod::FixedStep) {
         out.push_str(" A numerical method's rungs (fixed-step) are its loop at the run's own step h, each instant's iteration stopped at |e(U)|_2 <= the rung's tolerance: its digits at the paper's 1e-3 are those the stopping rule leaves (the sampling gap is in the attribution).");
     }
     out.push_str(" Every rung with its drifts, steps and wall time: `results/ladder.csv`.\n");
@@ -333,7 +335,12 @@ pub fn ladder_table(paper: &str, x: &Explanations) -> String {
 
 /// The rung at MATLAB's default tolerances (ode15s, RelTol 1e-3, AbsTol 1e-6).
 fn is_matlab_default(r: &LadderRow) -> bool {
-    r.method == "bdf" && r.rtol == 1e-3 && r.atol == 1e-6
+    is_matlab_setting(r.method, r.rtol, r.atol)
+}
+
+/// Whether (method, rtol, atol) is MATLAB's default: ode15s (BDF) at RelTol 1e-3, AbsTol 1e-6.
+fn is_matlab_setting(method: LadderMethod, rtol: f64, atol: f64) -> bool {
+    method == LadderMethod::Integrator(Method::Bdf) && rtol == 1e-3 && atol == 1e-6
 }
 
 fn short_tol(v: f64) -> String {
@@ -434,7 +441,7 @@ pub fn inference_section(paper: &str, x: &Explanations) -> String {
                 format!("{:.3}", r.phase),
                 format!("{:.3}", r.scale_factor),
                 r.reverse.to_string(),
-                r.rmp.clone(),
+                r.rmp.label().to_string(),
                 residual(r.rel_residual),
                 residual(r.table_residual),
                 sci_opt(r.max_entry_error),
@@ -624,7 +631,7 @@ pub fn section(paper: &str, x: &Explanations, papers: &Papers) -> String {
         out.push_str("\n#### Tolerance ladder\n\n");
         out.push_str(&ladder);
     }
-    let has_tables = inference::table_ids(&papers.values)
+    let has_tables = analysis::papers::table_ids(&papers.values)
         .iter()
         .any(|(p, _)| p == paper);
     if has_tables {

@@ -2,7 +2,7 @@
 //! methods can process information in parallel and have higher computational efficiency \[28\]".
 //! Decided here as a claim about the cost per control tick of reaching a stated accuracy: the
 //! rule and its thresholds, computed from numbers alone, shared by the control experiments
-//! (crate `control`, which run it and write [`crate::control::ClaimRow`]) and the report.
+//! (crate `control`, which run it and write [`records::control::ClaimRow`]) and the report.
 //!
 //! # The common unit
 //!
@@ -15,7 +15,7 @@
 //! same on every machine and under any load, so the verdict does not depend on either; the
 //! latencies are reported beside them for the record.
 //!
-//! # The comparison (per task, at the control period h, [`crate::control::MAIN_H`] = 1 ms)
+//! # The comparison (per task, at the control period h, [`records::control::MAIN_H`] = 1 ms)
 //!
 //! - A network needs at least n = ceil(h / s_max) Euler steps per tick to be stable at all
 //!   (s_max its Euler stability limit on the task, `control::stability`): at least
@@ -36,24 +36,7 @@ pub const ACCURACY: f64 = 1e-6;
 /// Ticks of a network's check run.
 pub const CHECK_TICKS: usize = 20;
 
-/// The claim's outcome on one task, stored in `control-claims.csv` as its label.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "UPPERCASE")]
-pub enum Verdict {
-    Pass,
-    Fail,
-    Undecided,
-}
-
-impl Verdict {
-    pub fn label(self) -> &'static str {
-        match self {
-            Verdict::Pass => "PASS",
-            Verdict::Fail => "FAIL",
-            Verdict::Undecided => "UNDECIDED",
-        }
-    }
-}
+use records::control::Verdict;
 
 /// Euler steps per tick a network needs to be stable: ceil(h / limit).
 pub fn steps_needed(h: f64, limit: f64) -> u64 {

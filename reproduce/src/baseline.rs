@@ -1,11 +1,10 @@
-//! `reproduce check` (`--check`): the regression gate (records::gate). The baseline is read
-//! before anything runs; the fresh rows of the selection are compared with the baseline's rows
-//! of the same experiments, and any difference is exit code 1.
+//! The regression gate's baseline for `reproduce check` (`--check`): the committed rows, read
+//! before anything runs (a given file, or git HEAD's `results/runs.csv`); the comparison itself
+//! is crate `analysis`'s (`analysis::gate`), and any difference is exit code 1.
 
 use crate::error::{BaselineError, ReproduceError};
 use catalog::experiment::Job;
 use records::runs::{check_rows, RunRow};
-use std::collections::HashSet;
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -70,14 +69,7 @@ impl Baseline {
     /// Every difference the gate finds between `fresh` and the baseline's rows of the same
     /// experiments (only its exact rows with `exact_only`), one line each.
     pub fn problems(self, fresh: &[RunRow], exact_only: bool) -> Vec<String> {
-        let experiments: HashSet<&str> = fresh.iter().map(|f| f.experiment.as_str()).collect();
-        let committed: Vec<RunRow> = self
-            .rows
-            .into_iter()
-            .filter(|c| experiments.contains(c.experiment.as_str()))
-            .filter(|c| !exact_only || c.is_exact())
-            .collect();
-        records::gate::compare(&committed, fresh, &self.name)
+        analysis::gate::compare_selection(self.rows, fresh, exact_only, &self.name)
     }
 
     /// Prints the gate's verdict on `fresh`: exit code 1 on any difference.

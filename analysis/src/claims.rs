@@ -218,7 +218,7 @@ pub const RUST_CLAIMS: &[&str] = &[
 /// What is wrong with a `[[claim]]` (the field and the valid choices).
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum ClaimError {
-    #[error("field `metric`: unknown metric \"{metric}\" (valid: drift_k for joint k, {})", crate::index::metrics().map(|(n, _)| *n).collect::<Vec<_>>().join(", "))]
+    #[error("field `metric`: unknown metric \"{metric}\" (valid: drift_k for joint k, {})", records::index::metrics().map(|(n, _)| *n).collect::<Vec<_>>().join(", "))]
     UnknownMetric { metric: String },
     #[error("field `rust`: no Rust claim \"{id}\" (known: {})", RUST_CLAIMS.join(", "))]
     UnknownRust { id: String },
@@ -256,7 +256,11 @@ impl ClaimFile {
         {
             return Err(ClaimError::NotFinite { field });
         }
-        if let Some(metric) = self.metric.as_ref().filter(|m| !crate::index::is_metric(m)) {
+        if let Some(metric) = self
+            .metric
+            .as_ref()
+            .filter(|m| !records::index::is_metric(m))
+        {
             return Err(ClaimError::UnknownMetric {
                 metric: metric.clone(),
             });

@@ -3,7 +3,7 @@
 //! A fresh row is compared with the committed row of the same (experiment, variant, solver):
 //! - the status must be the same (a run that completed must still complete, a run that failed
 //!   is a recorded finding and must still fail);
-//! - for completed runs the drift per joint and every measured metric (`crate::index::MEASURED`:
+//! - for completed runs the drift per joint and every measured metric (`records::index::MEASURED`:
 //!   every number the report's claims and tables use, timings aside) must agree to a relative
 //!   1e-6 (absolute 1e-12): the simulation is deterministic, so anything beyond floating-point
 //!   noise across machines is a change of behaviour;
@@ -11,7 +11,8 @@
 //! - every neural run must complete, except those whose divergence is itself the finding
 //!   (declared in the experiment files as `expected_failure`, recorded in each row).
 
-use crate::runs::RunRow;
+use records::runs::RunRow;
+use std::collections::HashSet;
 
 /// Relative tolerance of the drift comparison.
 pub const RELATIVE_TOLERANCE: f64 = 1e-6;
@@ -70,7 +71,7 @@ pub fn compare(committed: &[RunRow], fresh: &[RunRow], baseline: &str) -> Vec<St
                 .zip(&f.drift)
                 .enumerate()
                 .map(|(i, (a, b))| (format!("drift_{}", i + 1), Some(*a), Some(*b)));
-            let totals = crate::index::MEASURED
+            let totals = records::index::MEASURED
                 .iter()
                 .map(|(name, column)| (name.to_string(), column(c), column(f)));
             for (name, a, b) in joints.chain(totals) {
@@ -94,6 +95,23 @@ pub fn compare(committed: &[RunRow], fresh: &[RunRow], baseline: &str) -> Vec<St
     problems
 }
 
+/// [`compare`] on a selection: the baseline's rows of the experiments `fresh` covers (only
+/// their exact rows with `exact_only`) against `fresh`.
+pub fn compare_selection(
+    baseline: Vec<RunRow>,
+    fresh: &[RunRow],
+    exact_only: bool,
+    baseline_name: &str,
+) -> Vec<String> {
+    let experiments: HashSet<&str> = fresh.iter().map(|f| f.experiment.as_str()).collect();
+    let committed: Vec<RunRow> = baseline
+        .into_iter()
+        .filter(|c| experiments.contains(c.experiment.as_str()))
+        .filter(|c| !exact_only || c.is_exact())
+        .collect();
+    compare(&committed, fresh, baseline_name)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -102,7 +120,12 @@ mod tests {
     /// difference, as is every other measured metric; a timing is not.
     #[test]
     fn every_measured_metric_is_compared_and_no_timing() {
-        let mut row = RunRow::blank("e", "v", "s", "znn");
+        let mut row = RunRow::blank(
+            "e",
+            "v",
+            "s",
+            catalog::solver_kind::SolverKind::Network(catalog::network_kind::NetworkKind::Znn),
+        );
         row.final_pos_err = Some(1e-5);
         row.score_rms_dx = Some(2e-4);
         let committed = vec![row.clone()];

@@ -1,11 +1,11 @@
 //! The verdicts of the setup inference in words, and the thresholds behind them, stated once
 //! here, from the rows of `results/inference.csv` alone: a column (or a table) counts as
-//! reproduced when its relative residual r_c (or r, see the module doc of [`crate::inference`])
+//! reproduced when its relative residual r_c (or r, see the module doc of [`records::inference`])
 //! is at most [`REPRODUCED`]; a profile is flat when its largest
 //! residual is below [`FLAT`] times its smallest, weakly determined below [`WEAK`] times,
 //! determined otherwise.
 
-use crate::inference::{InferenceRow, BEST, DECLARED, FAILED, TABLE};
+use records::inference::{InferenceRow, BEST, DECLARED, FAILED, TABLE};
 
 /// Largest relative residual that counts as reproduced.
 pub const REPRODUCED: f64 = 0.25;
@@ -66,8 +66,8 @@ pub fn describe_setup(r: &InferenceRow) -> String {
     }
     // The reading as printed is the declared one (and the only one of schemes without an RMP
     // term): named only when another was inferred.
-    if r.rmp != schemes::spec::RmpReading::Printed.label() {
-        parts.push(format!("RMP read as {}", r.rmp));
+    if !r.rmp.is_printed() {
+        parts.push(format!("RMP read as {}", r.rmp.label()));
     }
     parts.join(", ")
 }
@@ -146,7 +146,7 @@ pub fn table_verdict(rows: &[&InferenceRow]) -> Option<Vec<String>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::inference::Integration;
+    use records::inference::Integration;
 
     fn row(kind: &str, objective: &str, r: f64, columns: &str) -> InferenceRow {
         InferenceRow {
@@ -162,7 +162,7 @@ mod tests {
             tilt_x: 0.0,
             tilt_y: 0.0,
             reverse: false,
-            rmp: "printed".into(),
+            rmp: schemes::spec::RmpReading::Printed,
             rel_residual: r,
             table_residual: r,
             column_residuals: columns.into(),
@@ -198,7 +198,7 @@ mod tests {
             v[0]
         );
         let other = InferenceRow {
-            rmp: "expansion".into(),
+            rmp: schemes::spec::RmpReading::Expansion,
             ..rows[4].clone()
         };
         assert!(describe_setup(&other).ends_with("RMP read as expansion"));

@@ -9,19 +9,19 @@ fn the_committed_leaderboard_is_the_one_the_committed_runs_give() {
     let committed =
         std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     let timings = records::timing::read(&root.join("results")).unwrap();
-    let rows = records::leaderboard::leaderboard(&runs, &timings);
-    let fresh = String::from_utf8(records::leaderboard::leaderboard_csv(&rows).unwrap()).unwrap();
+    let rows = analysis::leaderboard::leaderboard(&runs, &timings);
+    let fresh = String::from_utf8(analysis::leaderboard::leaderboard_csv(&rows).unwrap()).unwrap();
     assert!(
         committed == fresh,
         "{} is stale: regenerate with `cargo run --release -p reproduce -- --report-only`",
         path.display()
     );
     // Every standard task and every solver that ran on all of them is on it.
-    let tasks = records::leaderboard::standard_tasks(&runs);
+    let tasks = analysis::leaderboard::standard_tasks(&runs);
     assert!(!tasks.is_empty());
     let standard = rows
         .iter()
-        .filter(|r| r.task_set == records::leaderboard::STANDARD_SET);
+        .filter(|r| r.task_set == analysis::leaderboard::STANDARD_SET);
     for r in standard {
         assert_eq!((r.tasks, r.standard_runs), (tasks.len(), tasks.len()));
     }

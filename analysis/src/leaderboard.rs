@@ -28,7 +28,7 @@
 //!   per-run values, each divided by the best (smallest) solver's mean of the set (best = 1.0):
 //!   the RMS distance to the optimum ([`RunScore::dx`]), the drift's distance from the exact
 //!   column's ([`RunScore::drift`]) and the simulation's wall time ([`RunScore::time`]): the
-//!   median of the run's repetitions timed alone ([`crate::timing`]), not the parallel
+//!   median of the run's repetitions timed alone ([`records::timing`]), not the parallel
 //!   reproduction's `sim_s` (used only for a run without an alone timing; [`alone_timing`]
 //!   counts them and gives the repetitions' spread);
 //! - the p50 and p95 of each over the set's tasks (the distribution, not only a mean).
@@ -37,11 +37,12 @@
 //! capped at it (qpbenchmark counts a failure at its time limit), so no completed run counts
 //! worse than a failure.
 
-use crate::error::{IoAction, IoError, RunsError};
-use crate::percentile::percentile;
-use crate::runs::RunRow;
-use crate::table::Row;
-use crate::timing::Timings;
+use catalog::solver_kind::SolverKind;
+use records::error::{IoAction, IoError, RunsError};
+use records::percentile::percentile;
+use records::runs::RunRow;
+use records::table::Row;
+use records::timing::Timings;
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -241,7 +242,7 @@ pub struct LeaderboardRow {
     /// The solver's id (identity); `solver` is its label.
     pub solver_id: String,
     pub solver: String,
-    pub solver_kind: String,
+    pub solver_kind: SolverKind,
     /// Runs of this solver on the standard task set.
     pub standard_runs: usize,
     /// Runs of the set that completed.
@@ -276,7 +277,7 @@ impl Row for LeaderboardRow {}
 struct Entrant<'a> {
     id: &'a str,
     solver: &'a str,
-    kind: &'a str,
+    kind: SolverKind,
     runs: BTreeMap<Task, &'a RunRow>,
 }
 
@@ -300,7 +301,7 @@ pub fn leaderboard(rows: &[RunRow], timings: &Timings) -> Vec<LeaderboardRow> {
                 .or_insert_with(|| Entrant {
                     id: &r.solver_id,
                     solver: &r.solver,
-                    kind: &r.solver_kind,
+                    kind: r.solver_kind,
                     runs: BTreeMap::new(),
                 })
                 .runs
@@ -367,7 +368,7 @@ fn rank_set(
                 rank: 0,
                 solver_id: e.id.to_string(),
                 solver: e.solver.to_string(),
-                solver_kind: e.kind.to_string(),
+                solver_kind: e.kind,
                 standard_runs: e.runs.len(),
                 completed,
                 within_tolerance: within,
@@ -431,38 +432,41 @@ pub fn alone_timing(timings: &Timings, solver_id: &str, tasks: &[Task]) -> (usiz
     (spreads.len(), max)
 }
 
-/// The leaderboard as CSV (see [`crate::table`]).
+/// The leaderboard as CSV (see [`records::table`]).
 pub fn leaderboard_csv(rows: &[LeaderboardRow]) -> Result<Vec<u8>, csv::Error> {
-    crate::table::to_csv(rows)
+    records::table::to_csv(rows)
 }
 
 /// Writes `results_dir/leaderboard.csv` (atomically) from `runs`; returns its path.
 pub fn write(results_dir: &Path, runs: &[RunRow]) -> Result<PathBuf, RunsError> {
-    let timings = crate::timing::read(results_dir)?;
-    let path = results_dir.join(crate::results_dir::LEADERBOARD);
+    let timings = records::timing::read(results_dir)?;
+    let path = results_dir.join(records::results_dir::LEADERBOARD);
     let bytes =
         leaderboard_csv(&leaderboard(runs, &timings)).map_err(|source| RunsError::Write {
             path: path.clone(),
             source,
         })?;
-    crate::runs::write_atomic(&path, &bytes).map_err(IoError::at(&path, IoAction::Write))?;
+    records::runs::write_atomic(&path, &bytes).map_err(IoError::at(&path, IoAction::Write))?;
     Ok(path)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::runs::Status;
+    use records::runs::Status;
 
     /// A completed run of `solver` on task `exp` with the given RMS distance, per-joint drift and
     /// time; `solver == "exact"` makes the exact column.
     fn run(solver: &str, exp: &str, rms: f64, drift: &[f64], sim_s: f64) -> RunRow {
-        let mut r = RunRow::blank(exp, "v", solver, "k");
+        let mut r = RunRow::blank(exp, "v", solver, SolverKind::Exact);
         r.paper = "cross".into();
         r.solver_kind = if solver == "exact" {
-            catalog::experiment::EXACT_KIND.to_string()
+            SolverKind::Exact
         } else {
-            solver.to_lowercase()
+            // A, B, C, ...: the networks in their order (any kind will do).
+            SolverKind::Network(
+                catalog::network_kind::NetworkKind::ALL[usize::from(solver.as_bytes()[0] - b'A')],
+            )
         };
         r.drift = drift.to_vec();
         r.drift_norm = Some(drift.iter().map(|d| d * d).sum::<f64>().sqrt());
@@ -631,8 +635,8 @@ mod tests {
 
     #[test]
     fn alone_timings_replace_the_parallel_times() {
-        use crate::timing::TimingRow;
         use catalog::run_key::RunKey;
+        use records::timing::TimingRow;
         // A timed alone at 40, 50 and 90 ms on t1 (median 50 ms), 50 ms three times on t2;
         // B not timed alone keeps its parallel 20 ms and now ranks faster.
         let timed = |task: &str, s: [f64; 3]| {
@@ -668,7 +672,7 @@ mod tests {
             "{text}"
         );
         assert_eq!(text.lines().count(), rows.len() + 1);
-        let back: Vec<LeaderboardRow> = crate::table::from_reader(text.as_bytes()).unwrap();
+        let back: Vec<LeaderboardRow> = records::table::from_reader(text.as_bytes()).unwrap();
         assert_eq!(back.len(), rows.len());
     }
 }

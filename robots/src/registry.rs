@@ -11,17 +11,28 @@
 //! not every N). Adding an N is one entry in that list and in `visit`'s.
 //!
 //! Robots declared by robot files (`robots/data/*.toml`, embedded in the library; see
-//! [`robots::robot_file`]) are registered by their file's name, e.g. `puma560`. A robot file may
-//! only have one of the instantiated joint counts ([`robots::data_robot::JOINT_COUNTS`], checked
+//! [`crate::robot_file`]) are registered by their file's name, e.g. `puma560`. A robot file may
+//! only have one of the instantiated joint counts ([`crate::data_robot::JOINT_COUNTS`], checked
 //! against this list by a test), so a data robot adds no N. Where an arm exists both in Rust and as
 //! data (the Jaco2 variants, the Panda, the n-link arms) the Rust model is the registered one: the
 //! Jaco2 carries dynamics, and robots' `tests/data_robots.rs` shows the data twins equal.
 
-use crate::error::JointCountError;
+use crate::data_robot::{builtin_models, DataRobot, DataVisitor};
+use crate::{DataModel, Dynamics, Jaco2, Katana6m180, NLink, Panda, Robot};
 use nalgebra::{SVector, Vector3};
-use robots::data_robot::{builtin_models, DataRobot, DataVisitor};
-use robots::{DataModel, Dynamics, Jaco2, Katana6m180, NLink, Panda, Robot};
 use std::sync::Arc;
+
+/// A pose with the wrong number of joint angles for its robot.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{robot}: {given} joint angles given, the robot has {joints} joints")]
+pub struct JointCountError {
+    /// The robot's name.
+    pub robot: String,
+    /// Angles given.
+    pub given: usize,
+    /// The robot's joints.
+    pub joints: usize,
+}
 
 /// A robot model of any joint count.
 #[derive(Clone, Debug)]
@@ -55,20 +66,18 @@ type Constructor = fn() -> AnyRobot;
 /// The suite's named robot models (the n-link family is [`nlink_name`]), each with its
 /// constructor.
 const ROBOTS: &[(&str, Constructor)] = &[
-    (robots::JACO2_PEN, || {
-        AnyRobot::Jaco2(Arc::new(Jaco2::pen()))
-    }),
-    (robots::JACO2_PEN_EXP2, || {
+    (crate::JACO2_PEN, || AnyRobot::Jaco2(Arc::new(Jaco2::pen()))),
+    (crate::JACO2_PEN_EXP2, || {
         AnyRobot::Jaco2(Arc::new(Jaco2::pen_exp2()))
     }),
-    (robots::JACO2, || AnyRobot::Jaco2(Arc::new(Jaco2::kinova()))),
-    (robots::JACO2_HAND, || {
+    (crate::JACO2, || AnyRobot::Jaco2(Arc::new(Jaco2::kinova()))),
+    (crate::JACO2_HAND, || {
         AnyRobot::Jaco2(Arc::new(Jaco2::hand()))
     }),
-    (robots::KATANA6M180, || {
+    (crate::KATANA6M180, || {
         AnyRobot::Katana(Arc::new(Katana6m180::new()))
     }),
-    (robots::PANDA, || AnyRobot::Panda(Arc::new(Panda::new()))),
+    (crate::PANDA, || AnyRobot::Panda(Arc::new(Panda::new()))),
 ];
 
 /// The joint counts of the n-link arms in the registry (`nlink-N`).
@@ -194,7 +203,7 @@ impl AnyRobot {
         }
         let pi = std::f64::consts::PI;
         match self {
-            AnyRobot::Jaco2(r) if r.name() == robots::JACO2_PEN_EXP2 => {
+            AnyRobot::Jaco2(r) if r.name() == crate::JACO2_PEN_EXP2 => {
                 vec![1.670, 2.845, -3.218, 4.182, -1.715, -2.655]
             }
             AnyRobot::Jaco2(_) => vec![1.675, 2.79, -3.216, 4.187, -1.71, -2.95],
@@ -325,7 +334,7 @@ mod tests {
 
     #[test]
     fn data_robots_have_instantiated_joint_counts() {
-        for n in robots::data_robot::JOINT_COUNTS {
+        for n in crate::data_robot::JOINT_COUNTS {
             assert!([5, 6, 7].contains(n) || NLINK_SIZES.contains(n), "{n}");
         }
     }

@@ -222,14 +222,14 @@ fn load_paper(
     name: &str,
     toml_text: &str,
     values: &str,
-) -> Result<records::papers::Papers, String> {
+) -> Result<analysis::papers::Papers, String> {
     let dir = scratch(name);
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(dir.join("kong2019")).unwrap();
     std::fs::write(dir.join("kong2019/paper.toml"), toml_text).unwrap();
     std::fs::write(dir.join("kong2019/values.csv"), values).unwrap();
     let started = Instant::now();
-    let out = records::papers::Papers::load(&dir).map_err(|e| e.to_string());
+    let out = analysis::papers::Papers::load(&dir).map_err(|e| e.to_string());
     assert!(started.elapsed() < HANG);
     out
 }
@@ -242,15 +242,15 @@ fn committed_paper() -> (String, String) {
     )
 }
 
-/// What a loaded paper must satisfy, whatever its file said (`records::paper_rules`).
-fn checked(papers: &records::papers::Papers) {
+/// What a loaded paper must satisfy, whatever its file said (`analysis::paper_rules`).
+fn checked(papers: &analysis::papers::Papers) {
     for p in &papers.papers {
-        assert!(p.claims.len() <= records::paper_rules::MAX_CLAIMS);
-        assert!(records::paper_rules::is_one_line(&p.title));
+        assert!(p.claims.len() <= analysis::paper_rules::MAX_CLAIMS);
+        assert!(analysis::paper_rules::is_one_line(&p.title));
     }
     for v in &papers.values {
         assert!(v.value.is_finite(), "{v:?}");
-        assert!(records::papers::PUBLISHED_METRICS.contains(&v.metric.as_str()));
+        assert!(analysis::papers::PUBLISHED_METRICS.contains(&v.metric.as_str()));
     }
 }
 

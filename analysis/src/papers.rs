@@ -11,11 +11,11 @@
 //! runs ([`crate::claims`]); its `[[sweep_check]]` tables set a published table beside a sweep's
 //! runs ([`crate::sweep_check`]). Adding a paper is adding a folder: no Rust.
 
-use crate::index::Runs;
 use crate::paper_rules::{check_paper_id, is_one_line, PaperProblem};
-use crate::runs::RunRow;
 use crate::sweep_check::SweepCheck;
 use catalog::run_key::RunKey;
+use records::index::Runs;
+use records::runs::RunRow;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
@@ -601,4 +601,16 @@ pub enum Resolution<'a> {
     },
     /// No run reproduces it (with the reason, for the report).
     Unmapped(String),
+}
+
+/// The tables a setup can be fitted to (crate `explain`, `inference::problem`): (paper, table),
+/// each published table with per-joint drifts.
+pub fn table_ids(values: &[PaperValue]) -> Vec<(String, String)> {
+    let mut ids: Vec<(String, String)> = values
+        .iter()
+        .filter(|v| v.table != "text" && v.metric.starts_with("drift_") && v.metric != "drift_norm")
+        .map(|v| (v.paper.clone(), v.table.clone()))
+        .collect();
+    ids.dedup();
+    ids
 }

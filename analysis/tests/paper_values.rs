@@ -2,7 +2,7 @@
 //! and warned with file and line (robio2018 prints three such: a norm below its own entry, a
 //! negative norm), and numbers that cannot be compared are refused before anything runs.
 
-use records::papers::Papers;
+use analysis::papers::Papers;
 use std::path::PathBuf;
 
 /// A scratch `papers/` with one paper `demo` whose values.csv is `values`.

@@ -1,0 +1,40 @@
+//! driftbench's analysis: the papers as data, and every verdict drawn from the records against
+//! them. Crate `records` holds what runs leave behind (schemas and the store); this crate
+//! decides; the report (crate `presentation`) only renders what is decided here.
+//!
+//! - [`papers`]: the papers as data (`papers/<paper>/`): metadata, published numbers and which
+//!   run each one is compared with; [`paper_rules`]: what a paper folder must satisfy (ids,
+//!   one-line texts, unique mappings, checked values), checked before anything runs;
+//!   [`paper_runs`]: that a paper names only runs that exist.
+//! - [`claims`]: a paper's claims as data (a metric of a selection of runs against a threshold
+//!   or another selection).
+//! - [`sweep_check`]: a published table set beside a sweep's runs.
+//! - [`leaderboard`]: every velocity-level solver on the standard task set, scored as
+//!   qpbenchmark scores QP solvers (`results/leaderboard.csv`).
+//! - [`gate`]: the regression gate (fresh rows against committed ones).
+//! - [`control_claim`]: zhong2021's efficiency claim decided from the control experiments'
+//!   numbers.
+//! - [`inference_verdict`]: the setup inference's verdicts in words.
+//! - [`claim_verdict`]: each paper's claims evaluated from the stored runs (PASS, FAIL or N/A,
+//!   with the numbers as evidence); [`cost_ratio`]: zhong2021's compute-time ratios, one of
+//!   which decides a claim.
+//! - [`paper_verdict`]: each paper's verdict level (reproduced, qualitatively, partly, not)
+//!   from its claims and drift ratios.
+//! - [`fits`]: the growth exponents of cost against the number of joints, and the size where
+//!   faer's dense LU overtakes nalgebra's.
+//! - [`number`]: the one way numbers are written in words (evidence and the report).
+
+pub mod claim_verdict;
+pub mod claims;
+pub mod control_claim;
+pub mod cost_ratio;
+pub mod fits;
+pub mod gate;
+pub mod inference_verdict;
+pub mod leaderboard;
+pub mod number;
+pub mod paper_rules;
+pub mod paper_runs;
+pub mod paper_verdict;
+pub mod papers;
+pub mod sweep_check;
