@@ -3,14 +3,19 @@
 //! A fresh row is compared with the committed row of the same (experiment, variant, solver):
 //! - the status must be the same (a run that completed must still complete, a run that failed
 //!   is a recorded finding and must still fail);
-//! - for completed runs the drift per joint and every measured metric (`records::index::MEASURED`:
-//!   every number the report's claims and tables use, timings aside) must agree to a relative
-//!   1e-6 (absolute 1e-12): the simulation is deterministic, so anything beyond floating-point
-//!   noise across machines is a change of behaviour;
+//! - for completed runs the drift per joint and every measured metric (`records::index::MEASURED`)
+//!   must agree to a relative 1e-6 (absolute 1e-12): the simulation is deterministic, so
+//!   anything beyond floating-point noise across machines is a change of behaviour;
+//! - for every run not stopped by its wall-time budget (which depends on the machine), what the
+//!   report's tables show besides the metrics (`records::index::SHOWN`: tolerances, step limit and
+//!   effort counts, to the same tolerance) and the integrator must agree, and a failed run must
+//!   fail the same way (`failure_kind`) at the same instant (`failed_at`). With the metrics this
+//!   is every number the report's claims and tables use, timings aside;
 //! - every committed run must still be produced, and every fresh run must be committed;
 //! - every neural run must complete, except those whose divergence is itself the finding
 //!   (declared in the experiment files as `expected_failure`, recorded in each row).
 
+use records::failure_kind::FailureKind;
 use records::runs::RunRow;
 use std::collections::HashSet;
 
@@ -55,6 +60,34 @@ pub fn compare(committed: &[RunRow], fresh: &[RunRow], baseline: &str) -> Vec<St
                 f.failure
             ));
             continue;
+        }
+        if c.failure_kind != f.failure_kind {
+            problems.push(format!(
+                "{:?}: failure_kind {:?} -> {:?}",
+                c.key(),
+                c.failure_kind,
+                f.failure_kind
+            ));
+            continue;
+        }
+        if c.failure_kind != Some(FailureKind::WallTime) {
+            if c.integrator != f.integrator {
+                problems.push(format!(
+                    "{:?}: integrator {} -> {}",
+                    c.key(),
+                    c.integrator,
+                    f.integrator
+                ));
+            }
+            let failed_at = ("failed_at".to_string(), c.failed_at, f.failed_at);
+            let shown = records::index::SHOWN
+                .iter()
+                .map(|(name, column)| (name.to_string(), column(c), column(f)));
+            for (name, a, b) in std::iter::once(failed_at).chain(shown) {
+                if !close(a, b) {
+                    problems.push(format!("{:?}: {name} {a:?} -> {b:?}", c.key()));
+                }
+            }
         }
         if c.completed() {
             if c.drift.len() != f.drift.len() {
@@ -141,6 +174,67 @@ mod tests {
         let mut slower = row;
         slower.wall_s += 10.0;
         slower.sim_s += 10.0;
+        assert!(compare(&committed, &[slower], "b").is_empty());
+    }
+
+    /// What the report's tables show besides the metrics (effort counts, tolerances, the
+    /// integrator, where and how a failed run stopped) is compared too, but for a run stopped
+    /// by its wall-time budget, whose effort depends on the machine.
+    #[test]
+    fn what_the_tables_show_is_compared_but_where_the_wall_clock_decides() {
+        let mut row = RunRow::blank(
+            "e",
+            "v",
+            "s",
+            catalog::solver_kind::SolverKind::Network(catalog::network_kind::NetworkKind::Znn),
+        );
+        row.steps = 200;
+        row.rhs_evals = 300;
+        row.score_samples = Some(201);
+        row.integrator = "bdf".into();
+        let committed = vec![row.clone()];
+        for (name, edit) in [
+            (
+                "steps",
+                (|r: &mut RunRow| r.steps = 99_999) as fn(&mut RunRow),
+            ),
+            ("rejected", |r| r.rejected = 7),
+            ("rhs_evals", |r| r.rhs_evals = 1),
+            ("jac_evals", |r| r.jac_evals = 3),
+            ("qp_solves", |r| r.qp_solves = 5),
+            ("score_samples", |r| r.score_samples = None),
+            ("score_failures", |r| r.score_failures = 2),
+            ("rtol", |r| r.rtol = 1e-3),
+            ("atol", |r| r.atol = 1e-3),
+            ("max_step", |r| r.max_step = Some(0.1)),
+            ("integrator", |r| r.integrator = "dopri5".into()),
+        ] {
+            let mut doctored = row.clone();
+            edit(&mut doctored);
+            let problems = compare(&committed, &[doctored], "b");
+            assert_eq!(problems.len(), 1, "{name}: {problems:?}");
+            assert!(problems[0].contains(name), "{name}: {problems:?}");
+        }
+        let mut failed = row.clone();
+        failed.status = records::runs::Status::Failed;
+        failed.failure_kind = Some(FailureKind::Diverged);
+        failed.failed_at = Some(6.78);
+        failed.expected_failure = "its divergence is the finding".into();
+        let committed = vec![failed.clone()];
+        assert!(compare(&committed, &committed, "b").is_empty());
+        let mut later = failed.clone();
+        later.failed_at = Some(9.99);
+        assert!(compare(&committed, &[later], "b")[0].contains("failed_at"));
+        let mut other = failed.clone();
+        other.failure_kind = Some(FailureKind::NonFinite);
+        assert!(compare(&committed, &[other], "b")[0].contains("failure_kind"));
+        // Out of wall time: where it stopped and its effort are the machine's.
+        failed.failure_kind = Some(FailureKind::WallTime);
+        let committed = vec![failed.clone()];
+        let mut slower = failed;
+        slower.failed_at = Some(1.0);
+        slower.steps = 10;
+        slower.rhs_evals = 20;
         assert!(compare(&committed, &[slower], "b").is_empty());
     }
 }

@@ -24,6 +24,8 @@ pub enum NameError {
     Unsafe { name: String },
     #[error("\"{name}\" needs at least one ASCII letter or digit (it names files under results/ and report/)")]
     Empty { name: String },
+    #[error("\"{name}\" must not contain HTML (`<` before a letter, `/`, `!` or `?`) or a Markdown link (`](`): labels are shown as they are in report/")]
+    Markup { name: String },
     #[error("\"{}...\" is {len} bytes long; at most {max} are allowed (it names files under results/ and report/, whose names are limited to {MAX_FILE_NAME} bytes)", name.chars().take(40).collect::<String>())]
     TooLong {
         name: String,
@@ -34,7 +36,7 @@ pub enum NameError {
 
 /// Checks that `name` (an id or a label) can name a file or directory under results/ and
 /// report/: no `/`, `\` or `..`, no control characters, not empty once slugged, at most `max`
-/// bytes.
+/// bytes; and that the report's tables can show it as it is ([`has_markup`]).
 pub fn check_name(name: &str, max: usize) -> Result<(), NameError> {
     if name.contains('/')
         || name.contains('\\')
@@ -42,6 +44,9 @@ pub fn check_name(name: &str, max: usize) -> Result<(), NameError> {
         || name.contains(char::is_control)
     {
         return Err(NameError::Unsafe { name: name.into() });
+    }
+    if has_markup(name) {
+        return Err(NameError::Markup { name: name.into() });
     }
     if slug(name).is_empty() {
         return Err(NameError::Empty { name: name.into() });
@@ -54,6 +59,17 @@ pub fn check_name(name: &str, max: usize) -> Result<(), NameError> {
         });
     }
     Ok(())
+}
+
+/// Whether `text` holds what Markdown would not show as text in a table cell: an HTML tag,
+/// comment or autolink (`<` before an ASCII letter, `/`, `!` or `?`) or a link or image
+/// (`](`). A bare `<` (as in `|e| <= 0.001`), brackets and emphasis characters stay text.
+pub fn has_markup(text: &str) -> bool {
+    text.contains("](")
+        || text
+            .as_bytes()
+            .windows(2)
+            .any(|w| w[0] == b'<' && (w[1].is_ascii_alphabetic() || b"/!?".contains(&w[1])))
 }
 
 #[cfg(test)]
@@ -73,6 +89,25 @@ mod tests {
             check_name("(( ))", 64),
             Err(NameError::Empty { .. })
         ));
+        for bad in [
+            "Z <img src=x onerror=alert(1)>",
+            "a <td> b",
+            "<!-- c -->",
+            "[x](javascript:alert(1))",
+            "<https:example.org>",
+        ] {
+            assert!(
+                matches!(check_name(bad, 64), Err(NameError::Markup { .. })),
+                "{bad:?}"
+            );
+        }
+        for good in [
+            "94LVI (|e| <= 0.001)",
+            "ZNN (eq. 22) [start on theta*0]",
+            "a < b",
+        ] {
+            assert!(check_name(good, MAX_VARIANT_LABEL).is_ok(), "{good:?}");
+        }
         let long = "x".repeat(MAX_VARIANT_LABEL + 1);
         assert!(matches!(
             check_name(&long, MAX_VARIANT_LABEL),

@@ -23,6 +23,9 @@ pub enum Kind {
     ShardManifest,
     /// A shard's `shard-binding.toml` (its shard, selection and experiments hash).
     ShardBinding,
+    /// A table one of the Python package's scripts wrote, to be sealed into `results/`
+    /// (`driftbench.into_results`; the committed ones are at most 5 kB).
+    ScriptTable,
 }
 
 const MIB: u64 = 1 << 20;
@@ -34,7 +37,7 @@ impl Kind {
             Kind::Experiment | Kind::PaperToml | Kind::ShardBinding => MIB,
             Kind::PaperValues => 4 * MIB,
             Kind::TrajectoryCsv | Kind::TrajectoryMat | Kind::Baseline => 256 * MIB,
-            Kind::ShardManifest => 64 * MIB,
+            Kind::ShardManifest | Kind::ScriptTable => 64 * MIB,
         }
     }
 
@@ -49,6 +52,7 @@ impl Kind {
             Kind::Baseline => "baseline runs file",
             Kind::ShardManifest => "shard manifest",
             Kind::ShardBinding => "shard binding",
+            Kind::ScriptTable => "results table",
         }
     }
 }

@@ -1,7 +1,9 @@
 """The cost of a Python call per right-hand-side evaluation, for the report's Performance section.
 
 Each case is simulated ``REPEATS`` times through ``driftbench.simulate`` and the median of each
-quantity is written to ``results/python-call-cost.csv`` (one row per case):
+quantity is sealed into ``results/python-call-cost.csv`` (one row per case) by
+``driftbench.into_results``, as ``reproduce`` writes there (recorded in
+``results/manifest.toml``):
 
 - ``us_per_python_call``: ``python_seconds / python_calls`` of the numpy network's run, i.e. one
   call back into Python (the QP converted into numpy arrays, the method, its result read back);
@@ -25,6 +27,7 @@ import pathlib
 import platform
 import statistics
 import sys
+import tempfile
 
 import numpy as np
 
@@ -33,7 +36,6 @@ from driftbench.networks import Gnn, Znn
 
 REPEATS = 5
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-OUT = ROOT / "results" / "python-call-cost.csv"
 
 
 class MinusY:
@@ -103,11 +105,14 @@ def main():
                        ratio=f"{per_rhs / twin_rhs:.3g}")
         rows.append(row)
         print(row)
-    with open(OUT, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=fields, lineterminator="\n")
-        w.writeheader()
-        w.writerows(rows)
-    print(f"wrote {OUT}")
+    with tempfile.TemporaryDirectory() as scratch:
+        table = pathlib.Path(scratch) / "python-call-cost.csv"
+        with open(table, "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=fields, lineterminator="\n")
+            w.writeheader()
+            w.writerows(rows)
+        out = driftbench.into_results(table, root=ROOT)
+    print(f"wrote {out}")
 
 
 if __name__ == "__main__":

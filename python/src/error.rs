@@ -53,3 +53,62 @@ pub struct UnknownTask {
     pub set: &'static str,
     pub valid: Vec<String>,
 }
+
+/// An `out_dir=` that is, or lies inside, a directory driftbench seals with a manifest.
+#[derive(Debug, thiserror::Error)]
+#[error(
+    "out_dir={}: the files go into a directory of their own, not into {} (sealed by driftbench's \
+     manifest.toml: results/, report/ or a shard; a script puts a table into results/ with \
+     driftbench.into_results)",
+    out.display(),
+    sealed.display()
+)]
+pub struct SealedOutDir {
+    pub out: PathBuf,
+    pub sealed: PathBuf,
+}
+
+/// A panic inside the library: a bug (no input should reach one), raised as
+/// `DriftbenchError` rather than pyo3's `PanicException`, which `except Exception` misses.
+#[derive(Debug, thiserror::Error)]
+#[error("an internal error of driftbench (a bug, please report it): {message}")]
+pub struct Panicked {
+    pub message: String,
+}
+
+impl Panicked {
+    /// The panic's message, from the payload `catch_unwind` returned.
+    pub fn from_payload(payload: &(dyn std::any::Any + Send)) -> Self {
+        let message = payload
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "a panic without a message".to_string());
+        Panicked { message }
+    }
+}
+
+/// A table `into_results` could not seal into `results/`.
+#[derive(Debug, thiserror::Error)]
+pub enum IntoResultsError {
+    #[error(
+        "{}: into_results takes the tables the package's scripts write, by file name: {}",
+        file.display(),
+        valid.join(", ")
+    )]
+    Name {
+        file: PathBuf,
+        valid: Vec<&'static str>,
+    },
+    #[error(transparent)]
+    Read(#[from] inputs::InputError),
+    #[error("{}: not a table of its schema: {source}", file.display())]
+    Table {
+        file: PathBuf,
+        source: records::table::TableError,
+    },
+    #[error(transparent)]
+    Results(#[from] records::results_dir::ResultsError),
+    #[error(transparent)]
+    Tracked(#[from] records::tracked_dir::TrackedError),
+}

@@ -29,7 +29,7 @@ mod task_set;
 use arrays::real_array;
 use catalog::error::SetupError;
 use catalog::experiment::Scoring;
-use error::{RootError, UnknownTask};
+use error::{IntoResultsError, Panicked, RootError, SealedOutDir, UnknownTask};
 use network::{network_name, Callbacks, PyNetwork, PyQpDims, SharedCallbacks};
 use numpy::ndarray::{Ix1, Ix2};
 use numpy::IntoPyArray;
@@ -81,6 +81,14 @@ fn lib_err(e: impl std::fmt::Display) -> PyErr {
     DriftbenchError::new_err(e.to_string())
 }
 
+/// Runs the body of one of the module's functions, a panic of the library (a bug: no input
+/// should reach one) raised as `DriftbenchError` ([`Panicked`]) instead of pyo3's
+/// `PanicException`, which `except Exception` does not catch.
+fn guarded<T>(body: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(body))
+        .unwrap_or_else(|payload| Err(lib_err(Panicked::from_payload(payload.as_ref()))))
+}
+
 /// The project root of a call: `root` (a checkout, or any directory with
 /// `experiments/*.toml`) where given, else the data the package carries ([`packaged`]). The
 /// working directory plays no part: a folder called `experiments/` above it is not taken for
@@ -108,7 +116,7 @@ fn project_root(root: Option<PathBuf>) -> PyResult<PathBuf> {
 /// is not given.
 #[pyfunction]
 fn data_root() -> PyResult<PathBuf> {
-    packaged::root().map_err(lib_err)
+    guarded(|| packaged::root().map_err(lib_err))
 }
 
 /// Every task of the experiment files (`<root>/experiments`; without `root`, the packaged
@@ -116,15 +124,17 @@ fn data_root() -> PyResult<PathBuf> {
 #[pyfunction]
 #[pyo3(signature = (root=None))]
 fn tasks(root: Option<PathBuf>) -> PyResult<Vec<PyTask>> {
-    load_tasks(&project_root(root)?).map_err(lib_err)
+    guarded(|| load_tasks(&project_root(root)?).map_err(lib_err))
 }
 
 /// The task `"<experiment> / <variant>"`.
 #[pyfunction]
 #[pyo3(signature = (id, root=None))]
 fn task(id: &str, root: Option<PathBuf>) -> PyResult<PyTask> {
-    let all = tasks(root)?;
-    find_task(&all, id, "").cloned()
+    guarded(|| {
+        let all = tasks(root)?;
+        find_task(&all, id, "").cloned()
+    })
 }
 
 /// The task of `all` whose id is `id`; the error lists the ids of `all` (`set` names it).
@@ -156,9 +166,10 @@ fn stored_runs(root: &Path) -> PyResult<Vec<RunRow>> {
 #[pyfunction]
 #[pyo3(signature = (root=None))]
 fn standard_tasks(root: Option<PathBuf>) -> PyResult<Vec<PyTask>> {
-    let root = project_root(root)?;
-    let all = load_tasks(&root).map_err(lib_err)?;
-    analysis::leaderboard::standard_tasks(&stored_runs(&root)?)
+    guarded(|| {
+        let root = project_root(root)?;
+        let all = load_tasks(&root).map_err(lib_err)?;
+        analysis::leaderboard::standard_tasks(&stored_runs(&root)?)
         .iter()
         .map(|s| {
             all.iter()
@@ -172,6 +183,7 @@ fn standard_tasks(root: Option<PathBuf>) -> PyResult<Vec<PyTask>> {
                 })
         })
         .collect()
+    })
 }
 
 /// Parses CSV text (a header, then rows) into dicts: empty fields None, integers int, numbers
@@ -360,35 +372,37 @@ fn simulate<'py>(
     scoring: Option<&Bound<'py, PyAny>>,
     network_init: Option<&str>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let builtin = network.extract::<String>().ok();
-    let mut job = match &builtin {
-        Some(id) => task.run_of(id).map_err(lib_err)?.clone(),
-        None => task.job.clone(),
-    };
-    job.integrator.rtol = rtol.unwrap_or(job.integrator.rtol);
-    job.integrator.atol = atol.unwrap_or(job.integrator.atol);
-    job.integrator.max_step = max_step.or(job.integrator.max_step);
-    job.integrator.validate().map_err(lib_err)?;
-    if let Some(s) = scoring {
-        job.scoring = parse_scoring(s)?;
-    }
-    if let Some(init) = network_init {
-        job.network_init = serde_json::from_value(serde_json::Value::String(init.to_string()))
-            .map_err(|_| {
-                lib_err(format!(
-                    "network_init must be \"zero\" or \"exact\", got \"{init}\""
-                ))
-            })?;
-    }
-    let (record, row, calls) = if builtin.is_some() {
-        let record = run_job(&job);
-        check_setup(&record)?;
-        let row = run_row(&record, reproduce::revision::REVISION);
-        (record, row, Callbacks::default())
-    } else {
-        run_python(py, task, &job, network)?
-    };
-    result_dict(py, &record, &row, &calls)
+    guarded(|| {
+        let builtin = network.extract::<String>().ok();
+        let mut job = match &builtin {
+            Some(id) => task.run_of(id).map_err(lib_err)?.clone(),
+            None => task.job.clone(),
+        };
+        job.integrator.rtol = rtol.unwrap_or(job.integrator.rtol);
+        job.integrator.atol = atol.unwrap_or(job.integrator.atol);
+        job.integrator.max_step = max_step.or(job.integrator.max_step);
+        job.integrator.validate().map_err(lib_err)?;
+        if let Some(s) = scoring {
+            job.scoring = parse_scoring(s)?;
+        }
+        if let Some(init) = network_init {
+            job.network_init = serde_json::from_value(serde_json::Value::String(init.to_string()))
+                .map_err(|_| {
+                    lib_err(format!(
+                        "network_init must be \"zero\" or \"exact\", got \"{init}\""
+                    ))
+                })?;
+        }
+        let (record, row, calls) = if builtin.is_some() {
+            let record = run_job(&job);
+            check_setup(&record)?;
+            let row = run_row(&record, reproduce::revision::REVISION);
+            (record, row, Callbacks::default())
+        } else {
+            run_python(py, task, &job, network)?
+        };
+        result_dict(py, &record, &row, &calls)
+    })
 }
 
 /// The tasks of `tasks=`: each a `Task` or an id (`"<experiment> / <variant>"`), every one in
@@ -442,107 +456,182 @@ fn leaderboard<'py>(
     root: Option<PathBuf>,
     out_dir: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let root = project_root(root)?;
-    let stored = stored_runs(&root)?;
-    let standard = standard_tasks(Some(root.clone()))?;
-    let chosen = match tasks {
-        None => standard,
-        Some(given) => chosen_tasks(&standard, given)?,
-    };
-    if chosen.is_empty() {
-        return Err(pyo3::exceptions::PyValueError::new_err(
+    guarded(|| {
+        if let Some(out) = &out_dir {
+            check_out_dir(out)?;
+        }
+        let root = project_root(root)?;
+        let stored = stored_runs(&root)?;
+        let standard = standard_tasks(Some(root.clone()))?;
+        let chosen = match tasks {
+            None => standard,
+            Some(given) => chosen_tasks(&standard, given)?,
+        };
+        if chosen.is_empty() {
+            return Err(pyo3::exceptions::PyValueError::new_err(
             "tasks= is empty: give the tasks to run (Task objects or ids), or leave it out for \
              the standard task set",
         ));
-    }
-    let named: Vec<(String, Bound<'py, PyAny>)> = match entries.cast::<PyDict>() {
-        Ok(d) => d
-            .iter()
-            .map(|(k, v)| {
-                let name = k.extract::<String>().map_err(|_| {
-                    pyo3::exceptions::PyTypeError::new_err(format!(
-                        "leaderboard's entries: the keys are the networks' names (str), got {}",
-                        type_name(&k)
-                    ))
-                })?;
-                Ok((name, v))
-            })
-            .collect::<PyResult<_>>()?,
-        Err(_) => entries
-            .try_iter()
-            .map_err(|_| {
-                pyo3::exceptions::PyTypeError::new_err(
-                    "leaderboard's entries: a dict name -> network, or a list of networks",
-                )
-            })?
-            .map(|n| {
-                let n = n?;
-                Ok((network_name(&n)?, n))
-            })
-            .collect::<PyResult<_>>()?,
-    };
-    let mut fresh = Vec::new();
-    let mut costs = Vec::new();
-    let not_applicable = PyList::empty(py);
-    for (name, network) in &named {
-        let id = format!("{PYTHON_KIND}-{}", schemes::slug::slug(name));
-        if stored
-            .iter()
-            .any(|r| r.solver == *name || r.solver_id == id)
-            || fresh
+        }
+        let named: Vec<(String, Bound<'py, PyAny>)> = match entries.cast::<PyDict>() {
+            Ok(d) => d
                 .iter()
-                .any(|r: &RunRow| r.solver == *name || r.solver_id == id)
-        {
-            return Err(lib_err(format!(
+                .map(|(k, v)| {
+                    let name = k.extract::<String>().map_err(|_| {
+                        pyo3::exceptions::PyTypeError::new_err(format!(
+                            "leaderboard's entries: the keys are the networks' names (str), got {}",
+                            type_name(&k)
+                        ))
+                    })?;
+                    Ok((name, v))
+                })
+                .collect::<PyResult<_>>()?,
+            Err(_) => entries
+                .try_iter()
+                .map_err(|_| {
+                    pyo3::exceptions::PyTypeError::new_err(
+                        "leaderboard's entries: a dict name -> network, or a list of networks",
+                    )
+                })?
+                .map(|n| {
+                    let n = n?;
+                    Ok((network_name(&n)?, n))
+                })
+                .collect::<PyResult<_>>()?,
+        };
+        let mut fresh = Vec::new();
+        let mut costs = Vec::new();
+        let not_applicable = PyList::empty(py);
+        for (name, network) in &named {
+            let id = format!("{PYTHON_KIND}-{}", schemes::slug::slug(name));
+            if stored
+                .iter()
+                .any(|r| r.solver == *name || r.solver_id == id)
+                || fresh
+                    .iter()
+                    .any(|r: &RunRow| r.solver == *name || r.solver_id == id)
+            {
+                return Err(lib_err(format!(
                 "a solver called \"{name}\" is already on the leaderboard; give the network another name"
             )));
-        }
-        for t in &chosen {
-            match run_python(py, t, &t.job, network) {
-                Ok((_, mut row, calls)) => {
-                    row.solver = name.clone();
-                    row.solver_id = id.clone();
-                    fresh.push(row);
-                    costs.push(calls);
+            }
+            for t in &chosen {
+                match run_python(py, t, &t.job, network) {
+                    Ok((_, mut row, calls)) => {
+                        row.solver = name.clone();
+                        row.solver_id = id.clone();
+                        fresh.push(row);
+                        costs.push(calls);
+                    }
+                    Err(e) if e.is_instance_of::<NotApplicable>(py) => {
+                        let skipped = PyDict::new(py);
+                        skipped.set_item("solver", name)?;
+                        skipped.set_item("task", t.job.task().to_string())?;
+                        skipped.set_item("reason", e.value(py).str()?)?;
+                        not_applicable.append(skipped)?;
+                    }
+                    Err(e) => return Err(e),
                 }
-                Err(e) if e.is_instance_of::<NotApplicable>(py) => {
-                    let skipped = PyDict::new(py);
-                    skipped.set_item("solver", name)?;
-                    skipped.set_item("task", t.job.task().to_string())?;
-                    skipped.set_item("reason", e.value(py).str()?)?;
-                    not_applicable.append(skipped)?;
-                }
-                Err(e) => return Err(e),
             }
         }
-    }
-    let mut all = stored;
-    all.extend(fresh.iter().cloned());
-    let timings = records::timing::read(&root.join(records::results_dir::DIR)).map_err(lib_err)?;
-    let board = analysis::leaderboard::leaderboard(&all, &timings);
-    let board_csv = analysis::leaderboard::leaderboard_csv(&board).map_err(lib_err)?;
-    let runs_csv = records::runs::runs_csv(&fresh).map_err(lib_err)?;
-    if let Some(dir) = out_dir {
-        std::fs::create_dir_all(&dir).map_err(|e| lib_err(format!("{}: {e}", dir.display())))?;
-        for (name, bytes) in [
-            (records::results_dir::LEADERBOARD, &board_csv),
-            (records::results_dir::RUNS, &runs_csv),
-        ] {
-            let path = dir.join(name);
-            records::runs::write_atomic(&path, bytes)
-                .map_err(|e| lib_err(format!("{}: {e}", path.display())))?;
+        let mut all = stored;
+        all.extend(fresh.iter().cloned());
+        let timings =
+            records::timing::read(&root.join(records::results_dir::DIR)).map_err(lib_err)?;
+        let board = analysis::leaderboard::leaderboard(&all, &timings);
+        let board_csv = analysis::leaderboard::leaderboard_csv(&board).map_err(lib_err)?;
+        let runs_csv = records::runs::runs_csv(&fresh).map_err(lib_err)?;
+        if let Some(dir) = &out_dir {
+            let owned = records::owned_dir::OwnedDir::open(dir).map_err(lib_err)?;
+            for (name, bytes) in [
+                (records::results_dir::LEADERBOARD, &board_csv),
+                (records::results_dir::RUNS, &runs_csv),
+            ] {
+                let path = owned.resolve(Path::new(name)).map_err(lib_err)?;
+                records::runs::write_atomic(&path, bytes)
+                    .map_err(|e| lib_err(format!("{}: {e}", path.display())))?;
+            }
         }
+        let runs = csv_dicts(py, &runs_csv)?;
+        for (d, calls) in runs.iter().zip(&costs) {
+            d.set_item("python_calls", calls.calls)?;
+            d.set_item("python_seconds", calls.seconds)?;
+        }
+        let out = PyDict::new(py);
+        out.set_item("leaderboard", PyList::new(py, csv_dicts(py, &board_csv)?)?)?;
+        out.set_item("runs", PyList::new(py, runs)?)?;
+        out.set_item("not_applicable", not_applicable)?;
+        Ok(out)
+    })
+}
+
+/// Refuses an `out_dir=` that is, or lies inside, a directory driftbench seals with a manifest
+/// (results/, report/, a shard directory; `records::integrity::sealed_by`): files written there
+/// would pass for the program's own.
+fn check_out_dir(out: &Path) -> PyResult<()> {
+    match records::integrity::sealed_by(out) {
+        Some(sealed) => Err(lib_err(SealedOutDir {
+            out: out.to_path_buf(),
+            sealed,
+        })),
+        None => Ok(()),
     }
-    let runs = csv_dicts(py, &runs_csv)?;
-    for (d, calls) in runs.iter().zip(&costs) {
-        d.set_item("python_calls", calls.calls)?;
-        d.set_item("python_seconds", calls.seconds)?;
+}
+
+/// The tables the package's scripts write into `results/` (`into_results`).
+const SCRIPT_TABLES: [&str; 2] = [
+    records::results_dir::LEADERBOARD_PYTHON,
+    records::results_dir::PYTHON_CALL_COST,
+];
+
+/// Seals the table `file` (written by one of the package's scripts: `leaderboard-python.csv`
+/// from `python/examples/leaderboard.py`, `python-call-cost.csv` from
+/// `python/bench/call_cost.py`, by file name) into `<root>/results/` the way `reproduce`
+/// writes there: read as an input (a regular file, at most 64 MiB), checked against its
+/// schema, written under the results directory's lock (refused when its files differ from
+/// `results/manifest.toml`) and recorded in the manifest, so the next `reproduce report` takes
+/// it. Returns the path written.
+#[pyfunction]
+#[pyo3(signature = (file, *, root))]
+fn into_results(file: PathBuf, root: PathBuf) -> PyResult<PathBuf> {
+    guarded(|| {
+        let root = project_root(Some(root))?;
+        seal_into_results(&file, &root).map_err(lib_err)
+    })
+}
+
+/// [`into_results`]'s work, with typed errors.
+fn seal_into_results(file: &Path, root: &Path) -> Result<PathBuf, IntoResultsError> {
+    let name = file
+        .file_name()
+        .and_then(|n| n.to_str())
+        .filter(|n| SCRIPT_TABLES.contains(n))
+        .ok_or_else(|| IntoResultsError::Name {
+            file: file.to_path_buf(),
+            valid: SCRIPT_TABLES.to_vec(),
+        })?;
+    let bytes = inputs::read(file, inputs::Kind::ScriptTable, inputs::Origin::Named)?;
+    let table = |source| IntoResultsError::Table {
+        file: file.to_path_buf(),
+        source,
+    };
+    if name == records::results_dir::LEADERBOARD_PYTHON {
+        records::table::from_reader::<analysis::leaderboard::LeaderboardRow, _>(bytes.as_slice())
+            .map_err(table)?;
+    } else {
+        records::table::from_reader::<presentation::report::python::CallCostRow, _>(
+            bytes.as_slice(),
+        )
+        .map_err(table)?;
     }
-    let out = PyDict::new(py);
-    out.set_item("leaderboard", PyList::new(py, csv_dicts(py, &board_csv)?)?)?;
-    out.set_item("runs", PyList::new(py, runs)?)?;
-    out.set_item("not_applicable", not_applicable)?;
-    Ok(out)
+    let (results, _) = records::results_dir::ResultsDir::open(
+        &root.join(records::results_dir::DIR),
+        reproduce::revision::REVISION,
+        records::tracked_dir::Edits::Refuse,
+    )?;
+    results.tracked().write(Path::new(name), &bytes)?;
+    results.save()?;
+    Ok(results.path().join(name))
 }
 
 /// Scores a trajectory produced elsewhere on `task` with the metrics and the score of a run
@@ -558,103 +647,105 @@ fn score<'py>(
     trajectory: &Bound<'py, PyAny>,
     out_dir: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let git_rev = reproduce::revision::REVISION;
-    let (record, row) = if let Ok(file) = trajectory.extract::<PathBuf>() {
-        match out_dir {
-            Some(out) => {
-                let s = reproduce::score::score_file(
-                    &task.job,
-                    &file,
-                    None,
-                    records::trajectory::TRAJECTORY_KIND,
-                    &out,
-                    git_rev,
-                )
-                .map_err(lib_err)?;
-                (s.record, s.row)
+    guarded(|| {
+        let git_rev = reproduce::revision::REVISION;
+        let (record, row) = if let Ok(file) = trajectory.extract::<PathBuf>() {
+            match out_dir {
+                Some(out) => {
+                    let s = reproduce::score::score_file(
+                        &task.job,
+                        &file,
+                        None,
+                        records::trajectory::TRAJECTORY_KIND,
+                        &out,
+                        git_rev,
+                    )
+                    .map_err(lib_err)?;
+                    (s.record, s.row)
+                }
+                None => {
+                    let record = score_trajectory(
+                        &task.job,
+                        &read(&file, task.job.theta0.len(), None).map_err(lib_err)?,
+                    )
+                    .map_err(|e| lib_err(format!("{}: {e}", file.display())))?;
+                    let row = score_row(
+                        run_row(&record, git_rev),
+                        &file.display().to_string(),
+                        records::trajectory::TRAJECTORY_KIND,
+                    );
+                    (record, row)
+                }
             }
-            None => {
-                let record = score_trajectory(
-                    &task.job,
-                    &read(&file, task.job.theta0.len(), None).map_err(lib_err)?,
-                )
-                .map_err(|e| lib_err(format!("{}: {e}", file.display())))?;
-                let row = score_row(
-                    run_row(&record, git_rev),
-                    &file.display().to_string(),
-                    records::trajectory::TRAJECTORY_KIND,
-                );
-                (record, row)
+        } else {
+            if out_dir.is_some() {
+                return Err(lib_err("out_dir is for a trajectory file"));
             }
-        }
-    } else {
-        if out_dir.is_some() {
-            return Err(lib_err("out_dir is for a trajectory file"));
-        }
-        let d = trajectory.cast::<PyDict>().map_err(|_| {
-            pyo3::exceptions::PyTypeError::new_err(format!(
-                "trajectory must be a file (a path: str or os.PathLike) or a dict of arrays \
+            let d = trajectory.cast::<PyDict>().map_err(|_| {
+                pyo3::exceptions::PyTypeError::new_err(format!(
+                    "trajectory must be a file (a path: str or os.PathLike) or a dict of arrays \
                  {{\"t\", \"theta\"[, \"thetadot\"]}}, got {}",
-                type_name(trajectory)
-            ))
-        })?;
-        const KEYS: [&str; 3] = ["t", "theta", "thetadot"];
-        for key in d.keys() {
-            let known = key
-                .extract::<String>()
-                .is_ok_and(|k| KEYS.contains(&k.as_str()));
-            if !known {
-                return Err(pyo3::exceptions::PyValueError::new_err(format!(
-                    "the trajectory dict has the key {}; its keys are \"t\", \"theta\" and \
-                     optionally \"thetadot\"",
-                    key.repr()?
-                )));
-            }
-        }
-        let required = |key: &str| -> PyResult<Bound<'py, PyAny>> {
-            d.get_item(key)?.ok_or_else(|| {
-                pyo3::exceptions::PyValueError::new_err(format!(
-                    "the trajectory dict needs \"{key}\" (keys: \"t\", \"theta\", optionally \
-                     \"thetadot\")"
+                    type_name(trajectory)
                 ))
-            })
-        };
-        let rows = |v: &Bound<'py, PyAny>, key: &str| -> PyResult<Vec<Vec<f64>>> {
-            let what =
-                format!("trajectory[\"{key}\"] (m x n: a row per instant, a column per joint)");
-            Ok(real_array::<Ix2>(v, &what)?
-                .rows()
-                .into_iter()
-                .map(|r| r.to_vec())
-                .collect())
-        };
-        let t: Vec<f64> = real_array::<Ix1>(&required("t")?, "trajectory[\"t\"]")?.to_vec();
-        let theta = rows(&required("theta")?, "theta")?;
-        let thetadot = d
-            .get_item("thetadot")?
-            .map(|v| rows(&v, "thetadot"))
-            .transpose()?;
-        let lengths = std::iter::once(("theta", theta.len()))
-            .chain(thetadot.as_ref().map(|v| ("thetadot", v.len())));
-        for (key, m) in lengths {
-            if m != t.len() {
-                return Err(pyo3::exceptions::PyValueError::new_err(format!(
+            })?;
+            const KEYS: [&str; 3] = ["t", "theta", "thetadot"];
+            for key in d.keys() {
+                let known = key
+                    .extract::<String>()
+                    .is_ok_and(|k| KEYS.contains(&k.as_str()));
+                if !known {
+                    return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                        "the trajectory dict has the key {}; its keys are \"t\", \"theta\" and \
+                     optionally \"thetadot\"",
+                        key.repr()?
+                    )));
+                }
+            }
+            let required = |key: &str| -> PyResult<Bound<'py, PyAny>> {
+                d.get_item(key)?.ok_or_else(|| {
+                    pyo3::exceptions::PyValueError::new_err(format!(
+                        "the trajectory dict needs \"{key}\" (keys: \"t\", \"theta\", optionally \
+                     \"thetadot\")"
+                    ))
+                })
+            };
+            let rows = |v: &Bound<'py, PyAny>, key: &str| -> PyResult<Vec<Vec<f64>>> {
+                let what =
+                    format!("trajectory[\"{key}\"] (m x n: a row per instant, a column per joint)");
+                Ok(real_array::<Ix2>(v, &what)?
+                    .rows()
+                    .into_iter()
+                    .map(|r| r.to_vec())
+                    .collect())
+            };
+            let t: Vec<f64> = real_array::<Ix1>(&required("t")?, "trajectory[\"t\"]")?.to_vec();
+            let theta = rows(&required("theta")?, "theta")?;
+            let thetadot = d
+                .get_item("thetadot")?
+                .map(|v| rows(&v, "thetadot"))
+                .transpose()?;
+            let lengths = std::iter::once(("theta", theta.len()))
+                .chain(thetadot.as_ref().map(|v| ("thetadot", v.len())));
+            for (key, m) in lengths {
+                if m != t.len() {
+                    return Err(pyo3::exceptions::PyValueError::new_err(format!(
                     "trajectory[\"{key}\"] has {m} rows, trajectory[\"t\"] {} instants: one row \
                      per instant",
                     t.len()
                 )));
+                }
             }
-        }
-        let traj = Trajectory { t, theta, thetadot };
-        let record = score_trajectory(&task.job, &traj).map_err(lib_err)?;
-        let row = score_row(
-            run_row(&record, git_rev),
-            "arrays",
-            records::trajectory::TRAJECTORY_KIND,
-        );
-        (record, row)
-    };
-    result_dict(py, &record, &row, &Callbacks::default())
+            let traj = Trajectory { t, theta, thetadot };
+            let record = score_trajectory(&task.job, &traj).map_err(lib_err)?;
+            let row = score_row(
+                run_row(&record, git_rev),
+                "arrays",
+                records::trajectory::TRAJECTORY_KIND,
+            );
+            (record, row)
+        };
+        result_dict(py, &record, &row, &Callbacks::default())
+    })
 }
 
 #[pymodule]
@@ -670,5 +761,6 @@ fn _driftbench(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(leaderboard, m)?)?;
     m.add_function(wrap_pyfunction!(score, m)?)?;
     m.add_function(wrap_pyfunction!(data_root, m)?)?;
+    m.add_function(wrap_pyfunction!(into_results, m)?)?;
     Ok(())
 }

@@ -357,8 +357,9 @@ def test_bad_input_from_python_raises_errors_naming_the_field():
     assert "non-finite entry (NaN at index 0)" in str(info.value.__cause__)
     run = driftbench.simulate(circle, Znn())
     t, theta = run["trace"]["t"], run["trace"]["theta"]
-    with pytest.raises(ValueError, match=r"'thetadott'"):
-        driftbench.score(circle, {"t": t, "theta": theta, "thetadott": theta})
+    for typo in ("thetadott", "thetadto"):
+        with pytest.raises(ValueError, match=rf"'{typo}'"):
+            driftbench.score(circle, {"t": t, "theta": theta, typo: theta})
     with pytest.raises(ValueError, match=r'trajectory\["theta"\].*2-D array'):
         driftbench.score(circle, {"t": t, "theta": theta[:, 0]})
     with pytest.raises(TypeError, match=r'trajectory\["theta"\].* must be real numbers'):
@@ -390,6 +391,74 @@ def test_errors_about_the_root_name_root_not_a_command_line_flag(tmp_path):
     with pytest.raises(driftbench.DriftbenchError, match=r"root=.*holds no experiment file") as info:
         driftbench.standard_tasks(root=tmp_path)
     assert "--" not in str(info.value)
+
+
+def project_copy(tmp_path):
+    """A project beside the checkout: its experiment files and the top level of its results/
+    (the tables and results/manifest.toml, which seals them), and report/manifest.toml."""
+    proj = tmp_path / "project"
+    shutil.copytree(ROOT / "experiments", proj / "experiments")
+    (proj / "results").mkdir(parents=True)
+    for f in (ROOT / "results").iterdir():
+        if f.is_file() and not f.name.startswith("."):
+            shutil.copy(f, proj / "results" / f.name)
+    (proj / "report").mkdir()
+    shutil.copy(ROOT / "report" / "manifest.toml", proj / "report" / "manifest.toml")
+    return proj
+
+
+def test_out_dir_may_not_be_a_directory_driftbench_seals(tmp_path):
+    """The audit's case: leaderboard(out_dir="results") cut runs.csv to the network's rows;
+    score(out_dir="results") would pass a trajectory for a run. Both are refused before
+    anything runs, and nothing there changes."""
+    proj = project_copy(tmp_path)
+    runs = (proj / "results" / "runs.csv").read_bytes()
+    circle = driftbench.task(CIRCLE, root=proj)
+    run = driftbench.simulate(circle, Znn())
+    trajectory = tmp_path / "znn.csv"
+    n = circle.dof
+    columns = ["t"] + [f"theta_{i + 1}" for i in range(n)]
+    table = np.column_stack([run["trace"]["t"], run["trace"]["theta"]])
+    np.savetxt(trajectory, table, delimiter=",", header=",".join(columns), comments="", fmt="%.17g")
+    for out in (proj / "results", proj / "results" / "traces" / "x", proj / "report"):
+        with pytest.raises(driftbench.DriftbenchError, match=r"out_dir=.*sealed by driftbench's"):
+            driftbench.leaderboard([Gnn()], tasks=[CIRCLE], root=proj, out_dir=out)
+        with pytest.raises(driftbench.DriftbenchError, match="sealed by this program's manifest"):
+            driftbench.score(circle, str(trajectory), out_dir=out)
+    assert (proj / "results" / "runs.csv").read_bytes() == runs
+    assert not (proj / "results" / "traces").exists()
+    assert sorted(p.name for p in (proj / "report").iterdir()) == ["manifest.toml"]
+
+
+def test_a_scripts_table_is_sealed_into_results(tmp_path):
+    """The audit's case: python/examples/leaderboard.py wrote results/leaderboard-python.csv
+    past the manifest, so the next `reproduce report` refused. into_results writes it as
+    reproduce does: checked, under the lock, recorded in results/manifest.toml."""
+    import hashlib
+
+    proj = project_copy(tmp_path)
+    committed = (ROOT / "results" / "leaderboard-python.csv").read_text().splitlines()
+    table = tmp_path / "leaderboard-python.csv"
+    table.write_text("\n".join(committed[:2]) + "\n")
+    out = driftbench.into_results(table, root=proj)
+    assert out == proj / "results" / "leaderboard-python.csv"
+    assert out.read_bytes() == table.read_bytes()
+    manifest = (proj / "results" / "manifest.toml").read_text()
+    entry = manifest.split('[files."leaderboard-python.csv"]')[1].split("[files.")[0]
+    assert f'sha256 = "{hashlib.sha256(table.read_bytes()).hexdigest()}"' in entry
+    # Only the scripts' tables, each in its schema; never past an edit of results/.
+    other = tmp_path / "runs.csv"
+    other.write_text("x\n")
+    with pytest.raises(driftbench.DriftbenchError, match="leaderboard-python.csv, python-call-cost.csv"):
+        driftbench.into_results(other, root=proj)
+    cost = tmp_path / "python-call-cost.csv"
+    cost.write_text("network,task\nx,y\n")
+    with pytest.raises(driftbench.DriftbenchError, match="not a table of its schema"):
+        driftbench.into_results(cost, root=proj)
+    with (proj / "results" / "runs.csv").open("a") as f:
+        f.write("\n")
+    with pytest.raises(driftbench.DriftbenchError, match="runs.csv"):
+        driftbench.into_results(table, root=proj)
 
 
 OUTSIDE = textwrap.dedent(

@@ -158,5 +158,23 @@ pub const MEASURED: &[Column] = &[
     ("score_max_violation", |r| r.score_max_violation),
 ];
 
+/// What the report's tables show of a run besides its metrics, by `runs.csv` name: the
+/// integrator's tolerances and step limit, and the effort counts (steps, rejected steps,
+/// right-hand-side and Jacobian evaluations, QP solves, score samples, failed exact solves).
+/// Identical from run to run as the metrics are (the timings are not): the gate compares them
+/// too.
+pub const SHOWN: &[Column] = &[
+    ("rtol", |r| Some(r.rtol)),
+    ("atol", |r| Some(r.atol)),
+    ("max_step", |r| r.max_step),
+    ("steps", |r| Some(r.steps as f64)),
+    ("rejected", |r| Some(r.rejected as f64)),
+    ("rhs_evals", |r| Some(r.rhs_evals as f64)),
+    ("jac_evals", |r| Some(r.jac_evals as f64)),
+    ("qp_solves", |r| Some(r.qp_solves as f64)),
+    ("score_samples", |r| r.score_samples.map(|n| n as f64)),
+    ("score_failures", |r| Some(r.score_failures as f64)),
+];
+
 /// The timings of a run (s): measured on a machine, different from run to run.
 pub const TIMINGS: &[Column] = &[("wall_s", |r| Some(r.wall_s)), ("sim_s", |r| Some(r.sim_s))];

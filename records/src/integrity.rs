@@ -26,6 +26,22 @@ use std::path::{Path, PathBuf};
 /// The manifest's file name inside the directory it describes.
 pub const FILE: &str = "manifest.toml";
 
+/// The directory sealed by a manifest ([`FILE`]) that is `dir` or one of its ancestors, if any,
+/// each looked at once symbolic links are resolved: a directory this program owns (results/,
+/// report/, a shard directory), into which no other writer may put files.
+pub fn sealed_by(dir: &Path) -> Option<PathBuf> {
+    let absolute = std::path::absolute(dir).unwrap_or_else(|_| dir.to_path_buf());
+    absolute
+        .ancestors()
+        .find(|d| {
+            d.canonicalize()
+                .unwrap_or_else(|_| d.to_path_buf())
+                .join(FILE)
+                .is_file()
+        })
+        .map(Path::to_path_buf)
+}
+
 /// What the program wrote into one directory.
 #[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

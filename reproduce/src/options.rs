@@ -212,8 +212,9 @@ pub enum Mode {
     /// Run the selected experiments, the explanation layer and the report (the default).
     Run(RunOptions),
     /// The regression gate: run the selection and compare it with git HEAD's committed
-    /// results/runs.csv (or --baseline; status, drifts and every measured metric); write nothing;
-    /// exit 1 on any difference.
+    /// results/runs.csv (or --baseline; status, drifts, every measured metric and the effort
+    /// counts and tolerances the report's tables show, not timings); write nothing; exit 1 on
+    /// any difference.
     Check(CheckOptions),
     /// Re-render report/ and its figures from the stored results, running nothing.
     Report,

@@ -51,8 +51,21 @@ pub fn render_report(
     render_pages(project, root, results)
 }
 
-/// The report's figures under `root/report/figures/`; how many, said on stderr.
+/// The report's figures under `root/report/figures/`; how many, said on stderr. First removes
+/// this program's own temporary files that a killed write left in report/ and its
+/// sub-directories (a kill while a page or figure was written, e.g. on a full disk;
+/// `records::results_dir::remove_own_tmp`). Called with the results directory's lock held,
+/// which guards report/ too, so no other process's temporary file is in flight.
 pub fn render_figures(root: &Path) -> Result<usize, ReproduceError> {
+    let report = records::tracked_dir::TrackedDir::open_within(root, "report")?;
+    let removed = records::results_dir::remove_own_tmp(report.owned());
+    if !removed.is_empty() {
+        eprintln!(
+            "removed {} stale temporary file(s) of interrupted writes under {}",
+            removed.len(),
+            report.path().display()
+        );
+    }
     let figures = presentation::figures::render_all(root)?.len();
     eprintln!("wrote {figures} figures");
     Ok(figures)

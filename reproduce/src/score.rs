@@ -173,6 +173,11 @@ pub fn score_file(
         .join(&row.experiment)
         .join(format!("{stem}.csv"));
     let rel_figure = Path::new("figures").join(presentation::figures::run_figure_name(&row.key()));
+    // Every file's place checked before the first is written: a `figures` or
+    // `traces/<experiment>` that leads elsewhere leaves the directory as it was.
+    for rel in [&rel_trace, &rel_figure] {
+        dir.resolve(rel)?;
+    }
     let io = |rel: &Path, bytes: &[u8]| -> Result<PathBuf, ScoreError> {
         if let Some(parent) = rel.parent().filter(|p| !p.as_os_str().is_empty()) {
             let parent = dir.resolve(parent)?;
@@ -236,23 +241,16 @@ fn check_name(name: &str) -> Result<(), ScoreError> {
 }
 
 /// Refuses an out directory that is, or lies inside, a directory this program seals with a
-/// manifest (results/, report/, a shard directory): scores written there would pass for runs.
-/// The directory and each of its existing ancestors are looked at once symbolic links are
-/// resolved.
+/// manifest (results/, report/, a shard directory; `records::integrity::sealed_by`): scores
+/// written there would pass for runs.
 pub fn check_out(out: &Path) -> Result<(), ScoreError> {
-    let absolute = std::path::absolute(out).unwrap_or_else(|_| out.to_path_buf());
-    let mut at = Some(absolute.as_path());
-    while let Some(dir) = at {
-        let resolved = dir.canonicalize().unwrap_or_else(|_| dir.to_path_buf());
-        if resolved.join(records::integrity::FILE).is_file() {
-            return Err(ScoreError::Sealed {
-                out: out.to_path_buf(),
-                sealed: dir.to_path_buf(),
-            });
-        }
-        at = dir.parent();
+    match records::integrity::sealed_by(out) {
+        Some(sealed) => Err(ScoreError::Sealed {
+            out: out.to_path_buf(),
+            sealed,
+        }),
+        None => Ok(()),
     }
-    Ok(())
 }
 
 #[cfg(test)]

@@ -198,14 +198,28 @@ fn the_users_tmp_files_are_left_alone() {
     for f in &mine {
         write(f, b"mine");
     }
-    // A temporary file of the program's own, left by a killed write, goes.
-    let stale = p.results().join(".driftbench-tmp.99999.0.runs.csv");
-    write(&stale, b"half");
+    // A temporary file of the program's own, left by a killed write, goes: in results/, and
+    // in report/ and its figures (a kill while the report was written, e.g. on a full disk).
+    let stale = [
+        p.results().join(".driftbench-tmp.99999.0.runs.csv"),
+        p.base.join("report/.driftbench-tmp.99999.1.REPORT.md"),
+        p.base
+            .join("report/figures/.driftbench-tmp.99999.2.kong2019-cheap__znn-eq-22__exact.svg"),
+    ];
+    for f in &stale {
+        write(f, b"half");
+    }
     ok(p.run().output().unwrap());
     for f in &mine {
         assert_eq!(std::fs::read(f).unwrap(), b"mine", "{}", f.display());
     }
-    assert!(!stale.exists());
+    for f in &stale {
+        assert!(!f.exists(), "{} is left", f.display());
+    }
+    // `reproduce report` alone cleans report/ too.
+    write(&stale[1], b"half");
+    ok(p.report_only().output().unwrap());
+    assert!(!stale[1].exists(), "left by reproduce report");
 }
 
 #[cfg(unix)]

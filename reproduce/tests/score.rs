@@ -6,6 +6,7 @@ use catalog::experiment::{load_dir, PaperFile, SolverChoice};
 use simulation::run::check_job;
 use simulation::run::run_job;
 use simulation::simulate::Outcome;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 /// The binary, in the workspace root.
@@ -190,26 +191,33 @@ fn a_trajectory_file_is_scored_on_its_task() {
         );
         assert!(!root.join("results/traces/x").exists());
     }
-    // An out directory whose traces/<experiment> is a symbolic link elsewhere: refused, and
-    // nothing is written there.
-    let linked = dir.join("linked");
+    // An out directory whose traces/<experiment> or figures/ is a symbolic link elsewhere:
+    // refused before anything is written, there or in the out directory.
     let elsewhere = dir.join("elsewhere");
-    std::fs::create_dir_all(linked.join("traces")).unwrap();
     std::fs::create_dir_all(&elsewhere).unwrap();
-    std::os::unix::fs::symlink(&elsewhere, linked.join("traces").join(&job.experiment)).unwrap();
-    let out = reproduce()
-        .arg("score")
-        .arg(&file)
-        .args(["--task", &task, "--out"])
-        .arg(&linked)
-        .output()
-        .unwrap();
-    assert_eq!(
-        out.status.code(),
-        Some(2),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    assert_eq!(std::fs::read_dir(&elsewhere).unwrap().count(), 0);
+    for link in [
+        Path::new("traces").join(&job.experiment),
+        PathBuf::from("figures"),
+    ] {
+        let linked = dir.join("linked");
+        let _ = std::fs::remove_dir_all(&linked);
+        std::fs::create_dir_all(linked.join("traces")).unwrap();
+        std::os::unix::fs::symlink(&elsewhere, linked.join(&link)).unwrap();
+        let out = reproduce()
+            .arg("score")
+            .arg(&file)
+            .args(["--task", &task, "--out"])
+            .arg(&linked)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{link:?}: {err}");
+        assert!(err.contains("leads outside"), "{link:?}: {err}");
+        assert_eq!(std::fs::read_dir(&elsewhere).unwrap().count(), 0);
+        assert!(
+            !linked.join("scores.csv").exists(),
+            "{link:?}: scores.csv written"
+        );
+    }
     std::fs::remove_dir_all(&dir).unwrap();
 }

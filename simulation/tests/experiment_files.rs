@@ -470,6 +470,20 @@ fn names_must_be_unique_and_file_safe() {
         &GOOD.replace("label = \"VLTCO\"", "label = \"..\\\\x\""),
         &["field `label`", "must not contain"],
     );
+    // A label is shown as it is in the report's tables: no HTML, no Markdown link.
+    assert_rejected(
+        "html_label",
+        &GOOD.replace(
+            "label = \"VLTCO\"",
+            "label = \"VLTCO <img src=x onerror=alert(1)>\"",
+        ),
+        &["field `label`", "must not contain HTML", "report/"],
+    );
+    assert_rejected(
+        "link_label",
+        &GOOD.replace("label = \"VLTCO\"", "label = \"[VLTCO](javascript:x)\""),
+        &["field `label`", "a Markdown link (`](`)"],
+    );
     assert_rejected(
         "empty_slug_label",
         &GOOD.replace("label = \"VLTCO\"", "label = \" () \""),
