@@ -7,7 +7,7 @@
 use super::layout::{Area, Body, Figure};
 use super::legend::{self, Arrangement, Entry};
 use super::panels::{LogLogPanel, Series};
-use super::style::{colour, LEGEND_LINE_WIDTH};
+use super::style::{colour, light, LEGEND_LINE_WIDTH};
 use crate::error::FigureError;
 use crate::report::performance::quantity_label;
 use plotters::prelude::*;
@@ -40,13 +40,9 @@ impl Body for DofCostBody {
     }
 }
 
-/// The palette's offset from a hue to its light shade (`style::colour`'s 20 colours: ten
-/// hues, then their light shades).
-const LIGHT_SHADE: usize = 10;
-
 /// The figure of one scheme; `rows` are that scheme's rows of `dof-cost.csv` (measured and
 /// fitted). Quantity k (in [`Quantity::ALL`] order) is drawn in colour k on nalgebra and in
-/// colour k + `LIGHT_SHADE` on faer.
+/// its light shade (`style::light`) on faer.
 pub fn figure(scheme: &str, rows: &[&DofCostRow]) -> Figure<DofCostBody> {
     let mut entries = Vec::new();
     let mut calls = Vec::new();
@@ -76,7 +72,7 @@ pub fn figure(scheme: &str, rows: &[&DofCostRow]) -> Figure<DofCostBody> {
                 [_] => String::new(),
                 _ => format!(", {backend}"),
             };
-            let colour = colour(k + b * LIGHT_SHADE);
+            let colour = if b == 0 { colour(k) } else { light(colour(k)) };
             entries.push(Entry {
                 style: colour.stroke_width(LEGEND_LINE_WIDTH),
                 label: format!("{}{on}{exponent}", quantity_label(quantity, network)),

@@ -33,34 +33,32 @@ pub const ARM_START_COLOUR: RGBColor = RGBColor(110, 110, 110);
 /// Colour of the grid lines.
 pub const GRID_COLOUR: RGBColor = RGBColor(225, 225, 225);
 
-/// Twenty distinguishable colours (Tableau's "tab20", dark shades first): series k gets
-/// `colour(k)`, so joint i or run k has the same colour in every panel of a figure.
-const PALETTE: [RGBColor; 20] = [
-    RGBColor(31, 119, 180),
-    RGBColor(255, 127, 14),
-    RGBColor(44, 160, 44),
-    RGBColor(214, 39, 40),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-    RGBColor(227, 119, 194),
-    RGBColor(127, 127, 127),
-    RGBColor(188, 189, 34),
-    RGBColor(23, 190, 207),
-    RGBColor(174, 199, 232),
-    RGBColor(255, 187, 120),
-    RGBColor(152, 223, 138),
-    RGBColor(255, 152, 150),
-    RGBColor(197, 176, 213),
-    RGBColor(196, 156, 148),
-    RGBColor(247, 182, 210),
-    RGBColor(199, 199, 199),
-    RGBColor(219, 219, 141),
-    RGBColor(158, 218, 229),
+/// Paul Tol's "muted" qualitative scheme: nine colours told apart with every common colour
+/// vision deficiency and in greyscale print. Series k gets `colour(k)`, so joint i or run k has
+/// the same colour in every panel of a figure; a figure draws at most nine series per group
+/// (the overview's small multiples), so the cycle repeats only past that.
+const PALETTE: [RGBColor; 9] = [
+    RGBColor(51, 34, 136),
+    RGBColor(136, 204, 238),
+    RGBColor(68, 170, 153),
+    RGBColor(17, 119, 51),
+    RGBColor(153, 153, 51),
+    RGBColor(221, 204, 119),
+    RGBColor(204, 102, 119),
+    RGBColor(136, 34, 85),
+    RGBColor(170, 68, 153),
 ];
 
-/// The colour of series `k` (the palette repeats past twenty).
+/// The colour of series `k` (the palette repeats past nine).
 pub fn colour(k: usize) -> RGBColor {
     PALETTE[k % PALETTE.len()]
+}
+
+/// A light shade of `c` (halfway to white): the same hue for a second variant of a series
+/// (the cost figures draw a quantity on faer in the light shade of its nalgebra colour).
+pub fn light(c: RGBColor) -> RGBColor {
+    let half = |v: u8| u8::try_from((u16::from(v) + 255) / 2).unwrap_or(u8::MAX);
+    RGBColor(half(c.0), half(c.1), half(c.2))
 }
 
 /// Registers the embedded font as plotters' `sans-serif` (once a process; later calls return
