@@ -362,8 +362,6 @@ pub enum ExperimentFileError {
     },
 }
 
-/// Joint angles that do not fit the robot they are given to.
-
 /// A network parameter out of its range, or a QP the network cannot solve.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum NetworkError {

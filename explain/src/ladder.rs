@@ -27,7 +27,7 @@
 //! instant. Its rungs are the same loop, at the run's own step h, stopped at
 //! [`NUMERICAL_TOLERANCES`] (1e-3 ... 1e-10); the finest completed one is d*(h), the drift of
 //! the sampled scheme with the QP solved to 1e-10. Its rows carry the method
-//! [`FIXED_STEP`], the stopping tolerance in `rtol`, `atol` = 0 and h in `max_step`.
+//! [`LadderMethod::FixedStep`], the stopping tolerance in `rtol`, `atol` = 0 and h in `max_step`.
 
 use catalog::experiment::Scoring;
 use catalog::experiment::{Job, SolverChoice};

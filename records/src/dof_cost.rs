@@ -1,8 +1,8 @@
 //! `results/dof-cost.csv`: the cost against the number of joints measured by the cost harness
 //! (crate `cost`, `reproduce cost`), one [`DofCostRow`] per (scheme, N, quantity, backend)
 //! measured, and one per (scheme, quantity, backend) with the fitted growth exponent k of
-//! median cost ~ c N^k ([`fit_rows`]); and the plain data the harness hands over
-//! ([`Measurement`], [`Quantity`], [`Summary`], [`RunCounts`], [`SchemeKind`], [`fit_power_law`]).
+//! median cost ~ c N^k (fitted by crate `analysis`, `fits`); and the plain data the harness
+//! hands over ([`Measurement`], [`Quantity`], [`Summary`], [`RunCounts`], [`SchemeKind`]).
 //!
 //! Every row carries the machine it was measured on (CPU model and cores, read from
 //! `/proc/cpuinfo` at measurement time) and the code revision: times are comparable within one
