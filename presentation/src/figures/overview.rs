@@ -133,20 +133,25 @@ pub fn figure(experiment: &str, runs: &[(&RunRow, &Trace)]) -> Figure<OverviewBo
     } else {
         "rad/s"
     };
+    // Each panel with its letter, in drawing order.
     let mut letters = 'a'..;
-    let mut panel = |caption: String, y_desc: String, series: Vec<Series>| TimePanel {
-        caption: format!("({}) {caption}", letters.next().unwrap_or('?')),
-        y_desc,
-        y_axis: YAxis::Log,
-        t_end,
-        series,
+    let mut panel = |caption: String, y_desc: String, series: Vec<Series>| {
+        let letter = letters.next().unwrap_or('?');
+        let panel = TimePanel {
+            caption: format!("({letter}) {caption}"),
+            y_desc,
+            y_axis: YAxis::Log,
+            t_end,
+            series,
+        };
+        (letter, panel)
     };
     let mut rows = Vec::new();
     let mut entries = Vec::new();
     for (group, is_exact) in [(exact, true), (solvers, false)] {
         let name = if is_exact { "exact column" } else { "solvers" };
         for (what, members) in groups(group, |m| m.0.scheme.clone()) {
-            let errors = panel(
+            let (error_letter, errors) = panel(
                 format!("{name}{what}: position error"),
                 "error (m)".to_string(),
                 (0..)
@@ -172,9 +177,10 @@ pub fn figure(experiment: &str, runs: &[(&RunRow, &Trace)]) -> Figure<OverviewBo
                 )
             });
             let letters = match &scores {
-                Some(s) => format!("{}, {}", &errors.caption[..3], &s.caption[..3]),
-                None => errors.caption[..3].to_string(),
+                Some((score_letter, _)) => format!("({error_letter}), ({score_letter})"),
+                None => format!("({error_letter})"),
             };
+            let scores = scores.map(|(_, panel)| panel);
             entries.push(heading(format!("{letters} {name}{what}")));
             entries.extend((0..).zip(&members).map(|(k, (run, _))| Entry {
                 style: colour(k).stroke_width(LEGEND_LINE_WIDTH),
