@@ -1089,7 +1089,7 @@ impl ActiveSetSolver {
             self.schur.solve_u(&self.uq[..nx], x, y);
             self.refined = false;
             if refine {
-                self.refine(qp, ctx);
+                self.refine(nx);
             }
         } else {
             self.lu_refined(false);
@@ -1133,13 +1133,11 @@ impl ActiveSetSolver {
     }
 
     /// One step of iterative refinement of `z` against W's unfactorised KKT matrix
-    /// K = [P C'; C 0] with its current factors: res = [-q; b; d_W] - K z, z += K^-1 res
-    /// (module docs, *Accuracy*).
-    fn refine(&mut self, qp: &Qp, ctx: &Ctx) {
-        let nx = ctx.nx;
+    /// K = [P C'; C 0] with its current factors: res = rhs - K z, z += K^-1 res (module docs,
+    /// *Accuracy*). `rhs` must hold W's [-q; b; d_W] ([`Self::fill_rhs`]).
+    fn refine(&mut self, nx: usize) {
         let k = self.k;
         let m = k - nx;
-        self.fill_rhs(qp, ctx);
         let (x, y) = self.z[..k].split_at(nx);
         p_times(
             &self.p_row[..nx * nx],
@@ -1218,7 +1216,8 @@ impl ActiveSetSolver {
     ) -> Result<(), ActiveSetError> {
         let Ctx { nx, n_eq, n_in, .. } = *ctx;
         if !self.refined {
-            self.refine(qp, ctx);
+            self.fill_rhs(qp, ctx);
+            self.refine(nx);
         }
         self.x[..nx].copy_from_slice(&self.z[..nx]);
         let certificate = if self.certify {
