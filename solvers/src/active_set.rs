@@ -70,12 +70,18 @@
 //! jia2019 QPs along a run (cond(S) up to ~300) the solve alone is accurate to ~1e-14. One
 //! step of iterative refinement against the unfactorised matrix (the residual
 //! [-q; d] - [P C'; C 0] z from P and the rows of C, corrected with the same factors) brings
-//! the answer within ~4e-16 of the exact solution (measured against rational arithmetic),
-//! as accurate as a factorisation from scratch with refinement at every solve. The answer is
-//! refined once: the warm start's first solve, which is usually the answer, is refined at once
-//! (so the feasibility check's G x serves the certification); otherwise the final iterate is
-//! refined before it is certified. The intermediate iterates and the dual directions only
-//! steer the iterations, whose tolerances are 1e-12 (below), and are not refined.
+//! the answer within ~4e-16 of the exact solution (measured against rational arithmetic).
+//!
+//! The answer is always W's KKT system solved from u_q and refined once, with the operations
+//! of revision 7c49228 (which refactorised and refined at every working-set change) in the same
+//! order, so the answers are that revision's bit for bit: the exact column's runs integrate
+//! them with adaptive steps, which turn a last-bit change of the answer into a different step
+//! sequence and drifts that differ at the integration tolerance. The warm start's first solve,
+//! usually the answer, is refined at once (so the feasibility check's G x serves the
+//! certification); after primal iterations the final solve is refined; after dual steps, which
+//! move (x, y) along their directions instead of solving again, the final working set's system
+//! is solved and refined. The dual directions and the intermediate iterates only steer the
+//! iterations, whose tolerances are 1e-12 (below), and are neither refined nor solved afresh.
 //!
 //! # Primal iterations (from a feasible point)
 //!
@@ -446,8 +452,8 @@ pub struct ActiveSetSolver {
     /// G x at z's x part, valid while `gx_valid` (reset by every change of z).
     gx: Vec<f64>,
     gx_valid: bool,
-    /// Whether z has had its step of iterative refinement since it last changed.
-    refined: bool,
+    /// How `z` was obtained (module docs, *Accuracy*).
+    z_state: ZState,
     /// P x (at the answer, or scratch).
     px: Vec<f64>,
     /// Working set (row numbers), in KKT order, and membership flags.
@@ -458,6 +464,17 @@ pub struct ActiveSetSolver {
     kkt_solves: u32,
     /// Order of the current KKT system.
     k: usize,
+}
+
+/// How the solver's `z` was obtained.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum ZState {
+    /// Solved for the current working set (and `rhs` holds its right-hand side).
+    Solved,
+    /// Solved and refined.
+    Refined,
+    /// Moved by dual steps since it was last solved.
+    Stepped,
 }
 
 /// Problem-wide constants of one solve.
@@ -507,7 +524,7 @@ impl ActiveSetSolver {
             x: Vec::new(),
             gx: Vec::new(),
             gx_valid: false,
-            refined: false,
+            z_state: ZState::Stepped,
             px: Vec::new(),
             w: Vec::new(),
             in_w: Vec::new(),
@@ -1074,11 +1091,17 @@ impl ActiveSetSolver {
         Ok(())
     }
 
-    /// Factorises W's KKT matrix ([`Self::factor`]) and solves it for [-q; b; d_W] into `z`:
-    /// through the Schur complement from u_q = L^-1 (-q), refined ([`Self::refine`]) if
-    /// `refine`, else by the LU factors with one step of iterative refinement.
+    /// Factorises W's KKT matrix ([`Self::factor`]) and solves it ([`Self::solve_z`]).
     fn factor_and_solve(&mut self, qp: &Qp, ctx: &Ctx, refine: bool) -> Result<(), ActiveSetError> {
         self.factor(ctx)?;
+        self.solve_z(qp, ctx, refine);
+        Ok(())
+    }
+
+    /// Solves W's factorised KKT system for [-q; b; d_W] into `z`: through the Schur
+    /// complement from u_q = L^-1 (-q), refined ([`Self::refine`]) if `refine`, else by the LU
+    /// factors with one step of iterative refinement.
+    fn solve_z(&mut self, qp: &Qp, ctx: &Ctx, refine: bool) {
         let nx = ctx.nx;
         let k = self.k;
         self.gx_valid = false;
@@ -1087,15 +1110,14 @@ impl ActiveSetSolver {
         if self.schur_ok {
             let (x, y) = self.z[..k].split_at_mut(nx);
             self.schur.solve_u(&self.uq[..nx], x, y);
-            self.refined = false;
+            self.z_state = ZState::Solved;
             if refine {
-                self.refine(nx);
+                self.refine(qp, nx);
             }
         } else {
             self.lu_refined(false);
-            self.refined = true;
+            self.z_state = ZState::Refined;
         }
-        Ok(())
     }
 
     /// The right-hand side [-q; b; d_W] of W's KKT system into `rhs`.
@@ -1133,41 +1155,38 @@ impl ActiveSetSolver {
     }
 
     /// One step of iterative refinement of `z` against W's unfactorised KKT matrix
-    /// K = [P C'; C 0] with its current factors: res = rhs - K z, z += K^-1 res (module docs,
-    /// *Accuracy*). `rhs` must hold W's [-q; b; d_W] ([`Self::fill_rhs`]).
-    fn refine(&mut self, nx: usize) {
+    /// K = [P C'; C 0] with its Schur-complement factors: res = rhs - K z, z += K^-1 res
+    /// (module docs, *Accuracy*; each residual summed as revision 7c49228 did). `rhs` must
+    /// hold W's [-q; b; d_W] ([`Self::fill_rhs`]). (The LU solves refine themselves.)
+    fn refine(&mut self, qp: &Qp, nx: usize) {
         let k = self.k;
         let m = k - nx;
+        let c = &self.c[..m * nx];
         let (x, y) = self.z[..k].split_at(nx);
-        p_times(
-            &self.p_row[..nx * nx],
-            self.schur.is_diagonal(),
-            x,
-            &mut self.px[..nx],
-        );
-        let (top, bottom) = self.res[..k].split_at_mut(nx);
-        for ((t, r), px) in top.iter_mut().zip(&self.rhs[..nx]).zip(&self.px[..nx]) {
-            *t = r - px;
-        }
-        for ((row, &yr), (res, d)) in self.c[..m * nx]
-            .chunks_exact(nx)
-            .zip(y)
-            .zip(bottom.iter_mut().zip(&self.rhs[nx..k]))
-        {
-            for (t, c) in top.iter_mut().zip(row) {
-                *t -= c * yr;
+        let diagonal = self.schur.is_diagonal();
+        for i in 0..nx {
+            let mut s = self.rhs[i];
+            if diagonal {
+                s -= qp.p[(i, i)] * x[i];
+            } else {
+                for (p, xj) in self.p_row[i * nx..(i + 1) * nx].iter().zip(x) {
+                    s -= p * xj;
+                }
             }
-            *res = d - dot(row, x);
+            for r in 0..m {
+                s -= c[r * nx + i] * y[r];
+            }
+            self.res[i] = s;
         }
-        if self.schur_ok {
-            self.schur.solve(&mut self.res[..k], &mut self.u);
-        } else {
-            lu_solve(&self.lu[..k * k], k, &self.piv[..k], &mut self.res[..k]);
+        for (r, row) in c.chunks_exact(nx).enumerate() {
+            let cx: f64 = row.iter().zip(x).map(|(a, b)| a * b).sum();
+            self.res[nx + r] = self.rhs[nx + r] - cx;
         }
+        self.schur.solve(&mut self.res[..k], &mut self.u);
         for (o, r) in self.z[..k].iter_mut().zip(&self.res[..k]) {
             *o += r;
         }
-        self.refined = true;
+        self.z_state = ZState::Refined;
         self.gx_valid = false;
     }
 
@@ -1178,7 +1197,7 @@ impl ActiveSetSolver {
             *z += a * d;
         }
         self.gx_valid = false;
-        self.refined = false;
+        self.z_state = ZState::Stepped;
     }
 
     /// LU solve of `dz` (direction) or `z` in place, plus one step of iterative refinement
@@ -1215,9 +1234,11 @@ impl ActiveSetSolver {
         out: &mut ActiveSetSolution,
     ) -> Result<(), ActiveSetError> {
         let Ctx { nx, n_eq, n_in, .. } = *ctx;
-        if !self.refined {
-            self.fill_rhs(qp, ctx);
-            self.refine(nx);
+        // The answer: W's KKT system solved and refined (module docs, *Accuracy*).
+        match self.z_state {
+            ZState::Refined => {}
+            ZState::Solved => self.refine(qp, nx),
+            ZState::Stepped => self.solve_z(qp, ctx, true),
         }
         self.x[..nx].copy_from_slice(&self.z[..nx]);
         let certificate = if self.certify {

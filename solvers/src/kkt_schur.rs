@@ -29,8 +29,10 @@
 //! so appending a row of C adds one row of M (m n + m^2/2 multiply-adds), and removing row s
 //! leaves rows 0..s of M as they are and recomputes rows s.. ([`SchurKkt::factor_rows`]
 //! computes whatever rows are not yet valid). The factors are the same numbers a
-//! factorisation from scratch computes, in the same order of operations. The reciprocals of
-//! the diagonals of L and M are kept with them: every division by a pivot is a multiplication.
+//! factorisation from scratch computes, in the same order of operations, and a solve performs
+//! the operations of revision 7c49228's solve with factors from scratch, in the same order, so
+//! its answers are that revision's, bit for bit (the exact column's runs integrate them with
+//! adaptive steps, which turn a last-bit change into a different step sequence).
 //!
 //! A pivot of L at or below [`PIVOT_TOL`] times the largest diagonal entry of P refuses P (not
 //! positive definite); a pivot sum S_ii - sum M_ik^2 at or below [`PIVOT_TOL`] times the largest
@@ -39,8 +41,8 @@
 //! # Diagonal P
 //!
 //! When P is diagonal (as in jia2019's, zhong2021's and kong2019's QPs), so is L, and the
-//! triangular solves with L reduce to n multiplications: skipping the products with the zero
-//! entries of L changes no value (x - 0 y = x for finite y).
+//! triangular solves with L reduce to n divisions: skipping the products with the zero entries
+//! of L changes no value (x - 0 y = x for finite y).
 //!
 //! Buffers are sized at construction ([`SchurKkt::reserve`]); factorising and solving allocate
 //! nothing.
@@ -54,16 +56,14 @@ pub struct SchurKkt {
     n: usize,
     /// Whether P, hence L, is diagonal.
     diagonal: bool,
-    /// L, row-major n x n (lower triangle), and 1 / L_ii.
+    /// L, row-major n x n (lower triangle).
     l: Vec<f64>,
-    l_inv: Vec<f64>,
     /// Y, row-major (m + 1) x n: the rows of C, then the staged row.
     y: Vec<f64>,
     /// |y_r|^2 = S_rr.
     y_sq: Vec<f64>,
-    /// M, row-major with row stride `cap` (lower triangle), and 1 / M_ii.
+    /// M, row-major with row stride `cap` (lower triangle).
     s: Vec<f64>,
-    s_inv: Vec<f64>,
     /// The pivot sums S_ii - sum_{k<i} M_ik^2 of the rows of M.
     pivot_sums: Vec<f64>,
     /// Rows M has room for.
@@ -79,7 +79,6 @@ impl SchurKkt {
     pub fn reserve(&mut self, n: usize, m: usize) {
         if self.l.len() < n * n {
             self.l.resize(n * n, 0.0);
-            self.l_inv.resize(n, 0.0);
         }
         if self.y.len() < (m + 1) * n {
             self.y.resize((m + 1) * n, 0.0);
@@ -88,7 +87,6 @@ impl SchurKkt {
             // M's row stride changes: its rows are recomputed.
             self.cap = m;
             self.s.resize(m * m, 0.0);
-            self.s_inv.resize(m, 0.0);
             self.y_sq.resize(m + 1, 0.0);
             self.pivot_sums.resize(m, 0.0);
             self.valid = 0;
@@ -111,7 +109,6 @@ impl SchurKkt {
             && pmax.is_finite()
             && cholesky(
                 &mut self.l[..n * n],
-                &mut self.l_inv[..n],
                 n,
                 &|i, j| p[i * n + j],
                 PIVOT_TOL * pmax,
@@ -126,25 +123,19 @@ impl SchurKkt {
     /// Solves L v = b in place (b of length n).
     pub fn forward(&self, b: &mut [f64]) {
         let n = self.n;
-        lower_solve(
-            &self.l[..n * n],
-            &self.l_inv[..n],
-            n,
-            self.diagonal,
-            &mut b[..n],
-        );
+        lower_solve(&self.l[..n * n], n, self.diagonal, &mut b[..n]);
     }
 
     /// Solves L' v = b in place (b of length n).
     fn backward(&self, b: &mut [f64]) {
         let n = self.n;
-        let inv = &self.l_inv[..n];
+        let l = &self.l[..n * n];
         if self.diagonal {
-            for (v, d) in b[..n].iter_mut().zip(inv) {
-                *v *= d;
+            for (i, v) in b[..n].iter_mut().enumerate() {
+                *v /= l[i * n + i];
             }
         } else {
-            backward(&self.l[..n * n], inv, n, &mut b[..n]);
+            backward(l, n, &mut b[..n]);
         }
     }
 
@@ -155,7 +146,7 @@ impl SchurKkt {
         let base = self.m * n;
         let row = &mut self.y[base..base + n];
         row.copy_from_slice(&c[..n]);
-        lower_solve(&self.l[..n * n], &self.l_inv[..n], n, self.diagonal, row);
+        lower_solve(&self.l[..n * n], n, self.diagonal, row);
     }
 
     /// The staged row L^-1 c ([`Self::stage`]).
@@ -167,7 +158,7 @@ impl SchurKkt {
     /// buffers must have been reserved for the new number of rows.
     pub fn commit(&mut self) {
         let row = self.staged();
-        self.y_sq[self.m] = dot(row, row);
+        self.y_sq[self.m] = row.iter().map(|v| v * v).sum();
         self.m += 1;
     }
 
@@ -197,24 +188,26 @@ impl SchurKkt {
             return false;
         }
         let y = &self.y[..m * n];
+        let s = &mut self.s[..cap * cap];
         for i in self.valid..m {
             let yi = &y[i * n..(i + 1) * n];
-            let (done, rest) = self.s.split_at_mut(i * cap);
-            let row = &mut rest[..i];
-            for j in 0..i {
-                let s_ij = dot(yi, &y[j * n..(j + 1) * n]);
-                row[j] = (s_ij - dot(&row[..j], &done[j * cap..j * cap + j])) * self.s_inv[j];
+            for j in 0..=i {
+                let yj = &y[j * n..(j + 1) * n];
+                let mut sum: f64 = yi.iter().zip(yj).map(|(u, v)| u * v).sum();
+                for k in 0..j {
+                    sum -= s[i * cap + k] * s[j * cap + k];
+                }
+                if j < i {
+                    s[i * cap + j] = sum / s[j * cap + j];
+                } else if sum > 0.0 {
+                    self.pivot_sums[i] = sum;
+                    s[i * cap + i] = sum.sqrt();
+                } else {
+                    // A pivot sum that is not positive ends the factorisation here.
+                    self.valid = i;
+                    return false;
+                }
             }
-            let sum = self.y_sq[i] - dot(row, row);
-            // A pivot sum that is not positive ends the factorisation here.
-            if !(sum > 0.0) {
-                self.valid = i;
-                return false;
-            }
-            self.pivot_sums[i] = sum;
-            let d = sum.sqrt();
-            rest[i] = d;
-            self.s_inv[i] = 1.0 / d;
             self.valid = i + 1;
         }
         let tol = PIVOT_TOL * smax;
@@ -230,11 +223,12 @@ impl SchurKkt {
         let rows = || self.y[..m * n].chunks_exact(n.max(1));
         // S y = M M' y = Y u - r2.
         for (row, v) in rows().zip(y.iter_mut()) {
-            *v = dot(row, u) - *v;
+            let yu: f64 = row.iter().zip(u).map(|(a, b)| a * b).sum();
+            *v = yu - *v;
         }
-        let (s, inv) = (&self.s[..m * cap], &self.s_inv[..m]);
-        forward(s, inv, cap, y);
-        backward(s, inv, cap, y);
+        let s = &self.s[..m * cap];
+        forward(s, cap, y);
+        backward(s, cap, y);
         // x = L^-T (u - Y'y).
         let x = &mut x[..n];
         x.copy_from_slice(u);
@@ -258,15 +252,9 @@ impl SchurKkt {
     }
 }
 
-/// Cholesky factor (lower, row-major n x n) of the symmetric matrix `a(i, j)` into `l`, the
-/// reciprocals of its diagonal into `inv`; false if a pivot is at or below `tol` (or NaN).
-fn cholesky(
-    l: &mut [f64],
-    inv: &mut [f64],
-    n: usize,
-    a: &impl Fn(usize, usize) -> f64,
-    tol: f64,
-) -> bool {
+/// Cholesky factor (lower, row-major n x n) of the symmetric matrix `a(i, j)` into `l`; false
+/// if a pivot is at or below `tol` (or NaN).
+fn cholesky(l: &mut [f64], n: usize, a: &impl Fn(usize, usize) -> f64, tol: f64) -> bool {
     for i in 0..n {
         for j in 0..=i {
             let mut sum = a(i, j);
@@ -277,51 +265,52 @@ fn cholesky(
                 if !(sum > tol) {
                     return false;
                 }
-                let d = sum.sqrt();
-                l[i * n + i] = d;
-                inv[i] = 1.0 / d;
+                l[i * n + i] = sum.sqrt();
             } else {
-                l[i * n + j] = sum * inv[j];
+                l[i * n + j] = sum / l[j * n + j];
             }
         }
     }
     true
 }
 
-/// Solves L v = b in place for the factor of P (`l` row-major n x n, `inv` the reciprocals of
-/// its diagonal), diagonal or not.
-fn lower_solve(l: &[f64], inv: &[f64], n: usize, diagonal: bool, b: &mut [f64]) {
+/// Solves L v = b in place for the factor `l` of P (row-major n x n), diagonal or not.
+fn lower_solve(l: &[f64], n: usize, diagonal: bool, b: &mut [f64]) {
     if diagonal {
-        for (v, d) in b.iter_mut().zip(inv) {
-            *v *= d;
+        for (i, v) in b.iter_mut().enumerate() {
+            *v /= l[i * n + i];
         }
     } else {
-        forward(l, inv, n, b);
+        forward(l, n, b);
     }
 }
 
-/// Solves L v = b in place (L lower, row-major with row stride `stride`, `inv` the reciprocals
-/// of its diagonal; the order is `b`'s length).
-fn forward(l: &[f64], inv: &[f64], stride: usize, b: &mut [f64]) {
+/// Solves L v = b in place (L lower, row-major with row stride `stride`; the order is `b`'s
+/// length): each entry by subtractions in the order of its row of L, then one division.
+fn forward(l: &[f64], stride: usize, b: &mut [f64]) {
     for i in 0..b.len() {
-        let (done, rest) = b.split_at_mut(i);
-        rest[0] = (rest[0] - dot(&l[i * stride..i * stride + i], done)) * inv[i];
-    }
-}
-
-/// Solves L' v = b in place (L as in [`forward`]), by columns of L' (rows of L).
-fn backward(l: &[f64], inv: &[f64], stride: usize, b: &mut [f64]) {
-    for i in (0..b.len()).rev() {
-        let (before, rest) = b.split_at_mut(i);
-        let v = rest[0] * inv[i];
-        rest[0] = v;
-        for (t, a) in before.iter_mut().zip(&l[i * stride..i * stride + i]) {
-            *t -= a * v;
+        let mut s = b[i];
+        for (a, v) in l[i * stride..i * stride + i].iter().zip(&b[..i]) {
+            s -= a * v;
         }
+        b[i] = s / l[i * stride + i];
     }
 }
 
-/// a'b over a's length (b at least as long).
+/// Solves L' v = b in place (L as in [`forward`]): each entry by subtractions in the order of
+/// its column of L, then one division.
+fn backward(l: &[f64], stride: usize, b: &mut [f64]) {
+    let n = b.len();
+    for i in (0..n).rev() {
+        let mut s = b[i];
+        for k in i + 1..n {
+            s -= l[k * stride + i] * b[k];
+        }
+        b[i] = s / l[i * stride + i];
+    }
+}
+
+/// a'b over a's length (b at least as long), summed from 0 in order.
 pub(crate) fn dot(a: &[f64], b: &[f64]) -> f64 {
     let b = &b[..a.len()];
     a.iter().zip(b).fold(0.0, |s, (x, y)| s + x * y)
