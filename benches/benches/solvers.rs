@@ -86,7 +86,7 @@ fn per_evaluation(c: &mut Criterion) {
 
         // The exact path of the loop: the certified active-set solver, hot-started from the
         // previous answer's working set (one KKT solve when the active set has not changed) and
-        // cold (the dual method from the unconstrained minimiser).
+        // cold (the dual method from the equality-constrained minimiser).
         let mut fast = ActiveSetSolver::new(rep.qp.dims());
         let mut out = ActiveSetSolution::zeros(rep.qp.dims());
         fast.solve_into(&rep.qp, None, &mut out)

@@ -4,11 +4,13 @@ row per category with its share of the solve's samples (the bench harness exclud
 
 Categories, by the function a sample's instruction pointer was in:
 - KKT factorisation and solves: the Schur-complement factorisation of the working set's KKT
-  matrix (Cholesky of P, Y = L^-1 C', Cholesky of S), its triangular solves and the one step of
-  iterative refinement (solvers::kkt_schur, the active set's factor_and_solve and
-  solve_refined, the LU fallback);
-- certification: the KKT residuals every answer is checked by (schemes::qp::Qp::kkt_residuals);
-- QP validation: the shapes and finiteness of the QP's data (schemes::qp::Qp::validate);
+  matrix (Cholesky of P when it changes, the rows of Y = L^-1 C' and of the Cholesky factor of
+  S), its triangular solves and the step of iterative refinement (solvers::kkt_schur, the active
+  set's begin, factor, factor_and_solve, solve_z, solve_direction and refine, the LU fallback);
+- certification: the KKT residuals every answer is checked by (ActiveSetSolver::certificate;
+  schemes::qp::Qp::kkt_residuals before revision 9ca1d83);
+- QP validation: the shapes and finiteness of the QP's data (schemes::qp::Qp::validate; with
+  certification on, since 9ca1d83, only when the answer's residuals are not finite);
 - working-set logic: loading the warm set, the primal feasibility and multiplier checks, the
   rows' right-hand sides and dot products (the rest of solvers::active_set but finish);
 - the answer: x, the multipliers and the objective written out (ActiveSetSolver::finish);
@@ -22,10 +24,11 @@ import re
 import sys
 
 CATEGORIES = [  # (category, pattern), first match wins
-    ("certification (KKT residuals)", re.compile(r"kkt_residuals")),
+    ("certification (KKT residuals)", re.compile(r"kkt_residuals|ActiveSetSolver::certificate")),
     ("QP validation", re.compile(r"Qp::validate")),
     ("KKT factorisation and solves (Schur complement, refinement)",
-     re.compile(r"kkt_schur|factor_and_solve|solve_refined|lu_factor|lu_solve")),
+     re.compile(r"kkt_schur|ActiveSetSolver::(begin|factor|refine|solve_z|solve_direction|lu_refined)"
+                r"|solve_refined|lu_factor|lu_solve")),
     ("the answer (x, multipliers, objective)", re.compile(r"ActiveSetSolver::finish")),
     ("working-set logic (warm set, feasibility and multiplier checks)",
      re.compile(r"solvers::active_set::")),

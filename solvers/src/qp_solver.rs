@@ -130,8 +130,8 @@ impl QpSolver for OsqpQp {
 }
 
 /// The dense active-set solver hot-started from the previous solve's optimal working set,
-/// without its KKT certification (which allocates; a control loop scores every tick against
-/// the certified reference instead); when the hot start fails it is cold-started, and when that
+/// without its KKT certification (a control loop scores every tick against the certified
+/// reference instead); when the hot start fails it is cold-started, and when that
 /// fails too (MVN's QP, whose p has no weight, has a singular KKT matrix) Clarabel answers and
 /// the next solve starts cold. Solving does not allocate while the active set answers.
 #[derive(Clone, Debug)]

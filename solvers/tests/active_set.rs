@@ -1,6 +1,7 @@
 //! The dense active-set solver against Clarabel: cold and hot-started on random QPs of every
 //! paper's shape, along slowly varying sequences, on inconsistent warm sets and on infeasible
-//! QPs.
+//! QPs; equality-only QPs, the rows a cold start adds, degenerate vertices, a P that changes
+//! along a sequence or is singular (the LU factorisation), and malformed data.
 
 use nalgebra::{DMatrix, DVector};
 use rand::Rng;
@@ -8,8 +9,8 @@ use solvers::active_set::DEFAULT_CERT_TOL;
 use solvers::random_qp::rng_from_seed;
 use solvers::{
     random_feasible, random_qp, solve_equality_kkt, ActiveSetError, ActiveSetSolution,
-    ActiveSetSolver, ActiveSetStart, Constraint, ExactError, ExactSolution, ExactSolver, Qp,
-    QpDims, QpShape, WorkingSet,
+    ActiveSetSolver, ActiveSetStart, Constraint, ExactError, ExactSolution, ExactSolver,
+    ExactStatus, Qp, QpDims, QpShape, WorkingSet,
 };
 
 /// Random QPs per paper shape (4 shapes: 10,000 QPs), each solved cold, warm from its own
@@ -90,9 +91,23 @@ impl Stats {
         self.n += 1;
         assert!(sol.certified, "{what}: not certified");
         let kkt = sol.kkt.expect("certified answers carry their residuals");
-        assert_eq!(kkt, qp.kkt_residuals(&sol.x, &sol.duals), "{what}");
         let scale = 1.0 + qp.q.amax().max(qp.b.amax());
-        assert!(kkt.max() <= DEFAULT_CERT_TOL * scale, "{what}: {kkt:?}");
+        // The solver computes the residuals itself (summing in another order): they are
+        // those of its answer to rounding, and the answer meets the tolerance.
+        let recomputed = qp.kkt_residuals(&sol.x, &sol.duals);
+        let pairs = [
+            (kkt.primal, recomputed.primal),
+            (kkt.dual, recomputed.dual),
+            (kkt.complementarity, recomputed.complementarity),
+        ];
+        assert!(
+            pairs.iter().all(|(a, b)| (a - b).abs() <= 1e-12 * scale),
+            "{what}: residuals {kkt:?}, recomputed {recomputed:?}"
+        );
+        assert!(
+            recomputed.max() <= DEFAULT_CERT_TOL * scale,
+            "{what}: {recomputed:?}"
+        );
         let mut dx = (&sol.x - &exact.x).amax() / exact.x.amax().max(1.0);
         if dx > AGREE_TOL {
             // Clarabel stops on a complementarity product: where a bound is nearly degenerate
@@ -510,4 +525,287 @@ fn solve_into_matches_solve_and_reuses_its_output() {
         assert_eq!(out, again, "{shape:?} seed {seed}");
         prev.clone_from(&out.working_set);
     }
+}
+
+/// A QP with P = I (n x n), q, the equalities `a` x = `b` (rows of `a`), the inequalities
+/// `g` x <= `h` and no bounds.
+fn small_qp(q: &[f64], a: &[&[f64]], b: &[f64], g: &[&[f64]], h: &[f64]) -> Qp {
+    let nx = q.len();
+    let mut qp = Qp::zeros(QpDims {
+        nx,
+        n_eq: a.len(),
+        n_in: g.len(),
+    });
+    qp.p = DMatrix::identity(nx, nx);
+    qp.q.copy_from_slice(q);
+    for (r, row) in a.iter().enumerate() {
+        qp.a.row_mut(r).copy_from_slice(row);
+    }
+    qp.b.copy_from_slice(b);
+    for (r, row) in g.iter().enumerate() {
+        qp.g.row_mut(r).copy_from_slice(row);
+    }
+    qp.h.copy_from_slice(h);
+    qp
+}
+
+#[test]
+fn equality_only_qps_take_one_kkt_solve_cold_and_warm() {
+    // Both equality-only shapes (kong2019: P = I; zhang2018: a dense P) and general sizes with
+    // no inequality and no bound: the answer is the KKT solution of A alone, cold or warm.
+    let mut solver = ActiveSetSolver::new(MAX_DIMS);
+    let mut exact = ExactSolver::new();
+    let mut qps: Vec<(String, Qp)> = Vec::new();
+    for seed in 0..300 {
+        for shape in [QpShape::Kong2019, QpShape::Zhang2018] {
+            qps.push((format!("{shape:?} seed {seed}"), random_qp(shape, seed)));
+        }
+        let nx = 1 + (seed % 9) as usize;
+        let dims = QpDims {
+            nx,
+            n_eq: (seed % 4) as usize % (nx + 1),
+            n_in: 0,
+        };
+        let mut qp = random_feasible(dims, seed);
+        qp.lower.fill(f64::NEG_INFINITY);
+        qp.upper.fill(f64::INFINITY);
+        qps.push((format!("random_feasible {dims:?} seed {seed}"), qp));
+    }
+    let mut stats = Stats::default();
+    for (what, qp) in &qps {
+        let reference = solve_exact(&mut exact, qp, what);
+        for warm in [None, Some(&WorkingSet::new())] {
+            let sol = solver
+                .solve(qp, warm)
+                .unwrap_or_else(|e| panic!("{what}: {e}"));
+            let start = if warm.is_some() {
+                ActiveSetStart::Warm
+            } else {
+                ActiveSetStart::Cold
+            };
+            assert_eq!(sol.start, start, "{what}");
+            assert_eq!((sol.kkt_solves, sol.iterations), (1, 0), "{what}");
+            assert!(sol.working_set.is_empty(), "{what}");
+            stats.record(what, qp, &sol, &reference);
+        }
+    }
+    eprintln!(
+        "{} equality-only solves: max |dx| {:.1e}, |dobj| {:.1e}, KKT {:.1e}",
+        stats.n, stats.x, stats.objective, stats.kkt
+    );
+}
+
+#[test]
+fn dependent_equalities_are_refused_cold_and_warm() {
+    // x0 + x1 + x2 = 1 twice (consistent) or = 1 and = 2 (inconsistent): the KKT matrix is
+    // singular either way; no answer, whatever the start.
+    let mut solver = ActiveSetSolver::new(MAX_DIMS);
+    let row: &[f64] = &[1.0, 1.0, 1.0];
+    for b in [[1.0, 1.0], [1.0, 2.0]] {
+        let qp = small_qp(&[0.5, -1.0, 0.0], &[row, row], &b, &[], &[]);
+        for warm in [None, Some(&WorkingSet::new())] {
+            assert_eq!(
+                solver.solve(&qp, warm),
+                Err(ActiveSetError::Singular),
+                "b = {b:?}"
+            );
+        }
+    }
+    let qp = small_qp(&[0.5, -1.0, 0.0], &[row, row], &[1.0, 2.0], &[], &[]);
+    assert!(matches!(
+        ExactSolver::new().solve(&qp),
+        Err(ExactError::PrimalInfeasible(_))
+    ));
+}
+
+#[test]
+fn the_cold_start_adds_only_the_rows_the_equality_minimiser_violates() {
+    // min |x|^2/2 s.t. x0 + x1 + x2 = 1: the equality-constrained minimiser is (1/3, 1/3, 1/3).
+    let mut solver = ActiveSetSolver::new(MAX_DIMS);
+    let mut exact = ExactSolver::new();
+    let ones: &[f64] = &[1.0, 1.0, 1.0];
+    let (e0, e1): (&[f64], &[f64]) = (&[1.0, 0.0, 0.0], &[0.0, 1.0, 0.0]);
+    // x0 <= 0.5 and x1 <= 10 hold there: no row enters, one KKT solve.
+    let qp = small_qp(&[0.0; 3], &[ones], &[1.0], &[e0, e1], &[0.5, 10.0]);
+    let sol = solver.solve(&qp, None).unwrap();
+    assert_eq!((sol.kkt_solves, sol.iterations), (1, 0));
+    assert!(sol.working_set.is_empty());
+    for v in sol.x.iter() {
+        assert!((v - 1.0 / 3.0).abs() < 1e-15, "{}", sol.x);
+    }
+    Stats::default().record(
+        "feasible",
+        &qp,
+        &sol,
+        &solve_exact(&mut exact, &qp, "feasible"),
+    );
+    // x0 <= 0.2 is violated and binds: it alone enters (one dual step, two factorisations);
+    // x1 <= 10 never does. The optimum is (0.2, 0.4, 0.4).
+    let qp = small_qp(&[0.0; 3], &[ones], &[1.0], &[e0, e1], &[0.2, 10.0]);
+    let sol = solver.solve(&qp, None).unwrap();
+    assert_eq!((sol.kkt_solves, sol.iterations), (2, 1));
+    assert_eq!(sol.working_set.as_slice(), [Constraint::Inequality(0)]);
+    for (v, want) in sol.x.iter().zip([0.2, 0.4, 0.4]) {
+        assert!((v - want).abs() < 1e-15, "{}", sol.x);
+    }
+    Stats::default().record(
+        "one row",
+        &qp,
+        &sol,
+        &solve_exact(&mut exact, &qp, "one row"),
+    );
+}
+
+#[test]
+fn degenerate_and_duplicate_rows_agree_with_clarabel() {
+    // min |x - (2, 2)|^2/2 with x0 <= 1, x1 <= 1, x0 + x1 <= 2 and x0 <= 1 again: four rows
+    // through the optimum (1, 1), any two of the first three independent. Cold and from every
+    // warm set of one or two rows, the answer is (1, 1) with nonnegative multipliers.
+    let mut solver = ActiveSetSolver::new(MAX_DIMS);
+    let mut exact = ExactSolver::new();
+    let rows: [&[f64]; 4] = [&[1.0, 0.0], &[0.0, 1.0], &[1.0, 1.0], &[1.0, 0.0]];
+    let qp = small_qp(&[-2.0, -2.0], &[], &[], &rows, &[1.0, 1.0, 2.0, 1.0]);
+    let reference = solve_exact(&mut exact, &qp, "degenerate");
+    let mut warm_sets: Vec<WorkingSet> = vec![WorkingSet::new()];
+    for i in 0..4 {
+        warm_sets.push([Constraint::Inequality(i)].into_iter().collect());
+        for j in i + 1..4 {
+            warm_sets.push(
+                [Constraint::Inequality(i), Constraint::Inequality(j)]
+                    .into_iter()
+                    .collect(),
+            );
+        }
+    }
+    let starts = std::iter::once(None).chain(warm_sets.iter().map(Some));
+    for warm in starts {
+        let what = format!("degenerate, warm {warm:?}");
+        let sol = solver
+            .solve(&qp, warm)
+            .unwrap_or_else(|e| panic!("{what}: {e}"));
+        for v in sol.x.iter() {
+            assert!((v - 1.0).abs() < 1e-14, "{what}: {}", sol.x);
+        }
+        Stats::default().record(&what, &qp, &sol, &reference_or_polished(&qp, &reference));
+    }
+}
+
+/// Clarabel's answer with its x replaced by the KKT solution on the rows it finds active
+/// ([`polish`]) when that is feasible: at a degenerate vertex the multipliers are not unique,
+/// and Clarabel's interior point stops ~1e-8 inside.
+fn reference_or_polished(qp: &Qp, reference: &ExactSolution) -> ExactSolution {
+    let mut r = reference.clone();
+    if let Some(x) = polish(qp, &reference.x).filter(|x| qp.constraint_violation(x) <= 1e-12) {
+        r.objective = qp.objective(&x);
+        r.x = x;
+    }
+    r
+}
+
+#[test]
+fn an_unchanged_p_keeps_its_factor_and_a_changed_one_is_refactorised() {
+    // One solver along a sequence whose P changes (dense, diagonal, dense again) and stays put
+    // in between, against a fresh solver for every QP: the same answers, bit for bit.
+    let mut kept = ActiveSetSolver::new(MAX_DIMS);
+    let mut prev: Option<WorkingSet> = None;
+    for seed in 0..60u64 {
+        let shape =
+            [QpShape::Zhang2018, QpShape::Jia2019, QpShape::Zhong2021][(seed / 5 % 3) as usize];
+        let mut qp = random_qp(shape, seed / 5);
+        qp.q[0] += 1e-3 * (seed % 5) as f64;
+        let warm = prev.as_ref().filter(|w| {
+            w.iter().all(|c| match c {
+                Constraint::Inequality(i) => i < qp.h.len(),
+                _ => true,
+            })
+        });
+        let got = kept.solve(&qp, warm).unwrap();
+        let fresh = ActiveSetSolver::new(qp.dims()).solve(&qp, warm).unwrap();
+        assert_eq!(got, fresh, "{shape:?} seed {seed}");
+        prev = Some(got.working_set);
+    }
+}
+
+#[test]
+fn invalid_entries_are_refused_with_the_validation_error() {
+    // Every field that must be finite (or one-sided), spoilt in turn, certified or not, cold or
+    // warm: the error is InvalidData with what Qp::validate says.
+    let base = random_qp(QpShape::Jia2019, 11);
+    let ws = ActiveSetSolver::new(base.dims())
+        .solve(&base, None)
+        .unwrap()
+        .working_set;
+    type Spoil = fn(&mut Qp);
+    let spoils: [(&str, Spoil); 12] = [
+        ("P NaN", |qp| qp.p[(1, 2)] = f64::NAN),
+        ("P inf", |qp| qp.p[(3, 3)] = f64::INFINITY),
+        ("q NaN", |qp| qp.q[2] = f64::NAN),
+        ("q inf", |qp| qp.q[0] = f64::NEG_INFINITY),
+        ("A inf", |qp| qp.a[(1, 4)] = f64::INFINITY),
+        ("A NaN, zero column", |qp| qp.a[(0, 6)] = f64::NAN),
+        ("b NaN", |qp| qp.b[2] = f64::NAN),
+        ("G inf", |qp| qp.g[(5, 0)] = f64::INFINITY),
+        ("h NaN", |qp| qp.h[7] = f64::NAN),
+        ("h -inf", |qp| qp.h[1] = f64::NEG_INFINITY),
+        ("lower +inf", |qp| qp.lower[2] = f64::INFINITY),
+        ("upper NaN", |qp| qp.upper[4] = f64::NAN),
+    ];
+    for (what, spoil) in spoils {
+        let mut qp = base.clone();
+        spoil(&mut qp);
+        let want = ActiveSetError::InvalidData(qp.validate().expect_err(what));
+        for certify in [true, false] {
+            let mut solver = ActiveSetSolver::new(qp.dims()).with_certification(certify);
+            // The valid QP first, so that P's factor is kept from it when P is unchanged.
+            solver.solve(&base, None).unwrap();
+            for warm in [None, Some(&ws)] {
+                assert_eq!(
+                    solver.solve(&qp, warm).as_ref().err(),
+                    Some(&want),
+                    "{what}, certify {certify}, warm {}",
+                    warm.is_some()
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn a_singular_p_goes_through_the_lu_factorisation() {
+    // P with a zero last row and column, the last variable tied to the others by an equality:
+    // P is not positive definite (no Schur complement) but every KKT matrix is nonsingular.
+    // Cold and warm, the answers agree with Clarabel.
+    let mut solver = ActiveSetSolver::new(MAX_DIMS);
+    let mut exact = ExactSolver::new();
+    let mut stats = [Stats::default(), Stats::default(), Stats::default()];
+    let mut previous: Option<WorkingSet> = None;
+    for seed in 0..300 {
+        let dims = QpDims {
+            nx: 4,
+            n_eq: 1,
+            n_in: 3,
+        };
+        let mut qp = random_feasible(dims, seed);
+        for i in 0..4 {
+            qp.p[(3, i)] = 0.0;
+            qp.p[(i, 3)] = 0.0;
+        }
+        qp.a[(0, 3)] = 1.0;
+        qp.b[0] = 0.5;
+        qp.lower[3] = -10.0;
+        qp.upper[3] = 10.0;
+        if !matches!(exact.solve(&qp), Ok(ref s) if s.status == ExactStatus::Solved) {
+            continue;
+        }
+        previous = Some(check_qp(
+            &mut solver,
+            &exact,
+            &qp,
+            previous.as_ref(),
+            &format!("singular P seed {seed}"),
+            &mut stats,
+        ));
+    }
+    report("singular P", &stats);
+    assert!(stats[0].n > 200, "{}", stats[0].n);
 }

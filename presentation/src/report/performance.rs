@@ -535,7 +535,9 @@ fn hot_solve_profile(hot: &[HotSolveRow], ratio: f64, network: &str) -> String {
 
 /// `### The exact reference per tick against DAQP` (`results/qp-replay.csv`,
 /// [`records::qp_replay`]): per task, the suite's active set and DAQP, warm and cold, on the
-/// same recorded QPs, and how far their answers are apart. Every text read is escaped.
+/// same recorded QPs, and how far their answers are apart; then the target's verdict from the
+/// ratios, with the certification's share of the profiled hot solve when it is not met. Every
+/// text read is escaped.
 fn replay_table(rows: &[QpReplayRow], hot: &[HotSolveRow]) -> String {
     let mut out = String::from("### The exact reference per tick against DAQP\n\n");
     let Some(first) = rows.first() else {
@@ -614,8 +616,11 @@ fn replay_table(rows: &[QpReplayRow], hot: &[HotSolveRow]) -> String {
     };
     if let (Some((wl, wh)), Some((cl, ch))) = (span("warm"), span("cold")) {
         let met = wh <= 1.0 && ch <= 1.0;
-        let certification =
-            records::profile_active_set::certification_share(hot).map_or(String::new(), |c| {
+        // A gap is explained by the certification's share of the profiled hot solve; a met
+        // target needs no explanation.
+        let certification = records::profile_active_set::certification_share(hot)
+            .filter(|_| !met)
+            .map_or(String::new(), |c| {
                 format!(
                     " The sampling profile of the hot solve (`results/{}`) gives the \
                      certification {:.1} % of it.",
@@ -1202,6 +1207,46 @@ mod tests {
         let (measured, clock) = md.split_once("### The newcomer's clock").unwrap();
         assert!(!measured.contains("is absent"), "{md}");
         assert!(clock.contains("`results/phases.csv` is absent"), "{md}");
+    }
+
+    #[test]
+    fn a_met_replay_target_is_said_without_the_profile() {
+        // The suite at 0.5 and 0.8 of DAQP's time: met, and no gap for the profile to explain.
+        let rows: Vec<QpReplayRow> = [
+            (SUITE, "warm", 0.5),
+            (SUITE, "cold", 0.8),
+            ("daqp 9", "warm", 1.0),
+            ("daqp 9", "cold", 1.0),
+        ]
+        .into_iter()
+        .map(|(solver, start, mean_us)| QpReplayRow {
+            task: "t / v".into(),
+            nx: 5,
+            n_eq: 3,
+            n_in: 0,
+            n_bounds: 0,
+            qps: 2000,
+            repeats: 20,
+            solver: solver.into(),
+            start: start.into(),
+            mean_us,
+            p95_us: mean_us,
+            max_dx_vs_other: 1e-16,
+            git_rev: "abc".into(),
+        })
+        .collect();
+        let hot_csv = "category,share,bench,seconds,frequency_hz,git_rev\n\
+                       certification (KKT residuals),0.25,demo/hot,8,4999,abc\n";
+        let hot: Vec<HotSolveRow> = records::table::from_reader(hot_csv.as_bytes()).unwrap();
+        let md = replay_table(&rows, &hot);
+        assert!(
+            md.contains(
+                "is met: the suite takes 0.50-0.50 times DAQP's time warm and 0.80-0.80 times \
+                 cold.\n"
+            ),
+            "{md}"
+        );
+        assert!(!md.contains("sampling profile"), "{md}");
     }
 
     #[test]
