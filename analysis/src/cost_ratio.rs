@@ -11,12 +11,14 @@ use records::index::{completed, Runs};
 /// S-LVI-PDNN's compute time over the mean VP-RNN-PF compute time, ours and the paper's.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Slowdown {
+    /// Ours, in simulation seconds (varies with the machine).
     pub ours: Option<f64>,
+    /// The paper's, in its MATLAB seconds.
     pub paper: Option<f64>,
 }
 
 /// The network kind of solver id `solver` in `experiment` (its first run's `solver_kind`).
-pub fn kind_of(runs: &Runs, experiment: &str, solver: &str) -> Option<NetworkKind> {
+fn kind_of(runs: &Runs, experiment: &str, solver: &str) -> Option<NetworkKind> {
     runs.of_experiment(experiment)
         .find(|r| r.solver_id == solver)
         .and_then(|r| r.solver_kind.network())
@@ -33,7 +35,7 @@ fn s_over_vp_mean(of: &[(Option<NetworkKind>, f64)]) -> Option<f64> {
 }
 
 /// The mean quantity of the VP-RNN-PF variants among (network kind, quantity) pairs.
-pub fn vp_mean(of: &[(Option<NetworkKind>, f64)]) -> Option<f64> {
+fn vp_mean(of: &[(Option<NetworkKind>, f64)]) -> Option<f64> {
     let vp: Vec<f64> = of
         .iter()
         .filter(|(k, _)| *k == Some(NetworkKind::VpRnnPf))

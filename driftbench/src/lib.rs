@@ -161,7 +161,7 @@ pub enum Error {
     UnknownRun {
         /// The experiment id asked for.
         experiment: String,
-        /// The variant (label or id) asked for.
+        /// The variant id asked for.
         variant: String,
         /// The solver id asked for.
         solver: String,
@@ -184,14 +184,14 @@ pub fn jobs(root: &Path) -> Result<Vec<Job>, Error> {
     Ok(files.iter().flat_map(PaperFile::jobs).collect())
 }
 
-/// The run of the experiment files keyed (experiment id, variant label or id, solver id);
-/// the error lists the experiment's runs.
+/// The run of the experiment files keyed (experiment id, variant id, solver id), its
+/// [`RunKey`](catalog::run_key::RunKey); the error lists the experiment's runs by their ids.
 pub fn job(root: &Path, experiment: &str, variant: &str, solver: &str) -> Result<Job, Error> {
     let all = jobs(root)?;
     let of_experiment: Vec<&Job> = all.iter().filter(|j| j.experiment == experiment).collect();
     of_experiment
         .iter()
-        .find(|j| (j.variant == variant || j.variant_id == variant) && j.solver.id() == solver)
+        .find(|j| j.variant_id == variant && j.solver.id() == solver)
         .map(|j| (*j).clone())
         .ok_or_else(|| Error::UnknownRun {
             experiment: experiment.to_string(),
@@ -233,4 +233,19 @@ pub mod prelude {
     pub use simulation::simulate::{Outcome, Run};
     pub use solvers::neural::NeuralSolver;
     pub use solvers::qp_solver::QpSolver;
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn an_unknown_run_is_an_error_listing_the_experiments_runs() {
+        let root = crate::project_root().expect("the tests run inside the project");
+        let err = crate::job(&root, "kong2019-circle", "ZNN (eq. 22)", "znn")
+            .expect_err("a variant is named by its id, not its label");
+        let text = err.to_string();
+        assert!(text.contains("znn-eq22 / znn"), "{text}");
+        assert!(crate::job(&root, "kong2019-circle", "znn-eq22", "znn").is_ok());
+        let none = crate::job(&root, "no-such-experiment", "v", "s").unwrap_err();
+        assert!(matches!(none, crate::Error::UnknownRun { ref known, .. } if known.is_empty()));
+    }
 }
