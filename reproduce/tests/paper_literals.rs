@@ -21,7 +21,7 @@
 
 mod common;
 
-use common::{members, repo_root, rust_files};
+use common::{library_files, repo_root};
 use std::collections::BTreeSet;
 use std::path::Path;
 
@@ -253,16 +253,7 @@ fn the_names_come_from_the_data() {
 fn library_code_names_no_paper_experiment_or_variant() {
     let root = repo_root();
     let names = names(&root);
-    let mut files = Vec::new();
-    for member in members(&root) {
-        rust_files(&root, &Path::new(&member).join("src"), &mut files);
-    }
-    assert!(
-        files.iter().any(|f| f == "reproduce/src/main.rs"),
-        "the crates' sources were not found under {}",
-        root.display()
-    );
-    files.sort();
+    let files = library_files(&root, "reproduce/src/main.rs");
     let mut sites = Vec::new();
     for f in files.iter().filter(|f| !EXEMPT.iter().any(|(e, _)| e == f)) {
         let text = std::fs::read_to_string(root.join(f)).expect("a readable source file");

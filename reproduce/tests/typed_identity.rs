@@ -9,8 +9,7 @@
 
 mod common;
 
-use common::{members, repo_root, rust_files};
-use std::path::Path;
+use common::{library_files, repo_root};
 
 /// (spelling, why it is refused).
 const FORBIDDEN: &[(&str, &str)] = &[
@@ -109,16 +108,7 @@ fn the_finder_sees_label_and_string_status_comparisons() {
 #[test]
 fn library_code_compares_no_labels_or_string_statuses() {
     let root = repo_root();
-    let mut files = Vec::new();
-    for krate in members(&root) {
-        rust_files(&root, &Path::new(&krate).join("src"), &mut files);
-    }
-    assert!(
-        files.iter().any(|f| f == "records/src/runs.rs"),
-        "the crates' sources were not found under {}",
-        root.display()
-    );
-    files.sort();
+    let files = library_files(&root, "records/src/runs.rs");
     let sites: Vec<String> = files
         .iter()
         .flat_map(|f| {

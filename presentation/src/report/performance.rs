@@ -1023,6 +1023,33 @@ fn matlab(runs: &Runs, timings: &Timings, papers: &Papers) -> String {
 mod tests {
     use super::*;
 
+    /// Replay rows of one task of QP sizes `[nx, n_eq, n_in, n_bounds]`: one per (solver,
+    /// start, mean microseconds), the p95 equal to the mean, the answers `max_dx` apart.
+    fn replay_rows(
+        times: &[(&str, &str, f64)],
+        [nx, n_eq, n_in, n_bounds]: [usize; 4],
+        max_dx: f64,
+    ) -> Vec<QpReplayRow> {
+        times
+            .iter()
+            .map(|&(solver, start, mean_us)| QpReplayRow {
+                task: "t / v".into(),
+                nx,
+                n_eq,
+                n_in,
+                n_bounds,
+                qps: 2000,
+                repeats: 20,
+                solver: solver.into(),
+                start: start.into(),
+                mean_us,
+                p95_us: mean_us,
+                max_dx_vs_other: max_dx,
+                git_rev: "abc".into(),
+            })
+            .collect()
+    }
+
     /// A synthetic dof-cost.csv: jia2019 at N = 3, 6, 12 with cost = N^2 us (network RHS) and
     /// 3 N^2 (active set), plus the fits.
     fn synthetic() -> Vec<DofCostRow> {
@@ -1081,29 +1108,16 @@ mod tests {
                        KKT solves,0.75,demo/hot,8,4999,abc\n\
                        certification (KKT residuals),0.25,demo/hot,8,4999,abc\n";
         let hot: Vec<HotSolveRow> = records::table::from_reader(hot_csv.as_bytes()).unwrap();
-        let replay: Vec<QpReplayRow> = [
-            (SUITE, "warm", 1.5),
-            (SUITE, "cold", 3.0),
-            ("daqp 9", "warm", 1.0),
-            ("daqp 9", "cold", 1.5),
-        ]
-        .into_iter()
-        .map(|(solver, start, mean_us)| QpReplayRow {
-            task: "t / v".into(),
-            nx: 7,
-            n_eq: 3,
-            n_in: 12,
-            n_bounds: 13,
-            qps: 2000,
-            repeats: 20,
-            solver: solver.into(),
-            start: start.into(),
-            mean_us,
-            p95_us: mean_us,
-            max_dx_vs_other: 1e-15,
-            git_rev: "abc".into(),
-        })
-        .collect();
+        let replay = replay_rows(
+            &[
+                (SUITE, "warm", 1.5),
+                (SUITE, "cold", 3.0),
+                ("daqp 9", "warm", 1.0),
+                ("daqp 9", "cold", 1.5),
+            ],
+            [7, 3, 12, 13],
+            1e-15,
+        );
         let md = section(
             &Measurements {
                 dof: &dof,
@@ -1212,29 +1226,16 @@ mod tests {
     #[test]
     fn a_met_replay_target_is_said_without_the_profile() {
         // The suite at 0.5 and 0.8 of DAQP's time: met, and no gap for the profile to explain.
-        let rows: Vec<QpReplayRow> = [
-            (SUITE, "warm", 0.5),
-            (SUITE, "cold", 0.8),
-            ("daqp 9", "warm", 1.0),
-            ("daqp 9", "cold", 1.0),
-        ]
-        .into_iter()
-        .map(|(solver, start, mean_us)| QpReplayRow {
-            task: "t / v".into(),
-            nx: 5,
-            n_eq: 3,
-            n_in: 0,
-            n_bounds: 0,
-            qps: 2000,
-            repeats: 20,
-            solver: solver.into(),
-            start: start.into(),
-            mean_us,
-            p95_us: mean_us,
-            max_dx_vs_other: 1e-16,
-            git_rev: "abc".into(),
-        })
-        .collect();
+        let rows = replay_rows(
+            &[
+                (SUITE, "warm", 0.5),
+                (SUITE, "cold", 0.8),
+                ("daqp 9", "warm", 1.0),
+                ("daqp 9", "cold", 1.0),
+            ],
+            [5, 3, 0, 0],
+            1e-16,
+        );
         let hot_csv = "category,share,bench,seconds,frequency_hz,git_rev\n\
                        certification (KKT residuals),0.25,demo/hot,8,4999,abc\n";
         let hot: Vec<HotSolveRow> = records::table::from_reader(hot_csv.as_bytes()).unwrap();

@@ -160,6 +160,23 @@ pub fn members(root: &Path) -> Vec<String> {
         .collect()
 }
 
+/// Every `.rs` file under the `src/` of every workspace member, sorted, as paths relative to
+/// `root`; `expected` (one such path) must be among them, so a scan that finds no sources
+/// fails instead of passing on nothing.
+pub fn library_files(root: &Path, expected: &str) -> Vec<String> {
+    let mut files = Vec::new();
+    for member in members(root) {
+        rust_files(root, &Path::new(&member).join("src"), &mut files);
+    }
+    assert!(
+        files.iter().any(|f| f == expected),
+        "the crates' sources were not found under {}",
+        root.display()
+    );
+    files.sort();
+    files
+}
+
 /// Rows without what differs between two runs of the same binary: the timing columns.
 pub fn comparable(mut rows: Vec<RunRow>) -> Vec<String> {
     for r in &mut rows {
