@@ -22,13 +22,13 @@
 
 use catalog::experiment::Scoring;
 use catalog::experiment::{default_exact_integrator, NetworkInit};
-use catalog::integrator::IntegratorSettings;
-use catalog::solver_spec::SolverSpec;
 use nalgebra::{DMatrix, DVector};
 use robots::{Jaco2, Robot};
 use schemes::paths::{build_path, PathSpec};
 use schemes::qp::{Qp, QpDims};
 use schemes::tri_criteria::TriCriteria;
+use settings::integrator::IntegratorSettings;
+use settings::solver_spec::SolverSpec;
 use simulation::run::build_network;
 use simulation::simulate::{simulate, Outcome, Settings, Solver};
 use solvers::neural::NeuralSolver;

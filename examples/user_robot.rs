@@ -20,12 +20,12 @@
 
 use catalog::experiment::Scoring;
 use catalog::experiment::{default_exact_integrator, NetworkInit};
-use catalog::integrator::IntegratorSettings;
-use catalog::solver_spec::SolverSpec;
 use nalgebra::{SMatrix, SVector, Vector3};
 use robots::{JointLimits, Robot};
 use schemes::paths::{build_path, PathSpec};
 use schemes::velocity_rmp::VelocityRmp;
+use settings::integrator::IntegratorSettings;
+use settings::solver_spec::SolverSpec;
 use simulation::run::build_network;
 use simulation::simulate::{simulate, Outcome, Settings, Solver};
 use std::sync::Arc;

@@ -5,8 +5,8 @@
 //! machine (the claim is decided by them: [`evaluation_ratio`]).
 
 use crate::papers::Papers;
-use catalog::network_kind::NetworkKind;
 use records::index::{completed, Runs};
+use settings::network_kind::NetworkKind;
 
 /// S-LVI-PDNN's compute time over the mean VP-RNN-PF compute time, ours and the paper's.
 #[derive(Clone, Copy, Debug, PartialEq)]

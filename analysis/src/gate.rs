@@ -157,7 +157,7 @@ mod tests {
             "e",
             "v",
             "s",
-            catalog::solver_kind::SolverKind::Network(catalog::network_kind::NetworkKind::Znn),
+            catalog::solver_kind::SolverKind::Network(settings::network_kind::NetworkKind::Znn),
         );
         row.final_pos_err = Some(1e-5);
         row.score_rms_dx = Some(2e-4);
@@ -186,7 +186,7 @@ mod tests {
             "e",
             "v",
             "s",
-            catalog::solver_kind::SolverKind::Network(catalog::network_kind::NetworkKind::Znn),
+            catalog::solver_kind::SolverKind::Network(settings::network_kind::NetworkKind::Znn),
         );
         row.steps = 200;
         row.rhs_evals = 300;

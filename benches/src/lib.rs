@@ -24,13 +24,13 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use catalog::experiment::{load_dir, Job, SolverChoice};
-use catalog::solver_spec::SolverSpec;
 use criterion::Criterion;
 use nalgebra::{DVector, SVector};
 use robots::{Dynamics, Jaco2, Katana6m180, Robot};
 use schemes::paths::{build_path, Path};
 use schemes::scheme::Scheme;
 use schemes::spec::build_scheme;
+use settings::solver_spec::SolverSpec;
 use solvers::neural::NeuralSolver;
 use solvers::{random_qp, ExactSolver, Qp, QpShape};
 

@@ -12,15 +12,15 @@
 use crate::error::{
     ExperimentError, ExperimentFileError, FieldAt, FieldError, SetupError, TomlError,
 };
-use crate::integrator::{IntegratorSettings, Method};
 use crate::naming::{slug, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
 use crate::numerical_spec::NumericalSpec;
 use crate::run_key::{RunKey, TaskKey, EXACT_ID};
 use crate::solver_kind::SolverKind;
-use crate::solver_spec::SolverSpec;
 use schemes::paths::PathSpec;
 use schemes::spec::SchemeSpec;
 use serde::{Deserialize, Serialize};
+use settings::integrator::{IntegratorSettings, Method};
+use settings::solver_spec::SolverSpec;
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 

@@ -2,14 +2,15 @@
 //!
 //! An experiment file ([`experiment`]) describes runs ([`experiment::Job`]): a robot from the
 //! registry (`robots::registry`), a path and a scheme (crate `schemes`), a solver (the exact
-//! optimum in the loop, or a network as [`solver_spec`] writes it; its kind is a
-//! [`solver_kind::SolverKind`]), an integrator
-//! ([`integrator`]) and where the run is scored. A variant may stand for many through a `sweep`
+//! optimum in the loop, a numerical method ([`numerical_spec`]) or a network as
+//! `settings::solver_spec` writes it; its kind is a [`solver_kind::SolverKind`]), an integrator
+//! (`settings::integrator`) and where the run is scored. A variant may stand for many through a `sweep`
 //! table ([`sweep`], expanded at the TOML level). Every run is identified by ids, not labels
 //! ([`run_key`]), and every id or label that becomes a file name obeys [`naming`]. The errors of
 //! all of it are in [`error`]. [`root`] finds the project (the directory of `experiments/`,
-//! `results/` and `report/`) and the code revision runs are stamped with. [`linear_algebra`]
-//! holds the one dense linear algebra setting the solvers and the report share.
+//! `results/` and `report/`) and the code revision runs are stamped with. The solvers' own
+//! settings (network specifications, integrator settings) are crate `settings`', below this
+//! crate and the solvers alike: this crate reads them from files, it does not define them.
 //!
 //! Nothing here builds or runs a solver: the engine (crate `simulation`) builds the runs, and
 //! loading a file takes its check ([`experiment::CheckJob`]) to reject what a run would reject.
@@ -17,13 +18,9 @@
 
 pub mod error;
 pub mod experiment;
-pub mod integrator;
-pub mod linear_algebra;
 pub mod naming;
-pub mod network_kind;
 pub mod numerical_spec;
 pub mod root;
 pub mod run_key;
 pub mod solver_kind;
-pub mod solver_spec;
 pub mod sweep;

@@ -7,9 +7,9 @@
 //! methods ([`NumericalMethod::id`]: `94lvi`, ...), `trajectory` (a trajectory made elsewhere and
 //! scored) or `python` (a network written in Python and run through the Python package).
 
-use crate::network_kind::NetworkKind;
 use crate::numerical_spec::NumericalMethod;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use settings::network_kind::NetworkKind;
 use std::fmt;
 use std::str::FromStr;
 

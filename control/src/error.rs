@@ -3,8 +3,8 @@
 //! layer's (the result files).
 
 use catalog::error::ExperimentFileError;
-use catalog::error::NetworkError;
 use records::error::ControlFileError;
+use settings::error::NetworkError;
 use solvers::{ExactError, QpSolverError};
 
 /// Why a control run, or the whole reproduction, could not go on.

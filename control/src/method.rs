@@ -5,9 +5,9 @@
 use crate::error::ControlError;
 use crate::network_tick::{Discretisation, NetworkTick};
 use crate::numerical_tick::QpTick;
-use catalog::solver_spec::SolverSpec;
 use records::control::Family;
 use schemes::qp::{Qp, QpDims};
+use settings::solver_spec::SolverSpec;
 use solvers::lvi_numerical::{LviMethod, LviSettings, LviSolver};
 use solvers::osqp_qp::{OsqpQp, OsqpSettings};
 use solvers::{ExactSolver, HotActiveSet};

@@ -23,8 +23,8 @@
 
 use crate::error::ControlError;
 use crate::method::TickSolver;
-use catalog::solver_spec::SolverSpec;
 use schemes::qp::{Qp, QpDims};
+use settings::solver_spec::SolverSpec;
 use solvers::neural::{build_solver, NeuralSolver};
 use std::mem;
 

@@ -17,7 +17,6 @@ use crate::stability::{gain, LimitProbe};
 use crate::task::{load_tasks, standard_task_refs, with_task, Task, TaskVisitor};
 use crate::trend::classify;
 use analysis::control_claim::{decide, overall, steps_needed, ACCURACY, CHECK_TICKS};
-use catalog::solver_spec::SolverSpec;
 use nalgebra::SVector;
 use records::control::Verdict;
 use records::control::{ClaimRow, ControlRow, ControlStatus, CycleRow, StabilityRow, TrendRow};
@@ -25,6 +24,7 @@ use records::results_dir;
 use robots::Robot;
 use schemes::paths::Path;
 use schemes::scheme::Scheme;
+use settings::solver_spec::SolverSpec;
 use solvers::neural::build_solver;
 use solvers::HotActiveSet;
 

@@ -25,9 +25,9 @@
 //! limit, and the product gain x s_max is the figure of merit beside the papers' gains.
 
 use crate::control_loop::Observer;
-use catalog::solver_spec::SolverSpec;
 use nalgebra::{DMatrix, Schur};
 use schemes::qp::Qp;
+use settings::solver_spec::SolverSpec;
 use solvers::neural::NeuralSolver;
 
 /// Ticks between two states the Jacobian is evaluated at.

@@ -5,12 +5,12 @@
 
 use crate::error::ControlError;
 use catalog::experiment::{load_dir, Job, SolverChoice};
-use catalog::solver_spec::SolverSpec;
 use nalgebra::SVector;
 use robots::registry::{robot_by_name, RobotVisitor};
 use robots::{Dynamics, Robot};
 use schemes::paths::Path;
 use schemes::scheme::Scheme;
+use settings::solver_spec::SolverSpec;
 use simulation::run::check_job;
 use simulation::run::{build_cyclic_parts, job_robot};
 use std::sync::Arc;

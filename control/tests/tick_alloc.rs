@@ -6,10 +6,10 @@
 #[path = "../../solvers/tests/common/mod.rs"]
 mod common;
 
-use catalog::solver_spec::SolverSpec;
 use common::count;
 use control::method::{Method, Numerical};
 use control::network_tick::Discretisation;
+use settings::solver_spec::SolverSpec;
 use solvers::{random_qp, QpShape};
 
 fn methods() -> Vec<Method> {

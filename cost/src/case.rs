@@ -1,10 +1,10 @@
 //! What is measured: a (scheme, N) [`Case`] with its network, and a case made ready to time
 //! ([`PreparedCase`]), whichever path ([`crate::fixed`], [`crate::dynamic`]) prepared it.
 
-use catalog::solver_spec::SolverSpec;
 use records::dof_cost::{Quantity, RunCounts, SchemeKind};
 use schemes::paths::PathSpec;
 use schemes::qp::QpDims;
+use settings::solver_spec::SolverSpec;
 use solvers::Backend;
 
 /// Size a of the four-leaf clover (m): 0.1, inside the n-link arms' workspace around

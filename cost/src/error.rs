@@ -1,7 +1,7 @@
 //! Why a case could not be prepared for timing.
 
-use catalog::error::NetworkError;
 use schemes::paths::PathError;
+use settings::error::NetworkError;
 use simulation::error::RunError;
 
 #[derive(Debug, thiserror::Error)]

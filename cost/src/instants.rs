@@ -19,10 +19,10 @@
 //!   is empty.
 
 use crate::error::CostError;
-use catalog::solver_spec::SolverSpec;
 use nalgebra::{DMatrix, DVector};
 use records::dof_cost::Quantity;
 use schemes::qp::{Qp, QpDims};
+use settings::solver_spec::SolverSpec;
 use solvers::neural::{build_solver, NeuralSolver};
 use solvers::{
     solve_equality_kkt_with, ActiveSetSolution, ActiveSetSolver, Backend, DenseLu, ExactSolver,

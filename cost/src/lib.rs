@@ -26,7 +26,7 @@
 //!
 //! Both share [`instants::Instants`], the per-instant quantities on a list of QPs; the dense LU
 //! quantities (`network-lu`, `kkt-floor`) are timed on both [`solvers::Backend`]s, from which
-//! the report reads the crossover that [`catalog::linear_algebra::FAER_CROSSOVER`] records.
+//! the report reads the crossover that [`settings::linear_algebra::FAER_CROSSOVER`] records.
 //!
 //! [`measure`](mod@measure) holds the timing ([`measure::Budget`], how samples are taken and summarised).
 

@@ -132,8 +132,9 @@
 //! # The crates behind it
 //!
 //! [`robots`] (kinematic models and robot files), [`schemes`] (paths, the papers' schemes and
-//! their QPs), [`solvers`] (the exact QP solvers, the papers' networks, the integrators),
-//! [`catalog`] (experiment files, run ids, the robot registry), [`simulation`] (the engine:
+//! their QPs), [`settings`] (the solvers' settings as data: network specifications, integrator
+//! settings), [`solvers`] (the exact QP solvers, the papers' networks, the integrators),
+//! [`catalog`] (experiment files, run ids), [`simulation`] (the engine:
 //! runs and scoring) and [`records`] (the results files). The command line (`reproduce`) and
 //! the report are built on the same crates.
 
@@ -141,6 +142,7 @@ pub use catalog;
 pub use records;
 pub use robots;
 pub use schemes;
+pub use settings;
 pub use simulation;
 pub use solvers;
 
@@ -228,6 +230,8 @@ pub mod prelude {
     pub use robots::{JointLimits, Robot};
     pub use schemes::qp::{Qp, QpDims};
     pub use schemes::scheme::Scheme;
+    pub use settings::integrator::IntegratorSettings;
+    pub use settings::solver_spec::SolverSpec;
     pub use simulation::run::{run_job, RunRecord};
     pub use simulation::score_trajectory::score_trajectory;
     pub use simulation::simulate::{Outcome, Run};

@@ -36,10 +36,10 @@
 
 use catalog::experiment::Scoring;
 use catalog::experiment::{Job, SolverChoice};
-use catalog::solver_spec::SolverSpec;
 use records::attribution::{AttributionRow, Component};
 use records::ladder::{LadderMethod, LadderRow};
 use records::runs::RunRow;
+use settings::solver_spec::SolverSpec;
 
 /// The largest RelTol whose rung may serve as a converged reference.
 pub const CONVERGED_RTOL: f64 = 1e-8;

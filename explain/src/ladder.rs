@@ -31,10 +31,10 @@
 
 use catalog::experiment::Scoring;
 use catalog::experiment::{Job, SolverChoice};
-use catalog::integrator::{IntegratorSettings, Method};
-use catalog::solver_spec::SolverSpec;
 use records::ladder::{LadderMethod, LadderRow};
 use records::runs::RunRow;
+use settings::integrator::{IntegratorSettings, Method};
+use settings::solver_spec::SolverSpec;
 
 /// Accepted steps after which an implicit ladder rung is abandoned (every implicit run of the
 /// papers' experiments needs a few thousand; the finite-time network needed ~650,000 BDF steps

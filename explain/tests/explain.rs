@@ -3,8 +3,6 @@
 //! inference recovers a known setup from a synthetic table made by the suite itself.
 
 use catalog::experiment::{load_dir, Job, SolverChoice};
-use catalog::integrator::Method;
-use catalog::solver_spec::SolverSpec;
 use explain::attribution::Switch;
 use explain::inference::family::Family;
 use explain::inference::search::Target;
@@ -12,6 +10,8 @@ use explain::inference::{evaluate, fit, Column, Setup, TableProblem};
 use explain::{explain, ladder};
 use records::attribution::Component;
 use records::ladder::LadderMethod;
+use settings::integrator::Method;
+use settings::solver_spec::SolverSpec;
 use simulation::run::check_job;
 
 fn jobs() -> Vec<Job> {
@@ -217,7 +217,7 @@ fn inference_recovers_a_known_setup() {
     let exact = find(&jobs, "kong2019-triangle", "znn-eq22", "exact");
     // Tight tolerances: the drift here is ~1e-5, so AbsTol 1e-8 would leave 1e-3 of noise.
     let run = Job {
-        integrator: catalog::integrator::IntegratorSettings {
+        integrator: settings::integrator::IntegratorSettings {
             rtol: 1e-10,
             atol: 1e-13,
             ..explain::inference::inference_integrator()

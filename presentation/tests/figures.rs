@@ -34,7 +34,7 @@ fn row(experiment: &str, variant: &str, solver: &str, failed_at: Option<f64>) ->
                 catalog::solver_kind::SolverKind::Exact
             } else {
                 catalog::solver_kind::SolverKind::Network(
-                    catalog::network_kind::NetworkKind::LviPdnn,
+                    settings::network_kind::NetworkKind::LviPdnn,
                 )
             },
         )

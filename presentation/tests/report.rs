@@ -203,7 +203,7 @@ fn row(experiment: &str, variant: &str, solver: &str, drift: f64) -> RunRow {
     let kind = if solver == records::index::EXACT {
         catalog::solver_kind::SolverKind::Exact
     } else {
-        catalog::solver_kind::SolverKind::Network(catalog::network_kind::NetworkKind::LviPdnn)
+        catalog::solver_kind::SolverKind::Network(settings::network_kind::NetworkKind::LviPdnn)
     };
     RunRow {
         paper: "jia2019".into(),

@@ -11,8 +11,8 @@
 //! itself and its residuals. An [`EntryRow`] is one published entry beside ours under a reported
 //! setup.
 
-use catalog::integrator::{IntegratorSettings, Method};
 use serde::{Deserialize, Serialize};
+use settings::integrator::{IntegratorSettings, Method};
 
 /// Penalty residual of a setup whose run fails (an unreachable pose, an infeasible QP); the
 /// report prints such points as failed, and crate `analysis`'s `inference_verdict` leaves them out.

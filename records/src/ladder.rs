@@ -10,8 +10,8 @@
 //! (|e(U)|_2 <= rtol), `atol` is 0 and `max_step` the loop's step h.
 
 use crate::runs::Status;
-use catalog::integrator::Method;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use settings::integrator::Method;
 
 /// How a rung integrated (the `method` column): an integrator, stored by its id (`bdf`,
 /// `dopri5`, ...), or a numerical run's fixed-step loop, stored as `fixed-step`.

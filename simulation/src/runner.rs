@@ -3,9 +3,9 @@
 
 use crate::run::{run_job, RunRecord};
 use catalog::experiment::{Job, SolverChoice};
-use catalog::network_kind::NetworkKind;
 use indicatif::{ParallelProgressIterator, ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
+use settings::network_kind::NetworkKind;
 use std::collections::BTreeMap;
 use std::io::IsTerminal;
 use std::sync::Mutex;

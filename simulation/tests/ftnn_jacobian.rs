@@ -4,7 +4,6 @@
 //! error sits inside the band and joint 5's is zero. Differencing F as a whole with step
 //! sqrt(eps) (what the Jacobian used to do) gave columns up to ~1000x too small there.
 
-use catalog::integrator::IntegratorSettings;
 use nalgebra::{DMatrix, SVector};
 use robots::katana::Katana6m180;
 use robots::Robot;
@@ -12,6 +11,7 @@ use schemes::paths::{build_path, Path, PathSpec};
 use schemes::scheme::Scheme;
 use schemes::slice_scheme::Fixed;
 use schemes::velocity_rmp::VelocityRmp;
+use settings::integrator::IntegratorSettings;
 use simulation::coupled::NeuralLoop;
 use solvers::neural::finite_time;
 use solvers::ode::{integrate, Control, OdeSystem};

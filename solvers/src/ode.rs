@@ -25,12 +25,12 @@
 //! finite-difference Jacobians), Jacobian evaluations, LU factorisations of the Newton matrix
 //! and wall time.
 
-use catalog::integrator::{IntegratorSettings, Method};
 use diffsol::{
     DiffsolError, NalgebraLU, NalgebraMat, OdeBuilder, OdeEquations, OdeSolverMethod,
     OdeSolverStopReason, Tableau, TableauMat, TableauVec, VectorCommon,
 };
 use nalgebra::{DMatrix, DVector};
+use settings::integrator::{IntegratorSettings, Method};
 use std::cell::RefCell;
 use std::time::Instant;
 

@@ -2,13 +2,13 @@
 //! steady states on frozen random QPs against the exact optimum, tracking of time-varying QPs,
 //! the reference perturbation, and the experiment-file specifications.
 
-use catalog::integrator::{IntegratorSettings, Method};
-use catalog::solver_spec::ReferencePerturbation;
-use catalog::solver_spec::SolverSpec;
 use nalgebra::{DMatrix, DVector};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use schemes::sign_power::SIGN_POWER_MIN_ABS;
+use settings::integrator::{IntegratorSettings, Method};
+use settings::solver_spec::ReferencePerturbation;
+use settings::solver_spec::SolverSpec;
 use solvers::neural::activation::Activation;
 use solvers::neural::projection::{primal_dual_dim, LviPdnn, SLviPdnn};
 use solvers::neural::zeroing::Gain;

@@ -5,9 +5,9 @@
 
 mod common;
 
-use catalog::solver_spec::SolverSpec;
 use common::count;
 use nalgebra::DMatrix;
+use settings::solver_spec::SolverSpec;
 use solvers::neural::build_solver;
 use solvers::{random_qp, Qp, QpShape};
 

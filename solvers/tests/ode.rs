@@ -1,8 +1,8 @@
 //! The diffsol layer against closed-form solutions, for every method, with analytic and
 //! finite-difference Jacobians, on a non-stiff and a stiff (gamma = 1e7) problem.
 
-use catalog::integrator::{IntegratorSettings, Method};
 use nalgebra::DMatrix;
+use settings::integrator::{IntegratorSettings, Method};
 use solvers::ode::{integrate, Control, OdeSystem};
 
 /// Harmonic oscillator y'' = -y: y(t) = (cos t, -sin t).

@@ -8,9 +8,9 @@
 
 mod common;
 
-use catalog::integrator::{IntegratorSettings, Method};
 use common::count;
 use nalgebra::DMatrix;
+use settings::integrator::{IntegratorSettings, Method};
 use solvers::ode::{integrate, Control, OdeStats, OdeSystem};
 
 /// Allocations of one dense Jacobian evaluation inside diffsol (module docs).

@@ -44,7 +44,6 @@ pub mod search;
 use analysis::papers::Papers;
 use catalog::experiment::Scoring;
 use catalog::experiment::{Job, SolverChoice};
-use catalog::integrator::{IntegratorSettings, Method};
 use family::Family;
 use rayon::prelude::*;
 use records::inference::{
@@ -54,6 +53,7 @@ use records::inference::{
 use records::runs::RunRow;
 use schemes::spec::{RmpReading, SchemeSpec};
 use search::{Coordinate, Objective, Outcome, Point, Scores, Target};
+use settings::integrator::{IntegratorSettings, Method};
 use simulation::row::run_row;
 use simulation::run::run_job;
 use std::f64::consts::PI;

@@ -6,10 +6,10 @@
 use super::markdown::{sci, sci_opt, Table, MISSING};
 use analysis::inference_verdict as verdict;
 use analysis::papers::{Papers, GROUP};
-use catalog::integrator::Method;
 use records::attribution::{AttributionRow, Component};
 use records::inference::{self, EntryRow, InferenceRow, Integration};
 use records::ladder::{LadderMethod, LadderRow};
+use settings::integrator::Method;
 use std::fmt::Write as _;
 
 /// The stored explanation results.

@@ -23,8 +23,8 @@
 //! elementwise, phi(e) = e^p where abs(e) >= 1 and
 //! ((1 + exp(-xi)) / (1 - exp(-xi))) (1 - exp(-xi e)) / (1 + exp(-xi e)) otherwise; called with
 //! one argument it uses xi = 1, p = 1, with two p = 3
-//! ([`catalog::solver_spec::GROUP_POWER_SIGMOID_XI`],
-//! [`catalog::solver_spec::GROUP_POWER_SIGMOID_P`] are the one-argument defaults, the ones its
+//! ([`settings::activation::GROUP_POWER_SIGMOID_XI`],
+//! [`settings::solver_spec::GROUP_POWER_SIGMOID_P`] are the one-argument defaults, the ones its
 //! network uses).
 //! This is zhong2021's eq. 2.29 with **alpha = xi and chi = p**: the same sigmoid branch
 //! (= coth(xi/2) tanh(xi e/2)) inside, the same power outside. The two differ only at
@@ -52,9 +52,11 @@
 //! slope then evaluated at max(abs(e), [`SIGN_POWER_MIN_ABS`](schemes::sign_power::SIGN_POWER_MIN_ABS)) so Jacobians stay finite). The same
 //! function is kong2019's c in its finite-time scheme (`schemes::kong2019`).
 
-use catalog::error::NetworkError;
-use catalog::solver_spec::{POWER_SIGMOID_ALPHA, POWER_SIGMOID_CHI};
 use schemes::sign_power::{sign_power, sign_power_slope};
+use settings::activation::{
+    ActivationKind, ActivationSpec, POWER_SIGMOID_ALPHA, POWER_SIGMOID_CHI,
+};
+use settings::error::NetworkError;
 
 /// The sigmoid branch shared by both power-sigmoids at a = abs(e) <= 1, steepness `s` (zhong2021's
 /// alpha, the group's xi): (1 + exp(-s)) (1 - exp(-s a)) / ((1 - exp(-s)) (1 + exp(-s a))).
@@ -88,6 +90,25 @@ pub enum Activation {
     /// phi(e) = abs(e)^r sgn(e) (kong2019 eq. 6, 20), optionally made linear,
     /// phi(e) = e delta^(r-1), for abs(e) < delta = `smoothing` (0: the exact form).
     SignPower { r: f64, smoothing: f64 },
+}
+
+impl From<ActivationSpec> for Activation {
+    /// The activation an experiment file's specification names: `alpha`, `chi` for zhong2021's
+    /// power-sigmoid, `xi`, `power` for the group's, the other parameters ignored.
+    fn from(spec: ActivationSpec) -> Self {
+        match spec.kind {
+            ActivationKind::Linear => Activation::Linear,
+            ActivationKind::Sinh => Activation::Sinh,
+            ActivationKind::PowerSigmoid => Activation::PowerSigmoid {
+                alpha: spec.alpha,
+                chi: spec.chi,
+            },
+            ActivationKind::GroupPowerSigmoid => Activation::GroupPowerSigmoid {
+                xi: spec.xi,
+                p: spec.power,
+            },
+        }
+    }
 }
 
 impl Activation {

@@ -30,10 +30,10 @@
 
 use super::activation::Activation;
 use super::zeroing::{Gain, ZeroingNetwork};
-use catalog::error::NetworkError;
-use catalog::solver_spec::ReferencePerturbation;
 use nalgebra::DMatrix;
 use schemes::qp::QpDims;
+use settings::error::NetworkError;
+use settings::solver_spec::ReferencePerturbation;
 use std::f64::consts::PI;
 
 /// One entry of D0: sign * (sin | cos)(k w).

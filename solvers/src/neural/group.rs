@@ -17,7 +17,7 @@
 //! - the growing-gain term -nu t E (t the simulation time, from 0);
 //! - the injected perturbation Delta_s(t) = a_s [2 sin w, 4 cos 2w, -5 sin 3w, cos 3w,
 //!   -sin 3w, 3 cos w, -sin w, -sin 2w, cos w]', w = pi t / T: the vector part of zhang2018's
-//!   reference perturbation ([`catalog::solver_spec::ReferencePerturbation`], a_s = 1.5 in the group's
+//!   reference perturbation ([`settings::solver_spec::ReferencePerturbation`], a_s = 1.5 in the group's
 //!   code); its matrix part is computed by the code but not used, so the `a_d` of the
 //!   perturbation is ignored here;
 //! - with `udot_rmp = false`, udot = [0; bdot] instead of [-qdot; bdot]: the group's EXP1 file
@@ -30,9 +30,9 @@
 
 use super::activation::Activation;
 use super::zeroing::{Gain, ZeroingNetwork};
-use catalog::error::NetworkError;
-use catalog::solver_spec::ReferencePerturbation;
 use schemes::qp::QpDims;
+use settings::error::NetworkError;
+use settings::solver_spec::ReferencePerturbation;
 
 /// The group's network (module docs): gain gamma, growing gain nu, activation Phi, optional
 /// perturbation (Delta_s only), and `udot_rmp` (false: udot without its -qdot part).

@@ -13,8 +13,8 @@
 //! | group ZNN | the group's MATLAB code (`docs/group-code.md`) | [x; lambda] | [`group`], [`zeroing`] |
 //!
 //! Activation functions: [`activation`]. The factory that builds a network from its
-//! experiment-file specification (`catalog::solver_spec`): [`spec`]. A network's parameter
-//! errors: `catalog::error::NetworkError`. Every network starts from y = 0 (none of the papers
+//! experiment-file specification (`settings::solver_spec`): [`spec`]. A network's parameter
+//! errors: `settings::error::NetworkError`. Every network starts from y = 0 (none of the papers
 //! says otherwise).
 
 pub mod activation;

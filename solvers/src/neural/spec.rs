@@ -1,5 +1,5 @@
 //! The factory that builds the network of an experiment file's solver specification
-//! ([`SolverSpec`], crate `catalog`: the specification language and its defaults) for a QP of
+//! ([`SolverSpec`], crate `settings`: the specification and its defaults) for a QP of
 //! given sizes, checking the gains on the way.
 
 use super::activation::Activation;
@@ -9,26 +9,9 @@ use super::projection::{LviPdnn, SLviPdnn};
 use super::vp_rnn_pf::VpRnnPf;
 use super::znn::{finite_time, znn};
 use super::NeuralSolver;
-use catalog::error::NetworkError;
-use catalog::solver_spec::{ActivationKind, SolverSpec};
 use schemes::qp::QpDims;
-
-/// The activation of `kind` with its parameters: `alpha`, `chi` for zhong2021's power-sigmoid,
-/// `xi`, `power` for the group's; the others ignored.
-pub fn activation_of(
-    kind: ActivationKind,
-    alpha: f64,
-    chi: f64,
-    xi: f64,
-    power: f64,
-) -> Activation {
-    match kind {
-        ActivationKind::Linear => Activation::Linear,
-        ActivationKind::Sinh => Activation::Sinh,
-        ActivationKind::PowerSigmoid => Activation::PowerSigmoid { alpha, chi },
-        ActivationKind::GroupPowerSigmoid => Activation::GroupPowerSigmoid { xi, p: power },
-    }
-}
+use settings::error::NetworkError;
+use settings::solver_spec::SolverSpec;
 
 fn check_gain(network: &'static str, symbol: &'static str, v: f64) -> Result<(), NetworkError> {
     if v > 0.0 && v.is_finite() {
@@ -61,45 +44,31 @@ pub fn build_solver(
             sigma,
             gamma,
             activation,
-            alpha,
-            chi,
-            xi,
-            power,
         } => {
             check_gain("VP-RNN-PF", "gamma", gamma)?;
             Box::new(VpRnnPf::new(
                 p,
                 sigma,
                 gamma,
-                activation_of(activation, alpha, chi, xi, power),
+                Activation::from(activation),
                 dims,
             )?)
         }
         SolverSpec::FpCdnn {
             gamma,
             activation,
-            alpha,
-            chi,
-            xi,
-            power,
             perturbation,
         } => {
             check_gain("FP-CDNN", "gamma", gamma)?;
-            let act = activation_of(activation, alpha, chi, xi, power);
-            Box::new(fp_cdnn(gamma, act, perturbation, dims)?)
+            Box::new(fp_cdnn(gamma, activation.into(), perturbation, dims)?)
         }
         SolverSpec::VpCdnn {
             gamma,
             activation,
-            alpha,
-            chi,
-            xi,
-            power,
             perturbation,
         } => {
             check_gain("VP-CDNN", "gamma", gamma)?;
-            let act = activation_of(activation, alpha, chi, xi, power);
-            Box::new(vp_cdnn(gamma, act, perturbation, dims)?)
+            Box::new(vp_cdnn(gamma, activation.into(), perturbation, dims)?)
         }
         SolverSpec::FiniteTime {
             beta,
@@ -117,15 +86,11 @@ pub fn build_solver(
             gamma,
             nu,
             activation,
-            alpha,
-            chi,
-            xi,
-            power,
             perturbation,
             udot_rmp,
         } => {
             check_gain("group ZNN", "gamma", gamma)?;
-            let act = activation_of(activation, alpha, chi, xi, power);
+            let act = activation.into();
             Box::new(group_znn(gamma, nu, act, perturbation, udot_rmp, dims)?)
         }
     })

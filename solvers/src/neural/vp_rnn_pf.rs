@@ -78,9 +78,9 @@ use super::activation::Activation;
 use super::zeroing::Gain;
 use super::NeuralSolver;
 use crate::dense_lu::DenseLu;
-use catalog::error::NetworkError;
 use nalgebra::DMatrix;
 use schemes::qp::{Qp, QpDims};
+use settings::error::NetworkError;
 
 /// Cap on the penalty exponent -sigma N_i (exp(700) ~ 1e304).
 pub const EXPONENT_CAP: f64 = 700.0;

@@ -53,10 +53,10 @@ use super::activation::Activation;
 use super::cdnn::PerturbationTerms;
 use super::lu;
 use super::{euclidean_norm, NeuralSolver};
-use catalog::error::NetworkError;
-use catalog::solver_spec::ReferencePerturbation;
 use nalgebra::DMatrix;
 use schemes::qp::{Qp, QpDims};
+use settings::error::NetworkError;
+use settings::solver_spec::ReferencePerturbation;
 
 /// Convergence gain of a zeroing network.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -36,7 +36,7 @@
 //! |e|^alpha sgn(e) overshoots the root by a factor 1/alpha - 1 = 9 and diverges; explicit ones
 //! chatter around E = 0 with tiny steps. We therefore make the activation linear with the
 //! matching value, phi(e) = e delta^(alpha-1), inside |e| < delta = `smoothing`
-//! (default [`catalog::solver_spec::FINITE_TIME_SMOOTHING`] = 1e-8: slope 1.6e7 for
+//! (default [`settings::solver_spec::FINITE_TIME_SMOOTHING`] = 1e-8: slope 1.6e7 for
 //! alpha = 0.1, as stiff as the gamma = 1e7 projection networks). The finite-time phase is
 //! untouched down to |E_i| = 1e-8, then E_i decays exponentially with rate beta * 1.6e7; 0 gives
 //! the exact form. In our tests BDF fails on every QP with delta = 0 and 1e-10 and succeeds on
@@ -48,8 +48,8 @@
 
 use super::activation::Activation;
 use super::zeroing::{Gain, ZeroingNetwork};
-use catalog::error::NetworkError;
 use schemes::qp::QpDims;
+use settings::error::NetworkError;
 
 /// kong2019's finite-time network (eq. 20 as derived in the module docs).
 /// `smoothing` is the half-width delta of the linear zone of the sign-power (module docs;

@@ -1,14 +1,25 @@
-//! Presentation must not link the solvers (issue 16): rendering the report and its figures
-//! needs only the records of the runs. Read from the workspace's `Cargo.toml` files, no crate
-//! that simulates or solves (solvers, simulation, control, explain, cost) may be among
-//! presentation's workspace dependencies, direct or transitive (normal and build dependencies,
-//! target-specific ones included; dev-dependencies do not link into the library).
+//! The workspace's layers, read from its `Cargo.toml` files. A rule names a crate and what it
+//! may not link, directly or transitively (normal and build dependencies, target-specific ones
+//! included; dev-dependencies do not link into the library):
+//!
+//! - presentation links no crate that simulates or solves (solvers, simulation, control,
+//!   explain, cost): rendering the report and its figures needs only the records of the runs;
+//! - the numerical crates (robots, schemes, settings, solvers) link no experiment-file or
+//!   results crate (catalog, records, inputs): a user can take the arms, the schemes and the
+//!   solvers without the experiment files. (robots reads its own robot files, so TOML is
+//!   allowed.)
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 /// The crates that run simulations or solvers.
-const FORBIDDEN: [&str; 5] = ["solvers", "simulation", "control", "explain", "cost"];
+const SOLVING: [&str; 5] = ["solvers", "simulation", "control", "explain", "cost"];
+
+/// The numerical crates, usable without experiment files.
+const NUMERICAL: [&str; 4] = ["robots", "schemes", "settings", "solvers"];
+
+/// What the numerical crates may not link: the experiment-file and results crates.
+const FILE_FORMATS: [&str; 3] = ["catalog", "records", "inputs"];
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
@@ -70,8 +81,8 @@ fn workspace() -> BTreeMap<String, Vec<String>> {
         .collect()
 }
 
-/// The workspace members `package` depends on, directly or transitively, each with the chain
-/// that reaches it.
+/// The packages `package` depends on, directly or transitively, each with the chain that
+/// reaches it: the workspace members it reaches, and the outside crates those link directly.
 fn closure(graph: &BTreeMap<String, Vec<String>>, package: &str) -> BTreeMap<String, Vec<String>> {
     let mut reached: BTreeMap<String, Vec<String>> = BTreeMap::new();
     let mut stack = vec![vec![package.to_string()]];
@@ -79,10 +90,13 @@ fn closure(graph: &BTreeMap<String, Vec<String>>, package: &str) -> BTreeMap<Str
     while let Some(chain) = stack.pop() {
         let last = chain.last().expect("a chain is never empty");
         for dep in graph.get(last).into_iter().flatten() {
-            if graph.contains_key(dep) && seen.insert(dep.clone()) {
-                let mut longer = chain.clone();
-                longer.push(dep.clone());
-                reached.insert(dep.clone(), longer.clone());
+            if !seen.insert(dep.clone()) {
+                continue;
+            }
+            let mut longer = chain.clone();
+            longer.push(dep.clone());
+            reached.insert(dep.clone(), longer.clone());
+            if graph.contains_key(dep) {
                 stack.push(longer);
             }
         }
@@ -103,18 +117,54 @@ fn the_workspace_graph_is_read() {
     );
 }
 
-#[test]
-fn presentation_links_no_solver() {
-    let graph = workspace();
-    let reached = closure(&graph, "presentation");
-    let offending: Vec<String> = FORBIDDEN
+/// The chains by which `package` links any of `forbidden`.
+fn offending(
+    graph: &BTreeMap<String, Vec<String>>,
+    package: &str,
+    forbidden: &[&str],
+) -> Vec<String> {
+    let reached = closure(graph, package);
+    forbidden
         .iter()
         .filter_map(|f| reached.get(*f))
         .map(|chain| chain.join(" -> "))
-        .collect();
+        .collect()
+}
+
+#[test]
+fn presentation_links_no_solver() {
+    let graph = workspace();
+    let found = offending(&graph, "presentation", &SOLVING);
     assert!(
-        offending.is_empty(),
+        found.is_empty(),
         "presentation links crates that simulate or solve:\n  {}",
-        offending.join("\n  ")
+        found.join("\n  ")
+    );
+}
+
+#[test]
+fn the_numerical_crates_link_no_file_format() {
+    let graph = workspace();
+    for package in NUMERICAL {
+        assert!(
+            graph.contains_key(package),
+            "{package} is a workspace member"
+        );
+        let found = offending(&graph, package, &FILE_FORMATS);
+        assert!(
+            found.is_empty(),
+            "{package} links an experiment-file or results crate:\n  {}",
+            found.join("\n  ")
+        );
+    }
+}
+
+#[test]
+fn the_rule_sees_an_outside_crate_through_a_member() {
+    let graph = workspace();
+    let found = offending(&graph, "solvers", &["toml"]);
+    assert!(
+        found.iter().any(|c| c.ends_with("-> robots -> toml")),
+        "solvers reaches toml through robots' robot files: {found:?}"
     );
 }

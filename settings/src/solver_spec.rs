@@ -16,28 +16,29 @@
 //!
 //! `activation` is `linear` (default; for `group-znn` the default is `group-power-sigmoid`),
 //! `sinh`, `power-sigmoid` or `group-power-sigmoid`; `alpha`/`chi` (defaults 4 and 3) are the
-//! power-sigmoid's parameters (zhong2021 eq. 2.29), `xi`/`power` (defaults 1 and 1) the group's
+//! power-sigmoid's parameters (zhong2021 (2.29)), `xi`/`power` (defaults 1 and 1) the group's
 //! power-sigmoid's xi and p (`power`, since VP-RNN-PF's `p` is its own parameter); each pair is
 //! ignored for the other activations. Every network that takes an activation (VP-RNN-PF, the
-//! CDNNs, the group's network) takes all four. The CDNNs' runs in the paper are linear.
+//! CDNNs, the group's network) takes all four, written beside the network's own fields and held
+//! in code as one [`ActivationSpec`]. The CDNNs' runs in the paper are linear.
+//!
+//! The file form is a flat table (serde's `flatten` cannot be combined with
+//! `deny_unknown_fields`, and a misspelt field must stay an error): a private mirror of
+//! [`SolverSpec`] with the activation's fields inline is what serde reads and writes, converted
+//! to and from [`SolverSpec`] without loss.
 //!
 //! `group-znn` (the group's network, `solvers::neural::group`): `gamma` (default 500), `nu`
 //! (default 2500), `activation`, `perturbation` (optional, as the CDNNs; only `a_s` and `task_duration`
 //! are used, its DeltaD is not) and `udot_rmp` (default true; false drops the -qdot part of
 //! udot, as the group's EXP1 file).
 
+use crate::activation::{
+    ActivationKind, ActivationSpec, GROUP_POWER_SIGMOID_P, GROUP_POWER_SIGMOID_XI,
+    POWER_SIGMOID_ALPHA, POWER_SIGMOID_CHI,
+};
 use crate::error::NetworkError;
 use crate::network_kind::NetworkKind;
 use serde::{Deserialize, Serialize};
-
-/// Default power-sigmoid alpha (zhong2021 eq. 2.29 asks only alpha >= 2).
-pub const POWER_SIGMOID_ALPHA: f64 = 4.0;
-/// Default power-sigmoid chi (zhong2021 eq. 2.29 asks only chi >= 3).
-pub const POWER_SIGMOID_CHI: f64 = 3.0;
-/// Default xi of the group's power-sigmoid (`AFMpowersigmoid` called with one argument).
-pub const GROUP_POWER_SIGMOID_XI: f64 = 1.0;
-/// Default p of the group's power-sigmoid (`AFMpowersigmoid` called with one argument).
-pub const GROUP_POWER_SIGMOID_P: f64 = 1.0;
 
 /// The group's gamma (`mvn_ZZJLJrebi1.m`).
 pub const GROUP_GAMMA: f64 = 500.0;
@@ -52,18 +53,6 @@ pub const PERTURBATION_DIM: usize = 9;
 pub const REFERENCE_A_D: f64 = 1.0;
 /// Reference amplitude A_s of Delta s.
 pub const REFERENCE_A_S: f64 = 1.5;
-
-/// The serde name of an activation in experiment files (parameters given beside it).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default, Deserialize, Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum ActivationKind {
-    #[default]
-    Linear,
-    Sinh,
-    PowerSigmoid,
-    /// The group's power-sigmoid (`group-power-sigmoid`, parameters `xi` and `power`).
-    GroupPowerSigmoid,
-}
 
 fn default_a_d() -> f64 {
     REFERENCE_A_D
@@ -145,8 +134,243 @@ fn default_true() -> bool {
 
 /// A network and its parameters, by the papers' names.
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
-#[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
+#[serde(from = "FileSolverSpec", into = "FileSolverSpec")]
 pub enum SolverSpec {
+    /// jia2019 (2.23) (gamma = 1e7 in the paper).
+    LviPdnn {
+        /// The gain gamma.
+        gamma: f64,
+    },
+    /// zhong2021 (2.35) (beta = 1e7 in the paper).
+    SLviPdnn {
+        /// The gain beta.
+        beta: f64,
+    },
+    /// zhong2021 (2.30).
+    VpRnnPf {
+        /// The penalty parameter p (>= 0).
+        p: f64,
+        /// sigma (> 0).
+        sigma: f64,
+        /// The varying parameter's gain gamma.
+        gamma: f64,
+        /// The activation of the error term.
+        activation: ActivationSpec,
+    },
+    /// zhang2018 (2.15) ((3.2) when perturbed).
+    FpCdnn {
+        /// The fixed gain gamma.
+        gamma: f64,
+        /// The activation of the error term.
+        activation: ActivationSpec,
+        /// zhang2018's reference perturbation, if any.
+        perturbation: Option<ReferencePerturbation>,
+    },
+    /// zhang2018 (2.11) ((3.1) when perturbed).
+    VpCdnn {
+        /// The gain gamma of the varying parameter.
+        gamma: f64,
+        /// The activation of the error term.
+        activation: ActivationSpec,
+        /// zhang2018's reference perturbation, if any.
+        perturbation: Option<ReferencePerturbation>,
+    },
+    /// kong2019 (20) (derived form): gain beta, sign-power exponent alpha (paper: 1 and 0.1),
+    /// linear zone |e| < smoothing of the sign-power (ours, see `solvers::neural::znn`).
+    FiniteTime {
+        /// The gain beta.
+        beta: f64,
+        /// The sign-power exponent alpha, 0 < alpha < 1.
+        alpha: f64,
+        /// Half-width of the sign-power's linear zone (default [`FINITE_TIME_SMOOTHING`]).
+        smoothing: f64,
+    },
+    /// Linear ZNN (kong2019's comparison solver).
+    Znn {
+        /// The gain gamma.
+        gamma: f64,
+    },
+    /// The papers' group's own network (`docs/group-code.md`, `solvers::neural::group`):
+    /// Q ydot = -Qdot y - gamma Phi(E) + udot - nu t E + Delta_s(t).
+    GroupZnn {
+        /// gamma (default [`GROUP_GAMMA`]).
+        gamma: f64,
+        /// nu of the growing-gain term (default [`GROUP_NU`]).
+        nu: f64,
+        /// Phi (default: the group's power-sigmoid).
+        activation: ActivationSpec,
+        /// Only `a_s` and `task_duration` are used (the group's code does not use DeltaD).
+        perturbation: Option<ReferencePerturbation>,
+        /// false: udot = [0; bdot], without its -qdot part (the group's EXP1 file).
+        udot_rmp: bool,
+    },
+}
+
+impl From<FileSolverSpec> for SolverSpec {
+    fn from(f: FileSolverSpec) -> Self {
+        let act = |kind, alpha, chi, xi, power| ActivationSpec {
+            kind,
+            alpha,
+            chi,
+            xi,
+            power,
+        };
+        match f {
+            FileSolverSpec::LviPdnn { gamma } => SolverSpec::LviPdnn { gamma },
+            FileSolverSpec::SLviPdnn { beta } => SolverSpec::SLviPdnn { beta },
+            FileSolverSpec::VpRnnPf {
+                p,
+                sigma,
+                gamma,
+                activation,
+                alpha,
+                chi,
+                xi,
+                power,
+            } => SolverSpec::VpRnnPf {
+                p,
+                sigma,
+                gamma,
+                activation: act(activation, alpha, chi, xi, power),
+            },
+            FileSolverSpec::FpCdnn {
+                gamma,
+                activation,
+                alpha,
+                chi,
+                xi,
+                power,
+                perturbation,
+            } => SolverSpec::FpCdnn {
+                gamma,
+                activation: act(activation, alpha, chi, xi, power),
+                perturbation,
+            },
+            FileSolverSpec::VpCdnn {
+                gamma,
+                activation,
+                alpha,
+                chi,
+                xi,
+                power,
+                perturbation,
+            } => SolverSpec::VpCdnn {
+                gamma,
+                activation: act(activation, alpha, chi, xi, power),
+                perturbation,
+            },
+            FileSolverSpec::FiniteTime {
+                beta,
+                alpha,
+                smoothing,
+            } => SolverSpec::FiniteTime {
+                beta,
+                alpha,
+                smoothing,
+            },
+            FileSolverSpec::Znn { gamma } => SolverSpec::Znn { gamma },
+            FileSolverSpec::GroupZnn {
+                gamma,
+                nu,
+                activation,
+                alpha,
+                chi,
+                xi,
+                power,
+                perturbation,
+                udot_rmp,
+            } => SolverSpec::GroupZnn {
+                gamma,
+                nu,
+                activation: act(activation, alpha, chi, xi, power),
+                perturbation,
+                udot_rmp,
+            },
+        }
+    }
+}
+
+impl From<SolverSpec> for FileSolverSpec {
+    fn from(s: SolverSpec) -> Self {
+        match s {
+            SolverSpec::LviPdnn { gamma } => FileSolverSpec::LviPdnn { gamma },
+            SolverSpec::SLviPdnn { beta } => FileSolverSpec::SLviPdnn { beta },
+            SolverSpec::VpRnnPf {
+                p,
+                sigma,
+                gamma,
+                activation: a,
+            } => FileSolverSpec::VpRnnPf {
+                p,
+                sigma,
+                gamma,
+                activation: a.kind,
+                alpha: a.alpha,
+                chi: a.chi,
+                xi: a.xi,
+                power: a.power,
+            },
+            SolverSpec::FpCdnn {
+                gamma,
+                activation: a,
+                perturbation,
+            } => FileSolverSpec::FpCdnn {
+                gamma,
+                activation: a.kind,
+                alpha: a.alpha,
+                chi: a.chi,
+                xi: a.xi,
+                power: a.power,
+                perturbation,
+            },
+            SolverSpec::VpCdnn {
+                gamma,
+                activation: a,
+                perturbation,
+            } => FileSolverSpec::VpCdnn {
+                gamma,
+                activation: a.kind,
+                alpha: a.alpha,
+                chi: a.chi,
+                xi: a.xi,
+                power: a.power,
+                perturbation,
+            },
+            SolverSpec::FiniteTime {
+                beta,
+                alpha,
+                smoothing,
+            } => FileSolverSpec::FiniteTime {
+                beta,
+                alpha,
+                smoothing,
+            },
+            SolverSpec::Znn { gamma } => FileSolverSpec::Znn { gamma },
+            SolverSpec::GroupZnn {
+                gamma,
+                nu,
+                activation: a,
+                perturbation,
+                udot_rmp,
+            } => FileSolverSpec::GroupZnn {
+                gamma,
+                nu,
+                activation: a.kind,
+                alpha: a.alpha,
+                chi: a.chi,
+                xi: a.xi,
+                power: a.power,
+                perturbation,
+                udot_rmp,
+            },
+        }
+    }
+}
+
+/// [`SolverSpec`] as experiment files write it: the activation's fields inline (module docs).
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
+enum FileSolverSpec {
     /// jia2019 eq. 2.23 (gamma = 1e7 in the paper).
     LviPdnn { gamma: f64 },
     /// zhong2021 eq. 2.35 (beta = 1e7 in the paper).
@@ -239,24 +463,6 @@ pub enum SolverSpec {
     },
 }
 
-/// Name of an activation in display names: the kind's label at default parameters (so the
-/// existing names are unchanged), the label with its parameters otherwise.
-fn activation_name(kind: ActivationKind, alpha: f64, chi: f64, xi: f64, power: f64) -> String {
-    match kind {
-        ActivationKind::PowerSigmoid
-            if alpha != POWER_SIGMOID_ALPHA || chi != POWER_SIGMOID_CHI =>
-        {
-            format!("power-sigmoid(alpha={alpha},chi={chi})")
-        }
-        ActivationKind::GroupPowerSigmoid
-            if xi != GROUP_POWER_SIGMOID_XI || power != GROUP_POWER_SIGMOID_P =>
-        {
-            format!("group-power-sigmoid(xi={xi},p={power})")
-        }
-        _ => kind_label(kind).to_string(),
-    }
-}
-
 impl SolverSpec {
     /// The network's kind as experiment files name it (`kind = "lvi-pdnn"`): its identity, where
     /// [`SolverSpec::display_name`] is a label with its parameters.
@@ -347,49 +553,30 @@ impl SolverSpec {
             | SolverSpec::SLviPdnn { .. }
             | SolverSpec::FiniteTime { .. }
             | SolverSpec::Znn { .. } => {}
-            SolverSpec::VpRnnPf {
-                activation,
-                alpha,
-                chi,
-                xi,
-                power,
-                ..
-            } => d.activation = Some(activation_name(*activation, *alpha, *chi, *xi, *power)),
+            SolverSpec::VpRnnPf { activation, .. } => d.activation = Some(activation.name()),
             SolverSpec::FpCdnn {
                 activation,
-                alpha,
-                chi,
-                xi,
-                power,
                 perturbation,
                 ..
             }
             | SolverSpec::VpCdnn {
                 activation,
-                alpha,
-                chi,
-                xi,
-                power,
                 perturbation,
                 ..
             } => {
-                d.activation = (*activation != ActivationKind::Linear)
-                    .then(|| activation_name(*activation, *alpha, *chi, *xi, *power));
+                d.activation =
+                    (activation.kind != ActivationKind::Linear).then(|| activation.name());
                 d.perturbation = perturbation.as_ref().map(|p| (Some(p.a_d), p.a_s));
             }
             SolverSpec::GroupZnn {
                 gamma,
                 nu,
                 activation,
-                alpha,
-                chi,
-                xi,
-                power,
                 perturbation,
                 udot_rmp,
             } => {
-                let a = activation_name(*activation, *alpha, *chi, *xi, *power);
-                d.activation = (a != kind_label(default_group_activation())).then_some(a);
+                let a = activation.name();
+                d.activation = (a != default_group_activation().id()).then_some(a);
                 d.perturbation = perturbation.as_ref().map(|p| (None, p.a_s));
                 d.gains = Some((*gamma, *nu));
                 d.udot_without_qdot = !udot_rmp;
@@ -430,11 +617,96 @@ struct Distinguishing {
     udot_without_qdot: bool,
 }
 
-fn kind_label(k: ActivationKind) -> &'static str {
-    match k {
-        ActivationKind::Linear => "linear",
-        ActivationKind::Sinh => "sinh",
-        ActivationKind::PowerSigmoid => "power-sigmoid",
-        ActivationKind::GroupPowerSigmoid => "group-power-sigmoid",
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[derive(Deserialize, Serialize)]
+    struct Holder {
+        solver: SolverSpec,
+    }
+
+    fn parse(text: &str) -> Result<SolverSpec, toml::de::Error> {
+        toml::from_str::<Holder>(text).map(|h| h.solver)
+    }
+
+    const EVERY_KIND: [&str; 9] = [
+        "solver = { kind = \"lvi-pdnn\", gamma = 1e7 }",
+        "solver = { kind = \"s-lvi-pdnn\", beta = 1e7 }",
+        "solver = { kind = \"vp-rnn-pf\", p = 1e-4, sigma = 400.0, gamma = 2.0, activation = \"power-sigmoid\", alpha = 5.0, chi = 3.0 }",
+        "solver = { kind = \"fp-cdnn\", gamma = 200.0, activation = \"sinh\", perturbation = { a_d = 1.0, a_s = 1.5, task_duration = 8.0 } }",
+        "solver = { kind = \"vp-cdnn\", gamma = 200.0 }",
+        "solver = { kind = \"finite-time\", beta = 1.0, alpha = 0.1 }",
+        "solver = { kind = \"znn\", gamma = 1.0 }",
+        "solver = { kind = \"group-znn\", gamma = 500.0, nu = 2500.0, perturbation = { a_s = 1.5, task_duration = 8.0 } }",
+        "solver = { kind = \"group-znn\", udot_rmp = false, activation = \"linear\", power = 3.0 }",
+    ];
+
+    #[test]
+    fn the_flat_file_form_reads_back_to_the_same_spec() {
+        for text in EVERY_KIND {
+            let spec = parse(text).unwrap_or_else(|e| panic!("{text}: {e}"));
+            let written = toml::to_string(&Holder {
+                solver: spec.clone(),
+            })
+            .unwrap();
+            assert_eq!(parse(&written).unwrap(), spec, "{text} -> {written}");
+        }
+    }
+
+    #[test]
+    fn the_activation_is_one_value_with_the_files_defaults() {
+        let spec = parse(EVERY_KIND[2]).unwrap();
+        let SolverSpec::VpRnnPf { activation, .. } = spec else {
+            panic!("{spec:?}")
+        };
+        assert_eq!(activation.kind, ActivationKind::PowerSigmoid);
+        assert_eq!((activation.alpha, activation.chi), (5.0, 3.0));
+        assert_eq!((activation.xi, activation.power), (1.0, 1.0));
+        let group = parse("solver = { kind = \"group-znn\" }").unwrap();
+        let SolverSpec::GroupZnn { activation, .. } = group else {
+            panic!("{group:?}")
+        };
+        assert_eq!(
+            activation,
+            ActivationSpec::of(ActivationKind::GroupPowerSigmoid)
+        );
+        assert_eq!(group.id(), "group-znn-gamma-500-nu-2500");
+    }
+
+    #[test]
+    fn ids_and_names_name_the_activation_where_it_matters() {
+        let ids: Vec<String> = EVERY_KIND.iter().map(|t| parse(t).unwrap().id()).collect();
+        assert_eq!(
+            ids,
+            [
+                "lvi-pdnn",
+                "s-lvi-pdnn",
+                "vp-rnn-pf-power-sigmoid-alpha-5-chi-3",
+                "fp-cdnn-sinh-perturbed-ad-1-as-1.5",
+                "vp-cdnn",
+                "finite-time",
+                "znn",
+                "group-znn-gamma-500-nu-2500-perturbed-as-1.5",
+                "group-znn-gamma-500-nu-2500-linear-udot-without-qdot",
+            ]
+        );
+        assert_eq!(
+            parse(EVERY_KIND[3]).unwrap().display_name(),
+            "FP-CDNN (sinh, perturbed A_D=1, A_s=1.5)"
+        );
+    }
+
+    #[test]
+    fn misspelt_or_misplaced_fields_are_errors() {
+        for bad in [
+            "solver = { kind = \"lvi-pdnn\", gama = 1e7 }",
+            "solver = { kind = \"vp-cdnn\", gamma = 1.0, alfa = 4.0 }",
+            "solver = { kind = \"lvi-pdnn\", gamma = 1e7, activation = \"sinh\" }",
+            "solver = { kind = \"znn\", gamma = 1.0, chi = 3.0 }",
+            "solver = { kind = \"vp-rnn-pf\", p = 1e-4, sigma = 400.0, gamma = 2.0, activation = \"tanh\" }",
+        ] {
+            assert!(parse(bad).is_err(), "accepted: {bad}");
+        }
     }
 }
