@@ -154,9 +154,7 @@ mod tests {
     #[test]
     fn every_measured_metric_is_compared_and_no_timing() {
         let mut row = RunRow::blank(
-            "e",
-            "v",
-            "s",
+            &catalog::run_key::RunKey::from_ids("e", "v", "s").unwrap(),
             catalog::solver_kind::SolverKind::Network(settings::network_kind::NetworkKind::Znn),
         );
         row.final_pos_err = Some(1e-5);
@@ -183,9 +181,7 @@ mod tests {
     #[test]
     fn what_the_tables_show_is_compared_but_where_the_wall_clock_decides() {
         let mut row = RunRow::blank(
-            "e",
-            "v",
-            "s",
+            &catalog::run_key::RunKey::from_ids("e", "v", "s").unwrap(),
             catalog::solver_kind::SolverKind::Network(settings::network_kind::NetworkKind::Znn),
         );
         row.steps = 200;

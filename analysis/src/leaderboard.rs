@@ -37,6 +37,7 @@
 //! capped at it (qpbenchmark counts a failure at its time limit), so no completed run counts
 //! worse than a failure.
 
+use catalog::ids::{ExperimentId, SolverId, VariantId};
 use catalog::solver_kind::SolverKind;
 use records::error::{IoAction, IoError, RunsError};
 use records::percentile::percentile;
@@ -102,8 +103,10 @@ pub const TIME_LIMIT_FACTOR: f64 = 10.0;
 /// One task: an (experiment, variant).
 #[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct Task {
-    pub experiment: String,
-    pub variant: String,
+    /// The experiment's id.
+    pub experiment: ExperimentId,
+    /// The variant's id.
+    pub variant: VariantId,
 }
 
 impl Task {
@@ -240,7 +243,7 @@ pub struct LeaderboardRow {
     /// geometric means of |x − x*|, of the drift error and of time (lower first), then label.
     pub rank: usize,
     /// The solver's id (identity); `solver` is its label.
-    pub solver_id: String,
+    pub solver_id: SolverId,
     pub solver: String,
     pub solver_kind: SolverKind,
     /// Runs of this solver on the standard task set.
@@ -275,7 +278,7 @@ impl Row for LeaderboardRow {}
 
 /// One solver's runs on the standard tasks.
 struct Entrant<'a> {
-    id: &'a str,
+    id: &'a SolverId,
     solver: &'a str,
     kind: SolverKind,
     runs: BTreeMap<Task, &'a RunRow>,
@@ -366,7 +369,7 @@ fn rank_set(
                 task_set: name.to_string(),
                 tasks: n,
                 rank: 0,
-                solver_id: e.id.to_string(),
+                solver_id: e.id.clone(),
                 solver: e.solver.to_string(),
                 solver_kind: e.kind,
                 standard_runs: e.runs.len(),
@@ -416,14 +419,14 @@ fn rank_set(
 
 /// How many of `solver_id`'s runs on `tasks` were timed alone, and the largest
 /// (max − min) / median of their repetitions' `sim_s` (NaN when none was).
-pub fn alone_timing(timings: &Timings, solver_id: &str, tasks: &[Task]) -> (usize, f64) {
+pub fn alone_timing(timings: &Timings, solver_id: &SolverId, tasks: &[Task]) -> (usize, f64) {
     let spreads: Vec<f64> = tasks
         .iter()
         .filter_map(|t| {
             timings.get(&catalog::run_key::RunKey::new(
-                &t.experiment,
-                &t.variant,
-                solver_id,
+                t.experiment.clone(),
+                t.variant.clone(),
+                solver_id.clone(),
             ))
         })
         .map(|r| r.sim_spread())
@@ -455,10 +458,13 @@ mod tests {
     use super::*;
     use records::runs::Status;
 
-    /// A completed run of `solver` on task `exp` with the given RMS distance, per-joint drift and
-    /// time; `solver == "exact"` makes the exact column.
+    /// A completed run of `solver` (its label; its id is the label in lower case) on task `exp`
+    /// with the given RMS distance, per-joint drift and time; `solver == "exact"` makes the
+    /// exact column.
     fn run(solver: &str, exp: &str, rms: f64, drift: &[f64], sim_s: f64) -> RunRow {
-        let mut r = RunRow::blank(exp, "v", solver, SolverKind::Exact);
+        let key = catalog::run_key::RunKey::from_ids(exp, "v", &solver.to_lowercase()).unwrap();
+        let mut r = RunRow::blank(&key, SolverKind::Exact);
+        r.solver = solver.into();
         r.paper = "cross".into();
         r.solver_kind = if solver == "exact" {
             SolverKind::Exact
@@ -641,7 +647,13 @@ mod tests {
         // B not timed alone keeps its parallel 20 ms and now ranks faster.
         let timed = |task: &str, s: [f64; 3]| {
             let samples: Vec<(f64, f64)> = s.iter().map(|&v| (v, v)).collect();
-            TimingRow::from_samples(&RunKey::new(task, "v", "A"), &samples, "cpu", 2, "r")
+            TimingRow::from_samples(
+                &RunKey::from_ids(task, "v", "a").unwrap(),
+                &samples,
+                "cpu",
+                2,
+                "r",
+            )
         };
         let timings = Timings::new(vec![
             timed("t1", [0.04, 0.09, 0.05]),
@@ -657,8 +669,9 @@ mod tests {
         assert!(close(a.time_shm, 0.05) && close(b.time_shm, 0.02));
         assert!(close(a.time_rel, 2.5) && b.time_rel == 1.0);
         let tasks = standard_tasks(&board());
-        let (a_alone, a_spread) = alone_timing(&timings, "A", &tasks);
-        let (b_alone, b_spread) = alone_timing(&timings, "B", &tasks);
+        let id = |s: &str| SolverId::new(s).unwrap();
+        let (a_alone, a_spread) = alone_timing(&timings, &id("a"), &tasks);
+        let (b_alone, b_spread) = alone_timing(&timings, &id("b"), &tasks);
         assert_eq!((a_alone, b_alone), (2, 0));
         assert!(close(a_spread, 1.0) && b_spread.is_nan());
     }

@@ -81,7 +81,7 @@ pub enum PaperProblem {
 
 /// Checks a paper folder's name as a paper id (module docs).
 pub fn check_paper_id(id: &str) -> Result<(), PaperProblem> {
-    if !schemes::slug::is_slug(id) || id.len() > MAX_EXPERIMENT_ID {
+    if !catalog::ids::is_id_form(id) || id.len() > MAX_EXPERIMENT_ID {
         return Err(PaperProblem::NotAnId {
             id: id.to_string(),
             suggestion: schemes::slug::slug(id)

@@ -176,12 +176,12 @@ mod tests {
     #[test]
     fn a_missing_run_names_the_choices_at_its_first_unknown_id() {
         let runs = [
-            RunKey::new("e1", "v1", "s1"),
-            RunKey::new("e1", "v1", "s2"),
-            RunKey::new("e1", "v2", "s1"),
-            RunKey::new("e2", "v1", "s1"),
+            RunKey::from_ids("e1", "v1", "s1").unwrap(),
+            RunKey::from_ids("e1", "v1", "s2").unwrap(),
+            RunKey::from_ids("e1", "v2", "s1").unwrap(),
+            RunKey::from_ids("e2", "v1", "s1").unwrap(),
         ];
-        let id = |e, v, s| missing(&RunKey::new(e, v, s), &runs);
+        let id = |e, v, s| missing(&RunKey::from_ids(e, v, s).unwrap(), &runs);
         assert_eq!(id("e1", "v1", "s2"), Missing::No);
         assert_eq!(id("e3", "v1", "s1"), Missing::Experiment);
         assert_eq!(
@@ -193,9 +193,9 @@ mod tests {
             Missing::Id("solvers of e1 / v2: s1".into())
         );
         let many: Vec<RunKey> = (0..20)
-            .map(|i| RunKey::new("e", format!("v{i:02}"), "s"))
+            .map(|i| RunKey::from_ids("e", &format!("v{i:02}"), "s").unwrap())
             .collect();
-        let Missing::Id(shown) = missing(&RunKey::new("e", "x", "s"), &many) else {
+        let Missing::Id(shown) = missing(&RunKey::from_ids("e", "x", "s").unwrap(), &many) else {
             panic!("a missing variant")
         };
         assert!(shown.ends_with("v11, ..."), "{shown}");

@@ -390,7 +390,7 @@ fn load_folder(dir: &Path, folder: &Path) -> Result<Folder, PapersError> {
     }
     let mut mappings: Vec<Mapping> = Vec::new();
     for (index, m) in file.mappings.into_iter().enumerate() {
-        let run = RunKey::parse(&m.run).ok_or_else(|| {
+        let run = RunKey::parse(&m.run).map_err(|_| {
             invalid(&path)(PaperProblem::Run {
                 index,
                 run: m.run.clone(),
@@ -414,9 +414,9 @@ fn load_folder(dir: &Path, folder: &Path) -> Result<Folder, PapersError> {
                 let key = if c.contains('/') {
                     RunKey::parse(&format!("{} / {c}", run.experiment))
                 } else {
-                    Some(RunKey::new(&run.experiment, c.trim(), &run.solver))
+                    RunKey::from_ids(&run.experiment, c.trim(), &run.solver).map_err(Into::into)
                 };
-                key.filter(|k| k.check().is_ok()).ok_or_else(|| {
+                key.map_err(|_| {
                     invalid(&path)(PaperProblem::Companion {
                         index,
                         companion: c.clone(),

@@ -83,14 +83,7 @@ fn main() {
         if n <= 100_000 {
             let rows: Vec<RunRow> = jobs
                 .iter()
-                .map(|j| {
-                    RunRow::blank(
-                        &j.experiment,
-                        &j.variant_id,
-                        "exact",
-                        catalog::solver_kind::SolverKind::Exact,
-                    )
-                })
+                .map(|j| RunRow::blank(&j.key(), catalog::solver_kind::SolverKind::Exact))
                 .collect();
             let half = rows[..n / 2].to_vec();
             timed("merge stored + fresh rows", n, || merge(rows, half).len());

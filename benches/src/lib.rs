@@ -158,7 +158,8 @@ pub fn experiment_jobs() -> Vec<Job> {
 /// The job with key `experiment / variant / solver` (ids, e.g. `jia2019-star / vltco /
 /// exact`).
 pub fn find_job(jobs: &[Job], experiment: &str, variant: &str, solver: &str) -> Job {
-    let key = catalog::run_key::RunKey::new(experiment, variant, solver);
+    let key = catalog::run_key::RunKey::from_ids(experiment, variant, solver)
+        .unwrap_or_else(|e| panic!("{experiment} / {variant} / {solver}: {e}"));
     jobs.iter()
         .find(|j| j.key() == key)
         .cloned()
@@ -229,7 +230,7 @@ pub fn bench_cases() -> BenchCases {
 /// The job of a run key written `experiment / variant / solver`.
 pub fn find_run(jobs: &[Job], key: &str) -> Job {
     let k = catalog::run_key::RunKey::parse(key)
-        .unwrap_or_else(|| panic!("{CASES_FILE}: {key:?} is not experiment / variant / solver"));
+        .unwrap_or_else(|e| panic!("{CASES_FILE}: {key:?}: {e}"));
     find_job(jobs, &k.experiment, &k.variant, &k.solver)
 }
 
@@ -240,7 +241,7 @@ fn scheme_jobs<'a>(
 ) -> impl Iterator<Item = (&'a str, Job)> + 'a {
     refs.iter().map(|r| {
         let t = catalog::run_key::TaskKey::parse(&r.task)
-            .unwrap_or_else(|| panic!("{CASES_FILE}: {:?} is not experiment / variant", r.task));
+            .unwrap_or_else(|e| panic!("{CASES_FILE}: {:?}: {e}", r.task));
         (
             r.label.as_str(),
             find_job(jobs, &t.experiment, &t.variant, catalog::run_key::EXACT_ID),

@@ -240,6 +240,9 @@ impl std::fmt::Display for FieldAt {
 pub enum FieldError {
     #[error(transparent)]
     Name(#[from] NameError),
+    /// An id that is not a valid id of its kind (`crate::ids`).
+    #[error(transparent)]
+    Id(#[from] crate::ids::IdError),
     #[error("must start with the paper id \"{paper}-\"")]
     PaperPrefix { paper: String },
     #[error("experiment id \"{id}\" is used twice")]

@@ -12,6 +12,7 @@
 use crate::error::{
     ExperimentError, ExperimentFileError, FieldAt, FieldError, SetupError, TomlError,
 };
+use crate::ids::{ExperimentId, IdError, SolverId, VariantId};
 use crate::naming::{slug, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
 use crate::numerical_spec::NumericalSpec;
 use crate::run_key::{RunKey, TaskKey, EXACT_ID};
@@ -283,9 +284,10 @@ impl SolverChoice {
 #[derive(Clone, Debug)]
 pub struct Job {
     pub paper: String,
-    pub experiment: String,
+    /// The experiment's id.
+    pub experiment: ExperimentId,
     /// The variant's id ([`Variant::id`]).
-    pub variant_id: String,
+    pub variant_id: VariantId,
     /// The variant's label (display only).
     pub variant: String,
     pub robot: String,
@@ -320,11 +322,32 @@ impl Job {
         }
     }
 
+    /// The solver's id ([`SolverChoice::id`]), checked.
+    pub fn solver_id(&self) -> Result<SolverId, IdError> {
+        SolverId::new(self.solver.id())
+    }
+
     /// The run's identity: experiment / variant / solver ids.
+    ///
+    /// Every run of an experiment file that was read ([`PaperFile::from_toml`]) has a valid
+    /// solver id: the file's check refuses a solver whose id is not one (a parameter that
+    /// prints as no slug, or too long an id). A key asked of a job whose solver was changed
+    /// to such a specification in code panics; [`Job::solver_id`] is the checked form.
     pub fn key(&self) -> RunKey {
-        RunKey::new(&self.experiment, &self.variant_id, self.solver.id())
+        let solver = self
+            .solver_id()
+            .unwrap_or_else(|e| panic!("{}: {e}", self.task()));
+        RunKey::new(self.experiment.clone(), self.variant_id.clone(), solver)
     }
 }
+
+/// Why the ids of a run made from a file are valid: every [`PaperFile`] the program reads comes
+/// through [`PaperFile::from_toml`] (or [`PaperFile::load`]), whose check (`PaperFile::validate`)
+/// refuses an experiment id or declared variant id that is not a slug, and a variant label whose
+/// slug (the derived variant id) would be empty or too long, before any run is made. (A file
+/// deserialized by hand, past that check, can make these runs panic.)
+const CHECKED_IDS: &str =
+    "the experiment file's check refuses an experiment or variant id that is not one";
 
 /// Which part of a [`Job`] could not be built (see [`CheckJob`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -572,8 +595,8 @@ impl PaperFile {
                         field(place, err)
                     })?;
                     check_name(&job.solver.label(), MAX_SOLVER_LABEL, vat("solvers"))?;
+                    job.solver_id().map_err(|e| field(vat("solvers"), e))?;
                     let key = job.key();
-                    key.check().map_err(|e| field(vat("solvers"), e))?;
                     if keys.contains(&key) {
                         return Err(field(
                             vat("solvers"),
@@ -605,7 +628,8 @@ impl PaperFile {
         Ok(())
     }
 
-    /// The runs of one variant of experiment `e` (exact column first).
+    /// The runs of one variant of experiment `e` (exact column first). Its experiment and
+    /// variant ids were checked before the runs are made ([`CHECKED_IDS`]).
     fn variant_jobs(&self, e: &Experiment, v: &Variant) -> Vec<Job> {
         let mut jobs = Vec::new();
         let theta0 = v.theta0.clone().unwrap_or_else(|| e.theta0.clone());
@@ -616,8 +640,8 @@ impl PaperFile {
             .unwrap_or_else(|| theta0.clone());
         let base = Job {
             paper: self.paper.clone(),
-            experiment: e.id.clone(),
-            variant_id: v.id(),
+            experiment: ExperimentId::new(e.id.clone()).expect(CHECKED_IDS),
+            variant_id: VariantId::new(v.id()).expect(CHECKED_IDS),
             variant: v.label.clone(),
             robot: v.robot.clone().unwrap_or_else(|| e.robot.clone()),
             path: v.path.as_deref().unwrap_or(&e.path).clone(),
@@ -697,7 +721,7 @@ fn check_name(name: &str, max: usize, at: FieldAt) -> Result<(), ExperimentError
 /// An id (paper, experiment, variant) must already be a slug: ids name files and reach the
 /// report's links as they are.
 fn check_id(id: &str, at: FieldAt) -> Result<(), ExperimentError> {
-    if schemes::slug::is_slug(id) {
+    if crate::ids::is_id_form(id) {
         return Ok(());
     }
     let (id, suggestion) = (id.to_string(), slug(id));

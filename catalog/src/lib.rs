@@ -18,6 +18,7 @@
 
 pub mod error;
 pub mod experiment;
+pub mod ids;
 pub mod naming;
 pub mod numerical_spec;
 pub mod root;

@@ -1,6 +1,6 @@
 //! A run's identity: [`RunKey`] = (experiment id, variant id, solver id).
 //!
-//! Every id is a slug ([`schemes::slug`]): the experiment's `id` and the variant's `id` as the
+//! Every id is a validated slug ([`crate::ids`]): the experiment's `id` and the variant's `id` as the
 //! experiment file declares them (a variant without one gets `slug(label)` once, when the file is
 //! read), and the solver's id derived from its specification (`exact`, or
 //! [`settings::solver_spec::SolverSpec::id`]). The key names the run everywhere it is stored or
@@ -9,10 +9,27 @@
 //! `papers/`. Labels (`variant`, `solver` in results) are for display only: renaming one moves
 //! no result.
 
-use crate::naming::{
-    check_name, NameError, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL,
-};
+use crate::ids::{ExperimentId, IdError, SolverId, VariantId};
 use std::fmt;
+
+/// Why a text is not a run or task key.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum KeyError {
+    /// Not of the form `<experiment> / <variant> / <solver>` (or `<experiment> / <variant>`).
+    #[error("\"{text}\" is not of the form `{form}`")]
+    Shape {
+        /// The text given.
+        text: String,
+        /// The form expected.
+        form: &'static str,
+    },
+    /// A part that is not a valid id.
+    #[error(transparent)]
+    Id(#[from] IdError),
+}
+
+const RUN_FORM: &str = "<experiment> / <variant> / <solver>";
+const TASK_FORM: &str = "<experiment> / <variant>";
 
 /// The solver id of the exact column (the exact optimum x*(t) in the loop).
 pub const EXACT_ID: &str = "exact";
@@ -20,30 +37,46 @@ pub const EXACT_ID: &str = "exact";
 /// experiment / variant / solver, as ids.
 #[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct RunKey {
-    pub experiment: String,
-    pub variant: String,
-    pub solver: String,
+    /// The experiment's id.
+    pub experiment: ExperimentId,
+    /// The variant's id.
+    pub variant: VariantId,
+    /// The solver's id.
+    pub solver: SolverId,
 }
 
 impl RunKey {
-    pub fn new(
-        experiment: impl Into<String>,
-        variant: impl Into<String>,
-        solver: impl Into<String>,
-    ) -> Self {
+    /// The key of three ids.
+    pub fn new(experiment: ExperimentId, variant: VariantId, solver: SolverId) -> Self {
         RunKey {
-            experiment: experiment.into(),
-            variant: variant.into(),
-            solver: solver.into(),
+            experiment,
+            variant,
+            solver,
         }
     }
 
-    /// Reads `"<experiment> / <variant> / <solver>"` (spaces around `/` optional).
-    pub fn parse(text: &str) -> Option<RunKey> {
-        let (task, solver) = text.rsplit_once('/')?;
-        let solver = solver.trim();
-        let task = TaskKey::parse(task)?;
-        (!solver.is_empty()).then(|| task.run(solver))
+    /// The key of three texts, each checked as its kind of id.
+    pub fn from_ids(experiment: &str, variant: &str, solver: &str) -> Result<Self, IdError> {
+        Ok(RunKey {
+            experiment: ExperimentId::new(experiment)?,
+            variant: VariantId::new(variant)?,
+            solver: SolverId::new(solver)?,
+        })
+    }
+
+    /// Reads `"<experiment> / <variant> / <solver>"` (spaces around `/` optional): three parts,
+    /// each a valid id.
+    pub fn parse(text: &str) -> Result<RunKey, KeyError> {
+        let shape = || KeyError::Shape {
+            text: text.to_string(),
+            form: RUN_FORM,
+        };
+        let (task, solver) = text.rsplit_once('/').ok_or_else(shape)?;
+        let task = match TaskKey::parse(task) {
+            Err(KeyError::Shape { .. }) => return Err(shape()),
+            other => other?,
+        };
+        Ok(task.run(SolverId::new(solver.trim())?))
     }
 
     /// The task the run belongs to (what every solver of a variant shares).
@@ -58,14 +91,6 @@ impl RunKey {
     /// the traces and the figures.
     pub fn stem(&self) -> String {
         format!("{}__{}", self.variant, self.solver)
-    }
-
-    /// Checks that the three ids can name files under results/ and report/ (no `/`, `\` or
-    /// `..`, not empty, within the length limits).
-    pub fn check(&self) -> Result<(), NameError> {
-        check_name(&self.experiment, MAX_EXPERIMENT_ID)?;
-        check_name(&self.variant, MAX_VARIANT_LABEL)?;
-        check_name(&self.solver, MAX_SOLVER_LABEL)
     }
 }
 
@@ -82,24 +107,38 @@ impl fmt::Display for RunKey {
 /// experiment / variant, as ids: a task (the robot, path, theta0 and scheme a variant fixes).
 #[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct TaskKey {
-    pub experiment: String,
-    pub variant: String,
+    /// The experiment's id.
+    pub experiment: ExperimentId,
+    /// The variant's id.
+    pub variant: VariantId,
 }
 
 impl TaskKey {
-    /// Reads `"<experiment> / <variant>"` (spaces around `/` optional).
-    pub fn parse(text: &str) -> Option<TaskKey> {
-        let (e, v) = text.split_once('/')?;
-        let (e, v) = (e.trim(), v.trim());
-        (!e.is_empty() && !v.is_empty() && !v.contains('/')).then(|| TaskKey {
-            experiment: e.into(),
-            variant: v.into(),
+    /// The key of two texts, each checked as its kind of id.
+    pub fn from_ids(experiment: &str, variant: &str) -> Result<Self, IdError> {
+        Ok(TaskKey {
+            experiment: ExperimentId::new(experiment)?,
+            variant: VariantId::new(variant)?,
         })
     }
 
+    /// Reads `"<experiment> / <variant>"` (spaces around `/` optional): two parts, each a valid
+    /// id.
+    pub fn parse(text: &str) -> Result<TaskKey, KeyError> {
+        let shape = || KeyError::Shape {
+            text: text.to_string(),
+            form: TASK_FORM,
+        };
+        let (e, v) = text.split_once('/').ok_or_else(shape)?;
+        if v.contains('/') {
+            return Err(shape());
+        }
+        Ok(TaskKey::from_ids(e.trim(), v.trim())?)
+    }
+
     /// The run of `solver` on this task.
-    pub fn run(&self, solver: &str) -> RunKey {
-        RunKey::new(&self.experiment, &self.variant, solver)
+    pub fn run(&self, solver: SolverId) -> RunKey {
+        RunKey::new(self.experiment.clone(), self.variant.clone(), solver)
     }
 }
 
@@ -115,22 +154,36 @@ mod tests {
 
     #[test]
     fn keys_print_parse_and_name_files() {
-        let k = RunKey::new("jia2019-clover", "vltco", EXACT_ID);
+        let k = RunKey::from_ids("jia2019-clover", "vltco", EXACT_ID).unwrap();
         assert_eq!(k.to_string(), "jia2019-clover / vltco / exact");
         assert_eq!(k.stem(), "vltco__exact");
-        assert_eq!(TaskKey::parse("jia2019-clover / vltco"), Some(k.task()));
-        assert_eq!(TaskKey::parse("jia2019-clover/vltco"), Some(k.task()));
-        assert_eq!(TaskKey::parse("jia2019-clover"), None);
-        assert_eq!(TaskKey::parse("a / b / c"), None);
-        assert!(k.check().is_ok());
-        assert!(RunKey::new("e", "../v", "s").check().is_err());
-        assert_eq!(k.task().run("lvi-pdnn").solver, "lvi-pdnn");
+        assert_eq!(TaskKey::parse("jia2019-clover / vltco"), Ok(k.task()));
+        assert_eq!(TaskKey::parse("jia2019-clover/vltco"), Ok(k.task()));
+        assert!(matches!(
+            TaskKey::parse("jia2019-clover"),
+            Err(KeyError::Shape { .. })
+        ));
+        assert!(matches!(
+            TaskKey::parse("a / b / c"),
+            Err(KeyError::Shape { .. })
+        ));
+        assert!(RunKey::from_ids("e", "../v", "s").is_err());
+        assert!(
+            matches!(RunKey::parse("e / V / s"), Err(KeyError::Id(_))),
+            "ids are slugs"
+        );
+        let lvi = SolverId::new("lvi-pdnn").unwrap();
+        assert_eq!(k.task().run(lvi).solver, "lvi-pdnn");
         assert_eq!(
             RunKey::parse("jia2019-clover / vltco / exact"),
-            Some(k.clone())
+            Ok(k.clone())
         );
-        assert_eq!(RunKey::parse("jia2019-clover / vltco"), None);
-        assert_eq!(RunKey::parse("a / b / c / d"), None);
-        assert_eq!(RunKey::parse("a / b / "), None);
+        for bad in ["jia2019-clover / vltco", "a / b / c / d"] {
+            assert!(
+                matches!(RunKey::parse(bad), Err(KeyError::Shape { .. })),
+                "{bad}"
+            );
+        }
+        assert!(matches!(RunKey::parse("a / b / "), Err(KeyError::Id(_))));
     }
 }

@@ -14,6 +14,9 @@ pub enum ControlError {
     Experiments(#[from] ExperimentFileError),
     #[error("task {0} is not in the experiment files")]
     UnknownTask(String),
+    /// A network whose parameters make no valid solver id.
+    #[error(transparent)]
+    Id(#[from] catalog::ids::IdError),
     /// The standard task set file could not be parsed (`path` names it).
     #[error("{path}: {source}")]
     TaskSet {

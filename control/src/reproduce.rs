@@ -17,6 +17,7 @@ use crate::stability::{gain, LimitProbe};
 use crate::task::{load_tasks, standard_task_refs, with_task, Task, TaskVisitor};
 use crate::trend::classify;
 use analysis::control_claim::{decide, overall, steps_needed, ACCURACY, CHECK_TICKS};
+use catalog::ids::SolverId;
 use nalgebra::SVector;
 use records::control::Verdict;
 use records::control::{ClaimRow, ControlRow, ControlStatus, CycleRow, StabilityRow, TrendRow};
@@ -280,7 +281,7 @@ pub fn reproduce(
             stability.push(StabilityRow {
                 task: task.id(),
                 network: spec.display_name(),
-                solver_id: spec.id(),
+                solver_id: SolverId::new(spec.id())?,
                 gain_name: gain_name.to_string(),
                 gain: g,
                 euler_limit_s: limit.map(|l| l.0),
@@ -339,7 +340,7 @@ pub fn reproduce(
                 network: spec.display_name(),
                 experiment: task.reference.experiment.clone(),
                 variant_id: task.reference.variant.clone(),
-                solver_id: spec.id(),
+                solver_id: SolverId::new(spec.id())?,
                 h_ms: h * 1e3,
                 accuracy: ACCURACY,
                 products_per_step: per_step,

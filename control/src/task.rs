@@ -19,8 +19,10 @@ use std::sync::Arc;
 #[derive(Clone, Debug, PartialEq, Eq, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TaskRef {
-    pub experiment: String,
-    pub variant: String,
+    /// The experiment's id.
+    pub experiment: catalog::ids::ExperimentId,
+    /// The variant's id.
+    pub variant: catalog::ids::VariantId,
 }
 
 /// Where the standard task set is declared, relative to the experiments directory (a

@@ -224,7 +224,7 @@ pub fn ladder_rows(base: &Job, rungs: &[Job], rows: &[RunRow]) -> Vec<LadderRow>
                 paper: r.paper.clone(),
                 experiment: r.experiment.clone(),
                 variant_id: r.variant_id.clone(),
-                solver_id: base.solver.id(),
+                solver_id: base.key().solver,
                 variant: r.variant.clone(),
                 solver: base.solver.label(),
                 method,

@@ -25,7 +25,9 @@ fn jobs() -> Vec<Job> {
 
 fn find(jobs: &[Job], experiment: &str, variant: &str, solver: &str) -> Job {
     jobs.iter()
-        .find(|j| j.key() == catalog::run_key::RunKey::new(experiment, variant, solver))
+        .find(|j| {
+            j.key() == catalog::run_key::RunKey::from_ids(experiment, variant, solver).unwrap()
+        })
         .unwrap_or_else(|| panic!("{experiment} / {variant} / {solver}"))
         .clone()
 }

@@ -13,8 +13,9 @@ use std::path::{Path, PathBuf};
 fn row(experiment: &str, variant: &str, solver: &str, failed_at: Option<f64>) -> RunRow {
     RunRow {
         paper: "synthetic".into(),
-        variant_id: catalog::naming::slug(variant),
-        solver_id: catalog::naming::slug(solver),
+        variant: variant.into(),
+        scheme: variant.into(),
+        solver: solver.into(),
         duration: 2.0,
         status: if failed_at.is_some() {
             Status::Failed
@@ -27,9 +28,12 @@ fn row(experiment: &str, variant: &str, solver: &str, failed_at: Option<f64>) ->
         failure_kind: failed_at.map(|_| FailureKind::Integrator),
         failed_at,
         ..RunRow::blank(
-            experiment,
-            variant,
-            solver,
+            &catalog::run_key::RunKey::from_ids(
+                experiment,
+                &catalog::naming::slug(variant),
+                &catalog::naming::slug(solver),
+            )
+            .unwrap(),
             if solver.starts_with("exact") {
                 catalog::solver_kind::SolverKind::Exact
             } else {

@@ -67,7 +67,7 @@ fn renders_every_paper_and_experiment_from_the_committed_results() {
     let rows = read_runs(&root.join("results/runs.csv")).unwrap();
     for r in &rows {
         assert!(
-            md.contains(&r.experiment),
+            md.contains(r.experiment.as_str()),
             "experiment {} missing from the report",
             r.experiment
         );
@@ -223,7 +223,10 @@ fn row(experiment: &str, variant: &str, solver: &str, drift: f64) -> RunRow {
         qp_solves: 1,
         wall_s: 0.1,
         sim_s: 0.1,
-        ..RunRow::blank(experiment, variant, solver, kind)
+        ..RunRow::blank(
+            &catalog::run_key::RunKey::from_ids(experiment, variant, solver).unwrap(),
+            kind,
+        )
     }
 }
 

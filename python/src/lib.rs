@@ -81,6 +81,12 @@ fn lib_err(e: impl std::fmt::Display) -> PyErr {
     DriftbenchError::new_err(e.to_string())
 }
 
+/// The solver id of a Python network called `name`: `python-<slug(name)>`, an error when that
+/// is no valid id (a name without a letter or digit, or too long).
+fn python_solver_id(name: &str) -> Result<catalog::ids::SolverId, catalog::ids::IdError> {
+    catalog::ids::SolverId::new(format!("{PYTHON_KIND}-{}", schemes::slug::slug(name)))
+}
+
 /// Runs the body of one of the module's functions, a panic of the library (a bug: no input
 /// should reach one) raised as `DriftbenchError` ([`Panicked`]) instead of pyo3's
 /// `PanicException`, which `except Exception` does not catch.
@@ -139,7 +145,7 @@ fn task(id: &str, root: Option<PathBuf>) -> PyResult<PyTask> {
 
 /// The task of `all` whose id is `id`; the error lists the ids of `all` (`set` names it).
 fn find_task<'a>(all: &'a [PyTask], id: &str, set: &'static str) -> PyResult<&'a PyTask> {
-    let key = catalog::run_key::TaskKey::parse(id);
+    let key = catalog::run_key::TaskKey::parse(id).ok();
     all.iter()
         .find(|t| Some(t.job.task()) == key)
         .ok_or_else(|| {
@@ -315,7 +321,7 @@ fn run_python_unnamed(
     }
     check_setup(&record)?;
     let mut row = run_row(&record, reproduce::revision::REVISION);
-    row.solver_id = format!("{PYTHON_KIND}-{}", schemes::slug::slug(&name));
+    row.solver_id = python_solver_id(&name).map_err(lib_err)?;
     row.solver = name;
     row.solver_kind = catalog::solver_kind::SolverKind::Python;
     Ok((record, row, calls))
@@ -503,7 +509,7 @@ fn leaderboard<'py>(
         let mut costs = Vec::new();
         let not_applicable = PyList::empty(py);
         for (name, network) in &named {
-            let id = format!("{PYTHON_KIND}-{}", schemes::slug::slug(name));
+            let id = python_solver_id(name).map_err(lib_err)?;
             if stored
                 .iter()
                 .any(|r| r.solver == *name || r.solver_id == id)
@@ -672,7 +678,7 @@ fn score<'py>(
                     let row = score_row(
                         run_row(&record, git_rev),
                         &file.display().to_string(),
-                        records::trajectory::TRAJECTORY_KIND,
+                        &records::trajectory::trajectory_id(),
                     );
                     (record, row)
                 }
@@ -740,7 +746,7 @@ fn score<'py>(
             let row = score_row(
                 run_row(&record, git_rev),
                 "arrays",
-                records::trajectory::TRAJECTORY_KIND,
+                &records::trajectory::trajectory_id(),
             );
             (record, row)
         };

@@ -20,6 +20,7 @@
 //!         = scheme  + sampling gap       + stopping rule
 //! ```
 
+use catalog::ids::{ExperimentId, SolverId, VariantId};
 use serde::{Deserialize, Serialize};
 
 /// One component of a run's drift: a term of the telescoping sum, or a switch effect ("of
@@ -99,10 +100,10 @@ impl Component {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct AttributionRow {
     pub paper: String,
-    pub experiment: String,
+    pub experiment: ExperimentId,
     /// The run's variant and solver ids (with `experiment`, its key).
-    pub variant_id: String,
-    pub solver_id: String,
+    pub variant_id: VariantId,
+    pub solver_id: SolverId,
     /// Labels (display only).
     pub variant: String,
     pub solver: String,
@@ -126,7 +127,11 @@ pub struct AttributionRow {
 impl AttributionRow {
     /// The key of the run the row explains.
     pub fn key(&self) -> catalog::run_key::RunKey {
-        catalog::run_key::RunKey::new(&self.experiment, &self.variant_id, &self.solver_id)
+        catalog::run_key::RunKey::new(
+            self.experiment.clone(),
+            self.variant_id.clone(),
+            self.solver_id.clone(),
+        )
     }
 }
 

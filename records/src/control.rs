@@ -16,6 +16,7 @@
 //! `CYCLES_TREND`).
 
 use crate::error::{ControlFileError, IoAction, IoError};
+use catalog::ids::{ExperimentId, SolverId, VariantId};
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -158,7 +159,7 @@ pub struct StabilityRow {
     /// The network's display name.
     pub network: String,
     /// The network's solver id (its identity).
-    pub solver_id: String,
+    pub solver_id: SolverId,
     pub gain_name: String,
     /// The paper's gain.
     pub gain: f64,
@@ -183,9 +184,9 @@ pub struct ClaimRow {
     pub network: String,
     /// The task's experiment and variant ids, and the network's solver id: the run of
     /// `results/runs.csv` the claim is about.
-    pub experiment: String,
-    pub variant_id: String,
-    pub solver_id: String,
+    pub experiment: ExperimentId,
+    pub variant_id: VariantId,
+    pub solver_id: SolverId,
     pub h_ms: f64,
     pub accuracy: f64,
     pub products_per_step: u64,

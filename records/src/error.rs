@@ -257,10 +257,9 @@ pub enum ShardError {
 /// What is wrong with an entry of a shard manifest's `runs`.
 #[derive(Debug, thiserror::Error)]
 pub enum RunEntryProblem {
-    #[error("not a run key `<experiment> / <variant> / <solver>`")]
-    NotAKey,
-    #[error("cannot name a file: {0}")]
-    Name(NameError),
+    /// Not a run key, or a part that is no valid id.
+    #[error("not a run key: {0}")]
+    NotAKey(catalog::run_key::KeyError),
     #[error("belongs to shard {owner}/{n}, not to this shard")]
     OtherShard { owner: usize, n: usize },
     #[error("listed twice")]

@@ -62,7 +62,10 @@ impl Runs {
 
     /// The experiment ids of one paper, sorted.
     pub fn experiments(&self, paper: &str) -> Vec<String> {
-        let mut ids: Vec<String> = self.of_paper(paper).map(|r| r.experiment.clone()).collect();
+        let mut ids: Vec<String> = self
+            .of_paper(paper)
+            .map(|r| r.experiment.to_string())
+            .collect();
         ids.dedup();
         ids
     }

@@ -94,7 +94,7 @@ impl<'a> Journal<'a> {
         let seal_line = format!(
             "{}  {}\n",
             sealed.sha256,
-            trace_name(&ResultsDir::trace_rel(&row.key())?)
+            trace_name(&ResultsDir::trace_rel(&row.key()))
         );
         let journal = path(self.results.path());
         let csv_error = |source| JournalError::Csv {
@@ -165,7 +165,7 @@ pub fn recover(results: &ResultsDir, git_rev: &str) -> Result<Recovered, Journal
             out.other_revision.push(row);
             continue;
         }
-        let rel = ResultsDir::trace_rel(&row.key())?;
+        let rel = ResultsDir::trace_rel(&row.key());
         let sealed = match seals.get(&trace_name(&rel)) {
             Some(sha256) => results.tracked().adopt_sealed(&rel, sha256)?,
             None => false,
@@ -256,7 +256,10 @@ mod tests {
             .iter()
             .map(|v| RunRow {
                 git_rev: if *v == "e" { "r0" } else { "r1" }.into(),
-                ..RunRow::blank("exp", v, "exact", catalog::solver_kind::SolverKind::Exact)
+                ..RunRow::blank(
+                    &catalog::run_key::RunKey::from_ids("exp", v, "exact").unwrap(),
+                    catalog::solver_kind::SolverKind::Exact,
+                )
             })
             .collect();
         {

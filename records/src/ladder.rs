@@ -10,6 +10,7 @@
 //! (|e(U)|_2 <= rtol), `atol` is 0 and `max_step` the loop's step h.
 
 use crate::runs::Status;
+use catalog::ids::{ExperimentId, SolverId, VariantId};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use settings::integrator::Method;
 
@@ -60,10 +61,10 @@ impl<'de> Deserialize<'de> for LadderMethod {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct LadderRow {
     pub paper: String,
-    pub experiment: String,
+    pub experiment: ExperimentId,
     /// The run's variant and solver ids (with `experiment`, its key).
-    pub variant_id: String,
-    pub solver_id: String,
+    pub variant_id: VariantId,
+    pub solver_id: SolverId,
     /// Labels (display only).
     pub variant: String,
     pub solver: String,
@@ -99,7 +100,11 @@ pub struct LadderRow {
 impl LadderRow {
     /// The key of the run the row explains.
     pub fn key(&self) -> catalog::run_key::RunKey {
-        catalog::run_key::RunKey::new(&self.experiment, &self.variant_id, &self.solver_id)
+        catalog::run_key::RunKey::new(
+            self.experiment.clone(),
+            self.variant_id.clone(),
+            self.solver_id.clone(),
+        )
     }
 }
 

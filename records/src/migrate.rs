@@ -11,6 +11,7 @@
 //! results directory and renames the traces.
 
 use catalog::experiment::Job;
+use catalog::ids::IdError;
 use catalog::run_key::{RunKey, EXACT_ID};
 use schemes::slug::slug;
 use std::collections::HashMap;
@@ -29,6 +30,9 @@ pub enum MigrateError {
     Column(&'static str),
     #[error("{0}")]
     Utf8(#[from] std::string::FromUtf8Error),
+    /// A legacy row whose labels make no valid ids.
+    #[error("line {line}: {error}")]
+    Id { line: usize, error: IdError },
 }
 
 /// (experiment, variant label, solver label) -> run key, over the experiment files' runs.
@@ -48,24 +52,29 @@ impl LabelIndex {
             } else {
                 j.solver.label()
             };
-            map.insert((j.experiment.clone(), j.variant.clone(), label), j.key());
+            map.insert(
+                (j.experiment.to_string(), j.variant.clone(), label),
+                j.key(),
+            );
         }
         LabelIndex(map)
     }
 
-    /// The key of a legacy row: the described run's, or the slugs of its labels.
-    pub fn key(&self, experiment: &str, variant: &str, solver: &str) -> RunKey {
-        self.0
+    /// The key of a legacy row: the described run's, or the slugs of its labels (an error
+    /// when they make no valid ids).
+    pub fn key(&self, experiment: &str, variant: &str, solver: &str) -> Result<RunKey, IdError> {
+        if let Some(key) = self
+            .0
             .get(&(experiment.into(), variant.into(), solver.into()))
-            .cloned()
-            .unwrap_or_else(|| {
-                let solver = if solver == LEGACY_EXACT_LABEL {
-                    EXACT_ID.to_string()
-                } else {
-                    slug(solver)
-                };
-                RunKey::new(experiment, slug(variant), solver)
-            })
+        {
+            return Ok(key.clone());
+        }
+        let solver = if solver == LEGACY_EXACT_LABEL {
+            EXACT_ID.to_string()
+        } else {
+            slug(solver)
+        };
+        RunKey::from_ids(experiment, &slug(variant), &solver)
     }
 }
 
@@ -111,7 +120,12 @@ pub fn add_ids(
     for rec in r.records() {
         let rec = rec?;
         let legacy = (rec[e].to_string(), rec[v].to_string(), rec[s].to_string());
-        let key = index.key(&legacy.0, &legacy.1, &legacy.2);
+        let key = index
+            .key(&legacy.0, &legacy.1, &legacy.2)
+            .map_err(|error| MigrateError::Id {
+                line: keys.len() + 2,
+                error,
+            })?;
         w.write_record(with_ids(&rec, [&key.variant, &key.solver]))?;
         keys.push((legacy, key));
     }
@@ -141,7 +155,10 @@ mod tests {
             text,
             "paper,experiment,variant_id,solver_id,variant,scheme,solver,x\np,p-e,vltco-star-lines,exact,VLTCO [star-lines],S,exact (Clarabel),1\np,p-e,gone,lvi-pdnn,Gone,S,LVI-PDNN,2\n"
         );
-        assert_eq!(keys[0].1, RunKey::new("p-e", "vltco-star-lines", "exact"));
+        assert_eq!(
+            keys[0].1,
+            RunKey::from_ids("p-e", "vltco-star-lines", "exact").unwrap()
+        );
         // A current table is left alone without the index being made (a pass over every run).
         let unused = || -> LabelIndex { panic!("the index of a current table was made") };
         assert!(add_ids(text.as_bytes(), unused).unwrap().is_none());

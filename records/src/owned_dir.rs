@@ -34,11 +34,6 @@ pub enum PathError {
         path: PathBuf,
         target: PathBuf,
     },
-    #[error("{what}: {source}")]
-    Name {
-        what: String,
-        source: catalog::naming::NameError,
-    },
     #[error("{path}: cannot inspect: {source}")]
     Inspect {
         path: PathBuf,

@@ -17,8 +17,9 @@
 //!
 //! Opening ([`ResultsDir::open`]) takes the lock, refuses tables that differ from the
 //! manifest (a truncated or hand-edited `runs.csv`), and removes only the temporary files of
-//! the program's own interrupted writes. Every name read from a row is checked before it
-//! becomes a path ([`catalog::run_key::RunKey::check`], [`OwnedDir::resolve`]), and a
+//! the program's own interrupted writes. Every id read from a row is checked as it is read
+//! (its type, [`catalog::ids`], holds only slugs) and every path it leads to is resolved
+//! inside the directory ([`OwnedDir::resolve`]), and a
 //! file is deleted only if the manifest proves the program wrote it
 //! ([`TrackedDir::remove`]).
 
@@ -247,7 +248,7 @@ impl ResultsDir {
             let mut moved = 0;
             for ((e, v, s), key) in &keys {
                 let old = crate::migrate::legacy_trace_rel(e, v, s);
-                let new = Self::trace_rel(key)?;
+                let new = Self::trace_rel(key);
                 let Ok(old_path) = self.tracked.resolve(&old) else {
                     continue;
                 };
@@ -280,16 +281,12 @@ impl ResultsDir {
         Ok(())
     }
 
-    /// A run's trace, relative to the directory: `traces/<experiment>/<variant>__<solver>.csv`,
-    /// its names checked.
-    pub fn trace_rel(key: &RunKey) -> Result<PathBuf, PathError> {
-        key.check().map_err(|source| PathError::Name {
-            what: format!("the trace of {key}"),
-            source,
-        })?;
-        Ok(Path::new(TRACES)
+    /// A run's trace, relative to the directory: `traces/<experiment>/<variant>__<solver>.csv`
+    /// (the key's ids are slugs, so these are safe names: `catalog::ids`).
+    pub fn trace_rel(key: &RunKey) -> PathBuf {
+        Path::new(TRACES)
             .join(&key.experiment)
-            .join(format!("{}.csv", key.stem())))
+            .join(format!("{}.csv", key.stem()))
     }
 
     /// Writes the trace of the run `key` ([`crate::trace`]); returns its fingerprint.
@@ -298,7 +295,7 @@ impl ResultsDir {
         key: &RunKey,
         trace: &[TracePoint],
     ) -> Result<Fingerprint, ResultsError> {
-        let rel = Self::trace_rel(key)?;
+        let rel = Self::trace_rel(key);
         let bytes = trace_csv(trace).map_err(|source| ResultsError::Write {
             path: self.path().join(&rel),
             source,
@@ -352,7 +349,7 @@ impl ResultsDir {
         let mut said = Vec::with_capacity(pruned.len());
         for r in pruned {
             let key = r.key().to_string();
-            let rel = Self::trace_rel(&r.key())?;
+            let rel = Self::trace_rel(&r.key());
             said.push(match self.tracked.remove(&rel)? {
                 Removal::Removed => {
                     format!("pruned {key} and its trace (no experiment file describes it)")

@@ -13,6 +13,7 @@
 use crate::error::{RowsError, RunsError};
 use crate::failure_kind::FailureKind;
 use crate::table;
+use catalog::ids::{ExperimentId, SolverId, VariantId};
 use catalog::naming::{check_name, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
 use catalog::run_key::RunKey;
 use catalog::solver_kind::SolverKind;
@@ -24,11 +25,11 @@ use std::path::Path;
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RunRow {
     pub paper: String,
-    pub experiment: String,
+    pub experiment: ExperimentId,
     /// The variant's id (with `experiment` and `solver_id`, the run's [`RunKey`]).
-    pub variant_id: String,
+    pub variant_id: VariantId,
     /// The solver's id: `exact`, or the network's id (kind and distinguishing parameters).
-    pub solver_id: String,
+    pub solver_id: SolverId,
     /// The variant's label (display only).
     pub variant: String,
     pub scheme: String,
@@ -119,21 +120,25 @@ pub struct RunRow {
 impl RunRow {
     /// The run's identity (ids; also the sort key).
     pub fn key(&self) -> RunKey {
-        RunKey::new(&self.experiment, &self.variant_id, &self.solver_id)
+        RunKey::new(
+            self.experiment.clone(),
+            self.variant_id.clone(),
+            self.solver_id.clone(),
+        )
     }
 
     /// A completed row with this identity and every measurement empty or zero (paper `test`,
     /// robot `jaco2-pen`, BDF at 1e-6 / 1e-8; labels equal to the ids): the starting point of
     /// rows built by hand, as in tests of what reads results.
-    pub fn blank(experiment: &str, variant: &str, solver: &str, solver_kind: SolverKind) -> Self {
+    pub fn blank(key: &RunKey, solver_kind: SolverKind) -> Self {
         RunRow {
             paper: "test".into(),
-            experiment: experiment.into(),
-            variant_id: variant.into(),
-            solver_id: solver.into(),
-            variant: variant.into(),
-            scheme: variant.into(),
-            solver: solver.into(),
+            experiment: key.experiment.clone(),
+            variant_id: key.variant.clone(),
+            solver_id: key.solver.clone(),
+            variant: key.variant.to_string(),
+            scheme: key.variant.to_string(),
+            solver: key.solver.to_string(),
             solver_kind,
             robot: "jaco2-pen".into(),
             path: "circle".into(),
@@ -280,15 +285,14 @@ pub fn read_runs(path: &Path) -> Result<Vec<RunRow>, RunsError> {
     Ok(rows)
 }
 
-/// Checks what a results file says before any of it becomes a path: every row's paper id and
-/// run key can name a file ([`RunKey::check`]), its labels are within their limits, and no run
-/// is listed twice. The error names the line (the header is line 1).
+/// Checks what a results file says before any of it becomes a path: every row's paper id can
+/// name a file (its run key's ids were checked as they were read: `catalog::ids`), its labels
+/// are within their limits, and no run is listed twice. The error names the line (the header is line 1).
 pub fn check_rows(rows: &[RunRow]) -> Result<(), RowsError> {
     let mut seen = std::collections::HashMap::with_capacity(rows.len());
     for (i, r) in rows.iter().enumerate() {
         let line = i + 2;
         check_name(&r.paper, MAX_EXPERIMENT_ID)
-            .and_then(|()| r.key().check())
             .and_then(|()| check_name(&r.variant, MAX_VARIANT_LABEL))
             .and_then(|()| check_name(&r.solver, MAX_SOLVER_LABEL))
             .map_err(|error| RowsError::Name { line, error })?;

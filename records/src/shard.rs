@@ -28,7 +28,6 @@
 //!   (and which shard should have produced them) or duplicated, and nothing is written.
 
 use crate::error::{IoAction, IoError, RunEntryProblem, ShardError};
-use crate::owned_dir::PathError;
 use crate::runs::{read_runs, RunRow};
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -347,16 +346,13 @@ impl Manifest {
         let mut seen = std::collections::HashSet::new();
         for (index, entry) in self.runs.iter().enumerate() {
             let problem = match catalog::run_key::RunKey::parse(entry) {
-                None => Some(RunEntryProblem::NotAKey),
-                Some(key) => match key.check() {
-                    Err(e) => Some(RunEntryProblem::Name(e)),
-                    Ok(()) if !shard.owns(&key.to_string()) => Some(RunEntryProblem::OtherShard {
-                        owner: Shard::of(&key.to_string(), shard.n),
-                        n: shard.n,
-                    }),
-                    Ok(()) if !seen.insert(key) => Some(RunEntryProblem::Twice),
-                    Ok(()) => None,
-                },
+                Err(e) => Some(RunEntryProblem::NotAKey(e)),
+                Ok(key) if !shard.owns(&key.to_string()) => Some(RunEntryProblem::OtherShard {
+                    owner: Shard::of(&key.to_string(), shard.n),
+                    n: shard.n,
+                }),
+                Ok(key) if !seen.insert(key.clone()) => Some(RunEntryProblem::Twice),
+                Ok(_) => None,
             };
             if let Some(problem) = problem {
                 return Err(ShardError::ManifestRun {
@@ -444,7 +440,7 @@ pub fn read_shard(dir: &Path, edits: crate::tracked_dir::Edits) -> Result<ShardD
 }
 
 /// A row's trace, relative to its results directory.
-fn trace_rel(r: &RunRow) -> Result<PathBuf, PathError> {
+fn trace_rel(r: &RunRow) -> PathBuf {
     crate::results_dir::ResultsDir::trace_rel(&r.key())
 }
 
@@ -458,7 +454,7 @@ pub fn copy_traces(
     for s in shards {
         let owned = crate::owned_dir::OwnedDir::open(&s.dir)?;
         for r in &s.rows {
-            let rel = trace_rel(r)?;
+            let rel = trace_rel(r);
             let from = owned.resolve(&rel)?;
             let bytes = std::fs::read(&from).map_err(IoError::at(&from, IoAction::Read))?;
             results.tracked().write(&rel, &bytes)?;
@@ -539,18 +535,14 @@ pub fn check_shards(
                     }
                 ));
             }
-            match trace_rel(r) {
-                Ok(rel) => {
-                    let listed = rel.to_string_lossy().replace('\\', "/");
-                    if !s.files.files.contains_key(&listed) {
-                        problems.push(format!(
-                            "{}: the trace of {key} ({}) is not among the files the shard wrote",
-                            s.dir.display(),
-                            rel.display()
-                        ));
-                    }
-                }
-                Err(e) => problems.push(format!("{}: {e}", s.dir.display())),
+            let rel = trace_rel(r);
+            let listed = rel.to_string_lossy().replace('\\', "/");
+            if !s.files.files.contains_key(&listed) {
+                problems.push(format!(
+                    "{}: the trace of {key} ({}) is not among the files the shard wrote",
+                    s.dir.display(),
+                    rel.display()
+                ));
             }
         }
     }
@@ -877,7 +869,7 @@ mod tests {
         );
         entry(
             vec![".. / x / y".into()],
-            &["entry 1", "cannot name a file"],
+            &["entry 1", "experiment id \"..\" is not a slug"],
         );
         entry(vec!["no key".into()], &["entry 1", "not a run key"]);
         entry(vec![key_of(2, 2, 0)], &["entry 1", "belongs to shard 2/2"]);

@@ -14,6 +14,7 @@
 
 use crate::error::{IoAction, IoError, RunsError};
 use crate::table::Row;
+use catalog::ids::{ExperimentId, SolverId, VariantId};
 use catalog::run_key::RunKey;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -29,9 +30,9 @@ pub const REPETITIONS: usize = 3;
 /// One run timed alone.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct TimingRow {
-    pub experiment: String,
-    pub variant_id: String,
-    pub solver_id: String,
+    pub experiment: ExperimentId,
+    pub variant_id: VariantId,
+    pub solver_id: SolverId,
     pub repetitions: usize,
     /// Simulation time (s, `sim_s` of a run): median, minimum and maximum.
     pub sim_s_median: f64,
@@ -95,7 +96,11 @@ impl TimingRow {
     }
 
     pub fn key(&self) -> RunKey {
-        RunKey::new(&self.experiment, &self.variant_id, &self.solver_id)
+        RunKey::new(
+            self.experiment.clone(),
+            self.variant_id.clone(),
+            self.solver_id.clone(),
+        )
     }
 
     /// (max − min) / median of `sim_s` (0 for a zero median).
@@ -182,7 +187,7 @@ mod tests {
     fn median_min_max_and_spread() {
         assert_eq!(summary(&[3.0, 1.0, 2.0]), (2.0, 1.0, 3.0));
         assert_eq!(summary(&[4.0, 1.0]), (2.5, 1.0, 4.0));
-        let key = RunKey::new("e", "v", "s");
+        let key = RunKey::from_ids("e", "v", "s").unwrap();
         let r = TimingRow::from_samples(&key, &[(0.2, 1.0), (0.1, 3.0), (0.4, 2.0)], "cpu", 2, "r");
         assert_eq!((r.sim_s_median, r.sim_s_min, r.sim_s_max), (0.2, 0.1, 0.4));
         assert_eq!((r.wall_s_median, r.repetitions), (2.0, 3));
@@ -195,15 +200,30 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("driftbench-timing-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let rows = vec![
-            TimingRow::from_samples(&RunKey::new("b", "v", "s"), &[(0.5, 0.6)], "cpu", 2, "r"),
-            TimingRow::from_samples(&RunKey::new("a", "v", "s"), &[(0.1, 0.2)], "cpu", 2, "r"),
+            TimingRow::from_samples(
+                &RunKey::from_ids("b", "v", "s").unwrap(),
+                &[(0.5, 0.6)],
+                "cpu",
+                2,
+                "r",
+            ),
+            TimingRow::from_samples(
+                &RunKey::from_ids("a", "v", "s").unwrap(),
+                &[(0.1, 0.2)],
+                "cpu",
+                2,
+                "r",
+            ),
         ];
         let timings = Timings::new(rows);
         write(&dir, &timings).unwrap();
         let back = read(&dir).unwrap();
         std::fs::remove_dir_all(&dir).unwrap();
         assert_eq!(back, timings);
-        assert_eq!(back.sim_s(&RunKey::new("b", "v", "s")), Some(0.5));
+        assert_eq!(
+            back.sim_s(&RunKey::from_ids("b", "v", "s").unwrap()),
+            Some(0.5)
+        );
         assert_eq!(back.rows().next().unwrap().experiment, "a");
         assert!(read(Path::new("/nonexistent-driftbench"))
             .unwrap()

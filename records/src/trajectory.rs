@@ -18,6 +18,7 @@
 use crate::error::{TrajectoryFileError, TrajectoryProblem};
 use crate::runs::RunRow;
 use crate::trajectory_mat::{read_mat, Columns, MatError};
+use catalog::ids::SolverId;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -32,6 +33,11 @@ pub struct Trajectory {
 
 /// The `solver_kind` (and `integrator`) of a scored trajectory's row.
 pub const TRAJECTORY_KIND: &str = "trajectory";
+
+/// The default solver id of a scored trajectory: [`TRAJECTORY_KIND`].
+pub fn trajectory_id() -> SolverId {
+    SolverId::new(TRAJECTORY_KIND).expect("\"trajectory\" is a slug")
+}
 
 /// Why a trajectory file cannot be read.
 #[derive(Debug, thiserror::Error)]
@@ -171,8 +177,8 @@ pub fn parse_csv(bytes: &[u8], path: &Path) -> Result<Trajectory, TrajectoryFile
 /// engine's `simulation::row::run_row`); `source` names the file it came from, `name` (a slug,
 /// [`TRAJECTORY_KIND`] by default) is its solver id: the row's key is the task and the name,
 /// never the exact column's.
-pub fn score_row(mut row: RunRow, source: &str, name: &str) -> RunRow {
-    row.solver_id = name.to_string();
+pub fn score_row(mut row: RunRow, source: &str, name: &SolverId) -> RunRow {
+    row.solver_id = name.clone();
     row.solver = format!("{TRAJECTORY_KIND} {source}");
     row.solver_kind = catalog::solver_kind::SolverKind::Trajectory;
     row.integrator = TRAJECTORY_KIND.to_string();
@@ -198,6 +204,11 @@ mod tests {
         assert!(tr.thetadot.is_none());
         let tr = read("t, theta_1, thetadot_1\n0, 1, -1\n").unwrap();
         assert_eq!(tr.thetadot, Some(vec![vec![-1.0]]));
+    }
+
+    #[test]
+    fn the_default_trajectory_id_is_the_kind() {
+        assert_eq!(trajectory_id(), TRAJECTORY_KIND);
     }
 
     #[test]

@@ -13,6 +13,7 @@ use crate::options::ScoreOptions;
 use crate::project::Project;
 use crate::summary::{emit, summary};
 use catalog::experiment::{load_dir, Job, PaperFile};
+use catalog::ids::SolverId;
 use catalog::run_key::TaskKey;
 use presentation::figures::run_figure;
 use records::error::{IoAction, IoError};
@@ -125,7 +126,7 @@ pub fn significant_digits(v: f64) -> usize {
 /// The task `"<experiment> / <variant>"` (ids) of the experiment files in `experiments_dir`, as
 /// its first run (a trajectory is scored on its robot, path, scheme and poses only).
 pub fn find_task(experiments_dir: &Path, id: &str) -> Result<Job, ScoreError> {
-    let key = TaskKey::parse(id);
+    let key = TaskKey::parse(id).ok();
     load_dir(experiments_dir, check_job)?
         .iter()
         .flat_map(PaperFile::jobs)
@@ -146,7 +147,7 @@ pub fn score_file(
     out: &Path,
     git_rev: &str,
 ) -> Result<Scored, ScoreError> {
-    check_name(name)?;
+    let name = check_name(name)?;
     check_out(out)?;
     let trajectory = read(file, task.theta0.len(), columns)?;
     let record = score_trajectory(task, &trajectory).map_err(|error| ScoreError::Score {
@@ -158,7 +159,7 @@ pub fn score_file(
         || file.display().to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
-    let row = score_row(run_row(&record, git_rev), &source, name);
+    let row = score_row(run_row(&record, git_rev), &source, &name);
     let warnings = warnings(&row, &trajectory);
     let dir = OwnedDir::open(out)?;
     let scores = dir.resolve(Path::new(SCORES))?;
@@ -217,15 +218,15 @@ pub fn score_file(
 pub const SCORES: &str = "scores.csv";
 
 /// A scored trajectory's name: a slug that can name its files, and not the exact column's id.
-fn check_name(name: &str) -> Result<(), ScoreError> {
+fn check_name(name: &str) -> Result<SolverId, ScoreError> {
     if name == catalog::run_key::EXACT_ID {
         return Err(ScoreError::ReservedName {
             name: name.to_string(),
         });
     }
     let max = catalog::naming::MAX_SOLVER_LABEL;
-    if schemes::slug::is_slug(name) && name.len() <= max {
-        return Ok(());
+    if let Ok(id) = SolverId::new(name) {
+        return Ok(id);
     }
     let mut suggestion = schemes::slug::slug(name);
     suggestion.truncate(max);
@@ -279,9 +280,7 @@ mod tests {
             max_pos_err: Some(max_pos_err),
             path_scale: Some(0.2),
             ..RunRow::blank(
-                "e",
-                "v",
-                "trajectory",
+                &catalog::run_key::RunKey::from_ids("e", "v", "trajectory").unwrap(),
                 catalog::solver_kind::SolverKind::Trajectory,
             )
         };

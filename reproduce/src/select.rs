@@ -52,7 +52,8 @@ pub fn check_selection(files: &[PaperFile], selection: &Selection) -> Result<(),
 /// Whether `selection` keeps `job` (its paper, its experiment, the exact column only).
 pub fn selects(selection: &Selection, job: &Job) -> bool {
     selection.paper.as_ref().is_none_or(|p| &job.paper == p)
-        && (selection.experiments.is_empty() || selection.experiments.contains(&job.experiment))
+        && (selection.experiments.is_empty()
+            || selection.experiments.iter().any(|e| job.experiment == *e))
         && (!selection.exact_only || job.solver == SolverChoice::Exact)
 }
 

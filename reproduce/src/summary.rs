@@ -18,7 +18,7 @@ pub fn summary(rows: &[RunRow]) -> String {
     let mut current = String::new();
     for r in rows {
         if r.experiment != current {
-            current = r.experiment.clone();
+            current = r.experiment.to_string();
             let _ = writeln!(
                 out,
                 "\n== {current} ({} on {}, T = {} s)",

@@ -145,7 +145,7 @@ fn runs_of_deleted_experiments_are_pruned() {
     )
     .unwrap();
     let mut stale = committed[0].clone();
-    stale.experiment = "kong2019-deleted".to_string();
+    stale.experiment = catalog::ids::ExperimentId::new("kong2019-deleted").unwrap();
     std::fs::write(
         results.join("runs.csv"),
         runs_csv(&[stale.clone()]).unwrap(),

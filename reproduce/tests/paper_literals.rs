@@ -162,8 +162,8 @@ fn names(root: &Path) -> Names {
     for f in &files {
         for job in f.jobs() {
             inside.insert(job.paper.clone());
-            inside.insert(job.experiment.clone());
-            whole.insert(job.variant_id.clone());
+            inside.insert(job.experiment.to_string());
+            whole.insert(job.variant_id.to_string());
             whole.insert(job.variant.clone());
             code_names.insert(job.scheme.display_name());
             if let Some(head) = job.scheme.display_name().split(" (").next() {

@@ -23,6 +23,7 @@ pub enum Method {
 }
 
 impl Method {
+    /// The method's name in experiment files and results (`bdf`, `tr-bdf2`, ...).
     pub fn label(self) -> &'static str {
         match self {
             Method::Bdf => "bdf",
@@ -44,8 +45,11 @@ impl std::fmt::Display for Method {
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct IntegratorSettings {
+    /// The integration method.
     pub method: Method,
+    /// Relative tolerance (ode15s's RelTol).
     pub rtol: f64,
+    /// Absolute tolerance (ode15s's AbsTol).
     pub atol: f64,
     /// Accepted steps after which the run is abandoned as diverging.
     #[serde(default = "default_max_steps")]

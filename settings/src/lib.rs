@@ -27,6 +27,8 @@
 //! # fn parse(text: &str) -> SolverSpec { toml::from_str(text).unwrap() }
 //! ```
 
+#![deny(missing_docs)]
+
 pub mod activation;
 pub mod error;
 pub mod integrator;

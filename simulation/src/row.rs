@@ -29,7 +29,7 @@ pub fn run_row(r: &RunRecord, git_rev: &str) -> RunRow {
         paper: j.paper.clone(),
         experiment: j.experiment.clone(),
         variant_id: j.variant_id.clone(),
-        solver_id: j.solver.id(),
+        solver_id: j.key().solver,
         variant: j.variant.clone(),
         scheme: r.run.scheme_name.clone(),
         solver: j.solver.label(),

@@ -87,7 +87,7 @@ impl ExperimentLog {
     fn new(jobs: &[Job]) -> Self {
         let mut per: BTreeMap<String, (usize, usize)> = BTreeMap::new();
         for j in jobs {
-            per.entry(j.experiment.clone()).or_default().1 += 1;
+            per.entry(j.experiment.to_string()).or_default().1 += 1;
         }
         Self {
             started: Instant::now(),

@@ -36,7 +36,7 @@ pub fn cost_table(runs: &Runs, paper: &str) -> String {
             }
         };
         t.push([
-            r.experiment.clone(),
+            r.experiment.to_string(),
             r.variant.clone(),
             r.solver.clone(),
             r.integrator.clone(),

@@ -30,7 +30,7 @@ pub fn score_table(runs: &Runs, paper: &str) -> String {
     ]);
     for r in runs.of_paper(paper).filter(|r| is_neural(r)) {
         t.push([
-            r.experiment.clone(),
+            r.experiment.to_string(),
             r.variant.clone(),
             r.solver.clone(),
             r.score_samples
