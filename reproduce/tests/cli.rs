@@ -2,7 +2,7 @@
 //! stated one) and fails on a doctored one; an unexpected failed run exits non-zero, the
 //! experiment files' expected failures do not.
 
-mod common;
+use crate::common;
 
 use common::reproduce;
 use records::runs::{read_runs, runs_csv};

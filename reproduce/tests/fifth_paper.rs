@@ -3,7 +3,7 @@
 //! deviations) gets its report section: the published table side by side with our runs, the
 //! claims checked, a verdict and the drift attribution.
 
-mod common;
+use crate::common;
 use common::{copy_tree, ok, reproduce};
 use std::path::Path;
 

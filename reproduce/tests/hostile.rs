@@ -5,7 +5,7 @@
 //! anything runs. Each case gives a clear error or a correct result, and nothing outside the
 //! project is touched.
 
-mod common;
+use crate::common;
 
 use common::{ok, reproduce};
 use records::runs::{read_runs, runs_csv, RunRow};

@@ -5,7 +5,7 @@
 //! mappings and sequences, flow sequences and mappings of scalars, quoted and plain scalars,
 //! comments); anything else in it is a test failure, not a guess.
 
-mod common;
+use crate::common;
 
 use std::collections::HashSet;
 

@@ -19,7 +19,7 @@
 //!
 //! Exempt files ([`EXEMPT`]), each with its reason.
 
-mod common;
+use crate::common;
 
 use common::{library_files, repo_root};
 use std::collections::BTreeSet;

@@ -1,7 +1,7 @@
 //! Run ids, not labels, are identities: renaming every display label of an experiment file
 //! orphans nothing, moves no result, and the regression gate still passes.
 
-mod common;
+use crate::common;
 use common::{ok, reproduce};
 use records::runs::read_runs;
 use std::path::{Path, PathBuf};

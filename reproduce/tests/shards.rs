@@ -3,7 +3,7 @@
 //! missing; a shard directory of another selection or sweep refused at the start; K and N from
 //! a Slurm array that does not tell N.
 
-mod common;
+use crate::common;
 
 use common::{ok, reproduce};
 use records::runs::read_runs;

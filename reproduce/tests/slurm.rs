@@ -28,7 +28,7 @@
 //! (`.ci/run` sets it): there it fails, so CI cannot pass vacuously. About 20 s here (a
 //! 2-core machine), well within the 3 minutes [`RUN_TIMEOUT`] and [`START_TIMEOUT`] allow.
 
-mod common;
+use crate::common;
 
 use common::{ok, reproduce};
 use std::path::{Path, PathBuf};

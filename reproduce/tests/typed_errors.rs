@@ -6,7 +6,7 @@
 //!
 //! Not searched: the files of [`ALLOWED`], each with its reason.
 
-mod common;
+use crate::common;
 
 use common::{library_files, repo_root};
 

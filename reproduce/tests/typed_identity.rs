@@ -7,7 +7,7 @@
 //! Not refused: comparing an id with an id (`r.solver_id == id`), and the grammars of names
 //! that are parsed, not compared as labels, in [`ALLOWED`] with their reasons.
 
-mod common;
+use crate::common;
 
 use common::{library_files, repo_root};
 

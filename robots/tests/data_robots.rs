@@ -1,7 +1,7 @@
 //! The data models of `robots/data/*.toml` against the Rust models they transcribe (FK, J and
 //! Jdot at seeded random angles, limits), and the PUMA 560, which exists only as data.
 
-mod common;
+use crate::common;
 
 use common::*;
 use nalgebra::{SMatrix, SVector, Vector3};

@@ -3,7 +3,7 @@
 //! consistency, and the kinetic energy from independently computed link velocities.
 //! Link poses for U and T come from the independent DH transcription in `common`.
 
-mod common;
+use crate::common;
 
 use common::*;
 use nalgebra::{Matrix3, Matrix4, SMatrix, SVector, Vector3};

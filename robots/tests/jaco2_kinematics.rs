@@ -1,7 +1,7 @@
 //! Jaco2 kinematics: check values of `docs/robots.md`, an independent DH transcription, the
 //! Jacobian and its time derivative against finite differences, and the joint limits.
 
-mod common;
+use crate::common;
 
 use common::*;
 use nalgebra::{Matrix4, Rotation3, SVector, Vector3};

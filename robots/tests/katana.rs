@@ -2,7 +2,7 @@
 //! eq. (2), the Jacobian and its time derivative against finite differences, the wrist roll,
 //! the stretched singular pose and the (unenforced) limits.
 
-mod common;
+use crate::common;
 
 use std::f64::consts::PI;
 

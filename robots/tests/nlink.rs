@@ -2,7 +2,7 @@
 //! Jacobian and its time derivative against finite differences, reach, names, skeleton, limits,
 //! and the conditioning of the home pose for every N = 3..=30.
 
-mod common;
+use crate::common;
 
 use common::*;
 use nalgebra::{Rotation3, SVector, Translation3, Vector3};

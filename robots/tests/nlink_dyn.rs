@@ -2,7 +2,7 @@
 //! and its J and Jdot against central finite differences at N = 7, 100 and 200, where no
 //! fixed-size arm exists.
 
-mod common;
+use crate::common;
 
 use common::*;
 use nalgebra::{DVector, Matrix3xX, SVector};

@@ -2,7 +2,7 @@
 //! modified-DH table, the Jacobian and its time derivative against finite differences at
 //! in-limit poses, the Jacobian's singular values at the ready pose, skeleton and limits.
 
-mod common;
+use crate::common;
 
 use std::f64::consts::PI;
 

@@ -1,7 +1,7 @@
 //! The arm's drawing skeleton: it starts at the base, ends at the task point, and its segments
 //! have the models' constant link lengths.
 
-mod common;
+use crate::common;
 
 use common::*;
 use nalgebra::{SVector, Vector3};

@@ -3,7 +3,7 @@
 //! constraint, zhang2018's weight matrix, kong2019's finite-time term, the QP time derivative,
 //! constant sizes along a run, and the experiment-file spec.
 
-mod common;
+use crate::common;
 
 use std::sync::Arc;
 

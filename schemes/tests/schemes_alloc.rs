@@ -1,7 +1,7 @@
 //! `build` and the analytic `build_dot` overrides must not allocate: counted with a global
 //! allocator that counts allocations made by the current thread while a flag is set.
 
-mod common;
+use crate::common;
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;

@@ -3,7 +3,7 @@
 //! MVN's QP in reduced form (between its Clarabel checks): counted with a global allocator that
 //! counts the current thread's allocations while a flag is set.
 
-mod common;
+use crate::common;
 
 use common::count;
 use solvers::{

@@ -3,7 +3,7 @@
 //! set. Every kind of [`SolverSpec`], with every activation where it takes one, and the group's
 //! network with each of its options.
 
-mod common;
+use crate::common;
 
 use common::count;
 use nalgebra::DMatrix;

@@ -6,7 +6,7 @@
 //! Jacobian with at every evaluation, which the closures diffsol is given cannot avoid.
 //! Counted with the allocation tests' global allocator.
 
-mod common;
+use crate::common;
 
 use common::count;
 use nalgebra::DMatrix;

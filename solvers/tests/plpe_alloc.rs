@@ -1,7 +1,7 @@
 //! [`LviSolver::solve`] allocates nothing, for every one of robio2018's six methods, whether it
 //! converges, fails to, or finds M singular; nor does the [`QpSolver`] view of it.
 
-mod common;
+use crate::common;
 
 use common::count;
 use solvers::lvi_numerical::{LviMethod, LviSettings, LviSolver};

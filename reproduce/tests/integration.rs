@@ -1,0 +1,23 @@
+//! Every integration test of this crate, one module per file of `tests/`, in one test
+//! binary: one build and link instead of one per file (issue 29). The files are unchanged
+//! but for `use crate::common;` where they shared `tests/common/`.
+
+mod common;
+
+mod cli;
+mod fifth_paper;
+mod hostile;
+mod hostile_inputs;
+mod kubernetes;
+mod layering;
+mod octave;
+mod paper_literals;
+mod regression;
+mod run_ids;
+mod score;
+mod self_contained;
+mod shards;
+mod slurm;
+mod task_cards;
+mod typed_errors;
+mod typed_identity;
