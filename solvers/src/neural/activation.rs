@@ -24,7 +24,7 @@
 //! ((1 + exp(-xi)) / (1 - exp(-xi))) (1 - exp(-xi e)) / (1 + exp(-xi e)) otherwise; called with
 //! one argument it uses xi = 1, p = 1, with two p = 3
 //! ([`settings::activation::GROUP_POWER_SIGMOID_XI`],
-//! [`settings::solver_spec::GROUP_POWER_SIGMOID_P`] are the one-argument defaults, the ones its
+//! [`settings::activation::GROUP_POWER_SIGMOID_P`] are the one-argument defaults, the ones its
 //! network uses).
 //! This is zhong2021's eq. 2.29 with **alpha = xi and chi = p**: the same sigmoid branch
 //! (= coth(xi/2) tanh(xi e/2)) inside, the same power outside. The two differ only at
