@@ -24,27 +24,44 @@ use std::path::PathBuf;
 /// network), each wrapping its layer's own error.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum SetupError {
+    /// The robot is not one of the registry's (its name as given).
     #[error("unknown robot \"{0}\"")]
     UnknownRobot(String),
-    /// theta0 or theta_ref does not have the robot's joint count.
+    /// theta0, theta_ref or a limits override does not have the robot's joint count.
     #[error("has {given} entries, the robot has {joints} joints")]
     PoseLength {
+        /// The part: [`JobPart::Theta0`], [`JobPart::ThetaRef`] or [`JobPart::Limits`].
         part: JobPart,
+        /// The entries given (for limits, the longer of `lower` and `upper`).
         given: usize,
+        /// The robot's joint count.
         joints: usize,
     },
+    /// theta0 or theta_ref has a NaN or infinite entry.
     #[error("entries must be finite")]
-    PoseNotFinite { part: JobPart },
+    PoseNotFinite {
+        /// The part: [`JobPart::Theta0`] or [`JobPart::ThetaRef`].
+        part: JobPart,
+    },
+    /// The path cannot be built (built from f(theta_ref)).
     #[error(transparent)]
     Path(#[from] PathError),
     /// The scheme's error, with a hint naming what would fit (e.g. the robots with dynamics).
     #[error("{error}{hint}")]
-    Scheme { error: SchemeError, hint: String },
+    Scheme {
+        /// The scheme's own error.
+        error: SchemeError,
+        /// Text appended to its message (empty when there is nothing to suggest).
+        hint: String,
+    },
     /// The suite's network could not be built for the scheme's QP.
     #[error("{network}: {error} (scheme {scheme})")]
     Network {
+        /// The network's display name, e.g. `VP-RNN-PF (sinh)`.
         network: String,
+        /// The scheme's name as its paper writes it.
         scheme: String,
+        /// The network's own error.
         error: NetworkError,
     },
     /// A network given by the caller (e.g. a Python network) could not be built: its message.
@@ -52,7 +69,10 @@ pub enum SetupError {
     CustomNetwork(String),
     /// Limits were given for a robot whose dynamics model the scheme reads its limits from.
     #[error("joint_limits / velocity_limits cannot replace the limits of \"{robot}\" for the acceleration-level scheme, which reads them from the robot's dynamics model")]
-    LimitsWithDynamics { robot: String },
+    LimitsWithDynamics {
+        /// The robot's name.
+        robot: String,
+    },
 }
 
 impl SetupError {
@@ -80,68 +100,124 @@ pub enum SweepError {
     /// The error of the variant `variant` (its label) of experiment `experiment` (its id).
     #[error("experiment[{experiment}] (id \"{id}\") variant[{variant}] (\"{label}\") {error}")]
     In {
+        /// The experiment's index in the file (from 0).
         experiment: usize,
+        /// The experiment's id.
         id: String,
+        /// The variant's index among the experiment's variants as written (from 0).
         variant: usize,
+        /// The variant's label (the template), `?` when it has none.
         label: String,
+        /// What is wrong with the sweep.
         error: Box<SweepError>,
     },
     /// The first expanded variant does not read as a variant (a misspelt swept field).
     #[error("field `sweep`: the expanded variant \"{expanded}\" does not read: {error} (check the swept keys: {})", keys.join(", "))]
     DoesNotRead {
+        /// The expanded variant's label.
         expanded: String,
+        /// Why it does not read (serde's error).
         error: TomlError,
+        /// The swept keys, each in backquotes.
         keys: Vec<String>,
     },
+    /// `sweep` is not a table.
     #[error("field `sweep`: must be a table of dotted keys and value lists, e.g. sweep = {{ \"scheme.mu\" = [0.5, 1, 2] }} (got {got})")]
-    NotATable { got: &'static str },
+    NotATable {
+        /// The TOML type given instead, e.g. `array`.
+        got: &'static str,
+    },
+    /// `sweep` is an empty table.
     #[error("field `sweep`: is empty (give at least one key)")]
     Empty,
+    /// The variant's `id` is not a string.
     #[error("field `id`: must be a string (the base of the expanded variants' ids), not {got}")]
-    IdNotAString { got: &'static str },
+    IdNotAString {
+        /// The TOML type given instead.
+        got: &'static str,
+    },
+    /// The variant has no string `label` to serve as the template.
     #[error("field `label`: a sweep variant needs a label (the template of the generated labels)")]
     NoLabel,
+    /// The variant's sweep alone expands into more than [`crate::sweep::MAX_EXPANSION`]
+    /// variants.
     #[error("field `sweep`: expands into more than {max} variants")]
-    TooMany { max: usize },
+    TooMany {
+        /// The limit, [`crate::sweep::MAX_EXPANSION`].
+        max: usize,
+    },
     /// The variant's sweep fits on its own, but not beside the sweeps read before it.
     #[error("field `sweep`: with the sweeps before it (in this file and the files read before), the experiment files expand into more than {max} variants in all")]
-    TooManyInAll { max: usize },
+    TooManyInAll {
+        /// The limit for all files together, [`crate::sweep::MAX_EXPANSION`].
+        max: usize,
+    },
+    /// Two expanded variants get the same label.
     #[error("field `sweep`: expanded variants {first} and {second} both get the label \"{label}\"; the label template must tell every value of every key apart (keys: {})", keys.join(", "))]
     SameLabel {
+        /// The first one's index in the expansion (from 0).
         first: usize,
+        /// The second one's index in the expansion.
         second: usize,
+        /// The label they share.
         label: String,
+        /// The swept keys, each in backquotes.
         keys: Vec<String>,
     },
+    /// The label template has a placeholder that names no swept key.
     #[error("field `label`: placeholder {{{placeholder}}} names no swept key (known: {})", known.join(", "))]
     Placeholder {
+        /// The placeholder's name (without braces).
         placeholder: String,
+        /// The names the template may use.
         known: Vec<String>,
     },
     /// A problem with one key of the sweep.
     #[error("field `sweep` key `{key}`: {error}")]
-    Key { key: String, error: SweepKeyError },
+    Key {
+        /// The key as written (several paths, comma-separated, for a zipped group).
+        key: String,
+        /// What is wrong with it.
+        error: SweepKeyError,
+    },
 }
 
 /// What is wrong with one key of a `sweep` table (its dotted path or its values).
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum SweepKeyError {
+    /// A dotted path of the key leads nowhere in the variant.
     #[error("unknown key path: {0}")]
     Path(KeyPathError),
+    /// The list of values is empty.
     #[error("the list of values is empty")]
     NoValues,
+    /// The key's range has no values.
     #[error(transparent)]
     Range(#[from] RangeError),
+    /// The values are neither a list nor (for a single path) a range table.
     #[error("must be a list of values{} (got {got})", if *.group { " (each a list with one entry per path of the group)" } else { " or a range { from = a, to = b, step = s }" })]
-    NotAList { group: bool, got: &'static str },
+    NotAList {
+        /// Whether the key is a zipped group of several paths (which takes no range).
+        group: bool,
+        /// The TOML type given instead.
+        got: &'static str,
+    },
+    /// A labelled value's `label` is not a string.
     #[error("value [{index}]: `label` must be a string")]
-    LabelNotString { index: usize },
+    LabelNotString {
+        /// The value's index in the list (from 0).
+        index: usize,
+    },
+    /// A value of a zipped group is not a list with one entry per path.
     #[error(
         "value [{index}] must be a list of {paths} entries, one per path of the group (got {got})"
     )]
     GroupValue {
+        /// The value's index in the list (from 0).
         index: usize,
+        /// The number of paths in the group.
         paths: usize,
+        /// The value given, as TOML writes it.
         got: String,
     },
 }
@@ -149,67 +225,147 @@ pub enum SweepKeyError {
 /// Why a swept key's dotted path leads nowhere in the variant.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum KeyPathError {
+    /// The path has an empty segment (`a..b`, a leading or trailing dot).
     #[error("an empty segment")]
     EmptySegment,
+    /// The first segment is not a field a sweep may set.
     #[error("`{first}` is not a field of a variant (fields: {})", crate::sweep::VARIANT_FIELDS.join(", "))]
-    NotAField { first: String },
+    NotAField {
+        /// The first segment.
+        first: String,
+    },
+    /// A table on the way lacks the next segment (only the last segment may be new).
     #[error("`{done}` has no `{segment}` (give it on the variant to sweep inside it)")]
-    NoKey { done: String, segment: String },
+    NoKey {
+        /// The path to the table, dotted.
+        done: String,
+        /// The segment it lacks.
+        segment: String,
+    },
+    /// `*` stands for every element of a list that has none.
     #[error("`{done}` is an empty list")]
-    EmptyList { done: String },
+    EmptyList {
+        /// The path to the list, dotted.
+        done: String,
+    },
+    /// A list is indexed by something that is neither a number nor `*`.
     #[error("`{done}` is a list: index it with 0, 1, ... or `*`, not `{segment}`")]
-    BadIndex { done: String, segment: String },
+    BadIndex {
+        /// The path to the list, dotted.
+        done: String,
+        /// The segment given as its index.
+        segment: String,
+    },
+    /// A list index is past the list's end.
     #[error("`{done}` has {len} entries, no [{index}]")]
     NoEntry {
+        /// The path to the list, dotted.
         done: String,
+        /// The list's length.
         len: usize,
+        /// The index given (from 0).
         index: usize,
     },
+    /// The path goes on inside a value that is neither a table nor a list.
     #[error("`{done}` is a {kind}, not a table or a list")]
-    NotContainer { done: String, kind: &'static str },
+    NotContainer {
+        /// The path to the value, dotted.
+        done: String,
+        /// Its TOML type.
+        kind: &'static str,
+    },
+    /// The path goes inside a field the variant does not give.
     #[error("the variant gives no `{done}` (write it on the variant, e.g. {done} = {{ ... }}, to sweep inside it)")]
-    Missing { done: String },
+    Missing {
+        /// The field.
+        done: String,
+    },
 }
 
 /// Why a range `{ from, to, step }` of a sweep has no values.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum RangeError {
+    /// The range table's keys are not exactly `from`, `to` and `step`.
     #[error("a range is {{ from = a, to = b, step = s }} (got keys: {})", keys.join(", "))]
-    Keys { keys: Vec<String> },
+    Keys {
+        /// The keys given.
+        keys: Vec<String>,
+    },
+    /// An integer range whose step is 0, does not divide `to - from` or points away from `to`.
     #[error("range from {from} to {to}: step {step} does not divide the interval")]
-    IntegerStep { from: i64, to: i64, step: i64 },
+    IntegerStep {
+        /// The first value.
+        from: i64,
+        /// The last value.
+        to: i64,
+        /// The step.
+        step: i64,
+    },
+    /// The range has more than [`crate::sweep::MAX_EXPANSION`] values.
     #[error("range has more than {max} values")]
-    TooMany { max: usize },
+    TooMany {
+        /// The limit, [`crate::sweep::MAX_EXPANSION`].
+        max: usize,
+    },
+    /// An end or the step of a non-integer range is not a finite number.
     #[error("range `{key}` must be a finite number")]
-    NotANumber { key: &'static str },
+    NotANumber {
+        /// The key: `from`, `to` or `step`.
+        key: &'static str,
+    },
+    /// A non-integer range's step is 0.
     #[error("range step is 0")]
     ZeroStep,
+    /// A non-integer range's step does not divide `to - from` (to 1e-9).
     #[error("range from {from} to {to}: step {step} does not divide the interval ((to - from) / step = {quotient})")]
     FloatStep {
+        /// The first value.
         from: f64,
+        /// The last value.
         to: f64,
+        /// The step.
         step: f64,
+        /// (to - from) / step, which is not an integer.
         quotient: f64,
     },
+    /// A non-integer range's step points away from `to`.
     #[error("range from {from} to {to}: step {step} points away from `to`")]
-    Away { from: f64, to: f64, step: f64 },
+    Away {
+        /// The first value.
+        from: f64,
+        /// The last value.
+        to: f64,
+        /// The step.
+        step: f64,
+    },
 }
 
 /// Where in an experiment file a field is: the file's `paper`, an experiment's field, or a
 /// variant's field.
 #[derive(Clone, Debug, PartialEq)]
 pub enum FieldAt {
+    /// The file's `paper` field.
     Paper,
+    /// A field of an experiment.
     Experiment {
+        /// The experiment's index in the file (from 0).
         index: usize,
+        /// The experiment's id.
         id: String,
+        /// The field's name, e.g. `theta0` or `integrator`.
         field: String,
     },
+    /// A field of a variant.
     Variant {
+        /// The experiment's index in the file (from 0).
         experiment: usize,
+        /// The experiment's id.
         id: String,
+        /// The variant's index in the experiment, sweeps expanded (from 0).
         index: usize,
+        /// The variant's label (an expanded sweep variant's generated one).
         label: String,
+        /// The field's name, with the entry where it is a list, e.g. `scheme` or `solvers[1]`.
         field: String,
     },
 }
@@ -238,75 +394,147 @@ impl std::fmt::Display for FieldAt {
 /// What is wrong with one field of an experiment file.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum FieldError {
+    /// The id or label cannot name a file ([`crate::naming::check_name`]).
     #[error(transparent)]
     Name(#[from] NameError),
     /// An id that is not a valid id of its kind (`crate::ids`).
     #[error(transparent)]
     Id(#[from] crate::ids::IdError),
+    /// An experiment id does not start with the file's paper id and `-`.
     #[error("must start with the paper id \"{paper}-\"")]
-    PaperPrefix { paper: String },
+    PaperPrefix {
+        /// The file's paper id.
+        paper: String,
+    },
+    /// An experiment id is used twice in the file.
     #[error("experiment id \"{id}\" is used twice")]
-    IdTwice { id: String },
+    IdTwice {
+        /// The id.
+        id: String,
+    },
+    /// The robot is not one of the registry's.
     #[error("unknown robot \"{robot}\" (known: {known})")]
-    UnknownRobot { robot: String, known: String },
+    UnknownRobot {
+        /// The name given.
+        robot: String,
+        /// The known names, comma-separated (the n-link family as one entry).
+        known: String,
+    },
+    /// A joint vector (theta0, theta_ref) or a side of a limits override has not one entry per
+    /// joint.
     #[error("has {given} entries, the robot has {joints} joints")]
-    Length { given: usize, joints: usize },
+    Length {
+        /// The entries given.
+        given: usize,
+        /// The robot's joint count.
+        joints: usize,
+    },
+    /// A joint vector or a side of a limits override has a NaN or infinite entry.
     #[error("entries must be finite")]
     NotFinite,
     /// The integrator settings' own check.
     #[error(transparent)]
     Integrator(IntegratorError),
+    /// The experiment's scoring asks for 0 instants (`max-instants = 0`).
     #[error("max-instants must be at least 1 (use scoring = \"off\" for no scoring)")]
     NoInstants,
+    /// The experiment has no variant.
     #[error("at least one [[experiment.variant]] is needed")]
     NoVariants,
+    /// Two variants of the experiment have the same label.
     #[error("label \"{label}\" is used by two variants of the experiment")]
-    LabelTwice { label: String },
+    LabelTwice {
+        /// The label.
+        label: String,
+    },
+    /// A paper, experiment or variant id is not in id form ([`crate::ids`]).
     #[error("\"{id}\" is not an id: use lower-case ASCII letters, digits, `.` and single `-` (e.g. \"{suggestion}\")")]
-    NotAnId { id: String, suggestion: String },
+    NotAnId {
+        /// The id as written.
+        id: String,
+        /// Its slug, an id it could be.
+        suggestion: String,
+    },
+    /// Two variants of the experiment have the same id.
     #[error("variants \"{label}\" and \"{other}\" both have the id \"{id}\"{}; give one an `id`", if *derived { " (derived from the label)" } else { "" })]
     IdClash {
+        /// The label of the variant found second.
         label: String,
+        /// The label of the variant that has the id first.
         other: String,
+        /// The id they share.
         id: String,
+        /// Whether the second variant's id is its label's slug (it gives no `id`).
         derived: bool,
     },
+    /// `expected_failure` names a solver kind none of the variant's runs has.
     #[error("\"{kind}\" is not a solver kind of this variant (its runs: {kinds})")]
-    UnknownFailureKind { kind: String, kinds: String },
+    UnknownFailureKind {
+        /// The kind named.
+        kind: String,
+        /// The solver kinds of the variant's runs, comma-separated.
+        kinds: String,
+    },
+    /// A variant's robot has another joint count than the experiment's, and the variant gives
+    /// no theta0 of its own (or no theta_ref, where the experiment gives one).
     #[error("robot \"{robot}\" has {joints} joints; give theta0/theta_ref for it")]
-    RobotJoints { robot: String, joints: usize },
+    RobotJoints {
+        /// The variant's robot.
+        robot: String,
+        /// Its joint count.
+        joints: usize,
+    },
+    /// A scheme parameter is out of its range ([`schemes::spec::SchemeSpec::validate`]).
     #[error(transparent)]
     Scheme(#[from] SchemeError),
+    /// The variant runs nothing: no exact run, no solvers and no numerical methods.
     #[error("variant runs nothing (exact = false and no solvers)")]
     RunsNothing,
+    /// A joint's limits are out of order in a limits override.
     #[error("joint {joint}: lower = {lower}, upper = {upper} (must be {requirement})")]
     LimitOrder {
+        /// The joint, numbered from 1.
         joint: usize,
+        /// Its lower limit (rad, or rad/s for velocity limits).
         lower: f64,
+        /// Its upper limit (rad, or rad/s for velocity limits).
         upper: f64,
+        /// What must hold: `lower < upper` (joint limits) or `lower < 0 < upper` (velocity
+        /// limits).
         requirement: &'static str,
     },
+    /// A numerical method's specification fails its check (`numerical[k]`).
     #[error(transparent)]
     Numerical(#[from] crate::numerical_spec::NumericalSpecError),
     /// A run of the variant cannot be built (robot, pose, path, scheme or network).
     #[error(transparent)]
     Setup(#[from] SetupError),
+    /// Two runs of the variant have the same run key.
     #[error("run \"{key}\" is listed twice (experiment / variant / solver ids must be unique)")]
-    RunTwice { key: String },
+    RunTwice {
+        /// The run key, `experiment / variant / solver`.
+        key: String,
+    },
 }
 
 /// Why the text of an experiment file is not a valid experiment file (without the file name;
 /// [`ExperimentFileError`] adds it). Wraps the TOML, sweep and field errors.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum ExperimentError {
+    /// The text is not TOML, or does not read as an experiment file (a missing, unknown or
+    /// mistyped field).
     #[error(transparent)]
     Toml(#[from] TomlError),
+    /// A variant's `sweep` does not expand.
     #[error(transparent)]
     Sweep(Box<SweepError>),
-    /// (Boxed, as the sweep's: the field's place and error are large.)
+    /// A field's value is invalid. (Boxed, as the sweep's: the field's place and error are
+    /// large.)
     #[error("{at}: {error}")]
     Field {
+        /// Where the field is.
         at: Box<FieldAt>,
+        /// What is wrong with it.
         error: Box<FieldError>,
     },
 }
@@ -325,24 +553,38 @@ pub enum ExperimentFileError {
     /// FIFO or device, over its cap): the input reader's error names the file.
     #[error(transparent)]
     Read(#[from] inputs::InputError),
+    /// The file's text is not a valid experiment file.
     #[error("{}: {error}", file.display())]
     Invalid {
+        /// The file.
         file: PathBuf,
+        /// What is wrong with its text.
         error: ExperimentError,
     },
+    /// The experiments directory could not be listed.
     #[error("{}: cannot list: {source}", dir.display())]
     List {
+        /// The directory.
         dir: PathBuf,
+        /// The I/O error.
         source: std::io::Error,
     },
+    /// The experiments directory holds no `*.toml` file.
     #[error("{}: holds no experiment file (*.toml): nothing to run; give the directory of the experiment files (--experiments-dir)", dir.display())]
-    NoFiles { dir: PathBuf },
+    NoFiles {
+        /// The directory.
+        dir: PathBuf,
+    },
     /// An experiment id defined in two files.
     #[error("{}: experiment[{index}] (id \"{id}\") field `id`: \"{id}\" is also defined in {}", file.display(), other_file.display())]
     DefinedTwice {
+        /// The file read second (files are read in name order).
         file: PathBuf,
+        /// The experiment's index in that file (from 0).
         index: usize,
+        /// The experiment id.
         id: String,
+        /// The file that defined it first.
         other_file: PathBuf,
     },
 }

@@ -31,7 +31,10 @@ use std::path::{Path, PathBuf};
 pub struct PaperFile {
     /// Paper id (`jia2019`, `zhang2018`, `zhong2021`, `kong2019`).
     pub paper: String,
+    /// The paper's subject in a line (e.g. "VLTCO scheme solved by LVI-PDNN (Jaco2)"), shown in
+    /// listings and the report.
     pub title: String,
+    /// The experiments (`[[experiment]]`), in file order.
     #[serde(rename = "experiment")]
     pub experiments: Vec<Experiment>,
 }
@@ -40,11 +43,15 @@ pub struct PaperFile {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Experiment {
+    /// The experiment's id: a slug starting with the paper id and `-` (e.g. `jia2019-clover`).
     pub id: String,
     /// What the paper prints for it (e.g. "Table 2; Figs 2-4").
     pub paper_output: String,
+    /// The robot's model name ([`robots::registry`], e.g. `jaco2-pen`).
     pub robot: String,
+    /// The desired path of every variant (a variant may override it).
     pub path: PathSpec,
+    /// Initial joint angles theta(0) (rad), one per joint.
     pub theta0: Vec<f64>,
     /// The scheme's joint reference (kong2019's theta*0); theta0 when absent. Paths start at
     /// f(theta_ref).
@@ -67,6 +74,7 @@ pub struct Experiment {
     /// `{ max-instants = 2000 }` (a bounded number of exact solves per run) or `"off"`.
     #[serde(default)]
     pub scoring: Scoring,
+    /// The variants (`[[experiment.variant]]`), in file order, sweeps expanded in place.
     #[serde(rename = "variant")]
     pub variants: Vec<Variant>,
 }
@@ -96,7 +104,9 @@ pub struct Variant {
     pub id: Option<String>,
     /// Label as the paper's table column writes it (e.g. "VLTCO"): display only.
     pub label: String,
+    /// The scheme and its parameters (`[scheme]`, [`SchemeSpec`]).
     pub scheme: SchemeSpec,
+    /// The neural solvers to run the scheme with, one run each.
     #[serde(default)]
     pub solvers: Vec<SolverSpec>,
     /// Numerical QP methods run as this variant's solvers ([`crate::numerical_spec`]).
@@ -105,14 +115,17 @@ pub struct Variant {
     /// Run the exact column (default true).
     #[serde(default = "yes")]
     pub exact: bool,
+    /// The robot of this variant (overrides the experiment's).
     #[serde(default)]
     pub robot: Option<String>,
     /// Boxed, as the other overrides a variant seldom gives (limits, expected failure): a
     /// sweep of 10^6 variants holds 10^6 of these structs, each 200 bytes smaller so.
     #[serde(default)]
     pub path: Option<Box<PathSpec>>,
+    /// Initial joint angles of this variant (rad; overrides the experiment's).
     #[serde(default)]
     pub theta0: Option<Vec<f64>>,
+    /// The scheme's joint reference of this variant (rad; overrides the experiment's).
     #[serde(default)]
     pub theta_ref: Option<Vec<f64>>,
     /// Joint-angle limits of this variant (override the experiment's and the robot's).
@@ -142,7 +155,9 @@ pub struct Variant {
 #[derive(Clone, Debug, PartialEq, Eq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ExpectedFailure {
+    /// Why the runs fail (the finding), shown where they are reported.
     pub why: String,
+    /// The solver kinds of the runs expected to fail (empty: every run of the variant).
     #[serde(default)]
     pub solvers: Vec<String>,
 }
@@ -167,7 +182,9 @@ impl Variant {
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct LimitsSpec {
+    /// Lower limits, one per joint (below `upper`; below 0 for velocity limits).
     pub lower: Vec<f64>,
+    /// Upper limits, one per joint (above `lower`; above 0 for velocity limits).
     pub upper: Vec<f64>,
 }
 
@@ -241,7 +258,9 @@ pub enum Scoring {
 /// The solver of one run: the exact optimum or a neural network.
 #[derive(Clone, Debug, PartialEq)]
 pub enum SolverChoice {
+    /// The exact column: the QP solved to optimality at every evaluation.
     Exact,
+    /// A neural network, with its parameters.
     Neural(SolverSpec),
     /// A numerical QP method iterated at every instant of a fixed-step loop.
     Numerical(NumericalSpec),
@@ -283,6 +302,7 @@ impl SolverChoice {
 /// One run: everything needed to simulate it, resolved from the file.
 #[derive(Clone, Debug)]
 pub struct Job {
+    /// The paper id of the run's file.
     pub paper: String,
     /// The experiment's id.
     pub experiment: ExperimentId,
@@ -290,16 +310,26 @@ pub struct Job {
     pub variant_id: VariantId,
     /// The variant's label (display only).
     pub variant: String,
+    /// The robot's model name (the variant's or the experiment's).
     pub robot: String,
+    /// The desired path (the variant's or the experiment's).
     pub path: PathSpec,
+    /// Initial joint angles theta(0) (rad; the variant's or the experiment's).
     pub theta0: Vec<f64>,
+    /// The scheme's joint reference (rad): the variant's or the experiment's `theta_ref`, else
+    /// theta0.
     pub theta_ref: Vec<f64>,
     /// Joint-angle limits replacing the robot's (the variant's or experiment's `joint_limits`).
     pub joint_limits: Option<LimitsSpec>,
     /// Joint-velocity limits replacing the robot's.
     pub velocity_limits: Option<LimitsSpec>,
+    /// The scheme and its parameters.
     pub scheme: SchemeSpec,
+    /// The run's solver.
     pub solver: SolverChoice,
+    /// Integrator settings: the experiment's `exact_integrator` for the exact run, the variant's or
+    /// the experiment's `integrator` for a neural run (a numerical run, which steps at its own
+    /// fixed gap, carries the exact one and does not use it).
     pub integrator: IntegratorSettings,
     /// Where a neural run is scored against the exact optimum (the experiment's `scoring`;
     /// the controlled re-runs of the `explain` crate need only drift and position error and
@@ -352,11 +382,17 @@ const CHECKED_IDS: &str =
 /// Which part of a [`Job`] could not be built (see [`CheckJob`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum JobPart {
+    /// The robot (`robot`).
     Robot,
+    /// The initial joint vector (`theta0`).
     Theta0,
+    /// The scheme's joint reference (`theta_ref`).
     ThetaRef,
+    /// The path (`path`).
     Path,
+    /// The scheme (`scheme`).
     Scheme,
+    /// The network or numerical method (`solvers`, `numerical`).
     Solver,
     /// The `joint_limits` / `velocity_limits` override.
     Limits,

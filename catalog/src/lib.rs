@@ -16,6 +16,8 @@
 //! loading a file takes its check ([`experiment::CheckJob`]) to reject what a run would reject.
 //! Crates that only read or present results depend on this crate, not on the engine.
 
+#![deny(missing_docs)]
+
 pub mod error;
 pub mod experiment;
 pub mod ids;

@@ -18,18 +18,34 @@ pub const MAX_FILE_NAME: usize = 255;
 /// Why an id or label cannot name a file.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum NameError {
+    /// The name holds `/`, `\`, `..` or a control character.
     #[error(
         "\"{name}\" must not contain `/`, `\\` or `..` (it names files under results/ and report/)"
     )]
-    Unsafe { name: String },
+    Unsafe {
+        /// The name.
+        name: String,
+    },
+    /// The name's slug is empty: it has no ASCII letter or digit.
     #[error("\"{name}\" needs at least one ASCII letter or digit (it names files under results/ and report/)")]
-    Empty { name: String },
+    Empty {
+        /// The name.
+        name: String,
+    },
+    /// The name holds HTML or a Markdown link ([`has_markup`]).
     #[error("\"{name}\" must not contain HTML (`<` before a letter, `/`, `!` or `?`) or a Markdown link (`](`): labels are shown as they are in report/")]
-    Markup { name: String },
+    Markup {
+        /// The name.
+        name: String,
+    },
+    /// The name is longer than its kind allows.
     #[error("\"{}...\" is {len} bytes long; at most {max} are allowed (it names files under results/ and report/, whose names are limited to {MAX_FILE_NAME} bytes)", name.chars().take(40).collect::<String>())]
     TooLong {
+        /// The name.
         name: String,
+        /// Its length (bytes).
         len: usize,
+        /// The longest allowed (bytes), e.g. [`MAX_VARIANT_LABEL`].
         max: usize,
     },
 }

@@ -95,6 +95,7 @@ fn default_step() -> f64 {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct NumericalSpec {
+    /// The method, by its id (`method = "94lvi"`).
     pub method: NumericalMethod,
     /// Stop one instant's iteration at |e(U)|_2 <= tolerance.
     #[serde(default = "default_tolerance")]
@@ -110,21 +111,40 @@ pub struct NumericalSpec {
 /// A [`NumericalSpec`] field out of its range.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum NumericalSpecError {
+    /// `tolerance` is not a positive finite number.
     #[error("numerical {method}: tolerance = {value} must be finite and > 0")]
-    Tolerance { method: &'static str, value: f64 },
+    Tolerance {
+        /// The method's name as robio2018 prints it.
+        method: &'static str,
+        /// The tolerance given.
+        value: f64,
+    },
+    /// `max_iterations` is 0.
     #[error("numerical {method}: max_iterations must be at least 1")]
-    MaxIterations { method: &'static str },
+    MaxIterations {
+        /// The method's name as robio2018 prints it.
+        method: &'static str,
+    },
+    /// `step` is not a positive finite number no longer than the path.
     #[error("numerical {method}: step = {value} must be finite, > 0 and at most the path's duration {duration}")]
     Step {
+        /// The method's name as robio2018 prints it.
         method: &'static str,
+        /// The step given (s).
         value: f64,
+        /// The path's duration (s).
         duration: f64,
     },
+    /// The run would take more than [`MAX_STEPS`] sampling instants.
     #[error("numerical {method}: {steps} steps of {step} s exceed the cap of {cap} per run")]
     TooManySteps {
+        /// The method's name as robio2018 prints it.
         method: &'static str,
+        /// The step (s).
         step: f64,
+        /// The instants it needs: ceil(duration / step).
         steps: f64,
+        /// The cap, [`MAX_STEPS`].
         cap: f64,
     },
 }

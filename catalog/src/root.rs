@@ -13,6 +13,7 @@ use std::path::{Path, PathBuf};
     start.display()
 )]
 pub struct RootNotFound {
+    /// The directory the search started from.
     pub start: PathBuf,
 }
 

@@ -99,13 +99,17 @@ impl Component {
 /// One component of one run's drift, as stored in `results/attribution.csv`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct AttributionRow {
+    /// The paper id of the run's experiment file.
     pub paper: String,
+    /// The run's experiment id.
     pub experiment: ExperimentId,
     /// The run's variant and solver ids (with `experiment`, its key).
     pub variant_id: VariantId,
+    /// The run's solver id.
     pub solver_id: SolverId,
     /// Labels (display only).
     pub variant: String,
+    /// The solver's label (display only).
     pub solver: String,
     /// Which term or switch effect the row holds.
     pub component: Component,

@@ -52,6 +52,7 @@ pub struct ClockRow {
     pub revision: String,
     /// The commit it resolved to (12 hex digits).
     pub commit: String,
+    /// The step timed.
     pub step: Step,
     /// Wall time (s).
     pub seconds: f64,
@@ -59,6 +60,7 @@ pub struct ClockRow {
     pub exit_code: i32,
     /// CPU model (`/proc/cpuinfo`) and logical cores (`nproc`).
     pub machine: String,
+    /// Logical cores (`nproc`).
     pub cores: usize,
     /// When the step started (UTC, ISO 8601).
     pub date: String,

@@ -120,46 +120,73 @@ impl Verdict {
 /// One controller run.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ControlRow {
+    /// The task's label, `<experiment> / <variant>` (display only).
     pub task: String,
+    /// The paper id.
     pub paper: String,
+    /// The scheme's display name with its parameters (e.g. `VLTCO (phi=0.2, tau=0.4)`).
     pub scheme: String,
+    /// The method's label: a numerical method's name (`active set`, `OSQP`, `94LVI`, ...) or a
+    /// network's display name with its discrete form and substeps (e.g. `ZNN [Taylor DTZNN]`).
     pub method: String,
+    /// Whether the method is a network or a numerical QP method.
     pub family: Family,
+    /// The control period h (ms).
     pub h_ms: f64,
+    /// Steps of the network's discrete form per tick (step h / substeps); 1 for a numerical
+    /// method.
     pub substeps: u32,
+    /// How the run ended.
     pub status: ControlStatus,
     /// When it diverged or failed (s); empty otherwise.
     pub stopped_at: Option<f64>,
+    /// Ticks run (all of the cycle's unless the run stopped early).
     pub ticks: usize,
+    /// Median duration of the solve alone per tick (us).
     pub solve_p50_us: f64,
+    /// 99th percentile of the solve's duration per tick (us).
     pub solve_p99_us: f64,
+    /// Longest solve (us).
     pub solve_max_us: f64,
+    /// Median duration of the whole tick: QP build, solve and arm step (us).
     pub tick_p50_us: f64,
+    /// 99th percentile of the tick's duration (us).
     pub tick_p99_us: f64,
+    /// Longest tick (us).
     pub tick_max_us: f64,
+    /// Largest tracking error |f(theta_k) - r*(t_k)|_2 over the ticks (m).
     pub max_track_err: f64,
+    /// RMS of the tracking error over the ticks (m).
     pub rms_track_err: f64,
     /// |x - x*| of the joint command, relative (see `control::control_loop`).
     pub max_dx: f64,
+    /// RMS of that relative |x - x*| over the scored ticks.
     pub rms_dx: f64,
     /// max |x - x*| after the first second.
     pub max_dx_settled: f64,
     /// |theta(T) - theta_0|_2 after the cycle (empty when the run stopped early).
     pub drift: Option<f64>,
+    /// Mean work per tick in products with the LVI matrix, for the methods built on jia2019's
+    /// LVI (the six PLPE methods, LVI-PDNN, S-LVI-PDNN); empty for the others.
     pub products_mean: Option<f64>,
+    /// Largest work of one tick in those products; empty as `products_mean`.
     pub products_max: Option<u64>,
+    /// Mean iterations (a network: steps) per tick.
     pub iterations_mean: f64,
+    /// Largest iterations (a network: steps) of one tick.
     pub iterations_max: u32,
 }
 
 /// A network's Euler stability limit on a task.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct StabilityRow {
+    /// The task's label, `<experiment> / <variant>` (display only).
     pub task: String,
     /// The network's display name.
     pub network: String,
     /// The network's solver id (its identity).
     pub solver_id: SolverId,
+    /// The gain's name as the papers write it (`gamma`, `beta`, `gamma (x exp t)`).
     pub gain_name: String,
     /// The paper's gain.
     pub gain: f64,
@@ -185,11 +212,18 @@ pub struct ClaimRow {
     /// The task's experiment and variant ids, and the network's solver id: the run of
     /// `results/runs.csv` the claim is about.
     pub experiment: ExperimentId,
+    /// The task's variant id.
     pub variant_id: VariantId,
+    /// The network's solver id.
     pub solver_id: SolverId,
+    /// The control period h (ms): [`MAIN_H`].
     pub h_ms: f64,
+    /// The accuracy asked for: |x - x*|_inf / max(1, |x*|_inf) at every tick
+    /// (`analysis::control_claim::ACCURACY`).
     pub accuracy: f64,
+    /// The network's work per Euler step, in products with the LVI matrix.
     pub products_per_step: u64,
+    /// The network's Euler stability limit on the task (s).
     pub euler_limit_s: f64,
     /// Euler steps per tick the network needs to be stable at all: ceil(h / limit).
     pub steps_needed: u64,
@@ -197,14 +231,24 @@ pub struct ClaimRow {
     pub network_products: f64,
     /// The check run: steps per tick, its largest |x - x*| and its solve latency p50.
     pub check_steps: u64,
+    /// Ticks of the check run.
     pub check_ticks: usize,
+    /// How the check run ended.
     pub check_status: ControlStatus,
+    /// The check run's largest relative |x - x*|_inf.
     pub check_max_dx: f64,
+    /// The check run's median solve latency (us).
     pub check_solve_p50_us: f64,
+    /// The numerical method compared: of robio2018's methods that completed the task at h, the
+    /// one of least mean work per tick (its name).
     pub numerical: String,
+    /// Its mean work per tick, in products with the LVI matrix.
     pub numerical_products_mean: f64,
+    /// Its largest work of one tick.
     pub numerical_products_max: u64,
+    /// Its largest relative |x - x*|_inf.
     pub numerical_max_dx: f64,
+    /// Its median solve latency (us).
     pub numerical_solve_p50_us: f64,
     /// network products per tick over the numerical method's mean.
     pub cost_ratio: f64,
@@ -215,29 +259,43 @@ pub struct ClaimRow {
 /// The drift after one cycle of a many-cycles run.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CycleRow {
+    /// The task's label, `<experiment> / <variant>` (display only).
     pub task: String,
+    /// The scheme's display name with its parameters (e.g. `VLTCO (phi=0.2, tau=0.4)`).
     pub scheme: String,
+    /// The method's label, as in `control.csv`; `exact (continuous)` for the exact optimum
+    /// integrated in continuous time.
     pub method: String,
     /// The control period; empty for a continuous-time run.
     pub h_ms: Option<f64>,
+    /// The cycle c, from 1.
     pub cycle: usize,
+    /// |theta(c T) - theta_0|_2 after cycle c (rad).
     pub drift: f64,
+    /// |theta(c T) - theta((c - 1) T)|_2: the change over cycle c alone (rad).
     pub change: f64,
 }
 
 /// The trend of one many-cycles run.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct TrendRow {
+    /// The task's label, `<experiment> / <variant>` (display only).
     pub task: String,
+    /// The scheme's display name with its parameters (e.g. `VLTCO (phi=0.2, tau=0.4)`).
     pub scheme: String,
+    /// The method's label, as in `cycles.csv`.
     pub method: String,
     /// The control period; empty for a continuous-time run.
     pub h_ms: Option<f64>,
+    /// How the run ended.
     pub status: ControlStatus,
     /// Why the run stopped before its last cycle, in words (empty when it completed).
     pub failure: Option<String>,
+    /// Cycles completed.
     pub cycles: usize,
+    /// The drift after the first cycle (rad); empty when none completed.
     pub drift_first: Option<f64>,
+    /// The drift after the last completed cycle (rad); empty when none completed.
     pub drift_last: Option<f64>,
     /// rad/cycle, fitted over the second half.
     pub rate: Option<f64>,

@@ -44,6 +44,7 @@ pub enum SchemeKind {
 }
 
 impl SchemeKind {
+    /// Both schemes, in the file's order.
     pub const ALL: [SchemeKind; 2] = [SchemeKind::Vltco, SchemeKind::ZnnRmp];
 
     /// The scheme's id in dof-cost.csv: its canonical `kind` tag (`vltco`, `znn-rmp`).
@@ -83,6 +84,7 @@ pub enum Quantity {
 }
 
 impl Quantity {
+    /// Every quantity, in the file's order.
     pub const ALL: [Quantity; 9] = [
         Quantity::SchemeBuild,
         Quantity::NetworkRhs,
@@ -125,8 +127,11 @@ impl std::fmt::Display for Quantity {
 /// Median and 95th percentile of a set of samples.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Summary {
+    /// Median of the samples (us).
     pub median_us: f64,
+    /// 95th percentile of the samples (us).
     pub p95_us: f64,
+    /// Number of samples.
     pub samples: usize,
 }
 
@@ -148,19 +153,25 @@ impl Summary {
 /// One measured quantity of one (scheme, N) case on one backend.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Measurement {
+    /// The scheme measured.
     pub scheme: SchemeKind,
     /// The scheme's own name (`VLTCO`, `ZNN`).
     pub scheme_name: String,
     /// The network's display name (`LVI-PDNN`).
     pub network: String,
+    /// Joints N of the n-link arm.
     pub n: usize,
     /// The QP's sizes: variables, equality rows, inequality rows.
     pub nx: usize,
+    /// Equality rows of the QP.
     pub n_eq: usize,
+    /// Inequality rows of the QP.
     pub n_in: usize,
+    /// What is timed.
     pub quantity: Quantity,
     /// The dense LU backend's id ([`DofCostRow::backend`]).
     pub backend: String,
+    /// The timings' median and 95th percentile.
     pub summary: Summary,
     /// For runs: accepted steps, RHS evaluations and whether the run completed (of the first
     /// repetition; every repetition is the same deterministic run).
@@ -170,8 +181,11 @@ pub struct Measurement {
 /// Counts of a whole run.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RunCounts {
+    /// Accepted integrator steps.
     pub steps: usize,
+    /// Evaluations of the ODE's right-hand side.
     pub rhs_evals: usize,
+    /// Whether the run reached the path's end.
     pub completed: bool,
 }
 
@@ -184,32 +198,42 @@ pub struct DofCostRow {
     pub scheme_name: String,
     /// The network of the network quantities (`LVI-PDNN`).
     pub network: String,
+    /// What is timed (its id, e.g. `network-lu`).
     pub quantity: Quantity,
     /// The dense LU backend ([`NALGEBRA`], [`FAER`]: `solvers::Backend::id`); nalgebra for the
     /// quantities computed on nalgebra alone.
     pub backend: String,
+    /// Whether the row is a measurement or a fitted exponent.
     pub kind: RowKind,
     /// Joints (measured rows).
     pub n: Option<usize>,
     /// QP sizes (measured rows).
     pub nx: Option<usize>,
+    /// Equality rows of the QP (measured rows).
     pub n_eq: Option<usize>,
+    /// Inequality rows of the QP (measured rows).
     pub n_in: Option<usize>,
     /// Median and 95th percentile (us): per call, or per whole run for `run-*`.
     pub median_us: Option<f64>,
+    /// 95th percentile (us), as `median_us`.
     pub p95_us: Option<f64>,
     /// Samples behind the median (measured rows) or points fitted (fit rows).
     pub samples: usize,
     /// Fit rows: the exponent k and factor c (us) of median ~ c N^k.
     pub exponent: Option<f64>,
+    /// The factor c (us) of median ~ c N^k (fit rows).
     pub factor_us: Option<f64>,
     /// `run-*` rows: accepted steps, RHS evaluations and whether the run completed.
     pub steps: Option<usize>,
+    /// Evaluations of the ODE's right-hand side (`run-*` rows).
     pub rhs_evals: Option<usize>,
+    /// Whether the run reached the path's end (`run-*` rows).
     pub completed: Option<bool>,
     /// CPU model (`/proc/cpuinfo`'s model name) and logical cores available.
     pub machine: String,
+    /// Logical cores available.
     pub cores: usize,
+    /// The code revision that measured it (as `runs.csv`'s `git_rev`).
     pub git_rev: String,
 }
 

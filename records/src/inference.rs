@@ -60,17 +60,24 @@ impl Integration {
 
 /// Names of the continuous coordinates (the size factor is searched as its logarithm).
 pub const ROTATION: &str = "rotation";
+/// Name of the start-phase coordinate ([`InferenceRow::phase`]).
 pub const PHASE: &str = "phase";
+/// Name of the size-factor coordinate ([`InferenceRow::scale_factor`]).
 pub const SCALE: &str = "scale_factor";
+/// Name of the x-tilt coordinate ([`InferenceRow::tilt_x`]).
 pub const TILT_X: &str = "tilt_x";
+/// Name of the y-tilt coordinate ([`InferenceRow::tilt_y`]).
 pub const TILT_Y: &str = "tilt_y";
 
 /// `objective` of the rows of the whole table.
 pub const TABLE: &str = "table";
 /// Row kinds.
 pub const DECLARED: &str = "declared";
+/// Kind of the setup with the least residual of its objective over every setup searched.
 pub const BEST: &str = "best fit";
+/// Kind of the best setup of one hypothesis (a robot and an [`Integration`]).
 pub const HYPOTHESIS: &str = "hypothesis best";
+/// Kind of the end point of one local search.
 pub const LOCAL: &str = "local optimum";
 /// Prefix of a profile row's kind: `profile (re-fitted): <parameter>` or
 /// `profile (slice): <parameter>`.
@@ -79,31 +86,48 @@ pub const PROFILE: &str = "profile";
 /// One row of `results/inference.csv`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct InferenceRow {
+    /// The paper id.
     pub paper: String,
+    /// The published table fitted (`T2`, `T3`, ...).
     pub table: String,
     /// [`DECLARED`], [`BEST`], [`HYPOTHESIS`], [`LOCAL`] or a profile (see [`PROFILE`]).
     pub kind: String,
     /// What the row's `rel_residual` measures: [`TABLE`] (r) or a column's name (its r_c).
     pub objective: String,
+    /// The robot model of the setup.
     pub robot: String,
+    /// How the setup's drift is computed.
     pub integration: Integration,
+    /// In-plane rotation of every path of the table (rad).
     pub rotation: f64,
+    /// Start phase on the closed curves (fraction of the cycle).
     pub phase: f64,
+    /// Factor on every path's size (1: the declared size).
     pub scale_factor: f64,
+    /// Tilt of the drawing plane about the base x axis (rad).
     pub tilt_x: f64,
+    /// Tilt of the drawing plane about the base y axis (rad).
     pub tilt_y: f64,
+    /// Whether the paths are travelled backwards.
     pub reverse: bool,
     /// How the RMP term's coefficient was read (stored by its serde name: `printed`, ...).
     pub rmp: schemes::spec::RmpReading,
+    /// The row's objective at this setup: r, or the column's r_c ([`FAILED`] when a run failed).
     pub rel_residual: f64,
     /// r of the whole table at this setup.
     pub table_residual: f64,
     /// r_c of every column at this setup, in column order, `;`-separated.
     pub column_residuals: String,
+    /// Largest |d - d_paper| / |d_paper| over the objective's entries; empty for local optima and
+    /// profile points.
     pub max_entry_error: Option<f64>,
+    /// Entries of the objective whose sign is the paper's; empty as `max_entry_error`.
     pub signs_matched: Option<usize>,
+    /// Entries of the objective (published per-joint drifts); empty as `max_entry_error`.
     pub entries: Option<usize>,
+    /// Setups evaluated by the whole search (on the table's best-fit row; 0 on the others).
     pub evaluations: usize,
+    /// Wall time of the whole search (s; on the table's best-fit row; 0 on the others).
     pub wall_s: f64,
 }
 
@@ -143,15 +167,23 @@ impl InferenceRow {
 /// One entry of a reported setup, for `results/inference-entries.csv`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct EntryRow {
+    /// The paper id.
     pub paper: String,
+    /// The published table (`T2`, `T3`, ...).
     pub table: String,
     /// [`DECLARED`], [`BEST`] (the joint fit) or [`COLUMN_FIT`] (that column alone).
     pub setup: String,
+    /// The table's column, as the paper's values (`papers/<paper>/values.csv`) name it.
     pub column: String,
+    /// The joint, numbered from 1.
     pub joint: usize,
+    /// Our drift of that joint under the setup (rad).
     pub ours: f64,
+    /// The published drift (rad).
     pub paper_value: f64,
+    /// |ours - paper_value| / |paper_value|.
     pub rel_error: f64,
+    /// Whether `ours` has the published value's sign.
     pub sign_matched: bool,
 }
 

@@ -58,12 +58,14 @@ pub struct Manifest {
 pub struct Fingerprint {
     /// Newline-terminated lines (for a CSV: the header plus one per row).
     pub lines: usize,
+    /// Size (bytes).
     pub bytes: u64,
     /// Lower-case hex.
     pub sha256: String,
 }
 
 impl Fingerprint {
+    /// The fingerprint of a file's content.
     pub fn of(bytes: &[u8]) -> Self {
         let digest = Sha256::digest(bytes);
         let mut hex = String::with_capacity(64);
@@ -81,26 +83,48 @@ impl Fingerprint {
 /// A problem with a manifest or with a file it lists.
 #[derive(Debug, thiserror::Error)]
 pub enum IntegrityError {
+    /// The manifest exists but could not be read.
     #[error("{path}: cannot read: {source}")]
     Read {
+        /// The manifest's path.
         path: PathBuf,
+        /// The I/O error.
         source: std::io::Error,
     },
+    /// The manifest is not one this program writes (bad TOML, an unknown field, a listed path
+    /// that is not plain and relative).
     #[error("{path}: not a manifest this program writes: {message}")]
-    Parse { path: PathBuf, message: String },
+    Parse {
+        /// The manifest's path.
+        path: PathBuf,
+        /// What is wrong with it.
+        message: String,
+    },
+    /// The manifest could not be written.
     #[error("{path}: cannot write: {message}")]
-    Write { path: PathBuf, message: String },
+    Write {
+        /// The manifest's path.
+        path: PathBuf,
+        /// Why (the serialiser's or the I/O error).
+        message: String,
+    },
 }
 
 /// How a listed file differs from its entry.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Mismatch {
+    /// The file is listed but absent.
     Missing {
+        /// Its path relative to the directory (with `/`).
         file: String,
     },
+    /// The file's content no longer matches its entry.
     Changed {
+        /// Its path relative to the directory (with `/`).
         file: String,
+        /// The fingerprint the manifest lists.
         listed: Fingerprint,
+        /// The fingerprint of the file as it is.
         found: Fingerprint,
     },
 }

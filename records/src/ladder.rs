@@ -60,14 +60,19 @@ impl<'de> Deserialize<'de> for LadderMethod {
 /// One rung's result, as stored in `results/ladder.csv`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct LadderRow {
+    /// The paper id of the run's experiment file.
     pub paper: String,
+    /// The run's experiment id.
     pub experiment: ExperimentId,
     /// The run's variant and solver ids (with `experiment`, its key).
     pub variant_id: VariantId,
+    /// The run's solver id.
     pub solver_id: SolverId,
     /// Labels (display only).
     pub variant: String,
+    /// The solver's label (display only).
     pub solver: String,
+    /// How the rung integrated: an integrator's id, or `fixed-step`.
     pub method: LadderMethod,
     /// RelTol, or a numerical rung's stopping tolerance.
     pub rtol: f64,
@@ -77,13 +82,17 @@ pub struct LadderRow {
     pub max_step: Option<f64>,
     /// The run's own setting (the rung results/runs.csv holds).
     pub as_run: bool,
+    /// Whether the rung completed (`ok`) or stopped early (`failed`).
     pub status: Status,
+    /// Why the rung failed, in words (empty when it completed).
     pub failure: String,
     /// theta(T) - theta(0) per joint (none for a rung that did not complete): the columns
     /// `drift_1 .. drift_K`.
     #[serde(skip)]
     pub drift: Vec<f64>,
+    /// |theta(T) - theta(0)|_2 (rad); empty for a rung that did not complete.
     pub drift_norm: Option<f64>,
+    /// Largest position error |r*(t) - f(theta(t))|_2 (m); empty when no step was taken.
     pub max_pos_err: Option<f64>,
     /// |d - d*| / |d*| against the converged drift d* (the finest completed rung).
     pub rel_change: Option<f64>,
@@ -91,9 +100,13 @@ pub struct LadderRow {
     pub stable_digits: Option<f64>,
     /// This rung is the converged reference d*.
     pub reference: bool,
+    /// Accepted steps (a numerical rung: instants of its loop after the first).
     pub steps: usize,
+    /// Steps rejected by the integrator's local error test.
     pub rejected: usize,
+    /// Evaluations of the ODE's right-hand side.
     pub rhs_evals: usize,
+    /// Wall time of the rung's integration (s).
     pub wall_s: f64,
 }
 

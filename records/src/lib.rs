@@ -41,6 +41,8 @@
 //! the regression gate, verdicts, fits) and the papers as data are crate `analysis`'s: this
 //! crate holds the schemas and the store, no verdict.
 
+#![deny(missing_docs)]
+
 pub mod attribution;
 pub mod clock;
 pub mod control;

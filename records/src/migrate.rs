@@ -22,17 +22,25 @@ pub const LEGACY_EXACT_LABEL: &str = "exact (Clarabel)";
 /// A problem reading a legacy table.
 #[derive(Debug, thiserror::Error)]
 pub enum MigrateError {
+    /// The table is not CSV of one width per row, or the migrated table could not be written.
     #[error("{0}")]
     Csv(#[from] csv::Error),
+    /// The legacy table lacks a column the ids are made from (the column's name).
     #[error(
         "a table with ids needs the columns `experiment`, `variant` and `solver`; `{0}` is missing"
     )]
     Column(&'static str),
+    /// The migrated table is not UTF-8.
     #[error("{0}")]
     Utf8(#[from] std::string::FromUtf8Error),
     /// A legacy row whose labels make no valid ids.
     #[error("line {line}: {error}")]
-    Id { line: usize, error: IdError },
+    Id {
+        /// The row's line in the table (the header is line 1).
+        line: usize,
+        /// Why its labels make no id.
+        error: IdError,
+    },
 }
 
 /// (experiment, variant label, solver label) -> run key, over the experiment files' runs.

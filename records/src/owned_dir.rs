@@ -21,22 +21,39 @@ use std::path::{Component, Path, PathBuf};
 /// A path that may not be written or deleted.
 #[derive(Debug, thiserror::Error)]
 pub enum PathError {
+    /// The owned directory could not be created or resolved.
     #[error("{dir}: cannot create or open the directory: {source}")]
     Open {
+        /// The directory, as given.
         dir: PathBuf,
+        /// The I/O error.
         source: std::io::Error,
     },
+    /// The relative path is empty or has a component that is not a plain name (`..`, `.`, a
+    /// root or a prefix).
     #[error("{dir}: refusing the name {name:?}: only plain names are allowed under a directory the program owns (no `..`, no absolute path, no `.`)")]
-    NotPlain { dir: PathBuf, name: PathBuf },
+    NotPlain {
+        /// The owned directory, as given.
+        dir: PathBuf,
+        /// The relative path refused.
+        name: PathBuf,
+    },
+    /// A symbolic link on the way leads outside the owned directory.
     #[error("{path} leads outside {dir} (to {target}); the program writes only inside the directories it owns: remove or replace the symbolic link")]
     Escapes {
+        /// The owned directory, as given.
         dir: PathBuf,
+        /// The path asked for, under the directory as given.
         path: PathBuf,
+        /// Where the link leads (canonical).
         target: PathBuf,
     },
+    /// A component of the path could not be inspected or its link resolved.
     #[error("{path}: cannot inspect: {source}")]
     Inspect {
+        /// The component's path (canonical prefix).
         path: PathBuf,
+        /// The I/O error.
         source: std::io::Error,
     },
 }

@@ -90,6 +90,7 @@ impl Phase {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum PhaseStatus {
+    /// Ran; `seconds` holds its wall time.
     Ran,
     /// Not run; the row's `note` says why.
     Skipped,
@@ -98,7 +99,9 @@ pub enum PhaseStatus {
 /// One row of `results/phases.csv`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PhaseRow {
+    /// The phase.
     pub phase: Phase,
+    /// Whether it ran (`ran`) or was skipped (`skipped`).
     pub status: PhaseStatus,
     /// Wall time (s, to the millisecond); empty when skipped.
     pub seconds: Option<f64>,
@@ -114,7 +117,9 @@ pub struct PhaseRow {
     pub whole: bool,
     /// CPU model and logical cores (`cost::machine`).
     pub machine: String,
+    /// Logical cores available.
     pub cores: usize,
+    /// The code revision of the run (as `runs.csv`'s `git_rev`).
     pub git_rev: String,
 }
 
@@ -123,20 +128,28 @@ impl Row for PhaseRow {}
 /// A phase as measured, before the shares are known.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Measured {
+    /// The phase.
     pub phase: Phase,
     /// Wall time (s); `None`: skipped.
     pub seconds: Option<f64>,
+    /// How many of [`Phase::items_are`] it went through; `None` where it counts nothing.
     pub items: Option<usize>,
+    /// Why it was skipped, or what else to know about it.
     pub note: String,
 }
 
 /// What every row of one run shares.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RunContext {
+    /// The run's selection flags, as text.
     pub selection: String,
+    /// Whether the selection was every run.
     pub whole: bool,
+    /// CPU model.
     pub machine: String,
+    /// Logical cores available.
     pub cores: usize,
+    /// The code revision of the run.
     pub git_rev: String,
 }
 

@@ -30,6 +30,7 @@ pub struct ProfileRow {
     pub category: String,
     /// `yes` when the category is part of the floor.
     pub floor: String,
+    /// Samples taken in the category.
     pub samples: usize,
     /// Samples over all the process's samples.
     pub share_of_process: f64,
@@ -39,14 +40,18 @@ pub struct ProfileRow {
     pub ms_per_pass: f64,
     /// The paper whose runs were profiled (`reproduce --paper <paper>`).
     pub paper: String,
+    /// Passes of the paper's runs the profile covered.
     pub passes: usize,
+    /// The sampling frequency (Hz).
     pub frequency_hz: f64,
+    /// The code revision profiled (as `runs.csv`'s `git_rev`).
     pub git_rev: String,
 }
 
 impl Row for ProfileRow {}
 
 impl ProfileRow {
+    /// Whether the category is part of the simulation's floor (`floor` is `yes`).
     pub fn in_floor(&self) -> bool {
         self.floor == "yes"
     }

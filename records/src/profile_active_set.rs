@@ -27,7 +27,9 @@ pub struct HotSolveRow {
     pub bench: String,
     /// Seconds of criterion's profiling loop the samples were taken over.
     pub seconds: f64,
+    /// The sampling frequency (Hz).
     pub frequency_hz: f64,
+    /// The code revision profiled (as `runs.csv`'s `git_rev`).
     pub git_rev: String,
 }
 

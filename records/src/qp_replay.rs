@@ -25,11 +25,15 @@ pub struct QpReplayRow {
     pub task: String,
     /// The QP's sizes: variables, equalities, general inequalities, finite bounds.
     pub nx: usize,
+    /// Equality rows.
     pub n_eq: usize,
+    /// General inequality rows.
     pub n_in: usize,
+    /// Finite variable bounds.
     pub n_bounds: usize,
     /// QPs replayed, and how many times the whole sequence was.
     pub qps: usize,
+    /// Times the whole sequence was replayed.
     pub repeats: usize,
     /// [`SUITE`] or `daqp <version>`.
     pub solver: String,
@@ -38,9 +42,11 @@ pub struct QpReplayRow {
     /// Microseconds per solve: the mean over the QPs of each QP's median over the repeats,
     /// and the 95th percentile of those medians.
     pub mean_us: f64,
+    /// 95th percentile over the QPs of each QP's median time (us).
     pub p95_us: f64,
     /// The largest |x - x_other|_inf against the other solver's answers on the same QPs.
     pub max_dx_vs_other: f64,
+    /// The code revision of the suite's solver (as `runs.csv`'s `git_rev`).
     pub git_rev: String,
 }
 

@@ -71,35 +71,65 @@ pub const PRUNE_LIMIT_PERCENT: usize = 25;
 /// A problem with the results directory.
 #[derive(Debug, thiserror::Error)]
 pub enum ResultsError {
+    /// The directory's manifest or a tracked write or removal failed.
     #[error(transparent)]
     Tracked(#[from] TrackedError),
+    /// A path under the directory was refused.
     #[error(transparent)]
     Path(#[from] PathError),
+    /// Another process holds the directory's lock.
     #[error("another reproduce is writing to {dir} (lock {lock}): wait for it to finish, or give this run another --results-dir")]
-    Locked { dir: PathBuf, lock: PathBuf },
+    Locked {
+        /// The results directory.
+        dir: PathBuf,
+        /// The lock file.
+        lock: PathBuf,
+    },
+    /// The lock file could not be opened or locked.
     #[error("{path}: cannot lock: {source}")]
     Lock {
+        /// The lock file.
         path: PathBuf,
+        /// The I/O error.
         source: std::io::Error,
     },
+    /// `runs.csv` could not be read.
     #[error(transparent)]
     Read(#[from] crate::error::RunsError),
+    /// `runs.csv` or a trace could not be serialised.
     #[error("{path}: {source}")]
-    Write { path: PathBuf, source: csv::Error },
+    Write {
+        /// The file.
+        path: PathBuf,
+        /// The CSV error.
+        source: csv::Error,
+    },
+    /// Another file operation failed.
     #[error(transparent)]
     Io(#[from] crate::error::IoError),
+    /// A table written before run ids could not be brought up to date.
     #[error("{}: {source}", path.display())]
     Migrate {
+        /// The table.
         path: PathBuf,
+        /// Why.
         source: crate::migrate::MigrateError,
     },
+    /// Pruning would remove more than [`PRUNE_LIMIT_PERCENT`] of the stored runs without
+    /// `--prune`.
     #[error("{count} of the {stored} stored runs in {runs} are described by no experiment file of {experiments} ({percent} %, more than the {PRUNE_LIMIT_PERCENT} % pruned without asking); nothing was run or written. If the experiment files are right and those runs should go, run again with --prune; otherwise point --experiments-dir at the right directory. The first of them: {first}")]
     TooMuchPruning {
+        /// Stored runs no experiment file describes.
         count: usize,
+        /// Stored runs in all.
         stored: usize,
+        /// `count` over `stored`, in per cent, rounded up.
         percent: usize,
+        /// The `runs.csv` read.
         runs: PathBuf,
+        /// The experiments directory.
         experiments: PathBuf,
+        /// The key of the first run that would go.
         first: String,
     },
 }

@@ -24,7 +24,9 @@ use std::path::Path;
 /// `simulation::row::run_row`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RunRow {
+    /// The paper id of the run's experiment file (e.g. `jia2019`).
     pub paper: String,
+    /// The experiment's id (with `variant_id` and `solver_id`, the run's [`RunKey`]).
     pub experiment: ExperimentId,
     /// The variant's id (with `experiment` and `solver_id`, the run's [`RunKey`]).
     pub variant_id: VariantId,
@@ -32,15 +34,23 @@ pub struct RunRow {
     pub solver_id: SolverId,
     /// The variant's label (display only).
     pub variant: String,
+    /// The scheme's name as its paper writes it (e.g. `VLTCO`, `MTN`); for a run that could not be
+    /// built, the scheme specification's display name with its parameters.
     pub scheme: String,
     /// The solver's label with its parameters (display only).
     pub solver: String,
     /// The solver's kind (stored as its id: `exact`, `lvi-pdnn`, `94lvi`, ...).
     pub solver_kind: SolverKind,
+    /// The robot's model name (e.g. `jaco2-pen`).
     pub robot: String,
+    /// The path's name (e.g. `four-leaf-clover`).
     pub path: String,
+    /// The path's size (m): the experiment's `scale`, else the path's default (docs/paths.md);
+    /// empty for a path without one.
     pub path_scale: Option<f64>,
+    /// The task duration T (s).
     pub duration: f64,
+    /// Whether the run completed (`ok`) or stopped early (`failed`).
     pub status: Status,
     /// Why the run failed, in words (empty when it completed).
     pub failure: String,
@@ -55,41 +65,77 @@ pub struct RunRow {
     /// the columns `drift_1 .. drift_K` (see [`crate::table`]).
     #[serde(skip)]
     pub drift: Vec<f64>,
+    /// |theta(T) - theta(0)|_2 (rad); empty for a failed run.
     pub drift_norm: Option<f64>,
+    /// |theta(T) - theta_ref|_2 (rad), the drift from the scheme's reference (kong2019's theta*0;
+    /// equal to `drift_norm` where the experiment gives no `theta_ref`); empty for a failed run.
     pub drift_ref_norm: Option<f64>,
+    /// Largest position error |r*(t) - f(theta(t))|_2 over the accepted steps (m); a failed run's
+    /// up to its failure; empty when no step was taken.
     pub max_pos_err: Option<f64>,
+    /// Time-weighted RMS of the position error, sqrt((1/T) integral |e|^2 dt) by the trapezoid
+    /// rule over the accepted steps (m); empty when no step was taken.
     pub rms_pos_err: Option<f64>,
+    /// Position error at the last accepted step (m); empty when no step was taken.
     pub final_pos_err: Option<f64>,
+    /// Smallest distance of a joint angle to a finite limit over joints and time (rad; negative:
+    /// violated); empty when no limit is finite or no step was taken.
     pub theta_margin: Option<f64>,
+    /// Smallest distance of a joint velocity to a finite limit over joints and time (rad/s;
+    /// negative: violated); empty when no limit is finite or no step was taken.
     pub thetadot_margin: Option<f64>,
+    /// Largest |thetadot|_inf along the run (rad/s); empty when no step was taken.
     pub peak_thetadot: Option<f64>,
+    /// Largest |thetaddot|_inf along the run (rad/s^2); acceleration-level schemes only.
     pub peak_thetaddot: Option<f64>,
+    /// Largest |tau|_inf along the run (N m); schemes with a dynamics model only.
     pub peak_torque: Option<f64>,
+    /// Smallest singular value of the 3 x n position Jacobian along the run (m/rad): the distance
+    /// from a singularity; empty when no step was taken.
     pub min_sigma_j: Option<f64>,
+    /// Instants scored against the exact optimum; empty when the run was not scored (the exact
+    /// column, `scoring = "off"`).
     pub score_samples: Option<usize>,
+    /// Largest |x - x*|_inf over the joint command at the scored instants (rad/s at the velocity
+    /// level, rad/s^2 at the acceleration level); empty when not scored.
     pub score_max_dx: Option<f64>,
     /// RMS of |x − x*|_inf over the run, time-weighted (rad/s).
     pub score_rms_dx: Option<f64>,
     /// The same over t >= 1 s only (`simulation::metrics::SETTLE_TIME`): after the start-up
     /// transient of a network started from zero. The leaderboard's success test.
     pub score_rms_dx_after_1s: Option<f64>,
+    /// Largest relative objective gap (f(x) - f(x*)) / max(1, |f(x*)|) at the scored instants;
+    /// empty when not scored.
     pub score_max_obj_gap: Option<f64>,
+    /// Largest constraint violation of x at the scored instants; empty when not scored.
     pub score_max_violation: Option<f64>,
+    /// Scoring instants where the exact solve failed (left out of the score).
     pub score_failures: usize,
     /// The network's own error norm at T (|Q y - u| for the zeroing networks).
     pub net_error_final: Option<f64>,
     /// Its largest value after t = 1 s (kong2019: "settles within ~1 s").
     pub net_error_max_after_1s: Option<f64>,
+    /// The integration method (`bdf`, `esdirk34`, `tr-bdf2`, `dopri5`, `tsit45`); a numerical
+    /// run's carries its experiment's exact-column setting, unused; `trajectory` for a scored
+    /// trajectory.
     pub integrator: String,
+    /// The integrator's relative tolerance (0 for a scored trajectory).
     pub rtol: f64,
+    /// The integrator's absolute tolerance (0 for a scored trajectory).
     pub atol: f64,
     /// The integrator's largest step (ode15s's MaxStep), where the run sets one.
     #[serde(default)]
     pub max_step: Option<f64>,
+    /// Accepted integrator steps (a numerical run: instants of its fixed-step loop after the
+    /// first; a scored trajectory: its samples).
     pub steps: usize,
+    /// Steps rejected by the integrator's local error test.
     pub rejected: usize,
+    /// Evaluations of the ODE's right-hand side, those of finite-difference Jacobians included.
     pub rhs_evals: usize,
+    /// Dense Jacobian evaluations (analytic or finite-difference).
     pub jac_evals: usize,
+    /// Exact QPs solved: in the loop for the exact column, to score the other runs.
     pub qp_solves: usize,
     /// Exact QPs the certified active-set solver could not answer (Clarabel did).
     pub qp_fallbacks: usize,
@@ -113,7 +159,10 @@ pub struct RunRow {
     /// Wall time of the observation at accepted steps (metrics, trace, the Clarabel solves that
     /// score a neural run or give the exact column's thetadot).
     pub observe_s: f64,
+    /// The version of the code that made the row (the workspace's crate version).
     pub crate_version: String,
+    /// The code revision that made the row: the commit (12 hex digits), `<commit>-dirty-<hash>`
+    /// when the sources differed from it, `src-<hash>` without git.
     pub git_rev: String,
 }
 

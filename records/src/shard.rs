@@ -40,11 +40,14 @@ pub use crate::fnv::fnv1a64;
 /// Shard K of N (K in 1..=N).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Shard {
+    /// The shard's number K, from 1.
     pub k: usize,
+    /// The number of shards N.
     pub n: usize,
 }
 
 impl Shard {
+    /// Shard `k` of `n`; an error when `n` is 0 or `k` is not in 1..=n.
     pub fn new(k: usize, n: usize) -> Result<Self, ShardError> {
         if n == 0 {
             return Err(ShardError::NoShards);
@@ -134,6 +137,7 @@ impl Shard {
         (fnv1a64(key.as_bytes()) % n as u64) as usize + 1
     }
 
+    /// Whether the run key `key` (`experiment / variant / solver`) belongs to this shard.
     pub fn owns(&self, key: &str) -> bool {
         Self::of(key, self.n) == self.k
     }
@@ -163,10 +167,13 @@ pub fn plan(keys: impl IntoIterator<Item = impl AsRef<str>>, n: usize) -> Vec<us
 #[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Selection {
+    /// `--paper`: the paper selected, if any.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub paper: Option<String>,
+    /// `--experiment`: the experiments selected (none: no such flag).
     #[serde(default)]
     pub experiments: Vec<String>,
+    /// `--exact-only`: only the exact column.
     #[serde(default)]
     pub exact_only: bool,
 }
@@ -197,10 +204,13 @@ pub const BINDING: &str = "shard-binding.toml";
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Binding {
+    /// The shard's number K, from 1.
     pub shard: usize,
+    /// The number of shards N.
     pub shards: usize,
     /// [`experiments_hash`] of the experiment files the shard runs.
     pub experiments_hash: String,
+    /// The selection flags the shard runs.
     pub selection: Selection,
 }
 
@@ -291,17 +301,22 @@ impl Binding {
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Manifest {
+    /// The shard's number K, from 1.
     pub shard: usize,
+    /// The number of shards N.
     pub shards: usize,
+    /// The code revision that ran the shard (as `runs.csv`'s `git_rev`).
     pub git_rev: String,
     /// [`experiments_hash`] of the experiment files the shard ran.
     pub experiments_hash: String,
     /// The run keys (`experiment / variant / solver`) assigned to the shard.
     pub runs: Vec<String>,
+    /// The selection flags the shard ran.
     pub selection: Selection,
 }
 
 impl Manifest {
+    /// Writes the manifest into the shard directory `dir`, atomically.
     pub fn write(&self, dir: &Path) -> Result<(), ShardError> {
         let path = dir.join(MANIFEST);
         let text = toml::to_string(self).map_err(|source| ShardError::WriteManifest {
@@ -313,6 +328,8 @@ impl Manifest {
         Ok(())
     }
 
+    /// Reads the manifest of the shard directory `dir` and checks it (a valid shard; every run key
+    /// parses, belongs to the shard and is listed once); an unfinished shard has none.
     pub fn read(dir: &Path) -> Result<Self, ShardError> {
         let path = dir.join(MANIFEST);
         let kind = inputs::Kind::ShardManifest;
@@ -400,10 +417,13 @@ pub fn experiments_hash(dir: &Path) -> Result<String, IoError> {
 /// One finished shard directory.
 #[derive(Clone, Debug)]
 pub struct ShardDir {
+    /// The shard directory.
     pub dir: PathBuf,
+    /// Its `shard.toml`.
     pub manifest: Manifest,
     /// Its integrity manifest (every file it wrote, traces included).
     pub files: crate::integrity::Manifest,
+    /// Its `runs.csv`.
     pub rows: Vec<RunRow>,
 }
 

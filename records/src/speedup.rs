@@ -18,7 +18,9 @@ pub const FILE: &str = "speedup.csv";
 /// One row of `results/speedup.csv`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SpeedupRow {
+    /// The paper id.
     pub paper: String,
+    /// The experiment id.
     pub experiment: String,
     /// The variant's display label (the earlier revision has no ids).
     pub variant: String,
@@ -30,16 +32,25 @@ pub struct SpeedupRow {
     pub new_rev: String,
     /// Passes per revision the medians are over.
     pub passes: usize,
+    /// Median simulation time under the earlier revision (s).
     pub old_sim_s: f64,
+    /// Median simulation time under this revision (s).
     pub new_sim_s: f64,
+    /// old_sim_s / new_sim_s; empty when a median is missing or the new one is 0.
     pub sim_speedup: Option<f64>,
+    /// Median whole-run time under the earlier revision (s).
     pub old_wall_s: f64,
+    /// Median whole-run time under this revision (s).
     pub new_wall_s: f64,
+    /// old_wall_s / new_wall_s; empty as `sim_speedup`.
     pub wall_speedup: Option<f64>,
+    /// The run's status under the earlier revision (`ok` or `failed`).
     pub old_status: String,
+    /// The run's status under this revision.
     pub new_status: String,
     /// Empty for a failed run.
     pub old_drift_norm: Option<f64>,
+    /// The drift norm under this revision (rad); empty for a failed run.
     pub new_drift_norm: Option<f64>,
 }
 
@@ -48,16 +59,23 @@ impl Row for SpeedupRow {}
 /// One paper's runs together.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PaperSpeedup {
+    /// The paper id.
     pub paper: String,
+    /// The paper's runs both revisions have.
     pub runs: usize,
     /// Sums over the runs of the median times, old and new (s).
     pub old_sim_s: f64,
+    /// Sum of the new median simulation times (s).
     pub new_sim_s: f64,
+    /// Sum of the old median whole-run times (s).
     pub old_wall_s: f64,
+    /// Sum of the new median whole-run times (s).
     pub new_wall_s: f64,
     /// The smallest, median and largest per-run simulation speed-up.
     pub min_sim_speedup: f64,
+    /// The median per-run simulation speed-up (NaN without any).
     pub median_sim_speedup: f64,
+    /// The largest per-run simulation speed-up (NaN without any).
     pub max_sim_speedup: f64,
     /// Runs whose status differs between the revisions.
     pub status_changes: usize,

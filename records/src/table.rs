@@ -63,6 +63,7 @@ pub struct TableError {
     pub path: Option<std::path::PathBuf>,
     /// 1-based line (the header is line 1; 0: the file as a whole).
     pub line: u64,
+    /// What is wrong.
     pub what: String,
 }
 

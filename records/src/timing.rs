@@ -30,21 +30,31 @@ pub const REPETITIONS: usize = 3;
 /// One run timed alone.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct TimingRow {
+    /// The run's experiment id.
     pub experiment: ExperimentId,
+    /// The run's variant id.
     pub variant_id: VariantId,
+    /// The run's solver id.
     pub solver_id: SolverId,
+    /// Times the run was repeated alone ([`REPETITIONS`]).
     pub repetitions: usize,
     /// Simulation time (s, `sim_s` of a run): median, minimum and maximum.
     pub sim_s_median: f64,
+    /// Fastest repetition's simulation time (s).
     pub sim_s_min: f64,
+    /// Slowest repetition's simulation time (s).
     pub sim_s_max: f64,
     /// Whole-run time (s, `wall_s`: with the observation and scoring).
     pub wall_s_median: f64,
+    /// Fastest repetition's whole-run time (s).
     pub wall_s_min: f64,
+    /// Slowest repetition's whole-run time (s).
     pub wall_s_max: f64,
     /// CPU model and logical cores (`cost::machine`).
     pub machine: String,
+    /// Logical cores available.
     pub cores: usize,
+    /// The code revision timed (as `runs.csv`'s `git_rev`).
     pub git_rev: String,
 }
 
@@ -95,6 +105,7 @@ impl TimingRow {
         }
     }
 
+    /// The run's identity.
     pub fn key(&self) -> RunKey {
         RunKey::new(
             self.experiment.clone(),
@@ -129,12 +140,14 @@ pub struct Timings {
 }
 
 impl Timings {
+    /// The timings of `rows`, by key (a later row of a key replaces an earlier one).
     pub fn new(rows: Vec<TimingRow>) -> Self {
         Timings {
             rows: rows.into_iter().map(|r| (r.key(), r)).collect(),
         }
     }
 
+    /// The row of `key`, if it was timed.
     pub fn get(&self, key: &RunKey) -> Option<&TimingRow> {
         self.rows.get(key)
     }
@@ -144,6 +157,7 @@ impl Timings {
         self.get(key).map(|r| r.sim_s_median)
     }
 
+    /// Whether no run was timed.
     pub fn is_empty(&self) -> bool {
         self.rows.is_empty()
     }

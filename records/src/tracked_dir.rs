@@ -33,28 +33,44 @@ pub enum Edits {
 /// A problem with a tracked directory.
 #[derive(Debug, thiserror::Error)]
 pub enum TrackedError {
+    /// A path under the directory was refused.
     #[error(transparent)]
     Path(#[from] PathError),
+    /// The manifest could not be read or written.
     #[error(transparent)]
     Integrity(#[from] IntegrityError),
+    /// A file could not be written, read or removed.
     #[error("{path}: {source}")]
     Io {
+        /// The file.
         path: PathBuf,
+        /// The I/O error.
         source: std::io::Error,
     },
+    /// Listed files differ from the manifest (under [`Edits::Refuse`]).
     #[error("{dir}: {count} file(s) differ from what this program wrote ({dir}/{FILE}), so they were edited, truncated or replaced by hand:\n{list}\nnothing was run or written; restore them (e.g. `git checkout -- {dir}`) or, if the edit is deliberate, run again with --accept-edited")]
     Edited {
+        /// The directory.
         dir: PathBuf,
+        /// How many files differ.
         count: usize,
+        /// One line per file and what differs.
         list: String,
     },
+    /// The directory holds its guarded file (e.g. `runs.csv`) but no manifest.
     #[error("{dir}: holds {file} but no {FILE}, so this program cannot tell whether it wrote it or whether it was edited since; nothing was run or written; restore the directory from git, or run again with --accept-edited to take its files as they are")]
-    Unsealed { dir: PathBuf, file: String },
+    Unsealed {
+        /// The directory.
+        dir: PathBuf,
+        /// The guarded file it holds.
+        file: String,
+    },
 }
 
 /// What [`TrackedDir::remove`] did.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Removal {
+    /// Removed (listed, and still as the program wrote it).
     Removed,
     /// Not there (nothing to do).
     Absent,

@@ -26,8 +26,11 @@ use std::path::Path;
 /// (rad/s) at `t[k]` (s), one entry per joint.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Trajectory {
+    /// Sample times (s), from 0 to the task's duration.
     pub t: Vec<f64>,
+    /// Joint angles (rad) at each sample, one entry per joint.
     pub theta: Vec<Vec<f64>>,
+    /// Joint velocities (rad/s) at each sample, when the file gives them.
     pub thetadot: Option<Vec<Vec<f64>>>,
 }
 
@@ -49,12 +52,15 @@ pub enum ReadError {
     /// The CSV file's problem (file, line, column).
     #[error(transparent)]
     Csv(#[from] TrajectoryFileError),
+    /// The MAT-file's problem.
     #[error(transparent)]
     Mat(#[from] MatError),
     /// A column selection for a CSV file, whose header names its columns.
     #[error("{}: a column selection ({columns}) applies to MAT-files; a CSV file names its columns in its header", path.display())]
     ColumnsOfCsv {
+        /// The CSV file.
         path: std::path::PathBuf,
+        /// The selection given.
         columns: Columns,
     },
 }

@@ -34,39 +34,83 @@ pub enum MatError {
     /// The file was refused or could not be read by the input reader.
     #[error(transparent)]
     Input(#[from] inputs::InputError),
+    /// The compressed variables inflate past [`MAX_INFLATED_BYTES`].
     #[error("{}: its compressed variables inflate to more than {max} bytes; it is not read", path.display())]
-    Inflated { path: PathBuf, max: u64 },
+    Inflated {
+        /// The MAT-file.
+        path: PathBuf,
+        /// The limit (bytes), [`MAX_INFLATED_BYTES`].
+        max: u64,
+    },
+    /// The file is not a MAT-file of format v5 or v7.
     #[error("{}: not a MAT-file of format v5 or v7 ({reason}; a v7.3 file is HDF5: save with -v7)", path.display())]
-    Parse { path: PathBuf, reason: String },
+    Parse {
+        /// The MAT-file.
+        path: PathBuf,
+        /// What the parser found wrong.
+        reason: String,
+    },
+    /// A variable the trajectory needs is absent.
     #[error("{}: no variable \"{name}\" (a trajectory MAT-file holds t and y)", path.display())]
-    Missing { path: PathBuf, name: &'static str },
+    Missing {
+        /// The MAT-file.
+        path: PathBuf,
+        /// The variable: `t` or `y`.
+        name: &'static str,
+    },
+    /// A variable is not a real double matrix.
     #[error("{}: variable \"{name}\" is not a real double matrix", path.display())]
-    NotDouble { path: PathBuf, name: &'static str },
+    NotDouble {
+        /// The MAT-file.
+        path: PathBuf,
+        /// The variable: `t` or `y`.
+        name: &'static str,
+    },
+    /// `t` is not a vector.
     #[error("{}: t has size {t:?}, it must be a vector", path.display())]
-    TimeShape { path: PathBuf, t: Vec<usize> },
+    TimeShape {
+        /// The MAT-file.
+        path: PathBuf,
+        /// The size of `t`.
+        t: Vec<usize>,
+    },
+    /// `y` is neither m x n nor m x 2n for m samples of an n-joint task (no selection given).
     #[error(
         "{}: y is {rows} x {cols}; for {samples} instants of a {joints}-joint task it must be {samples} x {joints} (theta) or {samples} x {} (theta, thetadot), or name its columns (`--columns theta=1:{joints},thetadot=...`)",
         path.display(),
         2 * joints
     )]
     Shape {
+        /// The MAT-file.
         path: PathBuf,
+        /// Rows of `y`.
         rows: usize,
+        /// Columns of `y`.
         cols: usize,
+        /// Samples m: the length of `t`.
         samples: usize,
+        /// The task's joint count n.
         joints: usize,
     },
+    /// `y` does not fit the column selection: not one row per sample, too few columns, or a
+    /// theta range not one column per joint.
     #[error(
         "{}: y is {rows} x {cols}; the selection {columns} needs {samples} rows (one per instant of t), at least {} columns and {joints} theta columns (the task's joints)",
         path.display(),
         columns.last_column()
     )]
     Selected {
+        /// The MAT-file.
         path: PathBuf,
+        /// Rows of `y`.
         rows: usize,
+        /// Columns of `y`.
         cols: usize,
+        /// Samples m: the length of `t`.
         samples: usize,
+        /// The task's joint count n.
         joints: usize,
+        /// The selection given.
         columns: Columns,
     },
 }
@@ -84,22 +128,52 @@ pub struct Columns {
 /// Why a column selection cannot be read.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum ColumnsError {
+    /// The text is not `name=A:B` entries joined by commas, A and B numbers.
     #[error("{given:?}: a column selection is `theta=A:B` or `theta=A:B,thetadot=C:D` (1-based, inclusive)")]
-    Syntax { given: String },
+    Syntax {
+        /// The selection as given.
+        given: String,
+    },
+    /// A quantity is given twice.
     #[error("{given:?}: {name} is given twice")]
-    Twice { given: String, name: String },
+    Twice {
+        /// The selection as given.
+        given: String,
+        /// The quantity.
+        name: String,
+    },
+    /// A name is neither `theta` nor `thetadot`.
     #[error("{given:?}: {name} is not a quantity of a trajectory (theta, thetadot)")]
-    Unknown { given: String, name: String },
+    Unknown {
+        /// The selection as given.
+        given: String,
+        /// The name.
+        name: String,
+    },
+    /// The selection has no `theta` range.
     #[error("{given:?}: no theta range")]
-    NoTheta { given: String },
+    NoTheta {
+        /// The selection as given.
+        given: String,
+    },
+    /// A range is not 1 <= A <= B.
     #[error("{given:?}: the range {from}:{to} must satisfy 1 <= A <= B")]
     Range {
+        /// The selection as given.
         given: String,
+        /// Its first column A.
         from: usize,
+        /// Its last column B.
         to: usize,
     },
+    /// The theta and thetadot ranges have different lengths.
     #[error("theta takes {theta} columns and thetadot {thetadot}: both take one per joint")]
-    Unequal { theta: usize, thetadot: usize },
+    Unequal {
+        /// Columns of the theta range.
+        theta: usize,
+        /// Columns of the thetadot range.
+        thetadot: usize,
+    },
 }
 
 impl Columns {

@@ -177,6 +177,7 @@ impl<const N: usize> Robot<N> for DataRobot<N> {
 
 /// Code generic in the joint count, run on a [`DataModel`] ([`DataModel::visit`]).
 pub trait DataVisitor {
+    /// What [`DataVisitor::visit`] returns, whatever the joint count.
     type Output;
     /// Called with the model at its joint count.
     fn visit<const N: usize>(self, robot: Arc<DataRobot<N>>) -> Self::Output;

@@ -72,9 +72,13 @@ pub const TILT_Y: f64 = -0.05;
 /// the other DH lengths (D1, D2, D3, e2) are common to every variant.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Wrist {
+    /// First wrist length D4 (m).
     pub d4: f64,
+    /// Second wrist length D5 (m).
     pub d5: f64,
+    /// Wrist-to-end length D6 (m): to the pen's frame 6 or Kinova's hand centre.
     pub d6: f64,
+    /// Wrist half-angle aa (rad); the DH table's k = sin(aa)/sin(2aa).
     pub half_angle: f64,
 }
 

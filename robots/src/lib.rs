@@ -28,6 +28,8 @@
 //! [`data_robot`] (the model of a robot file, the built-in files), [`registry`] (the one map from
 //! the robot names of experiment files to models).
 
+#![deny(missing_docs)]
+
 use nalgebra::{SMatrix, SVector, Vector3};
 
 pub mod data_robot;

@@ -51,6 +51,7 @@ pub enum AnyRobot {
 
 /// Code generic in the joint count, run on a robot of the registry ([`AnyRobot::visit`]).
 pub trait RobotVisitor {
+    /// What [`RobotVisitor::visit`] returns, whatever the joint count.
     type Output;
     /// Called with the model (and its dynamics, where it has them).
     fn visit<const N: usize>(

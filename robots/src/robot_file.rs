@@ -100,8 +100,11 @@ impl std::fmt::Display for Convention {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Axis {
+    /// The x axis (`axis = "x"`).
     X,
+    /// The y axis (`axis = "y"`).
     Y,
+    /// The z axis (`axis = "z"`).
     Z,
 }
 
@@ -109,7 +112,9 @@ pub enum Axis {
 #[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ElementaryRotation {
+    /// The axis rotated about.
     pub axis: Axis,
+    /// The rotation angle (rad), right-handed about `axis`.
     pub angle: f64,
 }
 
@@ -190,96 +195,155 @@ pub struct RobotSpec {
 /// Why a robot file was refused. Every variant names the file; joints are numbered from 1.
 #[derive(Debug, thiserror::Error)]
 pub enum RobotFileError {
+    /// The file could not be opened or read (or is not UTF-8).
     #[error("{file}: cannot read the robot file: {source}")]
     Read {
+        /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
         file: String,
+        /// The I/O error.
         #[source]
         source: std::io::Error,
     },
+    /// The file is larger than [`MAX_FILE_BYTES`] (refused before parsing).
     #[error("{file}: {bytes} bytes; a robot file may have at most {limit} bytes")]
     TooLarge {
+        /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
         file: String,
+        /// The file's size (bytes); [`RobotSpec::read`] stops reading at `limit + 1`.
         bytes: u64,
+        /// The largest size accepted (bytes), [`MAX_FILE_BYTES`].
         limit: u64,
     },
     /// TOML syntax, a missing or unknown field, a wrong type, or an unknown choice (the message
     /// names the field and lists the valid choices).
     #[error("{file}: {source}")]
     Syntax {
+        /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
         file: String,
+        /// The TOML parser's error, with the field and the position.
         #[source]
         source: toml::de::Error,
     },
+    /// The model name is not a slug or is longer than [`MAX_NAME_LEN`].
     #[error(
         "{file}: name = {name:?} is not a slug (lowercase ASCII letters and digits in words \
          joined by single '-', at most {MAX_NAME_LEN} characters)"
     )]
-    Name { file: String, name: String },
+    Name {
+        /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
+        file: String,
+        /// The name as written.
+        name: String,
+    },
+    /// The model name differs from the file's stem ([`RobotSpec::read`]).
     #[error("{file}: name = {name:?} differs from the file's stem {stem:?}")]
     NameNotStem {
+        /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
         file: String,
+        /// The name as written.
         name: String,
+        /// The file's stem (its name without `.toml`).
         stem: String,
     },
+    /// A number is NaN or infinite.
     #[error(
         "{file}: {field} = {value} is not a finite number (omit a limit to leave it unlimited)"
     )]
     NotFinite {
+        /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
         file: String,
+        /// Where the number is, e.g. `tool[2]` or `joint 3: theta_max`.
         field: String,
+        /// The number.
         value: f64,
     },
+    /// A joint's `theta_min` is not below its `theta_max`.
     #[error("{file}: joint {joint}: theta_min = {min} is not below theta_max = {max}")]
     EmptyRange {
+        /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
         file: String,
+        /// The joint, numbered from 1 (base to tip).
         joint: usize,
+        /// Its `theta_min` (rad).
         min: f64,
+        /// Its `theta_max` (rad).
         max: f64,
     },
+    /// A joint's velocity or acceleration limit has the wrong sign.
     #[error("{file}: joint {joint}: {field} = {value}, must be {requirement}")]
     Limit {
+        /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
         file: String,
+        /// The joint, numbered from 1 (base to tip).
         joint: usize,
+        /// The limit: `velocity_min`, `velocity_max` or `acceleration_max`.
         field: &'static str,
+        /// Its value (rad/s or rad/s^2), given or defaulted.
         value: f64,
+        /// What it must be: `> 0` or `< 0`.
         requirement: &'static str,
     },
+    /// The table has a joint count the simulation is not built for.
     #[error(
         "{file}: {joints} joints; a robot file may have {supported:?} joints (the joint counts \
          the simulation is built for)"
     )]
     JointCount {
+        /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
         file: String,
+        /// The number of `[[joint]]` tables.
         joints: usize,
+        /// The joint counts accepted, [`JOINT_COUNTS`].
         supported: &'static [usize],
     },
+    /// A modified table without its flange row, or a standard table with one.
     #[error(
         "{file}: convention = \"modified\" needs the flange row flange = {{ a, alpha, d }}; \
          convention = \"standard\" takes none (the tool point is in frame N)"
     )]
     Flange {
+        /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
         file: String,
+        /// The table's convention.
         convention: Convention,
     },
+    /// `stated_pose` has not one angle per joint.
     #[error("{file}: stated_pose has {given} angles, the robot has {joints} joints")]
     StatedPose {
+        /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
         file: String,
+        /// The number of angles given.
         given: usize,
+        /// The robot's joint count.
         joints: usize,
     },
+    /// The base gives both `rotation` and `matrix`.
     #[error("{file}: base: give the rotation as either `rotation` (elementary rotations) or `matrix`, not both")]
-    TwoRotations { file: String },
+    TwoRotations {
+        /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
+        file: String,
+    },
+    /// The base matrix is not a rotation (orthonormal to 1e-9, determinant +1).
     #[error("{file}: base.matrix is not a rotation (|R^T R - I| = {deviation:e}, det R = {det}); its rows must be orthonormal with det +1")]
     NotARotation {
+        /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
         file: String,
+        /// The Frobenius norm |R^T R - I|.
         deviation: f64,
+        /// The determinant of R.
         det: f64,
     },
+    /// A link's inertia is not physical: a non-positive mass or an inertia tensor that is not
+    /// symmetric positive semi-definite.
     #[error("{file}: joint {joint}: link.{field} is {problem}")]
     Link {
+        /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
         file: String,
+        /// The joint, numbered from 1 (base to tip).
         joint: usize,
+        /// The field: `mass` or `inertia`.
         field: &'static str,
+        /// What is wrong with it.
         problem: &'static str,
     },
 }

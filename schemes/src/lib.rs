@@ -7,6 +7,8 @@
 //! with the joint count a run-time value ([`slice_scheme`]); kong2019's ZNN scheme is written
 //! for arms of any joint count too ([`velocity_rmp_dyn`]).
 
+#![deny(missing_docs)]
+
 pub use error::QpError;
 pub use qp::{KktResiduals, Qp, QpDims, QpDuals};
 

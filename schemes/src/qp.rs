@@ -22,30 +22,45 @@ use nalgebra::{DMatrix, DVector};
 /// Sizes of a QP: variables, equality rows, inequality rows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct QpDims {
+    /// Number of variables: the length of x.
     pub nx: usize,
+    /// Number of equality rows A x = b.
     pub n_eq: usize,
+    /// Number of inequality rows G x <= h.
     pub n_in: usize,
 }
 
 /// A dense convex QP (see the module docs for the form).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Qp {
+    /// P: the objective's Hessian (nx x nx, symmetric positive semidefinite).
     pub p: DMatrix<f64>,
+    /// q: the objective's linear term (length nx).
     pub q: DVector<f64>,
+    /// A: the equality matrix (n_eq x nx).
     pub a: DMatrix<f64>,
+    /// b: the equality right-hand side (length n_eq).
     pub b: DVector<f64>,
+    /// G: the inequality matrix (n_in x nx).
     pub g: DMatrix<f64>,
+    /// h: the inequality right-hand side (length n_in; +inf where a row is absent).
     pub h: DVector<f64>,
+    /// l: the variables' lower bounds (length nx; -inf where absent).
     pub lower: DVector<f64>,
+    /// u: the variables' upper bounds (length nx; +inf where absent).
     pub upper: DVector<f64>,
 }
 
 /// Multipliers of a QP solution (sign conventions as in the module docs).
 #[derive(Clone, Debug, PartialEq)]
 pub struct QpDuals {
+    /// lambda: multipliers of A x = b, one per equality row (either sign).
     pub lambda: DVector<f64>,
+    /// mu >= 0: multipliers of G x <= h, one per inequality row.
     pub mu: DVector<f64>,
+    /// z_l >= 0: multipliers of the lower bounds l <= x, one per variable.
     pub z_lower: DVector<f64>,
+    /// z_u >= 0: multipliers of the upper bounds x <= u, one per variable.
     pub z_upper: DVector<f64>,
 }
 
@@ -153,6 +168,7 @@ impl Qp {
         d
     }
 
+    /// The sizes q, b and h imply.
     pub fn dims(&self) -> QpDims {
         QpDims {
             nx: self.q.len(),

@@ -31,11 +31,15 @@ pub const FD_STEP: f64 = 6e-6;
 /// Preallocated QPs at the two ends of the central difference.
 #[derive(Clone, Debug)]
 pub struct QpDotScratch {
+    /// The QP at the +h end of the difference (the velocity-level n-link ZNN scheme borrows its A
+    /// as a Jacobian buffer).
     pub plus: Qp,
+    /// The QP at the -h end of the difference.
     pub minus: Qp,
 }
 
 impl QpDotScratch {
+    /// Two zero QPs of the given sizes (allocate once per run).
     pub fn new(dims: QpDims) -> Self {
         Self {
             plus: Qp::zeros(dims),

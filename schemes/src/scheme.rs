@@ -31,6 +31,7 @@ pub enum Level {
 pub trait Scheme<const N: usize>: Send + Sync {
     /// Name as the paper writes it (e.g. `VLTCO`, `MVN-INVM`, `HL-JDF`).
     fn name(&self) -> String;
+    /// Whether x[..N] is thetadot (velocity level) or thetaddot (acceleration level).
     fn level(&self) -> Level;
     /// QP sizes (constant along a run).
     fn dims(&self) -> QpDims;

@@ -24,6 +24,7 @@ use nalgebra::SVector;
 pub trait SliceScheme: Send + Sync {
     /// Name as the paper writes it.
     fn name(&self) -> String;
+    /// Whether x[..n] is thetadot (velocity level) or thetaddot (acceleration level).
     fn level(&self) -> Level;
     /// QP sizes (constant along a run).
     fn dims(&self) -> QpDims;

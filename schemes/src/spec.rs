@@ -79,9 +79,17 @@ pub enum SchemeSpec {
     /// (phi = 1, tau = 0), MVN-INVM (0.2, 0), VLTCO (0.2, 0.4). Alias `jia2019`.
     #[serde(alias = "jia2019")]
     Vltco {
+        /// Weight phi of the velocity norm (the tri-criteria w_v), jia2019 (2.17); >= 0, with
+        /// phi + tau <= 1.
         phi: f64,
+        /// Weight tau of the repetitive term (the tri-criteria w_r), jia2019 (2.17); >= 0, with
+        /// phi + tau <= 1.
         tau: f64,
+        /// Gain kappa (> 0) of the conversion of the joint-angle limits into velocity bounds,
+        /// jia2019 (2.15)-(2.16).
         kappa: f64,
+        /// Repetitive gain Lambda (> 0) of g = tau Lambda (theta - theta0) as printed,
+        /// jia2019 (2.17).
         lambda: f64,
         /// Reading of the RMP coefficient (default `printed`: tau Lambda).
         #[serde(default, skip_serializing_if = "RmpReading::is_printed")]
@@ -94,9 +102,17 @@ pub enum SchemeSpec {
     /// inequality as rows of G. Alias `zhong2021`.
     #[serde(alias = "zhong2021")]
     Cmco {
+        /// Weight eta of the velocity norm (the tri-criteria w_v), zhong2021 (2.16); >= 0, with
+        /// eta + delta <= 1.
         eta: f64,
+        /// Weight delta of the repetitive term (the tri-criteria w_r), zhong2021 (2.16); >= 0, with
+        /// eta + delta <= 1.
         delta: f64,
+        /// Gain upsilon (> 0) of the conversion of the joint-angle limits into velocity bounds,
+        /// zhong2021 (2.14)-(2.15).
         upsilon: f64,
+        /// Repetitive gain Lambda (> 0) of c = delta Lambda (theta - theta0) as printed,
+        /// zhong2021 (2.16); default 20, as in every zhong2021 run.
         #[serde(default = "default_zhong_lambda")]
         lambda: f64,
         /// Reading of the RMP coefficient (default `printed`: delta Lambda).
@@ -117,24 +133,41 @@ pub enum SchemeSpec {
     /// vocabulary says. Alias `zhang2018`.
     #[serde(alias = "zhang2018")]
     HlJdf {
+        /// Weight zeta in [0, 1] of the velocity criterion against the torque criterion,
+        /// W = zeta I + (1 - zeta) H^2, zhang2018 (2.5): 0 is MTN, 1 MVN.
         zeta: f64,
+        /// Drift gain alpha (> 0) of sigma = (alpha + beta) thetadot + alpha beta (theta - theta0),
+        /// zhang2018 (2.5).
         alpha: f64,
+        /// Drift gain beta (> 0) of sigma, zhang2018 (2.5) (see `alpha`).
         beta: f64,
+        /// Velocity feedback gain rho_v (> 0) of b's rho_v (rdot* - J thetadot), zhang2018 (2.6).
         rho_v: f64,
+        /// Position feedback gain rho_p (> 0) of b's rho_p (r* - f(theta)), zhang2018 (2.6).
         rho_p: f64,
     },
     /// kong2019 (14), the finite-time repeatable scheme (a preset of
     /// [`SchemeSpec::VelocityRmp`]). Alias `kong2019-finite-time`.
     #[serde(alias = "kong2019-finite-time")]
     FiniteTimeRmp {
+        /// Gain beta_theta (> 0) of the sign-power repetitive term
+        /// beta_theta |e|^alpha sgn(e), e = theta - theta_ref, kong2019 (14).
         beta_theta: f64,
+        /// Position feedback gain k_p of b = rdot* + k_p (r* - f(theta)) (>= 0; 0: none).
         k_p: f64,
+        /// Exponent alpha of the sign-power term (> 0; the paper takes 0 < alpha < 1).
         alpha: f64,
     },
     /// kong2019 (22), the ZNN repetitive baseline (a preset of [`SchemeSpec::VelocityRmp`]).
     /// Alias `kong2019-znn`.
     #[serde(alias = "kong2019-znn")]
-    ZnnRmp { mu: f64, k_p: f64 },
+    ZnnRmp {
+        /// Gain mu of the linear repetitive term mu (theta - theta_ref), kong2019 (22) (>= 0;
+        /// 0: no repetitive term).
+        mu: f64,
+        /// Position feedback gain k_p of b = rdot* + k_p (r* - f(theta)) (>= 0; 0: none).
+        k_p: f64,
+    },
     /// The velocity-level scheme composed from the vocabulary ([`crate::velocity_rmp`]).
     VelocityRmp {
         /// Weight w of the velocity norm (P = w I).
@@ -190,18 +223,28 @@ fn is_zero(v: &f64) -> bool {
 #[derive(Clone, Debug, PartialEq)]
 pub enum SchemeError {
     /// The scheme needs rigid-body dynamics and none was given.
-    MissingDynamics { scheme: &'static str },
+    MissingDynamics {
+        /// The scheme's `kind` tag.
+        scheme: &'static str,
+    },
     /// The dynamics model is not the kinematic robot.
     RobotMismatch {
+        /// The scheme's `kind` tag.
         scheme: &'static str,
+        /// The kinematic robot's model name.
         robot: String,
+        /// The dynamics model's name.
         dynamics: String,
     },
     /// A parameter is out of its range.
     InvalidParameter {
+        /// The scheme's `kind` tag.
         scheme: &'static str,
+        /// The parameter, by its field name in the experiment file.
         field: &'static str,
+        /// The value given (NaN when a required parameter is absent).
         value: f64,
+        /// The range it must be in, as text.
         requirement: &'static str,
     },
 }

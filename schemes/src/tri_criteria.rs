@@ -164,6 +164,8 @@ impl<const N: usize> TriCriteria<N> {
         self.w_repetitive * self.rmp.coefficient(self.lambda, self.text_gain)
     }
 
+    /// The joint reference theta0 of the repetitive term g = [c (theta - theta0); 0], as given at
+    /// construction.
     pub fn theta0(&self) -> &SVector<f64, N> {
         &self.theta0
     }

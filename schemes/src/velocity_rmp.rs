@@ -64,11 +64,18 @@ use crate::scheme::{Level, Scheme};
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Repetitive {
     /// g = lambda (theta - theta_ref) (robio2018 (4), kong2019 (22)); lambda = 0: no term.
-    Linear { lambda: f64 },
+    Linear {
+        /// Gain lambda (>= 0; 0: no term).
+        lambda: f64,
+    },
     /// g = beta |e|^alpha sgn(e), smoothed (kong2019 (14)).
     SignPower {
+        /// Gain beta (> 0; kong2019's beta_theta).
         beta: f64,
+        /// Exponent alpha (> 0; kong2019 takes 0 < alpha < 1).
         alpha: f64,
+        /// Smoothing width delta (rad) of c(e) = e (e^2 + delta^2)^((alpha - 1)/2) (module docs;
+        /// default [`SMOOTHING`]).
         smoothing: f64,
     },
 }

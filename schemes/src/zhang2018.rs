@@ -38,11 +38,14 @@ pub struct Zhang2018<const N: usize> {
     theta0: SVector<f64, N>,
     /// MVN/MTN mixing weight zeta in [0, 1].
     pub zeta: f64,
-    /// Drift-criterion gains alpha, beta of sigma.
+    /// Drift-criterion gain alpha of sigma = (alpha + beta) thetadot + alpha beta
+    /// (theta - theta0).
     pub alpha: f64,
+    /// Drift-criterion gain beta of sigma (see `alpha`).
     pub beta: f64,
-    /// Velocity and position feedback gains rho_v, rho_p.
+    /// Velocity feedback gain rho_v of b's rho_v (rdot* - J thetadot).
     pub rho_v: f64,
+    /// Position feedback gain rho_p of b's rho_p (r* - f(theta)).
     pub rho_p: f64,
 }
 
@@ -71,6 +74,7 @@ impl<const N: usize> Zhang2018<N> {
         }
     }
 
+    /// The joint reference theta0 of sigma, as given at construction.
     pub fn theta0(&self) -> &SVector<f64, N> {
         &self.theta0
     }

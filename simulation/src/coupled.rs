@@ -82,8 +82,11 @@ fn arm_rhs(n: usize, level: Level, y: &[f64], command: &[f64], dy: &mut [f64]) {
 /// The scheme with its exact optimum in the loop ([`ExactPath`]: the certified active-set
 /// solver, Clarabel when it fails and on a sample).
 pub struct ExactLoop<'a> {
+    /// The scheme whose QP is solved at every evaluation.
     pub scheme: &'a dyn SliceScheme,
+    /// The QP buffer, rebuilt in place at every evaluation.
     pub qp: Qp,
+    /// The exact solver, hot-started along the run.
     pub solver: ExactPath,
     /// First failure of the exact solver, with its instant (the run is then reported as
     /// failed with it).
@@ -93,6 +96,7 @@ pub struct ExactLoop<'a> {
 }
 
 impl<'a> ExactLoop<'a> {
+    /// The loop of `scheme`, its QP and solver buffers allocated once.
     pub fn new(scheme: &'a dyn SliceScheme) -> Self {
         let qp = scheme.new_qp();
         Self {
@@ -147,7 +151,9 @@ impl OdeSystem for ExactLoop<'_> {
 
 /// The scheme solved by a recurrent network, integrated together with the arm.
 pub struct NeuralLoop<'a> {
+    /// The scheme whose QP the network solves.
     pub scheme: &'a dyn SliceScheme,
+    /// The network; its state is the part of y after the arm's.
     pub network: Box<dyn NeuralSolver>,
     qp: Qp,
     qp_dot: Qp,
@@ -211,6 +217,7 @@ fn central_difference(hi: &mut Qp, lo: &Qp, h: f64) {
 }
 
 impl<'a> NeuralLoop<'a> {
+    /// The loop of `scheme` and `network`, every buffer sized for the scheme's QP once.
     pub fn new(scheme: &'a dyn SliceScheme, network: Box<dyn NeuralSolver>) -> Self {
         let net_dim = network.state_dim(scheme.dims());
         let dim = arm_dim(scheme.joints(), scheme.level()) + net_dim;

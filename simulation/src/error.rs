@@ -17,16 +17,31 @@ pub enum RunError {
     Setup(#[from] SetupError),
     /// The exact QP at instant t had no solution.
     #[error("exact QP at t = {t:.6}: {error}")]
-    ExactQp { t: f64, error: ExactError },
+    ExactQp {
+        /// The instant (s).
+        t: f64,
+        /// The exact solver's error.
+        error: ExactError,
+    },
     /// The observer stopped a diverging run (see `simulate::DIVERGENCE_FACTOR`).
     #[error("stopped at t = {t:.6}: {reason}")]
-    Diverged { t: f64, reason: String },
+    Diverged {
+        /// The time of the step it stopped at (s).
+        t: f64,
+        /// Which bound was exceeded, and by what.
+        reason: String,
+    },
     /// The integrator stopped.
     #[error(transparent)]
     Integration(#[from] OdeError),
     /// A numerical run solver failed at the instant t.
     #[error("numerical method at t = {t:.6}: {error}")]
-    Numerical { t: f64, error: LviError },
+    Numerical {
+        /// The instant (s).
+        t: f64,
+        /// The method's error.
+        error: LviError,
+    },
 }
 
 impl RunError {

@@ -14,6 +14,8 @@
 //! produced elsewhere on a task, with the metrics and the score of a run.
 //! [`task_numbers`] computes a task's check values (its task card's).
 
+#![deny(missing_docs)]
+
 pub mod coupled;
 pub mod error;
 pub mod metrics;

@@ -21,14 +21,22 @@ use robots::JointLimits;
 /// One sample of the arm's motion at an accepted step.
 #[derive(Clone, Copy, Debug)]
 pub struct Sample<const N: usize> {
+    /// Time (s).
     pub t: f64,
+    /// Joint angles theta (rad).
     pub theta: SVector<f64, N>,
+    /// Joint velocities thetadot (rad/s): the command at the velocity level, the state at the
+    /// acceleration level.
     pub thetadot: SVector<f64, N>,
     /// Joint acceleration (acceleration level only).
     pub thetaddot: Option<SVector<f64, N>>,
+    /// Joint torque tau (N m), for schemes with a dynamics model.
     pub torque: Option<SVector<f64, N>>,
+    /// Desired task-point position r*(t) (m).
     pub desired: Vector3<f64>,
+    /// Actual task-point position f(theta) (m).
     pub actual: Vector3<f64>,
+    /// Position Jacobian J(theta).
     pub jacobian: SMatrix<f64, 3, N>,
 }
 
@@ -46,7 +54,10 @@ pub struct ScoreSample {
 /// Score of a neural run against Clarabel along its own trajectory.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Score {
+    /// Score samples: instants compared with the exact optimum.
     pub samples: usize,
+    /// Largest |x_nn - x*|_inf over the joint command (rad/s at the velocity level, rad/s^2 at the
+    /// acceleration level).
     pub max_dx: f64,
     /// RMS of dx over the run, time-weighted (trapezoid of dx^2 in t, divided by the span).
     pub rms_dx: f64,
@@ -54,13 +65,16 @@ pub struct Score {
     /// started from zero (dx^2 interpolated linearly at the settling instant); `None` when no
     /// score sample lies at or after it.
     pub rms_dx_after_settle: Option<f64>,
+    /// Largest relative objective gap (f(x_nn) - f(x*)) / max(1, |f(x*)|).
     pub max_objective_gap: f64,
+    /// Largest constraint violation of x_nn.
     pub max_violation: f64,
 }
 
 /// The network's own error norm along a run.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct NetworkError {
+    /// The error norm at the last accepted step.
     pub final_value: f64,
     /// Largest value at t >= [`SETTLE_TIME`] (0 if the run ended before).
     pub max_after_settle: f64,
@@ -73,19 +87,37 @@ pub const SETTLE_TIME: f64 = 1.0;
 /// Final metrics of a run.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RunMetrics {
+    /// Joint drift theta(T) - theta0 (rad), one per joint.
     pub drift: Vec<f64>,
+    /// |theta(T) - theta0|_2 (rad).
     pub drift_norm: f64,
+    /// |theta(T) - theta_ref|_2 (rad): the drift from the scheme's reference (kong2019's theta*0).
     pub drift_ref_norm: f64,
+    /// Largest end-effector position error |r*(t) - f(theta(t))|_2 (m).
     pub max_position_error: f64,
+    /// RMS of the position error over the run (m), time-weighted by the trapezoidal rule.
     pub rms_position_error: f64,
+    /// Position error at the last accepted step (m).
     pub final_position_error: f64,
+    /// Smallest distance of a joint angle to a finite limit over joints and time (rad; negative:
+    /// violated; +inf when no limit is finite).
     pub theta_margin: f64,
+    /// Smallest distance of a joint velocity to a finite limit over joints and time (rad/s;
+    /// negative: violated; +inf when no limit is finite).
     pub thetadot_margin: f64,
+    /// Largest |thetadot|_inf over the run (rad/s).
     pub peak_thetadot: f64,
+    /// Largest |thetaddot|_inf over the run (rad/s^2); acceleration level only.
     pub peak_thetaddot: Option<f64>,
+    /// Largest |tau|_inf over the run (N m); schemes with a dynamics model only.
     pub peak_torque: Option<f64>,
+    /// Smallest singular value of the position Jacobian over the run (m/rad): the distance from
+    /// a singularity.
     pub min_sigma_j: f64,
+    /// The score against the exact optimum; `None` when no instant was scored (the exact column,
+    /// scoring off).
     pub score: Option<Score>,
+    /// The network's own error norm; `None` for solvers that report none.
     pub network_error: Option<NetworkError>,
 }
 
@@ -138,6 +170,8 @@ pub struct MetricsAccumulator<const N: usize> {
 }
 
 impl<const N: usize> MetricsAccumulator<N> {
+    /// An empty accumulator for an arm with `limits`, drifts measured from `theta0` and
+    /// `theta_ref`.
     pub fn new(
         limits: JointLimits<N>,
         theta0: SVector<f64, N>,

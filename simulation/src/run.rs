@@ -21,7 +21,9 @@ use std::sync::Arc;
 /// A job and what its simulation produced.
 #[derive(Clone, Debug)]
 pub struct RunRecord {
+    /// The job that was run.
     pub job: Job,
+    /// What its simulation produced.
     pub run: Run,
 }
 

@@ -50,32 +50,69 @@ pub const START_TOLERANCE: f64 = 1e-6;
 /// Why a trajectory cannot be scored on a task.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum TrajectoryError {
+    /// Fewer than 3 samples (or a column with fewer rows than `t`): the number.
     #[error("a trajectory needs at least 3 samples, got {0}")]
     TooShort(usize),
+    /// A sample of theta or thetadot has not one entry per joint.
     #[error("sample {row}: {what} has {given} entries, the task's robot has {joints} joints")]
     Width {
+        /// The sample's index (from 0).
         row: usize,
+        /// The column: `theta` or `thetadot`.
         what: &'static str,
+        /// The entries given.
         given: usize,
+        /// The task robot's joint count.
         joints: usize,
     },
+    /// The sample times do not increase strictly.
     #[error("sample {row}: t = {t} does not follow t = {previous} (t must increase strictly)")]
-    NotIncreasing { row: usize, t: f64, previous: f64 },
+    NotIncreasing {
+        /// The sample's index (from 0).
+        row: usize,
+        /// Its time (s).
+        t: f64,
+        /// The previous sample's time (s).
+        previous: f64,
+    },
+    /// A joint angle or velocity of a sample is NaN or infinite.
     #[error("sample {row}: a value is not finite")]
-    NotFinite { row: usize },
+    NotFinite {
+        /// The sample's index (from 0).
+        row: usize,
+    },
+    /// The first sample is not at t = 0 (to [`TIME_TOLERANCE`] T): its time (s).
     #[error("the trajectory starts at t = {0}, the task at t = 0")]
     Start(f64),
+    /// The last sample is not at the task's duration (to [`TIME_TOLERANCE`] T).
     #[error("the trajectory ends at t = {t}, the task at its duration T = {duration} s")]
-    End { t: f64, duration: f64 },
+    End {
+        /// The last sample's time (s).
+        t: f64,
+        /// The task's duration T (s).
+        duration: f64,
+    },
+    /// The first sample's angles differ from the task's theta0 by more than
+    /// [`START_TOLERANCE`].
     #[error(
         "theta at t = 0 differs from the task's theta0 by {diff:.3e} rad at joint {joint} (tolerance {START_TOLERANCE:e})"
     )]
-    StartPose { joint: usize, diff: f64 },
+    StartPose {
+        /// The first joint that differs, numbered from 1.
+        joint: usize,
+        /// |theta_0 - theta0| at that joint (rad).
+        diff: f64,
+    },
+    /// The task's scheme is acceleration-level: its name.
     #[error("scoring a trajectory needs a velocity-level scheme (x = thetadot); {0} is acceleration-level")]
     AccelerationLevel(String),
     /// The samples are finite, but a metric of them is not (it overflowed).
     #[error("its {metric} is not finite (the samples overflow it); the trajectory is not scored")]
-    MetricNotFinite { metric: &'static str },
+    MetricNotFinite {
+        /// The metric, by its `runs.csv` name (e.g. `drift_norm`).
+        metric: &'static str,
+    },
+    /// The task's parts (robot, path, scheme) cannot be built.
     #[error(transparent)]
     Setup(#[from] SetupError),
 }

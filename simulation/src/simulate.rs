@@ -79,12 +79,17 @@ pub const DIVERGENCE_STATE: f64 = 1e6;
 /// Outcome of a run.
 #[derive(Clone, Debug)]
 pub enum Outcome {
+    /// The run reached the path's end: its metrics.
     Completed(RunMetrics),
     /// The run stopped at t; `partial` holds the metrics up to there (peaks, errors, margins;
     /// its drift is theta(t) - theta0, not a drift over the task).
     Failed {
+        /// When it stopped (s): the last accepted step, or the failing instant (0 when the run
+        /// could not be built).
         t: f64,
+        /// Why it stopped.
         error: RunError,
+        /// The metrics up to t; `None` when no step was observed.
         partial: Option<RunMetrics>,
     },
 }
@@ -94,7 +99,9 @@ pub enum Outcome {
 pub struct Run {
     /// The scheme's name (`VLTCO`, ...).
     pub scheme_name: String,
+    /// How the run ended, with its metrics.
     pub outcome: Outcome,
+    /// The integrator's cost (for a numerical run: steps are the instants after the first).
     pub stats: OdeStats,
     /// Exact QP solves (in the loop for the exact column, for scoring in neural runs), with the
     /// active-set solver's fallbacks to Clarabel and the Clarabel sample.
@@ -104,6 +111,7 @@ pub struct Run {
     /// Seconds spent observing accepted steps (metrics, trace, and the Clarabel solves that
     /// score the run or give the exact column's thetadot); part of the ODE's wall time.
     pub observe_seconds: f64,
+    /// Samples for the figures: about 400, uniform in t, and the last.
     pub trace: Vec<TracePoint>,
     /// A numerical run solver's iterations; none for the exact column and the networks.
     pub iterations: Option<IterationStats>,

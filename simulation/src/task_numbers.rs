@@ -20,23 +20,32 @@ pub const PATH_FRACTIONS: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
 /// The path at one instant.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PathSample {
+    /// The instant (s).
     pub t: f64,
+    /// Desired position r*(t) (m).
     pub r: [f64; 3],
+    /// Desired velocity rdot*(t) (m/s).
     pub rdot: [f64; 3],
+    /// Desired acceleration rddot*(t) (m/s^2).
     pub rddot: [f64; 3],
 }
 
 /// The numbers of a task (module docs).
 #[derive(Clone, Debug, PartialEq)]
 pub struct TaskNumbers {
+    /// The robot's joint count n.
     pub joints: usize,
     /// theta-, theta+, thetadot-, thetadot+ per joint (infinite where unlimited).
     pub theta_min: Vec<f64>,
+    /// Upper joint-angle limits theta+ (rad).
     pub theta_max: Vec<f64>,
+    /// Lower joint-velocity limits thetadot- (rad/s).
     pub thetadot_min: Vec<f64>,
+    /// Upper joint-velocity limits thetadot+ (rad/s).
     pub thetadot_max: Vec<f64>,
     /// f(theta0), and J(theta0) by rows.
     pub position0: [f64; 3],
+    /// J(theta0), 3 rows of n entries.
     pub jacobian0: Vec<Vec<f64>>,
     /// f(theta_ref), where the path starts.
     pub path_start: [f64; 3],
@@ -44,7 +53,9 @@ pub struct TaskNumbers {
     pub path: Vec<PathSample>,
     /// The scheme's name, level and QP at t = 0.
     pub scheme: String,
+    /// The scheme's level.
     pub level: Level,
+    /// The scheme's QP at t = 0 (at theta0, with thetadot = 0 at the acceleration level).
     pub qp0: Qp,
 }
 

@@ -272,30 +272,37 @@ impl WorkingSet {
         }
     }
 
+    /// The number of inequality rows in the set.
     pub fn len(&self) -> usize {
         self.constraints.len()
     }
 
+    /// Whether no inequality row is held (only the equalities are active).
     pub fn is_empty(&self) -> bool {
         self.constraints.is_empty()
     }
 
+    /// Whether row `c` is in the set.
     pub fn contains(&self, c: Constraint) -> bool {
         self.constraints.contains(&c)
     }
 
+    /// Adds row `c` at the end (no check for duplicates).
     pub fn push(&mut self, c: Constraint) {
         self.constraints.push(c);
     }
 
+    /// Empties the set, keeping its buffer.
     pub fn clear(&mut self) {
         self.constraints.clear();
     }
 
+    /// The rows, in the set's order.
     pub fn as_slice(&self) -> &[Constraint] {
         &self.constraints
     }
 
+    /// The rows, in the set's order.
     pub fn iter(&self) -> impl Iterator<Item = Constraint> + '_ {
         self.constraints.iter().copied()
     }
@@ -325,6 +332,7 @@ pub enum ActiveSetStart {
 /// A certified solution of [`ActiveSetSolver`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct ActiveSetSolution {
+    /// The primal solution x.
     pub x: DVector<f64>,
     /// Multipliers in the convention of [`schemes::qp`] (zero outside the working set).
     pub duals: QpDuals,
@@ -380,9 +388,18 @@ pub enum ActiveSetError {
     /// space of the active rows.
     Singular,
     /// More than the allowed working-set changes.
-    IterationLimit { iterations: u32 },
+    IterationLimit {
+        /// The working-set changes made when it stopped (the limit plus one).
+        iterations: u32,
+    },
     /// The answer's KKT residuals exceed the tolerance.
-    NotCertified { kkt: KktResiduals, tolerance: f64 },
+    NotCertified {
+        /// The answer's KKT residuals.
+        kkt: KktResiduals,
+        /// The absolute tolerance they were held to: the relative certification tolerance
+        /// times 1 + max(|q|_inf, |b|_inf).
+        tolerance: f64,
+    },
 }
 
 impl fmt::Display for ActiveSetError {

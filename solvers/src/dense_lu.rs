@@ -40,6 +40,7 @@ pub enum Backend {
 }
 
 impl Backend {
+    /// Both backends, nalgebra first.
     pub const ALL: [Backend; 2] = [Backend::Nalgebra, Backend::Faer];
 
     /// `nalgebra`, `faer` (the `backend` column of `results/dof-cost.csv`).
@@ -97,6 +98,7 @@ impl DenseLu {
         Self::new(n, Backend::for_size(n))
     }
 
+    /// The backend these buffers factorise on.
     pub fn backend(&self) -> Backend {
         self.backend
     }

@@ -144,13 +144,19 @@ pub enum ExactError {
     /// Clarabel stopped without an answer (MaxIterations, MaxTime, NumericalError,
     /// InsufficientProgress, Unsolved, CallbackTerminated).
     Failed {
+        /// Clarabel's status at its last attempt.
         status: ExactStatus,
+        /// Clarabel's interior-point iterations, summed over the attempts.
         iterations: u32,
     },
     /// Clarabel reported (almost) solved but our KKT residuals exceed the tolerance.
     Inaccurate {
+        /// Clarabel's status (Solved or AlmostSolved).
         status: ExactStatus,
+        /// Our KKT residuals of Clarabel's answer.
         kkt: KktResiduals,
+        /// The absolute tolerance they were held to: the relative KKT tolerance times
+        /// 1 + max(|q|_inf, |b|_inf).
         tolerance: f64,
     },
 }
@@ -192,6 +198,7 @@ impl std::error::Error for ExactError {}
 /// An accepted solution of the exact solver.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ExactSolution {
+    /// The primal solution x (Clarabel's, at its last attempt).
     pub x: DVector<f64>,
     /// Multipliers in the convention of [`schemes::qp`] (zero for absent constraints).
     pub duals: QpDuals,

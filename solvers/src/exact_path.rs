@@ -81,6 +81,7 @@ pub struct ExactPath {
     duals: QpDuals,
     clarabel: ExactSolver,
     x: DVector<f64>,
+    /// What the path has done so far, summed over every solve since [`ExactPath::new`].
     pub stats: ExactPathStats,
 }
 

@@ -7,6 +7,7 @@
 // Parameter checks are written `!(x > 0.0 && x.is_finite())`, `!(pivot > tol)`: a NaN fails
 // them, which the "simplified" forms clippy proposes would let through or obscure.
 #![allow(clippy::nonminimal_bool, clippy::neg_cmp_op_on_partial_ord)]
+#![deny(missing_docs)]
 
 pub mod active_set;
 pub mod auxiliary;

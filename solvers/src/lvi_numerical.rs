@@ -230,16 +230,24 @@ impl Default for LviSettings {
 /// Why a solve failed.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum LviError {
+    /// `max_iterations` iterations did not bring |e(U)|_2 down to the tolerance.
     #[error("{method} did not reach |e|_2 <= {tolerance:e} in {iterations} iterations (|e|_2 = {residual:e})")]
     NotConverged {
+        /// The method's name as robio2018 writes it.
         method: &'static str,
+        /// The iterations made: `max_iterations`.
         iterations: u32,
+        /// The stopping tolerance on |e(U)|_2.
         tolerance: f64,
+        /// |e(U)|_2 at the last iterate.
         residual: f64,
     },
+    /// The iterate became NaN or infinite.
     #[error("{method}: the iterate became non-finite after {iterations} iterations")]
     NonFinite {
+        /// The method's name as robio2018 writes it.
         method: &'static str,
+        /// The iterations completed (the k of the non-finite U^k).
         iterations: u32,
     },
     /// The matrix the method inverts is singular to working precision (module docs).
@@ -247,20 +255,29 @@ pub enum LviError {
         "{method}: {matrix} is singular (pivot ratio {pivot_ratio:e}), so its inverse is undefined"
     )]
     SingularMatrix {
+        /// The method's name as robio2018 writes it.
         method: &'static str,
+        /// The matrix: `M` or `I + M`.
         matrix: &'static str,
+        /// Its LU pivot ratio min|u_kk| / max|u_kk| (0 when a pivot was zero or not finite).
         pivot_ratio: f64,
     },
     /// The step length's denominator was zero or not finite (module docs).
     #[error("{method}: the step length's denominator vanished at iteration {iterations}")]
     Breakdown {
+        /// The method's name as robio2018 writes it.
         method: &'static str,
+        /// The iterations completed before it vanished (the k of U^k).
         iterations: u32,
     },
+    /// The QP's sizes are not those the solver was built for.
     #[error("{method}: built for QPs of sizes {expected:?}, given one of {found:?}")]
     Dimensions {
+        /// The method's name as robio2018 writes it.
         method: &'static str,
+        /// The sizes the solver was built for.
         expected: QpDims,
+        /// The sizes of the QP given.
         found: QpDims,
     },
 }
@@ -303,10 +320,12 @@ impl LviSolver {
         }
     }
 
+    /// The method this solver iterates.
     pub fn method(&self) -> LviMethod {
         self.method
     }
 
+    /// Its stopping rule.
     pub fn settings(&self) -> LviSettings {
         self.settings
     }

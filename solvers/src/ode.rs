@@ -36,6 +36,7 @@ use std::time::Instant;
 
 /// An ODE y' = F(t, y) of fixed dimension.
 pub trait OdeSystem {
+    /// The dimension of y.
     fn dim(&self) -> usize;
     /// dy = F(t, y).
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]);
@@ -59,6 +60,7 @@ pub struct OdeStats {
     /// LU factorisations of the Newton matrix I - c J (diffsol's linear-solver setups; 0 for
     /// the explicit methods).
     pub lu_factorisations: usize,
+    /// Wall time of the integration (s), the observer's calls included.
     pub wall_seconds: f64,
 }
 
@@ -66,17 +68,45 @@ pub struct OdeStats {
 #[derive(Clone, Debug, PartialEq)]
 pub enum OdeError {
     /// diffsol gave up (step size underflow, Newton failure, ...).
-    Solver { t: f64, message: String },
+    Solver {
+        /// The time reached (s).
+        t: f64,
+        /// diffsol's message (or why the integrator settings were refused).
+        message: String,
+    },
     /// The state left the finite numbers: the network diverged.
-    NonFinite { t: f64 },
+    NonFinite {
+        /// The time of the first non-finite state (s).
+        t: f64,
+    },
     /// More than `max_steps` accepted steps.
-    TooManySteps { t: f64, steps: usize },
+    TooManySteps {
+        /// The time reached (s).
+        t: f64,
+        /// The accepted steps taken: the limit `max_steps`.
+        steps: usize,
+    },
     /// The observer asked to stop.
-    Stopped { t: f64, reason: String },
+    Stopped {
+        /// The time of the step the observer stopped at (s).
+        t: f64,
+        /// The observer's reason ([`Control::Stop`]).
+        reason: String,
+    },
     /// The wall-time budget ran out.
-    WallBudget { t: f64, seconds: f64 },
+    WallBudget {
+        /// The time reached (s).
+        t: f64,
+        /// The budget (s of wall time, `max_wall_s`).
+        seconds: f64,
+    },
     /// The right-hand-side evaluation budget ran out.
-    EvalBudget { t: f64, evals: usize },
+    EvalBudget {
+        /// The time reached (s).
+        t: f64,
+        /// The budget (evaluations of F, `max_rhs_evals`).
+        evals: usize,
+    },
 }
 
 impl std::fmt::Display for OdeError {
@@ -111,7 +141,9 @@ impl std::error::Error for OdeError {}
 /// A failed integration with the cost spent until it stopped.
 #[derive(Clone, Debug)]
 pub struct OdeFailure {
+    /// Why it stopped.
     pub error: OdeError,
+    /// The cost spent until it stopped.
     pub stats: OdeStats,
 }
 
@@ -126,7 +158,9 @@ impl std::error::Error for OdeFailure {}
 /// What the observer tells the integrator after an accepted step.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Control {
+    /// Go on integrating.
     Continue,
+    /// Stop here, for the reason given (it becomes [`OdeError::Stopped`]).
     Stop(String),
 }
 

@@ -43,8 +43,11 @@ pub const ADAPTIVE_RHO_INTERVAL: u32 = 25;
 /// OSQP's stopping rule.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct OsqpSettings {
+    /// OSQP's absolute tolerance on the primal and dual residuals.
     pub eps_abs: f64,
+    /// OSQP's relative tolerance on the primal and dual residuals.
     pub eps_rel: f64,
+    /// OSQP's largest number of ADMM iterations per solve.
     pub max_iter: u32,
     /// Solve the active set's KKT system after ADMM.
     pub polish: bool,
@@ -65,10 +68,17 @@ impl Default for OsqpSettings {
 /// Why a solve failed.
 #[derive(Debug, thiserror::Error)]
 pub enum OsqpError {
+    /// OSQP refused to set the problem up (its error, as text).
     #[error("OSQP setup failed: {0}")]
     Setup(String),
+    /// OSQP stopped without a solution.
     #[error("OSQP stopped with status {status} after {iterations} iterations")]
-    NotSolved { status: String, iterations: u32 },
+    NotSolved {
+        /// OSQP's status name, e.g. `MaxIterationsReached`.
+        status: String,
+        /// OSQP's iterations.
+        iterations: u32,
+    },
 }
 
 /// OSQP kept set up across solves (see the module docs).

@@ -38,7 +38,10 @@ pub enum QpSolverError {
     /// The hot-started active set failed, cold-started too, and so did Clarabel after it.
     #[error("active set: {active_set}; its Clarabel fallback: {fallback}")]
     ActiveSet {
+        /// Why the active-set solver failed (its cold start's error when a warm start was tried
+        /// first).
         active_set: ActiveSetError,
+        /// Why Clarabel failed after it.
         #[source]
         fallback: ExactError,
     },

@@ -16,7 +16,12 @@ pub enum PathError {
     /// A polyline has no segment of positive length (all its points coincide).
     DegeneratePolyline,
     /// A pose angle (`rotation`, `tilt_x` or `tilt_y`, named by `field`) is not finite.
-    NonFinitePose { field: &'static str, value: f64 },
+    NonFinitePose {
+        /// The angle's field: `rotation`, `tilt_x` or `tilt_y`.
+        field: &'static str,
+        /// The value given (rad).
+        value: f64,
+    },
     /// `phase` is not in [0, 1).
     PhaseOutOfRange(f64),
     /// A non-zero `phase` was given for a path (named) that has no cycle to shift: the stroke

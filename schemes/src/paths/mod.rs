@@ -63,8 +63,11 @@ use nalgebra::Vector3;
 /// Desired position, velocity and acceleration of the task point at one instant.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PathPoint {
+    /// Desired position r*(t) of the task point (m).
     pub r: Vector3<f64>,
+    /// Desired velocity rdot*(t) (m/s).
     pub rdot: Vector3<f64>,
+    /// Desired acceleration rddot*(t) (m/s^2).
     pub rddot: Vector3<f64>,
 }
 

@@ -12,6 +12,7 @@ pub struct Reversed {
 }
 
 impl Reversed {
+    /// `inner` run backwards; its breakpoints b become T - b, still ascending.
     pub fn new(inner: Box<dyn Path>) -> Self {
         let t = inner.duration();
         let mut breakpoints: Vec<f64> = inner.breakpoints().iter().map(|b| t - b).collect();

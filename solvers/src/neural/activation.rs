@@ -24,7 +24,7 @@
 //! ((1 + exp(-xi)) / (1 - exp(-xi))) (1 - exp(-xi e)) / (1 + exp(-xi e)) otherwise; called with
 //! one argument it uses xi = 1, p = 1, with two p = 3
 //! ([`settings::activation::GROUP_POWER_SIGMOID_XI`],
-//! [`settings::solver_spec::GROUP_POWER_SIGMOID_P`] are the one-argument defaults, the ones its
+//! [`settings::activation::GROUP_POWER_SIGMOID_P`] are the one-argument defaults, the ones its
 //! network uses).
 //! This is zhong2021's eq. 2.29 with **alpha = xi and chi = p**: the same sigmoid branch
 //! (= coth(xi/2) tanh(xi e/2)) inside, the same power outside. The two differ only at
@@ -83,13 +83,31 @@ pub enum Activation {
     /// phi(e) = sinh(e) (zhong2021 eq. 2.28).
     Sinh,
     /// zhong2021 eq. 2.29 (see the module docs).
-    PowerSigmoid { alpha: f64, chi: f64 },
+    PowerSigmoid {
+        /// Steepness alpha of the sigmoid branch (> 0; zhong2021 asks alpha >= 2, default 4).
+        alpha: f64,
+        /// Exponent chi of the power branch sgn(e) abs(e)^chi, abs(e) > 1 (>= 1; zhong2021 asks
+        /// chi >= 3, default 3).
+        chi: f64,
+    },
     /// The group's `AFMpowersigmoid(e, xi, p)` (module docs): zhong2021's eq. 2.29 with
     /// alpha = xi, chi = p, the power branch owning abs(e) = 1.
-    GroupPowerSigmoid { xi: f64, p: f64 },
-    /// phi(e) = abs(e)^r sgn(e) (kong2019 eq. 6, 20), optionally made linear,
-    /// phi(e) = e delta^(r-1), for abs(e) < delta = `smoothing` (0: the exact form).
-    SignPower { r: f64, smoothing: f64 },
+    GroupPowerSigmoid {
+        /// Steepness xi of the sigmoid branch (> 0; the group's code: 1).
+        xi: f64,
+        /// Exponent p of the power branch sgn(e) abs(e)^p, abs(e) >= 1 (>= 1; the group's code:
+        /// 1 or 3).
+        p: f64,
+    },
+    /// phi(e) = abs(e)^r sgn(e) (kong2019 eq. 6, 20), optionally smoothed to
+    /// phi(e) = e (e^2 + delta^2)^((r - 1)/2), delta = `smoothing` (0: the exact form; module
+    /// docs).
+    SignPower {
+        /// Exponent r (> 0; kong2019's alpha, 0 < r < 1).
+        r: f64,
+        /// Smoothing width delta >= 0 (0: the exact form).
+        smoothing: f64,
+    },
 }
 
 impl From<ActivationSpec> for Activation {

@@ -39,8 +39,11 @@ use std::f64::consts::PI;
 /// One entry of D0: sign * (sin | cos)(k w).
 #[derive(Clone, Copy, Debug)]
 pub struct Trig {
+    /// The entry's sign, +1 or -1.
     pub sign: f64,
+    /// Whether the entry is a sine (else a cosine).
     pub sine: bool,
+    /// The multiple k of w = pi t / T in the argument.
     pub k: f64,
 }
 

@@ -96,6 +96,7 @@ pub struct LviCore {
 }
 
 impl LviCore {
+    /// The LVI's scratch for QPs of sizes `dims` (y of [`primal_dual_dim`] entries).
     pub fn new(dims: QpDims) -> Self {
         let n = primal_dual_dim(dims);
         Self {
@@ -107,6 +108,7 @@ impl LviCore {
         }
     }
 
+    /// The QP sizes it was built for.
     pub fn dims(&self) -> QpDims {
         self.dims
     }
@@ -249,6 +251,7 @@ pub struct LviPdnn {
 }
 
 impl LviPdnn {
+    /// LVI-PDNN with gain `gamma` for QPs of sizes `dims`.
     pub fn new(gamma: f64, dims: QpDims) -> Self {
         Self {
             gamma,
@@ -309,6 +312,7 @@ pub struct SLviPdnn {
 }
 
 impl SLviPdnn {
+    /// S-LVI-PDNN with gain `beta` for QPs of sizes `dims`.
     pub fn new(beta: f64, dims: QpDims) -> Self {
         Self {
             beta,

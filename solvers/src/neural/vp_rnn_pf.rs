@@ -94,6 +94,7 @@ pub struct VpRnnPf {
     pub sigma: f64,
     /// gamma of the varying parameter gamma exp(t) (eq. 2.26).
     pub gamma: f64,
+    /// The activation Phi of the error (zhong2021 (2.26)).
     pub activation: Activation,
     gain: Gain,
     dims: QpDims,

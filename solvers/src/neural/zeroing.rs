@@ -68,6 +68,7 @@ pub enum Gain {
 }
 
 impl Gain {
+    /// g(t).
     #[inline]
     pub fn at(&self, t: f64) -> f64 {
         match *self {
@@ -183,12 +184,15 @@ impl ZeroingNetwork {
         self.udot_q
     }
 
+    /// The convergence gain g(t).
     pub fn gain(&self) -> Gain {
         self.gain
     }
+    /// The activation Phi of the error E.
     pub fn activation(&self) -> Activation {
         self.activation
     }
+    /// The reference perturbation of zhang2018 (3.1)-(3.2), if the network is perturbed.
     pub fn perturbation(&self) -> Option<&ReferencePerturbation> {
         self.perturbation.as_ref()
     }
