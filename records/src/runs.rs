@@ -99,7 +99,8 @@ pub struct RunRow {
     /// Largest |x - x*|_inf over the joint command at the scored instants (rad/s at the velocity
     /// level, rad/s^2 at the acceleration level); empty when not scored.
     pub score_max_dx: Option<f64>,
-    /// RMS of |x − x*|_inf over the run, time-weighted (rad/s).
+    /// RMS of |x − x*|_inf over the run, time-weighted (rad/s at the velocity level, rad/s^2 at
+    /// the acceleration level).
     pub score_rms_dx: Option<f64>,
     /// The same over t >= 1 s only (`simulation::metrics::SETTLE_TIME`): after the start-up
     /// transient of a network started from zero. The leaderboard's success test.

@@ -128,8 +128,8 @@ pub enum SchemeSpec {
     },
     /// zhang2018 (2.5)-(2.6), HL-JDF (MTN when zeta = 0). It stays a scheme of its own in Rust
     /// ([`Zhang2018`]): an acceleration-level QP whose objective is a torque-weighted
-    /// combination through the inertia matrix H(theta) and whose bounds come from the velocity
-    /// and acceleration limits of a dynamics model, none of which the velocity-level
+    /// combination through the inertia matrix H(theta) of a dynamics model, with the equality
+    /// J thetaddot = b only (no inequalities, no bounds), none of which the velocity-level
     /// vocabulary says. Alias `zhang2018`.
     #[serde(alias = "zhang2018")]
     HlJdf {
