@@ -22,10 +22,13 @@
 //!   from its claims and drift ratios.
 //! - [`fits`]: the growth exponents of cost against the number of joints, and the size where
 //!   faer's dense LU overtakes nalgebra's.
+//! - [`clock_targets`]: the newcomer's clock (build, reproduction, tests, the Python wheel)
+//!   against its targets.
 //! - [`number`]: the one way numbers are written in words (evidence and the report).
 
 pub mod claim_verdict;
 pub mod claims;
+pub mod clock_targets;
 pub mod control_claim;
 pub mod cost_ratio;
 pub mod fits;

@@ -10,6 +10,10 @@
 #   reproduce  cargo run --release -p reproduce     (the whole reproduction, after the build;
 #                                                    its results/ and report/ go into the clone)
 #   test       cargo test --workspace --release     (the test build included)
+#   wheel      pip install ./python                  (in a fresh virtual environment, with a
+#                                                    target directory of its own: the Python
+#                                                    package built from nothing, maturin
+#                                                    fetched from PyPI by pip)
 # The reproduce step always follows a build: when `build` is not selected it is built first,
 # untimed. A failing step keeps its time and its exit code, and the next steps still run.
 #
@@ -27,7 +31,7 @@
 # results/manifest.toml already lists clock.csv: the file then differs from it by intent).
 #
 # Usage (from anywhere inside the repository):
-#   benches/clock/clock.sh [--only build,reproduce,test] [--out FILE] [--fresh-cargo-home]
+#   benches/clock/clock.sh [--only build,reproduce,test,wheel] [--out FILE] [--fresh-cargo-home]
 #                          [--dry-run] [REVISION...]          (default revisions: cc915b9 HEAD)
 set -euo pipefail
 
@@ -37,7 +41,7 @@ usage() {
 }
 
 repo=$(git -C "$(dirname "$0")" rev-parse --show-toplevel)
-only="build,reproduce,test"
+only="build,reproduce,test,wheel"
 out="$repo/results/clock.csv"
 fresh_home=0
 dry_run=0
@@ -60,14 +64,14 @@ done
 IFS=',' read -r -a wanted <<< "$only"
 for step in "${wanted[@]}"; do
     case "$step" in
-        build|reproduce|test) ;;
-        *) echo "clock.sh: --only: unknown step \"$step\" (known: build, reproduce, test)" >&2; exit 2 ;;
+        build|reproduce|test|wheel) ;;
+        *) echo "clock.sh: --only: unknown step \"$step\" (known: build, reproduce, test, wheel)" >&2; exit 2 ;;
     esac
 done
 selected() { case ",$only," in *",$1,"*) return 0 ;; *) return 1 ;; esac; }
 # The selected steps, always in this order.
 steps=()
-for step in build reproduce test; do
+for step in build reproduce test wheel; do
     if selected "$step"; then steps+=("$step"); fi
 done
 [ ${#steps[@]} -gt 0 ] || { echo "clock.sh: --only selects no step" >&2; exit 2; }
@@ -96,6 +100,15 @@ command_of() {
         build) echo "cargo build --release -p reproduce" ;;
         reproduce) echo "cargo run --release -p reproduce" ;;
         test) echo "cargo test --workspace --release" ;;
+        wheel) echo "pip install ./python" ;;
+    esac
+}
+
+# The program a step runs, as words: the wheel's pip is the fresh virtual environment's ($2).
+argv_of() {
+    case "$1" in
+        wheel) echo "$2/bin/pip install --disable-pip-version-check ./python" ;;
+        *) command_of "$1" ;;
     esac
 }
 
@@ -115,7 +128,12 @@ if [ "$dry_run" = 1 ]; then
             echo "(cd $clone && $(command_of build))   # untimed: the reproduction follows a build"
         fi
         for step in "${steps[@]}"; do
-            echo "(cd $clone && $(command_of "$step"))   # timed: ${revisions[$i]} $step"
+            if [ "$step" = wheel ]; then
+                echo "python3 -m venv $tmp/venv-$i   # untimed"
+                echo "(cd $clone && CARGO_TARGET_DIR=$tmp/wheel-target-$i $(argv_of wheel "$tmp/venv-$i"))   # timed: ${revisions[$i]} wheel"
+            else
+                echo "(cd $clone && $(command_of "$step"))   # timed: ${revisions[$i]} $step"
+            fi
         done
     done
     echo "# rows: revision,commit,step,seconds,exit_code,machine,cores,date -> $out (temporary file + mv)"
@@ -172,8 +190,16 @@ for i in "${!revisions[@]}"; do
         log="$tmp/$i-$step.log"
         date=$(date -u +%Y-%m-%dT%H:%M:%SZ)
         echo "[$rev] $step: $(command_of "$step") ..." >&2
-        # shellcheck disable=SC2046 # the command's words are split on purpose
-        timed "$clone" $(command_of "$step")
+        if [ "$step" = wheel ]; then
+            # A fresh virtual environment (untimed) and a target directory of its own: the
+            # package is built from nothing, as `pip install ./python` on a fresh machine.
+            python3 -m venv "$tmp/venv-$i"
+            # shellcheck disable=SC2046 # the command's words are split on purpose
+            CARGO_TARGET_DIR="$tmp/wheel-target-$i" timed "$clone" $(argv_of wheel "$tmp/venv-$i")
+        else
+            # shellcheck disable=SC2046 # the command's words are split on purpose
+            timed "$clone" $(command_of "$step")
+        fi
         echo "[$rev] $step: ${seconds} s, exit code $code" >&2
         if [ "$code" != 0 ]; then
             echo "[$rev]   its last lines:" >&2

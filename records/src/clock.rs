@@ -3,8 +3,8 @@
 //!
 //! For each revision the script clones the repository afresh into a temporary directory, with
 //! a target directory of its own, and times with the wall clock each [`Step`]: the cold release
-//! build of `reproduce`, the whole reproduction, and the workspace's tests (their build
-//! included). One [`ClockRow`] per revision and step; a step that failed keeps its time and its
+//! build of `reproduce`, the whole reproduction, the workspace's tests (their build
+//! included) and the Python package's install from nothing. One [`ClockRow`] per revision and step; a step that failed keeps its time and its
 //! exit code.
 
 use crate::table::Row;
@@ -23,6 +23,9 @@ pub enum Step {
     Reproduce,
     /// `cargo test --workspace --release`, the test build included.
     Test,
+    /// `pip install ./python` in a fresh virtual environment with a target directory of its
+    /// own: the Python package built from nothing.
+    Wheel,
 }
 
 impl Step {
@@ -32,6 +35,7 @@ impl Step {
             Step::Build => "build",
             Step::Reproduce => "reproduce",
             Step::Test => "test",
+            Step::Wheel => "wheel",
         }
     }
 
@@ -41,6 +45,7 @@ impl Step {
             Step::Build => "cargo build --release -p reproduce",
             Step::Reproduce => "cargo run --release -p reproduce",
             Step::Test => "cargo test --workspace --release",
+            Step::Wheel => "pip install ./python",
         }
     }
 }

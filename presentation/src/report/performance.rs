@@ -160,7 +160,51 @@ fn newcomers_clock(phases: &[PhaseRow], clock: &[ClockRow]) -> String {
     );
     out.push_str(&phase_table(phases));
     out.push_str(&clock_table(clock));
+    out.push_str(&clock_targets_table(clock));
     out
+}
+
+/// The clock's targets (`analysis::clock_targets`), once a revision besides the baseline has
+/// been measured.
+fn clock_targets_table(clock: &[ClockRow]) -> String {
+    use analysis::clock_targets::{measured_commit, targets, Bound, BASELINE};
+    let Some(commit) = measured_commit(clock) else {
+        return String::new();
+    };
+    let mut t = Table::new([
+        "step".to_string(),
+        "target".to_string(),
+        format!("{BASELINE} (min)"),
+        format!("`{}` (min)", text(commit)),
+        "ratio".to_string(),
+        "limit (min)".to_string(),
+        "met".to_string(),
+    ]);
+    let minutes =
+        |s: Option<f64>| s.map_or_else(|| MISSING.to_string(), |s| format!("{:.1}", s / 60.0));
+    for r in targets(clock) {
+        t.push([
+            r.step.id().to_string(),
+            match r.bound {
+                Bound::OfBaseline(f) => format!("at most {f} x {BASELINE}'s"),
+                Bound::Seconds(s) => format!("at most {:.0} min", s / 60.0),
+            },
+            minutes(r.baseline_s),
+            minutes(r.measured_s),
+            r.ratio
+                .map_or_else(|| MISSING.to_string(), |x| format!("{x:.2}")),
+            minutes(r.limit_s),
+            match r.met {
+                Some(true) => "yes".to_string(),
+                Some(false) => "**no**".to_string(),
+                None => MISSING.to_string(),
+            },
+        ]);
+    }
+    format!(
+        "The targets (issue 29), the newest measured revision against {BASELINE}:\n\n{}\n",
+        t.render()
+    )
 }
 
 /// The phases of the last run, with whether it was a whole reproduction.
