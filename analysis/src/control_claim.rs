@@ -6,12 +6,13 @@
 //!
 //! # The common unit
 //!
-//! E47, 94LVI, LVI-PDNN and S-LVI-PDNN all work on jia2019's LVI (2.21) of the same QP and
+//! robio2018's six LVI methods (94LVI and E47, the claim's refs. [26] and [27], and M3-M6),
+//! LVI-PDNN and S-LVI-PDNN all work on jia2019's LVI (2.21) of the same QP and
 //! spend their time in the same operation: a product of the LVI matrix M (or M') with a vector
 //! (dense, (nx + n_eq + n_in)^2 multiply-adds at most); everything else per step or iteration is
 //! O(dim). So the cost per tick is counted in products with M: a network's forward-Euler step
-//! costs `control::network_tick::products_per_evaluation` (LVI-PDNN 2, S-LVI-PDNN 1), an E47 or
-//! 94LVI iteration 2 (`solvers::lvi_numerical::PRODUCTS_PER_ITERATION`). The counts are the
+//! costs `control::network_tick::products_per_evaluation` (LVI-PDNN 2, S-LVI-PDNN 1), an LVI
+//! method's iteration 2 (`solvers::lvi_numerical::PRODUCTS_PER_ITERATION`). The counts are the
 //! same on every machine and under any load, so the verdict does not depend on either; the
 //! latencies are reported beside them for the record.
 //!
@@ -21,10 +22,12 @@
 //!   (s_max its Euler stability limit on the task, `control::stability`): at least
 //!   n x (products per step) per tick, whatever its accuracy. A check run at 2n steps per tick
 //!   over the first [`CHECK_TICKS`] ticks measures the accuracy it then reaches.
-//! - E47 and 94LVI are run over the whole task at h, warm-started, to their tolerance; their
-//!   mean products per tick, and their largest |x - x*| (which must meet [`ACCURACY`]).
+//! - The six LVI methods are run over the whole task at h, warm-started, to their tolerance;
+//!   their mean products per tick, and their largest |x - x*| (which must meet [`ACCURACY`]).
 //!
-//! Verdict against the cheaper of the two numerical methods:
+//! Verdict against the cheapest of them that solves the task at every tick (E47 and 94LVI as
+//! robio2018 prints them fail at the first tick on jia2019's and zhong2021's QPs, so the claim
+//! is tested against their family at its cheapest; the row names the method):
 //! - **FAIL** when the network's lower bound exceeds the numerical method's mean cost (the
 //!   network cannot be cheaper, even before accuracy is asked for);
 //! - **PASS** when the network's checked cost is at most the numerical method's mean and the
