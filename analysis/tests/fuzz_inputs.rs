@@ -8,7 +8,8 @@
 //! cases each) to run in seconds.
 
 use proptest::prelude::*;
-use records::trajectory::{parse_csv, read, Trajectory};
+use records::trajectory::{parse_csv, Trajectory};
+use records::trajectory_file::read;
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};

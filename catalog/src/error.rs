@@ -13,7 +13,7 @@
 //! (`settings::error::IntegratorError`) are crate `settings`', below both this crate and the
 //! solvers.
 
-use crate::experiment::JobPart;
+use crate::fields::JobPart;
 use crate::naming::NameError;
 use schemes::paths::PathError;
 use schemes::spec::SchemeError;
@@ -151,7 +151,7 @@ pub enum SweepKeyError {
 pub enum KeyPathError {
     #[error("an empty segment")]
     EmptySegment,
-    #[error("`{first}` is not a field of a variant (fields: {})", crate::sweep::VARIANT_FIELDS.join(", "))]
+    #[error("`{first}` is not a field of a variant (fields: {})", crate::fields::VARIANT_FIELDS.join(", "))]
     NotAField { first: String },
     #[error("`{done}` has no `{segment}` (give it on the variant to sweep inside it)")]
     NoKey { done: String, segment: String },

@@ -1,14 +1,13 @@
-//! The records layer's errors: reading and writing the results files (`runs.csv`, the journal,
-//! shards, trajectories, the leaderboard, the control experiments' files). They wrap the layer
-//! below them: the catalog's
-//! naming errors ([`catalog::naming::NameError`]), the tables' [`TableError`] and the
-//! results directory's own errors ([`PathError`], [`TrackedError`], [`IntegrityError`]).
-//! Each names the file and, where it applies, the line.
+//! The records layer's errors shared across its modules: reading and writing the results files
+//! (`runs.csv`, its rows, trajectories, `dof-cost.csv`, the control experiments' files) and the
+//! I/O error every file operation reports ([`IoError`]). They wrap the layer below them: the
+//! catalog's naming errors ([`catalog::naming::NameError`]) and the tables' [`TableError`].
+//! Each names the file and, where it applies, the line. A module whose errors wrap the results
+//! directory's own keeps them beside its code, above this one: the journal's
+//! ([`crate::journal::JournalError`]), the shards' ([`crate::shard::ShardError`]), the results
+//! directory's ([`crate::results_dir::ResultsError`]).
 
-use crate::integrity::{IntegrityError, Mismatch};
-use crate::owned_dir::PathError;
 use crate::table::TableError;
-use crate::tracked_dir::TrackedError;
 use catalog::naming::NameError;
 use std::path::PathBuf;
 
@@ -105,31 +104,6 @@ pub struct MissingRun {
     pub solver: String,
 }
 
-/// Why the journal of an interrupted run cannot be opened, written or read back.
-#[derive(Debug, thiserror::Error)]
-pub enum JournalError {
-    #[error(transparent)]
-    Io(#[from] IoError),
-    #[error(transparent)]
-    Path(#[from] PathError),
-    #[error(transparent)]
-    Results(#[from] crate::results_dir::ResultsError),
-    #[error("{}: its header is not that of this run (more joints, or another version); fold it in by running the same selection again, or remove it", path.display())]
-    Header { path: PathBuf },
-    #[error("{}: {source}", path.display())]
-    Csv { path: PathBuf, source: csv::Error },
-    #[error("journal lock poisoned")]
-    Poisoned,
-    #[error(transparent)]
-    Table(#[from] TableError),
-    #[error("{}: {error}; this is not a journal this program wrote: remove it (its runs are run again)", path.display())]
-    Rows { path: PathBuf, error: RowsError },
-    #[error(transparent)]
-    Tracked(#[from] TrackedError),
-    #[error("{}: line {line}: not `<sha256>  <trace path>`, so not a seal this program wrote: remove it and the journal beside it (their runs are run again)", path.display())]
-    Seal { path: PathBuf, line: usize },
-}
-
 /// Why a trajectory CSV cannot be read (module docs of [`crate::trajectory`]).
 #[derive(Debug, thiserror::Error)]
 #[error("{}: {}{problem}", path.display(), line.map(|l| format!("line {l}: ")).unwrap_or_default())]
@@ -161,110 +135,6 @@ pub enum TrajectoryProblem {
     ColumnCounts { theta: usize, thetadot: usize },
     #[error("column \"{column}\" is \"{value}\", not a number")]
     NotANumber { column: String, value: String },
-}
-
-/// Why a shard cannot be chosen, written, read or merged.
-#[derive(Debug, thiserror::Error)]
-pub enum ShardError {
-    #[error("the number of shards N must be at least 1")]
-    NoShards,
-    #[error("shard {k} of {n}: K must be in 1..={n} (K is 1-based)")]
-    OutOfRange { k: usize, n: usize },
-    #[error("--shard {0}: expected K/N, e.g. 2/8")]
-    Syntax(String),
-    #[error("--shard {0}: expected K/N with whole numbers, e.g. 2/8")]
-    NotWhole(String),
-    #[error("environment variable {name}={value} is not a whole number")]
-    Environment { name: String, value: String },
-    #[error("JOB_COMPLETION_INDEX={index} (a Kubernetes Indexed Job) gives K but not the number of shards N: give --shards N or set DRIFTBENCH_SHARDS=N (the Job's completions)")]
-    IndexWithoutCount { index: usize },
-    #[error("the Slurm array ({said}) does not tell the number of shards N: only an array of exactly 1-N with N >= 2 does, not one task (a resubmitted one), a part of an array, or a stepped, sparse or 0-based array; give --shards N or set DRIFTBENCH_SHARDS=N")]
-    ArrayWithoutCount { said: String },
-    #[error("SLURM_ARRAY_TASK_ID={id}: task ids are shard numbers 1..={n} (submit --array=1-{n}; resubmit one task as --array=K)")]
-    TaskId { id: usize, n: usize },
-    #[error("--shard without K/N reads the scheduler's environment, but neither SLURM_ARRAY_TASK_ID nor JOB_COMPLETION_INDEX is set; give --shard K/N")]
-    NoScheduler,
-    #[error(transparent)]
-    Io(#[from] IoError),
-    #[error("{}: {source}", path.display())]
-    WriteManifest {
-        path: PathBuf,
-        source: toml::ser::Error,
-    },
-    #[error("{}: {source}", path.display())]
-    ReadManifest {
-        path: PathBuf,
-        source: inputs::TomlError,
-    },
-    /// `shard.toml` refused or unreadable by the input reader (a link outside the shard
-    /// directory, a FIFO, over its cap).
-    #[error(transparent)]
-    Input(#[from] inputs::InputError),
-    #[error("{}: `shard = {shard}`, `shards = {shards}`: {source}", path.display())]
-    ManifestShard {
-        path: PathBuf,
-        shard: usize,
-        shards: usize,
-        source: Box<ShardError>,
-    },
-    #[error("{}: `runs`, entry {index} \"{entry}\": {problem}", path.display())]
-    ManifestRun {
-        path: PathBuf,
-        index: usize,
-        entry: String,
-        problem: RunEntryProblem,
-    },
-    #[error("{}: {source}", path.display())]
-    ReadBinding {
-        path: PathBuf,
-        source: inputs::TomlError,
-    },
-    #[error("{}: bound to another shard, so nothing was run: {}; one directory serves one shard of one selection: give this shard its own --results-dir, or remove {} if its runs are not wanted", dir.display(), differences.join("; "), dir.display())]
-    BoundElsewhere {
-        dir: PathBuf,
-        differences: Vec<String>,
-    },
-    #[error("{}: holds {file} but no {}, so which selection it ran cannot be told (a directory of an older version, or not a shard's); nothing was run: give this shard its own --results-dir, or remove the directory", dir.display(), crate::shard::BINDING)]
-    Unbound { dir: PathBuf, file: &'static str },
-    #[error("{}: no {}: the shard has not finished (run it again; it resumes where it stopped)", dir.display(), crate::shard::MANIFEST)]
-    Unfinished { dir: PathBuf },
-    #[error("{}: no such directory (give the directories that `reproduce --shard K/N` wrote)", dir.display())]
-    NoDirectory { dir: PathBuf },
-    #[error(transparent)]
-    Integrity(#[from] IntegrityError),
-    #[error("{}: no {}: not a shard this version wrote, so its files cannot be checked; run the shard again", dir.display(), crate::integrity::FILE)]
-    NoIntegrity { dir: PathBuf },
-    #[error("{}: {} file(s) differ from what the shard wrote:\n{}\nrun the shard again, or merge with --accept-edited if the edit is deliberate", dir.display(), mismatches.len(), mismatches.iter().map(|m| format!("  {m}")).collect::<Vec<_>>().join("\n"))]
-    Edited {
-        dir: PathBuf,
-        mismatches: Vec<Mismatch>,
-    },
-    #[error(transparent)]
-    Runs(#[from] RunsError),
-    #[error(transparent)]
-    Path(#[from] PathError),
-    #[error(transparent)]
-    Tracked(#[from] TrackedError),
-    #[error(transparent)]
-    Results(#[from] crate::results_dir::ResultsError),
-    #[error("--merge needs at least one shard directory")]
-    NoShardDirectories,
-    /// The shards do not fit together; every problem, one a line.
-    #[error("cannot merge; nothing was written:\n{}", problems.join("\n"))]
-    CannotMerge { problems: Vec<String> },
-}
-
-/// What is wrong with an entry of a shard manifest's `runs`.
-#[derive(Debug, thiserror::Error)]
-pub enum RunEntryProblem {
-    #[error("not a run key `<experiment> / <variant> / <solver>`")]
-    NotAKey,
-    #[error("cannot name a file: {0}")]
-    Name(NameError),
-    #[error("belongs to shard {owner}/{n}, not to this shard")]
-    OtherShard { owner: usize, n: usize },
-    #[error("listed twice")]
-    Twice,
 }
 
 /// Why `results/dof-cost.csv` could not be written or read.

@@ -16,31 +16,55 @@
 //! trace is missing, changed since, or was never sealed (a journal of an older version) is not
 //! folded, is said, and is run again. So a resumed directory's manifest covers every row and
 //! trace it holds, and a resumed shard merges.
-use crate::error::{IoAction, IoError, JournalError};
-use crate::results_dir::ResultsDir;
+use crate::error::{IoAction, IoError, RowsError};
+use crate::owned_dir::PathError;
+use crate::results_dir::{ResultsDir, ResultsError, JOURNAL};
 use crate::runs::{check_rows, RunRow};
-use crate::table;
+use crate::table::{self, TableError};
 use crate::trace::TracePoint;
+use crate::tracked_dir::TrackedError;
 use std::collections::HashMap;
 use std::fs::{File, OpenOptions};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
-/// The journal's file name in a results directory.
-pub const FILE: &str = "journal.csv";
-
 /// The seal of the journal's traces (see the module doc).
 pub const SEAL: &str = "journal-traces.sha256";
 
 /// The journal of the results directory `dir`.
 pub fn path(dir: &Path) -> PathBuf {
-    dir.join(FILE)
+    dir.join(JOURNAL)
 }
 
 /// The seal of the journal of `dir`.
 pub fn seal_path(dir: &Path) -> PathBuf {
     dir.join(SEAL)
+}
+
+/// Why the journal of an interrupted run cannot be opened, written or read back.
+#[derive(Debug, thiserror::Error)]
+pub enum JournalError {
+    #[error(transparent)]
+    Io(#[from] IoError),
+    #[error(transparent)]
+    Path(#[from] PathError),
+    #[error(transparent)]
+    Results(#[from] ResultsError),
+    #[error("{}: its header is not that of this run (more joints, or another version); fold it in by running the same selection again, or remove it", path.display())]
+    Header { path: PathBuf },
+    #[error("{}: {source}", path.display())]
+    Csv { path: PathBuf, source: csv::Error },
+    #[error("journal lock poisoned")]
+    Poisoned,
+    #[error(transparent)]
+    Table(#[from] TableError),
+    #[error("{}: {error}; this is not a journal this program wrote: remove it (its runs are run again)", path.display())]
+    Rows { path: PathBuf, error: RowsError },
+    #[error(transparent)]
+    Tracked(#[from] TrackedError),
+    #[error("{}: line {line}: not `<sha256>  <trace path>`, so not a seal this program wrote: remove it and the journal beside it (their runs are run again)", path.display())]
+    Seal { path: PathBuf, line: usize },
 }
 
 /// An open journal, shared by the worker threads.
@@ -66,7 +90,7 @@ impl<'a> Journal<'a> {
     /// with at most `joints` joints. An existing journal keeps its header: a run resumed with
     /// arms of more joints than it was started with starts a new journal.
     pub fn open(results: &'a ResultsDir, joints: usize) -> Result<Self, JournalError> {
-        let path = results.tracked().resolve(Path::new(FILE))?;
+        let path = results.tracked().resolve(Path::new(JOURNAL))?;
         let seal = append(&results.tracked().resolve(Path::new(SEAL))?)?;
         let mut file = append(&path)?;
         let empty = file.metadata().map(|m| m.len() == 0).unwrap_or(true);

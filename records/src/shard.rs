@@ -27,9 +27,13 @@
 //!   and that every selected run appears exactly once; otherwise it says which runs are missing
 //!   (and which shard should have produced them) or duplicated, and nothing is written.
 
-use crate::error::{IoAction, IoError, RunEntryProblem, ShardError};
+use crate::error::{IoAction, IoError, RunsError};
+use crate::integrity::{IntegrityError, Mismatch};
 use crate::owned_dir::PathError;
+use crate::results_dir::ResultsError;
 use crate::runs::{read_runs, RunRow};
+use crate::tracked_dir::TrackedError;
+use catalog::naming::NameError;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -37,6 +41,110 @@ use std::path::{Path, PathBuf};
 pub const MANIFEST: &str = "shard.toml";
 
 pub use crate::fnv::fnv1a64;
+
+/// Why a shard cannot be chosen, written, read or merged.
+#[derive(Debug, thiserror::Error)]
+pub enum ShardError {
+    #[error("the number of shards N must be at least 1")]
+    NoShards,
+    #[error("shard {k} of {n}: K must be in 1..={n} (K is 1-based)")]
+    OutOfRange { k: usize, n: usize },
+    #[error("--shard {0}: expected K/N, e.g. 2/8")]
+    Syntax(String),
+    #[error("--shard {0}: expected K/N with whole numbers, e.g. 2/8")]
+    NotWhole(String),
+    #[error("environment variable {name}={value} is not a whole number")]
+    Environment { name: String, value: String },
+    #[error("JOB_COMPLETION_INDEX={index} (a Kubernetes Indexed Job) gives K but not the number of shards N: give --shards N or set DRIFTBENCH_SHARDS=N (the Job's completions)")]
+    IndexWithoutCount { index: usize },
+    #[error("the Slurm array ({said}) does not tell the number of shards N: only an array of exactly 1-N with N >= 2 does, not one task (a resubmitted one), a part of an array, or a stepped, sparse or 0-based array; give --shards N or set DRIFTBENCH_SHARDS=N")]
+    ArrayWithoutCount { said: String },
+    #[error("SLURM_ARRAY_TASK_ID={id}: task ids are shard numbers 1..={n} (submit --array=1-{n}; resubmit one task as --array=K)")]
+    TaskId { id: usize, n: usize },
+    #[error("--shard without K/N reads the scheduler's environment, but neither SLURM_ARRAY_TASK_ID nor JOB_COMPLETION_INDEX is set; give --shard K/N")]
+    NoScheduler,
+    #[error(transparent)]
+    Io(#[from] IoError),
+    #[error("{}: {source}", path.display())]
+    WriteManifest {
+        path: PathBuf,
+        source: toml::ser::Error,
+    },
+    #[error("{}: {source}", path.display())]
+    ReadManifest {
+        path: PathBuf,
+        source: inputs::TomlError,
+    },
+    /// `shard.toml` refused or unreadable by the input reader (a link outside the shard
+    /// directory, a FIFO, over its cap).
+    #[error(transparent)]
+    Input(#[from] inputs::InputError),
+    #[error("{}: `shard = {shard}`, `shards = {shards}`: {source}", path.display())]
+    ManifestShard {
+        path: PathBuf,
+        shard: usize,
+        shards: usize,
+        source: Box<ShardError>,
+    },
+    #[error("{}: `runs`, entry {index} \"{entry}\": {problem}", path.display())]
+    ManifestRun {
+        path: PathBuf,
+        index: usize,
+        entry: String,
+        problem: RunEntryProblem,
+    },
+    #[error("{}: {source}", path.display())]
+    ReadBinding {
+        path: PathBuf,
+        source: inputs::TomlError,
+    },
+    #[error("{}: bound to another shard, so nothing was run: {}; one directory serves one shard of one selection: give this shard its own --results-dir, or remove {} if its runs are not wanted", dir.display(), differences.join("; "), dir.display())]
+    BoundElsewhere {
+        dir: PathBuf,
+        differences: Vec<String>,
+    },
+    #[error("{}: holds {file} but no {}, so which selection it ran cannot be told (a directory of an older version, or not a shard's); nothing was run: give this shard its own --results-dir, or remove the directory", dir.display(), BINDING)]
+    Unbound { dir: PathBuf, file: &'static str },
+    #[error("{}: no {}: the shard has not finished (run it again; it resumes where it stopped)", dir.display(), MANIFEST)]
+    Unfinished { dir: PathBuf },
+    #[error("{}: no such directory (give the directories that `reproduce --shard K/N` wrote)", dir.display())]
+    NoDirectory { dir: PathBuf },
+    #[error(transparent)]
+    Integrity(#[from] IntegrityError),
+    #[error("{}: no {}: not a shard this version wrote, so its files cannot be checked; run the shard again", dir.display(), crate::integrity::FILE)]
+    NoIntegrity { dir: PathBuf },
+    #[error("{}: {} file(s) differ from what the shard wrote:\n{}\nrun the shard again, or merge with --accept-edited if the edit is deliberate", dir.display(), mismatches.len(), mismatches.iter().map(|m| format!("  {m}")).collect::<Vec<_>>().join("\n"))]
+    Edited {
+        dir: PathBuf,
+        mismatches: Vec<Mismatch>,
+    },
+    #[error(transparent)]
+    Runs(#[from] RunsError),
+    #[error(transparent)]
+    Path(#[from] PathError),
+    #[error(transparent)]
+    Tracked(#[from] TrackedError),
+    #[error(transparent)]
+    Results(#[from] ResultsError),
+    #[error("--merge needs at least one shard directory")]
+    NoShardDirectories,
+    /// The shards do not fit together; every problem, one a line.
+    #[error("cannot merge; nothing was written:\n{}", problems.join("\n"))]
+    CannotMerge { problems: Vec<String> },
+}
+
+/// What is wrong with an entry of a shard manifest's `runs`.
+#[derive(Debug, thiserror::Error)]
+pub enum RunEntryProblem {
+    #[error("not a run key `<experiment> / <variant> / <solver>`")]
+    NotAKey,
+    #[error("cannot name a file: {0}")]
+    Name(NameError),
+    #[error("belongs to shard {owner}/{n}, not to this shard")]
+    OtherShard { owner: usize, n: usize },
+    #[error("listed twice")]
+    Twice,
+}
 
 /// Shard K of N (K in 1..=N).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -233,7 +341,11 @@ impl Binding {
             Err(e) if e.is_not_found() => {}
             Err(e) => return Err(e.into()),
         }
-        let held = [crate::results_dir::RUNS, crate::journal::FILE, MANIFEST];
+        let held = [
+            crate::results_dir::RUNS,
+            crate::results_dir::JOURNAL,
+            MANIFEST,
+        ];
         if let Some(file) = held.into_iter().find(|f| dir.join(f).exists()) {
             return Err(ShardError::Unbound {
                 dir: dir.to_path_buf(),
@@ -469,8 +581,10 @@ pub fn copy_traces(
 }
 
 /// Checks shards before a merge: the same N, experiment files (`hash`: the current files')
-/// and selection; every run of `expected` (the keys the selection describes) in exactly one
-/// shard, and no other run. The error lists every problem.
+/// and selection ([`manifest_problems`]); each row in its own shard with its trace
+/// ([`row_problems`]); every run of `expected` (the keys the selection describes) in exactly one
+/// shard, and no other run ([`coverage_problems`]). The error lists every problem of the first
+/// of these steps that finds any.
 pub fn check_shards(
     shards: &[ShardDir],
     expected: &[String],
@@ -479,6 +593,23 @@ pub fn check_shards(
     let Some(first) = shards.first() else {
         return Err(ShardError::NoShardDirectories);
     };
+    let n = first.manifest.shards;
+    let mut problems = manifest_problems(shards, first, hash);
+    problems.extend(row_problems(shards, n));
+    if !problems.is_empty() {
+        return Err(ShardError::CannotMerge { problems });
+    }
+    let problems = coverage_problems(shards, expected, n);
+    if problems.is_empty() {
+        Ok(())
+    } else {
+        Err(ShardError::CannotMerge { problems })
+    }
+}
+
+/// Where the shards' manifests disagree with `first`'s or with the current experiment files
+/// (`hash`): the number of shards, the experiment files, the selection, the code revision.
+fn manifest_problems(shards: &[ShardDir], first: &ShardDir, hash: &str) -> Vec<String> {
     let n = first.manifest.shards;
     let mut problems = Vec::new();
     for s in shards {
@@ -522,6 +653,13 @@ pub fn check_shards(
                 .join(", ")
         ));
     }
+    problems
+}
+
+/// The rows that are not their shard's (of `n`): a run another shard owns or its shard.toml
+/// does not list, and a run whose trace is not among the files the shard wrote.
+fn row_problems(shards: &[ShardDir], n: usize) -> Vec<String> {
+    let mut problems = Vec::new();
     for s in shards {
         let assigned: std::collections::HashSet<&str> =
             s.manifest.runs.iter().map(String::as_str).collect();
@@ -554,9 +692,13 @@ pub fn check_shards(
             }
         }
     }
-    if !problems.is_empty() {
-        return Err(ShardError::CannotMerge { problems });
-    }
+    problems
+}
+
+/// How the shards' runs cover the `expected` keys of the selection, as problems (one entry per
+/// kind, listing its runs): shards of the `n` not given, selected runs missing, runs in more
+/// than one shard, runs the selection does not describe.
+fn coverage_problems(shards: &[ShardDir], expected: &[String], n: usize) -> Vec<String> {
     let mut given: Vec<usize> = shards.iter().map(|s| s.manifest.shard).collect();
     given.sort_unstable();
     let absent: Vec<usize> = (1..=n).filter(|k| !given.contains(k)).collect();
@@ -567,6 +709,7 @@ pub fn check_shards(
         }
     }
     let mut missing = Vec::new();
+    let mut duplicated = Vec::new();
     for key in expected {
         match found.get(key).map(Vec::len).unwrap_or(0) {
             0 => missing.push(format!(
@@ -579,7 +722,7 @@ pub fn check_shards(
                 }
             )),
             1 => {}
-            _ => problems.push(format!(
+            _ => duplicated.push(format!(
                 "  {key}  duplicated in {}",
                 found[key]
                     .iter()
@@ -610,11 +753,11 @@ pub fn check_shards(
             missing.join("\n")
         ));
     }
-    if !problems.is_empty() {
+    if !duplicated.is_empty() {
         out.push(format!(
             "{} run(s) in more than one shard:\n{}",
-            problems.len(),
-            problems.join("\n")
+            duplicated.len(),
+            duplicated.join("\n")
         ));
     }
     if !foreign.is_empty() {
@@ -628,11 +771,7 @@ pub fn check_shards(
                 .join("\n")
         ));
     }
-    if out.is_empty() {
-        Ok(())
-    } else {
-        Err(ShardError::CannotMerge { problems: out })
-    }
+    out
 }
 
 #[cfg(test)]

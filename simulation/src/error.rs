@@ -18,7 +18,7 @@ pub enum RunError {
     /// The exact QP at instant t had no solution.
     #[error("exact QP at t = {t:.6}: {error}")]
     ExactQp { t: f64, error: ExactError },
-    /// The observer stopped a diverging run (see `simulate::DIVERGENCE_FACTOR`).
+    /// The observer stopped a diverging run (see `observer::DIVERGENCE_FACTOR`).
     #[error("stopped at t = {t:.6}: {reason}")]
     Diverged { t: f64, reason: String },
     /// The integrator stopped.
