@@ -239,7 +239,7 @@ impl ClaimFile {
     /// numbers are finite and its texts are one line each.
     pub fn into_spec(self) -> Result<ClaimSpec, ClaimError> {
         for (field, text) in [("short", &self.short), ("text", &self.text)] {
-            if !crate::paper_rules::is_one_line(text) {
+            if !crate::report_text::is_one_line(text) {
                 return Err(ClaimError::NotOneLine { field });
             }
         }

@@ -5,21 +5,30 @@
 //! - [`papers`]: the papers as data (`papers/<paper>/`): metadata, published numbers and which
 //!   run each one is compared with; [`paper_rules`]: what a paper folder must satisfy (ids,
 //!   one-line texts, unique mappings, checked values), checked before anything runs;
-//!   [`paper_runs`]: that a paper names only runs that exist.
+//!   [`paper_runs`]: that a paper names only runs that exist; [`published_metrics`]: the
+//!   metrics a paper's numbers may name; [`report_text`]: that a text reaching the report is
+//!   one line.
 //! - [`claims`]: a paper's claims as data (a metric of a selection of runs against a threshold
 //!   or another selection).
-//! - [`sweep_check`]: a published table set beside a sweep's runs.
+//! - [`sweep_check`]: a published table set beside a sweep's runs, compared in
+//!   [`sweep_comparison`]; [`published_table`]: a published table beside ours (its columns,
+//!   quantities and ratios).
 //! - [`leaderboard`]: every velocity-level solver on the standard task set, scored as
-//!   qpbenchmark scores QP solvers (`results/leaderboard.csv`).
+//!   qpbenchmark scores QP solvers (`results/leaderboard.csv`); [`leaderboard_reading`]: what its
+//!   text says (the best per measure, the spread of the timings).
 //! - [`gate`]: the regression gate (fresh rows against committed ones).
 //! - [`control_claim`]: zhong2021's efficiency claim decided from the control experiments'
-//!   numbers.
+//!   numbers; [`control_track`]: the control-rate track (success, its leaderboard).
 //! - [`inference_verdict`]: the setup inference's verdicts in words.
 //! - [`claim_verdict`]: each paper's claims evaluated from the stored runs (PASS, FAIL or N/A,
 //!   with the numbers as evidence); [`cost_ratio`]: zhong2021's compute-time ratios, one of
 //!   which decides a claim.
 //! - [`paper_verdict`]: each paper's verdict level (reproduced, qualitatively, partly, not)
 //!   from its claims and drift ratios.
+//! - [`drift_attribution`]: what the drift attribution and the tolerance ladder say (the share
+//!   of each term, the runs at MATLAB's default tolerances).
+//! - [`cross_best`]: the best solver of each column of the cross experiment.
+//! - [`performance`]: what the measurements of cost and speed say, against their targets.
 //! - [`fits`]: the growth exponents of cost against the number of joints, and the size where
 //!   faer's dense LU overtakes nalgebra's.
 //! - [`clock_targets`]: the newcomer's clock (build, reproduction, tests, the Python wheel)
@@ -30,14 +39,23 @@ pub mod claim_verdict;
 pub mod claims;
 pub mod clock_targets;
 pub mod control_claim;
+pub mod control_track;
 pub mod cost_ratio;
+pub mod cross_best;
+pub mod drift_attribution;
 pub mod fits;
 pub mod gate;
 pub mod inference_verdict;
 pub mod leaderboard;
+pub mod leaderboard_reading;
 pub mod number;
 pub mod paper_rules;
 pub mod paper_runs;
 pub mod paper_verdict;
 pub mod papers;
+pub mod performance;
+pub mod published_metrics;
+pub mod published_table;
+pub mod report_text;
 pub mod sweep_check;
+pub mod sweep_comparison;

@@ -1,16 +1,20 @@
 //! What a paper folder of `papers/` must satisfy before anything runs, and the typed problem
 //! when it does not ([`PaperProblem`]): the paper id is a slug of at most
 //! [`catalog::naming::MAX_EXPERIMENT_ID`] bytes, the folder's name, and not one of the
-//! [`RESERVED_PAPER_IDS`]; texts that reach the report (title, citation, claims) are one line;
-//! each published (experiment, column) has at most one `[[mapping]]`; every values.csv entry is
-//! finite, of a known metric, of this paper, and given once; a paper has at most [`MAX_CLAIMS`]
-//! claims. [`crate::papers::Papers::load`] applies them; what the files name among the runs
+//! [`RESERVED_PAPER_IDS`]; texts that reach the report (title, citation, claims) are one line
+//! ([`crate::report_text::is_one_line`]); each published (experiment, column) has at most one
+//! `[[mapping]]`; every values.csv entry is finite, of a known metric, of this paper, and given
+//! once; a paper has at most [`MAX_CLAIMS`] claims. [`crate::papers::Papers::load`] applies them; what the files name among the runs
 //! is checked by [`crate::paper_runs::check_runs`].
 
 use crate::claims::ClaimError;
 use crate::leaderboard::STANDARD_PAPER;
-use crate::papers::{GROUP, PUBLISHED_METRICS};
+use crate::published_metrics::PUBLISHED_METRICS;
 use catalog::naming::MAX_EXPERIMENT_ID;
+
+/// Paper id of the group-code reference experiments (`experiments/group.toml`): not a paper of
+/// `papers/`, but the id their runs and explanations are filed under.
+pub const GROUP: &str = "group";
 
 /// Paper ids the suite files its own runs under (the group-code reference experiments and
 /// the cross experiment): no folder of `papers/` may take them.
@@ -96,12 +100,6 @@ pub fn check_paper_id(id: &str) -> Result<(), PaperProblem> {
     Ok(())
 }
 
-/// Whether `text` is one line: no line break or other control character (text that reaches the
-/// report's headings, table cells and list items must not end them).
-pub fn is_one_line(text: &str) -> bool {
-    !text.contains(char::is_control)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -135,7 +133,5 @@ mod tests {
             let e = check_paper_id(reserved).unwrap_err();
             assert!(e.to_string().contains("reserved"), "{e}");
         }
-        assert!(is_one_line("Jia & Li, “Drift-free…”, 2019"));
-        assert!(!is_one_line("a\n## Summary") && !is_one_line("a\rb"));
     }
 }

@@ -85,6 +85,26 @@ pub fn drift_ratios(paper: &str, runs: &Runs, papers: &Papers) -> Vec<(String, f
         .collect()
 }
 
+/// The smallest and the largest drift ratio (with its label: the first smallest, the last
+/// largest), and whether every ratio lies within a factor [`CLOSE`] of the paper's.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RatioSpan<'a> {
+    pub lo: &'a (String, f64),
+    pub hi: &'a (String, f64),
+    pub within: bool,
+}
+
+/// [`RatioSpan`] of `ratios` ([`drift_ratios`]); none when there are none.
+pub fn ratio_span(ratios: &[(String, f64)]) -> Option<RatioSpan<'_>> {
+    let by = |a: &&(String, f64), b: &&(String, f64)| a.1.total_cmp(&b.1);
+    let (lo, hi) = (ratios.iter().min_by(by)?, ratios.iter().max_by(by)?);
+    Some(RatioSpan {
+        lo,
+        hi,
+        within: lo.1 >= 1.0 / CLOSE && hi.1 <= CLOSE,
+    })
+}
+
 /// How many published per-joint drifts have the sign of ours, out of how many compared.
 pub fn sign_agreement(paper: &str, runs: &Runs, papers: &Papers) -> (usize, usize) {
     let mut same = 0;
@@ -116,4 +136,24 @@ pub fn solver_effect<'a>(
             Some(((r.drift_norm? - ex).abs() / ex, r))
         })
         .max_by(|a, b| a.0.total_cmp(&b.0))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_span_names_its_ends_and_says_whether_they_are_close() {
+        let ratios = vec![
+            ("a".to_string(), 2.0),
+            ("b".to_string(), 0.5),
+            ("c".to_string(), 2.0),
+        ];
+        let span = ratio_span(&ratios).unwrap();
+        assert_eq!((span.lo.0.as_str(), span.hi.0.as_str()), ("b", "c"));
+        assert!(span.within);
+        let far = vec![("a".to_string(), 1.0), ("b".to_string(), CLOSE * 1.01)];
+        assert!(!ratio_span(&far).unwrap().within);
+        assert!(ratio_span(&[]).is_none());
+    }
 }

@@ -4,24 +4,22 @@
 //! `values.csv` is long: one number per row, named by (paper, table, experiment, column,
 //! metric). Each `[[mapping]]` of `paper.toml` says which of our runs reproduces one
 //! (experiment, column) of a paper, by its run key (`"<experiment> / <variant> / <solver>"`,
-//! ids, see `catalog::run_key`), with companion variants shown beside it. [`our_metric`]
-//! names the `runs.csv` column of each published metric. [`Papers::resolve`] combines both; a
-//! published number that finds no run is listed in the report under "published numbers without
-//! a run", never dropped silently. Its `[[claim]]` tables are the claims checked against the
+//! ids, see `catalog::run_key`), with companion variants shown beside it.
+//! [`crate::published_metrics::our_metric`] names the `runs.csv` column of each published
+//! metric. [`Papers::resolve`] combines both; a published number that finds no run is listed
+//! in the report under "published numbers without a run", never dropped silently. Its `[[claim]]` tables are the claims checked against the
 //! runs ([`crate::claims`]); its `[[sweep_check]]` tables set a published table beside a sweep's
 //! runs ([`crate::sweep_check`]). Adding a paper is adding a folder: no Rust.
 
-use crate::paper_rules::{check_paper_id, is_one_line, PaperProblem};
+use crate::paper_rules::{check_paper_id, PaperProblem};
+use crate::published_metrics::{our_metric, METRIC_ALIASES, PUBLISHED_METRICS};
+use crate::report_text::is_one_line;
 use crate::sweep_check::SweepCheck;
 use catalog::run_key::RunKey;
 use records::index::Runs;
 use records::runs::RunRow;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
-
-/// Paper id of the group-code reference experiments (`experiments/group.toml`): not a paper of
-/// `papers/`, but the id their runs and explanations are filed under.
-pub const GROUP: &str = "group";
 
 /// One published number.
 #[derive(Clone, Debug, PartialEq, Deserialize)]
@@ -355,83 +353,12 @@ struct Folder {
 /// Reads and checks one folder `folder` of `dir` (its `paper.toml` and `values.csv`).
 fn load_folder(dir: &Path, folder: &Path) -> Result<Folder, PapersError> {
     let path = folder.join("paper.toml");
-    let invalid = |path: &Path| {
-        let path = path.to_path_buf();
-        move |problem| PapersError::Invalid { path, problem }
+    let invalid = |problem| PapersError::Invalid {
+        path: path.clone(),
+        problem,
     };
-    let name = folder
-        .file_name()
-        .and_then(|n| n.to_str())
-        .ok_or(PaperProblem::FolderNotUtf8)
-        .map_err(invalid(&path))?;
-    check_paper_id(name).map_err(invalid(&path))?;
-    let text = inputs::read_text(&path, inputs::Kind::PaperToml, inputs::Origin::Under(dir))?;
-    let file: PaperFile =
-        inputs::toml_error::from_str(&text).map_err(|source| PapersError::Toml {
-            path: path.clone(),
-            source,
-        })?;
-    if file.paper != name {
-        return Err(invalid(&path)(PaperProblem::NotTheFolder {
-            paper: file.paper,
-            folder: name.to_string(),
-        }));
-    }
-    let lines = [
-        ("title", Some(&file.title)),
-        ("citation", file.citation.as_ref()),
-        ("assumed_setup", file.assumed_setup.as_ref()),
-    ];
-    if let Some((field, _)) = lines
-        .iter()
-        .find(|(_, text)| text.is_some_and(|t| !is_one_line(t)))
-    {
-        return Err(invalid(&path)(PaperProblem::NotOneLine { field }));
-    }
-    let mut mappings: Vec<Mapping> = Vec::new();
-    for (index, m) in file.mappings.into_iter().enumerate() {
-        let run = RunKey::parse(&m.run).map_err(|_| {
-            invalid(&path)(PaperProblem::Run {
-                index,
-                run: m.run.clone(),
-            })
-        })?;
-        if let Some(first) = mappings.iter().position(|o| {
-            o.published_experiment == m.published_experiment
-                && o.published_column == m.published_column
-        }) {
-            return Err(invalid(&path)(PaperProblem::MappingTwice {
-                index,
-                first,
-                experiment: m.published_experiment,
-                column: m.published_column,
-            }));
-        }
-        let companions = m
-            .companions
-            .iter()
-            .map(|c| {
-                let key = if c.contains('/') {
-                    RunKey::parse(&format!("{} / {c}", run.experiment))
-                } else {
-                    RunKey::from_ids(&run.experiment, c.trim(), &run.solver).map_err(Into::into)
-                };
-                key.map_err(|_| {
-                    invalid(&path)(PaperProblem::Companion {
-                        index,
-                        companion: c.clone(),
-                    })
-                })
-            })
-            .collect::<Result<Vec<_>, _>>()?;
-        mappings.push(Mapping {
-            paper: file.paper.clone(),
-            published_experiment: m.published_experiment,
-            published_column: m.published_column,
-            run,
-            companions,
-        });
-    }
+    let file = read_paper_file(dir, folder, &path)?;
+    let mappings = mappings(&file.paper, file.mappings).map_err(invalid)?;
     let values_path = folder.join("values.csv");
     let (values, warnings) = if values_path.symlink_metadata().is_ok() {
         let mut values = read_values(dir, &values_path, &file.paper)?;
@@ -441,7 +368,7 @@ fn load_folder(dir: &Path, folder: &Path) -> Result<Folder, PapersError> {
         (Vec::new(), Vec::new())
     };
     if file.claims.len() > crate::paper_rules::MAX_CLAIMS {
-        return Err(invalid(&path)(PaperProblem::TooManyClaims {
+        return Err(invalid(PaperProblem::TooManyClaims {
             count: file.claims.len(),
         }));
     }
@@ -451,7 +378,7 @@ fn load_folder(dir: &Path, folder: &Path) -> Result<Folder, PapersError> {
         .enumerate()
         .map(|(index, c)| {
             c.into_spec()
-                .map_err(|error| invalid(&path)(PaperProblem::Claim { index, error }))
+                .map_err(|error| invalid(PaperProblem::Claim { index, error }))
         })
         .collect::<Result<_, _>>()?;
     let sweep_checks = file
@@ -473,6 +400,92 @@ fn load_folder(dir: &Path, folder: &Path) -> Result<Folder, PapersError> {
         sweep_checks,
         warnings,
     })
+}
+
+/// The `paper.toml` at `path` of `folder` (under `dir`), read and checked as a file: the
+/// folder's name is a paper id and the file's `paper`, and its texts are one line each.
+fn read_paper_file(dir: &Path, folder: &Path, path: &Path) -> Result<PaperFile, PapersError> {
+    let invalid = |problem| PapersError::Invalid {
+        path: path.to_path_buf(),
+        problem,
+    };
+    let name = folder
+        .file_name()
+        .and_then(|n| n.to_str())
+        .ok_or(PaperProblem::FolderNotUtf8)
+        .map_err(invalid)?;
+    check_paper_id(name).map_err(invalid)?;
+    let text = inputs::read_text(path, inputs::Kind::PaperToml, inputs::Origin::Under(dir))?;
+    let file: PaperFile =
+        inputs::toml_error::from_str(&text).map_err(|source| PapersError::Toml {
+            path: path.to_path_buf(),
+            source,
+        })?;
+    if file.paper != name {
+        return Err(invalid(PaperProblem::NotTheFolder {
+            paper: file.paper,
+            folder: name.to_string(),
+        }));
+    }
+    let lines = [
+        ("title", Some(&file.title)),
+        ("citation", file.citation.as_ref()),
+        ("assumed_setup", file.assumed_setup.as_ref()),
+    ];
+    if let Some((field, _)) = lines
+        .iter()
+        .find(|(_, text)| text.is_some_and(|t| !is_one_line(t)))
+    {
+        return Err(invalid(PaperProblem::NotOneLine { field }));
+    }
+    Ok(file)
+}
+
+/// The `[[mapping]]` tables of `paper`'s file, checked: each run a run key, each published
+/// (experiment, column) mapped once, each companion a variant (or variant / solver) of the
+/// run's experiment.
+fn mappings(paper: &str, files: Vec<MappingFile>) -> Result<Vec<Mapping>, PaperProblem> {
+    let mut mappings: Vec<Mapping> = Vec::new();
+    for (index, m) in files.into_iter().enumerate() {
+        let run = RunKey::parse(&m.run).map_err(|_| PaperProblem::Run {
+            index,
+            run: m.run.clone(),
+        })?;
+        if let Some(first) = mappings.iter().position(|o| {
+            o.published_experiment == m.published_experiment
+                && o.published_column == m.published_column
+        }) {
+            return Err(PaperProblem::MappingTwice {
+                index,
+                first,
+                experiment: m.published_experiment,
+                column: m.published_column,
+            });
+        }
+        let companions = m
+            .companions
+            .iter()
+            .map(|c| {
+                let key = if c.contains('/') {
+                    RunKey::parse(&format!("{} / {c}", run.experiment))
+                } else {
+                    RunKey::from_ids(&run.experiment, c.trim(), &run.solver).map_err(Into::into)
+                };
+                key.map_err(|_| PaperProblem::Companion {
+                    index,
+                    companion: c.clone(),
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        mappings.push(Mapping {
+            paper: paper.to_string(),
+            published_experiment: m.published_experiment,
+            published_column: m.published_column,
+            run,
+            companions,
+        });
+    }
+    Ok(mappings)
 }
 
 /// The published values of `paper` in `path` (a values.csv of `dir`), each checked: finite, of
@@ -543,33 +556,6 @@ fn read_values(dir: &Path, path: &Path, paper: &str) -> Result<Vec<PaperValue>, 
     Ok(values)
 }
 
-/// The metrics a values.csv row may name: the `runs.csv` column that measures the published
-/// number (one name per metric, as claims and runs.csv write it), and `error_norm_settle_s`
-/// (a settling time no run measures: listed under "published numbers without a run").
-pub const PUBLISHED_METRICS: [&str; 11] = [
-    "drift_1",
-    "drift_2",
-    "drift_3",
-    "drift_4",
-    "drift_5",
-    "drift_6",
-    "drift_norm",
-    "sim_s",
-    "max_pos_err",
-    "final_pos_err",
-    ERROR_NORM_SETTLE,
-];
-
-/// The published metric no run measures.
-const ERROR_NORM_SETTLE: &str = "error_norm_settle_s";
-
-/// Metric names of earlier values.csv files, read as the `runs.csv` name they stand for.
-pub const METRIC_ALIASES: [(&str, &str); 3] = [
-    ("compute_time_s", "sim_s"),
-    ("max_position_error_m", "max_pos_err"),
-    ("final_position_error_m", "final_pos_err"),
-];
-
 impl Papers {
     /// The printed entry of `mapping`'s column for `metric` that contradicts the paper's own
     /// numbers, with the reason ([`inconsistencies`]).
@@ -580,14 +566,6 @@ impl Papers {
             .filter(|v| our_metric(&v.metric) == Some(metric))
             .find_map(|v| v.inconsistent.as_deref().map(|why| (v.value, why)))
     }
-}
-
-/// The `runs.csv` column that measures a published metric, if we measure it (the metric's own
-/// name: values.csv uses runs.csv's names).
-pub fn our_metric(published_metric: &str) -> Option<&'static str> {
-    PUBLISHED_METRICS
-        .into_iter()
-        .find(|&m| m == published_metric && m != ERROR_NORM_SETTLE)
 }
 
 /// Where a published number lands among our runs.

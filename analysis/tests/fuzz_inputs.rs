@@ -8,7 +8,8 @@
 //! cases each) to run in seconds.
 
 use proptest::prelude::*;
-use records::trajectory::{parse_csv, read, Trajectory};
+use records::trajectory::{parse_csv, Trajectory};
+use records::trajectory_file::read;
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -246,11 +247,11 @@ fn committed_paper() -> (String, String) {
 fn checked(papers: &analysis::papers::Papers) {
     for p in &papers.papers {
         assert!(p.claims.len() <= analysis::paper_rules::MAX_CLAIMS);
-        assert!(analysis::paper_rules::is_one_line(&p.title));
+        assert!(analysis::report_text::is_one_line(&p.title));
     }
     for v in &papers.values {
         assert!(v.value.is_finite(), "{v:?}");
-        assert!(analysis::papers::PUBLISHED_METRICS.contains(&v.metric.as_str()));
+        assert!(analysis::published_metrics::PUBLISHED_METRICS.contains(&v.metric.as_str()));
     }
 }
 

@@ -13,7 +13,7 @@
 //! (`settings::error::IntegratorError`) are crate `settings`', below both this crate and the
 //! solvers.
 
-use crate::experiment::JobPart;
+use crate::fields::JobPart;
 use crate::naming::NameError;
 use schemes::paths::PathError;
 use schemes::spec::SchemeError;
@@ -229,7 +229,7 @@ pub enum KeyPathError {
     #[error("an empty segment")]
     EmptySegment,
     /// The first segment is not a field a sweep may set.
-    #[error("`{first}` is not a field of a variant (fields: {})", crate::sweep::VARIANT_FIELDS.join(", "))]
+    #[error("`{first}` is not a field of a variant (fields: {})", crate::fields::VARIANT_FIELDS.join(", "))]
     NotAField {
         /// The first segment.
         first: String,

@@ -12,6 +12,7 @@
 use crate::error::{
     ExperimentError, ExperimentFileError, FieldAt, FieldError, SetupError, TomlError,
 };
+use crate::fields::JobPart;
 use crate::ids::{ExperimentId, IdError, SolverId, VariantId};
 use crate::naming::{slug, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
 use crate::numerical_spec::NumericalSpec;
@@ -379,40 +380,6 @@ impl Job {
 const CHECKED_IDS: &str =
     "the experiment file's check refuses an experiment or variant id that is not one";
 
-/// Which part of a [`Job`] could not be built (see [`CheckJob`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum JobPart {
-    /// The robot (`robot`).
-    Robot,
-    /// The initial joint vector (`theta0`).
-    Theta0,
-    /// The scheme's joint reference (`theta_ref`).
-    ThetaRef,
-    /// The path (`path`).
-    Path,
-    /// The scheme (`scheme`).
-    Scheme,
-    /// The network or numerical method (`solvers`, `numerical`).
-    Solver,
-    /// The `joint_limits` / `velocity_limits` override.
-    Limits,
-}
-
-impl JobPart {
-    /// The experiment-file field the part comes from.
-    pub fn field(&self) -> &'static str {
-        match self {
-            JobPart::Robot => "robot",
-            JobPart::Theta0 => "theta0",
-            JobPart::ThetaRef => "theta_ref",
-            JobPart::Path => "path",
-            JobPart::Scheme => "scheme",
-            JobPart::Solver => "solvers",
-            JobPart::Limits => "joint_limits",
-        }
-    }
-}
-
 /// Checks one run by building its parts as the run would (robot, path from f(theta_ref),
 /// scheme, network), integrating nothing: the engine's `simulation::run::check_job`. The
 /// experiment format cannot build a run itself; loading a file takes the check, so that a file
@@ -495,171 +462,202 @@ impl PaperFile {
         // experiment id is its own slug, so two ids share a file name only when they are equal.)
         let mut ids_seen: HashSet<&str> = HashSet::new();
         for (i, e) in self.experiments.iter().enumerate() {
-            let at = |field: &str| FieldAt::Experiment {
-                index: i,
+            self.validate_experiment(i, e, &mut ids_seen, check)?;
+        }
+        Ok(())
+    }
+
+    /// The checks of experiment `e`, the `index`-th of the file: its id (a name, with the
+    /// paper's prefix, not in `ids_seen` yet), robot, poses, integrators, limits and scoring,
+    /// then each variant: its names ([`check_variant_names`]) and everything else
+    /// ([`PaperFile::validate_variant`]).
+    fn validate_experiment<'a>(
+        &self,
+        index: usize,
+        e: &'a Experiment,
+        ids_seen: &mut HashSet<&'a str>,
+        check: CheckJob,
+    ) -> Result<(), ExperimentError> {
+        let at = |field: &str| FieldAt::Experiment {
+            index,
+            id: e.id.clone(),
+            field: field.to_string(),
+        };
+        check_name(&e.id, MAX_EXPERIMENT_ID, at("id"))?;
+        check_id(&e.id, at("id"))?;
+        if !e.id.starts_with(&format!("{}-", self.paper)) {
+            let paper = self.paper.clone();
+            return Err(field(at("id"), FieldError::PaperPrefix { paper }));
+        }
+        if !ids_seen.insert(&e.id) {
+            let id = e.id.clone();
+            return Err(field(at("id"), FieldError::IdTwice { id }));
+        }
+        let n = robot_dof(&e.robot).ok_or_else(|| field(at("robot"), unknown_robot(&e.robot)))?;
+        check_len(&e.theta0, n, at("theta0"))?;
+        if let Some(r) = &e.theta_ref {
+            check_len(r, n, at("theta_ref"))?;
+        }
+        check_integrator(&e.integrator, at("integrator"))?;
+        check_integrator(&e.exact_integrator, at("exact_integrator"))?;
+        for (name, limits, velocity) in [
+            ("joint_limits", &e.joint_limits, false),
+            ("velocity_limits", &e.velocity_limits, true),
+        ] {
+            if let Some(l) = limits {
+                l.check(n, velocity).map_err(|err| field(at(name), err))?;
+            }
+        }
+        if e.scoring == Scoring::MaxInstants(0) {
+            return Err(field(at("scoring"), FieldError::NoInstants));
+        }
+        if e.variants.is_empty() {
+            return Err(field(at("variant"), FieldError::NoVariants));
+        }
+        let mut names = VariantNames::default();
+        for (j, v) in e.variants.iter().enumerate() {
+            let vat = |field: &str| FieldAt::Variant {
+                experiment: index,
                 id: e.id.clone(),
+                index: j,
+                label: v.label.clone(),
                 field: field.to_string(),
             };
-            check_name(&e.id, MAX_EXPERIMENT_ID, at("id"))?;
-            check_id(&e.id, at("id"))?;
-            if !e.id.starts_with(&format!("{}-", self.paper)) {
-                let paper = self.paper.clone();
-                return Err(field(at("id"), FieldError::PaperPrefix { paper }));
+            check_variant_names(v, &vat, &mut names)?;
+            self.validate_variant(e, v, n, &at, &vat, check)?;
+        }
+        Ok(())
+    }
+
+    /// The checks of variant `v` of experiment `e` (whose robot has `n` joints) but its names:
+    /// its robot and poses against the experiment's, its integrator, scheme and limits, that it
+    /// runs something, then its runs ([`PaperFile::validate_runs`]) and its expected failure.
+    /// `at` places a field of the experiment, `vat` one of the variant.
+    fn validate_variant(
+        &self,
+        e: &Experiment,
+        v: &Variant,
+        n: usize,
+        at: &dyn Fn(&str) -> FieldAt,
+        vat: &dyn Fn(&str) -> FieldAt,
+        check: CheckJob,
+    ) -> Result<(), ExperimentError> {
+        let robot = v.robot.as_deref().unwrap_or(&e.robot);
+        let vn = robot_dof(robot).ok_or_else(|| field(vat("robot"), unknown_robot(robot)))?;
+        if vn != n && (v.theta0.is_none() || (e.theta_ref.is_some() && v.theta_ref.is_none())) {
+            return Err(field(
+                vat("robot"),
+                FieldError::RobotJoints {
+                    robot: robot.to_string(),
+                    joints: vn,
+                },
+            ));
+        }
+        if let Some(t) = &v.theta0 {
+            check_len(t, vn, vat("theta0"))?;
+        }
+        if let Some(t) = &v.theta_ref {
+            check_len(t, vn, vat("theta_ref"))?;
+        }
+        if let Some(s) = &v.integrator {
+            check_integrator(s, vat("integrator"))?;
+        }
+        v.scheme
+            .validate()
+            .map_err(|err| field(vat("scheme"), err))?;
+        if !v.exact && v.solvers.is_empty() && v.numerical.is_empty() {
+            return Err(field(vat("solvers"), FieldError::RunsNothing));
+        }
+        for (name, limits, velocity) in [
+            ("joint_limits", v.joint_limits.as_deref(), false),
+            ("velocity_limits", v.velocity_limits.as_deref(), true),
+        ] {
+            if let Some(l) = limits {
+                l.check(vn, velocity).map_err(|err| field(vat(name), err))?;
             }
-            if !ids_seen.insert(&e.id) {
-                let id = e.id.clone();
-                return Err(field(at("id"), FieldError::IdTwice { id }));
-            }
-            let n =
-                robot_dof(&e.robot).ok_or_else(|| field(at("robot"), unknown_robot(&e.robot)))?;
-            check_len(&e.theta0, n, at("theta0"))?;
-            if let Some(r) = &e.theta_ref {
-                check_len(r, n, at("theta_ref"))?;
-            }
-            check_integrator(&e.integrator, at("integrator"))?;
-            check_integrator(&e.exact_integrator, at("exact_integrator"))?;
-            for (name, limits, velocity) in [
-                ("joint_limits", &e.joint_limits, false),
-                ("velocity_limits", &e.velocity_limits, true),
-            ] {
-                if let Some(l) = limits {
-                    l.check(n, velocity).map_err(|err| field(at(name), err))?;
-                }
-            }
-            if e.scoring == Scoring::MaxInstants(0) {
-                return Err(field(at("scoring"), FieldError::NoInstants));
-            }
-            if e.variants.is_empty() {
-                return Err(field(at("variant"), FieldError::NoVariants));
-            }
-            let mut labels: HashSet<&str> = HashSet::new();
-            let mut ids: HashMap<String, &str> = HashMap::new();
-            for (j, v) in e.variants.iter().enumerate() {
-                let vat = |field: &str| FieldAt::Variant {
-                    experiment: i,
-                    id: e.id.clone(),
-                    index: j,
-                    label: v.label.clone(),
-                    field: field.to_string(),
+        }
+        self.validate_runs(e, v, at, vat, check)?;
+        if let Some(f) = &v.expected_failure {
+            self.check_expected_failure(e, v, f, vat)?;
+        }
+        Ok(())
+    }
+
+    /// The runs of variant `v`: its numerical methods' settings against the path's duration,
+    /// then each run built by `check` (an error placed at the field at fault: a solver, a
+    /// numerical method, the variant's or the experiment's path, ...), its solver's label and
+    /// its run key (valid, and once in the variant).
+    fn validate_runs(
+        &self,
+        e: &Experiment,
+        v: &Variant,
+        at: &dyn Fn(&str) -> FieldAt,
+        vat: &dyn Fn(&str) -> FieldAt,
+        check: CheckJob,
+    ) -> Result<(), ExperimentError> {
+        let duration = v.path.as_deref().unwrap_or(&e.path).duration;
+        // Run keys are experiment / variant / solver ids, and an experiment's variant
+        // ids are distinct (above): two runs can share a key only within one variant,
+        // so the set is the variant's (not 10^6 keys held for a sweep's validation).
+        let mut keys: HashSet<RunKey> = HashSet::new();
+        for (k, s) in v.numerical.iter().enumerate() {
+            s.validate(duration)
+                .map_err(|err| field(vat(&format!("numerical[{k}]")), err))?;
+        }
+        for (k, job) in self.variant_jobs(e, v).iter().enumerate() {
+            check(job).map_err(|err| {
+                let place = match err.part() {
+                    JobPart::Solver if k - usize::from(v.exact) < v.solvers.len() => {
+                        vat(&format!("solvers[{}]", k - usize::from(v.exact)))
+                    }
+                    JobPart::Solver => vat(&format!(
+                        "numerical[{}]",
+                        k - usize::from(v.exact) - v.solvers.len()
+                    )),
+                    JobPart::Path if v.path.is_some() => vat("path"),
+                    JobPart::Path => at("path"),
+                    part => vat(part.field()),
                 };
-                check_name(&v.label, MAX_VARIANT_LABEL, vat("label"))?;
-                if !labels.insert(&v.label) {
-                    return Err(field(
-                        vat("label"),
-                        FieldError::LabelTwice {
-                            label: v.label.clone(),
-                        },
-                    ));
-                }
-                if let Some(id) = &v.id {
-                    check_name(id, MAX_VARIANT_LABEL, vat("id"))?;
-                    check_id(id, vat("id"))?;
-                }
-                let id = v.id();
-                if let Some(other) = ids.get(&id) {
-                    return Err(field(
-                        vat("id"),
-                        FieldError::IdClash {
-                            label: v.label.clone(),
-                            other: other.to_string(),
-                            id,
-                            derived: v.id.is_none(),
-                        },
-                    ));
-                }
-                ids.insert(id, &v.label);
-                let robot = v.robot.as_deref().unwrap_or(&e.robot);
-                let vn =
-                    robot_dof(robot).ok_or_else(|| field(vat("robot"), unknown_robot(robot)))?;
-                if vn != n
-                    && (v.theta0.is_none() || (e.theta_ref.is_some() && v.theta_ref.is_none()))
-                {
-                    return Err(field(
-                        vat("robot"),
-                        FieldError::RobotJoints {
-                            robot: robot.to_string(),
-                            joints: vn,
-                        },
-                    ));
-                }
-                if let Some(t) = &v.theta0 {
-                    check_len(t, vn, vat("theta0"))?;
-                }
-                if let Some(t) = &v.theta_ref {
-                    check_len(t, vn, vat("theta_ref"))?;
-                }
-                if let Some(s) = &v.integrator {
-                    check_integrator(s, vat("integrator"))?;
-                }
-                v.scheme
-                    .validate()
-                    .map_err(|err| field(vat("scheme"), err))?;
-                if !v.exact && v.solvers.is_empty() && v.numerical.is_empty() {
-                    return Err(field(vat("solvers"), FieldError::RunsNothing));
-                }
-                for (name, limits, velocity) in [
-                    ("joint_limits", v.joint_limits.as_deref(), false),
-                    ("velocity_limits", v.velocity_limits.as_deref(), true),
-                ] {
-                    if let Some(l) = limits {
-                        l.check(vn, velocity).map_err(|err| field(vat(name), err))?;
-                    }
-                }
-                let duration = v.path.as_deref().unwrap_or(&e.path).duration;
-                // Run keys are experiment / variant / solver ids, and an experiment's variant
-                // ids are distinct (above): two runs can share a key only within one variant,
-                // so the set is the variant's (not 10^6 keys held for a sweep's validation).
-                let mut keys: HashSet<RunKey> = HashSet::new();
-                for (k, s) in v.numerical.iter().enumerate() {
-                    s.validate(duration)
-                        .map_err(|err| field(vat(&format!("numerical[{k}]")), err))?;
-                }
-                for (k, job) in self.variant_jobs(e, v).iter().enumerate() {
-                    check(job).map_err(|err| {
-                        let place = match err.part() {
-                            JobPart::Solver if k - usize::from(v.exact) < v.solvers.len() => {
-                                vat(&format!("solvers[{}]", k - usize::from(v.exact)))
-                            }
-                            JobPart::Solver => vat(&format!(
-                                "numerical[{}]",
-                                k - usize::from(v.exact) - v.solvers.len()
-                            )),
-                            JobPart::Path if v.path.is_some() => vat("path"),
-                            JobPart::Path => at("path"),
-                            part => vat(part.field()),
-                        };
-                        field(place, err)
-                    })?;
-                    check_name(&job.solver.label(), MAX_SOLVER_LABEL, vat("solvers"))?;
-                    job.solver_id().map_err(|e| field(vat("solvers"), e))?;
-                    let key = job.key();
-                    if keys.contains(&key) {
-                        return Err(field(
-                            vat("solvers"),
-                            FieldError::RunTwice {
-                                key: key.to_string(),
-                            },
-                        ));
-                    }
-                    keys.insert(key);
-                }
-                if let Some(f) = &v.expected_failure {
-                    let kinds: Vec<String> = self
-                        .variant_jobs(e, v)
-                        .iter()
-                        .map(|j| j.solver.kind().id().to_string())
-                        .collect();
-                    if let Some(bad) = f.solvers.iter().find(|s| !kinds.contains(s)) {
-                        return Err(field(
-                            vat("expected_failure"),
-                            FieldError::UnknownFailureKind {
-                                kind: bad.clone(),
-                                kinds: kinds.join(", "),
-                            },
-                        ));
-                    }
-                }
+                field(place, err)
+            })?;
+            check_name(&job.solver.label(), MAX_SOLVER_LABEL, vat("solvers"))?;
+            job.solver_id().map_err(|e| field(vat("solvers"), e))?;
+            let key = job.key();
+            if keys.contains(&key) {
+                return Err(field(
+                    vat("solvers"),
+                    FieldError::RunTwice {
+                        key: key.to_string(),
+                    },
+                ));
             }
+            keys.insert(key);
+        }
+        Ok(())
+    }
+
+    /// That the solver kinds an expected failure `f` of variant `v` names are kinds of the
+    /// variant's runs.
+    fn check_expected_failure(
+        &self,
+        e: &Experiment,
+        v: &Variant,
+        f: &ExpectedFailure,
+        vat: &dyn Fn(&str) -> FieldAt,
+    ) -> Result<(), ExperimentError> {
+        let kinds: Vec<String> = self
+            .variant_jobs(e, v)
+            .iter()
+            .map(|j| j.solver.kind().id().to_string())
+            .collect();
+        if let Some(bad) = f.solvers.iter().find(|s| !kinds.contains(s)) {
+            return Err(field(
+                vat("expected_failure"),
+                FieldError::UnknownFailureKind {
+                    kind: bad.clone(),
+                    kinds: kinds.join(", "),
+                },
+            ));
         }
         Ok(())
     }
@@ -746,6 +744,51 @@ impl PaperFile {
     pub fn experiment_jobs<'a>(&'a self, e: &'a Experiment) -> impl Iterator<Item = Job> + 'a {
         e.variants.iter().flat_map(move |v| self.variant_jobs(e, v))
     }
+}
+
+/// The labels and ids of an experiment's variants seen so far (each label and each id once).
+#[derive(Default)]
+struct VariantNames<'a> {
+    labels: HashSet<&'a str>,
+    /// Each id with the label of the variant that has it.
+    ids: HashMap<String, &'a str>,
+}
+
+/// The names of variant `v` (fields placed by `vat`): its label and declared id are names, and
+/// neither its label nor its id (declared or derived from the label) is one an earlier variant
+/// of the experiment has (`names`, which then holds them).
+fn check_variant_names<'a>(
+    v: &'a Variant,
+    vat: &dyn Fn(&str) -> FieldAt,
+    names: &mut VariantNames<'a>,
+) -> Result<(), ExperimentError> {
+    check_name(&v.label, MAX_VARIANT_LABEL, vat("label"))?;
+    if !names.labels.insert(&v.label) {
+        return Err(field(
+            vat("label"),
+            FieldError::LabelTwice {
+                label: v.label.clone(),
+            },
+        ));
+    }
+    if let Some(id) = &v.id {
+        check_name(id, MAX_VARIANT_LABEL, vat("id"))?;
+        check_id(id, vat("id"))?;
+    }
+    let id = v.id();
+    if let Some(other) = names.ids.get(&id) {
+        return Err(field(
+            vat("id"),
+            FieldError::IdClash {
+                label: v.label.clone(),
+                other: other.to_string(),
+                id,
+                derived: v.id.is_none(),
+            },
+        ));
+    }
+    names.ids.insert(id, &v.label);
+    Ok(())
 }
 
 /// An id or label becomes a directory or file name (results/traces/<id>/<label>__<solver>.csv,

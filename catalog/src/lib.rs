@@ -4,13 +4,14 @@
 //! registry (`robots::registry`), a path and a scheme (crate `schemes`), a solver (the exact
 //! optimum in the loop, a numerical method ([`numerical_spec`]) or a network as
 //! `settings::solver_spec` writes it; its kind is a [`solver_kind::SolverKind`]), an integrator
-//! (`settings::integrator`) and where the run is scored. A variant may stand for many through a `sweep`
-//! table ([`sweep`], expanded at the TOML level). Every run is identified by ids, not labels
-//! ([`run_key`]), and every id or label that becomes a file name obeys [`naming`]. The errors of
-//! all of it are in [`error`]. [`root`] finds the project (the directory of `experiments/`,
-//! `results/` and `report/`) and the code revision runs are stamped with. The solvers' own
-//! settings (network specifications, integrator settings) are crate `settings`', below this
-//! crate and the solvers alike: this crate reads them from files, it does not define them.
+//! (`settings::integrator`) and where the run is scored. A variant may stand for many through a
+//! `sweep` table ([`sweep`], expanded at the TOML level). Every run is identified by ids, not
+//! labels ([`run_key`]), and every id or label that becomes a file name obeys [`naming`]. The
+//! errors of all of it are in [`error`]; the fields they name, in [`fields`]. [`root`] finds
+//! the project (the directory of `experiments/`, `results/` and `report/`) and the code
+//! revision runs are stamped with. The solvers' own settings (network specifications,
+//! integrator settings) are crate `settings`', below this crate and the solvers alike: this
+//! crate reads them from files, it does not define them.
 //!
 //! Nothing here builds or runs a solver: the engine (crate `simulation`) builds the runs, and
 //! loading a file takes its check ([`experiment::CheckJob`]) to reject what a run would reject.
@@ -20,6 +21,7 @@
 
 pub mod error;
 pub mod experiment;
+pub mod fields;
 pub mod ids;
 pub mod naming;
 pub mod numerical_spec;

@@ -61,22 +61,8 @@
 //! placeholder that names no swept key, and two expanded variants with the same label.
 
 use crate::error::{KeyPathError, RangeError, SweepError, SweepKeyError};
+use crate::fields::VARIANT_FIELDS;
 use toml::{Table, Value};
-
-/// The fields of a variant a sweep may set (`label` is the template, not a parameter).
-pub(crate) const VARIANT_FIELDS: &[&str] = &[
-    "scheme",
-    "solvers",
-    "exact",
-    "robot",
-    "path",
-    "theta0",
-    "theta_ref",
-    "integrator",
-    "network_init",
-    "expected_failure",
-    "explain",
-];
 
 /// Most variants one variant may expand into (a typo in a range should not eat the memory),
 /// and most the sweeps of a whole experiments directory may expand into together (twenty

@@ -56,6 +56,79 @@ pub struct Instants {
     lus: Vec<DenseLu>,
 }
 
+/// The exact optima of `qps` and their optimal working sets, in order: each by the active-set
+/// solver `fast` (into `sol`) hot-started from the previous optimal working set, by `clarabel`
+/// where the active set does not certify an answer (said on standard error, with the case's
+/// `label`; its working set is then the previous one).
+fn exact_optima(
+    label: &str,
+    qps: &[Qp],
+    fast: &mut ActiveSetSolver,
+    sol: &mut ActiveSetSolution,
+    clarabel: &mut ExactSolver,
+) -> (Vec<DVector<f64>>, Vec<WorkingSet>) {
+    let mut x_star: Vec<DVector<f64>> = Vec::with_capacity(qps.len());
+    let mut optimal: Vec<WorkingSet> = Vec::with_capacity(qps.len());
+    let mut uncertified = 0usize;
+    for qp in qps {
+        match fast.solve_into(qp, optimal.last(), sol) {
+            Ok(()) => {
+                x_star.push(sol.x.clone());
+                optimal.push(sol.working_set.clone());
+            }
+            Err(_) => {
+                uncertified += 1;
+                let x = clarabel
+                    .solve(qp)
+                    .map(|s| s.x)
+                    .unwrap_or_else(|_| DVector::zeros(qp.dims().nx));
+                x_star.push(x);
+                optimal.push(optimal.last().cloned().unwrap_or_default());
+            }
+        }
+    }
+    if uncertified > 0 {
+        eprintln!(
+            "{label}: {uncertified} of {} sampled QPs not certified by the active-set solver",
+            qps.len()
+        );
+    }
+    (x_star, optimal)
+}
+
+/// Network states of dimension `dim` near each optimum of `x_star`: x* + 1e-3 sin(i + 1) in
+/// entry i, multipliers 0 (as the criterion benches use).
+fn states_near(x_star: &[DVector<f64>], dim: usize) -> Vec<Vec<f64>> {
+    x_star
+        .iter()
+        .map(|x| {
+            let mut y = vec![0.0; dim];
+            for (i, xi) in x.iter().enumerate() {
+                y[i] = xi + 1e-3 * ((i + 1) as f64).sin();
+            }
+            y
+        })
+        .collect()
+}
+
+/// The equality-constrained QP of the same P, q, A, b as `qp` (no inequalities, no bounds):
+/// what the KKT floor solves.
+fn equality_qp(qp: &Qp) -> Qp {
+    let dims = qp.dims();
+    let mut e = Qp::zeros(QpDims {
+        nx: dims.nx,
+        n_eq: dims.n_eq,
+        n_in: 0,
+    });
+    e.p.copy_from(&qp.p);
+    e.q.copy_from(&qp.q);
+    e.a.copy_from(&qp.a);
+    e.b.copy_from(&qp.b);
+    e.lower.fill(f64::NEG_INFINITY);
+    e.upper.fill(f64::INFINITY);
+    e
+}
+
 impl Instants {
     /// The network of `spec` on `qps` at times `ts` (with `qp_dots` when the network needs
     /// them): exact optima (active set, Clarabel where it does not certify), hot starts,
@@ -77,52 +150,15 @@ impl Instants {
             return Err(CostError::NeedsQpDot(label.to_string()));
         }
 
-        // Exact optima and optimal working sets along the sampled states.
         let mut fast = ActiveSetSolver::new(dims);
         let mut sol = ActiveSetSolution::zeros(dims);
         let mut clarabel = ExactSolver::new();
-        let mut x_star: Vec<DVector<f64>> = Vec::with_capacity(qps.len());
-        let mut optimal: Vec<WorkingSet> = Vec::with_capacity(qps.len());
-        let mut uncertified = 0usize;
-        for qp in &qps {
-            match fast.solve_into(qp, optimal.last(), &mut sol) {
-                Ok(()) => {
-                    x_star.push(sol.x.clone());
-                    optimal.push(sol.working_set.clone());
-                }
-                Err(_) => {
-                    uncertified += 1;
-                    let x = clarabel
-                        .solve(qp)
-                        .map(|s| s.x)
-                        .unwrap_or_else(|_| DVector::zeros(dims.nx));
-                    x_star.push(x);
-                    optimal.push(optimal.last().cloned().unwrap_or_default());
-                }
-            }
-        }
-        if uncertified > 0 {
-            eprintln!(
-                "{label}: {uncertified} of {} sampled QPs not certified by the active-set solver",
-                qps.len()
-            );
-        }
+        let (x_star, optimal) = exact_optima(label, &qps, &mut fast, &mut sol, &mut clarabel);
         let warm: Vec<WorkingSet> = (0..qps.len())
             .map(|i| optimal[i.saturating_sub(1)].clone())
             .collect();
-
-        // Network states near the optimum: x* + 1e-3 sin(i + 1), multipliers 0.
         let dim = network.state_dim(dims);
-        let ys: Vec<Vec<f64>> = x_star
-            .iter()
-            .map(|x| {
-                let mut y = vec![0.0; dim];
-                for (i, xi) in x.iter().enumerate() {
-                    y[i] = xi + 1e-3 * ((i + 1) as f64).sin();
-                }
-                y
-            })
-            .collect();
+        let ys = states_near(&x_star, dim);
         let mut jac = DMatrix::zeros(dim, dim);
         let mut has_jacobian = true;
         let mut jacs = Vec::with_capacity(qps.len());
@@ -132,23 +168,7 @@ impl Instants {
             jacs.push(jac.clone());
         }
 
-        let equality: Vec<Qp> = qps
-            .iter()
-            .map(|qp| {
-                let mut e = Qp::zeros(QpDims {
-                    nx: dims.nx,
-                    n_eq: dims.n_eq,
-                    n_in: 0,
-                });
-                e.p.copy_from(&qp.p);
-                e.q.copy_from(&qp.q);
-                e.a.copy_from(&qp.a);
-                e.b.copy_from(&qp.b);
-                e.lower.fill(f64::NEG_INFINITY);
-                e.upper.fill(f64::INFINITY);
-                e
-            })
-            .collect();
+        let equality: Vec<Qp> = qps.iter().map(equality_qp).collect();
         let has_kkt = solve_equality_kkt_with(&equality[0], Backend::Nalgebra).is_some();
         Ok(Instants {
             ts,

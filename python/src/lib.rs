@@ -39,7 +39,8 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use records::runs::RunRow;
 use records::trace::TracePoint;
-use records::trajectory::{read, score_row, Trajectory};
+use records::trajectory::{score_row, Trajectory};
+use records::trajectory_file::read;
 use simulation::error::RunError;
 use simulation::row::run_row;
 use simulation::run::{run_job, run_job_with_network, RunRecord};
@@ -479,67 +480,9 @@ fn leaderboard<'py>(
              the standard task set",
         ));
         }
-        let named: Vec<(String, Bound<'py, PyAny>)> = match entries.cast::<PyDict>() {
-            Ok(d) => d
-                .iter()
-                .map(|(k, v)| {
-                    let name = k.extract::<String>().map_err(|_| {
-                        pyo3::exceptions::PyTypeError::new_err(format!(
-                            "leaderboard's entries: the keys are the networks' names (str), got {}",
-                            type_name(&k)
-                        ))
-                    })?;
-                    Ok((name, v))
-                })
-                .collect::<PyResult<_>>()?,
-            Err(_) => entries
-                .try_iter()
-                .map_err(|_| {
-                    pyo3::exceptions::PyTypeError::new_err(
-                        "leaderboard's entries: a dict name -> network, or a list of networks",
-                    )
-                })?
-                .map(|n| {
-                    let n = n?;
-                    Ok((network_name(&n)?, n))
-                })
-                .collect::<PyResult<_>>()?,
-        };
-        let mut fresh = Vec::new();
-        let mut costs = Vec::new();
-        let not_applicable = PyList::empty(py);
-        for (name, network) in &named {
-            let id = python_solver_id(name).map_err(lib_err)?;
-            if stored
-                .iter()
-                .any(|r| r.solver == *name || r.solver_id == id)
-                || fresh
-                    .iter()
-                    .any(|r: &RunRow| r.solver == *name || r.solver_id == id)
-            {
-                return Err(lib_err(format!(
-                "a solver called \"{name}\" is already on the leaderboard; give the network another name"
-            )));
-            }
-            for t in &chosen {
-                match run_python(py, t, &t.job, network) {
-                    Ok((_, mut row, calls)) => {
-                        row.solver = name.clone();
-                        row.solver_id = id.clone();
-                        fresh.push(row);
-                        costs.push(calls);
-                    }
-                    Err(e) if e.is_instance_of::<NotApplicable>(py) => {
-                        let skipped = PyDict::new(py);
-                        skipped.set_item("solver", name)?;
-                        skipped.set_item("task", t.job.task().to_string())?;
-                        skipped.set_item("reason", e.value(py).str()?)?;
-                        not_applicable.append(skipped)?;
-                    }
-                    Err(e) => return Err(e),
-                }
-            }
-        }
+        let named = named_entries(entries)?;
+        let entered = run_entries(py, &named, &chosen, &stored)?;
+        let (fresh, costs) = (entered.rows, entered.costs);
         let mut all = stored;
         all.extend(fresh.iter().cloned());
         let timings =
@@ -548,15 +491,7 @@ fn leaderboard<'py>(
         let board_csv = analysis::leaderboard::leaderboard_csv(&board).map_err(lib_err)?;
         let runs_csv = records::runs::runs_csv(&fresh).map_err(lib_err)?;
         if let Some(dir) = &out_dir {
-            let owned = records::owned_dir::OwnedDir::open(dir).map_err(lib_err)?;
-            for (name, bytes) in [
-                (records::results_dir::LEADERBOARD, &board_csv),
-                (records::results_dir::RUNS, &runs_csv),
-            ] {
-                let path = owned.resolve(Path::new(name)).map_err(lib_err)?;
-                records::runs::write_atomic(&path, bytes)
-                    .map_err(|e| lib_err(format!("{}: {e}", path.display())))?;
-            }
+            write_leaderboard_tables(dir, &board_csv, &runs_csv)?;
         }
         let runs = csv_dicts(py, &runs_csv)?;
         for (d, calls) in runs.iter().zip(&costs) {
@@ -566,9 +501,115 @@ fn leaderboard<'py>(
         let out = PyDict::new(py);
         out.set_item("leaderboard", PyList::new(py, csv_dicts(py, &board_csv)?)?)?;
         out.set_item("runs", PyList::new(py, runs)?)?;
-        out.set_item("not_applicable", not_applicable)?;
+        out.set_item("not_applicable", entered.not_applicable)?;
         Ok(out)
     })
+}
+
+/// [`leaderboard`]'s `entries` as (name, network): a dict's keys (str) are the names, a list's
+/// networks are named by their `name`, else their class.
+fn named_entries<'py>(entries: &Bound<'py, PyAny>) -> PyResult<Vec<(String, Bound<'py, PyAny>)>> {
+    match entries.cast::<PyDict>() {
+        Ok(d) => d
+            .iter()
+            .map(|(k, v)| {
+                let name = k.extract::<String>().map_err(|_| {
+                    pyo3::exceptions::PyTypeError::new_err(format!(
+                        "leaderboard's entries: the keys are the networks' names (str), got {}",
+                        type_name(&k)
+                    ))
+                })?;
+                Ok((name, v))
+            })
+            .collect::<PyResult<_>>(),
+        Err(_) => entries
+            .try_iter()
+            .map_err(|_| {
+                pyo3::exceptions::PyTypeError::new_err(
+                    "leaderboard's entries: a dict name -> network, or a list of networks",
+                )
+            })?
+            .map(|n| {
+                let n = n?;
+                Ok((network_name(&n)?, n))
+            })
+            .collect::<PyResult<_>>(),
+    }
+}
+
+/// What the networks of [`leaderboard`] produced: their rows (named after them), the cost of
+/// their Python calls (one per row), and the tasks each does not handle.
+struct Entered<'py> {
+    rows: Vec<RunRow>,
+    costs: Vec<Callbacks>,
+    /// {"solver", "task", "reason"} per task a network does not handle.
+    not_applicable: Bound<'py, PyList>,
+}
+
+/// Runs every named network on every `chosen` task, its rows named `python-<slug(name)>`; a name
+/// a `stored` row or an earlier entry already has is refused, and a task a network does not
+/// handle (`NotApplicable`) is listed, not run.
+fn run_entries<'py>(
+    py: Python<'py>,
+    named: &[(String, Bound<'py, PyAny>)],
+    chosen: &[PyTask],
+    stored: &[RunRow],
+) -> PyResult<Entered<'py>> {
+    let mut fresh = Vec::new();
+    let mut costs = Vec::new();
+    let not_applicable = PyList::empty(py);
+    for (name, network) in named {
+        let id = python_solver_id(name).map_err(lib_err)?;
+        if stored
+            .iter()
+            .any(|r| r.solver == *name || r.solver_id == id)
+            || fresh
+                .iter()
+                .any(|r: &RunRow| r.solver == *name || r.solver_id == id)
+        {
+            return Err(lib_err(format!(
+                "a solver called \"{name}\" is already on the leaderboard; give the network another name"
+            )));
+        }
+        for t in chosen {
+            match run_python(py, t, &t.job, network) {
+                Ok((_, mut row, calls)) => {
+                    row.solver = name.clone();
+                    row.solver_id = id.clone();
+                    fresh.push(row);
+                    costs.push(calls);
+                }
+                Err(e) if e.is_instance_of::<NotApplicable>(py) => {
+                    let skipped = PyDict::new(py);
+                    skipped.set_item("solver", name)?;
+                    skipped.set_item("task", t.job.task().to_string())?;
+                    skipped.set_item("reason", e.value(py).str()?)?;
+                    not_applicable.append(skipped)?;
+                }
+                Err(e) => return Err(e),
+            }
+        }
+    }
+    Ok(Entered {
+        rows: fresh,
+        costs,
+        not_applicable,
+    })
+}
+
+/// Writes [`leaderboard`]'s tables into `dir` (atomically, each resolved inside it): the
+/// leaderboard and the networks' rows, under `results/`'s names.
+fn write_leaderboard_tables(dir: &Path, board_csv: &[u8], runs_csv: &[u8]) -> PyResult<()> {
+    let owned = records::owned_dir::OwnedDir::open(dir).map_err(lib_err)?;
+    for (name, bytes) in [
+        (records::results_dir::LEADERBOARD, board_csv),
+        (records::results_dir::RUNS, runs_csv),
+    ] {
+        let path = owned.resolve(Path::new(name)).map_err(lib_err)?;
+        records::runs::write_atomic(&path, bytes)
+            .map_err(|e| lib_err(format!("{}: {e}", path.display())))?;
+    }
+    Ok(())
 }
 
 /// Refuses an `out_dir=` that is, or lies inside, a directory driftbench seals with a manifest
@@ -656,33 +697,7 @@ fn score<'py>(
     guarded(|| {
         let git_rev = reproduce::revision::REVISION;
         let (record, row) = if let Ok(file) = trajectory.extract::<PathBuf>() {
-            match out_dir {
-                Some(out) => {
-                    let s = reproduce::score::score_file(
-                        &task.job,
-                        &file,
-                        None,
-                        records::trajectory::TRAJECTORY_KIND,
-                        &out,
-                        git_rev,
-                    )
-                    .map_err(lib_err)?;
-                    (s.record, s.row)
-                }
-                None => {
-                    let record = score_trajectory(
-                        &task.job,
-                        &read(&file, task.job.theta0.len(), None).map_err(lib_err)?,
-                    )
-                    .map_err(|e| lib_err(format!("{}: {e}", file.display())))?;
-                    let row = score_row(
-                        run_row(&record, git_rev),
-                        &file.display().to_string(),
-                        &records::trajectory::trajectory_id(),
-                    );
-                    (record, row)
-                }
-            }
+            score_file(task, &file, out_dir.as_deref())?
         } else {
             if out_dir.is_some() {
                 return Err(lib_err("out_dir is for a trajectory file"));
@@ -694,55 +709,7 @@ fn score<'py>(
                     type_name(trajectory)
                 ))
             })?;
-            const KEYS: [&str; 3] = ["t", "theta", "thetadot"];
-            for key in d.keys() {
-                let known = key
-                    .extract::<String>()
-                    .is_ok_and(|k| KEYS.contains(&k.as_str()));
-                if !known {
-                    return Err(pyo3::exceptions::PyValueError::new_err(format!(
-                        "the trajectory dict has the key {}; its keys are \"t\", \"theta\" and \
-                     optionally \"thetadot\"",
-                        key.repr()?
-                    )));
-                }
-            }
-            let required = |key: &str| -> PyResult<Bound<'py, PyAny>> {
-                d.get_item(key)?.ok_or_else(|| {
-                    pyo3::exceptions::PyValueError::new_err(format!(
-                        "the trajectory dict needs \"{key}\" (keys: \"t\", \"theta\", optionally \
-                     \"thetadot\")"
-                    ))
-                })
-            };
-            let rows = |v: &Bound<'py, PyAny>, key: &str| -> PyResult<Vec<Vec<f64>>> {
-                let what =
-                    format!("trajectory[\"{key}\"] (m x n: a row per instant, a column per joint)");
-                Ok(real_array::<Ix2>(v, &what)?
-                    .rows()
-                    .into_iter()
-                    .map(|r| r.to_vec())
-                    .collect())
-            };
-            let t: Vec<f64> = real_array::<Ix1>(&required("t")?, "trajectory[\"t\"]")?.to_vec();
-            let theta = rows(&required("theta")?, "theta")?;
-            let thetadot = d
-                .get_item("thetadot")?
-                .map(|v| rows(&v, "thetadot"))
-                .transpose()?;
-            let lengths = std::iter::once(("theta", theta.len()))
-                .chain(thetadot.as_ref().map(|v| ("thetadot", v.len())));
-            for (key, m) in lengths {
-                if m != t.len() {
-                    return Err(pyo3::exceptions::PyValueError::new_err(format!(
-                    "trajectory[\"{key}\"] has {m} rows, trajectory[\"t\"] {} instants: one row \
-                     per instant",
-                    t.len()
-                )));
-                }
-            }
-            let traj = Trajectory { t, theta, thetadot };
-            let record = score_trajectory(&task.job, &traj).map_err(lib_err)?;
+            let record = score_trajectory(&task.job, &trajectory_of_dict(d)?).map_err(lib_err)?;
             let row = score_row(
                 run_row(&record, git_rev),
                 "arrays",
@@ -752,6 +719,91 @@ fn score<'py>(
         };
         result_dict(py, &record, &row, &Callbacks::default())
     })
+}
+
+/// [`score`] of a trajectory file: with `out_dir`, as `reproduce --score` scores it (the row,
+/// trace and figure written there); without, scored in memory.
+fn score_file(task: &PyTask, file: &Path, out_dir: Option<&Path>) -> PyResult<(RunRecord, RunRow)> {
+    let git_rev = reproduce::revision::REVISION;
+    match out_dir {
+        Some(out) => {
+            let s = reproduce::score::score_file(
+                &task.job,
+                file,
+                None,
+                records::trajectory::TRAJECTORY_KIND,
+                out,
+                git_rev,
+            )
+            .map_err(lib_err)?;
+            Ok((s.record, s.row))
+        }
+        None => {
+            let record = score_trajectory(
+                &task.job,
+                &read(file, task.job.theta0.len(), None).map_err(lib_err)?,
+            )
+            .map_err(|e| lib_err(format!("{}: {e}", file.display())))?;
+            let row = score_row(
+                run_row(&record, git_rev),
+                &file.display().to_string(),
+                &records::trajectory::trajectory_id(),
+            );
+            Ok((record, row))
+        }
+    }
+}
+
+/// The trajectory of [`score`]'s dict of arrays: `t` (m), `theta` (m x n) and optionally
+/// `thetadot` (m x n), no other key, one row per instant.
+fn trajectory_of_dict<'py>(d: &Bound<'py, PyDict>) -> PyResult<Trajectory> {
+    const KEYS: [&str; 3] = ["t", "theta", "thetadot"];
+    for key in d.keys() {
+        let known = key
+            .extract::<String>()
+            .is_ok_and(|k| KEYS.contains(&k.as_str()));
+        if !known {
+            return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                "the trajectory dict has the key {}; its keys are \"t\", \"theta\" and \
+             optionally \"thetadot\"",
+                key.repr()?
+            )));
+        }
+    }
+    let required = |key: &str| -> PyResult<Bound<'py, PyAny>> {
+        d.get_item(key)?.ok_or_else(|| {
+            pyo3::exceptions::PyValueError::new_err(format!(
+                "the trajectory dict needs \"{key}\" (keys: \"t\", \"theta\", optionally \
+             \"thetadot\")"
+            ))
+        })
+    };
+    let rows = |v: &Bound<'py, PyAny>, key: &str| -> PyResult<Vec<Vec<f64>>> {
+        let what = format!("trajectory[\"{key}\"] (m x n: a row per instant, a column per joint)");
+        Ok(real_array::<Ix2>(v, &what)?
+            .rows()
+            .into_iter()
+            .map(|r| r.to_vec())
+            .collect())
+    };
+    let t: Vec<f64> = real_array::<Ix1>(&required("t")?, "trajectory[\"t\"]")?.to_vec();
+    let theta = rows(&required("theta")?, "theta")?;
+    let thetadot = d
+        .get_item("thetadot")?
+        .map(|v| rows(&v, "thetadot"))
+        .transpose()?;
+    let lengths = std::iter::once(("theta", theta.len()))
+        .chain(thetadot.as_ref().map(|v| ("thetadot", v.len())));
+    for (key, m) in lengths {
+        if m != t.len() {
+            return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                "trajectory[\"{key}\"] has {m} rows, trajectory[\"t\"] {} instants: one row \
+                 per instant",
+                t.len()
+            )));
+        }
+    }
+    Ok(Trajectory { t, theta, thetadot })
 }
 
 #[pymodule]

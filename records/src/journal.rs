@@ -16,31 +16,83 @@
 //! trace is missing, changed since, or was never sealed (a journal of an older version) is not
 //! folded, is said, and is run again. So a resumed directory's manifest covers every row and
 //! trace it holds, and a resumed shard merges.
-use crate::error::{IoAction, IoError, JournalError};
-use crate::results_dir::ResultsDir;
+use crate::error::{IoAction, IoError, RowsError};
+use crate::owned_dir::PathError;
+use crate::results_dir::{ResultsDir, JOURNAL};
 use crate::runs::{check_rows, RunRow};
-use crate::table;
+use crate::table::{self, TableError};
 use crate::trace::TracePoint;
+use crate::tracked_dir::TrackedError;
 use std::collections::HashMap;
 use std::fs::{File, OpenOptions};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
-/// The journal's file name in a results directory.
-pub const FILE: &str = "journal.csv";
-
 /// The seal of the journal's traces (see the module doc).
 pub const SEAL: &str = "journal-traces.sha256";
 
 /// The journal of the results directory `dir`.
 pub fn path(dir: &Path) -> PathBuf {
-    dir.join(FILE)
+    dir.join(JOURNAL)
 }
 
 /// The seal of the journal of `dir`.
 pub fn seal_path(dir: &Path) -> PathBuf {
     dir.join(SEAL)
+}
+
+/// Why the journal of an interrupted run cannot be opened, written or read back.
+#[derive(Debug, thiserror::Error)]
+pub enum JournalError {
+    /// A file operation on the journal or its seal failed.
+    #[error(transparent)]
+    Io(#[from] IoError),
+    /// The journal's path under the results directory was refused.
+    #[error(transparent)]
+    Path(#[from] PathError),
+    /// A trace could not be written into the results directory.
+    #[error(transparent)]
+    Results(#[from] crate::results_dir::ResultsError),
+    /// The existing journal's header is not this run's.
+    #[error("{}: its header is not that of this run (more joints, or another version); fold it in by running the same selection again, or remove it", path.display())]
+    Header {
+        /// The journal.
+        path: PathBuf,
+    },
+    /// A row could not be appended to the journal.
+    #[error("{}: {source}", path.display())]
+    Csv {
+        /// The journal.
+        path: PathBuf,
+        /// The CSV error.
+        source: csv::Error,
+    },
+    /// A thread panicked while holding the journal's lock.
+    #[error("journal lock poisoned")]
+    Poisoned,
+    /// The journal does not read as a table of run rows.
+    #[error(transparent)]
+    Table(#[from] TableError),
+    /// The journal's rows are not usable (a name that cannot name a file, a run listed twice).
+    #[error("{}: {error}; this is not a journal this program wrote: remove it (its runs are run again)", path.display())]
+    Rows {
+        /// The journal.
+        path: PathBuf,
+        /// Which row and why.
+        error: RowsError,
+    },
+    /// A recovered trace could not be recorded in the results directory's manifest.
+    #[error(transparent)]
+    Tracked(#[from] TrackedError),
+    /// A line of the traces' seal is not `<sha256>  <trace path>`.
+    #[error("{}: line {line}: not `<sha256>  <trace path>`, so not a seal this program wrote: remove it and the journal beside it (their runs are run again)", path.display())]
+    Seal {
+        /// The seal file.
+        path: PathBuf,
+        /// The line, from 1.
+        line: usize,
+    },
 }
 
 /// An open journal, shared by the worker threads.
@@ -66,7 +118,7 @@ impl<'a> Journal<'a> {
     /// with at most `joints` joints. An existing journal keeps its header: a run resumed with
     /// arms of more joints than it was started with starts a new journal.
     pub fn open(results: &'a ResultsDir, joints: usize) -> Result<Self, JournalError> {
-        let path = results.tracked().resolve(Path::new(FILE))?;
+        let path = results.tracked().resolve(Path::new(JOURNAL))?;
         let seal = append(&results.tracked().resolve(Path::new(SEAL))?)?;
         let mut file = append(&path)?;
         let empty = file.metadata().map(|m| m.len() == 0).unwrap_or(true);

@@ -27,8 +27,9 @@
 //! - [`shard`]: cluster runs: which shard a run belongs to, the shard directory's binding and
 //!   manifest, the merge checks; [`fnv`]: the stable hash they use.
 //! - [`migrate`]: results written before run ids (labels as identities), brought up to date once.
-//! - [`trajectory`], [`trajectory_mat`]: trajectories made elsewhere (CSV, MAT-files: the
-//!   samples [`trajectory::Trajectory`] the engine scores) and their score as a row.
+//! - [`trajectory`], [`trajectory_mat`], [`trajectory_file`]: trajectories made elsewhere (CSV,
+//!   MAT-files, either by its name: the samples [`trajectory::Trajectory`] the engine scores)
+//!   and their score as a row.
 //! - [`percentile`]: the one percentile definition of the workspace (numpy's default).
 //! - [`control`]: the control experiments' result files (`results/control*.csv`,
 //!   `results/cycles*.csv`).
@@ -71,4 +72,5 @@ pub mod timing;
 pub mod trace;
 pub mod tracked_dir;
 pub mod trajectory;
+pub mod trajectory_file;
 pub mod trajectory_mat;

@@ -143,11 +143,10 @@ pub fn add_ids(
     Ok(Some((bytes, keys)))
 }
 
-/// A legacy trace's path under results/: `traces/<experiment>/<slug(variant)>__<slug(solver)>.csv`.
-pub fn legacy_trace_rel(experiment: &str, variant: &str, solver: &str) -> std::path::PathBuf {
-    std::path::Path::new(crate::results_dir::TRACES)
-        .join(experiment)
-        .join(format!("{}__{}.csv", slug(variant), slug(solver)))
+/// A legacy trace's path under the traces directory (`results/traces/`):
+/// `<experiment>/<slug(variant)>__<slug(solver)>.csv`.
+pub fn legacy_trace_name(experiment: &str, variant: &str, solver: &str) -> std::path::PathBuf {
+    std::path::Path::new(experiment).join(format!("{}__{}.csv", slug(variant), slug(solver)))
 }
 
 #[cfg(test)]
@@ -175,8 +174,8 @@ mod tests {
             Err(MigrateError::Column("experiment"))
         ));
         assert_eq!(
-            legacy_trace_rel("e", "VLTCO", "exact (Clarabel)"),
-            std::path::Path::new("traces/e/vltco__exact-clarabel.csv")
+            legacy_trace_name("e", "VLTCO", "exact (Clarabel)"),
+            std::path::Path::new("e/vltco__exact-clarabel.csv")
         );
     }
 }

@@ -37,6 +37,8 @@ pub const DIR: &str = "results";
 pub const RUNS: &str = "runs.csv";
 /// `traces/`.
 pub const TRACES: &str = "traces";
+/// The checkpoint journal of an interrupted run ([`crate::journal`]).
+pub const JOURNAL: &str = "journal.csv";
 /// The explanation layer's tolerance ladder.
 pub const LADDER: &str = "ladder.csv";
 /// The explanation layer's drift attribution.
@@ -221,7 +223,7 @@ impl ResultsDir {
             .flatten()
             .filter(|e| e.file_type().is_ok_and(|k| k.is_file()))
             .filter(|e| e.path().extension().is_some_and(|x| x == "csv"))
-            .filter(|e| e.file_name() != crate::journal::FILE)
+            .filter(|e| e.file_name() != JOURNAL)
             .map(|e| PathBuf::from(e.file_name()))
             .collect()
     }
@@ -277,7 +279,7 @@ impl ResultsDir {
             }
             let mut moved = 0;
             for ((e, v, s), key) in &keys {
-                let old = crate::migrate::legacy_trace_rel(e, v, s);
+                let old = Path::new(TRACES).join(crate::migrate::legacy_trace_name(e, v, s));
                 let new = Self::trace_rel(key);
                 let Ok(old_path) = self.tracked.resolve(&old) else {
                     continue;

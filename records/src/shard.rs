@@ -27,8 +27,11 @@
 //!   and that every selected run appears exactly once; otherwise it says which runs are missing
 //!   (and which shard should have produced them) or duplicated, and nothing is written.
 
-use crate::error::{IoAction, IoError, RunEntryProblem, ShardError};
+use crate::error::{IoAction, IoError, RunsError};
+use crate::integrity::{IntegrityError, Mismatch};
+use crate::owned_dir::PathError;
 use crate::runs::{read_runs, RunRow};
+use crate::tracked_dir::TrackedError;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -36,6 +39,199 @@ use std::path::{Path, PathBuf};
 pub const MANIFEST: &str = "shard.toml";
 
 pub use crate::fnv::fnv1a64;
+
+/// Why a shard cannot be chosen, written, read or merged.
+#[derive(Debug, thiserror::Error)]
+pub enum ShardError {
+    /// N is 0.
+    #[error("the number of shards N must be at least 1")]
+    NoShards,
+    /// K is not in 1..=N.
+    #[error("shard {k} of {n}: K must be in 1..={n} (K is 1-based)")]
+    OutOfRange {
+        /// The shard number K given.
+        k: usize,
+        /// The number of shards N.
+        n: usize,
+    },
+    /// `--shard` has no `/` (the text given).
+    #[error("--shard {0}: expected K/N, e.g. 2/8")]
+    Syntax(String),
+    /// K or N of `--shard` is not a whole number (the text given).
+    #[error("--shard {0}: expected K/N with whole numbers, e.g. 2/8")]
+    NotWhole(String),
+    /// A scheduler's or driftbench's environment variable is not a whole number.
+    #[error("environment variable {name}={value} is not a whole number")]
+    Environment {
+        /// The variable.
+        name: String,
+        /// Its value.
+        value: String,
+    },
+    /// A Kubernetes Indexed Job's index without the number of shards N.
+    #[error("JOB_COMPLETION_INDEX={index} (a Kubernetes Indexed Job) gives K but not the number of shards N: give --shards N or set DRIFTBENCH_SHARDS=N (the Job's completions)")]
+    IndexWithoutCount {
+        /// `JOB_COMPLETION_INDEX` (from 0).
+        index: usize,
+    },
+    /// A Slurm array task, N not given, whose array is not exactly 1-N with N >= 2.
+    #[error("the Slurm array ({said}) does not tell the number of shards N: only an array of exactly 1-N with N >= 2 does, not one task (a resubmitted one), a part of an array, or a stepped, sparse or 0-based array; give --shards N or set DRIFTBENCH_SHARDS=N")]
+    ArrayWithoutCount {
+        /// The Slurm array variables as set (or unset).
+        said: String,
+    },
+    /// The Slurm task id is not a shard number 1..=N.
+    #[error("SLURM_ARRAY_TASK_ID={id}: task ids are shard numbers 1..={n} (submit --array=1-{n}; resubmit one task as --array=K)")]
+    TaskId {
+        /// `SLURM_ARRAY_TASK_ID`.
+        id: usize,
+        /// The number of shards N.
+        n: usize,
+    },
+    /// `--shard` without K/N, and no scheduler's variable is set.
+    #[error("--shard without K/N reads the scheduler's environment, but neither SLURM_ARRAY_TASK_ID nor JOB_COMPLETION_INDEX is set; give --shard K/N")]
+    NoScheduler,
+    /// A file operation failed.
+    #[error(transparent)]
+    Io(#[from] IoError),
+    /// `shard.toml` or `shard-binding.toml` could not be serialised.
+    #[error("{}: {source}", path.display())]
+    WriteManifest {
+        /// The file.
+        path: PathBuf,
+        /// The TOML error.
+        source: toml::ser::Error,
+    },
+    /// `shard.toml` does not read as a shard manifest.
+    #[error("{}: {source}", path.display())]
+    ReadManifest {
+        /// The file.
+        path: PathBuf,
+        /// The TOML error, with its line.
+        source: inputs::TomlError,
+    },
+    /// `shard.toml` refused or unreadable by the input reader (a link outside the shard
+    /// directory, a FIFO, over its cap).
+    #[error(transparent)]
+    Input(#[from] inputs::InputError),
+    /// `shard.toml` names no valid shard.
+    #[error("{}: `shard = {shard}`, `shards = {shards}`: {source}", path.display())]
+    ManifestShard {
+        /// The file.
+        path: PathBuf,
+        /// Its `shard`.
+        shard: usize,
+        /// Its `shards`.
+        shards: usize,
+        /// Why they make no shard.
+        source: Box<ShardError>,
+    },
+    /// An entry of `shard.toml`'s `runs` is not a run of the shard.
+    #[error("{}: `runs`, entry {index} \"{entry}\": {problem}", path.display())]
+    ManifestRun {
+        /// The file.
+        path: PathBuf,
+        /// The entry's position, from 1.
+        index: usize,
+        /// The entry as written.
+        entry: String,
+        /// What is wrong with it.
+        problem: RunEntryProblem,
+    },
+    /// `shard-binding.toml` does not read as a binding.
+    #[error("{}: {source}", path.display())]
+    ReadBinding {
+        /// The file.
+        path: PathBuf,
+        /// The TOML error, with its line.
+        source: inputs::TomlError,
+    },
+    /// The directory is bound to another shard, selection or set of experiment files.
+    #[error("{}: bound to another shard, so nothing was run: {}; one directory serves one shard of one selection: give this shard its own --results-dir, or remove {} if its runs are not wanted", dir.display(), differences.join("; "), dir.display())]
+    BoundElsewhere {
+        /// The shard directory.
+        dir: PathBuf,
+        /// What differs, one item each.
+        differences: Vec<String>,
+    },
+    /// The directory holds results but no binding.
+    #[error("{}: holds {file} but no {}, so which selection it ran cannot be told (a directory of an older version, or not a shard's); nothing was run: give this shard its own --results-dir, or remove the directory", dir.display(), crate::shard::BINDING)]
+    Unbound {
+        /// The shard directory.
+        dir: PathBuf,
+        /// The result file it holds (`runs.csv`, the journal, `shard.toml`).
+        file: &'static str,
+    },
+    /// The shard directory has no `shard.toml`: the shard has not finished.
+    #[error("{}: no {}: the shard has not finished (run it again; it resumes where it stopped)", dir.display(), crate::shard::MANIFEST)]
+    Unfinished {
+        /// The shard directory.
+        dir: PathBuf,
+    },
+    /// A directory given to merge does not exist.
+    #[error("{}: no such directory (give the directories that `reproduce --shard K/N` wrote)", dir.display())]
+    NoDirectory {
+        /// The path given.
+        dir: PathBuf,
+    },
+    /// The shard's integrity manifest could not be read.
+    #[error(transparent)]
+    Integrity(#[from] IntegrityError),
+    /// The shard directory has no integrity manifest.
+    #[error("{}: no {}: not a shard this version wrote, so its files cannot be checked; run the shard again", dir.display(), crate::integrity::FILE)]
+    NoIntegrity {
+        /// The shard directory.
+        dir: PathBuf,
+    },
+    /// Files of the shard differ from its integrity manifest.
+    #[error("{}: {} file(s) differ from what the shard wrote:\n{}\nrun the shard again, or merge with --accept-edited if the edit is deliberate", dir.display(), mismatches.len(), mismatches.iter().map(|m| format!("  {m}")).collect::<Vec<_>>().join("\n"))]
+    Edited {
+        /// The shard directory.
+        dir: PathBuf,
+        /// Every file that differs, and how.
+        mismatches: Vec<Mismatch>,
+    },
+    /// A shard's `runs.csv` could not be read.
+    #[error(transparent)]
+    Runs(#[from] RunsError),
+    /// A path under a directory was refused.
+    #[error(transparent)]
+    Path(#[from] PathError),
+    /// A tracked write failed.
+    #[error(transparent)]
+    Tracked(#[from] TrackedError),
+    /// The results directory merged into failed.
+    #[error(transparent)]
+    Results(#[from] crate::results_dir::ResultsError),
+    /// `--merge` was given no shard directory.
+    #[error("--merge needs at least one shard directory")]
+    NoShardDirectories,
+    /// The shards do not fit together; every problem, one a line.
+    #[error("cannot merge; nothing was written:\n{}", problems.join("\n"))]
+    CannotMerge {
+        /// The problems, one each.
+        problems: Vec<String>,
+    },
+}
+
+/// What is wrong with an entry of a shard manifest's `runs`.
+#[derive(Debug, thiserror::Error)]
+pub enum RunEntryProblem {
+    /// Not a run key, or a part that is no valid id.
+    #[error("not a run key: {0}")]
+    NotAKey(catalog::run_key::KeyError),
+    /// The run belongs to another shard.
+    #[error("belongs to shard {owner}/{n}, not to this shard")]
+    OtherShard {
+        /// The shard it belongs to.
+        owner: usize,
+        /// The number of shards N.
+        n: usize,
+    },
+    /// The run is listed twice.
+    #[error("listed twice")]
+    Twice,
+}
 
 /// Shard K of N (K in 1..=N).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -242,7 +438,11 @@ impl Binding {
             Err(e) if e.is_not_found() => {}
             Err(e) => return Err(e.into()),
         }
-        let held = [crate::results_dir::RUNS, crate::journal::FILE, MANIFEST];
+        let held = [
+            crate::results_dir::RUNS,
+            crate::results_dir::JOURNAL,
+            MANIFEST,
+        ];
         if let Some(file) = held.into_iter().find(|f| dir.join(f).exists()) {
             return Err(ShardError::Unbound {
                 dir: dir.to_path_buf(),
@@ -485,8 +685,10 @@ pub fn copy_traces(
 }
 
 /// Checks shards before a merge: the same N, experiment files (`hash`: the current files')
-/// and selection; every run of `expected` (the keys the selection describes) in exactly one
-/// shard, and no other run. The error lists every problem.
+/// and selection ([`manifest_problems`]); each row in its own shard with its trace
+/// ([`row_problems`]); every run of `expected` (the keys the selection describes) in exactly one
+/// shard, and no other run ([`coverage_problems`]). The error lists every problem of the first
+/// of these steps that finds any.
 pub fn check_shards(
     shards: &[ShardDir],
     expected: &[String],
@@ -495,6 +697,23 @@ pub fn check_shards(
     let Some(first) = shards.first() else {
         return Err(ShardError::NoShardDirectories);
     };
+    let n = first.manifest.shards;
+    let mut problems = manifest_problems(shards, first, hash);
+    problems.extend(row_problems(shards, n));
+    if !problems.is_empty() {
+        return Err(ShardError::CannotMerge { problems });
+    }
+    let problems = coverage_problems(shards, expected, n);
+    if problems.is_empty() {
+        Ok(())
+    } else {
+        Err(ShardError::CannotMerge { problems })
+    }
+}
+
+/// Where the shards' manifests disagree with `first`'s or with the current experiment files
+/// (`hash`): the number of shards, the experiment files, the selection, the code revision.
+fn manifest_problems(shards: &[ShardDir], first: &ShardDir, hash: &str) -> Vec<String> {
     let n = first.manifest.shards;
     let mut problems = Vec::new();
     for s in shards {
@@ -538,6 +757,13 @@ pub fn check_shards(
                 .join(", ")
         ));
     }
+    problems
+}
+
+/// The rows that are not their shard's (of `n`): a run another shard owns or its shard.toml
+/// does not list, and a run whose trace is not among the files the shard wrote.
+fn row_problems(shards: &[ShardDir], n: usize) -> Vec<String> {
+    let mut problems = Vec::new();
     for s in shards {
         let assigned: std::collections::HashSet<&str> =
             s.manifest.runs.iter().map(String::as_str).collect();
@@ -566,9 +792,13 @@ pub fn check_shards(
             }
         }
     }
-    if !problems.is_empty() {
-        return Err(ShardError::CannotMerge { problems });
-    }
+    problems
+}
+
+/// How the shards' runs cover the `expected` keys of the selection, as problems (one entry per
+/// kind, listing its runs): shards of the `n` not given, selected runs missing, runs in more
+/// than one shard, runs the selection does not describe.
+fn coverage_problems(shards: &[ShardDir], expected: &[String], n: usize) -> Vec<String> {
     let mut given: Vec<usize> = shards.iter().map(|s| s.manifest.shard).collect();
     given.sort_unstable();
     let absent: Vec<usize> = (1..=n).filter(|k| !given.contains(k)).collect();
@@ -579,6 +809,7 @@ pub fn check_shards(
         }
     }
     let mut missing = Vec::new();
+    let mut duplicated = Vec::new();
     for key in expected {
         match found.get(key).map(Vec::len).unwrap_or(0) {
             0 => missing.push(format!(
@@ -591,7 +822,7 @@ pub fn check_shards(
                 }
             )),
             1 => {}
-            _ => problems.push(format!(
+            _ => duplicated.push(format!(
                 "  {key}  duplicated in {}",
                 found[key]
                     .iter()
@@ -622,11 +853,11 @@ pub fn check_shards(
             missing.join("\n")
         ));
     }
-    if !problems.is_empty() {
+    if !duplicated.is_empty() {
         out.push(format!(
             "{} run(s) in more than one shard:\n{}",
-            problems.len(),
-            problems.join("\n")
+            duplicated.len(),
+            duplicated.join("\n")
         ));
     }
     if !foreign.is_empty() {
@@ -640,11 +871,7 @@ pub fn check_shards(
                 .join("\n")
         ));
     }
-    if out.is_empty() {
-        Ok(())
-    } else {
-        Err(ShardError::CannotMerge { problems: out })
-    }
+    out
 }
 
 #[cfg(test)]

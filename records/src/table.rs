@@ -161,20 +161,61 @@ fn format_f64(v: f64) -> String {
 
 /// Reads a table of `T` from CSV text; see the module docs for what is checked.
 pub fn from_reader<T: Row, R: std::io::Read>(input: R) -> Result<Vec<T>, TableError> {
-    let err = |line: u64, what: String| TableError {
-        path: None,
-        line,
-        what,
-    };
     let mut r = csv::Reader::from_reader(input);
     let header = r
         .headers()
-        .map_err(|e| err(e.position().map_or(1, |p| p.line()), e.to_string()))?
+        .map_err(|e| at_line(e.position().map_or(1, |p| p.line()), e.to_string()))?
         .clone();
     if header.is_empty() || (header.len() == 1 && header[0].is_empty()) {
         return Ok(Vec::new());
     }
-    // Per-joint columns: `<stem>_<k>`, numbered 1..K in order.
+    let joint_cols = joint_columns::<T>(&header)?;
+    let (fixed_header, padded) = fixed_columns::<T>(&header, &joint_cols)?;
+    let mut rows = Vec::new();
+    for (i, record) in r.records().enumerate() {
+        let fallback = i as u64 + 2;
+        let record = record.map_err(|e| {
+            at_line(
+                e.position().map_or(fallback, |p| p.line()),
+                format!("row does not parse: {e}"),
+            )
+        })?;
+        let line = record.position().map_or(fallback, |p| p.line());
+        let mut fixed: csv::StringRecord = record
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| !joint_cols.contains(i))
+            .map(|(_, c)| c)
+            .collect();
+        for _ in &padded {
+            fixed.push_field("");
+        }
+        let mut row: T = fixed.deserialize(Some(&fixed_header)).map_err(|e| {
+            let what = match e.kind() {
+                csv::ErrorKind::Deserialize { err, .. } => format!("row does not parse: {err}"),
+                _ => format!("row does not parse: {e}"),
+            };
+            at_line(line, what)
+        })?;
+        let cells: Vec<&str> = joint_cols.iter().map(|&i| &record[i]).collect();
+        row.set_joints(joint_values::<T>(&cells, line)?);
+        rows.push(row);
+    }
+    Ok(rows)
+}
+
+/// A problem at `line` of a table read from text (the file is added by [`read`]).
+fn at_line(line: u64, what: String) -> TableError {
+    TableError {
+        path: None,
+        line,
+        what,
+    }
+}
+
+/// The indices of the header's per-joint columns `<stem>_<k>`, which must be numbered 1..K in
+/// order.
+fn joint_columns<T: Row>(header: &csv::StringRecord) -> Result<Vec<usize>, TableError> {
     let joint_index = |h: &str| -> Option<usize> {
         let stem = T::JOINTS?;
         h.strip_prefix(stem)?
@@ -187,7 +228,7 @@ pub fn from_reader<T: Row, R: std::io::Read>(input: R) -> Result<Vec<T>, TableEr
         .collect();
     for (k, &i) in joint_cols.iter().enumerate() {
         if joint_index(&header[i]) != Some(k + 1) {
-            return Err(err(
+            return Err(at_line(
                 1,
                 format!(
                     "per-joint column {} out of order (expected {}_{})",
@@ -198,6 +239,16 @@ pub fn from_reader<T: Row, R: std::io::Read>(input: R) -> Result<Vec<T>, TableEr
             ));
         }
     }
+    Ok(joint_cols)
+}
+
+/// The header's fixed columns (all but `joint_cols`), checked against `T`'s schema: every field
+/// there, and no other. A field of a later version ([`Row::ADDED`]) that an older file lacks
+/// is appended to the header and returned among the padded columns, read as empty cells.
+fn fixed_columns<T: Row>(
+    header: &csv::StringRecord,
+    joint_cols: &[usize],
+) -> Result<(csv::StringRecord, Vec<&'static str>), TableError> {
     let mut fixed_header: csv::StringRecord = header
         .iter()
         .enumerate()
@@ -233,63 +284,38 @@ pub fn from_reader<T: Row, R: std::io::Read>(input: R) -> Result<Vec<T>, TableEr
         if !unknown.is_empty() {
             what.push(format!("unknown columns: {}", unknown.join(", ")));
         }
-        return Err(err(1, what.join("; ")));
+        return Err(at_line(1, what.join("; ")));
     }
     for c in &padded {
         fixed_header.push_field(c);
     }
-    let mut rows = Vec::new();
-    for (i, record) in r.records().enumerate() {
-        let fallback = i as u64 + 2;
-        let record = record.map_err(|e| {
-            err(
-                e.position().map_or(fallback, |p| p.line()),
-                format!("row does not parse: {e}"),
-            )
-        })?;
-        let line = record.position().map_or(fallback, |p| p.line());
-        let mut fixed: csv::StringRecord = record
-            .iter()
-            .enumerate()
-            .filter(|(i, _)| !joint_cols.contains(i))
-            .map(|(_, c)| c)
-            .collect();
-        for _ in &padded {
-            fixed.push_field("");
-        }
-        let mut row: T = fixed.deserialize(Some(&fixed_header)).map_err(|e| {
-            let what = match e.kind() {
-                csv::ErrorKind::Deserialize { err, .. } => format!("row does not parse: {err}"),
-                _ => format!("row does not parse: {e}"),
-            };
-            err(line, what)
-        })?;
-        let cells: Vec<&str> = joint_cols.iter().map(|&i| &record[i]).collect();
-        let n = cells
-            .iter()
-            .rposition(|c| !c.is_empty())
-            .map_or(0, |p| p + 1);
-        let values = cells[..n]
-            .iter()
-            .enumerate()
-            .map(|(k, c)| {
-                c.parse::<f64>().map_err(|_| {
-                    err(
-                        line,
-                        format!(
-                            "row does not parse: {}_{} = {c:?} is not a number (per-joint \
-                             columns are filled from joint 1 without gaps)",
-                            T::JOINTS.unwrap_or_default(),
-                            k + 1
-                        ),
-                    )
-                })
+    Ok((fixed_header, padded))
+}
+
+/// The per-joint values of the row at `line` from its per-joint `cells`: the cells up to the
+/// last non-empty one, each a number (filled from joint 1 without gaps).
+fn joint_values<T: Row>(cells: &[&str], line: u64) -> Result<Vec<f64>, TableError> {
+    let n = cells
+        .iter()
+        .rposition(|c| !c.is_empty())
+        .map_or(0, |p| p + 1);
+    cells[..n]
+        .iter()
+        .enumerate()
+        .map(|(k, c)| {
+            c.parse::<f64>().map_err(|_| {
+                at_line(
+                    line,
+                    format!(
+                        "row does not parse: {}_{} = {c:?} is not a number (per-joint \
+                         columns are filled from joint 1 without gaps)",
+                        T::JOINTS.unwrap_or_default(),
+                        k + 1
+                    ),
+                )
             })
-            .collect::<Result<Vec<f64>, _>>()?;
-        row.set_joints(values);
-        rows.push(row);
-    }
-    Ok(rows)
+        })
+        .collect()
 }
 
 /// Reads a table of `T` from `path` (errors name it).

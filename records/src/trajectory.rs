@@ -1,12 +1,12 @@
 //! Trajectories produced elsewhere (MATLAB, Octave, Python), as files, and their score as a row.
 //!
-//! **Input** ([`read`], with the input reader of crate `inputs`: a regular file, at most its
-//! kind's cap): a [`Trajectory`], from a MAT-file (`crate::trajectory_mat`: variables `t` and
-//! `y`) or ([`parse_csv`]) a CSV file with a header row naming the columns `t`, `theta_1 ..
-//! theta_n` and optionally `thetadot_1 .. thetadot_n` (in any order, each once; n the task's
-//! joint count; no other column), one row per sample: t in seconds from 0 to the task's
-//! duration, joint angles in rad, velocities in rad/s. `simulation::score_trajectory` says what
-//! is checked and how it is scored.
+//! **Input** ([`crate::trajectory_file::read`], with the input reader of crate `inputs`: a
+//! regular file, at most its kind's cap): a [`Trajectory`], from a MAT-file
+//! (`crate::trajectory_mat`: variables `t` and `y`) or ([`parse_csv`]) a CSV file with a header
+//! row naming the columns `t`, `theta_1 .. theta_n` and optionally `thetadot_1 .. thetadot_n`
+//! (in any order, each once; n the task's joint count; no other column), one row per sample: t
+//! in seconds from 0 to the task's duration, joint angles in rad, velocities in rad/s.
+//! `simulation::score_trajectory` says what is checked and how it is scored.
 //!
 //! **Output** ([`score_row`]): the score is a row of the `results/runs.csv` schema
 //! ([`RunRow`]): the run's metrics (drift, position error, margins, peaks) and score
@@ -17,7 +17,6 @@
 
 use crate::error::{TrajectoryFileError, TrajectoryProblem};
 use crate::runs::RunRow;
-use crate::trajectory_mat::{read_mat, Columns, MatError};
 use catalog::ids::SolverId;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -40,52 +39,6 @@ pub const TRAJECTORY_KIND: &str = "trajectory";
 /// The default solver id of a scored trajectory: [`TRAJECTORY_KIND`].
 pub fn trajectory_id() -> SolverId {
     SolverId::new(TRAJECTORY_KIND).expect("\"trajectory\" is a slug")
-}
-
-/// Why a trajectory file cannot be read.
-#[derive(Debug, thiserror::Error)]
-pub enum ReadError {
-    /// The file was refused or could not be read (a FIFO, a device, over
-    /// [`inputs::Kind::TrajectoryCsv`]'s cap).
-    #[error(transparent)]
-    Input(#[from] inputs::InputError),
-    /// The CSV file's problem (file, line, column).
-    #[error(transparent)]
-    Csv(#[from] TrajectoryFileError),
-    /// The MAT-file's problem.
-    #[error(transparent)]
-    Mat(#[from] MatError),
-    /// A column selection for a CSV file, whose header names its columns.
-    #[error("{}: a column selection ({columns}) applies to MAT-files; a CSV file names its columns in its header", path.display())]
-    ColumnsOfCsv {
-        /// The CSV file.
-        path: std::path::PathBuf,
-        /// The selection given.
-        columns: Columns,
-    },
-}
-
-/// Reads the trajectory of a `joints`-joint task from `path`: a MAT-file when the name ends in
-/// `.mat` (any case; `columns`: which columns of its `y` to read), a CSV file otherwise.
-pub fn read(
-    path: &Path,
-    joints: usize,
-    columns: Option<&Columns>,
-) -> Result<Trajectory, ReadError> {
-    let is_mat = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("mat"));
-    if is_mat {
-        Ok(read_mat(path, joints, columns)?)
-    } else if let Some(columns) = columns {
-        Err(ReadError::ColumnsOfCsv {
-            path: path.to_path_buf(),
-            columns: columns.clone(),
-        })
-    } else {
-        let bytes = inputs::read(path, inputs::Kind::TrajectoryCsv, inputs::Origin::Named)?;
-        Ok(parse_csv(&bytes, path)?)
-    }
 }
 
 /// Parses a trajectory CSV (module docs) read from `path`. Errors name the file and, where it
@@ -245,92 +198,9 @@ mod tests {
         assert!(e.contains("2 theta_i columns but 1 thetadot_i"), "{e}");
     }
 
-    fn fixture(name: &str) -> std::path::PathBuf {
-        Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("tests/fixtures")
-            .join(name)
-    }
-
-    /// Written by Octave 7.3: `t = [0; 0.5; 1]`, `y = [1 2 10 20; 3 4 30 40; 5 6 50 60]` and a
-    /// string `s` as `save -v7` (compressed); `t'` and `y(:, 1:2)` as `save -v6`.
-    #[test]
-    fn mat_files_of_octave_are_read_with_and_without_velocities() {
-        let tr = super::read(&fixture("trajectory-v7.mat"), 2, None).unwrap();
-        assert_eq!(tr.t, [0.0, 0.5, 1.0]);
-        assert_eq!(tr.theta, [vec![1.0, 2.0], vec![3.0, 4.0], vec![5.0, 6.0]]);
-        assert_eq!(
-            tr.thetadot,
-            Some(vec![vec![10.0, 20.0], vec![30.0, 40.0], vec![50.0, 60.0]])
-        );
-        let tr = super::read(&fixture("trajectory-v6.mat"), 2, None).unwrap();
-        assert_eq!(tr.t, [0.0, 0.5, 1.0]);
-        assert_eq!(tr.theta[2], [5.0, 6.0]);
-        assert!(tr.thetadot.is_none());
-    }
-
-    #[test]
-    fn mat_files_of_the_wrong_shape_are_refused() {
-        let e = super::read(&fixture("trajectory-v7.mat"), 3, None)
-            .unwrap_err()
-            .to_string();
-        assert!(
-            e.contains("y is 3 x 4; for 3 instants of a 3-joint task"),
-            "{e}"
-        );
-        let e = super::read(&fixture("trajectory-v6.mat"), 3, None)
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("y is 3 x 2"), "{e}");
-        let e = super::read(&fixture("missing.mat"), 2, None)
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("missing.mat"), "{e}");
-        // A name that does not end in .mat is read as CSV (here, one that is not there).
-        let csv = fixture("trajectory-v7.csv");
-        let e = super::read(&csv, 2, None).unwrap_err();
-        assert!(
-            matches!(
-                e,
-                ReadError::Input(inputs::InputError::Open {
-                    kind: inputs::Kind::TrajectoryCsv,
-                    ..
-                })
-            ),
-            "{e}"
-        );
-    }
-
-    /// The Octave fixture's y is 3 x 4: a selection reads theta from any of its columns, and
-    /// thetadot beside it or not at all.
-    #[test]
-    fn a_column_selection_reads_the_columns_it_names() {
-        let select = |spec: &str| spec.parse::<Columns>().unwrap();
-        let v7 = fixture("trajectory-v7.mat");
-        let tr = super::read(&v7, 2, Some(&select("theta=3:4"))).unwrap();
-        assert_eq!(
-            tr.theta,
-            [vec![10.0, 20.0], vec![30.0, 40.0], vec![50.0, 60.0]]
-        );
-        assert!(tr.thetadot.is_none());
-        let tr = super::read(&v7, 1, Some(&select("thetadot=4:4, theta=2:2"))).unwrap();
-        assert_eq!(tr.theta, [vec![2.0], vec![4.0], vec![6.0]]);
-        assert_eq!(tr.thetadot, Some(vec![vec![20.0], vec![40.0], vec![60.0]]));
-        // Past the last column, or not one theta column per joint.
-        for (joints, spec) in [(2, "theta=4:5"), (3, "theta=1:2")] {
-            let e = super::read(&v7, joints, Some(&select(spec))).unwrap_err();
-            assert!(
-                matches!(&e, ReadError::Mat(MatError::Selected { cols: 4, .. })),
-                "{spec}: {e}"
-            );
-        }
-        // A CSV names its columns: a selection for one is refused, not ignored.
-        let e = super::read(Path::new("x.csv"), 2, Some(&select("theta=1:2"))).unwrap_err();
-        assert!(matches!(e, ReadError::ColumnsOfCsv { .. }), "{e}");
-    }
-
     #[test]
     fn column_selections_are_parsed_strictly() {
-        use crate::trajectory_mat::ColumnsError as E;
+        use crate::trajectory_mat::{Columns, ColumnsError as E};
         let parsed = |s: &str| s.parse::<Columns>();
         assert_eq!(
             parsed("theta=1:6,thetadot=7:12").unwrap(),

@@ -3,23 +3,23 @@
 //! experiment or table no file knows, a gate baseline that cannot be read, a results directory
 //! the report cannot go beside.
 
-use records::error::{IoError, JournalError, RunsError, ShardError};
+use records::error::{IoError, RunsError};
+use records::journal::JournalError;
 use records::owned_dir::PathError;
 use records::results_dir::ResultsError;
+use records::shard::ShardError;
 use records::tracked_dir::TrackedError;
 use std::path::PathBuf;
 
 /// Why `reproduce` stopped (printed as `error: ...`, exit code 2).
 #[derive(Debug, thiserror::Error)]
 pub enum ReproduceError {
-    /// `--threads` beyond [`crate::project::MAX_THREADS_PER_CORE`] per core.
-    #[error(
-        "--threads {threads}: at most {max} ({} per core; this machine has {cores})",
-        crate::project::MAX_THREADS_PER_CORE
-    )]
+    /// `--threads` beyond `per_core` (`project::MAX_THREADS_PER_CORE`) per core.
+    #[error("--threads {threads}: at most {max} ({per_core} per core; this machine has {cores})")]
     TooManyThreads {
         threads: u64,
         max: usize,
+        per_core: usize,
         cores: usize,
     },
     /// `--paper` names no experiment file's paper.
@@ -103,7 +103,7 @@ pub enum ScoreError {
     )]
     NoTask(String),
     #[error(transparent)]
-    Trajectory(#[from] records::trajectory::ReadError),
+    Trajectory(#[from] records::trajectory_file::ReadError),
     /// (The scoring error boxed: it is large.)
     #[error("{}: {error} (task \"{task}\")", file.display())]
     Score {

@@ -105,56 +105,93 @@ pub fn run(global: &GlobalOptions, mode: Mode) -> Result<ExitCode, ReproduceErro
             list_runs(&project, &files, &o.selection, shard, o.shards)?;
             Ok(ExitCode::SUCCESS)
         }
-        Mode::Run(o) => {
-            let project = project(None)?;
-            let files = experiment_files(&project)?;
-            let jobs = selected(&files, &o.selection, None, &project)?;
-            let output = if o.dry_run {
-                Output::DryRun
-            } else {
-                Output::Results
-            };
-            let plan = Plan {
-                selection: &o.selection,
-                output,
-                explain: !o.skip_explain,
-                started,
-            };
-            run::run(&project, plan, &Described::new(&files), &jobs, git_rev)
-        }
-        Mode::Check(o) => {
-            let project = project(None)?;
-            let files = experiment_files(&project)?;
-            let all = Described::new(&files);
-            let jobs = selected(&files, &o.selection, None, &project)?;
-            let baseline = baseline::Baseline::read(
-                &project.root,
-                &project.results_dir,
-                o.baseline.as_deref(),
-                all.jobs(),
-            )?;
-            let plan = Plan {
-                selection: &o.selection,
-                output: Output::Gate(baseline),
-                explain: false,
-                started,
-            };
-            run::run(&project, plan, &all, &jobs, git_rev)
-        }
+        Mode::Run(o) => run_selection(&project(None)?, &o, started),
+        Mode::Check(o) => check_against_baseline(&project(None)?, &o, started),
         Mode::Shard(o) => {
             let shard = resolve_shard(&o.shard, o.shards, env)?;
-            let project = project(Some(shard))?;
-            let files = experiment_files(&project)?;
-            let jobs = selected(&files, &o.selection, Some(shard), &project)?;
-            let plan = Plan {
-                selection: &o.selection,
-                output: Output::Shard(shard),
-                explain: false,
-                started,
-            };
-            run::run(&project, plan, &Described::new(&files), &jobs, git_rev)
+            run_shard(&project(Some(shard))?, &o, shard, started)
         }
     }
+}
+
+/// `reproduce` (the default mode): the selected runs into `results/` (or nowhere with
+/// `--dry-run`), the explanation layer unless skipped, and the report; `started` is when the
+/// run's setup phase began.
+fn run_selection(
+    project: &Project,
+    o: &options::RunOptions,
+    started: std::time::Instant,
+) -> Result<ExitCode, ReproduceError> {
+    let files = experiment_files(project)?;
+    let jobs = selected(&files, &o.selection, None, project)?;
+    let output = if o.dry_run {
+        Output::DryRun
+    } else {
+        Output::Results
+    };
+    let plan = Plan {
+        selection: &o.selection,
+        output,
+        explain: !o.skip_explain,
+        started,
+    };
+    run::run(
+        project,
+        plan,
+        &Described::new(&files),
+        &jobs,
+        revision::REVISION,
+    )
+}
+
+/// `reproduce --check`: the selected runs against the committed rows or `--baseline` (the
+/// regression gate), nothing written.
+fn check_against_baseline(
+    project: &Project,
+    o: &options::CheckOptions,
+    started: std::time::Instant,
+) -> Result<ExitCode, ReproduceError> {
+    let files = experiment_files(project)?;
+    let all = Described::new(&files);
+    let jobs = selected(&files, &o.selection, None, project)?;
+    let baseline = baseline::Baseline::read(
+        &project.root,
+        &project.results_dir,
+        o.baseline.as_deref(),
+        all.jobs(),
+    )?;
+    let plan = Plan {
+        selection: &o.selection,
+        output: Output::Gate(baseline),
+        explain: false,
+        started,
+    };
+    run::run(project, plan, &all, &jobs, revision::REVISION)
+}
+
+/// `reproduce --shard K/N`: the runs of the selection that `shard` owns, into its own results
+/// directory (the `project`'s).
+fn run_shard(
+    project: &Project,
+    o: &options::ShardOptions,
+    shard: Shard,
+    started: std::time::Instant,
+) -> Result<ExitCode, ReproduceError> {
+    let files = experiment_files(project)?;
+    let jobs = selected(&files, &o.selection, Some(shard), project)?;
+    let plan = Plan {
+        selection: &o.selection,
+        output: Output::Shard(shard),
+        explain: false,
+        started,
+    };
+    run::run(
+        project,
+        plan,
+        &Described::new(&files),
+        &jobs,
+        revision::REVISION,
+    )
 }
 
 /// The runs of `files` that `selection` keeps and `shard` owns (all of them without a shard;

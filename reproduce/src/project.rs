@@ -91,6 +91,7 @@ fn check_threads(threads: u64) -> Result<(), ReproduceError> {
         return Err(ReproduceError::TooManyThreads {
             threads,
             max,
+            per_core: MAX_THREADS_PER_CORE,
             cores,
         });
     }

@@ -20,7 +20,8 @@ use records::error::{IoAction, IoError};
 use records::owned_dir::OwnedDir;
 use records::runs::{merge, write_atomic, RunRow};
 use records::trace::trace_csv;
-use records::trajectory::{read, score_row};
+use records::trajectory::score_row;
+use records::trajectory_file::read;
 use records::trajectory_mat::Columns;
 use simulation::row::run_row;
 use simulation::run::{check_job, RunRecord};
@@ -134,7 +135,7 @@ pub fn find_task(experiments_dir: &Path, id: &str) -> Result<Job, ScoreError> {
         .ok_or_else(|| ScoreError::NoTask(id.to_string()))
 }
 
-/// Scores the trajectory file `file` (CSV, or a MAT-file: `records::trajectory::read`) on
+/// Scores the trajectory file `file` (CSV, or a MAT-file: `records::trajectory_file::read`) on
 /// `task` (a MAT-file's `columns` when given) under the solver id `name` (a slug), and writes
 /// the row, trace and figure (SVG and PNG) under `out`: a directory of its own, never one this
 /// program seals ([`check_out`]), every path inside it checked (`records::owned_dir`: a

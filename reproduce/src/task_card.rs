@@ -135,8 +135,20 @@ fn level(level: Level) -> &'static str {
     }
 }
 
-/// One task's card.
+/// One task's card: the runs on it, the robot, the start, the path and the scheme.
 fn card(jobs: &[Job], n: &TaskNumbers, robot: &AnyRobot) -> Result<String, TaskCardError> {
+    let job = &jobs[0];
+    let mut s = runs_section(jobs, n)?;
+    s.push_str(&robot_section(job, n, robot));
+    s.push_str(&start_section(job, n));
+    s.push_str(&path_section(job, n)?);
+    s.push_str(&scheme_section(job, n)?);
+    Ok(s)
+}
+
+/// The card's title and what it is, then the task's paper, duration and every run on it (its
+/// solver's and integrator's settings), and how to score a trajectory of it.
+fn runs_section(jobs: &[Job], n: &TaskNumbers) -> Result<String, TaskCardError> {
     let job = &jobs[0];
     let mut s = String::new();
     let _ = writeln!(s, "# {}\n", job.task());
@@ -183,7 +195,12 @@ fn card(jobs: &[Job], n: &TaskNumbers, robot: &AnyRobot) -> Result<String, TaskC
             job.task()
         );
     }
+    Ok(s)
+}
 
+/// `## Robot`: its kinematics and limits.
+fn robot_section(job: &Job, n: &TaskNumbers, robot: &AnyRobot) -> String {
+    let mut s = String::new();
     let _ = writeln!(s, "\n## Robot `{}` ({} joints)\n", job.robot, n.joints);
     s.push_str(&kinematics(robot));
     s.push_str("\nLimits (rad, rad/s; inf: none):\n\n| joint | theta- | theta+ | thetadot- | thetadot+ |\n|---|---|---|---|---|\n");
@@ -198,8 +215,12 @@ fn card(jobs: &[Job], n: &TaskNumbers, robot: &AnyRobot) -> Result<String, TaskC
             n.thetadot_max[i]
         );
     }
+    s
+}
 
-    s.push_str("\n## Start\n\n");
+/// `## Start`: theta0, theta_ref, the task point and the Jacobian at theta0.
+fn start_section(job: &Job, n: &TaskNumbers) -> String {
+    let mut s = String::from("\n## Start\n\n");
     let _ = writeln!(s, "- theta0 = {} rad", vector(&job.theta0));
     let _ = writeln!(
         s,
@@ -208,7 +229,12 @@ fn card(jobs: &[Job], n: &TaskNumbers, robot: &AnyRobot) -> Result<String, TaskC
     );
     let _ = writeln!(s, "- f(theta0) = {} m", vector(&n.position0));
     let _ = writeln!(s, "- J(theta0) =\n\n```text\n{}```", matrix(&n.jacobian0));
+    s
+}
 
+/// `## Path`: its parameters and size, the formula, and r* and its derivatives at sampled t.
+fn path_section(job: &Job, n: &TaskNumbers) -> Result<String, TaskCardError> {
+    let mut s = String::new();
     let _ = writeln!(s, "\n## Path `{}`\n", job.path.name);
     let _ = writeln!(
         s,
@@ -239,7 +265,12 @@ fn card(jobs: &[Job], n: &TaskNumbers, robot: &AnyRobot) -> Result<String, TaskC
             vector(&p.rddot)
         );
     }
+    Ok(s)
+}
 
+/// `## Scheme`: its parameters and formula, and its QP at t = 0.
+fn scheme_section(job: &Job, n: &TaskNumbers) -> Result<String, TaskCardError> {
+    let mut s = String::new();
     let _ = writeln!(
         s,
         "\n## Scheme: {} ({} level)\n\nParameters: `{}`\n\n```text\n{}```\n",

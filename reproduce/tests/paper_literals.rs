@@ -21,7 +21,7 @@
 
 use crate::common;
 
-use common::{library_files, repo_root};
+use common::{lex, library_files, library_part, repo_root};
 use std::collections::BTreeSet;
 use std::path::Path;
 
@@ -43,106 +43,6 @@ const EXEMPT: &[(&str, &str)] = &[
          group by that name)",
     ),
 ];
-
-/// The library part of a source file: everything before its `#[cfg(test)]` test module.
-fn library_part(text: &str) -> &str {
-    let lines: Vec<&str> = text.lines().collect();
-    let mut offset = 0;
-    for (i, line) in lines.iter().enumerate() {
-        let next = lines.get(i + 1).map(|l| l.trim_start()).unwrap_or("");
-        if line.trim() == "#[cfg(test)]" && next.starts_with("mod ") {
-            return &text[..offset];
-        }
-        offset += line.len() + 1;
-    }
-    text
-}
-
-/// The string literals of Rust source `code`, with their 1-based lines: `"..."` (escapes kept
-/// as written), `r"..."` and `r#"..."#`; comments, char literals and lifetimes are skipped.
-fn literals(code: &str) -> Vec<(usize, String)> {
-    let c: Vec<char> = code.chars().collect();
-    let (mut i, mut line, mut out) = (0usize, 1usize, Vec::new());
-    let newlines = |s: &[char]| s.iter().filter(|&&ch| ch == '\n').count();
-    while i < c.len() {
-        match c[i] {
-            '\n' => {
-                line += 1;
-                i += 1;
-            }
-            '/' if c.get(i + 1) == Some(&'/') => {
-                while i < c.len() && c[i] != '\n' {
-                    i += 1;
-                }
-            }
-            '/' if c.get(i + 1) == Some(&'*') => {
-                let start = i;
-                i += 2;
-                while i + 1 < c.len() && !(c[i] == '*' && c[i + 1] == '/') {
-                    i += 1;
-                }
-                i = (i + 2).min(c.len());
-                line += newlines(&c[start..i]);
-            }
-            '\'' => {
-                // A char literal ('x', '\n', '\u{..}') or a lifetime ('a).
-                if c.get(i + 1) == Some(&'\\') {
-                    i += 2;
-                    while i < c.len() && c[i] != '\'' {
-                        i += 1;
-                    }
-                    i += 1;
-                } else if c.get(i + 2) == Some(&'\'') {
-                    i += 3;
-                } else {
-                    i += 1;
-                }
-            }
-            'r' if (c.get(i + 1) == Some(&'"') || c.get(i + 1) == Some(&'#'))
-                && (i == 0 || !(c[i - 1].is_alphanumeric() || c[i - 1] == '_')) =>
-            {
-                let mut j = i + 1;
-                let mut hashes = 0;
-                while c.get(j) == Some(&'#') {
-                    hashes += 1;
-                    j += 1;
-                }
-                if c.get(j) != Some(&'"') {
-                    i = j;
-                    continue;
-                }
-                let start = j + 1;
-                let mut k = start;
-                loop {
-                    if k >= c.len() {
-                        break;
-                    }
-                    if c[k] == '"' && (1..=hashes).all(|h| c.get(k + h) == Some(&'#')) {
-                        break;
-                    }
-                    k += 1;
-                }
-                let end = k.min(c.len());
-                out.push((line, c[start..end].iter().collect()));
-                line += newlines(&c[i..end]);
-                i = end + 1 + hashes;
-            }
-            '"' => {
-                let start = i + 1;
-                let mut k = start;
-                while k < c.len() && c[k] != '"' {
-                    k += if c[k] == '\\' { 2 } else { 1 };
-                }
-                let end = k.min(c.len());
-                out.push((line, c[start..end].iter().collect()));
-                line += newlines(&c[i..end]);
-                i = end + 1;
-            }
-            _ => i += 1,
-        }
-    }
-    out
-}
 
 /// The names the data declares.
 struct Names {
@@ -219,7 +119,7 @@ fn a_citation_is_not_a_use() {
 #[test]
 fn the_scanner_finds_literals_and_skips_comments() {
     let code = "let a = \"x\"; // \"y\"\n/* \"z\" */ let b = r#\"w\"#; let c = '\"'; fn f<'a>() {}\nlet d = \"e\\\"f\";\n";
-    let found: Vec<(usize, String)> = literals(code);
+    let found: Vec<(usize, String)> = lex(code).literals;
     assert_eq!(
         found,
         [
@@ -229,7 +129,7 @@ fn the_scanner_finds_literals_and_skips_comments() {
         ]
     );
     let text = "fn a() { \"lib\" }\n#[cfg(test)]\nmod tests { \"test\" }\n";
-    assert_eq!(literals(library_part(text)), [(1, "lib".to_string())]);
+    assert_eq!(lex(library_part(text)).literals, [(1, "lib".to_string())]);
 }
 
 #[test]
@@ -257,7 +157,7 @@ fn library_code_names_no_paper_experiment_or_variant() {
     let mut sites = Vec::new();
     for f in files.iter().filter(|f| !EXEMPT.iter().any(|(e, _)| e == f)) {
         let text = std::fs::read_to_string(root.join(f)).expect("a readable source file");
-        for (line, lit) in literals(library_part(&text)) {
+        for (line, lit) in lex(library_part(&text)).literals {
             let hit = names
                 .inside
                 .iter()

@@ -38,6 +38,7 @@ use std::sync::{Arc, OnceLock};
 use nalgebra::{SMatrix, SVector, Vector3};
 
 use crate::dh::{DhChain, DhParam, ModifiedDhParam};
+use crate::joint_counts::JOINT_COUNTS;
 use crate::robot_file::{JointSpec, RobotFileError, RobotSpec};
 use crate::{JointLimits, Robot};
 
@@ -183,14 +184,10 @@ pub trait DataVisitor {
     fn visit<const N: usize>(self, robot: Arc<DataRobot<N>>) -> Self::Output;
 }
 
-/// Declares [`JOINT_COUNTS`] and [`DataModel`] with one variant per count: the one list of the
-/// joint counts a robot file may have.
+/// Declares [`DataModel`] with one variant per joint count of
+/// `crate::joint_counts::with_joint_counts!`.
 macro_rules! data_models {
     ($($variant:ident = $n:literal),* $(,)?) => {
-        /// The joint counts a robot file may have: those the simulation is instantiated for
-        /// (Katana 5, Jaco2 6, Panda 7, and the registry's n-link sizes).
-        pub const JOINT_COUNTS: &[usize] = &[$($n),*];
-
         /// A data robot of any joint count in [`JOINT_COUNTS`].
         #[derive(Clone, Debug, PartialEq)]
         pub enum DataModel {
@@ -244,16 +241,7 @@ macro_rules! data_models {
     };
 }
 
-data_models!(
-    J3 = 3,
-    J5 = 5,
-    J6 = 6,
-    J7 = 7,
-    J10 = 10,
-    J15 = 15,
-    J20 = 20,
-    J30 = 30
-);
+crate::joint_counts::with_joint_counts!(data_models);
 
 /// The built-in robot files, `(file name, text)`, sorted by file name: every `robots/data/*.toml`
 /// at build time (`build.rs`).

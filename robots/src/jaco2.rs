@@ -22,6 +22,10 @@
 //! - `jaco2` ([`Jaco2::kinova`], Kinova's model): D6 = 0.16, task point = origin of frame 6,
 //!   no tilt.
 //!
+//! Dynamics: every variant carries the physical arm's rigid chain ([`jaco2_rigid_chain`], the
+//! inertial table of [`crate::jaco2_dynamics`] on the D6 = 0.16 chain) and implements
+//! [`Dynamics`] on it.
+//!
 //! Task point `f(theta) = B T_6(theta) p_tip`; its Jacobian is the geometric
 //! `J_j = z_{j-1} x (f - o_{j-1})` and `Jdot` its analytic time derivative
 //! (see [`crate::geometric_jacobian`]). The fixed tilt `B` is part of the chain's base frame,
@@ -32,8 +36,9 @@ use std::f64::consts::PI;
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 
 use crate::dh::{DhChain, DhParam, Frame};
+use crate::jaco2_dynamics::{jaco2_bodies, G0};
 use crate::rigid_body::RigidChain;
-use crate::{JointLimits, Robot};
+use crate::{Dynamics, JointLimits, Robot};
 
 /// Model name of the papers' Jaco2 with pen tip and base tilt.
 pub const JACO2_PEN: &str = "jaco2-pen";
@@ -181,7 +186,7 @@ impl Jaco2 {
                 .with_base(Frame::rotation(rot_x(TILT_X) * rot_y(TILT_Y))),
             tip: Vector3::from(PEN_TIP),
             limits: papers_limits(),
-            dynamics: crate::jaco2_dynamics::jaco2_rigid_chain(),
+            dynamics: jaco2_rigid_chain(),
         }
     }
 
@@ -212,7 +217,7 @@ impl Jaco2 {
                 thetadot_min: -vmax,
                 thetadot_max: vmax,
             },
-            dynamics: crate::jaco2_dynamics::jaco2_rigid_chain(),
+            dynamics: jaco2_rigid_chain(),
         }
     }
 
@@ -270,5 +275,36 @@ impl Robot<6> for Jaco2 {
             .map(|k| frames.origin(k))
             .chain(std::iter::once(frames.frame(6).transform_point(&self.tip)))
             .collect()
+    }
+}
+
+/// The physical Jaco2 as a rigid chain: D6 = 0.16, untilted base, gravity (0, 0, -9.81).
+pub fn jaco2_rigid_chain() -> RigidChain<6> {
+    RigidChain {
+        chain: DhChain::new(jaco2_dh(D6_KINOVA)),
+        bodies: jaco2_bodies(),
+        gravity: Vector3::new(0.0, 0.0, -G0),
+    }
+}
+
+impl Dynamics<6> for Jaco2 {
+    fn inertia(&self, theta: &SVector<f64, 6>) -> SMatrix<f64, 6, 6> {
+        self.rigid_chain().inertia(theta)
+    }
+
+    fn coriolis(&self, theta: &SVector<f64, 6>, thetadot: &SVector<f64, 6>) -> SVector<f64, 6> {
+        self.rigid_chain().coriolis(theta, thetadot)
+    }
+
+    fn coriolis_matrix(
+        &self,
+        theta: &SVector<f64, 6>,
+        thetadot: &SVector<f64, 6>,
+    ) -> SMatrix<f64, 6, 6> {
+        self.rigid_chain().coriolis_matrix(theta, thetadot)
+    }
+
+    fn gravity(&self, theta: &SVector<f64, 6>) -> SVector<f64, 6> {
+        self.rigid_chain().gravity_torques(theta)
     }
 }

@@ -1,4 +1,6 @@
-//! Rigid-body dynamics of the Jaco2 (zhang2018's torque-level criterion).
+//! The inertial parameters of the Jaco2's links, for its rigid-body dynamics (zhang2018's
+//! torque-level criterion; [`crate::jaco2::jaco2_rigid_chain`] builds the arm's rigid chain from
+//! them, and [`crate::jaco2::Jaco2`] implements [`crate::Dynamics`] on it).
 //!
 //! Inertial parameters: Kinova's URDF cylinder approximations (`kinova_inertial.xacro`),
 //! re-expressed in the DH frames of the **D6 = 0.16** chain (`docs/robots.md`). Because
@@ -13,12 +15,9 @@
 //!
 //! Known deviation: the papers' group did not publish its Jaco2 inertial parameters.
 
-use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
+use nalgebra::{Matrix3, Vector3};
 
-use crate::dh::DhChain;
-use crate::jaco2::{jaco2_dh, Jaco2, D6_KINOVA};
-use crate::rigid_body::{RigidBody, RigidChain};
-use crate::Dynamics;
+use crate::rigid_body::RigidBody;
 
 /// Standard gravity (m/s^2); gravity points along -z of DH frame 0.
 pub const G0: f64 = 9.81;
@@ -55,35 +54,4 @@ pub fn jaco2_bodies() -> [RigidBody; 6] {
             Matrix3::from_diagonal(&Vector3::new(3.45e-4, 3.45e-4, 5.82e-4)),
         ),
     ]
-}
-
-/// The physical Jaco2 as a rigid chain: D6 = 0.16, untilted base, gravity (0, 0, -9.81).
-pub fn jaco2_rigid_chain() -> RigidChain<6> {
-    RigidChain {
-        chain: DhChain::new(jaco2_dh(D6_KINOVA)),
-        bodies: jaco2_bodies(),
-        gravity: Vector3::new(0.0, 0.0, -G0),
-    }
-}
-
-impl Dynamics<6> for Jaco2 {
-    fn inertia(&self, theta: &SVector<f64, 6>) -> SMatrix<f64, 6, 6> {
-        self.rigid_chain().inertia(theta)
-    }
-
-    fn coriolis(&self, theta: &SVector<f64, 6>, thetadot: &SVector<f64, 6>) -> SVector<f64, 6> {
-        self.rigid_chain().coriolis(theta, thetadot)
-    }
-
-    fn coriolis_matrix(
-        &self,
-        theta: &SVector<f64, 6>,
-        thetadot: &SVector<f64, 6>,
-    ) -> SMatrix<f64, 6, 6> {
-        self.rigid_chain().coriolis_matrix(theta, thetadot)
-    }
-
-    fn gravity(&self, theta: &SVector<f64, 6>) -> SVector<f64, 6> {
-        self.rigid_chain().gravity_torques(theta)
-    }
 }

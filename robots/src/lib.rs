@@ -22,11 +22,12 @@
 //!
 //! Modules: [`dh`] (classical DH forward kinematics), [`geometric_jacobian`] (point and body
 //! Jacobians and their time derivatives), [`rigid_body`] (recursive Newton–Euler, inertia and
-//! Coriolis matrices), [`jaco2`] (Jaco2 kinematics), [`jaco2_dynamics`] (Jaco2 inertial table and
-//! [`Dynamics`] implementation), [`katana`] (Katana 6M180), [`panda`] (Franka Emika Panda),
-//! [`nlink`] (the n-link family), [`robot_file`] (the robot file format and its validation),
-//! [`data_robot`] (the model of a robot file, the built-in files), [`registry`] (the one map from
-//! the robot names of experiment files to models).
+//! Coriolis matrices), [`jaco2`] (Jaco2 kinematics and its [`Dynamics`] implementation),
+//! [`jaco2_dynamics`] (the Jaco2's inertial table), [`katana`] (Katana 6M180), [`panda`] (Franka
+//! Emika Panda), [`nlink`] (the n-link family), [`robot_file`] (the robot file format and its
+//! validation), [`data_robot`] (the model of a robot file, the built-in files), [`joint_counts`]
+//! (the joint counts a robot file may have), [`registry`] (the one map from the robot names of
+//! experiment files to models).
 
 #![deny(missing_docs)]
 
@@ -37,6 +38,7 @@ pub mod dh;
 pub mod geometric_jacobian;
 pub mod jaco2;
 pub mod jaco2_dynamics;
+pub mod joint_counts;
 pub mod katana;
 pub mod limited;
 pub mod nlink;

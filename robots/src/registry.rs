@@ -12,7 +12,7 @@
 //!
 //! Robots declared by robot files (`robots/data/*.toml`, embedded in the library; see
 //! [`crate::robot_file`]) are registered by their file's name, e.g. `puma560`. A robot file may
-//! only have one of the instantiated joint counts ([`crate::data_robot::JOINT_COUNTS`], checked
+//! only have one of the instantiated joint counts ([`crate::joint_counts::JOINT_COUNTS`], checked
 //! against this list by a test), so a data robot adds no N. Where an arm exists both in Rust and as
 //! data (the Jaco2 variants, the Panda, the n-link arms) the Rust model is the registered one: the
 //! Jaco2 carries dynamics, and robots' `tests/data_robots.rs` shows the data twins equal.
@@ -335,7 +335,7 @@ mod tests {
 
     #[test]
     fn data_robots_have_instantiated_joint_counts() {
-        for n in crate::data_robot::JOINT_COUNTS {
+        for n in crate::joint_counts::JOINT_COUNTS {
             assert!([5, 6, 7].contains(n) || NLINK_SIZES.contains(n), "{n}");
         }
     }

@@ -53,7 +53,7 @@
 //! missing required fields, non-finite numbers (TOML's `nan` and `inf`; an unlimited bound is
 //! written by omitting it), `theta_min >= theta_max`, `velocity_max <= 0`, `velocity_min >= 0`,
 //! `acceleration_max <= 0`, a joint count the simulation is not built for
-//! ([`crate::data_robot::JOINT_COUNTS`]), a name that is not a slug, a flange row missing from a
+//! ([`crate::joint_counts::JOINT_COUNTS`]), a name that is not a slug, a flange row missing from a
 //! modified table or given with a standard one, a `stated_pose` of the wrong length, a base with
 //! both `rotation` and `matrix` or a matrix that is not a rotation, and link inertias with a
 //! non-positive mass or a tensor that is not symmetric positive semi-definite. Files above
@@ -68,8 +68,8 @@ use std::path::Path;
 use nalgebra::{Matrix3, Vector3};
 use serde::Deserialize;
 
-use crate::data_robot::JOINT_COUNTS;
 use crate::dh::Frame;
+use crate::joint_counts::JOINT_COUNTS;
 
 /// Largest robot file accepted (bytes): 1 MiB.
 pub const MAX_FILE_BYTES: u64 = 1 << 20;

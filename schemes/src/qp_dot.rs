@@ -18,12 +18,13 @@
 //! of the two one-sided slopes — schemes with such kinks (jia2019, zhong2021) override
 //! `build_dot` analytically.
 //!
-//! Nothing here allocates after [`QpDotScratch::new`].
+//! This module holds the arithmetic on QPs (the quotient and its scratch space); the step and
+//! the difference along a scheme's motion are the scheme's ([`crate::scheme::default_step`],
+//! [`crate::scheme::central_difference`]), the default of `Scheme::build_dot`. Nothing here
+//! allocates after [`QpDotScratch::new`].
 
 use crate::qp::{Qp, QpDims};
-use nalgebra::{Dim, Matrix, RawStorage, RawStorageMut, SVector};
-
-use crate::scheme::{Level, Scheme};
+use nalgebra::{Dim, Matrix, RawStorage, RawStorageMut};
 
 /// Largest change of t and of any joint coordinate in a central-difference step (~eps^(1/3)).
 pub const FD_STEP: f64 = 6e-6;
@@ -46,48 +47,6 @@ impl QpDotScratch {
             minus: Qp::zeros(dims),
         }
     }
-}
-
-/// The default central-difference step for a state (see the module docs).
-pub fn default_step<const N: usize>(
-    level: Level,
-    thetadot: &SVector<f64, N>,
-    thetaddot: &SVector<f64, N>,
-) -> f64 {
-    let mut scale = 1.0_f64.max(thetadot.amax());
-    if level == Level::Acceleration {
-        scale = scale.max(thetaddot.amax());
-    }
-    if !scale.is_finite() {
-        return FD_STEP;
-    }
-    FD_STEP / scale
-}
-
-/// dQP/dt by central difference with step `h` along the motion (see the module docs).
-#[allow(clippy::too_many_arguments)]
-pub fn central_difference<const N: usize, S: Scheme<N> + ?Sized>(
-    scheme: &S,
-    t: f64,
-    theta: &SVector<f64, N>,
-    thetadot: &SVector<f64, N>,
-    thetaddot: &SVector<f64, N>,
-    h: f64,
-    qp_dot: &mut Qp,
-    scratch: &mut QpDotScratch,
-) {
-    let accel = scheme.level() == Level::Acceleration;
-    for (sign, qp) in [(1.0, &mut scratch.plus), (-1.0, &mut scratch.minus)] {
-        let s = sign * h;
-        let th = theta + thetadot * s;
-        let thd = if accel {
-            thetadot + thetaddot * s
-        } else {
-            *thetadot
-        };
-        scheme.build(t + s, &th, &thd, qp);
-    }
-    difference_quotient(&scratch.plus, &scratch.minus, 2.0 * h, qp_dot);
 }
 
 /// out = (plus - minus) / denom entrywise over every field, with the infinite-entry rule of

@@ -11,12 +11,14 @@
 //! dQP/dt = d/ds QP(t + s, theta + s thetadot, thetadot + s thetaddot) at s = 0
 //! ```
 //!
-//! (at the velocity level the thetadot argument of `build` is unused, so only theta moves).
+//! (at the velocity level the thetadot argument of `build` is unused, so only theta moves). Its
+//! default is the central difference of [`crate::qp_dot`] along that motion
+//! ([`central_difference`] with the step [`default_step`]).
 
 use crate::qp::{Qp, QpDims};
 use nalgebra::SVector;
 
-use crate::qp_dot::{self, QpDotScratch};
+use crate::qp_dot::{difference_quotient, QpDotScratch, FD_STEP};
 
 /// Whether the scheme resolves redundancy at the velocity or the acceleration level.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -44,8 +46,8 @@ pub trait Scheme<const N: usize>: Send + Sync {
     /// the acceleration level thetadot moves at `thetaddot` (ignored at the velocity level).
     /// Entries that are infinite (absent bounds, varpi = +inf) get derivative 0.
     ///
-    /// Default: central difference [`qp_dot::central_difference`] with the step
-    /// [`qp_dot::default_step`]; schemes override it with analytic derivatives where cheap.
+    /// Default: central difference [`central_difference`] with the step [`default_step`];
+    /// schemes override it with analytic derivatives where cheap.
     /// Does not allocate (`scratch` comes from [`Scheme::new_dot_scratch`]).
     fn build_dot(
         &self,
@@ -56,8 +58,8 @@ pub trait Scheme<const N: usize>: Send + Sync {
         qp_dot: &mut Qp,
         scratch: &mut QpDotScratch,
     ) {
-        let h = qp_dot::default_step(self.level(), thetadot, thetaddot);
-        qp_dot::central_difference(self, t, theta, thetadot, thetaddot, h, qp_dot, scratch);
+        let h = default_step(self.level(), thetadot, thetaddot);
+        central_difference(self, t, theta, thetadot, thetaddot, h, qp_dot, scratch);
     }
 
     /// Joint torque tau = H(theta) thetaddot + c(theta, thetadot) + g(theta) for schemes that
@@ -80,4 +82,46 @@ pub trait Scheme<const N: usize>: Send + Sync {
     fn new_dot_scratch(&self) -> QpDotScratch {
         QpDotScratch::new(self.dims())
     }
+}
+
+/// The default central-difference step for a state (see [`crate::qp_dot`]).
+pub fn default_step<const N: usize>(
+    level: Level,
+    thetadot: &SVector<f64, N>,
+    thetaddot: &SVector<f64, N>,
+) -> f64 {
+    let mut scale = 1.0_f64.max(thetadot.amax());
+    if level == Level::Acceleration {
+        scale = scale.max(thetaddot.amax());
+    }
+    if !scale.is_finite() {
+        return FD_STEP;
+    }
+    FD_STEP / scale
+}
+
+/// dQP/dt by central difference with step `h` along the motion (see [`crate::qp_dot`]).
+#[allow(clippy::too_many_arguments)]
+pub fn central_difference<const N: usize, S: Scheme<N> + ?Sized>(
+    scheme: &S,
+    t: f64,
+    theta: &SVector<f64, N>,
+    thetadot: &SVector<f64, N>,
+    thetaddot: &SVector<f64, N>,
+    h: f64,
+    qp_dot: &mut Qp,
+    scratch: &mut QpDotScratch,
+) {
+    let accel = scheme.level() == Level::Acceleration;
+    for (sign, qp) in [(1.0, &mut scratch.plus), (-1.0, &mut scratch.minus)] {
+        let s = sign * h;
+        let th = theta + thetadot * s;
+        let thd = if accel {
+            thetadot + thetaddot * s
+        } else {
+            *thetadot
+        };
+        scheme.build(t + s, &th, &thd, qp);
+    }
+    difference_quotient(&scratch.plus, &scratch.minus, 2.0 * h, qp_dot);
 }

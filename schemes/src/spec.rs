@@ -405,19 +405,7 @@ impl SchemeSpec {
                 lambda,
                 mu,
                 ..
-            } => {
-                check(s, "mu", mu, mu > 0.0, "finite and > 0")?;
-                check(s, "phi", phi, phi >= 0.0, "finite and >= 0")?;
-                check(
-                    s,
-                    "tau",
-                    tau,
-                    tau >= 0.0 && phi + tau <= 1.0,
-                    "finite, >= 0, phi + tau <= 1",
-                )?;
-                check(s, "kappa", kappa, kappa > 0.0, "finite and > 0")?;
-                check(s, "lambda", lambda, lambda > 0.0, "finite and > 0")
-            }
+            } => check_vltco(s, mu, phi, tau, kappa, lambda),
             SchemeSpec::Cmco {
                 eta,
                 delta,
@@ -425,32 +413,14 @@ impl SchemeSpec {
                 lambda,
                 tau,
                 ..
-            } => {
-                check(s, "tau", tau, tau > 0.0, "finite and > 0")?;
-                check(s, "eta", eta, eta >= 0.0, "finite and >= 0")?;
-                check(
-                    s,
-                    "delta",
-                    delta,
-                    delta >= 0.0 && eta + delta <= 1.0,
-                    "finite, >= 0, eta + delta <= 1",
-                )?;
-                check(s, "upsilon", upsilon, upsilon > 0.0, "finite and > 0")?;
-                check(s, "lambda", lambda, lambda > 0.0, "finite and > 0")
-            }
+            } => check_cmco(s, tau, eta, delta, upsilon, lambda),
             SchemeSpec::HlJdf {
                 zeta,
                 alpha,
                 beta,
                 rho_v,
                 rho_p,
-            } => {
-                check(s, "zeta", zeta, (0.0..=1.0).contains(&zeta), "in [0, 1]")?;
-                check(s, "alpha", alpha, alpha > 0.0, "finite and > 0")?;
-                check(s, "beta", beta, beta > 0.0, "finite and > 0")?;
-                check(s, "rho_v", rho_v, rho_v > 0.0, "finite and > 0")?;
-                check(s, "rho_p", rho_p, rho_p > 0.0, "finite and > 0")
-            }
+            } => check_hl_jdf(s, zeta, alpha, beta, rho_v, rho_p),
             SchemeSpec::FiniteTimeRmp {
                 beta_theta,
                 k_p,
@@ -463,13 +433,7 @@ impl SchemeSpec {
                     beta_theta > 0.0,
                     "finite and > 0",
                 )?;
-                check(
-                    s,
-                    "k_p",
-                    k_p,
-                    k_p >= 0.0,
-                    "finite and >= 0 (0: no position feedback)",
-                )?;
+                check_position_gain(s, k_p)?;
                 check(
                     s,
                     "alpha",
@@ -486,13 +450,7 @@ impl SchemeSpec {
                     mu >= 0.0,
                     "finite and >= 0 (0: no repetitive term)",
                 )?;
-                check(
-                    s,
-                    "k_p",
-                    k_p,
-                    k_p >= 0.0,
-                    "finite and >= 0 (0: no position feedback)",
-                )
+                check_position_gain(s, k_p)
             }
             SchemeSpec::VelocityRmp {
                 weight,
@@ -501,57 +459,144 @@ impl SchemeSpec {
                 alpha,
                 k_p,
                 upsilon,
-            } => {
-                check(s, "weight", weight, weight > 0.0, "finite and > 0")?;
-                check(
-                    s,
-                    "lambda",
-                    lambda,
-                    lambda >= 0.0,
-                    "finite and >= 0 (0: no repetitive term)",
-                )?;
-                match (repetitive, alpha) {
-                    (RepetitiveForm::SignPower, Some(a)) => {
-                        check(s, "alpha", a, a > 0.0 && a <= 1.0, "in (0, 1]")?
-                    }
-                    (RepetitiveForm::SignPower, None) => {
-                        return Err(SchemeError::InvalidParameter {
-                            scheme: s,
-                            field: "alpha",
-                            value: f64::NAN,
-                            requirement: "given, in (0, 1], for repetitive = \"sign-power\"",
-                        })
-                    }
-                    (RepetitiveForm::Linear, Some(a)) => {
-                        return Err(SchemeError::InvalidParameter {
-                            scheme: s,
-                            field: "alpha",
-                            value: a,
-                            requirement: "absent for repetitive = \"linear\" (it has no exponent)",
-                        })
-                    }
-                    (RepetitiveForm::Linear, None) => {}
-                }
-                check(
-                    s,
-                    "k_p",
-                    k_p,
-                    k_p >= 0.0,
-                    "finite and >= 0 (0: no position feedback)",
-                )?;
-                if let Some(u) = upsilon {
-                    check(
-                        s,
-                        "upsilon",
-                        u,
-                        u > 0.0,
-                        "finite and > 0 (absent: no bounds)",
-                    )?;
-                }
-                Ok(())
-            }
+            } => check_velocity_rmp(s, weight, repetitive, lambda, alpha, k_p, upsilon),
         }
     }
+}
+
+/// VLTCO's ranges (scheme kind `s`): mu, kappa and lambda positive; the weights phi and tau of
+/// jia2019's criterion non-negative with phi + tau <= 1.
+fn check_vltco(
+    s: &'static str,
+    mu: f64,
+    phi: f64,
+    tau: f64,
+    kappa: f64,
+    lambda: f64,
+) -> Result<(), SchemeError> {
+    check(s, "mu", mu, mu > 0.0, "finite and > 0")?;
+    check(s, "phi", phi, phi >= 0.0, "finite and >= 0")?;
+    check(
+        s,
+        "tau",
+        tau,
+        tau >= 0.0 && phi + tau <= 1.0,
+        "finite, >= 0, phi + tau <= 1",
+    )?;
+    check(s, "kappa", kappa, kappa > 0.0, "finite and > 0")?;
+    check(s, "lambda", lambda, lambda > 0.0, "finite and > 0")
+}
+
+/// CMCO's ranges (scheme kind `s`): tau, upsilon and lambda positive; the weights eta and delta
+/// of zhong2021's criterion non-negative with eta + delta <= 1.
+fn check_cmco(
+    s: &'static str,
+    tau: f64,
+    eta: f64,
+    delta: f64,
+    upsilon: f64,
+    lambda: f64,
+) -> Result<(), SchemeError> {
+    check(s, "tau", tau, tau > 0.0, "finite and > 0")?;
+    check(s, "eta", eta, eta >= 0.0, "finite and >= 0")?;
+    check(
+        s,
+        "delta",
+        delta,
+        delta >= 0.0 && eta + delta <= 1.0,
+        "finite, >= 0, eta + delta <= 1",
+    )?;
+    check(s, "upsilon", upsilon, upsilon > 0.0, "finite and > 0")?;
+    check(s, "lambda", lambda, lambda > 0.0, "finite and > 0")
+}
+
+/// HL-JDF's ranges (scheme kind `s`): the blend zeta in [0, 1], the gains alpha and beta and the
+/// limit margins rho_v and rho_p positive.
+fn check_hl_jdf(
+    s: &'static str,
+    zeta: f64,
+    alpha: f64,
+    beta: f64,
+    rho_v: f64,
+    rho_p: f64,
+) -> Result<(), SchemeError> {
+    check(s, "zeta", zeta, (0.0..=1.0).contains(&zeta), "in [0, 1]")?;
+    check(s, "alpha", alpha, alpha > 0.0, "finite and > 0")?;
+    check(s, "beta", beta, beta > 0.0, "finite and > 0")?;
+    check(s, "rho_v", rho_v, rho_v > 0.0, "finite and > 0")?;
+    check(s, "rho_p", rho_p, rho_p > 0.0, "finite and > 0")
+}
+
+/// The velocity-level RMP's ranges (scheme kind `s`): a positive weight, a non-negative
+/// repetitive gain lambda with the exponent its form needs ([`check_repetitive_exponent`]), a
+/// non-negative position gain, and positive bounds upsilon where given.
+fn check_velocity_rmp(
+    s: &'static str,
+    weight: f64,
+    repetitive: RepetitiveForm,
+    lambda: f64,
+    alpha: Option<f64>,
+    k_p: f64,
+    upsilon: Option<f64>,
+) -> Result<(), SchemeError> {
+    check(s, "weight", weight, weight > 0.0, "finite and > 0")?;
+    check(
+        s,
+        "lambda",
+        lambda,
+        lambda >= 0.0,
+        "finite and >= 0 (0: no repetitive term)",
+    )?;
+    check_repetitive_exponent(s, repetitive, alpha)?;
+    check_position_gain(s, k_p)?;
+    if let Some(u) = upsilon {
+        check(
+            s,
+            "upsilon",
+            u,
+            u > 0.0,
+            "finite and > 0 (absent: no bounds)",
+        )?;
+    }
+    Ok(())
+}
+
+/// The exponent alpha of a repetitive term of form `repetitive` (scheme kind `s`): given, in
+/// (0, 1], for the sign-power form; absent for the linear form, which has none.
+fn check_repetitive_exponent(
+    s: &'static str,
+    repetitive: RepetitiveForm,
+    alpha: Option<f64>,
+) -> Result<(), SchemeError> {
+    match (repetitive, alpha) {
+        (RepetitiveForm::SignPower, Some(a)) => {
+            check(s, "alpha", a, a > 0.0 && a <= 1.0, "in (0, 1]")
+        }
+        (RepetitiveForm::SignPower, None) => Err(SchemeError::InvalidParameter {
+            scheme: s,
+            field: "alpha",
+            value: f64::NAN,
+            requirement: "given, in (0, 1], for repetitive = \"sign-power\"",
+        }),
+        (RepetitiveForm::Linear, Some(a)) => Err(SchemeError::InvalidParameter {
+            scheme: s,
+            field: "alpha",
+            value: a,
+            requirement: "absent for repetitive = \"linear\" (it has no exponent)",
+        }),
+        (RepetitiveForm::Linear, None) => Ok(()),
+    }
+}
+
+/// The position-feedback gain k_p of an RMP scheme (kind `s`): finite and >= 0 (0: none).
+fn check_position_gain(s: &'static str, k_p: f64) -> Result<(), SchemeError> {
+    check(
+        s,
+        "k_p",
+        k_p,
+        k_p >= 0.0,
+        "finite and >= 0 (0: no position feedback)",
+    )
 }
 
 /// Builds the scheme a spec names, on `robot` following `path`.

@@ -13,7 +13,7 @@ use robots::{Dynamics, JointLimits, Robot};
 use schemes::joint_limits::{merged_bounds, piecewise_bounds};
 use schemes::paths::Path;
 use schemes::qp_dot::{self, QpDotScratch};
-use schemes::scheme::{Level, Scheme};
+use schemes::scheme::{central_difference, default_step, Level, Scheme};
 use schemes::spec::{build_scheme, RmpReading, SchemeError, SchemeSpec};
 use schemes::tri_criteria::TriCriteria;
 use schemes::velocity_rmp::{finite_time_c, VelocityRmp};
@@ -556,8 +556,8 @@ fn build_dot_matches_a_higher_order_difference() {
             }
             // The default central difference agrees with the analytic overrides too.
             let mut fd = s.new_qp();
-            let h = qp_dot::default_step(s.level(), &thd, &thdd);
-            qp_dot::central_difference(&*s, t, &th, &thd, &thdd, h, &mut fd, &mut scratch);
+            let h = default_step(s.level(), &thd, &thdd);
+            central_difference(&*s, t, &th, &thd, &thdd, h, &mut fd, &mut scratch);
             let d = fd.max_rel_diff(&reference);
             assert!(
                 d < 1e-6,
@@ -581,7 +581,7 @@ fn infinite_entries_have_zero_derivative() {
     let (th, thd, thdd) = state();
     let mut fd = s.new_qp();
     let mut scratch = QpDotScratch::new(s.dims());
-    qp_dot::central_difference(&*s, 1.0, &th, &thd, &thdd, 1e-5, &mut fd, &mut scratch);
+    central_difference(&*s, 1.0, &th, &thd, &thdd, 1e-5, &mut fd, &mut scratch);
     assert_eq!(fd.h[3 * N], 0.0);
     assert!(fd.lower.iter().chain(fd.upper.iter()).all(|&v| v == 0.0));
     assert!(fd.h.iter().all(|v| v.is_finite()));

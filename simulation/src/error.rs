@@ -23,7 +23,7 @@ pub enum RunError {
         /// The exact solver's error.
         error: ExactError,
     },
-    /// The observer stopped a diverging run (see `simulate::DIVERGENCE_FACTOR`).
+    /// The observer stopped a diverging run (see `observer::DIVERGENCE_FACTOR`).
     #[error("stopped at t = {t:.6}: {reason}")]
     Diverged {
         /// The time of the step it stopped at (s).

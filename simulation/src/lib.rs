@@ -4,8 +4,9 @@
 //! registry) describes runs (`catalog::experiment::Job`): a robot, a path and a scheme (crate
 //! `schemes`), and a solver: the exact optimum in the loop or one of the papers' networks (crate
 //! `solvers`). [`run::run_job`] builds the run's parts, couples arm and solver into one ODE
-//! ([`coupled`]), integrates it ([`simulate`]), observes every accepted step ([`metrics`]:
-//! drift, position error, margins, the score against the exact optimum) and returns a
+//! ([`coupled`]), integrates it ([`simulate`]; a numerical method's fixed-step loop:
+//! [`numerical`]), observes every accepted step ([`observer`] into [`metrics`]: drift, position
+//! error, margins, the score against the exact optimum) and returns a
 //! [`run::RunRecord`]; [`runner`] runs many in parallel. [`run::check_job`] builds a run's parts
 //! without integrating: loading an experiment file takes it, to reject what a run would
 //! reject. Why a run failed: [`error`]. A record as a row of `results/runs.csv`: [`row`];
@@ -20,6 +21,7 @@ pub mod coupled;
 pub mod error;
 pub mod metrics;
 pub mod numerical;
+pub mod observer;
 pub mod row;
 pub mod run;
 pub mod runner;

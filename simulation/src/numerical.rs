@@ -18,7 +18,8 @@
 
 use crate::coupled::{arm_dim, arm_state, ExactLoop};
 use crate::error::RunError;
-use crate::simulate::{score_instant, IterationStats, Observer, Outcome, Settings};
+use crate::observer::{score_instant, Observer};
+use catalog::experiment::Scoring;
 use catalog::numerical_spec::{NumericalMethod, NumericalSpec};
 use nalgebra::{DVector, SVector};
 use schemes::scheme::{Level, Scheme};
@@ -41,23 +42,38 @@ pub fn lvi_method(method: NumericalMethod) -> LviMethod {
     }
 }
 
-/// What the loop produced: the outcome, counts in the integrator's terms (steps = instants
-/// after the first), the exact solves that scored it, and the method's iterations.
+/// A numerical run solver's iterations (robio2018 (21) steps).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct IterationStats {
+    /// Over the whole run.
+    pub total: u64,
+    /// At the instant that needed most.
+    pub max: u64,
+    /// The work of the whole run in products with the LVI matrix
+    /// (`solvers::lvi_numerical::LviMethod::products` summed over the instants): the
+    /// machine-independent cost, in the unit of the control tables.
+    pub products: u64,
+}
+
+/// What the loop produced: where it stopped and why (none when it completed), counts in the
+/// integrator's terms (steps = instants after the first), the exact solves that scored it, and
+/// the method's iterations.
 pub(crate) struct NumericalRun {
-    pub outcome: Outcome,
+    pub failure: Option<(f64, RunError)>,
     pub stats: OdeStats,
     pub qp: ExactPathStats,
     pub iterations: IterationStats,
     pub score_failures: usize,
 }
 
-/// Runs the loop of the module docs from `theta0` over the path's duration `t1`.
+/// Runs the loop of the module docs from `theta0` over the path's duration `t1`, scored where
+/// `scoring` says.
 pub(crate) fn run_numerical<const N: usize>(
     scheme: &dyn Scheme<N>,
     spec: &NumericalSpec,
     theta0: &SVector<f64, N>,
     t1: f64,
-    settings: &Settings,
+    scoring: Scoring,
     observer: &mut Observer<'_, N>,
 ) -> NumericalRun {
     let started = Instant::now();
@@ -103,7 +119,7 @@ pub(crate) fn run_numerical<const N: usize>(
         if score_instant(
             observer,
             &mut scorer,
-            settings.scoring,
+            scoring,
             &mut next_score_t,
             t1,
             (t, &theta, &thetadot),
@@ -122,19 +138,7 @@ pub(crate) fn run_numerical<const N: usize>(
             break;
         }
         let h = (((k + 1) as f64) * spec.step).min(t1) - t;
-        match level {
-            Level::Velocity => {
-                for i in 0..N {
-                    y[i] += h * x[i];
-                }
-            }
-            Level::Acceleration => {
-                for i in 0..N {
-                    y[i] += h * y[N + i];
-                    y[N + i] += h * x[i];
-                }
-            }
-        }
+        hold_command::<N>(level, &mut y, &x, h);
     }
     let stats = OdeStats {
         steps: instants,
@@ -142,19 +146,30 @@ pub(crate) fn run_numerical<const N: usize>(
         wall_seconds: started.elapsed().as_secs_f64(),
         ..OdeStats::default()
     };
-    let outcome = match failure {
-        None => Outcome::Completed(observer.metrics.finish(0.0)),
-        Some((t, error)) => Outcome::Failed {
-            t,
-            error,
-            partial: observer.has_samples().then(|| observer.metrics.finish(0.0)),
-        },
-    };
     NumericalRun {
-        outcome,
+        failure,
         stats,
         qp: scorer.stats(),
         iterations,
         score_failures: failures,
+    }
+}
+
+/// Moves the arm state `y` over a step `h` with the command `x` held (module docs): theta by
+/// h x[..N] at the velocity level; at the acceleration level theta by h thetadot, then thetadot
+/// by h x[..N].
+fn hold_command<const N: usize>(level: Level, y: &mut [f64], x: &DVector<f64>, h: f64) {
+    match level {
+        Level::Velocity => {
+            for i in 0..N {
+                y[i] += h * x[i];
+            }
+        }
+        Level::Acceleration => {
+            for i in 0..N {
+                y[i] += h * y[N + i];
+                y[N + i] += h * x[i];
+            }
+        }
     }
 }

@@ -4,7 +4,8 @@
 use crate::error::RunError;
 use crate::simulate::{simulate, Outcome, Run, Settings, Solver};
 use catalog::error::SetupError;
-use catalog::experiment::{Job, JobPart, SolverChoice};
+use catalog::experiment::{Job, SolverChoice};
+use catalog::fields::JobPart;
 use nalgebra::SVector;
 use robots::registry::{robot_by_name, RobotVisitor};
 use robots::{Dynamics, Robot};

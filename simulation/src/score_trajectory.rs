@@ -26,8 +26,9 @@
 
 use crate::coupled::ExactLoop;
 use crate::metrics::ScoreSample;
+use crate::observer::Observer;
 use crate::run::{build_parts, RunRecord};
-use crate::simulate::{Observer, Outcome, Run};
+use crate::simulate::{Outcome, Run};
 use catalog::error::SetupError;
 use catalog::experiment::Job;
 use nalgebra::{DVector, SVector};

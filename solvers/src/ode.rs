@@ -236,7 +236,24 @@ struct Counted<'s> {
     yp: Vec<f64>,
 }
 
-impl Counted<'_> {
+impl<'s> Counted<'s> {
+    /// The counted `sys`, no evaluation done and no Jacobian cached yet.
+    fn new(sys: &'s mut dyn OdeSystem) -> Self {
+        let n = sys.dim();
+        Counted {
+            sys,
+            rhs_evals: 0,
+            jac_evals: 0,
+            jac: DMatrix::zeros(n, n),
+            jac_at: DVector::zeros(n),
+            jac_t: f64::NAN,
+            jac_valid: false,
+            f0: vec![0.0; n],
+            f1: vec![0.0; n],
+            yp: vec![0.0; n],
+        }
+    }
+
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
         self.rhs_evals += 1;
         self.sys.rhs(t, y, dy);
@@ -340,105 +357,9 @@ pub fn integrate_dyn(
             stats: OdeStats::default(),
         });
     }
+    let counted = RefCell::new(Counted::new(sys));
     let mut steps_done = (0usize, 0usize, 0usize);
-    let counted = RefCell::new(Counted {
-        sys,
-        rhs_evals: 0,
-        jac_evals: 0,
-        jac: DMatrix::zeros(n, n),
-        jac_at: DVector::zeros(n),
-        jac_t: f64::NAN,
-        jac_valid: false,
-        f0: vec![0.0; n],
-        f1: vec![0.0; n],
-        yp: vec![0.0; n],
-    });
-    let y0v = y0.to_vec();
-    let outcome = (|| -> Result<Vec<f64>, OdeError> {
-        let mut problem = OdeBuilder::<NalgebraMat<f64>>::new()
-            .t0(t0)
-            .rtol(settings.rtol)
-            .atol([settings.atol])
-            .rhs_implicit(
-                |y, _p, t, dy| counted.borrow_mut().rhs(t, y, dy),
-                |y, _p, t, v, out| counted.borrow_mut().jac_mul(t, y, v, out),
-            )
-            .init(move |_p, _t, y| y.copy_from_slice(&y0v), n)
-            .build()
-            .map_err(|e| solver_error(t0, e))?;
-        // diffsol counts Newton failures over the whole run, not per step: on networks with kinks
-        // (projections, sign-power) a long run collects many harmless ones, each answered by a
-        // smaller step. A stuck run is caught by the minimum step size and `max_steps` instead.
-        problem.ode_options.max_nonlinear_solver_failures = usize::MAX / 2;
-        if let Control::Stop(reason) = observe(t0, y0) {
-            return Err(OdeError::Stopped { t: t0, reason });
-        }
-        let solver_err = |e| solver_error(t0, e);
-        // The evaluation budget, checked at every accepted step.
-        let max_evals = settings.max_rhs_evals;
-        let budget_hit = std::cell::Cell::new(false);
-        let mut observe = |t: f64, y: &[f64]| {
-            if counted.borrow().rhs_evals > max_evals {
-                budget_hit.set(true);
-                return Control::Stop(String::new());
-            }
-            observe(t, y)
-        };
-        let driven = match settings.method {
-            Method::Bdf => drive(
-                problem.bdf::<NalgebraLU<f64>>().map_err(solver_err)?,
-                t1,
-                settings,
-                &mut observe,
-            )?,
-            Method::Esdirk34 => drive(
-                problem.esdirk34::<NalgebraLU<f64>>().map_err(solver_err)?,
-                t1,
-                settings,
-                &mut observe,
-            )?,
-            Method::TrBdf2 => drive(
-                problem.tr_bdf2::<NalgebraLU<f64>>().map_err(solver_err)?,
-                t1,
-                settings,
-                &mut observe,
-            )?,
-            Method::Tsit45 => drive(
-                problem.tsit45().map_err(solver_err)?,
-                t1,
-                settings,
-                &mut observe,
-            )?,
-            Method::Dopri5 => {
-                let tableau = dopri5_tableau();
-                let state = problem.rk_state(&tableau).map_err(solver_err)?;
-                drive(
-                    problem
-                        .explicit_rk_solver(state, tableau)
-                        .map_err(solver_err)?,
-                    t1,
-                    settings,
-                    &mut observe,
-                )?
-            }
-        };
-        let Driven {
-            y,
-            steps,
-            rejected,
-            lu_factorisations,
-            error,
-        } = driven;
-        steps_done = (steps, rejected, lu_factorisations);
-        match error {
-            Some(OdeError::Stopped { t, .. }) if budget_hit.get() => Err(OdeError::EvalBudget {
-                t,
-                evals: max_evals,
-            }),
-            Some(e) => Err(e),
-            None => Ok(y),
-        }
-    })();
+    let outcome = solve(&counted, y0, t0, t1, settings, observe, &mut steps_done);
     let c = counted.borrow();
     let stats = OdeStats {
         steps: steps_done.0,
@@ -451,6 +372,106 @@ pub fn integrate_dyn(
     match outcome {
         Ok(y) => Ok((y, stats)),
         Err(error) => Err(OdeFailure { error, stats }),
+    }
+}
+
+/// The integration proper: diffsol's problem over the counted system from `y0` at `t0`,
+/// `observe` called at t0 and after every accepted step (and stopping the run once the RHS
+/// evaluations pass `settings.max_rhs_evals`), driven to `t1` by `settings.method`. Leaves the
+/// steps, rejected steps and LU factorisations in `steps_done`; returns y(t1).
+fn solve(
+    counted: &RefCell<Counted<'_>>,
+    y0: &[f64],
+    t0: f64,
+    t1: f64,
+    settings: &IntegratorSettings,
+    observe: &mut dyn FnMut(f64, &[f64]) -> Control,
+    steps_done: &mut (usize, usize, usize),
+) -> Result<Vec<f64>, OdeError> {
+    let n = y0.len();
+    let y0v = y0.to_vec();
+    let mut problem = OdeBuilder::<NalgebraMat<f64>>::new()
+        .t0(t0)
+        .rtol(settings.rtol)
+        .atol([settings.atol])
+        .rhs_implicit(
+            |y, _p, t, dy| counted.borrow_mut().rhs(t, y, dy),
+            |y, _p, t, v, out| counted.borrow_mut().jac_mul(t, y, v, out),
+        )
+        .init(move |_p, _t, y| y.copy_from_slice(&y0v), n)
+        .build()
+        .map_err(|e| solver_error(t0, e))?;
+    // diffsol counts Newton failures over the whole run, not per step: on networks with kinks
+    // (projections, sign-power) a long run collects many harmless ones, each answered by a
+    // smaller step. A stuck run is caught by the minimum step size and `max_steps` instead.
+    problem.ode_options.max_nonlinear_solver_failures = usize::MAX / 2;
+    if let Control::Stop(reason) = observe(t0, y0) {
+        return Err(OdeError::Stopped { t: t0, reason });
+    }
+    let solver_err = |e| solver_error(t0, e);
+    // The evaluation budget, checked at every accepted step.
+    let max_evals = settings.max_rhs_evals;
+    let budget_hit = std::cell::Cell::new(false);
+    let mut observe = |t: f64, y: &[f64]| {
+        if counted.borrow().rhs_evals > max_evals {
+            budget_hit.set(true);
+            return Control::Stop(String::new());
+        }
+        observe(t, y)
+    };
+    let driven = match settings.method {
+        Method::Bdf => drive(
+            problem.bdf::<NalgebraLU<f64>>().map_err(solver_err)?,
+            t1,
+            settings,
+            &mut observe,
+        )?,
+        Method::Esdirk34 => drive(
+            problem.esdirk34::<NalgebraLU<f64>>().map_err(solver_err)?,
+            t1,
+            settings,
+            &mut observe,
+        )?,
+        Method::TrBdf2 => drive(
+            problem.tr_bdf2::<NalgebraLU<f64>>().map_err(solver_err)?,
+            t1,
+            settings,
+            &mut observe,
+        )?,
+        Method::Tsit45 => drive(
+            problem.tsit45().map_err(solver_err)?,
+            t1,
+            settings,
+            &mut observe,
+        )?,
+        Method::Dopri5 => {
+            let tableau = dopri5_tableau();
+            let state = problem.rk_state(&tableau).map_err(solver_err)?;
+            drive(
+                problem
+                    .explicit_rk_solver(state, tableau)
+                    .map_err(solver_err)?,
+                t1,
+                settings,
+                &mut observe,
+            )?
+        }
+    };
+    let Driven {
+        y,
+        steps,
+        rejected,
+        lu_factorisations,
+        error,
+    } = driven;
+    *steps_done = (steps, rejected, lu_factorisations);
+    match error {
+        Some(OdeError::Stopped { t, .. }) if budget_hit.get() => Err(OdeError::EvalBudget {
+            t,
+            evals: max_evals,
+        }),
+        Some(e) => Err(e),
+        None => Ok(y),
     }
 }
 

@@ -9,8 +9,7 @@ use std::sync::Arc;
 use nalgebra::{SVector, Vector3};
 use robots::{Dynamics, Jaco2, Katana6m180, Robot};
 use schemes::paths::{build_path, Path, PathSpec};
-use schemes::qp_dot;
-use schemes::scheme::{Level, Scheme};
+use schemes::scheme::{central_difference, Level, Scheme};
 use schemes::spec::{build_scheme, RmpReading, SchemeSpec};
 use schemes::Qp;
 use solvers::ExactSolver;
@@ -31,8 +30,8 @@ fn reference_dot<const N: usize>(
     let mut d1 = s.new_qp();
     let mut d2 = s.new_qp();
     let mut scratch = s.new_dot_scratch();
-    qp_dot::central_difference(s, t, th, thd, thdd, h, &mut d1, &mut scratch);
-    qp_dot::central_difference(s, t, th, thd, thdd, 2.0 * h, &mut d2, &mut scratch);
+    central_difference(s, t, th, thd, thdd, h, &mut d1, &mut scratch);
+    central_difference(s, t, th, thd, thdd, 2.0 * h, &mut d2, &mut scratch);
     let comb = |o: &mut [f64], t: &[f64]| {
         o.iter_mut()
             .zip(t)

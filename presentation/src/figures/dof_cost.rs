@@ -9,7 +9,6 @@ use super::legend::{self, Arrangement, Entry};
 use super::panels::{LogLogPanel, Series};
 use super::style::{colour, light, LEGEND_LINE_WIDTH};
 use crate::error::FigureError;
-use crate::report::performance::quantity_label;
 use plotters::prelude::*;
 use records::dof_cost::DofCostRow;
 use records::dof_cost::Quantity;
@@ -20,6 +19,21 @@ const LEGEND_WIDTH: u32 = 360;
 /// File name of a scheme's figure inside `report/figures/`.
 pub fn file_name(scheme: &str) -> String {
     format!("dof-cost__{scheme}.svg")
+}
+
+/// A quantity as the report and the figure name it (`network` is the network's name).
+pub fn quantity_label(quantity: Quantity, network: &str) -> String {
+    match quantity {
+        Quantity::SchemeBuild => "scheme build (QP assembly)".to_string(),
+        Quantity::NetworkRhs => format!("{network} RHS"),
+        Quantity::NetworkJacobian => format!("{network} Jacobian"),
+        Quantity::NetworkLu => format!("{network} Jacobian's LU"),
+        Quantity::ExactActiveSet => "exact: active set, hot-started".to_string(),
+        Quantity::ExactClarabel => "exact: Clarabel".to_string(),
+        Quantity::KktFloor => "dense KKT floor (one LU)".to_string(),
+        Quantity::RunExact => "whole run, exact column".to_string(),
+        Quantity::RunNetwork => format!("whole run, {network}"),
+    }
 }
 
 /// What the figure draws under its title: the two panels on the left, the legend on the right.

@@ -121,103 +121,18 @@ impl Job<'_> {
 /// and a PNG with the same stem, and returns the SVGs' paths, sorted. Figures (SVG or PNG) in
 /// that directory that no longer correspond to a run or an experiment are deleted if this
 /// program wrote them and nobody edited them since (`report/manifest.toml`); a `report/` or
-/// `report/figures/` that is a symbolic link leading out of the project is refused. Fails, naming the file, on an unreadable `runs.csv`, a missing or
-/// malformed trace, or two runs whose names give the same file name.
+/// `report/figures/` that is a symbolic link leading out of the project is refused. Fails,
+/// naming the file, on an unreadable `runs.csv`, a missing or malformed trace, or two runs whose
+/// names give the same file name.
 pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, ReportError> {
-    let mut runs = read_runs(
-        &root
-            .join(records::results_dir::DIR)
-            .join(records::results_dir::RUNS),
-    )?;
-    runs.sort_by_key(RunRow::key);
-    let traces_dir = root
-        .join(records::results_dir::DIR)
-        .join(records::results_dir::TRACES);
-    let traces = runs
-        .iter()
-        .map(|run| {
-            Trace::read(
-                &traces_dir
-                    .join(&run.experiment)
-                    .join(format!("{}.csv", run_stem(run))),
-            )
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-
-    let mut jobs: BTreeMap<String, Job> = BTreeMap::new();
-    let mut add = |name: String, job| match jobs.insert(name.clone(), job) {
-        None => Ok(()),
-        Some(_) => Err(ReportError::SameFigure(name)),
-    };
-    let mut by_experiment: BTreeMap<&str, Vec<(&RunRow, &Trace)>> = BTreeMap::new();
-    for (run, trace) in runs.iter().zip(&traces) {
-        add(run_figure_name(&run.key()), Job::Run(run, trace))?;
-        by_experiment
-            .entry(&run.experiment)
-            .or_default()
-            .push((run, trace));
-    }
-    for (experiment, members) in by_experiment {
-        add(
-            overview_name(experiment),
-            Job::Overview(experiment, members),
-        )?;
-    }
-
-    let inference: Vec<InferenceRow> = records::table::read_if_present(
-        &root
-            .join(records::results_dir::DIR)
-            .join(records::results_dir::INFERENCE),
-    )?;
-    let mut tables: Vec<(&str, &str)> = inference
-        .iter()
-        .map(|r| (r.paper.as_str(), r.table.as_str()))
-        .collect();
-    tables.dedup();
-    for (paper, table) in tables {
-        let rows: Vec<_> = inference
-            .iter()
-            .filter(|r| r.paper == paper && r.table == table)
-            .collect();
-        if rows.iter().any(|r| r.profile().is_some()) {
-            add(
-                profile::file_name(paper, table),
-                Job::Profiles(paper, table, rows),
-            )?;
-        }
-    }
-
-    let dof_rows = records::dof_cost::read(&root.join(records::results_dir::DIR))?;
-    let mut schemes: Vec<&str> = dof_rows.iter().map(|r| r.scheme.as_str()).collect();
-    schemes.sort_unstable();
-    schemes.dedup();
-    for scheme in schemes {
-        let rows: Vec<&DofCostRow> = dof_rows.iter().filter(|r| r.scheme == scheme).collect();
-        add(dof_cost::file_name(scheme), Job::DofCost(scheme, rows))?;
-    }
-
-    let results = root.join(records::results_dir::DIR);
-    let control_rows: Vec<ControlRow> =
-        records::control::read(&results, records::results_dir::CONTROL)?;
-    let cycle_rows: Vec<CycleRow> = records::control::read(&results, records::results_dir::CYCLES)?;
-    let mut tasks: Vec<&str> = control_rows.iter().map(|r| r.task.as_str()).collect();
-    tasks.dedup();
-    let h_main = MAIN_H * 1e3;
-    for task in tasks {
-        let rows: Vec<&ControlRow> = control_rows.iter().filter(|r| r.task == task).collect();
-        add(control::pareto_name(task), Job::Pareto(task, h_main, rows))?;
-    }
-    if !control_rows.is_empty() {
-        add(
-            control::STABILITY_NAME.to_string(),
-            Job::Stability(control_rows.iter().collect()),
-        )?;
-    }
-    if !cycle_rows.is_empty() {
-        add(control::CYCLES_NAME.to_string(), Job::Cycles(&cycle_rows))?;
-    }
-
+    let inputs = Inputs::read(&root.join(records::results_dir::DIR))?;
+    let mut jobs = Jobs::default();
+    jobs.add_runs(&inputs.runs, &inputs.traces)?;
+    jobs.add_profiles(&inputs.inference)?;
+    jobs.add_dof_cost(&inputs.dof_cost)?;
+    jobs.add_control(&inputs.control, &inputs.cycles)?;
     let figures: BTreeMap<String, Rendered> = jobs
+        .0
         .into_par_iter()
         .map(|(name, job)| {
             job.render()
@@ -228,11 +143,156 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, ReportError> {
                 })
         })
         .collect::<Result<_, _>>()?;
+    write_figures(root, figures)
+}
 
+/// What the figures are drawn from: the files of the results directory.
+struct Inputs {
+    /// `runs.csv`, sorted by run key.
+    runs: Vec<RunRow>,
+    /// Each run's trace, in the order of `runs`.
+    traces: Vec<Trace>,
+    /// `inference.csv` (absent = empty).
+    inference: Vec<InferenceRow>,
+    /// `dof-cost.csv` (absent = empty).
+    dof_cost: Vec<DofCostRow>,
+    /// `control.csv` (absent = empty).
+    control: Vec<ControlRow>,
+    /// `cycles.csv` (absent = empty).
+    cycles: Vec<CycleRow>,
+}
+
+impl Inputs {
+    /// Reads the inputs from the results directory `results`.
+    fn read(results: &Path) -> Result<Self, ReportError> {
+        let mut runs = read_runs(&results.join(records::results_dir::RUNS))?;
+        runs.sort_by_key(RunRow::key);
+        let traces_dir = results.join(records::results_dir::TRACES);
+        let traces = runs
+            .iter()
+            .map(|run| {
+                Trace::read(
+                    &traces_dir
+                        .join(&run.experiment)
+                        .join(format!("{}.csv", run_stem(run))),
+                )
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(Inputs {
+            runs,
+            traces,
+            inference: records::table::read_if_present(
+                &results.join(records::results_dir::INFERENCE),
+            )?,
+            dof_cost: records::dof_cost::read(results)?,
+            control: records::control::read(results, records::results_dir::CONTROL)?,
+            cycles: records::control::read(results, records::results_dir::CYCLES)?,
+        })
+    }
+}
+
+/// The figures to draw, by file name (each name once).
+#[derive(Default)]
+struct Jobs<'a>(BTreeMap<String, Job<'a>>);
+
+impl<'a> Jobs<'a> {
+    /// Adds the figure `job` as `name`; two figures of one name are an error.
+    fn add(&mut self, name: String, job: Job<'a>) -> Result<(), ReportError> {
+        match self.0.insert(name.clone(), job) {
+            None => Ok(()),
+            Some(_) => Err(ReportError::SameFigure(name)),
+        }
+    }
+
+    /// A figure per run (with its trace) and an overview per experiment.
+    fn add_runs(&mut self, runs: &'a [RunRow], traces: &'a [Trace]) -> Result<(), ReportError> {
+        let mut by_experiment: BTreeMap<&str, Vec<(&RunRow, &Trace)>> = BTreeMap::new();
+        for (run, trace) in runs.iter().zip(traces) {
+            self.add(run_figure_name(&run.key()), Job::Run(run, trace))?;
+            by_experiment
+                .entry(&run.experiment)
+                .or_default()
+                .push((run, trace));
+        }
+        for (experiment, members) in by_experiment {
+            self.add(
+                overview_name(experiment),
+                Job::Overview(experiment, members),
+            )?;
+        }
+        Ok(())
+    }
+
+    /// The inference profiles of each published table that has any.
+    fn add_profiles(&mut self, inference: &'a [InferenceRow]) -> Result<(), ReportError> {
+        let mut tables: Vec<(&str, &str)> = inference
+            .iter()
+            .map(|r| (r.paper.as_str(), r.table.as_str()))
+            .collect();
+        tables.dedup();
+        for (paper, table) in tables {
+            let rows: Vec<_> = inference
+                .iter()
+                .filter(|r| r.paper == paper && r.table == table)
+                .collect();
+            if rows.iter().any(|r| r.profile().is_some()) {
+                self.add(
+                    profile::file_name(paper, table),
+                    Job::Profiles(paper, table, rows),
+                )?;
+            }
+        }
+        Ok(())
+    }
+
+    /// The cost against the number of joints, one figure per scheme.
+    fn add_dof_cost(&mut self, dof_rows: &'a [DofCostRow]) -> Result<(), ReportError> {
+        let mut schemes: Vec<&str> = dof_rows.iter().map(|r| r.scheme.as_str()).collect();
+        schemes.sort_unstable();
+        schemes.dedup();
+        for scheme in schemes {
+            let rows: Vec<&DofCostRow> = dof_rows.iter().filter(|r| r.scheme == scheme).collect();
+            self.add(dof_cost::file_name(scheme), Job::DofCost(scheme, rows))?;
+        }
+        Ok(())
+    }
+
+    /// The control experiments: a Pareto figure per task at the main period, the stability
+    /// figure and the many-cycles figure (each where its rows exist).
+    fn add_control(
+        &mut self,
+        control_rows: &'a [ControlRow],
+        cycle_rows: &'a [CycleRow],
+    ) -> Result<(), ReportError> {
+        let mut tasks: Vec<&str> = control_rows.iter().map(|r| r.task.as_str()).collect();
+        tasks.dedup();
+        let h_main = MAIN_H * 1e3;
+        for task in tasks {
+            let rows: Vec<&ControlRow> = control_rows.iter().filter(|r| r.task == task).collect();
+            self.add(control::pareto_name(task), Job::Pareto(task, h_main, rows))?;
+        }
+        if !control_rows.is_empty() {
+            self.add(
+                control::STABILITY_NAME.to_string(),
+                Job::Stability(control_rows.iter().collect()),
+            )?;
+        }
+        if !cycle_rows.is_empty() {
+            self.add(control::CYCLES_NAME.to_string(), Job::Cycles(cycle_rows))?;
+        }
+        Ok(())
+    }
+}
+
+/// Writes the rendered `figures` (SVG and PNG) into `root/report/figures/` and removes the
+/// stale ones: only those this program wrote (listed in report/manifest.toml) and nobody edited
+/// since; anything else in the directory is left alone. Returns the SVGs' paths, sorted.
+fn write_figures(
+    root: &Path,
+    figures: BTreeMap<String, Rendered>,
+) -> Result<Vec<PathBuf>, ReportError> {
     let report = TrackedDir::open_within(root, "report")?;
     let rel = |name: &str| Path::new(FIGURES).join(name);
-    // Stale figures: only those this program wrote (listed in report/manifest.toml) and nobody
-    // edited since; anything else in the directory is left alone.
     for listed in report.listed(&format!("{FIGURES}/")) {
         let name = listed.trim_start_matches(&format!("{FIGURES}/"));
         if figure_of(name).is_some_and(|svg| !figures.contains_key(&svg)) {

@@ -73,15 +73,21 @@ impl Body for RunBody {
 
 /// The run's figure.
 pub fn figure(run: &RunRow, trace: &Trace) -> Figure<RunBody> {
-    let t_end = run.duration;
-    let time = |caption: &str, y_desc: &str, y_axis: YAxis, series: Vec<Series>| TimePanel {
-        caption: caption.to_string(),
-        y_desc: y_desc.to_string(),
-        y_axis,
-        t_end,
-        series,
-    };
-    let joints = |columns: &[Vec<f64>]| per_joint(trace, columns, |_, v| v);
+    let path_panel = path_panel(run, trace);
+    let entries = legend_entries(trace, !path_panel.arm.is_empty());
+    Figure {
+        title: title(run),
+        body: RunBody {
+            entries,
+            path_panel,
+            panels: time_panels(run, trace),
+        },
+    }
+}
+
+/// Panel (a): the desired and actual end-effector path in the x-y plane (thinned), with the arm
+/// over its motion.
+fn path_panel(run: &RunRow, trace: &Trace) -> PathPanel {
     let path = |xy: &[Vec<f64>; 2]| {
         trace
             .thinned()
@@ -89,14 +95,21 @@ pub fn figure(run: &RunRow, trace: &Trace) -> Figure<RunBody> {
             .map(|k| (xy[0][k], xy[1][k]))
             .collect()
     };
-    let path_panel = PathPanel {
+    PathPanel {
         caption: "(a) end-effector path, x-y plane".to_string(),
         desired: path(&trace.desired),
         actual: path(&trace.actual),
         actual_colour: ACTUAL_COLOUR,
         arm: arm::poses(run, trace),
-    };
-    // (caption, y axis, scale, series) in drawing order; lettered from (b) below.
+    }
+}
+
+/// The panels over time, lettered from (b) in drawing order: the position error, the distance
+/// to the exact optimum (a scored run), the joint angles relative to theta(0), the joint
+/// velocities, and the accelerations and torques where the trace has them.
+fn time_panels(run: &RunRow, trace: &Trace) -> Vec<TimePanel> {
+    let joints = |columns: &[Vec<f64>]| per_joint(trace, columns, |_, v| v);
+    // (caption, y axis, scale, series) in drawing order.
     let mut panels: Vec<(&str, &str, YAxis, Vec<Series>)> = vec![(
         "position error |r* - f(theta)|",
         "error (m)",
@@ -142,14 +155,22 @@ pub fn figure(run: &RunRow, trace: &Trace) -> Figure<RunBody> {
     if let Some(tau) = &trace.tau {
         panels.push(("joint torques", "torque (N m)", YAxis::Linear, joints(tau)));
     }
-    let panels: Vec<TimePanel> = panels
+    panels
         .into_iter()
         .zip('b'..)
-        .map(|((caption, y_desc, y_axis, series), letter)| {
-            time(&format!("({letter}) {caption}"), y_desc, y_axis, series)
+        .map(|((caption, y_desc, y_axis, series), letter)| TimePanel {
+            caption: format!("({letter}) {caption}"),
+            y_desc: y_desc.to_string(),
+            y_axis,
+            t_end: run.duration,
+            series,
         })
-        .collect();
+        .collect()
+}
 
+/// The legend: desired and actual path, the arm's poses (`arm`: where they are drawn), and one
+/// entry per joint.
+fn legend_entries(trace: &Trace, arm: bool) -> Vec<Entry> {
     let mut entries = vec![
         Entry {
             style: DESIRED_COLOUR.stroke_width(DESIRED_WIDTH),
@@ -160,7 +181,7 @@ pub fn figure(run: &RunRow, trace: &Trace) -> Figure<RunBody> {
             label: "actual f(theta)".to_string(),
         },
     ];
-    if !path_panel.arm.is_empty() {
+    if arm {
         entries.extend([
             Entry {
                 style: ARM_START_COLOUR.stroke_width(LEGEND_LINE_WIDTH),
@@ -176,13 +197,5 @@ pub fn figure(run: &RunRow, trace: &Trace) -> Figure<RunBody> {
         style: colour(i).stroke_width(LEGEND_LINE_WIDTH),
         label: format!("joint {}", i + 1),
     }));
-
-    Figure {
-        title: title(run),
-        body: RunBody {
-            entries,
-            path_panel,
-            panels,
-        },
-    }
+    entries
 }

@@ -1,12 +1,17 @@
 //! The report's sections "At a robot's control rate" and "Many cycles", from the control
 //! experiments' result files (`results/control*.csv`, `results/cycles*.csv`, written by the
 //! `control` crate) and, for the networks as the papers integrate them, `results/runs.csv`.
+//! What is decided or computed from them (success, the leaderboard of the track, products per
+//! millisecond) is [`analysis::control_track`]'s.
 
 use super::markdown::{sci, sci_opt, Table, MISSING};
 use crate::figures::control::{pareto_name, CYCLES_NAME, STABILITY_NAME};
-use analysis::control_claim::{overall, steps_needed, ACCURACY};
+use analysis::control_claim::{overall, ACCURACY};
+use analysis::control_track::{
+    fits_period, main_h_ms, products_per_ms, steps_per_main_tick, success, track,
+};
 use records::control::Verdict;
-use records::control::{read, ClaimRow, ControlRow, ControlStatus, StabilityRow, TrendRow, MAIN_H};
+use records::control::{read, ClaimRow, ControlRow, ControlStatus, StabilityRow, TrendRow};
 use records::error::ControlFileError;
 use records::index::{completed, Runs};
 use records::results_dir;
@@ -31,17 +36,6 @@ impl ControlResults {
             trends: read(results, results_dir::CYCLES_TREND)?,
         })
     }
-}
-
-/// The control period the verdicts are given at (ms).
-fn main_h_ms() -> f64 {
-    MAIN_H * 1e3
-}
-
-/// Whether a run at the main period is a success of the control-rate track: it completed
-/// and its command stayed within [`ACCURACY`] of the exact optimum after the first second.
-fn success(r: &ControlRow) -> bool {
-    r.status == ControlStatus::Ok && r.max_dx_settled <= ACCURACY
 }
 
 /// An inline figure if it was rendered.
@@ -109,7 +103,7 @@ pub fn section(results: &ControlResults, runs: &Runs, figures: &[String]) -> Str
         t.push([
             r.task.clone(),
             r.method.clone(),
-            yes(r.tick_p50_us <= h * 1e3),
+            yes(fits_period(r)),
             if r.status == ControlStatus::Ok {
                 "yes".to_string()
             } else {
@@ -236,7 +230,6 @@ fn papers_integration(results: &ControlResults, runs: &Runs) -> String {
     ]);
     let mut any = false;
     for c in &results.claims {
-        let per_step = c.products_per_step as f64;
         for r in runs
             .of_experiment(&c.experiment)
             .filter(|r| r.variant_id == c.variant_id && r.solver_id == c.solver_id && completed(r))
@@ -247,7 +240,7 @@ fn papers_integration(results: &ControlResults, runs: &Runs) -> String {
                 r.rhs_evals.to_string(),
                 r.jac_evals.to_string(),
                 sci(r.duration),
-                sci(r.rhs_evals as f64 * per_step / (r.duration * 1e3)),
+                sci(products_per_ms(r, c)),
                 sci_opt(r.score_max_dx),
             ]);
         }
@@ -270,7 +263,6 @@ fn papers_integration(results: &ControlResults, runs: &Runs) -> String {
 
 /// The networks' Euler stability limits beside their gains, and the stability figure.
 fn stability_section(results: &ControlResults, figures: &[String]) -> String {
-    let h = main_h_ms();
     let mut out = String::from(
         "### Stability limits\n\n\
          s_max is the largest forward-Euler step at which the network contracts, from the \
@@ -299,7 +291,7 @@ fn stability_section(results: &ControlResults, figures: &[String]) -> String {
             sci_opt(s.euler_limit_s),
             sci_opt(s.gain_x_limit),
             s.euler_limit_s
-                .map(|l| steps_needed(h * 1e-3, l).to_string())
+                .map(|l| steps_per_main_tick(l).to_string())
                 .unwrap_or_else(|| MISSING.to_string()),
             s.largest_stable_h_ms
                 .map(sci)
@@ -316,37 +308,19 @@ fn stability_section(results: &ControlResults, figures: &[String]) -> String {
 /// tasks it ran, and its worst tick latency p99.
 fn leaderboard(results: &ControlResults) -> String {
     let h = main_h_ms();
-    let mut methods: Vec<&str> = results
-        .runs
-        .iter()
-        .filter(|r| r.h_ms == h)
-        .map(|r| r.method.as_str())
-        .collect();
-    methods.sort_unstable();
-    methods.dedup();
-    let mut rows: Vec<(usize, usize, f64, f64, &str)> = methods
-        .into_iter()
-        .map(|m| {
-            let mine: Vec<&ControlRow> = results
-                .runs
-                .iter()
-                .filter(|r| r.h_ms == h && r.method == m)
-                .collect();
-            let ok = mine.iter().filter(|r| success(r)).count();
-            let p50 = mine.iter().map(|r| r.tick_p50_us).fold(0.0, f64::max);
-            let p99 = mine.iter().map(|r| r.tick_p99_us).fold(0.0, f64::max);
-            (ok, mine.len(), p50, p99, m)
-        })
-        .collect();
-    rows.sort_by(|a, b| b.0.cmp(&a.0).then(a.2.total_cmp(&b.2)).then(a.4.cmp(b.4)));
     let mut t = Table::new([
         "method",
         "success",
         "worst median tick (us)",
         "worst tick p99 (us)",
     ]);
-    for (ok, n, p50, p99, m) in rows {
-        t.push([m.to_string(), format!("{ok} / {n}"), sci(p50), sci(p99)]);
+    for r in track(&results.runs) {
+        t.push([
+            r.method.to_string(),
+            format!("{} / {}", r.successes, r.runs),
+            sci(r.worst_median_us),
+            sci(r.worst_p99_us),
+        ]);
     }
     format!(
         "### Leaderboard: control rate\n\nSuccess = stable and within {} of the exact optimum \

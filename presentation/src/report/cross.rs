@@ -3,28 +3,21 @@
 //! Three matrices, rows = solver, columns = scheme · path: the drift against the scheme's
 //! reference (theta0, or kong2019's theta*0), the max position error, and the score max
 //! |x − x*|. Under each, a "best" line per column computed from the numbers among the
-//! completed neural runs: the drift closest to the exact column's (drift is the scheme's
-//! property; a solver should not change it), the smallest position error, the smallest score.
+//! completed neural runs ([`analysis::cross_best`]): the drift closest to the exact column's
+//! (drift is the scheme's property; a solver should not change it), the smallest position
+//! error, the smallest score.
 
 use super::markdown::{sci, Table, MISSING};
-use records::index::{completed, failed_at, is_neural, metric, Runs, EXACT};
+use analysis::cross_best::{best_in, Best, BestRule};
+use records::index::{completed, failed_at, metric, Runs, EXACT};
 use records::runs::RunRow;
 
-/// How a matrix picks the best solver of a column.
-#[derive(Clone, Copy)]
-enum Best {
-    /// Closest to the exact column's value.
-    ClosestToExact,
-    /// Smallest value.
-    Smallest,
-}
-
 /// The matrices, as (title, runs.csv column, best rule).
-const MATRICES: &[(&str, &str, Best)] = &[
-    ("Drift ‖θ(T) − θ_ref‖ (rad; θ_ref = θ0, or θ*0 where the experiment declares one)", "drift_ref_norm", Best::ClosestToExact),
-    ("Max position error (m)", "max_pos_err", Best::Smallest),
-    ("Score: max |x − x*| against the exact optimum (includes the start-up transient from the zero network state: on a deviated start, θ0 ≠ θ*0, every solver ties at |x*(0)|)", "score_max_dx", Best::Smallest),
-    ("Score: RMS |x − x*| over the run (time-weighted, so the start-up transient counts for its duration only)", "score_rms_dx", Best::Smallest),
+const MATRICES: &[(&str, &str, BestRule)] = &[
+    ("Drift ‖θ(T) − θ_ref‖ (rad; θ_ref = θ0, or θ*0 where the experiment declares one)", "drift_ref_norm", BestRule::ClosestToExact),
+    ("Max position error (m)", "max_pos_err", BestRule::Smallest),
+    ("Score: max |x − x*| against the exact optimum (includes the start-up transient from the zero network state: on a deviated start, θ0 ≠ θ*0, every solver ties at |x*(0)|)", "score_max_dx", BestRule::Smallest),
+    ("Score: RMS |x − x*| over the run (time-weighted, so the start-up transient counts for its duration only)", "score_rms_dx", BestRule::Smallest),
 ];
 
 /// The cross section as Markdown (empty when there are no cross runs).
@@ -74,7 +67,7 @@ pub fn section(runs: &Runs, paper: &str) -> String {
         best_row.extend(
             columns
                 .iter()
-                .map(|(e, v)| best_in(runs, e, v, column, best)),
+                .map(|(e, v)| best_cell(best_in(runs, e, v, column, best))),
         );
         t.push(best_row);
         out.push_str(&format!("**{title}**\n\n{}\n", t.render()));
@@ -82,35 +75,15 @@ pub fn section(runs: &Runs, paper: &str) -> String {
     out
 }
 
-/// The best completed neural run of one column under `rule`, as "solver" — or "tie" when
-/// several share the best value (to a relative 1e-6).
-fn best_in(runs: &Runs, experiment: &str, variant: &str, column: &str, rule: Best) -> String {
-    let exact = runs
-        .find(experiment, variant, EXACT)
-        .and_then(|r| metric(r, column));
-    let key = |x: f64| match rule {
-        Best::Smallest => Some(x),
-        Best::ClosestToExact => exact.map(|e| (x - e).abs()),
-    };
-    let mut ranked: Vec<(&RunRow, f64)> = runs
-        .of_experiment(experiment)
-        .filter(|r| r.variant_id == variant && is_neural(r) && completed(r))
-        .filter_map(|r| metric(r, column).and_then(key).map(|k| (r, k)))
-        .collect();
-    ranked.sort_by(|a, b| a.1.total_cmp(&b.1));
-    match ranked.as_slice() {
-        [] => MISSING.to_string(),
-        [(first, a), (_, b), ..] if (b - a).abs() <= 1e-6 * a.abs().max(b.abs()) => {
-            let n = ranked
-                .iter()
-                .filter(|(_, k)| (k - a).abs() <= 1e-6 * a.abs().max(k.abs()))
-                .count();
-            if n == ranked.len() {
-                format!("tie (all {n})")
-            } else {
-                format!("tie ({n}, e.g. {})", first.solver)
-            }
-        }
-        [(first, _), ..] => first.solver.clone(),
+/// The best of a column ([`analysis::cross_best`]) as "solver", "tie (n, e.g. solver)" or
+/// "tie (all n)".
+fn best_cell(best: Best) -> String {
+    match best {
+        Best::Nothing => MISSING.to_string(),
+        Best::Tie {
+            runs, all: true, ..
+        } => format!("tie (all {runs})"),
+        Best::Tie { runs, first, .. } => format!("tie ({runs}, e.g. {})", first.solver),
+        Best::Run(r) => r.solver.clone(),
     }
 }

@@ -1,13 +1,15 @@
 //! The leaderboard section: every velocity-level solver on the standard task set, scored as
 //! qpbenchmark scores QP solvers ([`analysis::leaderboard`], also `results/leaderboard.csv`):
-//! the ranking, the distributions, a reading generated from the numbers, how the times were
-//! measured (alone, repeated: [`records::timing`]) and the definitions.
+//! the ranking, the distributions, a reading generated from the numbers
+//! ([`analysis::leaderboard_reading`]), how the times were measured (alone, repeated:
+//! [`records::timing`]) and the definitions.
 
-use super::markdown::{sci, Table};
+use super::markdown::{percent, sci, times, Table, MISSING};
 use analysis::leaderboard::{
     self as board, LeaderboardRow, PENALTY_DRIFT, PENALTY_DX, SHIFT_DRIFT, SHIFT_DX, SHIFT_TIME_S,
     STANDARD_PAPER, STANDARD_SET, TIME_LIMIT_FACTOR, TOL_RMS_DX,
 };
+use analysis::leaderboard_reading::{standard_reading, timing_reading, Best, StandardReading};
 use records::index::Runs;
 use records::timing::{Timings, REPETITIONS};
 
@@ -76,7 +78,6 @@ pub fn section(runs: &Runs, timings: &Timings) -> String {
     out
 }
 
-/// The task sets in the rows' order.
 /// The first `n` solvers of the standard set's ranking (the front page), empty without a
 /// leaderboard.
 pub fn top(runs: &Runs, timings: &Timings, n: usize) -> String {
@@ -92,18 +93,9 @@ pub fn top(runs: &Runs, timings: &Timings, n: usize) -> String {
     ranking(&top)
 }
 
+/// The task sets in the rows' order.
 fn sets(rows: &[LeaderboardRow]) -> Vec<&str> {
     records::table::distinct(rows, |r| &r.task_set)
-}
-
-/// A ratio to the best with three significant digits (`1.00`, `12.3`, `456`), scientific above.
-fn times(v: f64) -> String {
-    if v.is_finite() && (1.0..1000.0).contains(&v) {
-        let decimals = 2 - v.log10().floor() as usize;
-        format!("{v:.decimals$}")
-    } else {
-        sci(v)
-    }
 }
 
 /// A percentage of tasks.
@@ -178,9 +170,9 @@ fn distributions(rows: &[&LeaderboardRow], timings: &Timings, tasks: &[board::Ta
             sci(r.time_p95),
             format!("{alone} / {}", r.tasks),
             if spread.is_nan() {
-                super::markdown::MISSING.to_string()
+                MISSING.to_string()
             } else {
-                format!("{:.0} %", 100.0 * spread)
+                percent(spread, 0)
             },
         ]);
     }
@@ -196,180 +188,161 @@ fn join_and(names: &[&str]) -> String {
     }
 }
 
-/// The rows of `set` whose `key` is the smallest (the best: ratio 1).
-fn best_by<'a>(
-    rows: &[&'a LeaderboardRow],
-    key: impl Fn(&LeaderboardRow) -> f64,
-) -> Vec<&'a LeaderboardRow> {
-    let best = rows.iter().map(|r| key(r)).fold(f64::INFINITY, f64::min);
-    rows.iter().copied().filter(|r| key(r) == best).collect()
-}
-
 /// One paragraph reading the standard set (and a sentence per other set), generated from the
-/// numbers.
+/// numbers ([`analysis::leaderboard_reading`]).
 pub fn reading(rows: &[LeaderboardRow], standard_tasks: usize) -> String {
-    let std: Vec<&LeaderboardRow> = rows.iter().filter(|r| r.task_set == STANDARD_SET).collect();
-    let mut s = Vec::new();
-    if std.is_empty() {
-        s.push(format!(
+    let mut s = match standard_reading(rows) {
+        None => vec![format!(
             "No solver ran on all {standard_tasks} standard tasks, so there is no standard ranking."
-        ));
-    } else {
-        let n = std[0].tasks;
-        let names = |rs: &[&LeaderboardRow]| {
-            join_and(&rs.iter().map(|r| r.solver.as_str()).collect::<Vec<_>>())
-        };
-        // Success, best first, grouped by rate.
-        let mut groups: Vec<(usize, Vec<&LeaderboardRow>)> = Vec::new();
-        for r in &std {
-            match groups.last_mut() {
-                Some((w, g)) if *w == r.within_tolerance => g.push(r),
-                _ => groups.push((r.within_tolerance, vec![r])),
-            }
-        }
-        let (w, top) = &groups[0];
-        s.push(format!(
-            "On the standard set, {} {} within tolerance (RMS |x − x*| after 1 s ≤ {} rad/s) on {w} of \
-             {n} tasks",
-            names(top),
-            if top.len() == 1 { "is" } else { "are" },
-            sci(TOL_RMS_DX)
-        ));
-        let rest: Vec<String> = groups[1..]
-            .iter()
-            .map(|(w, g)| format!("{} on {w}", names(g)))
-            .collect();
-        if let Some(last) = s.last_mut() {
-            if rest.is_empty() {
-                last.push('.');
-            } else {
-                last.push_str(&format!("; {}.", rest.join(", ")));
-            }
-        }
-        let failed: usize = std.iter().map(|r| r.tasks - r.completed).sum();
-        s.push(if failed == 0 {
-            "Every run completed, so the correct rate equals the success rate: each miss is a run \
-             that completed outside the tolerance."
-                .to_string()
-        } else {
-            format!(
-                "{failed} runs failed and count at the penalties; a failure is not an incorrect \
-                 outcome (the correct rate counts only completed runs outside the tolerance)."
-            )
-        });
-        let spread = |key: fn(&LeaderboardRow) -> f64| {
-            let others: Vec<f64> = std.iter().map(|r| key(r)).filter(|v| *v != 1.0).collect();
-            match (
-                others.iter().copied().reduce(f64::min),
-                others.iter().copied().reduce(f64::max),
-            ) {
-                (Some(lo), Some(hi)) if lo == hi => format!("{}×", times(lo)),
-                (Some(lo), Some(hi)) => format!("{}× to {}×", times(lo), times(hi)),
-                _ => "the same".to_string(),
-            }
-        };
-        let acc = best_by(&std, |r| r.dx_rel);
-        s.push(format!(
-            "The closest to the exact optimum is {} (shifted geometric mean of the RMS distance \
-             {} rad/s, median {}); the others' means are {} that.",
-            names(&acc),
-            sci(acc[0].dx_shm),
-            sci(acc[0].dx_p50),
-            spread(|r| r.dx_rel)
-        ));
-        let drift = best_by(&std, |r| r.drift_rel);
-        s.push(format!(
-            "{} reproduce{} the exact column's drift most closely (relative error: shifted \
-             geometric mean {}, 95th percentile {}); the others are {} that.",
-            names(&drift),
-            if drift.len() == 1 { "s" } else { "" },
-            sci(drift[0].drift_shm),
-            sci(drift[0].drift_p95),
-            spread(|r| r.drift_rel)
-        ));
-        let fast = best_by(&std, |r| r.time_rel);
-        s.push(format!(
-            "{} {} fastest (shifted geometric mean of the simulation time {} s, median {} s); the \
-             others take {} as long.",
-            names(&fast),
-            if fast.len() == 1 { "is" } else { "are" },
-            sci(fast[0].time_shm),
-            sci(fast[0].time_p50),
-            spread(|r| r.time_rel)
-        ));
-    }
+        )],
+        Some(reading) => standard_sentences(&reading),
+    };
     for set in sets(rows).into_iter().filter(|s| *s != STANDARD_SET) {
-        let members: Vec<&LeaderboardRow> = rows.iter().filter(|r| r.task_set == set).collect();
-        let partial: Vec<&LeaderboardRow> = members
-            .iter()
-            .copied()
-            .filter(|r| r.standard_runs < standard_tasks)
-            .collect();
-        let n = members[0].tasks;
-        let first = members[0];
-        s.push(format!(
-            "{} ran on {n} of the {standard_tasks} standard tasks only; on those, {} ranks first \
-             ({} / {n} within tolerance), and {}.",
-            join_and(
-                &partial
-                    .iter()
-                    .map(|r| r.solver.as_str())
-                    .collect::<Vec<_>>()
-            ),
-            first.solver,
-            first.within_tolerance,
-            join_and(
-                &partial
-                    .iter()
-                    .map(|r| format!(
-                        "{} is within tolerance on {} / {n} (rank {} of {})",
-                        r.solver,
-                        r.within_tolerance,
-                        r.rank,
-                        members.len()
-                    ))
-                    .collect::<Vec<_>>()
-                    .iter()
-                    .map(String::as_str)
-                    .collect::<Vec<_>>()
-            )
-        ));
+        s.push(other_set_sentence(rows, set, standard_tasks));
     }
     format!("{}\n", s.join(" "))
+}
+
+/// "a", "a and b", "a, b and c" of the solvers' labels.
+fn names(rows: &[&LeaderboardRow]) -> String {
+    join_and(&rows.iter().map(|r| r.solver.as_str()).collect::<Vec<_>>())
+}
+
+/// The others' ratios to the best: "2.00×", "2.00× to 5.00×", or "the same".
+fn others(best: &Best) -> String {
+    match best.others {
+        Some((lo, hi)) if lo == hi => format!("{}×", times(lo)),
+        Some((lo, hi)) => format!("{}× to {}×", times(lo), times(hi)),
+        None => "the same".to_string(),
+    }
+}
+
+/// The standard set's sentences: success, failures, and the best per measure.
+fn standard_sentences(r: &StandardReading) -> Vec<String> {
+    let n = r.tasks;
+    let (w, top) = &r.by_success[0];
+    let rest: Vec<String> = r.by_success[1..]
+        .iter()
+        .map(|(w, g)| format!("{} on {w}", names(g)))
+        .collect();
+    let mut s = vec![format!(
+        "On the standard set, {} {} within tolerance (RMS |x − x*| after 1 s ≤ {} rad/s) on {w} of \
+         {n} tasks{}",
+        names(top),
+        if top.len() == 1 { "is" } else { "are" },
+        sci(TOL_RMS_DX),
+        if rest.is_empty() {
+            ".".to_string()
+        } else {
+            format!("; {}.", rest.join(", "))
+        }
+    )];
+    s.push(if r.failed == 0 {
+        "Every run completed, so the correct rate equals the success rate: each miss is a run \
+         that completed outside the tolerance."
+            .to_string()
+    } else {
+        format!(
+            "{} runs failed and count at the penalties; a failure is not an incorrect \
+             outcome (the correct rate counts only completed runs outside the tolerance).",
+            r.failed
+        )
+    });
+    let acc = &r.closest;
+    s.push(format!(
+        "The closest to the exact optimum is {} (shifted geometric mean of the RMS distance \
+         {} rad/s, median {}); the others' means are {} that.",
+        names(&acc.rows),
+        sci(acc.rows[0].dx_shm),
+        sci(acc.rows[0].dx_p50),
+        others(acc)
+    ));
+    let drift = &r.drift;
+    s.push(format!(
+        "{} reproduce{} the exact column's drift most closely (relative error: shifted \
+         geometric mean {}, 95th percentile {}); the others are {} that.",
+        names(&drift.rows),
+        if drift.rows.len() == 1 { "s" } else { "" },
+        sci(drift.rows[0].drift_shm),
+        sci(drift.rows[0].drift_p95),
+        others(drift)
+    ));
+    let fast = &r.fastest;
+    s.push(format!(
+        "{} {} fastest (shifted geometric mean of the simulation time {} s, median {} s); the \
+         others take {} as long.",
+        names(&fast.rows),
+        if fast.rows.len() == 1 { "is" } else { "are" },
+        sci(fast.rows[0].time_shm),
+        sci(fast.rows[0].time_p50),
+        others(fast)
+    ));
+    s
+}
+
+/// The sentence of a set other than the standard one: who ran on its tasks only, who ranks
+/// first there, and where each of them stands.
+fn other_set_sentence(rows: &[LeaderboardRow], set: &str, standard_tasks: usize) -> String {
+    let members: Vec<&LeaderboardRow> = rows.iter().filter(|r| r.task_set == set).collect();
+    let partial: Vec<&LeaderboardRow> = members
+        .iter()
+        .copied()
+        .filter(|r| r.standard_runs < standard_tasks)
+        .collect();
+    let n = members[0].tasks;
+    let first = members[0];
+    format!(
+        "{} ran on {n} of the {standard_tasks} standard tasks only; on those, {} ranks first \
+         ({} / {n} within tolerance), and {}.",
+        names(&partial),
+        first.solver,
+        first.within_tolerance,
+        join_and(
+            &partial
+                .iter()
+                .map(|r| format!(
+                    "{} is within tolerance on {} / {n} (rank {} of {})",
+                    r.solver,
+                    r.within_tolerance,
+                    r.rank,
+                    members.len()
+                ))
+                .collect::<Vec<_>>()
+                .iter()
+                .map(String::as_str)
+                .collect::<Vec<_>>()
+        )
+    )
 }
 
 /// How the times the ranking uses were measured: alone, repeated ([`records::timing`]), on
 /// which machine and revision; or that they come from the parallel reproduction.
 fn timing(rows: &[LeaderboardRow], timings: &Timings, tasks: &[board::Task]) -> String {
-    let standard = rows.iter().filter(|r| r.task_set == STANDARD_SET);
-    let runs: usize = standard.clone().map(|r| r.tasks).sum();
-    let alone: usize = standard
-        .map(|r| board::alone_timing(timings, &r.solver_id, tasks).0)
-        .sum();
-    let Some(first) = timings.rows().next() else {
+    let (Some(first), Some(t)) = (timings.rows().next(), timing_reading(rows, timings, tasks))
+    else {
         return format!(
             "**Times.** `results/{}` is absent: the times are the parallel reproduction's \
              `sim_s`, where a run shares the cores with its neighbours.\n\n",
             records::timing::FILE
         );
     };
-    let spreads: Vec<f64> = timings.rows().map(|r| r.sim_spread()).collect();
-    let median_spread = records::percentile::percentile(&spreads, 0.5);
     format!(
         "**Times.** After the parallel reproduction, every run of the leaderboard (and every run \
          the papers publish a MATLAB time for) was run again {REPETITIONS} times, one run at a \
          time on one thread, on {} ({} logical cores available) at revision `{}`; the ranking \
-         uses the median of the repetitions' `sim_s` ({alone} of the {runs} standard-set runs \
+         uses the median of the repetitions' `sim_s` ({} of the {} standard-set runs \
          timed so; any other counts its parallel `sim_s`). The repetitions' spread, \
-         (max − min) / median, is {:.0} % at the median over the {} timed runs and at most \
-         {:.0} %: time ratios closer to 1 than that do not order two solvers. Every timed run \
+         (max − min) / median, is {} at the median over the {} timed runs and at most \
+         {}: time ratios closer to 1 than that do not order two solvers. Every timed run \
          with its median, minimum and maximum: `results/{}`.\n\n",
         first.machine,
         first.cores,
         first.git_rev,
-        100.0 * median_spread,
-        spreads.len(),
-        100.0 * spreads.iter().copied().fold(0.0, f64::max),
+        t.alone,
+        t.runs,
+        percent(t.median_spread, 0),
+        t.timed,
+        percent(t.max_spread, 0),
         records::timing::FILE
     )
 }

@@ -1,8 +1,11 @@
-//! Markdown building blocks: the report's number format and a pipe-table builder.
+//! Markdown building blocks: the report's number formats and a pipe-table builder.
 //!
 //! Every measured number is printed with three significant digits in scientific notation
 //! ([`sci`]), so that columns of very different magnitudes stay comparable at a glance and
-//! the output is byte-stable.
+//! the output is byte-stable. A fraction is shown as a percentage ([`percent`]), seconds as
+//! minutes ([`minutes`]) and a ratio to the best with three significant digits ([`times`]):
+//! units of display, the only arithmetic of the report's pages (what is shown is computed in
+//! crate `analysis`).
 
 /// The placeholder for a number that does not exist (not measured, not printed by the paper).
 pub const MISSING: &str = "—";
@@ -12,6 +15,27 @@ pub use analysis::number::sci;
 /// [`sci`] of an optional number, [`MISSING`] when absent.
 pub fn sci_opt(v: Option<f64>) -> String {
     v.map(sci).unwrap_or_else(|| MISSING.to_string())
+}
+
+/// A fraction as a percentage with `decimals` decimals: `percent(0.25, 1)` is `25.0 %`.
+pub fn percent(fraction: f64, decimals: usize) -> String {
+    format!("{:.*} %", decimals, 100.0 * fraction)
+}
+
+/// Seconds as minutes with one decimal: `minutes(90.0)` is `1.5`.
+pub fn minutes(seconds: f64) -> String {
+    format!("{:.1}", seconds / 60.0)
+}
+
+/// A ratio to the best with three significant digits (`1.00`, `12.3`, `456`), scientific
+/// outside [1, 1000).
+pub fn times(v: f64) -> String {
+    if v.is_finite() && (1.0..1000.0).contains(&v) {
+        let decimals = 2 - v.log10().floor() as usize;
+        format!("{v:.decimals$}")
+    } else {
+        sci(v)
+    }
 }
 
 /// A Markdown pipe table.
@@ -158,6 +182,19 @@ mod tests {
         assert_eq!(sci(-0.00012345), "-1.23e-4");
         assert_eq!(sci(1.0), "1.00e0");
         assert_eq!(sci_opt(None), MISSING);
+        assert_eq!(
+            (times(1.0), times(12.34), times(456.7)),
+            ("1.00".into(), "12.3".into(), "457".into())
+        );
+        assert_eq!(times(1234.0), "1.23e3");
+    }
+
+    #[test]
+    fn units_of_display() {
+        assert_eq!(percent(0.25, 1), "25.0 %");
+        assert_eq!(percent(0.123456, 3), "12.346 %");
+        assert_eq!(percent(1.0, 0), "100 %");
+        assert_eq!(minutes(90.0), "1.5");
     }
 
     #[test]

@@ -49,7 +49,8 @@ pub mod verdict;
 pub mod why;
 
 use crate::error::ReportError;
-use analysis::papers::{Papers, GROUP};
+use analysis::paper_rules::GROUP;
+use analysis::papers::{PaperValue, Papers};
 use markdown::{sci, Table};
 use records::index::Runs;
 use records::runs::read_runs;
@@ -201,146 +202,35 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
     } = inputs;
     // Every text of papers/ escaped once, before any section shows it.
     let papers = &shown::papers(papers);
-    let mut pages = Vec::new();
-    let mut out = header::header(runs, papers, figures.len());
-
-    let evaluated: Vec<(&str, &str, Vec<analysis::claim_verdict::Claim>)> = papers
+    let evaluated: Vec<Evaluated> = papers
         .papers
         .iter()
-        .map(|p| {
-            let (id, title) = (p.id.as_str(), p.title.as_str());
-            (
-                id,
-                title,
-                analysis::claim_verdict::evaluate(id, runs, papers),
-            )
+        .map(|p| Evaluated {
+            id: p.id.as_str(),
+            title: p.title.as_str(),
+            claims: analysis::claim_verdict::evaluate(&p.id, runs, papers),
         })
         .collect();
-    out.push_str("## Summary\n\n");
-    let mut summary = Table::new([
-        "paper",
-        "verdict",
-        "claims PASS / FAIL / N/A",
-        "our drift ÷ paper's",
-        "why, in one line",
-    ]);
-    for (paper, _, c) in &evaluated {
-        let n = |v: analysis::claim_verdict::Verdict| c.iter().filter(|x| x.verdict == v).count();
-        let ratios = analysis::paper_verdict::drift_ratios(paper, runs, papers);
-        let range = match (
-            ratios.iter().map(|r| r.1).reduce(f64::min),
-            ratios.iter().map(|r| r.1).reduce(f64::max),
-        ) {
-            (Some(lo), Some(hi)) => format!("{} to {}", sci(lo), sci(hi)),
-            _ => "no published table".to_string(),
-        };
-        summary.push([
-            format!("[{paper}]({})", paper_page(paper)),
-            analysis::paper_verdict::level_under_setup(paper, c, &ratios, papers),
-            format!(
-                "{} / {} / {}",
-                n(analysis::claim_verdict::Verdict::Pass),
-                n(analysis::claim_verdict::Verdict::Fail),
-                n(analysis::claim_verdict::Verdict::NotApplicable)
-            ),
-            range,
-            Some(why::one_line(paper, explanations))
-                .filter(|w| !w.is_empty())
-                .unwrap_or_else(|| "no drift attribution of its solvers".to_string()),
-        ]);
-    }
-    out.push_str(&summary.render());
-    out.push('\n');
-    let front = out;
-
-    for (paper, title, c) in &evaluated {
-        let mut out = format!("[← the report](REPORT.md)\n\n# {paper}\n\n*{title}.*\n\n");
-        let citation = papers.papers.iter().find(|p| p.id == *paper);
-        if let Some(c) = citation.and_then(|p| p.citation.as_ref()) {
-            out.push_str(&format!("Paper: {c}.\n\n"));
-        }
-        out.push_str(&verdict::paragraph(paper, c, runs, papers));
-        out.push_str(&why::summary(paper, explanations, papers));
-        let tables: Vec<String> = tables::published_tables(paper, papers)
-            .iter()
-            .map(|t| tables::side_by_side(paper, t, papers, runs))
-            .filter(|t| !t.is_empty())
-            .collect();
-        if !tables.is_empty() {
-            out.push_str("\n### Published tables side by side\n\n");
-            out.push_str(&tables.join("\n"));
-        }
-        for check in papers.sweep_checks.iter().filter(|c| c.paper == *paper) {
-            out.push_str(&sweep::section(check, runs, papers));
-        }
-        out.push_str(&why::section(paper, explanations, papers));
-        out.push_str("\n### Claims\n\n");
-        out.push_str(&claims::checklist(c));
-        out.push_str(if tables.is_empty() {
-            "\n### Every run (the paper prints no table: this is the suite's)\n\n"
-        } else {
-            "\n### Every run\n\n"
-        });
-        for exp in runs.experiments(paper) {
-            out.push_str(&format!(
-                "#### `{exp}`\n\n{}",
-                tables::runs_table(runs, &exp)
-            ));
-            out.push('\n');
-            out.push_str(&figures::links(figures, runs, &exp));
-        }
-        pages.push(Page {
-            file: paper_page(paper),
-            markdown: out,
-        });
-    }
-
+    let mut head = header::header(runs, papers, figures.len());
+    head.push_str(&summary_section(&evaluated, runs, papers, explanations));
+    let mut pages: Vec<Page> = evaluated
+        .iter()
+        .map(|e| paper_page_of(e, runs, papers, explanations, figures))
+        .collect();
     let group = group_section(runs, explanations, papers, figures);
     if !group.is_empty() {
         pages.push(topic("group.md", group));
     }
-
-    let mut out = format!("## Score against the exact optimum\n\n{}\n\n", score::NOTE);
-    for paper in papers.papers.iter().map(|p| p.id.as_str()).chain([CROSS]) {
-        let t = score::score_table(runs, paper);
-        if !t.is_empty() {
-            out.push_str(&format!("### {paper}\n\n{t}\n"));
-        }
-    }
-
-    pages.push(topic("score.md", out));
-
-    let board = leaderboard::section(runs, timings);
+    pages.push(topic("score.md", score_page(runs, papers)));
     let top = leaderboard::top(runs, timings, FRONT_TOP);
+    let board = leaderboard::section(runs, timings);
     if !board.is_empty() {
         pages.push(topic(
             "leaderboard.md",
             board + &python::leaderboard(&python.leaderboard),
         ));
     }
-
-    let mut out = String::from("## Cost\n\nSteps, evaluations and QP solves are counted by the integrator and the scorer (the exact QP is solved at every RHS evaluation of the exact column and at every accepted step of a neural run). Wall times come from runs executed in parallel: compare them within one table, not across machines.\n\n");
-    for paper in papers.papers.iter().map(|p| p.id.as_str()).chain([CROSS]) {
-        out.push_str(&format!(
-            "### {paper}\n\n{}\n",
-            cost::cost_table(runs, paper)
-        ));
-    }
-    out.push_str(&format!(
-        "### {}: compute time against the paper's MATLAB times\n\n",
-        cost::timed_papers(papers)
-    ));
-    out.push_str(
-        "Ours is `sim_s`: the wall time of the simulation proper (arm, network, integrator), \
-         without the observation at accepted steps (metrics and the Clarabel solves that score \
-         the run, which cost more than the networks themselves: ~50 us a solve against 0.3-3 us a \
-         network evaluation). Absolute times are not comparable across machines and languages; \
-         the ratios are.\n\n",
-    );
-    out.push_str(&cost::matlab_comparison(runs, papers));
-    out.push('\n');
-    pages.push(topic("cost.md", out));
-
+    pages.push(topic("cost.md", cost_page(runs, papers)));
     let mut out = performance::section(
         &performance::Measurements {
             dof: dof_cost,
@@ -361,7 +251,155 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
     let mut out = control::section(control, runs, figures);
     out.push_str(&control::cycles_section(control, figures));
     pages.push(topic("control.md", out));
+    pages.push(topic("cross.md", cross_page(runs, figures)));
+    pages.push(topic("published.md", published_page(runs, papers)));
+    let front = front_page(head, &top, &pages, *deviations);
+    std::iter::once(front).chain(pages).collect()
+}
 
+/// A paper with its claims evaluated.
+struct Evaluated<'a> {
+    id: &'a str,
+    title: &'a str,
+    claims: Vec<analysis::claim_verdict::Claim>,
+}
+
+/// `## Summary` of the front page: per paper, its verdict, its claims by verdict, the range of
+/// our drift over the paper's ([`analysis::paper_verdict::ratio_span`]) and why in one line.
+fn summary_section(
+    evaluated: &[Evaluated],
+    runs: &Runs,
+    papers: &Papers,
+    explanations: &why::Explanations,
+) -> String {
+    use analysis::claim_verdict::Verdict;
+    let mut summary = Table::new([
+        "paper",
+        "verdict",
+        "claims PASS / FAIL / N/A",
+        "our drift ÷ paper's",
+        "why, in one line",
+    ]);
+    for e in evaluated {
+        let paper = e.id;
+        let n = |v: Verdict| e.claims.iter().filter(|x| x.verdict == v).count();
+        let ratios = analysis::paper_verdict::drift_ratios(paper, runs, papers);
+        let range = match analysis::paper_verdict::ratio_span(&ratios) {
+            Some(span) => format!("{} to {}", sci(span.lo.1), sci(span.hi.1)),
+            None => "no published table".to_string(),
+        };
+        summary.push([
+            format!("[{paper}]({})", paper_page(paper)),
+            analysis::paper_verdict::level_under_setup(paper, &e.claims, &ratios, papers),
+            format!(
+                "{} / {} / {}",
+                n(Verdict::Pass),
+                n(Verdict::Fail),
+                n(Verdict::NotApplicable)
+            ),
+            range,
+            Some(why::one_line(paper, explanations))
+                .filter(|w| !w.is_empty())
+                .unwrap_or_else(|| "no drift attribution of its solvers".to_string()),
+        ]);
+    }
+    format!("## Summary\n\n{}\n", summary.render())
+}
+
+/// A paper's page: its title and citation, the verdict and why, the published tables side by
+/// side with ours, the sweep checks, why the numbers differ, the claims, and every run with
+/// its figures.
+fn paper_page_of(
+    e: &Evaluated,
+    runs: &Runs,
+    papers: &Papers,
+    explanations: &why::Explanations,
+    figures: &[String],
+) -> Page {
+    let (paper, title, c) = (e.id, e.title, &e.claims);
+    let mut out = format!("[← the report](REPORT.md)\n\n# {paper}\n\n*{title}.*\n\n");
+    let citation = papers.papers.iter().find(|p| p.id == *paper);
+    if let Some(c) = citation.and_then(|p| p.citation.as_ref()) {
+        out.push_str(&format!("Paper: {c}.\n\n"));
+    }
+    out.push_str(&verdict::paragraph(paper, c, runs, papers));
+    out.push_str(&why::summary(paper, explanations, papers));
+    let tables: Vec<String> = analysis::published_table::published_tables(paper, papers)
+        .iter()
+        .map(|t| tables::side_by_side(paper, t, papers, runs))
+        .filter(|t| !t.is_empty())
+        .collect();
+    if !tables.is_empty() {
+        out.push_str("\n### Published tables side by side\n\n");
+        out.push_str(&tables.join("\n"));
+    }
+    for check in papers.sweep_checks.iter().filter(|c| c.paper == *paper) {
+        out.push_str(&sweep::section(check, runs, papers));
+    }
+    out.push_str(&why::section(paper, explanations, papers));
+    out.push_str("\n### Claims\n\n");
+    out.push_str(&claims::checklist(c));
+    out.push_str(if tables.is_empty() {
+        "\n### Every run (the paper prints no table: this is the suite's)\n\n"
+    } else {
+        "\n### Every run\n\n"
+    });
+    for exp in runs.experiments(paper) {
+        out.push_str(&format!(
+            "#### `{exp}`\n\n{}",
+            tables::runs_table(runs, &exp)
+        ));
+        out.push('\n');
+        out.push_str(&figures::links(figures, runs, &exp));
+    }
+    Page {
+        file: paper_page(paper),
+        markdown: out,
+    }
+}
+
+/// `## Score against the exact optimum`: per paper (and the cross experiment), every neural
+/// run's score.
+fn score_page(runs: &Runs, papers: &Papers) -> String {
+    let mut out = format!("## Score against the exact optimum\n\n{}\n\n", score::NOTE);
+    for paper in papers.papers.iter().map(|p| p.id.as_str()).chain([CROSS]) {
+        let t = score::score_table(runs, paper);
+        if !t.is_empty() {
+            out.push_str(&format!("### {paper}\n\n{t}\n"));
+        }
+    }
+    out
+}
+
+/// `## Cost`: per paper (and the cross experiment), every run's effort, then the compute time
+/// against the papers' MATLAB times.
+fn cost_page(runs: &Runs, papers: &Papers) -> String {
+    let mut out = String::from("## Cost\n\nSteps, evaluations and QP solves are counted by the integrator and the scorer (the exact QP is solved at every RHS evaluation of the exact column and at every accepted step of a neural run). Wall times come from runs executed in parallel: compare them within one table, not across machines.\n\n");
+    for paper in papers.papers.iter().map(|p| p.id.as_str()).chain([CROSS]) {
+        out.push_str(&format!(
+            "### {paper}\n\n{}\n",
+            cost::cost_table(runs, paper)
+        ));
+    }
+    out.push_str(&format!(
+        "### {}: compute time against the paper's MATLAB times\n\n",
+        cost::timed_papers(papers)
+    ));
+    out.push_str(
+        "Ours is `sim_s`: the wall time of the simulation proper (arm, network, integrator), \
+         without the observation at accepted steps (metrics and the Clarabel solves that score \
+         the run, which cost more than the networks themselves: ~50 us a solve against 0.3-3 us a \
+         network evaluation). Absolute times are not comparable across machines and languages; \
+         the ratios are.\n\n",
+    );
+    out.push_str(&cost::matlab_comparison(runs, papers));
+    out.push('\n');
+    out
+}
+
+/// `## Cross experiment`: the matrices of every velocity-level solver on every velocity-level
+/// scheme and path, and the figures.
+fn cross_page(runs: &Runs, figures: &[String]) -> String {
     let mut out = String::from("## Cross experiment\n\nEvery velocity-level solver on every velocity-level scheme and path (ids: ");
     out.push_str(
         &runs
@@ -376,41 +414,23 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
     for exp in runs.experiments(CROSS) {
         out.push_str(&figures::links(figures, runs, &exp));
     }
-    pages.push(topic("cross.md", out));
+    out
+}
 
+/// The published numbers without a run and those the papers contradict, each a table.
+fn published_page(runs: &Runs, papers: &Papers) -> String {
     let mut out = String::from("## Published numbers without a run\n\n");
     let missing = papers.unmapped(runs);
     if missing.is_empty() {
         out.push_str("Every published number maps to a run.\n");
     } else {
-        let mut t = Table::new([
-            "paper",
-            "table",
-            "experiment",
-            "column",
-            "metric",
-            "value",
-            "why",
-        ]);
-        for (v, why) in missing {
-            t.push([
-                v.paper.clone(),
-                v.table.clone(),
-                v.experiment.clone(),
-                v.column.clone(),
-                v.metric.clone(),
-                sci(v.value),
-                why,
-            ]);
-        }
-        out.push_str(&t.render());
+        out.push_str(&values_table("value", missing).render());
     }
-
     out.push_str("\n## Published numbers the papers contradict\n\n");
     let contradicted: Vec<_> = papers
         .values
         .iter()
-        .filter_map(|v| v.inconsistent.as_ref().map(|why| (v, why)))
+        .filter_map(|v| v.inconsistent.clone().map(|why| (v, why)))
         .collect();
     if contradicted.is_empty() {
         out.push_str("No published number contradicts its paper's own.\n");
@@ -421,33 +441,35 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
              tables and no ratio, range or verdict is computed from them (a drift norm falls \
              back to the norm of the printed joints).\n\n",
         );
-        let mut t = Table::new([
-            "paper",
-            "table",
-            "experiment",
-            "column",
-            "metric",
-            "printed",
-            "why",
-        ]);
-        for (v, why) in contradicted {
-            t.push([
-                v.paper.clone(),
-                v.table.clone(),
-                v.experiment.clone(),
-                v.column.clone(),
-                v.metric.clone(),
-                sci(v.value),
-                why.clone(),
-            ]);
-        }
-        out.push_str(&t.render());
+        out.push_str(&values_table("printed", contradicted).render());
     }
+    out
+}
 
-    pages.push(topic("published.md", out));
-
-    let front = front_page(front, &top, &pages, *deviations);
-    std::iter::once(front).chain(pages).collect()
+/// Published values with a reason each (why they have no run, or why they contradict the
+/// paper), as a table whose number column is headed `value_header`.
+fn values_table(value_header: &str, values: Vec<(&PaperValue, String)>) -> Table {
+    let mut t = Table::new([
+        "paper",
+        "table",
+        "experiment",
+        "column",
+        "metric",
+        value_header,
+        "why",
+    ]);
+    for (v, why) in values {
+        t.push([
+            v.paper.clone(),
+            v.table.clone(),
+            v.experiment.clone(),
+            v.column.clone(),
+            v.metric.clone(),
+            sci(v.value),
+            why,
+        ]);
+    }
+    t
 }
 
 /// How many solvers of the leaderboard the front page shows.

@@ -20,70 +20,32 @@
 //!   whole reproduction and tests (`results/clock.csv` by `benches/clock/clock.sh`,
 //!   [`records::clock`]).
 //!
-//! Every number is read from `results/`; without `dof-cost.csv` the section says how to
-//! produce it and shows what `runs.csv` gives.
+//! Every number is read from `results/`, and what is computed from them (ratios of medians,
+//! sums of times, per-step quotients, fits, verdicts against the targets) is crate `analysis`'s
+//! ([`analysis::performance`]): this module formats. Without `dof-cost.csv` the section says
+//! how to produce it and shows what `runs.csv` gives.
 
 use super::cost::{solver_label, timed_papers};
-use super::markdown::{sci, sci_opt, text, Table, MISSING};
+use super::markdown::{minutes, percent, sci, sci_opt, text, Table, MISSING};
+use crate::figures::dof_cost::quantity_label;
 use analysis::papers::Papers;
+use analysis::performance::clock::{by_commit, phases_seconds};
+use analysis::performance::dof::{
+    fit_extents, large_n_fits, largest_n, largest_registry_n, runs_at_n, schemes, RunCost,
+};
+use analysis::performance::instant::{self, JACO2_N, TARGET_EXACT_OVER_RHS};
+use analysis::performance::profile::{matlab_over_simulation, rhs_dominates};
+use analysis::performance::replay;
+use analysis::performance::whole_runs::{self, TARGET_SIMULATION_SPEEDUP, TARGET_TOTAL_SPEEDUP};
 use records::clock::ClockRow;
-use records::dof_cost::{DofCostRow, Quantity, Summary, NALGEBRA};
-use records::index::{completed, Runs};
+use records::dof_cost::{DofCostRow, Quantity};
+use records::index::Runs;
 use records::phases::{PhaseRow, PhaseStatus};
 use records::profile::ProfileRow;
 use records::profile_active_set::HotSolveRow;
-use records::qp_replay::{QpReplayRow, SUITE};
+use records::qp_replay::QpReplayRow;
 use records::speedup::SpeedupRow;
 use records::timing::{Timings, REPETITIONS};
-use std::collections::BTreeMap;
-
-/// The joint count the per-instant table is shown at: the Jaco2's.
-pub const JACO2_N: usize = 6;
-
-/// The issue's targets the section states the measured ratios against: the exact path per
-/// instant within this many network RHS evaluations (7-variable QPs) ...
-pub const TARGET_EXACT_OVER_RHS: f64 = 5.0;
-/// ... every zhong2021 simulation this many times faster than the paper's MATLAB time ...
-pub const TARGET_SIMULATION_SPEEDUP: f64 = 300.0;
-/// ... and every whole run (scoring included) this many times.
-pub const TARGET_TOTAL_SPEEDUP: f64 = 150.0;
-
-/// A quantity as the report and the figure name it (`network` is the network's name).
-pub fn quantity_label(quantity: Quantity, network: &str) -> String {
-    match quantity {
-        Quantity::SchemeBuild => "scheme build (QP assembly)".to_string(),
-        Quantity::NetworkRhs => format!("{network} RHS"),
-        Quantity::NetworkJacobian => format!("{network} Jacobian"),
-        Quantity::NetworkLu => format!("{network} Jacobian's LU"),
-        Quantity::ExactActiveSet => "exact: active set, hot-started".to_string(),
-        Quantity::ExactClarabel => "exact: Clarabel".to_string(),
-        Quantity::KktFloor => "dense KKT floor (one LU)".to_string(),
-        Quantity::RunExact => "whole run, exact column".to_string(),
-        Quantity::RunNetwork => format!("whole run, {network}"),
-    }
-}
-
-/// The measured row of (scheme, N, quantity) on nalgebra (the backend of every quantity; the
-/// dense LUs on faer are read by [`dof_curve`]).
-fn find<'a>(
-    dof: &'a [DofCostRow],
-    scheme: &str,
-    n: usize,
-    quantity: Quantity,
-) -> Option<&'a DofCostRow> {
-    dof.iter().find(|r| {
-        !r.is_fit()
-            && r.scheme == scheme
-            && r.n == Some(n)
-            && r.quantity == quantity
-            && r.backend == NALGEBRA
-    })
-}
-
-/// The schemes of the measurement, in file order.
-fn schemes(dof: &[DofCostRow]) -> Vec<&str> {
-    records::table::distinct(dof, |r| &r.scheme)
-}
 
 /// The measurements the `## Performance` section reads besides the runs: each a results file,
 /// empty where absent.
@@ -217,7 +179,7 @@ fn phase_table(phases: &[PhaseRow]) -> String {
             records::phases::FILE
         );
     };
-    let total: f64 = phases.iter().filter_map(|r| r.seconds).sum();
+    let total = phases_seconds(phases);
     let skipped: Vec<String> = phases
         .iter()
         .filter(|r| r.status == PhaseStatus::Skipped)
@@ -297,27 +259,21 @@ fn clock_table(clock: &[ClockRow]) -> String {
             text(&r.revision),
             format!("`{}`", text(&r.commit)),
             format!("{} (`{}`)", r.step.id(), r.step.command()),
-            format!("{:.1}", r.seconds / 60.0),
+            minutes(r.seconds),
             r.exit_code.to_string(),
             format!("{} ({} cores)", text(&r.machine), r.cores),
             text(&r.date),
         ]);
     }
     let mut totals = String::new();
-    for commit in records::table::distinct(clock, |r| &r.commit) {
-        let steps: Vec<&ClockRow> = clock.iter().filter(|r| r.commit == commit).collect();
-        let minutes: f64 = steps.iter().map(|r| r.seconds).sum::<f64>() / 60.0;
-        let ids: Vec<&str> = steps.iter().map(|r| r.step.id()).collect();
+    for c in by_commit(clock) {
         totals.push_str(&format!(
-            "- `{}` ({}): {minutes:.1} min for {}{}.\n",
-            text(commit),
-            text(&steps[0].revision),
-            ids.join(" + "),
-            if steps.iter().any(|r| r.exit_code != 0) {
-                ", a step failing"
-            } else {
-                ""
-            }
+            "- `{}` ({}): {} min for {}{}.\n",
+            text(c.commit),
+            text(c.revision),
+            minutes(c.seconds),
+            c.steps.join(" + "),
+            if c.failed { ", a step failing" } else { "" }
         ));
     }
     format!(
@@ -389,38 +345,28 @@ fn paper_profile(profile: &[ProfileRow], timed: bool, papers: &Papers) -> String
             r.part.clone(),
             r.category.clone(),
             if r.in_floor() { "yes" } else { "no" }.to_string(),
-            format!("{:.1} %", 100.0 * r.share_of_process),
+            percent(r.share_of_process, 1),
             r.share_of_simulation
-                .map_or(MISSING.to_string(), |v| format!("{:.1} %", 100.0 * v)),
+                .map_or(MISSING.to_string(), |v| percent(v, 1)),
             format!("{:.1}", r.ms_per_pass),
         ]);
     }
     let ratio =
         records::profile::floor_ratio(profile).map_or(MISSING.to_string(), |v| format!("{v:.2}"));
-    let simulation_s: f64 = profile
-        .iter()
-        .filter(|r| r.part == records::profile::SIMULATION)
-        .map(|r| r.ms_per_pass / 1e3)
-        .sum();
-    let paper_s: f64 = papers.timed_values().map(|(v, _)| v.value).sum();
     let mut said = String::new();
-    if timed && simulation_s > 0.0 && paper_s > 0.0 {
+    if let Some(m) = matlab_over_simulation(profile, papers).filter(|_| timed) {
         said.push_str(&format!(
             " Over the {} runs the papers time, together, the MATLAB times ({} s) are {} times \
              the simulation's CPU time per pass ({} s); the target of {}x applies to each run's \
              simulation.",
-            papers.timed_values().count(),
-            sci(paper_s),
-            sci(paper_s / simulation_s),
-            sci(simulation_s),
+            m.runs,
+            sci(m.matlab_s),
+            sci(m.ratio),
+            sci(m.simulation_s),
             TARGET_SIMULATION_SPEEDUP
         ));
     }
-    let largest = profile
-        .iter()
-        .filter(|r| r.part == records::profile::SIMULATION)
-        .max_by(|a, b| a.samples.cmp(&b.samples));
-    if timed && largest.is_some_and(|r| r.category == records::profile::RHS) {
+    if timed && rhs_dominates(profile) {
         said.push_str(
             " The RHS is the larger part of it: VP-RNN-PF's RHS forms and solves its (nx + n_eq) \
              system W at every evaluation, several times LVI-PDNN's RHS, so a floor priced at \
@@ -480,12 +426,8 @@ fn per_instant(dof: &[DofCostRow], hot: &[HotSolveRow]) -> String {
         "samples",
     ]);
     for scheme in schemes(dof) {
-        let median = |q| find(dof, scheme, JACO2_N, q).and_then(|r| r.median_us);
-        let (rhs, floor) = (median(Quantity::NetworkRhs), median(Quantity::KktFloor));
-        for quantity in Quantity::ALL.into_iter().filter(|q| !q.is_run()) {
-            let Some(r) = find(dof, scheme, JACO2_N, quantity) else {
-                continue;
-            };
+        for c in instant::per_instant(dof, scheme) {
+            let r = c.row;
             let dims = match (r.nx, r.n_eq, r.n_in) {
                 (Some(a), Some(b), Some(c)) => format!("{a}, {b}, {c}"),
                 _ => MISSING.to_string(),
@@ -493,11 +435,11 @@ fn per_instant(dof: &[DofCostRow], hot: &[HotSolveRow]) -> String {
             t.push([
                 format!("{scheme} {}", r.scheme_name),
                 dims,
-                quantity_label(quantity, &r.network),
+                quantity_label(c.quantity, &r.network),
                 sci_opt(r.median_us),
                 sci_opt(r.p95_us),
-                sci_opt(r.median_us.zip(rhs).map(|(m, d)| m / d)),
-                sci_opt(r.median_us.zip(floor).map(|(m, d)| m / d)),
+                sci_opt(c.over_rhs),
+                sci_opt(c.over_floor),
                 r.samples.to_string(),
             ]);
         }
@@ -510,29 +452,21 @@ fn per_instant(dof: &[DofCostRow], hot: &[HotSolveRow]) -> String {
     out.push('\n');
     // The issue's target on the 7-variable QPs: jia2019's at N = 6 (nx = N + 1).
     for scheme in schemes(dof) {
-        let active = find(dof, scheme, JACO2_N, Quantity::ExactActiveSet);
-        let rhs = find(dof, scheme, JACO2_N, Quantity::NetworkRhs);
-        if let (Some(a), Some(r)) = (active, rhs) {
-            if a.nx != Some(7) {
-                continue;
-            }
-            if let (Some(am), Some(rm)) = (a.median_us, r.median_us) {
-                let ratio = am / rm;
-                out.push_str(&format!(
-                    "On the 7-variable QP ({scheme} {}) the hot-started active set takes {} \
-                     times one {} RHS evaluation: the target of at most {} is {}.\n\n",
-                    a.scheme_name,
-                    sci(ratio),
-                    r.network,
-                    TARGET_EXACT_OVER_RHS,
-                    if ratio <= TARGET_EXACT_OVER_RHS {
-                        "met"
-                    } else {
-                        "not met (the gap is the ratio above)"
-                    }
-                ));
-                out.push_str(&hot_solve_profile(hot, ratio, &r.network));
-            }
+        if let Some(e) = instant::exact_over_rhs(dof, scheme) {
+            out.push_str(&format!(
+                "On the 7-variable QP ({scheme} {}) the hot-started active set takes {} \
+                 times one {} RHS evaluation: the target of at most {} is {}.\n\n",
+                e.active_set.scheme_name,
+                sci(e.ratio),
+                e.rhs.network,
+                TARGET_EXACT_OVER_RHS,
+                if e.met {
+                    "met"
+                } else {
+                    "not met (the gap is the ratio above)"
+                }
+            ));
+            out.push_str(&hot_solve_profile(hot, e.ratio, &e.rhs.network));
         }
     }
     out
@@ -551,16 +485,16 @@ fn hot_solve_profile(hot: &[HotSolveRow], ratio: f64, network: &str) -> String {
     };
     let mut t = Table::new(["category", "share of the hot solve"]);
     for r in hot {
-        t.push([r.category.clone(), format!("{:.1} %", 100.0 * r.share)]);
+        t.push([r.category.clone(), percent(r.share, 1)]);
     }
     let without =
         records::profile_active_set::certification_share(hot).map_or(String::new(), |c| {
             format!(
                 " The certification (every answer's KKT residuals, so that the exact column is \
-                 exact by proof, not by trust) takes {:.1} % of it: the rest would take {} times \
+                 exact by proof, not by trust) takes {} of it: the rest would take {} times \
                  one {network} RHS evaluation.",
-                100.0 * c,
-                sci(ratio * (1.0 - c))
+                percent(c, 1),
+                sci(instant::uncertified_over_rhs(ratio, c))
             )
         });
     format!(
@@ -614,87 +548,57 @@ fn replay_table(rows: &[QpReplayRow], hot: &[HotSolveRow]) -> String {
         "cold ÷ DAQP",
         "max |x - x_other|",
     ]);
-    let find = |task: &str, solver: &str, start: &str| {
-        rows.iter()
-            .find(|r| r.task == task && r.solver == solver && r.start == start)
-            .map(|r| r.mean_us)
-    };
-    let daqp = |task: &str, start: &str| {
-        rows.iter()
-            .find(|r| r.task == task && r.solver != SUITE && r.start == start)
-            .map(|r| r.mean_us)
-    };
-    let mut seen: Vec<(&str, &str)> = Vec::new();
-    for r in rows {
-        if seen.contains(&(r.task.as_str(), r.solver.as_str())) {
-            continue;
-        }
-        seen.push((&r.task, &r.solver));
-        let (warm, cold) = (
-            find(&r.task, &r.solver, "warm"),
-            find(&r.task, &r.solver, "cold"),
-        );
-        let ratio = |x: Option<f64>, d: Option<f64>| sci_opt(x.zip(d).map(|(x, d)| x / d));
+    for line in replay::lines(rows) {
+        let r = line.row;
         t.push([
             text(&r.task),
             format!("{}, {}, {}, {}", r.nx, r.n_eq, r.n_in, r.n_bounds),
             text(&r.solver),
-            sci_opt(warm),
-            sci_opt(cold),
-            ratio(warm, daqp(&r.task, "warm")),
-            ratio(cold, daqp(&r.task, "cold")),
+            sci_opt(line.warm_us),
+            sci_opt(line.cold_us),
+            sci_opt(line.warm_over_daqp),
+            sci_opt(line.cold_over_daqp),
             sci(r.max_dx_vs_other),
         ]);
     }
     out.push_str(&t.render());
     out.push('\n');
-    // The suite's ratios to DAQP over the tasks, warm and cold: the target is at most 1.
-    let span = |start: &str| -> Option<(f64, f64)> {
-        let ratios: Vec<f64> = rows
-            .iter()
-            .filter(|r| r.solver == SUITE && r.start == start)
-            .filter_map(|r| daqp(&r.task, start).map(|d| r.mean_us / d))
-            .collect();
-        let lo = ratios.iter().copied().reduce(f64::min)?;
-        Some((lo, ratios.iter().copied().fold(lo, f64::max)))
-    };
-    if let (Some((wl, wh)), Some((cl, ch))) = (span("warm"), span("cold")) {
-        let met = wh <= 1.0 && ch <= 1.0;
-        // A gap is explained by the certification's share of the profiled hot solve; a met
-        // target needs no explanation.
-        let certification = records::profile_active_set::certification_share(hot)
-            .filter(|_| !met)
-            .map_or(String::new(), |c| {
-                format!(
-                    " The sampling profile of the hot solve (`results/{}`) gives the \
-                     certification {:.1} % of it.",
-                    records::profile_active_set::FILE,
-                    100.0 * c
-                )
-            });
-        out.push_str(&format!(
-            "The target, the suite at or below DAQP warm and cold with its answer still \
-             certified, is {}: the suite takes {:.2}-{:.2} times DAQP's time warm and \
-             {:.2}-{:.2} times cold.{certification}\n\n",
-            if met { "met" } else { "not met" },
-            wl,
-            wh,
-            cl,
-            ch
-        ));
+    if let Some(target) = replay::target(rows) {
+        out.push_str(&replay_verdict(&target, hot));
     }
     out
+}
+
+/// The replay's target: the suite at or below DAQP warm and cold, its ratios to DAQP over the
+/// tasks; a gap is explained by the certification's share of the profiled hot solve (a met
+/// target needs no explanation).
+fn replay_verdict(target: &replay::ReplayTarget, hot: &[HotSolveRow]) -> String {
+    let certification = records::profile_active_set::certification_share(hot)
+        .filter(|_| !target.met)
+        .map_or(String::new(), |c| {
+            format!(
+                " The sampling profile of the hot solve (`results/{}`) gives the \
+                 certification {} of it.",
+                records::profile_active_set::FILE,
+                percent(c, 1)
+            )
+        });
+    let ((wl, wh), (cl, ch)) = (target.warm, target.cold);
+    format!(
+        "The target, the suite at or below DAQP warm and cold with its answer still \
+         certified, is {}: the suite takes {:.2}-{:.2} times DAQP's time warm and \
+         {:.2}-{:.2} times cold.{certification}\n\n",
+        if target.met { "met" } else { "not met" },
+        wl,
+        wh,
+        cl,
+        ch
+    )
 }
 
 /// Per accepted step and per RHS evaluation in the completed runs of `runs.csv`, by solver
 /// kind.
 fn per_solver_kind(runs: &Runs) -> String {
-    let mut kinds: BTreeMap<&str, Vec<&records::runs::RunRow>> = BTreeMap::new();
-    for r in runs.all() {
-        if completed(r) && r.steps > 0 && r.rhs_evals > 0 {
-            kinds.entry(r.solver_kind.id()).or_default().push(r);
-        }
-    }
     let mut out = String::from(
         "### Per step in the reproduction's runs\n\nFrom `results/runs.csv`, every completed run \
          by solver kind: the whole run's wall time (`wall_s`: simulation and observation, \
@@ -711,24 +615,11 @@ fn per_solver_kind(runs: &Runs) -> String {
         "p95 (us)",
         "RHS evals per run, median",
     ]);
-    for (kind, rows) in &kinds {
-        let per_step: Vec<f64> = rows
-            .iter()
-            .map(|r| r.wall_s * 1e6 / r.steps as f64)
-            .collect();
-        let per_rhs: Vec<f64> = rows
-            .iter()
-            .map(|r| r.sim_s * 1e6 / r.rhs_evals as f64)
-            .collect();
-        let evals: Vec<f64> = rows.iter().map(|r| r.rhs_evals as f64).collect();
-        let (step, rhs, ev) = (
-            Summary::of(&per_step),
-            Summary::of(&per_rhs),
-            Summary::of(&evals),
-        );
+    for k in whole_runs::by_solver_kind(runs) {
+        let (step, rhs, ev) = (k.wall_per_step_us, k.sim_per_rhs_us, k.rhs_evals);
         t.push([
-            kind.to_string(),
-            rows.len().to_string(),
+            k.kind.to_string(),
+            k.runs.to_string(),
             sci_opt(step.map(|s| s.median_us)),
             sci_opt(step.map(|s| s.p95_us)),
             sci_opt(rhs.map(|s| s.median_us)),
@@ -748,7 +639,7 @@ fn per_solver_kind(runs: &Runs) -> String {
 /// The figures of the cost against N, the fitted exponents per backend and the crossover of
 /// the dense LUs.
 fn dof_curve(dof: &[DofCostRow], figures: &[String]) -> String {
-    let largest = dof.iter().filter_map(|r| r.n).max().unwrap_or(0);
+    let largest = largest_n(dof);
     let mut out = format!(
         "### Cost against the number of joints\n\nThe n-link arms `nlink-N` (a yaw joint and a \
          planar pitch chain, from their stated home pose) with the VLTCO scheme of \
@@ -779,35 +670,22 @@ fn dof_curve(dof: &[DofCostRow], figures: &[String]) -> String {
         "median at the smallest N (us)",
         "median at the largest N (us)",
     ]);
-    for fit in dof.iter().filter(|r| r.is_fit()) {
-        let measured: Vec<&DofCostRow> = dof
-            .iter()
-            .filter(|r| {
-                !r.is_fit()
-                    && r.scheme == fit.scheme
-                    && r.quantity == fit.quantity
-                    && r.backend == fit.backend
-            })
-            .collect();
-        let at = |pick: fn(usize, usize) -> bool| {
-            measured
-                .iter()
-                .filter_map(|r| Some((r.n?, r.median_us?)))
-                .reduce(|a, b| if pick(b.0, a.0) { b } else { a })
-                .map_or(MISSING.to_string(), |(n, m)| {
-                    format!("{} (N = {n})", sci(m))
-                })
-        };
-        let label = quantity_label(fit.quantity, &fit.network);
+    let at = |point: Option<(usize, f64)>| {
+        point.map_or(MISSING.to_string(), |(n, m)| {
+            format!("{} (N = {n})", sci(m))
+        })
+    };
+    for e in fit_extents(dof) {
+        let fit = e.fit;
         t.push([
             format!("{} {}", fit.scheme, fit.scheme_name),
-            label,
+            quantity_label(fit.quantity, &fit.network),
             fit.backend.clone(),
             fit.exponent
                 .map_or(MISSING.to_string(), |k| format!("{k:.2}")),
             sci_opt(fit.factor_us),
-            at(|a, b| a < b),
-            at(|a, b| a > b),
+            at(e.smallest),
+            at(e.largest),
         ]);
     }
     if !t.is_empty() {
@@ -876,39 +754,19 @@ fn dof_runs(dof: &[DofCostRow]) -> String {
         "steps",
         "per step (us)",
     ]);
-    for scheme in schemes(dof) {
-        let mut ns: Vec<usize> = dof
-            .iter()
-            .filter(|r| r.scheme == scheme)
-            .filter_map(|r| r.n)
-            .collect();
-        ns.sort_unstable();
-        ns.dedup();
-        for n in ns {
-            let cells = |q| match find(dof, scheme, n, q) {
-                None => [
-                    MISSING.to_string(),
-                    MISSING.to_string(),
-                    MISSING.to_string(),
-                ],
-                Some(r) => {
-                    let time = match r.completed {
-                        Some(false) => {
-                            format!("{} (failed)", sci_opt(r.median_us.map(|m| m * 1e-6)))
-                        }
-                        _ => sci_opt(r.median_us.map(|m| m * 1e-6)),
-                    };
-                    [
-                        time,
-                        r.steps.map_or(MISSING.to_string(), |s| s.to_string()),
-                        sci_opt(r.median_us.zip(r.steps).map(|(m, s)| m / s.max(1) as f64)),
-                    ]
-                }
-            };
-            let [e0, e1, e2] = cells(Quantity::RunExact);
-            let [n0, n1, n2] = cells(Quantity::RunNetwork);
-            t.push([scheme.to_string(), n.to_string(), e0, e1, e2, n0, n1, n2]);
-        }
+    for r in runs_at_n(dof) {
+        let [e0, e1, e2] = run_cells(r.exact);
+        let [n0, n1, n2] = run_cells(r.network);
+        t.push([
+            r.scheme.to_string(),
+            r.n.to_string(),
+            e0,
+            e1,
+            e2,
+            n0,
+            n1,
+            n2,
+        ]);
     }
     if t.is_empty() {
         return String::new();
@@ -926,52 +784,57 @@ fn dof_runs(dof: &[DofCostRow]) -> String {
          (`cost/tests/paths.rs` checks that both paths take the same steps and RHS \
          evaluations where both exist). The Newton matrix of the BDF runs is factorised by \
          diffsol's nalgebra LU at every N; faer is not measured for whole runs.{}\n\n{}\n",
-        large_n_fits(dof),
+        large_n_sentence(dof),
         t.render()
     )
 }
 
-/// The growth exponents of the whole runs over the dynamic path's joint counts alone (N > the
-/// registry's largest), where the per-step cost is past its small-N floor: one sentence, empty
-/// when fewer than two such N were measured.
-fn large_n_fits(dof: &[DofCostRow]) -> String {
-    let largest_fixed = robots::registry::NLINK_SIZES
-        .iter()
-        .copied()
-        .max()
-        .unwrap_or(0);
-    let mut parts = Vec::new();
-    for scheme in schemes(dof) {
-        for quantity in [Quantity::RunExact, Quantity::RunNetwork] {
-            let points: Vec<(f64, f64)> = dof
-                .iter()
-                .filter(|r| {
-                    !r.is_fit()
-                        && r.scheme == scheme
-                        && r.quantity == quantity
-                        && r.n.is_some_and(|n| n > largest_fixed)
-                })
-                .filter_map(|r| Some((r.n? as f64, r.median_us?)))
-                .collect();
-            if let Some(fit) = analysis::fits::fit_power_law(&points) {
-                let network = dof
-                    .iter()
-                    .find(|r| r.scheme == scheme)
-                    .map_or("", |r| r.network.as_str());
-                parts.push(format!(
-                    "{scheme} {}: k = {:.2} over {} N",
-                    quantity_label(quantity, network),
-                    fit.k,
-                    fit.points
-                ));
-            }
+/// The cells of one whole run of the DOF measurement: its median time (failed or not), steps
+/// and time per step; [`MISSING`] where it was not measured.
+fn run_cells(cost: Option<RunCost>) -> [String; 3] {
+    match cost {
+        None => [
+            MISSING.to_string(),
+            MISSING.to_string(),
+            MISSING.to_string(),
+        ],
+        Some(c) => {
+            let time = if c.failed {
+                format!("{} (failed)", sci_opt(c.seconds))
+            } else {
+                sci_opt(c.seconds)
+            };
+            [
+                time,
+                c.steps.map_or(MISSING.to_string(), |s| s.to_string()),
+                sci_opt(c.per_step_us),
+            ]
         }
     }
+}
+
+/// The growth exponents of the whole runs over the dynamic path's joint counts alone (N > the
+/// registry's largest, [`large_n_fits`]): one sentence, empty when fewer than two such N were
+/// measured.
+fn large_n_sentence(dof: &[DofCostRow]) -> String {
+    let parts: Vec<String> = large_n_fits(dof)
+        .iter()
+        .map(|f| {
+            format!(
+                "{} {}: k = {:.2} over {} N",
+                f.scheme,
+                quantity_label(f.quantity, f.network),
+                f.fit.k,
+                f.fit.points
+            )
+        })
+        .collect();
     if parts.is_empty() {
         return String::new();
     }
     format!(
-        " Fitted over N > {largest_fixed} alone (median ~ c N^k): {}.",
+        " Fitted over N > {} alone (median ~ c N^k): {}.",
+        largest_registry_n(),
         parts.join("; ")
     )
 }
@@ -991,43 +854,24 @@ fn matlab(runs: &Runs, timings: &Timings, papers: &Papers) -> String {
         "paper ÷ simulation",
         "paper ÷ total",
     ]);
-    let (mut min_sim, mut min_total) = (f64::INFINITY, f64::INFINITY);
-    let (mut alone, mut shown) = (0, 0);
-    for exp in papers.timed_experiments() {
-        for (solver, paper) in papers.times_of(exp) {
-            let ours = runs
-                .of_experiment(exp)
-                .find(|r| r.solver_id == solver)
-                .filter(|r| completed(r));
-            let timed = ours.and_then(|r| timings.get(&r.key()));
-            let sim = match (ours, timed) {
-                (_, Some(t)) => Some((t.sim_s_median, t.wall_s_median)),
-                (Some(r), None) => Some((r.sim_s, r.wall_s)),
-                (None, None) => None,
-            };
-            if let Some((s, w)) = sim {
-                min_sim = min_sim.min(paper / s);
-                min_total = min_total.min(paper / w);
-                shown += 1;
-            }
-            alone += usize::from(timed.is_some());
-            t.push([
-                exp.to_string(),
-                solver_label(runs, exp, solver),
-                sci(paper),
-                sci_opt(sim.map(|p| p.0)),
-                sci_opt(sim.map(|p| p.1)),
-                timed.map_or(MISSING.to_string(), |t| {
-                    format!(
-                        "{:.0} %, {:.0} %",
-                        100.0 * t.sim_spread(),
-                        100.0 * t.wall_spread()
-                    )
-                }),
-                sci_opt(sim.map(|(s, _)| paper / s)),
-                sci_opt(sim.map(|(_, w)| paper / w)),
-            ]);
-        }
+    let comparison = whole_runs::matlab_comparison(runs, timings, papers);
+    for line in &comparison.lines {
+        t.push([
+            line.experiment.to_string(),
+            solver_label(runs, line.experiment, line.solver),
+            sci(line.paper_s),
+            sci_opt(line.ours.map(|p| p.0)),
+            sci_opt(line.ours.map(|p| p.1)),
+            line.timing.map_or(MISSING.to_string(), |t| {
+                format!(
+                    "{}, {}",
+                    percent(t.sim_spread(), 0),
+                    percent(t.wall_spread(), 0)
+                )
+            }),
+            sci_opt(line.paper_over_simulation),
+            sci_opt(line.paper_over_total),
+        ]);
     }
     if t.is_empty() {
         return String::new();
@@ -1038,26 +882,28 @@ fn matlab(runs: &Runs, timings: &Timings, papers: &Papers) -> String {
          and the whole run (`wall_s`: with the observation at every accepted step, i.e. metrics \
          and the exact solves that score the run). Each run was timed alone: run {REPETITIONS} \
          times, one run at a time on one thread, after the parallel reproduction; the median is \
-         shown, with the spread (max − min) / median of the repetitions ({alone} of the {shown} \
+         shown, with the spread (max − min) / median of the repetitions ({} of the {} \
          runs so timed, `results/{}`; any other shows the parallel reproduction's time, where it \
          shared the cores). Different machines and languages: the speedups say how far apart, \
          not which implementation is better.\n\n",
         timed_papers(papers),
+        comparison.alone,
+        comparison.shown,
         records::timing::FILE
     );
     out.push_str(&t.render());
     out.push('\n');
-    if min_sim.is_finite() && min_total.is_finite() {
-        let verdict = |v: f64, target: f64| if v >= target { "met" } else { "not met" };
+    if let Some(smallest) = comparison.smallest {
+        let verdict = |met: bool| if met { "met" } else { "not met" };
         out.push_str(&format!(
             "Smallest speedup over these runs: {} for the simulation (the target of {}x is {}) \
              and {} for the whole run (the target of {}x is {}).\n\n",
-            sci(min_sim),
+            sci(smallest.simulation),
             TARGET_SIMULATION_SPEEDUP,
-            verdict(min_sim, TARGET_SIMULATION_SPEEDUP),
-            sci(min_total),
+            verdict(smallest.simulation_met),
+            sci(smallest.total),
             TARGET_TOTAL_SPEEDUP,
-            verdict(min_total, TARGET_TOTAL_SPEEDUP),
+            verdict(smallest.total_met),
         ));
     }
     out
@@ -1066,6 +912,7 @@ fn matlab(runs: &Runs, timings: &Timings, papers: &Papers) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use records::qp_replay::SUITE;
 
     /// Replay rows of one task of QP sizes `[nx, n_eq, n_in, n_bounds]`: one per (solver,
     /// start, mean microseconds), the p95 equal to the mean, the answers `max_dx` apart.

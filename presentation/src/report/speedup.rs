@@ -11,16 +11,17 @@
 //! samples of the simulation and the exact column over those of the RHS, Jacobian and LU work,
 //! the exact column's QP solves included). Removing every sample outside the floor divides the
 //! integration's time by r at most, so a paper with r below the target cannot meet it by
-//! removing overhead alone.
+//! removing overhead alone. The speed-ups, verdicts and shares are computed by
+//! [`analysis::performance::speedup`] and [`analysis::performance::profile`]; this module formats.
 
-use super::markdown::{sci, Table, MISSING};
+use super::markdown::{percent, sci, Table, MISSING};
 use analysis::papers::Papers;
+use analysis::performance::profile::part_shares;
+use analysis::performance::speedup::{
+    floor_bound, paper_lines, FloorBound, SpeedupTarget, TARGET_OTHER_SPEEDUP,
+};
 use records::profile::ProfileRow;
-use records::speedup::{by_paper, SpeedupRow};
-
-/// Every run of a paper that publishes no compute time this many times faster in simulation
-/// than at the earlier revision.
-pub const TARGET_OTHER_SPEEDUP: f64 = 3.0;
+use records::speedup::SpeedupRow;
 
 /// The `### Against an earlier revision` subsection.
 pub fn section(rows: &[SpeedupRow], profile: &[ProfileRow], papers: &Papers) -> String {
@@ -47,29 +48,29 @@ pub fn section(rows: &[SpeedupRow], profile: &[ProfileRow], papers: &Papers) -> 
         "target",
     ]);
     let mut missed = Vec::new();
-    for p in by_paper(rows) {
-        let speedup = p.old_sim_s / p.new_sim_s;
-        let target = if timed.contains(&p.paper.as_str()) {
-            "MATLAB times".to_string()
-        } else if p.min_sim_speedup >= TARGET_OTHER_SPEEDUP {
-            format!("{TARGET_OTHER_SPEEDUP}x met")
-        } else {
-            missed.push(p.paper.clone());
-            format!("{TARGET_OTHER_SPEEDUP}x not met")
+    for line in paper_lines(rows, &timed) {
+        let p = &line.paper;
+        let target = match line.target {
+            SpeedupTarget::MatlabTimes => "MATLAB times".to_string(),
+            SpeedupTarget::Met => format!("{TARGET_OTHER_SPEEDUP}x met"),
+            SpeedupTarget::NotMet => {
+                missed.push(p.paper.clone());
+                format!("{TARGET_OTHER_SPEEDUP}x not met")
+            }
         };
         t.push([
             p.paper.clone(),
             p.runs.to_string(),
             sci(p.old_sim_s),
             sci(p.new_sim_s),
-            format!("{speedup:.2}"),
+            format!("{:.2}", line.simulation),
             format!(
                 "{:.2}, {:.2}, {:.2}",
                 p.min_sim_speedup, p.median_sim_speedup, p.max_sim_speedup
             ),
             sci(p.old_wall_s),
             sci(p.new_wall_s),
-            format!("{:.2}", p.old_wall_s / p.new_wall_s),
+            format!("{:.2}", line.whole),
             p.status_changes.to_string(),
             sci(p.max_drift_change),
             target,
@@ -105,28 +106,20 @@ fn why_missed(paper: &str, profile: &[ProfileRow]) -> String {
             records::profile::FILE
         );
     }
-    let mut parts: Vec<(String, f64)> = Vec::new();
-    for r in &rows {
-        match parts.iter_mut().find(|(p, _)| *p == r.part) {
-            Some((_, share)) => *share += r.share_of_process,
-            None => parts.push((r.part.clone(), r.share_of_process)),
-        }
-    }
-    let shares: Vec<String> = parts
+    let shares: Vec<String> = part_shares(&rows)
         .iter()
-        .map(|(part, share)| format!("{part} {:.0} %", 100.0 * share))
+        .map(|(part, share)| format!("{part} {}", percent(*share, 0)))
         .collect();
-    let ratio = records::profile::integration_floor_ratio(&rows);
-    let bound = match ratio {
-        Some(r) if r < TARGET_OTHER_SPEEDUP => format!(
+    let bound = match floor_bound(&rows) {
+        FloorBound::Below(r) => format!(
             "; its integration (the simulation and the exact column: what `sim_s` times) runs at \
              {r:.2} times its floor (RHS, Jacobian and LU work; every exact-column sample is a \
              right-hand side, i.e. a QP solve), so removing every sample outside the floor would \
              make it at most {r:.2}x faster: the target needs fewer or cheaper RHS, Jacobian and \
              LU evaluations"
         ),
-        Some(r) => format!("; its integration runs at {r:.2} times its floor"),
-        None => format!("; the profile has no floor samples ({MISSING})"),
+        FloorBound::Above(r) => format!("; its integration runs at {r:.2} times its floor"),
+        FloorBound::NoFloor => format!("; the profile has no floor samples ({MISSING})"),
     };
     format!(
         "**{paper}.** Its profile (below) splits the process into {}{bound}.\n\n",

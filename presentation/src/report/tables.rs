@@ -4,11 +4,13 @@
 //! rows are the quantities (joint drifts, drift norm, and whatever else the paper prints),
 //! and for each published column there are the paper's number, our exact run, our
 //! run of the paper's solver, and the ratio ours/paper — then the same for each companion
-//! variant. The exact column separates what the scheme does from what the solver adds.
+//! variant. The exact column separates what the scheme does from what the solver adds. Which
+//! columns and quantities a table has, and the ratios, are [`analysis::published_table`]'s.
 
 use super::markdown::metric_cell;
 use super::markdown::{sci, sci_opt, Table, MISSING};
-use analysis::papers::{our_metric, Mapping, Papers};
+use analysis::papers::{Mapping, Papers};
+use analysis::published_table::{columns_of, quantities_of, ratio_to_paper};
 use records::index::{metric, status_text, Runs, EXACT};
 use records::runs::RunRow;
 
@@ -27,76 +29,6 @@ pub fn quantity_label(metric: &str) -> String {
     }
 }
 
-/// The published tables of `paper`, in the order the CSV lists them (`text` last).
-pub fn published_tables(paper: &str, papers: &Papers) -> Vec<String> {
-    let mut tables: Vec<String> = Vec::new();
-    for v in papers.values.iter().filter(|v| v.paper == paper) {
-        if !tables.contains(&v.table) {
-            tables.push(v.table.clone());
-        }
-    }
-    tables.sort_by_key(|t| t == "text");
-    tables
-}
-
-/// The mapped columns of one published table, in the CSV's order.
-fn columns_of<'a>(paper: &str, table: &str, papers: &'a Papers) -> Vec<&'a Mapping> {
-    let mut cols: Vec<&Mapping> = Vec::new();
-    let measured = papers
-        .values
-        .iter()
-        .filter(|v| v.paper == paper && v.table == table && our_metric(&v.metric).is_some());
-    for m in measured.filter_map(|v| papers.mapping_of(v)) {
-        if !cols.contains(&m) {
-            cols.push(m);
-        }
-    }
-    cols
-}
-
-/// The quantities (our column names) of one published table: what the paper prints and we
-/// measure, plus the drift norm (derived when the paper prints only joints) and the drift
-/// against theta*0 when some shown run starts off it.
-fn quantities_of(
-    paper: &str,
-    table: &str,
-    papers: &Papers,
-    shown: &[&RunRow],
-) -> Vec<&'static str> {
-    let mut q: Vec<&'static str> = Vec::new();
-    for m in papers
-        .values
-        .iter()
-        .filter(|v| v.paper == paper && v.table == table && papers.mapping_of(v).is_some())
-        .filter_map(|v| our_metric(&v.metric))
-    {
-        if !q.contains(&m) {
-            q.push(m);
-        }
-    }
-    if q.iter().any(|m| m.starts_with("drift_")) && !q.contains(&"drift_norm") {
-        let at = q
-            .iter()
-            .rposition(|m| m.starts_with("drift_"))
-            .map_or(q.len(), |i| i + 1);
-        q.insert(at, "drift_norm");
-    }
-    let off_reference = shown
-        .iter()
-        .any(|r| match (r.drift_norm, r.drift_ref_norm) {
-            (Some(a), Some(b)) => (a - b).abs() > 1e-12 * a.abs().max(1.0),
-            _ => false,
-        });
-    if off_reference {
-        let at = q
-            .iter()
-            .position(|m| *m == "drift_norm")
-            .map_or(q.len(), |i| i + 1);
-        q.insert(at, "drift_ref_norm");
-    }
-    q
-}
-
 /// One column of ours: a run, and the published column its ratio is taken against.
 struct OursColumn<'a> {
     header: String,
@@ -104,25 +36,29 @@ struct OursColumn<'a> {
     ratio_of: Option<&'a Mapping>,
 }
 
-/// One published table side by side with ours, as Markdown (empty when nothing maps).
-pub fn side_by_side(paper: &str, table: &str, papers: &Papers, runs: &Runs) -> String {
-    let columns = columns_of(paper, table, papers);
-    if columns.is_empty() {
-        return String::new();
-    }
-    let one_variant = columns
-        .iter()
-        .all(|c| c.run.variant == columns[0].run.variant && c.companions.is_empty());
-    // Headers show labels: the run's own when it exists, the id otherwise.
-    let label = |r: Option<&RunRow>, id: &str, solver: bool| {
-        r.map_or(id.to_string(), |r| {
-            if solver {
-                r.solver.clone()
-            } else {
-                r.variant.clone()
-            }
-        })
-    };
+/// A column of the side-by-side table: the paper's number, or one of ours.
+enum Col<'a> {
+    Paper(&'a Mapping),
+    Ours(OursColumn<'a>),
+}
+
+/// A run's label in a header: the run's own when it exists, the id otherwise (`solver`: its
+/// solver's label, else its variant's).
+fn label(r: Option<&RunRow>, id: &str, solver: bool) -> String {
+    r.map_or(id.to_string(), |r| {
+        if solver {
+            r.solver.clone()
+        } else {
+            r.variant.clone()
+        }
+    })
+}
+
+/// The column layout of a published table's `columns` side by side with ours: per published
+/// column, the paper's number then, per variant (the mapped one and its companions), the exact
+/// run (once per variant), the paper's solver and the ratio. `one_variant`: headers name the
+/// solver alone.
+fn layout<'a>(columns: &[&'a Mapping], runs: &'a Runs, one_variant: bool) -> Vec<Col<'a>> {
     let name = |solver: &str, variant: &str| {
         if one_variant {
             solver.to_string()
@@ -130,16 +66,9 @@ pub fn side_by_side(paper: &str, table: &str, papers: &Papers, runs: &Runs) -> S
             format!("{solver}, {variant}")
         }
     };
-
-    // Column layout: per published column, the paper's number then, per variant, the exact
-    // run (once per variant), the paper's solver and the ratio.
-    enum Col<'a> {
-        Paper(&'a Mapping),
-        Ours(OursColumn<'a>),
-    }
     let mut cols: Vec<Col> = Vec::new();
     let mut exact_shown: Vec<(&str, &str)> = Vec::new();
-    for m in &columns {
+    for &m in columns {
         cols.push(Col::Paper(m));
         let e = m.run.experiment.as_str();
         for shown_run in std::iter::once(&m.run).chain(m.companions.iter()) {
@@ -172,62 +101,95 @@ pub fn side_by_side(paper: &str, table: &str, papers: &Papers, runs: &Runs) -> S
             }));
         }
     }
+    cols
+}
+
+/// What the table's cells flagged, for its footnotes.
+#[derive(Default)]
+struct Marks {
+    /// A norm not printed by the paper (derived from its joints).
+    derived: bool,
+    /// A printed number the paper's own contradict.
+    inconsistent: bool,
+}
+
+/// The cell of column `c` for quantity `q`.
+fn cell(c: &Col, q: &str, papers: &Papers, marks: &mut Marks) -> String {
+    match c {
+        Col::Paper(m) => {
+            let printed = match papers.published(m, q) {
+                Some((v, d)) => {
+                    marks.derived |= d;
+                    format!("{}{}", sci(v), if d { "*" } else { "" })
+                }
+                None => MISSING.to_string(),
+            };
+            match papers.inconsistent(m, q) {
+                Some((v, _)) => {
+                    marks.inconsistent = true;
+                    format!("{printed} (printed {}†)", sci(v))
+                }
+                None => printed,
+            }
+        }
+        Col::Ours(OursColumn { run: None, .. }) => "no run".to_string(),
+        Col::Ours(OursColumn {
+            run: Some(r),
+            ratio_of: None,
+            ..
+        }) => metric_cell(r, q),
+        Col::Ours(OursColumn {
+            run: Some(r),
+            ratio_of: Some(m),
+            ..
+        }) => sci_opt(ratio_to_paper(r, m, q, papers)),
+    }
+}
+
+/// One published table side by side with ours, as Markdown (empty when nothing maps).
+pub fn side_by_side(paper: &str, table: &str, papers: &Papers, runs: &Runs) -> String {
+    let columns = columns_of(paper, table, papers);
+    if columns.is_empty() {
+        return String::new();
+    }
+    let one_variant = columns
+        .iter()
+        .all(|c| c.run.variant == columns[0].run.variant && c.companions.is_empty());
+    let cols = layout(&columns, runs, one_variant);
     let shown: Vec<&RunRow> = cols
         .iter()
         .filter_map(|c| if let Col::Ours(o) = c { o.run } else { None })
         .collect();
-
     let mut header = vec!["quantity".to_string()];
     header.extend(cols.iter().map(|c| match c {
         Col::Paper(m) => format!("paper: {}", m.published_column),
         Col::Ours(o) => o.header.clone(),
     }));
     let mut t = Table::new(header);
-    let mut derived = false;
-    let mut inconsistent = false;
+    let mut marks = Marks::default();
     for q in quantities_of(paper, table, papers, &shown) {
         let mut row = vec![quantity_label(q)];
-        for c in &cols {
-            row.push(match c {
-                Col::Paper(m) => {
-                    let printed = match papers.published(m, q) {
-                        Some((v, d)) => {
-                            derived |= d;
-                            format!("{}{}", sci(v), if d { "*" } else { "" })
-                        }
-                        None => MISSING.to_string(),
-                    };
-                    match papers.inconsistent(m, q) {
-                        Some((v, _)) => {
-                            inconsistent = true;
-                            format!("{printed} (printed {}†)", sci(v))
-                        }
-                        None => printed,
-                    }
-                }
-                Col::Ours(OursColumn { run: None, .. }) => "no run".to_string(),
-                Col::Ours(OursColumn {
-                    run: Some(r),
-                    ratio_of: None,
-                    ..
-                }) => metric_cell(r, q),
-                Col::Ours(OursColumn {
-                    run: Some(r),
-                    ratio_of: Some(m),
-                    ..
-                }) => {
-                    // A printed 0 (robio2018's theta_6) has no ratio.
-                    let ratio = metric(r, q)
-                        .zip(papers.published(m, q))
-                        .filter(|(_, (p, _))| *p != 0.0)
-                        .map(|(o, (p, _))| o / p);
-                    sci_opt(ratio)
-                }
-            });
-        }
+        row.extend(cols.iter().map(|c| cell(c, q, papers, &mut marks)));
         t.push(row);
     }
-    let mut out = String::new();
+    let mut out = caption(table, &columns, runs, one_variant);
+    out.push_str(&t.render());
+    if marks.derived {
+        out.push_str("\n\\* not printed by the paper: the norm of its per-joint entries.\n");
+    }
+    if marks.inconsistent {
+        out.push_str(
+            "\n† printed, but contradicted by the paper's own numbers (a norm below one of its \
+             entries, a negative norm, or a number given twice; the warnings are listed under \
+             the paper): no ratio is taken from it.\n",
+        );
+    }
+    out
+}
+
+/// The caption above a side-by-side table: the table, our experiments, the variant (when one)
+/// and what the ratio is.
+fn caption(table: &str, columns: &[&Mapping], runs: &Runs, one_variant: bool) -> String {
     let ids: Vec<&str> =
         columns
             .iter()
@@ -243,14 +205,14 @@ pub fn side_by_side(paper: &str, table: &str, papers: &Papers, runs: &Runs) -> S
     } else {
         format!("Table {}", table.trim_start_matches('T'))
     };
-    out.push_str(&format!(
+    let mut out = format!(
         "**{caption}** — our experiment{} {}",
         if ids.len() > 1 { "s" } else { "" },
         ids.iter()
             .map(|e| format!("`{e}`"))
             .collect::<Vec<_>>()
             .join(", ")
-    ));
+    );
     if one_variant {
         let k = &columns[0].run;
         let shown = runs.find(&k.experiment, &k.variant, EXACT);
@@ -260,17 +222,6 @@ pub fn side_by_side(paper: &str, table: &str, papers: &Papers, runs: &Runs) -> S
         ));
     }
     out.push_str(". Ratio = our run of the paper's solver / paper.\n\n");
-    out.push_str(&t.render());
-    if derived {
-        out.push_str("\n\\* not printed by the paper: the norm of its per-joint entries.\n");
-    }
-    if inconsistent {
-        out.push_str(
-            "\n† printed, but contradicted by the paper's own numbers (a norm below one of its \
-             entries, a negative norm, or a number given twice; the warnings are listed under \
-             the paper): no ratio is taken from it.\n",
-        );
-    }
     out
 }
 

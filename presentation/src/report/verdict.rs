@@ -1,11 +1,11 @@
 //! The verdict paragraph of one paper: what was reproduced, what not, and why, phrased from
 //! what crate `analysis` decided ([`analysis::paper_verdict`]), never typed in.
 
-use super::markdown::sci;
+use super::markdown::{percent, sci};
 use analysis::claim_verdict::{Claim, Verdict};
 use analysis::paper_verdict::{
-    assumed_setup, drift_ratios, level_under_setup, sign_agreement, solver_effect, CLOSE,
-    SOLVER_MATTERS,
+    assumed_setup, drift_ratios, level_under_setup, ratio_span, sign_agreement, solver_effect,
+    CLOSE, SOLVER_MATTERS,
 };
 use analysis::papers::Papers;
 use records::index::Runs;
@@ -46,14 +46,8 @@ pub fn paragraph(paper: &str, claims: &[Claim], runs: &Runs, papers: &Papers) ->
     if !na.is_empty() {
         out.push_str(&format!(" Not evaluated: {}.", na.join("; ")));
     }
-    if ratios.is_empty() {
-        out.push_str(" The paper prints no drift table: the verdict rests on the qualitative claims of its figures.");
-    } else {
-        let by = |a: &&(String, f64), b: &&(String, f64)| a.1.total_cmp(&b.1);
-        let (lo, hi) = (
-            ratios.iter().min_by(by).expect("nonempty"),
-            ratios.iter().max_by(by).expect("nonempty"),
-        );
+    if let Some(span) = ratio_span(&ratios) {
+        let (lo, hi) = (span.lo, span.hi);
         out.push_str(&format!(
             " Magnitudes: over {} published columns our drift norm (the paper's solver) is {} (`{}`) to {} (`{}`) times the paper's: {}.",
             ratios.len(),
@@ -61,23 +55,25 @@ pub fn paragraph(paper: &str, claims: &[Claim], runs: &Runs, papers: &Papers) ->
             lo.0,
             sci(hi.1),
             hi.0,
-            if lo.1 >= 1.0 / CLOSE && hi.1 <= CLOSE { format!("within a factor {CLOSE}") } else { format!("beyond a factor {CLOSE}") }
+            if span.within { format!("within a factor {CLOSE}") } else { format!("beyond a factor {CLOSE}") }
         ));
         let (same, compared) = sign_agreement(paper, runs, papers);
         out.push_str(&format!(
             " The per-joint drifts have the paper's sign in {same} of {compared} entries."
         ));
+    } else {
+        out.push_str(" The paper prints no drift table: the verdict rests on the qualitative claims of its figures.");
     }
     if let Some((e, r)) = solver_effect(paper, runs, papers) {
         if e <= SOLVER_MATTERS {
             out.push_str(&format!(
-                " The exact column (the QP solved to optimality in the loop) gives the same drift norm within {:.1} %, so what differs from the paper comes from the scheme, model and paths as implemented (see Deviations), not from the solver.",
-                100.0 * e
+                " The exact column (the QP solved to optimality in the loop) gives the same drift norm within {}, so what differs from the paper comes from the scheme, model and paths as implemented (see Deviations), not from the solver.",
+                percent(e, 1)
             ));
         } else {
             out.push_str(&format!(
-                " The paper's solver changes the drift norm by up to {:.0} % against the exact column (`{} {}`): that part of the drift is the solver's, not the scheme's.",
-                100.0 * e,
+                " The paper's solver changes the drift norm by up to {} against the exact column (`{} {}`): that part of the drift is the solver's, not the scheme's.",
+                percent(e, 0),
                 r.experiment,
                 r.solver
             ));

@@ -1,15 +1,21 @@
 //! "Why the numbers differ": per paper, the drift attribution of every run of the paper's
 //! solver (`results/attribution.csv`), the tolerance ladder (`results/ladder.csv`) and the setup
 //! inference (`results/inference.csv`, `results/inference-entries.csv`); and the section of
-//! the group-code reference experiments. See `explain` for the mathematics.
+//! the group-code reference experiments. See `explain` for the mathematics; what is read from
+//! the rows (the shares, the runs at MATLAB's default tolerances, the solvers' spreads) is
+//! [`analysis::drift_attribution`]'s.
 
-use super::markdown::{sci, sci_opt, Table, MISSING};
+use super::markdown::{percent, sci, sci_opt, Table, MISSING};
+use analysis::drift_attribution::{
+    component, converged_component, is_matlab_setting, ladder_ids, matlab_rung, matlab_tolerances,
+    published_norm, runs_of, share_range, shares, solver_spreads, sum_components, switches, RunIds,
+};
 use analysis::inference_verdict as verdict;
-use analysis::papers::{Papers, GROUP};
+use analysis::paper_rules::GROUP;
+use analysis::papers::Papers;
 use records::attribution::{AttributionRow, Component};
-use records::inference::{self, EntryRow, InferenceRow, Integration};
+use records::inference::{self, EntryRow, InferenceRow, Integration, FAILED as FAILED_RESIDUAL};
 use records::ladder::{LadderMethod, LadderRow};
-use settings::integrator::Method;
 use std::fmt::Write as _;
 
 /// The stored explanation results.
@@ -19,27 +25,6 @@ pub struct Explanations {
     pub attribution: Vec<AttributionRow>,
     pub inference: Vec<InferenceRow>,
     pub entries: Vec<EntryRow>,
-}
-
-/// The terms of the sums the attribution rows of `keys` use, in column order: the scheme,
-/// then a network's lag and integration error and/or a numerical method's sampling gap and
-/// stopping rule.
-fn sum_components(rows: &[AttributionRow], keys: &[(&str, &str, &str)]) -> Vec<Component> {
-    let mut out: Vec<Component> = rows
-        .iter()
-        .filter(|r| {
-            keys.contains(&(
-                r.experiment.as_str(),
-                r.variant_id.as_str(),
-                r.solver_id.as_str(),
-            ))
-        })
-        .map(|r| r.component)
-        .filter(|c| *c != Component::Run && !c.is_switch())
-        .collect();
-    out.sort();
-    out.dedup();
-    out
 }
 
 /// How the summary paragraph names a term of the sum.
@@ -67,42 +52,11 @@ fn brief(c: Component) -> &'static str {
 }
 
 /// "`experiment` variant / solver" of a run, by its labels (`key`, ids, when no row is found).
-fn shown(row: Option<&AttributionRow>, key: (&str, &str, &str)) -> String {
+fn shown(row: Option<&AttributionRow>, key: RunIds) -> String {
     match row {
         Some(r) => format!("`{}` {} / {}", r.experiment, r.variant, r.solver),
         None => format!("`{}` {} / {}", key.0, key.1, key.2),
     }
-}
-
-/// The runs (ids: experiment, variant, solver) the attribution rows of `paper` explain.
-fn runs_of<'a>(rows: &'a [AttributionRow], paper: &str) -> Vec<(&'a str, &'a str, &'a str)> {
-    let mut out: Vec<(&str, &str, &str)> = Vec::new();
-    for r in rows.iter().filter(|r| r.paper == paper) {
-        let k = (
-            r.experiment.as_str(),
-            r.variant_id.as_str(),
-            r.solver_id.as_str(),
-        );
-        if !out.contains(&k) {
-            out.push(k);
-        }
-    }
-    out
-}
-
-fn component<'a>(
-    rows: &'a [AttributionRow],
-    key: (&str, &str, &str),
-    name: Component,
-) -> Option<&'a AttributionRow> {
-    rows.iter().find(|r| {
-        (
-            r.experiment.as_str(),
-            r.variant_id.as_str(),
-            r.solver_id.as_str(),
-        ) == key
-            && r.component == name
-    })
 }
 
 /// "1.23e-3 (45 %)" of a component, or why it is missing.
@@ -110,7 +64,7 @@ fn cell(r: Option<&AttributionRow>) -> String {
     match r {
         None => MISSING.to_string(),
         Some(r) => match (r.drift_norm, r.share) {
-            (Some(n), Some(s)) => format!("{} ({:.0} %)", sci(n), 100.0 * s),
+            (Some(n), Some(s)) => format!("{} ({})", sci(n), percent(s, 0)),
             (Some(n), None) => sci(n),
             _ => format!("{MISSING} ({})", short(&r.note)),
         },
@@ -133,14 +87,7 @@ pub fn attribution_table(paper: &str, x: &Explanations, papers: &Papers) -> Stri
     if keys.is_empty() {
         return String::new();
     }
-    let mut switches: Vec<Component> = x
-        .attribution
-        .iter()
-        .filter(|r| r.paper == paper && r.component.is_switch())
-        .map(|r| r.component)
-        .collect();
-    switches.sort();
-    switches.dedup();
+    let switches = switches(&x.attribution, paper);
     let sums = sum_components(&x.attribution, &keys);
     let networks = sums.contains(&Component::NetworkLag);
     let numerical = sums.contains(&Component::SamplingGap);
@@ -157,66 +104,59 @@ pub fn attribution_table(paper: &str, x: &Explanations, papers: &Papers) -> Stri
         (false, true) => "max pos. err: run / exact / converged method (m)".to_string(),
         _ => "max pos. err: run / exact / converged solver (m)".to_string(),
     });
+    let columns: Vec<Component> = sums.iter().chain(&switches).copied().collect();
     let mut t = Table::new(header);
     for key in keys {
-        let paper_norm = papers
-            .mappings
-            .iter()
-            .find(|m| {
-                (
-                    m.run.experiment.as_str(),
-                    m.run.variant.as_str(),
-                    m.run.solver.as_str(),
-                ) == key
-            })
-            .and_then(|m| papers.published(m, "drift_norm"))
-            .map(|(v, derived)| format!("{}{}", sci(v), if derived { "*" } else { "" }))
-            .unwrap_or_else(|| MISSING.to_string());
-        let run = component(&x.attribution, key, Component::Run);
-        let matlab = x.ladder.iter().find(|r| {
-            (
-                r.experiment.as_str(),
-                r.variant_id.as_str(),
-                r.solver_id.as_str(),
-            ) == key
-                && is_matlab_default(r)
-        });
-        let mut row = vec![
-            shown(run, key),
-            paper_norm,
-            sci_opt(run.and_then(|r| r.drift_norm)),
-            match matlab {
-                Some(r) if r.completed() => sci_opt(r.drift_norm),
-                Some(_) => "×".to_string(),
-                None => MISSING.to_string(),
-            },
-        ];
-        row.extend(
-            sums.iter()
-                .map(|c| cell(component(&x.attribution, key, *c))),
-        );
-        row.extend(
-            switches
-                .iter()
-                .map(|c| cell(component(&x.attribution, key, *c))),
-        );
-        let err =
-            |c: Component| sci_opt(component(&x.attribution, key, c).and_then(|r| r.max_pos_err));
-        // The converged solver's error sits on the sum's second term of this run.
-        let converged = [Component::NetworkLag, Component::SamplingGap]
-            .into_iter()
-            .find(|c| component(&x.attribution, key, *c).is_some())
-            .unwrap_or(Component::NetworkLag);
-        row.push(format!(
-            "{} / {} / {}",
-            err(Component::Run),
-            err(Component::Scheme),
-            err(converged)
-        ));
-        t.push(row);
+        t.push(attribution_row(key, &columns, x, papers));
     }
     let mut out = t.without_empty_columns().render();
-    out.push_str("\nShares are |component| / |d_run|; ");
+    out.push_str(&attribution_note(networks, numerical, !switches.is_empty()));
+    out
+}
+
+/// The attribution table's row of run `key`: its labels, the paper's norm (`*`: derived from
+/// the joints), ours as run and at MATLAB's default tolerances (× where that rung did not
+/// finish), each of `columns` (the sums' terms, then the switches), and the max position
+/// errors of the run, the exact column and the converged solver.
+fn attribution_row(
+    key: RunIds,
+    columns: &[Component],
+    x: &Explanations,
+    papers: &Papers,
+) -> Vec<String> {
+    let paper_norm = published_norm(papers, key)
+        .map(|(v, derived)| format!("{}{}", sci(v), if derived { "*" } else { "" }))
+        .unwrap_or_else(|| MISSING.to_string());
+    let run = component(&x.attribution, key, Component::Run);
+    let mut row = vec![
+        shown(run, key),
+        paper_norm,
+        sci_opt(run.and_then(|r| r.drift_norm)),
+        match matlab_rung(&x.ladder, key) {
+            Some(r) if r.completed() => sci_opt(r.drift_norm),
+            Some(_) => "×".to_string(),
+            None => MISSING.to_string(),
+        },
+    ];
+    row.extend(
+        columns
+            .iter()
+            .map(|c| cell(component(&x.attribution, key, *c))),
+    );
+    let err = |c: Component| sci_opt(component(&x.attribution, key, c).and_then(|r| r.max_pos_err));
+    row.push(format!(
+        "{} / {} / {}",
+        err(Component::Run),
+        err(Component::Scheme),
+        err(converged_component(&x.attribution, key))
+    ));
+    row
+}
+
+/// What the attribution table's shares mean, for the sums it shows (a network's, a numerical
+/// method's) and its "of which" columns (`switches`).
+fn attribution_note(networks: bool, numerical: bool, switches: bool) -> String {
+    let mut out = String::from("\nShares are |component| / |d_run|; ");
     if networks {
         out.push_str("for a network, scheme + network lag + integration error = the run's drift, joint by joint; ");
     }
@@ -227,7 +167,7 @@ pub fn attribution_table(paper: &str, x: &Explanations, papers: &Papers) -> Stri
     if networks {
         out.push_str(" The MATLAB-default column is the paper's solver integrated by ode15s's method at RelTol 1e-3 / AbsTol 1e-6, MATLAB's defaults, for the case that the papers' runs used them.");
     }
-    if !switches.is_empty() {
+    if switches {
         out.push_str(" \"of which\" columns are the effect of switching one ingredient off with everything else held (they are part of the first three, not further terms).");
     }
     out.push_str(
@@ -255,13 +195,9 @@ pub fn ladder_table(paper: &str, x: &Explanations) -> String {
             .then(b.1.total_cmp(&a.1))
             .then(b.2.total_cmp(&a.2))
     });
-    let mut keys: Vec<(&str, &str, &str)> = Vec::new();
+    let mut keys: Vec<RunIds> = Vec::new();
     for r in &rows {
-        let k = (
-            r.experiment.as_str(),
-            r.variant_id.as_str(),
-            r.solver_id.as_str(),
-        );
+        let k = ladder_ids(r);
         if !keys.contains(&k) {
             keys.push(k);
         }
@@ -281,44 +217,16 @@ pub fn ladder_table(paper: &str, x: &Explanations) -> String {
     }));
     let mut t = Table::new(header);
     for key in keys {
-        let first = rows.iter().find(|r| {
-            (
-                r.experiment.as_str(),
-                r.variant_id.as_str(),
-                r.solver_id.as_str(),
-            ) == key
-        });
+        let first = rows.iter().find(|r| ladder_ids(r) == key);
         let mut row = vec![match first {
             Some(r) => format!("`{}` {} / {}", r.experiment, r.variant, r.solver),
             None => format!("`{}` {} / {}", key.0, key.1, key.2),
         }];
         for (m, rt, at) in &rungs {
-            let r = rows.iter().find(|r| {
-                (
-                    r.experiment.as_str(),
-                    r.variant_id.as_str(),
-                    r.solver_id.as_str(),
-                ) == key
-                    && r.method == *m
-                    && r.rtol == *rt
-                    && r.atol == *at
-            });
-            row.push(match r {
-                None => MISSING.to_string(),
-                Some(r) if r.reference => "ref".to_string(),
-                Some(r) if !r.completed() => "×".to_string(),
-                Some(r) => {
-                    let d = r
-                        .stable_digits
-                        .map(|d| format!("{d:.1}"))
-                        .unwrap_or_default();
-                    if r.as_run {
-                        format!("**{d}**")
-                    } else {
-                        d
-                    }
-                }
-            });
+            let r = rows
+                .iter()
+                .find(|r| ladder_ids(r) == key && r.method == *m && r.rtol == *rt && r.atol == *at);
+            row.push(rung_cell(r.copied()));
         }
         t.push(row);
     }
@@ -333,16 +241,28 @@ pub fn ladder_table(paper: &str, x: &Explanations) -> String {
     out
 }
 
-/// The rung at MATLAB's default tolerances (ode15s, RelTol 1e-3, AbsTol 1e-6).
-fn is_matlab_default(r: &LadderRow) -> bool {
-    is_matlab_setting(r.method, r.rtol, r.atol)
+/// A rung's cell of the ladder: the digits it shares with the converged drift (bold at the
+/// run's own setting), "ref" for the converged rung, × for one that did not finish.
+fn rung_cell(r: Option<&LadderRow>) -> String {
+    match r {
+        None => MISSING.to_string(),
+        Some(r) if r.reference => "ref".to_string(),
+        Some(r) if !r.completed() => "×".to_string(),
+        Some(r) => {
+            let d = r
+                .stable_digits
+                .map(|d| format!("{d:.1}"))
+                .unwrap_or_default();
+            if r.as_run {
+                format!("**{d}**")
+            } else {
+                d
+            }
+        }
+    }
 }
 
-/// Whether (method, rtol, atol) is MATLAB's default: ode15s (BDF) at RelTol 1e-3, AbsTol 1e-6.
-fn is_matlab_setting(method: LadderMethod, rtol: f64, atol: f64) -> bool {
-    method == LadderMethod::Integrator(Method::Bdf) && rtol == 1e-3 && atol == 1e-6
-}
-
+/// A tolerance with no decimals, as the ladder's headers show it (`1e-6`).
 fn short_tol(v: f64) -> String {
     format!("{v:.0e}")
 }
@@ -361,191 +281,226 @@ pub fn inference_section(paper: &str, x: &Explanations) -> String {
     for table in tables {
         let of_table: Vec<&InferenceRow> =
             rows.iter().copied().filter(|r| r.table == table).collect();
-        let Some(verdicts) = verdict::table_verdict(&of_table) else {
-            continue;
-        };
-        let find = |kind: &str, objective: &str| {
-            of_table
-                .iter()
-                .copied()
-                .find(|r| r.kind == kind && r.objective == objective)
-        };
-        let (Some(declared), Some(best)) = (
-            find(inference::DECLARED, inference::TABLE),
-            find(inference::BEST, inference::TABLE),
-        ) else {
-            continue;
-        };
-        let _ = writeln!(out, "**{table}.**\n");
-        for v in &verdicts {
-            let _ = writeln!(out, "- {v}");
-        }
-        let column_starts = of_table
-            .iter()
-            .any(|r| r.kind == inference::LOCAL && r.objective != inference::TABLE);
-        let profiled = of_table.iter().any(|r| r.profile().is_some());
-        let _ = writeln!(
-            out,
-            "\nSearch: {} evaluations in {:.0} s (a Halton sample of the continuous parameters for every discrete combination, then Nelder-Mead from the best few of the whole table{}{}); every optimum below is the best of all evaluations.\n",
-            best.evaluations,
-            best.wall_s,
-            if column_starts { " and of each column alone" } else { "" },
-            if profiled {
-                ", then the profiles, and Nelder-Mead once more from a profile point that beat the optimum, if one did"
-            } else {
-                ""
-            }
-        );
-        let columns: Vec<&str> = of_table
-            .iter()
-            .filter(|r| r.kind == inference::BEST && r.objective != inference::TABLE)
-            .map(|r| r.objective.as_str())
-            .collect();
-        let mut t = Table::new([
-            "setup",
-            "robot",
-            "drift computed by",
-            "rotation (rad)",
-            "tilt x / y (rad)",
-            "phase",
-            "size factor",
-            "reversed",
-            "RMP reading",
-            "rel. residual (of what it is fitted to)",
-            "table residual",
-            "max entry error",
-            "signs as the paper",
-        ]);
-        let mut setups = vec![
-            ("declared".to_string(), declared),
-            (
-                "inferred setup (fitted to the paper): whole table".to_string(),
-                best,
-            ),
-        ];
-        for c in &columns {
-            if let Some(r) = find(inference::BEST, c) {
-                setups.push((
-                    format!("inferred setup (fitted to the paper): {c} alone"),
-                    r,
-                ));
-            }
-        }
-        for (label, r) in setups {
-            t.push([
-                label,
-                r.robot.clone(),
-                integration_words(r.integration).to_string(),
-                format!("{:.3}", r.rotation),
-                format!("{:.3} / {:.3}", r.tilt_x, r.tilt_y),
-                format!("{:.3}", r.phase),
-                format!("{:.3}", r.scale_factor),
-                r.reverse.to_string(),
-                r.rmp.label().to_string(),
-                residual(r.rel_residual),
-                residual(r.table_residual),
-                sci_opt(r.max_entry_error),
-                match (r.signs_matched, r.entries) {
-                    (Some(s), Some(n)) => format!("{s} of {n}"),
-                    _ => MISSING.to_string(),
-                },
-            ]);
-        }
-        out.push_str(&t.render());
-        out.push_str(&hypotheses_table(&of_table, &columns));
-        let profiles: Vec<&InferenceRow> = of_table
-            .iter()
-            .copied()
-            .filter(|r| r.profile().is_some())
-            .collect();
-        if !profiles.is_empty() {
-            let _ = writeln!(
-                out,
-                "\n![{paper} {table}: inference profiles](figures/{})",
-                crate::figures::profile::file_name(paper, table)
-            );
-            out.push_str(
-                "\nProfiles of the whole-table optimum (each point: the best table residual with that parameter held at the value; \"re-fitted\": the other continuous parameters re-fitted there by Nelder-Mead, warm-started from the neighbouring point; \"slice\": held at the optimum). They are taken at the optimum of the global and local stages; where a profile point beat it, Nelder-Mead went on from there, and the optimum reported (marked in the figure) can lie below the profiles:\n\n",
-            );
-            let mut names: Vec<(&str, bool)> = Vec::new();
-            for r in &profiles {
-                let k = r.profile().expect("a profile row");
-                if !names.contains(&k) {
-                    names.push(k);
-                }
-            }
-            for (name, refitted) in names {
-                let along: Vec<&&InferenceRow> = profiles
-                    .iter()
-                    .filter(|r| r.profile() == Some((name, refitted)))
-                    .collect();
-                let pts: Vec<String> = along
-                    .iter()
-                    .map(|r| {
-                        let v = r.parameter(name);
-                        if r.rel_residual >= FAILED_RESIDUAL {
-                            format!("{v:.2} → failed (a run of the table failed)")
-                        } else {
-                            format!("{v:.2} → {}", sci(r.rel_residual))
-                        }
-                    })
-                    .collect();
-                let spread = verdict::spread(along.iter().map(|r| r.rel_residual));
-                let _ = writeln!(
-                    out,
-                    "- {name} ({}): {} ({})",
-                    if refitted { "re-fitted" } else { "slice" },
-                    pts.join(", "),
-                    verdict::profile_verdict(spread)
-                );
-            }
-        }
-        let entries: Vec<&EntryRow> = x
-            .entries
-            .iter()
-            .filter(|e| e.paper == paper && e.table == table && e.setup == inference::BEST)
-            .collect();
-        if !entries.is_empty() {
-            out.push_str(
-                "\nPer-entry residuals of the inferred setup of the whole table (ours / paper):\n\n",
-            );
-            let mut columns: Vec<&str> = entries.iter().map(|e| e.column.as_str()).collect();
-            columns.dedup();
-            let n = entries.iter().map(|e| e.joint).max().unwrap_or(0);
-            let mut header = vec!["column".to_string()];
-            header.extend((1..=n).map(|j| format!("θ{j}")));
-            let mut t = Table::new(header);
-            for c in columns {
-                let mut row = vec![c.to_string()];
-                for j in 1..=n {
-                    row.push(
-                        entries
-                            .iter()
-                            .find(|e| e.column == c && e.joint == j)
-                            .map(|e| {
-                                format!(
-                                    "{} / {}{}",
-                                    sci(e.ours),
-                                    sci(e.paper_value),
-                                    if e.sign_matched { "" } else { " (sign)" }
-                                )
-                            })
-                            .unwrap_or_else(|| MISSING.to_string()),
-                    );
-                }
-                t.push(row);
-            }
-            out.push_str(&t.render());
-        }
-        out.push('\n');
+        out.push_str(&table_inference(paper, table, &of_table, x));
     }
     let _ = writeln!(
         out,
-        "A column or table counts as reproduced when its relative residual ‖d − d_paper‖ / ‖d_paper‖ is at most {:.0} %; the table residual is the root mean square of the column residuals, so every column weighs alike whatever its magnitude. A column fitted alone has as many entries as the arm has joints against up to five continuous parameters and the discrete ones: a close column fit is weak evidence by itself; one setup that explains every column of a table is the stronger test. A profile is flat when its largest residual is below {}x its smallest, weakly determined below {}x. Every evaluated setup's residuals: `results/inference.csv`; the entries of the declared, joint and column fits: `results/inference-entries.csv`.",
-        100.0 * verdict::REPRODUCED,
+        "A column or table counts as reproduced when its relative residual ‖d − d_paper‖ / ‖d_paper‖ is at most {}; the table residual is the root mean square of the column residuals, so every column weighs alike whatever its magnitude. A column fitted alone has as many entries as the arm has joints against up to five continuous parameters and the discrete ones: a close column fit is weak evidence by itself; one setup that explains every column of a table is the stronger test. A profile is flat when its largest residual is below {}x its smallest, weakly determined below {}x. Every evaluated setup's residuals: `results/inference.csv`; the entries of the declared, joint and column fits: `results/inference-entries.csv`.",
+        percent(verdict::REPRODUCED, 0),
         verdict::FLAT,
         verdict::WEAK
     );
+    out
+}
+
+/// The inference of one published table (its rows `of_table`): the verdicts, the search, the
+/// setups found, each hypothesis's best, the profiles and the per-entry residuals; empty
+/// without a verdict or without the declared and the inferred setup.
+fn table_inference(
+    paper: &str,
+    table: &str,
+    of_table: &[&InferenceRow],
+    x: &Explanations,
+) -> String {
+    let Some(verdicts) = verdict::table_verdict(of_table) else {
+        return String::new();
+    };
+    let find = |kind: &str, objective: &str| {
+        of_table
+            .iter()
+            .copied()
+            .find(|r| r.kind == kind && r.objective == objective)
+    };
+    let (Some(declared), Some(best)) = (
+        find(inference::DECLARED, inference::TABLE),
+        find(inference::BEST, inference::TABLE),
+    ) else {
+        return String::new();
+    };
+    let mut out = String::new();
+    let _ = writeln!(out, "**{table}.**\n");
+    for v in &verdicts {
+        let _ = writeln!(out, "- {v}");
+    }
+    let column_starts = of_table
+        .iter()
+        .any(|r| r.kind == inference::LOCAL && r.objective != inference::TABLE);
+    let profiled = of_table.iter().any(|r| r.profile().is_some());
+    let _ = writeln!(
+        out,
+        "\nSearch: {} evaluations in {:.0} s (a Halton sample of the continuous parameters for every discrete combination, then Nelder-Mead from the best few of the whole table{}{}); every optimum below is the best of all evaluations.\n",
+        best.evaluations,
+        best.wall_s,
+        if column_starts { " and of each column alone" } else { "" },
+        if profiled {
+            ", then the profiles, and Nelder-Mead once more from a profile point that beat the optimum, if one did"
+        } else {
+            ""
+        }
+    );
+    let columns: Vec<&str> = of_table
+        .iter()
+        .filter(|r| r.kind == inference::BEST && r.objective != inference::TABLE)
+        .map(|r| r.objective.as_str())
+        .collect();
+    let mut setups = vec![
+        ("declared".to_string(), declared),
+        (
+            "inferred setup (fitted to the paper): whole table".to_string(),
+            best,
+        ),
+    ];
+    for c in &columns {
+        if let Some(r) = find(inference::BEST, c) {
+            setups.push((
+                format!("inferred setup (fitted to the paper): {c} alone"),
+                r,
+            ));
+        }
+    }
+    out.push_str(&setups_table(&setups));
+    out.push_str(&hypotheses_table(of_table, &columns));
+    out.push_str(&profiles_list(paper, table, of_table));
+    out.push_str(&entries_table(paper, table, x));
+    out.push('\n');
+    out
+}
+
+/// The setups (label, row) of a table's inference: each setup's parameters and residuals.
+fn setups_table(setups: &[(String, &InferenceRow)]) -> String {
+    let mut t = Table::new([
+        "setup",
+        "robot",
+        "drift computed by",
+        "rotation (rad)",
+        "tilt x / y (rad)",
+        "phase",
+        "size factor",
+        "reversed",
+        "RMP reading",
+        "rel. residual (of what it is fitted to)",
+        "table residual",
+        "max entry error",
+        "signs as the paper",
+    ]);
+    for (label, r) in setups {
+        t.push([
+            label.clone(),
+            r.robot.clone(),
+            integration_words(r.integration).to_string(),
+            format!("{:.3}", r.rotation),
+            format!("{:.3} / {:.3}", r.tilt_x, r.tilt_y),
+            format!("{:.3}", r.phase),
+            format!("{:.3}", r.scale_factor),
+            r.reverse.to_string(),
+            r.rmp.label().to_string(),
+            residual(r.rel_residual),
+            residual(r.table_residual),
+            sci_opt(r.max_entry_error),
+            match (r.signs_matched, r.entries) {
+                (Some(s), Some(n)) => format!("{s} of {n}"),
+                _ => MISSING.to_string(),
+            },
+        ]);
+    }
+    t.render()
+}
+
+/// The profiles of a table's inference, when it has any: the figure and, per profiled
+/// parameter, its points and verdict.
+fn profiles_list(paper: &str, table: &str, of_table: &[&InferenceRow]) -> String {
+    let mut out = String::new();
+    let profiles: Vec<&InferenceRow> = of_table
+        .iter()
+        .copied()
+        .filter(|r| r.profile().is_some())
+        .collect();
+    if !profiles.is_empty() {
+        let _ = writeln!(
+            out,
+            "\n![{paper} {table}: inference profiles](figures/{})",
+            crate::figures::profile::file_name(paper, table)
+        );
+        out.push_str(
+            "\nProfiles of the whole-table optimum (each point: the best table residual with that parameter held at the value; \"re-fitted\": the other continuous parameters re-fitted there by Nelder-Mead, warm-started from the neighbouring point; \"slice\": held at the optimum). They are taken at the optimum of the global and local stages; where a profile point beat it, Nelder-Mead went on from there, and the optimum reported (marked in the figure) can lie below the profiles:\n\n",
+        );
+        let mut names: Vec<(&str, bool)> = Vec::new();
+        for r in &profiles {
+            let k = r.profile().expect("a profile row");
+            if !names.contains(&k) {
+                names.push(k);
+            }
+        }
+        for (name, refitted) in names {
+            let along: Vec<&&InferenceRow> = profiles
+                .iter()
+                .filter(|r| r.profile() == Some((name, refitted)))
+                .collect();
+            let pts: Vec<String> = along
+                .iter()
+                .map(|r| {
+                    let v = r.parameter(name);
+                    if r.rel_residual >= FAILED_RESIDUAL {
+                        format!("{v:.2} → failed (a run of the table failed)")
+                    } else {
+                        format!("{v:.2} → {}", sci(r.rel_residual))
+                    }
+                })
+                .collect();
+            let spread = verdict::spread(along.iter().map(|r| r.rel_residual));
+            let _ = writeln!(
+                out,
+                "- {name} ({}): {} ({})",
+                if refitted { "re-fitted" } else { "slice" },
+                pts.join(", "),
+                verdict::profile_verdict(spread)
+            );
+        }
+    }
+    out
+}
+
+/// The per-entry residuals of the inferred setup of the whole table (ours / paper per joint
+/// and column), when stored.
+fn entries_table(paper: &str, table: &str, x: &Explanations) -> String {
+    let mut out = String::new();
+    let entries: Vec<&EntryRow> = x
+        .entries
+        .iter()
+        .filter(|e| e.paper == paper && e.table == table && e.setup == inference::BEST)
+        .collect();
+    if !entries.is_empty() {
+        out.push_str(
+            "\nPer-entry residuals of the inferred setup of the whole table (ours / paper):\n\n",
+        );
+        let mut columns: Vec<&str> = entries.iter().map(|e| e.column.as_str()).collect();
+        columns.dedup();
+        let n = entries.iter().map(|e| e.joint).max().unwrap_or(0);
+        let mut header = vec!["column".to_string()];
+        header.extend((1..=n).map(|j| format!("θ{j}")));
+        let mut t = Table::new(header);
+        for c in columns {
+            let mut row = vec![c.to_string()];
+            for j in 1..=n {
+                row.push(
+                    entries
+                        .iter()
+                        .find(|e| e.column == c && e.joint == j)
+                        .map(|e| {
+                            format!(
+                                "{} / {}{}",
+                                sci(e.ours),
+                                sci(e.paper_value),
+                                if e.sign_matched { "" } else { " (sign)" }
+                            )
+                        })
+                        .unwrap_or_else(|| MISSING.to_string()),
+                );
+            }
+            t.push(row);
+        }
+        out.push_str(&t.render());
+    }
     out
 }
 
@@ -610,8 +565,6 @@ fn hypotheses_table(rows: &[&InferenceRow], columns: &[&str]) -> String {
     out
 }
 
-use records::inference::FAILED as FAILED_RESIDUAL;
-
 /// The whole "Why the numbers differ" subsection of one paper.
 pub fn section(paper: &str, x: &Explanations, papers: &Papers) -> String {
     let attribution = attribution_table(paper, x, papers);
@@ -641,29 +594,11 @@ pub fn section(paper: &str, x: &Explanations, papers: &Papers) -> String {
     out
 }
 
-/// The shares of the drift (|d_component| / |d_run|) that each term of the sums carries over
-/// the explained runs `keys`, in [`sum_components`]' order.
-fn shares(x: &Explanations, keys: &[(&str, &str, &str)]) -> Vec<(Component, Vec<f64>)> {
-    sum_components(&x.attribution, keys)
-        .into_iter()
-        .map(|c| {
-            let v = keys
-                .iter()
-                .filter_map(|k| component(&x.attribution, *k, c).and_then(|r| r.share))
-                .collect();
-            (c, v)
-        })
-        .collect()
-}
-
-/// `lo % to hi %` of `v` (shares), or [`MISSING`].
+/// `lo % to hi %` of `v` (shares, [`share_range`]), or [`MISSING`].
 fn range(v: &[f64]) -> String {
-    let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
-    let hi = v.iter().copied().fold(0.0, f64::max);
-    if v.is_empty() {
-        MISSING.to_string()
-    } else {
-        format!("{:.3} % to {:.3} %", 100.0 * lo, 100.0 * hi)
+    match share_range(v) {
+        Some((lo, hi)) => format!("{} to {}", percent(lo, 3), percent(hi, 3)),
+        None => MISSING.to_string(),
     }
 }
 
@@ -675,7 +610,7 @@ pub fn one_line(paper: &str, x: &Explanations) -> String {
     if keys.is_empty() {
         return String::new();
     }
-    let parts: Vec<String> = shares(x, &keys)
+    let parts: Vec<String> = shares(&x.attribution, &keys)
         .iter()
         .map(|(c, v)| format!("{} {}", brief(*c), range(v)))
         .collect();
@@ -683,13 +618,15 @@ pub fn one_line(paper: &str, x: &Explanations) -> String {
 }
 
 /// One paragraph (placed after the verdict): which share of the drift each ingredient carries,
-/// across the paper's runs, and what the setup inference found; empty without explanations.
+/// across the paper's runs, how far apart several solvers of one scheme are (the paper's and
+/// ours), what MATLAB's default tolerances would change ([`analysis::drift_attribution`]), and
+/// what the setup inference found; empty without explanations.
 pub fn summary(paper: &str, x: &Explanations, papers: &Papers) -> String {
     let keys = runs_of(&x.attribution, paper);
     if keys.is_empty() {
         return String::new();
     }
-    let shares = shares(x, &keys);
+    let shares = shares(&x.attribution, &keys);
     let rest: Vec<String> = shares
         .iter()
         .filter(|(c, _)| *c != Component::Scheme)
@@ -714,93 +651,28 @@ pub fn summary(paper: &str, x: &Explanations, papers: &Papers) -> String {
             None => String::new(),
         }
     );
-    // The paper's norm against ours as run and ours at MATLAB's default tolerances.
-    let mut closer = 0;
-    let mut compared = 0;
-    let mut ratios = Vec::new();
-    for key in &keys {
-        let Some(m) = papers.mappings.iter().find(|m| {
-            (
-                m.run.experiment.as_str(),
-                m.run.variant.as_str(),
-                m.run.solver.as_str(),
-            ) == *key
-        }) else {
-            continue;
-        };
-        let Some((published_norm, _)) = papers.published(m, "drift_norm") else {
-            continue;
-        };
-        let run = component(&x.attribution, *key, Component::Run).and_then(|r| r.drift_norm);
-        let matlab = x
-            .ladder
-            .iter()
-            .find(|r| {
-                (
-                    r.experiment.as_str(),
-                    r.variant_id.as_str(),
-                    r.solver_id.as_str(),
-                ) == *key
-                    && is_matlab_default(r)
-                    && r.completed()
-            })
-            .and_then(|r| r.drift_norm);
-        if let (Some(run), Some(matlab)) = (run, matlab) {
-            compared += 1;
-            ratios.push(matlab / run);
-            if (published_norm / matlab).ln().abs() < (published_norm / run).ln().abs() {
-                closer += 1;
-            }
-        }
-    }
-    // Several published solver columns on one scheme: how far apart the paper's are, and ours.
-    let mut schemes: Vec<(&str, &str)> = keys.iter().map(|k| (k.0, k.1)).collect();
-    schemes.dedup();
-    for (experiment, variant) in schemes {
-        let norms: Vec<(f64, f64)> = papers
-            .mappings
-            .iter()
-            .filter(|m| m.run.experiment == experiment && m.run.variant == variant)
-            .filter_map(|m| {
-                let theirs = papers.published(m, "drift_norm")?.0;
-                let k = &m.run;
-                let ours = component(
-                    &x.attribution,
-                    (&k.experiment, &k.variant, &k.solver),
-                    Component::Run,
-                )?
-                .drift_norm?;
-                Some((theirs, ours))
-            })
-            .collect();
-        if norms.len() < 2 {
-            continue;
-        }
-        let spread = |v: &[f64]| {
-            v.iter().copied().fold(0.0, f64::max) / v.iter().copied().fold(f64::INFINITY, f64::min)
-        };
-        let theirs: Vec<f64> = norms.iter().map(|n| n.0).collect();
-        let ours: Vec<f64> = norms.iter().map(|n| n.1).collect();
+    for s in solver_spreads(&x.attribution, papers, &keys) {
         out.push_str(&format!(
-            " On `{experiment}` {} the paper's {} solvers' drift norms span a factor {:.1}, ours {:.2}: one scheme, so solvers that converge cannot differ by more than their lag.",
-            x.attribution
-                .iter()
-                .find(|r| r.experiment == experiment && r.variant_id == variant)
-                .map_or(variant, |r| r.variant.as_str()),
-            norms.len(),
-            spread(&theirs),
-            spread(&ours)
+            " On `{}` {} the paper's {} solvers' drift norms span a factor {:.1}, ours {:.2}: one scheme, so solvers that converge cannot differ by more than their lag.",
+            s.experiment, s.variant, s.columns, s.theirs, s.ours
         ));
     }
-    if compared > 0 {
-        let lo = ratios.iter().copied().fold(f64::INFINITY, f64::min);
-        let hi = ratios.iter().copied().fold(0.0, f64::max);
+    if let Some(m) = matlab_tolerances(&x.attribution, &x.ladder, papers, &keys) {
         out.push_str(&format!(
-            " Integrated at MATLAB's default tolerances (RelTol 1e-3, AbsTol 1e-6) instead of the stated 1e-6 / 1e-8, the same runs drift {} to {} times as much; the paper's norm is nearer that value than the converged one in {closer} of {compared} columns.",
-            sci(lo),
-            sci(hi)
+            " Integrated at MATLAB's default tolerances (RelTol 1e-3, AbsTol 1e-6) instead of the stated 1e-6 / 1e-8, the same runs drift {} to {} times as much; the paper's norm is nearer that value than the converged one in {} of {} columns.",
+            sci(m.lo),
+            sci(m.hi),
+            m.nearer_matlab,
+            m.compared
         ));
     }
+    out.push_str(&inference_verdicts(paper, x));
+    out.push('\n');
+    out
+}
+
+/// The last verdict of each of `paper`'s inferred tables, as sentences of the summary.
+fn inference_verdicts(paper: &str, x: &Explanations) -> String {
     let mut tables: Vec<&str> = x
         .inference
         .iter()
@@ -808,6 +680,7 @@ pub fn summary(paper: &str, x: &Explanations, papers: &Papers) -> String {
         .map(|r| r.table.as_str())
         .collect();
     tables.dedup();
+    let mut out = String::new();
     for table in tables {
         let rows: Vec<&InferenceRow> = x
             .inference
@@ -818,6 +691,5 @@ pub fn summary(paper: &str, x: &Explanations, papers: &Papers) -> String {
             out.push_str(&format!(" {table}: {v}"));
         }
     }
-    out.push('\n');
     out
 }

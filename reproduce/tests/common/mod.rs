@@ -221,3 +221,132 @@ pub fn assert_same_results(merged: &Path, whole: &Path, runs: usize) {
     assert_eq!(t_whole.len(), runs);
     assert!(t_whole == t_merged, "trace files differ");
 }
+
+/// The library part of a source file: everything before its `#[cfg(test)]` test module.
+pub fn library_part(text: &str) -> &str {
+    let lines: Vec<&str> = text.lines().collect();
+    let mut offset = 0;
+    for (i, line) in lines.iter().enumerate() {
+        let next = lines.get(i + 1).map(|l| l.trim_start()).unwrap_or("");
+        if line.trim() == "#[cfg(test)]" && next.starts_with("mod ") {
+            return &text[..offset];
+        }
+        offset += line.len() + 1;
+    }
+    text
+}
+
+/// Rust source split into what the scanning tests read: its code without comments, string and
+/// char literals (each replaced by spaces, line breaks kept, so positions and line numbers stay)
+/// and its string literals with their 1-based lines.
+pub struct Lexed {
+    pub code: String,
+    /// `"..."` (escapes kept as written), `r"..."` and `r#"..."#`.
+    pub literals: Vec<(usize, String)>,
+}
+
+/// [`Lexed`] of Rust source `code`: comments, char literals and lifetimes are told apart from
+/// string literals.
+pub fn lex(code: &str) -> Lexed {
+    let c: Vec<char> = code.chars().collect();
+    let (mut i, mut line) = (0usize, 1usize);
+    let mut out = Lexed {
+        code: String::with_capacity(code.len()),
+        literals: Vec::new(),
+    };
+    let newlines = |s: &[char]| s.iter().filter(|&&ch| ch == '\n').count();
+    // Blanks c[from..to] into the code (line breaks kept).
+    let blank = |out: &mut Lexed, from: usize, to: usize| {
+        for &ch in &c[from..to.min(c.len())] {
+            out.code.push(if ch == '\n' { '\n' } else { ' ' });
+        }
+    };
+    while i < c.len() {
+        match c[i] {
+            '\n' => {
+                line += 1;
+                out.code.push('\n');
+                i += 1;
+            }
+            '/' if c.get(i + 1) == Some(&'/') => {
+                let start = i;
+                while i < c.len() && c[i] != '\n' {
+                    i += 1;
+                }
+                blank(&mut out, start, i);
+            }
+            '/' if c.get(i + 1) == Some(&'*') => {
+                let start = i;
+                i += 2;
+                while i + 1 < c.len() && !(c[i] == '*' && c[i + 1] == '/') {
+                    i += 1;
+                }
+                i = (i + 2).min(c.len());
+                line += newlines(&c[start..i]);
+                blank(&mut out, start, i);
+            }
+            '\'' => {
+                // A char literal ('x', '\n', '\u{..}') or a lifetime ('a).
+                let start = i;
+                if c.get(i + 1) == Some(&'\\') {
+                    i += 2;
+                    while i < c.len() && c[i] != '\'' {
+                        i += 1;
+                    }
+                    i += 1;
+                    blank(&mut out, start, i);
+                } else if c.get(i + 2) == Some(&'\'') {
+                    i += 3;
+                    blank(&mut out, start, i);
+                } else {
+                    out.code.push('\'');
+                    i += 1;
+                }
+            }
+            'r' if (c.get(i + 1) == Some(&'"') || c.get(i + 1) == Some(&'#'))
+                && (i == 0 || !(c[i - 1].is_alphanumeric() || c[i - 1] == '_')) =>
+            {
+                let mut j = i + 1;
+                let mut hashes = 0;
+                while c.get(j) == Some(&'#') {
+                    hashes += 1;
+                    j += 1;
+                }
+                if c.get(j) != Some(&'"') {
+                    out.code.extend(&c[i..j]);
+                    i = j;
+                    continue;
+                }
+                let start = j + 1;
+                let mut k = start;
+                while k < c.len()
+                    && !(c[k] == '"' && (1..=hashes).all(|h| c.get(k + h) == Some(&'#')))
+                {
+                    k += 1;
+                }
+                let end = k.min(c.len());
+                out.literals.push((line, c[start..end].iter().collect()));
+                line += newlines(&c[i..end]);
+                blank(&mut out, i, end + 1 + hashes);
+                i = end + 1 + hashes;
+            }
+            '"' => {
+                let start = i + 1;
+                let mut k = start;
+                while k < c.len() && c[k] != '"' {
+                    k += if c[k] == '\\' { 2 } else { 1 };
+                }
+                let end = k.min(c.len());
+                out.literals.push((line, c[start..end].iter().collect()));
+                line += newlines(&c[i..end]);
+                blank(&mut out, i, end + 1);
+                i = end + 1;
+            }
+            ch => {
+                out.code.push(ch);
+                i += 1;
+            }
+        }
+    }
+    out
+}

@@ -37,6 +37,7 @@ pub mod characters;
 pub mod curve;
 pub mod cyclic;
 pub mod error;
+pub mod names;
 pub mod polyline_global;
 pub mod pose;
 pub mod reversed;
@@ -48,12 +49,12 @@ pub use characters::{Character, DAI, PING};
 pub use curve::{ClosedCurve, CurveShape};
 pub use cyclic::Cyclic;
 pub use error::PathError;
+pub use names::PATH_NAMES;
 pub use polyline_global::{shift_closed_loop, GlobalPolyline};
 pub use pose::{pose_rotation, Posed};
 pub use reversed::Reversed;
 pub use spec::{
     build_path, default_duration, default_scale, phase_supported, scale_provenance, PathSpec,
-    PATH_NAMES,
 };
 pub use stroke::{StrokePath, StrokeSegment};
 pub use time_law::{Fraction, RestToRest};

@@ -45,7 +45,7 @@ use nalgebra::Vector3;
 #[derive(Clone, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct PathSpec {
-    /// One of [`PATH_NAMES`].
+    /// One of [`super::PATH_NAMES`].
     pub name: String,
     /// Task duration T in seconds.
     pub duration: f64,
@@ -96,21 +96,8 @@ impl PathSpec {
     }
 }
 
-/// Every path name [`build_path`] accepts.
-pub const PATH_NAMES: &[&str] = &[
-    "four-leaf-clover",
-    "five-point-star",
-    "star-lines",
-    "ping",
-    "dai",
-    "butterfly",
-    "butterfly-as-printed",
-    "cardioid",
-    "triangle",
-    "circle",
-];
-
-/// (name, default scale, provenance of the scale, duration in docs/paths.md), in [`PATH_NAMES`] order.
+/// (name, default scale, provenance of the scale, duration in docs/paths.md), in
+/// [`super::PATH_NAMES`] order.
 const TABLE: [(&str, f64, &str, f64); 10] = [
     ("four-leaf-clover", 0.15, "assumed", 5.0),
     ("five-point-star", 0.08, "group's code", 5.0),

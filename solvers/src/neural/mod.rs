@@ -8,7 +8,7 @@
 //! | LVI-PDNN | jia2019 eq. 2.21-2.23 | [x; u; v] (nx + n_eq + n_in) | [`projection`] |
 //! | S-LVI-PDNN | zhong2021 eq. 2.35 | [x; u; v] | [`projection`] |
 //! | VP-RNN-PF | zhong2021 eq. 2.19-2.30 | [x; lambda] (nx + n_eq) | [`vp_rnn_pf`] |
-//! | FP-CDNN / VP-CDNN | zhang2018 eq. 2.15 / 2.11, perturbed 3.2 / 3.1 | [x; lambda] | [`cdnn`], [`zeroing`] |
+//! | FP-CDNN / VP-CDNN | zhang2018 eq. 2.15 / 2.11, perturbed 3.2 / 3.1 | [x; lambda] | [`cdnn`], [`zeroing`], [`perturbation`] |
 //! | FTNN (finite-time) / ZNN | kong2019 eq. 17-20 / its eq. 22 comparison | [x; lambda] | [`znn`](mod@znn), [`zeroing`] |
 //! | group ZNN | the group's MATLAB code (`docs/group-code.md`) | [x; lambda] | [`group`], [`zeroing`] |
 //!
@@ -21,6 +21,7 @@ pub mod activation;
 pub mod cdnn;
 pub mod group;
 pub mod lu;
+pub mod perturbation;
 pub mod projection;
 pub mod spec;
 pub mod vp_rnn_pf;
@@ -28,8 +29,9 @@ pub mod zeroing;
 pub mod znn;
 
 pub use activation::Activation;
-pub use cdnn::{fp_cdnn, vp_cdnn, PerturbationTerms};
+pub use cdnn::{fp_cdnn, vp_cdnn};
 pub use group::group_znn;
+pub use perturbation::PerturbationTerms;
 pub use projection::{LviPdnn, SLviPdnn};
 pub use spec::build_solver;
 pub use vp_rnn_pf::VpRnnPf;

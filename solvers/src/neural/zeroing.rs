@@ -23,7 +23,8 @@
 //!     Q ydot = -Qdot y + udot - g(t) Phi(Q y - u)  [ - DeltaD(t) y + Delta s(t) ]
 //! ```
 //!
-//! with the bracketed perturbation of zhang2018 eq. 3.1-3.2 (see [`super::cdnn`]) where given.
+//! with the bracketed perturbation of zhang2018 eq. 3.1-3.2 (see [`super::cdnn`]; its terms:
+//! [`super::perturbation`]) where given.
 //!
 //! Three options, all off by default (and then not evaluated at all, so the networks above are
 //! unchanged bit for bit), make the group's network ([`super::group`]):
@@ -50,8 +51,8 @@
 //! Q dF = dr - dQ F with dr = -(g(t) diag(Phi'(E)) + nu t I)(dQ y - du) - dQdot y + dudot.
 
 use super::activation::Activation;
-use super::cdnn::PerturbationTerms;
 use super::lu;
+use super::perturbation::PerturbationTerms;
 use super::{euclidean_norm, NeuralSolver};
 use nalgebra::DMatrix;
 use schemes::qp::{Qp, QpDims};

@@ -1,0 +1,162 @@
+//! A published table (one `(paper, table)` of `papers/<paper>/values.csv`) set beside ours: its
+//! mapped columns, the quantities compared, and the ratio of ours to the paper's. The report
+//! renders it (`presentation::report::tables`).
+
+use crate::papers::{Mapping, Papers};
+use crate::published_metrics::our_metric;
+use records::index::metric;
+use records::runs::RunRow;
+
+/// The published tables of `paper`, in the order the CSV lists them (`text` last).
+pub fn published_tables(paper: &str, papers: &Papers) -> Vec<String> {
+    let mut tables: Vec<String> = Vec::new();
+    for v in papers.values.iter().filter(|v| v.paper == paper) {
+        if !tables.contains(&v.table) {
+            tables.push(v.table.clone());
+        }
+    }
+    tables.sort_by_key(|t| t == "text");
+    tables
+}
+
+/// The mapped columns of one published table, in the CSV's order.
+pub fn columns_of<'a>(paper: &str, table: &str, papers: &'a Papers) -> Vec<&'a Mapping> {
+    let mut cols: Vec<&Mapping> = Vec::new();
+    let measured = papers
+        .values
+        .iter()
+        .filter(|v| v.paper == paper && v.table == table && our_metric(&v.metric).is_some());
+    for m in measured.filter_map(|v| papers.mapping_of(v)) {
+        if !cols.contains(&m) {
+            cols.push(m);
+        }
+    }
+    cols
+}
+
+/// Whether run `r` starts off theta*0: its drift against theta*0 differs from its drift
+/// (beyond rounding, 1e-12 relative).
+fn starts_off_reference(r: &RunRow) -> bool {
+    match (r.drift_norm, r.drift_ref_norm) {
+        (Some(a), Some(b)) => (a - b).abs() > 1e-12 * a.abs().max(1.0),
+        _ => false,
+    }
+}
+
+/// The quantities (our column names) of one published table: what the paper prints and we
+/// measure, plus the drift norm (derived when the paper prints only joints) and the drift
+/// against theta*0 when some `shown` run starts off it.
+pub fn quantities_of(
+    paper: &str,
+    table: &str,
+    papers: &Papers,
+    shown: &[&RunRow],
+) -> Vec<&'static str> {
+    let mut q: Vec<&'static str> = Vec::new();
+    for m in papers
+        .values
+        .iter()
+        .filter(|v| v.paper == paper && v.table == table && papers.mapping_of(v).is_some())
+        .filter_map(|v| our_metric(&v.metric))
+    {
+        if !q.contains(&m) {
+            q.push(m);
+        }
+    }
+    if q.iter().any(|m| m.starts_with("drift_")) && !q.contains(&"drift_norm") {
+        let at = q
+            .iter()
+            .rposition(|m| m.starts_with("drift_"))
+            .map_or(q.len(), |i| i + 1);
+        q.insert(at, "drift_norm");
+    }
+    if shown.iter().any(|r| starts_off_reference(r)) {
+        let at = q
+            .iter()
+            .position(|m| *m == "drift_norm")
+            .map_or(q.len(), |i| i + 1);
+        q.insert(at, "drift_ref_norm");
+    }
+    q
+}
+
+/// Our run `r`'s `metric` over the paper's in `mapping`'s column; none where either is missing
+/// or the paper prints 0 (robio2018's theta_6), which has no ratio.
+pub fn ratio_to_paper(
+    r: &RunRow,
+    mapping: &Mapping,
+    metric_name: &str,
+    papers: &Papers,
+) -> Option<f64> {
+    metric(r, metric_name)
+        .zip(papers.published(mapping, metric_name))
+        .filter(|(_, (p, _))| *p != 0.0)
+        .map(|(o, (p, _))| o / p)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use catalog::solver_kind::SolverKind;
+
+    #[test]
+    fn a_run_off_theta_star_adds_the_reference_drift() {
+        let mut r = RunRow::blank(&catalog::run_key::RunKey::from_ids("e", "v", "s").unwrap(), SolverKind::Exact);
+        r.drift_norm = Some(0.5);
+        r.drift_ref_norm = Some(0.5 + 1e-13);
+        assert!(!starts_off_reference(&r));
+        r.drift_ref_norm = Some(0.25);
+        assert!(starts_off_reference(&r));
+        let papers = Papers::default();
+        assert_eq!(quantities_of("p", "T1", &papers, &[&r]), ["drift_ref_norm"]);
+        assert!(published_tables("p", &papers).is_empty());
+    }
+
+    /// A paper whose table T1 prints `drift_norm` = 0.5 and `drift_6` = 0 for column `c`,
+    /// mapped onto run e / v / s.
+    fn printed() -> (Papers, Mapping) {
+        let mapping = Mapping {
+            paper: "p".into(),
+            published_experiment: "E".into(),
+            published_column: "c".into(),
+            run: catalog::run_key::RunKey::parse("e / v / s").unwrap(),
+            companions: Vec::new(),
+        };
+        let value = |metric: &str, value: f64| crate::papers::PaperValue {
+            paper: "p".into(),
+            table: "T1".into(),
+            experiment: "E".into(),
+            column: "c".into(),
+            metric: metric.into(),
+            value,
+            note: String::new(),
+            inconsistent: None,
+        };
+        let papers = Papers {
+            values: vec![value("drift_norm", 0.5), value("drift_6", 0.0)],
+            mappings: vec![mapping.clone()],
+            ..Papers::default()
+        };
+        (papers, mapping)
+    }
+
+    #[test]
+    fn ours_is_set_over_the_papers_number_unless_it_prints_zero() {
+        let (papers, mapping) = printed();
+        let mut r = RunRow::blank(&catalog::run_key::RunKey::from_ids("e", "v", "s").unwrap(), SolverKind::Exact);
+        r.drift_norm = Some(0.25);
+        r.drift = vec![0.0, 0.0, 0.0, 0.0, 0.0, 0.1];
+        assert_eq!(
+            ratio_to_paper(&r, &mapping, "drift_norm", &papers),
+            Some(0.5)
+        );
+        assert_eq!(ratio_to_paper(&r, &mapping, "drift_6", &papers), None);
+        assert_eq!(ratio_to_paper(&r, &mapping, "max_pos_err", &papers), None);
+        assert_eq!(columns_of("p", "T1", &papers), [&mapping]);
+        assert_eq!(published_tables("p", &papers), ["T1"]);
+        assert_eq!(
+            quantities_of("p", "T1", &papers, &[&r]),
+            ["drift_norm", "drift_6"]
+        );
+    }
+}

@@ -1,0 +1,19 @@
+//! What a text of `papers/` that reaches the report must be: one line. The report puts titles,
+//! citations and claims into headings, table cells and list items, which a line break or other
+//! control character would end (a claim's text would become a heading of its own).
+
+/// Whether `text` is one line: no line break or other control character.
+pub fn is_one_line(text: &str) -> bool {
+    !text.contains(char::is_control)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_line_break_or_control_character_ends_one_line() {
+        assert!(is_one_line("Jia & Li, “Drift-free…”, 2019"));
+        assert!(!is_one_line("a\n## Summary") && !is_one_line("a\rb"));
+    }
+}

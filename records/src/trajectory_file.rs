@@ -1,0 +1,142 @@
+//! A trajectory file of either format, told by its name: a MAT-file (`.mat`, any case;
+//! [`crate::trajectory_mat`]) or a CSV file ([`crate::trajectory::parse_csv`]), read with the
+//! input reader of crate `inputs` (a regular file, at most its kind's cap).
+
+use crate::error::TrajectoryFileError;
+use crate::trajectory::{parse_csv, Trajectory};
+use crate::trajectory_mat::{read_mat, Columns, MatError};
+use std::path::Path;
+
+/// Why a trajectory file cannot be read.
+#[derive(Debug, thiserror::Error)]
+pub enum ReadError {
+    /// The file was refused or could not be read (a FIFO, a device, over
+    /// [`inputs::Kind::TrajectoryCsv`]'s cap).
+    #[error(transparent)]
+    Input(#[from] inputs::InputError),
+    /// The CSV file's problem (file, line, column).
+    #[error(transparent)]
+    Csv(#[from] TrajectoryFileError),
+    /// The MAT-file's problem.
+    #[error(transparent)]
+    Mat(#[from] MatError),
+    /// A column selection for a CSV file, whose header names its columns.
+    #[error("{}: a column selection ({columns}) applies to MAT-files; a CSV file names its columns in its header", path.display())]
+    ColumnsOfCsv {
+        /// The CSV file.
+        path: std::path::PathBuf,
+        /// The selection given.
+        columns: Columns,
+    },
+}
+
+/// Reads the trajectory of a `joints`-joint task from `path`: a MAT-file when the name ends in
+/// `.mat` (any case; `columns`: which columns of its `y` to read), a CSV file otherwise.
+pub fn read(
+    path: &Path,
+    joints: usize,
+    columns: Option<&Columns>,
+) -> Result<Trajectory, ReadError> {
+    let is_mat = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("mat"));
+    if is_mat {
+        Ok(read_mat(path, joints, columns)?)
+    } else if let Some(columns) = columns {
+        Err(ReadError::ColumnsOfCsv {
+            path: path.to_path_buf(),
+            columns: columns.clone(),
+        })
+    } else {
+        let bytes = inputs::read(path, inputs::Kind::TrajectoryCsv, inputs::Origin::Named)?;
+        Ok(parse_csv(&bytes, path)?)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fixture(name: &str) -> std::path::PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/fixtures")
+            .join(name)
+    }
+
+    /// Written by Octave 7.3: `t = [0; 0.5; 1]`, `y = [1 2 10 20; 3 4 30 40; 5 6 50 60]` and a
+    /// string `s` as `save -v7` (compressed); `t'` and `y(:, 1:2)` as `save -v6`.
+    #[test]
+    fn mat_files_of_octave_are_read_with_and_without_velocities() {
+        let tr = read(&fixture("trajectory-v7.mat"), 2, None).unwrap();
+        assert_eq!(tr.t, [0.0, 0.5, 1.0]);
+        assert_eq!(tr.theta, [vec![1.0, 2.0], vec![3.0, 4.0], vec![5.0, 6.0]]);
+        assert_eq!(
+            tr.thetadot,
+            Some(vec![vec![10.0, 20.0], vec![30.0, 40.0], vec![50.0, 60.0]])
+        );
+        let tr = read(&fixture("trajectory-v6.mat"), 2, None).unwrap();
+        assert_eq!(tr.t, [0.0, 0.5, 1.0]);
+        assert_eq!(tr.theta[2], [5.0, 6.0]);
+        assert!(tr.thetadot.is_none());
+    }
+
+    #[test]
+    fn mat_files_of_the_wrong_shape_are_refused() {
+        let e = read(&fixture("trajectory-v7.mat"), 3, None)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("y is 3 x 4; for 3 instants of a 3-joint task"),
+            "{e}"
+        );
+        let e = read(&fixture("trajectory-v6.mat"), 3, None)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("y is 3 x 2"), "{e}");
+        let e = read(&fixture("missing.mat"), 2, None)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("missing.mat"), "{e}");
+        // A name that does not end in .mat is read as CSV (here, one that is not there).
+        let csv = fixture("trajectory-v7.csv");
+        let e = read(&csv, 2, None).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                ReadError::Input(inputs::InputError::Open {
+                    kind: inputs::Kind::TrajectoryCsv,
+                    ..
+                })
+            ),
+            "{e}"
+        );
+    }
+
+    /// The Octave fixture's y is 3 x 4: a selection reads theta from any of its columns, and
+    /// thetadot beside it or not at all.
+    #[test]
+    fn a_column_selection_reads_the_columns_it_names() {
+        let select = |spec: &str| spec.parse::<Columns>().unwrap();
+        let v7 = fixture("trajectory-v7.mat");
+        let tr = read(&v7, 2, Some(&select("theta=3:4"))).unwrap();
+        assert_eq!(
+            tr.theta,
+            [vec![10.0, 20.0], vec![30.0, 40.0], vec![50.0, 60.0]]
+        );
+        assert!(tr.thetadot.is_none());
+        let tr = read(&v7, 1, Some(&select("thetadot=4:4, theta=2:2"))).unwrap();
+        assert_eq!(tr.theta, [vec![2.0], vec![4.0], vec![6.0]]);
+        assert_eq!(tr.thetadot, Some(vec![vec![20.0], vec![40.0], vec![60.0]]));
+        // Past the last column, or not one theta column per joint.
+        for (joints, spec) in [(2, "theta=4:5"), (3, "theta=1:2")] {
+            let e = read(&v7, joints, Some(&select(spec))).unwrap_err();
+            assert!(
+                matches!(&e, ReadError::Mat(MatError::Selected { cols: 4, .. })),
+                "{spec}: {e}"
+            );
+        }
+        // A CSV names its columns: a selection for one is refused, not ignored.
+        let e = read(Path::new("x.csv"), 2, Some(&select("theta=1:2"))).unwrap_err();
+        assert!(matches!(e, ReadError::ColumnsOfCsv { .. }), "{e}");
+    }
+}

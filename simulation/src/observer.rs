@@ -1,0 +1,188 @@
+//! The observer of a run: every accepted step (or sampled instant) of the arm becomes metrics
+//! ([`crate::metrics`]) and a thinned trace, the run is stopped when it diverges, and the
+//! command is scored against the exact optimum where the experiment's scoring says
+//! ([`score_instant`]). Shared by the integrated runs ([`crate::simulate`]), the fixed-step
+//! loop of the numerical methods ([`crate::numerical`]) and a trajectory scored from a file
+//! ([`crate::score_trajectory`]).
+
+use crate::coupled::{arm_state, ExactLoop};
+use crate::metrics::{MetricsAccumulator, Sample, ScoreSample};
+use catalog::experiment::Scoring;
+use nalgebra::{DVector, SVector};
+use records::trace::TracePoint;
+use robots::Robot;
+use schemes::paths::Path;
+use schemes::scheme::{Level, Scheme};
+
+/// Samples kept per run for the figures (uniform in t, plus the last).
+const TRACE_POINTS: usize = 400;
+
+/// A run stops as diverging when a joint velocity exceeds this many times its bound (the
+/// papers' schemes keep every joint inside its bound; 10x is far outside anything a run that
+/// recovers reaches, and MTN's blow-up passes it within a fraction of a second).
+pub const DIVERGENCE_FACTOR: f64 = 10.0;
+/// ... or when an entry of the integrated state (angles, velocities, network state) exceeds this.
+pub const DIVERGENCE_STATE: f64 = 1e6;
+
+/// Scores the command `x` at the state `(t, theta, thetadot)` against the exact optimum there,
+/// when `scoring` says the instant is due (`next_score_t` keeps the grid of
+/// [`Scoring::MaxInstants`]): `None` when not due, `Some(false)` when the exact solver failed
+/// (the instant is left out of the score), `Some(true)` when scored.
+pub(crate) fn score_instant<const N: usize>(
+    observer: &mut Observer<'_, N>,
+    scorer: &mut ExactLoop<'_>,
+    scoring: Scoring,
+    next_score_t: &mut f64,
+    t1: f64,
+    (t, theta, thetadot): (f64, &SVector<f64, N>, &SVector<f64, N>),
+    x: &DVector<f64>,
+) -> Option<bool> {
+    let due = match scoring {
+        Scoring::EveryStep => true,
+        Scoring::Off => false,
+        Scoring::MaxInstants(n) => {
+            let due = t >= *next_score_t || t >= t1 * (1.0 - 1e-12);
+            if due {
+                *next_score_t = t + t1 / n.max(1) as f64;
+            }
+            due
+        }
+    };
+    if !due {
+        return None;
+    }
+    let Ok(x_star) = scorer.optimum(t, theta.as_slice(), thetadot.as_slice()) else {
+        return Some(false);
+    };
+    let qp = &scorer.qp;
+    let f_star = qp.objective(&x_star);
+    let dx = (x.rows(0, N) - x_star.rows(0, N)).amax();
+    observer.score(
+        t,
+        &ScoreSample {
+            dx,
+            objective_gap: (qp.objective(x) - f_star) / f_star.abs().max(1.0),
+            violation: qp.constraint_violation(x),
+        },
+    );
+    Some(true)
+}
+
+/// Turns accepted steps into metrics and a thinned trace (also the samples of a trajectory
+/// scored by [`crate::score_trajectory`]).
+pub(crate) struct Observer<'a, const N: usize> {
+    robot: &'a dyn Robot<N>,
+    scheme: &'a dyn Scheme<N>,
+    path: &'a dyn Path,
+    pub(crate) metrics: MetricsAccumulator<N>,
+    pub(crate) trace: Vec<TracePoint>,
+    next_trace_t: f64,
+    pub(crate) last_t: f64,
+    /// Joint velocities at the last accepted step (for [`Self::divergence`]).
+    last_thetadot: SVector<f64, N>,
+    last_dx: Option<f64>,
+    last_network_error: Option<f64>,
+    pub(crate) score_failures: usize,
+    /// Wall time spent in the observer (see [`crate::run::RunRecord::observe_seconds`]).
+    pub(crate) seconds: f64,
+}
+
+impl<'a, const N: usize> Observer<'a, N> {
+    pub(crate) fn new(
+        robot: &'a dyn Robot<N>,
+        scheme: &'a dyn Scheme<N>,
+        path: &'a dyn Path,
+        theta0: SVector<f64, N>,
+        theta_ref: SVector<f64, N>,
+    ) -> Self {
+        Self {
+            robot,
+            scheme,
+            path,
+            metrics: MetricsAccumulator::new(robot.limits(), theta0, theta_ref),
+            trace: Vec::with_capacity(TRACE_POINTS + 2),
+            next_trace_t: 0.0,
+            last_t: 0.0,
+            last_thetadot: SVector::zeros(),
+            last_dx: None,
+            last_network_error: None,
+            score_failures: 0,
+            seconds: 0.0,
+        }
+    }
+
+    pub(crate) fn has_samples(&self) -> bool {
+        !self.trace.is_empty()
+    }
+
+    pub(crate) fn score(&mut self, t: f64, s: &ScoreSample) {
+        self.metrics.push_score(t, s);
+        self.last_dx = Some(s.dx);
+    }
+
+    pub(crate) fn network_error(&mut self, t: f64, e: f64) {
+        self.metrics.push_network_error(t, e);
+        self.last_network_error = Some(e);
+    }
+
+    /// Why the run is diverging at the state just sampled, if it is: a joint velocity beyond
+    /// [`DIVERGENCE_FACTOR`] times its bound, or a state entry beyond [`DIVERGENCE_STATE`]. The
+    /// run stops there with that reason instead of integrating a blow-up to the step limit.
+    pub(crate) fn divergence(&self, y: &[f64]) -> Option<String> {
+        let limits = self.robot.limits();
+        for i in 0..N {
+            let v = self.last_thetadot[i];
+            let bound = limits.thetadot_max[i].max(-limits.thetadot_min[i]);
+            if bound.is_finite() && v.abs() > DIVERGENCE_FACTOR * bound {
+                return Some(format!(
+                    "diverging: |thetadot_{}| = {:.3e} rad/s exceeds {DIVERGENCE_FACTOR} x its bound {bound} rad/s",
+                    i + 1,
+                    v.abs()
+                ));
+            }
+        }
+        let peak = y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        (peak > DIVERGENCE_STATE || !peak.is_finite()).then(|| {
+            format!("diverging: a state entry reached {peak:.3e} (limit {DIVERGENCE_STATE:e})")
+        })
+    }
+
+    /// Records the accepted state y at t with joint command x (x[..n] = thetadot or thetaddot).
+    pub(crate) fn sample(&mut self, t: f64, y: &[f64], x: &DVector<f64>, level: Level) {
+        let (theta, thetadot) = arm_state::<N>(level, y, x.as_slice());
+        let thetaddot = (level == Level::Acceleration)
+            .then(|| SVector::<f64, N>::from_column_slice(&x.as_slice()[..N]));
+        let torque = thetaddot.and_then(|a| self.scheme.torque(&theta, &thetadot, &a));
+        let desired = self.path.at(t).r;
+        let actual = self.robot.position(&theta);
+        let s = Sample {
+            t,
+            theta,
+            thetadot,
+            thetaddot,
+            torque,
+            desired,
+            actual,
+            jacobian: self.robot.jacobian(&theta),
+        };
+        self.metrics.push(&s);
+        self.last_thetadot = thetadot;
+        let duration = self.path.duration();
+        let is_end = t >= duration * (1.0 - 1e-12);
+        if t >= self.next_trace_t || is_end {
+            self.trace.push(TracePoint {
+                t,
+                theta: theta.iter().copied().collect(),
+                thetadot: thetadot.iter().copied().collect(),
+                thetaddot: thetaddot.map(|a| a.iter().copied().collect()),
+                torque: torque.map(|a| a.iter().copied().collect()),
+                desired: [desired.x, desired.y, desired.z],
+                actual: [actual.x, actual.y, actual.z],
+                score_dx: self.last_dx,
+                network_error: self.last_network_error,
+            });
+            self.next_trace_t = t + duration / TRACE_POINTS as f64;
+        }
+        self.last_t = t;
+    }
+}
