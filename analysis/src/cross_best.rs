@@ -85,7 +85,10 @@ mod tests {
         } else {
             SolverKind::Network(NetworkKind::LviPdnn)
         };
-        let mut r = RunRow::blank(&catalog::run_key::RunKey::from_ids("e", "v", solver).unwrap(), kind);
+        let mut r = RunRow::blank(
+            &catalog::run_key::RunKey::from_ids("e", "v", solver).unwrap(),
+            kind,
+        );
         r.drift_ref_norm = Some(drift);
         r
     }

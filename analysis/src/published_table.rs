@@ -101,7 +101,10 @@ mod tests {
 
     #[test]
     fn a_run_off_theta_star_adds_the_reference_drift() {
-        let mut r = RunRow::blank(&catalog::run_key::RunKey::from_ids("e", "v", "s").unwrap(), SolverKind::Exact);
+        let mut r = RunRow::blank(
+            &catalog::run_key::RunKey::from_ids("e", "v", "s").unwrap(),
+            SolverKind::Exact,
+        );
         r.drift_norm = Some(0.5);
         r.drift_ref_norm = Some(0.5 + 1e-13);
         assert!(!starts_off_reference(&r));
@@ -143,7 +146,10 @@ mod tests {
     #[test]
     fn ours_is_set_over_the_papers_number_unless_it_prints_zero() {
         let (papers, mapping) = printed();
-        let mut r = RunRow::blank(&catalog::run_key::RunKey::from_ids("e", "v", "s").unwrap(), SolverKind::Exact);
+        let mut r = RunRow::blank(
+            &catalog::run_key::RunKey::from_ids("e", "v", "s").unwrap(),
+            SolverKind::Exact,
+        );
         r.drift_norm = Some(0.25);
         r.drift = vec![0.0, 0.0, 0.0, 0.0, 0.0, 0.1];
         assert_eq!(

@@ -123,7 +123,10 @@ mod tests {
             values: vec![value("drift_1", 3.0), value("drift_2", -4.0)],
             ..Papers::default()
         };
-        let mut r = RunRow::blank(&catalog::run_key::RunKey::from_ids("e", "v", "exact").unwrap(), SolverKind::Exact);
+        let mut r = RunRow::blank(
+            &catalog::run_key::RunKey::from_ids("e", "v", "exact").unwrap(),
+            SolverKind::Exact,
+        );
         r.drift = vec![0.3, 0.4];
         r.drift_norm = Some(0.5);
         let runs = Runs::new(vec![r]);

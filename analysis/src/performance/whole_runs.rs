@@ -160,7 +160,10 @@ mod tests {
 
     #[test]
     fn runs_are_priced_per_step_by_kind() {
-        let mut a = RunRow::blank(&catalog::run_key::RunKey::from_ids("e", "v", "s").unwrap(), catalog::solver_kind::SolverKind::Exact);
+        let mut a = RunRow::blank(
+            &catalog::run_key::RunKey::from_ids("e", "v", "s").unwrap(),
+            catalog::solver_kind::SolverKind::Exact,
+        );
         (a.steps, a.rhs_evals, a.wall_s, a.sim_s) = (100, 400, 0.01, 0.004);
         let mut b = a.clone();
         (b.steps, b.wall_s) = (50, 0.01);

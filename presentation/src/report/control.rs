@@ -65,7 +65,7 @@ pub fn section(results: &ControlResults, runs: &Runs, figures: &[String]) -> Str
          the QP held; the zeroing networks also in the Taylor-type discrete-time ZNN form \
          (Zhang et al., J. Comput. Appl. Math. 2015). The numerical methods run to their \
          tolerance at every tick, each started from the previous tick's answer where it can be: \
-         robio2018's six LVI methods as it prints them (94LVI and E47, zhong2021 refs. [26] \
+         the six LVI methods of robio2018 (22)-(27) as printed (94LVI and E47, zhong2021 refs. [26] \
          and [27], and M3-M6; to |e(y)|_inf <= 1e-10), the hot-started active set, Clarabel and OSQP (warm-started, \
          eps 1e-7, polished). Every tick is scored against the certified exact optimum of its QP. \
          |x - x*| is that of the joint command, relative to max(1, |x*|); drift is \
@@ -160,7 +160,7 @@ fn claim_section(results: &ControlResults, runs: &Runs) -> String {
     out.push_str(
         "zhong2021 §1: \"compared with numerical methods [26], [27], neural network methods can \
          process information in parallel and have higher computational efficiency\". [26] and \
-         [27] are E47 and 94LVI, two of robio2018's six LVI methods. All of them and the \
+         [27] are E47 and 94LVI, two of the six LVI methods of robio2018 (22)-(27). All of them and the \
          networks work on the LVI of the same QP (the one LVI-PDNN solves) and spend their time \
          in one operation, a product of the LVI matrix M with a vector, so the cost per tick is \
          counted in those products: the same on every machine and under any load, so the \
@@ -168,7 +168,7 @@ fn claim_section(results: &ControlResults, runs: &Runs) -> String {
          steps per tick to be stable at all (s_max its stability limit, below); the LVI methods \
          are counted over the whole task, warm-started, to their tolerance (which meets the \
          accuracy asked for). The network is compared with the cheapest of the six that solves \
-         the task at every tick (the table names it): as robio2018 prints them, E47 and 94LVI \
+         the task at every tick (the table names it): as printed (robio2018 (22), (23)), E47 and 94LVI \
          fail at the first tick on some of these QPs (`report/deviations.md`), so the claim is \
          tested against the numerical family they belong to, at its cheapest. FAIL when the \
          network's lower bound exceeds that method's mean; PASS when the network's checked cost (twice the lower bound, \
