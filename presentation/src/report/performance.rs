@@ -25,7 +25,7 @@
 
 use super::cost::{solver_label, timed_papers};
 use super::markdown::{sci, sci_opt, text, Table, MISSING};
-use analysis::papers::Papers;
+use analysis::papers::{Papers, TimedRun};
 use records::clock::ClockRow;
 use records::dof_cost::{DofCostRow, Quantity, Summary, NALGEBRA};
 use records::index::{completed, Runs};
@@ -949,41 +949,42 @@ fn matlab(runs: &Runs, timings: &Timings, papers: &Papers) -> String {
     ]);
     let (mut min_sim, mut min_total) = (f64::INFINITY, f64::INFINITY);
     let (mut alone, mut shown) = (0, 0);
-    for exp in papers.timed_experiments() {
-        for (solver, paper) in papers.times_of(exp) {
-            let ours = runs
-                .of_experiment(exp)
-                .find(|r| r.solver_id == solver)
-                .filter(|r| completed(r));
-            let timed = ours.and_then(|r| timings.get(&r.key()));
-            let sim = match (ours, timed) {
-                (_, Some(t)) => Some((t.sim_s_median, t.wall_s_median)),
-                (Some(r), None) => Some((r.sim_s, r.wall_s)),
-                (None, None) => None,
-            };
-            if let Some((s, w)) = sim {
-                min_sim = min_sim.min(paper / s);
-                min_total = min_total.min(paper / w);
-                shown += 1;
-            }
-            alone += usize::from(timed.is_some());
-            t.push([
-                exp.to_string(),
-                solver_label(runs, exp, solver),
-                sci(paper),
-                sci_opt(sim.map(|p| p.0)),
-                sci_opt(sim.map(|p| p.1)),
-                timed.map_or(MISSING.to_string(), |t| {
-                    format!(
-                        "{:.0} %, {:.0} %",
-                        100.0 * t.sim_spread(),
-                        100.0 * t.wall_spread()
-                    )
-                }),
-                sci_opt(sim.map(|(s, _)| paper / s)),
-                sci_opt(sim.map(|(_, w)| paper / w)),
-            ]);
+    for TimedRun {
+        experiment: exp,
+        solver,
+        published_s: paper,
+        run,
+    } in papers.timed_runs(runs)
+    {
+        let ours = run.filter(|r| completed(r));
+        let timed = ours.and_then(|r| timings.get(&r.key()));
+        let sim = match (ours, timed) {
+            (_, Some(t)) => Some((t.sim_s_median, t.wall_s_median)),
+            (Some(r), None) => Some((r.sim_s, r.wall_s)),
+            (None, None) => None,
+        };
+        if let Some((s, w)) = sim {
+            min_sim = min_sim.min(paper / s);
+            min_total = min_total.min(paper / w);
+            shown += 1;
         }
+        alone += usize::from(timed.is_some());
+        t.push([
+            exp.to_string(),
+            solver_label(runs, exp, solver),
+            sci(paper),
+            sci_opt(sim.map(|p| p.0)),
+            sci_opt(sim.map(|p| p.1)),
+            timed.map_or(MISSING.to_string(), |t| {
+                format!(
+                    "{:.0} %, {:.0} %",
+                    100.0 * t.sim_spread(),
+                    100.0 * t.wall_spread()
+                )
+            }),
+            sci_opt(sim.map(|(s, _)| paper / s)),
+            sci_opt(sim.map(|(_, w)| paper / w)),
+        ]);
     }
     if t.is_empty() {
         return String::new();
