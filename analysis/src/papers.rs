@@ -189,6 +189,19 @@ pub struct Mapping {
     pub companions: Vec<RunKey>,
 }
 
+/// A published compute time and the run it is compared with ([`Papers::timed_runs`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TimedRun<'a> {
+    /// Our experiment id.
+    pub experiment: &'a str,
+    /// Our solver id.
+    pub solver: &'a str,
+    /// The paper's (MATLAB) seconds.
+    pub published_s: f64,
+    /// Our run, if the experiment has one of that solver.
+    pub run: Option<&'a RunRow>,
+}
+
 /// Every paper of `papers/`: metadata, published values and mappings.
 #[derive(Clone, Debug, Default)]
 pub struct Papers {
@@ -272,6 +285,26 @@ impl Papers {
         self.timed_values()
             .filter(move |(_, m)| m.run.experiment == experiment)
             .map(|(v, m)| (m.run.solver.as_str(), v.value))
+    }
+
+    /// The published compute times beside the runs they are compared with (the report's
+    /// MATLAB comparison, and what the timing pass times alone): per experiment a time maps
+    /// onto ([`Papers::timed_experiments`]) and per published solver, the experiment's first
+    /// run of that solver among `runs` (sorted by key), or none.
+    pub fn timed_runs<'a>(&'a self, runs: &'a Runs) -> impl Iterator<Item = TimedRun<'a>> + 'a {
+        self.timed_experiments()
+            .into_iter()
+            .flat_map(move |experiment| {
+                self.times_of(experiment)
+                    .map(move |(solver, published_s)| TimedRun {
+                        experiment,
+                        solver,
+                        published_s,
+                        run: runs
+                            .of_experiment(experiment)
+                            .find(|r| r.solver_id == solver),
+                    })
+            })
     }
 
     /// The mappings of one paper, in file order.

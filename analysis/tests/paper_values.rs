@@ -111,3 +111,46 @@ fn companions_name_variants_or_runs() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A published compute time is set beside the first run of its solver in its experiment (by
+/// key, whatever the variant the mapping names), the run the report shows and the timing pass
+/// times alone; an experiment without such a run shows none.
+#[test]
+fn a_published_time_is_compared_with_the_first_run_of_its_solver() {
+    use catalog::solver_kind::SolverKind;
+    use records::index::Runs;
+    use records::runs::RunRow;
+    let dir = papers_dir(
+        "timed",
+        &format!("{HEADER}demo,T1,e,A,drift_1,1e-6,\ndemo,T2,e,A,compute_time_s,2.5,\n"),
+    );
+    let papers = Papers::load(&dir).unwrap();
+    let blank = |variant: &str, solver: &str| {
+        RunRow::blank(
+            &catalog::run_key::RunKey::from_ids("demo-e", variant, solver).unwrap(),
+            SolverKind::Exact,
+        )
+    };
+    let runs = Runs::new(vec![
+        blank("w", "exact"),
+        blank("v", "m3"),
+        blank("u", "exact"),
+        RunRow::blank(
+            &catalog::run_key::RunKey::from_ids("other", "a", "exact").unwrap(),
+            SolverKind::Exact,
+        ),
+    ]);
+    let timed: Vec<_> = papers.timed_runs(&runs).collect();
+    assert_eq!(timed.len(), 1);
+    assert_eq!(
+        (timed[0].experiment, timed[0].solver, timed[0].published_s),
+        ("demo-e", "exact", 2.5)
+    );
+    assert_eq!(
+        timed[0].run.map(RunRow::key),
+        Some(blank("u", "exact").key())
+    );
+    let none = Runs::new(vec![blank("v", "m3")]);
+    assert_eq!(papers.timed_runs(&none).next().unwrap().run, None);
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -3,8 +3,9 @@
 //! many-cycles runs, written to `results/` ([`records::control`]).
 //!
 //! Cost on 2 cores of a 2020s server CPU at the [`Budget::default`]: see the report's section
-//! "At a robot's control rate" (the whole takes about a minute, most of it the Clarabel and
-//! OSQP runs at 1 ms and the 20-cycle runs).
+//! "At a robot's control rate" (about a minute of CPU, half a minute with the runs in parallel
+//! on both cores; most of it robio2018's methods iterating to 1e-10 at every tick of the runs
+//! at 1 ms, and the 20-cycle runs).
 
 use crate::continuous::ExactCycles;
 use crate::control_loop::{run_loop, LoopOutcome, LoopSettings, Observer, Status};
@@ -26,6 +27,7 @@ use robots::Robot;
 use schemes::paths::Path;
 use schemes::scheme::Scheme;
 use settings::solver_spec::SolverSpec;
+use simulation::runner::map_costliest_first;
 use solvers::neural::build_solver;
 use solvers::HotActiveSet;
 
@@ -213,8 +215,115 @@ fn control_row(task: &Task, method: &Method, h: f64, mut out: LoopOutcome) -> Co
     }
 }
 
+/// One controller run of the reproduction: `method` on `task` at the period `h` over `cycles`
+/// cycles, stopped after `max_ticks` ticks when given.
+#[derive(Clone, Debug)]
+struct LoopRun<'a> {
+    task: &'a Task,
+    method: Method,
+    h: f64,
+    cycles: usize,
+    max_ticks: Option<usize>,
+}
+
+impl<'a> LoopRun<'a> {
+    /// A run over whole cycles.
+    fn cycles(task: &'a Task, method: Method, h: f64, cycles: usize) -> Self {
+        LoopRun {
+            task,
+            method,
+            h,
+            cycles,
+            max_ticks: None,
+        }
+    }
+
+    fn run(&self) -> Result<LoopOutcome, ControlError> {
+        with_task(
+            self.task,
+            self.cycles,
+            RunMethod {
+                method: &self.method,
+                h: self.h,
+                cycles: self.cycles,
+                max_ticks: self.max_ticks,
+            },
+        )?
+    }
+
+    /// The run's relative cost, to start the longest runs first (scheduling only): its ticks
+    /// (at most) times the work of a tick, in network steps: a network's steps per tick; for
+    /// a numerical method weights read off the latencies of `results/control.csv` (the PLPE
+    /// methods iterate to 1e-10, tens of network steps; Clarabel and OSQP about ten; the
+    /// hot-started active set one).
+    fn cost(&self) -> f64 {
+        let ticks = self.task.job.path.duration * self.cycles as f64 / self.h;
+        let ticks = self.max_ticks.map_or(ticks, |m| ticks.min(m as f64));
+        ticks
+            * match self.method {
+                Method::Network { substeps, .. } => f64::from(substeps),
+                Method::Numerical(Numerical::Lvi(..)) => 30.0,
+                Method::Numerical(Numerical::Clarabel | Numerical::Osqp(_)) => 10.0,
+                Method::Numerical(Numerical::ActiveSet) => 1.0,
+            }
+    }
+}
+
+/// A check run of the efficiency claim: `spec`'s Euler form on the run's task at h with twice
+/// the steps per tick its stability limit needs, over the first [`CHECK_TICKS`] ticks, and the
+/// numerical method it is compared with.
+struct ClaimCheck<'a> {
+    spec: &'a SolverSpec,
+    /// Products with the LVI matrix per evaluation of the network.
+    per_step: u64,
+    /// The network's Euler limit on the task (s).
+    limit: f64,
+    /// Euler steps per tick the limit needs.
+    needed: u64,
+    /// The numerical method's row at h and its mean products per tick.
+    numerical: (&'a ControlRow, f64),
+    run: LoopRun<'a>,
+}
+
+impl<'a> ClaimCheck<'a> {
+    fn new(
+        task: &'a Task,
+        spec: &'a SolverSpec,
+        per_step: u64,
+        limit: f64,
+        numerical: (&'a ControlRow, f64),
+        h: f64,
+    ) -> Self {
+        let needed = steps_needed(h, limit);
+        let method = Method::Network {
+            spec: spec.clone(),
+            form: Discretisation::Euler,
+            substeps: u32::try_from(2 * needed).unwrap_or(u32::MAX),
+        };
+        ClaimCheck {
+            spec,
+            per_step,
+            limit,
+            needed,
+            numerical,
+            run: LoopRun {
+                max_ticks: Some(CHECK_TICKS),
+                ..LoopRun::cycles(task, method, h, 1)
+            },
+        }
+    }
+}
+
 /// Runs everything (module docs) on the tasks of the experiment files in `experiments` and writes
 /// the result files into `results`; `progress` is told what runs.
+///
+/// The runs are independent of one another but for what selects them, so they run in parallel
+/// (rayon's pool) in two rounds: first every run that needs no other's result (each method at
+/// h, the period sweep, the stability probes, the exact optimum's many cycles at h and in
+/// continuous time), then those selected by the first round's results (the claim's check runs,
+/// on the networks' stability limits; the many cycles of the network forms stable at h). The
+/// rows are assembled in the order of the tasks, methods and periods, as a sequential pass
+/// would write them.
 pub fn reproduce(
     experiments: &std::path::Path,
     results: &std::path::Path,
@@ -223,76 +332,123 @@ pub fn reproduce(
 ) -> Result<Summary, ControlError> {
     let tasks = load_tasks(experiments, &standard_task_refs(experiments)?)?;
     let h = budget.h;
-    // Each controller run's row beside its method: later passes select runs by method (an
-    // identity), never by the row's label.
-    let mut control: Vec<(Method, ControlRow)> = Vec::new();
-    let mut stability = Vec::new();
-    let mut claims = Vec::new();
-    let mut cycles = Vec::new();
-    let mut trends = Vec::new();
-    let run = |task: &Task, method: &Method, h: f64, cycles: usize, max_ticks| {
-        with_task(
-            task,
-            cycles,
-            RunMethod {
-                method,
-                h,
-                cycles,
-                max_ticks,
-            },
-        )?
-    };
 
+    // Round 1. The controller runs: first those of the rows of results/control.csv (per task,
+    // every method at h, then the period sweep), then the exact optimum's many cycles at h (the
+    // active set), per task.
+    let mut loops: Vec<LoopRun> = Vec::new();
     for task in &tasks {
-        progress(&format!("control: {} at {} ms", task.id(), h * 1e3));
         let mut methods: Vec<Method> = Numerical::all()
             .into_iter()
             .map(Method::Numerical)
             .collect();
         methods.extend(network_methods(task, 1));
-        for method in &methods {
-            let row = control_row(task, method, h, run(task, method, h, 1, None)?);
-            control.push((method.clone(), row));
-        }
-        progress(&format!("control: {} period sweep", task.id()));
+        loops.extend(
+            methods
+                .into_iter()
+                .map(|method| LoopRun::cycles(task, method, h, 1)),
+        );
         let mut swept = network_methods(task, 1);
         swept.push(Method::Numerical(Numerical::ActiveSet));
         for &hs in &budget.sweep {
-            for method in &swept {
-                let row = control_row(task, method, hs, run(task, method, hs, 1, None)?);
-                control.push((method.clone(), row));
-            }
-        }
-        for spec in &task.networks {
-            let limit = with_task(task, 1, ProbeLimit { spec, h })??;
-            let (gain_name, g) = gain(spec);
-            let euler = Method::Network {
-                spec: spec.clone(),
-                form: Discretisation::Euler,
-                substeps: 1,
-            };
-            let largest = control
-                .iter()
-                .filter(|(m, r)| {
-                    r.task == task.id() && *m == euler && r.status == ControlStatus::Ok
-                })
-                .map(|(_, r)| r.h_ms)
-                .reduce(f64::max);
-            stability.push(StabilityRow {
-                task: task.id(),
-                network: spec.display_name(),
-                solver_id: SolverId::new(spec.id())?,
-                gain_name: gain_name.to_string(),
-                gain: g,
-                euler_limit_s: limit.map(|l| l.0),
-                limit_at_s: limit.map(|l| l.1),
-                gain_x_limit: limit.map(|l| l.0 * g),
-                largest_stable_h_ms: largest,
-            });
+            loops.extend(
+                swept
+                    .iter()
+                    .map(|method| LoopRun::cycles(task, method.clone(), hs, 1)),
+            );
         }
     }
+    let rows = loops.len();
+    loops.extend(tasks.iter().map(|task| {
+        LoopRun::cycles(
+            task,
+            Method::Numerical(Numerical::ActiveSet),
+            h,
+            budget.cycles,
+        )
+    }));
+    // Each network's Euler limit on its task.
+    let probes: Vec<(&Task, &SolverSpec)> = tasks
+        .iter()
+        .flat_map(|task| task.networks.iter().map(move |spec| (task, spec)))
+        .collect();
+    progress(&format!(
+        "control: {rows} runs on {} tasks at {} ms and over the period sweep, {} stability \
+         probes, the exact optimum over {} cycles",
+        tasks.len(),
+        h * 1e3,
+        probes.len(),
+        budget.cycles
+    ));
+    let (mut loops_out, (limits, continuous)) = rayon::join(
+        || map_costliest_first(&loops, LoopRun::cost, LoopRun::run),
+        || {
+            rayon::join(
+                || {
+                    map_costliest_first(
+                        &probes,
+                        |(task, _)| task.job.path.duration,
+                        |(task, spec)| with_task(task, 1, ProbeLimit { spec, h })?,
+                    )
+                },
+                || {
+                    map_costliest_first(
+                        &tasks,
+                        |task| task.job.path.duration,
+                        |task| {
+                            with_task(
+                                task,
+                                1,
+                                ExactCycles {
+                                    task,
+                                    cycles: budget.cycles,
+                                },
+                            )
+                        },
+                    )
+                },
+            )
+        },
+    );
+    let exact_cycles_out = loops_out.split_off(rows);
 
-    // The efficiency claim, on the tasks run by a network built on the LVI.
+    // Each controller run's row beside its method: later passes select runs by method (an
+    // identity), never by the row's label.
+    let mut control: Vec<(Method, ControlRow)> = Vec::with_capacity(rows);
+    for (run, out) in loops[..rows].iter().zip(loops_out) {
+        let row = control_row(run.task, &run.method, run.h, out?);
+        control.push((run.method.clone(), row));
+    }
+    let mut stability = Vec::with_capacity(probes.len());
+    for ((task, spec), limit) in probes.iter().zip(limits) {
+        let limit = limit?;
+        let (gain_name, g) = gain(spec);
+        let euler = Method::Network {
+            spec: (*spec).clone(),
+            form: Discretisation::Euler,
+            substeps: 1,
+        };
+        let largest = control
+            .iter()
+            .filter(|(m, r)| r.task == task.id() && *m == euler && r.status == ControlStatus::Ok)
+            .map(|(_, r)| r.h_ms)
+            .reduce(f64::max);
+        stability.push(StabilityRow {
+            task: task.id(),
+            network: spec.display_name(),
+            solver_id: SolverId::new(spec.id())?,
+            gain_name: gain_name.to_string(),
+            gain: g,
+            euler_limit_s: limit.map(|l| l.0),
+            limit_at_s: limit.map(|l| l.1),
+            gain_x_limit: limit.map(|l| l.0 * g),
+            largest_stable_h_ms: largest,
+        });
+    }
+
+    // Round 2. The efficiency claim's check runs, on the tasks run by a network built on the
+    // LVI whose Euler limit was found.
+    let mut checks = Vec::new();
     for task in &tasks {
         for spec in &task.networks {
             let Some(per_step) = products_per_evaluation(spec) else {
@@ -305,20 +461,6 @@ pub fn reproduce(
             else {
                 continue;
             };
-            progress(&format!(
-                "claim: {} with {}",
-                task.id(),
-                spec.display_name()
-            ));
-            let needed = steps_needed(h, limit);
-            let check_steps = 2 * needed;
-            let check = Method::Network {
-                spec: spec.clone(),
-                form: Discretisation::Euler,
-                substeps: u32::try_from(check_steps).unwrap_or(u32::MAX),
-            };
-            let mut out = run(task, &check, h, 1, Some(CHECK_TICKS))?;
-            let check_solve = Latency::of(&mut out.solve_us);
             // The comparator: the cheapest LVI method that solved the task at every tick
             // (`analysis::control_claim`: E47 and 94LVI as printed fail on some tasks).
             let numerical = control
@@ -331,52 +473,84 @@ pub fn reproduce(
                 })
                 .filter_map(|(_, r)| r.products_mean.map(|p| (r, p)))
                 .min_by(|a, b| a.1.total_cmp(&b.1));
-            let Some((num, num_mean)) = numerical else {
+            // Without one the claim has nothing to compare with on this task.
+            let Some(numerical) = numerical else {
                 continue;
             };
-            let lower = (needed * per_step) as f64;
-            let checked = (check_steps * per_step) as f64;
-            let verdict = decide(lower, checked, out.max_dx, num_mean);
-            claims.push(ClaimRow {
-                task: task.id(),
-                network: spec.display_name(),
-                experiment: task.reference.experiment.clone(),
-                variant_id: task.reference.variant.clone(),
-                solver_id: SolverId::new(spec.id())?,
-                h_ms: h * 1e3,
-                accuracy: ACCURACY,
-                products_per_step: per_step,
-                euler_limit_s: limit,
-                steps_needed: needed,
-                network_products: lower,
-                check_steps,
-                check_ticks: out.ticks,
-                check_status: out.status.column(),
-                check_max_dx: out.max_dx,
-                check_solve_p50_us: check_solve.p50_us,
-                numerical: num.method.clone(),
-                numerical_products_mean: num_mean,
-                numerical_products_max: num.products_max.unwrap_or(0),
-                numerical_max_dx: num.max_dx,
-                numerical_solve_p50_us: num.solve_p50_us,
-                cost_ratio: lower / num_mean,
-                verdict,
-            });
+            checks.push(ClaimCheck::new(task, spec, per_step, limit, numerical, h));
         }
     }
+    // The many cycles of every network form that was stable at h, per task.
+    let network_cycle_runs: Vec<Vec<LoopRun>> = tasks
+        .iter()
+        .map(|task| {
+            network_methods(task, 1)
+                .into_iter()
+                .filter(|m| stable_at(&control, task, m, h))
+                .map(|m| LoopRun::cycles(task, m, h, budget.cycles))
+                .collect()
+        })
+        .collect();
+    let flat_cycle_runs: Vec<&LoopRun> = network_cycle_runs.iter().flatten().collect();
+    progress(&format!(
+        "control: {} claim check runs, {} network runs over {} cycles",
+        checks.len(),
+        flat_cycle_runs.len(),
+        budget.cycles
+    ));
+    let (checks_out, network_cycles_out) = rayon::join(
+        || map_costliest_first(&checks, |c| c.run.cost(), |c| c.run.run()),
+        || map_costliest_first(&flat_cycle_runs, |r| r.cost(), |r| r.run()),
+    );
 
-    // Many cycles: the exact optimum and every network form that was stable at h.
-    for task in &tasks {
-        progress(&format!("cycles: {} x{}", task.id(), budget.cycles));
-        let mut methods = vec![Method::Numerical(Numerical::ActiveSet)];
-        methods.extend(network_methods(task, 1).into_iter().filter(|m| {
-            control.iter().any(|(method, r)| {
-                r.task == task.id()
-                    && method == m
-                    && r.h_ms == h * 1e3
-                    && r.status == ControlStatus::Ok
-            })
-        }));
+    let mut claims = Vec::new();
+    for (check, out) in checks.iter().zip(checks_out) {
+        let mut out = out?;
+        let check_solve = Latency::of(&mut out.solve_us);
+        let task = check.run.task;
+        let (num, num_mean) = check.numerical;
+        let check_steps = 2 * check.needed;
+        let lower = (check.needed * check.per_step) as f64;
+        let checked = (check_steps * check.per_step) as f64;
+        let verdict = decide(lower, checked, out.max_dx, num_mean);
+        claims.push(ClaimRow {
+            task: task.id(),
+            network: check.spec.display_name(),
+            experiment: task.reference.experiment.clone(),
+            variant_id: task.reference.variant.clone(),
+            solver_id: SolverId::new(check.spec.id())?,
+            h_ms: h * 1e3,
+            accuracy: ACCURACY,
+            products_per_step: check.per_step,
+            euler_limit_s: check.limit,
+            steps_needed: check.needed,
+            network_products: lower,
+            check_steps,
+            check_ticks: out.ticks,
+            check_status: out.status.column(),
+            check_max_dx: out.max_dx,
+            check_solve_p50_us: check_solve.p50_us,
+            numerical: num.method.clone(),
+            numerical_products_mean: num_mean,
+            numerical_products_max: num.products_max.unwrap_or(0),
+            numerical_max_dx: num.max_dx,
+            numerical_solve_p50_us: num.solve_p50_us,
+            cost_ratio: lower / num_mean,
+            verdict,
+        });
+    }
+
+    // Many cycles, per task: the exact optimum at h, every network form stable at h, the exact
+    // column in continuous time.
+    let mut cycles = Vec::new();
+    let mut trends = Vec::new();
+    let mut network_cycles = network_cycles_out.into_iter();
+    for (((task, exact_at_h), continuous), runs) in tasks
+        .iter()
+        .zip(exact_cycles_out)
+        .zip(continuous)
+        .zip(&network_cycle_runs)
+    {
         let mut record = |method: String,
                           h_ms: Option<f64>,
                           end: (ControlStatus, Option<String>),
@@ -408,24 +582,20 @@ pub fn reproduce(
                 class: trend.map(|t| t.class),
             });
         };
-        for method in &methods {
-            let out = run(task, method, h, budget.cycles, None)?;
+        let mut at_h = vec![(Method::Numerical(Numerical::ActiveSet).label(), exact_at_h?)];
+        for (run, out) in runs.iter().zip(network_cycles.by_ref()) {
+            at_h.push((run.method.label(), out?));
+        }
+        for (label, out) in at_h {
             record(
-                method.label(),
+                label,
                 Some(h * 1e3),
                 (out.status.column(), out.status.failure()),
                 &out.drift,
                 &out.cycle_change,
             );
         }
-        let continuous = with_task(
-            task,
-            1,
-            ExactCycles {
-                task,
-                cycles: budget.cycles,
-            },
-        )?;
+        let continuous = continuous?;
         record(
             CONTINUOUS_EXACT.to_string(),
             None,
@@ -446,5 +616,12 @@ pub fn reproduce(
         control_runs: control.len(),
         cycle_runs: trends.len(),
         verdict: overall(&verdicts),
+    })
+}
+
+/// Whether `method`'s run on `task` at the period `h` among the `control` rows completed.
+fn stable_at(control: &[(Method, ControlRow)], task: &Task, method: &Method, h: f64) -> bool {
+    control.iter().any(|(m, r)| {
+        r.task == task.id() && m == method && r.h_ms == h * 1e3 && r.status == ControlStatus::Ok
     })
 }

@@ -1,9 +1,9 @@
 //! The timing pass: after the parallel reproduction, the runs whose times are compared — the
-//! leaderboard's (every non-exact run on a standard task, [`analysis::leaderboard`]) and every
-//! run of the experiments the papers publish a MATLAB time for — run again
+//! leaderboard's (every non-exact run on a standard task, [`analysis::leaderboard`]) and the
+//! runs the report sets beside the papers' MATLAB times ([`Papers::timed_runs`]) — run again
 //! [`records::timing::REPETITIONS`] times each, one run at a time on this (one) thread, into
 //! `results/leaderboard-timing.csv` ([`records::timing`]), which the leaderboard ranks by and
-//! the report's MATLAB comparison shows.
+//! the report's MATLAB comparison shows. No other run is timed: no table shows its time.
 //!
 //! Only the times are kept: a repetition recomputes the same run, and `results/runs.csv` keeps
 //! the reproduction's row.
@@ -12,6 +12,7 @@ use analysis::leaderboard::standard_tasks;
 use analysis::papers::{Papers, PapersError};
 use catalog::experiment::Job;
 use catalog::run_key::RunKey;
+use records::index::Runs;
 use records::results_dir::{ResultsDir, ResultsError};
 use records::runs::RunRow;
 use records::timing::{TimingRow, Timings, REPETITIONS};
@@ -33,20 +34,28 @@ pub enum TimingError {
     Undescribed(RunKey),
 }
 
-/// The keys of the runs to time (sorted): the leaderboard's and the MATLAB experiments'.
-pub fn timed_keys(rows: &[RunRow], papers: &Papers) -> BTreeSet<RunKey> {
-    let tasks = standard_tasks(rows);
-    let matlab = papers.timed_experiments();
-    rows.iter()
+/// The keys of the runs to time (sorted): the leaderboard's and those set beside a published
+/// MATLAB time.
+pub fn timed_keys(runs: &Runs, papers: &Papers) -> BTreeSet<RunKey> {
+    let tasks = standard_tasks(runs.all());
+    let mut keys: BTreeSet<RunKey> = runs
+        .all()
+        .iter()
         .filter(|r| {
-            let standard = !r.is_exact()
+            !r.is_exact()
                 && tasks
                     .iter()
-                    .any(|t| t.experiment == r.experiment && t.variant == r.variant_id);
-            standard || matlab.contains(&r.experiment.as_str())
+                    .any(|t| t.experiment == r.experiment && t.variant == r.variant_id)
         })
         .map(RunRow::key)
-        .collect()
+        .collect();
+    keys.extend(
+        papers
+            .timed_runs(runs)
+            .filter_map(|t| t.run)
+            .map(RunRow::key),
+    );
+    keys
 }
 
 /// Times the compared runs alone (module docs) and writes `results/leaderboard-timing.csv`
@@ -59,7 +68,7 @@ pub fn time_alone(
     git_rev: &str,
 ) -> Result<usize, TimingError> {
     let papers = Papers::load(papers_dir)?;
-    let keys = timed_keys(&results.read_runs()?, &papers);
+    let keys = timed_keys(&Runs::new(results.read_runs()?), &papers);
     let (machine, cores) = cost::machine();
     let mut rows = Vec::with_capacity(keys.len());
     eprintln!(
@@ -85,4 +94,70 @@ pub fn time_alone(
     records::timing::write(results.path(), &Timings::new(rows))?;
     results.save()?;
     Ok(timed)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use analysis::papers::{Mapping, PaperValue};
+    use catalog::solver_kind::SolverKind;
+    use settings::network_kind::NetworkKind;
+
+    fn row(paper: &str, experiment: &str, variant: &str, solver: &str) -> RunRow {
+        let kind = if solver == catalog::run_key::EXACT_ID {
+            SolverKind::Exact
+        } else {
+            SolverKind::Network(NetworkKind::ALL[0])
+        };
+        RunRow {
+            paper: paper.to_string(),
+            ..RunRow::blank(
+                &RunKey::from_ids(experiment, variant, solver).unwrap(),
+                kind,
+            )
+        }
+    }
+
+    /// A paper publishing the time of solver `s1` on its experiment `e`, our `m-e`.
+    fn papers() -> Papers {
+        Papers {
+            values: vec![PaperValue {
+                paper: "m".into(),
+                table: "T1".into(),
+                experiment: "e".into(),
+                column: "S1".into(),
+                metric: "sim_s".into(),
+                value: 2.0,
+                note: String::new(),
+                inconsistent: None,
+            }],
+            mappings: vec![Mapping {
+                paper: "m".into(),
+                published_experiment: "e".into(),
+                published_column: "S1".into(),
+                run: RunKey::from_ids("m-e", "w", "s1").unwrap(),
+                companions: Vec::new(),
+            }],
+            ..Papers::default()
+        }
+    }
+
+    #[test]
+    fn the_leaderboard_runs_and_those_beside_a_published_time_are_timed() {
+        let runs = Runs::new(vec![
+            row("cross", "c", "v", "exact"),
+            row("cross", "c", "v", "a"),
+            row("m", "m-e", "w", "s1"),
+            row("m", "m-e", "v", "s1"),
+            row("m", "m-e", "v", "s2"),
+            row("m", "m-e", "v", "exact"),
+        ]);
+        let keys: Vec<String> = timed_keys(&runs, &papers())
+            .iter()
+            .map(RunKey::to_string)
+            .collect();
+        // The leaderboard's non-exact run, and the first run of the published solver (by key):
+        // not the exact column, the other variant or the solver without a published time.
+        assert_eq!(keys, ["c / v / a", "m-e / v / s1"]);
+    }
 }

@@ -1,10 +1,11 @@
-//! Running many jobs: in parallel across runs (rayon), longest first, with a progress bar.
+//! Running many jobs: in parallel across runs (rayon), longest first, with a progress bar
+//! ([`map_costliest_first`]: list scheduling of independent items).
 //! Each run is independent and deterministic, so the order of execution never changes a number.
 
 use crate::run::{run_job, RunRecord};
 use catalog::experiment::{Job, SolverChoice};
-use indicatif::{ParallelProgressIterator, ProgressBar, ProgressDrawTarget, ProgressStyle};
-use rayon::prelude::*;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use rayon::iter::{ParallelBridge, ParallelIterator};
 use settings::network_kind::NetworkKind;
 use std::collections::BTreeMap;
 use std::io::IsTerminal;
@@ -37,25 +38,41 @@ pub fn run_jobs_with(
     // Without a terminal (CI logs, redirected output) the bar is hidden: a line per finished
     // experiment shows life instead.
     let log = (progress && !std::io::stderr().is_terminal()).then(|| ExperimentLog::new(jobs));
-    // Longest runs first keeps every core busy to the end.
-    let mut order: Vec<usize> = (0..jobs.len()).collect();
-    order.sort_by(|&a, &b| expected_cost(&jobs[b]).total_cmp(&expected_cost(&jobs[a])));
-    let mut records: Vec<(usize, RunRecord)> = order
-        .par_iter()
-        .progress_with(bar.clone())
-        .map(|&i| {
-            let r = run_job(&jobs[i]);
-            finished(&r);
-            bar.set_message(jobs[i].key().to_string());
-            if let Some(log) = &log {
-                log.finished(&jobs[i].experiment);
-            }
-            (i, r)
-        })
-        .collect();
+    let records = map_costliest_first(jobs, expected_cost, |job| {
+        let r = run_job(job);
+        finished(&r);
+        bar.inc(1);
+        bar.set_message(job.key().to_string());
+        if let Some(log) = &log {
+            log.finished(&job.experiment);
+        }
+        r
+    });
     bar.finish_and_clear();
-    records.sort_by_key(|(i, _)| *i);
-    records.into_iter().map(|(_, r)| r).collect()
+    records
+}
+
+/// `f` of every item of `items`, on rayon's pool, returned in the order of `items`. The items
+/// are handed out one at a time, costliest first (by `cost`; ties in their order), each to the
+/// next thread that is free, so that a long item never starts last while the other threads
+/// idle (an indexed parallel iterator would instead give each thread a contiguous block to run
+/// in order, where a long item far down its block can start last). Each item must be
+/// independent of the others and deterministic: then the order of execution and the number of
+/// threads change no result.
+pub fn map_costliest_first<T: Sync, R: Send>(
+    items: &[T],
+    cost: impl Fn(&T) -> f64,
+    f: impl Fn(&T) -> R + Sync,
+) -> Vec<R> {
+    let mut order: Vec<usize> = (0..items.len()).collect();
+    order.sort_by(|&a, &b| cost(&items[b]).total_cmp(&cost(&items[a])));
+    let mut done: Vec<(usize, R)> = order
+        .iter()
+        .par_bridge()
+        .map(|&i| (i, f(&items[i])))
+        .collect();
+    done.sort_by_key(|(i, _)| *i);
+    done.into_iter().map(|(_, r)| r).collect()
 }
 
 /// Rough relative cost for scheduling: neural runs on long paths first, the finite-time
@@ -112,5 +129,39 @@ impl ExperimentLog {
                 );
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_results_come_in_the_order_of_the_items_whatever_their_costs() {
+        let items: Vec<usize> = (0..200).collect();
+        // Costs that reorder the execution: every seventh item first.
+        let out = map_costliest_first(&items, |&i| (i % 7) as f64, |&i| i * i);
+        assert_eq!(out, items.iter().map(|i| i * i).collect::<Vec<_>>());
+        assert!(map_costliest_first(&[] as &[usize], |_| 0.0, |&i| i).is_empty());
+    }
+
+    #[test]
+    fn the_costliest_items_are_handed_out_first() {
+        // On one thread the items run in the order they are handed out.
+        let started = Mutex::new(Vec::new());
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap()
+            .install(|| {
+                map_costliest_first(
+                    &[1.0, 5.0, 3.0, 5.0],
+                    |&c| c,
+                    |&c| {
+                        started.lock().unwrap().push(c);
+                    },
+                )
+            });
+        assert_eq!(started.into_inner().unwrap(), [5.0, 5.0, 3.0, 1.0]);
     }
 }

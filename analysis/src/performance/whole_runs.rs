@@ -111,12 +111,11 @@ pub fn matlab_comparison<'a>(
     let (mut min_sim, mut min_total) = (f64::INFINITY, f64::INFINITY);
     let (mut alone, mut shown) = (0, 0);
     let mut lines = Vec::new();
-    for experiment in papers.timed_experiments() {
-        for (solver, paper_s) in papers.times_of(experiment) {
-            let run = runs
-                .of_experiment(experiment)
-                .find(|r| r.solver_id == solver)
-                .filter(|r| completed(r));
+    // The runs the timing pass times alone (`Papers::timed_runs`), one per published time.
+    for timed in papers.timed_runs(runs) {
+        let (experiment, solver, paper_s) = (timed.experiment, timed.solver, timed.published_s);
+        {
+            let run = timed.run.filter(|r| completed(r));
             let timing = run.and_then(|r| timings.get(&r.key()));
             let ours = match (run, timing) {
                 (_, Some(t)) => Some((t.sim_s_median, t.wall_s_median)),

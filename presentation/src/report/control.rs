@@ -71,8 +71,10 @@ pub fn section(results: &ControlResults, runs: &Runs, figures: &[String]) -> Str
          |x - x*| is that of the joint command, relative to max(1, |x*|); drift is \
          |theta(T) - theta0|. Latencies are wall-clock per tick on the machine of the run \
          (under whatever load it had: compare within a table, not across machines); the work \
-         columns count products with the LVI matrix M and do not depend on the machine. This \
-         part of the reproduction adds about one and a half minutes on 2 cores (tasks: {}).\n\n",
+         columns count products with the LVI matrix M and do not depend on the machine. The \
+         runs are independent and run in parallel, one per core, so each latency is measured \
+         beside another run. This part of the reproduction adds about half a minute on 2 cores \
+         (tasks: {}).\n\n",
         task_list(results)
     ));
 
