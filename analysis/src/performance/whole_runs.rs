@@ -114,30 +114,28 @@ pub fn matlab_comparison<'a>(
     // The runs the timing pass times alone (`Papers::timed_runs`), one per published time.
     for timed in papers.timed_runs(runs) {
         let (experiment, solver, paper_s) = (timed.experiment, timed.solver, timed.published_s);
-        {
-            let run = timed.run.filter(|r| completed(r));
-            let timing = run.and_then(|r| timings.get(&r.key()));
-            let ours = match (run, timing) {
-                (_, Some(t)) => Some((t.sim_s_median, t.wall_s_median)),
-                (Some(r), None) => Some((r.sim_s, r.wall_s)),
-                (None, None) => None,
-            };
-            if let Some((s, w)) = ours {
-                min_sim = min_sim.min(paper_s / s);
-                min_total = min_total.min(paper_s / w);
-                shown += 1;
-            }
-            alone += usize::from(timing.is_some());
-            lines.push(MatlabLine {
-                experiment,
-                solver,
-                paper_s,
-                ours,
-                timing,
-                paper_over_simulation: ours.map(|(s, _)| paper_s / s),
-                paper_over_total: ours.map(|(_, w)| paper_s / w),
-            });
+        let run = timed.run.filter(|r| completed(r));
+        let timing = run.and_then(|r| timings.get(&r.key()));
+        let ours = match (run, timing) {
+            (_, Some(t)) => Some((t.sim_s_median, t.wall_s_median)),
+            (Some(r), None) => Some((r.sim_s, r.wall_s)),
+            (None, None) => None,
+        };
+        if let Some((s, w)) = ours {
+            min_sim = min_sim.min(paper_s / s);
+            min_total = min_total.min(paper_s / w);
+            shown += 1;
         }
+        alone += usize::from(timing.is_some());
+        lines.push(MatlabLine {
+            experiment,
+            solver,
+            paper_s,
+            ours,
+            timing,
+            paper_over_simulation: ours.map(|(s, _)| paper_s / s),
+            paper_over_total: ours.map(|(_, w)| paper_s / w),
+        });
     }
     let smallest = (min_sim.is_finite() && min_total.is_finite()).then_some(SmallestSpeedups {
         simulation: min_sim,
