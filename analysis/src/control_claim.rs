@@ -6,7 +6,7 @@
 //!
 //! # The common unit
 //!
-//! robio2018's six LVI methods (94LVI and E47, the claim's refs. [26] and [27], and M3-M6),
+//! robio2018's six LVI methods (94LVI and E47, the claim's refs. \[26\] and \[27\], and M3-M6),
 //! LVI-PDNN and S-LVI-PDNN all work on jia2019's LVI (2.21) of the same QP and
 //! spend their time in the same operation: a product of the LVI matrix M (or M') with a vector
 //! (dense, (nx + n_eq + n_in)^2 multiply-adds at most); everything else per step or iteration is

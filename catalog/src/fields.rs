@@ -1,6 +1,6 @@
 //! The experiment file's fields that its errors name: the part of a run's specification that
 //! could not be built ([`JobPart`], with the field it comes from) and the fields of a variant a
-//! sweep may set ([`VARIANT_FIELDS`]). Below the format ([`crate::experiment`],
+//! sweep may set (`VARIANT_FIELDS`). Below the format ([`crate::experiment`],
 //! [`crate::sweep`]) and its errors ([`crate::error`]) alike, which all name them.
 
 /// Which part of a run ([`crate::experiment::Job`]) could not be built (see

@@ -685,9 +685,9 @@ pub fn copy_traces(
 }
 
 /// Checks shards before a merge: the same N, experiment files (`hash`: the current files')
-/// and selection ([`manifest_problems`]); each row in its own shard with its trace
-/// ([`row_problems`]); every run of `expected` (the keys the selection describes) in exactly one
-/// shard, and no other run ([`coverage_problems`]). The error lists every problem of the first
+/// and selection (`manifest_problems`); each row in its own shard with its trace
+/// (`row_problems`); every run of `expected` (the keys the selection describes) in exactly one
+/// shard, and no other run (`coverage_problems`). The error lists every problem of the first
 /// of these steps that finds any.
 pub fn check_shards(
     shards: &[ShardDir],

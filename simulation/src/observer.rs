@@ -1,7 +1,7 @@
 //! The observer of a run: every accepted step (or sampled instant) of the arm becomes metrics
 //! ([`crate::metrics`]) and a thinned trace, the run is stopped when it diverges, and the
 //! command is scored against the exact optimum where the experiment's scoring says
-//! ([`score_instant`]). Shared by the integrated runs ([`crate::simulate`]), the fixed-step
+//! (`score_instant`). Shared by the integrated runs ([`crate::simulate`]), the fixed-step
 //! loop of the numerical methods ([`crate::numerical`]) and a trajectory scored from a file
 //! ([`crate::score_trajectory`]).
 
