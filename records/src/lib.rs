@@ -14,7 +14,9 @@
 //!   which the leaderboard ranks by.
 //! - [`phases`]: where one `reproduce run`'s wall time went, phase by phase
 //!   (`results/phases.csv`); [`clock`]: the newcomer's clock from clone to report per revision
-//!   (`results/clock.csv`, written by `benches/clock/clock.sh`).
+//!   (`results/clock.csv`, written by `benches/clock/clock.sh`); [`build_profile`]: where a cold
+//!   build spends its time, unit by unit (`results/build-profile.csv`, by
+//!   `benches/clock/build_profile.sh`).
 //! - [`speedup`]: every run timed alone under an earlier revision and this one
 //!   (`results/speedup.csv`).
 //! - [`owned_dir`]: a directory the program owns; the only way a name read from a file becomes
@@ -45,6 +47,7 @@
 #![deny(missing_docs)]
 
 pub mod attribution;
+pub mod build_profile;
 pub mod clock;
 pub mod control;
 pub mod dof_cost;

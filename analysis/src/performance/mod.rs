@@ -11,10 +11,16 @@
 //!   the growth past the registry's sizes;
 //! - [`profile`]: what a paper's sampling profile says (`results/profile.csv`);
 //! - [`speedup`]: every paper's runs against an earlier revision (`results/speedup.csv`);
-//! - [`clock`]: the newcomer's clock (`results/phases.csv`, `results/clock.csv`).
+//! - [`clock`]: the newcomer's clock (`results/phases.csv`, `results/clock.csv`);
+//! - [`explain_phase`]: where the reproduction's explain phase spends its time
+//!   (`results/ladder.csv`'s rung times against `results/phases.csv`);
+//! - [`build`]: where a cold build spends its time (`results/build-profile.csv`): its CPU
+//!   bound, its critical path, its costliest units.
 
+pub mod build;
 pub mod clock;
 pub mod dof;
+pub mod explain_phase;
 pub mod instant;
 pub mod profile;
 pub mod replay;

@@ -31,6 +31,7 @@
 //!   contradict.
 
 pub mod claims;
+pub mod clock;
 pub mod control;
 pub mod cost;
 pub mod cross;
@@ -92,6 +93,8 @@ pub struct Inputs {
     pub phases: Vec<records::phases::PhaseRow>,
     /// `results/clock.csv`: fresh clones timed per revision (absent = empty).
     pub clock: Vec<records::clock::ClockRow>,
+    /// `results/build-profile.csv`: a cold build, unit by unit (absent = empty).
+    pub build_profile: Vec<records::build_profile::BuildUnitRow>,
 }
 
 impl Inputs {
@@ -121,6 +124,7 @@ impl Inputs {
             python: python::PythonResults::load(&results)?,
             phases: records::phases::read(&results)?,
             clock: read_if_present(&results.join(records::clock::FILE))?,
+            build_profile: read_if_present(&results.join(records::build_profile::FILE))?,
         })
     }
 }
@@ -199,6 +203,7 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
         python,
         phases,
         clock,
+        build_profile,
     } = inputs;
     // Every text of papers/ escaped once, before any section shows it.
     let papers = &shown::papers(papers);
@@ -239,8 +244,12 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
             qp_replay,
             speedup,
             timings,
-            phases,
-            clock,
+            clock: clock::Clock {
+                phases,
+                ladder: &explanations.ladder,
+                clock,
+                build: build_profile,
+            },
         },
         runs,
         papers,

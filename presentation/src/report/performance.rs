@@ -15,10 +15,7 @@
 //!   [`super::speedup`]);
 //! - where each profiled paper's reproduction spends its time, from the sampling profile of
 //!   `results/profile.csv` ([`records::profile`]);
-//! - the newcomer's clock: the wall time of each phase of the last `reproduce run`
-//!   (`results/phases.csv`, [`records::phases`]) and, per revision, a fresh clone's cold build,
-//!   whole reproduction and tests (`results/clock.csv` by `benches/clock/clock.sh`,
-//!   [`records::clock`]).
+//! - the newcomer's clock and where its time goes ([`super::clock`]).
 //!
 //! Every number is read from `results/`, and what is computed from them (ratios of medians,
 //! sums of times, per-step quotients, fits, verdicts against the targets) is crate `analysis`'s
@@ -26,10 +23,9 @@
 //! how to produce it and shows what `runs.csv` gives.
 
 use super::cost::{solver_label, timed_papers};
-use super::markdown::{minutes, percent, sci, sci_opt, text, Table, MISSING};
+use super::markdown::{percent, sci, sci_opt, text, Table, MISSING};
 use crate::figures::dof_cost::quantity_label;
 use analysis::papers::Papers;
-use analysis::performance::clock::{by_commit, phases_seconds};
 use analysis::performance::dof::{
     fit_extents, large_n_fits, largest_n, largest_registry_n, runs_at_n, schemes, RunCost,
 };
@@ -37,10 +33,8 @@ use analysis::performance::instant::{self, JACO2_N, TARGET_EXACT_OVER_RHS};
 use analysis::performance::profile::{matlab_over_simulation, rhs_dominates};
 use analysis::performance::replay;
 use analysis::performance::whole_runs::{self, TARGET_SIMULATION_SPEEDUP, TARGET_TOTAL_SPEEDUP};
-use records::clock::ClockRow;
 use records::dof_cost::{DofCostRow, Quantity};
 use records::index::Runs;
-use records::phases::{PhaseRow, PhaseStatus};
 use records::profile::ProfileRow;
 use records::profile_active_set::HotSolveRow;
 use records::qp_replay::QpReplayRow;
@@ -63,10 +57,8 @@ pub struct Measurements<'a> {
     pub speedup: &'a [SpeedupRow],
     /// `results/leaderboard-timing.csv`.
     pub timings: &'a Timings,
-    /// `results/phases.csv`.
-    pub phases: &'a [PhaseRow],
-    /// `results/clock.csv`.
-    pub clock: &'a [ClockRow],
+    /// The newcomer's clock's files.
+    pub clock: super::clock::Clock<'a>,
 }
 
 /// The `## Performance` section.
@@ -78,7 +70,6 @@ pub fn section(m: &Measurements, runs: &Runs, papers: &Papers, figures: &[String
         qp_replay,
         speedup,
         timings,
-        phases,
         clock,
     } = *m;
     let mut out = String::from(
@@ -107,187 +98,8 @@ pub fn section(m: &Measurements, runs: &Runs, papers: &Papers, figures: &[String
     out.push_str(&matlab(runs, timings, papers));
     out.push_str(&super::speedup::section(speedup, profile, papers));
     out.push_str(&where_time_goes(profile, papers));
-    out.push_str(&newcomers_clock(phases, clock));
+    out.push_str(&super::clock::section(&clock));
     out
-}
-
-/// `### The newcomer's clock`: the phases of the last `reproduce run` (`results/phases.csv`)
-/// and, per revision, a fresh clone's build, reproduction and tests (`results/clock.csv`); each
-/// absent file says how to produce it. Every text read from the files is escaped.
-fn newcomers_clock(phases: &[PhaseRow], clock: &[ClockRow]) -> String {
-    let mut out = String::from(
-        "### The newcomer's clock
-
-",
-    );
-    out.push_str(&phase_table(phases));
-    out.push_str(&clock_table(clock));
-    out.push_str(&clock_targets_table(clock));
-    out
-}
-
-/// The clock's targets (`analysis::clock_targets`), once a revision besides the baseline has
-/// been measured.
-fn clock_targets_table(clock: &[ClockRow]) -> String {
-    use analysis::clock_targets::{measured_commit, targets, Bound, BASELINE};
-    let Some(commit) = measured_commit(clock) else {
-        return String::new();
-    };
-    let mut t = Table::new([
-        "step".to_string(),
-        "target".to_string(),
-        format!("{BASELINE} (min)"),
-        format!("`{}` (min)", text(commit)),
-        "ratio".to_string(),
-        "limit (min)".to_string(),
-        "met".to_string(),
-    ]);
-    let minutes =
-        |s: Option<f64>| s.map_or_else(|| MISSING.to_string(), |s| format!("{:.1}", s / 60.0));
-    for r in targets(clock) {
-        t.push([
-            r.step.id().to_string(),
-            match r.bound {
-                Bound::OfBaseline(f) => format!("at most {f} x {BASELINE}'s"),
-                Bound::Seconds(s) => format!("at most {:.0} min", s / 60.0),
-            },
-            minutes(r.baseline_s),
-            minutes(r.measured_s),
-            r.ratio
-                .map_or_else(|| MISSING.to_string(), |x| format!("{x:.2}")),
-            minutes(r.limit_s),
-            match r.met {
-                Some(true) => "yes".to_string(),
-                Some(false) => "**no**".to_string(),
-                None => MISSING.to_string(),
-            },
-        ]);
-    }
-    format!(
-        "The targets (issue 29), the newest measured revision against {BASELINE}:\n\n{}\n",
-        t.render()
-    )
-}
-
-/// The phases of the last run, with whether it was a whole reproduction.
-fn phase_table(phases: &[PhaseRow]) -> String {
-    let Some(first) = phases.first() else {
-        return format!(
-            "`results/{}` is absent: every `cargo run --release -p reproduce` writes it at its \
-             end (the wall time of each phase of the run; a whole reproduction gives every \
-             phase).\n\n",
-            records::phases::FILE
-        );
-    };
-    let total = phases_seconds(phases);
-    let skipped: Vec<String> = phases
-        .iter()
-        .filter(|r| r.status == PhaseStatus::Skipped)
-        .map(|r| format!("{} ({})", r.phase.id(), text(&r.note)))
-        .collect();
-    let scope = if records::phases::complete(phases) {
-        "a whole reproduction (every run, every phase)".to_string()
-    } else {
-        let mut scope = format!(
-            "**a partial run**, not a whole reproduction: selection {}",
-            text(&first.selection)
-        );
-        if !skipped.is_empty() {
-            scope.push_str(&format!("; skipped: {}", skipped.join(", ")));
-        }
-        scope
-    };
-    let mut t = Table::new(["phase", "seconds", "share", "items", "note"]);
-    for r in phases {
-        t.push([
-            r.phase.id().to_string(),
-            r.seconds
-                .map_or_else(|| "skipped".to_string(), |s| format!("{s:.1}")),
-            r.share_pct
-                .map_or_else(|| MISSING.to_string(), |p| format!("{p:.1} %")),
-            r.items.map_or_else(
-                || MISSING.to_string(),
-                |n| format!("{n} {}", r.phase.items_are()),
-            ),
-            text(&r.note),
-        ]);
-    }
-    format!(
-        "Where the wall time of the last `reproduce run` went (`results/{}`, rewritten at the \
-         end of every run that writes `results/`): {scope}. Measured on {} ({} logical cores \
-         available) at revision `{}`, {:.1} s in all. Each phase runs from the end of the one before: \
-         *setup* reads the experiment files, checks everything before a run starts and opens \
-         `results/`; *runs* is the selected runs in parallel with `runs.csv` and the traces \
-         written; *explain*, the explanation layer; *control*, the control experiments; \
-         *timing*, the compared runs again one at a time; *figures*; *report*, its pages, task \
-         cards and the leaderboard table (the pages are rendered once more, untimed, to show \
-         this table).\n\n{}\n",
-        records::phases::FILE,
-        text(&first.machine),
-        first.cores,
-        text(&first.git_rev),
-        total,
-        t.render()
-    )
-}
-
-/// Per revision, a fresh clone's steps as `benches/clock/clock.sh` timed them.
-fn clock_table(clock: &[ClockRow]) -> String {
-    if clock.is_empty() {
-        return format!(
-            "`results/{}` is absent: `benches/clock/clock.sh` measures, for each revision given \
-             (default `cc915b9 HEAD`), a fresh clone's cold `{}`, the whole reproduction (`{}`) \
-             and `{}`, on an otherwise idle machine (about half an hour of the whole machine per \
-             revision; `docs/guide/clock.md`).\n\n",
-            records::clock::FILE,
-            records::clock::Step::Build.command(),
-            records::clock::Step::Reproduce.command(),
-            records::clock::Step::Test.command(),
-        );
-    }
-    let mut t = Table::new([
-        "revision",
-        "commit",
-        "step",
-        "minutes",
-        "exit code",
-        "machine",
-        "date (UTC)",
-    ]);
-    for r in clock {
-        t.push([
-            text(&r.revision),
-            format!("`{}`", text(&r.commit)),
-            format!("{} (`{}`)", r.step.id(), r.step.command()),
-            minutes(r.seconds),
-            r.exit_code.to_string(),
-            format!("{} ({} cores)", text(&r.machine), r.cores),
-            text(&r.date),
-        ]);
-    }
-    let mut totals = String::new();
-    for c in by_commit(clock) {
-        totals.push_str(&format!(
-            "- `{}` ({}): {} min for {}{}.\n",
-            text(c.commit),
-            text(c.revision),
-            minutes(c.seconds),
-            c.steps.join(" + "),
-            if c.failed { ", a step failing" } else { "" }
-        ));
-    }
-    format!(
-        "From clone to report, per revision (`results/{}`): measured by \
-         `benches/clock/clock.sh`, which clones each revision afresh (`git clone --no-local`) \
-         into a temporary directory with its own, empty target directory and times each step by \
-         the wall clock; the reproduction runs after the build, so its time excludes it, and the \
-         tests' time includes their build. Cargo's registry cache may be shared with the user's \
-         (so downloads are not timed; `--fresh-cargo-home` times them). The script needs an \
-         otherwise idle machine, which it cannot check: the date and machine of each step are in \
-         its row.\n\n{}\n{totals}\n",
-        records::clock::FILE,
-        t.render()
-    )
 }
 
 /// Where each profiled paper's reproduction spends its time, from `results/profile.csv`
@@ -1017,8 +829,12 @@ mod tests {
                 qp_replay: &replay,
                 speedup: &speedup,
                 timings: &Timings::default(),
-                phases: &[],
-                clock: &[],
+                clock: super::super::clock::Clock {
+                    phases: &[],
+                    ladder: &[],
+                    clock: &[],
+                    build: &[],
+                },
             },
             &Runs::new(Vec::new()),
             &Papers::default(),
@@ -1142,71 +958,6 @@ mod tests {
     }
 
     #[test]
-    fn the_newcomers_clock_renders_from_synthetic_csvs() {
-        // A partial run: explain skipped, runs 3 s of 4 s; text with Markdown in it.
-        let phases_csv = "phase,status,seconds,share_pct,items,note,selection,whole,machine,cores,git_rev\n\
-                          setup,ran,1.0,25.0,,,--paper demo,false,CPU <b>*x*</b>,2,abc\n\
-                          runs,ran,3.0,75.0,12,2 of them resumed from the journal,--paper demo,false,CPU <b>*x*</b>,2,abc\n\
-                          explain,skipped,,,,--skip-explain,--paper demo,false,CPU <b>*x*</b>,2,abc\n";
-        let phases: Vec<PhaseRow> = records::table::from_reader(phases_csv.as_bytes()).unwrap();
-        let clock_csv = "revision,commit,step,seconds,exit_code,machine,cores,date\n\
-                         HEAD,0123456789ab,build,300,0,Test CPU,2,2026-12-03T13:00:00Z\n\
-                         HEAD,0123456789ab,reproduce,150,0,Test CPU,2,2026-12-03T13:05:00Z\n\
-                         [old](x),aaaaaaaaaaaa,test,60,101,Test CPU,2,2026-12-03T14:00:00Z\n";
-        let clock: Vec<ClockRow> = records::table::from_reader(clock_csv.as_bytes()).unwrap();
-        let md = newcomers_clock(&phases, &clock);
-        assert!(md.starts_with("### The newcomer's clock\n"), "{md}");
-        assert!(
-            md.contains("**a partial run**, not a whole reproduction: selection --paper demo; skipped: explain (--skip-explain)"),
-            "{md}"
-        );
-        assert!(md.contains("4.0 s in all"), "{md}");
-        assert!(
-            md.contains(
-                "| runs | 3.0 | 75.0 % | 12 selected runs | 2 of them resumed from the journal |"
-            ),
-            "{md}"
-        );
-        assert!(
-            md.contains("| explain | skipped | — | — | --skip-explain |"),
-            "{md}"
-        );
-        // Text from the files is escaped: no HTML, no emphasis, no link.
-        assert!(md.contains("CPU &lt;b&gt;\\*x\\*&lt;/b&gt;"), "{md}");
-        assert!(!md.contains("<b>") && !md.contains("[old](x)"), "{md}");
-        assert!(md.contains("\\[old\\](x)"), "{md}");
-        assert!(
-            md.contains("| HEAD | `0123456789ab` | build (`cargo build --release -p reproduce`) | 5.0 | 0 | Test CPU (2 cores) | 2026-12-03T13:00:00Z |"),
-            "{md}"
-        );
-        assert!(md.contains("benches/clock/clock.sh"), "{md}");
-        assert!(
-            md.contains("- `0123456789ab` (HEAD): 7.5 min for build + reproduce.\n"),
-            "{md}"
-        );
-        assert!(md.contains("min for test, a step failing.\n"), "{md}");
-        assert!(!md.contains("is absent"), "{md}");
-        // A whole run with every phase says so.
-        let whole_csv = phases_csv
-            .replace("--paper demo,false", "every run,true")
-            .lines()
-            .filter(|l| !l.contains("skipped"))
-            .collect::<Vec<_>>()
-            .join("\n");
-        let whole: Vec<PhaseRow> = records::table::from_reader(whole_csv.as_bytes()).unwrap();
-        let md = newcomers_clock(&whole, &[]);
-        assert!(
-            md.contains("a whole reproduction (every run, every phase)"),
-            "{md}"
-        );
-        assert!(!md.contains("partial"), "{md}");
-        assert!(
-            md.contains("`results/clock.csv` is absent: `benches/clock/clock.sh`"),
-            "{md}"
-        );
-    }
-
-    #[test]
     fn without_the_csv_the_section_says_how_to_produce_it() {
         let md = section(
             &Measurements {
@@ -1216,8 +967,12 @@ mod tests {
                 qp_replay: &[],
                 speedup: &[],
                 timings: &Timings::default(),
-                phases: &[],
-                clock: &[],
+                clock: super::super::clock::Clock {
+                    phases: &[],
+                    ladder: &[],
+                    clock: &[],
+                    build: &[],
+                },
             },
             &Runs::new(Vec::new()),
             &Papers::default(),
