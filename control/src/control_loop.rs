@@ -23,12 +23,13 @@
 
 use crate::arm::advance;
 use crate::error::ControlError;
-use crate::method::TickSolver;
-use nalgebra::SVector;
+use crate::tick::TickSolver;
+use nalgebra::{DVector, SVector};
 use robots::Robot;
 use schemes::paths::Path;
 use schemes::qp::Qp;
-use schemes::scheme::Scheme;
+use schemes::qp_dot::QpDotScratch;
+use schemes::scheme::{Level, Scheme};
 use solvers::ExactPath;
 use std::time::Instant;
 
@@ -143,122 +144,251 @@ pub fn run_loop<const N: usize>(
     let h = settings.h;
     let per_cycle = settings.ticks_per_cycle();
     let total = (per_cycle * settings.cycles).min(settings.max_ticks.unwrap_or(usize::MAX));
-    let level = scheme.level();
-    let mut qp = scheme.new_qp();
-    let mut qp_dot = scheme.new_qp();
-    let mut scratch = scheme.new_dot_scratch();
-    let mut reference = ExactPath::new(&qp);
-    let (mut theta, mut thetadot) = (*theta0, SVector::<f64, N>::zeros());
-    let mut command = SVector::<f64, N>::zeros();
-    let mut cycle_start = *theta0;
     let needs_dot = solver.needs_qp_dot() || observer.as_ref().is_some_and(|o| o.needs_qp_dot());
-
-    let mut out = LoopOutcome {
-        status: Status::Completed,
-        ticks: 0,
-        solve_us: Vec::with_capacity(total),
-        tick_us: Vec::with_capacity(total),
-        max_track_err: 0.0,
-        rms_track_err: 0.0,
-        max_dx: 0.0,
-        rms_dx: 0.0,
-        max_dx_settled: 0.0,
-        drift: Vec::with_capacity(settings.cycles),
-        cycle_change: Vec::with_capacity(settings.cycles),
-        products_mean: None,
-        products_max: None,
-        iterations_mean: 0.0,
-        iterations_max: 0,
-        score_failures: 0,
-    };
-    let (mut sum_track2, mut sum_dx2, mut scored) = (0.0, 0.0, 0usize);
-    let (mut sum_products, mut max_products, mut counted) = (0u64, 0u64, false);
-    let mut sum_iterations = 0u64;
+    let mut state = LoopState::new(scheme, theta0, needs_dot);
+    let mut reference = ExactPath::new(&state.qp);
+    let mut tally = Tally::new(total, settings.cycles);
+    let mut cycle_start = *theta0;
 
     for k in 0..total {
         let t = k as f64 * h;
-        let start = Instant::now();
-        scheme.build(t, &theta, &thetadot, &mut qp);
-        if needs_dot {
-            // Velocity level: theta moves at the command; acceleration level: thetadot does.
-            let (v, a) = match level {
-                schemes::scheme::Level::Velocity => (command, SVector::zeros()),
-                schemes::scheme::Level::Acceleration => (thetadot, command),
-            };
-            scheme.build_dot(t, &theta, &v, &a, &mut qp_dot, &mut scratch);
-        }
-        let solve_start = Instant::now();
-        let dot = solver.needs_qp_dot().then_some(&qp_dot);
-        let result = solver.tick(t, &qp, dot, h);
-        let solve_end = Instant::now();
-        if let Err(e) = result {
-            out.status = Status::Failed {
-                t,
-                message: e.to_string(),
-            };
-            break;
-        }
-        let x = solver.x();
-        if x.iter().any(|v| !v.is_finite() || v.abs() > DIVERGED) {
-            out.status = Status::Diverged { t };
-            break;
-        }
-        command.copy_from_slice(&x[..N]);
-        let theta_k = theta;
-        advance(level, h, &mut theta, &mut thetadot, command.as_slice());
-        let end = Instant::now();
-        out.solve_us
-            .push((solve_end - solve_start).as_secs_f64() * 1e6);
-        out.tick_us.push((end - start).as_secs_f64() * 1e6);
-        out.ticks += 1;
+        let timed = match state.tick(solver, t, h) {
+            Ok(timed) => timed,
+            Err(status) => {
+                tally.out.status = status;
+                break;
+            }
+        };
+        tally.timed(&timed);
 
         // Scoring (not timed).
-        let track = (robot.position(&theta_k) - path.at(t).r).norm();
-        out.max_track_err = out.max_track_err.max(track);
-        sum_track2 += track * track;
-        match reference.solve(&qp) {
+        tally.track((robot.position(&timed.theta_k) - path.at(t).r).norm());
+        let x = solver.x();
+        match reference.solve(&state.qp) {
             Ok(x_star) => {
-                let scale = x_star.rows(0, N).amax().max(1.0);
-                let dx = x[..N]
-                    .iter()
-                    .zip(x_star.iter())
-                    .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
-                    / scale;
-                out.max_dx = out.max_dx.max(dx);
-                if t >= SETTLE {
-                    out.max_dx_settled = out.max_dx_settled.max(dx);
-                }
-                sum_dx2 += dx * dx;
-                scored += 1;
+                tally.distance(t, joint_distance::<N>(x, x_star));
                 if let Some(o) = observer.as_mut() {
-                    o.observe(k, t, &qp, needs_dot.then_some(&qp_dot), x_star.as_slice());
+                    let qp_dot = needs_dot.then_some(&state.qp_dot);
+                    o.observe(k, t, &state.qp, qp_dot, x_star.as_slice());
                 }
             }
-            Err(_) => out.score_failures += 1,
+            Err(_) => tally.out.score_failures += 1,
         }
-        if let Some(p) = solver.products() {
-            counted = true;
-            sum_products += p;
-            max_products = max_products.max(p);
-        }
-        let it = solver.iterations();
-        sum_iterations += it as u64;
-        out.iterations_max = out.iterations_max.max(it);
+        tally.work(solver.products(), solver.iterations());
         if (k + 1) % per_cycle == 0 {
-            out.drift.push((theta - theta0).norm());
-            out.cycle_change.push((theta - cycle_start).norm());
+            let theta = state.theta;
+            tally.cycle_end((theta - theta0).norm(), (theta - cycle_start).norm());
             cycle_start = theta;
         }
     }
-    let ticks = out.ticks.max(1) as f64;
-    out.rms_track_err = (sum_track2 / ticks).sqrt();
-    out.rms_dx = (sum_dx2 / scored.max(1) as f64).sqrt();
-    out.iterations_mean = sum_iterations as f64 / ticks;
-    if counted {
-        out.products_mean = Some(sum_products as f64 / ticks);
-        out.products_max = Some(max_products);
+    tally.finish()
+}
+
+/// What a run carries from tick to tick: the tick's QP and dQP/dt (buffers built into, never
+/// reallocated), the arm's state and the command held over the tick.
+struct LoopState<'a, const N: usize> {
+    scheme: &'a dyn Scheme<N>,
+    level: Level,
+    /// Whether dQP/dt is built (for the solver or the observer).
+    needs_dot: bool,
+    qp: Qp,
+    qp_dot: Qp,
+    scratch: QpDotScratch,
+    theta: SVector<f64, N>,
+    thetadot: SVector<f64, N>,
+    command: SVector<f64, N>,
+}
+
+impl<'a, const N: usize> LoopState<'a, N> {
+    /// The arm at rest at `theta0`, no command yet.
+    fn new(scheme: &'a dyn Scheme<N>, theta0: &SVector<f64, N>, needs_dot: bool) -> Self {
+        LoopState {
+            scheme,
+            level: scheme.level(),
+            needs_dot,
+            qp: scheme.new_qp(),
+            qp_dot: scheme.new_qp(),
+            scratch: scheme.new_dot_scratch(),
+            theta: *theta0,
+            thetadot: SVector::zeros(),
+            command: SVector::zeros(),
+        }
     }
-    out
+
+    /// Steps 1-3 of the tick at `t`, timed (module docs): QP_k (and dQP/dt where needed),
+    /// `solver`'s answer x_k, and the arm moved under its command over [t, t + h]. Why the run
+    /// stops instead, if the solver failed or the command diverged.
+    fn tick(&mut self, solver: &mut dyn TickSolver, t: f64, h: f64) -> Result<Timed<N>, Status> {
+        let start = Instant::now();
+        self.scheme
+            .build(t, &self.theta, &self.thetadot, &mut self.qp);
+        if self.needs_dot {
+            // Velocity level: theta moves at the command; acceleration level: thetadot does.
+            let (v, a) = match self.level {
+                Level::Velocity => (self.command, SVector::zeros()),
+                Level::Acceleration => (self.thetadot, self.command),
+            };
+            self.scheme
+                .build_dot(t, &self.theta, &v, &a, &mut self.qp_dot, &mut self.scratch);
+        }
+        let solve_start = Instant::now();
+        let dot = solver.needs_qp_dot().then_some(&self.qp_dot);
+        let result = solver.tick(t, &self.qp, dot, h);
+        let solve_end = Instant::now();
+        if let Err(e) = result {
+            return Err(Status::Failed {
+                t,
+                message: e.to_string(),
+            });
+        }
+        let x = solver.x();
+        if x.iter().any(|v| !v.is_finite() || v.abs() > DIVERGED) {
+            return Err(Status::Diverged { t });
+        }
+        self.command.copy_from_slice(&x[..N]);
+        let theta_k = self.theta;
+        advance(
+            self.level,
+            h,
+            &mut self.theta,
+            &mut self.thetadot,
+            self.command.as_slice(),
+        );
+        let end = Instant::now();
+        Ok(Timed {
+            theta_k,
+            solve_us: (solve_end - solve_start).as_secs_f64() * 1e6,
+            tick_us: (end - start).as_secs_f64() * 1e6,
+        })
+    }
+}
+
+/// What the timed part of a tick (steps 1-3 of the module docs) measured.
+struct Timed<const N: usize> {
+    /// The joint angles at t_k, before the arm moved.
+    theta_k: SVector<f64, N>,
+    /// Duration of the solve alone (us).
+    solve_us: f64,
+    /// Duration of the whole tick (us).
+    tick_us: f64,
+}
+
+/// |x[..N] - x*[..N]|_inf / max(1, |x*[..N]|_inf): the joint command's distance from the exact
+/// optimum, relative (module docs).
+fn joint_distance<const N: usize>(x: &[f64], x_star: &DVector<f64>) -> f64 {
+    let scale = x_star.rows(0, N).amax().max(1.0);
+    x[..N]
+        .iter()
+        .zip(x_star.iter())
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
+        / scale
+}
+
+/// A run's outcome as its ticks are scored, with the running sums its means are made of.
+struct Tally {
+    /// The outcome so far (its means are set by [`Tally::finish`]).
+    out: LoopOutcome,
+    /// Sum of the squared tracking errors.
+    sum_track2: f64,
+    /// Sum of the squared distances |x - x*| of the ticks scored.
+    sum_dx2: f64,
+    /// Ticks scored against the exact optimum.
+    scored: usize,
+    /// Sum of the products per tick.
+    sum_products: u64,
+    /// Most products in a tick.
+    max_products: u64,
+    /// Whether the solver counts its products.
+    counted: bool,
+    /// Sum of the iterations per tick.
+    sum_iterations: u64,
+}
+
+impl Tally {
+    /// No tick yet, room for `total` ticks over `cycles` cycles.
+    fn new(total: usize, cycles: usize) -> Self {
+        Tally {
+            out: LoopOutcome {
+                status: Status::Completed,
+                ticks: 0,
+                solve_us: Vec::with_capacity(total),
+                tick_us: Vec::with_capacity(total),
+                max_track_err: 0.0,
+                rms_track_err: 0.0,
+                max_dx: 0.0,
+                rms_dx: 0.0,
+                max_dx_settled: 0.0,
+                drift: Vec::with_capacity(cycles),
+                cycle_change: Vec::with_capacity(cycles),
+                products_mean: None,
+                products_max: None,
+                iterations_mean: 0.0,
+                iterations_max: 0,
+                score_failures: 0,
+            },
+            sum_track2: 0.0,
+            sum_dx2: 0.0,
+            scored: 0,
+            sum_products: 0,
+            max_products: 0,
+            counted: false,
+            sum_iterations: 0,
+        }
+    }
+
+    /// A completed tick and its durations.
+    fn timed<const N: usize>(&mut self, timed: &Timed<N>) {
+        self.out.solve_us.push(timed.solve_us);
+        self.out.tick_us.push(timed.tick_us);
+        self.out.ticks += 1;
+    }
+
+    /// The tick's tracking error |f(theta_k) - r*(t_k)|_2.
+    fn track(&mut self, err: f64) {
+        self.out.max_track_err = self.out.max_track_err.max(err);
+        self.sum_track2 += err * err;
+    }
+
+    /// The tick's relative distance `dx` from the exact optimum ([`joint_distance`]) at `t`.
+    fn distance(&mut self, t: f64, dx: f64) {
+        self.out.max_dx = self.out.max_dx.max(dx);
+        if t >= SETTLE {
+            self.out.max_dx_settled = self.out.max_dx_settled.max(dx);
+        }
+        self.sum_dx2 += dx * dx;
+        self.scored += 1;
+    }
+
+    /// The solver's work in the tick: its products (if counted) and iterations.
+    fn work(&mut self, products: Option<u64>, iterations: u32) {
+        if let Some(p) = products {
+            self.counted = true;
+            self.sum_products += p;
+            self.max_products = self.max_products.max(p);
+        }
+        self.sum_iterations += iterations as u64;
+        self.out.iterations_max = self.out.iterations_max.max(iterations);
+    }
+
+    /// The end of a cycle: the drift from the start and the change over the cycle.
+    fn cycle_end(&mut self, drift: f64, change: f64) {
+        self.out.drift.push(drift);
+        self.out.cycle_change.push(change);
+    }
+
+    /// The outcome, its means made of the sums.
+    fn finish(mut self) -> LoopOutcome {
+        let out = &mut self.out;
+        let ticks = out.ticks.max(1) as f64;
+        out.rms_track_err = (self.sum_track2 / ticks).sqrt();
+        out.rms_dx = (self.sum_dx2 / self.scored.max(1) as f64).sqrt();
+        out.iterations_mean = self.sum_iterations as f64 / ticks;
+        if self.counted {
+            out.products_mean = Some(self.sum_products as f64 / ticks);
+            out.products_max = Some(self.max_products);
+        }
+        self.out
+    }
 }
 
 /// A failed setup as a [`ControlError`] for the task `task`.

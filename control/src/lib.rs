@@ -6,10 +6,11 @@
 //!
 //! - [`control_loop`]: a scheme run at a fixed control period h (default 1 ms), the command
 //!   held over each tick and the arm integrated exactly between ticks ([`arm`]), with the
-//!   per-tick solver ([`method`]) either a network stepped in discrete time ([`network_tick`]:
-//!   forward Euler; for the zeroing networks also the Taylor-type discrete-time ZNN) or a
-//!   numerical QP method ([`numerical_tick`]: E47, 94LVI, the hot-started active set, Clarabel,
-//!   OSQP); latency per tick ([`latency`]), tracking error, |x - x*| and drift;
+//!   per-tick solver ([`method`], called through one interface: [`tick`]) either a network
+//!   stepped in discrete time ([`network_tick`]: forward Euler; for the zeroing networks also
+//!   the Taylor-type discrete-time ZNN) or a numerical QP method ([`numerical_tick`]: E47,
+//!   94LVI, the hot-started active set, Clarabel, OSQP); latency per tick ([`latency`]),
+//!   tracking error, |x - x*| and drift;
 //! - [`stability`]: each network's largest stable step, from the spectrum of its Jacobian
 //!   (forward Euler is stable iff |1 + s lambda| <= 1 for every eigenvalue lambda), beside the
 //!   papers' gains;
@@ -33,6 +34,7 @@ pub mod numerical_tick;
 pub mod reproduce;
 pub mod stability;
 pub mod task;
+pub mod tick;
 pub mod trend;
 
 pub use error::ControlError;

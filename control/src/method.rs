@@ -1,12 +1,13 @@
 //! What runs at every control tick: a network stepped in discrete time
-//! ([`crate::network_tick`]) or a numerical QP method ([`crate::numerical_tick`]), behind one
-//! interface, [`TickSolver`].
+//! ([`crate::network_tick`]) or a numerical QP method ([`crate::numerical_tick`]), built behind
+//! one interface, [`TickSolver`] ([`crate::tick`]).
 
 use crate::error::ControlError;
 use crate::network_tick::{Discretisation, NetworkTick};
 use crate::numerical_tick::QpTick;
+use crate::tick::TickSolver;
 use records::control::Family;
-use schemes::qp::{Qp, QpDims};
+use schemes::qp::QpDims;
 use settings::solver_spec::SolverSpec;
 use solvers::lvi_numerical::{LviMethod, LviSettings, LviSolver};
 use solvers::osqp_qp::{OsqpQp, OsqpSettings};
@@ -114,25 +115,4 @@ impl Method {
             Method::Numerical(Numerical::Osqp(s)) => Box::new(QpTick::new(OsqpQp::new(dims, *s))),
         })
     }
-}
-
-/// One solver as a controller calls it: once per tick, with the tick's QP.
-pub trait TickSolver {
-    /// Whether [`TickSolver::tick`] needs dQP/dt (the zeroing networks).
-    fn needs_qp_dot(&self) -> bool {
-        false
-    }
-    /// Computes this tick's answer from the tick's QP (and its time derivative where needed),
-    /// h being the control period.
-    fn tick(&mut self, t: f64, qp: &Qp, qp_dot: Option<&Qp>, h: f64) -> Result<(), ControlError>;
-    /// The answer x of the last tick (its first N entries are the joint command).
-    fn x(&self) -> &[f64];
-    /// Work of the last tick in products with the LVI matrix M (or M', or LU solves with M or
-    /// I + M: [`solvers::lvi_numerical`]'s unit), for the methods built on jia2019's LVI (the six
-    /// PLPE methods, LVI-PDNN, S-LVI-PDNN); `None` for the others.
-    fn products(&self) -> Option<u64> {
-        None
-    }
-    /// Iterations (or network steps) of the last tick.
-    fn iterations(&self) -> u32;
 }

@@ -22,7 +22,7 @@
 //! The network's state starts at zero (as in every continuous run) and is kept across ticks.
 
 use crate::error::ControlError;
-use crate::method::TickSolver;
+use crate::tick::TickSolver;
 use schemes::qp::{Qp, QpDims};
 use settings::solver_spec::SolverSpec;
 use solvers::neural::{build_solver, NeuralSolver};

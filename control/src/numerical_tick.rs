@@ -12,7 +12,7 @@
 //! - OSQP ([`solvers::osqp_qp`]): data updated in place, warm-started.
 
 use crate::error::ControlError;
-use crate::method::TickSolver;
+use crate::tick::TickSolver;
 use schemes::qp::Qp;
 use solvers::{QpSolve, QpSolver};
 

@@ -7,15 +7,16 @@
 //! on both cores; most of it robio2018's methods iterating to 1e-10 at every tick of the runs
 //! at 1 ms, and the 20-cycle runs).
 
-use crate::continuous::ExactCycles;
+use crate::continuous::{ContinuousCycles, ExactCycles};
 use crate::control_loop::{run_loop, LoopOutcome, LoopSettings, Observer, Status};
 use crate::error::ControlError;
 use crate::latency::Latency;
-use crate::method::{Method, Numerical, TickSolver};
+use crate::method::{Method, Numerical};
 use crate::network_tick::{products_per_evaluation, Discretisation};
 use crate::numerical_tick::QpTick;
 use crate::stability::{gain, LimitProbe};
 use crate::task::{load_tasks, standard_task_refs, with_task, Task, TaskVisitor};
+use crate::tick::TickSolver;
 use crate::trend::classify;
 use analysis::control_claim::{decide, overall, steps_needed, ACCURACY, CHECK_TICKS};
 use catalog::ids::SolverId;
@@ -312,6 +313,42 @@ impl<'a> ClaimCheck<'a> {
             },
         }
     }
+
+    /// The claim's row on the check run's task, from the check run's outcome `out`.
+    fn row(&self, mut out: LoopOutcome) -> Result<ClaimRow, ControlError> {
+        let check_solve = Latency::of(&mut out.solve_us);
+        let task = self.run.task;
+        let (num, num_mean) = self.numerical;
+        let check_steps = 2 * self.needed;
+        let lower = (self.needed * self.per_step) as f64;
+        let checked = (check_steps * self.per_step) as f64;
+        let verdict = decide(lower, checked, out.max_dx, num_mean);
+        Ok(ClaimRow {
+            task: task.id(),
+            network: self.spec.display_name(),
+            experiment: task.reference.experiment.clone(),
+            variant_id: task.reference.variant.clone(),
+            solver_id: SolverId::new(self.spec.id())?,
+            h_ms: self.run.h * 1e3,
+            accuracy: ACCURACY,
+            products_per_step: self.per_step,
+            euler_limit_s: self.limit,
+            steps_needed: self.needed,
+            network_products: lower,
+            check_steps,
+            check_ticks: out.ticks,
+            check_status: out.status.column(),
+            check_max_dx: out.max_dx,
+            check_solve_p50_us: check_solve.p50_us,
+            numerical: num.method.clone(),
+            numerical_products_mean: num_mean,
+            numerical_products_max: num.products_max.unwrap_or(0),
+            numerical_max_dx: num.max_dx,
+            numerical_solve_p50_us: num.solve_p50_us,
+            cost_ratio: lower / num_mean,
+            verdict,
+        })
+    }
 }
 
 /// Runs everything (module docs) on the tasks of the experiment files in `experiments` and writes
@@ -333,92 +370,199 @@ pub fn reproduce(
     let tasks = load_tasks(experiments, &standard_task_refs(experiments)?)?;
     let h = budget.h;
 
-    // Round 1. The controller runs: first those of the rows of results/control.csv (per task,
-    // every method at h, then the period sweep), then the exact optimum's many cycles at h (the
-    // active set), per task.
-    let mut loops: Vec<LoopRun> = Vec::new();
-    for task in &tasks {
-        let mut methods: Vec<Method> = Numerical::all()
-            .into_iter()
-            .map(Method::Numerical)
-            .collect();
-        methods.extend(network_methods(task, 1));
-        loops.extend(
-            methods
+    // Round 1, then the rows it gives.
+    let first = FirstRound::plan(&tasks, budget);
+    progress(&first.describe());
+    let first_out = first.run();
+    let control = control_rows(&first.loops[..first.rows], first_out.rows)?;
+    let stability = stability_rows(&first.probes, first_out.limits, &control)?;
+
+    // Round 2, selected by those rows, then the rows of both rounds' many cycles.
+    let second = SecondRound::plan(&tasks, budget, &control, &stability);
+    progress(&second.describe(budget));
+    let second_out = second.run();
+    let claims = second
+        .checks
+        .iter()
+        .zip(second_out.checks)
+        .map(|(check, out)| check.row(out?))
+        .collect::<Result<Vec<ClaimRow>, ControlError>>()?;
+    let cycles = CycleTables::of(
+        &tasks,
+        h,
+        first_out.exact_cycles,
+        first_out.continuous,
+        &second.network_cycles,
+        second_out.network_cycles,
+    )?;
+
+    let control: Vec<ControlRow> = control.into_iter().map(|(_, r)| r).collect();
+    records::control::write(results, results_dir::CONTROL, &control)?;
+    records::control::write(results, results_dir::CONTROL_STABILITY, &stability)?;
+    records::control::write(results, results_dir::CONTROL_CLAIM, &claims)?;
+    records::control::write(results, results_dir::CYCLES, &cycles.cycles)?;
+    records::control::write(results, results_dir::CYCLES_TREND, &cycles.trends)?;
+    let verdicts: Vec<Verdict> = claims.iter().map(|c| c.verdict).collect();
+    Ok(Summary {
+        control_runs: control.len(),
+        cycle_runs: cycles.trends.len(),
+        verdict: overall(&verdicts),
+    })
+}
+
+/// The first round of [`reproduce`]: every run that needs no other's result.
+struct FirstRound<'a> {
+    tasks: &'a [Task],
+    budget: &'a Budget,
+    /// The controller runs: first those of the rows of results/control.csv (per task, every
+    /// method at h, then the period sweep), then the exact optimum's many cycles at h (the
+    /// active set), per task.
+    loops: Vec<LoopRun<'a>>,
+    /// How many of `loops` are rows of results/control.csv.
+    rows: usize,
+    /// Each network on its task, for its Euler limit.
+    probes: Vec<(&'a Task, &'a SolverSpec)>,
+}
+
+/// What the first round's runs returned, in the order of its runs.
+struct FirstRoundOut {
+    /// The runs of the rows of results/control.csv.
+    rows: Vec<Result<LoopOutcome, ControlError>>,
+    /// The exact optimum's many cycles at h, per task.
+    exact_cycles: Vec<Result<LoopOutcome, ControlError>>,
+    /// Each probe's Euler limit: (limit, instant), or `None`.
+    limits: Vec<Result<Option<(f64, f64)>, ControlError>>,
+    /// The exact column's many cycles in continuous time, per task.
+    continuous: Vec<Result<ContinuousCycles, ControlError>>,
+}
+
+impl<'a> FirstRound<'a> {
+    /// The round's runs on `tasks` at `budget`.
+    fn plan(tasks: &'a [Task], budget: &'a Budget) -> Self {
+        let h = budget.h;
+        let mut loops: Vec<LoopRun> = Vec::new();
+        for task in tasks {
+            let mut methods: Vec<Method> = Numerical::all()
                 .into_iter()
-                .map(|method| LoopRun::cycles(task, method, h, 1)),
-        );
-        let mut swept = network_methods(task, 1);
-        swept.push(Method::Numerical(Numerical::ActiveSet));
-        for &hs in &budget.sweep {
+                .map(Method::Numerical)
+                .collect();
+            methods.extend(network_methods(task, 1));
             loops.extend(
-                swept
-                    .iter()
-                    .map(|method| LoopRun::cycles(task, method.clone(), hs, 1)),
+                methods
+                    .into_iter()
+                    .map(|method| LoopRun::cycles(task, method, h, 1)),
             );
+            let mut swept = network_methods(task, 1);
+            swept.push(Method::Numerical(Numerical::ActiveSet));
+            for &hs in &budget.sweep {
+                loops.extend(
+                    swept
+                        .iter()
+                        .map(|method| LoopRun::cycles(task, method.clone(), hs, 1)),
+                );
+            }
+        }
+        let rows = loops.len();
+        loops.extend(tasks.iter().map(|task| {
+            LoopRun::cycles(
+                task,
+                Method::Numerical(Numerical::ActiveSet),
+                h,
+                budget.cycles,
+            )
+        }));
+        let probes = tasks
+            .iter()
+            .flat_map(|task| task.networks.iter().map(move |spec| (task, spec)))
+            .collect();
+        FirstRound {
+            tasks,
+            budget,
+            loops,
+            rows,
+            probes,
         }
     }
-    let rows = loops.len();
-    loops.extend(tasks.iter().map(|task| {
-        LoopRun::cycles(
-            task,
-            Method::Numerical(Numerical::ActiveSet),
-            h,
-            budget.cycles,
-        )
-    }));
-    // Each network's Euler limit on its task.
-    let probes: Vec<(&Task, &SolverSpec)> = tasks
-        .iter()
-        .flat_map(|task| task.networks.iter().map(move |spec| (task, spec)))
-        .collect();
-    progress(&format!(
-        "control: {rows} runs on {} tasks at {} ms and over the period sweep, {} stability \
-         probes, the exact optimum over {} cycles",
-        tasks.len(),
-        h * 1e3,
-        probes.len(),
-        budget.cycles
-    ));
-    let (mut loops_out, (limits, continuous)) = rayon::join(
-        || map_costliest_first(&loops, LoopRun::cost, LoopRun::run),
-        || {
-            rayon::join(
-                || {
-                    map_costliest_first(
-                        &probes,
-                        |(task, _)| task.job.path.duration,
-                        |(task, spec)| with_task(task, 1, ProbeLimit { spec, h })?,
-                    )
-                },
-                || {
-                    map_costliest_first(
-                        &tasks,
-                        |task| task.job.path.duration,
-                        |task| {
-                            with_task(
-                                task,
-                                1,
-                                ExactCycles {
-                                    task,
-                                    cycles: budget.cycles,
-                                },
-                            )
-                        },
-                    )
-                },
-            )
-        },
-    );
-    let exact_cycles_out = loops_out.split_off(rows);
 
-    // Each controller run's row beside its method: later passes select runs by method (an
-    // identity), never by the row's label.
-    let mut control: Vec<(Method, ControlRow)> = Vec::with_capacity(rows);
-    for (run, out) in loops[..rows].iter().zip(loops_out) {
+    /// What the round runs, in a line.
+    fn describe(&self) -> String {
+        format!(
+            "control: {} runs on {} tasks at {} ms and over the period sweep, {} stability \
+             probes, the exact optimum over {} cycles",
+            self.rows,
+            self.tasks.len(),
+            self.budget.h * 1e3,
+            self.probes.len(),
+            self.budget.cycles
+        )
+    }
+
+    /// Runs the round in parallel: the controller runs beside the probes and the
+    /// continuous-time cycles.
+    fn run(&self) -> FirstRoundOut {
+        let h = self.budget.h;
+        let (mut rows, (limits, continuous)) = rayon::join(
+            || map_costliest_first(&self.loops, LoopRun::cost, LoopRun::run),
+            || {
+                rayon::join(
+                    || {
+                        map_costliest_first(
+                            &self.probes,
+                            |(task, _)| task.job.path.duration,
+                            |(task, spec)| with_task(task, 1, ProbeLimit { spec, h })?,
+                        )
+                    },
+                    || {
+                        map_costliest_first(
+                            self.tasks,
+                            |task| task.job.path.duration,
+                            |task| {
+                                with_task(
+                                    task,
+                                    1,
+                                    ExactCycles {
+                                        task,
+                                        cycles: self.budget.cycles,
+                                    },
+                                )
+                            },
+                        )
+                    },
+                )
+            },
+        );
+        let exact_cycles = rows.split_off(self.rows);
+        FirstRoundOut {
+            rows,
+            exact_cycles,
+            limits,
+            continuous,
+        }
+    }
+}
+
+/// Each controller run's row beside its method (`runs` and their outcomes `outs`, in order):
+/// later passes select runs by method (an identity), never by the row's label.
+fn control_rows(
+    runs: &[LoopRun],
+    outs: Vec<Result<LoopOutcome, ControlError>>,
+) -> Result<Vec<(Method, ControlRow)>, ControlError> {
+    let mut control = Vec::with_capacity(runs.len());
+    for (run, out) in runs.iter().zip(outs) {
         let row = control_row(run.task, &run.method, run.h, out?);
         control.push((run.method.clone(), row));
     }
+    Ok(control)
+}
+
+/// Each probed network's row (`probes` and their Euler `limits`, in order): its limit beside its
+/// gain and the largest period of the sweep at which its Euler form completed (among the
+/// `control` rows).
+fn stability_rows(
+    probes: &[(&Task, &SolverSpec)],
+    limits: Vec<Result<Option<(f64, f64)>, ControlError>>,
+    control: &[(Method, ControlRow)],
+) -> Result<Vec<StabilityRow>, ControlError> {
     let mut stability = Vec::with_capacity(probes.len());
     for ((task, spec), limit) in probes.iter().zip(limits) {
         let limit = limit?;
@@ -445,11 +589,87 @@ pub fn reproduce(
             largest_stable_h_ms: largest,
         });
     }
+    Ok(stability)
+}
 
-    // Round 2. The efficiency claim's check runs, on the tasks run by a network built on the
-    // LVI whose Euler limit was found.
+/// The second round of [`reproduce`]: the runs selected by the first round's results.
+struct SecondRound<'a> {
+    /// The efficiency claim's check runs.
+    checks: Vec<ClaimCheck<'a>>,
+    /// Per task, the many cycles of every network form that was stable at h.
+    network_cycles: Vec<Vec<LoopRun<'a>>>,
+}
+
+impl<'a> SecondRound<'a> {
+    /// The round's runs on `tasks` at `budget`, selected by the first round's `control` and
+    /// `stability` rows.
+    fn plan(
+        tasks: &'a [Task],
+        budget: &Budget,
+        control: &'a [(Method, ControlRow)],
+        stability: &[StabilityRow],
+    ) -> Self {
+        let h = budget.h;
+        let checks = claim_checks(tasks, control, stability, h);
+        let network_cycles = tasks
+            .iter()
+            .map(|task| {
+                network_methods(task, 1)
+                    .into_iter()
+                    .filter(|m| stable_at(control, task, m, h))
+                    .map(|m| LoopRun::cycles(task, m, h, budget.cycles))
+                    .collect()
+            })
+            .collect();
+        SecondRound {
+            checks,
+            network_cycles,
+        }
+    }
+
+    /// What the round runs, in a line.
+    fn describe(&self, budget: &Budget) -> String {
+        format!(
+            "control: {} claim check runs, {} network runs over {} cycles",
+            self.checks.len(),
+            self.network_cycles.iter().map(Vec::len).sum::<usize>(),
+            budget.cycles
+        )
+    }
+
+    /// Runs the round in parallel: the check runs beside the many cycles.
+    fn run(&self) -> SecondRoundOut {
+        let flat_cycle_runs: Vec<&LoopRun> = self.network_cycles.iter().flatten().collect();
+        let (checks, network_cycles) = rayon::join(
+            || map_costliest_first(&self.checks, |c| c.run.cost(), |c| c.run.run()),
+            || map_costliest_first(&flat_cycle_runs, |r| r.cost(), |r| r.run()),
+        );
+        SecondRoundOut {
+            checks,
+            network_cycles,
+        }
+    }
+}
+
+/// What the second round's runs returned, in the order of its runs.
+struct SecondRoundOut {
+    /// The claim's check runs.
+    checks: Vec<Result<LoopOutcome, ControlError>>,
+    /// The networks' many cycles, task by task.
+    network_cycles: Vec<Result<LoopOutcome, ControlError>>,
+}
+
+/// The efficiency claim's check runs, on the tasks run by a network built on the LVI whose
+/// Euler limit was found (among the `stability` rows), each with its comparator among the
+/// `control` rows at `h`.
+fn claim_checks<'a>(
+    tasks: &'a [Task],
+    control: &'a [(Method, ControlRow)],
+    stability: &[StabilityRow],
+    h: f64,
+) -> Vec<ClaimCheck<'a>> {
     let mut checks = Vec::new();
-    for task in &tasks {
+    for task in tasks {
         for spec in &task.networks {
             let Some(per_step) = products_per_evaluation(spec) else {
                 continue;
@@ -461,162 +681,128 @@ pub fn reproduce(
             else {
                 continue;
             };
-            // The comparator: the cheapest LVI method that solved the task at every tick
-            // (`analysis::control_claim`: E47 and 94LVI as printed fail on some tasks).
-            let numerical = control
-                .iter()
-                .filter(|(m, r)| {
-                    matches!(m, Method::Numerical(Numerical::Lvi(..)))
-                        && r.task == task.id()
-                        && r.h_ms == h * 1e3
-                        && r.status == ControlStatus::Ok
-                })
-                .filter_map(|(_, r)| r.products_mean.map(|p| (r, p)))
-                .min_by(|a, b| a.1.total_cmp(&b.1));
-            // Without one the claim has nothing to compare with on this task.
-            let Some(numerical) = numerical else {
+            // Without a comparator the claim has nothing to compare with on this task.
+            let Some(numerical) = comparator(control, task, h) else {
                 continue;
             };
             checks.push(ClaimCheck::new(task, spec, per_step, limit, numerical, h));
         }
     }
-    // The many cycles of every network form that was stable at h, per task.
-    let network_cycle_runs: Vec<Vec<LoopRun>> = tasks
+    checks
+}
+
+/// The claim's comparator on `task`: the cheapest LVI method that solved the task at every tick
+/// at `h` (`analysis::control_claim`: E47 and 94LVI as printed fail on some tasks), its row
+/// among `control` and its mean products per tick.
+fn comparator<'a>(
+    control: &'a [(Method, ControlRow)],
+    task: &Task,
+    h: f64,
+) -> Option<(&'a ControlRow, f64)> {
+    control
         .iter()
-        .map(|task| {
-            network_methods(task, 1)
-                .into_iter()
-                .filter(|m| stable_at(&control, task, m, h))
-                .map(|m| LoopRun::cycles(task, m, h, budget.cycles))
-                .collect()
+        .filter(|(m, r)| {
+            matches!(m, Method::Numerical(Numerical::Lvi(..)))
+                && r.task == task.id()
+                && r.h_ms == h * 1e3
+                && r.status == ControlStatus::Ok
         })
-        .collect();
-    let flat_cycle_runs: Vec<&LoopRun> = network_cycle_runs.iter().flatten().collect();
-    progress(&format!(
-        "control: {} claim check runs, {} network runs over {} cycles",
-        checks.len(),
-        flat_cycle_runs.len(),
-        budget.cycles
-    ));
-    let (checks_out, network_cycles_out) = rayon::join(
-        || map_costliest_first(&checks, |c| c.run.cost(), |c| c.run.run()),
-        || map_costliest_first(&flat_cycle_runs, |r| r.cost(), |r| r.run()),
-    );
+        .filter_map(|(_, r)| r.products_mean.map(|p| (r, p)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+}
 
-    let mut claims = Vec::new();
-    for (check, out) in checks.iter().zip(checks_out) {
-        let mut out = out?;
-        let check_solve = Latency::of(&mut out.solve_us);
-        let task = check.run.task;
-        let (num, num_mean) = check.numerical;
-        let check_steps = 2 * check.needed;
-        let lower = (check.needed * check.per_step) as f64;
-        let checked = (check_steps * check.per_step) as f64;
-        let verdict = decide(lower, checked, out.max_dx, num_mean);
-        claims.push(ClaimRow {
-            task: task.id(),
-            network: check.spec.display_name(),
-            experiment: task.reference.experiment.clone(),
-            variant_id: task.reference.variant.clone(),
-            solver_id: SolverId::new(check.spec.id())?,
-            h_ms: h * 1e3,
-            accuracy: ACCURACY,
-            products_per_step: check.per_step,
-            euler_limit_s: check.limit,
-            steps_needed: check.needed,
-            network_products: lower,
-            check_steps,
-            check_ticks: out.ticks,
-            check_status: out.status.column(),
-            check_max_dx: out.max_dx,
-            check_solve_p50_us: check_solve.p50_us,
-            numerical: num.method.clone(),
-            numerical_products_mean: num_mean,
-            numerical_products_max: num.products_max.unwrap_or(0),
-            numerical_max_dx: num.max_dx,
-            numerical_solve_p50_us: num.solve_p50_us,
-            cost_ratio: lower / num_mean,
-            verdict,
-        });
-    }
+/// The many-cycles rows: per cycle (results/cycles.csv) and per run, its trend
+/// (results/cycles-trend.csv).
+struct CycleTables {
+    cycles: Vec<CycleRow>,
+    trends: Vec<TrendRow>,
+}
 
-    // Many cycles, per task: the exact optimum at h, every network form stable at h, the exact
-    // column in continuous time.
-    let mut cycles = Vec::new();
-    let mut trends = Vec::new();
-    let mut network_cycles = network_cycles_out.into_iter();
-    for (((task, exact_at_h), continuous), runs) in tasks
-        .iter()
-        .zip(exact_cycles_out)
-        .zip(continuous)
-        .zip(&network_cycle_runs)
-    {
-        let mut record = |method: String,
-                          h_ms: Option<f64>,
-                          end: (ControlStatus, Option<String>),
-                          drift: &[f64],
-                          change: &[f64]| {
-            for (c, (d, ch)) in drift.iter().zip(change).enumerate() {
-                cycles.push(CycleRow {
-                    task: task.id(),
-                    scheme: task.scheme(),
-                    method: method.clone(),
-                    h_ms,
-                    cycle: c + 1,
-                    drift: *d,
-                    change: *ch,
-                });
-            }
-            let trend = classify(drift, change);
-            trends.push(TrendRow {
-                task: task.id(),
-                scheme: task.scheme(),
-                method,
-                h_ms,
-                status: end.0,
-                failure: end.1,
-                cycles: drift.len(),
-                drift_first: drift.first().copied(),
-                drift_last: drift.last().copied(),
-                rate: trend.map(|t| t.rate),
-                class: trend.map(|t| t.class),
-            });
+impl CycleTables {
+    /// The rows per task: the exact optimum at `h` (the first round's `exact_cycles`, per
+    /// task), every network form stable at `h` (the second round's `runs` per task, their
+    /// outcomes `outs` in order), the exact column in continuous time (`continuous`, per task).
+    fn of(
+        tasks: &[Task],
+        h: f64,
+        exact_cycles: Vec<Result<LoopOutcome, ControlError>>,
+        continuous: Vec<Result<ContinuousCycles, ControlError>>,
+        runs: &[Vec<LoopRun>],
+        outs: Vec<Result<LoopOutcome, ControlError>>,
+    ) -> Result<Self, ControlError> {
+        let mut tables = CycleTables {
+            cycles: Vec::new(),
+            trends: Vec::new(),
         };
-        let mut at_h = vec![(Method::Numerical(Numerical::ActiveSet).label(), exact_at_h?)];
-        for (run, out) in runs.iter().zip(network_cycles.by_ref()) {
-            at_h.push((run.method.label(), out?));
-        }
-        for (label, out) in at_h {
-            record(
-                label,
-                Some(h * 1e3),
-                (out.status.column(), out.status.failure()),
-                &out.drift,
-                &out.cycle_change,
+        let mut network_cycles = outs.into_iter();
+        for (((task, exact_at_h), continuous), runs) in
+            tasks.iter().zip(exact_cycles).zip(continuous).zip(runs)
+        {
+            let mut at_h = vec![(Method::Numerical(Numerical::ActiveSet).label(), exact_at_h?)];
+            for (run, out) in runs.iter().zip(network_cycles.by_ref()) {
+                at_h.push((run.method.label(), out?));
+            }
+            for (label, out) in at_h {
+                tables.record(
+                    task,
+                    label,
+                    Some(h * 1e3),
+                    (out.status.column(), out.status.failure()),
+                    &out.drift,
+                    &out.cycle_change,
+                );
+            }
+            let continuous = continuous?;
+            tables.record(
+                task,
+                CONTINUOUS_EXACT.to_string(),
+                None,
+                continuous.end(),
+                &continuous.drift,
+                &continuous.change,
             );
         }
-        let continuous = continuous?;
-        record(
-            CONTINUOUS_EXACT.to_string(),
-            None,
-            continuous.end(),
-            &continuous.drift,
-            &continuous.change,
-        );
+        Ok(tables)
     }
 
-    let control: Vec<ControlRow> = control.into_iter().map(|(_, r)| r).collect();
-    records::control::write(results, results_dir::CONTROL, &control)?;
-    records::control::write(results, results_dir::CONTROL_STABILITY, &stability)?;
-    records::control::write(results, results_dir::CONTROL_CLAIM, &claims)?;
-    records::control::write(results, results_dir::CYCLES, &cycles)?;
-    records::control::write(results, results_dir::CYCLES_TREND, &trends)?;
-    let verdicts: Vec<Verdict> = claims.iter().map(|c| c.verdict).collect();
-    Ok(Summary {
-        control_runs: control.len(),
-        cycle_runs: trends.len(),
-        verdict: overall(&verdicts),
-    })
+    /// The rows of one many-cycles run of `method` on `task` (at the period `h_ms`, none in
+    /// continuous time) that ended with `end` (status, failure): its (drift, change) after each
+    /// cycle and their trend.
+    fn record(
+        &mut self,
+        task: &Task,
+        method: String,
+        h_ms: Option<f64>,
+        end: (ControlStatus, Option<String>),
+        drift: &[f64],
+        change: &[f64],
+    ) {
+        for (c, (d, ch)) in drift.iter().zip(change).enumerate() {
+            self.cycles.push(CycleRow {
+                task: task.id(),
+                scheme: task.scheme(),
+                method: method.clone(),
+                h_ms,
+                cycle: c + 1,
+                drift: *d,
+                change: *ch,
+            });
+        }
+        let trend = classify(drift, change);
+        self.trends.push(TrendRow {
+            task: task.id(),
+            scheme: task.scheme(),
+            method,
+            h_ms,
+            status: end.0,
+            failure: end.1,
+            cycles: drift.len(),
+            drift_first: drift.first().copied(),
+            drift_last: drift.last().copied(),
+            rate: trend.map(|t| t.rate),
+            class: trend.map(|t| t.class),
+        });
+    }
 }
 
 /// Whether `method`'s run on `task` at the period `h` among the `control` rows completed.

@@ -1,6 +1,7 @@
 //! The explanation layer's errors: reading and writing its results files ([`ExplainError`],
-//! wrapping the records layer's [`TableError`] and [`IoError`]) and reading the inference
-//! family file ([`FamilyError`], wrapped by [`crate::inference::InferenceError::Family`]).
+//! wrapping the records layer's [`TableError`] and [`IoError`]), building or reading an
+//! inference ([`InferenceError`]) and reading the inference family file ([`FamilyError`],
+//! wrapped by [`InferenceError::Family`]).
 
 use records::error::IoError;
 use records::table::TableError;
@@ -29,4 +30,27 @@ pub enum FamilyError {
     JointCount { variant: String, declared: String },
     #[error("`network` lists \"exact\": the exact column is always tried")]
     ExactNetwork,
+}
+
+/// What can go wrong in building or reading an inference.
+#[derive(Debug, thiserror::Error)]
+pub enum InferenceError {
+    /// No column of the table has published per-joint drifts mapped onto a run.
+    #[error("{paper} {table}: no published per-joint drifts map onto a run")]
+    NoColumns { paper: String, table: String },
+    /// A mapped column's run (`what`: its exact column or its network) is not among the jobs.
+    #[error("{paper} {table}: no {what} run of {experiment} / {variant}")]
+    NoRun {
+        paper: String,
+        table: String,
+        what: &'static str,
+        experiment: String,
+        variant: String,
+    },
+    /// The family file could not be read or names what does not exist.
+    #[error("inference family {}: {error}", file.display())]
+    Family {
+        file: std::path::PathBuf,
+        error: FamilyError,
+    },
 }

@@ -76,7 +76,7 @@ pub enum ReproduceError {
     #[error(transparent)]
     Explain(#[from] explain::error::ExplainError),
     #[error(transparent)]
-    Inference(#[from] explain::inference::InferenceError),
+    Inference(#[from] explain::error::InferenceError),
     #[error(transparent)]
     Report(#[from] presentation::error::ReportError),
     #[error(transparent)]

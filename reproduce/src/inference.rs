@@ -3,12 +3,11 @@
 //! as it is fitted, then the report re-rendered.
 
 use crate::error::ReproduceError;
-use crate::explanation::load_papers;
 use crate::options::InferOptions;
+use crate::papers::load_papers;
 use crate::project::Project;
-use crate::report::{render_report, report_root};
+use crate::report::{precheck_report, render_report, report_root};
 use crate::results::{open_results, Described};
-use crate::run::precheck_report;
 use catalog::experiment::Job;
 use records::results_dir::ResultsDir;
 

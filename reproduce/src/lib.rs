@@ -9,8 +9,9 @@
 //! [`cost`], [`score`] (a trajectory made elsewhere, also `driftbench.score` in Python); the
 //! task cards the report mode writes ([`task_card`]); beside them what the modes share: the
 //! options ([`options`]), the command line ([`cli`], [`aliases`]), the project's directories
-//! ([`project`]), the selection of runs ([`select`]), the results directory ([`results`]), the
-//! summary printed ([`summary`]) and the code revision embedded at build time ([`revision`]).
+//! ([`project`]), the papers as data ([`papers`]), the selection of runs ([`select`]), the
+//! results directory ([`results`]), the summary printed ([`summary`]) and the code revision
+//! embedded at build time ([`revision`]).
 
 pub mod aliases;
 pub mod baseline;
@@ -23,6 +24,7 @@ pub mod journal;
 pub mod list;
 pub mod merge;
 pub mod options;
+pub mod papers;
 pub mod phases;
 pub mod project;
 pub mod report;

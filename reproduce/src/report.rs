@@ -1,8 +1,10 @@
 //! The report (presentation): rendered beside the results directory (`<root>/results` ->
 //! `<root>/report`) after every mode that writes results, or alone (`reproduce report`) from
-//! the stored results without running anything.
+//! the stored results without running anything; what it needs is checked before anything runs
+//! ([`precheck_report`]).
 
 use crate::error::ReproduceError;
+use crate::papers::load_checked_papers;
 use crate::project::Project;
 use crate::results::{experiment_files, open_results, Described};
 use records::results_dir::ResultsDir;
@@ -14,7 +16,7 @@ pub fn report_only(project: &Project, git_rev: &str) -> Result<(), ReproduceErro
     check_report_dir(&root)?;
     let files = experiment_files(project)?;
     let all = Described::new(&files);
-    crate::explanation::load_checked_papers(project, &all)?;
+    load_checked_papers(project, &all)?;
     let results = open_results(project, git_rev, &all)?;
     render_report(project, &root, &results)
 }
@@ -39,6 +41,24 @@ pub fn check_report_dir(root: &Path) -> Result<(), ReproduceError> {
     let report = records::tracked_dir::TrackedDir::open_within(root, "report")?;
     report.resolve(Path::new(presentation::figures::FIGURES))?;
     Ok(records::runs::check_writable(report.path())?)
+}
+
+/// Before anything runs in a mode that renders the report: its directory lies inside the
+/// project and can be written, and papers/ loads and names only runs of the experiment files
+/// `all` (the report reads it after the runs, so a malformed paper is refused now). A results
+/// directory not named `results` gets no report, which is said.
+pub fn precheck_report(project: &Project, all: &Described) -> Result<(), ReproduceError> {
+    match report_root(project) {
+        Ok(root) => {
+            check_report_dir(&root)?;
+            load_checked_papers(project, all)?;
+        }
+        Err(why) => eprintln!(
+            "note: results go to {}, but {why}",
+            project.results_dir.display()
+        ),
+    }
+    Ok(())
 }
 
 /// Figures first (the report links them), then the report's pages ([`render_pages`]).

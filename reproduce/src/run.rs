@@ -9,12 +9,12 @@
 
 use crate::baseline::Baseline;
 use crate::error::ReproduceError;
-use crate::explanation::{explain, load_checked_papers};
+use crate::explanation::explain;
 use crate::journal::{resume, run_journaled};
 use crate::options::SelectionOptions;
 use crate::phases::PhaseClock;
 use crate::project::Project;
-use crate::report::{check_report_dir, render_figures, render_pages, report_root};
+use crate::report::{precheck_report, render_figures, render_pages, report_root};
 use crate::results::{open_results, plan_pruning, write_results, Described};
 use crate::summary::{emit, summary};
 use catalog::experiment::Job;
@@ -152,24 +152,6 @@ pub fn run(
         );
     }
     Ok(report_unexpected(&unexpected))
-}
-
-/// Before anything runs in a mode that renders the report: its directory lies inside the
-/// project and can be written, and papers/ loads and names only runs of the experiment files
-/// `all` (the report reads it after the runs, so a malformed paper is refused now). A results
-/// directory not named `results` gets no report, which is said.
-pub fn precheck_report(project: &Project, all: &Described) -> Result<(), ReproduceError> {
-    match report_root(project) {
-        Ok(root) => {
-            check_report_dir(&root)?;
-            load_checked_papers(project, all)?;
-        }
-        Err(why) => eprintln!(
-            "note: results go to {}, but {why}",
-            project.results_dir.display()
-        ),
-    }
-    Ok(())
 }
 
 /// A shard's manifest (of its `binding`), written last: the shard is finished.

@@ -11,8 +11,7 @@
 //! ([`records::inference::Integration`]).
 
 use super::search::Budget;
-use super::InferenceError;
-use crate::error::FamilyError;
+use crate::error::{FamilyError, InferenceError};
 use records::inference::Integration;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;

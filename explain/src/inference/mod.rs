@@ -41,9 +41,11 @@
 pub mod family;
 pub mod search;
 
-use analysis::papers::Papers;
+use crate::error::InferenceError;
+use analysis::papers::{PaperValue, Papers};
 use catalog::experiment::Scoring;
 use catalog::experiment::{Job, SolverChoice};
+use catalog::run_key::RunKey;
 use family::Family;
 use rayon::prelude::*;
 use records::inference::{
@@ -58,26 +60,6 @@ use simulation::row::run_row;
 use simulation::run::run_job;
 use std::f64::consts::PI;
 use std::time::Instant;
-
-/// What can go wrong in building or reading an inference.
-#[derive(Debug, thiserror::Error)]
-pub enum InferenceError {
-    #[error("{paper} {table}: no published per-joint drifts map onto a run")]
-    NoColumns { paper: String, table: String },
-    #[error("{paper} {table}: no {what} run of {experiment} / {variant}")]
-    NoRun {
-        paper: String,
-        table: String,
-        what: &'static str,
-        experiment: String,
-        variant: String,
-    },
-    #[error("inference family {}: {error}", file.display())]
-    Family {
-        file: std::path::PathBuf,
-        error: crate::error::FamilyError,
-    },
-}
 
 /// The exact column's tolerances during inference (see the module doc); the method stays the
 /// experiment's (Dormand-Prince, BDF for kong2019's stiff finite-time scheme).
@@ -210,6 +192,72 @@ impl TableProblem {
             ),
         }
     }
+
+    /// The runs of the mapped run `key` among `jobs`: the exact column of its task and the
+    /// paper's solver.
+    fn runs_of<'j>(
+        &self,
+        key: &RunKey,
+        jobs: &'j [Job],
+    ) -> Result<(&'j Job, &'j Job), InferenceError> {
+        let no_run = |what, experiment: &str, variant: &str| InferenceError::NoRun {
+            paper: self.paper.clone(),
+            table: self.table.clone(),
+            what,
+            experiment: experiment.to_string(),
+            variant: variant.to_string(),
+        };
+        let exact = jobs
+            .iter()
+            .find(|j| j.task() == key.task() && j.solver == SolverChoice::Exact)
+            .ok_or_else(|| no_run("exact", &key.experiment, &key.variant))?;
+        let network = jobs
+            .iter()
+            .find(|j| j.key() == *key)
+            .ok_or_else(|| no_run("network", &key.experiment, &key.variant))?;
+        Ok((exact, network))
+    }
+
+    /// Adds the published column `name`, its per-joint drifts `paper`, and its runs: the paper's
+    /// `network` as the experiment integrates it, and the `exact` column at the inference's
+    /// tolerances ([`inference_integrator`]; one run shared by the columns of a scheme
+    /// variant). A path whose size the paper prints keeps it; a scheme with an RMP term has its
+    /// readings tried.
+    fn add_column(&mut self, name: String, exact: &Job, network: &Job, paper: Vec<f64>) {
+        let exact = Job {
+            integrator: IntegratorSettings {
+                method: exact.integrator.method,
+                ..inference_integrator()
+            },
+            scoring: Scoring::Off,
+            ..exact.clone()
+        };
+        let index = match self.exact.iter().position(|r| r.key() == exact.key()) {
+            Some(i) => i,
+            None => {
+                self.exact.push(exact.clone());
+                self.exact.len() - 1
+            }
+        };
+        self.network.push(Job {
+            scoring: Scoring::Off,
+            ..network.clone()
+        });
+        if schemes::paths::scale_provenance(&exact.path.name) == Some("paper") {
+            self.fit_scale = false;
+        }
+        if matches!(exact.scheme, SchemeSpec::Vltco { tau, .. } if tau > 0.0)
+            || matches!(exact.scheme, SchemeSpec::Cmco { delta, .. } if delta > 0.0)
+        {
+            self.fit_rmp = true;
+        }
+        self.columns.push(Column {
+            name,
+            exact: index,
+            network: self.network.len() - 1,
+            paper,
+        });
+    }
 }
 
 /// The fit problem of one published table, from the paper values and the experiment files'
@@ -220,7 +268,6 @@ pub fn problem(
     papers: &Papers,
     jobs: &[Job],
 ) -> Result<TableProblem, InferenceError> {
-    let values = &papers.values;
     let mut p = TableProblem {
         paper: paper.to_string(),
         table: table.to_string(),
@@ -230,15 +277,9 @@ pub fn problem(
         fit_scale: true,
         fit_rmp: false,
     };
-    let no_run = |what, experiment: &str, variant: &str| InferenceError::NoRun {
-        paper: paper.to_string(),
-        table: table.to_string(),
-        what,
-        experiment: experiment.to_string(),
-        variant: variant.to_string(),
-    };
     let mut seen: Vec<(&str, &str)> = Vec::new();
-    for v in values
+    for v in papers
+        .values
         .iter()
         .filter(|v| v.paper == paper && v.table == table)
     {
@@ -249,65 +290,12 @@ pub fn problem(
         let Some(m) = papers.mapping_of(v) else {
             continue;
         };
-        let key = &m.run;
-        let drifts: Vec<f64> = (1..=6)
-            .map_while(|i| {
-                values
-                    .iter()
-                    .find(|w| {
-                        w.paper == paper
-                            && w.table == table
-                            && w.experiment == v.experiment
-                            && w.column == v.column
-                            && w.metric == format!("drift_{i}")
-                    })
-                    .map(|w| w.value)
-            })
-            .collect();
+        let drifts = published_drifts(&papers.values, v);
         if drifts.is_empty() {
             continue;
         }
-        let exact = jobs
-            .iter()
-            .find(|j| j.task() == key.task() && j.solver == SolverChoice::Exact)
-            .ok_or_else(|| no_run("exact", &key.experiment, &key.variant))?;
-        let network = jobs
-            .iter()
-            .find(|j| j.key() == *key)
-            .ok_or_else(|| no_run("network", &key.experiment, &key.variant))?;
-        let exact = Job {
-            integrator: IntegratorSettings {
-                method: exact.integrator.method,
-                ..inference_integrator()
-            },
-            scoring: Scoring::Off,
-            ..exact.clone()
-        };
-        let index = match p.exact.iter().position(|r| r.key() == exact.key()) {
-            Some(i) => i,
-            None => {
-                p.exact.push(exact.clone());
-                p.exact.len() - 1
-            }
-        };
-        p.network.push(Job {
-            scoring: Scoring::Off,
-            ..network.clone()
-        });
-        if schemes::paths::scale_provenance(&exact.path.name) == Some("paper") {
-            p.fit_scale = false;
-        }
-        if matches!(exact.scheme, SchemeSpec::Vltco { tau, .. } if tau > 0.0)
-            || matches!(exact.scheme, SchemeSpec::Cmco { delta, .. } if delta > 0.0)
-        {
-            p.fit_rmp = true;
-        }
-        p.columns.push(Column {
-            name: v.column.clone(),
-            exact: index,
-            network: p.network.len() - 1,
-            paper: drifts,
-        });
+        let (exact, network) = p.runs_of(&m.run, jobs)?;
+        p.add_column(v.column.clone(), exact, network, drifts);
     }
     if p.columns.is_empty() {
         return Err(InferenceError::NoColumns {
@@ -316,6 +304,25 @@ pub fn problem(
         });
     }
     Ok(p)
+}
+
+/// The published per-joint drifts of `v`'s column among `values`: drift_1, drift_2, ... up to
+/// the first joint the paper does not print.
+fn published_drifts(values: &[PaperValue], v: &PaperValue) -> Vec<f64> {
+    (1..=6)
+        .map_while(|i| {
+            values
+                .iter()
+                .find(|w| {
+                    w.paper == v.paper
+                        && w.table == v.table
+                        && w.experiment == v.experiment
+                        && w.column == v.column
+                        && w.metric == format!("drift_{i}")
+                })
+                .map(|w| w.value)
+        })
+        .collect()
 }
 
 /// How one setup does on a table.
@@ -573,24 +580,61 @@ pub fn fit(p: &TableProblem, family: &Family) -> Fit {
 
 /// The rows of one fit.
 pub fn rows(p: &TableProblem, f: &Fit) -> (Vec<InferenceRow>, Vec<EntryRow>) {
-    let names: Vec<&str> = p.columns.iter().map(|c| c.name.as_str()).collect();
-    let objective_name = |t: Target| match t {
-        Target::Joint => TABLE.to_string(),
-        Target::Column(c) => names[c].to_string(),
-    };
-    let objective = TableObjective {
-        problem: p,
-        combos: f.combos.clone(),
-        coordinates: f.coordinates.clone(),
-    };
-    let row = |kind: &str, t: Target, point: &Point, s: &Scores, e: Option<&Evaluation>| {
-        let setup = objective.setup(point);
+    let rows = FitRows::new(p, f);
+    let mut out = rows.declared_and_best();
+    out.extend(rows.hypotheses());
+    out.extend(rows.local_optima());
+    out.extend(rows.profiles());
+    (out, rows.entries())
+}
+
+/// One fit as rows: what its rows share.
+struct FitRows<'a> {
+    problem: &'a TableProblem,
+    fit: &'a Fit,
+    /// The fit's search space, to read the setup of a point.
+    objective: TableObjective<'a>,
+    /// Every objective: the whole table, then each column.
+    targets: Vec<Target>,
+}
+
+impl<'a> FitRows<'a> {
+    fn new(problem: &'a TableProblem, fit: &'a Fit) -> Self {
+        FitRows {
+            problem,
+            fit,
+            objective: TableObjective {
+                problem,
+                combos: fit.combos.clone(),
+                coordinates: fit.coordinates.clone(),
+            },
+            targets: std::iter::once(Target::Joint)
+                .chain((0..problem.columns.len()).map(Target::Column))
+                .collect(),
+        }
+    }
+
+    /// The row of the setup at `point` of kind `kind` for objective `t`, with its scores `s`
+    /// and, where evaluated in full, its evaluation `e` (entry errors and signs).
+    fn row(
+        &self,
+        kind: &str,
+        t: Target,
+        point: &Point,
+        s: &Scores,
+        e: Option<&Evaluation>,
+    ) -> InferenceRow {
+        let p = self.problem;
+        let setup = self.objective.setup(point);
         let signs = e.map(|e| e.signs_matched(t));
         InferenceRow {
             paper: p.paper.clone(),
             table: p.table.clone(),
             kind: kind.to_string(),
-            objective: objective_name(t),
+            objective: match t {
+                Target::Joint => TABLE.to_string(),
+                Target::Column(c) => p.columns[c].name.clone(),
+            },
             robot: setup.robot.clone(),
             integration: setup.integration,
             rotation: setup.rotation,
@@ -614,68 +658,117 @@ pub fn rows(p: &TableProblem, f: &Fit) -> (Vec<InferenceRow>, Vec<EntryRow>) {
             evaluations: 0,
             wall_s: 0.0,
         }
-    };
-    let out_ = &f.outcome;
-    let targets: Vec<Target> = std::iter::once(Target::Joint)
-        .chain((0..names.len()).map(Target::Column))
-        .collect();
-    let mut out = Vec::new();
-    let d = &out_.declared;
-    for &t in &targets {
-        out.push(row(DECLARED, t, &d.point, &d.scores, Some(&d.detail)));
     }
-    for &t in &targets {
-        let b = out_.best(t);
-        let mut r = row(BEST, t, &b.point, &b.scores, Some(&b.detail));
-        if t == Target::Joint {
-            r.evaluations = out_.evaluations;
-            r.wall_s = f.wall_s;
+
+    /// The declared setup for every objective, then the best setup for every objective (the
+    /// whole table's with the search's evaluations and wall time).
+    fn declared_and_best(&self) -> Vec<InferenceRow> {
+        let outcome = &self.fit.outcome;
+        let d = &outcome.declared;
+        let mut out = Vec::new();
+        for &t in &self.targets {
+            out.push(self.row(DECLARED, t, &d.point, &d.scores, Some(&d.detail)));
         }
-        out.push(r);
-    }
-    // The best of each hypothesis (robot x integration), every objective.
-    let mut hypotheses: Vec<(&str, Integration)> = Vec::new();
-    for c in &f.combos {
-        if !hypotheses.contains(&(c.robot.as_str(), c.integration)) {
-            hypotheses.push((c.robot.as_str(), c.integration));
+        for &t in &self.targets {
+            let b = outcome.best(t);
+            let mut r = self.row(BEST, t, &b.point, &b.scores, Some(&b.detail));
+            if t == Target::Joint {
+                r.evaluations = outcome.evaluations;
+                r.wall_s = self.fit.wall_s;
+            }
+            out.push(r);
         }
+        out
     }
-    for (robot, integration) in &hypotheses {
-        for &t in &targets {
-            let of =
-                |k: usize| f.combos[k].robot == *robot && f.combos[k].integration == *integration;
-            if let Some(b) = out_.best_where(t, of) {
-                out.push(row(HYPOTHESIS, t, &b.point, &b.scores, Some(&b.detail)));
+
+    /// The best of each hypothesis (robot x integration), every objective.
+    fn hypotheses(&self) -> Vec<InferenceRow> {
+        let combos = &self.fit.combos;
+        let mut hypotheses: Vec<(&str, Integration)> = Vec::new();
+        for c in combos {
+            if !hypotheses.contains(&(c.robot.as_str(), c.integration)) {
+                hypotheses.push((c.robot.as_str(), c.integration));
             }
         }
-    }
-    for l in &out_.local {
-        out.push(row(LOCAL, l.target, &l.point, &l.scores, None));
-    }
-    for profile in &out_.profiles {
-        let name = f.coordinates[profile.coordinate].name;
-        let kind = format!(
-            "{PROFILE} ({}): {name}",
-            if profile.refitted {
-                "re-fitted"
-            } else {
-                "slice"
+        let mut out = Vec::new();
+        for (robot, integration) in &hypotheses {
+            for &t in &self.targets {
+                let of =
+                    |k: usize| combos[k].robot == *robot && combos[k].integration == *integration;
+                if let Some(b) = self.fit.outcome.best_where(t, of) {
+                    out.push(self.row(HYPOTHESIS, t, &b.point, &b.scores, Some(&b.detail)));
+                }
             }
+        }
+        out
+    }
+
+    /// The local optima of the Nelder-Mead starts.
+    fn local_optima(&self) -> Vec<InferenceRow> {
+        self.fit
+            .outcome
+            .local
+            .iter()
+            .map(|l| self.row(LOCAL, l.target, &l.point, &l.scores, None))
+            .collect()
+    }
+
+    /// The points of the joint optimum's profiles, each profile's kind naming its coordinate.
+    fn profiles(&self) -> Vec<InferenceRow> {
+        let mut out = Vec::new();
+        for profile in &self.fit.outcome.profiles {
+            let name = self.fit.coordinates[profile.coordinate].name;
+            let kind = format!(
+                "{PROFILE} ({}): {name}",
+                if profile.refitted {
+                    "re-fitted"
+                } else {
+                    "slice"
+                }
+            );
+            for q in &profile.points {
+                out.push(self.row(&kind, Target::Joint, &q.point, &q.scores, None));
+            }
+        }
+        out
+    }
+
+    /// The per-joint entries, ours beside the paper's: of the declared setup and of the whole
+    /// table's best, every column; of each column's own best, that column.
+    fn entries(&self) -> Vec<EntryRow> {
+        let outcome = &self.fit.outcome;
+        let mut entries = Vec::new();
+        self.push_entries(&mut entries, DECLARED, &outcome.declared.detail, None);
+        self.push_entries(
+            &mut entries,
+            BEST,
+            &outcome.best(Target::Joint).detail,
+            None,
         );
-        for q in &profile.points {
-            out.push(row(&kind, Target::Joint, &q.point, &q.scores, None));
+        for c in 0..self.problem.columns.len() {
+            let best = &outcome.best(Target::Column(c)).detail;
+            self.push_entries(&mut entries, COLUMN_FIT, best, Some(c));
         }
+        entries
     }
-    let mut entries = Vec::new();
-    let mut push = |label: &str, e: &Evaluation, only: Option<usize>| {
+
+    /// Pushes onto `entries` the entries of `e` labelled `label`: of every column, or of the
+    /// column `only`.
+    fn push_entries(
+        &self,
+        entries: &mut Vec<EntryRow>,
+        label: &str,
+        e: &Evaluation,
+        only: Option<usize>,
+    ) {
         for (c, (column, pairs)) in e.entries.iter().enumerate() {
             if only.is_some_and(|o| o != c) {
                 continue;
             }
             for (k, (o, d)) in pairs.iter().enumerate() {
                 entries.push(EntryRow {
-                    paper: p.paper.clone(),
-                    table: p.table.clone(),
+                    paper: self.problem.paper.clone(),
+                    table: self.problem.table.clone(),
                     setup: label.to_string(),
                     column: column.clone(),
                     joint: k + 1,
@@ -686,11 +779,5 @@ pub fn rows(p: &TableProblem, f: &Fit) -> (Vec<InferenceRow>, Vec<EntryRow>) {
                 });
             }
         }
-    };
-    push(DECLARED, &d.detail, None);
-    push(BEST, &out_.best(Target::Joint).detail, None);
-    for c in 0..names.len() {
-        push(COLUMN_FIT, &out_.best(Target::Column(c)).detail, Some(c));
     }
-    (out, entries)
 }
