@@ -40,15 +40,15 @@ pub struct Clock<'a> {
 /// Groups of rungs with at least this share of the rungs' time get a row of their own.
 const MAJOR_SHARE: f64 = 0.01;
 
-/// `### The newcomer's clock`: the phases of the last `reproduce run` with where its explain
-/// phase spent its time, per revision a fresh clone's steps, the targets, and where a cold
-/// build spends its time (module docs); each absent file says how to produce it.
+/// `### The newcomer's clock`: the phases of the last `reproduce run`, per revision a fresh
+/// clone's steps, the targets, then where the explain phase and a cold build spend their time
+/// (module docs); each absent file says how to produce it.
 pub fn section(c: &Clock) -> String {
     let mut out = String::from("### The newcomer's clock\n\n");
     out.push_str(&phase_table(c.phases));
-    out.push_str(&explain_cost(c.ladder, c.phases, c.clock));
     out.push_str(&clock_table(c.clock));
     out.push_str(&clock_targets_table(c.clock));
+    out.push_str(&explain_cost(c.ladder, c.phases, c.clock));
     out.push_str(&build_profile(c.build, c.clock));
     out
 }
@@ -162,8 +162,9 @@ fn build_profile(rows: &[BuildUnitRow], clock: &[ClockRow]) -> String {
          `benches/clock/build_profile.sh` from cargo's own timings): {:.1} s of wall time. Its \
          {} units took {:.1} s of one core each ({:.1} s of them the workspace's own crates, in \
          bold below), so on {} cores no schedule ends before {:.1} s (the CPU bound). Its \
-         critical path, the chain of units each waiting for the one before, adds up to {:.1} \
-         s:\n\n",
+         critical path, traced back from the last unit through the dependency whose end let \
+         each unit start, is {:.1} s of work that no number of cores shortens (the gaps \
+         between its units, waiting for a free core, not counted):\n\n",
         text(p.commit),
         text(p.machine),
         p.cores,
@@ -534,7 +535,7 @@ mod tests {
             "{md}"
         );
         assert!(md.contains("no schedule ends before 135.0 s"), "{md}");
-        assert!(md.contains("adds up to 150.0 s"), "{md}");
+        assert!(md.contains("is 150.0 s of work"), "{md}");
         assert!(
             md.contains(
                 "| faer 0.24.4 | lib | 0.0 | 60.0 |\n| **solvers 0.1.0** | lib | 60.0 | 40.0 |"
