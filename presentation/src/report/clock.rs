@@ -120,11 +120,7 @@ fn explain_cost(ladder: &[LadderRow], phases: &[PhaseRow], clock: &[ClockRow]) -
             minor.core_s
         ));
     }
-    out.push_str(
-        "\nA rung stopped early ran until its step cap or its divergence bound. The baseline \
-         (`cc915b9`) reproduced no robio2018 run, so it laddered none (its committed \
-         `results/ladder.csv`).\n",
-    );
+    out.push_str("\nA rung stopped early ran until its step cap or its divergence bound.\n");
     let limit = limit_s(clock, Step::Reproduce);
     if let (Some(limit), Some(exceed), Some(floor)) = (
         limit,
