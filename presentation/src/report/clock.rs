@@ -157,7 +157,7 @@ fn build_profile(rows: &[BuildUnitRow], clock: &[ClockRow]) -> String {
          --timings` of `{}` on {} ({} cores), unit by unit (`results/{}`, by \
          `benches/clock/build_profile.sh` from cargo's own timings): {:.1} s of wall time. Its \
          {} units took {:.1} s of one core each ({:.1} s of them the workspace's own crates, in \
-         bold below), so on {} cores no schedule ends before {:.1} s (the CPU bound). Its \
+         bold below), so on {} cores no schedule of this work, each unit taking what it took here, ends before {:.1} s (the CPU bound). Its \
          critical path, traced back from the last unit through the dependency whose end let \
          each unit start, is {:.1} s of work that no number of cores shortens (the gaps \
          between its units, waiting for a free core, not counted):\n\n",
@@ -530,7 +530,7 @@ mod tests {
             md.contains("Its 4 units took 270.0 s of one core each (90.0 s of them"),
             "{md}"
         );
-        assert!(md.contains("no schedule ends before 135.0 s"), "{md}");
+        assert!(md.contains("ends before 135.0 s (the CPU bound)"), "{md}");
         assert!(md.contains("is 150.0 s of work"), "{md}");
         assert!(
             md.contains(
