@@ -23,6 +23,8 @@ usage() {
 
 repo=$(git -C "$(dirname "$0")" rev-parse --show-toplevel)
 here=$(cd "$(dirname "$0")" && pwd)
+# shellcheck source=lib.sh
+. "$here/lib.sh"
 out="$repo/results/build-profile.csv"
 rev=HEAD
 while [ $# -gt 0 ]; do
@@ -40,16 +42,9 @@ commit=$(git -C "$repo" rev-parse --verify --quiet "$rev^{commit}") || {
     echo "build_profile.sh: $rev: not a commit of $repo" >&2
     exit 2
 }
-machine=$(awk -F': *' '/^model name/ { print $2; exit }' /proc/cpuinfo 2>/dev/null || true)
-machine=$(echo "${machine:-unknown CPU}" | tr -s ' ' | tr -d '"')
+machine=$(machine_name)
 
-tmp=$(mktemp -d "${TMPDIR:-/tmp}/driftbench-build-profile.XXXXXX")
-# The --out file's temporary name has the program's own pattern, <name>.<pid>.<n>.tmp, so a
-# reproduce run cleans it up if this script is killed before the rename.
-partial="$out.$$.0.tmp"
-cleanup() { rm -rf "$tmp"; rm -f "$partial"; }
-trap cleanup EXIT
-trap 'exit 130' INT TERM
+make_tmp build-profile "$out"
 
 clone="$tmp/clone"
 echo "build_profile: cloning ${commit:0:12} into $tmp" >&2

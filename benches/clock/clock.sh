@@ -41,6 +41,8 @@ usage() {
 }
 
 repo=$(git -C "$(dirname "$0")" rev-parse --show-toplevel)
+# shellcheck source=lib.sh
+. "$(dirname "$0")/lib.sh"
 only="build,reproduce,test,wheel"
 out="$repo/results/clock.csv"
 fresh_home=0
@@ -90,8 +92,7 @@ for rev in "${revisions[@]}"; do
     commits+=("$commit")
 done
 
-machine=$(awk -F': *' '/^model name/ { print $2; exit }' /proc/cpuinfo 2>/dev/null || true)
-machine=$(echo "${machine:-unknown CPU}" | tr -s ' ' | tr -d '"')
+machine=$(machine_name)
 cores=$(nproc)
 
 # The commands a step runs, in the clone ($1); printed by --dry-run.
@@ -140,13 +141,7 @@ if [ "$dry_run" = 1 ]; then
     exit 0
 fi
 
-tmp=$(mktemp -d "${TMPDIR:-/tmp}/driftbench-clock.XXXXXX")
-# The --out file's temporary name has the program's own pattern, <name>.<pid>.<n>.tmp, so a
-# reproduce run cleans it up if this script is killed before the rename.
-partial="$out.$$.0.tmp"
-cleanup() { rm -rf "$tmp"; rm -f "$partial"; }
-trap cleanup EXIT
-trap 'exit 130' INT TERM
+make_tmp clock "$out"
 
 rows="$tmp/clock.csv"
 echo "revision,commit,step,seconds,exit_code,machine,cores,date" > "$rows"
