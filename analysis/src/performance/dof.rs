@@ -192,35 +192,7 @@ pub(crate) mod tests {
     /// nalgebra's below N = 12, faster there), whole exact runs of 1e4 N us over 1000 steps,
     /// plus the fits.
     pub(crate) fn synthetic() -> Vec<DofCostRow> {
-        let header = "scheme,scheme_name,network,quantity,backend,kind,n,nx,n_eq,n_in,median_us,\
-                      p95_us,samples,exponent,factor_us,steps,rhs_evals,completed,machine,cores,\
-                      git_rev\n";
-        let mut text = header.to_string();
-        for n in [3usize, 6, 12] {
-            let (nx, n_in, m) = (n + 1, 2 * n, (n * n) as f64);
-            for (q, f) in [
-                ("network-rhs", 1.0),
-                ("exact-active-set", 3.0),
-                ("kkt-floor", 0.5),
-            ] {
-                text.push_str(&format!(
-                    "demo,VLTCO,LVI-PDNN,{q},nalgebra,measured,{n},{nx},3,{n_in},{},{},300,,,,,,Test CPU,2,abc\n",
-                    f * m,
-                    1.5 * f * m
-                ));
-            }
-            text.push_str(&format!(
-                "demo,VLTCO,LVI-PDNN,kkt-floor,faer,measured,{n},{nx},3,{n_in},{},{},300,,,,,,Test CPU,2,abc\n",
-                if n < 12 { m } else { 0.25 * m },
-                2.0 * m
-            ));
-            text.push_str(&format!(
-                "demo,VLTCO,LVI-PDNN,run-exact,nalgebra,measured,{n},{nx},3,{n_in},{},{},5,,,1000,7000,true,Test CPU,2,abc\n",
-                1e4 * n as f64,
-                1.1e4 * n as f64
-            ));
-        }
-        let rows: Vec<DofCostRow> = records::table::from_reader(text.as_bytes()).unwrap();
+        let rows = fixtures::dof_cost("demo");
         let fits = crate::fits::fit_rows(&rows);
         rows.into_iter().chain(fits).collect()
     }

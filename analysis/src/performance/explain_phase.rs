@@ -142,19 +142,12 @@ mod tests {
 
     #[test]
     fn rungs_are_grouped_and_set_against_the_phase() {
-        let header = "paper,experiment,variant_id,solver_id,variant,solver,method,rtol,atol,max_step,as_run,status,failure,drift_1,drift_norm,max_pos_err,rel_change,stable_digits,reference,steps,rejected,rhs_evals,wall_s\n";
-        let row = |paper: &str, method: &str, status: &str, wall: f64| {
-            format!("{paper},e,v,s,V,S,{method},1e-6,1e-8,,false,{status},,0.1,0.1,0.0,,,false,10,0,20,{wall}\n")
-        };
-        let csv = [
-            header.to_string(),
-            row("p1", "fixed-step", "ok", 3.0),
-            row("p1", "fixed-step", "ok", 5.0),
-            row("p2", "dopri5", "failed", 2.0),
-            row("p2", "dopri5", "ok", 0.5),
-        ]
-        .concat();
-        let ladder: Vec<LadderRow> = records::table::from_reader(csv.as_bytes()).unwrap();
+        let ladder = fixtures::ladder_rows(&[
+            ("p1", "fixed-step", "ok", 3.0),
+            ("p1", "fixed-step", "ok", 5.0),
+            ("p2", "dopri5", "failed", 2.0),
+            ("p2", "dopri5", "ok", 0.5),
+        ]);
         let phases_csv =
             "phase,status,seconds,share_pct,items,note,selection,whole,machine,cores,git_rev\n\
              explain,ran,6.0,50.0,3,,s,true,CPU,2,abc\n";

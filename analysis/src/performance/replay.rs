@@ -87,36 +87,32 @@ pub fn target(rows: &[QpReplayRow]) -> Option<ReplayTarget> {
 mod tests {
     use super::*;
 
-    fn row(task: &str, solver: &str, start: &str, mean_us: f64) -> QpReplayRow {
-        QpReplayRow {
-            task: task.into(),
-            nx: 7,
-            n_eq: 3,
-            n_in: 12,
-            n_bounds: 13,
-            qps: 2000,
-            repeats: 20,
-            solver: solver.into(),
-            start: start.into(),
-            mean_us,
-            p95_us: mean_us,
-            max_dx_vs_other: 1e-15,
-            git_rev: "abc".into(),
-        }
-    }
-
     #[test]
     fn the_suite_is_priced_in_daqp_times() {
+        let task = |task: &str, times: &[(&str, &str, f64)]| {
+            fixtures::replay_rows(task, times, [7, 3, 12, 13], 1e-15)
+        };
         let rows = [
-            row("a", SUITE, "warm", 1.5),
-            row("a", SUITE, "cold", 3.0),
-            row("a", "daqp 9", "warm", 1.0),
-            row("a", "daqp 9", "cold", 1.5),
-            row("b", SUITE, "warm", 0.5),
-            row("b", SUITE, "cold", 1.0),
-            row("b", "daqp 9", "warm", 1.0),
-            row("b", "daqp 9", "cold", 1.0),
-        ];
+            task(
+                "a",
+                &[
+                    (SUITE, "warm", 1.5),
+                    (SUITE, "cold", 3.0),
+                    ("daqp 9", "warm", 1.0),
+                    ("daqp 9", "cold", 1.5),
+                ],
+            ),
+            task(
+                "b",
+                &[
+                    (SUITE, "warm", 0.5),
+                    (SUITE, "cold", 1.0),
+                    ("daqp 9", "warm", 1.0),
+                    ("daqp 9", "cold", 1.0),
+                ],
+            ),
+        ]
+        .concat();
         let lines = lines(&rows);
         assert_eq!(lines.len(), 4);
         assert_eq!(

@@ -469,18 +469,11 @@ mod tests {
             "phase,status,seconds,share_pct,items,note,selection,whole,machine,cores,git_rev\n\
              explain,ran,6.0,50.0,3,,every run,true,CPU,2,abc\n";
         let phases: Vec<PhaseRow> = records::table::from_reader(phases_csv.as_bytes()).unwrap();
-        let header = "paper,experiment,variant_id,solver_id,variant,solver,method,rtol,atol,max_step,as_run,status,failure,drift_1,drift_norm,max_pos_err,rel_change,stable_digits,reference,steps,rejected,rhs_evals,wall_s\n";
-        let rung = |paper: &str, method: &str, status: &str, wall: f64| {
-            format!("{paper},e,v,s,V,S,{method},1e-6,1e-8,,false,{status},,0.1,0.1,0.0,,,false,10,0,20,{wall}\n")
-        };
-        let ladder_csv = [
-            header.to_string(),
-            rung("p<i>1</i>", "fixed-step", "ok", 8.0),
-            rung("p2", "dopri5", "failed", 2.0),
-            rung("p2", "bdf", "ok", 0.05),
-        ]
-        .concat();
-        let ladder: Vec<LadderRow> = records::table::from_reader(ladder_csv.as_bytes()).unwrap();
+        let ladder = fixtures::ladder_rows(&[
+            ("p<i>1</i>", "fixed-step", "ok", 8.0),
+            ("p2", "dopri5", "failed", 2.0),
+            ("p2", "bdf", "ok", 0.05),
+        ]);
         let build_csv = "unit,crate_name,version,kind,workspace,start_s,duration_s,unblocked_by,commit,machine,cores,date,build_wall_s\n\
                          0,faer,0.24.4,lib,false,0,60,,0123456789ab,CPU,2,d,200\n\
                          1,solvers,0.1.0,lib,true,60,40,0,0123456789ab,CPU,2,d,200\n\

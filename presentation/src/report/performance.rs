@@ -726,66 +726,9 @@ mod tests {
     use super::*;
     use records::qp_replay::SUITE;
 
-    /// Replay rows of one task of QP sizes `[nx, n_eq, n_in, n_bounds]`: one per (solver,
-    /// start, mean microseconds), the p95 equal to the mean, the answers `max_dx` apart.
-    fn replay_rows(
-        times: &[(&str, &str, f64)],
-        [nx, n_eq, n_in, n_bounds]: [usize; 4],
-        max_dx: f64,
-    ) -> Vec<QpReplayRow> {
-        times
-            .iter()
-            .map(|&(solver, start, mean_us)| QpReplayRow {
-                task: "t / v".into(),
-                nx,
-                n_eq,
-                n_in,
-                n_bounds,
-                qps: 2000,
-                repeats: 20,
-                solver: solver.into(),
-                start: start.into(),
-                mean_us,
-                p95_us: mean_us,
-                max_dx_vs_other: max_dx,
-                git_rev: "abc".into(),
-            })
-            .collect()
-    }
-
-    /// A synthetic dof-cost.csv: jia2019 at N = 3, 6, 12 with cost = N^2 us (network RHS) and
-    /// 3 N^2 (active set), plus the fits.
+    /// The fixture `dof-cost.csv` of scheme jia2019 ([`fixtures::dof_cost`]) with its fits.
     fn synthetic() -> Vec<DofCostRow> {
-        let header = "scheme,scheme_name,network,quantity,backend,kind,n,nx,n_eq,n_in,median_us,\
-                      p95_us,samples,exponent,factor_us,steps,rhs_evals,completed,machine,cores,\
-                      git_rev\n";
-        let mut text = header.to_string();
-        for n in [3usize, 6, 12] {
-            let (nx, n_in, m) = (n + 1, 2 * n, (n * n) as f64);
-            for (q, f) in [
-                ("network-rhs", 1.0),
-                ("exact-active-set", 3.0),
-                ("kkt-floor", 0.5),
-            ] {
-                text.push_str(&format!(
-                    "jia2019,VLTCO,LVI-PDNN,{q},nalgebra,measured,{n},{nx},3,{n_in},{},{},300,,,,,,Test CPU,2,abc\n",
-                    f * m,
-                    1.5 * f * m
-                ));
-            }
-            // faer's KKT floor: slower than nalgebra's (0.5 N^2) below N = 12, faster there.
-            text.push_str(&format!(
-                "jia2019,VLTCO,LVI-PDNN,kkt-floor,faer,measured,{n},{nx},3,{n_in},{},{},300,,,,,,Test CPU,2,abc\n",
-                if n < 12 { m } else { 0.25 * m },
-                2.0 * m
-            ));
-            text.push_str(&format!(
-                "jia2019,VLTCO,LVI-PDNN,run-exact,nalgebra,measured,{n},{nx},3,{n_in},{},{},5,,,1000,7000,true,Test CPU,2,abc\n",
-                1e4 * n as f64,
-                1.1e4 * n as f64
-            ));
-        }
-        let rows: Vec<DofCostRow> = records::table::from_reader(text.as_bytes()).unwrap();
+        let rows = fixtures::dof_cost("jia2019");
         let fits = analysis::fits::fit_rows(&rows);
         rows.into_iter().chain(fits).collect()
     }
@@ -811,7 +754,8 @@ mod tests {
                        KKT solves,0.75,demo/hot,8,4999,abc\n\
                        certification (KKT residuals),0.25,demo/hot,8,4999,abc\n";
         let hot: Vec<HotSolveRow> = records::table::from_reader(hot_csv.as_bytes()).unwrap();
-        let replay = replay_rows(
+        let replay = fixtures::replay_rows(
+            "t / v",
             &[
                 (SUITE, "warm", 1.5),
                 (SUITE, "cold", 3.0),
@@ -933,7 +877,8 @@ mod tests {
     #[test]
     fn a_met_replay_target_is_said_without_the_profile() {
         // The suite at 0.5 and 0.8 of DAQP's time: met, and no gap for the profile to explain.
-        let rows = replay_rows(
+        let rows = fixtures::replay_rows(
+            "t / v",
             &[
                 (SUITE, "warm", 0.5),
                 (SUITE, "cold", 0.8),
