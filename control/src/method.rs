@@ -10,6 +10,7 @@ use records::control::Family;
 use schemes::qp::QpDims;
 use settings::solver_spec::SolverSpec;
 use solvers::lvi_numerical::{LviMethod, LviSettings, LviSolver};
+#[cfg(feature = "osqp")]
 use solvers::osqp_qp::{OsqpQp, OsqpSettings};
 use solvers::{ExactSolver, HotActiveSet};
 
@@ -23,27 +24,23 @@ pub enum Numerical {
     ActiveSet,
     /// Clarabel (interior point: no warm start).
     Clarabel,
-    /// OSQP, data updated in place and warm-started.
+    /// OSQP, data updated in place and warm-started (with the `osqp` feature).
+    #[cfg(feature = "osqp")]
     Osqp(OsqpSettings),
 }
 
 impl Numerical {
     /// The methods of the control experiments, at their default settings: the six PLPE
-    /// methods in robio2018's order, then the active set, Clarabel and OSQP.
-    pub fn all() -> [Numerical; 9] {
-        let [lvi94, e47, m3, m4, m5, m6] =
-            LviMethod::ALL.map(|m| Numerical::Lvi(m, LviSettings::default()));
-        [
-            lvi94,
-            e47,
-            m3,
-            m4,
-            m5,
-            m6,
-            Numerical::ActiveSet,
-            Numerical::Clarabel,
-            Numerical::Osqp(OsqpSettings::default()),
-        ]
+    /// methods in robio2018's order, then the active set, Clarabel and (with the `osqp`
+    /// feature) OSQP.
+    pub fn all() -> Vec<Numerical> {
+        let mut all: Vec<Numerical> = LviMethod::ALL
+            .map(|m| Numerical::Lvi(m, LviSettings::default()))
+            .into();
+        all.extend([Numerical::ActiveSet, Numerical::Clarabel]);
+        #[cfg(feature = "osqp")]
+        all.push(Numerical::Osqp(OsqpSettings::default()));
+        all
     }
 
     /// Display name.
@@ -52,6 +49,7 @@ impl Numerical {
             Numerical::Lvi(m, _) => m.name(),
             Numerical::ActiveSet => "active set",
             Numerical::Clarabel => "Clarabel",
+            #[cfg(feature = "osqp")]
             Numerical::Osqp(_) => "OSQP",
         }
     }
@@ -112,6 +110,7 @@ impl Method {
                 Box::new(QpTick::new(HotActiveSet::new(dims)))
             }
             Method::Numerical(Numerical::Clarabel) => Box::new(QpTick::new(ExactSolver::new())),
+            #[cfg(feature = "osqp")]
             Method::Numerical(Numerical::Osqp(s)) => Box::new(QpTick::new(OsqpQp::new(dims, *s))),
         })
     }

@@ -264,7 +264,9 @@ impl<'a> LoopRun<'a> {
             * match self.method {
                 Method::Network { substeps, .. } => f64::from(substeps),
                 Method::Numerical(Numerical::Lvi(..)) => 30.0,
-                Method::Numerical(Numerical::Clarabel | Numerical::Osqp(_)) => 10.0,
+                Method::Numerical(Numerical::Clarabel) => 10.0,
+                #[cfg(feature = "osqp")]
+                Method::Numerical(Numerical::Osqp(_)) => 10.0,
                 Method::Numerical(Numerical::ActiveSet) => 1.0,
             }
     }

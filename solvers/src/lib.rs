@@ -18,6 +18,7 @@ pub mod kkt_schur;
 pub mod lvi_numerical;
 pub mod neural;
 pub mod ode;
+#[cfg(feature = "osqp")]
 pub mod osqp_qp;
 pub mod qp_solver;
 pub mod random_qp;

@@ -7,7 +7,7 @@
 //! - the dense active-set solver hot-started from the previous call's optimal working set
 //!   ([`HotActiveSet`]);
 //! - Clarabel ([`ExactSolver`]): an interior-point method, started afresh every call;
-//! - OSQP ([`OsqpQp`]): data updated in place, warm-started.
+//! - OSQP (`OsqpQp`, with the `osqp` feature): data updated in place, warm-started.
 //!
 //! Each type's inherent `solve` keeps its own richer result; [`QpSolver::solve`] is the common
 //! view, and [`QpSolverError`] wraps each method's error.
@@ -15,6 +15,7 @@
 use crate::active_set::{ActiveSetError, ActiveSetSolution, ActiveSetSolver, WorkingSet};
 use crate::exact::{ExactError, ExactSolver};
 use crate::lvi_numerical::{LviError, LviSolver};
+#[cfg(feature = "osqp")]
 use crate::osqp_qp::{OsqpError, OsqpQp};
 use schemes::qp::{Qp, QpDims};
 
@@ -49,6 +50,7 @@ pub enum QpSolverError {
     #[error("exact solver: {0}")]
     Exact(#[from] ExactError),
     /// OSQP.
+    #[cfg(feature = "osqp")]
     #[error(transparent)]
     Osqp(#[from] OsqpError),
 }
@@ -111,6 +113,7 @@ impl QpSolver for ExactSolver {
     }
 }
 
+#[cfg(feature = "osqp")]
 impl QpSolver for OsqpQp {
     fn solve(&mut self, qp: &Qp) -> Result<QpSolve, QpSolverError> {
         Ok(QpSolve {

@@ -5,6 +5,7 @@
 //! the typed errors, the [`QpSolver`] view of every per-instant method, and OSQP warm-started.
 
 use solvers::lvi_numerical::{LviError, LviMethod, LviSettings, LviSolver};
+#[cfg(feature = "osqp")]
 use solvers::osqp_qp::{OsqpQp, OsqpSettings};
 use solvers::{
     random_feasible, random_qp, ExactSolver, HotActiveSet, Qp, QpDims, QpShape, QpSolver,
@@ -196,6 +197,7 @@ fn every_qp_solver_agrees_with_clarabel() {
             Box::new(LviSolver::new(LviMethod::M4, dims, settings())),
             Box::new(HotActiveSet::new(dims)),
             Box::new(ExactSolver::new()),
+            #[cfg(feature = "osqp")]
             Box::new(OsqpQp::new(dims, OsqpSettings::default())),
         ];
         for solver in &mut all {
@@ -210,6 +212,7 @@ fn every_qp_solver_agrees_with_clarabel() {
     }
 }
 
+#[cfg(feature = "osqp")]
 #[test]
 fn osqp_agrees_with_clarabel_warm() {
     let mut clarabel = ExactSolver::new();
