@@ -26,6 +26,8 @@ pub enum Kind {
     /// A table one of the Python package's scripts wrote, to be sealed into `results/`
     /// (`driftbench.into_results`; the committed ones are at most 5 kB).
     ScriptTable,
+    /// A URDF an arm is read from (`robots::urdf`; the URDFs of common arms are 10-400 kB).
+    Urdf,
 }
 
 const MIB: u64 = 1 << 20;
@@ -38,6 +40,7 @@ impl Kind {
             Kind::PaperValues => 4 * MIB,
             Kind::TrajectoryCsv | Kind::TrajectoryMat | Kind::Baseline => 256 * MIB,
             Kind::ShardManifest | Kind::ScriptTable => 64 * MIB,
+            Kind::Urdf => 16 * MIB,
         }
     }
 
@@ -53,6 +56,7 @@ impl Kind {
             Kind::ShardManifest => "shard manifest",
             Kind::ShardBinding => "shard binding",
             Kind::ScriptTable => "results table",
+            Kind::Urdf => "URDF",
         }
     }
 }

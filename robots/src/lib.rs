@@ -33,6 +33,7 @@
 
 use nalgebra::{SMatrix, SVector, Vector3};
 
+pub mod chain;
 pub mod data_robot;
 pub mod dh;
 pub mod geometric_jacobian;
@@ -47,6 +48,7 @@ pub mod panda;
 pub mod registry;
 pub mod rigid_body;
 pub mod robot_file;
+pub mod urdf;
 
 pub use data_robot::{DataModel, DataRobot};
 pub use jaco2::{Jaco2, JACO2, JACO2_HAND, JACO2_PEN, JACO2_PEN_EXP2};

@@ -4,6 +4,7 @@
 
 mod common;
 
+mod chain;
 mod data_robots;
 mod jaco2_dynamics;
 mod jaco2_kinematics;
