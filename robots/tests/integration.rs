@@ -12,5 +12,6 @@ mod katana;
 mod nlink;
 mod nlink_dyn;
 mod panda;
+mod pinocchio;
 mod robot_file;
 mod skeleton;
