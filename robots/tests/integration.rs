@@ -15,3 +15,4 @@ mod panda;
 mod pinocchio;
 mod robot_file;
 mod skeleton;
+mod urdf;
