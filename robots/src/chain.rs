@@ -203,12 +203,9 @@ pub enum ChainError {
         /// What is wrong.
         problem: &'static str,
     },
-    /// The base, tool or origin transform is not a rigid transform.
-    #[error("the {which} transform is not a finite rotation and translation")]
-    Transform {
-        /// `base` or `tool`.
-        which: &'static str,
-    },
+    /// The tool transform has a non-finite entry.
+    #[error("the tool transform is not finite")]
+    ToolNotFinite,
 }
 
 /// A serial chain of runtime size (module documentation).
@@ -258,7 +255,7 @@ impl Chain {
             return Err(ChainError::NoJoints);
         }
         if !finite_frame(&tool) {
-            return Err(ChainError::Transform { which: "tool" });
+            return Err(ChainError::ToolNotFinite);
         }
         for (k, j) in joints.iter_mut().enumerate() {
             let index = k + 1;

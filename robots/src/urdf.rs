@@ -118,6 +118,16 @@ pub enum UrdfChainError {
         /// The file's link names, at most [`MAX_LISTED_LINKS`], escaped and cut.
         valid: String,
     },
+    /// A joint names a parent or child link that the file does not declare.
+    #[error("{file}: joint {joint:?} names link {link:?}, which has no <link> element")]
+    UndeclaredLink {
+        /// The URDF.
+        file: String,
+        /// The joint (cut).
+        joint: String,
+        /// The link (cut).
+        link: String,
+    },
     /// A link is the child of two joints: the file is not a tree.
     #[error("{file}: link {link:?} is the child of two joints; a URDF must be a tree")]
     TwoParents {
@@ -261,6 +271,15 @@ pub fn parse(file: &str, text: &str, ends: &ChainEnds) -> Result<Chain, UrdfChai
     let mut parent_joint: HashMap<&str, usize> = HashMap::new();
     let mut child_joints: HashMap<&str, Vec<usize>> = HashMap::new();
     for (k, j) in robot.joints.iter().enumerate() {
+        for link in [&j.parent.link, &j.child.link] {
+            if !links.contains_key(link.as_str()) {
+                return Err(UrdfChainError::UndeclaredLink {
+                    file: file.to_string(),
+                    joint: shown(&j.name),
+                    link: shown(link),
+                });
+            }
+        }
         if parent_joint.insert(j.child.link.as_str(), k).is_some() {
             return Err(UrdfChainError::TwoParents {
                 file: file.to_string(),
@@ -383,6 +402,7 @@ fn rigid_body(
     let mut parts = Vec::new();
     while let Some((name, frame)) = stack.pop() {
         if let Some(link) = links.get(name) {
+            // Every link a joint names is declared (checked by `parse`).
             let inertial = &link.inertial;
             let at = frame.compose(&pose(&inertial.origin));
             let i = &inertial.inertia;

@@ -266,6 +266,12 @@ fn unsupported_joints_and_non_trees_are_refused() {
         error(&two_parents, "base", "tcp").0,
         UrdfChainError::TwoParents { .. }
     ));
+    let undeclared = arm(0.2).replace(r#"<link name="tcp"/>"#, "");
+    let (e, m) = error(&undeclared, "base", "l3");
+    assert!(
+        matches!(e, UrdfChainError::UndeclaredLink { .. }) && m.contains("\"tcp_joint\""),
+        "{m}"
+    );
     let cycle = r#"<robot name="c"><link name="a"/><link name="b"/>
         <joint name="ab" type="fixed"><parent link="a"/><child link="b"/></joint>
         <joint name="ba" type="revolute"><parent link="b"/><child link="a"/>
