@@ -1,8 +1,8 @@
 //! `robots::urdf` and `robots::chain` against Pinocchio, the outside reference: the URDFs of the
 //! `example-robot-data` package (UR5, Panda to its hand and to its prismatic finger, Kinova
 //! Jaco2 with continuous joints, Unitree Z1, xArm7), at seeded random states. The script
-//! `tests/pinocchio_reference.py` prints Pinocchio's tool pose, LOCAL_WORLD_ALIGNED Jacobian,
-//! H, c and g; this test loads the same URDF through `robots::urdf::read` and compares, entry by
+//! `tests/pinocchio_reference.py` prints Pinocchio's tool pose, LOCAL_WORLD_ALIGNED Jacobian
+//! and its time derivative, H, c and g; this test loads the same URDF through `robots::urdf::read` and compares, entry by
 //! entry, to 1e-12 relative to max(1, |value|).
 //!
 //! The interpreter is `$DRIFTBENCH_PYTHON` (default `python3`). Where it cannot import
@@ -48,6 +48,7 @@ struct Sample {
     position: [f64; 3],
     rotation: [[f64; 3]; 3],
     jacobian: Vec<Vec<f64>>,
+    jacobian_dot: Vec<Vec<f64>>,
     inertia: Vec<Vec<f64>>,
     coriolis: Vec<f64>,
     gravity: Vec<f64>,
@@ -169,6 +170,13 @@ fn urdf_chains_match_pinocchio() {
             let jac = chain.jacobian(&mut ws, theta).clone();
             let theirs = (0..n).flat_map(|j| (0..6).map(move |i| s.jacobian[i][j]));
             worst = worst.max(compare(&what("jacobian"), jac.iter().copied(), theirs));
+            let jac_dot = chain.jacobian_dot(&mut ws, theta, qd).clone();
+            let theirs = (0..n).flat_map(|j| (0..6).map(move |i| s.jacobian_dot[i][j]));
+            worst = worst.max(compare(
+                &what("jacobian_dot"),
+                jac_dot.iter().copied(),
+                theirs,
+            ));
             let h = chain.inertia(&mut ws, theta).clone();
             let theirs = (0..n).flat_map(|j| (0..n).map(move |i| s.inertia[i][j]));
             worst = worst.max(compare(&what("H"), h.iter().copied(), theirs));

@@ -7,7 +7,8 @@ on the path from the base to the tip, the script prints:
 
 - the world placement of the base link (the Rust chain takes it as its base transform),
 - the tool point and the tool frame's rotation (world),
-- the 6 x n Jacobian of the tool frame in LOCAL_WORLD_ALIGNED (linear rows, then angular),
+- the 6 x n Jacobian of the tool frame in LOCAL_WORLD_ALIGNED (linear rows, then angular) and
+  its time derivative along thetadot (getFrameJacobianTimeVariation),
 - H (crba, symmetrised), c = nonLinearEffects - g and g = computeGeneralizedGravity,
 
 restricted to the path's joints. Every joint off the path (a gripper's fingers, say) has its
@@ -110,6 +111,9 @@ def case(out, rng, root, name, urdf, base, tip, tool):
         pin.framesForwardKinematics(model, data, q)
         tool_pose = data.oMf[tool_id]
         jac = pin.computeFrameJacobian(model, data, q, tool_id, pin.LOCAL_WORLD_ALIGNED)[:, v_idx]
+        pin.computeJointJacobiansTimeVariation(model, data, q, v)
+        pin.updateFramePlacements(model, data)
+        jac_dot = pin.getFrameJacobianTimeVariation(model, data, tool_id, pin.LOCAL_WORLD_ALIGNED)[:, v_idx]
         mass = pin.crba(model, data, q)
         mass = np.triu(mass) + np.triu(mass, 1).T
         g = pin.computeGeneralizedGravity(model, data, q).copy()
@@ -120,6 +124,7 @@ def case(out, rng, root, name, urdf, base, tip, tool):
         out.append(f"position = {toml_value(tool_pose.translation)}")
         out.append(f"rotation = {toml_value([list(r) for r in tool_pose.rotation])}")
         out.append(f"jacobian = {toml_value([list(r) for r in jac])}")
+        out.append(f"jacobian_dot = {toml_value([list(r) for r in jac_dot])}")
         out.append(f"inertia = {toml_value([list(mass[i, v_idx]) for i in v_idx])}")
         out.append(f"coriolis = {toml_value(c[v_idx])}")
         out.append(f"gravity = {toml_value(g[v_idx])}")
