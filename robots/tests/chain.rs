@@ -161,7 +161,7 @@ fn potential(chain: &Chain, ws: &mut ChainWorkspace, q: &DVector<f64>) -> f64 {
 
 #[test]
 fn inertia_is_symmetric_positive_definite_and_rnea_is_consistent() {
-    for (seed, n) in [(21, 1), (22, 4), (23, 7), (24, 15)] {
+    for (seed, n) in [(21, 1), (22, 4), (23, 7), (24, 15), (25, 200)] {
         let chain = random_chain(seed, n);
         let mut ws = chain.workspace();
         let mut rng = ChaCha8Rng::seed_from_u64(seed + 100);

@@ -351,3 +351,35 @@ fn read_goes_through_the_input_reader() {
     assert!(missing.to_string().contains("none.urdf"), "{missing}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn a_two_hundred_joint_urdf_is_one_chain() {
+    let n = 200;
+    let links: String = (0..=n)
+        .map(|i| format!("<link name=\"l{i}\"><inertial><mass value=\"0.1\"/><inertia ixx=\"1e-4\" ixy=\"0\" ixz=\"0\" iyy=\"1e-4\" iyz=\"0\" izz=\"1e-4\"/></inertial></link>"))
+        .collect();
+    let joints: String = (0..n)
+        .map(|i| {
+            format!(
+                "<joint name=\"j{i}\" type=\"revolute\"><parent link=\"l{i}\"/><child link=\"l{}\"/>\
+                 <origin xyz=\"0 0 0.01\" rpy=\"0 {} 0\"/><axis xyz=\"{}\"/>\
+                 <limit lower=\"-3\" upper=\"3\" velocity=\"1\" effort=\"10\"/></joint>",
+                i + 1,
+                0.01 * i as f64,
+                if i % 2 == 0 { "0 0 1" } else { "0 1 0" }
+            )
+        })
+        .collect();
+    let text = format!("<robot name=\"long\">{links}{joints}</robot>");
+    let chain = parse("long.urdf", &text, &ends("l0", &format!("l{n}"))).unwrap();
+    assert_eq!(chain.dof(), n);
+    let mut ws = chain.workspace();
+    let q: Vec<f64> = (0..n).map(|i| (i as f64 * 0.37).sin()).collect();
+    let h = chain.inertia(&mut ws, &q).clone();
+    assert!((&h - h.transpose()).amax() <= 1e-12 * h.amax());
+    assert!(
+        h.clone().cholesky().is_some(),
+        "H positive definite at 200 joints"
+    );
+    assert_eq!(chain.jacobian(&mut ws, &q).ncols(), n);
+}
