@@ -5,9 +5,10 @@
 //! - presentation links no crate that simulates or solves (solvers, simulation, control,
 //!   explain, cost): rendering the report and its figures needs only the records of the runs;
 //! - the numerical crates (robots, schemes, settings, solvers) link no experiment-file or
-//!   results crate (catalog, records, inputs): a user can take the arms, the schemes and the
-//!   solvers without the experiment files. (robots reads its own robot files, so TOML is
-//!   allowed.)
+//!   results crate (catalog, records): a user can take the arms, the schemes and the solvers
+//!   without the experiment files. (robots reads its own robot files, so TOML is allowed, and
+//!   reads URDFs through `inputs`, the one reader of files from outside, which holds no file
+//!   format of the suite's.)
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -19,7 +20,7 @@ const SOLVING: [&str; 5] = ["solvers", "simulation", "control", "explain", "cost
 const NUMERICAL: [&str; 4] = ["robots", "schemes", "settings", "solvers"];
 
 /// What the numerical crates may not link: the experiment-file and results crates.
-const FILE_FORMATS: [&str; 3] = ["catalog", "records", "inputs"];
+const FILE_FORMATS: [&str; 2] = ["catalog", "records"];
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..")

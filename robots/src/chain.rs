@@ -727,6 +727,12 @@ fn is_psd(m: &Matrix3<f64>) -> bool {
 
 /// The buffers of a chain's evaluations ([`Chain::workspace`]): allocated once for a chain's
 /// size, reused by every call. The results the evaluations return borrow from it.
+///
+/// # Panics
+///
+/// Every evaluation panics if the workspace was made for a chain with another number of
+/// joints, or a joint vector has not [`Chain::dof`] entries: both are errors of the calling
+/// code, not of any input file.
 #[derive(Clone, Debug)]
 pub struct ChainWorkspace {
     frames: Vec<Frame>,

@@ -512,6 +512,18 @@ fn a_workspace_gives_the_same_results_on_reuse() {
     chain.coriolis(&mut ws, &[0.5; 6], &[1.0; 6]);
     assert_eq!(&first, chain.inertia(&mut ws, &q));
     assert_eq!(&first, chain.inertia(&mut chain.workspace(), &q));
+    // A new tool frame moves the tool pose by that frame in the last body's frame.
+    let last = chain.body_frames(&mut ws, &q)[5];
+    let x = Frame {
+        rot: Rotation3::new(Vector3::new(0.1, 0.2, 0.3)).into_inner(),
+        origin: Vector3::new(0.0, 0.0, 0.2),
+    };
+    let moved = chain.clone().with_tool(x);
+    let pose = moved.tool_pose(&mut moved.workspace(), &q);
+    let expected = last.compose(&x);
+    assert!(
+        (pose.origin - expected.origin).amax() < 1e-15 && (pose.rot - expected.rot).amax() < 1e-15
+    );
 }
 
 /// Counts this thread's allocations, so that a test can show a code path allocates nothing
