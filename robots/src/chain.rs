@@ -67,10 +67,28 @@
 //!   tau_i = z_i . n_i (revolute),   tau_i = z_i . f_i (prismatic)
 //! ```
 //!
-//! Then `tau = RNEA(q, qd, qdd, g0) = H qdd + c + g`, and
-//! `g(q) = RNEA(q, 0, 0, g0)` (the gradient of the potential `U = -sum m_i g0 . p_ci`),
-//! `c(q, qd) = RNEA(q, qd, 0, 0)` and column `j` of `H(q)` is `RNEA(q, 0, e_j, 0)`
-//! (symmetric positive definite when every body has positive mass and inertia).
+//! Then `tau = RNEA(q, qd, qdd, g0) = H qdd + c + g`, so
+//! `g(q) = RNEA(q, 0, 0, g0)` (the gradient of the potential `U = -sum m_i g0 . p_ci`) and
+//! `c(q, qd) = RNEA(q, qd, 0, 0)`.
+//!
+//! `H(q)` (column `j` would be `RNEA(q, 0, e_j, 0)`) comes from the composite-rigid-body
+//! algorithm, in `O(n^2)` small steps instead of `n` passes of the recursion. The bodies
+//! `j..n` held rigid form a composite of mass `M_j`, first moment `h_j = sum m_k p_ck` and
+//! inertia about the world origin `J_j = sum (I_k^w + m_k (|p_ck|^2 E - p_ck p_ck'))`, added up
+//! from the tip. At rest, a unit acceleration of joint `j` alone needs on the composite the
+//! force and moment about `o_j`
+//!
+//! ```text
+//! revolute:   f = z_j x (h_j - M_j o_j),   n = J_j(o_j) z_j,
+//!             J_j(o) = J_j + (M_j |o|^2 - 2 o . h_j) E - (M_j o o' - h_j o' - o h_j')
+//! prismatic:  f = M_j z_j,                  n = (h_j - M_j o_j) x z_j,
+//! ```
+//!
+//! (`J_j(o)` is the composite's inertia about `o`, by the parallel-axis theorem written without
+//! dividing by the mass), and for `i <= j` the torque at joint `i` is
+//! `H_ij = H_ji = z_i . (n + (o_j - o_i) x f)` (revolute `i`) or `z_i . f` (prismatic `i`).
+//! `H` is symmetric positive definite when every body has positive mass and a positive definite
+//! inertia.
 //!
 //! # From DH tables
 //!
@@ -466,7 +484,6 @@ impl Chain {
             jacobian_dot: DMatrix::zeros(6, n),
             mass_matrix: DMatrix::zeros(n, n),
             torque: DVector::zeros(n),
-            unit: DVector::zeros(n),
         }
     }
 
@@ -666,17 +683,40 @@ impl Chain {
         &ws.torque
     }
 
-    /// The joint-space inertia matrix `H(theta)` (n x n), column `j` = `RNEA(q, 0, e_j, 0)`.
+    /// The joint-space inertia matrix `H(theta)` (n x n) by the composite-rigid-body algorithm
+    /// (module documentation).
     pub fn inertia<'w>(&self, ws: &'w mut ChainWorkspace, theta: &[f64]) -> &'w DMatrix<f64> {
         self.dynamics_prelude(ws, theta, &[]);
-        let mut unit = std::mem::take(&mut ws.unit);
-        for j in 0..self.dof() {
-            unit.fill(0.0);
-            unit[j] = 1.0;
-            self.rnea(ws, None, Some(unit.as_slice()), Vector3::zeros());
-            ws.mass_matrix.set_column(j, &ws.torque);
+        let mut mass = 0.0;
+        let mut moment = Vector3::<f64>::zeros();
+        let mut about_origin = Matrix3::<f64>::zeros();
+        for (j, joint) in self.joints.iter().enumerate().rev() {
+            let m = joint.body.as_ref().map_or(0.0, |b| b.mass);
+            let c = ws.com[j];
+            mass += m;
+            moment += c * m;
+            about_origin +=
+                ws.inertia[j] + (Matrix3::identity() * c.norm_squared() - c * c.transpose()) * m;
+            let (z, o) = (ws.axes[j], ws.frames[j].origin);
+            let offset = moment - o * mass;
+            let (f, n) = if joint.kind.rotates() {
+                let about_o = about_origin
+                    + Matrix3::identity() * (mass * o.norm_squared() - 2.0 * o.dot(&moment))
+                    - (o * o.transpose() * mass - moment * o.transpose() - o * moment.transpose());
+                (z.cross(&offset), about_o * z)
+            } else {
+                (z * mass, offset.cross(&z))
+            };
+            for (i, joint_i) in self.joints[..=j].iter().enumerate() {
+                let h = if joint_i.kind.rotates() {
+                    ws.axes[i].dot(&(n + (o - ws.frames[i].origin).cross(&f)))
+                } else {
+                    ws.axes[i].dot(&f)
+                };
+                ws.mass_matrix[(i, j)] = h;
+                ws.mass_matrix[(j, i)] = h;
+            }
         }
-        ws.unit = unit;
         &ws.mass_matrix
     }
 
@@ -746,5 +786,4 @@ pub struct ChainWorkspace {
     jacobian_dot: DMatrix<f64>,
     mass_matrix: DMatrix<f64>,
     torque: DVector<f64>,
-    unit: DVector<f64>,
 }
