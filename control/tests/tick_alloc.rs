@@ -50,8 +50,12 @@ fn ticks_do_not_allocate() {
             for (k, qp) in qps.iter().enumerate() {
                 let mut result = Ok(());
                 let n = count(|| result = solver.tick(k as f64 * 1e-3, qp, Some(qp), 1e-3));
-                // The scaled networks may blow up on random data; only allocation matters here.
-                let _ = result;
+                // The scaled networks and robio2018's rules as printed may fail on random data;
+                // a failed tick carries its error boxed (`qp::QpSolverError`, one allocation on
+                // a path that ends the run), so only the ticks that succeed are held to none.
+                if result.is_err() {
+                    continue;
+                }
                 assert_eq!(
                     n,
                     0,

@@ -236,7 +236,7 @@ pub mod prelude {
     pub use simulation::score_trajectory::score_trajectory;
     pub use simulation::simulate::{Outcome, Run};
     pub use solvers::neural::NeuralSolver;
-    pub use solvers::qp_solver::QpSolver;
+    pub use solvers::{QpSolver, QpStatus, SolverId};
 }
 
 #[cfg(test)]

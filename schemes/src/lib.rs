@@ -9,19 +9,18 @@
 
 #![deny(missing_docs)]
 
-pub use error::QpError;
-pub use qp::{KktResiduals, Qp, QpDims, QpDuals};
+// The QP moved to crate `qp`, slug and sign_power to crate `settings`; these re-exports
+// keep the old paths while the engine is converted (removed with it).
+pub use ::qp;
+pub use ::qp::dot as qp_dot;
+pub use ::qp::{KktResiduals, Qp, QpDims, QpDuals, QpError};
+pub use settings::{sign_power, slug};
 
-pub mod error;
 pub mod joint_limits;
 pub mod paths;
-pub mod qp;
-pub mod qp_dot;
 pub mod rmp;
 pub mod scheme;
-pub mod sign_power;
 pub mod slice_scheme;
-pub mod slug;
 pub mod spec;
 pub mod tri_criteria;
 pub mod velocity_rmp;

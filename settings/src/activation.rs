@@ -11,7 +11,11 @@
 //! - `group-power-sigmoid`: the group code's `AFMpowersigmoid`, the same two branches with
 //!   alpha = xi and chi = p (the power branch from |e| >= 1); defaults
 //!   [`GROUP_POWER_SIGMOID_XI`], [`GROUP_POWER_SIGMOID_P`], the function called with one
-//!   argument.
+//!   argument;
+//! - `sign-power` (kong2019 (6)): Phi(e) = |e|^r sgn(e), r = `exponent`, with a linear zone of
+//!   half-width `smoothing` around 0 (`sign_power`'s smoothed form);
+//! - `sign-bi-power`: Phi(e) = (|e|^r sgn(e) + |e|^(1/r) sgn(e)) / 2, the finite-time
+//!   activation of the zeroing literature, each half smoothed as the sign-power.
 //!
 //! Experiment files write the kind and its parameters beside the network's own fields
 //! (`activation = "power-sigmoid", alpha = 4, chi = 3`); `alpha`/`chi` are ignored for the other
@@ -28,6 +32,11 @@ pub const POWER_SIGMOID_CHI: f64 = 3.0;
 pub const GROUP_POWER_SIGMOID_XI: f64 = 1.0;
 /// Default p of the group's power-sigmoid (`AFMpowersigmoid` called with one argument).
 pub const GROUP_POWER_SIGMOID_P: f64 = 1.0;
+/// Default exponent r of the sign-power activations.
+pub const SIGN_POWER_EXPONENT: f64 = 0.5;
+/// Default half-width of the sign-power activations' linear zone (the finite-time network's,
+/// `solvers::neural::zeroing`).
+pub const SIGN_POWER_SMOOTHING: f64 = 1e-8;
 
 /// The serde name of an activation in experiment files (parameters given beside it).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default, Deserialize, Serialize)]
@@ -42,6 +51,10 @@ pub enum ActivationKind {
     PowerSigmoid,
     /// The group's power-sigmoid (`group-power-sigmoid`, parameters `xi` and `power`).
     GroupPowerSigmoid,
+    /// |e|^r sgn(e) (parameters `exponent` and `smoothing`).
+    SignPower,
+    /// (|e|^r + |e|^(1/r)) sgn(e) / 2 (parameters `exponent` and `smoothing`).
+    SignBiPower,
 }
 
 impl ActivationKind {
@@ -52,6 +65,8 @@ impl ActivationKind {
             ActivationKind::Sinh => "sinh",
             ActivationKind::PowerSigmoid => "power-sigmoid",
             ActivationKind::GroupPowerSigmoid => "group-power-sigmoid",
+            ActivationKind::SignPower => "sign-power",
+            ActivationKind::SignBiPower => "sign-bi-power",
         }
     }
 }
@@ -70,6 +85,10 @@ pub struct ActivationSpec {
     pub xi: f64,
     /// The group's power-sigmoid p.
     pub power: f64,
+    /// The sign-power exponent r.
+    pub exponent: f64,
+    /// The sign-power's linear zone half-width.
+    pub smoothing: f64,
 }
 
 impl ActivationSpec {
@@ -81,6 +100,8 @@ impl ActivationSpec {
             chi: POWER_SIGMOID_CHI,
             xi: GROUP_POWER_SIGMOID_XI,
             power: GROUP_POWER_SIGMOID_P,
+            exponent: SIGN_POWER_EXPONENT,
+            smoothing: SIGN_POWER_SMOOTHING,
         }
     }
 
@@ -97,6 +118,9 @@ impl ActivationSpec {
                 if self.xi != GROUP_POWER_SIGMOID_XI || self.power != GROUP_POWER_SIGMOID_P =>
             {
                 format!("group-power-sigmoid(xi={},p={})", self.xi, self.power)
+            }
+            ActivationKind::SignPower | ActivationKind::SignBiPower => {
+                format!("{}(r={})", self.kind.id(), self.exponent)
             }
             kind => kind.id().to_string(),
         }

@@ -106,4 +106,15 @@ pub enum NetworkError {
     /// The finite-time network's exponent outside (0, 1).
     #[error("finite-time network needs 0 < alpha < 1 (kong2019 (20)), got {0}")]
     FiniteTimeAlpha(f64),
+    /// A zeroing network's gain law that is not positive for t >= 0
+    /// ([`crate::zeroing::GainLaw::validate`]).
+    #[error("the {law} gain law needs {symbol} > 0 (c_k >= 0 past c_0; at most 8 coefficients), got {value}")]
+    GainLaw {
+        /// The law: `constant`, `exponential`, `power` or `polynomial`.
+        law: &'static str,
+        /// The parameter out of range.
+        symbol: &'static str,
+        /// Its value (the number of coefficients for `coefficients`).
+        value: f64,
+    },
 }

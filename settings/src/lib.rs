@@ -7,10 +7,15 @@
 //!   perturbation of zhang2018 ([`solver_spec::ReferencePerturbation`]);
 //! - [`activation`]: an activation function and all of its parameters as one value
 //!   ([`activation::ActivationSpec`]; zhong2021 (2.29) and the group's power-sigmoid);
+//! - [`zeroing`]: the zeroing family as a vocabulary (gain law, activation, growing gain,
+//!   perturbation), of which the papers' zeroing networks are presets;
 //! - [`network_kind`]: a network's kind ([`network_kind::NetworkKind`]), its identity in
 //!   experiment files and `runs.csv`;
 //! - [`integrator`]: the integration method and its tolerances and budgets;
 //! - [`linear_algebra`]: the system size from which dense LU runs on faer;
+//! - [`slug`]: the one rule for ids and file-name stems;
+//! - [`sign_power`]: the sign-power function shared by kong2019's finite-time scheme and the
+//!   finite-time activations;
 //! - [`error`]: the checks' errors ([`error::NetworkError`], [`error::IntegratorError`]).
 //!
 //! Crate `solvers` builds its networks and integrators from these values; crate `catalog` reads
@@ -34,4 +39,7 @@ pub mod error;
 pub mod integrator;
 pub mod linear_algebra;
 pub mod network_kind;
+pub mod sign_power;
+pub mod slug;
 pub mod solver_spec;
+pub mod zeroing;

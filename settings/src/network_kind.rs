@@ -25,11 +25,13 @@ pub enum NetworkKind {
     Znn,
     /// The group code's zeroing network.
     GroupZnn,
+    /// A zeroing network given as a point of the vocabulary (`crate::zeroing`).
+    Zeroing,
 }
 
 impl NetworkKind {
     /// Every kind, in the order of [`crate::solver_spec::SolverSpec`]'s variants.
-    pub const ALL: [NetworkKind; 8] = [
+    pub const ALL: [NetworkKind; 9] = [
         NetworkKind::LviPdnn,
         NetworkKind::SLviPdnn,
         NetworkKind::VpRnnPf,
@@ -38,6 +40,7 @@ impl NetworkKind {
         NetworkKind::FiniteTime,
         NetworkKind::Znn,
         NetworkKind::GroupZnn,
+        NetworkKind::Zeroing,
     ];
 
     /// The id experiment files and `runs.csv` use.
@@ -51,6 +54,7 @@ impl NetworkKind {
             NetworkKind::FiniteTime => "finite-time",
             NetworkKind::Znn => "znn",
             NetworkKind::GroupZnn => "group-znn",
+            NetworkKind::Zeroing => "zeroing",
         }
     }
 }

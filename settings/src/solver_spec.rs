@@ -12,7 +12,15 @@
 //! solver = { kind = "znn", gamma = 1 }
 //! solver = { kind = "group-znn", gamma = 500, nu = 2500, perturbation = { a_s = 1.5, task_duration = 8 } }
 //! solver = { kind = "group-znn", udot_rmp = false, activation = "linear" }
+//! solver = { kind = "zeroing", gain = { law = "power", gamma = 1.0, p = 2.0 }, activation = "sign-bi-power", exponent = 0.5 }
 //! ```
+//!
+//! `zeroing` is the zeroing family as data ([`crate::zeroing`]): `gain` (a table with its `law`:
+//! `constant`, `exponential`, `power`, `polynomial`), `activation` with its parameters
+//! (`exponent`, `smoothing` for `sign-power` and `sign-bi-power`), `nu` (growing gain, default
+//! 0), `perturbation`, `perturbation_matrix` (default true) and `udot_rmp` (default true). The
+//! other zeroing kinds (`fp-cdnn`, `vp-cdnn`, `finite-time`, `znn`, `group-znn`) are presets
+//! that expand to it ([`SolverSpec::zeroing`]).
 //!
 //! `activation` is `linear` (default; for `group-znn` the default is `group-power-sigmoid`),
 //! `sinh`, `power-sigmoid` or `group-power-sigmoid`; `alpha`/`chi` (defaults 4 and 3) are the
@@ -27,17 +35,18 @@
 //! [`SolverSpec`] with the activation's fields inline is what serde reads and writes, converted
 //! to and from [`SolverSpec`] without loss.
 //!
-//! `group-znn` (the group's network, `solvers::neural::group`): `gamma` (default 500), `nu`
+//! `group-znn` (the group's network, `docs/networks.md`): `gamma` (default 500), `nu`
 //! (default 2500), `activation`, `perturbation` (optional, as the CDNNs; only `a_s` and `task_duration`
 //! are used, its DeltaD is not) and `udot_rmp` (default true; false drops the -qdot part of
 //! udot, as the group's EXP1 file).
 
 use crate::activation::{
     ActivationKind, ActivationSpec, GROUP_POWER_SIGMOID_P, GROUP_POWER_SIGMOID_XI,
-    POWER_SIGMOID_ALPHA, POWER_SIGMOID_CHI,
+    POWER_SIGMOID_ALPHA, POWER_SIGMOID_CHI, SIGN_POWER_EXPONENT, SIGN_POWER_SMOOTHING,
 };
 use crate::error::NetworkError;
 use crate::network_kind::NetworkKind;
+use crate::zeroing::{GainLaw, ZeroingSpec};
 use serde::{Deserialize, Serialize};
 
 /// The group's gamma (`mvn_ZZJLJrebi1.m`).
@@ -45,7 +54,7 @@ pub const GROUP_GAMMA: f64 = 500.0;
 /// The group's nu of the growing-gain term -nu t E.
 pub const GROUP_NU: f64 = 2500.0;
 /// Default half-width of the sign-power's linear zone of the finite-time network (see
-/// `solvers::neural::znn`).
+/// `docs/networks.md`).
 pub const FINITE_TIME_SMOOTHING: f64 = 1e-8;
 /// Size of the reference perturbation: n + m = 6 + 3 (Jaco2, position task).
 pub const PERTURBATION_DIM: usize = 9;
@@ -61,7 +70,7 @@ fn default_a_s() -> f64 {
     REFERENCE_A_S
 }
 
-/// zhang2018's reference perturbation DeltaD(t), Delta s(t) (its terms: `solvers::neural::cdnn`):
+/// zhang2018's reference perturbation DeltaD(t), Delta s(t) (its terms: `solvers::neural::perturbation`):
 /// amplitudes A_D, A_s and the task duration T.
 #[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -131,6 +140,12 @@ fn default_group_activation() -> ActivationKind {
 fn default_true() -> bool {
     true
 }
+fn default_exponent() -> f64 {
+    SIGN_POWER_EXPONENT
+}
+fn default_sign_smoothing() -> f64 {
+    SIGN_POWER_SMOOTHING
+}
 
 /// A network and its parameters, by the papers' names.
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
@@ -176,7 +191,7 @@ pub enum SolverSpec {
         perturbation: Option<ReferencePerturbation>,
     },
     /// kong2019 (20) (derived form): gain beta, sign-power exponent alpha (paper: 1 and 0.1),
-    /// linear zone |e| < smoothing of the sign-power (ours, see `solvers::neural::znn`).
+    /// linear zone |e| < smoothing of the sign-power (ours, see `docs/networks.md`).
     FiniteTime {
         /// The gain beta.
         beta: f64,
@@ -190,7 +205,7 @@ pub enum SolverSpec {
         /// The gain gamma.
         gamma: f64,
     },
-    /// The papers' group's own network (`docs/group-code.md`, `solvers::neural::group`):
+    /// The papers' group's own network (`docs/group-code.md`, `docs/networks.md`):
     /// Q ydot = -Qdot y - gamma Phi(E) + udot - nu t E + Delta_s(t).
     GroupZnn {
         /// gamma (default [`GROUP_GAMMA`]).
@@ -204,6 +219,21 @@ pub enum SolverSpec {
         /// false: udot = [0; bdot], without its -qdot part (the group's EXP1 file).
         udot_rmp: bool,
     },
+    /// A zeroing network as a point of the vocabulary ([`crate::zeroing`]).
+    Zeroing {
+        /// g(t).
+        gain: GainLaw,
+        /// Phi.
+        activation: ActivationSpec,
+        /// nu of the growing-gain term -nu t E.
+        nu: f64,
+        /// zhang2018's reference perturbation, if any.
+        perturbation: Option<ReferencePerturbation>,
+        /// Whether the perturbation's DeltaD(t) is used (else Delta s(t) alone).
+        perturbation_matrix: bool,
+        /// false: udot = [0; bdot].
+        udot_rmp: bool,
+    },
 }
 
 impl From<FileSolverSpec> for SolverSpec {
@@ -214,6 +244,8 @@ impl From<FileSolverSpec> for SolverSpec {
             chi,
             xi,
             power,
+            exponent: SIGN_POWER_EXPONENT,
+            smoothing: SIGN_POWER_SMOOTHING,
         };
         match f {
             FileSolverSpec::LviPdnn { gamma } => SolverSpec::LviPdnn { gamma },
@@ -284,6 +316,31 @@ impl From<FileSolverSpec> for SolverSpec {
                 nu,
                 activation: act(activation, alpha, chi, xi, power),
                 perturbation,
+                udot_rmp,
+            },
+            FileSolverSpec::Zeroing {
+                gain,
+                activation,
+                alpha,
+                chi,
+                xi,
+                power,
+                exponent,
+                smoothing,
+                nu,
+                perturbation,
+                perturbation_matrix,
+                udot_rmp,
+            } => SolverSpec::Zeroing {
+                gain,
+                activation: ActivationSpec {
+                    exponent,
+                    smoothing,
+                    ..act(activation, alpha, chi, xi, power)
+                },
+                nu,
+                perturbation,
+                perturbation_matrix,
                 udot_rmp,
             },
         }
@@ -363,6 +420,27 @@ impl From<SolverSpec> for FileSolverSpec {
                 perturbation,
                 udot_rmp,
             },
+            SolverSpec::Zeroing {
+                gain,
+                activation: a,
+                nu,
+                perturbation,
+                perturbation_matrix,
+                udot_rmp,
+            } => FileSolverSpec::Zeroing {
+                gain,
+                activation: a.kind,
+                alpha: a.alpha,
+                chi: a.chi,
+                xi: a.xi,
+                power: a.power,
+                exponent: a.exponent,
+                smoothing: a.smoothing,
+                nu,
+                perturbation,
+                perturbation_matrix,
+                udot_rmp,
+            },
         }
     }
 }
@@ -428,7 +506,7 @@ enum FileSolverSpec {
         perturbation: Option<ReferencePerturbation>,
     },
     /// kong2019 eq. 20 (derived form): gain beta, sign-power exponent alpha (paper: 1 and 0.1),
-    /// linear zone |e| < smoothing of the sign-power (ours, see `solvers::neural::znn`).
+    /// linear zone |e| < smoothing of the sign-power (ours, see `docs/networks.md`).
     FiniteTime {
         beta: f64,
         alpha: f64,
@@ -437,7 +515,7 @@ enum FileSolverSpec {
     },
     /// Linear ZNN (kong2019's comparison solver).
     Znn { gamma: f64 },
-    /// The papers' group's own network (`docs/group-code.md`, `solvers::neural::group`):
+    /// The papers' group's own network (`docs/group-code.md`, `docs/networks.md`):
     /// Q ydot = -Qdot y - gamma Phi(E) + udot - nu t E + Delta_s(t).
     GroupZnn {
         #[serde(default = "default_group_gamma")]
@@ -461,6 +539,32 @@ enum FileSolverSpec {
         #[serde(default = "default_true")]
         udot_rmp: bool,
     },
+    /// The zeroing family as data ([`crate::zeroing`]).
+    Zeroing {
+        gain: GainLaw,
+        #[serde(default)]
+        activation: ActivationKind,
+        #[serde(default = "default_alpha")]
+        alpha: f64,
+        #[serde(default = "default_chi")]
+        chi: f64,
+        #[serde(default = "default_xi")]
+        xi: f64,
+        #[serde(default = "default_power")]
+        power: f64,
+        #[serde(default = "default_exponent")]
+        exponent: f64,
+        #[serde(default = "default_sign_smoothing")]
+        smoothing: f64,
+        #[serde(default)]
+        nu: f64,
+        #[serde(default)]
+        perturbation: Option<ReferencePerturbation>,
+        #[serde(default = "default_true")]
+        perturbation_matrix: bool,
+        #[serde(default = "default_true")]
+        udot_rmp: bool,
+    },
 }
 
 impl SolverSpec {
@@ -481,7 +585,86 @@ impl SolverSpec {
             SolverSpec::FiniteTime { .. } => NetworkKind::FiniteTime,
             SolverSpec::Znn { .. } => NetworkKind::Znn,
             SolverSpec::GroupZnn { .. } => NetworkKind::GroupZnn,
+            SolverSpec::Zeroing { .. } => NetworkKind::Zeroing,
         }
+    }
+
+    /// The zeroing network this spec is a preset of (module docs; [`crate::zeroing`]), or
+    /// `None` for the projection networks and VP-RNN-PF, which are not of that family.
+    pub fn zeroing(&self) -> Option<ZeroingSpec> {
+        let linear = ActivationSpec::of(ActivationKind::Linear);
+        Some(match self {
+            SolverSpec::LviPdnn { .. }
+            | SolverSpec::SLviPdnn { .. }
+            | SolverSpec::VpRnnPf { .. } => return None,
+            SolverSpec::FpCdnn {
+                gamma,
+                activation,
+                perturbation,
+            } => ZeroingSpec {
+                perturbation: *perturbation,
+                ..ZeroingSpec::new("FP-CDNN", GainLaw::Constant { gamma: *gamma }, *activation)
+            },
+            SolverSpec::VpCdnn {
+                gamma,
+                activation,
+                perturbation,
+            } => ZeroingSpec {
+                perturbation: *perturbation,
+                ..ZeroingSpec::new(
+                    "VP-CDNN",
+                    GainLaw::Exponential { gamma: *gamma },
+                    *activation,
+                )
+            },
+            SolverSpec::FiniteTime {
+                beta,
+                alpha,
+                smoothing,
+            } => ZeroingSpec::new(
+                "FTNN",
+                GainLaw::Constant { gamma: *beta },
+                ActivationSpec {
+                    exponent: *alpha,
+                    smoothing: *smoothing,
+                    ..ActivationSpec::of(ActivationKind::SignPower)
+                },
+            ),
+            SolverSpec::Znn { gamma } => {
+                ZeroingSpec::new("ZNN", GainLaw::Constant { gamma: *gamma }, linear)
+            }
+            SolverSpec::GroupZnn {
+                gamma,
+                nu,
+                activation,
+                perturbation,
+                udot_rmp,
+            } => ZeroingSpec {
+                nu: *nu,
+                perturbation: *perturbation,
+                matrix_perturbation: false,
+                udot_q: *udot_rmp,
+                ..ZeroingSpec::new(
+                    "group ZNN",
+                    GainLaw::Constant { gamma: *gamma },
+                    *activation,
+                )
+            },
+            SolverSpec::Zeroing {
+                gain,
+                activation,
+                nu,
+                perturbation,
+                perturbation_matrix,
+                udot_rmp,
+            } => ZeroingSpec {
+                nu: *nu,
+                perturbation: *perturbation,
+                matrix_perturbation: *perturbation_matrix,
+                udot_q: *udot_rmp,
+                ..ZeroingSpec::new("zeroing", gain.clone(), *activation)
+            },
+        })
     }
 
     /// The network's stable id in run keys, results rows and file names: its kind, followed by
@@ -492,11 +675,14 @@ impl SolverSpec {
     pub fn id(&self) -> String {
         let d = self.distinguishing();
         let mut parts: Vec<String> = vec![self.kind().to_string()];
+        if let Some(law) = &d.law {
+            parts.push(crate::slug::slug(law));
+        }
         if let Some((gamma, nu)) = d.gains {
             parts.push(format!("gamma-{gamma}-nu-{nu}"));
         }
         if let Some(a) = &d.activation {
-            parts.push(schemes::slug::slug(a));
+            parts.push(crate::slug::slug(a));
         }
         match d.perturbation {
             Some((Some(a_d), a_s)) => parts.push(format!("perturbed-ad-{a_d}-as-{a_s}")),
@@ -514,6 +700,7 @@ impl SolverSpec {
     pub fn display_name(&self) -> String {
         let d = self.distinguishing();
         let mut parts: Vec<String> = Vec::new();
+        parts.extend(d.law.clone());
         if let Some((gamma, nu)) = d.gains {
             parts.push(format!("gamma={gamma}"));
             parts.push(format!("nu={nu}"));
@@ -536,6 +723,7 @@ impl SolverSpec {
             SolverSpec::FiniteTime { .. } => "FTNN",
             SolverSpec::Znn { .. } => "ZNN",
             SolverSpec::GroupZnn { .. } => "group ZNN",
+            SolverSpec::Zeroing { .. } => "ZNN",
         };
         if parts.is_empty() {
             base.to_string()
@@ -581,6 +769,25 @@ impl SolverSpec {
                 d.gains = Some((*gamma, *nu));
                 d.udot_without_qdot = !udot_rmp;
             }
+            SolverSpec::Zeroing {
+                gain,
+                activation,
+                nu,
+                perturbation,
+                perturbation_matrix,
+                udot_rmp,
+            } => {
+                d.law = Some(if *nu > 0.0 {
+                    format!("{} nu={nu}", gain.name())
+                } else {
+                    gain.name()
+                });
+                d.activation = Some(activation.name());
+                d.perturbation = perturbation
+                    .as_ref()
+                    .map(|p| (perturbation_matrix.then_some(p.a_d), p.a_s));
+                d.udot_without_qdot = !udot_rmp;
+            }
         }
         d
     }
@@ -605,6 +812,8 @@ impl SolverSpec {
 /// What tells two networks of one kind apart in the experiment files.
 #[derive(Default)]
 struct Distinguishing {
+    /// A vocabulary network's gain law with its parameters (and its growing gain).
+    law: Option<String>,
     /// The activation's name where it is named: always for VP-RNN-PF, when not linear for the
     /// CDNNs, when not the group's power-sigmoid for the group ZNN.
     activation: Option<String>,

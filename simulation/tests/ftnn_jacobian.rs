@@ -12,8 +12,9 @@ use schemes::scheme::Scheme;
 use schemes::slice_scheme::Fixed;
 use schemes::velocity_rmp::VelocityRmp;
 use settings::integrator::IntegratorSettings;
+use settings::solver_spec::SolverSpec;
 use simulation::coupled::NeuralLoop;
-use solvers::neural::finite_time;
+use solvers::neural::build_solver;
 use solvers::ode::{integrate, Control, OdeSystem};
 use std::sync::Arc;
 
@@ -28,9 +29,14 @@ fn coupled_ftnn_jacobian_matches_fine_central_differences() {
     let spec: PathSpec = toml::from_str("name = \"circle\"\nduration = 9.0").unwrap();
     let path: Arc<dyn Path> = Arc::from(build_path(&spec, robot.position(&theta_ref)).unwrap());
     let scheme = VelocityRmp::finite_time(robot.clone(), path, theta_ref, 1.0, 0.1, 1.0);
-    let net = finite_time(1.0, 0.1, 1e-6, scheme.dims()).unwrap();
+    let ftnn = SolverSpec::FiniteTime {
+        beta: 1.0,
+        alpha: 0.1,
+        smoothing: 1e-6,
+    };
+    let net = build_solver(&ftnn, scheme.dims()).unwrap();
     let fixed = Fixed(&scheme as &dyn Scheme<5>);
-    let mut sys = NeuralLoop::new(&fixed, Box::new(net));
+    let mut sys = NeuralLoop::new(&fixed, net);
     let n = sys.dim();
     let mut y0 = vec![0.0; n];
     y0[..5].copy_from_slice(theta0.as_slice());

@@ -1,4 +1,4 @@
-//! A hand-written dense active-set solver for the small strictly convex QPs of [`schemes::qp`],
+//! A hand-written dense active-set solver for the small strictly convex QPs of [`qp`],
 //! hot-started from the previous instant's working set and certified by its KKT residuals.
 //!
 //! # Why hand-written
@@ -11,7 +11,7 @@
 //!
 //! # Problem and constraint numbering
 //!
-//! The QP is that of [`schemes::qp`]: minimise x'Px/2 + q'x subject to A x = b, G x <= h,
+//! The QP is that of [`qp`]: minimise x'Px/2 + q'x subject to A x = b, G x <= h,
 //! l <= x <= u. Every inequality is written as c_k'x <= d_k and numbered (this is the order
 //! used for every tie break):
 //!
@@ -150,7 +150,7 @@
 //!
 //! # Certification
 //!
-//! Every answer (x and the multipliers, in the sign convention of [`schemes::qp`]:
+//! Every answer (x and the multipliers, in the sign convention of [`qp`]:
 //! P x + q + A'lambda + G'mu + z_u - z_l = 0) has its KKT residuals, as [`Qp::kkt_residuals`]
 //! defines them, computed by the solver: stationarity, primal feasibility, dual feasibility and
 //! complementarity must all be at most `tol * (1 + max(|q|_inf, |b|_inf))`, the scale of
@@ -190,8 +190,8 @@
 
 use crate::kkt_schur::{dot, SchurKkt};
 use nalgebra::DVector;
-use schemes::qp::{KktResiduals, Qp, QpDims, QpDuals};
-use schemes::QpError;
+use qp::QpError;
+use qp::{KktResiduals, Qp, QpDims, QpDuals};
 use std::fmt;
 
 /// Default relative tolerance of the certification (see the module docs).
@@ -334,7 +334,7 @@ pub enum ActiveSetStart {
 pub struct ActiveSetSolution {
     /// The primal solution x.
     pub x: DVector<f64>,
-    /// Multipliers in the convention of [`schemes::qp`] (zero outside the working set).
+    /// Multipliers in the convention of [`qp`] (zero outside the working set).
     pub duals: QpDuals,
     /// x'Px/2 + q'x at `x`.
     pub objective: f64,

@@ -54,7 +54,7 @@
 //! S = sum_i alpha_i mu_i >= 0 on the bound that makes u (x_j's own upper bound or the bound
 //! row, divided by its coefficient). S > 0 only if some coupled row is active in the reduced
 //! QP, c_i'y* = h_i + alpha_i u, and then x_j* = u: complementarity holds. The lifted
-//! (x, multipliers) is certified by [`schemes::qp::Qp::kkt_residuals`] on the original QP with
+//! (x, multipliers) is certified by [`qp::Qp::kkt_residuals`] on the original QP with
 //! the active-set solver's tolerance, so the answer is the original QP's optimum (KKT
 //! sufficiency, [`crate::active_set`]), whatever the reduction's arithmetic did.
 //!
@@ -65,7 +65,7 @@
 
 use crate::active_set::ActiveSetSolution;
 use nalgebra::DVector;
-use schemes::qp::{Qp, QpDims, QpDuals};
+use qp::{Qp, QpDims, QpDuals};
 
 /// What a row of the original G is to the eliminated variable.
 #[derive(Clone, Copy, Debug, PartialEq)]

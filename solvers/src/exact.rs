@@ -1,5 +1,5 @@
 //! The exact reference solver: Clarabel (an interior-point conic solver) on the QP of
-//! [`schemes::qp`], plus a direct KKT solve for equality-only QPs as an independent check.
+//! [`qp`], plus a direct KKT solve for equality-only QPs as an independent check.
 //!
 //! # Cone mapping
 //!
@@ -23,7 +23,7 @@
 //! Only finite bounds get a row; an absent bound (l_i = -inf, u_i = +inf) and an absent
 //! inequality (h_i = +inf) get no row and a zero multiplier: no big-M constant is ever
 //! introduced. With this stacking Clarabel's stationarity P x + q + A_c' z = 0 reads
-//! P x + q + A'lambda + G'mu + z_u - z_l = 0, exactly the convention of [`schemes::qp`], so the
+//! P x + q + A'lambda + G'mu + z_u - z_l = 0, exactly the convention of [`qp`], so the
 //! multipliers are copied without sign changes. P is passed as its upper triangle in CSC form.
 //!
 //! # Tolerances
@@ -50,8 +50,8 @@ use clarabel::solver::{
     DefaultSettings, DefaultSettingsBuilder, DefaultSolver, IPSolver, SolverStatus, SupportedConeT,
 };
 use nalgebra::{DMatrix, DVector};
-use schemes::qp::{KktResiduals, Qp, QpDuals};
-use schemes::QpError;
+use qp::QpError;
+use qp::{KktResiduals, Qp, QpDuals};
 use std::fmt;
 
 /// Clarabel's gap and feasibility tolerances, tried in turn (see the module docs).
@@ -200,7 +200,7 @@ impl std::error::Error for ExactError {}
 pub struct ExactSolution {
     /// The primal solution x (Clarabel's, at its last attempt).
     pub x: DVector<f64>,
-    /// Multipliers in the convention of [`schemes::qp`] (zero for absent constraints).
+    /// Multipliers in the convention of [`qp`] (zero for absent constraints).
     pub duals: QpDuals,
     /// x'Px/2 + q'x evaluated at `x` by [`Qp::objective`].
     pub objective: f64,
@@ -236,6 +236,8 @@ pub struct ExactSolver {
     kkt_tol: f64,
     /// x of the last solve through [`crate::qp_solver::QpSolver`] (empty before one).
     last_x: Vec<f64>,
+    /// The multipliers of that solve.
+    last_duals: QpDuals,
 }
 
 impl Default for ExactSolver {
@@ -255,6 +257,12 @@ impl ExactSolver {
             settings,
             kkt_tol: DEFAULT_KKT_TOL,
             last_x: Vec::new(),
+            last_duals: QpDuals {
+                lambda: DVector::zeros(0),
+                mu: DVector::zeros(0),
+                z_lower: DVector::zeros(0),
+                z_upper: DVector::zeros(0),
+            },
         }
     }
 
@@ -263,9 +271,15 @@ impl ExactSolver {
         &self.last_x
     }
 
-    pub(crate) fn set_last_x(&mut self, x: &[f64]) {
+    /// The multipliers of the last solve through [`crate::qp_solver::QpSolver`].
+    pub(crate) fn last_duals(&self) -> &QpDuals {
+        &self.last_duals
+    }
+
+    pub(crate) fn set_last(&mut self, x: &[f64], duals: &QpDuals) {
         self.last_x.clear();
         self.last_x.extend_from_slice(x);
+        self.last_duals.clone_from(duals);
     }
 
     /// Changes the relative KKT acceptance tolerance (see the module docs).

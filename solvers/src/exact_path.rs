@@ -4,7 +4,7 @@
 //!
 //! # Why the answer is the exact optimum
 //!
-//! For the convex QPs of [`schemes::qp`] the KKT conditions (stationarity, primal and dual
+//! For the convex QPs of [`qp`] the KKT conditions (stationarity, primal and dual
 //! feasibility, complementarity) are necessary and sufficient for optimality. The active-set
 //! solver returns an answer only if its own residuals meet them to 1e-10 (relative to
 //! 1 + max(|q|, |b|)); otherwise (a singular KKT matrix, an iteration limit, a failed
@@ -38,7 +38,7 @@ use crate::active_set::{
 use crate::auxiliary::AuxiliaryElimination;
 use crate::exact::{ExactError, ExactSolver};
 use nalgebra::DVector;
-use schemes::qp::{Qp, QpDuals};
+use qp::{Qp, QpDuals};
 
 /// Every this many solves (and on the first), Clarabel solves the same QP as a check.
 pub const CHECK_EVERY: usize = 100;

@@ -11,6 +11,7 @@
 
 pub mod active_set;
 pub mod auxiliary;
+pub mod conformance;
 pub mod dense_lu;
 pub mod exact;
 pub mod exact_path;
@@ -33,6 +34,7 @@ pub use exact::{
     ExactStatus,
 };
 pub use exact_path::{ExactPath, ExactPathStats, CHECK_EVERY};
-pub use qp_solver::{HotActiveSet, QpSolve, QpSolver, QpSolverError};
+pub use qp::{KktResiduals, Qp, QpDims, QpDuals};
+pub use qp::{QpSolve, QpSolver, QpSolverError, QpStatus, SolverId};
+pub use qp_solver::{ActiveSetFailure, HotActiveSet};
 pub use random_qp::{random_feasible, random_qp, QpShape};
-pub use schemes::qp::{KktResiduals, Qp, QpDims, QpDuals};

@@ -7,7 +7,7 @@
 //!
 //! # The problem they solve
 //!
-//! A QP (see [`schemes::qp::Qp`]) is equivalent to the linear variational inequality of
+//! A QP (see [`qp::Qp`]) is equivalent to the linear variational inequality of
 //! jia2019 (2.21) (built in [`crate::neural::projection`]): find U* in Omega with
 //! (U - U*)'(M U* + q) >= 0 for all U in Omega, with U = [x; u; v], the same M, q and box Omega
 //! as LVI-PDNN. robio2018 writes it for its QP with M = [I -J'; J 0], q = [C; -rdot] and
@@ -97,7 +97,7 @@
 use crate::dense_lu::DenseLu;
 use crate::neural::projection::{lvi_matrix_into, primal_dual_dim, LviCore};
 use nalgebra::DMatrix;
-use schemes::qp::{Qp, QpDims};
+use qp::{Qp, QpDims};
 
 /// The suite's default stopping tolerance on |e(U)|_2.
 pub const DEFAULT_TOLERANCE: f64 = 1e-10;

@@ -18,7 +18,7 @@
 //! never changes and the data of each tick is an in-place update (`update_P_A`, which
 //! refactorises OSQP's KKT matrix, `update_lin_cost`, `update_bounds`). Infinite bounds are
 //! passed as +-[`OSQP_INFINITY`] (OSQP's own infinity). With OSQP's multipliers w (stationarity
-//! P x + q + C'w = 0) the duals of [`schemes::qp::QpDuals`] are lambda = w_A, mu = w_G,
+//! P x + q + C'w = 0) the duals of [`qp::QpDuals`] are lambda = w_A, mu = w_G,
 //! z_upper = max(w_I, 0), z_lower = max(-w_I, 0).
 //!
 //! # Accuracy
@@ -29,7 +29,7 @@
 
 use nalgebra::DVector;
 use osqp::{CscMatrix, Problem, Settings, Status};
-use schemes::qp::{Qp, QpDims, QpDuals};
+use qp::{Qp, QpDims, QpDuals};
 use std::borrow::Cow;
 
 /// OSQP's infinity: bounds at or beyond it are absent.

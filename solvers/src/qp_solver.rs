@@ -1,5 +1,6 @@
-//! One interface, [`QpSolver`], for the per-instant QP methods a controller calls at every
-//! tick, each started from what its previous call left where the method can:
+//! The built-in per-instant QP methods behind the one seam, [`QpSolver`] (crate `qp`): the
+//! control loop's ticks, the conformance kit ([`crate::conformance`]) and any outside solver go
+//! through it. Each method starts from what its previous call left where it can:
 //!
 //! - robio2018's six PLPE methods ([`LviSolver`], [`crate::lvi_numerical`]): iterated from the
 //!   previous call's primal-dual point (warm start); the only ones that count their work in
@@ -9,71 +10,71 @@
 //! - Clarabel ([`ExactSolver`]): an interior-point method, started afresh every call;
 //! - OSQP (`OsqpQp`, with the `osqp` feature): data updated in place, warm-started.
 //!
-//! Each type's inherent `solve` keeps its own richer result; [`QpSolver::solve`] is the common
-//! view, and [`QpSolverError`] wraps each method's error.
+//! Each method's failure maps to a [`QpStatus`] (`From` impls below).
 
 use crate::active_set::{ActiveSetError, ActiveSetSolution, ActiveSetSolver, WorkingSet};
 use crate::exact::{ExactError, ExactSolver};
 use crate::lvi_numerical::{LviError, LviSolver};
 #[cfg(feature = "osqp")]
 use crate::osqp_qp::{OsqpError, OsqpQp};
-use schemes::qp::{Qp, QpDims};
+use qp::{zero_duals, Qp, QpDims, QpDuals, QpSolve, QpSolver, QpSolverError, QpStatus, SolverId};
 
-/// What one successful [`QpSolver::solve`] cost.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct QpSolve {
-    /// The method's own iterations (PLPE steps, working-set changes, interior-point or ADMM
-    /// iterations); 0 when the warm start already met the method's stopping rule.
-    pub iterations: u32,
-    /// Work in products with the LVI matrix M, for the methods built on jia2019's LVI (unit:
-    /// [`crate::lvi_numerical`]'s module docs); `None` for the others.
-    pub products: Option<u64>,
+/// Bound multipliers from the stationarity residual r = P x + q + A' lambda + G' mu: at a
+/// solution r + z_u - z_l = 0 with z_l, z_u >= 0 in the normal cone of the bounds, so
+/// z_l = max(r, 0) and z_u = max(-r, 0) (a zero residual leaves both at 0).
+fn bound_duals_from_stationarity(qp: &Qp, x: &[f64], duals: &mut QpDuals) {
+    let nx = x.len();
+    for i in 0..nx {
+        let mut r = qp.q[i];
+        for j in 0..nx {
+            r += qp.p[(i, j)] * x[j];
+        }
+        for k in 0..duals.lambda.len() {
+            r += qp.a[(k, i)] * duals.lambda[k];
+        }
+        for k in 0..duals.mu.len() {
+            r += qp.g[(k, i)] * duals.mu[k];
+        }
+        duals.z_lower[i] = r.max(0.0);
+        duals.z_upper[i] = (-r).max(0.0);
+    }
 }
 
-/// Why a [`QpSolver::solve`] failed: the failing method's own error.
-#[derive(Debug, thiserror::Error)]
-pub enum QpSolverError {
-    /// One of robio2018's PLPE methods.
-    #[error(transparent)]
-    Plpe(#[from] LviError),
-    /// The hot-started active set failed, cold-started too, and so did Clarabel after it.
-    #[error("active set: {active_set}; its Clarabel fallback: {fallback}")]
-    ActiveSet {
-        /// Why the active-set solver failed (its cold start's error when a warm start was tried
-        /// first).
-        active_set: ActiveSetError,
-        /// Why Clarabel failed after it.
-        #[source]
-        fallback: ExactError,
-    },
-    /// Clarabel.
-    #[error("exact solver: {0}")]
-    Exact(#[from] ExactError),
-    /// OSQP.
-    #[cfg(feature = "osqp")]
-    #[error(transparent)]
-    Osqp(#[from] OsqpError),
+impl From<LviError> for QpSolverError {
+    fn from(e: LviError) -> Self {
+        let status = match e {
+            LviError::NotConverged { .. } => QpStatus::IterationLimit,
+            LviError::NonFinite { .. } | LviError::Breakdown { .. } => QpStatus::NumericalFailure,
+            LviError::SingularMatrix { .. } => QpStatus::Singular,
+            LviError::Dimensions { .. } => QpStatus::InvalidInput,
+        };
+        QpSolverError::new(status, e)
+    }
 }
 
-/// A per-instant QP method (module docs).
-pub trait QpSolver {
-    /// Solves `qp`, starting from what the previous call left where the method can.
-    fn solve(&mut self, qp: &Qp) -> Result<QpSolve, QpSolverError>;
-    /// The primal answer x of the last successful solve (its state before any, or after
-    /// [`Self::reset`]: zeros, or empty for a method with no state, Clarabel).
-    fn x(&self) -> &[f64];
-    /// Forgets what the previous calls left: the next solve is a cold start.
-    fn reset(&mut self);
-    /// Display name (`94LVI`, ..., `active set`, `Clarabel`, `OSQP`).
-    fn name(&self) -> &'static str;
+impl From<ExactError> for QpSolverError {
+    fn from(e: ExactError) -> Self {
+        let status = match e {
+            ExactError::InvalidData(_) | ExactError::Rejected(_) => QpStatus::InvalidInput,
+            ExactError::PrimalInfeasible(_) => QpStatus::Infeasible,
+            ExactError::DualInfeasible(_) => QpStatus::Unbounded,
+            ExactError::Failed { .. } => QpStatus::NumericalFailure,
+            ExactError::Inaccurate { .. } => QpStatus::Inaccurate,
+        };
+        QpSolverError::new(status, e)
+    }
 }
 
 impl QpSolver for LviSolver {
+    fn id(&self) -> SolverId {
+        SolverId::builtin(self.method().id())
+    }
+
     fn solve(&mut self, qp: &Qp) -> Result<QpSolve, QpSolverError> {
         let iterations = LviSolver::solve(self, qp)?;
         Ok(QpSolve {
-            iterations,
             products: Some(self.method().products(iterations, self.state().len())),
+            ..QpSolve::solved(iterations)
         })
     }
 
@@ -81,57 +82,91 @@ impl QpSolver for LviSolver {
         LviSolver::x(self)
     }
 
-    fn reset(&mut self) {
-        LviSolver::reset(self);
+    /// The LVI's iterate U = [x; u; v] holds lambda = -u and mu = v
+    /// ([`crate::neural::projection`]); the bound multipliers follow from stationarity.
+    fn duals(&self, qp: &Qp, duals: &mut QpDuals) {
+        let QpDims { nx, n_eq, n_in } = qp.dims();
+        let u = self.state();
+        for k in 0..n_eq {
+            duals.lambda[k] = -u[nx + k];
+        }
+        for k in 0..n_in {
+            duals.mu[k] = u[nx + n_eq + k];
+        }
+        bound_duals_from_stationarity(qp, self.x(), duals);
     }
 
-    fn name(&self) -> &'static str {
-        self.method().name()
+    fn reset(&mut self) {
+        LviSolver::reset(self);
     }
 }
 
 impl QpSolver for ExactSolver {
+    fn id(&self) -> SolverId {
+        SolverId::builtin("clarabel")
+    }
+
     fn solve(&mut self, qp: &Qp) -> Result<QpSolve, QpSolverError> {
         let s = ExactSolver::solve(self, qp)?;
-        self.set_last_x(s.x.as_slice());
-        Ok(QpSolve {
-            iterations: s.iterations,
-            products: None,
-        })
+        self.set_last(s.x.as_slice(), &s.duals);
+        Ok(QpSolve::solved(s.iterations))
     }
 
     fn x(&self) -> &[f64] {
         self.last_x()
     }
 
-    fn reset(&mut self) {
-        self.set_last_x(&[]);
+    fn duals(&self, _qp: &Qp, duals: &mut QpDuals) {
+        copy_duals(self.last_duals(), duals);
     }
 
-    fn name(&self) -> &'static str {
-        "Clarabel"
+    fn reset(&mut self) {
+        self.set_last(
+            &[],
+            &zero_duals(QpDims {
+                nx: 0,
+                n_eq: 0,
+                n_in: 0,
+            }),
+        );
+    }
+}
+
+/// Copies `from` into `to` (same sizes).
+fn copy_duals(from: &QpDuals, to: &mut QpDuals) {
+    to.lambda.copy_from(&from.lambda);
+    to.mu.copy_from(&from.mu);
+    to.z_lower.copy_from(&from.z_lower);
+    to.z_upper.copy_from(&from.z_upper);
+}
+
+#[cfg(feature = "osqp")]
+impl From<OsqpError> for QpSolverError {
+    fn from(e: OsqpError) -> Self {
+        QpSolverError::new(QpStatus::NumericalFailure, e)
     }
 }
 
 #[cfg(feature = "osqp")]
 impl QpSolver for OsqpQp {
+    fn id(&self) -> SolverId {
+        SolverId::builtin("osqp")
+    }
+
     fn solve(&mut self, qp: &Qp) -> Result<QpSolve, QpSolverError> {
-        Ok(QpSolve {
-            iterations: OsqpQp::solve(self, qp)?,
-            products: None,
-        })
+        Ok(QpSolve::solved(OsqpQp::solve(self, qp)?))
     }
 
     fn x(&self) -> &[f64] {
         OsqpQp::x(self)
     }
 
-    fn reset(&mut self) {
-        OsqpQp::reset(self);
+    fn duals(&self, _qp: &Qp, duals: &mut QpDuals) {
+        copy_duals(&OsqpQp::duals(self), duals);
     }
 
-    fn name(&self) -> &'static str {
-        "OSQP"
+    fn reset(&mut self) {
+        OsqpQp::reset(self);
     }
 }
 
@@ -148,6 +183,10 @@ pub struct HotActiveSet {
     has_warm: bool,
     clarabel: ExactSolver,
     x: Vec<f64>,
+    /// The multipliers of the last answer (the active set's or its Clarabel fallback's).
+    duals: QpDuals,
+    /// The sizes it was built for.
+    dims: QpDims,
 }
 
 impl HotActiveSet {
@@ -160,12 +199,27 @@ impl HotActiveSet {
             has_warm: false,
             clarabel: ExactSolver::new(),
             x: vec![0.0; dims.nx],
+            duals: zero_duals(dims),
+            dims,
         }
     }
 }
 
 impl QpSolver for HotActiveSet {
+    fn id(&self) -> SolverId {
+        SolverId::builtin("active-set")
+    }
+
     fn solve(&mut self, qp: &Qp) -> Result<QpSolve, QpSolverError> {
+        if qp.dims() != self.dims {
+            return Err(QpSolverError::new(
+                QpStatus::InvalidInput,
+                DimensionsError {
+                    expected: self.dims,
+                    found: qp.dims(),
+                },
+            ));
+        }
         let warm = self.has_warm.then_some(&self.warm);
         let solved = match self.solver.solve_into(qp, warm, &mut self.out) {
             Err(_) if warm.is_some() => self.solver.solve_into(qp, None, &mut self.out),
@@ -177,38 +231,62 @@ impl QpSolver for HotActiveSet {
                 self.has_warm = true;
                 self.x.clear();
                 self.x.extend_from_slice(self.out.x.as_slice());
+                copy_duals(&self.out.duals, &mut self.duals);
                 self.out.iterations
             }
             Err(active_set) => {
                 self.has_warm = false;
-                let s = self
-                    .clarabel
-                    .solve(qp)
-                    .map_err(|fallback| QpSolverError::ActiveSet {
-                        active_set,
-                        fallback,
-                    })?;
+                let s = self.clarabel.solve(qp).map_err(|fallback| {
+                    let status = QpSolverError::from(fallback.clone()).status;
+                    QpSolverError::new(
+                        status,
+                        ActiveSetFailure {
+                            active_set,
+                            fallback,
+                        },
+                    )
+                })?;
                 self.x.clear();
                 self.x.extend_from_slice(s.x.as_slice());
+                copy_duals(&s.duals, &mut self.duals);
                 s.iterations
             }
         };
-        Ok(QpSolve {
-            iterations,
-            products: None,
-        })
+        Ok(QpSolve::solved(iterations))
     }
 
     fn x(&self) -> &[f64] {
         &self.x
     }
 
+    fn duals(&self, _qp: &Qp, duals: &mut QpDuals) {
+        copy_duals(&self.duals, duals);
+    }
+
     fn reset(&mut self) {
         self.has_warm = false;
         self.x.fill(0.0);
     }
+}
 
-    fn name(&self) -> &'static str {
-        "active set"
-    }
+/// A QP of other sizes than the solver was built for.
+#[derive(Debug, thiserror::Error)]
+#[error("built for QPs of sizes {expected:?}, given one of {found:?}")]
+pub struct DimensionsError {
+    /// The sizes the solver was built for.
+    pub expected: QpDims,
+    /// The sizes of the QP given.
+    pub found: QpDims,
+}
+
+/// The hot-started active set failed, cold-started too, and so did Clarabel after it.
+#[derive(Debug, thiserror::Error)]
+#[error("active set: {active_set}; its Clarabel fallback: {fallback}")]
+pub struct ActiveSetFailure {
+    /// Why the active-set solver failed (its cold start's error when a warm start was tried
+    /// first).
+    pub active_set: ActiveSetError,
+    /// Why Clarabel failed after it.
+    #[source]
+    pub fallback: ExactError,
 }

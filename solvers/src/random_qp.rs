@@ -1,4 +1,4 @@
-//! Seeded random QPs of the four papers' shapes (see [`schemes::qp::Qp`] for the form), for
+//! Seeded random QPs of the four papers' shapes (see [`qp::Qp`] for the form), for
 //! testing the exact and the neural solvers on many instances.
 //!
 //! Every generator is deterministic: the same seed gives the same QP on every platform
@@ -19,10 +19,10 @@
 //! | [`QpShape::Kong2019`] | thetadot in R^5 | I | J x = b |
 
 use nalgebra::{DMatrix, DVector};
+use qp::{Qp, QpDims};
 use rand::Rng;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use schemes::qp::{Qp, QpDims};
 
 /// Number of joints of the Jaco2 (jia2019, zhong2021, zhang2018).
 const JACO2_JOINTS: usize = 6;

@@ -7,6 +7,7 @@ mod common;
 mod active_set;
 mod active_set_alloc;
 mod auxiliary;
+mod conformance;
 mod dense_lu;
 mod exact;
 mod lvi_numerical;

@@ -6,21 +6,24 @@ use nalgebra::{DMatrix, DVector};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use schemes::sign_power::SIGN_POWER_MIN_ABS;
+use settings::activation::{ActivationKind, ActivationSpec};
 use settings::integrator::{IntegratorSettings, Method};
 use settings::solver_spec::ReferencePerturbation;
 use settings::solver_spec::SolverSpec;
+use settings::zeroing::GainLaw;
 use solvers::neural::activation::Activation;
 use solvers::neural::projection::{primal_dual_dim, LviPdnn, SLviPdnn};
-use solvers::neural::zeroing::Gain;
-use solvers::neural::{
-    build_solver, finite_time, fp_cdnn, group_znn, vp_cdnn, znn, NeuralSolver, PerturbationTerms,
-    VpRnnPf,
-};
+use solvers::neural::{build_solver, NeuralSolver, PerturbationTerms, VpRnnPf};
 use solvers::ode::{integrate, Control, OdeSystem};
 use solvers::{random_qp, ExactSolver, Qp, QpDims, QpShape};
 
 // ---------------------------------------------------------------------------------------------
 // helpers
+
+/// The network of `spec` for QPs of sizes `dims`.
+fn built(spec: SolverSpec, dims: QpDims) -> Box<dyn NeuralSolver> {
+    build_solver(&spec, dims).unwrap_or_else(|e| panic!("{spec:?}: {e}"))
+}
 
 /// A network on a QP that is either frozen (`qp1 = None`) or moves linearly,
 /// QP(t) = qp0 + t qp1 (bounds fixed), so that dQP/dt = qp1 exactly.
@@ -418,53 +421,85 @@ fn zeroing_jacobians_match_finite_differences() {
             let y: Vec<f64> = (0..n).map(|_| rng.gen_range(-2.0..2.0)).collect();
             let t = rng.gen_range(0.0..2.0);
             let mut nets: Vec<Box<dyn NeuralSolver>> = vec![
-                Box::new(fp_cdnn(200.0, Activation::Linear, None, dims).unwrap()),
-                Box::new(vp_cdnn(2.0, Activation::Sinh, None, dims).unwrap()),
-                Box::new(vp_cdnn(2.0, Activation::power_sigmoid_default(), None, dims).unwrap()),
-                Box::new(finite_time(1.0, 0.1, 1e-8, dims).unwrap()),
-                Box::new(znn(1.0, dims).unwrap()),
+                built(
+                    SolverSpec::FpCdnn {
+                        gamma: 200.0,
+                        activation: ActivationSpec::of(ActivationKind::Linear),
+                        perturbation: None,
+                    },
+                    dims,
+                ),
+                built(
+                    SolverSpec::VpCdnn {
+                        gamma: 2.0,
+                        activation: ActivationSpec::of(ActivationKind::Sinh),
+                        perturbation: None,
+                    },
+                    dims,
+                ),
+                built(
+                    SolverSpec::VpCdnn {
+                        gamma: 2.0,
+                        activation: ActivationSpec::of(ActivationKind::PowerSigmoid),
+                        perturbation: None,
+                    },
+                    dims,
+                ),
+                built(
+                    SolverSpec::FiniteTime {
+                        beta: 1.0,
+                        alpha: 0.1,
+                        smoothing: 1e-8,
+                    },
+                    dims,
+                ),
+                built(SolverSpec::Znn { gamma: 1.0 }, dims),
             ];
             if n == 9 {
-                nets.push(Box::new(
-                    fp_cdnn(
-                        200.0,
-                        Activation::Linear,
-                        Some(ReferencePerturbation::reference(8.0)),
-                        dims,
-                    )
-                    .unwrap(),
+                nets.push(built(
+                    SolverSpec::FpCdnn {
+                        gamma: 200.0,
+                        activation: ActivationSpec::of(ActivationKind::Linear),
+                        perturbation: Some(ReferencePerturbation::reference(8.0)),
+                    },
+                    dims,
                 ));
-                nets.push(Box::new(
-                    vp_cdnn(
-                        200.0,
-                        Activation::Linear,
-                        Some(ReferencePerturbation::reference(8.0)),
-                        dims,
-                    )
-                    .unwrap(),
+                nets.push(built(
+                    SolverSpec::VpCdnn {
+                        gamma: 200.0,
+                        activation: ActivationSpec::of(ActivationKind::Linear),
+                        perturbation: Some(ReferencePerturbation::reference(8.0)),
+                    },
+                    dims,
                 ));
-                nets.push(Box::new(
-                    group_znn(
-                        500.0,
-                        2500.0,
-                        Activation::GroupPowerSigmoid { xi: 1.0, p: 1.0 },
-                        Some(ReferencePerturbation::reference(8.0)),
-                        false,
-                        dims,
-                    )
-                    .unwrap(),
+                nets.push(built(
+                    SolverSpec::GroupZnn {
+                        gamma: 500.0,
+                        nu: 2500.0,
+                        activation: ActivationSpec {
+                            xi: 1.0,
+                            power: 1.0,
+                            ..ActivationSpec::of(ActivationKind::GroupPowerSigmoid)
+                        },
+                        perturbation: Some(ReferencePerturbation::reference(8.0)),
+                        udot_rmp: false,
+                    },
+                    dims,
                 ));
             }
-            nets.push(Box::new(
-                group_znn(
-                    500.0,
-                    2500.0,
-                    Activation::GroupPowerSigmoid { xi: 1.0, p: 3.0 },
-                    None,
-                    true,
-                    dims,
-                )
-                .unwrap(),
+            nets.push(built(
+                SolverSpec::GroupZnn {
+                    gamma: 500.0,
+                    nu: 2500.0,
+                    activation: ActivationSpec {
+                        xi: 1.0,
+                        power: 3.0,
+                        ..ActivationSpec::of(ActivationKind::GroupPowerSigmoid)
+                    },
+                    perturbation: None,
+                    udot_rmp: true,
+                },
+                dims,
             ));
             for net in nets.iter_mut() {
                 for qd in [None, Some(&qp_dot)] {
@@ -603,9 +638,19 @@ fn zeroing_equilibria(
     make: impl Fn(QpDims) -> Box<dyn NeuralSolver>,
     t_end: f64,
 ) -> (f64, f64) {
+    zeroing_equilibria_over(shape, N_QPS, make, t_end)
+}
+
+/// [`zeroing_equilibria`] over the first `seeds` random QPs.
+fn zeroing_equilibria_over(
+    shape: QpShape,
+    seeds: u64,
+    make: impl Fn(QpDims) -> Box<dyn NeuralSolver>,
+    t_end: f64,
+) -> (f64, f64) {
     let s = settings(1e-10, 1e-13);
     let (mut worst_x, mut worst_l) = (0.0_f64, 0.0_f64);
-    for seed in 0..N_QPS {
+    for seed in 0..seeds {
         let qp = random_qp(shape, seed);
         let dims = qp.dims();
         let sol = exact(&qp);
@@ -635,15 +680,67 @@ fn zeroing_equilibria(
 fn cdnn_steady_states_are_the_exact_optimum() {
     let (a, al) = zeroing_equilibria(
         QpShape::Zhang2018,
-        |d| Box::new(fp_cdnn(200.0, Activation::Linear, None, d).unwrap()),
+        |d| {
+            built(
+                SolverSpec::FpCdnn {
+                    gamma: 200.0,
+                    activation: ActivationSpec::of(ActivationKind::Linear),
+                    perturbation: None,
+                },
+                d,
+            )
+        },
         1.0,
     );
     let (b, bl) = zeroing_equilibria(
         QpShape::Zhang2018,
-        |d| Box::new(vp_cdnn(2.0, Activation::Linear, None, d).unwrap()),
+        |d| {
+            built(
+                SolverSpec::VpCdnn {
+                    gamma: 2.0,
+                    activation: ActivationSpec::of(ActivationKind::Linear),
+                    perturbation: None,
+                },
+                d,
+            )
+        },
         3.0,
     );
     eprintln!("{N_QPS} zhang2018 QPs: FP-CDNN worst |x-x*| {a:.2e} (lambda {al:.2e}); VP-CDNN {b:.2e} ({bl:.2e})");
+}
+
+/// A network of the literature entered as data, not as Rust: a varying-parameter zeroing
+/// network with a power-type gain g(t) = gamma (p + t^p) and the sign-bi-power activation (no
+/// preset combines them) reaches the KKT solution of every QP, as the presets do.
+#[test]
+fn a_power_type_network_entered_as_data_reaches_the_optimum() {
+    let spec = parse(
+        "solver = { kind = \"zeroing\", gain = { law = \"power\", gamma = 2.0, p = 2.0 }, \
+         activation = \"sign-bi-power\", exponent = 0.5 }",
+    )
+    .unwrap();
+    assert_eq!(spec.id(), "zeroing-power-gamma-2-p-2-sign-bi-power-r-0.5");
+    assert_eq!(
+        spec.display_name(),
+        "ZNN (power(gamma=2,p=2), sign-bi-power(r=0.5))"
+    );
+    for shape in [QpShape::Kong2019, QpShape::Zhang2018] {
+        let (x, l) = zeroing_equilibria_over(shape, 100, |d| built(spec.clone(), d), 6.0);
+        eprintln!("power-type zeroing network on {shape:?}: worst |x-x*| {x:.2e} (lambda {l:.2e})");
+    }
+    // A gain law that is not positive is refused when the network is built, naming the law.
+    let bad =
+        parse("solver = { kind = \"zeroing\", gain = { law = \"power\", gamma = 2.0, p = -1.0 } }")
+            .unwrap();
+    let e = build_solver(&bad, random_qp(QpShape::Kong2019, 0).dims())
+        .err()
+        .expect("p = -1 refused")
+        .to_string();
+    assert!(e.contains("power") && e.contains("p > 0"), "{e}");
+    // An unknown law names the valid ones.
+    let e = parse("solver = { kind = \"zeroing\", gain = { law = \"cubic\", gamma = 1.0 } }")
+        .unwrap_err();
+    assert!(e.contains("constant") && e.contains("power"), "{e}");
 }
 
 #[test]
@@ -651,10 +748,23 @@ fn kong2019_networks_reach_the_kkt_solution() {
     // FTNN: by eq. 11 each error component vanishes by t_s = |E_i(0)|^0.9 / 0.9 <= ~8 for |E(0)| <= 5.
     let (a, al) = zeroing_equilibria(
         QpShape::Kong2019,
-        |d| Box::new(finite_time(1.0, 0.1, 1e-8, d).unwrap()),
+        |d| {
+            built(
+                SolverSpec::FiniteTime {
+                    beta: 1.0,
+                    alpha: 0.1,
+                    smoothing: 1e-8,
+                },
+                d,
+            )
+        },
         12.0,
     );
-    let (b, bl) = zeroing_equilibria(QpShape::Kong2019, |d| Box::new(znn(1.0, d).unwrap()), 40.0);
+    let (b, bl) = zeroing_equilibria(
+        QpShape::Kong2019,
+        |d| built(SolverSpec::Znn { gamma: 1.0 }, d),
+        40.0,
+    );
     eprintln!(
         "{N_QPS} kong2019 QPs: FTNN worst |x-x*| {a:.2e} (lambda {al:.2e}); ZNN {b:.2e} ({bl:.2e})"
     );
@@ -746,12 +856,26 @@ fn zeroing_error_follows_its_design_formula_on_moving_qps() {
             let dims = qp0.dims();
             for (vp, gamma, t1) in [(false, 3.0, 1.0), (true, 1.0, 0.7)] {
                 let mut net = if vp {
-                    vp_cdnn(gamma, Activation::Linear, None, dims).unwrap()
+                    built(
+                        SolverSpec::VpCdnn {
+                            gamma,
+                            activation: ActivationSpec::of(ActivationKind::Linear),
+                            perturbation: None,
+                        },
+                        dims,
+                    )
                 } else {
-                    fp_cdnn(gamma, Activation::Linear, None, dims).unwrap()
+                    built(
+                        SolverSpec::FpCdnn {
+                            gamma,
+                            activation: ActivationSpec::of(ActivationKind::Linear),
+                            perturbation: None,
+                        },
+                        dims,
+                    )
                 };
                 let y0 = vec![0.0; dims.nx + dims.n_eq];
-                let mut sys = Net::new(&mut net, &qp0, Some(&qp1));
+                let mut sys = Net::new(&mut *net, &qp0, Some(&qp1));
                 let (y1, _) =
                     integrate(&mut sys, &y0, 0.0, t1, &s, |_, _| Control::Continue).unwrap();
                 let mut qpt = qp0.clone();
@@ -860,9 +984,23 @@ fn reference_perturbation_matches_experiments_md_and_enters_as_eq_3_1() {
     let y = DVector::from_fn(9, |_, _| rng.gen_range(-1.0..1.0));
     for vp in [false, true] {
         let mut net = if vp {
-            vp_cdnn(200.0, Activation::Linear, Some(pert), dims).unwrap()
+            built(
+                SolverSpec::VpCdnn {
+                    gamma: 200.0,
+                    activation: ActivationSpec::of(ActivationKind::Linear),
+                    perturbation: Some(pert),
+                },
+                dims,
+            )
         } else {
-            fp_cdnn(200.0, Activation::Linear, Some(pert), dims).unwrap()
+            built(
+                SolverSpec::FpCdnn {
+                    gamma: 200.0,
+                    activation: ActivationSpec::of(ActivationKind::Linear),
+                    perturbation: Some(pert),
+                },
+                dims,
+            )
         };
         let mut ydot = vec![0.0; 9];
         net.rhs(t, y.as_slice(), &qp, Some(&qd), &mut ydot);
@@ -907,6 +1045,7 @@ fn group_znn_is_the_groups_equation() {
         task_duration: 8.0,
     };
     let act = Activation::GroupPowerSigmoid { xi: 1.0, p: 1.0 };
+    let act_spec = ActivationSpec::of(ActivationKind::GroupPowerSigmoid);
     let kkt = |q: &Qp| {
         let mut m = DMatrix::zeros(9, 9);
         m.view_mut((0, 0), (6, 6)).copy_from(&q.p);
@@ -937,15 +1076,16 @@ fn group_znn_is_the_groups_equation() {
         if !udot_rmp {
             ud.rows_mut(0, 6).fill(0.0);
         }
-        let mut net = group_znn(
-            500.0,
-            2500.0,
-            act,
-            perturbed.then_some(pert),
-            udot_rmp,
+        let mut net = built(
+            SolverSpec::GroupZnn {
+                gamma: 500.0,
+                nu: 2500.0,
+                activation: act_spec,
+                perturbation: perturbed.then_some(pert),
+                udot_rmp,
+            },
             dims,
-        )
-        .unwrap();
+        );
         let mut ydot = vec![0.0; 9];
         net.rhs(t, y.as_slice(), &qp, Some(&qd), &mut ydot);
         let mut want = -&qdm * &y - &phi * 500.0 + ud - &e * (2500.0 * t);
@@ -960,13 +1100,39 @@ fn group_znn_is_the_groups_equation() {
         );
     }
     // nu = 0, linear, no perturbation, udot_rmp: exactly FP-CDNN (the same core, bit for bit).
-    let mut g = group_znn(200.0, 0.0, Activation::Linear, None, true, dims).unwrap();
-    let mut f = fp_cdnn(200.0, Activation::Linear, None, dims).unwrap();
+    let mut g = built(
+        SolverSpec::GroupZnn {
+            gamma: 200.0,
+            nu: 0.0,
+            activation: ActivationSpec::of(ActivationKind::Linear),
+            perturbation: None,
+            udot_rmp: true,
+        },
+        dims,
+    );
+    let mut f = built(
+        SolverSpec::FpCdnn {
+            gamma: 200.0,
+            activation: ActivationSpec::of(ActivationKind::Linear),
+            perturbation: None,
+        },
+        dims,
+    );
     let (mut a, mut b) = (vec![0.0; 9], vec![0.0; 9]);
     g.rhs(t, y.as_slice(), &qp, Some(&qd), &mut a);
     f.rhs(t, y.as_slice(), &qp, Some(&qd), &mut b);
     assert_eq!(a, b);
-    assert!(group_znn(500.0, -1.0, act, None, true, dims).is_err());
+    assert!(build_solver(
+        &SolverSpec::GroupZnn {
+            gamma: 500.0,
+            nu: -1.0,
+            activation: act_spec,
+            perturbation: None,
+            udot_rmp: true
+        },
+        dims
+    )
+    .is_err());
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1109,15 +1275,22 @@ fn solver_specs_parse_build_and_reject_mistakes() {
 #[test]
 fn zeroing_network_with_gain_variants_and_fixed_gain_vp_rnn_pf() {
     // Gain schedule values.
-    assert_eq!(Gain::Fixed(3.0).at(5.0), 3.0);
-    assert!((Gain::Exponential(2.0).at(1.0) - 2.0 * 1f64.exp()).abs() < 1e-14);
+    assert_eq!(GainLaw::Constant { gamma: 3.0 }.at(5.0), 3.0);
+    assert!((GainLaw::Exponential { gamma: 2.0 }.at(1.0) - 2.0 * 1f64.exp()).abs() < 1e-14);
     // VpRnnPf::with_gain(Fixed) shares the steady state of the paper's exp(t) gain.
     let qp = random_qp(QpShape::Zhong2021, 77);
     let dims = qp.dims();
     let s = settings(1e-10, 1e-13);
     let mut a = VpRnnPf::new(1e-4, 400.0, 2.0, Activation::Linear, dims).unwrap();
-    let mut b =
-        VpRnnPf::with_gain(1e-4, 400.0, 2.0, Gain::Fixed(2.0), Activation::Linear, dims).unwrap();
+    let mut b = VpRnnPf::with_gain(
+        1e-4,
+        400.0,
+        2.0,
+        GainLaw::Constant { gamma: 2.0 },
+        Activation::Linear,
+        dims,
+    )
+    .unwrap();
     let ya = steady_state(&mut a, &qp, 8.0, 1, &s, |_, _, _| true);
     let yb = steady_state(&mut b, &qp, 30.0, 1, &s, |_, _, _| true);
     let d = ya

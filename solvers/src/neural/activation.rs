@@ -43,20 +43,20 @@
 //!
 //! Sign-power with r < 1 has an infinite slope at e = 0 (that is what makes the convergence
 //! finite-time, and what makes every integrator fail once e reaches 0: explicit steps collapse,
-//! Newton iterations of implicit ones diverge). [`schemes::sign_power::sign_power`] therefore takes a smoothing width
+//! Newton iterations of implicit ones diverge). [`settings::sign_power::sign_power`] therefore takes a smoothing width
 //! delta: phi(e) = e (e^2 + delta^2)^((r - 1)/2), which is odd, strictly increasing (slope
 //! (e^2 + delta^2)^((r-3)/2) (r e^2 + delta^2) > 0), smooth, equal to abs(e)^r sgn(e) up to a
 //! relative (1 + delta^2/e^2)^((r-1)/2) - 1 (< 0.5 % at abs(e) = 10 delta for r = 0.1), and has the
 //! finite slope delta^(r-1) at 0: the finite-time phase is kept down to abs(e) ~ delta and then
 //! turns into an exponential decay with rate delta^(r-1). delta = 0 gives the exact form (its
-//! slope then evaluated at max(abs(e), [`SIGN_POWER_MIN_ABS`](schemes::sign_power::SIGN_POWER_MIN_ABS)) so Jacobians stay finite). The same
+//! slope then evaluated at max(abs(e), [`SIGN_POWER_MIN_ABS`](settings::sign_power::SIGN_POWER_MIN_ABS)) so Jacobians stay finite). The same
 //! function is kong2019's c in its finite-time scheme (`schemes::kong2019`).
 
-use schemes::sign_power::{sign_power, sign_power_slope};
 use settings::activation::{
     ActivationKind, ActivationSpec, POWER_SIGMOID_ALPHA, POWER_SIGMOID_CHI,
 };
 use settings::error::NetworkError;
+use settings::sign_power::{sign_power, sign_power_slope};
 
 /// The sigmoid branch shared by both power-sigmoids at a = abs(e) <= 1, steepness `s` (zhong2021's
 /// alpha, the group's xi): (1 + exp(-s)) (1 - exp(-s a)) / ((1 - exp(-s)) (1 + exp(-s a))).
@@ -108,6 +108,14 @@ pub enum Activation {
         /// Smoothing width delta >= 0 (0: the exact form).
         smoothing: f64,
     },
+    /// phi(e) = (abs(e)^r sgn(e) + abs(e)^(1/r) sgn(e)) / 2, each half the sign-power above
+    /// with the same smoothing (the finite-time activation of the zeroing literature).
+    SignBiPower {
+        /// Exponent r (> 0).
+        r: f64,
+        /// Smoothing width delta >= 0 (0: the exact form).
+        smoothing: f64,
+    },
 }
 
 impl From<ActivationSpec> for Activation {
@@ -124,6 +132,14 @@ impl From<ActivationSpec> for Activation {
             ActivationKind::GroupPowerSigmoid => Activation::GroupPowerSigmoid {
                 xi: spec.xi,
                 p: spec.power,
+            },
+            ActivationKind::SignPower => Activation::SignPower {
+                r: spec.exponent,
+                smoothing: spec.smoothing,
+            },
+            ActivationKind::SignBiPower => Activation::SignBiPower {
+                r: spec.exponent,
+                smoothing: spec.smoothing,
             },
         }
     }
@@ -156,7 +172,7 @@ impl Activation {
                     Ok(())
                 }
             }
-            Activation::SignPower { r, smoothing } => {
+            Activation::SignPower { r, smoothing } | Activation::SignBiPower { r, smoothing } => {
                 if !(r > 0.0 && r.is_finite()) {
                     Err(NetworkError::SignPowerExponent(r))
                 } else if !(smoothing >= 0.0 && smoothing.is_finite()) {
@@ -194,6 +210,9 @@ impl Activation {
                 e.signum() * v
             }
             Activation::SignPower { r, smoothing } => sign_power(e, r, smoothing),
+            Activation::SignBiPower { r, smoothing } => {
+                0.5 * (sign_power(e, r, smoothing) + sign_power(e, 1.0 / r, smoothing))
+            }
         }
     }
 
@@ -220,6 +239,9 @@ impl Activation {
                 }
             }
             Activation::SignPower { r, smoothing } => sign_power_slope(e, r, smoothing),
+            Activation::SignBiPower { r, smoothing } => {
+                0.5 * (sign_power_slope(e, r, smoothing) + sign_power_slope(e, 1.0 / r, smoothing))
+            }
         }
     }
 }

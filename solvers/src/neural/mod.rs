@@ -1,5 +1,5 @@
 //! The papers' recurrent neural networks as continuous-time systems solving a QP
-//! (see [`schemes::qp::Qp`]). Each network has a state y whose first `nx` entries are the
+//! (see [`qp::Qp`]). Each network has a state y whose first `nx` entries are the
 //! current estimate of the decision variable x (the joint velocity or acceleration that
 //! drives the arm); the rest are dual (multiplier) states where the network has them.
 //!
@@ -8,9 +8,13 @@
 //! | LVI-PDNN | jia2019 eq. 2.21-2.23 | [x; u; v] (nx + n_eq + n_in) | [`projection`] |
 //! | S-LVI-PDNN | zhong2021 eq. 2.35 | [x; u; v] | [`projection`] |
 //! | VP-RNN-PF | zhong2021 eq. 2.19-2.30 | [x; lambda] (nx + n_eq) | [`vp_rnn_pf`] |
-//! | FP-CDNN / VP-CDNN | zhang2018 eq. 2.15 / 2.11, perturbed 3.2 / 3.1 | [x; lambda] | [`cdnn`], [`zeroing`], [`perturbation`] |
-//! | FTNN (finite-time) / ZNN | kong2019 eq. 17-20 / its eq. 22 comparison | [x; lambda] | [`znn`](mod@znn), [`zeroing`] |
-//! | group ZNN | the group's MATLAB code (`docs/group-code.md`) | [x; lambda] | [`group`], [`zeroing`] |
+//! | FP-CDNN / VP-CDNN | zhang2018 eq. 2.15 / 2.11, perturbed 3.2 / 3.1 | [x; lambda] | [`zeroing`], [`perturbation`] |
+//! | FTNN (finite-time) / ZNN | kong2019 eq. 17-20 / its eq. 22 comparison | [x; lambda] | [`zeroing`] |
+//! | group ZNN | the group's MATLAB code (`docs/group-code.md`) | [x; lambda] | [`zeroing`] |
+//! | any zeroing network | a point of `settings::zeroing`'s vocabulary | [x; lambda] | [`zeroing`] |
+//!
+//! The zeroing networks are one family, presets of one vocabulary (gain law, activation,
+//! growing gain, perturbation; `docs/networks.md` derives each preset from its paper).
 //!
 //! Activation functions: [`activation`]. The factory that builds a network from its
 //! experiment-file specification (`settings::solver_spec`): [`spec`]. A network's parameter
@@ -18,28 +22,22 @@
 //! says otherwise).
 
 pub mod activation;
-pub mod cdnn;
-pub mod group;
 pub mod lu;
 pub mod perturbation;
 pub mod projection;
 pub mod spec;
 pub mod vp_rnn_pf;
 pub mod zeroing;
-pub mod znn;
 
 pub use activation::Activation;
-pub use cdnn::{fp_cdnn, vp_cdnn};
-pub use group::group_znn;
 pub use perturbation::PerturbationTerms;
 pub use projection::{LviPdnn, SLviPdnn};
 pub use spec::build_solver;
 pub use vp_rnn_pf::VpRnnPf;
-pub use zeroing::{Gain, ZeroingNetwork};
-pub use znn::{finite_time, znn};
+pub use zeroing::ZeroingNetwork;
 
 use nalgebra::DMatrix;
-use schemes::qp::{Qp, QpDims};
+use qp::{Qp, QpDims};
 
 /// A recurrent network that solves a (possibly time-varying) QP.
 ///

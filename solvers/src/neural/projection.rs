@@ -20,7 +20,7 @@
 //! [0, +inf)^n_in. (A QP built with a finite varpi, as the scheme may, is projected on that finite
 //! bound unchanged.)
 //!
-//! At a solution of (2.21) the multipliers relate to [`schemes::qp::QpDuals`] by lambda = -u and
+//! At a solution of (2.21) the multipliers relate to [`qp::QpDuals`] by lambda = -u and
 //! mu = v (the stationarity row reads P x + q - A'u + G'v in normal cone of the box).
 //!
 //! # The networks
@@ -37,7 +37,7 @@
 
 use super::{euclidean_norm, NeuralSolver};
 use nalgebra::DMatrix;
-use schemes::qp::{Qp, QpDims};
+use qp::{Qp, QpDims};
 
 /// Dimension of the primal-dual vector y = [x; u; v] for a QP of these sizes.
 pub fn primal_dual_dim(dims: QpDims) -> usize {

@@ -3,13 +3,11 @@
 //! given sizes, checking the gains on the way.
 
 use super::activation::Activation;
-use super::cdnn::{fp_cdnn, vp_cdnn};
-use super::group::group_znn;
 use super::projection::{LviPdnn, SLviPdnn};
 use super::vp_rnn_pf::VpRnnPf;
-use super::znn::{finite_time, znn};
+use super::zeroing::ZeroingNetwork;
 use super::NeuralSolver;
-use schemes::qp::QpDims;
+use qp::QpDims;
 use settings::error::NetworkError;
 use settings::solver_spec::SolverSpec;
 
@@ -25,11 +23,30 @@ fn check_gain(network: &'static str, symbol: &'static str, v: f64) -> Result<(),
     }
 }
 
-/// Build the network of `spec` for QPs of sizes `dims` (scratch preallocated for them).
+/// Build the network of `spec` for QPs of sizes `dims` (scratch preallocated for them). The
+/// zeroing networks (the presets FP-CDNN, VP-CDNN, FTNN, ZNN, the group's, and any point of the
+/// vocabulary) are built from their expansion [`SolverSpec::zeroing`].
 pub fn build_solver(
     spec: &SolverSpec,
     dims: QpDims,
 ) -> Result<Box<dyn NeuralSolver>, NetworkError> {
+    // The presets' own gain checks first, so their messages name the paper's symbol.
+    match *spec {
+        SolverSpec::FpCdnn { gamma, .. } => check_gain("FP-CDNN", "gamma", gamma)?,
+        SolverSpec::VpCdnn { gamma, .. } => check_gain("VP-CDNN", "gamma", gamma)?,
+        SolverSpec::FiniteTime { beta, alpha, .. } => {
+            check_gain("FTNN", "beta", beta)?;
+            if !(alpha > 0.0 && alpha < 1.0) {
+                return Err(NetworkError::FiniteTimeAlpha(alpha));
+            }
+        }
+        SolverSpec::Znn { gamma } => check_gain("ZNN", "gamma", gamma)?,
+        SolverSpec::GroupZnn { gamma, .. } => check_gain("group ZNN", "gamma", gamma)?,
+        _ => {}
+    }
+    if let Some(zeroing) = spec.zeroing() {
+        return Ok(Box::new(ZeroingNetwork::from_spec(&zeroing, dims)?));
+    }
     Ok(match *spec {
         SolverSpec::LviPdnn { gamma } => {
             check_gain("LVI-PDNN", "gamma", gamma)?;
@@ -54,44 +71,11 @@ pub fn build_solver(
                 dims,
             )?)
         }
-        SolverSpec::FpCdnn {
-            gamma,
-            activation,
-            perturbation,
-        } => {
-            check_gain("FP-CDNN", "gamma", gamma)?;
-            Box::new(fp_cdnn(gamma, activation.into(), perturbation, dims)?)
-        }
-        SolverSpec::VpCdnn {
-            gamma,
-            activation,
-            perturbation,
-        } => {
-            check_gain("VP-CDNN", "gamma", gamma)?;
-            Box::new(vp_cdnn(gamma, activation.into(), perturbation, dims)?)
-        }
-        SolverSpec::FiniteTime {
-            beta,
-            alpha,
-            smoothing,
-        } => {
-            check_gain("FTNN", "beta", beta)?;
-            Box::new(finite_time(beta, alpha, smoothing, dims)?)
-        }
-        SolverSpec::Znn { gamma } => {
-            check_gain("ZNN", "gamma", gamma)?;
-            Box::new(znn(gamma, dims)?)
-        }
-        SolverSpec::GroupZnn {
-            gamma,
-            nu,
-            activation,
-            perturbation,
-            udot_rmp,
-        } => {
-            check_gain("group ZNN", "gamma", gamma)?;
-            let act = activation.into();
-            Box::new(group_znn(gamma, nu, act, perturbation, udot_rmp, dims)?)
-        }
+        SolverSpec::FpCdnn { .. }
+        | SolverSpec::VpCdnn { .. }
+        | SolverSpec::FiniteTime { .. }
+        | SolverSpec::Znn { .. }
+        | SolverSpec::GroupZnn { .. }
+        | SolverSpec::Zeroing { .. } => unreachable!("a zeroing network, built above"),
     })
 }

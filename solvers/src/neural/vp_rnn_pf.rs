@@ -75,12 +75,12 @@
 //! ```
 
 use super::activation::Activation;
-use super::zeroing::Gain;
 use super::NeuralSolver;
 use crate::dense_lu::DenseLu;
 use nalgebra::DMatrix;
-use schemes::qp::{Qp, QpDims};
+use qp::{Qp, QpDims};
 use settings::error::NetworkError;
+use settings::zeroing::GainLaw;
 
 /// Cap on the penalty exponent -sigma N_i (exp(700) ~ 1e304).
 pub const EXPONENT_CAP: f64 = 700.0;
@@ -96,7 +96,7 @@ pub struct VpRnnPf {
     pub gamma: f64,
     /// The activation Phi of the error (zhong2021 (2.26)).
     pub activation: Activation,
-    gain: Gain,
+    gain: GainLaw,
     dims: QpDims,
     /// Inequality rows B (G, then the finite bounds), their derivatives, h and hdot.
     b: DMatrix<f64>,
@@ -130,16 +130,23 @@ impl VpRnnPf {
         activation: Activation,
         dims: QpDims,
     ) -> Result<Self, NetworkError> {
-        Self::with_gain(p, sigma, gamma, Gain::Exponential(gamma), activation, dims)
+        Self::with_gain(
+            p,
+            sigma,
+            gamma,
+            GainLaw::Exponential { gamma },
+            activation,
+            dims,
+        )
     }
 
-    /// Same network with another gain schedule (e.g. [`Gain::Fixed`] for steady-state tests;
+    /// Same network with another gain schedule (e.g. [`GainLaw::Constant`] for steady-state tests;
     /// the paper's network is [`VpRnnPf::new`]).
     pub fn with_gain(
         p: f64,
         sigma: f64,
         gamma: f64,
-        gain: Gain,
+        gain: GainLaw,
         activation: Activation,
         dims: QpDims,
     ) -> Result<Self, NetworkError> {

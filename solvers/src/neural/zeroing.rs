@@ -1,7 +1,7 @@
 //! The zeroing core shared by every equality-only network of the papers: FP-CDNN and VP-CDNN
 //! (zhang2018 eq. 2.15, 2.11, perturbed 3.2, 3.1), kong2019's finite-time network (eq. 17-20)
 //! the plain ZNN of kong2019's comparison scheme (eq. 22) and the papers' group's own network
-//! ([`super::group`], `docs/group-code.md`).
+//! (`docs/group-code.md`).
 //!
 //! # The equation they zero
 //!
@@ -15,7 +15,7 @@
 //!
 //! (zhang2018 writes Q = [W J'; J 0], u = [-eta; b]; kong2019 writes W = [I J'; J 0],
 //! v = [-beta_theta c; rdot* + k_p (r* - f)]), so lambda has the sign convention of
-//! [`schemes::qp::QpDuals`]. The error E(t) = Q y - u (zhang2018 eq. 2.9, kong2019 eq. 19) is made
+//! [`qp::QpDuals`]. The error E(t) = Q y - u (zhang2018 eq. 2.9, kong2019 eq. 19) is made
 //! to obey Edot = -g(t) Phi(E) (zhang2018 eq. 2.10 / 2.14, kong2019 eq. 6); since
 //! Edot = Qdot y + Q ydot - udot (zhang2018 eq. 3.4) the network is the implicit system
 //!
@@ -23,16 +23,19 @@
 //!     Q ydot = -Qdot y + udot - g(t) Phi(Q y - u)  [ - DeltaD(t) y + Delta s(t) ]
 //! ```
 //!
-//! with the bracketed perturbation of zhang2018 eq. 3.1-3.2 (see [`super::cdnn`]; its terms:
+//! with the bracketed perturbation of zhang2018 eq. 3.1-3.2 (see `docs/networks.md`; its terms:
 //! [`super::perturbation`]) where given.
 //!
 //! Three options, all off by default (and then not evaluated at all, so the networks above are
-//! unchanged bit for bit), make the group's network ([`super::group`]):
+//! unchanged bit for bit), make the group's network (`docs/group-code.md`):
 //! - a growing-gain term -nu t E on the right-hand side ([`ZeroingNetwork::with_growing_gain`]);
-//! - the perturbation's vector part Delta s(t) alone, without DeltaD(t)
-//!   ([`ZeroingNetwork::with_vector_perturbation_only`]);
-//! - udot without its -qdot part, i.e. udot = [0; bdot]
-//!   ([`ZeroingNetwork::without_udot_q`]).
+//! - the perturbation's vector part Delta s(t) alone, without DeltaD(t);
+//! - udot without its -qdot part, i.e. udot = [0; bdot].
+//!
+//! Which network is built is data: a point of `settings::zeroing`'s vocabulary (gain law
+//! g(t), activation Phi, nu, perturbation, udot), of which FP-CDNN, VP-CDNN, kong2019's FTNN
+//! and ZNN and the group's network are presets ([`ZeroingNetwork::from_spec`]; the papers'
+//! derivations of each preset are in `docs/networks.md`).
 //!
 //! Q is small and invertible (P positive definite on the null space of A, A of full row rank),
 //! so ydot is solved for at each evaluation with an in-place LU with partial pivoting on a
@@ -55,35 +58,16 @@ use super::lu;
 use super::perturbation::PerturbationTerms;
 use super::{euclidean_norm, NeuralSolver};
 use nalgebra::DMatrix;
-use schemes::qp::{Qp, QpDims};
+use qp::{Qp, QpDims};
 use settings::error::NetworkError;
 use settings::solver_spec::ReferencePerturbation;
-
-/// Convergence gain of a zeroing network.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Gain {
-    /// g(t) = gamma (zhang2018 eq. 2.14-2.15, kong2019 eq. 6 with gamma = beta).
-    Fixed(f64),
-    /// g(t) = gamma exp(t) (zhang2018 eq. 2.10-2.11; zhong2021 eq. 2.26).
-    Exponential(f64),
-}
-
-impl Gain {
-    /// g(t).
-    #[inline]
-    pub fn at(&self, t: f64) -> f64 {
-        match *self {
-            Gain::Fixed(g) => g,
-            Gain::Exponential(g) => g * t.exp(),
-        }
-    }
-}
+use settings::zeroing::{GainLaw, ZeroingSpec};
 
 /// Q ydot = -Qdot y + udot - g(t) Phi(Q y - u) (+ perturbation): see the module docs.
 #[derive(Clone, Debug)]
 pub struct ZeroingNetwork {
     name: String,
-    gain: Gain,
+    gain: GainLaw,
     activation: Activation,
     perturbation: Option<ReferencePerturbation>,
     dims: QpDims,
@@ -110,7 +94,7 @@ impl ZeroingNetwork {
     /// (n_in must be 0; a perturbation needs nx + n_eq = 9).
     pub fn new(
         name: impl Into<String>,
-        gain: Gain,
+        gain: GainLaw,
         activation: Activation,
         perturbation: Option<ReferencePerturbation>,
         dims: QpDims,
@@ -145,6 +129,23 @@ impl ZeroingNetwork {
         })
     }
 
+    /// The network of a point of the vocabulary (`settings::zeroing`): its gain law (checked
+    /// positive), activation, growing gain, perturbation and udot, for QPs of sizes `dims`.
+    pub fn from_spec(spec: &ZeroingSpec, dims: QpDims) -> Result<Self, NetworkError> {
+        spec.gain.validate()?;
+        let mut net = ZeroingNetwork::new(
+            spec.name,
+            spec.gain.clone(),
+            Activation::from(spec.activation),
+            spec.perturbation,
+            dims,
+        )?
+        .with_growing_gain(spec.nu)?;
+        net.matrix_perturbation = spec.matrix_perturbation;
+        net.udot_q = spec.udot_q;
+        Ok(net)
+    }
+
     /// Adds the growing-gain term -nu t E to the right-hand side (the group's network;
     /// nu = 0 leaves the network unchanged). nu must be finite and >= 0.
     pub fn with_growing_gain(mut self, nu: f64) -> Result<Self, NetworkError> {
@@ -156,20 +157,6 @@ impl ZeroingNetwork {
         }
         self.nu = nu;
         Ok(self)
-    }
-
-    /// Uses only the vector part Delta s(t) of the perturbation, not DeltaD(t) (the group's code
-    /// computes its matrix perturbation but does not use it).
-    pub fn with_vector_perturbation_only(mut self) -> Self {
-        self.matrix_perturbation = false;
-        self
-    }
-
-    /// Drops the -qdot part of udot, udot = [0; bdot] (the group's EXP1 file, whose udot lacks
-    /// the -k thetadot term).
-    pub fn without_udot_q(mut self) -> Self {
-        self.udot_q = false;
-        self
     }
 
     /// nu of the growing-gain term -nu t E (0: none).
@@ -186,8 +173,8 @@ impl ZeroingNetwork {
     }
 
     /// The convergence gain g(t).
-    pub fn gain(&self) -> Gain {
-        self.gain
+    pub fn gain(&self) -> &GainLaw {
+        &self.gain
     }
     /// The activation Phi of the error E.
     pub fn activation(&self) -> Activation {
@@ -343,7 +330,10 @@ impl NeuralSolver for ZeroingNetwork {
         // Given for the sign-power activation only (kong2019's finite-time network), whose band
         // of width delta makes the coupled loop's forward difference of F wrong; the networks
         // with smooth activations keep that difference, and their runs stay bit for bit.
-        if !matches!(self.activation, Activation::SignPower { .. }) {
+        if !matches!(
+            self.activation,
+            Activation::SignPower { .. } | Activation::SignBiPower { .. }
+        ) {
             return false;
         }
         let nx = self.dims.nx;

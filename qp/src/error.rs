@@ -1,9 +1,8 @@
-//! Why a QP's data is malformed ([`QpError`], from [`crate::qp::Qp::validate`]). The bottom
+//! Why a QP's data is malformed ([`QpError`], from [`crate::Qp::validate`]). The bottom
 //! layer of the data a run passes through: the solvers' errors (`ExactError`,
-//! `ActiveSetError`) wrap it. The schemes' own errors are [`crate::spec::SchemeError`] and
-//! [`crate::paths::PathError`].
+//! `ActiveSetError`) wrap it.
 
-/// Which check of [`crate::qp::Qp::validate`] failed; each variant names the field.
+/// Which check of [`crate::Qp::validate`] failed; each variant names the field.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum QpError {
     /// A matrix or vector does not have the size q, b and h imply.

@@ -19,11 +19,11 @@
 //! `build_dot` analytically.
 //!
 //! This module holds the arithmetic on QPs (the quotient and its scratch space); the step and
-//! the difference along a scheme's motion are the scheme's ([`crate::scheme::default_step`],
-//! [`crate::scheme::central_difference`]), the default of `Scheme::build_dot`. Nothing here
+//! the difference along a scheme's motion are the scheme's (`schemes::scheme::default_step`,
+//! `schemes::scheme::central_difference`), the default of `Scheme::build_dot`. Nothing here
 //! allocates after [`QpDotScratch::new`].
 
-use crate::qp::{Qp, QpDims};
+use crate::{Qp, QpDims};
 use nalgebra::{Dim, Matrix, RawStorage, RawStorageMut};
 
 /// Largest change of t and of any joint coordinate in a central-difference step (~eps^(1/3)).
