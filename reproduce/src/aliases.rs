@@ -43,12 +43,14 @@ fn position(args: &[String], flag: &str) -> Option<usize> {
 }
 
 /// The arguments with an old mode flag replaced by its subcommand, written first (`args[0]` is
-/// the program). `--shard` beside `--list` is the list's option, as it always was.
+/// the program). `--shard` beside `--list` or the `list` subcommand is the list's option
+/// (`list --shard 2/4`, `--list --shard 2/4`), not the shard mode.
 pub fn to_subcommand(mut args: Vec<String>) -> Result<Vec<String>, TwoModes> {
+    let listing = position(&args, "--list").is_some() || args.get(1).is_some_and(|a| a == "list");
     let found: Vec<(usize, &str, &str)> = ALIASES
         .iter()
         .filter_map(|(flag, sub)| position(&args, flag).map(|i| (i, *flag, *sub)))
-        .filter(|(_, flag, _)| !(*flag == "--shard" && position(&args, "--list").is_some()))
+        .filter(|(_, flag, _)| !(*flag == "--shard" && listing))
         .collect();
     let Some(&(at, flag, sub)) = found.first() else {
         return Ok(args);
@@ -102,6 +104,8 @@ mod tests {
         assert_eq!(to("r --shard"), args("r shard"));
         assert_eq!(to("r --root p --shard 2/4"), args("r shard --root p 2/4"));
         assert_eq!(to("r --list --shard 2/4"), args("r list --shard 2/4"));
+        assert_eq!(to("r list --shard 2/4"), args("r list --shard 2/4"));
+        assert_eq!(to("r list --shard=2/4"), args("r list --shard=2/4"));
         assert_eq!(
             to("r --score f.csv --task e/v"),
             args("r score f.csv --task e/v")
