@@ -38,6 +38,10 @@ pub struct PaperFile {
     /// The experiments (`[[experiment]]`), in file order.
     #[serde(rename = "experiment")]
     pub experiments: Vec<Experiment>,
+    /// The file's name in its directory (e.g. `kong2019.toml`), as [`PaperFile::load`] read
+    /// it; empty for a file parsed from text ([`PaperFile::from_toml`]).
+    #[serde(skip)]
+    pub file_name: String,
 }
 
 /// One experiment of docs/experiments.md.
@@ -408,9 +412,19 @@ impl PaperFile {
             .filter(|d| !d.as_os_str().is_empty())
             .unwrap_or(Path::new("."));
         let text = inputs::read_text(path, inputs::Kind::Experiment, inputs::Origin::Under(dir))?;
-        Self::from_toml_within(&text, check, budget).map_err(|error| ExperimentFileError::Invalid {
-            file: path.to_path_buf(),
-            error,
+        let file = Self::from_toml_within(&text, check, budget).map_err(|error| {
+            ExperimentFileError::Invalid {
+                file: path.to_path_buf(),
+                error,
+            }
+        })?;
+        Ok(Self {
+            file_name: path
+                .file_name()
+                .unwrap_or_default()
+                .to_string_lossy()
+                .into_owned(),
+            ..file
         })
     }
 

@@ -21,6 +21,7 @@
 //! method and instant as context).
 
 mod arrays;
+mod budget;
 mod error;
 mod network;
 mod packaged;
@@ -37,7 +38,8 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use records::runs::RunRow;
+use records::failure_kind::FailureKind;
+use records::runs::{RunRow, Status};
 use records::trace::TracePoint;
 use records::trajectory::{score_row, Trajectory};
 use records::trajectory_file::read;
@@ -48,6 +50,7 @@ use simulation::score_trajectory::score_trajectory;
 use simulation::simulate::Outcome;
 use solvers::neural::NeuralSolver;
 use std::path::{Path, PathBuf};
+use std::time::Duration;
 use task_set::{load_tasks, PyTask};
 
 create_exception!(
@@ -272,27 +275,41 @@ fn in_task(py: Python<'_>, e: PyErr, task: &str) -> PyErr {
     renamed
 }
 
+/// A run of a Python network: its record and its row (named after the network), the cost of
+/// its calls, and the exception the network's own code raised, if it did (the run then went on
+/// with the network frozen: `network`'s module docs).
+struct PythonRun {
+    record: RunRecord,
+    row: RunRow,
+    calls: Callbacks,
+    raised: Option<PyErr>,
+}
+
 /// Runs `task` (as `job`: the task's job, possibly with other integrator settings) with the
-/// Python network `network`; raises what the network raised, or the library's error when the
-/// run could not be set up, with the task named ([`in_task`]). A network whose
-/// `handles(dims)` returns False, or that raises `NotApplicable` while it is built, raises
-/// `NotApplicable`. The row is named after the network.
+/// Python network `network`, within `budget` of wall time where one is given (`budget`'s
+/// module docs). Raises the library's error when the run could not be set up, with the task
+/// named ([`in_task`]); a network whose `handles(dims)` returns False, or that raises
+/// `NotApplicable` while it is built, raises `NotApplicable`. What the network raised during
+/// the run is returned in [`PythonRun::raised`], for the caller to raise or record.
 fn run_python(
     py: Python<'_>,
     task: &PyTask,
     job: &catalog::experiment::Job,
     network: &Bound<'_, PyAny>,
-) -> PyResult<(RunRecord, RunRow, Callbacks)> {
+    budget: Option<f64>,
+) -> PyResult<PythonRun> {
     let id = task.job.task().to_string();
-    run_python_unnamed(task, job, network).map_err(|e| in_task(py, e, &id))
+    run_python_unnamed(py, task, job, network, budget).map_err(|e| in_task(py, e, &id))
 }
 
 /// [`run_python`] without the task in its errors.
 fn run_python_unnamed(
+    py: Python<'_>,
     task: &PyTask,
     job: &catalog::experiment::Job,
     network: &Bound<'_, PyAny>,
-) -> PyResult<(RunRecord, RunRow, Callbacks)> {
+    budget: Option<f64>,
+) -> PyResult<PythonRun> {
     let name = network_name(network)?;
     if let Some(handles) = network.getattr_opt("handles")? {
         if !handles.call1((task.dims,))?.is_truthy()? {
@@ -315,17 +332,105 @@ fn run_python_unnamed(
                 SetupError::CustomNetwork(message)
             })
     };
-    let record = run_job_with_network(job, &build);
+    let record = match budget {
+        None => run_job_with_network(job, &build),
+        Some(seconds) => {
+            let mut job = job.clone();
+            job.integrator.max_wall_s = seconds;
+            budget::watched(py, Duration::from_secs_f64(seconds), || {
+                run_job_with_network(&job, &build)
+            })?
+        }
+    };
     let mut calls = std::mem::take(&mut *callbacks.lock().unwrap_or_else(|p| p.into_inner()));
-    if let Some(e) = calls.take_error() {
-        return Err(e);
-    }
-    check_setup(&record)?;
+    let raised = match calls.take_error() {
+        // NotApplicable raised while the network was built: N/A, not a failure of the run.
+        Some(e) if e.is_instance_of::<NotApplicable>(py) => return Err(e),
+        None => {
+            check_setup(&record)?;
+            None
+        }
+        raised => raised,
+    };
     let mut row = run_row(&record, reproduce::revision::REVISION);
     row.solver_id = python_solver_id(&name).map_err(lib_err)?;
     row.solver = name;
     row.solver_kind = catalog::solver_kind::SolverKind::Python;
-    Ok((record, row, calls))
+    Ok(PythonRun {
+        record,
+        row,
+        calls,
+        raised,
+    })
+}
+
+/// The longest `failure` text of a run whose network raised (a network's message is its
+/// own, possibly long or multi-line): the first this many characters, on one line.
+const MAX_FAILURE_CHARS: usize = 400;
+
+/// `e` as one line of at most [`MAX_FAILURE_CHARS`]: `<where>: <Type>: <message>` for an
+/// exception of a network's method (the library's wrapper names the method and the instant,
+/// its cause is the network's own exception), `<Type>: <message>` for one raised while the
+/// network was built.
+fn describe_raised(py: Python<'_>, e: &PyErr) -> String {
+    let typed = |x: &PyErr| {
+        let kind = x
+            .get_type(py)
+            .name()
+            .map_or_else(|_| "an exception".to_string(), |n| n.to_string());
+        format!("{kind}: {}", x.value(py))
+    };
+    let text = match e.cause(py) {
+        Some(cause) => format!("{}: {}", e.value(py), typed(&cause)),
+        None => typed(e),
+    };
+    text.split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+        .chars()
+        .take(MAX_FAILURE_CHARS)
+        .collect()
+}
+
+/// `row` as a failed run of `kind`, `failure` in words: no drift (theta(T) of a run whose
+/// network stopped is not the network's), no failed_at (the failure names its instant).
+fn mark_failed(row: &mut RunRow, kind: FailureKind, failure: String) {
+    row.status = Status::Failed;
+    row.failure = failure;
+    row.failure_kind = Some(kind);
+    row.failed_at = None;
+    row.drift.clear();
+    row.drift_norm = None;
+    row.drift_ref_norm = None;
+}
+
+/// The row of a run whose call into the network was stopped by the wall budget's watchdog
+/// (`e`, raised inside the call): a `wall-time` failure naming the call.
+fn budget_failure(py: Python<'_>, row: &mut RunRow, e: &PyErr, seconds: f64) {
+    let call = if e.is_instance_of::<budget::WallBudgetExceeded>(py) {
+        "the network's construction".to_string()
+    } else {
+        e.value(py).to_string()
+    };
+    mark_failed(
+        row,
+        FailureKind::WallTime,
+        format!(
+            "wall-time budget of {seconds} s used up inside {call}, a call into the network \
+             that had not returned (wall_budget)"
+        ),
+    );
+}
+
+/// `wall_budget=` in seconds: positive and finite.
+fn check_budget(seconds: f64) -> PyResult<f64> {
+    if seconds > 0.0 && seconds.is_finite() {
+        Ok(seconds)
+    } else {
+        Err(pyo3::exceptions::PyValueError::new_err(format!(
+            "wall_budget must be positive and finite (seconds of wall time per run), got {seconds}"
+        )))
+    }
 }
 
 /// A run that could not be set up raises the library's error.
@@ -364,10 +469,13 @@ fn parse_scoring(value: &Bound<'_, PyAny>) -> PyResult<Scoring> {
 /// Simulates `task` with `network`: a Python network (see the package docs) or the label of
 /// one of the task's own solvers by id (`task.solvers`, e.g. "exact"). Keyword arguments
 /// override the task's integrator tolerances and step limit, the scoring ("every-step", "off"
-/// or a number of instants) and where the network starts ("zero" or "exact"). Returns the
-/// run's runs.csv columns as a dict, with `drift` and `trace` as numpy arrays.
+/// or a number of instants) and where the network starts ("zero" or "exact"); `wall_budget`
+/// (seconds) bounds a Python network's run: past it the run is a failed run (`failure_kind`
+/// "wall-time"), even inside a call into the network that does not return (`budget`'s module
+/// docs). Returns the run's runs.csv columns as a dict, with `drift` and `trace` as numpy
+/// arrays. What the network raised is raised, the task named.
 #[pyfunction]
-#[pyo3(signature = (task, network, *, rtol=None, atol=None, max_step=None, scoring=None, network_init=None))]
+#[pyo3(signature = (task, network, *, rtol=None, atol=None, max_step=None, scoring=None, network_init=None, wall_budget=None))]
 #[allow(clippy::too_many_arguments)]
 fn simulate<'py>(
     py: Python<'py>,
@@ -378,8 +486,10 @@ fn simulate<'py>(
     max_step: Option<f64>,
     scoring: Option<&Bound<'py, PyAny>>,
     network_init: Option<&str>,
+    wall_budget: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     guarded(|| {
+        let wall_budget = wall_budget.map(check_budget).transpose()?;
         let builtin = network.extract::<String>().ok();
         let mut job = match &builtin {
             Some(id) => task.run_of(id).map_err(lib_err)?.clone(),
@@ -406,7 +516,15 @@ fn simulate<'py>(
             let row = run_row(&record, reproduce::revision::REVISION);
             (record, row, Callbacks::default())
         } else {
-            run_python(py, task, &job, network)?
+            let mut run = run_python(py, task, &job, network, wall_budget)?;
+            match (run.raised.take(), wall_budget) {
+                (None, _) => {}
+                (Some(e), Some(seconds)) if budget::is_exceeded(py, &e) => {
+                    budget_failure(py, &mut run.row, &e, seconds)
+                }
+                (Some(e), _) => return Err(in_task(py, e, &task.job.task().to_string())),
+            }
+            (run.record, run.row, run.calls)
         };
         result_dict(py, &record, &row, &calls)
     })
@@ -443,27 +561,40 @@ fn chosen_tasks(standard: &[PyTask], given: &Bound<'_, PyAny>) -> PyResult<Vec<P
         .collect()
 }
 
+/// The leaderboard's wall budget of one run (s) unless `wall_budget=` says otherwise: about
+/// 100 times the slowest numpy run of the standard task set (the numpy GNN's runs take
+/// 0.1-1 s on the development machine; python/README.md), so a slow but working network
+/// ranks, and an entry that hangs costs two minutes a task, not the whole call.
+const DEFAULT_WALL_BUDGET: f64 = 120.0;
+
 /// Scores Python networks on the standard task set (or on `tasks`, a subset of it, as Task
 /// objects or ids) the way the leaderboard scores the suite's own networks: each runs every
 /// task it handles, its rows join the stored `results/runs.csv`, and
 /// `analysis::leaderboard::leaderboard` ranks them all. A task a network does not handle
 /// (`handles(dims)` False, or `NotApplicable` raised while it is built) is N/A for it: no row,
-/// so it is ranked on the tasks it ran, as the suite's zeroing networks are. Any other
-/// exception stops the call, the task named. `entries` is a dict name -> network or a list of
-/// networks (named by their `name`, else their class). Returns {"leaderboard": rows, "runs":
-/// the networks' rows (with `python_calls` and `python_seconds`), "not_applicable": a list of
-/// {"solver", "task", "reason"}}, the rows dicts in the schema of results/leaderboard.csv and
-/// results/runs.csv; with `out_dir`, writes both files there.
+/// so it is ranked on the tasks it ran, as the suite's zeroing networks are. An entry whose own
+/// code fails on a task (an exception in a method, a NaN or malformed result) or whose run
+/// exceeds `wall_budget` seconds of wall time ([`DEFAULT_WALL_BUDGET`]; a call that does not
+/// return included) has a failed run there, the reason in its row (`failure`, `failure_kind`
+/// "network" or "wall-time"), and the others go on and are ranked; Ctrl-C
+/// (`KeyboardInterrupt`) still stops the call. `entries` is a dict name -> network or a list
+/// of networks (named by their `name`, else their class). Returns {"leaderboard": rows,
+/// "runs": the networks' rows (with `python_calls` and `python_seconds`), "not_applicable" (the
+/// N/A tasks) and "failed" (the failed runs, whatever stopped them): lists of {"solver",
+/// "task", "reason"}}, the rows dicts in the schema of
+/// results/leaderboard.csv and results/runs.csv; with `out_dir`, writes both files there.
 #[pyfunction]
-#[pyo3(signature = (entries, *, tasks=None, root=None, out_dir=None))]
+#[pyo3(signature = (entries, *, tasks=None, root=None, out_dir=None, wall_budget=DEFAULT_WALL_BUDGET))]
 fn leaderboard<'py>(
     py: Python<'py>,
     entries: &Bound<'py, PyAny>,
     tasks: Option<&Bound<'py, PyAny>>,
     root: Option<PathBuf>,
     out_dir: Option<PathBuf>,
+    wall_budget: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     guarded(|| {
+        let wall_budget = check_budget(wall_budget)?;
         if let Some(out) = &out_dir {
             check_out_dir(out)?;
         }
@@ -481,7 +612,7 @@ fn leaderboard<'py>(
         ));
         }
         let named = named_entries(entries)?;
-        let entered = run_entries(py, &named, &chosen, &stored)?;
+        let entered = run_entries(py, &named, &chosen, &stored, wall_budget)?;
         let (fresh, costs) = (entered.rows, entered.costs);
         let mut all = stored;
         all.extend(fresh.iter().cloned());
@@ -502,6 +633,7 @@ fn leaderboard<'py>(
         out.set_item("leaderboard", PyList::new(py, csv_dicts(py, &board_csv)?)?)?;
         out.set_item("runs", PyList::new(py, runs)?)?;
         out.set_item("not_applicable", entered.not_applicable)?;
+        out.set_item("failed", entered.failed)?;
         Ok(out)
     })
 }
@@ -538,26 +670,47 @@ fn named_entries<'py>(entries: &Bound<'py, PyAny>) -> PyResult<Vec<(String, Boun
 }
 
 /// What the networks of [`leaderboard`] produced: their rows (named after them), the cost of
-/// their Python calls (one per row), and the tasks each does not handle.
+/// their Python calls (one per row), the tasks each does not handle, and the failed runs.
 struct Entered<'py> {
     rows: Vec<RunRow>,
     costs: Vec<Callbacks>,
     /// {"solver", "task", "reason"} per task a network does not handle.
     not_applicable: Bound<'py, PyList>,
+    /// {"solver", "task", "reason"} per failed run (the network's own code, the budget, or
+    /// the run itself: diverged, ...).
+    failed: Bound<'py, PyList>,
+}
+
+/// {"solver", "task", "reason"} as a dict.
+fn task_note<'py>(
+    py: Python<'py>,
+    solver: &str,
+    task: &PyTask,
+    reason: &str,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("solver", solver)?;
+    d.set_item("task", task.job.task().to_string())?;
+    d.set_item("reason", reason)?;
+    Ok(d)
 }
 
 /// Runs every named network on every `chosen` task, its rows named `python-<slug(name)>`; a name
-/// a `stored` row or an earlier entry already has is refused, and a task a network does not
-/// handle (`NotApplicable`) is listed, not run.
+/// a `stored` row or an earlier entry already has is refused, a task a network does not
+/// handle (`NotApplicable`) is listed, not run, and a run the network's own code failed
+/// (raised, returned NaN, used up `budget`) is a failed row, also listed. An exception that is
+/// not an `Exception` (Ctrl-C's `KeyboardInterrupt`) stops the call.
 fn run_entries<'py>(
     py: Python<'py>,
     named: &[(String, Bound<'py, PyAny>)],
     chosen: &[PyTask],
     stored: &[RunRow],
+    budget: f64,
 ) -> PyResult<Entered<'py>> {
     let mut fresh = Vec::new();
     let mut costs = Vec::new();
     let not_applicable = PyList::empty(py);
+    let failed = PyList::empty(py);
     for (name, network) in named {
         let id = python_solver_id(name).map_err(lib_err)?;
         if stored
@@ -572,19 +725,31 @@ fn run_entries<'py>(
             )));
         }
         for t in chosen {
-            match run_python(py, t, &t.job, network) {
-                Ok((_, mut row, calls)) => {
-                    row.solver = name.clone();
-                    row.solver_id = id.clone();
-                    fresh.push(row);
-                    costs.push(calls);
+            match run_python(py, t, &t.job, network, Some(budget)) {
+                Ok(mut run) => {
+                    match run.raised.take() {
+                        None => {}
+                        Some(e) if budget::is_exceeded(py, &e) => {
+                            budget_failure(py, &mut run.row, &e, budget)
+                        }
+                        Some(e) if !e.is_instance_of::<pyo3::exceptions::PyException>(py) => {
+                            return Err(e)
+                        }
+                        Some(e) => {
+                            mark_failed(&mut run.row, FailureKind::Network, describe_raised(py, &e))
+                        }
+                    }
+                    if run.row.status == Status::Failed {
+                        failed.append(task_note(py, name, t, &run.row.failure)?)?;
+                    }
+                    run.row.solver = name.clone();
+                    run.row.solver_id = id.clone();
+                    fresh.push(run.row);
+                    costs.push(run.calls);
                 }
                 Err(e) if e.is_instance_of::<NotApplicable>(py) => {
-                    let skipped = PyDict::new(py);
-                    skipped.set_item("solver", name)?;
-                    skipped.set_item("task", t.job.task().to_string())?;
-                    skipped.set_item("reason", e.value(py).str()?)?;
-                    not_applicable.append(skipped)?;
+                    let reason = e.value(py).str()?.to_string();
+                    not_applicable.append(task_note(py, name, t, &reason)?)?;
                 }
                 Err(e) => return Err(e),
             }
@@ -594,6 +759,7 @@ fn run_entries<'py>(
         rows: fresh,
         costs,
         not_applicable,
+        failed,
     })
 }
 

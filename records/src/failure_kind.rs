@@ -1,7 +1,8 @@
 //! The `failure_kind` column of `results/runs.csv`: what stopped a run, as a category a table
 //! can be grouped by (kebab-case in the file: `setup`, `exact-qp`, `diverged`, `non-finite`,
-//! `integrator`, `step-limit`, `wall-time`, `eval-budget`, `numerical-method`; empty for a completed run). The
-//! engine (`simulation::error::RunError::kind`) says which category each of its errors is.
+//! `integrator`, `step-limit`, `wall-time`, `eval-budget`, `numerical-method`, `network`; empty for a
+//! completed run). The engine (`simulation::error::RunError::kind`) says which category each of its
+//! errors is; `network` is the Python package's (`python/`), for a network whose own code failed.
 
 use serde::{Deserialize, Serialize};
 
@@ -28,4 +29,8 @@ pub enum FailureKind {
     /// A numerical run solver did not meet its stopping rule at an instant (iteration limit,
     /// a singular matrix its rule inverts, or a non-finite iterate).
     NumericalMethod,
+    /// A network written in Python raised an exception in one of its methods, or returned a
+    /// result that is not a finite real array of its state's size (the Python package's
+    /// leaderboard records such an entry's run as failed and goes on).
+    Network,
 }

@@ -166,9 +166,11 @@ impl<'a> Journal<'a> {
         seal.write_all(seal_line.as_bytes())
             .and_then(|()| seal.flush())
             .map_err(IoError::at(seal_path(self.results.path()), IoAction::Write))?;
+        crate::kill_point::passed();
         file.write_all(&line)
             .and_then(|()| file.flush())
             .map_err(IoError::at(journal, IoAction::Write))?;
+        crate::kill_point::passed();
         Ok(())
     }
 }
@@ -269,7 +271,7 @@ fn read_seal(dir: &Path) -> Result<HashMap<String, String>, JournalError> {
 pub fn remove(dir: &Path) -> Result<(), IoError> {
     for file in [path(dir), seal_path(dir)] {
         match std::fs::remove_file(&file) {
-            Ok(()) => {}
+            Ok(()) => crate::kill_point::passed(),
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
             Err(e) => return Err(IoError::at(file, IoAction::Remove)(e)),
         }

@@ -25,7 +25,8 @@
 //! - [`tracked_dir`]: an owned directory with its manifest: writes recorded, edits found,
 //!   deletions only of files the program provably wrote.
 //! - [`results_dir`]: `results/` as one type: lock, layout, traces, pruning.
-//! - [`journal`]: the checkpoint of finished runs that an interrupted run resumes from.
+//! - [`journal`]: the checkpoint of finished runs that an interrupted run resumes from;
+//!   [`kill_point`]: the test hook that kills the process after any durable step.
 //! - [`shard`]: cluster runs: which shard a run belongs to, the shard directory's binding and
 //!   manifest, the merge checks; [`fnv`]: the stable hash they use.
 //! - [`migrate`]: results written before run ids (labels as identities), brought up to date once.
@@ -58,6 +59,7 @@ pub mod index;
 pub mod inference;
 pub mod integrity;
 pub mod journal;
+pub mod kill_point;
 pub mod ladder;
 pub mod migrate;
 pub mod owned_dir;

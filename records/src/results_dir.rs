@@ -303,13 +303,14 @@ impl ResultsDir {
         Ok(done)
     }
 
-    /// Writes `runs.csv` (atomically, recorded in the manifest).
+    /// Writes `runs.csv` and saves the manifest, as one step a kill cannot split
+    /// ([`TrackedDir::commit`]).
     pub fn write_runs(&self, rows: &[RunRow]) -> Result<(), ResultsError> {
         let bytes = runs_csv(rows).map_err(|source| ResultsError::Write {
             path: self.runs_path(),
             source,
         })?;
-        self.tracked.write(Path::new(RUNS), &bytes)?;
+        self.tracked.commit(RUNS, &bytes)?;
         Ok(())
     }
 

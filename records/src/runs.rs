@@ -310,7 +310,9 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     std::fs::write(&tmp, bytes)?;
     std::fs::rename(&tmp, path).inspect_err(|_| {
         let _ = std::fs::remove_file(&tmp);
-    })
+    })?;
+    crate::kill_point::passed();
+    Ok(())
 }
 
 /// Serialises rows as CSV (see [`crate::table`]: as many drift columns as the most joints).

@@ -12,7 +12,8 @@
 //!   or 0-based one) does not tell N and is refused, naming the variables, unless N is given.
 //!   A Kubernetes Indexed Job's `JOB_COMPLETION_INDEX` is K - 1; N must be given.
 //! - **Binding.** A shard starts by binding its directory ([`Binding::claim`]):
-//!   `shard-binding.toml` records K, N, the selection and the experiment files' hash, and a
+//!   `shard-binding.toml` records K, N, the selection and the hash of the experiment files the
+//!   selection draws its runs from (no other file of the directory), and a
 //!   directory bound to anything else (another selection or sweep, other experiment files,
 //!   another K or N), or holding results without a binding, is refused before anything runs.
 //!   The same shard started again (a requeue) finds its own binding and resumes.
@@ -587,28 +588,33 @@ impl Manifest {
     pub fn remove(dir: &Path) -> Result<(), ShardError> {
         let path = dir.join(MANIFEST);
         match std::fs::remove_file(&path) {
-            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
-                Err(IoError::at(&path, IoAction::Remove)(e).into())
+            Ok(()) => {
+                crate::kill_point::passed();
+                Ok(())
             }
-            _ => Ok(()),
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(()),
+            Err(e) => Err(IoError::at(&path, IoAction::Remove)(e).into()),
         }
     }
 }
 
-/// FNV-1a 64 of the experiment files of `dir` (every `*.toml`, by file name: name and
-/// contents), as 16 hex digits: shards to be merged must have run the same files.
-pub fn experiments_hash(dir: &Path) -> Result<String, IoError> {
-    let mut paths: Vec<PathBuf> = std::fs::read_dir(dir)
-        .map_err(IoError::at(dir, IoAction::List))?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .collect();
-    paths.sort();
+/// FNV-1a 64 of the experiment files `names` of `dir` (in name order: name and contents), as
+/// 16 hex digits: shards to be merged must have run the same files. The caller names the files
+/// its selection draws runs from, so a file the selection does not read (another sweep added
+/// beside it) does not change the hash.
+pub fn experiments_hash<'a>(
+    dir: &Path,
+    names: impl IntoIterator<Item = &'a str>,
+) -> Result<String, IoError> {
+    let mut names: Vec<&str> = names.into_iter().collect();
+    names.sort_unstable();
+    names.dedup();
     let mut bytes = Vec::new();
-    for p in &paths {
-        bytes.extend(p.file_name().unwrap_or_default().as_encoded_bytes());
+    for name in names {
+        let path = dir.join(name);
+        bytes.extend(name.as_bytes());
         bytes.push(0);
-        bytes.extend(std::fs::read(p).map_err(IoError::at(p, IoAction::Read))?);
+        bytes.extend(std::fs::read(&path).map_err(IoError::at(&path, IoAction::Read))?);
         bytes.push(0);
     }
     Ok(format!("{:016x}", fnv1a64(&bytes)))

@@ -9,7 +9,11 @@
 //!   its entry: a file the program cannot prove it wrote, or one edited since, is left in place
 //!   and reported;
 //! - [`TrackedDir::save`] writes the manifest; call it at the end of each step that changed
-//!   the directory.
+//!   the directory;
+//! - [`TrackedDir::commit`] writes a top-level table and saves the manifest as one step: a kill
+//!   at any instant leaves the table and the saved manifest agreeing (the next
+//!   [`TrackedDir::open`] finishes or undoes the commit), where a write then a save would leave
+//!   the new table beside the old manifest, an edit in the eyes of the next start.
 //!
 //! Opening checks the listed files that a caller selects against their entries
 //! ([`TrackedDir::open`]): a file edited, truncated or removed behind the program's back is an
@@ -109,6 +113,7 @@ impl TrackedDir {
             }
             None => Manifest::default(),
         };
+        finish_commits(&owned, &manifest)?;
         let tracked = Self {
             dir: owned,
             manifest: Mutex::new(Manifest {
@@ -281,6 +286,65 @@ impl TrackedDir {
         m.write(self.path())?;
         Ok(())
     }
+
+    /// Writes `bytes` to the top-level file `name` and saves the manifest, so that the file
+    /// and the saved manifest agree whatever instant the process is killed at: the bytes go to
+    /// [`pending`]`(name)` (atomically), the manifest is saved with `name`'s new fingerprint
+    /// (the commit point), and the pending file is renamed over `name`. A kill before the save
+    /// leaves the old file and the old manifest; a kill after it, the new manifest and the
+    /// new file pending, which the next [`TrackedDir::open`] renames into place.
+    pub fn commit(&self, name: &str, bytes: &[u8]) -> Result<(), TrackedError> {
+        let staged = self.resolve(Path::new(&pending(name)))?;
+        let path = self.resolve(Path::new(name))?;
+        crate::runs::write_atomic(&staged, bytes).map_err(|source| TrackedError::Io {
+            path: staged.clone(),
+            source,
+        })?;
+        self.lock()
+            .files
+            .insert(name.to_string(), Fingerprint::of(bytes));
+        self.save()?;
+        std::fs::rename(&staged, &path).map_err(|source| TrackedError::Io { path, source })?;
+        crate::kill_point::passed();
+        Ok(())
+    }
+}
+
+/// The name a top-level file `name` is written under until [`TrackedDir::commit`] renames it
+/// into place: `.driftbench-commit.<name>` (not a temporary file of
+/// [`crate::results_dir::is_own_tmp`], which a start removes before it could be finished).
+pub fn pending(name: &str) -> String {
+    format!(".driftbench-commit.{name}")
+}
+
+/// Finishes or undoes the commits ([`TrackedDir::commit`]) a kill interrupted in `dir`, whose
+/// saved manifest is `manifest`: for each listed top-level file with a pending copy, the copy
+/// is renamed over it if the manifest records the copy's content (the commit point was
+/// passed), and removed otherwise (it was not: the file and the manifest still agree).
+fn finish_commits(dir: &OwnedDir, manifest: &Manifest) -> Result<(), TrackedError> {
+    for (name, listed) in manifest.files.iter().filter(|(k, _)| !k.contains('/')) {
+        let staged = dir.resolve(Path::new(&pending(name)))?;
+        let bytes = match std::fs::read(&staged) {
+            Ok(bytes) => bytes,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => continue,
+            Err(source) => {
+                return Err(TrackedError::Io {
+                    path: staged,
+                    source,
+                })
+            }
+        };
+        let done = if Fingerprint::of(&bytes) == *listed {
+            std::fs::rename(&staged, dir.resolve(Path::new(name))?)
+        } else {
+            std::fs::remove_file(&staged)
+        };
+        done.map_err(|source| TrackedError::Io {
+            path: staged,
+            source,
+        })?;
+    }
+    Ok(())
 }
 
 /// A manifest key: the relative path with `/`.
@@ -338,6 +402,49 @@ mod tests {
         let err =
             TrackedDir::open(&base, "r3", Edits::Refuse, Some("runs.csv"), |_| true).unwrap_err();
         assert!(matches!(err, TrackedError::Unsealed { .. }), "{err}");
+        let _ = std::fs::remove_dir_all(&base);
+    }
+
+    /// A commit cut by a kill at each of its intermediate states, rebuilt on disk: the next
+    /// open leaves the table and the manifest agreeing, the old table before the commit point
+    /// (the manifest's save), the new one after it; a pending copy of a file the manifest does
+    /// not list is left alone.
+    #[test]
+    fn a_commit_cut_at_any_state_is_finished_or_undone_on_open() {
+        let base = std::env::temp_dir().join(format!("driftbench-commit-{}", std::process::id()));
+        let open = || TrackedDir::open(&base, "r", Edits::Refuse, Some("runs.csv"), |_| true);
+        let (old, new) = (b"h\n1\n".as_slice(), b"h\n1\n2\n".as_slice());
+        let staged = base.join(pending("runs.csv"));
+        // (state, table expected after the open)
+        for cut in ["pending written", "manifest saved", "renamed"] {
+            let _ = std::fs::remove_dir_all(&base);
+            let t = open().unwrap();
+            t.commit("runs.csv", old).unwrap();
+            let before = std::fs::read(base.join(FILE)).unwrap();
+            t.commit("runs.csv", new).unwrap();
+            let after = std::fs::read(base.join(FILE)).unwrap();
+            drop(t);
+            std::fs::write(&staged, new).unwrap();
+            match cut {
+                "pending written" => {
+                    std::fs::write(base.join("runs.csv"), old).unwrap();
+                    std::fs::write(base.join(FILE), &before).unwrap();
+                }
+                "manifest saved" => std::fs::write(base.join("runs.csv"), old).unwrap(),
+                _ => std::fs::remove_file(&staged).unwrap(),
+            }
+            assert_eq!(
+                std::fs::read(base.join(FILE)).unwrap() == after,
+                cut != "pending written"
+            );
+            open().unwrap_or_else(|e| panic!("{cut}: {e}"));
+            let want = if cut == "pending written" { old } else { new };
+            assert_eq!(std::fs::read(base.join("runs.csv")).unwrap(), want, "{cut}");
+            assert!(!staged.exists(), "{cut}");
+        }
+        std::fs::write(base.join(pending("notes.txt")), b"a user's").unwrap();
+        open().unwrap();
+        assert!(base.join(pending("notes.txt")).exists());
         let _ = std::fs::remove_dir_all(&base);
     }
 }

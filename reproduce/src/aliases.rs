@@ -33,6 +33,28 @@ pub struct TwoModes {
     pub second: String,
 }
 
+/// The global options that take a value (`--root DIR`, ...) and the global flags: what may
+/// stand before a subcommand (`crate::options::GlobalOptions`).
+const GLOBAL_VALUED: [&str; 4] = ["--root", "--experiments-dir", "--results-dir", "--threads"];
+const GLOBAL_FLAGS: [&str; 2] = ["--accept-edited", "--prune"];
+
+/// Where the subcommand of `args` stands, past the global options before it (`reproduce
+/// --root DIR list`), if one is given.
+fn subcommand_at(args: &[String]) -> Option<usize> {
+    let mut i = 1;
+    while let Some(a) = args.get(i) {
+        let name = a.split_once('=').map_or(a.as_str(), |(name, _)| name);
+        if GLOBAL_VALUED.contains(&a.as_str()) {
+            i += 2;
+        } else if GLOBAL_VALUED.contains(&name) || GLOBAL_FLAGS.contains(&a.as_str()) {
+            i += 1;
+        } else {
+            return SUBCOMMANDS.contains(&a.as_str()).then_some(i);
+        }
+    }
+    None
+}
+
 /// Where in `args` (after the program, before a `--`) the old flag `flag` stands, alone or
 /// as `flag=value`.
 fn position(args: &[String], flag: &str) -> Option<usize> {
@@ -43,12 +65,16 @@ fn position(args: &[String], flag: &str) -> Option<usize> {
 }
 
 /// The arguments with an old mode flag replaced by its subcommand, written first (`args[0]` is
-/// the program). `--shard` beside `--list` is the list's option, as it always was.
+/// the program). `--shard` beside `--list` or the `list` subcommand is the list's option
+/// (`list --shard 2/4`, `--root DIR list --shard 2/4`, `--list --shard 2/4`), not the shard
+/// mode.
 pub fn to_subcommand(mut args: Vec<String>) -> Result<Vec<String>, TwoModes> {
+    let given = subcommand_at(&args);
+    let listing = position(&args, "--list").is_some() || given.is_some_and(|i| args[i] == "list");
     let found: Vec<(usize, &str, &str)> = ALIASES
         .iter()
         .filter_map(|(flag, sub)| position(&args, flag).map(|i| (i, *flag, *sub)))
-        .filter(|(_, flag, _)| !(*flag == "--shard" && position(&args, "--list").is_some()))
+        .filter(|(_, flag, _)| !(*flag == "--shard" && listing))
         .collect();
     let Some(&(at, flag, sub)) = found.first() else {
         return Ok(args);
@@ -59,9 +85,9 @@ pub fn to_subcommand(mut args: Vec<String>) -> Result<Vec<String>, TwoModes> {
             second: second.to_string(),
         });
     }
-    if let Some(given) = args.get(1).filter(|a| SUBCOMMANDS.contains(&a.as_str())) {
+    if let Some(given) = given {
         return Err(TwoModes {
-            first: given.clone(),
+            first: args[given].clone(),
             second: flag.to_string(),
         });
     }
@@ -102,6 +128,12 @@ mod tests {
         assert_eq!(to("r --shard"), args("r shard"));
         assert_eq!(to("r --root p --shard 2/4"), args("r shard --root p 2/4"));
         assert_eq!(to("r --list --shard 2/4"), args("r list --shard 2/4"));
+        assert_eq!(to("r list --shard 2/4"), args("r list --shard 2/4"));
+        assert_eq!(to("r list --shard=2/4"), args("r list --shard=2/4"));
+        assert_eq!(
+            to("r --root p --threads=2 list --shard 2/4"),
+            args("r --root p --threads=2 list --shard 2/4")
+        );
         assert_eq!(
             to("r --score f.csv --task e/v"),
             args("r score f.csv --task e/v")
@@ -122,6 +154,11 @@ mod tests {
             ("--list", "--robots")
         );
         let err = to_subcommand(args("r merge a --check")).unwrap_err();
+        assert_eq!(
+            (err.first.as_str(), err.second.as_str()),
+            ("merge", "--check")
+        );
+        let err = to_subcommand(args("r --root p merge a --check")).unwrap_err();
         assert_eq!(
             (err.first.as_str(), err.second.as_str()),
             ("merge", "--check")

@@ -72,6 +72,33 @@ pub fn resume(
     Ok(records::journal::remove(results.path())?)
 }
 
+/// Removes from `to_run` the runs a shard directory already holds: rows of `kept` (its
+/// `runs.csv`, the journal just folded in) of this revision `git_rev` whose trace the
+/// directory's manifest records. An earlier start of the shard finished them, whether its
+/// journal was folded by this start or by one before: a shard's resume is cumulative over every
+/// attempt, and a finished shard started again runs nothing.
+pub fn skip_finished(results: &ResultsDir, git_rev: &str, kept: &[RunRow], to_run: &mut Vec<Job>) {
+    let traced: HashSet<String> = results.tracked().listed("traces/").into_iter().collect();
+    let done: HashSet<RunKey> = kept
+        .iter()
+        .filter(|r| r.git_rev == git_rev)
+        .map(RunRow::key)
+        .filter(|k| {
+            let rel = ResultsDir::trace_rel(k);
+            traced.contains(&rel.to_string_lossy().replace('\\', "/"))
+        })
+        .collect();
+    let before = to_run.len();
+    to_run.retain(|j| !done.contains(&j.key()));
+    if before > to_run.len() {
+        eprintln!(
+            "the shard holds {} of its runs from earlier starts of this revision ({}); they are not run again",
+            before - to_run.len(),
+            results.runs_path().display()
+        );
+    }
+}
+
 /// Runs `to_run` (in parallel), each checkpointed in a journal of `results` when given (sized
 /// for the most joints among `jobs`, the selection). Returns the records and the keys of the
 /// runs the journal could not checkpoint (whose traces are written again at the end).

@@ -7,7 +7,7 @@ use crate::project::Project;
 use crate::report::render_report_if_named;
 use crate::results::{open_results, plan_pruning, write_results, Described};
 use crate::run::report_unexpected;
-use crate::select::{check_selection, selected};
+use crate::select::{check_selection, selected, selection_files};
 use catalog::experiment::PaperFile;
 use records::runs::RunRow;
 use std::process::ExitCode;
@@ -30,7 +30,8 @@ pub fn merge_shards(
     check_selection(files, &sel)?;
     let expected: Vec<String> = selected(files, &sel).map(|j| j.key().to_string()).collect();
     let all = &Described::new(files);
-    let hash = records::shard::experiments_hash(&project.experiments_dir)?;
+    let hash =
+        records::shard::experiments_hash(&project.experiments_dir, selection_files(files, &sel))?;
     records::shard::check_shards(&shards, &expected, &hash)?;
     let results = open_results(project, git_rev, all)?;
     let (kept, pruned) = plan_pruning(project, &results, all)?;

@@ -39,6 +39,11 @@ impl<'a> Described<'a> {
         }
     }
 
+    /// The experiment files.
+    pub fn files(&self) -> &'a [PaperFile] {
+        self.files
+    }
+
     /// Every run, in file order, collected on the first call.
     pub fn jobs(&self) -> &[Job] {
         self.jobs

@@ -10,12 +10,13 @@
 use crate::baseline::Baseline;
 use crate::error::ReproduceError;
 use crate::explanation::explain;
-use crate::journal::{resume, run_journaled};
+use crate::journal::{resume, run_journaled, skip_finished};
 use crate::options::SelectionOptions;
 use crate::phases::PhaseClock;
 use crate::project::Project;
 use crate::report::{precheck_report, render_figures, render_pages, report_root};
 use crate::results::{open_results, plan_pruning, write_results, Described};
+use crate::select::selection_files;
 use crate::summary::{emit, summary};
 use catalog::experiment::Job;
 use records::phases::Phase;
@@ -83,7 +84,10 @@ pub fn run(
             let binding = records::shard::Binding {
                 shard: shard.k,
                 shards: shard.n,
-                experiments_hash: records::shard::experiments_hash(&project.experiments_dir)?,
+                experiments_hash: records::shard::experiments_hash(
+                    &project.experiments_dir,
+                    selection_files(all.files(), &plan.selection.selection()),
+                )?,
                 selection: plan.selection.selection(),
             };
             binding.claim(results)?;
@@ -95,6 +99,9 @@ pub fn run(
     let mut to_run: Vec<Job> = jobs.to_vec();
     if let (Some(results), Some((kept, _))) = (&results, stored.as_mut()) {
         resume(results, git_rev, all, kept, &mut to_run)?;
+        if binding.is_some() {
+            skip_finished(results, git_rev, kept, &mut to_run);
+        }
     }
     let mut clock = PhaseClock::since(plan.started);
     clock.lap(Phase::Setup, None);

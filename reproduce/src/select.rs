@@ -19,6 +19,26 @@ pub fn selected<'a>(
         .filter(|j| selects(selection, j))
 }
 
+/// The names of the experiment files of `files` that `selection` draws its runs from: the
+/// files of its paper (all without `--paper`) that define one of its experiments (any without
+/// `--experiment`). A shard is bound to these files only (records::shard::experiments_hash):
+/// another file added beside them does not make the shard's runs another sweep's.
+pub fn selection_files<'a>(
+    files: &'a [PaperFile],
+    selection: &Selection,
+) -> impl Iterator<Item = &'a str> + 'a {
+    let paper = selection.paper.clone();
+    let experiments = selection.experiments.clone();
+    files
+        .iter()
+        .filter(move |f| {
+            paper.as_ref().is_none_or(|p| &f.paper == p)
+                && (experiments.is_empty()
+                    || f.experiments.iter().any(|e| experiments.contains(&e.id)))
+        })
+        .map(|f| f.file_name.as_str())
+}
+
 /// A paper or experiment of `selection` that no file of `files` names is an error listing the
 /// known ones (every experiment of a file has runs: a variant that runs nothing is refused at
 /// load).
@@ -119,6 +139,26 @@ mod tests {
         let exact = select(None, &[a, b], true).unwrap();
         assert!(!exact.is_empty() && exact.len() < jobs.len());
         assert!(exact.iter().all(|j| j.solver == SolverChoice::Exact));
+    }
+
+    #[test]
+    fn a_selection_reads_the_files_of_its_paper_and_experiments_only() {
+        let (files, _) = project();
+        let names = |paper: Option<&str>, experiments: &[&str]| {
+            let selection = Selection {
+                paper: paper.map(String::from),
+                experiments: experiments.iter().map(|e| e.to_string()).collect(),
+                exact_only: false,
+            };
+            selection_files(&files, &selection).collect::<Vec<_>>()
+        };
+        let every: Vec<&str> = files.iter().map(|f| f.file_name.as_str()).collect();
+        assert!(every.iter().all(|n| n.ends_with(".toml")), "{every:?}");
+        assert_eq!(names(None, &[]), every);
+        let kong = files.iter().find(|f| f.paper == "kong2019").unwrap();
+        assert_eq!(names(Some("kong2019"), &[]), [kong.file_name.as_str()]);
+        let one = &kong.experiments[0].id;
+        assert_eq!(names(None, &[one]), [kong.file_name.as_str()]);
     }
 
     #[test]

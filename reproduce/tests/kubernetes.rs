@@ -1,7 +1,10 @@
-//! docs/kubernetes/driftbench-job.yaml against the rules of the Kubernetes Job API it relies on
-//! (the API server's validation of batch/v1 Job: pkg/apis/batch/validation) and the project's
-//! own (N written twice must agree; threads from the CPU request; the memory request the docs
-//! state). The manifest is read by a small parser of the YAML subset it is written in (block
+//! The Kubernetes recipe of docs/kubernetes/ against the rules of the Kubernetes API it relies on
+//! (the API server's validation of batch/v1 Job, pkg/apis/batch/validation, and of v1
+//! PersistentVolumeClaim, pkg/apis/core/validation) and the project's own: the shards' Job (N
+//! written twice must agree; threads from the CPU request; the memory request the docs state),
+//! the volume (ReadWriteMany), the Job that fills it with a clone at a revision, the merge Job
+//! (N a third time), every pod mounting the volume's claim at the root it runs in, and the
+//! minimum Kubernetes version the docs state (the newest of the fields' versions). The manifest is read by a small parser of the YAML subset it is written in (block
 //! mappings and sequences, flow sequences and mappings of scalars, quoted and plain scalars,
 //! comments); anything else in it is a test failure, not a guess.
 
@@ -246,8 +249,20 @@ fn need(out: &mut Vec<String>, ok: bool, what: &str) {
     }
 }
 
-/// Every rule of the Job API and of the project the manifest breaks, one line each.
+/// Every rule of the Job API and of the project the shards' Job breaks, one line each.
 fn problems(job: &Yaml, cluster_md: &str) -> Vec<String> {
+    let mut out = job_api_problems(job);
+    need(
+        &mut out,
+        job.str_at("spec.completionMode") == Some("Indexed"),
+        "spec.completionMode: Indexed (shards are indexes)",
+    );
+    out.extend(shard_problems(job, cluster_md));
+    out
+}
+
+/// Every rule of the Job API (batch/v1) `job` breaks, one line each.
+fn job_api_problems(job: &Yaml) -> Vec<String> {
     let mut out = Vec::new();
     need(
         &mut out,
@@ -258,11 +273,18 @@ fn problems(job: &Yaml, cluster_md: &str) -> Vec<String> {
     let indexed = job.str_at("spec.completionMode") == Some("Indexed");
     need(
         &mut out,
-        indexed,
-        "spec.completionMode: Indexed (shards are indexes)",
+        job.str_at("spec.completionMode")
+            .is_none_or(|m| m == "Indexed" || m == "NonIndexed"),
+        "spec.completionMode: Indexed or NonIndexed",
     );
-    let completions = job.int_at("spec.completions").unwrap_or(0);
+    let completions = job.int_at("spec.completions").unwrap_or(1);
     need(&mut out, completions >= 1, "spec.completions: N >= 1");
+    need(
+        &mut out,
+        job.at("spec.backoffLimit")
+            .is_none_or(|_| job.int_at("spec.backoffLimit").is_some_and(|b| b >= 0)),
+        "spec.backoffLimit: a whole number >= 0",
+    );
     let parallelism = job.int_at("spec.parallelism").unwrap_or(1);
     need(
         &mut out,
@@ -272,8 +294,8 @@ fn problems(job: &Yaml, cluster_md: &str) -> Vec<String> {
     let name = job.str_at("metadata.name").unwrap_or("");
     need(
         &mut out,
-        dns_label(&format!("{name}-{}", completions - 1)),
-        "metadata.name: <name>-<last index> must be a DNS-1123 label",
+        dns_label(name) && (!indexed || dns_label(&format!("{name}-{}", completions - 1))),
+        "metadata.name: a DNS-1123 label, and so <name>-<last index> of an Indexed Job",
     );
     let restart = job.str_at("spec.template.spec.restartPolicy").unwrap_or("");
     need(
@@ -405,9 +427,53 @@ fn problems(job: &Yaml, cluster_md: &str) -> Vec<String> {
             }
         }
     }
-    // The project's rules: one reproduce container, K from the index, N twice and equal,
-    // threads from the CPU request, the memory request the docs state.
     need(&mut out, containers.len() == 1, "one container");
+    let volumes: HashSet<&str> = job
+        .seq_at("spec.template.spec.volumes")
+        .iter()
+        .filter_map(|v| v.str_at("name"))
+        .collect();
+    for c in containers {
+        for m in c.seq_at("volumeMounts") {
+            need(
+                &mut out,
+                m.str_at("name").is_some_and(|n| volumes.contains(n)),
+                "volumeMounts[].name: a volume of the pod",
+            );
+            need(
+                &mut out,
+                m.str_at("mountPath").is_some_and(|p| p.starts_with('/')),
+                "volumeMounts[].mountPath: an absolute path",
+            );
+        }
+        // $(NAME) in a command is the kubelet's expansion: it must name an env variable of
+        // the container, else it stays literal.
+        let env: HashSet<&str> = c
+            .seq_at("env")
+            .iter()
+            .filter_map(|e| e.str_at("name"))
+            .collect();
+        for arg in c.seq_at("command").iter().chain(c.seq_at("args")) {
+            let Yaml::Str(arg) = arg else { continue };
+            for reference in arg.split("$(").skip(1) {
+                let name = reference.split(')').next().unwrap_or("");
+                need(
+                    &mut out,
+                    env.contains(name),
+                    &format!("$({name}) in the command names an env variable of the container (else it stays literal)"),
+                );
+            }
+        }
+    }
+    out
+}
+
+/// The project's rules of the shards' Job: one reproduce container, K from the index, N twice
+/// and equal, threads from the CPU request, the memory request the docs state.
+fn shard_problems(job: &Yaml, cluster_md: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let completions = job.int_at("spec.completions").unwrap_or(1);
+    let containers = job.seq_at("spec.template.spec.containers");
     let Some(c) = containers.first() else {
         return out;
     };
@@ -436,16 +502,6 @@ fn problems(job: &Yaml, cluster_md: &str) -> Vec<String> {
         var("DRIFTBENCH_SHARDS").and_then(|e| e.str_at("value")) == Some(&completions.to_string()),
         "env DRIFTBENCH_SHARDS equals spec.completions",
     );
-    for arg in &command {
-        for reference in arg.split("$(").skip(1) {
-            let name = reference.split(')').next().unwrap_or("");
-            need(
-                &mut out,
-                var(name).is_some(),
-                &format!("$({name}) in the command names an env variable of the container (else it stays literal)"),
-            );
-        }
-    }
     let cpu = c.str_at("resources.requests.cpu").unwrap_or("");
     need(
         &mut out,
@@ -481,18 +537,347 @@ fn problems(job: &Yaml, cluster_md: &str) -> Vec<String> {
     out
 }
 
-fn read(rel: &str) -> String {
-    std::fs::read_to_string(common::repo_root().join(rel)).unwrap()
+/// Every rule of the PersistentVolumeClaim API (v1) and of the recipe `pvc` breaks.
+fn volume_problems(pvc: &Yaml) -> Vec<String> {
+    let mut out = Vec::new();
+    need(
+        &mut out,
+        pvc.str_at("apiVersion") == Some("v1"),
+        "apiVersion: v1",
+    );
+    need(
+        &mut out,
+        pvc.str_at("kind") == Some("PersistentVolumeClaim"),
+        "kind: PersistentVolumeClaim",
+    );
+    need(
+        &mut out,
+        pvc.str_at("metadata.name").is_some_and(dns_label),
+        "metadata.name: a DNS-1123 label",
+    );
+    let modes: Vec<&str> = pvc
+        .seq_at("spec.accessModes")
+        .iter()
+        .filter_map(|m| match m {
+            Yaml::Str(s) => Some(s.as_str()),
+            _ => None,
+        })
+        .collect();
+    need(
+        &mut out,
+        !modes.is_empty()
+            && modes.iter().all(|m| {
+                ["ReadWriteOnce", "ReadOnlyMany", "ReadWriteMany", "ReadWriteOncePod"].contains(m)
+            }),
+        "spec.accessModes: one or more of ReadWriteOnce, ReadOnlyMany, ReadWriteMany, ReadWriteOncePod",
+    );
+    need(
+        &mut out,
+        modes.contains(&"ReadWriteMany"),
+        "spec.accessModes: ReadWriteMany (the shards' pods write at once, on several nodes)",
+    );
+    need(
+        &mut out,
+        pvc.str_at("spec.volumeMode")
+            .is_none_or(|m| m == "Filesystem" || m == "Block"),
+        "spec.volumeMode: Filesystem or Block",
+    );
+    let storage = pvc.str_at("spec.resources.requests.storage").unwrap_or("");
+    let digits = storage.trim_end_matches(|c: char| c.is_ascii_alphabetic());
+    let suffix = &storage[digits.len()..];
+    need(
+        &mut out,
+        digits.parse::<u64>().is_ok_and(|n| n > 0)
+            && ["", "Ki", "Mi", "Gi", "Ti", "Pi", "k", "M", "G", "T", "P"].contains(&suffix),
+        "spec.resources.requests.storage: a positive quantity (e.g. 20Gi)",
+    );
+    out
+}
+
+/// Where `job`'s first container mounts the claim `claim` (its mountPath), if it does.
+fn mount_of<'a>(job: &'a Yaml, claim: &str) -> Option<&'a str> {
+    let volume = job
+        .seq_at("spec.template.spec.volumes")
+        .iter()
+        .find(|v| v.str_at("persistentVolumeClaim.claimName") == Some(claim))?
+        .str_at("name")?;
+    job.seq_at("spec.template.spec.containers")
+        .first()?
+        .seq_at("volumeMounts")
+        .iter()
+        .find(|m| m.str_at("name") == Some(volume))?
+        .str_at("mountPath")
+}
+
+/// The first container's command and args, one string.
+fn command_line(job: &Yaml) -> String {
+    let Some(c) = job.seq_at("spec.template.spec.containers").first() else {
+        return String::new();
+    };
+    c.seq_at("command")
+        .iter()
+        .chain(c.seq_at("args"))
+        .filter_map(|a| match a {
+            Yaml::Str(s) => Some(s.as_str()),
+            _ => None,
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// The value of the first container's env variable `name`.
+fn env_value<'a>(job: &'a Yaml, name: &str) -> Option<&'a str> {
+    job.seq_at("spec.template.spec.containers")
+        .first()?
+        .seq_at("env")
+        .iter()
+        .find(|e| e.str_at("name") == Some(name))?
+        .str_at("value")
+}
+
+/// The recipe's own rules across its four objects: every pod mounts the volume's claim, the
+/// fill clones into the root the shards and the merge run in, at a revision; the merge reads
+/// the N shard directories of the shards' Job with its image.
+fn recipe_problems(pvc: &Yaml, fill: &Yaml, job: &Yaml, merge: &Yaml) -> Vec<String> {
+    let mut out = Vec::new();
+    let claim = pvc.str_at("metadata.name").unwrap_or("");
+    let root = mount_of(job, claim);
+    for (what, j) in [
+        ("the fill Job", fill),
+        ("the shards' Job", job),
+        ("the merge Job", merge),
+    ] {
+        need(
+            &mut out,
+            mount_of(j, claim).is_some() && mount_of(j, claim) == root,
+            &format!("{what} mounts the volume's claim ({claim}) where the shards' Job does"),
+        );
+    }
+    let root = root.unwrap_or("");
+    let (fill_cmd, job_cmd, merge_cmd) =
+        (command_line(fill), command_line(job), command_line(merge));
+    need(
+        &mut out,
+        job_cmd.contains(&format!("--root {root} ")),
+        "the shards run with --root at the volume's mount",
+    );
+    for step in [
+        format!("cd {root};"),
+        "git fetch".to_string(),
+        "$DRIFTBENCH_REPO $DRIFTBENCH_REVISION".to_string(),
+        "git checkout".to_string(),
+    ] {
+        need(
+            &mut out,
+            fill_cmd.contains(&step),
+            &format!("the fill Job's command: {step}"),
+        );
+    }
+    for var in ["DRIFTBENCH_REPO", "DRIFTBENCH_REVISION"] {
+        need(
+            &mut out,
+            env_value(fill, var).is_some_and(|v| !v.is_empty()),
+            &format!("the fill Job sets {var}"),
+        );
+    }
+    need(
+        &mut out,
+        merge_cmd.contains(&format!(
+            "reproduce merge --root {root} {root}/results-shard-*-of-$(DRIFTBENCH_SHARDS)"
+        )),
+        "the merge Job runs `reproduce merge --root <mount> <mount>/results-shard-*-of-$(DRIFTBENCH_SHARDS)`",
+    );
+    need(
+        &mut out,
+        env_value(merge, "DRIFTBENCH_SHARDS").is_some()
+            && env_value(merge, "DRIFTBENCH_SHARDS") == env_value(job, "DRIFTBENCH_SHARDS"),
+        "the merge Job's DRIFTBENCH_SHARDS equals the shards' Job's",
+    );
+    let image = |j: &Yaml| {
+        j.seq_at("spec.template.spec.containers")
+            .first()
+            .and_then(|c| c.str_at("image"))
+            .map(str::to_string)
+    };
+    need(
+        &mut out,
+        image(merge).is_some() && image(merge) == image(job),
+        "the merge Job runs the shards' image",
+    );
+    need(
+        &mut out,
+        merge.str_at("spec.template.spec.restartPolicy") == Some("Never")
+            && merge.int_at("spec.backoffLimit") == Some(0),
+        "the merge Job is not retried (restartPolicy: Never, backoffLimit: 0): a retry finds the same",
+    );
+    out
+}
+
+/// The Kubernetes minor version (1.x) from which each Job field the recipe may use is served
+/// and on by default (beta or GA): Indexed completion 1.22 (GA 1.24), podFailurePolicy 1.26
+/// (GA 1.31), backoffLimitPerIndex and maxFailedIndexes 1.29 (GA 1.33; alpha, off, in 1.28).
+const FIELD_SINCE: [(&str, u32); 4] = [
+    ("spec.completionMode", 22),
+    ("spec.podFailurePolicy", 26),
+    ("spec.backoffLimitPerIndex", 29),
+    ("spec.maxFailedIndexes", 29),
+];
+
+/// The oldest Kubernetes 1.x that serves every field the Jobs use.
+fn minimum_minor(jobs: &[&Yaml]) -> u32 {
+    jobs.iter()
+        .flat_map(|j| FIELD_SINCE.iter().filter(|(f, _)| j.at(f).is_some()))
+        .map(|(_, v)| *v)
+        .max()
+        .unwrap_or(21)
+}
+
+/// The four files of the recipe, parsed: volume, fill, shards' Job, merge.
+fn recipe(files: [&str; 4]) -> [Yaml; 4] {
+    files.map(|text| Parser::new(text).parse())
+}
+
+const RECIPE: [&str; 4] = [
+    "docs/kubernetes/driftbench-volume.yaml",
+    "docs/kubernetes/driftbench-fill.yaml",
+    "docs/kubernetes/driftbench-job.yaml",
+    "docs/kubernetes/driftbench-merge.yaml",
+];
+
+/// Everything the recipe breaks: each object's API rules, the shards' Job's and the recipe's
+/// own rules, and the minimum version (`cluster_md` and every file must state it).
+fn recipe_all_problems(texts: [&str; 4], cluster_md: &str) -> Vec<String> {
+    let [pvc, fill, job, merge] = recipe(texts);
+    let mut out = volume_problems(&pvc);
+    out.extend(
+        job_api_problems(&fill)
+            .into_iter()
+            .map(|p| format!("fill: {p}")),
+    );
+    out.extend(problems(&job, cluster_md));
+    out.extend(
+        job_api_problems(&merge)
+            .into_iter()
+            .map(|p| format!("merge: {p}")),
+    );
+    out.extend(recipe_problems(&pvc, &fill, &job, &merge));
+    let stated = format!(
+        "Kubernetes 1.{} or later",
+        minimum_minor(&[&fill, &job, &merge])
+    );
+    need(
+        &mut out,
+        cluster_md.contains(&stated),
+        &format!("docs/cluster.md states the minimum version: {stated}"),
+    );
+    for (file, text) in RECIPE.iter().zip(texts) {
+        need(
+            &mut out,
+            text.contains(&stated),
+            &format!("{file} states the minimum version: {stated}"),
+        );
+    }
+    out
 }
 
 #[test]
-fn the_job_manifest_passes_the_job_api_rules_it_relies_on() {
-    let job = Parser::new(&read("docs/kubernetes/driftbench-job.yaml")).parse();
-    let found = problems(&job, &read("docs/cluster.md"));
+fn the_whole_recipe_volume_fill_shards_merge_passes_the_api_and_recipe_rules() {
+    let texts = RECIPE.map(read);
+    let found = recipe_all_problems(
+        texts.each_ref().map(String::as_str),
+        &read("docs/cluster.md"),
+    );
     assert!(found.is_empty(), "{found:#?}");
     assert!(common::repo_root()
         .join("docs/kubernetes/Containerfile")
         .is_file());
+}
+
+/// A broken rule in any file of the recipe is found.
+#[test]
+fn broken_recipes_are_found() {
+    let texts = RECIPE.map(read);
+    let docs = read("docs/cluster.md");
+    for (file, from, to, want) in [
+        (
+            0,
+            "accessModes: [ReadWriteMany]",
+            "accessModes: [ReadWriteOnce]",
+            "ReadWriteMany (the shards",
+        ),
+        (0, "storage: 20Gi", "storage: lots", "a positive quantity"),
+        (
+            0,
+            "name: driftbench-project",
+            "name: other-project",
+            "mounts the volume's claim",
+        ),
+        (
+            1,
+            "mountPath: /driftbench",
+            "mountPath: /elsewhere",
+            "the fill Job mounts",
+        ),
+        (1, "git checkout", "git switch", "git checkout"),
+        (
+            1,
+            "restartPolicy: Never",
+            "restartPolicy: Always",
+            "fill: spec.template.spec.restartPolicy",
+        ),
+        (
+            2,
+            "  backoffLimitPerIndex: 3\n",
+            "  backoffLimitPerIndex: 3\n  maxFailedIndexes: 99\n",
+            "0 ..= completions",
+        ),
+        (
+            3,
+            "value: \"16\"",
+            "value: \"8\"",
+            "DRIFTBENCH_SHARDS equals the shards' Job's",
+        ),
+        (3, "backoffLimit: 0", "backoffLimit: 2", "is not retried"),
+        (
+            3,
+            "claimName: driftbench-project",
+            "claimName: other",
+            "the merge Job mounts",
+        ),
+        (
+            3,
+            "-of-$(DRIFTBENCH_SHARDS)",
+            "-of-$(SHARDS)",
+            "names an env variable",
+        ),
+    ] {
+        let mut broken = texts.clone();
+        assert!(broken[file].contains(from), "{}: {from}", RECIPE[file]);
+        broken[file] = broken[file].replacen(from, to, 1);
+        let found = recipe_all_problems(broken.each_ref().map(String::as_str), &docs);
+        assert!(
+            found.iter().any(|p| p.contains(want)),
+            "{to}: {want}: {found:#?}"
+        );
+    }
+    // Without backoffLimitPerIndex (and its FailIndex rule) the recipe would need 1.26 only:
+    // the version the docs state must then follow, so the statement is checked, not copied.
+    let job = Parser::new(&texts[2]).parse();
+    assert_eq!(minimum_minor(&[&job]), 29);
+    let older = Parser::new("spec:\n  podFailurePolicy:\n    rules: []\n").parse();
+    assert_eq!(minimum_minor(&[&older]), 26);
+    let stated = docs.replace("Kubernetes 1.29 or later", "Kubernetes 1.27 or later");
+    let found = recipe_all_problems(texts.each_ref().map(String::as_str), &stated);
+    assert!(
+        found
+            .iter()
+            .any(|p| p.contains("docs/cluster.md states the minimum version")),
+        "{found:#?}"
+    );
+}
+
+fn read(rel: &str) -> String {
+    std::fs::read_to_string(common::repo_root().join(rel)).unwrap()
 }
 
 /// The manifest before issue 30 (`restartPolicy: OnFailure` beside `backoffLimitPerIndex`,

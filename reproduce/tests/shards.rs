@@ -322,9 +322,21 @@ fn the_binary_knows_its_revision() {
     assert!(!text.contains("unknown"), "{text}");
 }
 
-/// `--shard K/N --list` lists the shard's runs; the shards' lists partition the selection.
+/// `--shard K/N --list` lists the shard's runs; the shards' lists partition the selection;
+/// `list --shard K/N` (the subcommand) lists the same as the older `--list --shard K/N`.
 #[test]
 fn shard_lists_partition_the_selection() {
+    for k in 1..=3 {
+        let shard = format!("{k}/3");
+        let list =
+            |args: &[&str]| ok(reproduce().args(args).args(SELECTION).output().unwrap()).stdout;
+        let new = list(&["list", "--shard", &shard]);
+        assert_eq!(new, list(&["--list", "--shard", &shard]), "shard {shard}");
+        assert!(
+            String::from_utf8_lossy(&new).contains("exact"),
+            "shard {shard}"
+        );
+    }
     let count = |extra: &[&str]| {
         let out = ok(reproduce()
             .args(SELECTION)
@@ -343,4 +355,141 @@ fn shard_lists_partition_the_selection() {
         .sum();
     assert_eq!(all, 11);
     assert_eq!(parts, all);
+}
+
+/// Kill safety at every durable step (records::kill_point: each rename, journal append and
+/// removal is one): for every step N of a shard's first start, the shard is killed there, then
+/// started again and killed at the N-th step of that start (which, as N grows, falls on every
+/// step of the resume: the fold's runs.csv and manifest, the journal's removal, ...), then
+/// started a third time without the hook. That start must finish without `--accept-edited`,
+/// and the merge must equal one unsharded process. An experiment file added beside the
+/// selection's (another paper's) blocks neither the shard's start nor its merge.
+#[test]
+fn a_shard_killed_after_any_durable_step_resumes_and_merges_equal_to_one_process() {
+    let base = temp("kill-points");
+    let experiments = base.join("experiments");
+    std::fs::create_dir_all(&experiments).unwrap();
+    std::fs::write(experiments.join("kong2019.toml"), three_cheap_runs()).unwrap();
+    let whole = base.join("whole");
+    ok(reproduce()
+        .args(["--paper", "kong2019", "--skip-explain", "--experiments-dir"])
+        .arg(&experiments)
+        .arg("--results-dir")
+        .arg(&whole)
+        .output()
+        .unwrap());
+    let shard = |dir: &std::path::Path, kill_after: Option<usize>| {
+        let mut c = reproduce();
+        c.args(["--shard", "1/1", "--paper", "kong2019", "--experiments-dir"])
+            .arg(&experiments)
+            .arg("--results-dir")
+            .arg(dir);
+        if let Some(n) = kill_after {
+            c.env(records::kill_point::VAR, n.to_string());
+        }
+        c.output().unwrap()
+    };
+    let killed = |out: &std::process::Output| {
+        String::from_utf8_lossy(&out.stderr).contains("killed after durable step")
+    };
+    let mut step = 0;
+    loop {
+        step += 1;
+        assert!(step < 200, "a clean start takes fewer durable steps");
+        let dir = base.join(format!("shard-{step}"));
+        let first = shard(&dir, Some(step));
+        if !killed(&first) {
+            ok(first);
+            break;
+        }
+        let second = shard(&dir, Some(step));
+        if !killed(&second) {
+            ok(second);
+        }
+        ok(shard(&dir, None));
+        let merged = base.join(format!("merged-{step}"));
+        ok(reproduce()
+            .arg("--merge")
+            .arg(&dir)
+            .arg("--experiments-dir")
+            .arg(&experiments)
+            .arg("--results-dir")
+            .arg(&merged)
+            .output()
+            .unwrap());
+        common::assert_same_results(&merged, &whole, 3);
+    }
+    assert!(step > 10, "only {step} durable steps in a shard of 3 runs");
+
+    // Another paper's experiment file added beside: the finished shard starts again (running
+    // nothing) and merges; the selection does not read that file.
+    let dir = base.join("shard-1");
+    std::fs::write(
+        experiments.join("jia2019.toml"),
+        common::CHEAP_EXPERIMENT
+            .replace("paper = \"kong2019\"", "paper = \"jia2019\"")
+            .replace("kong2019-cheap", "jia2019-cheap"),
+    )
+    .unwrap();
+    let again = ok(shard(&dir, None));
+    let err = String::from_utf8_lossy(&again.stderr);
+    assert!(err.contains("the shard holds 3 of its runs"), "{err}");
+    let merged = base.join("merged-beside");
+    ok(reproduce()
+        .arg("--merge")
+        .arg(&dir)
+        .arg("--experiments-dir")
+        .arg(&experiments)
+        .arg("--results-dir")
+        .arg(&merged)
+        .output()
+        .unwrap());
+    common::assert_same_results(&merged, &whole, 3);
+    let _ = std::fs::remove_dir_all(&base);
+}
+
+/// Resume is cumulative: a shard whose every start is killed after a few durable steps (fewer
+/// than a whole start takes) still finishes, each start keeping what the earlier ones finished
+/// (a start that re-ran the runs folded by an earlier one would never end).
+#[test]
+fn a_shard_killed_every_few_steps_finishes_after_a_bounded_number_of_starts() {
+    let base = temp("killed-often");
+    let (experiments, dir) = (base.join("experiments"), base.join("shard"));
+    std::fs::create_dir_all(&experiments).unwrap();
+    std::fs::write(experiments.join("kong2019.toml"), three_cheap_runs()).unwrap();
+    let mut starts = 0;
+    loop {
+        starts += 1;
+        assert!(starts <= 8, "not finished after {} starts", starts - 1);
+        let out = reproduce()
+            .args(["--shard", "1/1", "--experiments-dir"])
+            .arg(&experiments)
+            .arg("--results-dir")
+            .arg(&dir)
+            .env(records::kill_point::VAR, "10")
+            .output()
+            .unwrap();
+        if !String::from_utf8_lossy(&out.stderr).contains("killed after durable step") {
+            ok(out);
+            break;
+        }
+    }
+    assert!(starts > 1, "the kill came before the shard's end");
+    let manifest = records::shard::Manifest::read(&dir).unwrap();
+    assert_eq!(manifest.runs.len(), 3);
+    assert_eq!(read_runs(&dir.join("runs.csv")).unwrap().len(), 3);
+    let _ = std::fs::remove_dir_all(&base);
+}
+
+/// `common::CHEAP_EXPERIMENT` with two more variants (a sweep of mu): three cheap runs.
+fn three_cheap_runs() -> String {
+    format!(
+        "{}{}",
+        common::CHEAP_EXPERIMENT,
+        r#"[[experiment.variant]]
+label = "ZNN swept"
+scheme = { kind = "kong2019-znn", k_p = 1.0 }
+sweep = { "scheme.mu" = [1, 2] }
+"#
+    )
 }

@@ -95,6 +95,7 @@ def simulate(
     max_step: Optional[float] = None,
     scoring: Union[str, int, None] = None,
     network_init: Optional[str] = None,
+    wall_budget: Optional[float] = None,
 ) -> dict[str, Any]: ...
 def leaderboard(
     entries: Union[Mapping[str, _Network], Sequence[_Network]],
@@ -102,6 +103,7 @@ def leaderboard(
     tasks: Optional[Sequence[Union[Task, str]]] = None,
     root: Optional[_Path] = None,
     out_dir: Optional[_Path] = None,
+    wall_budget: float = 120.0,
 ) -> dict[str, list[dict[str, Any]]]: ...
 def score(
     task: Task,
