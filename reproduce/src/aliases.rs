@@ -69,6 +69,12 @@ fn position(args: &[OsString], flag: &str) -> Option<usize> {
         .filter(|&i| i > 0)
 }
 
+/// Whether `args` ask for the list (`--list`, or the `list` subcommand), whose own option
+/// `--shard` is.
+fn lists(args: &[OsString]) -> bool {
+    position(args, "--list").is_some() || args.get(1).is_some_and(|a| a == "list")
+}
+
 /// The arguments with an old mode flag replaced by its subcommand, written first (`args[0]` is
 /// the program), and the alias used if one was. `--shard` beside `--list` is the list's
 /// option, as it always was.
@@ -76,7 +82,7 @@ pub fn to_subcommand(mut args: Vec<OsString>) -> Result<(Vec<OsString>, Option<A
     let found: Vec<(usize, &str, &str)> = ALIASES
         .iter()
         .filter_map(|(flag, sub)| position(&args, flag).map(|i| (i, *flag, *sub)))
-        .filter(|(_, flag, _)| !(*flag == "--shard" && position(&args, "--list").is_some()))
+        .filter(|(_, flag, _)| !(*flag == "--shard" && lists(&args)))
         .collect();
     let Some(&(at, flag, sub)) = found.first() else {
         return Ok((args, None));
@@ -143,6 +149,7 @@ mod tests {
         assert_eq!(to("r --shard"), args("r shard"));
         assert_eq!(to("r --root p --shard 2/4"), args("r shard --root p 2/4"));
         assert_eq!(to("r --list --shard 2/4"), args("r list --shard 2/4"));
+        assert_eq!(to("r list --shard 2/4"), args("r list --shard 2/4"));
         assert_eq!(
             to("r --score f.csv --task e/v"),
             args("r score f.csv --task e/v")

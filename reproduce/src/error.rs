@@ -154,6 +154,7 @@ impl ReproduceError {
                 tracked(e)
             }
             ReproduceError::Journal(JournalError::Csv { .. }) => Exit::Io,
+            ReproduceError::Path(e) | ReproduceError::Journal(JournalError::Path(e)) => path(e),
             ReproduceError::Report(e) => report(e),
             ReproduceError::Score(ScoreError::Io(e)) => io(e),
             _ => Exit::Input,
@@ -184,6 +185,16 @@ fn results(e: &ResultsError) -> Exit {
         ResultsError::Io(e) => io(e),
         ResultsError::Read(e) => runs(e),
         ResultsError::Tracked(e) => tracked(e),
+        ResultsError::Path(e) => path(e),
+        _ => Exit::Input,
+    }
+}
+
+/// A directory the program owns that the system would not create or open is an I/O failure; a
+/// path refused (not a plain name, a link leading out) is an input error.
+fn path(e: &PathError) -> Exit {
+    match e {
+        PathError::Open { .. } => Exit::Io,
         _ => Exit::Input,
     }
 }
@@ -191,6 +202,7 @@ fn results(e: &ResultsError) -> Exit {
 fn tracked(e: &TrackedError) -> Exit {
     match e {
         TrackedError::Io { .. } | TrackedError::Integrity(IntegrityError::Write { .. }) => Exit::Io,
+        TrackedError::Path(e) => path(e),
         _ => Exit::Input,
     }
 }

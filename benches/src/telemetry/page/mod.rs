@@ -155,6 +155,10 @@ mod tests {
         rows.into_iter().chain(fits).collect()
     }
 
+    fn read<T: records::table::Row>(csv: &str) -> Vec<T> {
+        records::table::from_reader(csv.as_bytes()).unwrap()
+    }
+
     fn inputs() -> Inputs {
         let profile_csv = "part,category,floor,samples,share_of_process,share_of_simulation,\
                            ms_per_pass,paper,passes,frequency_hz,git_rev\n\
@@ -170,7 +174,6 @@ mod tests {
         let hot_csv = "category,share,bench,seconds,frequency_hz,git_rev\n\
                        KKT solves,0.75,demo/hot,8,4999,abc\n\
                        certification (KKT residuals),0.25,demo/hot,8,4999,abc\n";
-        let read = |csv: &str| records::table::from_reader(csv.as_bytes()).unwrap();
         Inputs {
             phases: Vec::new(),
             clock: Vec::new(),
