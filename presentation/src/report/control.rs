@@ -81,8 +81,8 @@ pub fn section(results: &ControlResults, runs: &Runs, figures: &[String]) -> Str
          the QP held; the zeroing networks also in the Taylor-type discrete-time ZNN form \
          (Zhang et al., J. Comput. Appl. Math. 2015). The numerical methods run to their \
          tolerance at every tick, each started from the previous tick's answer where it can be; \
-         these results have {}. The LVI methods are robio2018's (22)-(27) as printed (94LVI and \
-         E47 are zhong2021's refs. [26] and [27]), each to |e(y)|_inf <= 1e-10; the active set \
+         these results have {}. The LVI methods are those of robio2018 (22)-(27) as printed \
+         (94LVI and E47, zhong2021 refs. [26] and [27]), each to |e(y)|_inf <= 1e-10; the active set \
          is hot-started. OSQP (warm-started, eps 1e-7, polished) joins them only in a build \
          with the `osqp` feature (`cargo run --release -p reproduce --features osqp`, which \
          needs CMake). Every tick is scored against the certified exact optimum of its QP. \
