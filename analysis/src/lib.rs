@@ -28,16 +28,15 @@
 //! - [`drift_attribution`]: what the drift attribution and the tolerance ladder say (the share
 //!   of each term, the runs at MATLAB's default tolerances).
 //! - [`cross_best`]: the best solver of each column of the cross experiment.
-//! - [`performance`]: what the measurements of cost and speed say, against their targets.
+//! - [`performance`]: what the measurements of the solvers' cost and the runs' times say,
+//!   against their targets (the suite's measurements of itself are crate
+//!   `driftbench-benches`'s).
 //! - [`fits`]: the growth exponents of cost against the number of joints, and the size where
 //!   faer's dense LU overtakes nalgebra's.
-//! - [`clock_targets`]: the newcomer's clock (build, reproduction, tests, the Python wheel)
-//!   against its targets.
 //! - [`number`]: the one way numbers are written in words (evidence and the report).
 
 pub mod claim_verdict;
 pub mod claims;
-pub mod clock_targets;
 pub mod control_claim;
 pub mod control_track;
 pub mod cost_ratio;

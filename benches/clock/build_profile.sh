@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Where a cold build's time goes: a fresh clone of one revision (default HEAD) built with
 # `cargo build --release -p reproduce --timings` into an empty target directory of its own, and
-# cargo's unit table turned into results/build-profile.csv (build_units.py; the columns are
-# records/src/build_profile.rs's). The report's Performance page ("Where the build's time
+# cargo's unit table turned into benches/results/build-profile.csv (build_units.py; the columns
+# are benches/src/telemetry/build_profile.rs's). benches/REPORT.md ("Where the build's time
 # goes") shows the build's critical path, its CPU time against the wall time and the costliest
 # units, beside the newcomer's clock (clock.sh, whose `build` step is the same command).
 #
@@ -10,7 +10,7 @@
 # something else runs. About 3 minutes of the whole machine on 2 cores. Cargo's registry is
 # shared with the user's (downloads are not timed). Writes nothing outside its temporary
 # directory (removed on exit) and the --out file, replaced atomically at the end. After it,
-# render the report: `cargo run --release -p reproduce -- report --accept-edited`.
+# render the benches' page: `cargo run --release -p driftbench-benches --bin telemetry`.
 #
 # Usage (from anywhere inside the repository):
 #   benches/clock/build_profile.sh [--out FILE] [REVISION]      (default revision: HEAD)
@@ -25,7 +25,7 @@ repo=$(git -C "$(dirname "$0")" rev-parse --show-toplevel)
 here=$(cd "$(dirname "$0")" && pwd)
 # shellcheck source=lib.sh
 . "$here/lib.sh"
-out="$repo/results/build-profile.csv"
+out="$repo/benches/results/build-profile.csv"
 rev=HEAD
 while [ $# -gt 0 ]; do
     case "$1" in

@@ -1,5 +1,5 @@
 """Reads the unit table of a `cargo build --timings` report (cargo-timing.html: the UNIT_DATA
-array, one entry per compilation unit) and prints `results/build-profile.csv`'s rows
+array, one entry per compilation unit) and prints `benches/results/build-profile.csv`'s rows
 (records/src/build_profile.rs defines the columns) on stdout.
 
 Per unit: its index, crate, version, kind (`lib`, `bin`, `build-script` for compiling a build

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The newcomer's clock: for each git revision given, a fresh clone of this repository, timed
-# from clone to report, into results/clock.csv (the report's Performance page, "The newcomer's
-# clock"; records/src/clock.rs defines the columns; docs/guide/clock.md).
+# from clone to report, into benches/results/clock.csv (benches/REPORT.md, "The newcomer's
+# clock"; benches/src/telemetry/clock.rs defines the columns; docs/guide/clock.md).
 #
 # Per revision: `git clone --no-local` of this repository into a temporary directory, the
 # revision checked out (committed code only: uncommitted changes are not in the clone), with a
@@ -27,8 +27,7 @@
 #
 # Writes nothing outside its temporary directory (removed on exit) and the --out file, which
 # is replaced atomically at the end (a temporary file beside it, renamed). After it, render
-# the report: `cargo run --release -p reproduce -- report` (add --accept-edited if
-# results/manifest.toml already lists clock.csv: the file then differs from it by intent).
+# the benches' page: `cargo run --release -p driftbench-benches --bin telemetry`.
 #
 # Usage (from anywhere inside the repository):
 #   benches/clock/clock.sh [--only build,reproduce,test,wheel] [--out FILE] [--fresh-cargo-home]
@@ -44,7 +43,7 @@ repo=$(git -C "$(dirname "$0")" rev-parse --show-toplevel)
 # shellcheck source=lib.sh
 . "$(dirname "$0")/lib.sh"
 only="build,reproduce,test,wheel"
-out="$repo/results/clock.csv"
+out="$repo/benches/results/clock.csv"
 fresh_home=0
 dry_run=0
 revisions=()

@@ -1,12 +1,12 @@
 #!/bin/sh
 # Profiles the hot-started active-set solve of the 7-variable QP (criterion bench
 # `jia2019/exact-active-set/hot` of benches/benches/solvers.rs) and writes
-# results/profile-active-set.csv (the table under the report's per-instant costs, "Where the hot
-# solve's time goes"): perf samples the bench binary (the `profiling` profile: release with debug info) for
+# benches/results/profile-active-set.csv (benches/REPORT.md, "Where the exact solve's time
+# goes"): perf samples the bench binary (the `profiling` profile: release with debug info) for
 # PROFILE_SECONDS seconds of criterion's --profile-time loop, pinned to one CPU, and active_set.py sorts
 # the samples by the function they were in (self time; the module doc of active_set.py lists
-# the categories). Run from the repository root; re-render the report with
-# `reproduce report --accept-edited`. Needs `perf` (Debian: linux-perf) and python3.
+# the categories). Run from the repository root; re-render the benches' page with
+# `cargo run --release -p driftbench-benches --bin telemetry`. Needs `perf` (Debian: linux-perf) and python3.
 # Usage: [PROFILE_SECONDS=10] benches/profile/active_set.sh
 set -eu
 seconds="${PROFILE_SECONDS:-10}"
@@ -28,5 +28,5 @@ perf report -i "$out/active-set.data" --no-children --sort sym --stdio 2>/dev/nu
     > "$out/active-set.report"
 rev=$(git rev-parse --short=12 HEAD)
 python3 benches/profile/active_set.py "$out/active-set.report" "$bench_id" "$seconds" "$freq" "$rev" \
-    > results/profile-active-set.csv
-echo "wrote results/profile-active-set.csv"
+    > benches/results/profile-active-set.csv
+echo "wrote benches/results/profile-active-set.csv"

@@ -1,14 +1,13 @@
 #!/bin/sh
-# Profiles each named paper's runs and writes results/profile.csv (the tables of the report's
-# Performance section, "Where the time goes", one per paper): perf samples the optimised binary
+# Profiles each named paper's runs and writes benches/results/profile.csv (the tables of
+# benches/REPORT.md, "Where the time goes", one per paper): perf samples the optimised binary
 # with debug info (Cargo.toml's `profiling` profile: release plus `debug = 1`) over PASSES
 # passes of
 #   reproduce --paper PAPER --skip-explain --threads 1 --dry-run
 # pinned to one CPU, and classify.py sorts every sample by what it was doing (classify.py's
 # module doc lists the categories). Run from the repository root after
 #   cargo build --profile profiling -p reproduce
-# and re-render the report with `reproduce --report-only --accept-edited` (the new file differs
-# from results/manifest.toml by intent). Needs `perf` (Debian: linux-perf) and python3.
+# and re-render the benches' page with `cargo run --release -p driftbench-benches --bin telemetry`. Needs `perf` (Debian: linux-perf) and python3.
 # Usage: [PASSES=5] benches/profile/paper.sh PAPER [PAPER ...]
 set -eu
 passes="${PASSES:-5}"
@@ -31,5 +30,5 @@ for paper in "$@"; do
     python3 benches/profile/classify.py "$out/$paper.stacks" "$paper" "$passes" "$freq" "$rev" \
         | tail -n +"$from" >> "$csv"
 done
-mv "$csv" results/profile.csv
-echo "wrote results/profile.csv"
+mv "$csv" benches/results/profile.csv
+echo "wrote benches/results/profile.csv"

@@ -1,7 +1,7 @@
 #!/bin/sh
 # Times every paper's runs under an earlier revision of driftbench and under this one, each run
-# alone, and writes results/speedup.csv (the table of the report's Performance section, "Against
-# an earlier revision"). Each pass runs
+# alone, and writes benches/results/speedup.csv (the table of benches/REPORT.md, "Against an
+# earlier revision"). Each pass runs
 #   reproduce --paper PAPER --shard 1/1 --threads 1 --results-dir DIR
 # (the shard mode: no explanation runs, no timing pass, no report; runs.csv and traces written
 # to a scratch directory under the target directory) pinned to the last CPU, alternating the two
@@ -12,8 +12,8 @@
 # Usage (from the repository root, after `cargo build --release -p reproduce`):
 #   benches/speedup/papers.sh OLD_CHECKOUT OLD_BINARY [PASSES]
 # OLD_CHECKOUT is a checkout of the earlier revision (its experiments/ are the ones its binary
-# runs), OLD_BINARY that checkout's release build of reproduce. Then re-render the report with
-# `reproduce report --accept-edited` (the new file differs from results/manifest.toml by intent).
+# runs), OLD_BINARY that checkout's release build of reproduce. Then re-render the benches' page
+# with `cargo run --release -p driftbench-benches --bin telemetry`.
 # Needs python3.
 set -eu
 old_root="$1"
@@ -42,5 +42,5 @@ while [ "$pass" -le "$passes" ]; do
     done
     pass=$((pass + 1))
 done
-python3 benches/speedup/compare.py "$out" "$passes" "$old_rev" "$new_rev" > results/speedup.csv
-echo "wrote results/speedup.csv"
+python3 benches/speedup/compare.py "$out" "$passes" "$old_rev" "$new_rev" > benches/results/speedup.csv
+echo "wrote benches/results/speedup.csv"

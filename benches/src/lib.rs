@@ -16,6 +16,12 @@
 //!   allocations, so each bench can print how many allocations one timed call makes.
 //! * [`fast_config`], [`whole_run_config`] — criterion settings that keep the full
 //!   `cargo bench -p driftbench-benches` to a few minutes on two cores.
+//!
+//! Beside them, [`telemetry`]: the suite's measurements of itself (its clock, build, phases,
+//! profiles and speed-up over earlier revisions; `benches/results/`, `benches/REPORT.md`),
+//! kept out of the reproduction's results.
+
+pub mod telemetry;
 
 use simulation::run::check_job;
 use std::alloc::{GlobalAlloc, Layout, System};

@@ -1,5 +1,6 @@
 //! Validated ids: [`ExperimentId`], [`VariantId`] and [`SolverId`], the three parts of a run's
-//! key ([`crate::run_key::RunKey`]).
+//! key ([`crate::run_key::RunKey`]), and [`PaperId`], the paper an experiment file belongs to
+//! (what the command line's `--paper` names).
 //!
 //! An id is a *slug* ([`schemes::slug::is_slug`]: lower-case ASCII letters, digits and `.`,
 //! single `-` between them, none leading or trailing) that begins with a letter or digit and
@@ -28,6 +29,8 @@ pub enum IdKind {
     Variant,
     /// A solver's id.
     Solver,
+    /// A paper's id.
+    Paper,
 }
 
 impl IdKind {
@@ -37,13 +40,14 @@ impl IdKind {
             IdKind::Experiment => "experiment id",
             IdKind::Variant => "variant id",
             IdKind::Solver => "solver id",
+            IdKind::Paper => "paper id",
         }
     }
 
     /// The longest id of this kind, in bytes.
     pub fn max_len(self) -> usize {
         match self {
-            IdKind::Experiment => MAX_EXPERIMENT_ID,
+            IdKind::Experiment | IdKind::Paper => MAX_EXPERIMENT_ID,
             IdKind::Variant => MAX_VARIANT_LABEL,
             IdKind::Solver => MAX_SOLVER_LABEL,
         }
@@ -237,6 +241,11 @@ id_type!(
     IdKind::Variant
 );
 id_type!(
+    /// A paper's id (an experiment file's `paper`), e.g. `jia2019`, `group`, `cross`.
+    PaperId,
+    IdKind::Paper
+);
+id_type!(
     /// A solver's id (`exact`, a network's [`settings::solver_spec::SolverSpec::id`], a
     /// numerical method's or a scored trajectory's), e.g. `lvi-pdnn`.
     SolverId,
@@ -266,6 +275,13 @@ mod tests {
         ));
         assert!(VariantId::new(long).is_ok(), "variant ids may be longer");
         assert!(SolverId::new("s".repeat(MAX_SOLVER_LABEL + 1)).is_err());
+        assert_eq!(PaperId::new("kong2019").unwrap(), "kong2019");
+        let err = PaperId::new("Kong2019").unwrap_err();
+        assert!(
+            err.to_string()
+                .starts_with("paper id \"Kong2019\" is not a slug"),
+            "{err}"
+        );
     }
 
     #[test]

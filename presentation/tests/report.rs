@@ -415,3 +415,41 @@ fn every_claim_of_the_papers_is_implemented_and_decided() {
     }
     assert!(data >= 20, "only {data} claims are data");
 }
+
+/// The control page names the numerical methods the results hold, and no other: OSQP only
+/// where its rows are (a build with the `osqp` feature).
+#[test]
+fn the_control_page_names_the_numerical_methods_of_its_results() {
+    let inputs = committed();
+    let pages = pages(&inputs);
+    let control = page(&pages, "control.md");
+    let Some((_, rest)) = control.split_once("these results have ") else {
+        assert!(inputs.control.runs.is_empty(), "{control}");
+        return;
+    };
+    let (_, listed) = rest.split_once(": ").expect("a count, then the methods");
+    let listed: Vec<&str> = listed
+        .split_once(". ")
+        .expect("the list ends its sentence")
+        .0
+        .split(", ")
+        .collect();
+    let mut held: Vec<&str> = inputs
+        .control
+        .runs
+        .iter()
+        .filter(|r| r.family == records::control::Family::Numerical)
+        .map(|r| r.method.as_str())
+        .collect();
+    held.dedup();
+    let mut sorted = listed.clone();
+    sorted.sort_unstable();
+    held.sort_unstable();
+    held.dedup();
+    assert_eq!(sorted, held, "{control}");
+    assert_eq!(
+        listed.contains(&"OSQP"),
+        held.contains(&"OSQP"),
+        "{control}"
+    );
+}

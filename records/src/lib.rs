@@ -6,19 +6,13 @@
 //! - [`trace`]: a run's trace ([`trace::TracePoint`], `results/traces/`).
 //! - [`table`]: CSV tables whose per-joint columns follow the robot's joint count.
 //! - [`dof_cost`]: the cost against the number of joints (`results/dof-cost.csv`).
-//! - [`profile`]: where a paper's reproduction spends its time (`results/profile.csv`).
-//! - [`profile_active_set`]: where the hot-started active-set solve spends its time
-//!   (`results/profile-active-set.csv`).
 //! - [`index`]: the stored runs indexed as the report and the analyses look them up.
 //! - [`timing`]: the compared runs timed alone, repeated (`results/leaderboard-timing.csv`),
 //!   which the leaderboard ranks by.
-//! - [`phases`]: where one `reproduce run`'s wall time went, phase by phase
-//!   (`results/phases.csv`); [`clock`]: the newcomer's clock from clone to report per revision
-//!   (`results/clock.csv`, written by `benches/clock/clock.sh`); [`build_profile`]: where a cold
-//!   build spends its time, unit by unit (`results/build-profile.csv`, by
-//!   `benches/clock/build_profile.sh`).
-//! - [`speedup`]: every run timed alone under an earlier revision and this one
-//!   (`results/speedup.csv`).
+//! - [`qp_replay`]: the exact reference per recorded QP against DAQP (`results/qp-replay.csv`):
+//!   the solvers' cost, a reader's comparison with a peer. The suite's measurements of itself
+//!   (its build, its clock, its phases, its profiles, its speed-up over earlier revisions) are
+//!   not results: crate `driftbench-benches` holds their schemas (`benches/results/`).
 //! - [`owned_dir`]: a directory the program owns; the only way a name read from a file becomes
 //!   a path under it (plain names, no symbolic link leaving it).
 //! - [`integrity`]: the manifest of what the program wrote (line count, size, SHA-256 per file).
@@ -48,8 +42,6 @@
 #![deny(missing_docs)]
 
 pub mod attribution;
-pub mod build_profile;
-pub mod clock;
 pub mod control;
 pub mod dof_cost;
 pub mod error;
@@ -64,14 +56,10 @@ pub mod ladder;
 pub mod migrate;
 pub mod owned_dir;
 pub mod percentile;
-pub mod phases;
-pub mod profile;
-pub mod profile_active_set;
 pub mod qp_replay;
 pub mod results_dir;
 pub mod runs;
 pub mod shard;
-pub mod speedup;
 pub mod table;
 pub mod timing;
 pub mod trace;

@@ -2,6 +2,5 @@
 //! binary: one build and link instead of one per file (issue 29). The files are unchanged
 //! but for `use crate::common;` where they shared `tests/common/`.
 
-mod build_units;
 mod files;
 mod fuzz_results;

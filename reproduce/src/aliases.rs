@@ -4,9 +4,32 @@
 //! `list --shard 2/4`. [`to_subcommand`] turns the one mode flag of an argument list into its
 //! subcommand before clap parses it; the flag's values stay where they are and become the
 //! subcommand's arguments. Two modes at once are refused ([`TwoModes`]), never silently one.
+//! The aliases are deprecated: each one used is said on stderr ([`Alias::deprecation`]), and
+//! they go in a later version.
+
+use std::ffi::OsString;
+
+/// An old mode flag and the subcommand it stands for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Alias {
+    /// The old flag (`--check`).
+    pub flag: &'static str,
+    /// Its subcommand (`check`).
+    pub subcommand: &'static str,
+}
+
+impl Alias {
+    /// The line said on stderr when the old flag is used.
+    pub fn deprecation(&self) -> String {
+        format!(
+            "warning: `{}` is deprecated and will be removed: write `reproduce {}` instead",
+            self.flag, self.subcommand
+        )
+    }
+}
 
 /// (old flag, the subcommand it stands for).
-pub const ALIASES: &[(&str, &str)] = &[
+const ALIASES: &[(&str, &str)] = &[
     ("--list", "list"),
     ("--check", "check"),
     ("--report-only", "report"),
@@ -33,6 +56,19 @@ pub struct TwoModes {
     pub second: String,
 }
 
+/// Where in `args` (after the program, before a `--`) the old flag `flag` stands, alone or
+/// as `flag=value`. An argument that is not UTF-8 is no flag.
+fn position(args: &[OsString], flag: &str) -> Option<usize> {
+    args.iter()
+        .take_while(|a| *a != "--")
+        .position(|a| {
+            a.to_str().is_some_and(|a| {
+                a == flag || a.strip_prefix(flag).is_some_and(|v| v.starts_with('='))
+            })
+        })
+        .filter(|&i| i > 0)
+}
+
 /// The global options that take a value (`--root DIR`, ...) and the global flags: what may
 /// stand before a subcommand (`crate::options::GlobalOptions`).
 const GLOBAL_VALUED: [&str; 4] = ["--root", "--experiments-dir", "--results-dir", "--threads"];
@@ -40,35 +76,26 @@ const GLOBAL_FLAGS: [&str; 2] = ["--accept-edited", "--prune"];
 
 /// Where the subcommand of `args` stands, past the global options before it (`reproduce
 /// --root DIR list`), if one is given.
-fn subcommand_at(args: &[String]) -> Option<usize> {
+fn subcommand_at(args: &[OsString]) -> Option<usize> {
     let mut i = 1;
-    while let Some(a) = args.get(i) {
-        let name = a.split_once('=').map_or(a.as_str(), |(name, _)| name);
-        if GLOBAL_VALUED.contains(&a.as_str()) {
+    while let Some(a) = args.get(i).and_then(|a| a.to_str()) {
+        let name = a.split_once('=').map_or(a, |(name, _)| name);
+        if GLOBAL_VALUED.contains(&a) {
             i += 2;
-        } else if GLOBAL_VALUED.contains(&name) || GLOBAL_FLAGS.contains(&a.as_str()) {
+        } else if GLOBAL_VALUED.contains(&name) || GLOBAL_FLAGS.contains(&a) {
             i += 1;
         } else {
-            return SUBCOMMANDS.contains(&a.as_str()).then_some(i);
+            return SUBCOMMANDS.contains(&a).then_some(i);
         }
     }
     None
 }
 
-/// Where in `args` (after the program, before a `--`) the old flag `flag` stands, alone or
-/// as `flag=value`.
-fn position(args: &[String], flag: &str) -> Option<usize> {
-    args.iter()
-        .take_while(|a| *a != "--")
-        .position(|a| a == flag || a.strip_prefix(flag).is_some_and(|v| v.starts_with('=')))
-        .filter(|&i| i > 0)
-}
-
 /// The arguments with an old mode flag replaced by its subcommand, written first (`args[0]` is
-/// the program). `--shard` beside `--list` or the `list` subcommand is the list's option
-/// (`list --shard 2/4`, `--root DIR list --shard 2/4`, `--list --shard 2/4`), not the shard
-/// mode.
-pub fn to_subcommand(mut args: Vec<String>) -> Result<Vec<String>, TwoModes> {
+/// the program), and the alias used if one was. `--shard` beside `--list` or the `list`
+/// subcommand is the list's option (`list --shard 2/4`, `--root DIR list --shard 2/4`,
+/// `--list --shard 2/4`), not the shard mode.
+pub fn to_subcommand(mut args: Vec<OsString>) -> Result<(Vec<OsString>, Option<Alias>), TwoModes> {
     let given = subcommand_at(&args);
     let listing = position(&args, "--list").is_some() || given.is_some_and(|i| args[i] == "list");
     let found: Vec<(usize, &str, &str)> = ALIASES
@@ -77,7 +104,7 @@ pub fn to_subcommand(mut args: Vec<String>) -> Result<Vec<String>, TwoModes> {
         .filter(|(_, flag, _)| !(*flag == "--shard" && listing))
         .collect();
     let Some(&(at, flag, sub)) = found.first() else {
-        return Ok(args);
+        return Ok((args, None));
     };
     if let Some((_, second, _)) = found.get(1) {
         return Err(TwoModes {
@@ -87,23 +114,32 @@ pub fn to_subcommand(mut args: Vec<String>) -> Result<Vec<String>, TwoModes> {
     }
     if let Some(given) = given {
         return Err(TwoModes {
-            first: args[given].clone(),
+            first: args[given].to_string_lossy().into_owned(),
             second: flag.to_string(),
         });
     }
-    match args[at].split_once('=') {
-        Some((_, value)) => args[at] = value.to_string(),
+    // `position` matched the flag, so the argument is UTF-8.
+    match args[at].to_str().and_then(|a| a.split_once('=')) {
+        Some((_, value)) => args[at] = value.into(),
         None => {
             args.remove(at);
         }
     }
-    args.insert(1, sub.to_string());
-    Ok(args)
+    args.insert(1, sub.into());
+    Ok((
+        args,
+        Some(Alias {
+            flag,
+            subcommand: sub,
+        }),
+    ))
 }
 
 /// The aliases, for `--help`.
 pub fn help() -> String {
-    let mut out = String::from("Old flags, still accepted (each stands for its subcommand):\n");
+    let mut out = String::from(
+        "Old flags, still accepted but deprecated (each stands for its subcommand):\n",
+    );
     for (flag, sub) in ALIASES {
         out.push_str(&format!("  {flag:<15} {sub}\n"));
     }
@@ -114,13 +150,13 @@ pub fn help() -> String {
 mod tests {
     use super::*;
 
-    fn args(s: &str) -> Vec<String> {
-        s.split_whitespace().map(String::from).collect()
+    fn args(s: &str) -> Vec<OsString> {
+        s.split_whitespace().map(OsString::from).collect()
     }
 
     #[test]
     fn old_flags_become_their_subcommands_wherever_they_stand() {
-        let to = |s: &str| to_subcommand(args(s)).unwrap();
+        let to = |s: &str| to_subcommand(args(s)).unwrap().0;
         assert_eq!(to("r --check --paper x"), args("r check --paper x"));
         assert_eq!(to("r --paper x --check"), args("r check --paper x"));
         assert_eq!(to("r --infer jia2019:T2"), args("r infer jia2019:T2"));
@@ -164,5 +200,29 @@ mod tests {
             ("merge", "--check")
         );
         assert!(help().contains("--dof-cost") && help().contains("cost"));
+    }
+
+    #[test]
+    fn the_alias_used_is_named_for_its_deprecation_line() {
+        let (_, alias) = to_subcommand(args("r --paper x --check")).unwrap();
+        let alias = alias.unwrap();
+        assert_eq!((alias.flag, alias.subcommand), ("--check", "check"));
+        assert_eq!(
+            alias.deprecation(),
+            "warning: `--check` is deprecated and will be removed: write `reproduce check` instead"
+        );
+        assert_eq!(to_subcommand(args("r check --paper x")).unwrap().1, None);
+        // `--shard` beside `--list` is the list's own option, not an alias.
+        let (_, alias) = to_subcommand(args("r --list --shard 2/4")).unwrap();
+        assert_eq!(alias.map(|a| a.flag), Some("--list"));
+    }
+
+    #[test]
+    fn an_argument_that_is_not_utf8_passes_through_untouched() {
+        use std::os::unix::ffi::OsStringExt;
+        let odd = OsString::from_vec(vec![b'-', b'-', 0xff]);
+        let given = vec!["r".into(), "--check".into(), odd.clone()];
+        let (out, _) = to_subcommand(given).unwrap();
+        assert_eq!(out, vec![OsString::from("r"), "check".into(), odd]);
     }
 }

@@ -1,8 +1,8 @@
 //! The regression gate's baseline for `reproduce check` (`--check`): the committed rows, read
 //! before anything runs (a given file, or git HEAD's `results/runs.csv`); the comparison itself
-//! is crate `analysis`'s (`analysis::gate`), and any difference is exit code 1.
+//! is crate `analysis`'s (`analysis::gate`), and any difference is exit code 3.
 
-use crate::error::{BaselineError, ReproduceError};
+use crate::error::{BaselineError, Exit, ReproduceError};
 use catalog::experiment::Job;
 use records::runs::{check_rows, RunRow};
 use std::path::Path;
@@ -72,7 +72,8 @@ impl Baseline {
         analysis::gate::compare_selection(self.rows, fresh, exact_only, &self.name)
     }
 
-    /// Prints the gate's verdict on `fresh`: exit code 1 on any difference.
+    /// Prints the gate's verdict on `fresh`: [`Exit::GateDifference`] (exit code 3) on any
+    /// difference.
     pub fn verdict(self, fresh: &[RunRow], exact_only: bool) -> ExitCode {
         let name = self.name.clone();
         let problems = self.problems(fresh, exact_only);
@@ -85,7 +86,7 @@ impl Baseline {
                 problems.len(),
                 problems.join("\n")
             );
-            ExitCode::from(1)
+            Exit::GateDifference.into()
         }
     }
 }

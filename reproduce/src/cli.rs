@@ -7,6 +7,7 @@ use crate::aliases;
 use crate::options::{GlobalOptions, Mode, RunOptions};
 use clap::error::ErrorKind;
 use clap::{CommandFactory, FromArgMatches, Parser};
+use std::ffi::OsString;
 
 /// Regenerates the tables and error data of the papers on drift-free redundancy resolution
 /// in papers/ (jia2019, zhang2018, zhong2021, kong2019, robio2018, and any paper added as
@@ -32,18 +33,24 @@ pub struct Cli {
     /// The options of `run` written without the subcommand.
     #[command(flatten)]
     pub run: RunOptions,
+    /// The deprecated old mode flag the arguments used, if any ([`aliases`]).
+    #[arg(skip)]
+    pub alias: Option<aliases::Alias>,
 }
 
 impl Cli {
-    /// Parses the program's arguments (`args[0]` is the program), the old mode flags read as
-    /// their subcommands. A clap error (an unknown option, two modes, `--help`, `--version`)
-    /// is returned for the caller to print and exit with.
-    pub fn parse_from_args(args: Vec<String>) -> Result<Self, clap::Error> {
+    /// Parses the program's arguments (`args[0]` is the program; `std::env::args_os`), the old
+    /// mode flags read as their subcommands ([`Cli::alias`] names the one used). An argument
+    /// that is not UTF-8 is taken where a path is expected and refused elsewhere. A clap error
+    /// (an unknown option, two modes, a value that is not UTF-8, `--help`, `--version`) is
+    /// returned for the caller to print and exit with.
+    pub fn parse_from_args(args: Vec<OsString>) -> Result<Self, clap::Error> {
         let mut command = Self::command().after_help(aliases::help());
-        let args = aliases::to_subcommand(args)
+        let (args, alias) = aliases::to_subcommand(args)
             .map_err(|e| command.error(ErrorKind::ArgumentConflict, e.to_string()))?;
         let matches = command.try_get_matches_from_mut(args)?;
-        let cli = Self::from_arg_matches(&matches).map_err(|e| e.format(&mut command))?;
+        let mut cli = Self::from_arg_matches(&matches).map_err(|e| e.format(&mut command))?;
+        cli.alias = alias;
         match (&cli.mode, &cli.run) {
             (Some(_), run) if *run != RunOptions::default() => {
                 let name = matches.subcommand_name().unwrap_or("the subcommand");
@@ -69,11 +76,11 @@ impl Cli {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::options::{CheckOptions, InferOptions, ScoreOptions, SelectionOptions};
+    use crate::options::{CheckOptions, InferOptions, ScoreOptions, SelectionOptions, ShardSpec};
     use std::path::PathBuf;
 
     fn parse(line: &str) -> Result<(GlobalOptions, Mode), clap::Error> {
-        Cli::parse_from_args(line.split_whitespace().map(String::from).collect())
+        Cli::parse_from_args(line.split_whitespace().map(OsString::from).collect())
             .map(Cli::into_parts)
     }
 
@@ -81,7 +88,7 @@ mod tests {
     fn a_subcommand_and_its_old_flag_parse_alike() {
         let check = Mode::Check(CheckOptions {
             selection: SelectionOptions {
-                paper: Some("kong2019".into()),
+                paper: Some("kong2019".parse().unwrap()),
                 experiment: vec![],
                 exact_only: true,
             },
@@ -101,7 +108,9 @@ mod tests {
                 dry_run: false
             })
         );
-        assert!(matches!(parse("reproduce shard").unwrap().1, Mode::Shard(s) if s.shard == "auto"));
+        assert!(
+            matches!(parse("reproduce shard").unwrap().1, Mode::Shard(s) if s.shard == ShardSpec::Auto)
+        );
         assert!(
             matches!(parse("reproduce --paper x").unwrap().1, Mode::Run(r) if r.selection.paper.as_deref() == Some("x"))
         );
@@ -118,7 +127,7 @@ mod tests {
             },
             Mode::Score(ScoreOptions {
                 file: PathBuf::from("f.csv"),
-                task: "e/v".into(),
+                task: catalog::run_key::TaskKey::parse("e/v").unwrap(),
                 columns: None,
                 name: "trajectory".into(),
                 out: PathBuf::from("scores"),
@@ -186,5 +195,41 @@ mod tests {
             Some(ErrorKind::ArgumentConflict)
         );
         assert_eq!(kind("reproduce check --baseline b.csv"), None);
+    }
+
+    #[test]
+    fn ids_are_parsed_at_the_command_line_naming_the_valid_form() {
+        let refused = |line: &str| {
+            let e = parse(line).unwrap_err();
+            (e.kind(), e.to_string())
+        };
+        let (kind, msg) = refused("reproduce --paper Kong2019");
+        assert_eq!(kind, ErrorKind::ValueValidation);
+        assert!(
+            msg.contains("paper id \"Kong2019\" is not a slug") && msg.contains("\"kong2019\""),
+            "{msg}"
+        );
+        let (kind, msg) = refused("reproduce list --experiment ../x");
+        assert_eq!(kind, ErrorKind::ValueValidation);
+        assert!(msg.contains("experiment id \"../x\""), "{msg}");
+        let (kind, msg) = refused("reproduce shard 3/2");
+        assert_eq!(kind, ErrorKind::ValueValidation);
+        assert!(
+            msg.contains("K must be in 1..=2") && msg.contains("or `auto`"),
+            "{msg}"
+        );
+        let (kind, msg) = refused("reproduce list --shard x");
+        assert_eq!(kind, ErrorKind::ValueValidation);
+        assert!(
+            msg.contains("expected K/N") && msg.contains("or `auto`"),
+            "{msg}"
+        );
+        let (kind, msg) = refused("reproduce score f.csv --task just-one");
+        assert_eq!(kind, ErrorKind::ValueValidation);
+        assert!(msg.contains("just-one"), "{msg}");
+        assert!(matches!(
+            parse("reproduce list --shard 2/4").unwrap().1,
+            Mode::List(l) if l.shard == Some(ShardSpec::Given(records::shard::Shard::new(2, 4).unwrap()))
+        ));
     }
 }

@@ -1,17 +1,60 @@
 //! The binary's errors: each lower crate's error wrapped as it is (its message names the file,
 //! line or field), and the few the command line itself finds: a thread count, paper,
 //! experiment or table no file knows, a gate baseline that cannot be read, a results directory
-//! the report cannot go beside.
+//! the report cannot go beside. Each error is of one kind ([`ReproduceError::exit`]), and each
+//! kind has its exit code ([`Exit`], docs/reference/exit-codes.md).
 
-use records::error::{IoError, RunsError};
+use records::error::{IoAction, IoError, RunsError};
+use records::integrity::IntegrityError;
 use records::journal::JournalError;
 use records::owned_dir::PathError;
 use records::results_dir::ResultsError;
 use records::shard::ShardError;
 use records::tracked_dir::TrackedError;
 use std::path::PathBuf;
+use std::process::ExitCode;
 
-/// Why `reproduce` stopped (printed as `error: ...`, exit code 2).
+/// How `reproduce` ended: one exit code per outcome (docs/reference/exit-codes.md).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Exit {
+    /// 0: everything ran as the experiment files say; the gate found no difference.
+    Success,
+    /// 1: a run failed that no experiment file expects.
+    UnexpectedFailure,
+    /// 2: an input or usage error (a file, an option or an argument refused).
+    Input,
+    /// 3: the regression gate (`check`) found a difference.
+    GateDifference,
+    /// 4: the system refused to write, remove or lock a file the program owns (a full disk,
+    /// a read-only file system).
+    Io,
+    /// 70 (`EX_SOFTWARE` of sysexits.h): a fault of the program itself (a worker pool that
+    /// cannot start, a lock poisoned by a panicking thread).
+    Internal,
+}
+
+impl Exit {
+    /// The process's exit status.
+    pub const fn code(self) -> u8 {
+        match self {
+            Exit::Success => 0,
+            Exit::UnexpectedFailure => 1,
+            Exit::Input => 2,
+            Exit::GateDifference => 3,
+            Exit::Io => 4,
+            Exit::Internal => 70,
+        }
+    }
+}
+
+impl From<Exit> for ExitCode {
+    fn from(exit: Exit) -> Self {
+        ExitCode::from(exit.code())
+    }
+}
+
+/// Why `reproduce` stopped (printed as `error: ...`; the exit code is its kind's,
+/// [`ReproduceError::exit`]).
 #[derive(Debug, thiserror::Error)]
 pub enum ReproduceError {
     /// `--threads` beyond `per_core` (`project::MAX_THREADS_PER_CORE`) per core.
@@ -91,6 +134,87 @@ pub enum ReproduceError {
     ThreadPool(#[from] rayon::ThreadPoolBuildError),
     #[error(transparent)]
     DofCost(#[from] records::error::DofCostError),
+}
+
+impl ReproduceError {
+    /// The kind of this error as an exit code: [`Exit::Io`] where the system refused to write,
+    /// remove or lock a file, [`Exit::Internal`] for a fault of the program, [`Exit::Input`]
+    /// for everything else (a file, option or argument refused, named in the message).
+    pub fn exit(&self) -> Exit {
+        match self {
+            ReproduceError::ThreadPool(_) | ReproduceError::Journal(JournalError::Poisoned) => {
+                Exit::Internal
+            }
+            ReproduceError::Io(e) | ReproduceError::Journal(JournalError::Io(e)) => io(e),
+            ReproduceError::Runs(e) => runs(e),
+            ReproduceError::Results(e) | ReproduceError::Journal(JournalError::Results(e)) => {
+                results(e)
+            }
+            ReproduceError::Tracked(e) | ReproduceError::Journal(JournalError::Tracked(e)) => {
+                tracked(e)
+            }
+            ReproduceError::Journal(JournalError::Csv { .. }) => Exit::Io,
+            ReproduceError::Path(e) | ReproduceError::Journal(JournalError::Path(e)) => path(e),
+            ReproduceError::Report(e) => report(e),
+            ReproduceError::Score(ScoreError::Io(e)) => io(e),
+            _ => Exit::Input,
+        }
+    }
+}
+
+/// A file operation: writing or removing is the system's refusal ([`Exit::Io`]); reading,
+/// listing or opening is an input that is not there or not readable ([`Exit::Input`]).
+fn io(e: &IoError) -> Exit {
+    match e.action {
+        IoAction::Write | IoAction::Remove => Exit::Io,
+        IoAction::Read | IoAction::List | IoAction::Open => Exit::Input,
+    }
+}
+
+fn runs(e: &RunsError) -> Exit {
+    match e {
+        RunsError::Write { .. } | RunsError::NotWritable { .. } => Exit::Io,
+        RunsError::Io(e) => io(e),
+        RunsError::Table { .. } | RunsError::Rows { .. } => Exit::Input,
+    }
+}
+
+fn results(e: &ResultsError) -> Exit {
+    match e {
+        ResultsError::Lock { .. } | ResultsError::Write { .. } => Exit::Io,
+        ResultsError::Io(e) => io(e),
+        ResultsError::Read(e) => runs(e),
+        ResultsError::Tracked(e) => tracked(e),
+        ResultsError::Path(e) => path(e),
+        _ => Exit::Input,
+    }
+}
+
+/// A directory the program owns that the system would not create or open is an I/O failure; a
+/// path refused (not a plain name, a link leading out) is an input error.
+fn path(e: &PathError) -> Exit {
+    match e {
+        PathError::Open { .. } => Exit::Io,
+        _ => Exit::Input,
+    }
+}
+
+fn tracked(e: &TrackedError) -> Exit {
+    match e {
+        TrackedError::Io { .. } | TrackedError::Integrity(IntegrityError::Write { .. }) => Exit::Io,
+        TrackedError::Path(e) => path(e),
+        _ => Exit::Input,
+    }
+}
+
+fn report(e: &presentation::error::ReportError) -> Exit {
+    use presentation::error::ReportError;
+    match e {
+        ReportError::Io(e) => io(e),
+        ReportError::Runs(e) => runs(e),
+        ReportError::Tracked(e) => tracked(e),
+        _ => Exit::Input,
+    }
 }
 
 /// Why a trajectory could not be scored on a task, or its files written.

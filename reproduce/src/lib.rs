@@ -52,7 +52,7 @@ use summary::emit;
 
 /// Runs `mode` on the project of `global`; the exit code.
 pub fn run(global: &GlobalOptions, mode: Mode) -> Result<ExitCode, ReproduceError> {
-    // The setup phase of a run's clock (results/phases.csv) begins here.
+    // The setup phase of a run's clock (crate::phases) begins here.
     let started = std::time::Instant::now();
     set_threads(global.threads)?;
     let git_rev = revision::REVISION;
@@ -99,7 +99,6 @@ pub fn run(global: &GlobalOptions, mode: Mode) -> Result<ExitCode, ReproduceErro
         Mode::List(o) => {
             let shard = o
                 .shard
-                .as_deref()
                 .map(|s| resolve_shard(s, o.shards, env))
                 .transpose()?;
             let project = project(shard)?;
@@ -110,7 +109,7 @@ pub fn run(global: &GlobalOptions, mode: Mode) -> Result<ExitCode, ReproduceErro
         Mode::Run(o) => run_selection(&project(None)?, &o, started),
         Mode::Check(o) => check_against_baseline(&project(None)?, &o, started),
         Mode::Shard(o) => {
-            let shard = resolve_shard(&o.shard, o.shards, env)?;
+            let shard = resolve_shard(o.shard, o.shards, env)?;
             run_shard(&project(Some(shard))?, &o, shard, started)
         }
     }
@@ -136,6 +135,7 @@ fn run_selection(
         output,
         explain: !o.skip_explain,
         started,
+        phases: o.phases.as_deref(),
     };
     run::run(
         project,
@@ -167,6 +167,7 @@ fn check_against_baseline(
         output: Output::Gate(baseline),
         explain: false,
         started,
+        phases: None,
     };
     run::run(project, plan, &all, &jobs, revision::REVISION)
 }
@@ -186,6 +187,7 @@ fn run_shard(
         output: Output::Shard(shard),
         explain: false,
         started,
+        phases: None,
     };
     run::run(
         project,

@@ -1,20 +1,24 @@
 //! `cargo run --release -p reproduce`: runs driftbench's experiments and writes `results/`.
-//! Wiring only: the logic is the library (`reproduce::run`).
+//! Wiring only: the logic is the library (`reproduce::run`); the exit code is the outcome's
+//! (`reproduce::error::Exit`, docs/reference/exit-codes.md).
 
 use reproduce::Cli;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
-    let cli = match Cli::parse_from_args(std::env::args().collect()) {
+    let cli = match Cli::parse_from_args(std::env::args_os().collect()) {
         Ok(cli) => cli,
         Err(e) => e.exit(),
     };
+    if let Some(alias) = cli.alias {
+        eprintln!("{}", alias.deprecation());
+    }
     let (global, mode) = cli.into_parts();
     match reproduce::run(&global, mode) {
         Ok(code) => code,
         Err(e) => {
             eprintln!("error: {e}");
-            ExitCode::from(2)
+            e.exit().into()
         }
     }
 }

@@ -2,8 +2,10 @@
 //! ([`GlobalOptions`]). They are what the library takes: the command line ([`crate::cli`])
 //! parses into them, and a program calling the library fills them in itself.
 
+use catalog::ids::{ExperimentId, PaperId};
+use catalog::run_key::TaskKey;
 use clap::{Args, Subcommand};
-use records::shard::Selection;
+use records::shard::{Selection, Shard, ShardError};
 use records::tracked_dir::Edits;
 use std::path::PathBuf;
 
@@ -56,11 +58,11 @@ pub struct SelectionOptions {
     /// papers/, group, or a paper added as data; `cross` is the suite's own cross experiment:
     /// every velocity-level solver on every velocity-level scheme and path). `reproduce list`
     /// names them.
-    #[arg(long)]
-    pub paper: Option<String>,
+    #[arg(long, value_name = "PAPER")]
+    pub paper: Option<PaperId>,
     /// Run only this experiment (an id of docs/experiments.md, e.g. jia2019-clover). Repeatable.
-    #[arg(long)]
-    pub experiment: Vec<String>,
+    #[arg(long, value_name = "EXPERIMENT")]
+    pub experiment: Vec<ExperimentId>,
     /// Run only the exact column (the QP solved to optimality in the loop: certified active
     /// set, Clarabel where it cannot certify), no neural or numerical solvers.
     #[arg(long)]
@@ -71,8 +73,8 @@ impl SelectionOptions {
     /// The selection (recorded in a shard's manifest).
     pub fn selection(&self) -> Selection {
         Selection {
-            paper: self.paper.clone(),
-            experiments: self.experiment.clone(),
+            paper: self.paper.as_ref().map(|p| p.to_string()),
+            experiments: self.experiment.iter().map(|e| e.to_string()).collect(),
             exact_only: self.exact_only,
         }
     }
@@ -96,6 +98,11 @@ pub struct RunOptions {
     /// adds for the selected runs of the papers' solvers and of the group-code experiments.
     #[arg(long)]
     pub skip_explain: bool,
+    /// Also write the run's phase table (the wall time of each phase, printed at the end) as
+    /// CSV to FILE: the suite's measurement of itself, kept by the benches
+    /// (`benches/results/phases.csv`), never in results/.
+    #[arg(long, value_name = "FILE")]
+    pub phases: Option<PathBuf>,
 }
 
 /// `reproduce check`: the regression gate.
@@ -130,6 +137,36 @@ pub struct InferOptions {
     pub dry_run: bool,
 }
 
+/// Which shard: `K/N` as given, or `auto` (from the scheduler's environment), parsed at the
+/// command line.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ShardSpec {
+    /// K and N from a Slurm job array or a Kubernetes Indexed Job (`Shard::from_env`).
+    #[default]
+    Auto,
+    /// Shard K of N.
+    Given(Shard),
+}
+
+/// A shard that is neither `auto` nor a valid `K/N`.
+#[derive(Debug, thiserror::Error)]
+#[error("{0}; or `auto` (K and N from a Slurm job array or a Kubernetes Indexed Job)")]
+pub struct ShardSpecError(#[source] ShardError);
+
+impl std::str::FromStr for ShardSpec {
+    type Err = ShardSpecError;
+
+    /// `auto`, or `K/N` with 1 <= K <= N.
+    fn from_str(text: &str) -> Result<Self, ShardSpecError> {
+        match text {
+            "auto" => Ok(ShardSpec::Auto),
+            kn => Shard::parse(kn)
+                .map(ShardSpec::Given)
+                .map_err(ShardSpecError),
+        }
+    }
+}
+
 /// `reproduce shard [K/N]`: one shard of the selection, for a cluster.
 #[derive(Args, Clone, Debug, Default, PartialEq, Eq)]
 pub struct ShardOptions {
@@ -138,7 +175,7 @@ pub struct ShardOptions {
     /// DRIFTBENCH_SHARDS, else SLURM_ARRAY_TASK_COUNT for an array of exactly 1-N) or a
     /// Kubernetes Indexed Job (K = JOB_COMPLETION_INDEX + 1; N = --shards or DRIFTBENCH_SHARDS).
     #[arg(value_name = "K/N", default_value = "auto")]
-    pub shard: String,
+    pub shard: ShardSpec,
     /// The number of shards N for `auto`: needed under Kubernetes and for a Slurm task
     /// resubmitted alone (`sbatch --array=K`).
     #[arg(long, value_name = "N")]
@@ -162,7 +199,7 @@ pub struct ListOptions {
     pub selection: SelectionOptions,
     /// List only the runs of this shard (`K/N` or `auto`, as `reproduce shard` takes it).
     #[arg(long, value_name = "K/N", num_args = 0..=1, default_missing_value = "auto")]
-    pub shard: Option<String>,
+    pub shard: Option<ShardSpec>,
     /// With no --shard: how many of the selected runs each of N shards gets; with
     /// `--shard auto`: N.
     #[arg(long, value_name = "N")]
@@ -178,14 +215,14 @@ pub struct CostOptions {
 }
 
 /// `reproduce score FILE --task EXPERIMENT/VARIANT`: a trajectory made elsewhere, scored.
-#[derive(Args, Clone, Debug, Default, PartialEq, Eq)]
+#[derive(Args, Clone, Debug, PartialEq, Eq)]
 pub struct ScoreOptions {
     /// The trajectory: CSV (t, theta_1..n, optionally thetadot_1..n) or a MAT-file.
     #[arg(value_name = "FILE")]
     pub file: PathBuf,
     /// The task: `"<experiment> / <variant>"` (`reproduce list` names them).
-    #[arg(long, value_name = "ID")]
-    pub task: String,
+    #[arg(long, value_name = "ID", value_parser = TaskKey::parse)]
+    pub task: TaskKey,
     /// Which columns of a MAT-file's `y` hold theta and thetadot, 1-based and inclusive as
     /// MATLAB counts: `theta=1:6,thetadot=7:12` (the rest, e.g. a network's own state, is
     /// ignored). Without it `y` must be n or 2n columns wide.
@@ -213,7 +250,7 @@ pub enum Mode {
     Run(RunOptions),
     /// The regression gate: run the selection and compare it with git HEAD's committed
     /// results/runs.csv (or --baseline; status, drifts, every measured metric and the effort
-    /// counts and tolerances the report's tables show, not timings); write nothing; exit 1 on
+    /// counts and tolerances the report's tables show, not timings); write nothing; exit 3 on
     /// any difference.
     Check(CheckOptions),
     /// Re-render report/ and its figures from the stored results, running nothing.

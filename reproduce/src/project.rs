@@ -4,7 +4,7 @@
 //! policy (edited files, pruning), and the bound on `--threads`.
 
 use crate::error::ReproduceError;
-use crate::options::GlobalOptions;
+use crate::options::{GlobalOptions, ShardSpec};
 use records::shard::Shard;
 use records::tracked_dir::Edits;
 use std::path::PathBuf;
@@ -61,13 +61,13 @@ impl Project {
 /// The shard of `K/N` or `auto` (from the environment `env`: a Slurm job array or a
 /// Kubernetes Indexed Job; `shards`: N where the environment does not say it).
 pub fn resolve_shard(
-    spec: &str,
+    spec: ShardSpec,
     shards: Option<usize>,
     env: impl Fn(&str) -> Option<String>,
 ) -> Result<Shard, ReproduceError> {
     Ok(match spec {
-        "auto" => Shard::from_env(env, shards)?,
-        kn => Shard::parse(kn)?,
+        ShardSpec::Auto => Shard::from_env(env, shards)?,
+        ShardSpec::Given(shard) => shard,
     })
 }
 
@@ -109,7 +109,8 @@ mod tests {
         assert_eq!(plain.results_dir, PathBuf::from("/p/results"));
         assert_eq!((plain.edits, plain.prune), (Edits::Refuse, false));
         let no_env = |_: &str| None;
-        let shard = resolve_shard("2/3", None, no_env).unwrap();
+        let spec = |s: &str| s.parse::<ShardSpec>().unwrap();
+        let shard = resolve_shard(spec("2/3"), None, no_env).unwrap();
         assert_eq!(shard, Shard::new(2, 3).unwrap());
         let sharded = Project::under("/p".into(), &GlobalOptions::default(), Some(shard));
         assert_eq!(
@@ -128,15 +129,30 @@ mod tests {
         assert_eq!(given.edits, Edits::Accept);
         let k8s = |v: &str| (v == "JOB_COMPLETION_INDEX").then(|| "0".to_string());
         assert_eq!(
-            resolve_shard("auto", Some(4), k8s).unwrap(),
+            resolve_shard(spec("auto"), Some(4), k8s).unwrap(),
             Shard::new(1, 4).unwrap()
         );
     }
 
     #[test]
     fn a_bad_shard_or_thread_count_is_a_typed_error() {
-        let bad = resolve_shard("4/3", None, |_| None);
-        assert!(matches!(bad, Err(ReproduceError::Shard(_))), "{bad:?}");
+        let bad = "4/3".parse::<ShardSpec>().unwrap_err();
+        assert!(
+            bad.to_string()
+                .starts_with("shard 4 of 3: K must be in 1..=3"),
+            "{bad}"
+        );
+        assert!(
+            bad.to_string().ends_with(
+                "or `auto` (K and N from a Slurm job array or a Kubernetes Indexed Job)"
+            ),
+            "{bad}"
+        );
+        let no_array = resolve_shard(ShardSpec::Auto, None, |_| None);
+        assert!(
+            matches!(no_array, Err(ReproduceError::Shard(_))),
+            "{no_array:?}"
+        );
         let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
         let too_many = (MAX_THREADS_PER_CORE * cores + 1) as u64;
         let err = check_threads(too_many).unwrap_err();

@@ -3,8 +3,8 @@
 //! the papers, the stored results); then the selected runs run, resumed from and checkpointed in a journal;
 //! the summary is printed; and the rows are compared with the baseline (the gate) or written
 //! with what follows them (a shard's manifest, or the explanation layer, the control
-//! experiments and the report), a run into `results/` timed phase by phase ([`crate::phases`],
-//! `results/phases.csv`). Runs that fail without their experiment file expecting it are
+//! experiments and the report), a run into `results/` timed phase by phase ([`crate::phases`]:
+//! printed, and written where `--phases FILE` says). Runs that fail without their experiment file expecting it are
 //! exit code 1.
 
 use crate::baseline::Baseline;
@@ -12,14 +12,13 @@ use crate::error::ReproduceError;
 use crate::explanation::explain;
 use crate::journal::{resume, run_journaled, skip_finished};
 use crate::options::SelectionOptions;
-use crate::phases::PhaseClock;
+use crate::phases::{Phase, PhaseClock};
 use crate::project::Project;
 use crate::report::{precheck_report, render_figures, render_pages, report_root};
 use crate::results::{open_results, plan_pruning, write_results, Described};
 use crate::select::selection_files;
 use crate::summary::{emit, summary};
 use catalog::experiment::Job;
-use records::phases::Phase;
 use records::results_dir::ResultsDir;
 use records::runs::RunRow;
 use records::shard::Shard;
@@ -52,9 +51,10 @@ pub struct Plan<'a> {
     pub output: Output,
     /// Whether the explanation layer follows written results.
     pub explain: bool,
-    /// When the mode began: the start of the setup phase of the run's clock
-    /// (`results/phases.csv`, written with the report).
+    /// When the mode began: the start of the setup phase of the run's clock.
     pub started: Instant,
+    /// Where the phase table is written as CSV (`--phases FILE`), if anywhere.
+    pub phases: Option<&'a std::path::Path>,
 }
 
 /// Runs `jobs`, the selection of `all` (every run of the experiment files), as `plan` says.
@@ -182,8 +182,8 @@ fn finish_shard(
 
 /// What follows the written rows of a run into `results/`: the explanation layer (unless
 /// skipped), the control experiments and the timing pass of a whole, unselected reproduction,
-/// and the report, each a phase of `clock`, whose table ends the run (`results/phases.csv`,
-/// and printed).
+/// and the report, each a phase of `clock`, whose table ends the run (printed, and written to
+/// `plan.phases` where given).
 fn publish(
     project: &Project,
     plan: &Plan<'_>,
@@ -240,49 +240,48 @@ fn publish(
         clock.skip(Phase::Control, why.to_string());
         clock.skip(Phase::Timing, why.to_string());
     }
-    let rendered = match report_root(project) {
+    match report_root(project) {
         Ok(root) => {
             let figures = render_figures(&root)?;
             clock.lap(Phase::Figures, Some(figures));
             render_pages(project, &root, results)?;
             clock.lap(Phase::Report, None);
-            Some(root)
         }
         Err(why) => {
             eprintln!("report not rendered: {why}");
             clock.skip(Phase::Figures, why.to_string());
             clock.skip(Phase::Report, why.to_string());
-            None
         }
-    };
+    }
     let (machine, cores) = cost::machine();
-    let rows = clock.rows(&records::phases::RunContext {
+    let rows = clock.rows(&crate::phases::RunContext {
         selection: plan.selection.selection().to_string(),
         whole: plan.selection.is_whole(),
         machine,
         cores,
         git_rev: git_rev.to_string(),
     });
-    let written = records::phases::write(results.path(), &rows)?;
-    results.save()?;
-    // The Performance page shows the table just written: its pages rendered once more,
-    // untimed (the report phase above is the first rendering).
-    if let Some(root) = rendered {
-        presentation::report::render(&root, &project.root.join("papers"))?;
+    if let Some(path) = plan.phases {
+        crate::phases::write(path, &rows)?;
+        eprintln!("phase table written to {}", path.display());
     }
-    eprint!("{}", crate::phases::table(&rows, &written));
+    eprint!("{}", crate::phases::table(&rows));
     Ok(())
 }
 
-/// Says the failures no experiment file expects (`unexpected`, one line each): exit code 1 if
-/// there are any.
+/// Says the failures no experiment file expects (`unexpected`, one line each):
+/// [`Exit::UnexpectedFailure`](crate::error::Exit::UnexpectedFailure) (exit code 1) if there
+/// are any.
 pub fn report_unexpected(unexpected: &[String]) -> ExitCode {
     if unexpected.is_empty() {
         return ExitCode::SUCCESS;
     }
-    eprintln!("unexpected failures (exit code 1):");
+    eprintln!(
+        "unexpected failures (exit code {}):",
+        crate::error::Exit::UnexpectedFailure.code()
+    );
     for line in unexpected {
         eprintln!("  {line}");
     }
-    ExitCode::from(1)
+    crate::error::Exit::UnexpectedFailure.into()
 }

@@ -126,13 +126,12 @@ pub fn significant_digits(v: f64) -> usize {
 
 /// The task `"<experiment> / <variant>"` (ids) of the experiment files in `experiments_dir`, as
 /// its first run (a trajectory is scored on its robot, path, scheme and poses only).
-pub fn find_task(experiments_dir: &Path, id: &str) -> Result<Job, ScoreError> {
-    let key = TaskKey::parse(id).ok();
+pub fn find_task(experiments_dir: &Path, task: &TaskKey) -> Result<Job, ScoreError> {
     load_dir(experiments_dir, check_job)?
         .iter()
         .flat_map(PaperFile::jobs)
-        .find(|j| Some(j.task()) == key)
-        .ok_or_else(|| ScoreError::NoTask(id.to_string()))
+        .find(|j| j.task() == *task)
+        .ok_or_else(|| ScoreError::NoTask(task.to_string()))
 }
 
 /// Scores the trajectory file `file` (CSV, or a MAT-file: `records::trajectory_file::read`) on

@@ -41,7 +41,7 @@ fn the_gate_compares_with_the_stated_baseline() {
         .arg(&bad)
         .output()
         .unwrap();
-    assert_eq!(fail.status.code(), Some(1));
+    assert_eq!(fail.status.code(), Some(3), "a gate difference exits 3");
     assert!(String::from_utf8_lossy(&fail.stdout).contains("drift_norm"));
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -5,6 +5,7 @@
 mod common;
 
 mod cli;
+mod exit_codes;
 mod fifth_paper;
 mod hostile;
 mod hostile_inputs;

@@ -9,6 +9,8 @@
 //!   without the experiment files. (robots reads its own robot files, so TOML is allowed, and
 //!   reads URDFs through `inputs`, the one reader of files from outside, which holds no file
 //!   format of the suite's.)
+//! - no member links the benches (`driftbench-benches`, which holds the suite's measurements
+//!   of itself): the reproduction and its report are built without them.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -155,6 +157,23 @@ fn the_numerical_crates_link_no_file_format() {
         assert!(
             found.is_empty(),
             "{package} links an experiment-file or results crate:\n  {}",
+            found.join("\n  ")
+        );
+    }
+}
+
+#[test]
+fn nothing_links_the_benches() {
+    let graph = workspace();
+    assert!(
+        closure(&graph, "driftbench-benches").contains_key("records"),
+        "the benches are a member that reads records"
+    );
+    for package in graph.keys().filter(|p| *p != "driftbench-benches") {
+        let found = offending(&graph, package, &["driftbench-benches"]);
+        assert!(
+            found.is_empty(),
+            "{package} links the benches (the suite's measurements of itself):\n  {}",
             found.join("\n  ")
         );
     }

@@ -79,7 +79,18 @@ fn a_trajectory_file_is_scored_on_its_task() {
             "kong2019-circle__znn-eq22__trajectory.svg"
         ]
     );
-    assert!(!String::from_utf8_lossy(&ok.stderr).contains("warning"));
+    // No warning about the trajectory; the old `--score` flag says it is deprecated.
+    let stderr = String::from_utf8_lossy(&ok.stderr);
+    assert!(
+        stderr.contains("warning: `--score` is deprecated"),
+        "{stderr}"
+    );
+    assert!(
+        !stderr
+            .lines()
+            .any(|l| l.contains("warning") && !l.contains("is deprecated")),
+        "{stderr}"
+    );
 
     // The subcommand, with a global option after it and from outside the project: the same
     // file on another task of the same arm and start is scored, and warned as far off it; the

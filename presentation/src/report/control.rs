@@ -4,14 +4,14 @@
 //! What is decided or computed from them (success, the leaderboard of the track, products per
 //! millisecond) is [`analysis::control_track`]'s.
 
-use super::markdown::{sci, sci_opt, Table, MISSING};
+use super::markdown::{sci, sci_opt, text, Table, MISSING};
 use crate::figures::control::{pareto_name, CYCLES_NAME, STABILITY_NAME};
 use analysis::control_claim::{overall, ACCURACY};
 use analysis::control_track::{
     fits_period, main_h_ms, products_per_ms, steps_per_main_tick, success, track,
 };
 use records::control::Verdict;
-use records::control::{read, ClaimRow, ControlRow, ControlStatus, StabilityRow, TrendRow};
+use records::control::{read, ClaimRow, ControlRow, ControlStatus, Family, StabilityRow, TrendRow};
 use records::error::ControlFileError;
 use records::index::{completed, Runs};
 use records::results_dir;
@@ -36,6 +36,22 @@ impl ControlResults {
             trends: read(results, results_dir::CYCLES_TREND)?,
         })
     }
+}
+
+/// The numerical methods of the results, in their order (what this build ran: OSQP only
+/// with the `osqp` feature).
+fn numerical_methods(results: &ControlResults) -> String {
+    let numerical: Vec<&ControlRow> = results
+        .runs
+        .iter()
+        .filter(|r| r.family == Family::Numerical)
+        .collect();
+    let methods = records::table::distinct(&numerical, |r| r.method.as_str());
+    if methods.is_empty() {
+        return "no numerical method".to_string();
+    }
+    let methods: Vec<String> = methods.iter().map(|m| text(m)).collect();
+    format!("{}: {}", methods.len(), methods.join(", "))
 }
 
 /// An inline figure if it was rendered.
@@ -64,10 +80,12 @@ pub fn section(results: &ControlResults, runs: &Runs, figures: &[String]) -> Str
          as a controller would step them: forward Euler of their dynamics, one step per tick, \
          the QP held; the zeroing networks also in the Taylor-type discrete-time ZNN form \
          (Zhang et al., J. Comput. Appl. Math. 2015). The numerical methods run to their \
-         tolerance at every tick, each started from the previous tick's answer where it can be: \
-         the six LVI methods of robio2018 (22)-(27) as printed (94LVI and E47, zhong2021 refs. [26] \
-         and [27], and M3-M6; to |e(y)|_inf <= 1e-10), the hot-started active set, Clarabel and OSQP (warm-started, \
-         eps 1e-7, polished). Every tick is scored against the certified exact optimum of its QP. \
+         tolerance at every tick, each started from the previous tick's answer where it can be; \
+         these results have {}. The LVI methods are those of robio2018 (22)-(27) as printed \
+         (94LVI and E47, zhong2021 refs. [26] and [27]), each to |e(y)|_inf <= 1e-10; the active set \
+         is hot-started. OSQP (warm-started, eps 1e-7, polished) joins them only in a build \
+         with the `osqp` feature (`cargo run --release -p reproduce --features osqp`, which \
+         needs CMake). Every tick is scored against the certified exact optimum of its QP. \
          |x - x*| is that of the joint command, relative to max(1, |x*|); drift is \
          |theta(T) - theta0|. Latencies are wall-clock per tick on the machine of the run \
          (under whatever load it had: compare within a table, not across machines); the work \
@@ -75,6 +93,7 @@ pub fn section(results: &ControlResults, runs: &Runs, figures: &[String]) -> Str
          runs are independent and run in parallel, one per core, so each latency is measured \
          beside another run. This part of the reproduction adds about half a minute on 2 cores \
          (tasks: {}).\n\n",
+        numerical_methods(results),
         task_list(results)
     ));
 

@@ -22,8 +22,10 @@
 //! - the [`cost`] of every run, and zhong2021's MATLAB comparison as ratios;
 //! - [`control`]: every solver at a robot's control rate, zhong2021's efficiency claim, and
 //!   many cycles (`results/control*.csv`, `results/cycles*.csv`);
-//! - [`performance`]: per-instant costs against the exact solvers and the KKT floor, the cost
-//!   against the number of joints, whole runs against the MATLAB times, and the machine;
+//! - [`performance`]: per-instant costs against the exact solvers and the KKT floor, the exact
+//!   reference per recorded QP against DAQP, the cost against the number of joints, whole runs
+//!   against the MATLAB times, and the machine (the suite's measurements of itself, its build,
+//!   clock, phases, profiles and speed-up, are the benches', `benches/REPORT.md`);
 //! - [`python`]: the Python package's numpy entry on the leaderboard and the cost of a Python
 //!   call (`results/leaderboard-python.csv`, `results/python-call-cost.csv`);
 //! - the [`cross`] experiment matrices;
@@ -31,7 +33,6 @@
 //!   contradict.
 
 pub mod claims;
-pub mod clock;
 pub mod control;
 pub mod cost;
 pub mod cross;
@@ -43,7 +44,6 @@ pub mod performance;
 pub mod python;
 pub mod score;
 pub mod shown;
-pub mod speedup;
 pub mod sweep;
 pub mod tables;
 pub mod verdict;
@@ -77,24 +77,12 @@ pub struct Inputs {
     pub timings: records::timing::Timings,
     /// `results/dof-cost.csv` (absent = empty).
     pub dof_cost: Vec<records::dof_cost::DofCostRow>,
-    /// `results/profile.csv` (absent = empty).
-    pub profile: Vec<records::profile::ProfileRow>,
-    /// `results/speedup.csv` (absent = empty).
-    pub speedup: Vec<records::speedup::SpeedupRow>,
-    /// `results/profile-active-set.csv` (absent = empty).
-    pub hot_solve: Vec<records::profile_active_set::HotSolveRow>,
     /// `results/qp-replay.csv` (absent = empty).
     pub qp_replay: Vec<records::qp_replay::QpReplayRow>,
     /// The control experiments' result files (absent = empty).
     pub control: control::ControlResults,
     /// The Python package's result files (absent = empty).
     pub python: python::PythonResults,
-    /// `results/phases.csv`: the last run's phases (absent = empty).
-    pub phases: Vec<records::phases::PhaseRow>,
-    /// `results/clock.csv`: fresh clones timed per revision (absent = empty).
-    pub clock: Vec<records::clock::ClockRow>,
-    /// `results/build-profile.csv`: a cold build, unit by unit (absent = empty).
-    pub build_profile: Vec<records::build_profile::BuildUnitRow>,
 }
 
 impl Inputs {
@@ -116,15 +104,9 @@ impl Inputs {
             },
             timings: records::timing::read(&results)?,
             dof_cost: records::dof_cost::read(&results)?,
-            profile: read_if_present(&results.join(records::profile::FILE))?,
-            speedup: read_if_present(&results.join(records::speedup::FILE))?,
-            hot_solve: read_if_present(&results.join(records::profile_active_set::FILE))?,
             qp_replay: read_if_present(&results.join(records::qp_replay::FILE))?,
             control: control::ControlResults::load(&results)?,
             python: python::PythonResults::load(&results)?,
-            phases: records::phases::read(&results)?,
-            clock: read_if_present(&results.join(records::clock::FILE))?,
-            build_profile: read_if_present(&results.join(records::build_profile::FILE))?,
         })
     }
 }
@@ -195,15 +177,9 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
         explanations,
         timings,
         dof_cost,
-        profile,
-        speedup,
-        hot_solve,
         qp_replay,
         control,
         python,
-        phases,
-        clock,
-        build_profile,
     } = inputs;
     // Every text of papers/ escaped once, before any section shows it.
     let papers = &shown::papers(papers);
@@ -239,17 +215,8 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
     let mut out = performance::section(
         &performance::Measurements {
             dof: dof_cost,
-            profile,
-            hot: hot_solve,
             qp_replay,
-            speedup,
             timings,
-            clock: clock::Clock {
-                phases,
-                ladder: &explanations.ladder,
-                clock,
-                build: build_profile,
-            },
         },
         runs,
         papers,

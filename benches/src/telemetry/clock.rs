@@ -1,5 +1,5 @@
-//! `results/clock.csv`: a newcomer's clock from clone to report, per code revision (written by
-//! `benches/clock/clock.sh`, read by the report's Performance page, "The newcomer's clock").
+//! `benches/results/clock.csv`: a newcomer's clock from clone to report, per code revision (written by
+//! `benches/clock/clock.sh`, read by benches/REPORT.md, "The newcomer's clock").
 //!
 //! For each revision the script clones the repository afresh into a temporary directory, with
 //! a target directory of its own, and times with the wall clock each [`Step`]: the cold release
@@ -7,10 +7,10 @@
 //! included) and the Python package's install from nothing. One [`ClockRow`] per revision and step; a step that failed keeps its time and its
 //! exit code.
 
-use crate::table::Row;
+use records::table::Row;
 use serde::{Deserialize, Serialize};
 
-/// The file name inside `results/`.
+/// The file name inside `benches/results/`.
 pub const FILE: &str = "clock.csv";
 
 /// What `benches/clock/clock.sh` times.
@@ -29,7 +29,7 @@ pub enum Step {
 }
 
 impl Step {
-    /// The id in `results/clock.csv` (and the script's `--only`).
+    /// The id in `benches/results/clock.csv` (and the script's `--only`).
     pub fn id(self) -> &'static str {
         match self {
             Step::Build => "build",
@@ -50,7 +50,7 @@ impl Step {
     }
 }
 
-/// One row of `results/clock.csv`.
+/// One row of `benches/results/clock.csv`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ClockRow {
     /// The revision as given to the script (`cc915b9`, `HEAD`).
@@ -82,11 +82,11 @@ mod tests {
         // The script quotes the revision and the machine (either may hold a comma or a quote).
         let csv = "revision,commit,step,seconds,exit_code,machine,cores,date\n\
                    \"HEAD\",0123456789ab,reproduce,130.250,0,\"Test CPU, 2 GHz\",2,2026-12-03T13:00:00Z\n";
-        let rows: Vec<ClockRow> = crate::table::from_reader(csv.as_bytes()).unwrap();
+        let rows: Vec<ClockRow> = records::table::from_reader(csv.as_bytes()).unwrap();
         assert_eq!(rows[0].step, Step::Reproduce);
         assert_eq!(rows[0].machine, "Test CPU, 2 GHz");
         assert_eq!(rows[0].step.id(), "reproduce");
         let bad = csv.replace(",reproduce,", ",bench,");
-        assert!(crate::table::from_reader::<ClockRow, _>(bad.as_bytes()).is_err());
+        assert!(records::table::from_reader::<ClockRow, _>(bad.as_bytes()).is_err());
     }
 }

@@ -1,4 +1,4 @@
-//! The newcomer's clock against its targets (`results/clock.csv`, [`records::clock`]).
+//! The newcomer's clock against its targets (`benches/results/clock.csv`, [`crate::telemetry::clock`]).
 //!
 //! Issue 29 sets, measured side by side with the baseline revision [`BASELINE`] in one session
 //! on an otherwise idle machine:
@@ -12,9 +12,9 @@
 //!
 //! [`targets`] compares the newest measured revision (the last row's that is not the baseline)
 //! with them: per step, both times, the limit in seconds, and whether it is met. The decision is
-//! here; the report only shows it.
+//! here; benches/REPORT.md only shows it.
 
-use records::clock::{ClockRow, Step};
+use crate::telemetry::clock::{ClockRow, Step};
 
 /// The revision the clock's relative targets are measured against, as `clock.sh` is given it.
 pub const BASELINE: &str = "cc915b9";

@@ -1,19 +1,19 @@
-//! `results/build-profile.csv`: where a cold `cargo build --release -p reproduce` spends its
+//! `benches/results/build-profile.csv`: where a cold `cargo build --release -p reproduce` spends its
 //! time, unit by unit (written by `benches/clock/build_profile.sh` from cargo's own
-//! `--timings` report, read by the report's Performance page, "Where the build's time goes").
+//! `--timings` report, read by benches/REPORT.md, "Where the build's time goes").
 //!
 //! One [`BuildUnitRow`] per compilation unit: a crate's library or binary, a build script's
 //! compilation or its run. Times are seconds from the build's start, as cargo measured them.
 //! `unblocked_by` is the unit whose end (or, under pipelining, whose metadata) let this one
 //! start: the last of its dependencies to be ready. Following it back from the unit that ends
 //! last gives the build's critical path, the chain no number of cores can shorten
-//! (`analysis::performance::build`). Every row repeats the build's wall time, the commit and
+//! ([`crate::telemetry::judged::build`]). Every row repeats the build's wall time, the commit and
 //! the machine, so the file describes one build.
 
-use crate::table::Row;
+use records::table::Row;
 use serde::{Deserialize, Serialize};
 
-/// The file name inside `results/`.
+/// The file name inside `benches/results/`.
 pub const FILE: &str = "build-profile.csv";
 
 /// What a compilation unit builds (cargo's `target` of the unit).
@@ -33,7 +33,7 @@ pub enum UnitKind {
 }
 
 impl UnitKind {
-    /// The id in `results/build-profile.csv`.
+    /// The id in `benches/results/build-profile.csv`.
     pub fn id(self) -> &'static str {
         match self {
             UnitKind::Lib => "lib",
@@ -45,7 +45,7 @@ impl UnitKind {
     }
 }
 
-/// One row of `results/build-profile.csv`.
+/// One row of `benches/results/build-profile.csv`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct BuildUnitRow {
     /// The unit's index in cargo's report (what `unblocked_by` refers to).
@@ -94,7 +94,7 @@ mod tests {
         let csv = "unit,crate_name,version,kind,workspace,start_s,duration_s,unblocked_by,commit,machine,cores,date,build_wall_s\n\
                    0,itoa,1.0.19,lib,false,0.10,0.25,,abc,\"CPU, x\",2,d,1.0\n\
                    1,osqp-sys,0.6.3,build-script-run,false,0.36,0.14,0,abc,\"CPU, x\",2,d,1.0\n";
-        let rows: Vec<BuildUnitRow> = crate::table::from_reader(csv.as_bytes()).unwrap();
+        let rows: Vec<BuildUnitRow> = records::table::from_reader(csv.as_bytes()).unwrap();
         assert_eq!(rows[0].unblocked_by, None);
         assert_eq!(rows[1].unblocked_by, Some(0));
         assert_eq!(rows[1].kind, UnitKind::BuildScriptRun);
@@ -107,7 +107,7 @@ mod tests {
             (",lib,false,", ",lib,maybe,"),
         ] {
             let broken = csv.replace(good, bad);
-            assert!(crate::table::from_reader::<BuildUnitRow, _>(broken.as_bytes()).is_err());
+            assert!(records::table::from_reader::<BuildUnitRow, _>(broken.as_bytes()).is_err());
         }
     }
 }

@@ -1,4 +1,4 @@
-//! Where a cold build's time goes (`results/build-profile.csv`, [`records::build_profile`]).
+//! Where a cold build's time goes (`benches/results/build-profile.csv`, [`crate::telemetry::build_profile`]).
 //!
 //! A build of units u with durations d_u on c cores cannot end before either bound:
 //!
@@ -11,7 +11,7 @@
 //! units) when the CPU bound is near the wall time, a shorter chain (splitting or cheapening its
 //! units) when the path is.
 
-use records::build_profile::BuildUnitRow;
+use crate::telemetry::build_profile::BuildUnitRow;
 use std::collections::HashMap;
 
 /// How many of the costliest units [`summarise`] lists.

@@ -1,4 +1,4 @@
-//! `results/profile.csv`: where one paper's reproduction spends its time, by sampling profile
+//! `benches/results/profile.csv`: where one paper's reproduction spends its time, by sampling profile
 //! (written by `benches/profile/paper.sh PAPER`, which runs perf over the release binary and
 //! sorts each sample with `benches/profile/classify.py`; the row's `paper` says which).
 //!
@@ -9,10 +9,10 @@
 //! is the category's samples over all the simulation's samples; the floor ratio of the
 //! simulation is all its samples over its floor's ([`floor_ratio`]).
 
-use crate::table::Row;
+use records::table::Row;
 use serde::{Deserialize, Serialize};
 
-/// The file name inside `results/`.
+/// The file name inside `benches/results/`.
 pub const FILE: &str = "profile.csv";
 /// [`ProfileRow::part`] of the neural runs' integration.
 pub const SIMULATION: &str = "simulation";
@@ -21,7 +21,7 @@ pub const EXACT_COLUMN: &str = "exact column";
 /// [`ProfileRow::category`] of the right-hand side (the network and the QP assembly).
 pub const RHS: &str = "RHS (network and QP assembly)";
 
-/// One row of `results/profile.csv`.
+/// One row of `benches/results/profile.csv`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ProfileRow {
     /// `simulation`, `exact column`, `observer` or `other`.

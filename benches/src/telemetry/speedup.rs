@@ -1,4 +1,4 @@
-//! `results/speedup.csv`: every run of the papers timed alone under an earlier revision of
+//! `benches/results/speedup.csv`: every run of the papers timed alone under an earlier revision of
 //! driftbench and under this one (written by `benches/speedup/papers.sh OLD_CHECKOUT OLD_BINARY`,
 //! which alternates the two revisions pass by pass on one pinned CPU and matches their rows with
 //! `benches/speedup/compare.py`).
@@ -9,13 +9,13 @@
 //! drift norm ‖θ(T) − θ(0)‖ (rad) are kept, so that a reader can check that what was computed
 //! did not change with the speed.
 
-use crate::table::Row;
+use records::table::Row;
 use serde::{Deserialize, Serialize};
 
-/// The file name inside `results/`.
+/// The file name inside `benches/results/`.
 pub const FILE: &str = "speedup.csv";
 
-/// One row of `results/speedup.csv`.
+/// One row of `benches/results/speedup.csv`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SpeedupRow {
     /// The paper id.
@@ -85,7 +85,7 @@ pub struct PaperSpeedup {
 
 /// Per paper, in the order the papers first appear in `rows`.
 pub fn by_paper(rows: &[SpeedupRow]) -> Vec<PaperSpeedup> {
-    crate::table::distinct(rows, |r| &r.paper)
+    records::table::distinct(rows, |r| &r.paper)
         .into_iter()
         .map(|paper| {
             let runs: Vec<&SpeedupRow> = rows.iter().filter(|r| r.paper == paper).collect();
@@ -100,7 +100,7 @@ pub fn by_paper(rows: &[SpeedupRow]) -> Vec<PaperSpeedup> {
                 old_wall_s: sum(|r| r.old_wall_s),
                 new_wall_s: sum(|r| r.new_wall_s),
                 min_sim_speedup: ratios.first().copied().unwrap_or(f64::NAN),
-                median_sim_speedup: crate::percentile::percentile(&ratios, 0.5),
+                median_sim_speedup: records::percentile::percentile(&ratios, 0.5),
                 max_sim_speedup: ratios.last().copied().unwrap_or(f64::NAN),
                 status_changes: runs.iter().filter(|r| r.old_status != r.new_status).count(),
                 max_drift_change: runs

@@ -1,35 +1,35 @@
 //! Against an earlier revision: every paper's runs timed alone under an earlier revision of
-//! driftbench and under this one (`results/speedup.csv`, [`records::speedup`]).
+//! driftbench and under this one (`benches/results/speedup.csv`, [`crate::telemetry::speedup`]).
 //!
 //! Per paper: the runs' summed median times, old and new, for the simulation (`sim_s`) and the
 //! whole run (`wall_s`); the speed-up old / new, and its smallest, median and largest value over
 //! the runs; the runs whose status changed and the largest change of a drift norm. The target
 //! applies to the papers that publish no compute time (the timed papers have theirs against the
-//! MATLAB times). Where a paper misses it, the paper's sampling profile (`results/profile.csv`,
-//! [`records::profile`]) says where its time goes: the share of each part of the process, and
-//! the integration's ratio to its floor r ([`records::profile::integration_floor_ratio`]: the
+//! MATLAB times). Where a paper misses it, the paper's sampling profile (`benches/results/profile.csv`,
+//! [`crate::telemetry::profile`]) says where its time goes: the share of each part of the process, and
+//! the integration's ratio to its floor r ([`crate::telemetry::profile::integration_floor_ratio`]: the
 //! samples of the simulation and the exact column over those of the RHS, Jacobian and LU work,
 //! the exact column's QP solves included). Removing every sample outside the floor divides the
 //! integration's time by r at most, so a paper with r below the target cannot meet it by
 //! removing overhead alone. The speed-ups, verdicts and shares are computed by
-//! [`analysis::performance::speedup`] and [`analysis::performance::profile`]; this module formats.
+//! [`crate::telemetry::judged::speedup`] and [`crate::telemetry::judged::profile`]; this module formats.
 
-use super::markdown::{percent, sci, Table, MISSING};
-use analysis::papers::Papers;
-use analysis::performance::profile::part_shares;
-use analysis::performance::speedup::{
+use crate::telemetry::judged::profile::part_shares;
+use crate::telemetry::judged::speedup::{
     floor_bound, paper_lines, FloorBound, SpeedupTarget, TARGET_OTHER_SPEEDUP,
 };
-use records::profile::ProfileRow;
-use records::speedup::SpeedupRow;
+use crate::telemetry::profile::ProfileRow;
+use crate::telemetry::speedup::SpeedupRow;
+use analysis::papers::Papers;
+use presentation::report::markdown::{percent, sci, Table, MISSING};
 
 /// The `### Against an earlier revision` subsection.
 pub fn section(rows: &[SpeedupRow], profile: &[ProfileRow], papers: &Papers) -> String {
     let Some(first) = rows.first() else {
         return format!(
-            "### Against an earlier revision\n\n`results/{}` is absent: \
+            "### Against an earlier revision\n\n`benches/results/{}` is absent: \
              `benches/speedup/papers.sh OLD_CHECKOUT OLD_BINARY` measures it.\n\n",
-            records::speedup::FILE
+            crate::telemetry::speedup::FILE
         );
     };
     let timed = papers.timed_papers();
@@ -81,14 +81,14 @@ pub fn section(rows: &[SpeedupRow], profile: &[ProfileRow], papers: &Papers) -> 
          (`reproduce --paper PAPER --shard 1/1 --threads 1`: no explanation runs, no timing \
          pass) under revision `{}` and under revision `{}`, on one thread pinned to one CPU, {} \
          passes per revision, the two revisions alternating pass by pass. A run's time is the \
-         median over its passes and a paper's the sum over its runs (`results/{}`). Runs are \
+         median over its passes and a paper's the sum over its runs (`benches/results/{}`). Runs are \
          matched by experiment, variant and solver label, the exact column by its kind (it was \
          renamed). The target: every run of a paper that publishes no compute time at least \
          {TARGET_OTHER_SPEEDUP}x faster in simulation, with the same status and drifts.\n\n{}\n",
         first.old_rev,
         first.new_rev,
         first.passes,
-        records::speedup::FILE,
+        crate::telemetry::speedup::FILE,
         t.render()
     );
     for paper in missed {
@@ -99,11 +99,11 @@ pub fn section(rows: &[SpeedupRow], profile: &[ProfileRow], papers: &Papers) -> 
 
 /// Where a paper that missed the target spends its time, from its profile.
 fn why_missed(paper: &str, profile: &[ProfileRow]) -> String {
-    let rows = records::profile::of_paper(profile, paper);
+    let rows = crate::telemetry::profile::of_paper(profile, paper);
     if rows.is_empty() {
         return format!(
-            "**{paper}** has no profile in `results/{}`.\n\n",
-            records::profile::FILE
+            "**{paper}** has no profile in `benches/results/{}`.\n\n",
+            crate::telemetry::profile::FILE
         );
     }
     let shares: Vec<String> = part_shares(&rows)

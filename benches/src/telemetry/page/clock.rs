@@ -1,39 +1,39 @@
-//! The newcomer's clock on the Performance page: how long a newcomer waits from clone to report,
+//! The newcomer's clock on benches/REPORT.md: how long a newcomer waits from clone to report,
 //! and where that time goes.
 //!
-//! - the phases of the last `reproduce run` (`results/phases.csv`, [`records::phases`]);
+//! - the phases of the last `reproduce run` (`benches/results/phases.csv`, [`reproduce::phases`]);
 //! - where its explain phase spends its time: the tolerance ladders' rungs as
-//!   `results/ladder.csv` timed them ([`analysis::performance::explain_phase`]);
+//!   `results/ladder.csv` timed them ([`crate::telemetry::judged::explain_phase`]);
 //! - per revision, a fresh clone's cold build, whole reproduction, tests and wheel
-//!   (`results/clock.csv` by `benches/clock/clock.sh`, [`records::clock`]) against the targets
-//!   ([`analysis::clock_targets`]);
+//!   (`benches/results/clock.csv` by `benches/clock/clock.sh`, [`crate::telemetry::clock`]) against the targets
+//!   ([`crate::telemetry::judged::targets`]);
 //! - where a cold build spends its time: its CPU bound, critical path and costliest units
-//!   (`results/build-profile.csv` by `benches/clock/build_profile.sh`,
-//!   [`analysis::performance::build`]).
+//!   (`benches/results/build-profile.csv` by `benches/clock/build_profile.sh`,
+//!   [`crate::telemetry::judged::build`]).
 //!
-//! What is computed from the files is crate `analysis`'s; this module formats, and escapes
+//! What is computed from the files is [`crate::telemetry::judged`]'s; this module formats, and escapes
 //! every text it reads.
 
-use super::markdown::{minutes, percent, text, Table, MISSING};
-use analysis::clock_targets::{targets, BASELINE};
-use analysis::performance::clock::{by_commit, phases_seconds};
-use analysis::performance::{build, explain_phase};
-use records::build_profile::BuildUnitRow;
-use records::clock::{ClockRow, Step};
+use crate::telemetry::build_profile::BuildUnitRow;
+use crate::telemetry::clock::{ClockRow, Step};
+use crate::telemetry::judged::clock::{by_commit, phases_seconds};
+use crate::telemetry::judged::targets::{targets, BASELINE};
+use crate::telemetry::judged::{build, explain_phase};
+use presentation::report::markdown::{minutes, percent, text, Table, MISSING};
 use records::ladder::LadderRow;
-use records::phases::{PhaseRow, PhaseStatus};
 use records::runs::Status;
+use reproduce::phases::{PhaseRow, PhaseStatus};
 
 /// The files the newcomer's clock reads, each empty where absent.
 #[derive(Clone, Copy, Debug)]
 pub struct Clock<'a> {
-    /// `results/phases.csv`.
+    /// `benches/results/phases.csv`.
     pub phases: &'a [PhaseRow],
     /// `results/ladder.csv`.
     pub ladder: &'a [LadderRow],
-    /// `results/clock.csv`.
+    /// `benches/results/clock.csv`.
     pub clock: &'a [ClockRow],
-    /// `results/build-profile.csv`.
+    /// `benches/results/build-profile.csv`.
     pub build: &'a [BuildUnitRow],
 }
 
@@ -82,7 +82,9 @@ fn explain_cost(ladder: &[LadderRow], phases: &[PhaseRow], clock: &[ClockRow]) -
              group's floor is the phase time it needs at least on these cores, however its \
              rungs are shared out.\n\n"
         )),
-        _ => out.push_str(" (`results/phases.csv` has no explain phase to set them against).\n\n"),
+        _ => out.push_str(
+            " (`benches/results/phases.csv` has no explain phase to set them against).\n\n",
+        ),
     }
     let mut t = Table::new([
         "paper",
@@ -146,15 +148,15 @@ fn explain_cost(ladder: &[LadderRow], phases: &[PhaseRow], clock: &[ClockRow]) -
 fn build_profile(rows: &[BuildUnitRow], clock: &[ClockRow]) -> String {
     let Some(p) = build::summarise(rows) else {
         return format!(
-            "`results/{}` is absent: `benches/clock/build_profile.sh` builds a fresh clone cold \
+            "`benches/results/{}` is absent: `benches/clock/build_profile.sh` builds a fresh clone cold \
              with `cargo build --release -p reproduce --timings` and keeps cargo's unit table \
              (about 3 minutes of an otherwise idle machine).\n\n",
-            records::build_profile::FILE
+            crate::telemetry::build_profile::FILE
         );
     };
     let mut out = format!(
         "#### Where the build's time goes\n\nA cold `cargo build --release -p reproduce \
-         --timings` of `{}` on {} ({} cores), unit by unit (`results/{}`, by \
+         --timings` of `{}` on {} ({} cores), unit by unit (`benches/results/{}`, by \
          `benches/clock/build_profile.sh` from cargo's own timings): {:.1} s of wall time. Its \
          {} units took {:.1} s of one core each ({:.1} s of them the workspace's own crates, in \
          bold below), so on {} cores no schedule of this work, each unit taking what it took here, ends before {:.1} s (the CPU bound). Its \
@@ -164,7 +166,7 @@ fn build_profile(rows: &[BuildUnitRow], clock: &[ClockRow]) -> String {
         text(p.commit),
         text(p.machine),
         p.cores,
-        records::build_profile::FILE,
+        crate::telemetry::build_profile::FILE,
         p.wall_s,
         rows.len(),
         p.unit_s,
@@ -219,10 +221,10 @@ fn unit_name(u: &BuildUnitRow) -> String {
     }
 }
 
-/// The clock's targets (`analysis::clock_targets`), once a revision besides the baseline has
+/// The clock's targets (`crate::telemetry::judged::targets`), once a revision besides the baseline has
 /// been measured.
 fn clock_targets_table(clock: &[ClockRow]) -> String {
-    use analysis::clock_targets::{measured_commit, Bound};
+    use crate::telemetry::judged::targets::{measured_commit, Bound};
     let Some(commit) = measured_commit(clock) else {
         return String::new();
     };
@@ -266,10 +268,10 @@ fn clock_targets_table(clock: &[ClockRow]) -> String {
 fn phase_table(phases: &[PhaseRow]) -> String {
     let Some(first) = phases.first() else {
         return format!(
-            "`results/{}` is absent: every `cargo run --release -p reproduce` writes it at its \
-             end (the wall time of each phase of the run; a whole reproduction gives every \
-             phase).\n\n",
-            records::phases::FILE
+            "`benches/results/{}` is absent: `cargo run --release -p reproduce -- run --phases \
+             benches/results/phases.csv` writes it at its end (the wall time of each phase of \
+             the run; a whole reproduction gives every phase).\n\n",
+            reproduce::phases::FILE
         );
     };
     let total = phases_seconds(phases);
@@ -278,7 +280,7 @@ fn phase_table(phases: &[PhaseRow]) -> String {
         .filter(|r| r.status == PhaseStatus::Skipped)
         .map(|r| format!("{} ({})", r.phase.id(), text(&r.note)))
         .collect();
-    let scope = if records::phases::complete(phases) {
+    let scope = if reproduce::phases::complete(phases) {
         "a whole reproduction (every run, every phase)".to_string()
     } else {
         let mut scope = format!(
@@ -306,16 +308,15 @@ fn phase_table(phases: &[PhaseRow]) -> String {
         ]);
     }
     format!(
-        "Where the wall time of the last `reproduce run` went (`results/{}`, rewritten at the \
-         end of every run that writes `results/`): {scope}. Measured on {} ({} logical cores \
+        "Where the wall time of a `reproduce run` went (`benches/results/{}`, written at its \
+         end by `--phases`): {scope}. Measured on {} ({} logical cores \
          available) at revision `{}`, {:.1} s in all. Each phase runs from the end of the one before: \
          *setup* reads the experiment files, checks everything before a run starts and opens \
          `results/`; *runs* is the selected runs in parallel with `runs.csv` and the traces \
          written; *explain*, the explanation layer; *control*, the control experiments; \
          *timing*, the compared runs again one at a time; *figures*; *report*, its pages, task \
-         cards and the leaderboard table (the pages are rendered once more, untimed, to show \
-         this table).\n\n{}\n",
-        records::phases::FILE,
+         cards and the leaderboard table.\n\n{}\n",
+        reproduce::phases::FILE,
         text(&first.machine),
         first.cores,
         text(&first.git_rev),
@@ -328,14 +329,14 @@ fn phase_table(phases: &[PhaseRow]) -> String {
 fn clock_table(clock: &[ClockRow]) -> String {
     if clock.is_empty() {
         return format!(
-            "`results/{}` is absent: `benches/clock/clock.sh` measures, for each revision given \
+            "`benches/results/{}` is absent: `benches/clock/clock.sh` measures, for each revision given \
              (default `cc915b9 HEAD`), a fresh clone's cold `{}`, the whole reproduction (`{}`) \
              and `{}`, on an otherwise idle machine (about half an hour of the whole machine per \
              revision; `docs/guide/clock.md`).\n\n",
-            records::clock::FILE,
-            records::clock::Step::Build.command(),
-            records::clock::Step::Reproduce.command(),
-            records::clock::Step::Test.command(),
+            crate::telemetry::clock::FILE,
+            crate::telemetry::clock::Step::Build.command(),
+            crate::telemetry::clock::Step::Reproduce.command(),
+            crate::telemetry::clock::Step::Test.command(),
         );
     }
     let mut t = Table::new([
@@ -370,7 +371,7 @@ fn clock_table(clock: &[ClockRow]) -> String {
         ));
     }
     format!(
-        "From clone to report, per revision (`results/{}`): measured by \
+        "From clone to report, per revision (`benches/results/{}`): measured by \
          `benches/clock/clock.sh`, which clones each revision afresh (`git clone --no-local`) \
          into a temporary directory with its own, empty target directory and times each step by \
          the wall clock; the reproduction runs after the build, so its time excludes it, and the \
@@ -378,7 +379,7 @@ fn clock_table(clock: &[ClockRow]) -> String {
          (so downloads are not timed; `--fresh-cargo-home` times them). The script needs an \
          otherwise idle machine, which it cannot check: the date and machine of each step are in \
          its row.\n\n{}\n{totals}\n",
-        records::clock::FILE,
+        crate::telemetry::clock::FILE,
         t.render()
     )
 }
@@ -436,8 +437,14 @@ mod tests {
             "{md}"
         );
         assert!(md.contains("min for test, a step failing.\n"), "{md}");
-        assert!(!md.contains("`results/clock.csv` is absent"), "{md}");
-        assert!(md.contains("`results/build-profile.csv` is absent"), "{md}");
+        assert!(
+            !md.contains("`benches/results/clock.csv` is absent"),
+            "{md}"
+        );
+        assert!(
+            md.contains("`benches/results/build-profile.csv` is absent"),
+            "{md}"
+        );
         // A whole run with every phase says so.
         let whole_csv = phases_csv
             .replace("--paper demo,false", "every run,true")
@@ -458,7 +465,7 @@ mod tests {
         );
         assert!(!md.contains("partial"), "{md}");
         assert!(
-            md.contains("`results/clock.csv` is absent: `benches/clock/clock.sh`"),
+            md.contains("`benches/results/clock.csv` is absent: `benches/clock/clock.sh`"),
             "{md}"
         );
     }

@@ -1,8 +1,8 @@
-//! The newcomer's clock: the last run's phases (`results/phases.csv`) in all, and per revision
-//! a fresh clone's steps together (`results/clock.csv`).
+//! The newcomer's clock: the last run's phases (`benches/results/phases.csv`) in all, and per revision
+//! a fresh clone's steps together (`benches/results/clock.csv`).
 
-use records::clock::ClockRow;
-use records::phases::PhaseRow;
+use crate::telemetry::clock::ClockRow;
+use reproduce::phases::PhaseRow;
 
 /// The wall time of the phases that ran (s), in all.
 pub fn phases_seconds(phases: &[PhaseRow]) -> f64 {

@@ -1,6 +1,6 @@
 //! Where the explain phase of a reproduction spends its time: the tolerance ladders' rungs
 //! (`results/ladder.csv`, [`records::ladder`]), each timed by the wall clock as it ran
-//! (`wall_s`), against the phase's wall time (`results/phases.csv`, [`records::phases`]).
+//! (`wall_s`), against the phase's wall time (`benches/results/phases.csv`, [`reproduce::phases`]).
 //!
 //! The rungs run in parallel, one per core at a time, so their times add up to core-seconds:
 //! with c cores a group of rungs that took s core-seconds in all needs at least s / c of the
@@ -9,8 +9,8 @@
 //! times.
 
 use records::ladder::{LadderMethod, LadderRow};
-use records::phases::{Phase, PhaseRow};
 use records::runs::Status;
+use reproduce::phases::{Phase, PhaseRow};
 
 /// The rungs of one paper integrated one way that ended one way.
 #[derive(Clone, Debug, PartialEq)]
@@ -37,7 +37,7 @@ pub struct RungGroup<'a> {
 pub struct ExplainCost<'a> {
     /// The explain phase's wall time in the last run (s), when it ran.
     pub phase_s: Option<f64>,
-    /// The cores that run had (`None` without `results/phases.csv`).
+    /// The cores that run had (`None` without `benches/results/phases.csv`).
     pub cores: Option<usize>,
     /// Every rung's wall time, summed (core-seconds).
     pub rung_core_s: f64,

@@ -1,12 +1,12 @@
-//! Every paper's runs against an earlier revision (`results/speedup.csv`,
-//! [`records::speedup`]): per paper the speed-up old / new of its summed times and the verdict
+//! Every paper's runs against an earlier revision (`benches/results/speedup.csv`,
+//! [`crate::telemetry::speedup`]): per paper the speed-up old / new of its summed times and the verdict
 //! against the target, and for a paper that misses it, the bound its profile's floor puts on
 //! any speed-up: removing every sample outside the floor divides the integration's time by the
 //! floor ratio r at most, so a paper with r below the target cannot meet it by removing
 //! overhead alone.
 
-use records::profile::{integration_floor_ratio, ProfileRow};
-use records::speedup::{by_paper, PaperSpeedup, SpeedupRow};
+use crate::telemetry::profile::{integration_floor_ratio, ProfileRow};
+use crate::telemetry::speedup::{by_paper, PaperSpeedup, SpeedupRow};
 
 /// Every run of a paper that publishes no compute time this many times faster in simulation
 /// than at the earlier revision.

@@ -1,9 +1,9 @@
-//! What a paper's sampling profile says (`results/profile.csv`, [`records::profile`]): how its
+//! What a paper's sampling profile says (`benches/results/profile.csv`, [`crate::telemetry::profile`]): how its
 //! process splits into parts, what the papers' MATLAB times are against its simulation's CPU
 //! time, and whether the right-hand side is the larger part of the simulation.
 
-use crate::papers::Papers;
-use records::profile::{ProfileRow, RHS, SIMULATION};
+use crate::telemetry::profile::{ProfileRow, RHS, SIMULATION};
+use analysis::papers::Papers;
 
 /// Each part's share of the process (the shares of its categories summed), in file order.
 pub fn part_shares(rows: &[ProfileRow]) -> Vec<(&str, f64)> {

@@ -1,4 +1,4 @@
-//! `results/profile-active-set.csv`: where the hot-started active-set solve of the 7-variable QP
+//! `benches/results/profile-active-set.csv`: where the hot-started active-set solve of the 7-variable QP
 //! spends its time, by sampling profile (written by `benches/profile/active_set.sh`, which runs
 //! perf over the criterion bench `jia2019/exact-active-set/hot` and sorts each sample by the
 //! function it was in with `benches/profile/active_set.py`; that script's module doc lists the
@@ -7,15 +7,15 @@
 //! One [`HotSolveRow`] per category, with its share of the solve's samples (the bench harness
 //! left out), so the shares add up to one.
 
-use crate::table::Row;
+use records::table::Row;
 use serde::{Deserialize, Serialize};
 
-/// The file name inside `results/`.
+/// The file name inside `benches/results/`.
 pub const FILE: &str = "profile-active-set.csv";
 /// [`HotSolveRow::category`] of the certification (the KKT residuals of every answer).
 pub const CERTIFICATION: &str = "certification (KKT residuals)";
 
-/// One row of `results/profile-active-set.csv`.
+/// One row of `benches/results/profile-active-set.csv`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct HotSolveRow {
     /// What the samples were doing (`KKT factorisation and solves (...)`, [`CERTIFICATION`],

@@ -1,9 +1,9 @@
 //! `benches/clock/build_units.py` (cargo's `--timings` unit table turned into
-//! `results/build-profile.csv`) writes rows that [`records::build_profile`] reads: every column,
+//! `benches/results/build-profile.csv`) writes rows that [`driftbench_benches::telemetry::build_profile`] reads: every column,
 //! kind and the `unblocked_by` edge it derives from cargo's lists, on a fixture shaped as
 //! cargo's `cargo-timing.html`. Skipped, saying so, where python3 is missing (CI has it).
 
-use records::build_profile::{BuildUnitRow, UnitKind};
+use driftbench_benches::telemetry::build_profile::{BuildUnitRow, UnitKind};
 use std::path::Path;
 use std::process::Command;
 

@@ -1,0 +1,32 @@
+//! The suite's measurements of itself, kept out of the reproduction's `results/` and `report/`:
+//! how long a newcomer waits from clone to report, where a build and a run spend their time,
+//! and how this revision's runs compare with an earlier one's. None of them is a result of the
+//! papers; a reader of the reproduction finds the solvers' cost and the papers' times on the
+//! report's Performance page instead.
+//!
+//! Files (`benches/results/`, each written by a script of `benches/` or by `reproduce run
+//! --phases`), their schemas here:
+//!
+//! - [`clock`]: fresh clones timed from build to tests, per revision (`clock.csv`, by
+//!   `benches/clock/clock.sh`);
+//! - [`build_profile`]: a cold build, unit by unit (`build-profile.csv`, by
+//!   `benches/clock/build_profile.sh`);
+//! - `phases.csv`: where one `reproduce run`'s wall time went, phase by phase (its schema is
+//!   the writer's, `reproduce::phases`);
+//! - [`profile`]: where a paper's reproduction spends its time (`profile.csv`, by
+//!   `benches/profile/paper.sh`);
+//! - [`profile_active_set`]: where the hot-started active-set solve spends its time
+//!   (`profile-active-set.csv`, by `benches/profile/active_set.sh`);
+//! - [`speedup`]: every run timed alone under an earlier revision and this one
+//!   (`speedup.csv`, by `benches/speedup/papers.sh`).
+//!
+//! [`judged`] decides what they say against their targets; [`page`] formats it into
+//! `benches/REPORT.md` (`cargo run --release -p driftbench-benches --bin telemetry`).
+
+pub mod build_profile;
+pub mod clock;
+pub mod judged;
+pub mod page;
+pub mod profile;
+pub mod profile_active_set;
+pub mod speedup;
