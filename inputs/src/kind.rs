@@ -26,6 +26,9 @@ pub enum Kind {
     /// A table one of the Python package's scripts wrote, to be sealed into `results/`
     /// (`driftbench.into_results`; the committed ones are at most 5 kB).
     ScriptTable,
+    /// A paper's robot file, `papers/<paper>/robots/*.toml` (the suite's own are at most 3 kB;
+    /// a 1000-joint arm is about 100 kB).
+    RobotFile,
 }
 
 const MIB: u64 = 1 << 20;
@@ -34,7 +37,7 @@ impl Kind {
     /// The largest file of this kind that is read, in bytes.
     pub fn cap(self) -> u64 {
         match self {
-            Kind::Experiment | Kind::PaperToml | Kind::ShardBinding => MIB,
+            Kind::Experiment | Kind::PaperToml | Kind::ShardBinding | Kind::RobotFile => MIB,
             Kind::PaperValues => 4 * MIB,
             Kind::TrajectoryCsv | Kind::TrajectoryMat | Kind::Baseline => 256 * MIB,
             Kind::ShardManifest | Kind::ScriptTable => 64 * MIB,
@@ -53,6 +56,7 @@ impl Kind {
             Kind::ShardManifest => "shard manifest",
             Kind::ShardBinding => "shard binding",
             Kind::ScriptTable => "results table",
+            Kind::RobotFile => "robot file",
         }
     }
 }
