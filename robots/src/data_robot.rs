@@ -224,12 +224,14 @@ pub fn parse_builtin(file_name: &str, text: &str) -> Result<RobotSpec, RobotFile
     RobotSpec::parse_named(&format!("robots/data/{file_name}"), stem, text)
 }
 
+/// A built-in robot file's stem, with its model or why it was refused.
+pub type BuiltinModel = (&'static str, Result<DataRobot, Arc<RobotFileError>>);
+
 /// The built-in robot files, each with its model or why it was refused, in [`builtin_files`]
 /// order, parsed once per process. A refused file fails only the lookups of its own name
 /// ([`crate::registry`]).
-pub fn builtin_models() -> &'static [(&'static str, Result<DataRobot, Arc<RobotFileError>>)] {
-    static MODELS: OnceLock<Vec<(&'static str, Result<DataRobot, Arc<RobotFileError>>)>> =
-        OnceLock::new();
+pub fn builtin_models() -> &'static [BuiltinModel] {
+    static MODELS: OnceLock<Vec<BuiltinModel>> = OnceLock::new();
     MODELS.get_or_init(|| {
         builtin_files()
             .iter()

@@ -63,12 +63,12 @@ impl ChainFrames<'_> {
         jdot.fill(0.0);
         let mut omega = Vector3::zeros();
         let mut v_origin = Vector3::zeros();
-        for j in 0..link {
+        for (j, &v) in thetadot.iter().enumerate().take(link) {
             let z = self.z(j);
             let zdot = omega.cross(&z);
             let col = zdot.cross(&(p - self.origin(j))) + z.cross(&(pdot - v_origin));
             set_column(jdot, j, &col);
-            omega += z * thetadot[j];
+            omega += z * v;
             v_origin += omega.cross(&(self.origin(j + 1) - self.origin(j)));
         }
     }
@@ -88,10 +88,10 @@ impl ChainFrames<'_> {
         assert_eq!(jdot.len(), 3 * self.dof(), "Jdot is 3 x n");
         jdot.fill(0.0);
         let mut omega = Vector3::zeros();
-        for j in 0..link {
+        for (j, &v) in thetadot.iter().enumerate().take(link) {
             let z = self.z(j);
             set_column(jdot, j, &omega.cross(&z));
-            omega += z * thetadot[j];
+            omega += z * v;
         }
     }
 }

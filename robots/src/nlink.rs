@@ -145,8 +145,8 @@ impl Robot for NLink {
         points.push(Vector3::zeros());
         let (mut r, mut z, mut phi) = (0.0, H0, 0.0);
         points.push(Vector3::new(0.0, 0.0, z));
-        for k in 1..n {
-            phi += theta[k];
+        for t in &theta[1..n] {
+            phi += t;
             let (s, c) = f64::sin_cos(phi);
             r += l * c;
             z += l * s;

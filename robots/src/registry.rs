@@ -83,7 +83,7 @@ pub enum Kinematics {
     /// declares it (none for a Rust model).
     Dh {
         /// The chain, offsets and task point.
-        arm: DataRobot,
+        arm: Box<DataRobot>,
         /// The robot file, e.g. `robots/data/puma560.toml`.
         file: Option<String>,
     },
@@ -118,7 +118,7 @@ fn rust_model(name: &str) -> Option<Model> {
     let jaco2 = |arm: Jaco2| {
         let stated_pose = arm.arm().stated_pose().to_vec();
         let kinematics = Kinematics::Dh {
-            arm: arm.arm().clone(),
+            arm: Box::new(arm.arm().clone()),
             file: None,
         };
         let arm = Arc::new(arm);
@@ -164,7 +164,10 @@ fn data_model(arm: DataRobot, file: Option<String>) -> Model {
         stated_pose: arm.stated_pose().to_vec(),
         robot: Arc::new(arm.clone()),
         dynamics: None,
-        kinematics: Kinematics::Dh { arm, file },
+        kinematics: Kinematics::Dh {
+            arm: Box::new(arm),
+            file,
+        },
     }
 }
 

@@ -35,7 +35,6 @@ fn sigma_min_home<const N: usize>() -> f64 {
 fn check_family<const N: usize>(seed: u64) {
     let robot = NLink::new(N).unwrap();
     assert_eq!(robot.name(), format!("nlink-{N}"));
-    let robot = robot;
     let lim = robot.limits();
     let thetas = random_vectors::<N>(seed, 10, 2.6);
     let rates = random_vectors::<N>(seed + 1, 10, 2.0);

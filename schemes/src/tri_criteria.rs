@@ -231,9 +231,9 @@ impl Scheme for TriCriteria {
         let n = self.joints();
         let c = self.rmp_coefficient();
         qp.p.as_mut_slice().fill(0.0);
-        for i in 0..n {
+        for (i, (th, t0)) in theta.iter().zip(&self.theta0).enumerate() {
             qp.p[(i, i)] = self.w_velocity + self.w_repetitive;
-            qp.q[i] = c * (theta[i] - self.theta0[i]);
+            qp.q[i] = c * (th - t0);
         }
         qp.p[(n, n)] = 1.0 - self.w_velocity - self.w_repetitive;
         qp.q[n] = 0.0;
@@ -298,8 +298,8 @@ impl Scheme for TriCriteria {
         let n = self.joints();
         let c = self.rmp_coefficient();
         qp_dot.p.as_mut_slice().fill(0.0);
-        for i in 0..n {
-            qp_dot.q[i] = c * thetadot[i];
+        for (q, v) in qp_dot.q.iter_mut().zip(thetadot) {
+            *q = c * v;
         }
         qp_dot.q[n] = 0.0;
         self.robot

@@ -271,8 +271,8 @@ impl Scheme for VelocityRmp {
                 }
             }
             Repetitive::Linear { lambda } => {
-                for i in 0..self.joints() {
-                    qp_dot.q[i] = lambda * thetadot[i];
+                for (q, v) in qp_dot.q.iter_mut().zip(thetadot) {
+                    *q = lambda * v;
                 }
             }
         }

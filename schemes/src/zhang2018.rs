@@ -85,7 +85,7 @@ fn product_to(a: &DMatrix<f64>, b: &DMatrix<f64>, out: &mut [f64]) {
         for i in 0..n {
             let mut s = a[(i, 0)] * b[(0, j)];
             for k in 1..n {
-                s = a[(i, k)] * b[(k, j)] + s;
+                s += a[(i, k)] * b[(k, j)];
             }
             out[i + j * n] = s;
         }
@@ -248,7 +248,7 @@ impl Scheme for Zhang2018 {
         for (i, t) in tau.iter_mut().enumerate().take(n) {
             let mut s = h[(i, 0)] * thetaddot[0];
             for k in 1..n {
-                s = h[(i, k)] * thetaddot[k] + s;
+                s += h[(i, k)] * thetaddot[k];
             }
             *t = s + cg[i] + g[i];
         }
