@@ -127,7 +127,7 @@ struct Line {
 
 fn run() -> Vec<Line> {
     let robot = Arc::new(Jaco2::pen());
-    let theta0 = nalgebra::SVector::<f64, 6>::from([1.675, 2.79, -3.216, 4.187, -1.71, -2.95]);
+    let theta0 = robots::jaco2::PAPERS_THETA0;
     let path: Arc<dyn schemes::paths::Path> = Arc::from(
         build_path(
             &PathSpec::new("four-leaf-clover", 5.0),
@@ -136,7 +136,7 @@ fn run() -> Vec<Line> {
         .expect("the clover is a known path"),
     );
     // jia2019's VLTCO (phi = 0.2, tau = 0.4, kappa = lambda = 20).
-    let scheme = TriCriteria::vltco(robot.clone(), path.clone(), theta0, 0.2, 0.4, 20.0, 20.0);
+    let scheme = TriCriteria::vltco(robot.clone(), path.clone(), &theta0, 0.2, 0.4, 20.0, 20.0);
     let dims = schemes::scheme::Scheme::dims(&scheme);
     // The networks as the papers integrate them (BDF, RelTol 1e-6, AbsTol 1e-8, as ode15s);
     // the exact column as the suite does (Dormand-Prince, RelTol 1e-11: converged).

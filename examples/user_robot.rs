@@ -13,14 +13,15 @@
 //! with the suffix sums S_j = sum_{k>=j} l_k sin(phi_k), C_j = sum_{k>=j} l_k cos(phi_k).
 //! `Robot::jacobian_dot` is taken here by a central difference of J along thetadot (h = 1e-6):
 //! a user can start that way and write the exact derivative later. Implementing
-//! `robots::Robot<4>` is all the suite asks; `simulation::simulate::simulate` then runs it
+//! `robots::Robot` (joint vectors as slices, Jacobians written into the caller's 3 x n buffer,
+//! column-major) is all the suite asks; `simulation::simulate::simulate` then runs it
 //! through kong2019's ZNN scheme (eq. 22) on a circle, solved exactly and by kong2019's ZNN.
 //!
 //! `cargo run --release --example user_robot`
 
 use catalog::experiment::Scoring;
 use catalog::experiment::{default_exact_integrator, NetworkInit};
-use nalgebra::{SMatrix, SVector, Vector3};
+use nalgebra::{DVector, Vector3};
 use robots::{JointLimits, Robot};
 use schemes::paths::{build_path, PathSpec};
 use schemes::velocity_rmp::VelocityRmp;
@@ -34,11 +35,12 @@ use std::sync::Arc;
 struct FourJointArm {
     shoulder: f64,
     links: [f64; 3],
+    limits: JointLimits,
 }
 
 impl FourJointArm {
     /// (r, z, S_2..S_4, C_2..C_4) at theta.
-    fn sums(&self, theta: &SVector<f64, 4>) -> (f64, f64, [f64; 3], [f64; 3]) {
+    fn sums(&self, theta: &[f64]) -> (f64, f64, [f64; 3], [f64; 3]) {
         let mut phi = 0.0;
         let mut s = [0.0; 3];
         let mut c = [0.0; 3];
@@ -56,44 +58,46 @@ impl FourJointArm {
     }
 }
 
-impl Robot<4> for FourJointArm {
+impl Robot for FourJointArm {
     fn name(&self) -> &'static str {
         "four-joint-arm (user)"
     }
 
-    fn position(&self, theta: &SVector<f64, 4>) -> Vector3<f64> {
+    fn dof(&self) -> usize {
+        4
+    }
+
+    fn position(&self, theta: &[f64]) -> Vector3<f64> {
         let (r, z, _, _) = self.sums(theta);
         Vector3::new(theta[0].cos() * r, theta[0].sin() * r, z)
     }
 
-    fn jacobian(&self, theta: &SVector<f64, 4>) -> SMatrix<f64, 3, 4> {
+    fn jacobian(&self, theta: &[f64], j: &mut [f64]) {
         let (r, _, s, c) = self.sums(theta);
         let (s1, c1) = theta[0].sin_cos();
-        let mut j = SMatrix::<f64, 3, 4>::zeros();
-        j.set_column(0, &Vector3::new(-s1 * r, c1 * r, 0.0));
+        j[..3].copy_from_slice(&[-s1 * r, c1 * r, 0.0]);
         for k in 0..3 {
-            j.set_column(k + 1, &Vector3::new(-c1 * s[k], -s1 * s[k], c[k]));
+            j[3 * (k + 1)..3 * (k + 2)].copy_from_slice(&[-c1 * s[k], -s1 * s[k], c[k]]);
         }
-        j
     }
 
-    fn jacobian_dot(
-        &self,
-        theta: &SVector<f64, 4>,
-        thetadot: &SVector<f64, 4>,
-    ) -> SMatrix<f64, 3, 4> {
+    fn jacobian_dot(&self, theta: &[f64], thetadot: &[f64], jdot: &mut [f64]) {
         let h = 1e-6;
-        (self.jacobian(&(theta + thetadot * h)) - self.jacobian(&(theta - thetadot * h)))
-            / (2.0 * h)
+        let (mut plus, mut minus) = ([0.0; 4], [0.0; 4]);
+        for i in 0..4 {
+            plus[i] = theta[i] + thetadot[i] * h;
+            minus[i] = theta[i] - thetadot[i] * h;
+        }
+        let mut jm = [0.0; 12];
+        self.jacobian(&plus, jdot);
+        self.jacobian(&minus, &mut jm);
+        for (d, m) in jdot.iter_mut().zip(jm) {
+            *d = (*d - m) / (2.0 * h);
+        }
     }
 
-    fn limits(&self) -> JointLimits<4> {
-        JointLimits {
-            theta_min: SVector::repeat(-3.0),
-            theta_max: SVector::repeat(3.0),
-            thetadot_min: SVector::repeat(-2.0),
-            thetadot_max: SVector::repeat(2.0),
-        }
+    fn limits(&self) -> &JointLimits {
+        &self.limits
     }
 }
 
@@ -102,14 +106,20 @@ fn run() -> Vec<(String, f64, f64)> {
     let robot = Arc::new(FourJointArm {
         shoulder: 0.20,
         links: [0.30, 0.25, 0.15],
+        limits: JointLimits {
+            theta_min: DVector::repeat(4, -3.0),
+            theta_max: DVector::repeat(4, 3.0),
+            thetadot_min: DVector::repeat(4, -2.0),
+            thetadot_max: DVector::repeat(4, 2.0),
+        },
     });
-    let theta_star = SVector::<f64, 4>::from([0.3, 0.9, -1.2, -0.6]);
+    let theta_star = [0.3, 0.9, -1.2, -0.6];
     let path: Arc<dyn schemes::paths::Path> = Arc::from(
         build_path(&PathSpec::new("circle", 9.0), robot.position(&theta_star))
             .expect("the circle is a known path"),
     );
     // kong2019 eq. 22 with mu = 1, k_p = 1.
-    let scheme = VelocityRmp::znn(robot.clone(), path.clone(), theta_star, 1.0, 1.0);
+    let scheme = VelocityRmp::znn(robot.clone(), path.clone(), &theta_star, 1.0, 1.0);
     let dims = schemes::scheme::Scheme::dims(&scheme);
     // The networks as the papers integrate them (BDF, RelTol 1e-6, AbsTol 1e-8, as ode15s);
     // the exact column as the suite does (Dormand-Prince, RelTol 1e-11: converged).

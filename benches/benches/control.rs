@@ -11,17 +11,13 @@
 use catalog::naming::slug;
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use driftbench_benches::{fast_config, CountingAllocator};
-use nalgebra::SVector;
-use robots::Robot;
-use schemes::paths::Path;
 use schemes::qp::Qp;
-use schemes::scheme::Scheme;
 
 use control::control_loop::{run_loop, LoopSettings, Observer};
 use control::method::{Method, Numerical};
 use control::network_tick::Discretisation;
 use control::numerical_tick::QpTick;
-use control::task::{load_tasks, standard_task_refs, with_task, TaskVisitor};
+use control::task::{load_tasks, standard_task_refs, with_task, TaskArm};
 
 #[global_allocator]
 static ALLOC: CountingAllocator = CountingAllocator;
@@ -47,37 +43,25 @@ impl Observer for Collect {
 }
 
 /// The QPs of a task's first ticks with the exact optimum in the loop.
-struct Sample;
-
-impl TaskVisitor for Sample {
-    type Output = Vec<(Qp, Qp)>;
-    fn visit<const N: usize>(
-        self,
-        robot: &dyn Robot<N>,
-        path: &dyn Path,
-        scheme: &dyn Scheme<N>,
-        theta0: &SVector<f64, N>,
-        period: f64,
-    ) -> Self::Output {
-        let mut collect = Collect { qps: Vec::new() };
-        let mut solver = QpTick::new(solvers::HotActiveSet::new(scheme.dims()));
-        let settings = LoopSettings {
-            h: H,
-            period,
-            cycles: 1,
-            max_ticks: Some(TICKS),
-        };
-        run_loop(
-            robot,
-            path,
-            scheme,
-            &mut solver,
-            theta0,
-            &settings,
-            Some(&mut collect),
-        );
-        collect.qps
-    }
+fn sample(arm: &TaskArm<'_>) -> Vec<(Qp, Qp)> {
+    let mut collect = Collect { qps: Vec::new() };
+    let mut solver = QpTick::new(solvers::HotActiveSet::new(arm.scheme.dims()));
+    let settings = LoopSettings {
+        h: H,
+        period: arm.period,
+        cycles: 1,
+        max_ticks: Some(TICKS),
+    };
+    run_loop(
+        arm.robot,
+        arm.path,
+        arm.scheme,
+        &mut solver,
+        arm.theta0,
+        &settings,
+        Some(&mut collect),
+    );
+    collect.qps
 }
 
 fn per_tick(c: &mut Criterion) {
@@ -86,7 +70,7 @@ fn per_tick(c: &mut Criterion) {
     let refs = standard_task_refs(&experiments).expect("the standard task set");
     let tasks = load_tasks(&experiments, &refs).expect("the experiment files");
     for task in &tasks {
-        let qps = with_task(task, 1, Sample).expect("the task builds");
+        let qps = with_task(task, 1, sample).expect("the task builds");
         let mut methods: Vec<Method> = Numerical::all()
             .into_iter()
             .map(Method::Numerical)

@@ -1,8 +1,8 @@
 //! Cost against the number of joints, with criterion's statistics: the quantities of the cost
 //! harness (crate `cost`, which `reproduce cost` writes to `results/dof-cost.csv` for the
-//! report) on the n-link arms `nlink-N` for N = 3, 7, 15, 30 (fixed-size path), with jia2019's
-//! VLTCO scheme (four-leaf clover) and kong2019's ZNN scheme (circle), and kong2019 at N = 100
-//! and 200 (dynamic-size path, per-instant quantities only).
+//! report) on the n-link arms `nlink-N` for N = 3, 7, 15, 30, with jia2019's VLTCO scheme
+//! (four-leaf clover) and kong2019's ZNN scheme (circle), and kong2019 at N = 100 and 200
+//! (per-instant quantities only).
 //!
 //! Groups are `dof/<scheme>/<quantity>/<backend>`, ids the joint count N, so a full id reads
 //! `dof/jia2019/exact-active-set/nalgebra/15` and `cargo bench -p driftbench-benches --bench
@@ -17,27 +17,27 @@ use driftbench_benches::{fast_config, whole_run_config};
 use records::dof_cost::{Quantity, SchemeKind};
 use solvers::Backend;
 
-/// The joint counts benched on the fixed-size path (a subset of the registry's `NLINK_SIZES`).
+/// The joint counts benched with both schemes (a subset of the harness's sweep).
 const SIZES: [usize; 4] = [3, 7, 15, 30];
-/// The joint counts benched on the dynamic-size path (kong2019 only).
+/// The joint counts benched with kong2019's scheme alone (a subset of the harness's large sizes).
 const LARGE_SIZES: [usize; 2] = [100, 200];
 /// States sampled from the exact run of each case.
 const STATES: usize = 100;
 
 /// The prepared cases of `scheme`, with their N.
 fn cases(scheme: SchemeKind, states: usize) -> Vec<(usize, Box<dyn PreparedCase>)> {
-    let fixed = SIZES.iter().map(|&n| {
-        let p = cost::fixed::prepare(&Case::new(scheme, n), states);
+    let sweep = SIZES.iter().map(|&n| {
+        let p = cost::harness::prepare(&Case::new(scheme, n), states);
         (n, p.unwrap_or_else(|e| panic!("{e}")))
     });
-    let dynamic = LARGE_SIZES
+    let large = LARGE_SIZES
         .iter()
         .filter(|_| scheme == SchemeKind::ZnnRmp)
         .map(|&n| {
-            let p = cost::dynamic::prepare(&Case::new(scheme, n), cost::dynamic::STATES);
+            let p = cost::harness::prepare(&Case::new(scheme, n), cost::harness::LARGE_STATES);
             (n, p.unwrap_or_else(|e| panic!("{e}")))
         });
-    fixed.chain(dynamic).collect()
+    sweep.chain(large).collect()
 }
 
 fn per_call(c: &mut Criterion) {

@@ -26,50 +26,65 @@ fn robots(c: &mut Criterion) {
     let jobs = experiment_jobs();
     let jaco = jaco2_scheme_cases(&jobs);
     let katana = katana_scheme_cases(&jobs);
-    let s = jaco[0].state;
-    let k = katana[0].state;
+    let s = jaco[0].state.clone();
+    let k = katana[0].state.clone();
     let pen = jaco2_model("jaco2-pen");
     let kat = Katana6m180::new();
+    // Output buffers, allocated once as a run allocates them.
+    let (mut j, mut jd, mut h) = ([0.0; 18], [0.0; 18], [0.0; 36]);
+    let (mut cv, mut gv, mut jk) = ([0.0; 6], [0.0; 6], [0.0; 15]);
 
     report_allocations("robots/jaco2-pen/all-six-calls", || {
-        black_box((
-            pen.position(&s.theta),
-            pen.jacobian(&s.theta),
-            pen.jacobian_dot(&s.theta, &s.thetadot),
-            pen.inertia(&s.theta),
-            pen.coriolis(&s.theta, &s.thetadot),
-            pen.gravity(&s.theta),
-        ));
+        black_box(pen.position(&s.theta));
+        pen.jacobian(&s.theta, &mut j);
+        pen.jacobian_dot(&s.theta, &s.thetadot, &mut jd);
+        pen.inertia(&s.theta, &mut h);
+        pen.coriolis(&s.theta, &s.thetadot, &mut cv);
+        pen.gravity(&s.theta, &mut gv);
+        black_box((&j, &jd, &h, &cv, &gv));
     });
     report_allocations("robots/katana6m180/jacobian", || {
-        black_box(kat.jacobian(&k.theta));
+        kat.jacobian(&k.theta, &mut jk);
+        black_box(&jk);
     });
     let mut g = c.benchmark_group("robots");
     g.bench_function("jaco2-pen/position", |b| {
         b.iter(|| pen.position(black_box(&s.theta)))
     });
     g.bench_function("jaco2-pen/jacobian", |b| {
-        b.iter(|| pen.jacobian(black_box(&s.theta)))
+        b.iter(|| pen.jacobian(black_box(&s.theta), black_box(&mut j)))
     });
     g.bench_function("jaco2-pen/jacobian_dot", |b| {
-        b.iter(|| pen.jacobian_dot(black_box(&s.theta), black_box(&s.thetadot)))
+        b.iter(|| {
+            pen.jacobian_dot(
+                black_box(&s.theta),
+                black_box(&s.thetadot),
+                black_box(&mut jd),
+            )
+        })
     });
     g.bench_function("jaco2-pen/inertia", |b| {
-        b.iter(|| pen.inertia(black_box(&s.theta)))
+        b.iter(|| pen.inertia(black_box(&s.theta), black_box(&mut h)))
     });
     g.bench_function("jaco2-pen/coriolis", |b| {
-        b.iter(|| pen.coriolis(black_box(&s.theta), black_box(&s.thetadot)))
+        b.iter(|| {
+            pen.coriolis(
+                black_box(&s.theta),
+                black_box(&s.thetadot),
+                black_box(&mut cv),
+            )
+        })
     });
     g.bench_function("jaco2-pen/gravity", |b| {
-        b.iter(|| pen.gravity(black_box(&s.theta)))
+        b.iter(|| pen.gravity(black_box(&s.theta), black_box(&mut gv)))
     });
     g.bench_function("katana6m180/jacobian", |b| {
-        b.iter(|| kat.jacobian(black_box(&k.theta)))
+        b.iter(|| kat.jacobian(black_box(&k.theta), black_box(&mut jk)))
     });
     g.finish();
 }
 
-fn bench_scheme<const N: usize>(g: &mut BenchmarkGroup<'_, WallTime>, case: &SchemeCase<N>) {
+fn bench_scheme(g: &mut BenchmarkGroup<'_, WallTime>, case: &SchemeCase) {
     let mut qp = case.scheme.new_qp();
     let mut qp_dot = case.scheme.new_qp();
     let mut scratch = case.scheme.new_dot_scratch();

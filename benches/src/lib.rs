@@ -31,7 +31,7 @@ use std::time::Duration;
 
 use catalog::experiment::{load_dir, Job, SolverChoice};
 use criterion::Criterion;
-use nalgebra::{DVector, SVector};
+use nalgebra::DVector;
 use robots::{Dynamics, Jaco2, Katana6m180, Robot};
 use schemes::paths::{build_path, Path};
 use schemes::scheme::Scheme;
@@ -262,30 +262,24 @@ fn scheme_jobs<'a>(
 /// A realistic arm state: an experiment's theta0 moved by 0.05 sin(i+1) rad, with
 /// thetadot_i = 0.2 sin(i+1) rad/s and thetaddot_i = 0.5 cos(i+1) rad/s^2 (the papers' joint
 /// speeds are of this order), at t = [`EVAL_TIME`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ArmState<const N: usize> {
+#[derive(Clone, Debug, PartialEq)]
+pub struct ArmState {
     pub t: f64,
-    pub theta: SVector<f64, N>,
-    pub thetadot: SVector<f64, N>,
-    pub thetaddot: SVector<f64, N>,
+    pub theta: Vec<f64>,
+    pub thetadot: Vec<f64>,
+    pub thetaddot: Vec<f64>,
 }
 
-impl<const N: usize> ArmState<N> {
-    /// The state near `job.theta0` (panics if the job's robot does not have N joints).
+impl ArmState {
+    /// The state near `job.theta0` (one entry per joint of the job's robot).
     pub fn near_start(job: &Job) -> Self {
-        assert_eq!(
-            job.theta0.len(),
-            N,
-            "{}: robot {} does not have {N} joints",
-            job.key(),
-            job.robot
-        );
+        let n = job.theta0.len();
         let s = |i: usize| ((i + 1) as f64).sin();
         Self {
             t: EVAL_TIME,
-            theta: SVector::from_fn(|i, _| job.theta0[i] + 0.05 * s(i)),
-            thetadot: SVector::from_fn(|i, _| 0.2 * s(i)),
-            thetaddot: SVector::from_fn(|i, _| 0.5 * ((i + 1) as f64).cos()),
+            theta: (0..n).map(|i| job.theta0[i] + 0.05 * s(i)).collect(),
+            thetadot: (0..n).map(|i| 0.2 * s(i)).collect(),
+            thetaddot: (0..n).map(|i| 0.5 * ((i + 1) as f64).cos()).collect(),
         }
     }
 }
@@ -302,27 +296,27 @@ pub fn jaco2_model(name: &str) -> Jaco2 {
 
 /// A paper's scheme built as `run_job` builds it (robot, path starting at f(theta_ref), scheme of
 /// the job's spec), with a realistic state to build its QP at.
-pub struct SchemeCase<const N: usize> {
+pub struct SchemeCase {
     /// Bench id, e.g. `jia2019-VLTCO`.
     pub label: String,
-    pub scheme: Box<dyn Scheme<N>>,
-    pub state: ArmState<N>,
+    pub scheme: Box<dyn Scheme>,
+    pub state: ArmState,
 }
 
-impl<const N: usize> SchemeCase<N> {
+impl SchemeCase {
     /// Builds the scheme of `job` on `robot` (and `dynamics`, for zhang2018), named `label`.
     pub fn new(
         label: &str,
         job: &Job,
-        robot: Arc<dyn Robot<N>>,
-        dynamics: Option<Arc<dyn Dynamics<N>>>,
+        robot: Arc<dyn Robot>,
+        dynamics: Option<Arc<dyn Dynamics>>,
     ) -> Self {
-        let theta_ref = SVector::<f64, N>::from_column_slice(&job.theta_ref);
+        let theta_ref = &job.theta_ref;
         let path: Arc<dyn Path> = Arc::from(
-            build_path(&job.path, robot.position(&theta_ref))
+            build_path(&job.path, robot.position(theta_ref))
                 .unwrap_or_else(|e| panic!("{}: {e}", job.key())),
         );
-        let scheme = build_scheme::<N>(&job.scheme, robot, dynamics, path, theta_ref)
+        let scheme = build_scheme(&job.scheme, robot, dynamics, path, theta_ref)
             .unwrap_or_else(|e| panic!("{}: {e}", job.key()));
         Self {
             label: label.to_string(),
@@ -346,7 +340,7 @@ impl<const N: usize> SchemeCase<N> {
 }
 
 /// The Jaco2 schemes of [`BenchCases::jaco2_schemes`], each with the Jaco2 model its job names.
-pub fn jaco2_scheme_cases(jobs: &[Job]) -> Vec<SchemeCase<6>> {
+pub fn jaco2_scheme_cases(jobs: &[Job]) -> Vec<SchemeCase> {
     let cases = bench_cases();
     scheme_jobs(jobs, &cases.jaco2_schemes)
         .map(|(label, job)| {
@@ -357,7 +351,7 @@ pub fn jaco2_scheme_cases(jobs: &[Job]) -> Vec<SchemeCase<6>> {
 }
 
 /// The Katana schemes of [`BenchCases::katana_schemes`].
-pub fn katana_scheme_cases(jobs: &[Job]) -> Vec<SchemeCase<5>> {
+pub fn katana_scheme_cases(jobs: &[Job]) -> Vec<SchemeCase> {
     let cases = bench_cases();
     scheme_jobs(jobs, &cases.katana_schemes)
         .map(|(label, job)| SchemeCase::new(label, &job, Arc::new(Katana6m180::new()), None))

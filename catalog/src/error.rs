@@ -24,8 +24,9 @@ use std::path::PathBuf;
 /// network), each wrapping its layer's own error.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum SetupError {
-    /// The robot is not one of the registry's (its name as given).
-    #[error("unknown robot \"{0}\"")]
+    /// The robot is not one of the registry's, or its robot file is invalid: the registry's
+    /// error (the valid choices, or the file and field at fault).
+    #[error("{0}")]
     UnknownRobot(String),
     /// theta0, theta_ref or a limits override does not have the robot's joint count.
     #[error("has {given} entries, the robot has {joints} joints")]
@@ -412,13 +413,13 @@ pub enum FieldError {
         /// The id.
         id: String,
     },
-    /// The robot is not one of the registry's.
-    #[error("unknown robot \"{robot}\" (known: {known})")]
+    /// The robot is not one of the registry's, or its robot file is invalid.
+    #[error("{reason}")]
     UnknownRobot {
         /// The name given.
         robot: String,
-        /// The known names, comma-separated (the n-link family as one entry).
-        known: String,
+        /// The registry's error: the valid choices, or the robot file and field at fault.
+        reason: String,
     },
     /// A joint vector (theta0, theta_ref) or a side of a limits override has not one entry per
     /// joint.

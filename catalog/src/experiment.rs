@@ -507,7 +507,7 @@ impl PaperFile {
             let id = e.id.clone();
             return Err(field(at("id"), FieldError::IdTwice { id }));
         }
-        let n = robot_dof(&e.robot).ok_or_else(|| field(at("robot"), unknown_robot(&e.robot)))?;
+        let n = robot_dof(&e.robot).map_err(|e| field(at("robot"), e))?;
         check_len(&e.theta0, n, at("theta0"))?;
         if let Some(r) = &e.theta_ref {
             check_len(r, n, at("theta_ref"))?;
@@ -557,7 +557,7 @@ impl PaperFile {
         check: CheckJob,
     ) -> Result<(), ExperimentError> {
         let robot = v.robot.as_deref().unwrap_or(&e.robot);
-        let vn = robot_dof(robot).ok_or_else(|| field(vat("robot"), unknown_robot(robot)))?;
+        let vn = robot_dof(robot).map_err(|e| field(vat("robot"), e))?;
         if vn != n && (v.theta0.is_none() || (e.theta_ref.is_some() && v.theta_ref.is_none())) {
             return Err(field(
                 vat("robot"),
@@ -829,27 +829,15 @@ fn field(at: FieldAt, error: impl Into<FieldError>) -> ExperimentError {
     }
 }
 
-fn unknown_robot(robot: &str) -> FieldError {
-    FieldError::UnknownRobot {
-        robot: robot.to_string(),
-        known: robot_names(),
-    }
-}
-
-/// Joint count of the robot called `name` (see [`robots::registry`]).
-fn robot_dof(name: &str) -> Option<usize> {
-    robots::registry::robot_by_name(name).map(|r| r.dof())
-}
-
-fn robot_names() -> String {
-    robots::registry::robot_names()
-        .filter(|n| !n.starts_with("nlink-"))
-        .chain([format!(
-            "nlink-N (N in {:?})",
-            robots::registry::NLINK_SIZES
-        )])
-        .collect::<Vec<_>>()
-        .join(", ")
+/// Joint count of the robot called `name` (see [`robots::registry`]), or why there is none (an
+/// unknown name, with the valid choices; an invalid robot file, with its file and field).
+fn robot_dof(name: &str) -> Result<usize, FieldError> {
+    robots::registry::robot_by_name(name)
+        .map(|r| r.dof())
+        .map_err(|e| FieldError::UnknownRobot {
+            robot: name.to_string(),
+            reason: e.to_string(),
+        })
 }
 
 fn check_len(v: &[f64], n: usize, at: FieldAt) -> Result<(), ExperimentError> {

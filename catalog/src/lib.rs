@@ -9,7 +9,8 @@
 //! labels ([`run_key`]), and every id or label that becomes a file name obeys [`naming`]. The
 //! errors of all of it are in [`error`]; the fields they name, in [`fields`]. [`root`] finds
 //! the project (the directory of `experiments/`, `results/` and `report/`) and the code
-//! revision runs are stamped with. The solvers' own settings (network specifications,
+//! revision runs are stamped with; [`robot_files`] registers a paper's own robot files
+//! (`papers/<paper>/robots/*.toml`) with the robot registry. The solvers' own settings (network specifications,
 //! integrator settings) are crate `settings`', below this crate and the solvers alike: this
 //! crate reads them from files, it does not define them.
 //!
@@ -25,6 +26,7 @@ pub mod fields;
 pub mod ids;
 pub mod naming;
 pub mod numerical_spec;
+pub mod robot_files;
 pub mod root;
 pub mod run_key;
 pub mod solver_kind;

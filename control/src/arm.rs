@@ -7,19 +7,12 @@
 //! Both are the exact solutions of the arm's kinematic ODE (theta' = u, resp. theta'' = u) for
 //! constant u: no integration error.
 
-use nalgebra::SVector;
 use schemes::scheme::Level;
 
 /// Advances (theta, thetadot) over one tick of length `h` under the held `command` (its first
 /// N entries; the rest of the QP's x is not a joint command).
-pub fn advance<const N: usize>(
-    level: Level,
-    h: f64,
-    theta: &mut SVector<f64, N>,
-    thetadot: &mut SVector<f64, N>,
-    command: &[f64],
-) {
-    for i in 0..N {
+pub fn advance(level: Level, h: f64, theta: &mut [f64], thetadot: &mut [f64], command: &[f64]) {
+    for i in 0..theta.len() {
         let u = command[i];
         match level {
             Level::Velocity => {
@@ -37,6 +30,7 @@ pub fn advance<const N: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::SVector;
 
     #[test]
     fn a_held_acceleration_moves_the_arm_along_its_parabola() {
@@ -47,8 +41,8 @@ mod tests {
         advance(
             Level::Acceleration,
             0.01,
-            &mut theta,
-            &mut thetadot,
+            theta.as_mut_slice(),
+            thetadot.as_mut_slice(),
             &[2.0, -4.0, 9.0],
         );
         assert!((theta[0] - (0.1 + 0.005 + 0.0001)).abs() < 1e-15);
@@ -57,8 +51,8 @@ mod tests {
         advance(
             Level::Velocity,
             0.01,
-            &mut theta,
-            &mut thetadot,
+            theta.as_mut_slice(),
+            thetadot.as_mut_slice(),
             &[1.0, 1.0],
         );
         assert_eq!(thetadot, SVector::<f64, 2>::new(1.0, 1.0));

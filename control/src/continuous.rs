@@ -9,14 +9,10 @@
 //! starts from rest, dropping the arm's residual speed at c T (the path itself rests there).
 //! The drift after cycle c is |theta(c T) - theta_0|.
 
-use crate::task::{Task, TaskVisitor};
+use crate::task::{Task, TaskArm};
 use catalog::experiment::NetworkInit;
 use catalog::experiment::Scoring;
-use nalgebra::SVector;
 use records::control::ControlStatus;
-use robots::Robot;
-use schemes::paths::Path;
-use schemes::scheme::Scheme;
 use simulation::simulate::{simulate, Outcome, Settings, Solver};
 
 /// The drifts and per-cycle changes of a continuous run, and how it ended.
@@ -47,25 +43,19 @@ fn distance(a: &[f64], b: &[f64]) -> f64 {
         .sqrt()
 }
 
-/// Runs the exact column of `task` for `cycles` cycles (a [`TaskVisitor`]; use with
-/// [`crate::task::with_task`] and one cycle: the runs are chained here).
+/// Runs the exact column of `task` for `cycles` cycles ([`ExactCycles::run_on`] a task's arm
+/// from [`crate::task::with_task`] with one cycle: the runs are chained here).
 pub struct ExactCycles<'a> {
     pub task: &'a Task,
     pub cycles: usize,
 }
 
-impl TaskVisitor for ExactCycles<'_> {
-    type Output = ContinuousCycles;
-    fn visit<const N: usize>(
-        self,
-        robot: &dyn Robot<N>,
-        path: &dyn Path,
-        scheme: &dyn Scheme<N>,
-        theta0: &SVector<f64, N>,
-        _period: f64,
-    ) -> Self::Output {
+impl ExactCycles<'_> {
+    /// The cycles on `arm`.
+    pub fn run_on(self, arm: &TaskArm<'_>) -> ContinuousCycles {
+        let (robot, path, scheme, theta0) = (arm.robot, arm.path, arm.scheme, arm.theta0);
         let job = &self.task.job;
-        let theta_ref = SVector::<f64, N>::from_column_slice(&job.theta_ref);
+        let theta_ref = &job.theta_ref;
         let settings = Settings {
             integrator: job.integrator,
             scoring: Scoring::Off,
@@ -76,7 +66,7 @@ impl TaskVisitor for ExactCycles<'_> {
             drift: Vec::new(),
             change: Vec::new(),
         };
-        let mut start = *theta0;
+        let mut start = theta0.to_vec();
         for _ in 0..self.cycles {
             let run = simulate(
                 robot,
@@ -84,14 +74,12 @@ impl TaskVisitor for ExactCycles<'_> {
                 scheme,
                 Solver::Exact,
                 &start,
-                &theta_ref,
+                theta_ref,
                 &settings,
             );
             let end = match run {
                 Ok(r) => match (&r.outcome, r.trace.last()) {
-                    (Outcome::Completed(_), Some(last)) => {
-                        SVector::<f64, N>::from_column_slice(&last.theta)
-                    }
+                    (Outcome::Completed(_), Some(last)) => last.theta.clone(),
                     (Outcome::Failed { t, error, .. }, _) => {
                         out.failure = Some(format!("failed at t = {t}: {error}"));
                         break;
@@ -106,8 +94,8 @@ impl TaskVisitor for ExactCycles<'_> {
                     break;
                 }
             };
-            out.drift.push(distance(end.as_slice(), theta0.as_slice()));
-            out.change.push(distance(end.as_slice(), start.as_slice()));
+            out.drift.push(distance(&end, theta0));
+            out.change.push(distance(&end, &start));
             start = end;
         }
         out

@@ -24,7 +24,7 @@
 use crate::arm::advance;
 use crate::error::ControlError;
 use crate::tick::TickSolver;
-use nalgebra::{DVector, SVector};
+use nalgebra::DVector;
 use robots::Robot;
 use schemes::paths::Path;
 use schemes::qp::Qp;
@@ -132,12 +132,12 @@ pub trait Observer {
 
 /// Runs `solver` on `scheme` along `path` (already repeated `settings.cycles` times) from
 /// `theta0` at rest (module docs), showing every scored tick to `observer`.
-pub fn run_loop<const N: usize>(
-    robot: &dyn Robot<N>,
+pub fn run_loop(
+    robot: &dyn Robot,
     path: &dyn Path,
-    scheme: &dyn Scheme<N>,
+    scheme: &dyn Scheme,
     solver: &mut dyn TickSolver,
-    theta0: &SVector<f64, N>,
+    theta0: &[f64],
     settings: &LoopSettings,
     mut observer: Option<&mut dyn Observer>,
 ) -> LoopOutcome {
@@ -145,10 +145,11 @@ pub fn run_loop<const N: usize>(
     let per_cycle = settings.ticks_per_cycle();
     let total = (per_cycle * settings.cycles).min(settings.max_ticks.unwrap_or(usize::MAX));
     let needs_dot = solver.needs_qp_dot() || observer.as_ref().is_some_and(|o| o.needs_qp_dot());
-    let mut state = LoopState::new(scheme, theta0, needs_dot);
+    let theta0 = DVector::from_column_slice(theta0);
+    let mut state = LoopState::new(scheme, &theta0, needs_dot);
     let mut reference = ExactPath::new(&state.qp);
     let mut tally = Tally::new(total, settings.cycles);
-    let mut cycle_start = *theta0;
+    let mut cycle_start = theta0.clone();
 
     for k in 0..total {
         let t = k as f64 * h;
@@ -162,11 +163,11 @@ pub fn run_loop<const N: usize>(
         tally.timed(&timed);
 
         // Scoring (not timed).
-        tally.track((robot.position(&timed.theta_k) - path.at(t).r).norm());
+        tally.track((robot.position(state.theta_k.as_slice()) - path.at(t).r).norm());
         let x = solver.x();
         match reference.solve(&state.qp) {
             Ok(x_star) => {
-                tally.distance(t, joint_distance::<N>(x, x_star));
+                tally.distance(t, joint_distance(scheme.joints(), x, x_star));
                 if let Some(o) = observer.as_mut() {
                     let qp_dot = needs_dot.then_some(&state.qp_dot);
                     o.observe(k, t, &state.qp, qp_dot, x_star.as_slice());
@@ -176,9 +177,9 @@ pub fn run_loop<const N: usize>(
         }
         tally.work(solver.products(), solver.iterations());
         if (k + 1) % per_cycle == 0 {
-            let theta = state.theta;
-            tally.cycle_end((theta - theta0).norm(), (theta - cycle_start).norm());
-            cycle_start = theta;
+            let theta = &state.theta;
+            tally.cycle_end((theta - &theta0).norm(), (theta - &cycle_start).norm());
+            cycle_start.copy_from(theta);
         }
     }
     tally.finish()
@@ -186,22 +187,27 @@ pub fn run_loop<const N: usize>(
 
 /// What a run carries from tick to tick: the tick's QP and dQP/dt (buffers built into, never
 /// reallocated), the arm's state and the command held over the tick.
-struct LoopState<'a, const N: usize> {
-    scheme: &'a dyn Scheme<N>,
+struct LoopState<'a> {
+    scheme: &'a dyn Scheme,
     level: Level,
     /// Whether dQP/dt is built (for the solver or the observer).
     needs_dot: bool,
     qp: Qp,
     qp_dot: Qp,
     scratch: QpDotScratch,
-    theta: SVector<f64, N>,
-    thetadot: SVector<f64, N>,
-    command: SVector<f64, N>,
+    theta: DVector<f64>,
+    thetadot: DVector<f64>,
+    command: DVector<f64>,
+    /// Zero joint rates (the acceleration of the velocity level's motion).
+    zeros: DVector<f64>,
+    /// The joint angles at t_k of the last tick, before the arm moved.
+    theta_k: DVector<f64>,
 }
 
-impl<'a, const N: usize> LoopState<'a, N> {
+impl<'a> LoopState<'a> {
     /// The arm at rest at `theta0`, no command yet.
-    fn new(scheme: &'a dyn Scheme<N>, theta0: &SVector<f64, N>, needs_dot: bool) -> Self {
+    fn new(scheme: &'a dyn Scheme, theta0: &DVector<f64>, needs_dot: bool) -> Self {
+        let n = theta0.len();
         LoopState {
             scheme,
             level: scheme.level(),
@@ -209,27 +215,39 @@ impl<'a, const N: usize> LoopState<'a, N> {
             qp: scheme.new_qp(),
             qp_dot: scheme.new_qp(),
             scratch: scheme.new_dot_scratch(),
-            theta: *theta0,
-            thetadot: SVector::zeros(),
-            command: SVector::zeros(),
+            theta: theta0.clone(),
+            thetadot: DVector::zeros(n),
+            command: DVector::zeros(n),
+            zeros: DVector::zeros(n),
+            theta_k: theta0.clone(),
         }
     }
 
     /// Steps 1-3 of the tick at `t`, timed (module docs): QP_k (and dQP/dt where needed),
     /// `solver`'s answer x_k, and the arm moved under its command over [t, t + h]. Why the run
     /// stops instead, if the solver failed or the command diverged.
-    fn tick(&mut self, solver: &mut dyn TickSolver, t: f64, h: f64) -> Result<Timed<N>, Status> {
+    fn tick(&mut self, solver: &mut dyn TickSolver, t: f64, h: f64) -> Result<Timed, Status> {
         let start = Instant::now();
-        self.scheme
-            .build(t, &self.theta, &self.thetadot, &mut self.qp);
+        self.scheme.build(
+            t,
+            self.theta.as_slice(),
+            self.thetadot.as_slice(),
+            &mut self.qp,
+        );
         if self.needs_dot {
             // Velocity level: theta moves at the command; acceleration level: thetadot does.
             let (v, a) = match self.level {
-                Level::Velocity => (self.command, SVector::zeros()),
-                Level::Acceleration => (self.thetadot, self.command),
+                Level::Velocity => (&self.command, &self.zeros),
+                Level::Acceleration => (&self.thetadot, &self.command),
             };
-            self.scheme
-                .build_dot(t, &self.theta, &v, &a, &mut self.qp_dot, &mut self.scratch);
+            self.scheme.build_dot(
+                t,
+                self.theta.as_slice(),
+                v.as_slice(),
+                a.as_slice(),
+                &mut self.qp_dot,
+                &mut self.scratch,
+            );
         }
         let solve_start = Instant::now();
         let dot = solver.needs_qp_dot().then_some(&self.qp_dot);
@@ -245,18 +263,18 @@ impl<'a, const N: usize> LoopState<'a, N> {
         if x.iter().any(|v| !v.is_finite() || v.abs() > DIVERGED) {
             return Err(Status::Diverged { t });
         }
-        self.command.copy_from_slice(&x[..N]);
-        let theta_k = self.theta;
+        let n = self.theta.len();
+        self.command.copy_from_slice(&x[..n]);
+        self.theta_k.copy_from(&self.theta);
         advance(
             self.level,
             h,
-            &mut self.theta,
-            &mut self.thetadot,
+            self.theta.as_mut_slice(),
+            self.thetadot.as_mut_slice(),
             self.command.as_slice(),
         );
         let end = Instant::now();
         Ok(Timed {
-            theta_k,
             solve_us: (solve_end - solve_start).as_secs_f64() * 1e6,
             tick_us: (end - start).as_secs_f64() * 1e6,
         })
@@ -264,20 +282,18 @@ impl<'a, const N: usize> LoopState<'a, N> {
 }
 
 /// What the timed part of a tick (steps 1-3 of the module docs) measured.
-struct Timed<const N: usize> {
-    /// The joint angles at t_k, before the arm moved.
-    theta_k: SVector<f64, N>,
+struct Timed {
     /// Duration of the solve alone (us).
     solve_us: f64,
     /// Duration of the whole tick (us).
     tick_us: f64,
 }
 
-/// |x[..N] - x*[..N]|_inf / max(1, |x*[..N]|_inf): the joint command's distance from the exact
+/// |x[..n] - x*[..n]|_inf / max(1, |x*[..n]|_inf): the joint command's distance from the exact
 /// optimum, relative (module docs).
-fn joint_distance<const N: usize>(x: &[f64], x_star: &DVector<f64>) -> f64 {
-    let scale = x_star.rows(0, N).amax().max(1.0);
-    x[..N]
+fn joint_distance(n: usize, x: &[f64], x_star: &DVector<f64>) -> f64 {
+    let scale = x_star.rows(0, n).amax().max(1.0);
+    x[..n]
         .iter()
         .zip(x_star.iter())
         .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()))
@@ -337,7 +353,7 @@ impl Tally {
     }
 
     /// A completed tick and its durations.
-    fn timed<const N: usize>(&mut self, timed: &Timed<N>) {
+    fn timed(&mut self, timed: &Timed) {
         self.out.solve_us.push(timed.solve_us);
         self.out.tick_us.push(timed.tick_us);
         self.out.ticks += 1;

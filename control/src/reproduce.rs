@@ -15,18 +15,14 @@ use crate::method::{Method, Numerical};
 use crate::network_tick::{products_per_evaluation, Discretisation};
 use crate::numerical_tick::QpTick;
 use crate::stability::{gain, LimitProbe};
-use crate::task::{load_tasks, standard_task_refs, with_task, Task, TaskVisitor};
+use crate::task::{load_tasks, standard_task_refs, with_task, Task, TaskArm};
 use crate::tick::TickSolver;
 use crate::trend::classify;
 use analysis::control_claim::{decide, overall, steps_needed, ACCURACY, CHECK_TICKS};
 use catalog::ids::SolverId;
-use nalgebra::SVector;
 use records::control::Verdict;
 use records::control::{ClaimRow, ControlRow, ControlStatus, CycleRow, StabilityRow, TrendRow};
 use records::results_dir;
-use robots::Robot;
-use schemes::paths::Path;
-use schemes::scheme::Scheme;
 use settings::solver_spec::SolverSpec;
 use simulation::runner::map_costliest_first;
 use solvers::neural::build_solver;
@@ -94,7 +90,7 @@ fn network_methods(task: &Task, substeps: u32) -> Vec<Method> {
     out
 }
 
-/// Runs one method on a task's arm (a [`TaskVisitor`]).
+/// Runs one method on a task's arm ([`RunMethod::run_on`]).
 struct RunMethod<'a> {
     method: &'a Method,
     h: f64,
@@ -102,16 +98,15 @@ struct RunMethod<'a> {
     max_ticks: Option<usize>,
 }
 
-impl TaskVisitor for RunMethod<'_> {
-    type Output = Result<LoopOutcome, ControlError>;
-    fn visit<const N: usize>(
-        self,
-        robot: &dyn Robot<N>,
-        path: &dyn Path,
-        scheme: &dyn Scheme<N>,
-        theta0: &SVector<f64, N>,
-        period: f64,
-    ) -> Self::Output {
+impl RunMethod<'_> {
+    fn run_on(self, arm: &TaskArm<'_>) -> Result<LoopOutcome, ControlError> {
+        let TaskArm {
+            robot,
+            path,
+            scheme,
+            theta0,
+            period,
+        } = *arm;
         let mut solver = self.method.build(scheme.dims())?;
         let settings = LoopSettings {
             h: self.h,
@@ -131,23 +126,22 @@ impl TaskVisitor for RunMethod<'_> {
     }
 }
 
-/// A network's Euler limit on a task (a [`TaskVisitor`] running the exact optimum in the loop
+/// A network's Euler limit on a task ([`ProbeLimit::run_on`] runs the exact optimum in the loop
 /// with a [`LimitProbe`]): (limit, instant), or `None`.
 struct ProbeLimit<'a> {
     spec: &'a SolverSpec,
     h: f64,
 }
 
-impl TaskVisitor for ProbeLimit<'_> {
-    type Output = Result<Option<(f64, f64)>, ControlError>;
-    fn visit<const N: usize>(
-        self,
-        robot: &dyn Robot<N>,
-        path: &dyn Path,
-        scheme: &dyn Scheme<N>,
-        theta0: &SVector<f64, N>,
-        period: f64,
-    ) -> Self::Output {
+impl ProbeLimit<'_> {
+    fn run_on(self, arm: &TaskArm<'_>) -> Result<Option<(f64, f64)>, ControlError> {
+        let TaskArm {
+            robot,
+            path,
+            scheme,
+            theta0,
+            period,
+        } = *arm;
         let dims = scheme.dims();
         let net = build_solver(self.spec, dims).map_err(|error| ControlError::Network {
             task: self.spec.display_name(),
@@ -240,16 +234,13 @@ impl<'a> LoopRun<'a> {
     }
 
     fn run(&self) -> Result<LoopOutcome, ControlError> {
-        with_task(
-            self.task,
-            self.cycles,
-            RunMethod {
-                method: &self.method,
-                h: self.h,
-                cycles: self.cycles,
-                max_ticks: self.max_ticks,
-            },
-        )?
+        let method = RunMethod {
+            method: &self.method,
+            h: self.h,
+            cycles: self.cycles,
+            max_ticks: self.max_ticks,
+        };
+        with_task(self.task, self.cycles, |arm| method.run_on(arm))?
     }
 
     /// The run's relative cost, to start the longest runs first (scheduling only): its ticks
@@ -511,7 +502,9 @@ impl<'a> FirstRound<'a> {
                         map_costliest_first(
                             &self.probes,
                             |(task, _)| task.job.path.duration,
-                            |(task, spec)| with_task(task, 1, ProbeLimit { spec, h })?,
+                            |(task, spec)| {
+                                with_task(task, 1, |arm| ProbeLimit { spec, h }.run_on(arm))?
+                            },
                         )
                     },
                     || {
@@ -519,14 +512,11 @@ impl<'a> FirstRound<'a> {
                             self.tasks,
                             |task| task.job.path.duration,
                             |task| {
-                                with_task(
+                                let cycles = ExactCycles {
                                     task,
-                                    1,
-                                    ExactCycles {
-                                        task,
-                                        cycles: self.budget.cycles,
-                                    },
-                                )
+                                    cycles: self.budget.cycles,
+                                };
+                                with_task(task, 1, |arm| cycles.run_on(arm))
                             },
                         )
                     },

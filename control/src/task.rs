@@ -1,19 +1,17 @@
 //! The standard task set of the control experiments: one run of each paper's scheme, declared as
 //! data in `experiments/`[`TASK_SET_FILE`] (experiment and variant ids) and resolved against the
 //! experiment files (robot, closed path, theta0, scheme and the paper's networks), and the way to
-//! run generic code on a task's arm ([`TaskVisitor`]).
+//! build a task's arm, path and scheme ([`with_task`]).
 
 use crate::error::ControlError;
 use catalog::experiment::{load_dir, Job, SolverChoice};
-use nalgebra::SVector;
-use robots::registry::{robot_by_name, RobotVisitor};
-use robots::{Dynamics, Robot};
+use robots::registry::robot_by_name;
+use robots::Robot;
 use schemes::paths::Path;
 use schemes::scheme::Scheme;
 use settings::solver_spec::SolverSpec;
 use simulation::run::check_job;
 use simulation::run::{build_cyclic_parts, job_robot};
-use std::sync::Arc;
 
 /// A task: an experiment and one of its variants (ids).
 #[derive(Clone, Debug, PartialEq, Eq, serde::Deserialize)]
@@ -119,64 +117,44 @@ pub fn load_tasks(dir: &std::path::Path, refs: &[TaskRef]) -> Result<Vec<Task>, 
         .collect()
 }
 
-/// Generic code run on a task's arm with its joint count N.
-pub trait TaskVisitor {
-    type Output;
-    /// `path` is the task's path repeated `cycles` times ([`with_task`]); `period` is one
-    /// cycle's duration.
-    fn visit<const N: usize>(
-        self,
-        robot: &dyn Robot<N>,
-        path: &dyn Path,
-        scheme: &dyn Scheme<N>,
-        theta0: &SVector<f64, N>,
-        period: f64,
-    ) -> Self::Output;
+/// A task's arm, its path repeated `cycles` times ([`with_task`]), its scheme on that path, its
+/// initial joint angles, and one cycle's duration `period`.
+pub struct TaskArm<'a> {
+    /// The task's robot (with the task's limits).
+    pub robot: &'a dyn Robot,
+    /// The task's path, repeated.
+    pub path: &'a dyn Path,
+    /// The task's scheme on the repeated path.
+    pub scheme: &'a dyn Scheme,
+    /// theta0, one entry per joint.
+    pub theta0: &'a [f64],
+    /// One cycle's duration (s).
+    pub period: f64,
 }
 
-/// Builds `task`'s arm, its path repeated `cycles` times and its scheme on it, and runs
-/// `visitor` on them.
-pub fn with_task<V: TaskVisitor>(
+/// Builds `task`'s arm, its path repeated `cycles` times and its scheme on it, and runs `f` on
+/// them.
+pub fn with_task<R>(
     task: &Task,
     cycles: usize,
-    visitor: V,
-) -> Result<V::Output, ControlError> {
-    struct Visit<'a, V> {
-        task: &'a Task,
-        cycles: usize,
-        visitor: V,
-    }
-    impl<V: TaskVisitor> RobotVisitor for Visit<'_, V> {
-        type Output = Result<V::Output, ControlError>;
-        fn visit<const N: usize>(
-            self,
-            robot: Arc<dyn Robot<N>>,
-            dynamics: Option<Arc<dyn Dynamics<N>>>,
-        ) -> Self::Output {
-            let job = &self.task.job;
-            let setup = |e: catalog::error::SetupError| ControlError::Setup {
-                task: self.task.id(),
-                message: e.to_string(),
-            };
-            let robot = job_robot(job, robot, dynamics.is_some()).map_err(setup)?;
-            let (path, scheme) = build_cyclic_parts::<N>(job, robot.clone(), dynamics, self.cycles)
-                .map_err(setup)?;
-            let theta0 = SVector::<f64, N>::from_column_slice(&job.theta0);
-            let period = path.duration() / self.cycles.max(1) as f64;
-            Ok(self.visitor.visit(
-                robot.as_ref(),
-                path.as_ref(),
-                scheme.as_ref(),
-                &theta0,
-                period,
-            ))
-        }
-    }
-    let robot = robot_by_name(&task.job.robot)
-        .ok_or_else(|| ControlError::UnknownTask(format!("robot {}", task.job.robot)))?;
-    robot.visit(Visit {
-        task,
-        cycles,
-        visitor,
-    })
+    f: impl FnOnce(&TaskArm<'_>) -> R,
+) -> Result<R, ControlError> {
+    let job = &task.job;
+    let setup = |e: catalog::error::SetupError| ControlError::Setup {
+        task: task.id(),
+        message: e.to_string(),
+    };
+    let model = robot_by_name(&job.robot)
+        .map_err(|e| ControlError::UnknownTask(format!("robot {}: {e}", job.robot)))?;
+    let robot = job_robot(job, model.robot, model.dynamics.is_some()).map_err(setup)?;
+    let (path, scheme) =
+        build_cyclic_parts(job, robot.clone(), model.dynamics, cycles).map_err(setup)?;
+    let period = path.duration() / cycles.max(1) as f64;
+    Ok(f(&TaskArm {
+        robot: robot.as_ref(),
+        path: path.as_ref(),
+        scheme: scheme.as_ref(),
+        theta0: &job.theta0,
+        period,
+    }))
 }

@@ -84,8 +84,8 @@ fn two_threads_give_the_rows_of_one() {
     .unwrap();
     let (one, two) = (run_on(1, &experiments), run_on(2, &experiments));
     let rows = control_rows(&one);
-    // Two tasks, each: the numerical methods (9 with the `osqp` feature, 8 without) and 2
-    // network forms at h, 3 methods swept.
+    // Two tasks, each: every numerical method of this build (OSQP only with the `osqp`
+    // feature) and 2 network forms at h, 3 methods swept.
     let numerical = control::method::Numerical::all().len();
     assert_eq!(rows.len(), 2 * (numerical + 2 + 3), "{rows:#?}");
     assert_eq!(rows, control_rows(&two));

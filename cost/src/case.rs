@@ -1,5 +1,5 @@
 //! What is measured: a (scheme, N) [`Case`] with its network, and a case made ready to time
-//! ([`PreparedCase`]), whichever path ([`crate::fixed`], [`crate::dynamic`]) prepared it.
+//! ([`PreparedCase`]), as [`crate::harness`] prepared it.
 
 use records::dof_cost::{Quantity, RunCounts, SchemeKind};
 use schemes::paths::PathSpec;

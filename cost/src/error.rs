@@ -6,14 +6,9 @@ use simulation::error::RunError;
 
 #[derive(Debug, thiserror::Error)]
 pub enum CostError {
-    /// The fixed-size path was asked for an N the registry has no `NLink<N>` for.
-    #[error("nlink-{0} is not in the registry (NLINK_SIZES); the dynamic path measures it")]
+    /// There is no n-link arm of this many joints (`robots::nlink`: 2 to 1000).
+    #[error("there is no n-link arm of {0} joints (robots::nlink: 2 to 1000)")]
     NotRegistered(usize),
-    /// The dynamic path was asked for a scheme it does not build (jia2019).
-    #[error("{0}: the dynamic-size path builds the QP of kong2019 (22) only")]
-    NoDynamicScheme(&'static str),
-    #[error("an n-link arm has at least 3 joints, not {0}")]
-    TooFewJoints(usize),
     #[error("{label}: {error}")]
     Path { label: String, error: PathError },
     #[error("{label}: {error}")]

@@ -1,5 +1,5 @@
-//! The per-instant quantities of a case on a list of QPs (one per sampled state), shared by the
-//! fixed- and the dynamic-size path:
+//! The per-instant quantities of a case on a list of QPs (one per sampled state), as the
+//! harness ([`crate::harness`]) times them:
 //!
 //! - `network-rhs`, `network-jacobian`: one right-hand side and one analytic Jacobian of the
 //!   network at a state near the optimum (x* + 1e-3 sin(i + 1), multipliers 0, as the criterion

@@ -12,28 +12,22 @@
 //! framework. Both `reproduce` and the criterion bench call this crate, so the two measure the
 //! same calls.
 //!
-//! # The two paths
+//! # One harness
 //!
-//! - [`fixed`]: N = 3 ... 30 ([`robots::registry::NLINK_SIZES`]), each N a
-//!   const-generic instantiation `NLink<N>` of the registry, with jia2019's VLTCO scheme on a
-//!   four-leaf clover and kong2019's ZNN scheme (eq. 22) on a circle; every quantity, whole
-//!   runs included, at states sampled from one exact run.
-//! - [`dynamic`]: N = [`dynamic::SIZES`] (40 ... 200), no instantiation per size: the arm is
-//!   [`robots::NLinkDyn`] and kong2019's scheme [`schemes::velocity_rmp_dyn::NLinkZnn`], both on
-//!   slices; every quantity, whole runs included, through the same coupled ODE
-//!   (`simulation::coupled`) as the fixed path (see [`dynamic`] for what a whole run there
-//!   leaves out, and why not jia2019).
-//!
-//! Both share [`instants::Instants`], the per-instant quantities on a list of QPs; the dense LU
-//! quantities (`network-lu`, `kkt-floor`) are timed on both [`solvers::Backend`]s, from which
-//! the report reads the crossover that [`settings::linear_algebra::FAER_CROSSOVER`] records.
+//! [`harness`]: any N, no instantiation per size: the registry's n-link arm `nlink-N` and the
+//! scheme (jia2019's VLTCO on a four-leaf clover, kong2019's ZNN scheme, eq. 22, on a circle)
+//! through the engine's one path, every quantity, whole runs included, at states sampled from
+//! one exact run. Both schemes at [`harness::SWEEP_SIZES`] (N = 3 ... 30), kong2019's alone at
+//! [`harness::LARGE_SIZES`] (40 ... 200). The per-instant quantities are [`instants::Instants`]';
+//! the dense LU quantities (`network-lu`, `kkt-floor`) are timed on both [`solvers::Backend`]s,
+//! from which the report reads the crossover that [`settings::linear_algebra::FAER_CROSSOVER`]
+//! records.
 //!
 //! [`measure`](mod@measure) holds the timing ([`measure::Budget`], how samples are taken and summarised).
 
 pub mod case;
-pub mod dynamic;
 pub mod error;
-pub mod fixed;
+pub mod harness;
 pub mod instants;
 pub mod measure;
 

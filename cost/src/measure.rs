@@ -10,8 +10,8 @@
 //! `results/dof-cost.csv` and the report.
 
 use crate::case::{backends, Case, PreparedCase};
+use crate::harness::{LARGE_SIZES, LARGE_STATES, SWEEP_SIZES};
 use records::dof_cost::{Measurement, Quantity, SchemeKind, Summary};
-use robots::registry::NLINK_SIZES;
 use std::time::Instant;
 
 /// How much is measured: the defaults take about a minute for every case on one core of a
@@ -19,10 +19,10 @@ use std::time::Instant;
 /// N = 200).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Budget {
-    /// States sampled from the exact run's trace (fixed path).
+    /// States sampled from the exact run's trace at the sweep's sizes.
     pub states: usize,
-    /// States of the dynamic path ([`crate::dynamic::STATES`]).
-    pub dynamic_states: usize,
+    /// States sampled at the large sizes ([`LARGE_STATES`]).
+    pub large_states: usize,
     /// Passes over the states (samples per quantity = states x passes).
     pub passes: usize,
     /// Shortest batch of back-to-back calls (us).
@@ -37,7 +37,7 @@ impl Default for Budget {
     fn default() -> Self {
         Budget {
             states: 100,
-            dynamic_states: crate::dynamic::STATES,
+            large_states: LARGE_STATES,
             passes: 3,
             min_batch_us: 20.0,
             max_reps: 200,
@@ -62,24 +62,23 @@ pub fn machine() -> (String, usize) {
     (model, cores)
 }
 
-/// Measures every case: both schemes at every N of [`NLINK_SIZES`] on the fixed-size path,
-/// then kong2019 at every N of [`crate::dynamic::SIZES`] on the dynamic-size path, calling
-/// `progress` after each case.
+/// Measures every case: both schemes at every N of [`SWEEP_SIZES`], then kong2019 at every N
+/// of [`LARGE_SIZES`], calling `progress` after each case.
 pub fn measure_all(budget: &Budget, mut progress: impl FnMut(&Case)) -> Vec<Measurement> {
     let mut out = Vec::new();
     for scheme in SchemeKind::ALL {
-        for n in NLINK_SIZES {
+        for n in SWEEP_SIZES {
             let case = Case::new(scheme, n);
-            match crate::fixed::prepare(&case, budget.states) {
+            match crate::harness::prepare(&case, budget.states) {
                 Ok(mut p) => out.extend(measure(case.scheme, case.n, p.as_mut(), budget)),
                 Err(e) => eprintln!("{e}; nothing measured"),
             }
             progress(&case);
         }
     }
-    for n in crate::dynamic::SIZES {
+    for n in LARGE_SIZES {
         let case = Case::new(SchemeKind::ZnnRmp, n);
-        match crate::dynamic::prepare(&case, budget.dynamic_states) {
+        match crate::harness::prepare(&case, budget.large_states) {
             Ok(mut p) => out.extend(measure(case.scheme, case.n, p.as_mut(), budget)),
             Err(e) => eprintln!("{e}; nothing measured"),
         }

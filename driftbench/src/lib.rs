@@ -48,14 +48,16 @@
 //! d = 0.0
 //! "#;
 //! let spec = RobotSpec::parse("yaw-and-four-pitch.toml", text)?;
-//! let arm = DataRobot::<5>::new(&spec)?;
-//! let theta = SVector::<f64, 5>::from([0.3, 1.2, -0.75, -0.75, -0.75]);
-//! let j = arm.jacobian(&theta);
+//! let arm = DataRobot::new(&spec);
+//! assert_eq!(arm.dof(), 5);
+//! let theta = [0.3, 1.2, -0.75, -0.75, -0.75];
+//! let j = arm.jacobian_matrix(&theta);
 //! let h = 1e-6;
 //! for k in 0..5 {
-//!     let mut e = SVector::<f64, 5>::zeros();
-//!     e[k] = h;
-//!     let fd = (arm.position(&(theta + e)) - arm.position(&(theta - e))) / (2.0 * h);
+//!     let (mut plus, mut minus) = (theta, theta);
+//!     plus[k] += h;
+//!     minus[k] -= h;
+//!     let fd = (arm.position(&plus) - arm.position(&minus)) / (2.0 * h);
 //!     assert!((fd - j.column(k)).norm() < 1e-8);
 //! }
 //! // A non-finite number is refused, naming the file and the field.
@@ -180,8 +182,10 @@ pub fn project_root() -> Result<PathBuf, Error> {
 }
 
 /// Every run (job) of the experiment files in `root/experiments/`, each file checked as the
-/// command line checks it before anything runs.
+/// command line checks it before anything runs (the papers' own robot files,
+/// `root/papers/<paper>/robots/*.toml`, registered first).
 pub fn jobs(root: &Path) -> Result<Vec<Job>, Error> {
+    catalog::robot_files::register_paper_robots(&root.join("papers"));
     let files = load_dir(&root.join("experiments"), simulation::run::check_job)?;
     Ok(files.iter().flat_map(PaperFile::jobs).collect())
 }

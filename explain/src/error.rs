@@ -24,7 +24,8 @@ pub enum FamilyError {
     Read(#[from] std::io::Error),
     #[error(transparent)]
     Toml(#[from] toml::de::Error),
-    #[error("unknown robot \"{0}\"")]
+    /// The registry's error: an unknown robot (with the valid choices) or its invalid file.
+    #[error("{0}")]
     UnknownRobot(String),
     #[error("robot variant \"{variant}\" has another joint count than \"{declared}\"")]
     JointCount { variant: String, declared: String },

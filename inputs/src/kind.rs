@@ -28,6 +28,9 @@ pub enum Kind {
     ScriptTable,
     /// A URDF an arm is read from (`robots::urdf`; the URDFs of common arms are 10-400 kB).
     Urdf,
+    /// A paper's robot file, `papers/<paper>/robots/*.toml` (the suite's own are at most 3 kB;
+    /// a 1000-joint arm is about 100 kB).
+    RobotFile,
 }
 
 const MIB: u64 = 1 << 20;
@@ -36,7 +39,7 @@ impl Kind {
     /// The largest file of this kind that is read, in bytes.
     pub fn cap(self) -> u64 {
         match self {
-            Kind::Experiment | Kind::PaperToml | Kind::ShardBinding => MIB,
+            Kind::Experiment | Kind::PaperToml | Kind::ShardBinding | Kind::RobotFile => MIB,
             Kind::PaperValues => 4 * MIB,
             Kind::TrajectoryCsv | Kind::TrajectoryMat | Kind::Baseline => 256 * MIB,
             Kind::ShardManifest | Kind::ScriptTable => 64 * MIB,
@@ -57,6 +60,7 @@ impl Kind {
             Kind::ShardBinding => "shard binding",
             Kind::ScriptTable => "results table",
             Kind::Urdf => "URDF",
+            Kind::RobotFile => "robot file",
         }
     }
 }

@@ -186,8 +186,10 @@ impl PyTask {
     }
 }
 
-/// Every task of the experiment files under `root/experiments`, in file order.
+/// Every task of the experiment files under `root/experiments`, in file order (the papers' own
+/// robot files, `root/papers/<paper>/robots/*.toml`, registered first).
 pub fn load_tasks(root: &Path) -> Result<Vec<PyTask>, TaskError> {
+    catalog::robot_files::register_paper_robots(&root.join("papers"));
     let files = load_dir(&root.join("experiments"), check_job)?;
     let mut tasks = Vec::new();
     for file in &files {

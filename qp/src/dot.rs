@@ -32,19 +32,26 @@ pub const FD_STEP: f64 = 6e-6;
 /// Preallocated QPs at the two ends of the central difference.
 #[derive(Clone, Debug)]
 pub struct QpDotScratch {
-    /// The QP at the +h end of the difference (the velocity-level n-link ZNN scheme borrows its A
-    /// as a Jacobian buffer).
+    /// The QP at the +h end of the difference (the velocity-level schemes borrow its A as a
+    /// Jacobian buffer).
     pub plus: Qp,
     /// The QP at the -h end of the difference.
     pub minus: Qp,
+    /// The joint angles at either end.
+    pub theta: Vec<f64>,
+    /// The joint rates at either end.
+    pub thetadot: Vec<f64>,
 }
 
 impl QpDotScratch {
-    /// Two zero QPs of the given sizes (allocate once per run).
-    pub fn new(dims: QpDims) -> Self {
+    /// Two zero QPs of the given sizes and two joint vectors of `joints` entries (allocate once
+    /// per run).
+    pub fn new(dims: QpDims, joints: usize) -> Self {
         Self {
             plus: Qp::zeros(dims),
             minus: Qp::zeros(dims),
+            theta: vec![0.0; joints],
+            thetadot: vec![0.0; joints],
         }
     }
 }

@@ -17,6 +17,11 @@ use std::path::{Path, PathBuf};
 
 /// The file name inside `results/`.
 pub const FILE: &str = "dof-cost.csv";
+
+/// The joint counts of the n-link arms the cost harness sweeps with both schemes (jia2019's
+/// VLTCO and kong2019's ZNN scheme); past the largest it measures kong2019's alone, at the
+/// large sizes.
+pub const SWEEP_SIZES: [usize; 8] = [3, 5, 6, 7, 10, 15, 20, 30];
 /// What a [`DofCostRow`] holds (the `kind` column).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]

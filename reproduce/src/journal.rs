@@ -112,7 +112,11 @@ pub fn run_journaled(
         .map(|r| {
             let joints = jobs
                 .iter()
-                .filter_map(|j| robots::registry::robot_by_name(&j.robot).map(|r| r.dof()))
+                .filter_map(|j| {
+                    robots::registry::robot_by_name(&j.robot)
+                        .ok()
+                        .map(|r| r.dof())
+                })
                 .max();
             records::journal::Journal::open(r, joints.unwrap_or(0))
         })

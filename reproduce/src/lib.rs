@@ -60,9 +60,10 @@ pub fn run(global: &GlobalOptions, mode: Mode) -> Result<ExitCode, ReproduceErro
     let project = |shard: Option<Shard>| Project::resolve(global, shard);
 
     match mode {
-        // The robots are compiled in (built-in models and the embedded robot files): listing
-        // them needs no project.
+        // The suite's robots are compiled in (built-in models and the embedded robot files):
+        // listing them needs no project; in one, the papers' own robot files are listed too.
         Mode::Robots => {
+            let _ = project(None);
             emit(&list::robots());
             Ok(ExitCode::SUCCESS)
         }

@@ -61,19 +61,35 @@ pub fn shard_plan(jobs: impl Iterator<Item = Job>, n: usize) -> String {
         .collect()
 }
 
-/// Every robot of the registry with its joint count and check values at its stated pose.
+/// Every robot of the registry with its joint count and check values at its stated pose (the
+/// n-link family by two of its members); a robot whose file is invalid shows its error instead.
 pub fn robots() -> String {
-    use robots::registry::{robot_by_name, robot_names};
+    use robots::nlink::{NLINK_MAX, NLINK_MIN};
+    use robots::registry::{nlink_name, robot_by_name, robot_names};
     let mut out = String::new();
-    for name in robot_names() {
-        let robot = robot_by_name(&name).expect("a registry name");
-        let theta = robot.stated_pose();
+    for name in robot_names()
+        .into_iter()
+        .chain([nlink_name(7), nlink_name(200)])
+    {
+        let robot = match robot_by_name(&name) {
+            Ok(robot) => robot,
+            Err(e) => {
+                let _ = writeln!(out, "{name:<14} invalid: {e}");
+                continue;
+            }
+        };
+        let theta = &robot.stated_pose;
         let (p, sv) = robot
-            .check_values(&theta)
+            .check_values(theta)
             .expect("the stated pose has the robot's joint count");
+        let shown = if theta.len() > 10 {
+            format!("[{} angles]", theta.len())
+        } else {
+            format!("{theta:.4?}")
+        };
         let _ = writeln!(
             out,
-            "{name:<14} {} joints{}, theta = {theta:.4?}\n               f = ({:.6}, {:.6}, {:.6}), sigma(J) = {sv:.6?}",
+            "{name:<14} {} joints{}, theta = {shown}\n               f = ({:.6}, {:.6}, {:.6}), sigma(J) = {sv:.6?}",
             robot.dof(),
             if robot.has_dynamics() { ", dynamics" } else { "" },
             p.x,
@@ -81,6 +97,10 @@ pub fn robots() -> String {
             p.z,
         );
     }
+    let _ = writeln!(
+        out,
+        "nlink-<n>      the n-link family: any n from {NLINK_MIN} to {NLINK_MAX} joints"
+    );
     out
 }
 
@@ -163,8 +183,12 @@ mod tests {
     fn every_robot_is_listed_with_its_joint_count() {
         use robots::registry::{robot_by_name, robot_names};
         let text = robots();
-        let names: Vec<String> = robot_names().collect();
-        assert_eq!(text.lines().count(), 2 * names.len());
+        let names: Vec<String> = robot_names()
+            .into_iter()
+            .chain(["nlink-7".to_string(), "nlink-200".to_string()])
+            .collect();
+        assert_eq!(text.lines().count(), 2 * names.len() + 1);
+        assert!(text.contains("nlink-200      200 joints"), "{text}");
         for (name, line) in names.iter().zip(text.lines().step_by(2)) {
             let dof = robot_by_name(name).unwrap().dof();
             assert!(

@@ -29,13 +29,15 @@ pub struct Project {
 }
 
 impl Project {
-    /// Resolves `global` (the root found from the working directory unless `--root` says it);
-    /// `shard`: the shard whose own results directory is the default.
+    /// Resolves `global` (the root found from the working directory unless `--root` says it)
+    /// and registers the papers' own robot files (`papers/<paper>/robots/*.toml`); `shard`: the
+    /// shard whose own results directory is the default.
     pub fn resolve(global: &GlobalOptions, shard: Option<Shard>) -> Result<Self, ReproduceError> {
         let root = match &global.root {
             Some(r) => r.clone(),
             None => catalog::root::from_current_dir()?,
         };
+        catalog::robot_files::register_paper_robots(&root.join("papers"));
         Ok(Self::under(root, global, shard))
     }
 

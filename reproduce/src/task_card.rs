@@ -14,7 +14,7 @@ use catalog::error::ExperimentFileError;
 use catalog::error::SetupError;
 use catalog::experiment::{load_dir, Job, PaperFile, SolverChoice};
 use records::tracked_dir::{Removal, TrackedDir, TrackedError};
-use robots::registry::{robot_by_name, AnyRobot};
+use robots::registry::{robot_by_name, Kinematics, Model};
 use schemes::qp::Qp;
 use schemes::scheme::Level;
 use schemes::spec::SchemeSpec;
@@ -79,7 +79,7 @@ pub fn cards(experiments_dir: &Path) -> Result<BTreeMap<String, String>, TaskCar
             task: id.clone(),
             source,
         })?;
-        let robot = robot_by_name(&job.robot).ok_or_else(|| TaskCardError::Robot {
+        let robot = robot_by_name(&job.robot).map_err(|_| TaskCardError::Robot {
             task: id.clone(),
             robot: job.robot.clone(),
         })?;
@@ -136,7 +136,7 @@ fn level(level: Level) -> &'static str {
 }
 
 /// One task's card: the runs on it, the robot, the start, the path and the scheme.
-fn card(jobs: &[Job], n: &TaskNumbers, robot: &AnyRobot) -> Result<String, TaskCardError> {
+fn card(jobs: &[Job], n: &TaskNumbers, robot: &Model) -> Result<String, TaskCardError> {
     let job = &jobs[0];
     let mut s = runs_section(jobs, n)?;
     s.push_str(&robot_section(job, n, robot));
@@ -199,7 +199,7 @@ fn runs_section(jobs: &[Job], n: &TaskNumbers) -> Result<String, TaskCardError> 
 }
 
 /// `## Robot`: its kinematics and limits.
-fn robot_section(job: &Job, n: &TaskNumbers, robot: &AnyRobot) -> String {
+fn robot_section(job: &Job, n: &TaskNumbers, robot: &Model) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "\n## Robot `{}` ({} joints)\n", job.robot, n.joints);
     s.push_str(&kinematics(robot));
@@ -294,77 +294,44 @@ fn scheme_section(job: &Job, n: &TaskNumbers) -> Result<String, TaskCardError> {
 }
 
 /// The robot's kinematics: the DH table and tool, or the closed form.
-fn kinematics(robot: &AnyRobot) -> String {
+fn kinematics(robot: &Model) -> String {
     let mut s = String::new();
-    fn dh<const N: usize>(s: &mut String, chain: &robots::dh::DhChain<N>) {
-        s.push_str("Classical DH, link i = Rz(theta_i) Tz(d_i) Tx(a_i) Rx(alpha_i):\n\n| i | a_i (m) | alpha_i (rad) | d_i (m) |\n|---|---|---|---|\n");
-        for (i, p) in chain.params.iter().enumerate() {
-            let _ = writeln!(s, "| {} | {} | {} | {} |", i + 1, p.a, p.alpha, p.d);
-        }
-        let _ = writeln!(
-            s,
-            "\nBase (world from DH frame 0): rotation\n\n```text\n{}```",
-            matrix(
-                &chain
-                    .base
-                    .rot
-                    .row_iter()
-                    .map(|r| r.iter().copied().collect())
-                    .collect::<Vec<_>>()
-            )
-        );
-    }
-    /// A data robot: its file, its classical chain (base included), offsets and tool point.
-    struct DataTable<'a>(&'a mut String);
-    impl robots::data_robot::DataVisitor for DataTable<'_> {
-        type Output = ();
-        fn visit<const N: usize>(self, r: std::sync::Arc<robots::DataRobot<N>>) {
-            use robots::Robot as _;
-            let _ = writeln!(
-                self.0,
-                "Declared by the robot file `robots/data/{}.toml` (its `source` gives the numbers' origin).\n",
-                r.name()
-            );
-            dh(self.0, r.chain());
-            let (o, t) = (r.chain().base.origin, r.tool());
-            let _ = writeln!(
-                self.0,
-                "Base frame origin {} m; joint offsets {} rad; task point in DH frame {N}: {} m.",
-                vector(&[o.x, o.y, o.z]),
-                vector(r.offset().as_slice()),
-                vector(&[t.x, t.y, t.z])
-            );
-        }
-    }
-    match robot {
-        AnyRobot::Jaco2(r) => {
-            dh(&mut s, r.chain());
-            let tip = r.tip();
-            let _ = writeln!(
-                s,
-                "Task point in DH frame 6: {} m.",
-                vector(&[tip.x, tip.y, tip.z])
-            );
-        }
-        AnyRobot::Panda(r) => {
-            let chain = r.chain();
-            s.push_str("Classical DH (Franka's modified-DH table converted; `robots/src/panda.rs`), link i = Rz(theta_i) Tz(d_i) Tx(a_i) Rx(alpha_i):\n\n| i | a_i (m) | alpha_i (rad) | d_i (m) |\n|---|---|---|---|\n");
+    match &robot.kinematics {
+        Kinematics::Dh { arm, file } => {
+            if let Some(file) = file {
+                let _ = writeln!(
+                    s,
+                    "Declared by the robot file `{file}` (its `source` gives the numbers' origin).\n"
+                );
+            }
+            let chain = arm.chain();
+            s.push_str("Classical DH, link i = Rz(theta_i) Tz(d_i) Tx(a_i) Rx(alpha_i):\n\n| i | a_i (m) | alpha_i (rad) | d_i (m) |\n|---|---|---|---|\n");
             for (i, p) in chain.params.iter().enumerate() {
                 let _ = writeln!(s, "| {} | {} | {} | {} |", i + 1, p.a, p.alpha, p.d);
             }
-            let f = r.flange();
             let _ = writeln!(
                 s,
-                "\nBase frame origin {} m; task point (flange centre) in the last frame: {} m.",
-                vector(&[
-                    chain.base.origin.x,
-                    chain.base.origin.y,
-                    chain.base.origin.z
-                ]),
-                vector(&[f.x, f.y, f.z])
+                "\nBase (world from DH frame 0): rotation\n\n```text\n{}```",
+                matrix(
+                    &chain
+                        .base
+                        .rot
+                        .row_iter()
+                        .map(|r| r.iter().copied().collect())
+                        .collect::<Vec<_>>()
+                )
+            );
+            let (o, t) = (chain.base.origin, arm.tool());
+            let _ = writeln!(
+                s,
+                "Base frame origin {} m; joint offsets {} rad; task point in DH frame {}: {} m.",
+                vector(&[o.x, o.y, o.z]),
+                vector(arm.offset()),
+                chain.dof(),
+                vector(&[t.x, t.y, t.z])
             );
         }
-        AnyRobot::Katana(k) => {
+        Kinematics::Katana(k) => {
             let _ = writeln!(
                 s,
                 "kong2019 (2), in the paper's joint convention (Cij = cos(theta_i + theta_j), ...):\n\n\
@@ -376,14 +343,13 @@ fn kinematics(robot: &AnyRobot) -> String {
                 k.l1, k.l2, k.l3, k.l4, k.l5
             );
         }
-        AnyRobot::NLink(n) => {
+        Kinematics::NLink(n) => {
             let _ = writeln!(
                 s,
                 "The synthetic {n}-link arm: a yaw joint and {} pitch joints (`robots/src/nlink.rs`).",
                 n - 1
             );
         }
-        AnyRobot::Data(m) => m.visit(DataTable(&mut s)),
     }
     s
 }

@@ -14,6 +14,7 @@ mod layering;
 mod octave;
 mod paper_literals;
 mod regression;
+mod robot_files;
 mod run_ids;
 mod score;
 mod self_contained;

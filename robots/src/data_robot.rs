@@ -29,60 +29,53 @@
 //!
 //! # Joint counts
 //!
-//! `N` must be one the simulation is instantiated for ([`JOINT_COUNTS`]: those of the Katana,
-//! the Jaco2, the Panda and the n-link sizes of the registry); [`DataModel`] holds a data robot
-//! of any of them, and a file with another count is refused when parsed.
+//! Any: the chain is evaluated at run time into a buffer of n frames ([`crate::dh`]). The
+//! Rust models that are DH chains (the Jaco2 variants, the Panda) are data robots built in
+//! code ([`DataRobot::from_chain`]).
 
 use std::sync::{Arc, OnceLock};
 
-use nalgebra::{SMatrix, SVector, Vector3};
+use nalgebra::{DVector, Vector3};
 
 use crate::dh::{DhChain, DhParam, ModifiedDhParam};
-use crate::joint_counts::JOINT_COUNTS;
 use crate::robot_file::{JointSpec, RobotFileError, RobotSpec};
 use crate::{JointLimits, Robot};
 
-/// A serial arm declared by a robot file (kinematics only).
+/// A serial arm of classical DH links with a task point (kinematics only): a robot file's
+/// model, or a Rust model's kinematics.
 #[derive(Clone, Debug, PartialEq)]
-pub struct DataRobot<const N: usize> {
+pub struct DataRobot {
     name: String,
-    chain: DhChain<N>,
-    offset: SVector<f64, N>,
+    chain: DhChain,
+    offset: Vec<f64>,
     tool: Vector3<f64>,
-    limits: JointLimits<N>,
-    acceleration_max: SVector<f64, N>,
-    stated_pose: SVector<f64, N>,
+    limits: JointLimits,
+    acceleration_max: DVector<f64>,
+    stated_pose: Vec<f64>,
 }
 
-impl<const N: usize> DataRobot<N> {
-    /// The model of `spec` (mathematics in the module documentation); an error if the file does
-    /// not have `N` joints.
-    pub fn new(spec: &RobotSpec) -> Result<Self, RobotFileError> {
+impl DataRobot {
+    /// The model of `spec` (mathematics in the module documentation).
+    pub fn new(spec: &RobotSpec) -> Self {
         let joints = spec.joints();
-        if joints.len() != N {
-            return Err(RobotFileError::JointCount {
-                file: spec.file().to_string(),
-                joints: joints.len(),
-                supported: &[N],
-            });
-        }
-        let column = |f: fn(&JointSpec) -> f64| SVector::<f64, N>::from_fn(|i, _| f(&joints[i]));
+        let column = |f: fn(&JointSpec) -> f64| joints.iter().map(f).collect::<Vec<f64>>();
         let (chain, tool) = match spec.flange() {
             None => (
-                DhChain::new(core::array::from_fn(|i| {
-                    let r = joints[i].row;
-                    DhParam::new(r.a, r.alpha, r.d)
-                })),
+                DhChain::new(
+                    joints
+                        .iter()
+                        .map(|j| DhParam::new(j.row.a, j.row.alpha, j.row.d))
+                        .collect(),
+                ),
                 spec.tool(),
             ),
             Some(f) => {
-                let (chain, flange) = DhChain::from_modified(
-                    core::array::from_fn(|i| {
-                        let r = joints[i].row;
-                        ModifiedDhParam::new(r.a, r.alpha, r.d)
-                    }),
-                    ModifiedDhParam::new(f.a, f.alpha, f.d),
-                );
+                let rows: Vec<ModifiedDhParam> = joints
+                    .iter()
+                    .map(|j| ModifiedDhParam::new(j.row.a, j.row.alpha, j.row.d))
+                    .collect();
+                let (chain, flange) =
+                    DhChain::from_modified(&rows, ModifiedDhParam::new(f.a, f.alpha, f.d));
                 (chain, spec.tool() + flange)
             }
         };
@@ -90,158 +83,132 @@ impl<const N: usize> DataRobot<N> {
             base: spec.base().compose(&chain.base),
             ..chain
         };
-        Ok(DataRobot {
+        let vector = |f: fn(&JointSpec) -> f64| DVector::from_vec(column(f));
+        DataRobot {
             name: spec.name().to_string(),
             chain,
             offset: column(|j| j.offset),
             tool,
             limits: JointLimits {
-                theta_min: column(|j| j.theta_min),
-                theta_max: column(|j| j.theta_max),
-                thetadot_min: column(|j| j.velocity_min),
-                thetadot_max: column(|j| j.velocity_max),
+                theta_min: vector(|j| j.theta_min),
+                theta_max: vector(|j| j.theta_max),
+                thetadot_min: vector(|j| j.velocity_min),
+                thetadot_max: vector(|j| j.velocity_max),
             },
-            acceleration_max: column(|j| j.acceleration_max),
+            acceleration_max: vector(|j| j.acceleration_max),
             stated_pose: spec
                 .stated_pose()
-                .map_or_else(SVector::zeros, SVector::from_column_slice),
-        })
+                .map_or_else(|| vec![0.0; joints.len()], <[f64]>::to_vec),
+        }
+    }
+
+    /// A model built in code: `chain` with the task point `tool` in its last frame, `limits`,
+    /// no angle offsets, no acceleration limits, check values stated at `stated_pose`.
+    pub fn from_chain(
+        name: &str,
+        chain: DhChain,
+        tool: Vector3<f64>,
+        limits: JointLimits,
+        stated_pose: Vec<f64>,
+    ) -> Self {
+        let n = chain.dof();
+        assert!(
+            limits.dof() == n && stated_pose.len() == n,
+            "data robot: one limit and one pose entry per joint"
+        );
+        DataRobot {
+            name: name.to_string(),
+            chain,
+            offset: vec![0.0; n],
+            tool,
+            limits,
+            acceleration_max: DVector::from_element(n, f64::INFINITY),
+            stated_pose,
+        }
     }
 
     /// The classical chain the task point hangs on (base included).
-    pub fn chain(&self) -> &DhChain<N> {
+    pub fn chain(&self) -> &DhChain {
         &self.chain
     }
 
     /// The joint-angle offsets: the DH angles are `theta + offset`.
-    pub fn offset(&self) -> &SVector<f64, N> {
+    pub fn offset(&self) -> &[f64] {
         &self.offset
     }
 
-    /// The task point in classical frame `N` (m).
+    /// The task point in classical frame `n` (m).
     pub fn tool(&self) -> Vector3<f64> {
         self.tool
     }
 
     /// The symmetric joint-acceleration limits (rad/s^2; infinite where the file gives none).
-    pub fn acceleration_max(&self) -> &SVector<f64, N> {
+    pub fn acceleration_max(&self) -> &DVector<f64> {
         &self.acceleration_max
     }
 
     /// The pose the file states its check values at (zero if it states none).
-    pub fn stated_pose(&self) -> &SVector<f64, N> {
+    pub fn stated_pose(&self) -> &[f64] {
         &self.stated_pose
+    }
+
+    /// Runs `f` on the frames at joint angles `theta` (DH angles `theta + offset`).
+    fn with_frames<R>(&self, theta: &[f64], f: impl FnOnce(&crate::dh::ChainFrames<'_>) -> R) -> R {
+        assert_eq!(
+            theta.len(),
+            self.dof(),
+            "{}: one angle per joint",
+            self.name
+        );
+        self.chain.with_frames(|i| theta[i] + self.offset[i], f)
     }
 }
 
-impl<const N: usize> Robot<N> for DataRobot<N> {
+impl Robot for DataRobot {
     fn name(&self) -> &str {
         &self.name
     }
 
-    fn position(&self, theta: &SVector<f64, N>) -> Vector3<f64> {
-        self.chain
-            .frames(&(theta + self.offset))
-            .frame(N)
-            .transform_point(&self.tool)
+    fn dof(&self) -> usize {
+        self.chain.dof()
     }
 
-    fn jacobian(&self, theta: &SVector<f64, N>) -> SMatrix<f64, 3, N> {
-        let frames = self.chain.frames(&(theta + self.offset));
-        let p = frames.frame(N).transform_point(&self.tool);
-        frames.point_jacobian(N, &p)
+    fn position(&self, theta: &[f64]) -> Vector3<f64> {
+        let n = self.dof();
+        self.with_frames(theta, |frames| frames.frame(n).transform_point(&self.tool))
     }
 
-    fn jacobian_dot(
-        &self,
-        theta: &SVector<f64, N>,
-        thetadot: &SVector<f64, N>,
-    ) -> SMatrix<f64, 3, N> {
-        let frames = self.chain.frames(&(theta + self.offset));
-        let p = frames.frame(N).transform_point(&self.tool);
-        frames.point_jacobian_dot(N, &p, thetadot)
+    fn jacobian(&self, theta: &[f64], jac: &mut [f64]) {
+        let n = self.dof();
+        self.with_frames(theta, |frames| {
+            let p = frames.frame(n).transform_point(&self.tool);
+            frames.point_jacobian(n, &p, jac)
+        })
     }
 
-    fn limits(&self) -> JointLimits<N> {
-        self.limits
+    fn jacobian_dot(&self, theta: &[f64], thetadot: &[f64], jdot: &mut [f64]) {
+        let n = self.dof();
+        self.with_frames(theta, |frames| {
+            let p = frames.frame(n).transform_point(&self.tool);
+            frames.point_jacobian_dot(n, &p, thetadot, jdot)
+        })
     }
 
-    /// The origins of classical frames 0..=N (frame 0 is the base), then the task point.
-    fn skeleton(&self, theta: &SVector<f64, N>) -> Vec<Vector3<f64>> {
-        let frames = self.chain.frames(&(theta + self.offset));
-        (0..=N)
-            .map(|k| frames.origin(k))
-            .chain(std::iter::once(frames.frame(N).transform_point(&self.tool)))
-            .collect()
+    fn limits(&self) -> &JointLimits {
+        &self.limits
+    }
+
+    /// The origins of classical frames 0..=n (frame 0 is the base), then the task point.
+    fn skeleton(&self, theta: &[f64]) -> Vec<Vector3<f64>> {
+        let n = self.dof();
+        self.with_frames(theta, |frames| {
+            (0..=n)
+                .map(|k| frames.origin(k))
+                .chain(std::iter::once(frames.frame(n).transform_point(&self.tool)))
+                .collect()
+        })
     }
 }
-
-/// Code generic in the joint count, run on a [`DataModel`] ([`DataModel::visit`]).
-pub trait DataVisitor {
-    /// What [`DataVisitor::visit`] returns, whatever the joint count.
-    type Output;
-    /// Called with the model at its joint count.
-    fn visit<const N: usize>(self, robot: Arc<DataRobot<N>>) -> Self::Output;
-}
-
-/// Declares [`DataModel`] with one variant per joint count of
-/// `crate::joint_counts::with_joint_counts!`.
-macro_rules! data_models {
-    ($($variant:ident = $n:literal),* $(,)?) => {
-        /// A data robot of any joint count in [`JOINT_COUNTS`].
-        #[derive(Clone, Debug, PartialEq)]
-        pub enum DataModel {
-            $(
-                #[doc = concat!("A robot file with ", stringify!($n), " joints.")]
-                $variant(Arc<DataRobot<$n>>),
-            )*
-        }
-
-        impl DataModel {
-            /// The model of `spec`, at its joint count.
-            pub fn new(spec: &RobotSpec) -> Result<Self, RobotFileError> {
-                match spec.joints().len() {
-                    $($n => Ok(DataModel::$variant(Arc::new(DataRobot::new(spec)?))),)*
-                    joints => Err(RobotFileError::JointCount {
-                        file: spec.file().to_string(),
-                        joints,
-                        supported: JOINT_COUNTS,
-                    }),
-                }
-            }
-
-            /// Runs `visitor` on the model with its joint count.
-            pub fn visit<V: DataVisitor>(&self, visitor: V) -> V::Output {
-                match self {
-                    $(DataModel::$variant(r) => visitor.visit::<$n>(r.clone()),)*
-                }
-            }
-
-            /// The model name.
-            pub fn name(&self) -> &str {
-                match self {
-                    $(DataModel::$variant(r) => r.name(),)*
-                }
-            }
-
-            /// The number of joints.
-            pub fn dof(&self) -> usize {
-                match self {
-                    $(DataModel::$variant(_) => $n,)*
-                }
-            }
-
-            /// The pose the file states its check values at (zero if it states none).
-            pub fn stated_pose(&self) -> &[f64] {
-                match self {
-                    $(DataModel::$variant(r) => r.stated_pose().as_slice(),)*
-                }
-            }
-        }
-    };
-}
-
-crate::joint_counts::with_joint_counts!(data_models);
 
 /// The built-in robot files, `(file name, text)`, sorted by file name: every `robots/data/*.toml`
 /// at build time (`build.rs`).
@@ -257,28 +224,34 @@ pub fn parse_builtin(file_name: &str, text: &str) -> Result<RobotSpec, RobotFile
     RobotSpec::parse_named(&format!("robots/data/{file_name}"), stem, text)
 }
 
-/// The models of the built-in robot files, in [`builtin_files`] order, parsed once per process.
-///
-/// # Panics
-///
-/// If a built-in file is invalid. The files are compiled into the library, not user input, and
-/// robots' tests (`tests/data_robots.rs`) load every one of them, so a bad file fails the test
-/// run, not a user's run.
-pub fn builtin_models() -> &'static [DataModel] {
-    static MODELS: OnceLock<Vec<DataModel>> = OnceLock::new();
+/// A built-in robot file's stem, with its model or why it was refused.
+pub type BuiltinModel = (&'static str, Result<DataRobot, Arc<RobotFileError>>);
+
+/// The built-in robot files, each with its model or why it was refused, in [`builtin_files`]
+/// order, parsed once per process. A refused file fails only the lookups of its own name
+/// ([`crate::registry`]).
+pub fn builtin_models() -> &'static [BuiltinModel] {
+    static MODELS: OnceLock<Vec<BuiltinModel>> = OnceLock::new();
     MODELS.get_or_init(|| {
         builtin_files()
             .iter()
             .map(|(file, text)| {
-                parse_builtin(file, text)
-                    .and_then(|spec| DataModel::new(&spec))
-                    .unwrap_or_else(|e| panic!("invalid built-in robot file: {e}"))
+                let stem = file.strip_suffix(".toml").unwrap_or(file);
+                (
+                    stem,
+                    parse_builtin(file, text)
+                        .map(|spec| DataRobot::new(&spec))
+                        .map_err(Arc::new),
+                )
             })
             .collect()
     })
 }
 
-/// The built-in data model called `name`, if there is one.
-pub fn builtin_model(name: &str) -> Option<&'static DataModel> {
-    builtin_models().iter().find(|m| m.name() == name)
+/// The built-in data model called `name`, if there is a valid one.
+pub fn builtin_model(name: &str) -> Option<&'static DataRobot> {
+    builtin_models()
+        .iter()
+        .find(|(stem, _)| *stem == name)
+        .and_then(|(_, m)| m.as_ref().ok())
 }

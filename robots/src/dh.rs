@@ -15,7 +15,10 @@
 //! in world coordinates is `T_k = B A_1 ... A_k`, with `T_0 = B`. Joint `i` rotates about the
 //! z axis of frame `i-1`, through the origin of frame `i-1`.
 //!
-//! All frames live on the stack (`[Frame; N]`): evaluating a chain never allocates.
+//! The frames of one evaluation are written into a buffer of `n` frames: the caller's
+//! ([`DhChain::frames`]), or this thread's scratch buffer ([`DhChain::with_frames`]), grown to the
+//! longest chain the thread has evaluated and reused, so evaluating a chain allocates nothing
+//! after a thread's first evaluation.
 //!
 //! # Modified (Craig) DH
 //!
@@ -37,7 +40,8 @@
 //! frame `i` is modified frame `i` times `S_{i+1}`: its z axis is the axis of joint `i + 1`, as the
 //! classical convention requires, and joint `i` still turns about `z_{i-1}` through `o_{i-1}`.
 
-use nalgebra::{Matrix3, SVector, Vector3};
+use nalgebra::{Matrix3, Vector3};
+use std::cell::RefCell;
 
 /// A rigid transform stored as a rotation matrix and a translation (the origin of the frame).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -140,18 +144,23 @@ impl ModifiedDhParam {
     }
 }
 
-/// A serial chain of `N` revolute joints in classical DH convention with a fixed base transform.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct DhChain<const N: usize> {
+/// A serial chain of `n` revolute joints in classical DH convention with a fixed base transform.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DhChain {
     /// Fixed transform from the world to DH frame 0.
     pub base: Frame,
-    /// DH parameters of links 1..=N.
-    pub params: [DhParam; N],
+    /// DH parameters of links 1..=n.
+    pub params: Vec<DhParam>,
 }
 
-impl<const N: usize> DhChain<N> {
+thread_local! {
+    /// This thread's frames of [`DhChain::with_frames`] (module documentation).
+    static SCRATCH: RefCell<Vec<Frame>> = const { RefCell::new(Vec::new()) };
+}
+
+impl DhChain {
     /// A chain whose DH frame 0 is the world frame.
-    pub fn new(params: [DhParam; N]) -> Self {
+    pub fn new(params: Vec<DhParam>) -> Self {
         DhChain {
             base: Frame::identity(),
             params,
@@ -163,28 +172,37 @@ impl<const N: usize> DhChain<N> {
         DhChain { base, ..self }
     }
 
+    /// The number of joints n.
+    pub fn dof(&self) -> usize {
+        self.params.len()
+    }
+
     /// The classical chain equivalent to the modified-DH rows `rows` followed by the fixed
     /// flange row `flange` (module documentation): returns the chain (base `Rx(alpha_1) Tx(a_1)`,
-    /// links `(a_{i+1}, alpha_{i+1}, d_i)`, last link `(a_f, alpha_f, d_N)`) and the flange
-    /// origin `(0, 0, d_f)` in classical frame `N`.
+    /// links `(a_{i+1}, alpha_{i+1}, d_i)`, last link `(a_f, alpha_f, d_n)`) and the flange
+    /// origin `(0, 0, d_f)` in classical frame `n`.
     pub fn from_modified(
-        rows: [ModifiedDhParam; N],
+        rows: &[ModifiedDhParam],
         flange: ModifiedDhParam,
     ) -> (Self, Vector3<f64>) {
-        let params = core::array::from_fn(|i| {
-            let next = if i + 1 < N { rows[i + 1] } else { flange };
-            DhParam::new(next.a, next.alpha, rows[i].d)
-        });
+        let n = rows.len();
+        let params = (0..n)
+            .map(|i| {
+                let next = if i + 1 < n { rows[i + 1] } else { flange };
+                DhParam::new(next.a, next.alpha, rows[i].d)
+            })
+            .collect();
         let base = rows.first().unwrap_or(&flange).prefix();
         (DhChain { base, params }, Vector3::new(0.0, 0.0, flange.d))
     }
 
-    /// World-frame transforms `T_0 .. T_N` at joint angles `theta`.
-    pub fn frames(&self, theta: &SVector<f64, N>) -> ChainFrames<N> {
-        let mut links = [Frame::identity(); N];
+    /// World-frame transforms `T_0 .. T_n` at the DH angles `q(0), ..., q(n - 1)`, written into
+    /// `links` (length n).
+    pub fn frames<'a>(&self, q: impl Fn(usize) -> f64, links: &'a mut [Frame]) -> ChainFrames<'a> {
+        assert_eq!(links.len(), self.params.len(), "dh: one frame per link");
         let mut t = self.base;
         for (i, (link, p)) in links.iter_mut().zip(self.params.iter()).enumerate() {
-            t = t.compose(&p.transform(theta[i]));
+            t = t.compose(&p.transform(q(i)));
             *link = t;
         }
         ChainFrames {
@@ -192,17 +210,39 @@ impl<const N: usize> DhChain<N> {
             links,
         }
     }
+
+    /// Runs `f` on the frames at the DH angles `q` ([`DhChain::frames`]), held in this thread's
+    /// scratch buffer (module documentation). `f` must not evaluate a chain itself.
+    pub fn with_frames<R>(
+        &self,
+        q: impl Fn(usize) -> f64,
+        f: impl FnOnce(&ChainFrames<'_>) -> R,
+    ) -> R {
+        SCRATCH.with(|scratch| {
+            let mut buffer = scratch.borrow_mut();
+            let n = self.params.len();
+            if buffer.len() < n {
+                buffer.resize(n, Frame::identity());
+            }
+            f(&self.frames(q, &mut buffer[..n]))
+        })
+    }
 }
 
-/// The world-frame transforms `T_0 = B, T_1, ..., T_N` of a chain at one configuration.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ChainFrames<const N: usize> {
+/// The world-frame transforms `T_0 = B, T_1, ..., T_n` of a chain at one configuration.
+#[derive(Debug, PartialEq)]
+pub struct ChainFrames<'a> {
     base: Frame,
-    links: [Frame; N],
+    links: &'a [Frame],
 }
 
-impl<const N: usize> ChainFrames<N> {
-    /// Frame `k` for `k` in `0..=N` (frame 0 is the base).
+impl ChainFrames<'_> {
+    /// The number of joints n.
+    pub fn dof(&self) -> usize {
+        self.links.len()
+    }
+
+    /// Frame `k` for `k` in `0..=n` (frame 0 is the base).
     pub fn frame(&self, k: usize) -> &Frame {
         if k == 0 {
             &self.base

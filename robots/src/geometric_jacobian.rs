@@ -22,65 +22,76 @@
 //!
 //! The base is fixed in the world (`omega_0 = 0`, `v_0 = 0`).
 
-use nalgebra::{SMatrix, SVector, Vector3};
+//! Every matrix is 3 x n, column-major, written into the caller's slice of length `3 n`;
+//! columns past `link` are zero.
+
+use nalgebra::Vector3;
 
 use crate::dh::ChainFrames;
 
-impl<const N: usize> ChainFrames<N> {
-    /// Linear-velocity Jacobian (3 x N) of the world point `p` rigidly attached to link `link`
-    /// (`1..=N`; frame `link` moves with it).
-    pub fn point_jacobian(&self, link: usize, p: &Vector3<f64>) -> SMatrix<f64, 3, N> {
-        let mut jac = SMatrix::<f64, 3, N>::zeros();
+/// Writes column `j` of a 3 x n column-major matrix.
+fn set_column(out: &mut [f64], j: usize, col: &Vector3<f64>) {
+    out[3 * j..3 * j + 3].copy_from_slice(col.as_slice());
+}
+
+impl ChainFrames<'_> {
+    /// Writes the linear-velocity Jacobian (3 x n) of the world point `p` rigidly attached to
+    /// link `link` (`1..=n`; frame `link` moves with it) into `jac`.
+    pub fn point_jacobian(&self, link: usize, p: &Vector3<f64>, jac: &mut [f64]) {
+        assert_eq!(jac.len(), 3 * self.dof(), "J is 3 x n");
+        jac.fill(0.0);
         for j in 0..link {
-            jac.set_column(j, &self.z(j).cross(&(p - self.origin(j))));
+            set_column(jac, j, &self.z(j).cross(&(p - self.origin(j))));
         }
-        jac
     }
 
-    /// Time derivative of [`ChainFrames::point_jacobian`] along the joint velocities `thetadot`.
+    /// Writes the time derivative of [`ChainFrames::point_jacobian`] along the joint
+    /// velocities `thetadot` into `jdot`.
     pub fn point_jacobian_dot(
         &self,
         link: usize,
         p: &Vector3<f64>,
-        thetadot: &SVector<f64, N>,
-    ) -> SMatrix<f64, 3, N> {
-        let pdot = self.point_jacobian(link, p) * thetadot;
-        let mut jdot = SMatrix::<f64, 3, N>::zeros();
+        thetadot: &[f64],
+        jdot: &mut [f64],
+    ) {
+        assert_eq!(jdot.len(), 3 * self.dof(), "Jdot is 3 x n");
+        // pdot = J thetadot, column by column in joint order.
+        let mut pdot = Vector3::zeros();
+        for (j, v) in thetadot.iter().enumerate().take(link) {
+            pdot += self.z(j).cross(&(p - self.origin(j))) * *v;
+        }
+        jdot.fill(0.0);
         let mut omega = Vector3::zeros();
         let mut v_origin = Vector3::zeros();
-        for j in 0..link {
+        for (j, &v) in thetadot.iter().enumerate().take(link) {
             let z = self.z(j);
             let zdot = omega.cross(&z);
             let col = zdot.cross(&(p - self.origin(j))) + z.cross(&(pdot - v_origin));
-            jdot.set_column(j, &col);
-            omega += z * thetadot[j];
+            set_column(jdot, j, &col);
+            omega += z * v;
             v_origin += omega.cross(&(self.origin(j + 1) - self.origin(j)));
         }
-        jdot
     }
 
-    /// Angular-velocity Jacobian (3 x N) of link `link` (`1..=N`).
-    pub fn angular_jacobian(&self, link: usize) -> SMatrix<f64, 3, N> {
-        let mut jac = SMatrix::<f64, 3, N>::zeros();
+    /// Writes the angular-velocity Jacobian (3 x n) of link `link` (`1..=n`) into `jac`.
+    pub fn angular_jacobian(&self, link: usize, jac: &mut [f64]) {
+        assert_eq!(jac.len(), 3 * self.dof(), "J is 3 x n");
+        jac.fill(0.0);
         for j in 0..link {
-            jac.set_column(j, &self.z(j));
+            set_column(jac, j, &self.z(j));
         }
-        jac
     }
 
-    /// Time derivative of [`ChainFrames::angular_jacobian`] along `thetadot`.
-    pub fn angular_jacobian_dot(
-        &self,
-        link: usize,
-        thetadot: &SVector<f64, N>,
-    ) -> SMatrix<f64, 3, N> {
-        let mut jdot = SMatrix::<f64, 3, N>::zeros();
+    /// Writes the time derivative of [`ChainFrames::angular_jacobian`] along `thetadot` into
+    /// `jdot`.
+    pub fn angular_jacobian_dot(&self, link: usize, thetadot: &[f64], jdot: &mut [f64]) {
+        assert_eq!(jdot.len(), 3 * self.dof(), "Jdot is 3 x n");
+        jdot.fill(0.0);
         let mut omega = Vector3::zeros();
-        for j in 0..link {
+        for (j, &v) in thetadot.iter().enumerate().take(link) {
             let z = self.z(j);
-            jdot.set_column(j, &omega.cross(&z));
-            omega += z * thetadot[j];
+            set_column(jdot, j, &omega.cross(&z));
+            omega += z * v;
         }
-        jdot
     }
 }

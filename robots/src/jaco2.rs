@@ -33,8 +33,9 @@
 
 use std::f64::consts::PI;
 
-use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
+use nalgebra::{DVector, Matrix3, SMatrix, SVector, Vector3};
 
+use crate::data_robot::DataRobot;
 use crate::dh::{DhChain, DhParam, Frame};
 use crate::jaco2_dynamics::{jaco2_bodies, G0};
 use crate::rigid_body::RigidChain;
@@ -107,15 +108,15 @@ pub const EXP2_WRIST: Wrist = Wrist {
 pub const EFFORT_LIMITS: [f64; 6] = [40.0, 80.0, 40.0, 20.0, 20.0, 20.0];
 
 /// The Jaco2 DH table for a given D6 (D4 = D5 = 0.0741, aa = pi/6).
-pub fn jaco2_dh(d6: f64) -> [DhParam; 6] {
+pub fn jaco2_dh(d6: f64) -> Vec<DhParam> {
     jaco2_dh_wrist(Wrist { d6, ..PEN_WRIST })
 }
 
 /// The Jaco2 DH table (`docs/robots.md`) for a given wrist, with k = sin(aa)/sin(2aa).
-pub fn jaco2_dh_wrist(w: Wrist) -> [DhParam; 6] {
+pub fn jaco2_dh_wrist(w: Wrist) -> Vec<DhParam> {
     let aa = w.half_angle;
     let k = aa.sin() / (2.0 * aa).sin();
-    [
+    vec![
         DhParam::new(0.0, PI / 2.0, D1),
         DhParam::new(D2, PI, 0.0),
         DhParam::new(0.0, PI / 2.0, -E2),
@@ -139,142 +140,144 @@ fn rot_y(a: f64) -> Matrix3<f64> {
 
 /// The papers' joint limits (the group's code, in degrees): theta2 in [-137, 223] deg,
 /// theta3 in [-289, 71] deg, joints 1, 4, 5, 6 in [-1e4, 1e4] deg; |thetadot| <= 1.5 rad/s.
-fn papers_limits() -> JointLimits<6> {
+fn papers_limits() -> JointLimits {
     let deg = PI / 180.0;
     let upper = [1e4, 223.0, 71.0, 1e4, 1e4, 1e4];
     let lower = [-1e4, -137.0, -289.0, -1e4, -1e4, -1e4];
     JointLimits {
-        theta_min: SVector::from(lower) * deg,
-        theta_max: SVector::from(upper) * deg,
-        thetadot_min: SVector::repeat(-1.5),
-        thetadot_max: SVector::repeat(1.5),
+        theta_min: DVector::from_column_slice(&lower) * deg,
+        theta_max: DVector::from_column_slice(&upper) * deg,
+        thetadot_min: DVector::repeat(6, -1.5),
+        thetadot_max: DVector::repeat(6, 1.5),
     }
 }
 
-/// A Jaco2 model: kinematic chain to the task point, joint limits, and the physical arm's
-/// rigid-body model (see [`crate::jaco2_dynamics`]).
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// The papers' initial joint vector theta0 (jia2019, zhong2021, zhang2018; kong2019's Jaco2
+/// runs), at which the Jaco2 models state their check values.
+pub const PAPERS_THETA0: [f64; 6] = [1.675, 2.79, -3.216, 4.187, -1.71, -2.95];
+/// The group's EXP2 theta0, at which `jaco2-pen-exp2` states its check values.
+pub const EXP2_THETA0: [f64; 6] = [1.670, 2.845, -3.218, 4.182, -1.715, -2.655];
+
+/// A Jaco2 model: kinematic chain to the task point, joint limits (a [`DataRobot`] built in
+/// code), and the physical arm's rigid-body model (see [`crate::jaco2_dynamics`]).
+#[derive(Clone, Debug, PartialEq)]
 pub struct Jaco2 {
-    name: &'static str,
-    chain: DhChain<6>,
-    tip: Vector3<f64>,
-    limits: JointLimits<6>,
+    arm: DataRobot,
     dynamics: RigidChain<6>,
 }
 
 impl Jaco2 {
-    /// The papers' model `jaco2-pen`: D6 = 0.1425, pen tip (0, -0.075, 0) in frame 6, base tilt
-    /// `Rx(-0.02) Ry(-0.05)`. Limits from the group's code: theta2 in [-137, 223] deg,
-    /// theta3 in [-289, 71] deg, joints 1, 4, 5, 6 in [-1e4, 1e4] deg; |thetadot| <= 1.5 rad/s.
+    /// The papers' pen model (`jaco2-pen`).
     pub fn pen() -> Self {
         Self::pen_with_wrist(JACO2_PEN, PEN_WRIST)
     }
 
-    /// The group's EXP2 model `jaco2-pen-exp2` (`docs/group-code.md`): `jaco2-pen` with the wrist
-    /// D4 = D5 = 0.07433, D6 = 0.13, aa = 11 pi / 72 ([`EXP2_WRIST`]); same pen tip, tilt and
-    /// limits, and the same rigid-body model (the group's code does no dynamics).
+    /// The group's EXP2 pen model (`jaco2-pen-exp2`).
     pub fn pen_exp2() -> Self {
         Self::pen_with_wrist(JACO2_PEN_EXP2, EXP2_WRIST)
     }
 
-    /// A pen model named `name`: the chain with wrist `w`, pen tip (0, -0.075, 0) in frame 6,
-    /// base tilt `Rx(-0.02) Ry(-0.05)`, the papers' limits, the physical arm's dynamics.
+    /// A pen model (pen tip, base tilt, the papers' limits) with the wrist `w`, called `name`.
     pub fn pen_with_wrist(name: &'static str, w: Wrist) -> Self {
+        let pose = if name == JACO2_PEN_EXP2 {
+            EXP2_THETA0
+        } else {
+            PAPERS_THETA0
+        };
         Jaco2 {
-            name,
-            chain: DhChain::new(jaco2_dh_wrist(w))
-                .with_base(Frame::rotation(rot_x(TILT_X) * rot_y(TILT_Y))),
-            tip: Vector3::from(PEN_TIP),
-            limits: papers_limits(),
+            arm: DataRobot::from_chain(
+                name,
+                DhChain::new(jaco2_dh_wrist(w))
+                    .with_base(Frame::rotation(rot_x(TILT_X) * rot_y(TILT_Y))),
+                Vector3::from(PEN_TIP),
+                papers_limits(),
+                pose.to_vec(),
+            ),
             dynamics: jaco2_rigid_chain(),
         }
     }
 
-    /// `jaco2-hand`: Kinova's kinematics (D6 = 0.16, hand centre, no tilt) with the papers'
-    /// joint limits, so that a run differs from `jaco2-pen` by the task point alone (the
-    /// model check of jia2019: joint 6 cannot move the hand centre).
+    /// Kinova's model with the papers' limits (`jaco2-hand`).
     pub fn hand() -> Self {
-        Jaco2 {
-            name: JACO2_HAND,
-            limits: papers_limits(),
-            ..Self::kinova()
-        }
+        Self::kinova_as(JACO2_HAND, papers_limits())
     }
 
-    /// Kinova's model `jaco2`: D6 = 0.16, task point = origin of frame 6 (hand centre), no tilt.
-    /// Kinova's physical limits: theta2 in [-0.7505, 3.8921], theta3 in [-4.3808, 1.2392], joints
-    /// 1, 4, 5, 6 unlimited; |thetadot| <= 0.6283 (joints 1-3) and 0.8378 rad/s (joints 4-6).
+    /// Kinova's own model (`jaco2`): D6 = 0.16, hand centre, no tilt, Kinova's limits.
     pub fn kinova() -> Self {
         let inf = f64::INFINITY;
-        let vmax = SVector::from([0.6283, 0.6283, 0.6283, 0.8378, 0.8378, 0.8378]);
-        Jaco2 {
-            name: JACO2,
-            chain: DhChain::new(jaco2_dh(D6_KINOVA)),
-            tip: Vector3::zeros(),
-            limits: JointLimits {
-                theta_min: SVector::from([-inf, -0.7505, -4.3808, -inf, -inf, -inf]),
-                theta_max: SVector::from([inf, 3.8921, 1.2392, inf, inf, inf]),
-                thetadot_min: -vmax,
+        let vmax = DVector::from_column_slice(&[0.6283, 0.6283, 0.6283, 0.8378, 0.8378, 0.8378]);
+        Self::kinova_as(
+            JACO2,
+            JointLimits {
+                theta_min: DVector::from_column_slice(&[-inf, -0.7505, -4.3808, -inf, -inf, -inf]),
+                theta_max: DVector::from_column_slice(&[inf, 3.8921, 1.2392, inf, inf, inf]),
+                thetadot_min: -&vmax,
                 thetadot_max: vmax,
             },
+        )
+    }
+
+    fn kinova_as(name: &'static str, limits: JointLimits) -> Self {
+        Jaco2 {
+            arm: DataRobot::from_chain(
+                name,
+                DhChain::new(jaco2_dh(D6_KINOVA)),
+                Vector3::zeros(),
+                limits,
+                PAPERS_THETA0.to_vec(),
+            ),
             dynamics: jaco2_rigid_chain(),
         }
     }
 
-    /// The kinematic chain to the task point (including the base tilt of the pen model).
-    pub fn chain(&self) -> &DhChain<6> {
-        &self.chain
+    /// The kinematic model (chain, task point, limits, stated pose).
+    pub fn arm(&self) -> &DataRobot {
+        &self.arm
     }
 
-    /// Task point in DH frame 6 (m).
+    /// The DH chain to the task point.
+    pub fn chain(&self) -> &DhChain {
+        self.arm.chain()
+    }
+
+    /// The task point in frame 6 (m).
     pub fn tip(&self) -> Vector3<f64> {
-        self.tip
+        self.arm.tool()
     }
 
-    /// Rigid-body model of the physical arm (D6 = 0.16 chain, untilted DH frame 0, gravity
-    /// (0, 0, -9.81)), shared by both variants.
+    /// The rigid-body model (Kinova's chain, whatever the task point).
     pub fn rigid_chain(&self) -> &RigidChain<6> {
         &self.dynamics
     }
 }
 
-impl Robot<6> for Jaco2 {
-    fn name(&self) -> &'static str {
-        self.name
+impl Robot for Jaco2 {
+    fn name(&self) -> &str {
+        self.arm.name()
     }
 
-    fn position(&self, theta: &SVector<f64, 6>) -> Vector3<f64> {
-        self.chain.frames(theta).frame(6).transform_point(&self.tip)
+    fn dof(&self) -> usize {
+        6
     }
 
-    fn jacobian(&self, theta: &SVector<f64, 6>) -> SMatrix<f64, 3, 6> {
-        let frames = self.chain.frames(theta);
-        let p = frames.frame(6).transform_point(&self.tip);
-        frames.point_jacobian(6, &p)
+    fn position(&self, theta: &[f64]) -> Vector3<f64> {
+        self.arm.position(theta)
     }
 
-    fn jacobian_dot(
-        &self,
-        theta: &SVector<f64, 6>,
-        thetadot: &SVector<f64, 6>,
-    ) -> SMatrix<f64, 3, 6> {
-        let frames = self.chain.frames(theta);
-        let p = frames.frame(6).transform_point(&self.tip);
-        frames.point_jacobian_dot(6, &p, thetadot)
+    fn jacobian(&self, theta: &[f64], jac: &mut [f64]) {
+        self.arm.jacobian(theta, jac)
     }
 
-    fn limits(&self) -> JointLimits<6> {
-        self.limits
+    fn jacobian_dot(&self, theta: &[f64], thetadot: &[f64], jdot: &mut [f64]) {
+        self.arm.jacobian_dot(theta, thetadot, jdot)
     }
 
-    /// The origins of DH frames 0..=6 (frame 0 is the base, the world origin), then the task
-    /// point.
-    fn skeleton(&self, theta: &SVector<f64, 6>) -> Vec<Vector3<f64>> {
-        let frames = self.chain.frames(theta);
-        (0..=6)
-            .map(|k| frames.origin(k))
-            .chain(std::iter::once(frames.frame(6).transform_point(&self.tip)))
-            .collect()
+    fn limits(&self) -> &JointLimits {
+        self.arm.limits()
+    }
+
+    fn skeleton(&self, theta: &[f64]) -> Vec<Vector3<f64>> {
+        self.arm.skeleton(theta)
     }
 }
 
@@ -287,24 +290,29 @@ pub fn jaco2_rigid_chain() -> RigidChain<6> {
     }
 }
 
-impl Dynamics<6> for Jaco2 {
-    fn inertia(&self, theta: &SVector<f64, 6>) -> SMatrix<f64, 6, 6> {
-        self.rigid_chain().inertia(theta)
+/// `x` as the Jaco2's joint vector.
+fn joints(x: &[f64]) -> SVector<f64, 6> {
+    SVector::from_column_slice(x)
+}
+
+impl Dynamics for Jaco2 {
+    fn inertia(&self, theta: &[f64], h: &mut [f64]) {
+        h.copy_from_slice(self.dynamics.inertia(&joints(theta)).as_slice());
     }
 
-    fn coriolis(&self, theta: &SVector<f64, 6>, thetadot: &SVector<f64, 6>) -> SVector<f64, 6> {
-        self.rigid_chain().coriolis(theta, thetadot)
+    fn coriolis(&self, theta: &[f64], thetadot: &[f64], c: &mut [f64]) {
+        let v = self.dynamics.coriolis(&joints(theta), &joints(thetadot));
+        c.copy_from_slice(v.as_slice());
     }
 
-    fn coriolis_matrix(
-        &self,
-        theta: &SVector<f64, 6>,
-        thetadot: &SVector<f64, 6>,
-    ) -> SMatrix<f64, 6, 6> {
-        self.rigid_chain().coriolis_matrix(theta, thetadot)
+    fn coriolis_matrix(&self, theta: &[f64], thetadot: &[f64], cm: &mut [f64]) {
+        let m: SMatrix<f64, 6, 6> = self
+            .dynamics
+            .coriolis_matrix(&joints(theta), &joints(thetadot));
+        cm.copy_from_slice(m.as_slice());
     }
 
-    fn gravity(&self, theta: &SVector<f64, 6>) -> SVector<f64, 6> {
-        self.rigid_chain().gravity_torques(theta)
+    fn gravity(&self, theta: &[f64], g: &mut [f64]) {
+        g.copy_from_slice(self.dynamics.gravity_torques(&joints(theta)).as_slice());
     }
 }

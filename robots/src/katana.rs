@@ -27,7 +27,7 @@
 //!
 //! Joint limits: kong2019's scheme enforces none, so all limits are infinite.
 
-use nalgebra::{SMatrix, SVector, Vector3};
+use nalgebra::{DVector, MatrixViewMut, Vector3, U3, U5};
 
 use crate::{JointLimits, Robot};
 
@@ -35,7 +35,7 @@ use crate::{JointLimits, Robot};
 pub const KATANA6M180: &str = "katana6m180";
 
 /// The Katana 6M180 position model of kong2019, eq. (2).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Katana6m180 {
     /// Base height l1 (m).
     pub l1: f64,
@@ -47,6 +47,8 @@ pub struct Katana6m180 {
     pub l4: f64,
     /// Gripper length l5 (m); only l4 + l5 matters.
     pub l5: f64,
+    /// No joint limits: kong2019 states none.
+    limits: JointLimits,
 }
 
 /// Sines and cosines shared by the position, Jacobian and Jdot.
@@ -62,7 +64,8 @@ struct Trig {
 }
 
 impl Trig {
-    fn new(theta: &SVector<f64, 5>) -> Self {
+    fn new(theta: &[f64]) -> Self {
+        assert_eq!(theta.len(), 5, "katana6m180: 5 joint angles");
         let (s1, c1) = theta[0].sin_cos();
         let (s2, c2) = theta[1].sin_cos();
         let (s23, c23) = (theta[1] + theta[2]).sin_cos();
@@ -89,6 +92,12 @@ impl Katana6m180 {
             l3: 0.139,
             l4: 0.1523,
             l5: 0.1505,
+            limits: JointLimits {
+                theta_min: DVector::repeat(5, f64::NEG_INFINITY),
+                theta_max: DVector::repeat(5, f64::INFINITY),
+                thetadot_min: DVector::repeat(5, f64::NEG_INFINITY),
+                thetadot_max: DVector::repeat(5, f64::INFINITY),
+            },
         }
     }
 
@@ -114,25 +123,30 @@ impl Default for Katana6m180 {
     }
 }
 
-impl Robot<5> for Katana6m180 {
+impl Robot for Katana6m180 {
     fn name(&self) -> &'static str {
         KATANA6M180
     }
 
-    fn position(&self, theta: &SVector<f64, 5>) -> Vector3<f64> {
+    fn dof(&self) -> usize {
+        5
+    }
+
+    fn position(&self, theta: &[f64]) -> Vector3<f64> {
         let t = Trig::new(theta);
         let (h, _) = self.reach(&t);
         let z = self.l1 - self.wrist() * t.c234 + self.l2 * t.s2 + self.l3 * t.s23;
         Vector3::new(t.c1 * h, t.s1 * h, z)
     }
 
-    fn jacobian(&self, theta: &SVector<f64, 5>) -> SMatrix<f64, 3, 5> {
+    fn jacobian(&self, theta: &[f64], jac: &mut [f64]) {
         let t = Trig::new(theta);
         let (h, dh) = self.reach(&t);
         let z4 = self.wrist() * t.s234;
         let z3 = self.l3 * t.c23 + z4;
         let dz = [h, z3, z4];
-        let mut jac = SMatrix::<f64, 3, 5>::zeros();
+        let mut jac = MatrixViewMut::<f64, U3, U5>::from_slice(jac);
+        jac.fill(0.0);
         jac[(0, 0)] = -t.s1 * h;
         jac[(1, 0)] = t.c1 * h;
         for k in 0..3 {
@@ -140,14 +154,9 @@ impl Robot<5> for Katana6m180 {
             jac[(1, k + 1)] = t.s1 * dh[k];
             jac[(2, k + 1)] = dz[k];
         }
-        jac
     }
 
-    fn jacobian_dot(
-        &self,
-        theta: &SVector<f64, 5>,
-        thetadot: &SVector<f64, 5>,
-    ) -> SMatrix<f64, 3, 5> {
+    fn jacobian_dot(&self, theta: &[f64], thetadot: &[f64], jdot: &mut [f64]) {
         let t = Trig::new(theta);
         let l = self.wrist();
         let (h, dh) = self.reach(&t);
@@ -163,7 +172,8 @@ impl Robot<5> for Katana6m180 {
         let dz4_dot = l * t.c234 * w234;
         let dz3_dot = -self.l3 * t.s23 * w23 + dz4_dot;
         let dz_dot = [h_dot, dz3_dot, dz4_dot];
-        let mut jdot = SMatrix::<f64, 3, 5>::zeros();
+        let mut jdot = MatrixViewMut::<f64, U3, U5>::from_slice(jdot);
+        jdot.fill(0.0);
         jdot[(0, 0)] = -t.c1 * w1 * h - t.s1 * h_dot;
         jdot[(1, 0)] = -t.s1 * w1 * h + t.c1 * h_dot;
         for k in 0..3 {
@@ -171,22 +181,16 @@ impl Robot<5> for Katana6m180 {
             jdot[(1, k + 1)] = t.c1 * w1 * dh[k] + t.s1 * dh_dot[k];
             jdot[(2, k + 1)] = dz_dot[k];
         }
-        jdot
     }
 
-    fn limits(&self) -> JointLimits<5> {
-        JointLimits {
-            theta_min: SVector::repeat(f64::NEG_INFINITY),
-            theta_max: SVector::repeat(f64::INFINITY),
-            thetadot_min: SVector::repeat(f64::NEG_INFINITY),
-            thetadot_max: SVector::repeat(f64::INFINITY),
-        }
+    fn limits(&self) -> &JointLimits {
+        &self.limits
     }
 
     /// Base, shoulder, elbow, wrist and task point, from the pieces of eq. (2):
     /// shoulder `(0, 0, l1)`, elbow `shoulder + l2 [C1 C2, S1 C2, S2]`, wrist
     /// `elbow + l3 [C1 C23, S1 C23, S23]`, task point `wrist + L [C1 S234, S1 S234, -C234]`.
-    fn skeleton(&self, theta: &SVector<f64, 5>) -> Vec<Vector3<f64>> {
+    fn skeleton(&self, theta: &[f64]) -> Vec<Vector3<f64>> {
         let t = Trig::new(theta);
         let base = Vector3::zeros();
         let shoulder = Vector3::new(0.0, 0.0, self.l1);

@@ -1,9 +1,9 @@
 //! Robot models for driftbench: forward kinematics of the task point, the 3 x n position
 //! Jacobian and its time derivative, joint limits, and (for the Jaco2) rigid-body dynamics.
 //!
-//! Every quantity uses fixed-size nalgebra types: `SVector<f64, N>` for joint vectors,
-//! `Vector3<f64>` for task-space points and `SMatrix<f64, 3, N>` for Jacobians, so no call in
-//! the simulation's hot path allocates.
+//! The joint count n is a run-time value ([`Robot::dof`]): joint vectors are slices, task-space
+//! points `Vector3<f64>`, and Jacobians are written into the caller's buffers (allocated once
+//! per run), so no call in the simulation's hot path allocates.
 //!
 //! Models (see `docs/robots.md`):
 //! - [`Jaco2::pen`] — the papers' Jaco2 (`jaco2-pen`): D6 = 0.1425, pen tip (0, -0.075, 0) in
@@ -12,9 +12,9 @@
 //!   D6 = 0.13, wrist half-angle 11 pi / 72, same pen tip and tilt.
 //! - [`Jaco2::kinova`] — Kinova's own model (`jaco2`): D6 = 0.16, hand centre, no tilt.
 //! - [`Katana6m180`] — kong2019's eq. (2), 5 joints.
-//! - [`Panda`] — Franka Emika Panda (`panda`), 7 joints, Franka's modified-DH table, flange
+//! - [`Panda::model`] — Franka Emika Panda (`panda`), 7 joints, Franka's modified-DH table, flange
 //!   centre.
-//! - [`NLink`] — the synthetic n-link family (`nlink-3` .. `nlink-30`): a yaw joint and a planar
+//! - [`NLink`] — the synthetic n-link family (`nlink-<n>`, any n from 2 to [`nlink::NLINK_MAX`]): a yaw joint and a planar
 //!   pitch chain, for cost scaling.
 //! - [`DataRobot`] — any serial arm declared by a robot file ([`robot_file`], TOML): the
 //!   built-in files `robots/data/*.toml` (e.g. `puma560`, and data twins of the DH models above)
@@ -25,13 +25,13 @@
 //! Coriolis matrices), [`jaco2`] (Jaco2 kinematics and its [`Dynamics`] implementation),
 //! [`jaco2_dynamics`] (the Jaco2's inertial table), [`katana`] (Katana 6M180), [`panda`] (Franka
 //! Emika Panda), [`nlink`] (the n-link family), [`robot_file`] (the robot file format and its
-//! validation), [`data_robot`] (the model of a robot file, the built-in files), [`joint_counts`]
-//! (the joint counts a robot file may have), [`registry`] (the one map from the robot names of
+//! validation), [`data_robot`] (the model of a robot file, the built-in files), [`limited`] (a
+//! robot with an experiment's limits), [`registry`] (the one map from the robot names of
 //! experiment files to models).
 
 #![deny(missing_docs)]
 
-use nalgebra::{SMatrix, SVector, Vector3};
+use nalgebra::{DMatrix, DVector, Matrix3xX, Vector3};
 
 pub mod chain;
 pub mod data_robot;
@@ -39,78 +39,115 @@ pub mod dh;
 pub mod geometric_jacobian;
 pub mod jaco2;
 pub mod jaco2_dynamics;
-pub mod joint_counts;
 pub mod katana;
 pub mod limited;
 pub mod nlink;
-pub mod nlink_dyn;
 pub mod panda;
 pub mod registry;
 pub mod rigid_body;
 pub mod robot_file;
 pub mod urdf;
 
-pub use data_robot::{DataModel, DataRobot};
+pub use data_robot::DataRobot;
 pub use jaco2::{Jaco2, JACO2, JACO2_HAND, JACO2_PEN, JACO2_PEN_EXP2};
 pub use katana::{Katana6m180, KATANA6M180};
 pub use nlink::NLink;
-pub use nlink_dyn::NLinkDyn;
 pub use panda::{Panda, PANDA};
 
 /// Number of task-space coordinates (end-effector position only) in every paper.
 pub const M: usize = 3;
 
-/// Joint-angle and joint-velocity limits, elementwise; `f64::INFINITY` where unlimited.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct JointLimits<const N: usize> {
+/// Joint-angle and joint-velocity limits, elementwise (one entry per joint); `f64::INFINITY`
+/// where unlimited.
+#[derive(Clone, Debug, PartialEq)]
+pub struct JointLimits {
     /// Lower joint-angle limits (rad).
-    pub theta_min: SVector<f64, N>,
+    pub theta_min: DVector<f64>,
     /// Upper joint-angle limits (rad).
-    pub theta_max: SVector<f64, N>,
+    pub theta_max: DVector<f64>,
     /// Lower joint-velocity limits (rad/s).
-    pub thetadot_min: SVector<f64, N>,
+    pub thetadot_min: DVector<f64>,
     /// Upper joint-velocity limits (rad/s).
-    pub thetadot_max: SVector<f64, N>,
+    pub thetadot_max: DVector<f64>,
 }
 
-/// A serial arm whose task point is tracked in position (m = 3).
-pub trait Robot<const N: usize>: Send + Sync {
-    /// Model name as used in experiment files (`jaco2-pen`, `jaco2`, `katana6m180`, `panda`,
-    /// `nlink-7`, `puma560`); a data robot's name is read from its file.
-    fn name(&self) -> &str;
-    /// Task-point position f(theta) in the world frame.
-    fn position(&self, theta: &SVector<f64, N>) -> Vector3<f64>;
-    /// Position Jacobian J(theta) = df/dtheta.
-    fn jacobian(&self, theta: &SVector<f64, N>) -> SMatrix<f64, 3, N>;
-    /// Time derivative dJ/dt along thetadot.
-    fn jacobian_dot(
-        &self,
-        theta: &SVector<f64, N>,
-        thetadot: &SVector<f64, N>,
-    ) -> SMatrix<f64, 3, N>;
-    /// Joint limits the papers' schemes use.
-    fn limits(&self) -> JointLimits<N>;
-    /// Points of the arm from the base to the task point, for drawing (allocates; not for the
-    /// hot path). The default is the world origin and the task point; a model overrides it
-    /// with its joint origins in between.
-    fn skeleton(&self, theta: &SVector<f64, N>) -> Vec<Vector3<f64>> {
-        vec![Vector3::zeros(), self.position(theta)]
+impl JointLimits {
+    /// The limits of `n` joints, each `[-theta_max, theta_max]` and `[-thetadot_max,
+    /// thetadot_max]`.
+    pub fn symmetric(theta_max: &[f64], thetadot_max: &[f64]) -> Self {
+        let theta_max = DVector::from_column_slice(theta_max);
+        let thetadot_max = DVector::from_column_slice(thetadot_max);
+        JointLimits {
+            theta_min: -&theta_max,
+            theta_max,
+            thetadot_min: -&thetadot_max,
+            thetadot_max,
+        }
+    }
+
+    /// The number of joints.
+    pub fn dof(&self) -> usize {
+        self.theta_min.len()
     }
 }
 
-/// Rigid-body dynamics H(theta) thetaddot + c(theta, thetadot) + g(theta) = tau.
-pub trait Dynamics<const N: usize>: Robot<N> {
-    /// Joint-space inertia matrix H(theta) (symmetric positive definite).
-    fn inertia(&self, theta: &SVector<f64, N>) -> SMatrix<f64, N, N>;
-    /// Coriolis and centrifugal vector c(theta, thetadot).
-    fn coriolis(&self, theta: &SVector<f64, N>, thetadot: &SVector<f64, N>) -> SVector<f64, N>;
-    /// A Coriolis matrix C(theta, thetadot) with c = C thetadot and Hdot - 2C skew-symmetric
-    /// (Christoffel symbols of the first kind).
-    fn coriolis_matrix(
-        &self,
-        theta: &SVector<f64, N>,
-        thetadot: &SVector<f64, N>,
-    ) -> SMatrix<f64, N, N>;
-    /// Gravity vector g(theta) = dU/dtheta.
-    fn gravity(&self, theta: &SVector<f64, N>) -> SVector<f64, N>;
+/// A serial arm whose task point is tracked in position (m = 3), with its joint count `n` a
+/// run-time value ([`Robot::dof`]).
+///
+/// Joint vectors are slices of length `n`; Jacobians are written, column-major 3 x n, into the
+/// caller's buffer of length `3 n` (e.g. a QP's `A`, allocated once per run), so no call in the
+/// simulation's hot path allocates.
+pub trait Robot: Send + Sync {
+    /// Model name as used in experiment files (`jaco2-pen`, `jaco2`, `katana6m180`, `panda`,
+    /// `nlink-7`, `puma560`); a data robot's name is read from its file.
+    fn name(&self) -> &str;
+    /// The number of joints n.
+    fn dof(&self) -> usize;
+    /// Task-point position f(theta) in the world frame.
+    fn position(&self, theta: &[f64]) -> Vector3<f64>;
+    /// Writes the position Jacobian J(theta) = df/dtheta (3 x n, column-major) into `jac`.
+    fn jacobian(&self, theta: &[f64], jac: &mut [f64]);
+    /// Writes the time derivative dJ/dt along thetadot (3 x n, column-major) into `jdot`.
+    fn jacobian_dot(&self, theta: &[f64], thetadot: &[f64], jdot: &mut [f64]);
+    /// Joint limits the papers' schemes use.
+    fn limits(&self) -> &JointLimits;
+    /// Points of the arm from the base to the task point, for drawing (allocates; not for the
+    /// hot path). The default is the world origin and the task point; a model overrides it
+    /// with its joint origins in between.
+    fn skeleton(&self, theta: &[f64]) -> Vec<Vector3<f64>> {
+        vec![Vector3::zeros(), self.position(theta)]
+    }
+    /// J(theta) as a new matrix (allocates: for set-up, checks and tests).
+    fn jacobian_matrix(&self, theta: &[f64]) -> Matrix3xX<f64> {
+        let mut jac = Matrix3xX::zeros(self.dof());
+        self.jacobian(theta, jac.as_mut_slice());
+        jac
+    }
+    /// dJ/dt as a new matrix (allocates: for set-up, checks and tests).
+    fn jacobian_dot_matrix(&self, theta: &[f64], thetadot: &[f64]) -> Matrix3xX<f64> {
+        let mut jdot = Matrix3xX::zeros(self.dof());
+        self.jacobian_dot(theta, thetadot, jdot.as_mut_slice());
+        jdot
+    }
+}
+
+/// Rigid-body dynamics H(theta) thetaddot + c(theta, thetadot) + g(theta) = tau, each written
+/// into the caller's buffer (n x n matrices column-major).
+pub trait Dynamics: Robot {
+    /// Writes the joint-space inertia matrix H(theta) (symmetric positive definite) into `h`.
+    fn inertia(&self, theta: &[f64], h: &mut [f64]);
+    /// Writes the Coriolis and centrifugal vector c(theta, thetadot) into `c`.
+    fn coriolis(&self, theta: &[f64], thetadot: &[f64], c: &mut [f64]);
+    /// Writes a Coriolis matrix C(theta, thetadot) with c = C thetadot and Hdot - 2C
+    /// skew-symmetric (Christoffel symbols of the first kind) into `cm`.
+    fn coriolis_matrix(&self, theta: &[f64], thetadot: &[f64], cm: &mut [f64]);
+    /// Writes the gravity vector g(theta) = dU/dtheta into `g`.
+    fn gravity(&self, theta: &[f64], g: &mut [f64]);
+    /// H(theta) as a new matrix (allocates: for set-up, checks and tests).
+    fn inertia_matrix(&self, theta: &[f64]) -> DMatrix<f64> {
+        let n = self.dof();
+        let mut h = DMatrix::zeros(n, n);
+        self.inertia(theta, h.as_mut_slice());
+        h
+    }
 }

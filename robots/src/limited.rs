@@ -3,48 +3,57 @@
 //! Kinematics are the wrapped model's; only [`Robot::limits`] changes.
 
 use crate::{JointLimits, Robot};
-use nalgebra::{SMatrix, SVector, Vector3};
+use nalgebra::Vector3;
 use std::sync::Arc;
 
 /// `robot` with the limits `limits` (see the module docs).
-pub struct Limited<const N: usize> {
-    robot: Arc<dyn Robot<N>>,
-    limits: JointLimits<N>,
+pub struct Limited {
+    robot: Arc<dyn Robot>,
+    limits: JointLimits,
 }
 
-impl<const N: usize> Limited<N> {
-    /// `robot` with `limits` in place of its own.
-    pub fn new(robot: Arc<dyn Robot<N>>, limits: JointLimits<N>) -> Self {
-        Self { robot, limits }
+impl Limited {
+    /// `robot` with `limits` in place of its own; `None` unless `limits` has one entry per joint.
+    pub fn new(robot: Arc<dyn Robot>, limits: JointLimits) -> Option<Self> {
+        let n = robot.dof();
+        [
+            &limits.theta_min,
+            &limits.theta_max,
+            &limits.thetadot_min,
+            &limits.thetadot_max,
+        ]
+        .iter()
+        .all(|v| v.len() == n)
+        .then_some(Self { robot, limits })
     }
 }
 
-impl<const N: usize> Robot<N> for Limited<N> {
+impl Robot for Limited {
     fn name(&self) -> &str {
         self.robot.name()
     }
 
-    fn position(&self, theta: &SVector<f64, N>) -> Vector3<f64> {
+    fn dof(&self) -> usize {
+        self.robot.dof()
+    }
+
+    fn position(&self, theta: &[f64]) -> Vector3<f64> {
         self.robot.position(theta)
     }
 
-    fn jacobian(&self, theta: &SVector<f64, N>) -> SMatrix<f64, 3, N> {
-        self.robot.jacobian(theta)
+    fn jacobian(&self, theta: &[f64], jac: &mut [f64]) {
+        self.robot.jacobian(theta, jac)
     }
 
-    fn jacobian_dot(
-        &self,
-        theta: &SVector<f64, N>,
-        thetadot: &SVector<f64, N>,
-    ) -> SMatrix<f64, 3, N> {
-        self.robot.jacobian_dot(theta, thetadot)
+    fn jacobian_dot(&self, theta: &[f64], thetadot: &[f64], jdot: &mut [f64]) {
+        self.robot.jacobian_dot(theta, thetadot, jdot)
     }
 
-    fn limits(&self) -> JointLimits<N> {
-        self.limits
+    fn limits(&self) -> &JointLimits {
+        &self.limits
     }
 
-    fn skeleton(&self, theta: &SVector<f64, N>) -> Vec<Vector3<f64>> {
+    fn skeleton(&self, theta: &[f64]) -> Vec<Vector3<f64>> {
         self.robot.skeleton(theta)
     }
 }

@@ -1,4 +1,4 @@
-//! The n-link family `nlink-{N}` (N = 3..=30): a synthetic arm for measuring how a scheme's
+//! The n-link family `nlink-{n}` (any n from [`NLINK_MIN`] to [`NLINK_MAX`], a run-time value): a synthetic arm for measuring how a scheme's
 //! cost scales with the number of joints, not a physical robot.
 //!
 //! The papers track the task point in 3-D (m = 3); a strictly planar chain would give `J` a zero
@@ -52,119 +52,101 @@
 
 use std::f64::consts::PI;
 
-use nalgebra::{SMatrix, SVector, Vector3};
+use nalgebra::{DVector, Vector3};
 
 use crate::{JointLimits, Robot};
 
 /// Height of joint 2 (the first pitch joint) above the base (m).
 pub const H0: f64 = 0.3;
+
 /// Total length of the pitch chain, links 2..=N (m).
 pub const REACH: f64 = 1.0;
+
 /// Limit of the pitch joints 2..=N (rad): they range over `[-PITCH_LIMIT, PITCH_LIMIT]`.
 pub const PITCH_LIMIT: f64 = 2.6;
+
 /// Joint-velocity limit of every joint (rad/s).
 pub const VELOCITY_LIMIT: f64 = 2.0;
-/// Smallest number of joints in the family.
-pub const NLINK_MIN: usize = 3;
-/// Largest number of joints in the family.
-pub const NLINK_MAX: usize = 30;
 
-/// Model names `nlink-{N}`, indexed by N (entries below [`NLINK_MIN`] are unused).
-const NAMES: [&str; NLINK_MAX + 1] = [
-    "", "", "", "nlink-3", "nlink-4", "nlink-5", "nlink-6", "nlink-7", "nlink-8", "nlink-9",
-    "nlink-10", "nlink-11", "nlink-12", "nlink-13", "nlink-14", "nlink-15", "nlink-16", "nlink-17",
-    "nlink-18", "nlink-19", "nlink-20", "nlink-21", "nlink-22", "nlink-23", "nlink-24", "nlink-25",
-    "nlink-26", "nlink-27", "nlink-28", "nlink-29", "nlink-30",
-];
+/// The fewest joints of an n-link arm: the yaw joint and one pitch joint.
+pub const NLINK_MIN: usize = 2;
+/// The most joints of an n-link arm the registry builds.
+pub const NLINK_MAX: usize = 1000;
 
-/// The n-link arm with `N` joints (N = 3..=30; other N do not compile):
-///
-/// ```compile_fail
-/// let _ = robots::NLink::<31>::new();
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct NLink<const N: usize> {
-    _in_family: (),
+/// The n-link arm with its joint count n a run-time value (module documentation).
+#[derive(Clone, Debug, PartialEq)]
+pub struct NLink {
+    name: String,
+    limits: JointLimits,
 }
 
-impl<const N: usize> NLink<N> {
-    /// Compile-time check that N is in the family.
-    const IN_FAMILY: () = assert!(N >= NLINK_MIN && N <= NLINK_MAX, "nlink: N must be 3..=30");
-
-    /// The arm (see the module documentation).
-    pub fn new() -> Self {
-        NLink {
-            _in_family: Self::IN_FAMILY,
+impl NLink {
+    /// The arm with `n` joints, or `None` unless `NLINK_MIN <= n <= NLINK_MAX`.
+    pub fn new(n: usize) -> Option<Self> {
+        if !(NLINK_MIN..=NLINK_MAX).contains(&n) {
+            return None;
         }
+        let mut theta_max = vec![PITCH_LIMIT; n];
+        theta_max[0] = PI;
+        Some(NLink {
+            name: format!("nlink-{n}"),
+            limits: JointLimits::symmetric(&theta_max, &vec![VELOCITY_LIMIT; n]),
+        })
     }
 
-    /// Length of every pitch link, `L / (N - 1)` (m).
-    pub fn link_length() -> f64 {
-        link_length(N)
+    /// Length of every pitch link, `L / (n - 1)` (m).
+    pub fn link_length(&self) -> f64 {
+        link_length(self.dof())
     }
 
-    /// The stated home pose: `theta_1 = 0`, `theta_2 = 1.2`, `theta_k = -3 / (N - 1)` for
-    /// k = 3..=N (module documentation).
-    pub fn home() -> SVector<f64, N> {
-        let mut theta = SVector::<f64, N>::zeros();
+    /// The stated home pose: `theta_1 = 0`, `theta_2 = 1.2`, `theta_k = -3 / (n - 1)` for
+    /// k = 3..=n (module documentation).
+    pub fn home(&self) -> DVector<f64> {
+        let mut theta = DVector::zeros(self.dof());
         home_into(theta.as_mut_slice());
         theta
     }
 }
 
-impl<const N: usize> Default for NLink<N> {
-    fn default() -> Self {
-        Self::new()
-    }
-}
-
-impl<const N: usize> Robot<N> for NLink<N> {
-    fn name(&self) -> &'static str {
-        NAMES[N]
+impl Robot for NLink {
+    fn name(&self) -> &str {
+        &self.name
     }
 
-    fn position(&self, theta: &SVector<f64, N>) -> Vector3<f64> {
-        position_of(theta.as_slice())
+    fn dof(&self) -> usize {
+        self.limits.dof()
     }
 
-    fn jacobian(&self, theta: &SVector<f64, N>) -> SMatrix<f64, 3, N> {
-        let mut jac = SMatrix::<f64, 3, N>::zeros();
-        jacobian_into(theta.as_slice(), jac.as_mut_slice());
-        jac
+    fn position(&self, theta: &[f64]) -> Vector3<f64> {
+        assert_eq!(theta.len(), self.dof(), "nlink: one angle per joint");
+        position_of(theta)
     }
 
-    fn jacobian_dot(
-        &self,
-        theta: &SVector<f64, N>,
-        thetadot: &SVector<f64, N>,
-    ) -> SMatrix<f64, 3, N> {
-        let mut jdot = SMatrix::<f64, 3, N>::zeros();
-        jacobian_dot_into(theta.as_slice(), thetadot.as_slice(), jdot.as_mut_slice());
-        jdot
+    fn jacobian(&self, theta: &[f64], jac: &mut [f64]) {
+        assert_eq!(theta.len(), self.dof(), "nlink: one angle per joint");
+        jacobian_into(theta, jac);
     }
 
-    fn limits(&self) -> JointLimits<N> {
-        let mut theta_max = SVector::repeat(PITCH_LIMIT);
-        theta_max[0] = PI;
-        JointLimits {
-            theta_min: -theta_max,
-            theta_max,
-            thetadot_min: SVector::repeat(-VELOCITY_LIMIT),
-            thetadot_max: SVector::repeat(VELOCITY_LIMIT),
-        }
+    fn jacobian_dot(&self, theta: &[f64], thetadot: &[f64], jdot: &mut [f64]) {
+        assert_eq!(theta.len(), self.dof(), "nlink: one angle per joint");
+        assert_eq!(thetadot.len(), self.dof(), "nlink: one rate per joint");
+        jacobian_dot_into(theta, thetadot, jdot);
     }
 
-    /// The base (joint 1's origin, the world origin), joints 2..=N, then the tip: N + 1 points;
-    /// the first segment is the column `h0`, the others the pitch links of length `L / (N - 1)`.
-    fn skeleton(&self, theta: &SVector<f64, N>) -> Vec<Vector3<f64>> {
-        let l = Self::link_length();
+    fn limits(&self) -> &JointLimits {
+        &self.limits
+    }
+
+    fn skeleton(&self, theta: &[f64]) -> Vec<Vector3<f64>> {
+        let n = self.dof();
+        let l = self.link_length();
         let (s1, c1) = theta[0].sin_cos();
-        let mut points = Vec::with_capacity(N + 1);
+        let mut points = Vec::with_capacity(n + 1);
         points.push(Vector3::zeros());
         let (mut r, mut z, mut phi) = (0.0, H0, 0.0);
         points.push(Vector3::new(0.0, 0.0, z));
-        for k in 1..N {
-            phi += theta[k];
+        for t in &theta[1..n] {
+            phi += t;
             let (s, c) = f64::sin_cos(phi);
             r += l * c;
             z += l * s;
@@ -174,16 +156,13 @@ impl<const N: usize> Robot<N> for NLink<N> {
     }
 }
 
-// The kinematics of the module docs on slices, for any n >= 2 joints: the fixed-size
-// [`NLink`] and the dynamic-size [`crate::NLinkDyn`] both call them (one implementation).
-
 /// Length of every pitch link of an n-joint arm, `L / (n - 1)` (m).
-pub(crate) fn link_length(n: usize) -> f64 {
+fn link_length(n: usize) -> f64 {
     REACH / (n - 1) as f64
 }
 
 /// Writes the home pose of an `theta.len()`-joint arm (module documentation).
-pub(crate) fn home_into(theta: &mut [f64]) {
+fn home_into(theta: &mut [f64]) {
     let bend = -3.0 / (theta.len() - 1) as f64;
     for (k, t) in theta.iter_mut().enumerate() {
         *t = match k {
@@ -195,7 +174,7 @@ pub(crate) fn home_into(theta: &mut [f64]) {
 }
 
 /// f(theta).
-pub(crate) fn position_of(theta: &[f64]) -> Vector3<f64> {
+fn position_of(theta: &[f64]) -> Vector3<f64> {
     let l = link_length(theta.len());
     let mut r = 0.0;
     let mut z = H0;
@@ -213,7 +192,7 @@ pub(crate) fn position_of(theta: &[f64]) -> Vector3<f64> {
 /// Writes J(theta) into `jac`, the 3 x n column-major storage (length 3n). A first pass stores
 /// (sin phi_k, cos phi_k) in column k's rows 0 and 1; the backward pass over the suffix sums
 /// reads column j before it overwrites it, so no other scratch is needed.
-pub(crate) fn jacobian_into(theta: &[f64], jac: &mut [f64]) {
+fn jacobian_into(theta: &[f64], jac: &mut [f64]) {
     let n = theta.len();
     assert_eq!(jac.len(), 3 * n, "nlink: J is 3 x n");
     let l = link_length(n);
@@ -239,7 +218,7 @@ pub(crate) fn jacobian_into(theta: &[f64], jac: &mut [f64]) {
 
 /// Writes Jdot(theta, thetadot) into `jdot`, the 3 x n column-major storage: as
 /// [`jacobian_into`], column k first holds (sin phi_k, cos phi_k, w_k).
-pub(crate) fn jacobian_dot_into(theta: &[f64], thetadot: &[f64], jdot: &mut [f64]) {
+fn jacobian_dot_into(theta: &[f64], thetadot: &[f64], jdot: &mut [f64]) {
     let n = theta.len();
     assert_eq!(jdot.len(), 3 * n, "nlink: Jdot is 3 x n");
     let l = link_length(n);

@@ -38,10 +38,11 @@
 
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4};
 
-use nalgebra::{SMatrix, SVector, Vector3};
+use nalgebra::DVector;
 
+use crate::data_robot::DataRobot;
 use crate::dh::{DhChain, ModifiedDhParam};
-use crate::{JointLimits, Robot};
+use crate::JointLimits;
 
 /// Model name of the Franka Emika Panda (flange centre).
 pub const PANDA: &str = "panda";
@@ -69,12 +70,10 @@ pub const Q_MAX: [f64; 7] = [2.8973, 1.7628, 2.8973, -0.0698, 2.8973, 3.7525, 2.
 /// Joint-velocity limits (rad/s), Franka's datasheet; the lower limits are their negatives.
 pub const QDOT_MAX: [f64; 7] = [2.1750, 2.1750, 2.1750, 2.1750, 2.6100, 2.6100, 2.6100];
 
-/// The Panda's kinematic model to the flange centre.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Panda {
-    chain: DhChain<7>,
-    flange: Vector3<f64>,
-}
+/// The Panda: Franka's modified-DH table as a [`DataRobot`] built in code, task point the
+/// flange centre.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Panda;
 
 impl Panda {
     /// Franka's "ready" pose `q = [0, -pi/4, 0, -3pi/4, 0, pi/2, pi/4]` (rad).
@@ -88,82 +87,22 @@ impl Panda {
         FRAC_PI_4,
     ];
 
-    /// The Panda from Franka's modified-DH table, task point the flange centre.
-    pub fn new() -> Self {
-        let (chain, flange) = DhChain::from_modified(PANDA_MDH, PANDA_FLANGE);
-        Panda { chain, flange }
-    }
-
-    /// [`Panda::READY`] as a joint vector.
-    pub fn ready() -> SVector<f64, 7> {
-        SVector::from(Self::READY)
-    }
-
-    /// The equivalent classical chain (see the module documentation).
-    pub fn chain(&self) -> &DhChain<7> {
-        &self.chain
-    }
-
-    /// The flange centre in classical frame 7 (m): `(0, 0, 0.107)`.
-    pub fn flange(&self) -> Vector3<f64> {
-        self.flange
-    }
-}
-
-impl Default for Panda {
-    fn default() -> Self {
-        Self::new()
-    }
-}
-
-impl Robot<7> for Panda {
-    fn name(&self) -> &'static str {
-        PANDA
-    }
-
-    fn position(&self, theta: &SVector<f64, 7>) -> Vector3<f64> {
-        self.chain
-            .frames(theta)
-            .frame(7)
-            .transform_point(&self.flange)
-    }
-
-    fn jacobian(&self, theta: &SVector<f64, 7>) -> SMatrix<f64, 3, 7> {
-        let frames = self.chain.frames(theta);
-        let p = frames.frame(7).transform_point(&self.flange);
-        frames.point_jacobian(7, &p)
-    }
-
-    fn jacobian_dot(
-        &self,
-        theta: &SVector<f64, 7>,
-        thetadot: &SVector<f64, 7>,
-    ) -> SMatrix<f64, 3, 7> {
-        let frames = self.chain.frames(theta);
-        let p = frames.frame(7).transform_point(&self.flange);
-        frames.point_jacobian_dot(7, &p, thetadot)
-    }
-
-    fn limits(&self) -> JointLimits<7> {
-        let vmax = SVector::from(QDOT_MAX);
-        JointLimits {
-            theta_min: SVector::from(Q_MIN),
-            theta_max: SVector::from(Q_MAX),
-            thetadot_min: -vmax,
-            thetadot_max: vmax,
-        }
-    }
-
-    /// The origins of classical frames 0..=7 (frame 0 is the base, the world origin; frames
-    /// 1 and 2 share the shoulder point, frames 6 and 7 the wrist point, as Franka's own frames
-    /// do), then the flange centre: 9 points.
-    fn skeleton(&self, theta: &SVector<f64, 7>) -> Vec<Vector3<f64>> {
-        let frames = self.chain.frames(theta);
-        (0..=7)
-            .map(|k| frames.origin(k))
-            .chain(std::iter::once(
-                frames.frame(7).transform_point(&self.flange),
-            ))
-            .collect()
+    /// The Panda from Franka's modified-DH table (the equivalent classical chain, module
+    /// documentation), task point the flange centre `(0, 0, 0.107)` in classical frame 7,
+    /// Franka's limits, check values stated at [`Panda::READY`].
+    pub fn model() -> DataRobot {
+        let (chain, flange) = DhChain::from_modified(&PANDA_MDH, PANDA_FLANGE);
+        DataRobot::from_chain(
+            PANDA,
+            chain,
+            flange,
+            JointLimits {
+                theta_min: DVector::from_column_slice(&Q_MIN),
+                theta_max: DVector::from_column_slice(&Q_MAX),
+                thetadot_min: -DVector::from_column_slice(&QDOT_MAX),
+                thetadot_max: DVector::from_column_slice(&QDOT_MAX),
+            },
+            Self::READY.to_vec(),
+        )
     }
 }

@@ -2,25 +2,32 @@
 //! builds its robot here, experiment files are validated against it, and the figures draw the
 //! arm with it.
 //!
-//! Models are generic in their joint count N (fixed-size nalgebra in the hot path), so code that
-//! uses a robot by name is written once as a [`RobotVisitor`], generic in N, and
-//! [`AnyRobot::visit`] calls it with the model's N. Every N the registry can produce is
-//! instantiated at compile time (the whole simulation, ~9 s of release build per N): 5
-//! (Katana), 6 (Jaco2), 7 (Panda), and the n-link family at [`NLINK_SIZES`], which spans
-//! robots' `nlink-3 ..= nlink-30` in eight steps (a cost-versus-joints curve needs a spread of N,
-//! not every N). Adding an N is one entry in that list and in `visit`'s.
+//! A name gives a [`Model`]: the arm as a [`Robot`] trait object whose joint count is a run-time
+//! value, its [`Dynamics`] where it has them, and the pose its check values are stated at. The
+//! names are, in this order of precedence:
 //!
-//! Robots declared by robot files (`robots/data/*.toml`, embedded in the library; see
-//! [`crate::robot_file`]) are registered by their file's name, e.g. `puma560`. A robot file may
-//! only have one of the instantiated joint counts ([`crate::joint_counts::JOINT_COUNTS`], checked
-//! against this list by a test), so a data robot adds no N. Where an arm exists both in Rust and as
-//! data (the Jaco2 variants, the Panda, the n-link arms) the Rust model is the registered one: the
-//! Jaco2 carries dynamics, and robots' `tests/data_robots.rs` shows the data twins equal.
+//! 1. the Rust models: the Jaco2 variants (with dynamics), the Katana 6M180, the Panda;
+//! 2. the n-link family `nlink-<n>`, any n from [`NLINK_MIN`] to [`NLINK_MAX`];
+//! 3. the robot files: the built-in `robots/data/*.toml` (embedded in the library; see
+//!    [`crate::robot_file`]), registered by file name, e.g. `puma560`, then the files registered
+//!    at run time ([`register_file`]: a paper's own `papers/<id>/robots/*.toml`).
+//!
+//! Where an arm exists both in Rust and as a built-in file (the Jaco2 variants, the Panda, the
+//! n-link arms) the Rust model is the registered one: the Jaco2 carries dynamics, and robots'
+//! `tests/data_robots.rs` shows the data twins equal. A file registered at run time may not take
+//! a name the suite already has ([`RobotFileError::Shadows`]: a lookup of that name then fails,
+//! naming the file).
+//!
+//! A robot file is validated when it is read; an invalid file is kept with its error, so that
+//! only a lookup of its own name fails ([`RegistryError::File`]), naming the file and field.
 
-use crate::data_robot::{builtin_models, DataRobot, DataVisitor};
-use crate::{DataModel, Dynamics, Jaco2, Katana6m180, NLink, Panda, Robot};
-use nalgebra::{SVector, Vector3};
-use std::sync::Arc;
+use crate::data_robot::{builtin_models, DataRobot};
+use crate::nlink::{NLINK_MAX, NLINK_MIN};
+use crate::robot_file::{RobotFileError, RobotSpec};
+use crate::{Dynamics, Jaco2, Katana6m180, NLink, Panda, Robot};
+use nalgebra::Vector3;
+use std::f64::consts::PI;
+use std::sync::{Arc, RwLock};
 
 /// A pose with the wrong number of joint angles for its robot.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -34,256 +41,302 @@ pub struct JointCountError {
     pub joints: usize,
 }
 
-/// A robot model of any joint count.
+/// Why a robot name gives no model, or a robot file cannot be registered.
+#[derive(Debug, thiserror::Error)]
+pub enum RegistryError {
+    /// No robot has this name.
+    #[error(
+        "unknown robot \"{name}\"; the robots are: {}, and nlink-<n> for n = {NLINK_MIN}..={NLINK_MAX}",
+        choices.join(", ")
+    )]
+    Unknown {
+        /// The name asked for.
+        name: String,
+        /// The names the registry knows (the n-link family aside).
+        choices: Vec<String>,
+    },
+    /// The robot's file is invalid (the error names the file and field).
+    #[error("{0}")]
+    File(Arc<RobotFileError>),
+}
+
+/// A robot of the registry (module documentation).
+#[derive(Clone)]
+pub struct Model {
+    /// The arm's kinematics and limits.
+    pub robot: Arc<dyn Robot>,
+    /// Its rigid-body dynamics (H, c, g), where it has them.
+    pub dynamics: Option<Arc<dyn Dynamics>>,
+    /// The pose its check values are stated at: the papers' theta0 for the Jaco2 models (the
+    /// group's EXP2 theta0 for `jaco2-pen-exp2`), kong2019's theta*0 for the Katana, Franka's
+    /// "ready" pose for the Panda, [`NLink::home`] for the n-link arms, the file's
+    /// `stated_pose` for a data robot (zero if it states none).
+    pub stated_pose: Vec<f64>,
+    /// What the kinematics are, for describing the model (the task cards).
+    pub kinematics: Kinematics,
+}
+
+/// What a model's kinematics are.
 #[derive(Clone, Debug)]
-pub enum AnyRobot {
-    /// A Jaco2 variant (6 joints, with dynamics).
-    Jaco2(Arc<Jaco2>),
-    /// The Katana 6M180 (5 joints, kinematics only).
-    Katana(Arc<Katana6m180>),
-    /// The Franka Emika Panda (7 joints, kinematics only).
-    Panda(Arc<Panda>),
-    /// The synthetic n-link arm `nlink-N` with N joints (kinematics only).
+pub enum Kinematics {
+    /// A classical DH chain with a task point ([`DataRobot`]); `file` is the robot file that
+    /// declares it (none for a Rust model).
+    Dh {
+        /// The chain, offsets and task point.
+        arm: Box<DataRobot>,
+        /// The robot file, e.g. `robots/data/puma560.toml`.
+        file: Option<String>,
+    },
+    /// kong2019's closed form of the Katana 6M180.
+    Katana(Katana6m180),
+    /// The n-link arm with this many joints ([`crate::nlink`]).
     NLink(usize),
-    /// A robot declared by a built-in robot file (kinematics only).
-    Data(DataModel),
 }
 
-/// Code generic in the joint count, run on a robot of the registry ([`AnyRobot::visit`]).
-pub trait RobotVisitor {
-    /// What [`RobotVisitor::visit`] returns, whatever the joint count.
-    type Output;
-    /// Called with the model (and its dynamics, where it has them).
-    fn visit<const N: usize>(
-        self,
-        robot: Arc<dyn Robot<N>>,
-        dynamics: Option<Arc<dyn Dynamics<N>>>,
-    ) -> Self::Output;
+impl std::fmt::Debug for Model {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Model")
+            .field("name", &self.robot.name())
+            .field("dof", &self.robot.dof())
+            .field("dynamics", &self.dynamics.is_some())
+            .finish()
+    }
 }
 
-/// Builds one model.
-type Constructor = fn() -> AnyRobot;
-
-/// The suite's named robot models (the n-link family is [`nlink_name`]), each with its
-/// constructor.
-const ROBOTS: &[(&str, Constructor)] = &[
-    (crate::JACO2_PEN, || AnyRobot::Jaco2(Arc::new(Jaco2::pen()))),
-    (crate::JACO2_PEN_EXP2, || {
-        AnyRobot::Jaco2(Arc::new(Jaco2::pen_exp2()))
-    }),
-    (crate::JACO2, || AnyRobot::Jaco2(Arc::new(Jaco2::kinova()))),
-    (crate::JACO2_HAND, || {
-        AnyRobot::Jaco2(Arc::new(Jaco2::hand()))
-    }),
-    (crate::KATANA6M180, || {
-        AnyRobot::Katana(Arc::new(Katana6m180::new()))
-    }),
-    (crate::PANDA, || AnyRobot::Panda(Arc::new(Panda::new()))),
+/// The suite's named Rust models.
+const RUST_MODELS: [&str; 6] = [
+    crate::JACO2_PEN,
+    crate::JACO2_PEN_EXP2,
+    crate::JACO2,
+    crate::JACO2_HAND,
+    crate::KATANA6M180,
+    crate::PANDA,
 ];
 
-/// The joint counts of the n-link arms in the registry (`nlink-N`).
-pub const NLINK_SIZES: [usize; 8] = [3, 5, 6, 7, 10, 15, 20, 30];
+/// The Rust model called `name`, if there is one.
+fn rust_model(name: &str) -> Option<Model> {
+    let jaco2 = |arm: Jaco2| {
+        let stated_pose = arm.arm().stated_pose().to_vec();
+        let kinematics = Kinematics::Dh {
+            arm: Box::new(arm.arm().clone()),
+            file: None,
+        };
+        let arm = Arc::new(arm);
+        Model {
+            robot: arm.clone(),
+            dynamics: Some(arm),
+            stated_pose,
+            kinematics,
+        }
+    };
+    let data = |arm: DataRobot| data_model(arm, None);
+    Some(match name {
+        crate::JACO2_PEN => jaco2(Jaco2::pen()),
+        crate::JACO2_PEN_EXP2 => jaco2(Jaco2::pen_exp2()),
+        crate::JACO2 => jaco2(Jaco2::kinova()),
+        crate::JACO2_HAND => jaco2(Jaco2::hand()),
+        crate::KATANA6M180 => Model {
+            robot: Arc::new(Katana6m180::new()),
+            dynamics: None,
+            stated_pose: vec![2.0 * PI / 5.0, PI / 2.0, 0.0, -PI / 6.0, PI / 3.0],
+            kinematics: Kinematics::Katana(Katana6m180::new()),
+        },
+        crate::PANDA => data(Panda::model()),
+        _ => return None,
+    })
+}
+
+/// The n-link arm `nlink-<n>`, if `name` is one with n in the family's range.
+fn nlink(name: &str) -> Option<Model> {
+    let n: usize = name.strip_prefix("nlink-")?.parse().ok()?;
+    let arm = NLink::new(n)?;
+    Some(Model {
+        stated_pose: arm.home().as_slice().to_vec(),
+        robot: Arc::new(arm),
+        dynamics: None,
+        kinematics: Kinematics::NLink(n),
+    })
+}
+
+/// The model of a DH arm (kinematics only), declared by `file` if given.
+fn data_model(arm: DataRobot, file: Option<String>) -> Model {
+    Model {
+        stated_pose: arm.stated_pose().to_vec(),
+        robot: Arc::new(arm.clone()),
+        dynamics: None,
+        kinematics: Kinematics::Dh {
+            arm: Box::new(arm),
+            file,
+        },
+    }
+}
 
 /// The name of the n-link arm with `n` joints.
 pub fn nlink_name(n: usize) -> String {
     format!("nlink-{n}")
 }
 
-/// Whether `name` is a Rust model's (those take precedence over a robot file of that name).
+/// Whether `name` is a Rust model's or an n-link arm's (those take precedence over a built-in
+/// robot file of that name).
 fn is_rust_model(name: &str) -> bool {
-    name.starts_with("nlink-") || ROBOTS.iter().any(|(n, _)| *n == name)
+    RUST_MODELS.contains(&name) || nlink(name).is_some()
 }
 
-/// The built-in data robots registered by name: those without a Rust model of that name.
-fn data_robots() -> impl Iterator<Item = &'static DataModel> {
-    builtin_models().iter().filter(|m| !is_rust_model(m.name()))
-}
+/// A robot file's model, or why the file was refused, under its robot's name.
+type FileModel = (String, String, Result<DataRobot, Arc<RobotFileError>>);
 
-/// The model called `name` in experiment files, if the suite knows it.
-pub fn robot_by_name(name: &str) -> Option<AnyRobot> {
-    if let Some(n) = name
-        .strip_prefix("nlink-")
-        .and_then(|n| n.parse::<usize>().ok())
-    {
-        return NLINK_SIZES.contains(&n).then_some(AnyRobot::NLink(n));
-    }
-    ROBOTS
-        .iter()
-        .find(|(n, _)| *n == name)
-        .map(|(_, build)| build())
-        .or_else(|| {
-            data_robots()
-                .find(|m| m.name() == name)
-                .cloned()
-                .map(AnyRobot::Data)
+/// The robot files registered at run time ([`register_file`]).
+static RUNTIME_FILES: RwLock<Vec<FileModel>> = RwLock::new(Vec::new());
+
+/// Registers a robot file read at run time: `file` names it in errors (its robot's name must be
+/// the file's stem), `text` is its content or why it could not be read. It is validated now; an
+/// invalid file is kept with its error, which a lookup of its name returns, so that it fails
+/// only the commands that use it. A file whose name the suite already has (a built-in model, a
+/// built-in or already registered file) is such an error, [`RobotFileError::Shadows`], and
+/// takes precedence over the model it shadows.
+pub fn register_file<E: std::fmt::Display>(file: &str, text: Result<&str, E>) {
+    let stem = std::path::Path::new(file)
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let taken = is_rust_model(&stem)
+        || builtin_models().iter().any(|(s, _)| *s == stem)
+        || runtime_files().iter().any(|(s, _, _)| *s == stem);
+    let model = if taken {
+        Err(RobotFileError::Shadows {
+            file: file.to_string(),
+            name: stem.clone(),
         })
+    } else {
+        text.map_err(|reason| RobotFileError::Unreadable {
+            file: file.to_string(),
+            reason: reason.to_string(),
+        })
+        .and_then(|text| RobotSpec::parse_named(file, &stem, text))
+        .map(|spec| DataRobot::new(&spec))
+    };
+    RUNTIME_FILES
+        .write()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
+        .push((stem, file.to_string(), model.map_err(Arc::new)));
 }
 
-/// The robot names the suite knows, in a fixed order: the Rust models, the data robots (by file
-/// name), the n-link family last, by N.
-pub fn robot_names() -> impl Iterator<Item = String> {
-    ROBOTS
+/// The robot files registered at run time.
+fn runtime_files() -> std::sync::RwLockReadGuard<'static, Vec<FileModel>> {
+    RUNTIME_FILES
+        .read()
+        .unwrap_or_else(|poisoned| poisoned.into_inner())
+}
+
+/// The model of the robot file called `name` (built-in first, then registered at run time),
+/// with the file's path.
+fn file_model(name: &str) -> Option<(String, Result<DataRobot, Arc<RobotFileError>>)> {
+    if let Some((stem, m)) = builtin_models().iter().find(|(s, _)| *s == name) {
+        return Some((format!("robots/data/{stem}.toml"), m.clone()));
+    }
+    runtime_files()
         .iter()
-        .map(|(n, _)| n.to_string())
-        .chain(data_robots().map(|m| m.name().to_string()))
-        .chain(NLINK_SIZES.iter().map(|&n| nlink_name(n)))
+        .find(|(s, _, _)| s == name)
+        .map(|(_, file, m)| (file.clone(), m.clone()))
+}
+
+/// The model called `name` in experiment files; an error names the valid choices, or the
+/// robot's invalid file and field.
+pub fn robot_by_name(name: &str) -> Result<Model, RegistryError> {
+    let shadowed = runtime_files().iter().find_map(|(s, _, m)| match m {
+        Err(e) if s == name && matches!(**e, RobotFileError::Shadows { .. }) => Some(e.clone()),
+        _ => None,
+    });
+    if let Some(e) = shadowed {
+        return Err(RegistryError::File(e));
+    }
+    if let Some(model) = rust_model(name).or_else(|| nlink(name)) {
+        return Ok(model);
+    }
+    match file_model(name) {
+        Some((file, Ok(arm))) => Ok(data_model(arm, Some(file))),
+        Some((_, Err(e))) => Err(RegistryError::File(e)),
+        None => Err(RegistryError::Unknown {
+            name: name.to_string(),
+            choices: robot_names(),
+        }),
+    }
+}
+
+/// The robot names the suite lists, in a fixed order: the Rust models, then the robot files
+/// (built-in by file name, then those registered at run time), valid or not. The n-link family
+/// (`nlink-<n>`, module documentation) is not listed.
+pub fn robot_names() -> Vec<String> {
+    RUST_MODELS
+        .iter()
+        .map(|n| n.to_string())
+        .chain(
+            builtin_models()
+                .iter()
+                .map(|(s, _)| s.to_string())
+                .filter(|s| !is_rust_model(s)),
+        )
+        .chain(
+            runtime_files()
+                .iter()
+                .filter(|(_, _, m)| !matches!(m, Err(e) if matches!(**e, RobotFileError::Shadows { .. })))
+                .map(|(s, _, _)| s.clone()),
+        )
+        .collect()
 }
 
 /// The names of the robots with rigid-body dynamics (H, c, g), which the acceleration-level
 /// zhang2018 scheme needs: the Jaco2 family.
 pub fn robots_with_dynamics() -> Vec<&'static str> {
-    ROBOTS
+    RUST_MODELS
         .iter()
-        .filter(|(_, build)| build().has_dynamics())
-        .map(|(n, _)| *n)
+        .copied()
+        .filter(|n| rust_model(n).is_some_and(|m| m.dynamics.is_some()))
         .collect()
 }
 
-/// Calls `$visitor.visit::<N>` with `NLink::<N>` for the N in `$n` (one arm per N of the family).
-macro_rules! visit_nlink {
-    ($n:expr, $visitor:expr, [$($k:literal),*]) => {
-        match $n {
-            $($k => $visitor.visit::<$k>(Arc::new(NLink::<$k>::new()), None),)*
-            n => unreachable!("nlink-{n} is not in the registry (NLINK_SIZES)"),
-        }
-    };
-}
-
-/// `theta` as the joint vector of `robot`, or an error naming both counts.
-fn angles<const N: usize>(
-    robot: &dyn Robot<N>,
-    theta: &[f64],
-) -> Result<SVector<f64, N>, JointCountError> {
-    if theta.len() != N {
-        return Err(JointCountError {
-            robot: robot.name().to_string(),
-            given: theta.len(),
-            joints: N,
-        });
-    }
-    Ok(SVector::from_column_slice(theta))
-}
-
-/// A [`RobotVisitor`] run on a data robot (which has no dynamics).
-struct OnData<V>(V);
-
-impl<V: RobotVisitor> DataVisitor for OnData<V> {
-    type Output = V::Output;
-    fn visit<const N: usize>(self, robot: Arc<DataRobot<N>>) -> V::Output {
-        self.0.visit::<N>(robot, None)
-    }
-}
-
-impl AnyRobot {
-    /// Runs `visitor` on this model with its joint count.
-    pub fn visit<V: RobotVisitor>(&self, visitor: V) -> V::Output {
-        match self {
-            AnyRobot::Jaco2(r) => visitor.visit::<6>(r.clone(), Some(r.clone())),
-            AnyRobot::Katana(r) => visitor.visit::<5>(r.clone(), None),
-            AnyRobot::Panda(r) => visitor.visit::<7>(r.clone(), None),
-            AnyRobot::NLink(n) => visit_nlink!(*n, visitor, [3, 5, 6, 7, 10, 15, 20, 30]),
-            AnyRobot::Data(m) => m.visit(OnData(visitor)),
-        }
-    }
-
-    /// The pose the model's check values are stated at: the papers' theta0 for the Jaco2
-    /// models (the group's EXP2 theta0 for `jaco2-pen-exp2`), kong2019's theta*0 for the
-    /// Katana, Franka's "ready" pose for the Panda, [`NLink::home`] for the n-link arms, the
-    /// file's `stated_pose` for a data robot (zero if it states none).
-    pub fn stated_pose(&self) -> Vec<f64> {
-        struct Home;
-        impl RobotVisitor for Home {
-            type Output = Vec<f64>;
-            fn visit<const N: usize>(
-                self,
-                _: Arc<dyn Robot<N>>,
-                _: Option<Arc<dyn Dynamics<N>>>,
-            ) -> Vec<f64> {
-                NLink::<N>::home().as_slice().to_vec()
-            }
-        }
-        let pi = std::f64::consts::PI;
-        match self {
-            AnyRobot::Jaco2(r) if r.name() == crate::JACO2_PEN_EXP2 => {
-                vec![1.670, 2.845, -3.218, 4.182, -1.715, -2.655]
-            }
-            AnyRobot::Jaco2(_) => vec![1.675, 2.79, -3.216, 4.187, -1.71, -2.95],
-            AnyRobot::Katana(_) => vec![2.0 * pi / 5.0, pi / 2.0, 0.0, -pi / 6.0, pi / 3.0],
-            AnyRobot::Panda(_) => Panda::READY.to_vec(),
-            AnyRobot::NLink(_) => self.visit(Home),
-            AnyRobot::Data(m) => m.stated_pose().to_vec(),
-        }
-    }
-
-    /// Whether the model has rigid-body dynamics (H, c, g).
-    pub fn has_dynamics(&self) -> bool {
-        matches!(self, AnyRobot::Jaco2(_))
+impl Model {
+    /// The model's name.
+    pub fn name(&self) -> &str {
+        self.robot.name()
     }
 
     /// Number of joints.
     pub fn dof(&self) -> usize {
-        match self {
-            AnyRobot::Jaco2(_) => 6,
-            AnyRobot::Katana(_) => 5,
-            AnyRobot::Panda(_) => 7,
-            AnyRobot::NLink(n) => *n,
-            AnyRobot::Data(m) => m.dof(),
-        }
+        self.robot.dof()
     }
 
-    /// The model's name.
-    pub fn name(&self) -> String {
-        struct Name;
-        impl RobotVisitor for Name {
-            type Output = String;
-            fn visit<const N: usize>(
-                self,
-                robot: Arc<dyn Robot<N>>,
-                _: Option<Arc<dyn Dynamics<N>>>,
-            ) -> String {
-                robot.name().to_string()
-            }
+    /// Whether the model has rigid-body dynamics (H, c, g).
+    pub fn has_dynamics(&self) -> bool {
+        self.dynamics.is_some()
+    }
+
+    /// `theta`, or an error naming both counts.
+    fn angles<'a>(&self, theta: &'a [f64]) -> Result<&'a [f64], JointCountError> {
+        if theta.len() != self.dof() {
+            return Err(JointCountError {
+                robot: self.name().to_string(),
+                given: theta.len(),
+                joints: self.dof(),
+            });
         }
-        self.visit(Name)
+        Ok(theta)
     }
 
     /// The arm's points from the base to the task point at joint angles `theta` (see
     /// [`Robot::skeleton`]); an error if `theta` does not have [`Self::dof`] entries.
     pub fn skeleton(&self, theta: &[f64]) -> Result<Vec<Vector3<f64>>, JointCountError> {
-        struct Skeleton<'a>(&'a [f64]);
-        impl RobotVisitor for Skeleton<'_> {
-            type Output = Result<Vec<Vector3<f64>>, JointCountError>;
-            fn visit<const N: usize>(
-                self,
-                robot: Arc<dyn Robot<N>>,
-                _: Option<Arc<dyn Dynamics<N>>>,
-            ) -> Self::Output {
-                Ok(robot.skeleton(&angles(robot.as_ref(), self.0)?))
-            }
-        }
-        self.visit(Skeleton(theta))
+        Ok(self.robot.skeleton(self.angles(theta)?))
     }
 
-    /// Tip position and the singular values of J at `theta` (the check values `reproduce
-    /// --robots` prints); an error if `theta` does not have [`Self::dof`] entries.
+    /// Tip position and the singular values of J at `theta`, largest first (the check values
+    /// `reproduce robots` prints); an error if `theta` does not have [`Self::dof`] entries.
     pub fn check_values(&self, theta: &[f64]) -> Result<(Vector3<f64>, Vec<f64>), JointCountError> {
-        struct Check<'a>(&'a [f64]);
-        impl RobotVisitor for Check<'_> {
-            type Output = Result<(Vector3<f64>, Vec<f64>), JointCountError>;
-            fn visit<const N: usize>(
-                self,
-                robot: Arc<dyn Robot<N>>,
-                _: Option<Arc<dyn Dynamics<N>>>,
-            ) -> Self::Output {
-                let theta = angles(robot.as_ref(), self.0)?;
-                let j =
-                    nalgebra::DMatrix::from_column_slice(3, N, robot.jacobian(&theta).as_slice());
-                let mut sv: Vec<f64> = j.singular_values().iter().copied().collect();
-                sv.sort_by(|a, b| b.total_cmp(a));
-                Ok((robot.position(&theta), sv))
-            }
-        }
-        self.visit(Check(theta))
+        let theta = self.angles(theta)?;
+        let j = self.robot.jacobian_matrix(theta);
+        let mut sv: Vec<f64> = j.singular_values().iter().copied().collect();
+        sv.sort_by(|a, b| b.total_cmp(a));
+        Ok((self.robot.position(theta), sv))
     }
 }
 
@@ -293,23 +346,27 @@ mod tests {
 
     #[test]
     fn every_name_builds_the_model_of_that_name() {
-        let names: Vec<String> = robot_names().collect();
+        let names = robot_names();
         assert!(names.iter().any(|n| n == "panda"));
-        assert!(names.iter().any(|n| n == "nlink-3") && names.iter().any(|n| n == "nlink-30"));
-        for name in &names {
-            let robot = robot_by_name(name).unwrap();
-            assert_eq!(&robot.name(), name);
+        assert!(names.iter().any(|n| n == "puma560"));
+        for name in names
+            .iter()
+            .cloned()
+            .chain(["nlink-2", "nlink-4", "nlink-200"].map(String::from))
+        {
+            let robot = robot_by_name(&name).unwrap();
+            assert_eq!(robot.name(), name);
+            assert_eq!(robot.stated_pose.len(), robot.dof());
             let points = robot.skeleton(&vec![0.1; robot.dof()]).unwrap();
             assert!(points.len() >= 2);
             assert!(robot.skeleton(&vec![0.1; robot.dof() + 1]).is_err());
         }
-        assert_eq!(
-            names.iter().filter(|n| n.starts_with("nlink-")).count(),
-            NLINK_SIZES.len()
-        );
-        assert!(names.iter().any(|n| n == "puma560"));
-        for unknown in ["puma", "nlink-2", "nlink-4", "nlink-31", "nlink-x"] {
-            assert!(robot_by_name(unknown).is_none(), "{unknown}");
+        for unknown in ["puma", "nlink-1", "nlink-0", "nlink-x", "nlink-1001"] {
+            let error = robot_by_name(unknown).unwrap_err().to_string();
+            assert!(
+                error.contains("unknown robot") && error.contains("puma560"),
+                "{error}"
+            );
         }
         let unique: std::collections::BTreeSet<&String> = names.iter().collect();
         assert_eq!(unique.len(), names.len(), "names are unique");
@@ -318,14 +375,13 @@ mod tests {
     #[test]
     fn puma560_is_a_data_robot_with_check_values() {
         let puma = robot_by_name("puma560").unwrap();
-        assert!(matches!(puma, AnyRobot::Data(_)) && !puma.has_dynamics());
+        assert!(!puma.has_dynamics());
         assert_eq!(puma.dof(), 6);
-        let pi = std::f64::consts::PI;
         assert_eq!(
-            puma.stated_pose(),
-            [0.0, -pi / 4.0, 0.0, pi / 2.0, -pi / 4.0, 0.0]
+            puma.stated_pose,
+            [0.0, -PI / 4.0, 0.0, PI / 2.0, -PI / 4.0, 0.0]
         );
-        let (tip, sv) = puma.check_values(&puma.stated_pose()).unwrap();
+        let (tip, sv) = puma.check_values(&puma.stated_pose).unwrap();
         assert!(
             (tip - Vector3::new(0.653136683891, -0.110275243558, 0.013770732342)).norm() < 1e-11
         );
@@ -334,31 +390,58 @@ mod tests {
     }
 
     #[test]
-    fn data_robots_have_instantiated_joint_counts() {
-        for n in crate::joint_counts::JOINT_COUNTS {
-            assert!([5, 6, 7].contains(n) || NLINK_SIZES.contains(n), "{n}");
+    fn data_twins_of_rust_models_state_the_same_pose_and_check_values() {
+        for (name, model) in builtin_models() {
+            let model = model.as_ref().unwrap();
+            if !is_rust_model(name) {
+                continue;
+            }
+            let rust = robot_by_name(name).unwrap();
+            let pose = &rust.stated_pose;
+            let close = |a: &[f64], b: &[f64]| {
+                a.len() == b.len() && a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-12)
+            };
+            assert!(close(pose, model.stated_pose()), "{name}");
+            let data = data_model(model.clone(), None);
+            let (tip_r, sv_r) = rust.check_values(pose).unwrap();
+            let (tip_d, sv_d) = data.check_values(pose).unwrap();
+            assert!((tip_r - tip_d).norm() < 1e-12, "{name}");
+            assert!(close(&sv_r, &sv_d), "{name}");
         }
     }
 
     #[test]
-    fn data_twins_of_rust_models_state_the_same_pose_and_check_values() {
-        for model in builtin_models() {
-            let Some(rust) = robot_by_name(model.name()) else {
-                continue;
-            };
-            if matches!(rust, AnyRobot::Data(_)) {
-                continue;
-            }
-            let data = AnyRobot::Data(model.clone());
-            let pose = rust.stated_pose();
-            let close = |a: &[f64], b: &[f64]| {
-                a.len() == b.len() && a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-12)
-            };
-            assert!(close(&pose, &data.stated_pose()), "{}", model.name());
-            let (tip_r, sv_r) = rust.check_values(&pose).unwrap();
-            let (tip_d, sv_d) = data.check_values(&pose).unwrap();
-            assert!((tip_r - tip_d).norm() < 1e-12, "{}", model.name());
-            assert!(close(&sv_r, &sv_d), "{}", model.name());
-        }
+    fn runtime_files_are_validated_and_may_not_shadow() {
+        let puma = crate::data_robot::builtin_files()
+            .iter()
+            .find(|(f, _)| *f == "puma560.toml")
+            .unwrap()
+            .1;
+        let own = puma.replace("name = \"puma560\"", "name = \"registry-test-arm\"");
+        let bad = puma
+            .replace("name = \"puma560\"", "name = \"registry-test-bad\"")
+            .replacen("theta_max = 2.7751", "theta_max = -9.0", 1);
+        register_file::<&str>("papers/x/robots/registry-test-arm.toml", Ok(&own));
+        register_file::<&str>("papers/x/robots/registry-test-bad.toml", Ok(&bad));
+        register_file(
+            "papers/x/robots/registry-test-gone.toml",
+            Err("a symbolic link out of its directory"),
+        );
+        // A model name no other test looks up (the registry is one per process).
+        register_file::<&str>("papers/x/robots/nlink-999.toml", Ok(&own));
+        assert_eq!(robot_by_name("registry-test-arm").unwrap().dof(), 6);
+        let error = robot_by_name("registry-test-bad").unwrap_err().to_string();
+        assert!(
+            error.contains("papers/x/robots/registry-test-bad.toml") && error.contains("theta"),
+            "{error}"
+        );
+        let error = robot_by_name("registry-test-gone").unwrap_err().to_string();
+        assert!(error.contains("symbolic link"), "{error}");
+        let error = robot_by_name("nlink-999").unwrap_err().to_string();
+        assert!(error.contains("papers/x/robots/nlink-999.toml"), "{error}");
+        let names = robot_names();
+        assert!(names.iter().any(|n| n == "registry-test-bad"));
+        assert!(!names.iter().any(|n| n == "nlink-999"));
+        assert!(robot_by_name("puma560").is_ok(), "other robots still work");
     }
 }

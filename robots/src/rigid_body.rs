@@ -48,10 +48,10 @@ pub struct RigidBody {
 }
 
 /// A revolute DH chain with inertial parameters and a gravity vector.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct RigidChain<const N: usize> {
     /// Kinematic chain; its base frame is the frame in which `gravity` is given.
-    pub chain: DhChain<N>,
+    pub chain: DhChain,
     /// Inertial parameters of links 1..=N.
     pub bodies: [RigidBody; N],
     /// Gravity acceleration in world coordinates (m/s^2).
@@ -65,7 +65,7 @@ struct LinkMasses<const N: usize> {
 }
 
 impl<const N: usize> RigidChain<N> {
-    fn link_masses(&self, frames: &ChainFrames<N>) -> LinkMasses<N> {
+    fn link_masses(&self, frames: &ChainFrames<'_>) -> LinkMasses<N> {
         let mut com = [Vector3::zeros(); N];
         let mut inertia = [Matrix3::zeros(); N];
         for (i, body) in self.bodies.iter().enumerate() {
@@ -79,7 +79,7 @@ impl<const N: usize> RigidChain<N> {
     /// Recursive Newton–Euler with base acceleration `a0` (`-gravity` to include gravity).
     fn rnea(
         &self,
-        frames: &ChainFrames<N>,
+        frames: &ChainFrames<'_>,
         qd: &SVector<f64, N>,
         qdd: &SVector<f64, N>,
         a0: Vector3<f64>,
@@ -123,17 +123,24 @@ impl<const N: usize> RigidChain<N> {
         qd: &SVector<f64, N>,
         qdd: &SVector<f64, N>,
     ) -> SVector<f64, N> {
-        self.rnea(&self.chain.frames(theta), qd, qdd, -self.gravity)
+        self.chain.with_frames(
+            |i| theta[i],
+            |frames| self.rnea(frames, qd, qdd, -self.gravity),
+        )
     }
 
     /// Joint-space inertia matrix `H = sum_i (m_i Jv_i' Jv_i + Jw_i' I_i^w Jw_i)`.
     pub fn inertia(&self, theta: &SVector<f64, N>) -> SMatrix<f64, N, N> {
-        let frames = self.chain.frames(theta);
-        let masses = self.link_masses(&frames);
+        self.chain
+            .with_frames(|i| theta[i], |frames| self.inertia_at(frames))
+    }
+
+    fn inertia_at(&self, frames: &ChainFrames<'_>) -> SMatrix<f64, N, N> {
+        let masses = self.link_masses(frames);
         let mut h = SMatrix::<f64, N, N>::zeros();
         for i in 0..N {
-            let jv = frames.point_jacobian(i + 1, &masses.com[i]);
-            let jw = frames.angular_jacobian(i + 1);
+            let jv = point_jacobian::<N>(frames, i + 1, &masses.com[i]);
+            let jw = angular_jacobian::<N>(frames, i + 1);
             h +=
                 jv.transpose() * jv * self.bodies[i].mass + jw.transpose() * masses.inertia[i] * jw;
         }
@@ -142,11 +149,9 @@ impl<const N: usize> RigidChain<N> {
 
     /// Coriolis and centrifugal torques `c(theta, thetadot)` (RNEA, `qdd = 0`, no gravity).
     pub fn coriolis(&self, theta: &SVector<f64, N>, thetadot: &SVector<f64, N>) -> SVector<f64, N> {
-        self.rnea(
-            &self.chain.frames(theta),
-            thetadot,
-            &SVector::zeros(),
-            Vector3::zeros(),
+        self.chain.with_frames(
+            |i| theta[i],
+            |frames| self.rnea(frames, thetadot, &SVector::zeros(), Vector3::zeros()),
         )
     }
 
@@ -156,16 +161,33 @@ impl<const N: usize> RigidChain<N> {
         theta: &SVector<f64, N>,
         thetadot: &SVector<f64, N>,
     ) -> SMatrix<f64, N, N> {
-        let frames = self.chain.frames(theta);
-        let masses = self.link_masses(&frames);
+        self.chain.with_frames(
+            |i| theta[i],
+            |frames| self.coriolis_matrix_at(frames, thetadot),
+        )
+    }
+
+    fn coriolis_matrix_at(
+        &self,
+        frames: &ChainFrames<'_>,
+        thetadot: &SVector<f64, N>,
+    ) -> SMatrix<f64, N, N> {
+        let masses = self.link_masses(frames);
         let mut c = SMatrix::<f64, N, N>::zeros();
         for i in 0..N {
             let link = i + 1;
             let iw = &masses.inertia[i];
-            let jv = frames.point_jacobian(link, &masses.com[i]);
-            let jv_dot = frames.point_jacobian_dot(link, &masses.com[i], thetadot);
-            let jw = frames.angular_jacobian(link);
-            let jw_dot = frames.angular_jacobian_dot(link, thetadot);
+            let jv = point_jacobian::<N>(frames, link, &masses.com[i]);
+            let mut jv_dot = SMatrix::<f64, 3, N>::zeros();
+            frames.point_jacobian_dot(
+                link,
+                &masses.com[i],
+                thetadot.as_slice(),
+                jv_dot.as_mut_slice(),
+            );
+            let jw = angular_jacobian::<N>(frames, link);
+            let mut jw_dot = SMatrix::<f64, 3, N>::zeros();
+            frames.angular_jacobian_dot(link, thetadot.as_slice(), jw_dot.as_mut_slice());
             let omega = jw * thetadot;
             let w = omega.cross_matrix();
             let b = (w * iw - iw * w - (iw * omega).cross_matrix()) * 0.5;
@@ -177,11 +199,27 @@ impl<const N: usize> RigidChain<N> {
 
     /// Gravity torques `g(theta) = dU/dtheta` (RNEA with `qd = qdd = 0`).
     pub fn gravity_torques(&self, theta: &SVector<f64, N>) -> SVector<f64, N> {
-        self.rnea(
-            &self.chain.frames(theta),
-            &SVector::zeros(),
-            &SVector::zeros(),
-            -self.gravity,
+        self.chain.with_frames(
+            |i| theta[i],
+            |frames| self.rnea(frames, &SVector::zeros(), &SVector::zeros(), -self.gravity),
         )
     }
+}
+
+/// [`ChainFrames::point_jacobian`] as a 3 x N matrix.
+fn point_jacobian<const N: usize>(
+    frames: &ChainFrames<'_>,
+    link: usize,
+    p: &Vector3<f64>,
+) -> SMatrix<f64, 3, N> {
+    let mut jac = SMatrix::<f64, 3, N>::zeros();
+    frames.point_jacobian(link, p, jac.as_mut_slice());
+    jac
+}
+
+/// [`ChainFrames::angular_jacobian`] as a 3 x N matrix.
+fn angular_jacobian<const N: usize>(frames: &ChainFrames<'_>, link: usize) -> SMatrix<f64, 3, N> {
+    let mut jac = SMatrix::<f64, 3, N>::zeros();
+    frames.angular_jacobian(link, jac.as_mut_slice());
+    jac
 }

@@ -52,8 +52,7 @@
 //! unknown fields and unknown choices (`convention`, `axis`: the message lists the valid ones),
 //! missing required fields, non-finite numbers (TOML's `nan` and `inf`; an unlimited bound is
 //! written by omitting it), `theta_min >= theta_max`, `velocity_max <= 0`, `velocity_min >= 0`,
-//! `acceleration_max <= 0`, a joint count the simulation is not built for
-//! ([`crate::joint_counts::JOINT_COUNTS`]), a name that is not a slug, a flange row missing from a
+//! `acceleration_max <= 0`, fewer than [`MIN_JOINTS`] or more than [`MAX_JOINTS`] joints, a name that is not a slug, a flange row missing from a
 //! modified table or given with a standard one, a `stated_pose` of the wrong length, a base with
 //! both `rotation` and `matrix` or a matrix that is not a rotation, and link inertias with a
 //! non-positive mass or a tensor that is not symmetric positive semi-definite. Files above
@@ -62,17 +61,18 @@
 //! Link inertias (`link`) are parsed and validated but not used: a data robot has kinematics
 //! only (no [`crate::Dynamics`]).
 
-use std::io::Read;
-use std::path::Path;
-
 use nalgebra::{Matrix3, Vector3};
 use serde::Deserialize;
 
 use crate::dh::Frame;
-use crate::joint_counts::JOINT_COUNTS;
 
 /// Largest robot file accepted (bytes): 1 MiB.
 pub const MAX_FILE_BYTES: u64 = 1 << 20;
+
+/// The fewest joints a robot file may have.
+pub const MIN_JOINTS: usize = 2;
+/// The most joints a robot file may have.
+pub const MAX_JOINTS: usize = 1000;
 
 /// Longest model name accepted (characters).
 pub const MAX_NAME_LEN: usize = 64;
@@ -195,14 +195,25 @@ pub struct RobotSpec {
 /// Why a robot file was refused. Every variant names the file; joints are numbered from 1.
 #[derive(Debug, thiserror::Error)]
 pub enum RobotFileError {
-    /// The file could not be opened or read (or is not UTF-8).
-    #[error("{file}: cannot read the robot file: {source}")]
-    Read {
-        /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
+    /// The file could not be read (a symbolic link out of its directory, a special file, too
+    /// large: the reader's reason, which never quotes the file).
+    #[error("{file}: cannot read the robot file: {reason}")]
+    Unreadable {
+        /// The robot file.
         file: String,
-        /// The I/O error.
-        #[source]
-        source: std::io::Error,
+        /// Why (the reader's message).
+        reason: String,
+    },
+    /// A robot file read at run time declares a name the suite already has.
+    #[error(
+        "{file}: declares robot \"{name}\", a name the suite already has (a built-in model or \
+         another robot file); rename the file and its `name`"
+    )]
+    Shadows {
+        /// The robot file.
+        file: String,
+        /// The name (the file's stem).
+        name: String,
     },
     /// The file is larger than [`MAX_FILE_BYTES`] (refused before parsing).
     #[error("{file}: {bytes} bytes; a robot file may have at most {limit} bytes")]
@@ -283,18 +294,13 @@ pub enum RobotFileError {
         /// What it must be: `> 0` or `< 0`.
         requirement: &'static str,
     },
-    /// The table has a joint count the simulation is not built for.
-    #[error(
-        "{file}: {joints} joints; a robot file may have {supported:?} joints (the joint counts \
-         the simulation is built for)"
-    )]
+    /// The table has too few or too many joints.
+    #[error("{file}: field `joint`: {joints} joints; a robot file may have {MIN_JOINTS} to {MAX_JOINTS}")]
     JointCount {
         /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
         file: String,
         /// The number of `[[joint]]` tables.
         joints: usize,
-        /// The joint counts accepted, [`JOINT_COUNTS`].
-        supported: &'static [usize],
     },
     /// A modified table without its flange row, or a standard table with one.
     #[error(
@@ -439,29 +445,8 @@ impl RobotSpec {
         Self::validate(file, raw)
     }
 
-    /// Reads, parses and validates the robot file at `path` (at most [`MAX_FILE_BYTES`]); the
-    /// name must be the file's stem (`puma560.toml` declares `puma560`).
-    pub fn read(path: &Path) -> Result<Self, RobotFileError> {
-        let file = path.display().to_string();
-        let read_error = |source| RobotFileError::Read {
-            file: file.clone(),
-            source,
-        };
-        let mut text = String::new();
-        std::fs::File::open(path)
-            .map_err(read_error)?
-            .take(MAX_FILE_BYTES + 1)
-            .read_to_string(&mut text)
-            .map_err(read_error)?;
-        let stem = path
-            .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_default();
-        Self::parse_named(&file, &stem, &text)
-    }
-
     /// [`RobotSpec::parse`], and the name must be `stem`.
-    pub(crate) fn parse_named(file: &str, stem: &str, text: &str) -> Result<Self, RobotFileError> {
+    pub fn parse_named(file: &str, stem: &str, text: &str) -> Result<Self, RobotFileError> {
         let spec = Self::parse(file, text)?;
         if spec.name != stem {
             return Err(RobotFileError::NameNotStem {
@@ -482,11 +467,10 @@ impl RobotSpec {
             });
         }
         let n = raw.joint.len();
-        if !JOINT_COUNTS.contains(&n) {
+        if !(MIN_JOINTS..=MAX_JOINTS).contains(&n) {
             return Err(RobotFileError::JointCount {
                 file: fail_file(),
                 joints: n,
-                supported: JOINT_COUNTS,
             });
         }
         let finite = Finite { file };

@@ -8,7 +8,7 @@ use crate::common;
 use common::*;
 use nalgebra::{Matrix3, Matrix4, SMatrix, SVector, Vector3};
 use robots::jaco2_dynamics::jaco2_bodies;
-use robots::{Dynamics, Jaco2};
+use robots::Jaco2;
 
 type V6 = SVector<f64, 6>;
 
@@ -63,7 +63,7 @@ fn kinetic_energy(theta: &V6, thetadot: &V6) -> f64 {
 fn inertia_is_symmetric_positive_definite() {
     let robot = Jaco2::kinova();
     for (q, _, _) in samples(21) {
-        let h = robot.inertia(&q);
+        let h = robot.inertia_n(&q);
         assert!((h - h.transpose()).amax() < 1e-14);
         let eig = h.symmetric_eigenvalues();
         assert!(eig.min() > 1e-6, "eigenvalues {eig:?}");
@@ -75,7 +75,7 @@ fn gravity_is_the_gradient_of_the_potential() {
     let robot = Jaco2::kinova();
     for (q, _, _) in samples(22) {
         let fd = fd_jacobian(|t| SVector::<f64, 1>::new(potential(t)), &q, 1e-5).transpose();
-        let err = (robot.gravity(&q) - fd).amax();
+        let err = (robot.gravity_n(&q) - fd).amax();
         assert!(err < 1e-7, "|g - dU/dtheta| = {err:e}");
     }
 }
@@ -84,7 +84,7 @@ fn gravity_is_the_gradient_of_the_potential() {
 fn kinetic_energy_matches_link_velocities() {
     let robot = Jaco2::kinova();
     for (q, qd, _) in samples(23) {
-        let from_h = 0.5 * qd.dot(&(robot.inertia(&q) * qd));
+        let from_h = 0.5 * qd.dot(&(robot.inertia_n(&q) * qd));
         let direct = kinetic_energy(&q, &qd);
         assert!(
             (from_h - direct).abs() < 1e-8 * (1.0 + direct),
@@ -98,7 +98,7 @@ fn rnea_equals_h_qdd_plus_c_plus_g() {
     let robot = Jaco2::kinova();
     for (q, qd, qdd) in samples(24) {
         let tau = robot.rigid_chain().inverse_dynamics(&q, &qd, &qdd);
-        let model = robot.inertia(&q) * qdd + robot.coriolis(&q, &qd) + robot.gravity(&q);
+        let model = robot.inertia_n(&q) * qdd + robot.coriolis_n(&q, &qd) + robot.gravity_n(&q);
         assert!(
             (tau - model).amax() < 1e-12,
             "|tau - (H qdd + c + g)| = {:e}",
@@ -111,7 +111,7 @@ fn rnea_equals_h_qdd_plus_c_plus_g() {
 fn coriolis_matrix_reproduces_c() {
     let robot = Jaco2::kinova();
     for (q, qd, _) in samples(25) {
-        let err = (robot.coriolis_matrix(&q, &qd) * qd - robot.coriolis(&q, &qd)).amax();
+        let err = (robot.coriolis_matrix_n(&q, &qd) * qd - robot.coriolis_n(&q, &qd)).amax();
         assert!(err < 1e-12, "|C qd - c| = {err:e}");
     }
 }
@@ -120,8 +120,8 @@ fn coriolis_matrix_reproduces_c() {
 fn hdot_minus_2c_is_skew_symmetric() {
     let robot = Jaco2::kinova();
     for (q, qd, _) in samples(26) {
-        let hdot = fd_directional(|t| robot.inertia(t), &q, &qd, 1e-5);
-        let n = hdot - robot.coriolis_matrix(&q, &qd) * 2.0;
+        let hdot = fd_directional(|t| robot.inertia_n(t), &q, &qd, 1e-5);
+        let n = hdot - robot.coriolis_matrix_n(&q, &qd) * 2.0;
         let err = (n + n.transpose()).amax();
         assert!(err < 1e-8, "|N + N'| = {err:e}");
     }
@@ -134,14 +134,14 @@ fn coriolis_matrix_equals_christoffel_symbols() {
         let dh: [SMatrix<f64, 6, 6>; 6] = std::array::from_fn(|k| {
             let mut e = V6::zeros();
             e[k] = 1.0;
-            fd_directional(|t| robot.inertia(t), &q, &e, 1e-5)
+            fd_directional(|t| robot.inertia_n(t), &q, &e, 1e-5)
         });
         let christoffel = SMatrix::<f64, 6, 6>::from_fn(|i, j| {
             (0..6)
                 .map(|k| 0.5 * (dh[k][(i, j)] + dh[j][(i, k)] - dh[i][(j, k)]) * qd[k])
                 .sum()
         });
-        let err = (robot.coriolis_matrix(&q, &qd) - christoffel).amax();
+        let err = (robot.coriolis_matrix_n(&q, &qd) - christoffel).amax();
         assert!(err < 1e-8, "|C - C_christoffel| = {err:e}");
     }
 }
@@ -150,12 +150,12 @@ fn coriolis_matrix_equals_christoffel_symbols() {
 fn pen_model_has_the_physical_arms_dynamics() {
     let (pen, kinova) = (Jaco2::pen(), Jaco2::kinova());
     for (q, qd, _) in samples(28) {
-        assert_eq!(pen.inertia(&q), kinova.inertia(&q));
-        assert_eq!(pen.coriolis(&q, &qd), kinova.coriolis(&q, &qd));
+        assert_eq!(pen.inertia_n(&q), kinova.inertia_n(&q));
+        assert_eq!(pen.coriolis_n(&q, &qd), kinova.coriolis_n(&q, &qd));
         assert_eq!(
-            pen.coriolis_matrix(&q, &qd),
-            kinova.coriolis_matrix(&q, &qd)
+            pen.coriolis_matrix_n(&q, &qd),
+            kinova.coriolis_matrix_n(&q, &qd)
         );
-        assert_eq!(pen.gravity(&q), kinova.gravity(&q));
+        assert_eq!(pen.gravity_n(&q), kinova.gravity_n(&q));
     }
 }

@@ -31,14 +31,14 @@ fn names() {
 #[test]
 fn pen_check_values() {
     let robot = Jaco2::pen();
-    let p = robot.position(&theta0());
+    let p = robot.position_n(&theta0());
     assert_close(
         p.as_slice(),
         &[0.250226, -0.366141, 0.024212],
         1e-6,
         "jaco2-pen tip",
     );
-    let s = singular_values(&robot.jacobian(&theta0()));
+    let s = singular_values(&robot.jacobian_n(&theta0()));
     assert_close(
         &s,
         &[0.633203, 0.422549, 0.295221],
@@ -49,7 +49,7 @@ fn pen_check_values() {
 
 #[test]
 fn kinova_check_values() {
-    let p = Jaco2::kinova().position(&theta0());
+    let p = Jaco2::kinova().position_n(&theta0());
     assert_close(
         p.as_slice(),
         &[0.280261, -0.417131, 0.054383],
@@ -73,12 +73,12 @@ fn position_matches_independent_transcription() {
     let pen = Jaco2::pen();
     let kinova = Jaco2::kinova();
     for theta in random_vectors::<6>(1, 20, 4.0) {
-        assert!((pen.position(&theta) - pen_independent(&theta)).norm() < 1e-12);
+        assert!((pen.position_n(&theta) - pen_independent(&theta)).norm() < 1e-12);
         let hand = apply(
             &jaco2_frames(0.16, Matrix4::identity(), &theta)[5],
             &Vector3::zeros(),
         );
-        assert!((kinova.position(&theta) - hand).norm() < 1e-12);
+        assert!((kinova.position_n(&theta) - hand).norm() < 1e-12);
     }
 }
 
@@ -86,8 +86,8 @@ fn position_matches_independent_transcription() {
 fn jacobian_matches_finite_differences() {
     for robot in [Jaco2::pen(), Jaco2::kinova(), Jaco2::pen_exp2()] {
         for theta in random_vectors::<6>(2, 10, 4.0) {
-            let fd = fd_jacobian(|t| robot.position(t), &theta, 1e-5);
-            let err = (robot.jacobian(&theta) - fd).amax();
+            let fd = fd_jacobian(|t| robot.position_n(t), &theta, 1e-5);
+            let err = (robot.jacobian_n(&theta) - fd).amax();
             assert!(err < 1e-7, "{}: |J - J_fd| = {err:e}", robot.name());
         }
     }
@@ -97,7 +97,7 @@ fn jacobian_matches_finite_differences() {
 fn every_joint_moves_the_pen_tip() {
     let robot = Jaco2::pen();
     for theta in random_vectors::<6>(3, 10, 4.0) {
-        let jac = robot.jacobian(&theta);
+        let jac = robot.jacobian_n(&theta);
         for k in 0..6 {
             assert!(
                 jac.column(k).norm() > 1e-3,
@@ -113,8 +113,8 @@ fn jacobian_dot_matches_finite_differences() {
         let thetas = random_vectors::<6>(4, 10, 4.0);
         let rates = random_vectors::<6>(5, 10, 1.5);
         for (theta, thetadot) in thetas.iter().zip(&rates) {
-            let fd = fd_directional(|t| robot.jacobian(t), theta, thetadot, 1e-5);
-            let err = (robot.jacobian_dot(theta, thetadot) - fd).amax();
+            let fd = fd_directional(|t| robot.jacobian_n(t), theta, thetadot, 1e-5);
+            let err = (robot.jacobian_dot_n(theta, thetadot) - fd).amax();
             assert!(err < 1e-7, "{}: |Jdot - Jdot_fd| = {err:e}", robot.name());
         }
     }
@@ -122,7 +122,8 @@ fn jacobian_dot_matches_finite_differences() {
 
 #[test]
 fn pen_limits_match_the_groups_code_and_the_papers_table() {
-    let lim = Jaco2::pen().limits();
+    let robot = Jaco2::pen();
+    let lim = robot.limits();
     let deg = std::f64::consts::PI / 180.0;
     let upper = [1e4, 223.0, 71.0, 1e4, 1e4, 1e4];
     let lower = [-1e4, -137.0, -289.0, -1e4, -1e4, -1e4];
@@ -140,7 +141,8 @@ fn pen_limits_match_the_groups_code_and_the_papers_table() {
 
 #[test]
 fn kinova_limits() {
-    let lim = Jaco2::kinova().limits();
+    let robot = Jaco2::kinova();
+    let lim = robot.limits();
     assert_eq!((lim.theta_min[1], lim.theta_max[1]), (-0.7505, 3.8921));
     assert_eq!((lim.theta_min[2], lim.theta_max[2]), (-4.3808, 1.2392));
     for k in [0, 3, 4, 5] {
@@ -150,7 +152,7 @@ fn kinova_limits() {
         lim.thetadot_max,
         SVector::<f64, 6>::from([0.6283, 0.6283, 0.6283, 0.8378, 0.8378, 0.8378])
     );
-    assert_eq!(lim.thetadot_min, -lim.thetadot_max);
+    assert_eq!(lim.thetadot_min, -&lim.thetadot_max);
 }
 
 /// The group's EXP2 chain (docs/group-code.md) transcribed independently: D4 = D5 = 0.07433,
@@ -184,9 +186,9 @@ fn exp2_variant_is_the_groups_chain_and_pen_with_pens_wrist_is_jaco2_pen() {
     assert_eq!(same, pen);
     assert_eq!(Jaco2::pen_with_wrist(JACO2_PEN_EXP2, EXP2_WRIST), exp2);
     for theta in random_vectors::<6>(6, 20, 4.0) {
-        assert!((exp2.position(&theta) - exp2_independent(&theta)).norm() < 1e-12);
-        assert_eq!(same.position(&theta), pen.position(&theta));
-        assert!((same.position(&theta) - pen_independent(&theta)).norm() < 1e-12);
+        assert!((exp2.position_n(&theta) - exp2_independent(&theta)).norm() < 1e-12);
+        assert_eq!(same.position_n(&theta), pen.position_n(&theta));
+        assert!((same.position_n(&theta) - pen_independent(&theta)).norm() < 1e-12);
     }
     assert_eq!(exp2.limits(), pen.limits());
     assert_eq!(exp2.tip(), pen.tip());
@@ -199,8 +201,8 @@ fn exp2_variant_is_the_groups_chain_and_pen_with_pens_wrist_is_jaco2_pen() {
 #[test]
 fn exp2_check_value_at_its_theta0() {
     let theta0 = SVector::from([1.670, 2.845, -3.218, 4.182, -1.715, -2.655]);
-    let p = Jaco2::pen_exp2().position(&theta0);
-    let q = Jaco2::pen().position(&theta0);
+    let p = Jaco2::pen_exp2().position_n(&theta0);
+    let q = Jaco2::pen().position_n(&theta0);
     let d = (p - q).norm();
     println!(
         "jaco2-pen-exp2 tip at theta0 = ({:.6}, {:.6}, {:.6}); jaco2-pen = ({:.6}, {:.6}, {:.6}); |difference| = {:.3} mm",
@@ -214,6 +216,6 @@ fn exp2_check_value_at_its_theta0() {
         "jaco2-pen-exp2 tip at the EXP2 theta0",
     );
     assert!(d > 1e-2 && d < 5e-2, "|difference| = {d}");
-    let sv = singular_values(&Jaco2::pen_exp2().jacobian(&theta0));
+    let sv = singular_values(&Jaco2::pen_exp2().jacobian_n(&theta0));
     assert!(sv[2] > 1e-2, "EXP2 theta0 is singular: {sv:?}");
 }

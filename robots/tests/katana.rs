@@ -34,7 +34,7 @@ fn name() {
 #[test]
 fn check_values() {
     let robot = Katana6m180::new();
-    let p = robot.position(&theta_star0());
+    let p = robot.position_n(&theta_star0());
     let want = [0.081034, 0.249398, 0.379100];
     for k in 0..3 {
         assert!(
@@ -42,7 +42,7 @@ fn check_values() {
             "position {p:?}, want {want:?}"
         );
     }
-    let s = singular_values(&robot.jacobian(&theta_star0()));
+    let s = singular_values(&robot.jacobian_n(&theta_star0()));
     let want = [0.454295, 0.262232, 0.233519];
     for k in 0..3 {
         assert!(
@@ -56,7 +56,7 @@ fn check_values() {
 fn position_matches_eq2() {
     let robot = Katana6m180::new();
     for theta in random_vectors::<5>(11, 50, 4.0) {
-        assert!((robot.position(&theta) - eq2(&theta)).norm() < 1e-14);
+        assert!((robot.position_n(&theta) - eq2(&theta)).norm() < 1e-14);
     }
 }
 
@@ -66,8 +66,8 @@ fn wrist_roll_never_moves_the_position() {
     for theta in random_vectors::<5>(12, 20, 4.0) {
         let mut rolled = theta;
         rolled[4] += 1.234;
-        assert_eq!(robot.position(&theta), robot.position(&rolled));
-        assert_eq!(robot.jacobian(&theta).column(4).norm(), 0.0);
+        assert_eq!(robot.position_n(&theta), robot.position_n(&rolled));
+        assert_eq!(robot.jacobian_n(&theta).column(4).norm(), 0.0);
     }
 }
 
@@ -75,8 +75,8 @@ fn wrist_roll_never_moves_the_position() {
 fn jacobian_matches_finite_differences() {
     let robot = Katana6m180::new();
     for theta in random_vectors::<5>(13, 10, 4.0) {
-        let fd = fd_jacobian(|t| robot.position(t), &theta, 1e-5);
-        let err = (robot.jacobian(&theta) - fd).amax();
+        let fd = fd_jacobian(|t| robot.position_n(t), &theta, 1e-5);
+        let err = (robot.jacobian_n(&theta) - fd).amax();
         assert!(err < 1e-7, "|J - J_fd| = {err:e}");
     }
 }
@@ -87,8 +87,8 @@ fn jacobian_dot_matches_finite_differences() {
     let thetas = random_vectors::<5>(14, 10, 4.0);
     let rates = random_vectors::<5>(15, 10, 1.5);
     for (theta, thetadot) in thetas.iter().zip(&rates) {
-        let fd = fd_directional(|t| robot.jacobian(t), theta, thetadot, 1e-5);
-        let err = (robot.jacobian_dot(theta, thetadot) - fd).amax();
+        let fd = fd_directional(|t| robot.jacobian_n(t), theta, thetadot, 1e-5);
+        let err = (robot.jacobian_dot_n(theta, thetadot) - fd).amax();
         assert!(err < 1e-7, "|Jdot - Jdot_fd| = {err:e}");
     }
 }
@@ -96,14 +96,15 @@ fn jacobian_dot_matches_finite_differences() {
 #[test]
 fn stretched_pose_is_singular() {
     let robot = Katana6m180::new();
-    let s = singular_values(&robot.jacobian(&SVector::from([0.0, 0.0, 0.0, PI / 2.0, 0.7])));
+    let s = singular_values(&robot.jacobian_n(&SVector::from([0.0, 0.0, 0.0, PI / 2.0, 0.7])));
     assert!(s[2] < 1e-12, "singular values {s:?}");
-    assert!(singular_values(&robot.jacobian(&theta_star0()))[2] > 0.1);
+    assert!(singular_values(&robot.jacobian_n(&theta_star0()))[2] > 0.1);
 }
 
 #[test]
 fn limits_are_unenforced() {
-    let lim = Katana6m180::new().limits();
+    let robot = Katana6m180::new();
+    let lim = robot.limits();
     assert!(lim
         .theta_min
         .iter()

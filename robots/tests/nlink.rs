@@ -28,12 +28,12 @@ fn by_transforms<const N: usize>(theta: &SVector<f64, N>) -> Vec<Vector3<f64>> {
 
 /// Smallest singular value of J at home().
 fn sigma_min_home<const N: usize>() -> f64 {
-    let robot = NLink::<N>::new();
-    singular_values(&robot.jacobian(&NLink::<N>::home()))[2]
+    let robot = NLink::new(N).unwrap();
+    singular_values(&robot.jacobian_n(&nlink_home::<N>()))[2]
 }
 
 fn check_family<const N: usize>(seed: u64) {
-    let robot = NLink::<N>::new();
+    let robot = NLink::new(N).unwrap();
     assert_eq!(robot.name(), format!("nlink-{N}"));
     let lim = robot.limits();
     let thetas = random_vectors::<N>(seed, 10, 2.6);
@@ -42,9 +42,9 @@ fn check_family<const N: usize>(seed: u64) {
         assert!((0..N).all(|k| lim.theta_min[k] <= theta[k] && theta[k] <= lim.theta_max[k]));
         // Position and joint origins against the transform product.
         let points = by_transforms(theta);
-        let p = robot.position(theta);
+        let p = robot.position_n(theta);
         assert!((p - points[N - 1]).norm() < 1e-14, "N = {N}");
-        let skeleton = robot.skeleton(theta);
+        let skeleton = robot.skeleton_n(theta);
         assert_eq!(skeleton.len(), N + 1);
         assert_eq!(skeleton[0], Vector3::zeros());
         for (a, b) in skeleton[1..].iter().zip(&points) {
@@ -58,13 +58,13 @@ fn check_family<const N: usize>(seed: u64) {
             p.norm()
         );
         // Jacobian.
-        let fd = fd_jacobian(|t| robot.position(t), theta, 1e-5);
-        let jac = robot.jacobian(theta);
+        let fd = fd_jacobian(|t| robot.position_n(t), theta, 1e-5);
+        let jac = robot.jacobian_n(theta);
         let err = (jac - fd).amax() / jac.amax();
         assert!(err < 1e-7, "N = {N}: relative |J - J_fd| = {err:e}");
         // Jdot.
-        let fd = fd_directional(|t| robot.jacobian(t), theta, thetadot, 1e-5);
-        let jdot = robot.jacobian_dot(theta, thetadot);
+        let fd = fd_directional(|t| robot.jacobian_n(t), theta, thetadot, 1e-5);
+        let jdot = robot.jacobian_dot_n(theta, thetadot);
         let err = (jdot - fd).amax() / jdot.amax();
         assert!(err < 1e-7, "N = {N}: relative |Jdot - Jdot_fd| = {err:e}");
         // One singular value is |r|: joint 1 alone moves the tip out of the arm's plane.
@@ -76,8 +76,8 @@ fn check_family<const N: usize>(seed: u64) {
         );
     }
     // Home: position against the transform product, theta_1 = 0 keeps the arm in the x-z plane.
-    let home = NLink::<N>::home();
-    let p = robot.position(&home);
+    let home = nlink_home::<N>();
+    let p = robot.position_n(&home);
     assert!((p - by_transforms(&home)[N - 1]).norm() < 1e-14);
     assert_eq!(p.y, 0.0);
     assert!(p.x > 0.5 && p.z > 0.05, "N = {N}: home tip {p:?}");
@@ -107,11 +107,11 @@ fn home_positions() {
         }
         Vector3::new(x, 0.0, z)
     }
-    assert!((NLink::<3>::new().position(&NLink::<3>::home()) - arc::<3>()).norm() < 1e-15);
-    assert!((NLink::<12>::new().position(&NLink::<12>::home()) - arc::<12>()).norm() < 1e-14);
-    assert!((NLink::<30>::new().position(&NLink::<30>::home()) - arc::<30>()).norm() < 1e-14);
+    assert!((NLink::new(3).unwrap().position_n(&nlink_home::<3>()) - arc::<3>()).norm() < 1e-15);
+    assert!((NLink::new(12).unwrap().position_n(&nlink_home::<12>()) - arc::<12>()).norm() < 1e-14);
+    assert!((NLink::new(30).unwrap().position_n(&nlink_home::<30>()) - arc::<30>()).norm() < 1e-14);
     // N = 3: links at 1.2 and -0.3 rad, each 0.5 m.
-    let p3 = NLink::<3>::new().position(&NLink::<3>::home());
+    let p3 = NLink::new(3).unwrap().position_n(&nlink_home::<3>());
     let want = Vector3::new(
         0.5 * (1.2f64.cos() + 0.3f64.cos()),
         0.0,
@@ -122,7 +122,7 @@ fn home_positions() {
 
 macro_rules! sigma_table {
     ($($n:literal)*) => { [$((($n), sigma_min_home::<$n>(), {
-        let p = NLink::<$n>::new().position(&NLink::<$n>::home());
+        let p = NLink::new($n).unwrap().position_n(&nlink_home::<$n>());
         (p - Vector3::new(0.0, 0.0, H0)).norm()
     })),*] };
 }
@@ -145,7 +145,8 @@ fn home_is_well_conditioned_for_every_n() {
 
 #[test]
 fn limits() {
-    let lim = NLink::<7>::new().limits();
+    let robot = NLink::new(7).unwrap();
+    let lim = robot.limits();
     assert_eq!(lim.theta_max[0], std::f64::consts::PI);
     assert_eq!(lim.theta_min[0], -std::f64::consts::PI);
     for k in 1..7 {

@@ -21,33 +21,33 @@
 //! As theta_i approaches theta+_i, zeta+_i falls linearly to 0 (and below 0 beyond the limit,
 //! pushing the joint back); the bounds never exceed the velocity limits.
 
-use nalgebra::SVector;
 use robots::JointLimits;
 
-/// (zeta-, zeta+) of jia2019 (2.15)–(2.16) with gain kappa (or zhong2021's upsilon).
-pub fn merged_bounds<const N: usize>(
-    limits: &JointLimits<N>,
-    theta: &SVector<f64, N>,
+/// (zeta-, zeta+) of jia2019 (2.15)–(2.16) with gain kappa (or zhong2021's upsilon), written
+/// into `lo` and `hi` (one entry per joint).
+pub fn merged_bounds(
+    limits: &JointLimits,
+    theta: &[f64],
     gain: f64,
-) -> (SVector<f64, N>, SVector<f64, N>) {
-    let mut lo = SVector::<f64, N>::zeros();
-    let mut hi = SVector::<f64, N>::zeros();
-    for i in 0..N {
+    lo: &mut [f64],
+    hi: &mut [f64],
+) {
+    for i in 0..theta.len() {
         lo[i] = (gain * (limits.theta_min[i] - theta[i])).max(limits.thetadot_min[i]);
         hi[i] = (gain * (limits.theta_max[i] - theta[i])).min(limits.thetadot_max[i]);
     }
-    (lo, hi)
 }
 
-/// zhong2021's piecewise form (2.14)–(2.15) of the same bounds, as printed.
-pub fn piecewise_bounds<const N: usize>(
-    limits: &JointLimits<N>,
-    theta: &SVector<f64, N>,
+/// zhong2021's piecewise form (2.14)–(2.15) of the same bounds, as printed, written into `lo`
+/// and `hi`.
+pub fn piecewise_bounds(
+    limits: &JointLimits,
+    theta: &[f64],
     upsilon: f64,
-) -> (SVector<f64, N>, SVector<f64, N>) {
-    let mut lo = SVector::<f64, N>::zeros();
-    let mut hi = SVector::<f64, N>::zeros();
-    for i in 0..N {
+    lo: &mut [f64],
+    hi: &mut [f64],
+) {
+    for i in 0..theta.len() {
         let xi1 = limits.theta_min[i] - limits.thetadot_min[i] / upsilon;
         let xi2 = limits.theta_max[i] - limits.thetadot_max[i] / upsilon;
         lo[i] = if theta[i] <= xi1 {
@@ -61,22 +61,22 @@ pub fn piecewise_bounds<const N: usize>(
             upsilon * (limits.theta_max[i] - theta[i])
         };
     }
-    (lo, hi)
 }
 
 /// Time derivatives of (zeta-, zeta+) when theta moves at thetadot: -gain thetadot_i on the
 /// joint-angle branch, 0 on the velocity-limit branch. At the switch point (a kink) the
 /// right-hand derivative (forward in time) is returned: for max{a, b} with a = b,
-/// max{a', b'} = max{-gain thetadot_i, 0}; for min, min{-gain thetadot_i, 0}.
-pub fn merged_bounds_dot<const N: usize>(
-    limits: &JointLimits<N>,
-    theta: &SVector<f64, N>,
-    thetadot: &SVector<f64, N>,
+/// max{a', b'} = max{-gain thetadot_i, 0}; for min, min{-gain thetadot_i, 0}. Written into `lo`
+/// and `hi`.
+pub fn merged_bounds_dot(
+    limits: &JointLimits,
+    theta: &[f64],
+    thetadot: &[f64],
     gain: f64,
-) -> (SVector<f64, N>, SVector<f64, N>) {
-    let mut lo = SVector::<f64, N>::zeros();
-    let mut hi = SVector::<f64, N>::zeros();
-    for i in 0..N {
+    lo: &mut [f64],
+    hi: &mut [f64],
+) {
+    for i in 0..theta.len() {
         let d = -gain * thetadot[i];
         let a = gain * (limits.theta_min[i] - theta[i]);
         let b = limits.thetadot_min[i];
@@ -101,5 +101,4 @@ pub fn merged_bounds_dot<const N: usize>(
             d.min(0.0)
         };
     }
-    (lo, hi)
 }

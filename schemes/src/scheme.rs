@@ -1,6 +1,9 @@
 //! The common interface of the papers' schemes: at every instant a scheme turns
 //! (t, theta, thetadot) into one QP (see [`crate::qp::Qp`]) whose decision variable x starts with
-//! the joint command: x[..N] is thetadot (velocity level) or thetaddot (acceleration level).
+//! the joint command: x[..n] is thetadot (velocity level) or thetaddot (acceleration level).
+//! The joint count n is a run-time value ([`Scheme::joints`]): theta, thetadot and thetaddot are
+//! slices of length n, and every scheme keeps what it needs between calls in scratch space
+//! allocated when it is built, so that no call allocates.
 //!
 //! Besides the QP itself a scheme provides its time derivative along the current motion
 //! ([`Scheme::build_dot`]), which the zeroing networks (FP/VP-CDNN, VP-RNN-PF, kong2019's
@@ -16,30 +19,31 @@
 //! ([`central_difference`] with the step [`default_step`]).
 
 use crate::qp::{Qp, QpDims};
-use nalgebra::SVector;
 
 use crate::qp_dot::{difference_quotient, QpDotScratch, FD_STEP};
 
 /// Whether the scheme resolves redundancy at the velocity or the acceleration level.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Level {
-    /// x[..N] = thetadot; the arm state is theta.
+    /// x[..n] = thetadot; the arm state is theta.
     Velocity,
-    /// x[..N] = thetaddot; the arm state is (theta, thetadot).
+    /// x[..n] = thetaddot; the arm state is (theta, thetadot).
     Acceleration,
 }
 
 /// A redundancy-resolution scheme: QP(t, theta, thetadot).
-pub trait Scheme<const N: usize>: Send + Sync {
+pub trait Scheme: Send + Sync {
     /// Name as the paper writes it (e.g. `VLTCO`, `MVN-INVM`, `HL-JDF`).
     fn name(&self) -> String;
-    /// Whether x[..N] is thetadot (velocity level) or thetaddot (acceleration level).
+    /// Whether x[..n] is thetadot (velocity level) or thetaddot (acceleration level).
     fn level(&self) -> Level;
     /// QP sizes (constant along a run).
     fn dims(&self) -> QpDims;
+    /// The number of joints n: the length of every joint slice below.
+    fn joints(&self) -> usize;
     /// Overwrite `qp` with the QP at (t, theta, thetadot). `thetadot` is ignored at the
     /// velocity level. Must not allocate.
-    fn build(&self, t: f64, theta: &SVector<f64, N>, thetadot: &SVector<f64, N>, qp: &mut Qp);
+    fn build(&self, t: f64, theta: &[f64], thetadot: &[f64], qp: &mut Qp);
 
     /// Overwrite `qp_dot` with the time derivative of every QP field (p, q, a, b, g, h, lower,
     /// upper) along the current motion (see the module docs): theta moves at `thetadot`, and at
@@ -52,9 +56,9 @@ pub trait Scheme<const N: usize>: Send + Sync {
     fn build_dot(
         &self,
         t: f64,
-        theta: &SVector<f64, N>,
-        thetadot: &SVector<f64, N>,
-        thetaddot: &SVector<f64, N>,
+        theta: &[f64],
+        thetadot: &[f64],
+        thetaddot: &[f64],
         qp_dot: &mut Qp,
         scratch: &mut QpDotScratch,
     ) {
@@ -62,15 +66,17 @@ pub trait Scheme<const N: usize>: Send + Sync {
         central_difference(self, t, theta, thetadot, thetaddot, h, qp_dot, scratch);
     }
 
-    /// Joint torque tau = H(theta) thetaddot + c(theta, thetadot) + g(theta) for schemes that
-    /// carry a dynamics model (zhang2018); `None` otherwise.
+    /// Writes the joint torque tau = H(theta) thetaddot + c(theta, thetadot) + g(theta) into
+    /// `tau` and returns true, for schemes that carry a dynamics model (zhang2018); false
+    /// otherwise (`tau` untouched). Must not allocate.
     fn torque(
         &self,
-        _theta: &SVector<f64, N>,
-        _thetadot: &SVector<f64, N>,
-        _thetaddot: &SVector<f64, N>,
-    ) -> Option<SVector<f64, N>> {
-        None
+        _theta: &[f64],
+        _thetadot: &[f64],
+        _thetaddot: &[f64],
+        _tau: &mut [f64],
+    ) -> bool {
+        false
     }
 
     /// A zero QP of this scheme's sizes (allocate once per run, then `build` into it).
@@ -80,19 +86,20 @@ pub trait Scheme<const N: usize>: Send + Sync {
 
     /// Scratch space for [`Scheme::build_dot`] (allocate once per run).
     fn new_dot_scratch(&self) -> QpDotScratch {
-        QpDotScratch::new(self.dims())
+        QpDotScratch::new(self.dims(), self.joints())
     }
 }
 
+/// The largest magnitude of `v` (0 for an empty slice).
+fn amax(v: &[f64]) -> f64 {
+    v.iter().fold(0.0, |m: f64, x| m.max(x.abs()))
+}
+
 /// The default central-difference step for a state (see [`crate::qp_dot`]).
-pub fn default_step<const N: usize>(
-    level: Level,
-    thetadot: &SVector<f64, N>,
-    thetaddot: &SVector<f64, N>,
-) -> f64 {
-    let mut scale = 1.0_f64.max(thetadot.amax());
+pub fn default_step(level: Level, thetadot: &[f64], thetaddot: &[f64]) -> f64 {
+    let mut scale = 1.0_f64.max(amax(thetadot));
     if level == Level::Acceleration {
-        scale = scale.max(thetaddot.amax());
+        scale = scale.max(amax(thetaddot));
     }
     if !scale.is_finite() {
         return FD_STEP;
@@ -102,26 +109,36 @@ pub fn default_step<const N: usize>(
 
 /// dQP/dt by central difference with step `h` along the motion (see [`crate::qp_dot`]).
 #[allow(clippy::too_many_arguments)]
-pub fn central_difference<const N: usize, S: Scheme<N> + ?Sized>(
+pub fn central_difference<S: Scheme + ?Sized>(
     scheme: &S,
     t: f64,
-    theta: &SVector<f64, N>,
-    thetadot: &SVector<f64, N>,
-    thetaddot: &SVector<f64, N>,
+    theta: &[f64],
+    thetadot: &[f64],
+    thetaddot: &[f64],
     h: f64,
     qp_dot: &mut Qp,
     scratch: &mut QpDotScratch,
 ) {
     let accel = scheme.level() == Level::Acceleration;
-    for (sign, qp) in [(1.0, &mut scratch.plus), (-1.0, &mut scratch.minus)] {
+    let QpDotScratch {
+        plus,
+        minus,
+        theta: th,
+        thetadot: thd,
+    } = scratch;
+    for (sign, qp) in [(1.0, &mut *plus), (-1.0, &mut *minus)] {
         let s = sign * h;
-        let th = theta + thetadot * s;
-        let thd = if accel {
-            thetadot + thetaddot * s
-        } else {
-            *thetadot
-        };
-        scheme.build(t + s, &th, &thd, qp);
+        for (i, x) in th.iter_mut().enumerate() {
+            *x = theta[i] + thetadot[i] * s;
+        }
+        for (i, x) in thd.iter_mut().enumerate() {
+            *x = if accel {
+                thetadot[i] + thetaddot[i] * s
+            } else {
+                thetadot[i]
+            };
+        }
+        scheme.build(t + s, th, thd, qp);
     }
-    difference_quotient(&scratch.plus, &scratch.minus, 2.0 * h, qp_dot);
+    difference_quotient(plus, minus, 2.0 * h, qp_dot);
 }

@@ -38,7 +38,6 @@
 use std::fmt;
 use std::sync::Arc;
 
-use nalgebra::SVector;
 use robots::{Dynamics, Robot};
 use serde::{Deserialize, Serialize};
 
@@ -341,7 +340,7 @@ impl SchemeSpec {
                 };
                 format!(
                     "{} (phi={phi}, tau={tau}{reading})",
-                    TriCriteria::<1>::vltco_name(phi, tau)
+                    TriCriteria::vltco_name(phi, tau)
                 )
             }
             SchemeSpec::Cmco {
@@ -359,7 +358,7 @@ impl SchemeSpec {
                 format!("CMCO (eta={eta}, delta={delta}{reading})")
             }
             SchemeSpec::HlJdf { zeta, .. } => {
-                format!("{} (zeta={zeta})", Zhang2018::<1>::scheme_name(zeta))
+                format!("{} (zeta={zeta})", Zhang2018::scheme_name(zeta))
             }
             SchemeSpec::FiniteTimeRmp {
                 beta_theta, alpha, ..
@@ -605,13 +604,13 @@ fn check_position_gain(s: &'static str, k_p: f64) -> Result<(), SchemeError> {
 /// jia2019, zhong2021 and zhang2018; theta*0 (the desired initial joint vector) for kong2019.
 /// zhang2018 needs `dynamics` (and takes its kinematics from it; it must model the same robot,
 /// checked by name); the other schemes ignore it.
-pub fn build_scheme<const N: usize>(
+pub fn build_scheme(
     spec: &SchemeSpec,
-    robot: Arc<dyn Robot<N>>,
-    dynamics: Option<Arc<dyn Dynamics<N>>>,
+    robot: Arc<dyn Robot>,
+    dynamics: Option<Arc<dyn Dynamics>>,
     path: Arc<dyn Path>,
-    theta_ref: SVector<f64, N>,
-) -> Result<Box<dyn Scheme<N>>, SchemeError> {
+    theta_ref: &[f64],
+) -> Result<Box<dyn Scheme>, SchemeError> {
     spec.validate()?;
     Ok(match *spec {
         SchemeSpec::Vltco {

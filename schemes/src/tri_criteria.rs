@@ -44,7 +44,6 @@
 
 use std::sync::Arc;
 
-use nalgebra::SVector;
 use robots::Robot;
 
 use crate::joint_limits::{merged_bounds, merged_bounds_dot};
@@ -73,10 +72,10 @@ pub enum Preset {
 }
 
 /// The tri-criteria scheme (module docs).
-pub struct TriCriteria<const N: usize> {
-    robot: Arc<dyn Robot<N>>,
+pub struct TriCriteria {
+    robot: Arc<dyn Robot>,
     path: Arc<dyn Path>,
-    theta0: SVector<f64, N>,
+    theta0: Vec<f64>,
     preset: Preset,
     /// Weight w_v of the velocity norm (jia2019 phi, zhong2021 eta).
     pub w_velocity: f64,
@@ -97,13 +96,13 @@ pub struct TriCriteria<const N: usize> {
     pub placement: BoundPlacement,
 }
 
-impl<const N: usize> TriCriteria<N> {
+impl TriCriteria {
     /// jia2019's VLTCO family (MVN, MVN-INVM, VLTCO) with weights (phi, tau), bound gain kappa
     /// and Lambda; the text's mu = 5 for the `text-mu` reading.
     pub fn vltco(
-        robot: Arc<dyn Robot<N>>,
+        robot: Arc<dyn Robot>,
         path: Arc<dyn Path>,
-        theta0: SVector<f64, N>,
+        theta0: &[f64],
         phi: f64,
         tau: f64,
         kappa: f64,
@@ -112,7 +111,7 @@ impl<const N: usize> TriCriteria<N> {
         Self {
             robot,
             path,
-            theta0,
+            theta0: theta0.to_vec(),
             preset: Preset::Vltco,
             w_velocity: phi,
             w_repetitive: tau,
@@ -128,9 +127,9 @@ impl<const N: usize> TriCriteria<N> {
     /// zhong2021's CMCO with weights (eta, delta), bound gain upsilon and Lambda; every
     /// inequality as rows of G; the text's tau defaults to Lambda / 2 = 10 at Lambda = 20.
     pub fn cmco(
-        robot: Arc<dyn Robot<N>>,
+        robot: Arc<dyn Robot>,
         path: Arc<dyn Path>,
-        theta0: SVector<f64, N>,
+        theta0: &[f64],
         eta: f64,
         delta: f64,
         upsilon: f64,
@@ -166,7 +165,7 @@ impl<const N: usize> TriCriteria<N> {
 
     /// The joint reference theta0 of the repetitive term g = [c (theta - theta0); 0], as given at
     /// construction.
-    pub fn theta0(&self) -> &SVector<f64, N> {
+    pub fn theta0(&self) -> &[f64] {
         &self.theta0
     }
 
@@ -181,30 +180,25 @@ impl<const N: usize> TriCriteria<N> {
             "VLTCO"
         }
     }
-
-    /// First row of the bound block in G ([`BoundPlacement::InequalityRows`]).
-    const E0: usize = 2 * N;
-    /// First row of the -E block in G.
-    const M0: usize = 3 * N + 1;
 }
 
 /// Writes the constant infinity-norm rows [I -1; -I -1] x <= 0 into G's first 2n rows and h.
-fn write_infinity_norm_rows<const N: usize>(qp: &mut Qp) {
-    for i in 0..N {
-        for j in 0..=N {
+fn write_infinity_norm_rows(n: usize, qp: &mut Qp) {
+    for i in 0..n {
+        for j in 0..=n {
             qp.g[(i, j)] = 0.0;
-            qp.g[(N + i, j)] = 0.0;
+            qp.g[(n + i, j)] = 0.0;
         }
         qp.g[(i, i)] = 1.0;
-        qp.g[(i, N)] = -1.0;
-        qp.g[(N + i, i)] = -1.0;
-        qp.g[(N + i, N)] = -1.0;
+        qp.g[(i, n)] = -1.0;
+        qp.g[(n + i, i)] = -1.0;
+        qp.g[(n + i, n)] = -1.0;
         qp.h[i] = 0.0;
-        qp.h[N + i] = 0.0;
+        qp.h[n + i] = 0.0;
     }
 }
 
-impl<const N: usize> Scheme<N> for TriCriteria<N> {
+impl Scheme for TriCriteria {
     fn name(&self) -> String {
         match self.preset {
             Preset::Vltco => Self::vltco_name(self.w_velocity, self.w_repetitive).to_string(),
@@ -216,60 +210,71 @@ impl<const N: usize> Scheme<N> for TriCriteria<N> {
         Level::Velocity
     }
 
+    fn joints(&self) -> usize {
+        self.theta0.len()
+    }
+
     fn dims(&self) -> QpDims {
+        let n = self.joints();
         QpDims {
-            nx: N + 1,
+            nx: n + 1,
             n_eq: 3,
             n_in: match self.placement {
-                BoundPlacement::VariableBounds => 2 * N,
-                BoundPlacement::InequalityRows => 4 * N + 2,
+                BoundPlacement::VariableBounds => 2 * n,
+                BoundPlacement::InequalityRows => 4 * n + 2,
             },
         }
     }
 
-    fn build(&self, t: f64, theta: &SVector<f64, N>, _thetadot: &SVector<f64, N>, qp: &mut Qp) {
+    fn build(&self, t: f64, theta: &[f64], _thetadot: &[f64], qp: &mut Qp) {
         debug_assert_eq!(qp.dims(), self.dims());
+        let n = self.joints();
         let c = self.rmp_coefficient();
         qp.p.as_mut_slice().fill(0.0);
-        for i in 0..N {
+        for (i, (th, t0)) in theta.iter().zip(&self.theta0).enumerate() {
             qp.p[(i, i)] = self.w_velocity + self.w_repetitive;
-            qp.q[i] = c * (theta[i] - self.theta0[i]);
+            qp.q[i] = c * (th - t0);
         }
-        qp.p[(N, N)] = 1.0 - self.w_velocity - self.w_repetitive;
-        qp.q[N] = 0.0;
-        let j = self.robot.jacobian(theta);
-        qp.a.view_mut((0, 0), (3, N)).copy_from(&j);
+        qp.p[(n, n)] = 1.0 - self.w_velocity - self.w_repetitive;
+        qp.q[n] = 0.0;
+        self.robot
+            .jacobian(theta, &mut qp.a.as_mut_slice()[..3 * n]);
         for r in 0..3 {
-            qp.a[(r, N)] = 0.0;
+            qp.a[(r, n)] = 0.0;
         }
         qp.b.copy_from(&self.path.at(t).rdot);
-        write_infinity_norm_rows::<N>(qp);
-        let (lo, hi) = merged_bounds(&self.robot.limits(), theta, self.bound_gain);
+        write_infinity_norm_rows(n, qp);
+        merged_bounds(
+            self.robot.limits(),
+            theta,
+            self.bound_gain,
+            &mut qp.lower.as_mut_slice()[..n],
+            &mut qp.upper.as_mut_slice()[..n],
+        );
         match self.placement {
             BoundPlacement::VariableBounds => {
-                qp.lower.rows_mut(0, N).copy_from(&lo);
-                qp.upper.rows_mut(0, N).copy_from(&hi);
-                qp.lower[N] = 0.0;
-                qp.upper[N] = self.varpi;
+                qp.lower[n] = 0.0;
+                qp.upper[n] = self.varpi;
             }
             BoundPlacement::InequalityRows => {
-                let (e0, m0) = (Self::E0, Self::M0);
+                let (e0, m0) = (2 * n, 3 * n + 1);
                 // Column by column: nalgebra's fill of a strided row view goes element by
                 // element.
                 let rows = qp.g.nrows();
                 for column in qp.g.as_mut_slice().chunks_exact_mut(rows) {
-                    column[e0..e0 + 2 * N + 2].fill(0.0);
+                    column[e0..e0 + 2 * n + 2].fill(0.0);
                 }
-                for i in 0..=N {
+                for i in 0..=n {
                     qp.g[(e0 + i, i)] = 1.0;
                     qp.g[(m0 + i, i)] = -1.0;
                 }
-                for i in 0..N {
-                    qp.h[e0 + i] = hi[i];
-                    qp.h[m0 + i] = -lo[i];
+                // zeta+ and zeta- were written into upper and lower above.
+                for i in 0..n {
+                    qp.h[e0 + i] = qp.upper[i];
+                    qp.h[m0 + i] = -qp.lower[i];
                 }
-                qp.h[e0 + N] = self.varpi;
-                qp.h[m0 + N] = 0.0;
+                qp.h[e0 + n] = self.varpi;
+                qp.h[m0 + n] = 0.0;
                 qp.lower.as_mut_slice().fill(f64::NEG_INFINITY);
                 qp.upper.as_mut_slice().fill(f64::INFINITY);
             }
@@ -283,39 +288,46 @@ impl<const N: usize> Scheme<N> for TriCriteria<N> {
     fn build_dot(
         &self,
         t: f64,
-        theta: &SVector<f64, N>,
-        thetadot: &SVector<f64, N>,
-        _thetaddot: &SVector<f64, N>,
+        theta: &[f64],
+        thetadot: &[f64],
+        _thetaddot: &[f64],
         qp_dot: &mut Qp,
         _scratch: &mut QpDotScratch,
     ) {
         debug_assert_eq!(qp_dot.dims(), self.dims());
+        let n = self.joints();
         let c = self.rmp_coefficient();
         qp_dot.p.as_mut_slice().fill(0.0);
-        for i in 0..N {
-            qp_dot.q[i] = c * thetadot[i];
+        for (q, v) in qp_dot.q.iter_mut().zip(thetadot) {
+            *q = c * v;
         }
-        qp_dot.q[N] = 0.0;
-        let jd = self.robot.jacobian_dot(theta, thetadot);
-        qp_dot.a.view_mut((0, 0), (3, N)).copy_from(&jd);
+        qp_dot.q[n] = 0.0;
+        self.robot
+            .jacobian_dot(theta, thetadot, &mut qp_dot.a.as_mut_slice()[..3 * n]);
         for r in 0..3 {
-            qp_dot.a[(r, N)] = 0.0;
+            qp_dot.a[(r, n)] = 0.0;
         }
         qp_dot.b.copy_from(&self.path.at(t).rddot);
         qp_dot.g.as_mut_slice().fill(0.0);
         qp_dot.h.as_mut_slice().fill(0.0);
-        let (lo, hi) = merged_bounds_dot(&self.robot.limits(), theta, thetadot, self.bound_gain);
+        merged_bounds_dot(
+            self.robot.limits(),
+            theta,
+            thetadot,
+            self.bound_gain,
+            &mut qp_dot.lower.as_mut_slice()[..n],
+            &mut qp_dot.upper.as_mut_slice()[..n],
+        );
         match self.placement {
             BoundPlacement::VariableBounds => {
-                qp_dot.lower.rows_mut(0, N).copy_from(&lo);
-                qp_dot.upper.rows_mut(0, N).copy_from(&hi);
-                qp_dot.lower[N] = 0.0;
-                qp_dot.upper[N] = 0.0;
+                qp_dot.lower[n] = 0.0;
+                qp_dot.upper[n] = 0.0;
             }
             BoundPlacement::InequalityRows => {
-                for i in 0..N {
-                    qp_dot.h[Self::E0 + i] = hi[i];
-                    qp_dot.h[Self::M0 + i] = -lo[i];
+                // The bounds' derivatives were written into upper and lower above.
+                for i in 0..n {
+                    qp_dot.h[2 * n + i] = qp_dot.upper[i];
+                    qp_dot.h[3 * n + 1 + i] = -qp_dot.lower[i];
                 }
                 qp_dot.lower.as_mut_slice().fill(0.0);
                 qp_dot.upper.as_mut_slice().fill(0.0);

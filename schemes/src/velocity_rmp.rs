@@ -53,7 +53,7 @@ use std::sync::Arc;
 use crate::joint_limits::{merged_bounds, merged_bounds_dot};
 use crate::qp::{Qp, QpDims};
 use crate::sign_power::{sign_power, sign_power_slope};
-use nalgebra::{SVector, Vector3};
+use nalgebra::Vector3;
 use robots::Robot;
 
 use crate::paths::{Path, PathPoint};
@@ -81,10 +81,10 @@ pub enum Repetitive {
 }
 
 /// The velocity-level repetitive-motion scheme of the vocabulary (module docs).
-pub struct VelocityRmp<const N: usize> {
-    robot: Arc<dyn Robot<N>>,
+pub struct VelocityRmp {
+    robot: Arc<dyn Robot>,
     path: Arc<dyn Path>,
-    theta_ref: SVector<f64, N>,
+    theta_ref: Vec<f64>,
     /// Weight w of the velocity norm (P = w I).
     pub weight: f64,
     /// Position feedback gain k_p.
@@ -99,46 +99,40 @@ pub struct VelocityRmp<const N: usize> {
 /// Default smoothing width delta of c (see the module docs).
 pub const SMOOTHING: f64 = 1e-6;
 
-/// c = |e|^alpha sgn(e) elementwise, e = theta - theta*0 (kong2019's eq. (3)/(14)), smoothed
-/// over |e| ~ delta = `smoothing` (exact for delta = 0).
-pub fn finite_time_c<const N: usize>(
-    theta: &SVector<f64, N>,
-    theta_star0: &SVector<f64, N>,
-    alpha: f64,
-    smoothing: f64,
-) -> SVector<f64, N> {
-    (theta - theta_star0).map(|e| sign_power(e, alpha, smoothing))
-}
-
 /// Writes the parts of the scheme's QP with w = 1 that do not depend on how the arm's
 /// vectors are stored: P = I, b = rdot* + k_p (r* - f(theta)), no bounds. q and A (= J) are
-/// the caller's, so the const-generic [`VelocityRmp`] and the dynamic-size
-/// [`crate::velocity_rmp_dyn::NLinkZnn`] share this.
-pub fn fill_tracking(qp: &mut Qp, f: &Vector3<f64>, desired: &PathPoint, k_p: f64) {
+/// the caller's.
+fn fill_tracking(qp: &mut Qp, f: &Vector3<f64>, desired: &PathPoint, k_p: f64) {
     qp.p.fill_with_identity();
     qp.b.copy_from(&(desired.rdot + (desired.r - f) * k_p));
     qp.lower.as_mut_slice().fill(f64::NEG_INFINITY);
     qp.upper.as_mut_slice().fill(f64::INFINITY);
 }
 
-impl<const N: usize> VelocityRmp<N> {
+impl VelocityRmp {
     /// The scheme of every term given: weight `w`, repetitive `term`, tracking gain `k_p`,
     /// and the bound conversion with gain `bounds` (none: no bounds). `name` is display only.
+    /// `theta_ref` has one entry per joint of `robot`.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
-        robot: Arc<dyn Robot<N>>,
+        robot: Arc<dyn Robot>,
         path: Arc<dyn Path>,
-        theta_ref: SVector<f64, N>,
+        theta_ref: &[f64],
         weight: f64,
         term: Repetitive,
         k_p: f64,
         bounds: Option<f64>,
         name: &'static str,
     ) -> Self {
+        assert_eq!(
+            theta_ref.len(),
+            robot.dof(),
+            "theta_ref: one entry per joint"
+        );
         Self {
             robot,
             path,
-            theta_ref,
+            theta_ref: theta_ref.to_vec(),
             weight,
             k_p,
             term,
@@ -150,9 +144,9 @@ impl<const N: usize> VelocityRmp<N> {
     /// kong2019's finite-time scheme (14) with gain beta_theta, exponent alpha and feedback
     /// k_p (a preset).
     pub fn finite_time(
-        robot: Arc<dyn Robot<N>>,
+        robot: Arc<dyn Robot>,
         path: Arc<dyn Path>,
-        theta_star0: SVector<f64, N>,
+        theta_star0: &[f64],
         beta_theta: f64,
         alpha: f64,
         k_p: f64,
@@ -176,9 +170,9 @@ impl<const N: usize> VelocityRmp<N> {
 
     /// kong2019's ZNN repetitive scheme (22) with gain mu and feedback k_p (a preset).
     pub fn znn(
-        robot: Arc<dyn Robot<N>>,
+        robot: Arc<dyn Robot>,
         path: Arc<dyn Path>,
-        theta_star0: SVector<f64, N>,
+        theta_star0: &[f64],
         mu: f64,
         k_p: f64,
     ) -> Self {
@@ -187,24 +181,33 @@ impl<const N: usize> VelocityRmp<N> {
     }
 
     /// The scheme's joint reference (theta0, or kong2019's theta*0).
-    pub fn theta_ref(&self) -> &SVector<f64, N> {
+    pub fn theta_ref(&self) -> &[f64] {
         &self.theta_ref
     }
 
-    /// The linear objective term g(theta) (module docs).
-    pub fn linear_term(&self, theta: &SVector<f64, N>) -> SVector<f64, N> {
+    /// Writes the linear objective term g(theta) (module docs) into `q`.
+    pub fn linear_term(&self, theta: &[f64], q: &mut [f64]) {
+        let pairs = q.iter_mut().zip(theta.iter().zip(&self.theta_ref));
         match self.term {
             Repetitive::SignPower {
                 beta,
                 alpha,
                 smoothing,
-            } => finite_time_c(theta, &self.theta_ref, alpha, smoothing) * beta,
-            Repetitive::Linear { lambda } => (theta - self.theta_ref) * lambda,
+            } => {
+                for (q, (th, r)) in pairs {
+                    *q = sign_power(th - r, alpha, smoothing) * beta;
+                }
+            }
+            Repetitive::Linear { lambda } => {
+                for (q, (th, r)) in pairs {
+                    *q = (th - r) * lambda;
+                }
+            }
         }
     }
 }
 
-impl<const N: usize> Scheme<N> for VelocityRmp<N> {
+impl Scheme for VelocityRmp {
     fn name(&self) -> String {
         self.name.to_string()
     }
@@ -215,24 +218,32 @@ impl<const N: usize> Scheme<N> for VelocityRmp<N> {
 
     fn dims(&self) -> QpDims {
         QpDims {
-            nx: N,
+            nx: self.joints(),
             n_eq: 3,
             n_in: 0,
         }
     }
 
-    fn build(&self, t: f64, theta: &SVector<f64, N>, _thetadot: &SVector<f64, N>, qp: &mut Qp) {
+    fn joints(&self) -> usize {
+        self.theta_ref.len()
+    }
+
+    fn build(&self, t: f64, theta: &[f64], _thetadot: &[f64], qp: &mut Qp) {
         debug_assert_eq!(qp.dims(), self.dims());
-        qp.q.copy_from(&self.linear_term(theta));
-        qp.a.copy_from(&self.robot.jacobian(theta));
+        self.linear_term(theta, qp.q.as_mut_slice());
+        self.robot.jacobian(theta, qp.a.as_mut_slice());
         fill_tracking(qp, &self.robot.position(theta), &self.path.at(t), self.k_p);
         if self.weight != 1.0 {
             qp.p.fill_diagonal(self.weight);
         }
         if let Some(gain) = self.bounds {
-            let (lo, hi) = merged_bounds(&self.robot.limits(), theta, gain);
-            qp.lower.as_mut_slice().copy_from_slice(lo.as_slice());
-            qp.upper.as_mut_slice().copy_from_slice(hi.as_slice());
+            merged_bounds(
+                self.robot.limits(),
+                theta,
+                gain,
+                qp.lower.as_mut_slice(),
+                qp.upper.as_mut_slice(),
+            );
         }
     }
 
@@ -240,11 +251,11 @@ impl<const N: usize> Scheme<N> for VelocityRmp<N> {
     fn build_dot(
         &self,
         t: f64,
-        theta: &SVector<f64, N>,
-        thetadot: &SVector<f64, N>,
-        _thetaddot: &SVector<f64, N>,
+        theta: &[f64],
+        thetadot: &[f64],
+        _thetaddot: &[f64],
         qp_dot: &mut Qp,
-        _scratch: &mut QpDotScratch,
+        scratch: &mut QpDotScratch,
     ) {
         debug_assert_eq!(qp_dot.dims(), self.dims());
         qp_dot.p.as_mut_slice().fill(0.0);
@@ -254,30 +265,43 @@ impl<const N: usize> Scheme<N> for VelocityRmp<N> {
                 alpha,
                 smoothing,
             } => {
-                for i in 0..N {
+                for i in 0..self.joints() {
                     let e = theta[i] - self.theta_ref[i];
                     qp_dot.q[i] = beta * sign_power_slope(e, alpha, smoothing) * thetadot[i];
                 }
             }
             Repetitive::Linear { lambda } => {
-                for i in 0..N {
-                    qp_dot.q[i] = lambda * thetadot[i];
+                for (q, v) in qp_dot.q.iter_mut().zip(thetadot) {
+                    *q = lambda * v;
                 }
             }
         }
-        qp_dot
-            .a
-            .copy_from(&self.robot.jacobian_dot(theta, thetadot));
+        self.robot
+            .jacobian_dot(theta, thetadot, qp_dot.a.as_mut_slice());
         let pp = self.path.at(t);
-        let jthd = self.robot.jacobian(theta) * thetadot;
+        // J thetadot, with J written into the scratch QP's A (same 3 x n shape), summed column
+        // by column in joint order.
+        let jac = &mut scratch.plus.a;
+        self.robot.jacobian(theta, jac.as_mut_slice());
+        let mut jthd = Vector3::zeros();
+        for (j, v) in thetadot.iter().enumerate() {
+            for i in 0..3 {
+                jthd[i] += jac[(i, j)] * v;
+            }
+        }
         qp_dot
             .b
             .copy_from(&(pp.rddot + (pp.rdot - jthd) * self.k_p));
         match self.bounds {
             Some(gain) => {
-                let (lo, hi) = merged_bounds_dot(&self.robot.limits(), theta, thetadot, gain);
-                qp_dot.lower.as_mut_slice().copy_from_slice(lo.as_slice());
-                qp_dot.upper.as_mut_slice().copy_from_slice(hi.as_slice());
+                merged_bounds_dot(
+                    self.robot.limits(),
+                    theta,
+                    thetadot,
+                    gain,
+                    qp_dot.lower.as_mut_slice(),
+                    qp_dot.upper.as_mut_slice(),
+                );
             }
             None => {
                 qp_dot.lower.as_mut_slice().fill(0.0);

@@ -22,20 +22,20 @@
 //! derivative would need dc/dt, dg/dt, J-double-dot and the path's jerk, none of which the robot
 //! and path interfaces provide).
 
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 
 use crate::qp::{Qp, QpDims};
-use nalgebra::{SMatrix, SVector};
+use nalgebra::{DMatrix, DVector, Vector3};
 use robots::Dynamics;
 
 use crate::paths::Path;
 use crate::scheme::{Level, Scheme};
 
 /// zhang2018's HL-JDF scheme (MTN when zeta = 0), eq. 2.5–2.6.
-pub struct Zhang2018<const N: usize> {
-    robot: Arc<dyn Dynamics<N>>,
+pub struct Zhang2018 {
+    robot: Arc<dyn Dynamics>,
     path: Arc<dyn Path>,
-    theta0: SVector<f64, N>,
+    theta0: Vec<f64>,
     /// MVN/MTN mixing weight zeta in [0, 1].
     pub zeta: f64,
     /// Drift-criterion gain alpha of sigma = (alpha + beta) thetadot + alpha beta
@@ -47,35 +47,93 @@ pub struct Zhang2018<const N: usize> {
     pub rho_v: f64,
     /// Position feedback gain rho_p of b's rho_p (r* - f(theta)).
     pub rho_p: f64,
+    /// H, c, g and Jdot of one build, allocated with the scheme (no allocation per build).
+    scratch: Mutex<Scratch>,
 }
 
-impl<const N: usize> Zhang2018<N> {
-    /// Scheme on a robot with dynamics (kinematics are taken from the same model).
+/// The buffers of one build.
+struct Scratch {
+    /// H(theta), n x n.
+    h: DMatrix<f64>,
+    /// c(theta, thetadot), then c + g.
+    cg: DVector<f64>,
+    /// g(theta).
+    g: DVector<f64>,
+    /// H' (c + g).
+    htcg: DVector<f64>,
+    /// Jdot(theta, thetadot), 3 x n column-major.
+    jdot: Vec<f64>,
+}
+
+impl Scratch {
+    fn new(n: usize) -> Self {
+        Scratch {
+            h: DMatrix::zeros(n, n),
+            cg: DVector::zeros(n),
+            g: DVector::zeros(n),
+            htcg: DVector::zeros(n),
+            jdot: vec![0.0; 3 * n],
+        }
+    }
+}
+
+/// (a b)_{ij} = sum_k a_{ik} b_{kj}, summed in k order from k = 0 (the order of nalgebra's
+/// small-matrix product, which the fixed-size scheme used), written into `out`.
+fn product_to(a: &DMatrix<f64>, b: &DMatrix<f64>, out: &mut [f64]) {
+    let n = a.nrows();
+    for j in 0..n {
+        for i in 0..n {
+            let mut s = a[(i, 0)] * b[(0, j)];
+            for k in 1..n {
+                s += a[(i, k)] * b[(k, j)];
+            }
+            out[i + j * n] = s;
+        }
+    }
+}
+
+/// y = a x for a 3 x n column-major `a`, summed column by column in joint order.
+fn times(a: &[f64], x: &[f64]) -> Vector3<f64> {
+    let mut y = Vector3::zeros();
+    for (j, v) in x.iter().enumerate() {
+        for i in 0..3 {
+            y[i] += a[3 * j + i] * v;
+        }
+    }
+    y
+}
+
+impl Zhang2018 {
+    /// Scheme on a robot with dynamics (kinematics are taken from the same model); `theta0` has
+    /// one entry per joint.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
-        robot: Arc<dyn Dynamics<N>>,
+        robot: Arc<dyn Dynamics>,
         path: Arc<dyn Path>,
-        theta0: SVector<f64, N>,
+        theta0: &[f64],
         zeta: f64,
         alpha: f64,
         beta: f64,
         rho_v: f64,
         rho_p: f64,
     ) -> Self {
+        let n = robot.dof();
+        assert_eq!(theta0.len(), n, "theta0: one entry per joint");
         Self {
             robot,
             path,
-            theta0,
+            theta0: theta0.to_vec(),
             zeta,
             alpha,
             beta,
             rho_v,
             rho_p,
+            scratch: Mutex::new(Scratch::new(n)),
         }
     }
 
     /// The joint reference theta0 of sigma, as given at construction.
-    pub fn theta0(&self) -> &SVector<f64, N> {
+    pub fn theta0(&self) -> &[f64] {
         &self.theta0
     }
 
@@ -88,14 +146,20 @@ impl<const N: usize> Zhang2018<N> {
         }
     }
 
-    /// W = zeta I + (1 - zeta) H(theta)^2.
-    pub fn weight_matrix(&self, theta: &SVector<f64, N>) -> SMatrix<f64, N, N> {
-        let h = self.robot.inertia(theta);
-        SMatrix::<f64, N, N>::identity() * self.zeta + (h * h) * (1.0 - self.zeta)
+    /// W = zeta I + (1 - zeta) H(theta)^2 (allocates: for checks and tests).
+    pub fn weight_matrix(&self, theta: &[f64]) -> DMatrix<f64> {
+        let n = self.joints();
+        let h = self.robot.inertia_matrix(theta);
+        let mut hh = DMatrix::zeros(n, n);
+        product_to(&h, &h, hh.as_mut_slice());
+        DMatrix::from_fn(n, n, |i, j| {
+            let identity = if i == j { 1.0 } else { 0.0 };
+            identity * self.zeta + hh[(i, j)] * (1.0 - self.zeta)
+        })
     }
 }
 
-impl<const N: usize> Scheme<N> for Zhang2018<N> {
+impl Scheme for Zhang2018 {
     fn name(&self) -> String {
         Self::scheme_name(self.zeta).to_string()
     }
@@ -104,51 +168,90 @@ impl<const N: usize> Scheme<N> for Zhang2018<N> {
         Level::Acceleration
     }
 
+    fn joints(&self) -> usize {
+        self.theta0.len()
+    }
+
     fn dims(&self) -> QpDims {
         QpDims {
-            nx: N,
+            nx: self.joints(),
             n_eq: 3,
             n_in: 0,
         }
     }
 
-    fn build(&self, t: f64, theta: &SVector<f64, N>, thetadot: &SVector<f64, N>, qp: &mut Qp) {
+    fn build(&self, t: f64, theta: &[f64], thetadot: &[f64], qp: &mut Qp) {
         debug_assert_eq!(qp.dims(), self.dims());
+        let n = self.joints();
         let z = self.zeta;
-        let h = self.robot.inertia(theta);
-        let w = SMatrix::<f64, N, N>::identity() * z + (h * h) * (1.0 - z);
-        // Symmetrise against rounding so P is exactly symmetric.
-        let w = (w + w.transpose()) * 0.5;
-        qp.p.copy_from(&w);
-        let cg = self.robot.coriolis(theta, thetadot) + self.robot.gravity(theta);
-        let sigma =
-            thetadot * (self.alpha + self.beta) + (theta - self.theta0) * (self.alpha * self.beta);
-        let eta = sigma * z + h.tr_mul(&cg) * (1.0 - z);
-        qp.q.copy_from(&eta);
-        let j = self.robot.jacobian(theta);
-        qp.a.copy_from(&j);
+        let mut scratch = self
+            .scratch
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner());
+        let Scratch {
+            h,
+            cg,
+            g,
+            htcg,
+            jdot,
+        } = &mut *scratch;
+        self.robot.inertia(theta, h.as_mut_slice());
+        // P = W = zeta I + (1 - zeta) H^2, symmetrised: (W + W') / 2.
+        product_to(h, h, qp.p.as_mut_slice());
+        for j in 0..n {
+            for i in 0..n {
+                let identity = if i == j { 1.0 } else { 0.0 };
+                qp.p[(i, j)] = identity * z + qp.p[(i, j)] * (1.0 - z);
+            }
+        }
+        for j in 0..n {
+            for i in 0..j {
+                let w = (qp.p[(i, j)] + qp.p[(j, i)]) * 0.5;
+                qp.p[(i, j)] = w;
+                qp.p[(j, i)] = w;
+            }
+        }
+        // eta = zeta sigma + (1 - zeta) H'(c + g).
+        self.robot.coriolis(theta, thetadot, cg.as_mut_slice());
+        self.robot.gravity(theta, g.as_mut_slice());
+        *cg += &*g;
+        h.tr_mul_to(cg, htcg);
+        for i in 0..n {
+            let sigma = thetadot[i] * (self.alpha + self.beta)
+                + (theta[i] - self.theta0[i]) * (self.alpha * self.beta);
+            qp.q[i] = sigma * z + htcg[i] * (1.0 - z);
+        }
+        // A = J; b = rddot* - Jdot thetadot + rho_v (rdot* - J thetadot) + rho_p (r* - f).
+        self.robot.jacobian(theta, qp.a.as_mut_slice());
         let pp = self.path.at(t);
-        let jd = self.robot.jacobian_dot(theta, thetadot);
-        let jthd = j * thetadot;
-        let b = pp.rddot - jd * thetadot
+        self.robot.jacobian_dot(theta, thetadot, jdot);
+        let jthd = times(qp.a.as_slice(), thetadot);
+        let b = pp.rddot - times(jdot, thetadot)
             + (pp.rdot - jthd) * self.rho_v
             + (pp.r - self.robot.position(theta)) * self.rho_p;
         qp.b.copy_from(&b);
-        // No inequalities (n_in = 0) and no bounds.
         qp.lower.as_mut_slice().fill(f64::NEG_INFINITY);
         qp.upper.as_mut_slice().fill(f64::INFINITY);
     }
 
-    fn torque(
-        &self,
-        theta: &SVector<f64, N>,
-        thetadot: &SVector<f64, N>,
-        thetaddot: &SVector<f64, N>,
-    ) -> Option<SVector<f64, N>> {
-        Some(
-            self.robot.inertia(theta) * thetaddot
-                + self.robot.coriolis(theta, thetadot)
-                + self.robot.gravity(theta),
-        )
+    fn torque(&self, theta: &[f64], thetadot: &[f64], thetaddot: &[f64], tau: &mut [f64]) -> bool {
+        let n = self.joints();
+        let mut scratch = self
+            .scratch
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner());
+        let Scratch { h, cg, g, .. } = &mut *scratch;
+        self.robot.inertia(theta, h.as_mut_slice());
+        self.robot.coriolis(theta, thetadot, cg.as_mut_slice());
+        self.robot.gravity(theta, g.as_mut_slice());
+        // tau = (H thetaddot + c) + g, H thetaddot summed column by column in joint order.
+        for (i, t) in tau.iter_mut().enumerate().take(n) {
+            let mut s = h[(i, 0)] * thetaddot[0];
+            for k in 1..n {
+                s += h[(i, k)] * thetaddot[k];
+            }
+            *t = s + cg[i] + g[i];
+        }
+        true
     }
 }

@@ -7,4 +7,3 @@ mod common;
 mod paths;
 mod schemes;
 mod schemes_alloc;
-mod velocity_rmp_dyn;

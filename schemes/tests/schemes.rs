@@ -7,7 +7,7 @@ use crate::common;
 
 use std::sync::Arc;
 
-use common::{admm, kkt_solve, paper_specs as specs, Circle, PlanarZ};
+use common::{admm, kkt_solve, paper_specs as specs, Circle, FixedRobot, PlanarZ};
 use nalgebra::{DMatrix, SVector, Vector3};
 use robots::{Dynamics, JointLimits, Robot};
 use schemes::joint_limits::{merged_bounds, piecewise_bounds};
@@ -16,7 +16,7 @@ use schemes::qp_dot::{self, QpDotScratch};
 use schemes::scheme::{central_difference, default_step, Level, Scheme};
 use schemes::spec::{build_scheme, RmpReading, SchemeError, SchemeSpec};
 use schemes::tri_criteria::TriCriteria;
-use schemes::velocity_rmp::{finite_time_c, VelocityRmp};
+use schemes::velocity_rmp::VelocityRmp;
 use schemes::zhang2018::Zhang2018;
 use schemes::{Qp, QpDims};
 
@@ -27,21 +27,25 @@ fn theta0() -> V {
     V::from([0.3, 1.2, -0.8, 0.5, -0.4, 0.2])
 }
 
-fn robot() -> Arc<PlanarZ<N>> {
-    Arc::new(PlanarZ::<N>)
+fn planar() -> PlanarZ {
+    PlanarZ::new(N)
+}
+
+fn robot() -> Arc<PlanarZ> {
+    Arc::new(planar())
 }
 
 fn path() -> Arc<Circle> {
     Arc::new(Circle {
-        r0: PlanarZ::<N>.position(&theta0()),
+        r0: planar().position_n(&theta0()),
         a: 0.05,
         t_end: 5.0,
     })
 }
 
-fn make(spec: &SchemeSpec) -> Box<dyn Scheme<N>> {
+fn make(spec: &SchemeSpec) -> Box<dyn Scheme> {
     let r = robot();
-    build_scheme::<N>(spec, r.clone(), Some(r), path(), theta0()).unwrap()
+    build_scheme(spec, r.clone(), Some(r), path(), theta0().as_slice()).unwrap()
 }
 
 fn expected_dims(spec: &SchemeSpec) -> (QpDims, Level) {
@@ -98,11 +102,11 @@ fn qp_shapes_per_scheme() {
         assert_eq!(s.dims(), dims, "{}", spec.display_name());
         assert_eq!(s.level(), level, "{}", spec.display_name());
         let mut qp = s.new_qp();
-        s.build(1.3, &th, &thd, &mut qp);
+        s.build(1.3, th.as_slice(), thd.as_slice(), &mut qp);
         assert_eq!(qp.dims(), dims);
         // P symmetric; A = [J 0] (first N columns are the Jacobian).
         assert_eq!(qp.p, qp.p.transpose(), "{}", spec.display_name());
-        let j = PlanarZ::<N>.jacobian(&th);
+        let j = planar().jacobian_n(&th);
         for r in 0..3 {
             for c in 0..N {
                 assert_eq!(qp.a[(r, c)], j[(r, c)]);
@@ -176,10 +180,10 @@ fn qp_shapes_per_scheme() {
 fn jia2019_objective_data() {
     let (th, thd, _) = state();
     for (phi, tau) in [(1.0, 0.0), (0.2, 0.0), (0.2, 0.4)] {
-        let s = TriCriteria::<N>::vltco(robot(), path(), theta0(), phi, tau, 20.0, 20.0);
+        let s = TriCriteria::vltco(robot(), path(), theta0().as_slice(), phi, tau, 20.0, 20.0);
         let mut qp = s.new_qp();
         // At theta = theta0 the joint part of q vanishes.
-        s.build(0.7, &theta0(), &thd, &mut qp);
+        s.build(0.7, theta0().as_slice(), thd.as_slice(), &mut qp);
         assert!(qp.q.iter().all(|&v| v == 0.0), "{}: q = {}", s.name(), qp.q);
         // D = diag((phi + tau) I, 1 - phi - tau).
         let mut d = DMatrix::zeros(N + 1, N + 1);
@@ -189,7 +193,7 @@ fn jia2019_objective_data() {
         d[(N, N)] = 1.0 - phi - tau;
         assert_eq!(qp.p, d);
         // Elsewhere q = [tau Lambda (theta - theta0); 0].
-        s.build(0.7, &th, &thd, &mut qp);
+        s.build(0.7, th.as_slice(), thd.as_slice(), &mut qp);
         for i in 0..N {
             assert!((qp.q[i] - tau * 20.0 * (th[i] - theta0()[i])).abs() < 1e-14);
         }
@@ -200,16 +204,16 @@ fn jia2019_objective_data() {
             nalgebra::DVector::from_column_slice(path().at(0.7).rdot.as_slice())
         );
     }
-    assert_eq!(TriCriteria::<N>::vltco_name(1.0, 0.0), "MVN");
-    assert_eq!(TriCriteria::<N>::vltco_name(0.2, 0.0), "MVN-INVM");
-    assert_eq!(TriCriteria::<N>::vltco_name(0.2, 0.4), "VLTCO");
+    assert_eq!(TriCriteria::vltco_name(1.0, 0.0), "MVN");
+    assert_eq!(TriCriteria::vltco_name(0.2, 0.0), "MVN-INVM");
+    assert_eq!(TriCriteria::vltco_name(0.2, 0.4), "VLTCO");
 }
 
 #[test]
 fn merged_bounds_tighten_near_joint_limits() {
-    let s = TriCriteria::<N>::vltco(robot(), path(), theta0(), 0.2, 0.4, 20.0, 20.0);
-    let z = TriCriteria::<N>::cmco(robot(), path(), theta0(), 0.2, 0.4, 20.0, 20.0);
-    let lim = PlanarZ::<N>.limits();
+    let s = TriCriteria::vltco(robot(), path(), theta0().as_slice(), 0.2, 0.4, 20.0, 20.0);
+    let z = TriCriteria::cmco(robot(), path(), theta0().as_slice(), 0.2, 0.4, 20.0, 20.0);
+    let lim = planar().limits().clone();
     let mut qp = s.new_qp();
     let mut zqp = z.new_qp();
     // Joint 2 (index 1): limits [-1, 2.5], velocity +-1.5, kappa = 20 -> switch 0.075 from the limit.
@@ -218,7 +222,7 @@ fn merged_bounds_tighten_near_joint_limits() {
         let d = 0.5 * (1.0 - k as f64 / 400.0); // distance to the upper limit: 0.5 -> 0
         let mut th = theta0();
         th[1] = lim.theta_max[1] - d;
-        s.build(0.0, &th, &th, &mut qp);
+        s.build(0.0, th.as_slice(), th.as_slice(), &mut qp);
         let hi = qp.upper[1];
         assert!(hi <= 1.5, "upper bound {hi} exceeds the velocity limit");
         assert!(
@@ -235,7 +239,7 @@ fn merged_bounds_tighten_near_joint_limits() {
         );
         prev_hi = hi;
         // zhong2021's rows carry the same bounds: h = [0; zeta+; varpi; -zeta-; 0].
-        z.build(0.0, &th, &th, &mut zqp);
+        z.build(0.0, th.as_slice(), th.as_slice(), &mut zqp);
         assert!((zqp.h[2 * N + 1] - hi).abs() < 1e-12);
         assert!((zqp.h[3 * N + 1 + 1] + qp.lower[1]).abs() < 1e-12);
     }
@@ -243,11 +247,11 @@ fn merged_bounds_tighten_near_joint_limits() {
     // Beyond the limit the bound turns negative (pushes back); near the lower limit zeta- -> 0.
     let mut th = theta0();
     th[1] = lim.theta_max[1] + 0.01;
-    s.build(0.0, &th, &th, &mut qp);
+    s.build(0.0, th.as_slice(), th.as_slice(), &mut qp);
     assert!(qp.upper[1] < 0.0);
     for d in [0.5, 0.1, 0.05, 0.01, 0.0] {
         th[1] = lim.theta_min[1] + d;
-        s.build(0.0, &th, &th, &mut qp);
+        s.build(0.0, th.as_slice(), th.as_slice(), &mut qp);
         assert!(qp.lower[1] >= -1.5);
         assert!((qp.lower[1] - (-20.0 * d).max(-1.5)).abs() < 1e-12);
         assert_eq!(qp.upper[1], 1.5);
@@ -257,7 +261,7 @@ fn merged_bounds_tighten_near_joint_limits() {
 
 #[test]
 fn piecewise_bounds_equal_max_min_form() {
-    let mut lim: JointLimits<N> = PlanarZ::<N>.limits();
+    let mut lim: JointLimits = planar().limits().clone();
     lim.theta_min[4] = f64::NEG_INFINITY;
     lim.theta_max[4] = f64::INFINITY;
     lim.thetadot_max[5] = 0.8;
@@ -265,8 +269,22 @@ fn piecewise_bounds_equal_max_min_form() {
         let x = -4.0 + 8.0 * k as f64 / 2000.0;
         let th = V::repeat(x);
         for gain in [20.0, 2.0, 100.0] {
-            let (lo, hi) = merged_bounds(&lim, &th, gain);
-            let (plo, phi) = piecewise_bounds(&lim, &th, gain);
+            let (mut lo, mut hi, mut plo, mut phi) =
+                (V::zeros(), V::zeros(), V::zeros(), V::zeros());
+            merged_bounds(
+                &lim,
+                th.as_slice(),
+                gain,
+                lo.as_mut_slice(),
+                hi.as_mut_slice(),
+            );
+            piecewise_bounds(
+                &lim,
+                th.as_slice(),
+                gain,
+                plo.as_mut_slice(),
+                phi.as_mut_slice(),
+            );
             for i in 0..N {
                 assert!(
                     (lo[i] - plo[i]).abs() < 1e-12,
@@ -303,7 +321,7 @@ fn exact_optimum_tracks_the_task_velocity() {
             (2.6, th_off),
             (4.2, theta0()),
         ] {
-            s.build(t, &th, &thd, &mut qp);
+            s.build(t, th.as_slice(), thd.as_slice(), &mut qp);
             let (x, duals) = admm(&qp, 20_000);
             let kkt = qp.kkt_residuals(&x, &duals);
             assert!(
@@ -311,7 +329,7 @@ fn exact_optimum_tracks_the_task_velocity() {
                 "{} t = {t}: ADMM not converged: {kkt:?}",
                 spec.display_name()
             );
-            let j = PlanarZ::<N>.jacobian(&th);
+            let j = planar().jacobian_n(&th);
             let xd = V::from_iterator(x.iter().take(N).copied());
             let pp = path().at(t);
             let expected = match spec {
@@ -319,12 +337,12 @@ fn exact_optimum_tracks_the_task_velocity() {
                 SchemeSpec::FiniteTimeRmp { k_p, .. }
                 | SchemeSpec::ZnnRmp { k_p, .. }
                 | SchemeSpec::VelocityRmp { k_p, .. } => {
-                    pp.rdot + (pp.r - PlanarZ::<N>.position(&th)) * k_p
+                    pp.rdot + (pp.r - planar().position_n(&th)) * k_p
                 }
                 SchemeSpec::HlJdf { rho_v, rho_p, .. } => {
-                    pp.rddot - PlanarZ::<N>.jacobian_dot(&th, &thd) * thd
+                    pp.rddot - planar().jacobian_dot_n(&th, &thd) * thd
                         + (pp.rdot - j * thd) * rho_v
-                        + (pp.r - PlanarZ::<N>.position(&th)) * rho_p
+                        + (pp.r - planar().position_n(&th)) * rho_p
                 }
             };
             let res: Vector3<f64> = j * xd - expected;
@@ -346,7 +364,7 @@ fn exact_optimum_tracks_the_task_velocity() {
             }
             // Velocity-level schemes with bounds: the optimum respects the merged limits.
             if matches!(spec, SchemeSpec::Vltco { .. }) {
-                let lim = PlanarZ::<N>.limits();
+                let lim = planar().limits().clone();
                 for i in 0..N {
                     assert!(
                         x[i] <= lim.thetadot_max[i] + 1e-8 && x[i] >= lim.thetadot_min[i] - 1e-8
@@ -381,9 +399,9 @@ fn mvn_optimum_is_the_minimum_norm_solution() {
     });
     let mut qp = s.new_qp();
     let t = 1.7;
-    s.build(t, &theta0(), &theta0(), &mut qp);
+    s.build(t, theta0().as_slice(), theta0().as_slice(), &mut qp);
     let (x, _) = admm(&qp, 20_000);
-    let j = PlanarZ::<N>.jacobian(&theta0());
+    let j = planar().jacobian_n(&theta0());
     let pinv = j.transpose() * (j * j.transpose()).try_inverse().unwrap();
     let want = pinv * path().at(t).rdot;
     for i in 0..N {
@@ -395,30 +413,58 @@ fn mvn_optimum_is_the_minimum_norm_solution() {
 fn zhang2018_weight_is_spd_and_torque_is_the_dynamics() {
     let (th, thd, thdd) = state();
     for zeta in [0.0, 0.6, 0.8, 1.0] {
-        let s = Zhang2018::<N>::new(robot(), path(), theta0(), zeta, 20.0, 20.0, 20.0, 20.0);
+        let s = Zhang2018::new(
+            robot(),
+            path(),
+            theta0().as_slice(),
+            zeta,
+            20.0,
+            20.0,
+            20.0,
+            20.0,
+        );
         let mut qp = s.new_qp();
-        s.build(2.0, &th, &thd, &mut qp);
+        s.build(2.0, th.as_slice(), thd.as_slice(), &mut qp);
         assert_eq!(qp.p, qp.p.transpose());
         let eig = qp.p.clone().symmetric_eigenvalues();
         assert!(eig.min() > 1e-3, "zeta = {zeta}: eigenvalues {eig}");
-        let h = PlanarZ::<N>.inertia(&th);
+        let h = planar().inertia_n(&th);
         let want_w = nalgebra::SMatrix::<f64, N, N>::identity() * zeta + h * h * (1.0 - zeta);
-        assert!((s.weight_matrix(&th) - want_w).amax() < 1e-14);
+        assert!((s.weight_matrix(th.as_slice()) - want_w).amax() < 1e-14);
         // eta = zeta sigma + (1 - zeta) H'(c + g).
         let sigma = thd * 40.0 + (th - theta0()) * 400.0;
-        let cg = PlanarZ::<N>.coriolis(&th, &thd) + PlanarZ::<N>.gravity(&th);
+        let cg = planar().coriolis_n(&th, &thd) + planar().gravity_n(&th);
         let eta = sigma * zeta + h.transpose() * cg * (1.0 - zeta);
         for i in 0..N {
             assert!((qp.q[i] - eta[i]).abs() < 1e-12);
         }
-        let tau = s.torque(&th, &thd, &thdd).unwrap();
+        let mut tau = V::zeros();
+        assert!(s.torque(
+            th.as_slice(),
+            thd.as_slice(),
+            thdd.as_slice(),
+            tau.as_mut_slice()
+        ));
         assert!((tau - (h * thdd + cg)).amax() < 1e-14);
     }
-    assert_eq!(Zhang2018::<N>::scheme_name(0.0), "MTN");
-    assert_eq!(Zhang2018::<N>::scheme_name(0.6), "HL-JDF");
+    assert_eq!(Zhang2018::scheme_name(0.0), "MTN");
+    assert_eq!(Zhang2018::scheme_name(0.6), "HL-JDF");
     // Schemes without dynamics report no torque.
     let k = make(&SchemeSpec::ZnnRmp { mu: 1.0, k_p: 1.0 });
-    assert!(k.torque(&th, &thd, &thdd).is_none());
+    let mut tau = V::repeat(7.0);
+    assert!(!k.torque(
+        th.as_slice(),
+        thd.as_slice(),
+        thdd.as_slice(),
+        tau.as_mut_slice()
+    ));
+    assert_eq!(tau, V::repeat(7.0));
+}
+
+/// kong2019's c = |e|^alpha sgn(e) elementwise, e = theta - theta*0, smoothed over |e| ~ delta:
+/// the sign-power term of the finite-time scheme.
+fn finite_time_c(theta: &V, star: &V, alpha: f64, delta: f64) -> V {
+    (theta - star).map(|e| schemes::sign_power::sign_power(e, alpha, delta))
 }
 
 #[test]
@@ -468,36 +514,43 @@ fn kong2019_c_is_odd_and_zero_at_the_reference() {
             assert!(cp[i] * e[i] >= 0.0, "c has the sign of e");
         }
     }
-    let ft = VelocityRmp::<N>::finite_time(robot(), path(), star, 1.0, alpha, 1.0);
-    let znn = VelocityRmp::<N>::znn(robot(), path(), star, 2.0, 1.0);
+    let ft = VelocityRmp::finite_time(robot(), path(), star.as_slice(), 1.0, alpha, 1.0);
+    let znn = VelocityRmp::znn(robot(), path(), star.as_slice(), 2.0, 1.0);
     let mut qp = ft.new_qp();
-    for s in [&ft as &dyn Scheme<N>, &znn] {
-        s.build(0.5, &star, &star, &mut qp);
+    for s in [&ft as &dyn Scheme, &znn] {
+        s.build(0.5, star.as_slice(), star.as_slice(), &mut qp);
         assert!(qp.q.iter().all(|&v| v == 0.0));
         assert_eq!(qp.p, DMatrix::identity(N, N));
     }
     let th = star + V::from([0.1, 0.0, 0.0, 0.0, 0.0, -0.5]);
-    znn.build(0.5, &th, &th, &mut qp);
+    znn.build(0.5, th.as_slice(), th.as_slice(), &mut qp);
     assert!((qp.q[5] + 1.0).abs() < 1e-14 && (qp.q[0] - 0.2).abs() < 1e-14);
-    ft.build(0.5, &th, &th, &mut qp);
+    ft.build(0.5, th.as_slice(), th.as_slice(), &mut qp);
     // The smoothing (delta = 1e-6) changes c by a relative ~0.45 (delta/e)^2 = 2e-12 at e = 0.5.
     assert!((qp.q[5] + 0.5_f64.powf(0.1)).abs() < 1e-11);
     // build_dot is finite at e = 0 (slope delta^(alpha - 1) of the smoothed c) and exact away from it.
     let thd = V::repeat(0.3);
     let mut dot = ft.new_qp();
-    ft.build_dot(0.5, &star, &thd, &thd, &mut dot, &mut ft.new_dot_scratch());
+    ft.build_dot(
+        0.5,
+        star.as_slice(),
+        thd.as_slice(),
+        thd.as_slice(),
+        &mut dot,
+        &mut ft.new_dot_scratch(),
+    );
     assert!(dot.q.iter().all(|v| v.is_finite()));
     assert!((dot.q[0] - 1e-6_f64.powf(-0.9) * 0.3).abs() < 1e-6 * dot.q[0].abs());
 }
 
 /// dQP/dt by the five-point stencil (error O(h^4)) along the same motion.
-fn stencil_dot(s: &dyn Scheme<N>, t: f64, th: &V, thd: &V, thdd: &V, h: f64) -> Qp {
+fn stencil_dot(s: &dyn Scheme, t: f64, th: &V, thd: &V, thdd: &V, h: f64) -> Qp {
     let accel = s.level() == Level::Acceleration;
     let at = |k: f64| {
         let mut qp = s.new_qp();
         let th_k = th + thd * (k * h);
         let thd_k = if accel { thd + thdd * (k * h) } else { *thd };
-        s.build(t + k * h, &th_k, &thd_k, &mut qp);
+        s.build(t + k * h, th_k.as_slice(), thd_k.as_slice(), &mut qp);
         qp
     };
     let (m2, m1, p1, p2) = (at(-2.0), at(-1.0), at(1.0), at(2.0));
@@ -534,7 +587,14 @@ fn build_dot_matches_a_higher_order_difference() {
         for (t, th) in [(1.3, th), (3.7, th_near)] {
             let mut dot = s.new_qp();
             let mut scratch = s.new_dot_scratch();
-            s.build_dot(t, &th, &thd, &thdd, &mut dot, &mut scratch);
+            s.build_dot(
+                t,
+                th.as_slice(),
+                thd.as_slice(),
+                thdd.as_slice(),
+                &mut dot,
+                &mut scratch,
+            );
             let reference = stencil_dot(&*s, t, &th, &thd, &thdd, 1e-3);
             let d = dot.max_rel_diff(&reference);
             assert!(
@@ -556,8 +616,17 @@ fn build_dot_matches_a_higher_order_difference() {
             }
             // The default central difference agrees with the analytic overrides too.
             let mut fd = s.new_qp();
-            let h = default_step(s.level(), &thd, &thdd);
-            central_difference(&*s, t, &th, &thd, &thdd, h, &mut fd, &mut scratch);
+            let h = default_step(s.level(), thd.as_slice(), thdd.as_slice());
+            central_difference(
+                &*s,
+                t,
+                th.as_slice(),
+                thd.as_slice(),
+                thdd.as_slice(),
+                h,
+                &mut fd,
+                &mut scratch,
+            );
             let d = fd.max_rel_diff(&reference);
             assert!(
                 d < 1e-6,
@@ -580,8 +649,17 @@ fn infinite_entries_have_zero_derivative() {
     });
     let (th, thd, thdd) = state();
     let mut fd = s.new_qp();
-    let mut scratch = QpDotScratch::new(s.dims());
-    central_difference(&*s, 1.0, &th, &thd, &thdd, 1e-5, &mut fd, &mut scratch);
+    let mut scratch = QpDotScratch::new(s.dims(), N);
+    central_difference(
+        &*s,
+        1.0,
+        th.as_slice(),
+        thd.as_slice(),
+        thdd.as_slice(),
+        1e-5,
+        &mut fd,
+        &mut scratch,
+    );
     assert_eq!(fd.h[3 * N], 0.0);
     assert!(fd.lower.iter().chain(fd.upper.iter()).all(|&v| v == 0.0));
     assert!(fd.h.iter().all(|v| v.is_finite()));
@@ -599,8 +677,15 @@ fn dims_constant_along_a_run() {
         let mut th = theta0();
         for k in 0..=50 {
             let t = path().duration() * k as f64 / 50.0;
-            s.build(t, &th, &thd, &mut qp);
-            s.build_dot(t, &th, &thd, &thd, &mut dot, &mut scratch);
+            s.build(t, th.as_slice(), thd.as_slice(), &mut qp);
+            s.build_dot(
+                t,
+                th.as_slice(),
+                thd.as_slice(),
+                thd.as_slice(),
+                &mut dot,
+                &mut scratch,
+            );
             assert_eq!(qp.dims(), dims);
             assert_eq!(s.dims(), dims);
             assert_eq!(dot.dims(), dims);
@@ -693,7 +778,7 @@ fn build_scheme_reports_clear_errors() {
         rho_v: 20.0,
         rho_p: 20.0,
     };
-    let err = build_scheme::<N>(&zhang, r.clone(), None, path(), theta0())
+    let err = build_scheme(&zhang, r.clone(), None, path(), theta0().as_slice())
         .err()
         .unwrap();
     assert_eq!(err, SchemeError::MissingDynamics { scheme: "hl-jdf" });
@@ -708,7 +793,7 @@ fn build_scheme_reports_clear_errors() {
         rmp: RmpReading::Printed,
         mu: 5.0,
     };
-    let err = build_scheme::<N>(&bad, r.clone(), None, path(), theta0())
+    let err = build_scheme(&bad, r.clone(), None, path(), theta0().as_slice())
         .err()
         .unwrap();
     assert!(err.to_string().contains("'tau'"), "{err}");
@@ -720,7 +805,7 @@ fn build_scheme_reports_clear_errors() {
         rmp: RmpReading::Printed,
         tau: 10.0,
     };
-    let err = build_scheme::<N>(&bad, r.clone(), None, path(), theta0())
+    let err = build_scheme(&bad, r.clone(), None, path(), theta0().as_slice())
         .err()
         .unwrap();
     assert!(err.to_string().contains("'upsilon'"), "{err}");
@@ -729,7 +814,7 @@ fn build_scheme_reports_clear_errors() {
         k_p: f64::NAN,
         alpha: 0.1,
     };
-    let err = build_scheme::<N>(&bad, r.clone(), None, path(), theta0())
+    let err = build_scheme(&bad, r.clone(), None, path(), theta0().as_slice())
         .err()
         .unwrap();
     assert!(err.to_string().contains("'k_p'"), "{err}");
@@ -740,8 +825,8 @@ fn build_scheme_reports_clear_errors() {
         rho_v: 20.0,
         rho_p: 20.0,
     };
-    let dynamics: Arc<dyn Dynamics<N>> = r.clone();
-    let err = build_scheme::<N>(&bad, r.clone(), Some(dynamics), path(), theta0())
+    let dynamics: Arc<dyn Dynamics> = r.clone();
+    let err = build_scheme(&bad, r.clone(), Some(dynamics), path(), theta0().as_slice())
         .err()
         .unwrap();
     assert!(err.to_string().contains("'zeta'"), "{err}");
@@ -751,7 +836,7 @@ fn build_scheme_reports_clear_errors() {
         .into_iter()
         .filter(|s| !matches!(s, SchemeSpec::HlJdf { .. }))
     {
-        assert!(build_scheme::<N>(&spec, r.clone(), None, path(), theta0()).is_ok());
+        assert!(build_scheme(&spec, r.clone(), None, path(), theta0().as_slice()).is_ok());
     }
 }
 
@@ -808,7 +893,7 @@ fn rmp_readings_set_the_linear_term_as_the_expansion_predicts() {
             let tau = 0.4;
             let s = make(&jia(tau, reading, 5.0));
             let mut qp = s.new_qp();
-            s.build(t, &theta, &theta, &mut qp);
+            s.build(t, theta.as_slice(), theta.as_slice(), &mut qp);
             for i in 0..N {
                 let want = tau * k * (theta[i] - theta0()[i]);
                 assert!(
@@ -822,7 +907,7 @@ fn rmp_readings_set_the_linear_term_as_the_expansion_predicts() {
             let delta = 0.8;
             let s = make(&zhong(delta, reading, 5.0));
             let mut qp = s.new_qp();
-            s.build(t, &theta, &theta, &mut qp);
+            s.build(t, theta.as_slice(), theta.as_slice(), &mut qp);
             for i in 0..N {
                 let want = delta * k * (theta[i] - theta0()[i]);
                 assert!(
@@ -838,13 +923,23 @@ fn rmp_readings_set_the_linear_term_as_the_expansion_predicts() {
     let theta = random_theta(7);
     let mut a = make(&jia(0.4, RmpReading::Printed, 5.0)).new_qp();
     let mut b = a.clone();
-    make(&jia(0.4, RmpReading::Printed, 5.0)).build(2.0, &theta, &theta, &mut a);
-    let direct = TriCriteria::vltco(robot(), path(), theta0(), 0.2, 0.4, 20.0, 20.0);
-    direct.build(2.0, &theta, &theta, &mut b);
+    make(&jia(0.4, RmpReading::Printed, 5.0)).build(
+        2.0,
+        theta.as_slice(),
+        theta.as_slice(),
+        &mut a,
+    );
+    let direct = TriCriteria::vltco(robot(), path(), theta0().as_slice(), 0.2, 0.4, 20.0, 20.0);
+    direct.build(2.0, theta.as_slice(), theta.as_slice(), &mut b);
     assert_eq!(a.q, b.q);
     assert_eq!(a.p, b.p);
     let mut c = a.clone();
-    make(&jia(0.4, RmpReading::Expansion, 5.0)).build(2.0, &theta, &theta, &mut c);
+    make(&jia(0.4, RmpReading::Expansion, 5.0)).build(
+        2.0,
+        theta.as_slice(),
+        theta.as_slice(),
+        &mut c,
+    );
     assert_eq!(a.p, c.p);
     assert_eq!(a.a, c.a);
     assert_ne!(a.q, c.q);
@@ -902,22 +997,22 @@ fn rmp_reading_fields_read_display_and_validate() {
 
     let r = robot();
     for mu in [0.0, -1.0, f64::NAN, f64::INFINITY] {
-        let err = build_scheme::<N>(
+        let err = build_scheme(
             &jia(0.4, RmpReading::TextGain, mu),
             r.clone(),
             None,
             path(),
-            theta0(),
+            theta0().as_slice(),
         )
         .err()
         .unwrap();
         assert!(err.to_string().contains("'mu'"), "{err}");
-        let err = build_scheme::<N>(
+        let err = build_scheme(
             &zhong(0.8, RmpReading::TextGain, mu),
             r.clone(),
             None,
             path(),
-            theta0(),
+            theta0().as_slice(),
         )
         .err()
         .unwrap();

@@ -22,10 +22,10 @@
 //! a thousand times the activation's band of 1e-6, and the column came out ~90x too small:
 //! Newton then failed on every other step (650,000 steps instead of ~3,000).
 
-use nalgebra::{DMatrix, DVector, SVector};
+use nalgebra::{DMatrix, DVector};
 use schemes::qp_dot::QpDotScratch;
 use schemes::scheme::Level;
-use schemes::slice_scheme::SliceScheme;
+use schemes::scheme::Scheme;
 use solvers::exact_path::{ExactPath, ExactPathStats};
 use solvers::neural::NeuralSolver;
 use solvers::ode::OdeSystem;
@@ -40,22 +40,8 @@ pub fn arm_dim(n: usize, level: Level) -> usize {
     }
 }
 
-/// (theta, thetadot) from the arm part of a state vector; thetadot = `command` at the velocity
-/// level (it is not a state there).
-pub fn arm_state<const N: usize>(
-    level: Level,
-    y: &[f64],
-    command: &[f64],
-) -> (SVector<f64, N>, SVector<f64, N>) {
-    let theta = SVector::<f64, N>::from_column_slice(&y[..N]);
-    let thetadot = match level {
-        Level::Velocity => SVector::<f64, N>::from_column_slice(&command[..N]),
-        Level::Acceleration => SVector::<f64, N>::from_column_slice(&y[N..2 * N]),
-    };
-    (theta, thetadot)
-}
-
-/// (theta, thetadot) of an n-joint arm as slices of a state vector, as [`arm_state`].
+/// (theta, thetadot) of an n-joint arm as slices of a state vector; thetadot = `command` at
+/// the velocity level (it is not a state there).
 pub fn arm_slices<'y>(
     n: usize,
     level: Level,
@@ -83,7 +69,7 @@ fn arm_rhs(n: usize, level: Level, y: &[f64], command: &[f64], dy: &mut [f64]) {
 /// solver, Clarabel when it fails and on a sample).
 pub struct ExactLoop<'a> {
     /// The scheme whose QP is solved at every evaluation.
-    pub scheme: &'a dyn SliceScheme,
+    pub scheme: &'a dyn Scheme,
     /// The QP buffer, rebuilt in place at every evaluation.
     pub qp: Qp,
     /// The exact solver, hot-started along the run.
@@ -97,7 +83,7 @@ pub struct ExactLoop<'a> {
 
 impl<'a> ExactLoop<'a> {
     /// The loop of `scheme`, its QP and solver buffers allocated once.
-    pub fn new(scheme: &'a dyn SliceScheme) -> Self {
+    pub fn new(scheme: &'a dyn Scheme) -> Self {
         let qp = scheme.new_qp();
         Self {
             scheme,
@@ -152,7 +138,7 @@ impl OdeSystem for ExactLoop<'_> {
 /// The scheme solved by a recurrent network, integrated together with the arm.
 pub struct NeuralLoop<'a> {
     /// The scheme whose QP the network solves.
-    pub scheme: &'a dyn SliceScheme,
+    pub scheme: &'a dyn Scheme,
     /// The network; its state is the part of y after the arm's.
     pub network: Box<dyn NeuralSolver>,
     qp: Qp,
@@ -180,7 +166,7 @@ pub struct NeuralLoop<'a> {
 /// `zeros` holds n zeros (the velocity level's thetaddot).
 #[allow(clippy::too_many_arguments)]
 fn qp_data_at(
-    scheme: &dyn SliceScheme,
+    scheme: &dyn Scheme,
     k: usize,
     t: f64,
     y: &[f64],
@@ -218,7 +204,7 @@ fn central_difference(hi: &mut Qp, lo: &Qp, h: f64) {
 
 impl<'a> NeuralLoop<'a> {
     /// The loop of `scheme` and `network`, every buffer sized for the scheme's QP once.
-    pub fn new(scheme: &'a dyn SliceScheme, network: Box<dyn NeuralSolver>) -> Self {
+    pub fn new(scheme: &'a dyn Scheme, network: Box<dyn NeuralSolver>) -> Self {
         let net_dim = network.state_dim(scheme.dims());
         let dim = arm_dim(scheme.joints(), scheme.level()) + net_dim;
         Self {

@@ -15,29 +15,35 @@
 //!   projection residual for LVI-PDNN and S-LVI-PDNN): final value and largest value after
 //!   t = 1 s (kong2019's "settles within ~1 s").
 
-use nalgebra::{SMatrix, SVector, Vector3};
+use nalgebra::{DVector, Matrix3xX, Vector3};
 use robots::JointLimits;
 
-/// One sample of the arm's motion at an accepted step.
+/// One sample of the arm's motion at an accepted step (joint vectors borrowed from the
+/// observer's buffers, one entry per joint).
 #[derive(Clone, Copy, Debug)]
-pub struct Sample<const N: usize> {
+pub struct Sample<'a> {
     /// Time (s).
     pub t: f64,
     /// Joint angles theta (rad).
-    pub theta: SVector<f64, N>,
+    pub theta: &'a [f64],
     /// Joint velocities thetadot (rad/s): the command at the velocity level, the state at the
     /// acceleration level.
-    pub thetadot: SVector<f64, N>,
+    pub thetadot: &'a [f64],
     /// Joint acceleration (acceleration level only).
-    pub thetaddot: Option<SVector<f64, N>>,
+    pub thetaddot: Option<&'a [f64]>,
     /// Joint torque tau (N m), for schemes with a dynamics model.
-    pub torque: Option<SVector<f64, N>>,
+    pub torque: Option<&'a [f64]>,
     /// Desired task-point position r*(t) (m).
     pub desired: Vector3<f64>,
     /// Actual task-point position f(theta) (m).
     pub actual: Vector3<f64>,
     /// Position Jacobian J(theta).
-    pub jacobian: SMatrix<f64, 3, N>,
+    pub jacobian: &'a Matrix3xX<f64>,
+}
+
+/// The largest magnitude of `v`.
+fn amax(v: &[f64]) -> f64 {
+    v.iter().fold(0.0, |m: f64, x| m.max(x.abs()))
 }
 
 /// Comparison of a neural solver's output with the exact optimum at one instant.
@@ -144,11 +150,17 @@ impl RunMetrics {
 }
 
 /// Streaming accumulator of [`RunMetrics`].
-pub struct MetricsAccumulator<const N: usize> {
-    limits: JointLimits<N>,
-    theta0: SVector<f64, N>,
-    theta_ref: SVector<f64, N>,
-    last: Option<Sample<N>>,
+pub struct MetricsAccumulator {
+    limits: JointLimits,
+    theta0: DVector<f64>,
+    theta_ref: DVector<f64>,
+    /// The time of the last sample, if any.
+    last_t: Option<f64>,
+    /// theta at the last sample.
+    last_theta: DVector<f64>,
+    /// Whether the samples carry thetaddot, and tau.
+    has_thetaddot: bool,
+    has_torque: bool,
     last_error: f64,
     error_sq_integral: f64,
     max_error: f64,
@@ -169,19 +181,19 @@ pub struct MetricsAccumulator<const N: usize> {
     network_error: Option<NetworkError>,
 }
 
-impl<const N: usize> MetricsAccumulator<N> {
+impl MetricsAccumulator {
     /// An empty accumulator for an arm with `limits`, drifts measured from `theta0` and
-    /// `theta_ref`.
-    pub fn new(
-        limits: JointLimits<N>,
-        theta0: SVector<f64, N>,
-        theta_ref: SVector<f64, N>,
-    ) -> Self {
+    /// `theta_ref` (one entry per joint each).
+    pub fn new(limits: JointLimits, theta0: &[f64], theta_ref: &[f64]) -> Self {
+        let n = theta0.len();
         Self {
             limits,
-            theta0,
-            theta_ref,
-            last: None,
+            theta0: DVector::from_column_slice(theta0),
+            theta_ref: DVector::from_column_slice(theta_ref),
+            last_t: None,
+            last_theta: DVector::zeros(n),
+            has_thetaddot: false,
+            has_torque: false,
             last_error: 0.0,
             error_sq_integral: 0.0,
             max_error: 0.0,
@@ -201,15 +213,15 @@ impl<const N: usize> MetricsAccumulator<N> {
     }
 
     /// Adds an accepted step.
-    pub fn push(&mut self, s: &Sample<N>) {
+    pub fn push(&mut self, s: &Sample<'_>) {
         let e = (s.desired - s.actual).norm();
-        if let Some(prev) = &self.last {
-            let dt = s.t - prev.t;
+        if let Some(prev_t) = self.last_t {
+            let dt = s.t - prev_t;
             self.error_sq_integral += 0.5 * dt * (e * e + self.last_error * self.last_error);
         }
         self.max_error = self.max_error.max(e);
         let l = &self.limits;
-        for i in 0..N {
+        for i in 0..s.theta.len() {
             self.theta_margin =
                 self.theta_margin
                     .min(margin(s.theta[i], l.theta_min[i], l.theta_max[i]));
@@ -219,16 +231,19 @@ impl<const N: usize> MetricsAccumulator<N> {
                 l.thetadot_max[i],
             ));
         }
-        self.peak_thetadot = self.peak_thetadot.max(s.thetadot.amax());
-        if let Some(a) = &s.thetaddot {
-            self.peak_thetaddot = self.peak_thetaddot.max(a.amax());
+        self.peak_thetadot = self.peak_thetadot.max(amax(s.thetadot));
+        if let Some(a) = s.thetaddot {
+            self.peak_thetaddot = self.peak_thetaddot.max(amax(a));
         }
-        if let Some(tau) = &s.torque {
-            self.peak_torque = self.peak_torque.max(tau.amax());
+        if let Some(tau) = s.torque {
+            self.peak_torque = self.peak_torque.max(amax(tau));
         }
-        self.min_sigma = self.min_sigma.min(sigma_min(&s.jacobian));
+        self.min_sigma = self.min_sigma.min(sigma_min(s.jacobian));
         self.last_error = e;
-        self.last = Some(*s);
+        self.last_t = Some(s.t);
+        self.last_theta.copy_from_slice(s.theta);
+        self.has_thetaddot = s.thetaddot.is_some();
+        self.has_torque = s.torque.is_some();
     }
 
     /// Adds a comparison with the exact optimum at time t.
@@ -265,9 +280,9 @@ impl<const N: usize> MetricsAccumulator<N> {
 
     /// Metrics of the run so far (its last sample is theta(T)).
     pub fn finish(&self, start_time: f64) -> RunMetrics {
-        let last = self.last.expect("a run has at least its initial sample");
-        let drift = last.theta - self.theta0;
-        let duration = last.t - start_time;
+        let last_t = self.last_t.expect("a run has at least its initial sample");
+        let drift = &self.last_theta - &self.theta0;
+        let duration = last_t - start_time;
         let score = (self.score.samples > 0).then(|| {
             let rms_dx = match self.last_score {
                 Some((t_last, _)) if t_last > start_time => {
@@ -290,7 +305,7 @@ impl<const N: usize> MetricsAccumulator<N> {
         RunMetrics {
             drift: drift.iter().copied().collect(),
             drift_norm: drift.norm(),
-            drift_ref_norm: (last.theta - self.theta_ref).norm(),
+            drift_ref_norm: (&self.last_theta - &self.theta_ref).norm(),
             max_position_error: self.max_error,
             rms_position_error: if duration > 0.0 {
                 (self.error_sq_integral / duration).sqrt()
@@ -301,8 +316,8 @@ impl<const N: usize> MetricsAccumulator<N> {
             theta_margin: self.theta_margin,
             thetadot_margin: self.thetadot_margin,
             peak_thetadot: self.peak_thetadot,
-            peak_thetaddot: last.thetaddot.map(|_| self.peak_thetaddot),
-            peak_torque: last.torque.map(|_| self.peak_torque),
+            peak_thetaddot: self.has_thetaddot.then_some(self.peak_thetaddot),
+            peak_torque: self.has_torque.then_some(self.peak_torque),
             min_sigma_j: self.min_sigma,
             score,
             network_error: self.network_error,
@@ -311,7 +326,7 @@ impl<const N: usize> MetricsAccumulator<N> {
 }
 
 /// Smallest singular value of a 3 x n Jacobian: sqrt of the least eigenvalue of J J'.
-pub fn sigma_min<const N: usize>(j: &SMatrix<f64, 3, N>) -> f64 {
+pub fn sigma_min(j: &Matrix3xX<f64>) -> f64 {
     let jjt: nalgebra::Matrix3<f64> = j * j.transpose();
     jjt.symmetric_eigenvalues().min().max(0.0).sqrt()
 }
@@ -324,34 +339,35 @@ fn margin(v: f64, lo: f64, hi: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use nalgebra::SVector;
 
-    fn limits() -> JointLimits<2> {
+    fn limits() -> JointLimits {
         JointLimits {
-            theta_min: SVector::from([-1.0, f64::NEG_INFINITY]),
-            theta_max: SVector::from([1.0, f64::INFINITY]),
-            thetadot_min: SVector::from([-2.0, -2.0]),
-            thetadot_max: SVector::from([2.0, 2.0]),
+            theta_min: DVector::from_column_slice(&[-1.0, f64::NEG_INFINITY]),
+            theta_max: DVector::from_column_slice(&[1.0, f64::INFINITY]),
+            thetadot_min: DVector::from_column_slice(&[-2.0, -2.0]),
+            thetadot_max: DVector::from_column_slice(&[2.0, 2.0]),
         }
     }
 
-    fn sample(t: f64, theta: [f64; 2], err: f64) -> Sample<2> {
-        Sample {
+    /// A sample at t with angles theta and position error err, pushed into `m`.
+    fn push(m: &mut MetricsAccumulator, t: f64, theta: [f64; 2], err: f64) {
+        let jacobian = Matrix3xX::from_row_slice(&[1.0, 0.0, 0.0, 2.0, 0.0, 0.0]);
+        m.push(&Sample {
             t,
-            theta: SVector::from(theta),
-            thetadot: SVector::from([0.5, -1.5]),
+            theta: &theta,
+            thetadot: &[0.5, -1.5],
             thetaddot: None,
             torque: None,
             desired: Vector3::new(err, 0.0, 0.0),
             actual: Vector3::zeros(),
-            jacobian: SMatrix::<f64, 3, 2>::new(1.0, 0.0, 0.0, 2.0, 0.0, 0.0),
-        }
+            jacobian: &jacobian,
+        });
     }
 
     #[test]
     fn score_rms_is_time_weighted_and_network_error_settles() {
-        let mut m = MetricsAccumulator::new(limits(), SVector::zeros(), SVector::zeros());
-        m.push(&sample(0.0, [0.0, 0.0], 0.0));
+        let mut m = MetricsAccumulator::new(limits(), &[0.0; 2], &[0.0; 2]);
+        push(&mut m, 0.0, [0.0, 0.0], 0.0);
         let score = |dx: f64| ScoreSample {
             dx,
             objective_gap: 0.0,
@@ -366,7 +382,7 @@ mod tests {
         m.push_network_error(0.5, 3.0);
         m.push_network_error(1.5, 2e-4);
         m.push_network_error(9.0, 1e-6);
-        m.push(&sample(10.0, [0.0, 0.0], 0.0));
+        push(&mut m, 10.0, [0.0, 0.0], 0.0);
         let r = m.finish(0.0);
         let s = r.score.unwrap();
         assert_eq!(s.samples, 13);
@@ -390,12 +406,12 @@ mod tests {
             violation: 0.0,
         };
         let run = |samples: &[(f64, f64)]| {
-            let mut m = MetricsAccumulator::new(limits(), SVector::zeros(), SVector::zeros());
-            m.push(&sample(0.0, [0.0, 0.0], 0.0));
+            let mut m = MetricsAccumulator::new(limits(), &[0.0; 2], &[0.0; 2]);
+            push(&mut m, 0.0, [0.0, 0.0], 0.0);
             for &(t, dx) in samples {
                 m.push_score(t, &score(dx));
             }
-            m.push(&sample(samples.last().unwrap().0, [0.0, 0.0], 0.0));
+            push(&mut m, samples.last().unwrap().0, [0.0, 0.0], 0.0);
             m.finish(0.0).score.unwrap()
         };
         // A transient of 1 rad/s until t = 0.5, then 1e-4 rad/s: the whole-run RMS sees the
@@ -423,8 +439,9 @@ mod tests {
 
     #[test]
     fn sigma_min_of_a_known_jacobian() {
-        let j =
-            SMatrix::<f64, 3, 4>::new(0.0, 3.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.5, 0.0);
+        let j = Matrix3xX::from_row_slice(&[
+            0.0, 3.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.5, 0.0,
+        ]);
         assert!((sigma_min(&j) - 0.5).abs() < 1e-12);
         let rotated = nalgebra::Rotation3::from_euler_angles(0.3, -0.2, 1.1).matrix() * j;
         assert!((sigma_min(&rotated) - 0.5).abs() < 1e-12);
@@ -432,14 +449,10 @@ mod tests {
 
     #[test]
     fn drift_margins_and_rms_of_a_constant_error() {
-        let mut m = MetricsAccumulator::new(
-            limits(),
-            SVector::from([0.0, 0.0]),
-            SVector::from([0.1, 0.0]),
-        );
-        m.push(&sample(0.0, [0.0, 0.0], 0.3));
-        m.push(&sample(1.0, [0.9, 5.0], 0.3));
-        m.push(&sample(3.0, [0.3, 4.0], 0.3));
+        let mut m = MetricsAccumulator::new(limits(), &[0.0, 0.0], &[0.1, 0.0]);
+        push(&mut m, 0.0, [0.0, 0.0], 0.3);
+        push(&mut m, 1.0, [0.9, 5.0], 0.3);
+        push(&mut m, 3.0, [0.3, 4.0], 0.3);
         let r = m.finish(0.0);
         assert_eq!(r.drift, vec![0.3, 4.0]);
         assert!((r.drift_norm - (0.09f64 + 16.0).sqrt()).abs() < 1e-15);

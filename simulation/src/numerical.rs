@@ -16,14 +16,14 @@
 //! accepted step of an integrated run, and scored against the exact optimum x*(t_k, theta_k)
 //! where the experiment's `scoring` says.
 
-use crate::coupled::{arm_dim, arm_state, ExactLoop};
+use crate::coupled::{arm_dim, arm_slices, ExactLoop};
 use crate::error::RunError;
 use crate::observer::{score_instant, Observer};
 use catalog::experiment::Scoring;
 use catalog::numerical_spec::{NumericalMethod, NumericalSpec};
-use nalgebra::{DVector, SVector};
+use nalgebra::DVector;
 use schemes::scheme::{Level, Scheme};
-use schemes::slice_scheme::Fixed;
+
 use solvers::exact_path::ExactPathStats;
 use solvers::lvi_numerical::{LviMethod, LviSettings, LviSolver};
 use solvers::neural::projection::primal_dual_dim;
@@ -68,14 +68,15 @@ pub(crate) struct NumericalRun {
 
 /// Runs the loop of the module docs from `theta0` over the path's duration `t1`, scored where
 /// `scoring` says.
-pub(crate) fn run_numerical<const N: usize>(
-    scheme: &dyn Scheme<N>,
+pub(crate) fn run_numerical(
+    scheme: &dyn Scheme,
     spec: &NumericalSpec,
-    theta0: &SVector<f64, N>,
+    theta0: &[f64],
     t1: f64,
     scoring: Scoring,
-    observer: &mut Observer<'_, N>,
+    observer: &mut Observer<'_>,
 ) -> NumericalRun {
+    let n = scheme.joints();
     let started = Instant::now();
     let level = scheme.level();
     let dims = scheme.dims();
@@ -88,10 +89,9 @@ pub(crate) fn run_numerical<const N: usize>(
         },
     );
     let mut qp = scheme.new_qp();
-    let fixed = Fixed(scheme);
-    let mut scorer = ExactLoop::new(&fixed);
-    let mut y = vec![0.0; arm_dim(N, level)];
-    y[..N].copy_from_slice(theta0.as_slice());
+    let mut scorer = ExactLoop::new(scheme);
+    let mut y = vec![0.0; arm_dim(n, level)];
+    y[..n].copy_from_slice(theta0);
     let mut x = DVector::<f64>::zeros(dims.nx);
     let instants = (t1 / spec.step).ceil().max(1.0) as usize;
     let mut iterations = IterationStats::default();
@@ -100,8 +100,8 @@ pub(crate) fn run_numerical<const N: usize>(
     let mut failure: Option<(f64, RunError)> = None;
     for k in 0..=instants {
         let t = (k as f64 * spec.step).min(t1);
-        let (theta, thetadot) = arm_state::<N>(level, &y, &y);
-        scheme.build(t, &theta, &thetadot, &mut qp);
+        let (theta, thetadot) = arm_slices(n, level, &y, &y);
+        scheme.build(t, theta, thetadot, &mut qp);
         match solver.solve(&qp) {
             Ok(it) => {
                 iterations.total += u64::from(it);
@@ -115,14 +115,14 @@ pub(crate) fn run_numerical<const N: usize>(
         }
         x.as_mut_slice().copy_from_slice(solver.x());
         let observe = Instant::now();
-        let (_, thetadot) = arm_state::<N>(level, &y, x.as_slice());
+        let (_, thetadot) = arm_slices(n, level, &y, x.as_slice());
         if score_instant(
             observer,
             &mut scorer,
             scoring,
             &mut next_score_t,
             t1,
-            (t, &theta, &thetadot),
+            (t, theta, thetadot),
             &x,
         ) == Some(false)
         {
@@ -138,7 +138,7 @@ pub(crate) fn run_numerical<const N: usize>(
             break;
         }
         let h = (((k + 1) as f64) * spec.step).min(t1) - t;
-        hold_command::<N>(level, &mut y, &x, h);
+        hold_command(n, level, &mut y, &x, h);
     }
     let stats = OdeStats {
         steps: instants,
@@ -156,19 +156,19 @@ pub(crate) fn run_numerical<const N: usize>(
 }
 
 /// Moves the arm state `y` over a step `h` with the command `x` held (module docs): theta by
-/// h x[..N] at the velocity level; at the acceleration level theta by h thetadot, then thetadot
-/// by h x[..N].
-fn hold_command<const N: usize>(level: Level, y: &mut [f64], x: &DVector<f64>, h: f64) {
+/// h x[..n] at the velocity level; at the acceleration level theta by h thetadot, then thetadot
+/// by h x[..n].
+fn hold_command(n: usize, level: Level, y: &mut [f64], x: &DVector<f64>, h: f64) {
     match level {
         Level::Velocity => {
-            for i in 0..N {
+            for i in 0..n {
                 y[i] += h * x[i];
             }
         }
         Level::Acceleration => {
-            for i in 0..N {
-                y[i] += h * y[N + i];
-                y[N + i] += h * x[i];
+            for i in 0..n {
+                y[i] += h * y[n + i];
+                y[n + i] += h * x[i];
             }
         }
     }

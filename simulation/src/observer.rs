@@ -5,10 +5,10 @@
 //! loop of the numerical methods ([`crate::numerical`]) and a trajectory scored from a file
 //! ([`crate::score_trajectory`]).
 
-use crate::coupled::{arm_state, ExactLoop};
+use crate::coupled::{arm_slices, ExactLoop};
 use crate::metrics::{MetricsAccumulator, Sample, ScoreSample};
 use catalog::experiment::Scoring;
-use nalgebra::{DVector, SVector};
+use nalgebra::{DVector, Matrix3xX};
 use records::trace::TracePoint;
 use robots::Robot;
 use schemes::paths::Path;
@@ -28,13 +28,13 @@ pub const DIVERGENCE_STATE: f64 = 1e6;
 /// when `scoring` says the instant is due (`next_score_t` keeps the grid of
 /// [`Scoring::MaxInstants`]): `None` when not due, `Some(false)` when the exact solver failed
 /// (the instant is left out of the score), `Some(true)` when scored.
-pub(crate) fn score_instant<const N: usize>(
-    observer: &mut Observer<'_, N>,
+pub(crate) fn score_instant(
+    observer: &mut Observer<'_>,
     scorer: &mut ExactLoop<'_>,
     scoring: Scoring,
     next_score_t: &mut f64,
     t1: f64,
-    (t, theta, thetadot): (f64, &SVector<f64, N>, &SVector<f64, N>),
+    (t, theta, thetadot): (f64, &[f64], &[f64]),
     x: &DVector<f64>,
 ) -> Option<bool> {
     let due = match scoring {
@@ -51,12 +51,13 @@ pub(crate) fn score_instant<const N: usize>(
     if !due {
         return None;
     }
-    let Ok(x_star) = scorer.optimum(t, theta.as_slice(), thetadot.as_slice()) else {
+    let Ok(x_star) = scorer.optimum(t, theta, thetadot) else {
         return Some(false);
     };
     let qp = &scorer.qp;
     let f_star = qp.objective(&x_star);
-    let dx = (x.rows(0, N) - x_star.rows(0, N)).amax();
+    let n = theta.len();
+    let dx = (x.rows(0, n) - x_star.rows(0, n)).amax();
     observer.score(
         t,
         &ScoreSample {
@@ -70,16 +71,21 @@ pub(crate) fn score_instant<const N: usize>(
 
 /// Turns accepted steps into metrics and a thinned trace (also the samples of a trajectory
 /// scored by [`crate::score_trajectory`]).
-pub(crate) struct Observer<'a, const N: usize> {
-    robot: &'a dyn Robot<N>,
-    scheme: &'a dyn Scheme<N>,
+pub(crate) struct Observer<'a> {
+    robot: &'a dyn Robot,
+    scheme: &'a dyn Scheme,
     path: &'a dyn Path,
-    pub(crate) metrics: MetricsAccumulator<N>,
+    pub(crate) metrics: MetricsAccumulator,
     pub(crate) trace: Vec<TracePoint>,
     next_trace_t: f64,
     pub(crate) last_t: f64,
     /// Joint velocities at the last accepted step (for [`Self::divergence`]).
-    last_thetadot: SVector<f64, N>,
+    last_thetadot: Vec<f64>,
+    /// The arm's state, command, torque and Jacobian at the step being sampled (allocated once).
+    theta: Vec<f64>,
+    thetaddot: Vec<f64>,
+    torque: Vec<f64>,
+    jacobian: Matrix3xX<f64>,
     last_dx: Option<f64>,
     last_network_error: Option<f64>,
     pub(crate) score_failures: usize,
@@ -87,23 +93,28 @@ pub(crate) struct Observer<'a, const N: usize> {
     pub(crate) seconds: f64,
 }
 
-impl<'a, const N: usize> Observer<'a, N> {
+impl<'a> Observer<'a> {
     pub(crate) fn new(
-        robot: &'a dyn Robot<N>,
-        scheme: &'a dyn Scheme<N>,
+        robot: &'a dyn Robot,
+        scheme: &'a dyn Scheme,
         path: &'a dyn Path,
-        theta0: SVector<f64, N>,
-        theta_ref: SVector<f64, N>,
+        theta0: &[f64],
+        theta_ref: &[f64],
     ) -> Self {
+        let n = robot.dof();
         Self {
             robot,
             scheme,
             path,
-            metrics: MetricsAccumulator::new(robot.limits(), theta0, theta_ref),
+            metrics: MetricsAccumulator::new(robot.limits().clone(), theta0, theta_ref),
             trace: Vec::with_capacity(TRACE_POINTS + 2),
             next_trace_t: 0.0,
             last_t: 0.0,
-            last_thetadot: SVector::zeros(),
+            last_thetadot: vec![0.0; n],
+            theta: vec![0.0; n],
+            thetaddot: vec![0.0; n],
+            torque: vec![0.0; n],
+            jacobian: Matrix3xX::zeros(n),
             last_dx: None,
             last_network_error: None,
             score_failures: 0,
@@ -130,8 +141,7 @@ impl<'a, const N: usize> Observer<'a, N> {
     /// run stops there with that reason instead of integrating a blow-up to the step limit.
     pub(crate) fn divergence(&self, y: &[f64]) -> Option<String> {
         let limits = self.robot.limits();
-        for i in 0..N {
-            let v = self.last_thetadot[i];
+        for (i, &v) in self.last_thetadot.iter().enumerate() {
             let bound = limits.thetadot_max[i].max(-limits.thetadot_min[i]);
             if bound.is_finite() && v.abs() > DIVERGENCE_FACTOR * bound {
                 return Some(format!(
@@ -149,12 +159,24 @@ impl<'a, const N: usize> Observer<'a, N> {
 
     /// Records the accepted state y at t with joint command x (x[..n] = thetadot or thetaddot).
     pub(crate) fn sample(&mut self, t: f64, y: &[f64], x: &DVector<f64>, level: Level) {
-        let (theta, thetadot) = arm_state::<N>(level, y, x.as_slice());
-        let thetaddot = (level == Level::Acceleration)
-            .then(|| SVector::<f64, N>::from_column_slice(&x.as_slice()[..N]));
-        let torque = thetaddot.and_then(|a| self.scheme.torque(&theta, &thetadot, &a));
+        let n = self.theta.len();
+        let (theta, thetadot) = arm_slices(n, level, y, x.as_slice());
+        self.theta.copy_from_slice(theta);
+        self.last_thetadot.copy_from_slice(thetadot);
+        let (theta, thetadot) = (&self.theta[..], &self.last_thetadot[..]);
+        let thetaddot = (level == Level::Acceleration).then(|| {
+            self.thetaddot.copy_from_slice(&x.as_slice()[..n]);
+            &self.thetaddot[..]
+        });
+        let torque = match thetaddot {
+            Some(a) if self.scheme.torque(theta, thetadot, a, &mut self.torque) => {
+                Some(&self.torque[..])
+            }
+            _ => None,
+        };
         let desired = self.path.at(t).r;
-        let actual = self.robot.position(&theta);
+        let actual = self.robot.position(theta);
+        self.robot.jacobian(theta, self.jacobian.as_mut_slice());
         let s = Sample {
             t,
             theta,
@@ -163,19 +185,18 @@ impl<'a, const N: usize> Observer<'a, N> {
             torque,
             desired,
             actual,
-            jacobian: self.robot.jacobian(&theta),
+            jacobian: &self.jacobian,
         };
         self.metrics.push(&s);
-        self.last_thetadot = thetadot;
         let duration = self.path.duration();
         let is_end = t >= duration * (1.0 - 1e-12);
         if t >= self.next_trace_t || is_end {
             self.trace.push(TracePoint {
                 t,
-                theta: theta.iter().copied().collect(),
-                thetadot: thetadot.iter().copied().collect(),
-                thetaddot: thetaddot.map(|a| a.iter().copied().collect()),
-                torque: torque.map(|a| a.iter().copied().collect()),
+                theta: theta.to_vec(),
+                thetadot: thetadot.to_vec(),
+                thetaddot: thetaddot.map(<[f64]>::to_vec),
+                torque: torque.map(<[f64]>::to_vec),
                 desired: [desired.x, desired.y, desired.z],
                 actual: [actual.x, actual.y, actual.z],
                 score_dx: self.last_dx,

@@ -6,8 +6,8 @@ use crate::simulate::{simulate, Outcome, Run, Settings, Solver};
 use catalog::error::SetupError;
 use catalog::experiment::{Job, SolverChoice};
 use catalog::fields::JobPart;
-use nalgebra::SVector;
-use robots::registry::{robot_by_name, RobotVisitor};
+use nalgebra::DVector;
+use robots::registry::{robot_by_name, Model};
 use robots::{Dynamics, Robot};
 use schemes::paths::{build_path, Cyclic, Path};
 use schemes::qp::QpDims;
@@ -59,21 +59,9 @@ pub fn run_job_with_network(job: &Job, network: NetworkBuilder<'_>) -> RunRecord
 }
 
 fn run_job_as(job: &Job, network: Option<NetworkBuilder<'_>>) -> RunRecord {
-    struct FromJob<'a>(&'a Job, Option<NetworkBuilder<'a>>);
-    impl RobotVisitor for FromJob<'_> {
-        type Output = Result<Run, RunError>;
-        fn visit<const N: usize>(
-            self,
-            robot: Arc<dyn Robot<N>>,
-            dynamics: Option<Arc<dyn Dynamics<N>>>,
-        ) -> Self::Output {
-            run_with::<N>(self.0, self.1, robot, dynamics)
-        }
-    }
-    let result = match robot_by_name(&job.robot) {
-        Some(robot) => robot.visit(FromJob(job, network)),
-        None => Err(SetupError::UnknownRobot(job.robot.clone()).into()),
-    };
+    let result = job_model(job)
+        .map_err(RunError::from)
+        .and_then(|model| run_with(job, network, model));
     let run = result.unwrap_or_else(|error| Run {
         scheme_name: job.scheme.display_name(),
         outcome: Outcome::Failed {
@@ -99,71 +87,45 @@ fn run_job_as(job: &Job, network: Option<NetworkBuilder<'_>>) -> RunRecord {
 /// experiment file is rejected at load for exactly what would make its run fail at t = 0.
 /// The error names the part (and so the file's field) and the builder's own message.
 pub fn check_job(job: &Job) -> Result<(), SetupError> {
-    fn with<const N: usize>(
-        job: &Job,
-        robot: Arc<dyn Robot<N>>,
-        dynamics: Option<Arc<dyn Dynamics<N>>>,
-    ) -> Result<(), SetupError> {
-        for (part, v) in [
-            (JobPart::Theta0, &job.theta0),
-            (JobPart::ThetaRef, &job.theta_ref),
-        ] {
-            if v.len() != N {
-                return Err(SetupError::PoseLength {
-                    part,
-                    given: v.len(),
-                    joints: N,
-                });
-            }
-            if v.iter().any(|x| !x.is_finite()) {
-                return Err(SetupError::PoseNotFinite { part });
-            }
+    let model = job_model(job)?;
+    let joints = model.dof();
+    for (part, v) in [
+        (JobPart::Theta0, &job.theta0),
+        (JobPart::ThetaRef, &job.theta_ref),
+    ] {
+        if v.len() != joints {
+            return Err(SetupError::PoseLength {
+                part,
+                given: v.len(),
+                joints,
+            });
         }
-        let robot = job_robot(job, robot, dynamics.is_some())?;
-        let (_, scheme) = build_parts::<N>(job, robot, dynamics)?;
-        if let SolverChoice::Neural(spec) = &job.solver {
-            build_network(spec, scheme.dims(), &scheme.name())?;
-        }
-        Ok(())
-    }
-    struct Check<'a>(&'a Job);
-    impl RobotVisitor for Check<'_> {
-        type Output = Result<(), SetupError>;
-        fn visit<const N: usize>(
-            self,
-            robot: Arc<dyn Robot<N>>,
-            dynamics: Option<Arc<dyn Dynamics<N>>>,
-        ) -> Self::Output {
-            with::<N>(self.0, robot, dynamics)
+        if v.iter().any(|x| !x.is_finite()) {
+            return Err(SetupError::PoseNotFinite { part });
         }
     }
-    match robot_by_name(&job.robot) {
-        Some(robot) => robot.visit(Check(job)),
-        None => Err(SetupError::UnknownRobot(job.robot.clone())),
+    let robot = job_robot(job, model.robot, model.dynamics.is_some())?;
+    let (_, scheme) = build_parts(job, robot, model.dynamics)?;
+    if let SolverChoice::Neural(spec) = &job.solver {
+        build_network(spec, scheme.dims(), &scheme.name())?;
     }
+    Ok(())
+}
+
+/// The registry's model of the job's robot; the error names the valid choices, or the robot's
+/// invalid file and field.
+pub fn job_model(job: &Job) -> Result<Model, SetupError> {
+    robot_by_name(&job.robot).map_err(|e| SetupError::UnknownRobot(e.to_string()))
 }
 
 /// The shape of the QP the job's scheme poses at every instant: its sizes and whether its
 /// decision variable starts with thetadot or thetaddot ([`schemes::scheme::Level`]). Built as
 /// [`check_job`] builds the scheme (robot, path from f(theta_ref), scheme), without running.
 pub fn qp_shape(job: &Job) -> Result<(QpDims, schemes::scheme::Level), SetupError> {
-    struct Shape<'a>(&'a Job);
-    impl RobotVisitor for Shape<'_> {
-        type Output = Result<(QpDims, schemes::scheme::Level), SetupError>;
-        fn visit<const N: usize>(
-            self,
-            robot: Arc<dyn Robot<N>>,
-            dynamics: Option<Arc<dyn Dynamics<N>>>,
-        ) -> Self::Output {
-            let robot = job_robot(self.0, robot, dynamics.is_some())?;
-            let (_, scheme) = build_parts::<N>(self.0, robot, dynamics)?;
-            Ok((scheme.dims(), scheme.level()))
-        }
-    }
-    match robot_by_name(&job.robot) {
-        Some(robot) => robot.visit(Shape(job)),
-        None => Err(SetupError::UnknownRobot(job.robot.clone())),
-    }
+    let model = job_model(job)?;
+    let robot = job_robot(job, model.robot, model.dynamics.is_some())?;
+    let (_, scheme) = build_parts(job, robot, model.dynamics)?;
+    Ok((scheme.dims(), scheme.level()))
 }
 
 /// The job's robot: the registry's model `robot`, with the job's `joint_limits` and
@@ -171,11 +133,11 @@ pub fn qp_shape(job: &Job) -> Result<(QpDims, schemes::scheme::Level), SetupErro
 /// A model that carries dynamics (`has_dynamics`: the acceleration-level scheme takes its
 /// kinematics and limits from the dynamics model) keeps its own limits: overriding them is an
 /// error rather than a silent half-override.
-pub fn job_robot<const N: usize>(
+pub fn job_robot(
     job: &Job,
-    robot: Arc<dyn Robot<N>>,
+    robot: Arc<dyn Robot>,
     has_dynamics: bool,
-) -> Result<Arc<dyn Robot<N>>, SetupError> {
+) -> Result<Arc<dyn Robot>, SetupError> {
     if job.joint_limits.is_none() && job.velocity_limits.is_none() {
         return Ok(robot);
     }
@@ -184,21 +146,22 @@ pub fn job_robot<const N: usize>(
             robot: job.robot.clone(),
         });
     }
-    let mut limits = robot.limits();
+    let joints = robot.dof();
+    let mut limits = robot.limits().clone();
     let set = |spec: &Option<catalog::experiment::LimitsSpec>,
-               lo: &mut SVector<f64, N>,
-               hi: &mut SVector<f64, N>|
+               lo: &mut DVector<f64>,
+               hi: &mut DVector<f64>|
      -> Result<(), SetupError> {
         if let Some(l) = spec {
-            if l.lower.len() != N || l.upper.len() != N {
+            if l.lower.len() != joints || l.upper.len() != joints {
                 return Err(SetupError::PoseLength {
                     part: JobPart::Limits,
                     given: l.lower.len().max(l.upper.len()),
-                    joints: N,
+                    joints,
                 });
             }
-            *lo = SVector::from_column_slice(&l.lower);
-            *hi = SVector::from_column_slice(&l.upper);
+            *lo = DVector::from_column_slice(&l.lower);
+            *hi = DVector::from_column_slice(&l.upper);
         }
         Ok(())
     };
@@ -212,37 +175,45 @@ pub fn job_robot<const N: usize>(
         &mut limits.thetadot_min,
         &mut limits.thetadot_max,
     )?;
-    Ok(Arc::new(robots::limited::Limited::new(robot, limits)))
+    let limited = robots::limited::Limited::new(robot, limits).expect("limits checked per joint");
+    Ok(Arc::new(limited))
 }
 
 /// The path (starting at f(theta_ref)) and the scheme of a run.
 #[allow(clippy::type_complexity)]
-pub(crate) fn build_parts<const N: usize>(
+pub(crate) fn build_parts(
     job: &Job,
-    robot: Arc<dyn Robot<N>>,
-    dynamics: Option<Arc<dyn Dynamics<N>>>,
-) -> Result<(Arc<dyn Path>, Box<dyn Scheme<N>>), SetupError> {
+    robot: Arc<dyn Robot>,
+    dynamics: Option<Arc<dyn Dynamics>>,
+) -> Result<(Arc<dyn Path>, Box<dyn Scheme>), SetupError> {
     build_cyclic_parts(job, robot, dynamics, 1)
 }
 
 /// `build_parts` with the job's path repeated `cycles` times ([`Cyclic`]; the path itself
 /// when `cycles` is 1), the scheme built on the repeated path.
 #[allow(clippy::type_complexity)]
-pub fn build_cyclic_parts<const N: usize>(
+pub fn build_cyclic_parts(
     job: &Job,
-    robot: Arc<dyn Robot<N>>,
-    dynamics: Option<Arc<dyn Dynamics<N>>>,
+    robot: Arc<dyn Robot>,
+    dynamics: Option<Arc<dyn Dynamics>>,
     cycles: usize,
-) -> Result<(Arc<dyn Path>, Box<dyn Scheme<N>>), SetupError> {
-    let theta_ref = SVector::<f64, N>::from_column_slice(&job.theta_ref);
-    let start = robot.position(&theta_ref);
+) -> Result<(Arc<dyn Path>, Box<dyn Scheme>), SetupError> {
+    let theta_ref = &job.theta_ref;
+    if theta_ref.len() != robot.dof() {
+        return Err(SetupError::PoseLength {
+            part: JobPart::ThetaRef,
+            given: theta_ref.len(),
+            joints: robot.dof(),
+        });
+    }
+    let start = robot.position(theta_ref);
     let once = build_path(&job.path, start)?;
     let path: Arc<dyn Path> = if cycles > 1 {
         Arc::new(Cyclic::new(once, cycles))
     } else {
         Arc::from(once)
     };
-    let scheme = build_scheme::<N>(
+    let scheme = build_scheme(
         &job.scheme,
         robot.clone(),
         dynamics,
@@ -263,16 +234,9 @@ pub fn build_cyclic_parts<const N: usize>(
     Ok((path, scheme))
 }
 
-fn run_with<const N: usize>(
-    job: &Job,
-    custom: Option<NetworkBuilder<'_>>,
-    robot: Arc<dyn Robot<N>>,
-    dynamics: Option<Arc<dyn Dynamics<N>>>,
-) -> Result<Run, RunError> {
-    let theta0 = SVector::<f64, N>::from_column_slice(&job.theta0);
-    let theta_ref = SVector::<f64, N>::from_column_slice(&job.theta_ref);
-    let robot = job_robot(job, robot, dynamics.is_some())?;
-    let (path, scheme) = build_parts::<N>(job, robot.clone(), dynamics)?;
+fn run_with(job: &Job, custom: Option<NetworkBuilder<'_>>, model: Model) -> Result<Run, RunError> {
+    let robot = job_robot(job, model.robot, model.dynamics.is_some())?;
+    let (path, scheme) = build_parts(job, robot.clone(), model.dynamics)?;
     let dims = scheme.dims();
     let scheme_name = scheme.name();
     let network = |spec: &SolverSpec| build_network(spec, dims, &scheme_name);
@@ -299,8 +263,8 @@ fn run_with<const N: usize>(
         path.as_ref(),
         scheme.as_ref(),
         solver,
-        &theta0,
-        &theta_ref,
+        &job.theta0,
+        &job.theta_ref,
         &settings,
     )
 }

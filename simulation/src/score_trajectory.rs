@@ -31,14 +31,12 @@ use crate::run::{build_parts, RunRecord};
 use crate::simulate::{Outcome, Run};
 use catalog::error::SetupError;
 use catalog::experiment::Job;
-use nalgebra::{DVector, SVector};
+use nalgebra::DVector;
 use records::trajectory::Trajectory;
-use robots::registry::{robot_by_name, RobotVisitor};
-use robots::{Dynamics, Robot};
+use robots::registry::Model;
 use schemes::scheme::Level;
-use schemes::slice_scheme::Fixed;
+
 use solvers::ode::OdeStats;
-use std::sync::Arc;
 use std::time::Instant;
 
 /// Relative tolerance on the first and last instants (t_0 = 0, t_m = T) in units of T.
@@ -209,39 +207,19 @@ pub fn velocities(trajectory: &Trajectory) -> Vec<Vec<f64>> {
 /// its solver and integrator play no part). The record's run has the metrics and the score of
 /// the module docs; its `stats.steps` is the number of samples.
 pub fn score_trajectory(job: &Job, trajectory: &Trajectory) -> Result<RunRecord, TrajectoryError> {
-    struct Score<'a>(&'a Job, &'a Trajectory);
-    impl RobotVisitor for Score<'_> {
-        type Output = Result<Run, TrajectoryError>;
-        fn visit<const N: usize>(
-            self,
-            robot: Arc<dyn Robot<N>>,
-            dynamics: Option<Arc<dyn Dynamics<N>>>,
-        ) -> Self::Output {
-            score_with::<N>(self.0, self.1, robot, dynamics)
-        }
-    }
-    let run = match robot_by_name(&job.robot) {
-        Some(robot) => robot.visit(Score(job, trajectory))?,
-        None => return Err(SetupError::UnknownRobot(job.robot.clone()).into()),
-    };
+    let run = score_with(job, trajectory, crate::run::job_model(job)?)?;
     Ok(RunRecord {
         job: job.clone(),
         run,
     })
 }
 
-fn score_with<const N: usize>(
-    job: &Job,
-    trajectory: &Trajectory,
-    robot: Arc<dyn Robot<N>>,
-    dynamics: Option<Arc<dyn Dynamics<N>>>,
-) -> Result<Run, TrajectoryError> {
+fn score_with(job: &Job, trajectory: &Trajectory, model: Model) -> Result<Run, TrajectoryError> {
     let started = Instant::now();
-    check(trajectory, N, job.path.duration, &job.theta0)?;
-    let theta0 = SVector::<f64, N>::from_column_slice(&job.theta0);
-    let theta_ref = SVector::<f64, N>::from_column_slice(&job.theta_ref);
-    let robot = crate::run::job_robot(job, robot, dynamics.is_some())?;
-    let (path, scheme) = build_parts::<N>(job, robot.clone(), dynamics)?;
+    let n = model.dof();
+    check(trajectory, n, job.path.duration, &job.theta0)?;
+    let robot = crate::run::job_robot(job, model.robot, model.dynamics.is_some())?;
+    let (path, scheme) = build_parts(job, robot.clone(), model.dynamics)?;
     if scheme.level() != Level::Velocity {
         return Err(TrajectoryError::AccelerationLevel(scheme.name()));
     }
@@ -249,28 +227,26 @@ fn score_with<const N: usize>(
         robot.as_ref(),
         scheme.as_ref(),
         path.as_ref(),
-        theta0,
-        theta_ref,
+        &job.theta0,
+        &job.theta_ref,
     );
-    let fixed = Fixed(scheme.as_ref());
-    let mut scorer = ExactLoop::new(&fixed);
+    let mut scorer = ExactLoop::new(scheme.as_ref());
     let mut failures = 0usize;
     let thetadots = velocities(trajectory);
     let nx = scheme.dims().nx;
     for ((&t, theta), thetadot) in trajectory.t.iter().zip(&trajectory.theta).zip(&thetadots) {
-        let theta = SVector::<f64, N>::from_column_slice(theta);
-        let command = SVector::<f64, N>::from_column_slice(thetadot);
+        let command = DVector::from_column_slice(thetadot);
         let mut x = DVector::zeros(nx);
-        match scorer.optimum(t, theta.as_slice(), command.as_slice()) {
+        match scorer.optimum(t, theta, thetadot) {
             Ok(x_star) => {
                 x.copy_from(&x_star);
-                x.rows_mut(0, N).copy_from(&command);
+                x.rows_mut(0, n).copy_from(&command);
                 let qp = &scorer.qp;
                 let f_star = qp.objective(&x_star);
                 observer.score(
                     t,
                     &ScoreSample {
-                        dx: (command - x_star.rows(0, N)).amax(),
+                        dx: (&command - x_star.rows(0, n)).amax(),
                         objective_gap: (qp.objective(&x) - f_star) / f_star.abs().max(1.0),
                         violation: qp.constraint_violation(&x),
                     },
@@ -278,10 +254,10 @@ fn score_with<const N: usize>(
             }
             Err(_) => {
                 failures += 1;
-                x.rows_mut(0, N).copy_from(&command);
+                x.rows_mut(0, n).copy_from(&command);
             }
         }
-        observer.sample(t, theta.as_slice(), &x, Level::Velocity);
+        observer.sample(t, theta, &x, Level::Velocity);
     }
     let seconds = started.elapsed().as_secs_f64();
     let metrics = observer.metrics.finish(0.0);

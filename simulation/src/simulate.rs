@@ -1,7 +1,7 @@
 //! The simulation proper: a robot following a path under a scheme, the scheme's QP solved at
 //! every instant by the exact optimum or by a recurrent network integrated together with the
 //! arm, observed at every accepted step (metrics, the score against the exact optimum, a
-//! thinned trace). [`simulate`] takes trait objects (`Robot<N>`, `Path`, `Scheme<N>`,
+//! thinned trace). [`simulate`] takes trait objects (`Robot`, `Path`, `Scheme`,
 //! `NeuralSolver`): the experiment files' factories ([`crate::run`]) are one way to build them,
 //! a user's own types another (`examples/`).
 //!
@@ -9,20 +9,21 @@
 //! thetadot = x[..N]; at the acceleration level [theta; thetadot; y_net] with thetaddot =
 //! x[..N]. The exact column integrates theta alone with x = x*(t, theta).
 
-use crate::coupled::{arm_dim, arm_state, ExactLoop, NeuralLoop};
+use crate::coupled::{arm_dim, arm_slices, ExactLoop, NeuralLoop};
 use crate::error::RunError;
 use crate::metrics::RunMetrics;
 use crate::numerical::{run_numerical, IterationStats};
 use crate::observer::{score_instant, Observer};
 use catalog::error::SetupError;
 use catalog::experiment::{NetworkInit, Scoring};
+use catalog::fields::JobPart;
 use catalog::numerical_spec::NumericalSpec;
-use nalgebra::{DVector, SVector};
+use nalgebra::DVector;
 use records::trace::TracePoint;
 use robots::Robot;
 use schemes::paths::Path;
 use schemes::scheme::{Level, Scheme};
-use schemes::slice_scheme::Fixed;
+
 use settings::integrator::IntegratorSettings;
 use solvers::exact_path::ExactPathStats;
 use solvers::neural::NeuralSolver;
@@ -103,16 +104,27 @@ pub struct Run {
 /// runs exactly as the papers' do (see `examples/`). Errors only when the run cannot start (a
 /// network that cannot be built, no exact optimum at t = 0 for `NetworkInit::Exact`); a run
 /// that stops early is an `Ok` [`Run`] with [`Outcome::Failed`].
-pub fn simulate<const N: usize>(
-    robot: &dyn Robot<N>,
+pub fn simulate(
+    robot: &dyn Robot,
     path: &dyn Path,
-    scheme: &dyn Scheme<N>,
+    scheme: &dyn Scheme,
     solver: Solver<'_>,
-    theta0: &SVector<f64, N>,
-    theta_ref: &SVector<f64, N>,
+    theta0: &[f64],
+    theta_ref: &[f64],
     settings: &Settings,
 ) -> Result<Run, RunError> {
-    let mut observer = Observer::new(robot, scheme, path, *theta0, *theta_ref);
+    let joints = robot.dof();
+    for (part, v) in [(JobPart::Theta0, theta0), (JobPart::ThetaRef, theta_ref)] {
+        if v.len() != joints || scheme.joints() != joints {
+            return Err(SetupError::PoseLength {
+                part,
+                given: v.len(),
+                joints,
+            }
+            .into());
+        }
+    }
+    let mut observer = Observer::new(robot, scheme, path, theta0, theta_ref);
     let t1 = path.duration();
     let mut iterations = None;
     let (outcome, stats, qp) = match solver {
@@ -140,24 +152,24 @@ pub fn simulate<const N: usize>(
 /// The exact column: theta alone integrated with x = x*(t, theta) in the loop, every accepted
 /// step observed with the optimum there (solved a second time by a probe, so that the loop's
 /// own solves are not disturbed); an exact-QP failure stops the run at its instant.
-fn run_exact<const N: usize>(
-    scheme: &dyn Scheme<N>,
-    theta0: &SVector<f64, N>,
+fn run_exact(
+    scheme: &dyn Scheme,
+    theta0: &[f64],
     t1: f64,
     settings: &Settings,
-    observer: &mut Observer<'_, N>,
+    observer: &mut Observer<'_>,
 ) -> (Outcome, OdeStats, ExactPathStats) {
-    let fixed = Fixed(scheme);
+    let n = scheme.joints();
     let level = scheme.level();
-    let mut sys = ExactLoop::new(&fixed);
-    let mut y0 = vec![0.0; arm_dim(N, level)];
-    y0[..N].copy_from_slice(theta0.as_slice());
-    let mut probe = ExactLoop::new(&fixed);
+    let mut sys = ExactLoop::new(scheme);
+    let mut y0 = vec![0.0; arm_dim(n, level)];
+    y0[..n].copy_from_slice(theta0);
+    let mut probe = ExactLoop::new(scheme);
     let mut exact_failure = None;
     let result = integrate(&mut sys, &y0, 0.0, t1, &settings.integrator, |t, y| {
         let started = Instant::now();
-        let (theta, thetadot) = arm_state::<N>(level, y, y);
-        let control = match probe.optimum(t, theta.as_slice(), thetadot.as_slice()) {
+        let (theta, thetadot) = arm_slices(n, level, y, y);
+        let control = match probe.optimum(t, theta, thetadot) {
             Ok(x) => {
                 observer.sample(t, y, &x, level);
                 observer
@@ -187,31 +199,31 @@ fn run_exact<const N: usize>(
 /// state started at zero or at x*(0) ([`NetworkInit`]), scored against the exact optimum where
 /// `settings.scoring` says and its own error read at those states by a second instance of the
 /// network. Errors when the network cannot be built or x*(0) cannot be solved.
-fn run_network<const N: usize>(
-    scheme: &dyn Scheme<N>,
+fn run_network(
+    scheme: &dyn Scheme,
     build: &dyn Fn() -> Result<Box<dyn NeuralSolver>, SetupError>,
-    theta0: &SVector<f64, N>,
+    theta0: &[f64],
     t1: f64,
     settings: &Settings,
-    observer: &mut Observer<'_, N>,
+    observer: &mut Observer<'_>,
 ) -> Result<(Outcome, OdeStats, ExactPathStats), RunError> {
-    let fixed = Fixed(scheme);
+    let n = scheme.joints();
     let level = scheme.level();
     let network = build()?;
-    let mut sys = NeuralLoop::new(&fixed, network);
+    let mut sys = NeuralLoop::new(scheme, network);
     let k = sys.net_offset();
     let mut y0 = vec![0.0; sys.dim()];
-    y0[..N].copy_from_slice(theta0.as_slice());
-    let mut scorer = ExactLoop::new(&fixed);
+    y0[..n].copy_from_slice(theta0);
+    let mut scorer = ExactLoop::new(scheme);
     if settings.network_init == NetworkInit::Exact {
         // x*(0) at the arm's initial state (at the velocity level thetadot is the
         // command itself, which the QP does not depend on).
-        let thetadot0: SVector<f64, N> = match level {
-            Level::Velocity => SVector::zeros(),
-            Level::Acceleration => SVector::from_column_slice(&y0[N..2 * N]),
+        let thetadot0 = match level {
+            Level::Velocity => vec![0.0; n],
+            Level::Acceleration => y0[n..2 * n].to_vec(),
         };
         let x0 = scorer
-            .optimum(0.0, theta0.as_slice(), thetadot0.as_slice())
+            .optimum(0.0, theta0, &thetadot0)
             .map_err(|error| RunError::ExactQp { t: 0.0, error })?;
         y0[k..k + x0.len()].copy_from_slice(x0.as_slice());
     }
@@ -222,14 +234,14 @@ fn run_network<const N: usize>(
     let result = integrate(&mut sys, &y0, 0.0, t1, &settings.integrator, |t, y| {
         let started = Instant::now();
         let x_nn = DVector::from_column_slice(&y[k..k + scheme.dims().nx]);
-        let (theta, thetadot) = arm_state::<N>(level, y, &y[k..]);
+        let (theta, thetadot) = arm_slices(n, level, y, &y[k..]);
         let scored = score_instant(
             observer,
             &mut scorer,
             settings.scoring,
             &mut next_score_t,
             t1,
-            (t, &theta, &thetadot),
+            (t, theta, thetadot),
             &x_nn,
         );
         match scored {
@@ -262,10 +274,10 @@ fn run_network<const N: usize>(
 /// The outcome of an integrated run from the integrator's result: completed, or failed at the
 /// last accepted step with the reason (an exact-QP failure names its own instant; the observer
 /// stops a run only for divergence or an exact-QP failure).
-fn finish<const N: usize>(
+fn finish(
     result: Result<(Vec<f64>, OdeStats), OdeFailure>,
     exact_failure: Option<(f64, ExactError)>,
-    observer: &Observer<'_, N>,
+    observer: &Observer<'_>,
     qp: ExactPathStats,
 ) -> (Outcome, OdeStats, ExactPathStats) {
     match result {
@@ -284,10 +296,7 @@ fn finish<const N: usize>(
 
 /// A run's outcome from what the observer saw: completed without a `failure`, else failed at
 /// its instant with the metrics up to there (when any step was observed).
-fn outcome<const N: usize>(
-    observer: &Observer<'_, N>,
-    failure: Option<(f64, RunError)>,
-) -> Outcome {
+fn outcome(observer: &Observer<'_>, failure: Option<(f64, RunError)>) -> Outcome {
     match failure {
         None => Outcome::Completed(observer.metrics.finish(0.0)),
         Some((t, error)) => Outcome::Failed {

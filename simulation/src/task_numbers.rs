@@ -5,14 +5,12 @@
 //! theta0 with thetadot = 0).
 
 use crate::run::build_parts;
+use crate::run::job_model;
 use catalog::error::SetupError;
 use catalog::experiment::Job;
-use nalgebra::SVector;
-use robots::registry::{robot_by_name, RobotVisitor};
-use robots::{Dynamics, Robot};
+use catalog::fields::JobPart;
 use schemes::qp::Qp;
 use schemes::scheme::Level;
-use std::sync::Arc;
 
 /// Instants of the path samples, as fractions of the duration T.
 pub const PATH_FRACTIONS: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
@@ -62,48 +60,36 @@ pub struct TaskNumbers {
 /// The numbers of `job`'s task (its robot, path, scheme and poses; solver and integrator play
 /// no part).
 pub fn task_numbers(job: &Job) -> Result<TaskNumbers, SetupError> {
-    struct Numbers<'a>(&'a Job);
-    impl RobotVisitor for Numbers<'_> {
-        type Output = Result<TaskNumbers, SetupError>;
-        fn visit<const N: usize>(
-            self,
-            robot: Arc<dyn Robot<N>>,
-            dynamics: Option<Arc<dyn Dynamics<N>>>,
-        ) -> Self::Output {
-            numbers::<N>(self.0, robot, dynamics)
-        }
+    let model = job_model(job)?;
+    let joints = model.dof();
+    if job.theta0.len() != joints {
+        return Err(SetupError::PoseLength {
+            part: JobPart::Theta0,
+            given: job.theta0.len(),
+            joints,
+        });
     }
-    robot_by_name(&job.robot)
-        .ok_or_else(|| SetupError::UnknownRobot(job.robot.clone()))?
-        .visit(Numbers(job))
-}
-
-fn numbers<const N: usize>(
-    job: &Job,
-    robot: Arc<dyn Robot<N>>,
-    dynamics: Option<Arc<dyn Dynamics<N>>>,
-) -> Result<TaskNumbers, SetupError> {
-    let theta0 = SVector::<f64, N>::from_column_slice(&job.theta0);
-    let theta_ref = SVector::<f64, N>::from_column_slice(&job.theta_ref);
-    let robot = crate::run::job_robot(job, robot, dynamics.is_some())?;
-    let (path, scheme) = build_parts::<N>(job, robot.clone(), dynamics)?;
+    let theta0 = &job.theta0[..];
+    let theta_ref = &job.theta_ref[..];
+    let robot = crate::run::job_robot(job, model.robot, model.dynamics.is_some())?;
+    let (path, scheme) = build_parts(job, robot.clone(), model.dynamics)?;
     let mut qp0 = Qp::zeros(scheme.dims());
-    scheme.build(0.0, &theta0, &SVector::zeros(), &mut qp0);
+    scheme.build(0.0, theta0, &vec![0.0; joints], &mut qp0);
     let point = |v: nalgebra::Vector3<f64>| [v.x, v.y, v.z];
     let limits = robot.limits();
-    let jacobian = robot.jacobian(&theta0);
+    let jacobian = robot.jacobian_matrix(theta0);
     Ok(TaskNumbers {
-        joints: N,
+        joints,
         theta_min: limits.theta_min.as_slice().to_vec(),
         theta_max: limits.theta_max.as_slice().to_vec(),
         thetadot_min: limits.thetadot_min.as_slice().to_vec(),
         thetadot_max: limits.thetadot_max.as_slice().to_vec(),
-        position0: point(robot.position(&theta0)),
+        position0: point(robot.position(theta0)),
         jacobian0: jacobian
             .row_iter()
             .map(|r| r.iter().copied().collect())
             .collect(),
-        path_start: point(robot.position(&theta_ref)),
+        path_start: point(robot.position(theta_ref)),
         path: PATH_FRACTIONS
             .iter()
             .map(|f| {

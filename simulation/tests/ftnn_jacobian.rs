@@ -9,7 +9,7 @@ use robots::katana::Katana6m180;
 use robots::Robot;
 use schemes::paths::{build_path, Path, PathSpec};
 use schemes::scheme::Scheme;
-use schemes::slice_scheme::Fixed;
+
 use schemes::velocity_rmp::VelocityRmp;
 use settings::integrator::IntegratorSettings;
 use settings::solver_spec::SolverSpec;
@@ -20,23 +20,23 @@ use std::sync::Arc;
 
 #[test]
 fn coupled_ftnn_jacobian_matches_fine_central_differences() {
-    let robot: Arc<dyn Robot<5>> = Arc::new(Katana6m180::new());
+    let robot: Arc<dyn Robot> = Arc::new(Katana6m180::new());
     // kong2019's theta*0: (2 pi/5, pi/2, 0, -pi/6, pi/3).
     let pi = std::f64::consts::PI;
     let theta_ref = SVector::<f64, 5>::from([2.0 * pi / 5.0, pi / 2.0, 0.0, -pi / 6.0, pi / 3.0]);
     let mut theta0 = theta_ref;
     theta0[4] += 0.5;
     let spec: PathSpec = toml::from_str("name = \"circle\"\nduration = 9.0").unwrap();
-    let path: Arc<dyn Path> = Arc::from(build_path(&spec, robot.position(&theta_ref)).unwrap());
-    let scheme = VelocityRmp::finite_time(robot.clone(), path, theta_ref, 1.0, 0.1, 1.0);
+    let path: Arc<dyn Path> =
+        Arc::from(build_path(&spec, robot.position(theta_ref.as_slice())).unwrap());
+    let scheme = VelocityRmp::finite_time(robot.clone(), path, theta_ref.as_slice(), 1.0, 0.1, 1.0);
     let ftnn = SolverSpec::FiniteTime {
         beta: 1.0,
         alpha: 0.1,
         smoothing: 1e-6,
     };
     let net = build_solver(&ftnn, scheme.dims()).unwrap();
-    let fixed = Fixed(&scheme as &dyn Scheme<5>);
-    let mut sys = NeuralLoop::new(&fixed, net);
+    let mut sys = NeuralLoop::new(&scheme, net);
     let n = sys.dim();
     let mut y0 = vec![0.0; n];
     y0[..5].copy_from_slice(theta0.as_slice());

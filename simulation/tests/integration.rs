@@ -2,6 +2,7 @@
 //! binary: one build and link instead of one per file (issue 29). The files are unchanged
 //! but for `use crate::common;` where they shared `tests/common/`.
 
+mod any_arm;
 mod examples;
 mod experiment_files;
 mod ftnn_jacobian;

@@ -1,7 +1,7 @@
 //! The cost against the number of joints (`results/dof-cost.csv`): where each fit's
 //! measurements start and end, the whole runs per N (seconds, steps, the cost of a step), and
-//! the growth exponents of the whole runs past the registry's joint counts, where only the
-//! dynamic-size path runs.
+//! the growth exponents of the whole runs past the two-scheme sweep's joint counts, where only
+//! kong2019's scheme is measured.
 
 use crate::fits::{fit_power_law, PowerFit};
 use records::dof_cost::{DofCostRow, Quantity, NALGEBRA};
@@ -138,10 +138,10 @@ pub struct LargeNFit<'a> {
     pub fit: PowerFit,
 }
 
-/// The registry's largest joint count (`robots::registry::NLINK_SIZES`): past it only the
-/// dynamic-size path runs.
+/// The cost harness's largest swept joint count (`records::dof_cost::SWEEP_SIZES`): past it
+/// only kong2019's scheme is measured, at the large sizes.
 pub fn largest_registry_n() -> usize {
-    robots::registry::NLINK_SIZES
+    records::dof_cost::SWEEP_SIZES
         .iter()
         .copied()
         .max()

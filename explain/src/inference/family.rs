@@ -93,7 +93,7 @@ impl Family {
             let dof = |name: &str| {
                 robots::registry::robot_by_name(name)
                     .map(|r| r.dof())
-                    .ok_or_else(|| FamilyError::UnknownRobot(name.to_string()))
+                    .map_err(|e| FamilyError::UnknownRobot(e.to_string()))
             };
             let n = dof(declared)?;
             for v in variants {

@@ -13,7 +13,7 @@ pub const POSES: usize = 12;
 /// first. Empty for a robot the suite does not know or a trace whose joint count does not fit
 /// the robot: the panel then draws no arm.
 pub fn poses(run: &RunRow, trace: &Trace) -> Vec<Vec<(f64, f64)>> {
-    let Some(robot) = robot_by_name(&run.robot) else {
+    let Ok(robot) = robot_by_name(&run.robot) else {
         return Vec::new();
     };
     trace

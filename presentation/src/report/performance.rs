@@ -293,12 +293,10 @@ fn dof_curve(dof: &[DofCostRow], figures: &[String]) -> String {
         "### Cost against the number of joints\n\nThe n-link arms `nlink-N` (a yaw joint and a \
          planar pitch chain, from their stated home pose) with the VLTCO scheme of \
          jia2019 (2.17) on a four-leaf clover (nx = N + 1, 2N inequality rows, bounds) and the \
-         ZNN scheme of kong2019 (22) on a circle (nx = N, equalities only). Up to N = 30 each N is a const-generic \
-         instantiation of the registry, timed at states of an exact run, whole runs included; \
-         beyond, up to N = {largest}, the ZNN scheme's quantities, whole runs included, come \
-         from the dynamic-size path (crate `cost`, module `dynamic`: `robots::NLinkDyn` and \
-         `schemes::velocity_rmp_dyn::NLinkZnn` on slices, no instantiation per size; \
-         per-instant states near the home pose; no VLTCO: its scheme is const-generic only). \
+         ZNN scheme of kong2019 (22) on a circle (nx = N, equalities only), through the engine's \
+         one path (crate `cost`, module `harness`: the joint count is a run-time value), timed \
+         at states of an exact run, whole runs included: both schemes up to N = 30, the ZNN \
+         scheme alone beyond, up to N = {largest}. \
          The dense LUs (the network \
          Jacobian's LU, the KKT floor) are timed on nalgebra and on faer. k is the growth \
          exponent of median cost ~ c N^k, fitted by least squares on log-log over the measured \
@@ -427,11 +425,7 @@ fn dof_runs(dof: &[DofCostRow]) -> String {
     format!(
         "Whole runs on the n-link arms (`simulate` with the experiment files' defaults: the \
          exact column by Dormand-Prince at RelTol 1e-11, {network} by BDF at RelTol 1e-6 scored \
-         at every accepted step), median of the repetitions. Past the registry's joint counts \
-         the runs are the dynamic-size path's: the same coupled ODE (`simulation::coupled`), \
-         integrator and per-step solves as `simulate`, without the metrics' bookkeeping \
-         (`cost/tests/paths.rs` checks that both paths take the same steps and RHS \
-         evaluations where both exist). The Newton matrix of the BDF runs is factorised by \
+         at every accepted step), median of the repetitions, at every N. The Newton matrix of the BDF runs is factorised by \
          diffsol's nalgebra LU at every N; faer is not measured for whole runs.{}\n\n{}\n",
         large_n_sentence(dof),
         t.render()
@@ -462,8 +456,8 @@ fn run_cells(cost: Option<RunCost>) -> [String; 3] {
     }
 }
 
-/// The growth exponents of the whole runs over the dynamic path's joint counts alone (N > the
-/// registry's largest, [`large_n_fits`]): one sentence, empty when fewer than two such N were
+/// The growth exponents of the whole runs over the large joint counts alone (N past the
+/// two-scheme sweep, [`large_n_fits`]): one sentence, empty when fewer than two such N were
 /// measured.
 fn large_n_sentence(dof: &[DofCostRow]) -> String {
     let parts: Vec<String> = large_n_fits(dof)

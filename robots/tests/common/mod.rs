@@ -96,3 +96,98 @@ pub fn singular_values<const N: usize>(j: &SMatrix<f64, 3, N>) -> [f64; 3] {
     s.sort_by(|a, b| b.partial_cmp(a).unwrap());
     s
 }
+
+/// The runtime models seen with fixed-size joint vectors, for tests written with `SVector`s.
+pub trait Fixed {
+    /// [`robots::Robot::position`].
+    fn position_n<const N: usize>(&self, theta: &SVector<f64, N>) -> Vector3<f64>;
+    /// [`robots::Robot::jacobian`] as a 3 x N matrix.
+    fn jacobian_n<const N: usize>(&self, theta: &SVector<f64, N>) -> SMatrix<f64, 3, N>;
+    /// [`robots::Robot::jacobian_dot`] as a 3 x N matrix.
+    fn jacobian_dot_n<const N: usize>(
+        &self,
+        theta: &SVector<f64, N>,
+        thetadot: &SVector<f64, N>,
+    ) -> SMatrix<f64, 3, N>;
+    /// [`robots::Robot::skeleton`].
+    fn skeleton_n<const N: usize>(&self, theta: &SVector<f64, N>) -> Vec<Vector3<f64>>;
+}
+
+impl<R: robots::Robot + ?Sized> Fixed for R {
+    fn position_n<const N: usize>(&self, theta: &SVector<f64, N>) -> Vector3<f64> {
+        self.position(theta.as_slice())
+    }
+    fn jacobian_n<const N: usize>(&self, theta: &SVector<f64, N>) -> SMatrix<f64, 3, N> {
+        let mut j = SMatrix::<f64, 3, N>::zeros();
+        self.jacobian(theta.as_slice(), j.as_mut_slice());
+        j
+    }
+    fn jacobian_dot_n<const N: usize>(
+        &self,
+        theta: &SVector<f64, N>,
+        thetadot: &SVector<f64, N>,
+    ) -> SMatrix<f64, 3, N> {
+        let mut j = SMatrix::<f64, 3, N>::zeros();
+        self.jacobian_dot(theta.as_slice(), thetadot.as_slice(), j.as_mut_slice());
+        j
+    }
+    fn skeleton_n<const N: usize>(&self, theta: &SVector<f64, N>) -> Vec<Vector3<f64>> {
+        self.skeleton(theta.as_slice())
+    }
+}
+
+/// The runtime dynamics seen with fixed-size joint vectors.
+pub trait FixedDynamics {
+    /// [`robots::Dynamics::inertia`].
+    fn inertia_n<const N: usize>(&self, theta: &SVector<f64, N>) -> SMatrix<f64, N, N>;
+    /// [`robots::Dynamics::coriolis`].
+    fn coriolis_n<const N: usize>(
+        &self,
+        theta: &SVector<f64, N>,
+        thetadot: &SVector<f64, N>,
+    ) -> SVector<f64, N>;
+    /// [`robots::Dynamics::coriolis_matrix`].
+    fn coriolis_matrix_n<const N: usize>(
+        &self,
+        theta: &SVector<f64, N>,
+        thetadot: &SVector<f64, N>,
+    ) -> SMatrix<f64, N, N>;
+    /// [`robots::Dynamics::gravity`].
+    fn gravity_n<const N: usize>(&self, theta: &SVector<f64, N>) -> SVector<f64, N>;
+}
+
+impl<R: robots::Dynamics + ?Sized> FixedDynamics for R {
+    fn inertia_n<const N: usize>(&self, theta: &SVector<f64, N>) -> SMatrix<f64, N, N> {
+        let mut h = SMatrix::<f64, N, N>::zeros();
+        self.inertia(theta.as_slice(), h.as_mut_slice());
+        h
+    }
+    fn coriolis_n<const N: usize>(
+        &self,
+        theta: &SVector<f64, N>,
+        thetadot: &SVector<f64, N>,
+    ) -> SVector<f64, N> {
+        let mut c = SVector::<f64, N>::zeros();
+        self.coriolis(theta.as_slice(), thetadot.as_slice(), c.as_mut_slice());
+        c
+    }
+    fn coriolis_matrix_n<const N: usize>(
+        &self,
+        theta: &SVector<f64, N>,
+        thetadot: &SVector<f64, N>,
+    ) -> SMatrix<f64, N, N> {
+        let mut c = SMatrix::<f64, N, N>::zeros();
+        self.coriolis_matrix(theta.as_slice(), thetadot.as_slice(), c.as_mut_slice());
+        c
+    }
+    fn gravity_n<const N: usize>(&self, theta: &SVector<f64, N>) -> SVector<f64, N> {
+        let mut g = SVector::<f64, N>::zeros();
+        self.gravity(theta.as_slice(), g.as_mut_slice());
+        g
+    }
+}
+
+/// The home pose of `nlink-N` ([`robots::NLink::home`]) as a fixed-size vector.
+pub fn nlink_home<const N: usize>() -> SVector<f64, N> {
+    SVector::from_column_slice(robots::NLink::new(N).unwrap().home().as_slice())
+}

@@ -15,104 +15,172 @@ use schemes::{Qp, QpDuals};
 /// Planar arm: joints 1..N-1 rotate in the x-y plane (links `LEN`), joint N moves the tip in z
 /// by `Z_GAIN * theta_N`. Joint 2 has finite angle limits [-1, 2.5]; the others [-3, 3];
 /// velocity limits +-1.5.
-pub struct PlanarZ<const N: usize>;
+pub struct PlanarZ {
+    limits: JointLimits,
+}
 
 pub const LEN: f64 = 0.3;
 pub const Z_GAIN: f64 = 0.1;
 
-impl<const N: usize> PlanarZ<N> {
-    fn cum(theta: &SVector<f64, N>) -> [f64; N] {
-        let mut phi = [0.0; N];
-        let mut s = 0.0;
-        for k in 0..N - 1 {
-            s += theta[k];
-            phi[k] = s;
+impl PlanarZ {
+    /// The arm with `n` joints.
+    pub fn new(n: usize) -> Self {
+        let mut theta_min = DVector::repeat(n, -3.0);
+        let mut theta_max = DVector::repeat(n, 3.0);
+        theta_min[1] = -1.0;
+        theta_max[1] = 2.5;
+        PlanarZ {
+            limits: JointLimits {
+                theta_min,
+                theta_max,
+                thetadot_min: DVector::repeat(n, -1.5),
+                thetadot_max: DVector::repeat(n, 1.5),
+            },
         }
-        phi
+    }
+
+    /// phi_k = theta_1 + ... + theta_k (k from 0), for k < n - 1.
+    fn phi(theta: &[f64], k: usize) -> f64 {
+        theta[..=k].iter().sum()
     }
 }
 
-impl<const N: usize> Robot<N> for PlanarZ<N> {
+impl Robot for PlanarZ {
     fn name(&self) -> &'static str {
         "planar-z"
     }
 
-    fn position(&self, theta: &SVector<f64, N>) -> Vector3<f64> {
-        let phi = Self::cum(theta);
+    fn dof(&self) -> usize {
+        self.limits.dof()
+    }
+
+    fn position(&self, theta: &[f64]) -> Vector3<f64> {
+        let n = theta.len();
         let (mut x, mut y) = (0.0, 0.0);
-        for p in phi.iter().take(N - 1) {
+        for k in 0..n - 1 {
+            let p = Self::phi(theta, k);
             x += LEN * p.cos();
             y += LEN * p.sin();
         }
-        Vector3::new(x, y, Z_GAIN * theta[N - 1])
+        Vector3::new(x, y, Z_GAIN * theta[n - 1])
     }
 
-    fn jacobian(&self, theta: &SVector<f64, N>) -> SMatrix<f64, 3, N> {
-        let phi = Self::cum(theta);
-        let mut j = SMatrix::<f64, 3, N>::zeros();
-        for i in 0..N - 1 {
-            for p in phi.iter().take(N - 1).skip(i) {
-                j[(0, i)] -= LEN * p.sin();
-                j[(1, i)] += LEN * p.cos();
+    /// Writes J (no allocation: the scheme tests count allocations).
+    fn jacobian(&self, theta: &[f64], j: &mut [f64]) {
+        let n = theta.len();
+        j.fill(0.0);
+        for i in 0..n - 1 {
+            for k in i..n - 1 {
+                let p = Self::phi(theta, k);
+                j[3 * i] -= LEN * p.sin();
+                j[3 * i + 1] += LEN * p.cos();
             }
         }
-        j[(2, N - 1)] = Z_GAIN;
-        j
+        j[3 * (n - 1) + 2] = Z_GAIN;
     }
 
-    fn jacobian_dot(
-        &self,
-        theta: &SVector<f64, N>,
-        thetadot: &SVector<f64, N>,
-    ) -> SMatrix<f64, 3, N> {
-        let phi = Self::cum(theta);
-        let phid = Self::cum(thetadot);
-        let mut j = SMatrix::<f64, 3, N>::zeros();
-        for i in 0..N - 1 {
-            for k in i..N - 1 {
-                j[(0, i)] -= LEN * phi[k].cos() * phid[k];
-                j[(1, i)] -= LEN * phi[k].sin() * phid[k];
+    fn jacobian_dot(&self, theta: &[f64], thetadot: &[f64], j: &mut [f64]) {
+        let n = theta.len();
+        j.fill(0.0);
+        for i in 0..n - 1 {
+            for k in i..n - 1 {
+                let (p, pd) = (Self::phi(theta, k), Self::phi(thetadot, k));
+                j[3 * i] -= LEN * p.cos() * pd;
+                j[3 * i + 1] -= LEN * p.sin() * pd;
             }
         }
-        j
     }
 
-    fn limits(&self) -> JointLimits<N> {
-        let mut theta_min = SVector::<f64, N>::repeat(-3.0);
-        let mut theta_max = SVector::<f64, N>::repeat(3.0);
-        theta_min[1] = -1.0;
-        theta_max[1] = 2.5;
-        JointLimits {
-            theta_min,
-            theta_max,
-            thetadot_min: SVector::repeat(-1.5),
-            thetadot_max: SVector::repeat(1.5),
-        }
+    fn limits(&self) -> &JointLimits {
+        &self.limits
     }
 }
 
 /// Made-up smooth dynamics: H = 0.5 I + v v' with v_i = 0.3 cos(theta_i) + 0.2 (SPD),
 /// c = 0.1 sin(theta) .* thetadot .* |thetadot|_2, g = 0.98 cos(theta).
-impl<const N: usize> Dynamics<N> for PlanarZ<N> {
-    fn inertia(&self, theta: &SVector<f64, N>) -> SMatrix<f64, N, N> {
-        let v = theta.map(|x| 0.3 * x.cos() + 0.2);
-        SMatrix::<f64, N, N>::identity() * 0.5 + v * v.transpose()
+impl Dynamics for PlanarZ {
+    fn inertia(&self, theta: &[f64], out: &mut [f64]) {
+        let n = theta.len();
+        let v = |i: usize| 0.3 * theta[i].cos() + 0.2;
+        for c in 0..n {
+            for r in 0..n {
+                out[r + n * c] = if r == c { 0.5 } else { 0.0 } + v(r) * v(c);
+            }
+        }
     }
 
-    fn coriolis(&self, theta: &SVector<f64, N>, thetadot: &SVector<f64, N>) -> SVector<f64, N> {
-        theta.map(|x| 0.1 * x.sin()).component_mul(thetadot) * thetadot.norm()
+    fn coriolis(&self, theta: &[f64], thetadot: &[f64], out: &mut [f64]) {
+        let norm = thetadot.iter().map(|v| v * v).sum::<f64>().sqrt();
+        for i in 0..theta.len() {
+            out[i] = 0.1 * theta[i].sin() * thetadot[i] * norm;
+        }
     }
 
-    fn coriolis_matrix(
+    fn coriolis_matrix(&self, _theta: &[f64], _thetadot: &[f64], out: &mut [f64]) {
+        out.fill(0.0);
+    }
+
+    fn gravity(&self, theta: &[f64], out: &mut [f64]) {
+        for (o, x) in out.iter_mut().zip(theta) {
+            *o = 0.98 * x.cos();
+        }
+    }
+}
+
+/// A robot seen with fixed-size joint vectors, for tests written with `SVector`s.
+pub trait FixedRobot {
+    fn position_n<const N: usize>(&self, theta: &SVector<f64, N>) -> Vector3<f64>;
+    fn jacobian_n<const N: usize>(&self, theta: &SVector<f64, N>) -> SMatrix<f64, 3, N>;
+    fn jacobian_dot_n<const N: usize>(
         &self,
-        _theta: &SVector<f64, N>,
-        _thetadot: &SVector<f64, N>,
-    ) -> SMatrix<f64, N, N> {
-        SMatrix::zeros()
-    }
+        theta: &SVector<f64, N>,
+        thetadot: &SVector<f64, N>,
+    ) -> SMatrix<f64, 3, N>;
+    fn inertia_n<const N: usize>(&self, theta: &SVector<f64, N>) -> SMatrix<f64, N, N>;
+    fn coriolis_n<const N: usize>(
+        &self,
+        theta: &SVector<f64, N>,
+        thetadot: &SVector<f64, N>,
+    ) -> SVector<f64, N>;
+    fn gravity_n<const N: usize>(&self, theta: &SVector<f64, N>) -> SVector<f64, N>;
+}
 
-    fn gravity(&self, theta: &SVector<f64, N>) -> SVector<f64, N> {
-        theta.map(|x| 0.98 * x.cos())
+impl<R: Dynamics + ?Sized> FixedRobot for R {
+    fn position_n<const N: usize>(&self, theta: &SVector<f64, N>) -> Vector3<f64> {
+        self.position(theta.as_slice())
+    }
+    fn jacobian_n<const N: usize>(&self, theta: &SVector<f64, N>) -> SMatrix<f64, 3, N> {
+        let mut j = SMatrix::<f64, 3, N>::zeros();
+        self.jacobian(theta.as_slice(), j.as_mut_slice());
+        j
+    }
+    fn jacobian_dot_n<const N: usize>(
+        &self,
+        theta: &SVector<f64, N>,
+        thetadot: &SVector<f64, N>,
+    ) -> SMatrix<f64, 3, N> {
+        let mut j = SMatrix::<f64, 3, N>::zeros();
+        self.jacobian_dot(theta.as_slice(), thetadot.as_slice(), j.as_mut_slice());
+        j
+    }
+    fn inertia_n<const N: usize>(&self, theta: &SVector<f64, N>) -> SMatrix<f64, N, N> {
+        let mut h = SMatrix::<f64, N, N>::zeros();
+        self.inertia(theta.as_slice(), h.as_mut_slice());
+        h
+    }
+    fn coriolis_n<const N: usize>(
+        &self,
+        theta: &SVector<f64, N>,
+        thetadot: &SVector<f64, N>,
+    ) -> SVector<f64, N> {
+        let mut c = SVector::<f64, N>::zeros();
+        self.coriolis(theta.as_slice(), thetadot.as_slice(), c.as_mut_slice());
+        c
+    }
+    fn gravity_n<const N: usize>(&self, theta: &SVector<f64, N>) -> SVector<f64, N> {
+        let mut g = SVector::<f64, N>::zeros();
+        self.gravity(theta.as_slice(), g.as_mut_slice());
+        g
     }
 }
 

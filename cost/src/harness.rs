@@ -1,6 +1,6 @@
-//! The fixed-size path: N = 3 ... 30, each N a const-generic instantiation of the registry's
-//! `NLink<N>` ([`robots::registry::NLINK_SIZES`]), so the scheme (jia2019 VLTCO or
-//! kong2019 ZNN), the exact column and whole runs are the ones the reproduction runs.
+//! The harness: one case (jia2019's VLTCO on a four-leaf clover or kong2019's ZNN scheme,
+//! eq. 22, on a circle) on the registry's n-link arm `nlink-N` of any N, through the engine's
+//! one path: the scheme, the exact column and whole runs are the ones the reproduction runs.
 //!
 //! [`prepare`] builds the case's robot, path, scheme and network, runs the exact column once
 //! ([`simulate`] with [`Solver::Exact`]) and samples up to `states` instants of its trace,
@@ -12,16 +12,19 @@
 //! - `run-exact`, `run-network`: one whole [`simulate`] call with the experiment files'
 //!   defaults (the exact column with [`default_exact_integrator`], the network with
 //!   [`IntegratorSettings::default`], scored at every accepted step), wall time.
+//!
+//! [`SWEEP_SIZES`] are measured with both schemes, [`LARGE_SIZES`] with kong2019's alone (its
+//! QP has no inequality rows, so its cost past N = 30 is the arm's and the dense LUs').
 
 use crate::case::{path_of, Case, PreparedCase, KONG2019_KP, KONG2019_MU};
 use crate::error::CostError;
 use crate::instants::Instants;
 use catalog::experiment::Scoring;
 use catalog::experiment::{default_exact_integrator, NetworkInit};
-use nalgebra::SVector;
+pub use records::dof_cost::SWEEP_SIZES;
 use records::dof_cost::{Quantity, RunCounts, SchemeKind};
-use robots::registry::{nlink_name, robot_by_name, RobotVisitor};
-use robots::{Dynamics, Robot};
+use robots::registry::{nlink_name, robot_by_name};
+use robots::Robot;
 use schemes::paths::{build_path, Path};
 use schemes::qp::{Qp, QpDims};
 use schemes::scheme::Scheme;
@@ -33,69 +36,51 @@ use simulation::simulate::{simulate, Outcome, Run, Settings, Solver};
 use solvers::Backend;
 use std::sync::Arc;
 
-/// Prepares `case` (an N of the registry) on the fixed-size path, sampling up to `states`
-/// states of one exact run (see the module docs). An error when N is not in the registry, or
-/// the exact run does not start or leaves no trace.
+/// The joint counts measured with kong2019's scheme alone, past [`SWEEP_SIZES`].
+pub const LARGE_SIZES: [usize; 6] = [40, 50, 70, 100, 140, 200];
+
+/// States sampled at the [`LARGE_SIZES`] (fewer than the sweep's: the LUs there are slow).
+pub const LARGE_STATES: usize = 20;
+
+/// Prepares `case`, sampling up to `states` states of one exact run (see the module docs). An
+/// error when there is no n-link arm of N joints, or the exact run does not start or leaves no
+/// trace.
 pub fn prepare(case: &Case, states: usize) -> Result<Box<dyn PreparedCase>, CostError> {
-    let robot = robot_by_name(&nlink_name(case.n)).ok_or(CostError::NotRegistered(case.n))?;
-    let home = robot.stated_pose();
-    robot.visit(Prepare {
+    let model = robot_by_name(&nlink_name(case.n)).map_err(|_| CostError::NotRegistered(case.n))?;
+    Ok(Box::new(Prepared::new(
         case,
+        model.robot,
+        &model.stated_pose,
         states,
-        home: &home,
-    })
+    )?))
 }
 
-/// [`prepare`] generic in N.
-struct Prepare<'a> {
-    case: &'a Case,
-    states: usize,
-    home: &'a [f64],
-}
+/// A sampled state (t, theta, thetadot).
+type State = (f64, Vec<f64>, Vec<f64>);
 
-impl RobotVisitor for Prepare<'_> {
-    type Output = Result<Box<dyn PreparedCase>, CostError>;
-
-    fn visit<const N: usize>(
-        self,
-        robot: Arc<dyn Robot<N>>,
-        _: Option<Arc<dyn Dynamics<N>>>,
-    ) -> Self::Output {
-        Ok(Box::new(Prepared::<N>::new(
-            self.case,
-            robot,
-            self.home,
-            self.states,
-        )?))
-    }
-}
-
-/// A state of the arm at an instant: (t, theta, thetadot).
-type State<const N: usize> = (f64, SVector<f64, N>, SVector<f64, N>);
-
-/// [`PreparedCase`] for an N-joint arm.
-struct Prepared<const N: usize> {
+/// [`PreparedCase`] for an arm of any joint count.
+struct Prepared {
     label: String,
-    robot: Arc<dyn Robot<N>>,
+    robot: Arc<dyn Robot>,
     path: Arc<dyn Path>,
-    scheme: Box<dyn Scheme<N>>,
-    theta0: SVector<f64, N>,
+    scheme: Box<dyn Scheme>,
+    theta0: Vec<f64>,
     network_spec: SolverSpec,
-    states: Vec<State<N>>,
+    states: Vec<State>,
     instants: Instants,
     scratch_qp: Qp,
     last_run: Option<RunCounts>,
 }
 
-impl<const N: usize> Prepared<N> {
+impl Prepared {
     fn new(
         case: &Case,
-        robot: Arc<dyn Robot<N>>,
+        robot: Arc<dyn Robot>,
         home: &[f64],
         states: usize,
     ) -> Result<Self, CostError> {
         let label = case.label();
-        let theta0 = SVector::<f64, N>::from_column_slice(home);
+        let theta0 = home.to_vec();
         let path: Arc<dyn Path> = Arc::from(
             build_path(&path_of(case.scheme), robot.position(&theta0)).map_err(|error| {
                 CostError::Path {
@@ -104,11 +89,11 @@ impl<const N: usize> Prepared<N> {
                 }
             })?,
         );
-        let scheme: Box<dyn Scheme<N>> = match case.scheme {
+        let scheme: Box<dyn Scheme> = match case.scheme {
             SchemeKind::Vltco => Box::new(TriCriteria::vltco(
                 robot.clone(),
                 path.clone(),
-                theta0,
+                &theta0,
                 0.2,
                 0.4,
                 20.0,
@@ -117,7 +102,7 @@ impl<const N: usize> Prepared<N> {
             SchemeKind::ZnnRmp => Box::new(VelocityRmp::znn(
                 robot.clone(),
                 path.clone(),
-                theta0,
+                &theta0,
                 KONG2019_MU,
                 KONG2019_KP,
             )),
@@ -142,15 +127,9 @@ impl<const N: usize> Prepared<N> {
         }
         let trace = &run.trace;
         let count = states.clamp(1, trace.len().max(1));
-        let states: Vec<State<N>> = (0..count)
+        let states: Vec<State> = (0..count)
             .filter_map(|i| trace.get(i * trace.len() / count))
-            .map(|p| {
-                (
-                    p.t,
-                    SVector::from_column_slice(&p.theta),
-                    SVector::from_column_slice(&p.thetadot),
-                )
-            })
+            .map(|p| (p.t, p.theta.clone(), p.thetadot.clone()))
             .collect();
         if states.is_empty() {
             return Err(CostError::NoTrace(label));
@@ -163,7 +142,7 @@ impl<const N: usize> Prepared<N> {
             scheme.build(*t, theta, thetadot, &mut qp);
             qps.push(qp);
             let mut qp_dot = scheme.new_qp();
-            let thetaddot = SVector::zeros();
+            let thetaddot = vec![0.0; theta.len()];
             scheme.build_dot(*t, theta, thetadot, &thetaddot, &mut qp_dot, &mut scratch);
             qp_dots.push(qp_dot);
         }
@@ -227,7 +206,7 @@ pub fn network_settings() -> Settings {
     }
 }
 
-impl<const N: usize> PreparedCase for Prepared<N> {
+impl PreparedCase for Prepared {
     fn label(&self) -> String {
         self.label.clone()
     }

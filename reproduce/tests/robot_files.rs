@@ -1,0 +1,147 @@
+//! A paper's own robot files (`papers/<paper>/robots/*.toml`), read at run time: an invalid
+//! file or a link out of the folder fails only the commands that use that robot, with exit 2
+//! and a message naming the file (and the field), never a panic and never the file's content;
+//! the other robots and commands still work. A file named like a built-in model is refused,
+//! naming the file.
+
+use crate::common;
+use common::{copy_tree, reproduce};
+use std::path::{Path, PathBuf};
+
+/// A project root with the workspace's experiments and papers, the robot files `robots` in
+/// `papers/kong2019/robots/`, and `experiments/own.toml` of one run per robot of `uses`.
+fn project(tag: &str, robots: &[(&str, String)], uses: &[&str]) -> PathBuf {
+    let root = std::env::temp_dir().join(format!(
+        "driftbench-robot-files-{tag}-{}",
+        std::process::id()
+    ));
+    let _ = std::fs::remove_dir_all(&root);
+    let repo = common::repo_root();
+    copy_tree(&repo.join("papers"), &root.join("papers"));
+    std::fs::create_dir_all(root.join("experiments")).unwrap();
+    let dir = root.join("papers/kong2019/robots");
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, text) in robots {
+        std::fs::write(dir.join(format!("{name}.toml")), text).unwrap();
+    }
+    let mut toml = String::from("paper = \"kong2019\"\ntitle = \"own arms\"\n");
+    for robot in uses {
+        toml.push_str(&format!(
+            r#"
+[[experiment]]
+id = "kong2019-own-{robot}"
+paper_output = "none"
+robot = "{robot}"
+path = {{ name = "circle", duration = 1.0 }}
+theta0 = [0.0, -0.7853981633974483, 0.0, 1.5707963267948966, -0.7853981633974483, 0.0]
+[[experiment.variant]]
+label = "ZNN (eq. 22)"
+scheme = {{ kind = "kong2019-znn", mu = 1.0, k_p = 1.0 }}
+"#
+        ));
+    }
+    std::fs::write(root.join("experiments/own.toml"), toml).unwrap();
+    root
+}
+
+/// The PUMA 560's robot file renamed `name`, with `edit` applied.
+fn puma(name: &str, edit: impl Fn(String) -> String) -> String {
+    let text =
+        std::fs::read_to_string(common::repo_root().join("robots/data/puma560.toml")).unwrap();
+    edit(text.replace("name = \"puma560\"", &format!("name = \"{name}\"")))
+}
+
+/// `reproduce --root root ARGS`: (exit code, stdout, stderr).
+fn run(root: &Path, args: &[&str]) -> (Option<i32>, String, String) {
+    let out = reproduce()
+        .arg("--root")
+        .arg(root)
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn an_invalid_robot_file_fails_only_the_commands_that_use_it() {
+    let good = puma("own-arm", |t| t);
+    let bad = puma("bad-arm", |t| {
+        t.replacen("theta_max = 2.7751", "theta_max = -9.0", 1)
+    });
+    let robots = [("own-arm", good), ("bad-arm", bad)];
+    // A run of the valid file's robot: listed (the experiment loads and builds).
+    let root = project("good", &robots, &["own-arm"]);
+    let (code, out, err) = run(&root, &["list"]);
+    assert_eq!(code, Some(0), "{err}");
+    assert!(out.contains("kong2019-own-own-arm"), "{out}");
+    // `robots` lists both, the invalid one with its file and field.
+    let (code, out, err) = run(&root, &["robots"]);
+    assert_eq!(code, Some(0), "{err}");
+    assert!(out.contains("own-arm") && out.contains("puma560"), "{out}");
+    let line = out
+        .lines()
+        .find(|l| l.starts_with("bad-arm"))
+        .expect("bad-arm listed");
+    assert!(
+        line.contains("papers/kong2019/robots/bad-arm.toml") && line.contains("theta"),
+        "{line}"
+    );
+    std::fs::remove_dir_all(&root).unwrap();
+    // A run of the invalid file's robot: exit 2 naming the file and the field, no panic.
+    let root = project("bad", &robots, &["bad-arm"]);
+    let (code, _, err) = run(&root, &["list"]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("papers/kong2019/robots/bad-arm.toml"), "{err}");
+    assert!(err.contains("theta_m"), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    std::fs::remove_dir_all(&root).unwrap();
+}
+
+#[test]
+fn a_linked_or_shadowing_robot_file_is_refused_naming_it() {
+    let outside =
+        std::env::temp_dir().join(format!("driftbench-secret-{}.toml", std::process::id()));
+    std::fs::write(
+        &outside,
+        puma("linked-arm", |t| format!("# SECRET-TOKEN-42\n{t}")),
+    )
+    .unwrap();
+    let root = project(
+        "link",
+        &[("katana6m180", puma("katana6m180", |t| t))],
+        &["linked-arm"],
+    );
+    let link = root.join("papers/kong2019/robots/linked-arm.toml");
+    std::os::unix::fs::symlink(&outside, &link).unwrap();
+    let (code, _, err) = run(&root, &["list"]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("linked-arm.toml"), "{err}");
+    assert!(
+        !err.contains("SECRET-TOKEN-42") && !err.contains("panicked"),
+        "{err}"
+    );
+    // The file named like the built-in Katana is an error naming the file, for a run of it.
+    std::fs::write(
+        root.join("experiments/own.toml"),
+        std::fs::read_to_string(root.join("experiments/own.toml"))
+            .unwrap()
+            .replace("linked-arm", "katana6m180")
+            .replace(
+                "[0.0, -0.7853981633974483, 0.0, 1.5707963267948966, -0.7853981633974483, 0.0]",
+                "[1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.0471975511965976]",
+            ),
+    )
+    .unwrap();
+    let (code, _, err) = run(&root, &["list"]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(
+        err.contains("papers/kong2019/robots/katana6m180.toml"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&root).unwrap();
+    std::fs::remove_file(&outside).unwrap();
+}
