@@ -335,3 +335,30 @@ fn a_shard_manifest_is_read_as_an_input() {
         assert!(!p.results().join("runs.csv").exists());
     }
 }
+
+/// The integrity manifests (`results/manifest.toml`, `report/manifest.toml`, a shard
+/// directory's) are read as inputs: a link to a secret or to `/proc/self/environ` is refused
+/// without a word of it (a TOML error used to quote the line it failed on).
+#[test]
+fn integrity_manifests_are_read_as_inputs() {
+    let p = Project::new("manifests");
+    let shard = p.root().join("results-shard-1-of-2");
+    let cases: [(PathBuf, &[&str]); 3] = [
+        (p.results().join("manifest.toml"), &["--skip-explain"]),
+        (p.root().join("report/manifest.toml"), &["--skip-explain"]),
+        (shard.join("manifest.toml"), &["--shard", "1/2"]),
+    ];
+    for (at, args) in cases {
+        for h in all(inputs::Kind::Manifest) {
+            h.make(&p, &at);
+            let mut cmd = reproduce();
+            cmd.arg("--root").arg(p.root()).args(args);
+            if !args.contains(&"--shard") {
+                cmd.arg("--results-dir").arg(p.results());
+            }
+            cmd.env("DRIFTBENCH_TEST_CANARY", CANARY);
+            refused(bounded(cmd), h, &at);
+            std::fs::remove_file(&at).unwrap();
+        }
+    }
+}
