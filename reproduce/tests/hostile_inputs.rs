@@ -228,6 +228,34 @@ fn a_malformed_paper_is_refused_before_anything_runs() {
             format!("{original}{}", "\n[[claim]]\nshort = \"s\"\ntext = \"t\"\nrust = \"diverges\"\nwhy = \"w\"\n".repeat(201)),
             "claims: at most 200 per paper",
         ),
+        // Every list a file can grow is capped.
+        (
+            format!("{original}\n[[mapping]]\npublished_experiment = \"e\"\npublished_column = \"c\"\nrun = \"kong2019-cheap / znn / exact\"\ncompanions = [{}]\n", vec!["\"znn\""; 51].join(", ")),
+            "mapping[3] field `companions`: 51 entries, at most 50",
+        ),
+        (
+            format!("{original}{}", (0..501).map(|i| format!("\n[[mapping]]\npublished_experiment = \"e\"\npublished_column = \"c{i}\"\nrun = \"kong2019-cheap / znn / exact\"\n")).collect::<String>()),
+            "504 mappings: at most 500 per paper",
+        ),
+        // A sweep check is checked against values.csv and the runs: a metric typo, a table
+        // or published experiment values.csv lacks, variants that match none of the sweep's
+        // (each used to render a norm of 0 and a ratio of -inf, or nothing, with exit 0).
+        (
+            format!("{original}{}", sweep_check("drift_l", "T3", "circle-rmp", "*")),
+            "sweep_check[0] field `metrics`: unknown metric \"drift_l\"",
+        ),
+        (
+            format!("{original}{}", sweep_check("drift_1", "T9", "circle-rmp", "*")),
+            "sweep_check[0] field `table`: values.csv has no table \"T9\" (valid: T3, text)",
+        ),
+        (
+            format!("{original}{}", sweep_check("drift_1", "T3", "circle", "*")),
+            "sweep_check[0] columns[0] field `published_experiment`: table T3 of values.csv has no \"circle\" with every metric of the check (valid: circle-rmp",
+        ),
+        (
+            format!("{original}{}", sweep_check("drift_1", "T3", "circle-rmp", "zzz-*")),
+            "sweep_check[0] columns[0] field `variants`: \"zzz-*\" matches no variant of kong2019-cheap (valid: znn)",
+        ),
     ] {
         std::fs::write(&at, edit).unwrap();
         let mut run = p.cmd();
@@ -257,6 +285,14 @@ fn a_malformed_paper_is_refused_before_anything_runs() {
         !p.results().join("runs.csv").exists(),
         "a duplicate value: it ran"
     );
+}
+
+/// A `[[sweep_check]]` of the cheap experiment comparing `metric` of `table`'s
+/// `published_experiment` with the variants `variants`.
+fn sweep_check(metric: &str, table: &str, published_experiment: &str, variants: &str) -> String {
+    format!(
+        "\n[[sweep_check]]\nexperiment = \"kong2019-cheap\"\nheading = \"h\"\ntext = \"t\"\ntable = \"{table}\"\nmetrics = [\"{metric}\"]\ncolumns = [{{ published_experiment = \"{published_experiment}\", variants = \"{variants}\" }}]\n"
+    )
 }
 
 #[test]
