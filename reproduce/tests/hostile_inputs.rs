@@ -398,3 +398,89 @@ fn integrity_manifests_are_read_as_inputs() {
         }
     }
 }
+
+/// An experiment file of `variants` (TOML `[[experiment.variant]]` tables) on the PUMA560's
+/// four-leaf clover over `duration` seconds.
+fn puma_experiment(duration: f64, variants: &str) -> String {
+    format!(
+        "paper = \"robio2018\"\ntitle = \"t\"\n[[experiment]]\nid = \"robio2018-bounded\"\npaper_output = \"none\"\nrobot = \"puma560\"\npath = {{ name = \"four-leaf-clover\", duration = {duration:?} }}\ntheta0 = [0.0, -0.7853981633974483, 0.0, 1.5707963267948966, -0.7853981633974483, 0.0]\n{variants}"
+    )
+}
+
+/// Runs that would take minutes end as failed rows, with their reason, within seconds: a
+/// scheme weight of 1e-300 (the optimum chatters between the bounds' vertices and the exact
+/// column's integrator stalls, each evaluation a Clarabel solve) meets the evaluation budget
+/// scaled from the path's duration, and a numerical method held to 1e-12 with 10^6 iterations
+/// per instant meets the run's iteration budget or its cap at an instant, whichever first. Settings outside their documented ranges are
+/// refused at load, naming their field (a tolerance of 1e-300 was refused as about `solvers`,
+/// its label "314 bytes long").
+#[test]
+fn every_run_is_bounded_and_ranges_are_checked_at_load() {
+    let p = Project::new("bounded");
+    std::fs::remove_file(p.experiments().join("kong2019.toml")).unwrap();
+    let file = p.experiments().join("robio2018.toml");
+    std::fs::write(
+        &file,
+        puma_experiment(
+            2.0,
+            "[[experiment.variant]]\nid = \"w\"\nlabel = \"w\"\nscheme = { kind = \"velocity-rmp\", weight = 1e-300, lambda = 4.0, upsilon = 2.0, k_p = 1.0 }\n\
+             [[experiment.variant]]\nid = \"n\"\nlabel = \"n\"\nexact = false\nscheme = { kind = \"velocity-rmp\", lambda = 4.0, upsilon = 2.0 }\nnumerical = [{ method = \"m5\", tolerance = 1e-12, max_iterations = 1000000 }]\n",
+        ),
+    )
+    .unwrap();
+    let started = Instant::now();
+    let mut run = p.cmd();
+    run.args(["--skip-explain", "--dry-run"]);
+    let out = bounded(run);
+    let err = String::from_utf8_lossy(&out.stderr);
+    let all = format!("{}{err}", String::from_utf8_lossy(&out.stdout));
+    assert!(
+        started.elapsed() < Duration::from_secs(90),
+        "{:?}",
+        started.elapsed()
+    );
+    assert_eq!(out.status.code(), Some(1), "{all}");
+    assert!(
+        all.contains("robio2018-bounded / w / exact: stopped at")
+            && all.contains("right-hand-side evaluations used up"),
+        "{all}"
+    );
+    assert!(
+        all.contains("robio2018-bounded / n / m5-tol-1e-12-iter-1000000: numerical method at t =")
+            && (all.contains("iteration budget of 2000000 iterations")
+                || all.contains("in 1000000 iterations")),
+        "{all}"
+    );
+    for (setting, needle) in [
+        (
+            "{ method = \"m5\", tolerance = 1e-300 }",
+            "variant[0] (\"n\") field `numerical[0]`",
+        ),
+        (
+            "{ method = \"m5\", tolerance = 1e-300 }",
+            "tolerance = 1e-300 must be within [1e-12, 1e0]",
+        ),
+        (
+            "{ method = \"m5\", max_iterations = 4000000000 }",
+            "max_iterations = 4000000000 must be within [1, 1000000]",
+        ),
+    ] {
+        std::fs::write(
+            &file,
+            puma_experiment(
+                2.0,
+                &format!("[[experiment.variant]]\nid = \"n\"\nlabel = \"n\"\nexact = false\nscheme = {{ kind = \"velocity-rmp\", lambda = 4.0, upsilon = 2.0 }}\nnumerical = [{setting}]\n"),
+            ),
+        )
+        .unwrap();
+        let mut list = p.cmd();
+        list.arg("--list");
+        let out = bounded(list);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(
+            err.contains(needle) && !err.contains("`solvers`"),
+            "{needle}: {err}"
+        );
+    }
+}
