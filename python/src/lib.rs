@@ -715,7 +715,7 @@ fn check_plain(file: &Path, rows: &[Vec<(&'static str, String)>]) -> Result<(), 
             return Err(IntoResultsError::Markup {
                 file: file.to_path_buf(),
                 line: k + 2,
-                column,
+                column: *column,
             });
         }
     }
