@@ -11,7 +11,7 @@
 //! Absent files are said so, with the command that produces them.
 
 use super::leaderboard::ranking;
-use super::markdown::{text, Table, MISSING};
+use super::markdown::{Table, MISSING};
 use analysis::leaderboard::{LeaderboardRow, STANDARD_SET};
 use records::table::{read_if_present, Row, TableError};
 use serde::{Deserialize, Serialize};
@@ -99,10 +99,7 @@ pub fn call_cost(rows: &[CallCostRow]) -> String {
          per evaluation of the coupled RHS (`sim_s / rhs_evals`: integrator, arm, scheme, \
          network and Jacobians), of the numpy network's run and of its Rust twin's on the same \
          task.\n\n",
-        text(&first.python),
-        text(&first.numpy),
-        text(&first.machine),
-        first.repeats
+        first.python, first.numpy, first.machine, first.repeats
     ));
     let us = |v: Option<f64>| v.map_or_else(|| MISSING.to_string(), |v| format!("{v} µs"));
     let mut t = Table::new([
