@@ -42,6 +42,11 @@ impl Pattern {
         Pattern(text.to_string())
     }
 
+    /// The pattern as written.
+    pub fn as_str(&self) -> &str {
+        &self.0
+    }
+
     /// Whether it has a `*` (else it matches one id only).
     pub fn is_pattern(&self) -> bool {
         self.0.contains('*')

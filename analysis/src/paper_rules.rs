@@ -4,8 +4,12 @@
 //! [`RESERVED_PAPER_IDS`]; texts that reach the report (title, citation, claims) are one line
 //! ([`crate::report_text::is_one_line`]); each published (experiment, column) has at most one
 //! `[[mapping]]`; every values.csv entry is finite, of a known metric, of this paper, and given
-//! once; a paper has at most [`MAX_CLAIMS`] claims. [`crate::papers::Papers::load`] applies them; what the files name among the runs
-//! is checked by [`crate::paper_runs::check_runs`].
+//! once; a paper has at most [`MAX_CLAIMS`] claims, [`MAX_MAPPINGS`] mappings of at most
+//! [`MAX_COMPANIONS`] companions each, and [`MAX_SWEEP_CHECKS`] sweep checks of at most
+//! [`MAX_SWEEP_COLUMNS`] columns; a sweep check compares per-joint drifts
+//! ([`SWEEP_METRICS`]) of a table and columns `values.csv` has, its heading and text one line
+//! each. [`crate::papers::Papers::load`] applies them; what the files name among the runs is
+//! checked by [`crate::paper_runs::check_runs`].
 
 use crate::claims::ClaimError;
 use crate::leaderboard::STANDARD_PAPER;
@@ -23,6 +27,26 @@ pub const RESERVED_PAPER_IDS: [&str; 2] = [GROUP, STANDARD_PAPER];
 /// The most claims one `paper.toml` may hold: the report evaluates each over every run (and a
 /// `than` claim over pairs of runs), so claims times runs stays bounded.
 pub const MAX_CLAIMS: usize = 200;
+
+/// The most `[[mapping]]` tables one `paper.toml` may hold (the papers hold at most 12): each
+/// is looked up for every published number.
+pub const MAX_MAPPINGS: usize = 500;
+
+/// The most `companions` of one mapping (the papers' have at most 3): each is a column of the
+/// report's table of the mapped number.
+pub const MAX_COMPANIONS: usize = 50;
+
+/// The most `[[sweep_check]]` tables of one `paper.toml` (each is a section of the report).
+pub const MAX_SWEEP_CHECKS: usize = 20;
+
+/// The most `columns` of one sweep check (each is compared with every swept run).
+pub const MAX_SWEEP_COLUMNS: usize = 100;
+
+/// The metrics a sweep check compares: the per-joint drifts, whose norm and signs the report
+/// sets beside the paper's.
+pub const SWEEP_METRICS: [&str; 6] = [
+    "drift_1", "drift_2", "drift_3", "drift_4", "drift_5", "drift_6",
+];
 
 /// What is wrong with a paper's `paper.toml` or `values.csv` (the field or line, and the valid
 /// choices); [`crate::papers::PapersError::Invalid`] adds the file.
@@ -53,6 +77,42 @@ pub enum PaperProblem {
     Claim { index: usize, error: ClaimError },
     #[error("{count} claims: at most {MAX_CLAIMS} per paper (each is evaluated over every run)")]
     TooManyClaims { count: usize },
+    #[error("{count} mappings: at most {MAX_MAPPINGS} per paper")]
+    TooManyMappings { count: usize },
+    #[error("mapping[{index}] field `companions`: {count} entries, at most {MAX_COMPANIONS}")]
+    TooManyCompanions { index: usize, count: usize },
+    #[error("{count} sweep checks: at most {MAX_SWEEP_CHECKS} per paper")]
+    TooManySweepChecks { count: usize },
+    #[error("sweep_check[{index}] field `columns`: {count} entries, at most {MAX_SWEEP_COLUMNS}")]
+    TooManySweepColumns { index: usize, count: usize },
+    #[error("sweep_check[{index}] field `{field}`: must be one line of text (no line breaks or control characters)")]
+    SweepNotOneLine { index: usize, field: &'static str },
+    #[error("sweep_check[{index}] field `metrics`: {found} (valid: each of {} at most once, at least one)", SWEEP_METRICS.join(", "))]
+    SweepMetric { index: usize, found: String },
+    #[error(
+        "sweep_check[{index}] field `table`: values.csv has no table \"{table}\" (valid: {valid})"
+    )]
+    SweepTable {
+        index: usize,
+        table: String,
+        valid: String,
+    },
+    #[error("sweep_check[{index}] columns[{column}] field `published_experiment`: table {table} of values.csv has no \"{experiment}\" with every metric of the check (valid: {valid})")]
+    SweepColumn {
+        index: usize,
+        column: usize,
+        table: String,
+        experiment: String,
+        valid: String,
+    },
+    #[error("sweep_check[{index}] columns[{column}] field `variants`: \"{pattern}\" matches no variant of {experiment} (valid: {valid})")]
+    SweepSelectsNothing {
+        index: usize,
+        column: usize,
+        pattern: String,
+        experiment: String,
+        valid: String,
+    },
     #[error("mapping[{index}] field `{field}`: no run \"{run}\" in the experiment files (valid {valid})")]
     NoSuchRun {
         index: usize,

@@ -6,7 +6,9 @@
 //!   files define must select at least one run. Otherwise it is a typo: an error naming the
 //!   file, the field and the valid choices (the experiment's variants, or the variant's
 //!   solvers).
-//! - What names an experiment the files do not define, and a selection by an experiment
+//! - A `[[sweep_check]]`'s columns must each match a variant of its sweep, where the files
+//!   define the sweep.
+//! - What names an experiment the files do not define (a sweep check's among them), and a selection by an experiment
 //!   pattern (`kong2019-*`) that selects nothing, is a note, not an error: a project may hold a
 //!   subset of a paper's experiments (the report then shows the run as missing, the claim as
 //!   N/A). The note names the file, the field and the run, so a misspelt id is seen.
@@ -82,6 +84,7 @@ pub fn check_runs(
         }
         *index += 1;
     }
+    check_sweeps(papers, &file, runs, &mut absent)?;
     for paper in &papers.papers {
         for (index, claim) in paper.claims.iter().enumerate() {
             let selections: Vec<(&'static str, &Selection)> = match &claim.check {
@@ -123,6 +126,55 @@ pub fn check_runs(
         }
     }
     Ok(absent)
+}
+
+/// The `[[sweep_check]]` tables of `papers` against `runs`: a sweep the files do not define is
+/// noted in `absent` (the report shows its section as not run); in one they define, every
+/// column's `variants` must match a variant of it.
+fn check_sweeps(
+    papers: &Papers,
+    file: &dyn Fn(&str) -> PathBuf,
+    runs: &[RunKey],
+    absent: &mut Vec<Absent>,
+) -> Result<(), PapersError> {
+    let mut index_of_paper = std::collections::HashMap::<&str, usize>::new();
+    for check in &papers.sweep_checks {
+        let index = index_of_paper.entry(check.paper.as_str()).or_insert(0);
+        let variants: BTreeSet<&str> = runs
+            .iter()
+            .filter(|k| k.experiment == check.experiment)
+            .map(|k| k.variant.as_str())
+            .collect();
+        if variants.is_empty() {
+            absent.push(Absent {
+                file: file(&check.paper),
+                place: format!("sweep_check[{index}] field `experiment`"),
+                names: check.experiment.clone(),
+            });
+        }
+        let unmatched =
+            check.columns.iter().enumerate().find(|(_, c)| {
+                !variants.is_empty() && !variants.iter().any(|v| c.variants.matches(v))
+            });
+        if let Some((column, c)) = unmatched {
+            let mut shown: Vec<&str> = variants.iter().copied().take(SHOWN_CHOICES).collect();
+            if variants.len() > SHOWN_CHOICES {
+                shown.push("...");
+            }
+            return Err(PapersError::Invalid {
+                path: file(&check.paper),
+                problem: PaperProblem::SweepSelectsNothing {
+                    index: *index,
+                    column,
+                    pattern: c.variants.as_str().to_string(),
+                    experiment: check.experiment.clone(),
+                    valid: shown.join(", "),
+                },
+            });
+        }
+        *index += 1;
+    }
+    Ok(())
 }
 
 /// Whether a run is among the runs, and if not, at which id.

@@ -414,11 +414,17 @@ fn load_folder(dir: &Path, folder: &Path) -> Result<Folder, PapersError> {
                 .map_err(|error| invalid(PaperProblem::Claim { index, error }))
         })
         .collect::<Result<_, _>>()?;
+    if file.sweep_checks.len() > crate::paper_rules::MAX_SWEEP_CHECKS {
+        return Err(invalid(PaperProblem::TooManySweepChecks {
+            count: file.sweep_checks.len(),
+        }));
+    }
     let sweep_checks = file
         .sweep_checks
         .into_iter()
-        .map(|c| c.into_check(&file.paper))
-        .collect();
+        .enumerate()
+        .map(|(index, c)| c.into_check(&file.paper, index, &values).map_err(invalid))
+        .collect::<Result<_, _>>()?;
     let paper = Paper {
         id: file.paper,
         title: file.title,
@@ -474,12 +480,23 @@ fn read_paper_file(dir: &Path, folder: &Path, path: &Path) -> Result<PaperFile, 
     Ok(file)
 }
 
-/// The `[[mapping]]` tables of `paper`'s file, checked: each run a run key, each published
+/// The `[[mapping]]` tables of `paper`'s file (at most [`crate::paper_rules::MAX_MAPPINGS`], each
+/// with at most [`crate::paper_rules::MAX_COMPANIONS`] companions), checked: each run a run key, each published
 /// (experiment, column) mapped once, each companion a variant (or variant / solver) of the
 /// run's experiment.
 fn mappings(paper: &str, files: Vec<MappingFile>) -> Result<Vec<Mapping>, PaperProblem> {
+    use crate::paper_rules::{MAX_COMPANIONS, MAX_MAPPINGS};
+    if files.len() > MAX_MAPPINGS {
+        return Err(PaperProblem::TooManyMappings { count: files.len() });
+    }
     let mut mappings: Vec<Mapping> = Vec::new();
     for (index, m) in files.into_iter().enumerate() {
+        if m.companions.len() > MAX_COMPANIONS {
+            return Err(PaperProblem::TooManyCompanions {
+                index,
+                count: m.companions.len(),
+            });
+        }
         let run = RunKey::parse(&m.run).map_err(|_| PaperProblem::Run {
             index,
             run: m.run.clone(),

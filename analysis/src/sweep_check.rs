@@ -16,7 +16,11 @@
 //! ```
 
 use crate::claims::Pattern;
+use crate::paper_rules::{PaperProblem, MAX_SWEEP_COLUMNS, SWEEP_METRICS};
+use crate::papers::PaperValue;
+use crate::report_text::is_one_line;
 use serde::Deserialize;
+use std::collections::BTreeSet;
 
 /// One published column and the swept variants (by id pattern) compared with it.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -71,8 +75,81 @@ struct SweepColumnFile {
 }
 
 impl SweepCheckFile {
-    pub(crate) fn into_check(self, paper: &str) -> SweepCheck {
-        SweepCheck {
+    /// The check of `paper` (its `index`-th in the file), validated against the paper's
+    /// published `values` (`crate::paper_rules`): one-line heading and text, metrics among
+    /// [`SWEEP_METRICS`] each once, a table of `values.csv`, and every column a published
+    /// experiment of that table with a value of every metric. Whether the experiment and the
+    /// variants exist among the runs is checked by `crate::paper_runs::check_runs`.
+    pub(crate) fn into_check(
+        self,
+        paper: &str,
+        index: usize,
+        values: &[PaperValue],
+    ) -> Result<SweepCheck, PaperProblem> {
+        for (field, text) in [("heading", &self.heading), ("text", &self.text)] {
+            if !is_one_line(text) {
+                return Err(PaperProblem::SweepNotOneLine { index, field });
+            }
+        }
+        let metric_problem = |found: String| PaperProblem::SweepMetric { index, found };
+        if self.metrics.is_empty() {
+            return Err(metric_problem("none given".to_string()));
+        }
+        let mut seen = BTreeSet::new();
+        for m in &self.metrics {
+            if !SWEEP_METRICS.contains(&m.as_str()) {
+                return Err(metric_problem(format!("unknown metric {m:?}")));
+            }
+            if !seen.insert(m.as_str()) {
+                return Err(metric_problem(format!("{m:?} is given twice")));
+            }
+        }
+        if self.columns.len() > MAX_SWEEP_COLUMNS {
+            return Err(PaperProblem::TooManySweepColumns {
+                index,
+                count: self.columns.len(),
+            });
+        }
+        let choices = |set: BTreeSet<&str>| {
+            let mut shown: Vec<&str> = set.into_iter().take(12).collect();
+            if shown.is_empty() {
+                shown.push("none");
+            }
+            shown.join(", ")
+        };
+        let of_paper = || values.iter().filter(|v| v.paper == paper);
+        if !of_paper().any(|v| v.table == self.table) {
+            return Err(PaperProblem::SweepTable {
+                index,
+                table: self.table,
+                valid: choices(of_paper().map(|v| v.table.as_str()).collect()),
+            });
+        }
+        let of_table = || of_paper().filter(|v| v.table == self.table);
+        // The published experiments of the table that give every compared metric.
+        let complete: BTreeSet<&str> = of_table()
+            .map(|v| v.experiment.as_str())
+            .filter(|e| {
+                self.metrics
+                    .iter()
+                    .all(|m| of_table().any(|v| v.experiment == *e && v.metric == *m))
+            })
+            .collect();
+        if let Some((column, c)) = self
+            .columns
+            .iter()
+            .enumerate()
+            .find(|(_, c)| !complete.contains(c.published_experiment.as_str()))
+        {
+            return Err(PaperProblem::SweepColumn {
+                index,
+                column,
+                table: self.table.clone(),
+                experiment: c.published_experiment.clone(),
+                valid: choices(complete),
+            });
+        }
+        Ok(SweepCheck {
             paper: paper.to_string(),
             experiment: self.experiment,
             heading: self.heading,
@@ -87,7 +164,7 @@ impl SweepCheckFile {
                     variants: Pattern::new(&c.variants),
                 })
                 .collect(),
-        }
+        })
     }
 }
 
@@ -111,7 +188,43 @@ columns = [
 "#,
         )
         .expect("parses");
-        let check = file.into_check("p");
+        let value = |experiment: &str| PaperValue {
+            paper: "p".into(),
+            table: "T2".into(),
+            experiment: experiment.into(),
+            column: "c".into(),
+            metric: "drift_1".into(),
+            value: 1.0,
+            note: String::new(),
+            inconsistent: None,
+        };
+        let values = [value("a"), value("b")];
+        // A metric typo, an unknown table or published experiment: errors naming the field
+        // and the valid choices (they used to render as a norm of 0 and a ratio of -inf).
+        let mut typo = file.clone();
+        typo.metrics = vec!["drift_l".into()];
+        let e = typo.into_check("p", 0, &values).unwrap_err().to_string();
+        assert!(e.contains("sweep_check[0] field `metrics`: unknown metric \"drift_l\" (valid: each of drift_1, drift_2"), "{e}");
+        let mut table = file.clone();
+        table.table = "T9".into();
+        let e = table.into_check("p", 1, &values).unwrap_err().to_string();
+        assert!(
+            e.contains("sweep_check[1] field `table`: values.csv has no table \"T9\" (valid: T2)"),
+            "{e}"
+        );
+        let e = file
+            .clone()
+            .into_check("p", 0, &values[..1])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("columns[1] field `published_experiment`") && e.contains("(valid: a)"),
+            "{e}"
+        );
+        let mut heading = file.clone();
+        heading.heading = "H\n## injected".into();
+        assert!(heading.into_check("p", 0, &values).is_err());
+        let check = file.into_check("p", 0, &values).unwrap();
         let col = |v: &str| check.column_of(v).map(|c| c.published_experiment.as_str());
         assert_eq!(
             col("clover-reverse-false-scale-0.1-phi-1.0-tau-0.0"),

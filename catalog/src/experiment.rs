@@ -618,28 +618,29 @@ impl PaperFile {
             s.validate(duration)
                 .map_err(|err| field(vat(&format!("numerical[{k}]")), err))?;
         }
+        // The field that declares the variant's k-th run: `exact`, `solvers[i]` or
+        // `numerical[i]`, in the order of `variant_jobs`.
+        let solver_at = |k: usize| match k.checked_sub(usize::from(v.exact)) {
+            None => vat("exact"),
+            Some(i) if i < v.solvers.len() => vat(&format!("solvers[{i}]")),
+            Some(i) => vat(&format!("numerical[{}]", i - v.solvers.len())),
+        };
         for (k, job) in self.variant_jobs(e, v).iter().enumerate() {
             check(job).map_err(|err| {
                 let place = match err.part() {
-                    JobPart::Solver if k - usize::from(v.exact) < v.solvers.len() => {
-                        vat(&format!("solvers[{}]", k - usize::from(v.exact)))
-                    }
-                    JobPart::Solver => vat(&format!(
-                        "numerical[{}]",
-                        k - usize::from(v.exact) - v.solvers.len()
-                    )),
+                    JobPart::Solver => solver_at(k),
                     JobPart::Path if v.path.is_some() => vat("path"),
                     JobPart::Path => at("path"),
                     part => vat(part.field()),
                 };
                 field(place, err)
             })?;
-            check_name(&job.solver.label(), MAX_SOLVER_LABEL, vat("solvers"))?;
-            job.solver_id().map_err(|e| field(vat("solvers"), e))?;
+            check_name(&job.solver.label(), MAX_SOLVER_LABEL, solver_at(k))?;
+            job.solver_id().map_err(|e| field(solver_at(k), e))?;
             let key = job.key();
             if keys.contains(&key) {
                 return Err(field(
-                    vat("solvers"),
+                    solver_at(k),
                     FieldError::RunTwice {
                         key: key.to_string(),
                     },

@@ -21,6 +21,16 @@ pub const DEFAULT_TOLERANCE: f64 = 1e-3;
 pub const DEFAULT_MAX_ITERATIONS: u32 = 100_000;
 /// Sampling gap h of the fixed-step loop (s); the paper does not print one (report/deviations.md).
 pub const DEFAULT_STEP: f64 = 1e-3;
+/// The range of `tolerance`: [`MIN_TOLERANCE`, `MAX_TOLERANCE`]. Below 1e-12 the residual
+/// |e(U)|_2 of a QP of the papers' sizes (entries of order 1, at most a few hundred) is within
+/// a few hundred rounding errors of its own computation and may never be reached; above 1 the
+/// "solution" is not one.
+pub const MIN_TOLERANCE: f64 = 1e-12;
+/// The largest `tolerance` ([`MIN_TOLERANCE`]).
+pub const MAX_TOLERANCE: f64 = 1.0;
+/// The largest `max_iterations` of one instant: 10x the default. The run as a whole is bounded
+/// besides by its iteration budget (`simulation::numerical`), scaled from its duration.
+pub const MAX_MAX_ITERATIONS: u32 = 1_000_000;
 
 /// The six methods of robio2018 (22)-(27), by the ids experiment files use.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
@@ -111,19 +121,23 @@ pub struct NumericalSpec {
 /// A [`NumericalSpec`] field out of its range.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum NumericalSpecError {
-    /// `tolerance` is not a positive finite number.
-    #[error("numerical {method}: tolerance = {value} must be finite and > 0")]
+    /// `tolerance` is outside [[`MIN_TOLERANCE`], [`MAX_TOLERANCE`]].
+    #[error("numerical {method}: tolerance = {value:e} must be within [{MIN_TOLERANCE:e}, {MAX_TOLERANCE:e}]")]
     Tolerance {
         /// The method's name as robio2018 prints it.
         method: &'static str,
         /// The tolerance given.
         value: f64,
     },
-    /// `max_iterations` is 0.
-    #[error("numerical {method}: max_iterations must be at least 1")]
+    /// `max_iterations` is outside [1, [`MAX_MAX_ITERATIONS`]].
+    #[error(
+        "numerical {method}: max_iterations = {value} must be within [1, {MAX_MAX_ITERATIONS}]"
+    )]
     MaxIterations {
         /// The method's name as robio2018 prints it.
         method: &'static str,
+        /// The cap given.
+        value: u32,
     },
     /// `step` is not a positive finite number no longer than the path.
     #[error("numerical {method}: step = {value} must be finite, > 0 and at most the path's duration {duration}")]
@@ -183,14 +197,17 @@ impl NumericalSpec {
     /// Checks the settings for a path of `duration` seconds.
     pub fn validate(&self, duration: f64) -> Result<(), NumericalSpecError> {
         let method = self.method.name();
-        if !(self.tolerance.is_finite() && self.tolerance > 0.0) {
+        if !(MIN_TOLERANCE..=MAX_TOLERANCE).contains(&self.tolerance) {
             return Err(NumericalSpecError::Tolerance {
                 method,
                 value: self.tolerance,
             });
         }
-        if self.max_iterations == 0 {
-            return Err(NumericalSpecError::MaxIterations { method });
+        if !(1..=MAX_MAX_ITERATIONS).contains(&self.max_iterations) {
+            return Err(NumericalSpecError::MaxIterations {
+                method,
+                value: self.max_iterations,
+            });
         }
         if !(self.step.is_finite() && self.step > 0.0 && self.step <= duration) {
             return Err(NumericalSpecError::Step {
@@ -237,6 +254,22 @@ mod tests {
         };
         assert!(spec(f64::NAN, 1e-3).validate(15.0).is_err());
         assert!(spec(0.0, 1e-3).validate(15.0).is_err());
+        // Outside the documented ranges: a tolerance below 1e-12 or above 1, an iteration
+        // cap over 10^6.
+        for tolerance in [1e-300, 1e-15, 2.0] {
+            let e = spec(tolerance, 1e-3).validate(15.0).unwrap_err();
+            assert!(e.to_string().contains("must be within [1e-12, 1e0]"), "{e}");
+        }
+        let absurd = NumericalSpec {
+            max_iterations: 4_000_000_000,
+            ..spec(1e-6, 1e-3)
+        };
+        let e = absurd.validate(15.0).unwrap_err();
+        assert!(
+            e.to_string()
+                .contains("max_iterations = 4000000000 must be within [1, 1000000]"),
+            "{e}"
+        );
         assert!(spec(1e-3, 0.0).validate(15.0).is_err());
         assert!(spec(1e-3, 20.0).validate(15.0).is_err());
         assert!(spec(1e-3, 1e-9).validate(15.0).is_err());

@@ -23,6 +23,9 @@ pub enum Kind {
     ShardManifest,
     /// A shard's `shard-binding.toml` (its shard, selection and experiments hash).
     ShardBinding,
+    /// An integrity manifest, `manifest.toml`, of `results/`, `report/` or a shard directory
+    /// (`records::integrity`; the committed report's is 110 kB).
+    Manifest,
     /// A table one of the Python package's scripts wrote, to be sealed into `results/`
     /// (`driftbench.into_results`; the committed ones are at most 5 kB).
     ScriptTable,
@@ -42,7 +45,7 @@ impl Kind {
             Kind::Experiment | Kind::PaperToml | Kind::ShardBinding | Kind::RobotFile => MIB,
             Kind::PaperValues => 4 * MIB,
             Kind::TrajectoryCsv | Kind::TrajectoryMat | Kind::Baseline => 256 * MIB,
-            Kind::ShardManifest | Kind::ScriptTable => 64 * MIB,
+            Kind::ShardManifest | Kind::ScriptTable | Kind::Manifest => 64 * MIB,
             Kind::Urdf => 16 * MIB,
         }
     }
@@ -58,6 +61,7 @@ impl Kind {
             Kind::Baseline => "baseline runs file",
             Kind::ShardManifest => "shard manifest",
             Kind::ShardBinding => "shard binding",
+            Kind::Manifest => "integrity manifest",
             Kind::ScriptTable => "results table",
             Kind::Urdf => "URDF",
             Kind::RobotFile => "robot file",

@@ -1,5 +1,6 @@
 //! One way to read a file that comes from outside the program: experiment files, the papers'
-//! `paper.toml` and `values.csv`, a trajectory to score, a gate's baseline, a shard's manifest.
+//! `paper.toml` and `values.csv`, a trajectory to score, a gate's baseline, a shard's manifest, the integrity manifest of
+//! `results/`, `report/` or a shard.
 //!
 //! Every such file is read by [`read()`] (or [`read_text`]), which
 //! - opens without blocking (a FIFO or a device answers at once, and is refused),
@@ -11,9 +12,14 @@
 //! - and says what is wrong without quoting the file: [`error::InputError`] names the path and
 //!   the rule, [`toml_error::TomlError`] a TOML error's message and line and column, without the
 //!   source line that `toml`'s own message shows.
+//!
+//! A directory the program keeps for itself outside a checkout (the Python package's data
+//! cache) is filled by [`private_dir::sync`]: owner-only, never through a link, never one it
+//! did not create, deleting nothing it did not write.
 
 pub mod error;
 pub mod kind;
+pub mod private_dir;
 pub mod read;
 pub mod toml_error;
 

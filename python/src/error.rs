@@ -107,6 +107,13 @@ pub enum IntoResultsError {
         file: PathBuf,
         source: records::table::TableError,
     },
+    /// A text of the table holds markup or a line break (its content is not quoted).
+    #[error("{}: line {line}, column `{column}`: holds HTML, a Markdown link or a line break; names reach the report as they are", file.display())]
+    Markup {
+        file: PathBuf,
+        line: usize,
+        column: &'static str,
+    },
     #[error(transparent)]
     Results(#[from] records::results_dir::ResultsError),
     #[error(transparent)]

@@ -712,6 +712,9 @@ fn run_entries<'py>(
     let not_applicable = PyList::empty(py);
     let failed = PyList::empty(py);
     for (name, network) in named {
+        // The name is shown in the report's tables as it is: no markup, no line break.
+        catalog::naming::check_name(name, catalog::naming::MAX_SOLVER_LABEL)
+            .map_err(|e| lib_err(format!("leaderboard's entry name: {e}")))?;
         let id = python_solver_id(name).map_err(lib_err)?;
         if stored
             .iter()
@@ -828,15 +831,34 @@ fn seal_into_results(file: &Path, root: &Path) -> Result<PathBuf, IntoResultsErr
         file: file.to_path_buf(),
         source,
     };
-    if name == records::results_dir::LEADERBOARD_PYTHON {
+    // Every text of every row, as the report will show it: plain (`check_plain`).
+    let texts: Vec<Vec<(&'static str, String)>> = if name
+        == records::results_dir::LEADERBOARD_PYTHON
+    {
         records::table::from_reader::<analysis::leaderboard::LeaderboardRow, _>(bytes.as_slice())
-            .map_err(table)?;
+            .map_err(table)?
+            .into_iter()
+            .map(|r| vec![("task_set", r.task_set), ("solver", r.solver)])
+            .collect()
     } else {
         records::table::from_reader::<presentation::report::python::CallCostRow, _>(
             bytes.as_slice(),
         )
-        .map_err(table)?;
-    }
+        .map_err(table)?
+        .into_iter()
+        .map(|r| {
+            vec![
+                ("network", r.network),
+                ("task", r.task),
+                ("twin", r.twin),
+                ("python", r.python),
+                ("numpy", r.numpy),
+                ("machine", r.machine),
+            ]
+        })
+        .collect()
+    };
+    check_plain(file, &texts)?;
     let (results, _) = records::results_dir::ResultsDir::open(
         &root.join(records::results_dir::DIR),
         reproduce::revision::REVISION,
@@ -845,6 +867,25 @@ fn seal_into_results(file: &Path, root: &Path) -> Result<PathBuf, IntoResultsErr
     results.tracked().write(Path::new(name), &bytes)?;
     results.save()?;
     Ok(results.path().join(name))
+}
+
+/// That no text of `rows` (a table's rows, each its (column, text) pairs; the header is line 1)
+/// holds markup or a line break (`catalog::naming::has_markup`): the report shows them as they
+/// are, and a sealed table is trusted.
+fn check_plain(file: &Path, rows: &[Vec<(&'static str, String)>]) -> Result<(), IntoResultsError> {
+    for (k, row) in rows.iter().enumerate() {
+        if let Some((column, _)) = row
+            .iter()
+            .find(|(_, t)| catalog::naming::has_markup(t) || t.contains(char::is_control))
+        {
+            return Err(IntoResultsError::Markup {
+                file: file.to_path_buf(),
+                line: k + 2,
+                column,
+            });
+        }
+    }
+    Ok(())
 }
 
 /// Scores a trajectory produced elsewhere on `task` with the metrics and the score of a run

@@ -560,6 +560,26 @@ def test_a_scripts_table_is_sealed_into_results(tmp_path):
     cost.write_text("network,task\nx,y\n")
     with pytest.raises(driftbench.DriftbenchError, match="not a table of its schema"):
         driftbench.into_results(cost, root=proj)
+    # A name with markup or a line break is refused where it enters (the audit's case: it
+    # reached report/leaderboard.md unescaped), without quoting it.
+    import csv
+    import io
+
+    header, row = next(csv.reader([committed[0]])), next(csv.reader([committed[1]]))
+    standard = driftbench.standard_tasks(root=ROOT)
+    for name in ["<img src=x onerror=alert(1)>", "[x](javascript:alert(1))", "a\n## b"]:
+        evil = dict(zip(header, row), solver=name)
+        buf = io.StringIO()
+        w = csv.DictWriter(buf, fieldnames=header, lineterminator="\n")
+        w.writeheader()
+        w.writerow(evil)
+        table.write_text(buf.getvalue())
+        with pytest.raises(driftbench.DriftbenchError, match="line 2, column `solver`: holds HTML") as e:
+            driftbench.into_results(table, root=proj)
+        assert name not in str(e.value)
+        with pytest.raises(driftbench.DriftbenchError, match="leaderboard's entry name"):
+            driftbench.leaderboard({name: Gnn()}, tasks=[standard[0]], root=ROOT)
+    table.write_text("\n".join(committed[:2]) + "\n")
     with (proj / "results" / "runs.csv").open("a") as f:
         f.write("\n")
     with pytest.raises(driftbench.DriftbenchError, match="runs.csv"):
@@ -615,17 +635,60 @@ def test_the_installed_package_works_outside_the_checkout(tmp_path):
     # at build time), and an edit in the unpacked copy does not survive the next process.
     data = pathlib.Path(got["root"])
     assert data.is_relative_to(tmp_path / "cache")
-    files = sorted(p.relative_to(data) for p in data.rglob("*") if p.is_file())
+    files = sorted(
+        p.relative_to(data) for p in data.rglob("*") if p.is_file() and p.name != ".driftbench-private"
+    )
     assert pathlib.Path("experiments/cross.toml") in files
     assert pathlib.Path("results/runs.csv") in files
     assert any(p.parts[0] == "papers" for p in files)
     for rel in files:
         assert (data / rel).read_bytes() == (ROOT / rel).read_bytes(), rel
-    (data / "experiments" / "stray.toml").write_text("not an experiment file")
     (data / "results" / "runs.csv").write_text("edited")
     outside(tmp_path, "import driftbench; driftbench.standard_tasks()")
-    assert not (data / "experiments" / "stray.toml").exists()
     assert (data / "results" / "runs.csv").read_bytes() == (ROOT / "results" / "runs.csv").read_bytes()
+    # A file the package did not write is named, not deleted (nor read as an experiment).
+    (data / "experiments" / "stray.toml").write_text("not an experiment file")
+    err = outside_fails(tmp_path, "import driftbench; driftbench.tasks()")
+    assert "stray.toml: driftbench did not write it" in err, err
+    assert (data / "experiments" / "stray.toml").exists()
+
+
+def outside_fails(tmp_path, code):
+    """`outside`, for code that must fail: its standard error."""
+    env = dict(os.environ, XDG_CACHE_HOME=str(tmp_path / "cache"))
+    out = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, env=env, capture_output=True, text=True)
+    assert out.returncode != 0, out.stdout
+    return out.stderr
+
+
+def test_the_data_cache_is_private_and_never_followed_through_a_link(tmp_path):
+    """The audit's case: with $XDG_CACHE_HOME/driftbench/data-<digest> linked elsewhere,
+    driftbench.tasks() deleted the files there and wrote its data into it. The cache is
+    created owner-only; a link, a directory the package did not create and one other users may
+    write are refused, and nothing there is written or deleted."""
+    code = "import driftbench; print(driftbench.data_root())"
+    data = pathlib.Path(outside(tmp_path, code).strip())
+    assert data.stat().st_mode & 0o777 == 0o700
+    assert data.parent.stat().st_mode & 0o777 == 0o700
+    elsewhere = tmp_path / "elsewhere-data"
+    elsewhere.mkdir()
+    (elsewhere / "precious.txt").write_text("keep")
+    shutil.rmtree(data)
+    data.symlink_to(elsewhere)
+    err = outside_fails(tmp_path, "import driftbench; driftbench.tasks()")
+    assert "is a symbolic link" in err, err
+    assert sorted(p.name for p in elsewhere.iterdir()) == ["precious.txt"]
+    # A directory in its place that the package did not create (a poisoned cache).
+    data.unlink()
+    data.mkdir(mode=0o700)
+    (data / "planted.toml").write_text("x")
+    err = outside_fails(tmp_path, "import driftbench; driftbench.tasks()")
+    assert "was not created by driftbench" in err, err
+    assert (data / "planted.toml").read_text() == "x"
+    shutil.rmtree(data)
+    data.parent.chmod(0o777)
+    err = outside_fails(tmp_path, "import driftbench; driftbench.tasks()")
+    assert "other users may write it" in err, err
 
 
 def test_the_type_stubs_cover_the_module():

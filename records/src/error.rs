@@ -164,9 +164,10 @@ pub enum TrajectoryProblem {
     /// The file is not CSV (or a row has another width).
     #[error(transparent)]
     Csv(#[from] csv::Error),
-    /// A header names a column that is none of the trajectory's (its name).
-    #[error("unknown column \"{0}\" (the columns are t, theta_1 .. theta_n and optionally thetadot_1 .. thetadot_n)")]
-    UnknownColumn(String),
+    /// A header names a column that is none of the trajectory's: its position, 1-based (its
+    /// name is the file's content, never quoted).
+    #[error("column {0} of the header is none of the trajectory's (t, theta_1 .. theta_n and optionally thetadot_1 .. thetadot_n)")]
+    UnknownColumn(usize),
     /// A required column is absent: `t` or `theta_1`.
     #[error("no column \"{0}\"")]
     NoColumn(&'static str),
@@ -189,13 +190,11 @@ pub enum TrajectoryProblem {
         /// The thetadot_i columns.
         thetadot: usize,
     },
-    /// A cell does not parse as a number.
-    #[error("column \"{column}\" is \"{value}\", not a number")]
+    /// A cell does not parse as a number (its text is the file's content, never quoted).
+    #[error("column \"{column}\" is not a number")]
     NotANumber {
-        /// The cell's column.
+        /// The cell's column (a valid trajectory column name).
         column: String,
-        /// The cell's text.
-        value: String,
     },
 }
 

@@ -24,7 +24,8 @@ pub enum FailureKind {
     StepLimit,
     /// The wall-time budget (`max_wall_s`) ran out.
     WallTime,
-    /// The right-hand-side evaluation budget (`max_rhs_evals`) ran out.
+    /// The right-hand-side evaluation budget (`max_rhs_evals`), a numerical run's iteration
+    /// budget, or the exact path's Clarabel budget ran out.
     EvalBudget,
     /// A numerical run solver did not meet its stopping rule at an instant (iteration limit,
     /// a singular matrix its rule inverts, or a non-finite iterate).

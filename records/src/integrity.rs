@@ -83,17 +83,14 @@ impl Fingerprint {
 /// A problem with a manifest or with a file it lists.
 #[derive(Debug, thiserror::Error)]
 pub enum IntegrityError {
-    /// The manifest exists but could not be read.
-    #[error("{path}: cannot read: {source}")]
-    Read {
-        /// The manifest's path.
-        path: PathBuf,
-        /// The I/O error.
-        source: std::io::Error,
-    },
+    /// The manifest exists but is not read: a link out of its directory, not a regular file,
+    /// over its cap, unreadable ([`inputs::InputError`]: its content is never quoted).
+    #[error(transparent)]
+    Read(#[from] inputs::InputError),
     /// The manifest is not one this program writes (bad TOML, an unknown field, a listed path
-    /// that is not plain and relative).
-    #[error("{path}: not a manifest this program writes: {message}")]
+    /// that is not plain and relative); the message names the line and column, never the
+    /// file's content.
+    #[error("{}: not a manifest this program writes: {message}", path.display())]
     Parse {
         /// The manifest's path.
         path: PathBuf,
@@ -148,18 +145,22 @@ impl std::fmt::Display for Mismatch {
 }
 
 impl Manifest {
-    /// The manifest of `dir`, or `None` if it has none.
+    /// The manifest of `dir`, or `None` if it has none. It is read as an input
+    /// ([`inputs::read_text`]): a regular file inside `dir`, at most
+    /// [`inputs::Kind::Manifest`]'s cap, never quoted in an error.
     pub fn read(dir: &Path) -> Result<Option<Self>, IntegrityError> {
         let path = dir.join(FILE);
-        let text = match std::fs::read_to_string(&path) {
-            Ok(t) => t,
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
-            Err(source) => return Err(IntegrityError::Read { path, source }),
-        };
-        let m: Manifest = toml::from_str(&text).map_err(|e| IntegrityError::Parse {
-            path: path.clone(),
-            message: e.to_string().trim_end().to_string(),
-        })?;
+        let text =
+            match inputs::read_text(&path, inputs::Kind::Manifest, inputs::Origin::Under(dir)) {
+                Ok(t) => t,
+                Err(e) if e.is_not_found() => return Ok(None),
+                Err(e) => return Err(e.into()),
+            };
+        let m: Manifest =
+            inputs::toml_error::from_str(&text).map_err(|e| IntegrityError::Parse {
+                path: path.clone(),
+                message: e.to_string(),
+            })?;
         if let Some(bad) = m.files.keys().find(|k| !is_plain(k)) {
             return Err(IntegrityError::Parse {
                 path,

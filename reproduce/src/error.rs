@@ -256,6 +256,14 @@ pub enum ScoreError {
     },
     #[error("--name {name:?}: the exact column's solver id is reserved (a scored trajectory would pass for the exact optimum); use another name, e.g. \"trajectory\"")]
     ReservedName { name: String },
+    /// The task's row under this name holds another file's score.
+    #[error("{}: the row of task \"{task}\" named {name:?} holds the score of another file ({holder}); give this one its own --name, or another --out", scores.display())]
+    Taken {
+        scores: std::path::PathBuf,
+        task: String,
+        name: String,
+        holder: String,
+    },
     #[error("{}: the scores go into a directory of their own, not into {} (sealed by this program's manifest.toml: results/, report/ or a shard)", out.display(), sealed.display())]
     Sealed {
         out: std::path::PathBuf,

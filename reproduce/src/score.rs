@@ -2,7 +2,8 @@
 //! trajectory produced elsewhere, scored on a task of the suite
 //! (`simulation::score_trajectory`), written as a run is: its row in `<out>/scores.csv` (the
 //! `results/runs.csv` schema, one row per task and name: `--name`, the row's solver id,
-//! `trajectory` by default; replaced when scored again), its trace in
+//! `trajectory` by default; replaced when the same file is scored again, and refused for
+//! another file, whose row and trace it would replace: so one row per task and file), its trace in
 //! `<out>/traces/<experiment>/<variant>__<name>.csv` and its figure (the report's run figure)
 //! in `<out>/figures/<experiment>__<variant>__<name>.svg` and `.png`; its summary line is printed
 //! like a run's, with warnings for what looks wrong ([`Warning`]). `<out>` is a directory of its
@@ -168,6 +169,19 @@ pub fn score_file(
     } else {
         Vec::new()
     };
+    // One row per task and file: the row of this task and name may be replaced by the same
+    // file scored again, never by another file's.
+    if let Some(other) = stored
+        .iter()
+        .find(|r| r.key() == row.key() && r.solver != row.solver)
+    {
+        return Err(ScoreError::Taken {
+            scores,
+            task: task.task().to_string(),
+            name: name.to_string(),
+            holder: other.solver.clone(),
+        });
+    }
     let rows = merge(stored, vec![row.clone()]);
     let stem = row.key().stem();
     let rel_trace = Path::new(records::results_dir::TRACES)

@@ -228,6 +228,34 @@ fn a_malformed_paper_is_refused_before_anything_runs() {
             format!("{original}{}", "\n[[claim]]\nshort = \"s\"\ntext = \"t\"\nrust = \"diverges\"\nwhy = \"w\"\n".repeat(201)),
             "claims: at most 200 per paper",
         ),
+        // Every list a file can grow is capped.
+        (
+            format!("{original}\n[[mapping]]\npublished_experiment = \"e\"\npublished_column = \"c\"\nrun = \"kong2019-cheap / znn / exact\"\ncompanions = [{}]\n", vec!["\"znn\""; 51].join(", ")),
+            "mapping[3] field `companions`: 51 entries, at most 50",
+        ),
+        (
+            format!("{original}{}", (0..501).map(|i| format!("\n[[mapping]]\npublished_experiment = \"e\"\npublished_column = \"c{i}\"\nrun = \"kong2019-cheap / znn / exact\"\n")).collect::<String>()),
+            "504 mappings: at most 500 per paper",
+        ),
+        // A sweep check is checked against values.csv and the runs: a metric typo, a table
+        // or published experiment values.csv lacks, variants that match none of the sweep's
+        // (each used to render a norm of 0 and a ratio of -inf, or nothing, with exit 0).
+        (
+            format!("{original}{}", sweep_check("drift_l", "T3", "circle-rmp", "*")),
+            "sweep_check[0] field `metrics`: unknown metric \"drift_l\"",
+        ),
+        (
+            format!("{original}{}", sweep_check("drift_1", "T9", "circle-rmp", "*")),
+            "sweep_check[0] field `table`: values.csv has no table \"T9\" (valid: T3, text)",
+        ),
+        (
+            format!("{original}{}", sweep_check("drift_1", "T3", "circle", "*")),
+            "sweep_check[0] columns[0] field `published_experiment`: table T3 of values.csv has no \"circle\" with every metric of the check (valid: circle-rmp",
+        ),
+        (
+            format!("{original}{}", sweep_check("drift_1", "T3", "circle-rmp", "zzz-*")),
+            "sweep_check[0] columns[0] field `variants`: \"zzz-*\" matches no variant of kong2019-cheap (valid: znn)",
+        ),
     ] {
         std::fs::write(&at, edit).unwrap();
         let mut run = p.cmd();
@@ -257,6 +285,14 @@ fn a_malformed_paper_is_refused_before_anything_runs() {
         !p.results().join("runs.csv").exists(),
         "a duplicate value: it ran"
     );
+}
+
+/// A `[[sweep_check]]` of the cheap experiment comparing `metric` of `table`'s
+/// `published_experiment` with the variants `variants`.
+fn sweep_check(metric: &str, table: &str, published_experiment: &str, variants: &str) -> String {
+    format!(
+        "\n[[sweep_check]]\nexperiment = \"kong2019-cheap\"\nheading = \"h\"\ntext = \"t\"\ntable = \"{table}\"\nmetrics = [\"{metric}\"]\ncolumns = [{{ published_experiment = \"{published_experiment}\", variants = \"{variants}\" }}]\n"
+    )
 }
 
 #[test]
@@ -333,5 +369,118 @@ fn a_shard_manifest_is_read_as_an_input() {
         merge.arg("--merge").arg(&shard);
         refused(bounded(merge), h, &at);
         assert!(!p.results().join("runs.csv").exists());
+    }
+}
+
+/// The integrity manifests (`results/manifest.toml`, `report/manifest.toml`, a shard
+/// directory's) are read as inputs: a link to a secret or to `/proc/self/environ` is refused
+/// without a word of it (a TOML error used to quote the line it failed on).
+#[test]
+fn integrity_manifests_are_read_as_inputs() {
+    let p = Project::new("manifests");
+    let shard = p.root().join("results-shard-1-of-2");
+    let cases: [(PathBuf, &[&str]); 3] = [
+        (p.results().join("manifest.toml"), &["--skip-explain"]),
+        (p.root().join("report/manifest.toml"), &["--skip-explain"]),
+        (shard.join("manifest.toml"), &["--shard", "1/2"]),
+    ];
+    for (at, args) in cases {
+        for h in all(inputs::Kind::Manifest) {
+            h.make(&p, &at);
+            let mut cmd = reproduce();
+            cmd.arg("--root").arg(p.root()).args(args);
+            if !args.contains(&"--shard") {
+                cmd.arg("--results-dir").arg(p.results());
+            }
+            cmd.env("DRIFTBENCH_TEST_CANARY", CANARY);
+            refused(bounded(cmd), h, &at);
+            std::fs::remove_file(&at).unwrap();
+        }
+    }
+}
+
+/// An experiment file of `variants` (TOML `[[experiment.variant]]` tables) on the PUMA560's
+/// four-leaf clover over `duration` seconds.
+fn puma_experiment(duration: f64, variants: &str) -> String {
+    format!(
+        "paper = \"robio2018\"\ntitle = \"t\"\n[[experiment]]\nid = \"robio2018-bounded\"\npaper_output = \"none\"\nrobot = \"puma560\"\npath = {{ name = \"four-leaf-clover\", duration = {duration:?} }}\ntheta0 = [0.0, -0.7853981633974483, 0.0, 1.5707963267948966, -0.7853981633974483, 0.0]\n{variants}"
+    )
+}
+
+/// Runs that would take minutes end as failed rows, with their reason, within seconds: a
+/// scheme weight of 1e-300 (the optimum chatters between the bounds' vertices and the exact
+/// column's integrator stalls, each evaluation a Clarabel solve) meets the evaluation budget
+/// scaled from the path's duration, and a numerical method held to 1e-12 with 10^6 iterations
+/// per instant meets the run's iteration budget or its cap at an instant, whichever first. Settings outside their documented ranges are
+/// refused at load, naming their field (a tolerance of 1e-300 was refused as about `solvers`,
+/// its label "314 bytes long").
+#[test]
+fn every_run_is_bounded_and_ranges_are_checked_at_load() {
+    let p = Project::new("bounded");
+    std::fs::remove_file(p.experiments().join("kong2019.toml")).unwrap();
+    let file = p.experiments().join("robio2018.toml");
+    std::fs::write(
+        &file,
+        puma_experiment(
+            2.0,
+            "[[experiment.variant]]\nid = \"w\"\nlabel = \"w\"\nscheme = { kind = \"velocity-rmp\", weight = 1e-300, lambda = 4.0, upsilon = 2.0, k_p = 1.0 }\n\
+             [[experiment.variant]]\nid = \"n\"\nlabel = \"n\"\nexact = false\nscheme = { kind = \"velocity-rmp\", lambda = 4.0, upsilon = 2.0 }\nnumerical = [{ method = \"m5\", tolerance = 1e-12, max_iterations = 1000000 }]\n",
+        ),
+    )
+    .unwrap();
+    let started = Instant::now();
+    let mut run = p.cmd();
+    run.args(["--skip-explain", "--dry-run"]);
+    let out = bounded(run);
+    let err = String::from_utf8_lossy(&out.stderr);
+    let all = format!("{}{err}", String::from_utf8_lossy(&out.stdout));
+    assert!(
+        started.elapsed() < Duration::from_secs(90),
+        "{:?}",
+        started.elapsed()
+    );
+    assert_eq!(out.status.code(), Some(1), "{all}");
+    assert!(
+        all.contains("robio2018-bounded / w / exact: stopped at")
+            && all.contains("right-hand-side evaluations used up"),
+        "{all}"
+    );
+    assert!(
+        all.contains("robio2018-bounded / n / m5-tol-1e-12-iter-1000000: numerical method at t =")
+            && (all.contains("iteration budget of 2000000 iterations")
+                || all.contains("in 1000000 iterations")),
+        "{all}"
+    );
+    for (setting, needle) in [
+        (
+            "{ method = \"m5\", tolerance = 1e-300 }",
+            "variant[0] (\"n\") field `numerical[0]`",
+        ),
+        (
+            "{ method = \"m5\", tolerance = 1e-300 }",
+            "tolerance = 1e-300 must be within [1e-12, 1e0]",
+        ),
+        (
+            "{ method = \"m5\", max_iterations = 4000000000 }",
+            "max_iterations = 4000000000 must be within [1, 1000000]",
+        ),
+    ] {
+        std::fs::write(
+            &file,
+            puma_experiment(
+                2.0,
+                &format!("[[experiment.variant]]\nid = \"n\"\nlabel = \"n\"\nexact = false\nscheme = {{ kind = \"velocity-rmp\", lambda = 4.0, upsilon = 2.0 }}\nnumerical = [{setting}]\n"),
+            ),
+        )
+        .unwrap();
+        let mut list = p.cmd();
+        list.arg("--list");
+        let out = bounded(list);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(
+            err.contains(needle) && !err.contains("`solvers`"),
+            "{needle}: {err}"
+        );
     }
 }

@@ -111,15 +111,17 @@ fn a_trajectory_file_is_scored_on_its_task() {
         })
         .collect();
     std::fs::write(&rounded, seven_digits).unwrap();
-    for (task, trajectory, warned) in [
+    for (task, trajectory, name, warned) in [
         (
             "kong2019-triangle / znn-eq22",
             &file,
+            "trajectory",
             "is this the right task?",
         ),
         (
             "kong2019-circle / znn-eq22",
             &rounded,
+            "rounded",
             "the samples look rounded",
         ),
     ] {
@@ -127,7 +129,7 @@ fn a_trajectory_file_is_scored_on_its_task() {
             .current_dir(&dir)
             .arg("score")
             .arg(trajectory)
-            .args(["--task", task, "--out"])
+            .args(["--task", task, "--name", name, "--out"])
             .arg(&out)
             .arg("--root")
             .arg(&root)
@@ -137,6 +139,49 @@ fn a_trajectory_file_is_scored_on_its_task() {
         assert!(scored.status.success(), "{task}: {err}");
         assert!(err.contains(warned), "{task}: {err}");
     }
+
+    // One row per task and file: another file under the same task and name is refused, and
+    // the first file's row and trace stay as they were (it used to replace them).
+    let trace = out.join("traces/kong2019-circle/znn-eq22__trajectory.csv");
+    let before = (
+        std::fs::read(out.join("scores.csv")).unwrap(),
+        std::fs::read(&trace).unwrap(),
+    );
+    let taken = reproduce()
+        .arg("score")
+        .arg(&rounded)
+        .args(["--task", "kong2019-circle / znn-eq22", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&taken.stderr);
+    assert_eq!(taken.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains(
+            "holds the score of another file (trajectory znn.csv); give this one its own --name"
+        ),
+        "{err}"
+    );
+    assert_eq!(
+        before,
+        (
+            std::fs::read(out.join("scores.csv")).unwrap(),
+            std::fs::read(&trace).unwrap()
+        )
+    );
+    // The same file again replaces its own row.
+    let again = reproduce()
+        .arg("score")
+        .arg(&file)
+        .args(["--task", "kong2019-circle / znn-eq22", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(
+        again.status.success(),
+        "{}",
+        String::from_utf8_lossy(&again.stderr)
+    );
 
     let refused = reproduce()
         .args(["--task", "nope / nope", "--score"])
@@ -169,7 +214,7 @@ fn a_trajectory_file_is_scored_on_its_task() {
         .filter(|r| r.experiment == job.experiment)
         .map(|r| r.solver_id.as_str())
         .collect();
-    assert_eq!(ids, ["octave-znn", "trajectory"]);
+    assert_eq!(ids, ["octave-znn", "rounded", "trajectory"]);
     for (args, said) in [
         (vec!["--name", "Octave ZNN"], "a slug"),
         (

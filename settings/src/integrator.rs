@@ -59,7 +59,9 @@ pub struct IntegratorSettings {
     #[serde(default = "default_max_wall_s")]
     pub max_wall_s: f64,
     /// Evaluation budget: right-hand-side evaluations (finite-difference Jacobian columns
-    /// included) after which the run fails with that reason (default [`DEFAULT_MAX_RHS_EVALS`]).
+    /// included) after which the run fails with that reason (default [`DEFAULT_MAX_RHS_EVALS`];
+    /// never more than [`RHS_EVALS_PER_SECOND`] per second of the span integrated,
+    /// [`IntegratorSettings::rhs_budget`]).
     #[serde(default = "default_max_rhs_evals")]
     pub max_rhs_evals: usize,
     /// Largest step (ode15s's `MaxStep`; the group's code: 0.05 s). `None` (the default):
@@ -97,6 +99,16 @@ impl IntegratorSettings {
     }
 }
 
+impl IntegratorSettings {
+    /// The evaluation budget of an integration over `span` seconds: `max_rhs_evals`, and at
+    /// most [`RHS_EVALS_PER_SECOND`] per second of the span (at least one second's).
+    pub fn rhs_budget(&self, span: f64) -> usize {
+        let scaled = (RHS_EVALS_PER_SECOND * span.max(1.0)).ceil();
+        // A NaN or infinite span leaves `max_rhs_evals` alone (`as` saturates).
+        self.max_rhs_evals.min(scaled as usize)
+    }
+}
+
 fn default_max_steps() -> usize {
     2_000_000
 }
@@ -112,6 +124,14 @@ fn default_max_wall_s() -> f64 {
 /// The default evaluation budget: 20x the heaviest run of the papers' experiments (the
 /// finite-time network, ~5 million).
 pub const DEFAULT_MAX_RHS_EVALS: usize = 100_000_000;
+
+/// The evaluation budget per second of the span integrated, besides `max_rhs_evals`
+/// ([`IntegratorSettings::rhs_budget`]): 3.7x the heaviest of the suite's integrations (the
+/// explanation ladder's finite-time network at ESDIRK3(4), RelTol 1e-10: 68,000 per second of
+/// its path), so that a run whose integrator stalls (a degenerate scheme weight makes the
+/// optimum chatter between vertices, each evaluation a Clarabel solve of ~10 us) ends as a
+/// failed run within seconds, not after `max_wall_s`.
+pub const RHS_EVALS_PER_SECOND: f64 = 250_000.0;
 
 fn default_max_rhs_evals() -> usize {
     DEFAULT_MAX_RHS_EVALS
@@ -129,5 +149,24 @@ impl Default for IntegratorSettings {
             max_rhs_evals: DEFAULT_MAX_RHS_EVALS,
             max_step: None,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_evaluation_budget_scales_with_the_span() {
+        let s = IntegratorSettings::default();
+        assert_eq!(s.rhs_budget(5.0), 1_250_000);
+        assert_eq!(s.rhs_budget(0.01), 250_000);
+        let small = IntegratorSettings {
+            max_rhs_evals: 50,
+            ..s
+        };
+        assert_eq!(small.rhs_budget(5.0), 50);
+        assert_eq!(s.rhs_budget(f64::INFINITY), DEFAULT_MAX_RHS_EVALS);
+        assert_eq!(s.rhs_budget(1e6), DEFAULT_MAX_RHS_EVALS);
     }
 }

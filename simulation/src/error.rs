@@ -34,6 +34,16 @@ pub enum RunError {
     /// The integrator stopped.
     #[error(transparent)]
     Integration(#[from] OdeError),
+    /// A numerical run used up its iteration budget
+    /// ([`crate::numerical::ITERATIONS_PER_SECOND`] per second of the path's duration) by the
+    /// instant t.
+    #[error("numerical method at t = {t:.6}: iteration budget of {budget} iterations ({} per second of the path's duration) used up", crate::numerical::ITERATIONS_PER_SECOND)]
+    IterationBudget {
+        /// The instant (s).
+        t: f64,
+        /// The run's budget (iterations).
+        budget: u64,
+    },
     /// A numerical run solver failed at the instant t.
     #[error("numerical method at t = {t:.6}: {error}")]
     Numerical {
@@ -52,6 +62,7 @@ impl RunError {
             RunError::ExactQp { .. } => FailureKind::ExactQp,
             RunError::Diverged { .. } => FailureKind::Diverged,
             RunError::Numerical { .. } => FailureKind::NumericalMethod,
+            RunError::IterationBudget { .. } => FailureKind::EvalBudget,
             RunError::Integration(e) => match e {
                 OdeError::Solver { .. } | OdeError::Stopped { .. } => FailureKind::Integrator,
                 OdeError::NonFinite { .. } => FailureKind::NonFinite,

@@ -129,8 +129,9 @@ pub struct RunMetrics {
 
 impl RunMetrics {
     /// The first of the metrics a run is judged by (drift, drift norms, position errors, peak
-    /// joint velocity) that is not finite, by its `runs.csv` name: finite samples can still
-    /// overflow them (samples of 1e300 give an infinite drift norm).
+    /// joint velocity, and the score against the exact optimum where there is one) that is not
+    /// finite, by its `runs.csv` name: finite samples can still overflow them (samples of 1e300
+    /// give an infinite drift norm; velocities of 1e300 an infinite RMS |x - x*|).
     pub fn non_finite(&self) -> Option<&'static str> {
         if self.drift.iter().any(|d| !d.is_finite()) {
             return Some("drift");
@@ -144,6 +145,18 @@ impl RunMetrics {
             ("peak_thetadot", self.peak_thetadot),
         ]
         .into_iter()
+        .chain(self.score.iter().flat_map(|s| {
+            [
+                ("score_max_dx", s.max_dx),
+                ("score_rms_dx", s.rms_dx),
+                (
+                    "score_rms_dx_after_1s",
+                    s.rms_dx_after_settle.unwrap_or(0.0),
+                ),
+                ("score_max_obj_gap", s.max_objective_gap),
+                ("score_max_violation", s.max_violation),
+            ]
+        }))
         .find(|(_, v)| !v.is_finite())
         .map(|(name, _)| name)
     }
@@ -396,6 +409,29 @@ mod tests {
         assert_eq!(s.rms_dx_after_settle, Some(0.0));
         let e = r.network_error.unwrap();
         assert_eq!((e.final_value, e.max_after_settle), (1e-6, 2e-4));
+    }
+
+    /// Finite but huge velocities (1e300 rad/s against an optimum of order 1) overflow the
+    /// score's RMS while every other metric stays finite: the run is not "ok".
+    #[test]
+    fn an_overflowing_score_is_a_non_finite_metric() {
+        let mut m = MetricsAccumulator::new(limits(), &[0.0; 2], &[0.0; 2]);
+        push(&mut m, 0.0, [0.0, 0.0], 0.0);
+        let huge = ScoreSample {
+            dx: 1e300,
+            objective_gap: 0.0,
+            violation: 0.0,
+        };
+        m.push_score(0.0, &huge);
+        m.push_score(1.0, &huge);
+        push(&mut m, 1.0, [0.0, 0.0], 0.0);
+        let r = m.finish(0.0);
+        assert_eq!(r.score.as_ref().map(|s| s.max_dx), Some(1e300));
+        assert_eq!(r.non_finite(), Some("score_rms_dx"));
+        let mut fine = MetricsAccumulator::new(limits(), &[0.0; 2], &[0.0; 2]);
+        push(&mut fine, 0.0, [0.0, 0.0], 0.0);
+        fine.push_score(0.0, &ScoreSample { dx: 1.0, ..huge });
+        assert_eq!(fine.finish(0.0).non_finite(), None);
     }
 
     #[test]

@@ -14,7 +14,8 @@
 //! thetaddot = U_k[..n]). U_0 starts from zero. So the run's drift is the scheme's drift plus
 //! what the method's stopping rule and the sampling add. Every instant is observed like an
 //! accepted step of an integrated run, and scored against the exact optimum x*(t_k, theta_k)
-//! where the experiment's `scoring` says.
+//! where the experiment's `scoring` says. A run is bounded by its iteration budget
+//! ([`ITERATIONS_PER_SECOND`] per second of the path), besides each instant's `max_iterations`.
 
 use crate::coupled::{arm_dim, arm_slices, ExactLoop};
 use crate::error::RunError;
@@ -25,7 +26,7 @@ use nalgebra::DVector;
 use schemes::scheme::{Level, Scheme};
 
 use solvers::exact_path::ExactPathStats;
-use solvers::lvi_numerical::{LviMethod, LviSettings, LviSolver};
+use solvers::lvi_numerical::{LviError, LviMethod, LviSettings, LviSolver};
 use solvers::neural::projection::primal_dual_dim;
 use solvers::ode::OdeStats;
 use std::time::Instant;
@@ -40,6 +41,20 @@ pub fn lvi_method(method: NumericalMethod) -> LviMethod {
         NumericalMethod::M5 => LviMethod::M5,
         NumericalMethod::M6 => LviMethod::M6,
     }
+}
+
+/// The iteration budget of a numerical run per second of its path's duration (at least one
+/// second's): robio2018 (21) steps summed over the instants. The heaviest numerical run of the
+/// papers' experiments (M5 at |e|_2 <= 1e-6 on the four-leaf clover) makes 4.3e5 per second,
+/// and an iteration of the papers' QP sizes takes about 0.2 us: a run that would need more
+/// (a tolerance it cannot reach, a method that does not converge, with an iteration cap as
+/// large as `max_iterations` allows) fails with that reason within seconds. One instant is
+/// never allowed more than the budget, so a run makes at most twice it.
+pub const ITERATIONS_PER_SECOND: u64 = 1_000_000;
+
+/// The iteration budget of a run of `duration` seconds ([`ITERATIONS_PER_SECOND`]).
+pub fn iteration_budget(duration: f64) -> u64 {
+    (ITERATIONS_PER_SECOND as f64 * duration.max(1.0)).ceil() as u64
 }
 
 /// A numerical run solver's iterations (robio2018 (21) steps).
@@ -80,12 +95,17 @@ pub(crate) fn run_numerical(
     let started = Instant::now();
     let level = scheme.level();
     let dims = scheme.dims();
+    let budget = iteration_budget(t1);
+    // One instant may use the whole budget but not more (`max_iterations` may be larger).
+    let cap = spec
+        .max_iterations
+        .min(u32::try_from(budget).unwrap_or(u32::MAX));
     let mut solver = LviSolver::new(
         lvi_method(spec.method),
         dims,
         LviSettings {
             tolerance: spec.tolerance,
-            max_iterations: spec.max_iterations,
+            max_iterations: cap,
         },
     );
     let mut qp = scheme.new_qp();
@@ -108,10 +128,21 @@ pub(crate) fn run_numerical(
                 iterations.max = iterations.max.max(u64::from(it));
                 iterations.products += solver.method().products(it, primal_dual_dim(dims));
             }
+            // The budget, not the method's own cap, stopped the instant.
+            Err(LviError::NotConverged { iterations: it, .. })
+                if it == cap && cap < spec.max_iterations =>
+            {
+                failure = Some((t, RunError::IterationBudget { t, budget }));
+                break;
+            }
             Err(error) => {
                 failure = Some((t, RunError::Numerical { t, error }));
                 break;
             }
+        }
+        if iterations.total > budget {
+            failure = Some((t, RunError::IterationBudget { t, budget }));
+            break;
         }
         x.as_mut_slice().copy_from_slice(solver.x());
         let observe = Instant::now();

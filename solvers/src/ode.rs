@@ -100,7 +100,8 @@ pub enum OdeError {
         /// The budget (s of wall time, `max_wall_s`).
         seconds: f64,
     },
-    /// The right-hand-side evaluation budget ran out.
+    /// The right-hand-side evaluation budget ran out (`max_rhs_evals`, scaled from the span:
+    /// `IntegratorSettings::rhs_budget`).
     EvalBudget {
         /// The time reached (s).
         t: f64,
@@ -130,7 +131,8 @@ impl std::fmt::Display for OdeError {
             OdeError::EvalBudget { t, evals } => write!(
                 f,
                 "stopped at t = {t:.6}: evaluation budget of {evals} right-hand-side evaluations \
-                 used up (max_rhs_evals)"
+                 used up (max_rhs_evals, at most {} per second of the span)",
+                settings::integrator::RHS_EVALS_PER_SECOND
             ),
         }
     }
@@ -409,8 +411,8 @@ fn solve(
         return Err(OdeError::Stopped { t: t0, reason });
     }
     let solver_err = |e| solver_error(t0, e);
-    // The evaluation budget, checked at every accepted step.
-    let max_evals = settings.max_rhs_evals;
+    // The evaluation budget (scaled from the span), checked at every accepted step.
+    let max_evals = settings.rhs_budget(t1 - t0);
     let budget_hit = std::cell::Cell::new(false);
     let mut observe = |t: f64, y: &[f64]| {
         if counted.borrow().rhs_evals > max_evals {

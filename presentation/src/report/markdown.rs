@@ -135,9 +135,37 @@ pub fn text(input: &str) -> String {
     out
 }
 
-/// A cell's text with the characters that would break a pipe table escaped.
+/// A cell made safe for a pipe table, whatever it holds: `|` escaped, a line break or other
+/// control character a space, the `<` that would open HTML (before an ASCII letter, `/`, `!` or
+/// `?`) an entity, and the `(` of a link whose target has a URL scheme (`[x](javascript:...)`)
+/// escaped, so no cell ends its row, carries a tag or links off the report. (The report's own
+/// cells link only to its pages and figures by relative paths, and hold no HTML; text from a
+/// file goes through [`text`] besides.)
 fn escape(cell: &str) -> String {
-    cell.replace('|', "\\|").replace('\n', " ")
+    let mut out = String::with_capacity(cell.len());
+    for (i, c) in cell.char_indices() {
+        let rest = &cell[i + c.len_utf8()..];
+        match c {
+            '|' => out.push_str("\\|"),
+            '<' if rest.starts_with(|n: char| n.is_ascii_alphabetic() || "/!?".contains(n)) => {
+                out.push_str("&lt;")
+            }
+            '(' if cell[..i].ends_with(']') && has_scheme(rest) => out.push_str("\\("),
+            c if c.is_control() => out.push(' '),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+/// Whether a link target starts with a URL scheme (`javascript:`, `data:`, `https:`): an ASCII
+/// letter, then letters, digits, `+`, `-` or `.`, then `:`.
+fn has_scheme(target: &str) -> bool {
+    let t = target.trim_start();
+    let end = t
+        .find(|c: char| !(c.is_ascii_alphanumeric() || "+-.".contains(c)))
+        .unwrap_or(t.len());
+    t.starts_with(|c: char| c.is_ascii_alphabetic()) && t[end..].starts_with(':')
 }
 
 /// A cell for `metric` of `r`: the number, or why there is none (a failed run has no drift).
@@ -174,6 +202,41 @@ mod tests {
         assert_eq!(
             md.lines().nth(2),
             Some("| x \\| y | &lt;img src=x onerror=alert(1)&gt; |")
+        );
+    }
+
+    /// Every cell, whatever table it comes from (the Python leaderboard's names were escaped
+    /// for `|` only): no tag, no link off the report, no line break; the report's own cells
+    /// (relative links, `<=`, code) as they were.
+    #[test]
+    fn every_cell_is_escaped_for_a_table() {
+        let mut t = Table::new(["a"]);
+        for cell in [
+            "<img src=x onerror=alert(1)>",
+            "[x](javascript:alert(1))",
+            "[x]( data:text/html,1)",
+            "a\nb\r|c",
+            "</td><!-- -->",
+            "[figure](figures/a__b__c.svg)",
+            "94LVI (|e| <= 0.001)",
+            "`code` [T2](paper-jia2019.md#t2)",
+        ] {
+            t.push([cell]);
+        }
+        let md = t.render();
+        let rows: Vec<&str> = md.lines().skip(2).collect();
+        assert_eq!(
+            rows,
+            [
+                "| &lt;img src=x onerror=alert(1)> |",
+                "| [x]\\(javascript:alert(1)) |",
+                "| [x]\\( data:text/html,1) |",
+                "| a b \\|c |",
+                "| &lt;/td>&lt;!-- --> |",
+                "| [figure](figures/a__b__c.svg) |",
+                "| 94LVI (\\|e\\| <= 0.001) |",
+                "| `code` [T2](paper-jia2019.md#t2) |",
+            ]
         );
     }
 

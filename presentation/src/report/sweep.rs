@@ -10,10 +10,18 @@ use analysis::sweep_check::SweepCheck;
 use analysis::sweep_comparison::{swept_runs, Against};
 use records::index::Runs;
 
-/// The markdown section, or an empty string when the sweep was not run.
+/// The markdown section; when the sweep was not run (a project that holds a subset of the
+/// experiments, said at load), its heading and a line saying so, never nothing.
 pub fn section(check: &SweepCheck, runs: &Runs, papers: &Papers) -> String {
+    let heading = format!(
+        "\n### {} (`{}`)\n\n{}\n\n",
+        check.heading, check.experiment, check.text
+    );
     if runs.of_experiment(&check.experiment).next().is_none() {
-        return String::new();
+        return format!(
+            "{heading}Not run: `results/runs.csv` has no run of `{}`.\n",
+            check.experiment
+        );
     }
     let mut t = Table::new([
         "variant (exact column)",
@@ -49,11 +57,5 @@ pub fn section(check: &SweepCheck, runs: &Runs, papers: &Papers) -> String {
             ],
         });
     }
-    format!(
-        "\n### {} (`{}`)\n\n{}\n\n{}",
-        check.heading,
-        check.experiment,
-        check.text,
-        t.render()
-    )
+    format!("{heading}{}", t.render())
 }
