@@ -27,6 +27,11 @@ pub fn expected_to_diverge(r: &RunRow) -> bool {
     !r.expected_failure.is_empty()
 }
 
+/// A compared value in a message: the number, or "none" where the row has none.
+fn value_text(v: Option<f64>) -> String {
+    v.map_or_else(|| "none".to_string(), |v| format!("{v:e}"))
+}
+
 fn close(a: Option<f64>, b: Option<f64>) -> bool {
     match (a, b) {
         (Some(a), Some(b)) => (a - b).abs() <= 1e-12 + RELATIVE_TOLERANCE * a.abs().max(b.abs()),
@@ -45,15 +50,12 @@ pub fn compare(committed: &[RunRow], fresh: &[RunRow], baseline: &str) -> Vec<St
     let committed_keys: std::collections::HashSet<_> = committed.iter().map(RunRow::key).collect();
     for c in committed {
         let Some(&f) = fresh_by_key.get(&c.key()) else {
-            problems.push(format!(
-                "{:?}: in {baseline} but no longer produced",
-                c.key()
-            ));
+            problems.push(format!("{}: in {baseline} but no longer produced", c.key()));
             continue;
         };
         if f.status != c.status {
             problems.push(format!(
-                "{:?}: status {} -> {} ({})",
+                "{}: status {} -> {} ({})",
                 c.key(),
                 c.status,
                 f.status,
@@ -63,17 +65,19 @@ pub fn compare(committed: &[RunRow], fresh: &[RunRow], baseline: &str) -> Vec<St
         }
         if c.failure_kind != f.failure_kind {
             problems.push(format!(
-                "{:?}: failure_kind {:?} -> {:?}",
+                "{}: failure_kind {} -> {}",
                 c.key(),
-                c.failure_kind,
+                c.failure_kind
+                    .map_or("none".to_string(), |k| format!("{k:?}")),
                 f.failure_kind
+                    .map_or("none".to_string(), |k| format!("{k:?}"))
             ));
             continue;
         }
         if c.failure_kind != Some(FailureKind::WallTime) {
             if c.integrator != f.integrator {
                 problems.push(format!(
-                    "{:?}: integrator {} -> {}",
+                    "{}: integrator {} -> {}",
                     c.key(),
                     c.integrator,
                     f.integrator
@@ -85,14 +89,19 @@ pub fn compare(committed: &[RunRow], fresh: &[RunRow], baseline: &str) -> Vec<St
                 .map(|(name, column)| (name.to_string(), column(c), column(f)));
             for (name, a, b) in std::iter::once(failed_at).chain(shown) {
                 if !close(a, b) {
-                    problems.push(format!("{:?}: {name} {a:?} -> {b:?}", c.key()));
+                    problems.push(format!(
+                        "{}: {name} {} -> {}",
+                        c.key(),
+                        value_text(a),
+                        value_text(b)
+                    ));
                 }
             }
         }
         if c.completed() {
             if c.drift.len() != f.drift.len() {
                 problems.push(format!(
-                    "{:?}: {} joint drifts -> {}",
+                    "{}: {} joint drifts -> {}",
                     c.key(),
                     c.drift.len(),
                     f.drift.len()
@@ -109,7 +118,12 @@ pub fn compare(committed: &[RunRow], fresh: &[RunRow], baseline: &str) -> Vec<St
                 .map(|(name, column)| (name.to_string(), column(c), column(f)));
             for (name, a, b) in joints.chain(totals) {
                 if !close(a, b) {
-                    problems.push(format!("{:?}: {name} {a:?} -> {b:?}", c.key()));
+                    problems.push(format!(
+                        "{}: {name} {} -> {}",
+                        c.key(),
+                        value_text(a),
+                        value_text(b)
+                    ));
                 }
             }
         }
@@ -117,12 +131,12 @@ pub fn compare(committed: &[RunRow], fresh: &[RunRow], baseline: &str) -> Vec<St
     for f in fresh {
         if !committed_keys.contains(&f.key()) {
             problems.push(format!(
-                "{:?}: new run, not in {baseline} (run the reproduction and commit results/)",
+                "{}: new run, not in {baseline} (run the reproduction and commit results/)",
                 f.key()
             ));
         }
         if !f.is_exact() && !f.completed() && !expected_to_diverge(f) {
-            problems.push(format!("{:?}: neural run failed: {}", f.key(), f.failure));
+            problems.push(format!("{}: neural run failed: {}", f.key(), f.failure));
         }
     }
     problems
@@ -166,6 +180,7 @@ mod tests {
         let problems = compare(&committed, &[doctored], "b");
         assert_eq!(problems.len(), 1, "{problems:?}");
         assert!(problems[0].contains("final_pos_err"), "{problems:?}");
+        assert_eq!(problems[0], "e / v / s: final_pos_err 1e-5 -> 9.9e-1");
         let mut lost = row.clone();
         lost.score_rms_dx = None;
         assert!(compare(&committed, &[lost], "b")[0].contains("score_rms_dx"));

@@ -114,6 +114,8 @@ pub struct Hypothesis {
     pub printed: f64,
     pub read_as: f64,
     pub edit: Edit,
+    /// |norm − ‖entries‖| under this reading (the hypotheses are sorted by it, nearest first).
+    pub residual: f64,
 }
 
 impl std::fmt::Display for Hypothesis {
@@ -166,6 +168,15 @@ impl Column<'_> {
         consistent(self.norm, &self.entries())
     }
 
+    /// |norm − ‖entries‖| with joint `i` (if any) read as `v`, and the norm read as `norm`.
+    fn residual(&self, norm: f64, joint: Option<(usize, f64)>) -> f64 {
+        let mut e = self.entries();
+        if let Some((i, v)) = joint {
+            e[i] = v;
+        }
+        (norm - e.iter().map(|d| d * d).sum::<f64>().sqrt()).abs()
+    }
+
     /// Consistent with joint `i` read as `v`.
     fn consistent_with(&self, i: usize, v: f64) -> bool {
         let mut e = self.entries();
@@ -208,15 +219,14 @@ fn columns<'a>(values: &[&'a PaperValue]) -> Vec<Column<'a>> {
 
 /// Every reading of `x` under one exponent, one digit or one sign misprint.
 fn single_edits(x: f64) -> Vec<(f64, Edit)> {
-    let mut out: Vec<(f64, Edit)> = EXPONENT_SHIFTS
-        .iter()
-        .filter(|_| x != 0.0)
-        .map(|&k| (x * 10f64.powi(k), Edit::Exponent(k)))
-        .collect();
-    if x != 0.0 {
-        out.push((-x, Edit::Sign));
-    }
+    let mut out = Vec::new();
     if let Some(p) = Printed::of(x) {
+        for k in EXPONENT_SHIFTS {
+            let mut q = p.clone();
+            q.exponent += k;
+            out.push((q.value(), Edit::Exponent(k)));
+        }
+        out.push((-x, Edit::Sign));
         for position in 0..p.digits.len() {
             for to in 0..=9u8 {
                 let from = p.digits[position];
@@ -252,6 +262,7 @@ pub fn contradictions(paper: &str, papers: &Papers) -> Vec<Contradiction> {
                         printed: c.norm,
                         read_as,
                         edit,
+                        residual: c.residual(read_as, None),
                     });
                 }
             }
@@ -263,6 +274,7 @@ pub fn contradictions(paper: &str, papers: &Papers) -> Vec<Contradiction> {
                             printed: *x,
                             read_as,
                             edit,
+                            residual: c.residual(c.norm, Some((i, read_as))),
                         });
                     }
                 }
@@ -280,10 +292,12 @@ pub fn contradictions(paper: &str, papers: &Papers) -> Vec<Contradiction> {
                             edit: Edit::Swap {
                                 column: other.column.to_string(),
                             },
+                            residual: c.residual(c.norm, Some((i, theirs))),
                         });
                     }
                 }
             }
+            hypotheses.sort_by(|a, b| a.residual.total_cmp(&b.residual));
             out.push(Contradiction {
                 paper: paper.to_string(),
                 table: table.clone(),
@@ -298,13 +312,18 @@ pub fn contradictions(paper: &str, papers: &Papers) -> Vec<Contradiction> {
     out
 }
 
-/// Whether the published column (`experiment`, `column`) of `paper` has a printed norm that
-/// its printed entries contradict (in any of its tables): a ratio taken from this column rests
-/// on a contradicted number.
-pub fn is_contradicted(contradictions: &[Contradiction], experiment: &str, column: &str) -> bool {
-    contradictions
-        .iter()
-        .any(|c| c.experiment == experiment && c.column == column)
+/// Whether the published column (`experiment`, `column`) has a printed norm that its printed
+/// entries contradict, in `table` (any table when none): a ratio taken from this column there
+/// rests on a contradicted number.
+pub fn is_contradicted(
+    contradictions: &[Contradiction],
+    table: Option<&str>,
+    experiment: &str,
+    column: &str,
+) -> bool {
+    contradictions.iter().any(|c| {
+        table.is_none_or(|t| c.table == t) && c.experiment == experiment && c.column == column
+    })
 }
 
 #[cfg(test)]
@@ -358,9 +377,10 @@ mod tests {
         let columns: Vec<&str> = found.iter().map(|c| c.column.as_str()).collect();
         assert_eq!(columns, ["a", "c"]);
         let a = &found[0];
-        assert!(a.hypotheses.iter().any(|h| h.metric == "drift_2"
-            && h.edit == Edit::Exponent(1)
-            && (h.read_as - 4e-5).abs() < 1e-20));
+        assert!(a
+            .hypotheses
+            .iter()
+            .any(|h| h.metric == "drift_2" && h.edit == Edit::Exponent(1) && h.read_as == 4e-5));
         assert!(a
             .hypotheses
             .iter()
@@ -370,8 +390,12 @@ mod tests {
             .hypotheses
             .iter()
             .any(|h| h.metric == "drift_norm" && h.edit == Edit::Sign));
-        assert!(is_contradicted(&found, "E", "c"));
-        assert!(!is_contradicted(&found, "E", "b"));
+        assert!(is_contradicted(&found, None, "E", "c"));
+        assert!(is_contradicted(&found, Some("T1"), "E", "c"));
+        assert!(!is_contradicted(&found, Some("T2"), "E", "c"));
+        assert!(!is_contradicted(&found, None, "E", "b"));
+        let residuals: Vec<f64> = a.hypotheses.iter().map(|h| h.residual).collect();
+        assert!(residuals.windows(2).all(|w| w[0] <= w[1]), "nearest first");
     }
 
     /// Whether column `c` is consistent with the hypothesis `h` applied (an independent check

@@ -153,7 +153,7 @@ mod tests {
             .find(|r| r.drift_norm.is_some())
             .expect("a completed run");
         row.drift_norm = row.drift_norm.map(|d| d * 1.1 + 1e-9);
-        let key = format!("{:?}", row.key());
+        let key = row.key().to_string();
         let problems = committed().problems(&doctored, false);
         assert_eq!(problems.len(), 1, "{problems:?}");
         assert!(

@@ -305,11 +305,14 @@ fn summary_section(
         };
         summary.push([
             format!("[{paper}]({})", paper_page(paper)),
-            format!(
-                "{} (signs {})",
-                analysis::paper_verdict::level_under_setup(paper, &decision, papers),
-                decision.signs
-            ),
+            match decision.signs.n {
+                0 => analysis::paper_verdict::level_under_setup(paper, &decision, papers),
+                _ => format!(
+                    "{} (signs agree in {})",
+                    analysis::paper_verdict::level_under_setup(paper, &decision, papers),
+                    decision.signs
+                ),
+            },
             format!(
                 "{} / {} / {}",
                 n(Verdict::Pass),
@@ -352,9 +355,9 @@ fn paper_page_of(
         out.push_str("\n### Published tables side by side\n\n");
         out.push_str(&tables.join("\n"));
     }
-    out.push_str(&verdict::contradictions(&analysis::misprints::contradictions(
-        paper, papers,
-    )));
+    out.push_str(&verdict::contradictions(
+        &analysis::misprints::contradictions(paper, papers),
+    ));
     for check in papers.sweep_checks.iter().filter(|c| c.paper == *paper) {
         out.push_str(&sweep::section(check, runs, papers));
     }

@@ -121,10 +121,11 @@ struct Marks {
     rests_on_contradiction: bool,
 }
 
-/// The cell of column `c` for quantity `q` (`contradicted`: the paper's contradicted columns).
+/// The cell of column `c` of published `table` for quantity `q` (`contradicted`: the paper's
+/// contradicted columns).
 fn cell(
     c: &Col,
-    q: &str,
+    (table, q): (&str, &str),
     papers: &Papers,
     contradicted: &[Contradiction],
     marks: &mut Marks,
@@ -157,7 +158,14 @@ fn cell(
             ratio_of: Some(m),
             ..
         }) => match ratio_to_paper(r, m, q, papers) {
-            Some(v) if is_contradicted(contradicted, &m.published_experiment, &m.published_column) => {
+            Some(v)
+                if is_contradicted(
+                    contradicted,
+                    Some(table),
+                    &m.published_experiment,
+                    &m.published_column,
+                ) =>
+            {
                 marks.rests_on_contradiction = true;
                 format!("{}‡", sci(v))
             }
@@ -194,7 +202,7 @@ pub fn side_by_side(paper: &str, table: &str, papers: &Papers, runs: &Runs) -> S
         row.extend(
             quantities
                 .iter()
-                .map(|q| cell(c, q, papers, &contradicted, &mut marks)),
+                .map(|q| cell(c, (table, q), papers, &contradicted, &mut marks)),
         );
         t.push(row);
     }

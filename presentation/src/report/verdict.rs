@@ -56,7 +56,9 @@ pub fn paragraph(paper: &str, claims: &[Claim], runs: &Runs, papers: &Papers) ->
             hi.0,
         ));
     } else {
-        out.push_str(" No published magnitude is counted: the verdict rests on the signs and the claims.");
+        out.push_str(
+            " No published magnitude is counted: the verdict rests on the signs and the claims.",
+        );
     }
     if let Some((e, r)) = solver_effect(paper, runs, papers) {
         if e <= SOLVER_MATTERS {
@@ -77,6 +79,9 @@ pub fn paragraph(paper: &str, claims: &[Claim], runs: &Runs, papers: &Papers) ->
     out
 }
 
+/// How many misprint hypotheses a contradicted column lists (the nearest).
+const SHOWN_HYPOTHESES: usize = 3;
+
 /// The published columns whose printed numbers contradict each other, each with the single
 /// misprints that would reconcile it ([`analysis::misprints`]), as hypotheses beside the
 /// printed numbers; empty when none does.
@@ -85,7 +90,7 @@ pub fn contradictions(found: &[Contradiction]) -> String {
         return String::new();
     }
     let mut out = String::from(
-        "\n### Printed numbers that contradict each other\n\nIn these columns the printed norm is not the norm of the printed joint drifts, within the printed digits. Below each, the single misprints (one exponent, one digit, one sign, one entry exchanged with another column's) under which the column is consistent: hypotheses, not corrections. The tables above show the printed numbers; every ratio of these columns rests on a contradicted number (marked ‡) and the verdict does not count it.\n\n",
+        "\n### Printed numbers that contradict each other\n\nIn these columns the printed norm is not the norm of the printed joint drifts, within the printed digits. Below each, the single misprints (one exponent, one digit, one sign, one entry exchanged with another column's) under which the column is consistent: hypotheses, not corrections. The tables above show the printed numbers; every ratio of these columns in that table rests on a contradicted number (marked ‡), and the verdict does not count their drift norms.\n\n",
     );
     for c in found {
         out.push_str(&format!(
@@ -99,8 +104,22 @@ pub fn contradictions(found: &[Contradiction]) -> String {
         if c.hypotheses.is_empty() {
             out.push_str("No single misprint reconciles them.\n");
         } else {
-            let h: Vec<String> = c.hypotheses.iter().map(|h| format!("{h}")).collect();
-            out.push_str(&format!("Consistent if: {}.\n", h.join("; or ")));
+            let h: Vec<String> = c
+                .hypotheses
+                .iter()
+                .take(SHOWN_HYPOTHESES)
+                .map(|h| format!("{h}"))
+                .collect();
+            out.push_str(&format!("Consistent if: {}", h.join("; or ")));
+            let more = c.hypotheses.len().saturating_sub(SHOWN_HYPOTHESES);
+            if more > 0 {
+                out.push_str(&format!(
+                    " (nearest first; {more} further single misprint{} also reconcile{} them)",
+                    if more == 1 { "" } else { "s" },
+                    if more == 1 { "s" } else { "" }
+                ));
+            }
+            out.push_str(".\n");
         }
     }
     out
