@@ -340,10 +340,13 @@ fn mapped_runs<'a>(
     })
 }
 
+/// A number with its label ("experiment, column, metric").
+pub type Labelled = (String, f64);
+
 /// The smallest and the largest of `ratios` (with its label: the first smallest, the last
 /// largest); none when there are none.
-pub fn ratio_span(ratios: &[(String, f64)]) -> Option<(&(String, f64), &(String, f64))> {
-    let by = |a: &&(String, f64), b: &&(String, f64)| a.1.total_cmp(&b.1);
+pub fn ratio_span(ratios: &[Labelled]) -> Option<(&Labelled, &Labelled)> {
+    let by = |a: &&Labelled, b: &&Labelled| a.1.total_cmp(&b.1);
     Some((ratios.iter().min_by(by)?, ratios.iter().max_by(by)?))
 }
 

@@ -235,7 +235,9 @@ fn publish(
     }
     let rendered = match report_root(project) {
         Ok(root) => {
-            let figures = render_figures(&root)?;
+            // `run --paper X` draws X's figures only (the pages are all re-rendered: they
+            // are cheap, and the front page summarises every paper).
+            let figures = render_figures(&root, plan.selection.paper.as_deref())?;
             clock.lap(Phase::Figures, Some(figures));
             render_pages(project, &root, results)?;
             clock.lap(Phase::Report, None);
