@@ -114,7 +114,14 @@ pub fn run(
         })
         .collect();
     let plan = match plan.output {
-        Output::Gate(baseline) => return Ok(baseline.verdict(&rows, plan.selection.exact_only)),
+        Output::Gate(baseline) => {
+            // The explanation the pages show, re-derived for the selected runs and compared
+            // (the ladder and the attribution), where the baseline holds one.
+            let explained = (!plan.selection.exact_only && baseline.explains(jobs))
+                .then(|| crate::explanation::fresh(project, jobs, all.jobs(), git_rev))
+                .transpose()?;
+            return Ok(baseline.verdict(&rows, plan.selection.exact_only, explained.as_ref()));
+        }
         output => Plan { output, ..plan },
     };
     if let (Some(results), Some((kept, pruned))) = (&results, stored) {

@@ -6,6 +6,7 @@ mod common;
 
 mod cli;
 mod fifth_paper;
+mod gate_explanation;
 mod hostile;
 mod hostile_inputs;
 mod kubernetes;
