@@ -1,7 +1,7 @@
 //! A network written outside the library, scored against the exact optimum.
 //!
 //! A gradient neural network (GNN) for the QP  min x'Px/2 + q'x  s.t.  A x = b,  G x <= h,
-//! l <= x <= u  (the form of `schemes::qp::Qp`) descends the penalised energy
+//! l <= x <= u  (the form of `qp::Qp`) descends the penalised energy
 //!
 //! ```text
 //! E(x) = x'Px/2 + q'x + (rho/2) ( |A x - b|^2 + |max(G x - h, 0)|^2
@@ -23,9 +23,9 @@
 use catalog::experiment::Scoring;
 use catalog::experiment::{default_exact_integrator, NetworkInit};
 use nalgebra::{DMatrix, DVector};
+use qp::{Qp, QpDims};
 use robots::{Jaco2, Robot};
 use schemes::paths::{build_path, PathSpec};
-use schemes::qp::{Qp, QpDims};
 use schemes::tri_criteria::TriCriteria;
 use settings::integrator::IntegratorSettings;
 use settings::solver_spec::SolverSpec;

@@ -13,9 +13,13 @@
 //!   is every number the report's claims and tables use, timings aside;
 //! - every committed run must still be produced, and every fresh run must be committed;
 //! - every neural run must complete, except those whose divergence is itself the finding
-//!   (declared in the experiment files as `expected_failure`, recorded in each row).
+//!   (declared in the experiment files as `expected_failure`, recorded in each row);
+//! - the explanation's tables that the pages show (the tolerance ladder and the drift
+//!   attribution) are compared row by row, with the tolerances [`compare_explanations`] states.
 
+use records::attribution::AttributionRow;
 use records::failure_kind::FailureKind;
+use records::ladder::LadderRow;
 use records::runs::RunRow;
 use std::collections::HashSet;
 
@@ -25,6 +29,11 @@ pub const RELATIVE_TOLERANCE: f64 = 1e-6;
 /// Whether `r` is one of the runs its experiment file expects to fail (`expected_failure`).
 pub fn expected_to_diverge(r: &RunRow) -> bool {
     !r.expected_failure.is_empty()
+}
+
+/// A compared value in a message: the number, or "none" where the row has none.
+fn value_text(v: Option<f64>) -> String {
+    v.map_or_else(|| "none".to_string(), |v| format!("{v:e}"))
 }
 
 fn close(a: Option<f64>, b: Option<f64>) -> bool {
@@ -45,15 +54,12 @@ pub fn compare(committed: &[RunRow], fresh: &[RunRow], baseline: &str) -> Vec<St
     let committed_keys: std::collections::HashSet<_> = committed.iter().map(RunRow::key).collect();
     for c in committed {
         let Some(&f) = fresh_by_key.get(&c.key()) else {
-            problems.push(format!(
-                "{:?}: in {baseline} but no longer produced",
-                c.key()
-            ));
+            problems.push(format!("{}: in {baseline} but no longer produced", c.key()));
             continue;
         };
         if f.status != c.status {
             problems.push(format!(
-                "{:?}: status {} -> {} ({})",
+                "{}: status {} -> {} ({})",
                 c.key(),
                 c.status,
                 f.status,
@@ -63,17 +69,19 @@ pub fn compare(committed: &[RunRow], fresh: &[RunRow], baseline: &str) -> Vec<St
         }
         if c.failure_kind != f.failure_kind {
             problems.push(format!(
-                "{:?}: failure_kind {:?} -> {:?}",
+                "{}: failure_kind {} -> {}",
                 c.key(),
-                c.failure_kind,
+                c.failure_kind
+                    .map_or("none".to_string(), |k| format!("{k:?}")),
                 f.failure_kind
+                    .map_or("none".to_string(), |k| format!("{k:?}"))
             ));
             continue;
         }
         if c.failure_kind != Some(FailureKind::WallTime) {
             if c.integrator != f.integrator {
                 problems.push(format!(
-                    "{:?}: integrator {} -> {}",
+                    "{}: integrator {} -> {}",
                     c.key(),
                     c.integrator,
                     f.integrator
@@ -85,14 +93,19 @@ pub fn compare(committed: &[RunRow], fresh: &[RunRow], baseline: &str) -> Vec<St
                 .map(|(name, column)| (name.to_string(), column(c), column(f)));
             for (name, a, b) in std::iter::once(failed_at).chain(shown) {
                 if !close(a, b) {
-                    problems.push(format!("{:?}: {name} {a:?} -> {b:?}", c.key()));
+                    problems.push(format!(
+                        "{}: {name} {} -> {}",
+                        c.key(),
+                        value_text(a),
+                        value_text(b)
+                    ));
                 }
             }
         }
         if c.completed() {
             if c.drift.len() != f.drift.len() {
                 problems.push(format!(
-                    "{:?}: {} joint drifts -> {}",
+                    "{}: {} joint drifts -> {}",
                     c.key(),
                     c.drift.len(),
                     f.drift.len()
@@ -109,7 +122,12 @@ pub fn compare(committed: &[RunRow], fresh: &[RunRow], baseline: &str) -> Vec<St
                 .map(|(name, column)| (name.to_string(), column(c), column(f)));
             for (name, a, b) in joints.chain(totals) {
                 if !close(a, b) {
-                    problems.push(format!("{:?}: {name} {a:?} -> {b:?}", c.key()));
+                    problems.push(format!(
+                        "{}: {name} {} -> {}",
+                        c.key(),
+                        value_text(a),
+                        value_text(b)
+                    ));
                 }
             }
         }
@@ -117,12 +135,12 @@ pub fn compare(committed: &[RunRow], fresh: &[RunRow], baseline: &str) -> Vec<St
     for f in fresh {
         if !committed_keys.contains(&f.key()) {
             problems.push(format!(
-                "{:?}: new run, not in {baseline} (run the reproduction and commit results/)",
+                "{}: new run, not in {baseline} (run the reproduction and commit results/)",
                 f.key()
             ));
         }
         if !f.is_exact() && !f.completed() && !expected_to_diverge(f) {
-            problems.push(format!("{:?}: neural run failed: {}", f.key(), f.failure));
+            problems.push(format!("{}: neural run failed: {}", f.key(), f.failure));
         }
     }
     problems
@@ -143,6 +161,163 @@ pub fn compare_selection(
         .filter(|c| !exact_only || c.is_exact())
         .collect();
     compare(&committed, fresh, baseline_name)
+}
+
+/// The explanation's rows (`results/ladder.csv`, `results/attribution.csv`) that the pages
+/// show, compared as [`compare`] compares runs, with these tolerances per column:
+/// - ladder: one row per (run, method, rtol, atol, max_step); `status` and `as_run` equal; the
+///   drift per joint, `drift_norm`, `max_pos_err` and `rel_change` to a relative
+///   [`RELATIVE_TOLERANCE`] (absolute 1e-12); `stable_digits` (−log10 of `rel_change`) to
+///   0.01 digit; `steps`, `rejected` and `rhs_evals` to the same relative tolerance; `wall_s`
+///   not compared (the machine's);
+/// - attribution: one row per (run, component); the drift per joint, `drift_norm`, `share`
+///   and `max_pos_err` to a relative [`RELATIVE_TOLERANCE`].
+///
+/// Only committed rows of the runs `fresh` explains are compared (a selection); a committed
+/// row missing from `fresh`, or a fresh row not committed, is a difference.
+pub fn compare_explanations(
+    committed: (&[LadderRow], &[AttributionRow]),
+    fresh: (&[LadderRow], &[AttributionRow]),
+    baseline: &str,
+) -> Vec<String> {
+    let ladder_key = |r: &LadderRow| {
+        format!(
+            "{} {} rtol {:e} atol {:e} max_step {}",
+            r.key(),
+            r.method.id(),
+            r.rtol,
+            r.atol,
+            value_text(r.max_step)
+        )
+    };
+    let attribution_key = |r: &AttributionRow| format!("{} {}", r.key(), r.component.label());
+    let mut problems = compare_rows(committed.0, fresh.0, ladder_key, baseline, |c, f| {
+        let mut p = Vec::new();
+        if c.status != f.status || c.as_run != f.as_run {
+            p.push(format!("status {} -> {}", c.status, f.status));
+        }
+        let stable = match (c.stable_digits, f.stable_digits) {
+            (Some(a), Some(b)) => (a - b).abs() <= 0.01,
+            (a, b) => a.is_none() && b.is_none(),
+        };
+        if !stable {
+            p.push(format!(
+                "stable_digits {} -> {}",
+                value_text(c.stable_digits),
+                value_text(f.stable_digits)
+            ));
+        }
+        let counts = [
+            ("steps", c.steps, f.steps),
+            ("rejected", c.rejected, f.rejected),
+            ("rhs_evals", c.rhs_evals, f.rhs_evals),
+        ]
+        .map(|(n, a, b)| (n, Some(a as f64), Some(b as f64)));
+        let numbers = [
+            ("drift_norm", c.drift_norm, f.drift_norm),
+            ("max_pos_err", c.max_pos_err, f.max_pos_err),
+            ("rel_change", c.rel_change, f.rel_change),
+        ];
+        p.extend(differing(
+            &c.drift,
+            &f.drift,
+            numbers.into_iter().chain(counts),
+        ));
+        p
+    });
+    problems.extend(compare_rows(
+        committed.1,
+        fresh.1,
+        attribution_key,
+        baseline,
+        |c, f| {
+            let numbers = [
+                ("drift_norm", c.drift_norm, f.drift_norm),
+                ("share", c.share, f.share),
+                ("max_pos_err", c.max_pos_err, f.max_pos_err),
+            ];
+            differing(&c.drift, &f.drift, numbers)
+        },
+    ));
+    problems
+}
+
+/// The columns of two rows that differ beyond [`close`]: the per-joint drifts, then `numbers`
+/// (name, committed, fresh).
+fn differing<'a>(
+    committed: &[f64],
+    fresh: &[f64],
+    numbers: impl IntoIterator<Item = (&'a str, Option<f64>, Option<f64>)>,
+) -> Vec<String> {
+    let mut p = Vec::new();
+    if committed.len() != fresh.len() {
+        p.push(format!(
+            "{} joint drifts -> {}",
+            committed.len(),
+            fresh.len()
+        ));
+    }
+    let joints = committed
+        .iter()
+        .zip(fresh)
+        .enumerate()
+        .map(|(i, (a, b))| (format!("drift_{}", i + 1), Some(*a), Some(*b)));
+    let named = numbers.into_iter().map(|(n, a, b)| (n.to_string(), a, b));
+    for (name, a, b) in joints.chain(named) {
+        if !close(a, b) {
+            p.push(format!("{name} {} -> {}", value_text(a), value_text(b)));
+        }
+    }
+    p
+}
+
+/// The differences between `committed` rows (of the runs `fresh` has) and `fresh`, matched by
+/// `key` and compared by `diff`, one line each, prefixed by the key.
+fn compare_rows<T>(
+    committed: &[T],
+    fresh: &[T],
+    key: impl Fn(&T) -> String,
+    baseline: &str,
+    diff: impl Fn(&T, &T) -> Vec<String>,
+) -> Vec<String>
+where
+    T: HasRunKey,
+{
+    let runs: HashSet<catalog::run_key::RunKey> = fresh.iter().map(HasRunKey::run_key).collect();
+    let fresh_by: std::collections::HashMap<String, &T> =
+        fresh.iter().map(|f| (key(f), f)).collect();
+    let mut problems = Vec::new();
+    let mut seen = HashSet::new();
+    for c in committed.iter().filter(|c| runs.contains(&c.run_key())) {
+        let k = key(c);
+        seen.insert(k.clone());
+        match fresh_by.get(&k) {
+            None => problems.push(format!("{k}: in {baseline} but no longer produced")),
+            Some(f) => problems.extend(diff(c, f).into_iter().map(|d| format!("{k}: {d}"))),
+        }
+    }
+    for k in fresh_by.keys().filter(|k| !seen.contains(*k)) {
+        problems.push(format!("{k}: new row, not in {baseline}"));
+    }
+    problems.sort();
+    problems
+}
+
+/// A row of a table keyed by its run.
+trait HasRunKey {
+    fn run_key(&self) -> catalog::run_key::RunKey;
+}
+
+impl HasRunKey for LadderRow {
+    fn run_key(&self) -> catalog::run_key::RunKey {
+        self.key()
+    }
+}
+
+impl HasRunKey for AttributionRow {
+    fn run_key(&self) -> catalog::run_key::RunKey {
+        self.key()
+    }
 }
 
 #[cfg(test)]
@@ -166,6 +341,7 @@ mod tests {
         let problems = compare(&committed, &[doctored], "b");
         assert_eq!(problems.len(), 1, "{problems:?}");
         assert!(problems[0].contains("final_pos_err"), "{problems:?}");
+        assert_eq!(problems[0], "e / v / s: final_pos_err 1e-5 -> 9.9e-1");
         let mut lost = row.clone();
         lost.score_rms_dx = None;
         assert!(compare(&committed, &[lost], "b")[0].contains("score_rms_dx"));
@@ -232,5 +408,41 @@ mod tests {
         slower.steps = 10;
         slower.rhs_evals = 20;
         assert!(compare(&committed, &[slower], "b").is_empty());
+    }
+
+    /// A doctored ladder or attribution number is a difference; the ladder's wall time is
+    /// not; a row of a run not explained now is not compared.
+    #[test]
+    fn a_doctored_ladder_or_attribution_number_is_a_difference() {
+        let ladder = fixtures::ladder_rows(&[("p", "dopri5", "ok", 1.0), ("p", "bdf", "ok", 2.0)]);
+        let attribution: Vec<AttributionRow> = records::table::from_reader(
+            "paper,experiment,variant_id,solver_id,variant,solver,component,drift_1,drift_norm,share,max_pos_err,note\n\
+             p,e,v,s,V,S,run,0.1,0.1,1.0,0.001,\n"
+                .as_bytes(),
+        )
+        .unwrap();
+        let same = compare_explanations((&ladder, &attribution), (&ladder, &attribution), "b");
+        assert!(same.is_empty(), "{same:?}");
+        let mut slower = ladder.clone();
+        slower[0].wall_s = 99.0;
+        assert!(
+            compare_explanations((&ladder, &attribution), (&slower, &attribution), "b").is_empty()
+        );
+        let mut doctored = ladder.clone();
+        doctored[1].drift_norm = Some(0.2);
+        let p = compare_explanations((&ladder, &attribution), (&doctored, &attribution), "b");
+        assert_eq!(
+            p,
+            ["e / v / s bdf rtol 1e-6 atol 1e-8 max_step none: drift_norm 1e-1 -> 2e-1"]
+        );
+        let mut share = attribution.clone();
+        share[0].share = Some(0.5);
+        let p = compare_explanations((&ladder, &attribution), (&ladder, &share), "b");
+        assert_eq!(p.len(), 1, "{p:?}");
+        assert!(p[0].contains("share 1e0 -> 5e-1"), "{p:?}");
+        let p = compare_explanations((&ladder, &attribution), (&ladder[..1], &attribution), "b");
+        assert_eq!(p.len(), 1, "a lost rung: {p:?}");
+        let p = compare_explanations((&ladder, &attribution), (&[], &[]), "b");
+        assert!(p.is_empty(), "nothing explained now: {p:?}");
     }
 }

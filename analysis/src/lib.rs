@@ -23,6 +23,8 @@
 //! - [`claim_verdict`]: each paper's claims evaluated from the stored runs (PASS, FAIL or N/A,
 //!   with the numbers as evidence); [`cost_ratio`]: zhong2021's compute-time ratios, one of
 //!   which decides a claim.
+//! - [`misprints`]: a published column whose printed norm contradicts its printed entries, and
+//!   the single misprints (one exponent, digit, sign, swapped entry) that would reconcile it.
 //! - [`paper_verdict`]: each paper's verdict level (reproduced, qualitatively, partly, not)
 //!   from its claims and drift ratios.
 //! - [`drift_attribution`]: what the drift attribution and the tolerance ladder say (the share
@@ -47,6 +49,7 @@ pub mod gate;
 pub mod inference_verdict;
 pub mod leaderboard;
 pub mod leaderboard_reading;
+pub mod misprints;
 pub mod number;
 pub mod paper_rules;
 pub mod paper_runs;

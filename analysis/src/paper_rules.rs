@@ -148,7 +148,7 @@ pub fn check_paper_id(id: &str) -> Result<(), PaperProblem> {
     if !catalog::ids::is_id_form(id) || id.len() > MAX_EXPERIMENT_ID {
         return Err(PaperProblem::NotAnId {
             id: id.to_string(),
-            suggestion: schemes::slug::slug(id)
+            suggestion: settings::slug::slug(id)
                 .chars()
                 .take(MAX_EXPERIMENT_ID)
                 .collect(),

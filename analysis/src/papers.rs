@@ -60,7 +60,9 @@ impl std::fmt::Display for ValueWarning {
 /// (table, experiment, column, metric) is refused when the file is read):
 /// - a negative `drift_norm` (a norm is >= 0);
 /// - a `drift_norm` below the largest |drift_k| of its own (table, experiment, column) (a
-///   2-norm is at least every entry).
+///   2-norm is at least every entry);
+/// - a `drift_norm` that is not the 2-norm of its column's printed drift_k within their printed
+///   digits ([`crate::misprints::consistent`]).
 pub fn inconsistencies(file: &Path, values: &mut [PaperValue]) -> Vec<ValueWarning> {
     let mut warnings = Vec::new();
     let mut mark = |values: &mut [PaperValue], i: usize, message: String| {
@@ -100,7 +102,27 @@ pub fn inconsistencies(file: &Path, values: &mut [PaperValue]) -> Vec<ValueWarni
                     v.value, entry
                 );
                 mark(values, i, message);
+                continue;
             }
+        }
+        let entries: Vec<f64> = values
+            .iter()
+            .filter(|w| {
+                w.table == v.table
+                    && w.experiment == v.experiment
+                    && w.column == v.column
+                    && w.metric.starts_with("drift_")
+                    && w.metric != "drift_norm"
+            })
+            .map(|w| w.value)
+            .collect();
+        if !entries.is_empty() && !crate::misprints::consistent(v.value, &entries) {
+            let of_entries = entries.iter().map(|d| d * d).sum::<f64>().sqrt();
+            let message = format!(
+                "the printed norm {:e} is not the norm of its printed entries ({of_entries:.4e}, within their printed digits)",
+                v.value
+            );
+            mark(values, i, message);
         }
     }
     warnings

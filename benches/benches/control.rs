@@ -11,7 +11,7 @@
 use catalog::naming::slug;
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use driftbench_benches::{fast_config, CountingAllocator};
-use schemes::qp::Qp;
+use qp::Qp;
 
 use control::control_loop::{run_loop, LoopSettings, Observer};
 use control::method::{Method, Numerical};

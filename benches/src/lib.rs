@@ -332,7 +332,7 @@ impl SchemeCase {
     }
 
     /// Overwrites `qp_dot` with the QP's time derivative at the case's state.
-    pub fn build_dot(&self, qp_dot: &mut Qp, scratch: &mut schemes::qp_dot::QpDotScratch) {
+    pub fn build_dot(&self, qp_dot: &mut Qp, scratch: &mut qp::dot::QpDotScratch) {
         let s = &self.state;
         self.scheme
             .build_dot(s.t, &s.theta, &s.thetadot, &s.thetaddot, qp_dot, scratch);

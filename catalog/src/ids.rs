@@ -2,7 +2,7 @@
 //! key ([`crate::run_key::RunKey`]), and [`PaperId`], the paper an experiment file belongs to
 //! (what the command line's `--paper` names).
 //!
-//! An id is a *slug* ([`schemes::slug::is_slug`]: lower-case ASCII letters, digits and `.`,
+//! An id is a *slug* ([`settings::slug::is_slug`]: lower-case ASCII letters, digits and `.`,
 //! single `-` between them, none leading or trailing) that begins with a letter or digit and
 //! holds no `..` (so that no id is `.` or `..` as a path component), of at most its kind's
 //! length in bytes
@@ -17,7 +17,7 @@
 //! and lookups.
 
 use crate::naming::{MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
-use schemes::slug::{is_slug, slug};
+use settings::slug::{is_slug, slug};
 use std::fmt;
 
 /// Which kind of id an [`IdError`] is about.

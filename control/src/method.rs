@@ -6,8 +6,8 @@ use crate::error::ControlError;
 use crate::network_tick::{Discretisation, NetworkTick};
 use crate::numerical_tick::QpTick;
 use crate::tick::TickSolver;
+use qp::QpDims;
 use records::control::Family;
-use schemes::qp::QpDims;
 use settings::solver_spec::SolverSpec;
 use solvers::lvi_numerical::{LviMethod, LviSettings, LviSolver};
 #[cfg(feature = "osqp")]

@@ -23,7 +23,7 @@
 
 use crate::error::ControlError;
 use crate::tick::TickSolver;
-use schemes::qp::{Qp, QpDims};
+use qp::{Qp, QpDims};
 use settings::solver_spec::SolverSpec;
 use solvers::neural::{build_solver, NeuralSolver};
 use std::mem;

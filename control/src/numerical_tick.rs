@@ -13,7 +13,7 @@
 
 use crate::error::ControlError;
 use crate::tick::TickSolver;
-use schemes::qp::Qp;
+use qp::Qp;
 use solvers::{QpSolve, QpSolver};
 
 /// A [`QpSolver`] at every tick; its work and iterations are those of the last tick.

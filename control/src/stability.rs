@@ -26,7 +26,7 @@
 
 use crate::control_loop::Observer;
 use nalgebra::{DMatrix, Schur};
-use schemes::qp::Qp;
+use qp::Qp;
 use settings::solver_spec::SolverSpec;
 use solvers::neural::NeuralSolver;
 

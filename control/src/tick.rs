@@ -4,7 +4,7 @@
 //! uses is its [`crate::method::Method`]).
 
 use crate::error::ControlError;
-use schemes::qp::Qp;
+use qp::Qp;
 
 /// One solver as a controller calls it: once per tick, with the tick's QP.
 pub trait TickSolver {

@@ -1,9 +1,9 @@
 //! What is measured: a (scheme, N) [`Case`] with its network, and a case made ready to time
 //! ([`PreparedCase`]), as [`crate::harness`] prepared it.
 
+use qp::QpDims;
 use records::dof_cost::{Quantity, RunCounts, SchemeKind};
 use schemes::paths::PathSpec;
-use schemes::qp::QpDims;
 use settings::solver_spec::SolverSpec;
 use solvers::Backend;
 

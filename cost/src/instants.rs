@@ -20,8 +20,8 @@
 
 use crate::error::CostError;
 use nalgebra::{DMatrix, DVector};
+use qp::{Qp, QpDims};
 use records::dof_cost::Quantity;
-use schemes::qp::{Qp, QpDims};
 use settings::solver_spec::SolverSpec;
 use solvers::neural::{build_solver, NeuralSolver};
 use solvers::{

@@ -554,3 +554,35 @@ fn the_committed_figures_are_those_the_committed_results_give() {
     }
     std::fs::remove_dir_all(&root).unwrap();
 }
+
+/// `run --paper X` draws X's figures only: the others are neither redrawn nor removed.
+#[test]
+fn one_papers_figures_are_drawn_alone_and_the_others_kept() {
+    let root = scratch("one-paper");
+    synthetic_results(&root);
+    let runs_csv_path = root.join("results/runs.csv");
+    let mut runs = records::runs::read_runs(&runs_csv_path).unwrap();
+    for r in runs.iter_mut().filter(|r| r.experiment == "exp-acc") {
+        r.paper = "other".into();
+    }
+    write_atomic(&runs_csv_path, &runs_csv(&runs).unwrap()).unwrap();
+    render_all(&root).unwrap();
+    let dir = root.join("report/figures");
+    let kept = std::fs::read(dir.join("exp-vel__overview.png")).unwrap();
+    // A figure the other paper's runs no longer give would be removed; exp-vel's are not its.
+    let written = presentation::figures::render_paper(&root, "other").unwrap();
+    let names: Vec<String> = written
+        .iter()
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(
+        names,
+        ["exp-acc__mtn-zeta-0__fp-cdnn.svg", "exp-acc__overview.svg"]
+    );
+    assert_eq!(
+        std::fs::read(dir.join("exp-vel__overview.png")).unwrap(),
+        kept
+    );
+    assert!(dir.join("exp-vel__vltco__lvi-pdnn.svg").is_file());
+    std::fs::remove_dir_all(&root).unwrap();
+}

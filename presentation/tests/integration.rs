@@ -2,6 +2,7 @@
 //! binary: one build and link instead of one per file (issue 29). The files are unchanged
 //! but for `use crate::common;` where they shared `tests/common/`.
 
+mod deviations;
 mod figures;
 mod hostile_report;
 mod report;

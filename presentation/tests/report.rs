@@ -453,3 +453,46 @@ fn the_control_page_names_the_numerical_methods_of_its_results() {
         "{control}"
     );
 }
+
+/// The columns of a Markdown table line (`|`-separated, escaped `\|` inside a cell not
+/// counted).
+fn columns(line: &str) -> usize {
+    line.replace("\\|", "")
+        .matches('|')
+        .count()
+        .saturating_sub(1)
+}
+
+/// No page of the report, rendered or hand-written (every `report/*.md`), has a table wider
+/// than `MAX_COLUMNS` columns: a person reads it on a screen.
+#[test]
+fn no_table_of_any_page_is_wider_than_twelve_columns() {
+    use presentation::report::markdown::MAX_COLUMNS;
+    assert_eq!(MAX_COLUMNS, 12);
+    let root = catalog::root::from_current_dir().unwrap();
+    let mut pages: Vec<(String, String)> = pages(&committed())
+        .into_iter()
+        .map(|p| (p.file, p.markdown))
+        .collect();
+    for entry in std::fs::read_dir(root.join("report")).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "md") {
+            let file = path.file_name().unwrap().to_string_lossy().into_owned();
+            pages.push((file, std::fs::read_to_string(&path).unwrap()));
+        }
+    }
+    let wide: Vec<String> = pages
+        .iter()
+        .flat_map(|(file, md)| {
+            md.lines()
+                .enumerate()
+                .filter(|(_, l)| l.starts_with('|') && columns(l) > MAX_COLUMNS)
+                .map(move |(i, l)| format!("{file}:{}: {} columns", i + 1, columns(l)))
+        })
+        .collect();
+    assert!(
+        wide.is_empty(),
+        "tables wider than {MAX_COLUMNS} columns: {wide:?}"
+    );
+    assert_eq!(columns("| a | b \\| c | d |"), 3);
+}

@@ -1,7 +1,7 @@
 //! A network written in Python, run by the library as any `NeuralSolver`.
 //!
 //! The Python object gives its state dimension and its dynamics ydot = F(t, y; QP(t)) over numpy
-//! arrays; the QP is handed over as a dict of arrays in the form of `schemes::qp::Qp`:
+//! arrays; the QP is handed over as a dict of arrays in the form of `qp::Qp`:
 //!
 //! ```text
 //! min x'Px/2 + q'x   s.t.   A x = b,   G x <= h,   lower <= x <= upper
@@ -30,7 +30,7 @@ use numpy::IntoPyArray;
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use schemes::qp::{Qp, QpDims};
+use qp::{Qp, QpDims};
 use solvers::neural::NeuralSolver;
 use std::sync::{Arc, Mutex};
 use std::time::Instant;

@@ -13,7 +13,7 @@
 use catalog::experiment::Job;
 use catalog::ids::IdError;
 use catalog::run_key::{RunKey, EXACT_ID};
-use schemes::slug::slug;
+use settings::slug::slug;
 use std::collections::HashMap;
 
 /// The exact column's label before run ids.

@@ -14,6 +14,9 @@ use std::process::ExitCode;
 pub struct Baseline {
     pub rows: Vec<RunRow>,
     pub name: String,
+    /// The committed explanation (ladder and attribution rows) from the same place as `rows`
+    /// (empty for a given baseline file, which has none).
+    pub explanation: explain::Explained,
 }
 
 impl Baseline {
@@ -35,25 +38,45 @@ impl Baseline {
             let name = f.display().to_string();
             let rows =
                 read(f, inputs::Origin::Named, all).map_err(ReproduceError::GivenBaseline)?;
-            return Ok(Self { rows, name });
+            return Ok(Self {
+                rows,
+                name,
+                explanation: explain::Explained::default(),
+            });
         }
         let in_tree = results_dir == root.join(records::results_dir::DIR);
-        let committed = in_tree
-            .then(|| {
-                std::process::Command::new("git")
-                    .args(["show", "HEAD:results/runs.csv"])
-                    .current_dir(root)
-                    .output()
-                    .ok()
-                    .filter(|o| o.status.success())
-            })
-            .flatten();
+        let show = |file: &str| {
+            in_tree
+                .then(|| {
+                    std::process::Command::new("git")
+                        .args(["show", &format!("HEAD:results/{file}")])
+                        .current_dir(root)
+                        .output()
+                        .ok()
+                        .filter(|o| o.status.success())
+                })
+                .flatten()
+        };
+        let committed = show(records::results_dir::RUNS);
+        let explanation = explain::Explained {
+            ladder: committed_table(
+                show(records::results_dir::LADDER),
+                results_dir,
+                records::results_dir::LADDER,
+            )?,
+            attribution: committed_table(
+                show(records::results_dir::ATTRIBUTION),
+                results_dir,
+                records::results_dir::ATTRIBUTION,
+            )?,
+        };
         Ok(match committed {
             Some(out) => {
                 let name = "git HEAD:results/runs.csv".to_string();
                 Self {
                     rows: parse(out.stdout, &name, all)?,
                     name,
+                    explanation,
                 }
             }
             None => {
@@ -61,9 +84,20 @@ impl Baseline {
                 Self {
                     rows: read(&path, inputs::Origin::Under(results_dir), all)?,
                     name: path.display().to_string(),
+                    explanation,
                 }
             }
         })
+    }
+
+    /// Whether the baseline holds an explanation of any of `jobs` (then `check` re-explains
+    /// them and compares).
+    pub fn explains(&self, jobs: &[Job]) -> bool {
+        let keys: std::collections::HashSet<_> = jobs.iter().map(Job::key).collect();
+        self.explanation
+            .ladder
+            .iter()
+            .any(|r| keys.contains(&r.key()))
     }
 
     /// Every difference the gate finds between `fresh` and the baseline's rows of the same
@@ -72,11 +106,28 @@ impl Baseline {
         analysis::gate::compare_selection(self.rows, fresh, exact_only, &self.name)
     }
 
-    /// Prints the gate's verdict on `fresh`: [`Exit::GateDifference`] (exit code 3) on any
-    /// difference.
-    pub fn verdict(self, fresh: &[RunRow], exact_only: bool) -> ExitCode {
+    /// Prints the gate's verdict on `fresh` and, when given, the fresh explanation of the same
+    /// runs (`analysis::gate::compare_explanations`): [`Exit::GateDifference`] (exit code 3) on
+    /// any difference.
+    pub fn verdict(
+        self,
+        fresh: &[RunRow],
+        exact_only: bool,
+        explained: Option<&explain::Explained>,
+    ) -> ExitCode {
         let name = self.name.clone();
-        let problems = self.problems(fresh, exact_only);
+        let committed = (
+            self.explanation.ladder.clone(),
+            self.explanation.attribution.clone(),
+        );
+        let mut problems = self.problems(fresh, exact_only);
+        if let Some(x) = explained {
+            problems.extend(analysis::gate::compare_explanations(
+                (&committed.0, &committed.1),
+                (&x.ladder, &x.attribution),
+                &name,
+            ));
+        }
         if problems.is_empty() {
             println!("regression gate: {} runs agree with {name}", fresh.len());
             ExitCode::SUCCESS
@@ -89,6 +140,24 @@ impl Baseline {
             Exit::GateDifference.into()
         }
     }
+}
+
+/// The committed table `file`: git HEAD's (`shown`, the output of `git show`), else the
+/// results directory's (empty when absent).
+fn committed_table<T: records::table::Row>(
+    shown: Option<std::process::Output>,
+    results_dir: &Path,
+    file: &str,
+) -> Result<Vec<T>, ReproduceError> {
+    let name = match shown {
+        Some(_) => format!("git HEAD:results/{file}"),
+        None => results_dir.join(file).display().to_string(),
+    };
+    match shown {
+        Some(out) => records::table::from_reader(out.stdout.as_slice()),
+        None => records::table::read_if_present(&results_dir.join(file)),
+    }
+    .map_err(|source| BaselineError::Table { name, source }.into())
 }
 
 /// The rows of the runs file `path` (from `origin`), read with the input reader (a regular
@@ -154,7 +223,7 @@ mod tests {
             .find(|r| r.drift_norm.is_some())
             .expect("a completed run");
         row.drift_norm = row.drift_norm.map(|d| d * 1.1 + 1e-9);
-        let key = format!("{:?}", row.key());
+        let key = row.key().to_string();
         let problems = committed().problems(&doctored, false);
         assert_eq!(problems.len(), 1, "{problems:?}");
         assert!(

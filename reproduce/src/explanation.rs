@@ -44,6 +44,23 @@ pub fn explain(
     Ok(targets.len())
 }
 
+/// The ladders and attributions of the selected runs `jobs` of the papers' solvers, derived
+/// afresh and not written (`reproduce check` compares them with the committed ones).
+pub fn fresh(
+    project: &Project,
+    jobs: &[Job],
+    all: &[Job],
+    git_rev: &str,
+) -> Result<explain::Explained, ReproduceError> {
+    let papers = load_papers(project)?;
+    let targets = explain::targets(jobs, &papers);
+    eprintln!(
+        "re-explaining {} runs of the papers' solvers for the gate (tolerance ladders, attribution)",
+        targets.len()
+    );
+    Ok(explain::explain(&targets, all, false, git_rev))
+}
+
 /// `reproduce explain`: the ladders and attributions of the selected runs `jobs` (`all`: every
 /// run of the experiment files), written and followed by the report unless `--dry-run`.
 pub fn explain_mode(

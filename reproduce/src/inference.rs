@@ -81,7 +81,7 @@ pub fn infer(
         let f = fit(&p, &family);
         let best = f.outcome.best(Target::Joint);
         eprintln!(
-            "  declared: residual {:.3}; best fit: residual {:.3} ({:?}), {} evaluations in {:.0} s",
+            "  declared: residual {:.3}; best fit: residual {:.3} ({}), {} evaluations in {:.0} s",
             f.outcome.declared.scores.joint,
             best.scores.joint,
             best.detail.setup,

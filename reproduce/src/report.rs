@@ -67,7 +67,7 @@ pub fn render_report(
     root: &Path,
     results: &ResultsDir,
 ) -> Result<(), ReproduceError> {
-    render_figures(root)?;
+    render_figures(root, None)?;
     render_pages(project, root, results)
 }
 
@@ -75,8 +75,9 @@ pub fn render_report(
 /// this program's own temporary files that a killed write left in report/ and its
 /// sub-directories (a kill while a page or figure was written, e.g. on a full disk;
 /// `records::results_dir::remove_own_tmp`). Called with the results directory's lock held,
-/// which guards report/ too, so no other process's temporary file is in flight.
-pub fn render_figures(root: &Path) -> Result<usize, ReproduceError> {
+/// which guards report/ too, so no other process's temporary file is in flight. With `paper`,
+/// only that paper's figures are drawn (`presentation::figures::render_paper`).
+pub fn render_figures(root: &Path, paper: Option<&str>) -> Result<usize, ReproduceError> {
     let report = records::tracked_dir::TrackedDir::open_within(root, "report")?;
     let removed = records::results_dir::remove_own_tmp(report.owned());
     if !removed.is_empty() {
@@ -86,7 +87,10 @@ pub fn render_figures(root: &Path) -> Result<usize, ReproduceError> {
             report.path().display()
         );
     }
-    let figures = presentation::figures::render_all(root)?.len();
+    let figures = match paper {
+        Some(p) => presentation::figures::render_paper(root, p)?.len(),
+        None => presentation::figures::render_all(root)?.len(),
+    };
     eprintln!("wrote {figures} figures");
     Ok(figures)
 }

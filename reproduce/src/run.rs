@@ -121,7 +121,14 @@ pub fn run(
         })
         .collect();
     let plan = match plan.output {
-        Output::Gate(baseline) => return Ok(baseline.verdict(&rows, plan.selection.exact_only)),
+        Output::Gate(baseline) => {
+            // The explanation the pages show, re-derived for the selected runs and compared
+            // (the ladder and the attribution), where the baseline holds one.
+            let explained = (!plan.selection.exact_only && baseline.explains(jobs))
+                .then(|| crate::explanation::fresh(project, jobs, all.jobs(), git_rev))
+                .transpose()?;
+            return Ok(baseline.verdict(&rows, plan.selection.exact_only, explained.as_ref()));
+        }
         output => Plan { output, ..plan },
     };
     if let (Some(results), Some((kept, pruned))) = (&results, stored) {
@@ -242,7 +249,9 @@ fn publish(
     }
     match report_root(project) {
         Ok(root) => {
-            let figures = render_figures(&root)?;
+            // `run --paper X` draws X's figures only (the pages are all re-rendered: they
+            // are cheap, and the front page summarises every paper).
+            let figures = render_figures(&root, plan.selection.paper.as_deref())?;
             clock.lap(Phase::Figures, Some(figures));
             render_pages(project, &root, results)?;
             clock.lap(Phase::Report, None);

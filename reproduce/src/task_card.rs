@@ -13,9 +13,9 @@
 use catalog::error::ExperimentFileError;
 use catalog::error::SetupError;
 use catalog::experiment::{load_dir, Job, PaperFile, SolverChoice};
+use qp::Qp;
 use records::tracked_dir::{Removal, TrackedDir, TrackedError};
 use robots::registry::{robot_by_name, Kinematics, Model};
-use schemes::qp::Qp;
 use schemes::scheme::Level;
 use schemes::spec::SchemeSpec;
 use simulation::run::check_job;

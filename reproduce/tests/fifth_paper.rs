@@ -44,15 +44,24 @@ fn a_paper_added_as_data_gets_its_report_section() {
         section.contains("- **FAIL** every run: max position error below 1e-9 m"),
         "{section}"
     );
+    // The verdict, with the counts and thresholds of the rule that decided it
+    // (docs/reference/verdicts.md).
+    assert!(section.contains("**Verdict: "), "{section}");
     assert!(
-        section.contains("**Verdict: partly reproduced.** 2 of 3 evaluated claims hold"),
+        section.contains("decided it from: published numbers within a factor 3: "),
+        "{section}"
+    );
+    assert!(
+        section.contains("claims: 2 hold, 1 fail. 2 of 3 evaluated claims hold"),
         "{section}"
     );
     // The explanation layer ran on the mapped runs.
     assert!(section.contains("#### Drift attribution"), "{section}");
     assert!(section.contains("#### Tolerance ladder"), "{section}");
     assert!(
-        md.contains("| [demo2026](paper-demo2026.md) | partly reproduced | 2 / 1 / 0 |"),
+        md.lines()
+            .any(|l| l.starts_with("| [demo2026](paper-demo2026.md) | ")
+                && l.contains(" | 2 / 1 / 0 | ")),
         "{md}"
     );
     std::fs::remove_dir_all(&root).unwrap();

@@ -7,6 +7,7 @@ mod common;
 mod cli;
 mod exit_codes;
 mod fifth_paper;
+mod gate_explanation;
 mod hostile;
 mod hostile_inputs;
 mod kubernetes;

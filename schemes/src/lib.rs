@@ -1,5 +1,5 @@
 //! Desired paths and the papers' redundancy-resolution schemes, each turning (t, robot state)
-//! into one QP ([`qp::Qp`], which the solvers take). The velocity-level repetitive-motion
+//! into one QP (`qp::Qp`, crate `qp`, which the solvers take). The velocity-level repetitive-motion
 //! scheme is composed from the vocabulary's terms ([`velocity_rmp`]); kong2019's two schemes
 //! and robio2018's RMP are presets of it. jia2019's VLTCO family and zhong2021's CMCO are the
 //! two presets of the tri-criteria scheme ([`tri_criteria`]); zhang2018's acceleration-level
@@ -8,13 +8,6 @@
 //! built, not per QP ([`scheme`]).
 
 #![deny(missing_docs)]
-
-// The QP moved to crate `qp`, slug and sign_power to crate `settings`; these re-exports
-// keep the old paths while the engine is converted (removed with it).
-pub use ::qp;
-pub use ::qp::dot as qp_dot;
-pub use ::qp::{KktResiduals, Qp, QpDims, QpDuals, QpError};
-pub use settings::{sign_power, slug};
 
 pub mod joint_limits;
 pub mod paths;

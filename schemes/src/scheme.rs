@@ -1,5 +1,5 @@
 //! The common interface of the papers' schemes: at every instant a scheme turns
-//! (t, theta, thetadot) into one QP (see [`crate::qp::Qp`]) whose decision variable x starts with
+//! (t, theta, thetadot) into one QP (see [`qp::Qp`]) whose decision variable x starts with
 //! the joint command: x[..n] is thetadot (velocity level) or thetaddot (acceleration level).
 //! The joint count n is a run-time value ([`Scheme::joints`]): theta, thetadot and thetaddot are
 //! slices of length n, and every scheme keeps what it needs between calls in scratch space
@@ -15,12 +15,12 @@
 //! ```
 //!
 //! (at the velocity level the thetadot argument of `build` is unused, so only theta moves). Its
-//! default is the central difference of [`crate::qp_dot`] along that motion
+//! default is the central difference of [`qp::dot`] along that motion
 //! ([`central_difference`] with the step [`default_step`]).
 
-use crate::qp::{Qp, QpDims};
+use qp::{Qp, QpDims};
 
-use crate::qp_dot::{difference_quotient, QpDotScratch, FD_STEP};
+use qp::dot::{difference_quotient, QpDotScratch, FD_STEP};
 
 /// Whether the scheme resolves redundancy at the velocity or the acceleration level.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -95,7 +95,7 @@ fn amax(v: &[f64]) -> f64 {
     v.iter().fold(0.0, |m: f64, x| m.max(x.abs()))
 }
 
-/// The default central-difference step for a state (see [`crate::qp_dot`]).
+/// The default central-difference step for a state (see [`qp::dot`]).
 pub fn default_step(level: Level, thetadot: &[f64], thetaddot: &[f64]) -> f64 {
     let mut scale = 1.0_f64.max(amax(thetadot));
     if level == Level::Acceleration {
@@ -107,7 +107,7 @@ pub fn default_step(level: Level, thetadot: &[f64], thetaddot: &[f64]) -> f64 {
     FD_STEP / scale
 }
 
-/// dQP/dt by central difference with step `h` along the motion (see [`crate::qp_dot`]).
+/// dQP/dt by central difference with step `h` along the motion (see [`qp::dot`]).
 #[allow(clippy::too_many_arguments)]
 pub fn central_difference<S: Scheme + ?Sized>(
     scheme: &S,

@@ -48,10 +48,10 @@ use robots::Robot;
 
 use crate::joint_limits::{merged_bounds, merged_bounds_dot};
 use crate::paths::Path;
-use crate::qp::{Qp, QpDims};
-use crate::qp_dot::QpDotScratch;
 use crate::rmp::RmpReading;
 use crate::scheme::{Level, Scheme};
+use qp::dot::QpDotScratch;
+use qp::{Qp, QpDims};
 
 /// Where the converted bounds x- <= x <= x+ are written.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -43,7 +43,7 @@
 //! thetadot_i = -beta_theta |e_i|^alpha sgn(e_i) (joint 5 exactly) chatters around e_i = 0 and
 //! no integrator can step there (explicit steps shrink to ~1e-8 s, Newton iterations of
 //! implicit ones diverge). We use the smoothed sign-power of the finite-time network,
-//! c(e) = e (e^2 + delta^2)^((alpha - 1)/2) (`crate::sign_power::sign_power`, delta =
+//! c(e) = e (e^2 + delta^2)^((alpha - 1)/2) (`settings::sign_power::sign_power`, delta =
 //! `smoothing`, default 1e-6 rad): odd, increasing, smooth, equal to |e|^alpha sgn(e) to 0.5 %
 //! for |e| >= 10 delta, and with slope delta^(alpha - 1) at 0 (so e decays exponentially with
 //! time constant delta^(1 - alpha) / beta_theta ~ 4e-6 s once inside the band).
@@ -51,14 +51,14 @@
 use std::sync::Arc;
 
 use crate::joint_limits::{merged_bounds, merged_bounds_dot};
-use crate::qp::{Qp, QpDims};
-use crate::sign_power::{sign_power, sign_power_slope};
 use nalgebra::Vector3;
+use qp::{Qp, QpDims};
 use robots::Robot;
+use settings::sign_power::{sign_power, sign_power_slope};
 
 use crate::paths::{Path, PathPoint};
-use crate::qp_dot::QpDotScratch;
 use crate::scheme::{Level, Scheme};
+use qp::dot::QpDotScratch;
 
 /// The repetitive term g(theta) of the linear part of the objective.
 #[derive(Clone, Copy, Debug, PartialEq)]

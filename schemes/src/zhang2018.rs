@@ -24,8 +24,8 @@
 
 use std::sync::{Arc, Mutex};
 
-use crate::qp::{Qp, QpDims};
 use nalgebra::{DMatrix, DVector, Vector3};
+use qp::{Qp, QpDims};
 use robots::Dynamics;
 
 use crate::paths::Path;

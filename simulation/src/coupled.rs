@@ -23,7 +23,7 @@
 //! Newton then failed on every other step (650,000 steps instead of ~3,000).
 
 use nalgebra::{DMatrix, DVector};
-use schemes::qp_dot::QpDotScratch;
+use qp::dot::QpDotScratch;
 use schemes::scheme::Level;
 use schemes::scheme::Scheme;
 use solvers::exact_path::{ExactPath, ExactPathStats};

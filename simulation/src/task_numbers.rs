@@ -9,7 +9,7 @@ use crate::run::job_model;
 use catalog::error::SetupError;
 use catalog::experiment::Job;
 use catalog::fields::JobPart;
-use schemes::qp::Qp;
+use qp::Qp;
 use schemes::scheme::Level;
 
 /// Instants of the path samples, as fractions of the duration T.

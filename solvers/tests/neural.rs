@@ -5,9 +5,9 @@
 use nalgebra::{DMatrix, DVector};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use schemes::sign_power::SIGN_POWER_MIN_ABS;
 use settings::activation::{ActivationKind, ActivationSpec};
 use settings::integrator::{IntegratorSettings, Method};
+use settings::sign_power::SIGN_POWER_MIN_ABS;
 use settings::solver_spec::ReferencePerturbation;
 use settings::solver_spec::SolverSpec;
 use settings::zeroing::GainLaw;

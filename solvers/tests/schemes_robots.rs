@@ -7,11 +7,11 @@ use std::f64::consts::PI;
 use std::sync::Arc;
 
 use nalgebra::{DVector, Vector3};
+use qp::Qp;
 use robots::{Dynamics, Jaco2, Katana6m180, Robot};
 use schemes::paths::{build_path, Path, PathSpec};
 use schemes::scheme::{central_difference, Level, Scheme};
 use schemes::spec::{build_scheme, RmpReading, SchemeSpec};
-use schemes::Qp;
 use solvers::ExactSolver;
 
 fn path(name: &str, duration: f64, start: Vector3<f64>) -> Arc<dyn Path> {

@@ -7,10 +7,10 @@
 //!
 //! The QP file holds, per QP, a line `qp nx n_eq n_in` and then one line per field, the field
 //! name first: `P` (row-major), `q`, `A` (row-major), `b`, `G` (row-major), `h`, `lower`,
-//! `upper` (`inf` and `-inf` for absent bounds), as `schemes::qp::Qp` states the problem.
+//! `upper` (`inf` and `-inf` for absent bounds), as `qp::Qp` states the problem.
 
 use nalgebra::{DMatrix, DVector};
-use schemes::qp::Qp;
+use qp::Qp;
 use solvers::active_set::{ActiveSetSolution, ActiveSetSolver, WorkingSet};
 use std::io::Write;
 use std::time::Instant;

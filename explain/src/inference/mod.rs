@@ -97,6 +97,25 @@ pub struct Setup {
     pub integration: Integration,
 }
 
+impl std::fmt::Display for Setup {
+    /// The setup in words, as the inference's messages print it.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "rotation {:.4} rad, start phase {:.4}, size x{:.4}, tilt {:.4} rad about x and {:.4} rad about y, {}, RMP reading {}, robot {}, {}",
+            self.rotation,
+            self.phase,
+            self.scale_factor,
+            self.tilt_x,
+            self.tilt_y,
+            if self.reverse { "paths reversed" } else { "paths forwards" },
+            self.rmp.label(),
+            self.robot,
+            self.integration.describe()
+        )
+    }
+}
+
 impl Setup {
     /// The declared setup on `robot`: the experiment files as they are, exact column.
     pub fn declared(robot: &str) -> Self {

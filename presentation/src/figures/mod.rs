@@ -125,12 +125,63 @@ impl Job<'_> {
 /// naming the file, on an unreadable `runs.csv`, a missing or malformed trace, or two runs whose
 /// names give the same file name.
 pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, ReportError> {
-    let inputs = Inputs::read(&root.join(records::results_dir::DIR))?;
+    render(root, None)
+}
+
+/// [`render_all`] for one paper only (`reproduce run --paper X`): the figures of `paper`'s runs
+/// and experiments and its inference profiles; the figures of other papers, the cost and the
+/// control figures are left as they are, and only figures of `paper`'s experiments are removed
+/// as stale.
+pub fn render_paper(root: &Path, paper: &str) -> Result<Vec<PathBuf>, ReportError> {
+    render(root, Some(paper))
+}
+
+/// Renders the figures of every paper, or of `paper` alone ([`render_paper`]).
+fn render(root: &Path, paper: Option<&str>) -> Result<Vec<PathBuf>, ReportError> {
+    let inputs = Inputs::read(&root.join(records::results_dir::DIR), paper)?;
     let mut jobs = Jobs::default();
     jobs.add_runs(&inputs.runs, &inputs.traces)?;
-    jobs.add_profiles(&inputs.inference)?;
-    jobs.add_dof_cost(&inputs.dof_cost)?;
-    jobs.add_control(&inputs.control, &inputs.cycles)?;
+    match paper {
+        None => {
+            jobs.add_profiles(&inputs.inference)?;
+            jobs.add_dof_cost(&inputs.dof_cost)?;
+            jobs.add_control(&inputs.control, &inputs.cycles)?;
+        }
+        Some(p) => {
+            let own: Vec<InferenceRow> = inputs
+                .inference
+                .iter()
+                .filter(|r| r.paper == p)
+                .cloned()
+                .collect();
+            return write_rendered(root, jobs_with_profiles(jobs, &own)?, |name| {
+                name.starts_with(&format!("inference-{p}-"))
+                    || inputs
+                        .runs
+                        .iter()
+                        .any(|r| name.starts_with(&format!("{}__", r.experiment)))
+            });
+        }
+    }
+    write_rendered(root, jobs, |_| true)
+}
+
+/// `jobs` with the inference profiles of `inference` added.
+fn jobs_with_profiles<'a>(
+    mut jobs: Jobs<'a>,
+    inference: &'a [InferenceRow],
+) -> Result<Jobs<'a>, ReportError> {
+    jobs.add_profiles(inference)?;
+    Ok(jobs)
+}
+
+/// Draws `jobs` in parallel and writes them ([`write_figures`]; `in_scope`: which stale
+/// figures it may remove).
+fn write_rendered(
+    root: &Path,
+    jobs: Jobs,
+    in_scope: impl Fn(&str) -> bool,
+) -> Result<Vec<PathBuf>, ReportError> {
     let figures: BTreeMap<String, Rendered> = jobs
         .0
         .into_par_iter()
@@ -143,7 +194,7 @@ pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, ReportError> {
                 })
         })
         .collect::<Result<_, _>>()?;
-    write_figures(root, figures)
+    write_figures(root, figures, in_scope)
 }
 
 /// What the figures are drawn from: the files of the results directory.
@@ -163,9 +214,11 @@ struct Inputs {
 }
 
 impl Inputs {
-    /// Reads the inputs from the results directory `results`.
-    fn read(results: &Path) -> Result<Self, ReportError> {
+    /// Reads the inputs from the results directory `results` (of `paper`'s runs only, when
+    /// given: the others' traces are not read).
+    fn read(results: &Path, paper: Option<&str>) -> Result<Self, ReportError> {
         let mut runs = read_runs(&results.join(records::results_dir::RUNS))?;
+        runs.retain(|r| paper.is_none_or(|p| r.paper == p));
         runs.sort_by_key(RunRow::key);
         let traces_dir = results.join(records::results_dir::TRACES);
         let traces = runs
@@ -285,17 +338,19 @@ impl<'a> Jobs<'a> {
 }
 
 /// Writes the rendered `figures` (SVG and PNG) into `root/report/figures/` and removes the
-/// stale ones: only those this program wrote (listed in report/manifest.toml) and nobody edited
-/// since; anything else in the directory is left alone. Returns the SVGs' paths, sorted.
+/// stale ones among those `in_scope` says were drawn (by SVG name): only those this program
+/// wrote (listed in report/manifest.toml) and nobody edited since; anything else in the
+/// directory is left alone. Returns the SVGs' paths, sorted.
 fn write_figures(
     root: &Path,
     figures: BTreeMap<String, Rendered>,
+    in_scope: impl Fn(&str) -> bool,
 ) -> Result<Vec<PathBuf>, ReportError> {
     let report = TrackedDir::open_within(root, "report")?;
     let rel = |name: &str| Path::new(FIGURES).join(name);
     for listed in report.listed(&format!("{FIGURES}/")) {
         let name = listed.trim_start_matches(&format!("{FIGURES}/"));
-        if figure_of(name).is_some_and(|svg| !figures.contains_key(&svg)) {
+        if figure_of(name).is_some_and(|svg| in_scope(&svg) && !figures.contains_key(&svg)) {
             if let Removal::Kept(why) = report.remove(&rel(name))? {
                 eprintln!("note: {why}");
             }

@@ -39,9 +39,9 @@ pub fn cost_table(runs: &Runs, paper: &str) -> String {
             r.experiment.to_string(),
             r.variant.clone(),
             r.solver.clone(),
-            r.integrator.clone(),
-            sci(r.rtol),
-            sci(r.atol),
+            super::header::numerical_loop(r).unwrap_or_else(|| r.integrator.clone()),
+            super::header::tolerance_cell(r, r.rtol),
+            super::header::tolerance_cell(r, r.atol),
             if lost {
                 count(0)
             } else {

@@ -45,30 +45,51 @@ and {figures} figures in `report/figures/`. Runs produced at git revision {} by 
         distinct(|r| &r.crate_version),
     ));
     let mut t = Table::new(["integrator", "rtol", "atol", "runs", "solvers"]);
+    // A numerical loop has no tolerances: its rows group by the loop alone.
+    let tolerances = |r: &records::runs::RunRow| match numerical_loop(r) {
+        Some(_) => (f64::NAN, f64::NAN),
+        None => (r.rtol, r.atol),
+    };
     let mut settings: Vec<(String, f64, f64)> = runs
         .all()
         .iter()
-        .map(|r| (method_label(r), r.rtol, r.atol))
+        .map(|r| {
+            let (rtol, atol) = tolerances(r);
+            (method_label(r), rtol, atol)
+        })
         .collect();
     settings.sort_by(|a, b| {
         a.0.cmp(&b.0)
             .then(a.1.total_cmp(&b.1))
             .then(a.2.total_cmp(&b.2))
     });
-    settings.dedup();
+    settings
+        .dedup_by(|a, b| a.0 == b.0 && a.1.total_cmp(&b.1).is_eq() && a.2.total_cmp(&b.2).is_eq());
     for (method, rtol, atol) in settings {
         let of: Vec<&records::runs::RunRow> = runs
             .all()
             .iter()
-            .filter(|r| method_label(r) == method && r.rtol == rtol && r.atol == atol)
+            .filter(|r| {
+                let (a, b) = tolerances(r);
+                method_label(r) == method
+                    && a.total_cmp(&rtol).is_eq()
+                    && b.total_cmp(&atol).is_eq()
+            })
             .collect();
         let mut solvers: Vec<&str> = of.iter().map(|r| r.solver.as_str()).collect();
         solvers.sort();
         solvers.dedup();
+        let cell = |v: f64| {
+            if v.is_nan() {
+                "n/a".to_string()
+            } else {
+                sci(v)
+            }
+        };
         t.push([
             method,
-            sci(rtol),
-            sci(atol),
+            cell(rtol),
+            cell(atol),
             of.len().to_string(),
             solvers.join(", "),
         ]);
@@ -86,10 +107,38 @@ in the loop: it separates what the scheme does from what the neural solver adds.
     out
 }
 
-/// The integrator of a row, with ode15s's MaxStep where the run sets one.
+/// The integrator of a row, with ode15s's MaxStep where the run sets one; for a numerical
+/// method, its fixed-step loop ([`numerical_loop`]).
 fn method_label(r: &records::runs::RunRow) -> String {
+    if let Some(l) = numerical_loop(r) {
+        return l;
+    }
     match r.max_step {
         Some(h) => format!("{} (MaxStep {h})", r.integrator),
         None => r.integrator.clone(),
+    }
+}
+
+/// How a numerical method's run steps (none for any other run): a fixed-step loop of step
+/// h = duration / steps, each instant's iteration stopped by the rule its solver's name states
+/// (robio2018 Algorithm 1); the row's integrator tolerances do not apply to it.
+pub fn numerical_loop(r: &records::runs::RunRow) -> Option<String> {
+    matches!(
+        r.solver_kind,
+        catalog::solver_kind::SolverKind::Numerical(_)
+    )
+    .then(|| {
+        format!(
+            "fixed-step loop, h = {} s, stopped per instant as the solver's name says",
+            sci(r.duration / r.steps.max(1) as f64)
+        )
+    })
+}
+
+/// A row's tolerance `v` as a cell: "n/a" for a numerical method's loop, which has none.
+pub fn tolerance_cell(r: &records::runs::RunRow, v: f64) -> String {
+    match numerical_loop(r) {
+        Some(_) => "n/a".to_string(),
+        None => sci(v),
     }
 }

@@ -89,8 +89,32 @@ impl Table {
         }
     }
 
-    /// The table as Markdown, ending with a newline.
+    /// The table as Markdown, ending with a newline. A table wider than [`MAX_COLUMNS`] is
+    /// rendered as several tables of at most that many columns, each repeating the first
+    /// column (the rows' labels), the columns shared out evenly and kept in order.
     pub fn render(&self) -> String {
+        let data = self.header.len().saturating_sub(1);
+        let parts = data.div_ceil(MAX_COLUMNS - 1).max(1);
+        if parts == 1 {
+            return self.render_columns(&(0..self.header.len()).collect::<Vec<_>>());
+        }
+        let per = data.div_ceil(parts);
+        (0..parts)
+            .map(|p| {
+                let columns: Vec<usize> = std::iter::once(0)
+                    .chain(1 + p * per..(1 + (p + 1) * per).min(1 + data))
+                    .collect();
+                self.render_columns(&columns)
+            })
+            .collect::<Vec<_>>()
+            .join("\n*(continued)*\n\n")
+    }
+
+    /// The table restricted to `columns` (indices, in order), as Markdown.
+    fn render_columns(&self, columns: &[usize]) -> String {
+        let pick = |cells: &[String]| -> Vec<String> {
+            columns.iter().map(|&c| cells[c].clone()).collect()
+        };
         let line = |cells: &[String]| {
             format!(
                 "| {} |\n",
@@ -101,14 +125,18 @@ impl Table {
                     .join(" | ")
             )
         };
-        let mut out = line(&self.header);
-        out.push_str(&format!("|{}\n", "---|".repeat(self.header.len())));
+        let mut out = line(&pick(&self.header));
+        out.push_str(&format!("|{}\n", "---|".repeat(columns.len())));
         for r in &self.rows {
-            out.push_str(&line(r));
+            out.push_str(&line(&pick(r)));
         }
         out
     }
 }
+
+/// The most columns a rendered table has (the first, the rows' labels, included): wider
+/// tables are split ([`Table::render`]) so that a page reads on a screen.
+pub const MAX_COLUMNS: usize = 12;
 
 /// Text from an input (a paper's title, citation, claim, a published table's names and notes)
 /// as Markdown that shows it literally and carries no HTML: `&`, `<` and `>` become entities,
@@ -180,6 +208,35 @@ pub fn metric_cell(r: &records::runs::RunRow, name: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_wide_table_is_split_keeping_its_label_column_and_every_cell() {
+        let header: Vec<String> = (0..25).map(|c| format!("h{c}")).collect();
+        let mut t = Table::new(header);
+        t.push((0..25).map(|c| format!("r{c}")));
+        let out = t.render();
+        let widths: Vec<usize> = out
+            .lines()
+            .filter(|l| l.starts_with("| h0 "))
+            .map(|l| l.matches(" | ").count() + 1)
+            .collect();
+        assert_eq!(
+            widths,
+            [9, 9, 9],
+            "24 data columns in three tables of 8 + the label"
+        );
+        for c in 0..25 {
+            assert!(out.contains(&format!("| r{c} ")) || out.contains(&format!("| r{c} |")));
+        }
+        assert_eq!(
+            out.matches("| r0 |").count(),
+            3,
+            "the label column in every part"
+        );
+        let mut narrow = Table::new(["a", "b"]);
+        narrow.push(["1", "2"]);
+        assert_eq!(narrow.render(), "| a | b |\n|---|---|\n| 1 | 2 |\n");
+    }
 
     #[test]
     fn input_text_shows_literally_without_html_links_or_line_breaks() {

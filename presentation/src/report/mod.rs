@@ -241,7 +241,8 @@ struct Evaluated<'a> {
 }
 
 /// `## Summary` of the front page: per paper, its verdict, its claims by verdict, the range of
-/// our drift over the paper's ([`analysis::paper_verdict::ratio_span`]) and why in one line.
+/// our magnitudes over the paper's ([`analysis::paper_verdict::ratio_span`]) and why in one
+/// line.
 fn summary_section(
     evaluated: &[Evaluated],
     runs: &Runs,
@@ -253,20 +254,32 @@ fn summary_section(
         "paper",
         "verdict",
         "claims PASS / FAIL / N/A",
-        "our drift ÷ paper's",
+        "ours ÷ paper's (counted)",
         "why, in one line",
     ]);
     for e in evaluated {
         let paper = e.id;
         let n = |v: Verdict| e.claims.iter().filter(|x| x.verdict == v).count();
-        let ratios = analysis::paper_verdict::drift_ratios(paper, runs, papers);
-        let range = match analysis::paper_verdict::ratio_span(&ratios) {
-            Some(span) => format!("{} to {}", sci(span.lo.1), sci(span.hi.1)),
-            None => "no published table".to_string(),
+        let decision = analysis::paper_verdict::decide(paper, &e.claims, runs, papers);
+        let range = match analysis::paper_verdict::ratio_span(&decision.ratios) {
+            Some((lo, hi)) => format!(
+                "{} to {} ({} numbers)",
+                sci(lo.1),
+                sci(hi.1),
+                decision.ratios.len()
+            ),
+            None => "no published magnitude counted".to_string(),
         };
         summary.push([
             format!("[{paper}]({})", paper_page(paper)),
-            analysis::paper_verdict::level_under_setup(paper, &e.claims, &ratios, papers),
+            match decision.signs.n {
+                0 => analysis::paper_verdict::level_under_setup(paper, &decision, papers),
+                _ => format!(
+                    "{} (signs agree in {})",
+                    analysis::paper_verdict::level_under_setup(paper, &decision, papers),
+                    decision.signs
+                ),
+            },
             format!(
                 "{} / {} / {}",
                 n(Verdict::Pass),
@@ -309,6 +322,9 @@ fn paper_page_of(
         out.push_str("\n### Published tables side by side\n\n");
         out.push_str(&tables.join("\n"));
     }
+    out.push_str(&verdict::contradictions(
+        &analysis::misprints::contradictions(paper, papers),
+    ));
     for check in papers.sweep_checks.iter().filter(|c| c.paper == *paper) {
         out.push_str(&sweep::section(check, runs, papers));
     }

@@ -1,14 +1,15 @@
 //! The papers' tables side by side with ours, and the suite's own table of every run.
 //!
 //! A published table (one `(paper, table)` of `papers/<paper>/values.csv`) becomes one Markdown table:
-//! rows are the quantities (joint drifts, drift norm, and whatever else the paper prints),
-//! and for each published column there are the paper's number, our exact run, our
+//! columns are the quantities (joint drifts, drift norm, and whatever else the paper prints),
+//! and for each published column there are rows for the paper's number, our exact run, our
 //! run of the paper's solver, and the ratio ours/paper — then the same for each companion
-//! variant. The exact column separates what the scheme does from what the solver adds. Which
+//! variant (each run once). The exact column separates what the scheme does from what the solver adds. Which
 //! columns and quantities a table has, and the ratios, are [`analysis::published_table`]'s.
 
 use super::markdown::metric_cell;
 use super::markdown::{sci, sci_opt, Table, MISSING};
+use analysis::misprints::{contradictions, is_contradicted, Contradiction};
 use analysis::papers::{Mapping, Papers};
 use analysis::published_table::{columns_of, quantities_of, ratio_to_paper};
 use records::index::{metric, status_text, Runs, EXACT};
@@ -71,7 +72,12 @@ fn layout<'a>(columns: &[&'a Mapping], runs: &'a Runs, one_variant: bool) -> Vec
     for &m in columns {
         cols.push(Col::Paper(m));
         let e = m.run.experiment.as_str();
+        let mut shown_runs: Vec<&catalog::run_key::RunKey> = Vec::new();
         for shown_run in std::iter::once(&m.run).chain(m.companions.iter()) {
+            if shown_runs.contains(&shown_run) {
+                continue;
+            }
+            shown_runs.push(shown_run);
             let variant = &shown_run.variant;
             let exact = runs.find(e, variant, EXACT);
             let shown_label = label(exact, variant, false);
@@ -95,7 +101,7 @@ fn layout<'a>(columns: &[&'a Mapping], runs: &'a Runs, one_variant: bool) -> Vec
                 ratio_of: None,
             }));
             cols.push(Col::Ours(OursColumn {
-                header: "ratio".to_string(),
+                header: "ratio ours / paper".to_string(),
                 run,
                 ratio_of: Some(m),
             }));
@@ -111,10 +117,19 @@ struct Marks {
     derived: bool,
     /// A printed number the paper's own contradict.
     inconsistent: bool,
+    /// A ratio taken from a column whose printed numbers contradict each other.
+    rests_on_contradiction: bool,
 }
 
-/// The cell of column `c` for quantity `q`.
-fn cell(c: &Col, q: &str, papers: &Papers, marks: &mut Marks) -> String {
+/// The cell of column `c` of published `table` for quantity `q` (`contradicted`: the paper's
+/// contradicted columns).
+fn cell(
+    c: &Col,
+    (table, q): (&str, &str),
+    papers: &Papers,
+    contradicted: &[Contradiction],
+    marks: &mut Marks,
+) -> String {
     match c {
         Col::Paper(m) => {
             let printed = match papers.published(m, q) {
@@ -142,7 +157,20 @@ fn cell(c: &Col, q: &str, papers: &Papers, marks: &mut Marks) -> String {
             run: Some(r),
             ratio_of: Some(m),
             ..
-        }) => sci_opt(ratio_to_paper(r, m, q, papers)),
+        }) => match ratio_to_paper(r, m, q, papers) {
+            Some(v)
+                if is_contradicted(
+                    contradicted,
+                    Some(table),
+                    &m.published_experiment,
+                    &m.published_column,
+                ) =>
+            {
+                marks.rests_on_contradiction = true;
+                format!("{}‡", sci(v))
+            }
+            v => sci_opt(v),
+        },
     }
 }
 
@@ -160,16 +188,22 @@ pub fn side_by_side(paper: &str, table: &str, papers: &Papers, runs: &Runs) -> S
         .iter()
         .filter_map(|c| if let Col::Ours(o) = c { o.run } else { None })
         .collect();
-    let mut header = vec!["quantity".to_string()];
-    header.extend(cols.iter().map(|c| match c {
-        Col::Paper(m) => format!("paper: {}", m.published_column),
-        Col::Ours(o) => o.header.clone(),
-    }));
+    let quantities = quantities_of(paper, table, papers, &shown);
+    let mut header = vec!["run".to_string()];
+    header.extend(quantities.iter().map(|q| quantity_label(q)));
     let mut t = Table::new(header);
     let mut marks = Marks::default();
-    for q in quantities_of(paper, table, papers, &shown) {
-        let mut row = vec![quantity_label(q)];
-        row.extend(cols.iter().map(|c| cell(c, q, papers, &mut marks)));
+    let contradicted = contradictions(paper, papers);
+    for c in &cols {
+        let mut row = vec![match c {
+            Col::Paper(m) => format!("**paper: {}**", m.published_column),
+            Col::Ours(o) => o.header.clone(),
+        }];
+        row.extend(
+            quantities
+                .iter()
+                .map(|q| cell(c, (table, q), papers, &contradicted, &mut marks)),
+        );
         t.push(row);
     }
     let mut out = caption(table, &columns, runs, one_variant);
@@ -182,6 +216,13 @@ pub fn side_by_side(paper: &str, table: &str, papers: &Papers, runs: &Runs) -> S
             "\n† printed, but contradicted by the paper's own numbers (a norm below one of its \
              entries, a negative norm, or a number given twice; the warnings are listed under \
              the paper): no ratio is taken from it.\n",
+        );
+    }
+    if marks.rests_on_contradiction {
+        out.push_str(
+            "\n‡ the paper's column contradicts itself (its printed norm is not the norm of its \
+             printed entries; see \"Printed numbers that contradict each other\"): the ratio \
+             rests on a contradicted number and the verdict does not count it.\n",
         );
     }
     out
@@ -221,7 +262,7 @@ fn caption(table: &str, columns: &[&Mapping], runs: &Runs, one_variant: bool) ->
             label(shown, &k.variant, false)
         ));
     }
-    out.push_str(". Ratio = our run of the paper's solver / paper.\n\n");
+    out.push_str(". One row per number (the paper's, our runs, and the ratio of our run of the paper's solver to the paper's), one column per quantity.\n\n");
     out
 }
 

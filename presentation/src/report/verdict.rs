@@ -3,16 +3,16 @@
 
 use super::markdown::{percent, sci};
 use analysis::claim_verdict::{Claim, Verdict};
+use analysis::misprints::Contradiction;
 use analysis::paper_verdict::{
-    assumed_setup, drift_ratios, level_under_setup, ratio_span, sign_agreement, solver_effect,
-    CLOSE, SOLVER_MATTERS,
+    assumed_setup, decide, level_under_setup, ratio_span, solver_effect, SOLVER_MATTERS,
 };
 use analysis::papers::Papers;
 use records::index::Runs;
 
 /// The verdict paragraph of one paper.
 pub fn paragraph(paper: &str, claims: &[Claim], runs: &Runs, papers: &Papers) -> String {
-    let ratios = drift_ratios(paper, runs, papers);
+    let decision = decide(paper, claims, runs, papers);
     let of = |v: Verdict| {
         claims
             .iter()
@@ -26,8 +26,8 @@ pub fn paragraph(paper: &str, claims: &[Claim], runs: &Runs, papers: &Papers) ->
         of(Verdict::NotApplicable),
     );
     let mut out = format!(
-        "**Verdict: {}.** {} of {} evaluated claims hold",
-        level_under_setup(paper, claims, &ratios, papers),
+        "**Verdict: {}.** The rule ([verdicts](../docs/reference/verdicts.md)) decided it from: {decision}. {} of {} evaluated claims hold",
+        level_under_setup(paper, &decision, papers),
         pass.len(),
         pass.len() + fail.len()
     );
@@ -46,23 +46,19 @@ pub fn paragraph(paper: &str, claims: &[Claim], runs: &Runs, papers: &Papers) ->
     if !na.is_empty() {
         out.push_str(&format!(" Not evaluated: {}.", na.join("; ")));
     }
-    if let Some(span) = ratio_span(&ratios) {
-        let (lo, hi) = (span.lo, span.hi);
+    if let Some((lo, hi)) = ratio_span(&decision.ratios) {
         out.push_str(&format!(
-            " Magnitudes: over {} published columns our drift norm (the paper's solver) is {} (`{}`) to {} (`{}`) times the paper's: {}.",
-            ratios.len(),
+            " Magnitudes: over {} counted published numbers (the run each mapping names) ours is {} (`{}`) to {} (`{}`) times the paper's.",
+            decision.ratios.len(),
             sci(lo.1),
             lo.0,
             sci(hi.1),
             hi.0,
-            if span.within { format!("within a factor {CLOSE}") } else { format!("beyond a factor {CLOSE}") }
-        ));
-        let (same, compared) = sign_agreement(paper, runs, papers);
-        out.push_str(&format!(
-            " The per-joint drifts have the paper's sign in {same} of {compared} entries."
         ));
     } else {
-        out.push_str(" The paper prints no drift table: the verdict rests on the qualitative claims of its figures.");
+        out.push_str(
+            " No published magnitude is counted: the verdict rests on the signs and the claims.",
+        );
     }
     if let Some((e, r)) = solver_effect(paper, runs, papers) {
         if e <= SOLVER_MATTERS {
@@ -80,5 +76,51 @@ pub fn paragraph(paper: &str, claims: &[Claim], runs: &Runs, papers: &Papers) ->
         }
     }
     out.push('\n');
+    out
+}
+
+/// How many misprint hypotheses a contradicted column lists (the nearest).
+const SHOWN_HYPOTHESES: usize = 3;
+
+/// The published columns whose printed numbers contradict each other, each with the single
+/// misprints that would reconcile it ([`analysis::misprints`]), as hypotheses beside the
+/// printed numbers; empty when none does.
+pub fn contradictions(found: &[Contradiction]) -> String {
+    if found.is_empty() {
+        return String::new();
+    }
+    let mut out = String::from(
+        "\n### Printed numbers that contradict each other\n\nIn these columns the printed norm is not the norm of the printed joint drifts, within the printed digits. Below each, the single misprints (one exponent, one digit, one sign, one entry exchanged with another column's) under which the column is consistent: hypotheses, not corrections. The tables above show the printed numbers; every ratio of these columns in that table rests on a contradicted number (marked ‡), and the verdict does not count their drift norms.\n\n",
+    );
+    for c in found {
+        out.push_str(&format!(
+            "- Table {} `{}` {}: printed norm {}, norm of the printed entries {}. ",
+            c.table.trim_start_matches('T'),
+            c.experiment,
+            c.column,
+            sci(c.printed_norm),
+            sci(c.norm_of_entries)
+        ));
+        if c.hypotheses.is_empty() {
+            out.push_str("No single misprint reconciles them.\n");
+        } else {
+            let h: Vec<String> = c
+                .hypotheses
+                .iter()
+                .take(SHOWN_HYPOTHESES)
+                .map(|h| format!("{h}"))
+                .collect();
+            out.push_str(&format!("Consistent if: {}", h.join("; or ")));
+            let more = c.hypotheses.len().saturating_sub(SHOWN_HYPOTHESES);
+            if more > 0 {
+                out.push_str(&format!(
+                    " (nearest first; {more} further single misprint{} also reconcile{} them)",
+                    if more == 1 { "" } else { "s" },
+                    if more == 1 { "s" } else { "" }
+                ));
+            }
+            out.push_str(".\n");
+        }
+    }
     out
 }

@@ -7,10 +7,10 @@
 use std::f64::consts::PI;
 
 use nalgebra::{DMatrix, DVector, SMatrix, SVector, Vector3};
+use qp::{Qp, QpDuals};
 use robots::{Dynamics, JointLimits, Robot};
 use schemes::paths::{Path, PathPoint};
 use schemes::spec::{RmpReading, SchemeSpec};
-use schemes::{Qp, QpDuals};
 
 /// Planar arm: joints 1..N-1 rotate in the x-y plane (links `LEN`), joint N moves the tip in z
 /// by `Z_GAIN * theta_N`. Joint 2 has finite angle limits [-1, 2.5]; the others [-3, 3];
@@ -215,7 +215,7 @@ impl Path for Circle {
 
 /// Solves the QP by ADMM (OSQP's iteration, fixed rho, many iterations) on
 /// [A; G; I] x in [[b; -inf; lower], [b; h; upper]]; returns x and the multipliers in the
-/// conventions of `schemes::qp`.
+/// conventions of `qp`.
 pub fn admm(qp: &Qp, iters: usize) -> (DVector<f64>, QpDuals) {
     let n = qp.q.len();
     let (me, mi) = (qp.b.len(), qp.h.len());

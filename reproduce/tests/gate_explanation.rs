@@ -1,0 +1,78 @@
+//! The regression gate guards the explanation the pages show: a ladder or attribution number
+//! doctored in results/ and re-sealed (so the store's integrity check accepts it) makes
+//! `reproduce check` fail, naming the row and the column.
+
+use crate::common;
+use common::{copy_tree, ok, reproduce};
+use records::attribution::AttributionRow;
+use records::ladder::LadderRow;
+use records::results_dir::ResultsDir;
+use records::tracked_dir::Edits;
+use std::path::Path;
+
+/// Rewrites the results table `file` of `results` by `edit` and re-seals the manifest, as a
+/// deliberate edit (`--accept-edited`) would.
+fn doctor<T: records::table::Row>(results: &Path, file: &str, edit: impl Fn(&mut Vec<T>)) {
+    let path = results.join(file);
+    let mut rows: Vec<T> = records::table::read(&path).unwrap();
+    edit(&mut rows);
+    std::fs::write(&path, records::table::to_csv(&rows).unwrap()).unwrap();
+    let (dir, _) = ResultsDir::open(results, "test", Edits::Accept).unwrap();
+    dir.save().unwrap();
+}
+
+fn check(root: &Path) -> std::process::Output {
+    reproduce()
+        .arg("--root")
+        .arg(root)
+        .args(["--threads", "2", "check"])
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn a_doctored_and_resealed_ladder_or_attribution_number_fails_the_gate() {
+    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/fifth-paper");
+    let root = std::env::temp_dir().join(format!("driftbench-gate-x-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&root);
+    copy_tree(&fixture, &root);
+    ok(reproduce()
+        .arg("--root")
+        .arg(&root)
+        .args(["--threads", "2"])
+        .output()
+        .unwrap());
+    let results = root.join("results");
+    let agree = ok(check(&root));
+    let stdout = String::from_utf8_lossy(&agree.stdout);
+    assert!(stdout.contains("agree"), "{stdout}");
+
+    doctor::<LadderRow>(&results, "ladder.csv", |rows| {
+        let r = rows.iter_mut().find(|r| r.drift_norm.is_some()).unwrap();
+        r.drift_norm = r.drift_norm.map(|d| d * 1.5 + 1e-9);
+    });
+    let failed = check(&root);
+    let stdout = String::from_utf8_lossy(&failed.stdout);
+    assert_eq!(failed.status.code(), Some(3), "{stdout}");
+    assert!(stdout.contains(": drift_norm "), "{stdout}");
+    assert!(
+        !stdout.contains("RunKey {") && !stdout.contains("Some("),
+        "{stdout}"
+    );
+
+    ok(reproduce()
+        .arg("--root")
+        .arg(&root)
+        .args(["--threads", "2"])
+        .output()
+        .unwrap());
+    doctor::<AttributionRow>(&results, "attribution.csv", |rows| {
+        let r = rows.iter_mut().find(|r| r.share.is_some()).unwrap();
+        r.share = r.share.map(|s| s + 0.25);
+    });
+    let failed = check(&root);
+    let stdout = String::from_utf8_lossy(&failed.stdout);
+    assert_eq!(failed.status.code(), Some(3), "{stdout}");
+    assert!(stdout.contains(": share "), "{stdout}");
+    std::fs::remove_dir_all(&root).unwrap();
+}
