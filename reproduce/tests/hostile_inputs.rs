@@ -422,7 +422,7 @@ fn every_run_is_bounded_and_ranges_are_checked_at_load() {
     std::fs::write(
         &file,
         puma_experiment(
-            2.0,
+            0.5,
             "[[experiment.variant]]\nid = \"w\"\nlabel = \"w\"\nscheme = { kind = \"velocity-rmp\", weight = 1e-300, lambda = 4.0, upsilon = 2.0, k_p = 1.0 }\n\
              [[experiment.variant]]\nid = \"n\"\nlabel = \"n\"\nexact = false\nscheme = { kind = \"velocity-rmp\", lambda = 4.0, upsilon = 2.0 }\nnumerical = [{ method = \"m5\", tolerance = 1e-12, max_iterations = 1000000 }]\n",
         ),

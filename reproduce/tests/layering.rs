@@ -182,9 +182,9 @@ fn nothing_links_the_benches() {
 #[test]
 fn the_rule_sees_an_outside_crate_through_a_member() {
     let graph = workspace();
-    let found = offending(&graph, "solvers", &["toml"]);
+    let found = offending(&graph, "schemes", &["toml"]);
     assert!(
         found.iter().any(|c| c.ends_with("-> robots -> toml")),
-        "solvers reaches toml through robots' robot files: {found:?}"
+        "schemes reaches toml through robots' robot files: {found:?}"
     );
 }
