@@ -34,6 +34,7 @@
 use nalgebra::{DMatrix, DVector, Matrix3xX, Vector3};
 
 pub mod chain;
+pub mod chain_robot;
 pub mod data_robot;
 pub mod dh;
 pub mod geometric_jacobian;
@@ -48,6 +49,7 @@ pub mod rigid_body;
 pub mod robot_file;
 pub mod urdf;
 
+pub use chain_robot::ChainRobot;
 pub use data_robot::DataRobot;
 pub use jaco2::{Jaco2, JACO2, JACO2_HAND, JACO2_PEN, JACO2_PEN_EXP2};
 pub use katana::{Katana6m180, KATANA6M180};
