@@ -10,7 +10,9 @@
 //! 2. the n-link family `nlink-<n>`, any n from [`NLINK_MIN`] to [`NLINK_MAX`];
 //! 3. the robot files: the built-in `robots/data/*.toml` (embedded in the library; see
 //!    [`crate::robot_file`]), registered by file name, e.g. `puma560`, then the files registered
-//!    at run time ([`register_file`]: a paper's own `papers/<id>/robots/*.toml`).
+//!    at run time ([`register_file`]: a paper's own `papers/<id>/robots/*.toml`, of the DH
+//!    form or the URDF form, whose [`ChainRobot`] has [`Dynamics`] where every moving joint
+//!    carries an inertial).
 //!
 //! Where an arm exists both in Rust and as a built-in file (the Jaco2 variants, the Panda, the
 //! n-link arms) the Rust model is the registered one: the Jaco2 carries dynamics, and robots'
@@ -333,12 +335,17 @@ pub fn robot_names() -> Vec<String> {
 }
 
 /// The names of the robots with rigid-body dynamics (H, c, g), which the acceleration-level
-/// zhang2018 scheme needs: the Jaco2 family.
-pub fn robots_with_dynamics() -> Vec<&'static str> {
+/// zhang2018 scheme needs: the Jaco2 family, then the URDF robot files registered at run time
+/// whose every moving joint carries an inertial.
+pub fn robots_with_dynamics() -> Vec<String> {
     RUST_MODELS
         .iter()
-        .copied()
         .filter(|n| rust_model(n).is_some_and(|m| m.dynamics.is_some()))
+        .map(|n| n.to_string())
+        .chain(runtime_files().iter().filter_map(|(s, _, m)| match m {
+            Ok(FileArm::Urdf(robot, _, _)) if robot.has_inertials() => Some(s.clone()),
+            _ => None,
+        }))
         .collect()
 }
 

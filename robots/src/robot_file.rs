@@ -1,5 +1,7 @@
 //! The robot file: one TOML file declares one serial arm of revolute joints by its
-//! Denavit–Hartenberg table, so that an arm is data, not Rust (`docs/robots.md`).
+//! Denavit–Hartenberg table, so that an arm is data, not Rust (`docs/robots.md`). A file may
+//! instead point at a URDF ([`UrdfRobotSpec`], the URDF form); [`RobotForm::parse_named`] reads
+//! either.
 //!
 //! ```toml
 //! name = "puma560"                    # a slug: the model name experiment files use
