@@ -19,6 +19,9 @@
 //! - [`DataRobot`] — any serial arm declared by a robot file ([`robot_file`], TOML): the
 //!   built-in files `robots/data/*.toml` (e.g. `puma560`, and data twins of the DH models above)
 //!   are embedded in the library ([`data_robot::builtin_models`]).
+//! - [`ChainRobot`] — a [`chain::Chain`] as a model: the URDF form of a paper's robot file
+//!   ([`robot_file::UrdfRobotSpec`], a URDF read at run time by [`urdf`]), with [`Dynamics`]
+//!   where every moving joint carries an inertial.
 //!
 //! Modules: [`dh`] (classical DH forward kinematics), [`geometric_jacobian`] (point and body
 //! Jacobians and their time derivatives), [`rigid_body`] (recursive Newton–Euler, inertia and
