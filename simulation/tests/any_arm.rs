@@ -106,8 +106,9 @@ fn arms_of_4_8_9_and_150_joints_run_from_files() {
 
 /// A URDF arm, no rebuild: a handwritten six-joint URDF (`robots/tests/fixtures/arm6.urdf`,
 /// with inertials) and its robot file of the URDF form in a paper's `robots/` folder, run by an
-/// experiment file through the one path (kong2019's ZNN on a circle, the exact optimum in the
-/// loop): the run completes and tracks the circle, and the model has dynamics.
+/// experiment file through the one path, the exact optimum in the loop: kong2019's ZNN
+/// (velocity level) and zhang2018's HL-JDF (acceleration level, the chain's H, c and g) on a
+/// circle; both runs complete and track the circle.
 #[test]
 fn a_urdf_arm_runs_from_files() {
     let root = std::env::temp_dir().join(format!("driftbench-urdf-arm-{}", std::process::id()));
@@ -125,26 +126,40 @@ fn a_urdf_arm_runs_from_files() {
     );
     let toml =
         experiment("sim-urdf-arm", 6, 2.0).replace(&pose(6), "[0.2, -0.6, 1.2, -0.8, 0.5, 0.3]");
+    let dynamic = toml
+        .replace("kong2019-any-arm", "zhang2018-any-arm")
+        .replace("ZNN (eq. 22)", "HL-JDF (zeta=0.6)")
+        .replace(
+            "{ kind = \"kong2019-znn\", mu = 1.0, k_p = 1.0 }",
+            "{ kind = \"hl-jdf\", zeta = 0.6, alpha = 20.0, beta = 20.0, rho_v = 20.0, rho_p = 20.0 }",
+        );
     write(
         &root.join("experiments/urdf-arm.toml"),
         &format!("paper = \"kong2019\"\ntitle = \"a URDF arm\"\n{toml}"),
+    );
+    write(
+        &root.join("experiments/urdf-arm-dynamics.toml"),
+        &format!("paper = \"zhang2018\"\ntitle = \"a URDF arm, torques\"\n{dynamic}"),
     );
     catalog::robot_files::register_paper_robots(&root.join("papers"));
     let model = robots::registry::robot_by_name("sim-urdf-arm").unwrap();
     assert!(model.has_dynamics());
     let files = load_dir(&root.join("experiments"), check_job).expect("the experiment loads");
     let jobs: Vec<_> = files.iter().flat_map(|f| f.jobs()).collect();
-    assert_eq!(jobs.len(), 1);
-    let record = run_job(&jobs[0]);
-    let Outcome::Completed(m) = &record.run.outcome else {
-        panic!("{:?}", record.run.outcome);
-    };
-    assert_eq!(m.drift.len(), 6);
-    assert!(
-        m.max_position_error < 1e-6,
-        "max position error {}",
-        m.max_position_error
-    );
-    assert!(m.drift_norm.is_finite() && m.min_sigma_j > 0.0);
+    assert_eq!(jobs.len(), 2);
+    for job in &jobs {
+        let record = run_job(job);
+        let Outcome::Completed(m) = &record.run.outcome else {
+            panic!("{}: {:?}", job.experiment, record.run.outcome);
+        };
+        assert_eq!(m.drift.len(), 6);
+        assert!(
+            m.max_position_error < 1e-6,
+            "{}: max position error {}",
+            job.experiment,
+            m.max_position_error
+        );
+        assert!(m.drift_norm.is_finite() && m.min_sigma_j > 0.0);
+    }
     std::fs::remove_dir_all(&root).unwrap();
 }
