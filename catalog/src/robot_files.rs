@@ -4,6 +4,8 @@
 //! file's stem, so that a paper is one folder and a robot file needs no rebuild. Each file is
 //! validated as it is registered; a file that cannot be read or is invalid is registered with
 //! its error, which only the runs of that robot meet (exit 2, naming the file and the field).
+//! A robot file of the URDF form names a URDF in its directory, which the registry reads the
+//! same way ([`inputs::Kind::Urdf`], inside that `robots/` directory).
 
 use inputs::{read_text, Kind, Origin};
 use std::path::{Path, PathBuf};
@@ -32,8 +34,7 @@ pub fn register_paper_robots(papers: &Path) {
                 continue;
             }
             let text = read_text(&file, Kind::RobotFile, Origin::Under(&robots));
-            let shown = file.display().to_string();
-            robots::registry::register_file(&shown, text.as_ref().map(String::as_str));
+            robots::registry::register_file(&file, text.as_ref().map(String::as_str));
         }
     }
 }

@@ -343,6 +343,19 @@ fn kinematics(robot: &Model) -> String {
                 k.l1, k.l2, k.l3, k.l4, k.l5
             );
         }
+        Kinematics::Urdf {
+            file,
+            urdf,
+            base,
+            tip,
+        } => {
+            let _ = writeln!(
+                s,
+                "Declared by the robot file `{file}` (its `source` gives the numbers' origin): the \
+                 chain of the URDF `{urdf}` from link `{base}` to link `{tip}` (joint origins, axes \
+                 and limits as the URDF gives them; `robots/src/urdf.rs`)."
+            );
+        }
         Kinematics::NLink(n) => {
             let _ = writeln!(
                 s,

@@ -145,3 +145,52 @@ fn a_linked_or_shadowing_robot_file_is_refused_naming_it() {
     std::fs::remove_dir_all(&root).unwrap();
     std::fs::remove_file(&outside).unwrap();
 }
+
+#[test]
+fn a_urdf_robot_file_is_listed_and_a_broken_urdf_reference_exits_2() {
+    let urdf = common::repo_root().join("robots/tests/fixtures/arm6.urdf");
+    let urdf_file = |name: &str, path: &str| {
+        format!(
+            "name = \"{name}\"\nsource = \"handwritten test arm\"\nurdf = \"{path}\"\n\
+             base = \"base_link\"\ntip = \"tool0\"\n"
+        )
+    };
+    let robots = [
+        ("urdf-arm", urdf_file("urdf-arm", "arm6.urdf")),
+        ("urdf-gone", urdf_file("urdf-gone", "gone.urdf")),
+    ];
+    let root = project("urdf", &robots, &["urdf-arm"]);
+    std::fs::copy(&urdf, root.join("papers/kong2019/robots/arm6.urdf")).unwrap();
+    let (code, out, err) = run(&root, &["robots"]);
+    assert_eq!(code, Some(0), "{err}");
+    let line = out
+        .lines()
+        .find(|l| l.starts_with("urdf-arm"))
+        .expect("urdf-arm listed");
+    assert!(line.contains("6 joints, dynamics"), "{line}");
+    let line = out
+        .lines()
+        .find(|l| l.starts_with("urdf-gone"))
+        .expect("urdf-gone listed");
+    assert!(
+        line.contains("papers/kong2019/robots/urdf-gone.toml") && line.contains("`urdf`"),
+        "{line}"
+    );
+    let (code, out, err) = run(&root, &["list"]);
+    assert_eq!(code, Some(0), "{err}");
+    assert!(out.contains("kong2019-own-urdf-arm"), "{out}");
+    std::fs::remove_dir_all(&root).unwrap();
+    // A run of the robot whose URDF is missing: exit 2 naming the robot file, the field and
+    // the URDF, no panic.
+    let root = project("urdf-gone", &robots, &["urdf-gone"]);
+    let (code, _, err) = run(&root, &["list"]);
+    assert_eq!(code, Some(2), "{err}");
+    assert!(
+        err.contains("papers/kong2019/robots/urdf-gone.toml")
+            && err.contains("`urdf`")
+            && err.contains("gone.urdf"),
+        "{err}"
+    );
+    assert!(!err.contains("panicked"), "{err}");
+    std::fs::remove_dir_all(&root).unwrap();
+}

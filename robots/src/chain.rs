@@ -787,3 +787,10 @@ pub struct ChainWorkspace {
     mass_matrix: DMatrix<f64>,
     torque: DVector<f64>,
 }
+
+impl ChainWorkspace {
+    /// The number of joints the workspace was made for.
+    pub fn dof(&self) -> usize {
+        self.frames.len()
+    }
+}

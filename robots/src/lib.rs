@@ -19,6 +19,9 @@
 //! - [`DataRobot`] — any serial arm declared by a robot file ([`robot_file`], TOML): the
 //!   built-in files `robots/data/*.toml` (e.g. `puma560`, and data twins of the DH models above)
 //!   are embedded in the library ([`data_robot::builtin_models`]).
+//! - [`ChainRobot`] — a [`chain::Chain`] as a model: the URDF form of a paper's robot file
+//!   ([`robot_file::UrdfRobotSpec`], a URDF read at run time by [`urdf`]), with [`Dynamics`]
+//!   where every moving joint carries an inertial.
 //!
 //! Modules: [`dh`] (classical DH forward kinematics), [`geometric_jacobian`] (point and body
 //! Jacobians and their time derivatives), [`rigid_body`] (recursive Newton–Euler, inertia and
@@ -34,6 +37,7 @@
 use nalgebra::{DMatrix, DVector, Matrix3xX, Vector3};
 
 pub mod chain;
+pub mod chain_robot;
 pub mod data_robot;
 pub mod dh;
 pub mod geometric_jacobian;
@@ -48,6 +52,7 @@ pub mod rigid_body;
 pub mod robot_file;
 pub mod urdf;
 
+pub use chain_robot::ChainRobot;
 pub use data_robot::DataRobot;
 pub use jaco2::{Jaco2, JACO2, JACO2_HAND, JACO2_PEN, JACO2_PEN_EXP2};
 pub use katana::{Katana6m180, KATANA6M180};

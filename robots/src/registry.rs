@@ -10,7 +10,9 @@
 //! 2. the n-link family `nlink-<n>`, any n from [`NLINK_MIN`] to [`NLINK_MAX`];
 //! 3. the robot files: the built-in `robots/data/*.toml` (embedded in the library; see
 //!    [`crate::robot_file`]), registered by file name, e.g. `puma560`, then the files registered
-//!    at run time ([`register_file`]: a paper's own `papers/<id>/robots/*.toml`).
+//!    at run time ([`register_file`]: a paper's own `papers/<id>/robots/*.toml`, of the DH
+//!    form or the URDF form, whose [`ChainRobot`] has [`Dynamics`] where every moving joint
+//!    carries an inertial).
 //!
 //! Where an arm exists both in Rust and as a built-in file (the Jaco2 variants, the Panda, the
 //! n-link arms) the Rust model is the registered one: the Jaco2 carries dynamics, and robots'
@@ -21,9 +23,10 @@
 //! A robot file is validated when it is read; an invalid file is kept with its error, so that
 //! only a lookup of its own name fails ([`RegistryError::File`]), naming the file and field.
 
+use crate::chain_robot::ChainRobot;
 use crate::data_robot::{builtin_models, DataRobot};
 use crate::nlink::{NLINK_MAX, NLINK_MIN};
-use crate::robot_file::{RobotFileError, RobotSpec};
+use crate::robot_file::{RobotFileError, RobotForm};
 use crate::{Dynamics, Jaco2, Katana6m180, NLink, Panda, Robot};
 use nalgebra::Vector3;
 use std::f64::consts::PI;
@@ -91,6 +94,18 @@ pub enum Kinematics {
     Katana(Katana6m180),
     /// The n-link arm with this many joints ([`crate::nlink`]).
     NLink(usize),
+    /// The chain of a URDF between two links, declared by a robot file's URDF form
+    /// ([`crate::robot_file::UrdfRobotSpec`]).
+    Urdf {
+        /// The robot file.
+        file: String,
+        /// The URDF as the robot file names it.
+        urdf: String,
+        /// The chain's base link.
+        base: String,
+        /// The chain's tip link.
+        tip: String,
+    },
 }
 
 impl std::fmt::Debug for Model {
@@ -182,20 +197,32 @@ fn is_rust_model(name: &str) -> bool {
     RUST_MODELS.contains(&name) || nlink(name).is_some()
 }
 
+/// The model of a robot file registered at run time, built when it is registered.
+#[derive(Clone)]
+enum FileArm {
+    /// A DH table.
+    Dh(DataRobot),
+    /// A URDF chain, its stated pose and how it was declared ([`Kinematics::Urdf`]).
+    Urdf(Arc<ChainRobot>, Vec<f64>, Kinematics),
+}
+
 /// A robot file's model, or why the file was refused, under its robot's name.
-type FileModel = (String, String, Result<DataRobot, Arc<RobotFileError>>);
+type FileModel = (String, String, Result<FileArm, Arc<RobotFileError>>);
 
 /// The robot files registered at run time ([`register_file`]).
 static RUNTIME_FILES: RwLock<Vec<FileModel>> = RwLock::new(Vec::new());
 
-/// Registers a robot file read at run time: `file` names it in errors (its robot's name must be
-/// the file's stem), `text` is its content or why it could not be read. It is validated now; an
+/// Registers a robot file read at run time: `file` is its path (its robot's name must be the
+/// file's stem), `text` is its content or why it could not be read. A file of the URDF form
+/// ([`crate::robot_file::UrdfRobotSpec`]) reads its URDF now, through the `inputs` reader,
+/// inside `file`'s directory. It is validated now; an
 /// invalid file is kept with its error, which a lookup of its name returns, so that it fails
 /// only the commands that use it. A file whose name the suite already has (a built-in model, a
 /// built-in or already registered file) is such an error, [`RobotFileError::Shadows`], and
 /// takes precedence over the model it shadows.
-pub fn register_file<E: std::fmt::Display>(file: &str, text: Result<&str, E>) {
-    let stem = std::path::Path::new(file)
+pub fn register_file<E: std::fmt::Display>(path: &std::path::Path, text: Result<&str, E>) {
+    let file = &path.display().to_string();
+    let stem = path
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_default();
@@ -212,8 +239,19 @@ pub fn register_file<E: std::fmt::Display>(file: &str, text: Result<&str, E>) {
             file: file.to_string(),
             reason: reason.to_string(),
         })
-        .and_then(|text| RobotSpec::parse_named(file, &stem, text))
-        .map(|spec| DataRobot::new(&spec))
+        .and_then(|text| RobotForm::parse_named(file, &stem, text))
+        .and_then(|form| match form {
+            RobotForm::Dh(spec) => Ok(FileArm::Dh(DataRobot::new(&spec))),
+            RobotForm::Urdf(spec) => spec.build(path).map(|(robot, pose)| {
+                let kinematics = Kinematics::Urdf {
+                    file: file.clone(),
+                    urdf: spec.urdf().to_string(),
+                    base: spec.base().to_string(),
+                    tip: spec.tip().to_string(),
+                };
+                FileArm::Urdf(Arc::new(robot), pose, kinematics)
+            }),
+        })
     };
     RUNTIME_FILES
         .write()
@@ -230,9 +268,12 @@ fn runtime_files() -> std::sync::RwLockReadGuard<'static, Vec<FileModel>> {
 
 /// The model of the robot file called `name` (built-in first, then registered at run time),
 /// with the file's path.
-fn file_model(name: &str) -> Option<(String, Result<DataRobot, Arc<RobotFileError>>)> {
+fn file_model(name: &str) -> Option<(String, Result<FileArm, Arc<RobotFileError>>)> {
     if let Some((stem, m)) = builtin_models().iter().find(|(s, _)| *s == name) {
-        return Some((format!("robots/data/{stem}.toml"), m.clone()));
+        return Some((
+            format!("robots/data/{stem}.toml"),
+            m.clone().map(FileArm::Dh),
+        ));
     }
     runtime_files()
         .iter()
@@ -254,7 +295,15 @@ pub fn robot_by_name(name: &str) -> Result<Model, RegistryError> {
         return Ok(model);
     }
     match file_model(name) {
-        Some((file, Ok(arm))) => Ok(data_model(arm, Some(file))),
+        Some((file, Ok(FileArm::Dh(arm)))) => Ok(data_model(arm, Some(file))),
+        Some((_, Ok(FileArm::Urdf(robot, stated_pose, kinematics)))) => Ok(Model {
+            dynamics: robot
+                .has_inertials()
+                .then(|| robot.clone() as Arc<dyn Dynamics>),
+            robot,
+            stated_pose,
+            kinematics,
+        }),
         Some((_, Err(e))) => Err(RegistryError::File(e)),
         None => Err(RegistryError::Unknown {
             name: name.to_string(),
@@ -286,12 +335,17 @@ pub fn robot_names() -> Vec<String> {
 }
 
 /// The names of the robots with rigid-body dynamics (H, c, g), which the acceleration-level
-/// zhang2018 scheme needs: the Jaco2 family.
-pub fn robots_with_dynamics() -> Vec<&'static str> {
+/// zhang2018 scheme needs: the Jaco2 family, then the URDF robot files registered at run time
+/// whose every moving joint carries an inertial.
+pub fn robots_with_dynamics() -> Vec<String> {
     RUST_MODELS
         .iter()
-        .copied()
         .filter(|n| rust_model(n).is_some_and(|m| m.dynamics.is_some()))
+        .map(|n| n.to_string())
+        .chain(runtime_files().iter().filter_map(|(s, _, m)| match m {
+            Ok(FileArm::Urdf(robot, _, _)) if robot.has_inertials() => Some(s.clone()),
+            _ => None,
+        }))
         .collect()
 }
 
@@ -421,14 +475,23 @@ mod tests {
         let bad = puma
             .replace("name = \"puma560\"", "name = \"registry-test-bad\"")
             .replacen("theta_max = 2.7751", "theta_max = -9.0", 1);
-        register_file::<&str>("papers/x/robots/registry-test-arm.toml", Ok(&own));
-        register_file::<&str>("papers/x/robots/registry-test-bad.toml", Ok(&bad));
+        register_file::<&str>(
+            std::path::Path::new("papers/x/robots/registry-test-arm.toml"),
+            Ok(&own),
+        );
+        register_file::<&str>(
+            std::path::Path::new("papers/x/robots/registry-test-bad.toml"),
+            Ok(&bad),
+        );
         register_file(
-            "papers/x/robots/registry-test-gone.toml",
+            std::path::Path::new("papers/x/robots/registry-test-gone.toml"),
             Err("a symbolic link out of its directory"),
         );
         // A model name no other test looks up (the registry is one per process).
-        register_file::<&str>("papers/x/robots/nlink-999.toml", Ok(&own));
+        register_file::<&str>(
+            std::path::Path::new("papers/x/robots/nlink-999.toml"),
+            Ok(&own),
+        );
         assert_eq!(robot_by_name("registry-test-arm").unwrap().dof(), 6);
         let error = robot_by_name("registry-test-bad").unwrap_err().to_string();
         assert!(

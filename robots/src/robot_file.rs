@@ -1,5 +1,7 @@
 //! The robot file: one TOML file declares one serial arm of revolute joints by its
-//! Denavit–Hartenberg table, so that an arm is data, not Rust (`docs/robots.md`).
+//! Denavit–Hartenberg table, so that an arm is data, not Rust (`docs/robots.md`). A file may
+//! instead point at a URDF ([`UrdfRobotSpec`], the URDF form); [`RobotForm::parse_named`] reads
+//! either.
 //!
 //! ```toml
 //! name = "puma560"                    # a slug: the model name experiment files use
@@ -64,7 +66,9 @@
 use nalgebra::{Matrix3, Vector3};
 use serde::Deserialize;
 
+use crate::chain_robot::ChainRobot;
 use crate::dh::Frame;
+use crate::urdf::ChainEnds;
 
 /// Largest robot file accepted (bytes): 1 MiB.
 pub const MAX_FILE_BYTES: u64 = 1 << 20;
@@ -220,7 +224,7 @@ pub enum RobotFileError {
     TooLarge {
         /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
         file: String,
-        /// The file's size (bytes); [`RobotSpec::read`] stops reading at `limit + 1`.
+        /// The file's size (bytes).
         bytes: u64,
         /// The largest size accepted (bytes), [`MAX_FILE_BYTES`].
         limit: u64,
@@ -246,7 +250,7 @@ pub enum RobotFileError {
         /// The name as written.
         name: String,
     },
-    /// The model name differs from the file's stem ([`RobotSpec::read`]).
+    /// The model name differs from the file's stem ([`RobotSpec::parse_named`]).
     #[error("{file}: name = {name:?} differs from the file's stem {stem:?}")]
     NameNotStem {
         /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
@@ -338,6 +342,38 @@ pub enum RobotFileError {
         deviation: f64,
         /// The determinant of R.
         det: f64,
+    },
+    /// A joint vector of a URDF robot file (`stated_pose`, `velocity_max`) has not one entry per
+    /// joint of the chain.
+    #[error("{file}: {field} has {given} entries, the chain from the URDF has {joints} joints")]
+    JointVector {
+        /// The robot file.
+        file: String,
+        /// `stated_pose` or `velocity_max`.
+        field: &'static str,
+        /// The number of entries given.
+        given: usize,
+        /// The chain's joint count.
+        joints: usize,
+    },
+    /// A `velocity_max` entry of a URDF robot file is not positive.
+    #[error("{file}: velocity_max[{index}] = {value}, must be > 0")]
+    VelocityMax {
+        /// The robot file.
+        file: String,
+        /// The entry, from 0.
+        index: usize,
+        /// Its value (rad/s or m/s).
+        value: f64,
+    },
+    /// The URDF a robot file points at gives no chain (the URDF's own error, naming it).
+    #[error("{file}: field `urdf` (with `base` and `tip`): {source}")]
+    Urdf {
+        /// The robot file.
+        file: String,
+        /// The URDF's error.
+        #[source]
+        source: Box<crate::urdf::UrdfChainError>,
     },
     /// A link's inertia is not physical: a non-positive mass or an inertia tensor that is not
     /// symmetric positive semi-definite.
@@ -708,5 +744,170 @@ impl RobotSpec {
     /// The joints, base to tip.
     pub fn joints(&self) -> &[JointSpec] {
         &self.joints
+    }
+}
+
+/// The URDF form of a robot file: the arm is the chain of a URDF between two links
+/// (`docs/robots.md`, "How a robot file is found").
+///
+/// ```toml
+/// name = "ur5"                         # a slug, the file's stem
+/// source = "..."                       # where the numbers come from (free text)
+/// urdf = "ur5.urdf"                    # relative to the robot file's directory, inside it
+/// base = "base_link"                   # the chain's first link (its frame is the world)
+/// tip = "tool0"                        # the chain's last link
+/// tool = [0.0, 0.0, 0.0]               # optional: task point in the tip frame (m)
+/// stated_pose = [0.0, -1.0, ...]       # optional (one entry per moving joint)
+/// velocity_max = [3.15, ...]           # optional: overrides the URDF's velocity limits
+/// ```
+///
+/// [`RobotForm::parse_named`] refuses unknown and missing fields, non-finite numbers and a name
+/// that is not a slug; [`UrdfRobotSpec::build`] reads the URDF (through the `inputs` reader,
+/// inside the robot file's directory) and refuses its errors ([`crate::urdf`]), joint vectors
+/// of the wrong length and non-positive velocity limits, each naming the robot file and field.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct UrdfRobotSpec {
+    name: String,
+    source: String,
+    urdf: String,
+    base: String,
+    tip: String,
+    tool: Option<[f64; 3]>,
+    stated_pose: Option<Vec<f64>>,
+    velocity_max: Option<Vec<f64>>,
+}
+
+/// A robot file of either form.
+#[derive(Clone, Debug, PartialEq)]
+pub enum RobotForm {
+    /// A Denavit–Hartenberg table ([`RobotSpec`]).
+    Dh(RobotSpec),
+    /// A URDF chain ([`UrdfRobotSpec`]).
+    Urdf(UrdfRobotSpec),
+}
+
+impl RobotForm {
+    /// Parses the robot file `text` named `file`, whose name must be `stem`: the URDF form if
+    /// it has a top-level `urdf` field, the DH form otherwise.
+    pub fn parse_named(file: &str, stem: &str, text: &str) -> Result<Self, RobotFileError> {
+        let is_urdf = text.len() as u64 <= MAX_FILE_BYTES
+            && toml::from_str::<toml::Table>(text).is_ok_and(|t| t.contains_key("urdf"));
+        if !is_urdf {
+            return RobotSpec::parse_named(file, stem, text).map(RobotForm::Dh);
+        }
+        let spec: UrdfRobotSpec =
+            toml::from_str(text).map_err(|source| RobotFileError::Syntax {
+                file: file.to_string(),
+                source,
+            })?;
+        spec.validate(file, stem)?;
+        Ok(RobotForm::Urdf(spec))
+    }
+}
+
+impl UrdfRobotSpec {
+    /// Checks the fields that need no URDF (module documentation).
+    fn validate(&self, file: &str, stem: &str) -> Result<(), RobotFileError> {
+        if !is_slug(&self.name) {
+            return Err(RobotFileError::Name {
+                file: file.to_string(),
+                name: self.name.clone(),
+            });
+        }
+        if self.name != stem {
+            return Err(RobotFileError::NameNotStem {
+                file: file.to_string(),
+                name: self.name.clone(),
+                stem: stem.to_string(),
+            });
+        }
+        let finite = Finite { file };
+        finite.all("tool", &self.tool.unwrap_or_default())?;
+        finite.all(
+            "stated_pose",
+            self.stated_pose.as_deref().unwrap_or_default(),
+        )?;
+        finite.all(
+            "velocity_max",
+            self.velocity_max.as_deref().unwrap_or_default(),
+        )?;
+        Ok(())
+    }
+
+    /// The model name (a slug).
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// Where the numbers come from.
+    pub fn source(&self) -> &str {
+        &self.source
+    }
+
+    /// The URDF's path as written (relative to the robot file's directory).
+    pub fn urdf(&self) -> &str {
+        &self.urdf
+    }
+
+    /// The chain's base link.
+    pub fn base(&self) -> &str {
+        &self.base
+    }
+
+    /// The chain's tip link.
+    pub fn tip(&self) -> &str {
+        &self.tip
+    }
+
+    /// Reads the URDF next to the robot file `file` (through the `inputs` reader, inside
+    /// `file`'s directory) and builds the robot and its stated pose (zero if the file states
+    /// none).
+    pub fn build(&self, file: &std::path::Path) -> Result<(ChainRobot, Vec<f64>), RobotFileError> {
+        let shown = file.display().to_string();
+        let dir = file.parent().unwrap_or(std::path::Path::new("."));
+        let ends = ChainEnds {
+            base: &self.base,
+            tip: &self.tip,
+            tool: Vector3::from(self.tool.unwrap_or_default()),
+        };
+        let chain = crate::urdf::read(&dir.join(&self.urdf), inputs::Origin::Under(dir), &ends)
+            .map_err(|e| RobotFileError::Urdf {
+                file: shown.clone(),
+                source: Box::new(e),
+            })?;
+        let n = chain.dof();
+        let length = |field: &'static str, v: &[f64]| {
+            if v.len() == n {
+                Ok(())
+            } else {
+                Err(RobotFileError::JointVector {
+                    file: shown.clone(),
+                    field,
+                    given: v.len(),
+                    joints: n,
+                })
+            }
+        };
+        let mut robot = ChainRobot::new(&self.name, chain);
+        if let Some(v) = &self.velocity_max {
+            length("velocity_max", v)?;
+            if let Some((index, &value)) = v.iter().enumerate().find(|(_, &v)| v <= 0.0) {
+                return Err(RobotFileError::VelocityMax {
+                    file: shown,
+                    index,
+                    value,
+                });
+            }
+            robot = robot.with_velocity_max(v);
+        }
+        let pose = match &self.stated_pose {
+            Some(p) => {
+                length("stated_pose", p)?;
+                p.clone()
+            }
+            None => vec![0.0; n],
+        };
+        Ok((robot, pose))
     }
 }

@@ -5,6 +5,7 @@
 mod common;
 
 mod chain;
+mod chain_robot;
 mod data_robots;
 mod jaco2_dynamics;
 mod jaco2_kinematics;

@@ -103,3 +103,63 @@ fn arms_of_4_8_9_and_150_joints_run_from_files() {
     }
     std::fs::remove_dir_all(&root).unwrap();
 }
+
+/// A URDF arm, no rebuild: a handwritten six-joint URDF (`robots/tests/fixtures/arm6.urdf`,
+/// with inertials) and its robot file of the URDF form in a paper's `robots/` folder, run by an
+/// experiment file through the one path, the exact optimum in the loop: kong2019's ZNN
+/// (velocity level) and zhang2018's HL-JDF (acceleration level, the chain's H, c and g) on a
+/// circle; both runs complete and track the circle.
+#[test]
+fn a_urdf_arm_runs_from_files() {
+    let root = std::env::temp_dir().join(format!("driftbench-urdf-arm-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&root);
+    let robots = root.join("papers/urdfarm2026/robots");
+    let urdf = Path::new(env!("CARGO_MANIFEST_DIR")).join("../robots/tests/fixtures/arm6.urdf");
+    write(
+        &robots.join("arm6.urdf"),
+        &std::fs::read_to_string(urdf).unwrap(),
+    );
+    write(
+        &robots.join("sim-urdf-arm.toml"),
+        "name = \"sim-urdf-arm\"\nsource = \"handwritten test arm\"\nurdf = \"arm6.urdf\"\n\
+         base = \"base_link\"\ntip = \"tool0\"\ntool = [0.0, 0.0, 0.1]\n",
+    );
+    let toml =
+        experiment("sim-urdf-arm", 6, 2.0).replace(&pose(6), "[0.2, -0.6, 1.2, -0.8, 0.5, 0.3]");
+    let dynamic = toml
+        .replace("kong2019-any-arm", "zhang2018-any-arm")
+        .replace("ZNN (eq. 22)", "HL-JDF (zeta=0.6)")
+        .replace(
+            "{ kind = \"kong2019-znn\", mu = 1.0, k_p = 1.0 }",
+            "{ kind = \"hl-jdf\", zeta = 0.6, alpha = 20.0, beta = 20.0, rho_v = 20.0, rho_p = 20.0 }",
+        );
+    write(
+        &root.join("experiments/urdf-arm.toml"),
+        &format!("paper = \"kong2019\"\ntitle = \"a URDF arm\"\n{toml}"),
+    );
+    write(
+        &root.join("experiments/urdf-arm-dynamics.toml"),
+        &format!("paper = \"zhang2018\"\ntitle = \"a URDF arm, torques\"\n{dynamic}"),
+    );
+    catalog::robot_files::register_paper_robots(&root.join("papers"));
+    let model = robots::registry::robot_by_name("sim-urdf-arm").unwrap();
+    assert!(model.has_dynamics());
+    let files = load_dir(&root.join("experiments"), check_job).expect("the experiment loads");
+    let jobs: Vec<_> = files.iter().flat_map(|f| f.jobs()).collect();
+    assert_eq!(jobs.len(), 2);
+    for job in &jobs {
+        let record = run_job(job);
+        let Outcome::Completed(m) = &record.run.outcome else {
+            panic!("{}: {:?}", job.experiment, record.run.outcome);
+        };
+        assert_eq!(m.drift.len(), 6);
+        assert!(
+            m.max_position_error < 1e-6,
+            "{}: max position error {}",
+            job.experiment,
+            m.max_position_error
+        );
+        assert!(m.drift_norm.is_finite() && m.min_sigma_j > 0.0);
+    }
+    std::fs::remove_dir_all(&root).unwrap();
+}
