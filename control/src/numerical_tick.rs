@@ -9,7 +9,7 @@
 //!   tick against the certified reference instead), cold-started again and then handed to
 //!   Clarabel when that fails;
 //! - Clarabel ([`solvers::ExactSolver`]): an interior-point method, started afresh every tick;
-//! - OSQP ([`solvers::osqp_qp`]): data updated in place, warm-started.
+//! - OSQP (`solvers::osqp_qp`, with the `osqp` feature): data updated in place, warm-started.
 
 use crate::error::ControlError;
 use crate::tick::TickSolver;

@@ -5,7 +5,7 @@
 //!
 //! # The checks
 //!
-//! For every QP shape the schemes produce ([`QpShape::ALL`], [`crate::random_qp`]) and for
+//! For every QP shape the schemes produce ([`QpShape::ALL`], [`mod@crate::random_qp`]) and for
 //! random feasible QPs of mixed sizes ([`random_feasible`]), each against Clarabel
 //! ([`ExactSolver`], the reference of record):
 //!

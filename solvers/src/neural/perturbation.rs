@@ -1,5 +1,5 @@
 //! zhang2018's reference perturbation of the zeroing networks (eq. 3.1-3.2): the matrix term
-//! DeltaD(t) added to Qdot and the vector term Delta s(t) added to udot ([`super::cdnn`] says
+//! DeltaD(t) added to Qdot and the vector term Delta s(t) added to udot (`docs/networks.md` says
 //! where they enter; [`super::zeroing`] adds them).
 //!
 //! The paper only says "sine or cosine functions". We use the one of docs/experiments.md (from the
