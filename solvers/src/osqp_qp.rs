@@ -100,6 +100,11 @@ pub struct OsqpQp {
 }
 
 impl OsqpQp {
+    /// The sizes it was built for.
+    pub fn dims(&self) -> QpDims {
+        self.dims
+    }
+
     /// A solver for QPs of sizes `dims`; OSQP itself is set up at the first solve.
     pub fn new(dims: QpDims, settings: OsqpSettings) -> Self {
         let QpDims { nx, n_eq, n_in } = dims;

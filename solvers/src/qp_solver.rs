@@ -153,7 +153,20 @@ impl QpSolver for OsqpQp {
         SolverId::builtin("osqp")
     }
 
+    /// The QP is checked first (sizes, then [`Qp::validate`]): OSQP itself would answer a QP
+    /// with a NaN in q (found by the conformance kit).
     fn solve(&mut self, qp: &Qp) -> Result<QpSolve, QpSolverError> {
+        if qp.dims() != self.dims() {
+            return Err(QpSolverError::new(
+                QpStatus::InvalidInput,
+                DimensionsError {
+                    expected: self.dims(),
+                    found: qp.dims(),
+                },
+            ));
+        }
+        qp.validate()
+            .map_err(|e| QpSolverError::new(QpStatus::InvalidInput, e))?;
         Ok(QpSolve::solved(OsqpQp::solve(self, qp)?))
     }
 
