@@ -20,4 +20,4 @@ pub mod solver;
 
 pub use error::QpError;
 pub use problem::{KktResiduals, Qp, QpDims, QpDuals};
-pub use solver::{zero_duals, QpSolve, QpSolver, QpSolverError, QpStatus, SolverId};
+pub use solver::{QpSolve, QpSolver, QpSolverError, QpStatus, SolverId};

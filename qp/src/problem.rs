@@ -82,6 +82,18 @@ impl KktResiduals {
     }
 }
 
+impl QpDuals {
+    /// Zero multipliers sized for QPs of `dims`.
+    pub fn zeros(dims: QpDims) -> Self {
+        QpDuals {
+            lambda: DVector::zeros(dims.n_eq),
+            mu: DVector::zeros(dims.n_in),
+            z_lower: DVector::zeros(dims.nx),
+            z_upper: DVector::zeros(dims.nx),
+        }
+    }
+}
+
 impl Qp {
     /// A QP of the given sizes with all data zero and no bounds.
     pub fn zeros(dims: QpDims) -> Self {

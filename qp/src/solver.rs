@@ -8,7 +8,7 @@
 //! P x + q + A'lambda + G'mu - z_l + z_u = 0), and the KKT residuals of the pair
 //! [`QpSolver::kkt_residuals`].
 
-use crate::{KktResiduals, Qp, QpDims, QpDuals};
+use crate::{KktResiduals, Qp, QpDuals};
 use nalgebra::DVector;
 use std::borrow::Cow;
 use std::fmt;
@@ -167,15 +167,5 @@ pub trait QpSolver {
     fn kkt_residuals(&self, qp: &Qp, duals: &mut QpDuals) -> KktResiduals {
         self.duals(qp, duals);
         qp.kkt_residuals(&DVector::from_column_slice(self.x()), duals)
-    }
-}
-
-/// Zero multipliers sized for QPs of `dims`.
-pub fn zero_duals(dims: QpDims) -> QpDuals {
-    QpDuals {
-        lambda: DVector::zeros(dims.n_eq),
-        mu: DVector::zeros(dims.n_in),
-        z_lower: DVector::zeros(dims.nx),
-        z_upper: DVector::zeros(dims.nx),
     }
 }

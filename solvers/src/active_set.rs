@@ -356,15 +356,10 @@ pub struct ActiveSetSolution {
 impl ActiveSetSolution {
     /// An all-zero solution of the given sizes, to be filled by [`ActiveSetSolver::solve_into`].
     pub fn zeros(dims: QpDims) -> Self {
-        let QpDims { nx, n_eq, n_in } = dims;
+        let nx = dims.nx;
         Self {
             x: DVector::zeros(nx),
-            duals: QpDuals {
-                lambda: DVector::zeros(n_eq),
-                mu: DVector::zeros(n_in),
-                z_lower: DVector::zeros(nx),
-                z_upper: DVector::zeros(nx),
-            },
+            duals: QpDuals::zeros(dims),
             objective: 0.0,
             working_set: WorkingSet::with_capacity(nx),
             iterations: 0,

@@ -32,7 +32,7 @@
 
 use crate::exact::ExactSolver;
 use crate::random_qp::{random_feasible, random_qp, QpShape};
-use qp::{zero_duals, Qp, QpDims, QpSolver, QpStatus};
+use qp::{Qp, QpDims, QpDuals, QpSolver, QpStatus};
 use std::fmt;
 
 #[cfg(doc)]
@@ -250,7 +250,7 @@ fn judge(
                     spec.x_tolerance
                 ));
             }
-            let mut duals = zero_duals(qp.dims());
+            let mut duals = QpDuals::zeros(qp.dims());
             let kkt = solver.kkt_residuals(qp, &mut duals);
             if !(kkt.max() <= spec.kkt_tolerance) {
                 violation(format!(

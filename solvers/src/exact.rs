@@ -51,7 +51,7 @@ use clarabel::solver::{
 };
 use nalgebra::{DMatrix, DVector};
 use qp::QpError;
-use qp::{KktResiduals, Qp, QpDuals};
+use qp::{KktResiduals, Qp, QpDims, QpDuals};
 use std::fmt;
 
 /// Clarabel's gap and feasibility tolerances, tried in turn (see the module docs).
@@ -257,12 +257,11 @@ impl ExactSolver {
             settings,
             kkt_tol: DEFAULT_KKT_TOL,
             last_x: Vec::new(),
-            last_duals: QpDuals {
-                lambda: DVector::zeros(0),
-                mu: DVector::zeros(0),
-                z_lower: DVector::zeros(0),
-                z_upper: DVector::zeros(0),
-            },
+            last_duals: QpDuals::zeros(QpDims {
+                nx: 0,
+                n_eq: 0,
+                n_in: 0,
+            }),
         }
     }
 

@@ -96,12 +96,7 @@ impl ExactPath {
             has_warm: false,
             elimination: None,
             warm_reduced: false,
-            duals: QpDuals {
-                lambda: DVector::zeros(dims.n_eq),
-                mu: DVector::zeros(dims.n_in),
-                z_lower: DVector::zeros(dims.nx),
-                z_upper: DVector::zeros(dims.nx),
-            },
+            duals: QpDuals::zeros(dims),
             clarabel: ExactSolver::new(),
             x: DVector::zeros(dims.nx),
             stats: ExactPathStats::default(),

@@ -17,7 +17,7 @@ use crate::exact::{ExactError, ExactSolver};
 use crate::lvi_numerical::{LviError, LviSolver};
 #[cfg(feature = "osqp")]
 use crate::osqp_qp::{OsqpError, OsqpQp};
-use qp::{zero_duals, Qp, QpDims, QpDuals, QpSolve, QpSolver, QpSolverError, QpStatus, SolverId};
+use qp::{Qp, QpDims, QpDuals, QpSolve, QpSolver, QpSolverError, QpStatus, SolverId};
 
 /// Bound multipliers from the stationarity residual r = P x + q + A' lambda + G' mu: at a
 /// solution r + z_u - z_l = 0 with z_l, z_u >= 0 in the normal cone of the bounds, so
@@ -123,7 +123,7 @@ impl QpSolver for ExactSolver {
     fn reset(&mut self) {
         self.set_last(
             &[],
-            &zero_duals(QpDims {
+            &QpDuals::zeros(QpDims {
                 nx: 0,
                 n_eq: 0,
                 n_in: 0,
@@ -212,7 +212,7 @@ impl HotActiveSet {
             has_warm: false,
             clarabel: ExactSolver::new(),
             x: vec![0.0; dims.nx],
-            duals: zero_duals(dims),
+            duals: QpDuals::zeros(dims),
             dims,
         }
     }
