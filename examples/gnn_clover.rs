@@ -26,7 +26,7 @@ use nalgebra::{DMatrix, DVector};
 use qp::{Qp, QpDims};
 use robots::{Jaco2, Robot};
 use schemes::paths::{build_path, PathSpec};
-use schemes::tri_criteria::TriCriteria;
+use schemes::spec::{build_scheme, RmpReading, SchemeSpec};
 use settings::integrator::IntegratorSettings;
 use settings::solver_spec::SolverSpec;
 use simulation::run::build_network;
@@ -136,8 +136,17 @@ fn run() -> Vec<Line> {
         .expect("the clover is a known path"),
     );
     // jia2019's VLTCO (phi = 0.2, tau = 0.4, kappa = lambda = 20).
-    let scheme = TriCriteria::vltco(robot.clone(), path.clone(), &theta0, 0.2, 0.4, 20.0, 20.0);
-    let dims = schemes::scheme::Scheme::dims(&scheme);
+    let spec = SchemeSpec::Vltco {
+        phi: 0.2,
+        tau: 0.4,
+        kappa: 20.0,
+        lambda: 20.0,
+        rmp: RmpReading::Printed,
+        mu: 5.0,
+    };
+    let scheme = build_scheme(&spec, robot.clone(), None, path.clone(), &theta0)
+        .expect("jia2019's VLTCO with the paper's parameters");
+    let dims = scheme.dims();
     // The networks as the papers integrate them (BDF, RelTol 1e-6, AbsTol 1e-8, as ode15s);
     // the exact column as the suite does (Dormand-Prince, RelTol 1e-11: converged).
     let networks = Settings {
@@ -150,7 +159,7 @@ fn run() -> Vec<Line> {
         ..networks.clone()
     };
     let gnn = move || Ok(Box::new(Gnn::new(1e4, 1e3, dims)) as Box<dyn NeuralSolver>);
-    let scheme_name = schemes::scheme::Scheme::name(&scheme);
+    let scheme_name = scheme.name();
     let lvi = move || build_network(&SolverSpec::LviPdnn { gamma: 1e7 }, dims, &scheme_name);
     let solvers: [(&str, Solver); 3] = [
         ("exact (certified active set / Clarabel)", Solver::Exact),
@@ -171,7 +180,7 @@ fn run() -> Vec<Line> {
             let run = simulate(
                 robot.as_ref(),
                 path.as_ref(),
-                &scheme,
+                scheme.as_ref(),
                 solver,
                 &theta0,
                 &theta0,

@@ -24,7 +24,7 @@ use catalog::experiment::{default_exact_integrator, NetworkInit};
 use nalgebra::{DVector, Vector3};
 use robots::{JointLimits, Robot};
 use schemes::paths::{build_path, PathSpec};
-use schemes::velocity_rmp::VelocityRmp;
+use schemes::spec::{build_scheme, SchemeSpec};
 use settings::integrator::IntegratorSettings;
 use settings::solver_spec::SolverSpec;
 use simulation::run::build_network;
@@ -119,8 +119,10 @@ fn run() -> Vec<(String, f64, f64)> {
             .expect("the circle is a known path"),
     );
     // kong2019 eq. 22 with mu = 1, k_p = 1.
-    let scheme = VelocityRmp::znn(robot.clone(), path.clone(), &theta_star, 1.0, 1.0);
-    let dims = schemes::scheme::Scheme::dims(&scheme);
+    let spec = SchemeSpec::ZnnRmp { mu: 1.0, k_p: 1.0 };
+    let scheme = build_scheme(&spec, robot.clone(), None, path.clone(), &theta_star)
+        .expect("kong2019's ZNN scheme with valid gains");
+    let dims = scheme.dims();
     // The networks as the papers integrate them (BDF, RelTol 1e-6, AbsTol 1e-8, as ode15s);
     // the exact column as the suite does (Dormand-Prince, RelTol 1e-11: converged).
     let networks = Settings {
@@ -132,7 +134,7 @@ fn run() -> Vec<(String, f64, f64)> {
         integrator: default_exact_integrator(),
         ..networks.clone()
     };
-    let scheme_name = schemes::scheme::Scheme::name(&scheme);
+    let scheme_name = scheme.name();
     let znn = move || build_network(&SolverSpec::Znn { gamma: 1.0 }, dims, &scheme_name);
     [
         ("exact", Solver::Exact),
@@ -148,7 +150,7 @@ fn run() -> Vec<(String, f64, f64)> {
         let run = simulate(
             robot.as_ref(),
             path.as_ref(),
-            &scheme,
+            scheme.as_ref(),
             solver,
             &theta_star,
             &theta_star,

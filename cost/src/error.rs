@@ -1,6 +1,7 @@
 //! Why a case could not be prepared for timing.
 
 use schemes::paths::PathError;
+use schemes::spec::SchemeError;
 use settings::error::NetworkError;
 use simulation::error::RunError;
 
@@ -11,6 +12,8 @@ pub enum CostError {
     NotRegistered(usize),
     #[error("{label}: {error}")]
     Path { label: String, error: PathError },
+    #[error("{label}: {error}")]
+    Scheme { label: String, error: SchemeError },
     #[error("{label}: {error}")]
     Network { label: String, error: NetworkError },
     #[error("{label}: the exact run does not start: {error}")]

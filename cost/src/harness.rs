@@ -28,8 +28,7 @@ use robots::registry::{nlink_name, robot_by_name};
 use robots::Robot;
 use schemes::paths::{build_path, Path};
 use schemes::scheme::Scheme;
-use schemes::tri_criteria::TriCriteria;
-use schemes::velocity_rmp::VelocityRmp;
+use schemes::spec::{build_scheme, RmpReading, SchemeSpec};
 use settings::integrator::IntegratorSettings;
 use settings::solver_spec::SolverSpec;
 use simulation::simulate::{simulate, Outcome, Run, Settings, Solver};
@@ -89,24 +88,27 @@ impl Prepared {
                 }
             })?,
         );
-        let scheme: Box<dyn Scheme> = match case.scheme {
-            SchemeKind::Vltco => Box::new(TriCriteria::vltco(
-                robot.clone(),
-                path.clone(),
-                &theta0,
-                0.2,
-                0.4,
-                20.0,
-                20.0,
-            )),
-            SchemeKind::ZnnRmp => Box::new(VelocityRmp::znn(
-                robot.clone(),
-                path.clone(),
-                &theta0,
-                KONG2019_MU,
-                KONG2019_KP,
-            )),
+        let spec = match case.scheme {
+            SchemeKind::Vltco => SchemeSpec::Vltco {
+                phi: 0.2,
+                tau: 0.4,
+                kappa: 20.0,
+                lambda: 20.0,
+                rmp: RmpReading::Printed,
+                mu: 5.0,
+            },
+            SchemeKind::ZnnRmp => SchemeSpec::ZnnRmp {
+                mu: KONG2019_MU,
+                k_p: KONG2019_KP,
+            },
         };
+        let scheme: Box<dyn Scheme> =
+            build_scheme(&spec, robot.clone(), None, path.clone(), &theta0).map_err(|error| {
+                CostError::Scheme {
+                    label: label.clone(),
+                    error,
+                }
+            })?;
 
         // The states: evenly spread trace points of one exact run.
         let run = simulate(

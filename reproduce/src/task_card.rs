@@ -281,6 +281,11 @@ fn scheme_section(job: &Job, n: &TaskNumbers) -> Result<String, TaskCardError> {
     );
     let _ = writeln!(
         s,
+        "Its terms, in the order they write the QP (`schemes/src/terms/`):\n\n```text\n{}\n```\n",
+        n.terms.join("\n")
+    );
+    let _ = writeln!(
+        s,
         "The QP `min x'Px/2 + q'x  s.t.  A x = b,  G x <= h,  lower <= x <= upper` at t = 0, \
          theta = theta0{}:\n\n```text\n{}```",
         if n.level == Level::Acceleration {
@@ -413,51 +418,11 @@ fn formula(spec: &SchemeSpec) -> String {
              A = J,  b = rdot* + k_p (r* - f(theta))\n\
              no inequalities, no bounds\n"
         }
-        SchemeSpec::VelocityRmp {
-            weight,
-            repetitive,
-            lambda,
-            alpha,
-            k_p,
-            upsilon,
-        } => return composed_formula(*weight, *repetitive, *lambda, *alpha, *k_p, *upsilon),
+        SchemeSpec::VelocityRmp { .. } | SchemeSpec::Composed(_) => {
+            "its terms, below (docs/schemes.md)\n"
+        }
     };
     fixed.to_string()
-}
-
-/// The QP of the vocabulary's composed scheme (docs/schemes.md), term by term.
-fn composed_formula(
-    weight: f64,
-    repetitive: schemes::spec::RepetitiveForm,
-    lambda: f64,
-    alpha: Option<f64>,
-    k_p: f64,
-    upsilon: Option<f64>,
-) -> String {
-    let q = match (repetitive, alpha) {
-        (schemes::spec::RepetitiveForm::SignPower, Some(a)) => format!(
-            "q = {lambda} c,  c_i = |e_i|^{a} sgn(e_i),  e = theta - theta_ref   (repetitive, sign-power)"
-        ),
-        _ if lambda == 0.0 => "q = 0   (no repetitive term: lambda = 0)".to_string(),
-        _ => format!("q = {lambda} (theta - theta_ref)   (repetitive, linear)"),
-    };
-    let b = if k_p == 0.0 {
-        "b = rdot*".to_string()
-    } else {
-        format!("b = rdot* + {k_p} (r* - f(theta))")
-    };
-    let bounds = match upsilon {
-        Some(u) => format!(
-            "lower_i = max{{thetadot-_i, {u} (theta-_i - theta_i)}},  upper_i = min{{thetadot+_i, {u} (theta+_i - theta_i)}}   (bound conversion, robio2018 (10))"
-        ),
-        None => "no bounds".to_string(),
-    };
-    format!(
-        "velocity-rmp (docs/schemes.md), x = thetadot in R^n:\n\
-         P = {weight} I   (velocity norm)\n{q}\n\
-         A = J,  {b}   (tracking)\n\
-         no inequalities;  {bounds}\n"
-    )
 }
 
 /// The QP's numbers, one block per non-empty part.

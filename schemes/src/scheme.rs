@@ -22,8 +22,10 @@ use qp::{Qp, QpDims};
 
 use qp::dot::{difference_quotient, QpDotScratch, FD_STEP};
 
-/// Whether the scheme resolves redundancy at the velocity or the acceleration level.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// Whether the scheme resolves redundancy at the velocity or the acceleration level (in a
+/// file: `velocity`, `acceleration`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Level {
     /// x[..n] = thetadot; the arm state is theta.
     Velocity,
@@ -77,6 +79,12 @@ pub trait Scheme: Send + Sync {
         _tau: &mut [f64],
     ) -> bool {
         false
+    }
+
+    /// The scheme's QP term by term, one line per term (what it adds and where), for task
+    /// cards; empty for a scheme that is not composed of terms.
+    fn terms(&self) -> Vec<String> {
+        Vec::new()
     }
 
     /// A zero QP of this scheme's sizes (allocate once per run, then `build` into it).

@@ -15,14 +15,15 @@
 //! alpha, beta, rho_v, rho_p), kong2019 finite time (beta_theta, k_p, alpha), kong2019 ZNN (mu,
 //! k_p). Unknown fields are rejected.
 //!
-//! `velocity-rmp` composes the velocity-level scheme from the vocabulary's terms
-//! ([`crate::velocity_rmp`], docs/schemes.md): `weight` (w of the velocity norm, default 1),
+//! Every kind is a preset: it expands to a list of terms ([`SchemeSpec::expand`],
+//! [`crate::terms`]) and every scheme is the one composed scheme ([`crate::composed`]);
+//! `kind = "composed"` lists the terms itself ([`ComposedSpec`], [`crate::terms::spec`]).
+//!
+//! `velocity-rmp` is the velocity-level template (docs/schemes.md): `weight` (w of the velocity norm, default 1),
 //! `repetitive = "linear"` (default; g = lambda (theta - theta_ref)) or `"sign-power"` (g =
 //! lambda |e|^alpha sgn(e), with `alpha`), `lambda` (>= 0; 0 drops the term), `k_p` (tracking
 //! feedback, default 0) and `upsilon` (the bound conversion of the joint limits, robio2018 (10);
-//! absent: no bounds). kong2019's two schemes are presets of it; jia2019's and zhong2021's are
-//! the two presets of the tri-criteria scheme ([`crate::tri_criteria`]); zhang2018's HL-JDF
-//! stays a scheme of its own ([`SchemeSpec::HlJdf`] says why). Kinds are named for what they
+//! absent: no bounds). Kinds are named for what they
 //! are; the papers' names are accepted as aliases: `jia2019` (= `vltco`), `zhong2021`
 //! (`cmco`), `zhang2018` (`hl-jdf`), `kong2019-finite-time` (`finite-time-rmp`),
 //! `kong2019-znn` (`znn-rmp`).
@@ -41,12 +42,11 @@ use std::sync::Arc;
 use robots::{Dynamics, Robot};
 use serde::{Deserialize, Serialize};
 
+use crate::composed::BoundPlacement;
 use crate::paths::Path;
 pub use crate::rmp::RmpReading;
-use crate::scheme::Scheme;
-use crate::tri_criteria::TriCriteria;
-use crate::velocity_rmp::{Repetitive, VelocityRmp, SMOOTHING};
-use crate::zhang2018::Zhang2018;
+use crate::scheme::{Level, Scheme};
+pub use crate::terms::spec::{ComposedSpec, TermSpec};
 
 fn default_zhong_lambda() -> f64 {
     20.0
@@ -74,8 +74,9 @@ fn is_default_zhong_tau(tau: &f64) -> bool {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum SchemeSpec {
-    /// The tri-criteria preset of jia2019 (2.17)-(2.20) ([`TriCriteria::vltco`]): MVN
-    /// (phi = 1, tau = 0), MVN-INVM (0.2, 0), VLTCO (0.2, 0.4). Alias `jia2019`.
+    /// jia2019 (2.17)-(2.20): MVN (phi = 1, tau = 0), MVN-INVM (0.2, 0), VLTCO (0.2, 0.4).
+    /// Expands to velocity-norm (phi), repetitive (squared, weight tau), tracking,
+    /// infinity-norm (1 - phi - tau) and bound-conversion (kappa). Alias `jia2019`.
     #[serde(alias = "jia2019")]
     Vltco {
         /// Weight phi of the velocity norm (the tri-criteria w_v), jia2019 (2.17); >= 0, with
@@ -97,8 +98,8 @@ pub enum SchemeSpec {
         #[serde(default = "default_jia_mu", skip_serializing_if = "is_default_jia_mu")]
         mu: f64,
     },
-    /// The tri-criteria preset of zhong2021 (2.16)-(2.18) ([`TriCriteria::cmco`]): every
-    /// inequality as rows of G. Alias `zhong2021`.
+    /// zhong2021 (2.16)-(2.18): jia2019's terms with eta, delta, upsilon, and every bound as
+    /// rows of G (`bounds = "rows"`). Alias `zhong2021`.
     #[serde(alias = "zhong2021")]
     Cmco {
         /// Weight eta of the velocity norm (the tri-criteria w_v), zhong2021 (2.16); >= 0, with
@@ -125,11 +126,9 @@ pub enum SchemeSpec {
         )]
         tau: f64,
     },
-    /// zhang2018 (2.5)-(2.6), HL-JDF (MTN when zeta = 0). It stays a scheme of its own in Rust
-    /// ([`Zhang2018`]): an acceleration-level QP whose objective is a torque-weighted
-    /// combination through the inertia matrix H(theta) of a dynamics model, with the equality
-    /// J thetaddot = b only (no inequalities, no bounds), none of which the velocity-level
-    /// vocabulary says. Alias `zhang2018`.
+    /// zhang2018 (2.5)-(2.6), HL-JDF (MTN when zeta = 0): acceleration level, expands to
+    /// acceleration-norm (zeta), drift-damping (zeta, alpha, beta), torque-norm (1 - zeta) and
+    /// tracking (rho_v, rho_p). Alias `zhang2018`.
     #[serde(alias = "zhang2018")]
     HlJdf {
         /// Weight zeta in [0, 1] of the velocity criterion against the torque criterion,
@@ -145,8 +144,8 @@ pub enum SchemeSpec {
         /// Position feedback gain rho_p (> 0) of b's rho_p (r* - f(theta)), zhang2018 (2.6).
         rho_p: f64,
     },
-    /// kong2019 (14), the finite-time repeatable scheme (a preset of
-    /// [`SchemeSpec::VelocityRmp`]). Alias `kong2019-finite-time`.
+    /// kong2019 (14), the finite-time repeatable scheme: velocity-norm, sign-power repetitive
+    /// term, tracking with k_p. Alias `kong2019-finite-time`.
     #[serde(alias = "kong2019-finite-time")]
     FiniteTimeRmp {
         /// Gain beta_theta (> 0) of the sign-power repetitive term
@@ -157,8 +156,8 @@ pub enum SchemeSpec {
         /// Exponent alpha of the sign-power term (> 0; the paper takes 0 < alpha < 1).
         alpha: f64,
     },
-    /// kong2019 (22), the ZNN repetitive baseline (a preset of [`SchemeSpec::VelocityRmp`]).
-    /// Alias `kong2019-znn`.
+    /// kong2019 (22), the ZNN repetitive baseline: velocity-norm, linear repetitive term
+    /// (lambda = mu), tracking with k_p. Alias `kong2019-znn`.
     #[serde(alias = "kong2019-znn")]
     ZnnRmp {
         /// Gain mu of the linear repetitive term mu (theta - theta_ref), kong2019 (22) (>= 0;
@@ -167,7 +166,8 @@ pub enum SchemeSpec {
         /// Position feedback gain k_p of b = rdot* + k_p (r* - f(theta)) (>= 0; 0: none).
         k_p: f64,
     },
-    /// The velocity-level scheme composed from the vocabulary ([`crate::velocity_rmp`]).
+    /// The velocity-level template: velocity-norm (weight), repetitive (lambda), tracking
+    /// (k_p) and bound-conversion (upsilon) when given; robio2018's RMP (11)-(13).
     VelocityRmp {
         /// Weight w of the velocity norm (P = w I).
         #[serde(default = "one", skip_serializing_if = "is_one")]
@@ -187,9 +187,11 @@ pub enum SchemeSpec {
         #[serde(default, skip_serializing_if = "Option::is_none")]
         upsilon: Option<f64>,
     },
+    /// A scheme of its own terms ([`ComposedSpec`]).
+    Composed(ComposedSpec),
 }
 
-/// The form of the vocabulary's repetitive term ([`Repetitive`]).
+/// The form of the repetitive term ([`crate::terms::repetitive`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum RepetitiveForm {
@@ -201,7 +203,7 @@ pub enum RepetitiveForm {
 }
 
 impl RepetitiveForm {
-    fn is_linear(&self) -> bool {
+    pub(crate) fn is_linear(&self) -> bool {
         *self == RepetitiveForm::Linear
     }
 }
@@ -223,13 +225,13 @@ fn is_zero(v: &f64) -> bool {
 pub enum SchemeError {
     /// The scheme needs rigid-body dynamics and none was given.
     MissingDynamics {
-        /// The scheme's `kind` tag.
-        scheme: &'static str,
+        /// The scheme's name.
+        scheme: String,
     },
     /// The dynamics model is not the kinematic robot.
     RobotMismatch {
-        /// The scheme's `kind` tag.
-        scheme: &'static str,
+        /// The scheme's name.
+        scheme: String,
         /// The kinematic robot's model name.
         robot: String,
         /// The dynamics model's name.
@@ -245,6 +247,49 @@ pub enum SchemeError {
         value: f64,
         /// The range it must be in, as text.
         requirement: &'static str,
+    },
+    /// A term's parameter is out of its range (`kind = "composed"`).
+    InvalidTerm {
+        /// The term's place in `terms` (from 0).
+        index: usize,
+        /// The term's `kind` tag.
+        term: &'static str,
+        /// The parameter, by its field name.
+        field: &'static str,
+        /// The value given (NaN when a required parameter is absent).
+        value: f64,
+        /// The range it must be in, as text.
+        requirement: &'static str,
+    },
+    /// A term of the other level.
+    TermLevel {
+        /// The term's place in `terms`.
+        index: usize,
+        /// The term's `kind` tag.
+        term: &'static str,
+        /// The scheme's level.
+        level: &'static str,
+    },
+    /// A tracking term's `axes` are invalid.
+    InvalidAxes {
+        /// The term's place in `terms`.
+        index: usize,
+        /// What they must be.
+        requirement: &'static str,
+    },
+    /// A composed scheme without terms.
+    NoTerms,
+    /// A composed scheme's display name is empty, too long or has other characters.
+    InvalidName {
+        /// The longest name.
+        max: usize,
+    },
+    /// The joint reference has not one entry per joint.
+    ReferenceLength {
+        /// The robot's joint count.
+        joints: usize,
+        /// The reference's length.
+        given: usize,
     },
 }
 
@@ -271,6 +316,42 @@ impl fmt::Display for SchemeError {
             } => write!(
                 f,
                 "scheme {scheme}: parameter '{field}' = {value} is invalid (must be {requirement})"
+            ),
+            SchemeError::InvalidTerm {
+                index,
+                term,
+                field,
+                value,
+                requirement,
+            } => write!(
+                f,
+                "scheme composed: terms[{index}] ({term}): parameter '{field}' = {value} is invalid \
+                 (must be {requirement})"
+            ),
+            SchemeError::TermLevel { index, term, level } => write!(
+                f,
+                "scheme composed: terms[{index}] ({term}) is not a term of the {level} level \
+                 (velocity: velocity-norm, repetitive, infinity-norm, tracking, bound-conversion, \
+                 velocity-limits; acceleration: acceleration-norm, drift-damping, torque-norm, \
+                 tracking)"
+            ),
+            SchemeError::InvalidAxes { index, requirement } => write!(
+                f,
+                "scheme composed: terms[{index}] (tracking): field 'axes' is invalid (must be \
+                 {requirement})"
+            ),
+            SchemeError::NoTerms => write!(
+                f,
+                "scheme composed: field 'terms' is empty (list at least one [[scheme.terms]])"
+            ),
+            SchemeError::InvalidName { max } => write!(
+                f,
+                "scheme composed: field 'name' is invalid (must be 1 to {max} characters of \
+                 letters, digits, space and -_.()=+)"
+            ),
+            SchemeError::ReferenceLength { joints, given } => write!(
+                f,
+                "scheme: the joint reference has {given} entries, the robot {joints} joints"
             ),
         }
     }
@@ -301,14 +382,14 @@ fn check(
 pub const VLTCO_KIND: &str = "vltco";
 /// The `kind` tag of kong2019's ZNN preset ([`SchemeSpec::ZnnRmp`]).
 pub const ZNN_RMP_KIND: &str = "znn-rmp";
-/// The `kind` tag of the vocabulary's composed scheme ([`SchemeSpec::VelocityRmp`]).
+/// The `kind` tag of the velocity-level template ([`SchemeSpec::VelocityRmp`]).
 pub const VELOCITY_RMP_KIND: &str = "velocity-rmp";
 
 impl SchemeSpec {
-    /// Whether the scheme reads kinematics and limits from a dynamics model (zhang2018's
-    /// acceleration-level HL-JDF).
+    /// Whether the scheme reads kinematics and limits from a dynamics model (a torque-norm
+    /// term: zhang2018's HL-JDF).
     pub fn needs_dynamics(&self) -> bool {
-        matches!(self, SchemeSpec::HlJdf { .. })
+        self.expand().needs_dynamics()
     }
 
     /// The spec's `kind` tag.
@@ -320,6 +401,7 @@ impl SchemeSpec {
             SchemeSpec::FiniteTimeRmp { .. } => "finite-time-rmp",
             SchemeSpec::ZnnRmp { .. } => ZNN_RMP_KIND,
             SchemeSpec::VelocityRmp { .. } => VELOCITY_RMP_KIND,
+            SchemeSpec::Composed(_) => "composed",
         }
     }
 
@@ -338,10 +420,7 @@ impl SchemeSpec {
                     RmpReading::Expansion => ", rmp=expansion".to_string(),
                     RmpReading::TextGain => format!(", rmp=text-mu, mu={mu}"),
                 };
-                format!(
-                    "{} (phi={phi}, tau={tau}{reading})",
-                    TriCriteria::vltco_name(phi, tau)
-                )
+                format!("{} (phi={phi}, tau={tau}{reading})", vltco_name(phi, tau))
             }
             SchemeSpec::Cmco {
                 eta,
@@ -358,7 +437,7 @@ impl SchemeSpec {
                 format!("CMCO (eta={eta}, delta={delta}{reading})")
             }
             SchemeSpec::HlJdf { zeta, .. } => {
-                format!("{} (zeta={zeta})", Zhang2018::scheme_name(zeta))
+                format!("{} (zeta={zeta})", hl_jdf_name(zeta))
             }
             SchemeSpec::FiniteTimeRmp {
                 beta_theta, alpha, ..
@@ -389,6 +468,7 @@ impl SchemeSpec {
                 }
                 format!("RMP ({})", parts.join(", "))
             }
+            SchemeSpec::Composed(ref c) => c.display_name(),
         }
     }
 
@@ -459,6 +539,7 @@ impl SchemeSpec {
                 k_p,
                 upsilon,
             } => check_velocity_rmp(s, weight, repetitive, lambda, alpha, k_p, upsilon),
+            SchemeSpec::Composed(ref c) => c.validate(),
         }
     }
 }
@@ -598,12 +679,204 @@ fn check_position_gain(s: &'static str, k_p: f64) -> Result<(), SchemeError> {
     )
 }
 
-/// Builds the scheme a spec names, on `robot` following `path`.
+/// jia2019's name for the weights: MVN (phi = 1, tau = 0), MVN-INVM (tau = 0), otherwise
+/// VLTCO.
+pub fn vltco_name(phi: f64, tau: f64) -> &'static str {
+    if tau == 0.0 && phi == 1.0 {
+        "MVN"
+    } else if tau == 0.0 {
+        "MVN-INVM"
+    } else {
+        "VLTCO"
+    }
+}
+
+/// zhang2018's name: MTN for zeta = 0, HL-JDF otherwise.
+pub fn hl_jdf_name(zeta: f64) -> &'static str {
+    if zeta == 0.0 {
+        "MTN"
+    } else {
+        "HL-JDF"
+    }
+}
+
+/// The tri-criteria terms of jia2019 (2.17)-(2.20) and zhong2021 (2.16)-(2.18): velocity norm
+/// (w_v), squared repetitive term (w_r, coefficient k), tracking without feedback, infinity
+/// norm (1 - w_v - w_r) and the bound conversion (gain).
+fn tri_criteria(w_v: f64, w_r: f64, k: f64, gain: f64, bounds: BoundPlacement) -> ComposedSpec {
+    ComposedSpec {
+        level: Level::Velocity,
+        bounds,
+        name: None,
+        terms: vec![
+            TermSpec::VelocityNorm { weight: w_v },
+            TermSpec::Repetitive {
+                form: RepetitiveForm::Linear,
+                lambda: k,
+                alpha: None,
+                weight: w_r,
+                squared: true,
+            },
+            tracking(0.0),
+            TermSpec::InfinityNorm {
+                weight: 1.0 - w_v - w_r,
+                varpi: f64::INFINITY,
+            },
+            TermSpec::BoundConversion { gain },
+        ],
+    }
+}
+
+/// The velocity-level tracking term on the 3-D position with gain k_p.
+fn tracking(k_p: f64) -> TermSpec {
+    TermSpec::Tracking {
+        task: None,
+        axes: None,
+        k_p: Some(k_p),
+        rho_v: None,
+        rho_p: None,
+    }
+}
+
+/// The velocity-level template: velocity norm, repetitive term, tracking, bound conversion.
+fn velocity_template(
+    weight: f64,
+    form: RepetitiveForm,
+    lambda: f64,
+    alpha: Option<f64>,
+    k_p: f64,
+    upsilon: Option<f64>,
+) -> ComposedSpec {
+    let mut terms = vec![
+        TermSpec::VelocityNorm { weight },
+        TermSpec::Repetitive {
+            form,
+            lambda,
+            alpha,
+            weight: 1.0,
+            squared: false,
+        },
+        tracking(k_p),
+    ];
+    if let Some(gain) = upsilon {
+        terms.push(TermSpec::BoundConversion { gain });
+    }
+    ComposedSpec {
+        level: Level::Velocity,
+        bounds: BoundPlacement::Variables,
+        name: None,
+        terms,
+    }
+}
+
+impl SchemeSpec {
+    /// The term list a spec stands for (presets expand; `composed` is its own list).
+    pub fn expand(&self) -> ComposedSpec {
+        match *self {
+            SchemeSpec::Vltco {
+                phi,
+                tau,
+                kappa,
+                lambda,
+                rmp,
+                mu,
+            } => tri_criteria(
+                phi,
+                tau,
+                rmp.coefficient(lambda, mu),
+                kappa,
+                BoundPlacement::Variables,
+            ),
+            SchemeSpec::Cmco {
+                eta,
+                delta,
+                upsilon,
+                lambda,
+                rmp,
+                tau,
+            } => tri_criteria(
+                eta,
+                delta,
+                rmp.coefficient(lambda, tau),
+                upsilon,
+                BoundPlacement::Rows,
+            ),
+            SchemeSpec::HlJdf {
+                zeta,
+                alpha,
+                beta,
+                rho_v,
+                rho_p,
+            } => ComposedSpec {
+                level: Level::Acceleration,
+                bounds: BoundPlacement::Variables,
+                name: None,
+                terms: vec![
+                    TermSpec::AccelerationNorm { weight: zeta },
+                    TermSpec::DriftDamping {
+                        alpha,
+                        beta,
+                        weight: zeta,
+                    },
+                    TermSpec::TorqueNorm { weight: 1.0 - zeta },
+                    TermSpec::Tracking {
+                        task: None,
+                        axes: None,
+                        k_p: None,
+                        rho_v: Some(rho_v),
+                        rho_p: Some(rho_p),
+                    },
+                ],
+            },
+            SchemeSpec::FiniteTimeRmp {
+                beta_theta,
+                k_p,
+                alpha,
+            } => velocity_template(
+                1.0,
+                RepetitiveForm::SignPower,
+                beta_theta,
+                Some(alpha),
+                k_p,
+                None,
+            ),
+            SchemeSpec::ZnnRmp { mu, k_p } => {
+                velocity_template(1.0, RepetitiveForm::Linear, mu, None, k_p, None)
+            }
+            SchemeSpec::VelocityRmp {
+                weight,
+                repetitive,
+                lambda,
+                alpha,
+                k_p,
+                upsilon,
+            } => velocity_template(weight, repetitive, lambda, alpha, k_p, upsilon),
+            SchemeSpec::Composed(ref c) => c.clone(),
+        }
+    }
+
+    /// The scheme's short name as its paper writes it (`VLTCO`, `CMCO`, `MTN`, `HL-JDF`,
+    /// `finite-time`, `ZNN`, `RMP`; a composed scheme's own name).
+    pub fn scheme_name(&self) -> String {
+        match *self {
+            SchemeSpec::Vltco { phi, tau, .. } => vltco_name(phi, tau).to_string(),
+            SchemeSpec::Cmco { .. } => "CMCO".to_string(),
+            SchemeSpec::HlJdf { zeta, .. } => hl_jdf_name(zeta).to_string(),
+            SchemeSpec::FiniteTimeRmp { .. } => "finite-time".to_string(),
+            SchemeSpec::ZnnRmp { .. } => "ZNN".to_string(),
+            SchemeSpec::VelocityRmp { .. } => "RMP".to_string(),
+            SchemeSpec::Composed(ref c) => c.display_name(),
+        }
+    }
+}
+
+/// Builds the scheme a spec names, on `robot` following `path`: the composed scheme of its
+/// terms ([`SchemeSpec::expand`]).
 ///
 /// `theta_ref` is the scheme's joint reference: theta0 (the run's initial joint vector) for
 /// jia2019, zhong2021 and zhang2018; theta*0 (the desired initial joint vector) for kong2019.
-/// zhang2018 needs `dynamics` (and takes its kinematics from it; it must model the same robot,
-/// checked by name); the other schemes ignore it.
+/// A scheme with a torque term (zhang2018) needs `dynamics` (and takes its kinematics from it;
+/// it must model the same robot, checked by name); the others ignore it.
 pub fn build_scheme(
     spec: &SchemeSpec,
     robot: Arc<dyn Robot>,
@@ -612,76 +885,8 @@ pub fn build_scheme(
     theta_ref: &[f64],
 ) -> Result<Box<dyn Scheme>, SchemeError> {
     spec.validate()?;
-    Ok(match *spec {
-        SchemeSpec::Vltco {
-            phi,
-            tau,
-            kappa,
-            lambda,
-            rmp,
-            mu,
-        } => Box::new(
-            TriCriteria::vltco(robot, path, theta_ref, phi, tau, kappa, lambda).with_rmp(rmp, mu),
-        ),
-        SchemeSpec::Cmco {
-            eta,
-            delta,
-            upsilon,
-            lambda,
-            rmp,
-            tau,
-        } => Box::new(
-            TriCriteria::cmco(robot, path, theta_ref, eta, delta, upsilon, lambda)
-                .with_rmp(rmp, tau),
-        ),
-        SchemeSpec::HlJdf {
-            zeta,
-            alpha,
-            beta,
-            rho_v,
-            rho_p,
-        } => {
-            let dynamics = dynamics.ok_or(SchemeError::MissingDynamics { scheme: "hl-jdf" })?;
-            if dynamics.name() != robot.name() {
-                return Err(SchemeError::RobotMismatch {
-                    scheme: "hl-jdf",
-                    robot: robot.name().to_string(),
-                    dynamics: dynamics.name().to_string(),
-                });
-            }
-            Box::new(Zhang2018::new(
-                dynamics, path, theta_ref, zeta, alpha, beta, rho_v, rho_p,
-            ))
-        }
-        SchemeSpec::FiniteTimeRmp {
-            beta_theta,
-            k_p,
-            alpha,
-        } => Box::new(VelocityRmp::finite_time(
-            robot, path, theta_ref, beta_theta, alpha, k_p,
-        )),
-        SchemeSpec::ZnnRmp { mu, k_p } => {
-            Box::new(VelocityRmp::znn(robot, path, theta_ref, mu, k_p))
-        }
-        SchemeSpec::VelocityRmp {
-            weight,
-            repetitive,
-            lambda,
-            alpha,
-            k_p,
-            upsilon,
-        } => {
-            let term = match repetitive {
-                RepetitiveForm::Linear => Repetitive::Linear { lambda },
-                RepetitiveForm::SignPower => Repetitive::SignPower {
-                    beta: lambda,
-                    alpha: alpha.unwrap_or(1.0),
-                    smoothing: SMOOTHING,
-                },
-            };
-            Box::new(VelocityRmp::new(
-                robot, path, theta_ref, weight, term, k_p, upsilon, "RMP",
-            ))
-        }
-    })
+    let scheme = spec
+        .expand()
+        .build(spec.scheme_name(), robot, dynamics, path, theta_ref)?;
+    Ok(Box::new(scheme))
 }

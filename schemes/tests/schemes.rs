@@ -12,13 +12,10 @@ use nalgebra::{DMatrix, SVector, Vector3};
 use qp::dot::{self, QpDotScratch};
 use qp::{Qp, QpDims};
 use robots::{Dynamics, JointLimits, Robot};
-use schemes::joint_limits::{merged_bounds, piecewise_bounds};
+use schemes::joint_limits::{merged_bound, piecewise_bound};
 use schemes::paths::Path;
 use schemes::scheme::{central_difference, default_step, Level, Scheme};
-use schemes::spec::{build_scheme, RmpReading, SchemeError, SchemeSpec};
-use schemes::tri_criteria::TriCriteria;
-use schemes::velocity_rmp::VelocityRmp;
-use schemes::zhang2018::Zhang2018;
+use schemes::spec::{build_scheme, hl_jdf_name, vltco_name, RmpReading, SchemeError, SchemeSpec};
 
 const N: usize = 6;
 type V = SVector<f64, N>;
@@ -180,7 +177,7 @@ fn qp_shapes_per_scheme() {
 fn jia2019_objective_data() {
     let (th, thd, _) = state();
     for (phi, tau) in [(1.0, 0.0), (0.2, 0.0), (0.2, 0.4)] {
-        let s = TriCriteria::vltco(robot(), path(), theta0().as_slice(), phi, tau, 20.0, 20.0);
+        let s = make(&vltco(phi, tau));
         let mut qp = s.new_qp();
         // At theta = theta0 the joint part of q vanishes.
         s.build(0.7, theta0().as_slice(), thd.as_slice(), &mut qp);
@@ -204,15 +201,22 @@ fn jia2019_objective_data() {
             nalgebra::DVector::from_column_slice(path().at(0.7).rdot.as_slice())
         );
     }
-    assert_eq!(TriCriteria::vltco_name(1.0, 0.0), "MVN");
-    assert_eq!(TriCriteria::vltco_name(0.2, 0.0), "MVN-INVM");
-    assert_eq!(TriCriteria::vltco_name(0.2, 0.4), "VLTCO");
+    assert_eq!(vltco_name(1.0, 0.0), "MVN");
+    assert_eq!(vltco_name(0.2, 0.0), "MVN-INVM");
+    assert_eq!(vltco_name(0.2, 0.4), "VLTCO");
 }
 
 #[test]
 fn merged_bounds_tighten_near_joint_limits() {
-    let s = TriCriteria::vltco(robot(), path(), theta0().as_slice(), 0.2, 0.4, 20.0, 20.0);
-    let z = TriCriteria::cmco(robot(), path(), theta0().as_slice(), 0.2, 0.4, 20.0, 20.0);
+    let s = make(&vltco(0.2, 0.4));
+    let z = make(&SchemeSpec::Cmco {
+        eta: 0.2,
+        delta: 0.4,
+        upsilon: 20.0,
+        lambda: 20.0,
+        rmp: RmpReading::Printed,
+        tau: 10.0,
+    });
     let lim = planar().limits().clone();
     let mut qp = s.new_qp();
     let mut zqp = z.new_qp();
@@ -271,20 +275,10 @@ fn piecewise_bounds_equal_max_min_form() {
         for gain in [20.0, 2.0, 100.0] {
             let (mut lo, mut hi, mut plo, mut phi) =
                 (V::zeros(), V::zeros(), V::zeros(), V::zeros());
-            merged_bounds(
-                &lim,
-                th.as_slice(),
-                gain,
-                lo.as_mut_slice(),
-                hi.as_mut_slice(),
-            );
-            piecewise_bounds(
-                &lim,
-                th.as_slice(),
-                gain,
-                plo.as_mut_slice(),
-                phi.as_mut_slice(),
-            );
+            for i in 0..N {
+                (lo[i], hi[i]) = merged_bound(&lim, i, th[i], gain);
+                (plo[i], phi[i]) = piecewise_bound(&lim, i, th[i], gain);
+            }
             for i in 0..N {
                 assert!(
                     (lo[i] - plo[i]).abs() < 1e-12,
@@ -344,6 +338,7 @@ fn exact_optimum_tracks_the_task_velocity() {
                         + (pp.rdot - j * thd) * rho_v
                         + (pp.r - planar().position_n(&th)) * rho_p
                 }
+                SchemeSpec::Composed(_) => unreachable!("the papers' specs are presets"),
             };
             let res: Vector3<f64> = j * xd - expected;
             assert!(
@@ -413,16 +408,13 @@ fn mvn_optimum_is_the_minimum_norm_solution() {
 fn zhang2018_weight_is_spd_and_torque_is_the_dynamics() {
     let (th, thd, thdd) = state();
     for zeta in [0.0, 0.6, 0.8, 1.0] {
-        let s = Zhang2018::new(
-            robot(),
-            path(),
-            theta0().as_slice(),
+        let s = make(&SchemeSpec::HlJdf {
             zeta,
-            20.0,
-            20.0,
-            20.0,
-            20.0,
-        );
+            alpha: 20.0,
+            beta: 20.0,
+            rho_v: 20.0,
+            rho_p: 20.0,
+        });
         let mut qp = s.new_qp();
         s.build(2.0, th.as_slice(), thd.as_slice(), &mut qp);
         assert_eq!(qp.p, qp.p.transpose());
@@ -430,7 +422,7 @@ fn zhang2018_weight_is_spd_and_torque_is_the_dynamics() {
         assert!(eig.min() > 1e-3, "zeta = {zeta}: eigenvalues {eig}");
         let h = planar().inertia_n(&th);
         let want_w = nalgebra::SMatrix::<f64, N, N>::identity() * zeta + h * h * (1.0 - zeta);
-        assert!((s.weight_matrix(th.as_slice()) - want_w).amax() < 1e-14);
+        assert!((&qp.p - want_w).amax() < 1e-12);
         // eta = zeta sigma + (1 - zeta) H'(c + g).
         let sigma = thd * 40.0 + (th - theta0()) * 400.0;
         let cg = planar().coriolis_n(&th, &thd) + planar().gravity_n(&th);
@@ -447,8 +439,8 @@ fn zhang2018_weight_is_spd_and_torque_is_the_dynamics() {
         ));
         assert!((tau - (h * thdd + cg)).amax() < 1e-14);
     }
-    assert_eq!(Zhang2018::scheme_name(0.0), "MTN");
-    assert_eq!(Zhang2018::scheme_name(0.6), "HL-JDF");
+    assert_eq!(hl_jdf_name(0.0), "MTN");
+    assert_eq!(hl_jdf_name(0.6), "HL-JDF");
     // Schemes without dynamics report no torque.
     let k = make(&SchemeSpec::ZnnRmp { mu: 1.0, k_p: 1.0 });
     let mut tau = V::repeat(7.0);
@@ -514,10 +506,15 @@ fn kong2019_c_is_odd_and_zero_at_the_reference() {
             assert!(cp[i] * e[i] >= 0.0, "c has the sign of e");
         }
     }
-    let ft = VelocityRmp::finite_time(robot(), path(), star.as_slice(), 1.0, alpha, 1.0);
-    let znn = VelocityRmp::znn(robot(), path(), star.as_slice(), 2.0, 1.0);
+    // make() takes theta0() = star as the reference.
+    let ft = make(&SchemeSpec::FiniteTimeRmp {
+        beta_theta: 1.0,
+        k_p: 1.0,
+        alpha,
+    });
+    let znn = make(&SchemeSpec::ZnnRmp { mu: 2.0, k_p: 1.0 });
     let mut qp = ft.new_qp();
-    for s in [&ft as &dyn Scheme, &znn] {
+    for s in [ft.as_ref(), znn.as_ref()] {
         s.build(0.5, star.as_slice(), star.as_slice(), &mut qp);
         assert!(qp.q.iter().all(|&v| v == 0.0));
         assert_eq!(qp.p, DMatrix::identity(N, N));
@@ -781,7 +778,12 @@ fn build_scheme_reports_clear_errors() {
     let err = build_scheme(&zhang, r.clone(), None, path(), theta0().as_slice())
         .err()
         .unwrap();
-    assert_eq!(err, SchemeError::MissingDynamics { scheme: "hl-jdf" });
+    assert_eq!(
+        err,
+        SchemeError::MissingDynamics {
+            scheme: "HL-JDF".to_string()
+        }
+    );
     assert!(err.to_string().contains("dynamics"), "{err}");
     let _: &dyn std::error::Error = &err;
 
@@ -849,6 +851,17 @@ fn random_theta(seed: u64) -> V {
             .wrapping_add(1442695040888963407);
         theta0()[i] + ((x >> 11) as f64 / (1u64 << 53) as f64 - 0.5)
     })
+}
+
+fn vltco(phi: f64, tau: f64) -> SchemeSpec {
+    SchemeSpec::Vltco {
+        phi,
+        tau,
+        kappa: 20.0,
+        lambda: 20.0,
+        rmp: RmpReading::Printed,
+        mu: 5.0,
+    }
 }
 
 fn jia(tau: f64, rmp: RmpReading, mu: f64) -> SchemeSpec {
@@ -929,7 +942,8 @@ fn rmp_readings_set_the_linear_term_as_the_expansion_predicts() {
         theta.as_slice(),
         &mut a,
     );
-    let direct = TriCriteria::vltco(robot(), path(), theta0().as_slice(), 0.2, 0.4, 20.0, 20.0);
+    let file = "kind = \"vltco\"\nphi = 0.2\ntau = 0.4\nkappa = 20.0\nlambda = 20.0";
+    let direct = make(&toml::from_str::<SchemeSpec>(file).unwrap());
     direct.build(2.0, theta.as_slice(), theta.as_slice(), &mut b);
     assert_eq!(a.q, b.q);
     assert_eq!(a.p, b.p);

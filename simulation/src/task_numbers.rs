@@ -53,6 +53,8 @@ pub struct TaskNumbers {
     pub scheme: String,
     /// The scheme's level.
     pub level: Level,
+    /// The scheme's terms, one line each ([`schemes::scheme::Scheme::terms`]).
+    pub terms: Vec<String>,
     /// The scheme's QP at t = 0 (at theta0, with thetadot = 0 at the acceleration level).
     pub qp0: Qp,
 }
@@ -105,6 +107,7 @@ pub fn task_numbers(job: &Job) -> Result<TaskNumbers, SetupError> {
             .collect(),
         scheme: scheme.name(),
         level: scheme.level(),
+        terms: scheme.terms(),
         qp0,
     })
 }

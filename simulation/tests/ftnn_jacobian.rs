@@ -8,9 +8,8 @@ use nalgebra::{DMatrix, SVector};
 use robots::katana::Katana6m180;
 use robots::Robot;
 use schemes::paths::{build_path, Path, PathSpec};
-use schemes::scheme::Scheme;
+use schemes::spec::{build_scheme, SchemeSpec};
 
-use schemes::velocity_rmp::VelocityRmp;
 use settings::integrator::IntegratorSettings;
 use settings::solver_spec::SolverSpec;
 use simulation::coupled::NeuralLoop;
@@ -29,14 +28,19 @@ fn coupled_ftnn_jacobian_matches_fine_central_differences() {
     let spec: PathSpec = toml::from_str("name = \"circle\"\nduration = 9.0").unwrap();
     let path: Arc<dyn Path> =
         Arc::from(build_path(&spec, robot.position(theta_ref.as_slice())).unwrap());
-    let scheme = VelocityRmp::finite_time(robot.clone(), path, theta_ref.as_slice(), 1.0, 0.1, 1.0);
+    let spec = SchemeSpec::FiniteTimeRmp {
+        beta_theta: 1.0,
+        k_p: 1.0,
+        alpha: 0.1,
+    };
+    let scheme = build_scheme(&spec, robot.clone(), None, path, theta_ref.as_slice()).unwrap();
     let ftnn = SolverSpec::FiniteTime {
         beta: 1.0,
         alpha: 0.1,
         smoothing: 1e-6,
     };
     let net = build_solver(&ftnn, scheme.dims()).unwrap();
-    let mut sys = NeuralLoop::new(&scheme, net);
+    let mut sys = NeuralLoop::new(scheme.as_ref(), net);
     let n = sys.dim();
     let mut y0 = vec![0.0; n];
     y0[..5].copy_from_slice(theta0.as_slice());
