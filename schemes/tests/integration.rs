@@ -3,6 +3,7 @@
 //! but for `use crate::common;` where they shared `tests/common/`.
 
 mod common;
+mod composed;
 
 mod paths;
 mod schemes;

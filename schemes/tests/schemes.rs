@@ -579,7 +579,7 @@ fn build_dot_matches_a_higher_order_difference() {
     // = 1.0 < 1.5), so the bound's derivative is -kappa thetadot_2, not 0.
     let mut th_near = th;
     th_near[1] = 2.45;
-    for spec in specs() {
+    for spec in specs().into_iter().chain(common::composed_specs()) {
         let s = make(&spec);
         for (t, th) in [(1.3, th), (3.7, th_near)] {
             let mut dot = s.new_qp();

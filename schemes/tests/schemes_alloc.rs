@@ -54,7 +54,10 @@ fn build_and_build_dot_do_not_allocate() {
         a: 0.05,
         t_end: 5.0,
     });
-    let specs = common::paper_specs();
+    let specs: Vec<_> = common::paper_specs()
+        .into_iter()
+        .chain(common::composed_specs())
+        .collect();
     let th = theta0 + SVector::<f64, N>::repeat(0.05);
     let thd = SVector::<f64, N>::repeat(0.2);
     for spec in &specs {
@@ -92,8 +95,11 @@ fn velocity_schemes_do_not_allocate(robot: Arc<dyn robots::Robot>, pose: &[f64])
     });
     let th: Vec<f64> = pose.iter().map(|v| v + 0.05).collect();
     let thd = vec![0.2; pose.len()];
-    for spec in common::paper_specs().iter().filter(|s| !s.needs_dynamics()) {
-        let s = build_scheme(spec, robot.clone(), None, path.clone(), pose).unwrap();
+    let specs = common::paper_specs()
+        .into_iter()
+        .chain(common::composed_specs());
+    for spec in specs.filter(|s| !s.needs_dynamics()) {
+        let s = build_scheme(&spec, robot.clone(), None, path.clone(), pose).unwrap();
         let (mut qp, mut dot, mut scratch) = (s.new_qp(), s.new_qp(), s.new_dot_scratch());
         s.build(1.0, &th, &thd, &mut qp);
         let name = spec.display_name();

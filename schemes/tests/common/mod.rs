@@ -373,3 +373,70 @@ pub fn paper_specs() -> Vec<SchemeSpec> {
         },
     ]
 }
+
+/// Schemes of their own terms, as files write them: every velocity-level term with the bounds
+/// as rows (the proof of composition: no preset combines an infinity norm with a sign-power
+/// repetitive term, feedback and a bound conversion), a task on the x and z axes with the
+/// velocity limits, and an acceleration-level planar task with the drift damping.
+pub fn composed_specs() -> Vec<SchemeSpec> {
+    [
+        r#"kind = "composed"
+level = "velocity"
+name = "own (inf-norm + sign-power + feedback)"
+bounds = "rows"
+[[terms]]
+kind = "velocity-norm"
+weight = 0.5
+[[terms]]
+kind = "infinity-norm"
+weight = 0.3
+varpi = 10.0
+[[terms]]
+kind = "repetitive"
+form = "sign-power"
+lambda = 2.0
+alpha = 0.5
+[[terms]]
+kind = "tracking"
+k_p = 3.0
+[[terms]]
+kind = "bound-conversion"
+gain = 5.0
+[[terms]]
+kind = "velocity-limits"
+"#,
+        r#"kind = "composed"
+level = "velocity"
+[[terms]]
+kind = "velocity-norm"
+[[terms]]
+kind = "repetitive"
+lambda = 1.0
+weight = 0.5
+squared = true
+[[terms]]
+kind = "tracking"
+axes = ["x", "z"]
+k_p = 1.0
+[[terms]]
+kind = "velocity-limits"
+"#,
+        r#"kind = "composed"
+level = "acceleration"
+[[terms]]
+kind = "acceleration-norm"
+[[terms]]
+kind = "drift-damping"
+alpha = 5.0
+beta = 5.0
+[[terms]]
+kind = "tracking"
+task = "planar"
+rho_v = 10.0
+rho_p = 10.0
+"#,
+    ]
+    .iter()
+    .map(|text| toml::from_str(text).expect("a valid composed scheme"))
+    .collect()
+}
