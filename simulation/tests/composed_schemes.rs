@@ -1,0 +1,210 @@
+//! Schemes of one's own terms, from experiment files, through the one path:
+//!
+//! - a velocity-level scheme that no preset combines (velocity norm + infinity norm through an
+//!   auxiliary variable + sign-power repetitive term + tracking feedback + bound conversion,
+//!   every bound as rows of G) on the Jaco2 runs to the end and tracks the path, and at sampled
+//!   instants of its run the exact path's answer (certified active set) equals Clarabel's and
+//!   its auxiliary variable is the infinity norm of the command;
+//! - a 5-joint planar arm (a robot file in the paper's folder) with the planar task: the
+//!   certified active set answers every instant (no Clarabel fallback) and the run tracks the
+//!   path; with the 3-D task on the same arm (a zero row of J) the active set falls back.
+
+use catalog::experiment::{load_dir, Job};
+use robots::registry::robot_by_name;
+use simulation::run::{build_cyclic_parts, check_job, job_robot, run_job};
+use simulation::simulate::Outcome;
+use solvers::exact::ExactSolver;
+use solvers::exact_path::ExactPath;
+use std::path::Path;
+
+fn write(path: &Path, text: &str) {
+    std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+    std::fs::write(path, text).unwrap();
+}
+
+/// The jobs of `experiments` (with `robots`: robot files of the paper's folder), in a fresh
+/// directory named for `tag`.
+fn jobs(tag: &str, robots: &[(&str, String)], experiments: &str) -> Vec<Job> {
+    let root = std::env::temp_dir().join(format!("driftbench-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&root);
+    for (name, text) in robots {
+        write(
+            &root.join(format!("papers/composed2026/robots/{name}.toml")),
+            text,
+        );
+    }
+    write(&root.join("experiments/composed.toml"), experiments);
+    catalog::robot_files::register_paper_robots(&root.join("papers"));
+    let files = load_dir(&root.join("experiments"), check_job).expect("the experiments load");
+    let jobs = files.iter().flat_map(|f| f.jobs()).collect();
+    std::fs::remove_dir_all(&root).unwrap();
+    jobs
+}
+
+const OWN_SCHEME: &str = r#"
+paper = "kong2019"
+title = "a scheme of one's own terms"
+
+[[experiment]]
+id = "kong2019-own-terms"
+paper_output = "none"
+robot = "jaco2-pen"
+path = { name = "circle", duration = 3.0 }
+theta0 = [1.675, 2.79, -3.216, 4.187, -1.71, -2.95]
+exact_integrator = { method = "bdf", rtol = 1e-8, atol = 1e-10 }
+
+[[experiment.variant]]
+label = "own"
+
+[experiment.variant.scheme]
+kind = "composed"
+level = "velocity"
+name = "own (inf-norm + sign-power + feedback)"
+bounds = "rows"
+
+[[experiment.variant.scheme.terms]]
+kind = "velocity-norm"
+weight = 0.5
+
+[[experiment.variant.scheme.terms]]
+kind = "infinity-norm"
+weight = 0.3
+
+[[experiment.variant.scheme.terms]]
+kind = "repetitive"
+form = "sign-power"
+lambda = 1.0
+alpha = 0.5
+
+[[experiment.variant.scheme.terms]]
+kind = "tracking"
+k_p = 5.0
+
+[[experiment.variant.scheme.terms]]
+kind = "bound-conversion"
+gain = 20.0
+"#;
+
+#[test]
+fn a_scheme_of_own_terms_runs_and_its_exact_answer_is_clarabels() {
+    let jobs = jobs("kong2019-own-terms", &[], OWN_SCHEME);
+    assert_eq!(jobs.len(), 1);
+    let job = &jobs[0];
+    let record = run_job(job);
+    let Outcome::Completed(m) = &record.run.outcome else {
+        panic!("{:?}", record.run.outcome);
+    };
+    assert!(m.max_position_error < 1e-5, "{}", m.max_position_error);
+    assert_eq!(record.run.qp.fallbacks, 0, "{:?}", record.run.qp);
+
+    let model = robot_by_name(&job.robot).unwrap();
+    let robot = job_robot(job, model.robot, model.dynamics.is_some()).unwrap();
+    let (_, scheme) = build_cyclic_parts(job, robot, None, 1).unwrap();
+    assert_eq!(scheme.name(), "own (inf-norm + sign-power + feedback)");
+    let n = job.theta0.len();
+    let mut qp = scheme.new_qp();
+    let trace = &record.run.trace;
+    let mut clarabel = ExactSolver::new();
+    let mut checked = 0;
+    for point in trace.iter().step_by((trace.len() / 25).max(1)) {
+        scheme.build(point.t, &point.theta, &point.thetadot, &mut qp);
+        let reference = clarabel.solve(&qp).expect("Clarabel solves the QP");
+        let mut path = ExactPath::new(&qp);
+        let x = path.solve(&qp).unwrap().clone();
+        assert_eq!(path.stats.fallbacks, 0, "t = {}", point.t);
+        let dx = (&x - &reference.x).amax();
+        assert!(
+            dx < 1e-6 * reference.x.amax().max(1.0),
+            "t = {}: {dx}",
+            point.t
+        );
+        // s = |thetadot|_inf at the optimum (its weight is positive).
+        let inf = x.rows(0, n).amax();
+        assert!(
+            (x[n] - inf).abs() < 1e-8,
+            "t = {}: s {} vs {inf}",
+            point.t,
+            x[n]
+        );
+        checked += 1;
+    }
+    assert!(checked >= 20, "{checked} instants");
+}
+
+/// A planar arm of `n` links of 0.3 m in the x-y plane (every z axis parallel), with joint
+/// limits +-3 rad and velocity limits +-2 rad/s.
+fn planar_arm(name: &str, n: usize) -> String {
+    let mut s = format!(
+        "name = \"{name}\"\nsource = \"a test arm\"\nconvention = \"standard\"\ntool = [0.0, 0.0, 0.0]\n"
+    );
+    for _ in 0..n {
+        s.push_str(
+            "\n[[joint]]\na = 0.3\nalpha = 0.0\nd = 0.0\ntheta_min = -3.0\ntheta_max = 3.0\n\
+             velocity_min = -2.0\nvelocity_max = 2.0\n",
+        );
+    }
+    s
+}
+
+/// An experiment of the planar arm with the tracking task `task`.
+fn planar_experiment(id: &str, task: &str) -> String {
+    format!(
+        r#"
+[[experiment]]
+id = "{id}"
+paper_output = "none"
+robot = "planar-5"
+path = {{ name = "circle", duration = 2.0 }}
+theta0 = [0.2, 0.5, 0.4, 0.3, 0.2]
+exact_integrator = {{ method = "bdf", rtol = 1e-8, atol = 1e-10 }}
+
+[[experiment.variant]]
+label = "{task}"
+
+[experiment.variant.scheme]
+kind = "composed"
+level = "velocity"
+
+[[experiment.variant.scheme.terms]]
+kind = "velocity-norm"
+
+[[experiment.variant.scheme.terms]]
+kind = "repetitive"
+lambda = 2.0
+
+[[experiment.variant.scheme.terms]]
+kind = "tracking"
+task = "{task}"
+k_p = 5.0
+
+[[experiment.variant.scheme.terms]]
+kind = "bound-conversion"
+gain = 10.0
+"#
+    )
+}
+
+#[test]
+fn a_planar_arm_with_the_planar_task_is_solved_by_the_active_set_alone() {
+    let text = format!(
+        "paper = \"kong2019\"\ntitle = \"a planar arm\"\n{}{}",
+        planar_experiment("kong2019-planar-task", "planar"),
+        planar_experiment("kong2019-position-task", "position")
+    );
+    let jobs = jobs(
+        "planar-arm",
+        &[("planar-5", planar_arm("planar-5", 5))],
+        &text,
+    );
+    assert_eq!(jobs.len(), 2);
+    let planar = run_job(&jobs[0]);
+    let Outcome::Completed(m) = &planar.run.outcome else {
+        panic!("{:?}", planar.run.outcome);
+    };
+    assert!(planar.run.qp.solves > 100, "{:?}", planar.run.qp);
+    assert_eq!(planar.run.qp.fallbacks, 0, "{:?}", planar.run.qp);
+    assert!(m.max_position_error < 1e-6, "{}", m.max_position_error);
+    // The 3-D task on the same arm: J's z row is zero, and the certified active set gives up.
+    let spatial = run_job(&jobs[1]);
+    assert!(spatial.run.qp.fallbacks > 0, "{:?}", spatial.run.qp);
+}
