@@ -225,13 +225,13 @@ fn is_zero(v: &f64) -> bool {
 pub enum SchemeError {
     /// The scheme needs rigid-body dynamics and none was given.
     MissingDynamics {
-        /// The scheme's name.
-        scheme: String,
+        /// The scheme's `kind` tag.
+        scheme: &'static str,
     },
     /// The dynamics model is not the kinematic robot.
     RobotMismatch {
-        /// The scheme's name.
-        scheme: String,
+        /// The scheme's `kind` tag.
+        scheme: &'static str,
         /// The kinematic robot's model name.
         robot: String,
         /// The dynamics model's name.
@@ -248,19 +248,9 @@ pub enum SchemeError {
         /// The range it must be in, as text.
         requirement: &'static str,
     },
-    /// A term's parameter is out of its range (`kind = "composed"`).
-    InvalidTerm {
-        /// The term's place in `terms` (from 0).
-        index: usize,
-        /// The term's `kind` tag.
-        term: &'static str,
-        /// The parameter, by its field name.
-        field: &'static str,
-        /// The value given (NaN when a required parameter is absent).
-        value: f64,
-        /// The range it must be in, as text.
-        requirement: &'static str,
-    },
+    /// A term's parameter is out of its range (`kind = "composed"`; boxed to keep the error
+    /// small).
+    InvalidTerm(Box<TermFault>),
     /// A term of the other level.
     TermLevel {
         /// The term's place in `terms`.
@@ -293,6 +283,21 @@ pub enum SchemeError {
     },
 }
 
+/// Which parameter of which term is out of range ([`SchemeError::InvalidTerm`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TermFault {
+    /// The term's place in `terms` (from 0).
+    pub index: usize,
+    /// The term's `kind` tag.
+    pub term: &'static str,
+    /// The parameter, by its field name.
+    pub field: &'static str,
+    /// The value given (NaN when a required parameter is absent).
+    pub value: f64,
+    /// The range it must be in, as text.
+    pub requirement: &'static str,
+}
+
 impl fmt::Display for SchemeError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
@@ -317,17 +322,20 @@ impl fmt::Display for SchemeError {
                 f,
                 "scheme {scheme}: parameter '{field}' = {value} is invalid (must be {requirement})"
             ),
-            SchemeError::InvalidTerm {
-                index,
-                term,
-                field,
-                value,
-                requirement,
-            } => write!(
+            SchemeError::InvalidTerm(fault) => {
+                let TermFault {
+                    index,
+                    term,
+                    field,
+                    value,
+                    requirement,
+                } = &**fault;
+                write!(
                 f,
                 "scheme composed: terms[{index}] ({term}): parameter '{field}' = {value} is invalid \
                  (must be {requirement})"
-            ),
+                )
+            }
             SchemeError::TermLevel { index, term, level } => write!(
                 f,
                 "scheme composed: terms[{index}] ({term}) is not a term of the {level} level \
@@ -885,8 +893,13 @@ pub fn build_scheme(
     theta_ref: &[f64],
 ) -> Result<Box<dyn Scheme>, SchemeError> {
     spec.validate()?;
-    let scheme = spec
-        .expand()
-        .build(spec.scheme_name(), robot, dynamics, path, theta_ref)?;
+    let scheme = spec.expand().build(
+        spec.kind(),
+        spec.scheme_name(),
+        robot,
+        dynamics,
+        path,
+        theta_ref,
+    )?;
     Ok(Box::new(scheme))
 }

@@ -778,12 +778,7 @@ fn build_scheme_reports_clear_errors() {
     let err = build_scheme(&zhang, r.clone(), None, path(), theta0().as_slice())
         .err()
         .unwrap();
-    assert_eq!(
-        err,
-        SchemeError::MissingDynamics {
-            scheme: "HL-JDF".to_string()
-        }
-    );
+    assert_eq!(err, SchemeError::MissingDynamics { scheme: "hl-jdf" });
     assert!(err.to_string().contains("dynamics"), "{err}");
     let _: &dyn std::error::Error = &err;
 

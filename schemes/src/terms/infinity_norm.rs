@@ -1,5 +1,5 @@
 //! The infinity norm of thetadot through an auxiliary variable s (velocity level): one extra
-//! variable s = x[slot], 2n rows of G and a bound,
+//! variable s (the column after the earlier variables), 2n rows of G and a bound,
 //!
 //! ```text
 //! P_ss += w                                   (w s^2 / 2)

@@ -16,12 +16,12 @@
 //! task = "planar"               # or "position" (default); or axes = ["x", "z"]
 //! ```
 //!
-//! Term kinds and fields (defaults in brackets; docs/schemes.md gives each equation):
-//! `velocity-norm` (weight [1]), `acceleration-norm` (weight [1]), `repetitive` (lambda, form
-//! ["linear"] or "sign-power" with alpha in (0, 1], weight [1], squared [false]),
-//! `drift-damping` (alpha, beta, weight [1]), `torque-norm` (weight [1]; needs a robot with
-//! dynamics), `infinity-norm` (weight [1], varpi [+inf]), `tracking` (velocity level: k_p [0];
-//! acceleration level: rho_v, rho_p; task ["position"] or "planar", or axes),
+//! Term kinds and fields (defaults after `=`; docs/schemes.md gives each equation):
+//! `velocity-norm` (weight = 1), `acceleration-norm` (weight = 1), `repetitive` (lambda, form =
+//! "linear" or "sign-power" with alpha in (0, 1], weight = 1, squared = false),
+//! `drift-damping` (alpha, beta, weight = 1), `torque-norm` (weight = 1; needs a robot with
+//! dynamics), `infinity-norm` (weight = 1, varpi = +inf), `tracking` (velocity level: k_p = 0;
+//! acceleration level: rho_v, rho_p; task = "position" or "planar", or axes),
 //! `bound-conversion` (gain), `velocity-limits`. Unknown kinds and fields are rejected.
 
 use std::sync::Arc;
@@ -41,7 +41,7 @@ use super::Term;
 use crate::composed::{BoundPlacement, Composed};
 use crate::paths::Path;
 use crate::scheme::Level;
-use crate::spec::{RepetitiveForm, SchemeError};
+use crate::spec::{RepetitiveForm, SchemeError, TermFault};
 
 fn one() -> f64 {
     1.0
@@ -250,13 +250,13 @@ impl TermSpec {
             if value.is_finite() && ok {
                 Ok(())
             } else {
-                Err(SchemeError::InvalidTerm {
+                Err(SchemeError::InvalidTerm(Box::new(TermFault {
                     index,
                     term: kind,
                     field,
                     value,
                     requirement,
-                })
+                })))
             }
         };
         let weight = |w: f64| check("weight", w, w >= 0.0, "finite and >= 0");
@@ -416,10 +416,12 @@ impl ComposedSpec {
     }
 
     /// Builds the scheme `name` of these terms (checked first) on `robot` following `path`,
-    /// with the joint reference `theta_ref` (one entry per joint). A scheme with a torque term
+    /// with the joint reference `theta_ref` (one entry per joint); errors name the scheme by
+    /// its `kind` tag. A scheme with a torque term
     /// needs `dynamics`, a model of the same robot by name, and takes its kinematics from it.
     pub fn build(
         &self,
+        kind: &'static str,
         name: String,
         robot: Arc<dyn Robot>,
         dynamics: Option<Arc<dyn Dynamics>>,
@@ -428,12 +430,10 @@ impl ComposedSpec {
     ) -> Result<Composed, SchemeError> {
         self.validate()?;
         let (robot, dynamics) = if self.needs_dynamics() {
-            let dynamics = dynamics.ok_or(SchemeError::MissingDynamics {
-                scheme: name.clone(),
-            })?;
+            let dynamics = dynamics.ok_or(SchemeError::MissingDynamics { scheme: kind })?;
             if dynamics.name() != robot.name() {
                 return Err(SchemeError::RobotMismatch {
-                    scheme: name,
+                    scheme: kind,
                     robot: robot.name().to_string(),
                     dynamics: dynamics.name().to_string(),
                 });
