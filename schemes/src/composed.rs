@@ -193,7 +193,8 @@ impl Scheme for Composed {
                 qp.g[(r0 + i, i)] = 1.0;
                 qp.g[(r0 + m + i, i)] = -1.0;
                 qp.h[r0 + i] = qp.upper[i];
-                qp.h[r0 + m + i] = -qp.lower[i];
+                // 0 - l: +0 (not -0) where l = 0, as zhong2021's h prints it.
+                qp.h[r0 + m + i] = 0.0 - qp.lower[i];
             }
             qp.lower.as_mut_slice().fill(f64::NEG_INFINITY);
             qp.upper.as_mut_slice().fill(f64::INFINITY);
@@ -235,7 +236,7 @@ impl Scheme for Composed {
             let (r0, m) = (self.bound_rows(), self.dims.nx);
             for i in 0..m {
                 qp_dot.h[r0 + i] = qp_dot.upper[i];
-                qp_dot.h[r0 + m + i] = -qp_dot.lower[i];
+                qp_dot.h[r0 + m + i] = 0.0 - qp_dot.lower[i];
             }
             qp_dot.lower.as_mut_slice().fill(0.0);
             qp_dot.upper.as_mut_slice().fill(0.0);
