@@ -46,7 +46,7 @@ use crate::composed::BoundPlacement;
 use crate::paths::Path;
 pub use crate::rmp::RmpReading;
 use crate::scheme::{Level, Scheme};
-pub use crate::terms::spec::{ComposedSpec, TermSpec};
+pub use crate::terms::spec::{ComposedSpec, Penalty, TermSpec};
 
 fn default_zhong_lambda() -> f64 {
     20.0
@@ -728,6 +728,7 @@ fn tri_criteria(w_v: f64, w_r: f64, k: f64, gain: f64, bounds: BoundPlacement) -
             tracking(0.0),
             TermSpec::InfinityNorm {
                 weight: 1.0 - w_v - w_r,
+                penalty: Penalty::Squared,
                 varpi: f64::INFINITY,
             },
             TermSpec::BoundConversion { gain },

@@ -92,6 +92,10 @@ fn a_composed_scheme_is_sized_by_its_terms() {
         1.5,
         "velocity norm 1 + squared repetitive 0.5"
     );
+    // The linear infinity-norm penalty: q_s = w, P_ss = 0, and s's bounds [0, +inf).
+    assert_eq!((qp.q[N], qp.p[(N, N)]), (0.2, 0.0));
+    assert_eq!((qp.lower[N], qp.upper[N]), (0.0, f64::INFINITY));
+    assert_eq!(s.dims().n_in, 2 * N);
     let s = build(&planar);
     assert_eq!(s.level(), Level::Acceleration);
     assert_eq!(s.dims().n_eq, 2);

@@ -20,7 +20,7 @@
 //! `velocity-norm` (weight = 1), `acceleration-norm` (weight = 1), `repetitive` (lambda, form =
 //! "linear" or "sign-power" with alpha in (0, 1], weight = 1, squared = false),
 //! `drift-damping` (alpha, beta, weight = 1), `torque-norm` (weight = 1; needs a robot with
-//! dynamics), `infinity-norm` (weight = 1, varpi = +inf), `tracking` (velocity level: k_p = 0;
+//! dynamics), `infinity-norm` (weight = 1, penalty = "squared" or "linear", varpi = +inf), `tracking` (velocity level: k_p = 0;
 //! acceleration level: rho_v, rho_p; task = "position" or "planar", or axes),
 //! `bound-conversion` (gain), `velocity-limits`. Unknown kinds and fields are rejected.
 
@@ -86,6 +86,23 @@ pub enum Axis {
     Z,
 }
 
+/// The infinity norm's penalty on its variable s.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Penalty {
+    /// w s^2 / 2 (jia2019 (2.17), zhong2021 (2.16)).
+    #[default]
+    Squared,
+    /// w s.
+    Linear,
+}
+
+impl Penalty {
+    fn is_squared(&self) -> bool {
+        *self == Penalty::Squared
+    }
+}
+
 /// One term of a composed scheme, as a file names it (module docs).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
@@ -135,11 +152,14 @@ pub enum TermSpec {
         #[serde(default = "one", skip_serializing_if = "is_one")]
         weight: f64,
     },
-    /// w s^2 / 2 with |thetadot_i| <= s <= varpi (velocity level).
+    /// w s^2 / 2 (or w s) with |thetadot_i| <= s <= varpi (velocity level).
     InfinityNorm {
         /// Weight w >= 0.
         #[serde(default = "one", skip_serializing_if = "is_one")]
         weight: f64,
+        /// The penalty: `squared` w s^2 / 2 (default, the papers') or `linear` w s.
+        #[serde(default, skip_serializing_if = "Penalty::is_squared")]
+        penalty: Penalty,
         /// Upper bound of s (> 0; default +inf).
         #[serde(default = "infinity", skip_serializing_if = "is_infinite")]
         varpi: f64,
@@ -309,7 +329,9 @@ impl TermSpec {
                 check("alpha", alpha, alpha > 0.0, "finite and > 0")?;
                 check("beta", beta, beta > 0.0, "finite and > 0")
             }
-            TermSpec::InfinityNorm { weight: w, varpi } => {
+            TermSpec::InfinityNorm {
+                weight: w, varpi, ..
+            } => {
                 weight(w)?;
                 let v = if varpi == f64::INFINITY { 1.0 } else { varpi };
                 check("varpi", v, v > 0.0, "> 0 (default +inf: no bound)")
@@ -498,7 +520,12 @@ impl ComposedSpec {
                             .expect("checked: a torque term has dynamics"),
                         weight,
                     )),
-                    TermSpec::InfinityNorm { weight, varpi } => Box::new(InfinityNorm {
+                    TermSpec::InfinityNorm {
+                        weight,
+                        penalty,
+                        varpi,
+                    } => Box::new(InfinityNorm {
+                        squared: penalty == Penalty::Squared,
                         joints: n,
                         weight,
                         varpi,

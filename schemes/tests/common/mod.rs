@@ -377,7 +377,7 @@ pub fn paper_specs() -> Vec<SchemeSpec> {
 /// Schemes of their own terms, as files write them: every velocity-level term with the bounds
 /// as rows (the proof of composition: no preset combines an infinity norm with a sign-power
 /// repetitive term, feedback and a bound conversion), a task on the x and z axes with the
-/// velocity limits, and an acceleration-level planar task with the drift damping.
+/// velocity limits and a linear infinity-norm penalty, and an acceleration-level planar task with the drift damping.
 pub fn composed_specs() -> Vec<SchemeSpec> {
     [
         r#"kind = "composed"
@@ -420,6 +420,10 @@ axes = ["x", "z"]
 k_p = 1.0
 [[terms]]
 kind = "velocity-limits"
+[[terms]]
+kind = "infinity-norm"
+penalty = "linear"
+weight = 0.2
 "#,
         r#"kind = "composed"
 level = "acceleration"
