@@ -118,6 +118,9 @@ impl Composed {
                         slot.inequality + fp.inequalities
                     ));
                 }
+                if fp.bounds {
+                    at.push("bounds".to_string());
+                }
                 if at.is_empty() {
                     term.describe()
                 } else {
