@@ -3,7 +3,8 @@
 //! included; dev-dependencies do not link into the library):
 //!
 //! - presentation links no crate that simulates or solves (solvers, simulation, control,
-//!   explain, cost): rendering the report and its figures needs only the records of the runs;
+//!   explain; the cost harness is reproduce's, which links them): rendering the report and
+//!   its figures needs only the records of the runs;
 //! - the numerical crates (robots, schemes, settings, solvers) link no experiment-file or
 //!   results crate (catalog, records): a user can take the arms, the schemes and the solvers
 //!   without the experiment files. (robots reads its own robot files, so TOML is allowed, and
@@ -16,7 +17,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 /// The crates that run simulations or solvers.
-const SOLVING: [&str; 5] = ["solvers", "simulation", "control", "explain", "cost"];
+const SOLVING: [&str; 4] = ["solvers", "simulation", "control", "explain"];
 
 /// The numerical crates, usable without experiment files.
 const NUMERICAL: [&str; 4] = ["robots", "schemes", "settings", "solvers"];

@@ -16,9 +16,9 @@
 //! [`SWEEP_SIZES`] are measured with both schemes, [`LARGE_SIZES`] with kong2019's alone (its
 //! QP has no inequality rows, so its cost past N = 30 is the arm's and the dense LUs').
 
-use crate::case::{path_of, Case, PreparedCase, KONG2019_KP, KONG2019_MU};
-use crate::error::CostError;
-use crate::instants::Instants;
+use super::case::{path_of, Case, PreparedCase, KONG2019_KP, KONG2019_MU};
+use super::error::CostError;
+use super::instants::Instants;
 use catalog::experiment::Scoring;
 use catalog::experiment::{default_exact_integrator, NetworkInit};
 use qp::{Qp, QpDims};
