@@ -12,6 +12,9 @@
 //!   format of the suite's.)
 //! - no member links the benches (`driftbench-benches`, which holds the suite's measurements
 //!   of itself): the reproduction and its report are built without them.
+//! - no member but the benches links the counting allocator (`alloc-count`, which installs
+//!   itself as the global allocator): tests take it as a dev-dependency, and no program of the
+//!   suite counts its allocations.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -175,6 +178,25 @@ fn nothing_links_the_benches() {
         assert!(
             found.is_empty(),
             "{package} links the benches (the suite's measurements of itself):\n  {}",
+            found.join("\n  ")
+        );
+    }
+}
+
+#[test]
+fn only_the_benches_link_the_counting_allocator() {
+    let graph = workspace();
+    assert!(
+        graph["driftbench-benches"]
+            .iter()
+            .any(|d| d == "alloc-count"),
+        "the benches count allocations per timed call"
+    );
+    for package in graph.keys().filter(|p| *p != "driftbench-benches") {
+        let found = offending(&graph, package, &["alloc-count"]);
+        assert!(
+            found.is_empty(),
+            "{package} links the counting allocator (a dev-dependency only):\n  {}",
             found.join("\n  ")
         );
     }
