@@ -64,7 +64,7 @@ impl Case {
 
 /// A case made ready to time: every quantity it supports as one call, without allocation
 /// where the code timed does not allocate itself. Object safe, so the criterion benches and
-/// [`super::measure()`] drive it without knowing N or the path.
+/// `reproduce cost`'s timing drive it without knowing N or the path.
 pub trait PreparedCase {
     /// `<scheme> nlink-<N>`.
     fn label(&self) -> String;

@@ -39,7 +39,8 @@ use std::sync::Arc;
 /// The joint counts measured with kong2019's scheme alone, past [`SWEEP_SIZES`].
 pub const LARGE_SIZES: [usize; 6] = [40, 50, 70, 100, 140, 200];
 
-/// States sampled at the [`LARGE_SIZES`] (fewer than the sweep's: the LUs there are slow).
+/// States sampled at the large sizes (N = 40 ... 200; fewer than the sweep's: the LUs there are
+/// slow).
 pub const LARGE_STATES: usize = 20;
 
 /// Prepares `case`, sampling up to `states` states of one exact run (see the module docs). An
