@@ -168,7 +168,7 @@ proptest! {
         let path = dir.join("t.csv");
         std::fs::write(&path, edited("t,theta_1,theta_2\n0,1,2\n0.5,1.5,2.5\n1,2,3\n", &edits)).unwrap();
         no_echo("a trajectory CSV", || {
-            records::trajectory_file::read(&path, 2, None).map(drop).map_err(|e| e.to_string())
+            inputs::trajectory::read(&path, 2, None).map(drop).map_err(|e| e.to_string())
         })?;
     }
 
@@ -179,7 +179,7 @@ proptest! {
         cut in any::<bool>(),
     ) {
         let name = if v7 { "trajectory-v7.mat" } else { "trajectory-v6.mat" };
-        let mut bytes = std::fs::read(repo().join("records/tests/fixtures").join(name)).unwrap();
+        let mut bytes = std::fs::read(repo().join("inputs/tests/fixtures").join(name)).unwrap();
         // The marker written over the file (a variable's name, its data, the header), or
         // appended after the file cut short.
         let at = at % bytes.len();
@@ -194,7 +194,7 @@ proptest! {
         let path = dir.join("t.mat");
         std::fs::write(&path, &bytes).unwrap();
         no_echo("a MAT-file", || {
-            records::trajectory_file::read(&path, 2, None).map(drop).map_err(|e| e.to_string())
+            inputs::trajectory::read(&path, 2, None).map(drop).map_err(|e| e.to_string())
         })?;
     }
 }
@@ -208,7 +208,7 @@ fn the_seeds_read_unedited() {
     catalog::experiment::PaperFile::load(&path, no_check).unwrap();
     let path = dir.join("t.csv");
     std::fs::write(&path, "t,theta_1,theta_2\n0,1,2\n0.5,1.5,2.5\n1,2,3\n").unwrap();
-    records::trajectory_file::read(&path, 2, None).unwrap();
+    inputs::trajectory::read(&path, 2, None).unwrap();
     let seed =
         "git_rev = \"abc\"\n\n[files.\"runs.csv\"]\nlines = 3\nbytes = 10\nsha256 = \"00\"\n";
     std::fs::write(dir.join(records::integrity::FILE), seed).unwrap();

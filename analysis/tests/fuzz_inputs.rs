@@ -7,9 +7,8 @@
 //! more than [`HANG`] (a hang guard, far above the milliseconds a case takes). Bounded (300
 //! cases each) to run in seconds.
 
+use inputs::trajectory::{parse_csv, read, Trajectory};
 use proptest::prelude::*;
-use records::trajectory::{parse_csv, Trajectory};
-use records::trajectory_file::read;
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -22,7 +21,7 @@ fn repo() -> PathBuf {
 }
 
 fn fixture(name: &str) -> Vec<u8> {
-    std::fs::read(repo().join("records/tests/fixtures").join(name)).unwrap()
+    std::fs::read(repo().join("inputs/tests/fixtures").join(name)).unwrap()
 }
 
 fn scratch(name: &str) -> PathBuf {

@@ -10,7 +10,7 @@
 
 use catalog::naming::slug;
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
-use driftbench_benches::{fast_config, CountingAllocator};
+use driftbench_benches::fast_config;
 use qp::Qp;
 
 use control::control_loop::{run_loop, LoopSettings, Observer};
@@ -18,9 +18,6 @@ use control::method::{Method, Numerical};
 use control::network_tick::Discretisation;
 use control::numerical_tick::QpTick;
 use control::task::{load_tasks, standard_task_refs, with_task, TaskArm};
-
-#[global_allocator]
-static ALLOC: CountingAllocator = CountingAllocator;
 
 /// Ticks collected per task.
 const TICKS: usize = 200;

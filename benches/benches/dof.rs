@@ -1,5 +1,5 @@
 //! Cost against the number of joints, with criterion's statistics: the quantities of the cost
-//! harness (crate `cost`, which `reproduce cost` writes to `results/dof-cost.csv` for the
+//! harness (`reproduce::cost`, which `reproduce cost` writes to `results/dof-cost.csv` for the
 //! report) on the n-link arms `nlink-N` for N = 3, 7, 15, 30, with jia2019's VLTCO scheme
 //! (four-leaf clover) and kong2019's ZNN scheme (circle), and kong2019 at N = 100 and 200
 //! (per-instant quantities only).
@@ -11,10 +11,10 @@
 //! quantity (`run-exact`, `run-network`) is one whole `simulate` call (flat sampling, the
 //! minimum of 10 samples: the jia2019 runs at N = 30 take seconds each).
 
-use cost::{Case, PreparedCase};
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode};
 use driftbench_benches::{fast_config, whole_run_config};
 use records::dof_cost::{Quantity, SchemeKind};
+use reproduce::cost::{backends, prepare, Case, PreparedCase, LARGE_STATES};
 use solvers::Backend;
 
 /// The joint counts benched with both schemes (a subset of the harness's sweep).
@@ -27,14 +27,14 @@ const STATES: usize = 100;
 /// The prepared cases of `scheme`, with their N.
 fn cases(scheme: SchemeKind, states: usize) -> Vec<(usize, Box<dyn PreparedCase>)> {
     let sweep = SIZES.iter().map(|&n| {
-        let p = cost::harness::prepare(&Case::new(scheme, n), states);
+        let p = prepare(&Case::new(scheme, n), states);
         (n, p.unwrap_or_else(|e| panic!("{e}")))
     });
     let large = LARGE_SIZES
         .iter()
         .filter(|_| scheme == SchemeKind::ZnnRmp)
         .map(|&n| {
-            let p = cost::harness::prepare(&Case::new(scheme, n), cost::harness::LARGE_STATES);
+            let p = prepare(&Case::new(scheme, n), LARGE_STATES);
             (n, p.unwrap_or_else(|e| panic!("{e}")))
         });
     sweep.chain(large).collect()
@@ -44,7 +44,7 @@ fn per_call(c: &mut Criterion) {
     for scheme in SchemeKind::ALL {
         let mut cases = cases(scheme, STATES);
         for quantity in Quantity::ALL.into_iter().filter(|q| !q.is_run()) {
-            for &backend in cost::backends(quantity) {
+            for &backend in backends(quantity) {
                 let mut group = c.benchmark_group(format!(
                     "dof/{}/{}/{}",
                     scheme.id(),

@@ -14,13 +14,10 @@ use criterion::measurement::WallTime;
 use criterion::{black_box, criterion_group, criterion_main, BenchmarkGroup, Criterion};
 use driftbench_benches::{
     experiment_jobs, fast_config, jaco2_model, jaco2_scheme_cases, katana_scheme_cases,
-    report_allocations, CountingAllocator, SchemeCase,
+    report_allocations, SchemeCase,
 };
 use robots::{Dynamics, Katana6m180, Robot};
 use solvers::ExactSolver;
-
-#[global_allocator]
-static ALLOC: CountingAllocator = CountingAllocator;
 
 fn robots(c: &mut Criterion) {
     let jobs = experiment_jobs();

@@ -9,15 +9,9 @@
 //! step, which `run_job` always computes: they are part of the time measured here.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion, SamplingMode};
-use driftbench_benches::{
-    allocations_in, bench_cases, bench_id, experiment_jobs, find_run, whole_run_config,
-    CountingAllocator,
-};
+use driftbench_benches::{bench_cases, bench_id, experiment_jobs, find_run, whole_run_config};
 use simulation::run::run_job;
 use simulation::simulate::Outcome;
-
-#[global_allocator]
-static ALLOC: CountingAllocator = CountingAllocator;
 
 fn whole_runs(c: &mut Criterion) {
     let jobs = experiment_jobs();
@@ -25,7 +19,7 @@ fn whole_runs(c: &mut Criterion) {
     g.sampling_mode(SamplingMode::Flat);
     for key in bench_cases().runs {
         let job = find_run(&jobs, &key);
-        let (record, allocations) = allocations_in(|| run_job(&job));
+        let (record, allocations) = alloc_count::count_with(|| run_job(&job));
         if let Outcome::Failed { t, error, .. } = &record.run.outcome {
             panic!("{}: failed at t = {t}: {error}", job.key());
         }

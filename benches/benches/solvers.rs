@@ -13,15 +13,12 @@
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use driftbench_benches::{
-    bench_id, experiment_jobs, fast_config, paper_networks, report_allocations, CountingAllocator,
-    RepresentativeQp, EVAL_TIME,
+    bench_id, experiment_jobs, fast_config, paper_networks, report_allocations, RepresentativeQp,
+    EVAL_TIME,
 };
 use nalgebra::DMatrix;
 use solvers::neural::build_solver;
 use solvers::{solve_equality_kkt, ActiveSetSolution, ActiveSetSolver, ExactSolver};
-
-#[global_allocator]
-static ALLOC: CountingAllocator = CountingAllocator;
 
 fn per_evaluation(c: &mut Criterion) {
     let jobs = experiment_jobs();

@@ -12,8 +12,9 @@
 //!   nonzero velocity and acceleration) and each paper's scheme built at it as a run builds it.
 //! * [`experiment_jobs`], [`find_job`], [`bench_cases`] — jobs of the experiment files, by id;
 //!   what the benches run is data (`benches/cases.toml`).
-//! * [`CountingAllocator`], [`allocations_per_call`] — a global-allocator wrapper that counts
-//!   allocations, so each bench can print how many allocations one timed call makes.
+//! * [`allocations_per_call`], [`report_allocations`] — how many allocations one timed call
+//!   makes, counted by the workspace's one counting allocator (crate `alloc-count`, which
+//!   linking this crate installs in every bench binary).
 //! * [`fast_config`], [`whole_run_config`] — criterion settings that keep the full
 //!   `cargo bench -p driftbench-benches` to a few minutes on two cores.
 //!
@@ -24,8 +25,6 @@
 pub mod telemetry;
 
 use simulation::run::check_job;
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
 use std::time::Duration;
 
@@ -362,46 +361,11 @@ pub fn katana_scheme_cases(jobs: &[Job]) -> Vec<SchemeCase> {
 // Allocation counting
 // ---------------------------------------------------------------------------------------------
 
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
-
-/// The system allocator, counting allocations (and reallocations). A bench binary installs it
-/// with `#[global_allocator] static ALLOC: CountingAllocator = CountingAllocator;` so that
-/// [`allocations_per_call`] sees its allocations; the cost is one relaxed atomic add per
-/// allocation.
-pub struct CountingAllocator;
-
-// SAFETY: every call is forwarded unchanged to `System`.
-unsafe impl GlobalAlloc for CountingAllocator {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        System.alloc(layout)
-    }
-    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        System.alloc_zeroed(layout)
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        System.realloc(ptr, layout, new_size)
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        System.dealloc(ptr, layout)
-    }
-}
-
-/// Allocations made while `f` runs (0 unless the binary installed [`CountingAllocator`]).
-/// Single-threaded code only: other threads' allocations would be counted too.
-pub fn allocations_in<R>(f: impl FnOnce() -> R) -> (R, usize) {
-    let before = ALLOCATIONS.load(Ordering::Relaxed);
-    let r = f();
-    (r, ALLOCATIONS.load(Ordering::Relaxed) - before)
-}
-
-/// Allocations per call of `f`, averaged over 10 calls after one uncounted call (see
-/// [`allocations_in`]).
+/// Allocations per call of `f` on this thread, averaged over 10 calls after one uncounted
+/// call ([`alloc_count::count`]; linking this crate installs its counting allocator).
 pub fn allocations_per_call(mut f: impl FnMut()) -> f64 {
     f();
-    let ((), n) = allocations_in(|| {
+    let n = alloc_count::count(|| {
         for _ in 0..10 {
             f();
         }

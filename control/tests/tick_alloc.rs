@@ -1,12 +1,9 @@
 //! The per-tick hot paths allocate nothing once built: every numerical method's tick (E47,
 //! 94LVI, the hot-started active set, OSQP's Rust side) and every network form's tick, on random
 //! QPs of every paper's shape, counted with the suite's counting allocator
-//! (solvers/tests/common). Clarabel is left out: it allocates per solve by design.
+//! (crate `alloc-count`). Clarabel is left out: it allocates per solve by design.
 
-#[path = "../../solvers/tests/common/mod.rs"]
-mod common;
-
-use common::count;
+use alloc_count::count;
 use control::method::{Method, Numerical};
 use control::network_tick::Discretisation;
 use settings::solver_spec::SolverSpec;

@@ -226,10 +226,10 @@ pub mod prelude {
     pub use catalog::experiment::{Job, SolverChoice};
     pub use catalog::run_key::RunKey;
     pub use catalog::solver_kind::SolverKind;
+    pub use inputs::trajectory::Trajectory;
     pub use nalgebra::{DMatrix, DVector, DVectorView, DVectorViewMut, SMatrix, SVector, Vector3};
     pub use qp::{Qp, QpDims};
     pub use records::runs::RunRow;
-    pub use records::trajectory::Trajectory;
     pub use robots::data_robot::DataRobot;
     pub use robots::robot_file::RobotSpec;
     pub use robots::{JointLimits, Robot};

@@ -15,7 +15,7 @@ pub enum Kind {
     /// A trajectory to score, as CSV (a sample per row).
     TrajectoryCsv,
     /// A trajectory to score, as a MAT-file (compressed or not; its decompressed size has its
-    /// own bound, in `records::trajectory_mat`).
+    /// own bound, in [`crate::trajectory::mat_file`]).
     TrajectoryMat,
     /// The regression gate's `--baseline` runs file.
     Baseline,

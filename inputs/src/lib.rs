@@ -13,6 +13,9 @@
 //!   the rule, [`toml_error::TomlError`] a TOML error's message and line and column, without the
 //!   source line that `toml`'s own message shows.
 //!
+//! The formats of trajectories made elsewhere (a CSV table, a MATLAB / Octave MAT-file) are
+//! read here too, in [`trajectory`]: they are outside files, not the suite's own.
+//!
 //! A directory the program keeps for itself outside a checkout (the Python package's data
 //! cache) is filled by [`private_dir::sync`]: owner-only, never through a link, never one it
 //! did not create, deleting nothing it did not write.
@@ -22,6 +25,7 @@ pub mod kind;
 pub mod private_dir;
 pub mod read;
 pub mod toml_error;
+pub mod trajectory;
 
 pub use error::InputError;
 pub use kind::Kind;

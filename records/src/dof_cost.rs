@@ -1,5 +1,5 @@
 //! `results/dof-cost.csv`: the cost against the number of joints measured by the cost harness
-//! (crate `cost`, `reproduce cost`), one [`DofCostRow`] per (scheme, N, quantity, backend)
+//! (`reproduce::cost`, `reproduce cost`), one [`DofCostRow`] per (scheme, N, quantity, backend)
 //! measured, and one per (scheme, quantity, backend) with the fitted growth exponent k of
 //! median cost ~ c N^k (fitted by crate `analysis`, `fits`); and the plain data the harness
 //! hands over ([`Measurement`], [`Quantity`], [`Summary`], [`RunCounts`], [`SchemeKind`]).

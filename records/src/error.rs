@@ -146,58 +146,6 @@ pub struct MissingRun {
     pub solver: String,
 }
 
-/// Why a trajectory CSV cannot be read (module docs of [`crate::trajectory`]).
-#[derive(Debug, thiserror::Error)]
-#[error("{}: {}{problem}", path.display(), line.map(|l| format!("line {l}: ")).unwrap_or_default())]
-pub struct TrajectoryFileError {
-    /// The file.
-    pub path: PathBuf,
-    /// The 1-based line (the header is line 1), where the problem is in one.
-    pub line: Option<usize>,
-    /// What is wrong.
-    pub problem: TrajectoryProblem,
-}
-
-/// What is wrong in a trajectory CSV.
-#[derive(Debug, thiserror::Error)]
-pub enum TrajectoryProblem {
-    /// The file is not CSV (or a row has another width).
-    #[error(transparent)]
-    Csv(#[from] csv::Error),
-    /// A header names a column that is none of the trajectory's: its position, 1-based (its
-    /// name is the file's content, never quoted).
-    #[error("column {0} of the header is none of the trajectory's (t, theta_1 .. theta_n and optionally thetadot_1 .. thetadot_n)")]
-    UnknownColumn(usize),
-    /// A required column is absent: `t` or `theta_1`.
-    #[error("no column \"{0}\"")]
-    NoColumn(&'static str),
-    /// A column named twice (which would silently win otherwise).
-    #[error("column \"{0}\" is given twice (each column once)")]
-    ColumnTwice(String),
-    /// The theta_i or thetadot_i columns are not numbered 1 .. n.
-    #[error("the {stem}_i columns must be numbered 1 .. n without gaps, got {numbers:?}")]
-    Gaps {
-        /// The columns' stem: `theta` or `thetadot`.
-        stem: &'static str,
-        /// The numbers given, ascending.
-        numbers: Vec<usize>,
-    },
-    /// The thetadot columns are not one per theta column.
-    #[error("{theta} theta_i columns but {thetadot} thetadot_i columns")]
-    ColumnCounts {
-        /// The theta_i columns.
-        theta: usize,
-        /// The thetadot_i columns.
-        thetadot: usize,
-    },
-    /// A cell does not parse as a number (its text is the file's content, never quoted).
-    #[error("column \"{column}\" is not a number")]
-    NotANumber {
-        /// The cell's column (a valid trajectory column name).
-        column: String,
-    },
-}
-
 /// Why `results/dof-cost.csv` could not be written or read.
 #[derive(Debug, thiserror::Error)]
 pub enum DofCostError {

@@ -24,9 +24,8 @@
 //! - [`shard`]: cluster runs: which shard a run belongs to, the shard directory's binding and
 //!   manifest, the merge checks; [`fnv`]: the stable hash they use.
 //! - [`migrate`]: results written before run ids (labels as identities), brought up to date once.
-//! - [`trajectory`], [`trajectory_mat`], [`trajectory_file`]: trajectories made elsewhere (CSV,
-//!   MAT-files, either by its name: the samples [`trajectory::Trajectory`] the engine scores)
-//!   and their score as a row.
+//! - [`trajectory`]: a trajectory made elsewhere, scored, as a row (its file is read by crate
+//!   `inputs`, `inputs::trajectory`).
 //! - [`percentile`]: the one percentile definition of the workspace (numpy's default).
 //! - [`control`]: the control experiments' result files (`results/control*.csv`,
 //!   `results/cycles*.csv`).
@@ -65,5 +64,3 @@ pub mod timing;
 pub mod trace;
 pub mod tracked_dir;
 pub mod trajectory;
-pub mod trajectory_file;
-pub mod trajectory_mat;

@@ -5,7 +5,7 @@
 //! `results/runs.csv` include whatever the neighbouring runs did to the caches and the clock.
 //! After it, each timed run is run again [`REPETITIONS`] times, one run at a time on one
 //! thread, and the median, minimum and maximum of its simulation time (`sim_s`) and whole-run
-//! time (`wall_s`) are kept, with the machine (as `cost::machine` reads it)
+//! time (`wall_s`) are kept, with the machine (as `reproduce::cost::machine` reads it)
 //! and the code revision. The leaderboard ranks by the median ([`Timings::sim_s`]); the spread
 //! (max − min) / median says how much one repetition can be trusted.
 //!
@@ -50,7 +50,7 @@ pub struct TimingRow {
     pub wall_s_min: f64,
     /// Slowest repetition's whole-run time (s).
     pub wall_s_max: f64,
-    /// CPU model and logical cores (`cost::machine`).
+    /// CPU model and logical cores (`reproduce::cost::machine`).
     pub machine: String,
     /// Logical cores available.
     pub cores: usize,

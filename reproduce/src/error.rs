@@ -227,7 +227,7 @@ pub enum ScoreError {
     )]
     NoTask(String),
     #[error(transparent)]
-    Trajectory(#[from] records::trajectory_file::ReadError),
+    Trajectory(#[from] inputs::trajectory::ReadError),
     /// (The scoring error boxed: it is large.)
     #[error("{}: {error} (task \"{task}\")", file.display())]
     Score {

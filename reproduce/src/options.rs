@@ -227,7 +227,7 @@ pub struct ScoreOptions {
     /// MATLAB counts: `theta=1:6,thetadot=7:12` (the rest, e.g. a network's own state, is
     /// ignored). Without it `y` must be n or 2n columns wide.
     #[arg(long, value_name = "SPEC")]
-    pub columns: Option<records::trajectory_mat::Columns>,
+    pub columns: Option<inputs::trajectory::Columns>,
     /// The scored trajectory's solver id, a slug (its row's key is the task and this name, so
     /// trajectories of one task scored under different names keep their own rows).
     #[arg(long, value_name = "ID", default_value = records::trajectory::TRAJECTORY_KIND)]

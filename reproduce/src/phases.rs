@@ -117,7 +117,7 @@ pub struct PhaseRow {
     pub selection: String,
     /// Whether the selection was every run (a whole reproduction).
     pub whole: bool,
-    /// CPU model and logical cores (`cost::machine`).
+    /// CPU model and logical cores (`reproduce::cost::machine`).
     pub machine: String,
     /// Logical cores available.
     pub cores: usize,

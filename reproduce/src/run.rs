@@ -262,7 +262,7 @@ fn publish(
             clock.skip(Phase::Report, why.to_string());
         }
     }
-    let (machine, cores) = cost::machine();
+    let (machine, cores) = crate::cost::machine();
     let rows = clock.rows(&crate::phases::RunContext {
         selection: plan.selection.selection().to_string(),
         whole: plan.selection.is_whole(),

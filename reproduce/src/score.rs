@@ -16,14 +16,14 @@ use crate::summary::{emit, summary};
 use catalog::experiment::{load_dir, Job, PaperFile};
 use catalog::ids::SolverId;
 use catalog::run_key::TaskKey;
+use inputs::trajectory::read;
+use inputs::trajectory::Columns;
 use presentation::figures::run_figure;
 use records::error::{IoAction, IoError};
 use records::owned_dir::OwnedDir;
 use records::runs::{merge, write_atomic, RunRow};
 use records::trace::trace_csv;
 use records::trajectory::score_row;
-use records::trajectory_file::read;
-use records::trajectory_mat::Columns;
 use simulation::row::run_row;
 use simulation::run::{check_job, RunRecord};
 use simulation::score_trajectory::score_trajectory;
@@ -92,7 +92,7 @@ pub enum Warning {
 }
 
 /// The warnings of a trajectory scored into `row`.
-pub fn warnings(row: &RunRow, trajectory: &records::trajectory::Trajectory) -> Vec<Warning> {
+pub fn warnings(row: &RunRow, trajectory: &inputs::trajectory::Trajectory) -> Vec<Warning> {
     let mut out = Vec::new();
     if let (Some(max_pos_err), Some(path_size)) = (row.max_pos_err, row.path_scale) {
         if max_pos_err > WRONG_TASK_FRACTION * path_size {
@@ -135,7 +135,7 @@ pub fn find_task(experiments_dir: &Path, task: &TaskKey) -> Result<Job, ScoreErr
         .ok_or_else(|| ScoreError::NoTask(task.to_string()))
 }
 
-/// Scores the trajectory file `file` (CSV, or a MAT-file: `records::trajectory_file::read`) on
+/// Scores the trajectory file `file` (CSV, or a MAT-file: `inputs::trajectory::read`) on
 /// `task` (a MAT-file's `columns` when given) under the solver id `name` (a slug), and writes
 /// the row, trace and figure (SVG and PNG) under `out`: a directory of its own, never one this
 /// program seals ([`check_out`]), every path inside it checked (`records::owned_dir`: a
@@ -271,7 +271,7 @@ pub fn check_out(out: &Path) -> Result<(), ScoreError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use records::trajectory::Trajectory;
+    use inputs::trajectory::Trajectory;
 
     #[test]
     fn significant_digits_are_the_fewest_that_write_the_value() {

@@ -69,7 +69,7 @@ pub fn time_alone(
 ) -> Result<usize, TimingError> {
     let papers = Papers::load(papers_dir)?;
     let keys = timed_keys(&Runs::new(results.read_runs()?), &papers);
-    let (machine, cores) = cost::machine();
+    let (machine, cores) = crate::cost::machine();
     let mut rows = Vec::with_capacity(keys.len());
     eprintln!(
         "timing {} runs alone, {REPETITIONS} times each, one at a time",

@@ -5,6 +5,7 @@
 mod common;
 
 mod cli;
+mod cost_paths;
 mod exit_codes;
 mod fifth_paper;
 mod gate_explanation;

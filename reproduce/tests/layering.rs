@@ -3,7 +3,8 @@
 //! included; dev-dependencies do not link into the library):
 //!
 //! - presentation links no crate that simulates or solves (solvers, simulation, control,
-//!   explain, cost): rendering the report and its figures needs only the records of the runs;
+//!   explain; the cost harness is reproduce's, which links them): rendering the report and
+//!   its figures needs only the records of the runs;
 //! - the numerical crates (robots, schemes, settings, solvers) link no experiment-file or
 //!   results crate (catalog, records): a user can take the arms, the schemes and the solvers
 //!   without the experiment files. (robots reads its own robot files, so TOML is allowed, and
@@ -11,12 +12,15 @@
 //!   format of the suite's.)
 //! - no member links the benches (`driftbench-benches`, which holds the suite's measurements
 //!   of itself): the reproduction and its report are built without them.
+//! - no member but the benches links the counting allocator (`alloc-count`, which installs
+//!   itself as the global allocator): tests take it as a dev-dependency, and no program of the
+//!   suite counts its allocations.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 /// The crates that run simulations or solvers.
-const SOLVING: [&str; 5] = ["solvers", "simulation", "control", "explain", "cost"];
+const SOLVING: [&str; 4] = ["solvers", "simulation", "control", "explain"];
 
 /// The numerical crates, usable without experiment files.
 const NUMERICAL: [&str; 4] = ["robots", "schemes", "settings", "solvers"];
@@ -174,6 +178,25 @@ fn nothing_links_the_benches() {
         assert!(
             found.is_empty(),
             "{package} links the benches (the suite's measurements of itself):\n  {}",
+            found.join("\n  ")
+        );
+    }
+}
+
+#[test]
+fn only_the_benches_link_the_counting_allocator() {
+    let graph = workspace();
+    assert!(
+        graph["driftbench-benches"]
+            .iter()
+            .any(|d| d == "alloc-count"),
+        "the benches count allocations per timed call"
+    );
+    for package in graph.keys().filter(|p| *p != "driftbench-benches") {
+        let found = offending(&graph, package, &["alloc-count"]);
+        assert!(
+            found.is_empty(),
+            "{package} links the counting allocator (a dev-dependency only):\n  {}",
             found.join("\n  ")
         );
     }

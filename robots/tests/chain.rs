@@ -527,64 +527,30 @@ fn a_workspace_gives_the_same_results_on_reuse() {
     );
 }
 
-/// Counts this thread's allocations, so that a test can show a code path allocates nothing
-/// while the harness runs other tests on other threads (benches' `CountingAllocator` counts
-/// every thread's, for single-threaded bench binaries).
-struct CountingAllocator;
-
-thread_local! {
-    static ALLOCATIONS: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
-}
-
-// SAFETY: every call is forwarded to the system allocator unchanged; the counter is a
-// thread-local `Cell` with a const initialiser, which itself never allocates.
-unsafe impl std::alloc::GlobalAlloc for CountingAllocator {
-    unsafe fn alloc(&self, layout: std::alloc::Layout) -> *mut u8 {
-        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
-        // SAFETY: the caller's contract is passed on.
-        unsafe { std::alloc::System.alloc(layout) }
-    }
-    unsafe fn alloc_zeroed(&self, layout: std::alloc::Layout) -> *mut u8 {
-        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
-        // SAFETY: the caller's contract is passed on.
-        unsafe { std::alloc::System.alloc_zeroed(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: std::alloc::Layout) {
-        // SAFETY: the caller's contract is passed on.
-        unsafe { std::alloc::System.dealloc(ptr, layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: std::alloc::Layout, size: usize) -> *mut u8 {
-        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
-        // SAFETY: the caller's contract is passed on.
-        unsafe { std::alloc::System.realloc(ptr, layout, size) }
-    }
-}
-
-#[global_allocator]
-static COUNTING: CountingAllocator = CountingAllocator;
-
 #[test]
 fn evaluations_into_a_workspace_do_not_allocate() {
     let chain = random_chain(61, 12);
     let mut ws = chain.workspace();
     let q = vec![0.3; 12];
     let qd = vec![-0.7; 12];
-    let before = ALLOCATIONS.with(|c| c.get());
     let mut sink = 0.0;
-    for _ in 0..10 {
-        sink += chain.tool_pose(&mut ws, &q).origin.x;
-        sink += chain.jacobian(&mut ws, &q)[(0, 0)];
-        sink += chain.position_jacobian(&mut ws, &q)[(1, 1)];
-        sink += chain.jacobian_dot(&mut ws, &q, &qd)[(2, 2)];
-        sink += chain.inertia(&mut ws, &q)[(3, 3)];
-        sink += chain.coriolis(&mut ws, &q, &qd)[4];
-        sink += chain.gravity_torques(&mut ws, &q)[5];
-        sink += chain.inverse_dynamics(&mut ws, &q, &qd, &qd)[6];
-    }
-    let after = ALLOCATIONS.with(|c| c.get());
+    let allocations = alloc_count::count(|| {
+        for _ in 0..10 {
+            sink += chain.tool_pose(&mut ws, &q).origin.x;
+            sink += chain.jacobian(&mut ws, &q)[(0, 0)];
+            sink += chain.position_jacobian(&mut ws, &q)[(1, 1)];
+            sink += chain.jacobian_dot(&mut ws, &q, &qd)[(2, 2)];
+            sink += chain.inertia(&mut ws, &q)[(3, 3)];
+            sink += chain.coriolis(&mut ws, &q, &qd)[4];
+            sink += chain.gravity_torques(&mut ws, &q)[5];
+            sink += chain.inverse_dynamics(&mut ws, &q, &qd, &qd)[6];
+        }
+    });
     assert!(sink.is_finite());
-    assert_eq!(after - before, 0, "allocations in the evaluations");
+    assert_eq!(allocations, 0, "allocations in the evaluations");
     // The counter sees allocations (the test can fail).
-    let v = std::hint::black_box(vec![0.0; 3]);
-    assert_eq!(ALLOCATIONS.with(|c| c.get()) - after, 1, "{v:?}");
+    assert_eq!(
+        alloc_count::count(|| drop(std::hint::black_box(vec![0.0; 3]))),
+        1
+    );
 }

@@ -1,46 +1,15 @@
-//! `build` and the analytic `build_dot` overrides must not allocate: counted with a global
-//! allocator that counts allocations made by the current thread while a flag is set.
+//! `build` and the analytic `build_dot` overrides must not allocate: counted with the
+//! workspace's counting allocator (crate `alloc-count`: this thread's allocations).
 
 use crate::common;
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
 use std::sync::Arc;
 
+use alloc_count::count;
 use common::{Circle, PlanarZ};
 use nalgebra::SVector;
 use robots::Robot;
 use schemes::spec::build_scheme;
-
-struct Counting;
-
-thread_local! {
-    static ON: Cell<bool> = const { Cell::new(false) };
-    static COUNT: Cell<usize> = const { Cell::new(0) };
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        if ON.with(|o| o.get()) {
-            COUNT.with(|c| c.set(c.get() + 1));
-        }
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) }
-    }
-}
-
-#[global_allocator]
-static GLOBAL: Counting = Counting;
-
-fn count<F: FnOnce()>(f: F) -> usize {
-    COUNT.with(|c| c.set(0));
-    ON.with(|o| o.set(true));
-    f();
-    ON.with(|o| o.set(false));
-    COUNT.with(|c| c.get())
-}
 
 #[test]
 fn build_and_build_dot_do_not_allocate() {

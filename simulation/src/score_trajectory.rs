@@ -31,8 +31,8 @@ use crate::run::{build_parts, RunRecord};
 use crate::simulate::{Outcome, Run};
 use catalog::error::SetupError;
 use catalog::experiment::Job;
+use inputs::trajectory::Trajectory;
 use nalgebra::DVector;
-use records::trajectory::Trajectory;
 use robots::registry::Model;
 use schemes::scheme::Level;
 

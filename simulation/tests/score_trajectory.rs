@@ -3,7 +3,7 @@
 //! drift exactly and its error and score to the resolution of the thinned samples.
 
 use catalog::experiment::{load_dir, Job, PaperFile, SolverChoice};
-use records::trajectory::Trajectory;
+use inputs::trajectory::Trajectory;
 use simulation::run::check_job;
 use simulation::run::run_job;
 use simulation::score_trajectory::{score_trajectory, TrajectoryError};

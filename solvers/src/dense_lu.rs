@@ -1,5 +1,5 @@
 //! Dense LU factorisation with partial pivoting, P A = L U, on one of two backends, chosen by the
-//! matrix size against a crossover measured by the cost harness (`cost`, `reproduce cost`):
+//! matrix size against a crossover measured by the cost harness (`reproduce::cost`, `reproduce cost`):
 //!
 //! - [`Backend::Nalgebra`]: the in-place, unblocked Doolittle elimination of
 //!   [`crate::neural::lu`] on a nalgebra `DMatrix` (what the networks and the KKT solve used

@@ -3,9 +3,7 @@
 //! MVN's QP in reduced form (between its Clarabel checks): counted with a global allocator that
 //! counts the current thread's allocations while a flag is set.
 
-use crate::common;
-
-use common::count;
+use alloc_count::count;
 use solvers::{
     random_qp, ActiveSetSolution, ActiveSetSolver, ExactPath, QpShape, WorkingSet, CHECK_EVERY,
 };

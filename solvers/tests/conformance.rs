@@ -3,8 +3,6 @@
 //! is held to the kit's checks on the QP shapes it claims; allocation is checked for the
 //! methods that promise none per solve.
 
-use crate::common;
-
 use solvers::conformance::{check_qp_solver, AllocationCounter, Conformance};
 use solvers::lvi_numerical::{LviMethod, LviSettings, LviSolver};
 use solvers::{ExactSolver, HotActiveSet, QpDims, QpShape, QpSolver};
@@ -14,7 +12,7 @@ struct Counter;
 
 impl AllocationCounter for Counter {
     fn count(&self, f: &mut dyn FnMut()) -> usize {
-        common::count(f)
+        alloc_count::count(f)
     }
 }
 

@@ -1,8 +1,6 @@
 //! Every integration test of this crate, one module per file of `tests/`, in one test
-//! binary: one build and link instead of one per file (issue 29). The files are unchanged
-//! but for `use crate::common;` where they shared `tests/common/`.
-
-mod common;
+//! binary: one build and link instead of one per file (issue 29). The allocation tests count
+//! with the workspace's one counting allocator (crate `alloc-count`).
 
 mod active_set;
 mod active_set_alloc;

@@ -3,9 +3,7 @@
 //! set. Every kind of [`SolverSpec`], with every activation where it takes one, and the group's
 //! network with each of its options.
 
-use crate::common;
-
-use common::count;
+use alloc_count::count;
 use nalgebra::DMatrix;
 use settings::solver_spec::SolverSpec;
 use solvers::neural::build_solver;

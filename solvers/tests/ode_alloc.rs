@@ -6,9 +6,7 @@
 //! Jacobian with at every evaluation, which the closures diffsol is given cannot avoid.
 //! Counted with the allocation tests' global allocator.
 
-use crate::common;
-
-use common::count;
+use alloc_count::count;
 use nalgebra::DMatrix;
 use settings::integrator::{IntegratorSettings, Method};
 use solvers::ode::{integrate, Control, OdeStats, OdeSystem};

@@ -3,9 +3,7 @@
 //! converges (a failure there carries its error boxed, `qp::QpSolverError`: one allocation on a
 //! path that ends the run).
 
-use crate::common;
-
-use common::count;
+use alloc_count::count;
 use solvers::lvi_numerical::{LviMethod, LviSettings, LviSolver};
 use solvers::{random_feasible, random_qp, QpDims, QpShape, QpSolver};
 

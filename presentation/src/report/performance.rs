@@ -1,5 +1,5 @@
 //! Performance: what an instant and a run cost, from `results/dof-cost.csv` (written by
-//! `reproduce --dof-cost`, see the crate `cost`) and from the per-run counts and times of
+//! `reproduce --dof-cost`, see `reproduce::cost`) and from the per-run counts and times of
 //! `results/runs.csv`:
 //!
 //! - per instant at the Jaco2's size (N = 6): each network evaluation against the exact
@@ -109,7 +109,7 @@ fn machine(dof: &[DofCostRow]) -> String {
 fn per_instant(dof: &[DofCostRow]) -> String {
     let mut out = format!(
         "### Per instant at N = {JACO2_N} (the Jaco2's size)\n\nOne call at states sampled from \
-         an exact run of `nlink-{JACO2_N}` (crate `cost`): the network's right-hand \
+         an exact run of `nlink-{JACO2_N}` (`reproduce::cost`): the network's right-hand \
          side and Jacobian, the scheme's QP assembly, the exact optimum by the hot-started \
          active set (what the exact column and the scorer call) and by Clarabel (the reference \
          of record), and the dense KKT floor (one LU solve of the equality-constrained KKT \
@@ -294,7 +294,7 @@ fn dof_curve(dof: &[DofCostRow], figures: &[String]) -> String {
          planar pitch chain, from their stated home pose) with the VLTCO scheme of \
          jia2019 (2.17) on a four-leaf clover (nx = N + 1, 2N inequality rows, bounds) and the \
          ZNN scheme of kong2019 (22) on a circle (nx = N, equalities only), through the engine's \
-         one path (crate `cost`, module `harness`: the joint count is a run-time value), timed \
+         one path (`reproduce::cost`: the joint count is a run-time value), timed \
          at states of an exact run, whole runs included: both schemes up to N = 30, the ZNN \
          scheme alone beyond, up to N = {largest}. \
          The dense LUs (the network \

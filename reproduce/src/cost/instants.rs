@@ -1,5 +1,5 @@
 //! The per-instant quantities of a case on a list of QPs (one per sampled state), as the
-//! harness ([`crate::harness`]) times them:
+//! harness ([`super::harness`]) times them:
 //!
 //! - `network-rhs`, `network-jacobian`: one right-hand side and one analytic Jacobian of the
 //!   network at a state near the optimum (x* + 1e-3 sin(i + 1), multipliers 0, as the criterion
@@ -18,7 +18,7 @@
 //!   that factorises the KKT matrix can beat, the active-set method's cost when its working set
 //!   is empty.
 
-use crate::error::CostError;
+use super::error::CostError;
 use nalgebra::{DMatrix, DVector};
 use qp::{Qp, QpDims};
 use records::dof_cost::Quantity;
@@ -189,18 +189,6 @@ impl Instants {
             jac,
             lus: Backend::ALL.iter().map(|&b| DenseLu::new(dim, b)).collect(),
         })
-    }
-
-    pub fn len(&self) -> usize {
-        self.qps.len()
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.qps.is_empty()
-    }
-
-    pub fn dims(&self) -> QpDims {
-        self.qps[0].dims()
     }
 
     /// Whether `quantity` is one of the per-instant quantities and can be timed here.

@@ -9,8 +9,8 @@
 //! percentile), in microseconds. Nothing here asserts a speed: the numbers go to
 //! `results/dof-cost.csv` and the report.
 
-use crate::case::{backends, Case, PreparedCase};
-use crate::harness::{LARGE_SIZES, LARGE_STATES, SWEEP_SIZES};
+use super::case::{backends, Case, PreparedCase};
+use super::harness::{LARGE_SIZES, LARGE_STATES, SWEEP_SIZES};
 use records::dof_cost::{Measurement, Quantity, SchemeKind, Summary};
 use std::time::Instant;
 
@@ -69,7 +69,7 @@ pub fn measure_all(budget: &Budget, mut progress: impl FnMut(&Case)) -> Vec<Meas
     for scheme in SchemeKind::ALL {
         for n in SWEEP_SIZES {
             let case = Case::new(scheme, n);
-            match crate::harness::prepare(&case, budget.states) {
+            match super::harness::prepare(&case, budget.states) {
                 Ok(mut p) => out.extend(measure(case.scheme, case.n, p.as_mut(), budget)),
                 Err(e) => eprintln!("{e}; nothing measured"),
             }
@@ -78,7 +78,7 @@ pub fn measure_all(budget: &Budget, mut progress: impl FnMut(&Case)) -> Vec<Meas
     }
     for n in LARGE_SIZES {
         let case = Case::new(SchemeKind::ZnnRmp, n);
-        match crate::harness::prepare(&case, budget.large_states) {
+        match super::harness::prepare(&case, budget.large_states) {
             Ok(mut p) => out.extend(measure(case.scheme, case.n, p.as_mut(), budget)),
             Err(e) => eprintln!("{e}; nothing measured"),
         }

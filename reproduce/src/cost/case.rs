@@ -1,5 +1,5 @@
 //! What is measured: a (scheme, N) [`Case`] with its network, and a case made ready to time
-//! ([`PreparedCase`]), as [`crate::harness`] prepared it.
+//! ([`PreparedCase`]), as [`super::harness`] prepared it.
 
 use qp::QpDims;
 use records::dof_cost::{Quantity, RunCounts, SchemeKind};
@@ -64,7 +64,7 @@ impl Case {
 
 /// A case made ready to time: every quantity it supports as one call, without allocation
 /// where the code timed does not allocate itself. Object safe, so the criterion benches and
-/// [`crate::measure()`] drive it without knowing N or the path.
+/// `reproduce cost`'s timing drive it without knowing N or the path.
 pub trait PreparedCase {
     /// `<scheme> nlink-<N>`.
     fn label(&self) -> String;

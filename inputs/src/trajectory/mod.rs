@@ -1,19 +1,36 @@
-//! A trajectory file of either format, told by its name: a MAT-file (`.mat`, any case;
-//! [`crate::trajectory_mat`]) or a CSV file ([`crate::trajectory::parse_csv`]), read with the
-//! input reader of crate `inputs` (a regular file, at most its kind's cap).
+//! Trajectories produced elsewhere (MATLAB, Octave, Python), as files: a [`Trajectory`] of
+//! either format, told by its name ([`read()`]): a MAT-file (`.mat`, any case; [`mat_file`]:
+//! variables `t` and `y`) or a CSV file ([`csv_file`]), read with this crate's reader (a regular
+//! file, at most its kind's cap). `simulation::score_trajectory` says what is checked and how
+//! it is scored; `records::trajectory` makes the score a results row.
 
-use crate::error::TrajectoryFileError;
-use crate::trajectory::{parse_csv, Trajectory};
-use crate::trajectory_mat::{read_mat, Columns, MatError};
+pub mod csv_file;
+pub mod mat_file;
+
+pub use csv_file::{parse_csv, TrajectoryFileError, TrajectoryProblem};
+pub use mat_file::{read_mat, Columns, ColumnsError, MatError};
+
 use std::path::Path;
+
+/// Samples of a joint trajectory: `theta[k]` (rad) and optionally `thetadot[k]` (rad/s) at
+/// `t[k]` (s), one entry per joint.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Trajectory {
+    /// Sample times (s), from 0 to the task's duration.
+    pub t: Vec<f64>,
+    /// Joint angles (rad) at each sample, one entry per joint.
+    pub theta: Vec<Vec<f64>>,
+    /// Joint velocities (rad/s) at each sample, when the file gives them.
+    pub thetadot: Option<Vec<Vec<f64>>>,
+}
 
 /// Why a trajectory file cannot be read.
 #[derive(Debug, thiserror::Error)]
 pub enum ReadError {
     /// The file was refused or could not be read (a FIFO, a device, over
-    /// [`inputs::Kind::TrajectoryCsv`]'s cap).
+    /// [`crate::Kind::TrajectoryCsv`]'s cap).
     #[error(transparent)]
-    Input(#[from] inputs::InputError),
+    Input(#[from] crate::InputError),
     /// The CSV file's problem (file, line, column).
     #[error(transparent)]
     Csv(#[from] TrajectoryFileError),
@@ -48,7 +65,7 @@ pub fn read(
             columns: columns.clone(),
         })
     } else {
-        let bytes = inputs::read(path, inputs::Kind::TrajectoryCsv, inputs::Origin::Named)?;
+        let bytes = crate::read(path, crate::Kind::TrajectoryCsv, crate::Origin::Named)?;
         Ok(parse_csv(&bytes, path)?)
     }
 }
@@ -103,8 +120,8 @@ mod tests {
         assert!(
             matches!(
                 e,
-                ReadError::Input(inputs::InputError::Open {
-                    kind: inputs::Kind::TrajectoryCsv,
+                ReadError::Input(crate::InputError::Open {
+                    kind: crate::Kind::TrajectoryCsv,
                     ..
                 })
             ),

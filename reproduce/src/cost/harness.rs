@@ -16,9 +16,9 @@
 //! [`SWEEP_SIZES`] are measured with both schemes, [`LARGE_SIZES`] with kong2019's alone (its
 //! QP has no inequality rows, so its cost past N = 30 is the arm's and the dense LUs').
 
-use crate::case::{path_of, Case, PreparedCase, KONG2019_KP, KONG2019_MU};
-use crate::error::CostError;
-use crate::instants::Instants;
+use super::case::{path_of, Case, PreparedCase, KONG2019_KP, KONG2019_MU};
+use super::error::CostError;
+use super::instants::Instants;
 use catalog::experiment::Scoring;
 use catalog::experiment::{default_exact_integrator, NetworkInit};
 use qp::{Qp, QpDims};
@@ -38,7 +38,8 @@ use std::sync::Arc;
 /// The joint counts measured with kong2019's scheme alone, past [`SWEEP_SIZES`].
 pub const LARGE_SIZES: [usize; 6] = [40, 50, 70, 100, 140, 200];
 
-/// States sampled at the [`LARGE_SIZES`] (fewer than the sweep's: the LUs there are slow).
+/// States sampled at the large sizes (N = 40 ... 200; fewer than the sweep's: the LUs there are
+/// slow).
 pub const LARGE_STATES: usize = 20;
 
 /// Prepares `case`, sampling up to `states` states of one exact run (see the module docs). An

@@ -10,12 +10,12 @@
 //! `theta=1:6,thetadot=7:12` takes those columns (1-based, inclusive, as MATLAB counts them)
 //! and ignores the rest.
 //!
-//! The file is read by the input reader (crate `inputs`: a regular file, at most
-//! [`inputs::Kind::TrajectoryMat`]'s cap). A v7 file's compressed variables are inflated here,
+//! The file is read by the input reader ([`crate::read()`]: a regular file, at most
+//! [`crate::Kind::TrajectoryMat`]'s cap). A v7 file's compressed variables are inflated here,
 //! before `matfile` sees the file, and never past [`MAX_INFLATED_BYTES`] in all: a small file
 //! that inflates to gigabytes is refused after at most that many bytes, not parsed.
 
-use crate::trajectory::Trajectory;
+use super::Trajectory;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
@@ -33,7 +33,7 @@ const MI_COMPRESSED: u32 = 15;
 pub enum MatError {
     /// The file was refused or could not be read by the input reader.
     #[error(transparent)]
-    Input(#[from] inputs::InputError),
+    Input(#[from] crate::InputError),
     /// The compressed variables inflate past [`MAX_INFLATED_BYTES`].
     #[error("{}: its compressed variables inflate to more than {max} bytes; it is not read", path.display())]
     Inflated {
@@ -259,7 +259,7 @@ pub fn read_mat(
     joints: usize,
     columns: Option<&Columns>,
 ) -> Result<Trajectory, MatError> {
-    let bytes = inputs::read(path, inputs::Kind::TrajectoryMat, inputs::Origin::Named)?;
+    let bytes = crate::read(path, crate::Kind::TrajectoryMat, crate::Origin::Named)?;
     let bytes = inflate(bytes, path, MAX_INFLATED_BYTES)?;
     let mat = matfile::MatFile::parse(bytes.as_slice()).map_err(|e| MatError::Parse {
         path: path.to_path_buf(),
@@ -448,5 +448,45 @@ mod tests {
             inflate(b"t,theta_1".to_vec(), path, max).unwrap(),
             b"t,theta_1"
         );
+    }
+
+    #[test]
+    fn column_selections_are_parsed_strictly() {
+        use super::ColumnsError as E;
+        let parsed = |s: &str| s.parse::<Columns>();
+        assert_eq!(
+            parsed("theta=1:6,thetadot=7:12").unwrap(),
+            Columns {
+                theta: (1, 6),
+                thetadot: Some((7, 12))
+            }
+        );
+        assert_eq!(
+            parsed("theta=1:6,thetadot=7:12").unwrap().to_string(),
+            "theta=1:6,thetadot=7:12"
+        );
+        assert!(matches!(parsed("theta=1-6"), Err(E::Syntax { .. })));
+        assert!(matches!(parsed("theta=0:5"), Err(E::Range { .. })));
+        assert!(matches!(parsed("theta=6:1"), Err(E::Range { .. })));
+        assert!(matches!(parsed("thetadot=1:6"), Err(E::NoTheta { .. })));
+        assert!(matches!(
+            parsed("theta=1:6,theta=1:6"),
+            Err(E::Twice { .. })
+        ));
+        assert!(matches!(
+            parsed("theta=1:6,omega=7:12"),
+            Err(E::Unknown { .. })
+        ));
+        assert!(matches!(
+            parsed("theta=1:6,thetadot=7:11"),
+            Err(E::Unequal {
+                theta: 6,
+                thetadot: 5
+            })
+        ));
+        assert!(matches!(
+            parsed("theta=1:99999999999999999999999"),
+            Err(E::Syntax { .. })
+        ));
     }
 }
