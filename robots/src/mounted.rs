@@ -99,6 +99,23 @@ pub enum MountError {
     },
 }
 
+impl MountError {
+    /// The experiment-file field at fault: `tool` or `base`.
+    pub fn field(&self) -> &'static str {
+        match self {
+            MountError::NotFinite { field, .. } | MountError::OutOfRange { field, .. } => {
+                if *field == "tool" {
+                    "tool"
+                } else {
+                    "base"
+                }
+            }
+            MountError::NoOrientation { .. } => "tool",
+            MountError::TiltedGravity { .. } => "base",
+        }
+    }
+}
+
 /// A tool offset and a base transform (module documentation).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Mount {
