@@ -157,8 +157,7 @@ pub trait Robot: Send + Sync {
 /// same axes, for a modified table), the tool frame of a [`chain::Chain`] (the tip link's axes).
 /// With R(theta) its rotation (world from tool frame: its columns are the tool axes in world
 /// coordinates), the angular velocity omega of the tool frame (`Rdot = omega x R`, column by
-/// column) is linear
-/// in the joint velocities:
+/// column) is linear in the joint velocities:
 ///
 /// ```text
 /// omega = J_w(theta) thetadot,   J_w = [k_1 z_1 ... k_n z_n]   (3 x n),
