@@ -68,6 +68,10 @@ pub enum SetupError {
     /// A network given by the caller (e.g. a Python network) could not be built: its message.
     #[error("{0}")]
     CustomNetwork(String),
+    /// The experiment's tool offset or base transform is invalid, or does not fit the robot
+    /// (a tool offset on a robot without a tool frame, a tilted base under dynamics).
+    #[error(transparent)]
+    Mount(#[from] robots::mounted::MountError),
     /// Limits were given for a robot whose dynamics model the scheme reads its limits from.
     #[error("joint_limits / velocity_limits cannot replace the limits of \"{robot}\" for the acceleration-level scheme, which reads them from the robot's dynamics model")]
     LimitsWithDynamics {
@@ -86,6 +90,8 @@ impl SetupError {
             SetupError::Scheme { .. } => JobPart::Scheme,
             SetupError::Network { .. } | SetupError::CustomNetwork(_) => JobPart::Solver,
             SetupError::LimitsWithDynamics { .. } => JobPart::Limits,
+            SetupError::Mount(e) if e.field() == "tool" => JobPart::Tool,
+            SetupError::Mount(_) => JobPart::Base,
         }
     }
 }

@@ -18,6 +18,7 @@ use crate::naming::{slug, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL
 use crate::numerical_spec::NumericalSpec;
 use crate::run_key::{RunKey, TaskKey, EXACT_ID};
 use crate::solver_kind::SolverKind;
+use robots::mounted::{Mount, MountError};
 use schemes::paths::PathSpec;
 use schemes::spec::SchemeSpec;
 use serde::{Deserialize, Serialize};
@@ -54,6 +55,13 @@ pub struct Experiment {
     pub paper_output: String,
     /// The robot's model name ([`robots::registry`], e.g. `jaco2-pen`).
     pub robot: String,
+    /// A tool offset `[x, y, z]` (m) in the robot's tool frame, added to its task point
+    /// ([`robots::mounted`]; needs a robot with a tool frame).
+    #[serde(default)]
+    pub tool: Option<[f64; 3]>,
+    /// Where the robot stands: the run's world from the robot's ([`BaseSpec`]).
+    #[serde(default)]
+    pub base: Option<BaseSpec>,
     /// The desired path of every variant (a variant may override it).
     pub path: PathSpec,
     /// Initial joint angles theta(0) (rad), one per joint.
@@ -123,6 +131,12 @@ pub struct Variant {
     /// The robot of this variant (overrides the experiment's).
     #[serde(default)]
     pub robot: Option<String>,
+    /// The tool offset of this variant (overrides the experiment's).
+    #[serde(default)]
+    pub tool: Option<Box<[f64; 3]>>,
+    /// The base transform of this variant (overrides the experiment's).
+    #[serde(default)]
+    pub base: Option<Box<BaseSpec>>,
     /// Boxed, as the other overrides a variant seldom gives (limits, expected failure): a
     /// sweep of 10^6 variants holds 10^6 of these structs, each 200 bytes smaller so.
     #[serde(default)]
@@ -228,6 +242,29 @@ impl LimitsSpec {
     }
 }
 
+/// Where an experiment's robot stands: the run's world from the robot's own world frame,
+/// `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)` with `rpy = [roll, pitch, yaw]` (the URDF
+/// convention; [`robots::mounted::Mount::new`] bounds them).
+#[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct BaseSpec {
+    /// Translation (m), default zero.
+    #[serde(default)]
+    pub xyz: [f64; 3],
+    /// Roll, pitch, yaw (rad), default zero.
+    #[serde(default)]
+    pub rpy: [f64; 3],
+}
+
+/// The mount of a tool offset and a base, `None` when neither is given (the robot as it is).
+fn mount_of(tool: Option<&[f64; 3]>, base: Option<&BaseSpec>) -> Result<Option<Mount>, MountError> {
+    if tool.is_none() && base.is_none() {
+        return Ok(None);
+    }
+    let base = base.cloned().unwrap_or_default();
+    Mount::new(tool.copied().unwrap_or([0.0; 3]), base.xyz, base.rpy).map(Some)
+}
+
 /// Where a network's state starts: the papers leave it open, the group's code starts from zero.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
@@ -328,6 +365,9 @@ pub struct Job {
     pub joint_limits: Option<LimitsSpec>,
     /// Joint-velocity limits replacing the robot's.
     pub velocity_limits: Option<LimitsSpec>,
+    /// The robot's tool offset and base (the variant's or the experiment's `tool` and `base`,
+    /// each field on its own); `None`: the robot as it is.
+    pub mount: Option<Mount>,
     /// The scheme and its parameters.
     pub scheme: SchemeSpec,
     /// The run's solver.
@@ -383,6 +423,10 @@ impl Job {
 /// deserialized by hand, past that check, can make these runs panic.)
 const CHECKED_IDS: &str =
     "the experiment file's check refuses an experiment or variant id that is not one";
+
+/// Why the mount of a run made from a file is valid: the file's check builds every
+/// experiment's and variant's mount before any run is made.
+const CHECKED_MOUNT: &str = "the experiment file's check refuses an invalid tool or base";
 
 /// Checks one run by building its parts as the run would (robot, path from f(theta_ref),
 /// scheme, network), integrating nothing: the engine's `simulation::run::check_job`. The
@@ -508,6 +552,8 @@ impl PaperFile {
             return Err(field(at("id"), FieldError::IdTwice { id }));
         }
         let n = robot_dof(&e.robot).map_err(|e| field(at("robot"), e))?;
+        mount_of(e.tool.as_ref(), e.base.as_ref())
+            .map_err(|err| field(at(err.field()), SetupError::Mount(err)))?;
         check_len(&e.theta0, n, at("theta0"))?;
         if let Some(r) = &e.theta_ref {
             check_len(r, n, at("theta_ref"))?;
@@ -567,6 +613,8 @@ impl PaperFile {
                 },
             ));
         }
+        mount_of(v.tool.as_deref(), v.base.as_deref())
+            .map_err(|err| field(vat(err.field()), SetupError::Mount(err)))?;
         if let Some(t) = &v.theta0 {
             check_len(t, vn, vat("theta0"))?;
         }
@@ -706,6 +754,11 @@ impl PaperFile {
                 .as_deref()
                 .or(e.velocity_limits.as_ref())
                 .cloned(),
+            mount: mount_of(
+                v.tool.as_deref().or(e.tool.as_ref()),
+                v.base.as_deref().or(e.base.as_ref()),
+            )
+            .expect(CHECKED_MOUNT),
             scheme: v.scheme.clone(),
             solver: SolverChoice::Exact,
             integrator: e.exact_integrator,

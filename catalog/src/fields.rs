@@ -21,6 +21,10 @@ pub enum JobPart {
     Solver,
     /// The `joint_limits` / `velocity_limits` override.
     Limits,
+    /// The tool offset (`tool`).
+    Tool,
+    /// The base transform (`base`).
+    Base,
 }
 
 impl JobPart {
@@ -34,6 +38,8 @@ impl JobPart {
             JobPart::Scheme => "scheme",
             JobPart::Solver => "solvers",
             JobPart::Limits => "joint_limits",
+            JobPart::Tool => "tool",
+            JobPart::Base => "base",
         }
     }
 }
@@ -44,6 +50,8 @@ pub(crate) const VARIANT_FIELDS: &[&str] = &[
     "solvers",
     "exact",
     "robot",
+    "tool",
+    "base",
     "path",
     "theta0",
     "theta_ref",

@@ -5,13 +5,12 @@
 
 use crate::error::ControlError;
 use catalog::experiment::{load_dir, Job, SolverChoice};
-use robots::registry::robot_by_name;
 use robots::Robot;
 use schemes::paths::Path;
 use schemes::scheme::Scheme;
 use settings::solver_spec::SolverSpec;
 use simulation::run::check_job;
-use simulation::run::{build_cyclic_parts, job_robot};
+use simulation::run::{build_cyclic_parts, job_model, job_robot};
 
 /// A task: an experiment and one of its variants (ids).
 #[derive(Clone, Debug, PartialEq, Eq, serde::Deserialize)]
@@ -144,8 +143,12 @@ pub fn with_task<R>(
         task: task.id(),
         message: e.to_string(),
     };
-    let model = robot_by_name(&job.robot)
-        .map_err(|e| ControlError::UnknownTask(format!("robot {}: {e}", job.robot)))?;
+    let model = job_model(job).map_err(|e| match e {
+        catalog::error::SetupError::UnknownRobot(e) => {
+            ControlError::UnknownTask(format!("robot {}: {e}", job.robot))
+        }
+        e => setup(e),
+    })?;
     let robot = job_robot(job, model.robot, model.dynamics.is_some()).map_err(setup)?;
     let (path, scheme) =
         build_cyclic_parts(job, robot.clone(), model.dynamics, cycles).map_err(setup)?;

@@ -129,6 +129,15 @@ fn data_root() -> PyResult<PathBuf> {
     guarded(|| packaged::root().map_err(lib_err))
 }
 
+/// Registers a robot file (`<name>.toml`, of the DH or the URDF form), a paper folder's
+/// `robots/*.toml` or a folder's `*.toml`, read now (no rebuild), so that the experiment files
+/// of `root=` may name them; returns their names. An invalid file raises, naming the file and
+/// the field.
+#[pyfunction]
+fn add_robots(path: PathBuf) -> PyResult<Vec<String>> {
+    guarded(|| catalog::robot_files::register_path(&path).map_err(lib_err))
+}
+
 /// Every task of the experiment files (`<root>/experiments`; without `root`, the packaged
 /// ones), in file order.
 #[pyfunction]
@@ -1019,6 +1028,7 @@ fn _driftbench(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("NotApplicable", m.py().get_type::<NotApplicable>())?;
     m.add_class::<PyTask>()?;
     m.add_class::<PyQpDims>()?;
+    m.add_function(wrap_pyfunction!(add_robots, m)?)?;
     m.add_function(wrap_pyfunction!(tasks, m)?)?;
     m.add_function(wrap_pyfunction!(task, m)?)?;
     m.add_function(wrap_pyfunction!(standard_tasks, m)?)?;

@@ -703,3 +703,80 @@ def test_the_type_stubs_cover_the_module():
         if isinstance(n, ast.FunctionDef)
     }
     assert task_props == {n for n in dir(driftbench.Task) if not n.startswith("_")}
+
+
+ARM4 = """name = "{name}"
+source = "a test arm: a yaw joint, then three pitch links"
+convention = "standard"
+tool = [0.0, 0.0, 0.0]
+{extra}
+[[joint]]
+a = 0.0
+alpha = 1.5707963267948966
+d = 0.3
+
+[[joint]]
+a = 0.3
+alpha = 0.0
+d = 0.0
+
+[[joint]]
+a = 0.3
+alpha = 0.0
+d = 0.0
+
+[[joint]]
+a = 0.3
+alpha = 0.0
+d = 0.0
+"""
+
+ARM4_EXPERIMENT = """paper = "kong2019"
+title = "a robot file of one's own"
+
+[[experiment]]
+id = "kong2019-py-arm4"
+paper_output = "none"
+robot = "py-arm4"
+tool = [0.0, 0.0, 0.05]
+path = { name = "circle", duration = 1.0 }
+theta0 = [0.2, 1.2, -0.8, -0.8]
+exact_integrator = { method = "bdf", rtol = 1e-8, atol = 1e-10 }
+
+[[experiment.variant]]
+id = "znn"
+label = "ZNN (eq. 22)"
+scheme = { kind = "znn-rmp", mu = 1.0, k_p = 1.0 }
+solvers = [{ kind = "znn", gamma = 1.0 }]
+"""
+
+
+def test_a_robot_file_written_at_run_time_runs_a_task_without_a_rebuild(tmp_path):
+    # A 4-joint robot file of one's own, outside any checkout, registered by its path.
+    (tmp_path / "py-arm4.toml").write_text(ARM4.format(name="py-arm4", extra=""))
+    assert driftbench.add_robots(tmp_path / "py-arm4.toml") == ["py-arm4"]
+    assert driftbench.add_robots(str(tmp_path / "py-arm4.toml")) == ["py-arm4"]  # once only
+    project = tmp_path / "project"
+    (project / "experiments").mkdir(parents=True)
+    (project / "experiments" / "arm4.toml").write_text(ARM4_EXPERIMENT)
+    task = driftbench.task("kong2019-py-arm4 / znn", root=project)
+    assert task.robot == "py-arm4" and task.dof == 4 and task.nx == 4
+    run = driftbench.simulate(task, Znn(gamma=1.0))
+    assert run["status"] == "ok", run.get("failure")
+    assert len(run["drift"]) == 4 and run["max_pos_err"] < 1e-4
+    twin = driftbench.simulate(task, "znn")
+    assert twin["status"] == "ok" and within(run["drift_norm"], twin["drift_norm"], DRIFT_FACTOR)
+
+
+def test_a_paper_folder_of_robot_files_registers_and_a_bad_file_names_its_field(tmp_path):
+    robots = tmp_path / "mypaper" / "robots"
+    robots.mkdir(parents=True)
+    (robots / "py-arm4b.toml").write_text(ARM4.format(name="py-arm4b", extra=""))
+    assert driftbench.add_robots(tmp_path / "mypaper") == ["py-arm4b"]
+    bad = tmp_path / "bad"
+    bad.mkdir()
+    (bad / "py-arm4c.toml").write_text(ARM4.format(name="py-arm4c", extra='stated_pose = [0.0]'))
+    with pytest.raises(driftbench.DriftbenchError, match=r"py-arm4c\.toml.*stated_pose"):
+        driftbench.add_robots(bad)
+    with pytest.raises(driftbench.DriftbenchError, match="no robot file here"):
+        driftbench.add_robots(tmp_path / "project-that-is-not-there")

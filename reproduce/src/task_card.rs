@@ -203,6 +203,17 @@ fn robot_section(job: &Job, n: &TaskNumbers, robot: &Model) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "\n## Robot `{}` ({} joints)\n", job.robot, n.joints);
     s.push_str(&kinematics(robot));
+    if let Some(m) = &job.mount {
+        let (t, b) = (m.tool(), m.base());
+        let _ = writeln!(
+            s,
+            "\nMounted by the experiment (`tool`, `base`; docs/robots.md): tool offset {} m in \
+             the tool frame; base: translation {} m, rotation row by row {}.",
+            vector(t.as_slice()),
+            vector(b.origin.as_slice()),
+            vector(b.rot.transpose().as_slice()),
+        );
+    }
     s.push_str("\nLimits (rad, rad/s; inf: none):\n\n| joint | theta- | theta+ | thetadot- | thetadot+ |\n|---|---|---|---|---|\n");
     for i in 0..n.joints {
         let _ = writeln!(

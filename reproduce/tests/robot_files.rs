@@ -194,3 +194,79 @@ fn a_urdf_robot_file_is_listed_and_a_broken_urdf_reference_exits_2() {
     assert!(!err.contains("panicked"), "{err}");
     std::fs::remove_dir_all(&root).unwrap();
 }
+
+/// A robot file of `n` joints (DH form): a yaw joint 0.3 m high, then `n - 1` pitch links of
+/// 0.9 / (n - 1) m.
+fn arm_file(name: &str, n: usize) -> String {
+    let mut s = format!(
+        "name = \"{name}\"\nsource = \"a test arm\"\nconvention = \"standard\"\ntool = [0.0, 0.0, 0.0]\n"
+    );
+    for k in 0..n {
+        let (a, alpha, d) = if k == 0 {
+            (0.0, std::f64::consts::FRAC_PI_2, 0.3)
+        } else {
+            (0.9 / (n - 1) as f64, 0.0, 0.0)
+        };
+        s.push_str(&format!(
+            "\n[[joint]]\na = {a:?}\nalpha = {alpha:?}\nd = {d:?}\n"
+        ));
+    }
+    s
+}
+
+#[test]
+fn arms_of_4_8_and_9_joints_are_listed_and_run_from_a_temporary_project() {
+    let arms: Vec<(String, usize)> = [4, 8, 9]
+        .into_iter()
+        .map(|n| (format!("cli-arm-{n}"), n))
+        .collect();
+    let files: Vec<(&str, String)> = arms
+        .iter()
+        .map(|(name, n)| (name.as_str(), arm_file(name, *n)))
+        .collect();
+    let root = project("any-count", &files, &[]);
+    let mut toml = String::from("paper = \"kong2019\"\ntitle = \"own arms\"\n");
+    for (name, n) in &arms {
+        // A bent pose: yaw 0.2, shoulder 1.2, the rest folding back by 2.4 rad in all.
+        let pose: Vec<String> = (0..*n)
+            .map(|k| match k {
+                0 => "0.2".to_string(),
+                1 => "1.2".to_string(),
+                _ => format!("{:?}", -2.4 / (*n - 1) as f64),
+            })
+            .collect();
+        toml.push_str(&format!(
+            r#"
+[[experiment]]
+id = "kong2019-own-{name}"
+paper_output = "none"
+robot = "{name}"
+tool = [0.0, 0.0, 0.02]
+path = {{ name = "circle", duration = 0.5 }}
+theta0 = [{pose}]
+exact_integrator = {{ method = "bdf", rtol = 1e-8, atol = 1e-10 }}
+[[experiment.variant]]
+label = "ZNN (eq. 22)"
+scheme = {{ kind = "kong2019-znn", mu = 1.0, k_p = 1.0 }}
+"#,
+            pose = pose.join(", ")
+        ));
+    }
+    std::fs::write(root.join("experiments/own.toml"), toml).unwrap();
+    let (code, out, err) = run(&root, &["robots"]);
+    assert_eq!(code, Some(0), "{err}");
+    for (name, n) in &arms {
+        let line = out
+            .lines()
+            .find(|l| l.starts_with(name.as_str()))
+            .unwrap_or_else(|| panic!("{name} listed: {out}"));
+        assert!(line.contains(&format!("{n} joints")), "{line}");
+    }
+    let (code, out, err) = run(&root, &["run", "--dry-run", "--skip-explain"]);
+    assert_eq!(code, Some(0), "{out}\n{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    for (name, _) in &arms {
+        assert!(out.contains(&format!("kong2019-own-{name}")), "{out}");
+    }
+    std::fs::remove_dir_all(&root).unwrap();
+}

@@ -33,7 +33,7 @@ use std::cell::RefCell;
 use nalgebra::{DVector, Vector3};
 
 use crate::chain::{Chain, ChainWorkspace};
-use crate::{Dynamics, JointLimits, Robot};
+use crate::{Dynamics, JointLimits, Orientation, Robot};
 
 /// A chain with a name and its joint limits, as a robot model (module documentation).
 #[derive(Clone, Debug)]
@@ -124,25 +124,19 @@ impl Robot for ChainRobot {
     }
 
     fn jacobian(&self, theta: &[f64], jac: &mut [f64]) {
-        self.with_scratch(|ws, _| {
-            let j = self.chain.jacobian(ws, theta);
-            for (col, out) in jac.chunks_exact_mut(3).enumerate() {
-                out.copy_from_slice(&j.as_slice()[6 * col..6 * col + 3]);
-            }
-        })
+        self.with_scratch(|ws, _| three_rows(self.chain.jacobian(ws, theta), 0, jac))
     }
 
     fn jacobian_dot(&self, theta: &[f64], thetadot: &[f64], jdot: &mut [f64]) {
-        self.with_scratch(|ws, _| {
-            let j = self.chain.jacobian_dot(ws, theta, thetadot);
-            for (col, out) in jdot.chunks_exact_mut(3).enumerate() {
-                out.copy_from_slice(&j.as_slice()[6 * col..6 * col + 3]);
-            }
-        })
+        self.with_scratch(|ws, _| three_rows(self.chain.jacobian_dot(ws, theta, thetadot), 0, jdot))
     }
 
     fn limits(&self) -> &JointLimits {
         &self.limits
+    }
+
+    fn orientation(&self) -> Option<&dyn Orientation> {
+        Some(self)
     }
 
     /// The world base origin, the joint origins and the tool point.
@@ -153,6 +147,30 @@ impl Robot for ChainRobot {
             points.push(self.chain.tool_position(ws, theta));
             points
         })
+    }
+}
+
+/// The chain's tool frame; J_w and its derivative are the last three rows of the chain's
+/// geometric Jacobian and `dJ/dt` (a prismatic joint's angular column is zero).
+impl Orientation for ChainRobot {
+    fn tool_rotation(&self, theta: &[f64]) -> nalgebra::Matrix3<f64> {
+        self.with_scratch(|ws, _| self.chain.tool_pose(ws, theta).rot)
+    }
+
+    fn angular_jacobian(&self, theta: &[f64], jac: &mut [f64]) {
+        self.with_scratch(|ws, _| three_rows(self.chain.jacobian(ws, theta), 3, jac))
+    }
+
+    fn angular_jacobian_dot(&self, theta: &[f64], thetadot: &[f64], jdot: &mut [f64]) {
+        self.with_scratch(|ws, _| three_rows(self.chain.jacobian_dot(ws, theta, thetadot), 3, jdot))
+    }
+}
+
+/// Copies rows `first..first + 3` of the 6 x n matrix `six` (0: the linear rows, 3: the
+/// angular ones) into the 3 x n column-major `out`.
+fn three_rows(six: &nalgebra::DMatrix<f64>, first: usize, out: &mut [f64]) {
+    for (col, out) in out.chunks_exact_mut(3).enumerate() {
+        out.copy_from_slice(&six.as_slice()[6 * col + first..6 * col + first + 3]);
     }
 }
 

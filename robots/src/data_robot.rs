@@ -39,7 +39,7 @@ use nalgebra::{DVector, Vector3};
 
 use crate::dh::{DhChain, DhParam, ModifiedDhParam};
 use crate::robot_file::{JointSpec, RobotFileError, RobotSpec};
-use crate::{JointLimits, Robot};
+use crate::{JointLimits, Orientation, Robot};
 
 /// A serial arm of classical DH links with a task point (kinematics only): a robot file's
 /// model, or a Rust model's kinematics.
@@ -198,6 +198,10 @@ impl Robot for DataRobot {
         &self.limits
     }
 
+    fn orientation(&self) -> Option<&dyn Orientation> {
+        Some(self)
+    }
+
     /// The origins of classical frames 0..=n (frame 0 is the base), then the task point.
     fn skeleton(&self, theta: &[f64]) -> Vec<Vector3<f64>> {
         let n = self.dof();
@@ -206,6 +210,28 @@ impl Robot for DataRobot {
                 .map(|k| frames.origin(k))
                 .chain(std::iter::once(frames.frame(n).transform_point(&self.tool)))
                 .collect()
+        })
+    }
+}
+
+/// The tool frame is classical frame n (the task point is fixed in it; a modified table's
+/// flange frame has its axes): R = T_n's rotation, J_w's columns z_{j-1}
+/// ([`crate::geometric_jacobian`]).
+impl Orientation for DataRobot {
+    fn tool_rotation(&self, theta: &[f64]) -> nalgebra::Matrix3<f64> {
+        let n = self.dof();
+        self.with_frames(theta, |frames| frames.frame(n).rot)
+    }
+
+    fn angular_jacobian(&self, theta: &[f64], jac: &mut [f64]) {
+        let n = self.dof();
+        self.with_frames(theta, |frames| frames.angular_jacobian(n, jac))
+    }
+
+    fn angular_jacobian_dot(&self, theta: &[f64], thetadot: &[f64], jdot: &mut [f64]) {
+        let n = self.dof();
+        self.with_frames(theta, |frames| {
+            frames.angular_jacobian_dot(n, thetadot, jdot)
         })
     }
 }

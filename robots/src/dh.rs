@@ -69,6 +69,20 @@ impl Frame {
         }
     }
 
+    /// The URDF pose `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)`, `rpy = [roll, pitch, yaw]` (rad):
+    /// the convention of a URDF `<origin>` and of an experiment's `base`.
+    pub fn from_xyz_rpy(xyz: [f64; 3], rpy: [f64; 3]) -> Self {
+        let [roll, pitch, yaw] = rpy;
+        let rot = |axis: Vector3<f64>, angle: f64| {
+            nalgebra::Rotation3::from_axis_angle(&nalgebra::Unit::new_unchecked(axis), angle)
+                .into_inner()
+        };
+        Frame {
+            rot: rot(Vector3::z(), yaw) * rot(Vector3::y(), pitch) * rot(Vector3::x(), roll),
+            origin: Vector3::from(xyz),
+        }
+    }
+
     /// Composition `self * other` (apply `other` first, expressed in `self`).
     pub fn compose(&self, other: &Frame) -> Frame {
         Frame {

@@ -276,6 +276,11 @@ impl Robot for Jaco2 {
         self.arm.limits()
     }
 
+    /// The kinematic model's: the tool frame is DH frame 6.
+    fn orientation(&self) -> Option<&dyn crate::Orientation> {
+        Some(&self.arm)
+    }
+
     fn skeleton(&self, theta: &[f64]) -> Vec<Vector3<f64>> {
         self.arm.skeleton(theta)
     }

@@ -22,6 +22,12 @@
 //! - [`ChainRobot`] — a [`chain::Chain`] as a model: the URDF form of a paper's robot file
 //!   ([`robot_file::UrdfRobotSpec`], a URDF read at run time by [`urdf`]), with [`Dynamics`]
 //!   where every moving joint carries an inertial.
+//! - [`mounted::Mounted`] — any of these with a tool offset and a base transform of an
+//!   experiment's own (needs [`Orientation`] for a tool offset).
+//!
+//! Capabilities beyond the position task: [`Dynamics`] (H, c, g) and [`Orientation`] (the tool
+//! frame's rotation and angular Jacobian), asked of a model by [`Robot::orientation`] and the
+//! registry's [`registry::Model::dynamics`].
 //!
 //! Modules: [`dh`] (classical DH forward kinematics), [`geometric_jacobian`] (point and body
 //! Jacobians and their time derivatives), [`rigid_body`] (recursive Newton–Euler, inertia and
@@ -29,12 +35,13 @@
 //! [`jaco2_dynamics`] (the Jaco2's inertial table), [`katana`] (Katana 6M180), [`panda`] (Franka
 //! Emika Panda), [`nlink`] (the n-link family), [`robot_file`] (the robot file format and its
 //! validation), [`data_robot`] (the model of a robot file, the built-in files), [`limited`] (a
-//! robot with an experiment's limits), [`registry`] (the one map from the robot names of
+//! robot with an experiment's limits), [`mounted`] (a robot with an experiment's tool offset
+//! and base transform), [`registry`] (the one map from the robot names of
 //! experiment files to models).
 
 #![deny(missing_docs)]
 
-use nalgebra::{DMatrix, DVector, Matrix3xX, Vector3};
+use nalgebra::{DMatrix, DVector, Matrix3, Matrix3xX, Vector3};
 
 pub mod chain;
 pub mod chain_robot;
@@ -45,6 +52,7 @@ pub mod jaco2;
 pub mod jaco2_dynamics;
 pub mod katana;
 pub mod limited;
+pub mod mounted;
 pub mod nlink;
 pub mod panda;
 pub mod registry;
@@ -122,6 +130,11 @@ pub trait Robot: Send + Sync {
     fn skeleton(&self, theta: &[f64]) -> Vec<Vector3<f64>> {
         vec![Vector3::zeros(), self.position(theta)]
     }
+    /// The model's [`Orientation`] capability, where it has one (default: none). A model whose
+    /// task point hangs on a frame of the arm (the DH robots, [`ChainRobot`]) gives itself.
+    fn orientation(&self) -> Option<&dyn Orientation> {
+        None
+    }
     /// J(theta) as a new matrix (allocates: for set-up, checks and tests).
     fn jacobian_matrix(&self, theta: &[f64]) -> Matrix3xX<f64> {
         let mut jac = Matrix3xX::zeros(self.dof());
@@ -134,6 +147,33 @@ pub trait Robot: Send + Sync {
         self.jacobian_dot(theta, thetadot, jdot.as_mut_slice());
         jdot
     }
+}
+
+/// The orientation of a robot's tool frame: the capability a pose task needs beyond the
+/// position task of [`Robot`], asked of a model by [`Robot::orientation`].
+///
+/// The tool frame is the frame the task point is fixed in (its origin need not be the task
+/// point): the last DH frame of a DH robot (classical frame n; its flange frame, which has the
+/// same axes, for a modified table), the tool frame of a [`chain::Chain`] (the tip link's axes).
+/// With R(theta) its rotation (world from tool frame: its columns are the tool axes in world
+/// coordinates), the angular velocity omega of the tool frame (`Rdot = omega x R`, column by
+/// column) is linear in the joint velocities:
+///
+/// ```text
+/// omega = J_w(theta) thetadot,   J_w = [k_1 z_1 ... k_n z_n]   (3 x n),
+/// dJ_w/dt: column j = omega_{j-1} x z_j,   omega_{j-1} = sum_{i<j} k_i thetadot_i z_i,
+/// ```
+///
+/// with z_j the world axis of joint j and k_j = 1 for a revolute joint, 0 for a prismatic one
+/// (a sliding joint does not turn the tool). Matrices are written, 3 x n column-major, into the
+/// caller's buffers of length 3 n, as [`Robot::jacobian`] does: no call allocates.
+pub trait Orientation: Send + Sync {
+    /// R(theta): the rotation of the tool frame, world from tool.
+    fn tool_rotation(&self, theta: &[f64]) -> Matrix3<f64>;
+    /// Writes the angular Jacobian J_w(theta) (3 x n, column-major) into `jac`.
+    fn angular_jacobian(&self, theta: &[f64], jac: &mut [f64]);
+    /// Writes dJ_w/dt along `thetadot` (3 x n, column-major) into `jdot`.
+    fn angular_jacobian_dot(&self, theta: &[f64], thetadot: &[f64], jdot: &mut [f64]);
 }
 
 /// Rigid-body dynamics H(theta) thetaddot + c(theta, thetadot) + g(theta) = tau, each written

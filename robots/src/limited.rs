@@ -2,7 +2,7 @@
 //! the model's own (robio2018's Table I and |thetadot| <= 1.5 rad/s, say) without a new model.
 //! Kinematics are the wrapped model's; only [`Robot::limits`] changes.
 
-use crate::{JointLimits, Robot};
+use crate::{JointLimits, Orientation, Robot};
 use nalgebra::Vector3;
 use std::sync::Arc;
 
@@ -55,5 +55,9 @@ impl Robot for Limited {
 
     fn skeleton(&self, theta: &[f64]) -> Vec<Vector3<f64>> {
         self.robot.skeleton(theta)
+    }
+
+    fn orientation(&self) -> Option<&dyn Orientation> {
+        self.robot.orientation()
     }
 }

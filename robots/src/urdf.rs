@@ -210,17 +210,9 @@ fn listed<'a>(names: impl ExactSizeIterator<Item = &'a str>) -> String {
     out.join(", ")
 }
 
-/// The URDF pose `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)`.
+/// The URDF pose `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)` ([`Frame::from_xyz_rpy`]).
 fn pose(p: &urdf_rs::Pose) -> Frame {
-    let [roll, pitch, yaw] = *p.rpy;
-    let rot = |axis: Vector3<f64>, angle: f64| {
-        nalgebra::Rotation3::from_axis_angle(&nalgebra::Unit::new_unchecked(axis), angle)
-            .into_inner()
-    };
-    Frame {
-        rot: rot(Vector3::z(), yaw) * rot(Vector3::y(), pitch) * rot(Vector3::x(), roll),
-        origin: Vector3::from(*p.xyz),
-    }
+    Frame::from_xyz_rpy(*p.xyz, *p.rpy)
 }
 
 /// Reads the URDF at `path` through the `inputs` reader (found as `origin` says) and builds the

@@ -12,6 +12,7 @@ mod jaco2_kinematics;
 mod katana;
 mod nlink;
 mod nlink_dyn;
+mod orientation;
 mod panda;
 mod pinocchio;
 mod robot_file;

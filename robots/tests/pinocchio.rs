@@ -3,7 +3,10 @@
 //! Jaco2 with continuous joints, Unitree Z1, xArm7), at seeded random states. The script
 //! `tests/pinocchio_reference.py` prints Pinocchio's tool pose, LOCAL_WORLD_ALIGNED Jacobian
 //! and its time derivative, H, c and g; this test loads the same URDF through `robots::urdf::read` and compares, entry by
-//! entry, to 1e-12 relative to max(1, |value|).
+//! entry, to 1e-12 relative to max(1, |value|). The same chain without its tool and base, as a
+//! `ChainRobot` with the tool offset and base as an experiment's mount (`robots::mounted`), is
+//! compared the same way through the `Robot` and `Orientation` traits: task point, position
+//! Jacobian and its derivative, tool rotation, angular Jacobian and its derivative.
 //!
 //! The interpreter is `$DRIFTBENCH_PYTHON` (default `python3`). Where it cannot import
 //! `pinocchio`, the test prints a SKIPPED line (on the terminal, past the test harness's
@@ -13,10 +16,14 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use nalgebra::{Matrix3, Vector3};
+use std::sync::Arc;
+
+use nalgebra::{Matrix3, Matrix3xX, Rotation3, Vector3};
 use robots::chain::Chain;
 use robots::dh::Frame;
+use robots::mounted::{Mount, Mounted};
 use robots::urdf::{read, ChainEnds};
+use robots::{ChainRobot, Robot};
 use serde::Deserialize;
 
 const TOL: f64 = 1e-12;
@@ -147,6 +154,10 @@ fn urdf_chains_match_pinocchio() {
                 rot: rows3(&case.base_rotation),
                 origin: Vector3::from(case.base_translation),
             });
+        let mounted = mounted_robot(case);
+        let oriented = mounted
+            .orientation()
+            .expect("a URDF robot has an orientation");
         let names: Vec<&str> = chain.joints().iter().map(|j| j.name.as_str()).collect();
         assert_eq!(names, case.joints, "{}: the path's joints", case.name);
         let n = chain.dof();
@@ -192,6 +203,47 @@ fn urdf_chains_match_pinocchio() {
                 g.iter().copied(),
                 s.gravity.iter().copied(),
             ));
+            // The mounted robot through the traits: rows 0..3 and 3..6 of the Jacobians.
+            let rows = |m: &[Vec<f64>], first: usize| -> Vec<f64> {
+                (0..n)
+                    .flat_map(|j| (first..first + 3).map(move |i| m[i][j]))
+                    .collect()
+            };
+            let mut three = Matrix3xX::zeros(n);
+            worst = worst.max(compare(
+                &what("mounted position"),
+                mounted.position(theta).iter().copied(),
+                s.position,
+            ));
+            worst = worst.max(compare(
+                &what("mounted rotation"),
+                oriented.tool_rotation(theta).iter().copied(),
+                rot.iter().copied(),
+            ));
+            mounted.jacobian(theta, three.as_mut_slice());
+            worst = worst.max(compare(
+                &what("mounted J"),
+                three.iter().copied(),
+                rows(&s.jacobian, 0),
+            ));
+            mounted.jacobian_dot(theta, qd, three.as_mut_slice());
+            worst = worst.max(compare(
+                &what("mounted dJ/dt"),
+                three.iter().copied(),
+                rows(&s.jacobian_dot, 0),
+            ));
+            oriented.angular_jacobian(theta, three.as_mut_slice());
+            worst = worst.max(compare(
+                &what("mounted J_w"),
+                three.iter().copied(),
+                rows(&s.jacobian, 3),
+            ));
+            oriented.angular_jacobian_dot(theta, qd, three.as_mut_slice());
+            worst = worst.max(compare(
+                &what("mounted dJ_w/dt"),
+                three.iter().copied(),
+                rows(&s.jacobian_dot, 3),
+            ));
         }
         visible(&format!(
             "pinocchio {} / example-robot-data {}: {} ({n} joints, {} states): worst relative error {worst:.1e}",
@@ -201,4 +253,22 @@ fn urdf_chains_match_pinocchio() {
             case.sample.len()
         ));
     }
+}
+
+/// The case's chain read without a tool, as a `ChainRobot` mounted with the case's tool offset
+/// and base placement (its rotation as roll, pitch, yaw).
+fn mounted_robot(case: &Case) -> Mounted<dyn Robot> {
+    let ends = ChainEnds {
+        base: &case.base,
+        tip: &case.tip,
+        tool: Vector3::zeros(),
+    };
+    let bare = read(&case.urdf, inputs::Origin::Named, &ends)
+        .unwrap_or_else(|e| panic!("{}: {e}", case.name));
+    let (roll, pitch, yaw) =
+        Rotation3::from_matrix_unchecked(rows3(&case.base_rotation)).euler_angles();
+    let mount = Mount::new(case.tool, case.base_translation, [roll, pitch, yaw])
+        .unwrap_or_else(|e| panic!("{}: {e}", case.name));
+    Mounted::new(Arc::new(ChainRobot::new(&case.name, bare)), mount)
+        .unwrap_or_else(|e| panic!("{}: {e}", case.name))
 }

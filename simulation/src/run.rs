@@ -8,6 +8,7 @@ use catalog::experiment::{Job, SolverChoice};
 use catalog::fields::JobPart;
 use nalgebra::DVector;
 use qp::QpDims;
+use robots::mounted::Mounted;
 use robots::registry::{robot_by_name, Model};
 use robots::{Dynamics, Robot};
 use schemes::paths::{build_path, Cyclic, Path};
@@ -112,10 +113,27 @@ pub fn check_job(job: &Job) -> Result<(), SetupError> {
     Ok(())
 }
 
-/// The registry's model of the job's robot; the error names the valid choices, or the robot's
-/// invalid file and field.
+/// The registry's model of the job's robot, with the job's tool offset and base where it gives
+/// them ([`robots::mounted`]); the error names the valid choices, or the robot's invalid file
+/// and field, or why the mount does not fit the robot. A mounted model keeps its dynamics only
+/// for a scheme that needs them, where a base that tilts gravity is refused
+/// ([`robots::mounted::MountError::TiltedGravity`]).
 pub fn job_model(job: &Job) -> Result<Model, SetupError> {
-    robot_by_name(&job.robot).map_err(|e| SetupError::UnknownRobot(e.to_string()))
+    let model = robot_by_name(&job.robot).map_err(|e| SetupError::UnknownRobot(e.to_string()))?;
+    let Some(mount) = job.mount else {
+        return Ok(model);
+    };
+    let dynamics = match model.dynamics {
+        Some(d) if job.scheme.needs_dynamics() => {
+            Some(Arc::new(Mounted::with_dynamics(d, mount)?) as Arc<dyn Dynamics>)
+        }
+        _ => None,
+    };
+    Ok(Model {
+        robot: Arc::new(Mounted::new(model.robot, mount)?),
+        dynamics,
+        ..model
+    })
 }
 
 /// The shape of the QP the job's scheme poses at every instant: its sizes and whether its

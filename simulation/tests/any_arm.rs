@@ -163,3 +163,195 @@ fn a_urdf_arm_runs_from_files() {
     }
     std::fs::remove_dir_all(&root).unwrap();
 }
+
+/// A tool offset and a base per experiment (`tool`, `base`; `robots::mounted`): the Jaco2 of
+/// the papers holding its pen 0.1 m further along its tool frame's z, standing 0.2 m aside and
+/// turned about x and z, runs kong2019's ZNN on a circle from an experiment file; the path starts
+/// at the mounted pen tip, the run tracks it. A variant's own `tool` replaces the experiment's.
+/// zhang2018's HL-JDF (dynamics) runs under a yaw and is refused under a tilt, naming `base`;
+/// a tool offset on the Katana's closed form (no tool frame) is refused, naming `tool`.
+#[test]
+fn an_experiment_mounts_its_robot_with_a_tool_offset_and_a_base() {
+    use catalog::experiment::PaperFile;
+    let theta0 = "[1.675, 2.79, -3.216, 4.187, -1.71, -2.95]";
+    let mounted = |robot: &str, mount: &str, paper: &str| {
+        let text = experiment(robot, 6, 2.0)
+            .replace(&pose(6), theta0)
+            .replace("id = \"kong2019-", &format!("id = \"{paper}-"))
+            .replace(
+                &format!("robot = \"{robot}\"\n"),
+                &format!("robot = \"{robot}\"\n{mount}\n"),
+            );
+        format!("paper = \"{paper}\"\ntitle = \"mounted\"\n{text}")
+    };
+    let mount = "tool = [0.0, 0.0, 0.1]\nbase = { xyz = [0.2, 0.0, 0.0], rpy = [0.3, 0.0, 0.5] }";
+    let file = PaperFile::from_toml(&mounted("jaco2-pen", mount, "kong2019"), check_job)
+        .expect("a mounted experiment loads");
+    let job = &file.jobs()[0];
+    let pen = robots::registry::robot_by_name("jaco2-pen").unwrap().robot;
+    let theta: Vec<f64> = vec![1.675, 2.79, -3.216, 4.187, -1.71, -2.95];
+    let tip = pen.position(&theta)
+        + pen.orientation().unwrap().tool_rotation(&theta) * nalgebra::Vector3::new(0.0, 0.0, 0.1);
+    let base = robots::dh::Frame::from_xyz_rpy([0.2, 0.0, 0.0], [0.3, 0.0, 0.5]);
+    let model = simulation::run::job_model(job).unwrap();
+    assert!((model.robot.position(&theta) - base.transform_point(&tip)).norm() < 1e-14);
+    let record = run_job(job);
+    let Outcome::Completed(m) = &record.run.outcome else {
+        panic!("mounted jaco2-pen: {:?}", record.run.outcome);
+    };
+    assert!(m.max_position_error < 1e-6, "{}", m.max_position_error);
+
+    // A variant's tool replaces the experiment's.
+    let text = mounted("jaco2-pen", mount, "kong2019").replace(
+        "label = \"ZNN (eq. 22)\"",
+        "label = \"ZNN (eq. 22)\"\ntool = [0.0, 0.05, 0.0]",
+    );
+    let file = PaperFile::from_toml(&text, check_job).unwrap();
+    assert_eq!(
+        file.jobs()[0].mount.unwrap().tool(),
+        nalgebra::Vector3::new(0.0, 0.05, 0.0)
+    );
+
+    // Dynamics: a yaw keeps gravity vertical, a tilt does not.
+    let dynamic = |mount: &str| {
+        mounted("jaco2-pen", mount, "zhang2018")
+            .replace("ZNN (eq. 22)", "HL-JDF (zeta=0.6)")
+            .replace(
+                "{ kind = \"kong2019-znn\", mu = 1.0, k_p = 1.0 }",
+                "{ kind = \"hl-jdf\", zeta = 0.6, alpha = 20.0, beta = 20.0, rho_v = 20.0, rho_p = 20.0 }",
+            )
+    };
+    let yaw = "tool = [0.0, 0.0, 0.05]\nbase = { xyz = [0.1, 0.1, 0.0], rpy = [0.0, 0.0, 1.0] }";
+    let file = PaperFile::from_toml(&dynamic(yaw), check_job).expect("a yaw loads");
+    let record = run_job(&file.jobs()[0]);
+    assert!(
+        matches!(record.run.outcome, Outcome::Completed(_)),
+        "{:?}",
+        record.run.outcome
+    );
+    let err = PaperFile::from_toml(&dynamic(mount), check_job)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("base") && err.contains("gravity"), "{err}");
+
+    // No tool frame, no tool offset; an out-of-range base is refused at load.
+    let katana = experiment("katana6m180", 5, 2.0)
+        .replace(&pose(5), "[1.2566, 1.5708, 0.0, -0.5236, 1.0472]");
+    let katana = katana.replace(
+        "robot = \"katana6m180\"\n",
+        "robot = \"katana6m180\"\ntool = [0.0, 0.0, 0.1]\n",
+    );
+    let err = PaperFile::from_toml(
+        &format!("paper = \"kong2019\"\ntitle = \"t\"\n{katana}"),
+        check_job,
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        err.contains("`tool`") && err.contains("katana6m180"),
+        "{err}"
+    );
+    let far = mounted("jaco2-pen", "base = { xyz = [0.0, 0.0, 20.0] }", "kong2019");
+    let err = PaperFile::from_toml(&far, check_job)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("field `base`") || err.contains("base.xyz[2]"),
+        "{err}"
+    );
+    assert!(err.contains("must be within [-10, 10] m"), "{err}");
+}
+
+/// The directory of the `example-robot-data` package's URDFs, asked of the interpreter in
+/// `$DRIFTBENCH_PYTHON` (default `python3`); `None` after a SKIPPED line where it has no such
+/// package, unless `DRIFTBENCH_REQUIRE_PINOCCHIO=1` (CI), where the test fails.
+fn example_robot_data() -> Option<std::path::PathBuf> {
+    let python = std::env::var("DRIFTBENCH_PYTHON").unwrap_or_else(|_| "python3".to_string());
+    let required = std::env::var("DRIFTBENCH_REQUIRE_PINOCCHIO").is_ok_and(|v| v == "1");
+    let locate = "import importlib.metadata as m; print(m.distribution('example-robot-data')\
+                  .locate_file('cmeel.prefix/share/example-robot-data/robots'))";
+    let found = std::process::Command::new(&python)
+        .args(["-c", locate])
+        .output()
+        .ok()
+        .filter(|out| out.status.success())
+        .map(|out| std::path::PathBuf::from(String::from_utf8_lossy(&out.stdout).trim()))
+        .filter(|dir| dir.join("ur_description/urdf/ur5_robot.urdf").is_file());
+    if found.is_none() {
+        assert!(
+            !required,
+            "DRIFTBENCH_REQUIRE_PINOCCHIO=1 but {python} has no example-robot-data"
+        );
+        use std::io::Write as _;
+        let _ = writeln!(
+            std::io::stderr().lock(),
+            "SKIPPED: the UR5 of example-robot-data through the engine: {python} has no \
+             example-robot-data (set DRIFTBENCH_PYTHON to an interpreter with it)"
+        );
+    }
+    found
+}
+
+/// A URDF arm of `example-robot-data` (the UR5, `ur5_robot.urdf`, copied into a paper's
+/// `robots/` folder beside its robot file of the URDF form), run from experiment files through
+/// the engine with kong2019's ZNN (velocity level) and zhang2018's HL-JDF (acceleration level,
+/// on the UR5's inertials), with a tool offset: both runs complete and track the circle.
+#[test]
+fn an_example_robot_data_ur5_runs_from_a_robot_file() {
+    let Some(erd) = example_robot_data() else {
+        return;
+    };
+    let root = std::env::temp_dir().join(format!("driftbench-ur5-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&root);
+    let robots = root.join("papers/ur5paper/robots");
+    let urdf = std::fs::read_to_string(erd.join("ur_description/urdf/ur5_robot.urdf")).unwrap();
+    write(&robots.join("ur5_robot.urdf"), &urdf);
+    write(
+        &robots.join("erd-ur5.toml"),
+        "name = \"erd-ur5\"\nsource = \"example-robot-data's ur5_robot.urdf\"\n\
+         urdf = \"ur5_robot.urdf\"\nbase = \"base_link\"\ntip = \"tool0\"\n",
+    );
+    let theta0 = "[0.3, -1.2, 1.5, -1.0, -1.4, 0.2]";
+    let znn = experiment("erd-ur5", 6, 2.0)
+        .replace(&pose(6), theta0)
+        .replace(
+            "robot = \"erd-ur5\"\n",
+            "robot = \"erd-ur5\"\ntool = [0.0, 0.0, 0.1]\n",
+        );
+    let dynamic = znn
+        .replace("id = \"kong2019-", "id = \"zhang2018-")
+        .replace("ZNN (eq. 22)", "HL-JDF (zeta=0.6)")
+        .replace(
+            "{ kind = \"kong2019-znn\", mu = 1.0, k_p = 1.0 }",
+            "{ kind = \"hl-jdf\", zeta = 0.6, alpha = 20.0, beta = 20.0, rho_v = 20.0, rho_p = 20.0 }",
+        );
+    write(
+        &root.join("experiments/ur5.toml"),
+        &format!("paper = \"kong2019\"\ntitle = \"UR5\"\n{znn}"),
+    );
+    write(
+        &root.join("experiments/ur5-dynamics.toml"),
+        &format!("paper = \"zhang2018\"\ntitle = \"UR5, torques\"\n{dynamic}"),
+    );
+    catalog::robot_files::register_paper_robots(&root.join("papers"));
+    let model = robots::registry::robot_by_name("erd-ur5").unwrap();
+    assert_eq!(model.dof(), 6);
+    assert!(model.has_dynamics(), "the UR5's links carry inertials");
+    let files = load_dir(&root.join("experiments"), check_job).expect("the experiments load");
+    let jobs: Vec<_> = files.iter().flat_map(|f| f.jobs()).collect();
+    assert_eq!(jobs.len(), 2);
+    for job in &jobs {
+        let record = run_job(job);
+        let Outcome::Completed(m) = &record.run.outcome else {
+            panic!("{}: {:?}", job.experiment, record.run.outcome);
+        };
+        assert!(
+            m.max_position_error < 1e-6,
+            "{}: max position error {}",
+            job.experiment,
+            m.max_position_error
+        );
+        assert!(m.drift_norm.is_finite() && m.min_sigma_j > 0.0);
+    }
+    std::fs::remove_dir_all(&root).unwrap();
+}
