@@ -15,9 +15,15 @@
 //! - every neural run must complete, except those whose divergence is itself the finding
 //!   (declared in the experiment files as `expected_failure`, recorded in each row);
 //! - the explanation's tables that the pages show (the tolerance ladder and the drift
-//!   attribution) are compared row by row, with the tolerances [`compare_explanations`] states.
+//!   attribution) are compared row by row, with the tolerances [`compare_explanations`] states;
+//! - so are the leaderboard ([`compare_leaderboard`]: derived from the runs) and the control
+//!   experiments' runs ([`compare_control`]: re-run by a whole `check`).
+//!
+//! Every difference is one line naming the table, the row and the column.
 
+use crate::leaderboard::LeaderboardRow;
 use records::attribution::AttributionRow;
+use records::control::ControlRow;
 use records::failure_kind::FailureKind;
 use records::ladder::LadderRow;
 use records::runs::RunRow;
@@ -71,10 +77,8 @@ pub fn compare(committed: &[RunRow], fresh: &[RunRow], baseline: &str) -> Vec<St
             problems.push(format!(
                 "{}: failure_kind {} -> {}",
                 c.key(),
-                c.failure_kind
-                    .map_or("none".to_string(), |k| format!("{k:?}")),
-                f.failure_kind
-                    .map_or("none".to_string(), |k| format!("{k:?}"))
+                c.failure_kind.map_or("none", |k| k.id()),
+                f.failure_kind.map_or("none", |k| k.id())
             ));
             continue;
         }
@@ -182,7 +186,8 @@ pub fn compare_explanations(
 ) -> Vec<String> {
     let ladder_key = |r: &LadderRow| {
         format!(
-            "{} {} rtol {:e} atol {:e} max_step {}",
+            "{} {} {} rtol {:e} atol {:e} max_step {}",
+            records::results_dir::LADDER,
             r.key(),
             r.method.id(),
             r.rtol,
@@ -190,7 +195,14 @@ pub fn compare_explanations(
             value_text(r.max_step)
         )
     };
-    let attribution_key = |r: &AttributionRow| format!("{} {}", r.key(), r.component.label());
+    let attribution_key = |r: &AttributionRow| {
+        format!(
+            "{} {} {}",
+            records::results_dir::ATTRIBUTION,
+            r.key(),
+            r.component.label()
+        )
+    };
     let mut problems = compare_rows(committed.0, fresh.0, ladder_key, baseline, |c, f| {
         let mut p = Vec::new();
         if c.status != f.status || c.as_run != f.as_run {
@@ -242,6 +254,143 @@ pub fn compare_explanations(
     problems
 }
 
+/// The leaderboard (`results/leaderboard.csv`) derived afresh from the runs against the
+/// committed one: one row per (task set, solver id); `tasks`, `rank`, `standard_runs`,
+/// `completed` and `within_tolerance` equal; `success_pct`, `correct_pct` and the accuracy
+/// columns (`dx_*`, `drift_*`) to a relative [`RELATIVE_TOLERANCE`] (absolute 1e-12); the
+/// time columns (`time_*`, the machine's, from `results/leaderboard-timing.csv`) not compared.
+pub fn compare_leaderboard(
+    committed: &[LeaderboardRow],
+    fresh: &[LeaderboardRow],
+    baseline: &str,
+) -> Vec<String> {
+    let key = |r: &LeaderboardRow| {
+        format!(
+            "{} {} {}",
+            records::results_dir::LEADERBOARD,
+            r.task_set,
+            r.solver_id
+        )
+    };
+    let committed: Vec<&LeaderboardRow> = committed.iter().collect();
+    compare_keyed(&committed, fresh, key, baseline, |c, f| {
+        let counts = [
+            ("tasks", c.tasks, f.tasks),
+            ("rank", c.rank, f.rank),
+            ("standard_runs", c.standard_runs, f.standard_runs),
+            ("completed", c.completed, f.completed),
+            ("within_tolerance", c.within_tolerance, f.within_tolerance),
+        ];
+        let mut p: Vec<String> = counts
+            .into_iter()
+            .filter(|(_, a, b)| a != b)
+            .map(|(n, a, b)| format!("{n} {a} -> {b}"))
+            .collect();
+        p.extend(differing(
+            &[],
+            &[],
+            [
+                ("success_pct", c.success_pct, f.success_pct),
+                ("correct_pct", c.correct_pct, f.correct_pct),
+                ("dx_shm", c.dx_shm, f.dx_shm),
+                ("dx_rel", c.dx_rel, f.dx_rel),
+                ("dx_p50", c.dx_p50, f.dx_p50),
+                ("dx_p95", c.dx_p95, f.dx_p95),
+                ("drift_shm", c.drift_shm, f.drift_shm),
+                ("drift_rel", c.drift_rel, f.drift_rel),
+                ("drift_p50", c.drift_p50, f.drift_p50),
+                ("drift_p95", c.drift_p95, f.drift_p95),
+            ]
+            .map(|(n, a, b)| (n, Some(a), Some(b))),
+        ));
+        p
+    })
+}
+
+/// The control experiments' runs (`results/control.csv`) of a fresh `check` against the
+/// committed ones: one row per (task, method, h_ms, substeps); `status`, `ticks`,
+/// `products_max` and `iterations_max` equal; `stopped_at`, the tracking errors
+/// (`max_track_err`, `rms_track_err`), |x − x*| (`max_dx`, `rms_dx`, `max_dx_settled`),
+/// `drift`, `products_mean` and `iterations_mean` to a relative [`RELATIVE_TOLERANCE`]
+/// (absolute 1e-12); the durations (`solve_*_us`, `tick_*_us`, the machine's) not compared.
+pub fn compare_control(
+    committed: &[ControlRow],
+    fresh: &[ControlRow],
+    baseline: &str,
+) -> Vec<String> {
+    let key = |r: &ControlRow| {
+        format!(
+            "{} {} {} h_ms {} substeps {}",
+            records::results_dir::CONTROL,
+            r.task,
+            r.method,
+            r.h_ms,
+            r.substeps
+        )
+    };
+    let committed: Vec<&ControlRow> = committed.iter().collect();
+    compare_keyed(&committed, fresh, key, baseline, |c, f| {
+        let mut p = Vec::new();
+        if c.status != f.status {
+            p.push(format!("status {} -> {}", c.status, f.status));
+        }
+        let counts = [
+            ("ticks", c.ticks as u64, f.ticks as u64),
+            (
+                "iterations_max",
+                u64::from(c.iterations_max),
+                u64::from(f.iterations_max),
+            ),
+        ];
+        if c.products_max != f.products_max {
+            let shown = |v: Option<u64>| v.map_or("none".to_string(), |v| v.to_string());
+            p.push(format!(
+                "products_max {} -> {}",
+                shown(c.products_max),
+                shown(f.products_max)
+            ));
+        }
+        p.extend(
+            counts
+                .into_iter()
+                .filter(|(_, a, b)| a != b)
+                .map(|(n, a, b)| format!("{n} {a} -> {b}")),
+        );
+        p.extend(differing(
+            &[],
+            &[],
+            [
+                ("stopped_at", c.stopped_at, f.stopped_at),
+                (
+                    "max_track_err",
+                    Some(c.max_track_err),
+                    Some(f.max_track_err),
+                ),
+                (
+                    "rms_track_err",
+                    Some(c.rms_track_err),
+                    Some(f.rms_track_err),
+                ),
+                ("max_dx", Some(c.max_dx), Some(f.max_dx)),
+                ("rms_dx", Some(c.rms_dx), Some(f.rms_dx)),
+                (
+                    "max_dx_settled",
+                    Some(c.max_dx_settled),
+                    Some(f.max_dx_settled),
+                ),
+                ("drift", c.drift, f.drift),
+                ("products_mean", c.products_mean, f.products_mean),
+                (
+                    "iterations_mean",
+                    Some(c.iterations_mean),
+                    Some(f.iterations_mean),
+                ),
+            ],
+        ));
+        p
+    })
+}
+
 /// The columns of two rows that differ beyond [`close`]: the per-joint drifts, then `numbers`
 /// (name, committed, fresh).
 fn differing<'a>(
@@ -284,11 +433,28 @@ where
     T: HasRunKey,
 {
     let runs: HashSet<catalog::run_key::RunKey> = fresh.iter().map(HasRunKey::run_key).collect();
+    let explained: Vec<&T> = committed
+        .iter()
+        .filter(|c| runs.contains(&c.run_key()))
+        .collect();
+    compare_keyed(&explained, fresh, key, baseline, diff)
+}
+
+/// The differences between every row of `committed` and `fresh`, matched by `key` and compared
+/// by `diff`, one line each, prefixed by the key; a committed row missing from `fresh`, or a
+/// fresh row not committed, is a difference. Sorted.
+fn compare_keyed<T>(
+    committed: &[&T],
+    fresh: &[T],
+    key: impl Fn(&T) -> String,
+    baseline: &str,
+    diff: impl Fn(&T, &T) -> Vec<String>,
+) -> Vec<String> {
     let fresh_by: std::collections::HashMap<String, &T> =
         fresh.iter().map(|f| (key(f), f)).collect();
     let mut problems = Vec::new();
     let mut seen = HashSet::new();
-    for c in committed.iter().filter(|c| runs.contains(&c.run_key())) {
+    for &c in committed {
         let k = key(c);
         seen.insert(k.clone());
         match fresh_by.get(&k) {
@@ -433,7 +599,7 @@ mod tests {
         let p = compare_explanations((&ladder, &attribution), (&doctored, &attribution), "b");
         assert_eq!(
             p,
-            ["e / v / s bdf rtol 1e-6 atol 1e-8 max_step none: drift_norm 1e-1 -> 2e-1"]
+            ["ladder.csv e / v / s bdf rtol 1e-6 atol 1e-8 max_step none: drift_norm 1e-1 -> 2e-1"]
         );
         let mut share = attribution.clone();
         share[0].share = Some(0.5);
@@ -444,5 +610,60 @@ mod tests {
         assert_eq!(p.len(), 1, "a lost rung: {p:?}");
         let p = compare_explanations((&ladder, &attribution), (&[], &[]), "b");
         assert!(p.is_empty(), "nothing explained now: {p:?}");
+    }
+
+    /// A doctored control or leaderboard number is a difference naming the table, the row and
+    /// the column; a duration or a time is not.
+    #[test]
+    fn a_doctored_control_or_leaderboard_number_is_a_difference() {
+        let control: Vec<ControlRow> = records::table::from_reader(
+            "task,paper,scheme,method,family,h_ms,substeps,status,stopped_at,ticks,solve_p50_us,solve_p99_us,solve_max_us,tick_p50_us,tick_p99_us,tick_max_us,max_track_err,rms_track_err,max_dx,rms_dx,max_dx_settled,drift,products_mean,products_max,iterations_mean,iterations_max\n\
+             e / v,p,S,M4,numerical,1.0,1,ok,,5000,320.8,4452.7,18392.0,322.2,4454.6,18395.0,0.00053,0.00034,6.9e-10,1.9e-10,6.9e-10,0.0017,676.8,2045,333.9,1018\n"
+                .as_bytes(),
+        )
+        .unwrap();
+        assert!(compare_control(&control, &control, "b").is_empty());
+        let mut slower = control.clone();
+        slower[0].solve_p50_us *= 3.0;
+        slower[0].tick_max_us *= 3.0;
+        assert!(compare_control(&control, &slower, "b").is_empty());
+        let mut doctored = control.clone();
+        doctored[0].max_dx = 1e-3;
+        assert_eq!(
+            compare_control(&control, &doctored, "b"),
+            ["control.csv e / v M4 h_ms 1 substeps 1: max_dx 6.9e-10 -> 1e-3"]
+        );
+        let mut doctored = control.clone();
+        doctored[0].products_max = None;
+        assert_eq!(
+            compare_control(&control, &doctored, "b"),
+            ["control.csv e / v M4 h_ms 1 substeps 1: products_max 2045 -> none"]
+        );
+        assert_eq!(
+            compare_control(&control, &[], "b"),
+            ["control.csv e / v M4 h_ms 1 substeps 1: in b but no longer produced"]
+        );
+
+        let board: Vec<LeaderboardRow> = records::table::from_reader(
+            "task_set,tasks,rank,solver_id,solver,solver_kind,standard_runs,completed,within_tolerance,success_pct,correct_pct,dx_shm,dx_rel,dx_p50,dx_p95,drift_shm,drift_rel,drift_p50,drift_p95,time_shm,time_rel,time_p50,time_p95\n\
+             standard,15,1,lvi-pdnn,LVI-PDNN,lvi-pdnn,15,15,15,100.0,100.0,1.1e-5,1.0,1.0e-5,5.9e-5,0.0021,1.08,0.00077,0.059,0.0179,1.56,0.026,0.054\n"
+                .as_bytes(),
+        )
+        .unwrap();
+        assert!(compare_leaderboard(&board, &board, "b").is_empty());
+        let mut slower = board.clone();
+        slower[0].time_shm *= 2.0;
+        slower[0].time_p95 *= 2.0;
+        assert!(compare_leaderboard(&board, &slower, "b").is_empty());
+        let mut doctored = board.clone();
+        doctored[0].drift_shm = 0.5;
+        doctored[0].within_tolerance = 14;
+        assert_eq!(
+            compare_leaderboard(&board, &doctored, "b"),
+            [
+                "leaderboard.csv standard lvi-pdnn: drift_shm 2.1e-3 -> 5e-1",
+                "leaderboard.csv standard lvi-pdnn: within_tolerance 15 -> 14"
+            ]
+        );
     }
 }

@@ -105,6 +105,20 @@ pub enum PaperProblem {
         experiment: String,
         valid: String,
     },
+    #[error("sweep_check[{index}] columns[{column}] field `published_column`: {experiment} has no such column with every metric of the check (valid: {valid})")]
+    SweepPublishedColumn {
+        index: usize,
+        column: usize,
+        experiment: String,
+        valid: String,
+    },
+    #[error("sweep_check[{index}] field `declared`: \"{variant}\" is no variant of {experiment} (valid: {valid})")]
+    SweepDeclared {
+        index: usize,
+        variant: String,
+        experiment: String,
+        valid: String,
+    },
     #[error("sweep_check[{index}] columns[{column}] field `variants`: \"{pattern}\" matches no variant of {experiment} (valid: {valid})")]
     SweepSelectsNothing {
         index: usize,

@@ -6,8 +6,8 @@
 //!   files define must select at least one run. Otherwise it is a typo: an error naming the
 //!   file, the field and the valid choices (the experiment's variants, or the variant's
 //!   solvers).
-//! - A `[[sweep_check]]`'s columns must each match a variant of its sweep, where the files
-//!   define the sweep.
+//! - A `[[sweep_check]]`'s columns must each match a variant of its sweep, and its `declared`
+//!   variant be one, where the files define the sweep.
 //! - What names an experiment the files do not define (a sweep check's among them), and a selection by an experiment
 //!   pattern (`kong2019-*`) that selects nothing, is a note, not an error: a project may hold a
 //!   subset of a paper's experiments (the report then shows the run as missing, the claim as
@@ -130,7 +130,7 @@ pub fn check_runs(
 
 /// The `[[sweep_check]]` tables of `papers` against `runs`: a sweep the files do not define is
 /// noted in `absent` (the report shows its section as not run); in one they define, every
-/// column's `variants` must match a variant of it.
+/// column's `variants` must match a variant of it, and `declared`, if given, be one.
 fn check_sweeps(
     papers: &Papers,
     file: &dyn Fn(&str) -> PathBuf,
@@ -152,15 +152,31 @@ fn check_sweeps(
                 names: check.experiment.clone(),
             });
         }
+        let shown = || {
+            let mut shown: Vec<&str> = variants.iter().copied().take(SHOWN_CHOICES).collect();
+            if variants.len() > SHOWN_CHOICES {
+                shown.push("...");
+            }
+            shown.join(", ")
+        };
+        if let Some(declared) = &check.declared {
+            if !variants.is_empty() && !variants.contains(declared.as_str()) {
+                return Err(PapersError::Invalid {
+                    path: file(&check.paper),
+                    problem: PaperProblem::SweepDeclared {
+                        index: *index,
+                        variant: declared.clone(),
+                        experiment: check.experiment.clone(),
+                        valid: shown(),
+                    },
+                });
+            }
+        }
         let unmatched =
             check.columns.iter().enumerate().find(|(_, c)| {
                 !variants.is_empty() && !variants.iter().any(|v| c.variants.matches(v))
             });
         if let Some((column, c)) = unmatched {
-            let mut shown: Vec<&str> = variants.iter().copied().take(SHOWN_CHOICES).collect();
-            if variants.len() > SHOWN_CHOICES {
-                shown.push("...");
-            }
             return Err(PapersError::Invalid {
                 path: file(&check.paper),
                 problem: PaperProblem::SweepSelectsNothing {
@@ -168,7 +184,7 @@ fn check_sweeps(
                     column,
                     pattern: c.variants.as_str().to_string(),
                     experiment: check.experiment.clone(),
-                    valid: shown.join(", "),
+                    valid: shown(),
                 },
             });
         }

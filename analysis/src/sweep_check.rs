@@ -14,6 +14,12 @@
 //! metrics = ["drift_1", "drift_2"]
 //! columns = [{ published_experiment = "<values.csv experiment>", variants = "*-phi-1.0-tau-0.0" }]
 //! ```
+//!
+//! A column may name the `published_column` of `values.csv` it is compared with (needed where
+//! the published experiment has several, e.g. one per method); without it, the experiment's
+//! first. A check may name the variant of the setup as declared (`declared = "<variant id>"`):
+//! the report then states the setup's share of the gap between that run and the paper
+//! ([`crate::sweep_comparison::setup_share`]).
 
 use crate::claims::Pattern;
 use crate::paper_rules::{PaperProblem, MAX_SWEEP_COLUMNS, SWEEP_METRICS};
@@ -27,6 +33,8 @@ use std::collections::BTreeSet;
 pub struct SweepColumn {
     /// The `experiment` of `values.csv`.
     pub published_experiment: String,
+    /// The `column` of `values.csv` (`None`: the experiment's first).
+    pub published_column: Option<String>,
     /// The variant ids compared with it.
     pub variants: Pattern,
 }
@@ -46,6 +54,10 @@ pub struct SweepCheck {
     /// The per-joint metrics compared (`values.csv` metric names, `runs.csv` columns).
     pub metrics: Vec<String>,
     pub columns: Vec<SweepColumn>,
+    /// The variant id of the setup as the experiment files declare it, if the check names one:
+    /// the swept setups are then measured against it
+    /// ([`crate::sweep_comparison::setup_share`]).
+    pub declared: Option<String>,
 }
 
 impl SweepCheck {
@@ -65,12 +77,16 @@ pub(crate) struct SweepCheckFile {
     table: String,
     metrics: Vec<String>,
     columns: Vec<SweepColumnFile>,
+    #[serde(default)]
+    declared: Option<String>,
 }
 
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct SweepColumnFile {
     published_experiment: String,
+    #[serde(default)]
+    published_column: Option<String>,
     variants: String,
 }
 
@@ -126,28 +142,42 @@ impl SweepCheckFile {
             });
         }
         let of_table = || of_paper().filter(|v| v.table == self.table);
-        // The published experiments of the table that give every compared metric.
+        // The published (experiment, column) pairs of the table that give every compared metric.
+        let gives_all = |e: &str, c: &str| {
+            self.metrics
+                .iter()
+                .all(|m| of_table().any(|v| v.experiment == e && v.column == c && v.metric == *m))
+        };
         let complete: BTreeSet<&str> = of_table()
+            .filter(|v| gives_all(&v.experiment, &v.column))
             .map(|v| v.experiment.as_str())
-            .filter(|e| {
-                self.metrics
-                    .iter()
-                    .all(|m| of_table().any(|v| v.experiment == *e && v.metric == *m))
-            })
             .collect();
-        if let Some((column, c)) = self
-            .columns
-            .iter()
-            .enumerate()
-            .find(|(_, c)| !complete.contains(c.published_experiment.as_str()))
-        {
-            return Err(PaperProblem::SweepColumn {
-                index,
-                column,
-                table: self.table.clone(),
-                experiment: c.published_experiment.clone(),
-                valid: choices(complete),
-            });
+        for (column, c) in self.columns.iter().enumerate() {
+            if !complete.contains(c.published_experiment.as_str()) {
+                return Err(PaperProblem::SweepColumn {
+                    index,
+                    column,
+                    table: self.table.clone(),
+                    experiment: c.published_experiment.clone(),
+                    valid: choices(complete),
+                });
+            }
+            if let Some(name) = &c.published_column {
+                if !gives_all(&c.published_experiment, name) {
+                    return Err(PaperProblem::SweepPublishedColumn {
+                        index,
+                        column,
+                        experiment: c.published_experiment.clone(),
+                        valid: choices(
+                            of_table()
+                                .filter(|v| v.experiment == c.published_experiment)
+                                .filter(|v| gives_all(&v.experiment, &v.column))
+                                .map(|v| v.column.as_str())
+                                .collect(),
+                        ),
+                    });
+                }
+            }
         }
         Ok(SweepCheck {
             paper: paper.to_string(),
@@ -161,9 +191,11 @@ impl SweepCheckFile {
                 .into_iter()
                 .map(|c| SweepColumn {
                     published_experiment: c.published_experiment,
+                    published_column: c.published_column,
                     variants: Pattern::new(&c.variants),
                 })
                 .collect(),
+            declared: self.declared,
         })
     }
 }
@@ -221,6 +253,17 @@ columns = [
             e.contains("columns[1] field `published_experiment`") && e.contains("(valid: a)"),
             "{e}"
         );
+        let mut named = file.clone();
+        named.columns[0].published_column = Some("d".into());
+        let e = named.into_check("p", 0, &values).unwrap_err().to_string();
+        assert_eq!(
+            e,
+            "sweep_check[0] columns[0] field `published_column`: a has no such column with every metric of the check (valid: c)"
+        );
+        let mut named = file.clone();
+        named.columns[0].published_column = Some("c".into());
+        let check = named.into_check("p", 0, &values).unwrap();
+        assert_eq!(check.columns[0].published_column.as_deref(), Some("c"));
         let mut heading = file.clone();
         heading.heading = "H\n## injected".into();
         assert!(heading.into_check("p", 0, &values).is_err());

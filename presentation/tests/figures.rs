@@ -534,6 +534,9 @@ fn the_committed_figures_are_those_the_committed_results_give() {
         &committed.join("results/traces"),
         &root.join("results/traces"),
     );
+    // The arm figures draw each run's robot, which may be a paper's robot file
+    // (papers/<paper>/robots/): registered as `reproduce` registers them.
+    catalog::robot_files::register_paper_robots(&committed.join("papers"));
     render_all(&root).unwrap();
     let (ours, theirs) = (
         root.join("report/figures"),

@@ -496,3 +496,40 @@ fn no_table_of_any_page_is_wider_than_twelve_columns() {
     );
     assert_eq!(columns("| a | b \\| c | d |"), 3);
 }
+
+/// Every sweep check that names its declared setup (robio2018's star: the setup sweep of
+/// experiments/robio2018.toml) states on its paper's page the setup's share of the gap, and
+/// the share printed is the one crate analysis computes from the committed runs.
+#[test]
+fn a_sweep_with_its_declared_setup_states_the_share_of_the_gap_from_the_runs() {
+    use analysis::sweep_comparison::{setup_share, swept_runs};
+    let inputs = committed();
+    let pages = pages(&inputs);
+    let mut stated = 0;
+    for check in inputs
+        .papers
+        .sweep_checks
+        .iter()
+        .filter(|c| c.declared.is_some())
+    {
+        let swept = swept_runs(check, &inputs.runs, &inputs.papers);
+        let share = setup_share(check, &swept).unwrap_or_else(|| {
+            panic!(
+                "{}: the declared setup and another swept setup have completed runs in results/runs.csv",
+                check.experiment
+            )
+        });
+        let text = page(&pages, &paper_page(&check.paper));
+        let line = format!(
+            "carries {:.0} % of the gap on a log scale",
+            100.0 * share.share
+        );
+        assert!(
+            text.contains(&line) && text.contains("**The setup's share of the gap.**"),
+            "{}: no \"{line}\"",
+            check.experiment
+        );
+        stated += 1;
+    }
+    assert!(stated >= 1, "no sweep check names its declared setup");
+}

@@ -177,6 +177,9 @@ pub struct ControlRow {
     pub iterations_max: u32,
 }
 
+/// Read and written as any results table too (the regression gate reads git HEAD's copy).
+impl crate::table::Row for ControlRow {}
+
 /// A network's Euler stability limit on a task.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct StabilityRow {

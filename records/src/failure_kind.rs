@@ -35,3 +35,54 @@ pub enum FailureKind {
     /// leaderboard records such an entry's run as failed and goes on).
     Network,
 }
+
+impl FailureKind {
+    /// The column's text, as `runs.csv` stores it (`diverged`, `wall-time`, ...).
+    pub fn id(self) -> &'static str {
+        match self {
+            FailureKind::Setup => "setup",
+            FailureKind::ExactQp => "exact-qp",
+            FailureKind::Diverged => "diverged",
+            FailureKind::NonFinite => "non-finite",
+            FailureKind::Integrator => "integrator",
+            FailureKind::StepLimit => "step-limit",
+            FailureKind::WallTime => "wall-time",
+            FailureKind::EvalBudget => "eval-budget",
+            FailureKind::NumericalMethod => "numerical-method",
+            FailureKind::Network => "network",
+        }
+    }
+}
+
+impl std::fmt::Display for FailureKind {
+    /// [`FailureKind::id`]: messages name a kind as the file stores it.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.id())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The text a message shows is the column's own (serde's kebab-case), for every kind.
+    #[test]
+    fn the_shown_kind_is_the_stored_one() {
+        for k in [
+            FailureKind::Setup,
+            FailureKind::ExactQp,
+            FailureKind::Diverged,
+            FailureKind::NonFinite,
+            FailureKind::Integrator,
+            FailureKind::StepLimit,
+            FailureKind::WallTime,
+            FailureKind::EvalBudget,
+            FailureKind::NumericalMethod,
+            FailureKind::Network,
+        ] {
+            let stored = toml::Value::try_from(k).unwrap();
+            assert_eq!(stored.as_str(), Some(k.id()));
+            assert_eq!(k.to_string(), k.id());
+        }
+    }
+}

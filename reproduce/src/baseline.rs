@@ -1,10 +1,14 @@
 //! The regression gate's baseline for `reproduce check` (`--check`): the committed rows, read
-//! before anything runs (a given file, or git HEAD's `results/runs.csv`); the comparison itself
-//! is crate `analysis`'s (`analysis::gate`), and any difference is exit code 3.
+//! before anything runs (a given file, or git HEAD's `results/runs.csv`, with the committed
+//! explanation, leaderboard and control runs beside it); the comparison itself is crate
+//! `analysis`'s (`analysis::gate`), and any difference is exit code 3.
 
 use crate::error::{BaselineError, Exit, ReproduceError};
+use analysis::leaderboard::LeaderboardRow;
 use catalog::experiment::Job;
+use records::control::ControlRow;
 use records::runs::{check_rows, RunRow};
+use records::timing::Timings;
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -17,6 +21,14 @@ pub struct Baseline {
     /// The committed explanation (ladder and attribution rows) from the same place as `rows`
     /// (empty for a given baseline file, which has none).
     pub explanation: explain::Explained,
+    /// The committed leaderboard, from the same place (empty for a given baseline file).
+    pub leaderboard: Vec<LeaderboardRow>,
+    /// The committed control experiments' runs, from the same place (empty for a given
+    /// baseline file).
+    pub control: Vec<ControlRow>,
+    /// The leaderboard's timings (`results/leaderboard-timing.csv` of the results directory),
+    /// with which the leaderboard is derived afresh from the runs.
+    timings: Timings,
 }
 
 impl Baseline {
@@ -42,6 +54,9 @@ impl Baseline {
                 rows,
                 name,
                 explanation: explain::Explained::default(),
+                leaderboard: Vec::new(),
+                control: Vec::new(),
+                timings: Timings::default(),
             });
         }
         let in_tree = results_dir == root.join(records::results_dir::DIR);
@@ -70,23 +85,37 @@ impl Baseline {
                 records::results_dir::ATTRIBUTION,
             )?,
         };
-        Ok(match committed {
+        let leaderboard = committed_table(
+            show(records::results_dir::LEADERBOARD),
+            results_dir,
+            records::results_dir::LEADERBOARD,
+        )?;
+        let control = committed_table(
+            show(records::results_dir::CONTROL),
+            results_dir,
+            records::results_dir::CONTROL,
+        )?;
+        let timings = records::timing::read(results_dir)?;
+        let (rows, name) = match committed {
             Some(out) => {
                 let name = "git HEAD:results/runs.csv".to_string();
-                Self {
-                    rows: parse(out.stdout, &name, all)?,
-                    name,
-                    explanation,
-                }
+                (parse(out.stdout, &name, all)?, name)
             }
             None => {
                 let path = results_dir.join(records::results_dir::RUNS);
-                Self {
-                    rows: read(&path, inputs::Origin::Under(results_dir), all)?,
-                    name: path.display().to_string(),
-                    explanation,
-                }
+                (
+                    read(&path, inputs::Origin::Under(results_dir), all)?,
+                    path.display().to_string(),
+                )
             }
+        };
+        Ok(Self {
+            rows,
+            name,
+            explanation,
+            leaderboard,
+            control,
+            timings,
         })
     }
 
@@ -106,16 +135,41 @@ impl Baseline {
         analysis::gate::compare_selection(self.rows, fresh, exact_only, &self.name)
     }
 
+    /// The leaderboard derived from the committed runs with `fresh` in place of the same runs
+    /// (`analysis::leaderboard`), as a reproduction writing `fresh` would write it.
+    fn fresh_leaderboard(&self, fresh: &[RunRow]) -> Vec<LeaderboardRow> {
+        let keys: std::collections::HashSet<_> = fresh.iter().map(RunRow::key).collect();
+        let rows: Vec<RunRow> = self
+            .rows
+            .iter()
+            .filter(|r| !keys.contains(&r.key()))
+            .chain(fresh)
+            .cloned()
+            .collect();
+        analysis::leaderboard::leaderboard(&rows, &self.timings)
+    }
+
     /// Prints the gate's verdict on `fresh` and, when given, the fresh explanation of the same
-    /// runs (`analysis::gate::compare_explanations`): [`Exit::GateDifference`] (exit code 3) on
-    /// any difference.
+    /// runs (`analysis::gate::compare_explanations`) and the fresh control runs
+    /// (`analysis::gate::compare_control`); the leaderboard derived with `fresh` is compared
+    /// with the committed one (`analysis::gate::compare_leaderboard`) where one is committed:
+    /// [`Exit::GateDifference`] (exit code 3) on any difference.
     pub fn verdict(
         self,
         fresh: &[RunRow],
         exact_only: bool,
         explained: Option<&explain::Explained>,
+        control: Option<&[ControlRow]>,
     ) -> ExitCode {
         let name = self.name.clone();
+        let board = (!self.leaderboard.is_empty()).then(|| {
+            analysis::gate::compare_leaderboard(
+                &self.leaderboard,
+                &self.fresh_leaderboard(fresh),
+                &name,
+            )
+        });
+        let control = control.map(|c| analysis::gate::compare_control(&self.control, c, &name));
         let committed = (
             self.explanation.ladder.clone(),
             self.explanation.attribution.clone(),
@@ -128,6 +182,8 @@ impl Baseline {
                 &name,
             ));
         }
+        problems.extend(board.into_iter().flatten());
+        problems.extend(control.into_iter().flatten());
         if problems.is_empty() {
             println!("regression gate: {} runs agree with {name}", fresh.len());
             ExitCode::SUCCESS

@@ -250,8 +250,10 @@ pub enum Mode {
     Run(RunOptions),
     /// The regression gate: run the selection and compare it with git HEAD's committed
     /// results/runs.csv (or --baseline; status, drifts, every measured metric and the effort
-    /// counts and tolerances the report's tables show, not timings); write nothing; exit 3 on
-    /// any difference.
+    /// counts and tolerances the report's tables show, not timings), and with the committed
+    /// ladder, attribution, leaderboard and (with no selection flags, re-run) control tables;
+    /// write nothing; exit 3 on any difference, each named by table, row and column
+    /// (docs/reference/exit-codes.md).
     Check(CheckOptions),
     /// Re-render report/ and its figures from the stored results, running nothing.
     Report,

@@ -1,7 +1,8 @@
 //! `reproduce run` (the default; also `check` and `shard`): everything that
 //! can be checked is checked before anything runs (the gate's baseline, the report directory,
 //! the papers, the stored results); then the selected runs run, resumed from and checkpointed in a journal;
-//! the summary is printed; and the rows are compared with the baseline (the gate) or written
+//! the summary is printed; and the rows are compared with the baseline (the gate: with a whole
+//! selection, the control experiments re-run too) or written
 //! with what follows them (a shard's manifest, or the explanation layer, the control
 //! experiments and the report), a run into `results/` timed phase by phase ([`crate::phases`]:
 //! printed, and written where `--phases FILE` says). Runs that fail without their experiment file expecting it are
@@ -127,7 +128,16 @@ pub fn run(
             let explained = (!plan.selection.exact_only && baseline.explains(jobs))
                 .then(|| crate::explanation::fresh(project, jobs, all.jobs(), git_rev))
                 .transpose()?;
-            return Ok(baseline.verdict(&rows, plan.selection.exact_only, explained.as_ref()));
+            // The control experiments, re-run by a whole check where their runs are committed.
+            let control = (plan.selection.is_whole() && !baseline.control.is_empty())
+                .then(|| fresh_control(project))
+                .transpose()?;
+            return Ok(baseline.verdict(
+                &rows,
+                plan.selection.exact_only,
+                explained.as_ref(),
+                control.as_deref(),
+            ));
         }
         output => Plan { output, ..plan },
     };
@@ -166,6 +176,32 @@ pub fn run(
         );
     }
     Ok(report_unexpected(&unexpected))
+}
+
+/// The control experiments (control crate) run afresh for the gate, written into a scratch
+/// directory (removed after) and read back: `results/` is not touched.
+fn fresh_control(project: &Project) -> Result<Vec<records::control::ControlRow>, ReproduceError> {
+    let scratch =
+        std::env::temp_dir().join(format!("driftbench-check-control-{}", std::process::id()));
+    std::fs::create_dir_all(&scratch).map_err(records::error::IoError::at(
+        &scratch,
+        records::error::IoAction::Write,
+    ))?;
+    eprintln!("re-running the control experiments for the gate");
+    let ran = control::reproduce(
+        &project.experiments_dir,
+        &scratch,
+        &control::Budget::default(),
+        |m| eprintln!("{m}"),
+    )
+    .map_err(ReproduceError::from)
+    .and_then(|_| {
+        records::control::read(&scratch, records::results_dir::CONTROL)
+            .map_err(|e| control::ControlError::from(e).into())
+    });
+    // The scratch copy is the gate's own; failing to remove it loses nothing.
+    let _ = std::fs::remove_dir_all(&scratch);
+    ran
 }
 
 /// A shard's manifest (of its `binding`), written last: the shard is finished.

@@ -1,10 +1,11 @@
-//! The regression gate guards the explanation the pages show: a ladder or attribution number
-//! doctored in results/ and re-sealed (so the store's integrity check accepts it) makes
-//! `reproduce check` fail, naming the row and the column.
+//! The regression gate guards the tables the pages show: a ladder, attribution or control
+//! number doctored in results/ and re-sealed (so the store's integrity check accepts it) makes
+//! `reproduce check` fail, naming the table, the row and the column.
 
 use crate::common;
 use common::{copy_tree, ok, reproduce};
 use records::attribution::AttributionRow;
+use records::control::ControlRow;
 use records::ladder::LadderRow;
 use records::results_dir::ResultsDir;
 use records::tracked_dir::Edits;
@@ -74,5 +75,53 @@ fn a_doctored_and_resealed_ladder_or_attribution_number_fails_the_gate() {
     let stdout = String::from_utf8_lossy(&failed.stdout);
     assert_eq!(failed.status.code(), Some(3), "{stdout}");
     assert!(stdout.contains(": share "), "{stdout}");
+    std::fs::remove_dir_all(&root).unwrap();
+}
+
+/// The gate guards the control experiments' runs the control page shows: a control number
+/// doctored in results/ and re-sealed makes a whole `reproduce check` (which re-runs the control
+/// experiments) fail with exit 3, naming the table, the row and the column. The fixture's
+/// task set is one task of its own paper.
+#[test]
+fn a_doctored_and_resealed_control_number_fails_the_gate() {
+    let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/fifth-paper");
+    let root = std::env::temp_dir().join(format!("driftbench-gate-c-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&root);
+    copy_tree(&fixture, &root);
+    std::fs::create_dir_all(root.join("experiments/control")).unwrap();
+    std::fs::write(
+        root.join("experiments/control/tasks.toml"),
+        "[[task]]\nexperiment = \"demo2026-circle\"\nvariant = \"znn-mu1\"\n",
+    )
+    .unwrap();
+    ok(reproduce()
+        .arg("--root")
+        .arg(&root)
+        .args(["--threads", "2", "run", "--skip-explain"])
+        .output()
+        .unwrap());
+    let results = root.join("results");
+    let rows: Vec<ControlRow> = records::table::read(&results.join("control.csv")).unwrap();
+    assert!(!rows.is_empty(), "the fixture's control task ran");
+    let agree = ok(check(&root));
+    let stdout = String::from_utf8_lossy(&agree.stdout);
+    assert!(stdout.contains("agree"), "{stdout}");
+
+    doctor::<ControlRow>(&results, "control.csv", |rows| {
+        let r = rows.iter_mut().find(|r| r.max_dx > 0.0).unwrap();
+        r.max_dx = r.max_dx * 1.5 + 1e-9;
+    });
+    let failed = check(&root);
+    let stdout = String::from_utf8_lossy(&failed.stdout);
+    assert_eq!(failed.status.code(), Some(3), "{stdout}");
+    let line = stdout
+        .lines()
+        .find(|l| l.starts_with("control.csv demo2026-circle / "))
+        .unwrap_or_else(|| panic!("no control.csv row named: {stdout}"));
+    assert!(line.contains(": max_dx "), "{line}");
+    assert!(
+        !stdout.contains("Some(") && !stdout.contains("RunKey {"),
+        "{stdout}"
+    );
     std::fs::remove_dir_all(&root).unwrap();
 }

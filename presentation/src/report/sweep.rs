@@ -1,13 +1,16 @@
 //! A published table beside a sweep's runs (`[[sweep_check]]` of a paper's `paper.toml`,
 //! `analysis::sweep_check`): where the paper's setup is an assumption the sweep varies, every
 //! swept variant is set beside the published column its id matches: per-joint sign agreement
-//! with the paper and the drift norm ratio, computed from the rows
-//! ([`analysis::sweep_comparison`]).
+//! with the paper (where both exceed the run's round-off floor) and the drift norm ratio,
+//! computed from the rows
+//! ([`analysis::sweep_comparison`]); where the check names the declared setup's variant, a
+//! paragraph below the table states the setup's share of the gap
+//! ([`analysis::sweep_comparison::setup_share`]).
 
-use super::markdown::{sci, Table};
+use super::markdown::{percent, sci, times, Table};
 use analysis::papers::Papers;
 use analysis::sweep_check::SweepCheck;
-use analysis::sweep_comparison::{swept_runs, Against};
+use analysis::sweep_comparison::{setup_share, swept_runs, Against, SetupShare};
 use records::index::Runs;
 
 /// The markdown section; when the sweep was not run (a project that holds a subset of the
@@ -23,15 +26,16 @@ pub fn section(check: &SweepCheck, runs: &Runs, papers: &Papers) -> String {
             check.experiment
         );
     }
+    let swept = swept_runs(check, runs, papers);
     let mut t = Table::new([
         "variant (exact column)",
         "drift norm",
         "paper's norm",
         "ratio",
-        "signs as the paper",
+        "signs as the paper (above round-off)",
         "peak |θ̇| (rad/s)",
     ]);
-    for s in swept_runs(check, runs, papers) {
+    for s in &swept {
         t.push(match s.against {
             Against::Failed { t } => [
                 s.row.variant.clone(),
@@ -57,5 +61,36 @@ pub fn section(check: &SweepCheck, runs: &Runs, papers: &Papers) -> String {
             ],
         });
     }
-    format!("{heading}{}", t.render())
+    let share = setup_share(check, &swept)
+        .map(|s| share_paragraph(&s))
+        .unwrap_or_default();
+    format!("{heading}{}{share}", t.render())
+}
+
+/// The setup's share of the gap in words, every number from `s`.
+fn share_paragraph(s: &SetupShare) -> String {
+    let verdict = if s.share >= 1.0 {
+        "That part of the setup alone can carry the whole gap: the setup, not the solver, may explain it."
+            .to_string()
+    } else {
+        format!(
+            "No single part of the setup swept here carries more than {} of the gap: the rest of it is not explained by these parts.",
+            percent(s.share.max(0.0), 0)
+        )
+    };
+    format!(
+        "\n**The setup's share of the gap.** The setup as declared (`{}`) drifts {}, the paper's column {}: a gap of {}x. The {} other setups move the drift norm by factors from {} to {} of the declared one; the one that goes furthest toward the paper's, {} (x{}), carries {} of the gap on a log scale (ln {} / ln {}). {verdict}\n",
+        s.declared.variant_id,
+        sci(s.declared_norm),
+        sci(s.paper_norm),
+        times(s.gap),
+        s.setups,
+        times(s.range.0),
+        times(s.range.1),
+        s.nearest.variant,
+        times(s.factor),
+        percent(s.share, 0),
+        times(s.factor),
+        times(s.gap),
+    )
 }
