@@ -65,6 +65,10 @@ pub enum SetupError {
         /// The network's own error.
         error: NetworkError,
     },
+    /// The run's QP solver cannot be built: the registry's error (an unknown id with the
+    /// registered ones, a setting not taken or out of range, a solver not built in).
+    #[error("{0}")]
+    QpSolver(String),
     /// A network given by the caller (e.g. a Python network) could not be built: its message.
     #[error("{0}")]
     CustomNetwork(String),
@@ -84,7 +88,9 @@ impl SetupError {
             SetupError::PoseLength { part, .. } | SetupError::PoseNotFinite { part } => *part,
             SetupError::Path(_) => JobPart::Path,
             SetupError::Scheme { .. } => JobPart::Scheme,
-            SetupError::Network { .. } | SetupError::CustomNetwork(_) => JobPart::Solver,
+            SetupError::Network { .. } | SetupError::CustomNetwork(_) | SetupError::QpSolver(_) => {
+                JobPart::Solver
+            }
             SetupError::LimitsWithDynamics { .. } => JobPart::Limits,
         }
     }

@@ -106,8 +106,15 @@ pub fn check_job(job: &Job) -> Result<(), SetupError> {
     }
     let robot = job_robot(job, model.robot, model.dynamics.is_some())?;
     let (_, scheme) = build_parts(job, robot, model.dynamics)?;
-    if let SolverChoice::Neural(spec) = &job.solver {
-        build_network(spec, scheme.dims(), &scheme.name())?;
+    match &job.solver {
+        SolverChoice::Neural(spec) => {
+            build_network(spec, scheme.dims(), &scheme.name())?;
+        }
+        SolverChoice::Numerical(spec) => {
+            solvers::registry::check(spec.method.id(), &spec.settings())
+                .map_err(|e| SetupError::QpSolver(e.to_string()))?;
+        }
+        SolverChoice::Exact => {}
     }
     Ok(())
 }
