@@ -19,6 +19,9 @@
 //! (this method cannot handle active inequalities). A pivot below 1e-12 of the largest entry
 //! refuses the QP as [`QpStatus::Singular`] (a repeated or inconsistent equality row).
 
+// A NaN fails `!(pivot > tol)`, which the forms clippy proposes would let through.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 use qp::{Qp, QpDims, QpDuals, QpSolve, QpSolver, QpSolverError, QpStatus, SolverId};
 
 /// The id it is registered under.
