@@ -38,7 +38,8 @@ impl Numerical {
 
     /// The solvers of the control experiments: the built-in ones of this build
     /// (`settings::qp_solver::BUILTIN`: the six PLPE methods in robio2018's order, the active
-    /// set, Clarabel and, with the `osqp` feature, OSQP), as [`Numerical::builtin`] sets them.
+    /// set, Clarabel and, with the `osqp` feature, OSQP) at their defaults, the PLPE methods to
+    /// |e(U)|_2 <= 1e-10 within 200000 iterations.
     pub fn all() -> Vec<Numerical> {
         settings::qp_solver::BUILTIN
             .iter()
@@ -52,7 +53,7 @@ impl Numerical {
         Numerical::by_id("active-set")
     }
 
-    /// The built-in solver `id` ([`Numerical::builtin`]).
+    /// The built-in solver `id` at the settings of [`Numerical::all`].
     fn by_id(id: &str) -> Numerical {
         Numerical::builtin(
             settings::qp_solver::lookup(id).expect("a built-in id is registered from the start"),

@@ -9,7 +9,7 @@
 //! call, and its `build` makes a solver from an id and settings checked by
 //! [`QpSolverInfo::resolve`].
 //!
-//! The built-in solvers ([`builtin`]), in this order:
+//! The built-in solvers ([`BUILTIN`]), in this order:
 //!
 //! | id | name | settings |
 //! |---|---|---|
