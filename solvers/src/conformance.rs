@@ -39,8 +39,8 @@
 //! network's ODE ydot = F(t, y; QP) (with dQP/dt = 0 where it needs it) is integrated from its
 //! initial state over [0, `t_end`] ([`NetworkConformance::t_end`], a few of its time constants)
 //! with the integrator it names ([`NetworkConformance::integrator`]), and x = y[..nx] must be within `x_tolerance` of Clarabel's optimum
-//! (relative, as above; check `equilibrium`); an integration that fails is a violation too
-//! (check `integration`).
+//! (relative, as above; check `equilibrium`); an integration that fails, or a network that
+//! cannot be built for the QP, is a violation too (checks `integration`, `build`).
 
 use crate::exact::ExactSolver;
 use crate::neural::NeuralSolver;
@@ -474,8 +474,10 @@ impl OdeSystem for FixedQp<'_> {
     }
 }
 
-/// A network built for QPs of the given sizes (its own build error as text).
-pub type NetworkFactory<'a> = &'a dyn Fn(QpDims) -> Result<Box<dyn NeuralSolver>, String>;
+/// A network built for QPs of the given sizes, or its own build error (an open type, so an
+/// outside network brings its own).
+pub type NetworkFactory<'a> =
+    &'a dyn Fn(QpDims) -> Result<Box<dyn NeuralSolver>, Box<dyn std::error::Error + Send + Sync>>;
 
 /// Runs the network checks of the module docs on the networks `make` builds. Returns every
 /// violation (empty: the network conforms).
@@ -499,7 +501,7 @@ pub fn check_network(make: NetworkFactory<'_>, spec: &NetworkConformance) -> Vec
             let mut net = match make(qp.dims()) {
                 Ok(net) => net,
                 Err(e) => {
-                    violation("?".to_string(), "build", e);
+                    violation("?".to_string(), "build", e.to_string());
                     continue;
                 }
             };

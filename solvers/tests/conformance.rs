@@ -167,7 +167,7 @@ fn every_network_preset_reaches_the_optimum() {
         } else {
             &EQUALITY_SHAPES
         };
-        let make = |dims| solvers::neural::build_solver(&spec, dims).map_err(|e| e.to_string());
+        let make = |dims| solvers::neural::build_solver(&spec, dims).map_err(Into::into);
         let penalty = spec.network_kind() == settings::network_kind::NetworkKind::VpRnnPf;
         let conformance = NetworkConformance {
             x_tolerance: if penalty { 3e-2 } else { 1e-6 },
