@@ -97,6 +97,17 @@ impl NumericalSpec {
         self.method.info().resolve(&self.settings())
     }
 
+    /// The spec with the settings in effect written out (the solver's defaults filled in, as
+    /// [`NumericalSpec::resolved`] gives them), or why they do not fit the solver.
+    pub fn with_defaults(&self) -> Result<NumericalSpec, QpSolverError> {
+        let settings = self.resolved()?;
+        Ok(NumericalSpec {
+            tolerance: settings.tolerance,
+            max_iterations: settings.max_iterations,
+            ..*self
+        })
+    }
+
     /// The stopping tolerance the run uses: the one given or the solver's default; `None` for
     /// a solver that takes none.
     pub fn tolerance_in_effect(&self) -> Option<f64> {
