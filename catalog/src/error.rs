@@ -65,6 +65,23 @@ pub enum SetupError {
         /// The network's own error.
         error: NetworkError,
     },
+    /// A network that solves only a QP's equality part given a scheme whose QP has
+    /// inequality rows or finite bounds (its answer would not be the scheme's QP's).
+    #[error("network {network} solves equality-constrained QPs only, but scheme {scheme} (field `scheme`) poses {rows} inequality rows and {bounds} finite bounds (its joint-limit or bound terms); choose a network that handles inequalities (lvi-pdnn, s-lvi-pdnn, vp-rnn-pf) or a scheme without them")]
+    ConstraintsIgnored {
+        /// The network's display name.
+        network: String,
+        /// The scheme's display name.
+        scheme: String,
+        /// The QP's inequality rows.
+        rows: usize,
+        /// Its finite bounds (lower and upper counted apart).
+        bounds: usize,
+    },
+    /// The run's QP solver cannot be built: the registry's error (an unknown id with the
+    /// registered ones, a setting not taken or out of range, a solver not built in).
+    #[error("{0}")]
+    QpSolver(String),
     /// A network given by the caller (e.g. a Python network) could not be built: its message.
     #[error("{0}")]
     CustomNetwork(String),
@@ -88,7 +105,10 @@ impl SetupError {
             SetupError::PoseLength { part, .. } | SetupError::PoseNotFinite { part } => *part,
             SetupError::Path(_) => JobPart::Path,
             SetupError::Scheme { .. } => JobPart::Scheme,
-            SetupError::Network { .. } | SetupError::CustomNetwork(_) => JobPart::Solver,
+            SetupError::Network { .. }
+            | SetupError::CustomNetwork(_)
+            | SetupError::QpSolver(_)
+            | SetupError::ConstraintsIgnored { .. } => JobPart::Solver,
             SetupError::LimitsWithDynamics { .. } => JobPart::Limits,
             SetupError::Mount(e) if e.field() == "tool" => JobPart::Tool,
             SetupError::Mount(_) => JobPart::Base,

@@ -122,7 +122,8 @@ pub struct Variant {
     /// The neural solvers to run the scheme with, one run each.
     #[serde(default)]
     pub solvers: Vec<SolverSpec>,
-    /// Numerical QP methods run as this variant's solvers ([`crate::numerical_spec`]).
+    /// QP solvers run as this variant's solvers at every instant of a fixed-step loop
+    /// ([`crate::numerical_spec`]).
     #[serde(default)]
     pub numerical: Vec<NumericalSpec>,
     /// Run the exact column (default true).
@@ -304,7 +305,7 @@ pub enum SolverChoice {
     Exact,
     /// A neural network, with its parameters.
     Neural(SolverSpec),
-    /// A numerical QP method iterated at every instant of a fixed-step loop.
+    /// A registered QP solver at every instant of a fixed-step loop.
     Numerical(NumericalSpec),
 }
 

@@ -2,7 +2,7 @@
 //!
 //! An experiment file ([`experiment`]) describes runs ([`experiment::Job`]): a robot from the
 //! registry (`robots::registry`), a path and a scheme (crate `schemes`), a solver (the exact
-//! optimum in the loop, a numerical method ([`numerical_spec`]) or a network as
+//! optimum in the loop, a registered QP solver ([`numerical_spec`]) or a network as
 //! `settings::solver_spec` writes it; its kind is a [`solver_kind::SolverKind`]), an integrator
 //! (`settings::integrator`) and where the run is scored. A variant may stand for many through a
 //! `sweep` table ([`sweep`], expanded at the TOML level). Every run is identified by ids, not

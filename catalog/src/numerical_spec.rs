@@ -1,102 +1,31 @@
-//! Numerical QP methods as run solvers, as experiment files name them:
+//! A per-instant QP solver as a run's solver, as experiment files name it:
 //!
 //! ```toml
 //! numerical = [{ method = "94lvi" }, { method = "m5", tolerance = 1e-3, step = 1e-3 }]
+//! numerical = [{ method = "active-set" }, { method = "clarabel" }]
 //! ```
 //!
+//! `method` is any registered QP solver's id (crate `settings`' `qp_solver`: robio2018's six
+//! PLPE methods, `active-set`, `clarabel`, `osqp`, or an outside solver registered through
+//! `solvers::registry::register`), `tolerance` and `max_iterations` its typed settings, checked
+//! at load against the ranges the solver declares (a setting it does not take is an error);
+//! `step` is the run's sampling gap h.
+//!
 //! A numerical run follows robio2018's Algorithm 1 at every sampling instant t_k = k h of a
-//! fixed-step loop: the scheme's QP at (t_k, theta_k) is written as its piecewise-linear
-//! projection equation e(U) = 0 (robio2018 (20)), the method iterates U <- U - rho(U) Q e(U)
-//! (robio2018 (21)) from the previous instant's U (a warm start; U = 0 at t = 0) until
-//! |e(U)|_2 <= `tolerance` (robio2018 Algorithm 1, step 3: 1e-3), and the arm moves on with the
-//! first n entries of U held over the step: theta_{k+1} = theta_k + h thetadot_k. The run's
-//! drift therefore includes the method's own error. The methods themselves are crate
-//! `solvers`' (`solvers::lvi_numerical`); this file only names them and their settings.
+//! fixed-step loop: the scheme's QP at (t_k, theta_k) is solved by the solver, started from
+//! what it left at the previous instant (a PLPE method iterates U <- U - rho(U) Q e(U),
+//! robio2018 (21), from the previous U until |e(U)|_2 <= `tolerance`, default 1e-3 as in
+//! robio2018 Algorithm 1, step 3), and the arm moves on with the first n entries of the answer
+//! held over the step: theta_{k+1} = theta_k + h thetadot_k. The run's drift therefore includes
+//! the solver's own error. The solvers themselves are crate `solvers`'; this file only names
+//! them and their settings.
 
 use serde::{Deserialize, Serialize};
+use settings::qp_solver::{QpSolverError, QpSolverKey, QpSolverSettings};
 
-/// robio2018's stopping rule |e(U)|_2 <= 1e-3 (Algorithm 1, step 3).
-pub const DEFAULT_TOLERANCE: f64 = 1e-3;
-/// Iterations after which one instant's solve fails (the run then fails with that reason).
-pub const DEFAULT_MAX_ITERATIONS: u32 = 100_000;
 /// Sampling gap h of the fixed-step loop (s); the paper does not print one (report/deviations.md).
 pub const DEFAULT_STEP: f64 = 1e-3;
-/// The range of `tolerance`: [`MIN_TOLERANCE`, `MAX_TOLERANCE`]. Below 1e-12 the residual
-/// |e(U)|_2 of a QP of the papers' sizes (entries of order 1, at most a few hundred) is within
-/// a few hundred rounding errors of its own computation and may never be reached; above 1 the
-/// "solution" is not one.
-pub const MIN_TOLERANCE: f64 = 1e-12;
-/// The largest `tolerance` ([`MIN_TOLERANCE`]).
-pub const MAX_TOLERANCE: f64 = 1.0;
-/// The largest `max_iterations` of one instant: 10x the default. The run as a whole is bounded
-/// besides by its iteration budget (`simulation::numerical`), scaled from its duration.
-pub const MAX_MAX_ITERATIONS: u32 = 1_000_000;
 
-/// The six methods of robio2018 (22)-(27), by the ids experiment files use.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
-pub enum NumericalMethod {
-    /// robio2018 (22).
-    #[serde(rename = "94lvi")]
-    Lvi94,
-    /// robio2018 (23).
-    #[serde(rename = "e47")]
-    E47,
-    /// robio2018 (24).
-    #[serde(rename = "m3")]
-    M3,
-    /// robio2018 (25).
-    #[serde(rename = "m4")]
-    M4,
-    /// robio2018 (26).
-    #[serde(rename = "m5")]
-    M5,
-    /// robio2018 (27).
-    #[serde(rename = "m6")]
-    M6,
-}
-
-impl NumericalMethod {
-    /// Every method, in the paper's order.
-    pub const ALL: [NumericalMethod; 6] = [
-        NumericalMethod::Lvi94,
-        NumericalMethod::E47,
-        NumericalMethod::M3,
-        NumericalMethod::M4,
-        NumericalMethod::M5,
-        NumericalMethod::M6,
-    ];
-
-    /// The id in experiment files, run keys and results (`94lvi`, `e47`, `m3`, ...).
-    pub fn id(self) -> &'static str {
-        match self {
-            NumericalMethod::Lvi94 => "94lvi",
-            NumericalMethod::E47 => "e47",
-            NumericalMethod::M3 => "m3",
-            NumericalMethod::M4 => "m4",
-            NumericalMethod::M5 => "m5",
-            NumericalMethod::M6 => "m6",
-        }
-    }
-
-    /// The name the paper prints (`94LVI`, `E47`, `M3`, ...): display only.
-    pub fn name(self) -> &'static str {
-        match self {
-            NumericalMethod::Lvi94 => "94LVI",
-            NumericalMethod::E47 => "E47",
-            NumericalMethod::M3 => "M3",
-            NumericalMethod::M4 => "M4",
-            NumericalMethod::M5 => "M5",
-            NumericalMethod::M6 => "M6",
-        }
-    }
-}
-
-fn default_tolerance() -> f64 {
-    DEFAULT_TOLERANCE
-}
-fn default_max_iterations() -> u32 {
-    DEFAULT_MAX_ITERATIONS
-}
 fn default_step() -> f64 {
     DEFAULT_STEP
 }
@@ -105,14 +34,14 @@ fn default_step() -> f64 {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct NumericalSpec {
-    /// The method, by its id (`method = "94lvi"`).
-    pub method: NumericalMethod,
-    /// Stop one instant's iteration at |e(U)|_2 <= tolerance.
-    #[serde(default = "default_tolerance")]
-    pub tolerance: f64,
+    /// The solver, by its registered id (`method = "94lvi"`).
+    pub method: QpSolverKey,
+    /// The solver's stopping tolerance (the PLPE methods': |e(U)|_2 <= tolerance).
+    #[serde(default)]
+    pub tolerance: Option<f64>,
     /// Fail the instant (and the run) after this many iterations.
-    #[serde(default = "default_max_iterations")]
-    pub max_iterations: u32,
+    #[serde(default)]
+    pub max_iterations: Option<u32>,
     /// Sampling gap h of the fixed-step loop (s).
     #[serde(default = "default_step")]
     pub step: f64,
@@ -121,28 +50,13 @@ pub struct NumericalSpec {
 /// A [`NumericalSpec`] field out of its range.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum NumericalSpecError {
-    /// `tolerance` is outside [[`MIN_TOLERANCE`], [`MAX_TOLERANCE`]].
-    #[error("numerical {method}: tolerance = {value:e} must be within [{MIN_TOLERANCE:e}, {MAX_TOLERANCE:e}]")]
-    Tolerance {
-        /// The method's name as robio2018 prints it.
-        method: &'static str,
-        /// The tolerance given.
-        value: f64,
-    },
-    /// `max_iterations` is outside [1, [`MAX_MAX_ITERATIONS`]].
-    #[error(
-        "numerical {method}: max_iterations = {value} must be within [1, {MAX_MAX_ITERATIONS}]"
-    )]
-    MaxIterations {
-        /// The method's name as robio2018 prints it.
-        method: &'static str,
-        /// The cap given.
-        value: u32,
-    },
+    /// A setting the solver does not take, or out of the range it declares.
+    #[error(transparent)]
+    Settings(#[from] QpSolverError),
     /// `step` is not a positive finite number no longer than the path.
     #[error("numerical {method}: step = {value} must be finite, > 0 and at most the path's duration {duration}")]
     Step {
-        /// The method's name as robio2018 prints it.
+        /// The solver's id.
         method: &'static str,
         /// The step given (s).
         value: f64,
@@ -152,7 +66,7 @@ pub enum NumericalSpecError {
     /// The run would take more than [`MAX_STEPS`] sampling instants.
     #[error("numerical {method}: {steps} steps of {step} s exceed the cap of {cap} per run")]
     TooManySteps {
-        /// The method's name as robio2018 prints it.
+        /// The solver's id.
         method: &'static str,
         /// The step (s).
         step: f64,
@@ -167,16 +81,55 @@ pub enum NumericalSpecError {
 pub const MAX_STEPS: f64 = 1e7;
 
 impl NumericalSpec {
-    /// The solver's id in run keys: the method's id, with each setting that differs from its
-    /// default appended (`94lvi`, `94lvi-h-0.0001`, `m5-tol-1e-6-h-0.01`), so that one variant
-    /// can run a method at several settings.
-    pub fn id(&self) -> String {
-        let mut id = self.method.id().to_string();
-        if self.tolerance != DEFAULT_TOLERANCE {
-            id.push_str(&format!("-tol-{:e}", self.tolerance));
+    /// The solver's settings as given.
+    pub fn settings(&self) -> QpSolverSettings {
+        QpSolverSettings {
+            tolerance: self.tolerance,
+            max_iterations: self.max_iterations,
         }
-        if self.max_iterations != DEFAULT_MAX_ITERATIONS {
-            id.push_str(&format!("-iter-{}", self.max_iterations));
+    }
+
+    /// The settings completed with the solver's defaults ([`QpSolverInfo::resolve`]), or why
+    /// they do not fit it.
+    ///
+    /// [`QpSolverInfo::resolve`]: settings::qp_solver::QpSolverInfo::resolve
+    pub fn resolved(&self) -> Result<QpSolverSettings, QpSolverError> {
+        self.method.info().resolve(&self.settings())
+    }
+
+    /// The spec with the settings in effect written out (the solver's defaults filled in, as
+    /// [`NumericalSpec::resolved`] gives them), or why they do not fit the solver.
+    pub fn with_defaults(&self) -> Result<NumericalSpec, QpSolverError> {
+        let settings = self.resolved()?;
+        Ok(NumericalSpec {
+            tolerance: settings.tolerance,
+            max_iterations: settings.max_iterations,
+            ..*self
+        })
+    }
+
+    /// The stopping tolerance the run uses: the one given or the solver's default; `None` for
+    /// a solver that takes none.
+    pub fn tolerance_in_effect(&self) -> Option<f64> {
+        self.tolerance
+            .or(self.method.info().tolerance.map(|l| l.default))
+    }
+
+    /// The solver's id in run keys: the method's id, with each setting given that differs from
+    /// the solver's default appended (`94lvi`, `94lvi-h-0.0001`, `m5-tol-1e-6-h-0.01`), so that
+    /// one variant can run a method at several settings.
+    pub fn id(&self) -> String {
+        let info = self.method.info();
+        let mut id = self.method.id().to_string();
+        if let Some(t) = self.tolerance {
+            if info.tolerance.map(|l| l.default) != Some(t) {
+                id.push_str(&format!("-tol-{t:e}"));
+            }
+        }
+        if let Some(m) = self.max_iterations {
+            if info.max_iterations.map(|l| l.default) != Some(m) {
+                id.push_str(&format!("-iter-{m}"));
+            }
         }
         if self.step != DEFAULT_STEP {
             id.push_str(&format!("-h-{}", self.step));
@@ -184,31 +137,29 @@ impl NumericalSpec {
         id
     }
 
-    /// The solver's label in tables (display only), e.g. `94LVI (|e| <= 0.001)`.
+    /// The solver's label in tables (display only): its name with its tolerance and a step that
+    /// is not the default, e.g. `94LVI (|e| <= 0.001)`, `Clarabel`, `Clarabel (h = 0.01 s)`.
     pub fn display_name(&self) -> String {
-        let h = if self.step == DEFAULT_STEP {
-            String::new()
+        let info = self.method.info();
+        let mut parts = Vec::new();
+        if let Some(t) = self.tolerance_in_effect() {
+            parts.push(format!("|e| <= {t}"));
+        }
+        if self.step != DEFAULT_STEP {
+            parts.push(format!("h = {} s", self.step));
+        }
+        if parts.is_empty() {
+            info.name.to_string()
         } else {
-            format!(", h = {} s", self.step)
-        };
-        format!("{} (|e| <= {}{h})", self.method.name(), self.tolerance)
+            format!("{} ({})", info.name, parts.join(", "))
+        }
     }
 
-    /// Checks the settings for a path of `duration` seconds.
+    /// Checks the settings (against the solver's declared ranges) for a path of `duration`
+    /// seconds.
     pub fn validate(&self, duration: f64) -> Result<(), NumericalSpecError> {
-        let method = self.method.name();
-        if !(MIN_TOLERANCE..=MAX_TOLERANCE).contains(&self.tolerance) {
-            return Err(NumericalSpecError::Tolerance {
-                method,
-                value: self.tolerance,
-            });
-        }
-        if !(1..=MAX_MAX_ITERATIONS).contains(&self.max_iterations) {
-            return Err(NumericalSpecError::MaxIterations {
-                method,
-                value: self.max_iterations,
-            });
-        }
+        self.resolved()?;
+        let method = self.method.id();
         if !(self.step.is_finite() && self.step > 0.0 && self.step <= duration) {
             return Err(NumericalSpecError::Step {
                 method,
@@ -232,36 +183,37 @@ impl NumericalSpec {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use settings::qp_solver::BUILTIN;
+
+    fn parse(text: &str) -> Result<NumericalSpec, toml::de::Error> {
+        toml::from_str(text)
+    }
 
     #[test]
     fn ids_round_trip_and_bad_settings_are_refused() {
-        for m in NumericalMethod::ALL {
-            let text = format!("method = \"{}\"", m.id());
-            let spec: NumericalSpec = toml::from_str(&text).unwrap();
-            assert_eq!(spec.method, m);
-            assert_eq!(spec.tolerance, DEFAULT_TOLERANCE);
+        for info in BUILTIN {
+            let spec = parse(&format!("method = \"{}\"", info.id)).unwrap();
+            assert_eq!(spec.method.id(), info.id);
+            assert_eq!(spec.id(), info.id);
             assert!(spec.validate(15.0).is_ok());
         }
-        let unknown = toml::from_str::<NumericalSpec>("method = \"m7\"").unwrap_err();
+        let unknown = parse("method = \"m7\"").unwrap_err();
         assert!(unknown.to_string().contains("94lvi"), "{unknown}");
-        let typo = toml::from_str::<NumericalSpec>("method = \"m3\"\ntolerence = 1e-3");
-        assert!(typo.is_err());
+        assert!(parse("method = \"m3\"\ntolerence = 1e-3").is_err());
         let spec = |tolerance: f64, step: f64| NumericalSpec {
-            method: NumericalMethod::M4,
-            tolerance,
-            max_iterations: 10,
+            tolerance: Some(tolerance),
+            max_iterations: Some(10),
             step,
+            ..parse("method = \"m4\"").unwrap()
         };
         assert!(spec(f64::NAN, 1e-3).validate(15.0).is_err());
         assert!(spec(0.0, 1e-3).validate(15.0).is_err());
-        // Outside the documented ranges: a tolerance below 1e-12 or above 1, an iteration
-        // cap over 10^6.
         for tolerance in [1e-300, 1e-15, 2.0] {
             let e = spec(tolerance, 1e-3).validate(15.0).unwrap_err();
             assert!(e.to_string().contains("must be within [1e-12, 1e0]"), "{e}");
         }
         let absurd = NumericalSpec {
-            max_iterations: 4_000_000_000,
+            max_iterations: Some(4_000_000_000),
             ..spec(1e-6, 1e-3)
         };
         let e = absurd.validate(15.0).unwrap_err();
@@ -275,7 +227,16 @@ mod tests {
         assert!(spec(1e-3, 1e-9).validate(15.0).is_err());
         assert!(spec(1e-3, 1e-3).validate(15.0).is_ok());
         assert_eq!(spec(1e-3, 1e-4).id(), "m4-iter-10-h-0.0001");
-        let plain: NumericalSpec = toml::from_str("method = \"e47\"").unwrap();
-        assert_eq!(plain.id(), "e47");
+        assert_eq!(spec(1e-3, 1e-3).display_name(), "M4 (|e| <= 0.001)");
+        let clarabel = parse("method = \"clarabel\"\nstep = 0.01").unwrap();
+        assert_eq!(clarabel.display_name(), "Clarabel (h = 0.01 s)");
+        let e = parse("method = \"clarabel\"\ntolerance = 1e-6")
+            .unwrap()
+            .validate(15.0)
+            .unwrap_err();
+        assert!(
+            e.to_string().contains("takes no setting `tolerance`"),
+            "{e}"
+        );
     }
 }

@@ -3,13 +3,13 @@
 //! treats one kind apart matches this enum, never the text it is stored as.
 //!
 //! The text is the kind's id: `exact` (the QP's optimum in the loop), a network's kind as
-//! experiment files name it ([`NetworkKind::id`]: `lvi-pdnn`, ...), one of robio2018's numerical
-//! methods ([`NumericalMethod::id`]: `94lvi`, ...), `trajectory` (a trajectory made elsewhere and
+//! experiment files name it ([`NetworkKind::id`]: `lvi-pdnn`, ...), a registered QP solver's id
+//! (`settings::qp_solver`: `94lvi`, ..., `active-set`, `clarabel`, an outside solver's), `trajectory` (a trajectory made elsewhere and
 //! scored) or `python` (a network written in Python and run through the Python package).
 
-use crate::numerical_spec::NumericalMethod;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use settings::network_kind::NetworkKind;
+use settings::qp_solver::{QpSolverInfo, QpSolverKey};
 use std::fmt;
 use std::str::FromStr;
 
@@ -20,8 +20,9 @@ pub enum SolverKind {
     Exact,
     /// A recurrent network of one of the papers.
     Network(NetworkKind),
-    /// One of robio2018's numerical methods, iterated at every instant of a fixed-step loop.
-    Numerical(NumericalMethod),
+    /// A registered QP solver (robio2018's numerical methods, the active set, Clarabel, an
+    /// outside one), solving the QP at every instant of a fixed-step loop.
+    Numerical(QpSolverKey),
     /// A trajectory made elsewhere and scored (`reproduce score`, `driftbench.score`).
     Trajectory,
     /// A network written in Python, run by the Python package.
@@ -48,12 +49,16 @@ impl SolverKind {
         }
     }
 
-    /// Every kind, networks and numerical methods in their own orders.
+    /// Every kind, networks and QP solvers in their registries' orders.
     pub fn all() -> impl Iterator<Item = SolverKind> {
         [SolverKind::Exact]
             .into_iter()
             .chain(NetworkKind::ALL.into_iter().map(SolverKind::Network))
-            .chain(NumericalMethod::ALL.into_iter().map(SolverKind::Numerical))
+            .chain(
+                settings::qp_solver::all()
+                    .into_iter()
+                    .map(|i| SolverKind::Numerical(QpSolverInfo::key(i))),
+            )
             .chain([SolverKind::Trajectory, SolverKind::Python])
     }
 }
@@ -122,6 +127,10 @@ mod tests {
         }
     }
 
+    fn lvi94() -> SolverKind {
+        SolverKind::Numerical(settings::qp_solver::lookup("94lvi").unwrap().key())
+    }
+
     #[test]
     fn csv_round_trip_stores_the_id() {
         #[derive(Serialize, Deserialize, PartialEq, Debug)]
@@ -130,7 +139,7 @@ mod tests {
         }
         let mut w = csv::Writer::from_writer(Vec::new());
         w.serialize(Row {
-            solver_kind: SolverKind::Numerical(NumericalMethod::Lvi94),
+            solver_kind: lvi94(),
         })
         .unwrap();
         let text = String::from_utf8(w.into_inner().unwrap()).unwrap();
@@ -140,10 +149,7 @@ mod tests {
             .next()
             .unwrap()
             .unwrap();
-        assert_eq!(
-            back.solver_kind,
-            SolverKind::Numerical(NumericalMethod::Lvi94)
-        );
+        assert_eq!(back.solver_kind, lvi94());
         assert!(csv::Reader::from_reader("solver_kind\nnope\n".as_bytes())
             .deserialize::<Row>()
             .next()

@@ -37,6 +37,9 @@ pub enum ControlError {
     /// A numerical QP method's solve at a tick.
     #[error(transparent)]
     Solver(#[from] QpSolverError),
+    /// A numerical method's solver cannot be built (the registry's error).
+    #[error(transparent)]
+    Registry(#[from] solvers::registry::RegistryError),
     #[error("exact solver: {0}")]
     Exact(#[from] ExactError),
     /// A result file could not be written.

@@ -1,6 +1,6 @@
 //! What runs at every control tick: a network stepped in discrete time
-//! ([`crate::network_tick`]) or a numerical QP method ([`crate::numerical_tick`]), built behind
-//! one interface, [`TickSolver`] ([`crate::tick`]).
+//! ([`crate::network_tick`]) or a registered QP solver ([`crate::numerical_tick`], built by
+//! `solvers::registry`), behind one interface, [`TickSolver`] ([`crate::tick`]).
 
 use crate::error::ControlError;
 use crate::network_tick::{Discretisation, NetworkTick};
@@ -8,50 +8,66 @@ use crate::numerical_tick::QpTick;
 use crate::tick::TickSolver;
 use qp::QpDims;
 use records::control::Family;
+use settings::qp_solver::{QpSolverKey, QpSolverSettings};
 use settings::solver_spec::SolverSpec;
-use solvers::lvi_numerical::{LviMethod, LviSettings, LviSolver};
-#[cfg(feature = "osqp")]
-use solvers::osqp_qp::{OsqpQp, OsqpSettings};
-use solvers::{ExactSolver, HotActiveSet};
+use solvers::lvi_numerical;
 
-/// A numerical QP method, solved to its tolerance at every tick.
+/// A registered QP solver (`solvers::registry`) with its settings, solved at every tick.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Numerical {
-    /// One of robio2018's six PLPE methods ([`solvers::lvi_numerical`]), warm-started from the
-    /// previous tick.
-    Lvi(LviMethod, LviSettings),
-    /// The dense active-set solver hot-started from the previous tick's working set.
-    ActiveSet,
-    /// Clarabel (interior point: no warm start).
-    Clarabel,
-    /// OSQP, data updated in place and warm-started (with the `osqp` feature).
-    #[cfg(feature = "osqp")]
-    Osqp(OsqpSettings),
+pub struct Numerical {
+    /// The solver.
+    pub solver: QpSolverKey,
+    /// Its settings as given (the solver's defaults complete them).
+    pub settings: QpSolverSettings,
 }
 
 impl Numerical {
-    /// The methods of the control experiments, at their default settings: the six PLPE
-    /// methods in robio2018's order, then the active set, Clarabel and (with the `osqp`
-    /// feature) OSQP.
-    pub fn all() -> Vec<Numerical> {
-        let mut all: Vec<Numerical> = LviMethod::ALL
-            .map(|m| Numerical::Lvi(m, LviSettings::default()))
-            .into();
-        all.extend([Numerical::ActiveSet, Numerical::Clarabel]);
-        #[cfg(feature = "osqp")]
-        all.push(Numerical::Osqp(OsqpSettings::default()));
-        all
+    /// The built-in solver `id` at its defaults; the PLPE methods to the control experiments'
+    /// stopping rule instead, |e(U)|_2 <= 1e-10 within 200000 iterations
+    /// ([`lvi_numerical::DEFAULT_TOLERANCE`], [`lvi_numerical::DEFAULT_MAX_ITERATIONS`]).
+    fn builtin(info: &'static settings::qp_solver::QpSolverInfo) -> Numerical {
+        let plpe = info.tolerance.is_some();
+        Numerical {
+            solver: info.key(),
+            settings: QpSolverSettings {
+                tolerance: plpe.then_some(lvi_numerical::DEFAULT_TOLERANCE),
+                max_iterations: plpe.then_some(lvi_numerical::DEFAULT_MAX_ITERATIONS),
+            },
+        }
     }
 
-    /// Display name.
+    /// The solvers of the control experiments: the built-in ones of this build
+    /// (`settings::qp_solver::BUILTIN`: the six PLPE methods in robio2018's order, the active
+    /// set, Clarabel and, with the `osqp` feature, OSQP) at their defaults, the PLPE methods to
+    /// |e(U)|_2 <= 1e-10 within 200000 iterations.
+    pub fn all() -> Vec<Numerical> {
+        settings::qp_solver::BUILTIN
+            .iter()
+            .filter_map(|i| solvers::registry::check(i.id, &QpSolverSettings::default()).ok())
+            .map(|(info, _)| Numerical::builtin(info))
+            .collect()
+    }
+
+    /// The hot-started active set.
+    pub fn active_set() -> Numerical {
+        Numerical::by_id("active-set")
+    }
+
+    /// The built-in solver `id` at the settings of [`Numerical::all`].
+    fn by_id(id: &str) -> Numerical {
+        Numerical::builtin(
+            settings::qp_solver::lookup(id).expect("a built-in id is registered from the start"),
+        )
+    }
+
+    /// Whether it is one of robio2018's six PLPE methods.
+    pub fn is_plpe(&self) -> bool {
+        settings::qp_solver::PLPE_IDS.contains(&self.solver.id())
+    }
+
+    /// Display name (the registry's).
     pub fn name(&self) -> &'static str {
-        match self {
-            Numerical::Lvi(m, _) => m.name(),
-            Numerical::ActiveSet => "active set",
-            Numerical::Clarabel => "Clarabel",
-            #[cfg(feature = "osqp")]
-            Numerical::Osqp(_) => "OSQP",
-        }
+        self.solver.info().name
     }
 }
 
@@ -103,15 +119,11 @@ impl Method {
                 form,
                 substeps,
             } => Box::new(NetworkTick::new(spec, *form, *substeps, dims)?),
-            Method::Numerical(Numerical::Lvi(m, s)) => {
-                Box::new(QpTick::new(LviSolver::new(*m, dims, *s)))
-            }
-            Method::Numerical(Numerical::ActiveSet) => {
-                Box::new(QpTick::new(HotActiveSet::new(dims)))
-            }
-            Method::Numerical(Numerical::Clarabel) => Box::new(QpTick::new(ExactSolver::new())),
-            #[cfg(feature = "osqp")]
-            Method::Numerical(Numerical::Osqp(s)) => Box::new(QpTick::new(OsqpQp::new(dims, *s))),
+            Method::Numerical(n) => Box::new(QpTick::new(solvers::registry::build(
+                n.solver.id(),
+                &n.settings,
+                dims,
+            )?)),
         })
     }
 }

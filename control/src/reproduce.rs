@@ -246,7 +246,7 @@ impl<'a> LoopRun<'a> {
     /// The run's relative cost, to start the longest runs first (scheduling only): its ticks
     /// (at most) times the work of a tick, in network steps: a network's steps per tick; for
     /// a numerical method weights read off the latencies of `results/control.csv` (the PLPE
-    /// methods iterate to 1e-10, tens of network steps; Clarabel and OSQP about ten; the
+    /// methods iterate to 1e-10, tens of network steps; Clarabel, OSQP or an outside solver about ten; the
     /// hot-started active set one).
     fn cost(&self) -> f64 {
         let ticks = self.task.job.path.duration * self.cycles as f64 / self.h;
@@ -254,11 +254,9 @@ impl<'a> LoopRun<'a> {
         ticks
             * match self.method {
                 Method::Network { substeps, .. } => f64::from(substeps),
-                Method::Numerical(Numerical::Lvi(..)) => 30.0,
-                Method::Numerical(Numerical::Clarabel) => 10.0,
-                #[cfg(feature = "osqp")]
-                Method::Numerical(Numerical::Osqp(_)) => 10.0,
-                Method::Numerical(Numerical::ActiveSet) => 1.0,
+                Method::Numerical(n) if n.is_plpe() => 30.0,
+                Method::Numerical(n) if n == Numerical::active_set() => 1.0,
+                Method::Numerical(_) => 10.0,
             }
     }
 }
@@ -446,7 +444,7 @@ impl<'a> FirstRound<'a> {
                     .map(|method| LoopRun::cycles(task, method, h, 1)),
             );
             let mut swept = network_methods(task, 1);
-            swept.push(Method::Numerical(Numerical::ActiveSet));
+            swept.push(Method::Numerical(Numerical::active_set()));
             for &hs in &budget.sweep {
                 loops.extend(
                     swept
@@ -459,7 +457,7 @@ impl<'a> FirstRound<'a> {
         loops.extend(tasks.iter().map(|task| {
             LoopRun::cycles(
                 task,
-                Method::Numerical(Numerical::ActiveSet),
+                Method::Numerical(Numerical::active_set()),
                 h,
                 budget.cycles,
             )
@@ -694,7 +692,7 @@ fn comparator<'a>(
     control
         .iter()
         .filter(|(m, r)| {
-            matches!(m, Method::Numerical(Numerical::Lvi(..)))
+            matches!(m, Method::Numerical(n) if n.is_plpe())
                 && r.task == task.id()
                 && r.h_ms == h * 1e3
                 && r.status == ControlStatus::Ok
@@ -730,7 +728,10 @@ impl CycleTables {
         for (((task, exact_at_h), continuous), runs) in
             tasks.iter().zip(exact_cycles).zip(continuous).zip(runs)
         {
-            let mut at_h = vec![(Method::Numerical(Numerical::ActiveSet).label(), exact_at_h?)];
+            let mut at_h = vec![(
+                Method::Numerical(Numerical::active_set()).label(),
+                exact_at_h?,
+            )];
             for (run, out) in runs.iter().zip(network_cycles.by_ref()) {
                 at_h.push((run.method.label(), out?));
             }

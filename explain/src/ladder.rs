@@ -118,22 +118,26 @@ pub fn rungs(job: &Job) -> Vec<IntegratorSettings> {
 
 /// The jobs of `job`'s ladder (scoring off: only drift and position error are read): its
 /// [`rungs`], or for a numerical run the same loop stopped at each of
-/// [`NUMERICAL_TOLERANCES`] (the run's own tolerance kept where it is not among them).
+/// [`NUMERICAL_TOLERANCES`] (the run's own tolerance kept where it is not among them; a QP
+/// solver that takes no tolerance has the one rung, its own run).
 pub fn jobs(job: &Job) -> Vec<Job> {
     let base = Job {
         scoring: Scoring::Off,
         ..job.clone()
     };
     if let SolverChoice::Numerical(spec) = &job.solver {
+        let Some(own) = spec.tolerance_in_effect() else {
+            return vec![base];
+        };
         let mut tolerances = NUMERICAL_TOLERANCES.to_vec();
-        if !tolerances.contains(&spec.tolerance) {
-            tolerances.push(spec.tolerance);
+        if !tolerances.contains(&own) {
+            tolerances.push(own);
         }
         return tolerances
             .into_iter()
             .map(|tolerance| Job {
                 solver: SolverChoice::Numerical(catalog::numerical_spec::NumericalSpec {
-                    tolerance,
+                    tolerance: Some(tolerance),
                     ..*spec
                 }),
                 ..base.clone()
@@ -150,12 +154,13 @@ pub fn jobs(job: &Job) -> Vec<Job> {
 }
 
 /// What a rung is, as its ladder row states it: (method, rtol, atol, max_step). For a
-/// numerical run: ([`LadderMethod::FixedStep`], stopping tolerance, 0, Some(h)).
+/// numerical run: ([`LadderMethod::FixedStep`], stopping tolerance (0 for a QP solver that
+/// takes none), 0, Some(h)).
 fn setting(job: &Job) -> (LadderMethod, f64, f64, Option<f64>) {
     match &job.solver {
         SolverChoice::Numerical(spec) => (
             LadderMethod::FixedStep,
-            spec.tolerance,
+            spec.tolerance_in_effect().unwrap_or(0.0),
             0.0,
             Some(spec.step),
         ),

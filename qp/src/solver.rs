@@ -169,3 +169,25 @@ pub trait QpSolver {
         qp.kkt_residuals(&DVector::from_column_slice(self.x()), duals)
     }
 }
+
+/// A boxed solver (e.g. one the registry built) is a solver.
+impl<S: QpSolver + ?Sized> QpSolver for Box<S> {
+    fn id(&self) -> SolverId {
+        (**self).id()
+    }
+    fn solve(&mut self, qp: &Qp) -> Result<QpSolve, QpSolverError> {
+        (**self).solve(qp)
+    }
+    fn x(&self) -> &[f64] {
+        (**self).x()
+    }
+    fn duals(&self, qp: &Qp, duals: &mut QpDuals) {
+        (**self).duals(qp, duals)
+    }
+    fn reset(&mut self) {
+        (**self).reset()
+    }
+    fn kkt_residuals(&self, qp: &Qp, duals: &mut QpDuals) -> KktResiduals {
+        (**self).kkt_residuals(qp, duals)
+    }
+}

@@ -167,11 +167,14 @@ fn runs_section(jobs: &[Job], n: &TaskNumbers) -> Result<String, TaskCardError> 
             SolverChoice::Exact => String::new(),
             SolverChoice::Neural(spec) => format!(" `{}`,", inline(spec)?),
             SolverChoice::Numerical(spec) => {
+                // The settings in effect, the solver's defaults filled in (a loaded file's
+                // settings fit its solver: checked at load).
+                let shown = spec.with_defaults().unwrap_or(*spec);
                 let _ = writeln!(
                     s,
                     "  - {}: `{}`, a fixed-step loop (catalog::numerical_spec)",
                     j.solver.label(),
-                    inline(spec)?
+                    inline(&shown)?
                 );
                 continue;
             }

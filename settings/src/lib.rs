@@ -9,6 +9,9 @@
 //!   ([`activation::ActivationSpec`]; zhong2021 (2.29) and the group's power-sigmoid);
 //! - [`zeroing`]: the zeroing family as a vocabulary (gain law, activation, growing gain,
 //!   perturbation), of which the papers' zeroing networks are presets;
+//! - [`qp_solver`]: the QP solvers' registry as data (id, name, settings with ranges and
+//!   defaults; [`qp_solver::QpSolverInfo`]) and their typed settings
+//!   ([`qp_solver::QpSolverSettings`]); crate `solvers`' `registry` holds the constructors;
 //! - [`network_kind`]: a network's kind ([`network_kind::NetworkKind`]), its identity in
 //!   experiment files and `runs.csv`;
 //! - [`integrator`]: the integration method and its tolerances and budgets;
@@ -39,6 +42,7 @@ pub mod error;
 pub mod integrator;
 pub mod linear_algebra;
 pub mod network_kind;
+pub mod qp_solver;
 pub mod sign_power;
 pub mod slug;
 pub mod solver_spec;

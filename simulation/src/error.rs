@@ -5,7 +5,6 @@
 
 use catalog::error::SetupError;
 use records::failure_kind::FailureKind;
-use solvers::lvi_numerical::LviError;
 use solvers::ode::OdeError;
 use solvers::ExactError;
 
@@ -44,13 +43,15 @@ pub enum RunError {
         /// The run's budget (iterations).
         budget: u64,
     },
-    /// A numerical run solver failed at the instant t.
-    #[error("numerical method at t = {t:.6}: {error}")]
+    /// A numerical run's QP solver failed at the instant t.
+    #[error("numerical method at t = {t:.6}: {message}")]
     Numerical {
         /// The instant (s).
         t: f64,
-        /// The method's error.
-        error: LviError,
+        /// How the solve ended ([`qp::QpStatus`]).
+        status: qp::QpStatus,
+        /// The solver's own error, as text (it is open: any type an outside solver has).
+        message: String,
     },
 }
 

@@ -1,17 +1,21 @@
-//! A numerical QP method as a run's solver: robio2018's Algorithm 1 at every instant of a
+//! A registered QP solver as a run's solver: robio2018's Algorithm 1 at every instant of a
 //! fixed-step loop (the organisation of the papers' numerical-method simulations; the
-//! networks' runs are the coupled ODE of [`crate::coupled`] instead).
+//! networks' runs are the coupled ODE of [`crate::coupled`] instead). The solver is built by
+//! the registry (`solvers::registry::build`) from the run's id and settings and called through
+//! the one seam, [`qp::QpSolver`]: any registered solver (the six PLPE methods, the active set,
+//! Clarabel, OSQP with its feature, an outside one) can be a run's.
 //!
 //! With sampling gap h and t_k = min(k h, T), k = 0 .. K = ceil(T / h):
 //!
 //! ```text
 //! QP_k = scheme(t_k, theta_k)                       the scheme's QP at the sampled state
-//! U_k  = method iterated from U_{k-1} until |e(U)|_2 <= tolerance   robio2018 (21), Alg. 1
+//! U_k  = the solver's answer to QP_k, started from what it left at t_{k-1}
+//!        (a PLPE method: iterated from U_{k-1} until |e(U)|_2 <= tolerance, robio2018 (21))
 //! theta_{k+1} = theta_k + (t_{k+1} - t_k) U_k[..n]  the command held over the step
 //! ```
 //!
 //! (at the acceleration level the arm state [theta; thetadot] moves the same way with
-//! thetaddot = U_k[..n]). U_0 starts from zero. So the run's drift is the scheme's drift plus
+//! thetaddot = U_k[..n]). The solver starts from its reset state (the PLPE methods: U_0 = 0). So the run's drift is the scheme's drift plus
 //! what the method's stopping rule and the sampling add. Every instant is observed like an
 //! accepted step of an integrated run, and scored against the exact optimum x*(t_k, theta_k)
 //! where the experiment's `scoring` says. A run is bounded by its iteration budget
@@ -21,27 +25,14 @@ use crate::coupled::{arm_dim, arm_slices, ExactLoop};
 use crate::error::RunError;
 use crate::observer::{score_instant, Observer};
 use catalog::experiment::Scoring;
-use catalog::numerical_spec::{NumericalMethod, NumericalSpec};
+use catalog::numerical_spec::NumericalSpec;
 use nalgebra::DVector;
+use qp::QpStatus;
 use schemes::scheme::{Level, Scheme};
-
 use solvers::exact_path::ExactPathStats;
-use solvers::lvi_numerical::{LviError, LviMethod, LviSettings, LviSolver};
-use solvers::neural::projection::primal_dual_dim;
 use solvers::ode::OdeStats;
+use solvers::registry::BoxedQpSolver;
 use std::time::Instant;
-
-/// The solver crate's method of an experiment file's id.
-pub fn lvi_method(method: NumericalMethod) -> LviMethod {
-    match method {
-        NumericalMethod::Lvi94 => LviMethod::Lvi94,
-        NumericalMethod::E47 => LviMethod::E47,
-        NumericalMethod::M3 => LviMethod::M3,
-        NumericalMethod::M4 => LviMethod::M4,
-        NumericalMethod::M5 => LviMethod::M5,
-        NumericalMethod::M6 => LviMethod::M6,
-    }
-}
 
 /// The iteration budget of a numerical run per second of its path's duration (at least one
 /// second's): robio2018 (21) steps summed over the instants. The heaviest numerical runs of the
@@ -67,9 +58,9 @@ pub struct IterationStats {
     /// At the instant that needed most.
     pub max: u64,
     /// The work of the whole run in products with the LVI matrix
-    /// (`solvers::lvi_numerical::LviMethod::products` summed over the instants): the
-    /// machine-independent cost, in the unit of the control tables.
-    pub products: u64,
+    /// ([`qp::QpSolve::products`] summed over the instants): the machine-independent cost,
+    /// in the unit of the control tables; `None` for a solver that does not count them.
+    pub products: Option<u64>,
 }
 
 /// What the loop produced: where it stopped and why (none when it completed), counts in the
@@ -83,6 +74,25 @@ pub(crate) struct NumericalRun {
     pub score_failures: usize,
 }
 
+/// The run's solver for QPs of the scheme's sizes, built by the registry from the spec's id
+/// and settings, its iteration cap lowered to the run's budget where it takes one (one instant
+/// may use the whole budget but not more); with the cap it was given.
+fn build_solver(
+    spec: &NumericalSpec,
+    scheme: &dyn Scheme,
+    budget: u64,
+) -> Result<(BoxedQpSolver, Option<u32>), RunError> {
+    let setup = |e: solvers::registry::RegistryError| {
+        RunError::Setup(catalog::error::SetupError::QpSolver(e.to_string()))
+    };
+    let mut settings = spec.resolved().map_err(|e| setup(e.into()))?;
+    let requested = settings.max_iterations;
+    settings.max_iterations = requested.map(|m| m.min(u32::try_from(budget).unwrap_or(u32::MAX)));
+    let solver =
+        solvers::registry::build(spec.method.id(), &settings, scheme.dims()).map_err(setup)?;
+    Ok((solver, requested))
+}
+
 /// Runs the loop of the module docs from `theta0` over the path's duration `t1`, scored where
 /// `scoring` says.
 pub(crate) fn run_numerical(
@@ -92,24 +102,13 @@ pub(crate) fn run_numerical(
     t1: f64,
     scoring: Scoring,
     observer: &mut Observer<'_>,
-) -> NumericalRun {
+) -> Result<NumericalRun, RunError> {
     let n = scheme.joints();
     let started = Instant::now();
     let level = scheme.level();
     let dims = scheme.dims();
     let budget = iteration_budget(t1);
-    // One instant may use the whole budget but not more (`max_iterations` may be larger).
-    let cap = spec
-        .max_iterations
-        .min(u32::try_from(budget).unwrap_or(u32::MAX));
-    let mut solver = LviSolver::new(
-        lvi_method(spec.method),
-        dims,
-        LviSettings {
-            tolerance: spec.tolerance,
-            max_iterations: cap,
-        },
-    );
+    let (mut solver, requested) = build_solver(spec, scheme, budget)?;
     let mut qp = scheme.new_qp();
     let mut scorer = ExactLoop::new(scheme);
     let mut y = vec![0.0; arm_dim(n, level)];
@@ -125,20 +124,25 @@ pub(crate) fn run_numerical(
         let (theta, thetadot) = arm_slices(n, level, &y, &y);
         scheme.build(t, theta, thetadot, &mut qp);
         match solver.solve(&qp) {
-            Ok(it) => {
-                iterations.total += u64::from(it);
-                iterations.max = iterations.max.max(u64::from(it));
-                iterations.products += solver.method().products(it, primal_dual_dim(dims));
+            Ok(solve) => {
+                let it = u64::from(solve.iterations);
+                iterations.total += it;
+                iterations.max = iterations.max.max(it);
+                if let Some(p) = solve.products {
+                    *iterations.products.get_or_insert(0) += p;
+                }
             }
-            // The budget, not the method's own cap, stopped the instant.
-            Err(LviError::NotConverged { iterations: it, .. })
-                if it == cap && cap < spec.max_iterations =>
+            // The budget, not the solver's own cap, stopped the instant.
+            Err(e)
+                if e.status == QpStatus::IterationLimit
+                    && requested.is_some_and(|m| u64::from(m) > budget) =>
             {
                 failure = Some((t, RunError::IterationBudget { t, budget }));
                 break;
             }
             Err(error) => {
-                failure = Some((t, RunError::Numerical { t, error }));
+                let (status, message) = (error.status, error.to_string());
+                failure = Some((t, RunError::Numerical { t, status, message }));
                 break;
             }
         }
@@ -179,13 +183,13 @@ pub(crate) fn run_numerical(
         wall_seconds: started.elapsed().as_secs_f64(),
         ..OdeStats::default()
     };
-    NumericalRun {
+    Ok(NumericalRun {
         failure,
         stats,
         qp: scorer.stats(),
         iterations,
         score_failures: failures,
-    }
+    })
 }
 
 /// Moves the arm state `y` over a step `h` with the command `x` held (module docs): theta by

@@ -84,7 +84,7 @@ pub fn run_row(r: &RunRecord, git_rev: &str) -> RunRow {
         qp_check_max_dx: (r.run.qp.checks > 0).then_some(r.run.qp.check_max_dx),
         solver_iterations: r.run.iterations.map(|i| i.total),
         solver_iterations_max: r.run.iterations.map(|i| i.max),
-        solver_products: r.run.iterations.map(|i| i.products),
+        solver_products: r.run.iterations.and_then(|i| i.products),
         wall_s: r.run.stats.wall_seconds,
         sim_s: (r.run.stats.wall_seconds - r.run.observe_seconds).max(0.0),
         observe_s: r.run.observe_seconds,

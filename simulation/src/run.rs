@@ -107,10 +107,51 @@ pub fn check_job(job: &Job) -> Result<(), SetupError> {
     }
     let robot = job_robot(job, model.robot, model.dynamics.is_some())?;
     let (_, scheme) = build_parts(job, robot, model.dynamics)?;
-    if let SolverChoice::Neural(spec) = &job.solver {
-        build_network(spec, scheme.dims(), &scheme.name())?;
+    match &job.solver {
+        SolverChoice::Neural(spec) => {
+            build_network(spec, scheme.dims(), &scheme.name())?;
+            honours_constraints(spec, &*scheme, job)?;
+        }
+        SolverChoice::Numerical(spec) => {
+            solvers::registry::check(spec.method.id(), &spec.settings())
+                .map_err(|e| SetupError::QpSolver(e.to_string()))?;
+        }
+        SolverChoice::Exact => {}
     }
     Ok(())
+}
+
+/// Refuses a network that solves only the equality part of a QP (not
+/// [`SolverSpec::handles_inequalities`]) on a scheme whose QP has inequality rows or finite
+/// bounds: its answer would not be the scheme's QP's. The QP is the scheme's at t = 0 from
+/// theta0 at rest (its constraint types do not change along a run).
+fn honours_constraints(
+    spec: &SolverSpec,
+    scheme: &dyn Scheme,
+    job: &Job,
+) -> Result<(), SetupError> {
+    if spec.handles_inequalities() {
+        return Ok(());
+    }
+    let mut qp = scheme.new_qp();
+    let rest = vec![0.0; job.theta0.len()];
+    scheme.build(0.0, &job.theta0, &rest, &mut qp);
+    let bounds = qp
+        .lower
+        .iter()
+        .chain(qp.upper.iter())
+        .filter(|v| v.is_finite())
+        .count();
+    let rows = qp.dims().n_in;
+    if rows + bounds == 0 {
+        return Ok(());
+    }
+    Err(SetupError::ConstraintsIgnored {
+        network: spec.display_name(),
+        scheme: job.scheme.display_name(),
+        rows,
+        bounds,
+    })
 }
 
 /// The registry's model of the job's robot, with the job's tool offset and base where it gives

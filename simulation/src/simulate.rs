@@ -129,7 +129,7 @@ pub fn simulate(
     let mut iterations = None;
     let (outcome, stats, qp) = match solver {
         Solver::Numerical(spec) => {
-            let r = run_numerical(scheme, spec, theta0, t1, settings.scoring, &mut observer);
+            let r = run_numerical(scheme, spec, theta0, t1, settings.scoring, &mut observer)?;
             iterations = Some(r.iterations);
             observer.score_failures = r.score_failures;
             (outcome(&observer, r.failure), r.stats, r.qp)

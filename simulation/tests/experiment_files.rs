@@ -363,6 +363,30 @@ fn scheme_robot_and_solver_must_fit_together() {
         ),
         &["field `solvers[0]`", "FP-CDNN", "inequality"],
     );
+    // A network that solves the equality part only is refused on a scheme with bounds (robio2018's
+    // bound conversion, `upsilon`), naming both; without the bounds the same network loads.
+    let rmp = |upsilon: &str| {
+        GOOD.replace(
+            "{ kind = \"jia2019\", phi = 0.2, tau = 0.4, kappa = 20.0, lambda = 20.0 }",
+            &format!("{{ kind = \"velocity-rmp\", lambda = 4.0{upsilon} }}"),
+        )
+        .replace(
+            "{ kind = \"lvi-pdnn\", gamma = 1e7 }",
+            "{ kind = \"vp-cdnn\", gamma = 200.0 }",
+        )
+    };
+    assert_rejected(
+        "cdnn_on_bounds",
+        &rmp(", upsilon = 2.0"),
+        &[
+            "field `solvers[0]`",
+            "VP-CDNN",
+            "equality-constrained QPs only",
+            "(field `scheme`)",
+            "finite bounds",
+        ],
+    );
+    load_text("cdnn_without_bounds", &rmp("")).unwrap();
     // The reference perturbation is 9-dimensional (6 joints + 3): not for the 5-joint Katana.
     assert_rejected(
         "perturbation_on_katana",

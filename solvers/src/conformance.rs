@@ -6,7 +6,8 @@
 //! # The checks
 //!
 //! For every QP shape the schemes produce ([`QpShape::ALL`], [`mod@crate::random_qp`]) and for
-//! random feasible QPs of mixed sizes ([`random_feasible`]), each against Clarabel
+//! random feasible QPs of mixed sizes with finite bounds ([`random_feasible`]; left out for a
+//! solver that does not claim bounds, [`Conformance::random_feasible`]), each against Clarabel
 //! ([`ExactSolver`], the reference of record):
 //!
 //! 1. **Agreement, cold:** a fresh solver (or one after [`QpSolver::reset`]) solves the QP;
@@ -29,10 +30,24 @@
 //!
 //! Each failed check is a [`Violation`] naming the check, the QP and the numbers; the kit
 //! returns them all rather than stopping at the first.
+//!
+//! # Networks
+//!
+//! [`check_network`] holds a network ([`NeuralSolver`], built-in or outside) to the one
+//! property every network of the suite is built for: on a fixed QP its equilibrium is the
+//! QP's optimum. For every QP shape it claims ([`NetworkConformance::shapes`]) and seed, the
+//! network's ODE ydot = F(t, y; QP) (with dQP/dt = 0 where it needs it) is integrated from its
+//! initial state over [0, `t_end`] ([`NetworkConformance::t_end`], a few of its time constants)
+//! with the integrator it names ([`NetworkConformance::integrator`]), and x = y[..nx] must be within `x_tolerance` of Clarabel's optimum
+//! (relative, as above; check `equilibrium`); an integration that fails, or a network that
+//! cannot be built for the QP, is a violation too (checks `integration`, `build`).
 
 use crate::exact::ExactSolver;
+use crate::neural::NeuralSolver;
+use crate::ode::{integrate, Control, OdeSystem};
 use crate::random_qp::{random_feasible, random_qp, QpShape};
 use qp::{Qp, QpDims, QpDuals, QpSolver, QpStatus};
+use settings::integrator::{IntegratorSettings, Method};
 use std::fmt;
 
 #[cfg(doc)]
@@ -58,10 +73,14 @@ pub struct Conformance {
     /// iterations than the first solve (a method that checks termination only every k
     /// iterations and adapts its step, as ADMM does, need not promise it).
     pub repeat_no_longer: bool,
+    /// Whether the random feasible family (equalities and finite bounds, mixed sizes) is
+    /// checked: a solver of equality-constrained QPs only claims the equality-only shapes and
+    /// leaves it out.
+    pub random_feasible: bool,
 }
 
 impl Default for Conformance {
-    /// 1e-6 in x and KKT, 10 QPs per shape, every shape.
+    /// 1e-6 in x and KKT, 10 QPs per shape, every shape and the random feasible family.
     fn default() -> Self {
         Conformance {
             x_tolerance: 1e-6,
@@ -70,6 +89,7 @@ impl Default for Conformance {
             shapes: &QpShape::ALL,
             must_solve: true,
             repeat_no_longer: true,
+            random_feasible: true,
         }
     }
 }
@@ -118,19 +138,21 @@ pub fn check_qp_solver(
             let qps: Vec<Qp> = (0..spec.seeds).map(|s| random_qp(shape, s)).collect();
             (format!("{shape:?}"), qps)
         })
-        .chain(std::iter::once((
-            "random-feasible".to_string(),
-            (0..spec.seeds)
-                .map(|s| {
-                    let dims = QpDims {
-                        nx: 4 + (s as usize % 5),
-                        n_eq: 1 + (s as usize % 3),
-                        n_in: 0,
-                    };
-                    random_feasible(dims, s)
-                })
-                .collect(),
-        )));
+        .chain(spec.random_feasible.then(|| {
+            (
+                "random-feasible".to_string(),
+                (0..spec.seeds)
+                    .map(|s| {
+                        let dims = QpDims {
+                            nx: 4 + (s as usize % 5),
+                            n_eq: 1 + (s as usize % 3),
+                            n_in: 0,
+                        };
+                        random_feasible(dims, s)
+                    })
+                    .collect(),
+            )
+        }));
     for (family, qps) in families {
         agreement(make, spec, &mut clarabel, &family, &qps, &mut out);
     }
@@ -405,4 +427,115 @@ fn allocation(
             });
         }
     }
+}
+
+/// What a network is held to ([`check_network`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NetworkConformance {
+    /// Largest |x - x*|_inf / max(1, |x*|_inf) against Clarabel at t_end.
+    pub x_tolerance: f64,
+    /// Random QPs per shape.
+    pub seeds: u64,
+    /// The QP shapes the network claims (an equality-only network: the equality-only ones).
+    pub shapes: &'static [QpShape],
+    /// How long the network runs on each QP (s): several of its time constants.
+    pub t_end: f64,
+    /// The integrator (an explicit one for the projection networks, whose right-hand side is
+    /// only piecewise smooth; a stiff one for a finite-time network).
+    pub integrator: IntegratorSettings,
+}
+
+impl NetworkConformance {
+    /// Dormand-Prince 5(4) at RelTol 1e-10, AbsTol 1e-12.
+    pub fn dopri5() -> IntegratorSettings {
+        IntegratorSettings {
+            method: Method::Dopri5,
+            rtol: 1e-10,
+            atol: 1e-12,
+            ..IntegratorSettings::default()
+        }
+    }
+}
+
+/// y' = F(t, y; QP) on a fixed QP (dQP/dt = 0).
+struct FixedQp<'a> {
+    net: &'a mut dyn NeuralSolver,
+    qp: &'a Qp,
+    zero_dot: Option<Qp>,
+    dim: usize,
+}
+
+impl OdeSystem for FixedQp<'_> {
+    fn dim(&self) -> usize {
+        self.dim
+    }
+    fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
+        self.net.rhs(t, y, self.qp, self.zero_dot.as_ref(), dy);
+    }
+}
+
+/// A network built for QPs of the given sizes, or its own build error (an open type, so an
+/// outside network brings its own).
+pub type NetworkFactory<'a> =
+    &'a dyn Fn(QpDims) -> Result<Box<dyn NeuralSolver>, Box<dyn std::error::Error + Send + Sync>>;
+
+/// Runs the network checks of the module docs on the networks `make` builds. Returns every
+/// violation (empty: the network conforms).
+pub fn check_network(make: NetworkFactory<'_>, spec: &NetworkConformance) -> Vec<Violation> {
+    let mut out = Vec::new();
+    let mut clarabel = ExactSolver::new();
+    let settings = spec.integrator;
+    for &shape in spec.shapes {
+        for seed in 0..spec.seeds {
+            let qp = random_qp(shape, seed);
+            let Ok(exact) = clarabel.solve(&qp) else {
+                continue;
+            };
+            let mut violation = |solver: String, check, detail: String| {
+                out.push(Violation {
+                    solver,
+                    check,
+                    detail: format!("{shape:?} seed {seed}: {detail}"),
+                })
+            };
+            let mut net = match make(qp.dims()) {
+                Ok(net) => net,
+                Err(e) => {
+                    violation("?".to_string(), "build", e.to_string());
+                    continue;
+                }
+            };
+            let name = net.name();
+            let dim = net.state_dim(qp.dims());
+            let mut y0 = vec![0.0; dim];
+            net.initial_state(qp.dims(), &mut y0);
+            let zero_dot = net.needs_qp_dot().then(|| Qp::zeros(qp.dims()));
+            let mut sys = FixedQp {
+                net: net.as_mut(),
+                qp: &qp,
+                zero_dot,
+                dim,
+            };
+            match integrate(&mut sys, &y0, 0.0, spec.t_end, &settings, |_, _| {
+                Control::Continue
+            }) {
+                Err(e) => violation(name, "integration", e.error.to_string()),
+                Ok((y, _)) => {
+                    let nx = qp.dims().nx;
+                    let dx = rel_dx(&y[..nx], exact.x.as_slice());
+                    if !(dx <= spec.x_tolerance) {
+                        violation(
+                            name,
+                            "equilibrium",
+                            format!(
+                                "at t = {} |x - x*| = {dx:.3e} > {:.1e} (relative, against Clarabel)",
+                                spec.t_end, spec.x_tolerance
+                            ),
+                        );
+                    }
+                }
+            }
+        }
+    }
+    out
 }

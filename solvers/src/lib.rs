@@ -23,6 +23,7 @@ pub mod ode;
 pub mod osqp_qp;
 pub mod qp_solver;
 pub mod random_qp;
+pub mod registry;
 
 pub use active_set::{
     ActiveSetError, ActiveSetSolution, ActiveSetSolver, ActiveSetStart, Constraint, WorkingSet,

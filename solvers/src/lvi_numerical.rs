@@ -167,6 +167,11 @@ impl LviMethod {
         }
     }
 
+    /// The method whose [`LviMethod::id`] is `id`.
+    pub fn from_id(id: &str) -> Option<LviMethod> {
+        LviMethod::ALL.into_iter().find(|m| m.id() == id)
+    }
+
     /// The name robio2018 uses: `94LVI`, `E47`, `M3`, `M4`, `M5`, `M6`.
     pub fn name(self) -> &'static str {
         match self {

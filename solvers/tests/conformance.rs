@@ -130,3 +130,60 @@ fn the_kit_catches_a_wrong_solver() {
         assert!(checks.contains(check), "{check} not caught: {checks:?}");
     }
 }
+
+/// Every network preset (one per kind, the papers' parameters; the VP-RNN-PF once per
+/// activation) reaches the QP's optimum on fixed QPs of the shapes it claims: the projection
+/// networks every shape, the zeroing networks (equality-constrained QPs only) the
+/// equality-only shapes. `t_end` is a few of each network's time constants. VP-RNN-PF's
+/// equilibrium is the optimum of its exponential-penalty problem (zhong2021 (2.19)-(2.21),
+/// p = 1e-4, sigma = 400), not the QP's: where an inequality is active it sits off it by the
+/// penalty's gap (1e-3 to 1.5e-2 relative on these QPs), so it is held to 3e-2.
+#[test]
+fn every_network_preset_reaches_the_optimum() {
+    use settings::solver_spec::SolverSpec;
+    use solvers::conformance::{check_network, NetworkConformance};
+    let presets: [(&str, f64); 11] = [
+        ("kind = \"lvi-pdnn\"\ngamma = 1e7", 1e-3),
+        ("kind = \"s-lvi-pdnn\"\nbeta = 1e7", 1e-3),
+        ("kind = \"vp-rnn-pf\"\np = 0.0001\nsigma = 400.0\ngamma = 2.0\nactivation = \"linear\"", 2.0),
+        ("kind = \"vp-rnn-pf\"\np = 0.0001\nsigma = 400.0\ngamma = 2.0\nactivation = \"sinh\"", 2.0),
+        ("kind = \"vp-rnn-pf\"\np = 0.0001\nsigma = 400.0\ngamma = 2.0\nactivation = \"power-sigmoid\"", 2.0),
+        ("kind = \"fp-cdnn\"\ngamma = 200.0", 0.2),
+        ("kind = \"vp-cdnn\"\ngamma = 1.0", 4.0),
+        ("kind = \"finite-time\"\nbeta = 1.0\nalpha = 0.1\nsmoothing = 1e-6", 5.0),
+        ("kind = \"znn\"\ngamma = 1.0", 25.0),
+        ("kind = \"group-znn\"\ngamma = 500.0\nnu = 0.0\nactivation = \"group-power-sigmoid\"\nxi = 1.0\npower = 1.0\nudot_rmp = false", 0.2),
+        ("kind = \"zeroing\"\ngain = { law = \"power\", gamma = 1.0, p = 2.0 }\nactivation = \"sign-bi-power\"\nexponent = 0.5", 5.0),
+    ];
+    let mut kinds = std::collections::BTreeSet::new();
+    let mut failures = Vec::new();
+    for (text, t_end) in presets {
+        let spec: SolverSpec = toml::from_str(text).unwrap_or_else(|e| panic!("{text}: {e}"));
+        kinds.insert(spec.network_kind().id());
+        let shapes: &'static [QpShape] = if spec.handles_inequalities() {
+            &QpShape::ALL
+        } else {
+            &EQUALITY_SHAPES
+        };
+        let make = |dims| solvers::neural::build_solver(&spec, dims).map_err(Into::into);
+        let penalty = spec.network_kind() == settings::network_kind::NetworkKind::VpRnnPf;
+        let conformance = NetworkConformance {
+            x_tolerance: if penalty { 3e-2 } else { 1e-6 },
+            seeds: 2,
+            shapes,
+            t_end,
+            integrator: NetworkConformance::dopri5(),
+        };
+        failures.extend(
+            check_network(&make, &conformance)
+                .iter()
+                .map(|v| format!("{}: {v}", text.replace('\n', " "))),
+        );
+    }
+    assert_eq!(
+        kinds.len(),
+        settings::network_kind::NetworkKind::ALL.len(),
+        "{kinds:?}"
+    );
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
