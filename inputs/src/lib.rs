@@ -5,9 +5,10 @@
 //! Every such file is read by [`read()`] (or [`read_text`]), which
 //! - opens without blocking (a FIFO or a device answers at once, and is refused),
 //! - reads regular files only, after following symbolic links ([`error::InputError::NotRegular`]),
-//! - refuses a file whose link leads outside the directory it was found in ([`Origin::Under`],
-//!   e.g. `experiments/`), or, for a file named on the command line ([`Origin::Named`]), the
-//!   directory it is named in,
+//! - refuses a file that, once its links are followed, lies outside the directory it was found
+//!   in ([`Origin::Under`], e.g. `experiments/`), or, for a file named on the command line
+//!   ([`Origin::Named`]), the directory it is named in; the error says whether a symbolic link
+//!   or the path itself (`../`) leads out ([`error::Via`]),
 //! - reads at most the cap of its [`Kind`] plus one byte, and refuses a larger file,
 //! - and says what is wrong without quoting the file: [`error::InputError`] names the path and
 //!   the rule, [`toml_error::TomlError`] a TOML error's message and line and column, without the
@@ -23,7 +24,7 @@ pub mod private_dir;
 pub mod read;
 pub mod toml_error;
 
-pub use error::InputError;
+pub use error::{InputError, Via};
 pub use kind::Kind;
 pub use read::{read, read_text, Origin};
 pub use toml_error::TomlError;
