@@ -17,7 +17,11 @@
 //! A directory the program keeps for itself outside a checkout (the Python package's data
 //! cache) is filled by [`private_dir::sync`]: owner-only, never through a link, never one it
 //! did not create, deleting nothing it did not write.
+//!
+//! What a build compiles into a binary is held to [`embed`]: regular files only, reached
+//! without a symbolic link, inside the checkout.
 
+pub mod embed;
 pub mod error;
 pub mod kind;
 pub mod private_dir;
