@@ -35,6 +35,10 @@ pub enum Kind {
     InferenceFamily,
     /// The control experiments' task set, `experiments/control/tasks.toml` (1 kB).
     TaskSet,
+    /// A file of a directory the program writes and seals (`results/`, `report/`, a shard
+    /// directory): a table, a trace, the journal and its seal (the largest committed is
+    /// `results/runs.csv`, about 200 kB).
+    Owned,
     /// A paper's robot file, `papers/<paper>/robots/*.toml` (the suite's own are at most 3 kB;
     /// a 1000-joint arm is about 100 kB).
     RobotFile,
@@ -53,7 +57,7 @@ impl Kind {
             | Kind::InferenceFamily
             | Kind::TaskSet => MIB,
             Kind::PaperValues => 4 * MIB,
-            Kind::TrajectoryCsv | Kind::TrajectoryMat | Kind::Baseline => 256 * MIB,
+            Kind::TrajectoryCsv | Kind::TrajectoryMat | Kind::Baseline | Kind::Owned => 256 * MIB,
             Kind::ShardManifest | Kind::ScriptTable | Kind::Manifest => 64 * MIB,
             Kind::Urdf => 16 * MIB,
         }
@@ -74,6 +78,7 @@ impl Kind {
             Kind::ScriptTable => "results table",
             Kind::Urdf => "URDF",
             Kind::RobotFile => "robot file",
+            Kind::Owned => "file the program wrote",
             Kind::InferenceFamily => "inference family file",
             Kind::TaskSet => "control task set",
         }
