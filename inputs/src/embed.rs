@@ -3,7 +3,7 @@
 //! binary (and in every message that shows it). So a build embeds a file only if it is a
 //! regular file, reached without a symbolic link from a directory that lies inside the
 //! checkout: [`files`] lists a directory's embeddable files and refuses the directory when any
-//! entry it would embed is a link or a special file, naming it; [`file`] checks one file.
+//! entry it would embed is a link or a special file, naming it; [`file()`] checks one file.
 //!
 //! The build scripts of `robots` (the built-in robot files, `robots/data/*.toml`) and
 //! `driftbench-python` (the project data the package carries) include this file by path

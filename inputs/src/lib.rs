@@ -1,6 +1,8 @@
-//! One way to read a file that comes from outside the program: experiment files, the papers'
-//! `paper.toml` and `values.csv`, a trajectory to score, a gate's baseline, a shard's manifest, the integrity manifest of
-//! `results/`, `report/` or a shard.
+//! One way to read a file: experiment files, the inference family and the control task set,
+//! the papers' `paper.toml`, `values.csv` and robot files, a trajectory to score, a gate's
+//! baseline, a shard's manifest, the integrity manifest of `results/`, `report/` or a shard, and
+//! the files of those directories the program reads back (`Kind::Owned`: a pull request or a
+//! shard from elsewhere can put anything in their place).
 //!
 //! Every such file is read by [`read()`] (or [`read_text`]), which
 //! - opens without blocking (a FIFO or a device answers at once, and is refused),

@@ -19,7 +19,7 @@
 use std::path::{Component, Path, PathBuf};
 
 /// The bytes of a file of a directory the program owns (a table, a trace, the journal, a file
-/// a manifest lists), read as every input is ([`inputs::read`], [`inputs::Kind::Owned`]): a
+/// a manifest lists), read as every input is ([`inputs::read()`], [`inputs::Kind::Owned`]): a
 /// regular file (a FIFO or a device put in its place is refused at once, not waited on or read
 /// without end), not through a symbolic link out of the directory it is in, at most 256 MiB.
 /// The reader's error (naming the path and the rule, never the content) is returned as an
