@@ -179,15 +179,17 @@ mod tests {
         (base.join("experiments"), base)
     }
 
-    /// [`standard_task_refs`] in a thread, failing the test if it has not returned in 5 s.
-    fn refs_bounded(experiments: &std::path::Path) -> Result<Vec<TaskRef>, String> {
+    /// The message of [`standard_task_refs`]'s refusal, called in a thread: the test fails if
+    /// it has not returned within 5 s or read the file.
+    fn refusal(experiments: &std::path::Path) -> String {
         let dir = experiments.to_path_buf();
         let (tx, rx) = std::sync::mpsc::channel();
         std::thread::spawn(move || {
-            let _ = tx.send(standard_task_refs(&dir).map_err(|e| e.to_string()));
+            let _ = tx.send(standard_task_refs(&dir).err().map(|e| e.to_string()));
         });
         rx.recv_timeout(Duration::from_secs(5))
             .expect("the task set was read or refused within 5 s (a FIFO must not block)")
+            .expect("the task set is refused")
     }
 
     #[test]
@@ -212,7 +214,7 @@ mod tests {
             PathBuf::from("/proc/self/environ"),
         ] {
             std::os::unix::fs::symlink(&target, &file).unwrap();
-            let e = refs_bounded(&experiments).unwrap_err();
+            let e = refusal(&experiments);
             assert!(e.contains("leads outside") && !e.contains(MARKER), "{e}");
             std::fs::remove_file(&file).unwrap();
         }
@@ -222,14 +224,14 @@ mod tests {
             .status()
             .unwrap();
         assert!(made.success());
-        let e = refs_bounded(&experiments).unwrap_err();
+        let e = refusal(&experiments);
         assert!(e.contains("a FIFO, not a regular file"), "{e}");
         std::fs::remove_file(&file).unwrap();
         // Over its cap of 1 MiB: refused before it is parsed.
         let mut big = "[[task]]\nexperiment = \"e\"\nvariant = \"v\"\n".to_string();
         big.push_str(&format!("# {MARKER}\n").repeat((1 << 20) / 20));
         std::fs::write(&file, &big).unwrap();
-        let e = refs_bounded(&experiments).unwrap_err();
+        let e = refusal(&experiments);
         assert!(
             e.contains("larger than its cap") && !e.contains(MARKER),
             "{e}"
@@ -243,7 +245,7 @@ mod tests {
             format!("[[task]]\nexperiment = \"e\"\n\"{MARKER}\n"),
         ] {
             std::fs::write(&file, &text).unwrap();
-            let e = refs_bounded(&experiments).unwrap_err();
+            let e = refusal(&experiments);
             assert!(!e.contains(MARKER) && e.contains("line "), "{text:?}: {e}");
         }
         std::fs::remove_dir_all(&base).unwrap();
