@@ -7,7 +7,15 @@
 //!
 //! Writes `$OUT_DIR/packaged.rs`: `FILES`, a slice of `(path relative to the project root with
 //! '/' separators, include_bytes!(absolute path))` sorted by path, and `DIGEST`, the SHA-256 of
-//! the paths and contents (the name of the directory the data is unpacked into).
+//! the paths and contents (the name of the directory the data is unpacked into). Only regular
+//! files inside the checkout are embedded (`inputs::embed`, included here by path): a symbolic
+//! link or a special file among them, or a directory that leads outside, fails the build,
+//! naming it (`include_bytes!` would follow a link to a secret and put it in the package).
+
+// Walks whole trees here (`Walk::Top` serves the robots' build).
+#[allow(dead_code)]
+#[path = "../inputs/src/embed.rs"]
+mod embed;
 
 use sha2::{Digest, Sha256};
 use std::error::Error;
@@ -23,39 +31,16 @@ const FILES: [&str; 3] = [
     "results/leaderboard-timing.csv",
 ];
 
-/// Every file under `dir` (hidden entries skipped), as (relative path, absolute path).
-fn walk(root: &Path, dir: &Path, out: &mut Vec<(String, PathBuf)>) -> Result<(), Box<dyn Error>> {
-    for entry in std::fs::read_dir(dir).map_err(|e| format!("{}: {e}", dir.display()))? {
-        let path = entry?.path();
-        let name = path
-            .file_name()
-            .and_then(|n| n.to_str())
-            .ok_or_else(|| format!("file name is not UTF-8: {}", path.display()))?;
-        if name.starts_with('.') {
-            continue;
-        }
-        if path.is_dir() {
-            walk(root, &path, out)?;
-        } else {
-            out.push((relative(root, &path)?, path));
-        }
+/// The build fails with the error's message (`main` returning an error would show its
+/// `Debug` form).
+fn main() {
+    if let Err(e) = run() {
+        eprintln!("error: {e}");
+        std::process::exit(1);
     }
-    Ok(())
 }
 
-/// `path` relative to `root`, with '/' separators.
-fn relative(root: &Path, path: &Path) -> Result<String, Box<dyn Error>> {
-    let parts: Option<Vec<&str>> = path
-        .strip_prefix(root)?
-        .components()
-        .map(|c| c.as_os_str().to_str())
-        .collect();
-    Ok(parts
-        .ok_or_else(|| format!("path is not UTF-8: {}", path.display()))?
-        .join("/"))
-}
-
-fn main() -> Result<(), Box<dyn Error>> {
+fn run() -> Result<(), Box<dyn Error>> {
     let manifest = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR")?);
     let root = manifest
         .parent()
@@ -63,36 +48,31 @@ fn main() -> Result<(), Box<dyn Error>> {
         .to_path_buf();
     let mut files = Vec::new();
     for dir in DIRS {
-        let full = root.join(dir);
-        println!("cargo:rerun-if-changed={}", full.display());
-        walk(&root, &full, &mut files)?;
+        println!("cargo:rerun-if-changed={}", root.join(dir).display());
+        files.extend(embed::files(&root, Path::new(dir), embed::Walk::Tree)?);
     }
     for file in FILES {
         let full = root.join(file);
         println!("cargo:rerun-if-changed={}", full.display());
-        if !full.is_file() {
-            return Err(format!(
-                "{}: missing; the package embeds it (build from a driftbench checkout)",
-                full.display()
-            )
-            .into());
-        }
-        files.push((file.to_string(), full));
+        files.push(embed::file(&root, Path::new(file)).map_err(|e| {
+            format!("{e} (the package embeds it: build from a driftbench checkout)")
+        })?);
     }
     files.sort();
     let mut digest = Sha256::new();
     let mut out =
         String::from("/// The embedded files: (path under the project root, contents).\n");
     out.push_str("pub const FILES: &[(&str, &[u8])] = &[\n");
-    for (rel, full) in &files {
-        let bytes = std::fs::read(full).map_err(|e| format!("{}: {e}", full.display()))?;
+    for embed::Embedded {
+        relative: rel,
+        absolute: full,
+    } in &files
+    {
+        let bytes = std::fs::read(full).map_err(|e| format!("{full}: {e}"))?;
         digest.update((rel.len() as u64).to_le_bytes());
         digest.update(rel.as_bytes());
         digest.update((bytes.len() as u64).to_le_bytes());
         digest.update(&bytes);
-        let full = full
-            .to_str()
-            .ok_or_else(|| format!("path is not UTF-8: {}", full.display()))?;
         writeln!(out, "    ({rel:?}, include_bytes!({full:?})),")?;
     }
     out.push_str("];\n");

@@ -17,12 +17,17 @@ pub enum ControlError {
     /// A network whose parameters make no valid solver id.
     #[error(transparent)]
     Id(#[from] catalog::ids::IdError),
-    /// The standard task set file could not be parsed (`path` names it).
+    /// The standard task set file is refused by the input reader (a link out of the
+    /// experiments directory, not a regular file, over its cap, not UTF-8; the error names the
+    /// path).
+    #[error(transparent)]
+    TaskSetFile(#[from] inputs::InputError),
+    /// The standard task set file is not valid TOML or not a task set (`path` names it; the
+    /// error gives line and column, never the file's text).
     #[error("{path}: {source}")]
     TaskSet {
         path: String,
-        /// (Boxed: a TOML error is large.)
-        source: Box<toml::de::Error>,
+        source: inputs::TomlError,
     },
     /// The project declares no standard task set (a project of its own papers may have none).
     #[error("{0} does not exist: the project declares no control task set")]
@@ -45,9 +50,4 @@ pub enum ControlError {
     /// A result file could not be written.
     #[error(transparent)]
     Results(#[from] ControlFileError),
-    #[error("{path}: {source}")]
-    Io {
-        path: String,
-        source: std::io::Error,
-    },
 }

@@ -33,26 +33,24 @@ struct TaskSetFile {
     task: Vec<TaskRef>,
 }
 
-/// The standard task set declared in `experiments/`[`TASK_SET_FILE`]: every paper's scheme
-/// once, in the file's order. A project without the file has no control experiments
-/// ([`ControlError::NoTaskSet`]).
+/// The standard task set declared in `experiments/`[`TASK_SET_FILE`], read as an input
+/// (`inputs::Kind::TaskSet`: a regular file inside `experiments`, at most 1 MiB, never quoted
+/// in an error): every paper's scheme once, in the file's order. A project without the file
+/// has no control experiments ([`ControlError::NoTaskSet`]).
 pub fn standard_task_refs(experiments: &std::path::Path) -> Result<Vec<TaskRef>, ControlError> {
     let path = experiments.join(TASK_SET_FILE);
     let shown = path.display().to_string();
-    let text = std::fs::read_to_string(&path).map_err(|source| {
-        if source.kind() == std::io::ErrorKind::NotFound {
-            ControlError::NoTaskSet(shown.clone())
-        } else {
-            ControlError::Io {
-                path: shown.clone(),
-                source,
-            }
-        }
-    })?;
-    let file: TaskSetFile = toml::from_str(&text).map_err(|source| ControlError::TaskSet {
-        path: shown.clone(),
-        source: Box::new(source),
-    })?;
+    let origin = inputs::Origin::Under(experiments);
+    let text = match inputs::read_text(&path, inputs::Kind::TaskSet, origin) {
+        Ok(text) => text,
+        Err(e) if e.is_not_found() => return Err(ControlError::NoTaskSet(shown)),
+        Err(e) => return Err(e.into()),
+    };
+    let file: TaskSetFile =
+        inputs::toml_error::from_str(&text).map_err(|source| ControlError::TaskSet {
+            path: shown.clone(),
+            source,
+        })?;
     if file.task.is_empty() {
         return Err(ControlError::EmptyTaskSet(shown));
     }
@@ -160,4 +158,99 @@ pub fn with_task<R>(
         theta0: &job.theta0,
         period,
     }))
+}
+
+#[cfg(all(test, unix))]
+mod tests {
+    use super::*;
+    use std::path::PathBuf;
+    use std::time::Duration;
+
+    /// The stand-in for a secret a hostile file would hold.
+    const MARKER: &str = "SECRET_MARKER_c0n7";
+
+    /// A scratch `experiments/` (with `control/`) beside an `outside/secret`.
+    fn scratch(tag: &str) -> (PathBuf, PathBuf) {
+        let base = std::env::temp_dir().join(format!(
+            "driftbench-control-tasks-{tag}-{}",
+            std::process::id()
+        ));
+        let _ = std::fs::remove_dir_all(&base);
+        std::fs::create_dir_all(base.join("experiments/control")).unwrap();
+        std::fs::create_dir_all(base.join("outside")).unwrap();
+        std::fs::write(base.join("outside/secret"), format!("{MARKER}\n")).unwrap();
+        (base.join("experiments"), base)
+    }
+
+    /// The message of [`standard_task_refs`]'s refusal, called in a thread: the test fails if
+    /// it has not returned within 5 s or read the file.
+    fn refusal(experiments: &std::path::Path) -> String {
+        let dir = experiments.to_path_buf();
+        let (tx, rx) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let _ = tx.send(standard_task_refs(&dir).err().map(|e| e.to_string()));
+        });
+        rx.recv_timeout(Duration::from_secs(5))
+            .expect("the task set was read or refused within 5 s (a FIFO must not block)")
+            .expect("the task set is refused")
+    }
+
+    #[test]
+    fn the_committed_task_set_reads() {
+        let experiments = catalog::root::from_current_dir()
+            .unwrap()
+            .join("experiments");
+        let refs = standard_task_refs(&experiments).unwrap();
+        assert!(refs.len() >= 4, "{refs:?}");
+    }
+
+    #[test]
+    fn a_hostile_task_set_is_refused_without_its_content() {
+        let (experiments, base) = scratch("hostile");
+        let file = experiments.join(TASK_SET_FILE);
+        // Missing: no control experiments.
+        let e = standard_task_refs(&experiments).unwrap_err();
+        assert!(matches!(e, ControlError::NoTaskSet(_)), "{e:?}");
+        // A symbolic link out of the experiments directory (to a secret, to the environment).
+        for target in [
+            base.join("outside/secret"),
+            PathBuf::from("/proc/self/environ"),
+        ] {
+            std::os::unix::fs::symlink(&target, &file).unwrap();
+            let e = refusal(&experiments);
+            assert!(e.contains("leads outside") && !e.contains(MARKER), "{e}");
+            std::fs::remove_file(&file).unwrap();
+        }
+        // A FIFO: refused at once, not waited on.
+        let made = std::process::Command::new("mkfifo")
+            .arg(&file)
+            .status()
+            .unwrap();
+        assert!(made.success());
+        let e = refusal(&experiments);
+        assert!(e.contains("a FIFO, not a regular file"), "{e}");
+        std::fs::remove_file(&file).unwrap();
+        // Over its cap of 1 MiB: refused before it is parsed.
+        let mut big = "[[task]]\nexperiment = \"e\"\nvariant = \"v\"\n".to_string();
+        big.push_str(&format!("# {MARKER}\n").repeat((1 << 20) / 20));
+        std::fs::write(&file, &big).unwrap();
+        let e = refusal(&experiments);
+        assert!(
+            e.contains("larger than its cap") && !e.contains(MARKER),
+            "{e}"
+        );
+        // TOML errors give the line and column, never the file's lines (an invalid id is
+        // named, as the offending value; the lines around it are not).
+        for text in [
+            format!("[[task]]\nexperiment = \"e\"\nvariant = \"v\"\n# {MARKER}\nnot toml\n"),
+            format!("[[task]]\nexperiment = \"e\" {MARKER}\n"),
+            format!("# {MARKER}\n[[task]]\nexperiment = \"e\"\nvariant = \"Not-A-Slug\"\n"),
+            format!("[[task]]\nexperiment = \"e\"\n\"{MARKER}\n"),
+        ] {
+            std::fs::write(&file, &text).unwrap();
+            let e = refusal(&experiments);
+            assert!(!e.contains(MARKER) && e.contains("line "), "{text:?}: {e}");
+        }
+        std::fs::remove_dir_all(&base).unwrap();
+    }
 }

@@ -1,7 +1,8 @@
 //! The explanation layer's errors: reading and writing its results files ([`ExplainError`],
 //! wrapping the records layer's [`TableError`] and [`IoError`]), building or reading an
-//! inference ([`InferenceError`]) and reading the inference family file ([`FamilyError`],
-//! wrapped by [`InferenceError::Family`]).
+//! inference ([`InferenceError`]) and reading the inference family file (the reader's
+//! [`inputs::InputError`], wrapped by [`InferenceError::FamilyFile`]; what its content gets
+//! wrong, [`FamilyError`], wrapped by [`InferenceError::Family`]).
 
 use records::error::IoError;
 use records::table::TableError;
@@ -20,10 +21,9 @@ pub enum ExplainError {
 /// What is wrong with the inference family file.
 #[derive(Debug, thiserror::Error)]
 pub enum FamilyError {
+    /// Its TOML (line and column; the file is never quoted).
     #[error(transparent)]
-    Read(#[from] std::io::Error),
-    #[error(transparent)]
-    Toml(#[from] toml::de::Error),
+    Toml(#[from] inputs::TomlError),
     /// The registry's error: an unknown robot (with the valid choices) or its invalid file.
     #[error("{0}")]
     UnknownRobot(String),
@@ -48,7 +48,11 @@ pub enum InferenceError {
         experiment: String,
         variant: String,
     },
-    /// The family file could not be read or names what does not exist.
+    /// The family file is refused by the input reader (a link out of the experiments
+    /// directory, not a regular file, over its cap, not UTF-8; the error names the path).
+    #[error(transparent)]
+    FamilyFile(#[from] inputs::InputError),
+    /// The family file is not valid TOML or names what does not exist.
     #[error("inference family {}: {error}", file.display())]
     Family {
         file: std::path::PathBuf,

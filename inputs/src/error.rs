@@ -14,12 +14,13 @@ pub enum InputError {
         source: std::io::Error,
     },
     /// The file (after following links) is not inside the directory it was found in.
-    #[error("{}: the {kind} is a symbolic link that leads outside {} (to {}); it is not read", path.display(), dir.display(), target.display())]
+    #[error("{}: the {kind} {via} leads outside {} (to {}); it is not read", path.display(), dir.display(), target.display())]
     Outside {
         path: PathBuf,
         kind: Kind,
         dir: PathBuf,
         target: PathBuf,
+        via: Via,
     },
     /// A FIFO, a device, a socket or a directory.
     #[error("{}: the {kind} is {found}, not a regular file; it is not read", path.display())]
@@ -43,6 +44,25 @@ pub enum InputError {
         kind: Kind,
         line: usize,
     },
+}
+
+/// What leads a file outside its directory ([`InputError::Outside`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Via {
+    /// The path itself, read as written (`..` components taken lexically), already names a
+    /// place outside the directory (`experiments/../secret`, an absolute path elsewhere).
+    Path,
+    /// The path, read as written, stays inside; a symbolic link on the way leads out.
+    Link,
+}
+
+impl std::fmt::Display for Via {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Via::Path => "is named by a path that",
+            Via::Link => "is a symbolic link that",
+        })
+    }
 }
 
 impl InputError {

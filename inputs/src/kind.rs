@@ -31,6 +31,14 @@ pub enum Kind {
     ScriptTable,
     /// A URDF an arm is read from (`robots::urdf`; the URDFs of common arms are 10-400 kB).
     Urdf,
+    /// The inference's setup family, `experiments/inference/family.toml` (2 kB).
+    InferenceFamily,
+    /// The control experiments' task set, `experiments/control/tasks.toml` (1 kB).
+    TaskSet,
+    /// A file of a directory the program writes and seals (`results/`, `report/`, a shard
+    /// directory): a table, a trace, the journal and its seal (the largest committed is
+    /// `results/runs.csv`, about 200 kB).
+    Owned,
     /// A paper's robot file, `papers/<paper>/robots/*.toml` (the suite's own are at most 3 kB;
     /// a 1000-joint arm is about 100 kB).
     RobotFile,
@@ -42,9 +50,14 @@ impl Kind {
     /// The largest file of this kind that is read, in bytes.
     pub fn cap(self) -> u64 {
         match self {
-            Kind::Experiment | Kind::PaperToml | Kind::ShardBinding | Kind::RobotFile => MIB,
+            Kind::Experiment
+            | Kind::PaperToml
+            | Kind::ShardBinding
+            | Kind::RobotFile
+            | Kind::InferenceFamily
+            | Kind::TaskSet => MIB,
             Kind::PaperValues => 4 * MIB,
-            Kind::TrajectoryCsv | Kind::TrajectoryMat | Kind::Baseline => 256 * MIB,
+            Kind::TrajectoryCsv | Kind::TrajectoryMat | Kind::Baseline | Kind::Owned => 256 * MIB,
             Kind::ShardManifest | Kind::ScriptTable | Kind::Manifest => 64 * MIB,
             Kind::Urdf => 16 * MIB,
         }
@@ -65,6 +78,9 @@ impl Kind {
             Kind::ScriptTable => "results table",
             Kind::Urdf => "URDF",
             Kind::RobotFile => "robot file",
+            Kind::Owned => "file the program wrote",
+            Kind::InferenceFamily => "inference family file",
+            Kind::TaskSet => "control task set",
         }
     }
 }

@@ -1,13 +1,16 @@
-//! One way to read a file that comes from outside the program: experiment files, the papers'
-//! `paper.toml` and `values.csv`, a trajectory to score, a gate's baseline, a shard's manifest, the integrity manifest of
-//! `results/`, `report/` or a shard.
+//! One way to read a file: experiment files, the inference family and the control task set,
+//! the papers' `paper.toml`, `values.csv` and robot files, a trajectory to score, a gate's
+//! baseline, a shard's manifest, the integrity manifest of `results/`, `report/` or a shard, and
+//! the files of those directories the program reads back (`Kind::Owned`: a pull request or a
+//! shard from elsewhere can put anything in their place).
 //!
 //! Every such file is read by [`read()`] (or [`read_text`]), which
 //! - opens without blocking (a FIFO or a device answers at once, and is refused),
 //! - reads regular files only, after following symbolic links ([`error::InputError::NotRegular`]),
-//! - refuses a file whose link leads outside the directory it was found in ([`Origin::Under`],
-//!   e.g. `experiments/`), or, for a file named on the command line ([`Origin::Named`]), the
-//!   directory it is named in,
+//! - refuses a file that, once its links are followed, lies outside the directory it was found
+//!   in ([`Origin::Under`], e.g. `experiments/`), or, for a file named on the command line
+//!   ([`Origin::Named`]), the directory it is named in; the error says whether a symbolic link
+//!   or the path itself (`../`) leads out ([`error::Via`]),
 //! - reads at most the cap of its [`Kind`] plus one byte, and refuses a larger file,
 //! - and says what is wrong without quoting the file: [`error::InputError`] names the path and
 //!   the rule, [`toml_error::TomlError`] a TOML error's message and line and column, without the
@@ -19,7 +22,11 @@
 //! A directory the program keeps for itself outside a checkout (the Python package's data
 //! cache) is filled by [`private_dir::sync`]: owner-only, never through a link, never one it
 //! did not create, deleting nothing it did not write.
+//!
+//! What a build compiles into a binary is held to [`embed`]: regular files only, reached
+//! without a symbolic link, inside the checkout.
 
+pub mod embed;
 pub mod error;
 pub mod kind;
 pub mod private_dir;
@@ -27,7 +34,7 @@ pub mod read;
 pub mod toml_error;
 pub mod trajectory;
 
-pub use error::InputError;
+pub use error::{InputError, Via};
 pub use kind::Kind;
 pub use read::{read, read_text, Origin};
 pub use toml_error::TomlError;

@@ -1,7 +1,7 @@
 //! Reading an input file: where it may be, what it may be, and how much of it is read
 //! (crate docs).
 
-use crate::error::InputError;
+use crate::error::{InputError, Via};
 use crate::kind::Kind;
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -35,13 +35,19 @@ pub fn read(path: &Path, kind: Kind, origin: Origin) -> Result<Vec<u8>, InputErr
             .filter(|d| !d.as_os_str().is_empty())
             .unwrap_or(Path::new(".")),
     };
-    let dir = std::fs::canonicalize(dir).map_err(open_error)?;
-    if !target.starts_with(&dir) {
+    let canonical_dir = std::fs::canonicalize(dir).map_err(open_error)?;
+    if !target.starts_with(&canonical_dir) {
+        let via = if lexical(path).starts_with(lexical(dir)) {
+            Via::Link
+        } else {
+            Via::Path
+        };
         return Err(InputError::Outside {
             path: path.to_path_buf(),
             kind,
-            dir,
+            dir: canonical_dir,
             target,
+            via,
         });
     }
     let file = open_nonblocking(&target).map_err(open_error)?;
@@ -76,6 +82,24 @@ pub fn read(path: &Path, kind: Kind, origin: Origin) -> Result<Vec<u8>, InputErr
         return Err(too_large());
     }
     Ok(bytes)
+}
+
+/// `path` made absolute (against the current directory) and normalised as written, without
+/// looking at the file system: `.` dropped, `..` removing the component before it. Only says
+/// *why* a path found outside its directory is so ([`Via`]); never used to decide *whether*.
+fn lexical(path: &Path) -> PathBuf {
+    let absolute = std::env::current_dir().unwrap_or_default().join(path);
+    let mut out = PathBuf::new();
+    for c in absolute.components() {
+        match c {
+            std::path::Component::CurDir => {}
+            std::path::Component::ParentDir => {
+                out.pop();
+            }
+            other => out.push(other),
+        }
+    }
+    out
 }
 
 /// [`read()`], as UTF-8 text.

@@ -4,7 +4,7 @@
 
 #![cfg(unix)]
 
-use inputs::{read, read_text, InputError, Kind, Origin};
+use inputs::{read, read_text, InputError, Kind, Origin, Via};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -66,7 +66,10 @@ fn a_link_outside_is_refused_without_its_content() {
     let link = s.file("evil.toml");
     std::os::unix::fs::symlink(s.0.join("outside/secret"), &link).unwrap();
     let e = read_bounded(&link, Kind::Experiment, Some(&s.project())).unwrap_err();
-    assert!(matches!(e, InputError::Outside { .. }), "{e:?}");
+    assert!(
+        matches!(e, InputError::Outside { via: Via::Link, .. }),
+        "{e:?}"
+    );
     let shown = e.to_string();
     assert!(!shown.contains(CANARY), "{shown}");
     assert!(
@@ -84,6 +87,55 @@ fn a_link_outside_is_refused_without_its_content() {
     assert!(!e.to_string().contains(CANARY), "{e}");
     let named = read_bounded(&s.0.join("outside/secret"), Kind::Baseline, None).unwrap();
     assert_eq!(named, format!("{CANARY}\n").as_bytes());
+}
+
+#[test]
+fn a_path_through_dotdot_is_refused_as_a_path_not_as_a_link() {
+    let s = Scratch::new("dotdot");
+    // No link anywhere: `project/../outside/secret` names a file outside `project/` by itself.
+    let escaping = s.project().join("../outside/secret");
+    let e = read_bounded(&escaping, Kind::Experiment, Some(&s.project())).unwrap_err();
+    assert!(
+        matches!(e, InputError::Outside { via: Via::Path, .. }),
+        "{e:?}"
+    );
+    let shown = e.to_string();
+    assert!(
+        shown.contains("is named by a path that leads outside") && !shown.contains("symbolic"),
+        "{shown}"
+    );
+    assert!(!shown.contains(CANARY), "{shown}");
+    // An absolute path elsewhere is the same case.
+    let e = read_bounded(
+        &s.0.join("outside/secret"),
+        Kind::PaperToml,
+        Some(&s.project()),
+    )
+    .unwrap_err();
+    assert!(
+        matches!(e, InputError::Outside { via: Via::Path, .. }),
+        "{e:?}"
+    );
+    // A `..` that comes back inside is no escape: read.
+    std::fs::create_dir_all(s.file("sub")).unwrap();
+    std::fs::write(s.file("a.toml"), "a = 1\n").unwrap();
+    let back = s.project().join("sub/../a.toml");
+    assert_eq!(
+        read_bounded(&back, Kind::Experiment, Some(&s.project())).unwrap(),
+        b"a = 1\n"
+    );
+    // A link inside a path written inside still says "symbolic link".
+    std::os::unix::fs::symlink(s.0.join("outside"), s.file("out")).unwrap();
+    let e = read_bounded(&s.file("out/secret"), Kind::Experiment, Some(&s.project())).unwrap_err();
+    assert!(
+        matches!(e, InputError::Outside { via: Via::Link, .. }),
+        "{e:?}"
+    );
+    assert!(
+        e.to_string()
+            .contains("is a symbolic link that leads outside"),
+        "{e}"
+    );
 }
 
 #[test]

@@ -189,17 +189,19 @@ impl Manifest {
         self.files
             .iter()
             .filter(|(file, _)| select(file))
-            .filter_map(|(file, listed)| match std::fs::read(dir.join(file)) {
-                Err(_) => Some(Mismatch::Missing { file: file.clone() }),
-                Ok(bytes) => {
-                    let found = Fingerprint::of(&bytes);
-                    (found != *listed).then(|| Mismatch::Changed {
-                        file: file.clone(),
-                        listed: listed.clone(),
-                        found,
-                    })
-                }
-            })
+            .filter_map(
+                |(file, listed)| match crate::owned_dir::read_file(&dir.join(file)) {
+                    Err(_) => Some(Mismatch::Missing { file: file.clone() }),
+                    Ok(bytes) => {
+                        let found = Fingerprint::of(&bytes);
+                        (found != *listed).then(|| Mismatch::Changed {
+                            file: file.clone(),
+                            listed: listed.clone(),
+                            found,
+                        })
+                    }
+                },
+            )
             .collect()
     }
 }

@@ -127,7 +127,7 @@ impl<'a> Journal<'a> {
             writeln!(file, "{}", header.join(",")).map_err(IoError::at(&path, IoAction::Write))?;
         } else {
             let text =
-                std::fs::read_to_string(&path).map_err(IoError::at(&path, IoAction::Read))?;
+                crate::owned_dir::read_text(&path).map_err(IoError::at(&path, IoAction::Read))?;
             if text.lines().next() != Some(header.join(",").as_str()) {
                 return Err(JournalError::Header { path });
             }
@@ -202,7 +202,8 @@ pub fn recover(results: &ResultsDir, git_rev: &str) -> Result<Recovered, Journal
     if !journal.exists() {
         return Ok(Recovered::default());
     }
-    let text = std::fs::read_to_string(&journal).map_err(IoError::at(&journal, IoAction::Read))?;
+    let text =
+        crate::owned_dir::read_text(&journal).map_err(IoError::at(&journal, IoAction::Read))?;
     let rows: Vec<RunRow> =
         table::from_reader(complete_lines(&text).as_bytes()).map_err(|e| table::TableError {
             path: Some(journal.clone()),
@@ -245,7 +246,7 @@ fn complete_lines(text: &str) -> &str {
 /// the same trace wins, as the later write did).
 fn read_seal(dir: &Path) -> Result<HashMap<String, String>, JournalError> {
     let path = seal_path(dir);
-    let text = match std::fs::read_to_string(&path) {
+    let text = match crate::owned_dir::read_text(&path) {
         Ok(text) => text,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(HashMap::new()),
         Err(e) => return Err(IoError::at(&path, IoAction::Read)(e).into()),

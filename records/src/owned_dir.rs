@@ -18,6 +18,32 @@
 
 use std::path::{Component, Path, PathBuf};
 
+/// The bytes of a file of a directory the program owns (a table, a trace, the journal, a file
+/// a manifest lists), read as every input is ([`inputs::read()`], [`inputs::Kind::Owned`]): a
+/// regular file (a FIFO or a device put in its place is refused at once, not waited on or read
+/// without end), not through a symbolic link out of the directory it is in, at most 256 MiB.
+/// The reader's error (naming the path and the rule, never the content) is returned as an
+/// `io::Error` of kind `NotFound` for a missing file, so that callers treating a missing file
+/// as absent still do, and `InvalidData` otherwise.
+pub fn read_file(path: &Path) -> std::io::Result<Vec<u8>> {
+    inputs::read(path, inputs::Kind::Owned, inputs::Origin::Named).map_err(io_error)
+}
+
+/// [`read_file`], as UTF-8 text.
+pub fn read_text(path: &Path) -> std::io::Result<String> {
+    inputs::read_text(path, inputs::Kind::Owned, inputs::Origin::Named).map_err(io_error)
+}
+
+/// The input reader's error as an `io::Error` ([`read_file`]).
+pub(crate) fn io_error(e: inputs::InputError) -> std::io::Error {
+    let kind = if e.is_not_found() {
+        std::io::ErrorKind::NotFound
+    } else {
+        std::io::ErrorKind::InvalidData
+    };
+    std::io::Error::new(kind, e)
+}
+
 /// A path that may not be written or deleted.
 #[derive(Debug, thiserror::Error)]
 pub enum PathError {
@@ -159,6 +185,72 @@ mod tests {
             );
         }
         let _ = std::fs::remove_dir_all(&base);
+    }
+
+    /// A FIFO, a link to `/dev/zero` and a link to a secret put in place of a file the
+    /// program wrote (as a pull request or a shard from elsewhere can) are refused at once by
+    /// every reader of an owned directory: the read, a table's read and the manifest's check
+    /// at every start (which used to wait on the FIFO and read `/dev/zero` without end).
+    #[cfg(unix)]
+    #[test]
+    fn a_fifo_or_a_link_out_in_place_of_a_written_file_is_refused_at_once() {
+        let base = scratch("special");
+        std::fs::create_dir_all(&base).unwrap();
+        let secret = scratch("special-secret");
+        std::fs::write(&secret, "SECRET_MARKER_0wn3d\n").unwrap();
+        let made = std::process::Command::new("mkfifo")
+            .arg(base.join("runs.csv"))
+            .status()
+            .unwrap();
+        assert!(made.success());
+        std::os::unix::fs::symlink("/dev/zero", base.join("zero.csv")).unwrap();
+        std::os::unix::fs::symlink(&secret, base.join("secret.csv")).unwrap();
+        std::fs::write(base.join("ok.csv"), "a\n1\n").unwrap();
+        let (tx, rx) = std::sync::mpsc::channel();
+        let dir = base.clone();
+        std::thread::spawn(move || {
+            let names = ["runs.csv", "zero.csv", "secret.csv"];
+            let errors: Vec<std::io::Error> = names
+                .iter()
+                .map(|n| read_file(&dir.join(n)).unwrap_err())
+                .collect();
+            let table = crate::table::read::<crate::runs::RunRow>(&dir.join("runs.csv"));
+            let listed = crate::integrity::Fingerprint::of(b"a\n1\n");
+            let manifest = crate::integrity::Manifest {
+                git_rev: "x".into(),
+                files: names
+                    .iter()
+                    .chain(&["ok.csv"])
+                    .map(|n| (n.to_string(), listed.clone()))
+                    .collect(),
+            };
+            let mismatches = manifest.mismatches(&dir, |_| true).len();
+            let missing = read_file(&dir.join("none.csv")).unwrap_err().kind();
+            let _ = tx.send((errors, table.is_err(), mismatches, missing));
+        });
+        let (errors, table_refused, mismatches, missing) = rx
+            .recv_timeout(std::time::Duration::from_secs(10))
+            .expect("every read returned within 10 s");
+        let shown: Vec<String> = errors.iter().map(|e| e.to_string()).collect();
+        assert!(
+            shown[0].contains("a FIFO, not a regular file"),
+            "{}",
+            shown[0]
+        );
+        assert!(shown[1].contains("leads outside"), "{}", shown[1]);
+        assert!(
+            shown[2].contains("leads outside") && !shown[2].contains("SECRET_MARKER"),
+            "{}",
+            shown[2]
+        );
+        assert!(errors
+            .iter()
+            .all(|e| e.kind() == std::io::ErrorKind::InvalidData));
+        assert!(table_refused);
+        assert_eq!(mismatches, 3, "the three planted files, not ok.csv");
+        assert_eq!(missing, std::io::ErrorKind::NotFound);
+        let _ = std::fs::remove_dir_all(&base);
+        let _ = std::fs::remove_file(&secret);
     }
 
     #[cfg(unix)]

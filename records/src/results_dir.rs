@@ -264,7 +264,7 @@ impl ResultsDir {
         let mut done = Vec::new();
         for table in [RUNS, LADDER, ATTRIBUTION] {
             let path = self.path().join(table);
-            let Ok(text) = std::fs::read(&path) else {
+            let Ok(text) = crate::owned_dir::read_file(&path) else {
                 continue;
             };
             let migrated = crate::migrate::add_ids(&text, &index)
@@ -287,10 +287,9 @@ impl ResultsDir {
                 if old == new || !old_path.is_file() {
                     continue;
                 }
-                let bytes = std::fs::read(&old_path).map_err(crate::error::IoError::at(
-                    &old_path,
-                    crate::error::IoAction::Read,
-                ))?;
+                let bytes = crate::owned_dir::read_file(&old_path).map_err(
+                    crate::error::IoError::at(&old_path, crate::error::IoAction::Read),
+                )?;
                 self.tracked.write(&new, &bytes)?;
                 self.tracked.remove(&old)?;
                 moved += 1;

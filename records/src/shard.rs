@@ -614,7 +614,10 @@ pub fn experiments_hash<'a>(
         let path = dir.join(name);
         bytes.extend(name.as_bytes());
         bytes.push(0);
-        bytes.extend(std::fs::read(&path).map_err(IoError::at(&path, IoAction::Read))?);
+        let file = inputs::read(&path, inputs::Kind::Experiment, inputs::Origin::Under(dir))
+            .map_err(crate::owned_dir::io_error)
+            .map_err(IoError::at(&path, IoAction::Read))?;
+        bytes.extend(file);
         bytes.push(0);
     }
     Ok(format!("{:016x}", fnv1a64(&bytes)))
@@ -682,7 +685,8 @@ pub fn copy_traces(
         for r in &s.rows {
             let rel = trace_rel(r);
             let from = owned.resolve(&rel)?;
-            let bytes = std::fs::read(&from).map_err(IoError::at(&from, IoAction::Read))?;
+            let bytes =
+                crate::owned_dir::read_file(&from).map_err(IoError::at(&from, IoAction::Read))?;
             results.tracked().write(&rel, &bytes)?;
             n += 1;
         }

@@ -318,14 +318,15 @@ fn joint_values<T: Row>(cells: &[&str], line: u64) -> Result<Vec<f64>, TableErro
         .collect()
 }
 
-/// Reads a table of `T` from `path` (errors name it).
+/// Reads a table of `T` from `path` (errors name it), through the one reader
+/// ([`crate::owned_dir::read_file`]).
 pub fn read<T: Row>(path: &Path) -> Result<Vec<T>, TableError> {
-    let file = std::fs::File::open(path).map_err(|e| TableError {
+    let bytes = crate::owned_dir::read_file(path).map_err(|e| TableError {
         path: Some(path.to_path_buf()),
         line: 0,
         what: format!("cannot read: {e}"),
     })?;
-    from_reader(std::io::BufReader::new(file)).map_err(|e| TableError {
+    from_reader(bytes.as_slice()).map_err(|e| TableError {
         path: Some(path.to_path_buf()),
         ..e
     })

@@ -199,7 +199,7 @@ impl TrackedDir {
     /// from [`TrackedDir::resolve`]); a file that is not there is dropped from the manifest.
     pub fn adopt(&self, rel: &Path) -> Result<(), TrackedError> {
         let path = self.resolve(rel)?;
-        match std::fs::read(&path) {
+        match crate::owned_dir::read_file(&path) {
             Ok(bytes) => {
                 self.lock().files.insert(key(rel), Fingerprint::of(&bytes));
             }
@@ -216,7 +216,7 @@ impl TrackedDir {
     /// missing or changed since is not recorded.
     pub fn adopt_sealed(&self, rel: &Path, sha256: &str) -> Result<bool, TrackedError> {
         let path = self.resolve(rel)?;
-        let bytes = match std::fs::read(&path) {
+        let bytes = match crate::owned_dir::read_file(&path) {
             Ok(bytes) => bytes,
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(false),
             Err(source) => return Err(TrackedError::Io { path, source }),
@@ -232,7 +232,7 @@ impl TrackedDir {
     /// Removes `rel` if the program can prove it wrote it (see the module doc).
     pub fn remove(&self, rel: &Path) -> Result<Removal, TrackedError> {
         let path = self.resolve(rel)?;
-        let bytes = match std::fs::read(&path) {
+        let bytes = match crate::owned_dir::read_file(&path) {
             Ok(b) => b,
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
                 self.lock().files.remove(&key(rel));
@@ -324,7 +324,7 @@ pub fn pending(name: &str) -> String {
 fn finish_commits(dir: &OwnedDir, manifest: &Manifest) -> Result<(), TrackedError> {
     for (name, listed) in manifest.files.iter().filter(|(k, _)| !k.contains('/')) {
         let staged = dir.resolve(Path::new(&pending(name)))?;
-        let bytes = match std::fs::read(&staged) {
+        let bytes = match crate::owned_dir::read_file(&staged) {
             Ok(bytes) => bytes,
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => continue,
             Err(source) => {

@@ -63,12 +63,7 @@ pub fn infer(
     use explain::inference::{family::Family, fit, problem, rows, search::Target};
     let root = report_root(project)?;
     let papers = load_papers(project)?;
-    let family = Family::load(
-        &project
-            .experiments_dir
-            .join("inference")
-            .join("family.toml"),
-    )?;
+    let family = Family::load(&project.experiments_dir)?;
     let ids = table_ids(&papers.values);
     for (paper, table) in select_tables(&ids, which)? {
         let p = problem(paper, table, &papers, jobs)?;

@@ -92,7 +92,40 @@ mod tests {
         let edited = revision(&root, fnv1a64);
         assert_ne!(edited, first);
         write(&root, "a/src/new.rs", "\n");
-        assert_ne!(revision(&root, fnv1a64), edited);
+        let added = revision(&root, fnv1a64);
+        assert_ne!(added, edited);
+        // A symbolic link is not followed: one to the root of the file system or to
+        // /dev/zero is hashed by the path it holds, at once; changing where it points is a
+        // change. A FIFO is no source (reading it would wait for a writer).
+        #[cfg(unix)]
+        {
+            let src = root.join("a/src");
+            std::os::unix::fs::symlink("/", src.join("everything")).unwrap();
+            std::os::unix::fs::symlink("/dev/zero", src.join("zero.rs")).unwrap();
+            let made = Command::new("mkfifo")
+                .arg(src.join("pipe.rs"))
+                .status()
+                .unwrap();
+            assert!(made.success());
+            let (tx, rx) = std::sync::mpsc::channel();
+            let at = root.clone();
+            std::thread::spawn(move || {
+                let _ = tx.send((sources(&at), revision(&at, fnv1a64)));
+            });
+            let (listed, linked) = rx
+                .recv_timeout(std::time::Duration::from_secs(10))
+                .expect("the sources were hashed within 10 s");
+            assert!(
+                listed.contains(&"a/src/everything".to_string())
+                    && listed.contains(&"a/src/zero.rs".to_string())
+                    && !listed.iter().any(|s| s.contains("pipe")),
+                "{listed:?}"
+            );
+            assert_ne!(linked, added);
+            std::fs::remove_file(src.join("zero.rs")).unwrap();
+            std::os::unix::fs::symlink("/dev/null", src.join("zero.rs")).unwrap();
+            assert_ne!(revision(&root, fnv1a64), linked);
+        }
         let _ = std::fs::remove_dir_all(&root);
     }
 

@@ -230,14 +230,15 @@ pub enum RobotFileError {
         limit: u64,
     },
     /// TOML syntax, a missing or unknown field, a wrong type, or an unknown choice (the message
-    /// names the field and lists the valid choices).
+    /// names the field and lists the valid choices, with the line and column; never the
+    /// file's lines, which the TOML parser's own message quotes).
     #[error("{file}: {source}")]
     Syntax {
         /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
         file: String,
-        /// The TOML parser's error, with the field and the position.
+        /// The TOML parser's message and position.
         #[source]
-        source: toml::de::Error,
+        source: inputs::TomlError,
     },
     /// The model name is not a slug or is longer than [`MAX_NAME_LEN`].
     #[error(
@@ -474,10 +475,11 @@ impl RobotSpec {
                 limit: MAX_FILE_BYTES,
             });
         }
-        let raw: RawFile = toml::from_str(text).map_err(|source| RobotFileError::Syntax {
-            file: file.to_string(),
-            source,
-        })?;
+        let raw: RawFile =
+            inputs::toml_error::from_str(text).map_err(|source| RobotFileError::Syntax {
+                file: file.to_string(),
+                source,
+            })?;
         Self::validate(file, raw)
     }
 
@@ -797,7 +799,7 @@ impl RobotForm {
             return RobotSpec::parse_named(file, stem, text).map(RobotForm::Dh);
         }
         let spec: UrdfRobotSpec =
-            toml::from_str(text).map_err(|source| RobotFileError::Syntax {
+            inputs::toml_error::from_str(text).map_err(|source| RobotFileError::Syntax {
                 file: file.to_string(),
                 source,
             })?;

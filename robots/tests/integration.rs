@@ -7,6 +7,7 @@ mod common;
 mod chain;
 mod chain_robot;
 mod data_robots;
+mod fuzz_robot_file;
 mod jaco2_dynamics;
 mod jaco2_kinematics;
 mod katana;

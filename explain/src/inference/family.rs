@@ -1,5 +1,6 @@
-//! The setup family the inference searches, read from `experiments/inference/family.toml`
-//! (every member can be switched off there; an absent file means [`Family::default`]).
+//! The setup family the inference searches, read from `experiments/`[`FAMILY_FILE`] through
+//! the input reader (every member can be switched off there; an absent file means
+//! [`Family::default`]).
 //!
 //! Continuous members: the in-plane rotation psi in [0, 2 pi), the start phase in [0, 1) on
 //! the closed curves (where on the figure the start point lies: the placement relative to the
@@ -16,6 +17,10 @@ use records::inference::Integration;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::Path;
+
+/// Where the family is declared, relative to the experiments directory (a subdirectory, which
+/// the experiment loader does not read).
+pub const FAMILY_FILE: &str = "inference/family.toml";
 
 /// The family and the search budget.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -72,16 +77,20 @@ impl Default for Family {
 }
 
 impl Family {
-    /// Reads `path` (an absent file: the default family); checks the robot ids.
-    pub fn load(path: &Path) -> Result<Self, InferenceError> {
+    /// Reads `experiments/`[`FAMILY_FILE`] as an input (`inputs::Kind::InferenceFamily`: a
+    /// regular file inside `experiments`, at most 1 MiB, never quoted in an error; an absent
+    /// file: the default family); checks the robot ids.
+    pub fn load(experiments: &Path) -> Result<Self, InferenceError> {
+        let path = experiments.join(FAMILY_FILE);
         let err = |error: FamilyError| InferenceError::Family {
-            file: path.to_path_buf(),
+            file: path.clone(),
             error,
         };
-        let family: Family = match std::fs::read_to_string(path) {
-            Ok(text) => toml::from_str(&text).map_err(|e| err(e.into()))?,
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => Family::default(),
-            Err(e) => return Err(err(e.into())),
+        let origin = inputs::Origin::Under(experiments);
+        let family: Family = match inputs::read_text(&path, inputs::Kind::InferenceFamily, origin) {
+            Ok(text) => inputs::toml_error::from_str(&text).map_err(|e| err(e.into()))?,
+            Err(e) if e.is_not_found() => Family::default(),
+            Err(e) => return Err(e.into()),
         };
         family.check().map_err(err)?;
         Ok(family)
@@ -135,13 +144,27 @@ impl Family {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::path::PathBuf;
+
+    /// A scratch `experiments/` (with `inference/`) beside an `outside/secret`.
+    fn scratch(tag: &str) -> (PathBuf, PathBuf) {
+        let base =
+            std::env::temp_dir().join(format!("driftbench-family-{tag}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&base);
+        std::fs::create_dir_all(base.join("experiments/inference")).unwrap();
+        std::fs::create_dir_all(base.join("outside")).unwrap();
+        std::fs::write(base.join("outside/secret"), format!("{MARKER}\n")).unwrap();
+        (base.join("experiments"), base)
+    }
+
+    /// The stand-in for a secret a hostile file would hold.
+    const MARKER: &str = "SECRET_MARKER_fam1";
 
     #[test]
     fn the_committed_family_file_reads_and_names_known_robots() {
-        let path =
-            Path::new(env!("CARGO_MANIFEST_DIR")).join("../experiments/inference/family.toml");
-        assert!(path.exists());
-        let f = Family::load(&path).unwrap();
+        let experiments = Path::new(env!("CARGO_MANIFEST_DIR")).join("../experiments");
+        assert!(experiments.join(FAMILY_FILE).exists());
+        let f = Family::load(&experiments).unwrap();
         assert!(f.tilt && !f.network.is_empty());
     }
 
@@ -153,17 +176,54 @@ mod tests {
             "network = [\"exact\"]",
             "tilts = true",
         ];
-        let dir = std::env::temp_dir().join(format!("family-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        for (i, text) in bad.iter().enumerate() {
-            let path = dir.join(format!("{i}.toml"));
-            std::fs::write(&path, text).unwrap();
-            assert!(Family::load(&path).is_err(), "{text}");
+        let (experiments, base) = scratch("bad");
+        for text in bad {
+            std::fs::write(experiments.join(FAMILY_FILE), text).unwrap();
+            assert!(Family::load(&experiments).is_err(), "{text}");
         }
-        assert_eq!(
-            Family::load(&dir.join("absent.toml")).unwrap(),
-            Family::default()
+        std::fs::remove_file(experiments.join(FAMILY_FILE)).unwrap();
+        assert_eq!(Family::load(&experiments).unwrap(), Family::default());
+        std::fs::remove_dir_all(&base).unwrap();
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_hostile_family_file_is_refused_without_its_content() {
+        let (experiments, base) = scratch("hostile");
+        let file = experiments.join(FAMILY_FILE);
+        let shown = |e: InferenceError| e.to_string();
+        // A symbolic link out of the experiments directory: refused, not read.
+        std::os::unix::fs::symlink(base.join("outside/secret"), &file).unwrap();
+        let e = shown(Family::load(&experiments).unwrap_err());
+        assert!(e.contains("leads outside") && !e.contains(MARKER), "{e}");
+        std::fs::remove_file(&file).unwrap();
+        // A FIFO: refused at once (the reader opens without blocking).
+        let made = std::process::Command::new("mkfifo")
+            .arg(&file)
+            .status()
+            .unwrap();
+        assert!(made.success());
+        let e = shown(Family::load(&experiments).unwrap_err());
+        assert!(e.contains("a FIFO, not a regular file"), "{e}");
+        std::fs::remove_file(&file).unwrap();
+        // Over its cap of 1 MiB.
+        std::fs::write(&file, format!("# {MARKER}\n").repeat((1 << 20) / 20)).unwrap();
+        let e = shown(Family::load(&experiments).unwrap_err());
+        assert!(
+            e.contains("larger than its cap") && !e.contains(MARKER),
+            "{e}"
         );
-        std::fs::remove_dir_all(&dir).unwrap();
+        // TOML errors give the line and column, never the file's lines.
+        for text in [
+            format!("tilt = true\n# {MARKER}\nnot toml\n"),
+            format!("tilt = true {MARKER}\n"),
+            format!("# {MARKER}\niterations = \"many\"\n"),
+            format!("rotation = true\n\"{MARKER}\n"),
+        ] {
+            std::fs::write(&file, &text).unwrap();
+            let e = shown(Family::load(&experiments).unwrap_err());
+            assert!(!e.contains(MARKER) && e.contains("line "), "{text:?}: {e}");
+        }
+        std::fs::remove_dir_all(&base).unwrap();
     }
 }

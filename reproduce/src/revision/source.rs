@@ -12,7 +12,10 @@
 //! directory (a directory of the root holding a `Cargo.toml`), its `Cargo.toml`, `build.rs`,
 //! and everything under `src/`, `data/` and `assets/`: what the binary is compiled from. The
 //! hash is FNV-1a 64 (`hash`, passed in) over every source's relative path and content, in
-//! the order of the paths, as 16 hex digits. Nothing depends on the directory listing's
+//! the order of the paths, as 16 hex digits. Symbolic links are not followed: a link counts
+//! with the path it holds as its content (a link committed to `/` or `/dev/zero` would
+//! otherwise make the build hash the whole file system or read without end), and a FIFO or a
+//! device is no source. Nothing depends on the directory listing's
 //! order, the machine or the time; "unknown" is never a revision.
 
 use std::path::{Path, PathBuf};
@@ -48,11 +51,14 @@ pub fn source_roots(root: &Path) -> Vec<PathBuf> {
 pub fn sources(root: &Path) -> Vec<String> {
     fn walk(root: &Path, rel: &Path, out: &mut Vec<String>) {
         let path = root.join(rel);
-        if path.is_dir() {
+        let Ok(t) = std::fs::symlink_metadata(&path).map(|m| m.file_type()) else {
+            return;
+        };
+        if t.is_dir() {
             for e in std::fs::read_dir(&path).into_iter().flatten().flatten() {
                 walk(root, &rel.join(e.file_name()), out);
             }
-        } else if path.is_file() {
+        } else if t.is_file() || t.is_symlink() {
             out.push(
                 rel.components()
                     .map(|c| c.as_os_str().to_string_lossy())
@@ -75,10 +81,18 @@ pub fn sources_hash(root: &Path, hash: fn(&[u8]) -> u64) -> String {
     for rel in sources(root) {
         bytes.extend(rel.as_bytes());
         bytes.push(0);
-        bytes.extend(std::fs::read(root.join(&rel)).unwrap_or_default());
+        bytes.extend(content(&root.join(&rel)));
         bytes.push(0);
     }
     format!("{:016x}", hash(&bytes))
+}
+
+/// A source's content: a regular file's bytes, a symbolic link's target path (not followed).
+fn content(path: &Path) -> Vec<u8> {
+    match std::fs::read_link(path) {
+        Ok(target) => target.to_string_lossy().into_owned().into_bytes(),
+        Err(_) => std::fs::read(path).unwrap_or_default(),
+    }
 }
 
 /// `git -C root args`: its standard output when it succeeded.
