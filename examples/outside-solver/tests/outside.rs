@@ -2,9 +2,6 @@
 //! experiment file whose numerical solver is the outside one, registered at run time through
 //! the library API (`solvers::registry::register`), next to the same run by Clarabel.
 
-#[path = "../../../solvers/tests/common/mod.rs"]
-mod common;
-
 use catalog::experiment::{PaperFile, SolverChoice};
 use outside_solver::{EqualityKkt, ID};
 use qp::QpSolver;
@@ -21,7 +18,7 @@ struct Counter;
 
 impl AllocationCounter for Counter {
     fn count(&self, f: &mut dyn FnMut()) -> usize {
-        common::count(f)
+        alloc_count::count(f)
     }
 }
 
