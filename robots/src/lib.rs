@@ -47,6 +47,7 @@ pub mod chain;
 pub mod chain_robot;
 pub mod data_robot;
 pub mod dh;
+mod file_rules;
 pub mod geometric_jacobian;
 pub mod jaco2;
 pub mod jaco2_dynamics;

@@ -50,7 +50,10 @@
 //!
 //! # Validation
 //!
-//! [`RobotSpec::parse`] refuses, with a [`RobotFileError`] naming the file and the field:
+//! The checks that need no linear algebra are the rules of `robots/src/file_rules.rs`, which
+//! the build script also runs on every built-in file (a bad built-in file fails the build);
+//! the two that need `nalgebra` (a base matrix that is a rotation, a positive semi-definite
+//! inertia) run here only. [`RobotSpec::parse`] refuses, with a [`RobotFileError`] naming the file and the field:
 //! unknown fields and unknown choices (`convention`, `axis`: the message lists the valid ones),
 //! missing required fields, non-finite numbers (TOML's `nan` and `inf`; an unlimited bound is
 //! written by omitting it), `theta_min >= theta_max`, `velocity_max <= 0`, `velocity_min >= 0`,
@@ -68,59 +71,12 @@ use serde::Deserialize;
 
 use crate::chain_robot::ChainRobot;
 use crate::dh::Frame;
+use crate::file_rules::{self, all_finite, RawBase, RawFile};
+pub use crate::file_rules::{
+    Axis, Convention, DhRow, ElementaryRotation, JointSpec, LinkInertia, RuleError, MAX_FILE_BYTES,
+    MAX_JOINTS, MAX_NAME_LEN, MIN_JOINTS,
+};
 use crate::urdf::ChainEnds;
-
-/// Largest robot file accepted (bytes): 1 MiB.
-pub const MAX_FILE_BYTES: u64 = 1 << 20;
-
-/// The fewest joints a robot file may have.
-pub const MIN_JOINTS: usize = 2;
-/// The most joints a robot file may have.
-pub const MAX_JOINTS: usize = 1000;
-
-/// Longest model name accepted (characters).
-pub const MAX_NAME_LEN: usize = 64;
-
-/// The DH convention a table is written in.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Convention {
-    /// Classical DH: `Rz(theta) Tz(d) Tx(a) Rx(alpha)`.
-    Standard,
-    /// Modified (Craig) DH: `Rx(alpha) Tx(a) Rz(theta) Tz(d)`, then a flange row.
-    Modified,
-}
-
-impl std::fmt::Display for Convention {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
-            Convention::Standard => "standard",
-            Convention::Modified => "modified",
-        })
-    }
-}
-
-/// A coordinate axis of an elementary rotation.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Axis {
-    /// The x axis (`axis = "x"`).
-    X,
-    /// The y axis (`axis = "y"`).
-    Y,
-    /// The z axis (`axis = "z"`).
-    Z,
-}
-
-/// A rotation by `angle` (rad) about a coordinate axis.
-#[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ElementaryRotation {
-    /// The axis rotated about.
-    pub axis: Axis,
-    /// The rotation angle (rad), right-handed about `axis`.
-    pub angle: f64,
-}
 
 impl ElementaryRotation {
     /// The rotation matrix.
@@ -132,54 +88,6 @@ impl ElementaryRotation {
             Axis::Z => Matrix3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0),
         }
     }
-}
-
-/// One DH row `(a, alpha, d)` as written in the file (a modified table's flange row).
-#[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct DhRow {
-    /// m.
-    pub a: f64,
-    /// rad.
-    pub alpha: f64,
-    /// m.
-    pub d: f64,
-}
-
-/// Mass properties of the link a joint moves (parsed and validated, not used: see the module
-/// documentation).
-#[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct LinkInertia {
-    /// kg, > 0.
-    pub mass: f64,
-    /// Centre of mass in the link's frame (m).
-    pub center_of_mass: [f64; 3],
-    /// Inertia tensor about the centre of mass, `[Ixx, Iyy, Izz, Ixy, Iyz, Ixz]` (kg m^2), as
-    /// Corke's toolbox lists it; positive semi-definite.
-    pub inertia: [f64; 6],
-}
-
-/// One joint of a validated file: its DH row, offset, limits (infinite where unlimited) and
-/// optional link inertia.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct JointSpec {
-    /// The joint's DH row `(a, alpha, d)` in the file's convention.
-    pub row: DhRow,
-    /// Joint-angle offset (rad): the DH angle is `theta + offset`.
-    pub offset: f64,
-    /// Lower joint-angle limit (rad).
-    pub theta_min: f64,
-    /// Upper joint-angle limit (rad).
-    pub theta_max: f64,
-    /// Lower joint-velocity limit (rad/s), < 0.
-    pub velocity_min: f64,
-    /// Upper joint-velocity limit (rad/s), > 0.
-    pub velocity_max: f64,
-    /// Symmetric joint-acceleration limit (rad/s^2), > 0.
-    pub acceleration_max: f64,
-    /// Mass properties of the link, if the file gives them.
-    pub link: Option<LinkInertia>,
 }
 
 /// A validated robot file (see the module documentation).
@@ -219,18 +127,6 @@ pub enum RobotFileError {
         /// The name (the file's stem).
         name: String,
     },
-    /// The file is larger than [`MAX_FILE_BYTES`] (refused before parsing).
-    #[error("{file}: {bytes} bytes; a robot file may have at most {limit} bytes")]
-    TooLarge {
-        /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
-        file: String,
-        /// The file's size (bytes).
-        bytes: u64,
-        /// The largest size accepted (bytes), [`MAX_FILE_BYTES`].
-        limit: u64,
-    },
-    /// TOML syntax, a missing or unknown field, a wrong type, or an unknown choice (the message
-    /// names the field and lists the valid choices, with the line and column; never the
     /// file's lines, which the TOML parser's own message quotes).
     #[error("{file}: {source}")]
     Syntax {
@@ -241,98 +137,15 @@ pub enum RobotFileError {
         source: inputs::TomlError,
     },
     /// The model name is not a slug or is longer than [`MAX_NAME_LEN`].
-    #[error(
-        "{file}: name = {name:?} is not a slug (lowercase ASCII letters and digits in words \
-         joined by single '-', at most {MAX_NAME_LEN} characters)"
-    )]
-    Name {
+    /// A rule of the shared checks (`file_rules`: a number, a range, a limit, the joint
+    /// count, the name, the flange, ...), naming the field.
+    #[error("{file}: {source}")]
+    Rule {
         /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
         file: String,
-        /// The name as written.
-        name: String,
-    },
-    /// The model name differs from the file's stem ([`RobotSpec::parse_named`]).
-    #[error("{file}: name = {name:?} differs from the file's stem {stem:?}")]
-    NameNotStem {
-        /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
-        file: String,
-        /// The name as written.
-        name: String,
-        /// The file's stem (its name without `.toml`).
-        stem: String,
-    },
-    /// A number is NaN or infinite.
-    #[error(
-        "{file}: {field} = {value} is not a finite number (omit a limit to leave it unlimited)"
-    )]
-    NotFinite {
-        /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
-        file: String,
-        /// Where the number is, e.g. `tool[2]` or `joint 3: theta_max`.
-        field: String,
-        /// The number.
-        value: f64,
-    },
-    /// A joint's `theta_min` is not below its `theta_max`.
-    #[error("{file}: joint {joint}: theta_min = {min} is not below theta_max = {max}")]
-    EmptyRange {
-        /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
-        file: String,
-        /// The joint, numbered from 1 (base to tip).
-        joint: usize,
-        /// Its `theta_min` (rad).
-        min: f64,
-        /// Its `theta_max` (rad).
-        max: f64,
-    },
-    /// A joint's velocity or acceleration limit has the wrong sign.
-    #[error("{file}: joint {joint}: {field} = {value}, must be {requirement}")]
-    Limit {
-        /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
-        file: String,
-        /// The joint, numbered from 1 (base to tip).
-        joint: usize,
-        /// The limit: `velocity_min`, `velocity_max` or `acceleration_max`.
-        field: &'static str,
-        /// Its value (rad/s or rad/s^2), given or defaulted.
-        value: f64,
-        /// What it must be: `> 0` or `< 0`.
-        requirement: &'static str,
-    },
-    /// The table has too few or too many joints.
-    #[error("{file}: field `joint`: {joints} joints; a robot file may have {MIN_JOINTS} to {MAX_JOINTS}")]
-    JointCount {
-        /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
-        file: String,
-        /// The number of `[[joint]]` tables.
-        joints: usize,
-    },
-    /// A modified table without its flange row, or a standard table with one.
-    #[error(
-        "{file}: convention = \"modified\" needs the flange row flange = {{ a, alpha, d }}; \
-         convention = \"standard\" takes none (the tool point is in frame N)"
-    )]
-    Flange {
-        /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
-        file: String,
-        /// The table's convention.
-        convention: Convention,
-    },
-    /// `stated_pose` has not one angle per joint.
-    #[error("{file}: stated_pose has {given} angles, the robot has {joints} joints")]
-    StatedPose {
-        /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
-        file: String,
-        /// The number of angles given.
-        given: usize,
-        /// The robot's joint count.
-        joints: usize,
-    },
-    /// The base gives both `rotation` and `matrix`.
-    #[error("{file}: base: give the rotation as either `rotation` (elementary rotations) or `matrix`, not both")]
-    TwoRotations {
-        /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
-        file: String,
+        /// The rule broken.
+        #[source]
+        source: RuleError,
     },
     /// The base matrix is not a rotation (orthonormal to 1e-9, determinant +1).
     #[error("{file}: base.matrix is not a rotation (|R^T R - I| = {deviation:e}, det R = {det}); its rows must be orthonormal with det +1")]
@@ -376,179 +189,66 @@ pub enum RobotFileError {
         #[source]
         source: Box<crate::urdf::UrdfChainError>,
     },
-    /// A link's inertia is not physical: a non-positive mass or an inertia tensor that is not
-    /// symmetric positive semi-definite.
-    #[error("{file}: joint {joint}: link.{field} is {problem}")]
-    Link {
-        /// The robot file: the name given to [`RobotSpec::parse`] or the path read.
-        file: String,
-        /// The joint, numbered from 1 (base to tip).
-        joint: usize,
-        /// The field: `mass` or `inertia`.
-        field: &'static str,
-        /// What is wrong with it.
-        problem: &'static str,
-    },
 }
 
-/// The file as written, before validation.
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawFile {
-    name: String,
-    source: String,
-    convention: Convention,
-    tool: [f64; 3],
-    stated_pose: Option<Vec<f64>>,
-    flange: Option<DhRow>,
-    base: Option<RawBase>,
-    joint: Vec<RawJoint>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawBase {
-    translation: Option<[f64; 3]>,
-    rotation: Option<Vec<ElementaryRotation>>,
-    matrix: Option<[[f64; 3]; 3]>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct RawJoint {
-    a: f64,
-    alpha: f64,
-    d: f64,
-    offset: Option<f64>,
-    theta_min: Option<f64>,
-    theta_max: Option<f64>,
-    velocity_min: Option<f64>,
-    velocity_max: Option<f64>,
-    acceleration_max: Option<f64>,
-    link: Option<LinkInertia>,
-}
-
-/// Whether `name` is a slug: words of `[a-z0-9]` joined by single `-`.
-fn is_slug(name: &str) -> bool {
-    name.len() <= MAX_NAME_LEN
-        && name.split('-').all(|w| {
-            !w.is_empty()
-                && w.bytes()
-                    .all(|b| b.is_ascii_lowercase() || b.is_ascii_digit())
-        })
-}
-
-/// Collects the non-finite-number check over every number of the file.
-struct Finite<'a> {
-    file: &'a str,
-}
-
-impl Finite<'_> {
-    fn check(&self, field: impl FnOnce() -> String, value: f64) -> Result<f64, RobotFileError> {
-        if value.is_finite() {
-            Ok(value)
-        } else {
-            Err(RobotFileError::NotFinite {
-                file: self.file.to_string(),
-                field: field(),
-                value,
-            })
-        }
+/// Names the file of a broken rule.
+fn rule(file: &str) -> impl FnOnce(RuleError) -> RobotFileError + '_ {
+    move |source| RobotFileError::Rule {
+        file: file.to_string(),
+        source,
     }
+}
 
-    fn all(&self, field: &str, values: &[f64]) -> Result<(), RobotFileError> {
-        for (k, &v) in values.iter().enumerate() {
-            self.check(|| format!("{field}[{k}]"), v)?;
-        }
-        Ok(())
+/// Refuses an inertia tensor (of a link whose numbers the shared rules passed) that is not
+/// positive semi-definite: its least eigenvalue below `-1e-12 |I|_F`.
+fn check_inertia(file: &str, joint: usize, link: &LinkInertia) -> Result<(), RobotFileError> {
+    let [ixx, iyy, izz, ixy, iyz, ixz] = link.inertia;
+    let tensor = Matrix3::new(ixx, ixy, ixz, ixy, iyy, iyz, ixz, iyz, izz);
+    let scale = tensor.norm().max(f64::MIN_POSITIVE);
+    if tensor.symmetric_eigenvalues().min() < -1e-12 * scale {
+        return Err(rule(file)(RuleError::Link {
+            joint,
+            field: "inertia",
+            problem: "not positive semi-definite",
+        }));
     }
+    Ok(())
 }
 
 impl RobotSpec {
     /// Parses and validates the robot file `text`; `file` names it in errors.
     pub fn parse(file: &str, text: &str) -> Result<Self, RobotFileError> {
-        let bytes = text.len() as u64;
-        if bytes > MAX_FILE_BYTES {
-            return Err(RobotFileError::TooLarge {
-                file: file.to_string(),
-                bytes,
-                limit: MAX_FILE_BYTES,
-            });
-        }
+        Self::parse_with(file, None, text)
+    }
+
+    /// [`RobotSpec::parse`], and the name must be `stem`.
+    pub fn parse_named(file: &str, stem: &str, text: &str) -> Result<Self, RobotFileError> {
+        Self::parse_with(file, Some(stem), text)
+    }
+
+    fn parse_with(file: &str, stem: Option<&str>, text: &str) -> Result<Self, RobotFileError> {
+        file_rules::check_size(text).map_err(rule(file))?;
         let raw: RawFile =
             inputs::toml_error::from_str(text).map_err(|source| RobotFileError::Syntax {
                 file: file.to_string(),
                 source,
             })?;
-        Self::validate(file, raw)
-    }
-
-    /// [`RobotSpec::parse`], and the name must be `stem`.
-    pub fn parse_named(file: &str, stem: &str, text: &str) -> Result<Self, RobotFileError> {
-        let spec = Self::parse(file, text)?;
-        if spec.name != stem {
-            return Err(RobotFileError::NameNotStem {
-                file: file.to_string(),
-                name: spec.name,
-                stem: stem.to_string(),
-            });
-        }
-        Ok(spec)
-    }
-
-    fn validate(file: &str, raw: RawFile) -> Result<Self, RobotFileError> {
-        let fail_file = || file.to_string();
-        if !is_slug(&raw.name) {
-            return Err(RobotFileError::Name {
-                file: fail_file(),
-                name: raw.name,
-            });
-        }
-        let n = raw.joint.len();
-        if !(MIN_JOINTS..=MAX_JOINTS).contains(&n) {
-            return Err(RobotFileError::JointCount {
-                file: fail_file(),
-                joints: n,
-            });
-        }
-        let finite = Finite { file };
-        finite.all("tool", &raw.tool)?;
-        if let Some(pose) = &raw.stated_pose {
-            if pose.len() != n {
-                return Err(RobotFileError::StatedPose {
-                    file: fail_file(),
-                    given: pose.len(),
-                    joints: n,
-                });
+        let joints = file_rules::check(&raw, stem).map_err(rule(file))?;
+        for (i, joint) in joints.iter().enumerate() {
+            if let Some(link) = &joint.link {
+                check_inertia(file, i + 1, link)?;
             }
-            finite.all("stated_pose", pose)?;
         }
-        let flange = match (raw.convention, raw.flange) {
-            (Convention::Modified, Some(f)) => {
-                finite.all("flange", &[f.a, f.alpha, f.d])?;
-                Some(f)
-            }
-            (Convention::Standard, None) => None,
-            (convention, _) => {
-                return Err(RobotFileError::Flange {
-                    file: fail_file(),
-                    convention,
-                })
-            }
+        let base = match &raw.base {
+            Some(b) => Self::parse_base(file, b)?,
+            None => Frame::identity(),
         };
-        let base = Self::parse_base(file, &finite, raw.base)?;
-        let joints = raw
-            .joint
-            .into_iter()
-            .enumerate()
-            .map(|(i, j)| Self::parse_joint(file, &finite, i + 1, j))
-            .collect::<Result<Vec<_>, _>>()?;
         Ok(RobotSpec {
             file: file.to_string(),
             name: raw.name,
             source: raw.source,
             convention: raw.convention,
-            flange,
+            flange: raw.flange,
             base,
             tool: Vector3::from(raw.tool),
             stated_pose: raw.stated_pose,
@@ -556,34 +256,14 @@ impl RobotSpec {
         })
     }
 
-    fn parse_base(
-        file: &str,
-        finite: &Finite,
-        raw: Option<RawBase>,
-    ) -> Result<Frame, RobotFileError> {
-        let Some(raw) = raw else {
-            return Ok(Frame::identity());
-        };
-        let translation = raw.translation.unwrap_or([0.0; 3]);
-        finite.all("base.translation", &translation)?;
-        let rot = match (raw.rotation, raw.matrix) {
-            (Some(_), Some(_)) => {
-                return Err(RobotFileError::TwoRotations {
-                    file: file.to_string(),
-                })
-            }
-            (Some(list), None) => {
-                let mut rot = Matrix3::identity();
-                for (k, r) in list.iter().enumerate() {
-                    finite.check(|| format!("base.rotation[{k}].angle"), r.angle)?;
-                    rot *= r.matrix();
-                }
-                rot
-            }
+    /// The base frame of a `[base]` table the shared rules passed (finite, not two rotations);
+    /// a matrix must be a rotation.
+    fn parse_base(file: &str, raw: &RawBase) -> Result<Frame, RobotFileError> {
+        let rot = match (&raw.rotation, &raw.matrix) {
+            (Some(list), _) => list
+                .iter()
+                .fold(Matrix3::identity(), |rot, r| rot * r.matrix()),
             (None, Some(rows)) => {
-                for (k, row) in rows.iter().enumerate() {
-                    finite.all(&format!("base.matrix[{k}]"), row)?;
-                }
                 let m = Matrix3::from_fn(|r, c| rows[r][c]);
                 let deviation = (m.transpose() * m - Matrix3::identity()).norm();
                 let det = m.determinant();
@@ -600,107 +280,8 @@ impl RobotSpec {
         };
         Ok(Frame {
             rot,
-            origin: Vector3::from(translation),
+            origin: Vector3::from(raw.translation.unwrap_or([0.0; 3])),
         })
-    }
-
-    fn parse_joint(
-        file: &str,
-        finite: &Finite,
-        joint: usize,
-        j: RawJoint,
-    ) -> Result<JointSpec, RobotFileError> {
-        let number = |name: &str, v: f64| finite.check(|| format!("joint {joint}: {name}"), v);
-        let optional = |name: &str, v: Option<f64>, unlimited: f64| match v {
-            Some(v) => number(name, v),
-            None => Ok(unlimited),
-        };
-        let limit = |field: &'static str, value: f64, ok: bool, requirement: &'static str| {
-            if ok {
-                Ok(value)
-            } else {
-                Err(RobotFileError::Limit {
-                    file: file.to_string(),
-                    joint,
-                    field,
-                    value,
-                    requirement,
-                })
-            }
-        };
-        let inf = f64::INFINITY;
-        let row = DhRow {
-            a: number("a", j.a)?,
-            alpha: number("alpha", j.alpha)?,
-            d: number("d", j.d)?,
-        };
-        let offset = optional("offset", j.offset, 0.0)?;
-        let theta_min = optional("theta_min", j.theta_min, -inf)?;
-        let theta_max = optional("theta_max", j.theta_max, inf)?;
-        if theta_min >= theta_max {
-            return Err(RobotFileError::EmptyRange {
-                file: file.to_string(),
-                joint,
-                min: theta_min,
-                max: theta_max,
-            });
-        }
-        let velocity_max = optional("velocity_max", j.velocity_max, inf)?;
-        let velocity_max = limit("velocity_max", velocity_max, velocity_max > 0.0, "> 0")?;
-        let velocity_min = optional("velocity_min", j.velocity_min, -velocity_max)?;
-        let velocity_min = limit("velocity_min", velocity_min, velocity_min < 0.0, "< 0")?;
-        let acceleration_max = optional("acceleration_max", j.acceleration_max, inf)?;
-        let acceleration_max = limit(
-            "acceleration_max",
-            acceleration_max,
-            acceleration_max > 0.0,
-            "> 0",
-        )?;
-        if let Some(link) = &j.link {
-            Self::check_link(file, finite, joint, link)?;
-        }
-        Ok(JointSpec {
-            row,
-            offset,
-            theta_min,
-            theta_max,
-            velocity_min,
-            velocity_max,
-            acceleration_max,
-            link: j.link,
-        })
-    }
-
-    fn check_link(
-        file: &str,
-        finite: &Finite,
-        joint: usize,
-        link: &LinkInertia,
-    ) -> Result<(), RobotFileError> {
-        let bad = |field: &'static str, problem: &'static str| {
-            Err(RobotFileError::Link {
-                file: file.to_string(),
-                joint,
-                field,
-                problem,
-            })
-        };
-        finite.check(|| format!("joint {joint}: link.mass"), link.mass)?;
-        finite.all(
-            &format!("joint {joint}: link.center_of_mass"),
-            &link.center_of_mass,
-        )?;
-        finite.all(&format!("joint {joint}: link.inertia"), &link.inertia)?;
-        if link.mass <= 0.0 {
-            return bad("mass", "not positive");
-        }
-        let [ixx, iyy, izz, ixy, iyz, ixz] = link.inertia;
-        let tensor = Matrix3::new(ixx, ixy, ixz, ixy, iyy, iyz, ixz, iyz, izz);
-        let scale = tensor.norm().max(f64::MIN_POSITIVE);
-        if tensor.symmetric_eigenvalues().min() < -1e-12 * scale {
-            return bad("inertia", "not positive semi-definite");
-        }
-        Ok(())
     }
 
     /// The file's name as given to [`RobotSpec::parse`] or its path.
@@ -811,30 +392,18 @@ impl RobotForm {
 impl UrdfRobotSpec {
     /// Checks the fields that need no URDF (module documentation).
     fn validate(&self, file: &str, stem: &str) -> Result<(), RobotFileError> {
-        if !is_slug(&self.name) {
-            return Err(RobotFileError::Name {
-                file: file.to_string(),
-                name: self.name.clone(),
-            });
-        }
-        if self.name != stem {
-            return Err(RobotFileError::NameNotStem {
-                file: file.to_string(),
-                name: self.name.clone(),
-                stem: stem.to_string(),
-            });
-        }
-        let finite = Finite { file };
-        finite.all("tool", &self.tool.unwrap_or_default())?;
-        finite.all(
+        file_rules::check_name(&self.name, Some(stem)).map_err(rule(file))?;
+        all_finite("tool", &self.tool.unwrap_or_default()).map_err(rule(file))?;
+        all_finite(
             "stated_pose",
             self.stated_pose.as_deref().unwrap_or_default(),
-        )?;
-        finite.all(
+        )
+        .map_err(rule(file))?;
+        all_finite(
             "velocity_max",
             self.velocity_max.as_deref().unwrap_or_default(),
-        )?;
-        Ok(())
+        )
+        .map_err(rule(file))
     }
 
     /// The model name (a slug).

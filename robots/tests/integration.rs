@@ -4,6 +4,8 @@
 
 mod common;
 
+mod build_script;
+
 mod chain;
 mod chain_robot;
 mod data_robots;

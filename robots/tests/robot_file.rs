@@ -2,7 +2,7 @@
 //! input panics.
 
 use robots::data_robot::builtin_files;
-use robots::robot_file::{RobotFileError, RobotSpec, MAX_FILE_BYTES};
+use robots::robot_file::{RobotFileError, RobotSpec, RuleError, MAX_FILE_BYTES};
 use robots::DataRobot;
 
 /// The built-in PUMA 560 file, the base of every mutation here.
@@ -41,21 +41,29 @@ fn the_unmodified_file_parses() {
 fn nan_is_refused_naming_the_field() {
     let err = refuse(&mutated("a = 0.4318", "a = nan"));
     assert!(
-        matches!(&err, RobotFileError::NotFinite { field, value, .. } if field == "joint 2: a" && value.is_nan()),
+        matches!(&err, RobotFileError::Rule { source: RuleError::NotFinite { field, value, .. }, .. } if field == "joint 2: a" && value.is_nan()),
         "{err:?}"
     );
     let err = refuse(&mutated(
         "tool = [0.0, 0.0, 0.05625]",
         "tool = [0.0, inf, 0.05625]",
     ));
-    assert!(matches!(&err, RobotFileError::NotFinite { field, .. } if field == "tool[1]"));
+    assert!(
+        matches!(&err, RobotFileError::Rule { source: RuleError::NotFinite { field, .. }, .. } if field == "tool[1]")
+    );
 }
 
 #[test]
 fn theta_min_above_theta_max_is_refused() {
     let err = refuse(&mutated("theta_min = -2.7751", "theta_min = 2.8"));
     assert!(
-        matches!(err, RobotFileError::EmptyRange { joint: 1, .. }),
+        matches!(
+            err,
+            RobotFileError::Rule {
+                source: RuleError::EmptyRange { joint: 1, .. },
+                ..
+            }
+        ),
         "{err:?}"
     );
 }
@@ -88,7 +96,13 @@ fn eight_joints_are_an_arm_and_one_is_refused_naming_the_field() {
     let second = first + 1 + one[first + 1..].find("[[joint]]").unwrap();
     let err = refuse(&one[..second]);
     assert!(
-        matches!(err, RobotFileError::JointCount { joints: 1, .. }),
+        matches!(
+            err,
+            RobotFileError::Rule {
+                source: RuleError::JointCount { joints: 1, .. },
+                ..
+            }
+        ),
         "{err:?}"
     );
     assert!(err.to_string().contains("field `joint`"), "{err}");
@@ -113,7 +127,16 @@ fn oversized_files_are_refused_before_parsing() {
         "x".repeat(MAX_FILE_BYTES as usize)
     );
     let err = refuse(&big);
-    assert!(matches!(err, RobotFileError::TooLarge { .. }), "{err:?}");
+    assert!(
+        matches!(
+            err,
+            RobotFileError::Rule {
+                source: RuleError::TooLarge { .. },
+                ..
+            }
+        ),
+        "{err:?}"
+    );
 }
 
 /// Whether an error is the one a case expects.
@@ -122,25 +145,25 @@ type Expected = fn(&RobotFileError) -> bool;
 #[test]
 fn other_invalid_values_are_refused() {
     let cases: [(&str, &str, Expected); 8] = [
-        ("name = \"puma560\"", "name = \"Puma 560\"", |e| matches!(e, RobotFileError::Name { .. })),
-        ("name = \"puma560\"", "name = \"puma--560\"", |e| matches!(e, RobotFileError::Name { .. })),
+        ("name = \"puma560\"", "name = \"Puma 560\"", |e| matches!(e, RobotFileError::Rule { source: RuleError::Name, .. })),
+        ("name = \"puma560\"", "name = \"puma--560\"", |e| matches!(e, RobotFileError::Rule { source: RuleError::Name, .. })),
         ("velocity_max = 1.5", "velocity_max = 0.0", |e| {
-            matches!(e, RobotFileError::Limit { field: "velocity_max", joint: 1, .. })
+            matches!(e, RobotFileError::Rule { source: RuleError::Limit { field: "velocity_max", joint: 1, .. }, .. })
         }),
         ("velocity_max = 1.5", "velocity_max = 1.5\nvelocity_min = 0.5", |e| {
-            matches!(e, RobotFileError::Limit { field: "velocity_min", .. })
+            matches!(e, RobotFileError::Rule { source: RuleError::Limit { field: "velocity_min", .. }, .. })
         }),
         ("velocity_max = 1.5", "velocity_max = 1.5\nacceleration_max = -1.0", |e| {
-            matches!(e, RobotFileError::Limit { field: "acceleration_max", .. })
+            matches!(e, RobotFileError::Rule { source: RuleError::Limit { field: "acceleration_max", .. }, .. })
         }),
         ("convention = \"standard\"", "convention = \"modified\"", |e| {
-            matches!(e, RobotFileError::Flange { .. })
+            matches!(e, RobotFileError::Rule { source: RuleError::Flange { .. }, .. })
         }),
         ("stated_pose = [", "stated_pose = [0.0, ", |e| {
-            matches!(e, RobotFileError::StatedPose { given: 7, joints: 6, .. })
+            matches!(e, RobotFileError::Rule { source: RuleError::StatedPose { given: 7, joints: 6, .. }, .. })
         }),
         ("velocity_max = 1.5", "velocity_max = 1.5\nlink = { mass = -1.0, center_of_mass = [0.0, 0.0, 0.0], inertia = [1.0, 1.0, 1.0, 0.0, 0.0, 0.0] }", |e| {
-            matches!(e, RobotFileError::Link { field: "mass", .. })
+            matches!(e, RobotFileError::Rule { source: RuleError::Link { field: "mass", .. }, .. })
         }),
     ];
     for (from, to, expected) in cases {
@@ -174,7 +197,13 @@ fn base_rotations_are_validated() {
         "matrix = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]\nrotation = []",
     ));
     assert!(
-        matches!(err, RobotFileError::TwoRotations { .. }),
+        matches!(
+            err,
+            RobotFileError::Rule {
+                source: RuleError::TwoRotations,
+                ..
+            }
+        ),
         "{err:?}"
     );
     let err = refuse(&with_base("rotation = [{ axis = \"w\", angle = 0.1 }]"));
@@ -195,5 +224,38 @@ fn no_input_panics() {
             t.replace_range(k..k + t[k..].chars().next().unwrap().len_utf8(), c);
             let _ = RobotSpec::parse("corrupt.toml", &t).map(|s| DataRobot::new(&s));
         }
+    }
+}
+
+/// The shared rules (`file_rules`, which the build script also runs) name the file and the
+/// field of a bad built-in file and never quote its text (here a canary in `source`).
+#[test]
+fn the_shared_rules_name_file_and_field_without_quoting_the_file() {
+    let canary = "CANARY_SECRET_41";
+    let text = mutated("source = \"", &format!("source = \"{canary} "));
+    let bad = [
+        (
+            text.replacen("theta_max = 2.7751", "theta_max = -3.0", 1),
+            "joint 1: theta_min",
+        ),
+        (
+            text.replacen("d = 0.15005", "d = inf", 1),
+            "joint 3: d = inf",
+        ),
+        (
+            text.replacen("name = \"puma560\"", "name = \"puma\"", 1),
+            "field `name`",
+        ),
+    ];
+    for (text, field) in bad {
+        let err = robots::data_robot::parse_builtin("puma560.toml", &text).unwrap_err();
+        let message = err.to_string();
+        assert!(matches!(err, RobotFileError::Rule { .. }), "{err:?}");
+        assert!(
+            message.starts_with("robots/data/puma560.toml: "),
+            "{message}"
+        );
+        assert!(message.contains(field), "{message}");
+        assert!(!message.contains(canary), "{message}");
     }
 }
