@@ -198,11 +198,14 @@ mod tests {
         std::fs::create_dir_all(&base).unwrap();
         let secret = scratch("special-secret");
         std::fs::write(&secret, "SECRET_MARKER_0wn3d\n").unwrap();
-        let made = std::process::Command::new("mkfifo")
-            .arg(base.join("runs.csv"))
-            .status()
-            .unwrap();
-        assert!(made.success());
+        // mkfifo(3) in this process, not the mkfifo program: a child forked while another
+        // test of this binary drops a results directory would hold its lock's descriptor until
+        // exec, and that test's next open would find the directory locked.
+        let fifo =
+            std::ffi::CString::new(base.join("runs.csv").into_os_string().into_encoded_bytes())
+                .unwrap();
+        // SAFETY: a NUL-terminated path that outlives the call.
+        assert_eq!(unsafe { libc::mkfifo(fifo.as_ptr(), 0o600) }, 0);
         std::os::unix::fs::symlink("/dev/zero", base.join("zero.csv")).unwrap();
         std::os::unix::fs::symlink(&secret, base.join("secret.csv")).unwrap();
         std::fs::write(base.join("ok.csv"), "a\n1\n").unwrap();
