@@ -126,13 +126,7 @@ fn a_urdf_arm_runs_from_files() {
     );
     let toml =
         experiment("sim-urdf-arm", 6, 2.0).replace(&pose(6), "[0.2, -0.6, 1.2, -0.8, 0.5, 0.3]");
-    let dynamic = toml
-        .replace("kong2019-any-arm", "zhang2018-any-arm")
-        .replace("ZNN (eq. 22)", "HL-JDF (zeta=0.6)")
-        .replace(
-            "{ kind = \"kong2019-znn\", mu = 1.0, k_p = 1.0 }",
-            "{ kind = \"hl-jdf\", zeta = 0.6, alpha = 20.0, beta = 20.0, rho_v = 20.0, rho_p = 20.0 }",
-        );
+    let dynamic = as_hl_jdf(&toml, "kong2019-any-arm", "zhang2018-any-arm");
     write(
         &root.join("experiments/urdf-arm.toml"),
         &format!("paper = \"kong2019\"\ntitle = \"a URDF arm\"\n{toml}"),
@@ -318,13 +312,7 @@ fn an_example_robot_data_ur5_runs_from_a_robot_file() {
             "robot = \"erd-ur5\"\n",
             "robot = \"erd-ur5\"\ntool = [0.0, 0.0, 0.1]\n",
         );
-    let dynamic = znn
-        .replace("id = \"kong2019-", "id = \"zhang2018-")
-        .replace("ZNN (eq. 22)", "HL-JDF (zeta=0.6)")
-        .replace(
-            "{ kind = \"kong2019-znn\", mu = 1.0, k_p = 1.0 }",
-            "{ kind = \"hl-jdf\", zeta = 0.6, alpha = 20.0, beta = 20.0, rho_v = 20.0, rho_p = 20.0 }",
-        );
+    let dynamic = as_hl_jdf(&znn, "id = \"kong2019-", "id = \"zhang2018-");
     write(
         &root.join("experiments/ur5.toml"),
         &format!("paper = \"kong2019\"\ntitle = \"UR5\"\n{znn}"),
@@ -354,4 +342,15 @@ fn an_example_robot_data_ur5_runs_from_a_robot_file() {
         assert!(m.drift_norm.is_finite() && m.min_sigma_j > 0.0);
     }
     std::fs::remove_dir_all(&root).unwrap();
+}
+
+/// The ZNN experiment `znn` (kong2019 (22)) as zhang2018's HL-JDF, a torque scheme that needs the
+/// arm's dynamics: its ids renamed from `from` to `to`, its name and scheme replaced.
+fn as_hl_jdf(znn: &str, from: &str, to: &str) -> String {
+    znn.replace(from, to)
+        .replace("ZNN (eq. 22)", "HL-JDF (zeta=0.6)")
+        .replace(
+            "{ kind = \"kong2019-znn\", mu = 1.0, k_p = 1.0 }",
+            "{ kind = \"hl-jdf\", zeta = 0.6, alpha = 20.0, beta = 20.0, rho_v = 20.0, rho_p = 20.0 }",
+        )
 }
