@@ -75,8 +75,14 @@ fn main() {
             let keys: usize = file.iter_jobs().map(|j| j.key().to_string().len()).sum();
             assert!(keys > 0);
         });
-        timed("shard plan (8 shards), streamed", n, || {
-            records::shard::plan(file.iter_jobs().map(|j| j.key().to_string()), 8)
+        timed("shard plan (8 shards), counted", n, || {
+            let total = file
+                .experiments
+                .iter()
+                .flat_map(|e| &e.variants)
+                .map(|v| v.run_count())
+                .sum();
+            records::shard::plan(total, 8)
         });
         // What a run (and a shard) holds: every run of the selection as a `Job`.
         let jobs: Vec<Job> = timed("jobs collected (a run's)", n, || file.jobs());

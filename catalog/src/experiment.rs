@@ -195,6 +195,12 @@ impl Variant {
     pub fn id(&self) -> String {
         self.id.clone().unwrap_or_else(|| slug(&self.label))
     }
+
+    /// How many runs the variant makes, without making them: the exact column (when `exact`),
+    /// one per neural solver and one per numerical method ([`PaperFile::variant_jobs`]).
+    pub fn run_count(&self) -> usize {
+        usize::from(self.exact) + self.solvers.len() + self.numerical.len()
+    }
 }
 
 /// Elementwise limits `lower <= value <= upper`, one entry per joint (an experiment's
@@ -726,9 +732,10 @@ impl PaperFile {
         Ok(())
     }
 
-    /// The runs of one variant of experiment `e` (exact column first). Its experiment and
-    /// variant ids were checked before the runs are made ([`CHECKED_IDS`]).
-    fn variant_jobs(&self, e: &Experiment, v: &Variant) -> Vec<Job> {
+    /// The runs of one variant `v` of this file's experiment `e` (exact column first; as many
+    /// as [`Variant::run_count`]). Its experiment and variant ids were checked before the runs
+    /// are made ([`CHECKED_IDS`]).
+    pub fn variant_jobs(&self, e: &Experiment, v: &Variant) -> Vec<Job> {
         let mut jobs = Vec::new();
         let theta0 = v.theta0.clone().unwrap_or_else(|| e.theta0.clone());
         let theta_ref = v

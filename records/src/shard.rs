@@ -1,10 +1,15 @@
 //! Sharded runs for clusters: `reproduce --shard K/N` runs its share of the selected runs into
 //! `results-shard-K-of-N/`, `reproduce --merge DIR...` combines the shards into `results/`.
 //!
-//! - **Assignment.** A run belongs to shard `fnv1a64(Job::key()) % N + 1` (K is 1-based). The
-//!   hash is FNV-1a 64 ([`crate::fnv`]; std's `DefaultHasher` is not stable across Rust
-//!   releases), so a run's shard depends only on its key and N: not on the order of the files,
-//!   on the other runs, or on the machine.
+//! - **Assignment, by index.** The selection's runs are enumerated in file order (file by
+//!   file in name order, experiment by experiment, variant by variant, each variant's runs
+//!   exact column first: what `reproduce --list` prints); run i (from 0) belongs to shard
+//!   `i mod N + 1` (K is 1-based; [`Shard::of_index`]). The shards are strided, not
+//!   contiguous, so a sweep whose cost grows along an axis is spread evenly, and every shard
+//!   gets floor(T/N) or ceil(T/N) of the T runs ([`plan`]). A shard's runs are found by their
+//!   indices ([`Shard::indices`]) and only they are made: listing or running shard K of a
+//!   sweep does not make the other shards' runs. A run's shard therefore depends on the
+//!   selection and the experiment files (both bound below), not on the machine.
 //! - **K and N from a scheduler** ([`Shard::from_env`], `--shard auto`): a Slurm task id *is*
 //!   the shard number K (arrays are `--array=1-N`; one task is resubmitted as `--array=K`); N is
 //!   `--shards`, else `DRIFTBENCH_SHARDS`, else the array's size, but only when the array is
@@ -22,9 +27,11 @@
 //!   keys assigned to it, the code revision and a hash of the experiment files. A directory
 //!   without a manifest is a shard that has not finished. A shard resumes through the ordinary
 //!   journal ([`crate::journal`]) of its directory. A manifest is checked as it is read: K in
-//!   1..=N, N >= 1, every run key one that can name a file, belongs to shard K and is listed
-//!   once; otherwise it is an error naming the file, the field and the entry.
-//! - **Merge.** [`check_shards`] verifies that the shards agree (N, experiment files, selection)
+//!   1..=N, N >= 1, every run key one that can name a file and listed once; otherwise it is an
+//!   error naming the file, the field and the entry (whether a run is shard K's needs the
+//!   selection's enumeration: the merge checks it).
+//! - **Merge.** [`check_shards`] verifies that the shards agree (N, experiment files, selection),
+//!   that each shard holds and lists only runs whose index in the selection makes them its own,
 //!   and that every selected run appears exactly once; otherwise it says which runs are missing
 //!   (and which shard should have produced them) or duplicated, and nothing is written.
 
@@ -221,14 +228,6 @@ pub enum RunEntryProblem {
     /// Not a run key, or a part that is no valid id.
     #[error("not a run key: {0}")]
     NotAKey(catalog::run_key::KeyError),
-    /// The run belongs to another shard.
-    #[error("belongs to shard {owner}/{n}, not to this shard")]
-    OtherShard {
-        /// The shard it belongs to.
-        owner: usize,
-        /// The number of shards N.
-        n: usize,
-    },
     /// The run is listed twice.
     #[error("listed twice")]
     Twice,
@@ -329,14 +328,16 @@ impl Shard {
         Err(ShardError::NoScheduler)
     }
 
-    /// The shard (1-based) a run key belongs to among `n`.
-    pub fn of(key: &str, n: usize) -> usize {
-        (fnv1a64(key.as_bytes()) % n as u64) as usize + 1
+    /// The shard (1-based) that run `index` (from 0, in the selection's enumeration) belongs
+    /// to among `n` (n >= 1): `index mod n + 1`.
+    pub fn of_index(index: usize, n: usize) -> usize {
+        index % n + 1
     }
 
-    /// Whether the run key `key` (`experiment / variant / solver`) belongs to this shard.
-    pub fn owns(&self, key: &str) -> bool {
-        Self::of(key, self.n) == self.k
+    /// The indices (from 0) of this shard's runs among `total` selected runs, in order:
+    /// K - 1, K - 1 + N, K - 1 + 2N, ... (below `total`).
+    pub fn indices(&self, total: usize) -> std::iter::StepBy<std::ops::Range<usize>> {
+        (self.k - 1..total.max(self.k - 1)).step_by(self.n)
     }
 
     /// `results-shard-K-of-N`.
@@ -351,13 +352,10 @@ impl std::fmt::Display for Shard {
     }
 }
 
-/// Runs per shard (index 0: shard 1) when `keys` are split `n` ways.
-pub fn plan(keys: impl IntoIterator<Item = impl AsRef<str>>, n: usize) -> Vec<usize> {
-    let mut counts = vec![0; n];
-    for k in keys {
-        counts[Shard::of(k.as_ref(), n) - 1] += 1;
-    }
-    counts
+/// Runs per shard (index 0: shard 1) when `total` runs are split `n` ways (n >= 1): shard K
+/// gets the indices congruent to K - 1 mod n, so ceil((total - K + 1) / n) of them.
+pub fn plan(total: usize, n: usize) -> Vec<usize> {
+    (1..=n).map(|k| (total + n - k) / n).collect()
 }
 
 /// Which runs a shard was given: the selection flags of its command line.
@@ -554,21 +552,16 @@ impl Manifest {
 
     /// Checks a manifest read from `path` (the rules of the module doc).
     fn check(&self, path: &Path) -> Result<(), ShardError> {
-        let shard =
-            Shard::new(self.shard, self.shards).map_err(|source| ShardError::ManifestShard {
-                path: path.to_path_buf(),
-                shard: self.shard,
-                shards: self.shards,
-                source: Box::new(source),
-            })?;
+        Shard::new(self.shard, self.shards).map_err(|source| ShardError::ManifestShard {
+            path: path.to_path_buf(),
+            shard: self.shard,
+            shards: self.shards,
+            source: Box::new(source),
+        })?;
         let mut seen = std::collections::HashSet::new();
         for (index, entry) in self.runs.iter().enumerate() {
             let problem = match catalog::run_key::RunKey::parse(entry) {
                 Err(e) => Some(RunEntryProblem::NotAKey(e)),
-                Ok(key) if !shard.owns(&key.to_string()) => Some(RunEntryProblem::OtherShard {
-                    owner: Shard::of(&key.to_string(), shard.n),
-                    n: shard.n,
-                }),
                 Ok(key) if !seen.insert(key.clone()) => Some(RunEntryProblem::Twice),
                 Ok(_) => None,
             };
@@ -695,9 +688,10 @@ pub fn copy_traces(
 }
 
 /// Checks shards before a merge: the same N, experiment files (`hash`: the current files')
-/// and selection (`manifest_problems`); each row in its own shard with its trace
-/// (`row_problems`); every run of `expected` (the keys the selection describes) in exactly one
-/// shard, and no other run (`coverage_problems`). The error lists every problem of the first
+/// and selection (`manifest_problems`); each row in its own shard with its trace, and each
+/// run a manifest lists its shard's (`row_problems`); every run of `expected` (the keys the
+/// selection describes, in its enumeration order: `expected[i]` is shard `i mod N + 1`'s) in
+/// exactly one shard, and no other run (`coverage_problems`). The error lists every problem of the first
 /// of these steps that finds any.
 pub fn check_shards(
     shards: &[ShardDir],
@@ -708,8 +702,16 @@ pub fn check_shards(
         return Err(ShardError::NoShardDirectories);
     };
     let n = first.manifest.shards;
-    let mut problems = manifest_problems(shards, first, hash);
-    problems.extend(row_problems(shards, n));
+    let problems = manifest_problems(shards, first, hash);
+    if !problems.is_empty() {
+        return Err(ShardError::CannotMerge { problems });
+    }
+    let owners: std::collections::HashMap<&str, usize> = expected
+        .iter()
+        .enumerate()
+        .map(|(i, key)| (key.as_str(), Shard::of_index(i, n)))
+        .collect();
+    let problems = row_problems(shards, &owners, n);
     if !problems.is_empty() {
         return Err(ShardError::CannotMerge { problems });
     }
@@ -770,20 +772,40 @@ fn manifest_problems(shards: &[ShardDir], first: &ShardDir, hash: &str) -> Vec<S
     problems
 }
 
-/// The rows that are not their shard's (of `n`): a run another shard owns or its shard.toml
-/// does not list, and a run whose trace is not among the files the shard wrote.
-fn row_problems(shards: &[ShardDir], n: usize) -> Vec<String> {
+/// The rows and listed runs that are not their shard's (`owners`: each selected run's shard
+/// of `n`): a listed run another shard owns, a row another shard owns or its shard.toml does
+/// not list, and a run whose trace is not among the files the shard wrote. A run the
+/// selection does not describe is left to `coverage_problems`.
+fn row_problems(
+    shards: &[ShardDir],
+    owners: &std::collections::HashMap<&str, usize>,
+    n: usize,
+) -> Vec<String> {
     let mut problems = Vec::new();
     for s in shards {
+        for key in &s.manifest.runs {
+            if let Some(&owner) = owners.get(key.as_str()) {
+                if owner != s.manifest.shard {
+                    problems.push(format!(
+                        "{}: its {MANIFEST} lists {key}, which belongs to shard {owner}/{n}",
+                        s.dir.display()
+                    ));
+                }
+            }
+        }
         let assigned: std::collections::HashSet<&str> =
             s.manifest.runs.iter().map(String::as_str).collect();
         for r in &s.rows {
             let key = r.key().to_string();
-            let owner = Shard::of(&key, n);
-            if owner != s.manifest.shard || !assigned.contains(key.as_str()) {
+            let owner = owners.get(key.as_str()).copied();
+            if owner.is_some_and(|o| o != s.manifest.shard) || !assigned.contains(key.as_str()) {
                 problems.push(format!(
-                    "{}: holds {key}, which belongs to shard {owner}/{n}{}",
+                    "{}: holds {key}, which {}{}",
                     s.dir.display(),
+                    match owner {
+                        Some(o) => format!("belongs to shard {o}/{n}"),
+                        None => "the selection does not describe".to_string(),
+                    },
                     if assigned.contains(key.as_str()) {
                         ""
                     } else {
@@ -820,12 +842,12 @@ fn coverage_problems(shards: &[ShardDir], expected: &[String], n: usize) -> Vec<
     }
     let mut missing = Vec::new();
     let mut duplicated = Vec::new();
-    for key in expected {
+    for (i, key) in expected.iter().enumerate() {
+        let owner = Shard::of_index(i, n);
         match found.get(key).map(Vec::len).unwrap_or(0) {
             0 => missing.push(format!(
-                "  {key}  (shard {}/{n}{})",
-                Shard::of(key, n),
-                if absent.contains(&Shard::of(key, n)) {
+                "  {key}  (shard {owner}/{n}{})",
+                if absent.contains(&owner) {
                     ", not given"
                 } else {
                     ""
@@ -888,38 +910,34 @@ fn coverage_problems(shards: &[ShardDir], expected: &[String], n: usize) -> Vec<
 mod tests {
     use super::*;
 
-    /// Computed once; a change of the hash (or of the key format) moves runs between shards
-    /// and must fail here.
+    /// Strided by index: run i is shard i mod N + 1's; a shard's indices are exactly the
+    /// runs it owns, each index in one shard, and the plan counts them.
     #[test]
-    fn assignment_is_stable() {
-        let cases = [
-            ("kong2019-circle-mu-sweep / ZNN (eq. 22) [mu=2] / ZNN", 8, 4),
-            ("jia2019-clover / VLTCO / exact (Clarabel)", 3, 2),
-            ("jia2019-clover / VLTCO / LVI-PDNN", 3, 1),
-            (
-                "zhang2018-butterfly-gamma-sweep / HL-JDF (zeta=0.6) [gamma=20] / FP-CDNN",
-                7,
-                4,
-            ),
-        ];
-        let got: Vec<usize> = cases.iter().map(|(k, n, _)| Shard::of(k, *n)).collect();
-        let want: Vec<usize> = cases.iter().map(|c| c.2).collect();
-        assert_eq!(got, want);
-    }
-
-    #[test]
-    fn every_key_in_exactly_one_shard() {
-        let keys: Vec<String> = (0..200).map(|i| format!("e / v{i} / s")).collect();
-        for n in 1..=7 {
-            for key in &keys {
-                let owners = (1..=n)
-                    .filter(|&k| Shard::new(k, n).unwrap().owns(key))
-                    .count();
-                assert_eq!(owners, 1, "{key} among {n}");
+    fn every_index_in_exactly_one_shard() {
+        assert_eq!(Shard::of_index(0, 8), 1);
+        assert_eq!(Shard::of_index(7, 8), 8);
+        assert_eq!(Shard::of_index(8, 8), 1);
+        assert_eq!(Shard::of_index(13, 3), 2);
+        for total in [0, 1, 2, 7, 64, 101] {
+            for n in 1..=9 {
+                let mut owner = vec![0; total];
+                for k in 1..=n {
+                    let shard = Shard::new(k, n).unwrap();
+                    let got: Vec<usize> = shard.indices(total).collect();
+                    assert_eq!(got.len(), plan(total, n)[k - 1], "{k}/{n} of {total}");
+                    for i in got {
+                        assert_eq!(Shard::of_index(i, n), k);
+                        owner[i] += 1;
+                    }
+                }
+                assert!(owner.iter().all(|&c| c == 1), "{n} shards of {total}");
+                let counts = plan(total, n);
+                assert_eq!(counts.iter().sum::<usize>(), total);
+                assert!(counts.iter().max().unwrap() - counts.iter().min().unwrap() <= 1);
             }
-            let counts = plan(keys.iter().map(String::as_str), n);
-            assert_eq!(counts.iter().sum::<usize>(), keys.len());
         }
+        // Beyond the runs there are none (a shard with K > total is empty).
+        assert_eq!(Shard::new(5, 8).unwrap().indices(3).count(), 0);
     }
 
     #[test]
@@ -1025,12 +1043,9 @@ mod tests {
         assert!(Shard::from_env(env(&[]), Some(3)).is_err());
     }
 
-    /// A run key of shard `k` of `n`.
-    fn key_of(k: usize, n: usize, from: usize) -> String {
-        (from..)
-            .map(|i| format!("e / v{i} / s"))
-            .find(|key| Shard::of(key, n) == k)
-            .unwrap()
+    /// The run key of run `i`.
+    fn key_of(i: usize) -> String {
+        format!("e / v{i} / s")
     }
 
     #[test]
@@ -1040,7 +1055,7 @@ mod tests {
             shards: 3,
             git_rev: "abc".into(),
             experiments_hash: "0123456789abcdef".into(),
-            runs: vec![key_of(2, 3, 0)],
+            runs: vec![key_of(1)],
             selection: Selection {
                 paper: Some("kong2019".into()),
                 experiments: vec![],
@@ -1071,7 +1086,7 @@ mod tests {
             shards: 2,
             git_rev: "abc".into(),
             experiments_hash: "0123456789abcdef".into(),
-            runs: vec![key_of(1, 2, 0), key_of(1, 2, 1000)],
+            runs: vec![key_of(0), key_of(2)],
             selection: Selection::default(),
         };
         let refused = |m: &Manifest, wants: &[&str]| {
@@ -1129,7 +1144,6 @@ mod tests {
             &["entry 1", "experiment id \"..\" is not a slug"],
         );
         entry(vec!["no key".into()], &["entry 1", "not a run key"]);
-        entry(vec![key_of(2, 2, 0)], &["entry 1", "belongs to shard 2/2"]);
         entry(vec![first.clone(), first], &["entry 2", "listed twice"]);
         good.write(&dir).unwrap();
         assert_eq!(Manifest::read(&dir).unwrap(), good);

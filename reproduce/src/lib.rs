@@ -200,8 +200,8 @@ fn run_shard(
 }
 
 /// The runs of `files` that `selection` keeps and `shard` owns (all of them without a shard;
-/// said on stderr with one). Only these are collected (a shard's: an eighth of a 10^6-run
-/// selection); every other run is made from the files when needed (results::Described).
+/// said on stderr with one). Only these are made and collected (a shard's: found by index,
+/// select::Kept); every other run is made from the files when needed (results::Described).
 fn selected(
     files: &[PaperFile],
     selection: &SelectionOptions,
@@ -210,20 +210,21 @@ fn selected(
 ) -> Result<Vec<Job>, ReproduceError> {
     let selection = selection.selection();
     select::check_selection(files, &selection)?;
-    let mut count = 0;
-    let jobs: Vec<Job> = select::selected(files, &selection)
-        .inspect(|_| count += 1)
-        .filter(|j| owns(shard, j))
-        .collect();
+    let kept = select::Kept {
+        selection: &selection,
+        shard,
+    };
+    let jobs: Vec<Job> = kept.runs(files).collect();
     if let Some(shard) = shard {
-        say_shard(project, shard, jobs.len(), count);
+        say_shard(project, shard, jobs.len(), kept.total(files));
     }
     Ok(jobs)
 }
 
 /// `list` (with a shard: the shard's runs; with `shards`: the count per shard), the runs made
-/// from `files` as they are written rather than collected: a list of 10^6 runs holds none of
-/// them (docs/cluster.md).
+/// from `files` as they are written rather than collected, and with a shard only the shard's
+/// made: a list of 10^6 runs holds none of them, and a shard's list makes its runs alone
+/// (docs/cluster.md).
 fn list_runs(
     project: &Project,
     files: &[PaperFile],
@@ -233,33 +234,22 @@ fn list_runs(
 ) -> Result<(), ReproduceError> {
     let selection = selection.selection();
     select::check_selection(files, &selection)?;
+    let kept = select::Kept {
+        selection: &selection,
+        shard,
+    };
+    let total = kept.total(files);
     if let Some(shard) = shard {
-        let owned = select::selected(files, &selection)
-            .filter(|j| owns(Some(shard), j))
-            .count();
-        say_shard(
-            project,
-            shard,
-            owned,
-            select::selected(files, &selection).count(),
-        );
+        say_shard(project, shard, kept.owned_in(0, total), total);
     }
     // As `summary::emit`: a closed standard output (`reproduce list | head`) ends the list and
     // is no error.
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
-    let _ = list::list(&mut out, files, |j| {
-        select::selects(&selection, j) && owns(shard, j)
-    })
-    .and_then(|()| std::io::Write::flush(&mut out));
+    let _ = list::list(&mut out, files, kept).and_then(|()| std::io::Write::flush(&mut out));
     if let (Some(n), None) = (shards, shard) {
-        emit(&list::shard_plan(select::selected(files, &selection), n));
+        emit(&list::shard_plan(total, n));
     }
     Ok(())
-}
-
-/// Whether `job` is `shard`'s (every job is, without a shard).
-fn owns(shard: Option<Shard>, job: &Job) -> bool {
-    shard.is_none_or(|shard| shard.owns(&job.key().to_string()))
 }
 
 /// The line a shard starts with: how many of the selected runs are its, and where it writes.

@@ -3,30 +3,35 @@
 //! shard gets) and the robots they can name, with the check values of each (tip position and
 //! singular values of J at the stated pose).
 
-use catalog::experiment::{Job, PaperFile};
+use crate::select::Kept;
+use catalog::experiment::PaperFile;
 use std::fmt::Write as _;
 use std::io::Write;
 
-/// Writes to `out` the experiments of `files` that have runs `keep` accepts, each with those
+/// Writes to `out` the experiments of `files` that have runs `kept` keeps, each with those
 /// runs, under its paper's header (a paper with no run kept is left out, header and all). The
-/// runs are made from the files as they are counted and written, and none is held: listing a
-/// sweep of 10^6 runs costs the memory of its experiment files alone.
-pub fn list(
-    out: &mut impl Write,
-    files: &[PaperFile],
-    keep: impl Fn(&Job) -> bool,
-) -> std::io::Result<()> {
+/// runs are counted without being made, and only the kept ones are made, as they are written:
+/// listing a sweep of 10^6 runs costs the memory of its experiment files alone, and listing
+/// one shard makes that shard's runs alone.
+pub fn list(out: &mut impl Write, files: &[PaperFile], kept: Kept) -> std::io::Result<()> {
+    let mut start = 0;
     for f in files {
-        let counts: Vec<usize> = f
+        // Per experiment: the index of its first selected run, and how many of its runs are kept.
+        let counts: Vec<(usize, usize)> = f
             .experiments
             .iter()
-            .map(|e| f.experiment_jobs(e).filter(|j| keep(j)).count())
+            .map(|e| {
+                let first = start;
+                let selected = kept.selected_in(f, e);
+                start += selected;
+                (first, kept.owned_in(first, selected))
+            })
             .collect();
-        if counts.iter().all(|&n| n == 0) {
+        if counts.iter().all(|&(_, n)| n == 0) {
             continue;
         }
         writeln!(out, "{} — {}", f.paper, f.title)?;
-        for (e, n) in f.experiments.iter().zip(counts) {
+        for (e, (first, n)) in f.experiments.iter().zip(counts) {
             if n == 0 {
                 continue;
             }
@@ -36,7 +41,7 @@ pub fn list(
                 e.id, e.robot, e.path.name, e.path.duration, e.paper_output
             )?;
             // The key (ids: what --task, papers/ and the results use), then the labels.
-            for j in f.experiment_jobs(e).filter(|j| keep(j)) {
+            for j in kept.experiment_runs(f, e, first) {
                 let k = j.key();
                 writeln!(
                     out,
@@ -51,10 +56,9 @@ pub fn list(
     Ok(())
 }
 
-/// How many of `jobs` each of `n` shards gets (`--list --shards N`).
-pub fn shard_plan(jobs: impl Iterator<Item = Job>, n: usize) -> String {
-    let counts = records::shard::plan(jobs.map(|j| j.key().to_string()), n);
-    counts
+/// How many of `total` selected runs each of `n` shards gets (`--list --shards N`).
+pub fn shard_plan(total: usize, n: usize) -> String {
+    records::shard::plan(total, n)
         .iter()
         .enumerate()
         .map(|(k, c)| format!("shard {}/{n}: {c} runs\n", k + 1))
@@ -109,6 +113,9 @@ mod tests {
     use super::*;
     use std::path::Path;
 
+    use catalog::experiment::Job;
+    use records::shard::{Selection, Shard};
+
     /// The fixture paper of tests/fixtures/fifth-paper (one experiment, two variants).
     fn fixture() -> (Vec<PaperFile>, Vec<Job>) {
         let dir =
@@ -118,17 +125,22 @@ mod tests {
         (files, jobs)
     }
 
-    /// The list of the runs of `files` that `keep` accepts.
-    fn text(files: &[PaperFile], keep: impl Fn(&Job) -> bool) -> String {
+    /// The list of every run of `files`, or of one shard's.
+    fn text(files: &[PaperFile], shard: Option<Shard>) -> String {
         let mut out = Vec::new();
-        list(&mut out, files, keep).unwrap();
+        let selection = Selection::default();
+        let kept = Kept {
+            selection: &selection,
+            shard,
+        };
+        list(&mut out, files, kept).unwrap();
         String::from_utf8(out).unwrap()
     }
 
     #[test]
     fn the_list_names_each_run_by_key_then_label() {
         let (files, jobs) = fixture();
-        let text = text(&files, |_| true);
+        let text = text(&files, None);
         let lines: Vec<&str> = text.lines().collect();
         assert_eq!(lines[0], format!("{} — {}", files[0].paper, files[0].title));
         assert_eq!(
@@ -157,16 +169,25 @@ mod tests {
     #[test]
     fn an_experiment_without_selected_runs_is_left_out() {
         let (files, jobs) = fixture();
-        // No selected run: not even the paper's header (`list --paper X` shows X alone).
-        assert_eq!(text(&files, |_| false), "");
-        let one = text(&files, |j| j.key() == jobs[0].key());
+        // No run of the shard (more shards than runs): not even the paper's header.
+        let n = jobs.len() + 1;
+        assert_eq!(text(&files, Some(Shard::new(n, n).unwrap())), "");
+        // One run of the shard: that run alone, the second of the selection.
+        let n = jobs.len();
+        let one = text(&files, Some(Shard::new(2, n).unwrap()));
         assert!(one.contains(": 1 runs\n"), "{one}");
+        let key = jobs[1].key();
+        assert!(
+            one.contains(&format!("{} / {}", key.variant, key.solver)),
+            "{one}"
+        );
+        assert_eq!(one.lines().count(), 3, "{one}");
     }
 
     #[test]
     fn the_shard_plan_counts_every_run_once() {
         let (_, jobs) = fixture();
-        let plan = shard_plan(jobs.iter().cloned(), 3);
+        let plan = shard_plan(jobs.len(), 3);
         let counts: Vec<usize> = plan
             .lines()
             .enumerate()

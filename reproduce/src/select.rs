@@ -1,22 +1,128 @@
 //! The runs a command line selects: `--paper`, `--experiment` (repeatable) and `--exact-only`
 //! narrow the runs the experiment files describe; a paper or experiment no file names is an
-//! error that lists the known ones.
+//! error that lists the known ones. `--shard K/N` keeps, of the selected runs in their order,
+//! those whose index i (from 0) has i mod N = K - 1 (`records::shard`): [`Kept`] finds them by
+//! counting each variant's runs ([`catalog::experiment::Variant::run_count`]) and makes only
+//! the variants that hold one, so a shard of a 10^6-run sweep makes its own runs alone.
 
 use crate::error::ReproduceError;
-use catalog::experiment::{Job, PaperFile, SolverChoice};
-use records::shard::Selection;
+use catalog::experiment::{Experiment, Job, PaperFile, SolverChoice, Variant};
+use records::shard::{Selection, Shard};
 use std::collections::HashSet;
 
 /// The runs of `files` that `selection` keeps, in file order, made as they are taken (a
-/// caller collects what it needs: a shard only its own runs). [`check_selection`] first.
+/// caller collects what it needs). [`check_selection`] first.
 pub fn selected<'a>(
     files: &'a [PaperFile],
     selection: &'a Selection,
 ) -> impl Iterator<Item = Job> + 'a {
-    files
-        .iter()
-        .flat_map(PaperFile::iter_jobs)
-        .filter(|j| selects(selection, j))
+    Kept {
+        selection,
+        shard: None,
+    }
+    .runs(files)
+}
+
+/// The runs a selection keeps and, with a shard, the shard's share of them (by index in the
+/// selection's enumeration: file, experiment, variant, the variant's runs exact column first).
+#[derive(Clone, Copy, Debug)]
+pub struct Kept<'a> {
+    /// The selection flags.
+    pub selection: &'a Selection,
+    /// The shard, if any (none: every selected run).
+    pub shard: Option<Shard>,
+}
+
+impl<'a> Kept<'a> {
+    /// Whether the selection takes runs from experiment `e` of file `f` (its paper and id).
+    fn takes(&self, f: &PaperFile, e: &Experiment) -> bool {
+        self.selection.paper.as_ref().is_none_or(|p| &f.paper == p)
+            && (self.selection.experiments.is_empty()
+                || self.selection.experiments.iter().any(|x| *x == e.id))
+    }
+
+    /// How many of variant `v`'s runs the selection keeps, none made (`--exact-only`: the
+    /// exact column alone).
+    fn of_variant(&self, v: &Variant) -> usize {
+        if self.selection.exact_only {
+            usize::from(v.exact)
+        } else {
+            v.run_count()
+        }
+    }
+
+    /// How many runs of experiment `e` of `f` the selection keeps (the shard aside).
+    pub fn selected_in(&self, f: &PaperFile, e: &Experiment) -> usize {
+        if !self.takes(f, e) {
+            return 0;
+        }
+        e.variants.iter().map(|v| self.of_variant(v)).sum()
+    }
+
+    /// How many of the selected runs with indices `start..start + count` are the shard's
+    /// (all of them without a shard): those with i mod N = K - 1.
+    pub fn owned_in(&self, start: usize, count: usize) -> usize {
+        match self.shard {
+            None => count,
+            // Indices i < x with i mod N = K - 1: ceil((x - K + 1) / N).
+            Some(s) => {
+                let below = |x: usize| (x + s.n - s.k) / s.n;
+                below(start + count) - below(start)
+            }
+        }
+    }
+
+    /// How many selected runs `files` describe (the shard aside), none made.
+    pub fn total(&self, files: &[PaperFile]) -> usize {
+        files
+            .iter()
+            .flat_map(|f| f.experiments.iter().map(move |e| self.selected_in(f, e)))
+            .sum()
+    }
+
+    /// The kept runs of experiment `e` of `f`, whose first selected run has index `start`, in
+    /// order; only the variants holding a kept run are made into runs.
+    pub fn experiment_runs(
+        self,
+        f: &'a PaperFile,
+        e: &'a Experiment,
+        start: usize,
+    ) -> impl Iterator<Item = Job> + 'a {
+        let variants = if self.takes(f, e) {
+            &e.variants[..]
+        } else {
+            &[]
+        };
+        let mut at = start;
+        variants.iter().flat_map(move |v| {
+            let first = at;
+            let count = self.of_variant(v);
+            at += count;
+            let jobs = if self.owned_in(first, count) == 0 {
+                Vec::new()
+            } else {
+                f.variant_jobs(e, v)
+            };
+            jobs.into_iter()
+                .filter(move |j| !self.selection.exact_only || j.solver == SolverChoice::Exact)
+                .enumerate()
+                .filter(move |(i, _)| self.owned_in(first + i, 1) == 1)
+                .map(|(_, j)| j)
+        })
+    }
+
+    /// The kept runs of `files`, in order, made as they are taken.
+    pub fn runs(self, files: &'a [PaperFile]) -> impl Iterator<Item = Job> + 'a {
+        let mut start = 0;
+        files
+            .iter()
+            .flat_map(|f| f.experiments.iter().map(move |e| (f, e)))
+            .flat_map(move |(f, e)| {
+                let first = start;
+                start += self.selected_in(f, e);
+                self.experiment_runs(f, e, first)
+            })
+    }
 }
 
 /// The names of the experiment files of `files` that `selection` draws its runs from: the
@@ -67,14 +173,6 @@ pub fn check_selection(files: &[PaperFile], selection: &Selection) -> Result<(),
         }
     }
     Ok(())
-}
-
-/// Whether `selection` keeps `job` (its paper, its experiment, the exact column only).
-pub fn selects(selection: &Selection, job: &Job) -> bool {
-    selection.paper.as_ref().is_none_or(|p| &job.paper == p)
-        && (selection.experiments.is_empty()
-            || selection.experiments.iter().any(|e| job.experiment == *e))
-        && (!selection.exact_only || job.solver == SolverChoice::Exact)
 }
 
 #[cfg(test)]
@@ -183,5 +281,46 @@ mod tests {
         assert!(err
             .to_string()
             .starts_with("unknown experiment \"nope\" (known: "));
+    }
+
+    /// A shard's runs, found by index, are exactly the selected runs i with i mod N = K - 1,
+    /// in order; the counts made without runs agree; every run is in one shard.
+    #[test]
+    fn a_shard_is_every_nth_selected_run() {
+        let (files, _) = project();
+        for (paper, exact_only) in [(None, false), (Some("kong2019"), false), (None, true)] {
+            let selection = Selection {
+                paper: paper.map(String::from),
+                experiments: vec![],
+                exact_only,
+            };
+            let keys: Vec<String> = selected(&files, &selection)
+                .map(|j| j.key().to_string())
+                .collect();
+            let all = Kept {
+                selection: &selection,
+                shard: None,
+            };
+            assert_eq!(all.total(&files), keys.len());
+            for n in [1, 3, 64] {
+                let mut seen = 0;
+                for k in 1..=n {
+                    let kept = Kept {
+                        selection: &selection,
+                        shard: Some(Shard::new(k, n).unwrap()),
+                    };
+                    let got: Vec<String> = kept.runs(&files).map(|j| j.key().to_string()).collect();
+                    let want: Vec<String> = keys.iter().skip(k - 1).step_by(n).cloned().collect();
+                    assert_eq!(
+                        got, want,
+                        "shard {k}/{n} of {paper:?}, exact only {exact_only}"
+                    );
+                    assert_eq!(kept.owned_in(0, keys.len()), got.len());
+                    assert_eq!(records::shard::plan(keys.len(), n)[k - 1], got.len());
+                    seen += got.len();
+                }
+                assert_eq!(seen, keys.len());
+            }
+        }
     }
 }
