@@ -30,6 +30,7 @@
 //! - [`drift_attribution`]: what the drift attribution and the tolerance ladder say (the share
 //!   of each term, the runs at MATLAB's default tolerances).
 //! - [`cross_best`]: the best solver of each column of the cross experiment.
+//! - [`sweep_summary`]: a large sweep's extremes and failures, for its page.
 //! - [`performance`]: what the measurements of the solvers' cost and the runs' times say,
 //!   against their targets (the suite's measurements of itself are crate
 //!   `driftbench-benches`'s).
@@ -61,3 +62,4 @@ pub mod published_table;
 pub mod report_text;
 pub mod sweep_check;
 pub mod sweep_comparison;
+pub mod sweep_summary;

@@ -589,3 +589,71 @@ fn one_papers_figures_are_drawn_alone_and_the_others_kept() {
     assert!(dir.join("exp-vel__vltco__lvi-pdnn.svg").is_file());
     std::fs::remove_dir_all(&root).unwrap();
 }
+
+/// A merged 10^4-run sweep renders a bounded number of figures: a run figure for
+/// `MAX_RUN_FIGURES` runs only (their traces alone are written: the others' are not read), the
+/// overview and the sweep figure over its parameters; its page shows the sweep figure, its
+/// extremes and failures, and links only the drawn runs.
+#[test]
+fn a_large_sweep_renders_a_bounded_number_of_figures() {
+    use presentation::figures::sweep::{drawn, MAX_RUN_FIGURES};
+    let root = scratch("large-sweep");
+    let mut runs: Vec<RunRow> = (0..10_000)
+        .map(|i| {
+            let (mu, scale) = (i / 100, i % 100);
+            let variant = format!("ZNN [mu={mu}, scale={scale}]");
+            let failed = (i % 331 == 7).then_some(0.5);
+            let mut r = row("big-sweep", &variant, "exact (Clarabel)", failed);
+            if failed.is_none() {
+                r.drift_norm = Some(1e-6 * (1.0 + mu as f64) * (1.0 + (scale as f64).sqrt()));
+                r.max_pos_err = Some(1e-5 / (1.0 + i as f64));
+            }
+            r
+        })
+        .collect();
+    runs.sort_by_key(RunRow::key);
+    write_atomic(&root.join("results/runs.csv"), &runs_csv(&runs).unwrap()).unwrap();
+    let members: Vec<&RunRow> = runs.iter().collect();
+    let chosen = drawn(&members);
+    assert_eq!(chosen.len(), MAX_RUN_FIGURES);
+    for &i in &chosen {
+        let key = runs[i].key();
+        write_atomic(
+            &root.join(format!("results/traces/big-sweep/{}.csv", key.stem())),
+            trace(5, 20, 2.0, false, false).as_bytes(),
+        )
+        .unwrap();
+    }
+    let written = render_all(&root).unwrap();
+    assert_eq!(written.len(), MAX_RUN_FIGURES + 2, "{written:?}");
+    let dir = root.join("report/figures");
+    let sweep = read(&dir.join("big-sweep__sweep.svg"));
+    assert!(sweep.contains("big-sweep: 10000 runs over mu, scale (31 failed)"));
+    assert!(sweep.contains("drift norm against mu"));
+    assert!(sweep.contains("median log10 drift norm over mu and scale"));
+    assert!(read(&dir.join("big-sweep__overview.svg")).contains("overview of 24 runs"));
+    assert_eq!(stems(&dir, "svg").len(), MAX_RUN_FIGURES + 2);
+
+    let figures = presentation::report::figures::list(&dir).unwrap();
+    let page = presentation::report::figures::links(
+        &figures,
+        &records::index::Runs::new(runs.clone()),
+        "big-sweep",
+    );
+    assert!(page.contains("(figures/big-sweep__sweep.svg)"), "{page}");
+    assert!(
+        page.contains("10000 runs, 31 failed (the first 10 listed)"),
+        "{page}"
+    );
+    assert!(
+        page.contains("| largest drift norm | ZNN \\[mu=99, scale=99\\] / exact (Clarabel)"),
+        "{page}"
+    );
+    assert_eq!(page.matches("| failed |").count(), 10, "{page}");
+    assert_eq!(
+        page.matches("](figures/big-sweep__znn-").count(),
+        MAX_RUN_FIGURES,
+        "{page}"
+    );
+    std::fs::remove_dir_all(&root).unwrap();
+}

@@ -13,6 +13,12 @@
 //!   (f) the torques. A failed run is drawn up to its failure, with the time in the title.
 //! - `<experiment>__overview.svg`, one per experiment: the position error of every run on one
 //!   log-scale plot and, where neural runs exist, their distance to the exact QP optimum.
+//! - A large sweep (an experiment of more than [`sweep::MAX_RUN_FIGURES`] runs) draws the two
+//!   figures above for [`sweep::MAX_RUN_FIGURES`] of its runs only (its failures, its extremes,
+//!   runs evenly spaced: [`sweep::drawn`]), reads only their traces, and draws
+//!   `<experiment>__sweep.svg` over all its runs from `runs.csv` alone: the drift norm and the
+//!   position error against each swept parameter, a heat map over two, the distribution
+//!   ([`sweep`]). A merged 10^4-run sweep writes 26 figures, not 10,001.
 //!
 //! - `inference-<paper>-<table>__profiles.svg`, one per table of `results/inference.csv`: the
 //!   setup inference's profiles ([`profile`]).
@@ -37,6 +43,7 @@ pub mod profile;
 mod run_figure;
 mod scale;
 mod style;
+pub mod sweep;
 mod trace;
 
 use crate::error::{FigureError, ReportError};
@@ -95,6 +102,7 @@ fn figure_of(name: &str) -> Option<String> {
 enum Job<'a> {
     Run(&'a RunRow, &'a Trace),
     Overview(&'a str, Vec<(&'a RunRow, &'a Trace)>),
+    Sweep(&'a str, Vec<&'a RunRow>),
     Profiles(&'a str, &'a str, Vec<&'a InferenceRow>),
     DofCost(&'a str, Vec<&'a DofCostRow>),
     Pareto(&'a str, f64, Vec<&'a ControlRow>),
@@ -108,6 +116,7 @@ impl Job<'_> {
         match self {
             Job::Run(run, trace) => run_figure::figure(run, trace).render(),
             Job::Overview(experiment, members) => overview::figure(experiment, members).render(),
+            Job::Sweep(experiment, runs) => sweep::figure(experiment, runs).render(),
             Job::Profiles(paper, table, rows) => profile::figure(paper, table, rows).render(),
             Job::DofCost(scheme, rows) => dof_cost::figure(scheme, rows).render(),
             Job::Pareto(task, h, rows) => control::pareto(task, *h, rows).render(),
@@ -201,8 +210,9 @@ fn write_rendered(
 struct Inputs {
     /// `runs.csv`, sorted by run key.
     runs: Vec<RunRow>,
-    /// Each run's trace, in the order of `runs`.
-    traces: Vec<Trace>,
+    /// The trace of each run that gets a figure of its own ([`sweep::drawn`]), in the order
+    /// of `runs`; `None` for the others (their traces are not read).
+    traces: Vec<Option<Trace>>,
     /// `inference.csv` (absent = empty).
     inference: Vec<InferenceRow>,
     /// `dof-cost.csv` (absent = empty).
@@ -215,20 +225,33 @@ struct Inputs {
 
 impl Inputs {
     /// Reads the inputs from the results directory `results` (of `paper`'s runs only, when
-    /// given: the others' traces are not read).
+    /// given: the others' traces are not read; nor are the traces of a large sweep's runs
+    /// that get no figure of their own).
     fn read(results: &Path, paper: Option<&str>) -> Result<Self, ReportError> {
         let mut runs = read_runs(&results.join(records::results_dir::RUNS))?;
         runs.retain(|r| paper.is_none_or(|p| r.paper == p));
         runs.sort_by_key(RunRow::key);
+        let mut drawn = vec![false; runs.len()];
+        for indices in by_experiment(&runs).into_values() {
+            let members: Vec<&RunRow> = indices.iter().map(|&i| &runs[i]).collect();
+            for k in sweep::drawn(&members) {
+                drawn[indices[k]] = true;
+            }
+        }
         let traces_dir = results.join(records::results_dir::TRACES);
         let traces = runs
             .iter()
-            .map(|run| {
-                Trace::read(
-                    &traces_dir
-                        .join(&run.experiment)
-                        .join(format!("{}.csv", run_stem(run))),
-                )
+            .zip(drawn)
+            .map(|(run, drawn)| {
+                drawn
+                    .then(|| {
+                        Trace::read(
+                            &traces_dir
+                                .join(&run.experiment)
+                                .join(format!("{}.csv", run_stem(run))),
+                        )
+                    })
+                    .transpose()
             })
             .collect::<Result<Vec<_>, _>>()?;
         Ok(Inputs {
@@ -244,6 +267,15 @@ impl Inputs {
     }
 }
 
+/// The indices of `runs` by experiment, each list in the order of `runs`.
+fn by_experiment(runs: &[RunRow]) -> BTreeMap<&str, Vec<usize>> {
+    let mut out: BTreeMap<&str, Vec<usize>> = BTreeMap::new();
+    for (i, r) in runs.iter().enumerate() {
+        out.entry(r.experiment.as_str()).or_default().push(i);
+    }
+    out
+}
+
 /// The figures to draw, by file name (each name once).
 #[derive(Default)]
 struct Jobs<'a>(BTreeMap<String, Job<'a>>);
@@ -257,21 +289,33 @@ impl<'a> Jobs<'a> {
         }
     }
 
-    /// A figure per run (with its trace) and an overview per experiment.
-    fn add_runs(&mut self, runs: &'a [RunRow], traces: &'a [Trace]) -> Result<(), ReportError> {
-        let mut by_experiment: BTreeMap<&str, Vec<(&RunRow, &Trace)>> = BTreeMap::new();
-        for (run, trace) in runs.iter().zip(traces) {
-            self.add(run_figure_name(&run.key()), Job::Run(run, trace))?;
-            by_experiment
-                .entry(&run.experiment)
-                .or_default()
-                .push((run, trace));
-        }
-        for (experiment, members) in by_experiment {
+    /// A figure per run that has its trace read (each run of an experiment, or the drawn
+    /// runs of a large sweep), an overview per experiment of those runs, and a sweep figure
+    /// per large sweep over all its runs.
+    fn add_runs(
+        &mut self,
+        runs: &'a [RunRow],
+        traces: &'a [Option<Trace>],
+    ) -> Result<(), ReportError> {
+        for (experiment, indices) in by_experiment(runs) {
+            let mut members = Vec::new();
+            for &i in &indices {
+                if let Some(trace) = &traces[i] {
+                    let run = &runs[i];
+                    self.add(run_figure_name(&run.key()), Job::Run(run, trace))?;
+                    members.push((run, trace));
+                }
+            }
             self.add(
                 overview_name(experiment),
                 Job::Overview(experiment, members),
             )?;
+            if indices.len() > sweep::MAX_RUN_FIGURES {
+                self.add(
+                    sweep::sweep_name(experiment),
+                    Job::Sweep(experiment, indices.iter().map(|&i| &runs[i]).collect()),
+                )?;
+            }
         }
         Ok(())
     }

@@ -13,15 +13,15 @@ use plotters::prelude::*;
 use std::ops::Range;
 
 /// Blank space around a panel's plot (px).
-const MARGIN: u32 = 8;
+pub(super) const MARGIN: u32 = 8;
 /// Height of the x tick labels plus the x axis description (px).
-const X_LABEL_AREA: u32 = 40;
+pub(super) const X_LABEL_AREA: u32 = 40;
 /// Width of the y tick labels plus the y axis description (px).
-const Y_LABEL_AREA: u32 = 72;
+pub(super) const Y_LABEL_AREA: u32 = 72;
 /// Tick labels per axis.
 const TICKS: usize = 6;
 /// Width (px) and relative x extent of a [`LogLogPanel`]'s point marks.
-const MARK_WIDTH: u32 = 9;
+pub(super) const MARK_WIDTH: u32 = 9;
 const MARK_SPAN: f64 = 1.015;
 
 /// One line of a panel.
@@ -60,7 +60,7 @@ pub struct PathPanel {
 
 /// Draws the caption at the top of `area`; returns the rest, and the size (px) the plot will
 /// have in it once [`plot`] has made room for the axis labels.
-fn titled<DB: DrawingBackend>(
+pub(super) fn titled<DB: DrawingBackend>(
     area: &Area<DB>,
     caption: &str,
 ) -> Result<(Area<DB>, (u32, u32)), FigureError> {
@@ -97,13 +97,13 @@ fn tick(v: f64) -> String {
 
 /// Tick labels for a linear axis over `range`: a tick that is zero but for rounding in the
 /// tick arithmetic (far below the axis span) is labelled 0.
-fn ticks(range: &Range<f64>) -> impl Fn(&f64) -> String {
+pub(super) fn ticks(range: &Range<f64>) -> impl Fn(&f64) -> String {
     let zero = 1e-9 * (range.end - range.start).abs();
     move |v: &f64| tick(if v.abs() < zero { 0.0 } else { *v })
 }
 
 /// A log-axis tick label: the power of ten.
-fn decade(v: &f64) -> String {
+pub(super) fn decade(v: &f64) -> String {
     format!("1e{}", v.log10().round())
 }
 
@@ -128,7 +128,7 @@ where
 
 /// [`plot`] with any x axis `x` (linear or log) labelled by `x_labels`.
 #[allow(clippy::too_many_arguments)]
-fn plot_xy<DB: DrawingBackend, X, Y>(
+pub(super) fn plot_xy<DB: DrawingBackend, X, Y>(
     inner: &Area<DB>,
     x: X,
     x_desc: &str,

@@ -1,10 +1,13 @@
 //! The figures written by the figure generator into `report/figures/`, linked from the
-//! report under their experiment: `<experiment>__<variant>__<solver>.svg` and
-//! `<experiment>__overview.svg`.
+//! report under their experiment: `<experiment>__<variant>__<solver>.svg`,
+//! `<experiment>__overview.svg` and, for a large sweep, `<experiment>__sweep.svg` with a table
+//! of its extremes and failures (`crate::figures::sweep`).
 
+use super::markdown::{sci, sci_opt, text, Table};
 use catalog::run_key::RunKey;
 use records::error::{IoAction, IoError};
 use records::index::Runs;
+use records::runs::RunRow;
 use std::path::Path;
 
 /// The `.svg` file names in `dir`, sorted; none when the folder does not exist.
@@ -27,12 +30,17 @@ pub fn list(dir: &Path) -> Result<Vec<String>, IoError> {
     Ok(names)
 }
 
-/// The figures of one experiment as Markdown: the overview shown inline, then every run's
-/// figure linked (by its variant and solver ids, in file-name order), as a paragraph; only the
+/// The figures of one experiment as Markdown: the overview shown inline, a large sweep's
+/// figure and its table of extremes and failures ([`sweep_section`]), then every run's figure
+/// linked (by its variant and solver ids, in file-name order), as a paragraph; only the
 /// figures present in `figures` (the names in `report/figures/`); nothing when there are none.
 pub fn links(figures: &[String], runs: &Runs, experiment: &str) -> String {
     let present = |name: &String| figures.contains(name);
     let mut out = String::new();
+    let sweep = crate::figures::sweep::sweep_name(experiment);
+    if present(&sweep) {
+        out.push_str(&sweep_section(runs, experiment, &sweep));
+    }
     let overview = crate::figures::overview_name(experiment);
     if present(&overview) {
         out.push_str(&format!(
@@ -57,4 +65,48 @@ pub fn links(figures: &[String], runs: &Runs, experiment: &str) -> String {
         ));
     }
     out
+}
+
+/// A large sweep's section: its figure over the parameters inline, then a table of its
+/// extremes and of its first failures ([`analysis::sweep_summary`]), and what the per-run
+/// figures show.
+fn sweep_section(runs: &Runs, experiment: &str, figure: &str) -> String {
+    use crate::figures::sweep::MAX_RUN_FIGURES;
+    let members: Vec<&RunRow> = runs.of_experiment(experiment).collect();
+    let s = analysis::sweep_summary::summary(&members);
+    let mut t = Table::new([
+        "",
+        "run (variant / solver)",
+        "drift norm (failed: when)",
+        "max position error (failed: why)",
+    ]);
+    for (extreme, r) in &s.extremes {
+        t.push([
+            extreme.name().to_string(),
+            format!("{} / {}", text(&r.variant), text(&r.solver)),
+            sci_opt(r.drift_norm),
+            sci_opt(r.max_pos_err),
+        ]);
+    }
+    for r in &s.failures {
+        t.push([
+            "failed".to_string(),
+            format!("{} / {}", text(&r.variant), text(&r.solver)),
+            r.failed_at.map_or("failed".to_string(), |t| {
+                format!("failed at t = {}", sci(t))
+            }),
+            text(&r.failure),
+        ]);
+    }
+    format!(
+        "![{experiment}: the sweep over its parameters](figures/{figure})\n\n{} runs, {} failed{}. A sweep of more than {MAX_RUN_FIGURES} runs draws a figure of its own (and the overview) for {MAX_RUN_FIGURES} of its runs only: its failures, its extremes and runs evenly spaced in key order.\n\n{}\n",
+        s.runs,
+        s.failed,
+        if s.failed > s.failures.len() {
+            format!(" (the first {} listed)", s.failures.len())
+        } else {
+            String::new()
+        },
+        t.render()
+    )
 }
