@@ -38,7 +38,7 @@ impl<'a> Kept<'a> {
     fn takes(&self, f: &PaperFile, e: &Experiment) -> bool {
         self.selection.paper.as_ref().is_none_or(|p| &f.paper == p)
             && (self.selection.experiments.is_empty()
-                || self.selection.experiments.iter().any(|x| *x == e.id))
+                || self.selection.experiments.contains(&e.id))
     }
 
     /// How many of variant `v`'s runs the selection keeps, none made (`--exact-only`: the
