@@ -37,8 +37,7 @@ impl<'a> Kept<'a> {
     /// Whether the selection takes runs from experiment `e` of file `f` (its paper and id).
     fn takes(&self, f: &PaperFile, e: &Experiment) -> bool {
         self.selection.paper.as_ref().is_none_or(|p| &f.paper == p)
-            && (self.selection.experiments.is_empty()
-                || self.selection.experiments.contains(&e.id))
+            && (self.selection.experiments.is_empty() || self.selection.experiments.contains(&e.id))
     }
 
     /// How many of variant `v`'s runs the selection keeps, none made (`--exact-only`: the

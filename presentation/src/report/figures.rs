@@ -31,7 +31,7 @@ pub fn list(dir: &Path) -> Result<Vec<String>, IoError> {
 }
 
 /// The figures of one experiment as Markdown: the overview shown inline, a large sweep's
-/// figure and its table of extremes and failures ([`sweep_section`]), then every run's figure
+/// figure and its table of extremes and failures (`sweep_section`), then every run's figure
 /// linked (by its variant and solver ids, in file-name order), as a paragraph; only the
 /// figures present in `figures` (the names in `report/figures/`); nothing when there are none.
 pub fn links(figures: &[String], runs: &Runs, experiment: &str) -> String {
