@@ -7,7 +7,7 @@
 //!   `i mod N + 1` (K is 1-based; [`Shard::of_index`]). The shards are strided, not
 //!   contiguous, so a sweep whose cost grows along an axis is spread evenly, and every shard
 //!   gets floor(T/N) or ceil(T/N) of the T runs ([`plan`]). A shard's runs are found by their
-//!   indices ([`Shard::indices`]) and only they are made: listing or running shard K of a
+//!   indices (reproduce's `select::Kept`) and only they are made: listing or running shard K of a
 //!   sweep does not make the other shards' runs. A run's shard therefore depends on the
 //!   selection and the experiment files (both bound below), not on the machine.
 //! - **K and N from a scheduler** ([`Shard::from_env`], `--shard auto`): a Slurm task id *is*
@@ -332,12 +332,6 @@ impl Shard {
     /// to among `n` (n >= 1): `index mod n + 1`.
     pub fn of_index(index: usize, n: usize) -> usize {
         index % n + 1
-    }
-
-    /// The indices (from 0) of this shard's runs among `total` selected runs, in order:
-    /// K - 1, K - 1 + N, K - 1 + 2N, ... (below `total`).
-    pub fn indices(&self, total: usize) -> std::iter::StepBy<std::ops::Range<usize>> {
-        (self.k - 1..total.max(self.k - 1)).step_by(self.n)
     }
 
     /// `results-shard-K-of-N`.
@@ -910,8 +904,8 @@ fn coverage_problems(shards: &[ShardDir], expected: &[String], n: usize) -> Vec<
 mod tests {
     use super::*;
 
-    /// Strided by index: run i is shard i mod N + 1's; a shard's indices are exactly the
-    /// runs it owns, each index in one shard, and the plan counts them.
+    /// Strided by index: run i is shard i mod N + 1's; each index in one shard, and the plan
+    /// counts each shard's indices, balanced to one.
     #[test]
     fn every_index_in_exactly_one_shard() {
         assert_eq!(Shard::of_index(0, 8), 1);
@@ -920,24 +914,17 @@ mod tests {
         assert_eq!(Shard::of_index(13, 3), 2);
         for total in [0, 1, 2, 7, 64, 101] {
             for n in 1..=9 {
-                let mut owner = vec![0; total];
-                for k in 1..=n {
-                    let shard = Shard::new(k, n).unwrap();
-                    let got: Vec<usize> = shard.indices(total).collect();
-                    assert_eq!(got.len(), plan(total, n)[k - 1], "{k}/{n} of {total}");
-                    for i in got {
-                        assert_eq!(Shard::of_index(i, n), k);
-                        owner[i] += 1;
-                    }
-                }
-                assert!(owner.iter().all(|&c| c == 1), "{n} shards of {total}");
                 let counts = plan(total, n);
+                for k in 1..=n {
+                    let owned = (0..total).filter(|&i| Shard::of_index(i, n) == k).count();
+                    assert_eq!(owned, counts[k - 1], "{k}/{n} of {total}");
+                }
                 assert_eq!(counts.iter().sum::<usize>(), total);
                 assert!(counts.iter().max().unwrap() - counts.iter().min().unwrap() <= 1);
             }
         }
-        // Beyond the runs there are none (a shard with K > total is empty).
-        assert_eq!(Shard::new(5, 8).unwrap().indices(3).count(), 0);
+        // More shards than runs: the last shards are empty.
+        assert_eq!(plan(3, 8), [1, 1, 1, 0, 0, 0, 0, 0]);
     }
 
     #[test]
