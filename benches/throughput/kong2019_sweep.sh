@@ -20,8 +20,13 @@
 # From the pass's runs.csv: runs, RHS evaluations, accepted steps, and the sums of sim_s and
 # wall_s. runs per CPU second = runs / user_s.
 #
+# Then one more pass of the new revision, on the sweep at PROFILE_SIDE (default 8: 64 runs),
+# sampled by `perf record` (call graphs) and sorted by classify.py: where a right-hand side's
+# time goes (kinematics, path, QP assembly, the network's KKT solve, integrator, observer),
+# written to benches/results/throughput-profile.csv.
+#
 # Usage (from the repository root):
-#   benches/throughput/kong2019_sweep.sh [--passes P] [--side SIDE] \
+#   benches/throughput/kong2019_sweep.sh [--passes P] [--side SIDE] [--profile-side S] \
 #       OLD_CHECKOUT OLD_BINARY NEW_CHECKOUT NEW_BINARY
 # A CHECKOUT is a checkout of the revision (its papers/ are the ones its binary reads), BINARY its
 # release build of reproduce (`cargo build --release -p reproduce`). Needs python3, GNU time
@@ -29,10 +34,12 @@
 set -eu
 passes=3
 side=32
+profile_side=8
 while [ $# -gt 4 ]; do
     case "$1" in
         --passes) passes="$2"; shift 2 ;;
         --side) side="$2"; shift 2 ;;
+        --profile-side) profile_side="$2"; shift 2 ;;
         *) echo "unknown option $1" >&2; exit 2 ;;
     esac
 done
@@ -43,8 +50,10 @@ repo=$(git -C "$(dirname "$0")" rev-parse --show-toplevel)
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/driftbench-throughput.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 trap 'exit 130' INT TERM
-mkdir -p "$tmp/sweep"
-python3 - "$side" > "$tmp/sweep/kong2019.toml" <<'PY'
+# The sweep at SIDE x SIDE runs, written into the directory $2.
+sweep() {
+mkdir -p "$2"
+python3 - "$1" > "$2/kong2019.toml" <<'PY'
 import sys
 side = int(sys.argv[1])
 geo = lambda a, b: [float(f"{a * (b / a) ** (i / (side - 1)):.6g}") for i in range(side)] if side > 1 else [a]
@@ -68,6 +77,9 @@ exact = false
 integrator = {{ method = "tsit45", rtol = 1e-10, atol = 1e-12 }}
 sweep = {{ "scheme.mu" = {geo(0.25, 8.0)}, "solvers.0.gamma" = {geo(1.0, 1000.0)} }}''')
 PY
+}
+sweep "$side" "$tmp/sweep"
+sweep "$profile_side" "$tmp/profile-sweep"
 cpu=$(( $(nproc) - 1 ))
 counters=instructions:u,cycles:u
 echo "revision,commit,pass,runs,user_s,wall_s,instructions,cycles,rhs_evals,steps,sum_sim_s,sum_wall_s,load1" > "$tmp/throughput.csv"
@@ -101,7 +113,17 @@ PY
     done
     pass=$((pass + 1))
 done
+echo "profile: the new revision on $profile_side x $profile_side runs" >&2
+commit=$(git -C "$new_root" rev-parse --short=12 HEAD)
+(cd "$new_root" && /usr/bin/time -f "%U" -o "$tmp/profile.time" \
+    perf record -q -F 999 --call-graph dwarf,8192 -o "$tmp/profile.data" -- \
+    taskset -c "$cpu" "$new_bin" shard 1/1 --threads 1 --experiments-dir "$tmp/profile-sweep" \
+    --results-dir "$tmp/profile" >/dev/null 2>"$tmp/profile.err") || { echo "  failed: see $tmp/profile.err" >&2; exit 1; }
+perf script -i "$tmp/profile.data" -F comm,ip,sym 2>/dev/null > "$tmp/profile.stacks"
+rhs=$(python3 -c "import csv,sys; print(sum(int(r['rhs_evals']) for r in csv.DictReader(open(sys.argv[1]))))" "$tmp/profile/runs.csv")
+python3 "$repo/benches/throughput/classify.py" "$tmp/profile.stacks" "$(tail -1 "$tmp/profile.time")" "$rhs" "$commit" > "$tmp/profile.csv"
 mkdir -p "$repo/benches/results"
 mv "$tmp/throughput.csv" "$repo/benches/results/throughput.csv"
-echo "wrote benches/results/throughput.csv" >&2
+mv "$tmp/profile.csv" "$repo/benches/results/throughput-profile.csv"
+echo "wrote benches/results/throughput.csv and throughput-profile.csv" >&2
 python3 "$repo/benches/throughput/summary.py" "$repo/benches/results/throughput.csv"
