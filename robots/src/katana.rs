@@ -115,6 +115,30 @@ impl Katana6m180 {
         let h2 = -self.l2 * t.s2 + h3;
         (h, [h2, h3, h4])
     }
+
+    /// f(theta) of eq. (2) from its sines and cosines.
+    fn position_at(&self, t: &Trig) -> Vector3<f64> {
+        let (h, _) = self.reach(t);
+        let z = self.l1 - self.wrist() * t.c234 + self.l2 * t.s2 + self.l3 * t.s23;
+        Vector3::new(t.c1 * h, t.s1 * h, z)
+    }
+
+    /// J(theta) (module docs) from the sines and cosines, into the 3 x 5 column-major `jac`.
+    fn jacobian_at(&self, t: &Trig, jac: &mut [f64]) {
+        let (h, dh) = self.reach(t);
+        let z4 = self.wrist() * t.s234;
+        let z3 = self.l3 * t.c23 + z4;
+        let dz = [h, z3, z4];
+        let mut jac = MatrixViewMut::<f64, U3, U5>::from_slice(jac);
+        jac.fill(0.0);
+        jac[(0, 0)] = -t.s1 * h;
+        jac[(1, 0)] = t.c1 * h;
+        for k in 0..3 {
+            jac[(0, k + 1)] = t.c1 * dh[k];
+            jac[(1, k + 1)] = t.s1 * dh[k];
+            jac[(2, k + 1)] = dz[k];
+        }
+    }
 }
 
 impl Default for Katana6m180 {
@@ -133,29 +157,19 @@ impl Robot for Katana6m180 {
     }
 
     fn position(&self, theta: &[f64]) -> Vector3<f64> {
-        let t = Trig::new(theta);
-        let (h, _) = self.reach(&t);
-        let z = self.l1 - self.wrist() * t.c234 + self.l2 * t.s2 + self.l3 * t.s23;
-        Vector3::new(t.c1 * h, t.s1 * h, z)
+        self.position_at(&Trig::new(theta))
     }
 
     fn jacobian(&self, theta: &[f64], jac: &mut [f64]) {
-        let t = Trig::new(theta);
-        let (h, dh) = self.reach(&t);
-        let z4 = self.wrist() * t.s234;
-        let z3 = self.l3 * t.c23 + z4;
-        let dz = [h, z3, z4];
-        let mut jac = MatrixViewMut::<f64, U3, U5>::from_slice(jac);
-        jac.fill(0.0);
-        jac[(0, 0)] = -t.s1 * h;
-        jac[(1, 0)] = t.c1 * h;
-        for k in 0..3 {
-            jac[(0, k + 1)] = t.c1 * dh[k];
-            jac[(1, k + 1)] = t.s1 * dh[k];
-            jac[(2, k + 1)] = dz[k];
-        }
+        self.jacobian_at(&Trig::new(theta), jac);
     }
 
+    /// One set of sines and cosines for both.
+    fn position_jacobian(&self, theta: &[f64], jac: &mut [f64]) -> Vector3<f64> {
+        let t = Trig::new(theta);
+        self.jacobian_at(&t, jac);
+        self.position_at(&t)
+    }
     fn jacobian_dot(&self, theta: &[f64], thetadot: &[f64], jdot: &mut [f64]) {
         let t = Trig::new(theta);
         let l = self.wrist();

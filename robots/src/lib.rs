@@ -123,6 +123,14 @@ pub trait Robot: Send + Sync {
     fn jacobian(&self, theta: &[f64], jac: &mut [f64]);
     /// Writes the time derivative dJ/dt along thetadot (3 x n, column-major) into `jdot`.
     fn jacobian_dot(&self, theta: &[f64], thetadot: &[f64], jdot: &mut [f64]);
+    /// f(theta), with J(theta) written into `jac`: the same numbers, bit for bit, as
+    /// [`Robot::position`] and [`Robot::jacobian`] (the default calls both). A model overrides
+    /// it to share the work the two have in common (the Katana's sines and cosines): the
+    /// schemes' tracking term asks for both at every evaluation.
+    fn position_jacobian(&self, theta: &[f64], jac: &mut [f64]) -> Vector3<f64> {
+        self.jacobian(theta, jac);
+        self.position(theta)
+    }
     /// Joint limits the papers' schemes use.
     fn limits(&self) -> &JointLimits;
     /// Points of the arm from the base to the task point, for drawing (allocates; not for the

@@ -49,6 +49,10 @@ impl Robot for Limited {
         self.robot.jacobian_dot(theta, thetadot, jdot)
     }
 
+    fn position_jacobian(&self, theta: &[f64], jac: &mut [f64]) -> Vector3<f64> {
+        self.robot.position_jacobian(theta, jac)
+    }
+
     fn limits(&self) -> &JointLimits {
         &self.limits
     }

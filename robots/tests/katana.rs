@@ -116,3 +116,19 @@ fn limits_are_unenforced() {
         .chain(lim.thetadot_max.iter())
         .all(|&x| x == f64::INFINITY));
 }
+
+/// The shared evaluation gives the numbers of the two separate ones, bit for bit (the tracking
+/// term relies on it: results stay the same whichever it calls).
+#[test]
+fn position_jacobian_is_position_and_jacobian_bit_for_bit() {
+    let robot = Katana6m180::new();
+    for k in 0..20 {
+        let theta: Vec<f64> = (0..5).map(|i| 0.37 * (k * 5 + i) as f64 - 3.0).collect();
+        let (mut shared, mut alone) = ([0.0; 15], [0.0; 15]);
+        let f = robot.position_jacobian(&theta, &mut shared);
+        robot.jacobian(&theta, &mut alone);
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(f.as_slice()), bits(robot.position(&theta).as_slice()));
+        assert_eq!(bits(&shared), bits(&alone));
+    }
+}

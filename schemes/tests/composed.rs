@@ -144,3 +144,31 @@ fn composed_file_errors_name_the_term_the_field_and_the_choices() {
         "{e}"
     );
 }
+
+/// The tracking term reuses J and the path point from the last QP build for the derivative
+/// only at the same (t, theta): a derivative at another instant or state, after a build, is
+/// that of a scheme that never built anything (bit for bit).
+#[test]
+fn the_derivative_after_a_build_elsewhere_is_a_fresh_one() {
+    let thd = vec![0.3, -0.2, 0.25, 0.1, -0.15, 0.05];
+    let zeros = vec![0.0; N];
+    let th: Vec<f64> = theta0().iter().map(|v| v + 0.07).collect();
+    for spec in paper_specs() {
+        let (used, fresh) = (build(&spec), build(&spec));
+        if used.level() != Level::Velocity {
+            continue;
+        }
+        let mut qp = used.new_qp();
+        let (mut dot_used, mut dot_fresh) = (used.new_qp(), fresh.new_qp());
+        let (mut s1, mut s2) = (used.new_dot_scratch(), fresh.new_dot_scratch());
+        // A build at (t, theta0), then derivatives at (t, th), (t + 0.1, theta0), and at the
+        // build's own instant: each the same as the fresh scheme's.
+        for (t, theta) in [(1.0, &th), (1.1, &theta0()), (1.0, &theta0())] {
+            used.build(1.0, &theta0(), &thd, &mut qp);
+            used.build_dot(t, theta, &thd, &zeros, &mut dot_used, &mut s1);
+            fresh.build_dot(t, theta, &thd, &zeros, &mut dot_fresh, &mut s2);
+            assert_eq!(dot_used.a, dot_fresh.a, "{spec:?} at t = {t}");
+            assert_eq!(dot_used.b, dot_fresh.b, "{spec:?} at t = {t}");
+        }
+    }
+}

@@ -18,7 +18,10 @@
 //! - [`profile_active_set`]: where the hot-started active-set solve spends its time
 //!   (`profile-active-set.csv`, by `benches/profile/active_set.sh`);
 //! - [`speedup`]: every run timed alone under an earlier revision and this one
-//!   (`speedup.csv`, by `benches/speedup/papers.sh`).
+//!   (`speedup.csv`, by `benches/speedup/papers.sh`);
+//! - [`throughput`]: one thread's runs per CPU second on a kong2019 ZNN sweep at two revisions,
+//!   and where a right-hand side's time goes (`throughput.csv`, `throughput-profile.csv`, by
+//!   `benches/throughput/kong2019_sweep.sh`).
 //!
 //! [`judged`] decides what they say against their targets; [`page`] formats it into
 //! `benches/REPORT.md` (`cargo run --release -p driftbench-benches --bin telemetry`).
@@ -30,3 +33,4 @@ pub mod page;
 pub mod profile;
 pub mod profile_active_set;
 pub mod speedup;
+pub mod throughput;

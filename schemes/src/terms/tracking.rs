@@ -21,7 +21,7 @@ use qp::Qp;
 use robots::Robot;
 
 use super::{DotOut, Slot, State, Term};
-use crate::paths::Path;
+use crate::paths::{Path, PathPoint};
 
 /// The feedback of the tracking equality, by level (module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -50,8 +50,47 @@ pub struct Tracking {
     /// The selected axes (indices into x, y, z), one equality row each.
     axes: Vec<usize>,
     feedback: Feedback,
-    /// J and Jdot (3 x n column-major each), allocated with the term.
-    scratch: Mutex<(Vec<f64>, Vec<f64>)>,
+    /// J, Jdot and the instant they were evaluated at, allocated with the term.
+    scratch: Mutex<Scratch>,
+}
+
+/// The term's buffers: J and Jdot (3 x n column-major each) and, from the last
+/// [`Term::write`], the instant (t, theta) with its J and path point r*(t), rdot*(t),
+/// rddot*(t). A network's right-hand side asks for the QP and then for its time derivative at
+/// the same instant; [`Term::write_dot`] reuses J and the path point when (t, theta) are the
+/// same bit for bit, so each is evaluated once per right-hand side, and the numbers are those
+/// a fresh evaluation gives.
+struct Scratch {
+    jac: Vec<f64>,
+    jdot: Vec<f64>,
+    /// Whether `jac` and `point` hold the values at (`t`, `theta`).
+    valid: bool,
+    t: f64,
+    theta: Vec<f64>,
+    point: PathPoint,
+}
+
+impl Scratch {
+    /// Whether the cached J and path point are those of (t, theta), compared bit for bit
+    /// (so that -0.0 and 0.0, or two NaNs, are never taken for each other).
+    fn holds(&self, t: f64, theta: &[f64]) -> bool {
+        self.valid
+            && self.t.to_bits() == t.to_bits()
+            && self.theta.len() == theta.len()
+            && self
+                .theta
+                .iter()
+                .zip(theta)
+                .all(|(a, b)| a.to_bits() == b.to_bits())
+    }
+
+    /// Records that `jac` and `point` are the values at (t, theta).
+    fn remember(&mut self, t: f64, theta: &[f64], point: PathPoint) {
+        self.t = t;
+        self.theta.copy_from_slice(theta);
+        self.point = point;
+        self.valid = true;
+    }
 }
 
 /// y = a x for a 3 x n column-major `a`, summed column by column in joint order.
@@ -80,7 +119,18 @@ impl Tracking {
             path,
             axes,
             feedback,
-            scratch: Mutex::new((vec![0.0; 3 * n], vec![0.0; 3 * n])),
+            scratch: Mutex::new(Scratch {
+                jac: vec![0.0; 3 * n],
+                jdot: vec![0.0; 3 * n],
+                valid: false,
+                t: f64::NAN,
+                theta: vec![0.0; n],
+                point: PathPoint {
+                    r: Vector3::zeros(),
+                    rdot: Vector3::zeros(),
+                    rddot: Vector3::zeros(),
+                },
+            }),
         }
     }
 
@@ -122,11 +172,11 @@ impl Term for Tracking {
             .scratch
             .lock()
             .unwrap_or_else(|poisoned| poisoned.into_inner());
-        let (jac, jdot) = &mut *scratch;
-        self.robot.jacobian(state.theta, jac);
+        let scratch = &mut *scratch;
+        let f = self.robot.position_jacobian(state.theta, &mut scratch.jac);
+        let (jac, jdot) = (&scratch.jac, &mut scratch.jdot);
         self.write_rows(jac, slot.equality, &mut qp.a);
         let pp = self.path.at(state.t);
-        let f = self.robot.position(state.theta);
         let b = match self.feedback {
             Feedback::Velocity { k_p } => pp.rdot + (pp.r - f) * k_p,
             Feedback::Acceleration { rho_v, rho_p } => {
@@ -140,6 +190,7 @@ impl Term for Tracking {
         for (k, &axis) in self.axes.iter().enumerate() {
             qp.b[slot.equality + k] = b[axis];
         }
+        scratch.remember(state.t, state.theta, pp);
     }
 
     fn has_dot(&self) -> bool {
@@ -154,12 +205,17 @@ impl Term for Tracking {
             .scratch
             .lock()
             .unwrap_or_else(|poisoned| poisoned.into_inner());
-        let (jac, jdot) = &mut *scratch;
-        self.robot.jacobian_dot(state.theta, state.thetadot, jdot);
-        self.write_rows(jdot, slot.equality, &mut out.qp.a);
-        self.robot.jacobian(state.theta, jac);
-        let jthd = times(jac, state.thetadot);
-        let pp = self.path.at(state.t);
+        let scratch = &mut *scratch;
+        if !scratch.holds(state.t, state.theta) {
+            self.robot.jacobian(state.theta, &mut scratch.jac);
+            let point = self.path.at(state.t);
+            scratch.remember(state.t, state.theta, point);
+        }
+        self.robot
+            .jacobian_dot(state.theta, state.thetadot, &mut scratch.jdot);
+        self.write_rows(&scratch.jdot, slot.equality, &mut out.qp.a);
+        let jthd = times(&scratch.jac, state.thetadot);
+        let pp = scratch.point;
         let bdot = pp.rddot + (pp.rdot - jthd) * k_p;
         for (k, &axis) in self.axes.iter().enumerate() {
             out.qp.b[slot.equality + k] = bdot[axis];

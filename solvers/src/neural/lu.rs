@@ -10,18 +10,23 @@ const SINGULAR_PIVOT: f64 = 1e-300;
 /// Factor the square matrix `a` in place: on return its strict lower triangle holds L (unit
 /// diagonal implied) and its upper triangle U, with P a = L U where P swaps row k with
 /// `piv[k]` for k = 0, 1, ... in order. Returns false when a pivot is exactly zero (or not finite).
+///
+/// Works on the column-major storage directly (entry (i, j) at `i + j n`), column against
+/// column, with the operations of the textbook loop in the same order (the factors are the
+/// same bit for bit).
 pub fn factor(a: &mut DMatrix<f64>, piv: &mut [usize]) -> bool {
     let n = a.nrows();
     debug_assert_eq!(a.ncols(), n);
-    debug_assert!(piv.len() >= n);
+    let piv = &mut piv[..n];
+    let s = a.as_mut_slice();
     let mut ok = true;
     for k in 0..n {
+        let column = &s[k * n..(k + 1) * n];
         let mut p = k;
-        let mut best = a[(k, k)].abs();
-        for i in (k + 1)..n {
-            let v = a[(i, k)].abs();
-            if v > best {
-                best = v;
+        let mut best = column[k].abs();
+        for (i, v) in column.iter().enumerate().skip(k + 1) {
+            if v.abs() > best {
+                best = v.abs();
                 p = i;
             }
         }
@@ -31,17 +36,22 @@ pub fn factor(a: &mut DMatrix<f64>, piv: &mut [usize]) -> bool {
             continue;
         }
         if p != k {
-            a.swap_rows(k, p);
+            for col in s.chunks_exact_mut(n) {
+                col.swap(k, p);
+            }
         }
-        let pivot = a[(k, k)];
-        for i in (k + 1)..n {
-            a[(i, k)] /= pivot;
+        let (left, right) = s.split_at_mut((k + 1) * n);
+        let column = &mut left[k * n..];
+        let pivot = column[k];
+        for v in &mut column[k + 1..] {
+            *v /= pivot;
         }
-        for j in (k + 1)..n {
-            let akj = a[(k, j)];
+        let l = &column[k + 1..];
+        for col in right.chunks_exact_mut(n) {
+            let akj = col[k];
             if akj != 0.0 {
-                for i in (k + 1)..n {
-                    a[(i, j)] -= a[(i, k)] * akj;
+                for (v, lik) in col[k + 1..].iter_mut().zip(l) {
+                    *v -= lik * akj;
                 }
             }
         }
@@ -52,8 +62,9 @@ pub fn factor(a: &mut DMatrix<f64>, piv: &mut [usize]) -> bool {
 /// Solve A x = b in place (`b` becomes x) with the factors from [`factor`].
 pub fn solve(lu: &DMatrix<f64>, piv: &[usize], b: &mut [f64]) {
     let n = lu.nrows();
-    for k in 0..n {
-        let p = piv[k];
+    let m = lu.as_slice();
+    let b = &mut b[..n];
+    for (k, &p) in piv[..n].iter().enumerate() {
         if p != k {
             b.swap(k, p);
         }
@@ -61,16 +72,16 @@ pub fn solve(lu: &DMatrix<f64>, piv: &[usize], b: &mut [f64]) {
     for i in 0..n {
         let mut s = b[i];
         for j in 0..i {
-            s -= lu[(i, j)] * b[j];
+            s -= m[i + j * n] * b[j];
         }
         b[i] = s;
     }
     for i in (0..n).rev() {
         let mut s = b[i];
         for j in (i + 1)..n {
-            s -= lu[(i, j)] * b[j];
+            s -= m[i + j * n] * b[j];
         }
-        b[i] = s / lu[(i, i)];
+        b[i] = s / m[i + i * n];
     }
 }
 

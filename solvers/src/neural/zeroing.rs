@@ -193,20 +193,22 @@ impl ZeroingNetwork {
             self.dims,
             "QP sizes differ from the sizes the network was built for"
         );
-        let q = &mut self.lu;
-        for i in 0..nx {
-            for j in 0..nx {
-                q[(i, j)] = qp.p[(i, j)];
-            }
+        // Column-major storage: Q's column j is `q[j n..(j + 1) n]`, A's column j is
+        // `a[j n_eq..(j + 1) n_eq]`.
+        let n = nx + n_eq;
+        let q = self.lu.as_mut_slice();
+        let (p, a) = (qp.p.as_slice(), qp.a.as_slice());
+        for j in 0..nx {
+            let column = &mut q[j * n..(j + 1) * n];
+            column[..nx].copy_from_slice(&p[j * nx..(j + 1) * nx]);
+            column[nx..].copy_from_slice(&a[j * n_eq..(j + 1) * n_eq]);
         }
         for k in 0..n_eq {
-            for j in 0..nx {
-                q[(j, nx + k)] = qp.a[(k, j)];
-                q[(nx + k, j)] = qp.a[(k, j)];
+            let column = &mut q[(nx + k) * n..(nx + k + 1) * n];
+            for (j, v) in column[..nx].iter_mut().enumerate() {
+                *v = a[k + j * n_eq];
             }
-            for l in 0..n_eq {
-                q[(nx + k, nx + l)] = 0.0;
-            }
+            column[nx..].fill(0.0);
         }
     }
 
@@ -214,10 +216,11 @@ impl ZeroingNetwork {
     fn compute_error(&mut self, qp: &Qp, y: &[f64]) {
         let QpDims { nx, .. } = self.dims;
         let n = y.len();
+        let q = self.lu.as_slice();
         for i in 0..n {
             let mut s = 0.0;
-            for j in 0..n {
-                s += self.lu[(i, j)] * y[j];
+            for (j, yj) in y.iter().enumerate() {
+                s += q[i + j * n] * yj;
             }
             let u = if i < nx { -qp.q[i] } else { qp.b[i - nx] };
             self.e[i] = s - u;
@@ -236,18 +239,21 @@ impl ZeroingNetwork {
     #[inline]
     fn qdot_y(&self, d: &Qp, y: &[f64], i: usize) -> f64 {
         let QpDims { nx, n_eq, .. } = self.dims;
+        // Column-major: P[i, j] at `i + j nx`, A[k, j] at `k + j n_eq`.
+        let (p, a) = (d.p.as_slice(), d.a.as_slice());
         let mut s = 0.0;
         if i < nx {
-            for j in 0..nx {
-                s += d.p[(i, j)] * y[j];
+            for (j, yj) in y[..nx].iter().enumerate() {
+                s += p[i + j * nx] * yj;
             }
-            for k in 0..n_eq {
-                s += d.a[(k, i)] * y[nx + k];
+            // A[k, i] for k = 0..n_eq is A's column i.
+            for (aki, yk) in a[i * n_eq..(i + 1) * n_eq].iter().zip(&y[nx..nx + n_eq]) {
+                s += aki * yk;
             }
         } else {
             let k = i - nx;
-            for j in 0..nx {
-                s += d.a[(k, j)] * y[j];
+            for (j, yj) in y[..nx].iter().enumerate() {
+                s += a[k + j * n_eq] * yj;
             }
         }
         s

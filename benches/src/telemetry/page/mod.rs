@@ -10,12 +10,14 @@
 pub mod clock;
 pub mod profile;
 pub mod speedup;
+pub mod throughput;
 
 use super::build_profile::BuildUnitRow;
 use super::clock::ClockRow;
 use super::profile::ProfileRow;
 use super::profile_active_set::HotSolveRow;
 use super::speedup::SpeedupRow;
+use super::throughput::{ThroughputProfileRow, ThroughputRow};
 use analysis::papers::Papers;
 use analysis::performance::{dof, instant};
 use records::dof_cost::DofCostRow;
@@ -63,6 +65,10 @@ pub struct Inputs {
     pub hot: Vec<HotSolveRow>,
     /// `benches/results/speedup.csv`.
     pub speedup: Vec<SpeedupRow>,
+    /// `benches/results/throughput.csv`.
+    pub throughput: Vec<ThroughputRow>,
+    /// `benches/results/throughput-profile.csv`.
+    pub throughput_profile: Vec<ThroughputProfileRow>,
     /// The reproduction's `results/ladder.csv` (the explain phase's rungs).
     pub ladder: Vec<LadderRow>,
     /// The reproduction's `results/dof-cost.csv` (the hot solve against the network RHS).
@@ -83,6 +89,8 @@ impl Inputs {
             profile: read_if_present(&benches.join(super::profile::FILE))?,
             hot: read_if_present(&benches.join(super::profile_active_set::FILE))?,
             speedup: read_if_present(&benches.join(super::speedup::FILE))?,
+            throughput: read_if_present(&benches.join(super::throughput::FILE))?,
+            throughput_profile: read_if_present(&benches.join(super::throughput::PROFILE_FILE))?,
             ladder: read_if_present(&results.join(records::results_dir::LADDER))?,
             dof: records::dof_cost::read(&results)?,
             papers: Papers::load(&root.join("papers"))?,
@@ -104,6 +112,7 @@ pub fn render(i: &Inputs) -> String {
     );
     out.push_str(&hot_solve(&i.dof, &i.hot));
     out.push_str(&speedup::section(&i.speedup, &i.profile, &i.papers));
+    out.push_str(&throughput::section(&i.throughput, &i.throughput_profile));
     out.push_str(&profile::where_time_goes(&i.profile, &i.papers));
     out.push_str(&clock::section(&clock::Clock {
         phases: &i.phases,
@@ -174,6 +183,17 @@ mod tests {
         let hot_csv = "category,share,bench,seconds,frequency_hz,git_rev\n\
                        KKT solves,0.75,demo/hot,8,4999,abc\n\
                        certification (KKT residuals),0.25,demo/hot,8,4999,abc\n";
+        // Two passes a revision: 10 and 12 s old, 5 and 7 s new, 100 runs and 1e6 RHS each.
+        let throughput_csv = "revision,commit,pass,runs,user_s,wall_s,instructions,cycles,\
+                              rhs_evals,steps,sum_sim_s,sum_wall_s,load1\n\
+                              old,aaa,1,100,10,20,,,1000000,100000,8,9,1.0\n\
+                              new,bbb,1,100,5,10,,,1000000,100000,4,4.5,1.0\n\
+                              old,aaa,2,100,12,20,,,1000000,100000,8,9,1.0\n\
+                              new,bbb,2,100,7,10,,,1000000,100000,4,4.5,1.0\n";
+        let throughput_profile_csv = "part,category,samples,share,cpu_us_per_rhs,user_s,\
+                                      rhs_evals,git_rev\n\
+                                      rhs,network LU,30,0.3,1.5,5,1000000,bbb\n\
+                                      observer,observer,70,0.7,3.5,5,1000000,bbb\n";
         Inputs {
             phases: Vec::new(),
             clock: Vec::new(),
@@ -181,6 +201,8 @@ mod tests {
             profile: read(profile_csv),
             hot: read(hot_csv),
             speedup: read(speedup_csv),
+            throughput: read(throughput_csv),
+            throughput_profile: read(throughput_profile_csv),
             ladder: Vec::new(),
             dof: dof(),
             papers: Papers::default(),
@@ -234,6 +256,19 @@ mod tests {
             "{md}"
         );
         assert!(md.contains("`benches/results/clock.csv` is absent"), "{md}");
+        // Runs per CPU second: old 10 and 8.33 (median 9.17), new 20 and 14.3 (median 17.1):
+        // 1.87x, short of 2x.
+        assert!(
+            md.contains("| `aaa` | 2 | 1.10e1 | 9.17e0 | 1.10e1 | 1.00e4 | not measured |")
+                && md.contains("| `bbb` | 2 | 6.00e0 | 1.71e1 | 6.00e0 | 1.00e4 | not measured |")
+                && md.contains("`bbb` runs 1.87 times as many runs per CPU second as `aaa`: the target of at least 2x is not met."),
+            "{md}"
+        );
+        assert!(
+            md.contains("is the floor, 1.50e0 us of CPU per evaluation; the run spends 5.00e0 us")
+                && md.contains("| observer | observer | 70.0 % | 3.50e0 |"),
+            "{md}"
+        );
     }
 
     #[test]
@@ -242,6 +277,7 @@ mod tests {
             profile: Vec::new(),
             hot: Vec::new(),
             speedup: Vec::new(),
+            throughput: Vec::new(),
             dof: Vec::new(),
             ..inputs()
         });
@@ -250,6 +286,7 @@ mod tests {
             "`benches/results/profile.csv` is absent",
             "`results/dof-cost.csv` has no 7-variable QP",
             "`benches/results/build-profile.csv` is absent",
+            "`benches/results/throughput.csv` is absent",
         ] {
             assert!(md.contains(absent), "{absent}: {md}");
         }
