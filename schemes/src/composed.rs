@@ -14,23 +14,13 @@
 //! norm and a bound conversion (the paper prints h's last block x-; the rows encode x >= x- only
 //! with -x-, which is used), so that VP-RNN-PF's penalty zhong2021 (2.19) sees every bound.
 
-use serde::{Deserialize, Serialize};
+use spec::terms::BoundPlacement;
 
-use crate::scheme::{central_difference, default_step, Level, Scheme};
+use crate::scheme::{central_difference, default_step, Scheme};
 use crate::terms::{DotOut, Footprint, Slot, State, Term};
 use qp::dot::QpDotScratch;
 use qp::{Qp, QpDims};
-
-/// Where a scheme's bounds are written (module docs).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum BoundPlacement {
-    /// As the QP's variable bounds l <= x <= u (jia2019 (2.20), robio2018 (13)).
-    #[default]
-    Variables,
-    /// As rows [I; -I] x <= [u; -l] of G, after the terms' rows (zhong2021 (2.18)).
-    Rows,
-}
+use spec::scheme::Level;
 
 /// A scheme composed of terms (module docs).
 pub struct Composed {
