@@ -1,7 +1,7 @@
 //! The one scheme: a level and a list of terms ([`crate::terms`]), x = [command; extra
 //! variables], the command x[..n] being thetadot (velocity level) or thetaddot (acceleration
 //! level). At every instant the QP is zeroed (bounds -inf, +inf), then each term writes its
-//! block in list order; the papers' schemes are presets, term lists ([`crate::spec`]).
+//! block in list order; the papers' schemes are presets, term lists ([`spec::scheme`], built by [`crate::build`]).
 //!
 //! Where the bounds go ([`BoundPlacement`]): as the QP's variable bounds l <= x <= u, or as
 //! rows of G appended after every term's rows,

@@ -198,7 +198,8 @@ pub enum SchemeSpec {
     Composed(ComposedSpec),
 }
 
-/// The form of the repetitive term ([`crate::terms::repetitive`]).
+/// The form of the repetitive term ([`crate::terms::TermSpec::Repetitive`]; the engine's term
+/// is `schemes::terms::repetitive`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum RepetitiveForm {
