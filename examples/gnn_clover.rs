@@ -25,13 +25,16 @@ use catalog::experiment::{default_exact_integrator, NetworkInit};
 use nalgebra::{DMatrix, DVector};
 use qp::{Qp, QpDims};
 use robots::{Jaco2, Robot};
-use schemes::paths::{build_path, PathSpec};
-use schemes::spec::{build_scheme, RmpReading, SchemeSpec};
+use schemes::build::build_scheme;
+use schemes::paths::build_path;
 use settings::integrator::IntegratorSettings;
 use settings::solver_spec::SolverSpec;
 use simulation::run::build_network;
 use simulation::simulate::{simulate, Outcome, Settings, Solver};
 use solvers::neural::NeuralSolver;
+use spec::path::PathSpec;
+use spec::rmp::RmpReading;
+use spec::scheme::SchemeSpec;
 use std::sync::Arc;
 
 /// The gradient neural network (module docs). Scratch buffers live in the struct, so `rhs`

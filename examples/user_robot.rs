@@ -23,12 +23,14 @@ use catalog::experiment::Scoring;
 use catalog::experiment::{default_exact_integrator, NetworkInit};
 use nalgebra::{DVector, Vector3};
 use robots::{JointLimits, Robot};
-use schemes::paths::{build_path, PathSpec};
-use schemes::spec::{build_scheme, SchemeSpec};
+use schemes::build::build_scheme;
+use schemes::paths::build_path;
 use settings::integrator::IntegratorSettings;
 use settings::solver_spec::SolverSpec;
 use simulation::run::build_network;
 use simulation::simulate::{simulate, Outcome, Settings, Solver};
+use spec::path::PathSpec;
+use spec::scheme::SchemeSpec;
 use std::sync::Arc;
 
 /// The 4-joint arm of the module docs.

@@ -2,9 +2,9 @@
 //!
 //! - The experiment format: [`ExperimentFileError`] (the file) wraps [`ExperimentError`] (the
 //!   text), which wraps [`TomlError`], [`SweepError`] (the sweep grammar) and [`FieldError`] at
-//!   a [`FieldAt`] (which wraps [`SetupError`], the schemes' `SchemeError` and the naming
+//!   a [`FieldAt`] (which wraps [`SetupError`], the scheme specifications' `SchemeError` and the naming
 //!   rules' `NameError`).
-//! - Building a run's parts: [`SetupError`], wrapping the schemes' `PathError` and
+//! - Building a run's parts: [`SetupError`], wrapping the path and scheme specifications' `PathError` and
 //!   `SchemeError` and a network's `NetworkError`. The engine (crate `simulation`) returns it
 //!   when a run cannot be built, and the experiment format places it at the field at fault when
 //!   a file is checked ([`crate::experiment::CheckJob`]).
@@ -15,9 +15,9 @@
 
 use crate::fields::JobPart;
 use crate::naming::NameError;
-use schemes::paths::PathError;
-use schemes::spec::SchemeError;
 use settings::error::{IntegratorError, NetworkError};
+use spec::path::PathError;
+use spec::scheme::SchemeError;
 use std::path::PathBuf;
 
 /// Why a run's parts could not be built from its specification (robot, pose, path, scheme,
@@ -511,7 +511,7 @@ pub enum FieldError {
         /// Its joint count.
         joints: usize,
     },
-    /// A scheme parameter is out of its range ([`schemes::spec::SchemeSpec::validate`]).
+    /// A scheme parameter is out of its range ([`spec::scheme::SchemeSpec::validate`]).
     #[error(transparent)]
     Scheme(#[from] SchemeError),
     /// The variant runs nothing: no exact run, no solvers and no numerical methods.

@@ -19,11 +19,11 @@ use crate::numerical_spec::NumericalSpec;
 use crate::run_key::{RunKey, TaskKey, EXACT_ID};
 use crate::solver_kind::SolverKind;
 use robots::mounted::{Mount, MountError};
-use schemes::paths::PathSpec;
-use schemes::spec::SchemeSpec;
 use serde::{Deserialize, Serialize};
 use settings::integrator::{IntegratorSettings, Method};
 use settings::solver_spec::SolverSpec;
+use spec::path::PathSpec;
+use spec::scheme::SchemeSpec;
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 

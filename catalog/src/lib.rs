@@ -1,7 +1,7 @@
 //! driftbench's catalog: what runs exist and what they are called, as data.
 //!
 //! An experiment file ([`experiment`]) describes runs ([`experiment::Job`]): a robot from the
-//! registry (`robots::registry`), a path and a scheme (crate `schemes`), a solver (the exact
+//! registry (`robots::registry`), a path and a scheme (crate `spec`), a solver (the exact
 //! optimum in the loop, a registered QP solver ([`numerical_spec`]) or a network as
 //! `settings::solver_spec` writes it; its kind is a [`solver_kind::SolverKind`]), an integrator
 //! (`settings::integrator`) and where the run is scored. A variant may stand for many through a

@@ -29,8 +29,9 @@ use qp::dot::QpDotScratch;
 use qp::Qp;
 use robots::Robot;
 use schemes::paths::Path;
-use schemes::scheme::{Level, Scheme};
+use schemes::scheme::Scheme;
 use solvers::ExactPath;
+use spec::scheme::Level;
 use std::time::Instant;
 
 /// The start transient left out of [`LoopOutcome::max_dx_settled`] (s).

@@ -133,8 +133,8 @@
 //!
 //! # The crates behind it
 //!
-//! [`robots`] (kinematic models and robot files), [`schemes`] (paths, the papers' schemes and
-//! their QPs), [`settings`] (the solvers' settings as data: network specifications, integrator
+//! [`robots`] (kinematic models and robot files), [`spec`] (schemes and paths as data),
+//! [`schemes`] (paths, the papers' schemes and their QPs), [`settings`] (the solvers' settings as data: network specifications, integrator
 //! settings), [`solvers`] (the exact QP solvers, the papers' networks, the integrators),
 //! [`catalog`] (experiment files, run ids), [`simulation`] (the engine:
 //! runs and scoring) and [`records`] (the results files). The command line (`reproduce`) and
@@ -147,6 +147,7 @@ pub use schemes;
 pub use settings;
 pub use simulation;
 pub use solvers;
+pub use spec;
 
 use catalog::experiment::{load_dir, Job, PaperFile};
 use std::path::{Path, PathBuf};

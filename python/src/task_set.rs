@@ -7,9 +7,9 @@ use crate::error::{NoSolver, TaskError};
 use crate::network::PyQpDims;
 use catalog::experiment::{load_dir, Job, SolverChoice};
 use pyo3::prelude::*;
-use schemes::scheme::Level;
 use serde::Serialize;
 use simulation::run::{check_job, qp_shape};
+use spec::scheme::Level;
 use std::path::Path;
 
 /// One task of the suite: a scheme on a path with a robot, as an experiment file's variant

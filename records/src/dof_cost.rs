@@ -37,7 +37,7 @@ pub const NALGEBRA: &str = "nalgebra";
 /// [`DofCostRow::backend`] of faer's dense LU (`solvers::Backend::Faer`'s id).
 pub const FAER: &str = "faer";
 
-/// The schemes measured, by their scheme kind (`schemes::spec`'s `kind` tag).
+/// The schemes measured, by their scheme kind (`spec::scheme`'s `kind` tag).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub enum SchemeKind {
     /// jia2019 VLTCO (phi = 0.2, tau = 0.4, kappa = 20, Lambda = 20) on a four-leaf clover:

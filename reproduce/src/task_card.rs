@@ -16,10 +16,10 @@ use catalog::experiment::{load_dir, Job, PaperFile, SolverChoice};
 use qp::Qp;
 use records::tracked_dir::{Removal, TrackedDir, TrackedError};
 use robots::registry::{robot_by_name, Kinematics, Model};
-use schemes::scheme::Level;
-use schemes::spec::SchemeSpec;
 use simulation::run::check_job;
 use simulation::task_numbers::{task_numbers, TaskNumbers};
+use spec::scheme::Level;
+use spec::scheme::SchemeSpec;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -256,7 +256,7 @@ fn path_section(job: &Job, n: &TaskNumbers) -> Result<String, TaskCardError> {
         inline(&job.path)?,
         job.path
             .scale
-            .or_else(|| schemes::paths::spec::default_scale(&job.path.name))
+            .or_else(|| spec::path::default_scale(&job.path.name))
             .map_or_else(|| "-".to_string(), |v| format!("{v} m")),
     );
     let _ = writeln!(

@@ -10,6 +10,10 @@
 //!   without the experiment files. (robots reads its own robot files, so TOML is allowed, and
 //!   reads URDFs through `inputs`, the one reader of files from outside, which holds no file
 //!   format of the suite's.)
+//! - the experiment-file and results crates (catalog, records) link no engine crate (schemes,
+//!   solvers, simulation): they state a scheme, a path or a solver as data (crates `spec` and
+//!   `settings`), which the engine builds from;
+//! - `spec` (runs as data) is a leaf: it links no workspace member;
 //! - no member links the benches (`driftbench-benches`, which holds the suite's measurements
 //!   of itself): the reproduction and its report are built without them.
 //! - no member but the benches links the counting allocator (`alloc-count`, which installs
@@ -27,6 +31,9 @@ const NUMERICAL: [&str; 4] = ["robots", "schemes", "settings", "solvers"];
 
 /// What the numerical crates may not link: the experiment-file and results crates.
 const FILE_FORMATS: [&str; 2] = ["catalog", "records"];
+
+/// The engine: the crates that build and run schemes and solvers.
+const ENGINE: [&str; 3] = ["schemes", "solvers", "simulation"];
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
@@ -164,6 +171,39 @@ fn the_numerical_crates_link_no_file_format() {
             found.join("\n  ")
         );
     }
+}
+
+#[test]
+fn the_file_formats_link_no_engine() {
+    let graph = workspace();
+    for package in FILE_FORMATS {
+        assert!(
+            graph.contains_key(package),
+            "{package} is a workspace member"
+        );
+        let found = offending(&graph, package, &ENGINE);
+        assert!(
+            found.is_empty(),
+            "{package} links an engine crate:\n  {}",
+            found.join("\n  ")
+        );
+    }
+}
+
+#[test]
+fn the_specifications_are_a_leaf() {
+    let graph = workspace();
+    let members: Vec<&str> = graph.keys().map(String::as_str).collect();
+    let found = offending(&graph, "spec", &members);
+    assert!(
+        found.is_empty(),
+        "spec links workspace members:\n  {}",
+        found.join("\n  ")
+    );
+    assert!(
+        graph["catalog"].iter().any(|d| d == "spec"),
+        "catalog reads experiment files into spec's types: the graph must show it"
+    );
 }
 
 #[test]

@@ -1,7 +1,7 @@
 //! The one scheme: a level and a list of terms ([`crate::terms`]), x = [command; extra
 //! variables], the command x[..n] being thetadot (velocity level) or thetaddot (acceleration
 //! level). At every instant the QP is zeroed (bounds -inf, +inf), then each term writes its
-//! block in list order; the papers' schemes are presets, term lists ([`crate::spec`]).
+//! block in list order; the papers' schemes are presets, term lists ([`spec::scheme`], built by [`crate::build`]).
 //!
 //! Where the bounds go ([`BoundPlacement`]): as the QP's variable bounds l <= x <= u, or as
 //! rows of G appended after every term's rows,
@@ -14,23 +14,13 @@
 //! norm and a bound conversion (the paper prints h's last block x-; the rows encode x >= x- only
 //! with -x-, which is used), so that VP-RNN-PF's penalty zhong2021 (2.19) sees every bound.
 
-use serde::{Deserialize, Serialize};
+use spec::terms::BoundPlacement;
 
-use crate::scheme::{central_difference, default_step, Level, Scheme};
+use crate::scheme::{central_difference, default_step, Scheme};
 use crate::terms::{DotOut, Footprint, Slot, State, Term};
 use qp::dot::QpDotScratch;
 use qp::{Qp, QpDims};
-
-/// Where a scheme's bounds are written (module docs).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum BoundPlacement {
-    /// As the QP's variable bounds l <= x <= u (jia2019 (2.20), robio2018 (13)).
-    #[default]
-    Variables,
-    /// As rows [I; -I] x <= [u; -l] of G, after the terms' rows (zhong2021 (2.18)).
-    Rows,
-}
+use spec::scheme::Level;
 
 /// A scheme composed of terms (module docs).
 pub struct Composed {

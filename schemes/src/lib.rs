@@ -3,15 +3,14 @@
 //! ([`terms`]: objective terms, equality rows, inequality rows, bounds) composed into the one
 //! scheme type ([`composed`]); the papers' schemes (jia2019's VLTCO family, zhong2021's CMCO,
 //! zhang2018's HL-JDF, kong2019's two, robio2018's RMP) are presets that expand to term lists
-//! ([`spec`]). Every scheme takes the joint count as a run-time value: joint vectors are slices,
+//! (their specifications are data, crate `spec`; [`build`] makes the scheme of one). Every scheme takes the joint count as a run-time value: joint vectors are slices,
 //! and a scheme allocates its scratch space when it is built, not per QP ([`scheme`]).
 
 #![deny(missing_docs)]
 
+pub mod build;
 pub mod composed;
 pub mod joint_limits;
 pub mod paths;
-pub mod rmp;
 pub mod scheme;
-pub mod spec;
 pub mod terms;

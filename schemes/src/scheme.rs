@@ -19,19 +19,9 @@
 //! ([`central_difference`] with the step [`default_step`]).
 
 use qp::{Qp, QpDims};
+use spec::scheme::Level;
 
 use qp::dot::{difference_quotient, QpDotScratch, FD_STEP};
-
-/// Whether the scheme resolves redundancy at the velocity or the acceleration level (in a
-/// file: `velocity`, `acceleration`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Level {
-    /// x[..n] = thetadot; the arm state is theta.
-    Velocity,
-    /// x[..n] = thetaddot; the arm state is (theta, thetadot).
-    Acceleration,
-}
 
 /// A redundancy-resolution scheme: QP(t, theta, thetadot).
 pub trait Scheme: Send + Sync {

@@ -9,8 +9,9 @@ use std::sync::Arc;
 use common::{paper_specs, Circle, PlanarZ};
 use qp::QpDims;
 use robots::Robot;
-use schemes::scheme::Level;
-use schemes::spec::{build_scheme, SchemeSpec};
+use schemes::build::build_scheme;
+use spec::scheme::Level;
+use spec::scheme::SchemeSpec;
 
 const N: usize = 6;
 

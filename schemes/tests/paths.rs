@@ -3,8 +3,10 @@
 
 use nalgebra::Vector3;
 use schemes::paths::{
-    build_path, default_duration, default_scale, scale_provenance, ClosedCurve, CurveShape,
-    GlobalPolyline, Path, PathError, PathPoint, PathSpec, StrokePath, DAI, PATH_NAMES, PING,
+    build_path, ClosedCurve, CurveShape, GlobalPolyline, Path, PathPoint, StrokePath, DAI, PING,
+};
+use spec::path::{
+    default_duration, default_scale, scale_provenance, PathError, PathSpec, PATH_NAMES,
 };
 use std::f64::consts::PI;
 

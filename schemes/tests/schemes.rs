@@ -12,10 +12,13 @@ use nalgebra::{DMatrix, SVector, Vector3};
 use qp::dot::{self, QpDotScratch};
 use qp::{Qp, QpDims};
 use robots::{Dynamics, JointLimits, Robot};
+use schemes::build::build_scheme;
 use schemes::joint_limits::{merged_bound, piecewise_bound};
 use schemes::paths::Path;
-use schemes::scheme::{central_difference, default_step, Level, Scheme};
-use schemes::spec::{build_scheme, hl_jdf_name, vltco_name, RmpReading, SchemeError, SchemeSpec};
+use schemes::scheme::{central_difference, default_step, Scheme};
+use spec::rmp::RmpReading;
+use spec::scheme::Level;
+use spec::scheme::{hl_jdf_name, vltco_name, SchemeError, SchemeSpec};
 
 const N: usize = 6;
 type V = SVector<f64, N>;

@@ -24,12 +24,12 @@
 
 use nalgebra::{DMatrix, DVector};
 use qp::dot::QpDotScratch;
-use schemes::scheme::Level;
 use schemes::scheme::Scheme;
 use solvers::exact_path::{ExactPath, ExactPathStats};
 use solvers::neural::NeuralSolver;
 use solvers::ode::OdeSystem;
 use solvers::{ExactError, Qp};
+use spec::scheme::Level;
 
 /// Number of arm-state entries of an n-joint arm: n at the velocity level, 2n at the
 /// acceleration level.

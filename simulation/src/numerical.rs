@@ -28,10 +28,11 @@ use catalog::experiment::Scoring;
 use catalog::numerical_spec::NumericalSpec;
 use nalgebra::DVector;
 use qp::QpStatus;
-use schemes::scheme::{Level, Scheme};
+use schemes::scheme::Scheme;
 use solvers::exact_path::ExactPathStats;
 use solvers::ode::OdeStats;
 use solvers::registry::BoxedQpSolver;
+use spec::scheme::Level;
 use std::time::Instant;
 
 /// The iteration budget of a numerical run per second of its path's duration (at least one

@@ -12,7 +12,8 @@ use nalgebra::{DVector, Matrix3xX};
 use records::trace::TracePoint;
 use robots::Robot;
 use schemes::paths::Path;
-use schemes::scheme::{Level, Scheme};
+use schemes::scheme::Scheme;
+use spec::scheme::Level;
 
 /// Samples kept per run for the figures (uniform in t, plus the last).
 const TRACE_POINTS: usize = 400;

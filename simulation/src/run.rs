@@ -11,9 +11,9 @@ use qp::QpDims;
 use robots::mounted::Mounted;
 use robots::registry::{robot_by_name, Model};
 use robots::{Dynamics, Robot};
+use schemes::build::build_scheme;
 use schemes::paths::{build_path, Cyclic, Path};
 use schemes::scheme::Scheme;
-use schemes::spec::build_scheme;
 use settings::solver_spec::SolverSpec;
 use solvers::exact_path::ExactPathStats;
 use solvers::neural::NeuralSolver;
@@ -178,9 +178,9 @@ pub fn job_model(job: &Job) -> Result<Model, SetupError> {
 }
 
 /// The shape of the QP the job's scheme poses at every instant: its sizes and whether its
-/// decision variable starts with thetadot or thetaddot ([`schemes::scheme::Level`]). Built as
+/// decision variable starts with thetadot or thetaddot ([`spec::scheme::Level`]). Built as
 /// [`check_job`] builds the scheme (robot, path from f(theta_ref), scheme), without running.
-pub fn qp_shape(job: &Job) -> Result<(QpDims, schemes::scheme::Level), SetupError> {
+pub fn qp_shape(job: &Job) -> Result<(QpDims, spec::scheme::Level), SetupError> {
     let model = job_model(job)?;
     let robot = job_robot(job, model.robot, model.dynamics.is_some())?;
     let (_, scheme) = build_parts(job, robot, model.dynamics)?;
@@ -281,7 +281,7 @@ pub fn build_cyclic_parts(
     )
     .map_err(|error| {
         let hint = match error {
-            schemes::spec::SchemeError::MissingDynamics { .. } => format!(
+            spec::scheme::SchemeError::MissingDynamics { .. } => format!(
                 " (robot \"{}\" is kinematic only; robots with dynamics: {})",
                 job.robot,
                 robots::registry::robots_with_dynamics().join(", ")

@@ -34,7 +34,7 @@ use catalog::experiment::Job;
 use inputs::trajectory::Trajectory;
 use nalgebra::DVector;
 use robots::registry::Model;
-use schemes::scheme::Level;
+use spec::scheme::Level;
 
 use solvers::ode::OdeStats;
 use std::time::Instant;

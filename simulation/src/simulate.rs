@@ -22,7 +22,8 @@ use nalgebra::DVector;
 use records::trace::TracePoint;
 use robots::Robot;
 use schemes::paths::Path;
-use schemes::scheme::{Level, Scheme};
+use schemes::scheme::Scheme;
+use spec::scheme::Level;
 
 use settings::integrator::IntegratorSettings;
 use solvers::exact_path::ExactPathStats;

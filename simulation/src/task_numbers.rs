@@ -10,7 +10,7 @@ use catalog::error::SetupError;
 use catalog::experiment::Job;
 use catalog::fields::JobPart;
 use qp::Qp;
-use schemes::scheme::Level;
+use spec::scheme::Level;
 
 /// Instants of the path samples, as fractions of the duration T.
 pub const PATH_FRACTIONS: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];

@@ -7,8 +7,10 @@
 use nalgebra::{DMatrix, SVector};
 use robots::katana::Katana6m180;
 use robots::Robot;
-use schemes::paths::{build_path, Path, PathSpec};
-use schemes::spec::{build_scheme, SchemeSpec};
+use schemes::build::build_scheme;
+use schemes::paths::{build_path, Path};
+use spec::path::PathSpec;
+use spec::scheme::SchemeSpec;
 
 use settings::integrator::IntegratorSettings;
 use settings::solver_spec::SolverSpec;

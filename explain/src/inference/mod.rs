@@ -53,11 +53,12 @@ use records::inference::{
     PHASE, PROFILE, ROTATION, SCALE, TABLE, TILT_X, TILT_Y,
 };
 use records::runs::RunRow;
-use schemes::spec::{RmpReading, SchemeSpec};
 use search::{Coordinate, Objective, Outcome, Point, Scores, Target};
 use settings::integrator::{IntegratorSettings, Method};
 use simulation::row::run_row;
 use simulation::run::run_job;
+use spec::rmp::RmpReading;
+use spec::scheme::SchemeSpec;
 use std::f64::consts::PI;
 use std::time::Instant;
 
@@ -145,7 +146,7 @@ impl Setup {
             let base = j
                 .path
                 .scale
-                .or_else(|| schemes::paths::default_scale(&j.path.name))
+                .or_else(|| spec::path::default_scale(&j.path.name))
                 .unwrap_or(1.0);
             j.path.scale = Some(base * self.scale_factor);
         }
@@ -262,7 +263,7 @@ impl TableProblem {
             scoring: Scoring::Off,
             ..network.clone()
         });
-        if schemes::paths::scale_provenance(&exact.path.name) == Some("paper") {
+        if spec::path::scale_provenance(&exact.path.name) == Some("paper") {
             self.fit_scale = false;
         }
         if matches!(exact.scheme, SchemeSpec::Vltco { tau, .. } if tau > 0.0)
@@ -483,7 +484,7 @@ impl<'a> TableObjective<'a> {
         let phase = problem
             .exact
             .iter()
-            .all(|j| schemes::paths::phase_supported(&j.path.name));
+            .all(|j| spec::path::phase_supported(&j.path.name));
         let mut coordinates = Vec::new();
         // Profile grids: every 45 degrees of rotation, every sixth of the cycle, seven sizes
         // (geometric) and seven tilts, 30 degrees apart.

@@ -1,9 +1,9 @@
 //! Why a case could not be prepared for timing.
 
-use schemes::paths::PathError;
-use schemes::spec::SchemeError;
 use settings::error::NetworkError;
 use simulation::error::RunError;
+use spec::path::PathError;
+use spec::scheme::SchemeError;
 
 #[derive(Debug, thiserror::Error)]
 pub enum CostError {

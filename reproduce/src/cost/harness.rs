@@ -26,13 +26,15 @@ pub use records::dof_cost::SWEEP_SIZES;
 use records::dof_cost::{Quantity, RunCounts, SchemeKind};
 use robots::registry::{nlink_name, robot_by_name};
 use robots::Robot;
+use schemes::build::build_scheme;
 use schemes::paths::{build_path, Path};
 use schemes::scheme::Scheme;
-use schemes::spec::{build_scheme, RmpReading, SchemeSpec};
 use settings::integrator::IntegratorSettings;
 use settings::solver_spec::SolverSpec;
 use simulation::simulate::{simulate, Outcome, Run, Settings, Solver};
 use solvers::Backend;
+use spec::rmp::RmpReading;
+use spec::scheme::SchemeSpec;
 use std::sync::Arc;
 
 /// The joint counts measured with kong2019's scheme alone, past [`SWEEP_SIZES`].

@@ -6,9 +6,9 @@
 //! size, and is drawn as a [`StrokePath`] (rest-to-rest per segment, durations proportional to
 //! length).
 
-use super::error::PathError;
 use super::stroke::StrokePath;
 use nalgebra::Vector3;
+use spec::path::PathError;
 
 /// A character: named points in the unit box and a closed tour through them by name.
 #[derive(Clone, Copy, Debug, PartialEq)]

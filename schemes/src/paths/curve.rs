@@ -29,10 +29,10 @@
 //! as-printed butterfly does not close, so it has no phase. p = 0 is the unphased curve itself
 //! (no shift is applied at all).
 
-use super::error::PathError;
 use super::time_law::RestToRest;
 use super::{Path, PathPoint};
 use nalgebra::Vector3;
+use spec::path::PathError;
 use std::f64::consts::{E, PI};
 
 /// The shape of a closed curve dr(phi), phi in [0, 2 pi].

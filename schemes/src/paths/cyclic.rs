@@ -61,8 +61,9 @@ impl Path for Cyclic {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::paths::{build_path, PathSpec};
+    use crate::paths::build_path;
     use nalgebra::Vector3;
+    use spec::path::PathSpec;
 
     #[test]
     fn the_cycles_repeat_the_path() {

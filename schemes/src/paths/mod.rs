@@ -19,43 +19,37 @@
 //! with one time law over its whole arc length: arc-length fraction s(t) = phi(t) / 2 pi, so corners are
 //! passed at speed (the velocity changes direction there; the acceleration has a delta).
 //!
-//! **Construction** ([`spec`]). [`PathSpec`] names a path, its duration and optionally its size;
+//! **Construction** ([`build`]). `spec::path::PathSpec` names a path, its duration and optionally its size;
 //! [`build_path`] turns it into a boxed [`Path`]. Evaluation never allocates: segment tables are
 //! built once at construction. Outside [0, T] every path rests at its end point (zero velocity and
 //! acceleration); at t = 0 and t = T exactly the analytic values are returned (the acceleration
 //! there is generally non-zero because sddot(0) = pi^2 / 2T^2).
 //!
 //! **Pose** ([`pose`]). By default planar paths lie in the base frame's x-y plane through
-//! r_start (z stays r_start.z). A [`PathSpec`] may rotate the figure in its plane and tilt the
+//! r_start (z stays r_start.z). A path's specification may rotate the figure in its plane and tilt the
 //! plane: r = r_start + R (r_inner - r_start), rdot = R rdot_inner, rddot = R rddot_inner with
 //! the constant R = Ry(tilt_y) Rx(tilt_x) Rz(rotation), plane normal R e_z. It may also start a
 //! closed figure elsewhere on its cycle (`phase` p): dr_p(phi) = dr(phi + 2 pi p) - dr(2 pi p)
 //! for the closed curves, an arc-length shift of the tour for `star-lines`; the start point is
 //! unchanged. Default poses build the path exactly as without them.
 
+pub mod build;
 pub mod characters;
 pub mod curve;
 pub mod cyclic;
-pub mod error;
-pub mod names;
 pub mod polyline_global;
 pub mod pose;
 pub mod reversed;
-pub mod spec;
 pub mod stroke;
 pub mod time_law;
 
+pub use build::build_path;
 pub use characters::{Character, DAI, PING};
 pub use curve::{ClosedCurve, CurveShape};
 pub use cyclic::Cyclic;
-pub use error::PathError;
-pub use names::PATH_NAMES;
 pub use polyline_global::{shift_closed_loop, GlobalPolyline};
 pub use pose::{pose_rotation, Posed};
 pub use reversed::Reversed;
-pub use spec::{
-    build_path, default_duration, default_scale, phase_supported, scale_provenance, PathSpec,
-};
 pub use stroke::{StrokePath, StrokeSegment};
 pub use time_law::{Fraction, RestToRest};
 

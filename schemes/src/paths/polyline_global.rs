@@ -18,11 +18,11 @@
 //! from another of its points; P_0 becomes an interior corner and Q, where the tour now joins,
 //! is passed at rest.
 
-use super::error::PathError;
 use super::stroke::{polyline_segments, RawSegment};
 use super::time_law::RestToRest;
 use super::{Path, PathPoint};
 use nalgebra::Vector3;
+use spec::path::PathError;
 use std::f64::consts::PI;
 
 /// One straight piece of a [`GlobalPolyline`].

@@ -8,10 +8,10 @@
 //! corner, and the acceleration jumps there from -(pi^2 / 2 Delta_k^2)(P_{k+1} - P_k) to
 //! +(pi^2 / 2 Delta_{k+1}^2)(P_{k+2} - P_{k+1}). At a corner instant the outgoing segment is used.
 
-use super::error::PathError;
 use super::time_law::RestToRest;
 use super::{Path, PathPoint};
 use nalgebra::Vector3;
+use spec::path::PathError;
 
 /// Relative length below which a segment counts as zero-length (a repeated point) and is dropped.
 pub(crate) const ZERO_LENGTH: f64 = 1e-12;

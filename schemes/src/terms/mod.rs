@@ -43,7 +43,6 @@ pub mod drift_damping;
 pub mod infinity_norm;
 pub mod joint_norm;
 pub mod repetitive;
-pub mod spec;
 pub mod torque_norm;
 pub mod tracking;
 pub mod velocity_limits;

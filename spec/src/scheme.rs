@@ -1,4 +1,5 @@
-//! Schemes as data: the serde form experiment files use, and [`build_scheme`].
+//! Schemes as data: the serde form experiment files use, its checks and the term lists it
+//! expands to (the engine builds the scheme: `schemes::build::build_scheme`).
 //!
 //! ```toml
 //! [scheme]
@@ -16,8 +17,8 @@
 //! k_p). Unknown fields are rejected.
 //!
 //! Every kind is a preset: it expands to a list of terms ([`SchemeSpec::expand`],
-//! [`crate::terms`]) and every scheme is the one composed scheme ([`crate::composed`]);
-//! `kind = "composed"` lists the terms itself ([`ComposedSpec`], [`crate::terms::spec`]).
+//! [`crate::terms`]) and every scheme is the one composed scheme (`schemes::composed`);
+//! `kind = "composed"` lists the terms itself ([`ComposedSpec`], [`crate::terms`]).
 //!
 //! `velocity-rmp` is the velocity-level template (docs/schemes.md): `weight` (w of the velocity norm, default 1),
 //! `repetitive = "linear"` (default; g = lambda (theta - theta_ref)) or `"sign-power"` (g =
@@ -37,16 +38,22 @@
 //! Both fields are optional and left out when serialised at their defaults.
 
 use std::fmt;
-use std::sync::Arc;
 
-use robots::{Dynamics, Robot};
 use serde::{Deserialize, Serialize};
 
-use crate::composed::BoundPlacement;
-use crate::paths::Path;
-pub use crate::rmp::RmpReading;
-use crate::scheme::{Level, Scheme};
-pub use crate::terms::spec::{ComposedSpec, Penalty, TermSpec};
+use crate::rmp::RmpReading;
+use crate::terms::{BoundPlacement, ComposedSpec, Penalty, TermSpec};
+
+/// Whether the scheme resolves redundancy at the velocity or the acceleration level (in a
+/// file: `velocity`, `acceleration`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Level {
+    /// x[..n] = thetadot; the arm state is theta.
+    Velocity,
+    /// x[..n] = thetaddot; the arm state is (theta, thetadot).
+    Acceleration,
+}
 
 fn default_zhong_lambda() -> f64 {
     20.0
@@ -191,7 +198,8 @@ pub enum SchemeSpec {
     Composed(ComposedSpec),
 }
 
-/// The form of the repetitive term ([`crate::terms::repetitive`]).
+/// The form of the repetitive term ([`crate::terms::TermSpec::Repetitive`]; the engine's term
+/// is `schemes::terms::repetitive`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum RepetitiveForm {
@@ -877,30 +885,4 @@ impl SchemeSpec {
             SchemeSpec::Composed(ref c) => c.display_name(),
         }
     }
-}
-
-/// Builds the scheme a spec names, on `robot` following `path`: the composed scheme of its
-/// terms ([`SchemeSpec::expand`]).
-///
-/// `theta_ref` is the scheme's joint reference: theta0 (the run's initial joint vector) for
-/// jia2019, zhong2021 and zhang2018; theta*0 (the desired initial joint vector) for kong2019.
-/// A scheme with a torque term (zhang2018) needs `dynamics` (and takes its kinematics from it;
-/// it must model the same robot, checked by name); the others ignore it.
-pub fn build_scheme(
-    spec: &SchemeSpec,
-    robot: Arc<dyn Robot>,
-    dynamics: Option<Arc<dyn Dynamics>>,
-    path: Arc<dyn Path>,
-    theta_ref: &[f64],
-) -> Result<Box<dyn Scheme>, SchemeError> {
-    spec.validate()?;
-    let scheme = spec.expand().build(
-        spec.kind(),
-        spec.scheme_name(),
-        robot,
-        dynamics,
-        path,
-        theta_ref,
-    )?;
-    Ok(Box::new(scheme))
 }

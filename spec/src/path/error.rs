@@ -1,11 +1,11 @@
-//! Errors from building a path.
+//! Errors from checking or building a path.
 
 use std::fmt;
 
 /// Why a path could not be built; each variant names the offending field.
 #[derive(Clone, Debug, PartialEq)]
 pub enum PathError {
-    /// `name` is not one of [`super::names::PATH_NAMES`].
+    /// `name` is not one of [`super::PATH_NAMES`].
     UnknownName(String),
     /// `duration` is not a positive finite number.
     NonPositiveDuration(f64),
@@ -35,7 +35,7 @@ impl fmt::Display for PathError {
             Self::UnknownName(name) => write!(
                 f,
                 "path `name`: unknown path {name:?}; valid names: {}",
-                super::names::PATH_NAMES.join(", ")
+                super::PATH_NAMES.join(", ")
             ),
             Self::NonPositiveDuration(d) => {
                 write!(f, "path `duration` must be positive and finite, got {d}")

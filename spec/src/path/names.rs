@@ -1,8 +1,8 @@
 //! The names of the paths an experiment file may give (`path = { name = ... }`): below both the
-//! paths' specification ([`super::spec`], which builds each) and their errors ([`super::error`],
+//! paths' specification ([`super::PathSpec`]) and their errors ([`super::PathError`],
 //! which list them when a name is unknown).
 
-/// Every path name [`super::build_path`] accepts.
+/// Every path name a [`super::PathSpec`] may give (`schemes::paths::build_path` builds each).
 pub const PATH_NAMES: &[&str] = &[
     "four-leaf-clover",
     "five-point-star",

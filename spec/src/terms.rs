@@ -1,5 +1,5 @@
-//! Terms as data: the serde form of a composed scheme in an experiment file, its checks, and
-//! the construction of its terms.
+//! Terms as data: the serde form of a composed scheme in an experiment file and its checks
+//! (the engine builds the terms: `schemes::build::build_composed`).
 //!
 //! ```toml
 //! [scheme]
@@ -24,24 +24,21 @@
 //! acceleration level: rho_v, rho_p; task = "position" or "planar", or axes),
 //! `bound-conversion` (gain), `velocity-limits`. Unknown kinds and fields are rejected.
 
-use std::sync::Arc;
-
-use robots::{Dynamics, Robot};
 use serde::{Deserialize, Serialize};
 
-use super::bound_conversion::BoundConversion;
-use super::drift_damping::DriftDamping;
-use super::infinity_norm::InfinityNorm;
-use super::joint_norm::JointNorm;
-use super::repetitive::{Form, Repetitive};
-use super::torque_norm::TorqueNorm;
-use super::tracking::{Feedback, Tracking};
-use super::velocity_limits::VelocityLimits;
-use super::Term;
-use crate::composed::{BoundPlacement, Composed};
-use crate::paths::Path;
-use crate::scheme::Level;
-use crate::spec::{RepetitiveForm, SchemeError, TermFault};
+use crate::scheme::{Level, RepetitiveForm, SchemeError, TermFault};
+
+/// Where a scheme's bounds are written: as the QP's variable bounds or as rows of its
+/// inequality matrix G.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum BoundPlacement {
+    /// As the QP's variable bounds l <= x <= u (jia2019 (2.20), robio2018 (13)).
+    #[default]
+    Variables,
+    /// As rows [I; -I] x <= [u; -l] of G, after the terms' rows (zhong2021 (2.18)).
+    Rows,
+}
 
 fn one() -> f64 {
     1.0
@@ -245,15 +242,6 @@ impl TermSpec {
         }
     }
 
-    /// The task axes of a tracking term (indices into x, y, z).
-    fn axes(task: Option<Task>, axes: &Option<Vec<Axis>>) -> Vec<usize> {
-        match (task, axes) {
-            (_, Some(axes)) => axes.iter().map(|a| *a as usize).collect(),
-            (Some(Task::Planar), None) => vec![0, 1],
-            (Some(Task::Position) | None, None) => vec![0, 1, 2],
-        }
-    }
-
     /// Checks the term's fields at `level`; `index` is its place in the list.
     fn validate(&self, index: usize, level: Level) -> Result<(), SchemeError> {
         let kind = self.kind();
@@ -394,6 +382,16 @@ impl TermSpec {
     }
 }
 
+/// The task axes of a tracking term (indices into x, y, z): `axes` when given, else those of
+/// `task` (x, y for `planar`; x, y, z for `position`, the default).
+pub fn tracking_axes(task: Option<Task>, axes: &Option<Vec<Axis>>) -> Vec<usize> {
+    match (task, axes) {
+        (_, Some(axes)) => axes.iter().map(|a| *a as usize).collect(),
+        (Some(Task::Planar), None) => vec![0, 1],
+        (Some(Task::Position) | None, None) => vec![0, 1, 2],
+    }
+}
+
 /// The level's name in a file.
 fn level_name(level: Level) -> &'static str {
     match level {
@@ -435,134 +433,5 @@ impl ComposedSpec {
     /// The display name: `name`, or `composed`.
     pub fn display_name(&self) -> String {
         self.name.clone().unwrap_or_else(|| "composed".to_string())
-    }
-
-    /// Builds the scheme `name` of these terms (checked first) on `robot` following `path`,
-    /// with the joint reference `theta_ref` (one entry per joint); errors name the scheme by
-    /// its `kind` tag. A scheme with a torque term
-    /// needs `dynamics`, a model of the same robot by name, and takes its kinematics from it.
-    pub fn build(
-        &self,
-        kind: &'static str,
-        name: String,
-        robot: Arc<dyn Robot>,
-        dynamics: Option<Arc<dyn Dynamics>>,
-        path: Arc<dyn Path>,
-        theta_ref: &[f64],
-    ) -> Result<Composed, SchemeError> {
-        self.validate()?;
-        let (robot, dynamics) = if self.needs_dynamics() {
-            let dynamics = dynamics.ok_or(SchemeError::MissingDynamics { scheme: kind })?;
-            if dynamics.name() != robot.name() {
-                return Err(SchemeError::RobotMismatch {
-                    scheme: kind,
-                    robot: robot.name().to_string(),
-                    dynamics: dynamics.name().to_string(),
-                });
-            }
-            (dynamics.clone() as Arc<dyn Robot>, Some(dynamics))
-        } else {
-            (robot, None)
-        };
-        let n = robot.dof();
-        if theta_ref.len() != n {
-            return Err(SchemeError::ReferenceLength {
-                joints: n,
-                given: theta_ref.len(),
-            });
-        }
-        let terms = self
-            .terms
-            .iter()
-            .map(|spec| -> Box<dyn Term> {
-                match *spec {
-                    TermSpec::VelocityNorm { weight } => Box::new(JointNorm {
-                        joints: n,
-                        weight,
-                        level: Level::Velocity,
-                    }),
-                    TermSpec::AccelerationNorm { weight } => Box::new(JointNorm {
-                        joints: n,
-                        weight,
-                        level: Level::Acceleration,
-                    }),
-                    TermSpec::Repetitive {
-                        form,
-                        lambda,
-                        alpha,
-                        weight,
-                        squared,
-                    } => Box::new(Repetitive {
-                        theta_ref: theta_ref.to_vec(),
-                        weight,
-                        lambda,
-                        form: match form {
-                            RepetitiveForm::Linear => Form::Linear,
-                            RepetitiveForm::SignPower => Form::SignPower {
-                                alpha: alpha.unwrap_or(1.0),
-                            },
-                        },
-                        squared,
-                    }),
-                    TermSpec::DriftDamping {
-                        alpha,
-                        beta,
-                        weight,
-                    } => Box::new(DriftDamping {
-                        theta0: theta_ref.to_vec(),
-                        weight,
-                        alpha,
-                        beta,
-                    }),
-                    TermSpec::TorqueNorm { weight } => Box::new(TorqueNorm::new(
-                        dynamics
-                            .clone()
-                            .expect("checked: a torque term has dynamics"),
-                        weight,
-                    )),
-                    TermSpec::InfinityNorm {
-                        weight,
-                        penalty,
-                        varpi,
-                    } => Box::new(InfinityNorm {
-                        squared: penalty == Penalty::Squared,
-                        joints: n,
-                        weight,
-                        varpi,
-                    }),
-                    TermSpec::Tracking {
-                        task,
-                        ref axes,
-                        k_p,
-                        rho_v,
-                        rho_p,
-                    } => {
-                        let feedback = match self.level {
-                            Level::Velocity => Feedback::Velocity {
-                                k_p: k_p.unwrap_or(0.0),
-                            },
-                            Level::Acceleration => Feedback::Acceleration {
-                                rho_v: rho_v.unwrap_or(f64::NAN),
-                                rho_p: rho_p.unwrap_or(f64::NAN),
-                            },
-                        };
-                        Box::new(Tracking::new(
-                            robot.clone(),
-                            path.clone(),
-                            TermSpec::axes(task, axes),
-                            feedback,
-                        ))
-                    }
-                    TermSpec::BoundConversion { gain } => Box::new(BoundConversion {
-                        robot: robot.clone(),
-                        gain,
-                    }),
-                    TermSpec::VelocityLimits => Box::new(VelocityLimits {
-                        robot: robot.clone(),
-                    }),
-                }
-            })
-            .collect();
-        Ok(Composed::new(name, self.level, n, self.bounds, terms))
     }
 }
