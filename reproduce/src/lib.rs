@@ -83,7 +83,7 @@ pub fn run(global: &GlobalOptions, mode: Mode) -> Result<ExitCode, ReproduceErro
         Mode::Merge(o) => {
             let project = project(None)?;
             let files = experiment_files(&project)?;
-            merge::merge_shards(&project, &o.dirs, &files, git_rev)
+            merge::merge_shards(&project, &o.dirs, &files, git_rev, !o.no_report)
         }
         Mode::Infer(o) => {
             let project = project(None)?;
