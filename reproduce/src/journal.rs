@@ -91,21 +91,22 @@ pub fn resume(
 /// removed); `fresh` is told each row folded from the journal or `unjournaled`. `runs.csv` is
 /// read, merged and written row by row ([`records::sorted`]) and the journal's rows are read
 /// back one at a time: what is held per run is its key (the journal's index, the described
-/// keys), never its row or trace. With `always` false and nothing to fold or prune, nothing is
-/// written. The journal is removed once `runs.csv` is committed. Returns how many rows were
-/// folded from the journal.
+/// keys), never its row or trace. At a start (`at_end` false) an interrupted start's journal
+/// is folded and said, and with nothing to fold or prune nothing is written; at the end of a
+/// shard (`at_end`) `runs.csv` is always written. The journal is removed once `runs.csv` is
+/// committed. Returns how many rows were folded from the journal.
 pub fn fold(
     results: &ResultsDir,
     git_rev: &str,
     described: &HashSet<RunKey>,
     pruned: &[RunRow],
     unjournaled: Vec<RunRow>,
-    always: bool,
+    at_end: bool,
     mut fresh: impl FnMut(&RunRow),
 ) -> Result<usize, ReproduceError> {
     let recovered = recover(results, git_rev, described)?;
     let folded = recovered.current.len();
-    if always || folded > 0 || !pruned.is_empty() || !unjournaled.is_empty() {
+    if at_end || folded > 0 || !pruned.is_empty() || !unjournaled.is_empty() {
         for line in results.prune(pruned)? {
             eprintln!("{line}");
         }
@@ -142,7 +143,7 @@ pub fn fold(
             })
         });
         results.commit_runs(joints, rows)?;
-        if folded > 0 {
+        if folded > 0 && !at_end {
             eprintln!(
                 "folded {folded} run(s) of an interrupted run into {}",
                 results.runs_path().display()

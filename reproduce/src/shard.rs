@@ -154,3 +154,17 @@ fn failure(row: &RunRow) -> (String, bool) {
         analysis::gate::expected_to_diverge(row),
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// What a shard keeps per run while its runs go on is a few words: a checkpointed run's
+    /// record (its trace, tens of KB) is dropped as it is written, and only a run the journal
+    /// could not take is kept, boxed. A record held inline would fail here.
+    #[test]
+    fn a_shard_keeps_a_few_words_per_run() {
+        assert!(std::mem::size_of::<Kept>() <= 4 * std::mem::size_of::<usize>());
+        assert!(std::mem::size_of::<RunRecord>() > std::mem::size_of::<Kept>());
+    }
+}
