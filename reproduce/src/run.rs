@@ -1,12 +1,12 @@
-//! `reproduce run` (the default; also `check` and `shard`): everything that
-//! can be checked is checked before anything runs (the gate's baseline, the report directory,
-//! the papers, the stored results); then the selected runs run, resumed from and checkpointed in a journal;
-//! the summary is printed; and the rows are compared with the baseline (the gate: with a whole
-//! selection, the control experiments re-run too) or written
-//! with what follows them (a shard's manifest, or the explanation layer, the control
-//! experiments and the report), a run into `results/` timed phase by phase ([`crate::phases`]:
-//! printed, and written where `--phases FILE` says). Runs that fail without their experiment file expecting it are
-//! exit code 1.
+//! `reproduce run` (the default; also `check`): everything that can be checked is checked
+//! before anything runs (the gate's baseline, the report directory, the papers, the stored
+//! results); then the selected runs run, resumed from and checkpointed in a journal; the
+//! summary is printed; and the rows are compared with the baseline (the gate: with a whole
+//! selection, the control experiments re-run too) or written with what follows them (the
+//! explanation layer, the control experiments and the report), a run into `results/` timed
+//! phase by phase ([`crate::phases`]: printed, and written where `--phases FILE` says). A
+//! shard (`reproduce shard`) is handed to [`crate::shard`], which holds nothing per run. Runs
+//! that fail without their experiment file expecting it are exit code 1.
 
 use crate::baseline::Baseline;
 use crate::error::ReproduceError;
@@ -37,7 +37,8 @@ pub enum Output {
     DryRun,
     /// Compared with a baseline (the gate); nothing written.
     Gate(Baseline),
-    /// Into the shard's own results directory, bound to the shard, with its manifest last.
+    /// Into the shard's own results directory, bound to the shard, with its manifest last
+    /// ([`crate::shard`]).
     Shard(Shard),
 }
 
