@@ -4,7 +4,7 @@
 //! the files of those directories the program reads back (`Kind::Owned`: a pull request or a
 //! shard from elsewhere can put anything in their place).
 //!
-//! Every such file is read by [`read()`] (or [`read_text`]), which
+//! Every such file is read by [`read()`] (or [`read_text`], or as a stream by [`open()`]), which
 //! - opens without blocking (a FIFO or a device answers at once, and is refused),
 //! - reads regular files only, after following symbolic links ([`error::InputError::NotRegular`]),
 //! - refuses a file that, once its links are followed, lies outside the directory it was found
@@ -36,5 +36,5 @@ pub mod trajectory;
 
 pub use error::{InputError, Via};
 pub use kind::Kind;
-pub use read::{read, read_text, Origin};
+pub use read::{open, read, read_text, Capped, Origin};
 pub use toml_error::TomlError;

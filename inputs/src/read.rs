@@ -22,6 +22,29 @@ pub enum Origin<'a> {
 /// The bytes of the input file `path` of kind `kind` (crate docs: regular files only, inside
 /// `origin`'s directory, at most [`Kind::cap`] bytes, opened without blocking).
 pub fn read(path: &Path, kind: Kind, origin: Origin) -> Result<Vec<u8>, InputError> {
+    let mut bytes = Vec::new();
+    open(path, kind, origin)?
+        .read_to_end(&mut bytes)
+        .map_err(|source| match source.kind() {
+            std::io::ErrorKind::InvalidData => InputError::TooLarge {
+                path: path.to_path_buf(),
+                kind,
+                cap: kind.cap(),
+            },
+            _ => InputError::Read {
+                path: path.to_path_buf(),
+                kind,
+                source,
+            },
+        })?;
+    Ok(bytes)
+}
+
+/// The input file `path` of kind `kind` opened for reading as a stream, by the rules of
+/// [`read()`]: a table far larger than its reader's memory is read row by row. Reading past
+/// [`Kind::cap`] bytes (a file that grew since it was opened) is an error of kind
+/// `InvalidData`, never a silently shorter file.
+pub fn open(path: &Path, kind: Kind, origin: Origin) -> Result<Capped, InputError> {
     let open_error = |source| InputError::Open {
         path: path.to_path_buf(),
         kind,
@@ -51,12 +74,11 @@ pub fn read(path: &Path, kind: Kind, origin: Origin) -> Result<Vec<u8>, InputErr
         });
     }
     let file = open_nonblocking(&target).map_err(open_error)?;
-    let read_error = |source| InputError::Read {
+    let meta = file.metadata().map_err(|source| InputError::Read {
         path: path.to_path_buf(),
         kind,
         source,
-    };
-    let meta = file.metadata().map_err(read_error)?;
+    })?;
     if !meta.is_file() {
         return Err(InputError::NotRegular {
             path: path.to_path_buf(),
@@ -65,23 +87,56 @@ pub fn read(path: &Path, kind: Kind, origin: Origin) -> Result<Vec<u8>, InputErr
         });
     }
     let cap = kind.cap();
-    let too_large = || InputError::TooLarge {
-        path: path.to_path_buf(),
-        kind,
-        cap,
-    };
     if meta.len() > cap {
-        return Err(too_large());
+        return Err(InputError::TooLarge {
+            path: path.to_path_buf(),
+            kind,
+            cap,
+        });
     }
-    // A regular file may still grow, or report no size (/proc): read one byte past the cap.
-    let mut bytes = Vec::new();
-    file.take(cap + 1)
-        .read_to_end(&mut bytes)
-        .map_err(read_error)?;
-    if bytes.len() as u64 > cap {
-        return Err(too_large());
+    Ok(Capped {
+        file,
+        left: cap,
+        cap,
+    })
+}
+
+/// An input file opened by [`open()`]: reads at most its kind's cap, then fails.
+#[derive(Debug)]
+pub struct Capped {
+    file: std::fs::File,
+    /// Bytes that may still be read.
+    left: u64,
+    /// The cap.
+    cap: u64,
+}
+
+impl std::io::Seek for Capped {
+    /// Moves within the file; what may still be read is the cap less the new position.
+    fn seek(&mut self, to: std::io::SeekFrom) -> std::io::Result<u64> {
+        let at = self.file.seek(to)?;
+        self.left = self.cap.saturating_sub(at);
+        Ok(at)
     }
-    Ok(bytes)
+}
+
+impl Read for Capped {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        // One byte past the cap is asked for, so that a file grown past it is told from one
+        // that ends exactly there.
+        let want = buf
+            .len()
+            .min(usize::try_from(self.left + 1).unwrap_or(usize::MAX));
+        let n = self.file.read(&mut buf[..want])?;
+        if n as u64 > self.left {
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                format!("over its cap of {} bytes", self.cap),
+            ));
+        }
+        self.left -= n as u64;
+        Ok(n)
+    }
 }
 
 /// `path` made absolute (against the current directory) and normalised as written, without

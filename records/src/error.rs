@@ -82,6 +82,16 @@ pub enum RowsError {
         /// The first row's line.
         first: usize,
     },
+    /// A row of a file read in key order comes before (or with) the row above it.
+    #[error("line {line}: the run {key} comes after {before}: the rows are not in key order, as this program writes them")]
+    Unordered {
+        /// The row's line (the header is line 1).
+        line: usize,
+        /// Its run key.
+        key: String,
+        /// The key of the row above it.
+        before: String,
+    },
 }
 
 /// Why `results/runs.csv` (or a journal) cannot be read; the message says how to recover.

@@ -67,14 +67,51 @@ pub struct Fingerprint {
 impl Fingerprint {
     /// The fingerprint of a file's content.
     pub fn of(bytes: &[u8]) -> Self {
-        let digest = Sha256::digest(bytes);
+        let mut h = Hasher::default();
+        h.update(bytes);
+        h.finish()
+    }
+
+    /// The fingerprint of what `reader` yields, read in blocks of 64 KiB: the same as
+    /// [`Fingerprint::of`] of the whole content, in memory independent of its size.
+    pub fn of_reader(mut reader: impl std::io::Read) -> std::io::Result<Self> {
+        let mut h = Hasher::default();
+        let mut buf = vec![0u8; 64 * 1024];
+        loop {
+            match reader.read(&mut buf) {
+                Ok(0) => return Ok(h.finish()),
+                Ok(n) => h.update(&buf[..n]),
+                Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+                Err(e) => return Err(e),
+            }
+        }
+    }
+}
+
+/// A [`Fingerprint`] taken block by block.
+#[derive(Default)]
+struct Hasher {
+    sha: Sha256,
+    lines: usize,
+    bytes: u64,
+}
+
+impl Hasher {
+    fn update(&mut self, block: &[u8]) {
+        self.sha.update(block);
+        self.lines += block.iter().filter(|&&b| b == b'\n').count();
+        self.bytes += block.len() as u64;
+    }
+
+    fn finish(self) -> Fingerprint {
+        let digest = self.sha.finalize();
         let mut hex = String::with_capacity(64);
         for b in digest {
             hex.push_str(&format!("{b:02x}"));
         }
-        Self {
-            lines: bytes.iter().filter(|&&b| b == b'\n').count(),
-            bytes: bytes.len() as u64,
+        Fingerprint {
+            lines: self.lines,
+            bytes: self.bytes,
             sha256: hex,
         }
     }
@@ -190,16 +227,13 @@ impl Manifest {
             .iter()
             .filter(|(file, _)| select(file))
             .filter_map(
-                |(file, listed)| match crate::owned_dir::read_file(&dir.join(file)) {
+                |(file, listed)| match crate::owned_dir::fingerprint(&dir.join(file)) {
                     Err(_) => Some(Mismatch::Missing { file: file.clone() }),
-                    Ok(bytes) => {
-                        let found = Fingerprint::of(&bytes);
-                        (found != *listed).then(|| Mismatch::Changed {
-                            file: file.clone(),
-                            listed: listed.clone(),
-                            found,
-                        })
-                    }
+                    Ok(found) => (found != *listed).then(|| Mismatch::Changed {
+                        file: file.clone(),
+                        listed: listed.clone(),
+                        found,
+                    }),
                 },
             )
             .collect()
@@ -226,6 +260,11 @@ mod tests {
             "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad"
         );
         assert_eq!(Fingerprint::of(b"a,b\n1,2\n").lines, 2);
+        // Block by block, the same as at once, across block boundaries.
+        let long: Vec<u8> = (0..200_000u32).map(|i| (i % 251) as u8).collect();
+        let streamed = Fingerprint::of_reader(long.as_slice()).unwrap();
+        assert_eq!(streamed, Fingerprint::of(&long));
+        assert_eq!(streamed.bytes, 200_000);
     }
 
     #[test]

@@ -19,10 +19,11 @@
 use crate::error::{IoAction, IoError, RowsError};
 use crate::owned_dir::PathError;
 use crate::results_dir::{ResultsDir, JOURNAL};
-use crate::runs::{check_rows, RunRow};
+use crate::runs::{check_names, RunRow};
 use crate::table::{self, TableError};
 use crate::trace::TracePoint;
 use crate::tracked_dir::TrackedError;
+use catalog::run_key::RunKey;
 use std::collections::HashMap;
 use std::fs::{File, OpenOptions};
 use std::io::Write;
@@ -180,58 +181,159 @@ fn trace_name(rel: &Path) -> String {
     rel.to_string_lossy().replace('\\', "/")
 }
 
-/// What an interrupted run's journal holds.
+/// What an interrupted run's journal holds, by run key (its rows stay in the journal, read
+/// back one at a time by [`Recovered::rows`]: O(bytes of a key) per run in memory).
 #[derive(Debug, Default)]
 pub struct Recovered {
     /// Rows of the current code revision whose traces match their seal (now recorded in the
-    /// results directory's manifest): folded into `runs.csv`, not run again.
-    pub current: Vec<RunRow>,
-    /// Rows of another revision: not folded (run again).
-    pub other_revision: Vec<RunRow>,
+    /// results directory's manifest), in key order: folded into `runs.csv`, not run again.
+    pub current: Vec<Entry>,
+    /// Rows of another revision (with that revision): not folded (run again).
+    pub other_revision: Vec<(RunKey, String)>,
     /// Rows of the current revision whose trace is missing, changed since it was sealed, or
     /// was never sealed: not folded (run again).
-    pub unsealed: Vec<RunRow>,
+    pub unsealed: Vec<RunKey>,
+    /// The per-joint columns of the journal's header.
+    pub joints: usize,
+}
+
+/// A row of the journal: its run key and where it starts.
+#[derive(Debug)]
+pub struct Entry {
+    /// The run key.
+    pub key: RunKey,
+    /// The row's start in the journal.
+    at: csv::Position,
+}
+
+impl Recovered {
+    /// The rows of [`Recovered::current`] read back from the journal of `dir`, in key order,
+    /// one at a time (the journal is read at each row's start).
+    pub fn rows<'a>(
+        &'a self,
+        dir: &Path,
+    ) -> Result<impl Iterator<Item = Result<RunRow, JournalError>> + 'a, JournalError> {
+        let journal = path(dir);
+        let mut rows = open_rows(&journal)?;
+        let mut entries = self.current.iter();
+        Ok(std::iter::from_fn(move || {
+            let entry = entries.next()?;
+            let table_error = |e: TableError| TableError {
+                path: Some(journal.clone()),
+                ..e
+            };
+            let read = rows
+                .seek(entry.at.clone())
+                .map_err(table_error)
+                .and_then(|()| match rows.next() {
+                    Some(row) => row.map_err(table_error),
+                    None => Err(table_error(TableError {
+                        path: None,
+                        line: entry.at.line(),
+                        what: "the row read before is gone".to_string(),
+                    })),
+                });
+            Some(read.map_err(JournalError::from))
+        }))
+    }
+}
+
+/// The journal at `journal` opened to be read row by row.
+fn open_rows(journal: &Path) -> Result<table::Rows<RunRow, inputs::Capped>, JournalError> {
+    let file =
+        crate::owned_dir::open_file(journal).map_err(IoError::at(journal, IoAction::Read))?;
+    table::rows(file).map_err(|e| {
+        TableError {
+            path: Some(journal.to_path_buf()),
+            ..e
+        }
+        .into()
+    })
 }
 
 /// The rows of an interrupted run's journal in `results` (none without one), split by code
 /// revision (`git_rev`: the current one) and by whether their traces match the seal; the
 /// traces of [`Recovered::current`] are recorded in the manifest of `results` (saved by the
-/// caller). A last line cut short by a kill is dropped, in the journal and in the seal.
+/// caller). A last line cut short by a kill is dropped, in the journal and in the seal. The
+/// journal is read row by row: what is kept per run is its key and its place.
 pub fn recover(results: &ResultsDir, git_rev: &str) -> Result<Recovered, JournalError> {
     let journal = path(results.path());
     if !journal.exists() {
         return Ok(Recovered::default());
     }
-    let text =
-        crate::owned_dir::read_text(&journal).map_err(IoError::at(&journal, IoAction::Read))?;
-    let rows: Vec<RunRow> =
-        table::from_reader(complete_lines(&text).as_bytes()).map_err(|e| table::TableError {
+    let mut rows = open_rows(&journal)?;
+    let complete = complete_length(&journal)?;
+    let seals = read_seal(results.path())?;
+    let mut out = Recovered {
+        joints: rows.joints(),
+        ..Recovered::default()
+    };
+    let mut seen = HashMap::new();
+    let mut line = 2;
+    loop {
+        let at = rows.position();
+        if at.byte() >= complete {
+            break;
+        }
+        let Some(row) = rows.next() else {
+            break;
+        };
+        let row = row.map_err(|e| TableError {
             path: Some(journal.clone()),
             ..e
         })?;
-    check_rows(&rows).map_err(|error| JournalError::Rows {
-        path: journal,
-        error,
-    })?;
-    let seals = read_seal(results.path())?;
-    let mut out = Recovered::default();
-    for row in rows {
+        let rows_error = |error| JournalError::Rows {
+            path: journal.clone(),
+            error,
+        };
+        check_names(&row, line).map_err(rows_error)?;
+        let key = row.key();
+        if let Some(first) = seen.insert(key.clone(), line) {
+            return Err(rows_error(RowsError::Twice {
+                line,
+                key: key.to_string(),
+                first,
+            }));
+        }
+        line += 1;
         if row.git_rev != git_rev {
-            out.other_revision.push(row);
+            out.other_revision.push((key, row.git_rev));
             continue;
         }
-        let rel = ResultsDir::trace_rel(&row.key());
+        let rel = ResultsDir::trace_rel(&key);
         let sealed = match seals.get(&trace_name(&rel)) {
             Some(sha256) => results.tracked().adopt_sealed(&rel, sha256)?,
             None => false,
         };
         if sealed {
-            out.current.push(row);
+            out.current.push(Entry { key, at });
         } else {
-            out.unsealed.push(row);
+            out.unsealed.push(key);
         }
     }
+    out.current.sort_unstable_by(|a, b| a.key.cmp(&b.key));
     Ok(out)
+}
+
+/// The length of the journal at `journal` up to its last newline (a kill can cut the last
+/// line short), found by reading its end backwards.
+fn complete_length(journal: &Path) -> Result<u64, JournalError> {
+    use std::io::{Read, Seek, SeekFrom};
+    let io = |e| IoError::at(journal, IoAction::Read)(e);
+    let mut file = crate::owned_dir::open_file(journal).map_err(&io)?;
+    let mut end = file.seek(SeekFrom::End(0)).map_err(&io)?;
+    let mut block = vec![0u8; 4096];
+    while end > 0 {
+        let start = end.saturating_sub(block.len() as u64);
+        let len = (end - start) as usize;
+        file.seek(SeekFrom::Start(start)).map_err(&io)?;
+        file.read_exact(&mut block[..len]).map_err(&io)?;
+        if let Some(i) = block[..len].iter().rposition(|&b| b == b'\n') {
+            return Ok(start + i as u64 + 1);
+        }
+        end = start;
+    }
+    Ok(0)
 }
 
 /// `text` up to its last newline: a kill can cut the last line short.
@@ -348,10 +450,26 @@ mod tests {
 
         let (results, _) = ResultsDir::open(&dir, "r1", Edits::Refuse).unwrap();
         let got = recover(&results, "r1").unwrap();
-        let variants = |rows: &[RunRow]| rows.iter().map(|r| r.variant.clone()).collect::<Vec<_>>();
-        assert_eq!(variants(&got.current), ["a"]);
-        assert_eq!(variants(&got.unsealed), ["b", "c", "d"]);
-        assert_eq!(variants(&got.other_revision), ["e"]);
+        let variants = |keys: Vec<&RunKey>| {
+            keys.iter()
+                .map(|k| k.variant.to_string())
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(
+            variants(got.current.iter().map(|e| &e.key).collect()),
+            ["a"]
+        );
+        assert_eq!(variants(got.unsealed.iter().collect()), ["b", "c", "d"]);
+        assert_eq!(
+            variants(got.other_revision.iter().map(|(k, _)| k).collect()),
+            ["e"]
+        );
+        assert_eq!(got.other_revision[0].1, "r0");
+        // The folded rows read back from the journal, whole.
+        let back: Vec<RunRow> = got.rows(&dir).unwrap().collect::<Result<_, _>>().unwrap();
+        assert_eq!(back.len(), 1);
+        assert_eq!(back[0].key(), rows[0].key());
+        assert_eq!(back[0].git_rev, "r1");
         results.save().unwrap();
         let listed = results.tracked().listed("traces/");
         assert_eq!(listed, [trace("a")]);
@@ -363,6 +481,51 @@ mod tests {
         assert!(e.to_string().contains(SEAL), "{e}");
         remove(&dir).unwrap();
         assert!(!path(&dir).exists() && !seal_path(&dir).exists());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// The fold's rows come back from the journal in key order, whatever order the runs
+    /// finished in, and one at a time from the file (nothing of a row is held but its key and
+    /// place): a journal cut after the first row is read makes the next read fail.
+    #[test]
+    fn folded_rows_are_read_back_in_key_order_one_at_a_time() {
+        let dir = std::env::temp_dir().join(format!("driftbench-fold-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let (results, _) = ResultsDir::open(&dir, "r1", Edits::Refuse).unwrap();
+        let journal = Journal::open(&results, 2).unwrap();
+        for v in ["m", "c", "x", "a"] {
+            let row = RunRow {
+                git_rev: "r1".into(),
+                drift: vec![0.5, -0.25],
+                ..RunRow::blank(
+                    &catalog::run_key::RunKey::from_ids("exp", v, "exact").unwrap(),
+                    catalog::solver_kind::SolverKind::Exact,
+                )
+            };
+            journal.record(&row, &[point(0.0)]).unwrap();
+        }
+        drop(journal);
+        let got = recover(&results, "r1").unwrap();
+        assert_eq!(got.joints, 2);
+        let mut rows = got.rows(&dir).unwrap();
+        let first = rows.next().unwrap().unwrap();
+        assert_eq!(
+            (first.variant.as_str(), first.drift.as_slice()),
+            ("a", &[0.5, -0.25][..])
+        );
+        let all: Vec<String> = got
+            .rows(&dir)
+            .unwrap()
+            .map(|r| r.unwrap().variant)
+            .collect();
+        assert_eq!(all, ["a", "c", "m", "x"]);
+        let text = std::fs::read_to_string(path(&dir)).unwrap();
+        let header = text.lines().next().unwrap();
+        std::fs::write(path(&dir), format!("{header}\n")).unwrap();
+        assert!(
+            rows.next().unwrap().is_err(),
+            "the next row is read from the file"
+        );
         let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -23,6 +23,8 @@
 //!   [`kill_point`]: the test hook that kills the process after any durable step.
 //! - [`shard`]: cluster runs: which shard a run belongs to, the shard directory's binding and
 //!   manifest, the merge checks; [`fnv`]: the stable hash they use.
+//! - [`sorted`]: rows in key order, streamed: a `runs.csv` read row by row, sources merged
+//!   k-way, the latest row of each key kept (a shard's fold and a merge, in flat memory).
 //! - [`migrate`]: results written before run ids (labels as identities), brought up to date once.
 //! - [`trajectory`]: a trajectory made elsewhere, scored, as a row (its file is read by crate
 //!   `inputs`, `inputs::trajectory`).
@@ -59,6 +61,7 @@ pub mod qp_replay;
 pub mod results_dir;
 pub mod runs;
 pub mod shard;
+pub mod sorted;
 pub mod table;
 pub mod timing;
 pub mod trace;

@@ -29,6 +29,18 @@ pub fn read_file(path: &Path) -> std::io::Result<Vec<u8>> {
     inputs::read(path, inputs::Kind::Owned, inputs::Origin::Named).map_err(io_error)
 }
 
+/// A file of a directory the program owns opened as a stream, by the rules of [`read_file`]
+/// ([`inputs::open()`]): a table read row by row, in memory independent of its length.
+pub fn open_file(path: &Path) -> std::io::Result<inputs::Capped> {
+    inputs::open(path, inputs::Kind::Owned, inputs::Origin::Named).map_err(io_error)
+}
+
+/// The fingerprint of a file of a directory the program owns ([`open_file`]), read block by
+/// block.
+pub fn fingerprint(path: &Path) -> std::io::Result<crate::integrity::Fingerprint> {
+    crate::integrity::Fingerprint::of_reader(open_file(path)?)
+}
+
 /// [`read_file`], as UTF-8 text.
 pub fn read_text(path: &Path) -> std::io::Result<String> {
     inputs::read_text(path, inputs::Kind::Owned, inputs::Origin::Named).map_err(io_error)

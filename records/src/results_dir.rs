@@ -313,6 +313,49 @@ impl ResultsDir {
         Ok(())
     }
 
+    /// Writes `runs.csv` from `rows` (in key order, each with at most `joints` per-joint
+    /// values) one row at a time, and saves the manifest, as one step a kill cannot split
+    /// ([`TrackedDir::commit_with`]): memory independent of the number of rows. Returns how
+    /// many rows were written. An error of `rows` leaves `runs.csv` and the manifest as they
+    /// were.
+    pub fn commit_runs<E: From<ResultsError>>(
+        &self,
+        joints: usize,
+        rows: impl Iterator<Item = Result<RunRow, E>>,
+    ) -> Result<usize, E> {
+        let mut failed = None;
+        let mut written = 0;
+        let csv_error = |source| ResultsError::Write {
+            path: self.runs_path(),
+            source,
+        };
+        let committed = self.tracked.commit_with(RUNS, |out| {
+            let mut w = csv::Writer::from_writer(out);
+            w.write_record(crate::table::header::<RunRow>(joints))?;
+            for row in rows {
+                let row = match row {
+                    Ok(row) => row,
+                    Err(e) => {
+                        failed = Some(e);
+                        return Err(std::io::Error::other("the rows stopped"));
+                    }
+                };
+                let record = crate::table::record(&row, joints).map_err(|e| {
+                    failed = Some(csv_error(e).into());
+                    std::io::Error::other("a row did not serialise")
+                })?;
+                w.write_record(record)?;
+                written += 1;
+            }
+            w.flush()
+        });
+        match (failed, committed) {
+            (Some(e), _) => Err(e),
+            (None, Err(e)) => Err(ResultsError::from(e).into()),
+            (None, Ok(())) => Ok(written),
+        }
+    }
+
     /// A run's trace, relative to the directory: `traces/<experiment>/<variant>__<solver>.csv`
     /// (the key's ids are slugs, so these are safe names: `catalog::ids`).
     pub fn trace_rel(key: &RunKey) -> PathBuf {
@@ -357,6 +400,41 @@ impl ResultsDir {
     ) -> Result<(Vec<RunRow>, Vec<RunRow>), ResultsError> {
         let total = stored.len();
         let (kept, pruned): (Vec<RunRow>, Vec<RunRow>) = stored.into_iter().partition(describes);
+        self.check_pruning(total, &pruned, allow, experiments)?;
+        Ok((kept, pruned))
+    }
+
+    /// The rows of `runs.csv` that `describes` does not keep (to prune), read row by row
+    /// ([`crate::sorted::read_key_ordered`]): memory of the pruned rows only. Refused as
+    /// [`ResultsDir::plan_pruning`] refuses.
+    pub fn plan_pruning_streamed(
+        &self,
+        describes: impl Fn(&RunRow) -> bool,
+        allow: bool,
+        experiments: &Path,
+    ) -> Result<Vec<RunRow>, ResultsError> {
+        let mut total = 0;
+        let mut pruned = Vec::new();
+        for row in crate::sorted::read_key_ordered(&self.runs_path())? {
+            let row = row?;
+            total += 1;
+            if !describes(&row) {
+                pruned.push(row);
+            }
+        }
+        self.check_pruning(total, &pruned, allow, experiments)?;
+        Ok(pruned)
+    }
+
+    /// Refuses to prune `pruned` of `total` stored runs when that is more than
+    /// [`PRUNE_LIMIT_PERCENT`] of them, unless `allow`.
+    fn check_pruning(
+        &self,
+        total: usize,
+        pruned: &[RunRow],
+        allow: bool,
+        experiments: &Path,
+    ) -> Result<(), ResultsError> {
         let percent = if total == 0 {
             0
         } else {
@@ -372,7 +450,7 @@ impl ResultsDir {
                 first: pruned[0].key().to_string(),
             });
         }
-        Ok((kept, pruned))
+        Ok(())
     }
 
     /// Removes the traces of pruned rows (only those the program wrote and nobody edited since)

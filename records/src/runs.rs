@@ -295,6 +295,17 @@ pub const TMP_PREFIX: &str = ".driftbench-tmp.";
 /// the process id and a counter, so concurrent writers of the same file never share one), then
 /// renamed over `path`.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    write_atomic_with(path, |w| w.write_all(bytes))
+}
+
+/// [`write_atomic`] of what `write` writes, streamed through a buffer: a file far larger than
+/// memory (a merged `runs.csv`) is written row by row. Nothing replaces `path` unless `write`
+/// succeeds (its temporary file is removed).
+pub fn write_atomic_with(
+    path: &Path,
+    write: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    use std::io::Write as _;
     use std::sync::atomic::{AtomicUsize, Ordering};
     static COUNTER: AtomicUsize = AtomicUsize::new(0);
     if let Some(dir) = path.parent() {
@@ -307,10 +318,16 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     ));
     name.push(path.file_name().unwrap_or_default());
     let tmp = path.with_file_name(name);
-    std::fs::write(&tmp, bytes)?;
-    std::fs::rename(&tmp, path).inspect_err(|_| {
-        let _ = std::fs::remove_file(&tmp);
-    })?;
+    let written = std::fs::File::create(&tmp).and_then(|file| {
+        let mut out = std::io::BufWriter::with_capacity(64 * 1024, file);
+        write(&mut out)?;
+        out.flush()
+    });
+    written
+        .and_then(|()| std::fs::rename(&tmp, path))
+        .inspect_err(|_| {
+            let _ = std::fs::remove_file(&tmp);
+        })?;
     crate::kill_point::passed();
     Ok(())
 }
@@ -344,10 +361,7 @@ pub fn check_rows(rows: &[RunRow]) -> Result<(), RowsError> {
     let mut seen = std::collections::HashMap::with_capacity(rows.len());
     for (i, r) in rows.iter().enumerate() {
         let line = i + 2;
-        check_name(&r.paper, MAX_EXPERIMENT_ID)
-            .and_then(|()| check_name(&r.variant, MAX_VARIANT_LABEL))
-            .and_then(|()| check_name(&r.solver, MAX_SOLVER_LABEL))
-            .map_err(|error| RowsError::Name { line, error })?;
+        check_names(r, line)?;
         if let Some(first) = seen.insert(r.key(), line) {
             return Err(RowsError::Twice {
                 line,
@@ -357,6 +371,14 @@ pub fn check_rows(rows: &[RunRow]) -> Result<(), RowsError> {
         }
     }
     Ok(())
+}
+
+/// Checks that the names of the row at `line` can name files (see [`check_rows`]).
+pub fn check_names(r: &RunRow, line: usize) -> Result<(), RowsError> {
+    check_name(&r.paper, MAX_EXPERIMENT_ID)
+        .and_then(|()| check_name(&r.variant, MAX_VARIANT_LABEL))
+        .and_then(|()| check_name(&r.solver, MAX_SOLVER_LABEL))
+        .map_err(|error| RowsError::Name { line, error })
 }
 
 /// Checks that files can be created in `dir` (created if absent): writes and removes a probe

@@ -38,7 +38,8 @@
 use crate::error::{IoAction, IoError, RunsError};
 use crate::integrity::{IntegrityError, Mismatch};
 use crate::owned_dir::PathError;
-use crate::runs::{read_runs, RunRow};
+use crate::runs::RunRow;
+use crate::sorted::{read_key_ordered, KeyMerge};
 use crate::tracked_dir::TrackedError;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -610,8 +611,8 @@ pub fn experiments_hash<'a>(
     Ok(format!("{:016x}", fnv1a64(&bytes)))
 }
 
-/// One finished shard directory.
-#[derive(Clone, Debug)]
+/// One finished shard directory (its rows are not held: [`runs_files`] streams them).
+#[derive(Debug)]
 pub struct ShardDir {
     /// The shard directory.
     pub dir: PathBuf,
@@ -619,14 +620,14 @@ pub struct ShardDir {
     pub manifest: Manifest,
     /// Its integrity manifest (every file it wrote, traces included).
     pub files: crate::integrity::Manifest,
-    /// Its `runs.csv`.
-    pub rows: Vec<RunRow>,
+    /// The directory, every path under it checked.
+    owned: crate::owned_dir::OwnedDir,
 }
 
-/// Reads a finished shard: its `shard.toml`, its integrity manifest, and its `runs.csv`.
-/// Every file the integrity manifest lists (the rows and every trace) must still be what the
-/// shard wrote, unless `edits` accepts edits; a directory that does not exist, or a shard
-/// without an integrity manifest, is an error saying so.
+/// Reads a finished shard: its `shard.toml` and its integrity manifest. Every file the
+/// integrity manifest lists (the rows and every trace) must still be what the shard wrote,
+/// unless `edits` accepts edits (each file is hashed as a stream); a directory that does not
+/// exist, or a shard without an integrity manifest, is an error saying so.
 pub fn read_shard(dir: &Path, edits: crate::tracked_dir::Edits) -> Result<ShardDir, ShardError> {
     if !dir.is_dir() {
         return Err(ShardError::NoDirectory {
@@ -646,13 +647,21 @@ pub fn read_shard(dir: &Path, edits: crate::tracked_dir::Edits) -> Result<ShardD
             });
         }
     }
-    let rows = read_runs(&dir.join(crate::results_dir::RUNS))?;
     Ok(ShardDir {
         dir: dir.to_path_buf(),
         manifest,
         files,
-        rows,
+        owned: crate::owned_dir::OwnedDir::open(dir)?,
     })
+}
+
+/// The shards' `runs.csv`, each opened to be read row by row in key order (index i: the
+/// shard `shards[i]`).
+pub fn runs_files(shards: &[ShardDir]) -> Result<Vec<crate::sorted::KeyOrdered>, ShardError> {
+    Ok(shards
+        .iter()
+        .map(|s| read_key_ordered(&s.dir.join(crate::results_dir::RUNS)))
+        .collect::<Result<Vec<_>, _>>()?)
 }
 
 /// A row's trace, relative to its results directory.
@@ -660,33 +669,29 @@ fn trace_rel(r: &RunRow) -> PathBuf {
     crate::results_dir::ResultsDir::trace_rel(&r.key())
 }
 
-/// Copies the traces of every shard's rows into `results` (each written atomically and
-/// recorded); returns how many. [`check_shards`] has checked that each one is there.
-pub fn copy_traces(
-    shards: &[ShardDir],
+/// Copies the trace of `row`, a row of `shard`, into `results` (written atomically and
+/// recorded). [`check_shards`] has checked that it is there.
+pub fn copy_trace(
+    shard: &ShardDir,
+    row: &RunRow,
     results: &crate::results_dir::ResultsDir,
-) -> Result<usize, ShardError> {
-    let mut n = 0;
-    for s in shards {
-        let owned = crate::owned_dir::OwnedDir::open(&s.dir)?;
-        for r in &s.rows {
-            let rel = trace_rel(r);
-            let from = owned.resolve(&rel)?;
-            let bytes =
-                crate::owned_dir::read_file(&from).map_err(IoError::at(&from, IoAction::Read))?;
-            results.tracked().write(&rel, &bytes)?;
-            n += 1;
-        }
-    }
-    Ok(n)
+) -> Result<(), ShardError> {
+    let rel = trace_rel(row);
+    let from = shard.owned.resolve(&rel)?;
+    let bytes = crate::owned_dir::read_file(&from).map_err(IoError::at(&from, IoAction::Read))?;
+    results.tracked().write(&rel, &bytes)?;
+    Ok(())
 }
 
 /// Checks shards before a merge: the same N, experiment files (`hash`: the current files')
 /// and selection (`manifest_problems`); each row in its own shard with its trace, and each
-/// run a manifest lists its shard's (`row_problems`); every run of `expected` (the keys the
-/// selection describes, in its enumeration order: `expected[i]` is shard `i mod N + 1`'s) in
-/// exactly one shard, and no other run (`coverage_problems`). The error lists every problem of the first
-/// of these steps that finds any.
+/// run a manifest lists its shard's; every run of `expected` (the keys the selection
+/// describes, in its enumeration order: `expected[i]` is shard `i mod N + 1`'s) in exactly
+/// one shard, and no other run. The rows are streamed in key order ([`runs_files`] merged),
+/// so a run in two shards comes as two rows in a row; what is held per run is its key (in
+/// the map of `expected` to its shard, and each shard's list of its runs). The error lists
+/// every problem of the first of these steps that finds any: the manifests and the rows'
+/// places, then the coverage.
 pub fn check_shards(
     shards: &[ShardDir],
     expected: &[String],
@@ -696,20 +701,81 @@ pub fn check_shards(
         return Err(ShardError::NoShardDirectories);
     };
     let n = first.manifest.shards;
-    let problems = manifest_problems(shards, first, hash);
+    let mut problems = manifest_problems(shards, first, hash);
     if !problems.is_empty() {
         return Err(ShardError::CannotMerge { problems });
     }
+    // Each selected run's shard, from its index in the selection's enumeration.
     let owners: std::collections::HashMap<&str, usize> = expected
         .iter()
         .enumerate()
         .map(|(i, key)| (key.as_str(), Shard::of_index(i, n)))
         .collect();
-    let problems = row_problems(shards, &owners, n);
+    for s in shards {
+        for key in &s.manifest.runs {
+            if let Some(&owner) = owners.get(key.as_str()) {
+                if owner != s.manifest.shard {
+                    problems.push(format!(
+                        "{}: its {MANIFEST} lists {key}, which belongs to shard {owner}/{n}",
+                        s.dir.display()
+                    ));
+                }
+            }
+        }
+    }
+    let assigned: Vec<std::collections::HashSet<&str>> = shards
+        .iter()
+        .map(|s| s.manifest.runs.iter().map(String::as_str).collect())
+        .collect();
+    // Each expected key and the shards (indices) that hold it.
+    let mut found: std::collections::HashMap<&str, Vec<usize>> =
+        expected.iter().map(|k| (k.as_str(), Vec::new())).collect();
+    let mut foreign = Vec::new();
+    let mut last: Option<(String, usize)> = None;
+    for item in KeyMerge::new(runs_files(shards)?)? {
+        let (i, r) = item?;
+        let s = &shards[i];
+        let key = r.key().to_string();
+        let owner = owners.get(key.as_str()).copied();
+        let listed = assigned[i].contains(key.as_str());
+        if owner.is_some_and(|o| o != s.manifest.shard) || !listed {
+            problems.push(format!(
+                "{}: holds {key}, which {}{}",
+                s.dir.display(),
+                match owner {
+                    Some(o) => format!("belongs to shard {o}/{n}"),
+                    None => "the selection does not describe".to_string(),
+                },
+                if listed {
+                    ""
+                } else {
+                    " and is not among the runs its shard.toml lists"
+                }
+            ));
+        }
+        let rel = trace_rel(&r);
+        if !s
+            .files
+            .files
+            .contains_key(&rel.to_string_lossy().replace('\\', "/"))
+        {
+            problems.push(format!(
+                "{}: the trace of {key} ({}) is not among the files the shard wrote",
+                s.dir.display(),
+                rel.display()
+            ));
+        }
+        match found.get_mut(key.as_str()) {
+            Some(holders) => holders.push(i),
+            None if last.as_ref().is_some_and(|(k, _)| *k == key) => {}
+            None => foreign.push(key.clone()),
+        }
+        last = Some((key, i));
+    }
     if !problems.is_empty() {
         return Err(ShardError::CannotMerge { problems });
     }
-    let problems = coverage_problems(shards, expected, n);
+    let problems = coverage_problems(shards, expected, &found, &foreign, n);
     if problems.is_empty() {
         Ok(())
     } else {
@@ -766,79 +832,25 @@ fn manifest_problems(shards: &[ShardDir], first: &ShardDir, hash: &str) -> Vec<S
     problems
 }
 
-/// The rows and listed runs that are not their shard's (`owners`: each selected run's shard
-/// of `n`): a listed run another shard owns, a row another shard owns or its shard.toml does
-/// not list, and a run whose trace is not among the files the shard wrote. A run the
-/// selection does not describe is left to `coverage_problems`.
-fn row_problems(
-    shards: &[ShardDir],
-    owners: &std::collections::HashMap<&str, usize>,
-    n: usize,
-) -> Vec<String> {
-    let mut problems = Vec::new();
-    for s in shards {
-        for key in &s.manifest.runs {
-            if let Some(&owner) = owners.get(key.as_str()) {
-                if owner != s.manifest.shard {
-                    problems.push(format!(
-                        "{}: its {MANIFEST} lists {key}, which belongs to shard {owner}/{n}",
-                        s.dir.display()
-                    ));
-                }
-            }
-        }
-        let assigned: std::collections::HashSet<&str> =
-            s.manifest.runs.iter().map(String::as_str).collect();
-        for r in &s.rows {
-            let key = r.key().to_string();
-            let owner = owners.get(key.as_str()).copied();
-            if owner.is_some_and(|o| o != s.manifest.shard) || !assigned.contains(key.as_str()) {
-                problems.push(format!(
-                    "{}: holds {key}, which {}{}",
-                    s.dir.display(),
-                    match owner {
-                        Some(o) => format!("belongs to shard {o}/{n}"),
-                        None => "the selection does not describe".to_string(),
-                    },
-                    if assigned.contains(key.as_str()) {
-                        ""
-                    } else {
-                        " and is not among the runs its shard.toml lists"
-                    }
-                ));
-            }
-            let rel = trace_rel(r);
-            let listed = rel.to_string_lossy().replace('\\', "/");
-            if !s.files.files.contains_key(&listed) {
-                problems.push(format!(
-                    "{}: the trace of {key} ({}) is not among the files the shard wrote",
-                    s.dir.display(),
-                    rel.display()
-                ));
-            }
-        }
-    }
-    problems
-}
-
 /// How the shards' runs cover the `expected` keys of the selection, as problems (one entry per
 /// kind, listing its runs): shards of the `n` not given, selected runs missing, runs in more
-/// than one shard, runs the selection does not describe.
-fn coverage_problems(shards: &[ShardDir], expected: &[String], n: usize) -> Vec<String> {
+/// than one shard, runs the selection does not describe (`foreign`); `found`: each expected
+/// key and the shards that hold it.
+fn coverage_problems(
+    shards: &[ShardDir],
+    expected: &[String],
+    found: &std::collections::HashMap<&str, Vec<usize>>,
+    foreign: &[String],
+    n: usize,
+) -> Vec<String> {
     let mut given: Vec<usize> = shards.iter().map(|s| s.manifest.shard).collect();
     given.sort_unstable();
     let absent: Vec<usize> = (1..=n).filter(|k| !given.contains(k)).collect();
-    let mut found: std::collections::HashMap<String, Vec<&Path>> = Default::default();
-    for s in shards {
-        for r in &s.rows {
-            found.entry(r.key().to_string()).or_default().push(&s.dir);
-        }
-    }
     let mut missing = Vec::new();
     let mut duplicated = Vec::new();
     for (i, key) in expected.iter().enumerate() {
         let owner = Shard::of_index(i, n);
-        match found.get(key).map(Vec::len).unwrap_or(0) {
+        match found.get(key.as_str()).map_or(0, Vec::len) {
             0 => missing.push(format!(
                 "  {key}  (shard {owner}/{n}{})",
                 if absent.contains(&owner) {
@@ -850,17 +862,14 @@ fn coverage_problems(shards: &[ShardDir], expected: &[String], n: usize) -> Vec<
             1 => {}
             _ => duplicated.push(format!(
                 "  {key}  duplicated in {}",
-                found[key]
+                found[key.as_str()]
                     .iter()
-                    .map(|d| d.display().to_string())
+                    .map(|&i| shards[i].dir.display().to_string())
                     .collect::<Vec<_>>()
                     .join(", ")
             )),
         }
     }
-    let expected_set: std::collections::HashSet<&String> = expected.iter().collect();
-    let mut foreign: Vec<&String> = found.keys().filter(|k| !expected_set.contains(k)).collect();
-    foreign.sort();
     let mut out = Vec::new();
     if !absent.is_empty() {
         out.push(format!(

@@ -161,47 +161,131 @@ fn format_f64(v: f64) -> String {
 
 /// Reads a table of `T` from CSV text; see the module docs for what is checked.
 pub fn from_reader<T: Row, R: std::io::Read>(input: R) -> Result<Vec<T>, TableError> {
-    let mut r = csv::Reader::from_reader(input);
-    let header = r
+    rows(input)?.collect()
+}
+
+/// The rows of a table of `T` read from CSV text one at a time, each checked as
+/// [`from_reader`] checks it: a table far larger than memory is read in memory of one row.
+pub fn rows<T: Row, R: std::io::Read>(input: R) -> Result<Rows<T, R>, TableError> {
+    let mut reader = csv::Reader::from_reader(input);
+    let header = reader
         .headers()
         .map_err(|e| at_line(e.position().map_or(1, |p| p.line()), e.to_string()))?
         .clone();
-    if header.is_empty() || (header.len() == 1 && header[0].is_empty()) {
-        return Ok(Vec::new());
+    let layout = Layout::of(&header)?;
+    Ok(Rows {
+        reader,
+        layout,
+        record: csv::StringRecord::new(),
+        next: 2,
+    })
+}
+
+/// The rows of a table, read one at a time ([`rows`]).
+pub struct Rows<T, R> {
+    reader: csv::Reader<R>,
+    /// `None`: an empty file (no header, no rows).
+    layout: Option<Layout<T>>,
+    record: csv::StringRecord,
+    /// The line of the next row, should the reader not tell it.
+    next: u64,
+}
+
+impl<T: Row, R: std::io::Read> Rows<T, R> {
+    /// The per-joint columns of the table's header (K of `drift_1 .. drift_K`).
+    pub fn joints(&self) -> usize {
+        self.layout.as_ref().map_or(0, Layout::joints)
     }
-    let joint_cols = joint_columns::<T>(&header)?;
-    let (fixed_header, padded) = fixed_columns::<T>(&header, &joint_cols)?;
-    let mut rows = Vec::new();
-    for (i, record) in r.records().enumerate() {
-        let fallback = i as u64 + 2;
-        let record = record.map_err(|e| {
-            at_line(
+
+    /// Where the next row starts (byte offset and line), for [`Rows::seek`].
+    pub fn position(&self) -> csv::Position {
+        self.reader.position().clone()
+    }
+}
+
+impl<T: Row, R: std::io::Read + std::io::Seek> Rows<T, R> {
+    /// Moves to a row start taken earlier by [`Rows::position`]: a table read in another
+    /// order than it was written (a journal, folded in key order).
+    pub fn seek(&mut self, at: csv::Position) -> Result<(), TableError> {
+        let line = at.line();
+        self.next = line;
+        self.reader
+            .seek(at)
+            .map_err(|e| at_line(line, format!("cannot seek: {e}")))
+    }
+}
+
+impl<T: Row, R: std::io::Read> Iterator for Rows<T, R> {
+    type Item = Result<T, TableError>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        let layout = self.layout.as_ref()?;
+        let fallback = self.next;
+        self.next += 1;
+        match self.reader.read_record(&mut self.record) {
+            Ok(false) => None,
+            Ok(true) => {
+                let line = self.record.position().map_or(fallback, |p| p.line());
+                Some(layout.decode(&self.record, line))
+            }
+            Err(e) => Some(Err(at_line(
                 e.position().map_or(fallback, |p| p.line()),
                 format!("row does not parse: {e}"),
-            )
-        })?;
-        let line = record.position().map_or(fallback, |p| p.line());
+            ))),
+        }
+    }
+}
+
+/// How a table's header maps onto `T` (checked against its schema, module docs).
+struct Layout<T> {
+    joint_cols: Vec<usize>,
+    fixed_header: csv::StringRecord,
+    padded: usize,
+    row: std::marker::PhantomData<fn() -> T>,
+}
+
+impl<T: Row> Layout<T> {
+    /// The layout of `header`; `None` for an empty header (an empty file).
+    fn of(header: &csv::StringRecord) -> Result<Option<Self>, TableError> {
+        if header.is_empty() || (header.len() == 1 && header[0].is_empty()) {
+            return Ok(None);
+        }
+        let joint_cols = joint_columns::<T>(header)?;
+        let (fixed_header, padded) = fixed_columns::<T>(header, &joint_cols)?;
+        Ok(Some(Self {
+            joint_cols,
+            fixed_header,
+            padded: padded.len(),
+            row: std::marker::PhantomData,
+        }))
+    }
+
+    fn joints(&self) -> usize {
+        self.joint_cols.len()
+    }
+
+    /// The row `record` (at `line`).
+    fn decode(&self, record: &csv::StringRecord, line: u64) -> Result<T, TableError> {
         let mut fixed: csv::StringRecord = record
             .iter()
             .enumerate()
-            .filter(|(i, _)| !joint_cols.contains(i))
+            .filter(|(i, _)| !self.joint_cols.contains(i))
             .map(|(_, c)| c)
             .collect();
-        for _ in &padded {
+        for _ in 0..self.padded {
             fixed.push_field("");
         }
-        let mut row: T = fixed.deserialize(Some(&fixed_header)).map_err(|e| {
+        let mut row: T = fixed.deserialize(Some(&self.fixed_header)).map_err(|e| {
             let what = match e.kind() {
                 csv::ErrorKind::Deserialize { err, .. } => format!("row does not parse: {err}"),
                 _ => format!("row does not parse: {e}"),
             };
             at_line(line, what)
         })?;
-        let cells: Vec<&str> = joint_cols.iter().map(|&i| &record[i]).collect();
+        let cells: Vec<&str> = self.joint_cols.iter().map(|&i| &record[i]).collect();
         row.set_joints(joint_values::<T>(&cells, line)?);
-        rows.push(row);
+        Ok(row)
     }
-    Ok(rows)
 }
 
 /// A problem at `line` of a table read from text (the file is added by [`read`]).

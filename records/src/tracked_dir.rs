@@ -199,9 +199,9 @@ impl TrackedDir {
     /// from [`TrackedDir::resolve`]); a file that is not there is dropped from the manifest.
     pub fn adopt(&self, rel: &Path) -> Result<(), TrackedError> {
         let path = self.resolve(rel)?;
-        match crate::owned_dir::read_file(&path) {
-            Ok(bytes) => {
-                self.lock().files.insert(key(rel), Fingerprint::of(&bytes));
+        match crate::owned_dir::fingerprint(&path) {
+            Ok(found) => {
+                self.lock().files.insert(key(rel), found);
             }
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
                 self.lock().files.remove(&key(rel));
@@ -294,17 +294,27 @@ impl TrackedDir {
     /// leaves the old file and the old manifest; a kill after it, the new manifest and the
     /// new file pending, which the next [`TrackedDir::open`] renames into place.
     pub fn commit(&self, name: &str, bytes: &[u8]) -> Result<(), TrackedError> {
+        self.commit_with(name, |w| w.write_all(bytes))
+    }
+
+    /// [`TrackedDir::commit`] of what `write` writes, streamed ([`crate::runs::write_atomic_with`])
+    /// and fingerprinted block by block: a table far larger than memory is committed row by row.
+    pub fn commit_with(
+        &self,
+        name: &str,
+        write: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<()>,
+    ) -> Result<(), TrackedError> {
         let staged = self.resolve(Path::new(&pending(name)))?;
         let path = self.resolve(Path::new(name))?;
-        crate::runs::write_atomic(&staged, bytes).map_err(|source| TrackedError::Io {
-            path: staged.clone(),
-            source,
-        })?;
-        self.lock()
-            .files
-            .insert(name.to_string(), Fingerprint::of(bytes));
+        let io = |path: &Path| {
+            let path = path.to_path_buf();
+            move |source| TrackedError::Io { path, source }
+        };
+        crate::runs::write_atomic_with(&staged, write).map_err(io(&staged))?;
+        let found = crate::owned_dir::fingerprint(&staged).map_err(io(&staged))?;
+        self.lock().files.insert(name.to_string(), found);
         self.save()?;
-        std::fs::rename(&staged, &path).map_err(|source| TrackedError::Io { path, source })?;
+        std::fs::rename(&staged, &path).map_err(io(&path))?;
         crate::kill_point::passed();
         Ok(())
     }
@@ -324,8 +334,8 @@ pub fn pending(name: &str) -> String {
 fn finish_commits(dir: &OwnedDir, manifest: &Manifest) -> Result<(), TrackedError> {
     for (name, listed) in manifest.files.iter().filter(|(k, _)| !k.contains('/')) {
         let staged = dir.resolve(Path::new(&pending(name)))?;
-        let bytes = match crate::owned_dir::read_file(&staged) {
-            Ok(bytes) => bytes,
+        let found = match crate::owned_dir::fingerprint(&staged) {
+            Ok(found) => found,
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => continue,
             Err(source) => {
                 return Err(TrackedError::Io {
@@ -334,7 +344,7 @@ fn finish_commits(dir: &OwnedDir, manifest: &Manifest) -> Result<(), TrackedErro
                 })
             }
         };
-        let done = if Fingerprint::of(&bytes) == *listed {
+        let done = if found == *listed {
             std::fs::rename(&staged, dir.resolve(Path::new(name))?)
         } else {
             std::fs::remove_file(&staged)

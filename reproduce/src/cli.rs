@@ -111,6 +111,18 @@ mod tests {
         assert!(
             matches!(parse("reproduce shard").unwrap().1, Mode::Shard(s) if s.shard == ShardSpec::Auto)
         );
+        // A merge renders the report unless told not to (either spelling; the old flag too).
+        for (line, no_report) in [
+            ("reproduce merge a b", false),
+            ("reproduce merge a b --no-report", true),
+            ("reproduce merge --skip-report a b", true),
+            ("reproduce --merge a b --no-report", true),
+        ] {
+            let Mode::Merge(m) = parse(line).unwrap().1 else {
+                panic!("{line}: not a merge");
+            };
+            assert_eq!((m.dirs.len(), m.no_report), (2, no_report), "{line}");
+        }
         assert!(
             matches!(parse("reproduce --paper x").unwrap().1, Mode::Run(r) if r.selection.paper.as_deref() == Some("x"))
         );

@@ -1,18 +1,60 @@
 //! The journal of a run (records::journal): an interrupted run's journal folded into runs.csv
 //! before anything runs (its runs of this code revision whose traces match the journal's seal
 //! are not run again, and their traces are recorded in the results directory's manifest), and
-//! each run checkpointed, with its trace and its seal, as it finishes.
+//! each run checkpointed, with its trace and its seal, as it finishes. A run into `results/`
+//! folds into the rows it holds ([`resume`]); a shard folds by streaming ([`fold`]: the
+//! journal's rows read back one at a time in key order and merged with `runs.csv` row by row),
+//! so that it holds nothing per run but its key.
 
 use crate::error::ReproduceError;
 use crate::results::Described;
 use catalog::experiment::Job;
 use catalog::run_key::RunKey;
+use records::journal::Recovered;
 use records::results_dir::ResultsDir;
 use records::runs::{merge, RunRow};
+use records::sorted::{latest, read_key_ordered, KeyMerge};
 use simulation::row::run_row;
 use simulation::run::RunRecord;
 use simulation::runner::run_jobs_with;
 use std::collections::HashSet;
+
+/// The journal of `results` recovered (records::journal::recover) and said: rows of another
+/// revision, whose trace does not match its seal, or that no experiment file describes
+/// (`described`) are named and left out of [`Recovered::current`] (they are run again).
+fn recover(
+    results: &ResultsDir,
+    git_rev: &str,
+    described: &HashSet<RunKey>,
+) -> Result<Recovered, ReproduceError> {
+    let mut recovered = records::journal::recover(results, git_rev)?;
+    let journal = records::journal::path(results.path());
+    for (key, rev) in &recovered.other_revision {
+        eprintln!(
+            "not folded from {}: {key} (written by revision {rev}, this is {git_rev}); it is run again",
+            journal.display(),
+        );
+    }
+    for key in &recovered.unsealed {
+        eprintln!(
+            "not folded from {}: {key} (its trace is missing, or not the one {} sealed); it is run again",
+            journal.display(),
+            records::journal::seal_path(results.path()).display()
+        );
+    }
+    recovered.current.retain(|e| {
+        let keep = described.contains(&e.key);
+        if !keep {
+            eprintln!(
+                "not folded from {}: {} (no experiment file describes it)",
+                journal.display(),
+                e.key
+            );
+        }
+        keep
+    });
+    Ok(recovered)
+}
 
 /// Folds the journal of an interrupted run into `kept` (the stored rows, written back, with
 /// the manifest) and removes from `to_run` the runs it holds from revision `git_rev`; rows of
@@ -25,37 +67,9 @@ pub fn resume(
     kept: &mut Vec<RunRow>,
     to_run: &mut Vec<Job>,
 ) -> Result<(), ReproduceError> {
-    let recovered = records::journal::recover(results, git_rev)?;
-    let journal = records::journal::path(results.path());
-    for r in &recovered.other_revision {
-        eprintln!(
-            "not folded from {}: {} (written by revision {}, this is {git_rev}); it is run again",
-            journal.display(),
-            r.key(),
-            r.git_rev
-        );
-    }
-    for r in &recovered.unsealed {
-        eprintln!(
-            "not folded from {}: {} (its trace is missing, or not the one {} sealed); it is run again",
-            journal.display(),
-            r.key(),
-            records::journal::seal_path(results.path()).display()
-        );
-    }
-    let described = all.keys();
-    let (fold, undescribed): (Vec<RunRow>, Vec<RunRow>) = recovered
-        .current
-        .into_iter()
-        .partition(|r| described.contains(&r.key()));
-    for r in &undescribed {
-        eprintln!(
-            "not folded from {}: {} (no experiment file describes it)",
-            journal.display(),
-            r.key()
-        );
-    }
-    if !fold.is_empty() {
+    let recovered = recover(results, git_rev, &all.keys())?;
+    if !recovered.current.is_empty() {
+        let fold: Vec<RunRow> = recovered.rows(results.path())?.collect::<Result<_, _>>()?;
         let done: HashSet<RunKey> = fold.iter().map(RunRow::key).collect();
         *kept = merge(std::mem::take(kept), fold);
         results.write_runs(kept)?;
@@ -72,31 +86,117 @@ pub fn resume(
     Ok(records::journal::remove(results.path())?)
 }
 
-/// Removes from `to_run` the runs a shard directory already holds: rows of `kept` (its
-/// `runs.csv`, the journal just folded in) of this revision `git_rev` whose trace the
-/// directory's manifest records. An earlier start of the shard finished them, whether its
-/// journal was folded by this start or by one before: a shard's resume is cumulative over every
-/// attempt, and a finished shard started again runs nothing.
-pub fn skip_finished(results: &ResultsDir, git_rev: &str, kept: &[RunRow], to_run: &mut Vec<Job>) {
+/// Folds the journal of `results` and `unjournaled` (rows whose traces are written, in key
+/// order) into its `runs.csv` by streaming, leaving out the stored rows `pruned` (their traces
+/// removed); `fresh` is told each row folded from the journal or `unjournaled`. `runs.csv` is
+/// read, merged and written row by row ([`records::sorted`]) and the journal's rows are read
+/// back one at a time: what is held per run is its key (the journal's index, the described
+/// keys), never its row or trace. At a start (`at_end` false) an interrupted start's journal
+/// is folded and said, and with nothing to fold or prune nothing is written; at the end of a
+/// shard (`at_end`) `runs.csv` is always written. The journal is removed once `runs.csv` is
+/// committed. Returns how many rows were folded from the journal.
+pub fn fold(
+    results: &ResultsDir,
+    git_rev: &str,
+    described: &HashSet<RunKey>,
+    pruned: &[RunRow],
+    unjournaled: Vec<RunRow>,
+    at_end: bool,
+    mut fresh: impl FnMut(&RunRow),
+) -> Result<usize, ReproduceError> {
+    let recovered = recover(results, git_rev, described)?;
+    let folded = recovered.current.len();
+    if at_end || folded > 0 || !pruned.is_empty() || !unjournaled.is_empty() {
+        for line in results.prune(pruned)? {
+            eprintln!("{line}");
+        }
+        let gone: HashSet<RunKey> = pruned.iter().map(RunRow::key).collect();
+        let stored = read_key_ordered(&results.runs_path())?;
+        let joints = [
+            stored.joints(),
+            recovered.joints,
+            unjournaled.iter().map(|r| r.drift.len()).max().unwrap_or(0),
+        ]
+        .into_iter()
+        .max()
+        .unwrap_or(0);
+        type Rows<'a> = Box<dyn Iterator<Item = Result<RunRow, ReproduceError>> + 'a>;
+        let sources: Vec<Rows> = vec![
+            Box::new(
+                stored
+                    .filter(|r| r.as_ref().map_or(true, |r| !gone.contains(&r.key())))
+                    .map(|r| r.map_err(ReproduceError::from)),
+            ),
+            Box::new(
+                recovered
+                    .rows(results.path())?
+                    .map(|r| r.map_err(ReproduceError::from)),
+            ),
+            Box::new(unjournaled.into_iter().map(Ok)),
+        ];
+        let rows = latest(KeyMerge::new(sources)?, |_| {}).map(|r| {
+            r.map(|(source, row)| {
+                if source > 0 {
+                    fresh(&row);
+                }
+                row
+            })
+        });
+        results.commit_runs(joints, rows)?;
+        if folded > 0 && !at_end {
+            eprintln!(
+                "folded {folded} run(s) of an interrupted run into {}",
+                results.runs_path().display()
+            );
+        }
+    }
+    records::journal::remove(results.path())?;
+    Ok(folded)
+}
+
+/// Removes from `to_run` the runs a shard directory already holds: rows of its `runs.csv`
+/// (read row by row) of this revision `git_rev` whose trace the directory's manifest records.
+/// An earlier start of the shard finished them, whether its journal was folded by this start
+/// or by one before: a shard's resume is cumulative over every attempt, and a finished shard
+/// started again runs nothing.
+pub fn skip_finished(
+    results: &ResultsDir,
+    git_rev: &str,
+    to_run: &mut Vec<Job>,
+) -> Result<(), ReproduceError> {
     let traced: HashSet<String> = results.tracked().listed("traces/").into_iter().collect();
-    let done: HashSet<RunKey> = kept
-        .iter()
-        .filter(|r| r.git_rev == git_rev)
-        .map(RunRow::key)
-        .filter(|k| {
-            let rel = ResultsDir::trace_rel(k);
-            traced.contains(&rel.to_string_lossy().replace('\\', "/"))
-        })
-        .collect();
+    let mut done = HashSet::new();
+    for row in read_key_ordered(&results.runs_path())? {
+        let row = row?;
+        let key = row.key();
+        let rel = ResultsDir::trace_rel(&key);
+        if row.git_rev == git_rev && traced.contains(&rel.to_string_lossy().replace('\\', "/")) {
+            done.insert(key);
+        }
+    }
     let before = to_run.len();
     to_run.retain(|j| !done.contains(&j.key()));
     if before > to_run.len() {
         eprintln!(
-            "the shard holds {} of its runs from earlier starts of this revision ({}); they are not run again",
+            "resuming: {} of the selected runs already done: the shard holds {} of its runs from earlier starts of this revision ({}); they are not run again",
+            before - to_run.len(),
             before - to_run.len(),
             results.runs_path().display()
         );
     }
+    Ok(())
+}
+
+/// The most joints among the arms of `jobs` (the per-joint columns of their rows).
+pub fn joints(jobs: &[Job]) -> usize {
+    jobs.iter()
+        .filter_map(|j| {
+            robots::registry::robot_by_name(&j.robot)
+                .ok()
+                .map(|r| r.dof())
+        })
+        .max()
+        .unwrap_or(0)
 }
 
 /// Runs `to_run` (in parallel), each checkpointed in a journal of `results` when given (sized
@@ -109,17 +209,7 @@ pub fn run_journaled(
     git_rev: &str,
 ) -> Result<(Vec<RunRecord>, HashSet<RunKey>), ReproduceError> {
     let journal = results
-        .map(|r| {
-            let joints = jobs
-                .iter()
-                .filter_map(|j| {
-                    robots::registry::robot_by_name(&j.robot)
-                        .ok()
-                        .map(|r| r.dof())
-                })
-                .max();
-            records::journal::Journal::open(r, joints.unwrap_or(0))
-        })
+        .map(|r| records::journal::Journal::open(r, joints(jobs)))
         .transpose()?;
     let unjournaled = std::sync::Mutex::new(HashSet::new());
     let records = run_jobs_with(to_run, true, |r| {

@@ -4,8 +4,8 @@
 //! [`ReproduceError`] it may return. A program may call [`run`](fn@run) with options it built
 //! itself: the library never sees the command line.
 //!
-//! One module per mode: [`run`](mod@run) (the default, the gate against a [`baseline`], a shard, with its
-//! [`journal`] and its [`phases`] clock), [`report`], [`explanation`], [`inference`], [`merge`], [`list`] (and robots),
+//! One module per mode: [`run`](mod@run) (the default, the gate against a [`baseline`], with its
+//! [`journal`] and its [`phases`] clock), [`shard`](mod@shard) (a shard in flat memory), [`report`], [`explanation`], [`inference`], [`merge`], [`list`] (and robots),
 //! [`cost`], [`score`] (a trajectory made elsewhere, also `driftbench.score` in Python); the
 //! task cards the report mode writes ([`task_card`]); beside them what the modes share: the
 //! options ([`options`]), the command line ([`cli`], [`aliases`]), the project's directories
@@ -33,6 +33,7 @@ pub mod revision;
 pub mod run;
 pub mod score;
 pub mod select;
+pub mod shard;
 pub mod summary;
 pub mod task_card;
 pub mod timing;
@@ -82,7 +83,7 @@ pub fn run(global: &GlobalOptions, mode: Mode) -> Result<ExitCode, ReproduceErro
         Mode::Merge(o) => {
             let project = project(None)?;
             let files = experiment_files(&project)?;
-            merge::merge_shards(&project, &o.dirs, &files, git_rev)
+            merge::merge_shards(&project, &o.dirs, &files, git_rev, !o.no_report)
         }
         Mode::Infer(o) => {
             let project = project(None)?;

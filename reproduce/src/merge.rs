@@ -1,23 +1,36 @@
 //! `reproduce merge DIR...` (`--merge`): finished shard directories (records::shard: manifests,
 //! integrity, revision, ownership, traces) checked before anything is written, then their rows
-//! and traces merged into the results directory and the report rendered, as a normal run does.
+//! merged into the results directory's `runs.csv` and their traces copied, and the report
+//! rendered unless `--no-report` (then `reproduce report` renders it, a step of its own).
+//!
+//! The merge streams: the shards' `runs.csv` are read row by row and merged in key order
+//! with the stored `runs.csv` (records::sorted, a k-way merge: a shard's row replaces a stored
+//! one), written row by row, each trace copied file by file as its row passes. Memory is then
+//! one row per shard plus O(bytes of a key) per run (the selection's keys, each shard's list
+//! of its runs, the manifests' entries), and time linear in the runs (two passes over the
+//! rows: the checks, then the writing). docs/cluster.md has the measurements.
 
 use crate::error::ReproduceError;
 use crate::project::Project;
 use crate::report::render_report_if_named;
-use crate::results::{open_results, plan_pruning, write_results, Described};
+use crate::results::{open_results, Described};
 use crate::run::report_unexpected;
 use crate::select::{check_selection, selected, selection_files};
 use catalog::experiment::PaperFile;
+use catalog::run_key::RunKey;
 use records::runs::RunRow;
+use records::sorted::{latest, read_key_ordered, KeyMerge};
+use std::collections::HashSet;
 use std::process::ExitCode;
 
-/// Merges the shard directories `dirs` (`files`: the experiment files).
+/// Merges the shard directories `dirs` (`files`: the experiment files), rendering the report
+/// when `report`.
 pub fn merge_shards(
     project: &Project,
     dirs: &[std::path::PathBuf],
     files: &[PaperFile],
     git_rev: &str,
+    report: bool,
 ) -> Result<ExitCode, ReproduceError> {
     let shards = dirs
         .iter()
@@ -33,21 +46,65 @@ pub fn merge_shards(
     let hash =
         records::shard::experiments_hash(&project.experiments_dir, selection_files(files, &sel))?;
     records::shard::check_shards(&shards, &expected, &hash)?;
+    drop(expected);
+
     let results = open_results(project, git_rev, all)?;
-    let (kept, pruned) = plan_pruning(project, &results, all)?;
-    let traces = records::shard::copy_traces(&shards, &results)?;
-    let rows: Vec<RunRow> = shards.iter().flat_map(|s| s.rows.clone()).collect();
-    let unexpected: Vec<String> = rows
+    let described = all.keys();
+    let pruned = results.plan_pruning_streamed(
+        |row| described.contains(&row.key()),
+        project.prune,
+        &project.experiments_dir,
+    )?;
+    drop(described);
+    for line in results.prune(&pruned)? {
+        eprintln!("{line}");
+    }
+    if !pruned.is_empty() {
+        eprintln!(
+            "pruned {} stored run(s) that no experiment file describes any more",
+            pruned.len()
+        );
+    }
+    let gone: HashSet<RunKey> = pruned.iter().map(RunRow::key).collect();
+    let stored = read_key_ordered(&results.runs_path())?;
+    let from_shards = records::shard::runs_files(&shards)?;
+    let joints = from_shards
         .iter()
-        .filter(|r| !r.completed() && !analysis::gate::expected_to_diverge(r))
-        .map(|r| format!("{}: {}", r.key(), r.failure))
-        .collect();
+        .map(|f| f.joints())
+        .fold(stored.joints(), usize::max);
+    // Source 0: the stored rows; source i: the rows of shards[i - 1] (which replace a stored
+    // row of the same key).
+    type Rows<'a> = Box<dyn Iterator<Item = Result<RunRow, ReproduceError>> + 'a>;
+    let mut sources: Vec<Rows> = vec![Box::new(
+        stored
+            .filter(|r| r.as_ref().map_or(true, |r| !gone.contains(&r.key())))
+            .map(|r| r.map_err(ReproduceError::from)),
+    )];
+    for file in from_shards {
+        sources.push(Box::new(file.map(|r| r.map_err(ReproduceError::from))));
+    }
+    let (mut runs, mut unexpected) = (0usize, Vec::new());
+    let rows = latest(KeyMerge::new(sources)?, |_| {}).map(|r| {
+        let (source, row) = r?;
+        if source > 0 {
+            records::shard::copy_trace(&shards[source - 1], &row, &results)?;
+            runs += 1;
+            if !row.completed() && !analysis::gate::expected_to_diverge(&row) {
+                unexpected.push(format!("{}: {}", row.key(), row.failure));
+            }
+        }
+        Ok::<_, ReproduceError>(row)
+    });
+    let written = results.commit_runs(joints, rows)?;
     eprintln!(
-        "merging {} shard(s): {} runs, {traces} traces",
+        "merged {} shard(s): {runs} runs and their traces; wrote {} ({written} rows)",
         shards.len(),
-        rows.len()
+        results.runs_path().display()
     );
-    write_results(&results, &[], kept, &pruned, rows)?;
-    render_report_if_named(project, &results)?;
+    if report {
+        render_report_if_named(project, &results)?;
+    } else {
+        eprintln!("report not rendered (--no-report): render it with `reproduce report`");
+    }
     Ok(report_unexpected(&unexpected))
 }

@@ -190,6 +190,10 @@ pub struct MergeOptions {
     /// The shard directories (of `reproduce shard`).
     #[arg(value_name = "DIR", required = true, num_args = 1..)]
     pub dirs: Vec<PathBuf>,
+    /// Do not render the report (render it afterwards with `reproduce report`): the merge
+    /// then only checks the shards and writes results/.
+    #[arg(long, visible_alias = "skip-report")]
+    pub no_report: bool,
 }
 
 /// `reproduce list`: the experiments and their runs.

@@ -1,23 +1,22 @@
-//! `reproduce run` (the default; also `check` and `shard`): everything that
-//! can be checked is checked before anything runs (the gate's baseline, the report directory,
-//! the papers, the stored results); then the selected runs run, resumed from and checkpointed in a journal;
-//! the summary is printed; and the rows are compared with the baseline (the gate: with a whole
-//! selection, the control experiments re-run too) or written
-//! with what follows them (a shard's manifest, or the explanation layer, the control
-//! experiments and the report), a run into `results/` timed phase by phase ([`crate::phases`]:
-//! printed, and written where `--phases FILE` says). Runs that fail without their experiment file expecting it are
-//! exit code 1.
+//! `reproduce run` (the default; also `check`): everything that can be checked is checked
+//! before anything runs (the gate's baseline, the report directory, the papers, the stored
+//! results); then the selected runs run, resumed from and checkpointed in a journal; the
+//! summary is printed; and the rows are compared with the baseline (the gate: with a whole
+//! selection, the control experiments re-run too) or written with what follows them (the
+//! explanation layer, the control experiments and the report), a run into `results/` timed
+//! phase by phase ([`crate::phases`]: printed, and written where `--phases FILE` says). A
+//! shard (`reproduce shard`) is handed to [`crate::shard`], which holds nothing per run. Runs
+//! that fail without their experiment file expecting it are exit code 1.
 
 use crate::baseline::Baseline;
 use crate::error::ReproduceError;
 use crate::explanation::explain;
-use crate::journal::{resume, run_journaled, skip_finished};
+use crate::journal::{resume, run_journaled};
 use crate::options::SelectionOptions;
 use crate::phases::{Phase, PhaseClock};
 use crate::project::Project;
 use crate::report::{precheck_report, render_figures, render_pages, report_root};
 use crate::results::{open_results, plan_pruning, write_results, Described};
-use crate::select::selection_files;
 use crate::summary::{emit, summary};
 use catalog::experiment::Job;
 use records::results_dir::ResultsDir;
@@ -38,7 +37,8 @@ pub enum Output {
     DryRun,
     /// Compared with a baseline (the gate); nothing written.
     Gate(Baseline),
-    /// Into the shard's own results directory, bound to the shard, with its manifest last.
+    /// Into the shard's own results directory, bound to the shard, with its manifest last
+    /// ([`crate::shard`]).
     Shard(Shard),
 }
 
@@ -66,10 +66,13 @@ pub fn run(
     jobs: &[Job],
     git_rev: &str,
 ) -> Result<ExitCode, ReproduceError> {
+    if let Output::Shard(shard) = plan.output {
+        return crate::shard::run_shard(project, plan.selection, shard, all, jobs, git_rev);
+    }
     if matches!(plan.output, Output::Results) {
         precheck_report(project, all)?;
     }
-    let writes = matches!(plan.output, Output::Results | Output::Shard(_));
+    let writes = matches!(plan.output, Output::Results);
     // One writer at a time: the lock is held until the process ends.
     let results = writes
         .then(|| open_results(project, git_rev, all))
@@ -78,31 +81,9 @@ pub fn run(
         .as_ref()
         .map(|r| plan_pruning(project, r, all))
         .transpose()?;
-    // A shard binds its directory before anything runs (records::shard::Binding); the
-    // directory is finished only once its manifest is written again, at the end.
-    let binding = match (&plan.output, &results) {
-        (Output::Shard(shard), Some(results)) => {
-            let binding = records::shard::Binding {
-                shard: shard.k,
-                shards: shard.n,
-                experiments_hash: records::shard::experiments_hash(
-                    &project.experiments_dir,
-                    selection_files(all.files(), &plan.selection.selection()),
-                )?,
-                selection: plan.selection.selection(),
-            };
-            binding.claim(results)?;
-            records::shard::Manifest::remove(&project.results_dir)?;
-            Some(binding)
-        }
-        _ => None,
-    };
     let mut to_run: Vec<Job> = jobs.to_vec();
     if let (Some(results), Some((kept, _))) = (&results, stored.as_mut()) {
         resume(results, git_rev, all, kept, &mut to_run)?;
-        if binding.is_some() {
-            skip_finished(results, git_rev, kept, &mut to_run);
-        }
     }
     let mut clock = PhaseClock::since(plan.started);
     clock.lap(Phase::Setup, None);
@@ -157,10 +138,7 @@ pub fn run(
                 String::new()
             },
         );
-        match &binding {
-            Some(binding) => finish_shard(project, binding, jobs, git_rev)?,
-            None => publish(project, &plan, results, all, jobs, git_rev, clock)?,
-        }
+        publish(project, &plan, results, all, jobs, git_rev, clock)?;
     }
     let unexpected: Vec<String> = failed
         .iter()
@@ -202,25 +180,6 @@ fn fresh_control(project: &Project) -> Result<Vec<records::control::ControlRow>,
     // The scratch copy is the gate's own; failing to remove it loses nothing.
     let _ = std::fs::remove_dir_all(&scratch);
     ran
-}
-
-/// A shard's manifest (of its `binding`), written last: the shard is finished.
-fn finish_shard(
-    project: &Project,
-    binding: &records::shard::Binding,
-    jobs: &[Job],
-    git_rev: &str,
-) -> Result<(), ReproduceError> {
-    binding
-        .manifest(git_rev, jobs.iter().map(|j| j.key().to_string()).collect())
-        .write(&project.results_dir)?;
-    eprintln!(
-        "shard {}/{} done: merge with `reproduce merge {}...`",
-        binding.shard,
-        binding.shards,
-        project.results_dir.display()
-    );
-    Ok(())
 }
 
 /// What follows the written rows of a run into `results/`: the explanation layer (unless

@@ -14,15 +14,36 @@ fn fmt(v: Option<f64>) -> String {
 
 /// The summary of `rows` (in their order; a header whenever the experiment changes).
 pub fn summary(rows: &[RunRow]) -> String {
+    let mut lines = Summary::default();
     let mut out = String::new();
-    let mut current = String::new();
     for r in rows {
-        if r.experiment != current {
-            current = r.experiment.to_string();
+        lines.push(r, &mut out);
+    }
+    lines.finish(&mut out);
+    out
+}
+
+/// The summary written as the rows come, one at a time (a shard prints it as it folds its
+/// journal, holding no row): [`Summary::push`] each row, then [`Summary::finish`].
+#[derive(Default)]
+pub struct Summary {
+    /// The experiment of the last row.
+    current: String,
+    /// Whether a VP-RNN-PF run was among the rows (its note ends the summary).
+    vp_rnn_pf: bool,
+}
+
+impl Summary {
+    /// Appends the line of `r` to `out`, after a header if its experiment is not the last
+    /// row's.
+    pub fn push(&mut self, r: &RunRow, out: &mut String) {
+        self.vp_rnn_pf |= is_vp_rnn_pf(r);
+        if r.experiment != self.current {
+            self.current = r.experiment.to_string();
             let _ = writeln!(
                 out,
-                "\n== {current} ({} on {}, T = {} s)",
-                r.robot, r.path, r.duration
+                "\n== {} ({} on {}, T = {} s)",
+                self.current, r.robot, r.path, r.duration
             );
             let _ = writeln!(
                 out,
@@ -49,7 +70,7 @@ pub fn summary(rows: &[RunRow]) -> String {
                 fmt(r.max_pos_err),
                 r.failure
             );
-            continue;
+            return;
         }
         let _ = writeln!(
             out,
@@ -65,14 +86,17 @@ pub fn summary(rows: &[RunRow]) -> String {
             r.wall_s
         );
     }
-    if rows.iter().any(is_vp_rnn_pf) {
-        out.push_str(
-            "\n|x-x*|max: largest |x_nn - x*|_inf of the joint command against Clarabel along the run. For \
-             VP-RNN-PF it measures the exponential-penalty approximation (its equilibrium is the penalised \
-             optimum, not x*), not a solver fault.\n",
-        );
+
+    /// Appends what ends the summary to `out`: the note on VP-RNN-PF, if one ran.
+    pub fn finish(self, out: &mut String) {
+        if self.vp_rnn_pf {
+            out.push_str(
+                "\n|x-x*|max: largest |x_nn - x*|_inf of the joint command against Clarabel along the run. For \
+                 VP-RNN-PF it measures the exponential-penalty approximation (its equilibrium is the penalised \
+                 optimum, not x*), not a solver fault.\n",
+            );
+        }
     }
-    out
 }
 
 /// Whether the run is of a VP-RNN-PF network (by its `solver_kind`).

@@ -24,6 +24,21 @@ pub fn run_jobs_with(
     progress: bool,
     finished: impl Fn(&RunRecord) + Sync,
 ) -> Vec<RunRecord> {
+    run_jobs_into(jobs, progress, |r| {
+        finished(&r);
+        r
+    })
+}
+
+/// Runs `jobs`, handing each record to `finished` as soon as its run ends (from the worker
+/// thread), and returns what `finished` made of them, in the order of `jobs`. A caller that
+/// writes each record out and keeps nothing of it (a shard) holds no record beyond the runs in
+/// flight.
+pub fn run_jobs_into<R: Send>(
+    jobs: &[Job],
+    progress: bool,
+    finished: impl Fn(RunRecord) -> R + Sync,
+) -> Vec<R> {
     let bar = ProgressBar::new(jobs.len() as u64);
     if progress {
         bar.set_style(
@@ -38,9 +53,8 @@ pub fn run_jobs_with(
     // Without a terminal (CI logs, redirected output) the bar is hidden: a line per finished
     // experiment shows life instead.
     let log = (progress && !std::io::stderr().is_terminal()).then(|| ExperimentLog::new(jobs));
-    let records = map_costliest_first(jobs, expected_cost, |job| {
-        let r = run_job(job);
-        finished(&r);
+    let made = map_costliest_first(jobs, expected_cost, |job| {
+        let r = finished(run_job(job));
         bar.inc(1);
         bar.set_message(job.key().to_string());
         if let Some(log) = &log {
@@ -49,7 +63,7 @@ pub fn run_jobs_with(
         r
     });
     bar.finish_and_clear();
-    records
+    made
 }
 
 /// `f` of every item of `items`, on rayon's pool, returned in the order of `items`. The items
