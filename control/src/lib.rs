@@ -14,14 +14,16 @@
 //! - [`stability`]: each network's largest stable step, from the spectrum of its Jacobian
 //!   (forward Euler is stable iff |1 + s lambda| <= 1 for every eigenvalue lambda), beside the
 //!   papers' gains;
-//! - zhong2021's claim that the networks are more efficient than E47 and 94LVI, decided on
-//!   operation counts ([`analysis::control_claim`]);
+//! - zhong2021's claim that the networks are more efficient than E47 and 94LVI: its check runs,
+//!   measured in operation counts ([`records::control::ClaimCheck`]; crate `analysis` decides
+//!   the claim);
 //! - [`trend`]: the drift after each of K cycles and its trend, at the control period and in
 //!   continuous time ([`continuous`], the exact column as the papers integrate);
 //! - [`reproduce`](mod@reproduce): the entry point that runs all of it and writes `results/control*.csv`,
 //!   `results/cycles.csv` (the rows: [`records::control`]).
 //!
-//! The standard task set is declared in `experiments/control/tasks.toml` ([`task::standard_task_refs`]).
+//! The standard task set and the budget of its runs are declared in
+//! `experiments/control/tasks.toml` ([`task::standard_task_set`]).
 
 pub mod arm;
 pub mod continuous;
@@ -38,4 +40,5 @@ pub mod tick;
 pub mod trend;
 
 pub use error::ControlError;
-pub use reproduce::{reproduce, Budget, Summary};
+pub use reproduce::{reproduce, Summary};
+pub use task::{standard_task_set, Budget, TaskSet};

@@ -10,6 +10,9 @@
 //!   without the experiment files. (robots reads its own robot files, so TOML is allowed, and
 //!   reads URDFs through `inputs`, the one reader of files from outside, which holds no file
 //!   format of the suite's.)
+//! - the engine (simulation, control) links no verdict crate (analysis): it runs and writes
+//!   rows, and the papers' claims are decided from the rows (zhong2021's efficiency claim in
+//!   `analysis::control_claim`, called by the orchestrator and the report);
 //! - no member links the benches (`driftbench-benches`, which holds the suite's measurements
 //!   of itself): the reproduction and its report are built without them.
 //! - no member but the benches links the counting allocator (`alloc-count`, which installs
@@ -161,6 +164,23 @@ fn the_numerical_crates_link_no_file_format() {
         assert!(
             found.is_empty(),
             "{package} links an experiment-file or results crate:\n  {}",
+            found.join("\n  ")
+        );
+    }
+}
+
+#[test]
+fn the_engine_decides_no_claim() {
+    let graph = workspace();
+    for package in ["simulation", "control"] {
+        assert!(
+            graph.contains_key(package),
+            "{package} is a workspace member"
+        );
+        let found = offending(&graph, package, &["analysis"]);
+        assert!(
+            found.is_empty(),
+            "{package} links the verdicts (claims are decided from the rows):\n  {}",
             found.join("\n  ")
         );
     }
