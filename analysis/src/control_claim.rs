@@ -110,13 +110,13 @@ pub fn overall(verdicts: &[Verdict]) -> Verdict {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use records::control::ControlStatus;
 
     /// A check of 10 products per step, n = 4 steps needed, checked at `check_steps`, reaching
     /// `max_dx`, against a method of 50 products per tick.
-    fn check(check_steps: u64, max_dx: f64) -> ClaimCheck {
+    pub(crate) fn check(check_steps: u64, max_dx: f64) -> ClaimCheck {
         ClaimCheck {
             task: "e / v".to_string(),
             network: "LVI-PDNN".to_string(),
