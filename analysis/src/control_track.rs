@@ -4,8 +4,8 @@
 //! Euler steps a network needs per tick, and the leaderboard of the methods over the tasks; and
 //! the networks as the papers integrate them, in products with the LVI matrix per millisecond.
 
-use crate::control_claim::{steps_needed, ACCURACY};
-use records::control::{ClaimRow, ControlRow, ControlStatus, MAIN_H};
+use crate::control_claim::ACCURACY;
+use records::control::{steps_needed, ClaimRow, ControlRow, ControlStatus, MAIN_H};
 use records::runs::RunRow;
 
 /// The main control period, in milliseconds (the unit of [`ControlRow::h_ms`]).

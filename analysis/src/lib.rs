@@ -37,6 +37,8 @@
 //! - [`fits`]: the growth exponents of cost against the number of joints, and the size where
 //!   faer's dense LU overtakes nalgebra's.
 //! - [`number`]: the one way numbers are written in words (evidence and the report).
+//! - [`report_model`]: the report's decided content as one typed model, built once per render
+//!   (the claims' verdicts, the leaderboard, the efficiency claim).
 
 pub mod claim_verdict;
 pub mod claims;
@@ -59,6 +61,7 @@ pub mod papers;
 pub mod performance;
 pub mod published_metrics;
 pub mod published_table;
+pub mod report_model;
 pub mod report_text;
 pub mod sweep_check;
 pub mod sweep_comparison;

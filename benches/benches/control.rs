@@ -1,5 +1,5 @@
 //! One control tick of every method on every task of the control experiments' standard task
-//! set (`control::task::standard_task_refs`) at h = 1 ms: the QPs of the first [`TICKS`] ticks of the exact
+//! set (`control::task::standard_task_set`) at h = 1 ms: the QPs of the first [`TICKS`] ticks of the exact
 //! discrete run are collected once, then each id times one `TickSolver::tick` on them in turn
 //! (the solver keeps its state from tick to tick, as in the loop: warm starts, network state).
 //!
@@ -17,7 +17,7 @@ use control::control_loop::{run_loop, LoopSettings, Observer};
 use control::method::{Method, Numerical};
 use control::network_tick::Discretisation;
 use control::numerical_tick::QpTick;
-use control::task::{load_tasks, standard_task_refs, with_task, TaskArm};
+use control::task::{load_tasks, standard_task_set, with_task, TaskArm};
 
 /// Ticks collected per task.
 const TICKS: usize = 200;
@@ -64,8 +64,8 @@ fn sample(arm: &TaskArm<'_>) -> Vec<(Qp, Qp)> {
 fn per_tick(c: &mut Criterion) {
     let root = catalog::root::from_current_dir().expect("run inside the workspace");
     let experiments = root.join("experiments");
-    let refs = standard_task_refs(&experiments).expect("the standard task set");
-    let tasks = load_tasks(&experiments, &refs).expect("the experiment files");
+    let set = standard_task_set(&experiments).expect("the standard task set");
+    let tasks = load_tasks(&experiments, &set.tasks).expect("the experiment files");
     for task in &tasks {
         let qps = with_task(task, 1, sample).expect("the task builds");
         let mut methods: Vec<Method> = Numerical::all()

@@ -1,6 +1,6 @@
 //! One controller run: a scheme's QP solved (or tracked, by a network) at a fixed control
 //! period h, the command held over each tick and the arm integrated exactly between ticks
-//! ([`crate::arm`]), over one or more cycles of a closed path.
+//! (`arm`), over one or more cycles of a closed path.
 //!
 //! At tick k (t_k = k h), with the arm at (theta_k, thetadot_k):
 //!

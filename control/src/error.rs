@@ -34,6 +34,14 @@ pub enum ControlError {
     NoTaskSet(String),
     #[error("{0}: the task set lists no [[task]]")]
     EmptyTaskSet(String),
+    /// A field of the task set's `[budget]` is out of its range (`valid` says what it may be;
+    /// the value is not quoted).
+    #[error("{path}: [budget] {field} must be {valid}")]
+    Budget {
+        path: String,
+        field: &'static str,
+        valid: &'static str,
+    },
     #[error("task {task}: {message}")]
     Setup { task: String, message: String },
     /// The task's network could not be built (`task` names the network).

@@ -5,37 +5,42 @@
 //! discrete loop at a fixed rate and repeats its task. Here:
 //!
 //! - [`control_loop`]: a scheme run at a fixed control period h (default 1 ms), the command
-//!   held over each tick and the arm integrated exactly between ticks ([`arm`]), with the
+//!   held over each tick and the arm integrated exactly between ticks (`arm`), with the
 //!   per-tick solver ([`method`], called through one interface: [`tick`]) either a network
 //!   stepped in discrete time ([`network_tick`]: forward Euler; for the zeroing networks also
 //!   the Taylor-type discrete-time ZNN) or a numerical QP method ([`numerical_tick`]: E47,
-//!   94LVI, the hot-started active set, Clarabel, OSQP); latency per tick ([`latency`]),
+//!   94LVI, the hot-started active set, Clarabel, OSQP); latency per tick (`latency`),
 //!   tracking error, |x - x*| and drift;
 //! - [`stability`]: each network's largest stable step, from the spectrum of its Jacobian
 //!   (forward Euler is stable iff |1 + s lambda| <= 1 for every eigenvalue lambda), beside the
 //!   papers' gains;
-//! - zhong2021's claim that the networks are more efficient than E47 and 94LVI, decided on
-//!   operation counts ([`analysis::control_claim`]);
-//! - [`trend`]: the drift after each of K cycles and its trend, at the control period and in
-//!   continuous time ([`continuous`], the exact column as the papers integrate);
-//! - [`reproduce`](mod@reproduce): the entry point that runs all of it and writes `results/control*.csv`,
+//! - zhong2021's claim that the networks are more efficient than E47 and 94LVI: its check runs,
+//!   measured in operation counts ([`records::control::ClaimCheck`]; crate `analysis` decides
+//!   the claim);
+//! - `trend`: the drift after each of K cycles and its trend, at the control period and in
+//!   continuous time (`continuous`, the exact column as the papers integrate);
+//! - [`reproduce()`]: the entry point that runs all of it and writes `results/control*.csv`,
 //!   `results/cycles.csv` (the rows: [`records::control`]).
 //!
-//! The standard task set is declared in `experiments/control/tasks.toml` ([`task::standard_task_refs`]).
+//! The standard task set and the budget of its runs are declared in
+//! `experiments/control/tasks.toml` ([`task::standard_task_set`]).
 
-pub mod arm;
-pub mod continuous;
+// The modules used only inside the crate; what other crates use is re-exported below or lives
+// in the public modules.
+mod arm;
+mod continuous;
 pub mod control_loop;
-pub mod error;
-pub mod latency;
+mod error;
+mod latency;
 pub mod method;
 pub mod network_tick;
 pub mod numerical_tick;
-pub mod reproduce;
+mod reproduce;
 pub mod stability;
 pub mod task;
 pub mod tick;
-pub mod trend;
+mod trend;
 
 pub use error::ControlError;
-pub use reproduce::{reproduce, Budget, Summary};
+pub use reproduce::{reproduce, Summary};
+pub use task::{standard_task_set, Budget, TaskSet};

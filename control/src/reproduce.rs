@@ -1,8 +1,10 @@
 //! The control experiments end to end: every method on the standard task set at the control
-//! period, the period sweep, the networks' stability limits, the efficiency claim and the
-//! many-cycles runs, written to `results/` ([`records::control`]).
+//! period, the period sweep, the networks' stability limits and the many-cycles runs, written to
+//! `results/` ([`records::control`]); and the efficiency claim's check runs, returned as
+//! measurements for crate `analysis` to judge (this crate decides no claim).
 //!
-//! Cost on 2 cores of a 2020s server CPU at the [`Budget::default`]: see the report's section
+//! Cost on 2 cores of a 2020s server CPU at the standard task set's budget
+//! (`experiments/control/tasks.toml`): see the report's section
 //! "At a robot's control rate" (about a minute of CPU, half a minute with the runs in parallel
 //! on both cores; most of it robio2018's methods iterating to 1e-10 at every tick of the runs
 //! at 1 ms, and the 20-cycle runs).
@@ -15,13 +17,12 @@ use crate::method::{Method, Numerical};
 use crate::network_tick::{products_per_evaluation, Discretisation};
 use crate::numerical_tick::QpTick;
 use crate::stability::{gain, LimitProbe};
-use crate::task::{load_tasks, standard_task_refs, with_task, Task, TaskArm};
+use crate::task::{load_tasks, with_task, Budget, Task, TaskArm, TaskSet};
 use crate::tick::TickSolver;
 use crate::trend::classify;
-use analysis::control_claim::{decide, overall, steps_needed, ACCURACY, CHECK_TICKS};
 use catalog::ids::SolverId;
-use records::control::Verdict;
-use records::control::{ClaimRow, ControlRow, ControlStatus, CycleRow, StabilityRow, TrendRow};
+use records::control::{steps_needed, ClaimCheck};
+use records::control::{ControlRow, ControlStatus, CycleRow, StabilityRow, TrendRow};
 use records::results_dir;
 use settings::solver_spec::SolverSpec;
 use simulation::runner::map_costliest_first;
@@ -31,35 +32,14 @@ use solvers::HotActiveSet;
 /// The method label of the continuous-time exact column in the many-cycles results.
 pub const CONTINUOUS_EXACT: &str = "exact (continuous)";
 
-/// How much is run.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Budget {
-    /// The control period every method runs at (s).
-    pub h: f64,
-    /// The other periods of the sweep (s): networks and the active set only.
-    pub sweep: Vec<f64>,
-    /// Cycles of the many-cycles runs.
-    pub cycles: usize,
-}
-
-impl Default for Budget {
-    /// h = 1 ms; sweep 0.1, 0.2, 0.5, 2, 5, 10 ms; 20 cycles.
-    fn default() -> Self {
-        Budget {
-            h: records::control::MAIN_H,
-            sweep: vec![1e-4, 2e-4, 5e-4, 2e-3, 5e-3, 1e-2],
-            cycles: 20,
-        }
-    }
-}
-
-/// What the reproduction found, in brief.
+/// What the reproduction ran: its row counts, and the efficiency claim's check runs, which
+/// crate `analysis` judges (`analysis::control_claim::judge`) into `results/control-claim.csv`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Summary {
     pub control_runs: usize,
     pub cycle_runs: usize,
-    /// The efficiency claim over all tasks.
-    pub verdict: Verdict,
+    /// The claim's measurements, one per task and network checked.
+    pub claim_checks: Vec<ClaimCheck>,
 }
 
 /// Whether a network is a zeroing network (its Taylor-type discrete form is defined).
@@ -261,10 +241,10 @@ impl<'a> LoopRun<'a> {
     }
 }
 
-/// A check run of the efficiency claim: `spec`'s Euler form on the run's task at h with twice
-/// the steps per tick its stability limit needs, over the first [`CHECK_TICKS`] ticks, and the
-/// numerical method it is compared with.
-struct ClaimCheck<'a> {
+/// A check run of the efficiency claim: `spec`'s Euler form on the run's task at h with
+/// [`Budget::check_steps_factor`] times the steps per tick its stability limit needs, over the
+/// first [`Budget::check_ticks`] ticks, and the numerical method it is compared with.
+struct ClaimRun<'a> {
     spec: &'a SolverSpec,
     /// Products with the LVI matrix per evaluation of the network.
     per_step: u64,
@@ -272,61 +252,59 @@ struct ClaimCheck<'a> {
     limit: f64,
     /// Euler steps per tick the limit needs.
     needed: u64,
+    /// Euler steps per tick of the check run.
+    check_steps: u64,
     /// The numerical method's row at h and its mean products per tick.
     numerical: (&'a ControlRow, f64),
     run: LoopRun<'a>,
 }
 
-impl<'a> ClaimCheck<'a> {
+impl<'a> ClaimRun<'a> {
     fn new(
         task: &'a Task,
         spec: &'a SolverSpec,
         per_step: u64,
         limit: f64,
         numerical: (&'a ControlRow, f64),
-        h: f64,
+        budget: &Budget,
     ) -> Self {
-        let needed = steps_needed(h, limit);
+        let needed = steps_needed(budget.h, limit);
+        let check_steps = budget.check_steps_factor.saturating_mul(needed);
         let method = Method::Network {
             spec: spec.clone(),
             form: Discretisation::Euler,
-            substeps: u32::try_from(2 * needed).unwrap_or(u32::MAX),
+            substeps: u32::try_from(check_steps).unwrap_or(u32::MAX),
         };
-        ClaimCheck {
+        ClaimRun {
             spec,
             per_step,
             limit,
             needed,
+            check_steps,
             numerical,
             run: LoopRun {
-                max_ticks: Some(CHECK_TICKS),
-                ..LoopRun::cycles(task, method, h, 1)
+                max_ticks: Some(budget.check_ticks),
+                ..LoopRun::cycles(task, method, budget.h, 1)
             },
         }
     }
 
-    /// The claim's row on the check run's task, from the check run's outcome `out`.
-    fn row(&self, mut out: LoopOutcome) -> Result<ClaimRow, ControlError> {
+    /// The claim's measurements on the check run's task, from the check run's outcome `out`.
+    fn measured(&self, mut out: LoopOutcome) -> Result<ClaimCheck, ControlError> {
         let check_solve = Latency::of(&mut out.solve_us);
         let task = self.run.task;
         let (num, num_mean) = self.numerical;
-        let check_steps = 2 * self.needed;
-        let lower = (self.needed * self.per_step) as f64;
-        let checked = (check_steps * self.per_step) as f64;
-        let verdict = decide(lower, checked, out.max_dx, num_mean);
-        Ok(ClaimRow {
+        Ok(ClaimCheck {
             task: task.id(),
             network: self.spec.display_name(),
             experiment: task.reference.experiment.clone(),
             variant_id: task.reference.variant.clone(),
             solver_id: SolverId::new(self.spec.id())?,
             h_ms: self.run.h * 1e3,
-            accuracy: ACCURACY,
             products_per_step: self.per_step,
             euler_limit_s: self.limit,
             steps_needed: self.needed,
-            network_products: lower,
-            check_steps,
+            check_steps: self.check_steps,
             check_ticks: out.ticks,
             check_status: out.status.column(),
             check_max_dx: out.max_dx,
@@ -336,14 +314,14 @@ impl<'a> ClaimCheck<'a> {
             numerical_products_max: num.products_max.unwrap_or(0),
             numerical_max_dx: num.max_dx,
             numerical_solve_p50_us: num.solve_p50_us,
-            cost_ratio: lower / num_mean,
-            verdict,
         })
     }
 }
 
-/// Runs everything (module docs) on the tasks of the experiment files in `experiments` and writes
-/// the result files into `results`; `progress` is told what runs.
+/// Runs everything (module docs) on the task set `set` (its tasks resolved against the
+/// experiment files in `experiments`, at its budget) and writes the result files but the
+/// claim's into `results`; `progress` is told what runs. The claim's check runs are returned
+/// in the [`Summary`].
 ///
 /// The runs are independent of one another but for what selects them, so they run in parallel
 /// (rayon's pool) in two rounds: first every run that needs no other's result (each method at
@@ -353,12 +331,13 @@ impl<'a> ClaimCheck<'a> {
 /// rows are assembled in the order of the tasks, methods and periods, as a sequential pass
 /// would write them.
 pub fn reproduce(
+    set: &TaskSet,
     experiments: &std::path::Path,
     results: &std::path::Path,
-    budget: &Budget,
     mut progress: impl FnMut(&str),
 ) -> Result<Summary, ControlError> {
-    let tasks = load_tasks(experiments, &standard_task_refs(experiments)?)?;
+    let tasks = load_tasks(experiments, &set.tasks)?;
+    let budget = &set.budget;
     let h = budget.h;
 
     // Round 1, then the rows it gives.
@@ -372,12 +351,12 @@ pub fn reproduce(
     let second = SecondRound::plan(&tasks, budget, &control, &stability);
     progress(&second.describe(budget));
     let second_out = second.run();
-    let claims = second
+    let claim_checks = second
         .checks
         .iter()
         .zip(second_out.checks)
-        .map(|(check, out)| check.row(out?))
-        .collect::<Result<Vec<ClaimRow>, ControlError>>()?;
+        .map(|(check, out)| check.measured(out?))
+        .collect::<Result<Vec<ClaimCheck>, ControlError>>()?;
     let cycles = CycleTables::of(
         &tasks,
         h,
@@ -390,14 +369,12 @@ pub fn reproduce(
     let control: Vec<ControlRow> = control.into_iter().map(|(_, r)| r).collect();
     records::control::write(results, results_dir::CONTROL, &control)?;
     records::control::write(results, results_dir::CONTROL_STABILITY, &stability)?;
-    records::control::write(results, results_dir::CONTROL_CLAIM, &claims)?;
     records::control::write(results, results_dir::CYCLES, &cycles.cycles)?;
     records::control::write(results, results_dir::CYCLES_TREND, &cycles.trends)?;
-    let verdicts: Vec<Verdict> = claims.iter().map(|c| c.verdict).collect();
     Ok(Summary {
         control_runs: control.len(),
         cycle_runs: cycles.trends.len(),
-        verdict: overall(&verdicts),
+        claim_checks,
     })
 }
 
@@ -585,7 +562,7 @@ fn stability_rows(
 /// The second round of [`reproduce`]: the runs selected by the first round's results.
 struct SecondRound<'a> {
     /// The efficiency claim's check runs.
-    checks: Vec<ClaimCheck<'a>>,
+    checks: Vec<ClaimRun<'a>>,
     /// Per task, the many cycles of every network form that was stable at h.
     network_cycles: Vec<Vec<LoopRun<'a>>>,
 }
@@ -600,7 +577,7 @@ impl<'a> SecondRound<'a> {
         stability: &[StabilityRow],
     ) -> Self {
         let h = budget.h;
-        let checks = claim_checks(tasks, control, stability, h);
+        let checks = claim_checks(tasks, control, stability, budget);
         let network_cycles = tasks
             .iter()
             .map(|task| {
@@ -651,13 +628,14 @@ struct SecondRoundOut {
 
 /// The efficiency claim's check runs, on the tasks run by a network built on the LVI whose
 /// Euler limit was found (among the `stability` rows), each with its comparator among the
-/// `control` rows at `h`.
+/// `control` rows at the budget's period.
 fn claim_checks<'a>(
     tasks: &'a [Task],
     control: &'a [(Method, ControlRow)],
     stability: &[StabilityRow],
-    h: f64,
-) -> Vec<ClaimCheck<'a>> {
+    budget: &Budget,
+) -> Vec<ClaimRun<'a>> {
+    let h = budget.h;
     let mut checks = Vec::new();
     for task in tasks {
         for spec in &task.networks {
@@ -675,7 +653,9 @@ fn claim_checks<'a>(
             let Some(numerical) = comparator(control, task, h) else {
                 continue;
             };
-            checks.push(ClaimCheck::new(task, spec, per_step, limit, numerical, h));
+            checks.push(ClaimRun::new(
+                task, spec, per_step, limit, numerical, budget,
+            ));
         }
     }
     checks

@@ -1,5 +1,6 @@
 //! The standard task set of the control experiments: one run of each paper's scheme, declared as
-//! data in `experiments/`[`TASK_SET_FILE`] (experiment and variant ids) and resolved against the
+//! data in `experiments/`[`TASK_SET_FILE`] (experiment and variant ids, and the [`Budget`] of
+//! their runs: the period sweep, the cycles, the claim's check runs) and resolved against the
 //! experiment files (robot, closed path, theta0, scheme and the paper's networks), and the way to
 //! build a task's arm, path and scheme ([`with_task`]).
 
@@ -26,18 +27,90 @@ pub struct TaskRef {
 /// subdirectory, which the experiment loader does not read).
 pub const TASK_SET_FILE: &str = "control/tasks.toml";
 
-/// The task set file: a list of `[[task]]` tables.
+/// The task set file: a list of `[[task]]` tables and the `[budget]` of their runs.
 #[derive(Debug, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 struct TaskSetFile {
     task: Vec<TaskRef>,
+    budget: BudgetFile,
+}
+
+/// The `[budget]` table of the task set file, in the file's units.
+#[derive(Debug, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BudgetFile {
+    /// The periods of the sweep besides the main one (ms).
+    sweep_ms: Vec<f64>,
+    /// Cycles of the many-cycles runs.
+    cycles: usize,
+    /// Ticks of a network's check run for the efficiency claim.
+    check_ticks: usize,
+    /// A check run's Euler steps per tick, as a multiple of the steps the network needs.
+    check_steps_factor: u64,
+}
+
+/// How much the control experiments run.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Budget {
+    /// The control period every method runs at (s); [`records::control::MAIN_H`], the period
+    /// of the report's verdicts, for the standard task set.
+    pub h: f64,
+    /// The other periods of the sweep (s): networks and the active set only.
+    pub sweep: Vec<f64>,
+    /// Cycles of the many-cycles runs.
+    pub cycles: usize,
+    /// Ticks of a network's check run for the efficiency claim.
+    pub check_ticks: usize,
+    /// A check run's Euler steps per tick over the steps the network needs
+    /// ([`records::control::steps_needed`]).
+    pub check_steps_factor: u64,
+}
+
+impl BudgetFile {
+    /// The budget at the main period [`records::control::MAIN_H`], each field checked: the
+    /// error names the file (`shown`), the field and its valid values.
+    fn budget(self, shown: &str) -> Result<Budget, ControlError> {
+        let invalid = |field: &'static str, valid: &'static str| ControlError::Budget {
+            path: shown.to_string(),
+            field,
+            valid,
+        };
+        if self.sweep_ms.iter().any(|&p| !(p.is_finite() && p > 0.0)) {
+            return Err(invalid("sweep_ms", "a list of finite periods > 0 (ms)"));
+        }
+        if self.cycles == 0 {
+            return Err(invalid("cycles", "an integer >= 1"));
+        }
+        if self.check_ticks == 0 {
+            return Err(invalid("check_ticks", "an integer >= 1"));
+        }
+        if self.check_steps_factor == 0 {
+            return Err(invalid("check_steps_factor", "an integer >= 1"));
+        }
+        Ok(Budget {
+            h: records::control::MAIN_H,
+            sweep: self.sweep_ms.iter().map(|p| p * 1e-3).collect(),
+            cycles: self.cycles,
+            check_ticks: self.check_ticks,
+            check_steps_factor: self.check_steps_factor,
+        })
+    }
+}
+
+/// The standard task set: its tasks, in the file's order, and their budget.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TaskSet {
+    /// Every paper's scheme once.
+    pub tasks: Vec<TaskRef>,
+    /// How much is run on them.
+    pub budget: Budget,
 }
 
 /// The standard task set declared in `experiments/`[`TASK_SET_FILE`], read as an input
 /// (`inputs::Kind::TaskSet`: a regular file inside `experiments`, at most 1 MiB, never quoted
-/// in an error): every paper's scheme once, in the file's order. A project without the file
-/// has no control experiments ([`ControlError::NoTaskSet`]).
-pub fn standard_task_refs(experiments: &std::path::Path) -> Result<Vec<TaskRef>, ControlError> {
+/// in an error): every paper's scheme once, in the file's order, and the budget of their runs.
+/// A project without the file has no control experiments ([`ControlError::NoTaskSet`]).
+pub fn standard_task_set(experiments: &std::path::Path) -> Result<TaskSet, ControlError> {
     let path = experiments.join(TASK_SET_FILE);
     let shown = path.display().to_string();
     let origin = inputs::Origin::Under(experiments);
@@ -54,7 +127,10 @@ pub fn standard_task_refs(experiments: &std::path::Path) -> Result<Vec<TaskRef>,
     if file.task.is_empty() {
         return Err(ControlError::EmptyTaskSet(shown));
     }
-    Ok(file.task)
+    Ok(TaskSet {
+        tasks: file.task,
+        budget: file.budget.budget(&shown)?,
+    })
 }
 
 /// A task resolved from the experiment files.
@@ -182,13 +258,13 @@ mod tests {
         (base.join("experiments"), base)
     }
 
-    /// The message of [`standard_task_refs`]'s refusal, called in a thread: the test fails if
+    /// The message of [`standard_task_set`]'s refusal, called in a thread: the test fails if
     /// it has not returned within 5 s or read the file.
     fn refusal(experiments: &std::path::Path) -> String {
         let dir = experiments.to_path_buf();
         let (tx, rx) = std::sync::mpsc::channel();
         std::thread::spawn(move || {
-            let _ = tx.send(standard_task_refs(&dir).err().map(|e| e.to_string()));
+            let _ = tx.send(standard_task_set(&dir).err().map(|e| e.to_string()));
         });
         rx.recv_timeout(Duration::from_secs(5))
             .expect("the task set was read or refused within 5 s (a FIFO must not block)")
@@ -200,8 +276,49 @@ mod tests {
         let experiments = catalog::root::from_current_dir()
             .unwrap()
             .join("experiments");
-        let refs = standard_task_refs(&experiments).unwrap();
-        assert!(refs.len() >= 4, "{refs:?}");
+        let set = standard_task_set(&experiments).unwrap();
+        assert!(set.tasks.len() >= 4, "{set:?}");
+        assert_eq!(set.budget.h, records::control::MAIN_H);
+    }
+
+    #[test]
+    fn a_budget_out_of_range_is_named_with_its_valid_values() {
+        let (experiments, base) = scratch("budget");
+        let file = experiments.join(TASK_SET_FILE);
+        let task = "[[task]]\nexperiment = \"e\"\nvariant = \"v\"\n";
+        let budget = |sweep: &str, cycles: u32, ticks: u32, factor: u32| {
+            format!(
+                "{task}[budget]\nsweep_ms = [{sweep}]\ncycles = {cycles}\n\
+                 check_ticks = {ticks}\ncheck_steps_factor = {factor}\n"
+            )
+        };
+        std::fs::write(&file, budget("0.5, 2.0", 3, 5, 2)).unwrap();
+        let set = standard_task_set(&experiments).unwrap();
+        assert_eq!(set.budget.sweep, vec![0.5e-3, 2e-3]);
+        assert_eq!((set.budget.cycles, set.budget.check_ticks), (3, 5));
+        assert_eq!(set.budget.check_steps_factor, 2);
+        for (text, field) in [
+            (budget("0.5, -1.0", 3, 5, 2), "sweep_ms"),
+            (budget("0.5", 0, 5, 2), "cycles"),
+            (budget("0.5", 3, 0, 2), "check_ticks"),
+            (budget("0.5", 3, 5, 0), "check_steps_factor"),
+        ] {
+            std::fs::write(&file, &text).unwrap();
+            let e = standard_task_set(&experiments).unwrap_err();
+            assert!(
+                matches!(&e, ControlError::Budget { field: f, .. } if *f == field),
+                "{e:?}"
+            );
+            assert!(
+                e.to_string().contains(&format!("[budget] {field} must be")),
+                "{e}"
+            );
+        }
+        // A task set without its budget is refused too.
+        std::fs::write(&file, task).unwrap();
+        let e = standard_task_set(&experiments).unwrap_err();
+        assert!(e.to_string().contains("budget"), "{e}");
+        std::fs::remove_dir_all(&base).unwrap();
     }
 
     #[test]
@@ -209,7 +326,7 @@ mod tests {
         let (experiments, base) = scratch("hostile");
         let file = experiments.join(TASK_SET_FILE);
         // Missing: no control experiments.
-        let e = standard_task_refs(&experiments).unwrap_err();
+        let e = standard_task_set(&experiments).unwrap_err();
         assert!(matches!(e, ControlError::NoTaskSet(_)), "{e:?}");
         // A symbolic link out of the experiments directory (to a secret, to the environment).
         for target in [

@@ -3,8 +3,8 @@
 //! (10 ms, one swept period, three cycles) and kong2019's two tasks (a scratch experiments
 //! directory with their file and a task set of its own).
 
-use control::{reproduce, Budget};
-use records::control::{ClaimRow, ControlRow};
+use control::{reproduce, standard_task_set};
+use records::control::{ClaimCheck, ControlRow};
 use records::results_dir;
 use std::path::{Path, PathBuf};
 
@@ -19,22 +19,25 @@ fn scratch(name: &str) -> PathBuf {
     dir
 }
 
-/// Runs the control experiments of `experiments` on a pool of `threads` threads into a fresh
-/// directory, which is returned.
-fn run_on(threads: usize, experiments: &Path) -> PathBuf {
+/// Runs the control experiments of `experiments` (its task set, at h = 10 ms instead of the
+/// main period) on a pool of `threads` threads into a fresh directory, which is returned beside
+/// the claim's check runs without their latencies (wall-clock).
+fn run_on(threads: usize, experiments: &Path) -> (PathBuf, Vec<ClaimCheck>) {
     let out = scratch(&format!("out-{threads}"));
-    let budget = Budget {
-        h: 1e-2,
-        sweep: vec![2e-2],
-        cycles: 3,
-    };
-    rayon::ThreadPoolBuilder::new()
+    let mut set = standard_task_set(experiments).unwrap();
+    set.budget.h = 1e-2;
+    let summary = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
         .unwrap()
-        .install(|| reproduce(experiments, &out, &budget, |_| {}))
+        .install(|| reproduce(&set, experiments, &out, |_| {}))
         .unwrap();
-    out
+    let mut checks = summary.claim_checks;
+    for c in &mut checks {
+        c.check_solve_p50_us = 0.0;
+        c.numerical_solve_p50_us = 0.0;
+    }
+    (out, checks)
 }
 
 /// The rows of `results/control.csv` without the latencies (wall-clock).
@@ -55,16 +58,6 @@ fn control_rows(dir: &Path) -> Vec<ControlRow> {
     rows
 }
 
-/// The rows of `results/control-claim.csv` without the latencies.
-fn claim_rows(dir: &Path) -> Vec<ClaimRow> {
-    let mut rows: Vec<ClaimRow> = records::control::read(dir, results_dir::CONTROL_CLAIM).unwrap();
-    for r in &mut rows {
-        r.check_solve_p50_us = 0.0;
-        r.numerical_solve_p50_us = 0.0;
-    }
-    rows
-}
-
 #[test]
 fn two_threads_give_the_rows_of_one() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
@@ -79,17 +72,18 @@ fn two_threads_give_the_rows_of_one() {
     std::fs::write(
         &tasks,
         "[[task]]\nexperiment = \"kong2019-circle\"\nvariant = \"znn-eq22\"\n\n\
-         [[task]]\nexperiment = \"kong2019-circle\"\nvariant = \"finite-time-eq14\"\n",
+         [[task]]\nexperiment = \"kong2019-circle\"\nvariant = \"finite-time-eq14\"\n\n\
+         [budget]\nsweep_ms = [20.0]\ncycles = 3\ncheck_ticks = 20\ncheck_steps_factor = 2\n",
     )
     .unwrap();
-    let (one, two) = (run_on(1, &experiments), run_on(2, &experiments));
+    let ((one, checks_one), (two, checks_two)) = (run_on(1, &experiments), run_on(2, &experiments));
     let rows = control_rows(&one);
     // Two tasks, each: every numerical method of this build (OSQP only with the `osqp`
     // feature) and 2 network forms at h, 3 methods swept.
     let numerical = control::method::Numerical::all().len();
     assert_eq!(rows.len(), 2 * (numerical + 2 + 3), "{rows:#?}");
     assert_eq!(rows, control_rows(&two));
-    assert_eq!(claim_rows(&one), claim_rows(&two));
+    assert_eq!(checks_one, checks_two);
     for file in [
         results_dir::CONTROL_STABILITY,
         results_dir::CYCLES,

@@ -205,6 +205,59 @@ pub struct StabilityRow {
     pub largest_stable_h_ms: Option<f64>,
 }
 
+/// Euler steps per tick a network needs to be stable at the control period `h` (s) with its
+/// Euler stability limit `limit` (s): n = ceil(h / limit), at least 1 (the `steps_needed`
+/// column of [`ClaimCheck`] and [`ClaimRow`]).
+pub fn steps_needed(h: f64, limit: f64) -> u64 {
+    (h / limit).ceil().max(1.0) as u64
+}
+
+/// What the control experiments measure for the efficiency claim on one task: a network's check
+/// run and the numerical method it is compared with (crate `control` runs it; crate
+/// `analysis`'s `control_claim` turns it into a [`ClaimRow`], deciding the verdict). The
+/// fields are those of [`ClaimRow`] that are measured, not decided.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ClaimCheck {
+    /// The task's label (`<experiment> / <variant>`, display only).
+    pub task: String,
+    /// The network's display name.
+    pub network: String,
+    /// The task's experiment id.
+    pub experiment: ExperimentId,
+    /// The task's variant id.
+    pub variant_id: VariantId,
+    /// The network's solver id.
+    pub solver_id: SolverId,
+    /// The control period h (ms).
+    pub h_ms: f64,
+    /// The network's work per Euler step, in products with the LVI matrix.
+    pub products_per_step: u64,
+    /// The network's Euler stability limit on the task (s).
+    pub euler_limit_s: f64,
+    /// Euler steps per tick the network needs to be stable at all ([`steps_needed`]).
+    pub steps_needed: u64,
+    /// The check run's Euler steps per tick.
+    pub check_steps: u64,
+    /// Ticks of the check run.
+    pub check_ticks: usize,
+    /// How the check run ended.
+    pub check_status: ControlStatus,
+    /// The check run's largest relative |x - x*|_inf.
+    pub check_max_dx: f64,
+    /// The check run's median solve latency (us).
+    pub check_solve_p50_us: f64,
+    /// The numerical method compared (its name).
+    pub numerical: String,
+    /// Its mean work per tick, in products with the LVI matrix.
+    pub numerical_products_mean: f64,
+    /// Its largest work of one tick.
+    pub numerical_products_max: u64,
+    /// Its largest relative |x - x*|_inf.
+    pub numerical_max_dx: f64,
+    /// Its median solve latency (us).
+    pub numerical_solve_p50_us: f64,
+}
+
 /// The efficiency claim on one task (crate `analysis`'s `control_claim` decides it).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ClaimRow {
@@ -228,7 +281,7 @@ pub struct ClaimRow {
     pub products_per_step: u64,
     /// The network's Euler stability limit on the task (s).
     pub euler_limit_s: f64,
-    /// Euler steps per tick the network needs to be stable at all: ceil(h / limit).
+    /// Euler steps per tick the network needs to be stable at all ([`steps_needed`]).
     pub steps_needed: u64,
     /// Products per tick at that step count (a lower bound on the network's cost).
     pub network_products: f64,

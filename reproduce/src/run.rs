@@ -166,21 +166,39 @@ fn fresh_control(project: &Project) -> Result<Vec<records::control::ControlRow>,
         records::error::IoAction::Write,
     ))?;
     eprintln!("re-running the control experiments for the gate");
-    let ran = control::reproduce(
-        &project.experiments_dir,
-        &scratch,
-        &control::Budget::default(),
-        |m| eprintln!("{m}"),
-    )
-    .map_err(ReproduceError::from)
-    .and_then(|_| {
-        records::control::read(&scratch, records::results_dir::CONTROL)
-            .map_err(|e| control::ControlError::from(e).into())
-    });
+    let ran = control::standard_task_set(&project.experiments_dir)
+        .and_then(|set| {
+            control::reproduce(&set, &project.experiments_dir, &scratch, |m| {
+                eprintln!("{m}")
+            })
+        })
+        .map_err(ReproduceError::from)
+        .and_then(|_| {
+            records::control::read(&scratch, records::results_dir::CONTROL)
+                .map_err(|e| control::ControlError::from(e).into())
+        });
     // The scratch copy is the gate's own; failing to remove it loses nothing.
     let _ = std::fs::remove_dir_all(&scratch);
     ran
 }
+
+/// zhong2021's efficiency claim judged from the control experiments' `checks`
+/// (`analysis::control_claim::judge`), its rows written to `results/control-claim.csv` in
+/// `results`; the overall verdict.
+fn judge_claim(
+    results: &std::path::Path,
+    checks: Vec<records::control::ClaimCheck>,
+) -> Result<records::control::Verdict, ReproduceError> {
+    let claims: Vec<records::control::ClaimRow> = checks
+        .into_iter()
+        .map(analysis::control_claim::judge)
+        .collect();
+    records::control::write(results, records::results_dir::CONTROL_CLAIM, &claims)
+        .map_err(control::ControlError::from)?;
+    let verdicts: Vec<records::control::Verdict> = claims.iter().map(|c| c.verdict).collect();
+    Ok(analysis::control_claim::overall(&verdicts))
+}
+
 
 /// What follows the written rows of a run into `results/`: the explanation layer (unless
 /// skipped), the control experiments and the timing pass of a whole, unselected reproduction,
@@ -208,19 +226,18 @@ fn publish(
     }
     // The control experiments (control crate) with a whole, unselected reproduction.
     if plan.selection.is_whole() {
-        let budget = control::Budget::default();
-        match control::reproduce(
-            &project.experiments_dir,
-            &project.results_dir,
-            &budget,
-            |m| eprintln!("{m}"),
-        ) {
+        match control::standard_task_set(&project.experiments_dir).and_then(|set| {
+            control::reproduce(&set, &project.experiments_dir, &project.results_dir, |m| {
+                eprintln!("{m}")
+            })
+        }) {
             Ok(s) => {
+                let verdict = judge_claim(&project.results_dir, s.claim_checks)?;
                 eprintln!(
                     "control: {} runs, {} many-cycles runs, efficiency claim {}",
                     s.control_runs,
                     s.cycle_runs,
-                    s.verdict.label()
+                    verdict.label()
                 );
                 clock.lap(Phase::Control, Some(s.control_runs + s.cycle_runs));
             }

@@ -14,6 +14,9 @@
 //!   solvers, simulation): they state a scheme, a path or a solver as data (crates `spec` and
 //!   `settings`), which the engine builds from;
 //! - `spec` (runs as data) is a leaf: it links no workspace member;
+//! - the engine (simulation, control) links no verdict crate (analysis): it runs and writes
+//!   rows, and the papers' claims are decided from the rows (zhong2021's efficiency claim in
+//!   `analysis::control_claim`, called by the orchestrator and the report);
 //! - no member links the benches (`driftbench-benches`, which holds the suite's measurements
 //!   of itself): the reproduction and its report are built without them.
 //! - no member but the benches links the counting allocator (`alloc-count`, which installs
@@ -204,6 +207,23 @@ fn the_specifications_are_a_leaf() {
         graph["catalog"].iter().any(|d| d == "spec"),
         "catalog reads experiment files into spec's types: the graph must show it"
     );
+}
+
+#[test]
+fn the_engine_decides_no_claim() {
+    let graph = workspace();
+    for package in ["simulation", "control"] {
+        assert!(
+            graph.contains_key(package),
+            "{package} is a workspace member"
+        );
+        let found = offending(&graph, package, &["analysis"]);
+        assert!(
+            found.is_empty(),
+            "{package} links the verdicts (claims are decided from the rows):\n  {}",
+            found.join("\n  ")
+        );
+    }
 }
 
 #[test]

@@ -10,13 +10,14 @@ use analysis::leaderboard::{
     STANDARD_PAPER, STANDARD_SET, TIME_LIMIT_FACTOR, TOL_RMS_DX,
 };
 use analysis::leaderboard_reading::{standard_reading, timing_reading, Best, StandardReading};
+use analysis::report_model::Leaderboard;
 use records::index::Runs;
 use records::timing::{Timings, REPETITIONS};
 
-/// The whole section (`## Leaderboard`), empty when there is no standard task.
-pub fn section(runs: &Runs, timings: &Timings) -> String {
-    let tasks = board::standard_tasks(runs.all());
-    let rows = board::leaderboard(runs.all(), timings);
+/// The whole section (`## Leaderboard`) of the leaderboard `model` (its runs in `runs`, timed
+/// in `timings`), empty when there is no standard task.
+pub fn section(model: &Leaderboard, runs: &Runs, timings: &Timings) -> String {
+    let Leaderboard { tasks, rows } = model;
     if tasks.is_empty() || rows.is_empty() {
         return String::new();
     }
@@ -30,10 +31,10 @@ pub fn section(runs: &Runs, timings: &Timings) -> String {
          `results/leaderboard.csv`; the definitions follow the tables.\n\n",
         tasks.len()
     );
-    out.push_str(&reading(&rows, tasks.len()));
+    out.push_str(&reading(rows, tasks.len()));
     out.push('\n');
-    out.push_str(&timing(&rows, timings, &tasks));
-    for set in sets(&rows) {
+    out.push_str(&timing(rows, timings, tasks));
+    for set in sets(rows) {
         let members: Vec<&LeaderboardRow> = rows.iter().filter(|r| r.task_set == set).collect();
         let n = members[0].tasks;
         if set == STANDARD_SET {
@@ -78,11 +79,11 @@ pub fn section(runs: &Runs, timings: &Timings) -> String {
     out
 }
 
-/// The first `n` solvers of the standard set's ranking (the front page), empty without a
-/// leaderboard.
-pub fn top(runs: &Runs, timings: &Timings, n: usize) -> String {
-    let rows = board::leaderboard(runs.all(), timings);
-    let top: Vec<&LeaderboardRow> = rows
+/// The first `n` solvers of the standard set's ranking of the leaderboard `model` (the front
+/// page), empty without a leaderboard.
+pub fn top(model: &Leaderboard, n: usize) -> String {
+    let top: Vec<&LeaderboardRow> = model
+        .rows
         .iter()
         .filter(|r| r.task_set == STANDARD_SET)
         .take(n)

@@ -52,6 +52,7 @@ pub mod why;
 use crate::error::ReportError;
 use analysis::paper_rules::GROUP;
 use analysis::papers::{PaperValue, Papers};
+use analysis::report_model::{PaperClaims, ReportModel};
 use markdown::{sci, Table};
 use records::index::Runs;
 use records::runs::read_runs;
@@ -183,17 +184,11 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
     } = inputs;
     // Every text of papers/ escaped once, before any section shows it.
     let papers = &shown::papers(papers);
-    let evaluated: Vec<Evaluated> = papers
-        .papers
-        .iter()
-        .map(|p| Evaluated {
-            id: p.id.as_str(),
-            title: p.title.as_str(),
-            claims: analysis::claim_verdict::evaluate(&p.id, runs, papers),
-        })
-        .collect();
+    // What the pages show that analysis decides, decided once.
+    let model = ReportModel::build(runs, papers, timings, &control.claims);
+    let evaluated = &model.papers;
     let mut head = header::header(runs, papers, figures.len());
-    head.push_str(&summary_section(&evaluated, runs, papers, explanations));
+    head.push_str(&summary_section(evaluated, runs, papers, explanations));
     let mut pages: Vec<Page> = evaluated
         .iter()
         .map(|e| paper_page_of(e, runs, papers, explanations, figures))
@@ -203,8 +198,8 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
         pages.push(topic("group.md", group));
     }
     pages.push(topic("score.md", score_page(runs, papers)));
-    let top = leaderboard::top(runs, timings, FRONT_TOP);
-    let board = leaderboard::section(runs, timings);
+    let top = leaderboard::top(&model.leaderboard, FRONT_TOP);
+    let board = leaderboard::section(&model.leaderboard, runs, timings);
     if !board.is_empty() {
         pages.push(topic(
             "leaderboard.md",
@@ -224,7 +219,7 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
     );
     out.push_str(&python::call_cost(&python.call_cost));
     pages.push(topic("performance.md", out));
-    let mut out = control::section(control, runs, figures);
+    let mut out = control::section(control, model.control_claim, runs, figures);
     out.push_str(&control::cycles_section(control, figures));
     pages.push(topic("control.md", out));
     pages.push(topic("cross.md", cross_page(runs, figures)));
@@ -233,18 +228,11 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
     std::iter::once(front).chain(pages).collect()
 }
 
-/// A paper with its claims evaluated.
-struct Evaluated<'a> {
-    id: &'a str,
-    title: &'a str,
-    claims: Vec<analysis::claim_verdict::Claim>,
-}
-
 /// `## Summary` of the front page: per paper, its verdict, its claims by verdict, the range of
 /// our magnitudes over the paper's ([`analysis::paper_verdict::ratio_span`]) and why in one
 /// line.
 fn summary_section(
-    evaluated: &[Evaluated],
+    evaluated: &[PaperClaims],
     runs: &Runs,
     papers: &Papers,
     explanations: &why::Explanations,
@@ -258,7 +246,7 @@ fn summary_section(
         "why, in one line",
     ]);
     for e in evaluated {
-        let paper = e.id;
+        let paper = e.id.as_str();
         let n = |v: Verdict| e.claims.iter().filter(|x| x.verdict == v).count();
         let decision = analysis::paper_verdict::decide(paper, &e.claims, runs, papers);
         let range = match analysis::paper_verdict::ratio_span(&decision.ratios) {
@@ -299,13 +287,13 @@ fn summary_section(
 /// side with ours, the sweep checks, why the numbers differ, the claims, and every run with
 /// its figures.
 fn paper_page_of(
-    e: &Evaluated,
+    e: &PaperClaims,
     runs: &Runs,
     papers: &Papers,
     explanations: &why::Explanations,
     figures: &[String],
 ) -> Page {
-    let (paper, title, c) = (e.id, e.title, &e.claims);
+    let (paper, title, c) = (e.id.as_str(), e.title.as_str(), &e.claims);
     let mut out = format!("[← the report](REPORT.md)\n\n# {paper}\n\n*{title}.*\n\n");
     let citation = papers.papers.iter().find(|p| p.id == *paper);
     if let Some(c) = citation.and_then(|p| p.citation.as_ref()) {
