@@ -1,23 +1,39 @@
 #!/usr/bin/env python3
 """Ratios of the side-by-side measurement (build_and_runs.sh): the candidate's cold build over
-the baseline's (wall and CPU seconds), and per run present in both, the candidate's sim_s over
-the baseline's (median and worst), runs matched by paper, experiment, variant and solver."""
+the baseline's (wall and CPU seconds; with several rounds, the medians over the rounds and each
+round's own ratio), and per run present in both, the candidate's sim_s over the baseline's
+(median and worst), runs matched by paper, experiment, variant and solver (skipped, and said so,
+when the measurement was --build-only)."""
 import csv, statistics, sys
 from pathlib import Path
 
 out, base, cand = Path(sys.argv[1]), sys.argv[2], sys.argv[3]
-builds = {r["revision"]: r for r in csv.DictReader(open(out / "build.csv"))}
-b, c = builds[base], builds[cand]
+rows = list(csv.DictReader(open(out / "build.csv")))
 cpu = lambda r: float(r["user_s"]) + float(r["sys_s"])
-print(f"cold build: {base} {float(b['wall_s']):.0f} s wall, {cpu(b):.0f} CPU s (load {b['load1']}); "
-      f"{cand} {float(c['wall_s']):.0f} s wall, {cpu(c):.0f} CPU s (load {c['load1']})")
-print(f"build ratio: wall {float(c['wall_s']) / float(b['wall_s']):.3f}, CPU {cpu(c) / cpu(b):.3f}")
+wall = lambda r: float(r["wall_s"])
+of = lambda rev: [r for r in rows if r["revision"] == rev]
+b, c = of(base), of(cand)
+if not b or not c:
+    sys.exit(f"build.csv has no build of {base if not b else cand}")
+for rev, builds in ((base, b), (cand, c)):
+    each = "; ".join(f"round {r.get('round', '1')}: {wall(r):.0f} s wall, {cpu(r):.0f} CPU s "
+                     f"(load {r['load1']})" for r in builds)
+    print(f"cold build {rev}: {each}")
+mw = lambda rs: statistics.median(wall(r) for r in rs)
+mc = lambda rs: statistics.median(cpu(r) for r in rs)
+print(f"build ratio (medians over {len(b)} and {len(c)} builds): wall {mw(c) / mw(b):.3f}, "
+      f"CPU {mc(c) / mc(b):.3f}")
+for rb, rc in zip(b, c):
+    print(f"  round {rb.get('round', '1')}: wall {wall(rc) / wall(rb):.3f}, CPU {cpu(rc) / cpu(rb):.3f}")
 
 def runs(rev):
     key = lambda r: (r["paper"], r["experiment"], r.get("variant_id", ""), r.get("solver_id", ""))
     return {key(r): float(r["sim_s"]) for r in csv.DictReader(open(out / f"runs-{rev}.csv"))
             if r.get("sim_s") not in (None, "") and float(r["sim_s"]) > 0}
 
+if not all((out / f"runs-{rev}.csv").exists() for rev in (base, cand)):
+    print("sim_s: not measured (no runs-<revision>.csv for both: a --build-only measurement)")
+    sys.exit(0)
 rb, rc = runs(base), runs(cand)
 common = sorted(set(rb) & set(rc))
 ratios = [rc[k] / rb[k] for k in common]
