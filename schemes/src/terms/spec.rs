@@ -13,7 +13,7 @@
 //! [[scheme.terms]]
 //! kind = "tracking"
 //! k_p = 5.0
-//! task = "planar"               # or "position" (default); or axes = ["x", "z"]
+//! task = "planar"               # or "position" (default), "pose"; or axes = ["x", "z"]
 //! ```
 //!
 //! Term kinds and fields (defaults after `=`; docs/schemes.md gives each equation):
@@ -21,11 +21,13 @@
 //! "linear" or "sign-power" with alpha in (0, 1], weight = 1, squared = false),
 //! `drift-damping` (alpha, beta, weight = 1), `torque-norm` (weight = 1; needs a robot with
 //! dynamics), `infinity-norm` (weight = 1, penalty = "squared" or "linear", varpi = +inf), `tracking` (velocity level: k_p = 0;
-//! acceleration level: rho_v, rho_p; task = "position" or "planar", or axes),
+//! acceleration level: rho_v, rho_p; task = "position", "planar" or "pose" (position and
+//! orientation; orientation = a rotation vector, default the start pose's), or axes),
 //! `bound-conversion` (gain), `velocity-limits`. Unknown kinds and fields are rejected.
 
 use std::sync::Arc;
 
+use nalgebra::Vector3;
 use robots::{Dynamics, Robot};
 use serde::{Deserialize, Serialize};
 
@@ -35,7 +37,7 @@ use super::infinity_norm::InfinityNorm;
 use super::joint_norm::JointNorm;
 use super::repetitive::{Form, Repetitive};
 use super::torque_norm::TorqueNorm;
-use super::tracking::{Feedback, Tracking};
+use super::tracking::{rotation_exp, Feedback, Tracking};
 use super::velocity_limits::VelocityLimits;
 use super::Term;
 use crate::composed::{BoundPlacement, Composed};
@@ -72,6 +74,9 @@ pub enum Task {
     Position,
     /// The tool position in the x-y plane (a planar arm): x and y.
     Planar,
+    /// The tool position (x, y, z) and the tool frame's orientation (three more rows), on a
+    /// robot with the orientation capability.
+    Pose,
 }
 
 /// One axis of the tool position.
@@ -181,6 +186,11 @@ pub enum TermSpec {
         /// Position gain rho_p > 0 (acceleration level).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         rho_p: Option<f64>,
+        /// The pose task's desired orientation as a rotation vector phi_d (rad, world frame;
+        /// R_d = exp(skew(phi_d))); absent: the start pose's, R(theta_ref). Only with `task =
+        /// "pose"`.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        orientation: Option<[f64; 3]>,
     },
     /// The joint-angle limits as velocity bounds (velocity level).
     BoundConversion {
@@ -250,7 +260,7 @@ impl TermSpec {
         match (task, axes) {
             (_, Some(axes)) => axes.iter().map(|a| *a as usize).collect(),
             (Some(Task::Planar), None) => vec![0, 1],
-            (Some(Task::Position) | None, None) => vec![0, 1, 2],
+            (Some(Task::Position | Task::Pose) | None, None) => vec![0, 1, 2],
         }
     }
 
@@ -342,7 +352,21 @@ impl TermSpec {
                 k_p,
                 rho_v,
                 rho_p,
+                orientation,
             } => {
+                if let Some(phi) = orientation {
+                    if task != Some(Task::Pose) {
+                        return Err(SchemeError::OrientationWithoutPose { index });
+                    }
+                    for v in phi {
+                        check(
+                            "orientation",
+                            v,
+                            true,
+                            "a rotation vector of three finite entries (rad)",
+                        )?;
+                    }
+                }
                 if let Some(axes) = axes {
                     let requirement = if task.is_some() {
                         Some("not both: give task or axes")
@@ -474,8 +498,9 @@ impl ComposedSpec {
         let terms = self
             .terms
             .iter()
-            .map(|spec| -> Box<dyn Term> {
-                match *spec {
+            .enumerate()
+            .map(|(index, spec)| -> Result<Box<dyn Term>, SchemeError> {
+                Ok(match *spec {
                     TermSpec::VelocityNorm { weight } => Box::new(JointNorm {
                         joints: n,
                         weight,
@@ -536,6 +561,7 @@ impl ComposedSpec {
                         k_p,
                         rho_v,
                         rho_p,
+                        orientation,
                     } => {
                         let feedback = match self.level {
                             Level::Velocity => Feedback::Velocity {
@@ -546,12 +572,32 @@ impl ComposedSpec {
                                 rho_p: rho_p.unwrap_or(f64::NAN),
                             },
                         };
-                        Box::new(Tracking::new(
-                            robot.clone(),
-                            path.clone(),
-                            TermSpec::axes(task, axes),
-                            feedback,
-                        ))
+                        let axes = TermSpec::axes(task, axes);
+                        if task != Some(Task::Pose) {
+                            Box::new(Tracking::new(robot.clone(), path.clone(), axes, feedback))
+                        } else {
+                            let no_orientation = || SchemeError::NoOrientation {
+                                index,
+                                robot: robot.name().to_string(),
+                            };
+                            let target = match orientation {
+                                Some(phi) => rotation_exp(&Vector3::from(phi)),
+                                None => robot
+                                    .orientation()
+                                    .ok_or_else(no_orientation)?
+                                    .tool_rotation(theta_ref),
+                            };
+                            Box::new(
+                                Tracking::with_orientation(
+                                    robot.clone(),
+                                    path.clone(),
+                                    axes,
+                                    feedback,
+                                    target,
+                                )
+                                .map_err(|_| no_orientation())?,
+                            )
+                        }
                     }
                     TermSpec::BoundConversion { gain } => Box::new(BoundConversion {
                         robot: robot.clone(),
@@ -560,9 +606,9 @@ impl ComposedSpec {
                     TermSpec::VelocityLimits => Box::new(VelocityLimits {
                         robot: robot.clone(),
                     }),
-                }
+                })
             })
-            .collect();
+            .collect::<Result<_, _>>()?;
         Ok(Composed::new(name, self.level, n, self.bounds, terms))
     }
 }
