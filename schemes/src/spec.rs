@@ -353,7 +353,7 @@ impl fmt::Display for SchemeError {
                 "scheme composed: terms[{index}] ({term}) is not a term of the {level} level \
                  (velocity: velocity-norm, repetitive, infinity-norm, tracking, bound-conversion, \
                  velocity-limits; acceleration: acceleration-norm, drift-damping, torque-norm, \
-                 tracking)"
+                 tracking, acceleration-limits)"
             ),
             SchemeError::InvalidAxes { index, requirement } => write!(
                 f,

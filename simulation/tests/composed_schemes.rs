@@ -455,3 +455,128 @@ fn a_given_orientation_is_reached_at_the_rate_of_k_p() {
         );
     }
 }
+
+/// An acceleration-level scheme of terms on the Jaco2's cardioid (zhang2018's arm and path)
+/// with the acceleration-limits term `limits` (TOML fields).
+fn acceleration_experiment(limits: &str) -> String {
+    format!(
+        r#"
+paper = "zhang2018"
+title = "acceleration limits"
+
+[[experiment]]
+id = "zhang2018-acceleration-limits"
+paper_output = "none"
+robot = "jaco2-pen"
+path = {{ name = "cardioid", duration = 8.0 }}
+theta0 = [1.68, 2.81, -3.22, 4.19, -1.71, -2.65]
+
+[[experiment.variant]]
+label = "limited"
+
+[experiment.variant.scheme]
+kind = "composed"
+level = "acceleration"
+
+[[experiment.variant.scheme.terms]]
+kind = "acceleration-norm"
+
+[[experiment.variant.scheme.terms]]
+kind = "drift-damping"
+alpha = 20.0
+beta = 20.0
+
+[[experiment.variant.scheme.terms]]
+kind = "tracking"
+rho_v = 20.0
+rho_p = 20.0
+
+[[experiment.variant.scheme.terms]]
+kind = "acceleration-limits"
+{limits}
+"#
+    )
+}
+
+#[test]
+fn acceleration_limits_bound_the_command_and_the_answer_is_clarabels() {
+    // Without a binding limit the scheme's peak |thetaddot|; then a limit 10 % below it.
+    let free = jobs(
+        "acceleration-free",
+        &[],
+        &acceleration_experiment("a_max = 1e6"),
+    );
+    let free = run_job(&free[0]);
+    let Outcome::Completed(f) = &free.run.outcome else {
+        panic!("{:?}", free.run.outcome);
+    };
+    let a_max = 0.9 * f.peak_thetaddot.expect("an acceleration-level run");
+    let jobs = jobs(
+        "acceleration-limits",
+        &[],
+        &acceleration_experiment(&format!("a_max = {a_max}\nvelocity_gain = 10.0")),
+    );
+    let job = &jobs[0];
+    let record = run_job(job);
+    let Outcome::Completed(m) = &record.run.outcome else {
+        panic!("{:?}", record.run.outcome);
+    };
+    assert!(m.max_position_error < 1e-4, "{}", m.max_position_error);
+    let peak = m.peak_thetaddot.unwrap();
+    assert!(peak <= a_max * (1.0 + 1e-9), "peak {peak} > a {a_max}");
+    let model = robot_by_name(&job.robot).unwrap();
+    let robot = job_robot(job, model.robot, model.dynamics.is_some()).unwrap();
+    let (_, scheme) = build_cyclic_parts(job, robot, None, 1).unwrap();
+    assert!(scheme
+        .terms()
+        .iter()
+        .any(|t| t.starts_with("acceleration-limits (a=")));
+    let n = job.theta0.len();
+    let mut qp = scheme.new_qp();
+    let mut clarabel = ExactSolver::new();
+    let (mut checked, mut active) = (0, 0);
+    let trace = &record.run.trace;
+    for point in trace.iter().step_by((trace.len() / 200).max(1)) {
+        scheme.build(point.t, &point.theta, &point.thetadot, &mut qp);
+        let reference = clarabel.solve(&qp).expect("Clarabel solves the QP");
+        let mut path = ExactPath::new(&qp);
+        let x = path.solve(&qp).unwrap().clone();
+        let dx = (&x - &reference.x).amax();
+        assert!(
+            dx < 1e-6 * reference.x.amax().max(1.0),
+            "t = {}: {dx}",
+            point.t
+        );
+        let peak = x.rows(0, n).amax();
+        assert!(peak <= a_max + 1e-9, "t = {}: |thetaddot| {peak}", point.t);
+        if peak > a_max - 1e-9 {
+            active += 1;
+        }
+        checked += 1;
+    }
+    assert!(checked >= 100, "{checked} instants");
+    assert!(active > 0, "the limit never binds at the sampled instants");
+}
+
+#[test]
+fn acceleration_limits_are_refused_out_of_range_or_at_the_velocity_level() {
+    let err = load("acc-zero", &[], &acceleration_experiment("a_max = 0.0")).unwrap_err();
+    assert!(
+        err.contains("composed.toml") && err.contains("'a_max' = 0"),
+        "{err}"
+    );
+    let err = load(
+        "acc-mu",
+        &[],
+        &acceleration_experiment("a_max = 1.0\nvelocity_gain = -1.0"),
+    )
+    .unwrap_err();
+    assert!(err.contains("'velocity_gain' = -1"), "{err}");
+    let velocity = pose_experiment("panda", PANDA_READY, "").replace("task = \"pose\"\n", "")
+        + "\n[[experiment.variant.scheme.terms]]\nkind = \"acceleration-limits\"\na_max = 1.0\n";
+    let err = load("acc-level", &[], &velocity).unwrap_err();
+    assert!(
+        err.contains("acceleration-limits") && err.contains("velocity level"),
+        "{err}"
+    );
+}

@@ -23,7 +23,8 @@
 //! dynamics), `infinity-norm` (weight = 1, penalty = "squared" or "linear", varpi = +inf), `tracking` (velocity level: k_p = 0;
 //! acceleration level: rho_v, rho_p; task = "position", "planar" or "pose" (position and
 //! orientation; orientation = a rotation vector, default the start pose's), or axes),
-//! `bound-conversion` (gain), `velocity-limits`. Unknown kinds and fields are rejected.
+//! `bound-conversion` (gain), `velocity-limits`, `acceleration-limits` (a_max, velocity_gain =
+//! none). Unknown kinds and fields are rejected.
 
 use std::sync::Arc;
 
@@ -31,6 +32,7 @@ use nalgebra::Vector3;
 use robots::{Dynamics, Robot};
 use serde::{Deserialize, Serialize};
 
+use super::acceleration_limits::AccelerationLimits;
 use super::bound_conversion::BoundConversion;
 use super::drift_damping::DriftDamping;
 use super::infinity_norm::InfinityNorm;
@@ -199,6 +201,15 @@ pub enum TermSpec {
     },
     /// The joint-velocity limits as bounds (velocity level).
     VelocityLimits,
+    /// The joint-acceleration limits (and the velocity limits converted) as bounds
+    /// (acceleration level).
+    AccelerationLimits {
+        /// The largest joint acceleration a > 0 (rad/s^2).
+        a_max: f64,
+        /// The conversion gain mu > 0 of the velocity limits (absent: not converted).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        velocity_gain: Option<f64>,
+    },
 }
 
 /// A scheme of terms, as a file writes it (module docs).
@@ -237,6 +248,7 @@ impl TermSpec {
             TermSpec::Tracking { .. } => "tracking",
             TermSpec::BoundConversion { .. } => "bound-conversion",
             TermSpec::VelocityLimits => "velocity-limits",
+            TermSpec::AccelerationLimits { .. } => "acceleration-limits",
         }
     }
 
@@ -250,7 +262,8 @@ impl TermSpec {
             | TermSpec::VelocityLimits => Some(Level::Velocity),
             TermSpec::AccelerationNorm { .. }
             | TermSpec::DriftDamping { .. }
-            | TermSpec::TorqueNorm { .. } => Some(Level::Acceleration),
+            | TermSpec::TorqueNorm { .. }
+            | TermSpec::AccelerationLimits { .. } => Some(Level::Acceleration),
             TermSpec::Tracking { .. } => None,
         }
     }
@@ -414,6 +427,21 @@ impl TermSpec {
             }
             TermSpec::BoundConversion { gain } => check("gain", gain, gain > 0.0, "finite and > 0"),
             TermSpec::VelocityLimits => Ok(()),
+            TermSpec::AccelerationLimits {
+                a_max,
+                velocity_gain,
+            } => {
+                check("a_max", a_max, a_max > 0.0, "finite and > 0 (rad/s^2)")?;
+                match velocity_gain {
+                    Some(mu) => check(
+                        "velocity_gain",
+                        mu,
+                        mu > 0.0,
+                        "finite and > 0 (absent: no conversion)",
+                    ),
+                    None => Ok(()),
+                }
+            }
         }
     }
 }
@@ -605,6 +633,14 @@ impl ComposedSpec {
                     }),
                     TermSpec::VelocityLimits => Box::new(VelocityLimits {
                         robot: robot.clone(),
+                    }),
+                    TermSpec::AccelerationLimits {
+                        a_max,
+                        velocity_gain,
+                    } => Box::new(AccelerationLimits {
+                        robot: robot.clone(),
+                        a_max,
+                        velocity_gain,
                     }),
                 })
             })
