@@ -13,7 +13,6 @@ use crate::error::ControlError;
 use crate::latency::Latency;
 use crate::method::{Method, Numerical};
 use crate::network_tick::{products_per_evaluation, Discretisation};
-use crate::numerical_tick::QpTick;
 use crate::stability::{gain, LimitProbe};
 use crate::task::{load_tasks, standard_task_refs, with_task, Task, TaskArm};
 use crate::tick::TickSolver;
@@ -149,7 +148,7 @@ impl ProbeLimit<'_> {
         })?;
         let dim = net.state_dim(dims);
         let mut probe = LimitProbe::new(net, dim);
-        let mut solver = QpTick::new(HotActiveSet::new(dims));
+        let mut solver = HotActiveSet::new(dims);
         let settings = LoopSettings {
             h: self.h,
             period,
