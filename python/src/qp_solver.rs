@@ -107,7 +107,7 @@ impl PyQpSolver {
             )
         })?;
         if let Some(status) = answer.get_item("status").map_err(failure)? {
-            let status = status.extract::<String>().map_err(|e| failure(e.into()))?;
+            let status = status.extract::<String>().map_err(failure)?;
             let Some(&status) = STATUSES.iter().find(|s| s.as_str() == status) else {
                 let names: Vec<&str> = STATUSES.iter().map(|s| s.as_str()).collect();
                 return Err((
@@ -155,7 +155,7 @@ impl PyQpSolver {
             z_upper: read("z_upper", dims.nx, false)?,
         };
         let iterations = match answer.get_item("iterations").map_err(failure)? {
-            Some(i) => i.extract::<u32>().map_err(|e| failure(e.into()))?,
+            Some(i) => i.extract::<u32>().map_err(failure)?,
             None => 1,
         };
         Ok((x.as_slice().to_vec(), duals, iterations))
