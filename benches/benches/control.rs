@@ -16,7 +16,6 @@ use qp::Qp;
 use control::control_loop::{run_loop, LoopSettings, Observer};
 use control::method::{Method, Numerical};
 use control::network_tick::Discretisation;
-use control::numerical_tick::QpTick;
 use control::task::{load_tasks, standard_task_set, with_task, TaskArm};
 
 /// Ticks collected per task.
@@ -42,7 +41,7 @@ impl Observer for Collect {
 /// The QPs of a task's first ticks with the exact optimum in the loop.
 fn sample(arm: &TaskArm<'_>) -> Vec<(Qp, Qp)> {
     let mut collect = Collect { qps: Vec::new() };
-    let mut solver = QpTick::new(solvers::HotActiveSet::new(arm.scheme.dims()));
+    let mut solver = solvers::HotActiveSet::new(arm.scheme.dims());
     let settings = LoopSettings {
         h: H,
         period: arm.period,

@@ -26,7 +26,7 @@ use crate::error::ControlError;
 use crate::tick::TickSolver;
 use nalgebra::DVector;
 use qp::dot::QpDotScratch;
-use qp::Qp;
+use qp::{Qp, QpSolve};
 use robots::Robot;
 use schemes::paths::Path;
 use schemes::scheme::Scheme;
@@ -114,7 +114,8 @@ pub struct LoopOutcome {
     pub drift: Vec<f64>,
     /// |theta(c T) - theta((c - 1) T)|_2 for each completed cycle c.
     pub cycle_change: Vec<f64>,
-    /// Mean and max per tick of [`TickSolver::products`] (None when not counted).
+    /// Mean and max per tick of the products [`TickSolver::tick`] reports (None when not
+    /// counted).
     pub products_mean: Option<f64>,
     pub products_max: Option<u64>,
     pub iterations_mean: f64,
@@ -176,7 +177,7 @@ pub fn run_loop(
             }
             Err(_) => tally.out.score_failures += 1,
         }
-        tally.work(solver.products(), solver.iterations());
+        tally.work(timed.cost.products, timed.cost.iterations);
         if (k + 1) % per_cycle == 0 {
             let theta = &state.theta;
             tally.cycle_end((theta - &theta0).norm(), (theta - &cycle_start).norm());
@@ -254,12 +255,10 @@ impl<'a> LoopState<'a> {
         let dot = solver.needs_qp_dot().then_some(&self.qp_dot);
         let result = solver.tick(t, &self.qp, dot, h);
         let solve_end = Instant::now();
-        if let Err(e) = result {
-            return Err(Status::Failed {
-                t,
-                message: e.to_string(),
-            });
-        }
+        let cost = result.map_err(|e| Status::Failed {
+            t,
+            message: e.to_string(),
+        })?;
         let x = solver.x();
         if x.iter().any(|v| !v.is_finite() || v.abs() > DIVERGED) {
             return Err(Status::Diverged { t });
@@ -278,6 +277,7 @@ impl<'a> LoopState<'a> {
         Ok(Timed {
             solve_us: (solve_end - solve_start).as_secs_f64() * 1e6,
             tick_us: (end - start).as_secs_f64() * 1e6,
+            cost,
         })
     }
 }
@@ -288,6 +288,8 @@ struct Timed {
     solve_us: f64,
     /// Duration of the whole tick (us).
     tick_us: f64,
+    /// The solver's iterations and products of the tick.
+    cost: QpSolve,
 }
 
 /// |x[..n] - x*[..n]|_inf / max(1, |x*[..n]|_inf): the joint command's distance from the exact

@@ -8,8 +8,9 @@
 //!   held over each tick and the arm integrated exactly between ticks (`arm`), with the
 //!   per-tick solver ([`method`], called through one interface: [`tick`]) either a network
 //!   stepped in discrete time ([`network_tick`]: forward Euler; for the zeroing networks also
-//!   the Taylor-type discrete-time ZNN) or a numerical QP method ([`numerical_tick`]: E47,
-//!   94LVI, the hot-started active set, Clarabel, OSQP); latency per tick (`latency`),
+//!   the Taylor-type discrete-time ZNN) or any QP solver of the one seam (`qp::QpSolver`, from
+//!   the registry: E47, 94LVI, the hot-started active set, Clarabel, OSQP, or one registered
+//!   from outside), a tick solver with no adapter; latency per tick (`latency`),
 //!   tracking error, |x - x*| and drift;
 //! - [`stability`]: each network's largest stable step, from the spectrum of its Jacobian
 //!   (forward Euler is stable iff |1 + s lambda| <= 1 for every eigenvalue lambda), beside the
@@ -34,7 +35,6 @@ mod error;
 mod latency;
 pub mod method;
 pub mod network_tick;
-pub mod numerical_tick;
 mod reproduce;
 pub mod stability;
 pub mod task;

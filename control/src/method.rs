@@ -1,10 +1,9 @@
 //! What runs at every control tick: a network stepped in discrete time
-//! ([`crate::network_tick`]) or a registered QP solver ([`crate::numerical_tick`], built by
-//! `solvers::registry`), behind one interface, [`TickSolver`] ([`crate::tick`]).
+//! ([`crate::network_tick`]) or a registered QP solver (built by `solvers::registry`, a tick
+//! solver as it is), behind one interface, [`TickSolver`] ([`crate::tick`]).
 
 use crate::error::ControlError;
 use crate::network_tick::{Discretisation, NetworkTick};
-use crate::numerical_tick::QpTick;
 use crate::tick::TickSolver;
 use qp::QpDims;
 use records::control::Family;
@@ -119,11 +118,9 @@ impl Method {
                 form,
                 substeps,
             } => Box::new(NetworkTick::new(spec, *form, *substeps, dims)?),
-            Method::Numerical(n) => Box::new(QpTick::new(solvers::registry::build(
-                n.solver.id(),
-                &n.settings,
-                dims,
-            )?)),
+            Method::Numerical(n) => {
+                Box::new(solvers::registry::build(n.solver.id(), &n.settings, dims)?)
+            }
         })
     }
 }

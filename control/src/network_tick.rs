@@ -23,7 +23,7 @@
 
 use crate::error::ControlError;
 use crate::tick::TickSolver;
-use qp::{Qp, QpDims};
+use qp::{Qp, QpDims, QpSolve};
 use settings::solver_spec::SolverSpec;
 use solvers::neural::{build_solver, NeuralSolver};
 use std::mem;
@@ -105,7 +105,15 @@ impl TickSolver for NetworkTick {
         self.net.needs_qp_dot()
     }
 
-    fn tick(&mut self, t: f64, qp: &Qp, qp_dot: Option<&Qp>, h: f64) -> Result<(), ControlError> {
+    /// `substeps` steps of the discrete form; the products of a projection network's
+    /// evaluations ([`products_per_evaluation`] each).
+    fn tick(
+        &mut self,
+        t: f64,
+        qp: &Qp,
+        qp_dot: Option<&Qp>,
+        h: f64,
+    ) -> Result<QpSolve, ControlError> {
         let s = h / self.substeps as f64;
         for j in 0..self.substeps {
             let tj = t + j as f64 * s;
@@ -124,18 +132,14 @@ impl TickSolver for NetworkTick {
             mem::swap(&mut self.y, &mut self.next);
             self.steps += 1;
         }
-        Ok(())
+        Ok(QpSolve {
+            iterations: self.substeps,
+            products: self.products.map(|p| p * u64::from(self.substeps)),
+            ..QpSolve::default()
+        })
     }
 
     fn x(&self) -> &[f64] {
         &self.y[..self.nx]
-    }
-
-    fn products(&self) -> Option<u64> {
-        self.products.map(|p| p * self.substeps as u64)
-    }
-
-    fn iterations(&self) -> u32 {
-        self.substeps
     }
 }

@@ -15,7 +15,6 @@ use crate::error::ControlError;
 use crate::latency::Latency;
 use crate::method::{Method, Numerical};
 use crate::network_tick::{products_per_evaluation, Discretisation};
-use crate::numerical_tick::QpTick;
 use crate::stability::{gain, LimitProbe};
 use crate::task::{load_tasks, with_task, Budget, Task, TaskArm, TaskSet};
 use crate::tick::TickSolver;
@@ -129,7 +128,7 @@ impl ProbeLimit<'_> {
         })?;
         let dim = net.state_dim(dims);
         let mut probe = LimitProbe::new(net, dim);
-        let mut solver = QpTick::new(HotActiveSet::new(dims));
+        let mut solver = HotActiveSet::new(dims);
         let settings = LoopSettings {
             h: self.h,
             period,

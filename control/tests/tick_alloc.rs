@@ -45,7 +45,7 @@ fn ticks_do_not_allocate() {
             // The first tick sets up (OSQP's workspace, the active set's buffers).
             let _ = solver.tick(0.0, &qps[0], Some(&qps[0]), 1e-3);
             for (k, qp) in qps.iter().enumerate() {
-                let mut result = Ok(());
+                let mut result = Ok(qp::QpSolve::default());
                 let n = count(|| result = solver.tick(k as f64 * 1e-3, qp, Some(qp), 1e-3));
                 // The scaled networks and robio2018's rules as printed may fail on random data;
                 // a failed tick carries its error boxed (`qp::QpSolverError`, one allocation on

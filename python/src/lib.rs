@@ -25,6 +25,7 @@ mod budget;
 mod error;
 mod network;
 mod packaged;
+mod qp_solver;
 mod task_set;
 
 use arrays::real_array;
@@ -475,8 +476,10 @@ fn parse_scoring(value: &Bound<'_, PyAny>) -> PyResult<Scoring> {
     }
 }
 
-/// Simulates `task` with `network`: a Python network (see the package docs) or the label of
-/// one of the task's own solvers by id (`task.solvers`, e.g. "exact"). Keyword arguments
+/// Simulates `task` with `network`: a Python network (see the package docs), the label of
+/// one of the task's own solvers by id (`task.solvers`, e.g. "exact"), or the id of a
+/// registered QP solver (`register_qp_solver`, or a built-in one such as "clarabel") run at
+/// every instant of the fixed-step numerical loop. Keyword arguments
 /// override the task's integrator tolerances and step limit, the scoring ("every-step", "off"
 /// or a number of instants) and where the network starts ("zero" or "exact"); `wall_budget`
 /// (seconds) bounds a Python network's run: past it the run is a failed run (`failure_kind`
@@ -501,7 +504,10 @@ fn simulate<'py>(
         let wall_budget = wall_budget.map(check_budget).transpose()?;
         let builtin = network.extract::<String>().ok();
         let mut job = match &builtin {
-            Some(id) => task.run_of(id).map_err(lib_err)?.clone(),
+            Some(id) => match task.run_of(id) {
+                Ok(job) => job.clone(),
+                Err(no_run) => registered_qp_run(task, id).ok_or_else(|| lib_err(no_run))?,
+            },
             None => task.job.clone(),
         };
         job.integrator.rtol = rtol.unwrap_or(job.integrator.rtol);
@@ -897,6 +903,64 @@ fn check_plain(file: &Path, rows: &[Vec<(&'static str, String)>]) -> Result<(), 
     Ok(())
 }
 
+/// The run of `task` whose solver is the registered QP solver `id` (not one of the task's own
+/// runs: one registered from Python, `register_qp_solver`, or any other of the registry) at
+/// its defaults, at every instant of the fixed-step numerical loop; None when `id` is not
+/// registered.
+fn registered_qp_run(task: &PyTask, id: &str) -> Option<catalog::experiment::Job> {
+    settings::qp_solver::lookup(id).ok()?;
+    let spec: catalog::numerical_spec::NumericalSpec =
+        serde_json::from_value(serde_json::json!({ "method": id })).ok()?;
+    Some(catalog::experiment::Job {
+        solver: catalog::experiment::SolverChoice::Numerical(spec),
+        ..task.job.clone()
+    })
+}
+
+/// Registers a QP solver written in Python (`python/src/qp_solver.rs`): `factory(dims)` builds
+/// an object whose `solve(P, q, A, b, G, h, lower, upper)` returns a dict with `x` and the
+/// multipliers `lambda`, `mu`, `z_lower`, `z_upper` (or a failure `status`). From then on `id`
+/// is a run's solver as any built-in one (`simulate(task, id)`) and an experiment file's
+/// `numerical = [{ method = id }]`. Errors: an id that is not a slug or is taken.
+#[pyfunction]
+#[pyo3(signature = (id, factory, *, name=None))]
+fn register_qp_solver(id: &str, factory: Py<PyAny>, name: Option<&str>) -> PyResult<()> {
+    guarded(|| qp_solver::register(id, name.unwrap_or(id), factory).map_err(lib_err))
+}
+
+/// The conformance kit (`solvers::conformance::check_qp_solver`) on the solvers `factory(dims)`
+/// builds, against Clarabel: the QP shapes of the papers' schemes (with `equality_only`, the
+/// equality-only ones) and random feasible QPs with bounds (not with `equality_only`),
+/// `seeds` QPs each; cold and warm agreement to 1e-6 in x and in the KKT residuals of the
+/// solver's own multipliers, failures reported by status (infeasible, NaN, other sizes),
+/// degenerate input. Returns the violations as text (empty: the solver conforms). No
+/// allocation check (Python allocates).
+#[pyfunction]
+#[pyo3(signature = (factory, *, equality_only=false, seeds=10))]
+fn check_qp_solver(factory: Py<PyAny>, equality_only: bool, seeds: u64) -> PyResult<Vec<String>> {
+    use solvers::conformance::Conformance;
+    use solvers::QpShape;
+    guarded(|| {
+        let id = qp::SolverId::builtin("python-qp-solver");
+        let make =
+            |dims| -> Box<dyn qp::QpSolver> { Box::new(qp_solver::build(&factory, &id, dims)) };
+        let spec = Conformance {
+            seeds,
+            shapes: if equality_only {
+                &[QpShape::Zhang2018, QpShape::Kong2019]
+            } else {
+                &QpShape::ALL
+            },
+            random_feasible: !equality_only,
+            ..Conformance::default()
+        };
+        Ok(solvers::conformance::check_qp_solver(&make, &spec, None)
+            .iter()
+            .map(|v| v.to_string())
+            .collect())
+    })
+}
+
 /// Scores a trajectory produced elsewhere on `task` with the metrics and the score of a run
 /// (`simulation::score_trajectory`). `trajectory` is a CSV file (columns t, theta_1..n,
 /// optionally thetadot_1..n) or a dict of arrays `t` (m), `theta` (m x n) and optionally
@@ -1037,5 +1101,7 @@ fn _driftbench(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(score, m)?)?;
     m.add_function(wrap_pyfunction!(data_root, m)?)?;
     m.add_function(wrap_pyfunction!(into_results, m)?)?;
+    m.add_function(wrap_pyfunction!(register_qp_solver, m)?)?;
+    m.add_function(wrap_pyfunction!(check_qp_solver, m)?)?;
     Ok(())
 }

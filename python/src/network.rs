@@ -239,12 +239,12 @@ pub fn qp_dict<'py>(py: Python<'py>, qp: &Qp) -> PyResult<Bound<'py, PyDict>> {
     Ok(d)
 }
 
-fn vector<'py>(py: Python<'py>, v: &DVector<f64>) -> Bound<'py, numpy::PyArray1<f64>> {
+pub fn vector<'py>(py: Python<'py>, v: &DVector<f64>) -> Bound<'py, numpy::PyArray1<f64>> {
     v.as_slice().to_vec().into_pyarray(py)
 }
 
 /// A matrix as a C-ordered 2-D array.
-fn matrix<'py>(py: Python<'py>, m: &DMatrix<f64>) -> Bound<'py, numpy::PyArray2<f64>> {
+pub fn matrix<'py>(py: Python<'py>, m: &DMatrix<f64>) -> Bound<'py, numpy::PyArray2<f64>> {
     numpy::ndarray::Array2::from_shape_fn(m.shape(), |(i, j)| m[(i, j)]).into_pyarray(py)
 }
 

@@ -4,20 +4,22 @@
 
 use std::sync::Arc;
 
+use nalgebra::Vector3;
 use robots::{Dynamics, Robot};
 use spec::scheme::{Level, RepetitiveForm, SchemeError, SchemeSpec};
-use spec::terms::{tracking_axes, ComposedSpec, Penalty, TermSpec};
+use spec::terms::{tracking_axes, ComposedSpec, Penalty, Task, TermSpec};
 
 use crate::composed::Composed;
 use crate::paths::Path;
 use crate::scheme::Scheme;
+use crate::terms::acceleration_limits::AccelerationLimits;
 use crate::terms::bound_conversion::BoundConversion;
 use crate::terms::drift_damping::DriftDamping;
 use crate::terms::infinity_norm::InfinityNorm;
 use crate::terms::joint_norm::JointNorm;
 use crate::terms::repetitive::{Form, Repetitive};
 use crate::terms::torque_norm::TorqueNorm;
-use crate::terms::tracking::{Feedback, Tracking};
+use crate::terms::tracking::{rotation_exp, Feedback, Tracking};
 use crate::terms::velocity_limits::VelocityLimits;
 use crate::terms::Term;
 
@@ -85,8 +87,9 @@ pub fn build_composed(
     let terms = composed
         .terms
         .iter()
-        .map(|spec| -> Box<dyn Term> {
-            match *spec {
+        .enumerate()
+        .map(|(index, spec)| -> Result<Box<dyn Term>, SchemeError> {
+            Ok(match *spec {
                 TermSpec::VelocityNorm { weight } => Box::new(JointNorm {
                     joints: n,
                     weight,
@@ -147,6 +150,7 @@ pub fn build_composed(
                     k_p,
                     rho_v,
                     rho_p,
+                    orientation,
                 } => {
                     let feedback = match composed.level {
                         Level::Velocity => Feedback::Velocity {
@@ -157,12 +161,32 @@ pub fn build_composed(
                             rho_p: rho_p.unwrap_or(f64::NAN),
                         },
                     };
-                    Box::new(Tracking::new(
-                        robot.clone(),
-                        path.clone(),
-                        tracking_axes(task, axes),
-                        feedback,
-                    ))
+                    let axes = tracking_axes(task, axes);
+                    if task != Some(Task::Pose) {
+                        Box::new(Tracking::new(robot.clone(), path.clone(), axes, feedback))
+                    } else {
+                        let no_orientation = || SchemeError::NoOrientation {
+                            index,
+                            robot: robot.name().to_string(),
+                        };
+                        let target = match orientation {
+                            Some(phi) => rotation_exp(&Vector3::from(phi)),
+                            None => robot
+                                .orientation()
+                                .ok_or_else(no_orientation)?
+                                .tool_rotation(theta_ref),
+                        };
+                        Box::new(
+                            Tracking::with_orientation(
+                                robot.clone(),
+                                path.clone(),
+                                axes,
+                                feedback,
+                                target,
+                            )
+                            .map_err(|_| no_orientation())?,
+                        )
+                    }
                 }
                 TermSpec::BoundConversion { gain } => Box::new(BoundConversion {
                     robot: robot.clone(),
@@ -171,9 +195,17 @@ pub fn build_composed(
                 TermSpec::VelocityLimits => Box::new(VelocityLimits {
                     robot: robot.clone(),
                 }),
-            }
+                TermSpec::AccelerationLimits {
+                    a_max,
+                    velocity_gain,
+                } => Box::new(AccelerationLimits {
+                    robot: robot.clone(),
+                    a_max,
+                    velocity_gain,
+                }),
+            })
         })
-        .collect();
+        .collect::<Result<_, _>>()?;
     Ok(Composed::new(
         name,
         composed.level,

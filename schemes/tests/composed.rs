@@ -173,3 +173,63 @@ fn the_derivative_after_a_build_elsewhere_is_a_fresh_one() {
         }
     }
 }
+
+#[test]
+fn acceleration_limits_clamp_the_converted_velocity_limits_and_their_derivative_is_exact() {
+    let text = "kind = \"composed\"\nlevel = \"acceleration\"\n\
+                [[terms]]\nkind = \"acceleration-norm\"\n\
+                [[terms]]\nkind = \"acceleration-limits\"\na_max = 2.0\nvelocity_gain = 4.0\n";
+    let spec: SchemeSpec = toml::from_str(text).unwrap();
+    let s = build(&spec);
+    assert_eq!(s.dims().n_eq, 0);
+    // Velocity limits +-1.5: joint 0 at 1.1 (upper branch 4 (1.5 - 1.1) = 1.6 inside, lower
+    // 4 (-2.6) = -10.4 clamped to -2), joint 1 at 1.9 beyond the limit (upper 4 (1.5 - 1.9) = -1.6 < 0:
+    // decelerated), joint 2 at -1.45 (lower 4 (-1.5 + 1.45) = -0.2).
+    let th = theta0();
+    let thd = vec![1.1, 1.9, -1.45, 0.0, 0.3, -0.3];
+    let thdd = vec![0.5, -0.7, 0.9, 0.2, -0.4, 0.1];
+    let mut qp = s.new_qp();
+    s.build(0.2, &th, &thd, &mut qp);
+    let close = |a: f64, b: f64| (a - b).abs() < 1e-9;
+    assert!(
+        close(qp.upper[0], 1.6) && close(qp.lower[0], -2.0),
+        "{qp:?}"
+    );
+    assert!(close(qp.upper[1], -1.6) && close(qp.lower[1], -2.0));
+    assert!(close(qp.lower[2], -0.2) && close(qp.upper[2], 2.0));
+    for i in 0..N {
+        assert!(qp.lower[i] <= qp.upper[i]);
+    }
+    // dl/dt, du/dt along (thetadot, thetaddot): -mu thetaddot_i on the velocity branch.
+    let mut dot = s.new_qp();
+    let mut scratch = s.new_dot_scratch();
+    s.build_dot(0.2, &th, &thd, &thdd, &mut dot, &mut scratch);
+    let h = 1e-7;
+    let at = |sign: f64| {
+        let th: Vec<f64> = th.iter().zip(&thd).map(|(a, v)| a + sign * h * v).collect();
+        let thd: Vec<f64> = thd
+            .iter()
+            .zip(&thdd)
+            .map(|(a, v)| a + sign * h * v)
+            .collect();
+        let mut qp = s.new_qp();
+        s.build(0.2 + sign * h, &th, &thd, &mut qp);
+        qp
+    };
+    let (plus, minus) = (at(1.0), at(-1.0));
+    for i in 0..N {
+        let dl = (plus.lower[i] - minus.lower[i]) / (2.0 * h);
+        let du = (plus.upper[i] - minus.upper[i]) / (2.0 * h);
+        assert!(
+            (dl - dot.lower[i]).abs() < 1e-6,
+            "joint {i}: dl {dl} vs {}",
+            dot.lower[i]
+        );
+        assert!(
+            (du - dot.upper[i]).abs() < 1e-6,
+            "joint {i}: du {du} vs {}",
+            dot.upper[i]
+        );
+    }
+    assert!(close(dot.upper[1], -4.0 * thdd[1]));
+}

@@ -7,10 +7,15 @@
 //!   its auxiliary variable is the infinity norm of the command;
 //! - a 5-joint planar arm (a robot file in the paper's folder) with the planar task: the
 //!   certified active set answers every instant (no Clarabel fallback) and the run tracks the
-//!   path; with the 3-D task on the same arm (a zero row of J) the active set falls back.
+//!   path; with the 3-D task on the same arm (a zero row of J) the active set falls back;
+//! - the pose task (position and orientation, 6 rows) on the 7-joint Panda keeps the tool
+//!   frame's orientation at the start pose's while the tool follows the path, its exact answer
+//!   is Clarabel's, its dQP/dt is the central difference of its QP; on a robot without a tool
+//!   frame, or in a preset scheme, the file is refused naming the file and the field.
 
 use catalog::experiment::{load_dir, Job};
 use robots::registry::robot_by_name;
+use schemes::terms::tracking::orientation_error;
 use simulation::run::{build_cyclic_parts, check_job, job_robot, run_job};
 use simulation::simulate::Outcome;
 use solvers::exact::ExactSolver;
@@ -25,6 +30,11 @@ fn write(path: &Path, text: &str) {
 /// The jobs of `experiments` (with `robots`: robot files of the paper's folder), in a fresh
 /// directory named for `tag`.
 fn jobs(tag: &str, robots: &[(&str, String)], experiments: &str) -> Vec<Job> {
+    load(tag, robots, experiments).expect("the experiments load")
+}
+
+/// The jobs of `experiments` or the load's error message, as [`jobs`].
+fn load(tag: &str, robots: &[(&str, String)], experiments: &str) -> Result<Vec<Job>, String> {
     let root = std::env::temp_dir().join(format!("driftbench-{tag}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&root);
     for (name, text) in robots {
@@ -35,10 +45,11 @@ fn jobs(tag: &str, robots: &[(&str, String)], experiments: &str) -> Vec<Job> {
     }
     write(&root.join("experiments/composed.toml"), experiments);
     catalog::robot_files::register_paper_robots(&root.join("papers"));
-    let files = load_dir(&root.join("experiments"), check_job).expect("the experiments load");
-    let jobs = files.iter().flat_map(|f| f.jobs()).collect();
+    let files = load_dir(&root.join("experiments"), check_job);
     std::fs::remove_dir_all(&root).unwrap();
-    jobs
+    files
+        .map(|files| files.iter().flat_map(|f| f.jobs()).collect())
+        .map_err(|e| e.to_string())
 }
 
 const OWN_SCHEME: &str = r#"
@@ -207,4 +218,365 @@ fn a_planar_arm_with_the_planar_task_is_solved_by_the_active_set_alone() {
     // The 3-D task on the same arm: J's z row is zero, and the certified active set gives up.
     let spatial = run_job(&jobs[1]);
     assert!(spatial.run.qp.fallbacks > 0, "{:?}", spatial.run.qp);
+}
+
+/// A pose task (`task = "pose"`, orientation the start pose's unless `extra` says otherwise)
+/// on `robot` from `theta0`, with a velocity norm and the bound conversion.
+fn pose_experiment(robot: &str, theta0: &str, extra: &str) -> String {
+    format!(
+        r#"
+paper = "kong2019"
+title = "a pose task"
+
+[[experiment]]
+id = "kong2019-pose-task"
+paper_output = "none"
+robot = "{robot}"
+path = {{ name = "circle", duration = 3.0 }}
+theta0 = {theta0}
+exact_integrator = {{ method = "bdf", rtol = 1e-8, atol = 1e-10 }}
+
+[[experiment.variant]]
+label = "pose"
+
+[experiment.variant.scheme]
+kind = "composed"
+level = "velocity"
+
+[[experiment.variant.scheme.terms]]
+kind = "velocity-norm"
+
+[[experiment.variant.scheme.terms]]
+kind = "tracking"
+task = "pose"
+k_p = 5.0
+{extra}
+
+[[experiment.variant.scheme.terms]]
+kind = "bound-conversion"
+gain = 10.0
+"#
+    )
+}
+
+const PANDA_READY: &str = "[0.0, -0.7853981633974483, 0.0, -2.356194490192345, 0.0, 1.5707963267948966, 0.7853981633974483]";
+
+#[test]
+fn a_pose_task_on_the_panda_holds_the_orientation_and_its_answer_is_clarabels() {
+    let jobs = jobs("pose-task", &[], &pose_experiment("panda", PANDA_READY, ""));
+    let job = &jobs[0];
+    let record = run_job(job);
+    let Outcome::Completed(m) = &record.run.outcome else {
+        panic!("{:?}", record.run.outcome);
+    };
+    assert!(m.max_position_error < 1e-5, "{}", m.max_position_error);
+    let model = robot_by_name(&job.robot).unwrap();
+    let robot = job_robot(job, model.robot, model.dynamics.is_some()).unwrap();
+    let o = robot.orientation().expect("the Panda has a tool frame");
+    let target = o.tool_rotation(&job.theta0);
+    let (_, scheme) = build_cyclic_parts(job, robot.clone(), None, 1).unwrap();
+    assert_eq!(
+        scheme.dims().n_eq,
+        6,
+        "3 position rows and 3 orientation rows"
+    );
+    assert!(scheme.terms().iter().any(|t| t.contains("log(R_d R^T)")));
+    let trace = &record.run.trace;
+    // The arm moved (the orientation was held along a path, not at rest).
+    let last = &trace.last().unwrap().theta;
+    let moved = last
+        .iter()
+        .zip(&job.theta0)
+        .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    assert!(moved > 0.05, "the arm moved {moved} rad");
+    let mut worst: f64 = 0.0;
+    for point in trace {
+        worst = worst.max(orientation_error(o, &target, &point.theta).norm());
+    }
+    assert!(worst < 1e-5, "orientation error {worst} rad");
+
+    let mut qp = scheme.new_qp();
+    let mut clarabel = ExactSolver::new();
+    let mut checked = 0;
+    for point in trace.iter().step_by((trace.len() / 20).max(1)) {
+        scheme.build(point.t, &point.theta, &point.thetadot, &mut qp);
+        let reference = clarabel.solve(&qp).expect("Clarabel solves the QP");
+        let mut path = ExactPath::new(&qp);
+        let x = path.solve(&qp).unwrap().clone();
+        let dx = (&x - &reference.x).amax();
+        assert!(
+            dx < 1e-6 * reference.x.amax().max(1.0),
+            "t = {}: {dx}",
+            point.t
+        );
+        checked += 1;
+    }
+    assert!(checked >= 15, "{checked} instants");
+}
+
+#[test]
+fn the_pose_tasks_derivative_is_the_central_difference_of_its_qp() {
+    let jobs = jobs("pose-dot", &[], &pose_experiment("panda", PANDA_READY, ""));
+    let job = &jobs[0];
+    let model = robot_by_name(&job.robot).unwrap();
+    let robot = job_robot(job, model.robot, model.dynamics.is_some()).unwrap();
+    let (_, scheme) = build_cyclic_parts(job, robot, None, 1).unwrap();
+    // Away from the start pose, so that the orientation error is not zero.
+    let theta: Vec<f64> = job
+        .theta0
+        .iter()
+        .zip([0.3, -0.2, 0.25, 0.1, -0.3, 0.2, 0.4])
+        .map(|(a, b)| a + b)
+        .collect();
+    let thetadot = [0.3, -0.2, 0.25, 0.1, -0.15, 0.05, 0.2];
+    let t = 0.7;
+    let mut dot = scheme.new_qp();
+    let mut scratch = scheme.new_dot_scratch();
+    scheme.build_dot(t, &theta, &thetadot, &[], &mut dot, &mut scratch);
+    let h = 1e-6;
+    let at = |s: f64| {
+        let th: Vec<f64> = theta
+            .iter()
+            .zip(&thetadot)
+            .map(|(a, v)| a + s * v)
+            .collect();
+        let mut qp = scheme.new_qp();
+        scheme.build(t + s, &th, &thetadot, &mut qp);
+        qp
+    };
+    let (plus, minus) = (at(h), at(-h));
+    let da = (&plus.a - &minus.a) / (2.0 * h);
+    let db = (&plus.b - &minus.b) / (2.0 * h);
+    assert!(
+        (&da - &dot.a).amax() < 1e-6,
+        "Adot {}",
+        (&da - &dot.a).amax()
+    );
+    assert!(
+        (&db - &dot.b).amax() < 1e-6,
+        "bdot {}",
+        (&db - &dot.b).amax()
+    );
+    assert!(
+        dot.b.rows(3, 3).amax() > 1e-2,
+        "the orientation rows move: {}",
+        dot.b
+    );
+}
+
+#[test]
+fn a_pose_task_without_a_tool_frame_or_in_a_preset_is_refused_naming_file_and_field() {
+    let err = load(
+        "pose-nlink",
+        &[],
+        &pose_experiment("nlink-3", "[0.3, 0.4, 0.5]", ""),
+    )
+    .expect_err("nlink-3 has no tool frame");
+    for part in [
+        "composed.toml",
+        "scheme",
+        "task",
+        "pose",
+        "nlink-3",
+        "panda",
+    ] {
+        assert!(err.contains(part), "{part} not in: {err}");
+    }
+    let err = load(
+        "pose-given",
+        &[],
+        &pose_experiment("panda", PANDA_READY, "orientation = [0.1, 0.0, nan]"),
+    )
+    .expect_err("a rotation vector of finite numbers");
+    assert!(
+        err.contains("composed.toml") && err.contains("'orientation' = NaN"),
+        "{err}"
+    );
+    let err = load(
+        "pose-without-task",
+        &[],
+        &pose_experiment("panda", PANDA_READY, "orientation = [0.1, 0.0, 0.0]")
+            .replace("task = \"pose\"", "task = \"position\""),
+    )
+    .expect_err("orientation needs the pose task");
+    assert!(
+        err.contains("composed.toml") && err.contains("'orientation'"),
+        "{err}"
+    );
+    // A preset has no task field: the valid fields are listed.
+    let preset = pose_experiment("panda", PANDA_READY, "")
+        .split("[[experiment.variant.scheme.terms]]")
+        .next()
+        .unwrap()
+        .replace(
+            "kind = \"composed\"\nlevel = \"velocity\"",
+            "kind = \"velocity-rmp\"\ntask = \"pose\"",
+        );
+    let err = load("pose-preset", &[], &preset).expect_err("presets take no task");
+    assert!(
+        err.contains("composed.toml") && err.contains("task") && err.contains("k_p"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_given_orientation_is_reached_at_the_rate_of_k_p() {
+    // Start 0.1 rad (about z) away from the given orientation: the error decays as exp(-k_p t).
+    let jobs = jobs(
+        "pose-given-run",
+        &[],
+        &pose_experiment("panda", PANDA_READY, ""),
+    );
+    let job = &jobs[0];
+    let model = robot_by_name(&job.robot).unwrap();
+    let robot = job_robot(job, model.robot, model.dynamics.is_some()).unwrap();
+    let o = robot.orientation().unwrap();
+    let target = schemes::terms::tracking::rotation_exp(&nalgebra::Vector3::new(0.0, 0.0, 0.1))
+        * o.tool_rotation(&job.theta0);
+    let phi = schemes::terms::tracking::rotation_log(&target);
+    let text = pose_experiment(
+        "panda",
+        PANDA_READY,
+        &format!("orientation = [{}, {}, {}]", phi.x, phi.y, phi.z),
+    );
+    let jobs = self::jobs("pose-given-run2", &[], &text);
+    let record = run_job(&jobs[0]);
+    let Outcome::Completed(m) = &record.run.outcome else {
+        panic!("{:?}", record.run.outcome);
+    };
+    assert!(m.max_position_error < 1e-5, "{}", m.max_position_error);
+    for point in record.run.trace.iter().step_by(10) {
+        let e = orientation_error(o, &target, &point.theta).norm();
+        let expected = 0.1 * (-5.0 * point.t).exp();
+        assert!(
+            (e - expected).abs() < 1e-5,
+            "t = {}: {e} vs {expected}",
+            point.t
+        );
+    }
+}
+
+/// An acceleration-level scheme of terms on the Jaco2's cardioid (zhang2018's arm and path)
+/// with the acceleration-limits term `limits` (TOML fields).
+fn acceleration_experiment(limits: &str) -> String {
+    format!(
+        r#"
+paper = "zhang2018"
+title = "acceleration limits"
+
+[[experiment]]
+id = "zhang2018-acceleration-limits"
+paper_output = "none"
+robot = "jaco2-pen"
+path = {{ name = "cardioid", duration = 8.0 }}
+theta0 = [1.68, 2.81, -3.22, 4.19, -1.71, -2.65]
+
+[[experiment.variant]]
+label = "limited"
+
+[experiment.variant.scheme]
+kind = "composed"
+level = "acceleration"
+
+[[experiment.variant.scheme.terms]]
+kind = "acceleration-norm"
+
+[[experiment.variant.scheme.terms]]
+kind = "drift-damping"
+alpha = 20.0
+beta = 20.0
+
+[[experiment.variant.scheme.terms]]
+kind = "tracking"
+rho_v = 20.0
+rho_p = 20.0
+
+[[experiment.variant.scheme.terms]]
+kind = "acceleration-limits"
+{limits}
+"#
+    )
+}
+
+#[test]
+fn acceleration_limits_bound_the_command_and_the_answer_is_clarabels() {
+    // Without a binding limit the scheme's peak |thetaddot|; then a limit 10 % below it.
+    let free = jobs(
+        "acceleration-free",
+        &[],
+        &acceleration_experiment("a_max = 1e6"),
+    );
+    let free = run_job(&free[0]);
+    let Outcome::Completed(f) = &free.run.outcome else {
+        panic!("{:?}", free.run.outcome);
+    };
+    let a_max = 0.9 * f.peak_thetaddot.expect("an acceleration-level run");
+    let jobs = jobs(
+        "acceleration-limits",
+        &[],
+        &acceleration_experiment(&format!("a_max = {a_max}\nvelocity_gain = 10.0")),
+    );
+    let job = &jobs[0];
+    let record = run_job(job);
+    let Outcome::Completed(m) = &record.run.outcome else {
+        panic!("{:?}", record.run.outcome);
+    };
+    assert!(m.max_position_error < 1e-4, "{}", m.max_position_error);
+    let peak = m.peak_thetaddot.unwrap();
+    assert!(peak <= a_max * (1.0 + 1e-9), "peak {peak} > a {a_max}");
+    let model = robot_by_name(&job.robot).unwrap();
+    let robot = job_robot(job, model.robot, model.dynamics.is_some()).unwrap();
+    let (_, scheme) = build_cyclic_parts(job, robot, None, 1).unwrap();
+    assert!(scheme
+        .terms()
+        .iter()
+        .any(|t| t.starts_with("acceleration-limits (a=")));
+    let n = job.theta0.len();
+    let mut qp = scheme.new_qp();
+    let mut clarabel = ExactSolver::new();
+    let (mut checked, mut active) = (0, 0);
+    let trace = &record.run.trace;
+    for point in trace.iter().step_by((trace.len() / 200).max(1)) {
+        scheme.build(point.t, &point.theta, &point.thetadot, &mut qp);
+        let reference = clarabel.solve(&qp).expect("Clarabel solves the QP");
+        let mut path = ExactPath::new(&qp);
+        let x = path.solve(&qp).unwrap().clone();
+        let dx = (&x - &reference.x).amax();
+        assert!(
+            dx < 1e-6 * reference.x.amax().max(1.0),
+            "t = {}: {dx}",
+            point.t
+        );
+        let peak = x.rows(0, n).amax();
+        assert!(peak <= a_max + 1e-9, "t = {}: |thetaddot| {peak}", point.t);
+        if peak > a_max - 1e-9 {
+            active += 1;
+        }
+        checked += 1;
+    }
+    assert!(checked >= 100, "{checked} instants");
+    assert!(active > 0, "the limit never binds at the sampled instants");
+}
+
+#[test]
+fn acceleration_limits_are_refused_out_of_range_or_at_the_velocity_level() {
+    let err = load("acc-zero", &[], &acceleration_experiment("a_max = 0.0")).unwrap_err();
+    assert!(
+        err.contains("composed.toml") && err.contains("'a_max' = 0"),
+        "{err}"
+    );
+    let err = load(
+        "acc-mu",
+        &[],
+        &acceleration_experiment("a_max = 1.0\nvelocity_gain = -1.0"),
+    )
+    .unwrap_err();
+    assert!(err.contains("'velocity_gain' = -1"), "{err}");
+    let velocity = pose_experiment("panda", PANDA_READY, "").replace("task = \"pose\"\n", "")
+        + "\n[[experiment.variant.scheme.terms]]\nkind = \"acceleration-limits\"\na_max = 1.0\n";
+    let err = load("acc-level", &[], &velocity).unwrap_err();
+    assert!(
+        err.contains("acceleration-limits") && err.contains("velocity level"),
+        "{err}"
+    );
 }

@@ -9,6 +9,7 @@ mod experiment_files;
 mod ftnn_jacobian;
 mod fuzz_experiment_files;
 mod numerical_runs;
+mod power_type_network;
 mod score_trajectory;
 mod scoring;
 mod sweep_equivalence;

@@ -275,6 +275,18 @@ pub enum SchemeError {
         /// What they must be.
         requirement: &'static str,
     },
+    /// A tracking term's `orientation` without `task = "pose"`.
+    OrientationWithoutPose {
+        /// The term's place in `terms`.
+        index: usize,
+    },
+    /// A pose task on a robot without the orientation capability.
+    NoOrientation {
+        /// The term's place in `terms`.
+        index: usize,
+        /// The robot's model name.
+        robot: String,
+    },
     /// A composed scheme without terms.
     NoTerms,
     /// A composed scheme's display name is empty, too long or has other characters.
@@ -349,12 +361,24 @@ impl fmt::Display for SchemeError {
                 "scheme composed: terms[{index}] ({term}) is not a term of the {level} level \
                  (velocity: velocity-norm, repetitive, infinity-norm, tracking, bound-conversion, \
                  velocity-limits; acceleration: acceleration-norm, drift-damping, torque-norm, \
-                 tracking)"
+                 tracking, acceleration-limits)"
             ),
             SchemeError::InvalidAxes { index, requirement } => write!(
                 f,
                 "scheme composed: terms[{index}] (tracking): field 'axes' is invalid (must be \
                  {requirement})"
+            ),
+            SchemeError::OrientationWithoutPose { index } => write!(
+                f,
+                "scheme composed: terms[{index}] (tracking): field 'orientation' is given without \
+                 task = \"pose\" (give task = \"pose\" or drop it)"
+            ),
+            SchemeError::NoOrientation { index, robot } => write!(
+                f,
+                "scheme composed: terms[{index}] (tracking): field 'task' = \"pose\" needs a robot \
+                 with a tool frame (the orientation capability: DH robots, robot files, URDF \
+                 chains, e.g. panda, jaco2), but robot '{robot}' has none (choose task = \
+                 \"position\", \"planar\" or axes)"
             ),
             SchemeError::NoTerms => write!(
                 f,
@@ -752,6 +776,7 @@ fn tracking(k_p: f64) -> TermSpec {
         k_p: Some(k_p),
         rho_v: None,
         rho_p: None,
+        orientation: None,
     }
 }
 
@@ -842,6 +867,7 @@ impl SchemeSpec {
                         k_p: None,
                         rho_v: Some(rho_v),
                         rho_p: Some(rho_p),
+                        orientation: None,
                     },
                 ],
             },

@@ -13,7 +13,7 @@
 //! [[scheme.terms]]
 //! kind = "tracking"
 //! k_p = 5.0
-//! task = "planar"               # or "position" (default); or axes = ["x", "z"]
+//! task = "planar"               # or "position" (default), "pose"; or axes = ["x", "z"]
 //! ```
 //!
 //! Term kinds and fields (defaults after `=`; docs/schemes.md gives each equation):
@@ -21,8 +21,10 @@
 //! "linear" or "sign-power" with alpha in (0, 1], weight = 1, squared = false),
 //! `drift-damping` (alpha, beta, weight = 1), `torque-norm` (weight = 1; needs a robot with
 //! dynamics), `infinity-norm` (weight = 1, penalty = "squared" or "linear", varpi = +inf), `tracking` (velocity level: k_p = 0;
-//! acceleration level: rho_v, rho_p; task = "position" or "planar", or axes),
-//! `bound-conversion` (gain), `velocity-limits`. Unknown kinds and fields are rejected.
+//! acceleration level: rho_v, rho_p; task = "position", "planar" or "pose" (position and
+//! orientation; orientation = a rotation vector, default the start pose's), or axes),
+//! `bound-conversion` (gain), `velocity-limits`, `acceleration-limits` (a_max, velocity_gain =
+//! none). Unknown kinds and fields are rejected.
 
 use serde::{Deserialize, Serialize};
 
@@ -69,6 +71,9 @@ pub enum Task {
     Position,
     /// The tool position in the x-y plane (a planar arm): x and y.
     Planar,
+    /// The tool position (x, y, z) and the tool frame's orientation (three more rows), on a
+    /// robot with the orientation capability.
+    Pose,
 }
 
 /// One axis of the tool position.
@@ -178,6 +183,11 @@ pub enum TermSpec {
         /// Position gain rho_p > 0 (acceleration level).
         #[serde(default, skip_serializing_if = "Option::is_none")]
         rho_p: Option<f64>,
+        /// The pose task's desired orientation as a rotation vector phi_d (rad, world frame;
+        /// R_d = exp(skew(phi_d))); absent: the start pose's, R(theta_ref). Only with `task =
+        /// "pose"`.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        orientation: Option<[f64; 3]>,
     },
     /// The joint-angle limits as velocity bounds (velocity level).
     BoundConversion {
@@ -186,6 +196,15 @@ pub enum TermSpec {
     },
     /// The joint-velocity limits as bounds (velocity level).
     VelocityLimits,
+    /// The joint-acceleration limits (and the velocity limits converted) as bounds
+    /// (acceleration level).
+    AccelerationLimits {
+        /// The largest joint acceleration a > 0 (rad/s^2).
+        a_max: f64,
+        /// The conversion gain mu > 0 of the velocity limits (absent: not converted).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        velocity_gain: Option<f64>,
+    },
 }
 
 /// A scheme of terms, as a file writes it (module docs).
@@ -224,6 +243,7 @@ impl TermSpec {
             TermSpec::Tracking { .. } => "tracking",
             TermSpec::BoundConversion { .. } => "bound-conversion",
             TermSpec::VelocityLimits => "velocity-limits",
+            TermSpec::AccelerationLimits { .. } => "acceleration-limits",
         }
     }
 
@@ -237,7 +257,8 @@ impl TermSpec {
             | TermSpec::VelocityLimits => Some(Level::Velocity),
             TermSpec::AccelerationNorm { .. }
             | TermSpec::DriftDamping { .. }
-            | TermSpec::TorqueNorm { .. } => Some(Level::Acceleration),
+            | TermSpec::TorqueNorm { .. }
+            | TermSpec::AccelerationLimits { .. } => Some(Level::Acceleration),
             TermSpec::Tracking { .. } => None,
         }
     }
@@ -330,7 +351,21 @@ impl TermSpec {
                 k_p,
                 rho_v,
                 rho_p,
+                orientation,
             } => {
+                if let Some(phi) = orientation {
+                    if task != Some(Task::Pose) {
+                        return Err(SchemeError::OrientationWithoutPose { index });
+                    }
+                    for v in phi {
+                        check(
+                            "orientation",
+                            v,
+                            true,
+                            "a rotation vector of three finite entries (rad)",
+                        )?;
+                    }
+                }
                 if let Some(axes) = axes {
                     let requirement = if task.is_some() {
                         Some("not both: give task or axes")
@@ -378,6 +413,21 @@ impl TermSpec {
             }
             TermSpec::BoundConversion { gain } => check("gain", gain, gain > 0.0, "finite and > 0"),
             TermSpec::VelocityLimits => Ok(()),
+            TermSpec::AccelerationLimits {
+                a_max,
+                velocity_gain,
+            } => {
+                check("a_max", a_max, a_max > 0.0, "finite and > 0 (rad/s^2)")?;
+                match velocity_gain {
+                    Some(mu) => check(
+                        "velocity_gain",
+                        mu,
+                        mu > 0.0,
+                        "finite and > 0 (absent: no conversion)",
+                    ),
+                    None => Ok(()),
+                }
+            }
         }
     }
 }
@@ -388,7 +438,7 @@ pub fn tracking_axes(task: Option<Task>, axes: &Option<Vec<Axis>>) -> Vec<usize>
     match (task, axes) {
         (_, Some(axes)) => axes.iter().map(|a| *a as usize).collect(),
         (Some(Task::Planar), None) => vec![0, 1],
-        (Some(Task::Position) | None, None) => vec![0, 1, 2],
+        (Some(Task::Position | Task::Pose) | None, None) => vec![0, 1, 2],
     }
 }
 

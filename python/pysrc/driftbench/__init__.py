@@ -33,7 +33,13 @@ A network is any object with
 as numpy arrays, ``python_calls`` and ``python_seconds`` the cost of the Python calls);
 ``score(task, trajectory)`` scores a trajectory made elsewhere (a CSV file with columns ``t,
 theta_1..n[, thetadot_1..n]``, or a dict of arrays) with the same metrics and the same score
-against the exact optimum at the trajectory's own states. ``frame`` turns a list of such rows into a pandas DataFrame when pandas is installed.
+against the exact optimum at the trajectory's own states.
+
+A QP solver written in Python (an object with ``solve(P, q, A, b, G, h, lower, upper)``
+returning a dict with ``x`` and the multipliers ``lambda``, ``mu``, ``z_lower``, ``z_upper``,
+or a failure ``status``) goes through the suite's one solver seam:
+``register_qp_solver(id, factory)`` makes ``id`` a run's solver (``simulate(task, id)``), and
+``check_qp_solver(factory)`` holds it to the conformance kit. ``frame`` turns a list of such rows into a pandas DataFrame when pandas is installed.
 """
 
 from ._driftbench import (
@@ -42,9 +48,11 @@ from ._driftbench import (
     QpDims,
     Task,
     add_robots,
+    check_qp_solver,
     data_root,
     into_results,
     leaderboard,
+    register_qp_solver,
     score,
     simulate,
     standard_tasks,
@@ -58,10 +66,12 @@ __all__ = [
     "QpDims",
     "Task",
     "add_robots",
+    "check_qp_solver",
     "data_root",
     "frame",
     "into_results",
     "leaderboard",
+    "register_qp_solver",
     "score",
     "simulate",
     "standard_tasks",

@@ -3,7 +3,7 @@ docs are the functions' own (``help(driftbench.simulate)``) and ``python/README.
 
 import os
 import pathlib
-from typing import Any, Mapping, Optional, Sequence, Union
+from typing import Any, Callable, Mapping, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -113,3 +113,13 @@ def score(
     out_dir: Optional[_Path] = None,
 ) -> dict[str, Any]: ...
 def into_results(file: _Path, *, root: _Path) -> pathlib.Path: ...
+
+# A QP solver: an object with solve(P, q, A, b, G, h, lower, upper) -> dict (x and the
+# multipliers lambda, mu, z_lower, z_upper, iterations; or status and message), built by a
+# factory of the QP's sizes (python/README.md).
+_QpSolverFactory = Callable[[QpDims], Any]
+
+def register_qp_solver(id: str, factory: _QpSolverFactory, *, name: Optional[str] = None) -> None: ...
+def check_qp_solver(
+    factory: _QpSolverFactory, *, equality_only: bool = False, seeds: int = 10
+) -> list[str]: ...

@@ -30,14 +30,16 @@
 //! | [`drift_damping`] | acceleration | q += w sigma |
 //! | [`torque_norm`] | acceleration | P += w H^2, q += w H'(c + g) |
 //! | [`infinity_norm`] | velocity | variable s, P_ss += w, 2n rows of G, 0 <= s <= varpi |
-//! | [`tracking`] | both | one row of A x = b per task axis |
+//! | [`tracking`] | both | one row of A x = b per task axis (pose: 3 more, orientation) |
 //! | [`bound_conversion`] | velocity | l, u from the joint-angle limits |
 //! | [`velocity_limits`] | velocity | l, u from the joint-velocity limits |
+//! | [`acceleration_limits`] | acceleration | l, u from the acceleration limit and the converted velocity limits |
 //!
 //! No term allocates when it writes: each keeps its scratch space from its construction.
 
 use qp::Qp;
 
+pub mod acceleration_limits;
 pub mod bound_conversion;
 pub mod drift_damping;
 pub mod infinity_norm;

@@ -10,13 +10,34 @@
 //!   derivative (it would need J-double-dot and the path's jerk): such a scheme takes the
 //!   central difference.
 //!
+//! The pose task adds three rows for the tool frame's orientation, on a robot with the
+//! [`robots::Orientation`] capability (rotation R(theta), angular Jacobian J_w with omega = J_w
+//! thetadot, its derivative Jdot_w). The desired orientation R_d is constant (the start pose's,
+//! R(theta_ref), or given as a rotation vector phi_d, R_d = exp(skew(phi_d))), so omega_d = 0. The
+//! orientation error is the rotation vector (log map) of R_d R^T,
+//!
+//! ```text
+//! e_o = log(R_d R^T)   (world frame, |e_o| <= pi),   R_d = exp(skew(e_o)) R,
+//! ```
+//!
+//! the world-frame turn that takes the tool frame to R_d. With E = R_d R^T, Edot = -E skew(omega),
+//! so de_o/dt = -Jr^{-1}(e_o) omega, Jr^{-1}(phi) = I + skew(phi) / 2 + c(|phi|) skew(phi)^2, c(a) =
+//! 1/a^2 - (1 + cos a) / (2 a sin a) (-> 1/12 as a -> 0), the inverse right Jacobian of SO(3).
+//! The orientation rows, after the position axes:
+//!
+//! - velocity level: J_w thetadot = k_p e_o (the same gain k_p as the position rows). Closed
+//!   loop: de_o/dt = -k_p Jr^{-1}(e_o) e_o = -k_p e_o (skew(e_o) e_o = 0): the error decays as
+//!   exp(-k_p t). Time derivative: Adot = Jdot_w, bdot = -k_p Jr^{-1}(e_o) J_w thetadot.
+//! - acceleration level: J_w thetaddot = -Jdot_w thetadot - rho_v J_w thetadot + rho_p e_o, the
+//!   rotational analogue of zhang2018 (2.6) with omega_d = 0 (no exact derivative).
+//!
 //! A planar arm moves its tool in a plane: the 3-row task has a zero row (the third row of J
 //! vanishes), so the QP's equality is rank-deficient and an exact solver must fall back; the
 //! planar task keeps the two rows that the arm can follow.
 
 use std::sync::{Arc, Mutex};
 
-use nalgebra::Vector3;
+use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 use qp::Qp;
 use robots::Robot;
 
@@ -50,6 +71,8 @@ pub struct Tracking {
     /// The selected axes (indices into x, y, z), one equality row each.
     axes: Vec<usize>,
     feedback: Feedback,
+    /// The desired orientation R_d of the pose task (None: position rows only).
+    target: Option<Matrix3<f64>>,
     /// J, Jdot and the instant they were evaluated at, allocated with the term.
     scratch: Mutex<Scratch>,
 }
@@ -93,6 +116,49 @@ impl Scratch {
     }
 }
 
+/// The robot's [`robots::Orientation`] capability was asked of a pose task on a robot that has
+/// none.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct NoOrientation;
+
+/// The skew matrix skew(v) of v (so skew(v) w = v x w).
+fn skew(v: &Vector3<f64>) -> Matrix3<f64> {
+    Matrix3::new(0.0, -v.z, v.y, v.z, 0.0, -v.x, -v.y, v.x, 0.0)
+}
+
+/// The rotation vector log(m) of a rotation matrix m (angle in [0, pi]), through the unit
+/// quaternion (accurate up to a half turn).
+pub fn rotation_log(m: &Matrix3<f64>) -> Vector3<f64> {
+    UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(*m)).scaled_axis()
+}
+
+/// The rotation exp(skew(phi)) of a rotation vector phi.
+pub fn rotation_exp(phi: &Vector3<f64>) -> Matrix3<f64> {
+    Rotation3::new(*phi).into_inner()
+}
+
+/// The inverse right Jacobian of SO(3), Jr^{-1}(phi) (module docs).
+fn inverse_right_jacobian(phi: &Vector3<f64>) -> Matrix3<f64> {
+    let a = phi.norm();
+    let c = if a < 1e-4 {
+        1.0 / 12.0 + a * a / 720.0
+    } else {
+        1.0 / (a * a) - (1.0 + a.cos()) / (2.0 * a * a.sin())
+    };
+    let k = skew(phi);
+    Matrix3::identity() + k * 0.5 + k * k * c
+}
+
+/// The orientation error e_o = log(R_d R^T) toward `target` (R_d) of the tool frame of a robot
+/// with orientation `o` at `theta` (module docs).
+pub fn orientation_error(
+    o: &dyn robots::Orientation,
+    target: &Matrix3<f64>,
+    theta: &[f64],
+) -> Vector3<f64> {
+    rotation_log(&(target * o.tool_rotation(theta).transpose()))
+}
+
 /// y = a x for a 3 x n column-major `a`, summed column by column in joint order.
 fn times(a: &[f64], x: &[f64]) -> Vector3<f64> {
     let mut y = Vector3::zeros();
@@ -119,6 +185,7 @@ impl Tracking {
             path,
             axes,
             feedback,
+            target: None,
             scratch: Mutex::new(Scratch {
                 jac: vec![0.0; 3 * n],
                 jdot: vec![0.0; 3 * n],
@@ -131,6 +198,40 @@ impl Tracking {
                     rddot: Vector3::zeros(),
                 },
             }),
+        }
+    }
+
+    /// The pose task: the equality on `axes` plus three orientation rows toward `target` (R_d;
+    /// module docs), on a robot with the orientation capability.
+    pub fn with_orientation(
+        robot: Arc<dyn Robot>,
+        path: Arc<dyn Path>,
+        axes: Vec<usize>,
+        feedback: Feedback,
+        target: Matrix3<f64>,
+    ) -> Result<Self, NoOrientation> {
+        if robot.orientation().is_none() {
+            return Err(NoOrientation);
+        }
+        Ok(Self {
+            target: Some(target),
+            ..Self::new(robot, path, axes, feedback)
+        })
+    }
+
+    /// The orientation capability of a pose task's robot (checked at construction).
+    fn orientation(&self) -> &dyn robots::Orientation {
+        self.robot
+            .orientation()
+            .expect("a pose task is built only on a robot with orientation")
+    }
+
+    /// Writes a 3 x n column-major matrix into the three rows of A (or Adot) from `row`.
+    fn write_block(&self, m: &[f64], row: usize, a: &mut nalgebra::DMatrix<f64>) {
+        for j in 0..self.robot.dof() {
+            for k in 0..3 {
+                a[(row + k, j)] = m[3 * j + k];
+            }
         }
     }
 
@@ -149,7 +250,20 @@ impl Term for Tracking {
     fn describe(&self) -> String {
         let axes: Vec<&str> = self.axes.iter().map(|&k| AXIS_NAMES[k]).collect();
         let axes = axes.join(", ");
-        match self.feedback {
+        let pose = if self.target.is_some() {
+            match self.feedback {
+                Feedback::Velocity { .. } => {
+                    "; pose: A[o, ..n] = J_w, b_o = k_p log(R_d R^T) (R_d constant)"
+                }
+                Feedback::Acceleration { .. } => {
+                    "; pose: A[o, ..n] = J_w, b_o = -Jdot_w thetadot - rho_v J_w thetadot + \
+                     rho_p log(R_d R^T) (R_d constant)"
+                }
+            }
+        } else {
+            ""
+        };
+        let position = match self.feedback {
             Feedback::Velocity { k_p } => format!(
                 "tracking (axes {axes}, k_p={k_p}): A[k, ..n] = J_k, b_k = rdot*_k + k_p (r*_k - f_k)"
             ),
@@ -157,12 +271,13 @@ impl Term for Tracking {
                 "tracking (axes {axes}, rho_v={rho_v}, rho_p={rho_p}): A[k, ..n] = J_k, b_k = \
                  rddot*_k - (Jdot thetadot)_k + rho_v (rdot*_k - (J thetadot)_k) + rho_p (r*_k - f_k)"
             ),
-        }
+        };
+        format!("{position}{pose}")
     }
 
     fn footprint(&self) -> super::Footprint {
         super::Footprint {
-            equalities: self.axes.len(),
+            equalities: self.axes.len() + if self.target.is_some() { 3 } else { 0 },
             ..Default::default()
         }
     }
@@ -190,7 +305,30 @@ impl Term for Tracking {
         for (k, &axis) in self.axes.iter().enumerate() {
             qp.b[slot.equality + k] = b[axis];
         }
-        scratch.remember(state.t, state.theta, pp);
+        match &self.target {
+            // The cache holds the position Jacobian; a pose task's rows overwrite `jac` with
+            // the angular one, so its instant is never remembered.
+            None => scratch.remember(state.t, state.theta, pp),
+            Some(target) => {
+                let o = self.orientation();
+                let row = slot.equality + self.axes.len();
+                let e = orientation_error(o, target, state.theta);
+                o.angular_jacobian(state.theta, &mut scratch.jac);
+                self.write_block(&scratch.jac, row, &mut qp.a);
+                let b = match self.feedback {
+                    Feedback::Velocity { k_p } => e * k_p,
+                    Feedback::Acceleration { rho_v, rho_p } => {
+                        o.angular_jacobian_dot(state.theta, state.thetadot, &mut scratch.jdot);
+                        -times(&scratch.jdot, state.thetadot)
+                            - times(&scratch.jac, state.thetadot) * rho_v
+                            + e * rho_p
+                    }
+                };
+                for k in 0..3 {
+                    qp.b[row + k] = b[k];
+                }
+            }
+        }
     }
 
     fn has_dot(&self) -> bool {
@@ -219,6 +357,18 @@ impl Term for Tracking {
         let bdot = pp.rddot + (pp.rdot - jthd) * k_p;
         for (k, &axis) in self.axes.iter().enumerate() {
             out.qp.b[slot.equality + k] = bdot[axis];
+        }
+        if let Some(target) = &self.target {
+            let o = self.orientation();
+            let row = slot.equality + self.axes.len();
+            o.angular_jacobian_dot(state.theta, state.thetadot, &mut scratch.jdot);
+            self.write_block(&scratch.jdot, row, &mut out.qp.a);
+            o.angular_jacobian(state.theta, &mut scratch.jac);
+            let e = orientation_error(o, target, state.theta);
+            let bdot = -(inverse_right_jacobian(&e) * times(&scratch.jac, state.thetadot)) * k_p;
+            for k in 0..3 {
+                out.qp.b[row + k] = bdot[k];
+            }
         }
     }
 }
