@@ -199,7 +199,6 @@ fn judge_claim(
     Ok(analysis::control_claim::overall(&verdicts))
 }
 
-
 /// What follows the written rows of a run into `results/`: the explanation layer (unless
 /// skipped), the control experiments and the timing pass of a whole, unselected reproduction,
 /// and the report, each a phase of `clock`, whose table ends the run (printed, and written to

@@ -22,10 +22,10 @@ use presentation::task_card::{
 use qp::Qp;
 use records::tracked_dir::{Removal, TrackedDir, TrackedError};
 use robots::registry::{robot_by_name, Kinematics, Model};
-use spec::scheme::Level;
-use spec::scheme::SchemeSpec;
 use simulation::run::check_job;
 use simulation::task_numbers::{task_numbers, TaskNumbers};
+use spec::scheme::Level;
+use spec::scheme::SchemeSpec;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
