@@ -390,7 +390,7 @@ mod tests {
             (QpShape::Jia2019, 1),
             (QpShape::Zhong2021, 4),
             (QpShape::Zhang2018, 3),
-            (QpShape::Kong2019, 2),
+            (QpShape::Kong2019, 3),
         ];
         for (shape, n) in expected {
             let rep = RepresentativeQp::new(shape);

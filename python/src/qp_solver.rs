@@ -56,7 +56,7 @@ struct PySolveError {
 /// A Python QP solver (module docs).
 pub struct PyQpSolver {
     /// The Python object, or why the factory gave none.
-    object: Result<Py<PyAny>, String>,
+    object: Result<Py<PyAny>, FactoryError>,
     id: SolverId,
     x: Vec<f64>,
     duals: QpDuals,
@@ -83,7 +83,7 @@ impl PyQpSolver {
         let object = self
             .object
             .as_ref()
-            .map_err(|e| (QpStatus::InvalidInput, e.clone()))?;
+            .map_err(|e| (QpStatus::InvalidInput, e.to_string()))?;
         let args = (
             matrix(py, &qp.p),
             vector(py, &qp.q),
@@ -224,21 +224,35 @@ pub fn build(factory: &Py<PyAny>, id: &SolverId, dims: QpDims) -> PyQpSolver {
         Ok(object.unbind())
     });
     PyQpSolver {
-        object: object.map_err(|e| format!("its factory failed: {e}")),
+        object: object.map_err(|e| FactoryError(e.to_string())),
         id: id.clone(),
         x: vec![0.0; dims.nx],
         duals: zero_duals(dims),
     }
 }
 
+/// Why a Python solver's factory gave no object (its exception's message): every solve of
+/// that solver then fails with status `InvalidInput`, saying so.
+#[derive(Debug, thiserror::Error)]
+#[error("its factory failed: {0}")]
+struct FactoryError(String);
+
+/// Why a Python QP solver could not be registered.
+#[derive(Debug, thiserror::Error)]
+pub enum RegisterError {
+    /// The id is not a slug.
+    #[error("QP solver id \"{0}\" is not a slug (lower-case letters, digits and -, at most 64)")]
+    NotASlug(String),
+    /// The registry refused it (an id taken).
+    #[error(transparent)]
+    Registry(#[from] solvers::registry::RegistryError),
+}
+
 /// Registers `factory` under `id` (module docs) in the registry of QP solvers, display name
-/// `name`; the registry's error (an id taken, not a slug) as the message.
-pub fn register(id: &str, name: &str, factory: Py<PyAny>) -> Result<(), String> {
-    let sid = SolverId::new(id.to_string()).ok_or_else(|| {
-        format!(
-            "QP solver id \"{id}\" is not a slug (lower-case letters, digits and -, at most 64)"
-        )
-    })?;
+/// `name`.
+pub fn register(id: &str, name: &str, factory: Py<PyAny>) -> Result<(), RegisterError> {
+    let sid =
+        SolverId::new(id.to_string()).ok_or_else(|| RegisterError::NotASlug(id.to_string()))?;
     // The registry keeps ids and names for the process's life ('static): one leak per
     // registration, which the registry refuses to repeat for an id.
     let info = QpSolverInfo {
@@ -253,5 +267,5 @@ pub fn register(id: &str, name: &str, factory: Py<PyAny>) -> Result<(), String> 
         Arc::new(move |dims, _settings| -> BoxedQpSolver { Box::new(build(&factory, &sid, dims)) }),
     )
     .map(|_| ())
-    .map_err(|e| e.to_string())
+    .map_err(RegisterError::from)
 }

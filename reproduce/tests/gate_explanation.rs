@@ -81,7 +81,7 @@ fn a_doctored_and_resealed_ladder_or_attribution_number_fails_the_gate() {
 /// The gate guards the control experiments' runs the control page shows: a control number
 /// doctored in results/ and re-sealed makes a whole `reproduce check` (which re-runs the control
 /// experiments) fail with exit 3, naming the table, the row and the column. The fixture's
-/// task set is one task of its own paper.
+/// task set is one task of its own paper, with a small budget of its own.
 #[test]
 fn a_doctored_and_resealed_control_number_fails_the_gate() {
     let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/fifth-paper");
@@ -91,7 +91,8 @@ fn a_doctored_and_resealed_control_number_fails_the_gate() {
     std::fs::create_dir_all(root.join("experiments/control")).unwrap();
     std::fs::write(
         root.join("experiments/control/tasks.toml"),
-        "[[task]]\nexperiment = \"demo2026-circle\"\nvariant = \"znn-mu1\"\n",
+        "[[task]]\nexperiment = \"demo2026-circle\"\nvariant = \"znn-mu1\"\n\n\
+         [budget]\nsweep_ms = [5.0]\ncycles = 2\ncheck_ticks = 20\ncheck_steps_factor = 2\n",
     )
     .unwrap();
     ok(reproduce()

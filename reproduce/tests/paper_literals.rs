@@ -38,6 +38,12 @@ const EXEMPT: &[(&str, &str)] = &[
          read as the canonical kinds: code, not data about the paper",
     ),
     (
+        "benches/src/telemetry/page/throughput.rs",
+        "the throughput benchmark measures one named sweep (benches/throughput/kong2019_sweep.sh, \
+         issue 43's kong2019 ZNN sweep), and its page says which: a measurement of the suite's \
+         speed, not data about the paper",
+    ),
+    (
         "solvers/src/random_qp.rs",
         "the random QP shapes are the papers' schemes' QP forms, named after them (the benches \
          group by that name)",
