@@ -734,7 +734,7 @@ impl PaperFile {
 
     /// The runs of one variant `v` of this file's experiment `e` (exact column first; as many
     /// as [`Variant::run_count`]). Its experiment and variant ids were checked before the runs
-    /// are made ([`CHECKED_IDS`]).
+    /// are made (`CHECKED_IDS`).
     pub fn variant_jobs(&self, e: &Experiment, v: &Variant) -> Vec<Job> {
         let mut jobs = Vec::new();
         let theta0 = v.theta0.clone().unwrap_or_else(|| e.theta0.clone());
