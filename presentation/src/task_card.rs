@@ -8,6 +8,8 @@
 //!
 //! [`render`] gives every card and the index ([`INDEX`]) by file name.
 
+use spec::path::PathSample;
+use spec::scheme::Level;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
@@ -61,19 +63,11 @@ pub enum RunSettings {
     Numerical { settings: toml::Value },
 }
 
-/// The scheme's level.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Level {
-    Velocity,
-    Acceleration,
-}
-
-impl Level {
-    fn label(self) -> &'static str {
-        match self {
-            Level::Velocity => "velocity",
-            Level::Acceleration => "acceleration",
-        }
+/// The name of a scheme's level on the card.
+fn level_label(level: Level) -> &'static str {
+    match level {
+        Level::Velocity => "velocity",
+        Level::Acceleration => "acceleration",
     }
 }
 
@@ -172,19 +166,6 @@ pub struct PathCard {
     pub samples: Vec<PathSample>,
 }
 
-/// The path at one instant.
-#[derive(Clone, Debug, PartialEq)]
-pub struct PathSample {
-    /// t (s).
-    pub t: f64,
-    /// r*(t) (m).
-    pub r: [f64; 3],
-    /// rdot*(t) (m/s).
-    pub rdot: [f64; 3],
-    /// rddot*(t) (m/s^2).
-    pub rddot: [f64; 3],
-}
-
 /// The task's scheme.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SchemeCard {
@@ -257,7 +238,7 @@ pub fn render(cards: &[TaskCard]) -> BTreeMap<String, String> {
             c.path.name,
             c.path.duration,
             c.scheme.name,
-            c.scheme.level.label(),
+            level_label(c.scheme.level),
         );
         out.insert(name.clone(), card(c));
     }
@@ -412,7 +393,7 @@ fn scheme_section(sc: &SchemeCard) -> String {
         s,
         "\n## Scheme: {} ({} level)\n\nParameters: `{}`\n\n```text\n{}```\n",
         sc.name,
-        sc.level.label(),
+        level_label(sc.level),
         inline(&sc.params),
         formula(sc.form)
     );

@@ -140,20 +140,11 @@ pub fn run(
         );
         publish(project, &plan, results, all, jobs, git_rev, clock)?;
     }
-    let unexpected: Vec<String> = failed
-        .iter()
-        .filter(|(_, expected)| !expected)
-        .map(|(line, _)| line.clone())
-        .collect();
-    if !failed.is_empty() {
-        eprintln!(
-            "{} of {} runs failed, {} of them expected (reasons in the table above and in results/runs.csv)",
-            failed.len(),
-            records.len(),
-            failed.len() - unexpected.len()
-        );
-    }
-    Ok(report_unexpected(&unexpected))
+    Ok(summarise_failures(
+        &failed,
+        records.len(),
+        std::path::Path::new("results/runs.csv"),
+    ))
 }
 
 /// The control experiments (control crate) run afresh for the gate, written into a scratch
@@ -287,6 +278,30 @@ fn publish(
     }
     eprint!("{}", crate::phases::table(&rows));
     Ok(())
+}
+
+/// Says how many of `total` runs failed (`failed`: each failure's line and whether its
+/// experiment file expects it) and how many of them were expected, their reasons in `table`;
+/// then the unexpected ones ([`report_unexpected`]).
+pub fn summarise_failures(
+    failed: &[(String, bool)],
+    total: usize,
+    table: &std::path::Path,
+) -> ExitCode {
+    let unexpected: Vec<String> = failed
+        .iter()
+        .filter(|(_, expected)| !expected)
+        .map(|(line, _)| line.clone())
+        .collect();
+    if !failed.is_empty() {
+        eprintln!(
+            "{} of {total} runs failed, {} of them expected (reasons in the table above and in {})",
+            failed.len(),
+            failed.len() - unexpected.len(),
+            table.display()
+        );
+    }
+    report_unexpected(&unexpected)
 }
 
 /// Says the failures no experiment file expects (`unexpected`, one line each):

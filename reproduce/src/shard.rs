@@ -11,7 +11,7 @@ use crate::journal::{fold, joints, skip_finished};
 use crate::options::SelectionOptions;
 use crate::project::Project;
 use crate::results::{open_results, Described};
-use crate::run::report_unexpected;
+use crate::run::summarise_failures;
 use crate::select::selection_files;
 use crate::summary::{emit, Summary};
 use catalog::experiment::Job;
@@ -129,21 +129,11 @@ pub fn run_shard(
         binding.shards,
         project.results_dir.display()
     );
-    let unexpected: Vec<String> = failed
-        .iter()
-        .filter(|(_, expected)| !expected)
-        .map(|(line, _)| line.clone())
-        .collect();
-    if !failed.is_empty() {
-        eprintln!(
-            "{} of {} runs failed, {} of them expected (reasons in the table above and in {})",
-            failed.len(),
-            to_run.len(),
-            failed.len() - unexpected.len(),
-            results.runs_path().display()
-        );
-    }
-    Ok(report_unexpected(&unexpected))
+    Ok(summarise_failures(
+        &failed,
+        to_run.len(),
+        &results.runs_path(),
+    ))
 }
 
 /// A failed run's line for the user, and whether its experiment file expects the failure

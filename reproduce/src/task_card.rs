@@ -24,7 +24,6 @@ use records::tracked_dir::{Removal, TrackedDir, TrackedError};
 use robots::registry::{robot_by_name, Kinematics, Model};
 use simulation::run::check_job;
 use simulation::task_numbers::{task_numbers, TaskNumbers};
-use spec::scheme::Level;
 use spec::scheme::SchemeSpec;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -111,13 +110,6 @@ fn card_name(job: &Job) -> String {
     format!("{}--{}.md", job.experiment, job.variant_id)
 }
 
-fn level(level: Level) -> card::Level {
-    match level {
-        Level::Velocity => card::Level::Velocity,
-        Level::Acceleration => card::Level::Acceleration,
-    }
-}
-
 /// One task's card model from its runs `jobs` (the first describes the task), its numbers `n`
 /// and its robot's model.
 fn task_card(jobs: &[Job], n: TaskNumbers, robot: &Model) -> Result<TaskCard, TaskCardError> {
@@ -184,20 +176,11 @@ fn task_card(jobs: &[Job], n: TaskNumbers, robot: &Model) -> Result<TaskCard, Ta
                 .or_else(|| spec::path::default_scale(&job.path.name)),
             duration: job.path.duration,
             start: n.path_start,
-            samples: n
-                .path
-                .iter()
-                .map(|p| card::PathSample {
-                    t: p.t,
-                    r: p.r,
-                    rdot: p.rdot,
-                    rddot: p.rddot,
-                })
-                .collect(),
+            samples: n.path,
         },
         scheme: SchemeCard {
             name: n.scheme,
-            level: level(n.level),
+            level: n.level,
             params: value(&job.scheme)?,
             form: form(&job.scheme),
             terms: n.terms,

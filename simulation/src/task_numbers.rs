@@ -10,23 +10,11 @@ use catalog::error::SetupError;
 use catalog::experiment::Job;
 use catalog::fields::JobPart;
 use qp::Qp;
+use spec::path::PathSample;
 use spec::scheme::Level;
 
 /// Instants of the path samples, as fractions of the duration T.
 pub const PATH_FRACTIONS: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
-
-/// The path at one instant.
-#[derive(Clone, Debug, PartialEq)]
-pub struct PathSample {
-    /// The instant (s).
-    pub t: f64,
-    /// Desired position r*(t) (m).
-    pub r: [f64; 3],
-    /// Desired velocity rdot*(t) (m/s).
-    pub rdot: [f64; 3],
-    /// Desired acceleration rddot*(t) (m/s^2).
-    pub rddot: [f64; 3],
-}
 
 /// The numbers of a task (module docs).
 #[derive(Clone, Debug, PartialEq)]

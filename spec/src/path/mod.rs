@@ -174,6 +174,19 @@ pub fn phase_supported(name: &str) -> bool {
     !matches!(name, "ping" | "dai" | "triangle" | "butterfly-as-printed")
 }
 
+/// The path at one instant: r*(t) and its first two derivatives (what a task card shows).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PathSample {
+    /// The instant t (s).
+    pub t: f64,
+    /// Desired position r*(t) (m).
+    pub r: [f64; 3],
+    /// Desired velocity rdot*(t) (m/s).
+    pub rdot: [f64; 3],
+    /// Desired acceleration rddot*(t) (m/s^2).
+    pub rddot: [f64; 3],
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
