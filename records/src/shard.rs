@@ -47,7 +47,7 @@ use std::path::{Path, PathBuf};
 /// The manifest's file name in a shard directory.
 pub const MANIFEST: &str = "shard.toml";
 
-pub use crate::fnv::fnv1a64;
+use crate::fnv::fnv1a64;
 
 /// Why a shard cannot be chosen, written, read or merged.
 #[derive(Debug, thiserror::Error)]

@@ -95,12 +95,7 @@ pub fn run(
     let failed: Vec<(String, bool)> = rows
         .iter()
         .filter(|r| !r.completed())
-        .map(|r| {
-            (
-                format!("{}: {}", r.key(), r.failure),
-                analysis::gate::expected_to_diverge(r),
-            )
-        })
+        .map(failure)
         .collect();
     let plan = match plan.output {
         Output::Gate(baseline) => {
@@ -280,10 +275,19 @@ fn publish(
     Ok(())
 }
 
+/// A failed run's line for the user, and whether its experiment file expects the failure
+/// (analysis::gate).
+pub(crate) fn failure(row: &RunRow) -> (String, bool) {
+    (
+        format!("{}: {}", row.key(), row.failure),
+        analysis::gate::expected_to_diverge(row),
+    )
+}
+
 /// Says how many of `total` runs failed (`failed`: each failure's line and whether its
 /// experiment file expects it) and how many of them were expected, their reasons in `table`;
 /// then the unexpected ones ([`report_unexpected`]).
-pub fn summarise_failures(
+pub(crate) fn summarise_failures(
     failed: &[(String, bool)],
     total: usize,
     table: &std::path::Path,

@@ -11,7 +11,7 @@ use crate::journal::{fold, joints, skip_finished};
 use crate::options::SelectionOptions;
 use crate::project::Project;
 use crate::results::{open_results, Described};
-use crate::run::summarise_failures;
+use crate::run::{failure, summarise_failures};
 use crate::select::selection_files;
 use crate::summary::{emit, Summary};
 use catalog::experiment::Job;
@@ -134,15 +134,6 @@ pub fn run_shard(
         to_run.len(),
         &results.runs_path(),
     ))
-}
-
-/// A failed run's line for the user, and whether its experiment file expects the failure
-/// (analysis::gate).
-fn failure(row: &RunRow) -> (String, bool) {
-    (
-        format!("{}: {}", row.key(), row.failure),
-        analysis::gate::expected_to_diverge(row),
-    )
 }
 
 #[cfg(test)]
