@@ -20,8 +20,7 @@
 //!
 //! `cargo run --release --example gnn_clover`
 
-use catalog::experiment::Scoring;
-use catalog::experiment::{default_exact_integrator, NetworkInit};
+use catalog::experiment::default_exact_integrator;
 use nalgebra::{DMatrix, DVector};
 use qp::{Qp, QpDims};
 use robots::{Jaco2, Robot};
@@ -34,6 +33,8 @@ use simulation::simulate::{simulate, Outcome, Settings, Solver};
 use solvers::neural::NeuralSolver;
 use spec::path::PathSpec;
 use spec::rmp::RmpReading;
+use spec::run::NetworkInit;
+use spec::run::Scoring;
 use spec::scheme::SchemeSpec;
 use std::sync::Arc;
 

@@ -19,8 +19,7 @@
 //!
 //! `cargo run --release --example user_robot`
 
-use catalog::experiment::Scoring;
-use catalog::experiment::{default_exact_integrator, NetworkInit};
+use catalog::experiment::default_exact_integrator;
 use nalgebra::{DVector, Vector3};
 use robots::{JointLimits, Robot};
 use schemes::build::build_scheme;
@@ -30,6 +29,8 @@ use settings::solver_spec::SolverSpec;
 use simulation::run::build_network;
 use simulation::simulate::{simulate, Outcome, Settings, Solver};
 use spec::path::PathSpec;
+use spec::run::NetworkInit;
+use spec::run::Scoring;
 use spec::scheme::SchemeSpec;
 use std::sync::Arc;
 

@@ -7,7 +7,7 @@
 #[path = "src/revision/source.rs"]
 mod source;
 
-#[path = "../records/src/fnv.rs"]
+#[path = "../store/src/fnv.rs"]
 mod fnv;
 
 use std::path::PathBuf;

@@ -32,6 +32,49 @@ pub enum Best<'a> {
     },
 }
 
+/// The measures of the cross experiment's matrices (`runs.csv` columns), each with how its
+/// columns' best is picked: the drift against the reference by closeness to the exact column,
+/// the position error and the scores by the smallest.
+pub const MEASURES: [(&str, BestRule); 4] = [
+    ("drift_ref_norm", BestRule::ClosestToExact),
+    ("max_pos_err", BestRule::Smallest),
+    ("score_max_dx", BestRule::Smallest),
+    ("score_rms_dx", BestRule::Smallest),
+];
+
+/// The best of one column (experiment, variant) of one measure's matrix.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ColumnBest<'a> {
+    /// The measure (a `runs.csv` column of [`MEASURES`]).
+    pub measure: &'static str,
+    pub experiment: &'a str,
+    pub variant: &'a str,
+    pub best: Best<'a>,
+}
+
+/// The best of every column of `paper`'s runs (experiment, variant, in file order) in every
+/// measure of [`MEASURES`].
+pub fn bests<'a>(runs: &'a Runs, paper: &'a str) -> Vec<ColumnBest<'a>> {
+    let mut columns: Vec<(&str, &str)> = runs
+        .of_paper(paper)
+        .map(|r| (r.experiment.as_str(), r.variant_id.as_str()))
+        .collect();
+    columns.dedup();
+    MEASURES
+        .iter()
+        .flat_map(|&(measure, rule)| {
+            columns
+                .iter()
+                .map(move |&(experiment, variant)| ColumnBest {
+                    measure,
+                    experiment,
+                    variant,
+                    best: best_in(runs, experiment, variant, measure, rule),
+                })
+        })
+        .collect()
+}
+
 /// Whether `a` and `b` are equal to a relative 1e-6.
 fn tied(a: f64, b: f64) -> bool {
     (b - a).abs() <= 1e-6 * a.abs().max(b.abs())
@@ -39,7 +82,7 @@ fn tied(a: f64, b: f64) -> bool {
 
 /// The best completed neural run of column `column` (a `runs.csv` metric) of (experiment,
 /// variant) under `rule`.
-pub fn best_in<'a>(
+fn best_in<'a>(
     runs: &'a Runs,
     experiment: &'a str,
     variant: &str,
@@ -76,8 +119,8 @@ pub fn best_in<'a>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use catalog::solver_kind::SolverKind;
     use settings::network_kind::NetworkKind;
+    use spec::solver_kind::SolverKind;
 
     fn run(solver: &str, drift: f64) -> RunRow {
         let kind = if solver == EXACT {
@@ -86,7 +129,7 @@ mod tests {
             SolverKind::Network(NetworkKind::LviPdnn)
         };
         let mut r = RunRow::blank(
-            &catalog::run_key::RunKey::from_ids("e", "v", solver).unwrap(),
+            &spec::run_key::RunKey::from_ids("e", "v", solver).unwrap(),
             kind,
         );
         r.drift_ref_norm = Some(drift);

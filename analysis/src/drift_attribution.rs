@@ -261,9 +261,9 @@ mod tests {
     fn row(solver: &str, component: Component, share: Option<f64>) -> AttributionRow {
         AttributionRow {
             paper: "p".into(),
-            experiment: catalog::ids::ExperimentId::new("e").unwrap(),
-            variant_id: catalog::ids::VariantId::new("v").unwrap(),
-            solver_id: catalog::ids::SolverId::new(solver.to_lowercase()).unwrap(),
+            experiment: spec::ids::ExperimentId::new("e").unwrap(),
+            variant_id: spec::ids::VariantId::new("v").unwrap(),
+            solver_id: spec::ids::SolverId::new(solver.to_lowercase()).unwrap(),
             variant: "V".into(),
             solver: solver.into(),
             component,

@@ -177,8 +177,8 @@ pub fn rows(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use records::dof_cost::{backends, read, write, RunCounts, SchemeKind, Summary};
-
+    use records::dof_cost::{backends, RunCounts, SchemeKind, Summary};
+    use store::dof_cost::{read, write};
     fn measurement(n: usize, quantity: Quantity, median_us: f64) -> Measurement {
         on(NALGEBRA, n, quantity, median_us)
     }

@@ -187,7 +187,7 @@ pub fn compare_explanations(
     let ladder_key = |r: &LadderRow| {
         format!(
             "{} {} {} rtol {:e} atol {:e} max_step {}",
-            records::results_dir::LADDER,
+            store::results_dir::LADDER,
             r.key(),
             r.method.id(),
             r.rtol,
@@ -198,7 +198,7 @@ pub fn compare_explanations(
     let attribution_key = |r: &AttributionRow| {
         format!(
             "{} {} {}",
-            records::results_dir::ATTRIBUTION,
+            store::results_dir::ATTRIBUTION,
             r.key(),
             r.component.label()
         )
@@ -267,7 +267,7 @@ pub fn compare_leaderboard(
     let key = |r: &LeaderboardRow| {
         format!(
             "{} {} {}",
-            records::results_dir::LEADERBOARD,
+            store::results_dir::LEADERBOARD,
             r.task_set,
             r.solver_id
         )
@@ -321,7 +321,7 @@ pub fn compare_control(
     let key = |r: &ControlRow| {
         format!(
             "{} {} {} h_ms {} substeps {}",
-            records::results_dir::CONTROL,
+            store::results_dir::CONTROL,
             r.task,
             r.method,
             r.h_ms,
@@ -432,7 +432,7 @@ fn compare_rows<T>(
 where
     T: HasRunKey,
 {
-    let runs: HashSet<catalog::run_key::RunKey> = fresh.iter().map(HasRunKey::run_key).collect();
+    let runs: HashSet<spec::run_key::RunKey> = fresh.iter().map(HasRunKey::run_key).collect();
     let explained: Vec<&T> = committed
         .iter()
         .filter(|c| runs.contains(&c.run_key()))
@@ -471,17 +471,17 @@ fn compare_keyed<T>(
 
 /// A row of a table keyed by its run.
 trait HasRunKey {
-    fn run_key(&self) -> catalog::run_key::RunKey;
+    fn run_key(&self) -> spec::run_key::RunKey;
 }
 
 impl HasRunKey for LadderRow {
-    fn run_key(&self) -> catalog::run_key::RunKey {
+    fn run_key(&self) -> spec::run_key::RunKey {
         self.key()
     }
 }
 
 impl HasRunKey for AttributionRow {
-    fn run_key(&self) -> catalog::run_key::RunKey {
+    fn run_key(&self) -> spec::run_key::RunKey {
         self.key()
     }
 }
@@ -495,8 +495,8 @@ mod tests {
     #[test]
     fn every_measured_metric_is_compared_and_no_timing() {
         let mut row = RunRow::blank(
-            &catalog::run_key::RunKey::from_ids("e", "v", "s").unwrap(),
-            catalog::solver_kind::SolverKind::Network(settings::network_kind::NetworkKind::Znn),
+            &spec::run_key::RunKey::from_ids("e", "v", "s").unwrap(),
+            spec::solver_kind::SolverKind::Network(settings::network_kind::NetworkKind::Znn),
         );
         row.final_pos_err = Some(1e-5);
         row.score_rms_dx = Some(2e-4);
@@ -523,8 +523,8 @@ mod tests {
     #[test]
     fn what_the_tables_show_is_compared_but_where_the_wall_clock_decides() {
         let mut row = RunRow::blank(
-            &catalog::run_key::RunKey::from_ids("e", "v", "s").unwrap(),
-            catalog::solver_kind::SolverKind::Network(settings::network_kind::NetworkKind::Znn),
+            &spec::run_key::RunKey::from_ids("e", "v", "s").unwrap(),
+            spec::solver_kind::SolverKind::Network(settings::network_kind::NetworkKind::Znn),
         );
         row.steps = 200;
         row.rhs_evals = 300;

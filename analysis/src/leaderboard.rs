@@ -37,16 +37,16 @@
 //! capped at it (qpbenchmark counts a failure at its time limit), so no completed run counts
 //! worse than a failure.
 
-use catalog::ids::{ExperimentId, SolverId, VariantId};
-use catalog::solver_kind::SolverKind;
-use records::error::{IoAction, IoError, RunsError};
 use records::percentile::percentile;
 use records::runs::RunRow;
 use records::table::Row;
 use records::timing::Timings;
 use serde::{Deserialize, Serialize};
+use spec::ids::{ExperimentId, SolverId, VariantId};
+use spec::solver_kind::SolverKind;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
+use store::error::{IoAction, IoError, RunsError};
 
 /// The `paper` of the experiments that make the standard task set.
 pub const STANDARD_PAPER: &str = "cross";
@@ -423,7 +423,7 @@ pub fn alone_timing(timings: &Timings, solver_id: &SolverId, tasks: &[Task]) -> 
     let spreads: Vec<f64> = tasks
         .iter()
         .filter_map(|t| {
-            timings.get(&catalog::run_key::RunKey::new(
+            timings.get(&spec::run_key::RunKey::new(
                 t.experiment.clone(),
                 t.variant.clone(),
                 solver_id.clone(),
@@ -442,14 +442,14 @@ pub fn leaderboard_csv(rows: &[LeaderboardRow]) -> Result<Vec<u8>, csv::Error> {
 
 /// Writes `results_dir/leaderboard.csv` (atomically) from `runs`; returns its path.
 pub fn write(results_dir: &Path, runs: &[RunRow]) -> Result<PathBuf, RunsError> {
-    let timings = records::timing::read(results_dir)?;
-    let path = results_dir.join(records::results_dir::LEADERBOARD);
+    let timings = store::timing::read(results_dir)?;
+    let path = results_dir.join(store::results_dir::LEADERBOARD);
     let bytes =
         leaderboard_csv(&leaderboard(runs, &timings)).map_err(|source| RunsError::Write {
             path: path.clone(),
             source,
         })?;
-    records::runs::write_atomic(&path, &bytes).map_err(IoError::at(&path, IoAction::Write))?;
+    store::atomic::write_atomic(&path, &bytes).map_err(IoError::at(&path, IoAction::Write))?;
     Ok(path)
 }
 
@@ -462,7 +462,7 @@ mod tests {
     /// with the given RMS distance, per-joint drift and time; `solver == "exact"` makes the
     /// exact column.
     fn run(solver: &str, exp: &str, rms: f64, drift: &[f64], sim_s: f64) -> RunRow {
-        let key = catalog::run_key::RunKey::from_ids(exp, "v", &solver.to_lowercase()).unwrap();
+        let key = spec::run_key::RunKey::from_ids(exp, "v", &solver.to_lowercase()).unwrap();
         let mut r = RunRow::blank(&key, SolverKind::Exact);
         r.solver = solver.into();
         r.paper = "cross".into();
@@ -641,8 +641,8 @@ mod tests {
 
     #[test]
     fn alone_timings_replace_the_parallel_times() {
-        use catalog::run_key::RunKey;
         use records::timing::TimingRow;
+        use spec::run_key::RunKey;
         // A timed alone at 40, 50 and 90 ms on t1 (median 50 ms), 50 ms three times on t2;
         // B not timed alone keeps its parallel 20 ms and now ranks faster.
         let timed = |task: &str, s: [f64; 3]| {

@@ -9,20 +9,24 @@ use records::timing::Timings;
 /// The best solvers by one measure (a ratio to the set's best, 1 for the best) and the other
 /// solvers' ratios.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Best<'a> {
+pub struct Best {
     /// The solvers whose measure is the smallest.
-    pub rows: Vec<&'a LeaderboardRow>,
+    pub rows: Vec<LeaderboardRow>,
     /// The other solvers' ratios to the best (those other than 1): smallest and largest; none
     /// when every solver is at 1.
     pub others: Option<(f64, f64)>,
 }
 
 /// The rows of `rows` whose `key` is the smallest, and the others' range.
-fn best_by<'a>(rows: &[&'a LeaderboardRow], key: fn(&LeaderboardRow) -> f64) -> Best<'a> {
+fn best_by(rows: &[&LeaderboardRow], key: fn(&LeaderboardRow) -> f64) -> Best {
     let best = rows.iter().map(|r| key(r)).fold(f64::INFINITY, f64::min);
     let others: Vec<f64> = rows.iter().map(|r| key(r)).filter(|v| *v != 1.0).collect();
     Best {
-        rows: rows.iter().copied().filter(|r| key(r) == best).collect(),
+        rows: rows
+            .iter()
+            .filter(|r| key(r) == best)
+            .map(|r| (*r).clone())
+            .collect(),
         others: others
             .iter()
             .copied()
@@ -33,30 +37,30 @@ fn best_by<'a>(rows: &[&'a LeaderboardRow], key: fn(&LeaderboardRow) -> f64) -> 
 
 /// The reading of the standard set.
 #[derive(Clone, Debug, PartialEq)]
-pub struct StandardReading<'a> {
+pub struct StandardReading {
     /// Tasks in the set.
     pub tasks: usize,
     /// The solvers grouped by runs within tolerance (in rank order, so the most first).
-    pub by_success: Vec<(usize, Vec<&'a LeaderboardRow>)>,
+    pub by_success: Vec<(usize, Vec<LeaderboardRow>)>,
     /// Runs of the set that failed.
     pub failed: usize,
     /// Closest to the exact optimum (RMS |x − x*|).
-    pub closest: Best<'a>,
+    pub closest: Best,
     /// Closest to the exact column's drift.
-    pub drift: Best<'a>,
+    pub drift: Best,
     /// Fastest.
-    pub fastest: Best<'a>,
+    pub fastest: Best,
 }
 
 /// [`StandardReading`] of the leaderboard `rows`; none without a standard set.
-pub fn standard_reading(rows: &[LeaderboardRow]) -> Option<StandardReading<'_>> {
+pub fn standard_reading(rows: &[LeaderboardRow]) -> Option<StandardReading> {
     let std: Vec<&LeaderboardRow> = rows.iter().filter(|r| r.task_set == STANDARD_SET).collect();
     let first = std.first()?;
-    let mut by_success: Vec<(usize, Vec<&LeaderboardRow>)> = Vec::new();
-    for r in &std {
+    let mut by_success: Vec<(usize, Vec<LeaderboardRow>)> = Vec::new();
+    for &r in &std {
         match by_success.last_mut() {
-            Some((w, g)) if *w == r.within_tolerance => g.push(r),
-            _ => by_success.push((r.within_tolerance, vec![r])),
+            Some((w, g)) if *w == r.within_tolerance => g.push(r.clone()),
+            _ => by_success.push((r.within_tolerance, vec![r.clone()])),
         }
     }
     Some(StandardReading {
@@ -107,14 +111,14 @@ pub fn timing_reading(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use catalog::solver_kind::SolverKind;
+    use spec::solver_kind::SolverKind;
 
     fn row(solver: &str, within: usize, completed: usize, rel: [f64; 3]) -> LeaderboardRow {
         LeaderboardRow {
             task_set: STANDARD_SET.to_string(),
             tasks: 4,
             rank: 1,
-            solver_id: catalog::ids::SolverId::new(solver.to_lowercase()).unwrap(),
+            solver_id: spec::ids::SolverId::new(solver.to_lowercase()).unwrap(),
             solver: solver.to_string(),
             solver_kind: SolverKind::Exact,
             standard_runs: 4,

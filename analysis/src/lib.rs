@@ -38,7 +38,9 @@
 //!   faer's dense LU overtakes nalgebra's.
 //! - [`number`]: the one way numbers are written in words (evidence and the report).
 //! - [`report_model`]: the report's decided content as one typed model, built once per render
-//!   (the claims' verdicts, the leaderboard, the efficiency claim).
+//!   (the papers' verdicts, tables, contradictions and sweep checks, the leaderboard and its
+//!   reading, the control claim and track, the MATLAB times, the cross experiment's bests,
+//!   the sweep summaries, the setup inference's verdicts).
 
 pub mod claim_verdict;
 pub mod claims;

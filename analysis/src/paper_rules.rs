@@ -1,6 +1,6 @@
 //! What a paper folder of `papers/` must satisfy before anything runs, and the typed problem
 //! when it does not ([`PaperProblem`]): the paper id is a slug of at most
-//! [`catalog::naming::MAX_EXPERIMENT_ID`] bytes, the folder's name, and not one of the
+//! [`spec::naming::MAX_EXPERIMENT_ID`] bytes, the folder's name, and not one of the
 //! [`RESERVED_PAPER_IDS`]; texts that reach the report (title, citation, claims) are one line
 //! ([`crate::report_text::is_one_line`]); each published (experiment, column) has at most one
 //! `[[mapping]]`; every values.csv entry is finite, of a known metric, of this paper, and given
@@ -14,7 +14,7 @@
 use crate::claims::ClaimError;
 use crate::leaderboard::STANDARD_PAPER;
 use crate::published_metrics::PUBLISHED_METRICS;
-use catalog::naming::MAX_EXPERIMENT_ID;
+use spec::naming::MAX_EXPERIMENT_ID;
 
 /// Paper id of the group-code reference experiments (`experiments/group.toml`): not a paper of
 /// `papers/`, but the id their runs and explanations are filed under.
@@ -159,7 +159,7 @@ pub enum PaperProblem {
 
 /// Checks a paper folder's name as a paper id (module docs).
 pub fn check_paper_id(id: &str) -> Result<(), PaperProblem> {
-    if !catalog::ids::is_id_form(id) || id.len() > MAX_EXPERIMENT_ID {
+    if !spec::ids::is_id_form(id) || id.len() > MAX_EXPERIMENT_ID {
         return Err(PaperProblem::NotAnId {
             id: id.to_string(),
             suggestion: settings::slug::slug(id)

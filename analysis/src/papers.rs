@@ -4,7 +4,7 @@
 //! `values.csv` is long: one number per row, named by (paper, table, experiment, column,
 //! metric). Each `[[mapping]]` of `paper.toml` says which of our runs reproduces one
 //! (experiment, column) of a paper, by its run key (`"<experiment> / <variant> / <solver>"`,
-//! ids, see `catalog::run_key`), with companion variants shown beside it.
+//! ids, see `spec::run_key`), with companion variants shown beside it.
 //! [`crate::published_metrics::our_metric`] names the `runs.csv` column of each published
 //! metric. [`Papers::resolve`] combines both; a published number that finds no run is listed
 //! in the report under "published numbers without a run", never dropped silently. Its `[[claim]]` tables are the claims checked against the
@@ -15,10 +15,10 @@ use crate::paper_rules::{check_paper_id, PaperProblem};
 use crate::published_metrics::{our_metric, METRIC_ALIASES, PUBLISHED_METRICS};
 use crate::report_text::is_one_line;
 use crate::sweep_check::SweepCheck;
-use catalog::run_key::RunKey;
 use records::index::Runs;
 use records::runs::RunRow;
 use serde::Deserialize;
+use spec::run_key::RunKey;
 use std::path::{Path, PathBuf};
 
 /// One published number.

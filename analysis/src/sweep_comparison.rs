@@ -131,6 +131,10 @@ pub struct SetupShare<'a> {
     /// ln f / ln g: the share of the gap, on a log scale, that this one part of the setup
     /// carries (1 or more: it alone closes the gap; 0 or less: it moves away from the paper).
     pub share: f64,
+    /// Whether that part of the setup alone can carry the whole gap: share >= 1.
+    pub closes_gap: bool,
+    /// The share toward the paper, max(share, 0): a part that moves away carries none of it.
+    pub toward_paper: f64,
 }
 
 /// The setup's share of the gap, when `check` names its declared variant and that run and at
@@ -164,6 +168,7 @@ pub fn setup_share<'a>(check: &SweepCheck, swept: &[SweptRun<'a>]) -> Option<Set
         .iter()
         .copied()
         .max_by(|a, b| share(a.1).total_cmp(&share(b.1)))?;
+    let carried = share(factor);
     let factors = others.iter().map(|(_, f)| *f);
     Some(SetupShare {
         declared: base.row,
@@ -177,7 +182,9 @@ pub fn setup_share<'a>(check: &SweepCheck, swept: &[SweptRun<'a>]) -> Option<Set
         ),
         nearest: nearest.row,
         factor,
-        share: share(factor),
+        share: carried,
+        closes_gap: carried >= 1.0,
+        toward_paper: carried.max(0.0),
     })
 }
 
@@ -186,7 +193,7 @@ mod tests {
     use super::*;
     use crate::claims::Pattern;
     use crate::sweep_check::SweepColumn;
-    use catalog::solver_kind::SolverKind;
+    use spec::solver_kind::SolverKind;
 
     #[test]
     fn a_swept_run_is_set_against_the_norm_of_the_printed_joints() {
@@ -219,7 +226,7 @@ mod tests {
             ..Papers::default()
         };
         let mut r = RunRow::blank(
-            &catalog::run_key::RunKey::from_ids("e", "v", "exact").unwrap(),
+            &spec::run_key::RunKey::from_ids("e", "v", "exact").unwrap(),
             SolverKind::Exact,
         );
         r.drift = vec![0.3, 0.4];
@@ -259,7 +266,7 @@ mod tests {
         };
         let run = |variant: &str, norm: f64| {
             let mut r = RunRow::blank(
-                &catalog::run_key::RunKey::from_ids("e", variant, "exact").unwrap(),
+                &spec::run_key::RunKey::from_ids("e", variant, "exact").unwrap(),
                 SolverKind::Exact,
             );
             r.drift = vec![0.6 * norm, -0.8 * norm];

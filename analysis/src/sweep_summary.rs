@@ -52,7 +52,7 @@ impl Extreme {
 }
 
 /// A sweep's summary (module docs).
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub struct SweepSummary<'a> {
     /// The number of runs.
     pub runs: usize,
@@ -100,9 +100,9 @@ pub fn summary<'a>(runs: &[&'a RunRow]) -> SweepSummary<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use catalog::run_key::RunKey;
-    use catalog::solver_kind::SolverKind;
     use records::runs::Status;
+    use spec::run_key::RunKey;
+    use spec::solver_kind::SolverKind;
 
     fn run(i: usize, drift: Option<f64>, error: Option<f64>, failed: bool) -> RunRow {
         let key = RunKey::parse(&format!("s / v{i} / exact")).unwrap();

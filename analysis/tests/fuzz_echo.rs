@@ -108,7 +108,7 @@ fn committed(rel: &str) -> String {
 }
 
 /// Builds nothing: the fuzz is of the reader, not of the runs.
-fn no_check(_: &catalog::experiment::Job) -> Result<(), catalog::error::SetupError> {
+fn no_check(_: &spec::run::RunSpec) -> Result<(), spec::run::SetupError> {
     Ok(())
 }
 
@@ -146,9 +146,9 @@ proptest! {
     fn integrity_manifests_never_echo(edits in prop::collection::vec(edit(), 1..5)) {
         let dir = scratch("manifest");
         let seed = "git_rev = \"abc\"\n\n[files.\"runs.csv\"]\nlines = 3\nbytes = 10\nsha256 = \"00\"\n";
-        std::fs::write(dir.join(records::integrity::FILE), edited(seed, &edits)).unwrap();
+        std::fs::write(dir.join(store::integrity::FILE), edited(seed, &edits)).unwrap();
         no_echo("an integrity manifest", || {
-            records::integrity::Manifest::read(&dir).map(drop).map_err(|e| e.to_string())
+            store::integrity::Manifest::read(&dir).map(drop).map_err(|e| e.to_string())
         })?;
     }
 
@@ -156,9 +156,9 @@ proptest! {
     fn shard_manifests_never_echo(edits in prop::collection::vec(edit(), 1..5)) {
         let dir = scratch("shard");
         let seed = "shard = 1\nshards = 2\ngit_rev = \"abc\"\nselection = \"all\"\nexperiments_hash = \"00\"\nruns = [\"e / v / s\"]\n";
-        std::fs::write(dir.join(records::shard::MANIFEST), edited(seed, &edits)).unwrap();
+        std::fs::write(dir.join(store::shard::MANIFEST), edited(seed, &edits)).unwrap();
         no_echo("a shard manifest", || {
-            records::shard::Manifest::read(&dir).map(drop).map_err(|e| e.to_string())
+            store::shard::Manifest::read(&dir).map(drop).map_err(|e| e.to_string())
         })?;
     }
 
@@ -211,6 +211,6 @@ fn the_seeds_read_unedited() {
     inputs::trajectory::read(&path, 2, None).unwrap();
     let seed =
         "git_rev = \"abc\"\n\n[files.\"runs.csv\"]\nlines = 3\nbytes = 10\nsha256 = \"00\"\n";
-    std::fs::write(dir.join(records::integrity::FILE), seed).unwrap();
-    assert!(records::integrity::Manifest::read(&dir).unwrap().is_some());
+    std::fs::write(dir.join(store::integrity::FILE), seed).unwrap();
+    assert!(store::integrity::Manifest::read(&dir).unwrap().is_some());
 }

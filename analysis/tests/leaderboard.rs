@@ -4,11 +4,11 @@
 #[test]
 fn the_committed_leaderboard_is_the_one_the_committed_runs_give() {
     let root = catalog::root::from_current_dir().unwrap();
-    let runs = records::runs::read_runs(&root.join("results/runs.csv")).unwrap();
+    let runs = store::runs::read_runs(&root.join("results/runs.csv")).unwrap();
     let path = root.join("results/leaderboard.csv");
     let committed =
         std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let timings = records::timing::read(&root.join("results")).unwrap();
+    let timings = store::timing::read(&root.join("results")).unwrap();
     let rows = analysis::leaderboard::leaderboard(&runs, &timings);
     let fresh = String::from_utf8(analysis::leaderboard::leaderboard_csv(&rows).unwrap()).unwrap();
     assert!(

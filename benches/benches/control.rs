@@ -8,10 +8,10 @@
 //! A network whose one step per tick diverges on the task is timed all the same (a step costs
 //! the same whether or not it converges).
 
-use catalog::naming::slug;
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use driftbench_benches::fast_config;
 use qp::Qp;
+use spec::naming::slug;
 
 use control::control_loop::{run_loop, LoopSettings, Observer};
 use control::method::{Method, Numerical};
@@ -64,7 +64,12 @@ fn per_tick(c: &mut Criterion) {
     let root = catalog::root::from_current_dir().expect("run inside the workspace");
     let experiments = root.join("experiments");
     let set = standard_task_set(&experiments).expect("the standard task set");
-    let tasks = load_tasks(&experiments, &set.tasks).expect("the experiment files");
+    let jobs: Vec<_> = catalog::experiment::load_dir(&experiments, simulation::run::check_job)
+        .expect("the experiment files")
+        .iter()
+        .flat_map(|f| f.jobs())
+        .collect();
+    let tasks = load_tasks(&jobs, &set.tasks).expect("the tasks");
     for task in &tasks {
         let qps = with_task(task, 1, sample).expect("the task builds");
         let mut methods: Vec<Method> = Numerical::all()

@@ -3,14 +3,15 @@
 //! (`VmHWM`). Every step is linear in the runs (hash maps, no pairwise scans), which this
 //! bench shows as time per run staying flat across the three sizes. Listing and the shard
 //! plan take the runs as they are made (as `reproduce --list` does), so the peak after them
-//! is the loaded file's; collecting every run as a `Job`, as a run does, comes last.
+//! is the loaded file's; collecting every run as a `RunSpec`, as a run does, comes last.
 //!
 //! `cargo bench -p driftbench-benches --bench sweep_scale` (about a minute; the numbers are in
 //! docs/cluster.md). Under `cargo test --benches` it runs the smallest size only.
 
-use catalog::experiment::{Job, PaperFile};
+use catalog::experiment::PaperFile;
 use records::runs::{merge, RunRow};
 use simulation::run::check_job;
+use spec::run::RunSpec;
 use std::time::Instant;
 
 /// An experiment file whose one variant sweeps kong2019's mu over `n` values (exact column
@@ -82,14 +83,14 @@ fn main() {
                 .flat_map(|e| &e.variants)
                 .map(|v| v.run_count())
                 .sum();
-            records::shard::plan(total, 8)
+            store::shard::plan(total, 8)
         });
-        // What a run (and a shard) holds: every run of the selection as a `Job`.
-        let jobs: Vec<Job> = timed("jobs collected (a run's)", n, || file.jobs());
+        // What a run (and a shard) holds: every run of the selection as a `RunSpec`.
+        let jobs: Vec<RunSpec> = timed("jobs collected (a run's)", n, || file.jobs());
         if n <= 100_000 {
             let rows: Vec<RunRow> = jobs
                 .iter()
-                .map(|j| RunRow::blank(&j.key(), catalog::solver_kind::SolverKind::Exact))
+                .map(|j| RunRow::blank(&j.key(), spec::solver_kind::SolverKind::Exact))
                 .collect();
             let half = rows[..n / 2].to_vec();
             timed("merge stored + fresh rows", n, || merge(rows, half).len());

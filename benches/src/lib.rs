@@ -28,7 +28,7 @@ use simulation::run::check_job;
 use std::sync::Arc;
 use std::time::Duration;
 
-use catalog::experiment::{load_dir, Job, SolverChoice};
+use catalog::experiment::load_dir;
 use criterion::Criterion;
 use nalgebra::DVector;
 use robots::{Dynamics, Jaco2, Katana6m180, Robot};
@@ -38,6 +38,8 @@ use schemes::scheme::Scheme;
 use settings::solver_spec::SolverSpec;
 use solvers::neural::NeuralSolver;
 use solvers::{random_qp, ExactSolver, Qp, QpShape};
+use spec::run::RunSpec;
+use spec::run::SolverChoice;
 
 // ---------------------------------------------------------------------------------------------
 // Criterion settings
@@ -149,7 +151,7 @@ impl RepresentativeQp {
 
 /// Every job of every file in `experiments/` (panics on an unreadable file: the reproduction's
 /// own tests report those).
-pub fn experiment_jobs() -> Vec<Job> {
+pub fn experiment_jobs() -> Vec<RunSpec> {
     let dir = catalog::root::from_current_dir()
         .unwrap()
         .join("experiments");
@@ -162,8 +164,8 @@ pub fn experiment_jobs() -> Vec<Job> {
 
 /// The job with key `experiment / variant / solver` (ids, e.g. `jia2019-star / vltco /
 /// exact`).
-pub fn find_job(jobs: &[Job], experiment: &str, variant: &str, solver: &str) -> Job {
-    let key = catalog::run_key::RunKey::from_ids(experiment, variant, solver)
+pub fn find_job(jobs: &[RunSpec], experiment: &str, variant: &str, solver: &str) -> RunSpec {
+    let key = spec::run_key::RunKey::from_ids(experiment, variant, solver)
         .unwrap_or_else(|e| panic!("{experiment} / {variant} / {solver}: {e}"));
     jobs.iter()
         .find(|j| j.key() == key)
@@ -183,7 +185,7 @@ pub fn bench_id(display_name: &str) -> String {
 /// in file order) with the parameters its experiment file gives: LVI-PDNN for jia2019;
 /// VP-RNN-PF (linear, sinh, power-sigmoid) and S-LVI-PDNN for zhong2021; FP-CDNN and the
 /// perturbed FP-/VP-CDNN for zhang2018; FTNN and ZNN for kong2019.
-pub fn paper_networks(jobs: &[Job], shape: QpShape) -> Vec<(String, SolverSpec)> {
+pub fn paper_networks(jobs: &[RunSpec], shape: QpShape) -> Vec<(String, SolverSpec)> {
     let mut out: Vec<(String, SolverSpec)> = Vec::new();
     // The paper's own experiments, not the parameter sweeps beside them.
     for j in jobs
@@ -233,23 +235,23 @@ pub fn bench_cases() -> BenchCases {
 }
 
 /// The job of a run key written `experiment / variant / solver`.
-pub fn find_run(jobs: &[Job], key: &str) -> Job {
-    let k = catalog::run_key::RunKey::parse(key)
-        .unwrap_or_else(|e| panic!("{CASES_FILE}: {key:?}: {e}"));
+pub fn find_run(jobs: &[RunSpec], key: &str) -> RunSpec {
+    let k =
+        spec::run_key::RunKey::parse(key).unwrap_or_else(|e| panic!("{CASES_FILE}: {key:?}: {e}"));
     find_job(jobs, &k.experiment, &k.variant, &k.solver)
 }
 
 /// The exact column's job of each scheme reference.
 fn scheme_jobs<'a>(
-    jobs: &'a [Job],
+    jobs: &'a [RunSpec],
     refs: &'a [SchemeRef],
-) -> impl Iterator<Item = (&'a str, Job)> + 'a {
+) -> impl Iterator<Item = (&'a str, RunSpec)> + 'a {
     refs.iter().map(|r| {
-        let t = catalog::run_key::TaskKey::parse(&r.task)
+        let t = spec::run_key::TaskKey::parse(&r.task)
             .unwrap_or_else(|e| panic!("{CASES_FILE}: {:?}: {e}", r.task));
         (
             r.label.as_str(),
-            find_job(jobs, &t.experiment, &t.variant, catalog::run_key::EXACT_ID),
+            find_job(jobs, &t.experiment, &t.variant, spec::run::EXACT_ID),
         )
     })
 }
@@ -271,7 +273,7 @@ pub struct ArmState {
 
 impl ArmState {
     /// The state near `job.theta0` (one entry per joint of the job's robot).
-    pub fn near_start(job: &Job) -> Self {
+    pub fn near_start(job: &RunSpec) -> Self {
         let n = job.theta0.len();
         let s = |i: usize| ((i + 1) as f64).sin();
         Self {
@@ -306,7 +308,7 @@ impl SchemeCase {
     /// Builds the scheme of `job` on `robot` (and `dynamics`, for zhang2018), named `label`.
     pub fn new(
         label: &str,
-        job: &Job,
+        job: &RunSpec,
         robot: Arc<dyn Robot>,
         dynamics: Option<Arc<dyn Dynamics>>,
     ) -> Self {
@@ -339,7 +341,7 @@ impl SchemeCase {
 }
 
 /// The Jaco2 schemes of [`BenchCases::jaco2_schemes`], each with the Jaco2 model its job names.
-pub fn jaco2_scheme_cases(jobs: &[Job]) -> Vec<SchemeCase> {
+pub fn jaco2_scheme_cases(jobs: &[RunSpec]) -> Vec<SchemeCase> {
     let cases = bench_cases();
     scheme_jobs(jobs, &cases.jaco2_schemes)
         .map(|(label, job)| {
@@ -350,7 +352,7 @@ pub fn jaco2_scheme_cases(jobs: &[Job]) -> Vec<SchemeCase> {
 }
 
 /// The Katana schemes of [`BenchCases::katana_schemes`].
-pub fn katana_scheme_cases(jobs: &[Job]) -> Vec<SchemeCase> {
+pub fn katana_scheme_cases(jobs: &[RunSpec]) -> Vec<SchemeCase> {
     let cases = bench_cases();
     scheme_jobs(jobs, &cases.katana_schemes)
         .map(|(label, job)| SchemeCase::new(label, &job, Arc::new(Katana6m180::new()), None))

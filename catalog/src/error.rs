@@ -2,119 +2,21 @@
 //!
 //! - The experiment format: [`ExperimentFileError`] (the file) wraps [`ExperimentError`] (the
 //!   text), which wraps [`TomlError`], [`SweepError`] (the sweep grammar) and [`FieldError`] at
-//!   a [`FieldAt`] (which wraps [`SetupError`], the scheme specifications' `SchemeError` and the naming
-//!   rules' `NameError`).
-//! - Building a run's parts: [`SetupError`], wrapping the path and scheme specifications' `PathError` and
-//!   `SchemeError` and a network's `NetworkError`. The engine (crate `simulation`) returns it
-//!   when a run cannot be built, and the experiment format places it at the field at fault when
-//!   a file is checked ([`crate::experiment::CheckJob`]).
+//!   a [`FieldAt`] (which wraps `spec::run::SetupError`, the scheme specifications'
+//!   `SchemeError` and the naming rules' `NameError`).
+//! - Building a run's parts fails with `spec::run::SetupError` (crate `spec`, beside the run
+//!   it describes): the engine (crate `simulation`) returns it when a run cannot be built, and
+//!   the experiment format places it at the field at fault when a file is checked
+//!   ([`crate::experiment::CheckJob`]).
 //!
 //! A network's parameter errors (`settings::error::NetworkError`) and the integrator settings'
 //! (`settings::error::IntegratorError`) are crate `settings`', below both this crate and the
 //! solvers.
 
-use crate::fields::JobPart;
-use crate::naming::NameError;
-use settings::error::{IntegratorError, NetworkError};
-use spec::path::PathError;
+use settings::error::IntegratorError;
+use spec::naming::NameError;
 use spec::scheme::SchemeError;
 use std::path::PathBuf;
-
-/// Why a run's parts could not be built from its specification (robot, pose, path, scheme,
-/// network), each wrapping its layer's own error.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-pub enum SetupError {
-    /// The robot is not one of the registry's, or its robot file is invalid: the registry's
-    /// error (the valid choices, or the file and field at fault).
-    #[error("{0}")]
-    UnknownRobot(String),
-    /// theta0, theta_ref or a limits override does not have the robot's joint count.
-    #[error("has {given} entries, the robot has {joints} joints")]
-    PoseLength {
-        /// The part: [`JobPart::Theta0`], [`JobPart::ThetaRef`] or [`JobPart::Limits`].
-        part: JobPart,
-        /// The entries given (for limits, the longer of `lower` and `upper`).
-        given: usize,
-        /// The robot's joint count.
-        joints: usize,
-    },
-    /// theta0 or theta_ref has a NaN or infinite entry.
-    #[error("entries must be finite")]
-    PoseNotFinite {
-        /// The part: [`JobPart::Theta0`] or [`JobPart::ThetaRef`].
-        part: JobPart,
-    },
-    /// The path cannot be built (built from f(theta_ref)).
-    #[error(transparent)]
-    Path(#[from] PathError),
-    /// The scheme's error, with a hint naming what would fit (e.g. the robots with dynamics).
-    #[error("{error}{hint}")]
-    Scheme {
-        /// The scheme's own error.
-        error: SchemeError,
-        /// Text appended to its message (empty when there is nothing to suggest).
-        hint: String,
-    },
-    /// The suite's network could not be built for the scheme's QP.
-    #[error("{network}: {error} (scheme {scheme})")]
-    Network {
-        /// The network's display name, e.g. `VP-RNN-PF (sinh)`.
-        network: String,
-        /// The scheme's name as its paper writes it.
-        scheme: String,
-        /// The network's own error.
-        error: NetworkError,
-    },
-    /// A network that solves only a QP's equality part given a scheme whose QP has
-    /// inequality rows or finite bounds (its answer would not be the scheme's QP's).
-    #[error("network {network} solves equality-constrained QPs only, but scheme {scheme} (field `scheme`) poses {rows} inequality rows and {bounds} finite bounds (its joint-limit or bound terms); choose a network that handles inequalities (lvi-pdnn, s-lvi-pdnn, vp-rnn-pf) or a scheme without them")]
-    ConstraintsIgnored {
-        /// The network's display name.
-        network: String,
-        /// The scheme's display name.
-        scheme: String,
-        /// The QP's inequality rows.
-        rows: usize,
-        /// Its finite bounds (lower and upper counted apart).
-        bounds: usize,
-    },
-    /// The run's QP solver cannot be built: the registry's error (an unknown id with the
-    /// registered ones, a setting not taken or out of range, a solver not built in).
-    #[error("{0}")]
-    QpSolver(String),
-    /// A network given by the caller (e.g. a Python network) could not be built: its message.
-    #[error("{0}")]
-    CustomNetwork(String),
-    /// The experiment's tool offset or base transform is invalid, or does not fit the robot
-    /// (a tool offset on a robot without a tool frame, a tilted base under dynamics).
-    #[error(transparent)]
-    Mount(#[from] robots::mounted::MountError),
-    /// Limits were given for a robot whose dynamics model the scheme reads its limits from.
-    #[error("joint_limits / velocity_limits cannot replace the limits of \"{robot}\" for the acceleration-level scheme, which reads them from the robot's dynamics model")]
-    LimitsWithDynamics {
-        /// The robot's name.
-        robot: String,
-    },
-}
-
-impl SetupError {
-    /// The part of the job (and so the experiment-file field) at fault.
-    pub fn part(&self) -> JobPart {
-        match self {
-            SetupError::UnknownRobot(_) => JobPart::Robot,
-            SetupError::PoseLength { part, .. } | SetupError::PoseNotFinite { part } => *part,
-            SetupError::Path(_) => JobPart::Path,
-            SetupError::Scheme { .. } => JobPart::Scheme,
-            SetupError::Network { .. }
-            | SetupError::CustomNetwork(_)
-            | SetupError::QpSolver(_)
-            | SetupError::ConstraintsIgnored { .. } => JobPart::Solver,
-            SetupError::LimitsWithDynamics { .. } => JobPart::Limits,
-            SetupError::Mount(e) if e.field() == "tool" => JobPart::Tool,
-            SetupError::Mount(_) => JobPart::Base,
-        }
-    }
-}
 
 /// A TOML (or serde) error of an experiment file: its message, line and column, never the
 /// source line (the input reader's, crate `inputs`).
@@ -154,6 +56,9 @@ pub enum SweepError {
         /// The TOML type given instead, e.g. `array`.
         got: &'static str,
     },
+    /// `traces` is none of its choices.
+    #[error("field `traces`: must be \"all\" (the default), \"none\" or {{ every = k }} with an integer k >= 1")]
+    Traces,
     /// `sweep` is an empty table.
     #[error("field `sweep`: is empty (give at least one key)")]
     Empty,
@@ -421,12 +326,12 @@ impl std::fmt::Display for FieldAt {
 /// What is wrong with one field of an experiment file.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum FieldError {
-    /// The id or label cannot name a file ([`crate::naming::check_name`]).
+    /// The id or label cannot name a file ([`spec::naming::check_name`]).
     #[error(transparent)]
     Name(#[from] NameError),
-    /// An id that is not a valid id of its kind (`crate::ids`).
+    /// An id that is not a valid id of its kind (`spec::ids`).
     #[error(transparent)]
-    Id(#[from] crate::ids::IdError),
+    Id(#[from] spec::ids::IdError),
     /// An experiment id does not start with the file's paper id and `-`.
     #[error("must start with the paper id \"{paper}-\"")]
     PaperPrefix {
@@ -474,7 +379,7 @@ pub enum FieldError {
         /// The label.
         label: String,
     },
-    /// A paper, experiment or variant id is not in id form ([`crate::ids`]).
+    /// A paper, experiment or variant id is not in id form ([`spec::ids`]).
     #[error("\"{id}\" is not an id: use lower-case ASCII letters, digits, `.` and single `-` (e.g. \"{suggestion}\")")]
     NotAnId {
         /// The id as written.
@@ -517,25 +422,15 @@ pub enum FieldError {
     /// The variant runs nothing: no exact run, no solvers and no numerical methods.
     #[error("variant runs nothing (exact = false and no solvers)")]
     RunsNothing,
-    /// A joint's limits are out of order in a limits override.
-    #[error("joint {joint}: lower = {lower}, upper = {upper} (must be {requirement})")]
-    LimitOrder {
-        /// The joint, numbered from 1.
-        joint: usize,
-        /// Its lower limit (rad, or rad/s for velocity limits).
-        lower: f64,
-        /// Its upper limit (rad, or rad/s for velocity limits).
-        upper: f64,
-        /// What must hold: `lower < upper` (joint limits) or `lower < 0 < upper` (velocity
-        /// limits).
-        requirement: &'static str,
-    },
+    /// A limits override does not fit the robot ([`spec::run::LimitsSpec::check`]).
+    #[error(transparent)]
+    Limits(#[from] spec::run::LimitsError),
     /// A numerical method's specification fails its check (`numerical[k]`).
     #[error(transparent)]
-    Numerical(#[from] crate::numerical_spec::NumericalSpecError),
+    Numerical(#[from] spec::numerical::NumericalSpecError),
     /// A run of the variant cannot be built (robot, pose, path, scheme or network).
     #[error(transparent)]
-    Setup(#[from] SetupError),
+    Setup(#[from] spec::run::SetupError),
     /// Two runs of the variant have the same run key.
     #[error("run \"{key}\" is listed twice (experiment / variant / solver ids must be unique)")]
     RunTwice {

@@ -7,22 +7,21 @@
 //! loop) and by each of its neural solvers. A variant may override the robot, path, theta0 or theta_ref, which is how
 //! the model check (jaco2 vs jaco2-pen), the star-lines variant and kong2019's two starts are
 //! written. A variant with a `sweep` table stands for many (the grammar: [`crate::sweep`]).
-//! Every run an experiment file describes is a [`Job`].
+//! Every run an experiment file describes is a [`RunSpec`].
 
-use crate::error::{
-    ExperimentError, ExperimentFileError, FieldAt, FieldError, SetupError, TomlError,
-};
-use crate::fields::JobPart;
-use crate::ids::{ExperimentId, IdError, SolverId, VariantId};
-use crate::naming::{slug, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
-use crate::numerical_spec::NumericalSpec;
-use crate::run_key::{RunKey, TaskKey, EXACT_ID};
-use crate::solver_kind::SolverKind;
-use robots::mounted::{Mount, MountError};
+use crate::error::{ExperimentError, ExperimentFileError, FieldAt, FieldError, TomlError};
+use robots::mounted::Mount;
 use serde::{Deserialize, Serialize};
 use settings::integrator::{IntegratorSettings, Method};
 use settings::solver_spec::SolverSpec;
+use spec::ids::{ExperimentId, VariantId};
+use spec::mount::MountError;
+use spec::mount::MountSpec;
+use spec::naming::{slug, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
+use spec::numerical::NumericalSpec;
 use spec::path::PathSpec;
+use spec::run::{JobPart, LimitsSpec, NetworkInit, RunSpec, Scoring, SetupError, SolverChoice};
+use spec::run_key::RunKey;
 use spec::scheme::SchemeSpec;
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
@@ -123,7 +122,7 @@ pub struct Variant {
     #[serde(default)]
     pub solvers: Vec<SolverSpec>,
     /// QP solvers run as this variant's solvers at every instant of a fixed-step loop
-    /// ([`crate::numerical_spec`]).
+    /// ([`spec::numerical`]).
     #[serde(default)]
     pub numerical: Vec<NumericalSpec>,
     /// Run the exact column (default true).
@@ -168,6 +167,11 @@ pub struct Variant {
     /// published column maps onto them (those that are mapped are explained anyway).
     #[serde(default)]
     pub explain: bool,
+    /// Which of the variant's runs keep their trace: its sweep's `traces` field and where the
+    /// variant stands among the sweep's runs ([`crate::sweep::KeptTraces`]); every run of a
+    /// variant without a sweep keeps it.
+    #[serde(skip)]
+    pub traces: crate::sweep::KeptTraces,
 }
 
 /// An expected failure: why, and which of the variant's runs (solver kinds, e.g. `"fp-cdnn"`
@@ -203,52 +207,6 @@ impl Variant {
     }
 }
 
-/// Elementwise limits `lower <= value <= upper`, one entry per joint (an experiment's
-/// `joint_limits` in rad, `velocity_limits` in rad/s), replacing the robot model's.
-#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
-pub struct LimitsSpec {
-    /// Lower limits, one per joint (below `upper`; below 0 for velocity limits).
-    pub lower: Vec<f64>,
-    /// Upper limits, one per joint (above `lower`; above 0 for velocity limits).
-    pub upper: Vec<f64>,
-}
-
-impl LimitsSpec {
-    /// Checks `n` finite entries on each side with lower < upper; velocity limits (`velocity`)
-    /// must also hold 0 (lower < 0 < upper: the arm can stop, and the bound conversion of
-    /// robio2018 (10) stays feasible at rest).
-    fn check(&self, n: usize, velocity: bool) -> Result<(), FieldError> {
-        for v in [&self.lower, &self.upper] {
-            if v.len() != n {
-                return Err(FieldError::Length {
-                    given: v.len(),
-                    joints: n,
-                });
-            }
-            if v.iter().any(|x| !x.is_finite()) {
-                return Err(FieldError::NotFinite);
-            }
-        }
-        for (i, (lo, hi)) in self.lower.iter().zip(&self.upper).enumerate() {
-            let ok = lo < hi && (!velocity || (*lo < 0.0 && *hi > 0.0));
-            if !ok {
-                return Err(FieldError::LimitOrder {
-                    joint: i + 1,
-                    lower: *lo,
-                    upper: *hi,
-                    requirement: if velocity {
-                        "lower < 0 < upper"
-                    } else {
-                        "lower < upper"
-                    },
-                });
-            }
-        }
-        Ok(())
-    }
-}
-
 /// Where an experiment's robot stands: the run's world from the robot's own world frame,
 /// `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)` with `rpy = [roll, pitch, yaw]` (the URDF
 /// convention; [`robots::mounted::Mount::new`] bounds them).
@@ -264,163 +222,26 @@ pub struct BaseSpec {
 }
 
 /// The mount of a tool offset and a base, `None` when neither is given (the robot as it is).
-fn mount_of(tool: Option<&[f64; 3]>, base: Option<&BaseSpec>) -> Result<Option<Mount>, MountError> {
+/// The mount is checked as the run will build it ([`Mount::new`]).
+fn mount_of(
+    tool: Option<&[f64; 3]>,
+    base: Option<&BaseSpec>,
+) -> Result<Option<MountSpec>, MountError> {
     if tool.is_none() && base.is_none() {
         return Ok(None);
     }
     let base = base.cloned().unwrap_or_default();
-    Mount::new(tool.copied().unwrap_or([0.0; 3]), base.xyz, base.rpy).map(Some)
-}
-
-/// Where a network's state starts: the papers leave it open, the group's code starts from zero.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum NetworkInit {
-    /// y(0) = 0 (thetadot = 0 and zero multipliers at the velocity level), as the group's code.
-    #[default]
-    Zero,
-    /// The network's joint command starts at the exact optimum x*(0) of the QP at t = 0 (its
-    /// other state entries, multipliers and auxiliary variables, at zero): no start transient.
-    Exact,
+    let spec = MountSpec {
+        tool: tool.copied().unwrap_or([0.0; 3]),
+        xyz: base.xyz,
+        rpy: base.rpy,
+    };
+    Mount::new(spec.tool, spec.xyz, spec.rpy)?;
+    Ok(Some(spec))
 }
 
 fn yes() -> bool {
     true
-}
-
-/// Where a network run is compared with the exact optimum (one exact QP solve each).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case", deny_unknown_fields)]
-pub enum Scoring {
-    /// At every accepted step of the integrator (the default: the score sees every state the
-    /// network reaches).
-    #[default]
-    EveryStep,
-    /// At most this many instants: the first accepted step at or after each point of a uniform
-    /// grid of the run's duration (and the last step), so a run of 10^5 steps costs a bounded
-    /// number of exact solves; `score_samples` in results says how many were taken.
-    MaxInstants(usize),
-    /// Not scored (the explanation layer's controlled re-runs need only drift and error).
-    Off,
-}
-
-/// The solver of one run: the exact optimum or a neural network.
-#[derive(Clone, Debug, PartialEq)]
-pub enum SolverChoice {
-    /// The exact column: the QP solved to optimality at every evaluation.
-    Exact,
-    /// A neural network, with its parameters.
-    Neural(SolverSpec),
-    /// A registered QP solver at every instant of a fixed-step loop.
-    Numerical(NumericalSpec),
-}
-
-/// The exact column's label: x*(t) from the certified active set, Clarabel where it cannot
-/// certify (`qp_fallbacks` in results counts those instants).
-pub const EXACT_LABEL: &str = "exact (active set + Clarabel)";
-
-impl SolverChoice {
-    /// The solver's kind: the exact column, the network's kind or the numerical method.
-    pub fn kind(&self) -> SolverKind {
-        match self {
-            SolverChoice::Exact => SolverKind::Exact,
-            SolverChoice::Neural(s) => SolverKind::Network(s.network_kind()),
-            SolverChoice::Numerical(s) => SolverKind::Numerical(s.method),
-        }
-    }
-
-    /// The solver's id in run keys: [`EXACT_ID`], or the network's [`SolverSpec::id`].
-    pub fn id(&self) -> String {
-        match self {
-            SolverChoice::Exact => EXACT_ID.to_string(),
-            SolverChoice::Neural(s) => s.id(),
-            SolverChoice::Numerical(s) => s.id(),
-        }
-    }
-
-    /// The solver's label in tables (display only): the network with its parameters.
-    pub fn label(&self) -> String {
-        match self {
-            SolverChoice::Exact => EXACT_LABEL.to_string(),
-            SolverChoice::Neural(s) => s.display_name(),
-            SolverChoice::Numerical(s) => s.display_name(),
-        }
-    }
-}
-
-/// One run: everything needed to simulate it, resolved from the file.
-#[derive(Clone, Debug)]
-pub struct Job {
-    /// The paper id of the run's file.
-    pub paper: String,
-    /// The experiment's id.
-    pub experiment: ExperimentId,
-    /// The variant's id ([`Variant::id`]).
-    pub variant_id: VariantId,
-    /// The variant's label (display only).
-    pub variant: String,
-    /// The robot's model name (the variant's or the experiment's).
-    pub robot: String,
-    /// The desired path (the variant's or the experiment's).
-    pub path: PathSpec,
-    /// Initial joint angles theta(0) (rad; the variant's or the experiment's).
-    pub theta0: Vec<f64>,
-    /// The scheme's joint reference (rad): the variant's or the experiment's `theta_ref`, else
-    /// theta0.
-    pub theta_ref: Vec<f64>,
-    /// Joint-angle limits replacing the robot's (the variant's or experiment's `joint_limits`).
-    pub joint_limits: Option<LimitsSpec>,
-    /// Joint-velocity limits replacing the robot's.
-    pub velocity_limits: Option<LimitsSpec>,
-    /// The robot's tool offset and base (the variant's or the experiment's `tool` and `base`,
-    /// each field on its own); `None`: the robot as it is.
-    pub mount: Option<Mount>,
-    /// The scheme and its parameters.
-    pub scheme: SchemeSpec,
-    /// The run's solver.
-    pub solver: SolverChoice,
-    /// Integrator settings: the experiment's `exact_integrator` for the exact run, the variant's or
-    /// the experiment's `integrator` for a neural run (a numerical run, which steps at its own
-    /// fixed gap, carries the exact one and does not use it).
-    pub integrator: IntegratorSettings,
-    /// Where a neural run is scored against the exact optimum (the experiment's `scoring`;
-    /// the controlled re-runs of the `explain` crate need only drift and position error and
-    /// switch it off).
-    pub scoring: Scoring,
-    /// Initial state of a neural run's network.
-    pub network_init: NetworkInit,
-    /// Why this run is expected to fail, if it is (the variant's `expected_failure`).
-    pub expected_failure: Option<String>,
-    /// The variant's `explain` flag.
-    pub explain: bool,
-}
-
-impl Job {
-    /// The run's task (what every solver of a variant shares).
-    pub fn task(&self) -> TaskKey {
-        TaskKey {
-            experiment: self.experiment.clone(),
-            variant: self.variant_id.clone(),
-        }
-    }
-
-    /// The solver's id ([`SolverChoice::id`]), checked.
-    pub fn solver_id(&self) -> Result<SolverId, IdError> {
-        SolverId::new(self.solver.id())
-    }
-
-    /// The run's identity: experiment / variant / solver ids.
-    ///
-    /// Every run of an experiment file that was read ([`PaperFile::from_toml`]) has a valid
-    /// solver id: the file's check refuses a solver whose id is not one (a parameter that
-    /// prints as no slug, or too long an id). A key asked of a job whose solver was changed
-    /// to such a specification in code panics; [`Job::solver_id`] is the checked form.
-    pub fn key(&self) -> RunKey {
-        let solver = self
-            .solver_id()
-            .unwrap_or_else(|e| panic!("{}: {e}", self.task()));
-        RunKey::new(self.experiment.clone(), self.variant_id.clone(), solver)
-    }
 }
 
 /// Why the ids of a run made from a file are valid: every [`PaperFile`] the program reads comes
@@ -440,7 +261,7 @@ const CHECKED_MOUNT: &str = "the experiment file's check refuses an invalid tool
 /// experiment format cannot build a run itself; loading a file takes the check, so that a file
 /// is rejected at load for exactly what would make one of its runs fail at t = 0, the error
 /// placed at the field at fault ([`SetupError::part`]).
-pub type CheckJob = fn(&Job) -> Result<(), SetupError>;
+pub type CheckJob = fn(&RunSpec) -> Result<(), SetupError>;
 
 impl PaperFile {
     /// Reads (with the input reader, crate `inputs`: a regular file that does not lead out of
@@ -501,7 +322,10 @@ impl PaperFile {
                 PaperFile::deserialize(toml::Value::Table(doc)).map_err(TomlError::from)?;
             sweeps.expand_into(
                 file.experiments.iter_mut().map(|e| &mut e.variants),
-                |v| Variant::deserialize(toml::Value::Table(v)),
+                |v, traces| {
+                    Variant::deserialize(toml::Value::Table(v)).map(|v| Variant { traces, ..v })
+                },
+                Variant::run_count,
                 budget,
             )?;
             file
@@ -735,7 +559,7 @@ impl PaperFile {
     /// The runs of one variant `v` of this file's experiment `e` (exact column first; as many
     /// as [`Variant::run_count`]). Its experiment and variant ids were checked before the runs
     /// are made (`CHECKED_IDS`).
-    pub fn variant_jobs(&self, e: &Experiment, v: &Variant) -> Vec<Job> {
+    pub fn variant_jobs(&self, e: &Experiment, v: &Variant) -> Vec<RunSpec> {
         let mut jobs = Vec::new();
         let theta0 = v.theta0.clone().unwrap_or_else(|| e.theta0.clone());
         let theta_ref = v
@@ -743,7 +567,7 @@ impl PaperFile {
             .clone()
             .or_else(|| e.theta_ref.clone())
             .unwrap_or_else(|| theta0.clone());
-        let base = Job {
+        let base = RunSpec {
             paper: self.paper.clone(),
             experiment: ExperimentId::new(e.id.clone()).expect(CHECKED_IDS),
             variant_id: VariantId::new(v.id()).expect(CHECKED_IDS),
@@ -773,6 +597,7 @@ impl PaperFile {
             scoring: e.scoring,
             network_init: NetworkInit::Zero,
             explain: v.explain,
+            keep_trace: true,
             expected_failure: v
                 .expected_failure
                 .as_ref()
@@ -784,7 +609,7 @@ impl PaperFile {
         for s in &v.solvers {
             let integrator = v.integrator.unwrap_or(e.integrator);
             let solver = SolverChoice::Neural(s.clone());
-            jobs.push(Job {
+            jobs.push(RunSpec {
                 expected_failure: v.expected_failure.as_ref().and_then(|f| f.of(&solver)),
                 solver,
                 integrator,
@@ -794,30 +619,33 @@ impl PaperFile {
         }
         for s in &v.numerical {
             let solver = SolverChoice::Numerical(*s);
-            jobs.push(Job {
+            jobs.push(RunSpec {
                 expected_failure: v.expected_failure.as_ref().and_then(|f| f.of(&solver)),
                 solver,
                 ..base.clone()
             });
         }
+        for (i, job) in jobs.iter_mut().enumerate() {
+            job.keep_trace = v.traces.keeps(i);
+        }
         jobs
     }
 
     /// Every run of the file, in file order (variant by variant, exact column first).
-    pub fn jobs(&self) -> Vec<Job> {
+    pub fn jobs(&self) -> Vec<RunSpec> {
         self.iter_jobs().collect()
     }
 
     /// [`PaperFile::jobs`] made one variant at a time as they are taken: a caller that
     /// filters, counts or prints them (listing a sweep of 10^6 runs) holds none of them.
-    pub fn iter_jobs(&self) -> impl Iterator<Item = Job> + '_ {
+    pub fn iter_jobs(&self) -> impl Iterator<Item = RunSpec> + '_ {
         self.experiments
             .iter()
             .flat_map(|e| self.experiment_jobs(e))
     }
 
     /// The runs of `e`, one of this file's experiments, as [`PaperFile::iter_jobs`] makes them.
-    pub fn experiment_jobs<'a>(&'a self, e: &'a Experiment) -> impl Iterator<Item = Job> + 'a {
+    pub fn experiment_jobs<'a>(&'a self, e: &'a Experiment) -> impl Iterator<Item = RunSpec> + 'a {
         e.variants.iter().flat_map(move |v| self.variant_jobs(e, v))
     }
 }
@@ -868,15 +696,15 @@ fn check_variant_names<'a>(
 }
 
 /// An id or label becomes a directory or file name (results/traces/<id>/<label>__<solver>.csv,
-/// report/figures/): see [`crate::naming::check_name`].
+/// report/figures/): see [`spec::naming::check_name`].
 fn check_name(name: &str, max: usize, at: FieldAt) -> Result<(), ExperimentError> {
-    crate::naming::check_name(name, max).map_err(|e| field(at, e))
+    spec::naming::check_name(name, max).map_err(|e| field(at, e))
 }
 
 /// An id (paper, experiment, variant) must already be a slug: ids name files and reach the
 /// report's links as they are.
 fn check_id(id: &str, at: FieldAt) -> Result<(), ExperimentError> {
-    if crate::ids::is_id_form(id) {
+    if spec::ids::is_id_form(id) {
         return Ok(());
     }
     let (id, suggestion) = (id.to_string(), slug(id));

@@ -1,13 +1,15 @@
 //! driftbench's catalog: what runs exist and what they are called, as data.
 //!
-//! An experiment file ([`experiment`]) describes runs ([`experiment::Job`]): a robot from the
-//! registry (`robots::registry`), a path and a scheme (crate `spec`), a solver (the exact
-//! optimum in the loop, a registered QP solver ([`numerical_spec`]) or a network as
-//! `settings::solver_spec` writes it; its kind is a [`solver_kind::SolverKind`]), an integrator
-//! (`settings::integrator`) and where the run is scored. A variant may stand for many through a
+//! An experiment file ([`experiment`]) describes runs (`spec::run::RunSpec`): a robot from the
+//! registry (`robots::registry`), a path and a scheme (crate `spec`), a solver
+//! (`spec::run::SolverChoice`: the exact optimum in the loop, a registered QP solver,
+//! `spec::numerical`, or a network as `settings::solver_spec` writes it; its kind is a
+//! `spec::solver_kind::SolverKind`), an integrator (`settings::integrator`) and where the run
+//! is scored (`spec::run::Scoring`). A variant may stand for many through a
 //! `sweep` table ([`sweep`], expanded at the TOML level). Every run is identified by ids, not
-//! labels ([`run_key`]), and every id or label that becomes a file name obeys [`naming`]. The
-//! errors of all of it are in [`error`]; the fields they name, in [`fields`]. [`root`] finds
+//! labels (`spec::run_key`, `spec::ids`), and every id or label that becomes a file name obeys
+//! `spec::naming`. The
+//! errors of all of it are in [`error`]. [`root`] finds
 //! the project (the directory of `experiments/`, `results/` and `report/`) and the code
 //! revision runs are stamped with; [`robot_files`] registers a paper's own robot files
 //! (`papers/<paper>/robots/*.toml`) with the robot registry. The solvers' own settings (network specifications,
@@ -22,12 +24,7 @@
 
 pub mod error;
 pub mod experiment;
-pub mod fields;
-pub mod ids;
-pub mod naming;
-pub mod numerical_spec;
+mod fields;
 pub mod robot_files;
 pub mod root;
-pub mod run_key;
-pub mod solver_kind;
 pub mod sweep;

@@ -55,6 +55,14 @@
 //! **Order.** Keys keep the order written in the file: the workspace enables the `toml` crate's
 //! `preserve_order` feature, so tables are insertion-ordered.
 //!
+//! **Traces.** A sweep variant may say which of its runs keep their trace (the thinned time
+//! history under `traces/`): `traces = "all"` (the default), `"none"` or `{ every = k }`
+//! (k >= 1). The runs of the variant are enumerated as they are made (expanded variant by
+//! expanded variant, each one's exact column first), from 0; with `{ every = k }` run i keeps
+//! its trace exactly when i mod k = 0 ([`KeptTraces::keeps`]). Every run writes its row
+//! whatever the choice; the field is read here and taken off the base variant, so it is no
+//! field of an expanded variant (a variant without a sweep refuses it as an unknown field).
+//!
 //! **Errors** name the experiment, the variant and the key (the file is added by
 //! [`crate::experiment::PaperFile::load`]): an unknown key path, an empty list, a swept key
 //! that is neither a list nor a range, a bad range, a zipped value of the wrong length, a
@@ -62,7 +70,63 @@
 
 use crate::error::{KeyPathError, RangeError, SweepError, SweepKeyError};
 use crate::fields::VARIANT_FIELDS;
+use std::num::NonZeroUsize;
 use toml::{Table, Value};
+
+/// Which runs of a sweep keep their trace: the sweep variant's `traces` field (module docs).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Traces {
+    /// Every run (`"all"`, the default).
+    #[default]
+    All,
+    /// No run (`"none"`): the rows alone.
+    None,
+    /// The runs whose index in the variant's enumeration is a multiple of k (`{ every = k }`).
+    Every(NonZeroUsize),
+}
+
+impl Traces {
+    /// Reads the `traces` field's value: `"all"`, `"none"` or `{ every = k }` with an integer
+    /// k >= 1 (the error names the field and the choices, never the value given).
+    fn parse(v: &Value) -> Result<Self, SweepError> {
+        match v {
+            Value::String(s) if s == "all" => Ok(Traces::All),
+            Value::String(s) if s == "none" => Ok(Traces::None),
+            Value::Table(t) if t.len() == 1 => match t.get("every") {
+                Some(Value::Integer(k)) => usize::try_from(*k)
+                    .ok()
+                    .and_then(NonZeroUsize::new)
+                    .map(Traces::Every)
+                    .ok_or(SweepError::Traces),
+                _ => Err(SweepError::Traces),
+            },
+            _ => Err(SweepError::Traces),
+        }
+    }
+}
+
+/// The trace choice of one expanded variant: its sweep's [`Traces`] and the index of its first
+/// run in the sweep's enumeration of runs.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct KeptTraces {
+    /// The sweep's choice.
+    pub traces: Traces,
+    /// The index of the variant's first run among the sweep's runs (from 0).
+    pub first_run: usize,
+}
+
+impl KeptTraces {
+    /// Whether the variant's run `run` (from 0, exact column first) keeps its trace: always
+    /// with [`Traces::All`], never with [`Traces::None`], and with [`Traces::Every`] k when
+    /// `first_run + run` is a multiple of k.
+    pub fn keeps(&self, run: usize) -> bool {
+        match self.traces {
+            Traces::All => true,
+            Traces::None => false,
+            Traces::Every(k) => (self.first_run + run).is_multiple_of(k.get()),
+        }
+    }
+}
 
 /// Most variants one variant may expand into (a typo in a range should not eat the memory),
 /// and most the sweeps of a whole experiments directory may expand into together (twenty
@@ -147,10 +211,13 @@ impl Sweeps {
     /// expanded table is read by `read` as it is made and dropped. At most `budget` variants
     /// in all (what is left of [`MAX_EXPANSION`] for the files read so far; reduced by what
     /// this file takes), each sweep's product checked against it before anything is built.
+    /// `read` takes the expanded variant's [`KeptTraces`] too, counted with `runs` (how many
+    /// runs a read variant makes).
     pub fn expand_into<'a, V: 'a>(
         self,
         variants: impl Iterator<Item = &'a mut Vec<V>>,
-        read: impl Fn(Table) -> Result<V, toml::de::Error>,
+        read: impl Fn(Table, KeptTraces) -> Result<V, toml::de::Error>,
+        runs: impl Fn(&V) -> usize,
         budget: &mut usize,
     ) -> Result<(), SweepError> {
         let mut sweeps = self.0.into_iter().peekable();
@@ -185,17 +252,24 @@ impl Sweeps {
             for (position, plan, at) in planned {
                 out.extend(fixed.by_ref().take(position - written));
                 written = position + 1;
+                let mut first_run = 0;
                 plan.for_each(|t| {
                     let expanded = t
                         .get("label")
                         .and_then(Value::as_str)
                         .unwrap_or("?")
                         .to_string();
-                    out.push(read(t).map_err(|error| SweepError::DoesNotRead {
+                    let kept = KeptTraces {
+                        traces: plan.traces,
+                        first_run,
+                    };
+                    let v = read(t, kept).map_err(|error| SweepError::DoesNotRead {
                         expanded,
                         error: error.into(),
                         keys: plan.keys(),
-                    })?);
+                    })?;
+                    first_run += runs(&v);
+                    out.push(v);
                     Ok(())
                 })
                 .map_err(&at)?;
@@ -241,6 +315,7 @@ struct Plan {
     names: Vec<(String, usize, usize)>,
     id_template: Option<String>,
     total: usize,
+    traces: Traces,
 }
 
 impl Plan {
@@ -257,6 +332,9 @@ impl Plan {
                 })
             }
         };
+        let traces = base
+            .remove("traces")
+            .map_or(Ok(Traces::All), |v| Traces::parse(&v))?;
         let template = match base.get("label") {
             Some(Value::String(s)) => s.clone(),
             _ => return Err(SweepError::NoLabel),
@@ -292,6 +370,7 @@ impl Plan {
             names,
             id_template,
             total,
+            traces,
         })
     }
 
@@ -750,7 +829,7 @@ mod tests {
         let mut lists: Vec<Vec<Table>> = experiments(&doc)
             .map(|e| variants(e).cloned().collect())
             .collect();
-        sweeps.expand_into(lists.iter_mut(), Ok, budget)?;
+        sweeps.expand_into(lists.iter_mut(), |t, _| Ok(t), |_| 1, budget)?;
         Ok(lists)
     }
 
@@ -978,7 +1057,7 @@ sweep = { "scheme.mu" = [3, 4, 5] }
 "#;
         let mut doc: Table = toml::from_str(text).unwrap();
         let sweeps = take_sweeps(&mut doc);
-        let read = |t: Table| -> Result<String, toml::de::Error> {
+        let read = |t: Table, _| -> Result<String, toml::de::Error> {
             let label = t["label"].as_str().unwrap().to_string();
             if label == "B [mu=4]" {
                 return Err(serde::de::Error::custom("mu 4 refused"));
@@ -987,7 +1066,7 @@ sweep = { "scheme.mu" = [3, 4, 5] }
         };
         let mut lists = [vec!["plain".to_string()]];
         let e = sweeps
-            .expand_into(lists.iter_mut(), read, &mut MAX_EXPANSION.clone())
+            .expand_into(lists.iter_mut(), read, |_| 1, &mut MAX_EXPANSION.clone())
             .unwrap_err()
             .to_string();
         assert!(
@@ -997,7 +1076,7 @@ sweep = { "scheme.mu" = [3, 4, 5] }
         let mut doc: Table = toml::from_str(&text.replace("[3, 4, 5]", "[3, 5]")).unwrap();
         let mut lists = [vec!["plain".to_string()]];
         take_sweeps(&mut doc)
-            .expand_into(lists.iter_mut(), read, &mut MAX_EXPANSION.clone())
+            .expand_into(lists.iter_mut(), read, |_| 1, &mut MAX_EXPANSION.clone())
             .unwrap();
         assert_eq!(
             lists[0],
@@ -1038,5 +1117,84 @@ label = "last"
             ),
             "{e}"
         );
+    }
+}
+
+#[cfg(test)]
+mod trace_tests {
+    use crate::experiment::PaperFile;
+
+    /// A sweep of three variants of two runs each (exact column and one network), with `traces`.
+    fn file(traces: &str) -> String {
+        format!(
+            r#"paper = "kong2019"
+title = "t"
+[[experiment]]
+id = "kong2019-t"
+paper_output = "-"
+robot = "katana6m180"
+path = {{ name = "circle", duration = 1.0 }}
+theta0 = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.0471975511965976]
+[[experiment.variant]]
+id = "znn"
+label = "ZNN"
+scheme = {{ kind = "znn-rmp", k_p = 1.0 }}
+solvers = [{{ kind = "znn", gamma = 1.0 }}]
+{traces}
+sweep = {{ "scheme.mu" = [0.5, 1, 2] }}
+"#
+        )
+    }
+
+    fn kept(traces: &str) -> Vec<bool> {
+        PaperFile::from_toml(&file(traces), |_| Ok(()))
+            .unwrap()
+            .jobs()
+            .iter()
+            .map(|j| j.keep_trace)
+            .collect()
+    }
+
+    #[test]
+    fn traces_choose_runs_by_their_index_in_the_sweep() {
+        assert_eq!(kept(""), [true; 6]);
+        assert_eq!(kept("traces = \"all\""), [true; 6]);
+        assert_eq!(kept("traces = \"none\""), [false; 6]);
+        // Runs 0..6 in order (exact, znn per variant): 0 and 3 are multiples of 3.
+        assert_eq!(
+            kept("traces = { every = 3 }"),
+            [true, false, false, true, false, false]
+        );
+        assert_eq!(kept("traces = { every = 1 }"), [true; 6]);
+    }
+
+    #[test]
+    fn a_bad_traces_value_is_refused_naming_the_field_and_choices_not_the_value() {
+        for bad in [
+            "traces = \"some-secret\"",
+            "traces = { every = 0 }",
+            "traces = { every = -2 }",
+            "traces = { every = 1.5 }",
+            "traces = { every = 2, more = 1 }",
+            "traces = 3",
+        ] {
+            let e = PaperFile::from_toml(&file(bad), |_| Ok(()))
+                .unwrap_err()
+                .to_string();
+            assert!(
+                e.contains("variant[0]")
+                    && e.contains("field `traces`: must be \"all\" (the default), \"none\" or { every = k } with an integer k >= 1"),
+                "{bad}: {e}"
+            );
+            assert!(!e.contains("secret") && !e.contains("1.5"), "{e}");
+        }
+        // Not a field of a variant without a sweep.
+        let plain = file("traces = \"none\"")
+            .replace("sweep = { \"scheme.mu\" = [0.5, 1, 2] }\n", "")
+            .replace("k_p = 1.0", "k_p = 1.0, mu = 1.0");
+        let e = PaperFile::from_toml(&plain, |_| Ok(()))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("unknown field `traces`"), "{e}");
     }
 }

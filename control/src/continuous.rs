@@ -10,10 +10,10 @@
 //! The drift after cycle c is |theta(c T) - theta_0|.
 
 use crate::task::{Task, TaskArm};
-use catalog::experiment::NetworkInit;
-use catalog::experiment::Scoring;
 use records::control::ControlStatus;
 use simulation::simulate::{simulate, Outcome, Settings, Solver};
+use spec::run::NetworkInit;
+use spec::run::Scoring;
 
 /// The drifts and per-cycle changes of a continuous run, and how it ended.
 #[derive(Clone, Debug, PartialEq)]

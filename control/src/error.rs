@@ -1,22 +1,19 @@
 //! The errors of the control experiments: [`ControlError`] wraps the simulation layer's
-//! (experiment files), the solvers' (networks, LVI, OSQP, the exact QP) and the records
+//! (a task that cannot be built), the solvers' (networks, LVI, OSQP, the exact QP) and the records
 //! layer's (the result files).
 
-use catalog::error::ExperimentFileError;
-use records::error::ControlFileError;
 use settings::error::NetworkError;
 use solvers::{ExactError, QpSolverError};
+use store::error::ControlFileError;
 
 /// Why a control run, or the whole reproduction, could not go on.
 #[derive(Debug, thiserror::Error)]
 pub enum ControlError {
-    #[error("experiment files: {0}")]
-    Experiments(#[from] ExperimentFileError),
     #[error("task {0} is not in the experiment files")]
     UnknownTask(String),
     /// A network whose parameters make no valid solver id.
     #[error(transparent)]
-    Id(#[from] catalog::ids::IdError),
+    Id(#[from] spec::ids::IdError),
     /// The standard task set file is refused by the input reader (a link out of the
     /// experiments directory, not a regular file, over its cap, not UTF-8; the error names the
     /// path).

@@ -24,6 +24,7 @@
 use crate::error::ControlError;
 use crate::tick::TickSolver;
 use qp::{Qp, QpDims, QpSolve};
+use settings::projection::{ProjectionErrorForm, Scaling};
 use settings::solver_spec::SolverSpec;
 use solvers::neural::{build_solver, NeuralSolver};
 use std::mem;
@@ -44,13 +45,19 @@ impl Discretisation {
     }
 }
 
-/// Products with the LVI matrix M per evaluation of F: two for LVI-PDNN (M y for the residual,
-/// then (I + M') e), one for S-LVI-PDNN; `None` for the networks not built on the LVI.
+/// Products with the LVI matrix M per evaluation of F for the projection family's LVI form
+/// (`settings::projection`): two with the scaling I + M' (LVI-PDNN: M y for the residual,
+/// then (I + M') Phi(e)), one with the identity (S-LVI-PDNN); `None` for the networks not built
+/// on the LVI.
 pub fn products_per_evaluation(spec: &SolverSpec) -> Option<u64> {
-    match spec {
-        SolverSpec::LviPdnn { .. } => Some(2),
-        SolverSpec::SLviPdnn { .. } => Some(1),
-        _ => None,
+    match spec.projection()?.error {
+        ProjectionErrorForm::Lvi {
+            scaling: Scaling::IPlusMt,
+        } => Some(2),
+        ProjectionErrorForm::Lvi {
+            scaling: Scaling::Identity,
+        } => Some(1),
+        ProjectionErrorForm::Penalty { .. } => None,
     }
 }
 

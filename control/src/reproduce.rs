@@ -19,14 +19,16 @@ use crate::stability::{gain, LimitProbe};
 use crate::task::{load_tasks, with_task, Budget, Task, TaskArm, TaskSet};
 use crate::tick::TickSolver;
 use crate::trend::classify;
-use catalog::ids::SolverId;
 use records::control::{steps_needed, ClaimCheck};
 use records::control::{ControlRow, ControlStatus, CycleRow, StabilityRow, TrendRow};
-use records::results_dir;
+use settings::projection::ProjectionErrorForm;
 use settings::solver_spec::SolverSpec;
 use simulation::runner::map_costliest_first;
 use solvers::neural::build_solver;
 use solvers::HotActiveSet;
+use spec::ids::SolverId;
+use spec::run::RunSpec;
+use store::results_dir;
 
 /// The method label of the continuous-time exact column in the many-cycles results.
 pub const CONTINUOUS_EXACT: &str = "exact (continuous)";
@@ -41,12 +43,12 @@ pub struct Summary {
     pub claim_checks: Vec<ClaimCheck>,
 }
 
-/// Whether a network is a zeroing network (its Taylor-type discrete form is defined).
+/// Whether a network is a zeroing network (its Taylor-type discrete form is defined): every
+/// network but the projection family's LVI form, whose F does not come from a design formula.
 fn is_zeroing(spec: &SolverSpec) -> bool {
-    !matches!(
-        spec,
-        SolverSpec::LviPdnn { .. } | SolverSpec::SLviPdnn { .. }
-    )
+    !spec
+        .projection()
+        .is_some_and(|p| matches!(p.error, ProjectionErrorForm::Lvi { .. }))
 }
 
 /// The network forms run on a task: Euler for every network, Taylor for the zeroing ones.
@@ -317,8 +319,8 @@ impl<'a> ClaimRun<'a> {
     }
 }
 
-/// Runs everything (module docs) on the task set `set` (its tasks resolved against the
-/// experiment files in `experiments`, at its budget) and writes the result files but the
+/// Runs everything (module docs) on the task set `set` (its tasks resolved among `jobs`, every
+/// run of the experiment files, at its budget) and writes the result files but the
 /// claim's into `results`; `progress` is told what runs. The claim's check runs are returned
 /// in the [`Summary`].
 ///
@@ -331,11 +333,11 @@ impl<'a> ClaimRun<'a> {
 /// would write them.
 pub fn reproduce(
     set: &TaskSet,
-    experiments: &std::path::Path,
+    jobs: &[RunSpec],
     results: &std::path::Path,
     mut progress: impl FnMut(&str),
 ) -> Result<Summary, ControlError> {
-    let tasks = load_tasks(experiments, &set.tasks)?;
+    let tasks = load_tasks(jobs, &set.tasks)?;
     let budget = &set.budget;
     let h = budget.h;
 
@@ -366,10 +368,10 @@ pub fn reproduce(
     )?;
 
     let control: Vec<ControlRow> = control.into_iter().map(|(_, r)| r).collect();
-    records::control::write(results, results_dir::CONTROL, &control)?;
-    records::control::write(results, results_dir::CONTROL_STABILITY, &stability)?;
-    records::control::write(results, results_dir::CYCLES, &cycles.cycles)?;
-    records::control::write(results, results_dir::CYCLES_TREND, &cycles.trends)?;
+    store::control::write(results, results_dir::CONTROL, &control)?;
+    store::control::write(results, results_dir::CONTROL_STABILITY, &stability)?;
+    store::control::write(results, results_dir::CYCLES, &cycles.cycles)?;
+    store::control::write(results, results_dir::CYCLES_TREND, &cycles.trends)?;
     Ok(Summary {
         control_runs: control.len(),
         cycle_runs: cycles.trends.len(),

@@ -43,7 +43,9 @@ pub fn gain(spec: &SolverSpec) -> (&'static str, f64) {
         SolverSpec::FpCdnn { gamma, .. } | SolverSpec::VpCdnn { gamma, .. } => ("gamma", *gamma),
         SolverSpec::FiniteTime { beta, .. } => ("beta", *beta),
         SolverSpec::Znn { gamma } | SolverSpec::GroupZnn { gamma, .. } => ("gamma", *gamma),
-        SolverSpec::Zeroing { gain, .. } => ("g(0)", gain.at(0.0)),
+        SolverSpec::Zeroing { gain, .. } | SolverSpec::Projection { gain, .. } => {
+            ("g(0)", gain.at(0.0))
+        }
     }
 }
 

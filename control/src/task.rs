@@ -5,22 +5,22 @@
 //! build a task's arm, path and scheme ([`with_task`]).
 
 use crate::error::ControlError;
-use catalog::experiment::{load_dir, Job, SolverChoice};
 use robots::Robot;
 use schemes::paths::Path;
 use schemes::scheme::Scheme;
 use settings::solver_spec::SolverSpec;
-use simulation::run::check_job;
 use simulation::run::{build_cyclic_parts, job_model, job_robot};
+use spec::run::RunSpec;
+use spec::run::SolverChoice;
 
 /// A task: an experiment and one of its variants (ids).
 #[derive(Clone, Debug, PartialEq, Eq, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TaskRef {
     /// The experiment's id.
-    pub experiment: catalog::ids::ExperimentId,
+    pub experiment: spec::ids::ExperimentId,
     /// The variant's id.
-    pub variant: catalog::ids::VariantId,
+    pub variant: spec::ids::VariantId,
 }
 
 /// Where the standard task set is declared, relative to the experiments directory (a
@@ -138,7 +138,7 @@ pub fn standard_task_set(experiments: &std::path::Path) -> Result<TaskSet, Contr
 pub struct Task {
     pub reference: TaskRef,
     /// The variant's first job (its robot, path, theta0, scheme).
-    pub job: Job,
+    pub job: RunSpec,
     /// The networks the paper runs on it.
     pub networks: Vec<SolverSpec>,
 }
@@ -160,13 +160,12 @@ impl Task {
     }
 }
 
-/// The tasks of `refs` from the experiment files in `dir`.
-pub fn load_tasks(dir: &std::path::Path, refs: &[TaskRef]) -> Result<Vec<Task>, ControlError> {
-    let files = load_dir(dir, check_job)?;
-    let jobs: Vec<Job> = files.iter().flat_map(|f| f.jobs()).collect();
+/// The tasks of `refs` among `jobs` (every run of the experiment files, which the
+/// orchestrator loads): a task's first run and its networks.
+pub fn load_tasks(jobs: &[RunSpec], refs: &[TaskRef]) -> Result<Vec<Task>, ControlError> {
     refs.iter()
         .map(|r| {
-            let mine: Vec<&Job> = jobs
+            let mine: Vec<&RunSpec> = jobs
                 .iter()
                 .filter(|j| j.experiment == r.experiment && j.variant_id == r.variant)
                 .collect();
@@ -213,12 +212,12 @@ pub fn with_task<R>(
     f: impl FnOnce(&TaskArm<'_>) -> R,
 ) -> Result<R, ControlError> {
     let job = &task.job;
-    let setup = |e: catalog::error::SetupError| ControlError::Setup {
+    let setup = |e: spec::run::SetupError| ControlError::Setup {
         task: task.id(),
         message: e.to_string(),
     };
     let model = job_model(job).map_err(|e| match e {
-        catalog::error::SetupError::UnknownRobot(e) => {
+        spec::run::SetupError::UnknownRobot(e) => {
             ControlError::UnknownTask(format!("robot {}: {e}", job.robot))
         }
         e => setup(e),

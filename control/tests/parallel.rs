@@ -5,8 +5,8 @@
 
 use control::{reproduce, standard_task_set};
 use records::control::{ClaimCheck, ControlRow};
-use records::results_dir;
 use std::path::{Path, PathBuf};
+use store::results_dir;
 
 /// A scratch directory `name` under the system's temporary one, emptied.
 fn scratch(name: &str) -> PathBuf {
@@ -26,11 +26,16 @@ fn run_on(threads: usize, experiments: &Path) -> (PathBuf, Vec<ClaimCheck>) {
     let out = scratch(&format!("out-{threads}"));
     let mut set = standard_task_set(experiments).unwrap();
     set.budget.h = 1e-2;
+    let jobs: Vec<_> = catalog::experiment::load_dir(experiments, simulation::run::check_job)
+        .unwrap()
+        .iter()
+        .flat_map(|f| f.jobs())
+        .collect();
     let summary = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
         .unwrap()
-        .install(|| reproduce(&set, experiments, &out, |_| {}))
+        .install(|| reproduce(&set, &jobs, &out, |_| {}))
         .unwrap();
     let mut checks = summary.claim_checks;
     for c in &mut checks {
@@ -42,7 +47,7 @@ fn run_on(threads: usize, experiments: &Path) -> (PathBuf, Vec<ClaimCheck>) {
 
 /// The rows of `results/control.csv` without the latencies (wall-clock).
 fn control_rows(dir: &Path) -> Vec<ControlRow> {
-    let mut rows: Vec<ControlRow> = records::control::read(dir, results_dir::CONTROL).unwrap();
+    let mut rows: Vec<ControlRow> = store::control::read(dir, results_dir::CONTROL).unwrap();
     for r in &mut rows {
         for v in [
             &mut r.solve_p50_us,

@@ -17,7 +17,12 @@ static BUILT: AtomicUsize = AtomicUsize::new(0);
 fn run(method: &Method) -> LoopOutcome {
     let experiments = Path::new(env!("CARGO_MANIFEST_DIR")).join("../experiments");
     let set = standard_task_set(&experiments).unwrap();
-    let tasks = load_tasks(&experiments, &set.tasks[..1]).unwrap();
+    let jobs: Vec<_> = catalog::experiment::load_dir(&experiments, simulation::run::check_job)
+        .unwrap()
+        .iter()
+        .flat_map(|f| f.jobs())
+        .collect();
+    let tasks = load_tasks(&jobs, &set.tasks[..1]).unwrap();
     with_task(&tasks[0], 1, |arm| {
         let mut solver = method.build(arm.scheme.dims()).unwrap();
         let settings = LoopSettings {

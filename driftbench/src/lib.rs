@@ -137,7 +137,7 @@
 //! [`schemes`] (paths, the papers' schemes and their QPs), [`settings`] (the solvers' settings as data: network specifications, integrator
 //! settings), [`solvers`] (the exact QP solvers, the papers' networks, the integrators),
 //! [`catalog`] (experiment files, run ids), [`simulation`] (the engine:
-//! runs and scoring) and [`records`] (the results files). The command line (`reproduce`) and
+//! runs and scoring) and [`records`] (the results files' rows). The command line (`reproduce`) and
 //! the report are built on the same crates.
 
 pub use catalog;
@@ -149,7 +149,8 @@ pub use simulation;
 pub use solvers;
 pub use spec;
 
-use catalog::experiment::{load_dir, Job, PaperFile};
+use catalog::experiment::{load_dir, PaperFile};
+use spec::run::RunSpec;
 use std::path::{Path, PathBuf};
 
 /// What the front door's own helpers can fail with; each wraps the layer that failed.
@@ -185,17 +186,17 @@ pub fn project_root() -> Result<PathBuf, Error> {
 /// Every run (job) of the experiment files in `root/experiments/`, each file checked as the
 /// command line checks it before anything runs (the papers' own robot files,
 /// `root/papers/<paper>/robots/*.toml`, registered first).
-pub fn jobs(root: &Path) -> Result<Vec<Job>, Error> {
+pub fn jobs(root: &Path) -> Result<Vec<RunSpec>, Error> {
     catalog::robot_files::register_paper_robots(&root.join("papers"));
     let files = load_dir(&root.join("experiments"), simulation::run::check_job)?;
     Ok(files.iter().flat_map(PaperFile::jobs).collect())
 }
 
 /// The run of the experiment files keyed (experiment id, variant id, solver id), its
-/// [`RunKey`](catalog::run_key::RunKey); the error lists the experiment's runs by their ids.
-pub fn job(root: &Path, experiment: &str, variant: &str, solver: &str) -> Result<Job, Error> {
+/// [`RunKey`](spec::run_key::RunKey); the error lists the experiment's runs by their ids.
+pub fn job(root: &Path, experiment: &str, variant: &str, solver: &str) -> Result<RunSpec, Error> {
     let all = jobs(root)?;
-    let of_experiment: Vec<&Job> = all.iter().filter(|j| j.experiment == experiment).collect();
+    let of_experiment: Vec<&RunSpec> = all.iter().filter(|j| j.experiment == experiment).collect();
     of_experiment
         .iter()
         .find(|j| j.variant_id == variant && j.solver.id() == solver)
@@ -215,7 +216,7 @@ pub fn job(root: &Path, experiment: &str, variant: &str, solver: &str) -> Result
 /// Runs the task of `job` with the network `network` builds in place of the job's own solver
 /// (`simulation::run::run_job_with_network`).
 pub fn run_with_network(
-    job: &Job,
+    job: &RunSpec,
     network: simulation::run::NetworkBuilder<'_>,
 ) -> simulation::run::RunRecord {
     simulation::run::run_job_with_network(job, network)
@@ -224,9 +225,6 @@ pub fn run_with_network(
 /// The names most code needs, in one import: `use driftbench::prelude::*;`.
 pub mod prelude {
     pub use crate::run_with_network;
-    pub use catalog::experiment::{Job, SolverChoice};
-    pub use catalog::run_key::RunKey;
-    pub use catalog::solver_kind::SolverKind;
     pub use inputs::trajectory::Trajectory;
     pub use nalgebra::{DMatrix, DVector, DVectorView, DVectorViewMut, SMatrix, SVector, Vector3};
     pub use qp::{Qp, QpDims};
@@ -242,6 +240,10 @@ pub mod prelude {
     pub use simulation::simulate::{Outcome, Run};
     pub use solvers::neural::NeuralSolver;
     pub use solvers::{QpSolver, QpStatus, SolverId};
+    pub use spec::run::RunSpec;
+    pub use spec::run::SolverChoice;
+    pub use spec::run_key::RunKey;
+    pub use spec::solver_kind::SolverKind;
 }
 
 #[cfg(test)]

@@ -34,12 +34,13 @@
 //! The sampling gap is what holding each instant's command over h adds (the loop's forward
 //! Euler step), the stopping rule what ending each instant's iteration at tol adds.
 
-use catalog::experiment::Scoring;
-use catalog::experiment::{Job, SolverChoice};
 use records::attribution::{AttributionRow, Component};
 use records::ladder::{LadderMethod, LadderRow};
 use records::runs::RunRow;
 use settings::solver_spec::SolverSpec;
+use spec::run::RunSpec;
+use spec::run::Scoring;
+use spec::run::SolverChoice;
 
 /// The largest RelTol whose rung may serve as a converged reference.
 pub const CONVERGED_RTOL: f64 = 1e-8;
@@ -66,11 +67,11 @@ impl Switch {
     }
 
     /// `job` with this ingredient switched off, or `None` when the run does not have it.
-    pub fn apply(self, job: &Job) -> Option<Job> {
+    pub fn apply(self, job: &RunSpec) -> Option<RunSpec> {
         let SolverChoice::Neural(spec) = &job.solver else {
             return None;
         };
-        let mut out = Job {
+        let mut out = RunSpec {
             scoring: Scoring::Off,
             ..job.clone()
         };
@@ -129,7 +130,7 @@ fn without_perturbation(spec: &SolverSpec) -> Option<SolverSpec> {
 }
 
 /// The controlled re-runs of one target besides its ladders: (switch, job).
-pub fn switch_jobs(job: &Job) -> Vec<(Switch, Job)> {
+pub fn switch_jobs(job: &RunSpec) -> Vec<(Switch, RunSpec)> {
     SWITCHES
         .iter()
         .filter_map(|&s| s.apply(job).map(|j| (s, j)))
@@ -237,8 +238,8 @@ pub fn attribution_rows(
 
 /// The exact counterpart of `job` (same variant, Clarabel in the loop), whose ladder gives the
 /// converged scheme drift.
-pub fn exact_counterpart(job: &Job) -> Job {
-    Job {
+pub fn exact_counterpart(job: &RunSpec) -> RunSpec {
+    RunSpec {
         solver: SolverChoice::Exact,
         scoring: Scoring::Off,
         ..job.clone()

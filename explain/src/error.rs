@@ -4,8 +4,8 @@
 //! [`inputs::InputError`], wrapped by [`InferenceError::FamilyFile`]; what its content gets
 //! wrong, [`FamilyError`], wrapped by [`InferenceError::Family`]).
 
-use records::error::IoError;
 use records::table::TableError;
+use store::error::IoError;
 
 /// Why a results file of the explanation layer could not be read or written.
 #[derive(Debug, thiserror::Error)]

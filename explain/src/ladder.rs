@@ -29,12 +29,13 @@
 //! the sampled scheme with the QP solved to 1e-10. Its rows carry the method
 //! [`LadderMethod::FixedStep`], the stopping tolerance in `rtol`, `atol` = 0 and h in `max_step`.
 
-use catalog::experiment::Scoring;
-use catalog::experiment::{Job, SolverChoice};
 use records::ladder::{LadderMethod, LadderRow};
 use records::runs::RunRow;
 use settings::integrator::{IntegratorSettings, Method};
 use settings::solver_spec::SolverSpec;
+use spec::run::RunSpec;
+use spec::run::Scoring;
+use spec::run::SolverChoice;
 
 /// Accepted steps after which an implicit ladder rung is abandoned (every implicit run of the
 /// papers' experiments needs a few thousand; the finite-time network needed ~650,000 BDF steps
@@ -73,7 +74,7 @@ fn rung(method: Method, rtol: f64, atol: f64, max_step: Option<f64>) -> Integrat
 /// its own setting (with the group's MaxStep where it has one). The exact column: its
 /// experiment's exact method (Dormand-Prince; BDF for kong2019, whose finite-time scheme is
 /// stiff itself).
-pub fn rungs(job: &Job) -> Vec<IntegratorSettings> {
+pub fn rungs(job: &RunSpec) -> Vec<IntegratorSettings> {
     let max_step = job.integrator.max_step;
     let mut out = Vec::new();
     match &job.solver {
@@ -120,8 +121,8 @@ pub fn rungs(job: &Job) -> Vec<IntegratorSettings> {
 /// [`rungs`], or for a numerical run the same loop stopped at each of
 /// [`NUMERICAL_TOLERANCES`] (the run's own tolerance kept where it is not among them; a QP
 /// solver that takes no tolerance has the one rung, its own run).
-pub fn jobs(job: &Job) -> Vec<Job> {
-    let base = Job {
+pub fn jobs(job: &RunSpec) -> Vec<RunSpec> {
+    let base = RunSpec {
         scoring: Scoring::Off,
         ..job.clone()
     };
@@ -135,8 +136,8 @@ pub fn jobs(job: &Job) -> Vec<Job> {
         }
         return tolerances
             .into_iter()
-            .map(|tolerance| Job {
-                solver: SolverChoice::Numerical(catalog::numerical_spec::NumericalSpec {
+            .map(|tolerance| RunSpec {
+                solver: SolverChoice::Numerical(spec::numerical::NumericalSpec {
                     tolerance: Some(tolerance),
                     ..*spec
                 }),
@@ -146,7 +147,7 @@ pub fn jobs(job: &Job) -> Vec<Job> {
     }
     rungs(job)
         .into_iter()
-        .map(|integrator| Job {
+        .map(|integrator| RunSpec {
             integrator,
             ..base.clone()
         })
@@ -156,7 +157,7 @@ pub fn jobs(job: &Job) -> Vec<Job> {
 /// What a rung is, as its ladder row states it: (method, rtol, atol, max_step). For a
 /// numerical run: ([`LadderMethod::FixedStep`], stopping tolerance (0 for a QP solver that
 /// takes none), 0, Some(h)).
-fn setting(job: &Job) -> (LadderMethod, f64, f64, Option<f64>) {
+fn setting(job: &RunSpec) -> (LadderMethod, f64, f64, Option<f64>) {
     match &job.solver {
         SolverChoice::Numerical(spec) => (
             LadderMethod::FixedStep,
@@ -187,7 +188,7 @@ pub fn rel_distance(a: &[f64], b: &[f64]) -> f64 {
 /// tolerance (RelTol, or a numerical run's stopping tolerance; ties: BDF before ESDIRK3(4)
 /// before Dormand-Prince, then the smaller AbsTol), as an index into `rows` (`rows[i]` is the
 /// run of `rungs[i]`).
-pub fn reference(rungs: &[Job], rows: &[RunRow]) -> Option<usize> {
+pub fn reference(rungs: &[RunSpec], rows: &[RunRow]) -> Option<usize> {
     let preferred = |m: LadderMethod| match m {
         LadderMethod::Integrator(Method::Bdf) => 0,
         LadderMethod::Integrator(Method::Esdirk34) => 1,
@@ -210,7 +211,7 @@ pub fn reference(rungs: &[Job], rows: &[RunRow]) -> Option<usize> {
 /// The ladder rows of one run from its rungs' results (`rows[i]` is the run of `rungs[i]`,
 /// one of [`jobs`]`(base)`). The rows carry `base`'s key and labels: a numerical rung's own
 /// solver id names its tolerance.
-pub fn ladder_rows(base: &Job, rungs: &[Job], rows: &[RunRow]) -> Vec<LadderRow> {
+pub fn ladder_rows(base: &RunSpec, rungs: &[RunSpec], rows: &[RunRow]) -> Vec<LadderRow> {
     let reference = reference(rungs, rows);
     let d_star = reference.map(|i| &rows[i].drift);
     let own = setting(base);

@@ -26,22 +26,25 @@ pub mod ladder;
 
 use analysis::papers::Papers;
 use attribution::{attribution_rows, exact_counterpart, switch_jobs, Switch};
-use catalog::experiment::{Job, SolverChoice};
-use catalog::run_key::RunKey;
 use error::ExplainError;
 use records::attribution::AttributionRow;
-use records::error::{IoAction, IoError};
 use records::inference::{EntryRow, InferenceRow};
 use records::ladder::LadderRow;
-use records::runs::{write_atomic, RunRow};
-use records::table::{read_if_present, Row};
+use records::runs::RunRow;
+use records::table::Row;
 use simulation::row::run_row;
 use simulation::runner::run_jobs;
+use spec::run::RunSpec;
+use spec::run::SolverChoice;
+use spec::run_key::RunKey;
 use std::path::Path;
+use store::atomic::write_atomic;
+use store::error::{IoAction, IoError};
+use store::table::read_if_present;
 
 /// The runs to explain among `jobs`, in `jobs` order: the neural and numerical runs a
 /// published column maps onto and those of variants marked `explain = true`.
-pub fn targets(jobs: &[Job], papers: &Papers) -> Vec<Job> {
+pub fn targets(jobs: &[RunSpec], papers: &Papers) -> Vec<RunSpec> {
     let mapped: std::collections::HashSet<_> = papers.mappings.iter().map(|m| &m.run).collect();
     jobs.iter()
         .filter(|j| !matches!(j.solver, SolverChoice::Exact))
@@ -62,9 +65,9 @@ pub struct Explained {
 ///
 /// `all` is every job of the experiment files: the exact column of a target's variant is
 /// laddered with the method its experiment integrates it with.
-pub fn explain(targets: &[Job], all: &[Job], progress: bool, git_rev: &str) -> Explained {
+pub fn explain(targets: &[RunSpec], all: &[RunSpec], progress: bool, git_rev: &str) -> Explained {
     // Every job once: the exact ladders are shared by the solvers of one variant.
-    let mut ladders: Vec<Job> = Vec::new();
+    let mut ladders: Vec<RunSpec> = Vec::new();
     for t in targets {
         let mut exact = exact_counterpart(t);
         if let Some(declared) = all.iter().find(|j| j.key() == exact.key()) {
@@ -76,7 +79,7 @@ pub fn explain(targets: &[Job], all: &[Job], progress: bool, git_rev: &str) -> E
             }
         }
     }
-    let mut jobs: Vec<Job> = Vec::new();
+    let mut jobs: Vec<RunSpec> = Vec::new();
     let mut spans = Vec::new();
     for base in &ladders {
         let rungs = ladder::jobs(base);
@@ -104,7 +107,7 @@ pub fn explain(targets: &[Job], all: &[Job], progress: bool, git_rev: &str) -> E
         out.ladder.extend(l.iter().cloned());
         per_base.push(l);
     }
-    let ladder_of = |job: &Job| {
+    let ladder_of = |job: &RunSpec| {
         ladders
             .iter()
             .position(|l| l.key() == job.key())
@@ -134,10 +137,10 @@ pub fn to_csv<T: Row>(rows: &[T]) -> Result<Vec<u8>, ExplainError> {
 /// Writes `results/ladder.csv` and `results/attribution.csv`: fresh rows replace the stored
 /// rows of the same runs (experiment, variant, solver); other stored rows are kept if their run
 /// still exists among `all` (every job of the experiment files), pruned otherwise.
-pub fn write(results_dir: &Path, fresh: &Explained, all: &[Job]) -> Result<(), ExplainError> {
-    let ladder_path = results_dir.join(records::results_dir::LADDER);
-    let attribution_path = results_dir.join(records::results_dir::ATTRIBUTION);
-    let keys: std::collections::HashSet<RunKey> = all.iter().map(Job::key).collect();
+pub fn write(results_dir: &Path, fresh: &Explained, all: &[RunSpec]) -> Result<(), ExplainError> {
+    let ladder_path = results_dir.join(store::results_dir::LADDER);
+    let attribution_path = results_dir.join(store::results_dir::ATTRIBUTION);
+    let keys: std::collections::HashSet<RunKey> = all.iter().map(RunSpec::key).collect();
     let mut stored_ladder = read_if_present::<LadderRow>(&ladder_path)?;
     stored_ladder.retain(|r| keys.contains(&r.key()));
     let mut stored_attribution = read_if_present::<AttributionRow>(&attribution_path)?;
@@ -160,8 +163,8 @@ pub fn write_inference(
     fresh: &[InferenceRow],
     fresh_entries: &[EntryRow],
 ) -> Result<(), ExplainError> {
-    let path = results_dir.join(records::results_dir::INFERENCE);
-    let entries_path = results_dir.join(records::results_dir::INFERENCE_ENTRIES);
+    let path = results_dir.join(store::results_dir::INFERENCE);
+    let entries_path = results_dir.join(store::results_dir::INFERENCE_ENTRIES);
     let rows = merge(read_if_present(&path)?, fresh, |r: &InferenceRow| {
         (r.paper.clone(), r.table.clone())
     });

@@ -2,7 +2,7 @@
 //! attribution adds up joint by joint, switches switch exactly one ingredient, and setup
 //! inference recovers a known setup from a synthetic table made by the suite itself.
 
-use catalog::experiment::{load_dir, Job, SolverChoice};
+use catalog::experiment::load_dir;
 use explain::attribution::Switch;
 use explain::inference::family::Family;
 use explain::inference::search::Target;
@@ -13,8 +13,10 @@ use records::ladder::LadderMethod;
 use settings::integrator::Method;
 use settings::solver_spec::SolverSpec;
 use simulation::run::check_job;
+use spec::run::RunSpec;
+use spec::run::SolverChoice;
 
-fn jobs() -> Vec<Job> {
+fn jobs() -> Vec<RunSpec> {
     let root = catalog::root::from_current_dir().unwrap();
     load_dir(&root.join("experiments"), check_job)
         .unwrap()
@@ -23,17 +25,15 @@ fn jobs() -> Vec<Job> {
         .collect()
 }
 
-fn find(jobs: &[Job], experiment: &str, variant: &str, solver: &str) -> Job {
+fn find(jobs: &[RunSpec], experiment: &str, variant: &str, solver: &str) -> RunSpec {
     jobs.iter()
-        .find(|j| {
-            j.key() == catalog::run_key::RunKey::from_ids(experiment, variant, solver).unwrap()
-        })
+        .find(|j| j.key() == spec::run_key::RunKey::from_ids(experiment, variant, solver).unwrap())
         .unwrap_or_else(|| panic!("{experiment} / {variant} / {solver}"))
         .clone()
 }
 
 /// kong2019's ZNN on the circle from theta*0: cheap (a few hundred steps), not stiff.
-fn znn_circle(jobs: &[Job]) -> Job {
+fn znn_circle(jobs: &[RunSpec]) -> RunSpec {
     find(jobs, "kong2019-circle", "znn-eq22-start-on-theta-0", "znn")
 }
 
@@ -205,7 +205,7 @@ fn switches_change_one_ingredient_only() {
             (j.solver.clone(), j.path.clone()),
             (perturbed.solver.clone(), perturbed.path.clone())
         );
-        assert_eq!(j.scoring, catalog::experiment::Scoring::Off);
+        assert_eq!(j.scoring, spec::run::Scoring::Off);
     }
 }
 
@@ -218,13 +218,13 @@ fn inference_recovers_a_known_setup() {
     let jobs = jobs();
     let exact = find(&jobs, "kong2019-triangle", "znn-eq22", "exact");
     // Tight tolerances: the drift here is ~1e-5, so AbsTol 1e-8 would leave 1e-3 of noise.
-    let run = Job {
+    let run = RunSpec {
         integrator: settings::integrator::IntegratorSettings {
             rtol: 1e-10,
             atol: 1e-13,
             ..explain::inference::inference_integrator()
         },
-        scoring: catalog::experiment::Scoring::Off,
+        scoring: spec::run::Scoring::Off,
         theta0: exact.theta_ref.clone(),
         ..exact
     };
@@ -300,16 +300,16 @@ fn inference_recovers_a_known_setup() {
 /// first scored distance to the optimum is at round-off, where the zero start's is |x*(0)|.
 #[test]
 fn network_can_start_at_the_exact_optimum() {
-    use catalog::experiment::NetworkInit;
     use simulation::run::run_job;
+    use spec::run::NetworkInit;
     let jobs = jobs();
     // The deviated start: x*(0) = -mu (theta0 - theta*0) + ... is not zero.
     let zero = find(&jobs, "kong2019-circle", "znn-eq22", "znn");
-    let exact = Job {
+    let exact = RunSpec {
         network_init: NetworkInit::Exact,
         ..zero.clone()
     };
-    let first = |j: &Job| {
+    let first = |j: &RunSpec| {
         run_job(j)
             .run
             .trace

@@ -8,7 +8,7 @@ use std::path::Path;
 
 fn committed() -> Vec<InferenceRow> {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../results/inference.csv");
-    records::table::read_if_present(&path).unwrap()
+    store::table::read_if_present(&path).unwrap()
 }
 
 #[test]

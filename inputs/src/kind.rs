@@ -24,7 +24,7 @@ pub enum Kind {
     /// A shard's `shard-binding.toml` (its shard, selection and experiments hash).
     ShardBinding,
     /// An integrity manifest, `manifest.toml`, of `results/`, `report/` or a shard directory
-    /// (`records::integrity`; the committed report's is 110 kB).
+    /// (`store::integrity`; the committed report's is 110 kB).
     Manifest,
     /// A table one of the Python package's scripts wrote, to be sealed into `results/`
     /// (`driftbench.into_results`; the committed ones are at most 5 kB).

@@ -2,10 +2,10 @@
 //! be read: [`TraceError`]), rendering the report and the figures ([`ReportError`], wrapping
 //! the records layer's errors: every results file is read through it).
 
-use records::error::{ControlFileError, IoError, RunsError};
 use records::table::TableError;
-use records::tracked_dir::TrackedError;
 use std::path::PathBuf;
+use store::error::{ControlFileError, IoError, RunsError};
+use store::tracked_dir::TrackedError;
 
 /// Why a figure could not be drawn or encoded.
 #[derive(Debug, thiserror::Error)]
@@ -76,5 +76,5 @@ pub enum ReportError {
     Papers(#[from] analysis::papers::PapersError),
     /// `records::dof_cost` could not read its file.
     #[error(transparent)]
-    DofCost(#[from] records::error::DofCostError),
+    DofCost(#[from] store::error::DofCostError),
 }

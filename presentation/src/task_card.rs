@@ -287,7 +287,7 @@ fn runs_section(c: &TaskCard) -> String {
             RunSettings::Numerical { settings } => {
                 let _ = writeln!(
                     s,
-                    "  - {label}: `{}`, a fixed-step loop (catalog::numerical_spec)",
+                    "  - {label}: `{}`, a fixed-step loop (spec::numerical)",
                     inline(settings)
                 );
             }

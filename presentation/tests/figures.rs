@@ -5,8 +5,9 @@
 
 use presentation::figures::render_all;
 use records::failure_kind::FailureKind;
-use records::runs::{runs_csv, write_atomic, RunRow, Status};
+use records::runs::{runs_csv, RunRow, Status};
 use std::path::{Path, PathBuf};
+use store::atomic::write_atomic;
 
 /// A run row with the identity and outcome given and every metric empty; the ids are the
 /// labels' slugs, and a solver labelled `exact ...` is the exact column.
@@ -28,18 +29,16 @@ fn row(experiment: &str, variant: &str, solver: &str, failed_at: Option<f64>) ->
         failure_kind: failed_at.map(|_| FailureKind::Integrator),
         failed_at,
         ..RunRow::blank(
-            &catalog::run_key::RunKey::from_ids(
+            &spec::run_key::RunKey::from_ids(
                 experiment,
-                &catalog::naming::slug(variant),
-                &catalog::naming::slug(solver),
+                &spec::naming::slug(variant),
+                &spec::naming::slug(solver),
             )
             .unwrap(),
             if solver.starts_with("exact") {
-                catalog::solver_kind::SolverKind::Exact
+                spec::solver_kind::SolverKind::Exact
             } else {
-                catalog::solver_kind::SolverKind::Network(
-                    settings::network_kind::NetworkKind::LviPdnn,
-                )
+                spec::solver_kind::SolverKind::Network(settings::network_kind::NetworkKind::LviPdnn)
             },
         )
     }
@@ -174,7 +173,7 @@ fn stems(dir: &Path, extension: &str) -> Vec<String> {
 fn writes_one_figure_per_run_and_one_overview_per_experiment() {
     let root = scratch("names");
     synthetic_results(&root);
-    let written = render_all(&root).unwrap();
+    let written = render_all(&root, &Default::default()).unwrap();
     let dir = root.join("report/figures");
     let expected: Vec<PathBuf> = [
         "exp-acc__mtn-zeta-0__fp-cdnn.svg",
@@ -231,7 +230,7 @@ fn writes_one_figure_per_run_and_one_overview_per_experiment() {
 fn panels_follow_the_level_and_the_overview_scores_neural_runs() {
     let root = scratch("panels");
     synthetic_results(&root);
-    render_all(&root).unwrap();
+    render_all(&root, &Default::default()).unwrap();
     let figure = |name: &str| read(&root.join("report/figures").join(name));
 
     // A scored run's figure has the distance to the optimum as its third panel; the exact
@@ -314,7 +313,7 @@ fn polylines_of(svg: &str, points: usize) -> usize {
 fn panel_a_draws_the_arm_where_the_robot_is_known_and_fits_the_trace() {
     let root = scratch("arm");
     synthetic_results(&root);
-    render_all(&root).unwrap();
+    render_all(&root, &Default::default()).unwrap();
     let figure = |name: &str| read(&root.join("report/figures").join(name));
 
     // jaco2-pen, 6 joints: twelve poses of base, frame origins 1..=6 and pen tip.
@@ -338,7 +337,7 @@ fn panel_a_draws_the_arm_where_the_robot_is_known_and_fits_the_trace() {
         katana,
     ];
     write_atomic(&root.join("results/runs.csv"), &runs_csv(&runs).unwrap()).unwrap();
-    render_all(&root).unwrap();
+    render_all(&root, &Default::default()).unwrap();
     let katana = figure("exp-acc__mtn-zeta-0__fp-cdnn.svg");
     assert_eq!(polylines_of(&katana, 5), 12, "twelve Katana poses");
     let unknown = figure("exp-vel__vltco__lvi-pdnn.svg");
@@ -353,7 +352,7 @@ fn rendering_twice_gives_identical_bytes_and_removes_stale_figures() {
     synthetic_results(&root);
     // Figures of a run that is gone, as an earlier rendering wrote them (recorded in
     // report/manifest.toml).
-    let report = records::tracked_dir::TrackedDir::open_within(&root, "report").unwrap();
+    let report = store::tracked_dir::TrackedDir::open_within(&root, "report").unwrap();
     report
         .write(
             Path::new("figures/exp-old__gone__solver.svg"),
@@ -380,7 +379,7 @@ fn rendering_twice_gives_identical_bytes_and_removes_stale_figures() {
             })
             .collect()
     };
-    let first = bytes(render_all(&root).unwrap());
+    let first = bytes(render_all(&root, &Default::default()).unwrap());
     assert!(!stale.exists(), "a figure of a run that is gone was kept");
     assert!(
         !stale_png.exists(),
@@ -391,7 +390,7 @@ fn rendering_twice_gives_identical_bytes_and_removes_stale_figures() {
         users.exists(),
         "a file the program did not write was deleted"
     );
-    let second = bytes(render_all(&root).unwrap());
+    let second = bytes(render_all(&root, &Default::default()).unwrap());
     assert_eq!(first, second);
     std::fs::remove_dir_all(&root).unwrap();
 }
@@ -403,21 +402,27 @@ fn a_malformed_trace_is_an_error_naming_the_file() {
     let bad = root.join("results/traces/exp-vel/vltco__lvi-pdnn.csv");
     let text = read(&bad).replacen("\n0,", "\nnot-a-number,", 1);
     std::fs::write(&bad, text).unwrap();
-    let err = render_all(&root).unwrap_err().to_string();
+    let err = render_all(&root, &Default::default())
+        .unwrap_err()
+        .to_string();
     assert!(
         err.contains("vltco__lvi-pdnn.csv") && err.contains("not a number"),
         "{err}"
     );
 
     std::fs::write(&bad, "t,theta_1\n0,1\n").unwrap();
-    let err = render_all(&root).unwrap_err().to_string();
+    let err = render_all(&root, &Default::default())
+        .unwrap_err()
+        .to_string();
     assert!(
         err.contains("vltco__lvi-pdnn.csv") && err.contains("thetadot"),
         "{err}"
     );
 
     std::fs::remove_file(&bad).unwrap();
-    let err = render_all(&root).unwrap_err().to_string();
+    let err = render_all(&root, &Default::default())
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("vltco__lvi-pdnn.csv"), "{err}");
     std::fs::remove_dir_all(&root).unwrap();
 }
@@ -444,7 +449,11 @@ fn extreme_finite_values_in_a_trace_are_drawn_without_hanging() {
     let (tx, rx) = std::sync::mpsc::channel();
     let dir = root.clone();
     std::thread::spawn(move || {
-        let _ = tx.send(render_all(&dir).map(|_| ()).map_err(|e| e.to_string()));
+        let _ = tx.send(
+            render_all(&dir, &Default::default())
+                .map(|_| ())
+                .map_err(|e| e.to_string()),
+        );
     });
     let rendered = rx
         .recv_timeout(std::time::Duration::from_secs(120))
@@ -524,7 +533,7 @@ fn the_committed_figures_are_those_the_committed_results_give() {
         .unwrap();
     }
     // The control experiments' results (the `control` crate), where they exist.
-    for file in [records::results_dir::CONTROL, records::results_dir::CYCLES] {
+    for file in [store::results_dir::CONTROL, store::results_dir::CYCLES] {
         let path = committed.join("results").join(file);
         if path.exists() {
             std::fs::copy(&path, root.join("results").join(file)).unwrap();
@@ -537,7 +546,7 @@ fn the_committed_figures_are_those_the_committed_results_give() {
     // The arm figures draw each run's robot, which may be a paper's robot file
     // (papers/<paper>/robots/): registered as `reproduce` registers them.
     catalog::robot_files::register_paper_robots(&committed.join("papers"));
-    render_all(&root).unwrap();
+    render_all(&root, &Default::default()).unwrap();
     let (ours, theirs) = (
         root.join("report/figures"),
         committed.join("report/figures"),
@@ -564,16 +573,16 @@ fn one_papers_figures_are_drawn_alone_and_the_others_kept() {
     let root = scratch("one-paper");
     synthetic_results(&root);
     let runs_csv_path = root.join("results/runs.csv");
-    let mut runs = records::runs::read_runs(&runs_csv_path).unwrap();
+    let mut runs = store::runs::read_runs(&runs_csv_path).unwrap();
     for r in runs.iter_mut().filter(|r| r.experiment == "exp-acc") {
         r.paper = "other".into();
     }
     write_atomic(&runs_csv_path, &runs_csv(&runs).unwrap()).unwrap();
-    render_all(&root).unwrap();
+    render_all(&root, &Default::default()).unwrap();
     let dir = root.join("report/figures");
     let kept = std::fs::read(dir.join("exp-vel__overview.png")).unwrap();
     // A figure the other paper's runs no longer give would be removed; exp-vel's are not its.
-    let written = presentation::figures::render_paper(&root, "other").unwrap();
+    let written = presentation::figures::render_paper(&root, "other", &Default::default()).unwrap();
     let names: Vec<String> = written
         .iter()
         .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
@@ -624,7 +633,7 @@ fn a_large_sweep_renders_a_bounded_number_of_figures() {
         )
         .unwrap();
     }
-    let written = render_all(&root).unwrap();
+    let written = render_all(&root, &Default::default()).unwrap();
     assert_eq!(written.len(), MAX_RUN_FIGURES + 2, "{written:?}");
     let dir = root.join("report/figures");
     let sweep = read(&dir.join("big-sweep__sweep.svg"));
@@ -635,10 +644,12 @@ fn a_large_sweep_renders_a_bounded_number_of_figures() {
     assert_eq!(stems(&dir, "svg").len(), MAX_RUN_FIGURES + 2);
 
     let figures = presentation::report::figures::list(&dir).unwrap();
+    let summary = analysis::sweep_summary::summary(&members);
     let page = presentation::report::figures::links(
         &figures,
         &records::index::Runs::new(runs.clone()),
         "big-sweep",
+        &[("big-sweep", summary)],
     );
     assert!(page.contains("(figures/big-sweep__sweep.svg)"), "{page}");
     assert!(
@@ -655,5 +666,59 @@ fn a_large_sweep_renders_a_bounded_number_of_figures() {
         MAX_RUN_FIGURES,
         "{page}"
     );
+    std::fs::remove_dir_all(&root).unwrap();
+}
+
+/// A sweep whose runs keep no trace by choice (`traces` of the experiment file): those runs get
+/// no figure of their own and their traces are not read (none is written here); the sweep
+/// figure still counts every row. Runs 0, 3, 6, ... keep theirs (`{ every = 3 }`): 20 of 60,
+/// all drawn; with `"none"` only the overview and the sweep figure. Without saying which runs
+/// keep none, the first missing trace is an error.
+#[test]
+fn runs_without_a_trace_by_choice_get_no_figure_of_their_own() {
+    let root = scratch("untraced-sweep");
+    let mut runs: Vec<RunRow> = (0..60)
+        .map(|i| {
+            let mut r = row(
+                "part-sweep",
+                &format!("ZNN [mu={i:02}]"),
+                "exact (Clarabel)",
+                None,
+            );
+            r.drift_norm = Some(1e-6 * (1.0 + i as f64));
+            r.max_pos_err = Some(1e-5);
+            r
+        })
+        .collect();
+    runs.sort_by_key(RunRow::key);
+    write_atomic(&root.join("results/runs.csv"), &runs_csv(&runs).unwrap()).unwrap();
+    let untraced = |keep: fn(usize) -> bool| -> std::collections::HashSet<_> {
+        runs.iter()
+            .enumerate()
+            .filter(|(i, _)| !keep(*i))
+            .map(|(_, r)| r.key())
+            .collect()
+    };
+    let dir = root.join("report/figures");
+    // "none": no trace at all, the overview (of no run) and the sweep figure over 60 rows.
+    assert_eq!(render_all(&root, &untraced(|_| false)).unwrap().len(), 2);
+    assert!(read(&dir.join("part-sweep__sweep.svg")).contains("part-sweep: 60 runs"));
+    // { every = 3 }: runs 0, 3, ... keep theirs and get a figure each.
+    for r in runs.iter().step_by(3) {
+        write_atomic(
+            &root.join(format!("results/traces/part-sweep/{}.csv", r.key().stem())),
+            trace(5, 20, 2.0, false, false).as_bytes(),
+        )
+        .unwrap();
+    }
+    let written = render_all(&root, &untraced(|i| i % 3 == 0)).unwrap();
+    assert_eq!(written.len(), 20 + 2, "{written:?}");
+    assert!(read(&dir.join("part-sweep__overview.svg")).contains("overview of 20 runs"));
+    assert_eq!(stems(&dir, "svg").len(), 20 + 2);
+    // A trace missing where no choice left it out is an error.
+    let err = render_all(&root, &Default::default())
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("part-sweep"), "{err}");
     std::fs::remove_dir_all(&root).unwrap();
 }

@@ -6,3 +6,4 @@ mod deviations;
 mod figures;
 mod hostile_report;
 mod report;
+mod report_model;

@@ -8,8 +8,9 @@ use analysis::claim_verdict::{self as claims, Verdict};
 use analysis::papers::Resolution;
 use presentation::report::{pages, paper_page, render, Inputs, Page, FRONT};
 use records::index::Runs;
-use records::runs::{read_runs, RunRow};
+use records::runs::RunRow;
 use std::path::{Path, PathBuf};
+use store::runs::read_runs;
 
 /// How to bring a stale committed report or figure up to date.
 const REGENERATE: &str = "regenerate with `cargo run --release -p reproduce -- report`";
@@ -201,9 +202,9 @@ fn every_mapped_published_number_finds_its_run() {
 /// ids.
 fn row(experiment: &str, variant: &str, solver: &str, drift: f64) -> RunRow {
     let kind = if solver == records::index::EXACT {
-        catalog::solver_kind::SolverKind::Exact
+        spec::solver_kind::SolverKind::Exact
     } else {
-        catalog::solver_kind::SolverKind::Network(settings::network_kind::NetworkKind::LviPdnn)
+        spec::solver_kind::SolverKind::Network(settings::network_kind::NetworkKind::LviPdnn)
     };
     RunRow {
         paper: "jia2019".into(),
@@ -224,7 +225,7 @@ fn row(experiment: &str, variant: &str, solver: &str, drift: f64) -> RunRow {
         wall_s: 0.1,
         sim_s: 0.1,
         ..RunRow::blank(
-            &catalog::run_key::RunKey::from_ids(experiment, variant, solver).unwrap(),
+            &spec::run_key::RunKey::from_ids(experiment, variant, solver).unwrap(),
             kind,
         )
     }

@@ -22,7 +22,7 @@ pub enum TaskError {
     #[error("task \"{task}\": {source}")]
     Shape {
         task: String,
-        source: catalog::error::SetupError,
+        source: spec::run::SetupError,
     },
 }
 
@@ -115,7 +115,7 @@ pub enum IntoResultsError {
         column: &'static str,
     },
     #[error(transparent)]
-    Results(#[from] records::results_dir::ResultsError),
+    Results(#[from] store::results_dir::ResultsError),
     #[error(transparent)]
-    Tracked(#[from] records::tracked_dir::TrackedError),
+    Tracked(#[from] store::tracked_dir::TrackedError),
 }

@@ -29,8 +29,6 @@ mod qp_solver;
 mod task_set;
 
 use arrays::real_array;
-use catalog::error::SetupError;
-use catalog::experiment::Scoring;
 use error::{IntoResultsError, Panicked, RootError, SealedOutDir, UnknownTask};
 use inputs::trajectory::{read, Trajectory};
 use network::{network_name, Callbacks, PyNetwork, PyQpDims, SharedCallbacks};
@@ -50,6 +48,8 @@ use simulation::run::{run_job, run_job_with_network, RunRecord};
 use simulation::score_trajectory::score_trajectory;
 use simulation::simulate::Outcome;
 use solvers::neural::NeuralSolver;
+use spec::run::Scoring;
+use spec::run::SetupError;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 use task_set::{load_tasks, PyTask};
@@ -88,8 +88,8 @@ fn lib_err(e: impl std::fmt::Display) -> PyErr {
 
 /// The solver id of a Python network called `name`: `python-<slug(name)>`, an error when that
 /// is no valid id (a name without a letter or digit, or too long).
-fn python_solver_id(name: &str) -> Result<catalog::ids::SolverId, catalog::ids::IdError> {
-    catalog::ids::SolverId::new(format!("{PYTHON_KIND}-{}", settings::slug::slug(name)))
+fn python_solver_id(name: &str) -> Result<spec::ids::SolverId, spec::ids::IdError> {
+    spec::ids::SolverId::new(format!("{PYTHON_KIND}-{}", settings::slug::slug(name)))
 }
 
 /// Runs the body of one of the module's functions, a panic of the library (a bug: no input
@@ -159,7 +159,7 @@ fn task(id: &str, root: Option<PathBuf>) -> PyResult<PyTask> {
 
 /// The task of `all` whose id is `id`; the error lists the ids of `all` (`set` names it).
 fn find_task<'a>(all: &'a [PyTask], id: &str, set: &'static str) -> PyResult<&'a PyTask> {
-    let key = catalog::run_key::TaskKey::parse(id).ok();
+    let key = spec::run_key::TaskKey::parse(id).ok();
     all.iter()
         .find(|t| Some(t.job.task()) == key)
         .ok_or_else(|| {
@@ -173,10 +173,10 @@ fn find_task<'a>(all: &'a [PyTask], id: &str, set: &'static str) -> PyResult<&'a
 
 /// The rows of `<root>/results/runs.csv`.
 fn stored_runs(root: &Path) -> PyResult<Vec<RunRow>> {
-    records::runs::read_runs(
+    store::runs::read_runs(
         &root
-            .join(records::results_dir::DIR)
-            .join(records::results_dir::RUNS),
+            .join(store::results_dir::DIR)
+            .join(store::results_dir::RUNS),
     )
     .map_err(lib_err)
 }
@@ -304,7 +304,7 @@ struct PythonRun {
 fn run_python(
     py: Python<'_>,
     task: &PyTask,
-    job: &catalog::experiment::Job,
+    job: &spec::run::RunSpec,
     network: &Bound<'_, PyAny>,
     budget: Option<f64>,
 ) -> PyResult<PythonRun> {
@@ -316,7 +316,7 @@ fn run_python(
 fn run_python_unnamed(
     py: Python<'_>,
     task: &PyTask,
-    job: &catalog::experiment::Job,
+    job: &spec::run::RunSpec,
     network: &Bound<'_, PyAny>,
     budget: Option<f64>,
 ) -> PyResult<PythonRun> {
@@ -365,7 +365,7 @@ fn run_python_unnamed(
     let mut row = run_row(&record, reproduce::revision::REVISION);
     row.solver_id = python_solver_id(&name).map_err(lib_err)?;
     row.solver = name;
-    row.solver_kind = catalog::solver_kind::SolverKind::Python;
+    row.solver_kind = spec::solver_kind::SolverKind::Python;
     Ok(PythonRun {
         record,
         row,
@@ -631,8 +631,7 @@ fn leaderboard<'py>(
         let (fresh, costs) = (entered.rows, entered.costs);
         let mut all = stored;
         all.extend(fresh.iter().cloned());
-        let timings =
-            records::timing::read(&root.join(records::results_dir::DIR)).map_err(lib_err)?;
+        let timings = store::timing::read(&root.join(store::results_dir::DIR)).map_err(lib_err)?;
         let board = analysis::leaderboard::leaderboard(&all, &timings);
         let board_csv = analysis::leaderboard::leaderboard_csv(&board).map_err(lib_err)?;
         let runs_csv = records::runs::runs_csv(&fresh).map_err(lib_err)?;
@@ -728,7 +727,7 @@ fn run_entries<'py>(
     let failed = PyList::empty(py);
     for (name, network) in named {
         // The name is shown in the report's tables as it is: no markup, no line break.
-        catalog::naming::check_name(name, catalog::naming::MAX_SOLVER_LABEL)
+        spec::naming::check_name(name, spec::naming::MAX_SOLVER_LABEL)
             .map_err(|e| lib_err(format!("leaderboard's entry name: {e}")))?;
         let id = python_solver_id(name).map_err(lib_err)?;
         if stored
@@ -784,23 +783,23 @@ fn run_entries<'py>(
 /// Writes [`leaderboard`]'s tables into `dir` (atomically, each resolved inside it): the
 /// leaderboard and the networks' rows, under `results/`'s names.
 fn write_leaderboard_tables(dir: &Path, board_csv: &[u8], runs_csv: &[u8]) -> PyResult<()> {
-    let owned = records::owned_dir::OwnedDir::open(dir).map_err(lib_err)?;
+    let owned = store::owned_dir::OwnedDir::open(dir).map_err(lib_err)?;
     for (name, bytes) in [
-        (records::results_dir::LEADERBOARD, board_csv),
-        (records::results_dir::RUNS, runs_csv),
+        (store::results_dir::LEADERBOARD, board_csv),
+        (store::results_dir::RUNS, runs_csv),
     ] {
         let path = owned.resolve(Path::new(name)).map_err(lib_err)?;
-        records::runs::write_atomic(&path, bytes)
+        store::atomic::write_atomic(&path, bytes)
             .map_err(|e| lib_err(format!("{}: {e}", path.display())))?;
     }
     Ok(())
 }
 
 /// Refuses an `out_dir=` that is, or lies inside, a directory driftbench seals with a manifest
-/// (results/, report/, a shard directory; `records::integrity::sealed_by`): files written there
+/// (results/, report/, a shard directory; `store::integrity::sealed_by`): files written there
 /// would pass for the program's own.
 fn check_out_dir(out: &Path) -> PyResult<()> {
-    match records::integrity::sealed_by(out) {
+    match store::integrity::sealed_by(out) {
         Some(sealed) => Err(lib_err(SealedOutDir {
             out: out.to_path_buf(),
             sealed,
@@ -811,8 +810,8 @@ fn check_out_dir(out: &Path) -> PyResult<()> {
 
 /// The tables the package's scripts write into `results/` (`into_results`).
 const SCRIPT_TABLES: [&str; 2] = [
-    records::results_dir::LEADERBOARD_PYTHON,
-    records::results_dir::PYTHON_CALL_COST,
+    store::results_dir::LEADERBOARD_PYTHON,
+    store::results_dir::PYTHON_CALL_COST,
 ];
 
 /// Seals the table `file` (written by one of the package's scripts: `leaderboard-python.csv`
@@ -847,8 +846,7 @@ fn seal_into_results(file: &Path, root: &Path) -> Result<PathBuf, IntoResultsErr
         source,
     };
     // Every text of every row, as the report will show it: plain (`check_plain`).
-    let texts: Vec<Vec<(&'static str, String)>> = if name
-        == records::results_dir::LEADERBOARD_PYTHON
+    let texts: Vec<Vec<(&'static str, String)>> = if name == store::results_dir::LEADERBOARD_PYTHON
     {
         records::table::from_reader::<analysis::leaderboard::LeaderboardRow, _>(bytes.as_slice())
             .map_err(table)?
@@ -874,10 +872,10 @@ fn seal_into_results(file: &Path, root: &Path) -> Result<PathBuf, IntoResultsErr
         .collect()
     };
     check_plain(file, &texts)?;
-    let (results, _) = records::results_dir::ResultsDir::open(
-        &root.join(records::results_dir::DIR),
+    let (results, _) = store::results_dir::ResultsDir::open(
+        &root.join(store::results_dir::DIR),
         reproduce::revision::REVISION,
-        records::tracked_dir::Edits::Refuse,
+        store::tracked_dir::Edits::Refuse,
     )?;
     results.tracked().write(Path::new(name), &bytes)?;
     results.save()?;
@@ -885,13 +883,13 @@ fn seal_into_results(file: &Path, root: &Path) -> Result<PathBuf, IntoResultsErr
 }
 
 /// That no text of `rows` (a table's rows, each its (column, text) pairs; the header is line 1)
-/// holds markup or a line break (`catalog::naming::has_markup`): the report shows them as they
+/// holds markup or a line break (`spec::naming::has_markup`): the report shows them as they
 /// are, and a sealed table is trusted.
 fn check_plain(file: &Path, rows: &[Vec<(&'static str, String)>]) -> Result<(), IntoResultsError> {
     for (k, row) in rows.iter().enumerate() {
         if let Some((column, _)) = row
             .iter()
-            .find(|(_, t)| catalog::naming::has_markup(t) || t.contains(char::is_control))
+            .find(|(_, t)| spec::naming::has_markup(t) || t.contains(char::is_control))
         {
             return Err(IntoResultsError::Markup {
                 file: file.to_path_buf(),
@@ -907,12 +905,12 @@ fn check_plain(file: &Path, rows: &[Vec<(&'static str, String)>]) -> Result<(), 
 /// runs: one registered from Python, `register_qp_solver`, or any other of the registry) at
 /// its defaults, at every instant of the fixed-step numerical loop; None when `id` is not
 /// registered.
-fn registered_qp_run(task: &PyTask, id: &str) -> Option<catalog::experiment::Job> {
+fn registered_qp_run(task: &PyTask, id: &str) -> Option<spec::run::RunSpec> {
     settings::qp_solver::lookup(id).ok()?;
-    let spec: catalog::numerical_spec::NumericalSpec =
+    let spec: spec::numerical::NumericalSpec =
         serde_json::from_value(serde_json::json!({ "method": id })).ok()?;
-    Some(catalog::experiment::Job {
-        solver: catalog::experiment::SolverChoice::Numerical(spec),
+    Some(spec::run::RunSpec {
+        solver: spec::run::SolverChoice::Numerical(spec),
         ..task.job.clone()
     })
 }

@@ -5,10 +5,12 @@
 
 use crate::error::{NoSolver, TaskError};
 use crate::network::PyQpDims;
-use catalog::experiment::{load_dir, Job, SolverChoice};
+use catalog::experiment::load_dir;
 use pyo3::prelude::*;
 use serde::Serialize;
 use simulation::run::{check_job, qp_shape};
+use spec::run::RunSpec;
+use spec::run::SolverChoice;
 use spec::scheme::Level;
 use std::path::Path;
 
@@ -28,9 +30,9 @@ use std::path::Path;
 #[derive(Clone)]
 pub struct PyTask {
     /// The task as a network run of it: the variant's integrator, scoring and network start.
-    pub job: Job,
+    pub job: RunSpec,
     /// The suite's own runs of the task, exact column first where it has one.
-    pub runs: Vec<Job>,
+    pub runs: Vec<RunSpec>,
     /// The sizes of the scheme's QP.
     pub dims: PyQpDims,
     /// Whether x starts with thetadot or thetaddot.
@@ -174,7 +176,7 @@ impl PyTask {
 
 impl PyTask {
     /// The suite's run of this task whose solver id is `id`.
-    pub fn run_of(&self, id: &str) -> Result<&Job, NoSolver> {
+    pub fn run_of(&self, id: &str) -> Result<&RunSpec, NoSolver> {
         self.runs
             .iter()
             .find(|j| j.solver.id() == id)
@@ -196,7 +198,7 @@ pub fn load_tasks(root: &Path) -> Result<Vec<PyTask>, TaskError> {
         let jobs = file.jobs();
         for e in &file.experiments {
             for v in &e.variants {
-                let runs: Vec<Job> = jobs
+                let runs: Vec<RunSpec> = jobs
                     .iter()
                     .filter(|j| j.experiment == e.id && j.variant_id == v.id())
                     .cloned()
@@ -205,7 +207,7 @@ pub fn load_tasks(root: &Path) -> Result<Vec<PyTask>, TaskError> {
                     continue;
                 };
                 // A network run of the variant, as the experiment file makes its networks'.
-                let job = Job {
+                let job = RunSpec {
                     solver: SolverChoice::Exact,
                     integrator: v.integrator.unwrap_or(e.integrator),
                     network_init: v.network_init,

@@ -20,8 +20,8 @@
 //!         = scheme  + sampling gap       + stopping rule
 //! ```
 
-use catalog::ids::{ExperimentId, SolverId, VariantId};
 use serde::{Deserialize, Serialize};
+use spec::ids::{ExperimentId, SolverId, VariantId};
 
 /// One component of a run's drift: a term of the telescoping sum, or a switch effect ("of
 /// which"). Stored by its label, which is also how the report names it.
@@ -130,8 +130,8 @@ pub struct AttributionRow {
 
 impl AttributionRow {
     /// The key of the run the row explains.
-    pub fn key(&self) -> catalog::run_key::RunKey {
-        catalog::run_key::RunKey::new(
+    pub fn key(&self) -> spec::run_key::RunKey {
+        spec::run_key::RunKey::new(
             self.experiment.clone(),
             self.variant_id.clone(),
             self.solver_id.clone(),

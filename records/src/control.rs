@@ -10,16 +10,15 @@
 //! - `results/cycles.csv` ([`CycleRow`]): the drift after every cycle of the many-cycles runs,
 //!   and `results/cycles-trend.csv` ([`TrendRow`]): each run's trend.
 //!
-//! The control experiments write them ([`write()`]); the report reads them back ([`read()`]) with
-//! the same types, without linking the solvers that made them. The file names are
-//! [`crate::results_dir`]'s (`CONTROL`, `CONTROL_STABILITY`, `CONTROL_CLAIM`, `CYCLES`,
+//! The rows are serialised here ([`to_writer`], [`from_reader`]); crate `store` writes the
+//! files for the control experiments and reads them back for the report (`store::control`),
+//! with the same types, without linking the solvers that made them. The file names are the
+//! store's (`store::results_dir`: `CONTROL`, `CONTROL_STABILITY`, `CONTROL_CLAIM`, `CYCLES`,
 //! `CYCLES_TREND`).
 
-use crate::error::{ControlFileError, IoAction, IoError};
-use catalog::ids::{ExperimentId, SolverId, VariantId};
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
-use std::path::Path;
+use spec::ids::{ExperimentId, SolverId, VariantId};
 
 /// The control period of the control experiments' verdicts (s): the period every method runs
 /// at, beside the sweep of the networks and the active set over other periods. The rows carry
@@ -359,34 +358,17 @@ pub struct TrendRow {
     pub class: Option<TrendClass>,
 }
 
-/// Writes `rows` to `dir/name`.
-pub fn write<T: Serialize>(dir: &Path, name: &str, rows: &[T]) -> Result<(), ControlFileError> {
-    let path = dir.join(name);
-    let csv_error = |source| ControlFileError::Csv {
-        path: path.clone(),
-        source,
-    };
-    let mut w = csv::Writer::from_path(&path).map_err(csv_error)?;
+/// Serialises `rows` to `out` as CSV: a header of the row type's fields, then a line per row.
+pub fn to_writer<T: Serialize>(out: impl std::io::Write, rows: &[T]) -> Result<(), csv::Error> {
+    let mut w = csv::Writer::from_writer(out);
     for r in rows {
-        w.serialize(r).map_err(csv_error)?;
+        w.serialize(r)?;
     }
-    w.flush().map_err(IoError::at(&path, IoAction::Write))?;
+    w.flush()?;
     Ok(())
 }
 
-/// Reads `dir/name`; empty when the file does not exist.
-pub fn read<T: DeserializeOwned>(dir: &Path, name: &str) -> Result<Vec<T>, ControlFileError> {
-    let path = dir.join(name);
-    if !path.exists() {
-        return Ok(Vec::new());
-    }
-    let csv_error = |source| ControlFileError::Csv {
-        path: path.clone(),
-        source,
-    };
-    csv::Reader::from_path(&path)
-        .map_err(csv_error)?
-        .deserialize()
-        .map(|r| r.map_err(csv_error))
-        .collect()
+/// The rows of the CSV `input` (a header, then a line per row), each parsed as `T`.
+pub fn from_reader<T: DeserializeOwned>(input: impl std::io::Read) -> Result<Vec<T>, csv::Error> {
+    csv::Reader::from_reader(input).deserialize().collect()
 }

@@ -9,11 +9,9 @@
 //! file, not across machines. The file is written whole by `reproduce cost` (a new
 //! measurement replaces the old one; two machines' numbers are never mixed).
 
-use crate::error::{DofCostError, IoAction, IoError};
 use crate::percentile::percentile;
-use crate::table::Row;
+use crate::table::{Row, TableError};
 use serde::{Deserialize, Serialize};
-use std::path::{Path, PathBuf};
 
 /// The file name inside `results/`.
 pub const FILE: &str = "dof-cost.csv";
@@ -54,7 +52,7 @@ impl SchemeKind {
 
     /// The scheme's id in dof-cost.csv: its canonical `kind` tag (`vltco`, `znn-rmp`).
     /// Files written before the kinds were renamed carry the paper-named tags, which
-    /// [`read`] maps onto these (`LEGACY_IDS`).
+    /// [`from_reader`] maps onto these (`LEGACY_IDS`).
     pub fn id(self) -> &'static str {
         match self {
             SchemeKind::Vltco => "vltco",
@@ -298,17 +296,6 @@ pub fn backends<'a>(
     out
 }
 
-/// Writes `results_dir/dof-cost.csv` (atomically, replacing the file) and returns its path.
-pub fn write(results_dir: &Path, rows: &[DofCostRow]) -> Result<PathBuf, DofCostError> {
-    let path = results_dir.join(FILE);
-    let bytes = crate::table::to_csv(rows).map_err(|source| DofCostError::Csv {
-        path: path.clone(),
-        source,
-    })?;
-    crate::runs::write_atomic(&path, &bytes).map_err(IoError::at(path.clone(), IoAction::Write))?;
-    Ok(path)
-}
-
 /// Scheme ids of dof-cost.csv files written before the scheme kinds were named for what they
 /// are, each with the [`SchemeKind`] it was: `(old id, kind)`.
 const LEGACY_IDS: [(&str, SchemeKind); 2] = [
@@ -316,14 +303,10 @@ const LEGACY_IDS: [(&str, SchemeKind); 2] = [
     ("kong2019-znn", SchemeKind::ZnnRmp),
 ];
 
-/// Reads `results_dir/dof-cost.csv`; an absent file is no rows. A legacy scheme id
+/// The rows of the CSV `input` ([`crate::table::from_reader`]); a legacy scheme id
 /// (`LEGACY_IDS`) is read as its kind's id.
-pub fn read(results_dir: &Path) -> Result<Vec<DofCostRow>, DofCostError> {
-    let path = results_dir.join(FILE);
-    if !path.exists() {
-        return Ok(Vec::new());
-    }
-    let mut rows: Vec<DofCostRow> = crate::table::read(&path)?;
+pub fn from_reader(input: impl std::io::Read) -> Result<Vec<DofCostRow>, TableError> {
+    let mut rows: Vec<DofCostRow> = crate::table::from_reader(input)?;
     for r in &mut rows {
         if let Some((_, kind)) = LEGACY_IDS.iter().find(|(old, _)| *old == r.scheme) {
             r.scheme = kind.id().to_string();

@@ -10,9 +10,9 @@
 //! (|e(U)|_2 <= rtol), `atol` is 0 and `max_step` the loop's step h.
 
 use crate::runs::Status;
-use catalog::ids::{ExperimentId, SolverId, VariantId};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use settings::integrator::Method;
+use spec::ids::{ExperimentId, SolverId, VariantId};
 
 /// How a rung integrated (the `method` column): an integrator, stored by its id (`bdf`,
 /// `dopri5`, ...), or a numerical run's fixed-step loop, stored as `fixed-step`.
@@ -112,8 +112,8 @@ pub struct LadderRow {
 
 impl LadderRow {
     /// The key of the run the row explains.
-    pub fn key(&self) -> catalog::run_key::RunKey {
-        catalog::run_key::RunKey::new(
+    pub fn key(&self) -> spec::run_key::RunKey {
+        spec::run_key::RunKey::new(
             self.experiment.clone(),
             self.variant_id.clone(),
             self.solver_id.clone(),

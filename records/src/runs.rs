@@ -6,19 +6,19 @@
 //! - `results/traces/<experiment>/<variant id>__<solver id>.csv`: the thinned time history of
 //!   each run for the figures ([`crate::trace`]).
 //!
-//! Files are written to a temporary name and renamed, so an interrupted run never leaves a
-//! half-written file. Rows are sorted by their [`RunKey`] (ids) so that two runs give
+//! This module serialises and checks the rows; crate `store` reads and writes the file (to a
+//! temporary name, then renamed, so an interrupted run never leaves a half-written file). Rows
+//! are sorted by their [`RunKey`] (ids) so that two runs give
 //! byte-identical files except for the timing columns (`wall_s`, `sim_s`, `observe_s`) and `git_rev`.
 
-use crate::error::{RowsError, RunsError};
+use crate::error::RowsError;
 use crate::failure_kind::FailureKind;
 use crate::table;
-use catalog::ids::{ExperimentId, SolverId, VariantId};
-use catalog::naming::{check_name, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
-use catalog::run_key::RunKey;
-use catalog::solver_kind::SolverKind;
 use serde::{Deserialize, Serialize};
-use std::path::Path;
+use spec::ids::{ExperimentId, SolverId, VariantId};
+use spec::naming::{check_name, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
+use spec::run_key::RunKey;
+use spec::solver_kind::SolverKind;
 
 /// One run, as stored in `results/runs.csv` (the engine makes it from a run's record:
 /// `simulation::row::run_row`).
@@ -168,6 +168,12 @@ pub struct RunRow {
 }
 
 impl RunRow {
+    /// The step of a fixed-step loop over the run (a numerical method's, robio2018
+    /// Algorithm 1): h = duration / steps, with at least one step.
+    pub fn fixed_step(&self) -> f64 {
+        self.duration / self.steps.max(1) as f64
+    }
+
     /// The run's identity (ids; also the sort key).
     pub fn key(&self) -> RunKey {
         RunKey::new(
@@ -285,77 +291,13 @@ impl std::fmt::Display for Status {
     }
 }
 
-/// The start of every temporary file name the program writes: `.driftbench-tmp.<pid>.<counter>.
-/// <name>` for an atomic write of `<name>`, `.driftbench-tmp.<pid>.probe` for a writability
-/// probe. Only names of this exact shape are the program's own
-/// ([`crate::results_dir::is_own_tmp`]); a user's `notes.2024.12.tmp` never is.
-pub const TMP_PREFIX: &str = ".driftbench-tmp.";
-
-/// Writes `bytes` to `path` atomically: to a temporary file unique to this call ([`TMP_PREFIX`],
-/// the process id and a counter, so concurrent writers of the same file never share one), then
-/// renamed over `path`.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    write_atomic_with(path, |w| w.write_all(bytes))
-}
-
-/// [`write_atomic`] of what `write` writes, streamed through a buffer: a file far larger than
-/// memory (a merged `runs.csv`) is written row by row. Nothing replaces `path` unless `write`
-/// succeeds (its temporary file is removed).
-pub fn write_atomic_with(
-    path: &Path,
-    write: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<()>,
-) -> std::io::Result<()> {
-    use std::io::Write as _;
-    use std::sync::atomic::{AtomicUsize, Ordering};
-    static COUNTER: AtomicUsize = AtomicUsize::new(0);
-    if let Some(dir) = path.parent() {
-        std::fs::create_dir_all(dir)?;
-    }
-    let mut name = std::ffi::OsString::from(format!(
-        "{TMP_PREFIX}{}.{}.",
-        std::process::id(),
-        COUNTER.fetch_add(1, Ordering::Relaxed)
-    ));
-    name.push(path.file_name().unwrap_or_default());
-    let tmp = path.with_file_name(name);
-    let written = std::fs::File::create(&tmp).and_then(|file| {
-        let mut out = std::io::BufWriter::with_capacity(64 * 1024, file);
-        write(&mut out)?;
-        out.flush()
-    });
-    written
-        .and_then(|()| std::fs::rename(&tmp, path))
-        .inspect_err(|_| {
-            let _ = std::fs::remove_file(&tmp);
-        })?;
-    crate::kill_point::passed();
-    Ok(())
-}
-
 /// Serialises rows as CSV (see [`crate::table`]: as many drift columns as the most joints).
 pub fn runs_csv(rows: &[RunRow]) -> Result<Vec<u8>, csv::Error> {
     table::to_csv(rows)
 }
 
-/// Reads `results/runs.csv`. Any problem is an error naming the file, the line and how to
-/// recover, never a silently shorter list: an unreadable file, a header that is not this
-/// version's columns (an old schema: a missing or an unknown column), a row that does not
-/// parse, a name that cannot name a file ([`check_rows`]) or a run listed twice. An empty file
-/// has no rows.
-pub fn read_runs(path: &Path) -> Result<Vec<RunRow>, RunsError> {
-    let rows = table::read(path).map_err(|error| RunsError::Table {
-        path: path.to_path_buf(),
-        error,
-    })?;
-    check_rows(&rows).map_err(|error| RunsError::Rows {
-        path: path.to_path_buf(),
-        error,
-    })?;
-    Ok(rows)
-}
-
 /// Checks what a results file says before any of it becomes a path: every row's paper id can
-/// name a file (its run key's ids were checked as they were read: `catalog::ids`), its labels
+/// name a file (its run key's ids were checked as they were read: `spec::ids`), its labels
 /// are within their limits, and no run is listed twice. The error names the line (the header is line 1).
 pub fn check_rows(rows: &[RunRow]) -> Result<(), RowsError> {
     let mut seen = std::collections::HashMap::with_capacity(rows.len());
@@ -379,19 +321,6 @@ pub fn check_names(r: &RunRow, line: usize) -> Result<(), RowsError> {
         .and_then(|()| check_name(&r.variant, MAX_VARIANT_LABEL))
         .and_then(|()| check_name(&r.solver, MAX_SOLVER_LABEL))
         .map_err(|error| RowsError::Name { line, error })
-}
-
-/// Checks that files can be created in `dir` (created if absent): writes and removes a probe
-/// file. The error names the directory.
-pub fn check_writable(dir: &Path) -> Result<(), RunsError> {
-    let fail = |source| RunsError::NotWritable {
-        dir: dir.to_path_buf(),
-        source,
-    };
-    std::fs::create_dir_all(dir).map_err(fail)?;
-    let probe = dir.join(format!("{TMP_PREFIX}{}.probe", std::process::id()));
-    std::fs::write(&probe, b"").map_err(fail)?;
-    std::fs::remove_file(&probe).map_err(fail)
 }
 
 /// Merges freshly computed rows into the stored ones: a fresh row replaces the stored row with

@@ -14,7 +14,6 @@
 
 use serde::de::DeserializeOwned;
 use serde::Serialize;
-use std::path::Path;
 
 /// A row of a CSV table (see the module docs).
 pub trait Row: Serialize + DeserializeOwned {
@@ -288,7 +287,8 @@ impl<T: Row> Layout<T> {
     }
 }
 
-/// A problem at `line` of a table read from text (the file is added by [`read`]).
+/// A problem at `line` of a table read from text (the file is added by the store,
+/// `store::table::read`).
 fn at_line(line: u64, what: String) -> TableError {
     TableError {
         path: None,
@@ -400,29 +400,6 @@ fn joint_values<T: Row>(cells: &[&str], line: u64) -> Result<Vec<f64>, TableErro
             })
         })
         .collect()
-}
-
-/// Reads a table of `T` from `path` (errors name it), through the one reader
-/// ([`crate::owned_dir::read_file`]).
-pub fn read<T: Row>(path: &Path) -> Result<Vec<T>, TableError> {
-    let bytes = crate::owned_dir::read_file(path).map_err(|e| TableError {
-        path: Some(path.to_path_buf()),
-        line: 0,
-        what: format!("cannot read: {e}"),
-    })?;
-    from_reader(bytes.as_slice()).map_err(|e| TableError {
-        path: Some(path.to_path_buf()),
-        ..e
-    })
-}
-
-/// Reads a table of `T` from `path` like [`read`], an absent file as no rows (a results file
-/// the reproduction has not written yet).
-pub fn read_if_present<T: Row>(path: &Path) -> Result<Vec<T>, TableError> {
-    if !path.exists() {
-        return Ok(Vec::new());
-    }
-    read(path)
 }
 
 /// The distinct values of `key` over `rows`, in the order they first appear (the papers of a

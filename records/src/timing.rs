@@ -12,13 +12,11 @@
 //! The times are the only columns of the suite that are not deterministic: the repetitions
 //! recompute the same run (the same counts, drifts and scores as `runs.csv`).
 
-use crate::error::{IoAction, IoError, RunsError};
 use crate::table::Row;
-use catalog::ids::{ExperimentId, SolverId, VariantId};
-use catalog::run_key::RunKey;
 use serde::{Deserialize, Serialize};
+use spec::ids::{ExperimentId, SolverId, VariantId};
+use spec::run_key::RunKey;
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
 
 /// The file name inside `results/`.
 pub const FILE: &str = "leaderboard-timing.csv";
@@ -168,31 +166,6 @@ impl Timings {
     }
 }
 
-/// Writes `results_dir/`[`FILE`] (atomically, replacing it), rows sorted by key.
-pub fn write(results_dir: &Path, timings: &Timings) -> Result<PathBuf, RunsError> {
-    let path = results_dir.join(FILE);
-    let rows: Vec<TimingRow> = timings.rows().cloned().collect();
-    let bytes = crate::table::to_csv(&rows).map_err(|source| RunsError::Write {
-        path: path.clone(),
-        source,
-    })?;
-    crate::runs::write_atomic(&path, &bytes).map_err(IoError::at(&path, IoAction::Write))?;
-    Ok(path)
-}
-
-/// Reads `results_dir/`[`FILE`]; an absent file is no timings.
-pub fn read(results_dir: &Path) -> Result<Timings, RunsError> {
-    let path = results_dir.join(FILE);
-    if !path.exists() {
-        return Ok(Timings::default());
-    }
-    let rows = crate::table::read(&path).map_err(|error| RunsError::Table {
-        path: path.clone(),
-        error,
-    })?;
-    Ok(Timings::new(rows))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -207,40 +180,5 @@ mod tests {
         assert_eq!((r.wall_s_median, r.repetitions), (2.0, 3));
         assert!((r.sim_spread() - 1.5).abs() < 1e-12);
         assert_eq!(r.key(), key);
-    }
-
-    #[test]
-    fn written_and_read_back() {
-        let dir = std::env::temp_dir().join(format!("driftbench-timing-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let rows = vec![
-            TimingRow::from_samples(
-                &RunKey::from_ids("b", "v", "s").unwrap(),
-                &[(0.5, 0.6)],
-                "cpu",
-                2,
-                "r",
-            ),
-            TimingRow::from_samples(
-                &RunKey::from_ids("a", "v", "s").unwrap(),
-                &[(0.1, 0.2)],
-                "cpu",
-                2,
-                "r",
-            ),
-        ];
-        let timings = Timings::new(rows);
-        write(&dir, &timings).unwrap();
-        let back = read(&dir).unwrap();
-        std::fs::remove_dir_all(&dir).unwrap();
-        assert_eq!(back, timings);
-        assert_eq!(
-            back.sim_s(&RunKey::from_ids("b", "v", "s").unwrap()),
-            Some(0.5)
-        );
-        assert_eq!(back.rows().next().unwrap().experiment, "a");
-        assert!(read(Path::new("/nonexistent-driftbench"))
-            .unwrap()
-            .is_empty());
     }
 }

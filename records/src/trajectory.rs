@@ -7,7 +7,7 @@
 //! integrated: `rtol` and `atol` are 0, `steps` is the number of samples).
 
 use crate::runs::RunRow;
-use catalog::ids::SolverId;
+use spec::ids::SolverId;
 
 /// The `solver_kind` (and `integrator`) of a scored trajectory's row.
 pub const TRAJECTORY_KIND: &str = "trajectory";
@@ -24,7 +24,7 @@ pub fn trajectory_id() -> SolverId {
 pub fn score_row(mut row: RunRow, source: &str, name: &SolverId) -> RunRow {
     row.solver_id = name.clone();
     row.solver = format!("{TRAJECTORY_KIND} {source}");
-    row.solver_kind = catalog::solver_kind::SolverKind::Trajectory;
+    row.solver_kind = spec::solver_kind::SolverKind::Trajectory;
     row.integrator = TRAJECTORY_KIND.to_string();
     row.rtol = 0.0;
     row.atol = 0.0;

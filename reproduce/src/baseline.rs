@@ -5,10 +5,10 @@
 
 use crate::error::{BaselineError, Exit, ReproduceError};
 use analysis::leaderboard::LeaderboardRow;
-use catalog::experiment::Job;
 use records::control::ControlRow;
 use records::runs::{check_rows, RunRow};
 use records::timing::Timings;
+use spec::run::RunSpec;
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -36,12 +36,12 @@ impl Baseline {
     /// committed `results/runs.csv` of git HEAD (so a run followed by `--check` compares with
     /// what is committed, not with what the run just wrote); outside a checkout, or for another
     /// results directory, its `runs.csv`. `all`: every run of the experiment files, by which a
-    /// baseline written before run ids is read with its ids recovered (records::migrate).
+    /// baseline written before run ids is read with its ids recovered (store::migrate).
     pub fn read(
         root: &Path,
         results_dir: &Path,
         file: Option<&Path>,
-        all: &[Job],
+        all: &[RunSpec],
     ) -> Result<Self, ReproduceError> {
         if let Some(f) = file {
             if f.is_dir() {
@@ -59,7 +59,7 @@ impl Baseline {
                 timings: Timings::default(),
             });
         }
-        let in_tree = results_dir == root.join(records::results_dir::DIR);
+        let in_tree = results_dir == root.join(store::results_dir::DIR);
         let show = |file: &str| {
             in_tree
                 .then(|| {
@@ -72,37 +72,37 @@ impl Baseline {
                 })
                 .flatten()
         };
-        let committed = show(records::results_dir::RUNS);
+        let committed = show(store::results_dir::RUNS);
         let explanation = explain::Explained {
             ladder: committed_table(
-                show(records::results_dir::LADDER),
+                show(store::results_dir::LADDER),
                 results_dir,
-                records::results_dir::LADDER,
+                store::results_dir::LADDER,
             )?,
             attribution: committed_table(
-                show(records::results_dir::ATTRIBUTION),
+                show(store::results_dir::ATTRIBUTION),
                 results_dir,
-                records::results_dir::ATTRIBUTION,
+                store::results_dir::ATTRIBUTION,
             )?,
         };
         let leaderboard = committed_table(
-            show(records::results_dir::LEADERBOARD),
+            show(store::results_dir::LEADERBOARD),
             results_dir,
-            records::results_dir::LEADERBOARD,
+            store::results_dir::LEADERBOARD,
         )?;
         let control = committed_table(
-            show(records::results_dir::CONTROL),
+            show(store::results_dir::CONTROL),
             results_dir,
-            records::results_dir::CONTROL,
+            store::results_dir::CONTROL,
         )?;
-        let timings = records::timing::read(results_dir)?;
+        let timings = store::timing::read(results_dir)?;
         let (rows, name) = match committed {
             Some(out) => {
                 let name = "git HEAD:results/runs.csv".to_string();
                 (parse(out.stdout, &name, all)?, name)
             }
             None => {
-                let path = results_dir.join(records::results_dir::RUNS);
+                let path = results_dir.join(store::results_dir::RUNS);
                 (
                     read(&path, inputs::Origin::Under(results_dir), all)?,
                     path.display().to_string(),
@@ -121,8 +121,8 @@ impl Baseline {
 
     /// Whether the baseline holds an explanation of any of `jobs` (then `check` re-explains
     /// them and compares).
-    pub fn explains(&self, jobs: &[Job]) -> bool {
-        let keys: std::collections::HashSet<_> = jobs.iter().map(Job::key).collect();
+    pub fn explains(&self, jobs: &[RunSpec]) -> bool {
+        let keys: std::collections::HashSet<_> = jobs.iter().map(RunSpec::key).collect();
         self.explanation
             .ladder
             .iter()
@@ -211,23 +211,27 @@ fn committed_table<T: records::table::Row>(
     };
     match shown {
         Some(out) => records::table::from_reader(out.stdout.as_slice()),
-        None => records::table::read_if_present(&results_dir.join(file)),
+        None => store::table::read_if_present(&results_dir.join(file)),
     }
     .map_err(|source| BaselineError::Table { name, source }.into())
 }
 
 /// The rows of the runs file `path` (from `origin`), read with the input reader (a regular
 /// file, at most [`inputs::Kind::Baseline`]'s cap, never blocking).
-fn read(path: &Path, origin: inputs::Origin, all: &[Job]) -> Result<Vec<RunRow>, BaselineError> {
+fn read(
+    path: &Path,
+    origin: inputs::Origin,
+    all: &[RunSpec],
+) -> Result<Vec<RunRow>, BaselineError> {
     let bytes = inputs::read(path, inputs::Kind::Baseline, origin)?;
     parse(bytes, &path.display().to_string(), all)
 }
 
 /// The rows of a runs file's `bytes` (called `name`), with ids recovered if it predates them
 /// (by the labels of `all`, every run of the experiment files).
-fn parse(bytes: Vec<u8>, name: &str, all: &[Job]) -> Result<Vec<RunRow>, BaselineError> {
+fn parse(bytes: Vec<u8>, name: &str, all: &[RunSpec]) -> Result<Vec<RunRow>, BaselineError> {
     let name = || name.to_string();
-    let bytes = match records::migrate::add_ids(&bytes, || records::migrate::LabelIndex::new(all)) {
+    let bytes = match store::migrate::add_ids(&bytes, || store::migrate::LabelIndex::new(all)) {
         Ok(Some((migrated, _))) => migrated,
         Ok(None) => bytes,
         Err(source) => {

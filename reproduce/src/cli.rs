@@ -139,7 +139,7 @@ mod tests {
             },
             Mode::Score(ScoreOptions {
                 file: PathBuf::from("f.csv"),
-                task: catalog::run_key::TaskKey::parse("e/v").unwrap(),
+                task: spec::run_key::TaskKey::parse("e/v").unwrap(),
                 columns: None,
                 name: "trajectory".into(),
                 out: PathBuf::from("scores"),
@@ -241,7 +241,7 @@ mod tests {
         assert!(msg.contains("just-one"), "{msg}");
         assert!(matches!(
             parse("reproduce list --shard 2/4").unwrap().1,
-            Mode::List(l) if l.shard == Some(ShardSpec::Given(records::shard::Shard::new(2, 4).unwrap()))
+            Mode::List(l) if l.shard == Some(ShardSpec::Given(store::shard::Shard::new(2, 4).unwrap()))
         ));
     }
 }

@@ -4,15 +4,15 @@
 //! the report cannot go beside. Each error is of one kind ([`ReproduceError::exit`]), and each
 //! kind has its exit code ([`Exit`], docs/reference/exit-codes.md).
 
-use records::error::{IoAction, IoError, RunsError};
-use records::integrity::IntegrityError;
-use records::journal::JournalError;
-use records::owned_dir::PathError;
-use records::results_dir::ResultsError;
-use records::shard::ShardError;
-use records::tracked_dir::TrackedError;
 use std::path::PathBuf;
 use std::process::ExitCode;
+use store::error::{IoAction, IoError, RunsError};
+use store::integrity::IntegrityError;
+use store::journal::JournalError;
+use store::owned_dir::PathError;
+use store::results_dir::ResultsError;
+use store::shard::ShardError;
+use store::tracked_dir::TrackedError;
 
 /// How `reproduce` ended: one exit code per outcome (docs/reference/exit-codes.md).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -87,7 +87,7 @@ pub enum ReproduceError {
     #[error(
         "--baseline {}: is a directory; give a runs.csv file (e.g. {})",
         .0.display(),
-        .0.join(records::results_dir::RUNS).display()
+        .0.join(store::results_dir::RUNS).display()
     )]
     BaselineIsDirectory(PathBuf),
     /// The file given as `--baseline` cannot be read as runs.
@@ -133,7 +133,7 @@ pub enum ReproduceError {
     #[error(transparent)]
     ThreadPool(#[from] rayon::ThreadPoolBuildError),
     #[error(transparent)]
-    DofCost(#[from] records::error::DofCostError),
+    DofCost(#[from] store::error::DofCostError),
 }
 
 impl ReproduceError {
@@ -243,11 +243,11 @@ pub enum ScoreError {
         source: csv::Error,
     },
     #[error(transparent)]
-    Io(#[from] records::error::IoError),
+    Io(#[from] store::error::IoError),
     #[error(transparent)]
     Figure(#[from] presentation::error::FigureError),
     #[error(transparent)]
-    Path(#[from] records::owned_dir::PathError),
+    Path(#[from] store::owned_dir::PathError),
     #[error("--name {name:?}: a scored trajectory's name is its solver id, a slug (lower-case letters, digits, `.` and `-`, at most {max} bytes), e.g. {suggestion:?}")]
     Name {
         name: String,
@@ -280,7 +280,7 @@ pub enum BaselineError {
     #[error("{name}: {source}")]
     Migrate {
         name: String,
-        source: records::migrate::MigrateError,
+        source: store::migrate::MigrateError,
     },
     #[error("{name}: {source}")]
     Table {

@@ -8,16 +8,16 @@ use crate::papers::load_papers;
 use crate::project::Project;
 use crate::report::{precheck_report, render_report, report_root};
 use crate::results::{open_results, Described};
-use catalog::experiment::Job;
-use records::results_dir::ResultsDir;
+use spec::run::RunSpec;
+use store::results_dir::ResultsDir;
 
 /// The ladders and attributions of the selected runs `jobs` of the papers' solvers (`all`:
 /// every run of the experiment files), written to `results` when given; how many runs were
 /// explained.
 pub fn explain(
     project: &Project,
-    jobs: &[Job],
-    all: &[Job],
+    jobs: &[RunSpec],
+    all: &[RunSpec],
     git_rev: &str,
     results: Option<&ResultsDir>,
 ) -> Result<usize, ReproduceError> {
@@ -48,8 +48,8 @@ pub fn explain(
 /// afresh and not written (`reproduce check` compares them with the committed ones).
 pub fn fresh(
     project: &Project,
-    jobs: &[Job],
-    all: &[Job],
+    jobs: &[RunSpec],
+    all: &[RunSpec],
     git_rev: &str,
 ) -> Result<explain::Explained, ReproduceError> {
     let papers = load_papers(project)?;
@@ -66,7 +66,7 @@ pub fn fresh(
 pub fn explain_mode(
     project: &Project,
     options: &ExplainOptions,
-    jobs: &[Job],
+    jobs: &[RunSpec],
     all: &Described,
     git_rev: &str,
 ) -> Result<(), ReproduceError> {

@@ -8,8 +8,8 @@ use crate::papers::load_papers;
 use crate::project::Project;
 use crate::report::{precheck_report, render_report, report_root};
 use crate::results::{open_results, Described};
-use catalog::experiment::Job;
-use records::results_dir::ResultsDir;
+use spec::run::RunSpec;
+use store::results_dir::ResultsDir;
 
 /// The tables of `ids` (paper, table) that `which` selects: `all`, a paper, `paper:table`, or
 /// a comma-separated list of these.
@@ -56,7 +56,7 @@ pub fn infer_mode(
 pub fn infer(
     project: &Project,
     which: &str,
-    jobs: &[Job],
+    jobs: &[RunSpec],
     results: Option<&ResultsDir>,
 ) -> Result<(), ReproduceError> {
     use analysis::papers::table_ids;

@@ -1,4 +1,4 @@
-//! The journal of a run (records::journal): an interrupted run's journal folded into runs.csv
+//! The journal of a run (store::journal): an interrupted run's journal folded into runs.csv
 //! before anything runs (its runs of this code revision whose traces match the journal's seal
 //! are not run again, and their traces are recorded in the results directory's manifest), and
 //! each run checkpointed, with its trace and its seal, as it finishes. A run into `results/`
@@ -7,28 +7,28 @@
 //! so that it holds nothing per run but its key.
 
 use crate::error::ReproduceError;
-use crate::results::Described;
-use catalog::experiment::Job;
-use catalog::run_key::RunKey;
-use records::journal::Recovered;
-use records::results_dir::ResultsDir;
+use crate::results::{Described, Keys};
 use records::runs::{merge, RunRow};
-use records::sorted::{latest, read_key_ordered, KeyMerge};
 use simulation::row::run_row;
 use simulation::run::RunRecord;
 use simulation::runner::run_jobs_with;
+use spec::run::RunSpec;
+use spec::run_key::RunKey;
 use std::collections::HashSet;
+use store::journal::Recovered;
+use store::results_dir::ResultsDir;
+use store::sorted::{latest, read_key_ordered, KeyMerge};
 
-/// The journal of `results` recovered (records::journal::recover) and said: rows of another
+/// The journal of `results` recovered (store::journal::recover) and said: rows of another
 /// revision, whose trace does not match its seal, or that no experiment file describes
 /// (`described`) are named and left out of [`Recovered::current`] (they are run again).
 fn recover(
     results: &ResultsDir,
     git_rev: &str,
-    described: &HashSet<RunKey>,
+    described: &Keys,
 ) -> Result<Recovered, ReproduceError> {
-    let mut recovered = records::journal::recover(results, git_rev)?;
-    let journal = records::journal::path(results.path());
+    let mut recovered = store::journal::recover(results, git_rev, |k| described.traced(k))?;
+    let journal = store::journal::path(results.path());
     for (key, rev) in &recovered.other_revision {
         eprintln!(
             "not folded from {}: {key} (written by revision {rev}, this is {git_rev}); it is run again",
@@ -39,7 +39,7 @@ fn recover(
         eprintln!(
             "not folded from {}: {key} (its trace is missing, or not the one {} sealed); it is run again",
             journal.display(),
-            records::journal::seal_path(results.path()).display()
+            store::journal::seal_path(results.path()).display()
         );
     }
     recovered.current.retain(|e| {
@@ -65,7 +65,7 @@ pub fn resume(
     git_rev: &str,
     all: &Described,
     kept: &mut Vec<RunRow>,
-    to_run: &mut Vec<Job>,
+    to_run: &mut Vec<RunSpec>,
 ) -> Result<(), ReproduceError> {
     let recovered = recover(results, git_rev, &all.keys())?;
     if !recovered.current.is_empty() {
@@ -83,13 +83,13 @@ pub fn resume(
             before - to_run.len()
         );
     }
-    Ok(records::journal::remove(results.path())?)
+    Ok(store::journal::remove(results.path())?)
 }
 
 /// Folds the journal of `results` and `unjournaled` (rows whose traces are written, in key
 /// order) into its `runs.csv` by streaming, leaving out the stored rows `pruned` (their traces
 /// removed); `fresh` is told each row folded from the journal or `unjournaled`. `runs.csv` is
-/// read, merged and written row by row ([`records::sorted`]) and the journal's rows are read
+/// read, merged and written row by row ([`store::sorted`]) and the journal's rows are read
 /// back one at a time: what is held per run is its key (the journal's index, the described
 /// keys), never its row or trace. At a start (`at_end` false) an interrupted start's journal
 /// is folded and said, and with nothing to fold or prune nothing is written; at the end of a
@@ -98,7 +98,7 @@ pub fn resume(
 pub fn fold(
     results: &ResultsDir,
     git_rev: &str,
-    described: &HashSet<RunKey>,
+    described: &Keys,
     pruned: &[RunRow],
     unjournaled: Vec<RunRow>,
     at_end: bool,
@@ -150,45 +150,65 @@ pub fn fold(
             );
         }
     }
-    records::journal::remove(results.path())?;
+    store::journal::remove(results.path())?;
     Ok(folded)
 }
 
-/// Removes from `to_run` the runs a shard directory already holds: rows of its `runs.csv`
-/// (read row by row) of this revision `git_rev` whose trace the directory's manifest records.
-/// An earlier start of the shard finished them, whether its journal was folded by this start
-/// or by one before: a shard's resume is cumulative over every attempt, and a finished shard
-/// started again runs nothing.
-pub fn skip_finished(
+/// The trace of a finished run, if its job keeps one (`RunSpec::keep_trace`).
+pub fn kept_trace(r: &RunRecord) -> Option<&[records::trace::TracePoint]> {
+    r.job.keep_trace.then_some(&r.run.trace[..])
+}
+
+/// The runs of `jobs` still to run: those a shard directory does not hold already as rows of
+/// its `runs.csv` (read row by row) of this revision `git_rev` whose trace the directory's
+/// manifest records (or that keep no trace by choice). An earlier start of the shard finished
+/// them, whether its journal was folded by this start or by one before: a shard's resume is
+/// cumulative over every attempt, and a finished shard started again runs nothing. `jobs` itself when none is done (a first
+/// start copies no run).
+pub fn skip_finished<'a>(
     results: &ResultsDir,
     git_rev: &str,
-    to_run: &mut Vec<Job>,
-) -> Result<(), ReproduceError> {
+    jobs: &'a [RunSpec],
+) -> Result<std::borrow::Cow<'a, [RunSpec]>, ReproduceError> {
     let traced: HashSet<String> = results.tracked().listed("traces/").into_iter().collect();
+    let untraced: HashSet<RunKey> = jobs
+        .iter()
+        .filter(|j| !j.keep_trace)
+        .map(RunSpec::key)
+        .collect();
     let mut done = HashSet::new();
     for row in read_key_ordered(&results.runs_path())? {
         let row = row?;
         let key = row.key();
         let rel = ResultsDir::trace_rel(&key);
-        if row.git_rev == git_rev && traced.contains(&rel.to_string_lossy().replace('\\', "/")) {
+        if row.git_rev == git_rev
+            && (untraced.contains(&key)
+                || traced.contains(&rel.to_string_lossy().replace('\\', "/")))
+        {
             done.insert(key);
         }
     }
-    let before = to_run.len();
-    to_run.retain(|j| !done.contains(&j.key()));
-    if before > to_run.len() {
+    drop(traced);
+    if done.is_empty() {
+        return Ok(std::borrow::Cow::Borrowed(jobs));
+    }
+    let to_run: Vec<RunSpec> = jobs
+        .iter()
+        .filter(|j| !done.contains(&j.key()))
+        .cloned()
+        .collect();
+    let skipped = jobs.len() - to_run.len();
+    if skipped > 0 {
         eprintln!(
-            "resuming: {} of the selected runs already done: the shard holds {} of its runs from earlier starts of this revision ({}); they are not run again",
-            before - to_run.len(),
-            before - to_run.len(),
+            "resuming: {skipped} of the selected runs already done: the shard holds {skipped} of its runs from earlier starts of this revision ({}); they are not run again",
             results.runs_path().display()
         );
     }
-    Ok(())
+    Ok(std::borrow::Cow::Owned(to_run))
 }
 
 /// The most joints among the arms of `jobs` (the per-joint columns of their rows).
-pub fn joints(jobs: &[Job]) -> usize {
+pub fn joints(jobs: &[RunSpec]) -> usize {
     jobs.iter()
         .filter_map(|j| {
             robots::registry::robot_by_name(&j.robot)
@@ -204,17 +224,17 @@ pub fn joints(jobs: &[Job]) -> usize {
 /// runs the journal could not checkpoint (whose traces are written again at the end).
 pub fn run_journaled(
     results: Option<&ResultsDir>,
-    jobs: &[Job],
-    to_run: &[Job],
+    jobs: &[RunSpec],
+    to_run: &[RunSpec],
     git_rev: &str,
 ) -> Result<(Vec<RunRecord>, HashSet<RunKey>), ReproduceError> {
     let journal = results
-        .map(|r| records::journal::Journal::open(r, joints(jobs)))
+        .map(|r| store::journal::Journal::open(r, joints(jobs)))
         .transpose()?;
     let unjournaled = std::sync::Mutex::new(HashSet::new());
     let records = run_jobs_with(to_run, true, |r| {
         if let Some(j) = &journal {
-            if let Err(e) = j.record(&run_row(r, git_rev), &r.run.trace) {
+            if let Err(e) = j.record(&run_row(r, git_rev), kept_trace(r)) {
                 eprintln!("warning: run not checkpointed: {e}");
                 unjournaled
                     .lock()

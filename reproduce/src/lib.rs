@@ -42,13 +42,14 @@ pub use cli::Cli;
 pub use error::ReproduceError;
 pub use options::{GlobalOptions, Mode};
 
-use catalog::experiment::{Job, PaperFile};
+use catalog::experiment::PaperFile;
 use options::SelectionOptions;
 use project::{resolve_shard, set_threads, Project};
-use records::shard::Shard;
 use results::{experiment_files, Described};
 use run::{Output, Plan};
+use spec::run::RunSpec;
 use std::process::ExitCode;
+use store::shard::Shard;
 use summary::emit;
 
 /// Runs `mode` on the project of `global`; the exit code.
@@ -208,14 +209,14 @@ fn selected(
     selection: &SelectionOptions,
     shard: Option<Shard>,
     project: &Project,
-) -> Result<Vec<Job>, ReproduceError> {
+) -> Result<Vec<RunSpec>, ReproduceError> {
     let selection = selection.selection();
     select::check_selection(files, &selection)?;
     let kept = select::Kept {
         selection: &selection,
         shard,
     };
-    let jobs: Vec<Job> = kept.runs(files).collect();
+    let jobs: Vec<RunSpec> = kept.runs(files).collect();
     if let Some(shard) = shard {
         say_shard(project, shard, jobs.len(), kept.total(files));
     }

@@ -58,7 +58,7 @@ pub fn list(out: &mut impl Write, files: &[PaperFile], kept: Kept) -> std::io::R
 
 /// How many of `total` selected runs each of `n` shards gets (`--list --shards N`).
 pub fn shard_plan(total: usize, n: usize) -> String {
-    records::shard::plan(total, n)
+    store::shard::plan(total, n)
         .iter()
         .enumerate()
         .map(|(k, c)| format!("shard {}/{n}: {c} runs\n", k + 1))
@@ -113,11 +113,10 @@ mod tests {
     use super::*;
     use std::path::Path;
 
-    use catalog::experiment::Job;
-    use records::shard::{Selection, Shard};
-
+    use spec::run::RunSpec;
+    use store::shard::{Selection, Shard};
     /// The fixture paper of tests/fixtures/fifth-paper (one experiment, two variants).
-    fn fixture() -> (Vec<PaperFile>, Vec<Job>) {
+    fn fixture() -> (Vec<PaperFile>, Vec<RunSpec>) {
         let dir =
             Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/fifth-paper/experiments");
         let files = catalog::experiment::load_dir(&dir, simulation::run::check_job).unwrap();

@@ -1,10 +1,10 @@
-//! `reproduce merge DIR...` (`--merge`): finished shard directories (records::shard: manifests,
+//! `reproduce merge DIR...` (`--merge`): finished shard directories (store::shard: manifests,
 //! integrity, revision, ownership, traces) checked before anything is written, then their rows
 //! merged into the results directory's `runs.csv` and their traces copied, and the report
 //! rendered unless `--no-report` (then `reproduce report` renders it, a step of its own).
 //!
 //! The merge streams: the shards' `runs.csv` are read row by row and merged in key order
-//! with the stored `runs.csv` (records::sorted, a k-way merge: a shard's row replaces a stored
+//! with the stored `runs.csv` (store::sorted, a k-way merge: a shard's row replaces a stored
 //! one), written row by row, each trace copied file by file as its row passes. Memory is then
 //! one row per shard plus O(bytes of a key) per run (the selection's keys, each shard's list
 //! of its runs, the manifests' entries), and time linear in the runs (two passes over the
@@ -17,11 +17,11 @@ use crate::results::{open_results, Described};
 use crate::run::report_unexpected;
 use crate::select::{check_selection, selected, selection_files};
 use catalog::experiment::PaperFile;
-use catalog::run_key::RunKey;
 use records::runs::RunRow;
-use records::sorted::{latest, read_key_ordered, KeyMerge};
+use spec::run_key::RunKey;
 use std::collections::HashSet;
 use std::process::ExitCode;
+use store::sorted::{latest, read_key_ordered, KeyMerge};
 
 /// Merges the shard directories `dirs` (`files`: the experiment files), rendering the report
 /// when `report`.
@@ -34,7 +34,7 @@ pub fn merge_shards(
 ) -> Result<ExitCode, ReproduceError> {
     let shards = dirs
         .iter()
-        .map(|d| records::shard::read_shard(d, project.edits))
+        .map(|d| store::shard::read_shard(d, project.edits))
         .collect::<Result<Vec<_>, _>>()?;
     let sel = shards
         .first()
@@ -44,18 +44,19 @@ pub fn merge_shards(
     let expected: Vec<String> = selected(files, &sel).map(|j| j.key().to_string()).collect();
     let all = &Described::new(files);
     let hash =
-        records::shard::experiments_hash(&project.experiments_dir, selection_files(files, &sel))?;
-    records::shard::check_shards(&shards, &expected, &hash)?;
+        store::shard::experiments_hash(&project.experiments_dir, selection_files(files, &sel))?;
+    let described = all.keys();
+    store::shard::check_shards(&shards, &expected, &hash, |k| described.traced(k))?;
     drop(expected);
 
     let results = open_results(project, git_rev, all)?;
-    let described = all.keys();
     let pruned = results.plan_pruning_streamed(
         |row| described.contains(&row.key()),
         project.prune,
         &project.experiments_dir,
     )?;
-    drop(described);
+    // Of the described runs, only those that keep no trace are held on.
+    let untraced = described.into_untraced();
     for line in results.prune(&pruned)? {
         eprintln!("{line}");
     }
@@ -67,7 +68,7 @@ pub fn merge_shards(
     }
     let gone: HashSet<RunKey> = pruned.iter().map(RunRow::key).collect();
     let stored = read_key_ordered(&results.runs_path())?;
-    let from_shards = records::shard::runs_files(&shards)?;
+    let from_shards = store::shard::runs_files(&shards)?;
     let joints = from_shards
         .iter()
         .map(|f| f.joints())
@@ -87,7 +88,9 @@ pub fn merge_shards(
     let rows = latest(KeyMerge::new(sources)?, |_| {}).map(|r| {
         let (source, row) = r?;
         if source > 0 {
-            records::shard::copy_trace(&shards[source - 1], &row, &results)?;
+            if !untraced.contains(&row.key()) {
+                store::shard::copy_trace(&shards[source - 1], &row, &results)?;
+            }
             runs += 1;
             if !row.completed() && !analysis::gate::expected_to_diverge(&row) {
                 unexpected.push(format!("{}: {}", row.key(), row.failure));
@@ -97,7 +100,7 @@ pub fn merge_shards(
     });
     let written = results.commit_runs(joints, rows)?;
     eprintln!(
-        "merged {} shard(s): {runs} runs and their traces; wrote {} ({written} rows)",
+        "merged {} shard(s): {runs} runs and the traces they keep; wrote {} ({written} rows)",
         shards.len(),
         results.runs_path().display()
     );

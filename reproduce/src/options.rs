@@ -2,12 +2,12 @@
 //! ([`GlobalOptions`]). They are what the library takes: the command line ([`crate::cli`])
 //! parses into them, and a program calling the library fills them in itself.
 
-use catalog::ids::{ExperimentId, PaperId};
-use catalog::run_key::TaskKey;
 use clap::{Args, Subcommand};
-use records::shard::{Selection, Shard, ShardError};
-use records::tracked_dir::Edits;
+use spec::ids::{ExperimentId, PaperId};
+use spec::run_key::TaskKey;
 use std::path::PathBuf;
+use store::shard::{Selection, Shard, ShardError};
+use store::tracked_dir::Edits;
 
 /// The options of every mode, given before or after the subcommand: where the project and its
 /// directories are, the worker threads, and how the results store treats edited or pruned files.

@@ -20,11 +20,11 @@
 //! `share_pct` are the only columns that change between two runs of the same code on the same
 //! machine.
 
-use records::error::{IoAction, IoError, RunsError};
 use records::table::Row;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::time::Instant;
+use store::error::{IoAction, IoError, RunsError};
 
 /// The file name the benches keep it under (`benches/results/phases.csv`).
 pub const FILE: &str = "phases.csv";
@@ -113,7 +113,7 @@ pub struct PhaseRow {
     pub items: Option<usize>,
     /// Why a phase was skipped, or what else to know about it (runs resumed from the journal).
     pub note: String,
-    /// The run's selection flags (`records::shard::Selection` as text).
+    /// The run's selection flags (`store::shard::Selection` as text).
     pub selection: String,
     /// Whether the selection was every run (a whole reproduction).
     pub whole: bool,
@@ -198,13 +198,13 @@ pub fn write(path: &Path, rows: &[PhaseRow]) -> Result<(), RunsError> {
         path: path.to_path_buf(),
         source,
     })?;
-    records::runs::write_atomic(path, &bytes).map_err(IoError::at(path, IoAction::Write))?;
+    store::atomic::write_atomic(path, &bytes).map_err(IoError::at(path, IoAction::Write))?;
     Ok(())
 }
 
 /// Reads the phase table at `path`; an absent file is no rows.
 pub fn read(path: &Path) -> Result<Vec<PhaseRow>, RunsError> {
-    records::table::read_if_present(path).map_err(|error| RunsError::Table {
+    store::table::read_if_present(path).map_err(|error| RunsError::Table {
         path: path.to_path_buf(),
         error,
     })

@@ -5,9 +5,9 @@
 
 use crate::error::ReproduceError;
 use crate::options::{GlobalOptions, ShardSpec};
-use records::shard::Shard;
-use records::tracked_dir::Edits;
 use std::path::PathBuf;
+use store::shard::Shard;
+use store::tracked_dir::Edits;
 
 /// `--threads` may ask for at most this many worker threads per core: more only adds
 /// contention, and a mistyped count (100000) must not stall the machine before it says so.
@@ -43,7 +43,7 @@ impl Project {
 
     /// The directories of `global` under `root`.
     fn under(root: PathBuf, global: &GlobalOptions, shard: Option<Shard>) -> Self {
-        let results = shard.map_or_else(|| records::results_dir::DIR.to_string(), |s| s.dir_name());
+        let results = shard.map_or_else(|| store::results_dir::DIR.to_string(), |s| s.dir_name());
         Project {
             experiments_dir: global
                 .experiments_dir

@@ -7,8 +7,10 @@ use crate::error::ReproduceError;
 use crate::papers::load_checked_papers;
 use crate::project::Project;
 use crate::results::{experiment_files, open_results, Described};
-use records::results_dir::ResultsDir;
+use spec::run_key::RunKey;
+use std::collections::HashSet;
 use std::path::{Path, PathBuf};
+use store::results_dir::ResultsDir;
 
 /// `reproduce report` (`--report-only`): re-renders report/ from the stored results.
 pub fn report_only(project: &Project, git_rev: &str) -> Result<(), ReproduceError> {
@@ -24,7 +26,7 @@ pub fn report_only(project: &Project, git_rev: &str) -> Result<(), ReproduceErro
 /// The report is rendered beside the results directory: `<root>/results` -> `<root>/report`.
 pub fn report_root(project: &Project) -> Result<PathBuf, ReproduceError> {
     match project.results_dir.file_name() {
-        Some(name) if name == records::results_dir::DIR => Ok(project
+        Some(name) if name == store::results_dir::DIR => Ok(project
             .results_dir
             .parent()
             .map(PathBuf::from)
@@ -38,9 +40,9 @@ pub fn report_root(project: &Project) -> Result<PathBuf, ReproduceError> {
 /// Checks, before anything runs, that `root/report` and its figures directory lie inside the
 /// project (no symbolic link leading elsewhere) and that the report can be written there.
 pub fn check_report_dir(root: &Path) -> Result<(), ReproduceError> {
-    let report = records::tracked_dir::TrackedDir::open_within(root, "report")?;
+    let report = store::tracked_dir::TrackedDir::open_within(root, "report")?;
     report.resolve(Path::new(presentation::figures::FIGURES))?;
-    Ok(records::runs::check_writable(report.path())?)
+    Ok(store::runs::check_writable(report.path())?)
 }
 
 /// Before anything runs in a mode that renders the report: its directory lies inside the
@@ -67,19 +69,27 @@ pub fn render_report(
     root: &Path,
     results: &ResultsDir,
 ) -> Result<(), ReproduceError> {
-    render_figures(root, None)?;
+    let files = experiment_files(project)?;
+    let untraced = Described::new(&files).keys().into_untraced();
+    drop(files);
+    render_figures(root, None, &untraced)?;
     render_pages(project, root, results)
 }
 
 /// The report's figures under `root/report/figures/`; how many, said on stderr. First removes
 /// this program's own temporary files that a killed write left in report/ and its
 /// sub-directories (a kill while a page or figure was written, e.g. on a full disk;
-/// `records::results_dir::remove_own_tmp`). Called with the results directory's lock held,
+/// `store::results_dir::remove_own_tmp`). Called with the results directory's lock held,
 /// which guards report/ too, so no other process's temporary file is in flight. With `paper`,
-/// only that paper's figures are drawn (`presentation::figures::render_paper`).
-pub fn render_figures(root: &Path, paper: Option<&str>) -> Result<usize, ReproduceError> {
-    let report = records::tracked_dir::TrackedDir::open_within(root, "report")?;
-    let removed = records::results_dir::remove_own_tmp(report.owned());
+/// only that paper's figures are drawn (`presentation::figures::render_paper`); the runs of
+/// `untraced` keep no trace by choice and get no figure of their own.
+pub fn render_figures(
+    root: &Path,
+    paper: Option<&str>,
+    untraced: &HashSet<RunKey>,
+) -> Result<usize, ReproduceError> {
+    let report = store::tracked_dir::TrackedDir::open_within(root, "report")?;
+    let removed = store::results_dir::remove_own_tmp(report.owned());
     if !removed.is_empty() {
         eprintln!(
             "removed {} stale temporary file(s) of interrupted writes under {}",
@@ -88,8 +98,8 @@ pub fn render_figures(root: &Path, paper: Option<&str>) -> Result<usize, Reprodu
         );
     }
     let figures = match paper {
-        Some(p) => presentation::figures::render_paper(root, p)?.len(),
-        None => presentation::figures::render_all(root)?.len(),
+        Some(p) => presentation::figures::render_paper(root, p, untraced)?.len(),
+        None => presentation::figures::render_all(root, untraced)?.len(),
     };
     eprintln!("wrote {figures} figures");
     Ok(figures)

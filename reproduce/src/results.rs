@@ -1,17 +1,18 @@
-//! The results directory as the modes use it (records::results_dir): opened for writing once
+//! The results directory as the modes use it (store::results_dir): opened for writing once
 //! per mode (the lock, the integrity check of its tables, the migration of rows written before
 //! run ids), and written at the end of a run or merge (pruning, merging, runs.csv, manifest).
 
 use crate::error::ReproduceError;
 use crate::project::Project;
-use catalog::experiment::{load_dir, Job, PaperFile};
-use catalog::run_key::RunKey;
-use records::migrate::LabelIndex;
-use records::results_dir::ResultsDir;
+use catalog::experiment::{load_dir, PaperFile};
 use records::runs::{merge, RunRow};
 use simulation::run::RunRecord;
+use spec::run::RunSpec;
+use spec::run_key::RunKey;
 use std::cell::OnceCell;
 use std::collections::HashSet;
+use store::migrate::LabelIndex;
+use store::results_dir::ResultsDir;
 
 /// The experiment files of the project, loaded and validated.
 pub fn experiment_files(project: &Project) -> Result<Vec<PaperFile>, ReproduceError> {
@@ -25,10 +26,10 @@ pub fn experiment_files(project: &Project) -> Result<Vec<PaperFile>, ReproduceEr
 /// runs with), made from the files when asked: as keys or a label index, taken as the runs
 /// are made (what a shard needs), or as jobs, collected once on first use (what the gate, the
 /// explanation layer, inference and the timing pass need). A shard of a 10^6-run sweep so never
-/// holds every run as a [`Job`] (docs/cluster.md).
+/// holds every run as a [`RunSpec`] (docs/cluster.md).
 pub struct Described<'a> {
     files: &'a [PaperFile],
-    jobs: OnceCell<Vec<Job>>,
+    jobs: OnceCell<Vec<RunSpec>>,
 }
 
 impl<'a> Described<'a> {
@@ -45,14 +46,22 @@ impl<'a> Described<'a> {
     }
 
     /// Every run, in file order, collected on the first call.
-    pub fn jobs(&self) -> &[Job] {
+    pub fn jobs(&self) -> &[RunSpec] {
         self.jobs
             .get_or_init(|| self.files.iter().flat_map(PaperFile::jobs).collect())
     }
 
-    /// The run keys (`experiment / variant / solver`).
-    pub fn keys(&self) -> HashSet<RunKey> {
-        self.runs().map(|j| j.key()).collect()
+    /// The run keys (`experiment / variant / solver`), and which of them keep no trace.
+    pub fn keys(&self) -> Keys {
+        let mut keys = Keys::default();
+        for j in self.runs() {
+            let key = j.key();
+            if !j.keep_trace {
+                keys.untraced.insert(key.clone());
+            }
+            keys.described.insert(key);
+        }
+        keys
     }
 
     /// The index by labels by which results written before run ids are migrated.
@@ -61,12 +70,38 @@ impl<'a> Described<'a> {
     }
 
     /// The runs, made one variant at a time.
-    fn runs(&self) -> impl Iterator<Item = Job> + '_ {
+    fn runs(&self) -> impl Iterator<Item = RunSpec> + '_ {
         self.files.iter().flat_map(PaperFile::iter_jobs)
     }
 }
 
-/// Opens the results directory for writing (records::results_dir): the lock, the integrity
+/// The keys of the runs the experiment files describe ([`Described::keys`]).
+#[derive(Default)]
+pub struct Keys {
+    described: HashSet<RunKey>,
+    /// The described runs that keep no trace by choice (their sweep's `traces`).
+    untraced: HashSet<RunKey>,
+}
+
+impl Keys {
+    /// Whether an experiment file describes the run `key`.
+    pub fn contains(&self, key: &RunKey) -> bool {
+        self.described.contains(key)
+    }
+
+    /// Whether the run `key` keeps its trace: every run but those whose sweep chose not to
+    /// (a run no file describes included: its trace, if any, is its own).
+    pub fn traced(&self, key: &RunKey) -> bool {
+        !self.untraced.contains(key)
+    }
+
+    /// The described runs that keep no trace by choice (the rest dropped).
+    pub fn into_untraced(self) -> HashSet<RunKey> {
+        self.untraced
+    }
+}
+
+/// Opens the results directory for writing (store::results_dir): the lock, the integrity
 /// check of its tables, the removal of this program's own stale temporary files.
 /// `all`: every run of the experiment files, by which results written before run ids are
 /// migrated.
@@ -83,7 +118,7 @@ pub fn open_results(
             project.results_dir.display()
         );
     }
-    // Results written before run ids are migrated once (records::migrate).
+    // Results written before run ids are migrated once (store::migrate).
     for done in results.migrate_ids(|| all.label_index())? {
         eprintln!(
             "migrated to run ids under {}: {done}",
@@ -112,7 +147,8 @@ pub fn plan_pruning(
 
 /// Prunes the stored rows no experiment file describes (said run by run; their traces only if
 /// this program wrote them), merges the fresh rows into the kept ones, writes the traces of
-/// `untraced` (the runs the journal could not checkpoint) and runs.csv, and saves the manifest.
+/// `untraced` (the runs the journal could not checkpoint; those that keep one) and runs.csv,
+/// and saves the manifest.
 pub fn write_results(
     results: &ResultsDir,
     untraced: &[&RunRecord],
@@ -131,7 +167,9 @@ pub fn write_results(
     }
     let merged = merge(kept, rows);
     for r in untraced {
-        results.write_trace(&r.job.key(), &r.run.trace)?;
+        if let Some(trace) = crate::journal::kept_trace(r) {
+            results.write_trace(&r.job.key(), trace)?;
+        }
     }
     results.write_runs(&merged)?;
     results.save()?;

@@ -13,9 +13,9 @@ pub const REVISION: &str = env!("DRIFTBENCH_REVISION");
 mod tests {
     use super::source::{revision, sources, sources_hash};
     use super::REVISION;
-    use records::fnv::fnv1a64;
     use std::path::Path;
     use std::process::Command;
+    use store::fnv::fnv1a64;
 
     fn hex(s: &str, n: usize) -> bool {
         s.len() == n && s.bytes().all(|b| b.is_ascii_hexdigit())

@@ -18,14 +18,14 @@ use crate::project::Project;
 use crate::report::{precheck_report, render_figures, render_pages, report_root};
 use crate::results::{open_results, plan_pruning, write_results, Described};
 use crate::summary::{emit, summary};
-use catalog::experiment::Job;
-use records::results_dir::ResultsDir;
 use records::runs::RunRow;
-use records::shard::Shard;
 use simulation::row::run_row;
 use simulation::run::RunRecord;
+use spec::run::RunSpec;
 use std::process::ExitCode;
 use std::time::Instant;
+use store::results_dir::ResultsDir;
+use store::shard::Shard;
 
 /// Where a run's rows go.
 #[derive(Debug)]
@@ -63,7 +63,7 @@ pub fn run(
     project: &Project,
     plan: Plan<'_>,
     all: &Described,
-    jobs: &[Job],
+    jobs: &[RunSpec],
     git_rev: &str,
 ) -> Result<ExitCode, ReproduceError> {
     if let Output::Shard(shard) = plan.output {
@@ -81,7 +81,7 @@ pub fn run(
         .as_ref()
         .map(|r| plan_pruning(project, r, all))
         .transpose()?;
-    let mut to_run: Vec<Job> = jobs.to_vec();
+    let mut to_run: Vec<RunSpec> = jobs.to_vec();
     if let (Some(results), Some((kept, _))) = (&results, stored.as_mut()) {
         resume(results, git_rev, all, kept, &mut to_run)?;
     }
@@ -106,7 +106,7 @@ pub fn run(
                 .transpose()?;
             // The control experiments, re-run by a whole check where their runs are committed.
             let control = (plan.selection.is_whole() && !baseline.control.is_empty())
-                .then(|| fresh_control(project))
+                .then(|| fresh_control(project, all.jobs()))
                 .transpose()?;
             return Ok(baseline.verdict(
                 &rows,
@@ -123,7 +123,7 @@ pub fn run(
             .filter(|r| unjournaled.contains(&r.job.key()))
             .collect();
         write_results(results, &untraced, kept, &pruned, rows)?;
-        records::journal::remove(results.path())?;
+        store::journal::remove(results.path())?;
         clock.lap_noted(
             Phase::Runs,
             Some(jobs.len()),
@@ -144,23 +144,23 @@ pub fn run(
 
 /// The control experiments (control crate) run afresh for the gate, written into a scratch
 /// directory (removed after) and read back: `results/` is not touched.
-fn fresh_control(project: &Project) -> Result<Vec<records::control::ControlRow>, ReproduceError> {
+/// `jobs` is every run of the experiment files (the tasks are found among them).
+fn fresh_control(
+    project: &Project,
+    jobs: &[RunSpec],
+) -> Result<Vec<records::control::ControlRow>, ReproduceError> {
     let scratch =
         std::env::temp_dir().join(format!("driftbench-check-control-{}", std::process::id()));
-    std::fs::create_dir_all(&scratch).map_err(records::error::IoError::at(
+    std::fs::create_dir_all(&scratch).map_err(store::error::IoError::at(
         &scratch,
-        records::error::IoAction::Write,
+        store::error::IoAction::Write,
     ))?;
     eprintln!("re-running the control experiments for the gate");
     let ran = control::standard_task_set(&project.experiments_dir)
-        .and_then(|set| {
-            control::reproduce(&set, &project.experiments_dir, &scratch, |m| {
-                eprintln!("{m}")
-            })
-        })
+        .and_then(|set| control::reproduce(&set, jobs, &scratch, |m| eprintln!("{m}")))
         .map_err(ReproduceError::from)
         .and_then(|_| {
-            records::control::read(&scratch, records::results_dir::CONTROL)
+            store::control::read(&scratch, store::results_dir::CONTROL)
                 .map_err(|e| control::ControlError::from(e).into())
         });
     // The scratch copy is the gate's own; failing to remove it loses nothing.
@@ -179,7 +179,7 @@ fn judge_claim(
         .into_iter()
         .map(analysis::control_claim::judge)
         .collect();
-    records::control::write(results, records::results_dir::CONTROL_CLAIM, &claims)
+    store::control::write(results, store::results_dir::CONTROL_CLAIM, &claims)
         .map_err(control::ControlError::from)?;
     let verdicts: Vec<records::control::Verdict> = claims.iter().map(|c| c.verdict).collect();
     Ok(analysis::control_claim::overall(&verdicts))
@@ -194,7 +194,7 @@ fn publish(
     plan: &Plan<'_>,
     results: &ResultsDir,
     all: &Described,
-    jobs: &[Job],
+    jobs: &[RunSpec],
     git_rev: &str,
     mut clock: PhaseClock,
 ) -> Result<(), ReproduceError> {
@@ -212,9 +212,7 @@ fn publish(
     // The control experiments (control crate) with a whole, unselected reproduction.
     if plan.selection.is_whole() {
         match control::standard_task_set(&project.experiments_dir).and_then(|set| {
-            control::reproduce(&set, &project.experiments_dir, &project.results_dir, |m| {
-                eprintln!("{m}")
-            })
+            control::reproduce(&set, all.jobs(), &project.results_dir, |m| eprintln!("{m}"))
         }) {
             Ok(s) => {
                 let verdict = judge_claim(&project.results_dir, s.claim_checks)?;
@@ -248,7 +246,8 @@ fn publish(
         Ok(root) => {
             // `run --paper X` draws X's figures only (the pages are all re-rendered: they
             // are cheap, and the front page summarises every paper).
-            let figures = render_figures(&root, plan.selection.paper.as_deref())?;
+            let untraced = all.keys().into_untraced();
+            let figures = render_figures(&root, plan.selection.paper.as_deref(), &untraced)?;
             clock.lap(Phase::Figures, Some(figures));
             render_pages(project, &root, results)?;
             clock.lap(Phase::Report, None);

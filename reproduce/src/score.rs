@@ -13,21 +13,23 @@ use crate::error::{ReproduceError, ScoreError};
 use crate::options::ScoreOptions;
 use crate::project::Project;
 use crate::summary::{emit, summary};
-use catalog::experiment::{load_dir, Job, PaperFile};
-use catalog::ids::SolverId;
-use catalog::run_key::TaskKey;
+use catalog::experiment::{load_dir, PaperFile};
 use inputs::trajectory::read;
 use inputs::trajectory::Columns;
 use presentation::figures::run_figure;
-use records::error::{IoAction, IoError};
-use records::owned_dir::OwnedDir;
-use records::runs::{merge, write_atomic, RunRow};
+use records::runs::{merge, RunRow};
 use records::trace::trace_csv;
 use records::trajectory::score_row;
 use simulation::row::run_row;
 use simulation::run::{check_job, RunRecord};
 use simulation::score_trajectory::score_trajectory;
+use spec::ids::SolverId;
+use spec::run::RunSpec;
+use spec::run_key::TaskKey;
 use std::path::{Path, PathBuf};
+use store::atomic::write_atomic;
+use store::error::{IoAction, IoError};
+use store::owned_dir::OwnedDir;
 
 /// Scores `options.file` on `options.task` (an id `experiment / variant`) into `options.out`.
 pub fn score(
@@ -127,7 +129,7 @@ pub fn significant_digits(v: f64) -> usize {
 
 /// The task `"<experiment> / <variant>"` (ids) of the experiment files in `experiments_dir`, as
 /// its first run (a trajectory is scored on its robot, path, scheme and poses only).
-pub fn find_task(experiments_dir: &Path, task: &TaskKey) -> Result<Job, ScoreError> {
+pub fn find_task(experiments_dir: &Path, task: &TaskKey) -> Result<RunSpec, ScoreError> {
     load_dir(experiments_dir, check_job)?
         .iter()
         .flat_map(PaperFile::jobs)
@@ -138,10 +140,10 @@ pub fn find_task(experiments_dir: &Path, task: &TaskKey) -> Result<Job, ScoreErr
 /// Scores the trajectory file `file` (CSV, or a MAT-file: `inputs::trajectory::read`) on
 /// `task` (a MAT-file's `columns` when given) under the solver id `name` (a slug), and writes
 /// the row, trace and figure (SVG and PNG) under `out`: a directory of its own, never one this
-/// program seals ([`check_out`]), every path inside it checked (`records::owned_dir`: a
+/// program seals ([`check_out`]), every path inside it checked (`store::owned_dir`: a
 /// `traces/<experiment>` that is a symbolic link elsewhere is refused).
 pub fn score_file(
-    task: &Job,
+    task: &RunSpec,
     file: &Path,
     columns: Option<&Columns>,
     name: &str,
@@ -165,7 +167,7 @@ pub fn score_file(
     let dir = OwnedDir::open(out)?;
     let scores = dir.resolve(Path::new(SCORES))?;
     let stored: Vec<RunRow> = if scores.exists() {
-        records::table::read(&scores)?
+        store::table::read(&scores)?
     } else {
         Vec::new()
     };
@@ -184,7 +186,7 @@ pub fn score_file(
     }
     let rows = merge(stored, vec![row.clone()]);
     let stem = row.key().stem();
-    let rel_trace = Path::new(records::results_dir::TRACES)
+    let rel_trace = Path::new(store::results_dir::TRACES)
         .join(&row.experiment)
         .join(format!("{stem}.csv"));
     let rel_figure = Path::new("figures").join(presentation::figures::run_figure_name(&row.key()));
@@ -233,12 +235,12 @@ pub const SCORES: &str = "scores.csv";
 
 /// A scored trajectory's name: a slug that can name its files, and not the exact column's id.
 fn check_name(name: &str) -> Result<SolverId, ScoreError> {
-    if name == catalog::run_key::EXACT_ID {
+    if name == spec::run::EXACT_ID {
         return Err(ScoreError::ReservedName {
             name: name.to_string(),
         });
     }
-    let max = catalog::naming::MAX_SOLVER_LABEL;
+    let max = spec::naming::MAX_SOLVER_LABEL;
     if let Ok(id) = SolverId::new(name) {
         return Ok(id);
     }
@@ -256,10 +258,10 @@ fn check_name(name: &str) -> Result<SolverId, ScoreError> {
 }
 
 /// Refuses an out directory that is, or lies inside, a directory this program seals with a
-/// manifest (results/, report/, a shard directory; `records::integrity::sealed_by`): scores
+/// manifest (results/, report/, a shard directory; `store::integrity::sealed_by`): scores
 /// written there would pass for runs.
 pub fn check_out(out: &Path) -> Result<(), ScoreError> {
-    match records::integrity::sealed_by(out) {
+    match store::integrity::sealed_by(out) {
         Some(sealed) => Err(ScoreError::Sealed {
             out: out.to_path_buf(),
             sealed,
@@ -294,8 +296,8 @@ mod tests {
             max_pos_err: Some(max_pos_err),
             path_scale: Some(0.2),
             ..RunRow::blank(
-                &catalog::run_key::RunKey::from_ids("e", "v", "trajectory").unwrap(),
-                catalog::solver_kind::SolverKind::Trajectory,
+                &spec::run_key::RunKey::from_ids("e", "v", "trajectory").unwrap(),
+                spec::solver_kind::SolverKind::Trajectory,
             )
         };
         let exact = trajectory(vec![vec![std::f64::consts::PI, 0.0], vec![1.0 / 3.0, 0.5]]);

@@ -1,21 +1,22 @@
 //! The runs a command line selects: `--paper`, `--experiment` (repeatable) and `--exact-only`
 //! narrow the runs the experiment files describe; a paper or experiment no file names is an
 //! error that lists the known ones. `--shard K/N` keeps, of the selected runs in their order,
-//! those whose index i (from 0) has i mod N = K - 1 (`records::shard`): [`Kept`] finds them by
+//! those whose index i (from 0) has i mod N = K - 1 (`store::shard`): [`Kept`] finds them by
 //! counting each variant's runs ([`catalog::experiment::Variant::run_count`]) and makes only
 //! the variants that hold one, so a shard of a 10^6-run sweep makes its own runs alone.
 
 use crate::error::ReproduceError;
-use catalog::experiment::{Experiment, Job, PaperFile, SolverChoice, Variant};
-use records::shard::{Selection, Shard};
+use catalog::experiment::{Experiment, PaperFile, Variant};
+use spec::run::{RunSpec, SolverChoice};
 use std::collections::HashSet;
+use store::shard::{Selection, Shard};
 
 /// The runs of `files` that `selection` keeps, in file order, made as they are taken (a
 /// caller collects what it needs). [`check_selection`] first.
 pub fn selected<'a>(
     files: &'a [PaperFile],
     selection: &'a Selection,
-) -> impl Iterator<Item = Job> + 'a {
+) -> impl Iterator<Item = RunSpec> + 'a {
     Kept {
         selection,
         shard: None,
@@ -86,7 +87,7 @@ impl<'a> Kept<'a> {
         f: &'a PaperFile,
         e: &'a Experiment,
         start: usize,
-    ) -> impl Iterator<Item = Job> + 'a {
+    ) -> impl Iterator<Item = RunSpec> + 'a {
         let variants = if self.takes(f, e) {
             &e.variants[..]
         } else {
@@ -111,7 +112,7 @@ impl<'a> Kept<'a> {
     }
 
     /// The kept runs of `files`, in order, made as they are taken.
-    pub fn runs(self, files: &'a [PaperFile]) -> impl Iterator<Item = Job> + 'a {
+    pub fn runs(self, files: &'a [PaperFile]) -> impl Iterator<Item = RunSpec> + 'a {
         let mut start = 0;
         files
             .iter()
@@ -126,7 +127,7 @@ impl<'a> Kept<'a> {
 
 /// The names of the experiment files of `files` that `selection` draws its runs from: the
 /// files of its paper (all without `--paper`) that define one of its experiments (any without
-/// `--experiment`). A shard is bound to these files only (records::shard::experiments_hash):
+/// `--experiment`). A shard is bound to these files only (store::shard::experiments_hash):
 /// another file added beside them does not make the shard's runs another sweep's.
 pub fn selection_files<'a>(
     files: &'a [PaperFile],
@@ -181,7 +182,7 @@ mod tests {
     use std::path::Path;
 
     /// The project's experiment files and their runs.
-    fn project() -> (Vec<PaperFile>, Vec<Job>) {
+    fn project() -> (Vec<PaperFile>, Vec<RunSpec>) {
         let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../experiments");
         let files =
             load_dir(&dir, simulation::run::check_job).expect("the project's experiment files");
@@ -193,7 +194,7 @@ mod tests {
         paper: Option<&str>,
         experiments: &[&str],
         exact_only: bool,
-    ) -> Result<Vec<Job>, ReproduceError> {
+    ) -> Result<Vec<RunSpec>, ReproduceError> {
         let (files, _) = project();
         let selection = Selection {
             paper: paper.map(String::from),
@@ -207,7 +208,7 @@ mod tests {
     #[test]
     fn no_flag_selects_every_run() {
         let (_, all) = project();
-        let keys = |jobs: &[Job]| jobs.iter().map(Job::key).collect::<Vec<_>>();
+        let keys = |jobs: &[RunSpec]| jobs.iter().map(RunSpec::key).collect::<Vec<_>>();
         assert_eq!(keys(&select(None, &[], false).unwrap()), keys(&all));
     }
 
@@ -315,7 +316,7 @@ mod tests {
                         "shard {k}/{n} of {paper:?}, exact only {exact_only}"
                     );
                     assert_eq!(kept.owned_in(0, keys.len()), got.len());
-                    assert_eq!(records::shard::plan(keys.len(), n)[k - 1], got.len());
+                    assert_eq!(store::shard::plan(keys.len(), n)[k - 1], got.len());
                     seen += got.len();
                 }
                 assert_eq!(seen, keys.len());

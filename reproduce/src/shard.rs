@@ -1,26 +1,26 @@
 //! `reproduce shard` (`--shard K/N`): the shard's runs into its own directory in memory flat in
 //! the number of runs (docs/cluster.md). The directory is bound to the shard
-//! (records::shard::Binding) before anything runs; an interrupted start's journal is folded
+//! (store::shard::Binding) before anything runs; an interrupted start's journal is folded
 //! into `runs.csv` and the runs an earlier start finished are skipped; each run, as it
 //! finishes, is checkpointed (trace, seal, journal row) and dropped; at the end the journal is
 //! folded into `runs.csv` by streaming ([`crate::journal::fold`]), the summary printed row by
 //! row as it is folded, and the shard's manifest written last.
 
 use crate::error::ReproduceError;
-use crate::journal::{fold, joints, skip_finished};
+use crate::journal::{fold, joints, kept_trace, skip_finished};
 use crate::options::SelectionOptions;
 use crate::project::Project;
 use crate::results::{open_results, Described};
 use crate::run::{failure, summarise_failures};
 use crate::select::selection_files;
 use crate::summary::{emit, Summary};
-use catalog::experiment::Job;
 use records::runs::RunRow;
-use records::shard::{Binding, Shard};
 use simulation::row::run_row;
 use simulation::run::RunRecord;
 use simulation::runner::run_jobs_into;
+use spec::run::RunSpec;
 use std::process::ExitCode;
+use store::shard::{Binding, Shard};
 
 /// What a shard keeps of a finished run: nothing of a run checkpointed in the journal but
 /// whether it failed (and whether its experiment file expects it), the whole record of a run
@@ -39,7 +39,7 @@ pub fn run_shard(
     selection: &SelectionOptions,
     shard: Shard,
     all: &Described,
-    jobs: &[Job],
+    jobs: &[RunSpec],
     git_rev: &str,
 ) -> Result<ExitCode, ReproduceError> {
     // One writer at a time: the lock is held until the process ends.
@@ -54,14 +54,14 @@ pub fn run_shard(
     let binding = Binding {
         shard: shard.k,
         shards: shard.n,
-        experiments_hash: records::shard::experiments_hash(
+        experiments_hash: store::shard::experiments_hash(
             &project.experiments_dir,
             selection_files(all.files(), &selection.selection()),
         )?,
         selection: selection.selection(),
     };
     binding.claim(&results)?;
-    records::shard::Manifest::remove(&project.results_dir)?;
+    store::shard::Manifest::remove(&project.results_dir)?;
     fold(
         &results,
         git_rev,
@@ -71,13 +71,12 @@ pub fn run_shard(
         false,
         |_| {},
     )?;
-    let mut to_run: Vec<Job> = jobs.to_vec();
-    skip_finished(&results, git_rev, &mut to_run)?;
+    let to_run = skip_finished(&results, git_rev, jobs)?;
 
-    let journal = records::journal::Journal::open(&results, joints(jobs))?;
+    let journal = store::journal::Journal::open(&results, joints(jobs))?;
     let kept = run_jobs_into(&to_run, true, |r| {
         let row = run_row(&r, git_rev);
-        match journal.record(&row, &r.run.trace) {
+        match journal.record(&row, kept_trace(&r)) {
             Ok(()) => Kept::Journaled((!row.completed()).then(|| failure(&row))),
             Err(e) => {
                 eprintln!("warning: run not checkpointed: {e}");
@@ -92,7 +91,9 @@ pub fn run_shard(
         match k {
             Kept::Journaled(f) => failed.extend(f),
             Kept::Unjournaled(r) => {
-                results.write_trace(&r.job.key(), &r.run.trace)?;
+                if let Some(trace) = kept_trace(&r) {
+                    results.write_trace(&r.job.key(), trace)?;
+                }
                 let row = run_row(&r, git_rev);
                 if !row.completed() {
                     failed.push(failure(&row));

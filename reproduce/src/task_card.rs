@@ -13,20 +13,22 @@
 //! nobody edited is removed). [`cards`] renders them in memory.
 
 use catalog::error::ExperimentFileError;
-use catalog::error::SetupError;
-use catalog::experiment::{load_dir, Job, PaperFile, SolverChoice};
+use catalog::experiment::{load_dir, PaperFile};
 use presentation::task_card::{
     self as card, CardRun, Kinematics as CardKinematics, MountCard, PathCard, QpCard, RobotCard,
     RunSettings, SchemeCard, SchemeForm, StartCard, TaskCard,
 };
 use qp::Qp;
-use records::tracked_dir::{Removal, TrackedDir, TrackedError};
 use robots::registry::{robot_by_name, Kinematics, Model};
 use simulation::run::check_job;
 use simulation::task_numbers::{task_numbers, TaskNumbers};
+use spec::run::RunSpec;
+use spec::run::SetupError;
+use spec::run::SolverChoice;
 use spec::scheme::SchemeSpec;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use store::tracked_dir::{Removal, TrackedDir, TrackedError};
 
 pub use presentation::task_card::INDEX;
 
@@ -56,7 +58,7 @@ pub enum TaskCardError {
 pub fn cards(experiments_dir: &Path) -> Result<BTreeMap<String, String>, TaskCardError> {
     let files = load_dir(experiments_dir, check_job)?;
     // Every run of a task, in the files' order; the first one describes the task.
-    let mut tasks: Vec<(String, Vec<Job>)> = Vec::new();
+    let mut tasks: Vec<(String, Vec<RunSpec>)> = Vec::new();
     for job in files.iter().flat_map(PaperFile::jobs) {
         let id = job.task().to_string();
         match tasks.iter_mut().find(|(t, _)| *t == id) {
@@ -106,13 +108,13 @@ pub fn write_all(experiments: &Path, root: &Path) -> Result<PathBuf, TaskCardErr
 }
 
 /// `<experiment>--<variant slug>.md`.
-fn card_name(job: &Job) -> String {
+fn card_name(job: &RunSpec) -> String {
     format!("{}--{}.md", job.experiment, job.variant_id)
 }
 
 /// One task's card model from its runs `jobs` (the first describes the task), its numbers `n`
 /// and its robot's model.
-fn task_card(jobs: &[Job], n: TaskNumbers, robot: &Model) -> Result<TaskCard, TaskCardError> {
+fn task_card(jobs: &[RunSpec], n: TaskNumbers, robot: &Model) -> Result<TaskCard, TaskCardError> {
     let job = &jobs[0];
     let runs = jobs
         .iter()
@@ -137,14 +139,19 @@ fn task_card(jobs: &[Job], n: TaskNumbers, robot: &Model) -> Result<TaskCard, Ta
             })
         })
         .collect::<Result<Vec<CardRun>, TaskCardError>>()?;
-    let mount = job.mount.as_ref().map(|m| {
-        let (t, b) = (m.tool(), m.base());
-        MountCard {
-            tool: [t.x, t.y, t.z],
-            base_origin: [b.origin.x, b.origin.y, b.origin.z],
-            base_rotation_rows: b.rot.transpose().as_slice().to_vec(),
-        }
-    });
+    let mount = simulation::run::job_mount(job)
+        .map_err(|source| TaskCardError::Setup {
+            task: job.task().to_string(),
+            source,
+        })?
+        .map(|m| {
+            let (t, b) = (m.tool(), m.base());
+            MountCard {
+                tool: [t.x, t.y, t.z],
+                base_origin: [b.origin.x, b.origin.y, b.origin.z],
+                base_rotation_rows: b.rot.transpose().as_slice().to_vec(),
+            }
+        });
     Ok(TaskCard {
         task: job.task().to_string(),
         file_name: card_name(job),

@@ -10,16 +10,16 @@
 
 use analysis::leaderboard::standard_tasks;
 use analysis::papers::{Papers, PapersError};
-use catalog::experiment::Job;
-use catalog::run_key::RunKey;
 use records::index::Runs;
-use records::results_dir::{ResultsDir, ResultsError};
 use records::runs::RunRow;
 use records::timing::{TimingRow, Timings, REPETITIONS};
 use simulation::row::run_row;
 use simulation::run::run_job;
+use spec::run::RunSpec;
+use spec::run_key::RunKey;
 use std::collections::BTreeSet;
 use std::path::Path;
+use store::results_dir::{ResultsDir, ResultsError};
 
 /// Why the timing pass could not run or write its table.
 #[derive(Debug, thiserror::Error)]
@@ -27,7 +27,7 @@ pub enum TimingError {
     #[error(transparent)]
     Results(#[from] ResultsError),
     #[error(transparent)]
-    Runs(#[from] records::error::RunsError),
+    Runs(#[from] store::error::RunsError),
     #[error(transparent)]
     Papers(#[from] PapersError),
     #[error("{0}: a stored run no experiment file describes cannot be timed")]
@@ -62,7 +62,7 @@ pub fn timed_keys(runs: &Runs, papers: &Papers) -> BTreeSet<RunKey> {
 /// into `results` (papers read from `papers_dir`); `all` are the experiment files' jobs. Returns
 /// how many runs were timed.
 pub fn time_alone(
-    all: &[Job],
+    all: &[RunSpec],
     results: &ResultsDir,
     papers_dir: &Path,
     git_rev: &str,
@@ -91,7 +91,7 @@ pub fn time_alone(
         ));
     }
     let timed = rows.len();
-    records::timing::write(results.path(), &Timings::new(rows))?;
+    store::timing::write(results.path(), &Timings::new(rows))?;
     results.save()?;
     Ok(timed)
 }
@@ -100,11 +100,11 @@ pub fn time_alone(
 mod tests {
     use super::*;
     use analysis::papers::{Mapping, PaperValue};
-    use catalog::solver_kind::SolverKind;
     use settings::network_kind::NetworkKind;
+    use spec::solver_kind::SolverKind;
 
     fn row(paper: &str, experiment: &str, variant: &str, solver: &str) -> RunRow {
-        let kind = if solver == catalog::run_key::EXACT_ID {
+        let kind = if solver == spec::run::EXACT_ID {
             SolverKind::Exact
         } else {
             SolverKind::Network(NetworkKind::ALL[0])

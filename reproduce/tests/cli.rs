@@ -5,8 +5,8 @@
 use crate::common;
 
 use common::reproduce;
-use records::runs::{read_runs, runs_csv};
-
+use records::runs::runs_csv;
+use store::runs::read_runs;
 #[test]
 fn the_gate_compares_with_the_stated_baseline() {
     let root = catalog::root::from_current_dir().unwrap();
@@ -145,7 +145,7 @@ fn runs_of_deleted_experiments_are_pruned() {
     )
     .unwrap();
     let mut stale = committed[0].clone();
-    stale.experiment = catalog::ids::ExperimentId::new("kong2019-deleted").unwrap();
+    stale.experiment = spec::ids::ExperimentId::new("kong2019-deleted").unwrap();
     std::fs::write(
         results.join("runs.csv"),
         runs_csv(&[stale.clone()]).unwrap(),

@@ -78,7 +78,7 @@ fn a_results_directory_the_system_will_not_create_is_an_io_failure() {
 
 #[test]
 fn a_poisoned_lock_is_an_internal_error() {
-    let e = ReproduceError::Journal(records::journal::JournalError::Poisoned);
+    let e = ReproduceError::Journal(store::journal::JournalError::Poisoned);
     assert_eq!(e.exit(), Exit::Internal);
     assert_eq!(e.exit().code(), 70);
 }

@@ -7,15 +7,15 @@ use common::{copy_tree, ok, reproduce};
 use records::attribution::AttributionRow;
 use records::control::ControlRow;
 use records::ladder::LadderRow;
-use records::results_dir::ResultsDir;
-use records::tracked_dir::Edits;
 use std::path::Path;
+use store::results_dir::ResultsDir;
+use store::tracked_dir::Edits;
 
 /// Rewrites the results table `file` of `results` by `edit` and re-seals the manifest, as a
 /// deliberate edit (`--accept-edited`) would.
 fn doctor<T: records::table::Row>(results: &Path, file: &str, edit: impl Fn(&mut Vec<T>)) {
     let path = results.join(file);
-    let mut rows: Vec<T> = records::table::read(&path).unwrap();
+    let mut rows: Vec<T> = store::table::read(&path).unwrap();
     edit(&mut rows);
     std::fs::write(&path, records::table::to_csv(&rows).unwrap()).unwrap();
     let (dir, _) = ResultsDir::open(results, "test", Edits::Accept).unwrap();
@@ -102,7 +102,7 @@ fn a_doctored_and_resealed_control_number_fails_the_gate() {
         .output()
         .unwrap());
     let results = root.join("results");
-    let rows: Vec<ControlRow> = records::table::read(&results.join("control.csv")).unwrap();
+    let rows: Vec<ControlRow> = store::table::read(&results.join("control.csv")).unwrap();
     assert!(!rows.is_empty(), "the fixture's control task ran");
     let agree = ok(check(&root));
     let stdout = String::from_utf8_lossy(&agree.stdout);

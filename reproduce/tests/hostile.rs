@@ -8,9 +8,10 @@
 use crate::common;
 
 use common::{ok, reproduce};
-use records::runs::{read_runs, runs_csv, RunRow};
+use records::runs::{runs_csv, RunRow};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
+use store::runs::read_runs;
 
 /// [`common::CHEAP_EXPERIMENT`] with a second variant.
 fn cheap() -> String {
@@ -319,7 +320,7 @@ fn write_journal(p: &Project, rows: &[RunRow]) {
             .unwrap();
         text.push_str(&String::from_utf8(w.into_inner().unwrap()).unwrap());
     }
-    std::fs::write(records::journal::path(&p.results()), text).unwrap();
+    std::fs::write(store::journal::path(&p.results()), text).unwrap();
 }
 
 #[test]
@@ -572,7 +573,7 @@ mod shards {
         std::fs::write(&manifest, text).unwrap();
 
         // A trace missing: refused before anything is written.
-        let trace = records::results_dir::ResultsDir::trace_rel(&r1[0].key());
+        let trace = store::results_dir::ResultsDir::trace_rel(&r1[0].key());
         let saved = std::fs::read(dirs[0].join(&trace)).unwrap();
         std::fs::remove_file(dirs[0].join(&trace)).unwrap();
         refused(merge(&p, &dirs, &[]), "missing");

@@ -362,7 +362,7 @@ fn a_baseline_is_read_as_an_input_before_anything_runs() {
 fn a_shard_manifest_is_read_as_an_input() {
     let p = Project::new("shard");
     let shard = p.root().join("results-shard-1-of-2");
-    let at = shard.join(records::shard::MANIFEST);
+    let at = shard.join(store::shard::MANIFEST);
     for h in all(inputs::Kind::ShardManifest) {
         h.make(&p, &at);
         let mut merge = p.cmd();

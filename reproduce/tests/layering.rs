@@ -6,14 +6,19 @@
 //!   explain; the cost harness is reproduce's, which links them): rendering the report and
 //!   its figures needs only the records of the runs;
 //! - the numerical crates (robots, schemes, settings, solvers) link no experiment-file or
-//!   results crate (catalog, records): a user can take the arms, the schemes and the solvers
+//!   results crate (catalog, records, store): a user can take the arms, the schemes and the solvers
 //!   without the experiment files. (robots reads its own robot files, so TOML is allowed, and
 //!   reads URDFs through `inputs`, the one reader of files from outside, which holds no file
 //!   format of the suite's.)
-//! - the experiment-file and results crates (catalog, records) link no engine crate (schemes,
-//!   solvers, simulation): they state a scheme, a path or a solver as data (crates `spec` and
-//!   `settings`), which the engine builds from;
-//! - `spec` (runs as data) is a leaf: it links no workspace member;
+//! - the experiment-file and results crates (catalog, records, store) link no engine crate
+//!   (schemes, solvers, simulation): they state a scheme, a path or a solver as data (crates
+//!   `spec` and `settings`), which the engine builds from;
+//! - the row schemas (records) link no store: the store (the sealed results directory, its
+//!   journal and shards) reads and writes the schemas' rows, never the other way;
+//! - `spec` (runs as data) links no workspace member but `settings` (the solvers' settings as
+//!   data), which links none;
+//! - the engine (simulation, control) links no experiment-file crate (catalog): it builds a
+//!   run from spec's `RunSpec`, and the orchestrator (reproduce) loads the files;
 //! - the engine (simulation, control) links no verdict crate (analysis): it runs and writes
 //!   rows, and the papers' claims are decided from the rows (zhong2021's efficiency claim in
 //!   `analysis::control_claim`, called by the orchestrator and the report);
@@ -32,8 +37,9 @@ const SOLVING: [&str; 4] = ["solvers", "simulation", "control", "explain"];
 /// The numerical crates, usable without experiment files.
 const NUMERICAL: [&str; 4] = ["robots", "schemes", "settings", "solvers"];
 
-/// What the numerical crates may not link: the experiment-file and results crates.
-const FILE_FORMATS: [&str; 2] = ["catalog", "records"];
+/// What the numerical crates may not link: the experiment-file and results crates (the row
+/// schemas and the store).
+const FILE_FORMATS: [&str; 3] = ["catalog", "records", "store"];
 
 /// The engine: the crates that build and run schemes and solvers.
 const ENGINE: [&str; 3] = ["schemes", "solvers", "simulation"];
@@ -194,19 +200,62 @@ fn the_file_formats_link_no_engine() {
 }
 
 #[test]
+fn the_schemas_link_no_store() {
+    let graph = workspace();
+    assert!(
+        graph["store"].iter().any(|d| d == "records"),
+        "the store reads and writes the schemas' rows: the graph must show it"
+    );
+    let found = offending(&graph, "records", &["store"]);
+    assert!(
+        found.is_empty(),
+        "records links the store (the schemas only serialise rows):\n  {}",
+        found.join("\n  ")
+    );
+}
+
+#[test]
 fn the_specifications_are_a_leaf() {
     let graph = workspace();
-    let members: Vec<&str> = graph.keys().map(String::as_str).collect();
+    // spec states runs with the solvers' settings (crate `settings`, a leaf of plain data too)
+    // and links nothing else of the workspace.
+    let members: Vec<&str> = graph
+        .keys()
+        .map(String::as_str)
+        .filter(|m| *m != "settings")
+        .collect();
     let found = offending(&graph, "spec", &members);
     assert!(
         found.is_empty(),
-        "spec links workspace members:\n  {}",
+        "spec links workspace members other than settings:\n  {}",
         found.join("\n  ")
+    );
+    assert!(
+        offending(&graph, "settings", &members).is_empty(),
+        "settings, which spec links, links no workspace member"
     );
     assert!(
         graph["catalog"].iter().any(|d| d == "spec"),
         "catalog reads experiment files into spec's types: the graph must show it"
     );
+}
+
+#[test]
+fn the_engine_reads_no_experiment_file() {
+    let graph = workspace();
+    for package in ["simulation", "control"] {
+        assert!(
+            graph.contains_key(package),
+            "{package} is a workspace member"
+        );
+        let found = offending(&graph, package, &["catalog"]);
+        assert!(
+            found.is_empty(),
+            "{package} links the experiment files' crate (the engine builds from spec's types; \
+             the orchestrator loads the files):\n  {}",
+            found.join("\n  ")
+        );
+    }
 }
 
 #[test]

@@ -20,11 +20,12 @@
 //! is set (`.ci/run` sets it): there a missing Octave fails the test, so CI cannot pass
 //! vacuously.
 
-use catalog::experiment::{load_dir, PaperFile, SolverChoice};
+use catalog::experiment::{load_dir, PaperFile};
 use records::runs::RunRow;
 use simulation::row::run_row;
 use simulation::run::check_job;
 use simulation::run::run_job;
+use spec::run::SolverChoice;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -75,7 +76,7 @@ fn score(root: &Path, file: &Path, out: &Path) -> RunRow {
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let mut rows: Vec<RunRow> = records::table::read(&out.join("scores.csv")).unwrap();
+    let mut rows: Vec<RunRow> = store::table::read(&out.join("scores.csv")).unwrap();
     assert_eq!(rows.len(), 1);
     rows.remove(0)
 }

@@ -9,9 +9,7 @@
 //! transform numbers ([`FORBIDDEN`]). The figures (`presentation/src/figures/`) are not
 //! searched: placing a drawing on its canvas is their rendering.
 
-mod common;
-
-use common::{lex, library_part, repo_root};
+use crate::common::{lex, library_part, repo_root};
 
 /// Calls that aggregate or transform numbers.
 const FORBIDDEN: [&str; 15] = [

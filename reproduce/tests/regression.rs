@@ -4,10 +4,11 @@
 
 use analysis::gate::compare;
 use catalog::experiment::load_dir;
-use records::runs::{read_runs, RunRow};
+use records::runs::RunRow;
 use simulation::row::run_row;
 use simulation::run::check_job;
 use simulation::runner::run_jobs;
+use store::runs::read_runs;
 
 #[test]
 fn fresh_run_matches_the_committed_results() {

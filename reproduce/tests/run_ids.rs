@@ -3,8 +3,8 @@
 
 use crate::common;
 use common::{ok, reproduce};
-use records::runs::read_runs;
 use std::path::{Path, PathBuf};
+use store::runs::read_runs;
 
 /// kong2019's experiment file with every `label = "..."` (variant labels, sweep templates)
 /// rewritten.

@@ -2,10 +2,11 @@
 //! suite's own ZNN run) is scored with the run's drift, and its row, trace and figure are
 //! written under --score-out; a task that does not exist is refused with the library's message.
 
-use catalog::experiment::{load_dir, PaperFile, SolverChoice};
+use catalog::experiment::{load_dir, PaperFile};
 use simulation::run::check_job;
 use simulation::run::run_job;
 use simulation::simulate::Outcome;
+use spec::run::SolverChoice;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -61,7 +62,7 @@ fn a_trajectory_file_is_scored_on_its_task() {
         "{}",
         String::from_utf8_lossy(&ok.stderr)
     );
-    let rows: Vec<records::runs::RunRow> = records::table::read(&out.join("scores.csv")).unwrap();
+    let rows: Vec<records::runs::RunRow> = store::table::read(&out.join("scores.csv")).unwrap();
     assert_eq!(rows.len(), 1);
     assert_eq!(rows[0].drift, metrics.drift);
     assert_eq!(rows[0].solver, "trajectory znn.csv");
@@ -208,7 +209,7 @@ fn a_trajectory_file_is_scored_on_its_task() {
         "{}",
         String::from_utf8_lossy(&named.stderr)
     );
-    let rows: Vec<records::runs::RunRow> = records::table::read(&out.join("scores.csv")).unwrap();
+    let rows: Vec<records::runs::RunRow> = store::table::read(&out.join("scores.csv")).unwrap();
     let ids: Vec<&str> = rows
         .iter()
         .filter(|r| r.experiment == job.experiment)

@@ -6,8 +6,8 @@
 use crate::common;
 
 use common::{ok, reproduce};
-use records::runs::read_runs;
 use std::path::PathBuf;
+use store::runs::read_runs;
 
 fn temp(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("driftbench-shards-{name}-{}", std::process::id()));
@@ -142,7 +142,7 @@ sweep = { "scheme.mu" = [1, 2, 4] }
     );
 
     common::resume_completes(run, &results, 3, 4);
-    let manifest = records::shard::Manifest::read(&results).unwrap();
+    let manifest = store::shard::Manifest::read(&results).unwrap();
     assert_eq!(
         (manifest.shard, manifest.shards, manifest.runs.len()),
         (1, 1, 4)
@@ -357,7 +357,7 @@ fn shard_lists_partition_the_selection() {
     assert_eq!(parts, all);
 }
 
-/// Kill safety at every durable step (records::kill_point: each rename, journal append and
+/// Kill safety at every durable step (store::kill_point: each rename, journal append and
 /// removal is one): for every step N of a shard's first start, the shard is killed there, then
 /// started again and killed at the N-th step of that start (which, as N grows, falls on every
 /// step of the resume: the fold's runs.csv and manifest, the journal's removal, ...), then
@@ -385,7 +385,7 @@ fn a_shard_killed_after_any_durable_step_resumes_and_merges_equal_to_one_process
             .arg("--results-dir")
             .arg(dir);
         if let Some(n) = kill_after {
-            c.env(records::kill_point::VAR, n.to_string());
+            c.env(store::kill_point::VAR, n.to_string());
         }
         c.output().unwrap()
     };
@@ -466,7 +466,7 @@ fn a_shard_killed_every_few_steps_finishes_after_a_bounded_number_of_starts() {
             .arg(&experiments)
             .arg("--results-dir")
             .arg(&dir)
-            .env(records::kill_point::VAR, "10")
+            .env(store::kill_point::VAR, "10")
             .output()
             .unwrap();
         if !String::from_utf8_lossy(&out.stderr).contains("killed after durable step") {
@@ -475,7 +475,7 @@ fn a_shard_killed_every_few_steps_finishes_after_a_bounded_number_of_starts() {
         }
     }
     assert!(starts > 1, "the kill came before the shard's end");
-    let manifest = records::shard::Manifest::read(&dir).unwrap();
+    let manifest = store::shard::Manifest::read(&dir).unwrap();
     assert_eq!(manifest.runs.len(), 3);
     assert_eq!(read_runs(&dir.join("runs.csv")).unwrap().len(), 3);
     let _ = std::fs::remove_dir_all(&base);
@@ -492,4 +492,119 @@ scheme = { kind = "kong2019-znn", k_p = 1.0 }
 sweep = { "scheme.mu" = [1, 2] }
 "#
     )
+}
+
+/// Traces by choice (a sweep's `traces`): with `"none"` and with `{ every = 3 }`, one
+/// process and two shards merged write a row for every run and the traces of the chosen runs
+/// only (the sweep's runs 0 and 3 of five with every = 3; the experiment's run without a sweep
+/// keeps its own); the merge equals the one process, and `check` against the merged rows
+/// passes. A bad `traces` is refused at load (exit 2) naming the file, the field and choices.
+#[test]
+fn a_sweep_keeps_the_traces_it_chooses_unsharded_and_merged() {
+    for (name, traces, kept) in [
+        ("none", "\"none\"", vec![]),
+        ("every", "{ every = 3 }", vec!["mu-1", "mu-4"]),
+    ] {
+        let base = temp(&format!("traces-{name}"));
+        let experiments = base.join("experiments");
+        std::fs::create_dir_all(&experiments).unwrap();
+        std::fs::write(
+            experiments.join("kong2019.toml"),
+            format!(
+                "{}[[experiment.variant]]\nid = \"s\"\nlabel = \"ZNN swept\"\nscheme = {{ kind = \"kong2019-znn\", k_p = 1.0 }}\ntraces = {traces}\nsweep = {{ \"scheme.mu\" = [1, 2, 3, 4, 5] }}\n",
+                common::CHEAP_EXPERIMENT
+            ),
+        )
+        .unwrap();
+        let run = |args: &[&str], dir: &PathBuf| {
+            ok(reproduce()
+                .args(["--paper", "kong2019", "--experiments-dir"])
+                .arg(&experiments)
+                .args(args)
+                .arg("--results-dir")
+                .arg(dir)
+                .output()
+                .unwrap())
+        };
+        let whole = base.join("whole");
+        run(&["--skip-explain"], &whole);
+        let shards: Vec<PathBuf> = (1..=2).map(|k| base.join(format!("s{k}"))).collect();
+        for (k, d) in shards.iter().enumerate() {
+            run(&["--shard", &format!("{}/2", k + 1)], d);
+        }
+        let merged = base.join("merged");
+        ok(reproduce()
+            .arg("--merge")
+            .args(&shards)
+            .arg("--experiments-dir")
+            .arg(&experiments)
+            .arg("--results-dir")
+            .arg(&merged)
+            .output()
+            .unwrap());
+        let mut want: Vec<PathBuf> = kept
+            .iter()
+            .map(|v| PathBuf::from(format!("kong2019-cheap/s-{v}__exact.csv")))
+            .collect();
+        want.push(PathBuf::from("kong2019-cheap/znn-eq.-22__exact.csv"));
+        want.sort();
+        for dir in [&whole, &merged] {
+            assert_eq!(read_runs(&dir.join("runs.csv")).unwrap().len(), 6, "{name}");
+            let names: Vec<PathBuf> = common::traces(dir).into_iter().map(|(p, _)| p).collect();
+            assert_eq!(names, want, "{name}: {}", dir.display());
+        }
+        assert_eq!(
+            common::comparable(read_runs(&merged.join("runs.csv")).unwrap()),
+            common::comparable(read_runs(&whole.join("runs.csv")).unwrap())
+        );
+        assert!(common::traces(&merged) == common::traces(&whole));
+        // The merged rows are a baseline the same runs reproduce.
+        ok(reproduce()
+            .args(["--check", "--paper", "kong2019", "--experiments-dir"])
+            .arg(&experiments)
+            .arg("--baseline")
+            .arg(merged.join("runs.csv"))
+            .output()
+            .unwrap());
+        // A shard started again runs nothing (its rows are done, with or without a trace).
+        let again = reproduce()
+            .args(["--paper", "kong2019", "--experiments-dir"])
+            .arg(&experiments)
+            .args(["--shard", "1/2", "--results-dir"])
+            .arg(&shards[0])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&again.stderr);
+        assert!(
+            again.status.success() && err.contains("already done"),
+            "{err}"
+        );
+        let _ = std::fs::remove_dir_all(&base);
+    }
+    let base = temp("traces-bad");
+    let experiments = base.join("experiments");
+    std::fs::create_dir_all(&experiments).unwrap();
+    std::fs::write(
+        experiments.join("kong2019.toml"),
+        format!(
+            "{}[[experiment.variant]]\nlabel = \"S\"\nscheme = {{ kind = \"kong2019-znn\", k_p = 1.0 }}\ntraces = \"some\"\nsweep = {{ \"scheme.mu\" = [1, 2] }}\n",
+            common::CHEAP_EXPERIMENT
+        ),
+    )
+    .unwrap();
+    let out = reproduce()
+        .args(["--list", "--experiments-dir"])
+        .arg(&experiments)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("kong2019.toml")
+            && err.contains(
+                "field `traces`: must be \"all\" (the default), \"none\" or { every = k }"
+            ),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&base);
 }

@@ -351,10 +351,10 @@ fn slow_shard(root: &Path) -> (usize, usize) {
         .map(|j| j.key().to_string())
         .collect();
     assert_eq!(keys.len(), 1 + QUICK_MU.len());
-    // Run i of the selection is shard i mod N + 1's (records::shard).
-    let shard = records::shard::Shard::of_index(0, SHARDS);
+    // Run i of the selection is shard i mod N + 1's (store::shard).
+    let shard = store::shard::Shard::of_index(0, SHARDS);
     let quick = (1..keys.len())
-        .filter(|&i| records::shard::Shard::of_index(i, SHARDS) == shard)
+        .filter(|&i| store::shard::Shard::of_index(i, SHARDS) == shard)
         .count();
     assert!(
         quick > 0,
@@ -365,7 +365,7 @@ fn slow_shard(root: &Path) -> (usize, usize) {
 
 /// Rows in the journal of shard directory `dir` (after its header).
 fn journal_rows(dir: &Path) -> usize {
-    std::fs::read_to_string(records::journal::path(dir))
+    std::fs::read_to_string(store::journal::path(dir))
         .map(|t| t.lines().count().saturating_sub(1))
         .unwrap_or(0)
 }

@@ -52,6 +52,7 @@ pub struct Katana6m180 {
 }
 
 /// Sines and cosines shared by the position, Jacobian and Jdot.
+#[derive(Clone, Copy)]
 struct Trig {
     s1: f64,
     c1: f64,
@@ -63,9 +64,31 @@ struct Trig {
     c234: f64,
 }
 
+thread_local! {
+    /// The last angles this thread asked for and their `Trig`: a network's right-hand side
+    /// asks for f and J, then for Jdot, at the same angles, and the observer again at an
+    /// accepted step's (a Runge-Kutta method's last stage), so the eight sines and cosines are
+    /// evaluated once there. The values only depend on the angles, compared bit for bit.
+    static LAST: std::cell::Cell<Option<([u64; 5], Trig)>> = const { std::cell::Cell::new(None) };
+}
+
 impl Trig {
+    /// The sines and cosines at `theta`, from this thread's last evaluation when the angles
+    /// are the same bit for bit (`LAST`).
     fn new(theta: &[f64]) -> Self {
         assert_eq!(theta.len(), 5, "katana6m180: 5 joint angles");
+        let key = [0, 1, 2, 3, 4].map(|i| theta[i].to_bits());
+        LAST.with(|last| match last.get() {
+            Some((k, t)) if k.iter().zip(&key).all(|(a, b)| a == b) => t,
+            _ => {
+                let t = Self::compute(theta);
+                last.set(Some((key, t)));
+                t
+            }
+        })
+    }
+
+    fn compute(theta: &[f64]) -> Self {
         let (s1, c1) = theta[0].sin_cos();
         let (s2, c2) = theta[1].sin_cos();
         let (s23, c23) = (theta[1] + theta[2]).sin_cos();

@@ -41,6 +41,7 @@ use nalgebra::{Matrix3, Vector3};
 
 use crate::dh::Frame;
 use crate::{Dynamics, JointLimits, Orientation, Robot};
+use spec::mount::MountError;
 
 /// The largest tool offset or base translation, per coordinate (m): an arm's reach is metres,
 /// so a larger value is a typing error (millimetres written as metres), not a mount.
@@ -51,70 +52,6 @@ pub const MAX_ANGLE: f64 = 2.0 * std::f64::consts::PI;
 
 /// How far B e_z may be from e_z (a rotation about z, up to rounding) for dynamics.
 const VERTICAL_TOL: f64 = 1e-12;
-
-/// Why a mount is invalid, or does not fit the robot; the field is the experiment file's.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-pub enum MountError {
-    /// An entry is NaN or infinite.
-    #[error("`{field}[{index}]` is not a finite number")]
-    NotFinite {
-        /// `tool`, `base.xyz` or `base.rpy`.
-        field: &'static str,
-        /// The entry (from 0).
-        index: usize,
-    },
-    /// An entry is outside its range.
-    #[error("`{field}[{index}]` = {value}: must be within [-{max}, {max}] {unit}")]
-    OutOfRange {
-        /// `tool`, `base.xyz` or `base.rpy`.
-        field: &'static str,
-        /// The entry (from 0).
-        index: usize,
-        /// The value given.
-        value: f64,
-        /// The bound ([`MAX_OFFSET`] or [`MAX_ANGLE`]).
-        max: f64,
-        /// `m` or `rad`.
-        unit: &'static str,
-    },
-    /// A tool offset on a robot whose tool frame is not modelled.
-    #[error(
-        "`tool`: robot \"{robot}\" has no tool frame to offset its task point in (no \
-         orientation: the DH robots and URDF robots have one, the Katana's closed form and the \
-         n-link family do not)"
-    )]
-    NoOrientation {
-        /// The robot's name.
-        robot: String,
-    },
-    /// A base that turns the vertical under a robot whose dynamics a scheme needs.
-    #[error(
-        "`base.rpy`: a roll or pitch turns gravity in robot \"{robot}\"'s frame, whose \
-         dynamics take it along their base's -z; with a scheme that needs dynamics only a \
-         rotation about z (yaw) is allowed"
-    )]
-    TiltedGravity {
-        /// The robot's name.
-        robot: String,
-    },
-}
-
-impl MountError {
-    /// The experiment-file field at fault: `tool` or `base`.
-    pub fn field(&self) -> &'static str {
-        match self {
-            MountError::NotFinite { field, .. } | MountError::OutOfRange { field, .. } => {
-                if *field == "tool" {
-                    "tool"
-                } else {
-                    "base"
-                }
-            }
-            MountError::NoOrientation { .. } => "tool",
-            MountError::TiltedGravity { .. } => "base",
-        }
-    }
-}
 
 /// A tool offset and a base transform (module documentation).
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -13,10 +13,11 @@ use nalgebra::{DMatrix, Matrix3, Matrix3xX, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use robots::chain::Chain;
-use robots::mounted::{Mount, MountError, Mounted};
+use robots::mounted::{Mount, Mounted};
 use robots::registry::robot_by_name;
 use robots::urdf::{read, ChainEnds};
 use robots::{ChainRobot, Dynamics, Orientation, Robot};
+use spec::mount::MountError;
 
 const H: f64 = 1e-6;
 /// Central differences of step 1e-6 on functions of order 1: truncation ~1e-12, rounding

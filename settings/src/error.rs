@@ -95,9 +95,9 @@ pub enum NetworkError {
         /// nu given.
         nu: f64,
     },
-    /// VP-RNN-PF's p or sigma out of range (zhong2021 (2.19)).
-    #[error("VP-RNN-PF needs p >= 0 and sigma > 0 (eq. 2.19), got p = {p}, sigma = {sigma}")]
-    VpRnnPf {
+    /// The penalty error form's (VP-RNN-PF's) p or sigma out of range (zhong2021 (2.19)).
+    #[error("the penalty error form (VP-RNN-PF's) needs p >= 0 and sigma > 0 (zhong2021 (2.19)), got p = {p}, sigma = {sigma}")]
+    Penalty {
         /// p given.
         p: f64,
         /// sigma given.

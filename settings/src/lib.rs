@@ -9,6 +9,8 @@
 //!   ([`activation::ActivationSpec`]; zhong2021 (2.29) and the group's power-sigmoid);
 //! - [`zeroing`]: the zeroing family as a vocabulary (gain law, activation, growing gain,
 //!   perturbation), of which the papers' zeroing networks are presets;
+//! - [`projection`]: the projection family as a vocabulary (error form with its scaling or
+//!   penalty, gain law, activation), of which LVI-PDNN, S-LVI-PDNN and VP-RNN-PF are presets;
 //! - [`qp_solver`]: the QP solvers' registry as data (id, name, settings with ranges and
 //!   defaults; [`qp_solver::QpSolverInfo`]) and their typed settings
 //!   ([`qp_solver::QpSolverSettings`]); crate `solvers`' `registry` holds the constructors;
@@ -42,6 +44,7 @@ pub mod error;
 pub mod integrator;
 pub mod linear_algebra;
 pub mod network_kind;
+pub mod projection;
 pub mod qp_solver;
 pub mod sign_power;
 pub mod slug;

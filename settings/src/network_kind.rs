@@ -13,7 +13,7 @@ pub enum NetworkKind {
     LviPdnn,
     /// zhong2021's simplified LVI-PDNN.
     SLviPdnn,
-    /// jia2019 (2.19): the varying-parameter network with a penalty function.
+    /// zhong2021 (2.19)-(2.30): the varying-parameter network with a penalty function.
     VpRnnPf,
     /// zhang2018's fixed-parameter convergence-differential network.
     FpCdnn,
@@ -27,11 +27,13 @@ pub enum NetworkKind {
     GroupZnn,
     /// A zeroing network given as a point of the vocabulary (`crate::zeroing`).
     Zeroing,
+    /// A projection-family network given as a point of the vocabulary (`crate::projection`).
+    Projection,
 }
 
 impl NetworkKind {
     /// Every kind, in the order of [`crate::solver_spec::SolverSpec`]'s variants.
-    pub const ALL: [NetworkKind; 9] = [
+    pub const ALL: [NetworkKind; 10] = [
         NetworkKind::LviPdnn,
         NetworkKind::SLviPdnn,
         NetworkKind::VpRnnPf,
@@ -41,6 +43,7 @@ impl NetworkKind {
         NetworkKind::Znn,
         NetworkKind::GroupZnn,
         NetworkKind::Zeroing,
+        NetworkKind::Projection,
     ];
 
     /// The id experiment files and `runs.csv` use.
@@ -55,6 +58,7 @@ impl NetworkKind {
             NetworkKind::Znn => "znn",
             NetworkKind::GroupZnn => "group-znn",
             NetworkKind::Zeroing => "zeroing",
+            NetworkKind::Projection => "projection",
         }
     }
 }

@@ -13,6 +13,7 @@
 //! solver = { kind = "group-znn", gamma = 500, nu = 2500, perturbation = { a_s = 1.5, task_duration = 8 } }
 //! solver = { kind = "group-znn", udot_rmp = false, activation = "linear" }
 //! solver = { kind = "zeroing", gain = { law = "power", gamma = 1.0, p = 2.0 }, activation = "sign-bi-power", exponent = 0.5 }
+//! solver = { kind = "projection", error = { form = "lvi", scaling = "identity" }, gain = { law = "power", gamma = 1e3, p = 2.0 } }
 //! ```
 //!
 //! `zeroing` is the zeroing family as data ([`crate::zeroing`]): `gain` (a table with its `law`:
@@ -21,6 +22,11 @@
 //! 0), `perturbation`, `perturbation_matrix` (default true) and `udot_rmp` (default true). The
 //! other zeroing kinds (`fp-cdnn`, `vp-cdnn`, `finite-time`, `znn`, `group-znn`) are presets
 //! that expand to it ([`SolverSpec::zeroing`]).
+//!
+//! `projection` is the projection family as data ([`crate::projection`]): `error` (a table with
+//! its `form`: `lvi` with its `scaling`, `i-plus-mt` or `identity`; `penalty` with `p` and
+//! `sigma`), `gain` (the same gain laws) and `activation` with its parameters. `lvi-pdnn`,
+//! `s-lvi-pdnn` and `vp-rnn-pf` are presets that expand to it ([`SolverSpec::projection`]).
 //!
 //! `activation` is `linear` (default; for `group-znn` the default is `group-power-sigmoid`),
 //! `sinh`, `power-sigmoid` or `group-power-sigmoid`; `alpha`/`chi` (defaults 4 and 3) are the
@@ -46,6 +52,7 @@ use crate::activation::{
 };
 use crate::error::NetworkError;
 use crate::network_kind::NetworkKind;
+use crate::projection::{ProjectionErrorForm, ProjectionSpec, Scaling};
 use crate::zeroing::{GainLaw, ZeroingSpec};
 use serde::{Deserialize, Serialize};
 
@@ -234,6 +241,15 @@ pub enum SolverSpec {
         /// false: udot = [0; bdot].
         udot_rmp: bool,
     },
+    /// A projection-family network as a point of the vocabulary ([`crate::projection`]).
+    Projection {
+        /// The error driven to zero, with its scaling or penalty.
+        error: ProjectionErrorForm,
+        /// g(t).
+        gain: GainLaw,
+        /// Phi.
+        activation: ActivationSpec,
+    },
 }
 
 impl From<FileSolverSpec> for SolverSpec {
@@ -343,6 +359,25 @@ impl From<FileSolverSpec> for SolverSpec {
                 perturbation_matrix,
                 udot_rmp,
             },
+            FileSolverSpec::Projection {
+                error,
+                gain,
+                activation,
+                alpha,
+                chi,
+                xi,
+                power,
+                exponent,
+                smoothing,
+            } => SolverSpec::Projection {
+                error,
+                gain,
+                activation: ActivationSpec {
+                    exponent,
+                    smoothing,
+                    ..act(activation, alpha, chi, xi, power)
+                },
+            },
         }
     }
 }
@@ -440,6 +475,21 @@ impl From<SolverSpec> for FileSolverSpec {
                 perturbation,
                 perturbation_matrix,
                 udot_rmp,
+            },
+            SolverSpec::Projection {
+                error,
+                gain,
+                activation: a,
+            } => FileSolverSpec::Projection {
+                error,
+                gain,
+                activation: a.kind,
+                alpha: a.alpha,
+                chi: a.chi,
+                xi: a.xi,
+                power: a.power,
+                exponent: a.exponent,
+                smoothing: a.smoothing,
             },
         }
     }
@@ -565,6 +615,25 @@ enum FileSolverSpec {
         #[serde(default = "default_true")]
         udot_rmp: bool,
     },
+    /// The projection family as data ([`crate::projection`]).
+    Projection {
+        error: ProjectionErrorForm,
+        gain: GainLaw,
+        #[serde(default)]
+        activation: ActivationKind,
+        #[serde(default = "default_alpha")]
+        alpha: f64,
+        #[serde(default = "default_chi")]
+        chi: f64,
+        #[serde(default = "default_xi")]
+        xi: f64,
+        #[serde(default = "default_power")]
+        power: f64,
+        #[serde(default = "default_exponent")]
+        exponent: f64,
+        #[serde(default = "default_sign_smoothing")]
+        smoothing: f64,
+    },
 }
 
 impl SolverSpec {
@@ -586,17 +655,70 @@ impl SolverSpec {
             SolverSpec::Znn { .. } => NetworkKind::Znn,
             SolverSpec::GroupZnn { .. } => NetworkKind::GroupZnn,
             SolverSpec::Zeroing { .. } => NetworkKind::Zeroing,
+            SolverSpec::Projection { .. } => NetworkKind::Projection,
         }
     }
 
+    /// The projection-family network this spec is a preset of (module docs;
+    /// [`crate::projection`]), or `None` for the zeroing family ([`SolverSpec::zeroing`]).
+    pub fn projection(&self) -> Option<ProjectionSpec> {
+        let linear = ActivationSpec::of(ActivationKind::Linear);
+        let lvi = |scaling| ProjectionErrorForm::Lvi { scaling };
+        Some(match self {
+            SolverSpec::LviPdnn { gamma } => ProjectionSpec {
+                name: "LVI-PDNN",
+                error: lvi(Scaling::IPlusMt),
+                gain: GainLaw::Constant { gamma: *gamma },
+                activation: linear,
+            },
+            SolverSpec::SLviPdnn { beta } => ProjectionSpec {
+                name: "S-LVI-PDNN",
+                error: lvi(Scaling::Identity),
+                gain: GainLaw::Constant { gamma: *beta },
+                activation: linear,
+            },
+            SolverSpec::VpRnnPf {
+                p,
+                sigma,
+                gamma,
+                activation,
+            } => ProjectionSpec {
+                name: "VP-RNN-PF",
+                error: ProjectionErrorForm::Penalty {
+                    p: *p,
+                    sigma: *sigma,
+                },
+                gain: GainLaw::Exponential { gamma: *gamma },
+                activation: *activation,
+            },
+            SolverSpec::Projection {
+                error,
+                gain,
+                activation,
+            } => ProjectionSpec {
+                name: "projection",
+                error: *error,
+                gain: gain.clone(),
+                activation: *activation,
+            },
+            SolverSpec::FpCdnn { .. }
+            | SolverSpec::VpCdnn { .. }
+            | SolverSpec::FiniteTime { .. }
+            | SolverSpec::Znn { .. }
+            | SolverSpec::GroupZnn { .. }
+            | SolverSpec::Zeroing { .. } => return None,
+        })
+    }
+
     /// The zeroing network this spec is a preset of (module docs; [`crate::zeroing`]), or
-    /// `None` for the projection networks and VP-RNN-PF, which are not of that family.
+    /// `None` for the projection family ([`SolverSpec::projection`]).
     pub fn zeroing(&self) -> Option<ZeroingSpec> {
         let linear = ActivationSpec::of(ActivationKind::Linear);
         Some(match self {
             SolverSpec::LviPdnn { .. }
             | SolverSpec::SLviPdnn { .. }
-            | SolverSpec::VpRnnPf { .. } => return None,
+            | SolverSpec::VpRnnPf { .. }
+            | SolverSpec::Projection { .. } => return None,
             SolverSpec::FpCdnn {
                 gamma,
                 activation,
@@ -675,6 +797,9 @@ impl SolverSpec {
     pub fn id(&self) -> String {
         let d = self.distinguishing();
         let mut parts: Vec<String> = vec![self.kind().to_string()];
+        if let Some(error) = &d.error {
+            parts.push(crate::slug::slug(error));
+        }
         if let Some(law) = &d.law {
             parts.push(crate::slug::slug(law));
         }
@@ -700,6 +825,7 @@ impl SolverSpec {
     pub fn display_name(&self) -> String {
         let d = self.distinguishing();
         let mut parts: Vec<String> = Vec::new();
+        parts.extend(d.error.clone());
         parts.extend(d.law.clone());
         if let Some((gamma, nu)) = d.gains {
             parts.push(format!("gamma={gamma}"));
@@ -724,6 +850,7 @@ impl SolverSpec {
             SolverSpec::Znn { .. } => "ZNN",
             SolverSpec::GroupZnn { .. } => "group ZNN",
             SolverSpec::Zeroing { .. } => "ZNN",
+            SolverSpec::Projection { .. } => "projection network",
         };
         if parts.is_empty() {
             base.to_string()
@@ -788,30 +915,37 @@ impl SolverSpec {
                     .map(|p| (perturbation_matrix.then_some(p.a_d), p.a_s));
                 d.udot_without_qdot = !udot_rmp;
             }
+            SolverSpec::Projection {
+                error,
+                gain,
+                activation,
+            } => {
+                d.error = Some(error.name());
+                d.law = Some(gain.name());
+                d.activation = Some(activation.name());
+            }
         }
         d
     }
 
-    /// Whether the network needs dQP/dt (zeroing networks).
+    /// Whether the network needs dQP/dt (the zeroing family and the projection family's
+    /// `penalty` form, [`ProjectionSpec::needs_qp_dot`]).
     pub fn needs_qp_dot(&self) -> bool {
-        !matches!(
-            self,
-            SolverSpec::LviPdnn { .. } | SolverSpec::SLviPdnn { .. }
-        )
+        self.projection().is_none_or(|p| p.needs_qp_dot())
     }
 
-    /// Whether the network handles inequality rows and bounds (only the equality part otherwise).
+    /// Whether the network handles inequality rows and bounds: the projection family does, the
+    /// zeroing family solves the equality part only.
     pub fn handles_inequalities(&self) -> bool {
-        matches!(
-            self,
-            SolverSpec::LviPdnn { .. } | SolverSpec::SLviPdnn { .. } | SolverSpec::VpRnnPf { .. }
-        )
+        self.projection().is_some()
     }
 }
 
 /// What tells two networks of one kind apart in the experiment files.
 #[derive(Default)]
 struct Distinguishing {
+    /// A projection point's error form with its parameters.
+    error: Option<String>,
     /// A vocabulary network's gain law with its parameters (and its growing gain).
     law: Option<String>,
     /// The activation's name where it is named: always for VP-RNN-PF, when not linear for the
@@ -839,7 +973,7 @@ mod tests {
         toml::from_str::<Holder>(text).map(|h| h.solver)
     }
 
-    const EVERY_KIND: [&str; 9] = [
+    const EVERY_KIND: [&str; 11] = [
         "solver = { kind = \"lvi-pdnn\", gamma = 1e7 }",
         "solver = { kind = \"s-lvi-pdnn\", beta = 1e7 }",
         "solver = { kind = \"vp-rnn-pf\", p = 1e-4, sigma = 400.0, gamma = 2.0, activation = \"power-sigmoid\", alpha = 5.0, chi = 3.0 }",
@@ -849,6 +983,8 @@ mod tests {
         "solver = { kind = \"znn\", gamma = 1.0 }",
         "solver = { kind = \"group-znn\", gamma = 500.0, nu = 2500.0, perturbation = { a_s = 1.5, task_duration = 8.0 } }",
         "solver = { kind = \"group-znn\", udot_rmp = false, activation = \"linear\", power = 3.0 }",
+        "solver = { kind = \"projection\", error = { form = \"lvi\", scaling = \"i-plus-mt\" }, gain = { law = \"power\", gamma = 1e3, p = 2.0 } }",
+        "solver = { kind = \"projection\", error = { form = \"penalty\", p = 1e-4, sigma = 400.0 }, gain = { law = \"constant\", gamma = 2.0 }, activation = \"sinh\" }",
     ];
 
     #[test]
@@ -898,6 +1034,8 @@ mod tests {
                 "znn",
                 "group-znn-gamma-500-nu-2500-perturbed-as-1.5",
                 "group-znn-gamma-500-nu-2500-linear-udot-without-qdot",
+                "projection-lvi-i-plus-mt-power-gamma-1000-p-2-linear",
+                "projection-penalty-p-0.0001-sigma-400-constant-gamma-2-sinh",
             ]
         );
         assert_eq!(
@@ -914,8 +1052,57 @@ mod tests {
             "solver = { kind = \"lvi-pdnn\", gamma = 1e7, activation = \"sinh\" }",
             "solver = { kind = \"znn\", gamma = 1.0, chi = 3.0 }",
             "solver = { kind = \"vp-rnn-pf\", p = 1e-4, sigma = 400.0, gamma = 2.0, activation = \"tanh\" }",
+            "solver = { kind = \"projection\", error = { form = \"lvi\", scaling = \"identity\" } }",
+            "solver = { kind = \"projection\", error = { form = \"lvi\", scaling = \"identity\" }, gain = { law = \"constant\", gamma = 1.0 }, nu = 1.0 }",
         ] {
             assert!(parse(bad).is_err(), "accepted: {bad}");
         }
+    }
+
+    #[test]
+    fn the_projection_presets_expand_to_their_points() {
+        use crate::projection::{ProjectionErrorForm, Scaling};
+        let expand = |text: &str| parse(text).unwrap().projection().unwrap();
+        let lvi = expand(EVERY_KIND[0]);
+        assert_eq!(
+            (lvi.error, lvi.gain, lvi.activation.kind),
+            (
+                ProjectionErrorForm::Lvi {
+                    scaling: Scaling::IPlusMt
+                },
+                GainLaw::Constant { gamma: 1e7 },
+                ActivationKind::Linear
+            )
+        );
+        let s_lvi = expand(EVERY_KIND[1]);
+        assert_eq!(
+            s_lvi.error,
+            ProjectionErrorForm::Lvi {
+                scaling: Scaling::Identity
+            }
+        );
+        let vp = expand(EVERY_KIND[2]);
+        assert_eq!(
+            (vp.error, vp.gain, vp.activation.kind),
+            (
+                ProjectionErrorForm::Penalty {
+                    p: 1e-4,
+                    sigma: 400.0
+                },
+                GainLaw::Exponential { gamma: 2.0 },
+                ActivationKind::PowerSigmoid
+            )
+        );
+        for text in EVERY_KIND {
+            let spec = parse(text).unwrap();
+            assert_ne!(
+                spec.projection().is_some(),
+                spec.zeroing().is_some(),
+                "{text}: one family exactly"
+            );
+            assert_eq!(spec.handles_inequalities(), spec.projection().is_some());
+        }
+        assert!(!parse(EVERY_KIND[0]).unwrap().needs_qp_dot());
+        assert!(parse(EVERY_KIND[2]).unwrap().needs_qp_dot());
     }
 }

@@ -251,7 +251,9 @@ impl MetricsAccumulator {
         if let Some(tau) = s.torque {
             self.peak_torque = self.peak_torque.max(amax(tau));
         }
-        self.min_sigma = self.min_sigma.min(sigma_min(s.jacobian));
+        if !exceeds(s.jacobian, self.min_sigma) {
+            self.min_sigma = self.min_sigma.min(sigma_min(s.jacobian));
+        }
         self.last_error = e;
         self.last_t = Some(s.t);
         self.last_theta.copy_from_slice(s.theta);
@@ -342,6 +344,33 @@ impl MetricsAccumulator {
 pub fn sigma_min(j: &Matrix3xX<f64>) -> f64 {
     let jjt: nalgebra::Matrix3<f64> = j * j.transpose();
     jjt.symmetric_eigenvalues().min().max(0.0).sqrt()
+}
+
+/// Whether sigma_min(J) certainly exceeds `sigma` (so the running minimum stays `sigma`
+/// without an eigenvalue decomposition), by a lower bound of the least eigenvalue of
+/// M = J J' (symmetric, eigenvalues l1 <= l2 <= l3, all >= 0): with c2 = l1 l2 + l1 l3 + l2 l3
+/// (the sum of M's principal 2 x 2 minors) >= l2 l3, l1 = det M / (l2 l3) >= det M / c2, a
+/// bound within a fraction l1 (l2 + l3) / (l2 l3) of l1. It is taken to exceed sigma^2 only
+/// with a margin of 1 % and 1e-10 tr M, far above the rounding of det M and c2 (a few eps of
+/// (tr M)^3 and (tr M)^2) and of the eigenvalue sigma_min computes (a few eps tr M), so
+/// skipping never changes the minimum. False for an infinite `sigma` (the first sample) and
+/// for NaN.
+fn exceeds(j: &Matrix3xX<f64>, sigma: f64) -> bool {
+    let mut m = [[0.0; 3]; 3];
+    for c in j.column_iter() {
+        for (r, row) in m.iter_mut().enumerate() {
+            for (k, v) in row.iter_mut().enumerate() {
+                *v += c[r] * c[k];
+            }
+        }
+    }
+    let tr = m[0][0] + m[1][1] + m[2][2];
+    let minor = |a: usize, b: usize| m[a][a] * m[b][b] - m[a][b] * m[b][a];
+    let c2 = minor(0, 1) + minor(0, 2) + minor(1, 2);
+    let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+        - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    c2 > 0.0 && det / c2 > 1.01 * sigma * sigma + 1e-10 * tr
 }
 
 /// Distance of v inside [lo, hi] (negative when outside); infinite limits never bind.
@@ -481,6 +510,43 @@ mod tests {
         assert!((sigma_min(&j) - 0.5).abs() < 1e-12);
         let rotated = nalgebra::Rotation3::from_euler_angles(0.3, -0.2, 1.1).matrix() * j;
         assert!((sigma_min(&rotated) - 0.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_skip_bound_is_a_lower_bound_of_sigma_min() {
+        // sigma = (3, 2, 0.5), M = diag(9, 4, 0.25): det M / c2 = 9 / (36 + 2.25 + 1) =
+        // 0.2293, so sigma_min exceeds sqrt(0.2293 / 1.01) = 0.476 certainly, 0.48 is not
+        // certain.
+        let j = Matrix3xX::from_row_slice(&[
+            0.0, 3.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.5, 0.0,
+        ]);
+        assert!(exceeds(&j, 0.47) && !exceeds(&j, 0.48) && !exceeds(&j, f64::INFINITY));
+        // Over many Jacobians: whenever the bound says sigma_min(J) exceeds s, it does.
+        let mut state = 7u64;
+        let mut next = move || {
+            state = state.wrapping_mul(6364136223846793005).wrapping_add(1);
+            (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        let mut skipped = 0;
+        for _ in 0..2000 {
+            let j = Matrix3xX::from_fn(5, |_, _| next());
+            let exact = sigma_min(&j);
+            for s in [0.5 * exact, 0.9 * exact, 0.999 * exact, exact, 1.1 * exact] {
+                if exceeds(&j, s) {
+                    skipped += 1;
+                    assert!(
+                        exact > s,
+                        "sigma_min {exact} <= {s} though the bound skipped it"
+                    );
+                }
+            }
+        }
+        assert!(
+            skipped > 1000,
+            "the bound skipped only {skipped} of 10000 cases"
+        );
+        let nan = Matrix3xX::from_element(5, f64::NAN);
+        assert!(!exceeds(&nan, 0.1));
     }
 
     #[test]

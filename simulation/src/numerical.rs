@@ -24,14 +24,14 @@
 use crate::coupled::{arm_dim, arm_slices, ExactLoop};
 use crate::error::RunError;
 use crate::observer::{score_instant, Observer};
-use catalog::experiment::Scoring;
-use catalog::numerical_spec::NumericalSpec;
 use nalgebra::DVector;
 use qp::QpStatus;
 use schemes::scheme::Scheme;
 use solvers::exact_path::ExactPathStats;
 use solvers::ode::OdeStats;
 use solvers::registry::BoxedQpSolver;
+use spec::numerical::NumericalSpec;
+use spec::run::Scoring;
 use spec::scheme::Level;
 use std::time::Instant;
 
@@ -84,7 +84,7 @@ fn build_solver(
     budget: u64,
 ) -> Result<(BoxedQpSolver, Option<u32>), RunError> {
     let setup = |e: solvers::registry::RegistryError| {
-        RunError::Setup(catalog::error::SetupError::QpSolver(e.to_string()))
+        RunError::Setup(spec::run::SetupError::QpSolver(e.to_string()))
     };
     let mut settings = spec.resolved().map_err(|e| setup(e.into()))?;
     let requested = settings.max_iterations;

@@ -7,12 +7,12 @@
 
 use crate::coupled::{arm_slices, ExactLoop};
 use crate::metrics::{MetricsAccumulator, Sample, ScoreSample};
-use catalog::experiment::Scoring;
 use nalgebra::{DVector, Matrix3xX};
 use records::trace::TracePoint;
 use robots::Robot;
 use schemes::paths::Path;
 use schemes::scheme::Scheme;
+use spec::run::Scoring;
 use spec::scheme::Level;
 
 /// Samples kept per run for the figures (uniform in t, plus the last).

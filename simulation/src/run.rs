@@ -1,14 +1,11 @@
-//! Running one [`Job`] of an experiment file: build its robot (from the registry), path,
+//! Running one [`RunSpec`] of an experiment file: build its robot (from the registry), path,
 //! scheme and solver from the file's specifications, then [`simulate`] them.
 
 use crate::error::RunError;
 use crate::simulate::{simulate, Outcome, Run, Settings, Solver};
-use catalog::error::SetupError;
-use catalog::experiment::{Job, SolverChoice};
-use catalog::fields::JobPart;
 use nalgebra::DVector;
 use qp::QpDims;
-use robots::mounted::Mounted;
+use robots::mounted::{Mount, Mounted};
 use robots::registry::{robot_by_name, Model};
 use robots::{Dynamics, Robot};
 use schemes::build::build_scheme;
@@ -18,13 +15,17 @@ use settings::solver_spec::SolverSpec;
 use solvers::exact_path::ExactPathStats;
 use solvers::neural::NeuralSolver;
 use solvers::ode::OdeStats;
+use spec::run::JobPart;
+use spec::run::RunSpec;
+use spec::run::SetupError;
+use spec::run::SolverChoice;
 use std::sync::Arc;
 
 /// A job and what its simulation produced.
 #[derive(Clone, Debug)]
 pub struct RunRecord {
     /// The job that was run.
-    pub job: Job,
+    pub job: RunSpec,
     /// What its simulation produced.
     pub run: Run,
 }
@@ -48,18 +49,18 @@ pub fn build_network(
 }
 
 /// Runs one job to completion or failure; never panics on bad numerics.
-pub fn run_job(job: &Job) -> RunRecord {
+pub fn run_job(job: &RunSpec) -> RunRecord {
     run_job_as(job, None)
 }
 
 /// Runs the task of `job` (robot, path, scheme, poses, integrator, scoring, network start) with
 /// the network `network` builds in place of the job's solver, as [`run_job`] runs the job's own
 /// (a network written outside the suite, e.g. in Python). The record keeps `job` as given.
-pub fn run_job_with_network(job: &Job, network: NetworkBuilder<'_>) -> RunRecord {
+pub fn run_job_with_network(job: &RunSpec, network: NetworkBuilder<'_>) -> RunRecord {
     run_job_as(job, Some(network))
 }
 
-fn run_job_as(job: &Job, network: Option<NetworkBuilder<'_>>) -> RunRecord {
+fn run_job_as(job: &RunSpec, network: Option<NetworkBuilder<'_>>) -> RunRecord {
     let result = job_model(job)
         .map_err(RunError::from)
         .and_then(|model| run_with(job, network, model));
@@ -87,7 +88,7 @@ fn run_job_as(job: &Job, network: Option<NetworkBuilder<'_>>) -> RunRecord {
 /// and the network for the scheme's QP sizes) without integrating anything, so that an
 /// experiment file is rejected at load for exactly what would make its run fail at t = 0.
 /// The error names the part (and so the file's field) and the builder's own message.
-pub fn check_job(job: &Job) -> Result<(), SetupError> {
+pub fn check_job(job: &RunSpec) -> Result<(), SetupError> {
     let model = job_model(job)?;
     let joints = model.dof();
     for (part, v) in [
@@ -128,7 +129,7 @@ pub fn check_job(job: &Job) -> Result<(), SetupError> {
 fn honours_constraints(
     spec: &SolverSpec,
     scheme: &dyn Scheme,
-    job: &Job,
+    job: &RunSpec,
 ) -> Result<(), SetupError> {
     if spec.handles_inequalities() {
         return Ok(());
@@ -158,10 +159,10 @@ fn honours_constraints(
 /// them ([`robots::mounted`]); the error names the valid choices, or the robot's invalid file
 /// and field, or why the mount does not fit the robot. A mounted model keeps its dynamics only
 /// for a scheme that needs them, where a base that tilts gravity is refused
-/// ([`robots::mounted::MountError::TiltedGravity`]).
-pub fn job_model(job: &Job) -> Result<Model, SetupError> {
+/// ([`spec::mount::MountError::TiltedGravity`]).
+pub fn job_model(job: &RunSpec) -> Result<Model, SetupError> {
     let model = robot_by_name(&job.robot).map_err(|e| SetupError::UnknownRobot(e.to_string()))?;
-    let Some(mount) = job.mount else {
+    let Some(mount) = job_mount(job)? else {
         return Ok(model);
     };
     let dynamics = match model.dynamics {
@@ -177,10 +178,19 @@ pub fn job_model(job: &Job) -> Result<Model, SetupError> {
     })
 }
 
+/// The job's mount built from its tool offset and base ([`Mount::new`]: entries finite and
+/// within their bounds); `None` for the robot as it is.
+pub fn job_mount(job: &RunSpec) -> Result<Option<Mount>, SetupError> {
+    job.mount
+        .map(|m| Mount::new(m.tool, m.xyz, m.rpy))
+        .transpose()
+        .map_err(SetupError::Mount)
+}
+
 /// The shape of the QP the job's scheme poses at every instant: its sizes and whether its
 /// decision variable starts with thetadot or thetaddot ([`spec::scheme::Level`]). Built as
 /// [`check_job`] builds the scheme (robot, path from f(theta_ref), scheme), without running.
-pub fn qp_shape(job: &Job) -> Result<(QpDims, spec::scheme::Level), SetupError> {
+pub fn qp_shape(job: &RunSpec) -> Result<(QpDims, spec::scheme::Level), SetupError> {
     let model = job_model(job)?;
     let robot = job_robot(job, model.robot, model.dynamics.is_some())?;
     let (_, scheme) = build_parts(job, robot, model.dynamics)?;
@@ -193,7 +203,7 @@ pub fn qp_shape(job: &Job) -> Result<(QpDims, spec::scheme::Level), SetupError> 
 /// kinematics and limits from the dynamics model) keeps its own limits: overriding them is an
 /// error rather than a silent half-override.
 pub fn job_robot(
-    job: &Job,
+    job: &RunSpec,
     robot: Arc<dyn Robot>,
     has_dynamics: bool,
 ) -> Result<Arc<dyn Robot>, SetupError> {
@@ -207,7 +217,7 @@ pub fn job_robot(
     }
     let joints = robot.dof();
     let mut limits = robot.limits().clone();
-    let set = |spec: &Option<catalog::experiment::LimitsSpec>,
+    let set = |spec: &Option<spec::run::LimitsSpec>,
                lo: &mut DVector<f64>,
                hi: &mut DVector<f64>|
      -> Result<(), SetupError> {
@@ -241,7 +251,7 @@ pub fn job_robot(
 /// The path (starting at f(theta_ref)) and the scheme of a run.
 #[allow(clippy::type_complexity)]
 pub(crate) fn build_parts(
-    job: &Job,
+    job: &RunSpec,
     robot: Arc<dyn Robot>,
     dynamics: Option<Arc<dyn Dynamics>>,
 ) -> Result<(Arc<dyn Path>, Box<dyn Scheme>), SetupError> {
@@ -252,7 +262,7 @@ pub(crate) fn build_parts(
 /// when `cycles` is 1), the scheme built on the repeated path.
 #[allow(clippy::type_complexity)]
 pub fn build_cyclic_parts(
-    job: &Job,
+    job: &RunSpec,
     robot: Arc<dyn Robot>,
     dynamics: Option<Arc<dyn Dynamics>>,
     cycles: usize,
@@ -293,7 +303,11 @@ pub fn build_cyclic_parts(
     Ok((path, scheme))
 }
 
-fn run_with(job: &Job, custom: Option<NetworkBuilder<'_>>, model: Model) -> Result<Run, RunError> {
+fn run_with(
+    job: &RunSpec,
+    custom: Option<NetworkBuilder<'_>>,
+    model: Model,
+) -> Result<Run, RunError> {
     let robot = job_robot(job, model.robot, model.dynamics.is_some())?;
     let (path, scheme) = build_parts(job, robot.clone(), model.dynamics)?;
     let dims = scheme.dims();

@@ -3,24 +3,25 @@
 //! Each run is independent and deterministic, so the order of execution never changes a number.
 
 use crate::run::{run_job, RunRecord};
-use catalog::experiment::{Job, SolverChoice};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::iter::{ParallelBridge, ParallelIterator};
 use settings::network_kind::NetworkKind;
+use spec::run::RunSpec;
+use spec::run::SolverChoice;
 use std::collections::BTreeMap;
 use std::io::IsTerminal;
 use std::sync::Mutex;
 use std::time::Instant;
 
 /// Runs `jobs` and returns their records in the order of `jobs`.
-pub fn run_jobs(jobs: &[Job], progress: bool) -> Vec<RunRecord> {
+pub fn run_jobs(jobs: &[RunSpec], progress: bool) -> Vec<RunRecord> {
     run_jobs_with(jobs, progress, |_| {})
 }
 
 /// [`run_jobs`], calling `finished` with each record as soon as its run ends (from the worker
 /// thread: the checkpoint journal).
 pub fn run_jobs_with(
-    jobs: &[Job],
+    jobs: &[RunSpec],
     progress: bool,
     finished: impl Fn(&RunRecord) + Sync,
 ) -> Vec<RunRecord> {
@@ -35,7 +36,7 @@ pub fn run_jobs_with(
 /// writes each record out and keeps nothing of it (a shard) holds no record beyond the runs in
 /// flight.
 pub fn run_jobs_into<R: Send>(
-    jobs: &[Job],
+    jobs: &[RunSpec],
     progress: bool,
     finished: impl Fn(RunRecord) -> R + Sync,
 ) -> Vec<R> {
@@ -91,7 +92,7 @@ pub fn map_costliest_first<T: Sync, R: Send>(
 
 /// Rough relative cost for scheduling: neural runs on long paths first, the finite-time
 /// network (hundreds of thousands of steps) before everything.
-fn expected_cost(j: &Job) -> f64 {
+fn expected_cost(j: &RunSpec) -> f64 {
     let solver = match &j.solver {
         SolverChoice::Exact => 1.0,
         SolverChoice::Neural(s) if s.network_kind() == NetworkKind::FiniteTime => 100.0,
@@ -115,7 +116,7 @@ struct ExperimentLog {
 }
 
 impl ExperimentLog {
-    fn new(jobs: &[Job]) -> Self {
+    fn new(jobs: &[RunSpec]) -> Self {
         let mut per: BTreeMap<String, (usize, usize)> = BTreeMap::new();
         for j in jobs {
             per.entry(j.experiment.to_string()).or_default().1 += 1;

@@ -29,11 +29,11 @@ use crate::metrics::ScoreSample;
 use crate::observer::Observer;
 use crate::run::{build_parts, RunRecord};
 use crate::simulate::{Outcome, Run};
-use catalog::error::SetupError;
-use catalog::experiment::Job;
 use inputs::trajectory::Trajectory;
 use nalgebra::DVector;
 use robots::registry::Model;
+use spec::run::RunSpec;
+use spec::run::SetupError;
 use spec::scheme::Level;
 
 use solvers::ode::OdeStats;
@@ -206,7 +206,10 @@ pub fn velocities(trajectory: &Trajectory) -> Vec<Vec<f64>> {
 /// Scores `trajectory` on the task of `job` (its robot, path, scheme, theta0 and theta_ref;
 /// its solver and integrator play no part). The record's run has the metrics and the score of
 /// the module docs; its `stats.steps` is the number of samples.
-pub fn score_trajectory(job: &Job, trajectory: &Trajectory) -> Result<RunRecord, TrajectoryError> {
+pub fn score_trajectory(
+    job: &RunSpec,
+    trajectory: &Trajectory,
+) -> Result<RunRecord, TrajectoryError> {
     let run = score_with(job, trajectory, crate::run::job_model(job)?)?;
     Ok(RunRecord {
         job: job.clone(),
@@ -214,7 +217,11 @@ pub fn score_trajectory(job: &Job, trajectory: &Trajectory) -> Result<RunRecord,
     })
 }
 
-fn score_with(job: &Job, trajectory: &Trajectory, model: Model) -> Result<Run, TrajectoryError> {
+fn score_with(
+    job: &RunSpec,
+    trajectory: &Trajectory,
+    model: Model,
+) -> Result<Run, TrajectoryError> {
     let started = Instant::now();
     let n = model.dof();
     check(trajectory, n, job.path.duration, &job.theta0)?;

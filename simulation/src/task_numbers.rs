@@ -6,11 +6,11 @@
 
 use crate::run::build_parts;
 use crate::run::job_model;
-use catalog::error::SetupError;
-use catalog::experiment::Job;
-use catalog::fields::JobPart;
 use qp::Qp;
 use spec::path::PathSample;
+use spec::run::JobPart;
+use spec::run::RunSpec;
+use spec::run::SetupError;
 use spec::scheme::Level;
 
 /// Instants of the path samples, as fractions of the duration T.
@@ -49,7 +49,7 @@ pub struct TaskNumbers {
 
 /// The numbers of `job`'s task (its robot, path, scheme and poses; solver and integrator play
 /// no part).
-pub fn task_numbers(job: &Job) -> Result<TaskNumbers, SetupError> {
+pub fn task_numbers(job: &RunSpec) -> Result<TaskNumbers, SetupError> {
     let model = job_model(job)?;
     let joints = model.dof();
     if job.theta0.len() != joints {

@@ -201,10 +201,7 @@ fn an_experiment_mounts_its_robot_with_a_tool_offset_and_a_base() {
         "label = \"ZNN (eq. 22)\"\ntool = [0.0, 0.05, 0.0]",
     );
     let file = PaperFile::from_toml(&text, check_job).unwrap();
-    assert_eq!(
-        file.jobs()[0].mount.unwrap().tool(),
-        nalgebra::Vector3::new(0.0, 0.05, 0.0)
-    );
+    assert_eq!(file.jobs()[0].mount.unwrap().tool, [0.0, 0.05, 0.0]);
 
     // Dynamics: a yaw keeps gravity vertical, a tilt does not.
     let dynamic = |mount: &str| {

@@ -13,13 +13,14 @@
 //!   is Clarabel's, its dQP/dt is the central difference of its QP; on a robot without a tool
 //!   frame, or in a preset scheme, the file is refused naming the file and the field.
 
-use catalog::experiment::{load_dir, Job};
+use catalog::experiment::load_dir;
 use robots::registry::robot_by_name;
 use schemes::terms::tracking::orientation_error;
 use simulation::run::{build_cyclic_parts, check_job, job_robot, run_job};
 use simulation::simulate::Outcome;
 use solvers::exact::ExactSolver;
 use solvers::exact_path::ExactPath;
+use spec::run::RunSpec;
 use std::path::Path;
 
 fn write(path: &Path, text: &str) {
@@ -29,12 +30,12 @@ fn write(path: &Path, text: &str) {
 
 /// The jobs of `experiments` (with `robots`: robot files of the paper's folder), in a fresh
 /// directory named for `tag`.
-fn jobs(tag: &str, robots: &[(&str, String)], experiments: &str) -> Vec<Job> {
+fn jobs(tag: &str, robots: &[(&str, String)], experiments: &str) -> Vec<RunSpec> {
     load(tag, robots, experiments).expect("the experiments load")
 }
 
 /// The jobs of `experiments` or the load's error message, as [`jobs`].
-fn load(tag: &str, robots: &[(&str, String)], experiments: &str) -> Result<Vec<Job>, String> {
+fn load(tag: &str, robots: &[(&str, String)], experiments: &str) -> Result<Vec<RunSpec>, String> {
     let root = std::env::temp_dir().join(format!("driftbench-{tag}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&root);
     for (name, text) in robots {

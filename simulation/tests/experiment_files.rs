@@ -387,6 +387,31 @@ fn scheme_robot_and_solver_must_fit_together() {
         ],
     );
     load_text("cdnn_without_bounds", &rmp("")).unwrap();
+    // The same holds for a point of the zeroing vocabulary; a point of the projection family
+    // (which honours bounds) loads on the bounded scheme, and a misplaced part of its error
+    // form is refused naming its line, the field and the valid choices.
+    let on_bounds = |solver: &str| {
+        rmp(", upsilon = 2.0").replace("{ kind = \"vp-cdnn\", gamma = 200.0 }", solver)
+    };
+    assert_rejected(
+        "zeroing_point_on_bounds",
+        &on_bounds("{ kind = \"zeroing\", gain = { law = \"power\", gamma = 1.0, p = 2.0 } }"),
+        &[
+            "field `solvers[0]`",
+            "equality-constrained QPs only",
+            "finite bounds",
+        ],
+    );
+    load_text(
+        "projection_point_on_bounds",
+        &on_bounds("{ kind = \"projection\", error = { form = \"lvi\", scaling = \"identity\" }, gain = { law = \"power\", gamma = 1e3, p = 2.0 } }"),
+    )
+    .unwrap();
+    assert_rejected(
+        "projection_point_misplaced",
+        &on_bounds("{ kind = \"projection\", error = { form = \"lvi\", p = 1.0 }, gain = { law = \"constant\", gamma = 1.0 } }"),
+        &["line 13", "unknown field `p`", "expected `scaling`"],
+    );
     // The reference perturbation is 9-dimensional (6 joints + 3): not for the 5-joint Katana.
     assert_rejected(
         "perturbation_on_katana",

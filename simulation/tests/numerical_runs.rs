@@ -3,11 +3,13 @@
 //! the methods' error shrinks with their tolerance, joint 6 (which cannot move the tool point on
 //! its axis) does not drift, and the experiment's limits are the ones the run respects.
 
-use catalog::experiment::{Job, PaperFile, SolverChoice};
+use catalog::experiment::PaperFile;
 use simulation::row::run_row;
 use simulation::run::{check_job, run_job};
+use spec::run::RunSpec;
+use spec::run::SolverChoice;
 
-fn robio_jobs() -> Vec<Job> {
+fn robio_jobs() -> Vec<RunSpec> {
     let root = catalog::root::from_current_dir().unwrap();
     let file = PaperFile::load(&root.join("experiments/robio2018.toml"), check_job).unwrap();
     file.jobs()

@@ -5,13 +5,15 @@
 //! accepted step) and keeps the tool on the path; faster than the constant-gain ZNN of the same
 //! file.
 
-use catalog::experiment::{load_dir, Job, PaperFile, SolverChoice};
+use catalog::experiment::{load_dir, PaperFile};
 use simulation::metrics::Score;
 use simulation::run::{check_job, run_job};
 use simulation::simulate::Outcome;
+use spec::run::RunSpec;
+use spec::run::SolverChoice;
 
 /// The network runs of kong2019's circle.
-fn circle_jobs() -> Vec<Job> {
+fn circle_jobs() -> Vec<RunSpec> {
     let root = catalog::root::from_current_dir().unwrap();
     load_dir(&root.join("experiments"), check_job)
         .unwrap()
@@ -23,7 +25,7 @@ fn circle_jobs() -> Vec<Job> {
         .collect()
 }
 
-fn score(job: &Job) -> (Score, f64) {
+fn score(job: &RunSpec) -> (Score, f64) {
     let r = run_job(job);
     let Outcome::Completed(m) = &r.run.outcome else {
         panic!("{}: {:?}", job.variant, r.run.outcome)

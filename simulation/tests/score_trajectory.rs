@@ -2,14 +2,16 @@
 //! trace (theta, thetadot at ~400 instants), scored as an external trajectory, has the run's
 //! drift exactly and its error and score to the resolution of the thinned samples.
 
-use catalog::experiment::{load_dir, Job, PaperFile, SolverChoice};
+use catalog::experiment::{load_dir, PaperFile};
 use inputs::trajectory::Trajectory;
 use simulation::run::check_job;
 use simulation::run::run_job;
 use simulation::score_trajectory::{score_trajectory, TrajectoryError};
 use simulation::simulate::{Outcome, Run};
+use spec::run::RunSpec;
+use spec::run::SolverChoice;
 
-fn job(experiment: &str, variant: &str, neural: bool) -> Job {
+fn job(experiment: &str, variant: &str, neural: bool) -> RunSpec {
     let root = catalog::root::from_current_dir().unwrap();
     load_dir(&root.join("experiments"), check_job)
         .unwrap()

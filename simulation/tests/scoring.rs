@@ -1,13 +1,15 @@
 //! The scoring grid: a network run scored at every accepted step, at a bounded number of
 //! instants, or not at all, as the experiment file's `scoring` says.
 
-use catalog::experiment::Scoring;
-use catalog::experiment::{load_dir, Job, PaperFile, SolverChoice};
+use catalog::experiment::{load_dir, PaperFile};
 use simulation::run::check_job;
 use simulation::run::run_job;
 use simulation::simulate::Outcome;
+use spec::run::RunSpec;
+use spec::run::Scoring;
+use spec::run::SolverChoice;
 
-fn znn_job() -> Job {
+fn znn_job() -> RunSpec {
     let root = catalog::root::from_current_dir().unwrap();
     load_dir(&root.join("experiments"), check_job)
         .unwrap()
@@ -21,7 +23,7 @@ fn znn_job() -> Job {
         .expect("kong2019's ZNN run")
 }
 
-fn samples_and_max_dx(job: &Job) -> (usize, usize, Option<f64>) {
+fn samples_and_max_dx(job: &RunSpec) -> (usize, usize, Option<f64>) {
     let r = run_job(job);
     let Outcome::Completed(m) = &r.run.outcome else {
         panic!("{:?}", r.run.outcome)
@@ -41,7 +43,7 @@ fn a_grid_bounds_the_exact_solves_and_every_step_sees_them_all() {
     let (steps, n_every, max_every) = samples_and_max_dx(&every);
     // Every accepted step, and the initial state.
     assert_eq!(n_every, steps + 1);
-    let grid = Job {
+    let grid = RunSpec {
         scoring: Scoring::MaxInstants(20),
         ..every.clone()
     };
@@ -49,7 +51,7 @@ fn a_grid_bounds_the_exact_solves_and_every_step_sees_them_all() {
     assert!((2..=22).contains(&n_grid), "{n_grid} instants");
     // The grid's instants are a subset of the accepted steps: its max cannot exceed theirs.
     assert!(max_grid.unwrap() <= max_every.unwrap());
-    let off = Job {
+    let off = RunSpec {
         scoring: Scoring::Off,
         ..every
     };

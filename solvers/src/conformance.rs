@@ -40,7 +40,9 @@
 //! initial state over [0, `t_end`] ([`NetworkConformance::t_end`], a few of its time constants)
 //! with the integrator it names ([`NetworkConformance::integrator`]), and x = y[..nx] must be within `x_tolerance` of Clarabel's optimum
 //! (relative, as above; check `equilibrium`); an integration that fails, or a network that
-//! cannot be built for the QP, is a violation too (checks `integration`, `build`).
+//! cannot be built for the QP, is a violation too (checks `integration`, `build`). When an
+//! allocation counter is given, one more evaluation of F at the final state (after the
+//! integration's own) must allocate nothing (check `allocation`): a network keeps its scratch.
 
 use crate::exact::ExactSolver;
 use crate::neural::NeuralSolver;
@@ -479,9 +481,13 @@ impl OdeSystem for FixedQp<'_> {
 pub type NetworkFactory<'a> =
     &'a dyn Fn(QpDims) -> Result<Box<dyn NeuralSolver>, Box<dyn std::error::Error + Send + Sync>>;
 
-/// Runs the network checks of the module docs on the networks `make` builds. Returns every
-/// violation (empty: the network conforms).
-pub fn check_network(make: NetworkFactory<'_>, spec: &NetworkConformance) -> Vec<Violation> {
+/// Runs the network checks of the module docs on the networks `make` builds; `counter` enables
+/// the allocation check. Returns every violation (empty: the network conforms).
+pub fn check_network(
+    make: NetworkFactory<'_>,
+    spec: &NetworkConformance,
+    counter: Option<&dyn AllocationCounter>,
+) -> Vec<Violation> {
     let mut out = Vec::new();
     let mut clarabel = ExactSolver::new();
     let settings = spec.integrator;
@@ -521,6 +527,17 @@ pub fn check_network(make: NetworkFactory<'_>, spec: &NetworkConformance) -> Vec
             }) {
                 Err(e) => violation(name, "integration", e.error.to_string()),
                 Ok((y, _)) => {
+                    if let Some(counter) = counter {
+                        let mut dy = vec![0.0; dim];
+                        let n = counter.count(&mut || sys.rhs(spec.t_end, &y, &mut dy));
+                        if n > 0 {
+                            violation(
+                                name.clone(),
+                                "allocation",
+                                format!("an evaluation of F made {n} allocations"),
+                            );
+                        }
+                    }
                     let nx = qp.dims().nx;
                     let dx = rel_dx(&y[..nx], exact.x.as_slice());
                     if !(dx <= spec.x_tolerance) {

@@ -132,17 +132,21 @@ fn the_kit_catches_a_wrong_solver() {
 }
 
 /// Every network preset (one per kind, the papers' parameters; the VP-RNN-PF once per
-/// activation) reaches the QP's optimum on fixed QPs of the shapes it claims: the projection
-/// networks every shape, the zeroing networks (equality-constrained QPs only) the
-/// equality-only shapes. `t_end` is a few of each network's time constants. VP-RNN-PF's
-/// equilibrium is the optimum of its exponential-penalty problem (zhong2021 (2.19)-(2.21),
-/// p = 1e-4, sigma = 400), not the QP's: where an inequality is active it sits off it by the
-/// penalty's gap (1e-3 to 1.5e-2 relative on these QPs), so it is held to 3e-2.
+/// activation) and points of both vocabularies (a projection point of each error form, with a
+/// power-type gain; zeroing points with a power-type and a polynomial gain) reach the QP's
+/// optimum on fixed QPs of the shapes they claim, and evaluate F without allocating: one
+/// [`check_network`] call per network. The projection family claims every shape, the zeroing
+/// family (equality-constrained QPs only) the equality-only shapes. `t_end` is a few of each
+/// network's time constants. The penalty form's equilibrium (VP-RNN-PF's) is the optimum of
+/// its exponential-penalty problem (zhong2021 (2.19)-(2.21), p = 1e-4, sigma = 400), not the
+/// QP's: where an inequality is active it sits off it by the penalty's gap (1e-3 to 1.5e-2
+/// relative on these QPs), so it is held to 3e-2.
 #[test]
-fn every_network_preset_reaches_the_optimum() {
+fn every_network_reaches_the_optimum_without_allocating() {
+    use settings::projection::ProjectionErrorForm;
     use settings::solver_spec::SolverSpec;
     use solvers::conformance::{check_network, NetworkConformance};
-    let presets: [(&str, f64); 11] = [
+    let networks: [(&str, f64); 15] = [
         ("kind = \"lvi-pdnn\"\ngamma = 1e7", 1e-3),
         ("kind = \"s-lvi-pdnn\"\nbeta = 1e7", 1e-3),
         ("kind = \"vp-rnn-pf\"\np = 0.0001\nsigma = 400.0\ngamma = 2.0\nactivation = \"linear\"", 2.0),
@@ -154,10 +158,14 @@ fn every_network_preset_reaches_the_optimum() {
         ("kind = \"znn\"\ngamma = 1.0", 25.0),
         ("kind = \"group-znn\"\ngamma = 500.0\nnu = 0.0\nactivation = \"group-power-sigmoid\"\nxi = 1.0\npower = 1.0\nudot_rmp = false", 0.2),
         ("kind = \"zeroing\"\ngain = { law = \"power\", gamma = 1.0, p = 2.0 }\nactivation = \"sign-bi-power\"\nexponent = 0.5", 5.0),
+        ("kind = \"zeroing\"\ngain = { law = \"polynomial\", coefficients = [1.0, 1.0] }\nactivation = \"sinh\"", 8.0),
+        ("kind = \"projection\"\nerror = { form = \"lvi\", scaling = \"i-plus-mt\" }\ngain = { law = \"power\", gamma = 100.0, p = 2.0 }\nactivation = \"power-sigmoid\"", 5.0),
+        ("kind = \"projection\"\nerror = { form = \"lvi\", scaling = \"identity\" }\ngain = { law = \"exponential\", gamma = 1e3 }", 3.0),
+        ("kind = \"projection\"\nerror = { form = \"penalty\", p = 0.0001, sigma = 400.0 }\ngain = { law = \"power\", gamma = 2.0, p = 2.0 }\nactivation = \"sinh\"", 3.0),
     ];
     let mut kinds = std::collections::BTreeSet::new();
     let mut failures = Vec::new();
-    for (text, t_end) in presets {
+    for (text, t_end) in networks {
         let spec: SolverSpec = toml::from_str(text).unwrap_or_else(|e| panic!("{text}: {e}"));
         kinds.insert(spec.network_kind().id());
         let shapes: &'static [QpShape] = if spec.handles_inequalities() {
@@ -166,7 +174,9 @@ fn every_network_preset_reaches_the_optimum() {
             &EQUALITY_SHAPES
         };
         let make = |dims| solvers::neural::build_solver(&spec, dims).map_err(Into::into);
-        let penalty = spec.network_kind() == settings::network_kind::NetworkKind::VpRnnPf;
+        let penalty = spec
+            .projection()
+            .is_some_and(|p| matches!(p.error, ProjectionErrorForm::Penalty { .. }));
         let conformance = NetworkConformance {
             x_tolerance: if penalty { 3e-2 } else { 1e-6 },
             seeds: 2,
@@ -175,7 +185,7 @@ fn every_network_preset_reaches_the_optimum() {
             integrator: NetworkConformance::dopri5(),
         };
         failures.extend(
-            check_network(&make, &conformance)
+            check_network(&make, &conformance, Some(&Counter))
                 .iter()
                 .map(|v| format!("{}: {v}", text.replace('\n', " "))),
         );
@@ -186,4 +196,52 @@ fn every_network_preset_reaches_the_optimum() {
         "{kinds:?}"
     );
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// A network that allocates in every evaluation of F, and one whose equilibrium is not the
+/// optimum: the network kit must catch both (a kit that cannot fail proves nothing).
+struct Leaky;
+
+impl solvers::neural::NeuralSolver for Leaky {
+    fn name(&self) -> String {
+        "leaky".into()
+    }
+    fn state_dim(&self, dims: QpDims) -> usize {
+        dims.nx
+    }
+    fn rhs(
+        &mut self,
+        _t: f64,
+        y: &[f64],
+        _qp: &solvers::Qp,
+        _d: Option<&solvers::Qp>,
+        ydot: &mut [f64],
+    ) {
+        // Decays to x = 0, not to the optimum, and allocates on the way.
+        let copy = std::hint::black_box(y.to_vec());
+        for (d, v) in ydot.iter_mut().zip(copy) {
+            *d = -v;
+        }
+    }
+}
+
+#[test]
+fn the_network_kit_catches_a_wrong_network() {
+    use solvers::conformance::{check_network, NetworkConformance};
+    let make = |_| Ok(Box::new(Leaky) as Box<dyn solvers::neural::NeuralSolver>);
+    let violations = check_network(
+        &make,
+        &NetworkConformance {
+            x_tolerance: 1e-6,
+            seeds: 1,
+            shapes: &EQUALITY_SHAPES,
+            t_end: 1.0,
+            integrator: NetworkConformance::dopri5(),
+        },
+        Some(&Counter),
+    );
+    let checks: std::collections::BTreeSet<&str> = violations.iter().map(|v| v.check).collect();
+    for check in ["equilibrium", "allocation"] {
+        assert!(checks.contains(check), "{check} not caught: {checks:?}");
+    }
 }

@@ -7,18 +7,60 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use settings::activation::{ActivationKind, ActivationSpec};
 use settings::integrator::{IntegratorSettings, Method};
+use settings::projection::{ProjectionErrorForm, ProjectionSpec, Scaling};
 use settings::sign_power::SIGN_POWER_MIN_ABS;
 use settings::solver_spec::ReferencePerturbation;
 use settings::solver_spec::SolverSpec;
 use settings::zeroing::GainLaw;
 use solvers::neural::activation::Activation;
-use solvers::neural::projection::{primal_dual_dim, LviPdnn, SLviPdnn};
-use solvers::neural::{build_solver, NeuralSolver, PerturbationTerms, VpRnnPf};
+use solvers::neural::projection::{primal_dual_dim, LviCore};
+use solvers::neural::{build_solver, NeuralSolver, PerturbationTerms, ProjectionNetwork};
 use solvers::ode::{integrate, Control, OdeSystem};
 use solvers::{random_qp, ExactSolver, Qp, QpDims, QpShape};
 
 // ---------------------------------------------------------------------------------------------
 // helpers
+
+/// The projection family's LVI form with scaling `scaling` and constant gain `gamma`, linear:
+/// LVI-PDNN (`IPlusMt`) or S-LVI-PDNN (`Identity`).
+fn lvi_network(scaling: Scaling, gamma: f64, dims: QpDims) -> ProjectionNetwork {
+    let spec = ProjectionSpec {
+        name: "LVI",
+        error: ProjectionErrorForm::Lvi { scaling },
+        gain: GainLaw::Constant { gamma },
+        activation: ActivationSpec::of(ActivationKind::Linear),
+    };
+    ProjectionNetwork::from_spec(&spec, dims).unwrap()
+}
+
+/// The projection family's penalty form (p, sigma) with gain law `gain` and activation `act`:
+/// VP-RNN-PF with `GainLaw::Exponential`.
+fn penalty_network(
+    p: f64,
+    sigma: f64,
+    gain: GainLaw,
+    act: ActivationSpec,
+    dims: QpDims,
+) -> ProjectionNetwork {
+    let spec = ProjectionSpec {
+        name: "VP-RNN-PF",
+        error: ProjectionErrorForm::Penalty { p, sigma },
+        gain,
+        activation: act,
+    };
+    ProjectionNetwork::from_spec(&spec, dims).unwrap()
+}
+
+/// VP-RNN-PF (zhong2021 (2.30)): the penalty form with gain gamma exp(t).
+fn vp_rnn_pf(
+    p: f64,
+    sigma: f64,
+    gamma: f64,
+    act: ActivationSpec,
+    dims: QpDims,
+) -> ProjectionNetwork {
+    penalty_network(p, sigma, GainLaw::Exponential { gamma }, act, dims)
+}
 
 /// The network of `spec` for QPs of sizes `dims`.
 fn built(spec: SolverSpec, dims: QpDims) -> Box<dyn NeuralSolver> {
@@ -396,14 +438,27 @@ fn projection_jacobians_match_finite_differences() {
             let n = primal_dual_dim(dims);
             for _ in 0..3 {
                 let y: Vec<f64> = (0..n).map(|_| rng.gen_range(-2.0..2.0)).collect();
-                let mut lvi = LviPdnn::new(1e7, dims);
+                let mut lvi = lvi_network(Scaling::IPlusMt, 1e7, dims);
                 let m1 = jacobian_mismatch(&mut lvi, 0.3, &y, &qp, None);
-                let mut slvi = SLviPdnn::new(1e7, dims);
+                let mut slvi = lvi_network(Scaling::Identity, 1e7, dims);
                 let m2 = jacobian_mismatch(&mut slvi, 0.3, &y, &qp, None);
                 assert!(
                     m1 < 1e-7 && m2 < 1e-7,
                     "{shape:?} seed {seed}: LVI {m1:e}, S-LVI {m2:e}"
                 );
+                // Points of the vocabulary: a power-type gain and the sinh activation, whose
+                // slope enters as diag(Phi'(e)).
+                for scaling in [Scaling::IPlusMt, Scaling::Identity] {
+                    let spec = ProjectionSpec {
+                        name: "projection",
+                        error: ProjectionErrorForm::Lvi { scaling },
+                        gain: GainLaw::Power { gamma: 1e3, p: 2.0 },
+                        activation: ActivationSpec::of(ActivationKind::Sinh),
+                    };
+                    let mut net = ProjectionNetwork::from_spec(&spec, dims).unwrap();
+                    let m = jacobian_mismatch(&mut net, 0.3, &y, &qp, None);
+                    assert!(m < 1e-6, "{shape:?} seed {seed}: {scaling:?}, sinh {m:e}");
+                }
             }
         }
     }
@@ -526,11 +581,13 @@ fn vp_rnn_pf_jacobian_matches_finite_differences() {
             let qp_dot = random_qp_dot(&qp, &mut rng, 1.0);
             for (p, sigma) in [(1e-4, 400.0), (0.1, 5.0)] {
                 for act in [
-                    Activation::Linear,
-                    Activation::Sinh,
-                    Activation::power_sigmoid_default(),
-                ] {
-                    let mut net = VpRnnPf::new(p, sigma, 2.0, act, dims).unwrap();
+                    ActivationKind::Linear,
+                    ActivationKind::Sinh,
+                    ActivationKind::PowerSigmoid,
+                ]
+                .map(ActivationSpec::of)
+                {
+                    let mut net = vp_rnn_pf(p, sigma, 2.0, act, dims);
                     // Near the optimum (the penalty's scale is 1/sigma), multipliers of order 1.
                     let y: Vec<f64> = (0..dims.nx + dims.n_eq)
                         .map(|i| {
@@ -581,16 +638,17 @@ fn projection_equilibria(
         let dims = qp.dims();
         let sol = exact(&qp);
         // Complement: the exact primal-dual point is a fixed point of the projection (eq. 2.22).
-        let mut core = SLviPdnn::new(1.0, dims);
+        let mut core = LviCore::new(dims);
         let fixed = inf_norm(core.residual(&qp, &lvi_point(&qp, &sol)));
         worst_fixed = worst_fixed.max(fixed);
         // The network itself, gain scaled to 1 (the equilibrium does not depend on it).
-        let mut net: Box<dyn NeuralSolver> = if lvi {
-            Box::new(LviPdnn::new(1.0, dims))
+        let scaling = if lvi {
+            Scaling::IPlusMt
         } else {
-            Box::new(SLviPdnn::new(1.0, dims))
+            Scaling::Identity
         };
-        let mut probe = SLviPdnn::new(1.0, dims);
+        let mut net: Box<dyn NeuralSolver> = Box::new(lvi_network(scaling, 1.0, dims));
+        let mut probe = LviCore::new(dims);
         // Stop at residual 1e-11, or once the residual is below 1e-7 and stalls (no halving over
         // a doubled horizon): S-LVI-PDNN can slide along a kink of P_Omega (an equilibrium on a
         // weakly active constraint), where the integrator holds the residual at ~1e-9 with one
@@ -777,24 +835,25 @@ fn lambda_min(p: &DMatrix<f64>) -> f64 {
 
 #[test]
 fn vp_rnn_pf_steady_state_is_within_the_penalty_bound() {
-    // Bound of the vp_rnn_pf module docs:
+    // Bound of the penalty form's docs (`solvers/src/neural/penalty.rs`):
     //   lambda_min(P) |x_p - x*|_2^2 <= m p / e + sum_i mu*_i max(0, -N_i(x_p)).
     let s = settings(1e-10, 1e-13);
     let (p, sigma, gamma) = (1e-4, 400.0, 2.0);
     let acts = [
-        Activation::Linear,
-        Activation::Sinh,
-        Activation::power_sigmoid_default(),
-    ];
+        ActivationKind::Linear,
+        ActivationKind::Sinh,
+        ActivationKind::PowerSigmoid,
+    ]
+    .map(ActivationSpec::of);
     let (mut worst_err, mut worst_ratio, mut worst_grad) = (0.0_f64, 0.0_f64, 0.0_f64);
     for seed in 0..N_QPS {
         // Every QP with the linear activation, one in five also with sinh and power-sigmoid.
-        let act_list: &[Activation] = if seed % 5 == 0 { &acts } else { &acts[..1] };
+        let act_list: &[ActivationSpec] = if seed % 5 == 0 { &acts } else { &acts[..1] };
         let qp = random_qp(QpShape::Zhong2021, seed);
         let dims = qp.dims();
         let sol = exact(&qp);
         for &act in act_list {
-            let mut net = VpRnnPf::new(p, sigma, gamma, act, dims).unwrap();
+            let mut net = vp_rnn_pf(p, sigma, gamma, act, dims);
             let y = steady_state(&mut net, &qp, 8.0, 1, &s, |_, _, _| true);
             let x = DVector::from_column_slice(&y[..dims.nx]);
             let lam = DVector::from_column_slice(&y[dims.nx..]);
@@ -911,7 +970,7 @@ fn vp_rnn_pf_error_follows_its_design_formula_on_moving_qps() {
             qp1.lower.fill(0.0);
             qp1.upper.fill(0.0);
             let dims = qp0.dims();
-            let mut net = VpRnnPf::new(p, sigma, gamma, Activation::Linear, dims).unwrap();
+            let mut net = vp_rnn_pf(p, sigma, gamma, ActivationSpec::default(), dims);
             let y0 = vec![0.0; dims.nx + dims.n_eq];
             let mut f = vec![0.0; y0.len()];
             net.rhs(0.0, &y0, &qp0, Some(&qp1), &mut f);
@@ -1270,6 +1329,16 @@ fn solver_specs_parse_build_and_reject_mistakes() {
     ] {
         assert!(build_solver(&parse(bad).unwrap(), kong).is_err(), "built: {bad}");
     }
+    // A projection point out of range is refused naming the parameter and its range.
+    for (bad, named) in [
+        ("solver = { kind = \"projection\", error = { form = \"penalty\", p = 1e-4, sigma = 0.0 }, gain = { law = \"exponential\", gamma = 2.0 } }", "sigma > 0"),
+        ("solver = { kind = \"projection\", error = { form = \"penalty\", p = -1.0, sigma = 4.0 }, gain = { law = \"exponential\", gamma = 2.0 } }", "p >= 0"),
+        ("solver = { kind = \"projection\", error = { form = \"lvi\", scaling = \"identity\" }, gain = { law = \"power\", gamma = 1.0, p = 0.0 } }", "p > 0"),
+        ("solver = { kind = \"projection\", error = { form = \"lvi\", scaling = \"i-plus-mt\" }, gain = { law = \"constant\", gamma = 1.0 }, activation = \"power-sigmoid\", alpha = -1.0 }", "alpha > 0"),
+    ] {
+        let e = build_solver(&parse(bad).unwrap(), jia).err().unwrap_or_else(|| panic!("built: {bad}"));
+        assert!(e.to_string().contains(named), "{bad}: {e}");
+    }
 }
 
 #[test]
@@ -1277,20 +1346,18 @@ fn zeroing_network_with_gain_variants_and_fixed_gain_vp_rnn_pf() {
     // Gain schedule values.
     assert_eq!(GainLaw::Constant { gamma: 3.0 }.at(5.0), 3.0);
     assert!((GainLaw::Exponential { gamma: 2.0 }.at(1.0) - 2.0 * 1f64.exp()).abs() < 1e-14);
-    // VpRnnPf::with_gain(Fixed) shares the steady state of the paper's exp(t) gain.
+    // The penalty form with a constant gain shares the steady state of the paper's exp(t) gain.
     let qp = random_qp(QpShape::Zhong2021, 77);
     let dims = qp.dims();
     let s = settings(1e-10, 1e-13);
-    let mut a = VpRnnPf::new(1e-4, 400.0, 2.0, Activation::Linear, dims).unwrap();
-    let mut b = VpRnnPf::with_gain(
+    let mut a = vp_rnn_pf(1e-4, 400.0, 2.0, ActivationSpec::default(), dims);
+    let mut b = penalty_network(
         1e-4,
         400.0,
-        2.0,
         GainLaw::Constant { gamma: 2.0 },
-        Activation::Linear,
+        ActivationSpec::default(),
         dims,
-    )
-    .unwrap();
+    );
     let ya = steady_state(&mut a, &qp, 8.0, 1, &s, |_, _, _| true);
     let yb = steady_state(&mut b, &qp, 30.0, 1, &s, |_, _, _| true);
     let d = ya

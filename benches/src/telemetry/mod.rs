@@ -19,6 +19,9 @@
 //!   (`profile-active-set.csv`, by `benches/profile/active_set.sh`);
 //! - [`speedup`]: every run timed alone under an earlier revision and this one
 //!   (`speedup.csv`, by `benches/speedup/papers.sh`);
+//! - `sweep-e2e.csv`: a sweep of short runs end to end (its shards, the merge, the page), peak
+//!   memory, CPU, wall time and disk per process against the number of runs (its schema is the
+//!   script's header, `benches/sweep_e2e/run.sh`; docs/cluster.md reads it);
 //! - [`throughput`]: one thread's runs per CPU second on a kong2019 ZNN sweep at two revisions,
 //!   and where a right-hand side's time goes (`throughput.csv`, `throughput-profile.csv`, by
 //!   `benches/throughput/kong2019_sweep.sh`).

@@ -2,7 +2,7 @@
 //! experiment file whose numerical solver is the outside one, registered at run time through
 //! the library API (`solvers::registry::register`), next to the same run by Clarabel.
 
-use catalog::experiment::{PaperFile, SolverChoice};
+use catalog::experiment::PaperFile;
 use outside_solver::{EqualityKkt, ID};
 use qp::QpSolver;
 use settings::qp_solver::{Limits, QpSolverInfo};
@@ -10,6 +10,7 @@ use simulation::row::run_row;
 use simulation::run::{check_job, run_job};
 use solvers::conformance::{check_qp_solver, AllocationCounter, Conformance};
 use solvers::QpShape;
+use spec::run::SolverChoice;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Once};
 

@@ -43,9 +43,6 @@ pub mod search;
 
 use crate::error::InferenceError;
 use analysis::papers::{PaperValue, Papers};
-use catalog::experiment::Scoring;
-use catalog::experiment::{Job, SolverChoice};
-use catalog::run_key::RunKey;
 use family::Family;
 use rayon::prelude::*;
 use records::inference::{
@@ -58,6 +55,10 @@ use settings::integrator::{IntegratorSettings, Method};
 use simulation::row::run_row;
 use simulation::run::run_job;
 use spec::rmp::RmpReading;
+use spec::run::RunSpec;
+use spec::run::Scoring;
+use spec::run::SolverChoice;
+use spec::run_key::RunKey;
 use spec::scheme::SchemeSpec;
 use std::f64::consts::PI;
 use std::time::Instant;
@@ -135,7 +136,7 @@ impl Setup {
 
     /// `job` under this setup (the job's own pose is the origin of rotation, tilt and phase).
     /// The integrator is the caller's business ([`TableProblem::jobs`]).
-    pub fn apply(&self, job: &Job) -> Job {
+    pub fn apply(&self, job: &RunSpec) -> RunSpec {
         let mut j = job.clone();
         j.robot = self.robot.clone();
         j.path.rotation += self.rotation;
@@ -177,9 +178,9 @@ pub struct TableProblem {
     pub paper: String,
     pub table: String,
     /// The distinct exact runs (one per scheme variant of the table).
-    pub exact: Vec<Job>,
+    pub exact: Vec<RunSpec>,
     /// The paper's network run of each column (as the experiment integrates it).
-    pub network: Vec<Job>,
+    pub network: Vec<RunSpec>,
     pub columns: Vec<Column>,
     /// Fit the size factor (false where the paper prints the path's size).
     pub fit_scale: bool,
@@ -194,7 +195,7 @@ impl TableProblem {
     }
 
     /// The runs of one evaluation under `setup`, and per column the index of its run.
-    pub fn jobs(&self, setup: &Setup) -> (Vec<Job>, Vec<usize>) {
+    pub fn jobs(&self, setup: &Setup) -> (Vec<RunSpec>, Vec<usize>) {
         match setup.integration {
             Integration::Exact => (
                 self.exact.iter().map(|j| setup.apply(j)).collect(),
@@ -203,7 +204,7 @@ impl TableProblem {
             network => (
                 self.network
                     .iter()
-                    .map(|j| Job {
+                    .map(|j| RunSpec {
                         integrator: network.integrator(&j.integrator),
                         ..setup.apply(j)
                     })
@@ -218,8 +219,8 @@ impl TableProblem {
     fn runs_of<'j>(
         &self,
         key: &RunKey,
-        jobs: &'j [Job],
-    ) -> Result<(&'j Job, &'j Job), InferenceError> {
+        jobs: &'j [RunSpec],
+    ) -> Result<(&'j RunSpec, &'j RunSpec), InferenceError> {
         let no_run = |what, experiment: &str, variant: &str| InferenceError::NoRun {
             paper: self.paper.clone(),
             table: self.table.clone(),
@@ -243,8 +244,8 @@ impl TableProblem {
     /// tolerances ([`inference_integrator`]; one run shared by the columns of a scheme
     /// variant). A path whose size the paper prints keeps it; a scheme with an RMP term has its
     /// readings tried.
-    fn add_column(&mut self, name: String, exact: &Job, network: &Job, paper: Vec<f64>) {
-        let exact = Job {
+    fn add_column(&mut self, name: String, exact: &RunSpec, network: &RunSpec, paper: Vec<f64>) {
+        let exact = RunSpec {
             integrator: IntegratorSettings {
                 method: exact.integrator.method,
                 ..inference_integrator()
@@ -259,7 +260,7 @@ impl TableProblem {
                 self.exact.len() - 1
             }
         };
-        self.network.push(Job {
+        self.network.push(RunSpec {
             scoring: Scoring::Off,
             ..network.clone()
         });
@@ -286,7 +287,7 @@ pub fn problem(
     paper: &str,
     table: &str,
     papers: &Papers,
-    jobs: &[Job],
+    jobs: &[RunSpec],
 ) -> Result<TableProblem, InferenceError> {
     let mut p = TableProblem {
         paper: paper.to_string(),

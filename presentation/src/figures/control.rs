@@ -14,9 +14,9 @@ use super::legend::{self, Arrangement, Entry};
 use super::panels::{LogLogPanel, Series};
 use super::style::{colour, LEGEND_LINE_WIDTH};
 use crate::error::FigureError;
-use catalog::naming::slug;
 use plotters::prelude::*;
 use records::control::{ControlRow, ControlStatus, CycleRow, Family};
+use spec::naming::slug;
 
 /// Width of the legend column on the right (px).
 const LEGEND_WIDTH: u32 = 420;

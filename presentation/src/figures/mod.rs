@@ -47,22 +47,23 @@ pub mod sweep;
 mod trace;
 
 use crate::error::{FigureError, ReportError};
-use catalog::run_key::RunKey;
 use layout::Rendered;
 use rayon::prelude::*;
 use records::control::{ControlRow, CycleRow, MAIN_H};
 use records::dof_cost::DofCostRow;
 use records::inference::InferenceRow;
-use records::runs::{read_runs, RunRow};
-use records::tracked_dir::{Removal, TrackedDir, TrackedError};
-use std::collections::BTreeMap;
+use records::runs::RunRow;
+use spec::run_key::RunKey;
+use std::collections::{BTreeMap, HashSet};
 use std::path::{Path, PathBuf};
+use store::runs::read_runs;
+use store::tracked_dir::{Removal, TrackedDir, TrackedError};
 use trace::Trace;
 
 /// The figures' directory inside `report/`.
 pub const FIGURES: &str = "figures";
 
-/// The run's file stem (see [`catalog::naming::run_stem`]).
+/// The run's file stem (see [`spec::naming::run_stem`]).
 fn run_stem(run: &RunRow) -> String {
     run.key().stem()
 }
@@ -132,22 +133,32 @@ impl Job<'_> {
 /// program wrote them and nobody edited them since (`report/manifest.toml`); a `report/` or
 /// `report/figures/` that is a symbolic link leading out of the project is refused. Fails,
 /// naming the file, on an unreadable `runs.csv`, a missing or malformed trace, or two runs whose
-/// names give the same file name.
-pub fn render_all(root: &Path) -> Result<Vec<PathBuf>, ReportError> {
-    render(root, None)
+/// names give the same file name. The runs of `untraced` keep no trace by choice (their
+/// sweep's `traces`): they get no figure of their own, and a large sweep's figures of its own
+/// runs are chosen among those that keep one (its sweep figure still has every row).
+pub fn render_all(root: &Path, untraced: &HashSet<RunKey>) -> Result<Vec<PathBuf>, ReportError> {
+    render(root, None, untraced)
 }
 
 /// [`render_all`] for one paper only (`reproduce run --paper X`): the figures of `paper`'s runs
 /// and experiments and its inference profiles; the figures of other papers, the cost and the
 /// control figures are left as they are, and only figures of `paper`'s experiments are removed
 /// as stale.
-pub fn render_paper(root: &Path, paper: &str) -> Result<Vec<PathBuf>, ReportError> {
-    render(root, Some(paper))
+pub fn render_paper(
+    root: &Path,
+    paper: &str,
+    untraced: &HashSet<RunKey>,
+) -> Result<Vec<PathBuf>, ReportError> {
+    render(root, Some(paper), untraced)
 }
 
 /// Renders the figures of every paper, or of `paper` alone ([`render_paper`]).
-fn render(root: &Path, paper: Option<&str>) -> Result<Vec<PathBuf>, ReportError> {
-    let inputs = Inputs::read(&root.join(records::results_dir::DIR), paper)?;
+fn render(
+    root: &Path,
+    paper: Option<&str>,
+    untraced: &HashSet<RunKey>,
+) -> Result<Vec<PathBuf>, ReportError> {
+    let inputs = Inputs::read(&root.join(store::results_dir::DIR), paper, untraced)?;
     let mut jobs = Jobs::default();
     jobs.add_runs(&inputs.runs, &inputs.traces)?;
     match paper {
@@ -226,19 +237,24 @@ struct Inputs {
 impl Inputs {
     /// Reads the inputs from the results directory `results` (of `paper`'s runs only, when
     /// given: the others' traces are not read; nor are the traces of a large sweep's runs
-    /// that get no figure of their own).
-    fn read(results: &Path, paper: Option<&str>) -> Result<Self, ReportError> {
-        let mut runs = read_runs(&results.join(records::results_dir::RUNS))?;
+    /// that get no figure of their own, nor those of `untraced`, which keep none by choice).
+    fn read(
+        results: &Path,
+        paper: Option<&str>,
+        untraced: &HashSet<RunKey>,
+    ) -> Result<Self, ReportError> {
+        let mut runs = read_runs(&results.join(store::results_dir::RUNS))?;
         runs.retain(|r| paper.is_none_or(|p| r.paper == p));
         runs.sort_by_key(RunRow::key);
         let mut drawn = vec![false; runs.len()];
-        for indices in by_experiment(&runs).into_values() {
+        for mut indices in by_experiment(&runs).into_values() {
+            indices.retain(|&i| untraced.is_empty() || !untraced.contains(&runs[i].key()));
             let members: Vec<&RunRow> = indices.iter().map(|&i| &runs[i]).collect();
             for k in sweep::drawn(&members) {
                 drawn[indices[k]] = true;
             }
         }
-        let traces_dir = results.join(records::results_dir::TRACES);
+        let traces_dir = results.join(store::results_dir::TRACES);
         let traces = runs
             .iter()
             .zip(drawn)
@@ -257,12 +273,10 @@ impl Inputs {
         Ok(Inputs {
             runs,
             traces,
-            inference: records::table::read_if_present(
-                &results.join(records::results_dir::INFERENCE),
-            )?,
-            dof_cost: records::dof_cost::read(results)?,
-            control: records::control::read(results, records::results_dir::CONTROL)?,
-            cycles: records::control::read(results, records::results_dir::CYCLES)?,
+            inference: store::table::read_if_present(&results.join(store::results_dir::INFERENCE))?,
+            dof_cost: store::dof_cost::read(results)?,
+            control: store::control::read(results, store::results_dir::CONTROL)?,
+            cycles: store::control::read(results, store::results_dir::CYCLES)?,
         })
     }
 }

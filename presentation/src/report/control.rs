@@ -7,15 +7,13 @@
 use super::markdown::{sci, sci_opt, text, Table, MISSING};
 use crate::figures::control::{pareto_name, CYCLES_NAME, STABILITY_NAME};
 use analysis::control_claim::ACCURACY;
-use analysis::control_track::{
-    fits_period, main_h_ms, products_per_ms, steps_per_main_tick, success, track,
-};
+use analysis::report_model::Control;
 use records::control::Verdict;
-use records::control::{read, ClaimRow, ControlRow, ControlStatus, Family, StabilityRow, TrendRow};
-use records::error::ControlFileError;
-use records::index::{completed, Runs};
-use records::results_dir;
+use records::control::{ClaimRow, ControlRow, ControlStatus, Family, StabilityRow, TrendRow};
 use std::path::Path;
+use store::control::read;
+use store::error::ControlFileError;
+use store::results_dir;
 
 /// The control experiments' results (each file empty when absent).
 #[derive(Clone, Debug, Default)]
@@ -68,13 +66,13 @@ fn figure(figures: &[String], name: &str, alt: &str) -> String {
 pub fn section(
     results: &ControlResults,
     claim: Verdict,
-    runs: &Runs,
+    model: &Control,
     figures: &[String],
 ) -> String {
     if results.runs.is_empty() {
         return String::new();
     }
-    let h = main_h_ms();
+    let h = model.main_h_ms;
     let mut out = String::from("## At a robot's control rate\n\n");
     out.push_str(&format!(
         "A robot runs its redundancy resolution as a discrete loop. Here every scheme of the \
@@ -124,18 +122,18 @@ pub fn section(
         "drift (rad)",
         "M-products per tick",
     ]);
-    for r in results.runs.iter().filter(|r| r.h_ms == h) {
-        let yes = |b: bool| if b { "yes" } else { "no" }.to_string();
+    for v in &model.verdicts {
+        let (r, yes) = (v.row, |b: bool| if b { "yes" } else { "no" }.to_string());
         t.push([
             r.task.clone(),
             r.method.clone(),
-            yes(fits_period(r)),
+            yes(v.fits),
             if r.status == ControlStatus::Ok {
                 "yes".to_string()
             } else {
                 format!("{} at t = {}", r.status, sci_opt(r.stopped_at))
             },
-            yes(success(r)),
+            yes(v.success),
             format!(
                 "{} / {} / {}",
                 sci(r.solve_p50_us),
@@ -152,9 +150,9 @@ pub fn section(
     out.push_str(&t.render());
     out.push('\n');
 
-    out.push_str(&claim_section(results, claim, runs));
-    out.push_str(&stability_section(results, figures));
-    out.push_str(&leaderboard(results));
+    out.push_str(&claim_section(results, claim, model));
+    out.push_str(&stability_section(results, model, figures));
+    out.push_str(&leaderboard(model));
 
     out.push_str("### Latency against accuracy\n\n");
     let mut tasks: Vec<&str> = results.runs.iter().map(|r| r.task.as_str()).collect();
@@ -177,7 +175,7 @@ fn task_list(results: &ControlResults) -> String {
 }
 
 /// zhong2021's efficiency claim (its overall verdict `claim`), with its numbers.
-fn claim_section(results: &ControlResults, claim: Verdict, runs: &Runs) -> String {
+fn claim_section(results: &ControlResults, claim: Verdict, model: &Control) -> String {
     let mut out = format!("### The efficiency claim: {}\n\n", claim.label());
     out.push_str(
         "zhong2021 §1: \"compared with numerical methods [26], [27], neural network methods can \
@@ -235,13 +233,13 @@ fn claim_section(results: &ControlResults, claim: Verdict, runs: &Runs) -> Strin
     }
     out.push_str(&t.render());
     out.push('\n');
-    out.push_str(&papers_integration(results, runs));
+    out.push_str(&papers_integration(model));
     out
 }
 
 /// The networks as the papers integrate them (a stiff variable-step solver, `results/runs.csv`):
 /// right-hand sides per millisecond of the task, in products with M.
-fn papers_integration(results: &ControlResults, runs: &Runs) -> String {
+fn papers_integration(model: &Control) -> String {
     let mut t = Table::new([
         "run (as the papers integrate it)",
         "RHS evaluations",
@@ -250,24 +248,17 @@ fn papers_integration(results: &ControlResults, runs: &Runs) -> String {
         "products with M per ms (RHS only)",
         "max |x - x*| (score)",
     ]);
-    let mut any = false;
-    for c in &results.claims {
-        for r in runs
-            .of_experiment(&c.experiment)
-            .filter(|r| r.variant_id == c.variant_id && r.solver_id == c.solver_id && completed(r))
-        {
-            any = true;
-            t.push([
-                format!("{} / {} / {}", c.experiment, r.variant, r.solver),
-                r.rhs_evals.to_string(),
-                r.jac_evals.to_string(),
-                sci(r.duration),
-                sci(products_per_ms(r, c)),
-                sci_opt(r.score_max_dx),
-            ]);
-        }
+    for &(c, r, products) in &model.as_integrated {
+        t.push([
+            format!("{} / {} / {}", c.experiment, r.variant, r.solver),
+            r.rhs_evals.to_string(),
+            r.jac_evals.to_string(),
+            sci(r.duration),
+            sci(products),
+            sci_opt(r.score_max_dx),
+        ]);
     }
-    if !any {
+    if model.as_integrated.is_empty() {
         return String::new();
     }
     format!(
@@ -284,7 +275,7 @@ fn papers_integration(results: &ControlResults, runs: &Runs) -> String {
 }
 
 /// The networks' Euler stability limits beside their gains, and the stability figure.
-fn stability_section(results: &ControlResults, figures: &[String]) -> String {
+fn stability_section(results: &ControlResults, model: &Control, figures: &[String]) -> String {
     let mut out = String::from(
         "### Stability limits\n\n\
          s_max is the largest forward-Euler step at which the network contracts, from the \
@@ -305,15 +296,15 @@ fn stability_section(results: &ControlResults, figures: &[String]) -> String {
         "steps per 1 ms tick",
         "largest period without divergence (ms)",
     ]);
-    for s in &results.stability {
+    for (s, steps) in results.stability.iter().zip(&model.steps_per_tick) {
         t.push([
             s.task.clone(),
             s.network.clone(),
             format!("{} = {}", s.gain_name, sci(s.gain)),
             sci_opt(s.euler_limit_s),
             sci_opt(s.gain_x_limit),
-            s.euler_limit_s
-                .map(|l| steps_per_main_tick(l).to_string())
+            steps
+                .map(|n| n.to_string())
                 .unwrap_or_else(|| MISSING.to_string()),
             s.largest_stable_h_ms
                 .map(sci)
@@ -328,15 +319,15 @@ fn stability_section(results: &ControlResults, figures: &[String]) -> String {
 
 /// The control-rate leaderboard track: per method, successes at the main period over the
 /// tasks it ran, and its worst tick latency p99.
-fn leaderboard(results: &ControlResults) -> String {
-    let h = main_h_ms();
+fn leaderboard(model: &Control) -> String {
+    let h = model.main_h_ms;
     let mut t = Table::new([
         "method",
         "success",
         "worst median tick (us)",
         "worst tick p99 (us)",
     ]);
-    for r in track(&results.runs) {
+    for r in &model.track {
         t.push([
             r.method.to_string(),
             format!("{} / {}", r.successes, r.runs),

@@ -6,6 +6,7 @@
 //! zhong2021 claims (about 2x on the clover, 7x on "dai").
 
 use super::markdown::{sci, sci_opt, Table, MISSING};
+use analysis::cost_ratio::TimeRow;
 use analysis::papers::Papers;
 use records::index::{completed, Runs};
 
@@ -70,9 +71,9 @@ pub(crate) fn timed_papers(papers: &Papers) -> String {
 }
 
 /// The published compute times: per experiment and solver, the paper's MATLAB seconds and
-/// ours, each also divided by the mean of the VP-RNN-PF variants
-/// ([`analysis::cost_ratio::matlab_times`]).
-pub fn matlab_comparison(runs: &Runs, papers: &Papers) -> String {
+/// ours, each also divided by the mean of the VP-RNN-PF variants (`times`,
+/// [`analysis::cost_ratio::matlab_times`]).
+pub fn matlab_comparison(runs: &Runs, times: &[TimeRow]) -> String {
     let mut t = Table::new([
         "experiment",
         "solver",
@@ -81,7 +82,7 @@ pub fn matlab_comparison(runs: &Runs, papers: &Papers) -> String {
         "ours (s)",
         "ours ÷ VP-RNN-PF mean",
     ]);
-    for row in analysis::cost_ratio::matlab_times(runs, papers) {
+    for row in times {
         t.push([
             row.experiment.clone(),
             solver_label(runs, &row.experiment, &row.solver),

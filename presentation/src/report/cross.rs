@@ -3,25 +3,26 @@
 //! Three matrices, rows = solver, columns = scheme · path: the drift against the scheme's
 //! reference (theta0, or kong2019's theta*0), the max position error, and the score max
 //! |x − x*|. Under each, a "best" line per column computed from the numbers among the
-//! completed neural runs ([`analysis::cross_best`]): the drift closest to the exact column's
-//! (drift is the scheme's property; a solver should not change it), the smallest position
-//! error, the smallest score.
+//! completed neural runs ([`analysis::cross_best`], held by the report model): the drift
+//! closest to the exact column's (drift is the scheme's property; a solver should not change
+//! it), the smallest position error, the smallest score.
 
 use super::markdown::{sci, Table, MISSING};
-use analysis::cross_best::{best_in, Best, BestRule};
+use analysis::cross_best::{Best, ColumnBest, MEASURES};
 use records::index::{completed, failed_at, metric, Runs, EXACT};
 use records::runs::RunRow;
 
-/// The matrices, as (title, runs.csv column, best rule).
-const MATRICES: &[(&str, &str, BestRule)] = &[
-    ("Drift ‖θ(T) − θ_ref‖ (rad; θ_ref = θ0, or θ*0 where the experiment declares one)", "drift_ref_norm", BestRule::ClosestToExact),
-    ("Max position error (m)", "max_pos_err", BestRule::Smallest),
-    ("Score: max |x − x*| against the exact optimum (includes the start-up transient from the zero network state: on a deviated start, θ0 ≠ θ*0, every solver ties at |x*(0)|)", "score_max_dx", BestRule::Smallest),
-    ("Score: RMS |x − x*| over the run (time-weighted, so the start-up transient counts for its duration only)", "score_rms_dx", BestRule::Smallest),
+/// The matrices' titles, in the order of [`MEASURES`].
+const TITLES: [&str; MEASURES.len()] = [
+    "Drift ‖θ(T) − θ_ref‖ (rad; θ_ref = θ0, or θ*0 where the experiment declares one)",
+    "Max position error (m)",
+    "Score: max |x − x*| against the exact optimum (includes the start-up transient from the zero network state: on a deviated start, θ0 ≠ θ*0, every solver ties at |x*(0)|)",
+    "Score: RMS |x − x*| over the run (time-weighted, so the start-up transient counts for its duration only)",
 ];
 
-/// The cross section as Markdown (empty when there are no cross runs).
-pub fn section(runs: &Runs, paper: &str) -> String {
+/// The cross section as Markdown (empty when there are no cross runs); `bests`: the best of
+/// every column ([`analysis::cross_best::bests`]).
+pub fn section(runs: &Runs, paper: &str, bests: &[ColumnBest]) -> String {
     let rows: Vec<&RunRow> = runs.of_paper(paper).collect();
     let mut columns: Vec<(&str, &str)> = rows
         .iter()
@@ -46,7 +47,7 @@ pub fn section(runs: &Runs, paper: &str) -> String {
         format!("{} · {}", r.scheme, r.path)
     };
     let mut out = String::new();
-    for &(title, column, best) in MATRICES {
+    for (title, &(column, _)) in TITLES.iter().zip(MEASURES.iter()) {
         let mut header = vec!["solver".to_string()];
         header.extend(columns.iter().map(|c| label(*c)));
         let mut t = Table::new(header);
@@ -64,11 +65,14 @@ pub fn section(runs: &Runs, paper: &str) -> String {
             t.push(row);
         }
         let mut best_row = vec!["**best**".to_string()];
-        best_row.extend(
-            columns
-                .iter()
-                .map(|(e, v)| best_cell(best_in(runs, e, v, column, best))),
-        );
+        best_row.extend(columns.iter().map(|(e, v)| {
+            best_cell(
+                bests
+                    .iter()
+                    .find(|b| b.measure == column && b.experiment == *e && b.variant == *v)
+                    .map_or(Best::Nothing, |b| b.best),
+            )
+        }));
         t.push(best_row);
         out.push_str(&format!("**{title}**\n\n{}\n", t.render()));
     }

@@ -4,11 +4,11 @@
 //! of its extremes and failures (`crate::figures::sweep`).
 
 use super::markdown::{sci, sci_opt, text, Table};
-use catalog::run_key::RunKey;
-use records::error::{IoAction, IoError};
+use analysis::sweep_summary::SweepSummary;
 use records::index::Runs;
-use records::runs::RunRow;
+use spec::run_key::RunKey;
 use std::path::Path;
+use store::error::{IoAction, IoError};
 
 /// The `.svg` file names in `dir`, sorted; none when the folder does not exist.
 pub fn list(dir: &Path) -> Result<Vec<String>, IoError> {
@@ -34,12 +34,19 @@ pub fn list(dir: &Path) -> Result<Vec<String>, IoError> {
 /// figure and its table of extremes and failures (`sweep_section`), then every run's figure
 /// linked (by its variant and solver ids, in file-name order), as a paragraph; only the
 /// figures present in `figures` (the names in `report/figures/`); nothing when there are none.
-pub fn links(figures: &[String], runs: &Runs, experiment: &str) -> String {
+/// `summaries`: every experiment's sweep summary (the report model's).
+pub fn links(
+    figures: &[String],
+    runs: &Runs,
+    experiment: &str,
+    summaries: &[(&str, SweepSummary)],
+) -> String {
     let present = |name: &String| figures.contains(name);
     let mut out = String::new();
     let sweep = crate::figures::sweep::sweep_name(experiment);
-    if present(&sweep) {
-        out.push_str(&sweep_section(runs, experiment, &sweep));
+    let summary = summaries.iter().find(|(e, _)| *e == experiment);
+    if let (true, Some((_, summary))) = (present(&sweep), summary) {
+        out.push_str(&sweep_section(summary, experiment, &sweep));
     }
     let overview = crate::figures::overview_name(experiment);
     if present(&overview) {
@@ -68,12 +75,10 @@ pub fn links(figures: &[String], runs: &Runs, experiment: &str) -> String {
 }
 
 /// A large sweep's section: its figure over the parameters inline, then a table of its
-/// extremes and of its first failures ([`analysis::sweep_summary`]), and what the per-run
-/// figures show.
-fn sweep_section(runs: &Runs, experiment: &str, figure: &str) -> String {
+/// extremes and of its first failures (`s`, [`analysis::sweep_summary`]), and what the
+/// per-run figures show.
+fn sweep_section(s: &SweepSummary, experiment: &str, figure: &str) -> String {
     use crate::figures::sweep::MAX_RUN_FIGURES;
-    let members: Vec<&RunRow> = runs.of_experiment(experiment).collect();
-    let s = analysis::sweep_summary::summary(&members);
     let mut t = Table::new([
         "",
         "run (variant / solver)",

@@ -6,18 +6,23 @@
 
 use super::markdown::{percent, sci, times, Table, MISSING};
 use analysis::leaderboard::{
-    self as board, LeaderboardRow, PENALTY_DRIFT, PENALTY_DX, SHIFT_DRIFT, SHIFT_DX, SHIFT_TIME_S,
-    STANDARD_PAPER, STANDARD_SET, TIME_LIMIT_FACTOR, TOL_RMS_DX,
+    LeaderboardRow, PENALTY_DRIFT, PENALTY_DX, SHIFT_DRIFT, SHIFT_DX, SHIFT_TIME_S, STANDARD_PAPER,
+    STANDARD_SET, TIME_LIMIT_FACTOR, TOL_RMS_DX,
 };
-use analysis::leaderboard_reading::{standard_reading, timing_reading, Best, StandardReading};
+use analysis::leaderboard_reading::{Best, StandardReading, TimingReading};
 use analysis::report_model::Leaderboard;
-use records::index::Runs;
 use records::timing::{Timings, REPETITIONS};
 
-/// The whole section (`## Leaderboard`) of the leaderboard `model` (its runs in `runs`, timed
-/// in `timings`), empty when there is no standard task.
-pub fn section(model: &Leaderboard, runs: &Runs, timings: &Timings) -> String {
-    let Leaderboard { tasks, rows } = model;
+/// The whole section (`## Leaderboard`) of the leaderboard `model` (timed in `timings`), empty
+/// when there is no standard task.
+pub fn section(model: &Leaderboard, timings: &Timings) -> String {
+    let Leaderboard {
+        tasks,
+        rows,
+        alone,
+        reading: standard,
+        timing: timed,
+    } = model;
     if tasks.is_empty() || rows.is_empty() {
         return String::new();
     }
@@ -31,16 +36,21 @@ pub fn section(model: &Leaderboard, runs: &Runs, timings: &Timings) -> String {
          `results/leaderboard.csv`; the definitions follow the tables.\n\n",
         tasks.len()
     );
-    out.push_str(&reading(rows, tasks.len()));
+    out.push_str(&reading(rows, standard.as_ref(), tasks.len()));
     out.push('\n');
-    out.push_str(&timing(rows, timings, tasks));
+    out.push_str(&timing(timings, timed.as_ref()));
     for set in sets(rows) {
-        let members: Vec<&LeaderboardRow> = rows.iter().filter(|r| r.task_set == set).collect();
-        let n = members[0].tasks;
+        let members: Vec<(&LeaderboardRow, (usize, f64))> = rows
+            .iter()
+            .zip(alone.iter().copied())
+            .filter(|(r, _)| r.task_set == set)
+            .collect();
+        let ranked: Vec<&LeaderboardRow> = members.iter().map(|(r, _)| *r).collect();
+        let n = ranked[0].tasks;
         if set == STANDARD_SET {
             out.push_str(&format!("### Standard set ({n} tasks)\n\n"));
         } else {
-            let partial: Vec<&str> = members
+            let partial: Vec<&str> = ranked
                 .iter()
                 .filter(|r| r.standard_runs < tasks.len())
                 .map(|r| r.solver.as_str())
@@ -54,25 +64,9 @@ pub fn section(model: &Leaderboard, runs: &Runs, timings: &Timings) -> String {
                 tasks.len()
             ));
         }
-        out.push_str(&ranking(&members));
+        out.push_str(&ranking(&ranked));
         out.push('\n');
-        // The set's tasks: the standard ones, or those its partial solvers ran on.
-        let set_tasks: Vec<board::Task> =
-            match members.iter().find(|r| r.standard_runs < tasks.len()) {
-                Some(partial) => tasks
-                    .iter()
-                    .filter(|t| {
-                        runs.all().iter().any(|r| {
-                            r.solver_id == partial.solver_id
-                                && r.experiment == t.experiment
-                                && r.variant_id == t.variant
-                        })
-                    })
-                    .cloned()
-                    .collect(),
-                None => tasks.clone(),
-            };
-        out.push_str(&distributions(&members, timings, &set_tasks));
+        out.push_str(&distributions(&members));
         out.push('\n');
     }
     out.push_str(&definitions());
@@ -140,8 +134,9 @@ pub fn ranking(rows: &[&LeaderboardRow]) -> String {
     t.render()
 }
 
-/// The absolute shifted geometric means, medians and 95th percentiles of one set.
-fn distributions(rows: &[&LeaderboardRow], timings: &Timings, tasks: &[board::Task]) -> String {
+/// The absolute shifted geometric means, medians and 95th percentiles of one set's `rows`, each
+/// with its runs timed alone and their largest spread.
+fn distributions(rows: &[(&LeaderboardRow, (usize, f64))]) -> String {
     let mut t = Table::new([
         "solver",
         "RMS |x − x*| shm (rad/s)",
@@ -156,8 +151,7 @@ fn distributions(rows: &[&LeaderboardRow], timings: &Timings, tasks: &[board::Ta
         "timed alone",
         "largest spread of the repetitions",
     ]);
-    for r in rows {
-        let (alone, spread) = board::alone_timing(timings, &r.solver_id, tasks);
+    for &(r, (alone, spread)) in rows {
         t.push([
             r.solver.clone(),
             sci(r.dx_shm),
@@ -189,14 +183,18 @@ fn join_and(names: &[&str]) -> String {
     }
 }
 
-/// One paragraph reading the standard set (and a sentence per other set), generated from the
-/// numbers ([`analysis::leaderboard_reading`]).
-pub fn reading(rows: &[LeaderboardRow], standard_tasks: usize) -> String {
-    let mut s = match standard_reading(rows) {
+/// One paragraph reading the standard set (its `standard` reading,
+/// [`analysis::leaderboard_reading`]) and a sentence per other set of `rows`.
+fn reading(
+    rows: &[LeaderboardRow],
+    standard: Option<&StandardReading>,
+    standard_tasks: usize,
+) -> String {
+    let mut s = match standard {
         None => vec![format!(
             "No solver ran on all {standard_tasks} standard tasks, so there is no standard ranking."
         )],
-        Some(reading) => standard_sentences(&reading),
+        Some(reading) => standard_sentences(reading),
     };
     for set in sets(rows).into_iter().filter(|s| *s != STANDARD_SET) {
         s.push(other_set_sentence(rows, set, standard_tasks));
@@ -205,8 +203,13 @@ pub fn reading(rows: &[LeaderboardRow], standard_tasks: usize) -> String {
 }
 
 /// "a", "a and b", "a, b and c" of the solvers' labels.
-fn names(rows: &[&LeaderboardRow]) -> String {
-    join_and(&rows.iter().map(|r| r.solver.as_str()).collect::<Vec<_>>())
+fn names<'r>(rows: impl IntoIterator<Item = &'r LeaderboardRow>) -> String {
+    join_and(
+        &rows
+            .into_iter()
+            .map(|r| r.solver.as_str())
+            .collect::<Vec<_>>(),
+    )
 }
 
 /// The others' ratios to the best: "2.00×", "2.00× to 5.00×", or "the same".
@@ -295,7 +298,7 @@ fn other_set_sentence(rows: &[LeaderboardRow], set: &str, standard_tasks: usize)
     format!(
         "{} ran on {n} of the {standard_tasks} standard tasks only; on those, {} ranks first \
          ({} / {n} within tolerance), and {}.",
-        names(&partial),
+        names(partial.iter().copied()),
         first.solver,
         first.within_tolerance,
         join_and(
@@ -317,10 +320,10 @@ fn other_set_sentence(rows: &[LeaderboardRow], set: &str, standard_tasks: usize)
 }
 
 /// How the times the ranking uses were measured: alone, repeated ([`records::timing`]), on
-/// which machine and revision; or that they come from the parallel reproduction.
-fn timing(rows: &[LeaderboardRow], timings: &Timings, tasks: &[board::Task]) -> String {
-    let (Some(first), Some(t)) = (timings.rows().next(), timing_reading(rows, timings, tasks))
-    else {
+/// which machine and revision (the first of `timings`; `reading`: how); or that they come
+/// from the parallel reproduction.
+fn timing(timings: &Timings, reading: Option<&TimingReading>) -> String {
+    let (Some(first), Some(t)) = (timings.rows().next(), reading) else {
         return format!(
             "**Times.** `results/{}` is absent: the times are the parallel reproduction's \
              `sim_s`, where a run shares the cores with its neighbours.\n\n",

@@ -50,14 +50,25 @@ pub mod verdict;
 pub mod why;
 
 use crate::error::ReportError;
+use analysis::cost_ratio::TimeRow;
+use analysis::cross_best::ColumnBest;
 use analysis::paper_rules::GROUP;
 use analysis::papers::{PaperValue, Papers};
-use analysis::report_model::{PaperClaims, ReportModel};
+use analysis::report_model::{ControlInputs, Inference, PaperModel, ReportModel};
+use analysis::sweep_summary::SweepSummary;
 use markdown::{sci, Table};
 use records::index::Runs;
-use records::runs::read_runs;
-use records::table::read_if_present;
 use std::path::{Path, PathBuf};
+use store::runs::read_runs;
+use store::table::read_if_present;
+
+/// The figures' names in `report/figures/` and every experiment's sweep summary (the report
+/// model's), what a page's figure links are made from.
+type Figures<'a, 'm> = (&'a [String], &'a [(&'m str, SweepSummary<'m>)]);
+
+/// The stored explanations and every inferred table, decided (the report model's), what the
+/// "why" sections are made from.
+type Why<'a, 'm> = (&'a why::Explanations, &'a [Inference<'m>]);
 
 /// The `paper` value of the suite's own cross experiment.
 pub const CROSS: &str = "cross";
@@ -91,20 +102,20 @@ impl Inputs {
     /// `papers` (the project's `papers/`).
     pub fn load(root: &Path, papers: &Path) -> Result<Self, ReportError> {
         let report = root.join("report");
-        let results = root.join(records::results_dir::DIR);
+        let results = root.join(store::results_dir::DIR);
         Ok(Inputs {
-            runs: Runs::new(read_runs(&results.join(records::results_dir::RUNS))?),
+            runs: Runs::new(read_runs(&results.join(store::results_dir::RUNS))?),
             papers: Papers::load(papers)?,
             deviations: report.join(DEVIATIONS).is_file(),
             figures: figures::list(&report.join("figures"))?,
             explanations: why::Explanations {
-                ladder: read_if_present(&results.join(records::results_dir::LADDER))?,
-                attribution: read_if_present(&results.join(records::results_dir::ATTRIBUTION))?,
-                inference: read_if_present(&results.join(records::results_dir::INFERENCE))?,
-                entries: read_if_present(&results.join(records::results_dir::INFERENCE_ENTRIES))?,
+                ladder: read_if_present(&results.join(store::results_dir::LADDER))?,
+                attribution: read_if_present(&results.join(store::results_dir::ATTRIBUTION))?,
+                inference: read_if_present(&results.join(store::results_dir::INFERENCE))?,
+                entries: read_if_present(&results.join(store::results_dir::INFERENCE_ENTRIES))?,
             },
-            timings: records::timing::read(&results)?,
-            dof_cost: records::dof_cost::read(&results)?,
+            timings: store::timing::read(&results)?,
+            dof_cost: store::dof_cost::read(&results)?,
             qp_replay: read_if_present(&results.join(records::qp_replay::FILE))?,
             control: control::ControlResults::load(&results)?,
             python: python::PythonResults::load(&results)?,
@@ -137,11 +148,11 @@ pub fn paper_page(paper: &str) -> String {
 /// returns the front page's path.
 pub fn render(root: &Path, papers: &Path) -> Result<PathBuf, ReportError> {
     let inputs = Inputs::load(root, papers)?;
-    let report = records::tracked_dir::TrackedDir::open_within(root, "report")?;
+    let report = store::tracked_dir::TrackedDir::open_within(root, "report")?;
     let pages = pages(&inputs);
     for listed in report.listed(PAPER_PAGE) {
         if !pages.iter().any(|p| p.file == listed) {
-            if let records::tracked_dir::Removal::Kept(why) = report.remove(Path::new(&listed))? {
+            if let store::tracked_dir::Removal::Kept(why) = report.remove(Path::new(&listed))? {
                 eprintln!("note: {why}");
             }
         }
@@ -185,28 +196,51 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
     // Every text of papers/ escaped once, before any section shows it.
     let papers = &shown::papers(papers);
     // What the pages show that analysis decides, decided once.
-    let model = ReportModel::build(runs, papers, timings, &control.claims);
+    let model = ReportModel::build(
+        runs,
+        papers,
+        timings,
+        ControlInputs {
+            runs: &control.runs,
+            claims: &control.claims,
+            stability: &control.stability,
+        },
+        &explanations.inference,
+    );
+    let inferred = &model.inference;
     let evaluated = &model.papers;
+    let summaries = &model.sweep_summaries;
     let mut head = header::header(runs, papers, figures.len());
-    head.push_str(&summary_section(evaluated, runs, papers, explanations));
+    head.push_str(&summary_section(evaluated, explanations));
     let mut pages: Vec<Page> = evaluated
         .iter()
-        .map(|e| paper_page_of(e, runs, papers, explanations, figures))
+        .map(|e| {
+            paper_page_of(
+                e,
+                runs,
+                papers,
+                (explanations, inferred),
+                (figures, summaries),
+            )
+        })
         .collect();
-    let group = group_section(runs, explanations, papers, figures);
+    let group = group_section(runs, (explanations, inferred), papers, (figures, summaries));
     if !group.is_empty() {
         pages.push(topic("group.md", group));
     }
     pages.push(topic("score.md", score_page(runs, papers)));
     let top = leaderboard::top(&model.leaderboard, FRONT_TOP);
-    let board = leaderboard::section(&model.leaderboard, runs, timings);
+    let board = leaderboard::section(&model.leaderboard, timings);
     if !board.is_empty() {
         pages.push(topic(
             "leaderboard.md",
             board + &python::leaderboard(&python.leaderboard),
         ));
     }
-    pages.push(topic("cost.md", cost_page(runs, papers)));
+    pages.push(topic(
+        "cost.md",
+        cost_page(runs, papers, &model.matlab_times),
+    ));
     let mut out = performance::section(
         &performance::Measurements {
             dof: dof_cost,
@@ -219,24 +253,21 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
     );
     out.push_str(&python::call_cost(&python.call_cost));
     pages.push(topic("performance.md", out));
-    let mut out = control::section(control, model.control_claim, runs, figures);
+    let mut out = control::section(control, model.control_claim, &model.control, figures);
     out.push_str(&control::cycles_section(control, figures));
     pages.push(topic("control.md", out));
-    pages.push(topic("cross.md", cross_page(runs, figures)));
+    pages.push(topic(
+        "cross.md",
+        cross_page(runs, &model.cross, (figures, summaries)),
+    ));
     pages.push(topic("published.md", published_page(runs, papers)));
     let front = front_page(head, &top, &pages, *deviations);
     std::iter::once(front).chain(pages).collect()
 }
 
 /// `## Summary` of the front page: per paper, its verdict, its claims by verdict, the range of
-/// our magnitudes over the paper's ([`analysis::paper_verdict::ratio_span`]) and why in one
-/// line.
-fn summary_section(
-    evaluated: &[PaperClaims],
-    runs: &Runs,
-    papers: &Papers,
-    explanations: &why::Explanations,
-) -> String {
+/// our magnitudes over the paper's (the model's `ratio_span`) and why in one line.
+fn summary_section(evaluated: &[PaperModel], explanations: &why::Explanations) -> String {
     use analysis::claim_verdict::Verdict;
     let mut summary = Table::new([
         "paper",
@@ -248,8 +279,8 @@ fn summary_section(
     for e in evaluated {
         let paper = e.id.as_str();
         let n = |v: Verdict| e.claims.iter().filter(|x| x.verdict == v).count();
-        let decision = analysis::paper_verdict::decide(paper, &e.claims, runs, papers);
-        let range = match analysis::paper_verdict::ratio_span(&decision.ratios) {
+        let decision = &e.decision;
+        let range = match &e.ratio_span {
             Some((lo, hi)) => format!(
                 "{} to {} ({} numbers)",
                 sci(lo.1),
@@ -261,12 +292,8 @@ fn summary_section(
         summary.push([
             format!("[{paper}]({})", paper_page(paper)),
             match decision.signs.n {
-                0 => analysis::paper_verdict::level_under_setup(paper, &decision, papers),
-                _ => format!(
-                    "{} (signs agree in {})",
-                    analysis::paper_verdict::level_under_setup(paper, &decision, papers),
-                    decision.signs
-                ),
+                0 => e.level.clone(),
+                _ => format!("{} (signs agree in {})", e.level, decision.signs),
             },
             format!(
                 "{} / {} / {}",
@@ -287,11 +314,11 @@ fn summary_section(
 /// side with ours, the sweep checks, why the numbers differ, the claims, and every run with
 /// its figures.
 fn paper_page_of(
-    e: &PaperClaims,
+    e: &PaperModel,
     runs: &Runs,
     papers: &Papers,
-    explanations: &why::Explanations,
-    figures: &[String],
+    (explanations, inferred): Why,
+    (figures, summaries): Figures,
 ) -> Page {
     let (paper, title, c) = (e.id.as_str(), e.title.as_str(), &e.claims);
     let mut out = format!("[← the report](REPORT.md)\n\n# {paper}\n\n*{title}.*\n\n");
@@ -299,24 +326,22 @@ fn paper_page_of(
     if let Some(c) = citation.and_then(|p| p.citation.as_ref()) {
         out.push_str(&format!("Paper: {c}.\n\n"));
     }
-    out.push_str(&verdict::paragraph(paper, c, runs, papers));
-    out.push_str(&why::summary(paper, explanations, papers));
-    let tables: Vec<String> = analysis::published_table::published_tables(paper, papers)
+    out.push_str(&verdict::paragraph(e));
+    out.push_str(&why::summary(paper, (explanations, inferred), papers));
+    let tables: Vec<String> = e
+        .tables
         .iter()
-        .map(|t| tables::side_by_side(paper, t, papers, runs))
-        .filter(|t| !t.is_empty())
+        .map(|t| tables::side_by_side(t, papers, runs))
         .collect();
     if !tables.is_empty() {
         out.push_str("\n### Published tables side by side\n\n");
         out.push_str(&tables.join("\n"));
     }
-    out.push_str(&verdict::contradictions(
-        &analysis::misprints::contradictions(paper, papers),
-    ));
-    for check in papers.sweep_checks.iter().filter(|c| c.paper == *paper) {
-        out.push_str(&sweep::section(check, runs, papers));
+    out.push_str(&verdict::contradictions(&e.contradictions));
+    for check in &e.sweeps {
+        out.push_str(&sweep::section(check));
     }
-    out.push_str(&why::section(paper, explanations, papers));
+    out.push_str(&why::section(paper, (explanations, inferred), papers));
     out.push_str("\n### Claims\n\n");
     out.push_str(&claims::checklist(c));
     out.push_str(if tables.is_empty() {
@@ -330,7 +355,7 @@ fn paper_page_of(
             tables::runs_table(runs, &exp)
         ));
         out.push('\n');
-        out.push_str(&figures::links(figures, runs, &exp));
+        out.push_str(&figures::links(figures, runs, &exp, summaries));
     }
     Page {
         file: paper_page(paper),
@@ -352,8 +377,8 @@ fn score_page(runs: &Runs, papers: &Papers) -> String {
 }
 
 /// `## Cost`: per paper (and the cross experiment), every run's effort, then the compute time
-/// against the papers' MATLAB times.
-fn cost_page(runs: &Runs, papers: &Papers) -> String {
+/// against the papers' MATLAB times (`times`).
+fn cost_page(runs: &Runs, papers: &Papers, times: &[TimeRow]) -> String {
     let mut out = String::from("## Cost\n\nSteps, evaluations and QP solves are counted by the integrator and the scorer (the exact QP is solved at every RHS evaluation of the exact column and at every accepted step of a neural run). Wall times come from runs executed in parallel: compare them within one table, not across machines.\n\n");
     for paper in papers.papers.iter().map(|p| p.id.as_str()).chain([CROSS]) {
         out.push_str(&format!(
@@ -372,14 +397,14 @@ fn cost_page(runs: &Runs, papers: &Papers) -> String {
          network evaluation). Absolute times are not comparable across machines and languages; \
          the ratios are.\n\n",
     );
-    out.push_str(&cost::matlab_comparison(runs, papers));
+    out.push_str(&cost::matlab_comparison(runs, times));
     out.push('\n');
     out
 }
 
 /// `## Cross experiment`: the matrices of every velocity-level solver on every velocity-level
-/// scheme and path, and the figures.
-fn cross_page(runs: &Runs, figures: &[String]) -> String {
+/// scheme and path (their columns' `bests`), and the figures.
+fn cross_page(runs: &Runs, bests: &[ColumnBest], (figures, summaries): Figures) -> String {
     let mut out = String::from("## Cross experiment\n\nEvery velocity-level solver on every velocity-level scheme and path (ids: ");
     out.push_str(
         &runs
@@ -390,9 +415,9 @@ fn cross_page(runs: &Runs, figures: &[String]) -> String {
             .join(", "),
     );
     out.push_str("). Columns are scheme · path; a failed run shows its failure time.\n\n");
-    out.push_str(&cross::section(runs, CROSS));
+    out.push_str(&cross::section(runs, CROSS, bests));
     for exp in runs.experiments(CROSS) {
-        out.push_str(&figures::links(figures, runs, &exp));
+        out.push_str(&figures::links(figures, runs, &exp, summaries));
     }
     out
 }
@@ -495,9 +520,9 @@ fn front_page(head: String, top: &str, pages: &[Page], deviations: bool) -> Page
 /// max end-effector error), not published values.
 fn group_section(
     runs: &Runs,
-    explanations: &why::Explanations,
+    (explanations, inferred): Why,
     papers: &Papers,
-    figures: &[String],
+    (figures, summaries): Figures,
 ) -> String {
     let group = GROUP;
     let experiments = runs.experiments(group);
@@ -513,9 +538,9 @@ fn group_section(
             tables::runs_table(runs, exp)
         ));
         out.push('\n');
-        out.push_str(&figures::links(figures, runs, exp));
+        out.push_str(&figures::links(figures, runs, exp, summaries));
     }
-    out.push_str(&why::section(group, explanations, papers));
+    out.push_str(&why::section(group, (explanations, inferred), papers));
     out.push('\n');
     out
 }

@@ -13,8 +13,9 @@
 use super::leaderboard::ranking;
 use super::markdown::{Table, MISSING};
 use analysis::leaderboard::{LeaderboardRow, STANDARD_SET};
-use records::table::{read_if_present, Row, TableError};
+use records::table::{Row, TableError};
 use serde::{Deserialize, Serialize};
+use store::table::read_if_present;
 
 /// One case of `results/python-call-cost.csv` (definitions: `python/bench/call_cost.py`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -48,8 +49,8 @@ impl PythonResults {
     /// Reads both files from the results directory.
     pub fn load(results: &std::path::Path) -> Result<Self, TableError> {
         Ok(PythonResults {
-            leaderboard: read_if_present(&results.join(records::results_dir::LEADERBOARD_PYTHON))?,
-            call_cost: read_if_present(&results.join(records::results_dir::PYTHON_CALL_COST))?,
+            leaderboard: read_if_present(&results.join(store::results_dir::LEADERBOARD_PYTHON))?,
+            call_cost: read_if_present(&results.join(store::results_dir::PYTHON_CALL_COST))?,
         })
     }
 }

@@ -3,30 +3,28 @@
 //! swept variant is set beside the published column its id matches: per-joint sign agreement
 //! with the paper (where both exceed the run's round-off floor) and the drift norm ratio,
 //! computed from the rows
-//! ([`analysis::sweep_comparison`]); where the check names the declared setup's variant, a
-//! paragraph below the table states the setup's share of the gap
+//! ([`analysis::sweep_comparison`], held by the report model); where the check names the
+//! declared setup's variant, a paragraph below the table states the setup's share of the gap
 //! ([`analysis::sweep_comparison::setup_share`]).
 
 use super::markdown::{percent, sci, times, Table};
-use analysis::papers::Papers;
-use analysis::sweep_check::SweepCheck;
-use analysis::sweep_comparison::{setup_share, swept_runs, Against, SetupShare};
-use records::index::Runs;
+use analysis::report_model::Sweep;
+use analysis::sweep_comparison::{Against, SetupShare};
 
 /// The markdown section; when the sweep was not run (a project that holds a subset of the
 /// experiments, said at load), its heading and a line saying so, never nothing.
-pub fn section(check: &SweepCheck, runs: &Runs, papers: &Papers) -> String {
+pub fn section(sweep: &Sweep) -> String {
+    let check = sweep.check;
     let heading = format!(
         "\n### {} (`{}`)\n\n{}\n\n",
         check.heading, check.experiment, check.text
     );
-    if runs.of_experiment(&check.experiment).next().is_none() {
+    if !sweep.ran {
         return format!(
             "{heading}Not run: `results/runs.csv` has no run of `{}`.\n",
             check.experiment
         );
     }
-    let swept = swept_runs(check, runs, papers);
     let mut t = Table::new([
         "variant (exact column)",
         "drift norm",
@@ -35,7 +33,7 @@ pub fn section(check: &SweepCheck, runs: &Runs, papers: &Papers) -> String {
         "signs as the paper (above round-off)",
         "peak |θ̇| (rad/s)",
     ]);
-    for s in &swept {
+    for s in &sweep.swept {
         t.push(match s.against {
             Against::Failed { t } => [
                 s.row.variant.clone(),
@@ -61,21 +59,23 @@ pub fn section(check: &SweepCheck, runs: &Runs, papers: &Papers) -> String {
             ],
         });
     }
-    let share = setup_share(check, &swept)
-        .map(|s| share_paragraph(&s))
+    let share = sweep
+        .share
+        .as_ref()
+        .map(share_paragraph)
         .unwrap_or_default();
     format!("{heading}{}{share}", t.render())
 }
 
 /// The setup's share of the gap in words, every number from `s`.
 fn share_paragraph(s: &SetupShare) -> String {
-    let verdict = if s.share >= 1.0 {
+    let verdict = if s.closes_gap {
         "That part of the setup alone can carry the whole gap: the setup, not the solver, may explain it."
             .to_string()
     } else {
         format!(
             "No single part of the setup swept here carries more than {} of the gap: the rest of it is not explained by these parts.",
-            percent(s.share.max(0.0), 0)
+            percent(s.toward_paper, 0)
         )
     };
     format!(

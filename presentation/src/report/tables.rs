@@ -5,13 +5,13 @@
 //! and for each published column there are rows for the paper's number, our exact run, our
 //! run of the paper's solver, and the ratio ours/paper — then the same for each companion
 //! variant (each run once). The exact column separates what the scheme does from what the solver adds. Which
-//! columns and quantities a table has, and the ratios, are [`analysis::published_table`]'s.
+//! columns, rows and quantities a table has, and the ratios, are
+//! [`analysis::published_table`]'s (held by the report model).
 
 use super::markdown::metric_cell;
 use super::markdown::{sci, sci_opt, Table, MISSING};
-use analysis::misprints::{contradictions, is_contradicted, Contradiction};
 use analysis::papers::{Mapping, Papers};
-use analysis::published_table::{columns_of, quantities_of, ratio_to_paper};
+use analysis::published_table::{Row, SideBySide};
 use records::index::{metric, status_text, Runs, EXACT};
 use records::runs::RunRow;
 
@@ -30,86 +30,6 @@ pub fn quantity_label(metric: &str) -> String {
     }
 }
 
-/// One column of ours: a run, and the published column its ratio is taken against.
-struct OursColumn<'a> {
-    header: String,
-    run: Option<&'a RunRow>,
-    ratio_of: Option<&'a Mapping>,
-}
-
-/// A column of the side-by-side table: the paper's number, or one of ours.
-enum Col<'a> {
-    Paper(&'a Mapping),
-    Ours(OursColumn<'a>),
-}
-
-/// A run's label in a header: the run's own when it exists, the id otherwise (`solver`: its
-/// solver's label, else its variant's).
-fn label(r: Option<&RunRow>, id: &str, solver: bool) -> String {
-    r.map_or(id.to_string(), |r| {
-        if solver {
-            r.solver.clone()
-        } else {
-            r.variant.clone()
-        }
-    })
-}
-
-/// The column layout of a published table's `columns` side by side with ours: per published
-/// column, the paper's number then, per variant (the mapped one and its companions), the exact
-/// run (once per variant), the paper's solver and the ratio. `one_variant`: headers name the
-/// solver alone.
-fn layout<'a>(columns: &[&'a Mapping], runs: &'a Runs, one_variant: bool) -> Vec<Col<'a>> {
-    let name = |solver: &str, variant: &str| {
-        if one_variant {
-            solver.to_string()
-        } else {
-            format!("{solver}, {variant}")
-        }
-    };
-    let mut cols: Vec<Col> = Vec::new();
-    let mut exact_shown: Vec<(&str, &str)> = Vec::new();
-    for &m in columns {
-        cols.push(Col::Paper(m));
-        let e = m.run.experiment.as_str();
-        let mut shown_runs: Vec<&catalog::run_key::RunKey> = Vec::new();
-        for shown_run in std::iter::once(&m.run).chain(m.companions.iter()) {
-            if shown_runs.contains(&shown_run) {
-                continue;
-            }
-            shown_runs.push(shown_run);
-            let variant = &shown_run.variant;
-            let exact = runs.find(e, variant, EXACT);
-            let shown_label = label(exact, variant, false);
-            // A companion variant without an exact column (`exact = false`) shows none.
-            let without_exact = shown_run != &m.run && exact.is_none();
-            if !without_exact && !exact_shown.contains(&(e, variant)) {
-                exact_shown.push((e, variant));
-                cols.push(Col::Ours(OursColumn {
-                    header: name("exact", &shown_label),
-                    run: exact,
-                    ratio_of: None,
-                }));
-            }
-            let run = runs.find(e, variant, &shown_run.solver);
-            cols.push(Col::Ours(OursColumn {
-                header: name(
-                    &label(run, &shown_run.solver, true),
-                    &label(run.or(exact), variant, false),
-                ),
-                run,
-                ratio_of: None,
-            }));
-            cols.push(Col::Ours(OursColumn {
-                header: "ratio ours / paper".to_string(),
-                run,
-                ratio_of: Some(m),
-            }));
-        }
-    }
-    cols
-}
-
 /// What the table's cells flagged, for its footnotes.
 #[derive(Default)]
 struct Marks {
@@ -121,92 +41,65 @@ struct Marks {
     rests_on_contradiction: bool,
 }
 
-/// The cell of column `c` of published `table` for quantity `q` (`contradicted`: the paper's
-/// contradicted columns).
-fn cell(
-    c: &Col,
-    (table, q): (&str, &str),
-    papers: &Papers,
-    contradicted: &[Contradiction],
-    marks: &mut Marks,
-) -> String {
-    match c {
-        Col::Paper(m) => {
-            let printed = match papers.published(m, q) {
-                Some((v, d)) => {
-                    marks.derived |= d;
-                    format!("{}{}", sci(v), if d { "*" } else { "" })
+/// The cells of `row` for the quantities `quantities`.
+fn cells(row: &Row, quantities: &[&str], papers: &Papers, marks: &mut Marks) -> Vec<String> {
+    match row {
+        Row::Paper(m) => quantities
+            .iter()
+            .map(|q| {
+                let printed = match papers.published(m, q) {
+                    Some((v, d)) => {
+                        marks.derived |= d;
+                        format!("{}{}", sci(v), if d { "*" } else { "" })
+                    }
+                    None => MISSING.to_string(),
+                };
+                match papers.inconsistent(m, q) {
+                    Some((v, _)) => {
+                        marks.inconsistent = true;
+                        format!("{printed} (printed {}†)", sci(v))
+                    }
+                    None => printed,
                 }
-                None => MISSING.to_string(),
-            };
-            match papers.inconsistent(m, q) {
-                Some((v, _)) => {
-                    marks.inconsistent = true;
-                    format!("{printed} (printed {}†)", sci(v))
-                }
-                None => printed,
-            }
+            })
+            .collect(),
+        Row::Run { run: None, .. } | Row::Ratio { ratios: None, .. } => {
+            vec!["no run".to_string(); quantities.len()]
         }
-        Col::Ours(OursColumn { run: None, .. }) => "no run".to_string(),
-        Col::Ours(OursColumn {
-            run: Some(r),
-            ratio_of: None,
-            ..
-        }) => metric_cell(r, q),
-        Col::Ours(OursColumn {
-            run: Some(r),
-            ratio_of: Some(m),
-            ..
-        }) => match ratio_to_paper(r, m, q, papers) {
-            Some(v)
-                if is_contradicted(
-                    contradicted,
-                    Some(table),
-                    &m.published_experiment,
-                    &m.published_column,
-                ) =>
-            {
-                marks.rests_on_contradiction = true;
-                format!("{}‡", sci(v))
-            }
-            v => sci_opt(v),
-        },
+        Row::Run { run: Some(r), .. } => quantities.iter().map(|q| metric_cell(r, q)).collect(),
+        Row::Ratio {
+            ratios: Some(ratios),
+            contradicted,
+        } => ratios
+            .iter()
+            .map(|v| match v {
+                Some(v) if *contradicted => {
+                    marks.rests_on_contradiction = true;
+                    format!("{}‡", sci(*v))
+                }
+                v => sci_opt(*v),
+            })
+            .collect(),
     }
 }
 
-/// One published table side by side with ours, as Markdown (empty when nothing maps).
-pub fn side_by_side(paper: &str, table: &str, papers: &Papers, runs: &Runs) -> String {
-    let columns = columns_of(paper, table, papers);
-    if columns.is_empty() {
-        return String::new();
-    }
-    let one_variant = columns
-        .iter()
-        .all(|c| c.run.variant == columns[0].run.variant && c.companions.is_empty());
-    let cols = layout(&columns, runs, one_variant);
-    let shown: Vec<&RunRow> = cols
-        .iter()
-        .filter_map(|c| if let Col::Ours(o) = c { o.run } else { None })
-        .collect();
-    let quantities = quantities_of(paper, table, papers, &shown);
+/// One published table side by side with ours ([`analysis::published_table::side_by_side`]),
+/// as Markdown.
+pub fn side_by_side(table: &SideBySide, papers: &Papers, runs: &Runs) -> String {
     let mut header = vec!["run".to_string()];
-    header.extend(quantities.iter().map(|q| quantity_label(q)));
+    header.extend(table.quantities.iter().map(|q| quantity_label(q)));
     let mut t = Table::new(header);
     let mut marks = Marks::default();
-    let contradicted = contradictions(paper, papers);
-    for c in &cols {
-        let mut row = vec![match c {
-            Col::Paper(m) => format!("**paper: {}**", m.published_column),
-            Col::Ours(o) => o.header.clone(),
+    for row in &table.rows {
+        let mut cells_of = vec![match row {
+            Row::Paper(m) => format!("**paper: {}**", m.published_column),
+            Row::Run { header, .. } => header.clone(),
+            Row::Ratio { .. } => "ratio ours / paper".to_string(),
         }];
-        row.extend(
-            quantities
-                .iter()
-                .map(|q| cell(c, (table, q), papers, &contradicted, &mut marks)),
-        );
-        t.push(row);
+        cells_of.extend(cells(row, &table.quantities, papers, &mut marks));
+        t.push(cells_of);
     }
-    let mut out = caption(table, &columns, runs, one_variant);
+    let mut out = caption(&table.table, &table.columns, runs, table.one_variant);
     out.push_str(&t.render());
     if marks.derived {
         out.push_str("\n\\* not printed by the paper: the norm of its per-joint entries.\n");
@@ -259,7 +152,7 @@ fn caption(table: &str, columns: &[&Mapping], runs: &Runs, one_variant: bool) ->
         let shown = runs.find(&k.experiment, &k.variant, EXACT);
         out.push_str(&format!(
             ", variant \"{}\"",
-            label(shown, &k.variant, false)
+            shown.map_or(k.variant.as_str(), |r| r.variant.as_str())
         ));
     }
     out.push_str(". One row per number (the paper's, our runs, and the ratio of our run of the paper's solver to the paper's), one column per quantity.\n\n");

@@ -1,18 +1,16 @@
 //! The verdict paragraph of one paper: what was reproduced, what not, and why, phrased from
-//! what crate `analysis` decided ([`analysis::paper_verdict`]), never typed in.
+//! what crate `analysis` decided ([`analysis::paper_verdict`], held by the report model),
+//! never typed in.
 
 use super::markdown::{percent, sci};
-use analysis::claim_verdict::{Claim, Verdict};
+use analysis::claim_verdict::Verdict;
 use analysis::misprints::Contradiction;
-use analysis::paper_verdict::{
-    assumed_setup, decide, level_under_setup, ratio_span, solver_effect, SOLVER_MATTERS,
-};
-use analysis::papers::Papers;
-use records::index::Runs;
+use analysis::paper_verdict::SOLVER_MATTERS;
+use analysis::report_model::PaperModel;
 
 /// The verdict paragraph of one paper.
-pub fn paragraph(paper: &str, claims: &[Claim], runs: &Runs, papers: &Papers) -> String {
-    let decision = decide(paper, claims, runs, papers);
+pub fn paragraph(paper: &PaperModel) -> String {
+    let (claims, decision) = (&paper.claims, &paper.decision);
     let of = |v: Verdict| {
         claims
             .iter()
@@ -27,7 +25,7 @@ pub fn paragraph(paper: &str, claims: &[Claim], runs: &Runs, papers: &Papers) ->
     );
     let mut out = format!(
         "**Verdict: {}.** The rule ([verdicts](../docs/reference/verdicts.md)) decided it from: {decision}. {} of {} evaluated claims hold",
-        level_under_setup(paper, &decision, papers),
+        paper.level,
         pass.len(),
         pass.len() + fail.len()
     );
@@ -35,7 +33,7 @@ pub fn paragraph(paper: &str, claims: &[Claim], runs: &Runs, papers: &Papers) ->
         out.push_str(&format!(" ({})", pass.join("; ")));
     }
     out.push('.');
-    if let Some(assumed) = assumed_setup(paper, papers) {
+    if let Some(assumed) = paper.assumed_setup {
         out.push_str(&format!(
             " The paper does not print all of its setup; assumed: {assumed}."
         ));
@@ -46,7 +44,7 @@ pub fn paragraph(paper: &str, claims: &[Claim], runs: &Runs, papers: &Papers) ->
     if !na.is_empty() {
         out.push_str(&format!(" Not evaluated: {}.", na.join("; ")));
     }
-    if let Some((lo, hi)) = ratio_span(&decision.ratios) {
+    if let Some((lo, hi)) = &paper.ratio_span {
         out.push_str(&format!(
             " Magnitudes: over {} counted published numbers (the run each mapping names) ours is {} (`{}`) to {} (`{}`) times the paper's.",
             decision.ratios.len(),
@@ -60,7 +58,7 @@ pub fn paragraph(paper: &str, claims: &[Claim], runs: &Runs, papers: &Papers) ->
             " No published magnitude is counted: the verdict rests on the signs and the claims.",
         );
     }
-    if let Some((e, r)) = solver_effect(paper, runs, papers) {
+    if let Some((e, r)) = paper.solver_effect {
         if e <= SOLVER_MATTERS {
             out.push_str(&format!(
                 " The exact column (the QP solved to optimality in the loop) gives the same drift norm within {}, so what differs from the paper comes from the scheme, model and paths as implemented (see Deviations), not from the solver.",

@@ -10,9 +10,10 @@ use analysis::drift_attribution::{
     component, converged_component, is_matlab_setting, ladder_ids, matlab_rung, matlab_tolerances,
     published_norm, runs_of, share_range, shares, solver_spreads, sum_components, switches, RunIds,
 };
-use analysis::inference_verdict as verdict;
+use analysis::inference_verdict::{FLAT, REPRODUCED, WEAK};
 use analysis::paper_rules::GROUP;
 use analysis::papers::Papers;
+use analysis::report_model::Inference;
 use records::attribution::{AttributionRow, Component};
 use records::inference::{self, EntryRow, InferenceRow, Integration, FAILED as FAILED_RESIDUAL};
 use records::ladder::{LadderMethod, LadderRow};
@@ -268,27 +269,28 @@ fn short_tol(v: f64) -> String {
 }
 
 /// The inference of one paper's tables.
-pub fn inference_section(paper: &str, x: &Explanations) -> String {
+pub fn inference_section(paper: &str, x: &Explanations, inferred: &[Inference]) -> String {
     let rows: Vec<&InferenceRow> = x.inference.iter().filter(|r| r.paper == paper).collect();
     if rows.is_empty() {
         return format!(
             "No setup inference stored for {paper}: run `cargo run --release -p reproduce -- --infer {paper}`.\n"
         );
     }
-    let mut tables: Vec<&str> = rows.iter().map(|r| r.table.as_str()).collect();
-    tables.dedup();
     let mut out = String::new();
-    for table in tables {
-        let of_table: Vec<&InferenceRow> =
-            rows.iter().copied().filter(|r| r.table == table).collect();
-        out.push_str(&table_inference(paper, table, &of_table, x));
+    for inference in inferred.iter().filter(|i| i.paper == paper) {
+        let of_table: Vec<&InferenceRow> = rows
+            .iter()
+            .copied()
+            .filter(|r| r.table == inference.table)
+            .collect();
+        out.push_str(&table_inference(inference, &of_table, x));
     }
     let _ = writeln!(
         out,
         "A column or table counts as reproduced when its relative residual ‖d − d_paper‖ / ‖d_paper‖ is at most {}; the table residual is the root mean square of the column residuals, so every column weighs alike whatever its magnitude. A column fitted alone has as many entries as the arm has joints against up to five continuous parameters and the discrete ones: a close column fit is weak evidence by itself; one setup that explains every column of a table is the stronger test. A profile is flat when its largest residual is below {}x its smallest, weakly determined below {}x. Every evaluated setup's residuals: `results/inference.csv`; the entries of the declared, joint and column fits: `results/inference-entries.csv`.",
-        percent(verdict::REPRODUCED, 0),
-        verdict::FLAT,
-        verdict::WEAK
+        percent(REPRODUCED, 0),
+        FLAT,
+        WEAK
     );
     out
 }
@@ -296,13 +298,9 @@ pub fn inference_section(paper: &str, x: &Explanations) -> String {
 /// The inference of one published table (its rows `of_table`): the verdicts, the search, the
 /// setups found, each hypothesis's best, the profiles and the per-entry residuals; empty
 /// without a verdict or without the declared and the inferred setup.
-fn table_inference(
-    paper: &str,
-    table: &str,
-    of_table: &[&InferenceRow],
-    x: &Explanations,
-) -> String {
-    let Some(verdicts) = verdict::table_verdict(of_table) else {
+fn table_inference(inference: &Inference, of_table: &[&InferenceRow], x: &Explanations) -> String {
+    let (paper, table) = (inference.paper, inference.table);
+    let Some(verdicts) = &inference.verdicts else {
         return String::new();
     };
     let find = |kind: &str, objective: &str| {
@@ -319,7 +317,7 @@ fn table_inference(
     };
     let mut out = String::new();
     let _ = writeln!(out, "**{table}.**\n");
-    for v in &verdicts {
+    for v in verdicts {
         let _ = writeln!(out, "- {v}");
     }
     let column_starts = of_table
@@ -360,7 +358,7 @@ fn table_inference(
     }
     out.push_str(&setups_table(&setups));
     out.push_str(&hypotheses_table(of_table, &columns));
-    out.push_str(&profiles_list(paper, table, of_table));
+    out.push_str(&profiles_list(inference, of_table));
     out.push_str(&entries_table(paper, table, x));
     out.push('\n');
     out
@@ -408,7 +406,8 @@ fn setups_table(setups: &[(String, &InferenceRow)]) -> String {
 
 /// The profiles of a table's inference, when it has any: the figure and, per profiled
 /// parameter, its points and verdict.
-fn profiles_list(paper: &str, table: &str, of_table: &[&InferenceRow]) -> String {
+fn profiles_list(inference: &Inference, of_table: &[&InferenceRow]) -> String {
+    let (paper, table) = (inference.paper, inference.table);
     let mut out = String::new();
     let profiles: Vec<&InferenceRow> = of_table
         .iter()
@@ -424,14 +423,7 @@ fn profiles_list(paper: &str, table: &str, of_table: &[&InferenceRow]) -> String
         out.push_str(
             "\nProfiles of the whole-table optimum (each point: the best table residual with that parameter held at the value; \"re-fitted\": the other continuous parameters re-fitted there by Nelder-Mead, warm-started from the neighbouring point; \"slice\": held at the optimum). They are taken at the optimum of the global and local stages; where a profile point beat it, Nelder-Mead went on from there, and the optimum reported (marked in the figure) can lie below the profiles:\n\n",
         );
-        let mut names: Vec<(&str, bool)> = Vec::new();
-        for r in &profiles {
-            let k = r.profile().expect("a profile row");
-            if !names.contains(&k) {
-                names.push(k);
-            }
-        }
-        for (name, refitted) in names {
+        for &(name, refitted, decided) in &inference.profiles {
             let along: Vec<&&InferenceRow> = profiles
                 .iter()
                 .filter(|r| r.profile() == Some((name, refitted)))
@@ -447,13 +439,12 @@ fn profiles_list(paper: &str, table: &str, of_table: &[&InferenceRow]) -> String
                     }
                 })
                 .collect();
-            let spread = verdict::spread(along.iter().map(|r| r.rel_residual));
             let _ = writeln!(
                 out,
                 "- {name} ({}): {} ({})",
                 if refitted { "re-fitted" } else { "slice" },
                 pts.join(", "),
-                verdict::profile_verdict(spread)
+                decided
             );
         }
     }
@@ -566,7 +557,11 @@ fn hypotheses_table(rows: &[&InferenceRow], columns: &[&str]) -> String {
 }
 
 /// The whole "Why the numbers differ" subsection of one paper.
-pub fn section(paper: &str, x: &Explanations, papers: &Papers) -> String {
+pub fn section(
+    paper: &str,
+    (x, inferred): (&Explanations, &[Inference]),
+    papers: &Papers,
+) -> String {
     let attribution = attribution_table(paper, x, papers);
     let ladder = ladder_table(paper, x);
     if attribution.is_empty() && ladder.is_empty() {
@@ -574,7 +569,7 @@ pub fn section(paper: &str, x: &Explanations, papers: &Papers) -> String {
     }
     let mut out = String::from("\n### Why the numbers differ\n\n");
     if paper == GROUP {
-        out.push_str(&summary(paper, x, papers));
+        out.push_str(&summary(paper, (x, inferred), papers));
     }
     if !attribution.is_empty() {
         out.push_str("\n#### Drift attribution\n\n");
@@ -589,7 +584,7 @@ pub fn section(paper: &str, x: &Explanations, papers: &Papers) -> String {
         .any(|(p, _)| p == paper);
     if has_tables {
         out.push_str("\n#### Setup inference\n\n");
-        out.push_str(&inference_section(paper, x));
+        out.push_str(&inference_section(paper, x, inferred));
     }
     out
 }
@@ -621,7 +616,11 @@ pub fn one_line(paper: &str, x: &Explanations) -> String {
 /// across the paper's runs, how far apart several solvers of one scheme are (the paper's and
 /// ours), what MATLAB's default tolerances would change ([`analysis::drift_attribution`]), and
 /// what the setup inference found; empty without explanations.
-pub fn summary(paper: &str, x: &Explanations, papers: &Papers) -> String {
+pub fn summary(
+    paper: &str,
+    (x, inferred): (&Explanations, &[Inference]),
+    papers: &Papers,
+) -> String {
     let keys = runs_of(&x.attribution, paper);
     if keys.is_empty() {
         return String::new();
@@ -666,29 +665,18 @@ pub fn summary(paper: &str, x: &Explanations, papers: &Papers) -> String {
             m.compared
         ));
     }
-    out.push_str(&inference_verdicts(paper, x));
+    out.push_str(&inference_verdicts(paper, inferred));
     out.push('\n');
     out
 }
 
-/// The last verdict of each of `paper`'s inferred tables, as sentences of the summary.
-fn inference_verdicts(paper: &str, x: &Explanations) -> String {
-    let mut tables: Vec<&str> = x
-        .inference
-        .iter()
-        .filter(|r| r.paper == paper)
-        .map(|r| r.table.as_str())
-        .collect();
-    tables.dedup();
+/// The last verdict of each of `paper`'s inferred tables (of `inferred`), as sentences of
+/// the summary.
+fn inference_verdicts(paper: &str, inferred: &[Inference]) -> String {
     let mut out = String::new();
-    for table in tables {
-        let rows: Vec<&InferenceRow> = x
-            .inference
-            .iter()
-            .filter(|r| r.paper == paper && r.table == table)
-            .collect();
-        if let Some(v) = verdict::table_verdict(&rows).and_then(|v| v.last().cloned()) {
-            out.push_str(&format!(" {table}: {v}"));
+    for i in inferred.iter().filter(|i| i.paper == paper) {
+        if let Some(v) = i.verdicts.as_ref().and_then(|v| v.last()) {
+            out.push_str(&format!(" {}: {v}", i.table));
         }
     }
     out

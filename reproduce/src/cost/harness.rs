@@ -19,8 +19,7 @@
 use super::case::{path_of, Case, PreparedCase, KONG2019_KP, KONG2019_MU};
 use super::error::CostError;
 use super::instants::Instants;
-use catalog::experiment::Scoring;
-use catalog::experiment::{default_exact_integrator, NetworkInit};
+use catalog::experiment::default_exact_integrator;
 use qp::{Qp, QpDims};
 pub use records::dof_cost::SWEEP_SIZES;
 use records::dof_cost::{Quantity, RunCounts, SchemeKind};
@@ -34,6 +33,8 @@ use settings::solver_spec::SolverSpec;
 use simulation::simulate::{simulate, Outcome, Run, Settings, Solver};
 use solvers::Backend;
 use spec::rmp::RmpReading;
+use spec::run::NetworkInit;
+use spec::run::Scoring;
 use spec::scheme::SchemeSpec;
 use std::sync::Arc;
 

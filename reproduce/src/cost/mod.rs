@@ -76,7 +76,7 @@ pub fn dof_cost(project: &Project, dry_run: bool, git_rev: &str) -> Result<(), R
     let Some(results) = results else {
         return Ok(());
     };
-    let path = records::dof_cost::write(results.path(), &rows)?;
+    let path = store::dof_cost::write(results.path(), &rows)?;
     results.save()?;
     eprintln!("wrote {} ({} rows)", path.display(), rows.len());
     render_report(project, &root, &results)

@@ -4,9 +4,11 @@
 // Compiled into each test crate of the binary; each uses a part of it.
 #![allow(dead_code)]
 
-use records::runs::{read_runs, RunRow};
+use records::runs::RunRow;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use store::runs::read_runs;
 
 /// An experiment file with one slow run first (the finite-time network integrated by
 /// Dormand-Prince, held to steps of ~1e-5 s by the sign-power band's eigenvalues near -2.5e5:
@@ -67,7 +69,7 @@ pub fn reproduce() -> Command {
 /// runs.csv written.
 pub fn kill_after_checkpoints(run: impl Fn() -> Command, results: &Path, rows: usize) {
     let mut first = run().spawn().unwrap();
-    let journal = records::journal::path(results);
+    let journal = store::journal::path(results);
     let lines = || {
         std::fs::read_to_string(&journal)
             .map(|t| t.lines().count())
@@ -106,7 +108,7 @@ pub fn resume_completes(run: impl Fn() -> Command, results: &Path, done: usize, 
     keys.sort();
     keys.dedup();
     assert_eq!(keys.len(), total, "no duplicate row");
-    assert!(!records::journal::path(results).exists());
+    assert!(!store::journal::path(results).exists());
 }
 
 /// Copies the directory tree `from` to `to` (created).

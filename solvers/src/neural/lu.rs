@@ -1,11 +1,58 @@
 //! A small in-place LU factorisation with partial pivoting (Doolittle, row interchanges) on a
 //! preallocated dense matrix, so the zeroing networks can solve Q ydot = r at every right-hand
 //! side evaluation without allocating (nalgebra's `DMatrix::lu` returns a new matrix).
+//!
+//! The orders the papers' networks use (n = nx + n_eq = 6 to 12, e.g. kong2019's 5 joints and
+//! 3 task rows: n = 8) are compiled with n a constant, so the loops have fixed trip counts and
+//! no bounds checks; every other order runs the same code with n read at run time. Either way
+//! the operations and their order are those of the textbook loop, so the factors and the
+//! solution are the same bit for bit.
 
 use nalgebra::DMatrix;
 
 /// Relative pivot threshold below which the matrix is reported singular.
 const SINGULAR_PIVOT: f64 = 1e-300;
+
+/// The order n of the matrix (or a block size): a compile-time constant (`Fixed`) or a
+/// run-time `usize`.
+pub(crate) trait Order: Copy {
+    fn get(self) -> usize;
+}
+
+/// An order known at compile time.
+#[derive(Clone, Copy)]
+pub(crate) struct Fixed<const N: usize>;
+
+impl<const N: usize> Order for Fixed<N> {
+    #[inline(always)]
+    fn get(self) -> usize {
+        N
+    }
+}
+
+impl Order for usize {
+    #[inline(always)]
+    fn get(self) -> usize {
+        self
+    }
+}
+
+/// Calls `$f` with the order `$n` as a `Fixed` constant where it is one of the compiled
+/// orders, else as a run-time `usize`.
+macro_rules! by_order {
+    ($n:expr, $f:ident ( $($arg:expr),* )) => {
+        match $n {
+            6 => $f(Fixed::<6>, $($arg),*),
+            7 => $f(Fixed::<7>, $($arg),*),
+            8 => $f(Fixed::<8>, $($arg),*),
+            9 => $f(Fixed::<9>, $($arg),*),
+            10 => $f(Fixed::<10>, $($arg),*),
+            11 => $f(Fixed::<11>, $($arg),*),
+            12 => $f(Fixed::<12>, $($arg),*),
+            n => $f(n, $($arg),*),
+        }
+    };
+}
 
 /// Factor the square matrix `a` in place: on return its strict lower triangle holds L (unit
 /// diagonal implied) and its upper triangle U, with P a = L U where P swaps row k with
@@ -17,8 +64,14 @@ const SINGULAR_PIVOT: f64 = 1e-300;
 pub fn factor(a: &mut DMatrix<f64>, piv: &mut [usize]) -> bool {
     let n = a.nrows();
     debug_assert_eq!(a.ncols(), n);
+    by_order!(n, factor_in(a.as_mut_slice(), piv))
+}
+
+#[inline(always)]
+fn factor_in(n: impl Order, s: &mut [f64], piv: &mut [usize]) -> bool {
+    let n = n.get();
     let piv = &mut piv[..n];
-    let s = a.as_mut_slice();
+    let s = &mut s[..n * n];
     let mut ok = true;
     for k in 0..n {
         let column = &s[k * n..(k + 1) * n];
@@ -61,14 +114,20 @@ pub fn factor(a: &mut DMatrix<f64>, piv: &mut [usize]) -> bool {
 
 /// Solve A x = b in place (`b` becomes x) with the factors from [`factor`].
 pub fn solve(lu: &DMatrix<f64>, piv: &[usize], b: &mut [f64]) {
-    let n = lu.nrows();
-    let m = lu.as_slice();
+    by_order!(lu.nrows(), solve_in(lu.as_slice(), piv, b))
+}
+
+#[inline(always)]
+fn solve_in(n: impl Order, m: &[f64], piv: &[usize], b: &mut [f64]) {
+    let n = n.get();
+    let m = &m[..n * n];
     let b = &mut b[..n];
     for (k, &p) in piv[..n].iter().enumerate() {
         if p != k {
             b.swap(k, p);
         }
     }
+    // Forward substitution with L (unit diagonal): b_i -= sum_{j < i} L_ij b_j, j ascending.
     for i in 0..n {
         let mut s = b[i];
         for j in 0..i {
@@ -76,6 +135,7 @@ pub fn solve(lu: &DMatrix<f64>, piv: &[usize], b: &mut [f64]) {
         }
         b[i] = s;
     }
+    // Back substitution with U: b_i = (b_i - sum_{j > i} U_ij b_j) / U_ii, j ascending.
     for i in (0..n).rev() {
         let mut s = b[i];
         for j in (i + 1)..n {
@@ -91,5 +151,64 @@ pub fn solve_columns(lu: &DMatrix<f64>, piv: &[usize], b: &mut DMatrix<f64>) {
     for j in 0..b.ncols() {
         // A DMatrix is stored column-major: column j is one contiguous slice.
         solve(lu, piv, &mut b.as_mut_slice()[j * n..(j + 1) * n]);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use nalgebra::DVector;
+
+    /// A deterministic, well-spread test matrix of order n with a zero block (a KKT matrix's
+    /// shape: pivoting is needed).
+    fn kkt_like(n: usize, seed: u64) -> DMatrix<f64> {
+        let mut state = seed;
+        let mut next = move || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        let m = n / 3;
+        let mut a = DMatrix::from_fn(n, n, |_, _| next());
+        for i in n - m..n {
+            for j in n - m..n {
+                a[(i, j)] = 0.0;
+            }
+        }
+        a
+    }
+
+    #[test]
+    fn compiled_orders_give_the_run_time_orders_bits() {
+        for n in 2..=14 {
+            for seed in 0..20 {
+                let a = kkt_like(n, seed);
+                let (mut fixed, mut dynamic) = (a.clone(), a.clone());
+                let (mut pf, mut pd) = (vec![0; n], vec![0; n]);
+                let ok_fixed = factor(&mut fixed, &mut pf);
+                let ok_dynamic = factor_in(n, dynamic.as_mut_slice(), &mut pd);
+                assert_eq!(ok_fixed, ok_dynamic);
+                assert_eq!(pf, pd, "n = {n}: pivots");
+                let bits = |m: &DMatrix<f64>| m.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&fixed), bits(&dynamic), "n = {n}: factors");
+                let b: Vec<f64> = (0..n).map(|i| 1.0 + i as f64).collect();
+                let (mut xf, mut xd) = (b.clone(), b.clone());
+                solve(&fixed, &pf, &mut xf);
+                solve_in(n, dynamic.as_slice(), &pd, &mut xd);
+                assert_eq!(
+                    xf.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+                    xd.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+                    "n = {n}: solution"
+                );
+                // And it is the solution: A x = b to rounding.
+                let r = &a * DVector::from_column_slice(&xf) - DVector::from_column_slice(&b);
+                assert!(
+                    r.amax() < 1e-9,
+                    "n = {n}, seed {seed}: residual {}",
+                    r.amax()
+                );
+            }
+        }
     }
 }

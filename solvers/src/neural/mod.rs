@@ -7,14 +7,17 @@
 //! |---|---|---|---|
 //! | LVI-PDNN | jia2019 eq. 2.21-2.23 | [x; u; v] (nx + n_eq + n_in) | [`projection`] |
 //! | S-LVI-PDNN | zhong2021 eq. 2.35 | [x; u; v] | [`projection`] |
-//! | VP-RNN-PF | zhong2021 eq. 2.19-2.30 | [x; lambda] (nx + n_eq) | [`vp_rnn_pf`] |
+//! | VP-RNN-PF | zhong2021 eq. 2.19-2.30 | [x; lambda] (nx + n_eq) | [`projection`] (its penalty form) |
+//! | any projection network | a point of `settings::projection`'s vocabulary | by its error form | [`projection`] |
 //! | FP-CDNN / VP-CDNN | zhang2018 eq. 2.15 / 2.11, perturbed 3.2 / 3.1 | [x; lambda] | [`zeroing`], [`perturbation`] |
 //! | FTNN (finite-time) / ZNN | kong2019 eq. 17-20 / its eq. 22 comparison | [x; lambda] | [`zeroing`] |
 //! | group ZNN | the group's MATLAB code (`docs/group-code.md`) | [x; lambda] | [`zeroing`] |
 //! | any zeroing network | a point of `settings::zeroing`'s vocabulary | [x; lambda] | [`zeroing`] |
 //!
-//! The zeroing networks are one family, presets of one vocabulary (gain law, activation,
-//! growing gain, perturbation; `docs/networks.md` derives each preset from its paper).
+//! The networks are two families, each the presets of one vocabulary: the zeroing family (gain
+//! law, activation, growing gain, perturbation) and the projection family (error form with its
+//! scaling or penalty, gain law, activation), one engine each ([`ZeroingNetwork`],
+//! [`ProjectionNetwork`]); `docs/networks.md` derives each preset from its paper.
 //!
 //! Activation functions: [`activation`]. The factory that builds a network from its
 //! experiment-file specification (`settings::solver_spec`): [`spec`]. A network's parameter
@@ -23,17 +26,16 @@
 
 pub mod activation;
 pub mod lu;
+mod penalty;
 pub mod perturbation;
 pub mod projection;
 pub mod spec;
-pub mod vp_rnn_pf;
 pub mod zeroing;
 
 pub use activation::Activation;
 pub use perturbation::PerturbationTerms;
-pub use projection::{LviPdnn, SLviPdnn};
+pub use projection::ProjectionNetwork;
 pub use spec::build_solver;
-pub use vp_rnn_pf::VpRnnPf;
 pub use zeroing::ZeroingNetwork;
 
 use nalgebra::DMatrix;

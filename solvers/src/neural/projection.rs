@@ -1,6 +1,10 @@
-//! The projection (primal-dual) networks: LVI-PDNN (jia2019 eq. 2.21-2.23) and its simplified
-//! form S-LVI-PDNN (zhong2021 eq. 2.35). Both share the linear variational inequality built here
-//! from a generic [`Qp`]; they differ only in the factor in front of the projection residual.
+//! The projection family's one engine ([`ProjectionNetwork`], built from a point of
+//! `settings::projection`'s vocabulary: error form, gain law g(t), activation Phi): the LVI
+//! form, ydot = g(t) S Phi(e(y)) with the projection residual e of jia2019 (2.22) and the scaling
+//! S = I + M' (LVI-PDNN, jia2019 eq. 2.21-2.23) or S = I (S-LVI-PDNN, zhong2021 eq. 2.35), and
+//! the penalty form (VP-RNN-PF, zhong2021 eq. 2.19-2.30; its error and network: `penalty.rs`).
+//! The presets `lvi-pdnn`, `s-lvi-pdnn` and `vp-rnn-pf` are points of it. The LVI itself is
+//! built here from a generic [`Qp`].
 //!
 //! # The LVI (jia2019 eq. 2.21, the map of its QP 2.17-2.20)
 //!
@@ -23,21 +27,34 @@
 //! At a solution of (2.21) the multipliers relate to [`qp::QpDuals`] by lambda = -u and
 //! mu = v (the stationarity row reads P x + q - A'u + G'v in normal cone of the box).
 //!
-//! # The networks
+//! # The LVI form
 //!
 //! With e(y) = P_Omega(y - (M y + q)) - y (eq. 2.22, whose zeros are the LVI's solutions):
 //!
-//! * LVI-PDNN (jia2019 eq. 2.23): ydot = gamma (I + M') e(y), gamma = 1e7 in the paper.
-//! * S-LVI-PDNN (zhong2021 eq. 2.35): ydot = beta e(y), beta = 1e7 in the paper.
+//! ```text
+//! ydot = g(t) S Phi(e(y))
+//! ```
 //!
-//! Both are piecewise linear in y. With Dz = diag(1 if y_i^- < z_i < y_i^+ else 0) evaluated at
-//! z = y - (M y + q) (the derivative of the clamp; on a kink we take the outside branch), the
-//! Jacobians are de/dy = Dz (I - M) - I, so dF/dy = gamma (I + M')(Dz (I - M) - I) for LVI-PDNN
-//! and beta (Dz (I - M) - I) for S-LVI-PDNN.
+//! * LVI-PDNN (jia2019 eq. 2.23): S = I + M', g = gamma, Phi linear: ydot = gamma (I + M') e(y),
+//!   gamma = 1e7 in the paper.
+//! * S-LVI-PDNN (zhong2021 eq. 2.35): S = I, g = beta, Phi linear: ydot = beta e(y), beta = 1e7
+//!   in the paper.
+//!
+//! Phi is applied entry by entry; odd and increasing, it keeps e's zeros, so the equilibria are
+//! the LVI's solutions for every gain law and activation. With Dz = diag(1 if y_i^- < z_i <
+//! y_i^+ else 0) evaluated at z = y - (M y + q) (the derivative of the clamp; on a kink we take
+//! the outside branch), de/dy = Dz (I - M) - I, so dF/dy = g(t) S diag(Phi'(e)) (Dz (I - M) - I)
+//! (the QP data frozen). With the linear activation the arithmetic is the presets' own: Phi(e)
+//! = e and Phi' = 1 exactly.
 
+use super::activation::Activation;
+use super::penalty::PenaltyCore;
 use super::{euclidean_norm, NeuralSolver};
 use nalgebra::DMatrix;
 use qp::{Qp, QpDims};
+use settings::error::NetworkError;
+use settings::projection::{ProjectionErrorForm, ProjectionSpec, Scaling};
+use settings::zeroing::GainLaw;
 
 /// Dimension of the primal-dual vector y = [x; u; v] for a QP of these sizes.
 pub fn primal_dual_dim(dims: QpDims) -> usize {
@@ -183,11 +200,6 @@ impl LviCore {
         }
     }
 
-    /// out = scale * (I + M') e with the e of the last [`LviCore::residual`] call.
-    pub fn i_plus_mt_e(&self, qp: &Qp, scale: f64, out: &mut [f64]) {
-        self.i_plus_mt(qp, scale, &self.e, out);
-    }
-
     /// out = scale * (I + M') w for any w of y's size, blockwise:
     /// M' w = [P' w_x + A' w_u - G' w_v; -A w_x; G w_x].
     pub fn i_plus_mt(&self, qp: &Qp, scale: f64, w: &[f64], out: &mut [f64]) {
@@ -242,118 +254,149 @@ impl LviCore {
     }
 }
 
-/// LVI-PDNN, jia2019 eq. 2.23: ydot = gamma (I + M') (P_Omega(y - (M y + q)) - y).
+/// A projection-family network (module docs): a point of `settings::projection`'s vocabulary.
 #[derive(Clone, Debug)]
-pub struct LviPdnn {
-    /// Convergence gain gamma (1e7 in jia2019).
-    pub gamma: f64,
-    core: LviCore,
+pub struct ProjectionNetwork {
+    name: &'static str,
+    gain: GainLaw,
+    activation: Activation,
+    form: Form,
 }
 
-impl LviPdnn {
-    /// LVI-PDNN with gain `gamma` for QPs of sizes `dims`.
-    pub fn new(gamma: f64, dims: QpDims) -> Self {
-        Self {
-            gamma,
-            core: LviCore::new(dims),
+/// The error form with its scratch.
+#[derive(Clone, Debug)]
+enum Form {
+    /// ydot = g(t) S Phi(e), e the projection residual; `phi` holds Phi(e).
+    Lvi {
+        core: LviCore,
+        scaling: Scaling,
+        phi: Vec<f64>,
+    },
+    /// zhong2021 (2.30) on the penalised Lagrangian's gradient.
+    Penalty(Box<PenaltyCore>),
+}
+
+impl ProjectionNetwork {
+    /// The network of `spec` for QPs of sizes `dims`, its gain law, activation and penalty
+    /// checked.
+    pub fn from_spec(spec: &ProjectionSpec, dims: QpDims) -> Result<Self, NetworkError> {
+        spec.gain.validate()?;
+        let activation = Activation::from(spec.activation);
+        activation.validate()?;
+        let form = match spec.error {
+            ProjectionErrorForm::Lvi { scaling } => Form::Lvi {
+                core: LviCore::new(dims),
+                scaling,
+                phi: vec![0.0; primal_dual_dim(dims)],
+            },
+            ProjectionErrorForm::Penalty { p, sigma } => {
+                Form::Penalty(Box::new(PenaltyCore::new(p, sigma, dims)?))
+            }
+        };
+        Ok(Self {
+            name: spec.name,
+            gain: spec.gain.clone(),
+            activation,
+            form,
+        })
+    }
+
+    /// The error the network drives to zero at its last evaluation ([`NeuralSolver::rhs`],
+    /// [`NeuralSolver::error_norm`] or [`NeuralSolver::jacobian`]): the LVI form's e(y) of
+    /// jia2019 (2.22), the penalty form's phi of zhong2021 (2.25).
+    pub fn error(&self) -> &[f64] {
+        match &self.form {
+            Form::Lvi { core, .. } => &core.e,
+            Form::Penalty(core) => core.error(),
         }
     }
-    /// The residual e(y) of eq. 2.22 (zero exactly at the LVI's solutions).
-    pub fn residual(&mut self, qp: &Qp, y: &[f64]) -> &[f64] {
-        self.core.residual(qp, y)
-    }
 }
 
-impl NeuralSolver for LviPdnn {
-    fn error_norm(&mut self, qp: &Qp, y: &[f64]) -> Option<f64> {
-        Some(euclidean_norm(self.core.residual(qp, y)))
-    }
+impl NeuralSolver for ProjectionNetwork {
     fn name(&self) -> String {
-        "LVI-PDNN".into()
+        self.name.into()
     }
     fn state_dim(&self, dims: QpDims) -> usize {
-        primal_dual_dim(dims)
+        match self.form {
+            Form::Lvi { .. } => primal_dual_dim(dims),
+            Form::Penalty(_) => dims.nx + dims.n_eq,
+        }
     }
-    fn rhs(&mut self, _t: f64, y: &[f64], qp: &Qp, _qp_dot: Option<&Qp>, ydot: &mut [f64]) {
-        self.core.residual(qp, y);
-        self.core.i_plus_mt_e(qp, self.gamma, ydot);
+    fn needs_qp_dot(&self) -> bool {
+        matches!(self.form, Form::Penalty(_))
     }
-    fn jacobian(
-        &mut self,
-        _t: f64,
-        y: &[f64],
-        qp: &Qp,
-        _qp_dot: Option<&Qp>,
-        jac: &mut DMatrix<f64>,
-    ) -> bool {
-        self.core.residual_jacobian(qp, y);
-        // jac = gamma (I + M') de.
-        let n = y.len();
-        let (m, de) = (&self.core.m, &self.core.de);
-        for i in 0..n {
-            for j in 0..n {
-                let mut s = de[(i, j)];
-                for k in 0..n {
-                    s += m[(k, i)] * de[(k, j)];
+    fn error_norm(&mut self, qp: &Qp, y: &[f64]) -> Option<f64> {
+        match &mut self.form {
+            Form::Lvi { core, .. } => Some(euclidean_norm(core.residual(qp, y))),
+            Form::Penalty(_) => None,
+        }
+    }
+    fn rhs(&mut self, t: f64, y: &[f64], qp: &Qp, qp_dot: Option<&Qp>, ydot: &mut [f64]) {
+        let g = self.gain.at(t);
+        match &mut self.form {
+            Form::Lvi { core, scaling, phi } => {
+                for (a, e) in phi.iter_mut().zip(core.residual(qp, y)) {
+                    *a = self.activation.value(*e);
                 }
-                jac[(i, j)] = self.gamma * s;
+                match scaling {
+                    Scaling::IPlusMt => core.i_plus_mt(qp, g, phi, ydot),
+                    Scaling::Identity => {
+                        for (d, a) in ydot.iter_mut().zip(phi.iter()) {
+                            *d = g * a;
+                        }
+                    }
+                }
+            }
+            Form::Penalty(core) => {
+                core.evaluate(g, &self.activation, y, qp, qp_dot);
+                ydot.copy_from_slice(core.ydot());
             }
         }
-        true
-    }
-}
-
-/// S-LVI-PDNN, zhong2021 eq. 2.35: ydot = beta (P_Omega(y - (M y + q)) - y).
-#[derive(Clone, Debug)]
-pub struct SLviPdnn {
-    /// Convergence gain beta (1e7 in zhong2021).
-    pub beta: f64,
-    core: LviCore,
-}
-
-impl SLviPdnn {
-    /// S-LVI-PDNN with gain `beta` for QPs of sizes `dims`.
-    pub fn new(beta: f64, dims: QpDims) -> Self {
-        Self {
-            beta,
-            core: LviCore::new(dims),
-        }
-    }
-    /// The residual e(y) of eq. 2.22 (zero exactly at the LVI's solutions).
-    pub fn residual(&mut self, qp: &Qp, y: &[f64]) -> &[f64] {
-        self.core.residual(qp, y)
-    }
-}
-
-impl NeuralSolver for SLviPdnn {
-    fn error_norm(&mut self, qp: &Qp, y: &[f64]) -> Option<f64> {
-        Some(euclidean_norm(self.core.residual(qp, y)))
-    }
-    fn name(&self) -> String {
-        "S-LVI-PDNN".into()
-    }
-    fn state_dim(&self, dims: QpDims) -> usize {
-        primal_dual_dim(dims)
-    }
-    fn rhs(&mut self, _t: f64, y: &[f64], qp: &Qp, _qp_dot: Option<&Qp>, ydot: &mut [f64]) {
-        let e = self.core.residual(qp, y);
-        for (d, ei) in ydot.iter_mut().zip(e) {
-            *d = self.beta * ei;
-        }
     }
     fn jacobian(
         &mut self,
-        _t: f64,
+        t: f64,
         y: &[f64],
         qp: &Qp,
-        _qp_dot: Option<&Qp>,
+        qp_dot: Option<&Qp>,
         jac: &mut DMatrix<f64>,
     ) -> bool {
-        self.core.residual_jacobian(qp, y);
+        let g = self.gain.at(t);
+        let (core, scaling) = match &mut self.form {
+            Form::Lvi { core, scaling, .. } => (core, *scaling),
+            Form::Penalty(core) => return core.jacobian(g, &self.activation, y, qp, qp_dot, jac),
+        };
+        core.residual(qp, y);
+        core.residual_jacobian(qp, y);
+        // diag(Phi'(e)) de, row by row (exact for the linear activation: Phi' = 1).
         let n = y.len();
-        for i in 0..n {
+        for k in 0..n {
+            let slope = self.activation.derivative(core.e[k]);
             for j in 0..n {
-                jac[(i, j)] = self.beta * self.core.de[(i, j)];
+                core.de[(k, j)] *= slope;
+            }
+        }
+        let (m, de) = (&core.m, &core.de);
+        match scaling {
+            // jac = g (I + M') diag(Phi') de.
+            Scaling::IPlusMt => {
+                for i in 0..n {
+                    for j in 0..n {
+                        let mut s = de[(i, j)];
+                        for k in 0..n {
+                            s += m[(k, i)] * de[(k, j)];
+                        }
+                        jac[(i, j)] = g * s;
+                    }
+                }
+            }
+            // jac = g diag(Phi') de.
+            Scaling::Identity => {
+                for i in 0..n {
+                    for j in 0..n {
+                        jac[(i, j)] = g * de[(i, j)];
+                    }
+                }
             }
         }
         true

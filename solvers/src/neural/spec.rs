@@ -2,9 +2,7 @@
 //! ([`SolverSpec`], crate `settings`: the specification and its defaults) for a QP of
 //! given sizes, checking the gains on the way.
 
-use super::activation::Activation;
-use super::projection::{LviPdnn, SLviPdnn};
-use super::vp_rnn_pf::VpRnnPf;
+use super::projection::ProjectionNetwork;
 use super::zeroing::ZeroingNetwork;
 use super::NeuralSolver;
 use qp::QpDims;
@@ -23,15 +21,20 @@ fn check_gain(network: &'static str, symbol: &'static str, v: f64) -> Result<(),
     }
 }
 
-/// Build the network of `spec` for QPs of sizes `dims` (scratch preallocated for them). The
-/// zeroing networks (the presets FP-CDNN, VP-CDNN, FTNN, ZNN, the group's, and any point of the
-/// vocabulary) are built from their expansion [`SolverSpec::zeroing`].
+/// Build the network of `spec` for QPs of sizes `dims` (scratch preallocated for them). Every
+/// network is a point of one of the two families' vocabularies and is built from its expansion:
+/// the zeroing family ([`SolverSpec::zeroing`]: the presets FP-CDNN, VP-CDNN, FTNN, ZNN, the
+/// group's, and any zeroing point) or the projection family ([`SolverSpec::projection`]: the
+/// presets LVI-PDNN, S-LVI-PDNN, VP-RNN-PF, and any projection point).
 pub fn build_solver(
     spec: &SolverSpec,
     dims: QpDims,
 ) -> Result<Box<dyn NeuralSolver>, NetworkError> {
     // The presets' own gain checks first, so their messages name the paper's symbol.
     match *spec {
+        SolverSpec::LviPdnn { gamma } => check_gain("LVI-PDNN", "gamma", gamma)?,
+        SolverSpec::SLviPdnn { beta } => check_gain("S-LVI-PDNN", "beta", beta)?,
+        SolverSpec::VpRnnPf { gamma, .. } => check_gain("VP-RNN-PF", "gamma", gamma)?,
         SolverSpec::FpCdnn { gamma, .. } => check_gain("FP-CDNN", "gamma", gamma)?,
         SolverSpec::VpCdnn { gamma, .. } => check_gain("VP-CDNN", "gamma", gamma)?,
         SolverSpec::FiniteTime { beta, alpha, .. } => {
@@ -42,40 +45,11 @@ pub fn build_solver(
         }
         SolverSpec::Znn { gamma } => check_gain("ZNN", "gamma", gamma)?,
         SolverSpec::GroupZnn { gamma, .. } => check_gain("group ZNN", "gamma", gamma)?,
-        _ => {}
+        SolverSpec::Zeroing { .. } | SolverSpec::Projection { .. } => {}
     }
-    if let Some(zeroing) = spec.zeroing() {
-        return Ok(Box::new(ZeroingNetwork::from_spec(&zeroing, dims)?));
+    match (spec.zeroing(), spec.projection()) {
+        (Some(zeroing), _) => Ok(Box::new(ZeroingNetwork::from_spec(&zeroing, dims)?)),
+        (None, Some(projection)) => Ok(Box::new(ProjectionNetwork::from_spec(&projection, dims)?)),
+        (None, None) => unreachable!("every network is of one of the two families"),
     }
-    Ok(match *spec {
-        SolverSpec::LviPdnn { gamma } => {
-            check_gain("LVI-PDNN", "gamma", gamma)?;
-            Box::new(LviPdnn::new(gamma, dims))
-        }
-        SolverSpec::SLviPdnn { beta } => {
-            check_gain("S-LVI-PDNN", "beta", beta)?;
-            Box::new(SLviPdnn::new(beta, dims))
-        }
-        SolverSpec::VpRnnPf {
-            p,
-            sigma,
-            gamma,
-            activation,
-        } => {
-            check_gain("VP-RNN-PF", "gamma", gamma)?;
-            Box::new(VpRnnPf::new(
-                p,
-                sigma,
-                gamma,
-                Activation::from(activation),
-                dims,
-            )?)
-        }
-        SolverSpec::FpCdnn { .. }
-        | SolverSpec::VpCdnn { .. }
-        | SolverSpec::FiniteTime { .. }
-        | SolverSpec::Znn { .. }
-        | SolverSpec::GroupZnn { .. }
-        | SolverSpec::Zeroing { .. } => unreachable!("a zeroing network, built above"),
-    })
 }

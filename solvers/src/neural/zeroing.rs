@@ -39,8 +39,11 @@
 //!
 //! Q is small and invertible (P positive definite on the null space of A, A of full row rank),
 //! so ydot is solved for at each evaluation with an in-place LU with partial pivoting on a
-//! preallocated matrix ([`super::lu`]); Qdot and udot come from `qp_dot` (P, A, q, b
-//! differentiated); with no `qp_dot` the QP is taken as frozen (Qdot = 0, udot = 0).
+//! preallocated matrix ([`super::lu`]; compiled for the papers' orders, bit for bit the
+//! textbook loop); Qdot and udot come from `qp_dot` (P, A, q, b differentiated); with no
+//! `qp_dot` the QP is taken as frozen (Qdot = 0, udot = 0). (Solving through the Schur
+//! complement of P instead, [`crate::kkt_schur`], was measured no faster on kong2019's 8 x 8
+//! system, and it changes the last bits of every run: `benches/REPORT.md`.)
 //!
 //! Inequality rows and bounds are outside this structure: a network is built only for
 //! `n_in = 0`, and the bounds `lower`/`upper` of the QP are ignored (the schemes that use these
@@ -54,7 +57,7 @@
 //! Q dF = dr - dQ F with dr = -(g(t) diag(Phi'(E)) + nu t I)(dQ y - du) - dQdot y + dudot.
 
 use super::activation::Activation;
-use super::lu;
+use super::lu::{self, Fixed, Order};
 use super::perturbation::PerturbationTerms;
 use super::{euclidean_norm, NeuralSolver};
 use nalgebra::DMatrix;
@@ -87,6 +90,9 @@ pub struct ZeroingNetwork {
     udot_q: bool,
     /// F at the base point of [`NeuralSolver::data_derivative`].
     f_base: Vec<f64>,
+    /// Products with Qdot (or a direction dQ): Qdot y in the right-hand side; dQ y, dQ F and
+    /// dQdot y in [`NeuralSolver::data_derivative`] (3 n entries).
+    products: Vec<f64>,
 }
 
 impl ZeroingNetwork {
@@ -126,6 +132,7 @@ impl ZeroingNetwork {
             matrix_perturbation: true,
             udot_q: true,
             f_base: vec![0.0; n],
+            products: vec![0.0; 3 * n],
         })
     }
 
@@ -212,51 +219,40 @@ impl ZeroingNetwork {
         }
     }
 
-    /// E = Q y - u into `self.e` (Q must be assembled, not yet factored).
+    /// E = Q y - u into `self.e`, Q y summed as `qdot_times` sums Qdot y (Q has the
+    /// same blocks).
     fn compute_error(&mut self, qp: &Qp, y: &[f64]) {
         let QpDims { nx, .. } = self.dims;
-        let n = y.len();
-        let q = self.lu.as_slice();
-        for i in 0..n {
-            let mut s = 0.0;
-            for (j, yj) in y.iter().enumerate() {
-                s += q[i + j * n] * yj;
-            }
-            let u = if i < nx { -qp.q[i] } else { qp.b[i - nx] };
-            self.e[i] = s - u;
+        let e = &mut self.e[..y.len()];
+        Self::qdot_times(self.dims, qp, y, e);
+        for (ei, qi) in e[..nx].iter_mut().zip(qp.q.iter()) {
+            *ei -= -qi;
+        }
+        for (ei, bi) in e[nx..].iter_mut().zip(qp.b.iter()) {
+            *ei -= bi;
         }
     }
 
     /// The error E = Q y - u (zhang2018 eq. 2.9, kong2019 eq. 19), e.g. for kong2019's
     /// J_E = ||W y - v||.
     pub fn error(&mut self, qp: &Qp, y: &[f64]) -> &[f64] {
-        self.assemble_q(qp);
         self.compute_error(qp, y);
         &self.e
     }
 
-    /// (Qdot y)_i for the QP derivative `d` (Qdot = [Pdot Adot'; Adot 0]).
-    #[inline]
-    fn qdot_y(&self, d: &Qp, y: &[f64], i: usize) -> f64 {
-        let QpDims { nx, n_eq, .. } = self.dims;
-        // Column-major: P[i, j] at `i + j nx`, A[k, j] at `k + j n_eq`.
+    /// out = [P A'; A 0] y for the P and A of `d`: Qdot y for the QP's derivative (Qdot =
+    /// [Pdot Adot'; Adot 0]), dQ y for a direction, Q y for the QP itself. Each entry is summed
+    /// in ascending column order, the P (or A) part column by column, then A' by rows.
+    fn qdot_times(dims: QpDims, d: &Qp, y: &[f64], out: &mut [f64]) {
+        let QpDims { nx, n_eq, .. } = dims;
         let (p, a) = (d.p.as_slice(), d.a.as_slice());
-        let mut s = 0.0;
-        if i < nx {
-            for (j, yj) in y[..nx].iter().enumerate() {
-                s += p[i + j * nx] * yj;
-            }
-            // A[k, i] for k = 0..n_eq is A's column i.
-            for (aki, yk) in a[i * n_eq..(i + 1) * n_eq].iter().zip(&y[nx..nx + n_eq]) {
-                s += aki * yk;
-            }
-        } else {
-            let k = i - nx;
-            for (j, yj) in y[..nx].iter().enumerate() {
-                s += a[k + j * n_eq] * yj;
-            }
+        // kong2019's 5 joints and 3 task rows compiled with constant sizes; the same code.
+        match (nx, n_eq) {
+            (5, 3) => block_times(Fixed::<5>, Fixed::<3>, p, a, y, out),
+            (6, 3) => block_times(Fixed::<6>, Fixed::<3>, p, a, y, out),
+            (7, 3) => block_times(Fixed::<7>, Fixed::<3>, p, a, y, out),
+            _ => block_times(nx, n_eq, p, a, y, out),
         }
-        s
     }
 
     fn fill_perturbation(&mut self, t: f64) {
@@ -266,6 +262,35 @@ impl ZeroingNetwork {
             }
             p.delta_s(t, &mut self.delta_s);
         }
+    }
+}
+
+/// out = [P A'; A 0] y for column-major P (nx x nx) and A (n_eq x nx): see
+/// `ZeroingNetwork::qdot_times`.
+#[inline(always)]
+fn block_times(nx: impl Order, n_eq: impl Order, p: &[f64], a: &[f64], y: &[f64], out: &mut [f64]) {
+    let (nx, n_eq) = (nx.get(), n_eq.get());
+    // Column-major: P[i, j] at `i + j nx`, A[k, j] at `k + j n_eq`.
+    let (p, a) = (&p[..nx * nx], &a[..n_eq * nx]);
+    let (top, bottom) = out[..nx + n_eq].split_at_mut(nx);
+    let (yx, ylambda) = y[..nx + n_eq].split_at(nx);
+    top.fill(0.0);
+    bottom.fill(0.0);
+    for (j, yj) in yx.iter().enumerate() {
+        for (o, pij) in top.iter_mut().zip(&p[j * nx..(j + 1) * nx]) {
+            *o += pij * yj;
+        }
+        for (o, akj) in bottom.iter_mut().zip(&a[j * n_eq..(j + 1) * n_eq]) {
+            *o += akj * yj;
+        }
+    }
+    // A[k, i] for k = 0..n_eq is A's column i.
+    for (i, o) in top.iter_mut().enumerate() {
+        let mut s = *o;
+        for (aki, yk) in a[i * n_eq..(i + 1) * n_eq].iter().zip(ylambda) {
+            s += aki * yk;
+        }
+        *o = s;
     }
 }
 
@@ -286,11 +311,13 @@ impl NeuralSolver for ZeroingNetwork {
         let nx = self.dims.nx;
         let n = y.len();
         debug_assert_eq!(n, self.dims.nx + self.dims.n_eq);
-        self.assemble_q(qp);
         self.compute_error(qp, y);
         self.fill_perturbation(t);
         let g = self.gain.at(t);
         let matrix_perturbation = self.uses_matrix_perturbation();
+        if let Some(d) = qp_dot {
+            Self::qdot_times(self.dims, d, y, &mut self.products[..n]);
+        }
         for i in 0..n {
             let mut r = -g * self.activation.value(self.e[i]);
             if self.nu != 0.0 {
@@ -304,7 +331,7 @@ impl NeuralSolver for ZeroingNetwork {
                 } else {
                     0.0
                 };
-                r += udot - self.qdot_y(d, y, i);
+                r += udot - self.products[i];
             }
             if matrix_perturbation {
                 let mut dy = 0.0;
@@ -317,6 +344,7 @@ impl NeuralSolver for ZeroingNetwork {
             }
             ydot[i] = r;
         }
+        self.assemble_q(qp);
         if !lu::factor(&mut self.lu, &mut self.piv) {
             ydot.fill(f64::NAN);
             return;
@@ -352,15 +380,23 @@ impl NeuralSolver for ZeroingNetwork {
             return false;
         }
         let g = self.gain.at(t);
+        let (dq_y, rest) = self.products.split_at_mut(n);
+        let (dq_f, rest) = rest.split_at_mut(n);
+        let dqdot_y = &mut rest[..n];
+        Self::qdot_times(self.dims, dqp, y, dq_y);
+        Self::qdot_times(self.dims, dqp, &f, dq_f);
+        if let (Some(_), Some(dd)) = (qp_dot, dqp_dot) {
+            Self::qdot_times(self.dims, dd, y, dqdot_y);
+        }
         for i in 0..n {
             // dE = dQ y - du, du = [-dq; db].
             let du = if i < nx { -dqp.q[i] } else { dqp.b[i - nx] };
-            let de = self.qdot_y(dqp, y, i) - du;
+            let de = dq_y[i] - du;
             let mut s = g * self.activation.derivative(self.e[i]);
             if self.nu != 0.0 {
                 s += self.nu * t;
             }
-            let mut r = -s * de - self.qdot_y(dqp, &f, i);
+            let mut r = -s * de - dq_f[i];
             if let (Some(_), Some(dd)) = (qp_dot, dqp_dot) {
                 let dudot = if i >= nx {
                     dd.b[i - nx]
@@ -369,7 +405,7 @@ impl NeuralSolver for ZeroingNetwork {
                 } else {
                     0.0
                 };
-                r += dudot - self.qdot_y(dd, y, i);
+                r += dudot - dqdot_y[i];
             }
             out[i] = r;
         }

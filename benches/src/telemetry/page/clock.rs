@@ -71,7 +71,7 @@ fn explain_cost(ladder: &[LadderRow], phases: &[PhaseRow], clock: &[ClockRow]) -
         "#### Where the reproduction's time goes\n\nThe explain phase's tolerance ladders \
          re-run each explained run at a sequence of tolerances, one rung per core at a time, and `results/{}` keeps each rung's wall time \
          (`wall_s`): {} rungs took {:.1} core-seconds in all",
-        records::results_dir::LADDER,
+        store::results_dir::LADDER,
         cost.rungs,
         cost.rung_core_s,
     );

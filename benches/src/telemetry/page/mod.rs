@@ -22,9 +22,9 @@ use analysis::papers::Papers;
 use analysis::performance::{dof, instant};
 use records::dof_cost::DofCostRow;
 use records::ladder::LadderRow;
-use records::table::read_if_present;
 use reproduce::phases::PhaseRow;
 use std::path::{Path, PathBuf};
+use store::table::read_if_present;
 
 /// The benches' output folder under the project root.
 pub const RESULTS: &str = "benches/results";
@@ -38,9 +38,9 @@ pub enum PageError {
     #[error(transparent)]
     Table(#[from] records::table::TableError),
     #[error(transparent)]
-    Runs(#[from] records::error::RunsError),
+    Runs(#[from] store::error::RunsError),
     #[error(transparent)]
-    DofCost(#[from] records::error::DofCostError),
+    DofCost(#[from] store::error::DofCostError),
     #[error(transparent)]
     Papers(#[from] analysis::papers::PapersError),
     #[error("{}: cannot write: {source}", path.display())]
@@ -81,7 +81,7 @@ impl Inputs {
     /// Reads the inputs under the project root `root`.
     pub fn load(root: &Path) -> Result<Self, PageError> {
         let benches = root.join(RESULTS);
-        let results = root.join(records::results_dir::DIR);
+        let results = root.join(store::results_dir::DIR);
         Ok(Inputs {
             phases: reproduce::phases::read(&benches.join(reproduce::phases::FILE))?,
             clock: read_if_present(&benches.join(super::clock::FILE))?,
@@ -91,8 +91,8 @@ impl Inputs {
             speedup: read_if_present(&benches.join(super::speedup::FILE))?,
             throughput: read_if_present(&benches.join(super::throughput::FILE))?,
             throughput_profile: read_if_present(&benches.join(super::throughput::PROFILE_FILE))?,
-            ladder: read_if_present(&results.join(records::results_dir::LADDER))?,
-            dof: records::dof_cost::read(&results)?,
+            ladder: read_if_present(&results.join(store::results_dir::LADDER))?,
+            dof: store::dof_cost::read(&results)?,
             papers: Papers::load(&root.join("papers"))?,
         })
     }

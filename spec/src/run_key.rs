@@ -31,9 +31,6 @@ pub enum KeyError {
 const RUN_FORM: &str = "<experiment> / <variant> / <solver>";
 const TASK_FORM: &str = "<experiment> / <variant>";
 
-/// The solver id of the exact column (the exact optimum x*(t) in the loop).
-pub const EXACT_ID: &str = "exact";
-
 /// experiment / variant / solver, as ids.
 #[derive(Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct RunKey {
@@ -154,7 +151,7 @@ mod tests {
 
     #[test]
     fn keys_print_parse_and_name_files() {
-        let k = RunKey::from_ids("jia2019-clover", "vltco", EXACT_ID).unwrap();
+        let k = RunKey::from_ids("jia2019-clover", "vltco", crate::run::EXACT_ID).unwrap();
         assert_eq!(k.to_string(), "jia2019-clover / vltco / exact");
         assert_eq!(k.stem(), "vltco__exact");
         assert_eq!(TaskKey::parse("jia2019-clover / vltco"), Ok(k.task()));

@@ -16,14 +16,15 @@
 //! trace is missing, changed since, or was never sealed (a journal of an older version) is not
 //! folded, is said, and is run again. So a resumed directory's manifest covers every row and
 //! trace it holds, and a resumed shard merges.
-use crate::error::{IoAction, IoError, RowsError};
+use crate::error::{IoAction, IoError};
 use crate::owned_dir::PathError;
 use crate::results_dir::{ResultsDir, JOURNAL};
-use crate::runs::{check_names, RunRow};
-use crate::table::{self, TableError};
-use crate::trace::TracePoint;
 use crate::tracked_dir::TrackedError;
-use catalog::run_key::RunKey;
+use records::error::RowsError;
+use records::runs::{check_names, RunRow};
+use records::table::{self, TableError};
+use records::trace::TracePoint;
+use spec::run_key::RunKey;
 use std::collections::HashMap;
 use std::fs::{File, OpenOptions};
 use std::io::Write;
@@ -141,14 +142,20 @@ impl<'a> Journal<'a> {
     }
 
     /// Checkpoints one finished run: its trace, then its seal, then its row (one write each,
-    /// flushed).
-    pub fn record(&self, row: &RunRow, trace: &[TracePoint]) -> Result<(), JournalError> {
-        let sealed = self.results.write_trace(&row.key(), trace)?;
-        let seal_line = format!(
-            "{}  {}\n",
-            sealed.sha256,
-            trace_name(&ResultsDir::trace_rel(&row.key()))
-        );
+    /// flushed); a run whose trace is not kept (`trace` `None`: its sweep's `traces` chose so)
+    /// its row alone.
+    pub fn record(&self, row: &RunRow, trace: Option<&[TracePoint]>) -> Result<(), JournalError> {
+        let seal_line = match trace {
+            Some(trace) => {
+                let sealed = self.results.write_trace(&row.key(), trace)?;
+                format!(
+                    "{}  {}\n",
+                    sealed.sha256,
+                    trace_name(&ResultsDir::trace_rel(&row.key()))
+                )
+            }
+            None => String::new(),
+        };
         let journal = path(self.results.path());
         let csv_error = |source| JournalError::Csv {
             path: journal.clone(),
@@ -164,10 +171,12 @@ impl<'a> Journal<'a> {
             .map_err(|e| csv_error(csv::Error::from(e.into_error())))?;
         let mut files = self.files.lock().map_err(|_| JournalError::Poisoned)?;
         let (file, seal) = &mut *files;
-        seal.write_all(seal_line.as_bytes())
-            .and_then(|()| seal.flush())
-            .map_err(IoError::at(seal_path(self.results.path()), IoAction::Write))?;
-        crate::kill_point::passed();
+        if !seal_line.is_empty() {
+            seal.write_all(seal_line.as_bytes())
+                .and_then(|()| seal.flush())
+                .map_err(IoError::at(seal_path(self.results.path()), IoAction::Write))?;
+            crate::kill_point::passed();
+        }
         file.write_all(&line)
             .and_then(|()| file.flush())
             .map_err(IoError::at(journal, IoAction::Write))?;
@@ -255,8 +264,13 @@ fn open_rows(journal: &Path) -> Result<table::Rows<RunRow, inputs::Capped>, Jour
 /// revision (`git_rev`: the current one) and by whether their traces match the seal; the
 /// traces of [`Recovered::current`] are recorded in the manifest of `results` (saved by the
 /// caller). A last line cut short by a kill is dropped, in the journal and in the seal. The
-/// journal is read row by row: what is kept per run is its key and its place.
-pub fn recover(results: &ResultsDir, git_rev: &str) -> Result<Recovered, JournalError> {
+/// journal is read row by row: what is kept per run is its key and its place. A row whose run
+/// keeps no trace by choice (`traced` false for its key) needs no seal.
+pub fn recover(
+    results: &ResultsDir,
+    git_rev: &str,
+    traced: impl Fn(&RunKey) -> bool,
+) -> Result<Recovered, JournalError> {
     let journal = path(results.path());
     if !journal.exists() {
         return Ok(Recovered::default());
@@ -302,6 +316,7 @@ pub fn recover(results: &ResultsDir, git_rev: &str) -> Result<Recovered, Journal
         }
         let rel = ResultsDir::trace_rel(&key);
         let sealed = match seals.get(&trace_name(&rel)) {
+            _ if !traced(&key) => true,
             Some(sha256) => results.tracked().adopt_sealed(&rel, sha256)?,
             None => false,
         };
@@ -402,6 +417,37 @@ mod tests {
         }
     }
 
+    /// A run that keeps no trace by choice is checkpointed as its row alone (no trace, no
+    /// seal line) and folded without one; the same row where a trace is asked for is not.
+    #[test]
+    fn a_run_without_a_trace_by_choice_is_folded_without_one() {
+        let dir = std::env::temp_dir().join(format!("driftbench-untraced-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let key = spec::run_key::RunKey::from_ids("exp", "a", "exact").unwrap();
+        let row = RunRow {
+            git_rev: "r1".into(),
+            ..RunRow::blank(&key, spec::solver_kind::SolverKind::Exact)
+        };
+        {
+            let (results, _) = ResultsDir::open(&dir, "r1", Edits::Refuse).unwrap();
+            Journal::open(&results, 2)
+                .unwrap()
+                .record(&row, None)
+                .unwrap();
+        }
+        assert!(!dir.join(ResultsDir::trace_rel(&key)).exists());
+        assert_eq!(std::fs::read_to_string(seal_path(&dir)).unwrap(), "");
+        let (results, _) = ResultsDir::open(&dir, "r1", Edits::Refuse).unwrap();
+        let asked = recover(&results, "r1", |_| true).unwrap();
+        assert!(asked.current.is_empty() && asked.unsealed == [key.clone()]);
+        let chosen = recover(&results, "r1", |_| false).unwrap();
+        assert!(chosen.unsealed.is_empty());
+        assert_eq!(chosen.current.len(), 1);
+        assert_eq!(chosen.current[0].key, key);
+        assert!(results.tracked().listed("traces/").is_empty());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
     /// A run killed after checkpointing four runs saved no manifest; the seal names each trace
     /// with its hash (as `sha256sum` writes), and only the rows whose trace still matches
     /// their seal are folded, their traces then recorded in the manifest.
@@ -414,8 +460,8 @@ mod tests {
             .map(|v| RunRow {
                 git_rev: if *v == "e" { "r0" } else { "r1" }.into(),
                 ..RunRow::blank(
-                    &catalog::run_key::RunKey::from_ids("exp", v, "exact").unwrap(),
-                    catalog::solver_kind::SolverKind::Exact,
+                    &spec::run_key::RunKey::from_ids("exp", v, "exact").unwrap(),
+                    spec::solver_kind::SolverKind::Exact,
                 )
             })
             .collect();
@@ -423,7 +469,7 @@ mod tests {
             let (results, _) = ResultsDir::open(&dir, "r1", Edits::Refuse).unwrap();
             let journal = Journal::open(&results, 2).unwrap();
             for r in &rows {
-                journal.record(r, &[point(0.0), point(1.0)]).unwrap();
+                journal.record(r, Some(&[point(0.0), point(1.0)])).unwrap();
             }
         } // killed: nothing saved
         assert!(!dir.join(crate::integrity::FILE).exists());
@@ -449,7 +495,7 @@ mod tests {
         std::fs::write(seal_path(&dir), reordered).unwrap();
 
         let (results, _) = ResultsDir::open(&dir, "r1", Edits::Refuse).unwrap();
-        let got = recover(&results, "r1").unwrap();
+        let got = recover(&results, "r1", |_| true).unwrap();
         let variants = |keys: Vec<&RunKey>| {
             keys.iter()
                 .map(|k| k.variant.to_string())
@@ -476,7 +522,7 @@ mod tests {
 
         // A whole line that is not `<sha256>  <path>` is not a seal this program wrote.
         std::fs::write(seal_path(&dir), format!("{e_line}\nnot a seal\n")).unwrap();
-        let e = recover(&results, "r1").unwrap_err();
+        let e = recover(&results, "r1", |_| true).unwrap_err();
         assert!(matches!(e, JournalError::Seal { line: 2, .. }), "{e}");
         assert!(e.to_string().contains(SEAL), "{e}");
         remove(&dir).unwrap();
@@ -498,14 +544,14 @@ mod tests {
                 git_rev: "r1".into(),
                 drift: vec![0.5, -0.25],
                 ..RunRow::blank(
-                    &catalog::run_key::RunKey::from_ids("exp", v, "exact").unwrap(),
-                    catalog::solver_kind::SolverKind::Exact,
+                    &spec::run_key::RunKey::from_ids("exp", v, "exact").unwrap(),
+                    spec::solver_kind::SolverKind::Exact,
                 )
             };
-            journal.record(&row, &[point(0.0)]).unwrap();
+            journal.record(&row, Some(&[point(0.0)])).unwrap();
         }
         drop(journal);
-        let got = recover(&results, "r1").unwrap();
+        let got = recover(&results, "r1", |_| true).unwrap();
         assert_eq!(got.joints, 2);
         let mut rows = got.rows(&dir).unwrap();
         let first = rows.next().unwrap().unwrap();

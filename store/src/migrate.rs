@@ -10,10 +10,11 @@
 //! (it is then pruned as any undescribed run is). `ResultsDir::migrate_ids` applies this to a
 //! results directory and renames the traces.
 
-use catalog::experiment::Job;
-use catalog::ids::IdError;
-use catalog::run_key::{RunKey, EXACT_ID};
 use settings::slug::slug;
+use spec::ids::IdError;
+use spec::run::RunSpec;
+use spec::run::EXACT_ID;
+use spec::run_key::RunKey;
 use std::collections::HashMap;
 
 /// The exact column's label before run ids.
@@ -50,7 +51,7 @@ pub struct LabelIndex(HashMap<(String, String, String), RunKey>);
 impl LabelIndex {
     /// The index of `jobs` (borrowed or made as they are taken: the runs of the experiment
     /// files need not be collected for it).
-    pub fn new(jobs: impl IntoIterator<Item = impl std::borrow::Borrow<Job>>) -> Self {
+    pub fn new(jobs: impl IntoIterator<Item = impl std::borrow::Borrow<RunSpec>>) -> Self {
         let jobs = jobs.into_iter();
         let mut map = HashMap::with_capacity(jobs.size_hint().0);
         for j in jobs {

@@ -181,6 +181,22 @@ impl std::fmt::Display for Mismatch {
     }
 }
 
+/// Why a manifest's text is not one this program writes (inside [`IntegrityError::Parse`]).
+#[derive(Debug, thiserror::Error)]
+enum ManifestTextError {
+    /// A table or the keys before the first do not parse (line and column in the whole text).
+    #[error(transparent)]
+    Toml(inputs::toml_error::TomlError),
+    /// A file is listed twice (TOML refuses a table defined twice).
+    #[error("line {line}: it lists {file:?} twice")]
+    Twice {
+        /// The line of the second listing.
+        line: usize,
+        /// The file listed twice.
+        file: String,
+    },
+}
+
 impl Manifest {
     /// The manifest of `dir`, or `None` if it has none. It is read as an input
     /// ([`inputs::read_text`]): a regular file inside `dir`, at most
@@ -193,11 +209,10 @@ impl Manifest {
                 Err(e) if e.is_not_found() => return Ok(None),
                 Err(e) => return Err(e.into()),
             };
-        let m: Manifest =
-            inputs::toml_error::from_str(&text).map_err(|e| IntegrityError::Parse {
-                path: path.clone(),
-                message: e.to_string(),
-            })?;
+        let m = Self::parse(&text).map_err(|e| IntegrityError::Parse {
+            path: path.clone(),
+            message: e.to_string(),
+        })?;
         if let Some(bad) = m.files.keys().find(|k| !is_plain(k)) {
             return Err(IntegrityError::Parse {
                 path,
@@ -207,17 +222,113 @@ impl Manifest {
         Ok(Some(m))
     }
 
-    /// Saves the manifest into `dir` (atomically).
+    /// The manifest `text`, parsed table by table: the keys before the first table header
+    /// (`git_rev`), then each table (`[files."<path>"]` and its keys, as [`Manifest::write`]
+    /// writes them) alone, so memory is the text, the map and one table's document, not a
+    /// document of every entry (about 1.5 KB per file listed). A file listed twice is refused,
+    /// as TOML refuses a table defined twice. The error names the line and column in the
+    /// whole text.
+    fn parse(text: &str) -> Result<Self, ManifestTextError> {
+        /// The keys before the first table.
+        #[derive(Deserialize)]
+        #[serde(deny_unknown_fields)]
+        struct Head {
+            git_rev: String,
+        }
+        /// One table of the manifest (`[files]`, or one `[files."<path>"]`).
+        #[derive(Deserialize)]
+        #[serde(deny_unknown_fields)]
+        struct Tables {
+            #[serde(default)]
+            files: BTreeMap<String, Fingerprint>,
+        }
+        /// `text` (from line `first`, counted from 1) parsed, the error's line in the whole.
+        fn part<T: serde::de::DeserializeOwned>(
+            text: &str,
+            first: usize,
+        ) -> Result<T, ManifestTextError> {
+            inputs::toml_error::from_str(text).map_err(|mut e| {
+                e.at = e.at.map(|(line, column)| (line + first - 1, column));
+                ManifestTextError::Toml(e)
+            })
+        }
+        // Each part: (its first line, its text); a part begins at a table header.
+        let mut parts: Vec<(usize, &str)> = Vec::new();
+        let (mut start, mut at, mut first) = (0, 0, 1);
+        for (index, line) in text.split_inclusive('\n').enumerate() {
+            if line.trim_start().starts_with('[') && at > 0 {
+                parts.push((first, &text[start..at]));
+                (start, first) = (at, index + 1);
+            }
+            at += line.len();
+        }
+        parts.push((first, &text[start..]));
+        let mut parts = parts.into_iter();
+        let (line, head) = parts.next().unwrap_or((1, ""));
+        let head: Head = part(head, line)?;
+        let mut files = BTreeMap::new();
+        for (line, table) in parts {
+            let table: Tables = part(table, line)?;
+            for (file, fingerprint) in table.files {
+                if files.contains_key(&file) {
+                    return Err(ManifestTextError::Twice { line, file });
+                }
+                files.insert(file, fingerprint);
+            }
+        }
+        Ok(Manifest {
+            git_rev: head.git_rev,
+            files,
+        })
+    }
+
+    /// Saves the manifest into `dir` (atomically), streamed: the same text as one TOML
+    /// document of the whole manifest, written entry by entry (each entry's table serialised
+    /// alone), so memory is one entry's, not a document of every entry (about 1.5 KB per file
+    /// listed, the peak of a shard or merge of many runs before).
     pub fn write(&self, dir: &Path) -> Result<(), IntegrityError> {
         let path = dir.join(FILE);
-        let text = toml::to_string(self).map_err(|e| IntegrityError::Write {
+        let error = |message: String| IntegrityError::Write {
             path: path.clone(),
-            message: e.to_string(),
-        })?;
-        crate::runs::write_atomic(&path, text.as_bytes()).map_err(|e| IntegrityError::Write {
-            path,
-            message: e.to_string(),
+            message,
+        };
+        /// One entry's table: serialised alone it is `[files."<path>"]` and its three keys.
+        #[derive(Serialize)]
+        struct Entry<'a> {
+            files: BTreeMap<&'a str, &'a Fingerprint>,
+        }
+        #[derive(Serialize)]
+        struct Head<'a> {
+            git_rev: &'a str,
+        }
+        let head = toml::to_string(&Head {
+            git_rev: &self.git_rev,
         })
+        .map_err(|e| error(e.to_string()))?;
+        let mut failed = None;
+        crate::atomic::write_atomic_with(&path, |w| {
+            w.write_all(head.as_bytes())?;
+            if self.files.is_empty() {
+                return w.write_all(b"\n[files]\n");
+            }
+            for (file, fingerprint) in &self.files {
+                let entry = Entry {
+                    files: BTreeMap::from([(file.as_str(), fingerprint)]),
+                };
+                match toml::to_string(&entry) {
+                    Ok(text) => {
+                        w.write_all(b"\n")?;
+                        w.write_all(text.as_bytes())?;
+                    }
+                    Err(e) => {
+                        failed = Some(e.to_string());
+                        return Err(std::io::Error::other("serialisation failed"));
+                    }
+                }
+            }
+            Ok(())
+        })
+        .map_err(|e| error(failed.take().unwrap_or_else(|| e.to_string())))
     }
 
     /// Every listed file of `dir` whose name `select` accepts and whose content is not what
@@ -251,6 +362,40 @@ fn is_plain(p: &str) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The streamed manifest is byte for byte the TOML document of the whole manifest (so a
+    /// committed `results/manifest.toml` is unchanged), for no file, one, and several with
+    /// keys TOML quotes differently, and reads back equal.
+    #[test]
+    fn the_streamed_manifest_is_the_whole_document() {
+        let dir =
+            std::env::temp_dir().join(format!("driftbench-integrity-doc-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let mut m = Manifest {
+            git_rev: "abc\"d".into(),
+            ..Default::default()
+        };
+        let names = [
+            "runs.csv",
+            "plain_name-1",
+            "traces/a b/it's.csv",
+            "traces/x\"y.csv",
+            "é/ü.svg",
+        ];
+        for count in [0, 1, names.len()] {
+            m.files = names[..count]
+                .iter()
+                .enumerate()
+                .map(|(i, n)| (n.to_string(), Fingerprint::of(&vec![b'x'; i])))
+                .collect();
+            m.write(&dir).unwrap();
+            let written = std::fs::read_to_string(dir.join(FILE)).unwrap();
+            assert_eq!(written, toml::to_string(&m).unwrap(), "{count} file(s)");
+            assert_eq!(Manifest::read(&dir).unwrap().unwrap(), m);
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
 
     #[test]
     fn sha256_is_the_standard_function() {
@@ -305,5 +450,36 @@ mod tests {
         .unwrap();
         assert!(Manifest::read(&dir).is_err());
         let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// Read table by table, the manifest is what TOML reads of the whole text, and a text TOML
+    /// refuses is refused, its line counted in the whole text.
+    #[test]
+    fn tables_read_one_by_one_are_the_whole_document() {
+        let whole = "git_rev = \"r\"\n\n[files.\"a.csv\"]\nlines = 1\nbytes = 2\nsha256 = \"00\"\n\n[files]\n\"b/c\" = { lines = 3, bytes = 4, sha256 = \"11\" }\n";
+        let m = Manifest::parse(whole).unwrap();
+        assert_eq!(m, toml::from_str::<Manifest>(whole).unwrap());
+        assert_eq!(m.files.len(), 2);
+        let twice = "git_rev = \"r\"\n[files.\"a\"]\nlines = 1\nbytes = 2\nsha256 = \"0\"\n[files.\"a\"]\nlines = 1\nbytes = 2\nsha256 = \"0\"\n";
+        assert!(toml::from_str::<Manifest>(twice).is_err());
+        assert!(Manifest::parse(twice)
+            .unwrap_err()
+            .to_string()
+            .contains("twice"));
+        let unknown =
+            "git_rev = \"r\"\n[files.\"a\"]\nlines = 1\nbytes = 2\nsha256 = \"0\"\nextra = 1\n";
+        assert!(Manifest::parse(unknown)
+            .unwrap_err()
+            .to_string()
+            .contains("line 6"));
+        for refused in [
+            "",
+            "[files]\n",
+            "git_rev = \"r\"\n[other]\n",
+            "git_rev = \"r\"\nfiles = 1\n",
+        ] {
+            assert!(toml::from_str::<Manifest>(refused).is_err(), "{refused:?}");
+            assert!(Manifest::parse(refused).is_err(), "{refused:?}");
+        }
     }
 }

@@ -7,28 +7,29 @@
 //! results/
 //!   .lock                     advisory lock: one writer at a time
 //!   manifest.toml             what the program wrote (crate::integrity), saved last
-//!   runs.csv                  one row per run (crate::runs)
+//!   runs.csv                  one row per run (records::runs)
 //!   journal.csv               the checkpoint of an interrupted run (crate::journal)
 //!   journal-traces.sha256     the seal of the journal's traces (crate::journal)
 //!   traces/<experiment>/<variant>__<solver>.csv
-//!                             one run's trace (crate::trace)
+//!                             one run's trace (records::trace)
 //!   *.csv                     the explanation layer's and other tables
 //! ```
 //!
 //! Opening ([`ResultsDir::open`]) takes the lock, refuses tables that differ from the
 //! manifest (a truncated or hand-edited `runs.csv`), and removes only the temporary files of
 //! the program's own interrupted writes. Every id read from a row is checked as it is read
-//! (its type, [`catalog::ids`], holds only slugs) and every path it leads to is resolved
+//! (its type, [`spec::ids`], holds only slugs) and every path it leads to is resolved
 //! inside the directory ([`OwnedDir::resolve`]), and a
 //! file is deleted only if the manifest proves the program wrote it
 //! ([`TrackedDir::remove`]).
 
 use crate::integrity::Fingerprint;
 use crate::owned_dir::{OwnedDir, PathError};
-use crate::runs::{read_runs, runs_csv, RunRow};
-use crate::trace::{trace_csv, TracePoint};
+use crate::runs::read_runs;
 use crate::tracked_dir::{Edits, Removal, TrackedDir, TrackedError};
-use catalog::run_key::RunKey;
+use records::runs::{runs_csv, RunRow};
+use records::trace::{trace_csv, TracePoint};
+use spec::run_key::RunKey;
 use std::path::{Path, PathBuf};
 
 /// The results directory's name under the project root.
@@ -47,15 +48,15 @@ pub const ATTRIBUTION: &str = "attribution.csv";
 pub const INFERENCE: &str = "inference.csv";
 /// The setup inference's per-entry table.
 pub const INFERENCE_ENTRIES: &str = "inference-entries.csv";
-/// The control experiments' runs ([`crate::control::ControlRow`]).
+/// The control experiments' runs ([`records::control::ControlRow`]).
 pub const CONTROL: &str = "control.csv";
-/// The networks' Euler stability limits ([`crate::control::StabilityRow`]).
+/// The networks' Euler stability limits ([`records::control::StabilityRow`]).
 pub const CONTROL_STABILITY: &str = "control-stability.csv";
-/// zhong2021's efficiency claim per task ([`crate::control::ClaimRow`]).
+/// zhong2021's efficiency claim per task ([`records::control::ClaimRow`]).
 pub const CONTROL_CLAIM: &str = "control-claim.csv";
-/// The drift after every cycle of the many-cycles runs ([`crate::control::CycleRow`]).
+/// The drift after every cycle of the many-cycles runs ([`records::control::CycleRow`]).
 pub const CYCLES: &str = "cycles.csv";
-/// The many-cycles runs' trends ([`crate::control::TrendRow`]).
+/// The many-cycles runs' trends ([`records::control::TrendRow`]).
 pub const CYCLES_TREND: &str = "cycles-trend.csv";
 /// The leaderboard.
 pub const LEADERBOARD: &str = "leaderboard.csv";
@@ -331,7 +332,7 @@ impl ResultsDir {
         };
         let committed = self.tracked.commit_with(RUNS, |out| {
             let mut w = csv::Writer::from_writer(out);
-            w.write_record(crate::table::header::<RunRow>(joints))?;
+            w.write_record(records::table::header::<RunRow>(joints))?;
             for row in rows {
                 let row = match row {
                     Ok(row) => row,
@@ -340,7 +341,7 @@ impl ResultsDir {
                         return Err(std::io::Error::other("the rows stopped"));
                     }
                 };
-                let record = crate::table::record(&row, joints).map_err(|e| {
+                let record = records::table::record(&row, joints).map_err(|e| {
                     failed = Some(csv_error(e).into());
                     std::io::Error::other("a row did not serialise")
                 })?;
@@ -357,14 +358,14 @@ impl ResultsDir {
     }
 
     /// A run's trace, relative to the directory: `traces/<experiment>/<variant>__<solver>.csv`
-    /// (the key's ids are slugs, so these are safe names: `catalog::ids`).
+    /// (the key's ids are slugs, so these are safe names: `spec::ids`).
     pub fn trace_rel(key: &RunKey) -> PathBuf {
         Path::new(TRACES)
             .join(&key.experiment)
             .join(format!("{}.csv", key.stem()))
     }
 
-    /// Writes the trace of the run `key` ([`crate::trace`]); returns its fingerprint.
+    /// Writes the trace of the run `key` ([`records::trace`]); returns its fingerprint.
     pub fn write_trace(
         &self,
         key: &RunKey,
@@ -501,10 +502,10 @@ fn lock(dir: &OwnedDir) -> Result<std::fs::File, ResultsError> {
 }
 
 /// Whether `name` is a temporary file of the program's own (module docs of
-/// [`crate::runs::TMP_PREFIX`]): `.driftbench-tmp.<pid>.<counter>.<name>` of an atomic write, or
+/// [`crate::atomic::TMP_PREFIX`]): `.driftbench-tmp.<pid>.<counter>.<name>` of an atomic write, or
 /// `.driftbench-tmp.<pid>.probe` of a writability probe, pid and counter decimal.
 pub fn is_own_tmp(name: &str) -> bool {
-    let Some(rest) = name.strip_prefix(crate::runs::TMP_PREFIX) else {
+    let Some(rest) = name.strip_prefix(crate::atomic::TMP_PREFIX) else {
         return false;
     };
     let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());

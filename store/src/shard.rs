@@ -38,9 +38,9 @@
 use crate::error::{IoAction, IoError, RunsError};
 use crate::integrity::{IntegrityError, Mismatch};
 use crate::owned_dir::PathError;
-use crate::runs::RunRow;
 use crate::sorted::{read_key_ordered, KeyMerge};
 use crate::tracked_dir::TrackedError;
+use records::runs::RunRow;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -228,7 +228,7 @@ pub enum ShardError {
 pub enum RunEntryProblem {
     /// Not a run key, or a part that is no valid id.
     #[error("not a run key: {0}")]
-    NotAKey(catalog::run_key::KeyError),
+    NotAKey(spec::run_key::KeyError),
     /// The run is listed twice.
     #[error("listed twice")]
     Twice,
@@ -517,7 +517,7 @@ impl Manifest {
             path: path.clone(),
             source,
         })?;
-        crate::runs::write_atomic(&path, text.as_bytes())
+        crate::atomic::write_atomic(&path, text.as_bytes())
             .map_err(IoError::at(&path, IoAction::Write))?;
         Ok(())
     }
@@ -555,7 +555,7 @@ impl Manifest {
         })?;
         let mut seen = std::collections::HashSet::new();
         for (index, entry) in self.runs.iter().enumerate() {
-            let problem = match catalog::run_key::RunKey::parse(entry) {
+            let problem = match spec::run_key::RunKey::parse(entry) {
                 Err(e) => Some(RunEntryProblem::NotAKey(e)),
                 Ok(key) if !seen.insert(key.clone()) => Some(RunEntryProblem::Twice),
                 Ok(_) => None,
@@ -684,7 +684,8 @@ pub fn copy_trace(
 }
 
 /// Checks shards before a merge: the same N, experiment files (`hash`: the current files')
-/// and selection (`manifest_problems`); each row in its own shard with its trace, and each
+/// and selection (`manifest_problems`); each row in its own shard with its trace (unless its
+/// run keeps none by choice: `traced` false for its key), and each
 /// run a manifest lists its shard's; every run of `expected` (the keys the selection
 /// describes, in its enumeration order: `expected[i]` is shard `i mod N + 1`'s) in exactly
 /// one shard, and no other run. The rows are streamed in key order ([`runs_files`] merged),
@@ -696,6 +697,7 @@ pub fn check_shards(
     shards: &[ShardDir],
     expected: &[String],
     hash: &str,
+    traced: impl Fn(&spec::run_key::RunKey) -> bool,
 ) -> Result<(), ShardError> {
     let Some(first) = shards.first() else {
         return Err(ShardError::NoShardDirectories);
@@ -754,10 +756,11 @@ pub fn check_shards(
             ));
         }
         let rel = trace_rel(&r);
-        if !s
-            .files
-            .files
-            .contains_key(&rel.to_string_lossy().replace('\\', "/"))
+        if traced(&r.key())
+            && !s
+                .files
+                .files
+                .contains_key(&rel.to_string_lossy().replace('\\', "/"))
         {
             problems.push(format!(
                 "{}: the trace of {key} ({}) is not among the files the shard wrote",

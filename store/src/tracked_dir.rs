@@ -186,7 +186,7 @@ impl TrackedDir {
         bytes: &[u8],
     ) -> Result<Fingerprint, TrackedError> {
         let path = self.resolve(rel)?;
-        crate::runs::write_atomic(&path, bytes).map_err(|source| TrackedError::Io {
+        crate::atomic::write_atomic(&path, bytes).map_err(|source| TrackedError::Io {
             path: path.clone(),
             source,
         })?;
@@ -282,8 +282,8 @@ impl TrackedDir {
 
     /// Saves the manifest.
     pub fn save(&self) -> Result<(), TrackedError> {
-        let m = self.lock().clone();
-        m.write(self.path())?;
+        // Written under the lock, not from a copy: a copy is one more entry per file held.
+        self.lock().write(self.path())?;
         Ok(())
     }
 
@@ -297,7 +297,7 @@ impl TrackedDir {
         self.commit_with(name, |w| w.write_all(bytes))
     }
 
-    /// [`TrackedDir::commit`] of what `write` writes, streamed ([`crate::runs::write_atomic_with`])
+    /// [`TrackedDir::commit`] of what `write` writes, streamed ([`crate::atomic::write_atomic_with`])
     /// and fingerprinted block by block: a table far larger than memory is committed row by row.
     pub fn commit_with(
         &self,
@@ -310,7 +310,7 @@ impl TrackedDir {
             let path = path.to_path_buf();
             move |source| TrackedError::Io { path, source }
         };
-        crate::runs::write_atomic_with(&staged, write).map_err(io(&staged))?;
+        crate::atomic::write_atomic_with(&staged, write).map_err(io(&staged))?;
         let found = crate::owned_dir::fingerprint(&staged).map_err(io(&staged))?;
         self.lock().files.insert(name.to_string(), found);
         self.save()?;

@@ -1,5 +1,8 @@
-//! VP-RNN-PF, the varying-parameter recurrent neural network with penalty function of
-//! zhong2021 (eq. 2.19-2.30).
+//! The `penalty` error form of the projection family ([`super::projection`],
+//! `settings::projection`): the error of VP-RNN-PF, the varying-parameter recurrent neural
+//! network with penalty function of zhong2021 (eq. 2.19-2.30), and the implicit network its
+//! zeroing design formula gives, for any gain law g(t) (VP-RNN-PF's: gamma exp(t), eq. 2.26) and
+//! activation.
 //!
 //! # Penalty (eq. 2.19-2.21)
 //!
@@ -75,28 +78,23 @@
 //! ```
 
 use super::activation::Activation;
-use super::NeuralSolver;
 use crate::dense_lu::DenseLu;
 use nalgebra::DMatrix;
 use qp::{Qp, QpDims};
 use settings::error::NetworkError;
-use settings::zeroing::GainLaw;
 
 /// Cap on the penalty exponent -sigma N_i (exp(700) ~ 1e304).
 pub const EXPONENT_CAP: f64 = 700.0;
 
-/// VP-RNN-PF (zhong2021 eq. 2.30): see the module docs.
+/// The penalised Lagrangian's gradient and the implicit network of zhong2021 (2.30) on it
+/// (module docs), with its preallocated scratch; the gain g(t) and the activation are the
+/// caller's.
 #[derive(Clone, Debug)]
-pub struct VpRnnPf {
+pub(super) struct PenaltyCore {
     /// Penalty factor p (eq. 2.19).
-    pub p: f64,
+    p: f64,
     /// Penalty sharpness sigma (eq. 2.19).
-    pub sigma: f64,
-    /// gamma of the varying parameter gamma exp(t) (eq. 2.26).
-    pub gamma: f64,
-    /// The activation Phi of the error (zhong2021 (2.26)).
-    pub activation: Activation,
-    gain: GainLaw,
+    sigma: f64,
     dims: QpDims,
     /// Inequality rows B (G, then the finite bounds), their derivatives, h and hdot.
     b: DMatrix<f64>,
@@ -121,47 +119,17 @@ pub struct VpRnnPf {
     factored: bool,
 }
 
-impl VpRnnPf {
-    /// The network with gain gamma exp(t) (eq. 2.26).
-    pub fn new(
-        p: f64,
-        sigma: f64,
-        gamma: f64,
-        activation: Activation,
-        dims: QpDims,
-    ) -> Result<Self, NetworkError> {
-        Self::with_gain(
-            p,
-            sigma,
-            gamma,
-            GainLaw::Exponential { gamma },
-            activation,
-            dims,
-        )
-    }
-
-    /// Same network with another gain schedule (e.g. [`GainLaw::Constant`] for steady-state tests;
-    /// the paper's network is [`VpRnnPf::new`]).
-    pub fn with_gain(
-        p: f64,
-        sigma: f64,
-        gamma: f64,
-        gain: GainLaw,
-        activation: Activation,
-        dims: QpDims,
-    ) -> Result<Self, NetworkError> {
+impl PenaltyCore {
+    /// The penalty (p >= 0, sigma > 0) for QPs of sizes `dims`.
+    pub(super) fn new(p: f64, sigma: f64, dims: QpDims) -> Result<Self, NetworkError> {
         if !(p >= 0.0 && p.is_finite()) || !(sigma > 0.0 && sigma.is_finite()) {
-            return Err(NetworkError::VpRnnPf { p, sigma });
+            return Err(NetworkError::Penalty { p, sigma });
         }
-        activation.validate()?;
         let rows = dims.n_in + 2 * dims.nx;
         let n = dims.nx + dims.n_eq;
         Ok(Self {
             p,
             sigma,
-            gamma,
-            activation,
-            gain,
             dims,
             b: DMatrix::zeros(rows, dims.nx),
             bdot: DMatrix::zeros(rows, dims.nx),
@@ -181,8 +149,13 @@ impl VpRnnPf {
 
     /// The error phi = D y - u of eq. 2.25 (the penalised Lagrangian's gradient) at the last
     /// evaluation.
-    pub fn error(&self) -> &[f64] {
+    pub(super) fn error(&self) -> &[f64] {
         &self.phi
+    }
+
+    /// ydot of the last evaluation (NaN where W was singular).
+    pub(super) fn ydot(&self) -> &[f64] {
+        &self.f
     }
 
     /// Gather the inequality rows (module docs) of `qp` and their derivatives.
@@ -223,8 +196,16 @@ impl VpRnnPf {
         }
     }
 
-    /// Evaluate phi, W, the right-hand side of eq. 2.30 and solve for F = ydot.
-    fn evaluate(&mut self, t: f64, y: &[f64], qp: &Qp, qp_dot: Option<&Qp>) {
+    /// Evaluate phi, W, the right-hand side of eq. 2.30 with gain `g` = g(t) and activation
+    /// `activation`, and solve for F = ydot.
+    pub(super) fn evaluate(
+        &mut self,
+        g: f64,
+        activation: &Activation,
+        y: &[f64],
+        qp: &Qp,
+        qp_dot: Option<&Qp>,
+    ) {
         let QpDims { nx, n_eq, .. } = self.dims;
         debug_assert_eq!(
             qp.dims(),
@@ -288,9 +269,8 @@ impl VpRnnPf {
             self.phi[nx + k] = s;
         }
         // r = -S y - g Phi(phi) + mu.
-        let g = self.gain.at(t);
         for i in 0..(nx + n_eq) {
-            self.f[i] = -g * self.activation.value(self.phi[i]);
+            self.f[i] = -g * activation.value(self.phi[i]);
         }
         if let Some(d) = qp_dot {
             for i in 0..nx {
@@ -323,41 +303,28 @@ impl VpRnnPf {
             self.f.fill(f64::NAN);
         }
     }
-}
 
-impl NeuralSolver for VpRnnPf {
-    fn name(&self) -> String {
-        "VP-RNN-PF".into()
-    }
-    fn state_dim(&self, dims: QpDims) -> usize {
-        dims.nx + dims.n_eq
-    }
-    fn needs_qp_dot(&self) -> bool {
-        true
-    }
-    fn rhs(&mut self, t: f64, y: &[f64], qp: &Qp, qp_dot: Option<&Qp>, ydot: &mut [f64]) {
-        self.evaluate(t, y, qp, qp_dot);
-        ydot.copy_from_slice(&self.f);
-    }
-    fn jacobian(
+    /// dF/dy (module docs) with gain `g` = g(t) and activation `activation`; false where W is
+    /// singular.
+    pub(super) fn jacobian(
         &mut self,
-        t: f64,
+        g: f64,
+        activation: &Activation,
         y: &[f64],
         qp: &Qp,
         qp_dot: Option<&Qp>,
         jac: &mut DMatrix<f64>,
     ) -> bool {
-        self.evaluate(t, y, qp, qp_dot);
+        self.evaluate(g, activation, y, qp, qp_dot);
         if !self.factored {
             return false;
         }
         let QpDims { nx, n_eq, .. } = self.dims;
         let n = nx + n_eq;
         let sigma = self.sigma;
-        let g = self.gain.at(t);
         // -g diag(Phi'(phi)) W.
         for i in 0..n {
-            let s = g * self.activation.derivative(self.phi[i]);
+            let s = g * activation.derivative(self.phi[i]);
             for j in 0..n {
                 jac[(i, j)] = -s * self.w[(i, j)];
             }

@@ -9,10 +9,11 @@
 //! without a set of the keys seen, that no run is listed twice: a row whose key is not greater
 //! than the one above it is an error naming the file and the line.
 
-use crate::error::{RowsError, RunsError};
-use crate::runs::{check_names, RunRow};
-use crate::table::{self, Rows};
-use catalog::run_key::RunKey;
+use crate::error::RunsError;
+use records::error::RowsError;
+use records::runs::{check_names, RunRow};
+use records::table::{self, Rows};
+use spec::run_key::RunKey;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 use std::path::{Path, PathBuf};
@@ -202,7 +203,7 @@ pub fn latest<E>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use catalog::solver_kind::SolverKind;
+    use spec::solver_kind::SolverKind;
 
     fn row(variant: &str, git_rev: &str) -> RunRow {
         RunRow {

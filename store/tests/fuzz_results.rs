@@ -5,7 +5,7 @@
 //! safe to use as a file name; nothing panics. Bounded (200 cases each) to run in seconds.
 
 use proptest::prelude::*;
-use records::runs::read_runs;
+use store::runs::read_runs;
 
 use std::path::PathBuf;
 
@@ -71,7 +71,7 @@ proptest! {
         if let Ok(rows) = read_runs(&path) {
             for r in &rows {
                 // The ids of every row read can name files (their types checked them).
-                use catalog::naming::{check_name, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
+                use spec::naming::{check_name, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
                 prop_assert!(check_name(&r.experiment, MAX_EXPERIMENT_ID).is_ok());
                 prop_assert!(check_name(&r.variant_id, MAX_VARIANT_LABEL).is_ok());
                 prop_assert!(check_name(&r.solver_id, MAX_SOLVER_LABEL).is_ok());
@@ -87,8 +87,8 @@ proptest! {
     fn arbitrary_shard_manifests_never_panic(text in "(shard|shards|git_rev|runs|selection|experiments_hash|paper|=|\\[|\\]|\"|[0-9]|\n| |\\.\\./x|[a-z]){0,120}") {
         let dir = scratch("shard-manifest");
         std::fs::create_dir_all(&dir).unwrap();
-        std::fs::write(dir.join(records::shard::MANIFEST), &text).unwrap();
-        let _ = records::shard::Manifest::read(&dir);
+        std::fs::write(dir.join(store::shard::MANIFEST), &text).unwrap();
+        let _ = store::shard::Manifest::read(&dir);
     }
 
     #[test]
@@ -108,8 +108,8 @@ proptest! {
         let text = format!(
             "git_rev = \"x\"\n[files.\"{key}\"]\nlines = {lines}\nbytes = 1\nsha256 = \"00\"\n"
         );
-        std::fs::write(dir.join(records::integrity::FILE), text).unwrap();
-        if let Ok(Some(m)) = records::integrity::Manifest::read(&dir) {
+        std::fs::write(dir.join(store::integrity::FILE), text).unwrap();
+        if let Ok(Some(m)) = store::integrity::Manifest::read(&dir) {
             for k in m.files.keys() {
                 prop_assert!(!k.starts_with('/') && !k.split('/').any(|s| s == ".." || s.is_empty()), "{}", k);
             }
@@ -131,8 +131,8 @@ fn the_fuzzed_readers_accept_well_formed_files() {
     std::fs::create_dir_all(&dir).unwrap();
     let text =
         "git_rev = \"x\"\n[files.\"traces/e/v__s.csv\"]\nlines = 1\nbytes = 1\nsha256 = \"00\"\n";
-    std::fs::write(dir.join(records::integrity::FILE), text).unwrap();
-    let m = records::integrity::Manifest::read(&dir)
+    std::fs::write(dir.join(store::integrity::FILE), text).unwrap();
+    let m = store::integrity::Manifest::read(&dir)
         .expect("a well-formed manifest reads")
         .expect("and is found");
     assert!(m.files.contains_key("traces/e/v__s.csv"));
@@ -152,11 +152,11 @@ fn the_unmutated_inputs_read() {
     let dir = scratch("integrity-manifest-plain");
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(
-        dir.join(records::integrity::FILE),
+        dir.join(store::integrity::FILE),
         "git_rev = \"x\"\n[files.\"traces/e/v__s.csv\"]\nlines = 1\nbytes = 1\nsha256 = \"00\"\n",
     )
     .unwrap();
-    let manifest = records::integrity::Manifest::read(&dir)
+    let manifest = store::integrity::Manifest::read(&dir)
         .expect("a plain manifest reads")
         .expect("the manifest exists");
     assert!(manifest.files.contains_key("traces/e/v__s.csv"));
