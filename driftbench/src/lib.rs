@@ -216,6 +216,7 @@ pub fn paper(root: &Path, paper: &PaperId) -> Result<Vec<RunSpec>, Error> {
     let of_paper: Vec<&PaperFile> = files.iter().filter(|f| f.paper == paper.as_str()).collect();
     if of_paper.is_empty() {
         let mut known: Vec<&str> = files.iter().map(|f| f.paper.as_str()).collect();
+        known.sort_unstable();
         known.dedup();
         return Err(Error::UnknownPaper {
             paper: paper.clone(),
@@ -347,5 +348,22 @@ mod tests {
         assert!(crate::job(&root, "kong2019-circle", "znn-eq22", "znn").is_ok());
         let none = crate::job(&root, "no-such-experiment", "v", "s").unwrap_err();
         assert!(matches!(none, crate::Error::UnknownRun { ref known, .. } if known.is_empty()));
+    }
+
+    #[test]
+    fn a_paper_is_its_files_runs_and_an_unknown_one_names_the_papers() {
+        let root = crate::project_root().expect("the tests run inside the project");
+        let kong2019 = "kong2019".parse().unwrap();
+        let runs = crate::paper(&root, &kong2019).unwrap();
+        let all = crate::jobs(&root).unwrap();
+        let of_paper: Vec<_> = all.iter().filter(|j| j.paper == "kong2019").collect();
+        assert!(!runs.is_empty());
+        assert_eq!(runs.len(), of_paper.len());
+        let err = crate::paper(&root, &"nosuchpaper".parse().unwrap()).unwrap_err();
+        let text = err.to_string();
+        assert!(
+            text.contains("nosuchpaper") && text.contains("jia2019, kong2019"),
+            "{text}"
+        );
     }
 }

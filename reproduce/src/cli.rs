@@ -260,7 +260,10 @@ mod tests {
         assert_eq!(kind, ErrorKind::ValueValidation);
         assert!(msg.contains("just-one"), "{msg}");
         for (line, want) in [
-            ("reproduce infer Jia2019", "paper id \"Jia2019\" is not a slug"),
+            (
+                "reproduce infer Jia2019",
+                "paper id \"Jia2019\" is not a slug",
+            ),
             ("reproduce infer jia2019:", "expected `all`, a paper"),
             ("reproduce infer all,,x", "expected `all`, a paper"),
             ("reproduce infer ../x:T2", "paper id \"../x\""),
@@ -269,10 +272,7 @@ mod tests {
             assert_eq!(kind, ErrorKind::ValueValidation, "{line}");
             assert!(msg.contains(want), "{line}: {msg}");
         }
-        let Mode::Infer(o) = parse("reproduce infer jia2019:T2,kong2019,all")
-            .unwrap()
-            .1
-        else {
+        let Mode::Infer(o) = parse("reproduce infer jia2019:T2,kong2019,all").unwrap().1 else {
             panic!("not infer");
         };
         assert_eq!(o.table.to_string(), "jia2019:T2,kong2019,all");

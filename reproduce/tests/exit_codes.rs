@@ -8,10 +8,10 @@ use crate::common;
 
 use common::reproduce;
 use records::runs::runs_csv;
-use store::runs::read_runs;
 use reproduce::error::Exit;
 use reproduce::ReproduceError;
 use std::os::unix::ffi::OsStrExt;
+use store::runs::read_runs;
 
 fn stderr(out: &std::process::Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()
@@ -215,14 +215,18 @@ fn the_exit_code_page_cites_only_what_exists() {
             let module = rest.split("::").next().unwrap();
             let src = root.join(krate).join("src");
             src.join(format!("{module}.rs")).is_file() || src.join(module).join("mod.rs").is_file()
-        } else if let Some((dir, prefix)) = c.split_once('*').and_then(|(p, _)| p.rsplit_once('/')) {
+        } else if let Some((dir, prefix)) = c.split_once('*').and_then(|(p, _)| p.rsplit_once('/'))
+        {
             std::fs::read_dir(root.join(dir))
                 .unwrap()
                 .any(|e| e.unwrap().file_name().to_string_lossy().starts_with(prefix))
         } else {
             root.join(c).exists()
         };
-        assert!(exists, "docs/reference/exit-codes.md cites `{c}`, which does not exist");
+        assert!(
+            exists,
+            "docs/reference/exit-codes.md cites `{c}`, which does not exist"
+        );
         checked += 1;
     }
     assert!(checked >= 6, "only {checked} citations checked");

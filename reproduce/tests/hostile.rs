@@ -89,9 +89,7 @@ impl Project {
     /// `reproduce report` on this project's results.
     fn report_only(&self) -> Command {
         let mut c = reproduce();
-        c.arg("report")
-            .arg("--results-dir")
-            .arg(self.results());
+        c.arg("report").arg("--results-dir").arg(self.results());
         c
     }
     /// A first, clean run: results/ sealed with its manifest.
@@ -444,7 +442,10 @@ fn arguments_are_checked_before_anything_runs() {
             ["explain", "--skip-explain"],
             "unexpected argument '--skip-explain'",
         ),
-        (["report", "--paper=kong2019"], "unexpected argument '--paper'"),
+        (
+            ["report", "--paper=kong2019"],
+            "unexpected argument '--paper'",
+        ),
         (["list", "--merge=x"], "unexpected argument '--merge'"),
         (["robots", "list"], "unexpected argument 'list'"),
         (["--list", "--robots"], "unexpected argument '--list'"),
