@@ -160,9 +160,16 @@
 //! robot files), [`qp`] (the QP and the solver seam), [`solver`] (the QP solvers' registry,
 //! the networks and the conformance kit), [`run`] (a run's description, running it, its
 //! record), [`results`] (the rows of `results/`) and [`score`] (trajectories made elsewhere).
-//! The crates behind them (robots, spec, schemes, settings, solvers, catalog, simulation,
-//! records, store, inputs) are not re-exported whole: the command line (`reproduce`) and the
+//! The crates behind them (robots, qp, spec, settings, solvers, catalog, simulation, records,
+//! store, inputs) are not re-exported whole: the command line (`reproduce`) and the
 //! report are built on them, and what a user of the library needs is named here.
+
+use catalog::experiment::{load_dir, PaperFile};
+use spec::ids::PaperId;
+use spec::run::RunSpec;
+use std::path::{Path, PathBuf};
+
+pub use store::runs::read_runs;
 
 /// What the front door's own helpers can fail with; each wraps the layer that failed.
 #[derive(Debug, thiserror::Error)]
