@@ -202,7 +202,9 @@ pub enum TablesError {
         source: spec::ids::IdError,
     },
     /// An empty choice, or an empty table after `paper:`.
-    #[error("table {text:?}: expected `all`, a paper (`jia2019`) or `paper:table` (`jia2019:T2`), comma-separated")]
+    #[error(
+        "table {text:?}: expected `all`, a paper id (`PAPER`) or `PAPER:TABLE`, comma-separated"
+    )]
     Empty {
         /// The choice given.
         text: String,
