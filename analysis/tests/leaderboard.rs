@@ -13,7 +13,7 @@ fn the_committed_leaderboard_is_the_one_the_committed_runs_give() {
     let fresh = String::from_utf8(analysis::leaderboard::leaderboard_csv(&rows).unwrap()).unwrap();
     assert!(
         committed == fresh,
-        "{} is stale: regenerate with `cargo run --release -p reproduce -- --report-only`",
+        "{} is stale: regenerate with `cargo run --release -p reproduce -- report`",
         path.display()
     );
     // Every standard task and every solver that ran on all of them is on it.

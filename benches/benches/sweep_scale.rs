@@ -2,7 +2,7 @@
 //! merging 10^5 stored rows, each timed once with the process's peak memory after it
 //! (`VmHWM`). Every step is linear in the runs (hash maps, no pairwise scans), which this
 //! bench shows as time per run staying flat across the three sizes. Listing and the shard
-//! plan take the runs as they are made (as `reproduce --list` does), so the peak after them
+//! plan take the runs as they are made (as `reproduce list` does), so the peak after them
 //! is the loaded file's; collecting every run as a `RunSpec`, as a run does, comes last.
 //!
 //! `cargo bench -p driftbench-benches --bench sweep_scale` (about a minute; the numbers are in
@@ -71,7 +71,7 @@ fn main() {
         let file = timed("expand + validate (load)", n, || {
             PaperFile::from_toml(&text, check_job).expect("a valid sweep")
         });
-        // What `--list` and `--list --shards` do: the runs made as they are taken, none held.
+        // What `list` and `list --shards` do: the runs made as they are taken, none held.
         timed("jobs + keys, streamed (list)", n, || {
             let keys: usize = file.iter_jobs().map(|j| j.key().to_string().len()).sum();
             assert!(keys > 0);

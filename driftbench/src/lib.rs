@@ -1,6 +1,6 @@
 #![deny(missing_docs)]
-//! driftbench's front door for code: the crates of the suite behind one name, with a
-//! [`prelude`] and the three things a researcher does first.
+//! driftbench's front door for code: a [`prelude`] of the names a user needs, one module per
+//! thing a user does, and a tour of the four things a researcher does first.
 //!
 //! driftbench regenerates the tables of papers on drift-free redundancy resolution of robot arms
 //! and scores each paper's recurrent "neural" or numerical QP solver against the exact optimum
@@ -14,7 +14,7 @@
 //!
 //! ## Declare a robot
 //!
-//! An arm is data: a robot file states its Denavit–Hartenberg table (`robots::robot_file`
+//! An arm is data: a robot file states its Denavit–Hartenberg table ([`robot::RobotSpec`]
 //! states the format and its mathematics). The model's Jacobian is the geometric one,
 //! J_j = z_{j-1} x (f - o_{j-1}); here it is checked against a central difference of f.
 //!
@@ -63,7 +63,7 @@
 //! // A non-finite number is refused, naming the file and the field.
 //! let bad = text.replacen("d = 0.3", "d = nan", 1);
 //! assert!(RobotSpec::parse("bad.toml", &bad).is_err());
-//! # Ok::<(), driftbench::robots::robot_file::RobotFileError>(())
+//! # Ok::<(), driftbench::robot::RobotFileError>(())
 //! ```
 //!
 //! ## Run a network of your own on a task
@@ -131,27 +131,45 @@
 //! # Ok::<(), driftbench::Error>(())
 //! ```
 //!
-//! # The crates behind it
+//! ## Read the stored runs
 //!
-//! [`robots`] (kinematic models and robot files), [`spec`] (schemes and paths as data),
-//! [`schemes`] (paths, the papers' schemes and their QPs), [`settings`] (the solvers' settings as data: network specifications, integrator
-//! settings), [`solvers`] (the exact QP solvers, the papers' networks, the integrators),
-//! [`catalog`] (experiment files, run ids), [`simulation`] (the engine:
-//! runs and scoring) and [`records`] (the results files' rows). The command line (`reproduce`) and
-//! the report are built on the same crates.
-
-pub use catalog;
-pub use records;
-pub use robots;
-pub use schemes;
-pub use settings;
-pub use simulation;
-pub use solvers;
-pub use spec;
+//! A reproduction's `results/runs.csv` holds one [`RunRow`](prelude::RunRow) per run: its key,
+//! outcome, drift per joint, errors and the score against x*. [`read_runs`] reads it, refusing
+//! a file that is not this version's schema rather than returning fewer rows; a paper's runs
+//! are [`paper`].
+//!
+//! ```
+//! use driftbench::prelude::*;
+//!
+//! let root = driftbench::project_root()?;
+//! let rows = read_runs(&root.join("results/runs.csv"))?;
+//! let kong2019: PaperId = "kong2019".parse().expect("an id");
+//! let runs = driftbench::paper(&root, &kong2019)?;
+//! assert!(runs.iter().all(|r| rows.iter().any(|row| row.key() == r.key())));
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! # What is here
+//!
+//! The [`prelude`] holds the handful of names the tour uses: load a paper's tasks
+//! ([`project_root`], [`paper`], [`job`]), run one ([`run_job`](prelude::run_job),
+//! [`run_with_network`]), read the runs ([`read_runs`], [`RunRow`](prelude::RunRow)), write and
+//! register a solver ([`NeuralSolver`](prelude::NeuralSolver), [`QpSolver`](prelude::QpSolver),
+//! [`solver::register`]) and score a trajectory. Beyond it, one module per thing a user does,
+//! each re-exporting the suite's own types under one path: [`robot`] (kinematic models and
+//! robot files), [`qp`] (the QP and the solver seam), [`solver`] (the QP solvers' registry,
+//! the networks and the conformance kit), [`run`] (a run's description, running it, its
+//! record), [`results`] (the rows of `results/`) and [`score`] (trajectories made elsewhere).
+//! The crates behind them (robots, qp, spec, settings, solvers, catalog, simulation, records,
+//! store, inputs) are not re-exported whole: the command line (`reproduce`) and the
+//! report are built on them, and what a user of the library needs is named here.
 
 use catalog::experiment::{load_dir, PaperFile};
+use spec::ids::PaperId;
 use spec::run::RunSpec;
 use std::path::{Path, PathBuf};
+
+pub use store::runs::read_runs;
 
 /// What the front door's own helpers can fail with; each wraps the layer that failed.
 #[derive(Debug, thiserror::Error)]
@@ -162,6 +180,14 @@ pub enum Error {
     /// An experiment file did not load.
     #[error(transparent)]
     Experiments(#[from] catalog::error::ExperimentFileError),
+    /// No experiment file belongs to this paper.
+    #[error("no experiment file of paper {paper} in experiments/ (the papers: {known})")]
+    UnknownPaper {
+        /// The paper asked for.
+        paper: PaperId,
+        /// The papers of the experiment files, comma-separated.
+        known: String,
+    },
     /// No run of the experiment files has this key.
     #[error("no run {experiment} / {variant} / {solver} in the experiment files (that experiment's runs: {known})")]
     UnknownRun {
@@ -187,9 +213,34 @@ pub fn project_root() -> Result<PathBuf, Error> {
 /// command line checks it before anything runs (the papers' own robot files,
 /// `root/papers/<paper>/robots/*.toml`, registered first).
 pub fn jobs(root: &Path) -> Result<Vec<RunSpec>, Error> {
+    Ok(files(root)?.iter().flat_map(PaperFile::jobs).collect())
+}
+
+/// The runs of the experiment files of `paper` (as [`jobs`] reads them); a paper that no file
+/// belongs to is an error naming the papers there are.
+pub fn paper(root: &Path, paper: &PaperId) -> Result<Vec<RunSpec>, Error> {
+    let files = files(root)?;
+    let of_paper: Vec<&PaperFile> = files.iter().filter(|f| f.paper == paper.as_str()).collect();
+    if of_paper.is_empty() {
+        let mut known: Vec<&str> = files.iter().map(|f| f.paper.as_str()).collect();
+        known.sort_unstable();
+        known.dedup();
+        return Err(Error::UnknownPaper {
+            paper: paper.clone(),
+            known: known.join(", "),
+        });
+    }
+    Ok(of_paper.into_iter().flat_map(PaperFile::jobs).collect())
+}
+
+/// The experiment files of `root/experiments/`, each checked as the command line checks it,
+/// the papers' own robot files registered first.
+fn files(root: &Path) -> Result<Vec<PaperFile>, Error> {
     catalog::robot_files::register_paper_robots(&root.join("papers"));
-    let files = load_dir(&root.join("experiments"), simulation::run::check_job)?;
-    Ok(files.iter().flat_map(PaperFile::jobs).collect())
+    Ok(load_dir(
+        &root.join("experiments"),
+        simulation::run::check_job,
+    )?)
 }
 
 /// The run of the experiment files keyed (experiment id, variant id, solver id), its
@@ -215,35 +266,81 @@ pub fn job(root: &Path, experiment: &str, variant: &str, solver: &str) -> Result
 
 /// Runs the task of `job` with the network `network` builds in place of the job's own solver
 /// (`simulation::run::run_job_with_network`).
-pub fn run_with_network(
-    job: &RunSpec,
-    network: simulation::run::NetworkBuilder<'_>,
-) -> simulation::run::RunRecord {
+pub fn run_with_network(job: &RunSpec, network: run::NetworkBuilder<'_>) -> run::RunRecord {
     simulation::run::run_job_with_network(job, network)
 }
 
-/// The names most code needs, in one import: `use driftbench::prelude::*;`.
+/// The names the tour uses, in one import: `use driftbench::prelude::*;`. Load a paper's
+/// tasks, run one, read the runs, write and register a solver, score a trajectory; and the
+/// vectors and matrices a network's right-hand side is written with.
 pub mod prelude {
-    pub use crate::run_with_network;
-    pub use inputs::trajectory::Trajectory;
-    pub use nalgebra::{DMatrix, DVector, DVectorView, DVectorViewMut, SMatrix, SVector, Vector3};
-    pub use qp::{Qp, QpDims};
-    pub use records::runs::RunRow;
-    pub use robots::data_robot::DataRobot;
-    pub use robots::robot_file::RobotSpec;
-    pub use robots::{JointLimits, Robot};
-    pub use schemes::scheme::Scheme;
+    pub use crate::qp::{Qp, QpDims, QpSolver, QpStatus};
+    pub use crate::results::RunRow;
+    pub use crate::robot::{DataRobot, Robot, RobotSpec};
+    pub use crate::run::{run_job, Outcome, Run, RunKey, RunRecord, RunSpec};
+    pub use crate::score::{score_trajectory, Trajectory};
+    pub use crate::solver::NeuralSolver;
+    pub use crate::{job, paper, project_root, read_runs, run_with_network};
+    pub use nalgebra::{DMatrix, DVector, DVectorView, DVectorViewMut};
+    pub use spec::ids::PaperId;
+}
+
+/// Robots: the model every run drives ([`Robot`]), arms stated as data (a robot file's
+/// Denavit-Hartenberg table, [`RobotSpec`], made a model by [`DataRobot`]; a URDF chain,
+/// [`ChainRobot`]) and the suite's built-in arms.
+pub mod robot {
+    pub use robots::robot_file::{RobotFileError, RobotSpec};
+    pub use robots::{ChainRobot, DataRobot, Jaco2, JointLimits, Katana6m180, NLink, Panda, Robot};
+}
+
+/// The QP of every instant, min x'Px/2 + q'x s.t. A x = b, G x <= h, l <= x <= u ([`Qp`], its
+/// sizes [`QpDims`], multipliers and KKT residuals), and the one seam a QP solver implements
+/// ([`QpSolver`]).
+pub mod qp {
+    pub use ::qp::{
+        KktResiduals, Qp, QpDims, QpDuals, QpSolve, QpSolver, QpSolverError, QpStatus, SolverId,
+    };
+}
+
+/// Solvers of your own: a QP solver registered by id ([`register`], after which experiment
+/// files may name it), a recurrent network ([`NeuralSolver`]), and the conformance kit both
+/// are held to ([`conformance`]).
+pub mod solver {
+    pub use solvers::conformance;
+    pub use solvers::neural::NeuralSolver;
+    pub use solvers::registry::{
+        register, BoxedQpSolver, Constructor, QpSolverInfo, QpSolverSettings, RegistryError,
+    };
+    pub use solvers::{random_qp, QpShape};
+}
+
+/// A run: its description ([`RunSpec`], keyed by [`RunKey`]: experiment, variant and solver
+/// ids), running it ([`run_job`]; with a network of your own, [`crate::run_with_network`]) and
+/// what it gives ([`RunRecord`]: the [`Run`] with its [`Outcome`]).
+pub mod run {
     pub use settings::integrator::IntegratorSettings;
     pub use settings::solver_spec::SolverSpec;
-    pub use simulation::run::{run_job, RunRecord};
-    pub use simulation::score_trajectory::score_trajectory;
+    pub use simulation::run::{run_job, NetworkBuilder, RunRecord};
     pub use simulation::simulate::{Outcome, Run};
-    pub use solvers::neural::NeuralSolver;
-    pub use solvers::{QpSolver, QpStatus, SolverId};
-    pub use spec::run::RunSpec;
-    pub use spec::run::SolverChoice;
-    pub use spec::run_key::RunKey;
+    pub use spec::ids::{ExperimentId, IdError, PaperId, SolverId, VariantId};
+    pub use spec::run::{RunSpec, SetupError, SolverChoice};
+    pub use spec::run_key::{RunKey, TaskKey};
     pub use spec::solver_kind::SolverKind;
+}
+
+/// The rows of `results/`: a run's row of `runs.csv` ([`RunRow`]), read by [`read_runs`].
+pub mod results {
+    pub use crate::read_runs;
+    pub use records::runs::RunRow;
+    pub use store::error::RunsError;
+}
+
+/// A trajectory made elsewhere (MATLAB, Python, a real arm): samples (t_k, theta_k)
+/// ([`Trajectory`], read from CSV or a MAT-file by [`read`]) scored as a run is
+/// ([`score_trajectory`]).
+pub mod score {
+    pub use inputs::trajectory::{read, ReadError, Trajectory};
+    pub use simulation::score_trajectory::{score_trajectory, TrajectoryError};
 }
 
 #[cfg(test)]
@@ -258,5 +355,22 @@ mod tests {
         assert!(crate::job(&root, "kong2019-circle", "znn-eq22", "znn").is_ok());
         let none = crate::job(&root, "no-such-experiment", "v", "s").unwrap_err();
         assert!(matches!(none, crate::Error::UnknownRun { ref known, .. } if known.is_empty()));
+    }
+
+    #[test]
+    fn a_paper_is_its_files_runs_and_an_unknown_one_names_the_papers() {
+        let root = crate::project_root().expect("the tests run inside the project");
+        let kong2019 = "kong2019".parse().unwrap();
+        let runs = crate::paper(&root, &kong2019).unwrap();
+        let all = crate::jobs(&root).unwrap();
+        let of_paper: Vec<_> = all.iter().filter(|j| j.paper == "kong2019").collect();
+        assert!(!runs.is_empty());
+        assert_eq!(runs.len(), of_paper.len());
+        let err = crate::paper(&root, &"nosuchpaper".parse().unwrap()).unwrap_err();
+        let text = err.to_string();
+        assert!(
+            text.contains("nosuchpaper") && text.contains("jia2019, kong2019"),
+            "{text}"
+        );
     }
 }

@@ -3,7 +3,7 @@ function znn_circle(out)
 %
 %   znn_circle(out) integrates kong2019's ZNN repetitive scheme (22) on the Katana 6M180
 %   tracing kong2019's circle, solved by a linear zeroing network, and writes the trajectory to
-%   the CSV file out (default 'znn_circle.csv') in the columns `reproduce --score` reads:
+%   the CSV file out (default 'znn_circle.csv') in the columns `reproduce score` reads:
 %   t, theta_1..theta_5 (rad), thetadot_1..thetadot_5 (rad/s, the network's command x); an
 %   out ending in '.mat' is a MAT-file (v7) with the variables t (m x 1) and
 %   y = [theta, thetadot] (m x 10, a row per instant) instead.
@@ -22,7 +22,7 @@ function znn_circle(out)
 %
 %   Run from the repository root (Octave or MATLAB):
 %     octave --no-gui --quiet --eval "addpath('examples/octave'); znn_circle('znn.csv')"
-%     cargo run --release -p reproduce -- --score znn.csv --task "kong2019-circle / znn-eq22"
+%     cargo run --release -p reproduce -- score znn.csv --task "kong2019-circle / znn-eq22"
 %   (the same with znn.mat for a MAT-file).
 if nargin < 1
   out = 'znn_circle.csv';

@@ -16,7 +16,7 @@
 //! experiment file marks `explain = true` (zhang2018's perturbed runs: the paper prints no
 //! table, but the perturbation is an ingredient to attribute; the group-code experiments'
 //! "as coded" runs). Results: `results/ladder.csv`, `results/attribution.csv`
-//! (written by [`write()`]), `results/inference.csv` (by `reproduce --infer`); their rows are
+//! (written by [`write()`]), `results/inference.csv` (by `reproduce infer`); their rows are
 //! [`records::ladder`], [`records::attribution`] and [`records::inference`]'s.
 
 pub mod attribution;

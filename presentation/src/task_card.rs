@@ -221,7 +221,7 @@ pub fn render(cards: &[TaskCard]) -> BTreeMap<String, String> {
          (`reproduce::task_card`); do not edit. One card per task (experiment / variant): the \
          robot's kinematics and limits, the path, the start, and the scheme's QP with its \
          numbers, so that the task can be set up in other code and its trajectory scored here \
-         with `reproduce --score FILE --task \"<experiment> / <variant>\"` (velocity-level \
+         with `reproduce score FILE --task \"<experiment> / <variant>\"` (velocity-level \
          tasks). The leaderboard's standard task set is drawn from the cross experiment's tasks \
          (those whose exact column completed).\n\n\
          | task | paper | robot | path | T (s) | scheme | level | card |\n\
@@ -302,7 +302,7 @@ fn runs_section(c: &TaskCard) -> String {
     if c.scheme.level == Level::Velocity {
         let _ = writeln!(
             s,
-            "- score a trajectory of it: `reproduce --score FILE --task \"{}\"`",
+            "- score a trajectory of it: `reproduce score FILE --task \"{}\"`",
             c.task
         );
     }

@@ -476,7 +476,7 @@ fn every_committed_figure_has_its_png() {
     let lacking = |of: &[String], in_: &[String]| -> Vec<String> {
         of.iter().filter(|s| !in_.contains(s)).cloned().collect()
     };
-    let regenerate = "regenerate with `cargo run --release -p reproduce -- --report-only`";
+    let regenerate = "regenerate with `cargo run --release -p reproduce -- report`";
     assert_eq!(
         lacking(&svgs, &pngs),
         Vec::<String>::new(),
@@ -523,7 +523,7 @@ fn the_committed_figures_are_those_the_committed_results_give() {
         )
         .unwrap();
     }
-    // Measured by `reproduce --dof-cost`, not by every checkout: copied where it exists.
+    // Measured by `reproduce cost`, not by every checkout: copied where it exists.
     let dof_cost = committed.join("results").join(records::dof_cost::FILE);
     if dof_cost.exists() {
         std::fs::copy(
@@ -551,7 +551,7 @@ fn the_committed_figures_are_those_the_committed_results_give() {
         root.join("report/figures"),
         committed.join("report/figures"),
     );
-    let regenerate = "regenerate with `cargo run --release -p reproduce -- --report-only`";
+    let regenerate = "regenerate with `cargo run --release -p reproduce -- report`";
     assert_eq!(
         stems(&ours, "svg"),
         stems(&theirs, "svg"),

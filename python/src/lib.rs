@@ -963,7 +963,7 @@ fn check_qp_solver(factory: Py<PyAny>, equality_only: bool, seeds: u64) -> PyRes
 /// (`simulation::score_trajectory`). `trajectory` is a CSV file (columns t, theta_1..n,
 /// optionally thetadot_1..n) or a dict of arrays `t` (m), `theta` (m x n) and optionally
 /// `thetadot` (m x n). With `out_dir` (a file only), writes `scores.csv`, the trace and the
-/// figure there as `reproduce --score` does. Returns the row as `simulate` does.
+/// figure there as `reproduce score` does. Returns the row as `simulate` does.
 #[pyfunction]
 #[pyo3(signature = (task, trajectory, *, out_dir=None))]
 fn score<'py>(
@@ -999,7 +999,7 @@ fn score<'py>(
     })
 }
 
-/// [`score`] of a trajectory file: with `out_dir`, as `reproduce --score` scores it (the row,
+/// [`score`] of a trajectory file: with `out_dir`, as `reproduce score` scores it (the row,
 /// trace and figure written there); without, scored in memory.
 fn score_file(task: &PyTask, file: &Path, out_dir: Option<&Path>) -> PyResult<(RunRecord, RunRow)> {
     let git_rev = reproduce::revision::REVISION;

@@ -1,4 +1,4 @@
-//! The regression gate's baseline for `reproduce check` (`--check`): the committed rows, read
+//! The regression gate's baseline for `reproduce check`: the committed rows, read
 //! before anything runs (a given file, or git HEAD's `results/runs.csv`, with the committed
 //! explanation, leaderboard and control runs beside it); the comparison itself is crate
 //! `analysis`'s (`analysis::gate`), and any difference is exit code 3.
@@ -33,7 +33,7 @@ pub struct Baseline {
 
 impl Baseline {
     /// The gate's baseline, read before anything runs: `file` when given; otherwise the
-    /// committed `results/runs.csv` of git HEAD (so a run followed by `--check` compares with
+    /// committed `results/runs.csv` of git HEAD (so a run followed by `check` compares with
     /// what is committed, not with what the run just wrote); outside a checkout, or for another
     /// results directory, its `runs.csv`. `all`: every run of the experiment files, by which a
     /// baseline written before run ids is read with its ids recovered (store::migrate).

@@ -1,9 +1,8 @@
 //! The command line: clap parses it into the global options and one [`Mode`] with its options
-//! ([`crate::options`]); the old mode flags are aliases of the subcommands
-//! ([`crate::aliases`]). Nothing here runs: [`crate::run`](fn@crate::run) takes what [`Cli`]
-//! parsed.
+//! ([`crate::options`]), every id, shard and table typed at this boundary (a malformed one is
+//! clap's usage error, exit 2). Nothing here runs: [`crate::run`](fn@crate::run) takes what
+//! [`Cli`] parsed.
 
-use crate::aliases;
 use crate::options::{GlobalOptions, Mode, RunOptions};
 use clap::error::ErrorKind;
 use clap::{CommandFactory, FromArgMatches, Parser};
@@ -22,7 +21,8 @@ use std::ffi::OsString;
     name = "reproduce",
     version = concat!(env!("CARGO_PKG_VERSION"), " (revision ", env!("DRIFTBENCH_REVISION"), ")"),
     about,
-    long_about
+    long_about,
+    after_help = OLD_FLAGS
 )]
 pub struct Cli {
     #[command(flatten)]
@@ -33,24 +33,23 @@ pub struct Cli {
     /// The options of `run` written without the subcommand.
     #[command(flatten)]
     pub run: RunOptions,
-    /// The deprecated old mode flag the arguments used, if any ([`aliases`]).
-    #[arg(skip)]
-    pub alias: Option<aliases::Alias>,
 }
 
+/// The line of `--help` after the options: where the mode flags of earlier versions went.
+const OLD_FLAGS: &str = "The subcommands replaced the mode flags of earlier versions: \
+`--check` is `reproduce check`, `--list` `list`, `--report-only` `report`, `--explain-only` \
+`explain`, `--infer` `infer`, `--shard` `shard`, `--merge` `merge`, `--robots` `robots`, \
+`--dof-cost` `cost` and `--score` `score`.";
+
 impl Cli {
-    /// Parses the program's arguments (`args[0]` is the program; `std::env::args_os`), the old
-    /// mode flags read as their subcommands ([`Cli::alias`] names the one used). An argument
-    /// that is not UTF-8 is taken where a path is expected and refused elsewhere. A clap error
-    /// (an unknown option, two modes, a value that is not UTF-8, `--help`, `--version`) is
-    /// returned for the caller to print and exit with.
+    /// Parses the program's arguments (`args[0]` is the program; `std::env::args_os`). An
+    /// argument that is not UTF-8 is taken where a path is expected and refused elsewhere. A
+    /// clap error (an unknown option such as an old mode flag, a malformed id, a value that is
+    /// not UTF-8, `--help`, `--version`) is returned for the caller to print and exit with.
     pub fn parse_from_args(args: Vec<OsString>) -> Result<Self, clap::Error> {
-        let mut command = Self::command().after_help(aliases::help());
-        let (args, alias) = aliases::to_subcommand(args)
-            .map_err(|e| command.error(ErrorKind::ArgumentConflict, e.to_string()))?;
+        let mut command = Self::command();
         let matches = command.try_get_matches_from_mut(args)?;
-        let mut cli = Self::from_arg_matches(&matches).map_err(|e| e.format(&mut command))?;
-        cli.alias = alias;
+        let cli = Self::from_arg_matches(&matches).map_err(|e| e.format(&mut command))?;
         match (&cli.mode, &cli.run) {
             (Some(_), run) if *run != RunOptions::default() => {
                 let name = matches.subcommand_name().unwrap_or("the subcommand");
@@ -85,38 +84,35 @@ mod tests {
     }
 
     #[test]
-    fn a_subcommand_and_its_old_flag_parse_alike() {
-        let check = Mode::Check(CheckOptions {
-            selection: SelectionOptions {
-                paper: Some("kong2019".parse().unwrap()),
-                experiment: vec![],
-                exact_only: true,
-            },
-            baseline: None,
-        });
-        for line in [
-            "reproduce check --paper kong2019 --exact-only",
-            "reproduce --check --paper kong2019 --exact-only",
-            "reproduce --paper kong2019 --exact-only --check",
-        ] {
-            assert_eq!(parse(line).unwrap().1, check, "{line}");
-        }
+    fn subcommands_parse_into_their_modes() {
+        assert_eq!(
+            parse("reproduce check --paper kong2019 --exact-only")
+                .unwrap()
+                .1,
+            Mode::Check(CheckOptions {
+                selection: SelectionOptions {
+                    paper: Some("kong2019".parse().unwrap()),
+                    experiment: vec![],
+                    exact_only: true,
+                },
+                baseline: None,
+            })
+        );
         assert_eq!(
             parse("reproduce infer jia2019:T2").unwrap().1,
             Mode::Infer(InferOptions {
-                table: "jia2019:T2".into(),
+                table: "jia2019:T2".parse().unwrap(),
                 dry_run: false
             })
         );
         assert!(
             matches!(parse("reproduce shard").unwrap().1, Mode::Shard(s) if s.shard == ShardSpec::Auto)
         );
-        // A merge renders the report unless told not to (either spelling; the old flag too).
+        // A merge renders the report unless told not to (either spelling).
         for (line, no_report) in [
             ("reproduce merge a b", false),
             ("reproduce merge a b --no-report", true),
             ("reproduce merge --skip-report a b", true),
-            ("reproduce --merge a b --no-report", true),
         ] {
             let Mode::Merge(m) = parse(line).unwrap().1 else {
                 panic!("{line}: not a merge");
@@ -126,6 +122,34 @@ mod tests {
         assert!(
             matches!(parse("reproduce --paper x").unwrap().1, Mode::Run(r) if r.selection.paper.as_deref() == Some("x"))
         );
+    }
+
+    #[test]
+    fn the_old_mode_flags_are_unknown_and_help_names_their_subcommands() {
+        for flag in [
+            "--check",
+            "--list",
+            "--report-only",
+            "--explain-only",
+            "--infer",
+            "--shard",
+            "--merge",
+            "--robots",
+            "--dof-cost",
+            "--score",
+        ] {
+            let line = format!("reproduce {flag} x");
+            let err = parse(&line).unwrap_err();
+            assert_eq!(err.kind(), ErrorKind::UnknownArgument, "{line}");
+            assert!(OLD_FLAGS.contains(&format!("`{flag}`")), "{flag}");
+        }
+        let help = Cli::command().render_long_help().to_string();
+        assert!(
+            help.contains("The subcommands replaced the mode flags of earlier versions"),
+            "{help}"
+        );
+        // `--shard K/N` is still an option of `list`.
+        assert!(parse("reproduce list --shard 1/2").is_ok());
     }
 
     #[test]
@@ -174,18 +198,14 @@ mod tests {
             Some(ErrorKind::UnknownArgument)
         );
         assert_eq!(
-            kind("reproduce merge a --check"),
-            Some(ErrorKind::ArgumentConflict)
-        );
-        assert_eq!(
-            kind("reproduce --list --robots"),
-            Some(ErrorKind::ArgumentConflict)
-        );
-        assert_eq!(kind("reproduce cost 1/2"), Some(ErrorKind::UnknownArgument));
-        assert_eq!(
-            kind("reproduce --skip-explain --explain-only"),
+            kind("reproduce merge a --dry-run"),
             Some(ErrorKind::UnknownArgument)
         );
+        assert_eq!(
+            kind("reproduce list robots"),
+            Some(ErrorKind::UnknownArgument)
+        );
+        assert_eq!(kind("reproduce cost 1/2"), Some(ErrorKind::UnknownArgument));
         assert_eq!(
             kind("reproduce --baseline b.csv"),
             Some(ErrorKind::UnknownArgument)
@@ -239,6 +259,23 @@ mod tests {
         let (kind, msg) = refused("reproduce score f.csv --task just-one");
         assert_eq!(kind, ErrorKind::ValueValidation);
         assert!(msg.contains("just-one"), "{msg}");
+        for (line, want) in [
+            (
+                "reproduce infer Jia2019",
+                "paper id \"Jia2019\" is not a slug",
+            ),
+            ("reproduce infer jia2019:", "expected `all`, a paper"),
+            ("reproduce infer all,,x", "expected `all`, a paper"),
+            ("reproduce infer ../x:T2", "paper id \"../x\""),
+        ] {
+            let (kind, msg) = refused(line);
+            assert_eq!(kind, ErrorKind::ValueValidation, "{line}");
+            assert!(msg.contains(want), "{line}: {msg}");
+        }
+        let Mode::Infer(o) = parse("reproduce infer jia2019:T2,kong2019,all").unwrap().1 else {
+            panic!("not infer");
+        };
+        assert_eq!(o.table.to_string(), "jia2019:T2,kong2019,all");
         assert!(matches!(
             parse("reproduce list --shard 2/4").unwrap().1,
             Mode::List(l) if l.shard == Some(ShardSpec::Given(store::shard::Shard::new(2, 4).unwrap()))

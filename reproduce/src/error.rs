@@ -74,8 +74,8 @@ pub enum ReproduceError {
         experiment: String,
         known: Vec<String>,
     },
-    /// `--infer` selects no published table.
-    #[error("--infer {which}: no such table (known: all, a paper, or one of {})", known.join(", "))]
+    /// `infer` selects no published table.
+    #[error("infer {which}: no such table (known: all, a paper, or one of {})", known.join(", "))]
     UnknownTable { which: String, known: Vec<String> },
     /// The report is written beside a results directory named `results` only.
     #[error(
@@ -223,7 +223,7 @@ pub enum ScoreError {
     #[error(transparent)]
     Experiments(#[from] catalog::error::ExperimentFileError),
     #[error(
-        "no task \"{0}\" (a task is \"<experiment> / <variant>\", ids; `reproduce --list` lists them)"
+        "no task \"{0}\" (a task is \"<experiment> / <variant>\", ids; `reproduce list` lists them)"
     )]
     NoTask(String),
     #[error(transparent)]

@@ -1,9 +1,9 @@
-//! `reproduce infer TABLE` (`--infer`): setup inference (explain::inference) of the selected
+//! `reproduce infer TABLE`: setup inference (explain::inference) of the selected
 //! published tables with the family of `experiments/inference/family.toml`, each table written
 //! as it is fitted, then the report re-rendered.
 
 use crate::error::ReproduceError;
-use crate::options::InferOptions;
+use crate::options::{InferOptions, Tables};
 use crate::papers::load_papers;
 use crate::project::Project;
 use crate::report::{precheck_report, render_report, report_root};
@@ -11,21 +11,13 @@ use crate::results::{open_results, Described};
 use spec::run::RunSpec;
 use store::results_dir::ResultsDir;
 
-/// The tables of `ids` (paper, table) that `which` selects: `all`, a paper, `paper:table`, or
-/// a comma-separated list of these.
+/// The tables of `ids` (paper, table) that `which` selects; none is an error listing the
+/// known ones (a paper or table well formed but absent from the papers' files).
 pub fn select_tables<'a>(
     ids: &'a [(String, String)],
-    which: &str,
+    which: &Tables,
 ) -> Result<Vec<&'a (String, String)>, ReproduceError> {
-    let wanted: Vec<&str> = which.split(',').map(str::trim).collect();
-    let selected: Vec<&(String, String)> = ids
-        .iter()
-        .filter(|(p, t)| {
-            wanted
-                .iter()
-                .any(|w| *w == "all" || w == p || *w == format!("{p}:{t}"))
-        })
-        .collect();
+    let selected: Vec<&(String, String)> = ids.iter().filter(|(p, t)| which.take(p, t)).collect();
     if selected.is_empty() {
         return Err(ReproduceError::UnknownTable {
             which: which.to_string(),
@@ -55,7 +47,7 @@ pub fn infer_mode(
 /// Fits the tables `which` selects over the runs `jobs`; writes each to `results` when given.
 pub fn infer(
     project: &Project,
-    which: &str,
+    which: &Tables,
     jobs: &[RunSpec],
     results: Option<&ResultsDir>,
 ) -> Result<(), ReproduceError> {
@@ -110,7 +102,7 @@ mod tests {
 
     fn names(which: &str) -> Vec<String> {
         let ids = ids();
-        select_tables(&ids, which)
+        select_tables(&ids, &which.parse().unwrap())
             .unwrap()
             .iter()
             .map(|(p, t)| format!("{p}:{t}"))
@@ -128,10 +120,10 @@ mod tests {
     #[test]
     fn no_such_table_lists_the_known_ones() {
         let ids = ids();
-        let err = select_tables(&ids, "a:T3").unwrap_err();
+        let err = select_tables(&ids, &"a:T3".parse().unwrap()).unwrap_err();
         assert_eq!(
             err.to_string(),
-            "--infer a:T3: no such table (known: all, a paper, or one of a:T1, a:T2, b:T1)"
+            "infer a:T3: no such table (known: all, a paper, or one of a:T1, a:T2, b:T1)"
         );
     }
 }

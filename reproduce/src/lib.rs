@@ -8,12 +8,11 @@
 //! [`journal`] and its [`phases`] clock), [`shard`](mod@shard) (a shard in flat memory), [`report`], [`explanation`], [`inference`], [`merge`], [`list`] (and robots),
 //! [`cost`], [`score`] (a trajectory made elsewhere, also `driftbench.score` in Python); the
 //! task cards the report mode writes ([`task_card`]); beside them what the modes share: the
-//! options ([`options`]), the command line ([`cli`], [`aliases`]), the project's directories
+//! options ([`options`]), the command line ([`cli`]), the project's directories
 //! ([`project`]), the papers as data ([`papers`]), the selection of runs ([`select`]), the
 //! results directory ([`results`]), the summary printed ([`summary`]) and the code revision
 //! embedded at build time ([`revision`]).
 
-pub mod aliases;
 pub mod baseline;
 pub mod cli;
 pub mod cost;
@@ -149,7 +148,7 @@ fn run_selection(
     )
 }
 
-/// `reproduce --check`: the selected runs against the committed rows or `--baseline` (the
+/// `reproduce check`: the selected runs against the committed rows or `--baseline` (the
 /// regression gate), nothing written.
 fn check_against_baseline(
     project: &Project,
@@ -175,7 +174,7 @@ fn check_against_baseline(
     run::run(project, plan, &all, &jobs, revision::REVISION)
 }
 
-/// `reproduce --shard K/N`: the runs of the selection that `shard` owns, into its own results
+/// `reproduce shard K/N`: the runs of the selection that `shard` owns, into its own results
 /// directory (the `project`'s).
 fn run_shard(
     project: &Project,

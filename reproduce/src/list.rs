@@ -56,7 +56,7 @@ pub fn list(out: &mut impl Write, files: &[PaperFile], kept: Kept) -> std::io::R
     Ok(())
 }
 
-/// How many of `total` selected runs each of `n` shards gets (`--list --shards N`).
+/// How many of `total` selected runs each of `n` shards gets (`list --shards N`).
 pub fn shard_plan(total: usize, n: usize) -> String {
     store::shard::plan(total, n)
         .iter()

@@ -10,9 +10,6 @@ fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(e) => e.exit(),
     };
-    if let Some(alias) = cli.alias {
-        eprintln!("{}", alias.deprecation());
-    }
     let (global, mode) = cli.into_parts();
     match reproduce::run(&global, mode) {
         Ok(code) => code,

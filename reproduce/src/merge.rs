@@ -1,4 +1,4 @@
-//! `reproduce merge DIR...` (`--merge`): finished shard directories (store::shard: manifests,
+//! `reproduce merge DIR...`: finished shard directories (store::shard: manifests,
 //! integrity, revision, ownership, traces) checked before anything is written, then their rows
 //! merged into the results directory's `runs.csv` and their traces copied, and the report
 //! rendered unless `--no-report` (then `reproduce report` renders it, a step of its own).

@@ -126,12 +126,128 @@ pub struct ExplainOptions {
     pub dry_run: bool,
 }
 
+/// One choice of published tables as `infer` takes it: `all`, a paper's (`jia2019`) or one
+/// table (`jia2019:T2`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum TableChoice {
+    /// Every published drift table.
+    All,
+    /// Every drift table of a paper.
+    Paper(PaperId),
+    /// One table of a paper, named as its `values.csv` names it.
+    Table {
+        /// The paper.
+        paper: PaperId,
+        /// The table (`T2`).
+        table: String,
+    },
+}
+
+impl TableChoice {
+    /// Whether this choice takes the table `table` of `paper`.
+    pub fn takes(&self, paper: &str, table: &str) -> bool {
+        match self {
+            TableChoice::All => true,
+            TableChoice::Paper(p) => p == paper,
+            TableChoice::Table { paper: p, table: t } => p == paper && t == table,
+        }
+    }
+}
+
+impl std::fmt::Display for TableChoice {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            TableChoice::All => f.write_str("all"),
+            TableChoice::Paper(p) => write!(f, "{p}"),
+            TableChoice::Table { paper, table } => write!(f, "{paper}:{table}"),
+        }
+    }
+}
+
+/// The tables `infer` fits: a comma-separated list of [`TableChoice`]s, never empty, parsed at
+/// the command line. Whether a well-formed paper or table exists is known only from the papers'
+/// files, so that is checked when they are read (`crate::inference::select_tables`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Tables(Vec<TableChoice>);
+
+impl Tables {
+    /// Whether one of the choices takes the table `table` of `paper`.
+    pub fn take(&self, paper: &str, table: &str) -> bool {
+        self.0.iter().any(|c| c.takes(paper, table))
+    }
+}
+
+impl std::fmt::Display for Tables {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        for (i, choice) in self.0.iter().enumerate() {
+            if i > 0 {
+                f.write_str(",")?;
+            }
+            write!(f, "{choice}")?;
+        }
+        Ok(())
+    }
+}
+
+/// A table choice that is not `all`, a paper id or `paper:table`.
+#[derive(Debug, thiserror::Error)]
+pub enum TablesError {
+    /// The paper part is not a paper id.
+    #[error("table {text:?}: {source}")]
+    Paper {
+        /// The choice given.
+        text: String,
+        /// Why its paper is not an id.
+        #[source]
+        source: spec::ids::IdError,
+    },
+    /// An empty choice, or an empty table after `paper:`.
+    #[error(
+        "table {text:?}: expected `all`, a paper id (`PAPER`) or `PAPER:TABLE`, comma-separated"
+    )]
+    Empty {
+        /// The choice given.
+        text: String,
+    },
+}
+
+impl std::str::FromStr for Tables {
+    type Err = TablesError;
+
+    /// `all`, `PAPER` or `PAPER:TABLE`, comma-separated (blanks around each are ignored).
+    fn from_str(text: &str) -> Result<Self, TablesError> {
+        let choice = |item: &str| {
+            let paper = |p: &str| {
+                PaperId::new(p).map_err(|source| TablesError::Paper {
+                    text: item.to_string(),
+                    source,
+                })
+            };
+            match item.split_once(':') {
+                _ if item == "all" => Ok(TableChoice::All),
+                None if !item.is_empty() => paper(item).map(TableChoice::Paper),
+                Some((p, t)) if !t.trim().is_empty() => Ok(TableChoice::Table {
+                    paper: paper(p)?,
+                    table: t.trim().to_string(),
+                }),
+                _ => Err(TablesError::Empty {
+                    text: item.to_string(),
+                }),
+            }
+        };
+        text.split(',')
+            .map(|item| choice(item.trim()))
+            .collect::<Result<_, _>>()
+            .map(Tables)
+    }
+}
+
 /// `reproduce infer TABLE`: setup inference.
-#[derive(Args, Clone, Debug, Default, PartialEq, Eq)]
+#[derive(Args, Clone, Debug, PartialEq, Eq)]
 pub struct InferOptions {
     /// `all`, a paper (`jia2019`), one table (`jia2019:T2`) or a comma-separated list of these.
     #[arg(value_name = "TABLE")]
-    pub table: String,
+    pub table: Tables,
     /// Write nothing (print the fits only).
     #[arg(long)]
     pub dry_run: bool,

@@ -12,7 +12,7 @@ use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use store::results_dir::ResultsDir;
 
-/// `reproduce report` (`--report-only`): re-renders report/ from the stored results.
+/// `reproduce report`: re-renders report/ from the stored results.
 pub fn report_only(project: &Project, git_rev: &str) -> Result<(), ReproduceError> {
     let root = report_root(project)?;
     check_report_dir(&root)?;

@@ -1,4 +1,4 @@
-//! `reproduce shard` (`--shard K/N`): the shard's runs into its own directory in memory flat in
+//! `reproduce shard K/N`: the shard's runs into its own directory in memory flat in
 //! the number of runs (docs/cluster.md). The directory is bound to the shard
 //! (store::shard::Binding) before anything runs; an interrupted start's journal is folded
 //! into `runs.csv` and the runs an earlier start finished are skipped; each run, as it

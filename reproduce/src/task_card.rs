@@ -1,6 +1,6 @@
 //! Task cards: one Markdown page per task (every variant of `experiments/*.toml`, sweeps
 //! expanded), with everything someone needs to set the same task up in their own code and score
-//! its trajectory here (`reproduce --score FILE --task ID`): the robot's kinematics (DH table and
+//! its trajectory here (`reproduce score FILE --task ID`): the robot's kinematics (DH table and
 //! tool, or its closed form) and limits, the path's formula, parameters and values at a few
 //! instants, the duration, theta0 and theta*0, and the scheme's QP (its formulas with the
 //! task's parameters, and its numbers at t = 0). The numbers are the suite's own models'

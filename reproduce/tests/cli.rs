@@ -1,101 +1,73 @@
-//! The binary's contract with its caller: the gate compares with the committed baseline (or a
-//! stated one) and fails on a doctored one; an unexpected failed run exits non-zero, the
-//! experiment files' expected failures do not.
+//! The binary's contract with its caller: ids typed at the command line, one writer at a
+//! time, results that follow the experiment files, a killed run resumed, results outside the
+//! project. The exit code of each kind of outcome is `exit_codes.rs`'.
 
 use crate::common;
 
 use common::reproduce;
 use records::runs::runs_csv;
 use store::runs::read_runs;
+/// Ids are typed at the command line: a malformed paper, experiment, table, shard or task is
+/// clap's usage error (exit 2, naming the valid form and pointing to `--help`) before any file is read; a well-formed one
+/// that no file knows is refused once the files are read (exit 2, naming the known ones).
 #[test]
-fn the_gate_compares_with_the_stated_baseline() {
-    let root = catalog::root::from_current_dir().unwrap();
-    let committed = read_runs(&root.join("results/runs.csv")).unwrap();
-    let dir = std::env::temp_dir().join(format!("driftbench-cli-gate-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let exp = "kong2019-circle-mu-sweep";
-
-    let same = dir.join("same.csv");
-    std::fs::write(&same, runs_csv(&committed).unwrap()).unwrap();
-    let ok = reproduce()
-        .args(["--check", "--experiment", exp, "--baseline"])
-        .arg(&same)
-        .output()
-        .unwrap();
-    assert!(
-        ok.status.success(),
-        "{}",
-        String::from_utf8_lossy(&ok.stdout)
-    );
-
-    let mut doctored = committed.clone();
-    let row = doctored
-        .iter_mut()
-        .find(|r| r.experiment == exp && r.drift_norm.is_some())
-        .unwrap();
-    row.drift_norm = row.drift_norm.map(|d| d * 1.01);
-    let bad = dir.join("doctored.csv");
-    std::fs::write(&bad, runs_csv(&doctored).unwrap()).unwrap();
-    let fail = reproduce()
-        .args(["--check", "--experiment", exp, "--baseline"])
-        .arg(&bad)
-        .output()
-        .unwrap();
-    assert_eq!(fail.status.code(), Some(3), "a gate difference exits 3");
-    assert!(String::from_utf8_lossy(&fail.stdout).contains("drift_norm"));
-    let _ = std::fs::remove_dir_all(&dir);
-}
-
-#[test]
-fn an_unexpected_failure_exits_non_zero() {
-    let dir = std::env::temp_dir().join(format!("driftbench-cli-exit-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    // The clover in 0.5 s asks for ten times the joint-speed limit: the exact QP is infeasible.
-    std::fs::write(
-        dir.join("jia2019.toml"),
-        r#"paper = "jia2019"
-title = "too fast"
-[[experiment]]
-id = "jia2019-too-fast"
-paper_output = "none"
-robot = "jaco2-pen"
-path = { name = "four-leaf-clover", duration = 0.5 }
-theta0 = [1.675, 2.79, -3.216, 4.187, -1.71, -2.95]
-[[experiment.variant]]
-label = "VLTCO"
-scheme = { kind = "jia2019", phi = 0.2, tau = 0.4, kappa = 20.0, lambda = 20.0 }
-"#,
-    )
-    .unwrap();
-    let out = reproduce()
-        .args(["--dry-run", "--experiments-dir"])
-        .arg(&dir)
-        .output()
-        .unwrap();
-    assert_eq!(
-        out.status.code(),
-        Some(1),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    assert!(String::from_utf8_lossy(&out.stderr).contains("unexpected failures"));
-
-    // The same files' expected failures (MTN diverges) exit 0.
-    let out = reproduce()
-        .args([
-            "--dry-run",
-            "--skip-explain",
-            "--experiment",
-            "zhang2018-cardioid-scheme",
-        ])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let _ = std::fs::remove_dir_all(&dir);
+fn malformed_ids_are_refused_by_clap_and_unknown_ones_by_the_files() {
+    let refused = |args: &[&str], says: &[&str]| {
+        let out = reproduce().args(args).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        for s in says {
+            assert!(err.contains(s), "{args:?}: {err}");
+        }
+        err
+    };
+    // Malformed: clap's usage error.
+    for (args, says) in [
+        (
+            &["list", "--paper", "Kong2019"][..],
+            "paper id \"Kong2019\" is not a slug",
+        ),
+        (&["list", "--experiment", "../x"], "experiment id \"../x\""),
+        (
+            &["infer", "--dry-run", "jia2019:"],
+            "expected `all`, a paper",
+        ),
+        (
+            &["infer", "--dry-run", "Jia2019:T2"],
+            "paper id \"Jia2019\"",
+        ),
+        (&["list", "--shard", "3/2"], "K must be in 1..=2"),
+        (&["shard", "x"], "expected K/N"),
+        (&["score", "f.csv", "--task", "just-one"], "just-one"),
+    ] {
+        let err = refused(args, &["invalid value", says]);
+        assert!(err.contains("try '--help'"), "{args:?}: {err}");
+    }
+    // Well formed but unknown: the files' check, naming the known ones.
+    for (args, says) in [
+        (
+            &["list", "--paper", "nosuchpaper"][..],
+            ["nosuchpaper", "kong2019"],
+        ),
+        (
+            &["list", "--experiment", "kong2019-nosuch"],
+            ["kong2019-nosuch", "kong2019-circle"],
+        ),
+        (
+            &["infer", "--dry-run", "nosuchpaper"],
+            ["nosuchpaper", "jia2019:T2"],
+        ),
+        (
+            &["infer", "--dry-run", "jia2019:T9"],
+            ["jia2019:T9", "jia2019:T2"],
+        ),
+    ] {
+        let err = refused(args, &says);
+        assert!(
+            !err.contains("invalid value") && !err.contains("try '--help'"),
+            "{args:?}: {err}"
+        );
+    }
 }
 
 /// One writer at a time: while another process holds the results directory's lock, a run

@@ -86,12 +86,10 @@ impl Project {
             .arg(self.results());
         c
     }
-    /// `reproduce --report-only` on this project's results.
+    /// `reproduce report` on this project's results.
     fn report_only(&self) -> Command {
         let mut c = reproduce();
-        c.arg("--report-only")
-            .arg("--results-dir")
-            .arg(self.results());
+        c.arg("report").arg("--results-dir").arg(self.results());
         c
     }
     /// A first, clean run: results/ sealed with its manifest.
@@ -428,7 +426,7 @@ fn arguments_are_checked_before_anything_runs() {
     // A merge of a directory that does not exist.
     refused(
         reproduce()
-            .arg("--merge")
+            .arg("merge")
             .arg(p.base.join("no-such-shard"))
             .arg("--experiments-dir")
             .arg(p.experiments())
@@ -438,18 +436,19 @@ fn arguments_are_checked_before_anything_runs() {
             .unwrap(),
         "no such directory",
     );
-    // Options a mode does not take, and two modes at once, are refused, not silently ignored.
+    // Options a mode does not take, and the old mode flags, are refused, not silently ignored.
     for (pair, said) in [
         (
-            ["--skip-explain", "--explain-only"],
+            ["explain", "--skip-explain"],
             "unexpected argument '--skip-explain'",
         ),
         (
-            ["--report-only", "--paper=kong2019"],
+            ["report", "--paper=kong2019"],
             "unexpected argument '--paper'",
         ),
-        (["--list", "--merge=x"], "--list and --merge are two modes"),
-        (["--robots", "--list"], "--list and --robots are two modes"),
+        (["list", "--merge=x"], "unexpected argument '--merge'"),
+        (["robots", "list"], "unexpected argument 'list'"),
+        (["--list", "--robots"], "unexpected argument '--list'"),
     ] {
         let out = reproduce().args(pair).output().unwrap();
         assert_eq!(out.status.code(), Some(2), "{pair:?}");
@@ -480,7 +479,7 @@ mod shards {
         let dirs = [p.base.join("s1"), p.base.join("s2")];
         for (k, d) in dirs.iter().enumerate() {
             ok(reproduce()
-                .arg("--shard")
+                .arg("shard")
                 .arg(format!("{}/2", k + 1))
                 .arg("--experiments-dir")
                 .arg(p.experiments())
@@ -494,7 +493,7 @@ mod shards {
 
     fn merge(p: &Project, dirs: &[PathBuf], extra: &[&str]) -> Output {
         reproduce()
-            .arg("--merge")
+            .arg("merge")
             .args(dirs)
             .args(extra)
             .arg("--experiments-dir")

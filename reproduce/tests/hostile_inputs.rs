@@ -169,7 +169,7 @@ fn experiment_files_are_read_as_inputs() {
     for h in all(inputs::Kind::Experiment) {
         h.make(&p, &at);
         let mut list = p.cmd();
-        list.arg("--list");
+        list.arg("list");
         refused(bounded(list), h, &at);
     }
 }
@@ -326,8 +326,9 @@ fn a_trajectory_to_score_is_read_as_an_input() {
             h.make(&p, &at);
             let mut score = p.cmd();
             score
-                .args(["--task", TASK, "--score"])
+                .arg("score")
                 .arg(&at)
+                .args(["--task", TASK])
                 .arg("--score-out")
                 .arg(p.root().join("scores"));
             refused(bounded(score), h, &at);
@@ -336,7 +337,7 @@ fn a_trajectory_to_score_is_read_as_an_input() {
     // /dev/zero named as it is: a character device, refused at once.
     let mut score = p.cmd();
     score
-        .args(["--task", TASK, "--score", "/dev/zero"])
+        .args(["score", "/dev/zero", "--task", TASK])
         .arg("--score-out")
         .arg(p.root().join("scores"));
     let out = bounded(score);
@@ -356,7 +357,7 @@ fn a_baseline_is_read_as_an_input_before_anything_runs() {
     for h in all(inputs::Kind::Baseline) {
         h.make(&p, &at);
         let mut check = p.cmd();
-        check.args(["--check", "--baseline"]).arg(&at);
+        check.args(["check", "--baseline"]).arg(&at);
         refused(bounded(check), h, &at);
     }
 }
@@ -369,7 +370,7 @@ fn a_shard_manifest_is_read_as_an_input() {
     for h in all(inputs::Kind::ShardManifest) {
         h.make(&p, &at);
         let mut merge = p.cmd();
-        merge.arg("--merge").arg(&shard);
+        merge.arg("merge").arg(&shard);
         refused(bounded(merge), h, &at);
         assert!(!p.results().join("runs.csv").exists());
     }
@@ -385,14 +386,14 @@ fn integrity_manifests_are_read_as_inputs() {
     let cases: [(PathBuf, &[&str]); 3] = [
         (p.results().join("manifest.toml"), &["--skip-explain"]),
         (p.root().join("report/manifest.toml"), &["--skip-explain"]),
-        (shard.join("manifest.toml"), &["--shard", "1/2"]),
+        (shard.join("manifest.toml"), &["shard", "1/2"]),
     ];
     for (at, args) in cases {
         for h in all(inputs::Kind::Manifest) {
             h.make(&p, &at);
             let mut cmd = reproduce();
             cmd.arg("--root").arg(p.root()).args(args);
-            if !args.contains(&"--shard") {
+            if !args.contains(&"shard") {
                 cmd.arg("--results-dir").arg(p.results());
             }
             cmd.env("DRIFTBENCH_TEST_CANARY", CANARY);
@@ -471,7 +472,7 @@ fn every_run_is_bounded_and_ranges_are_checked_at_load() {
         )
         .unwrap();
         let mut list = p.cmd();
-        list.arg("--list");
+        list.arg("list");
         let out = bounded(list);
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{err}");

@@ -488,8 +488,8 @@ fn shard_problems(job: &Yaml, cluster_md: &str) -> Vec<String> {
         .collect();
     need(
         &mut out,
-        command.windows(2).any(|w| w == ["--shard", "auto"]),
-        "the command runs `--shard auto`",
+        command.windows(2).any(|w| w == ["shard", "auto"]),
+        "the command runs `shard auto`",
     );
     let env: Vec<(&str, &Yaml)> = c
         .seq_at("env")
@@ -899,7 +899,7 @@ spec:
       containers:
         - name: reproduce
           image: registry.example.org/driftbench:latest # built from a clean clone
-          command: ["reproduce", "--root", "/driftbench", "--shard", "auto"]
+          command: ["reproduce", "--root", "/driftbench", "shard", "auto"]
           env:
             - name: DRIFTBENCH_SHARDS
               value: "16"

@@ -4,7 +4,7 @@
 //! `examples/octave/znn_circle.m` writes, from the papers' equations alone, kong2019's ZNN
 //! repetitive scheme (22) on the Katana 6M180 tracing the circle, solved by a linear zeroing
 //! network (the task "kong2019-circle / znn-eq22", network `ZNN`), integrated by `ode45` at
-//! RelTol 1e-10. `reproduce --score` scores its CSV; the suite runs its own `ZNN` on the task
+//! RelTol 1e-10. `reproduce score` scores its CSV; the suite runs its own `ZNN` on the task
 //! at RelTol 1e-10 / AbsTol 1e-12 (the committed run uses 1e-6, whose integration error on the
 //! small drifts of joints 1-4 is ~1e-7 rad). Agreement, [`DRIFT_TOLERANCE`]: every joint's
 //! drift within 1e-9 rad (joints 1-4 drift 3e-6 to 6e-6 rad: a wrong link length, path size or
@@ -65,12 +65,13 @@ fn run_octave(octave: &Path, root: &Path, out: &Path) {
     );
 }
 
-/// `reproduce --score FILE --task TASK`, and the row it wrote.
+/// `reproduce score FILE --task TASK`, and the row it wrote.
 fn score(root: &Path, file: &Path, out: &Path) -> RunRow {
     let o = Command::new(env!("CARGO_BIN_EXE_reproduce"))
         .current_dir(root)
-        .args(["--task", TASK, "--score"])
+        .arg("score")
         .arg(file)
+        .args(["--task", TASK])
         .arg("--score-out")
         .arg(out)
         .output()

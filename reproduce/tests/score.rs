@@ -1,4 +1,4 @@
-//! `reproduce --score FILE --task ID`: a trajectory written as CSV (here the trace of the
+//! `reproduce score FILE --task ID`: a trajectory written as CSV (here the trace of the
 //! suite's own ZNN run) is scored with the run's drift, and its row, trace and figure are
 //! written under --score-out; a task that does not exist is refused with the library's message.
 
@@ -51,8 +51,9 @@ fn a_trajectory_file_is_scored_on_its_task() {
     std::fs::write(&file, csv).unwrap();
     let out = dir.join("out");
     let ok = reproduce()
-        .args(["--task", &job.task().to_string(), "--score"])
+        .arg("score")
         .arg(&file)
+        .args(["--task", &job.task().to_string()])
         .arg("--score-out")
         .arg(&out)
         .output()
@@ -80,18 +81,9 @@ fn a_trajectory_file_is_scored_on_its_task() {
             "kong2019-circle__znn-eq22__trajectory.svg"
         ]
     );
-    // No warning about the trajectory; the old `--score` flag says it is deprecated.
+    // No warning about the trajectory.
     let stderr = String::from_utf8_lossy(&ok.stderr);
-    assert!(
-        stderr.contains("warning: `--score` is deprecated"),
-        "{stderr}"
-    );
-    assert!(
-        !stderr
-            .lines()
-            .any(|l| l.contains("warning") && !l.contains("is deprecated")),
-        "{stderr}"
-    );
+    assert!(!stderr.contains("warning"), "{stderr}");
 
     // The subcommand, with a global option after it and from outside the project: the same
     // file on another task of the same arm and start is scored, and warned as far off it; the
@@ -185,8 +177,9 @@ fn a_trajectory_file_is_scored_on_its_task() {
     );
 
     let refused = reproduce()
-        .args(["--task", "nope / nope", "--score"])
+        .arg("score")
         .arg(&file)
+        .args(["--task", "nope / nope"])
         .arg("--score-out")
         .arg(&out)
         .output()

@@ -35,8 +35,9 @@ fn three_shards_merged_equal_one_unsharded_run_and_a_missing_shard_is_named() {
         .enumerate()
         .map(|(i, d)| {
             reproduce()
+                .args(["shard", &format!("{}/3", i + 1)])
                 .args(SELECTION)
-                .args(["--shard", &format!("{}/3", i + 1), "--results-dir"])
+                .arg("--results-dir")
                 .arg(d)
                 .stdout(std::process::Stdio::null())
                 .stderr(std::process::Stdio::piped())
@@ -55,7 +56,7 @@ fn three_shards_merged_equal_one_unsharded_run_and_a_missing_shard_is_named() {
     // A shard missing: exit 2, the missing runs and their shard named, nothing written.
     let partial = base.join("partial");
     let out = reproduce()
-        .arg("--merge")
+        .arg("merge")
         .args([&shard_dirs[0], &shard_dirs[2]])
         .arg("--results-dir")
         .arg(&partial)
@@ -74,7 +75,7 @@ fn three_shards_merged_equal_one_unsharded_run_and_a_missing_shard_is_named() {
 
     // Merging a shard twice: duplicates are named.
     let out = reproduce()
-        .arg("--merge")
+        .arg("merge")
         .args([
             &shard_dirs[0],
             &shard_dirs[1],
@@ -90,7 +91,7 @@ fn three_shards_merged_equal_one_unsharded_run_and_a_missing_shard_is_named() {
 
     let merged = base.join("merged");
     ok(reproduce()
-        .arg("--merge")
+        .arg("merge")
         .args(&shard_dirs)
         .arg("--results-dir")
         .arg(&merged)
@@ -127,7 +128,7 @@ sweep = { "scheme.mu" = [1, 2, 4] }
     .unwrap();
     let run = || {
         let mut c = reproduce();
-        c.args(["--shard", "1/1", "--threads", "2", "--experiments-dir"])
+        c.args(["shard", "1/1", "--threads", "2", "--experiments-dir"])
             .arg(&experiments)
             .arg("--results-dir")
             .arg(&results)
@@ -152,7 +153,7 @@ sweep = { "scheme.mu" = [1, 2, 4] }
     // The resumed shard merges (its manifest covers the folded runs' traces) ...
     let merged = base.join("merged");
     ok(reproduce()
-        .arg("--merge")
+        .arg("merge")
         .arg(&results)
         .arg("--experiments-dir")
         .arg(&experiments)
@@ -185,7 +186,7 @@ fn a_shard_directory_of_another_selection_or_sweep_is_refused_at_the_start() {
     std::fs::write(&file, common::CHEAP_EXPERIMENT).unwrap();
     let shard = |extra: &[&str]| {
         reproduce()
-            .args(["--shard", "1/1", "--experiments-dir"])
+            .args(["shard", "1/1", "--experiments-dir"])
             .arg(&experiments)
             .arg("--results-dir")
             .arg(&dir)
@@ -232,7 +233,7 @@ sweep = { "scheme.mu" = [1, 2] }
     std::fs::write(&file, common::CHEAP_EXPERIMENT).unwrap();
     // Another K/N given the same directory.
     let out = reproduce()
-        .args(["--shard", "1/2", "--experiments-dir"])
+        .args(["shard", "1/2", "--experiments-dir"])
         .arg(&experiments)
         .arg("--results-dir")
         .arg(&dir)
@@ -247,7 +248,7 @@ sweep = { "scheme.mu" = [1, 2] }
     let text = std::fs::read_to_string(&manifest).unwrap();
     std::fs::write(&manifest, text.replace("shards = 1", "shards = 0")).unwrap();
     let out = reproduce()
-        .arg("--merge")
+        .arg("merge")
         .arg(&dir)
         .arg("--experiments-dir")
         .arg(&experiments)
@@ -288,8 +289,8 @@ fn a_resubmitted_slurm_task_needs_the_number_of_shards() {
             ("SLURM_ARRAY_TASK_COUNT", "1"),
         ])
         .envs(extra.iter().copied())
+        .args(["list", "--shard", "auto"])
         .args(SELECTION)
-        .args(["--list", "--shard", "auto"])
         .output()
         .unwrap()
     };
@@ -322,25 +323,25 @@ fn the_binary_knows_its_revision() {
     assert!(!text.contains("unknown"), "{text}");
 }
 
-/// `--shard K/N --list` lists the shard's runs; the shards' lists partition the selection;
-/// `list --shard K/N` (the subcommand) lists the same as the older `--list --shard K/N`.
+/// `list --shard K/N` lists the shard's runs; the shards' lists partition the selection.
 #[test]
 fn shard_lists_partition_the_selection() {
     for k in 1..=3 {
         let shard = format!("{k}/3");
-        let list =
-            |args: &[&str]| ok(reproduce().args(args).args(SELECTION).output().unwrap()).stdout;
-        let new = list(&["list", "--shard", &shard]);
-        assert_eq!(new, list(&["--list", "--shard", &shard]), "shard {shard}");
+        let out = ok(reproduce()
+            .args(["list", "--shard", &shard])
+            .args(SELECTION)
+            .output()
+            .unwrap());
         assert!(
-            String::from_utf8_lossy(&new).contains("exact"),
+            String::from_utf8_lossy(&out.stdout).contains("exact"),
             "shard {shard}"
         );
     }
     let count = |extra: &[&str]| {
         let out = ok(reproduce()
+            .arg("list")
             .args(SELECTION)
-            .arg("--list")
             .args(extra)
             .output()
             .unwrap());
@@ -380,7 +381,7 @@ fn a_shard_killed_after_any_durable_step_resumes_and_merges_equal_to_one_process
         .unwrap());
     let shard = |dir: &std::path::Path, kill_after: Option<usize>| {
         let mut c = reproduce();
-        c.args(["--shard", "1/1", "--paper", "kong2019", "--experiments-dir"])
+        c.args(["shard", "1/1", "--paper", "kong2019", "--experiments-dir"])
             .arg(&experiments)
             .arg("--results-dir")
             .arg(dir);
@@ -409,7 +410,7 @@ fn a_shard_killed_after_any_durable_step_resumes_and_merges_equal_to_one_process
         ok(shard(&dir, None));
         let merged = base.join(format!("merged-{step}"));
         ok(reproduce()
-            .arg("--merge")
+            .arg("merge")
             .arg(&dir)
             .arg("--experiments-dir")
             .arg(&experiments)
@@ -436,7 +437,7 @@ fn a_shard_killed_after_any_durable_step_resumes_and_merges_equal_to_one_process
     assert!(err.contains("the shard holds 3 of its runs"), "{err}");
     let merged = base.join("merged-beside");
     ok(reproduce()
-        .arg("--merge")
+        .arg("merge")
         .arg(&dir)
         .arg("--experiments-dir")
         .arg(&experiments)
@@ -462,7 +463,7 @@ fn a_shard_killed_every_few_steps_finishes_after_a_bounded_number_of_starts() {
         starts += 1;
         assert!(starts <= 8, "not finished after {} starts", starts - 1);
         let out = reproduce()
-            .args(["--shard", "1/1", "--experiments-dir"])
+            .args(["shard", "1/1", "--experiments-dir"])
             .arg(&experiments)
             .arg("--results-dir")
             .arg(&dir)
@@ -518,9 +519,9 @@ fn a_sweep_keeps_the_traces_it_chooses_unsharded_and_merged() {
         .unwrap();
         let run = |args: &[&str], dir: &PathBuf| {
             ok(reproduce()
+                .args(args)
                 .args(["--paper", "kong2019", "--experiments-dir"])
                 .arg(&experiments)
-                .args(args)
                 .arg("--results-dir")
                 .arg(dir)
                 .output()
@@ -530,11 +531,11 @@ fn a_sweep_keeps_the_traces_it_chooses_unsharded_and_merged() {
         run(&["--skip-explain"], &whole);
         let shards: Vec<PathBuf> = (1..=2).map(|k| base.join(format!("s{k}"))).collect();
         for (k, d) in shards.iter().enumerate() {
-            run(&["--shard", &format!("{}/2", k + 1)], d);
+            run(&["shard", &format!("{}/2", k + 1)], d);
         }
         let merged = base.join("merged");
         ok(reproduce()
-            .arg("--merge")
+            .arg("merge")
             .args(&shards)
             .arg("--experiments-dir")
             .arg(&experiments)
@@ -560,7 +561,7 @@ fn a_sweep_keeps_the_traces_it_chooses_unsharded_and_merged() {
         assert!(common::traces(&merged) == common::traces(&whole));
         // The merged rows are a baseline the same runs reproduce.
         ok(reproduce()
-            .args(["--check", "--paper", "kong2019", "--experiments-dir"])
+            .args(["check", "--paper", "kong2019", "--experiments-dir"])
             .arg(&experiments)
             .arg("--baseline")
             .arg(merged.join("runs.csv"))
@@ -568,9 +569,9 @@ fn a_sweep_keeps_the_traces_it_chooses_unsharded_and_merged() {
             .unwrap());
         // A shard started again runs nothing (its rows are done, with or without a trace).
         let again = reproduce()
-            .args(["--paper", "kong2019", "--experiments-dir"])
+            .args(["shard", "1/2", "--paper", "kong2019", "--experiments-dir"])
             .arg(&experiments)
-            .args(["--shard", "1/2", "--results-dir"])
+            .arg("--results-dir")
             .arg(&shards[0])
             .output()
             .unwrap();
@@ -593,7 +594,7 @@ fn a_sweep_keeps_the_traces_it_chooses_unsharded_and_merged() {
     )
     .unwrap();
     let out = reproduce()
-        .args(["--list", "--experiments-dir"])
+        .args(["list", "--experiments-dir"])
         .arg(&experiments)
         .output()
         .unwrap();

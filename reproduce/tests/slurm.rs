@@ -19,7 +19,7 @@
 //! docs/cluster.md says; once the task holding the slow run has checkpointed its quick runs,
 //! `scontrol requeue` kills it and puts it back in the queue (Slurm holds a requeued job for
 //! about two minutes, `Reason=BeginTime`; the test releases it at once with `scontrol update
-//! StartTime=now`); the task runs again, says it is resuming, and finishes; `reproduce --merge`
+//! StartTime=now`); the task runs again, says it is resuming, and finishes; `reproduce merge`
 //! of the four shard directories is compared with `reproduce` run once over the sweep.
 //!
 //! Debian's `slurmctld`, `slurmd`, `slurm-client` and `munge` provide the daemons and clients
@@ -491,7 +491,7 @@ fn a_slurm_array_with_a_requeued_task_merges_equal_to_one_process() {
     let merged = root.join("merged");
     ok(reproduce()
         .current_dir(&root)
-        .arg("--merge")
+        .arg("merge")
         .args(&dirs)
         .arg("--results-dir")
         .arg(&merged)

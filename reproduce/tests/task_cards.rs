@@ -7,7 +7,7 @@ use reproduce::task_card::{cards, INDEX, TASKS};
 use simulation::run::check_job;
 use std::collections::BTreeSet;
 
-const REGENERATE: &str = "regenerate with `cargo run --release -p reproduce -- --report-only`";
+const REGENERATE: &str = "regenerate with `cargo run --release -p reproduce -- report`";
 
 #[test]
 fn the_committed_cards_are_the_generated_ones() {

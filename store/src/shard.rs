@@ -1,16 +1,16 @@
-//! Sharded runs for clusters: `reproduce --shard K/N` runs its share of the selected runs into
-//! `results-shard-K-of-N/`, `reproduce --merge DIR...` combines the shards into `results/`.
+//! Sharded runs for clusters: `reproduce shard K/N` runs its share of the selected runs into
+//! `results-shard-K-of-N/`, `reproduce merge DIR...` combines the shards into `results/`.
 //!
 //! - **Assignment, by index.** The selection's runs are enumerated in file order (file by
 //!   file in name order, experiment by experiment, variant by variant, each variant's runs
-//!   exact column first: what `reproduce --list` prints); run i (from 0) belongs to shard
+//!   exact column first: what `reproduce list` prints); run i (from 0) belongs to shard
 //!   `i mod N + 1` (K is 1-based; [`Shard::of_index`]). The shards are strided, not
 //!   contiguous, so a sweep whose cost grows along an axis is spread evenly, and every shard
 //!   gets floor(T/N) or ceil(T/N) of the T runs ([`plan`]). A shard's runs are found by their
 //!   indices (reproduce's `select::Kept`) and only they are made: listing or running shard K of a
 //!   sweep does not make the other shards' runs. A run's shard therefore depends on the
 //!   selection and the experiment files (both bound below), not on the machine.
-//! - **K and N from a scheduler** ([`Shard::from_env`], `--shard auto`): a Slurm task id *is*
+//! - **K and N from a scheduler** ([`Shard::from_env`], `shard auto`): a Slurm task id *is*
 //!   the shard number K (arrays are `--array=1-N`; one task is resubmitted as `--array=K`); N is
 //!   `--shards`, else `DRIFTBENCH_SHARDS`, else the array's size, but only when the array is
 //!   exactly 1..N with N >= 2. Any other array (one task, a part of an array, a stepped, sparse
@@ -178,7 +178,7 @@ pub enum ShardError {
         dir: PathBuf,
     },
     /// A directory given to merge does not exist.
-    #[error("{}: no such directory (give the directories that `reproduce --shard K/N` wrote)", dir.display())]
+    #[error("{}: no such directory (give the directories that `reproduce shard K/N` wrote)", dir.display())]
     NoDirectory {
         /// The path given.
         dir: PathBuf,
@@ -212,8 +212,8 @@ pub enum ShardError {
     /// The results directory merged into failed.
     #[error(transparent)]
     Results(#[from] crate::results_dir::ResultsError),
-    /// `--merge` was given no shard directory.
-    #[error("--merge needs at least one shard directory")]
+    /// `merge` was given no shard directory.
+    #[error("merge needs at least one shard directory")]
     NoShardDirectories,
     /// The shards do not fit together; every problem, one a line.
     #[error("cannot merge; nothing was written:\n{}", problems.join("\n"))]

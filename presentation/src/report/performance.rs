@@ -1,5 +1,5 @@
 //! Performance: what an instant and a run cost, from `results/dof-cost.csv` (written by
-//! `reproduce --dof-cost`, see `reproduce::cost`) and from the per-run counts and times of
+//! `reproduce cost`, see `reproduce::cost`) and from the per-run counts and times of
 //! `results/runs.csv`:
 //!
 //! - per instant at the Jaco2's size (N = 6): each network evaluation against the exact
@@ -62,7 +62,7 @@ pub fn section(m: &Measurements, runs: &Runs, papers: &Papers, figures: &[String
     );
     if dof.is_empty() {
         out.push_str(
-            "`results/dof-cost.csv` is absent: `cargo run --release -p reproduce -- --dof-cost` \
+            "`results/dof-cost.csv` is absent: `cargo run --release -p reproduce -- cost` \
              measures the per-instant costs and the cost against the number of joints (about a \
              minute on an idle machine) and re-renders this report. What `results/runs.csv` \
              gives follows.\n\n",
@@ -94,7 +94,7 @@ fn machine(dof: &[DofCostRow]) -> String {
         .collect();
     machines.dedup();
     format!(
-        "**Machine.** `results/dof-cost.csv` was measured on {} by `reproduce --dof-cost`, one \
+        "**Machine.** `results/dof-cost.csv` was measured on {} by `reproduce cost`, one \
          case after the other on one thread (the CPU model and cores read from `/proc/cpuinfo` \
          and the process's available parallelism at measurement time). \
          Times are comparable within it, not across machines; the wall times of \
@@ -691,7 +691,7 @@ mod tests {
             &[],
         );
         assert!(md.contains("`results/dof-cost.csv` is absent"), "{md}");
-        assert!(md.contains("-- --dof-cost"), "{md}");
+        assert!(md.contains("-p reproduce -- cost`"), "{md}");
         assert!(md.contains("No completed run"), "{md}");
     }
 }

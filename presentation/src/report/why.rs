@@ -273,7 +273,7 @@ pub fn inference_section(paper: &str, x: &Explanations, inferred: &[Inference]) 
     let rows: Vec<&InferenceRow> = x.inference.iter().filter(|r| r.paper == paper).collect();
     if rows.is_empty() {
         return format!(
-            "No setup inference stored for {paper}: run `cargo run --release -p reproduce -- --infer {paper}`.\n"
+            "No setup inference stored for {paper}: run `cargo run --release -p reproduce -- infer {paper}`.\n"
         );
     }
     let mut out = String::new();

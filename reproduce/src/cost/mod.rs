@@ -1,4 +1,4 @@
-//! `reproduce cost` (`--dof-cost`): what one instant and one whole run cost against the number
+//! `reproduce cost`: what one instant and one whole run cost against the number
 //! of joints on the n-link arms, per dense LU backend, written to results/dof-cost.csv with the
 //! fitted growth exponents and the machine, then the report re-rendered. The criterion bench
 //! `cargo bench -p driftbench-benches --bench dof` times the same calls through this module.

@@ -78,7 +78,7 @@ pub fn section(rows: &[SpeedupRow], profile: &[ProfileRow], papers: &Papers) -> 
     }
     let mut out = format!(
         "### Against an earlier revision\n\n`benches/speedup/papers.sh` ran each paper's runs \
-         (`reproduce --paper PAPER --shard 1/1 --threads 1`: no explanation runs, no timing \
+         (`reproduce shard 1/1 --paper PAPER --threads 1`: no explanation runs, no timing \
          pass) under revision `{}` and under revision `{}`, on one thread pinned to one CPU, {} \
          passes per revision, the two revisions alternating pass by pass. A run's time is the \
          median over its passes and a paper's the sum over its runs (`benches/results/{}`). Runs are \
