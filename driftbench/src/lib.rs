@@ -149,6 +149,7 @@ pub use simulation;
 pub use solvers;
 pub use spec;
 
+use catalog::error::ExperimentFileError;
 use catalog::experiment::{load_dir, PaperFile};
 use spec::run::RunSpec;
 use std::path::{Path, PathBuf};
@@ -184,11 +185,22 @@ pub fn project_root() -> Result<PathBuf, Error> {
 }
 
 /// Every run (job) of the experiment files in `root/experiments/`, each file checked as the
-/// command line checks it before anything runs (the papers' own robot files,
-/// `root/papers/<paper>/robots/*.toml`, registered first).
+/// command line checks it before anything runs: read and validated as data by crate
+/// `catalog`, then every run built by the engine's setup (`simulation::run::check_job`), a
+/// failure placed at its field (`catalog::experiment::DeclaredRun::at_fault`). The papers' own
+/// robot files, `root/papers/<paper>/robots/*.toml`, are registered first.
 pub fn jobs(root: &Path) -> Result<Vec<RunSpec>, Error> {
     catalog::robot_files::register_paper_robots(&root.join("papers"));
-    let files = load_dir(&root.join("experiments"), simulation::run::check_job)?;
+    let dir = root.join("experiments");
+    let files = load_dir(&dir)?;
+    for file in &files {
+        file.declared_runs()
+            .try_for_each(|run| simulation::run::check_job(&run.spec).map_err(|e| run.at_fault(e)))
+            .map_err(|error| ExperimentFileError::Invalid {
+                file: dir.join(&file.file_name),
+                error,
+            })?;
+    }
     Ok(files.iter().flat_map(PaperFile::jobs).collect())
 }
 
