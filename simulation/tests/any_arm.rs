@@ -165,7 +165,6 @@ fn a_urdf_arm_runs_from_files() {
 /// a tool offset on the Katana's closed form (no tool frame) is refused, naming `tool`.
 #[test]
 fn an_experiment_mounts_its_robot_with_a_tool_offset_and_a_base() {
-    use catalog::experiment::PaperFile;
     let theta0 = "[1.675, 2.79, -3.216, 4.187, -1.71, -2.95]";
     let mounted = |robot: &str, mount: &str, paper: &str| {
         let text = experiment(robot, 6, 2.0)
