@@ -33,7 +33,7 @@ pub struct Why<'a> {
 #[derive(Clone, Debug)]
 pub struct Attribution<'a> {
     /// The terms of the sums, in column order ([`sum_components`]).
-    pub sums: Vec<Component>,
+    pub terms: Vec<Component>,
     /// The "of which" switches of the paper's runs ([`switches`]).
     pub switches: Vec<Component>,
     /// Every explained run, in file order.
@@ -117,9 +117,9 @@ impl<'a> Attribution<'a> {
         if keys.is_empty() {
             return None;
         }
-        let sums = sum_components(attribution, &keys);
+        let terms = sum_components(attribution, &keys);
         let switches = switches(attribution, paper);
-        let columns: Vec<Component> = sums.iter().chain(&switches).copied().collect();
+        let columns: Vec<Component> = terms.iter().chain(&switches).copied().collect();
         let runs = keys
             .iter()
             .map(|&key| AttributedRun {
@@ -142,7 +142,7 @@ impl<'a> Attribution<'a> {
                 .collect(),
             spreads: solver_spreads(attribution, papers, &keys),
             matlab: matlab_tolerances(attribution, ladder, papers, &keys),
-            sums,
+            terms,
             switches,
             runs,
         })

@@ -83,15 +83,15 @@ fn short(s: &str) -> String {
 /// The attribution table of one paper's runs: published norm, ours, and the "of which"
 /// columns.
 pub fn attribution_table(a: &Attribution) -> String {
-    let networks = a.sums.contains(&Component::NetworkLag);
-    let numerical = a.sums.contains(&Component::SamplingGap);
+    let networks = a.terms.contains(&Component::NetworkLag);
+    let numerical = a.terms.contains(&Component::SamplingGap);
     let mut header = vec![
         "run (variant / solver)".to_string(),
         "paper ‖d‖".to_string(),
         "ours ‖d‖ (as run)".to_string(),
         "ours ‖d‖ at MATLAB's default tolerances".to_string(),
     ];
-    header.extend(a.sums.iter().map(|s| format!("{} ‖·‖ (share)", s.label())));
+    header.extend(a.terms.iter().map(|s| format!("{} ‖·‖ (share)", s.label())));
     header.extend(a.switches.iter().map(|s| format!("{} ‖·‖", s.label())));
     header.push(match (networks, numerical) {
         (true, false) => "max pos. err: run / exact / converged net (m)".to_string(),
