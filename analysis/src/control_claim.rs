@@ -18,7 +18,7 @@
 //! same on every machine and under any load, so the verdict does not depend on either; the
 //! latencies are reported beside them for the record.
 //!
-//! # The comparison (per task, at the control period h, [`records::control::MAIN_H`] = 1 ms)
+//! # The comparison (per task, at the control period h, [`spec::task_set::MAIN_H`] = 1 ms)
 //!
 //! - A network needs at least n = ceil(h / s_max) Euler steps per tick to be stable at all
 //!   (s_max its Euler stability limit on the task, `control::stability`;

@@ -40,7 +40,8 @@
 //! - [`report_model`]: the report's decided content as one typed model, built once per render
 //!   (the papers' verdicts, tables, contradictions and sweep checks, the leaderboard and its
 //!   reading, the control claim and track, the MATLAB times, the cross experiment's bests,
-//!   the sweep summaries, the setup inference's verdicts).
+//!   the sweep summaries, the setup inference's verdicts, every paper's drift attribution
+//!   and tolerance ladder, the Performance page's costs, fits and targets).
 
 pub mod claim_verdict;
 pub mod claims;

@@ -14,9 +14,12 @@
 //! ([`crate::control_track`]); the compute times against the papers' MATLAB times
 //! ([`crate::cost_ratio`]); the cross experiment's best per column ([`crate::cross_best`]);
 //! every experiment's sweep summary ([`crate::sweep_summary`]); and the setup inference's
-//! verdicts ([`crate::inference_verdict`]). The drift attribution of the "why" sections and
-//! the performance page still call analysis while they format (docs/reference/layout.md;
-//! presentation's test `report_model` lists them).
+//! verdicts ([`crate::inference_verdict`]); every paper's "why" (its drift attribution and
+//! tolerance ladder, [`why`]); and the Performance page's costs, fits and targets
+//! ([`performance`]).
+
+pub mod performance;
+pub mod why;
 
 use crate::claim_verdict::{evaluate, Claim};
 use crate::control_claim::overall;
@@ -33,6 +36,7 @@ use crate::leaderboard_reading::{
     standard_reading, timing_reading, StandardReading, TimingReading,
 };
 use crate::misprints::{contradictions, Contradiction};
+use crate::paper_rules::GROUP;
 use crate::paper_verdict::{
     assumed_setup, decide, level_under_setup, ratio_span, solver_effect, Decision, Labelled,
 };
@@ -41,10 +45,12 @@ use crate::published_table::{published_tables, side_by_side, SideBySide};
 use crate::sweep_check::SweepCheck;
 use crate::sweep_comparison::{setup_share, swept_runs, SetupShare, SweptRun};
 use crate::sweep_summary::{summary, SweepSummary};
+use records::attribution::AttributionRow;
 use records::control::{ClaimRow, ControlRow, StabilityRow, Verdict};
 use records::index::completed;
 use records::index::Runs;
 use records::inference::InferenceRow;
+use records::ladder::LadderRow;
 use records::runs::RunRow;
 use records::timing::Timings;
 
@@ -70,6 +76,22 @@ pub struct ReportModel<'a> {
     /// Every inferred published table, decided ([`crate::inference_verdict`]), by paper in
     /// the order of `results/inference.csv`.
     pub inference: Vec<Inference<'a>>,
+    /// Every paper's "why", in the papers' order, then the group's
+    /// ([`crate::paper_rules::GROUP`]).
+    pub why: Vec<why::Why<'a>>,
+    /// The Performance page's content.
+    pub performance: performance::Performance<'a>,
+}
+
+/// The explanation layer's rows the model reads (absent files: empty).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Explained<'a> {
+    /// `results/attribution.csv`.
+    pub attribution: &'a [AttributionRow],
+    /// `results/ladder.csv`.
+    pub ladder: &'a [LadderRow],
+    /// `results/inference.csv`.
+    pub inference: &'a [InferenceRow],
 }
 
 /// One published table's setup inference, decided ([`crate::inference_verdict`]).
@@ -327,14 +349,16 @@ fn set_tasks(set: &str, rows: &[LeaderboardRow], tasks: &[Task], runs: &Runs) ->
 
 impl<'a> ReportModel<'a> {
     /// The model of the report on the stored `runs`, the `papers` (as the report shows them),
-    /// the leaderboard's `timings`, the control experiments' rows `control` and the setup
-    /// inference's rows `inference` (`results/inference.csv`).
+    /// the runs timed alone (`timings`, the leaderboard's and the MATLAB comparison's), the
+    /// control experiments' rows `control`, the explanation layer's rows `explained` and the
+    /// Performance page's measurements `measured`.
     pub fn build(
         runs: &'a Runs,
         papers: &'a Papers,
-        timings: &Timings,
+        timings: &'a Timings,
         control: ControlInputs<'a>,
-        inference: &'a [InferenceRow],
+        explained: Explained<'a>,
+        measured: performance::Measured<'a>,
     ) -> Self {
         let verdicts: Vec<Verdict> = control.claims.iter().map(|c| c.verdict).collect();
         ReportModel {
@@ -347,10 +371,23 @@ impl<'a> ReportModel<'a> {
             control_claim: overall(&verdicts),
             control: Control::build(control, runs),
             sweep_summaries: sweep_summaries(runs),
-            inference: inferences(inference),
+            inference: inferences(explained.inference),
+            why: papers
+                .papers
+                .iter()
+                .map(|p| p.id.as_str())
+                .chain([GROUP])
+                .map(|paper| why::Why::build(paper, explained, papers))
+                .collect(),
+            performance: performance::Performance::build(measured, runs, timings, papers),
             matlab_times: matlab_times(runs, papers),
             cross: bests(runs, STANDARD_PAPER),
         }
+    }
+
+    /// The "why" of `paper` (a paper of the model, or the group).
+    pub fn why_of(&self, paper: &str) -> Option<&why::Why<'a>> {
+        self.why.iter().find(|w| w.paper == paper)
     }
 }
 
@@ -408,10 +445,25 @@ mod tests {
                 claims,
                 ..ControlInputs::default()
             };
-            ReportModel::build(&runs, &papers, &timings, control, &[]).control_claim
+            ReportModel::build(
+                &runs,
+                &papers,
+                &timings,
+                control,
+                Explained::default(),
+                performance::Measured::default(),
+            )
+            .control_claim
         };
         // Nothing stored: no paper, no leaderboard, no decision.
-        let empty = ReportModel::build(&runs, &papers, &timings, ControlInputs::default(), &[]);
+        let empty = ReportModel::build(
+            &runs,
+            &papers,
+            &timings,
+            ControlInputs::default(),
+            Explained::default(),
+            performance::Measured::default(),
+        );
         assert!(empty.papers.is_empty() && empty.leaderboard.rows.is_empty());
         assert!(empty.leaderboard.tasks.is_empty() && empty.control.track.is_empty());
         assert_eq!(empty.control_claim, Verdict::Undecided);

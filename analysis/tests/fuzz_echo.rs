@@ -107,11 +107,6 @@ fn committed(rel: &str) -> String {
     std::fs::read_to_string(repo().join(rel)).unwrap()
 }
 
-/// Builds nothing: the fuzz is of the reader, not of the runs.
-fn no_check(_: &spec::run::RunSpec) -> Result<(), spec::run::SetupError> {
-    Ok(())
-}
-
 proptest! {
     #![proptest_config(ProptestConfig { cases: 150, ..ProptestConfig::default() })]
 
@@ -121,7 +116,7 @@ proptest! {
         let path = dir.join("kong2019.toml");
         std::fs::write(&path, edited(&committed("experiments/kong2019.toml"), &edits)).unwrap();
         no_echo("an experiment file", || {
-            catalog::experiment::PaperFile::load(&path, no_check)
+            catalog::experiment::PaperFile::load(&path)
                 .map(drop)
                 .map_err(|e| e.to_string())
         })?;
@@ -205,7 +200,7 @@ fn the_seeds_read_unedited() {
     let dir = scratch("seeds");
     let path = dir.join("kong2019.toml");
     std::fs::write(&path, committed("experiments/kong2019.toml")).unwrap();
-    catalog::experiment::PaperFile::load(&path, no_check).unwrap();
+    catalog::experiment::PaperFile::load(&path).unwrap();
     let path = dir.join("t.csv");
     std::fs::write(&path, "t,theta_1,theta_2\n0,1,2\n0.5,1.5,2.5\n1,2,3\n").unwrap();
     inputs::trajectory::read(&path, 2, None).unwrap();

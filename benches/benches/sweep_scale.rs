@@ -8,9 +8,7 @@
 //! `cargo bench -p driftbench-benches --bench sweep_scale` (about a minute; the numbers are in
 //! docs/cluster.md). Under `cargo test --benches` it runs the smallest size only.
 
-use catalog::experiment::PaperFile;
 use records::runs::{merge, RunRow};
-use simulation::run::check_job;
 use spec::run::RunSpec;
 use std::time::Instant;
 
@@ -69,7 +67,7 @@ fn main() {
     for &n in sizes {
         let text = sweep_file(n);
         let file = timed("expand + validate (load)", n, || {
-            PaperFile::from_toml(&text, check_job).expect("a valid sweep")
+            reproduce::experiments::from_toml(&text).expect("a valid sweep")
         });
         // What `list` and `list --shards` do: the runs made as they are taken, none held.
         timed("jobs + keys, streamed (list)", n, || {

@@ -24,13 +24,12 @@
 
 pub mod telemetry;
 
-use simulation::run::check_job;
 use std::sync::Arc;
 use std::time::Duration;
 
-use catalog::experiment::load_dir;
 use criterion::Criterion;
 use nalgebra::DVector;
+use reproduce::experiments::load_dir;
 use robots::{Dynamics, Jaco2, Katana6m180, Robot};
 use schemes::build::build_scheme;
 use schemes::paths::{build_path, Path};
@@ -155,7 +154,7 @@ pub fn experiment_jobs() -> Vec<RunSpec> {
     let dir = catalog::root::from_current_dir()
         .unwrap()
         .join("experiments");
-    load_dir(&dir, check_job)
+    load_dir(&dir)
         .unwrap_or_else(|e| panic!("loading {}: {e}", dir.display()))
         .iter()
         .flat_map(|f| f.jobs())

@@ -6,8 +6,8 @@
 //!   `SchemeError` and the naming rules' `NameError`).
 //! - Building a run's parts fails with `spec::run::SetupError` (crate `spec`, beside the run
 //!   it describes): the engine (crate `simulation`) returns it when a run cannot be built, and
-//!   the experiment format places it at the field at fault when a file is checked
-//!   ([`crate::experiment::CheckJob`]).
+//!   the experiment format places it at the field at fault when the orchestrator checks a
+//!   file's runs ([`crate::experiment::DeclaredRun::at_fault`]).
 //!
 //! A network's parameter errors (`settings::error::NetworkError`) and the integrator settings'
 //! (`settings::error::IntegratorError`) are crate `settings`', below both this crate and the
@@ -508,5 +508,42 @@ pub enum ExperimentFileError {
         id: String,
         /// The file that defined it first.
         other_file: PathBuf,
+    },
+}
+
+/// Why the control experiments' standard task set (`experiments/control/tasks.toml`,
+/// [`crate::task_set`]) cannot be read; each names the file (`path`), and a budget field its
+/// valid values.
+#[derive(Debug, thiserror::Error)]
+pub enum TaskSetError {
+    /// The task set file is refused by the input reader (a link out of the experiments
+    /// directory, not a regular file, over its cap, not UTF-8; the error names the path).
+    #[error(transparent)]
+    File(#[from] inputs::InputError),
+    /// The task set file is not valid TOML or not a task set (`path` names it; the error gives
+    /// line and column, never the file's text).
+    #[error("{path}: {source}")]
+    Toml {
+        /// The file.
+        path: String,
+        /// The TOML error.
+        source: TomlError,
+    },
+    /// The project declares no standard task set (a project of its own papers may have none).
+    #[error("{0} does not exist: the project declares no control task set")]
+    Missing(String),
+    /// The task set lists no task (the file).
+    #[error("{0}: the task set lists no [[task]]")]
+    Empty(String),
+    /// A field of the task set's `[budget]` is out of its range (`valid` says what it may be;
+    /// the value is not quoted).
+    #[error("{path}: [budget] {field} must be {valid}")]
+    Budget {
+        /// The file.
+        path: String,
+        /// The field of `[budget]`.
+        field: &'static str,
+        /// Its valid values.
+        valid: &'static str,
     },
 }

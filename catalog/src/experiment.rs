@@ -256,35 +256,24 @@ const CHECKED_IDS: &str =
 /// experiment's and variant's mount before any run is made.
 const CHECKED_MOUNT: &str = "the experiment file's check refuses an invalid tool or base";
 
-/// Checks one run by building its parts as the run would (robot, path from f(theta_ref),
-/// scheme, network), integrating nothing: the engine's `simulation::run::check_job`. The
-/// experiment format cannot build a run itself; loading a file takes the check, so that a file
-/// is rejected at load for exactly what would make one of its runs fail at t = 0, the error
-/// placed at the field at fault ([`SetupError::part`]).
-pub type CheckJob = fn(&RunSpec) -> Result<(), SetupError>;
-
 impl PaperFile {
     /// Reads (with the input reader, crate `inputs`: a regular file that does not lead out of
     /// its directory, at most [`inputs::Kind::Experiment`]'s cap) and validates one experiment
-    /// file: everything a run would reject is rejected here, before anything runs (see
-    /// `PaperFile::validate`).
-    pub fn load(path: &Path, check: CheckJob) -> Result<Self, ExperimentFileError> {
-        Self::load_within(path, check, &mut crate::sweep::MAX_EXPANSION.clone())
+    /// file as data (see `PaperFile::validate`); whether its runs can be built is checked by
+    /// the orchestrator ([`DeclaredRun`]).
+    pub fn load(path: &Path) -> Result<Self, ExperimentFileError> {
+        Self::load_within(path, &mut crate::sweep::MAX_EXPANSION.clone())
     }
 
     /// [`PaperFile::load`], its sweeps expanding into at most `budget` variants (reduced by
     /// what they take; [`crate::sweep::Sweeps::expand_into`]).
-    fn load_within(
-        path: &Path,
-        check: CheckJob,
-        budget: &mut usize,
-    ) -> Result<Self, ExperimentFileError> {
+    fn load_within(path: &Path, budget: &mut usize) -> Result<Self, ExperimentFileError> {
         let dir = path
             .parent()
             .filter(|d| !d.as_os_str().is_empty())
             .unwrap_or(Path::new("."));
         let text = inputs::read_text(path, inputs::Kind::Experiment, inputs::Origin::Under(dir))?;
-        let file = Self::from_toml_within(&text, check, budget).map_err(|error| {
+        let file = Self::from_toml_within(&text, budget).map_err(|error| {
             ExperimentFileError::Invalid {
                 file: path.to_path_buf(),
                 error,
@@ -302,16 +291,12 @@ impl PaperFile {
 
     /// Parses and validates the text of an experiment file (errors without the file name;
     /// [`PaperFile::load`] adds it).
-    pub fn from_toml(text: &str, check: CheckJob) -> Result<Self, ExperimentError> {
-        Self::from_toml_within(text, check, &mut crate::sweep::MAX_EXPANSION.clone())
+    pub fn from_toml(text: &str) -> Result<Self, ExperimentError> {
+        Self::from_toml_within(text, &mut crate::sweep::MAX_EXPANSION.clone())
     }
 
     /// [`PaperFile::from_toml`], its sweeps expanding into at most `budget` variants.
-    fn from_toml_within(
-        text: &str,
-        check: CheckJob,
-        budget: &mut usize,
-    ) -> Result<Self, ExperimentError> {
+    fn from_toml_within(text: &str, budget: &mut usize) -> Result<Self, ExperimentError> {
         let mut doc: toml::Table = inputs::toml_error::from_str(text)?;
         // Sweeps (crate::sweep) are taken out of the parsed TOML, the rest is read, and each
         // expanded variant is read into its place as it is made; a file without one is read
@@ -332,26 +317,26 @@ impl PaperFile {
         } else {
             inputs::toml_error::from_str(text)?
         };
-        file.validate(check)?;
+        file.validate()?;
         Ok(file)
     }
 
-    /// Every check, in one place. Field ranges are the crates' own validators
-    /// ([`IntegratorSettings::validate`], [`SchemeSpec::validate`]); the rest is checked by
-    /// building each run's path (from f(theta_ref)), scheme and network exactly as the run
-    /// does (`check`, see [`CheckJob`]): path names, durations, scales and pose, solver gains,
-    /// scheme/robot compatibility (zhang2018 needs dynamics) and solver/scheme compatibility
-    /// (the zeroing networks take equality-only QPs; a perturbation needs n + m = 9). Then the
-    /// names: ids and labels that are unsafe as file names, experiment ids, variant labels and
-    /// run keys that repeat, and slugs (file names of traces and figures) that collide.
-    fn validate(&self, check: CheckJob) -> Result<(), ExperimentError> {
+    /// Every check of the file as data, in one place. Field ranges are the crates' own
+    /// validators ([`IntegratorSettings::validate`], [`SchemeSpec::validate`]); the robot's
+    /// joint count against the poses, the mounts, the numerical methods against the path's
+    /// duration; then the names: ids and labels that are unsafe as file names, experiment ids,
+    /// variant labels and run keys that repeat, and slugs (file names of traces and figures)
+    /// that collide. What only building a run can tell (path names, durations, scales and
+    /// pose, solver gains, scheme/robot compatibility, solver/scheme compatibility) is the
+    /// engine's check, which the orchestrator runs on every [`DeclaredRun`] after loading.
+    fn validate(&self) -> Result<(), ExperimentError> {
         check_name(&self.paper, MAX_EXPERIMENT_ID, FieldAt::Paper)?;
         check_id(&self.paper, FieldAt::Paper)?;
         // Hash sets, not lists: a sweep of 10^6 variants is validated in linear time. (An
         // experiment id is its own slug, so two ids share a file name only when they are equal.)
         let mut ids_seen: HashSet<&str> = HashSet::new();
         for (i, e) in self.experiments.iter().enumerate() {
-            self.validate_experiment(i, e, &mut ids_seen, check)?;
+            self.validate_experiment(i, e, &mut ids_seen)?;
         }
         Ok(())
     }
@@ -365,13 +350,8 @@ impl PaperFile {
         index: usize,
         e: &'a Experiment,
         ids_seen: &mut HashSet<&'a str>,
-        check: CheckJob,
     ) -> Result<(), ExperimentError> {
-        let at = |field: &str| FieldAt::Experiment {
-            index,
-            id: e.id.clone(),
-            field: field.to_string(),
-        };
+        let at = |field: &str| experiment_at(index, e, field);
         check_name(&e.id, MAX_EXPERIMENT_ID, at("id"))?;
         check_id(&e.id, at("id"))?;
         if !e.id.starts_with(&format!("{}-", self.paper)) {
@@ -407,15 +387,9 @@ impl PaperFile {
         }
         let mut names = VariantNames::default();
         for (j, v) in e.variants.iter().enumerate() {
-            let vat = |field: &str| FieldAt::Variant {
-                experiment: index,
-                id: e.id.clone(),
-                index: j,
-                label: v.label.clone(),
-                field: field.to_string(),
-            };
+            let vat = |field: &str| variant_at((index, e), (j, v), field);
             check_variant_names(v, &vat, &mut names)?;
-            self.validate_variant(e, v, n, &at, &vat, check)?;
+            self.validate_variant(e, v, n, &vat)?;
         }
         Ok(())
     }
@@ -429,9 +403,7 @@ impl PaperFile {
         e: &Experiment,
         v: &Variant,
         n: usize,
-        at: &dyn Fn(&str) -> FieldAt,
         vat: &dyn Fn(&str) -> FieldAt,
-        check: CheckJob,
     ) -> Result<(), ExperimentError> {
         let robot = v.robot.as_deref().unwrap_or(&e.robot);
         let vn = robot_dof(robot).map_err(|e| field(vat("robot"), e))?;
@@ -469,7 +441,7 @@ impl PaperFile {
                 l.check(vn, velocity).map_err(|err| field(vat(name), err))?;
             }
         }
-        self.validate_runs(e, v, at, vat, check)?;
+        self.validate_runs(e, v, vat)?;
         if let Some(f) = &v.expected_failure {
             self.check_expected_failure(e, v, f, vat)?;
         }
@@ -477,16 +449,13 @@ impl PaperFile {
     }
 
     /// The runs of variant `v`: its numerical methods' settings against the path's duration,
-    /// then each run built by `check` (an error placed at the field at fault: a solver, a
-    /// numerical method, the variant's or the experiment's path, ...), its solver's label and
-    /// its run key (valid, and once in the variant).
+    /// then each run's solver label and run key (valid, and once in the variant). Whether a
+    /// run can be built is the engine's to say ([`DeclaredRun`]).
     fn validate_runs(
         &self,
         e: &Experiment,
         v: &Variant,
-        at: &dyn Fn(&str) -> FieldAt,
         vat: &dyn Fn(&str) -> FieldAt,
-        check: CheckJob,
     ) -> Result<(), ExperimentError> {
         let duration = v.path.as_deref().unwrap_or(&e.path).duration;
         // Run keys are experiment / variant / solver ids, and an experiment's variant
@@ -497,29 +466,14 @@ impl PaperFile {
             s.validate(duration)
                 .map_err(|err| field(vat(&format!("numerical[{k}]")), err))?;
         }
-        // The field that declares the variant's k-th run: `exact`, `solvers[i]` or
-        // `numerical[i]`, in the order of `variant_jobs`.
-        let solver_at = |k: usize| match k.checked_sub(usize::from(v.exact)) {
-            None => vat("exact"),
-            Some(i) if i < v.solvers.len() => vat(&format!("solvers[{i}]")),
-            Some(i) => vat(&format!("numerical[{}]", i - v.solvers.len())),
-        };
         for (k, job) in self.variant_jobs(e, v).iter().enumerate() {
-            check(job).map_err(|err| {
-                let place = match err.part() {
-                    JobPart::Solver => solver_at(k),
-                    JobPart::Path if v.path.is_some() => vat("path"),
-                    JobPart::Path => at("path"),
-                    part => vat(part.field()),
-                };
-                field(place, err)
-            })?;
-            check_name(&job.solver.label(), MAX_SOLVER_LABEL, solver_at(k))?;
-            job.solver_id().map_err(|e| field(solver_at(k), e))?;
+            let solver_at = || vat(&run_field(v, k));
+            check_name(&job.solver.label(), MAX_SOLVER_LABEL, solver_at())?;
+            job.solver_id().map_err(|e| field(solver_at(), e))?;
             let key = job.key();
             if keys.contains(&key) {
                 return Err(field(
-                    solver_at(k),
+                    solver_at(),
                     FieldError::RunTwice {
                         key: key.to_string(),
                     },
@@ -650,6 +604,96 @@ impl PaperFile {
     }
 }
 
+/// A run of a file with the place that declares it. This crate reads and validates the files
+/// as data and cannot build a run; the orchestrator checks each declared run with the engine's
+/// setup (`simulation::run::check_job`: robot, path from f(theta_ref), scheme and network
+/// built as the run builds them, nothing integrated) after loading, before anything runs, and
+/// places a failure with [`DeclaredRun::at_fault`]: a file is so rejected for exactly what
+/// would make one of its runs fail at t = 0, the error naming the file and the field.
+#[derive(Clone, Debug)]
+pub struct DeclaredRun<'a> {
+    /// The run.
+    pub spec: RunSpec,
+    /// Its experiment, with its index in the file.
+    experiment: (usize, &'a Experiment),
+    /// Its variant, with its index in the experiment.
+    variant: (usize, &'a Variant),
+    /// Its index among the variant's runs ([`PaperFile::variant_jobs`]).
+    run: usize,
+}
+
+impl DeclaredRun<'_> {
+    /// `error`, why the run cannot be built, placed at the field at fault
+    /// ([`SetupError::part`]): the solver's entry (`exact`, `solvers[i]` or `numerical[i]`)
+    /// for the solver, the variant's path where it has one or else the experiment's, and the
+    /// variant's field of any other part.
+    pub fn at_fault(&self, error: SetupError) -> ExperimentError {
+        let (_, v) = self.variant;
+        let vat = |name: &str| variant_at(self.experiment, self.variant, name);
+        let place = match error.part() {
+            JobPart::Solver => vat(&run_field(v, self.run)),
+            JobPart::Path if v.path.is_some() => vat("path"),
+            JobPart::Path => experiment_at(self.experiment.0, self.experiment.1, "path"),
+            part => vat(part.field()),
+        };
+        field(place, error)
+    }
+}
+
+impl PaperFile {
+    /// Every run of the file, in the order of [`PaperFile::iter_jobs`], with the place that
+    /// declares it, made one variant at a time as they are taken.
+    pub fn declared_runs(&self) -> impl Iterator<Item = DeclaredRun<'_>> + '_ {
+        self.experiments.iter().enumerate().flat_map(move |(i, e)| {
+            e.variants.iter().enumerate().flat_map(move |(j, v)| {
+                self.variant_jobs(e, v)
+                    .into_iter()
+                    .enumerate()
+                    .map(move |(run, spec)| DeclaredRun {
+                        spec,
+                        experiment: (i, e),
+                        variant: (j, v),
+                        run,
+                    })
+            })
+        })
+    }
+}
+
+/// The field `name` of experiment `e`, the `index`-th of its file.
+fn experiment_at(index: usize, e: &Experiment, name: &str) -> FieldAt {
+    FieldAt::Experiment {
+        index,
+        id: e.id.clone(),
+        field: name.to_string(),
+    }
+}
+
+/// The field `name` of variant `v` (with its index) of experiment `e` (with its index).
+fn variant_at(
+    (experiment, e): (usize, &Experiment),
+    (index, v): (usize, &Variant),
+    name: &str,
+) -> FieldAt {
+    FieldAt::Variant {
+        experiment,
+        id: e.id.clone(),
+        index,
+        label: v.label.clone(),
+        field: name.to_string(),
+    }
+}
+
+/// The field of variant `v` that declares its `k`-th run: `exact`, `solvers[i]` or
+/// `numerical[i]`, in the order of [`PaperFile::variant_jobs`].
+fn run_field(v: &Variant, k: usize) -> String {
+    match k.checked_sub(usize::from(v.exact)) {
+        None => "exact".to_string(),
+        Some(i) if i < v.solvers.len() => format!("solvers[{i}]"),
+        Some(i) => format!("numerical[{}]", i - v.solvers.len()),
+    }
+}
+
 /// The labels and ids of an experiment's variants seen so far (each label and each id once).
 #[derive(Default)]
 struct VariantNames<'a> {
@@ -749,7 +793,7 @@ fn check_integrator(s: &IntegratorSettings, at: FieldAt) -> Result<(), Experimen
 /// Loads every `*.toml` of `dir`, sorted by file name, and checks what spans files: an
 /// experiment id (or its file name, the slug) is defined in one file only, and the sweeps of
 /// all files expand into at most [`crate::sweep::MAX_EXPANSION`] variants together.
-pub fn load_dir(dir: &Path, check: CheckJob) -> Result<Vec<PaperFile>, ExperimentFileError> {
+pub fn load_dir(dir: &Path) -> Result<Vec<PaperFile>, ExperimentFileError> {
     let entries = std::fs::read_dir(dir).map_err(|source| ExperimentFileError::List {
         dir: dir.to_path_buf(),
         source,
@@ -769,7 +813,7 @@ pub fn load_dir(dir: &Path, check: CheckJob) -> Result<Vec<PaperFile>, Experimen
     // The sweeps of every file share one budget of variants.
     let mut budget = crate::sweep::MAX_EXPANSION;
     for path in &paths {
-        let file = PaperFile::load_within(path, check, &mut budget)?;
+        let file = PaperFile::load_within(path, &mut budget)?;
         for (i, e) in file.experiments.iter().enumerate() {
             if let Some(other_file) = seen.get(&e.id) {
                 return Err(ExperimentFileError::DefinedTwice {

@@ -11,13 +11,16 @@
 //! `spec::naming`. The
 //! errors of all of it are in [`error`]. [`root`] finds
 //! the project (the directory of `experiments/`, `results/` and `report/`) and the code
-//! revision runs are stamped with; [`robot_files`] registers a paper's own robot files
+//! revision runs are stamped with; [`task_set`] reads the control experiments' standard task
+//! set (`experiments/control/tasks.toml`, into `spec::task_set::TaskSet`); [`robot_files`] registers a paper's own robot files
 //! (`papers/<paper>/robots/*.toml`) with the robot registry. The solvers' own settings (network specifications,
 //! integrator settings) are crate `settings`', below this crate and the solvers alike: this
 //! crate reads them from files, it does not define them.
 //!
-//! Nothing here builds or runs a solver: the engine (crate `simulation`) builds the runs, and
-//! loading a file takes its check ([`experiment::CheckJob`]) to reject what a run would reject.
+//! Nothing here builds or runs a solver: the engine (crate `simulation`) builds the runs. A
+//! file is read and validated here as data; the orchestrator then checks every run of it with
+//! the engine's setup and places a failure at the field at fault
+//! ([`experiment::DeclaredRun`]), before anything runs.
 //! Crates that only read or present results depend on this crate, not on the engine.
 
 #![deny(missing_docs)]
@@ -28,3 +31,4 @@ mod fields;
 pub mod robot_files;
 pub mod root;
 pub mod sweep;
+pub mod task_set;

@@ -1147,7 +1147,7 @@ sweep = {{ "scheme.mu" = [0.5, 1, 2] }}
     }
 
     fn kept(traces: &str) -> Vec<bool> {
-        PaperFile::from_toml(&file(traces), |_| Ok(()))
+        PaperFile::from_toml(&file(traces))
             .unwrap()
             .jobs()
             .iter()
@@ -1178,9 +1178,7 @@ sweep = {{ "scheme.mu" = [0.5, 1, 2] }}
             "traces = { every = 2, more = 1 }",
             "traces = 3",
         ] {
-            let e = PaperFile::from_toml(&file(bad), |_| Ok(()))
-                .unwrap_err()
-                .to_string();
+            let e = PaperFile::from_toml(&file(bad)).unwrap_err().to_string();
             assert!(
                 e.contains("variant[0]")
                     && e.contains("field `traces`: must be \"all\" (the default), \"none\" or { every = k } with an integer k >= 1"),
@@ -1192,9 +1190,7 @@ sweep = {{ "scheme.mu" = [0.5, 1, 2] }}
         let plain = file("traces = \"none\"")
             .replace("sweep = { \"scheme.mu\" = [0.5, 1, 2] }\n", "")
             .replace("k_p = 1.0", "k_p = 1.0, mu = 1.0");
-        let e = PaperFile::from_toml(&plain, |_| Ok(()))
-            .unwrap_err()
-            .to_string();
+        let e = PaperFile::from_toml(&plain).unwrap_err().to_string();
         assert!(e.contains("unknown field `traces`"), "{e}");
     }
 }

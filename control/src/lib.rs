@@ -24,7 +24,9 @@
 //!   `results/cycles.csv` (the rows: [`records::control`]).
 //!
 //! The standard task set and the budget of its runs are declared in
-//! `experiments/control/tasks.toml` ([`task::standard_task_set`]).
+//! `experiments/control/tasks.toml`; the orchestrator reads it (`catalog::task_set`) and hands
+//! it over as data (`spec::task_set::TaskSet`), with every run of the experiment files: this
+//! crate reads no file.
 
 // The modules used only inside the crate; what other crates use is re-exported below or lives
 // in the public modules.
@@ -43,4 +45,3 @@ mod trend;
 
 pub use error::ControlError;
 pub use reproduce::{reproduce, Summary};
-pub use task::{standard_task_set, Budget, TaskSet};

@@ -16,7 +16,7 @@ use crate::latency::Latency;
 use crate::method::{Method, Numerical};
 use crate::network_tick::{products_per_evaluation, Discretisation};
 use crate::stability::{gain, LimitProbe};
-use crate::task::{load_tasks, with_task, Budget, Task, TaskArm, TaskSet};
+use crate::task::{load_tasks, with_task, Task, TaskArm};
 use crate::tick::TickSolver;
 use crate::trend::classify;
 use records::control::{steps_needed, ClaimCheck};
@@ -28,6 +28,7 @@ use solvers::neural::build_solver;
 use solvers::HotActiveSet;
 use spec::ids::SolverId;
 use spec::run::RunSpec;
+use spec::task_set::{Budget, TaskSet};
 use store::results_dir;
 
 /// The method label of the continuous-time exact column in the many-cycles results.

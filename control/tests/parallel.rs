@@ -3,7 +3,7 @@
 //! (10 ms, one swept period, three cycles) and kong2019's two tasks (a scratch experiments
 //! directory with their file and a task set of its own).
 
-use control::{reproduce, standard_task_set};
+use control::reproduce;
 use records::control::{ClaimCheck, ControlRow};
 use std::path::{Path, PathBuf};
 use store::results_dir;
@@ -24,9 +24,9 @@ fn scratch(name: &str) -> PathBuf {
 /// the claim's check runs without their latencies (wall-clock).
 fn run_on(threads: usize, experiments: &Path) -> (PathBuf, Vec<ClaimCheck>) {
     let out = scratch(&format!("out-{threads}"));
-    let mut set = standard_task_set(experiments).unwrap();
+    let mut set = catalog::task_set::load(experiments).unwrap();
     set.budget.h = 1e-2;
-    let jobs: Vec<_> = catalog::experiment::load_dir(experiments, simulation::run::check_job)
+    let jobs: Vec<_> = catalog::experiment::load_dir(experiments)
         .unwrap()
         .iter()
         .flat_map(|f| f.jobs())
@@ -72,7 +72,7 @@ fn two_threads_give_the_rows_of_one() {
         experiments.join("kong2019.toml"),
     )
     .unwrap();
-    let tasks = experiments.join(control::task::TASK_SET_FILE);
+    let tasks = experiments.join(catalog::task_set::TASK_SET_FILE);
     std::fs::create_dir_all(tasks.parent().unwrap()).unwrap();
     std::fs::write(
         &tasks,

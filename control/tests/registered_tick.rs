@@ -5,7 +5,7 @@
 
 use control::control_loop::{run_loop, LoopOutcome, LoopSettings};
 use control::method::{Method, Numerical};
-use control::task::{load_tasks, standard_task_set, with_task};
+use control::task::{load_tasks, with_task};
 use settings::qp_solver::{QpSolverInfo, QpSolverSettings};
 use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -16,8 +16,8 @@ static BUILT: AtomicUsize = AtomicUsize::new(0);
 /// 300 ticks of the first standard task with `method`.
 fn run(method: &Method) -> LoopOutcome {
     let experiments = Path::new(env!("CARGO_MANIFEST_DIR")).join("../experiments");
-    let set = standard_task_set(&experiments).unwrap();
-    let jobs: Vec<_> = catalog::experiment::load_dir(&experiments, simulation::run::check_job)
+    let set = catalog::task_set::load(&experiments).unwrap();
+    let jobs: Vec<_> = catalog::experiment::load_dir(&experiments)
         .unwrap()
         .iter()
         .flat_map(|f| f.jobs())

@@ -164,6 +164,7 @@
 //! store, inputs) are not re-exported whole: the command line (`reproduce`) and the
 //! report are built on them, and what a user of the library needs is named here.
 
+use catalog::error::ExperimentFileError;
 use catalog::experiment::{load_dir, PaperFile};
 use spec::ids::PaperId;
 use spec::run::RunSpec;
@@ -210,8 +211,10 @@ pub fn project_root() -> Result<PathBuf, Error> {
 }
 
 /// Every run (job) of the experiment files in `root/experiments/`, each file checked as the
-/// command line checks it before anything runs (the papers' own robot files,
-/// `root/papers/<paper>/robots/*.toml`, registered first).
+/// command line checks it before anything runs: read and validated as data by crate
+/// `catalog`, then every run built by the engine's setup (`simulation::run::check_job`), a
+/// failure placed at its field (`catalog::experiment::DeclaredRun::at_fault`). The papers' own
+/// robot files, `root/papers/<paper>/robots/*.toml`, are registered first.
 pub fn jobs(root: &Path) -> Result<Vec<RunSpec>, Error> {
     Ok(files(root)?.iter().flat_map(PaperFile::jobs).collect())
 }
@@ -237,10 +240,17 @@ pub fn paper(root: &Path, paper: &PaperId) -> Result<Vec<RunSpec>, Error> {
 /// the papers' own robot files registered first.
 fn files(root: &Path) -> Result<Vec<PaperFile>, Error> {
     catalog::robot_files::register_paper_robots(&root.join("papers"));
-    Ok(load_dir(
-        &root.join("experiments"),
-        simulation::run::check_job,
-    )?)
+    let dir = root.join("experiments");
+    let files = load_dir(&dir)?;
+    for file in &files {
+        file.declared_runs()
+            .try_for_each(|run| simulation::run::check_job(&run.spec).map_err(|e| run.at_fault(e)))
+            .map_err(|error| ExperimentFileError::Invalid {
+                file: dir.join(&file.file_name),
+                error,
+            })?;
+    }
+    Ok(files)
 }
 
 /// The run of the experiment files keyed (experiment id, variant id, solver id), its

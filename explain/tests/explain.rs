@@ -12,13 +12,12 @@ use records::attribution::Component;
 use records::ladder::LadderMethod;
 use settings::integrator::Method;
 use settings::solver_spec::SolverSpec;
-use simulation::run::check_job;
 use spec::run::RunSpec;
 use spec::run::SolverChoice;
 
 fn jobs() -> Vec<RunSpec> {
     let root = catalog::root::from_current_dir().unwrap();
-    load_dir(&root.join("experiments"), check_job)
+    load_dir(&root.join("experiments"))
         .unwrap()
         .iter()
         .flat_map(|f| f.jobs())

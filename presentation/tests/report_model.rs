@@ -1,9 +1,10 @@
 //! The report formats the report model and decides nothing while it writes a page: no module
 //! of `presentation/src/report/` calls or imports a function of analysis's verdict modules
 //! (the `pub fn`s of those modules' sources, read here); it takes their types and constants
-//! and the model (`analysis::report_model`), built once per render. The sections not yet
-//! moved into the model are listed in [`PENDING`], and this test fails when one of them no
-//! longer calls its module, so the list only shrinks.
+//! and the model (`analysis::report_model`), built once per render. A module's tests (from
+//! `#[cfg(test)]` on, the end of a file by this crate's convention) render nothing of the
+//! report: they may prepare a page's inputs as the results' writers do (the fits of
+//! `results/dof-cost.csv`, `analysis::fits::fit_rows`).
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -29,14 +30,6 @@ const VERDICT_MODULES: [&str; 16] = [
     "sweep_summary",
 ];
 
-/// Sections that still call analysis while they format, as (report module file, analysis
-/// module): not yet in the model (docs/reference/layout.md).
-const PENDING: [(&str, &str); 3] = [
-    ("why.rs", "drift_attribution"),
-    ("performance.rs", "performance"),
-    ("performance.rs", "fits"),
-];
-
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
 }
@@ -60,9 +53,11 @@ fn sources(dir: &Path) -> Vec<PathBuf> {
     out
 }
 
-/// `text` without its comments (lines from `//` on).
+/// `text` without its comments (lines from `//` on) and without its tests (from the line
+/// `#[cfg(test)]` on).
 fn code(text: &str) -> String {
     text.lines()
+        .take_while(|l| l.trim() != "#[cfg(test)]")
         .map(|l| l.split("//").next().unwrap_or(""))
         .collect::<Vec<_>>()
         .join("\n")
@@ -124,7 +119,7 @@ fn uses(code: &str, module: &str, functions: &BTreeSet<String>) -> Vec<String> {
 }
 
 #[test]
-fn the_report_calls_no_verdict_function_outside_the_pending_sections() {
+fn the_report_calls_no_verdict_function() {
     let report = root().join("presentation/src/report");
     let files = sources(&report);
     assert!(files.len() > 10, "presentation/src/report: too few modules");
@@ -135,25 +130,13 @@ fn the_report_calls_no_verdict_function_outside_the_pending_sections() {
         for file in &files {
             let name = file.file_name().and_then(|n| n.to_str()).unwrap_or("");
             let found = uses(&code(&read(file)), module, &functions);
-            let pending = PENDING.contains(&(name, module));
-            if pending {
-                assert!(
-                    !found.is_empty(),
-                    "{name} no longer calls analysis::{module}: remove it from PENDING"
-                );
-            } else {
-                offences.extend(found.into_iter().map(|f| format!("{name}: {f}")));
-            }
+            offences.extend(found.into_iter().map(|f| format!("{name}: {f}")));
         }
     }
     assert!(
         offences.is_empty(),
         "report modules decide while they format (move it into analysis::report_model):\n{}",
         offences.join("\n")
-    );
-    eprintln!(
-        "note: {} sections still call analysis while they format (PENDING): {PENDING:?}",
-        PENDING.len()
     );
 }
 
@@ -190,5 +173,11 @@ fn the_detector_finds_a_call_an_import_and_an_alias() {
     )
     .is_empty());
     assert!(uses("use analysis::paper_verdict_x::decide;", m, &functions).is_empty());
+    // A call in a module's tests is not the page's; one before them is.
+    let with_tests =
+        "fn page() {}\n#[cfg(test)]\nmod tests {\n    analysis::paper_verdict::decide(p);\n}";
+    assert!(uses(&code(with_tests), m, &functions).is_empty());
+    let before = "fn page() { analysis::paper_verdict::decide(p); }\n#[cfg(test)]\nmod tests {}";
+    assert_eq!(uses(&code(before), m, &functions).len(), 1);
     assert!(verdict_functions("paper_verdict").contains("decide"));
 }

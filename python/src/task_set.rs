@@ -5,10 +5,10 @@
 
 use crate::error::{NoSolver, TaskError};
 use crate::network::PyQpDims;
-use catalog::experiment::load_dir;
 use pyo3::prelude::*;
+use reproduce::experiments::load_dir;
 use serde::Serialize;
-use simulation::run::{check_job, qp_shape};
+use simulation::run::qp_shape;
 use spec::run::RunSpec;
 use spec::run::SolverChoice;
 use spec::scheme::Level;
@@ -192,7 +192,7 @@ impl PyTask {
 /// robot files, `root/papers/<paper>/robots/*.toml`, registered first).
 pub fn load_tasks(root: &Path) -> Result<Vec<PyTask>, TaskError> {
     catalog::robot_files::register_paper_robots(&root.join("papers"));
-    let files = load_dir(&root.join("experiments"), check_job)?;
+    let files = load_dir(&root.join("experiments"))?;
     let mut tasks = Vec::new();
     for file in &files {
         let jobs = file.jobs();

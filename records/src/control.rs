@@ -20,12 +20,6 @@ use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 use spec::ids::{ExperimentId, SolverId, VariantId};
 
-/// The control period of the control experiments' verdicts (s): the period every method runs
-/// at, beside the sweep of the networks and the active set over other periods. The rows carry
-/// each run's period (`h_ms`) but not which period is the main one, so the experiments (their
-/// default budget) and the report take it from here.
-pub const MAIN_H: f64 = 1e-3;
-
 /// How a run at a control rate ended (the `status` column).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -271,7 +265,7 @@ pub struct ClaimRow {
     pub variant_id: VariantId,
     /// The network's solver id.
     pub solver_id: SolverId,
-    /// The control period h (ms): [`MAIN_H`].
+    /// The control period h (ms): [`spec::task_set::MAIN_H`].
     pub h_ms: f64,
     /// The accuracy asked for: |x - x*|_inf / max(1, |x*|_inf) at every tick
     /// (`analysis::control_claim::ACCURACY`).

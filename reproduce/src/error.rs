@@ -128,6 +128,9 @@ pub enum ReproduceError {
     Score(#[from] ScoreError),
     #[error(transparent)]
     Control(#[from] control::ControlError),
+    /// The control experiments' standard task set cannot be read (`catalog::task_set`).
+    #[error(transparent)]
+    TaskSet(#[from] catalog::error::TaskSetError),
     #[error(transparent)]
     Timing(#[from] crate::timing::TimingError),
     #[error(transparent)]

@@ -9,7 +9,8 @@
 //! [`cost`], [`score`] (a trajectory made elsewhere, also `driftbench.score` in Python); the
 //! task cards the report mode writes ([`task_card`]); beside them what the modes share: the
 //! options ([`options`]), the command line ([`cli`]), the project's directories
-//! ([`project`]), the papers as data ([`papers`]), the selection of runs ([`select`]), the
+//! ([`project`]), the experiment files with every run checked ([`experiments`]), the papers as
+//! data ([`papers`]), the selection of runs ([`select`]), the
 //! results directory ([`results`]), the summary printed ([`summary`]) and the code revision
 //! embedded at build time ([`revision`]).
 
@@ -17,6 +18,7 @@ pub mod baseline;
 pub mod cli;
 pub mod cost;
 pub mod error;
+pub mod experiments;
 pub mod explanation;
 pub mod inference;
 pub mod journal;

@@ -4,7 +4,7 @@
 
 use crate::error::ReproduceError;
 use crate::project::Project;
-use catalog::experiment::{load_dir, PaperFile};
+use catalog::experiment::PaperFile;
 use records::runs::{merge, RunRow};
 use simulation::run::RunRecord;
 use spec::run::RunSpec;
@@ -14,12 +14,10 @@ use std::collections::HashSet;
 use store::migrate::LabelIndex;
 use store::results_dir::ResultsDir;
 
-/// The experiment files of the project, loaded and validated.
+/// The experiment files of the project, loaded and validated, every run checked
+/// ([`crate::experiments`]).
 pub fn experiment_files(project: &Project) -> Result<Vec<PaperFile>, ReproduceError> {
-    Ok(load_dir(
-        &project.experiments_dir,
-        simulation::run::check_job,
-    )?)
+    Ok(crate::experiments::load_dir(&project.experiments_dir)?)
 }
 
 /// Every run the experiment files describe (what migration and pruning compare the stored

@@ -156,9 +156,12 @@ fn fresh_control(
         store::error::IoAction::Write,
     ))?;
     eprintln!("re-running the control experiments for the gate");
-    let ran = control::standard_task_set(&project.experiments_dir)
-        .and_then(|set| control::reproduce(&set, jobs, &scratch, |m| eprintln!("{m}")))
+    let ran = catalog::task_set::load(&project.experiments_dir)
         .map_err(ReproduceError::from)
+        .and_then(|set| {
+            control::reproduce(&set, jobs, &scratch, |m| eprintln!("{m}"))
+                .map_err(ReproduceError::from)
+        })
         .and_then(|_| {
             store::control::read(&scratch, store::results_dir::CONTROL)
                 .map_err(|e| control::ControlError::from(e).into())
@@ -211,9 +214,16 @@ fn publish(
     }
     // The control experiments (control crate) with a whole, unselected reproduction.
     if plan.selection.is_whole() {
-        match control::standard_task_set(&project.experiments_dir).and_then(|set| {
-            control::reproduce(&set, all.jobs(), &project.results_dir, |m| eprintln!("{m}"))
-        }) {
+        // The task set is the orchestrator's to read (catalog::task_set); the control crate
+        // takes it as data. A project without one, or whose tasks are not among its runs,
+        // has no control experiments.
+        let ran = catalog::task_set::load(&project.experiments_dir)
+            .map_err(ReproduceError::from)
+            .and_then(|set| {
+                control::reproduce(&set, all.jobs(), &project.results_dir, |m| eprintln!("{m}"))
+                    .map_err(ReproduceError::from)
+            });
+        match ran {
             Ok(s) => {
                 let verdict = judge_claim(&project.results_dir, s.claim_checks)?;
                 eprintln!(
@@ -225,12 +235,13 @@ fn publish(
                 clock.lap(Phase::Control, Some(s.control_runs + s.cycle_runs));
             }
             Err(
-                e @ (control::ControlError::UnknownTask(_) | control::ControlError::NoTaskSet(_)),
+                e @ (ReproduceError::Control(control::ControlError::UnknownTask(_))
+                | ReproduceError::TaskSet(catalog::error::TaskSetError::Missing(_))),
             ) => {
                 eprintln!("control experiments skipped: {e}");
                 clock.skip(Phase::Control, e.to_string());
             }
-            Err(e) => return Err(e.into()),
+            Err(e) => return Err(e),
         }
         let timed =
             crate::timing::time_alone(all.jobs(), results, &project.root.join("papers"), git_rev)?;

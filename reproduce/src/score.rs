@@ -13,7 +13,7 @@ use crate::error::{ReproduceError, ScoreError};
 use crate::options::ScoreOptions;
 use crate::project::Project;
 use crate::summary::{emit, summary};
-use catalog::experiment::{load_dir, PaperFile};
+use catalog::experiment::PaperFile;
 use inputs::trajectory::read;
 use inputs::trajectory::Columns;
 use presentation::figures::run_figure;
@@ -21,7 +21,7 @@ use records::runs::{merge, RunRow};
 use records::trace::trace_csv;
 use records::trajectory::score_row;
 use simulation::row::run_row;
-use simulation::run::{check_job, RunRecord};
+use simulation::run::RunRecord;
 use simulation::score_trajectory::score_trajectory;
 use spec::ids::SolverId;
 use spec::run::RunSpec;
@@ -130,7 +130,7 @@ pub fn significant_digits(v: f64) -> usize {
 /// The task `"<experiment> / <variant>"` (ids) of the experiment files in `experiments_dir`, as
 /// its first run (a trajectory is scored on its robot, path, scheme and poses only).
 pub fn find_task(experiments_dir: &Path, task: &TaskKey) -> Result<RunSpec, ScoreError> {
-    load_dir(experiments_dir, check_job)?
+    crate::experiments::load_dir(experiments_dir)?
         .iter()
         .flat_map(PaperFile::jobs)
         .find(|j| j.task() == *task)

@@ -178,14 +178,13 @@ pub fn check_selection(files: &[PaperFile], selection: &Selection) -> Result<(),
 #[cfg(test)]
 mod tests {
     use super::*;
-    use catalog::experiment::load_dir;
+    use crate::experiments::load_dir;
     use std::path::Path;
 
     /// The project's experiment files and their runs.
     fn project() -> (Vec<PaperFile>, Vec<RunSpec>) {
         let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../experiments");
-        let files =
-            load_dir(&dir, simulation::run::check_job).expect("the project's experiment files");
+        let files = load_dir(&dir).expect("the project's experiment files");
         let all = files.iter().flat_map(|f| f.jobs()).collect();
         (files, all)
     }

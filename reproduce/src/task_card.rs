@@ -12,15 +12,15 @@
 //! recorded in `report/manifest.toml` like the figures (a stale card that the program wrote and
 //! nobody edited is removed). [`cards`] renders them in memory.
 
+use crate::experiments::load_dir;
 use catalog::error::ExperimentFileError;
-use catalog::experiment::{load_dir, PaperFile};
+use catalog::experiment::PaperFile;
 use presentation::task_card::{
     self as card, CardRun, Kinematics as CardKinematics, MountCard, PathCard, QpCard, RobotCard,
     RunSettings, SchemeCard, SchemeForm, StartCard, TaskCard,
 };
 use qp::Qp;
 use robots::registry::{robot_by_name, Kinematics, Model};
-use simulation::run::check_job;
 use simulation::task_numbers::{task_numbers, TaskNumbers};
 use spec::run::RunSpec;
 use spec::run::SetupError;
@@ -56,7 +56,7 @@ pub enum TaskCardError {
 /// The cards of every task of the experiment files in `experiments_dir`: file name -> Markdown,
 /// the index ([`INDEX`]) included.
 pub fn cards(experiments_dir: &Path) -> Result<BTreeMap<String, String>, TaskCardError> {
-    let files = load_dir(experiments_dir, check_job)?;
+    let files = load_dir(experiments_dir)?;
     // Every run of a task, in the files' order; the first one describes the task.
     let mut tasks: Vec<(String, Vec<RunSpec>)> = Vec::new();
     for job in files.iter().flat_map(PaperFile::jobs) {

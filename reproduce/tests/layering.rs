@@ -19,6 +19,10 @@
 //!   data), which links none;
 //! - the engine (simulation, control) links no experiment-file crate (catalog): it builds a
 //!   run from spec's `RunSpec`, and the orchestrator (reproduce) loads the files;
+//! - the control experiments read no file: control links neither catalog nor the reader of
+//!   files from outside (`inputs`) directly, and no source of it opens or reads a file; their
+//!   task set is read by catalog (`catalog::task_set`) and handed over as data
+//!   (`spec::task_set::TaskSet`);
 //! - the engine (simulation, control) links no verdict crate (analysis): it runs and writes
 //!   rows, and the papers' claims are decided from the rows (zhong2021's efficiency claim in
 //!   `analysis::control_claim`, called by the orchestrator and the report);
@@ -256,6 +260,67 @@ fn the_engine_reads_no_experiment_file() {
             found.join("\n  ")
         );
     }
+}
+
+/// What in `code` opens or reads a file, one name per finding.
+fn file_reads(code: &str) -> Vec<&'static str> {
+    [
+        "std::fs",
+        "fs::read",
+        "File::open",
+        "read_to_string",
+        "inputs::",
+    ]
+    .into_iter()
+    .filter(|name| code.contains(name))
+    .collect()
+}
+
+#[test]
+fn the_control_experiments_read_no_file() {
+    let graph = workspace();
+    assert!(
+        graph["catalog"].iter().any(|d| d == "inputs"),
+        "catalog reads the task set through the input reader: the graph must show it"
+    );
+    let direct: Vec<&String> = graph["control"]
+        .iter()
+        .filter(|d| *d == "inputs" || *d == "catalog")
+        .collect();
+    assert!(
+        direct.is_empty(),
+        "control links a reader of files {direct:?} (its task set is catalog::task_set's to \
+         read, and comes as spec::task_set::TaskSet)"
+    );
+    let src = root().join("control/src");
+    let mut found = Vec::new();
+    for entry in std::fs::read_dir(&src).unwrap_or_else(|e| panic!("{}: {e}", src.display())) {
+        let path = entry.expect("a directory entry").path();
+        if path.extension().is_none_or(|e| e != "rs") {
+            continue;
+        }
+        let text =
+            std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        // Code only: the line before a `//` (the docs may name the file the set comes from).
+        let code: String = text
+            .lines()
+            .map(|l| l.split("//").next().unwrap_or(""))
+            .collect::<Vec<_>>()
+            .join("\n");
+        for name in file_reads(&code) {
+            found.push(format!("{}: {name}", path.display()));
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "control reads a file (the orchestrator reads, the engine takes data):\n  {}",
+        found.join("\n  ")
+    );
+    assert_eq!(
+        file_reads("let t = std::fs::read_to_string(p)?;"),
+        ["std::fs", "fs::read", "read_to_string"],
+        "the detector finds a read"
+    );
 }
 
 #[test]

@@ -20,10 +20,10 @@
 //! is set (`.ci/run` sets it): there a missing Octave fails the test, so CI cannot pass
 //! vacuously.
 
-use catalog::experiment::{load_dir, PaperFile};
+use catalog::experiment::PaperFile;
 use records::runs::RunRow;
+use reproduce::experiments::load_dir;
 use simulation::row::run_row;
-use simulation::run::check_job;
 use simulation::run::run_job;
 use spec::run::SolverChoice;
 use std::path::{Path, PathBuf};
@@ -84,7 +84,7 @@ fn score(root: &Path, file: &Path, out: &Path) -> RunRow {
 
 /// driftbench's own run of the task's `ZNN` at tight tolerances.
 fn own_run(root: &Path) -> RunRow {
-    let mut job = load_dir(&root.join("experiments"), check_job)
+    let mut job = load_dir(&root.join("experiments"))
         .unwrap()
         .iter()
         .flat_map(PaperFile::jobs)

@@ -3,10 +3,9 @@
 //! timing columns aside.
 
 use analysis::gate::compare;
-use catalog::experiment::load_dir;
 use records::runs::RunRow;
+use reproduce::experiments::load_dir;
 use simulation::row::run_row;
-use simulation::run::check_job;
 use simulation::runner::run_jobs;
 use store::runs::read_runs;
 
@@ -15,7 +14,7 @@ fn fresh_run_matches_the_committed_results() {
     let root = catalog::root::from_current_dir().unwrap();
     let committed =
         read_runs(&root.join("results/runs.csv")).expect("results/runs.csv is committed");
-    let files = load_dir(&root.join("experiments"), check_job).unwrap();
+    let files = load_dir(&root.join("experiments")).unwrap();
     let jobs: Vec<_> = files.iter().flat_map(|f| f.jobs()).collect();
     let fresh: Vec<RunRow> = run_jobs(&jobs, false)
         .iter()
@@ -75,7 +74,7 @@ fn the_gate_catches_changes() {
 #[test]
 fn two_runs_give_identical_rows() {
     let root = catalog::root::from_current_dir().unwrap();
-    let files = load_dir(&root.join("experiments"), check_job).unwrap();
+    let files = load_dir(&root.join("experiments")).unwrap();
     let jobs: Vec<_> = files
         .iter()
         .flat_map(|f| f.jobs())

@@ -2,8 +2,8 @@
 //! suite's own ZNN run) is scored with the run's drift, and its row, trace and figure are
 //! written under --score-out; a task that does not exist is refused with the library's message.
 
-use catalog::experiment::{load_dir, PaperFile};
-use simulation::run::check_job;
+use catalog::experiment::PaperFile;
+use reproduce::experiments::load_dir;
 use simulation::run::run_job;
 use simulation::simulate::Outcome;
 use spec::run::SolverChoice;
@@ -20,7 +20,7 @@ fn reproduce() -> Command {
 #[test]
 fn a_trajectory_file_is_scored_on_its_task() {
     let root = catalog::root::from_current_dir().unwrap();
-    let job = load_dir(&root.join("experiments"), check_job)
+    let job = load_dir(&root.join("experiments"))
         .unwrap()
         .iter()
         .flat_map(PaperFile::jobs)

@@ -2,9 +2,9 @@
 //! in memory, never over the committed files), one card per task, and a card carries the
 //! suite's own check values.
 
-use catalog::experiment::{load_dir, PaperFile};
+use catalog::experiment::PaperFile;
+use reproduce::experiments::load_dir;
 use reproduce::task_card::{cards, INDEX, TASKS};
-use simulation::run::check_job;
 use std::collections::BTreeSet;
 
 const REGENERATE: &str = "regenerate with `cargo run --release -p reproduce -- report`";
@@ -33,7 +33,7 @@ fn the_committed_cards_are_the_generated_ones() {
 fn every_task_has_a_card_with_its_check_values() {
     let root = catalog::root::from_current_dir().unwrap();
     let generated = cards(&root.join("experiments")).unwrap();
-    let tasks: BTreeSet<String> = load_dir(&root.join("experiments"), check_job)
+    let tasks: BTreeSet<String> = load_dir(&root.join("experiments"))
         .unwrap()
         .iter()
         .flat_map(PaperFile::jobs)

@@ -8,8 +8,8 @@
 //! [`numerical`]), observes every accepted step ([`observer`] into [`metrics`]: drift, position
 //! error, margins, the score against the exact optimum) and returns a
 //! [`run::RunRecord`]; [`runner`] runs many in parallel. [`run::check_job`] builds a run's parts
-//! without integrating: loading an experiment file takes it (the orchestrator hands it to
-//! crate `catalog`), to reject what a run would reject. Why a run failed: [`error`]. A record as a row of `results/runs.csv`: [`row`];
+//! without integrating: the orchestrator checks every run of a loaded experiment file with it,
+//! before anything runs, to reject what a run would reject. Why a run failed: [`error`]. A record as a row of `results/runs.csv`: [`row`];
 //! the row's schema, the trace's and writing them are the `records` crate's work, presenting
 //! them the `presentation` crate's. [`score_trajectory`] scores a trajectory
 //! produced elsewhere on a task, with the metrics and the score of a run.

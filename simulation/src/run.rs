@@ -86,8 +86,9 @@ fn run_job_as(job: &RunSpec, network: Option<NetworkBuilder<'_>>) -> RunRecord {
 
 /// Builds everything a run builds before integrating (robot, path from f(theta_ref), scheme,
 /// and the network for the scheme's QP sizes) without integrating anything, so that an
-/// experiment file is rejected at load for exactly what would make its run fail at t = 0.
-/// The error names the part (and so the file's field) and the builder's own message.
+/// experiment file is rejected, once loaded and before anything runs, for exactly what would
+/// make its run fail at t = 0 (the orchestrator checks every run of the files with it). The
+/// error names the part (and so the file's field) and the builder's own message.
 pub fn check_job(job: &RunSpec) -> Result<(), SetupError> {
     let model = job_model(job)?;
     let joints = model.dof();

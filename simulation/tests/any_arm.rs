@@ -4,8 +4,7 @@
 //! checks every job, and run with kong2019's ZNN scheme (eq. 22) on a circle, the exact optimum
 //! in the loop: every run completes and tracks the circle.
 
-use catalog::experiment::load_dir;
-use simulation::run::{check_job, run_job};
+use simulation::run::run_job;
 use simulation::simulate::Outcome;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -78,7 +77,7 @@ fn arms_of_4_8_9_and_150_joints_run_from_files() {
     write(&root.join("experiments/any-arm.toml"), &toml);
 
     catalog::robot_files::register_paper_robots(&root.join("papers"));
-    let files = load_dir(&root.join("experiments"), check_job).expect("the experiments load");
+    let files = crate::checked::load_dir(&root.join("experiments")).expect("the experiments load");
     let jobs: Vec<_> = files.iter().flat_map(|f| f.jobs()).collect();
     assert_eq!(jobs.len(), 4);
     for job in &jobs {
@@ -138,7 +137,7 @@ fn a_urdf_arm_runs_from_files() {
     catalog::robot_files::register_paper_robots(&root.join("papers"));
     let model = robots::registry::robot_by_name("sim-urdf-arm").unwrap();
     assert!(model.has_dynamics());
-    let files = load_dir(&root.join("experiments"), check_job).expect("the experiment loads");
+    let files = crate::checked::load_dir(&root.join("experiments")).expect("the experiment loads");
     let jobs: Vec<_> = files.iter().flat_map(|f| f.jobs()).collect();
     assert_eq!(jobs.len(), 2);
     for job in &jobs {
@@ -166,7 +165,6 @@ fn a_urdf_arm_runs_from_files() {
 /// a tool offset on the Katana's closed form (no tool frame) is refused, naming `tool`.
 #[test]
 fn an_experiment_mounts_its_robot_with_a_tool_offset_and_a_base() {
-    use catalog::experiment::PaperFile;
     let theta0 = "[1.675, 2.79, -3.216, 4.187, -1.71, -2.95]";
     let mounted = |robot: &str, mount: &str, paper: &str| {
         let text = experiment(robot, 6, 2.0)
@@ -179,7 +177,7 @@ fn an_experiment_mounts_its_robot_with_a_tool_offset_and_a_base() {
         format!("paper = \"{paper}\"\ntitle = \"mounted\"\n{text}")
     };
     let mount = "tool = [0.0, 0.0, 0.1]\nbase = { xyz = [0.2, 0.0, 0.0], rpy = [0.3, 0.0, 0.5] }";
-    let file = PaperFile::from_toml(&mounted("jaco2-pen", mount, "kong2019"), check_job)
+    let file = crate::checked::from_toml(&mounted("jaco2-pen", mount, "kong2019"))
         .expect("a mounted experiment loads");
     let job = &file.jobs()[0];
     let pen = robots::registry::robot_by_name("jaco2-pen").unwrap().robot;
@@ -200,7 +198,7 @@ fn an_experiment_mounts_its_robot_with_a_tool_offset_and_a_base() {
         "label = \"ZNN (eq. 22)\"",
         "label = \"ZNN (eq. 22)\"\ntool = [0.0, 0.05, 0.0]",
     );
-    let file = PaperFile::from_toml(&text, check_job).unwrap();
+    let file = crate::checked::from_toml(&text).unwrap();
     assert_eq!(file.jobs()[0].mount.unwrap().tool, [0.0, 0.05, 0.0]);
 
     // Dynamics: a yaw keeps gravity vertical, a tilt does not.
@@ -213,14 +211,14 @@ fn an_experiment_mounts_its_robot_with_a_tool_offset_and_a_base() {
             )
     };
     let yaw = "tool = [0.0, 0.0, 0.05]\nbase = { xyz = [0.1, 0.1, 0.0], rpy = [0.0, 0.0, 1.0] }";
-    let file = PaperFile::from_toml(&dynamic(yaw), check_job).expect("a yaw loads");
+    let file = crate::checked::from_toml(&dynamic(yaw)).expect("a yaw loads");
     let record = run_job(&file.jobs()[0]);
     assert!(
         matches!(record.run.outcome, Outcome::Completed(_)),
         "{:?}",
         record.run.outcome
     );
-    let err = PaperFile::from_toml(&dynamic(mount), check_job)
+    let err = crate::checked::from_toml(&dynamic(mount))
         .unwrap_err()
         .to_string();
     assert!(err.contains("base") && err.contains("gravity"), "{err}");
@@ -232,20 +230,15 @@ fn an_experiment_mounts_its_robot_with_a_tool_offset_and_a_base() {
         "robot = \"katana6m180\"\n",
         "robot = \"katana6m180\"\ntool = [0.0, 0.0, 0.1]\n",
     );
-    let err = PaperFile::from_toml(
-        &format!("paper = \"kong2019\"\ntitle = \"t\"\n{katana}"),
-        check_job,
-    )
-    .unwrap_err()
-    .to_string();
+    let err = crate::checked::from_toml(&format!("paper = \"kong2019\"\ntitle = \"t\"\n{katana}"))
+        .unwrap_err()
+        .to_string();
     assert!(
         err.contains("`tool`") && err.contains("katana6m180"),
         "{err}"
     );
     let far = mounted("jaco2-pen", "base = { xyz = [0.0, 0.0, 20.0] }", "kong2019");
-    let err = PaperFile::from_toml(&far, check_job)
-        .unwrap_err()
-        .to_string();
+    let err = crate::checked::from_toml(&far).unwrap_err().to_string();
     assert!(
         err.contains("field `base`") || err.contains("base.xyz[2]"),
         "{err}"
@@ -322,7 +315,7 @@ fn an_example_robot_data_ur5_runs_from_a_robot_file() {
     let model = robots::registry::robot_by_name("erd-ur5").unwrap();
     assert_eq!(model.dof(), 6);
     assert!(model.has_dynamics(), "the UR5's links carry inertials");
-    let files = load_dir(&root.join("experiments"), check_job).expect("the experiments load");
+    let files = crate::checked::load_dir(&root.join("experiments")).expect("the experiments load");
     let jobs: Vec<_> = files.iter().flat_map(|f| f.jobs()).collect();
     assert_eq!(jobs.len(), 2);
     for job in &jobs {

@@ -13,10 +13,9 @@
 //!   is Clarabel's, its dQP/dt is the central difference of its QP; on a robot without a tool
 //!   frame, or in a preset scheme, the file is refused naming the file and the field.
 
-use catalog::experiment::load_dir;
 use robots::registry::robot_by_name;
 use schemes::terms::tracking::orientation_error;
-use simulation::run::{build_cyclic_parts, check_job, job_robot, run_job};
+use simulation::run::{build_cyclic_parts, job_robot, run_job};
 use simulation::simulate::Outcome;
 use solvers::exact::ExactSolver;
 use solvers::exact_path::ExactPath;
@@ -46,7 +45,7 @@ fn load(tag: &str, robots: &[(&str, String)], experiments: &str) -> Result<Vec<R
     }
     write(&root.join("experiments/composed.toml"), experiments);
     catalog::robot_files::register_paper_robots(&root.join("papers"));
-    let files = load_dir(&root.join("experiments"), check_job);
+    let files = crate::checked::load_dir(&root.join("experiments"));
     std::fs::remove_dir_all(&root).unwrap();
     files
         .map(|files| files.iter().flat_map(|f| f.jobs()).collect())

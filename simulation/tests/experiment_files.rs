@@ -1,8 +1,7 @@
 //! The experiment files: every committed file loads, every experiment of docs/experiments.md is
 //! there, and a malformed file is rejected with an error naming the file and the field.
 
-use catalog::experiment::{load_dir, PaperFile};
-use simulation::run::check_job;
+use catalog::experiment::PaperFile;
 use std::path::PathBuf;
 
 fn experiments_dir() -> PathBuf {
@@ -13,7 +12,8 @@ fn experiments_dir() -> PathBuf {
 
 #[test]
 fn every_experiment_of_the_spec_is_in_the_files() {
-    let files = load_dir(&experiments_dir(), check_job).expect("committed experiment files load");
+    let files =
+        crate::checked::load_dir(&experiments_dir()).expect("committed experiment files load");
     let ids: Vec<String> = files
         .iter()
         .flat_map(|f| f.experiments.iter().map(|e| e.id.clone()))
@@ -49,7 +49,7 @@ fn load_text(name: &str, text: &str) -> Result<PaperFile, String> {
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join(format!("{name}.toml"));
     std::fs::write(&path, text).unwrap();
-    PaperFile::load(&path, check_job).map_err(|e| e.to_string())
+    crate::checked::load(&path).map_err(|e| e.to_string())
 }
 
 const GOOD: &str = r#"
@@ -551,7 +551,7 @@ fn experiment_ids_are_unique_across_files() {
         GOOD.replace("label = \"VLTCO\"", "label = \"other\""),
     )
     .unwrap();
-    let err = load_dir(&dir, check_job)
+    let err = crate::checked::load_dir(&dir)
         .expect_err("an id defined in two files")
         .to_string();
     assert!(err.contains("b.toml") && err.contains("a.toml"), "{err}");
@@ -565,7 +565,7 @@ fn experiment_ids_are_unique_across_files() {
         GOOD.replace("id = \"jia2019-x\"", "id = \"jia2019-X\""),
     )
     .unwrap();
-    let err = load_dir(&dir, check_job)
+    let err = crate::checked::load_dir(&dir)
         .expect_err("an id that is not a slug")
         .to_string();
     assert!(
@@ -573,6 +573,6 @@ fn experiment_ids_are_unique_across_files() {
         "{err}"
     );
     std::fs::remove_file(dir.join("b.toml")).unwrap();
-    assert_eq!(load_dir(&dir, check_job).unwrap().len(), 1);
+    assert_eq!(crate::checked::load_dir(&dir).unwrap().len(), 1);
     let _ = std::fs::remove_dir_all(&dir);
 }

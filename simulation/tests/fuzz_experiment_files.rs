@@ -2,9 +2,7 @@
 //! inf, nan, huge or tiny; lines deleted or duplicated; quoted names swapped), either load or
 //! are rejected with an error; the loader never panics. Bounded (200 cases) to run in seconds.
 
-use catalog::experiment::PaperFile;
 use proptest::prelude::*;
-use simulation::run::check_job;
 
 fn committed_files() -> Vec<(String, String)> {
     let dir = catalog::root::from_current_dir()
@@ -164,7 +162,7 @@ proptest! {
         let files = committed_files();
         let (name, text) = &files[file % files.len()];
         let mutated = mutations.iter().fold(text.clone(), |t, m| apply(&t, m));
-        match PaperFile::from_toml(&mutated, check_job) {
+        match crate::checked::from_toml(&mutated) {
             Ok(f) => {
                 // A file that loads expands into runs, each with a unique key.
                 let jobs = f.jobs();
@@ -186,6 +184,6 @@ fn the_mutators_find_what_they_mutate() {
     let s: Vec<&str> = strings(text).iter().map(|&(a, b)| &text[a..b]).collect();
     assert_eq!(s, ["\"x-1\""]);
     for (_, t) in committed_files() {
-        PaperFile::from_toml(&t, check_job).unwrap();
+        crate::checked::from_toml(&t).unwrap();
     }
 }

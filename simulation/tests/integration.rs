@@ -3,6 +3,7 @@
 //! but for `use crate::common;` where they shared `tests/common/`.
 
 mod any_arm;
+mod checked;
 mod composed_schemes;
 mod examples;
 mod experiment_files;

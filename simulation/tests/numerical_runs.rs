@@ -3,15 +3,14 @@
 //! the methods' error shrinks with their tolerance, joint 6 (which cannot move the tool point on
 //! its axis) does not drift, and the experiment's limits are the ones the run respects.
 
-use catalog::experiment::PaperFile;
 use simulation::row::run_row;
-use simulation::run::{check_job, run_job};
+use simulation::run::run_job;
 use spec::run::RunSpec;
 use spec::run::SolverChoice;
 
 fn robio_jobs() -> Vec<RunSpec> {
     let root = catalog::root::from_current_dir().unwrap();
-    let file = PaperFile::load(&root.join("experiments/robio2018.toml"), check_job).unwrap();
+    let file = crate::checked::load(&root.join("experiments/robio2018.toml")).unwrap();
     file.jobs()
 }
 
@@ -99,15 +98,11 @@ fn a_numerical_solver_with_bad_settings_is_refused_naming_the_field() {
     ] {
         assert!(text.contains(from), "{from}");
         let bad = text.replacen(from, to, 1);
-        let err = PaperFile::from_toml(&bad, check_job)
-            .unwrap_err()
-            .to_string();
+        let err = crate::checked::from_toml(&bad).unwrap_err().to_string();
         assert!(err.contains(expect), "{to}: {err}");
     }
     // lambda = 0 is allowed (the paper's baseline has no repetitive term); a negative one not.
     let bad = text.replacen("lambda = 4.0", "lambda = -1.0", 1);
-    let err = PaperFile::from_toml(&bad, check_job)
-        .unwrap_err()
-        .to_string();
+    let err = crate::checked::from_toml(&bad).unwrap_err().to_string();
     assert!(err.contains("lambda") && err.contains(">= 0"), "{err}");
 }

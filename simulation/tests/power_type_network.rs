@@ -5,9 +5,9 @@
 //! accepted step) and keeps the tool on the path; faster than the constant-gain ZNN of the same
 //! file.
 
-use catalog::experiment::{load_dir, PaperFile};
+use catalog::experiment::PaperFile;
 use simulation::metrics::Score;
-use simulation::run::{check_job, run_job};
+use simulation::run::run_job;
 use simulation::simulate::Outcome;
 use spec::run::RunSpec;
 use spec::run::SolverChoice;
@@ -15,7 +15,7 @@ use spec::run::SolverChoice;
 /// The network runs of kong2019's circle.
 fn circle_jobs() -> Vec<RunSpec> {
     let root = catalog::root::from_current_dir().unwrap();
-    load_dir(&root.join("experiments"), check_job)
+    crate::checked::load_dir(&root.join("experiments"))
         .unwrap()
         .iter()
         .flat_map(PaperFile::jobs)

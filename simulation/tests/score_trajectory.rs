@@ -2,9 +2,8 @@
 //! trace (theta, thetadot at ~400 instants), scored as an external trajectory, has the run's
 //! drift exactly and its error and score to the resolution of the thinned samples.
 
-use catalog::experiment::{load_dir, PaperFile};
+use catalog::experiment::PaperFile;
 use inputs::trajectory::Trajectory;
-use simulation::run::check_job;
 use simulation::run::run_job;
 use simulation::score_trajectory::{score_trajectory, TrajectoryError};
 use simulation::simulate::{Outcome, Run};
@@ -13,7 +12,7 @@ use spec::run::SolverChoice;
 
 fn job(experiment: &str, variant: &str, neural: bool) -> RunSpec {
     let root = catalog::root::from_current_dir().unwrap();
-    load_dir(&root.join("experiments"), check_job)
+    crate::checked::load_dir(&root.join("experiments"))
         .unwrap()
         .iter()
         .flat_map(PaperFile::jobs)

@@ -1,8 +1,7 @@
 //! The scoring grid: a network run scored at every accepted step, at a bounded number of
 //! instants, or not at all, as the experiment file's `scoring` says.
 
-use catalog::experiment::{load_dir, PaperFile};
-use simulation::run::check_job;
+use catalog::experiment::PaperFile;
 use simulation::run::run_job;
 use simulation::simulate::Outcome;
 use spec::run::RunSpec;
@@ -11,7 +10,7 @@ use spec::run::SolverChoice;
 
 fn znn_job() -> RunSpec {
     let root = catalog::root::from_current_dir().unwrap();
-    load_dir(&root.join("experiments"), check_job)
+    crate::checked::load_dir(&root.join("experiments"))
         .unwrap()
         .iter()
         .flat_map(PaperFile::jobs)
@@ -79,7 +78,7 @@ solvers = [{{ kind = "znn", gamma = 1.0 }}]
         )
     };
     let scoring_of = |text: &str| {
-        PaperFile::from_toml(text, check_job)
+        crate::checked::from_toml(text)
             .map(|f| f.jobs()[1].scoring)
             .map_err(|e| e.to_string())
     };

@@ -3,13 +3,10 @@
 //! written before the grammar; kept in tests/fixtures/) described: same keys, same order, every
 //! field of every Job equal.
 
-use catalog::experiment::{load_dir, PaperFile};
-use simulation::run::check_job;
-
 #[test]
 fn sweep_experiments_expand_to_the_hand_written_runs() {
     let root = catalog::root::from_current_dir().unwrap();
-    let files = load_dir(&root.join("experiments"), check_job).unwrap();
+    let files = crate::checked::load_dir(&root.join("experiments")).unwrap();
     let committed: Vec<String> = files
         .iter()
         .flat_map(|f| f.jobs())
@@ -23,7 +20,7 @@ fn sweep_experiments_expand_to_the_hand_written_runs() {
     ];
     let mut hand: Vec<String> = Vec::new();
     for text in fixtures {
-        let file = PaperFile::from_toml(text, check_job).unwrap();
+        let file = crate::checked::from_toml(text).unwrap();
         hand.extend(file.jobs().iter().map(|j| format!("{j:?}")));
     }
     // The committed files order papers by file name, as the fixtures are listed.

@@ -13,9 +13,11 @@
 //! - [`mount`]: a robot's tool offset and base as data, and why one does not fit;
 //! - [`ids`]: validated ids (paper, experiment, variant, solver), [`run_key`]: a run's and a
 //!   task's identity made of them, and [`naming`]: the rules for ids and labels that name
-//!   files.
+//!   files;
+//! - [`task_set`]: the control experiments' standard task set (its tasks and their budget) and
+//!   their main control period.
 //!
-//! Crate `catalog` reads experiment files into these types; the engine (crate `schemes`, then
+//! Crate `catalog` reads experiment files (and the task set) into these types; the engine (crate `schemes`, then
 //! `simulation`) builds its runtime objects from them. The crate links no engine and no file
 //! format, only crate `settings` (the solvers' settings as data, a leaf like this one), so that
 //! the experiment files' reader and the results' schemas can state a run without compiling
@@ -33,4 +35,5 @@ pub mod run;
 pub mod run_key;
 pub mod scheme;
 pub mod solver_kind;
+pub mod task_set;
 pub mod terms;

@@ -94,25 +94,30 @@ exact = false
 numerical = [{ method = "equality-kkt", tolerance = 1e-8 }, { method = "clarabel" }]
 "#;
 
+/// The file of `text` as the orchestrator takes it: read by catalog, then every run built by
+/// the engine's setup, a failure placed at its field.
+fn checked(text: &str) -> Result<PaperFile, catalog::error::ExperimentError> {
+    let file = PaperFile::from_toml(text)?;
+    file.declared_runs()
+        .try_for_each(|run| check_job(&run.spec).map_err(|e| run.at_fault(e)))?;
+    Ok(file)
+}
+
 #[test]
 fn a_run_uses_the_registered_outside_solver() {
     // Before registration the file names an unknown solver, at the field.
     if settings::qp_solver::lookup(ID).is_err() {
-        let e = PaperFile::from_toml(FILE, check_job)
-            .unwrap_err()
-            .to_string();
+        let e = checked(FILE).unwrap_err().to_string();
         assert!(e.contains("unknown QP solver \"equality-kkt\""), "{e}");
     }
     register();
     let bad = FILE.replace("tolerance = 1e-8", "tolerance = 1.0");
-    let e = PaperFile::from_toml(&bad, check_job)
-        .unwrap_err()
-        .to_string();
+    let e = checked(&bad).unwrap_err().to_string();
     assert!(
         e.contains("field `numerical[0]`") && e.contains("tolerance = 1e0 must be within"),
         "{e}"
     );
-    let file = PaperFile::from_toml(FILE, check_job).unwrap();
+    let file = checked(FILE).unwrap();
     let jobs = file.jobs();
     assert_eq!(jobs.len(), 2);
     let before = BUILT.load(Ordering::SeqCst);

@@ -54,7 +54,9 @@ use analysis::cost_ratio::TimeRow;
 use analysis::cross_best::ColumnBest;
 use analysis::paper_rules::GROUP;
 use analysis::papers::{PaperValue, Papers};
-use analysis::report_model::{ControlInputs, Inference, PaperModel, ReportModel};
+use analysis::report_model::performance::Measured;
+use analysis::report_model::why::Why as WhyModel;
+use analysis::report_model::{ControlInputs, Explained, Inference, PaperModel, ReportModel};
 use analysis::sweep_summary::SweepSummary;
 use markdown::{sci, Table};
 use records::index::Runs;
@@ -66,9 +68,13 @@ use store::table::read_if_present;
 /// model's), what a page's figure links are made from.
 type Figures<'a, 'm> = (&'a [String], &'a [(&'m str, SweepSummary<'m>)]);
 
-/// The stored explanations and every inferred table, decided (the report model's), what the
-/// "why" sections are made from.
-type Why<'a, 'm> = (&'a why::Explanations, &'a [Inference<'m>]);
+/// A paper's "why" (the report model's, none for a paper outside it), the stored explanations
+/// and every inferred table, decided (the report model's): what the "why" sections are made
+/// from.
+type Why<'a, 'm> = (
+    Option<&'a WhyModel<'m>>,
+    (&'a why::Explanations, &'a [Inference<'m>]),
+);
 
 /// The `paper` value of the suite's own cross experiment.
 pub const CROSS: &str = "cross";
@@ -196,6 +202,10 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
     // Every text of papers/ escaped once, before any section shows it.
     let papers = &shown::papers(papers);
     // What the pages show that analysis decides, decided once.
+    let measured = Measured {
+        dof: dof_cost,
+        qp_replay,
+    };
     let model = ReportModel::build(
         runs,
         papers,
@@ -205,13 +215,18 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
             claims: &control.claims,
             stability: &control.stability,
         },
-        &explanations.inference,
+        Explained {
+            attribution: &explanations.attribution,
+            ladder: &explanations.ladder,
+            inference: &explanations.inference,
+        },
+        measured,
     );
     let inferred = &model.inference;
     let evaluated = &model.papers;
     let summaries = &model.sweep_summaries;
     let mut head = header::header(runs, papers, figures.len());
-    head.push_str(&summary_section(evaluated, explanations));
+    head.push_str(&summary_section(evaluated, &model));
     let mut pages: Vec<Page> = evaluated
         .iter()
         .map(|e| {
@@ -219,12 +234,17 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
                 e,
                 runs,
                 papers,
-                (explanations, inferred),
+                (model.why_of(&e.id), (explanations, inferred)),
                 (figures, summaries),
             )
         })
         .collect();
-    let group = group_section(runs, (explanations, inferred), papers, (figures, summaries));
+    let group = group_section(
+        runs,
+        (model.why_of(GROUP), (explanations, inferred)),
+        papers,
+        (figures, summaries),
+    );
     if !group.is_empty() {
         pages.push(topic("group.md", group));
     }
@@ -241,16 +261,7 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
         "cost.md",
         cost_page(runs, papers, &model.matlab_times),
     ));
-    let mut out = performance::section(
-        &performance::Measurements {
-            dof: dof_cost,
-            qp_replay,
-            timings,
-        },
-        runs,
-        papers,
-        figures,
-    );
+    let mut out = performance::section(&model.performance, measured, runs, papers, figures);
     out.push_str(&python::call_cost(&python.call_cost));
     pages.push(topic("performance.md", out));
     let mut out = control::section(control, model.control_claim, &model.control, figures);
@@ -267,7 +278,7 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
 
 /// `## Summary` of the front page: per paper, its verdict, its claims by verdict, the range of
 /// our magnitudes over the paper's (the model's `ratio_span`) and why in one line.
-fn summary_section(evaluated: &[PaperModel], explanations: &why::Explanations) -> String {
+fn summary_section(evaluated: &[PaperModel], model: &ReportModel) -> String {
     use analysis::claim_verdict::Verdict;
     let mut summary = Table::new([
         "paper",
@@ -302,7 +313,9 @@ fn summary_section(evaluated: &[PaperModel], explanations: &why::Explanations) -
                 n(Verdict::NotApplicable)
             ),
             range,
-            Some(why::one_line(paper, explanations))
+            model
+                .why_of(paper)
+                .map(why::one_line)
                 .filter(|w| !w.is_empty())
                 .unwrap_or_else(|| "no drift attribution of its solvers".to_string()),
         ]);
@@ -317,7 +330,7 @@ fn paper_page_of(
     e: &PaperModel,
     runs: &Runs,
     papers: &Papers,
-    (explanations, inferred): Why,
+    (model, explained): Why,
     (figures, summaries): Figures,
 ) -> Page {
     let (paper, title, c) = (e.id.as_str(), e.title.as_str(), &e.claims);
@@ -327,7 +340,9 @@ fn paper_page_of(
         out.push_str(&format!("Paper: {c}.\n\n"));
     }
     out.push_str(&verdict::paragraph(e));
-    out.push_str(&why::summary(paper, (explanations, inferred), papers));
+    if let Some(model) = model {
+        out.push_str(&why::summary(model, explained.1));
+    }
     let tables: Vec<String> = e
         .tables
         .iter()
@@ -341,7 +356,9 @@ fn paper_page_of(
     for check in &e.sweeps {
         out.push_str(&sweep::section(check));
     }
-    out.push_str(&why::section(paper, (explanations, inferred), papers));
+    if let Some(model) = model {
+        out.push_str(&why::section(model, explained, papers));
+    }
     out.push_str("\n### Claims\n\n");
     out.push_str(&claims::checklist(c));
     out.push_str(if tables.is_empty() {
@@ -520,7 +537,7 @@ fn front_page(head: String, top: &str, pages: &[Page], deviations: bool) -> Page
 /// max end-effector error), not published values.
 fn group_section(
     runs: &Runs,
-    (explanations, inferred): Why,
+    (model, explained): Why,
     papers: &Papers,
     (figures, summaries): Figures,
 ) -> String {
@@ -540,7 +557,9 @@ fn group_section(
         out.push('\n');
         out.push_str(&figures::links(figures, runs, exp, summaries));
     }
-    out.push_str(&why::section(group, (explanations, inferred), papers));
+    if let Some(model) = model {
+        out.push_str(&why::section(model, explained, papers));
+    }
     out.push('\n');
     out
 }

@@ -14,8 +14,8 @@
 //! - the exact reference per recorded QP against its peer DAQP (`results/qp-replay.csv`).
 //!
 //! Every number is read from `results/`, and what is computed from them (ratios of medians,
-//! per-step quotients, fits, verdicts against the targets) is crate `analysis`'s
-//! ([`analysis::performance`]): this module formats. Without `dof-cost.csv` the section says
+//! per-step quotients, fits, crossovers, verdicts against the targets) is the report model's
+//! (`analysis::report_model::performance`), built once per render: this module formats it. Without `dof-cost.csv` the section says
 //! how to produce it and shows what `runs.csv` gives. The suite's measurements of itself (its
 //! build, clock, phases, profiles and speed-up over earlier revisions) are not here: they are
 //! the benches' (`benches/REPORT.md`).
@@ -24,36 +24,27 @@ use super::cost::{solver_label, timed_papers};
 use super::markdown::{percent, sci, sci_opt, text, Table, MISSING};
 use crate::figures::dof_cost::quantity_label;
 use analysis::papers::Papers;
-use analysis::performance::dof::{
-    fit_extents, large_n_fits, largest_n, largest_registry_n, runs_at_n, schemes, RunCost,
-};
-use analysis::performance::instant::{self, JACO2_N, TARGET_EXACT_OVER_RHS};
-use analysis::performance::replay;
-use analysis::performance::whole_runs::{self, TARGET_SIMULATION_SPEEDUP, TARGET_TOTAL_SPEEDUP};
+use analysis::performance::dof::RunCost;
+use analysis::performance::instant::{JACO2_N, TARGET_EXACT_OVER_RHS};
+use analysis::performance::replay::ReplayTarget;
+use analysis::performance::whole_runs::{TARGET_SIMULATION_SPEEDUP, TARGET_TOTAL_SPEEDUP};
+use analysis::report_model::performance::{Measured, Performance};
 use records::dof_cost::{DofCostRow, Quantity};
 use records::index::Runs;
 use records::qp_replay::QpReplayRow;
-use records::timing::{Timings, REPETITIONS};
+use records::timing::REPETITIONS;
 
-/// The measurements the `## Performance` section reads besides the runs: each a results file,
-/// empty where absent.
-#[derive(Clone, Copy, Debug)]
-pub struct Measurements<'a> {
-    /// `results/dof-cost.csv`.
-    pub dof: &'a [DofCostRow],
-    /// `results/qp-replay.csv`.
-    pub qp_replay: &'a [QpReplayRow],
-    /// `results/leaderboard-timing.csv`.
-    pub timings: &'a Timings,
-}
-
-/// The `## Performance` section.
-pub fn section(m: &Measurements, runs: &Runs, papers: &Papers, figures: &[String]) -> String {
-    let Measurements {
-        dof,
-        qp_replay,
-        timings,
-    } = *m;
+/// The `## Performance` section: the model's content `p`, with the measurements it was built
+/// on (`measured`, empty where absent: the machine, the networks' names, the replay's
+/// revision), the runs and papers (the solvers' and papers' names) and the figures.
+pub fn section(
+    p: &Performance,
+    measured: Measured,
+    runs: &Runs,
+    papers: &Papers,
+    figures: &[String],
+) -> String {
+    let Measured { dof, qp_replay } = measured;
     let mut out = String::from(
         "## Performance\n\nWhat an instant and a run cost: the networks' evaluations against \
          the exact solvers, against the number of joints, and the whole runs against the papers' \
@@ -69,15 +60,15 @@ pub fn section(m: &Measurements, runs: &Runs, papers: &Papers, figures: &[String
         );
     } else {
         out.push_str(&machine(dof));
-        out.push_str(&per_instant(dof));
+        out.push_str(&per_instant(p));
     }
-    out.push_str(&replay_table(qp_replay));
-    out.push_str(&per_solver_kind(runs));
+    out.push_str(&replay_table(p, qp_replay));
+    out.push_str(&per_solver_kind(p));
     if !dof.is_empty() {
-        out.push_str(&dof_curve(dof, figures));
-        out.push_str(&dof_runs(dof));
+        out.push_str(&dof_curve(p, dof, figures));
+        out.push_str(&dof_runs(p, dof));
     }
-    out.push_str(&matlab(runs, timings, papers));
+    out.push_str(&matlab(p, runs, papers));
     out
 }
 
@@ -106,7 +97,7 @@ fn machine(dof: &[DofCostRow]) -> String {
 
 /// Median and p95 of each per-call quantity at N = [`JACO2_N`], with ratios to the network RHS
 /// and to the KKT floor, and the 7-variable target.
-fn per_instant(dof: &[DofCostRow]) -> String {
+fn per_instant(p: &Performance) -> String {
     let mut out = format!(
         "### Per instant at N = {JACO2_N} (the Jaco2's size)\n\nOne call at states sampled from \
          an exact run of `nlink-{JACO2_N}` (`reproduce::cost`): the network's right-hand \
@@ -125,8 +116,9 @@ fn per_instant(dof: &[DofCostRow]) -> String {
         "median ÷ KKT floor",
         "samples",
     ]);
-    for scheme in schemes(dof) {
-        for c in instant::per_instant(dof, scheme) {
+    for s in &p.schemes {
+        let scheme = s.scheme;
+        for c in &s.per_instant {
             let r = c.row;
             let dims = match (r.nx, r.n_eq, r.n_in) {
                 (Some(a), Some(b), Some(c)) => format!("{a}, {b}, {c}"),
@@ -151,8 +143,9 @@ fn per_instant(dof: &[DofCostRow]) -> String {
     out.push_str(&t.render());
     out.push('\n');
     // The issue's target on the 7-variable QPs: jia2019's at N = 6 (nx = N + 1).
-    for scheme in schemes(dof) {
-        if let Some(e) = instant::exact_over_rhs(dof, scheme) {
+    for s in &p.schemes {
+        let scheme = s.scheme;
+        if let Some(e) = &s.exact_over_rhs {
             out.push_str(&format!(
                 "On the 7-variable QP ({scheme} {}) the hot-started active set takes {} \
                  times one {} RHS evaluation: the target of at most {} is {}.\n\n",
@@ -175,7 +168,7 @@ fn per_instant(dof: &[DofCostRow]) -> String {
 /// [`records::qp_replay`]): per task, the suite's active set and DAQP, warm and cold, on the
 /// same recorded QPs, and how far their answers are apart; then the target's verdict from the
 /// ratios. Every text read is escaped.
-fn replay_table(rows: &[QpReplayRow]) -> String {
+fn replay_table(p: &Performance, rows: &[QpReplayRow]) -> String {
     let mut out = String::from("### The exact reference per tick against DAQP\n\n");
     let Some(first) = rows.first() else {
         out.push_str(&format!(
@@ -207,7 +200,7 @@ fn replay_table(rows: &[QpReplayRow]) -> String {
         "cold ÷ DAQP",
         "max |x - x_other|",
     ]);
-    for line in replay::lines(rows) {
+    for line in &p.replay {
         let r = line.row;
         t.push([
             text(&r.task),
@@ -222,8 +215,8 @@ fn replay_table(rows: &[QpReplayRow]) -> String {
     }
     out.push_str(&t.render());
     out.push('\n');
-    if let Some(target) = replay::target(rows) {
-        out.push_str(&replay_verdict(&target));
+    if let Some(target) = &p.replay_target {
+        out.push_str(&replay_verdict(target));
     }
     out
 }
@@ -231,7 +224,7 @@ fn replay_table(rows: &[QpReplayRow]) -> String {
 /// The replay's target: the suite at or below DAQP warm and cold, its ratios to DAQP over the
 /// tasks (where the hot solve's time goes is the benches' sampling profile,
 /// `benches/REPORT.md`).
-fn replay_verdict(target: &replay::ReplayTarget) -> String {
+fn replay_verdict(target: &ReplayTarget) -> String {
     let ((wl, wh), (cl, ch)) = (target.warm, target.cold);
     format!(
         "The target, the suite at or below DAQP warm and cold with its answer still \
@@ -247,7 +240,7 @@ fn replay_verdict(target: &replay::ReplayTarget) -> String {
 
 /// Per accepted step and per RHS evaluation in the completed runs of `runs.csv`, by solver
 /// kind.
-fn per_solver_kind(runs: &Runs) -> String {
+fn per_solver_kind(p: &Performance) -> String {
     let mut out = String::from(
         "### Per step in the reproduction's runs\n\nFrom `results/runs.csv`, every completed run \
          by solver kind: the whole run's wall time (`wall_s`: simulation and observation, \
@@ -264,7 +257,7 @@ fn per_solver_kind(runs: &Runs) -> String {
         "p95 (us)",
         "RHS evals per run, median",
     ]);
-    for k in whole_runs::by_solver_kind(runs) {
+    for k in &p.by_solver_kind {
         let (step, rhs, ev) = (k.wall_per_step_us, k.sim_per_rhs_us, k.rhs_evals);
         t.push([
             k.kind.to_string(),
@@ -287,8 +280,8 @@ fn per_solver_kind(runs: &Runs) -> String {
 
 /// The figures of the cost against N, the fitted exponents per backend and the crossover of
 /// the dense LUs.
-fn dof_curve(dof: &[DofCostRow], figures: &[String]) -> String {
-    let largest = largest_n(dof);
+fn dof_curve(p: &Performance, dof: &[DofCostRow], figures: &[String]) -> String {
+    let largest = p.largest_n;
     let mut out = format!(
         "### Cost against the number of joints\n\nThe n-link arms `nlink-N` (a yaw joint and a \
          planar pitch chain, from their stated home pose) with the VLTCO scheme of \
@@ -302,7 +295,8 @@ fn dof_curve(dof: &[DofCostRow], figures: &[String]) -> String {
          exponent of median cost ~ c N^k, fitted by least squares on log-log over the measured \
          N, per backend.\n\n"
     );
-    for scheme in schemes(dof) {
+    for s in &p.schemes {
+        let scheme = s.scheme;
         let name = crate::figures::dof_cost::file_name(scheme);
         if figures.contains(&name) {
             out.push_str(&format!("![{scheme}: cost against N](figures/{name})\n\n"));
@@ -322,7 +316,7 @@ fn dof_curve(dof: &[DofCostRow], figures: &[String]) -> String {
             format!("{} (N = {n})", sci(m))
         })
     };
-    for e in fit_extents(dof) {
+    for e in &p.fit_extents {
         let fit = e.fit;
         t.push([
             format!("{} {}", fit.scheme, fit.scheme_name),
@@ -339,13 +333,13 @@ fn dof_curve(dof: &[DofCostRow], figures: &[String]) -> String {
         out.push_str(&t.render());
         out.push('\n');
     }
-    out.push_str(&crossovers(dof));
+    out.push_str(&crossovers(p, dof));
     out
 }
 
-/// Where faer's LU overtakes nalgebra's, per scheme and dense LU quantity
-/// ([`analysis::fits::crossover`]), and the size production code switches at.
-fn crossovers(dof: &[DofCostRow]) -> String {
+/// Where faer's LU overtakes nalgebra's, per scheme and dense LU quantity (the model's), and
+/// the size production code switches at.
+fn crossovers(p: &Performance, dof: &[DofCostRow]) -> String {
     let mut t = Table::new([
         "scheme",
         "quantity",
@@ -353,11 +347,9 @@ fn crossovers(dof: &[DofCostRow]) -> String {
         "LU size there",
         "nalgebra ÷ faer at the largest N",
     ]);
-    for scheme in schemes(dof) {
-        for quantity in [Quantity::NetworkLu, Quantity::KktFloor] {
-            let Some(c) = analysis::fits::crossover(dof, scheme, quantity) else {
-                continue;
-            };
+    for s in &p.schemes {
+        let scheme = s.scheme;
+        for &(quantity, c) in &s.crossovers {
             let network = dof
                 .iter()
                 .find(|r| r.scheme == scheme)
@@ -390,7 +382,7 @@ fn crossovers(dof: &[DofCostRow]) -> String {
 }
 
 /// The whole runs of the DOF measurement, per N: time, steps and time per step.
-fn dof_runs(dof: &[DofCostRow]) -> String {
+fn dof_runs(p: &Performance, dof: &[DofCostRow]) -> String {
     let mut t = Table::new([
         "scheme",
         "N",
@@ -401,7 +393,7 @@ fn dof_runs(dof: &[DofCostRow]) -> String {
         "steps",
         "per step (us)",
     ]);
-    for r in runs_at_n(dof) {
+    for r in &p.runs_at_n {
         let [e0, e1, e2] = run_cells(r.exact);
         let [n0, n1, n2] = run_cells(r.network);
         t.push([
@@ -427,7 +419,7 @@ fn dof_runs(dof: &[DofCostRow]) -> String {
          exact column by Dormand-Prince at RelTol 1e-11, {network} by BDF at RelTol 1e-6 scored \
          at every accepted step), median of the repetitions, at every N. The Newton matrix of the BDF runs is factorised by \
          diffsol's nalgebra LU at every N; faer is not measured for whole runs.{}\n\n{}\n",
-        large_n_sentence(dof),
+        large_n_sentence(p),
         t.render()
     )
 }
@@ -457,10 +449,11 @@ fn run_cells(cost: Option<RunCost>) -> [String; 3] {
 }
 
 /// The growth exponents of the whole runs over the large joint counts alone (N past the
-/// two-scheme sweep, [`large_n_fits`]): one sentence, empty when fewer than two such N were
+/// two-scheme sweep, the model's): one sentence, empty when fewer than two such N were
 /// measured.
-fn large_n_sentence(dof: &[DofCostRow]) -> String {
-    let parts: Vec<String> = large_n_fits(dof)
+fn large_n_sentence(p: &Performance) -> String {
+    let parts: Vec<String> = p
+        .large_n_fits
         .iter()
         .map(|f| {
             format!(
@@ -477,7 +470,7 @@ fn large_n_sentence(dof: &[DofCostRow]) -> String {
     }
     format!(
         " Fitted over N > {} alone (median ~ c N^k): {}.",
-        largest_registry_n(),
+        p.largest_registry_n,
         parts.join("; ")
     )
 }
@@ -486,7 +479,7 @@ fn large_n_sentence(dof: &[DofCostRow]) -> String {
 /// (`wall_s`, scoring and observation included), the medians of the runs timed alone
 /// ([`records::timing`]; the parallel reproduction's times for a run without), with the
 /// smallest speedups.
-fn matlab(runs: &Runs, timings: &Timings, papers: &Papers) -> String {
+fn matlab(p: &Performance, runs: &Runs, papers: &Papers) -> String {
     let mut t = Table::new([
         "experiment",
         "solver",
@@ -497,7 +490,7 @@ fn matlab(runs: &Runs, timings: &Timings, papers: &Papers) -> String {
         "paper ÷ simulation",
         "paper ÷ total",
     ]);
-    let comparison = whole_runs::matlab_comparison(runs, timings, papers);
+    let comparison = &p.matlab;
     for line in &comparison.lines {
         t.push([
             line.experiment.to_string(),
@@ -556,6 +549,17 @@ fn matlab(runs: &Runs, timings: &Timings, papers: &Papers) -> String {
 mod tests {
     use super::*;
     use records::qp_replay::SUITE;
+    use records::timing::Timings;
+
+    /// The section on the measurements `dof` and `qp_replay`, without runs, papers or
+    /// timings, its model built as the report builds it.
+    fn render(dof: &[DofCostRow], qp_replay: &[QpReplayRow], figures: &[String]) -> String {
+        let (runs, papers, timings) =
+            (Runs::new(Vec::new()), Papers::default(), Timings::default());
+        let measured = Measured { dof, qp_replay };
+        let model = Performance::build(measured, &runs, &timings, &papers);
+        section(&model, measured, &runs, &papers, figures)
+    }
 
     /// The fixture `dof-cost.csv` of scheme jia2019 ([`fixtures::dof_cost`]) with its fits.
     fn synthetic() -> Vec<DofCostRow> {
@@ -579,16 +583,7 @@ mod tests {
             [7, 3, 12, 13],
             1e-15,
         );
-        let md = section(
-            &Measurements {
-                dof: &dof,
-                qp_replay: &replay,
-                timings: &Timings::default(),
-            },
-            &Runs::new(Vec::new()),
-            &Papers::default(),
-            &figures,
-        );
+        let md = render(&dof, &replay, &figures);
         assert!(md.starts_with("## Performance\n"), "{md}");
         assert!(
             md.contains("Test CPU (2 logical cores available) at revision `abc`"),
@@ -667,7 +662,7 @@ mod tests {
             [5, 3, 0, 0],
             1e-16,
         );
-        let md = replay_table(&rows);
+        let md = render(&[], &rows, &[]);
         assert!(
             md.contains(
                 "is met: the suite takes 0.50-0.50 times DAQP's time warm and 0.80-0.80 times \
@@ -680,16 +675,7 @@ mod tests {
 
     #[test]
     fn without_the_csv_the_section_says_how_to_produce_it() {
-        let md = section(
-            &Measurements {
-                dof: &[],
-                qp_replay: &[],
-                timings: &Timings::default(),
-            },
-            &Runs::new(Vec::new()),
-            &Papers::default(),
-            &[],
-        );
+        let md = render(&[], &[], &[]);
         assert!(md.contains("`results/dof-cost.csv` is absent"), "{md}");
         assert!(md.contains("-p reproduce -- cost`"), "{md}");
         assert!(md.contains("No completed run"), "{md}");

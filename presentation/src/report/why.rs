@@ -2,17 +2,16 @@
 //! solver (`results/attribution.csv`), the tolerance ladder (`results/ladder.csv`) and the setup
 //! inference (`results/inference.csv`, `results/inference-entries.csv`); and the section of
 //! the group-code reference experiments. See `explain` for the mathematics; what is read from
-//! the rows (the shares, the runs at MATLAB's default tolerances, the solvers' spreads) is
-//! [`analysis::drift_attribution`]'s.
+//! the rows (the runs explained, the shares, the runs at MATLAB's default tolerances, the
+//! solvers' spreads, the ladder's rungs) is the report model's
+//! (`analysis::report_model::why`), built once per render: this module formats it.
 
 use super::markdown::{percent, sci, sci_opt, Table, MISSING};
-use analysis::drift_attribution::{
-    component, converged_component, is_matlab_setting, ladder_ids, matlab_rung, matlab_tolerances,
-    published_norm, runs_of, share_range, shares, solver_spreads, sum_components, switches, RunIds,
-};
+use analysis::drift_attribution::RunIds;
 use analysis::inference_verdict::{FLAT, REPRODUCED, WEAK};
 use analysis::paper_rules::GROUP;
 use analysis::papers::Papers;
+use analysis::report_model::why::{AttributedRun, Attribution, Ladder, Why};
 use analysis::report_model::Inference;
 use records::attribution::{AttributionRow, Component};
 use records::inference::{self, EntryRow, InferenceRow, Integration, FAILED as FAILED_RESIDUAL};
@@ -83,73 +82,61 @@ fn short(s: &str) -> String {
 
 /// The attribution table of one paper's runs: published norm, ours, and the "of which"
 /// columns.
-pub fn attribution_table(paper: &str, x: &Explanations, papers: &Papers) -> String {
-    let keys = runs_of(&x.attribution, paper);
-    if keys.is_empty() {
-        return String::new();
-    }
-    let switches = switches(&x.attribution, paper);
-    let sums = sum_components(&x.attribution, &keys);
-    let networks = sums.contains(&Component::NetworkLag);
-    let numerical = sums.contains(&Component::SamplingGap);
+pub fn attribution_table(a: &Attribution) -> String {
+    let networks = a.terms.contains(&Component::NetworkLag);
+    let numerical = a.terms.contains(&Component::SamplingGap);
     let mut header = vec![
         "run (variant / solver)".to_string(),
         "paper ‖d‖".to_string(),
         "ours ‖d‖ (as run)".to_string(),
         "ours ‖d‖ at MATLAB's default tolerances".to_string(),
     ];
-    header.extend(sums.iter().map(|s| format!("{} ‖·‖ (share)", s.label())));
-    header.extend(switches.iter().map(|s| format!("{} ‖·‖", s.label())));
+    header.extend(a.terms.iter().map(|s| format!("{} ‖·‖ (share)", s.label())));
+    header.extend(a.switches.iter().map(|s| format!("{} ‖·‖", s.label())));
     header.push(match (networks, numerical) {
         (true, false) => "max pos. err: run / exact / converged net (m)".to_string(),
         (false, true) => "max pos. err: run / exact / converged method (m)".to_string(),
         _ => "max pos. err: run / exact / converged solver (m)".to_string(),
     });
-    let columns: Vec<Component> = sums.iter().chain(&switches).copied().collect();
     let mut t = Table::new(header);
-    for key in keys {
-        t.push(attribution_row(key, &columns, x, papers));
+    for run in &a.runs {
+        t.push(attribution_row(run));
     }
     let mut out = t.without_empty_columns().render();
-    out.push_str(&attribution_note(networks, numerical, !switches.is_empty()));
+    out.push_str(&attribution_note(
+        networks,
+        numerical,
+        !a.switches.is_empty(),
+    ));
     out
 }
 
-/// The attribution table's row of run `key`: its labels, the paper's norm (`*`: derived from
-/// the joints), ours as run and at MATLAB's default tolerances (× where that rung did not
-/// finish), each of `columns` (the sums' terms, then the switches), and the max position
+/// The attribution table's row of `run`: its labels, the paper's norm (`*`: derived from the
+/// joints), ours as run and at MATLAB's default tolerances (× where that rung did not
+/// finish), each of its columns (the sums' terms, then the switches), and the max position
 /// errors of the run, the exact column and the converged solver.
-fn attribution_row(
-    key: RunIds,
-    columns: &[Component],
-    x: &Explanations,
-    papers: &Papers,
-) -> Vec<String> {
-    let paper_norm = published_norm(papers, key)
+fn attribution_row(run: &AttributedRun) -> Vec<String> {
+    let paper_norm = run
+        .published_norm
         .map(|(v, derived)| format!("{}{}", sci(v), if derived { "*" } else { "" }))
         .unwrap_or_else(|| MISSING.to_string());
-    let run = component(&x.attribution, key, Component::Run);
     let mut row = vec![
-        shown(run, key),
+        shown(run.run, run.key),
         paper_norm,
-        sci_opt(run.and_then(|r| r.drift_norm)),
-        match matlab_rung(&x.ladder, key) {
+        sci_opt(run.run.and_then(|r| r.drift_norm)),
+        match run.matlab_rung {
             Some(r) if r.completed() => sci_opt(r.drift_norm),
             Some(_) => "×".to_string(),
             None => MISSING.to_string(),
         },
     ];
-    row.extend(
-        columns
-            .iter()
-            .map(|c| cell(component(&x.attribution, key, *c))),
-    );
-    let err = |c: Component| sci_opt(component(&x.attribution, key, c).and_then(|r| r.max_pos_err));
+    row.extend(run.columns.iter().map(|c| cell(*c)));
+    let err = |r: Option<&AttributionRow>| sci_opt(r.and_then(|r| r.max_pos_err));
     row.push(format!(
         "{} / {} / {}",
-        err(Component::Run),
-        err(Component::Scheme),
-        err(converged_component(&x.attribution, key))
+        err(run.run),
+        err(run.scheme),
+        err(run.converged)
     ));
     row
 }
@@ -178,64 +165,32 @@ fn attribution_note(networks: bool, numerical: bool, switches: bool) -> String {
 }
 
 /// The ladder of one paper's runs: digits shared with the converged drift at each rung.
-pub fn ladder_table(paper: &str, x: &Explanations) -> String {
-    let rows: Vec<&LadderRow> = x.ladder.iter().filter(|r| r.paper == paper).collect();
-    if rows.is_empty() {
-        return String::new();
-    }
-    let mut rungs: Vec<(LadderMethod, f64, f64)> = Vec::new();
-    for r in &rows {
-        let k = (r.method, r.rtol, r.atol);
-        if !rungs.contains(&k) {
-            rungs.push(k);
-        }
-    }
-    rungs.sort_by(|a, b| {
-        a.0.id()
-            .cmp(b.0.id())
-            .then(b.1.total_cmp(&a.1))
-            .then(b.2.total_cmp(&a.2))
-    });
-    let mut keys: Vec<RunIds> = Vec::new();
-    for r in &rows {
-        let k = ladder_ids(r);
-        if !keys.contains(&k) {
-            keys.push(k);
-        }
-    }
+pub fn ladder_table(l: &Ladder) -> String {
     let mut header = vec!["run".to_string()];
-    header.extend(rungs.iter().map(|(m, r, a)| {
-        if *m == LadderMethod::FixedStep {
-            return format!("{m} |e| <= {}", short_tol(*r));
+    header.extend(l.rungs.iter().map(|rung| {
+        let m = rung.method;
+        if m == LadderMethod::FixedStep {
+            return format!("{m} |e| <= {}", short_tol(rung.rtol));
         }
-        let matlab = is_matlab_setting(*m, *r, *a);
         format!(
             "{m} {}/{}{}",
-            short_tol(*r),
-            short_tol(*a),
-            if matlab { " (MATLAB default)" } else { "" }
+            short_tol(rung.rtol),
+            short_tol(rung.atol),
+            if rung.matlab { " (MATLAB default)" } else { "" }
         )
     }));
     let mut t = Table::new(header);
-    for key in keys {
-        let first = rows.iter().find(|r| ladder_ids(r) == key);
-        let mut row = vec![match first {
-            Some(r) => format!("`{}` {} / {}", r.experiment, r.variant, r.solver),
-            None => format!("`{}` {} / {}", key.0, key.1, key.2),
-        }];
-        for (m, rt, at) in &rungs {
-            let r = rows
-                .iter()
-                .find(|r| ladder_ids(r) == key && r.method == *m && r.rtol == *rt && r.atol == *at);
-            row.push(rung_cell(r.copied()));
-        }
+    for run in &l.runs {
+        let r = run.first;
+        let mut row = vec![format!("`{}` {} / {}", r.experiment, r.variant, r.solver)];
+        row.extend(run.cells.iter().map(|c| rung_cell(*c)));
         t.push(row);
     }
     let mut out = t.without_empty_columns().render();
     out.push_str(
         "\nCells: significant digits the drift shares with the converged drift (\"ref\", the finest completed rung; -log10 of the relative change), **bold** at the run's own setting; × the rung did not finish (an explicit method on a stiff network, or the step cap). A published digit beyond the digits at the paper's setting (ode15s = bdf at RelTol 1e-6 / AbsTol 1e-8; MATLAB's default is 1e-3 / 1e-6) can be integration noise. A run with the group's MaxStep keeps it on every rung.",
     );
-    if rows.iter().any(|r| r.method == LadderMethod::FixedStep) {
+    if l.fixed_step {
         out.push_str(" A numerical method's rungs (fixed-step) are its loop at the run's own step h, each instant's iteration stopped at |e(U)|_2 <= the rung's tolerance: its digits at the paper's 1e-3 are those the stopping rule leaves (the sampling gap is in the attribution).");
     }
     out.push_str(" Every rung with its drifts, steps and wall time: `results/ladder.csv`.\n");
@@ -556,20 +511,20 @@ fn hypotheses_table(rows: &[&InferenceRow], columns: &[&str]) -> String {
     out
 }
 
-/// The whole "Why the numbers differ" subsection of one paper.
-pub fn section(
-    paper: &str,
-    (x, inferred): (&Explanations, &[Inference]),
-    papers: &Papers,
-) -> String {
-    let attribution = attribution_table(paper, x, papers);
-    let ladder = ladder_table(paper, x);
+/// The whole "Why the numbers differ" subsection of one paper (its model, `why`).
+pub fn section(why: &Why, (x, inferred): (&Explanations, &[Inference]), papers: &Papers) -> String {
+    let paper = why.paper;
+    let attribution = why
+        .attribution
+        .as_ref()
+        .map_or_else(String::new, attribution_table);
+    let ladder = why.ladder.as_ref().map_or_else(String::new, ladder_table);
     if attribution.is_empty() && ladder.is_empty() {
         return String::new();
     }
     let mut out = String::from("\n### Why the numbers differ\n\n");
     if paper == GROUP {
-        out.push_str(&summary(paper, (x, inferred), papers));
+        out.push_str(&summary(why, inferred));
     }
     if !attribution.is_empty() {
         out.push_str("\n#### Drift attribution\n\n");
@@ -589,9 +544,9 @@ pub fn section(
     out
 }
 
-/// `lo % to hi %` of `v` (shares, [`share_range`]), or [`MISSING`].
-fn range(v: &[f64]) -> String {
-    match share_range(v) {
+/// `lo % to hi %` of a share's range, or [`MISSING`].
+fn range(v: Option<(f64, f64)>) -> String {
+    match v {
         Some((lo, hi)) => format!("{} to {}", percent(lo, 3), percent(hi, 3)),
         None => MISSING.to_string(),
     }
@@ -600,44 +555,40 @@ fn range(v: &[f64]) -> String {
 /// Why a paper's drifts are what they are, in one line (the front page): the share of the
 /// drift that the scheme, the lag and integration error carry over its explained runs; empty
 /// where none was explained.
-pub fn one_line(paper: &str, x: &Explanations) -> String {
-    let keys = runs_of(&x.attribution, paper);
-    if keys.is_empty() {
+pub fn one_line(why: &Why) -> String {
+    let Some(a) = &why.attribution else {
         return String::new();
-    }
-    let parts: Vec<String> = shares(&x.attribution, &keys)
+    };
+    let parts: Vec<String> = a
+        .shares
         .iter()
-        .map(|(c, v)| format!("{} {}", brief(*c), range(v)))
+        .map(|(c, v)| format!("{} {}", brief(*c), range(*v)))
         .collect();
     format!("{} of the drift", parts.join(", "))
 }
 
 /// One paragraph (placed after the verdict): which share of the drift each ingredient carries,
 /// across the paper's runs, how far apart several solvers of one scheme are (the paper's and
-/// ours), what MATLAB's default tolerances would change ([`analysis::drift_attribution`]), and
-/// what the setup inference found; empty without explanations.
-pub fn summary(
-    paper: &str,
-    (x, inferred): (&Explanations, &[Inference]),
-    papers: &Papers,
-) -> String {
-    let keys = runs_of(&x.attribution, paper);
-    if keys.is_empty() {
+/// ours), what MATLAB's default tolerances would change (the model's, `why`), and what the
+/// setup inference found (`inferred`); empty without explanations.
+pub fn summary(why: &Why, inferred: &[Inference]) -> String {
+    let paper = why.paper;
+    let Some(a) = &why.attribution else {
         return String::new();
-    }
-    let shares = shares(&x.attribution, &keys);
+    };
+    let shares = &a.shares;
     let rest: Vec<String> = shares
         .iter()
         .filter(|(c, _)| *c != Component::Scheme)
-        .map(|(c, v)| format!("{} {}", described(*c), range(v)))
+        .map(|(c, v)| format!("{} {}", described(*c), range(*v)))
         .collect();
     let scheme = shares
         .iter()
         .find(|(c, _)| *c == Component::Scheme)
-        .map_or(MISSING.to_string(), |(_, v)| range(v));
+        .map_or(MISSING.to_string(), |(_, v)| range(*v));
     let mut out = format!(
         "\n**Why** (see \"Why the numbers differ\" below). Over {} runs of {}, {} carries {scheme} of the drift (|d_exact| / |d_run|), {}.",
-        keys.len(),
+        a.runs.len(),
         if paper == GROUP {
             "the group's network"
         } else {
@@ -650,13 +601,13 @@ pub fn summary(
             None => String::new(),
         }
     );
-    for s in solver_spreads(&x.attribution, papers, &keys) {
+    for s in &a.spreads {
         out.push_str(&format!(
             " On `{}` {} the paper's {} solvers' drift norms span a factor {:.1}, ours {:.2}: one scheme, so solvers that converge cannot differ by more than their lag.",
             s.experiment, s.variant, s.columns, s.theirs, s.ours
         ));
     }
-    if let Some(m) = matlab_tolerances(&x.attribution, &x.ladder, papers, &keys) {
+    if let Some(m) = a.matlab {
         out.push_str(&format!(
             " Integrated at MATLAB's default tolerances (RelTol 1e-3, AbsTol 1e-6) instead of the stated 1e-6 / 1e-8, the same runs drift {} to {} times as much; the paper's norm is nearer that value than the converged one in {} of {} columns.",
             sci(m.lo),

@@ -1,0 +1,227 @@
+//! The control experiments' standard task set, read from `experiments/`[`TASK_SET_FILE`]: one
+//! run of each paper's scheme (experiment and variant ids) and the budget of their runs (the
+//! period sweep, the cycles, the claim's check runs), into `spec::task_set::TaskSet`. The
+//! engine (crate `control`) takes the set as data and reads no file; the orchestrator reads it
+//! here, through the input reader (crate `inputs`).
+
+use crate::error::TaskSetError;
+use spec::task_set::{Budget, TaskRef, TaskSet, MAIN_H};
+use std::path::Path;
+
+/// Where the standard task set is declared, relative to the experiments directory (a
+/// subdirectory, which the experiment loader does not read).
+pub const TASK_SET_FILE: &str = "control/tasks.toml";
+
+/// The task set file: a list of `[[task]]` tables and the `[budget]` of their runs.
+#[derive(Debug, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TaskSetFile {
+    task: Vec<TaskRef>,
+    budget: BudgetFile,
+}
+
+/// The `[budget]` table of the task set file, in the file's units.
+#[derive(Debug, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BudgetFile {
+    /// The periods of the sweep besides the main one (ms).
+    sweep_ms: Vec<f64>,
+    /// Cycles of the many-cycles runs.
+    cycles: usize,
+    /// Ticks of a network's check run for the efficiency claim.
+    check_ticks: usize,
+    /// A check run's Euler steps per tick, as a multiple of the steps the network needs.
+    check_steps_factor: u64,
+}
+
+impl BudgetFile {
+    /// The budget at the main period [`MAIN_H`], each field checked: the error names the file
+    /// (`shown`), the field and its valid values.
+    fn budget(self, shown: &str) -> Result<Budget, TaskSetError> {
+        let invalid = |field: &'static str, valid: &'static str| TaskSetError::Budget {
+            path: shown.to_string(),
+            field,
+            valid,
+        };
+        if self.sweep_ms.iter().any(|&p| !(p.is_finite() && p > 0.0)) {
+            return Err(invalid("sweep_ms", "a list of finite periods > 0 (ms)"));
+        }
+        if self.cycles == 0 {
+            return Err(invalid("cycles", "an integer >= 1"));
+        }
+        if self.check_ticks == 0 {
+            return Err(invalid("check_ticks", "an integer >= 1"));
+        }
+        if self.check_steps_factor == 0 {
+            return Err(invalid("check_steps_factor", "an integer >= 1"));
+        }
+        Ok(Budget {
+            h: MAIN_H,
+            sweep: self.sweep_ms.iter().map(|p| p * 1e-3).collect(),
+            cycles: self.cycles,
+            check_ticks: self.check_ticks,
+            check_steps_factor: self.check_steps_factor,
+        })
+    }
+}
+
+/// The standard task set declared in `experiments/`[`TASK_SET_FILE`], read as an input
+/// (`inputs::Kind::TaskSet`: a regular file inside `experiments`, at most 1 MiB, never quoted
+/// in an error): every paper's scheme once, in the file's order, and the budget of their runs.
+/// A project without the file has no control experiments ([`TaskSetError::Missing`]).
+pub fn load(experiments: &Path) -> Result<TaskSet, TaskSetError> {
+    let path = experiments.join(TASK_SET_FILE);
+    let shown = path.display().to_string();
+    let origin = inputs::Origin::Under(experiments);
+    let text = match inputs::read_text(&path, inputs::Kind::TaskSet, origin) {
+        Ok(text) => text,
+        Err(e) if e.is_not_found() => return Err(TaskSetError::Missing(shown)),
+        Err(e) => return Err(e.into()),
+    };
+    let file: TaskSetFile =
+        inputs::toml_error::from_str(&text).map_err(|source| TaskSetError::Toml {
+            path: shown.clone(),
+            source,
+        })?;
+    if file.task.is_empty() {
+        return Err(TaskSetError::Empty(shown));
+    }
+    Ok(TaskSet {
+        tasks: file.task,
+        budget: file.budget.budget(&shown)?,
+    })
+}
+
+#[cfg(all(test, unix))]
+mod tests {
+    use super::*;
+    use std::path::PathBuf;
+    use std::time::Duration;
+
+    /// The stand-in for a secret a hostile file would hold.
+    const MARKER: &str = "SECRET_MARKER_c0n7";
+
+    /// A scratch `experiments/` (with `control/`) beside an `outside/secret`.
+    fn scratch(tag: &str) -> (PathBuf, PathBuf) {
+        let base = std::env::temp_dir().join(format!(
+            "driftbench-control-tasks-{tag}-{}",
+            std::process::id()
+        ));
+        let _ = std::fs::remove_dir_all(&base);
+        std::fs::create_dir_all(base.join("experiments/control")).unwrap();
+        std::fs::create_dir_all(base.join("outside")).unwrap();
+        std::fs::write(base.join("outside/secret"), format!("{MARKER}\n")).unwrap();
+        (base.join("experiments"), base)
+    }
+
+    /// The message of [`load`]'s refusal, called in a thread: the test fails if
+    /// it has not returned within 5 s or read the file.
+    fn refusal(experiments: &std::path::Path) -> String {
+        let dir = experiments.to_path_buf();
+        let (tx, rx) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let _ = tx.send(load(&dir).err().map(|e| e.to_string()));
+        });
+        rx.recv_timeout(Duration::from_secs(5))
+            .expect("the task set was read or refused within 5 s (a FIFO must not block)")
+            .expect("the task set is refused")
+    }
+
+    #[test]
+    fn the_committed_task_set_reads() {
+        let experiments = crate::root::from_current_dir().unwrap().join("experiments");
+        let set = load(&experiments).unwrap();
+        assert!(set.tasks.len() >= 4, "{set:?}");
+        assert_eq!(set.budget.h, MAIN_H);
+    }
+
+    #[test]
+    fn a_budget_out_of_range_is_named_with_its_valid_values() {
+        let (experiments, base) = scratch("budget");
+        let file = experiments.join(TASK_SET_FILE);
+        let task = "[[task]]\nexperiment = \"e\"\nvariant = \"v\"\n";
+        let budget = |sweep: &str, cycles: u32, ticks: u32, factor: u32| {
+            format!(
+                "{task}[budget]\nsweep_ms = [{sweep}]\ncycles = {cycles}\n\
+                 check_ticks = {ticks}\ncheck_steps_factor = {factor}\n"
+            )
+        };
+        std::fs::write(&file, budget("0.5, 2.0", 3, 5, 2)).unwrap();
+        let set = load(&experiments).unwrap();
+        assert_eq!(set.budget.sweep, vec![0.5e-3, 2e-3]);
+        assert_eq!((set.budget.cycles, set.budget.check_ticks), (3, 5));
+        assert_eq!(set.budget.check_steps_factor, 2);
+        for (text, field) in [
+            (budget("0.5, -1.0", 3, 5, 2), "sweep_ms"),
+            (budget("0.5", 0, 5, 2), "cycles"),
+            (budget("0.5", 3, 0, 2), "check_ticks"),
+            (budget("0.5", 3, 5, 0), "check_steps_factor"),
+        ] {
+            std::fs::write(&file, &text).unwrap();
+            let e = load(&experiments).unwrap_err();
+            assert!(
+                matches!(&e, TaskSetError::Budget { field: f, .. } if *f == field),
+                "{e:?}"
+            );
+            assert!(
+                e.to_string().contains(&format!("[budget] {field} must be")),
+                "{e}"
+            );
+        }
+        // A task set without its budget is refused too.
+        std::fs::write(&file, task).unwrap();
+        let e = load(&experiments).unwrap_err();
+        assert!(e.to_string().contains("budget"), "{e}");
+        std::fs::remove_dir_all(&base).unwrap();
+    }
+
+    #[test]
+    fn a_hostile_task_set_is_refused_without_its_content() {
+        let (experiments, base) = scratch("hostile");
+        let file = experiments.join(TASK_SET_FILE);
+        // Missing: no control experiments.
+        let e = load(&experiments).unwrap_err();
+        assert!(matches!(e, TaskSetError::Missing(_)), "{e:?}");
+        // A symbolic link out of the experiments directory (to a secret, to the environment).
+        for target in [
+            base.join("outside/secret"),
+            PathBuf::from("/proc/self/environ"),
+        ] {
+            std::os::unix::fs::symlink(&target, &file).unwrap();
+            let e = refusal(&experiments);
+            assert!(e.contains("leads outside") && !e.contains(MARKER), "{e}");
+            std::fs::remove_file(&file).unwrap();
+        }
+        // A FIFO: refused at once, not waited on.
+        let made = std::process::Command::new("mkfifo")
+            .arg(&file)
+            .status()
+            .unwrap();
+        assert!(made.success());
+        let e = refusal(&experiments);
+        assert!(e.contains("a FIFO, not a regular file"), "{e}");
+        std::fs::remove_file(&file).unwrap();
+        // Over its cap of 1 MiB: refused before it is parsed.
+        let mut big = "[[task]]\nexperiment = \"e\"\nvariant = \"v\"\n".to_string();
+        big.push_str(&format!("# {MARKER}\n").repeat((1 << 20) / 20));
+        std::fs::write(&file, &big).unwrap();
+        let e = refusal(&experiments);
+        assert!(
+            e.contains("larger than its cap") && !e.contains(MARKER),
+            "{e}"
+        );
+        // TOML errors give the line and column, never the file's lines (an invalid id is
+        // named, as the offending value; the lines around it are not).
+        for text in [
+            format!("[[task]]\nexperiment = \"e\"\nvariant = \"v\"\n# {MARKER}\nnot toml\n"),
+            format!("[[task]]\nexperiment = \"e\" {MARKER}\n"),
+            format!("# {MARKER}\n[[task]]\nexperiment = \"e\"\nvariant = \"Not-A-Slug\"\n"),
+            format!("[[task]]\nexperiment = \"e\"\n\"{MARKER}\n"),
+        ] {
+            std::fs::write(&file, &text).unwrap();
+            let e = refusal(&experiments);
+            assert!(!e.contains(MARKER) && e.contains("line "), "{text:?}: {e}");
+        }
+        std::fs::remove_dir_all(&base).unwrap();
+    }
+}
