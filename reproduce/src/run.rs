@@ -25,7 +25,6 @@ use spec::run::RunSpec;
 use std::process::ExitCode;
 use std::time::Instant;
 use store::results_dir::ResultsDir;
-use store::shard::Shard;
 
 /// Where a run's rows go.
 #[derive(Debug)]
@@ -37,9 +36,6 @@ pub enum Output {
     DryRun,
     /// Compared with a baseline (the gate); nothing written.
     Gate(Baseline),
-    /// Into the shard's own results directory, bound to the shard, with its manifest last
-    /// ([`crate::shard`]).
-    Shard(Shard),
 }
 
 /// What `reproduce run`, `check` and `shard` do with the selected runs.
@@ -66,9 +62,6 @@ pub fn run(
     jobs: &[RunSpec],
     git_rev: &str,
 ) -> Result<ExitCode, ReproduceError> {
-    if let Output::Shard(shard) = plan.output {
-        return crate::shard::run_shard(project, plan.selection, shard, all, jobs, git_rev);
-    }
     if matches!(plan.output, Output::Results) {
         precheck_report(project, all)?;
     }
@@ -246,7 +239,7 @@ fn publish(
         Ok(root) => {
             // `run --paper X` draws X's figures only (the pages are all re-rendered: they
             // are cheap, and the front page summarises every paper).
-            let untraced = all.keys().into_untraced();
+            let untraced = all.untraced();
             let figures = render_figures(&root, plan.selection.paper.as_deref(), &untraced)?;
             clock.lap(Phase::Figures, Some(figures));
             render_pages(project, &root, results)?;

@@ -144,7 +144,7 @@ sweep = { "scheme.mu" = [1, 2, 4] }
     common::resume_completes(run, &results, 3, 4);
     let manifest = store::shard::Manifest::read(&results).unwrap();
     assert_eq!(
-        (manifest.shard, manifest.shards, manifest.runs.len()),
+        (manifest.shard, manifest.shards, manifest.runs),
         (1, 1, 4)
     );
     assert_eq!(manifest.git_rev, reproduce::revision::REVISION);
@@ -476,7 +476,7 @@ fn a_shard_killed_every_few_steps_finishes_after_a_bounded_number_of_starts() {
     }
     assert!(starts > 1, "the kill came before the shard's end");
     let manifest = store::shard::Manifest::read(&dir).unwrap();
-    assert_eq!(manifest.runs.len(), 3);
+    assert_eq!(manifest.runs, 3);
     assert_eq!(read_runs(&dir.join("runs.csv")).unwrap().len(), 3);
     let _ = std::fs::remove_dir_all(&base);
 }
