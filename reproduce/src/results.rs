@@ -55,20 +55,13 @@ impl<'a> Described<'a> {
     /// The run keys (`experiment / variant / solver`), and which of them keep no trace, as
     /// sets of their prints (16 bytes a run: [`store::keys::KeySet`]).
     pub fn keys(&self) -> Keys {
-        let mut untraced = Vec::new();
-        let described = self
-            .runs()
-            .map(|j| {
-                let key = j.key().to_string();
-                if !j.keep_trace {
-                    untraced.push(key.clone());
-                }
-                key
-            })
-            .collect();
         Keys {
-            described,
-            untraced: untraced.into_iter().collect(),
+            described: self.runs().map(|j| j.key().to_string()).collect(),
+            untraced: self
+                .runs()
+                .filter(|j| !j.keep_trace)
+                .map(|j| j.key().to_string())
+                .collect(),
         }
     }
 
