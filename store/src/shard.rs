@@ -604,16 +604,20 @@ pub struct ShardDir {
     pub dir: PathBuf,
     /// Its `shard.toml`.
     pub manifest: Manifest,
+    /// Its rows whose trace is not among the files it wrote, one problem each (said by
+    /// [`check_shards`] with the runs' placement).
+    traceless: Vec<String>,
     /// The directory, every path under it checked.
     owned: crate::owned_dir::OwnedDir,
 }
 
 /// Reads a finished shard: its `shard.toml` and its integrity manifest. Every file the
 /// integrity manifest lists (the rows and every trace) must still be what the shard wrote,
-/// unless `edits` accepts edits (each file is hashed as a stream), and every row's trace must
-/// be among them, unless its run keeps none by choice (`traced` false for its key); a
-/// directory that does not exist, or a shard without an integrity manifest, is an error saying
-/// so. The integrity manifest is dropped once read, so a merge holds one shard's at a time.
+/// unless `edits` accepts edits (each file is hashed as a stream); a directory that does not
+/// exist, or a shard without an integrity manifest, is an error saying so. The rows whose
+/// trace is not among those files (unless their run keeps none by choice: `traced` false for
+/// its key) are noted for [`check_shards`]. The integrity manifest is dropped once read, so a
+/// merge holds one shard's at a time.
 pub fn read_shard(
     dir: &Path,
     edits: crate::tracked_dir::Edits,
@@ -637,7 +641,7 @@ pub fn read_shard(
             });
         }
     }
-    let mut problems = Vec::new();
+    let mut traceless = Vec::new();
     for row in read_key_ordered(&dir.join(crate::results_dir::RUNS))? {
         let key = row?.key();
         let rel = crate::results_dir::ResultsDir::trace_rel(&key);
@@ -646,19 +650,17 @@ pub fn read_shard(
                 .files
                 .contains_key(&rel.to_string_lossy().replace('\\', "/"))
         {
-            problems.push(format!(
+            traceless.push(format!(
                 "{}: the trace of {key} ({}) is not among the files the shard wrote",
                 dir.display(),
                 rel.display()
             ));
         }
     }
-    if !problems.is_empty() {
-        return Err(ShardError::CannotMerge { problems });
-    }
     Ok(ShardDir {
         dir: dir.to_path_buf(),
         manifest,
+        traceless,
         owned: crate::owned_dir::OwnedDir::open(dir)?,
     })
 }
@@ -691,8 +693,8 @@ pub fn copy_trace(
     Ok(())
 }
 
-/// Checks shards before a merge (each read by [`read_shard`], which checked its files and
-/// traces): the same N, experiment files (`hash`: the current files') and selection
+/// Checks shards before a merge (each read by [`read_shard`], which checked its files): the
+/// same N, experiment files (`hash`: the current files') and selection
 /// (`manifest_problems`); and the runs each shard was assigned and holds: the selection's keys
 /// (`expected()`, in its enumeration order: the i-th is shard `i mod N + 1`'s) in exactly one
 /// shard each, its own, and no other run.
@@ -703,8 +705,9 @@ pub fn copy_trace(
 /// likewise, and both compared with the sum its manifest records. Only when they differ is
 /// each run placed ([`coverage_problems`]: the selection's keys and the shards holding each,
 /// O(runs), the error path alone) to say which runs are missing, and which shard should have
-/// produced them, duplicated, in the wrong shard or foreign. The error lists every problem of
-/// the first of these steps that finds any: the manifests, then the coverage.
+/// produced them, duplicated, in the wrong shard or foreign. The rows whose trace the shard did
+/// not write ([`read_shard`]) are listed after these. The error lists every problem of the
+/// first of these steps that finds any: the manifests, then the coverage and the traces.
 pub fn check_shards<I: Iterator<Item = String>>(
     shards: &[ShardDir],
     expected: impl Fn() -> I,
@@ -756,12 +759,11 @@ pub fn check_shards<I: Iterator<Item = String>>(
         .iter()
         .zip(&held)
         .all(|(s, h)| *h == assigned[s.manifest.shard - 1]);
-    if all_given && each_holds_its_own && !twice {
-        return Ok(());
+    if !(all_given && each_holds_its_own && !twice) {
+        problems = coverage_problems(shards, &expected().collect::<Vec<_>>(), n)?;
     }
-    let problems = coverage_problems(shards, &expected().collect::<Vec<_>>(), n)?;
+    problems.extend(shards.iter().flat_map(|s| s.traceless.iter().cloned()));
     if problems.is_empty() {
-        // The sums differ but every run is placed: only a collision of prints could do it.
         Ok(())
     } else {
         Err(ShardError::CannotMerge { problems })
