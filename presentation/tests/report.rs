@@ -555,7 +555,10 @@ fn a_large_sweeps_tables_are_bounded() {
         "{large}"
     );
     // Its extremes are among the runs shown.
-    assert!(large.contains("| v-0 |") && large.contains("| v-999 |"), "{large}");
+    assert!(
+        large.contains("| v-0 |") && large.contains("| v-999 |"),
+        "{large}"
+    );
     let small = runs_table(&runs, "jia2019-small");
     assert_eq!(data_rows(&small), 5, "{small}");
     assert!(!small.contains("more run(s)"), "{small}");

@@ -156,7 +156,15 @@ pub fn run_shard(
             }
         }
         unjournaled.sort_by_key(RunRow::key);
-        fold(&results, git_rev, &described, &[], unjournaled, at, &mut say)?;
+        fold(
+            &results,
+            git_rev,
+            &described,
+            &[],
+            unjournaled,
+            at,
+            &mut say,
+        )?;
         if at == FoldAt::End {
             break;
         }
@@ -174,11 +182,7 @@ pub fn run_shard(
         binding.shards,
         project.results_dir.display()
     );
-    Ok(summarise_failures(
-        &failed,
-        to_run,
-        &results.runs_path(),
-    ))
+    Ok(summarise_failures(&failed, to_run, &results.runs_path()))
 }
 
 #[cfg(test)]

@@ -79,7 +79,9 @@ fn carded(e: &Experiment) -> impl Iterator<Item = &Variant> {
         let picks: Vec<usize> = if n <= m {
             (0..n).collect()
         } else {
-            (0..m).map(|k| (k * (n - 1) + (m - 1) / 2) / (m - 1)).collect()
+            (0..m)
+                .map(|k| (k * (n - 1) + (m - 1) / 2) / (m - 1))
+                .collect()
         };
         picks.into_iter().map(move |i| &group[i])
     })

@@ -143,10 +143,7 @@ sweep = { "scheme.mu" = [1, 2, 4] }
 
     common::resume_completes(run, &results, 3, 4);
     let manifest = store::shard::Manifest::read(&results).unwrap();
-    assert_eq!(
-        (manifest.shard, manifest.shards, manifest.runs),
-        (1, 1, 4)
-    );
+    assert_eq!((manifest.shard, manifest.shards, manifest.runs), (1, 1, 4));
     assert_eq!(manifest.git_rev, reproduce::revision::REVISION);
 
     // The resumed shard merges (its manifest covers the folded runs' traces) ...

@@ -92,8 +92,7 @@ scheme = {{ kind = "znn-rmp", mu = 3.0, k_p = 1.0 }}
         )
         .unwrap();
         let files = load_dir(&dir, check_job).unwrap();
-        let variants_of_sweep: Vec<String> = files[0].experiments[0].variants
-            [..variants]
+        let variants_of_sweep: Vec<String> = files[0].experiments[0].variants[..variants]
             .iter()
             .map(|v| format!("kong2019-cards--{}.md", v.id()))
             .collect();
@@ -110,7 +109,10 @@ scheme = {{ kind = "znn-rmp", mu = 3.0, k_p = 1.0 }}
         assert!(generated.contains_key("kong2019-cards--alone.md"));
         assert_eq!(generated.len(), cards_wanted + 2);
         for name in generated.keys().filter(|k| *k != INDEX) {
-            assert!(generated[INDEX].contains(name.as_str()), "{name} not in the index");
+            assert!(
+                generated[INDEX].contains(name.as_str()),
+                "{name} not in the index"
+            );
         }
     }
     let _ = std::fs::remove_dir_all(&dir);

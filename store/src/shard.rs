@@ -39,8 +39,8 @@
 
 use crate::error::{IoAction, IoError, RunsError};
 use crate::integrity::{IntegrityError, Mismatch};
-use crate::owned_dir::PathError;
 use crate::keys::KeySum;
+use crate::owned_dir::PathError;
 use crate::sorted::{read_key_ordered, KeyMerge};
 use crate::tracked_dir::TrackedError;
 use records::runs::RunRow;
@@ -856,7 +856,9 @@ fn coverage_problems(
     }
     let mut given: Vec<usize> = shards.iter().map(|s| s.manifest.shard).collect();
     given.sort_unstable();
-    let absent: Vec<usize> = (1..=n).filter(|k| given.binary_search(k).is_err()).collect();
+    let absent: Vec<usize> = (1..=n)
+        .filter(|k| given.binary_search(k).is_err())
+        .collect();
     let mut missing = Vec::new();
     let mut duplicated = Vec::new();
     for (i, key) in expected.iter().enumerate() {

@@ -10,10 +10,10 @@
 
 use super::markdown::metric_cell;
 use super::markdown::{sci, sci_opt, Table, MISSING};
+use crate::figures::sweep::{drawn, MAX_RUN_FIGURES};
 use analysis::papers::{Mapping, Papers};
 use analysis::published_table::{Row, SideBySide};
 use records::index::{metric, status_text, Runs, EXACT};
-use crate::figures::sweep::{drawn, MAX_RUN_FIGURES};
 use records::runs::RunRow;
 
 /// A quantity's row label.
