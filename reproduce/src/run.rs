@@ -5,8 +5,9 @@
 //! selection, the control experiments re-run too) or written with what follows them (the
 //! explanation layer, the control experiments and the report), a run into `results/` timed
 //! phase by phase ([`crate::phases`]: printed, and written where `--phases FILE` says). A
-//! shard (`reproduce shard`) is handed to [`crate::shard`], which holds nothing per run. Runs
-//! that fail without their experiment file expecting it are exit code 1.
+//! shard (`reproduce shard`) does not come here: [`crate::shard`] makes its runs as it runs
+//! them and holds nothing per run. Runs that fail without their experiment file expecting it
+//! are exit code 1.
 
 use crate::baseline::Baseline;
 use crate::error::ReproduceError;
@@ -38,11 +39,10 @@ pub enum Output {
     Gate(Baseline),
 }
 
-/// What `reproduce run`, `check` and `shard` do with the selected runs.
+/// What `reproduce run` and `check` do with the selected runs.
 #[derive(Debug)]
 pub struct Plan<'a> {
-    /// The selection the runs were chosen by (a shard records it; a whole one adds the control
-    /// experiments).
+    /// The selection the runs were chosen by (a whole one adds the control experiments).
     pub selection: &'a SelectionOptions,
     /// Where the rows go.
     pub output: Output,

@@ -33,6 +33,21 @@ use store::shard::{Binding, Shard};
 /// once per chunk, ~t / CHUNK of the time.
 pub const CHUNK: usize = 4096;
 
+/// A test hook: with `DRIFTBENCH_SHARD_CHUNK=n` (a whole number, at least 1) in the
+/// environment a shard runs `n` runs at a time instead of [`CHUNK`], so that a test of a few
+/// runs folds between chunks (`reproduce/tests/shards.rs` kills such a shard at every durable
+/// step). Any other value is ignored.
+pub const CHUNK_VAR: &str = "DRIFTBENCH_SHARD_CHUNK";
+
+/// The runs a shard runs at a time: [`CHUNK`], or what [`CHUNK_VAR`] says.
+fn chunk_size() -> usize {
+    std::env::var(CHUNK_VAR)
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .filter(|&n| n >= 1)
+        .unwrap_or(CHUNK)
+}
+
 /// What a shard keeps of a finished run: nothing of a run checkpointed in the journal but
 /// whether it failed (and whether its experiment file expects it), the whole record of a run
 /// the journal could not take.
@@ -113,18 +128,18 @@ pub fn run_shard(
     let mut jobs = kept
         .runs(all.files())
         .filter(|j| !done.contains(&j.key().to_string()));
-    let mut ran = 0;
+    let (size, mut ran) = (chunk_size(), 0);
     loop {
-        let chunk: Vec<RunSpec> = jobs.by_ref().take(CHUNK).collect();
+        let chunk: Vec<RunSpec> = jobs.by_ref().take(size).collect();
         ran += chunk.len();
         // The last chunk is folded at the end, with the runs the journal could not take.
-        let at = if chunk.len() < CHUNK || ran == to_run {
+        let at = if chunk.len() < size || ran == to_run {
             FoldAt::End
         } else {
             FoldAt::Chunk
         };
         let journal = store::journal::Journal::open(&results, joints)?;
-        let outcomes = run_jobs_into(&chunk, to_run <= CHUNK, |r| {
+        let outcomes = run_jobs_into(&chunk, to_run <= size, |r| {
             let row = run_row(&r, git_rev);
             match journal.record(&row, kept_trace(&r)) {
                 Ok(()) => Outcome::Journaled((!row.completed()).then(|| failure(&row))),
@@ -136,7 +151,7 @@ pub fn run_shard(
         });
         drop(journal);
         drop(chunk);
-        if to_run > CHUNK {
+        if to_run > size {
             eprintln!("shard {shard}: {ran} of {to_run} runs done");
         }
         let mut unjournaled = Vec::new();
