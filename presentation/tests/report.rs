@@ -534,3 +534,32 @@ fn a_sweep_with_its_declared_setup_states_the_share_of_the_gap_from_the_runs() {
     }
     assert!(stated >= 1, "no sweep check names its declared setup");
 }
+
+/// A per-run table of a large sweep shows the runs its figures draw, at most
+/// MAX_RUN_FIGURES, and says how many it left out; a small experiment's shows every run and
+/// says nothing.
+#[test]
+fn a_large_sweeps_tables_are_bounded() {
+    use presentation::figures::sweep::MAX_RUN_FIGURES;
+    use presentation::report::tables::runs_table;
+    let mut rows: Vec<RunRow> = (0..1000)
+        .map(|i| row("jia2019-sweep", &format!("v-{i}"), "exact", 1e-3 * i as f64))
+        .collect();
+    rows.extend((0..5).map(|i| row("jia2019-small", &format!("v-{i}"), "exact", 0.1)));
+    let runs = Runs::new(rows);
+    let data_rows = |table: &str| table.lines().filter(|l| l.starts_with("| v-")).count();
+    let large = runs_table(&runs, "jia2019-sweep");
+    assert_eq!(data_rows(&large), MAX_RUN_FIGURES, "{large}");
+    assert!(
+        large.contains(&format!("{} more run(s)", 1000 - MAX_RUN_FIGURES)),
+        "{large}"
+    );
+    // Its extremes are among the runs shown.
+    assert!(
+        large.contains("| v-0 |") && large.contains("| v-999 |"),
+        "{large}"
+    );
+    let small = runs_table(&runs, "jia2019-small");
+    assert_eq!(data_rows(&small), 5, "{small}");
+    assert!(!small.contains("more run(s)"), "{small}");
+}

@@ -16,6 +16,7 @@ use spec::run::RunSpec;
 use spec::run_key::RunKey;
 use std::collections::HashSet;
 use store::journal::Recovered;
+use store::keys::KeySet;
 use store::results_dir::ResultsDir;
 use store::sorted::{latest, read_key_ordered, KeyMerge};
 
@@ -86,27 +87,39 @@ pub fn resume(
     Ok(store::journal::remove(results.path())?)
 }
 
+/// When a shard folds its journal ([`fold`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FoldAt {
+    /// At its start: an interrupted start's journal, folded and said; with nothing to fold
+    /// or prune nothing is written.
+    Start,
+    /// After each chunk of its runs but the last (crate::shard::CHUNK): what the chunk
+    /// checkpointed, so that the journal, and its index at the fold, never hold more than a
+    /// chunk's rows; with nothing to fold nothing is written.
+    Chunk,
+    /// At its end: `runs.csv` is always written.
+    End,
+}
+
 /// Folds the journal of `results` and `unjournaled` (rows whose traces are written, in key
 /// order) into its `runs.csv` by streaming, leaving out the stored rows `pruned` (their traces
 /// removed); `fresh` is told each row folded from the journal or `unjournaled`. `runs.csv` is
 /// read, merged and written row by row ([`store::sorted`]) and the journal's rows are read
 /// back one at a time: what is held per run is its key (the journal's index, the described
-/// keys), never its row or trace. At a start (`at_end` false) an interrupted start's journal
-/// is folded and said, and with nothing to fold or prune nothing is written; at the end of a
-/// shard (`at_end`) `runs.csv` is always written. The journal is removed once `runs.csv` is
-/// committed. Returns how many rows were folded from the journal.
+/// keys), never its row or trace. `at` says when ([`FoldAt`]). The journal is removed once
+/// `runs.csv` is committed. Returns how many rows were folded from the journal.
 pub fn fold(
     results: &ResultsDir,
     git_rev: &str,
     described: &Keys,
     pruned: &[RunRow],
     unjournaled: Vec<RunRow>,
-    at_end: bool,
+    at: FoldAt,
     mut fresh: impl FnMut(&RunRow),
 ) -> Result<usize, ReproduceError> {
     let recovered = recover(results, git_rev, described)?;
     let folded = recovered.current.len();
-    if at_end || folded > 0 || !pruned.is_empty() || !unjournaled.is_empty() {
+    if at == FoldAt::End || folded > 0 || !pruned.is_empty() || !unjournaled.is_empty() {
         for line in results.prune(pruned)? {
             eprintln!("{line}");
         }
@@ -143,7 +156,7 @@ pub fn fold(
             })
         });
         results.commit_runs(joints, rows)?;
-        if folded > 0 && !at_end {
+        if folded > 0 && at == FoldAt::Start {
             eprintln!(
                 "folded {folded} run(s) of an interrupted run into {}",
                 results.runs_path().display()
@@ -159,64 +172,42 @@ pub fn kept_trace(r: &RunRecord) -> Option<&[records::trace::TracePoint]> {
     r.job.keep_trace.then_some(&r.run.trace[..])
 }
 
-/// The runs of `jobs` still to run: those a shard directory does not hold already as rows of
-/// its `runs.csv` (read row by row) of this revision `git_rev` whose trace the directory's
-/// manifest records (or that keep no trace by choice). An earlier start of the shard finished
-/// them, whether its journal was folded by this start or by one before: a shard's resume is
-/// cumulative over every attempt, and a finished shard started again runs nothing. `jobs` itself when none is done (a first
-/// start copies no run).
-pub fn skip_finished<'a>(
+/// The runs a shard directory holds already, finished: the rows of its `runs.csv` (read row
+/// by row) of this revision `git_rev` whose trace the directory's manifest records, or that
+/// keep no trace by choice (`described`). An earlier start of the shard finished them,
+/// whether its journal was folded by this start or by one before: a shard's resume is
+/// cumulative over every attempt, and a finished shard started again runs nothing. Held as
+/// their keys' prints, 16 bytes a run ([`store::keys::KeySet`]).
+pub fn finished(
     results: &ResultsDir,
     git_rev: &str,
-    jobs: &'a [RunSpec],
-) -> Result<std::borrow::Cow<'a, [RunSpec]>, ReproduceError> {
-    let traced: HashSet<String> = results.tracked().listed("traces/").into_iter().collect();
-    let untraced: HashSet<RunKey> = jobs
-        .iter()
-        .filter(|j| !j.keep_trace)
-        .map(RunSpec::key)
+    described: &Keys,
+) -> Result<KeySet, ReproduceError> {
+    let mut failed = None;
+    let done: KeySet = read_key_ordered(&results.runs_path())?
+        .map_while(|row| row.map_err(|e| failed = Some(e)).ok())
+        .filter(|row| row.git_rev == git_rev)
+        .map(|row| row.key())
+        .filter(|key| {
+            !described.traced(key) || results.tracked().lists(&ResultsDir::trace_rel(key))
+        })
+        .map(|key| key.to_string())
         .collect();
-    let mut done = HashSet::new();
-    for row in read_key_ordered(&results.runs_path())? {
-        let row = row?;
-        let key = row.key();
-        let rel = ResultsDir::trace_rel(&key);
-        if row.git_rev == git_rev
-            && (untraced.contains(&key)
-                || traced.contains(&rel.to_string_lossy().replace('\\', "/")))
-        {
-            done.insert(key);
-        }
+    match failed {
+        Some(e) => Err(e.into()),
+        None => Ok(done),
     }
-    drop(traced);
-    if done.is_empty() {
-        return Ok(std::borrow::Cow::Borrowed(jobs));
-    }
-    let to_run: Vec<RunSpec> = jobs
-        .iter()
-        .filter(|j| !done.contains(&j.key()))
-        .cloned()
-        .collect();
-    let skipped = jobs.len() - to_run.len();
-    if skipped > 0 {
-        eprintln!(
-            "resuming: {skipped} of the selected runs already done: the shard holds {skipped} of its runs from earlier starts of this revision ({}); they are not run again",
-            results.runs_path().display()
-        );
-    }
-    Ok(std::borrow::Cow::Owned(to_run))
+}
+
+/// The joints of the arm of `job` (0 for a robot the registry does not know: the run fails
+/// at its start, with a row of no per-joint values).
+pub fn joint_count(job: &RunSpec) -> usize {
+    robots::registry::robot_by_name(&job.robot).map_or(0, |r| r.dof())
 }
 
 /// The most joints among the arms of `jobs` (the per-joint columns of their rows).
 pub fn joints(jobs: &[RunSpec]) -> usize {
-    jobs.iter()
-        .filter_map(|j| {
-            robots::registry::robot_by_name(&j.robot)
-                .ok()
-                .map(|r| r.dof())
-        })
-        .max()
-        .unwrap_or(0)
+    jobs.iter().map(joint_count).max().unwrap_or(0)
 }
 
 /// Runs `to_run` (in parallel), each checkpointed in a journal of `results` when given (sized

@@ -96,7 +96,7 @@ pub fn run(global: &GlobalOptions, mode: Mode) -> Result<ExitCode, ReproduceErro
         Mode::Explain(o) => {
             let project = project(None)?;
             let files = experiment_files(&project)?;
-            let jobs = selected(&files, &o.selection, None, &project)?;
+            let jobs = selected(&files, &o.selection)?;
             explanation::explain_mode(&project, &o, &jobs, &Described::new(&files), git_rev)?;
             Ok(ExitCode::SUCCESS)
         }
@@ -114,7 +114,7 @@ pub fn run(global: &GlobalOptions, mode: Mode) -> Result<ExitCode, ReproduceErro
         Mode::Check(o) => check_against_baseline(&project(None)?, &o, started),
         Mode::Shard(o) => {
             let shard = resolve_shard(o.shard, o.shards, env)?;
-            run_shard(&project(Some(shard))?, &o, shard, started)
+            run_shard(&project(Some(shard))?, &o, shard)
         }
     }
 }
@@ -128,7 +128,7 @@ fn run_selection(
     started: std::time::Instant,
 ) -> Result<ExitCode, ReproduceError> {
     let files = experiment_files(project)?;
-    let jobs = selected(&files, &o.selection, None, project)?;
+    let jobs = selected(&files, &o.selection)?;
     let output = if o.dry_run {
         Output::DryRun
     } else {
@@ -159,7 +159,7 @@ fn check_against_baseline(
 ) -> Result<ExitCode, ReproduceError> {
     let files = experiment_files(project)?;
     let all = Described::new(&files);
-    let jobs = selected(&files, &o.selection, None, project)?;
+    let jobs = selected(&files, &o.selection)?;
     let baseline = baseline::Baseline::read(
         &project.root,
         &project.results_dir,
@@ -177,51 +177,41 @@ fn check_against_baseline(
 }
 
 /// `reproduce shard K/N`: the runs of the selection that `shard` owns, into its own results
-/// directory (the `project`'s).
+/// directory (the `project`'s), made as they are run ([`shard`](mod@shard)).
 fn run_shard(
     project: &Project,
     o: &options::ShardOptions,
     shard: Shard,
-    started: std::time::Instant,
 ) -> Result<ExitCode, ReproduceError> {
     let files = experiment_files(project)?;
-    let jobs = selected(&files, &o.selection, Some(shard), project)?;
-    let plan = Plan {
-        selection: &o.selection,
-        output: Output::Shard(shard),
-        explain: false,
-        started,
-        phases: None,
+    let selection = o.selection.selection();
+    select::check_selection(&files, &selection)?;
+    let kept = select::Kept {
+        selection: &selection,
+        shard: Some(shard),
     };
-    run::run(
+    let total = kept.total(&files);
+    say_shard(project, shard, kept.owned_in(0, total), total);
+    crate::shard::run_shard(
         project,
-        plan,
+        &o.selection,
+        shard,
         &Described::new(&files),
-        &jobs,
+        kept,
         revision::REVISION,
     )
 }
 
-/// The runs of `files` that `selection` keeps and `shard` owns (all of them without a shard;
-/// said on stderr with one). Only these are made and collected (a shard's: found by index,
-/// select::Kept); every other run is made from the files when needed (results::Described).
+/// The runs of `files` that `selection` keeps, collected (a shard makes its own as it runs
+/// them instead: [`run_shard`]); every other run is made from the files when needed
+/// (results::Described).
 fn selected(
     files: &[PaperFile],
     selection: &SelectionOptions,
-    shard: Option<Shard>,
-    project: &Project,
 ) -> Result<Vec<RunSpec>, ReproduceError> {
     let selection = selection.selection();
     select::check_selection(files, &selection)?;
-    let kept = select::Kept {
-        selection: &selection,
-        shard,
-    };
-    let jobs: Vec<RunSpec> = kept.runs(files).collect();
-    if let Some(shard) = shard {
-        say_shard(project, shard, jobs.len(), kept.total(files));
-    }
-    Ok(jobs)
+    Ok(select::selected(files, &selection).collect())
 }
 
 /// `list` (with a shard: the shard's runs; with `shards`: the count per shard), the runs made

@@ -5,10 +5,12 @@
 //!
 //! The merge streams: the shards' `runs.csv` are read row by row and merged in key order
 //! with the stored `runs.csv` (store::sorted, a k-way merge: a shard's row replaces a stored
-//! one), written row by row, each trace copied file by file as its row passes. Memory is then
-//! one row per shard plus O(bytes of a key) per run (the selection's keys, each shard's list
-//! of its runs, the manifests' entries), and time linear in the runs (two passes over the
-//! rows: the checks, then the writing). docs/cluster.md has the measurements.
+//! one), written row by row, each trace copied file by file as its row passes. The checks
+//! compare sums of the runs' keys (store::shard::check_shards), and the described runs are
+//! held as 16-byte prints (crate::results::Keys). Memory is then one row per shard plus what
+//! docs/cluster.md lists as still O(runs) (the loaded experiment files, the prints, the
+//! integrity manifests' entries), and time linear in the runs (two passes over the rows: the
+//! checks, then the writing).
 
 use crate::error::ReproduceError;
 use crate::project::Project;
@@ -32,22 +34,24 @@ pub fn merge_shards(
     git_rev: &str,
     report: bool,
 ) -> Result<ExitCode, ReproduceError> {
+    let all = &Described::new(files);
+    let described = all.keys();
     let shards = dirs
         .iter()
-        .map(|d| store::shard::read_shard(d, project.edits))
+        .map(|d| store::shard::read_shard(d, project.edits, |k| described.traced(k)))
         .collect::<Result<Vec<_>, _>>()?;
     let sel = shards
         .first()
         .map(|s| s.manifest.selection.clone())
         .unwrap_or_default();
     check_selection(files, &sel)?;
-    let expected: Vec<String> = selected(files, &sel).map(|j| j.key().to_string()).collect();
-    let all = &Described::new(files);
     let hash =
         store::shard::experiments_hash(&project.experiments_dir, selection_files(files, &sel))?;
-    let described = all.keys();
-    store::shard::check_shards(&shards, &expected, &hash, |k| described.traced(k))?;
-    drop(expected);
+    store::shard::check_shards(
+        &shards,
+        || selected(files, &sel).map(|j| j.key().to_string()),
+        &hash,
+    )?;
 
     let results = open_results(project, git_rev, all)?;
     let pruned = results.plan_pruning_streamed(
@@ -55,8 +59,6 @@ pub fn merge_shards(
         project.prune,
         &project.experiments_dir,
     )?;
-    // Of the described runs, only those that keep no trace are held on.
-    let untraced = described.into_untraced();
     for line in results.prune(&pruned)? {
         eprintln!("{line}");
     }
@@ -88,7 +90,7 @@ pub fn merge_shards(
     let rows = latest(KeyMerge::new(sources)?, |_| {}).map(|r| {
         let (source, row) = r?;
         if source > 0 {
-            if !untraced.contains(&row.key()) {
+            if described.traced(&row.key()) {
                 store::shard::copy_trace(&shards[source - 1], &row, &results)?;
             }
             runs += 1;

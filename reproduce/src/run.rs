@@ -5,8 +5,9 @@
 //! selection, the control experiments re-run too) or written with what follows them (the
 //! explanation layer, the control experiments and the report), a run into `results/` timed
 //! phase by phase ([`crate::phases`]: printed, and written where `--phases FILE` says). A
-//! shard (`reproduce shard`) is handed to [`crate::shard`], which holds nothing per run. Runs
-//! that fail without their experiment file expecting it are exit code 1.
+//! shard (`reproduce shard`) does not come here: [`crate::shard`] makes its runs as it runs
+//! them and holds nothing per run. Runs that fail without their experiment file expecting it
+//! are exit code 1.
 
 use crate::baseline::Baseline;
 use crate::error::ReproduceError;
@@ -25,7 +26,6 @@ use spec::run::RunSpec;
 use std::process::ExitCode;
 use std::time::Instant;
 use store::results_dir::ResultsDir;
-use store::shard::Shard;
 
 /// Where a run's rows go.
 #[derive(Debug)]
@@ -37,16 +37,12 @@ pub enum Output {
     DryRun,
     /// Compared with a baseline (the gate); nothing written.
     Gate(Baseline),
-    /// Into the shard's own results directory, bound to the shard, with its manifest last
-    /// ([`crate::shard`]).
-    Shard(Shard),
 }
 
-/// What `reproduce run`, `check` and `shard` do with the selected runs.
+/// What `reproduce run` and `check` do with the selected runs.
 #[derive(Debug)]
 pub struct Plan<'a> {
-    /// The selection the runs were chosen by (a shard records it; a whole one adds the control
-    /// experiments).
+    /// The selection the runs were chosen by (a whole one adds the control experiments).
     pub selection: &'a SelectionOptions,
     /// Where the rows go.
     pub output: Output,
@@ -66,9 +62,6 @@ pub fn run(
     jobs: &[RunSpec],
     git_rev: &str,
 ) -> Result<ExitCode, ReproduceError> {
-    if let Output::Shard(shard) = plan.output {
-        return crate::shard::run_shard(project, plan.selection, shard, all, jobs, git_rev);
-    }
     if matches!(plan.output, Output::Results) {
         precheck_report(project, all)?;
     }
@@ -257,7 +250,7 @@ fn publish(
         Ok(root) => {
             // `run --paper X` draws X's figures only (the pages are all re-rendered: they
             // are cheap, and the front page summarises every paper).
-            let untraced = all.keys().into_untraced();
+            let untraced = all.untraced();
             let figures = render_figures(&root, plan.selection.paper.as_deref(), &untraced)?;
             clock.lap(Phase::Figures, Some(figures));
             render_pages(project, &root, results)?;

@@ -1,18 +1,22 @@
 //! `reproduce shard K/N`: the shard's runs into its own directory in memory flat in
-//! the number of runs (docs/cluster.md). The directory is bound to the shard
-//! (store::shard::Binding) before anything runs; an interrupted start's journal is folded
-//! into `runs.csv` and the runs an earlier start finished are skipped; each run, as it
-//! finishes, is checkpointed (trace, seal, journal row) and dropped; at the end the journal is
-//! folded into `runs.csv` by streaming ([`crate::journal::fold`]), the summary printed row by
-//! row as it is folded, and the shard's manifest written last.
+//! the number of runs (docs/cluster.md, "What a shard and a merge hold"). The directory is
+//! bound to the shard (store::shard::Binding) before anything runs; an interrupted start's
+//! journal is folded into `runs.csv`, and the runs any earlier start finished are skipped
+//! (their keys held as 16-byte prints, [`crate::journal::finished`]); the shard's runs are made
+//! from the experiment files as they are taken ([`Kept::runs`]) and run [`CHUNK`] at a time,
+//! each checkpointed (trace, seal, journal row) and dropped as it finishes; after each chunk
+//! the journal is folded into `runs.csv` by streaming ([`crate::journal::fold`]: the journal
+//! and its index never hold more than a chunk's rows), the summary printed row by row as it
+//! is folded; and the shard's manifest is written last, with the count and the key sum of the
+//! runs assigned to it (store::keys::KeySum), not their list.
 
 use crate::error::ReproduceError;
-use crate::journal::{fold, joints, kept_trace, skip_finished};
+use crate::journal::{finished, fold, joint_count, kept_trace, FoldAt};
 use crate::options::SelectionOptions;
 use crate::project::Project;
 use crate::results::{open_results, Described};
 use crate::run::{failure, summarise_failures};
-use crate::select::selection_files;
+use crate::select::{selection_files, Kept};
 use crate::summary::{emit, Summary};
 use records::runs::RunRow;
 use simulation::row::run_row;
@@ -20,26 +24,48 @@ use simulation::run::RunRecord;
 use simulation::runner::run_jobs_into;
 use spec::run::RunSpec;
 use std::process::ExitCode;
+use store::keys::KeySum;
 use store::shard::{Binding, Shard};
+
+/// How many runs a shard makes and runs at a time: what it holds of its runs is this many
+/// [`RunSpec`]s (~1 KB each) and the records of the runs in flight, whatever their number. A
+/// chunk ends when its slowest run does, so with `t` threads at most `t - 1` threads wait
+/// once per chunk, ~t / CHUNK of the time.
+pub const CHUNK: usize = 4096;
+
+/// A test hook: with `DRIFTBENCH_SHARD_CHUNK=n` (a whole number, at least 1) in the
+/// environment a shard runs `n` runs at a time instead of [`CHUNK`], so that a test of a few
+/// runs folds between chunks (`reproduce/tests/shards.rs` kills such a shard at every durable
+/// step). Any other value is ignored.
+pub const CHUNK_VAR: &str = "DRIFTBENCH_SHARD_CHUNK";
+
+/// The runs a shard runs at a time: [`CHUNK`], or what [`CHUNK_VAR`] says.
+fn chunk_size() -> usize {
+    std::env::var(CHUNK_VAR)
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .filter(|&n| n >= 1)
+        .unwrap_or(CHUNK)
+}
 
 /// What a shard keeps of a finished run: nothing of a run checkpointed in the journal but
 /// whether it failed (and whether its experiment file expects it), the whole record of a run
 /// the journal could not take.
-enum Kept {
+enum Outcome {
     /// Checkpointed; `Some` for a failed run: its line for the user and whether it is expected.
     Journaled(Option<(String, bool)>),
     /// Not checkpointed (the warning said why): its trace and row are written at the end.
     Unjournaled(Box<RunRecord>),
 }
 
-/// Runs `jobs`, shard `shard`'s runs of the selection `selection` (of `all`, every run of the
-/// experiment files), into the shard's directory.
+/// Runs shard `shard`'s runs of the selection `selection` (`kept`: which runs of `all`, every
+/// run of the experiment files, are the shard's) into the shard's directory.
 pub fn run_shard(
     project: &Project,
     selection: &SelectionOptions,
     shard: Shard,
     all: &Described,
-    jobs: &[RunSpec],
+    kept: Kept<'_>,
     git_rev: &str,
 ) -> Result<ExitCode, ReproduceError> {
     // One writer at a time: the lock is held until the process ends.
@@ -68,61 +94,102 @@ pub fn run_shard(
         &described,
         &pruned,
         Vec::new(),
-        false,
+        FoldAt::Start,
         |_| {},
     )?;
-    let to_run = skip_finished(&results, git_rev, jobs)?;
+    drop(pruned);
+    let done = finished(&results, git_rev, &described)?;
 
-    let journal = store::journal::Journal::open(&results, joints(jobs))?;
-    let kept = run_jobs_into(&to_run, true, |r| {
-        let row = run_row(&r, git_rev);
-        match journal.record(&row, kept_trace(&r)) {
-            Ok(()) => Kept::Journaled((!row.completed()).then(|| failure(&row))),
-            Err(e) => {
-                eprintln!("warning: run not checkpointed: {e}");
-                Kept::Unjournaled(Box::new(r))
+    // One pass over the shard's runs, made and dropped: what it was assigned (the manifest's
+    // count and key sum), the most joints among them (the journal's columns), how many are
+    // done.
+    let (mut assigned, mut joints, mut skipped) = (KeySum::default(), 0, 0);
+    for job in kept.runs(all.files()) {
+        let key = job.key().to_string();
+        skipped += usize::from(done.contains(&key));
+        assigned.add(&key);
+        joints = joints.max(joint_count(&job));
+    }
+    if skipped > 0 {
+        eprintln!(
+            "resuming: {skipped} of the selected runs already done: the shard holds {skipped} of its runs from earlier starts of this revision ({}); they are not run again",
+            results.runs_path().display()
+        );
+    }
+    let to_run = assigned.count - skipped;
+
+    let mut failed = Vec::new();
+    let mut summary = Summary::default();
+    let mut say = |row: &RunRow| {
+        let mut line = String::new();
+        summary.push(row, &mut line);
+        emit(&line);
+    };
+    let mut jobs = kept
+        .runs(all.files())
+        .filter(|j| !done.contains(&j.key().to_string()));
+    let (size, mut ran) = (chunk_size(), 0);
+    loop {
+        let chunk: Vec<RunSpec> = jobs.by_ref().take(size).collect();
+        ran += chunk.len();
+        // The last chunk is folded at the end, with the runs the journal could not take.
+        let at = if chunk.len() < size || ran == to_run {
+            FoldAt::End
+        } else {
+            FoldAt::Chunk
+        };
+        let journal = store::journal::Journal::open(&results, joints)?;
+        let outcomes = run_jobs_into(&chunk, to_run <= size, |r| {
+            let row = run_row(&r, git_rev);
+            match journal.record(&row, kept_trace(&r)) {
+                Ok(()) => Outcome::Journaled((!row.completed()).then(|| failure(&row))),
+                Err(e) => {
+                    eprintln!("warning: run not checkpointed: {e}");
+                    Outcome::Unjournaled(Box::new(r))
+                }
+            }
+        });
+        drop(journal);
+        drop(chunk);
+        if to_run > size {
+            eprintln!("shard {shard}: {ran} of {to_run} runs done");
+        }
+        let mut unjournaled = Vec::new();
+        for outcome in outcomes {
+            match outcome {
+                Outcome::Journaled(f) => failed.extend(f),
+                Outcome::Unjournaled(r) => {
+                    if let Some(trace) = kept_trace(&r) {
+                        results.write_trace(&r.job.key(), trace)?;
+                    }
+                    let row = run_row(&r, git_rev);
+                    if !row.completed() {
+                        failed.push(failure(&row));
+                    }
+                    unjournaled.push(row);
+                }
             }
         }
-    });
-    drop(journal);
-    let mut failed = Vec::new();
-    let mut unjournaled = Vec::new();
-    for k in kept {
-        match k {
-            Kept::Journaled(f) => failed.extend(f),
-            Kept::Unjournaled(r) => {
-                if let Some(trace) = kept_trace(&r) {
-                    results.write_trace(&r.job.key(), trace)?;
-                }
-                let row = run_row(&r, git_rev);
-                if !row.completed() {
-                    failed.push(failure(&row));
-                }
-                unjournaled.push(row);
-            }
+        unjournaled.sort_by_key(RunRow::key);
+        fold(
+            &results,
+            git_rev,
+            &described,
+            &[],
+            unjournaled,
+            at,
+            &mut say,
+        )?;
+        if at == FoldAt::End {
+            break;
         }
     }
-    unjournaled.sort_by_key(RunRow::key);
-    let mut summary = Summary::default();
-    fold(
-        &results,
-        git_rev,
-        &described,
-        &[],
-        unjournaled,
-        true,
-        |row| {
-            let mut line = String::new();
-            summary.push(row, &mut line);
-            emit(&line);
-        },
-    )?;
     let mut end = String::new();
     summary.finish(&mut end);
     emit(&end);
 
     binding
-        .manifest(git_rev, jobs.iter().map(|j| j.key().to_string()).collect())
+        .manifest(git_rev, assigned)
         .write(&project.results_dir)?;
     eprintln!(
         "shard {}/{} done: merge with `reproduce merge {}...`",
@@ -130,11 +197,7 @@ pub fn run_shard(
         binding.shards,
         project.results_dir.display()
     );
-    Ok(summarise_failures(
-        &failed,
-        to_run.len(),
-        &results.runs_path(),
-    ))
+    Ok(summarise_failures(&failed, to_run, &results.runs_path()))
 }
 
 #[cfg(test)]
@@ -146,7 +209,7 @@ mod tests {
     /// could not take is kept, boxed. A record held inline would fail here.
     #[test]
     fn a_shard_keeps_a_few_words_per_run() {
-        assert!(std::mem::size_of::<Kept>() <= 4 * std::mem::size_of::<usize>());
-        assert!(std::mem::size_of::<RunRecord>() > std::mem::size_of::<Kept>());
+        assert!(std::mem::size_of::<Outcome>() <= 4 * std::mem::size_of::<usize>());
+        assert!(std::mem::size_of::<RunRecord>() > std::mem::size_of::<Outcome>());
     }
 }

@@ -1,5 +1,5 @@
-//! Task cards: one Markdown page per task (every variant of `experiments/*.toml`, sweeps
-//! expanded), with everything someone needs to set the same task up in their own code and score
+//! Task cards: one Markdown page per task (every variant of `experiments/*.toml`, a sweep's
+//! variants up to [`MAX_SWEEP_CARDS`] of them, evenly spaced), with everything someone needs to set the same task up in their own code and score
 //! its trajectory here (`reproduce score FILE --task ID`): the robot's kinematics (DH table and
 //! tool, or its closed form) and limits, the path's formula, parameters and values at a few
 //! instants, the duration, theta0 and theta*0, and the scheme's QP (its formulas with the
@@ -14,7 +14,7 @@
 
 use crate::experiments::load_dir;
 use catalog::error::ExperimentFileError;
-use catalog::experiment::PaperFile;
+use catalog::experiment::{Experiment, Variant};
 use presentation::task_card::{
     self as card, CardRun, Kinematics as CardKinematics, MountCard, PathCard, QpCard, RobotCard,
     RunSettings, SchemeCard, SchemeForm, StartCard, TaskCard,
@@ -53,23 +53,55 @@ pub enum TaskCardError {
     Report(#[from] TrackedError),
 }
 
-/// The cards of every task of the experiment files in `experiments_dir`: file name -> Markdown,
-/// the index ([`INDEX`]) included.
-pub fn cards(experiments_dir: &Path) -> Result<BTreeMap<String, String>, TaskCardError> {
-    let files = load_dir(experiments_dir)?;
-    // Every run of a task, in the files' order; the first one describes the task.
-    let mut tasks: Vec<(String, Vec<RunSpec>)> = Vec::new();
-    for job in files.iter().flat_map(PaperFile::jobs) {
-        let id = job.task().to_string();
-        match tasks.iter_mut().find(|(t, _)| *t == id) {
-            Some((_, jobs)) => jobs.push(job),
-            None => tasks.push((id, vec![job])),
+/// The most cards one sweep gets (as many as an experiment's per-run figures,
+/// presentation::figures::sweep::MAX_RUN_FIGURES): a sweep that expands into more variants
+/// gets cards for this many of them, evenly spaced, its first and last among them
+/// ([`carded`]), so the cards of a sweep of 10^5 variants are 24 files, not 10^5.
+pub const MAX_SWEEP_CARDS: usize = presentation::figures::sweep::MAX_RUN_FIGURES;
+
+/// The variants of `e` that get a card, in file order: every variant that no sweep expanded,
+/// and of each sweep's variants (a variant whose runs begin the sweep's runs, and the variants
+/// that follow it with runs further along: catalog::sweep::KeptTraces::first_run) all of them
+/// up to [`MAX_SWEEP_CARDS`], else that many evenly spaced: the k-th of m at
+/// round(k (n - 1) / (m - 1)).
+fn carded(e: &Experiment) -> impl Iterator<Item = &Variant> {
+    let mut groups: Vec<&[Variant]> = Vec::new();
+    let mut start = 0;
+    for (i, v) in e.variants.iter().enumerate() {
+        if i > 0 && v.traces.first_run == 0 {
+            groups.push(&e.variants[start..i]);
+            start = i;
         }
     }
-    let models = tasks
+    groups.push(&e.variants[start..]);
+    groups.into_iter().flat_map(|group| {
+        let (n, m) = (group.len(), MAX_SWEEP_CARDS);
+        let picks: Vec<usize> = if n <= m {
+            (0..n).collect()
+        } else {
+            (0..m)
+                .map(|k| (k * (n - 1) + (m - 1) / 2) / (m - 1))
+                .collect()
+        };
+        picks.into_iter().map(move |i| &group[i])
+    })
+}
+
+/// The cards of the tasks of the experiment files in `experiments_dir` (every variant, each
+/// sweep's capped: [`carded`]): file name -> Markdown, the index ([`INDEX`]) included. Each
+/// task's runs are made from its variant alone, so what is held is the cards.
+pub fn cards(experiments_dir: &Path) -> Result<BTreeMap<String, String>, TaskCardError> {
+    let files = load_dir(experiments_dir)?;
+    let models = files
         .iter()
-        .map(|(id, jobs)| {
+        .flat_map(|f| {
+            f.experiments
+                .iter()
+                .flat_map(move |e| carded(e).map(move |v| f.variant_jobs(e, v)))
+        })
+        .map(|jobs| {
             let job = &jobs[0];
+            let id = job.task().to_string();
             let numbers = task_numbers(job).map_err(|source| TaskCardError::Setup {
                 task: id.clone(),
                 source,
@@ -78,7 +110,7 @@ pub fn cards(experiments_dir: &Path) -> Result<BTreeMap<String, String>, TaskCar
                 task: id.clone(),
                 robot: job.robot.clone(),
             })?;
-            task_card(jobs, numbers, &robot)
+            task_card(&jobs, numbers, &robot)
         })
         .collect::<Result<Vec<TaskCard>, TaskCardError>>()?;
     Ok(card::render(&models))

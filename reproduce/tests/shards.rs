@@ -144,10 +144,7 @@ sweep = { "scheme.mu" = [1, 2, 4] }
 
     common::resume_completes(run, &results, 3, 4);
     let manifest = store::shard::Manifest::read(&results).unwrap();
-    assert_eq!(
-        (manifest.shard, manifest.shards, manifest.runs.len()),
-        (1, 1, 4)
-    );
+    assert_eq!((manifest.shard, manifest.shards, manifest.runs), (1, 1, 4));
     assert_eq!(manifest.git_rev, reproduce::revision::REVISION);
 
     // The resumed shard merges (its manifest covers the folded runs' traces) ...
@@ -363,8 +360,10 @@ fn shard_lists_partition_the_selection() {
 /// started again and killed at the N-th step of that start (which, as N grows, falls on every
 /// step of the resume: the fold's runs.csv and manifest, the journal's removal, ...), then
 /// started a third time without the hook. That start must finish without `--accept-edited`,
-/// and the merge must equal one unsharded process. An experiment file added beside the
-/// selection's (another paper's) blocks neither the shard's start nor its merge.
+/// and the merge must equal one unsharded process. The shard runs two runs at a time
+/// (`reproduce::shard::CHUNK_VAR`), so the fold between its chunks is killed at each of its
+/// steps too. An experiment file added beside the selection's (another paper's) blocks neither
+/// the shard's start nor its merge.
 #[test]
 fn a_shard_killed_after_any_durable_step_resumes_and_merges_equal_to_one_process() {
     let base = temp("kill-points");
@@ -384,7 +383,8 @@ fn a_shard_killed_after_any_durable_step_resumes_and_merges_equal_to_one_process
         c.args(["shard", "1/1", "--paper", "kong2019", "--experiments-dir"])
             .arg(&experiments)
             .arg("--results-dir")
-            .arg(dir);
+            .arg(dir)
+            .env(reproduce::shard::CHUNK_VAR, "2");
         if let Some(n) = kill_after {
             c.env(store::kill_point::VAR, n.to_string());
         }
@@ -477,7 +477,7 @@ fn a_shard_killed_every_few_steps_finishes_after_a_bounded_number_of_starts() {
     }
     assert!(starts > 1, "the kill came before the shard's end");
     let manifest = store::shard::Manifest::read(&dir).unwrap();
-    assert_eq!(manifest.runs.len(), 3);
+    assert_eq!(manifest.runs, 3);
     assert_eq!(read_runs(&dir.join("runs.csv")).unwrap().len(), 3);
     let _ = std::fs::remove_dir_all(&base);
 }

@@ -57,3 +57,63 @@ fn every_task_has_a_card_with_its_check_values() {
         assert!(card.contains(part), "{part} not in\n{card}");
     }
 }
+
+/// A sweep of more variants than a sweep's cards gets that many, evenly spaced, its first and
+/// last variants among them; a sweep of fewer gets a card per variant; the index lists the
+/// cards written.
+#[test]
+fn a_large_sweep_gets_capped_cards() {
+    use reproduce::task_card::MAX_SWEEP_CARDS;
+    let dir = std::env::temp_dir().join(format!("driftbench-sweep-cards-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    for (variants, cards_wanted) in [(10, 10), (101, MAX_SWEEP_CARDS)] {
+        let step = 1.0 / (variants - 1) as f64;
+        std::fs::write(
+            dir.join("kong2019.toml"),
+            format!(
+                r#"paper = "kong2019"
+title = "a sweep's cards"
+[[experiment]]
+id = "kong2019-cards"
+paper_output = "none"
+robot = "katana6m180"
+path = {{ name = "circle", duration = 0.05 }}
+theta0 = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.0471975511965976]
+[[experiment.variant]]
+label = "ZNN"
+scheme = {{ kind = "znn-rmp", mu = 1.0, k_p = 1.0 }}
+sweep = {{ "scheme.mu" = {{ from = 1.0, to = 2.0, step = {step} }} }}
+[[experiment.variant]]
+label = "alone"
+scheme = {{ kind = "znn-rmp", mu = 3.0, k_p = 1.0 }}
+"#
+            ),
+        )
+        .unwrap();
+        let files = load_dir(&dir, check_job).unwrap();
+        let variants_of_sweep: Vec<String> = files[0].experiments[0].variants[..variants]
+            .iter()
+            .map(|v| format!("kong2019-cards--{}.md", v.id()))
+            .collect();
+        let generated = cards(&dir).unwrap();
+        let of_sweep: Vec<&String> = generated
+            .keys()
+            .filter(|k| variants_of_sweep.contains(k))
+            .collect();
+        assert_eq!(of_sweep.len(), cards_wanted, "{variants} variants");
+        for end in [&variants_of_sweep[0], &variants_of_sweep[variants - 1]] {
+            assert!(generated.contains_key(end), "{end} has no card");
+        }
+        // The variant outside the sweep has its card; the index lists every card.
+        assert!(generated.contains_key("kong2019-cards--alone.md"));
+        assert_eq!(generated.len(), cards_wanted + 2);
+        for name in generated.keys().filter(|k| *k != INDEX) {
+            assert!(
+                generated[INDEX].contains(name.as_str()),
+                "{name} not in the index"
+            );
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

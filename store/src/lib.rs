@@ -18,7 +18,8 @@
 //! - [`journal`]: the checkpoint of finished runs that an interrupted run resumes from;
 //!   [`kill_point`]: the test hook that kills the process after any durable step.
 //! - [`shard`]: cluster runs: which shard a run belongs to, the shard directory's binding and
-//!   manifest, the merge checks; [`fnv`]: the stable hash they use.
+//!   manifest, the merge checks; [`fnv`]: the stable hash they use; [`keys`]: run keys held
+//!   in a few bytes each (a set of their prints, a multiset's sum).
 //! - [`sorted`]: rows in key order, streamed: a `runs.csv` read row by row, sources merged
 //!   k-way, the latest row of each key kept (a shard's fold and a merge, in flat memory).
 //! - [`migrate`]: results written before run ids (labels as identities), brought up to date once.
@@ -33,6 +34,7 @@ pub mod error;
 pub mod fnv;
 pub mod integrity;
 pub mod journal;
+pub mod keys;
 pub mod kill_point;
 pub mod migrate;
 pub mod owned_dir;

@@ -23,20 +23,23 @@
 //!   another K or N), or holding results without a binding, is refused before anything runs.
 //!   The same shard started again (a requeue) finds its own binding and resumes.
 //! - **Manifest.** A shard directory holds `runs.csv`, `traces/` and, written last and
-//!   atomically, `shard.toml` ([`Manifest`]): K, N, the selection the shard was given, the run
-//!   keys assigned to it, the code revision and a hash of the experiment files. A directory
-//!   without a manifest is a shard that has not finished. A shard resumes through the ordinary
-//!   journal ([`crate::journal`]) of its directory. A manifest is checked as it is read: K in
-//!   1..=N, N >= 1, every run key one that can name a file and listed once; otherwise it is an
-//!   error naming the file, the field and the entry (whether a run is shard K's needs the
-//!   selection's enumeration: the merge checks it).
+//!   atomically, `shard.toml` ([`Manifest`]): K, N, the selection the shard was given, how many
+//!   runs were assigned to it and the sum of their keys' prints ([`crate::keys::KeySum`]: 32
+//!   hex digits, whatever the number of runs), the code revision and a hash of the experiment
+//!   files. A directory without a manifest is a shard that has not finished. A shard resumes
+//!   through the ordinary journal ([`crate::journal`]) of its directory. A manifest is checked
+//!   as it is read: K in 1..=N, N >= 1, a key sum of 32 hex digits; otherwise it is an error
+//!   naming the file and the field (whether the runs are shard K's needs the selection's
+//!   enumeration: the merge checks it).
 //! - **Merge.** [`check_shards`] verifies that the shards agree (N, experiment files, selection),
-//!   that each shard holds and lists only runs whose index in the selection makes them its own,
-//!   and that every selected run appears exactly once; otherwise it says which runs are missing
-//!   (and which shard should have produced them) or duplicated, and nothing is written.
+//!   that each shard was assigned and holds exactly the runs whose index in the selection makes
+//!   them its own (their counts and key sums), so that every selected run appears exactly once;
+//!   otherwise it says which runs are missing (and which shard should have produced them),
+//!   duplicated, misplaced or foreign, and nothing is written.
 
 use crate::error::{IoAction, IoError, RunsError};
 use crate::integrity::{IntegrityError, Mismatch};
+use crate::keys::KeySum;
 use crate::owned_dir::PathError;
 use crate::sorted::{read_key_ordered, KeyMerge};
 use crate::tracked_dir::TrackedError;
@@ -135,17 +138,13 @@ pub enum ShardError {
         /// Why they make no shard.
         source: Box<ShardError>,
     },
-    /// An entry of `shard.toml`'s `runs` is not a run of the shard.
-    #[error("{}: `runs`, entry {index} \"{entry}\": {problem}", path.display())]
-    ManifestRun {
+    /// `shard.toml`'s `key_sum` is not 32 lower-case hex digits.
+    #[error("{}: `key_sum = \"{value}\"`: expected 32 lower-case hex digits (the sum of the prints of the shard's run keys, store::keys)", path.display())]
+    ManifestKeySum {
         /// The file.
         path: PathBuf,
-        /// The entry's position, from 1.
-        index: usize,
-        /// The entry as written.
-        entry: String,
-        /// What is wrong with it.
-        problem: RunEntryProblem,
+        /// The value as written.
+        value: String,
     },
     /// `shard-binding.toml` does not read as a binding.
     #[error("{}: {source}", path.display())]
@@ -221,17 +220,6 @@ pub enum ShardError {
         /// The problems, one each.
         problems: Vec<String>,
     },
-}
-
-/// What is wrong with an entry of a shard manifest's `runs`.
-#[derive(Debug, thiserror::Error)]
-pub enum RunEntryProblem {
-    /// Not a run key, or a part that is no valid id.
-    #[error("not a run key: {0}")]
-    NotAKey(spec::run_key::KeyError),
-    /// The run is listed twice.
-    #[error("listed twice")]
-    Twice,
 }
 
 /// Shard K of N (K in 1..=N).
@@ -478,14 +466,16 @@ impl Binding {
         out
     }
 
-    /// The manifest of the finished shard: this binding, the code revision and the run keys.
-    pub fn manifest(&self, git_rev: &str, runs: Vec<String>) -> Manifest {
+    /// The manifest of the finished shard: this binding, the code revision and the run keys
+    /// assigned to it (their count and sum).
+    pub fn manifest(&self, git_rev: &str, assigned: KeySum) -> Manifest {
         Manifest {
             shard: self.shard,
             shards: self.shards,
             git_rev: git_rev.to_string(),
             experiments_hash: self.experiments_hash.clone(),
-            runs,
+            runs: assigned.count,
+            key_sum: assigned.hex(),
             selection: self.selection.clone(),
         }
     }
@@ -503,8 +493,11 @@ pub struct Manifest {
     pub git_rev: String,
     /// [`experiments_hash`] of the experiment files the shard ran.
     pub experiments_hash: String,
-    /// The run keys (`experiment / variant / solver`) assigned to the shard.
-    pub runs: Vec<String>,
+    /// How many runs were assigned to the shard.
+    pub runs: usize,
+    /// The sum of the prints of the run keys (`experiment / variant / solver`) assigned to the
+    /// shard ([`KeySum`]), as 32 hex digits: the merge compares it with the selection's.
+    pub key_sum: String,
     /// The selection flags the shard ran.
     pub selection: Selection,
 }
@@ -522,8 +515,8 @@ impl Manifest {
         Ok(())
     }
 
-    /// Reads the manifest of the shard directory `dir` and checks it (a valid shard; every run key
-    /// parses, belongs to the shard and is listed once); an unfinished shard has none.
+    /// Reads the manifest of the shard directory `dir` and checks it (a valid shard, a key sum
+    /// of 32 hex digits); an unfinished shard has none.
     pub fn read(dir: &Path) -> Result<Self, ShardError> {
         let path = dir.join(MANIFEST);
         let kind = inputs::Kind::ShardManifest;
@@ -553,21 +546,12 @@ impl Manifest {
             shards: self.shards,
             source: Box::new(source),
         })?;
-        let mut seen = std::collections::HashSet::new();
-        for (index, entry) in self.runs.iter().enumerate() {
-            let problem = match spec::run_key::RunKey::parse(entry) {
-                Err(e) => Some(RunEntryProblem::NotAKey(e)),
-                Ok(key) if !seen.insert(key.clone()) => Some(RunEntryProblem::Twice),
-                Ok(_) => None,
-            };
-            if let Some(problem) = problem {
-                return Err(ShardError::ManifestRun {
-                    path: path.to_path_buf(),
-                    index: index + 1,
-                    entry: entry.clone(),
-                    problem,
-                });
-            }
+        let hex = |c: u8| c.is_ascii_digit() || (b'a'..=b'f').contains(&c);
+        if self.key_sum.len() != 32 || !self.key_sum.bytes().all(hex) {
+            return Err(ShardError::ManifestKeySum {
+                path: path.to_path_buf(),
+                value: self.key_sum.clone(),
+            });
         }
         Ok(())
     }
@@ -611,15 +595,18 @@ pub fn experiments_hash<'a>(
     Ok(format!("{:016x}", fnv1a64(&bytes)))
 }
 
-/// One finished shard directory (its rows are not held: [`runs_files`] streams them).
+/// One finished shard directory (its rows are not held: [`runs_files`] streams them; nor is
+/// its integrity manifest, one entry per trace: [`read_shard`] checks the files against it
+/// and drops it).
 #[derive(Debug)]
 pub struct ShardDir {
     /// The shard directory.
     pub dir: PathBuf,
     /// Its `shard.toml`.
     pub manifest: Manifest,
-    /// Its integrity manifest (every file it wrote, traces included).
-    pub files: crate::integrity::Manifest,
+    /// Its rows whose trace is not among the files it wrote, one problem each (said by
+    /// [`check_shards`] with the runs' placement).
+    traceless: Vec<String>,
     /// The directory, every path under it checked.
     owned: crate::owned_dir::OwnedDir,
 }
@@ -627,8 +614,15 @@ pub struct ShardDir {
 /// Reads a finished shard: its `shard.toml` and its integrity manifest. Every file the
 /// integrity manifest lists (the rows and every trace) must still be what the shard wrote,
 /// unless `edits` accepts edits (each file is hashed as a stream); a directory that does not
-/// exist, or a shard without an integrity manifest, is an error saying so.
-pub fn read_shard(dir: &Path, edits: crate::tracked_dir::Edits) -> Result<ShardDir, ShardError> {
+/// exist, or a shard without an integrity manifest, is an error saying so. The rows whose
+/// trace is not among those files (unless their run keeps none by choice: `traced` false for
+/// its key) are noted for [`check_shards`]. The integrity manifest is dropped once read, so a
+/// merge holds one shard's at a time.
+pub fn read_shard(
+    dir: &Path,
+    edits: crate::tracked_dir::Edits,
+    traced: impl Fn(&spec::run_key::RunKey) -> bool,
+) -> Result<ShardDir, ShardError> {
     if !dir.is_dir() {
         return Err(ShardError::NoDirectory {
             dir: dir.to_path_buf(),
@@ -647,10 +641,26 @@ pub fn read_shard(dir: &Path, edits: crate::tracked_dir::Edits) -> Result<ShardD
             });
         }
     }
+    let mut traceless = Vec::new();
+    for row in read_key_ordered(&dir.join(crate::results_dir::RUNS))? {
+        let key = row?.key();
+        let rel = crate::results_dir::ResultsDir::trace_rel(&key);
+        if traced(&key)
+            && !files
+                .files
+                .contains_key(&rel.to_string_lossy().replace('\\', "/"))
+        {
+            traceless.push(format!(
+                "{}: the trace of {key} ({}) is not among the files the shard wrote",
+                dir.display(),
+                rel.display()
+            ));
+        }
+    }
     Ok(ShardDir {
         dir: dir.to_path_buf(),
         manifest,
-        files,
+        traceless,
         owned: crate::owned_dir::OwnedDir::open(dir)?,
     })
 }
@@ -670,7 +680,7 @@ fn trace_rel(r: &RunRow) -> PathBuf {
 }
 
 /// Copies the trace of `row`, a row of `shard`, into `results` (written atomically and
-/// recorded). [`check_shards`] has checked that it is there.
+/// recorded). [`read_shard`] has checked that it is there.
 pub fn copy_trace(
     shard: &ShardDir,
     row: &RunRow,
@@ -683,21 +693,25 @@ pub fn copy_trace(
     Ok(())
 }
 
-/// Checks shards before a merge: the same N, experiment files (`hash`: the current files')
-/// and selection (`manifest_problems`); each row in its own shard with its trace (unless its
-/// run keeps none by choice: `traced` false for its key), and each
-/// run a manifest lists its shard's; every run of `expected` (the keys the selection
-/// describes, in its enumeration order: `expected[i]` is shard `i mod N + 1`'s) in exactly
-/// one shard, and no other run. The rows are streamed in key order ([`runs_files`] merged),
-/// so a run in two shards comes as two rows in a row; what is held per run is its key (in
-/// the map of `expected` to its shard, and each shard's list of its runs). The error lists
-/// every problem of the first of these steps that finds any: the manifests and the rows'
-/// places, then the coverage.
-pub fn check_shards(
+/// Checks shards before a merge (each read by [`read_shard`], which checked its files): the
+/// same N, experiment files (`hash`: the current files') and selection
+/// (`manifest_problems`); and the runs each shard was assigned and holds: the selection's keys
+/// (`expected()`, in its enumeration order: the i-th is shard `i mod N + 1`'s) in exactly one
+/// shard each, its own, and no other run.
+///
+/// In memory independent of the number of runs: the expected keys are summed per shard
+/// ([`KeySum`]) in one pass over `expected()`, each shard's rows (streamed in key order,
+/// [`runs_files`] merged k-way, so a run in two shards comes as two rows in a row) summed
+/// likewise, and both compared with the sum its manifest records. Only when they differ is
+/// each run placed ([`coverage_problems`]: the selection's keys and the shards holding each,
+/// O(runs), the error path alone) to say which runs are missing, and which shard should have
+/// produced them, duplicated, in the wrong shard or foreign. The rows whose trace the shard did
+/// not write ([`read_shard`]) are listed after these. The error lists every problem of the
+/// first of these steps that finds any: the manifests, then the coverage and the traces.
+pub fn check_shards<I: Iterator<Item = String>>(
     shards: &[ShardDir],
-    expected: &[String],
+    expected: impl Fn() -> I,
     hash: &str,
-    traced: impl Fn(&spec::run_key::RunKey) -> bool,
 ) -> Result<(), ShardError> {
     let Some(first) = shards.first() else {
         return Err(ShardError::NoShardDirectories);
@@ -707,78 +721,48 @@ pub fn check_shards(
     if !problems.is_empty() {
         return Err(ShardError::CannotMerge { problems });
     }
-    // Each selected run's shard, from its index in the selection's enumeration.
-    let owners: std::collections::HashMap<&str, usize> = expected
-        .iter()
-        .enumerate()
-        .map(|(i, key)| (key.as_str(), Shard::of_index(i, n)))
-        .collect();
-    for s in shards {
-        for key in &s.manifest.runs {
-            if let Some(&owner) = owners.get(key.as_str()) {
-                if owner != s.manifest.shard {
-                    problems.push(format!(
-                        "{}: its {MANIFEST} lists {key}, which belongs to shard {owner}/{n}",
-                        s.dir.display()
-                    ));
-                }
-            }
-        }
+    // What the selection assigns each shard (index k - 1: shard k).
+    let mut assigned = vec![KeySum::default(); n];
+    for (i, key) in expected().enumerate() {
+        assigned[Shard::of_index(i, n) - 1].add(&key);
     }
-    let assigned: Vec<std::collections::HashSet<&str>> = shards
-        .iter()
-        .map(|s| s.manifest.runs.iter().map(String::as_str).collect())
-        .collect();
-    // Each expected key and the shards (indices) that hold it.
-    let mut found: std::collections::HashMap<&str, Vec<usize>> =
-        expected.iter().map(|k| (k.as_str(), Vec::new())).collect();
-    let mut foreign = Vec::new();
-    let mut last: Option<(String, usize)> = None;
-    for item in KeyMerge::new(runs_files(shards)?)? {
-        let (i, r) = item?;
-        let s = &shards[i];
-        let key = r.key().to_string();
-        let owner = owners.get(key.as_str()).copied();
-        let listed = assigned[i].contains(key.as_str());
-        if owner.is_some_and(|o| o != s.manifest.shard) || !listed {
+    for s in shards {
+        let wants = assigned[s.manifest.shard - 1];
+        if (s.manifest.runs, s.manifest.key_sum.as_str()) != (wants.count, wants.hex().as_str()) {
             problems.push(format!(
-                "{}: holds {key}, which {}{}",
+                "{}: its {MANIFEST} records {} run(s) (key sum {}), but the selection assigns shard {}/{n} {} run(s) (key sum {}): it was not written for these experiment files and this selection",
                 s.dir.display(),
-                match owner {
-                    Some(o) => format!("belongs to shard {o}/{n}"),
-                    None => "the selection does not describe".to_string(),
-                },
-                if listed {
-                    ""
-                } else {
-                    " and is not among the runs its shard.toml lists"
-                }
+                s.manifest.runs,
+                s.manifest.key_sum,
+                s.manifest.shard,
+                wants.count,
+                wants.hex()
             ));
         }
-        let rel = trace_rel(&r);
-        if traced(&r.key())
-            && !s
-                .files
-                .files
-                .contains_key(&rel.to_string_lossy().replace('\\', "/"))
-        {
-            problems.push(format!(
-                "{}: the trace of {key} ({}) is not among the files the shard wrote",
-                s.dir.display(),
-                rel.display()
-            ));
-        }
-        match found.get_mut(key.as_str()) {
-            Some(holders) => holders.push(i),
-            None if last.as_ref().is_some_and(|(k, _)| *k == key) => {}
-            None => foreign.push(key.clone()),
-        }
-        last = Some((key, i));
     }
     if !problems.is_empty() {
         return Err(ShardError::CannotMerge { problems });
     }
-    let problems = coverage_problems(shards, expected, &found, &foreign, n);
+    // What each shard holds, and whether a run comes twice.
+    let mut held = vec![KeySum::default(); shards.len()];
+    let mut twice = false;
+    let mut last: Option<spec::run_key::RunKey> = None;
+    for item in KeyMerge::new(runs_files(shards)?)? {
+        let (i, r) = item?;
+        let key = r.key();
+        held[i].add(&key.to_string());
+        twice |= last.as_ref() == Some(&key);
+        last = Some(key);
+    }
+    let all_given = (1..=n).all(|k| shards.iter().any(|s| s.manifest.shard == k));
+    let each_holds_its_own = shards
+        .iter()
+        .zip(&held)
+        .all(|(s, h)| *h == assigned[s.manifest.shard - 1]);
+    if !(all_given && each_holds_its_own && !twice) {
+        problems = coverage_problems(shards, &expected().collect::<Vec<_>>(), n)?;
+    }
+    problems.extend(shards.iter().flat_map(|s| s.traceless.iter().cloned()));
     if problems.is_empty() {
         Ok(())
     } else {
@@ -835,26 +819,52 @@ fn manifest_problems(shards: &[ShardDir], first: &ShardDir, hash: &str) -> Vec<S
     problems
 }
 
-/// How the shards' runs cover the `expected` keys of the selection, as problems (one entry per
-/// kind, listing its runs): shards of the `n` not given, selected runs missing, runs in more
-/// than one shard, runs the selection does not describe (`foreign`); `found`: each expected
-/// key and the shards that hold it.
+/// How the shards' runs cover the `expected` keys of the selection (in its enumeration
+/// order), as problems (one entry per kind, listing its runs): shards of the `n` not given,
+/// rows in a shard not theirs, selected runs missing, runs in more than one shard, runs the
+/// selection does not describe. Every run is placed (the keys and the shards holding each):
+/// the error path of [`check_shards`], which calls it only when the sums differ.
 fn coverage_problems(
     shards: &[ShardDir],
     expected: &[String],
-    found: &std::collections::HashMap<&str, Vec<usize>>,
-    foreign: &[String],
     n: usize,
-) -> Vec<String> {
+) -> Result<Vec<String>, ShardError> {
+    use std::collections::HashMap;
+    let owners: HashMap<&str, usize> = expected
+        .iter()
+        .enumerate()
+        .map(|(i, key)| (key.as_str(), Shard::of_index(i, n)))
+        .collect();
+    let mut found: HashMap<&str, Vec<usize>> = HashMap::new();
+    let mut misplaced = Vec::new();
+    let mut foreign = Vec::new();
+    for item in KeyMerge::new(runs_files(shards)?)? {
+        let (i, r) = item?;
+        let key = r.key().to_string();
+        match owners.get_key_value(key.as_str()) {
+            Some((&known, &owner)) => {
+                if owner != shards[i].manifest.shard {
+                    misplaced.push(format!(
+                        "  {}: holds {key}, which belongs to shard {owner}/{n}",
+                        shards[i].dir.display()
+                    ));
+                }
+                found.entry(known).or_default().push(i);
+            }
+            None => foreign.push(format!("  {key}  (in {})", shards[i].dir.display())),
+        }
+    }
     let mut given: Vec<usize> = shards.iter().map(|s| s.manifest.shard).collect();
     given.sort_unstable();
-    let absent: Vec<usize> = (1..=n).filter(|k| !given.contains(k)).collect();
+    let absent: Vec<usize> = (1..=n)
+        .filter(|k| given.binary_search(k).is_err())
+        .collect();
     let mut missing = Vec::new();
     let mut duplicated = Vec::new();
     for (i, key) in expected.iter().enumerate() {
         let owner = Shard::of_index(i, n);
-        match found.get(key.as_str()).map_or(0, Vec::len) {
-            0 => missing.push(format!(
+        match found.get(key.as_str()).map_or(&[][..], Vec::as_slice) {
+            [] => missing.push(format!(
                 "  {key}  (shard {owner}/{n}{})",
                 if absent.contains(&owner) {
                     ", not given"
@@ -862,10 +872,10 @@ fn coverage_problems(
                     ""
                 }
             )),
-            1 => {}
-            _ => duplicated.push(format!(
+            [_] => {}
+            holders => duplicated.push(format!(
                 "  {key}  duplicated in {}",
-                found[key.as_str()]
+                holders
                     .iter()
                     .map(|&i| shards[i].dir.display().to_string())
                     .collect::<Vec<_>>()
@@ -884,32 +894,20 @@ fn coverage_problems(
                 .join(", ")
         ));
     }
-    if !missing.is_empty() {
-        out.push(format!(
-            "{} selected run(s) missing from the shards:\n{}",
-            missing.len(),
-            missing.join("\n")
-        ));
+    for (what, list) in [
+        ("row(s) in a shard that is not theirs", misplaced),
+        ("selected run(s) missing from the shards", missing),
+        ("run(s) in more than one shard", duplicated),
+        (
+            "run(s) in the shards that the selection does not describe",
+            foreign,
+        ),
+    ] {
+        if !list.is_empty() {
+            out.push(format!("{} {what}:\n{}", list.len(), list.join("\n")));
+        }
     }
-    if !duplicated.is_empty() {
-        out.push(format!(
-            "{} run(s) in more than one shard:\n{}",
-            duplicated.len(),
-            duplicated.join("\n")
-        ));
-    }
-    if !foreign.is_empty() {
-        out.push(format!(
-            "{} run(s) in the shards that the selection does not describe:\n{}",
-            foreign.len(),
-            foreign
-                .iter()
-                .map(|k| format!("  {k}"))
-                .collect::<Vec<_>>()
-                .join("\n")
-        ));
-    }
-    out
+    Ok(out)
 }
 
 #[cfg(test)]
@@ -1042,11 +1040,6 @@ mod tests {
         assert!(Shard::from_env(env(&[]), Some(3)).is_err());
     }
 
-    /// The run key of run `i`.
-    fn key_of(i: usize) -> String {
-        format!("e / v{i} / s")
-    }
-
     #[test]
     fn manifest_round_trips() {
         let m = Manifest {
@@ -1054,7 +1047,8 @@ mod tests {
             shards: 3,
             git_rev: "abc".into(),
             experiments_hash: "0123456789abcdef".into(),
-            runs: vec![key_of(1)],
+            runs: 1,
+            key_sum: format!("{:032x}", u128::MAX - 7),
             selection: Selection {
                 paper: Some("kong2019".into()),
                 experiments: vec![],
@@ -1073,8 +1067,8 @@ mod tests {
         let _ = std::fs::remove_dir_all(&dir);
     }
 
-    /// A manifest that no shard could have written is refused as it is read, naming the file,
-    /// the field and the entry: never a panic, never a path outside the directory.
+    /// A manifest that no shard could have written is refused as it is read, naming the file
+    /// and the field: never a panic.
     #[test]
     fn impossible_manifests_are_refused_naming_the_field() {
         let dir =
@@ -1085,7 +1079,8 @@ mod tests {
             shards: 2,
             git_rev: "abc".into(),
             experiments_hash: "0123456789abcdef".into(),
-            runs: vec![key_of(0), key_of(2)],
+            runs: 2,
+            key_sum: "0123456789abcdef0123456789abcdef".into(),
             selection: Selection::default(),
         };
         let refused = |m: &Manifest, wants: &[&str]| {
@@ -1123,27 +1118,16 @@ mod tests {
             },
             &["`shard = 0`"],
         );
-        let entry = |runs: Vec<String>, wants: &[&str]| {
+        for bad in ["", "0123", "0123456789ABCDEF0123456789abcdef", "../x"] {
             let e = refused(
                 &Manifest {
-                    runs,
+                    key_sum: bad.into(),
                     ..good.clone()
                 },
-                wants,
+                &["`key_sum = ", "32 lower-case hex digits"],
             );
-            assert!(matches!(e, ShardError::ManifestRun { .. }), "{e}");
-        };
-        let first = good.runs[0].clone();
-        entry(
-            vec![first.clone(), "../../../outside / x / y".into()],
-            &["`runs`, entry 2", "../../../outside", "not a run key"],
-        );
-        entry(
-            vec![".. / x / y".into()],
-            &["entry 1", "experiment id \"..\" is not a slug"],
-        );
-        entry(vec!["no key".into()], &["entry 1", "not a run key"]);
-        entry(vec![first.clone(), first], &["entry 2", "listed twice"]);
+            assert!(matches!(e, ShardError::ManifestKeySum { .. }), "{e}");
+        }
         good.write(&dir).unwrap();
         assert_eq!(Manifest::read(&dir).unwrap(), good);
         let _ = std::fs::remove_dir_all(&dir);

@@ -280,6 +280,11 @@ impl TrackedDir {
             .collect()
     }
 
+    /// Whether the manifest lists the file at `rel`.
+    pub fn lists(&self, rel: &Path) -> bool {
+        self.lock().files.contains_key(&key(rel))
+    }
+
     /// Saves the manifest.
     pub fn save(&self) -> Result<(), TrackedError> {
         // Written under the lock, not from a copy: a copy is one more entry per file held.

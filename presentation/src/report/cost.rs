@@ -10,7 +10,8 @@ use analysis::cost_ratio::TimeRow;
 use analysis::papers::Papers;
 use records::index::{completed, Runs};
 
-/// One cost table per paper: every run's integrator, tolerances and effort.
+/// One cost table per paper: every run's integrator, tolerances and effort (a large sweep's
+/// drawn runs only: [`super::tables::shown`]).
 pub fn cost_table(runs: &Runs, paper: &str) -> String {
     let mut t = Table::new([
         "experiment",
@@ -26,7 +27,8 @@ pub fn cost_table(runs: &Runs, paper: &str) -> String {
         "wall (s)",
         "simulation (s)",
     ]);
-    for r in runs.of_paper(paper) {
+    let (rows, left_out) = super::tables::shown(runs.of_paper(paper));
+    for r in rows {
         // Runs that failed before their first step have no statistics.
         let lost = !completed(r) && r.steps == 0;
         let count = |n: usize| {
@@ -55,7 +57,7 @@ pub fn cost_table(runs: &Runs, paper: &str) -> String {
             if lost { count(0) } else { sci(r.sim_s) },
         ]);
     }
-    t.render()
+    t.render() + &super::tables::left_out_note(left_out)
 }
 
 /// The label of solver id `solver` in `experiment` (its first run's), or the id.

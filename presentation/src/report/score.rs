@@ -14,7 +14,8 @@ pub const NOTE: &str =
 dynamics are fast. VP-RNN-PF's equilibrium is the exponential-penalty optimum, not x*: its score \
 measures the penalty approximation (p, sigma), not a fault of the network.";
 
-/// The score table of one paper's neural runs (empty when it has none).
+/// The score table of one paper's neural runs (empty when it has none; a large sweep's drawn
+/// runs only: [`super::tables::shown`]).
 pub fn score_table(runs: &Runs, paper: &str) -> String {
     let mut t = Table::new([
         "experiment",
@@ -28,7 +29,8 @@ pub fn score_table(runs: &Runs, paper: &str) -> String {
         "exact solves failed",
         "status",
     ]);
-    for r in runs.of_paper(paper).filter(|r| is_neural(r)) {
+    let (rows, left_out) = super::tables::shown(runs.of_paper(paper).filter(|r| is_neural(r)));
+    for r in rows {
         t.push([
             r.experiment.to_string(),
             r.variant.clone(),
@@ -47,6 +49,6 @@ pub fn score_table(runs: &Runs, paper: &str) -> String {
     if t.is_empty() {
         String::new()
     } else {
-        t.render()
+        t.render() + &super::tables::left_out_note(left_out)
     }
 }

@@ -10,6 +10,7 @@
 
 use super::markdown::metric_cell;
 use super::markdown::{sci, sci_opt, Table, MISSING};
+use crate::figures::sweep::{drawn, MAX_RUN_FIGURES};
 use analysis::papers::{Mapping, Papers};
 use analysis::published_table::{Row, SideBySide};
 use records::index::{metric, status_text, Runs, EXACT};
@@ -159,10 +160,44 @@ fn caption(table: &str, columns: &[&Mapping], runs: &Runs, one_variant: bool) ->
     out
 }
 
-/// The suite's table of every run of one experiment: status, drift, position error, peaks
-/// and joint-limit margins (columns that no run measures are left out).
+/// The rows a per-run table shows, in their order (`rows` sorted by key, so that each
+/// experiment's are together): every run of an experiment of at most
+/// [`MAX_RUN_FIGURES`] runs, and of a larger one (a large sweep) the runs it draws a figure of
+/// ([`crate::figures::sweep::drawn`]: its failures, its extremes, runs evenly spaced), so
+/// that a table has at most that many rows per experiment whatever the sweep's size; and how
+/// many runs it leaves out.
+pub fn shown<'a>(rows: impl Iterator<Item = &'a RunRow>) -> (Vec<&'a RunRow>, usize) {
+    let rows: Vec<&RunRow> = rows.collect();
+    let mut out = Vec::new();
+    for group in rows.chunk_by(|a, b| a.experiment == b.experiment) {
+        if group.len() <= MAX_RUN_FIGURES {
+            out.extend_from_slice(group);
+        } else {
+            let mut picks = drawn(group);
+            picks.sort_unstable();
+            out.extend(picks.into_iter().map(|i| group[i]));
+        }
+    }
+    let left_out = rows.len() - out.len();
+    (out, left_out)
+}
+
+/// The line below a per-run table that left `left_out` runs out ([`shown`]); none when it
+/// left none out.
+pub fn left_out_note(left_out: usize) -> String {
+    if left_out == 0 {
+        return String::new();
+    }
+    format!(
+        "\n{left_out} more run(s) of large sweeps are not in this table: an experiment of more than {MAX_RUN_FIGURES} runs shows the {MAX_RUN_FIGURES} its figures draw (its failures, its extremes, runs evenly spaced); its sweep section has its extremes and failures, and `results/runs.csv` every run.\n"
+    )
+}
+
+/// The suite's table of the runs of one experiment ([`shown`]: a large sweep's drawn runs):
+/// status, drift, position error, peaks and joint-limit margins (columns that no run measures
+/// are left out).
 pub fn runs_table(runs: &Runs, experiment: &str) -> String {
-    let rows: Vec<&RunRow> = runs.of_experiment(experiment).collect();
+    let (rows, left_out) = shown(runs.of_experiment(experiment));
     let off_reference = rows.iter().any(|r| r.drift_norm != r.drift_ref_norm);
     let mut quantities = vec!["drift_norm"];
     if off_reference {
@@ -195,5 +230,5 @@ pub fn runs_table(runs: &Runs, experiment: &str) -> String {
         row.push(status_text(r));
         t.push(row);
     }
-    t.without_empty_columns().render()
+    t.without_empty_columns().render() + &left_out_note(left_out)
 }
