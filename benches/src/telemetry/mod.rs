@@ -22,6 +22,9 @@
 //! - `sweep-e2e.csv`: a sweep of short runs end to end (its shards, the merge, the page), peak
 //!   memory, CPU, wall time and disk per process against the number of runs (its schema is the
 //!   script's header, `benches/sweep_e2e/run.sh`; docs/cluster.md reads it);
+//! - [`side_by_side`]: the cold release build of `reproduce` at issue 38's baseline and at
+//!   another revision, one after the other (`side-by-side/build.csv`, by
+//!   `benches/side_by_side/build_and_runs.sh`);
 //! - [`throughput`]: one thread's runs per CPU second on a kong2019 ZNN sweep at two revisions,
 //!   and where a right-hand side's time goes (`throughput.csv`, `throughput-profile.csv`, by
 //!   `benches/throughput/kong2019_sweep.sh`).
@@ -35,5 +38,6 @@ pub mod judged;
 pub mod page;
 pub mod profile;
 pub mod profile_active_set;
+pub mod side_by_side;
 pub mod speedup;
 pub mod throughput;

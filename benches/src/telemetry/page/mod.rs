@@ -5,10 +5,12 @@
 //!
 //! - [`profile`]: where the hot exact solve and each profiled paper spend their time;
 //! - [`speedup`]: every paper's runs against an earlier revision;
-//! - [`clock`]: the newcomer's clock, the phases of a run, the explain phase and a cold build.
+//! - [`clock`]: the newcomer's clock, the phases of a run, the explain phase and a cold build;
+//! - [`side_by_side`]: the cold build against issue 38's baseline.
 
 pub mod clock;
 pub mod profile;
+pub mod side_by_side;
 pub mod speedup;
 pub mod throughput;
 
@@ -16,6 +18,7 @@ use super::build_profile::BuildUnitRow;
 use super::clock::ClockRow;
 use super::profile::ProfileRow;
 use super::profile_active_set::HotSolveRow;
+use super::side_by_side::SideBySideBuildRow;
 use super::speedup::SpeedupRow;
 use super::throughput::{ThroughputProfileRow, ThroughputRow};
 use analysis::papers::Papers;
@@ -59,6 +62,8 @@ pub struct Inputs {
     pub clock: Vec<ClockRow>,
     /// `benches/results/build-profile.csv`.
     pub build: Vec<BuildUnitRow>,
+    /// `benches/results/side-by-side/build.csv`.
+    pub side_by_side: Vec<SideBySideBuildRow>,
     /// `benches/results/profile.csv`.
     pub profile: Vec<ProfileRow>,
     /// `benches/results/profile-active-set.csv`.
@@ -86,6 +91,7 @@ impl Inputs {
             phases: reproduce::phases::read(&benches.join(reproduce::phases::FILE))?,
             clock: read_if_present(&benches.join(super::clock::FILE))?,
             build: read_if_present(&benches.join(super::build_profile::FILE))?,
+            side_by_side: read_if_present(&benches.join(super::side_by_side::FILE))?,
             profile: read_if_present(&benches.join(super::profile::FILE))?,
             hot: read_if_present(&benches.join(super::profile_active_set::FILE))?,
             speedup: read_if_present(&benches.join(super::speedup::FILE))?,
@@ -120,6 +126,9 @@ pub fn render(i: &Inputs) -> String {
         clock: &i.clock,
         build: &i.build,
     }));
+    out.push_str(&side_by_side::section(
+        super::side_by_side::compare(&i.side_by_side).as_ref(),
+    ));
     out
 }
 
@@ -198,6 +207,7 @@ mod tests {
             phases: Vec::new(),
             clock: Vec::new(),
             build: Vec::new(),
+            side_by_side: Vec::new(),
             profile: read(profile_csv),
             hot: read(hot_csv),
             speedup: read(speedup_csv),
@@ -287,6 +297,7 @@ mod tests {
             "`results/dof-cost.csv` has no 7-variable QP",
             "`benches/results/build-profile.csv` is absent",
             "`benches/results/throughput.csv` is absent",
+            "`benches/results/side-by-side/build.csv` is absent",
         ] {
             assert!(md.contains(absent), "{absent}: {md}");
         }
