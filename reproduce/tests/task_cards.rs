@@ -91,7 +91,7 @@ scheme = {{ kind = "znn-rmp", mu = 3.0, k_p = 1.0 }}
             ),
         )
         .unwrap();
-        let files = load_dir(&dir, check_job).unwrap();
+        let files = load_dir(&dir).unwrap();
         let variants_of_sweep: Vec<String> = files[0].experiments[0].variants[..variants]
             .iter()
             .map(|v| format!("kong2019-cards--{}.md", v.id()))
