@@ -31,11 +31,11 @@ use settings::solver_spec::SolverSpec;
 use simulation::run::build_network;
 use simulation::simulate::{simulate, Outcome, Settings, Solver};
 use solvers::neural::NeuralSolver;
-use spec::path::PathSpec;
-use spec::rmp::RmpReading;
-use spec::run::NetworkInit;
-use spec::run::Scoring;
-use spec::scheme::SchemeSpec;
+use spec::PathSpec;
+use spec::RmpReading;
+use spec::NetworkInit;
+use spec::Scoring;
+use spec::SchemeSpec;
 use std::sync::Arc;
 
 /// The gradient neural network (module docs). Scratch buffers live in the struct, so `rhs`

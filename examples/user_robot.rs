@@ -28,10 +28,10 @@ use settings::integrator::IntegratorSettings;
 use settings::solver_spec::SolverSpec;
 use simulation::run::build_network;
 use simulation::simulate::{simulate, Outcome, Settings, Solver};
-use spec::path::PathSpec;
-use spec::run::NetworkInit;
-use spec::run::Scoring;
-use spec::scheme::SchemeSpec;
+use spec::PathSpec;
+use spec::NetworkInit;
+use spec::Scoring;
+use spec::SchemeSpec;
 use std::sync::Arc;
 
 /// The 4-joint arm of the module docs.

@@ -14,7 +14,7 @@ use crate::papers::Papers;
 use records::index::{completed, failed_at, metric, Runs, EXACT};
 use records::runs::RunRow;
 use settings::network_kind::NetworkKind;
-use spec::solver_kind::SolverKind;
+use spec::SolverKind;
 
 /// The most pairs of runs one `than` claim compares (each pair is a line of its evidence): a
 /// paper has at most [`crate::paper_rules::MAX_CLAIMS`] claims, so claims times runs is

@@ -120,7 +120,7 @@ fn best_in<'a>(
 mod tests {
     use super::*;
     use settings::network_kind::NetworkKind;
-    use spec::solver_kind::SolverKind;
+    use spec::SolverKind;
 
     fn run(solver: &str, drift: f64) -> RunRow {
         let kind = if solver == EXACT {
@@ -129,7 +129,7 @@ mod tests {
             SolverKind::Network(NetworkKind::LviPdnn)
         };
         let mut r = RunRow::blank(
-            &spec::run_key::RunKey::from_ids("e", "v", solver).unwrap(),
+            &spec::RunKey::from_ids("e", "v", solver).unwrap(),
             kind,
         );
         r.drift_ref_norm = Some(drift);

@@ -43,7 +43,7 @@ use records::table::Row;
 use records::timing::Timings;
 use serde::{Deserialize, Serialize};
 use spec::ids::{ExperimentId, SolverId, VariantId};
-use spec::solver_kind::SolverKind;
+use spec::SolverKind;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 use store::error::{IoAction, IoError, RunsError};
@@ -423,7 +423,7 @@ pub fn alone_timing(timings: &Timings, solver_id: &SolverId, tasks: &[Task]) -> 
     let spreads: Vec<f64> = tasks
         .iter()
         .filter_map(|t| {
-            timings.get(&spec::run_key::RunKey::new(
+            timings.get(&spec::RunKey::new(
                 t.experiment.clone(),
                 t.variant.clone(),
                 solver_id.clone(),
@@ -462,7 +462,7 @@ mod tests {
     /// with the given RMS distance, per-joint drift and time; `solver == "exact"` makes the
     /// exact column.
     fn run(solver: &str, exp: &str, rms: f64, drift: &[f64], sim_s: f64) -> RunRow {
-        let key = spec::run_key::RunKey::from_ids(exp, "v", &solver.to_lowercase()).unwrap();
+        let key = spec::RunKey::from_ids(exp, "v", &solver.to_lowercase()).unwrap();
         let mut r = RunRow::blank(&key, SolverKind::Exact);
         r.solver = solver.into();
         r.paper = "cross".into();
@@ -642,7 +642,7 @@ mod tests {
     #[test]
     fn alone_timings_replace_the_parallel_times() {
         use records::timing::TimingRow;
-        use spec::run_key::RunKey;
+        use spec::RunKey;
         // A timed alone at 40, 50 and 90 ms on t1 (median 50 ms), 50 ms three times on t2;
         // B not timed alone keeps its parallel 20 ms and now ranks faster.
         let timed = |task: &str, s: [f64; 3]| {

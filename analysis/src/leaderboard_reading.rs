@@ -111,7 +111,7 @@ pub fn timing_reading(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use spec::solver_kind::SolverKind;
+    use spec::SolverKind;
 
     fn row(solver: &str, within: usize, completed: usize, rel: [f64; 3]) -> LeaderboardRow {
         LeaderboardRow {

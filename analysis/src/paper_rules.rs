@@ -1,6 +1,6 @@
 //! What a paper folder of `papers/` must satisfy before anything runs, and the typed problem
 //! when it does not ([`PaperProblem`]): the paper id is a slug of at most
-//! [`spec::naming::MAX_EXPERIMENT_ID`] bytes, the folder's name, and not one of the
+//! [`spec::MAX_EXPERIMENT_ID`] bytes, the folder's name, and not one of the
 //! [`RESERVED_PAPER_IDS`]; texts that reach the report (title, citation, claims) are one line
 //! ([`crate::report_text::is_one_line`]); each published (experiment, column) has at most one
 //! `[[mapping]]`; every values.csv entry is finite, of a known metric, of this paper, and given
@@ -14,7 +14,7 @@
 use crate::claims::ClaimError;
 use crate::leaderboard::STANDARD_PAPER;
 use crate::published_metrics::PUBLISHED_METRICS;
-use spec::naming::MAX_EXPERIMENT_ID;
+use spec::MAX_EXPERIMENT_ID;
 
 /// Paper id of the group-code reference experiments (`experiments/group.toml`): not a paper of
 /// `papers/`, but the id their runs and explanations are filed under.

@@ -18,7 +18,7 @@ use crate::sweep_check::SweepCheck;
 use records::index::Runs;
 use records::runs::RunRow;
 use serde::Deserialize;
-use spec::run_key::RunKey;
+use spec::RunKey;
 use std::path::{Path, PathBuf};
 
 /// One published number.

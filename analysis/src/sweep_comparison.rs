@@ -193,7 +193,7 @@ mod tests {
     use super::*;
     use crate::claims::Pattern;
     use crate::sweep_check::SweepColumn;
-    use spec::solver_kind::SolverKind;
+    use spec::SolverKind;
 
     #[test]
     fn a_swept_run_is_set_against_the_norm_of_the_printed_joints() {
@@ -226,7 +226,7 @@ mod tests {
             ..Papers::default()
         };
         let mut r = RunRow::blank(
-            &spec::run_key::RunKey::from_ids("e", "v", "exact").unwrap(),
+            &spec::RunKey::from_ids("e", "v", "exact").unwrap(),
             SolverKind::Exact,
         );
         r.drift = vec![0.3, 0.4];
@@ -266,7 +266,7 @@ mod tests {
         };
         let run = |variant: &str, norm: f64| {
             let mut r = RunRow::blank(
-                &spec::run_key::RunKey::from_ids("e", variant, "exact").unwrap(),
+                &spec::RunKey::from_ids("e", variant, "exact").unwrap(),
                 SolverKind::Exact,
             );
             r.drift = vec![0.6 * norm, -0.8 * norm];

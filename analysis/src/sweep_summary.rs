@@ -101,8 +101,8 @@ pub fn summary<'a>(runs: &[&'a RunRow]) -> SweepSummary<'a> {
 mod tests {
     use super::*;
     use records::runs::Status;
-    use spec::run_key::RunKey;
-    use spec::solver_kind::SolverKind;
+    use spec::RunKey;
+    use spec::SolverKind;
 
     fn run(i: usize, drift: Option<f64>, error: Option<f64>, failed: bool) -> RunRow {
         let key = RunKey::parse(&format!("s / v{i} / exact")).unwrap();

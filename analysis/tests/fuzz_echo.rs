@@ -108,7 +108,7 @@ fn committed(rel: &str) -> String {
 }
 
 /// Builds nothing: the fuzz is of the reader, not of the runs.
-fn no_check(_: &spec::run::RunSpec) -> Result<(), spec::run::SetupError> {
+fn no_check(_: &spec::RunSpec) -> Result<(), spec::SetupError> {
     Ok(())
 }
 

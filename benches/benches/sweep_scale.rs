@@ -11,7 +11,7 @@
 use catalog::experiment::PaperFile;
 use records::runs::{merge, RunRow};
 use simulation::run::check_job;
-use spec::run::RunSpec;
+use spec::RunSpec;
 use std::time::Instant;
 
 /// An experiment file whose one variant sweeps kong2019's mu over `n` values (exact column
@@ -90,7 +90,7 @@ fn main() {
         if n <= 100_000 {
             let rows: Vec<RunRow> = jobs
                 .iter()
-                .map(|j| RunRow::blank(&j.key(), spec::solver_kind::SolverKind::Exact))
+                .map(|j| RunRow::blank(&j.key(), spec::SolverKind::Exact))
                 .collect();
             let half = rows[..n / 2].to_vec();
             timed("merge stored + fresh rows", n, || merge(rows, half).len());

@@ -15,14 +15,14 @@ use serde::{Deserialize, Serialize};
 use settings::integrator::{IntegratorSettings, Method};
 use settings::solver_spec::SolverSpec;
 use spec::ids::{ExperimentId, VariantId};
-use spec::mount::MountError;
-use spec::mount::MountSpec;
-use spec::naming::{slug, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
-use spec::numerical::NumericalSpec;
-use spec::path::PathSpec;
-use spec::run::{JobPart, LimitsSpec, NetworkInit, RunSpec, Scoring, SetupError, SolverChoice};
-use spec::run_key::RunKey;
-use spec::scheme::SchemeSpec;
+use spec::MountError;
+use spec::MountSpec;
+use spec::{slug, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
+use spec::NumericalSpec;
+use spec::PathSpec;
+use spec::{JobPart, LimitsSpec, NetworkInit, RunSpec, Scoring, SetupError, SolverChoice};
+use spec::RunKey;
+use spec::SchemeSpec;
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
@@ -122,7 +122,7 @@ pub struct Variant {
     #[serde(default)]
     pub solvers: Vec<SolverSpec>,
     /// QP solvers run as this variant's solvers at every instant of a fixed-step loop
-    /// ([`spec::numerical`]).
+    /// ([`spec::NumericalSpec`]).
     #[serde(default)]
     pub numerical: Vec<NumericalSpec>,
     /// Run the exact column (default true).
@@ -696,9 +696,9 @@ fn check_variant_names<'a>(
 }
 
 /// An id or label becomes a directory or file name (results/traces/<id>/<label>__<solver>.csv,
-/// report/figures/): see [`spec::naming::check_name`].
+/// report/figures/): see [`spec::check_name`].
 fn check_name(name: &str, max: usize, at: FieldAt) -> Result<(), ExperimentError> {
-    spec::naming::check_name(name, max).map_err(|e| field(at, e))
+    spec::check_name(name, max).map_err(|e| field(at, e))
 }
 
 /// An id (paper, experiment, variant) must already be a slug: ids name files and reach the

@@ -1,11 +1,11 @@
 //! driftbench's catalog: what runs exist and what they are called, as data.
 //!
-//! An experiment file ([`experiment`]) describes runs (`spec::run::RunSpec`): a robot from the
+//! An experiment file ([`experiment`]) describes runs (`spec::RunSpec`): a robot from the
 //! registry (`robots::registry`), a path and a scheme (crate `spec`), a solver
-//! (`spec::run::SolverChoice`: the exact optimum in the loop, a registered QP solver,
+//! (`spec::SolverChoice`: the exact optimum in the loop, a registered QP solver,
 //! `spec::numerical`, or a network as `settings::solver_spec` writes it; its kind is a
-//! `spec::solver_kind::SolverKind`), an integrator (`settings::integrator`) and where the run
-//! is scored (`spec::run::Scoring`). A variant may stand for many through a
+//! `spec::SolverKind`), an integrator (`settings::integrator`) and where the run
+//! is scored (`spec::Scoring`). A variant may stand for many through a
 //! `sweep` table ([`sweep`], expanded at the TOML level). Every run is identified by ids, not
 //! labels (`spec::run_key`, `spec::ids`), and every id or label that becomes a file name obeys
 //! `spec::naming`. The

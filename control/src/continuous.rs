@@ -12,8 +12,8 @@
 use crate::task::{Task, TaskArm};
 use records::control::ControlStatus;
 use simulation::simulate::{simulate, Outcome, Settings, Solver};
-use spec::run::NetworkInit;
-use spec::run::Scoring;
+use spec::NetworkInit;
+use spec::Scoring;
 
 /// The drifts and per-cycle changes of a continuous run, and how it ended.
 #[derive(Clone, Debug, PartialEq)]

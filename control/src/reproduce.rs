@@ -27,7 +27,7 @@ use simulation::runner::map_costliest_first;
 use solvers::neural::build_solver;
 use solvers::HotActiveSet;
 use spec::ids::SolverId;
-use spec::run::RunSpec;
+use spec::RunSpec;
 use store::results_dir;
 
 /// The method label of the continuous-time exact column in the many-cycles results.

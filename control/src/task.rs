@@ -10,8 +10,8 @@ use schemes::paths::Path;
 use schemes::scheme::Scheme;
 use settings::solver_spec::SolverSpec;
 use simulation::run::{build_cyclic_parts, job_model, job_robot};
-use spec::run::RunSpec;
-use spec::run::SolverChoice;
+use spec::RunSpec;
+use spec::SolverChoice;
 
 /// A task: an experiment and one of its variants (ids).
 #[derive(Clone, Debug, PartialEq, Eq, serde::Deserialize)]
@@ -212,12 +212,12 @@ pub fn with_task<R>(
     f: impl FnOnce(&TaskArm<'_>) -> R,
 ) -> Result<R, ControlError> {
     let job = &task.job;
-    let setup = |e: spec::run::SetupError| ControlError::Setup {
+    let setup = |e: spec::SetupError| ControlError::Setup {
         task: task.id(),
         message: e.to_string(),
     };
     let model = job_model(job).map_err(|e| match e {
-        spec::run::SetupError::UnknownRobot(e) => {
+        spec::SetupError::UnknownRobot(e) => {
             ControlError::UnknownTask(format!("robot {}: {e}", job.robot))
         }
         e => setup(e),

@@ -150,7 +150,7 @@ pub use solvers;
 pub use spec;
 
 use catalog::experiment::{load_dir, PaperFile};
-use spec::run::RunSpec;
+use spec::RunSpec;
 use std::path::{Path, PathBuf};
 
 /// What the front door's own helpers can fail with; each wraps the layer that failed.
@@ -193,7 +193,7 @@ pub fn jobs(root: &Path) -> Result<Vec<RunSpec>, Error> {
 }
 
 /// The run of the experiment files keyed (experiment id, variant id, solver id), its
-/// [`RunKey`](spec::run_key::RunKey); the error lists the experiment's runs by their ids.
+/// [`RunKey`](spec::RunKey); the error lists the experiment's runs by their ids.
 pub fn job(root: &Path, experiment: &str, variant: &str, solver: &str) -> Result<RunSpec, Error> {
     let all = jobs(root)?;
     let of_experiment: Vec<&RunSpec> = all.iter().filter(|j| j.experiment == experiment).collect();
@@ -240,10 +240,10 @@ pub mod prelude {
     pub use simulation::simulate::{Outcome, Run};
     pub use solvers::neural::NeuralSolver;
     pub use solvers::{QpSolver, QpStatus, SolverId};
-    pub use spec::run::RunSpec;
-    pub use spec::run::SolverChoice;
-    pub use spec::run_key::RunKey;
-    pub use spec::solver_kind::SolverKind;
+    pub use spec::RunSpec;
+    pub use spec::SolverChoice;
+    pub use spec::RunKey;
+    pub use spec::SolverKind;
 }
 
 #[cfg(test)]

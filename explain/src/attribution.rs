@@ -38,9 +38,9 @@ use records::attribution::{AttributionRow, Component};
 use records::ladder::{LadderMethod, LadderRow};
 use records::runs::RunRow;
 use settings::solver_spec::SolverSpec;
-use spec::run::RunSpec;
-use spec::run::Scoring;
-use spec::run::SolverChoice;
+use spec::RunSpec;
+use spec::Scoring;
+use spec::SolverChoice;
 
 /// The largest RelTol whose rung may serve as a converged reference.
 pub const CONVERGED_RTOL: f64 = 1e-8;

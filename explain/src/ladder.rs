@@ -33,9 +33,9 @@ use records::ladder::{LadderMethod, LadderRow};
 use records::runs::RunRow;
 use settings::integrator::{IntegratorSettings, Method};
 use settings::solver_spec::SolverSpec;
-use spec::run::RunSpec;
-use spec::run::Scoring;
-use spec::run::SolverChoice;
+use spec::RunSpec;
+use spec::Scoring;
+use spec::SolverChoice;
 
 /// Accepted steps after which an implicit ladder rung is abandoned (every implicit run of the
 /// papers' experiments needs a few thousand; the finite-time network needed ~650,000 BDF steps
@@ -137,7 +137,7 @@ pub fn jobs(job: &RunSpec) -> Vec<RunSpec> {
         return tolerances
             .into_iter()
             .map(|tolerance| RunSpec {
-                solver: SolverChoice::Numerical(spec::numerical::NumericalSpec {
+                solver: SolverChoice::Numerical(spec::NumericalSpec {
                     tolerance: Some(tolerance),
                     ..*spec
                 }),

@@ -13,8 +13,8 @@ use records::ladder::LadderMethod;
 use settings::integrator::Method;
 use settings::solver_spec::SolverSpec;
 use simulation::run::check_job;
-use spec::run::RunSpec;
-use spec::run::SolverChoice;
+use spec::RunSpec;
+use spec::SolverChoice;
 
 fn jobs() -> Vec<RunSpec> {
     let root = catalog::root::from_current_dir().unwrap();
@@ -27,7 +27,7 @@ fn jobs() -> Vec<RunSpec> {
 
 fn find(jobs: &[RunSpec], experiment: &str, variant: &str, solver: &str) -> RunSpec {
     jobs.iter()
-        .find(|j| j.key() == spec::run_key::RunKey::from_ids(experiment, variant, solver).unwrap())
+        .find(|j| j.key() == spec::RunKey::from_ids(experiment, variant, solver).unwrap())
         .unwrap_or_else(|| panic!("{experiment} / {variant} / {solver}"))
         .clone()
 }
@@ -205,7 +205,7 @@ fn switches_change_one_ingredient_only() {
             (j.solver.clone(), j.path.clone()),
             (perturbed.solver.clone(), perturbed.path.clone())
         );
-        assert_eq!(j.scoring, spec::run::Scoring::Off);
+        assert_eq!(j.scoring, spec::Scoring::Off);
     }
 }
 
@@ -224,7 +224,7 @@ fn inference_recovers_a_known_setup() {
             atol: 1e-13,
             ..explain::inference::inference_integrator()
         },
-        scoring: spec::run::Scoring::Off,
+        scoring: spec::Scoring::Off,
         theta0: exact.theta_ref.clone(),
         ..exact
     };
@@ -301,7 +301,7 @@ fn inference_recovers_a_known_setup() {
 #[test]
 fn network_can_start_at_the_exact_optimum() {
     use simulation::run::run_job;
-    use spec::run::NetworkInit;
+    use spec::NetworkInit;
     let jobs = jobs();
     // The deviated start: x*(0) = -mu (theta0 - theta*0) + ... is not zero.
     let zero = find(&jobs, "kong2019-circle", "znn-eq22", "znn");

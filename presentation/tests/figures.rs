@@ -29,16 +29,16 @@ fn row(experiment: &str, variant: &str, solver: &str, failed_at: Option<f64>) ->
         failure_kind: failed_at.map(|_| FailureKind::Integrator),
         failed_at,
         ..RunRow::blank(
-            &spec::run_key::RunKey::from_ids(
+            &spec::RunKey::from_ids(
                 experiment,
-                &spec::naming::slug(variant),
-                &spec::naming::slug(solver),
+                &spec::slug(variant),
+                &spec::slug(solver),
             )
             .unwrap(),
             if solver.starts_with("exact") {
-                spec::solver_kind::SolverKind::Exact
+                spec::SolverKind::Exact
             } else {
-                spec::solver_kind::SolverKind::Network(settings::network_kind::NetworkKind::LviPdnn)
+                spec::SolverKind::Network(settings::network_kind::NetworkKind::LviPdnn)
             },
         )
     }

@@ -202,9 +202,9 @@ fn every_mapped_published_number_finds_its_run() {
 /// ids.
 fn row(experiment: &str, variant: &str, solver: &str, drift: f64) -> RunRow {
     let kind = if solver == records::index::EXACT {
-        spec::solver_kind::SolverKind::Exact
+        spec::SolverKind::Exact
     } else {
-        spec::solver_kind::SolverKind::Network(settings::network_kind::NetworkKind::LviPdnn)
+        spec::SolverKind::Network(settings::network_kind::NetworkKind::LviPdnn)
     };
     RunRow {
         paper: "jia2019".into(),
@@ -225,7 +225,7 @@ fn row(experiment: &str, variant: &str, solver: &str, drift: f64) -> RunRow {
         wall_s: 0.1,
         sim_s: 0.1,
         ..RunRow::blank(
-            &spec::run_key::RunKey::from_ids(experiment, variant, solver).unwrap(),
+            &spec::RunKey::from_ids(experiment, variant, solver).unwrap(),
             kind,
         )
     }

@@ -22,7 +22,7 @@ pub enum TaskError {
     #[error("task \"{task}\": {source}")]
     Shape {
         task: String,
-        source: spec::run::SetupError,
+        source: spec::SetupError,
     },
 }
 

@@ -48,8 +48,8 @@ use simulation::run::{run_job, run_job_with_network, RunRecord};
 use simulation::score_trajectory::score_trajectory;
 use simulation::simulate::Outcome;
 use solvers::neural::NeuralSolver;
-use spec::run::Scoring;
-use spec::run::SetupError;
+use spec::Scoring;
+use spec::SetupError;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 use task_set::{load_tasks, PyTask};
@@ -159,7 +159,7 @@ fn task(id: &str, root: Option<PathBuf>) -> PyResult<PyTask> {
 
 /// The task of `all` whose id is `id`; the error lists the ids of `all` (`set` names it).
 fn find_task<'a>(all: &'a [PyTask], id: &str, set: &'static str) -> PyResult<&'a PyTask> {
-    let key = spec::run_key::TaskKey::parse(id).ok();
+    let key = spec::TaskKey::parse(id).ok();
     all.iter()
         .find(|t| Some(t.job.task()) == key)
         .ok_or_else(|| {
@@ -304,7 +304,7 @@ struct PythonRun {
 fn run_python(
     py: Python<'_>,
     task: &PyTask,
-    job: &spec::run::RunSpec,
+    job: &spec::RunSpec,
     network: &Bound<'_, PyAny>,
     budget: Option<f64>,
 ) -> PyResult<PythonRun> {
@@ -316,7 +316,7 @@ fn run_python(
 fn run_python_unnamed(
     py: Python<'_>,
     task: &PyTask,
-    job: &spec::run::RunSpec,
+    job: &spec::RunSpec,
     network: &Bound<'_, PyAny>,
     budget: Option<f64>,
 ) -> PyResult<PythonRun> {
@@ -365,7 +365,7 @@ fn run_python_unnamed(
     let mut row = run_row(&record, reproduce::revision::REVISION);
     row.solver_id = python_solver_id(&name).map_err(lib_err)?;
     row.solver = name;
-    row.solver_kind = spec::solver_kind::SolverKind::Python;
+    row.solver_kind = spec::SolverKind::Python;
     Ok(PythonRun {
         record,
         row,
@@ -727,7 +727,7 @@ fn run_entries<'py>(
     let failed = PyList::empty(py);
     for (name, network) in named {
         // The name is shown in the report's tables as it is: no markup, no line break.
-        spec::naming::check_name(name, spec::naming::MAX_SOLVER_LABEL)
+        spec::check_name(name, spec::MAX_SOLVER_LABEL)
             .map_err(|e| lib_err(format!("leaderboard's entry name: {e}")))?;
         let id = python_solver_id(name).map_err(lib_err)?;
         if stored
@@ -883,13 +883,13 @@ fn seal_into_results(file: &Path, root: &Path) -> Result<PathBuf, IntoResultsErr
 }
 
 /// That no text of `rows` (a table's rows, each its (column, text) pairs; the header is line 1)
-/// holds markup or a line break (`spec::naming::has_markup`): the report shows them as they
+/// holds markup or a line break (`spec::has_markup`): the report shows them as they
 /// are, and a sealed table is trusted.
 fn check_plain(file: &Path, rows: &[Vec<(&'static str, String)>]) -> Result<(), IntoResultsError> {
     for (k, row) in rows.iter().enumerate() {
         if let Some((column, _)) = row
             .iter()
-            .find(|(_, t)| spec::naming::has_markup(t) || t.contains(char::is_control))
+            .find(|(_, t)| spec::has_markup(t) || t.contains(char::is_control))
         {
             return Err(IntoResultsError::Markup {
                 file: file.to_path_buf(),
@@ -905,12 +905,12 @@ fn check_plain(file: &Path, rows: &[Vec<(&'static str, String)>]) -> Result<(), 
 /// runs: one registered from Python, `register_qp_solver`, or any other of the registry) at
 /// its defaults, at every instant of the fixed-step numerical loop; None when `id` is not
 /// registered.
-fn registered_qp_run(task: &PyTask, id: &str) -> Option<spec::run::RunSpec> {
+fn registered_qp_run(task: &PyTask, id: &str) -> Option<spec::RunSpec> {
     settings::qp_solver::lookup(id).ok()?;
-    let spec: spec::numerical::NumericalSpec =
+    let spec: spec::NumericalSpec =
         serde_json::from_value(serde_json::json!({ "method": id })).ok()?;
-    Some(spec::run::RunSpec {
-        solver: spec::run::SolverChoice::Numerical(spec),
+    Some(spec::RunSpec {
+        solver: spec::SolverChoice::Numerical(spec),
         ..task.job.clone()
     })
 }

@@ -112,8 +112,8 @@ pub struct LadderRow {
 
 impl LadderRow {
     /// The key of the run the row explains.
-    pub fn key(&self) -> spec::run_key::RunKey {
-        spec::run_key::RunKey::new(
+    pub fn key(&self) -> spec::RunKey {
+        spec::RunKey::new(
             self.experiment.clone(),
             self.variant_id.clone(),
             self.solver_id.clone(),

@@ -24,7 +24,7 @@ pub fn trajectory_id() -> SolverId {
 pub fn score_row(mut row: RunRow, source: &str, name: &SolverId) -> RunRow {
     row.solver_id = name.clone();
     row.solver = format!("{TRAJECTORY_KIND} {source}");
-    row.solver_kind = spec::solver_kind::SolverKind::Trajectory;
+    row.solver_kind = spec::SolverKind::Trajectory;
     row.integrator = TRAJECTORY_KIND.to_string();
     row.rtol = 0.0;
     row.atol = 0.0;

@@ -8,7 +8,7 @@ use analysis::leaderboard::LeaderboardRow;
 use records::control::ControlRow;
 use records::runs::{check_rows, RunRow};
 use records::timing::Timings;
-use spec::run::RunSpec;
+use spec::RunSpec;
 use std::path::Path;
 use std::process::ExitCode;
 

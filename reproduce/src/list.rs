@@ -113,7 +113,7 @@ mod tests {
     use super::*;
     use std::path::Path;
 
-    use spec::run::RunSpec;
+    use spec::RunSpec;
     use store::shard::{Selection, Shard};
     /// The fixture paper of tests/fixtures/fifth-paper (one experiment, two variants).
     fn fixture() -> (Vec<PaperFile>, Vec<RunSpec>) {

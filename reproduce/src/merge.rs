@@ -18,7 +18,7 @@ use crate::run::report_unexpected;
 use crate::select::{check_selection, selected, selection_files};
 use catalog::experiment::PaperFile;
 use records::runs::RunRow;
-use spec::run_key::RunKey;
+use spec::RunKey;
 use std::collections::HashSet;
 use std::process::ExitCode;
 use store::sorted::{latest, read_key_ordered, KeyMerge};

@@ -4,7 +4,7 @@
 
 use clap::{Args, Subcommand};
 use spec::ids::{ExperimentId, PaperId};
-use spec::run_key::TaskKey;
+use spec::TaskKey;
 use std::path::PathBuf;
 use store::shard::{Selection, Shard, ShardError};
 use store::tracked_dir::Edits;

@@ -6,7 +6,7 @@
 use crate::error::ReproduceError;
 use crate::project::Project;
 use crate::results::Described;
-use spec::run::RunSpec;
+use spec::RunSpec;
 
 /// The papers as data (`papers/` under the project root). Their published numbers that
 /// contradict the paper's own are warned on stderr, once per process, with file and line.

@@ -7,7 +7,7 @@ use crate::error::ReproduceError;
 use crate::papers::load_checked_papers;
 use crate::project::Project;
 use crate::results::{experiment_files, open_results, Described};
-use spec::run_key::RunKey;
+use spec::RunKey;
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use store::results_dir::ResultsDir;

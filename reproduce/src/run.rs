@@ -21,7 +21,7 @@ use crate::summary::{emit, summary};
 use records::runs::RunRow;
 use simulation::row::run_row;
 use simulation::run::RunRecord;
-use spec::run::RunSpec;
+use spec::RunSpec;
 use std::process::ExitCode;
 use std::time::Instant;
 use store::results_dir::ResultsDir;

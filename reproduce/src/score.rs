@@ -24,8 +24,8 @@ use simulation::row::run_row;
 use simulation::run::{check_job, RunRecord};
 use simulation::score_trajectory::score_trajectory;
 use spec::ids::SolverId;
-use spec::run::RunSpec;
-use spec::run_key::TaskKey;
+use spec::RunSpec;
+use spec::TaskKey;
 use std::path::{Path, PathBuf};
 use store::atomic::write_atomic;
 use store::error::{IoAction, IoError};
@@ -235,12 +235,12 @@ pub const SCORES: &str = "scores.csv";
 
 /// A scored trajectory's name: a slug that can name its files, and not the exact column's id.
 fn check_name(name: &str) -> Result<SolverId, ScoreError> {
-    if name == spec::run::EXACT_ID {
+    if name == spec::EXACT_ID {
         return Err(ScoreError::ReservedName {
             name: name.to_string(),
         });
     }
-    let max = spec::naming::MAX_SOLVER_LABEL;
+    let max = spec::MAX_SOLVER_LABEL;
     if let Ok(id) = SolverId::new(name) {
         return Ok(id);
     }
@@ -296,8 +296,8 @@ mod tests {
             max_pos_err: Some(max_pos_err),
             path_scale: Some(0.2),
             ..RunRow::blank(
-                &spec::run_key::RunKey::from_ids("e", "v", "trajectory").unwrap(),
-                spec::solver_kind::SolverKind::Trajectory,
+                &spec::RunKey::from_ids("e", "v", "trajectory").unwrap(),
+                spec::SolverKind::Trajectory,
             )
         };
         let exact = trajectory(vec![vec![std::f64::consts::PI, 0.0], vec![1.0 / 3.0, 0.5]]);

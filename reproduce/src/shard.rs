@@ -18,7 +18,7 @@ use records::runs::RunRow;
 use simulation::row::run_row;
 use simulation::run::RunRecord;
 use simulation::runner::run_jobs_into;
-use spec::run::RunSpec;
+use spec::RunSpec;
 use std::process::ExitCode;
 use store::shard::{Binding, Shard};
 

@@ -22,10 +22,10 @@ use qp::Qp;
 use robots::registry::{robot_by_name, Kinematics, Model};
 use simulation::run::check_job;
 use simulation::task_numbers::{task_numbers, TaskNumbers};
-use spec::run::RunSpec;
-use spec::run::SetupError;
-use spec::run::SolverChoice;
-use spec::scheme::SchemeSpec;
+use spec::RunSpec;
+use spec::SetupError;
+use spec::SolverChoice;
+use spec::SchemeSpec;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use store::tracked_dir::{Removal, TrackedDir, TrackedError};
@@ -180,7 +180,7 @@ fn task_card(jobs: &[RunSpec], n: TaskNumbers, robot: &Model) -> Result<TaskCard
             size: job
                 .path
                 .scale
-                .or_else(|| spec::path::default_scale(&job.path.name)),
+                .or_else(|| spec::default_scale(&job.path.name)),
             duration: job.path.duration,
             start: n.path_start,
             samples: n.path,

@@ -15,8 +15,8 @@ use records::runs::RunRow;
 use records::timing::{TimingRow, Timings, REPETITIONS};
 use simulation::row::run_row;
 use simulation::run::run_job;
-use spec::run::RunSpec;
-use spec::run_key::RunKey;
+use spec::RunSpec;
+use spec::RunKey;
 use std::collections::BTreeSet;
 use std::path::Path;
 use store::results_dir::{ResultsDir, ResultsError};
@@ -101,10 +101,10 @@ mod tests {
     use super::*;
     use analysis::papers::{Mapping, PaperValue};
     use settings::network_kind::NetworkKind;
-    use spec::solver_kind::SolverKind;
+    use spec::SolverKind;
 
     fn row(paper: &str, experiment: &str, variant: &str, solver: &str) -> RunRow {
-        let kind = if solver == spec::run::EXACT_ID {
+        let kind = if solver == spec::EXACT_ID {
             SolverKind::Exact
         } else {
             SolverKind::Network(NetworkKind::ALL[0])

@@ -25,7 +25,7 @@ use records::runs::RunRow;
 use simulation::row::run_row;
 use simulation::run::check_job;
 use simulation::run::run_job;
-use spec::run::SolverChoice;
+use spec::SolverChoice;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 

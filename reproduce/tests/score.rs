@@ -6,7 +6,7 @@ use catalog::experiment::{load_dir, PaperFile};
 use simulation::run::check_job;
 use simulation::run::run_job;
 use simulation::simulate::Outcome;
-use spec::run::SolverChoice;
+use spec::SolverChoice;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 

@@ -41,7 +41,7 @@ use nalgebra::{Matrix3, Vector3};
 
 use crate::dh::Frame;
 use crate::{Dynamics, JointLimits, Orientation, Robot};
-use spec::mount::MountError;
+use spec::MountError;
 
 /// The largest tool offset or base translation, per coordinate (m): an arm's reach is metres,
 /// so a larger value is a typing error (millimetres written as metres), not a mount.

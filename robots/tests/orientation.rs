@@ -17,7 +17,7 @@ use robots::mounted::{Mount, Mounted};
 use robots::registry::robot_by_name;
 use robots::urdf::{read, ChainEnds};
 use robots::{ChainRobot, Dynamics, Orientation, Robot};
-use spec::mount::MountError;
+use spec::MountError;
 
 const H: f64 = 1e-6;
 /// Central differences of step 1e-6 on functions of order 1: truncation ~1e-12, rounding

@@ -10,8 +10,8 @@ use common::{paper_specs, Circle, PlanarZ};
 use qp::QpDims;
 use robots::Robot;
 use schemes::build::build_scheme;
-use spec::scheme::Level;
-use spec::scheme::SchemeSpec;
+use spec::Level;
+use spec::SchemeSpec;
 
 const N: usize = 6;
 

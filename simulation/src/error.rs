@@ -1,12 +1,12 @@
 //! The simulation layer's errors: why a run failed, typed. The error of each layer a run passes
-//! through (building its parts: `spec::run::SetupError`; the exact QP; the integrator) is
+//! through (building its parts: `spec::SetupError`; the exact QP; the integrator) is
 //! wrapped by [`RunError`], and its [`FailureKind`] (records' type) is the `failure_kind`
 //! column of `results/runs.csv`. The message (the `failure` column) is the error's `Display`.
 
 use records::failure_kind::FailureKind;
 use solvers::ode::OdeError;
 use solvers::ExactError;
-use spec::run::SetupError;
+use spec::SetupError;
 
 /// Why a run stopped before its path's end.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]

@@ -1,6 +1,6 @@
 //! driftbench's simulation layer, the engine: the runs of experiment files in, records out.
 //!
-//! A run arrives as data (`spec::run::RunSpec`, which crate `catalog` makes from an experiment
+//! A run arrives as data (`spec::RunSpec`, which crate `catalog` makes from an experiment
 //! file; the engine links no file format): a robot from the registry, a path and a scheme
 //! (built by crate `schemes`), and a solver: the exact optimum in the loop or one of the papers' networks (crate
 //! `solvers`). [`run::run_job`] builds the run's parts, couples arm and solver into one ODE

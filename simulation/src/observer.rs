@@ -12,8 +12,8 @@ use records::trace::TracePoint;
 use robots::Robot;
 use schemes::paths::Path;
 use schemes::scheme::Scheme;
-use spec::run::Scoring;
-use spec::scheme::Level;
+use spec::Scoring;
+use spec::Level;
 
 /// Samples kept per run for the figures (uniform in t, plus the last).
 const TRACE_POINTS: usize = 400;

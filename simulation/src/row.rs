@@ -39,7 +39,7 @@ pub fn run_row(r: &RunRecord, git_rev: &str) -> RunRow {
         path_scale: j
             .path
             .scale
-            .or_else(|| spec::path::default_scale(&j.path.name)),
+            .or_else(|| spec::default_scale(&j.path.name)),
         duration: j.path.duration,
         status,
         failure,

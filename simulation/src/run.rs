@@ -15,10 +15,10 @@ use settings::solver_spec::SolverSpec;
 use solvers::exact_path::ExactPathStats;
 use solvers::neural::NeuralSolver;
 use solvers::ode::OdeStats;
-use spec::run::JobPart;
-use spec::run::RunSpec;
-use spec::run::SetupError;
-use spec::run::SolverChoice;
+use spec::JobPart;
+use spec::RunSpec;
+use spec::SetupError;
+use spec::SolverChoice;
 use std::sync::Arc;
 
 /// A job and what its simulation produced.
@@ -159,7 +159,7 @@ fn honours_constraints(
 /// them ([`robots::mounted`]); the error names the valid choices, or the robot's invalid file
 /// and field, or why the mount does not fit the robot. A mounted model keeps its dynamics only
 /// for a scheme that needs them, where a base that tilts gravity is refused
-/// ([`spec::mount::MountError::TiltedGravity`]).
+/// ([`spec::MountError::TiltedGravity`]).
 pub fn job_model(job: &RunSpec) -> Result<Model, SetupError> {
     let model = robot_by_name(&job.robot).map_err(|e| SetupError::UnknownRobot(e.to_string()))?;
     let Some(mount) = job_mount(job)? else {
@@ -188,9 +188,9 @@ pub fn job_mount(job: &RunSpec) -> Result<Option<Mount>, SetupError> {
 }
 
 /// The shape of the QP the job's scheme poses at every instant: its sizes and whether its
-/// decision variable starts with thetadot or thetaddot ([`spec::scheme::Level`]). Built as
+/// decision variable starts with thetadot or thetaddot ([`spec::Level`]). Built as
 /// [`check_job`] builds the scheme (robot, path from f(theta_ref), scheme), without running.
-pub fn qp_shape(job: &RunSpec) -> Result<(QpDims, spec::scheme::Level), SetupError> {
+pub fn qp_shape(job: &RunSpec) -> Result<(QpDims, spec::Level), SetupError> {
     let model = job_model(job)?;
     let robot = job_robot(job, model.robot, model.dynamics.is_some())?;
     let (_, scheme) = build_parts(job, robot, model.dynamics)?;
@@ -217,7 +217,7 @@ pub fn job_robot(
     }
     let joints = robot.dof();
     let mut limits = robot.limits().clone();
-    let set = |spec: &Option<spec::run::LimitsSpec>,
+    let set = |spec: &Option<spec::LimitsSpec>,
                lo: &mut DVector<f64>,
                hi: &mut DVector<f64>|
      -> Result<(), SetupError> {
@@ -291,7 +291,7 @@ pub fn build_cyclic_parts(
     )
     .map_err(|error| {
         let hint = match error {
-            spec::scheme::SchemeError::MissingDynamics { .. } => format!(
+            spec::SchemeError::MissingDynamics { .. } => format!(
                 " (robot \"{}\" is kinematic only; robots with dynamics: {})",
                 job.robot,
                 robots::registry::robots_with_dynamics().join(", ")

@@ -19,11 +19,11 @@ use records::trace::TracePoint;
 use robots::Robot;
 use schemes::paths::Path;
 use schemes::scheme::Scheme;
-use spec::numerical::NumericalSpec;
-use spec::run::JobPart;
-use spec::run::SetupError;
-use spec::run::{NetworkInit, Scoring};
-use spec::scheme::Level;
+use spec::NumericalSpec;
+use spec::JobPart;
+use spec::SetupError;
+use spec::{NetworkInit, Scoring};
+use spec::Level;
 
 use settings::integrator::IntegratorSettings;
 use solvers::exact_path::ExactPathStats;

@@ -20,7 +20,7 @@ use simulation::run::{build_cyclic_parts, check_job, job_robot, run_job};
 use simulation::simulate::Outcome;
 use solvers::exact::ExactSolver;
 use solvers::exact_path::ExactPath;
-use spec::run::RunSpec;
+use spec::RunSpec;
 use std::path::Path;
 
 fn write(path: &Path, text: &str) {

@@ -9,8 +9,8 @@ use robots::katana::Katana6m180;
 use robots::Robot;
 use schemes::build::build_scheme;
 use schemes::paths::{build_path, Path};
-use spec::path::PathSpec;
-use spec::scheme::SchemeSpec;
+use spec::PathSpec;
+use spec::SchemeSpec;
 
 use settings::integrator::IntegratorSettings;
 use settings::solver_spec::SolverSpec;

@@ -6,8 +6,8 @@
 use catalog::experiment::PaperFile;
 use simulation::row::run_row;
 use simulation::run::{check_job, run_job};
-use spec::run::RunSpec;
-use spec::run::SolverChoice;
+use spec::RunSpec;
+use spec::SolverChoice;
 
 fn robio_jobs() -> Vec<RunSpec> {
     let root = catalog::root::from_current_dir().unwrap();

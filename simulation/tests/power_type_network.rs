@@ -9,8 +9,8 @@ use catalog::experiment::{load_dir, PaperFile};
 use simulation::metrics::Score;
 use simulation::run::{check_job, run_job};
 use simulation::simulate::Outcome;
-use spec::run::RunSpec;
-use spec::run::SolverChoice;
+use spec::RunSpec;
+use spec::SolverChoice;
 
 /// The network runs of kong2019's circle.
 fn circle_jobs() -> Vec<RunSpec> {

@@ -8,8 +8,8 @@ use simulation::run::check_job;
 use simulation::run::run_job;
 use simulation::score_trajectory::{score_trajectory, TrajectoryError};
 use simulation::simulate::{Outcome, Run};
-use spec::run::RunSpec;
-use spec::run::SolverChoice;
+use spec::RunSpec;
+use spec::SolverChoice;
 
 fn job(experiment: &str, variant: &str, neural: bool) -> RunSpec {
     let root = catalog::root::from_current_dir().unwrap();

@@ -5,9 +5,9 @@ use catalog::experiment::{load_dir, PaperFile};
 use simulation::run::check_job;
 use simulation::run::run_job;
 use simulation::simulate::Outcome;
-use spec::run::RunSpec;
-use spec::run::Scoring;
-use spec::run::SolverChoice;
+use spec::RunSpec;
+use spec::Scoring;
+use spec::SolverChoice;
 
 fn znn_job() -> RunSpec {
     let root = catalog::root::from_current_dir().unwrap();

@@ -13,10 +13,10 @@ use schemes::build::build_scheme;
 use schemes::paths::{build_path, Path};
 use schemes::scheme::{central_difference, Scheme};
 use solvers::ExactSolver;
-use spec::path::PathSpec;
-use spec::rmp::RmpReading;
-use spec::scheme::Level;
-use spec::scheme::SchemeSpec;
+use spec::PathSpec;
+use spec::RmpReading;
+use spec::Level;
+use spec::SchemeSpec;
 
 fn path(name: &str, duration: f64, start: Vector3<f64>) -> Arc<dyn Path> {
     Arc::from(build_path(&PathSpec::new(name, duration), start).unwrap())

@@ -12,9 +12,9 @@
 
 use settings::slug::slug;
 use spec::ids::IdError;
-use spec::run::RunSpec;
-use spec::run::EXACT_ID;
-use spec::run_key::RunKey;
+use spec::RunSpec;
+use spec::EXACT_ID;
+use spec::RunKey;
 use std::collections::HashMap;
 
 /// The exact column's label before run ids.

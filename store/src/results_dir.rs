@@ -29,7 +29,7 @@ use crate::runs::read_runs;
 use crate::tracked_dir::{Edits, Removal, TrackedDir, TrackedError};
 use records::runs::{runs_csv, RunRow};
 use records::trace::{trace_csv, TracePoint};
-use spec::run_key::RunKey;
+use spec::RunKey;
 use std::path::{Path, PathBuf};
 
 /// The results directory's name under the project root.

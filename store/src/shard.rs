@@ -228,7 +228,7 @@ pub enum ShardError {
 pub enum RunEntryProblem {
     /// Not a run key, or a part that is no valid id.
     #[error("not a run key: {0}")]
-    NotAKey(spec::run_key::KeyError),
+    NotAKey(spec::KeyError),
     /// The run is listed twice.
     #[error("listed twice")]
     Twice,
@@ -555,7 +555,7 @@ impl Manifest {
         })?;
         let mut seen = std::collections::HashSet::new();
         for (index, entry) in self.runs.iter().enumerate() {
-            let problem = match spec::run_key::RunKey::parse(entry) {
+            let problem = match spec::RunKey::parse(entry) {
                 Err(e) => Some(RunEntryProblem::NotAKey(e)),
                 Ok(key) if !seen.insert(key.clone()) => Some(RunEntryProblem::Twice),
                 Ok(_) => None,
@@ -697,7 +697,7 @@ pub fn check_shards(
     shards: &[ShardDir],
     expected: &[String],
     hash: &str,
-    traced: impl Fn(&spec::run_key::RunKey) -> bool,
+    traced: impl Fn(&spec::RunKey) -> bool,
 ) -> Result<(), ShardError> {
     let Some(first) = shards.first() else {
         return Err(ShardError::NoShardDirectories);

@@ -13,7 +13,7 @@ use crate::error::RunsError;
 use records::error::RowsError;
 use records::runs::{check_names, RunRow};
 use records::table::{self, Rows};
-use spec::run_key::RunKey;
+use spec::RunKey;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 use std::path::{Path, PathBuf};
@@ -203,7 +203,7 @@ pub fn latest<E>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use spec::solver_kind::SolverKind;
+    use spec::SolverKind;
 
     fn row(variant: &str, git_rev: &str) -> RunRow {
         RunRow {

@@ -32,7 +32,7 @@ pub fn read(results_dir: &Path) -> Result<Timings, RunsError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use spec::run_key::RunKey;
+    use spec::RunKey;
 
     #[test]
     fn written_and_read_back() {

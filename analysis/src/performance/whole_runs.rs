@@ -158,8 +158,8 @@ mod tests {
     #[test]
     fn runs_are_priced_per_step_by_kind() {
         let mut a = RunRow::blank(
-            &spec::run_key::RunKey::from_ids("e", "v", "s").unwrap(),
-            spec::solver_kind::SolverKind::Exact,
+            &spec::RunKey::from_ids("e", "v", "s").unwrap(),
+            spec::SolverKind::Exact,
         );
         (a.steps, a.rhs_evals, a.wall_s, a.sim_s) = (100, 400, 0.01, 0.004);
         let mut b = a.clone();

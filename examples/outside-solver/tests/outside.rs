@@ -10,7 +10,7 @@ use simulation::row::run_row;
 use simulation::run::{check_job, run_job};
 use solvers::conformance::{check_qp_solver, AllocationCounter, Conformance};
 use solvers::QpShape;
-use spec::run::SolverChoice;
+use spec::SolverChoice;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Once};
 

@@ -53,7 +53,7 @@ use records::control::{ControlRow, CycleRow, MAIN_H};
 use records::dof_cost::DofCostRow;
 use records::inference::InferenceRow;
 use records::runs::RunRow;
-use spec::run_key::RunKey;
+use spec::RunKey;
 use std::collections::{BTreeMap, HashSet};
 use std::path::{Path, PathBuf};
 use store::runs::read_runs;
@@ -63,7 +63,7 @@ use trace::Trace;
 /// The figures' directory inside `report/`.
 pub const FIGURES: &str = "figures";
 
-/// The run's file stem (see [`spec::naming::run_stem`]).
+/// The run's file stem (see [`spec::run_stem`]).
 fn run_stem(run: &RunRow) -> String {
     run.key().stem()
 }

@@ -454,8 +454,8 @@ pub fn figure(experiment: &str, runs: &[&RunRow]) -> Figure<SweepBody> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use spec::run_key::RunKey;
-    use spec::solver_kind::SolverKind;
+    use spec::RunKey;
+    use spec::SolverKind;
 
     /// `n` runs of one experiment sweeping mu (n / 100 values) and scale (100 values), every
     /// 97th failed.

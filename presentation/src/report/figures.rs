@@ -6,7 +6,7 @@
 use super::markdown::{sci, sci_opt, text, Table};
 use analysis::sweep_summary::SweepSummary;
 use records::index::Runs;
-use spec::run_key::RunKey;
+use spec::RunKey;
 use std::path::Path;
 use store::error::{IoAction, IoError};
 

@@ -123,7 +123,7 @@ fn method_label(r: &records::runs::RunRow) -> String {
 /// h = duration / steps, each instant's iteration stopped by the rule its solver's name states
 /// (robio2018 Algorithm 1); the row's integrator tolerances do not apply to it.
 pub fn numerical_loop(r: &records::runs::RunRow) -> Option<String> {
-    matches!(r.solver_kind, spec::solver_kind::SolverKind::Numerical(_)).then(|| {
+    matches!(r.solver_kind, spec::SolverKind::Numerical(_)).then(|| {
         format!(
             "fixed-step loop, h = {} s, stopped per instant as the solver's name says",
             sci(r.fixed_step())

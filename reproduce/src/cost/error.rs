@@ -2,8 +2,8 @@
 
 use settings::error::NetworkError;
 use simulation::error::RunError;
-use spec::path::PathError;
-use spec::scheme::SchemeError;
+use spec::PathError;
+use spec::SchemeError;
 
 #[derive(Debug, thiserror::Error)]
 pub enum CostError {

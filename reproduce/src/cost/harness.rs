@@ -32,10 +32,10 @@ use settings::integrator::IntegratorSettings;
 use settings::solver_spec::SolverSpec;
 use simulation::simulate::{simulate, Outcome, Run, Settings, Solver};
 use solvers::Backend;
-use spec::rmp::RmpReading;
-use spec::run::NetworkInit;
-use spec::run::Scoring;
-use spec::scheme::SchemeSpec;
+use spec::RmpReading;
+use spec::NetworkInit;
+use spec::Scoring;
+use spec::SchemeSpec;
 use std::sync::Arc;
 
 /// The joint counts measured with kong2019's scheme alone, past [`SWEEP_SIZES`].

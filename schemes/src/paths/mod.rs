@@ -19,7 +19,7 @@
 //! with one time law over its whole arc length: arc-length fraction s(t) = phi(t) / 2 pi, so corners are
 //! passed at speed (the velocity changes direction there; the acceleration has a delta).
 //!
-//! **Construction** ([`build`]). `spec::path::PathSpec` names a path, its duration and optionally its size;
+//! **Construction** ([`build`]). `spec::PathSpec` names a path, its duration and optionally its size;
 //! [`build_path`] turns it into a boxed [`Path`]. Evaluation never allocates: segment tables are
 //! built once at construction. Outside [0, T] every path rests at its end point (zero velocity and
 //! acceleration); at t = 0 and t = T exactly the analytic values are returned (the acceleration

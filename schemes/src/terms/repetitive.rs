@@ -3,7 +3,7 @@
 //!
 //! - `linear`: g = lambda e (robio2018 (4) C = lambda (theta - theta(0)); kong2019 (22) with
 //!   lambda = mu; jia2019 (2.17) and zhong2021 (2.16) with lambda their coefficient k of
-//!   [`spec::rmp`]). lambda = 0 drops the term: robio2018's baseline of Fig. 2(a);
+//!   [`spec::RmpReading`]). lambda = 0 drops the term: robio2018's baseline of Fig. 2(a);
 //! - `sign-power`: g_i = lambda c(e_i), c(e) ~ |e|^alpha sgn(e) (kong2019 (14), lambda =
 //!   beta_theta, 0 < alpha < 1), smoothed as below.
 //!
