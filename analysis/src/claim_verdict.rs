@@ -13,7 +13,7 @@ use crate::number::sci;
 use crate::papers::Papers;
 use records::index::{completed, failed_at, metric, Runs, EXACT};
 use records::runs::RunRow;
-use settings::network_kind::NetworkKind;
+use settings::NetworkKind;
 use spec::SolverKind;
 
 /// The most pairs of runs one `than` claim compares (each pair is a line of its evidence): a

@@ -119,7 +119,7 @@ fn best_in<'a>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use settings::network_kind::NetworkKind;
+    use settings::NetworkKind;
     use spec::SolverKind;
 
     fn run(solver: &str, drift: f64) -> RunRow {

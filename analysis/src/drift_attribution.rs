@@ -8,7 +8,7 @@
 use crate::papers::{Mapping, Papers};
 use records::attribution::{AttributionRow, Component};
 use records::ladder::{LadderMethod, LadderRow};
-use settings::integrator::Method;
+use settings::Method;
 
 /// A run's ids: (experiment, variant, solver).
 pub type RunIds<'a> = (&'a str, &'a str, &'a str);

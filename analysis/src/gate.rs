@@ -496,7 +496,7 @@ mod tests {
     fn every_measured_metric_is_compared_and_no_timing() {
         let mut row = RunRow::blank(
             &spec::RunKey::from_ids("e", "v", "s").unwrap(),
-            spec::SolverKind::Network(settings::network_kind::NetworkKind::Znn),
+            spec::SolverKind::Network(settings::NetworkKind::Znn),
         );
         row.final_pos_err = Some(1e-5);
         row.score_rms_dx = Some(2e-4);
@@ -524,7 +524,7 @@ mod tests {
     fn what_the_tables_show_is_compared_but_where_the_wall_clock_decides() {
         let mut row = RunRow::blank(
             &spec::RunKey::from_ids("e", "v", "s").unwrap(),
-            spec::SolverKind::Network(settings::network_kind::NetworkKind::Znn),
+            spec::SolverKind::Network(settings::NetworkKind::Znn),
         );
         row.steps = 200;
         row.rhs_evals = 300;

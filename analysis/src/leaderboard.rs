@@ -471,7 +471,7 @@ mod tests {
         } else {
             // A, B, C, ...: the networks in their order (any kind will do).
             SolverKind::Network(
-                settings::network_kind::NetworkKind::ALL[usize::from(solver.as_bytes()[0] - b'A')],
+                settings::NetworkKind::ALL[usize::from(solver.as_bytes()[0] - b'A')],
             )
         };
         r.drift = drift.to_vec();

@@ -162,7 +162,7 @@ pub fn check_paper_id(id: &str) -> Result<(), PaperProblem> {
     if !spec::ids::is_id_form(id) || id.len() > MAX_EXPERIMENT_ID {
         return Err(PaperProblem::NotAnId {
             id: id.to_string(),
-            suggestion: settings::slug::slug(id)
+            suggestion: settings::slug(id)
                 .chars()
                 .take(MAX_EXPERIMENT_ID)
                 .collect(),

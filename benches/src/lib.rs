@@ -35,7 +35,7 @@ use robots::{Dynamics, Jaco2, Katana6m180, Robot};
 use schemes::build::build_scheme;
 use schemes::paths::{build_path, Path};
 use schemes::scheme::Scheme;
-use settings::solver_spec::SolverSpec;
+use settings::SolverSpec;
 use solvers::neural::NeuralSolver;
 use solvers::{random_qp, ExactSolver, Qp, QpShape};
 use spec::RunSpec;

@@ -9,11 +9,11 @@
 //!   the experiment format places it at the field at fault when a file is checked
 //!   ([`crate::experiment::CheckJob`]).
 //!
-//! A network's parameter errors (`settings::error::NetworkError`) and the integrator settings'
-//! (`settings::error::IntegratorError`) are crate `settings`', below both this crate and the
+//! A network's parameter errors (`settings::NetworkError`) and the integrator settings'
+//! (`settings::IntegratorError`) are crate `settings`', below both this crate and the
 //! solvers.
 
-use settings::error::IntegratorError;
+use settings::IntegratorError;
 use spec::NameError;
 use spec::SchemeError;
 use std::path::PathBuf;

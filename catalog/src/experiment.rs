@@ -12,8 +12,8 @@
 use crate::error::{ExperimentError, ExperimentFileError, FieldAt, FieldError, TomlError};
 use robots::mounted::Mount;
 use serde::{Deserialize, Serialize};
-use settings::integrator::{IntegratorSettings, Method};
-use settings::solver_spec::SolverSpec;
+use settings::{IntegratorSettings, Method};
+use settings::SolverSpec;
 use spec::ids::{ExperimentId, VariantId};
 use spec::MountError;
 use spec::MountSpec;

@@ -2,7 +2,7 @@
 //! (a task that cannot be built), the solvers' (networks, LVI, OSQP, the exact QP) and the records
 //! layer's (the result files).
 
-use settings::error::NetworkError;
+use settings::NetworkError;
 use solvers::{ExactError, QpSolverError};
 use store::error::ControlFileError;
 

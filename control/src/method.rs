@@ -8,7 +8,7 @@ use crate::tick::TickSolver;
 use qp::QpDims;
 use records::control::Family;
 use settings::qp_solver::{QpSolverKey, QpSolverSettings};
-use settings::solver_spec::SolverSpec;
+use settings::SolverSpec;
 use solvers::lvi_numerical;
 
 /// A registered QP solver (`solvers::registry`) with its settings, solved at every tick.

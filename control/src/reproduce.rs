@@ -22,7 +22,7 @@ use crate::trend::classify;
 use records::control::{steps_needed, ClaimCheck};
 use records::control::{ControlRow, ControlStatus, CycleRow, StabilityRow, TrendRow};
 use settings::projection::ProjectionErrorForm;
-use settings::solver_spec::SolverSpec;
+use settings::SolverSpec;
 use simulation::runner::map_costliest_first;
 use solvers::neural::build_solver;
 use solvers::HotActiveSet;

@@ -8,7 +8,7 @@ use crate::error::ControlError;
 use robots::Robot;
 use schemes::paths::Path;
 use schemes::scheme::Scheme;
-use settings::solver_spec::SolverSpec;
+use settings::SolverSpec;
 use simulation::run::{build_cyclic_parts, job_model, job_robot};
 use spec::RunSpec;
 use spec::SolverChoice;

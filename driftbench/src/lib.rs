@@ -233,8 +233,8 @@ pub mod prelude {
     pub use robots::robot_file::RobotSpec;
     pub use robots::{JointLimits, Robot};
     pub use schemes::scheme::Scheme;
-    pub use settings::integrator::IntegratorSettings;
-    pub use settings::solver_spec::SolverSpec;
+    pub use settings::IntegratorSettings;
+    pub use settings::SolverSpec;
     pub use simulation::run::{run_job, RunRecord};
     pub use simulation::score_trajectory::score_trajectory;
     pub use simulation::simulate::{Outcome, Run};

@@ -37,7 +37,7 @@
 use records::attribution::{AttributionRow, Component};
 use records::ladder::{LadderMethod, LadderRow};
 use records::runs::RunRow;
-use settings::solver_spec::SolverSpec;
+use settings::SolverSpec;
 use spec::RunSpec;
 use spec::Scoring;
 use spec::SolverChoice;

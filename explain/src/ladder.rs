@@ -31,8 +31,8 @@
 
 use records::ladder::{LadderMethod, LadderRow};
 use records::runs::RunRow;
-use settings::integrator::{IntegratorSettings, Method};
-use settings::solver_spec::SolverSpec;
+use settings::{IntegratorSettings, Method};
+use settings::SolverSpec;
 use spec::RunSpec;
 use spec::Scoring;
 use spec::SolverChoice;

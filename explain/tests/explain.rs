@@ -10,8 +10,8 @@ use explain::inference::{evaluate, fit, Column, Setup, TableProblem};
 use explain::{explain, ladder};
 use records::attribution::Component;
 use records::ladder::LadderMethod;
-use settings::integrator::Method;
-use settings::solver_spec::SolverSpec;
+use settings::Method;
+use settings::SolverSpec;
 use simulation::run::check_job;
 use spec::RunSpec;
 use spec::SolverChoice;
@@ -219,7 +219,7 @@ fn inference_recovers_a_known_setup() {
     let exact = find(&jobs, "kong2019-triangle", "znn-eq22", "exact");
     // Tight tolerances: the drift here is ~1e-5, so AbsTol 1e-8 would leave 1e-3 of noise.
     let run = RunSpec {
-        integrator: settings::integrator::IntegratorSettings {
+        integrator: settings::IntegratorSettings {
             rtol: 1e-10,
             atol: 1e-13,
             ..explain::inference::inference_integrator()

@@ -38,7 +38,7 @@ fn row(experiment: &str, variant: &str, solver: &str, failed_at: Option<f64>) ->
             if solver.starts_with("exact") {
                 spec::SolverKind::Exact
             } else {
-                spec::SolverKind::Network(settings::network_kind::NetworkKind::LviPdnn)
+                spec::SolverKind::Network(settings::NetworkKind::LviPdnn)
             },
         )
     }

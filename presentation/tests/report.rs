@@ -204,7 +204,7 @@ fn row(experiment: &str, variant: &str, solver: &str, drift: f64) -> RunRow {
     let kind = if solver == records::index::EXACT {
         spec::SolverKind::Exact
     } else {
-        spec::SolverKind::Network(settings::network_kind::NetworkKind::LviPdnn)
+        spec::SolverKind::Network(settings::NetworkKind::LviPdnn)
     };
     RunRow {
         paper: "jia2019".into(),

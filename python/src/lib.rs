@@ -89,7 +89,7 @@ fn lib_err(e: impl std::fmt::Display) -> PyErr {
 /// The solver id of a Python network called `name`: `python-<slug(name)>`, an error when that
 /// is no valid id (a name without a letter or digit, or too long).
 fn python_solver_id(name: &str) -> Result<spec::ids::SolverId, spec::ids::IdError> {
-    spec::ids::SolverId::new(format!("{PYTHON_KIND}-{}", settings::slug::slug(name)))
+    spec::ids::SolverId::new(format!("{PYTHON_KIND}-{}", settings::slug(name)))
 }
 
 /// Runs the body of one of the module's functions, a panic of the library (a bug: no input

@@ -12,7 +12,7 @@
 //! setup.
 
 use serde::{Deserialize, Serialize};
-use settings::integrator::{IntegratorSettings, Method};
+use settings::{IntegratorSettings, Method};
 
 /// Penalty residual of a setup whose run fails (an unreachable pose, an infeasible QP); the
 /// report prints such points as failed, and crate `analysis`'s `inference_verdict` leaves them out.

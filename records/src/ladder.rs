@@ -11,7 +11,7 @@
 
 use crate::runs::Status;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
-use settings::integrator::Method;
+use settings::Method;
 use spec::ids::{ExperimentId, SolverId, VariantId};
 
 /// How a rung integrated (the `method` column): an integrator, stored by its id (`bdf`,

@@ -244,7 +244,7 @@ fn check_name(name: &str) -> Result<SolverId, ScoreError> {
     if let Ok(id) = SolverId::new(name) {
         return Ok(id);
     }
-    let mut suggestion = settings::slug::slug(name);
+    let mut suggestion = settings::slug(name);
     suggestion.truncate(max);
     Err(ScoreError::Name {
         name: name.to_string(),

@@ -3,7 +3,7 @@
 //! their reason.
 
 use records::runs::RunRow;
-use settings::network_kind::NetworkKind;
+use settings::NetworkKind;
 use std::fmt::Write as _;
 use std::io::Write as _;
 

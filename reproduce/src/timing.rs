@@ -100,7 +100,7 @@ pub fn time_alone(
 mod tests {
     use super::*;
     use analysis::papers::{Mapping, PaperValue};
-    use settings::network_kind::NetworkKind;
+    use settings::NetworkKind;
     use spec::SolverKind;
 
     fn row(paper: &str, experiment: &str, variant: &str, solver: &str) -> RunRow {

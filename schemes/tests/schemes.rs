@@ -459,7 +459,7 @@ fn zhang2018_weight_is_spd_and_torque_is_the_dynamics() {
 /// kong2019's c = |e|^alpha sgn(e) elementwise, e = theta - theta*0, smoothed over |e| ~ delta:
 /// the sign-power term of the finite-time scheme.
 fn finite_time_c(theta: &V, star: &V, alpha: f64, delta: f64) -> V {
-    (theta - star).map(|e| settings::sign_power::sign_power(e, alpha, delta))
+    (theta - star).map(|e| settings::sign_power(e, alpha, delta))
 }
 
 #[test]

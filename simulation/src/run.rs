@@ -11,7 +11,7 @@ use robots::{Dynamics, Robot};
 use schemes::build::build_scheme;
 use schemes::paths::{build_path, Cyclic, Path};
 use schemes::scheme::Scheme;
-use settings::solver_spec::SolverSpec;
+use settings::SolverSpec;
 use solvers::exact_path::ExactPathStats;
 use solvers::neural::NeuralSolver;
 use solvers::ode::OdeStats;

@@ -5,7 +5,7 @@
 use crate::run::{run_job, RunRecord};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::iter::{ParallelBridge, ParallelIterator};
-use settings::network_kind::NetworkKind;
+use settings::NetworkKind;
 use spec::RunSpec;
 use spec::SolverChoice;
 use std::collections::BTreeMap;

@@ -25,7 +25,7 @@ use spec::SetupError;
 use spec::{NetworkInit, Scoring};
 use spec::Level;
 
-use settings::integrator::IntegratorSettings;
+use settings::IntegratorSettings;
 use solvers::exact_path::ExactPathStats;
 use solvers::neural::NeuralSolver;
 use solvers::ode::{integrate, Control, OdeError, OdeFailure, OdeStats, OdeSystem};

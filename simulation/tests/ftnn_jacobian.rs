@@ -12,8 +12,8 @@ use schemes::paths::{build_path, Path};
 use spec::PathSpec;
 use spec::SchemeSpec;
 
-use settings::integrator::IntegratorSettings;
-use settings::solver_spec::SolverSpec;
+use settings::IntegratorSettings;
+use settings::SolverSpec;
 use simulation::coupled::NeuralLoop;
 use solvers::neural::build_solver;
 use solvers::ode::{integrate, Control, OdeSystem};

@@ -144,7 +144,7 @@ fn the_kit_catches_a_wrong_solver() {
 #[test]
 fn every_network_reaches_the_optimum_without_allocating() {
     use settings::projection::ProjectionErrorForm;
-    use settings::solver_spec::SolverSpec;
+    use settings::SolverSpec;
     use solvers::conformance::{check_network, NetworkConformance};
     let networks: [(&str, f64); 15] = [
         ("kind = \"lvi-pdnn\"\ngamma = 1e7", 1e-3),
@@ -192,7 +192,7 @@ fn every_network_reaches_the_optimum_without_allocating() {
     }
     assert_eq!(
         kinds.len(),
-        settings::network_kind::NetworkKind::ALL.len(),
+        settings::NetworkKind::ALL.len(),
         "{kinds:?}"
     );
     assert!(failures.is_empty(), "{}", failures.join("\n"));

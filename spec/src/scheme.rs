@@ -198,7 +198,7 @@ pub enum SchemeSpec {
     Composed(ComposedSpec),
 }
 
-/// The form of the repetitive term ([`crate::terms::TermSpec::Repetitive`]; the engine's term
+/// The form of the repetitive term ([`crate::TermSpec::Repetitive`]; the engine's term
 /// is `schemes::terms::repetitive`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]

@@ -10,7 +10,7 @@
 //! (it is then pruned as any undescribed run is). `ResultsDir::migrate_ids` applies this to a
 //! results directory and renames the traces.
 
-use settings::slug::slug;
+use settings::slug;
 use spec::ids::IdError;
 use spec::RunSpec;
 use spec::EXACT_ID;

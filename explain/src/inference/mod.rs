@@ -51,7 +51,7 @@ use records::inference::{
 };
 use records::runs::RunRow;
 use search::{Coordinate, Objective, Outcome, Point, Scores, Target};
-use settings::integrator::{IntegratorSettings, Method};
+use settings::{IntegratorSettings, Method};
 use simulation::row::run_row;
 use simulation::run::run_job;
 use spec::RmpReading;

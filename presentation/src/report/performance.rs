@@ -384,7 +384,7 @@ fn crossovers(dof: &[DofCostRow]) -> String {
          network Jacobian's LU above, and on nalgebra below; the KKT solve stays on nalgebra at \
          every size, since its zero and identity blocks are skipped by the in-place \
          elimination and faer's dense LU was slower there at every measured N.\n\n{}\n",
-        settings::linear_algebra::FAER_CROSSOVER,
+        settings::FAER_CROSSOVER,
         t.render()
     )
 }

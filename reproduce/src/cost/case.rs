@@ -3,7 +3,7 @@
 
 use qp::QpDims;
 use records::dof_cost::{Quantity, RunCounts, SchemeKind};
-use settings::solver_spec::SolverSpec;
+use settings::SolverSpec;
 use solvers::Backend;
 use spec::PathSpec;
 

@@ -1,6 +1,6 @@
 //! Why a case could not be prepared for timing.
 
-use settings::error::NetworkError;
+use settings::NetworkError;
 use simulation::error::RunError;
 use spec::PathError;
 use spec::SchemeError;

@@ -81,7 +81,7 @@ use super::activation::Activation;
 use crate::dense_lu::DenseLu;
 use nalgebra::DMatrix;
 use qp::{Qp, QpDims};
-use settings::error::NetworkError;
+use settings::NetworkError;
 
 /// Cap on the penalty exponent -sigma N_i (exp(700) ~ 1e304).
 pub const EXPONENT_CAP: f64 = 700.0;

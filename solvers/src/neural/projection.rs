@@ -52,7 +52,7 @@ use super::penalty::PenaltyCore;
 use super::{euclidean_norm, NeuralSolver};
 use nalgebra::DMatrix;
 use qp::{Qp, QpDims};
-use settings::error::NetworkError;
+use settings::NetworkError;
 use settings::projection::{ProjectionErrorForm, ProjectionSpec, Scaling};
 use settings::zeroing::GainLaw;
 
