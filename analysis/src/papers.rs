@@ -478,7 +478,7 @@ fn read_paper_file(dir: &Path, folder: &Path, path: &Path) -> Result<PaperFile, 
     check_paper_id(name).map_err(invalid)?;
     let text = inputs::read_text(path, inputs::Kind::PaperToml, inputs::Origin::Under(dir))?;
     let file: PaperFile =
-        inputs::toml_error::from_str(&text).map_err(|source| PapersError::Toml {
+        inputs::parse_toml(&text).map_err(|source| PapersError::Toml {
             path: path.to_path_buf(),
             source,
         })?;

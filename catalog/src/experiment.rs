@@ -312,7 +312,7 @@ impl PaperFile {
         check: CheckJob,
         budget: &mut usize,
     ) -> Result<Self, ExperimentError> {
-        let mut doc: toml::Table = inputs::toml_error::from_str(text)?;
+        let mut doc: toml::Table = inputs::parse_toml(text)?;
         // Sweeps (crate::sweep) are taken out of the parsed TOML, the rest is read, and each
         // expanded variant is read into its place as it is made; a file without one is read
         // from its text, so serde's errors keep their line numbers.
@@ -330,7 +330,7 @@ impl PaperFile {
             )?;
             file
         } else {
-            inputs::toml_error::from_str(text)?
+            inputs::parse_toml(text)?
         };
         file.validate(check)?;
         Ok(file)

@@ -120,7 +120,7 @@ pub fn standard_task_set(experiments: &std::path::Path) -> Result<TaskSet, Contr
         Err(e) => return Err(e.into()),
     };
     let file: TaskSetFile =
-        inputs::toml_error::from_str(&text).map_err(|source| ControlError::TaskSet {
+        inputs::parse_toml(&text).map_err(|source| ControlError::TaskSet {
             path: shown.clone(),
             source,
         })?;

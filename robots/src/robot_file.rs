@@ -229,7 +229,7 @@ impl RobotSpec {
     fn parse_with(file: &str, stem: Option<&str>, text: &str) -> Result<Self, RobotFileError> {
         file_rules::check_size(text).map_err(rule(file))?;
         let raw: RawFile =
-            inputs::toml_error::from_str(text).map_err(|source| RobotFileError::Syntax {
+            inputs::parse_toml(text).map_err(|source| RobotFileError::Syntax {
                 file: file.to_string(),
                 source,
             })?;
@@ -380,7 +380,7 @@ impl RobotForm {
             return RobotSpec::parse_named(file, stem, text).map(RobotForm::Dh);
         }
         let spec: UrdfRobotSpec =
-            inputs::toml_error::from_str(text).map_err(|source| RobotFileError::Syntax {
+            inputs::parse_toml(text).map_err(|source| RobotFileError::Syntax {
                 file: file.to_string(),
                 source,
             })?;

@@ -419,7 +419,7 @@ impl Binding {
             inputs::Origin::Under(dir),
         ) {
             Ok(text) => {
-                let found: Binding = inputs::toml_error::from_str(&text)
+                let found: Binding = inputs::parse_toml(&text)
                     .map_err(|source| ShardError::ReadBinding { path, source })?;
                 if found == *self {
                     return Ok(());
@@ -537,7 +537,7 @@ impl Manifest {
             }
         })?;
         let manifest: Self =
-            inputs::toml_error::from_str(&text).map_err(|source| ShardError::ReadManifest {
+            inputs::parse_toml(&text).map_err(|source| ShardError::ReadManifest {
                 path: path.clone(),
                 source,
             })?;

@@ -88,7 +88,7 @@ impl Family {
         };
         let origin = inputs::Origin::Under(experiments);
         let family: Family = match inputs::read_text(&path, inputs::Kind::InferenceFamily, origin) {
-            Ok(text) => inputs::toml_error::from_str(&text).map_err(|e| err(e.into()))?,
+            Ok(text) => inputs::parse_toml(&text).map_err(|e| err(e.into()))?,
             Err(e) if e.is_not_found() => Family::default(),
             Err(e) => return Err(e.into()),
         };
