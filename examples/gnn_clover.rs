@@ -131,7 +131,7 @@ struct Line {
 
 fn run() -> Vec<Line> {
     let robot = Arc::new(Jaco2::pen());
-    let theta0 = robots::jaco2::PAPERS_THETA0;
+    let theta0 = robots::JACO2_PAPERS_THETA0;
     let path: Arc<dyn schemes::paths::Path> = Arc::from(
         build_path(
             &PathSpec::new("four-leaf-clover", 5.0),

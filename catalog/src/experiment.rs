@@ -10,7 +10,7 @@
 //! Every run an experiment file describes is a [`RunSpec`].
 
 use crate::error::{ExperimentError, ExperimentFileError, FieldAt, FieldError, TomlError};
-use robots::mounted::Mount;
+use robots::Mount;
 use serde::{Deserialize, Serialize};
 use settings::{IntegratorSettings, Method};
 use settings::SolverSpec;
@@ -52,10 +52,10 @@ pub struct Experiment {
     pub id: String,
     /// What the paper prints for it (e.g. "Table 2; Figs 2-4").
     pub paper_output: String,
-    /// The robot's model name ([`robots::registry`], e.g. `jaco2-pen`).
+    /// The robot's model name ([`robots::robot_by_name`], e.g. `jaco2-pen`).
     pub robot: String,
     /// A tool offset `[x, y, z]` (m) in the robot's tool frame, added to its task point
-    /// ([`robots::mounted`]; needs a robot with a tool frame).
+    /// ([`robots::Mounted`]; needs a robot with a tool frame).
     #[serde(default)]
     pub tool: Option<[f64; 3]>,
     /// Where the robot stands: the run's world from the robot's ([`BaseSpec`]).
@@ -209,7 +209,7 @@ impl Variant {
 
 /// Where an experiment's robot stands: the run's world from the robot's own world frame,
 /// `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)` with `rpy = [roll, pitch, yaw]` (the URDF
-/// convention; [`robots::mounted::Mount::new`] bounds them).
+/// convention; [`robots::Mount::new`] bounds them).
 #[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct BaseSpec {
@@ -719,10 +719,10 @@ fn field(at: FieldAt, error: impl Into<FieldError>) -> ExperimentError {
     }
 }
 
-/// Joint count of the robot called `name` (see [`robots::registry`]), or why there is none (an
+/// Joint count of the robot called `name` (see [`robots::robot_by_name`]), or why there is none (an
 /// unknown name, with the valid choices; an invalid robot file, with its file and field).
 fn robot_dof(name: &str) -> Result<usize, FieldError> {
-    robots::registry::robot_by_name(name)
+    robots::robot_by_name(name)
         .map(|r| r.dof())
         .map_err(|e| FieldError::UnknownRobot {
             robot: name.to_string(),

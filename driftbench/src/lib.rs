@@ -63,7 +63,7 @@
 //! // A non-finite number is refused, naming the file and the field.
 //! let bad = text.replacen("d = 0.3", "d = nan", 1);
 //! assert!(RobotSpec::parse("bad.toml", &bad).is_err());
-//! # Ok::<(), driftbench::robots::robot_file::RobotFileError>(())
+//! # Ok::<(), driftbench::robots::RobotFileError>(())
 //! ```
 //!
 //! ## Run a network of your own on a task
@@ -229,8 +229,8 @@ pub mod prelude {
     pub use nalgebra::{DMatrix, DVector, DVectorView, DVectorViewMut, SMatrix, SVector, Vector3};
     pub use qp::{Qp, QpDims};
     pub use records::runs::RunRow;
-    pub use robots::data_robot::DataRobot;
-    pub use robots::robot_file::RobotSpec;
+    pub use robots::DataRobot;
+    pub use robots::RobotSpec;
     pub use robots::{JointLimits, Robot};
     pub use schemes::scheme::Scheme;
     pub use settings::IntegratorSettings;

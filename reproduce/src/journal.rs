@@ -211,7 +211,7 @@ pub fn skip_finished<'a>(
 pub fn joints(jobs: &[RunSpec]) -> usize {
     jobs.iter()
         .filter_map(|j| {
-            robots::registry::robot_by_name(&j.robot)
+            robots::robot_by_name(&j.robot)
                 .ok()
                 .map(|r| r.dof())
         })

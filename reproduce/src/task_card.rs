@@ -19,7 +19,7 @@ use presentation::task_card::{
     RunSettings, SchemeCard, SchemeForm, StartCard, TaskCard,
 };
 use qp::Qp;
-use robots::registry::{robot_by_name, Kinematics, Model};
+use robots::{robot_by_name, Kinematics, Model};
 use simulation::run::check_job;
 use simulation::task_numbers::{task_numbers, TaskNumbers};
 use spec::RunSpec;

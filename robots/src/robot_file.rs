@@ -46,7 +46,7 @@
 //!   the given matrix (rows), which must be a rotation (orthonormal to 1e-9, determinant +1).
 //!
 //! The Jacobian and its derivative are those of [`crate::geometric_jacobian`]
-//! (`J_j = z_{j-1} x (f - o_{j-1})`); the model is [`crate::data_robot::DataRobot`].
+//! (`J_j = z_{j-1} x (f - o_{j-1})`); the model is [`crate::DataRobot`].
 //!
 //! # Validation
 //!

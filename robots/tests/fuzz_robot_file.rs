@@ -10,8 +10,8 @@
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use robots::data_robot::builtin_files;
-use robots::robot_file::RobotForm;
+use robots::builtin_files;
+use robots::RobotForm;
 use robots::DataRobot;
 use std::time::{Duration, Instant};
 

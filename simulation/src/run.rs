@@ -5,8 +5,8 @@ use crate::error::RunError;
 use crate::simulate::{simulate, Outcome, Run, Settings, Solver};
 use nalgebra::DVector;
 use qp::QpDims;
-use robots::mounted::{Mount, Mounted};
-use robots::registry::{robot_by_name, Model};
+use robots::{Mount, Mounted};
+use robots::{robot_by_name, Model};
 use robots::{Dynamics, Robot};
 use schemes::build::build_scheme;
 use schemes::paths::{build_path, Cyclic, Path};
@@ -156,7 +156,7 @@ fn honours_constraints(
 }
 
 /// The registry's model of the job's robot, with the job's tool offset and base where it gives
-/// them ([`robots::mounted`]); the error names the valid choices, or the robot's invalid file
+/// them ([`robots::Mounted`]); the error names the valid choices, or the robot's invalid file
 /// and field, or why the mount does not fit the robot. A mounted model keeps its dynamics only
 /// for a scheme that needs them, where a base that tilts gravity is refused
 /// ([`spec::MountError::TiltedGravity`]).
@@ -198,7 +198,7 @@ pub fn qp_shape(job: &RunSpec) -> Result<(QpDims, spec::Level), SetupError> {
 }
 
 /// The job's robot: the registry's model `robot`, with the job's `joint_limits` and
-/// `velocity_limits` in place of its own where the job gives them ([`robots::limited`]).
+/// `velocity_limits` in place of its own where the job gives them ([`robots::Limited`]).
 /// A model that carries dynamics (`has_dynamics`: the acceleration-level scheme takes its
 /// kinematics and limits from the dynamics model) keeps its own limits: overriding them is an
 /// error rather than a silent half-override.
@@ -244,7 +244,7 @@ pub fn job_robot(
         &mut limits.thetadot_min,
         &mut limits.thetadot_max,
     )?;
-    let limited = robots::limited::Limited::new(robot, limits).expect("limits checked per joint");
+    let limited = robots::Limited::new(robot, limits).expect("limits checked per joint");
     Ok(Arc::new(limited))
 }
 
@@ -294,7 +294,7 @@ pub fn build_cyclic_parts(
             spec::SchemeError::MissingDynamics { .. } => format!(
                 " (robot \"{}\" is kinematic only; robots with dynamics: {})",
                 job.robot,
-                robots::registry::robots_with_dynamics().join(", ")
+                robots::robots_with_dynamics().join(", ")
             ),
             _ => String::new(),
         };

@@ -31,7 +31,7 @@ use crate::run::{build_parts, RunRecord};
 use crate::simulate::{Outcome, Run};
 use inputs::trajectory::Trajectory;
 use nalgebra::DVector;
-use robots::registry::Model;
+use robots::Model;
 use spec::RunSpec;
 use spec::SetupError;
 use spec::Level;

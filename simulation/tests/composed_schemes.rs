@@ -14,7 +14,7 @@
 //!   frame, or in a preset scheme, the file is refused naming the file and the field.
 
 use catalog::experiment::load_dir;
-use robots::registry::robot_by_name;
+use robots::robot_by_name;
 use schemes::terms::tracking::orientation_error;
 use simulation::run::{build_cyclic_parts, check_job, job_robot, run_job};
 use simulation::simulate::Outcome;

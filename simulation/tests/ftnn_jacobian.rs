@@ -5,7 +5,7 @@
 //! sqrt(eps) (what the Jacobian used to do) gave columns up to ~1000x too small there.
 
 use nalgebra::{DMatrix, SVector};
-use robots::katana::Katana6m180;
+use robots::Katana6m180;
 use robots::Robot;
 use schemes::build::build_scheme;
 use schemes::paths::{build_path, Path};

@@ -100,7 +100,7 @@ impl Family {
     fn check(&self) -> Result<(), FamilyError> {
         for (declared, variants) in &self.robot_variants {
             let dof = |name: &str| {
-                robots::registry::robot_by_name(name)
+                robots::robot_by_name(name)
                     .map(|r| r.dof())
                     .map_err(|e| FamilyError::UnknownRobot(e.to_string()))
             };

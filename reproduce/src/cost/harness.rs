@@ -23,7 +23,7 @@ use catalog::experiment::default_exact_integrator;
 use qp::{Qp, QpDims};
 pub use records::dof_cost::SWEEP_SIZES;
 use records::dof_cost::{Quantity, RunCounts, SchemeKind};
-use robots::registry::{nlink_name, robot_by_name};
+use robots::{nlink_name, robot_by_name};
 use robots::Robot;
 use schemes::build::build_scheme;
 use schemes::paths::{build_path, Path};
