@@ -24,7 +24,7 @@ use catalog::experiment::default_exact_integrator;
 use nalgebra::{DMatrix, DVector};
 use qp::{Qp, QpDims};
 use robots::{Jaco2, Robot};
-use schemes::build::build_scheme;
+use schemes::build_scheme;
 use schemes::paths::build_path;
 use settings::IntegratorSettings;
 use settings::SolverSpec;

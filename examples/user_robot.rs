@@ -22,7 +22,7 @@
 use catalog::experiment::default_exact_integrator;
 use nalgebra::{DVector, Vector3};
 use robots::{JointLimits, Robot};
-use schemes::build::build_scheme;
+use schemes::build_scheme;
 use schemes::paths::build_path;
 use settings::IntegratorSettings;
 use settings::SolverSpec;

@@ -29,7 +29,7 @@ use qp::QpDotScratch;
 use qp::{Qp, QpSolve};
 use robots::Robot;
 use schemes::paths::Path;
-use schemes::scheme::Scheme;
+use schemes::Scheme;
 use solvers::ExactPath;
 use spec::Level;
 use std::time::Instant;

@@ -7,7 +7,7 @@
 use crate::error::ControlError;
 use robots::Robot;
 use schemes::paths::Path;
-use schemes::scheme::Scheme;
+use schemes::Scheme;
 use settings::SolverSpec;
 use simulation::run::{build_cyclic_parts, job_model, job_robot};
 use spec::RunSpec;

@@ -232,7 +232,7 @@ pub mod prelude {
     pub use robots::DataRobot;
     pub use robots::RobotSpec;
     pub use robots::{JointLimits, Robot};
-    pub use schemes::scheme::Scheme;
+    pub use schemes::Scheme;
     pub use settings::IntegratorSettings;
     pub use settings::SolverSpec;
     pub use simulation::run::{run_job, RunRecord};

@@ -54,8 +54,8 @@ impl QpDotScratch {
 /// of the two one-sided slopes — schemes with such kinks (jia2019, zhong2021) override
 /// `build_dot` analytically.
 ///
-/// The step and the difference along a scheme's motion are the scheme's (`schemes::scheme::default_step`,
-/// `schemes::scheme::central_difference`), the default of `Scheme::build_dot`. Nothing here
+/// The step and the difference along a scheme's motion are the scheme's (`schemes::default_step`,
+/// `schemes::central_difference`), the default of `Scheme::build_dot`. Nothing here
 /// allocates after [`QpDotScratch::new`].
 pub fn difference_quotient(plus: &Qp, minus: &Qp, denom: f64, out: &mut Qp) {
     let inv = 1.0 / denom;

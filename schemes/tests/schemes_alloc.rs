@@ -9,7 +9,7 @@ use alloc_count::count;
 use common::{Circle, PlanarZ};
 use nalgebra::SVector;
 use robots::Robot;
-use schemes::build::build_scheme;
+use schemes::build_scheme;
 
 #[test]
 fn build_and_build_dot_do_not_allocate() {

@@ -24,7 +24,7 @@
 
 use nalgebra::{DMatrix, DVector};
 use qp::QpDotScratch;
-use schemes::scheme::Scheme;
+use schemes::Scheme;
 use solvers::exact_path::{ExactPath, ExactPathStats};
 use solvers::neural::NeuralSolver;
 use solvers::ode::OdeSystem;

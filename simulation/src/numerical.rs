@@ -26,7 +26,7 @@ use crate::error::RunError;
 use crate::observer::{score_instant, Observer};
 use nalgebra::DVector;
 use qp::QpStatus;
-use schemes::scheme::Scheme;
+use schemes::Scheme;
 use solvers::exact_path::ExactPathStats;
 use solvers::ode::OdeStats;
 use solvers::registry::BoxedQpSolver;

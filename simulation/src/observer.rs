@@ -11,7 +11,7 @@ use nalgebra::{DVector, Matrix3xX};
 use records::trace::TracePoint;
 use robots::Robot;
 use schemes::paths::Path;
-use schemes::scheme::Scheme;
+use schemes::Scheme;
 use spec::Scoring;
 use spec::Level;
 

@@ -18,7 +18,7 @@ use nalgebra::DVector;
 use records::trace::TracePoint;
 use robots::Robot;
 use schemes::paths::Path;
-use schemes::scheme::Scheme;
+use schemes::Scheme;
 use spec::NumericalSpec;
 use spec::JobPart;
 use spec::SetupError;

@@ -41,7 +41,7 @@ pub struct TaskNumbers {
     pub scheme: String,
     /// The scheme's level.
     pub level: Level,
-    /// The scheme's terms, one line each ([`schemes::scheme::Scheme::terms`]).
+    /// The scheme's terms, one line each ([`schemes::Scheme::terms`]).
     pub terms: Vec<String>,
     /// The scheme's QP at t = 0 (at theta0, with thetadot = 0 at the acceleration level).
     pub qp0: Qp,

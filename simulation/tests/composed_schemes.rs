@@ -15,7 +15,7 @@
 
 use catalog::experiment::load_dir;
 use robots::robot_by_name;
-use schemes::terms::tracking::orientation_error;
+use schemes::orientation_error;
 use simulation::run::{build_cyclic_parts, check_job, job_robot, run_job};
 use simulation::simulate::Outcome;
 use solvers::exact::ExactSolver;
@@ -432,9 +432,9 @@ fn a_given_orientation_is_reached_at_the_rate_of_k_p() {
     let model = robot_by_name(&job.robot).unwrap();
     let robot = job_robot(job, model.robot, model.dynamics.is_some()).unwrap();
     let o = robot.orientation().unwrap();
-    let target = schemes::terms::tracking::rotation_exp(&nalgebra::Vector3::new(0.0, 0.0, 0.1))
+    let target = schemes::rotation_exp(&nalgebra::Vector3::new(0.0, 0.0, 0.1))
         * o.tool_rotation(&job.theta0);
-    let phi = schemes::terms::tracking::rotation_log(&target);
+    let phi = schemes::rotation_log(&target);
     let text = pose_experiment(
         "panda",
         PANDA_READY,

@@ -7,7 +7,7 @@
 use nalgebra::{DMatrix, SVector};
 use robots::Katana6m180;
 use robots::Robot;
-use schemes::build::build_scheme;
+use schemes::build_scheme;
 use schemes::paths::{build_path, Path};
 use spec::PathSpec;
 use spec::SchemeSpec;
