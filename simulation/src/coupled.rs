@@ -25,7 +25,7 @@
 use nalgebra::{DMatrix, DVector};
 use qp::QpDotScratch;
 use schemes::Scheme;
-use solvers::exact_path::{ExactPath, ExactPathStats};
+use solvers::{ExactPath, ExactPathStats};
 use solvers::neural::NeuralSolver;
 use solvers::ode::OdeSystem;
 use solvers::{ExactError, Qp};

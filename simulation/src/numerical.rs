@@ -27,7 +27,7 @@ use crate::observer::{score_instant, Observer};
 use nalgebra::DVector;
 use qp::QpStatus;
 use schemes::Scheme;
-use solvers::exact_path::ExactPathStats;
+use solvers::ExactPathStats;
 use solvers::ode::OdeStats;
 use solvers::registry::BoxedQpSolver;
 use spec::NumericalSpec;

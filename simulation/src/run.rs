@@ -12,7 +12,7 @@ use schemes::build_scheme;
 use schemes::paths::{build_path, Cyclic, Path};
 use schemes::Scheme;
 use settings::SolverSpec;
-use solvers::exact_path::ExactPathStats;
+use solvers::ExactPathStats;
 use solvers::neural::NeuralSolver;
 use solvers::ode::OdeStats;
 use spec::JobPart;

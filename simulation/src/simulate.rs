@@ -26,7 +26,7 @@ use spec::{NetworkInit, Scoring};
 use spec::Level;
 
 use settings::IntegratorSettings;
-use solvers::exact_path::ExactPathStats;
+use solvers::ExactPathStats;
 use solvers::neural::NeuralSolver;
 use solvers::ode::{integrate, Control, OdeError, OdeFailure, OdeStats, OdeSystem};
 use solvers::ExactError;

@@ -18,8 +18,8 @@ use robots::robot_by_name;
 use schemes::orientation_error;
 use simulation::run::{build_cyclic_parts, check_job, job_robot, run_job};
 use simulation::simulate::Outcome;
-use solvers::exact::ExactSolver;
-use solvers::exact_path::ExactPath;
+use solvers::ExactSolver;
+use solvers::ExactPath;
 use spec::RunSpec;
 use std::path::Path;
 

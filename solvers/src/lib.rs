@@ -9,19 +9,19 @@
 #![allow(clippy::nonminimal_bool, clippy::neg_cmp_op_on_partial_ord)]
 #![deny(missing_docs)]
 
-pub mod active_set;
-pub mod auxiliary;
+mod active_set;
+mod auxiliary;
 pub mod conformance;
-pub mod dense_lu;
-pub mod exact;
-pub mod exact_path;
-pub mod kkt_schur;
-pub mod lvi_numerical;
+mod dense_lu;
+mod exact;
+mod exact_path;
+mod kkt_schur;
+mod lvi_numerical;
 pub mod neural;
 pub mod ode;
 #[cfg(feature = "osqp")]
-pub mod osqp_qp;
-pub mod qp_solver;
+mod osqp_qp;
+mod qp_solver;
 pub mod random_qp;
 pub mod registry;
 
@@ -39,3 +39,8 @@ pub use qp::{KktResiduals, Qp, QpDims, QpDuals};
 pub use qp::{QpSolve, QpSolver, QpSolverError, QpStatus, SolverId};
 pub use qp_solver::{ActiveSetFailure, HotActiveSet};
 pub use random_qp::{random_feasible, random_qp, QpShape};
+pub use active_set::DEFAULT_CERT_TOL;
+pub use exact::{ConeSizes, cone_sizes};
+pub use lvi_numerical::{DEFAULT_MAX_ITERATIONS as LVI_DEFAULT_MAX_ITERATIONS, DEFAULT_TOLERANCE as LVI_DEFAULT_TOLERANCE, LviError, LviMethod, LviSettings, LviSolver, PRODUCTS_PER_ITERATION};
+#[cfg(feature = "osqp")]
+pub use osqp_qp::{OsqpQp, OsqpSettings};

@@ -4,7 +4,7 @@
 //! methods that promise none per solve.
 
 use solvers::conformance::{check_qp_solver, AllocationCounter, Conformance};
-use solvers::lvi_numerical::{LviMethod, LviSettings, LviSolver};
+use solvers::{LviMethod, LviSettings, LviSolver};
 use solvers::{ExactSolver, HotActiveSet, QpDims, QpShape, QpSolver};
 
 /// The test binary's counting allocator.
@@ -85,7 +85,7 @@ fn clarabel_conforms() {
 #[cfg(feature = "osqp")]
 #[test]
 fn osqp_conforms() {
-    use solvers::osqp_qp::{OsqpQp, OsqpSettings};
+    use solvers::{OsqpQp, OsqpSettings};
     // ADMM checks termination every 25 iterations and adapts rho: a repeat may take longer.
     let spec = Conformance {
         x_tolerance: 1e-4,

@@ -4,7 +4,7 @@
 //! path that ends the run).
 
 use alloc_count::count;
-use solvers::lvi_numerical::{LviMethod, LviSettings, LviSolver};
+use solvers::{LviMethod, LviSettings, LviSolver};
 use solvers::{random_feasible, random_qp, QpDims, QpShape, QpSolver};
 
 #[test]
