@@ -12,7 +12,7 @@
 //! ```
 //!
 //! Its equilibrium is the penalised optimum, within O(1/rho) of x*. It implements
-//! `solvers::neural::NeuralSolver`, and `simulation::simulate::simulate` runs it on jia2019's
+//! `solvers::neural::NeuralSolver`, and `simulation::simulate` runs it on jia2019's
 //! VLTCO scheme along the four-leaf clover on the Jaco2 exactly as it runs the papers'
 //! networks: coupled with the arm, integrated by BDF (RelTol 1e-6, AbsTol 1e-8, as ode15s), and
 //! scored against the exact optimum at every accepted step. The exact column and jia2019's own
@@ -28,8 +28,8 @@ use schemes::build_scheme;
 use schemes::paths::build_path;
 use settings::IntegratorSettings;
 use settings::SolverSpec;
-use simulation::run::build_network;
-use simulation::simulate::{simulate, Outcome, Settings, Solver};
+use simulation::build_network;
+use simulation::{simulate, Outcome, Settings, Solver};
 use solvers::neural::NeuralSolver;
 use spec::PathSpec;
 use spec::RmpReading;

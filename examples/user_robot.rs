@@ -14,7 +14,7 @@
 //! `Robot::jacobian_dot` is taken here by a central difference of J along thetadot (h = 1e-6):
 //! a user can start that way and write the exact derivative later. Implementing
 //! `robots::Robot` (joint vectors as slices, Jacobians written into the caller's 3 x n buffer,
-//! column-major) is all the suite asks; `simulation::simulate::simulate` then runs it
+//! column-major) is all the suite asks; `simulation::simulate` then runs it
 //! through kong2019's ZNN scheme (eq. 22) on a circle, solved exactly and by kong2019's ZNN.
 //!
 //! `cargo run --release --example user_robot`
@@ -26,8 +26,8 @@ use schemes::build_scheme;
 use schemes::paths::build_path;
 use settings::IntegratorSettings;
 use settings::SolverSpec;
-use simulation::run::build_network;
-use simulation::simulate::{simulate, Outcome, Settings, Solver};
+use simulation::build_network;
+use simulation::{simulate, Outcome, Settings, Solver};
 use spec::PathSpec;
 use spec::NetworkInit;
 use spec::Scoring;

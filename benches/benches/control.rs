@@ -64,7 +64,7 @@ fn per_tick(c: &mut Criterion) {
     let root = catalog::root::from_current_dir().expect("run inside the workspace");
     let experiments = root.join("experiments");
     let set = standard_task_set(&experiments).expect("the standard task set");
-    let jobs: Vec<_> = catalog::experiment::load_dir(&experiments, simulation::run::check_job)
+    let jobs: Vec<_> = catalog::experiment::load_dir(&experiments, simulation::check_job)
         .expect("the experiment files")
         .iter()
         .flat_map(|f| f.jobs())

@@ -10,7 +10,7 @@
 
 use catalog::experiment::PaperFile;
 use records::runs::{merge, RunRow};
-use simulation::run::check_job;
+use simulation::check_job;
 use spec::RunSpec;
 use std::time::Instant;
 

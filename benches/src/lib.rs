@@ -24,7 +24,7 @@
 
 pub mod telemetry;
 
-use simulation::run::check_job;
+use simulation::check_job;
 use std::sync::Arc;
 use std::time::Duration;
 

@@ -257,7 +257,7 @@ const CHECKED_IDS: &str =
 const CHECKED_MOUNT: &str = "the experiment file's check refuses an invalid tool or base";
 
 /// Checks one run by building its parts as the run would (robot, path from f(theta_ref),
-/// scheme, network), integrating nothing: the engine's `simulation::run::check_job`. The
+/// scheme, network), integrating nothing: the engine's `simulation::check_job`. The
 /// experiment format cannot build a run itself; loading a file takes the check, so that a file
 /// is rejected at load for exactly what would make one of its runs fail at t = 0, the error
 /// placed at the field at fault ([`SetupError::part`]).

@@ -23,7 +23,7 @@ use records::control::{steps_needed, ClaimCheck};
 use records::control::{ControlRow, ControlStatus, CycleRow, StabilityRow, TrendRow};
 use settings::projection::ProjectionErrorForm;
 use settings::SolverSpec;
-use simulation::runner::map_costliest_first;
+use simulation::map_costliest_first;
 use solvers::neural::build_solver;
 use solvers::HotActiveSet;
 use spec::ids::SolverId;

@@ -9,7 +9,7 @@ use robots::Robot;
 use schemes::paths::Path;
 use schemes::Scheme;
 use settings::SolverSpec;
-use simulation::run::{build_cyclic_parts, job_model, job_robot};
+use simulation::{build_cyclic_parts, job_model, job_robot};
 use spec::RunSpec;
 use spec::SolverChoice;
 

@@ -26,7 +26,7 @@ fn run_on(threads: usize, experiments: &Path) -> (PathBuf, Vec<ClaimCheck>) {
     let out = scratch(&format!("out-{threads}"));
     let mut set = standard_task_set(experiments).unwrap();
     set.budget.h = 1e-2;
-    let jobs: Vec<_> = catalog::experiment::load_dir(experiments, simulation::run::check_job)
+    let jobs: Vec<_> = catalog::experiment::load_dir(experiments, simulation::check_job)
         .unwrap()
         .iter()
         .flat_map(|f| f.jobs())

@@ -17,7 +17,7 @@ static BUILT: AtomicUsize = AtomicUsize::new(0);
 fn run(method: &Method) -> LoopOutcome {
     let experiments = Path::new(env!("CARGO_MANIFEST_DIR")).join("../experiments");
     let set = standard_task_set(&experiments).unwrap();
-    let jobs: Vec<_> = catalog::experiment::load_dir(&experiments, simulation::run::check_job)
+    let jobs: Vec<_> = catalog::experiment::load_dir(&experiments, simulation::check_job)
         .unwrap()
         .iter()
         .flat_map(|f| f.jobs())

@@ -188,7 +188,7 @@ pub fn project_root() -> Result<PathBuf, Error> {
 /// `root/papers/<paper>/robots/*.toml`, registered first).
 pub fn jobs(root: &Path) -> Result<Vec<RunSpec>, Error> {
     catalog::robot_files::register_paper_robots(&root.join("papers"));
-    let files = load_dir(&root.join("experiments"), simulation::run::check_job)?;
+    let files = load_dir(&root.join("experiments"), simulation::check_job)?;
     Ok(files.iter().flat_map(PaperFile::jobs).collect())
 }
 
@@ -214,12 +214,12 @@ pub fn job(root: &Path, experiment: &str, variant: &str, solver: &str) -> Result
 }
 
 /// Runs the task of `job` with the network `network` builds in place of the job's own solver
-/// (`simulation::run::run_job_with_network`).
+/// (`simulation::run_job_with_network`).
 pub fn run_with_network(
     job: &RunSpec,
-    network: simulation::run::NetworkBuilder<'_>,
-) -> simulation::run::RunRecord {
-    simulation::run::run_job_with_network(job, network)
+    network: simulation::NetworkBuilder<'_>,
+) -> simulation::RunRecord {
+    simulation::run_job_with_network(job, network)
 }
 
 /// The names most code needs, in one import: `use driftbench::prelude::*;`.
@@ -235,9 +235,9 @@ pub mod prelude {
     pub use schemes::Scheme;
     pub use settings::IntegratorSettings;
     pub use settings::SolverSpec;
-    pub use simulation::run::{run_job, RunRecord};
-    pub use simulation::score_trajectory::score_trajectory;
-    pub use simulation::simulate::{Outcome, Run};
+    pub use simulation::{run_job, RunRecord};
+    pub use simulation::score_trajectory;
+    pub use simulation::{Outcome, Run};
     pub use solvers::neural::NeuralSolver;
     pub use solvers::{QpSolver, QpStatus, SolverId};
     pub use spec::RunSpec;

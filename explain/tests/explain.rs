@@ -12,7 +12,7 @@ use records::attribution::Component;
 use records::ladder::LadderMethod;
 use settings::Method;
 use settings::SolverSpec;
-use simulation::run::check_job;
+use simulation::check_job;
 use spec::RunSpec;
 use spec::SolverChoice;
 
@@ -300,7 +300,7 @@ fn inference_recovers_a_known_setup() {
 /// first scored distance to the optimum is at round-off, where the zero start's is |x*(0)|.
 #[test]
 fn network_can_start_at_the_exact_optimum() {
-    use simulation::run::run_job;
+    use simulation::run_job;
     use spec::NetworkInit;
     let jobs = jobs();
     // The deviated start: x*(0) = -mu (theta0 - theta*0) + ... is not zero.

@@ -8,7 +8,7 @@ use crate::network::PyQpDims;
 use catalog::experiment::load_dir;
 use pyo3::prelude::*;
 use serde::Serialize;
-use simulation::run::{check_job, qp_shape};
+use simulation::{check_job, qp_shape};
 use spec::RunSpec;
 use spec::SolverChoice;
 use spec::Level;

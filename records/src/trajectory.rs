@@ -18,7 +18,7 @@ pub fn trajectory_id() -> SolverId {
 }
 
 /// The row of a scored trajectory (module docs) from the row of its score's record (the
-/// engine's `simulation::row::run_row`); `source` names the file it came from, `name` (a slug,
+/// engine's `simulation::run_row`); `source` names the file it came from, `name` (a slug,
 /// [`TRAJECTORY_KIND`] by default) is its solver id: the row's key is the task and the name,
 /// never the exact column's.
 pub fn score_row(mut row: RunRow, source: &str, name: &SolverId) -> RunRow {

@@ -233,7 +233,7 @@ pub enum ScoreError {
     Score {
         file: std::path::PathBuf,
         task: String,
-        error: Box<simulation::score_trajectory::TrajectoryError>,
+        error: Box<simulation::TrajectoryError>,
     },
     #[error(transparent)]
     Table(#[from] records::table::TableError),

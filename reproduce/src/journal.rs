@@ -9,9 +9,9 @@
 use crate::error::ReproduceError;
 use crate::results::{Described, Keys};
 use records::runs::{merge, RunRow};
-use simulation::row::run_row;
-use simulation::run::RunRecord;
-use simulation::runner::run_jobs_with;
+use simulation::run_row;
+use simulation::RunRecord;
+use simulation::run_jobs_with;
 use spec::RunSpec;
 use spec::RunKey;
 use std::collections::HashSet;

@@ -119,7 +119,7 @@ mod tests {
     fn fixture() -> (Vec<PaperFile>, Vec<RunSpec>) {
         let dir =
             Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/fifth-paper/experiments");
-        let files = catalog::experiment::load_dir(&dir, simulation::run::check_job).unwrap();
+        let files = catalog::experiment::load_dir(&dir, simulation::check_job).unwrap();
         let jobs = files.iter().flat_map(|f| f.jobs()).collect();
         (files, jobs)
     }

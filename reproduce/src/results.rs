@@ -6,7 +6,7 @@ use crate::error::ReproduceError;
 use crate::project::Project;
 use catalog::experiment::{load_dir, PaperFile};
 use records::runs::{merge, RunRow};
-use simulation::run::RunRecord;
+use simulation::RunRecord;
 use spec::RunSpec;
 use spec::RunKey;
 use std::cell::OnceCell;
@@ -18,7 +18,7 @@ use store::results_dir::ResultsDir;
 pub fn experiment_files(project: &Project) -> Result<Vec<PaperFile>, ReproduceError> {
     Ok(load_dir(
         &project.experiments_dir,
-        simulation::run::check_job,
+        simulation::check_job,
     )?)
 }
 

@@ -20,8 +20,8 @@ use presentation::task_card::{
 };
 use qp::Qp;
 use robots::{robot_by_name, Kinematics, Model};
-use simulation::run::check_job;
-use simulation::task_numbers::{task_numbers, TaskNumbers};
+use simulation::check_job;
+use simulation::{task_numbers, TaskNumbers};
 use spec::RunSpec;
 use spec::SetupError;
 use spec::SolverChoice;
@@ -139,7 +139,7 @@ fn task_card(jobs: &[RunSpec], n: TaskNumbers, robot: &Model) -> Result<TaskCard
             })
         })
         .collect::<Result<Vec<CardRun>, TaskCardError>>()?;
-    let mount = simulation::run::job_mount(job)
+    let mount = simulation::job_mount(job)
         .map_err(|source| TaskCardError::Setup {
             task: job.task().to_string(),
             source,

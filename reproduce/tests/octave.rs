@@ -22,9 +22,9 @@
 
 use catalog::experiment::{load_dir, PaperFile};
 use records::runs::RunRow;
-use simulation::row::run_row;
-use simulation::run::check_job;
-use simulation::run::run_job;
+use simulation::run_row;
+use simulation::check_job;
+use simulation::run_job;
 use spec::SolverChoice;
 use std::path::{Path, PathBuf};
 use std::process::Command;

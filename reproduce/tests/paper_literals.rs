@@ -60,7 +60,7 @@ struct Names {
 
 fn names(root: &Path) -> Names {
     let files =
-        catalog::experiment::load_dir(&root.join("experiments"), simulation::run::check_job)
+        catalog::experiment::load_dir(&root.join("experiments"), simulation::check_job)
             .expect("the experiment files load");
     let mut inside = BTreeSet::new();
     let mut whole = BTreeSet::new();

@@ -5,9 +5,9 @@
 use analysis::gate::compare;
 use catalog::experiment::load_dir;
 use records::runs::RunRow;
-use simulation::row::run_row;
-use simulation::run::check_job;
-use simulation::runner::run_jobs;
+use simulation::run_row;
+use simulation::check_job;
+use simulation::run_jobs;
 use store::runs::read_runs;
 
 #[test]

@@ -3,9 +3,9 @@
 //! written under --score-out; a task that does not exist is refused with the library's message.
 
 use catalog::experiment::{load_dir, PaperFile};
-use simulation::run::check_job;
-use simulation::run::run_job;
-use simulation::simulate::Outcome;
+use simulation::check_job;
+use simulation::run_job;
+use simulation::Outcome;
 use spec::SolverChoice;
 use std::path::{Path, PathBuf};
 use std::process::Command;

@@ -4,7 +4,7 @@
 
 use catalog::experiment::{load_dir, PaperFile};
 use reproduce::task_card::{cards, INDEX, TASKS};
-use simulation::run::check_job;
+use simulation::check_job;
 use std::collections::BTreeSet;
 
 const REGENERATE: &str = "regenerate with `cargo run --release -p reproduce -- --report-only`";

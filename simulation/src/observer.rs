@@ -90,7 +90,7 @@ pub(crate) struct Observer<'a> {
     last_dx: Option<f64>,
     last_network_error: Option<f64>,
     pub(crate) score_failures: usize,
-    /// Wall time spent in the observer (see [`crate::run::RunRecord::observe_seconds`]).
+    /// Wall time spent in the observer (see [`crate::RunRecord::observe_seconds`]).
     pub(crate) seconds: f64,
 }
 

@@ -5,8 +5,8 @@
 //! in the loop: every run completes and tracks the circle.
 
 use catalog::experiment::load_dir;
-use simulation::run::{check_job, run_job};
-use simulation::simulate::Outcome;
+use simulation::{check_job, run_job};
+use simulation::Outcome;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -187,7 +187,7 @@ fn an_experiment_mounts_its_robot_with_a_tool_offset_and_a_base() {
     let tip = pen.position(&theta)
         + pen.orientation().unwrap().tool_rotation(&theta) * nalgebra::Vector3::new(0.0, 0.0, 0.1);
     let base = robots::Frame::from_xyz_rpy([0.2, 0.0, 0.0], [0.3, 0.0, 0.5]);
-    let model = simulation::run::job_model(job).unwrap();
+    let model = simulation::job_model(job).unwrap();
     assert!((model.robot.position(&theta) - base.transform_point(&tip)).norm() < 1e-14);
     let record = run_job(job);
     let Outcome::Completed(m) = &record.run.outcome else {

@@ -16,8 +16,8 @@
 use catalog::experiment::load_dir;
 use robots::robot_by_name;
 use schemes::orientation_error;
-use simulation::run::{build_cyclic_parts, check_job, job_robot, run_job};
-use simulation::simulate::Outcome;
+use simulation::{build_cyclic_parts, check_job, job_robot, run_job};
+use simulation::Outcome;
 use solvers::ExactSolver;
 use solvers::ExactPath;
 use spec::RunSpec;

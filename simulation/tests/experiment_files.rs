@@ -2,7 +2,7 @@
 //! there, and a malformed file is rejected with an error naming the file and the field.
 
 use catalog::experiment::{load_dir, PaperFile};
-use simulation::run::check_job;
+use simulation::check_job;
 use std::path::PathBuf;
 
 fn experiments_dir() -> PathBuf {

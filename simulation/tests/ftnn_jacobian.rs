@@ -14,7 +14,7 @@ use spec::SchemeSpec;
 
 use settings::IntegratorSettings;
 use settings::SolverSpec;
-use simulation::coupled::NeuralLoop;
+use simulation::NeuralLoop;
 use solvers::neural::build_solver;
 use solvers::ode::{integrate, Control, OdeSystem};
 use std::sync::Arc;

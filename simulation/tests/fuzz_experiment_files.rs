@@ -4,7 +4,7 @@
 
 use catalog::experiment::PaperFile;
 use proptest::prelude::*;
-use simulation::run::check_job;
+use simulation::check_job;
 
 fn committed_files() -> Vec<(String, String)> {
     let dir = catalog::root::from_current_dir()

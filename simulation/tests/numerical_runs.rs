@@ -4,8 +4,8 @@
 //! its axis) does not drift, and the experiment's limits are the ones the run respects.
 
 use catalog::experiment::PaperFile;
-use simulation::row::run_row;
-use simulation::run::{check_job, run_job};
+use simulation::run_row;
+use simulation::{check_job, run_job};
 use spec::RunSpec;
 use spec::SolverChoice;
 

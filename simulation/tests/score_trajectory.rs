@@ -4,10 +4,10 @@
 
 use catalog::experiment::{load_dir, PaperFile};
 use inputs::trajectory::Trajectory;
-use simulation::run::check_job;
-use simulation::run::run_job;
-use simulation::score_trajectory::{score_trajectory, TrajectoryError};
-use simulation::simulate::{Outcome, Run};
+use simulation::check_job;
+use simulation::run_job;
+use simulation::{score_trajectory, TrajectoryError};
+use simulation::{Outcome, Run};
 use spec::RunSpec;
 use spec::SolverChoice;
 
@@ -33,7 +33,7 @@ fn trace_of(run: &Run, with_velocities: bool) -> Trajectory {
     }
 }
 
-fn metrics(run: &Run) -> &simulation::metrics::RunMetrics {
+fn metrics(run: &Run) -> &simulation::RunMetrics {
     match &run.outcome {
         Outcome::Completed(m) => m,
         other => panic!("{other:?}"),

@@ -2,9 +2,9 @@
 //! instants, or not at all, as the experiment file's `scoring` says.
 
 use catalog::experiment::{load_dir, PaperFile};
-use simulation::run::check_job;
-use simulation::run::run_job;
-use simulation::simulate::Outcome;
+use simulation::check_job;
+use simulation::run_job;
+use simulation::Outcome;
 use spec::RunSpec;
 use spec::Scoring;
 use spec::SolverChoice;

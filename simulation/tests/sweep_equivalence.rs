@@ -4,7 +4,7 @@
 //! field of every Job equal.
 
 use catalog::experiment::{load_dir, PaperFile};
-use simulation::run::check_job;
+use simulation::check_job;
 
 #[test]
 fn sweep_experiments_expand_to_the_hand_written_runs() {

@@ -52,8 +52,8 @@ use records::inference::{
 use records::runs::RunRow;
 use search::{Coordinate, Objective, Outcome, Point, Scores, Target};
 use settings::{IntegratorSettings, Method};
-use simulation::row::run_row;
-use simulation::run::run_job;
+use simulation::run_row;
+use simulation::run_job;
 use spec::RmpReading;
 use spec::RunSpec;
 use spec::Scoring;

@@ -1,7 +1,7 @@
 //! Why a case could not be prepared for timing.
 
 use settings::NetworkError;
-use simulation::error::RunError;
+use simulation::RunError;
 use spec::PathError;
 use spec::SchemeError;
 

@@ -30,7 +30,7 @@ use schemes::paths::{build_path, Path};
 use schemes::Scheme;
 use settings::IntegratorSettings;
 use settings::SolverSpec;
-use simulation::simulate::{simulate, Outcome, Run, Settings, Solver};
+use simulation::{simulate, Outcome, Run, Settings, Solver};
 use solvers::Backend;
 use spec::RmpReading;
 use spec::NetworkInit;
@@ -250,7 +250,7 @@ impl PreparedCase for Prepared {
             Quantity::RunNetwork => {
                 let spec = self.network_spec.clone();
                 let (dims, scheme) = (self.scheme.dims(), self.scheme.name());
-                let build = move || simulation::run::build_network(&spec, dims, &scheme);
+                let build = move || simulation::build_network(&spec, dims, &scheme);
                 self.run(Solver::Network(&build), &network_settings());
             }
             _ => self.instants.call(quantity, backend, i),
