@@ -12,7 +12,7 @@ use crate::cost_ratio::{evaluation_ratio, slowdown};
 use crate::number::sci;
 use crate::papers::Papers;
 use records::index::{completed, failed_at, metric, Runs, EXACT};
-use records::runs::RunRow;
+use records::RunRow;
 use settings::NetworkKind;
 use spec::SolverKind;
 

@@ -6,7 +6,7 @@
 
 use crate::control_claim::ACCURACY;
 use records::control::{steps_needed, ClaimRow, ControlRow, ControlStatus, MAIN_H};
-use records::runs::RunRow;
+use records::RunRow;
 
 /// The main control period, in milliseconds (the unit of [`ControlRow::h_ms`]).
 pub fn main_h_ms() -> f64 {

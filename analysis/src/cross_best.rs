@@ -5,7 +5,7 @@
 //! of the best tie.
 
 use records::index::{completed, is_neural, metric, Runs, EXACT};
-use records::runs::RunRow;
+use records::RunRow;
 
 /// How a column's best solver is picked.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -6,8 +6,8 @@
 //! ([`RunIds`]: experiment, variant, solver).
 
 use crate::papers::{Mapping, Papers};
-use records::attribution::{AttributionRow, Component};
-use records::ladder::{LadderMethod, LadderRow};
+use records::{AttributionRow, Component};
+use records::{LadderMethod, LadderRow};
 use settings::Method;
 
 /// A run's ids: (experiment, variant, solver).

@@ -22,11 +22,11 @@
 //! Every difference is one line naming the table, the row and the column.
 
 use crate::leaderboard::LeaderboardRow;
-use records::attribution::AttributionRow;
+use records::AttributionRow;
 use records::control::ControlRow;
-use records::failure_kind::FailureKind;
-use records::ladder::LadderRow;
-use records::runs::RunRow;
+use records::FailureKind;
+use records::LadderRow;
+use records::RunRow;
 use std::collections::HashSet;
 
 /// Relative tolerance of the drift comparison.
@@ -554,7 +554,7 @@ mod tests {
             assert!(problems[0].contains(name), "{name}: {problems:?}");
         }
         let mut failed = row.clone();
-        failed.status = records::runs::Status::Failed;
+        failed.status = records::Status::Failed;
         failed.failure_kind = Some(FailureKind::Diverged);
         failed.failed_at = Some(6.78);
         failed.expected_failure = "its divergence is the finding".into();

@@ -28,7 +28,7 @@
 //!   per-run values, each divided by the best (smallest) solver's mean of the set (best = 1.0):
 //!   the RMS distance to the optimum ([`RunScore::dx`]), the drift's distance from the exact
 //!   column's ([`RunScore::drift`]) and the simulation's wall time ([`RunScore::time`]): the
-//!   median of the run's repetitions timed alone ([`records::timing`]), not the parallel
+//!   median of the run's repetitions timed alone ([`records::Timings`]), not the parallel
 //!   reproduction's `sim_s` (used only for a run without an alone timing; [`alone_timing`]
 //!   counts them and gives the repetitions' spread);
 //! - the p50 and p95 of each over the set's tasks (the distribution, not only a mean).
@@ -37,10 +37,10 @@
 //! capped at it (qpbenchmark counts a failure at its time limit), so no completed run counts
 //! worse than a failure.
 
-use records::percentile::percentile;
-use records::runs::RunRow;
+use records::percentile;
+use records::RunRow;
 use records::table::Row;
-use records::timing::Timings;
+use records::Timings;
 use serde::{Deserialize, Serialize};
 use spec::ids::{ExperimentId, SolverId, VariantId};
 use spec::SolverKind;
@@ -456,7 +456,7 @@ pub fn write(results_dir: &Path, runs: &[RunRow]) -> Result<PathBuf, RunsError> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use records::runs::Status;
+    use records::Status;
 
     /// A completed run of `solver` (its label; its id is the label in lower case) on task `exp`
     /// with the given RMS distance, per-joint drift and time; `solver == "exact"` makes the
@@ -641,7 +641,7 @@ mod tests {
 
     #[test]
     fn alone_timings_replace_the_parallel_times() {
-        use records::timing::TimingRow;
+        use records::TimingRow;
         use spec::RunKey;
         // A timed alone at 40, 50 and 90 ms on t1 (median 50 ms), 50 ms three times on t2;
         // B not timed alone keeps its parallel 20 ms and now ranks faster.

@@ -16,7 +16,7 @@ use crate::published_metrics::{our_metric, METRIC_ALIASES, PUBLISHED_METRICS};
 use crate::report_text::is_one_line;
 use crate::sweep_check::SweepCheck;
 use records::index::Runs;
-use records::runs::RunRow;
+use records::RunRow;
 use serde::Deserialize;
 use spec::RunKey;
 use std::path::{Path, PathBuf};

@@ -6,7 +6,7 @@ use crate::misprints::{is_contradicted, Contradiction};
 use crate::papers::{Mapping, Papers};
 use crate::published_metrics::our_metric;
 use records::index::{metric, Runs, EXACT};
-use records::runs::RunRow;
+use records::RunRow;
 
 /// The published tables of `paper`, in the order the CSV lists them (`text` last).
 pub fn published_tables(paper: &str, papers: &Papers) -> Vec<String> {

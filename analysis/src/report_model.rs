@@ -45,8 +45,8 @@ use records::control::{ClaimRow, ControlRow, StabilityRow, Verdict};
 use records::index::completed;
 use records::index::Runs;
 use records::inference::InferenceRow;
-use records::runs::RunRow;
-use records::timing::Timings;
+use records::RunRow;
+use records::Timings;
 
 /// The report's decided content (module docs), borrowing the runs and papers it was built on.
 #[derive(Clone, Debug)]

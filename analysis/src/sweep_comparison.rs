@@ -8,7 +8,7 @@ use crate::paper_verdict::sign_floor;
 use crate::papers::Papers;
 use crate::sweep_check::{SweepCheck, SweepColumn};
 use records::index::{completed, metric, Runs};
-use records::runs::RunRow;
+use records::RunRow;
 
 /// The published value of one column and metric of the check's table (the experiment's
 /// `column`, or its first where `column` is `None`).

@@ -118,7 +118,7 @@ fn companions_name_variants_or_runs() {
 #[test]
 fn a_published_time_is_compared_with_the_first_run_of_its_solver() {
     use records::index::Runs;
-    use records::runs::RunRow;
+    use records::RunRow;
     use spec::SolverKind;
     let dir = papers_dir(
         "timed",

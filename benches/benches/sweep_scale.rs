@@ -9,7 +9,7 @@
 //! docs/cluster.md). Under `cargo test --benches` it runs the smallest size only.
 
 use catalog::experiment::PaperFile;
-use records::runs::{merge, RunRow};
+use records::{merge_runs, RunRow};
 use simulation::check_job;
 use spec::RunSpec;
 use std::time::Instant;
@@ -93,7 +93,7 @@ fn main() {
                 .map(|j| RunRow::blank(&j.key(), spec::SolverKind::Exact))
                 .collect();
             let half = rows[..n / 2].to_vec();
-            timed("merge stored + fresh rows", n, || merge(rows, half).len());
+            timed("merge_runs stored + fresh rows", n, || merge_runs(rows, half).len());
         }
     }
 }

@@ -228,7 +228,7 @@ pub mod prelude {
     pub use inputs::trajectory::Trajectory;
     pub use nalgebra::{DMatrix, DVector, DVectorView, DVectorViewMut, SMatrix, SVector, Vector3};
     pub use qp::{Qp, QpDims};
-    pub use records::runs::RunRow;
+    pub use records::RunRow;
     pub use robots::DataRobot;
     pub use robots::RobotSpec;
     pub use robots::{JointLimits, Robot};

@@ -29,8 +29,8 @@
 //! the sampled scheme with the QP solved to 1e-10. Its rows carry the method
 //! [`LadderMethod::FixedStep`], the stopping tolerance in `rtol`, `atol` = 0 and h in `max_step`.
 
-use records::ladder::{LadderMethod, LadderRow};
-use records::runs::RunRow;
+use records::{LadderMethod, LadderRow};
+use records::RunRow;
 use settings::{IntegratorSettings, Method};
 use settings::SolverSpec;
 use spec::RunSpec;

@@ -17,7 +17,7 @@
 //! table, but the perturbation is an ingredient to attribute; the group-code experiments'
 //! "as coded" runs). Results: `results/ladder.csv`, `results/attribution.csv`
 //! (written by [`write()`]), `results/inference.csv` (by `reproduce --infer`); their rows are
-//! [`records::ladder`], [`records::attribution`] and [`records::inference`]'s.
+//! [`records::LadderRow`], [`records::AttributionRow`] and [`records::inference`]'s.
 
 pub mod attribution;
 pub mod error;
@@ -27,10 +27,10 @@ pub mod ladder;
 use analysis::papers::Papers;
 use attribution::{attribution_rows, exact_counterpart, switch_jobs, Switch};
 use error::ExplainError;
-use records::attribution::AttributionRow;
+use records::AttributionRow;
 use records::inference::{EntryRow, InferenceRow};
-use records::ladder::LadderRow;
-use records::runs::RunRow;
+use records::LadderRow;
+use records::RunRow;
 use records::table::Row;
 use simulation::run_row;
 use simulation::run_jobs;

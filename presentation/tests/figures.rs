@@ -4,8 +4,8 @@
 //! the committed results give.
 
 use presentation::figures::render_all;
-use records::failure_kind::FailureKind;
-use records::runs::{runs_csv, RunRow, Status};
+use records::FailureKind;
+use records::{runs_csv, RunRow, Status};
 use std::path::{Path, PathBuf};
 use store::atomic::write_atomic;
 

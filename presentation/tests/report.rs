@@ -8,7 +8,7 @@ use analysis::claim_verdict::{self as claims, Verdict};
 use analysis::papers::Resolution;
 use presentation::report::{pages, paper_page, render, Inputs, Page, FRONT};
 use records::index::Runs;
-use records::runs::RunRow;
+use records::RunRow;
 use std::path::{Path, PathBuf};
 use store::runs::read_runs;
 

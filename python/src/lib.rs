@@ -9,7 +9,7 @@
 //! - `simulate`: one run of a task with a Python network (`network`) or one of the suite's
 //!   own solvers (by id). Arm, scheme, integrator and the score against the exact optimum are
 //!   `simulation::run`'s; the result is the run's `results/runs.csv` row
-//!   (`records::runs::RunRow`) as a dict, with the drift and the trace as numpy arrays and the
+//!   (`records::RunRow`) as a dict, with the drift and the trace as numpy arrays and the
 //!   cost of the Python calls.
 //! - `leaderboard`: Python networks on the standard task set, ranked with the suite's own runs
 //!   by `analysis::leaderboard::leaderboard`, rows in `results/leaderboard.csv`'s schema. A
@@ -38,10 +38,10 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use records::failure_kind::FailureKind;
-use records::runs::{RunRow, Status};
-use records::trace::TracePoint;
-use records::trajectory::score_row;
+use records::FailureKind;
+use records::{RunRow, Status};
+use records::TracePoint;
+use records::score_row;
 use simulation::RunError;
 use simulation::run_row;
 use simulation::{run_job, run_job_with_network, RunRecord};
@@ -239,7 +239,7 @@ fn result_dict<'py>(
     row: &RunRow,
     calls: &Callbacks,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let bytes = records::runs::runs_csv(std::slice::from_ref(row)).map_err(lib_err)?;
+    let bytes = records::runs_csv(std::slice::from_ref(row)).map_err(lib_err)?;
     let d = csv_dicts(py, &bytes)?
         .pop()
         .ok_or_else(|| lib_err("no row"))?;
@@ -634,7 +634,7 @@ fn leaderboard<'py>(
         let timings = store::timing::read(&root.join(store::results_dir::DIR)).map_err(lib_err)?;
         let board = analysis::leaderboard::leaderboard(&all, &timings);
         let board_csv = analysis::leaderboard::leaderboard_csv(&board).map_err(lib_err)?;
-        let runs_csv = records::runs::runs_csv(&fresh).map_err(lib_err)?;
+        let runs_csv = records::runs_csv(&fresh).map_err(lib_err)?;
         if let Some(dir) = &out_dir {
             write_leaderboard_tables(dir, &board_csv, &runs_csv)?;
         }
@@ -991,7 +991,7 @@ fn score<'py>(
             let row = score_row(
                 run_row(&record, git_rev),
                 "arrays",
-                &records::trajectory::trajectory_id(),
+                &records::trajectory_id(),
             );
             (record, row)
         };
@@ -1009,7 +1009,7 @@ fn score_file(task: &PyTask, file: &Path, out_dir: Option<&Path>) -> PyResult<(R
                 &task.job,
                 file,
                 None,
-                records::trajectory::TRAJECTORY_KIND,
+                records::TRAJECTORY_KIND,
                 out,
                 git_rev,
             )
@@ -1025,7 +1025,7 @@ fn score_file(task: &PyTask, file: &Path, out_dir: Option<&Path>) -> PyResult<(R
             let row = score_row(
                 run_row(&record, git_rev),
                 &file.display().to_string(),
-                &records::trajectory::trajectory_id(),
+                &records::trajectory_id(),
             );
             Ok((record, row))
         }

@@ -6,8 +6,8 @@
 use crate::error::{BaselineError, Exit, ReproduceError};
 use analysis::leaderboard::LeaderboardRow;
 use records::control::ControlRow;
-use records::runs::{check_rows, RunRow};
-use records::timing::Timings;
+use records::{check_run_rows, RunRow};
+use records::Timings;
 use spec::RunSpec;
 use std::path::Path;
 use std::process::ExitCode;
@@ -246,7 +246,7 @@ fn parse(bytes: Vec<u8>, name: &str, all: &[RunSpec]) -> Result<Vec<RunRow>, Bas
             name: name(),
             source,
         })?;
-    check_rows(&rows).map_err(|source| BaselineError::Rows {
+    check_run_rows(&rows).map_err(|source| BaselineError::Rows {
         name: name(),
         source,
     })?;

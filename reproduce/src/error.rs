@@ -290,6 +290,6 @@ pub enum BaselineError {
     #[error("{name}: {source}")]
     Rows {
         name: String,
-        source: records::error::RowsError,
+        source: records::RowsError,
     },
 }

@@ -8,7 +8,7 @@
 
 use crate::error::ReproduceError;
 use crate::results::{Described, Keys};
-use records::runs::{merge, RunRow};
+use records::{merge_runs, RunRow};
 use simulation::run_row;
 use simulation::RunRecord;
 use simulation::run_jobs_with;
@@ -71,7 +71,7 @@ pub fn resume(
     if !recovered.current.is_empty() {
         let fold: Vec<RunRow> = recovered.rows(results.path())?.collect::<Result<_, _>>()?;
         let done: HashSet<RunKey> = fold.iter().map(RunRow::key).collect();
-        *kept = merge(std::mem::take(kept), fold);
+        *kept = merge_runs(std::mem::take(kept), fold);
         results.write_runs(kept)?;
         results.save()?;
         let before = to_run.len();
@@ -155,7 +155,7 @@ pub fn fold(
 }
 
 /// The trace of a finished run, if its job keeps one (`RunSpec::keep_trace`).
-pub fn kept_trace(r: &RunRecord) -> Option<&[records::trace::TracePoint]> {
+pub fn kept_trace(r: &RunRecord) -> Option<&[records::TracePoint]> {
     r.job.keep_trace.then_some(&r.run.trace[..])
 }
 

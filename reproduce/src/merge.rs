@@ -17,7 +17,7 @@ use crate::results::{open_results, Described};
 use crate::run::report_unexpected;
 use crate::select::{check_selection, selected, selection_files};
 use catalog::experiment::PaperFile;
-use records::runs::RunRow;
+use records::RunRow;
 use spec::RunKey;
 use std::collections::HashSet;
 use std::process::ExitCode;

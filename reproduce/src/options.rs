@@ -234,7 +234,7 @@ pub struct ScoreOptions {
     pub columns: Option<inputs::trajectory::Columns>,
     /// The scored trajectory's solver id, a slug (its row's key is the task and this name, so
     /// trajectories of one task scored under different names keep their own rows).
-    #[arg(long, value_name = "ID", default_value = records::trajectory::TRAJECTORY_KIND)]
+    #[arg(long, value_name = "ID", default_value = records::TRAJECTORY_KIND)]
     pub name: String,
     /// Where the score, its trace and figure are written (default: scores/ in the working
     /// directory; never a directory this program seals, such as results/ or report/).

@@ -5,7 +5,7 @@
 use crate::error::ReproduceError;
 use crate::project::Project;
 use catalog::experiment::{load_dir, PaperFile};
-use records::runs::{merge, RunRow};
+use records::{merge_runs, RunRow};
 use simulation::RunRecord;
 use spec::RunSpec;
 use spec::RunKey;
@@ -165,7 +165,7 @@ pub fn write_results(
             pruned.len()
         );
     }
-    let merged = merge(kept, rows);
+    let merged = merge_runs(kept, rows);
     for r in untraced {
         if let Some(trace) = crate::journal::kept_trace(r) {
             results.write_trace(&r.job.key(), trace)?;

@@ -18,7 +18,7 @@ use crate::project::Project;
 use crate::report::{precheck_report, render_figures, render_pages, report_root};
 use crate::results::{open_results, plan_pruning, write_results, Described};
 use crate::summary::{emit, summary};
-use records::runs::RunRow;
+use records::RunRow;
 use simulation::run_row;
 use simulation::RunRecord;
 use spec::RunSpec;

@@ -17,9 +17,9 @@ use catalog::experiment::{load_dir, PaperFile};
 use inputs::trajectory::read;
 use inputs::trajectory::Columns;
 use presentation::figures::run_figure;
-use records::runs::{merge, RunRow};
-use records::trace::trace_csv;
-use records::trajectory::score_row;
+use records::{merge_runs, RunRow};
+use records::trace_csv;
+use records::score_row;
 use simulation::run_row;
 use simulation::{check_job, RunRecord};
 use simulation::score_trajectory;
@@ -184,7 +184,7 @@ pub fn score_file(
             holder: other.solver.clone(),
         });
     }
-    let rows = merge(stored, vec![row.clone()]);
+    let rows = merge_runs(stored, vec![row.clone()]);
     let stem = row.key().stem();
     let rel_trace = Path::new(store::results_dir::TRACES)
         .join(&row.experiment)
@@ -211,7 +211,7 @@ pub fn score_file(
     };
     let scores = io(
         Path::new(SCORES),
-        &records::runs::runs_csv(&rows).map_err(csv_error(&scores))?,
+        &records::runs_csv(&rows).map_err(csv_error(&scores))?,
     )?;
     let trace = io(
         &rel_trace,
@@ -249,7 +249,7 @@ fn check_name(name: &str) -> Result<SolverId, ScoreError> {
     Err(ScoreError::Name {
         name: name.to_string(),
         suggestion: if suggestion.is_empty() {
-            records::trajectory::TRAJECTORY_KIND.to_string()
+            records::TRAJECTORY_KIND.to_string()
         } else {
             suggestion
         },

@@ -14,7 +14,7 @@ use crate::results::{open_results, Described};
 use crate::run::{failure, summarise_failures};
 use crate::select::selection_files;
 use crate::summary::{emit, Summary};
-use records::runs::RunRow;
+use records::RunRow;
 use simulation::run_row;
 use simulation::RunRecord;
 use simulation::run_jobs_into;

@@ -2,7 +2,7 @@
 //! errors, distance to the exact optimum, peak joint speed, steps, wall time), failed runs with
 //! their reason.
 
-use records::runs::RunRow;
+use records::RunRow;
 use settings::NetworkKind;
 use std::fmt::Write as _;
 use std::io::Write as _;

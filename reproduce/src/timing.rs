@@ -1,8 +1,8 @@
 //! The timing pass: after the parallel reproduction, the runs whose times are compared — the
 //! leaderboard's (every non-exact run on a standard task, [`analysis::leaderboard`]) and the
 //! runs the report sets beside the papers' MATLAB times ([`Papers::timed_runs`]) — run again
-//! [`records::timing::REPETITIONS`] times each, one run at a time on this (one) thread, into
-//! `results/leaderboard-timing.csv` ([`records::timing`]), which the leaderboard ranks by and
+//! [`records::TIMING_REPETITIONS`] times each, one run at a time on this (one) thread, into
+//! `results/leaderboard-timing.csv` ([`records::Timings`]), which the leaderboard ranks by and
 //! the report's MATLAB comparison shows. No other run is timed: no table shows its time.
 //!
 //! Only the times are kept: a repetition recomputes the same run, and `results/runs.csv` keeps
@@ -11,8 +11,8 @@
 use analysis::leaderboard::standard_tasks;
 use analysis::papers::{Papers, PapersError};
 use records::index::Runs;
-use records::runs::RunRow;
-use records::timing::{TimingRow, Timings, REPETITIONS};
+use records::RunRow;
+use records::{TimingRow, Timings, TIMING_REPETITIONS};
 use simulation::run_row;
 use simulation::run_job;
 use spec::RunSpec;
@@ -72,7 +72,7 @@ pub fn time_alone(
     let (machine, cores) = crate::cost::machine();
     let mut rows = Vec::with_capacity(keys.len());
     eprintln!(
-        "timing {} runs alone, {REPETITIONS} times each, one at a time",
+        "timing {} runs alone, {TIMING_REPETITIONS} times each, one at a time",
         keys.len()
     );
     for key in keys {

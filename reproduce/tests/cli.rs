@@ -5,7 +5,7 @@
 use crate::common;
 
 use common::reproduce;
-use records::runs::runs_csv;
+use records::runs_csv;
 use store::runs::read_runs;
 #[test]
 fn the_gate_compares_with_the_stated_baseline() {

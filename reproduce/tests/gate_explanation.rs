@@ -4,9 +4,9 @@
 
 use crate::common;
 use common::{copy_tree, ok, reproduce};
-use records::attribution::AttributionRow;
+use records::AttributionRow;
 use records::control::ControlRow;
-use records::ladder::LadderRow;
+use records::LadderRow;
 use std::path::Path;
 use store::results_dir::ResultsDir;
 use store::tracked_dir::Edits;

@@ -8,7 +8,7 @@
 use crate::common;
 
 use common::{ok, reproduce};
-use records::runs::{runs_csv, RunRow};
+use records::{runs_csv, RunRow};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use store::runs::read_runs;

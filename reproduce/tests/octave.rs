@@ -21,7 +21,7 @@
 //! vacuously.
 
 use catalog::experiment::{load_dir, PaperFile};
-use records::runs::RunRow;
+use records::RunRow;
 use simulation::run_row;
 use simulation::check_job;
 use simulation::run_job;

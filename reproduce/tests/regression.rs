@@ -4,7 +4,7 @@
 
 use analysis::gate::compare;
 use catalog::experiment::load_dir;
-use records::runs::RunRow;
+use records::RunRow;
 use simulation::run_row;
 use simulation::check_job;
 use simulation::run_jobs;
@@ -53,7 +53,7 @@ fn the_gate_catches_changes() {
         "a drift change"
     );
     let mut failed = committed.clone();
-    failed[ok].status = records::runs::Status::Failed;
+    failed[ok].status = records::Status::Failed;
     assert!(
         !compare(&committed, &failed, "test baseline").is_empty(),
         "a status change"

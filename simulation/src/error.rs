@@ -3,7 +3,7 @@
 //! wrapped by [`RunError`], and its [`FailureKind`] (records' type) is the `failure_kind`
 //! column of `results/runs.csv`. The message (the `failure` column) is the error's `Display`.
 
-use records::failure_kind::FailureKind;
+use records::FailureKind;
 use solvers::ode::OdeError;
 use solvers::ExactError;
 use spec::SetupError;

@@ -8,7 +8,7 @@
 use crate::coupled::{arm_slices, ExactLoop};
 use crate::metrics::{MetricsAccumulator, Sample, ScoreSample};
 use nalgebra::{DVector, Matrix3xX};
-use records::trace::TracePoint;
+use records::TracePoint;
 use robots::Robot;
 use schemes::paths::Path;
 use schemes::Scheme;

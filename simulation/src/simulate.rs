@@ -15,7 +15,7 @@ use crate::metrics::RunMetrics;
 use crate::numerical::{run_numerical, IterationStats};
 use crate::observer::{score_instant, Observer};
 use nalgebra::DVector;
-use records::trace::TracePoint;
+use records::TracePoint;
 use robots::Robot;
 use schemes::paths::Path;
 use schemes::Scheme;

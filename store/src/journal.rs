@@ -20,10 +20,10 @@ use crate::error::{IoAction, IoError};
 use crate::owned_dir::PathError;
 use crate::results_dir::{ResultsDir, JOURNAL};
 use crate::tracked_dir::TrackedError;
-use records::error::RowsError;
-use records::runs::{check_names, RunRow};
+use records::RowsError;
+use records::{check_run_names, RunRow};
 use records::table::{self, TableError};
-use records::trace::TracePoint;
+use records::TracePoint;
 use spec::RunKey;
 use std::collections::HashMap;
 use std::fs::{File, OpenOptions};
@@ -300,7 +300,7 @@ pub fn recover(
             path: journal.clone(),
             error,
         };
-        check_names(&row, line).map_err(rows_error)?;
+        check_run_names(&row, line).map_err(rows_error)?;
         let key = row.key();
         if let Some(first) = seen.insert(key.clone(), line) {
             return Err(rows_error(RowsError::Twice {

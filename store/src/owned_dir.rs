@@ -229,7 +229,7 @@ mod tests {
                 .iter()
                 .map(|n| read_file(&dir.join(n)).unwrap_err())
                 .collect();
-            let table = crate::table::read::<records::runs::RunRow>(&dir.join("runs.csv"));
+            let table = crate::table::read::<records::RunRow>(&dir.join("runs.csv"));
             let listed = crate::integrity::Fingerprint::of(b"a\n1\n");
             let manifest = crate::integrity::Manifest {
                 git_rev: "x".into(),

@@ -27,8 +27,8 @@ use crate::integrity::Fingerprint;
 use crate::owned_dir::{OwnedDir, PathError};
 use crate::runs::read_runs;
 use crate::tracked_dir::{Edits, Removal, TrackedDir, TrackedError};
-use records::runs::{runs_csv, RunRow};
-use records::trace::{trace_csv, TracePoint};
+use records::{runs_csv, RunRow};
+use records::{trace_csv, TracePoint};
 use spec::RunKey;
 use std::path::{Path, PathBuf};
 
@@ -365,7 +365,7 @@ impl ResultsDir {
             .join(format!("{}.csv", key.stem()))
     }
 
-    /// Writes the trace of the run `key` ([`records::trace`]); returns its fingerprint.
+    /// Writes the trace of the run `key` ([`records::TracePoint`]); returns its fingerprint.
     pub fn write_trace(
         &self,
         key: &RunKey,

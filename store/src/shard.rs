@@ -40,7 +40,7 @@ use crate::integrity::{IntegrityError, Mismatch};
 use crate::owned_dir::PathError;
 use crate::sorted::{read_key_ordered, KeyMerge};
 use crate::tracked_dir::TrackedError;
-use records::runs::RunRow;
+use records::RunRow;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 

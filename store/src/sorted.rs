@@ -10,8 +10,8 @@
 //! than the one above it is an error naming the file and the line.
 
 use crate::error::RunsError;
-use records::error::RowsError;
-use records::runs::{check_names, RunRow};
+use records::RowsError;
+use records::{check_run_names, RunRow};
 use records::table::{self, Rows};
 use spec::RunKey;
 use std::cmp::Reverse;
@@ -88,7 +88,7 @@ impl Iterator for KeyOrdered {
         let line = self.line;
         self.line += 1;
         let key = row.key();
-        let checked = check_names(&row, line).and_then(|()| match &self.last {
+        let checked = check_run_names(&row, line).and_then(|()| match &self.last {
             Some(before) if *before == key => Err(RowsError::Twice {
                 line,
                 key: key.to_string(),

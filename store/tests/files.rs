@@ -10,7 +10,7 @@ fn read_edited_runs(
     name: &str,
     lines: usize,
     edit: impl Fn(Vec<String>) -> Vec<String>,
-) -> (PathBuf, Result<Vec<records::runs::RunRow>, String>) {
+) -> (PathBuf, Result<Vec<records::RunRow>, String>) {
     let committed = catalog::root::from_current_dir()
         .unwrap()
         .join("results")

@@ -1,12 +1,12 @@
 //! Whole runs: the reproduction's own runs per step by solver kind (`results/runs.csv`), and the
 //! runs against the papers' MATLAB compute times, each timed alone where it was
-//! ([`records::timing`]), with the smallest speed-ups against the targets.
+//! ([`records::Timings`]), with the smallest speed-ups against the targets.
 
 use crate::papers::Papers;
 use records::dof_cost::Summary;
 use records::index::{completed, Runs};
-use records::runs::RunRow;
-use records::timing::{TimingRow, Timings};
+use records::RunRow;
+use records::{TimingRow, Timings};
 use std::collections::BTreeMap;
 
 /// The targets: every zhong2021 simulation this many times faster than the paper's

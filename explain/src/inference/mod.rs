@@ -49,7 +49,7 @@ use records::inference::{
     EntryRow, InferenceRow, Integration, BEST, COLUMN_FIT, DECLARED, FAILED, HYPOTHESIS, LOCAL,
     PHASE, PROFILE, ROTATION, SCALE, TABLE, TILT_X, TILT_Y,
 };
-use records::runs::RunRow;
+use records::RunRow;
 use search::{Coordinate, Objective, Outcome, Point, Scores, Target};
 use settings::{IntegratorSettings, Method};
 use simulation::run_row;

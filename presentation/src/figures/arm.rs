@@ -3,7 +3,7 @@
 //! plane, as the papers draw it under the end-effector path.
 
 use super::trace::Trace;
-use records::runs::RunRow;
+use records::RunRow;
 use robots::robot_by_name;
 
 /// Number of poses drawn, the first at t = 0 and the last at the end of the trace.

@@ -52,7 +52,7 @@ use rayon::prelude::*;
 use records::control::{ControlRow, CycleRow, MAIN_H};
 use records::dof_cost::DofCostRow;
 use records::inference::InferenceRow;
-use records::runs::RunRow;
+use records::RunRow;
 use spec::RunKey;
 use std::collections::{BTreeMap, HashSet};
 use std::path::{Path, PathBuf};

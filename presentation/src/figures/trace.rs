@@ -1,5 +1,5 @@
 //! Reading one run's trace CSV (`results/traces/<experiment>/<variant>__<solver>.csv`, written by
-//! [`records::trace::trace_csv`]) into columns the panels can plot.
+//! [`records::trace_csv`]) into columns the panels can plot.
 
 use crate::error::{TraceError, TraceProblem};
 use std::path::Path;

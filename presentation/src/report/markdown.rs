@@ -197,7 +197,7 @@ fn has_scheme(target: &str) -> bool {
 }
 
 /// A cell for `metric` of `r`: the number, or why there is none (a failed run has no drift).
-pub fn metric_cell(r: &records::runs::RunRow, name: &str) -> String {
+pub fn metric_cell(r: &records::RunRow, name: &str) -> String {
     match records::index::metric(r, name) {
         Some(v) => sci(v),
         None if !records::index::completed(r) => records::index::failed_at(r),

@@ -86,11 +86,11 @@ pub struct Inputs {
     /// Ladders, attribution and inference (`results/*.csv` beside runs.csv; absent = empty).
     pub explanations: why::Explanations,
     /// `results/leaderboard-timing.csv`: the compared runs timed alone (absent = empty).
-    pub timings: records::timing::Timings,
+    pub timings: records::Timings,
     /// `results/dof-cost.csv` (absent = empty).
     pub dof_cost: Vec<records::dof_cost::DofCostRow>,
     /// `results/qp-replay.csv` (absent = empty).
-    pub qp_replay: Vec<records::qp_replay::QpReplayRow>,
+    pub qp_replay: Vec<records::QpReplayRow>,
     /// The control experiments' result files (absent = empty).
     pub control: control::ControlResults,
     /// The Python package's result files (absent = empty).
@@ -116,7 +116,7 @@ impl Inputs {
             },
             timings: store::timing::read(&results)?,
             dof_cost: store::dof_cost::read(&results)?,
-            qp_replay: read_if_present(&results.join(records::qp_replay::FILE))?,
+            qp_replay: read_if_present(&results.join(records::QP_REPLAY_FILE))?,
             control: control::ControlResults::load(&results)?,
             python: python::PythonResults::load(&results)?,
         })

@@ -9,7 +9,7 @@
 //!   growth exponents, and the whole runs on the n-link arms;
 //! - the whole-run times against the papers' MATLAB times (the published compute times that
 //!   [`super::cost`] maps), simulation and total, each run timed alone
-//!   (`results/leaderboard-timing.csv`, [`records::timing`]);
+//!   (`results/leaderboard-timing.csv`, [`records::Timings`]);
 //! - the machine the DOF measurement ran on;
 //! - the exact reference per recorded QP against its peer DAQP (`results/qp-replay.csv`).
 //!
@@ -32,8 +32,8 @@ use analysis::performance::replay;
 use analysis::performance::whole_runs::{self, TARGET_SIMULATION_SPEEDUP, TARGET_TOTAL_SPEEDUP};
 use records::dof_cost::{DofCostRow, Quantity};
 use records::index::Runs;
-use records::qp_replay::QpReplayRow;
-use records::timing::{Timings, REPETITIONS};
+use records::QpReplayRow;
+use records::{Timings, TIMING_REPETITIONS};
 
 /// The measurements the `## Performance` section reads besides the runs: each a results file,
 /// empty where absent.
@@ -172,7 +172,7 @@ fn per_instant(dof: &[DofCostRow]) -> String {
 }
 
 /// `### The exact reference per tick against DAQP` (`results/qp-replay.csv`,
-/// [`records::qp_replay`]): per task, the suite's active set and DAQP, warm and cold, on the
+/// [`records::QpReplayRow`]): per task, the suite's active set and DAQP, warm and cold, on the
 /// same recorded QPs, and how far their answers are apart; then the target's verdict from the
 /// ratios. Every text read is escaped.
 fn replay_table(rows: &[QpReplayRow]) -> String {
@@ -181,7 +181,7 @@ fn replay_table(rows: &[QpReplayRow]) -> String {
         out.push_str(&format!(
             "`results/{}` is absent: `benches/qp_replay/replay.sh` records the QPs along runs \
              and replays them to the suite's active set and to DAQP.\n\n",
-            records::qp_replay::FILE
+            records::QP_REPLAY_FILE
         ));
         return out;
     };
@@ -484,7 +484,7 @@ fn large_n_sentence(dof: &[DofCostRow]) -> String {
 
 /// The whole runs against the papers' MATLAB compute times: simulation (`sim_s`) and total
 /// (`wall_s`, scoring and observation included), the medians of the runs timed alone
-/// ([`records::timing`]; the parallel reproduction's times for a run without), with the
+/// ([`records::Timings`]; the parallel reproduction's times for a run without), with the
 /// smallest speedups.
 fn matlab(runs: &Runs, timings: &Timings, papers: &Papers) -> String {
     let mut t = Table::new([
@@ -523,7 +523,7 @@ fn matlab(runs: &Runs, timings: &Timings, papers: &Papers) -> String {
         "### Whole runs against the papers' MATLAB times\n\nThe published compute times \
          ({}) beside our runs: the simulation alone (`sim_s`: arm, network, integrator) \
          and the whole run (`wall_s`: with the observation at every accepted step, i.e. metrics \
-         and the exact solves that score the run). Each run was timed alone: run {REPETITIONS} \
+         and the exact solves that score the run). Each run was timed alone: run {TIMING_REPETITIONS} \
          times, one run at a time on one thread, after the parallel reproduction; the median is \
          shown, with the spread (max − min) / median of the repetitions ({} of the {} \
          runs so timed, `results/{}`; any other shows the parallel reproduction's time, where it \
@@ -532,7 +532,7 @@ fn matlab(runs: &Runs, timings: &Timings, papers: &Papers) -> String {
         timed_papers(papers),
         comparison.alone,
         comparison.shown,
-        records::timing::FILE
+        records::TIMING_FILE
     );
     out.push_str(&t.render());
     out.push('\n');
@@ -555,7 +555,7 @@ fn matlab(runs: &Runs, timings: &Timings, papers: &Papers) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use records::qp_replay::SUITE;
+    use records::QP_REPLAY_SUITE;
 
     /// The fixture `dof-cost.csv` of scheme jia2019 ([`fixtures::dof_cost`]) with its fits.
     fn synthetic() -> Vec<DofCostRow> {
@@ -571,8 +571,8 @@ mod tests {
         let replay = fixtures::replay_rows(
             "t / v",
             &[
-                (SUITE, "warm", 1.5),
-                (SUITE, "cold", 3.0),
+                (QP_REPLAY_SUITE, "warm", 1.5),
+                (QP_REPLAY_SUITE, "cold", 3.0),
                 ("daqp 9", "warm", 1.0),
                 ("daqp 9", "cold", 1.5),
             ],
@@ -659,8 +659,8 @@ mod tests {
         let rows = fixtures::replay_rows(
             "t / v",
             &[
-                (SUITE, "warm", 0.5),
-                (SUITE, "cold", 0.8),
+                (QP_REPLAY_SUITE, "warm", 0.5),
+                (QP_REPLAY_SUITE, "cold", 0.8),
                 ("daqp 9", "warm", 1.0),
                 ("daqp 9", "cold", 1.0),
             ],

@@ -13,7 +13,7 @@ use super::markdown::{sci, sci_opt, Table, MISSING};
 use analysis::papers::{Mapping, Papers};
 use analysis::published_table::{Row, SideBySide};
 use records::index::{metric, status_text, Runs, EXACT};
-use records::runs::RunRow;
+use records::RunRow;
 
 /// A quantity's row label.
 pub fn quantity_label(metric: &str) -> String {

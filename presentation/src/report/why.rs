@@ -14,9 +14,9 @@ use analysis::inference_verdict::{FLAT, REPRODUCED, WEAK};
 use analysis::paper_rules::GROUP;
 use analysis::papers::Papers;
 use analysis::report_model::Inference;
-use records::attribution::{AttributionRow, Component};
+use records::{AttributionRow, Component};
 use records::inference::{self, EntryRow, InferenceRow, Integration, FAILED as FAILED_RESIDUAL};
-use records::ladder::{LadderMethod, LadderRow};
+use records::{LadderMethod, LadderRow};
 use std::fmt::Write as _;
 
 /// The stored explanation results.

@@ -4,7 +4,7 @@
 // Compiled into each test crate of the binary; each uses a part of it.
 #![allow(dead_code)]
 
-use records::runs::RunRow;
+use records::RunRow;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;

@@ -21,7 +21,7 @@ use super::throughput::{ThroughputProfileRow, ThroughputRow};
 use analysis::papers::Papers;
 use analysis::performance::{dof, instant};
 use records::dof_cost::DofCostRow;
-use records::ladder::LadderRow;
+use records::LadderRow;
 use reproduce::phases::PhaseRow;
 use std::path::{Path, PathBuf};
 use store::table::read_if_present;
