@@ -46,7 +46,7 @@ use spec::ids::{ExperimentId, SolverId, VariantId};
 use spec::SolverKind;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
-use store::error::{IoAction, IoError, RunsError};
+use store::{IoAction, IoError, RunsError};
 
 /// The `paper` of the experiments that make the standard task set.
 pub const STANDARD_PAPER: &str = "cross";
@@ -449,7 +449,7 @@ pub fn write(results_dir: &Path, runs: &[RunRow]) -> Result<PathBuf, RunsError> 
             path: path.clone(),
             source,
         })?;
-    store::atomic::write_atomic(&path, &bytes).map_err(IoError::at(&path, IoAction::Write))?;
+    store::write_atomic(&path, &bytes).map_err(IoError::at(&path, IoAction::Write))?;
     Ok(path)
 }
 

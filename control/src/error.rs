@@ -4,7 +4,7 @@
 
 use settings::NetworkError;
 use solvers::{ExactError, QpSolverError};
-use store::error::ControlFileError;
+use store::ControlFileError;
 
 /// Why a control run, or the whole reproduction, could not go on.
 #[derive(Debug, thiserror::Error)]

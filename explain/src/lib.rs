@@ -38,8 +38,8 @@ use spec::RunSpec;
 use spec::SolverChoice;
 use spec::RunKey;
 use std::path::Path;
-use store::atomic::write_atomic;
-use store::error::{IoAction, IoError};
+use store::write_atomic;
+use store::{IoAction, IoError};
 use store::table::read_if_present;
 
 /// The runs to explain among `jobs`, in `jobs` order: the neural and numerical runs a

@@ -7,7 +7,7 @@
 
 use analysis::misprints::rounding;
 use records::index::{metric, Runs};
-use store::runs::read_runs;
+use store::read_runs;
 
 /// Which of a selection's values a number states.
 #[derive(Clone, Copy, Debug)]

@@ -10,7 +10,7 @@ use presentation::report::{pages, paper_page, render, Inputs, Page, FRONT};
 use records::index::Runs;
 use records::RunRow;
 use std::path::{Path, PathBuf};
-use store::runs::read_runs;
+use store::read_runs;
 
 /// How to bring a stale committed report or figure up to date.
 const REGENERATE: &str = "regenerate with `cargo run --release -p reproduce -- report`";

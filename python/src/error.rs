@@ -117,5 +117,5 @@ pub enum IntoResultsError {
     #[error(transparent)]
     Results(#[from] store::results_dir::ResultsError),
     #[error(transparent)]
-    Tracked(#[from] store::tracked_dir::TrackedError),
+    Tracked(#[from] store::TrackedError),
 }

@@ -173,7 +173,7 @@ fn find_task<'a>(all: &'a [PyTask], id: &str, set: &'static str) -> PyResult<&'a
 
 /// The rows of `<root>/results/runs.csv`.
 fn stored_runs(root: &Path) -> PyResult<Vec<RunRow>> {
-    store::runs::read_runs(
+    store::read_runs(
         &root
             .join(store::results_dir::DIR)
             .join(store::results_dir::RUNS),
@@ -783,13 +783,13 @@ fn run_entries<'py>(
 /// Writes [`leaderboard`]'s tables into `dir` (atomically, each resolved inside it): the
 /// leaderboard and the networks' rows, under `results/`'s names.
 fn write_leaderboard_tables(dir: &Path, board_csv: &[u8], runs_csv: &[u8]) -> PyResult<()> {
-    let owned = store::owned_dir::OwnedDir::open(dir).map_err(lib_err)?;
+    let owned = store::OwnedDir::open(dir).map_err(lib_err)?;
     for (name, bytes) in [
         (store::results_dir::LEADERBOARD, board_csv),
         (store::results_dir::RUNS, runs_csv),
     ] {
         let path = owned.resolve(Path::new(name)).map_err(lib_err)?;
-        store::atomic::write_atomic(&path, bytes)
+        store::write_atomic(&path, bytes)
             .map_err(|e| lib_err(format!("{}: {e}", path.display())))?;
     }
     Ok(())
@@ -875,7 +875,7 @@ fn seal_into_results(file: &Path, root: &Path) -> Result<PathBuf, IntoResultsErr
     let (results, _) = store::results_dir::ResultsDir::open(
         &root.join(store::results_dir::DIR),
         reproduce::revision::REVISION,
-        store::tracked_dir::Edits::Refuse,
+        store::Edits::Refuse,
     )?;
     results.tracked().write(Path::new(name), &bytes)?;
     results.save()?;

@@ -231,7 +231,7 @@ fn read(
 /// (by the labels of `all`, every run of the experiment files).
 fn parse(bytes: Vec<u8>, name: &str, all: &[RunSpec]) -> Result<Vec<RunRow>, BaselineError> {
     let name = || name.to_string();
-    let bytes = match store::migrate::add_ids(&bytes, || store::migrate::LabelIndex::new(all)) {
+    let bytes = match store::add_ids(&bytes, || store::LabelIndex::new(all)) {
         Ok(Some((migrated, _))) => migrated,
         Ok(None) => bytes,
         Err(source) => {

@@ -6,13 +6,13 @@
 
 use std::path::PathBuf;
 use std::process::ExitCode;
-use store::error::{IoAction, IoError, RunsError};
+use store::{IoAction, IoError, RunsError};
 use store::integrity::IntegrityError;
 use store::journal::JournalError;
-use store::owned_dir::PathError;
+use store::PathError;
 use store::results_dir::ResultsError;
 use store::shard::ShardError;
-use store::tracked_dir::TrackedError;
+use store::TrackedError;
 
 /// How `reproduce` ended: one exit code per outcome (docs/reference/exit-codes.md).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -133,7 +133,7 @@ pub enum ReproduceError {
     #[error(transparent)]
     ThreadPool(#[from] rayon::ThreadPoolBuildError),
     #[error(transparent)]
-    DofCost(#[from] store::error::DofCostError),
+    DofCost(#[from] store::DofCostError),
 }
 
 impl ReproduceError {
@@ -243,11 +243,11 @@ pub enum ScoreError {
         source: csv::Error,
     },
     #[error(transparent)]
-    Io(#[from] store::error::IoError),
+    Io(#[from] store::IoError),
     #[error(transparent)]
     Figure(#[from] presentation::error::FigureError),
     #[error(transparent)]
-    Path(#[from] store::owned_dir::PathError),
+    Path(#[from] store::PathError),
     #[error("--name {name:?}: a scored trajectory's name is its solver id, a slug (lower-case letters, digits, `.` and `-`, at most {max} bytes), e.g. {suggestion:?}")]
     Name {
         name: String,
@@ -280,7 +280,7 @@ pub enum BaselineError {
     #[error("{name}: {source}")]
     Migrate {
         name: String,
-        source: store::migrate::MigrateError,
+        source: store::MigrateError,
     },
     #[error("{name}: {source}")]
     Table {

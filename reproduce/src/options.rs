@@ -7,7 +7,7 @@ use spec::ids::{ExperimentId, PaperId};
 use spec::TaskKey;
 use std::path::PathBuf;
 use store::shard::{Selection, Shard, ShardError};
-use store::tracked_dir::Edits;
+use store::Edits;
 
 /// The options of every mode, given before or after the subcommand: where the project and its
 /// directories are, the worker threads, and how the results store treats edited or pruned files.

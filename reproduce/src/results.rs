@@ -11,7 +11,7 @@ use spec::RunSpec;
 use spec::RunKey;
 use std::cell::OnceCell;
 use std::collections::HashSet;
-use store::migrate::LabelIndex;
+use store::LabelIndex;
 use store::results_dir::ResultsDir;
 
 /// The experiment files of the project, loaded and validated.

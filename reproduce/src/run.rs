@@ -151,9 +151,9 @@ fn fresh_control(
 ) -> Result<Vec<records::control::ControlRow>, ReproduceError> {
     let scratch =
         std::env::temp_dir().join(format!("driftbench-check-control-{}", std::process::id()));
-    std::fs::create_dir_all(&scratch).map_err(store::error::IoError::at(
+    std::fs::create_dir_all(&scratch).map_err(store::IoError::at(
         &scratch,
-        store::error::IoAction::Write,
+        store::IoAction::Write,
     ))?;
     eprintln!("re-running the control experiments for the gate");
     let ran = control::standard_task_set(&project.experiments_dir)

@@ -27,9 +27,9 @@ use spec::ids::SolverId;
 use spec::RunSpec;
 use spec::TaskKey;
 use std::path::{Path, PathBuf};
-use store::atomic::write_atomic;
-use store::error::{IoAction, IoError};
-use store::owned_dir::OwnedDir;
+use store::write_atomic;
+use store::{IoAction, IoError};
+use store::OwnedDir;
 
 /// Scores `options.file` on `options.task` (an id `experiment / variant`) into `options.out`.
 pub fn score(

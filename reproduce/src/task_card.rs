@@ -28,7 +28,7 @@ use spec::SolverChoice;
 use spec::SchemeSpec;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use store::tracked_dir::{Removal, TrackedDir, TrackedError};
+use store::{Removal, TrackedDir, TrackedError};
 
 pub use presentation::task_card::INDEX;
 

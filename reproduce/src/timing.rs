@@ -27,7 +27,7 @@ pub enum TimingError {
     #[error(transparent)]
     Results(#[from] ResultsError),
     #[error(transparent)]
-    Runs(#[from] store::error::RunsError),
+    Runs(#[from] store::RunsError),
     #[error(transparent)]
     Papers(#[from] PapersError),
     #[error("{0}: a stored run no experiment file describes cannot be timed")]

@@ -6,7 +6,7 @@ use crate::common;
 
 use common::reproduce;
 use records::runs_csv;
-use store::runs::read_runs;
+use store::read_runs;
 #[test]
 fn the_gate_compares_with_the_stated_baseline() {
     let root = catalog::root::from_current_dir().unwrap();

@@ -9,7 +9,7 @@ use records::control::ControlRow;
 use records::LadderRow;
 use std::path::Path;
 use store::results_dir::ResultsDir;
-use store::tracked_dir::Edits;
+use store::Edits;
 
 /// Rewrites the results table `file` of `results` by `edit` and re-seals the manifest, as a
 /// deliberate edit (`--accept-edited`) would.

@@ -8,7 +8,7 @@ use records::RunRow;
 use simulation::run_row;
 use simulation::check_job;
 use simulation::run_jobs;
-use store::runs::read_runs;
+use store::read_runs;
 
 #[test]
 fn fresh_run_matches_the_committed_results() {

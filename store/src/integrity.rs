@@ -3,7 +3,7 @@
 //! that wrote them.
 //!
 //! The manifest is updated whenever the program writes or removes a file through a
-//! [`crate::tracked_dir::TrackedDir`] and saved (atomically) at the end of each step that
+//! [`crate::TrackedDir`] and saved (atomically) at the end of each step that
 //! changes the directory, so it always describes what the program left there. Reading it back
 //! tells two things:
 //!

@@ -5,7 +5,7 @@
 //! safe to use as a file name; nothing panics. Bounded (200 cases each) to run in seconds.
 
 use proptest::prelude::*;
-use store::runs::read_runs;
+use store::read_runs;
 
 use std::path::PathBuf;
 

@@ -56,8 +56,8 @@ use records::RunRow;
 use spec::RunKey;
 use std::collections::{BTreeMap, HashSet};
 use std::path::{Path, PathBuf};
-use store::runs::read_runs;
-use store::tracked_dir::{Removal, TrackedDir, TrackedError};
+use store::read_runs;
+use store::{Removal, TrackedDir, TrackedError};
 use trace::Trace;
 
 /// The figures' directory inside `report/`.

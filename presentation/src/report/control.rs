@@ -12,7 +12,7 @@ use records::control::Verdict;
 use records::control::{ClaimRow, ControlRow, ControlStatus, Family, StabilityRow, TrendRow};
 use std::path::Path;
 use store::control::read;
-use store::error::ControlFileError;
+use store::ControlFileError;
 use store::results_dir;
 
 /// The control experiments' results (each file empty when absent).

@@ -59,7 +59,7 @@ use analysis::sweep_summary::SweepSummary;
 use markdown::{sci, Table};
 use records::index::Runs;
 use std::path::{Path, PathBuf};
-use store::runs::read_runs;
+use store::read_runs;
 use store::table::read_if_present;
 
 /// The figures' names in `report/figures/` and every experiment's sweep summary (the report
@@ -148,11 +148,11 @@ pub fn paper_page(paper: &str) -> String {
 /// returns the front page's path.
 pub fn render(root: &Path, papers: &Path) -> Result<PathBuf, ReportError> {
     let inputs = Inputs::load(root, papers)?;
-    let report = store::tracked_dir::TrackedDir::open_within(root, "report")?;
+    let report = store::TrackedDir::open_within(root, "report")?;
     let pages = pages(&inputs);
     for listed in report.listed(PAPER_PAGE) {
         if !pages.iter().any(|p| p.file == listed) {
-            if let store::tracked_dir::Removal::Kept(why) = report.remove(Path::new(&listed))? {
+            if let store::Removal::Kept(why) = report.remove(Path::new(&listed))? {
                 eprintln!("note: {why}");
             }
         }

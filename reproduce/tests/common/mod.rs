@@ -8,7 +8,7 @@ use records::RunRow;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use store::runs::read_runs;
+use store::read_runs;
 
 /// An experiment file with one slow run first (the finite-time network integrated by
 /// Dormand-Prince, held to steps of ~1e-5 s by the sign-power band's eigenvalues near -2.5e5:

@@ -38,9 +38,9 @@ pub enum PageError {
     #[error(transparent)]
     Table(#[from] records::table::TableError),
     #[error(transparent)]
-    Runs(#[from] store::error::RunsError),
+    Runs(#[from] store::RunsError),
     #[error(transparent)]
-    DofCost(#[from] store::error::DofCostError),
+    DofCost(#[from] store::DofCostError),
     #[error(transparent)]
     Papers(#[from] analysis::papers::PapersError),
     #[error("{}: cannot write: {source}", path.display())]
