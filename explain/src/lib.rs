@@ -1,11 +1,11 @@
 //! Why the published numbers differ: controlled re-runs around every run of a paper's solver.
 //!
-//! - [`ladder`]: each run re-integrated from RelTol 1e-3 to 1e-10 (BDF and Dormand-Prince; the
+//! - the ladder ([`ladder_jobs`]): each run re-integrated from RelTol 1e-3 to 1e-10 (BDF and Dormand-Prince; the
 //!   exact column to 1e-12; a numerical method's loop stopped at 1e-3 to 1e-10): which digits
 //!   are integration (or stopping-rule) noise, and the converged drifts.
-//! - [`attribution`]: each run's drift split into scheme + network lag + integration error
+//! - the attribution: each run's drift split into scheme + network lag + integration error
 //!   (a numerical method's: scheme + sampling gap + stopping rule; exact, telescoping), with
-//!   the effect of each switched ingredient beside it.
+//!   the effect of each switched ingredient ([`Switch`]) beside it.
 //! - [`inference`]: the setup the papers leave open (path pose and plane tilt, size, direction,
 //!   RMP reading; robot variant and MATLAB-default tolerances as discrete hypotheses) fitted to
 //!   a published table, jointly and column by column, always shown beside the declared setup,
@@ -19,10 +19,10 @@
 //! (written by [`write()`]), `results/inference.csv` (by `reproduce --infer`); their rows are
 //! [`records::LadderRow`], [`records::AttributionRow`] and [`records::inference`]'s.
 
-pub mod attribution;
-pub mod error;
+mod attribution;
+mod error;
 pub mod inference;
-pub mod ladder;
+mod ladder;
 
 use analysis::papers::Papers;
 use attribution::{attribution_rows, exact_counterpart, switch_jobs, Switch};
@@ -41,6 +41,9 @@ use std::path::Path;
 use store::write_atomic;
 use store::{IoAction, IoError};
 use store::table::read_if_present;
+pub use attribution::Switch;
+pub use ladder::{jobs as ladder_jobs, NUMERICAL_TOLERANCES};
+pub use error::{ExplainError, InferenceError};
 
 /// The runs to explain among `jobs`, in `jobs` order: the neural and numerical runs a
 /// published column maps onto and those of variants marked `explain = true`.

@@ -3,11 +3,11 @@
 //! inference recovers a known setup from a synthetic table made by the suite itself.
 
 use catalog::experiment::load_dir;
-use explain::attribution::Switch;
+use explain::Switch;
 use explain::inference::family::Family;
 use explain::inference::search::Target;
 use explain::inference::{evaluate, fit, Column, Setup, TableProblem};
-use explain::{explain, ladder};
+use explain::{explain, ladder_jobs, NUMERICAL_TOLERANCES};
 use records::Component;
 use records::LadderMethod;
 use settings::Method;
@@ -113,7 +113,7 @@ fn numerical_runs_are_laddered_on_their_stopping_rule() {
     let target = find(&jobs, "robio2018-five-pointed-star", "rmp", "94lvi");
     let x = explain(std::slice::from_ref(&target), &jobs, false, "test");
     let rungs: Vec<_> = x.ladder.iter().filter(|r| r.solver_id == "94lvi").collect();
-    assert_eq!(rungs.len(), ladder::NUMERICAL_TOLERANCES.len());
+    assert_eq!(rungs.len(), NUMERICAL_TOLERANCES.len());
     assert!(rungs
         .iter()
         .all(|r| r.method == LadderMethod::FixedStep && r.max_step == Some(1e-3)));
@@ -200,7 +200,7 @@ fn switches_change_one_ingredient_only() {
     assert!(Switch::ClosedPath.apply(&znn_circle(&jobs)).is_none());
     assert!(Switch::FinerSmoothing.apply(&znn_circle(&jobs)).is_none());
     // Ladder rungs keep everything but the integrator.
-    for j in ladder::jobs(&perturbed) {
+    for j in ladder_jobs(&perturbed) {
         assert_eq!(
             (j.solver.clone(), j.path.clone()),
             (perturbed.solver.clone(), perturbed.path.clone())

@@ -117,9 +117,9 @@ pub enum ReproduceError {
     #[error(transparent)]
     Papers(#[from] analysis::papers::PapersError),
     #[error(transparent)]
-    Explain(#[from] explain::error::ExplainError),
+    Explain(#[from] explain::ExplainError),
     #[error(transparent)]
-    Inference(#[from] explain::error::InferenceError),
+    Inference(#[from] explain::InferenceError),
     #[error(transparent)]
     Report(#[from] presentation::error::ReportError),
     #[error(transparent)]
