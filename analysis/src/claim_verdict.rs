@@ -17,7 +17,7 @@ use settings::NetworkKind;
 use spec::SolverKind;
 
 /// The most pairs of runs one `than` claim compares (each pair is a line of its evidence): a
-/// paper has at most [`crate::paper_rules::MAX_CLAIMS`] claims, so claims times runs is
+/// paper has at most [`crate::MAX_CLAIMS`] claims, so claims times runs is
 /// bounded.
 pub const MAX_PAIRS: usize = 10_000;
 

@@ -2,14 +2,14 @@
 //! when it does not ([`PaperProblem`]): the paper id is a slug of at most
 //! [`spec::MAX_EXPERIMENT_ID`] bytes, the folder's name, and not one of the
 //! [`RESERVED_PAPER_IDS`]; texts that reach the report (title, citation, claims) are one line
-//! ([`crate::report_text::is_one_line`]); each published (experiment, column) has at most one
+//! ([`crate::is_one_line`]); each published (experiment, column) has at most one
 //! `[[mapping]]`; every values.csv entry is finite, of a known metric, of this paper, and given
 //! once; a paper has at most [`MAX_CLAIMS`] claims, [`MAX_MAPPINGS`] mappings of at most
 //! [`MAX_COMPANIONS`] companions each, and [`MAX_SWEEP_CHECKS`] sweep checks of at most
 //! [`MAX_SWEEP_COLUMNS`] columns; a sweep check compares per-joint drifts
 //! ([`SWEEP_METRICS`]) of a table and columns `values.csv` has, its heading and text one line
 //! each. [`crate::papers::Papers::load`] applies them; what the files name among the runs is
-//! checked by [`crate::paper_runs::check_runs`].
+//! checked by [`crate::check_paper_runs`].
 
 use crate::claims::ClaimError;
 use crate::leaderboard::STANDARD_PAPER;

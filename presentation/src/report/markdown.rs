@@ -10,7 +10,7 @@
 /// The placeholder for a number that does not exist (not measured, not printed by the paper).
 pub const MISSING: &str = "—";
 
-pub use analysis::number::sci;
+pub use analysis::sci;
 
 /// [`sci`] of an optional number, [`MISSING`] when absent.
 pub fn sci_opt(v: Option<f64>) -> String {

@@ -52,7 +52,7 @@ pub mod why;
 use crate::error::ReportError;
 use analysis::cost_ratio::TimeRow;
 use analysis::cross_best::ColumnBest;
-use analysis::paper_rules::GROUP;
+use analysis::GROUP_PAPER;
 use analysis::papers::{PaperValue, Papers};
 use analysis::report_model::{ControlInputs, Inference, PaperModel, ReportModel};
 use analysis::sweep_summary::SweepSummary;
@@ -524,7 +524,7 @@ fn group_section(
     papers: &Papers,
     (figures, summaries): Figures,
 ) -> String {
-    let group = GROUP;
+    let group = GROUP_PAPER;
     let experiments = runs.experiments(group);
     if experiments.is_empty() {
         return String::new();

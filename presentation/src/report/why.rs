@@ -11,7 +11,7 @@ use analysis::drift_attribution::{
     published_norm, runs_of, share_range, shares, solver_spreads, sum_components, switches, RunIds,
 };
 use analysis::inference_verdict::{FLAT, REPRODUCED, WEAK};
-use analysis::paper_rules::GROUP;
+use analysis::GROUP_PAPER;
 use analysis::papers::Papers;
 use analysis::report_model::Inference;
 use records::{AttributionRow, Component};
@@ -568,7 +568,7 @@ pub fn section(
         return String::new();
     }
     let mut out = String::from("\n### Why the numbers differ\n\n");
-    if paper == GROUP {
+    if paper == GROUP_PAPER {
         out.push_str(&summary(paper, (x, inferred), papers));
     }
     if !attribution.is_empty() {
@@ -638,7 +638,7 @@ pub fn summary(
     let mut out = format!(
         "\n**Why** (see \"Why the numbers differ\" below). Over {} runs of {}, {} carries {scheme} of the drift (|d_exact| / |d_run|), {}.",
         keys.len(),
-        if paper == GROUP {
+        if paper == GROUP_PAPER {
             "the group's network"
         } else {
             "the paper's solver"
