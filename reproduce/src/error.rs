@@ -121,7 +121,7 @@ pub enum ReproduceError {
     #[error(transparent)]
     Inference(#[from] explain::InferenceError),
     #[error(transparent)]
-    Report(#[from] presentation::error::ReportError),
+    Report(#[from] presentation::ReportError),
     #[error(transparent)]
     TaskCard(#[from] crate::task_card::TaskCardError),
     #[error(transparent)]
@@ -207,8 +207,8 @@ fn tracked(e: &TrackedError) -> Exit {
     }
 }
 
-fn report(e: &presentation::error::ReportError) -> Exit {
-    use presentation::error::ReportError;
+fn report(e: &presentation::ReportError) -> Exit {
+    use presentation::ReportError;
     match e {
         ReportError::Io(e) => io(e),
         ReportError::Runs(e) => runs(e),
@@ -245,7 +245,7 @@ pub enum ScoreError {
     #[error(transparent)]
     Io(#[from] store::IoError),
     #[error(transparent)]
-    Figure(#[from] presentation::error::FigureError),
+    Figure(#[from] presentation::FigureError),
     #[error(transparent)]
     Path(#[from] store::PathError),
     #[error("--name {name:?}: a scored trajectory's name is its solver id, a slug (lower-case letters, digits, `.` and `-`, at most {max} bytes), e.g. {suggestion:?}")]

@@ -33,13 +33,13 @@
 //! byte-identical figures.
 
 mod arm;
-pub mod control;
-pub mod dof_cost;
+pub(crate) mod control;
+pub(crate) mod dof_cost;
 mod layout;
 mod legend;
 mod overview;
 mod panels;
-pub mod profile;
+pub(crate) mod profile;
 mod run_figure;
 mod scale;
 mod style;

@@ -32,22 +32,22 @@
 //! - the published numbers without a run (`records::paper_values`) and those the papers
 //!   contradict.
 
-pub mod claims;
-pub mod control;
-pub mod cost;
-pub mod cross;
+mod claims;
+mod control;
+mod cost;
+mod cross;
 pub mod figures;
-pub mod header;
-pub mod leaderboard;
+mod header;
+mod leaderboard;
 pub mod markdown;
-pub mod performance;
+mod performance;
 pub mod python;
-pub mod score;
-pub mod shown;
-pub mod sweep;
-pub mod tables;
-pub mod verdict;
-pub mod why;
+mod score;
+mod shown;
+mod sweep;
+mod tables;
+mod verdict;
+mod why;
 
 use crate::error::ReportError;
 use analysis::cost_ratio::TimeRow;
