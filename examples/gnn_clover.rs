@@ -31,11 +31,11 @@ use settings::SolverSpec;
 use simulation::build_network;
 use simulation::{simulate, Outcome, Settings, Solver};
 use solvers::neural::NeuralSolver;
+use spec::NetworkInit;
 use spec::PathSpec;
 use spec::RmpReading;
-use spec::NetworkInit;
-use spec::Scoring;
 use spec::SchemeSpec;
+use spec::Scoring;
 use std::sync::Arc;
 
 /// The gradient neural network (module docs). Scratch buffers live in the struct, so `rhs`

@@ -28,10 +28,10 @@ use settings::IntegratorSettings;
 use settings::SolverSpec;
 use simulation::build_network;
 use simulation::{simulate, Outcome, Settings, Solver};
-use spec::PathSpec;
 use spec::NetworkInit;
-use spec::Scoring;
+use spec::PathSpec;
 use spec::SchemeSpec;
+use spec::Scoring;
 use std::sync::Arc;
 
 /// The 4-joint arm of the module docs.

@@ -128,10 +128,7 @@ mod tests {
         } else {
             SolverKind::Network(NetworkKind::LviPdnn)
         };
-        let mut r = RunRow::blank(
-            &spec::RunKey::from_ids("e", "v", solver).unwrap(),
-            kind,
-        );
+        let mut r = RunRow::blank(&spec::RunKey::from_ids("e", "v", solver).unwrap(), kind);
         r.drift_ref_norm = Some(drift);
         r
     }

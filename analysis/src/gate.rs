@@ -22,8 +22,8 @@
 //! Every difference is one line naming the table, the row and the column.
 
 use crate::leaderboard::LeaderboardRow;
-use records::AttributionRow;
 use records::control::ControlRow;
+use records::AttributionRow;
 use records::FailureKind;
 use records::LadderRow;
 use records::RunRow;

@@ -38,8 +38,8 @@
 //! worse than a failure.
 
 use records::percentile;
-use records::RunRow;
 use records::table::Row;
+use records::RunRow;
 use records::Timings;
 use serde::{Deserialize, Serialize};
 use spec::ids::{ExperimentId, SolverId, VariantId};

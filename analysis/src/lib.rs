@@ -74,6 +74,6 @@ pub mod sweep_comparison;
 pub mod sweep_summary;
 pub use number::sci;
 pub use paper_rules::{GROUP as GROUP_PAPER, MAX_CLAIMS};
-pub use paper_runs::{Absent as AbsentRun, check_runs as check_paper_runs};
+pub use paper_runs::{check_runs as check_paper_runs, Absent as AbsentRun};
 pub use published_metrics::PUBLISHED_METRICS;
 pub use report_text::is_one_line;

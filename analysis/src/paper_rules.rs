@@ -162,10 +162,7 @@ pub fn check_paper_id(id: &str) -> Result<(), PaperProblem> {
     if !spec::ids::is_id_form(id) || id.len() > MAX_EXPERIMENT_ID {
         return Err(PaperProblem::NotAnId {
             id: id.to_string(),
-            suggestion: settings::slug(id)
-                .chars()
-                .take(MAX_EXPERIMENT_ID)
-                .collect(),
+            suggestion: settings::slug(id).chars().take(MAX_EXPERIMENT_ID).collect(),
         });
     }
     if RESERVED_PAPER_IDS.contains(&id) {

@@ -477,11 +477,10 @@ fn read_paper_file(dir: &Path, folder: &Path, path: &Path) -> Result<PaperFile, 
         .map_err(invalid)?;
     check_paper_id(name).map_err(invalid)?;
     let text = inputs::read_text(path, inputs::Kind::PaperToml, inputs::Origin::Under(dir))?;
-    let file: PaperFile =
-        inputs::parse_toml(&text).map_err(|source| PapersError::Toml {
-            path: path.to_path_buf(),
-            source,
-        })?;
+    let file: PaperFile = inputs::parse_toml(&text).map_err(|source| PapersError::Toml {
+        path: path.to_path_buf(),
+        source,
+    })?;
     if file.paper != name {
         return Err(invalid(PaperProblem::NotTheFolder {
             paper: file.paper,

@@ -93,7 +93,9 @@ fn main() {
                 .map(|j| RunRow::blank(&j.key(), spec::SolverKind::Exact))
                 .collect();
             let half = rows[..n / 2].to_vec();
-            timed("merge_runs stored + fresh rows", n, || merge_runs(rows, half).len());
+            timed("merge_runs stored + fresh rows", n, || {
+                merge_runs(rows, half).len()
+            });
         }
     }
 }

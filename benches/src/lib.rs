@@ -236,8 +236,7 @@ pub fn bench_cases() -> BenchCases {
 
 /// The job of a run key written `experiment / variant / solver`.
 pub fn find_run(jobs: &[RunSpec], key: &str) -> RunSpec {
-    let k =
-        spec::RunKey::parse(key).unwrap_or_else(|e| panic!("{CASES_FILE}: {key:?}: {e}"));
+    let k = spec::RunKey::parse(key).unwrap_or_else(|e| panic!("{CASES_FILE}: {key:?}: {e}"));
     find_job(jobs, &k.experiment, &k.variant, &k.solver)
 }
 

@@ -12,17 +12,17 @@
 use crate::error::{ExperimentError, ExperimentFileError, FieldAt, FieldError, TomlError};
 use robots::Mount;
 use serde::{Deserialize, Serialize};
-use settings::{IntegratorSettings, Method};
 use settings::SolverSpec;
+use settings::{IntegratorSettings, Method};
 use spec::ids::{ExperimentId, VariantId};
 use spec::MountError;
 use spec::MountSpec;
-use spec::{slug, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
 use spec::NumericalSpec;
 use spec::PathSpec;
-use spec::{JobPart, LimitsSpec, NetworkInit, RunSpec, Scoring, SetupError, SolverChoice};
 use spec::RunKey;
 use spec::SchemeSpec;
+use spec::{slug, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
+use spec::{JobPart, LimitsSpec, NetworkInit, RunSpec, Scoring, SetupError, SolverChoice};
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 

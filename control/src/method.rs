@@ -10,7 +10,6 @@ use records::control::Family;
 use settings::qp_solver::{QpSolverKey, QpSolverSettings};
 use settings::SolverSpec;
 
-
 /// A registered QP solver (`solvers::registry`) with its settings, solved at every tick.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Numerical {

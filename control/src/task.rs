@@ -119,11 +119,10 @@ pub fn standard_task_set(experiments: &std::path::Path) -> Result<TaskSet, Contr
         Err(e) if e.is_not_found() => return Err(ControlError::NoTaskSet(shown)),
         Err(e) => return Err(e.into()),
     };
-    let file: TaskSetFile =
-        inputs::parse_toml(&text).map_err(|source| ControlError::TaskSet {
-            path: shown.clone(),
-            source,
-        })?;
+    let file: TaskSetFile = inputs::parse_toml(&text).map_err(|source| ControlError::TaskSet {
+        path: shown.clone(),
+        source,
+    })?;
     if file.task.is_empty() {
         return Err(ControlError::EmptyTaskSet(shown));
     }

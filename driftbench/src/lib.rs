@@ -235,14 +235,14 @@ pub mod prelude {
     pub use schemes::Scheme;
     pub use settings::IntegratorSettings;
     pub use settings::SolverSpec;
-    pub use simulation::{run_job, RunRecord};
     pub use simulation::score_trajectory;
+    pub use simulation::{run_job, RunRecord};
     pub use simulation::{Outcome, Run};
     pub use solvers::neural::NeuralSolver;
     pub use solvers::{QpSolver, QpStatus, SolverId};
+    pub use spec::RunKey;
     pub use spec::RunSpec;
     pub use spec::SolverChoice;
-    pub use spec::RunKey;
     pub use spec::SolverKind;
 }
 

@@ -34,9 +34,9 @@
 //! The sampling gap is what holding each instant's command over h adds (the loop's forward
 //! Euler step), the stopping rule what ending each instant's iteration at tol adds.
 
+use records::RunRow;
 use records::{AttributionRow, Component};
 use records::{LadderMethod, LadderRow};
-use records::RunRow;
 use settings::SolverSpec;
 use spec::RunSpec;
 use spec::Scoring;

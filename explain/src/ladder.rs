@@ -29,10 +29,10 @@
 //! the sampled scheme with the QP solved to 1e-10. Its rows carry the method
 //! [`LadderMethod::FixedStep`], the stopping tolerance in `rtol`, `atol` = 0 and h in `max_step`.
 
-use records::{LadderMethod, LadderRow};
 use records::RunRow;
-use settings::{IntegratorSettings, Method};
+use records::{LadderMethod, LadderRow};
 use settings::SolverSpec;
+use settings::{IntegratorSettings, Method};
 use spec::RunSpec;
 use spec::Scoring;
 use spec::SolverChoice;

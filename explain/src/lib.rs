@@ -25,25 +25,24 @@ pub mod inference;
 mod ladder;
 
 use analysis::papers::Papers;
-use attribution::{attribution_rows, exact_counterpart, switch_jobs, Switch};
-use error::ExplainError;
-use records::AttributionRow;
+pub use attribution::Switch;
+use attribution::{attribution_rows, exact_counterpart, switch_jobs};
+pub use error::{ExplainError, InferenceError};
+pub use ladder::{jobs as ladder_jobs, NUMERICAL_TOLERANCES};
 use records::inference::{EntryRow, InferenceRow};
+use records::table::Row;
+use records::AttributionRow;
 use records::LadderRow;
 use records::RunRow;
-use records::table::Row;
-use simulation::run_row;
 use simulation::run_jobs;
+use simulation::run_row;
+use spec::RunKey;
 use spec::RunSpec;
 use spec::SolverChoice;
-use spec::RunKey;
 use std::path::Path;
+use store::table::read_if_present;
 use store::write_atomic;
 use store::{IoAction, IoError};
-use store::table::read_if_present;
-pub use attribution::Switch;
-pub use ladder::{jobs as ladder_jobs, NUMERICAL_TOLERANCES};
-pub use error::{ExplainError, InferenceError};
 
 /// The runs to explain among `jobs`, in `jobs` order: the neural and numerical runs a
 /// published column maps onto and those of variants marked `explain = true`.

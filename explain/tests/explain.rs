@@ -3,10 +3,10 @@
 //! inference recovers a known setup from a synthetic table made by the suite itself.
 
 use catalog::experiment::load_dir;
-use explain::Switch;
 use explain::inference::family::Family;
 use explain::inference::search::Target;
 use explain::inference::{evaluate, fit, Column, Setup, TableProblem};
+use explain::Switch;
 use explain::{explain, ladder_jobs, NUMERICAL_TOLERANCES};
 use records::Component;
 use records::LadderMethod;

@@ -37,7 +37,7 @@ pub mod trajectory;
 
 pub use error::{InputError, Via};
 pub use kind::Kind;
-pub use read::{open, read, read_text, Capped, Origin};
-pub use toml_error::TomlError;
 pub use private_dir::{sync as sync_private_dir, PrivateDirError};
+pub use read::{open, read, read_text, Capped, Origin};
 pub use toml_error::from_str as parse_toml;
+pub use toml_error::TomlError;

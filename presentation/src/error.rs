@@ -4,8 +4,8 @@
 
 use records::table::TableError;
 use std::path::PathBuf;
-use store::{ControlFileError, IoError, RunsError};
 use store::TrackedError;
+use store::{ControlFileError, IoError, RunsError};
 
 /// Why a figure could not be drawn or encoded.
 #[derive(Debug, thiserror::Error)]

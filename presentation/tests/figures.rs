@@ -29,12 +29,7 @@ fn row(experiment: &str, variant: &str, solver: &str, failed_at: Option<f64>) ->
         failure_kind: failed_at.map(|_| FailureKind::Integrator),
         failed_at,
         ..RunRow::blank(
-            &spec::RunKey::from_ids(
-                experiment,
-                &spec::slug(variant),
-                &spec::slug(solver),
-            )
-            .unwrap(),
+            &spec::RunKey::from_ids(experiment, &spec::slug(variant), &spec::slug(solver)).unwrap(),
             if solver.starts_with("exact") {
                 spec::SolverKind::Exact
             } else {

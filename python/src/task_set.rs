@@ -9,9 +9,9 @@ use catalog::experiment::load_dir;
 use pyo3::prelude::*;
 use serde::Serialize;
 use simulation::{check_job, qp_shape};
+use spec::Level;
 use spec::RunSpec;
 use spec::SolverChoice;
-use spec::Level;
 use std::path::Path;
 
 /// One task of the suite: a scheme on a path with a robot, as an experiment file's variant

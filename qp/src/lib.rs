@@ -19,7 +19,7 @@ mod error;
 mod problem;
 mod solver;
 
+pub use dot::{difference_quotient, QpDotScratch, FD_STEP};
 pub use error::QpError;
 pub use problem::{KktResiduals, Qp, QpDims, QpDuals};
 pub use solver::{QpSolve, QpSolver, QpSolverError, QpStatus, SolverId};
-pub use dot::{FD_STEP, QpDotScratch, difference_quotient};

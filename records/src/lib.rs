@@ -57,8 +57,11 @@ pub use error::RowsError;
 pub use failure_kind::FailureKind;
 pub use ladder::{LadderMethod, LadderRow};
 pub use percentile::percentile;
-pub use qp_replay::{FILE as QP_REPLAY_FILE, QpReplayRow, SUITE as QP_REPLAY_SUITE};
-pub use runs::{RunRow, Status, check_names as check_run_names, check_rows as check_run_rows, merge as merge_runs, runs_csv};
-pub use timing::{FILE as TIMING_FILE, REPETITIONS as TIMING_REPETITIONS, TimingRow, Timings};
-pub use trace::{TracePoint, trace_csv};
-pub use trajectory::{TRAJECTORY_KIND, score_row, trajectory_id};
+pub use qp_replay::{QpReplayRow, FILE as QP_REPLAY_FILE, SUITE as QP_REPLAY_SUITE};
+pub use runs::{
+    check_names as check_run_names, check_rows as check_run_rows, merge as merge_runs, runs_csv,
+    RunRow, Status,
+};
+pub use timing::{TimingRow, Timings, FILE as TIMING_FILE, REPETITIONS as TIMING_REPETITIONS};
+pub use trace::{trace_csv, TracePoint};
+pub use trajectory::{score_row, trajectory_id, TRAJECTORY_KIND};

@@ -16,9 +16,9 @@ use crate::failure_kind::FailureKind;
 use crate::table;
 use serde::{Deserialize, Serialize};
 use spec::ids::{ExperimentId, SolverId, VariantId};
-use spec::{check_name, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
 use spec::RunKey;
 use spec::SolverKind;
+use spec::{check_name, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
 
 /// One run, as stored in `results/runs.csv` (the engine makes it from a run's record:
 /// `simulation::run_row`).

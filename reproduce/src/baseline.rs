@@ -6,8 +6,8 @@
 use crate::error::{BaselineError, Exit, ReproduceError};
 use analysis::leaderboard::LeaderboardRow;
 use records::control::ControlRow;
-use records::{check_run_rows, RunRow};
 use records::Timings;
+use records::{check_run_rows, RunRow};
 use spec::RunSpec;
 use std::path::Path;
 use std::process::ExitCode;

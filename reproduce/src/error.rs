@@ -6,13 +6,13 @@
 
 use std::path::PathBuf;
 use std::process::ExitCode;
-use store::{IoAction, IoError, RunsError};
 use store::integrity::IntegrityError;
 use store::journal::JournalError;
-use store::PathError;
 use store::results_dir::ResultsError;
 use store::shard::ShardError;
+use store::PathError;
 use store::TrackedError;
+use store::{IoAction, IoError, RunsError};
 
 /// How `reproduce` ended: one exit code per outcome (docs/reference/exit-codes.md).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

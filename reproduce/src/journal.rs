@@ -9,11 +9,11 @@
 use crate::error::ReproduceError;
 use crate::results::{Described, Keys};
 use records::{merge_runs, RunRow};
+use simulation::run_jobs_with;
 use simulation::run_row;
 use simulation::RunRecord;
-use simulation::run_jobs_with;
-use spec::RunSpec;
 use spec::RunKey;
+use spec::RunSpec;
 use std::collections::HashSet;
 use store::journal::Recovered;
 use store::results_dir::ResultsDir;
@@ -210,11 +210,7 @@ pub fn skip_finished<'a>(
 /// The most joints among the arms of `jobs` (the per-joint columns of their rows).
 pub fn joints(jobs: &[RunSpec]) -> usize {
     jobs.iter()
-        .filter_map(|j| {
-            robots::robot_by_name(&j.robot)
-                .ok()
-                .map(|r| r.dof())
-        })
+        .filter_map(|j| robots::robot_by_name(&j.robot).ok().map(|r| r.dof()))
         .max()
         .unwrap_or(0)
 }

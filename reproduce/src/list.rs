@@ -68,8 +68,8 @@ pub fn shard_plan(total: usize, n: usize) -> String {
 /// Every robot of the registry with its joint count and check values at its stated pose (the
 /// n-link family by two of its members); a robot whose file is invalid shows its error instead.
 pub fn robots() -> String {
-    use robots::{NLINK_MAX, NLINK_MIN};
     use robots::{nlink_name, robot_by_name, robot_names};
+    use robots::{NLINK_MAX, NLINK_MIN};
     let mut out = String::new();
     for name in robot_names()
         .into_iter()

@@ -7,19 +7,16 @@ use crate::project::Project;
 use catalog::experiment::{load_dir, PaperFile};
 use records::{merge_runs, RunRow};
 use simulation::RunRecord;
-use spec::RunSpec;
 use spec::RunKey;
+use spec::RunSpec;
 use std::cell::OnceCell;
 use std::collections::HashSet;
-use store::LabelIndex;
 use store::results_dir::ResultsDir;
+use store::LabelIndex;
 
 /// The experiment files of the project, loaded and validated.
 pub fn experiment_files(project: &Project) -> Result<Vec<PaperFile>, ReproduceError> {
-    Ok(load_dir(
-        &project.experiments_dir,
-        simulation::check_job,
-    )?)
+    Ok(load_dir(&project.experiments_dir, simulation::check_job)?)
 }
 
 /// Every run the experiment files describe (what migration and pruning compare the stored

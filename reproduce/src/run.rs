@@ -151,10 +151,8 @@ fn fresh_control(
 ) -> Result<Vec<records::control::ControlRow>, ReproduceError> {
     let scratch =
         std::env::temp_dir().join(format!("driftbench-check-control-{}", std::process::id()));
-    std::fs::create_dir_all(&scratch).map_err(store::IoError::at(
-        &scratch,
-        store::IoAction::Write,
-    ))?;
+    std::fs::create_dir_all(&scratch)
+        .map_err(store::IoError::at(&scratch, store::IoAction::Write))?;
     eprintln!("re-running the control experiments for the gate");
     let ran = control::standard_task_set(&project.experiments_dir)
         .and_then(|set| control::reproduce(&set, jobs, &scratch, |m| eprintln!("{m}")))

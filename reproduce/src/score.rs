@@ -17,19 +17,19 @@ use catalog::experiment::{load_dir, PaperFile};
 use inputs::trajectory::read;
 use inputs::trajectory::Columns;
 use presentation::figures::run_figure;
-use records::{merge_runs, RunRow};
-use records::trace_csv;
 use records::score_row;
+use records::trace_csv;
+use records::{merge_runs, RunRow};
 use simulation::run_row;
-use simulation::{check_job, RunRecord};
 use simulation::score_trajectory;
+use simulation::{check_job, RunRecord};
 use spec::ids::SolverId;
 use spec::RunSpec;
 use spec::TaskKey;
 use std::path::{Path, PathBuf};
 use store::write_atomic;
-use store::{IoAction, IoError};
 use store::OwnedDir;
+use store::{IoAction, IoError};
 
 /// Scores `options.file` on `options.task` (an id `experiment / variant`) into `options.out`.
 pub fn score(

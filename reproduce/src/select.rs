@@ -184,8 +184,7 @@ mod tests {
     /// The project's experiment files and their runs.
     fn project() -> (Vec<PaperFile>, Vec<RunSpec>) {
         let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../experiments");
-        let files =
-            load_dir(&dir, simulation::check_job).expect("the project's experiment files");
+        let files = load_dir(&dir, simulation::check_job).expect("the project's experiment files");
         let all = files.iter().flat_map(|f| f.jobs()).collect();
         (files, all)
     }

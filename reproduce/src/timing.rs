@@ -13,10 +13,10 @@ use analysis::papers::{Papers, PapersError};
 use records::index::Runs;
 use records::RunRow;
 use records::{TimingRow, Timings, TIMING_REPETITIONS};
-use simulation::run_row;
 use simulation::run_job;
-use spec::RunSpec;
+use simulation::run_row;
 use spec::RunKey;
+use spec::RunSpec;
 use std::collections::BTreeSet;
 use std::path::Path;
 use store::results_dir::{ResultsDir, ResultsError};
@@ -80,7 +80,7 @@ pub fn time_alone(
             .iter()
             .find(|j| j.key() == key)
             .ok_or_else(|| TimingError::Undescribed(key.clone()))?;
-        let samples: Vec<(f64, f64)> = (0..REPETITIONS)
+        let samples: Vec<(f64, f64)> = (0..TIMING_REPETITIONS)
             .map(|_| {
                 let row = run_row(&run_job(job), git_rev);
                 (row.sim_s, row.wall_s)

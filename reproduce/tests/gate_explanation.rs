@@ -4,8 +4,8 @@
 
 use crate::common;
 use common::{copy_tree, ok, reproduce};
-use records::AttributionRow;
 use records::control::ControlRow;
+use records::AttributionRow;
 use records::LadderRow;
 use std::path::Path;
 use store::results_dir::ResultsDir;

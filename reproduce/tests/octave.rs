@@ -22,9 +22,9 @@
 
 use catalog::experiment::{load_dir, PaperFile};
 use records::RunRow;
-use simulation::run_row;
 use simulation::check_job;
 use simulation::run_job;
+use simulation::run_row;
 use spec::SolverChoice;
 use std::path::{Path, PathBuf};
 use std::process::Command;

@@ -59,9 +59,8 @@ struct Names {
 }
 
 fn names(root: &Path) -> Names {
-    let files =
-        catalog::experiment::load_dir(&root.join("experiments"), simulation::check_job)
-            .expect("the experiment files load");
+    let files = catalog::experiment::load_dir(&root.join("experiments"), simulation::check_job)
+        .expect("the experiment files load");
     let mut inside = BTreeSet::new();
     let mut whole = BTreeSet::new();
     let mut code_names = BTreeSet::new();

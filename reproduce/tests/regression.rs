@@ -5,9 +5,9 @@
 use analysis::gate::compare;
 use catalog::experiment::load_dir;
 use records::RunRow;
-use simulation::run_row;
 use simulation::check_job;
 use simulation::run_jobs;
+use simulation::run_row;
 use store::read_runs;
 
 #[test]

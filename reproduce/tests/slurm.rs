@@ -343,8 +343,7 @@ sweep = {{ "scheme.mu" = [{}] }}
 /// The shard of the slow run, and how many quick runs it holds.
 fn slow_shard(root: &Path) -> (usize, usize) {
     let files =
-        catalog::experiment::load_dir(&root.join("experiments"), simulation::check_job)
-            .unwrap();
+        catalog::experiment::load_dir(&root.join("experiments"), simulation::check_job).unwrap();
     let keys: Vec<String> = files
         .iter()
         .flat_map(|f| f.jobs())

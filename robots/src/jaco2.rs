@@ -104,9 +104,6 @@ pub const EXP2_WRIST: Wrist = Wrist {
     half_angle: 11.0 * PI / 72.0,
 };
 
-/// Kinova's actuator effort limits (N m), joints 1-6.
-pub const EFFORT_LIMITS: [f64; 6] = [40.0, 80.0, 40.0, 20.0, 20.0, 20.0];
-
 /// The Jaco2 DH table for a given D6 (D4 = D5 = 0.0741, aa = pi/6).
 pub fn jaco2_dh(d6: f64) -> Vec<DhParam> {
     jaco2_dh_wrist(Wrist { d6, ..PEN_WRIST })

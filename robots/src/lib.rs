@@ -58,25 +58,37 @@ mod rigid_body;
 mod robot_file;
 mod urdf;
 
+pub use chain::{Chain, ChainJoint, ChainWorkspace, JointKind, JointRange};
 pub use chain_robot::ChainRobot;
 pub use data_robot::DataRobot;
-pub use jaco2::{Jaco2, JACO2, JACO2_HAND, JACO2_PEN, JACO2_PEN_EXP2};
-pub use katana::{Katana6m180, KATANA6M180};
-pub use nlink::NLink;
-pub use panda::{Panda, PANDA};
-pub use chain::{Chain, ChainJoint, ChainWorkspace, JointKind, JointRange};
 pub use data_robot::{builtin_files, builtin_model, builtin_models, parse_builtin};
 pub use dh::Frame;
-pub use jaco2::{EXP2_WRIST as JACO2_EXP2_WRIST, PAPERS_THETA0 as JACO2_PAPERS_THETA0, PEN_WRIST as JACO2_PEN_WRIST};
+pub use jaco2::{Jaco2, JACO2, JACO2_HAND, JACO2_PEN, JACO2_PEN_EXP2};
+pub use jaco2::{
+    EXP2_WRIST as JACO2_EXP2_WRIST, PAPERS_THETA0 as JACO2_PAPERS_THETA0,
+    PEN_WRIST as JACO2_PEN_WRIST,
+};
 pub use jaco2_dynamics::jaco2_bodies;
+pub use katana::{Katana6m180, KATANA6M180};
 pub use limited::Limited;
-pub use mounted::{MAX_OFFSET, Mount, Mounted};
+pub use mounted::{Mount, Mounted, MAX_OFFSET};
+pub use nlink::NLink;
 pub use nlink::{H0 as NLINK_H0, NLINK_MAX, NLINK_MIN, REACH as NLINK_REACH};
 pub use panda::QDOT_MAX as PANDA_QDOT_MAX;
-pub use registry::{Kinematics, Model, RegistryError, nlink_name, register_file, robot_by_name, robot_names, robots_with_dynamics};
+pub use panda::{Panda, PANDA};
+pub use registry::{
+    nlink_name, register_file, robot_by_name, robot_names, robots_with_dynamics, Kinematics, Model,
+    RegistryError,
+};
 pub use rigid_body::RigidBody;
-pub use robot_file::{UrdfRobotSpec, MAX_FILE_BYTES as ROBOT_FILE_MAX_BYTES, RobotFileError, RobotForm, RobotSpec, RuleError};
-pub use urdf::{ChainEnds, MAX_JOINTS as URDF_MAX_JOINTS, MAX_LISTED_LINKS as URDF_MAX_LISTED_LINKS, UrdfChainError, parse as parse_urdf, read as read_urdf};
+pub use robot_file::{
+    RobotFileError, RobotForm, RobotSpec, RuleError, UrdfRobotSpec,
+    MAX_FILE_BYTES as ROBOT_FILE_MAX_BYTES,
+};
+pub use urdf::{
+    parse as parse_urdf, read as read_urdf, ChainEnds, UrdfChainError,
+    MAX_JOINTS as URDF_MAX_JOINTS, MAX_LISTED_LINKS as URDF_MAX_LISTED_LINKS,
+};
 
 /// Number of task-space coordinates (end-effector position only) in every paper.
 pub const M: usize = 3;

@@ -74,7 +74,6 @@ use crate::dh::Frame;
 use crate::file_rules::{self, all_finite, RawBase, RawFile};
 pub use crate::file_rules::{
     Axis, Convention, DhRow, ElementaryRotation, JointSpec, LinkInertia, RuleError, MAX_FILE_BYTES,
-    MAX_JOINTS, MAX_NAME_LEN, MIN_JOINTS,
 };
 use crate::urdf::ChainEnds;
 
@@ -228,11 +227,10 @@ impl RobotSpec {
 
     fn parse_with(file: &str, stem: Option<&str>, text: &str) -> Result<Self, RobotFileError> {
         file_rules::check_size(text).map_err(rule(file))?;
-        let raw: RawFile =
-            inputs::parse_toml(text).map_err(|source| RobotFileError::Syntax {
-                file: file.to_string(),
-                source,
-            })?;
+        let raw: RawFile = inputs::parse_toml(text).map_err(|source| RobotFileError::Syntax {
+            file: file.to_string(),
+            source,
+        })?;
         let joints = file_rules::check(&raw, stem).map_err(rule(file))?;
         for (i, joint) in joints.iter().enumerate() {
             if let Some(link) = &joint.link {

@@ -11,8 +11,8 @@ use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use robots::builtin_files;
-use robots::RobotForm;
 use robots::DataRobot;
+use robots::RobotForm;
 use std::time::{Duration, Instant};
 
 /// The stand-in for a secret.

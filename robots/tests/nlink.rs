@@ -6,8 +6,8 @@ use crate::common;
 
 use common::*;
 use nalgebra::{Rotation3, SVector, Translation3, Vector3};
-use robots::{NLINK_H0, NLINK_REACH};
 use robots::{NLink, Robot};
+use robots::{NLINK_H0, NLINK_REACH};
 
 /// The arm as a product of 4 x 4 transforms: Rz(theta_1) Tz(h0), then for each pitch joint
 /// Ry(-theta_k) Tx(l) (a rotation about the horizontal y axis that raises x by theta_k).

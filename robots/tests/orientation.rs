@@ -12,11 +12,11 @@ use std::sync::Arc;
 use nalgebra::{DMatrix, Matrix3, Matrix3xX, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use robots::Chain;
-use robots::{Mount, Mounted};
 use robots::robot_by_name;
+use robots::Chain;
 use robots::{read_urdf, ChainEnds};
 use robots::{ChainRobot, Dynamics, Orientation, Robot};
+use robots::{Mount, Mounted};
 use spec::MountError;
 
 const H: f64 = 1e-6;

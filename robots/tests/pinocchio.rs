@@ -21,9 +21,9 @@ use std::sync::Arc;
 use nalgebra::{Matrix3, Matrix3xX, Rotation3, Vector3};
 use robots::Chain;
 use robots::Frame;
-use robots::{Mount, Mounted};
 use robots::{read_urdf, ChainEnds};
 use robots::{ChainRobot, Robot};
+use robots::{Mount, Mounted};
 use serde::Deserialize;
 
 const TOL: f64 = 1e-12;

@@ -2,8 +2,8 @@
 //! input panics.
 
 use robots::builtin_files;
-use robots::{RobotFileError, RobotSpec, RuleError, ROBOT_FILE_MAX_BYTES};
 use robots::DataRobot;
+use robots::{RobotFileError, RobotSpec, RuleError, ROBOT_FILE_MAX_BYTES};
 
 /// The built-in PUMA 560 file, the base of every mutation here.
 fn puma_text() -> &'static str {

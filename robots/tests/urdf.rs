@@ -4,7 +4,9 @@
 
 use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
 use robots::JointKind;
-use robots::{parse_urdf, read_urdf, ChainEnds, UrdfChainError, URDF_MAX_JOINTS, URDF_MAX_LISTED_LINKS};
+use robots::{
+    parse_urdf, read_urdf, ChainEnds, UrdfChainError, URDF_MAX_JOINTS, URDF_MAX_LISTED_LINKS,
+};
 
 /// A small arm: `world` -fixed-> `base` -revolute j1-> `l1` -fixed-> `l1b` -prismatic j2->
 /// `l2` -continuous j3-> `l3` -fixed-> `tcp`; off the path, `sensor` (fixed on `l1`) and

@@ -6,8 +6,8 @@ use std::sync::Arc;
 
 use nalgebra::Vector3;
 use robots::{Dynamics, Robot};
-use spec::{Level, RepetitiveForm, SchemeError, SchemeSpec};
 use spec::{tracking_axes, ComposedSpec, Penalty, Task, TermSpec};
+use spec::{Level, RepetitiveForm, SchemeError, SchemeSpec};
 
 use crate::composed::Composed;
 use crate::paths::Path;

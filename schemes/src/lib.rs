@@ -24,5 +24,5 @@ mod scheme;
 mod terms;
 pub use build::{build_composed, build_scheme};
 pub use joint_limits::{merged_bound, piecewise_bound};
-pub use scheme::{Scheme, central_difference, default_step};
+pub use scheme::{central_difference, default_step, Scheme};
 pub use terms::tracking::{orientation_error, rotation_exp, rotation_log};

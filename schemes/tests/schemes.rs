@@ -13,11 +13,11 @@ use qp::QpDotScratch;
 use qp::{Qp, QpDims};
 use robots::{Dynamics, JointLimits, Robot};
 use schemes::build_scheme;
-use schemes::{merged_bound, piecewise_bound};
 use schemes::paths::Path;
 use schemes::{central_difference, default_step, Scheme};
-use spec::RmpReading;
+use schemes::{merged_bound, piecewise_bound};
 use spec::Level;
+use spec::RmpReading;
 use spec::{hl_jdf_name, vltco_name, SchemeError, SchemeSpec};
 
 const N: usize = 6;

@@ -51,11 +51,14 @@ mod sign_power;
 mod slug;
 mod solver_spec;
 pub mod zeroing;
-pub use activation::{ActivationKind, ActivationSpec, GROUP_POWER_SIGMOID_P, GROUP_POWER_SIGMOID_XI, POWER_SIGMOID_ALPHA, POWER_SIGMOID_CHI};
+pub use activation::{
+    ActivationKind, ActivationSpec, GROUP_POWER_SIGMOID_P, GROUP_POWER_SIGMOID_XI,
+    POWER_SIGMOID_ALPHA, POWER_SIGMOID_CHI,
+};
 pub use error::{IntegratorError, NetworkError};
 pub use integrator::{IntegratorSettings, Method, RHS_EVALS_PER_SECOND};
 pub use linear_algebra::FAER_CROSSOVER;
 pub use network_kind::NetworkKind;
-pub use sign_power::{SIGN_POWER_MIN_ABS, sign_power, sign_power_slope};
+pub use sign_power::{sign_power, sign_power_slope, SIGN_POWER_MIN_ABS};
 pub use slug::{is_slug, slug};
 pub use solver_spec::{ReferencePerturbation, SolverSpec};

@@ -25,10 +25,10 @@
 use nalgebra::{DMatrix, DVector};
 use qp::QpDotScratch;
 use schemes::Scheme;
-use solvers::{ExactPath, ExactPathStats};
 use solvers::neural::NeuralSolver;
 use solvers::ode::OdeSystem;
 use solvers::{ExactError, Qp};
+use solvers::{ExactPath, ExactPathStats};
 use spec::Level;
 
 /// Number of arm-state entries of an n-joint arm: n at the velocity level, 2n at the

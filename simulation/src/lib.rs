@@ -31,10 +31,13 @@ mod simulate;
 mod task_numbers;
 pub use coupled::NeuralLoop;
 pub use error::RunError;
-pub use metrics::{RunMetrics, SETTLE_TIME, Score};
+pub use metrics::{RunMetrics, Score, SETTLE_TIME};
 pub use row::run_row;
-pub use run::{NetworkBuilder, RunRecord, build_cyclic_parts, build_network, check_job, job_model, job_mount, job_robot, qp_shape, run_job, run_job_with_network};
+pub use run::{
+    build_cyclic_parts, build_network, check_job, job_model, job_mount, job_robot, qp_shape,
+    run_job, run_job_with_network, NetworkBuilder, RunRecord,
+};
 pub use runner::{map_costliest_first, run_jobs, run_jobs_into, run_jobs_with};
-pub use score_trajectory::{TrajectoryError, score_trajectory};
-pub use simulate::{Outcome, Run, Settings, Solver, simulate};
-pub use task_numbers::{TaskNumbers, task_numbers};
+pub use score_trajectory::{score_trajectory, TrajectoryError};
+pub use simulate::{simulate, Outcome, Run, Settings, Solver};
+pub use task_numbers::{task_numbers, TaskNumbers};

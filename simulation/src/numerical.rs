@@ -27,12 +27,12 @@ use crate::observer::{score_instant, Observer};
 use nalgebra::DVector;
 use qp::QpStatus;
 use schemes::Scheme;
-use solvers::ExactPathStats;
 use solvers::ode::OdeStats;
 use solvers::registry::BoxedQpSolver;
+use solvers::ExactPathStats;
+use spec::Level;
 use spec::NumericalSpec;
 use spec::Scoring;
-use spec::Level;
 use std::time::Instant;
 
 /// The iteration budget of a numerical run per second of its path's duration (at least one

@@ -12,8 +12,8 @@ use records::TracePoint;
 use robots::Robot;
 use schemes::paths::Path;
 use schemes::Scheme;
-use spec::Scoring;
 use spec::Level;
+use spec::Scoring;
 
 /// Samples kept per run for the figures (uniform in t, plus the last).
 const TRACE_POINTS: usize = 400;

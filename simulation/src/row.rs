@@ -36,10 +36,7 @@ pub fn run_row(r: &RunRecord, git_rev: &str) -> RunRow {
         solver_kind: j.solver.kind(),
         robot: j.robot.clone(),
         path: j.path.name.clone(),
-        path_scale: j
-            .path
-            .scale
-            .or_else(|| spec::default_scale(&j.path.name)),
+        path_scale: j.path.scale.or_else(|| spec::default_scale(&j.path.name)),
         duration: j.path.duration,
         status,
         failure,

@@ -32,9 +32,9 @@ use crate::simulate::{Outcome, Run};
 use inputs::trajectory::Trajectory;
 use nalgebra::DVector;
 use robots::Model;
+use spec::Level;
 use spec::RunSpec;
 use spec::SetupError;
-use spec::Level;
 
 use solvers::ode::OdeStats;
 use std::time::Instant;

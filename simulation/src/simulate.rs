@@ -19,17 +19,17 @@ use records::TracePoint;
 use robots::Robot;
 use schemes::paths::Path;
 use schemes::Scheme;
-use spec::NumericalSpec;
 use spec::JobPart;
+use spec::Level;
+use spec::NumericalSpec;
 use spec::SetupError;
 use spec::{NetworkInit, Scoring};
-use spec::Level;
 
 use settings::IntegratorSettings;
-use solvers::ExactPathStats;
 use solvers::neural::NeuralSolver;
 use solvers::ode::{integrate, Control, OdeError, OdeFailure, OdeStats, OdeSystem};
 use solvers::ExactError;
+use solvers::ExactPathStats;
 use std::time::Instant;
 
 /// What solves the scheme's QP along a run.

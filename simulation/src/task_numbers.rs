@@ -7,11 +7,11 @@
 use crate::run::build_parts;
 use crate::run::job_model;
 use qp::Qp;
-use spec::PathSample;
 use spec::JobPart;
+use spec::Level;
+use spec::PathSample;
 use spec::RunSpec;
 use spec::SetupError;
-use spec::Level;
 
 /// Instants of the path samples, as fractions of the duration T.
 pub const PATH_FRACTIONS: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];

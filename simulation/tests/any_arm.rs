@@ -5,8 +5,8 @@
 //! in the loop: every run completes and tracks the circle.
 
 use catalog::experiment::load_dir;
-use simulation::{check_job, run_job};
 use simulation::Outcome;
+use simulation::{check_job, run_job};
 use std::fmt::Write as _;
 use std::path::Path;
 

@@ -16,10 +16,10 @@
 use catalog::experiment::load_dir;
 use robots::robot_by_name;
 use schemes::orientation_error;
-use simulation::{build_cyclic_parts, check_job, job_robot, run_job};
 use simulation::Outcome;
-use solvers::ExactSolver;
+use simulation::{build_cyclic_parts, check_job, job_robot, run_job};
 use solvers::ExactPath;
+use solvers::ExactSolver;
 use spec::RunSpec;
 use std::path::Path;
 

@@ -6,9 +6,9 @@
 //! file.
 
 use catalog::experiment::{load_dir, PaperFile};
+use simulation::Outcome;
 use simulation::Score;
 use simulation::{check_job, run_job};
-use simulation::Outcome;
 use spec::RunSpec;
 use spec::SolverChoice;
 

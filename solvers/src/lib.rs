@@ -25,22 +25,26 @@ mod qp_solver;
 pub mod random_qp;
 pub mod registry;
 
+pub use active_set::DEFAULT_CERT_TOL;
 pub use active_set::{
     ActiveSetError, ActiveSetSolution, ActiveSetSolver, ActiveSetStart, Constraint, WorkingSet,
 };
 pub use auxiliary::AuxiliaryElimination;
 pub use dense_lu::{Backend, DenseLu};
+pub use exact::{cone_sizes, ConeSizes};
 pub use exact::{
     solve_equality_kkt, solve_equality_kkt_with, ExactError, ExactSolution, ExactSolver,
     ExactStatus,
 };
 pub use exact_path::{ExactPath, ExactPathStats, CHECK_EVERY};
+pub use lvi_numerical::{
+    LviError, LviMethod, LviSettings, LviSolver,
+    DEFAULT_MAX_ITERATIONS as LVI_DEFAULT_MAX_ITERATIONS,
+    DEFAULT_TOLERANCE as LVI_DEFAULT_TOLERANCE,
+};
+#[cfg(feature = "osqp")]
+pub use osqp_qp::{OsqpQp, OsqpSettings};
 pub use qp::{KktResiduals, Qp, QpDims, QpDuals};
 pub use qp::{QpSolve, QpSolver, QpSolverError, QpStatus, SolverId};
 pub use qp_solver::{ActiveSetFailure, HotActiveSet};
 pub use random_qp::{random_feasible, random_qp, QpShape};
-pub use active_set::DEFAULT_CERT_TOL;
-pub use exact::{ConeSizes, cone_sizes};
-pub use lvi_numerical::{DEFAULT_MAX_ITERATIONS as LVI_DEFAULT_MAX_ITERATIONS, DEFAULT_TOLERANCE as LVI_DEFAULT_TOLERANCE, LviError, LviMethod, LviSettings, LviSolver, PRODUCTS_PER_ITERATION};
-#[cfg(feature = "osqp")]
-pub use osqp_qp::{OsqpQp, OsqpSettings};

@@ -4,8 +4,8 @@
 //! methods that promise none per solve.
 
 use solvers::conformance::{check_qp_solver, AllocationCounter, Conformance};
-use solvers::{LviMethod, LviSettings, LviSolver};
 use solvers::{ExactSolver, HotActiveSet, QpDims, QpShape, QpSolver};
+use solvers::{LviMethod, LviSettings, LviSolver};
 
 /// The test binary's counting allocator.
 struct Counter;
@@ -190,11 +190,7 @@ fn every_network_reaches_the_optimum_without_allocating() {
                 .map(|v| format!("{}: {v}", text.replace('\n', " "))),
         );
     }
-    assert_eq!(
-        kinds.len(),
-        settings::NetworkKind::ALL.len(),
-        "{kinds:?}"
-    );
+    assert_eq!(kinds.len(), settings::NetworkKind::ALL.len(), "{kinds:?}");
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 

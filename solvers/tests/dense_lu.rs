@@ -70,10 +70,7 @@ fn backends_are_chosen_by_the_crossover_and_named() {
         Backend::for_size(settings::FAER_CROSSOVER - 1),
         Backend::Nalgebra
     );
-    assert_eq!(
-        Backend::for_size(settings::FAER_CROSSOVER),
-        Backend::Faer
-    );
+    assert_eq!(Backend::for_size(settings::FAER_CROSSOVER), Backend::Faer);
     assert_eq!(DenseLu::for_size(3).backend(), Backend::Nalgebra);
     for backend in Backend::ALL {
         assert_eq!(Backend::from_id(backend.id()), Some(backend));

@@ -13,9 +13,9 @@ use schemes::build_scheme;
 use schemes::paths::{build_path, Path};
 use schemes::{central_difference, Scheme};
 use solvers::ExactSolver;
+use spec::Level;
 use spec::PathSpec;
 use spec::RmpReading;
-use spec::Level;
 use spec::SchemeSpec;
 
 fn path(name: &str, duration: f64, start: Vector3<f64>) -> Arc<dyn Path> {

@@ -37,12 +37,20 @@ mod solver_kind;
 mod terms;
 
 pub use mount::{MountError, MountSpec};
-pub use naming::{MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL, NameError, check_name, has_markup, run_stem, slug};
+pub use naming::{
+    check_name, has_markup, slug, NameError, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL,
+};
 pub use numerical::{NumericalSpec, NumericalSpecError};
-pub use path::{PATH_NAMES, PathError, PathSample, PathSpec, default_duration, default_scale, phase_supported, scale_provenance};
+pub use path::{
+    default_duration, default_scale, phase_supported, scale_provenance, PathError, PathSample,
+    PathSpec, PATH_NAMES,
+};
 pub use rmp::RmpReading;
-pub use run::{EXACT_ID, JobPart, LimitsError, LimitsSpec, NetworkInit, RunSpec, Scoring, SetupError, SolverChoice};
+pub use run::{
+    JobPart, LimitsError, LimitsSpec, NetworkInit, RunSpec, Scoring, SetupError, SolverChoice,
+    EXACT_ID,
+};
 pub use run_key::{KeyError, RunKey, TaskKey};
-pub use scheme::{Level, RepetitiveForm, SchemeError, SchemeSpec, hl_jdf_name, vltco_name};
+pub use scheme::{hl_jdf_name, vltco_name, Level, RepetitiveForm, SchemeError, SchemeSpec};
 pub use solver_kind::SolverKind;
-pub use terms::{BoundPlacement, ComposedSpec, Penalty, Task, TermSpec, tracking_axes};
+pub use terms::{tracking_axes, BoundPlacement, ComposedSpec, Penalty, Task, TermSpec};

@@ -15,8 +15,8 @@ use crate::scheme::SchemeError;
 use crate::scheme::SchemeSpec;
 use crate::solver_kind::SolverKind;
 use serde::{Deserialize, Serialize};
-use settings::NetworkError;
 use settings::IntegratorSettings;
+use settings::NetworkError;
 use settings::SolverSpec;
 
 /// Elementwise limits `lower <= value <= upper`, one entry per joint (an experiment's

@@ -7,8 +7,8 @@
 //! journal's ([`crate::journal::JournalError`]), the shards' ([`crate::shard::ShardError`]),
 //! the results directory's ([`crate::results_dir::ResultsError`]).
 
-use records::RowsError;
 use records::table::TableError;
+use records::RowsError;
 use std::path::PathBuf;
 
 /// What was being done to a file when the system refused.

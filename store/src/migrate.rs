@@ -12,9 +12,9 @@
 
 use settings::slug;
 use spec::ids::IdError;
+use spec::RunKey;
 use spec::RunSpec;
 use spec::EXACT_ID;
-use spec::RunKey;
 use std::collections::HashMap;
 
 /// The exact column's label before run ids.

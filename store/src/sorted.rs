@@ -10,9 +10,9 @@
 //! than the one above it is an error naming the file and the line.
 
 use crate::error::RunsError;
+use records::table::{self, Rows};
 use records::RowsError;
 use records::{check_run_names, RunRow};
-use records::table::{self, Rows};
 use spec::RunKey;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;

@@ -88,10 +88,10 @@ fn a_corrupt_runs_csv_is_an_error_never_an_empty_list() {
 
 #[test]
 fn stale_temporary_files_are_removed_and_nothing_else() {
+    use store::check_writable;
+    use store::results_dir::remove_own_tmp;
     use store::write_atomic;
     use store::OwnedDir;
-    use store::results_dir::remove_own_tmp;
-    use store::check_writable;
     let dir = std::env::temp_dir().join(format!("driftbench-test-{}-tmp", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let nested = dir.join("traces").join("x");

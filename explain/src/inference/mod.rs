@@ -52,14 +52,14 @@ use records::inference::{
 use records::RunRow;
 use search::{Coordinate, Objective, Outcome, Point, Scores, Target};
 use settings::{IntegratorSettings, Method};
-use simulation::run_row;
 use simulation::run_job;
+use simulation::run_row;
 use spec::RmpReading;
+use spec::RunKey;
 use spec::RunSpec;
+use spec::SchemeSpec;
 use spec::Scoring;
 use spec::SolverChoice;
-use spec::RunKey;
-use spec::SchemeSpec;
 use std::f64::consts::PI;
 use std::time::Instant;
 

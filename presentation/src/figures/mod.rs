@@ -63,7 +63,7 @@ use trace::Trace;
 /// The figures' directory inside `report/`.
 pub const FIGURES: &str = "figures";
 
-/// The run's file stem (see [`spec::run_stem`]).
+/// The run's file stem (the stem rule is [`spec::slug`]'s).
 fn run_stem(run: &RunRow) -> String {
     run.key().stem()
 }

@@ -11,11 +11,11 @@ use analysis::drift_attribution::{
     published_norm, runs_of, share_range, shares, solver_spreads, sum_components, switches, RunIds,
 };
 use analysis::inference_verdict::{FLAT, REPRODUCED, WEAK};
-use analysis::GROUP_PAPER;
 use analysis::papers::Papers;
 use analysis::report_model::Inference;
-use records::{AttributionRow, Component};
+use analysis::GROUP_PAPER;
 use records::inference::{self, EntryRow, InferenceRow, Integration, FAILED as FAILED_RESIDUAL};
+use records::{AttributionRow, Component};
 use records::{LadderMethod, LadderRow};
 use std::fmt::Write as _;
 

@@ -23,8 +23,8 @@ use catalog::experiment::default_exact_integrator;
 use qp::{Qp, QpDims};
 pub use records::dof_cost::SWEEP_SIZES;
 use records::dof_cost::{Quantity, RunCounts, SchemeKind};
-use robots::{nlink_name, robot_by_name};
 use robots::Robot;
+use robots::{nlink_name, robot_by_name};
 use schemes::build_scheme;
 use schemes::paths::{build_path, Path};
 use schemes::Scheme;
@@ -32,10 +32,10 @@ use settings::IntegratorSettings;
 use settings::SolverSpec;
 use simulation::{simulate, Outcome, Run, Settings, Solver};
 use solvers::Backend;
-use spec::RmpReading;
 use spec::NetworkInit;
-use spec::Scoring;
+use spec::RmpReading;
 use spec::SchemeSpec;
+use spec::Scoring;
 use std::sync::Arc;
 
 /// The joint counts measured with kong2019's scheme alone, past [`SWEEP_SIZES`].

@@ -52,9 +52,9 @@
 //! slope then evaluated at max(abs(e), [`SIGN_POWER_MIN_ABS`](settings::SIGN_POWER_MIN_ABS)) so Jacobians stay finite). The same
 //! function is kong2019's c in its finite-time scheme (`schemes::kong2019`).
 
-use settings::{ActivationKind, ActivationSpec, POWER_SIGMOID_ALPHA, POWER_SIGMOID_CHI};
 use settings::NetworkError;
 use settings::{sign_power, sign_power_slope};
+use settings::{ActivationKind, ActivationSpec, POWER_SIGMOID_ALPHA, POWER_SIGMOID_CHI};
 
 /// The sigmoid branch shared by both power-sigmoids at a = abs(e) <= 1, steepness `s` (zhong2021's
 /// alpha, the group's xi): (1 + exp(-s)) (1 - exp(-s a)) / ((1 - exp(-s)) (1 + exp(-s a))).

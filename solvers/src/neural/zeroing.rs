@@ -62,9 +62,9 @@ use super::perturbation::PerturbationTerms;
 use super::{euclidean_norm, NeuralSolver};
 use nalgebra::DMatrix;
 use qp::{Qp, QpDims};
+use settings::zeroing::{GainLaw, ZeroingSpec};
 use settings::NetworkError;
 use settings::ReferencePerturbation;
-use settings::zeroing::{GainLaw, ZeroingSpec};
 
 /// Q ydot = -Qdot y + udot - g(t) Phi(Q y - u) (+ perturbation): see the module docs.
 #[derive(Clone, Debug)]

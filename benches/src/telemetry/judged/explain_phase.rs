@@ -8,8 +8,8 @@
 //! attribution's switch runs together fill the phase; the rungs alone are what the ladder file
 //! times.
 
-use records::{LadderMethod, LadderRow};
 use records::Status;
+use records::{LadderMethod, LadderRow};
 use reproduce::phases::{Phase, PhaseRow};
 
 /// The rungs of one paper integrated one way that ended one way.
