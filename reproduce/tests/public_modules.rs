@@ -84,7 +84,11 @@ fn declares_pub_mod(line: &str) -> bool {
         .chars()
         .take_while(|c| c.is_alphanumeric() || *c == '_')
         .collect();
-    !name.is_empty() && matches!(rest[name.len()..].trim_start().chars().next(), Some(';' | '{'))
+    !name.is_empty()
+        && matches!(
+            rest[name.len()..].trim_start().chars().next(),
+            Some(';' | '{')
+        )
 }
 
 /// `pub mod` declarations per member, as `file:line` lists.
@@ -156,4 +160,19 @@ fn no_crate_has_more_public_modules_than_its_ceiling() {
     for member in ["qp", "robots", "simulation"] {
         assert_eq!(found[member].len(), 0, "{member}: {:?}", found[member]);
     }
+}
+
+#[test]
+fn the_layout_page_states_the_ceilings_total() {
+    let total: usize = CEILINGS.iter().map(|(_, n)| n).sum();
+    let path = root().join("docs/reference/layout.md");
+    let text = std::fs::read_to_string(&path)
+        .unwrap_or_else(|e| panic!("{}: cannot read: {e}", path.display()));
+    let flat = text.split_whitespace().collect::<Vec<_>>().join(" ");
+    let said = format!("a ceiling of `pub mod`s ({total} in all");
+    assert!(
+        flat.contains(&said),
+        "{}: does not say \"{said}\"",
+        path.display()
+    );
 }
