@@ -1,5 +1,5 @@
 //! A sweep's runs beside the published table of its `[[sweep_check]]`
-//! ([`crate::sweep_check`]): for every swept variant, the published column its id matches, the
+//! (`sweep_check`): for every swept variant, the published column its id matches, the
 //! paper's drift norm there (the 2-norm of the compared per-joint numbers), ours against it, and
 //! how many per-joint signs agree where both exceed the run's round-off floor; and, where the check names the declared setup's variant, the
 //! setup's share of the gap ([`setup_share`]).

@@ -20,7 +20,7 @@
 //!   (`benches/results/`).
 //! - a trajectory made elsewhere, scored, as a row ([`score_row`]; its file is read by crate
 //!   `inputs`, `inputs::trajectory`).
-//! - [`percentile`]: the one percentile definition of the workspace (numpy's default).
+//! - [`percentile()`]: the one percentile definition of the workspace (numpy's default).
 //! - [`control`]: the control experiments' result files (`results/control*.csv`,
 //!   `results/cycles*.csv`).
 //! - the explanation's result files (`results/ladder.csv`, [`LadderRow`];

@@ -241,7 +241,7 @@ pub enum RuleError {
     )]
     TwoRotations,
     /// A link's inertia is not physical: a non-positive mass, or (checked by
-    /// [`crate::robot_file`]) an inertia tensor that is not positive semi-definite.
+    /// [`crate::RobotSpec`]) an inertia tensor that is not positive semi-definite.
     #[error("joint {joint}: link.{field} is {problem}")]
     Link {
         /// The joint.

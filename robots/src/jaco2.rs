@@ -156,7 +156,7 @@ pub const PAPERS_THETA0: [f64; 6] = [1.675, 2.79, -3.216, 4.187, -1.71, -2.95];
 pub const EXP2_THETA0: [f64; 6] = [1.670, 2.845, -3.218, 4.182, -1.715, -2.655];
 
 /// A Jaco2 model: kinematic chain to the task point, joint limits (a [`DataRobot`] built in
-/// code), and the physical arm's rigid-body model (see [`crate::jaco2_dynamics`]).
+/// code), and the physical arm's rigid-body model (see `jaco2_dynamics`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Jaco2 {
     arm: DataRobot,

@@ -344,7 +344,7 @@ impl RobotSpec {
 ///
 /// [`RobotForm::parse_named`] refuses unknown and missing fields, non-finite numbers and a name
 /// that is not a slug; [`UrdfRobotSpec::build`] reads the URDF (through the `inputs` reader,
-/// inside the robot file's directory) and refuses its errors ([`crate::urdf`]), joint vectors
+/// inside the robot file's directory) and refuses its errors ([`crate::read_urdf`]), joint vectors
 /// of the wrong length and non-positive velocity limits, each naming the robot file and field.
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]

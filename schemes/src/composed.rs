@@ -195,7 +195,7 @@ impl Scheme for Composed {
     }
 
     /// The sum of the terms' exact derivatives, or the central difference of the whole QP
-    /// when a term has none (module docs of [`crate::terms`]).
+    /// when a term has none (module docs of `terms`).
     fn build_dot(
         &self,
         t: f64,

@@ -16,9 +16,9 @@
 //! - a network's kind ([`NetworkKind`]), its identity in experiment files and `runs.csv`;
 //! - the integration method and its tolerances and budgets ([`IntegratorSettings`], [`Method`]);
 //! - the system size from which dense LU runs on faer ([`FAER_CROSSOVER`]);
-//! - the one rule for ids and file-name stems ([`slug`], [`is_slug`]);
+//! - the one rule for ids and file-name stems ([`slug()`], [`is_slug`]);
 //! - the sign-power function shared by kong2019's finite-time scheme and the finite-time
-//!   activations ([`sign_power`]);
+//!   activations ([`sign_power()`]);
 //! - the checks' errors ([`NetworkError`], [`IntegratorError`]).
 //!
 //! The three vocabularies and the registry are the public modules; everything else is an item

@@ -34,7 +34,7 @@ pub enum RunError {
     #[error(transparent)]
     Integration(#[from] OdeError),
     /// A numerical run used up its iteration budget
-    /// ([`crate::numerical::ITERATIONS_PER_SECOND`] per second of the path's duration) by the
+    /// (`numerical::ITERATIONS_PER_SECOND` per second of the path's duration) by the
     /// instant t.
     #[error("numerical method at t = {t:.6}: iteration budget of {budget} iterations ({} per second of the path's duration) used up", crate::numerical::ITERATIONS_PER_SECOND)]
     IterationBudget {

@@ -71,7 +71,7 @@ pub(crate) fn score_instant(
 }
 
 /// Turns accepted steps into metrics and a thinned trace (also the samples of a trajectory
-/// scored by [`crate::score_trajectory`]).
+/// scored by [`crate::score_trajectory()`]).
 pub(crate) struct Observer<'a> {
     robot: &'a dyn Robot,
     scheme: &'a dyn Scheme,

@@ -42,7 +42,7 @@ pub enum Solver<'a> {
     /// that reads the network's own error at accepted states).
     Network(&'a dyn Fn() -> Result<Box<dyn NeuralSolver>, SetupError>),
     /// A numerical QP method iterated at every instant of a fixed-step loop
-    /// ([`crate::numerical`]), scored like a network.
+    /// (`numerical`), scored like a network.
     Numerical(&'a NumericalSpec),
 }
 
@@ -196,7 +196,7 @@ fn run_exact(
     )
 }
 
-/// A network integrated together with the arm (the coupled ODE of [`crate::coupled`]), its
+/// A network integrated together with the arm (the coupled ODE of [`crate::NeuralLoop`]), its
 /// state started at zero or at x*(0) ([`NetworkInit`]), scored against the exact optimum where
 /// `settings.scoring` says and its own error read at those states by a second instance of the
 /// network. Errors when the network cannot be built or x*(0) cannot be solved.

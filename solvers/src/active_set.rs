@@ -436,7 +436,7 @@ pub struct ActiveSetSolver {
     p_row: Vec<f64>,
     p_pd: bool,
     pmax: f64,
-    /// The Schur-complement factors ([`crate::kkt_schur`]), and whether they factorise the
+    /// The Schur-complement factors (`kkt_schur`), and whether they factorise the
     /// current working set's KKT matrix (else `lu` does).
     schur: SchurKkt,
     schur_ok: bool,

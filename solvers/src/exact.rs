@@ -377,7 +377,7 @@ pub fn cone_sizes(qp: &Qp) -> Result<ConeSizes, ExactError> {
 /// On nalgebra at every size: the matrix's zero blocks (and P's, identity or diagonal in the
 /// papers' schemes) are skipped by the in-place elimination, and faer's dense LU was slower at
 /// every measured size up to nx + n_eq = 203 (`kkt-floor` of `results/dof-cost.csv`;
-/// [`crate::dense_lu`]).
+/// `dense_lu`).
 ///
 /// Independent of Clarabel, as a check. `None` when the QP has inequalities or finite bounds,
 /// or when the KKT matrix is singular (P not positive definite on the null space of A, or A

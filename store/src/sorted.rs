@@ -30,7 +30,7 @@ pub struct KeyOrdered {
 }
 
 /// Opens `path` (a `runs.csv`; absent: no rows) to be read row by row, through the one reader
-/// ([`crate::owned_dir::open_file`]): each row is checked as [`crate::read_runs`] checks
+/// (`owned_dir::open_file`): each row is checked as `read_runs` checks
 /// it (the schema, the names) and for coming after the row above it in key order.
 pub fn read_key_ordered(path: &Path) -> Result<KeyOrdered, RunsError> {
     let table_error = |error| RunsError::Table {

@@ -297,7 +297,7 @@ impl TrackedDir {
         self.commit_with(name, |w| w.write_all(bytes))
     }
 
-    /// [`TrackedDir::commit`] of what `write` writes, streamed ([`crate::atomic::write_atomic_with`])
+    /// [`TrackedDir::commit`] of what `write` writes, streamed (`atomic::write_atomic_with`)
     /// and fingerprinted block by block: a table far larger than memory is committed row by row.
     pub fn commit_with(
         &self,

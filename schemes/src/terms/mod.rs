@@ -145,7 +145,7 @@ pub trait Term: Send + Sync {
     }
 
     /// Adds the time derivative of the term's block along the motion (see
-    /// [`crate::scheme`]) into `out`, which the scheme zeroed. Called only if
+    /// `scheme`) into `out`, which the scheme zeroed. Called only if
     /// [`Term::has_dot`]. Must not allocate.
     fn write_dot(&self, _state: &State<'_>, _slot: Slot, _out: &mut DotOut<'_>) {}
 

@@ -43,7 +43,7 @@
 //!
 //! Sign-power with r < 1 has an infinite slope at e = 0 (that is what makes the convergence
 //! finite-time, and what makes every integrator fail once e reaches 0: explicit steps collapse,
-//! Newton iterations of implicit ones diverge). [`settings::sign_power`] therefore takes a smoothing width
+//! Newton iterations of implicit ones diverge). [`settings::sign_power()`] therefore takes a smoothing width
 //! delta: phi(e) = e (e^2 + delta^2)^((r - 1)/2), which is odd, strictly increasing (slope
 //! (e^2 + delta^2)^((r-3)/2) (r e^2 + delta^2) > 0), smooth, equal to abs(e)^r sgn(e) up to a
 //! relative (1 + delta^2/e^2)^((r-1)/2) - 1 (< 0.5 % at abs(e) = 10 delta for r = 0.1), and has the

@@ -42,7 +42,7 @@
 //! preallocated matrix ([`super::lu`]; compiled for the papers' orders, bit for bit the
 //! textbook loop); Qdot and udot come from `qp_dot` (P, A, q, b differentiated); with no
 //! `qp_dot` the QP is taken as frozen (Qdot = 0, udot = 0). (Solving through the Schur
-//! complement of P instead, [`crate::kkt_schur`], was measured no faster on kong2019's 8 x 8
+//! complement of P instead, `kkt_schur`, was measured no faster on kong2019's 8 x 8
 //! system, and it changes the last bits of every run: `benches/REPORT.md`.)
 //!
 //! Inequality rows and bounds are outside this structure: a network is built only for
