@@ -118,7 +118,7 @@ pub fn rungs(job: &RunSpec) -> Vec<IntegratorSettings> {
 }
 
 /// The jobs of `job`'s ladder (scoring off: only drift and position error are read): its
-/// [`rungs`], or for a numerical run the same loop stopped at each of
+/// `rungs`, or for a numerical run the same loop stopped at each of
 /// [`NUMERICAL_TOLERANCES`] (the run's own tolerance kept where it is not among them; a QP
 /// solver that takes no tolerance has the one rung, its own run).
 pub fn jobs(job: &RunSpec) -> Vec<RunSpec> {

@@ -170,7 +170,7 @@ pub enum RuleError {
         /// The file's size (bytes).
         bytes: u64,
     },
-    /// The model name is not a slug or is longer than [`MAX_NAME_LEN`].
+    /// The model name is not a slug or is longer than `MAX_NAME_LEN`.
     #[error(
         "field `name` is not a slug (lowercase ASCII letters and digits in words joined by \
          single '-', at most {MAX_NAME_LEN} characters)"

@@ -64,7 +64,7 @@ impl Mount {
     /// The mount of tool offset `tool` (m, in the model's tool frame) and base
     /// `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)` (`rpy = [roll, pitch, yaw]`, rad; the URDF
     /// convention, [`Frame::from_xyz_rpy`]); every entry finite, offsets within
-    /// [`MAX_OFFSET`], angles within [`MAX_ANGLE`].
+    /// [`MAX_OFFSET`], angles within `MAX_ANGLE`.
     pub fn new(tool: [f64; 3], xyz: [f64; 3], rpy: [f64; 3]) -> Result<Self, MountError> {
         for (field, values, max, unit) in [
             ("tool", tool, MAX_OFFSET, "m"),

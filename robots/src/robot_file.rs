@@ -135,7 +135,7 @@ pub enum RobotFileError {
         #[source]
         source: inputs::TomlError,
     },
-    /// The model name is not a slug or is longer than [`MAX_NAME_LEN`].
+    /// The model name is not a slug or is longer than `MAX_NAME_LEN`.
     /// A rule of the shared checks (`file_rules`: a number, a range, a limit, the joint
     /// count, the name, the flange, ...), naming the field.
     #[error("{file}: {source}")]

@@ -35,7 +35,7 @@ pub struct TaskNumbers {
     pub jacobian0: Vec<Vec<f64>>,
     /// f(theta_ref), where the path starts.
     pub path_start: [f64; 3],
-    /// The path at [`PATH_FRACTIONS`] of T.
+    /// The path at `PATH_FRACTIONS` of T.
     pub path: Vec<PathSample>,
     /// The scheme's name, level and QP at t = 0.
     pub scheme: String,

@@ -503,7 +503,7 @@ struct Ctx {
 
 impl ActiveSetSolver {
     /// A solver with buffers for QPs up to `max_dims`, certification on at [`DEFAULT_CERT_TOL`],
-    /// at most [`DEFAULT_MAX_ITERATIONS`] working-set changes.
+    /// at most `DEFAULT_MAX_ITERATIONS` working-set changes.
     pub fn new(max_dims: QpDims) -> Self {
         let mut s = Self {
             max_iterations: DEFAULT_MAX_ITERATIONS,

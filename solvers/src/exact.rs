@@ -247,7 +247,7 @@ impl Default for ExactSolver {
 }
 
 impl ExactSolver {
-    /// Clarabel silent, tolerances [`CLARABEL_TOLS`], KKT acceptance tolerance [`DEFAULT_KKT_TOL`].
+    /// Clarabel silent, tolerances `CLARABEL_TOLS`, KKT acceptance tolerance `DEFAULT_KKT_TOL`.
     pub fn new() -> Self {
         let settings = DefaultSettingsBuilder::default()
             .verbose(false)
@@ -294,7 +294,7 @@ impl ExactSolver {
     }
 
     /// Solves `qp`; success means Clarabel reports Solved or AlmostSolved (at the tightest
-    /// tolerance of [`CLARABEL_TOLS`] it reaches) and our KKT residuals are within tolerance
+    /// tolerance of `CLARABEL_TOLS` it reaches) and our KKT residuals are within tolerance
     /// (see the module docs).
     pub fn solve(&mut self, qp: &Qp) -> Result<ExactSolution, ExactError> {
         let form = ConicForm::new(qp)?;

@@ -21,11 +21,11 @@
 //!   ([`sweep`]). A merged 10^4-run sweep writes 26 figures, not 10,001.
 //!
 //! - `inference-<paper>-<table>__profiles.svg`, one per table of `results/inference.csv`: the
-//!   setup inference's profiles ([`profile`]).
+//!   setup inference's profiles (`profile`).
 //! - `dof-cost__<scheme>.svg`, one per scheme of `results/dof-cost.csv`: the cost against the
-//!   number of joints ([`dof_cost`]).
+//!   number of joints (`dof_cost`).
 //! - `control__pareto__<task>.svg`, `control__stability.svg`, `control__cycles.svg`: the
-//!   control experiments ([`control`]).
+//!   control experiments (`control`).
 //!
 //! Each figure is drawn once against a generic plotters backend (`layout::Body`) and emitted
 //! both ways; figures are drawn in parallel. The output is a function of the inputs only (no

@@ -10,25 +10,25 @@
 //! names in `report/figures/`. Nothing is re-run and nothing depends on the clock, so
 //! identical inputs give a byte-identical report ([`render`] writes it atomically).
 //!
-//! Every text of `papers/` reaches the report through [`shown`] (escaped by
+//! Every text of `papers/` reaches the report through `shown` (escaped by
 //! [`markdown::text`]): an input shows as text, never as Markdown structure or HTML.
 //!
 //! Layout (one concept per module):
-//! - [`header`]: what this is, provenance (git revision, integrators, tolerances), how to regenerate;
-//! - per paper (its page): the [`verdict`] paragraph, the published [`tables`] side by side with ours,
-//!   the [`claims`] checklist, the suite's table of every run, and the [`figures`];
-//! - the [`score`] of every neural run against the exact optimum;
-//! - the [`leaderboard`]: every velocity-level solver on the standard task set, qpbenchmark-style;
-//! - the [`cost`] of every run, and zhong2021's MATLAB comparison as ratios;
-//! - [`control`]: every solver at a robot's control rate, zhong2021's efficiency claim, and
+//! - `header`: what this is, provenance (git revision, integrators, tolerances), how to regenerate;
+//! - per paper (its page): the `verdict` paragraph, the published `tables` side by side with ours,
+//!   the `claims` checklist, the suite's table of every run, and the [`figures`];
+//! - the `score` of every neural run against the exact optimum;
+//! - the `leaderboard`: every velocity-level solver on the standard task set, qpbenchmark-style;
+//! - the `cost` of every run, and zhong2021's MATLAB comparison as ratios;
+//! - `control`: every solver at a robot's control rate, zhong2021's efficiency claim, and
 //!   many cycles (`results/control*.csv`, `results/cycles*.csv`);
-//! - [`performance`]: per-instant costs against the exact solvers and the KKT floor, the exact
+//! - `performance`: per-instant costs against the exact solvers and the KKT floor, the exact
 //!   reference per recorded QP against DAQP, the cost against the number of joints, whole runs
 //!   against the MATLAB times, and the machine (the suite's measurements of itself, its build,
 //!   clock, phases, profiles and speed-up, are the benches', `benches/REPORT.md`);
 //! - [`python`]: the Python package's numpy entry on the leaderboard and the cost of a Python
 //!   call (`results/leaderboard-python.csv`, `results/python-call-cost.csv`);
-//! - the [`cross`] experiment matrices;
+//! - the `cross` experiment matrices;
 //! - the published numbers without a run (`records::paper_values`) and those the papers
 //!   contradict.
 
