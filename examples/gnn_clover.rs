@@ -12,7 +12,7 @@
 //! ```
 //!
 //! Its equilibrium is the penalised optimum, within O(1/rho) of x*. It implements
-//! `solvers::neural::NeuralSolver`, and `simulation::simulate::simulate` runs it on jia2019's
+//! `solvers::neural::NeuralSolver`, and `simulation::simulate` runs it on jia2019's
 //! VLTCO scheme along the four-leaf clover on the Jaco2 exactly as it runs the papers'
 //! networks: coupled with the arm, integrated by BDF (RelTol 1e-6, AbsTol 1e-8, as ode15s), and
 //! scored against the exact optimum at every accepted step. The exact column and jia2019's own
@@ -24,18 +24,18 @@ use catalog::experiment::default_exact_integrator;
 use nalgebra::{DMatrix, DVector};
 use qp::{Qp, QpDims};
 use robots::{Jaco2, Robot};
-use schemes::build::build_scheme;
+use schemes::build_scheme;
 use schemes::paths::build_path;
-use settings::integrator::IntegratorSettings;
-use settings::solver_spec::SolverSpec;
-use simulation::run::build_network;
-use simulation::simulate::{simulate, Outcome, Settings, Solver};
+use settings::IntegratorSettings;
+use settings::SolverSpec;
+use simulation::build_network;
+use simulation::{simulate, Outcome, Settings, Solver};
 use solvers::neural::NeuralSolver;
-use spec::path::PathSpec;
-use spec::rmp::RmpReading;
-use spec::run::NetworkInit;
-use spec::run::Scoring;
-use spec::scheme::SchemeSpec;
+use spec::NetworkInit;
+use spec::PathSpec;
+use spec::RmpReading;
+use spec::SchemeSpec;
+use spec::Scoring;
 use std::sync::Arc;
 
 /// The gradient neural network (module docs). Scratch buffers live in the struct, so `rhs`
@@ -131,7 +131,7 @@ struct Line {
 
 fn run() -> Vec<Line> {
     let robot = Arc::new(Jaco2::pen());
-    let theta0 = robots::jaco2::PAPERS_THETA0;
+    let theta0 = robots::JACO2_PAPERS_THETA0;
     let path: Arc<dyn schemes::paths::Path> = Arc::from(
         build_path(
             &PathSpec::new("four-leaf-clover", 5.0),

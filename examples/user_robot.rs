@@ -14,7 +14,7 @@
 //! `Robot::jacobian_dot` is taken here by a central difference of J along thetadot (h = 1e-6):
 //! a user can start that way and write the exact derivative later. Implementing
 //! `robots::Robot` (joint vectors as slices, Jacobians written into the caller's 3 x n buffer,
-//! column-major) is all the suite asks; `simulation::simulate::simulate` then runs it
+//! column-major) is all the suite asks; `simulation::simulate` then runs it
 //! through kong2019's ZNN scheme (eq. 22) on a circle, solved exactly and by kong2019's ZNN.
 //!
 //! `cargo run --release --example user_robot`
@@ -22,16 +22,16 @@
 use catalog::experiment::default_exact_integrator;
 use nalgebra::{DVector, Vector3};
 use robots::{JointLimits, Robot};
-use schemes::build::build_scheme;
+use schemes::build_scheme;
 use schemes::paths::build_path;
-use settings::integrator::IntegratorSettings;
-use settings::solver_spec::SolverSpec;
-use simulation::run::build_network;
-use simulation::simulate::{simulate, Outcome, Settings, Solver};
-use spec::path::PathSpec;
-use spec::run::NetworkInit;
-use spec::run::Scoring;
-use spec::scheme::SchemeSpec;
+use settings::IntegratorSettings;
+use settings::SolverSpec;
+use simulation::build_network;
+use simulation::{simulate, Outcome, Settings, Solver};
+use spec::NetworkInit;
+use spec::PathSpec;
+use spec::SchemeSpec;
+use spec::Scoring;
 use std::sync::Arc;
 
 /// The 4-joint arm of the module docs.

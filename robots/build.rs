@@ -1,4 +1,4 @@
-//! Embeds every robot file `data/*.toml` in the library (`robots::data_robot::builtin_files`):
+//! Embeds every robot file `data/*.toml` in the library (`robots::builtin_files`):
 //! dropping a new file into `robots/data/` registers it on the next build, without Rust.
 //!
 //! Writes `$OUT_DIR/builtin_robots.rs`, a slice of `(file name, include_str!(absolute path))`

@@ -12,12 +12,12 @@ use crate::cost_ratio::{evaluation_ratio, slowdown};
 use crate::number::sci;
 use crate::papers::Papers;
 use records::index::{completed, failed_at, metric, Runs, EXACT};
-use records::runs::RunRow;
-use settings::network_kind::NetworkKind;
-use spec::solver_kind::SolverKind;
+use records::RunRow;
+use settings::NetworkKind;
+use spec::SolverKind;
 
 /// The most pairs of runs one `than` claim compares (each pair is a line of its evidence): a
-/// paper has at most [`crate::paper_rules::MAX_CLAIMS`] claims, so claims times runs is
+/// paper has at most [`crate::MAX_CLAIMS`] claims, so claims times runs is
 /// bounded.
 pub const MAX_PAIRS: usize = 10_000;
 

@@ -14,11 +14,11 @@
 //! (dense, (nx + n_eq + n_in)^2 multiply-adds at most); everything else per step or iteration is
 //! O(dim). So the cost per tick is counted in products with M: a network's forward-Euler step
 //! costs `control::network_tick::products_per_evaluation` (LVI-PDNN 2, S-LVI-PDNN 1), an LVI
-//! method's iteration 2 (`solvers::lvi_numerical::PRODUCTS_PER_ITERATION`). The counts are the
+//! method's iteration 2 (`solvers::PRODUCTS_PER_ITERATION`). The counts are the
 //! same on every machine and under any load, so the verdict does not depend on either; the
 //! latencies are reported beside them for the record.
 //!
-//! # The comparison (per task, at the control period h, [`spec::task_set::MAIN_H`] = 1 ms)
+//! # The comparison (per task, at the control period h, [`spec::MAIN_H`] = 1 ms)
 //!
 //! - A network needs at least n = ceil(h / s_max) Euler steps per tick to be stable at all
 //!   (s_max its Euler stability limit on the task, `control::stability`;

@@ -1,13 +1,13 @@
 //! The control-rate track (`results/control.csv`, written by crate `control`): at the main
-//! control period [`spec::task_set::MAIN_H`], whether a run's whole tick fits the period, whether
+//! control period [`spec::MAIN_H`], whether a run's whole tick fits the period, whether
 //! the run is a success (stable and within [`ACCURACY`] of the exact optimum once settled), the
 //! Euler steps a network needs per tick, and the leaderboard of the methods over the tasks; and
 //! the networks as the papers integrate them, in products with the LVI matrix per millisecond.
 
 use crate::control_claim::ACCURACY;
 use records::control::{steps_needed, ClaimRow, ControlRow, ControlStatus};
-use records::runs::RunRow;
-use spec::task_set::MAIN_H;
+use records::RunRow;
+use spec::MAIN_H;
 
 /// The main control period, in milliseconds (the unit of [`ControlRow::h_ms`]).
 pub fn main_h_ms() -> f64 {

@@ -6,7 +6,7 @@
 
 use crate::papers::Papers;
 use records::index::{completed, Runs};
-use settings::network_kind::NetworkKind;
+use settings::NetworkKind;
 
 /// S-LVI-PDNN's compute time over the mean VP-RNN-PF compute time, ours and the paper's.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -5,7 +5,7 @@
 //! of the best tie.
 
 use records::index::{completed, is_neural, metric, Runs, EXACT};
-use records::runs::RunRow;
+use records::RunRow;
 
 /// How a column's best solver is picked.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -119,8 +119,8 @@ fn best_in<'a>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use settings::network_kind::NetworkKind;
-    use spec::solver_kind::SolverKind;
+    use settings::NetworkKind;
+    use spec::SolverKind;
 
     fn run(solver: &str, drift: f64) -> RunRow {
         let kind = if solver == EXACT {
@@ -128,10 +128,7 @@ mod tests {
         } else {
             SolverKind::Network(NetworkKind::LviPdnn)
         };
-        let mut r = RunRow::blank(
-            &spec::run_key::RunKey::from_ids("e", "v", solver).unwrap(),
-            kind,
-        );
+        let mut r = RunRow::blank(&spec::RunKey::from_ids("e", "v", solver).unwrap(), kind);
         r.drift_ref_norm = Some(drift);
         r
     }

@@ -6,9 +6,9 @@
 //! ([`RunIds`]: experiment, variant, solver).
 
 use crate::papers::{Mapping, Papers};
-use records::attribution::{AttributionRow, Component};
-use records::ladder::{LadderMethod, LadderRow};
-use settings::integrator::Method;
+use records::{AttributionRow, Component};
+use records::{LadderMethod, LadderRow};
+use settings::Method;
 
 /// A run's ids: (experiment, variant, solver).
 pub type RunIds<'a> = (&'a str, &'a str, &'a str);

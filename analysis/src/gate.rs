@@ -22,11 +22,11 @@
 //! Every difference is one line naming the table, the row and the column.
 
 use crate::leaderboard::LeaderboardRow;
-use records::attribution::AttributionRow;
 use records::control::ControlRow;
-use records::failure_kind::FailureKind;
-use records::ladder::LadderRow;
-use records::runs::RunRow;
+use records::AttributionRow;
+use records::FailureKind;
+use records::LadderRow;
+use records::RunRow;
 use std::collections::HashSet;
 
 /// Relative tolerance of the drift comparison.
@@ -432,7 +432,7 @@ fn compare_rows<T>(
 where
     T: HasRunKey,
 {
-    let runs: HashSet<spec::run_key::RunKey> = fresh.iter().map(HasRunKey::run_key).collect();
+    let runs: HashSet<spec::RunKey> = fresh.iter().map(HasRunKey::run_key).collect();
     let explained: Vec<&T> = committed
         .iter()
         .filter(|c| runs.contains(&c.run_key()))
@@ -471,17 +471,17 @@ fn compare_keyed<T>(
 
 /// A row of a table keyed by its run.
 trait HasRunKey {
-    fn run_key(&self) -> spec::run_key::RunKey;
+    fn run_key(&self) -> spec::RunKey;
 }
 
 impl HasRunKey for LadderRow {
-    fn run_key(&self) -> spec::run_key::RunKey {
+    fn run_key(&self) -> spec::RunKey {
         self.key()
     }
 }
 
 impl HasRunKey for AttributionRow {
-    fn run_key(&self) -> spec::run_key::RunKey {
+    fn run_key(&self) -> spec::RunKey {
         self.key()
     }
 }
@@ -495,8 +495,8 @@ mod tests {
     #[test]
     fn every_measured_metric_is_compared_and_no_timing() {
         let mut row = RunRow::blank(
-            &spec::run_key::RunKey::from_ids("e", "v", "s").unwrap(),
-            spec::solver_kind::SolverKind::Network(settings::network_kind::NetworkKind::Znn),
+            &spec::RunKey::from_ids("e", "v", "s").unwrap(),
+            spec::SolverKind::Network(settings::NetworkKind::Znn),
         );
         row.final_pos_err = Some(1e-5);
         row.score_rms_dx = Some(2e-4);
@@ -523,8 +523,8 @@ mod tests {
     #[test]
     fn what_the_tables_show_is_compared_but_where_the_wall_clock_decides() {
         let mut row = RunRow::blank(
-            &spec::run_key::RunKey::from_ids("e", "v", "s").unwrap(),
-            spec::solver_kind::SolverKind::Network(settings::network_kind::NetworkKind::Znn),
+            &spec::RunKey::from_ids("e", "v", "s").unwrap(),
+            spec::SolverKind::Network(settings::NetworkKind::Znn),
         );
         row.steps = 200;
         row.rhs_evals = 300;
@@ -554,7 +554,7 @@ mod tests {
             assert!(problems[0].contains(name), "{name}: {problems:?}");
         }
         let mut failed = row.clone();
-        failed.status = records::runs::Status::Failed;
+        failed.status = records::Status::Failed;
         failed.failure_kind = Some(FailureKind::Diverged);
         failed.failed_at = Some(6.78);
         failed.expected_failure = "its divergence is the finding".into();

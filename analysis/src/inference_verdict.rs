@@ -162,7 +162,7 @@ mod tests {
             tilt_x: 0.0,
             tilt_y: 0.0,
             reverse: false,
-            rmp: spec::rmp::RmpReading::Printed,
+            rmp: spec::RmpReading::Printed,
             rel_residual: r,
             table_residual: r,
             column_residuals: columns.into(),
@@ -198,7 +198,7 @@ mod tests {
             v[0]
         );
         let other = InferenceRow {
-            rmp: spec::rmp::RmpReading::Expansion,
+            rmp: spec::RmpReading::Expansion,
             ..rows[4].clone()
         };
         assert!(describe_setup(&other).ends_with("RMP read as expansion"));

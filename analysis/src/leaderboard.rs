@@ -28,7 +28,7 @@
 //!   per-run values, each divided by the best (smallest) solver's mean of the set (best = 1.0):
 //!   the RMS distance to the optimum ([`RunScore::dx`]), the drift's distance from the exact
 //!   column's ([`RunScore::drift`]) and the simulation's wall time ([`RunScore::time`]): the
-//!   median of the run's repetitions timed alone ([`records::timing`]), not the parallel
+//!   median of the run's repetitions timed alone ([`records::Timings`]), not the parallel
 //!   reproduction's `sim_s` (used only for a run without an alone timing; [`alone_timing`]
 //!   counts them and gives the repetitions' spread);
 //! - the p50 and p95 of each over the set's tasks (the distribution, not only a mean).
@@ -37,16 +37,16 @@
 //! capped at it (qpbenchmark counts a failure at its time limit), so no completed run counts
 //! worse than a failure.
 
-use records::percentile::percentile;
-use records::runs::RunRow;
+use records::percentile;
 use records::table::Row;
-use records::timing::Timings;
+use records::RunRow;
+use records::Timings;
 use serde::{Deserialize, Serialize};
 use spec::ids::{ExperimentId, SolverId, VariantId};
-use spec::solver_kind::SolverKind;
+use spec::SolverKind;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
-use store::error::{IoAction, IoError, RunsError};
+use store::{IoAction, IoError, RunsError};
 
 /// The `paper` of the experiments that make the standard task set.
 pub const STANDARD_PAPER: &str = "cross";
@@ -423,7 +423,7 @@ pub fn alone_timing(timings: &Timings, solver_id: &SolverId, tasks: &[Task]) -> 
     let spreads: Vec<f64> = tasks
         .iter()
         .filter_map(|t| {
-            timings.get(&spec::run_key::RunKey::new(
+            timings.get(&spec::RunKey::new(
                 t.experiment.clone(),
                 t.variant.clone(),
                 solver_id.clone(),
@@ -449,20 +449,20 @@ pub fn write(results_dir: &Path, runs: &[RunRow]) -> Result<PathBuf, RunsError> 
             path: path.clone(),
             source,
         })?;
-    store::atomic::write_atomic(&path, &bytes).map_err(IoError::at(&path, IoAction::Write))?;
+    store::write_atomic(&path, &bytes).map_err(IoError::at(&path, IoAction::Write))?;
     Ok(path)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use records::runs::Status;
+    use records::Status;
 
     /// A completed run of `solver` (its label; its id is the label in lower case) on task `exp`
     /// with the given RMS distance, per-joint drift and time; `solver == "exact"` makes the
     /// exact column.
     fn run(solver: &str, exp: &str, rms: f64, drift: &[f64], sim_s: f64) -> RunRow {
-        let key = spec::run_key::RunKey::from_ids(exp, "v", &solver.to_lowercase()).unwrap();
+        let key = spec::RunKey::from_ids(exp, "v", &solver.to_lowercase()).unwrap();
         let mut r = RunRow::blank(&key, SolverKind::Exact);
         r.solver = solver.into();
         r.paper = "cross".into();
@@ -471,7 +471,7 @@ mod tests {
         } else {
             // A, B, C, ...: the networks in their order (any kind will do).
             SolverKind::Network(
-                settings::network_kind::NetworkKind::ALL[usize::from(solver.as_bytes()[0] - b'A')],
+                settings::NetworkKind::ALL[usize::from(solver.as_bytes()[0] - b'A')],
             )
         };
         r.drift = drift.to_vec();
@@ -641,8 +641,8 @@ mod tests {
 
     #[test]
     fn alone_timings_replace_the_parallel_times() {
-        use records::timing::TimingRow;
-        use spec::run_key::RunKey;
+        use records::TimingRow;
+        use spec::RunKey;
         // A timed alone at 40, 50 and 90 ms on t1 (median 50 ms), 50 ms three times on t2;
         // B not timed alone keeps its parallel 20 ms and now ranks faster.
         let timed = |task: &str, s: [f64; 3]| {

@@ -4,7 +4,7 @@
 //! times it ranks by were measured (runs timed alone, the spread of their repetitions).
 
 use crate::leaderboard::{alone_timing, LeaderboardRow, Task, STANDARD_SET};
-use records::timing::Timings;
+use records::Timings;
 
 /// The best solvers by one measure (a ratio to the set's best, 1 for the best) and the other
 /// solvers' ratios.
@@ -103,7 +103,7 @@ pub fn timing_reading(
             .map(|r| alone_timing(timings, &r.solver_id, tasks).0)
             .sum(),
         timed: spreads.len(),
-        median_spread: records::percentile::percentile(&spreads, 0.5),
+        median_spread: records::percentile(&spreads, 0.5),
         max_spread: spreads.iter().copied().fold(0.0, f64::max),
     })
 }
@@ -111,7 +111,7 @@ pub fn timing_reading(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use spec::solver_kind::SolverKind;
+    use spec::SolverKind;
 
     fn row(solver: &str, within: usize, completed: usize, rel: [f64; 3]) -> LeaderboardRow {
         LeaderboardRow {

@@ -3,15 +3,14 @@
 //! decides; the report (crate `presentation`) only renders what is decided here.
 //!
 //! - [`papers`]: the papers as data (`papers/<paper>/`): metadata, published numbers and which
-//!   run each one is compared with; [`paper_rules`]: what a paper folder must satisfy (ids,
-//!   one-line texts, unique mappings, checked values), checked before anything runs;
-//!   [`paper_runs`]: that a paper names only runs that exist; [`published_metrics`]: the
-//!   metrics a paper's numbers may name; [`report_text`]: that a text reaching the report is
-//!   one line.
+//!   run each one is compared with; what a paper folder must satisfy (ids, one-line texts,
+//!   unique mappings, checked values, at most [`MAX_CLAIMS`] claims), checked before anything
+//!   runs; that a paper names only runs that exist ([`check_paper_runs`]); the metrics a
+//!   paper's numbers may name ([`PUBLISHED_METRICS`]); that a text reaching the report is one
+//!   line ([`is_one_line`]).
 //! - [`claims`]: a paper's claims as data (a metric of a selection of runs against a threshold
 //!   or another selection).
-//! - [`sweep_check`]: a published table set beside a sweep's runs, compared in
-//!   [`sweep_comparison`]; [`published_table`]: a published table beside ours (its columns,
+//! - a published table set beside a sweep's runs, compared in [`sweep_comparison`]; [`published_table`]: a published table beside ours (its columns,
 //!   quantities and ratios).
 //! - [`leaderboard`]: every velocity-level solver on the standard task set, scored as
 //!   qpbenchmark scores QP solvers (`results/leaderboard.csv`); [`leaderboard_reading`]: what its
@@ -36,12 +35,17 @@
 //!   `driftbench-benches`'s).
 //! - [`fits`]: the growth exponents of cost against the number of joints, and the size where
 //!   faer's dense LU overtakes nalgebra's.
-//! - [`number`]: the one way numbers are written in words (evidence and the report).
+//! - [`sci`]: the one way numbers are written in words (evidence and the report).
 //! - [`report_model`]: the report's decided content as one typed model, built once per render
 //!   (the papers' verdicts, tables, contradictions and sweep checks, the leaderboard and its
 //!   reading, the control claim and track, the MATLAB times, the cross experiment's bests,
 //!   the sweep summaries, the setup inference's verdicts, every paper's drift attribution
 //!   and tolerance ladder, the Performance page's costs, fits and targets).
+//!
+//! The verdict modules are public modules, each a vocabulary of its own (their types,
+//! constants and deciding functions by short names); `presentation/tests/report_model.rs`
+//! tells the report's use of their types from calls of their functions by module. The paper
+//! folders' checks and the number format are items at the root.
 
 pub mod claim_verdict;
 pub mod claims;
@@ -56,16 +60,21 @@ pub mod inference_verdict;
 pub mod leaderboard;
 pub mod leaderboard_reading;
 pub mod misprints;
-pub mod number;
-pub mod paper_rules;
-pub mod paper_runs;
+mod number;
+mod paper_rules;
+mod paper_runs;
 pub mod paper_verdict;
 pub mod papers;
 pub mod performance;
-pub mod published_metrics;
+mod published_metrics;
 pub mod published_table;
 pub mod report_model;
-pub mod report_text;
-pub mod sweep_check;
+mod report_text;
+mod sweep_check;
 pub mod sweep_comparison;
 pub mod sweep_summary;
+pub use number::sci;
+pub use paper_rules::{GROUP as GROUP_PAPER, MAX_CLAIMS};
+pub use paper_runs::{check_runs as check_paper_runs, Absent as AbsentRun};
+pub use published_metrics::PUBLISHED_METRICS;
+pub use report_text::is_one_line;

@@ -1,20 +1,20 @@
 //! What a paper folder of `papers/` must satisfy before anything runs, and the typed problem
 //! when it does not ([`PaperProblem`]): the paper id is a slug of at most
-//! [`spec::naming::MAX_EXPERIMENT_ID`] bytes, the folder's name, and not one of the
+//! [`spec::MAX_EXPERIMENT_ID`] bytes, the folder's name, and not one of the
 //! [`RESERVED_PAPER_IDS`]; texts that reach the report (title, citation, claims) are one line
-//! ([`crate::report_text::is_one_line`]); each published (experiment, column) has at most one
+//! ([`crate::is_one_line`]); each published (experiment, column) has at most one
 //! `[[mapping]]`; every values.csv entry is finite, of a known metric, of this paper, and given
 //! once; a paper has at most [`MAX_CLAIMS`] claims, [`MAX_MAPPINGS`] mappings of at most
 //! [`MAX_COMPANIONS`] companions each, and [`MAX_SWEEP_CHECKS`] sweep checks of at most
 //! [`MAX_SWEEP_COLUMNS`] columns; a sweep check compares per-joint drifts
 //! ([`SWEEP_METRICS`]) of a table and columns `values.csv` has, its heading and text one line
 //! each. [`crate::papers::Papers::load`] applies them; what the files name among the runs is
-//! checked by [`crate::paper_runs::check_runs`].
+//! checked by [`crate::check_paper_runs`].
 
 use crate::claims::ClaimError;
 use crate::leaderboard::STANDARD_PAPER;
 use crate::published_metrics::PUBLISHED_METRICS;
-use spec::naming::MAX_EXPERIMENT_ID;
+use spec::MAX_EXPERIMENT_ID;
 
 /// Paper id of the group-code reference experiments (`experiments/group.toml`): not a paper of
 /// `papers/`, but the id their runs and explanations are filed under.
@@ -162,10 +162,7 @@ pub fn check_paper_id(id: &str) -> Result<(), PaperProblem> {
     if !spec::ids::is_id_form(id) || id.len() > MAX_EXPERIMENT_ID {
         return Err(PaperProblem::NotAnId {
             id: id.to_string(),
-            suggestion: settings::slug::slug(id)
-                .chars()
-                .take(MAX_EXPERIMENT_ID)
-                .collect(),
+            suggestion: settings::slug(id).chars().take(MAX_EXPERIMENT_ID).collect(),
         });
     }
     if RESERVED_PAPER_IDS.contains(&id) {

@@ -16,7 +16,7 @@
 use crate::claims::{Check, Selection, Test};
 use crate::paper_rules::PaperProblem;
 use crate::papers::{Papers, PapersError};
-use spec::run_key::RunKey;
+use spec::RunKey;
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 

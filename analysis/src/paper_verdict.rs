@@ -21,7 +21,7 @@ use crate::claim_verdict::{Claim, Verdict};
 use crate::misprints::{contradictions, is_contradicted};
 use crate::papers::{Mapping, Papers};
 use records::index::{metric, Runs, EXACT};
-use records::runs::RunRow;
+use records::RunRow;
 
 /// A verdict level, best first.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

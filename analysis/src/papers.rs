@@ -5,20 +5,20 @@
 //! metric). Each `[[mapping]]` of `paper.toml` says which of our runs reproduces one
 //! (experiment, column) of a paper, by its run key (`"<experiment> / <variant> / <solver>"`,
 //! ids, see `spec::run_key`), with companion variants shown beside it.
-//! [`crate::published_metrics::our_metric`] names the `runs.csv` column of each published
+//! `published_metrics::our_metric` names the `runs.csv` column of each published
 //! metric. [`Papers::resolve`] combines both; a published number that finds no run is listed
 //! in the report under "published numbers without a run", never dropped silently. Its `[[claim]]` tables are the claims checked against the
 //! runs ([`crate::claims`]); its `[[sweep_check]]` tables set a published table beside a sweep's
-//! runs ([`crate::sweep_check`]). Adding a paper is adding a folder: no Rust.
+//! runs (`sweep_check`). Adding a paper is adding a folder: no Rust.
 
 use crate::paper_rules::{check_paper_id, PaperProblem};
 use crate::published_metrics::{our_metric, METRIC_ALIASES, PUBLISHED_METRICS};
 use crate::report_text::is_one_line;
 use crate::sweep_check::SweepCheck;
 use records::index::Runs;
-use records::runs::RunRow;
+use records::RunRow;
 use serde::Deserialize;
-use spec::run_key::RunKey;
+use spec::RunKey;
 use std::path::{Path, PathBuf};
 
 /// One published number.
@@ -230,7 +230,7 @@ pub struct Papers {
     pub papers: Vec<Paper>,
     pub values: Vec<PaperValue>,
     pub mappings: Vec<Mapping>,
-    /// Published tables set beside a sweep's runs ([`crate::sweep_check`]).
+    /// Published tables set beside a sweep's runs (`sweep_check`).
     pub sweep_checks: Vec<SweepCheck>,
     /// Published numbers that contradict the paper's own ([`inconsistencies`]).
     pub warnings: Vec<ValueWarning>,
@@ -240,7 +240,7 @@ impl Papers {
     /// Reads every `papers/<paper>/` folder (sorted by name), each file with the input reader
     /// (crate `inputs`: regular files inside `dir`, at most their kind's cap): `paper.toml` is
     /// required, `values.csv` optional (a paper may publish only figures). Everything
-    /// [`crate::paper_rules`] states is checked here, before anything runs.
+    /// `paper_rules` states is checked here, before anything runs.
     pub fn load(dir: &Path) -> Result<Papers, PapersError> {
         let mut folders: Vec<PathBuf> = std::fs::read_dir(dir)
             .map_err(|source| PapersError::Io {
@@ -477,11 +477,10 @@ fn read_paper_file(dir: &Path, folder: &Path, path: &Path) -> Result<PaperFile, 
         .map_err(invalid)?;
     check_paper_id(name).map_err(invalid)?;
     let text = inputs::read_text(path, inputs::Kind::PaperToml, inputs::Origin::Under(dir))?;
-    let file: PaperFile =
-        inputs::toml_error::from_str(&text).map_err(|source| PapersError::Toml {
-            path: path.to_path_buf(),
-            source,
-        })?;
+    let file: PaperFile = inputs::parse_toml(&text).map_err(|source| PapersError::Toml {
+        path: path.to_path_buf(),
+        source,
+    })?;
     if file.paper != name {
         return Err(invalid(PaperProblem::NotTheFolder {
             paper: file.paper,
@@ -502,8 +501,8 @@ fn read_paper_file(dir: &Path, folder: &Path, path: &Path) -> Result<PaperFile, 
     Ok(file)
 }
 
-/// The `[[mapping]]` tables of `paper`'s file (at most [`crate::paper_rules::MAX_MAPPINGS`], each
-/// with at most [`crate::paper_rules::MAX_COMPANIONS`] companions), checked: each run a run key, each published
+/// The `[[mapping]]` tables of `paper`'s file (at most `paper_rules::MAX_MAPPINGS`, each
+/// with at most `paper_rules::MAX_COMPANIONS` companions), checked: each run a run key, each published
 /// (experiment, column) mapped once, each companion a variant (or variant / solver) of the
 /// run's experiment.
 fn mappings(paper: &str, files: Vec<MappingFile>) -> Result<Vec<Mapping>, PaperProblem> {

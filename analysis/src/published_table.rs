@@ -6,7 +6,7 @@ use crate::misprints::{is_contradicted, Contradiction};
 use crate::papers::{Mapping, Papers};
 use crate::published_metrics::our_metric;
 use records::index::{metric, Runs, EXACT};
-use records::runs::RunRow;
+use records::RunRow;
 
 /// The published tables of `paper`, in the order the CSV lists them (`text` last).
 pub fn published_tables(paper: &str, papers: &Papers) -> Vec<String> {
@@ -161,7 +161,7 @@ pub fn side_by_side<'a>(
         layout.push(Row::Paper(m));
         pending.push(None);
         let e = m.run.experiment.as_str();
-        let mut shown_runs: Vec<&spec::run_key::RunKey> = Vec::new();
+        let mut shown_runs: Vec<&spec::RunKey> = Vec::new();
         for shown_run in std::iter::once(&m.run).chain(m.companions.iter()) {
             if shown_runs.contains(&shown_run) {
                 continue;
@@ -245,12 +245,12 @@ fn ratio_to_paper(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use spec::solver_kind::SolverKind;
+    use spec::SolverKind;
 
     #[test]
     fn a_run_off_theta_star_adds_the_reference_drift() {
         let mut r = RunRow::blank(
-            &spec::run_key::RunKey::from_ids("e", "v", "s").unwrap(),
+            &spec::RunKey::from_ids("e", "v", "s").unwrap(),
             SolverKind::Exact,
         );
         r.drift_norm = Some(0.5);
@@ -270,7 +270,7 @@ mod tests {
             paper: "p".into(),
             published_experiment: "E".into(),
             published_column: "c".into(),
-            run: spec::run_key::RunKey::parse("e / v / s").unwrap(),
+            run: spec::RunKey::parse("e / v / s").unwrap(),
             companions: Vec::new(),
         };
         let value = |metric: &str, value: f64| crate::papers::PaperValue {
@@ -295,7 +295,7 @@ mod tests {
     fn ours_is_set_over_the_papers_number_unless_it_prints_zero() {
         let (papers, mapping) = printed();
         let mut r = RunRow::blank(
-            &spec::run_key::RunKey::from_ids("e", "v", "s").unwrap(),
+            &spec::RunKey::from_ids("e", "v", "s").unwrap(),
             SolverKind::Exact,
         );
         r.drift_norm = Some(0.25);

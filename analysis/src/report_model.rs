@@ -45,14 +45,14 @@ use crate::published_table::{published_tables, side_by_side, SideBySide};
 use crate::sweep_check::SweepCheck;
 use crate::sweep_comparison::{setup_share, swept_runs, SetupShare, SweptRun};
 use crate::sweep_summary::{summary, SweepSummary};
-use records::attribution::AttributionRow;
+use records::AttributionRow;
 use records::control::{ClaimRow, ControlRow, StabilityRow, Verdict};
 use records::index::completed;
 use records::index::Runs;
 use records::inference::InferenceRow;
-use records::ladder::LadderRow;
-use records::runs::RunRow;
-use records::timing::Timings;
+use records::LadderRow;
+use records::RunRow;
+use records::Timings;
 
 /// The report's decided content (module docs), borrowing the runs and papers it was built on.
 #[derive(Clone, Debug)]

@@ -95,7 +95,7 @@ impl SweepCheckFile {
     /// published `values` (`crate::paper_rules`): one-line heading and text, metrics among
     /// [`SWEEP_METRICS`] each once, a table of `values.csv`, and every column a published
     /// experiment of that table with a value of every metric. Whether the experiment and the
-    /// variants exist among the runs is checked by `crate::paper_runs::check_runs`.
+    /// variants exist among the runs is checked by `crate::check_paper_runs`.
     pub(crate) fn into_check(
         self,
         paper: &str,

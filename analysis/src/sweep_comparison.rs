@@ -1,5 +1,5 @@
 //! A sweep's runs beside the published table of its `[[sweep_check]]`
-//! ([`crate::sweep_check`]): for every swept variant, the published column its id matches, the
+//! (`sweep_check`): for every swept variant, the published column its id matches, the
 //! paper's drift norm there (the 2-norm of the compared per-joint numbers), ours against it, and
 //! how many per-joint signs agree where both exceed the run's round-off floor; and, where the check names the declared setup's variant, the
 //! setup's share of the gap ([`setup_share`]).
@@ -8,7 +8,7 @@ use crate::paper_verdict::sign_floor;
 use crate::papers::Papers;
 use crate::sweep_check::{SweepCheck, SweepColumn};
 use records::index::{completed, metric, Runs};
-use records::runs::RunRow;
+use records::RunRow;
 
 /// The published value of one column and metric of the check's table (the experiment's
 /// `column`, or its first where `column` is `None`).
@@ -193,7 +193,7 @@ mod tests {
     use super::*;
     use crate::claims::Pattern;
     use crate::sweep_check::SweepColumn;
-    use spec::solver_kind::SolverKind;
+    use spec::SolverKind;
 
     #[test]
     fn a_swept_run_is_set_against_the_norm_of_the_printed_joints() {
@@ -226,7 +226,7 @@ mod tests {
             ..Papers::default()
         };
         let mut r = RunRow::blank(
-            &spec::run_key::RunKey::from_ids("e", "v", "exact").unwrap(),
+            &spec::RunKey::from_ids("e", "v", "exact").unwrap(),
             SolverKind::Exact,
         );
         r.drift = vec![0.3, 0.4];
@@ -266,7 +266,7 @@ mod tests {
         };
         let run = |variant: &str, norm: f64| {
             let mut r = RunRow::blank(
-                &spec::run_key::RunKey::from_ids("e", variant, "exact").unwrap(),
+                &spec::RunKey::from_ids("e", variant, "exact").unwrap(),
                 SolverKind::Exact,
             );
             r.drift = vec![0.6 * norm, -0.8 * norm];

@@ -3,7 +3,7 @@
 //! max_t |r*(t) - f(theta(t))|, over the completed runs that have the metric: [`extreme`]) and
 //! its first failures in key order.
 
-use records::runs::RunRow;
+use records::RunRow;
 
 /// The most failures a summary lists (the count gives the rest).
 pub const LISTED_FAILURES: usize = 10;
@@ -100,9 +100,9 @@ pub fn summary<'a>(runs: &[&'a RunRow]) -> SweepSummary<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use records::runs::Status;
-    use spec::run_key::RunKey;
-    use spec::solver_kind::SolverKind;
+    use records::Status;
+    use spec::RunKey;
+    use spec::SolverKind;
 
     fn run(i: usize, drift: Option<f64>, error: Option<f64>, failed: bool) -> RunRow {
         let key = RunKey::parse(&format!("s / v{i} / exact")).unwrap();

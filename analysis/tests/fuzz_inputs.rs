@@ -245,12 +245,12 @@ fn committed_paper() -> (String, String) {
 /// What a loaded paper must satisfy, whatever its file said (`analysis::paper_rules`).
 fn checked(papers: &analysis::papers::Papers) {
     for p in &papers.papers {
-        assert!(p.claims.len() <= analysis::paper_rules::MAX_CLAIMS);
-        assert!(analysis::report_text::is_one_line(&p.title));
+        assert!(p.claims.len() <= analysis::MAX_CLAIMS);
+        assert!(analysis::is_one_line(&p.title));
     }
     for v in &papers.values {
         assert!(v.value.is_finite(), "{v:?}");
-        assert!(analysis::published_metrics::PUBLISHED_METRICS.contains(&v.metric.as_str()));
+        assert!(analysis::PUBLISHED_METRICS.contains(&v.metric.as_str()));
     }
 }
 

@@ -4,7 +4,7 @@
 #[test]
 fn the_committed_leaderboard_is_the_one_the_committed_runs_give() {
     let root = catalog::root::from_current_dir().unwrap();
-    let runs = store::runs::read_runs(&root.join("results/runs.csv")).unwrap();
+    let runs = store::read_runs(&root.join("results/runs.csv")).unwrap();
     let path = root.join("results/leaderboard.csv");
     let committed =
         std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));

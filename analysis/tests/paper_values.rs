@@ -118,8 +118,8 @@ fn companions_name_variants_or_runs() {
 #[test]
 fn a_published_time_is_compared_with_the_first_run_of_its_solver() {
     use records::index::Runs;
-    use records::runs::RunRow;
-    use spec::solver_kind::SolverKind;
+    use records::RunRow;
+    use spec::SolverKind;
     let dir = papers_dir(
         "timed",
         &format!("{HEADER}demo,T1,e,A,drift_1,1e-6,\ndemo,T2,e,A,compute_time_s,2.5,\n"),
@@ -127,7 +127,7 @@ fn a_published_time_is_compared_with_the_first_run_of_its_solver() {
     let papers = Papers::load(&dir).unwrap();
     let blank = |variant: &str, solver: &str| {
         RunRow::blank(
-            &spec::run_key::RunKey::from_ids("demo-e", variant, solver).unwrap(),
+            &spec::RunKey::from_ids("demo-e", variant, solver).unwrap(),
             SolverKind::Exact,
         )
     };
@@ -136,7 +136,7 @@ fn a_published_time_is_compared_with_the_first_run_of_its_solver() {
         blank("v", "m3"),
         blank("u", "exact"),
         RunRow::blank(
-            &spec::run_key::RunKey::from_ids("other", "a", "exact").unwrap(),
+            &spec::RunKey::from_ids("other", "a", "exact").unwrap(),
             SolverKind::Exact,
         ),
     ]);

@@ -11,7 +11,7 @@
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use driftbench_benches::fast_config;
 use qp::Qp;
-use spec::naming::slug;
+use spec::slug;
 
 use control::control_loop::{run_loop, LoopSettings, Observer};
 use control::method::{Method, Numerical};

@@ -1,4 +1,4 @@
-//! Whole runs through `simulation::run::run_job`, exactly as `reproduce` runs them (the ODE
+//! Whole runs through `simulation::run_job`, exactly as `reproduce` runs them (the ODE
 //! integration of arm + solver, the metrics, the score against the exact optimum along the run),
 //! for the runs `benches/cases.toml` lists (`runs`): the exact column and the neural runs of one
 //! experiment per velocity-level paper. Group `runs`, ids `<experiment>/<solver>`.
@@ -10,8 +10,8 @@
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion, SamplingMode};
 use driftbench_benches::{bench_cases, bench_id, experiment_jobs, find_run, whole_run_config};
-use simulation::run::run_job;
-use simulation::simulate::Outcome;
+use simulation::run_job;
+use simulation::Outcome;
 
 fn whole_runs(c: &mut Criterion) {
     let jobs = experiment_jobs();

@@ -8,8 +8,8 @@
 //! `cargo bench -p driftbench-benches --bench sweep_scale` (about a minute; the numbers are in
 //! docs/cluster.md). Under `cargo test --benches` it runs the smallest size only.
 
-use records::runs::{merge, RunRow};
-use spec::run::RunSpec;
+use records::{merge_runs, RunRow};
+use spec::RunSpec;
 use std::time::Instant;
 
 /// An experiment file whose one variant sweeps kong2019's mu over `n` values (exact column
@@ -88,10 +88,12 @@ fn main() {
         if n <= 100_000 {
             let rows: Vec<RunRow> = jobs
                 .iter()
-                .map(|j| RunRow::blank(&j.key(), spec::solver_kind::SolverKind::Exact))
+                .map(|j| RunRow::blank(&j.key(), spec::SolverKind::Exact))
                 .collect();
             let half = rows[..n / 2].to_vec();
-            timed("merge stored + fresh rows", n, || merge(rows, half).len());
+            timed("merge_runs stored + fresh rows", n, || {
+                merge_runs(rows, half).len()
+            });
         }
     }
 }

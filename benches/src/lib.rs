@@ -24,6 +24,7 @@
 
 pub mod telemetry;
 
+
 use std::sync::Arc;
 use std::time::Duration;
 
@@ -31,14 +32,14 @@ use criterion::Criterion;
 use nalgebra::DVector;
 use reproduce::experiments::load_dir;
 use robots::{Dynamics, Jaco2, Katana6m180, Robot};
-use schemes::build::build_scheme;
+use schemes::build_scheme;
 use schemes::paths::{build_path, Path};
-use schemes::scheme::Scheme;
-use settings::solver_spec::SolverSpec;
+use schemes::Scheme;
+use settings::SolverSpec;
 use solvers::neural::NeuralSolver;
 use solvers::{random_qp, ExactSolver, Qp, QpShape};
-use spec::run::RunSpec;
-use spec::run::SolverChoice;
+use spec::RunSpec;
+use spec::SolverChoice;
 
 // ---------------------------------------------------------------------------------------------
 // Criterion settings
@@ -164,7 +165,7 @@ pub fn experiment_jobs() -> Vec<RunSpec> {
 /// The job with key `experiment / variant / solver` (ids, e.g. `jia2019-star / vltco /
 /// exact`).
 pub fn find_job(jobs: &[RunSpec], experiment: &str, variant: &str, solver: &str) -> RunSpec {
-    let key = spec::run_key::RunKey::from_ids(experiment, variant, solver)
+    let key = spec::RunKey::from_ids(experiment, variant, solver)
         .unwrap_or_else(|e| panic!("{experiment} / {variant} / {solver}: {e}"));
     jobs.iter()
         .find(|j| j.key() == key)
@@ -235,8 +236,7 @@ pub fn bench_cases() -> BenchCases {
 
 /// The job of a run key written `experiment / variant / solver`.
 pub fn find_run(jobs: &[RunSpec], key: &str) -> RunSpec {
-    let k =
-        spec::run_key::RunKey::parse(key).unwrap_or_else(|e| panic!("{CASES_FILE}: {key:?}: {e}"));
+    let k = spec::RunKey::parse(key).unwrap_or_else(|e| panic!("{CASES_FILE}: {key:?}: {e}"));
     find_job(jobs, &k.experiment, &k.variant, &k.solver)
 }
 
@@ -246,11 +246,11 @@ fn scheme_jobs<'a>(
     refs: &'a [SchemeRef],
 ) -> impl Iterator<Item = (&'a str, RunSpec)> + 'a {
     refs.iter().map(|r| {
-        let t = spec::run_key::TaskKey::parse(&r.task)
+        let t = spec::TaskKey::parse(&r.task)
             .unwrap_or_else(|e| panic!("{CASES_FILE}: {:?}: {e}", r.task));
         (
             r.label.as_str(),
-            find_job(jobs, &t.experiment, &t.variant, spec::run::EXACT_ID),
+            find_job(jobs, &t.experiment, &t.variant, spec::EXACT_ID),
         )
     })
 }
@@ -332,7 +332,7 @@ impl SchemeCase {
     }
 
     /// Overwrites `qp_dot` with the QP's time derivative at the case's state.
-    pub fn build_dot(&self, qp_dot: &mut Qp, scratch: &mut qp::dot::QpDotScratch) {
+    pub fn build_dot(&self, qp_dot: &mut Qp, scratch: &mut qp::QpDotScratch) {
         let s = &self.state;
         self.scheme
             .build_dot(s.t, &s.theta, &s.thetadot, &s.thetaddot, qp_dot, scratch);

@@ -2,20 +2,20 @@
 //!
 //! - The experiment format: [`ExperimentFileError`] (the file) wraps [`ExperimentError`] (the
 //!   text), which wraps [`TomlError`], [`SweepError`] (the sweep grammar) and [`FieldError`] at
-//!   a [`FieldAt`] (which wraps `spec::run::SetupError`, the scheme specifications'
+//!   a [`FieldAt`] (which wraps `spec::SetupError`, the scheme specifications'
 //!   `SchemeError` and the naming rules' `NameError`).
-//! - Building a run's parts fails with `spec::run::SetupError` (crate `spec`, beside the run
+//! - Building a run's parts fails with `spec::SetupError` (crate `spec`, beside the run
 //!   it describes): the engine (crate `simulation`) returns it when a run cannot be built, and
 //!   the experiment format places it at the field at fault when the orchestrator checks a
 //!   file's runs ([`crate::experiment::DeclaredRun::at_fault`]).
 //!
-//! A network's parameter errors (`settings::error::NetworkError`) and the integrator settings'
-//! (`settings::error::IntegratorError`) are crate `settings`', below both this crate and the
+//! A network's parameter errors (`settings::NetworkError`) and the integrator settings'
+//! (`settings::IntegratorError`) are crate `settings`', below both this crate and the
 //! solvers.
 
-use settings::error::IntegratorError;
-use spec::naming::NameError;
-use spec::scheme::SchemeError;
+use settings::IntegratorError;
+use spec::NameError;
+use spec::SchemeError;
 use std::path::PathBuf;
 
 /// A TOML (or serde) error of an experiment file: its message, line and column, never the
@@ -326,7 +326,7 @@ impl std::fmt::Display for FieldAt {
 /// What is wrong with one field of an experiment file.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum FieldError {
-    /// The id or label cannot name a file ([`spec::naming::check_name`]).
+    /// The id or label cannot name a file ([`spec::check_name`]).
     #[error(transparent)]
     Name(#[from] NameError),
     /// An id that is not a valid id of its kind (`spec::ids`).
@@ -416,21 +416,21 @@ pub enum FieldError {
         /// Its joint count.
         joints: usize,
     },
-    /// A scheme parameter is out of its range ([`spec::scheme::SchemeSpec::validate`]).
+    /// A scheme parameter is out of its range ([`spec::SchemeSpec::validate`]).
     #[error(transparent)]
     Scheme(#[from] SchemeError),
     /// The variant runs nothing: no exact run, no solvers and no numerical methods.
     #[error("variant runs nothing (exact = false and no solvers)")]
     RunsNothing,
-    /// A limits override does not fit the robot ([`spec::run::LimitsSpec::check`]).
+    /// A limits override does not fit the robot ([`spec::LimitsSpec::check`]).
     #[error(transparent)]
-    Limits(#[from] spec::run::LimitsError),
+    Limits(#[from] spec::LimitsError),
     /// A numerical method's specification fails its check (`numerical[k]`).
     #[error(transparent)]
-    Numerical(#[from] spec::numerical::NumericalSpecError),
+    Numerical(#[from] spec::NumericalSpecError),
     /// A run of the variant cannot be built (robot, pose, path, scheme or network).
     #[error(transparent)]
-    Setup(#[from] spec::run::SetupError),
+    Setup(#[from] spec::SetupError),
     /// Two runs of the variant have the same run key.
     #[error("run \"{key}\" is listed twice (experiment / variant / solver ids must be unique)")]
     RunTwice {

@@ -10,19 +10,19 @@
 //! Every run an experiment file describes is a [`RunSpec`].
 
 use crate::error::{ExperimentError, ExperimentFileError, FieldAt, FieldError, TomlError};
-use robots::mounted::Mount;
+use robots::Mount;
 use serde::{Deserialize, Serialize};
-use settings::integrator::{IntegratorSettings, Method};
-use settings::solver_spec::SolverSpec;
+use settings::SolverSpec;
+use settings::{IntegratorSettings, Method};
 use spec::ids::{ExperimentId, VariantId};
-use spec::mount::MountError;
-use spec::mount::MountSpec;
-use spec::naming::{slug, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
-use spec::numerical::NumericalSpec;
-use spec::path::PathSpec;
-use spec::run::{JobPart, LimitsSpec, NetworkInit, RunSpec, Scoring, SetupError, SolverChoice};
-use spec::run_key::RunKey;
-use spec::scheme::SchemeSpec;
+use spec::MountError;
+use spec::MountSpec;
+use spec::NumericalSpec;
+use spec::PathSpec;
+use spec::RunKey;
+use spec::SchemeSpec;
+use spec::{slug, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
+use spec::{JobPart, LimitsSpec, NetworkInit, RunSpec, Scoring, SetupError, SolverChoice};
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
@@ -52,10 +52,10 @@ pub struct Experiment {
     pub id: String,
     /// What the paper prints for it (e.g. "Table 2; Figs 2-4").
     pub paper_output: String,
-    /// The robot's model name ([`robots::registry`], e.g. `jaco2-pen`).
+    /// The robot's model name ([`robots::robot_by_name`], e.g. `jaco2-pen`).
     pub robot: String,
     /// A tool offset `[x, y, z]` (m) in the robot's tool frame, added to its task point
-    /// ([`robots::mounted`]; needs a robot with a tool frame).
+    /// ([`robots::Mounted`]; needs a robot with a tool frame).
     #[serde(default)]
     pub tool: Option<[f64; 3]>,
     /// Where the robot stands: the run's world from the robot's ([`BaseSpec`]).
@@ -122,7 +122,7 @@ pub struct Variant {
     #[serde(default)]
     pub solvers: Vec<SolverSpec>,
     /// QP solvers run as this variant's solvers at every instant of a fixed-step loop
-    /// ([`spec::numerical`]).
+    /// ([`spec::NumericalSpec`]).
     #[serde(default)]
     pub numerical: Vec<NumericalSpec>,
     /// Run the exact column (default true).
@@ -209,7 +209,7 @@ impl Variant {
 
 /// Where an experiment's robot stands: the run's world from the robot's own world frame,
 /// `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)` with `rpy = [roll, pitch, yaw]` (the URDF
-/// convention; [`robots::mounted::Mount::new`] bounds them).
+/// convention; [`robots::Mount::new`] bounds them).
 #[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct BaseSpec {
@@ -256,6 +256,7 @@ const CHECKED_IDS: &str =
 /// experiment's and variant's mount before any run is made.
 const CHECKED_MOUNT: &str = "the experiment file's check refuses an invalid tool or base";
 
+
 impl PaperFile {
     /// Reads (with the input reader, crate `inputs`: a regular file that does not lead out of
     /// its directory, at most [`inputs::Kind::Experiment`]'s cap) and validates one experiment
@@ -297,7 +298,7 @@ impl PaperFile {
 
     /// [`PaperFile::from_toml`], its sweeps expanding into at most `budget` variants.
     fn from_toml_within(text: &str, budget: &mut usize) -> Result<Self, ExperimentError> {
-        let mut doc: toml::Table = inputs::toml_error::from_str(text)?;
+        let mut doc: toml::Table = inputs::parse_toml(text)?;
         // Sweeps (crate::sweep) are taken out of the parsed TOML, the rest is read, and each
         // expanded variant is read into its place as it is made; a file without one is read
         // from its text, so serde's errors keep their line numbers.
@@ -315,7 +316,7 @@ impl PaperFile {
             )?;
             file
         } else {
-            inputs::toml_error::from_str(text)?
+            inputs::parse_toml(text)?
         };
         file.validate()?;
         Ok(file)
@@ -740,9 +741,9 @@ fn check_variant_names<'a>(
 }
 
 /// An id or label becomes a directory or file name (results/traces/<id>/<label>__<solver>.csv,
-/// report/figures/): see [`spec::naming::check_name`].
+/// report/figures/): see [`spec::check_name`].
 fn check_name(name: &str, max: usize, at: FieldAt) -> Result<(), ExperimentError> {
-    spec::naming::check_name(name, max).map_err(|e| field(at, e))
+    spec::check_name(name, max).map_err(|e| field(at, e))
 }
 
 /// An id (paper, experiment, variant) must already be a slug: ids name files and reach the
@@ -763,10 +764,10 @@ fn field(at: FieldAt, error: impl Into<FieldError>) -> ExperimentError {
     }
 }
 
-/// Joint count of the robot called `name` (see [`robots::registry`]), or why there is none (an
+/// Joint count of the robot called `name` (see [`robots::robot_by_name`]), or why there is none (an
 /// unknown name, with the valid choices; an invalid robot file, with its file and field).
 fn robot_dof(name: &str) -> Result<usize, FieldError> {
-    robots::registry::robot_by_name(name)
+    robots::robot_by_name(name)
         .map(|r| r.dof())
         .map_err(|e| FieldError::UnknownRobot {
             robot: name.to_string(),

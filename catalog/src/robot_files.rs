@@ -1,6 +1,6 @@
 //! A paper's own arms: every `papers/<paper>/robots/*.toml` is read at run time (through the one
 //! reader, [`inputs`]: a regular file inside its directory, at most [`inputs::Kind::RobotFile`]'s
-//! cap) and registered with the robot registry (`robots::registry::register_file`) under its
+//! cap) and registered with the robot registry (`robots::register_file`) under its
 //! file's stem, so that a paper is one folder and a robot file needs no rebuild. Each file is
 //! validated as it is registered; a file that cannot be read or is invalid is registered with
 //! its error, which only the runs of that robot meet (exit 2, naming the file and the field).
@@ -39,7 +39,7 @@ pub enum RobotPathError {
     /// A registered file is invalid, or its name is taken: the registry's error (the file and
     /// the field).
     #[error("{0}")]
-    Invalid(robots::registry::RegistryError),
+    Invalid(robots::RegistryError),
 }
 
 /// Registers every `<papers>/<paper>/robots/*.toml`, in sorted order (papers, then files), once
@@ -78,7 +78,7 @@ fn register_robot_file(file: &Path) -> String {
         .filter(|d| !d.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
     let text = read_text(file, Kind::RobotFile, Origin::Under(dir));
-    robots::registry::register_file(file, text.as_ref().map(String::as_str));
+    robots::register_file(file, text.as_ref().map(String::as_str));
     name
 }
 
@@ -109,7 +109,7 @@ pub fn register_path(path: &Path) -> Result<Vec<String>, RobotPathError> {
     }
     let names: Vec<String> = files.iter().map(|f| register_robot_file(f)).collect();
     for name in &names {
-        robots::registry::robot_by_name(name).map_err(RobotPathError::Invalid)?;
+        robots::robot_by_name(name).map_err(RobotPathError::Invalid)?;
     }
     Ok(names)
 }

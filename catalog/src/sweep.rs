@@ -685,7 +685,7 @@ fn make_id(base: &str, axes: &[Axis], idx: &[usize]) -> String {
             ));
         }
     }
-    settings::slug::slug(&text)
+    settings::slug(&text)
 }
 
 /// A value as TOML writes it: `2`, `2.0`, `0.25`, `true`; strings without quotes.

@@ -1,11 +1,11 @@
 //! The control experiments' standard task set, read from `experiments/`[`TASK_SET_FILE`]: one
 //! run of each paper's scheme (experiment and variant ids) and the budget of their runs (the
-//! period sweep, the cycles, the claim's check runs), into `spec::task_set::TaskSet`. The
+//! period sweep, the cycles, the claim's check runs), into `spec::TaskSet`. The
 //! engine (crate `control`) takes the set as data and reads no file; the orchestrator reads it
 //! here, through the input reader (crate `inputs`).
 
 use crate::error::TaskSetError;
-use spec::task_set::{Budget, TaskRef, TaskSet, MAIN_H};
+use spec::{Budget, TaskRef, TaskSet, MAIN_H};
 use std::path::Path;
 
 /// Where the standard task set is declared, relative to the experiments directory (a
@@ -79,7 +79,7 @@ pub fn load(experiments: &Path) -> Result<TaskSet, TaskSetError> {
         Err(e) => return Err(e.into()),
     };
     let file: TaskSetFile =
-        inputs::toml_error::from_str(&text).map_err(|source| TaskSetError::Toml {
+        inputs::parse_toml(&text).map_err(|source| TaskSetError::Toml {
             path: shown.clone(),
             source,
         })?;

@@ -7,7 +7,7 @@
 //! Both are the exact solutions of the arm's kinematic ODE (theta' = u, resp. theta'' = u) for
 //! constant u: no integration error.
 
-use spec::scheme::Level;
+use spec::Level;
 
 /// Advances (theta, thetadot) over one tick of length `h` under the held `command` (its first
 /// N entries; the rest of the QP's x is not a joint command).

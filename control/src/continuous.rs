@@ -1,5 +1,5 @@
 //! The many-cycles runs in continuous time, as the papers simulate: the exact column (the QP's
-//! optimum in the loop, [`simulation::simulate`] with the experiment's exact integrator,
+//! optimum in the loop, [`simulation::simulate()`] with the experiment's exact integrator,
 //! Dormand-Prince 5(4) at RelTol 1e-11) over the task's path repeated K times.
 //!
 //! The K cycles are K runs of one cycle each, every run started where the previous ended (its
@@ -11,9 +11,9 @@
 
 use crate::task::{Task, TaskArm};
 use records::control::ControlStatus;
-use simulation::simulate::{simulate, Outcome, Settings, Solver};
-use spec::run::NetworkInit;
-use spec::run::Scoring;
+use simulation::{simulate, Outcome, Settings, Solver};
+use spec::NetworkInit;
+use spec::Scoring;
 
 /// The drifts and per-cycle changes of a continuous run, and how it ended.
 #[derive(Clone, Debug, PartialEq)]

@@ -25,13 +25,13 @@ use crate::arm::advance;
 use crate::error::ControlError;
 use crate::tick::TickSolver;
 use nalgebra::DVector;
-use qp::dot::QpDotScratch;
+use qp::QpDotScratch;
 use qp::{Qp, QpSolve};
 use robots::Robot;
 use schemes::paths::Path;
-use schemes::scheme::Scheme;
+use schemes::Scheme;
 use solvers::ExactPath;
-use spec::scheme::Level;
+use spec::Level;
 use std::time::Instant;
 
 /// The start transient left out of [`LoopOutcome::max_dx_settled`] (s).

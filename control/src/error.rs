@@ -2,9 +2,9 @@
 //! (a task that cannot be built), the solvers' (networks, LVI, OSQP, the exact QP) and the records
 //! layer's (the result files).
 
-use settings::error::NetworkError;
+use settings::NetworkError;
 use solvers::{ExactError, QpSolverError};
-use store::error::ControlFileError;
+use store::ControlFileError;
 
 /// Why a control run, or the whole reproduction, could not go on.
 #[derive(Debug, thiserror::Error)]

@@ -1,6 +1,6 @@
 //! Latency percentiles of a run's ticks.
 
-use records::percentile::percentile;
+use records::percentile;
 use serde::Serialize;
 
 /// p50, p99 and max of a set of durations, in microseconds (the workspace's percentile, `records::percentile`).

@@ -25,7 +25,7 @@
 //!
 //! The standard task set and the budget of its runs are declared in
 //! `experiments/control/tasks.toml`; the orchestrator reads it (`catalog::task_set`) and hands
-//! it over as data (`spec::task_set::TaskSet`), with every run of the experiment files: this
+//! it over as data (`spec::TaskSet`), with every run of the experiment files: this
 //! crate reads no file.
 
 // The modules used only inside the crate; what other crates use is re-exported below or lives

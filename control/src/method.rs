@@ -8,8 +8,7 @@ use crate::tick::TickSolver;
 use qp::QpDims;
 use records::control::Family;
 use settings::qp_solver::{QpSolverKey, QpSolverSettings};
-use settings::solver_spec::SolverSpec;
-use solvers::lvi_numerical;
+use settings::SolverSpec;
 
 /// A registered QP solver (`solvers::registry`) with its settings, solved at every tick.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -23,14 +22,14 @@ pub struct Numerical {
 impl Numerical {
     /// The built-in solver `id` at its defaults; the PLPE methods to the control experiments'
     /// stopping rule instead, |e(U)|_2 <= 1e-10 within 200000 iterations
-    /// ([`lvi_numerical::DEFAULT_TOLERANCE`], [`lvi_numerical::DEFAULT_MAX_ITERATIONS`]).
+    /// ([`solvers::LVI_DEFAULT_TOLERANCE`], [`solvers::LVI_DEFAULT_MAX_ITERATIONS`]).
     fn builtin(info: &'static settings::qp_solver::QpSolverInfo) -> Numerical {
         let plpe = info.tolerance.is_some();
         Numerical {
             solver: info.key(),
             settings: QpSolverSettings {
-                tolerance: plpe.then_some(lvi_numerical::DEFAULT_TOLERANCE),
-                max_iterations: plpe.then_some(lvi_numerical::DEFAULT_MAX_ITERATIONS),
+                tolerance: plpe.then_some(solvers::LVI_DEFAULT_TOLERANCE),
+                max_iterations: plpe.then_some(solvers::LVI_DEFAULT_MAX_ITERATIONS),
             },
         }
     }

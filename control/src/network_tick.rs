@@ -25,7 +25,7 @@ use crate::error::ControlError;
 use crate::tick::TickSolver;
 use qp::{Qp, QpDims, QpSolve};
 use settings::projection::{ProjectionErrorForm, Scaling};
-use settings::solver_spec::SolverSpec;
+use settings::SolverSpec;
 use solvers::neural::{build_solver, NeuralSolver};
 use std::mem;
 

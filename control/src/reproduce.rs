@@ -22,13 +22,13 @@ use crate::trend::classify;
 use records::control::{steps_needed, ClaimCheck};
 use records::control::{ControlRow, ControlStatus, CycleRow, StabilityRow, TrendRow};
 use settings::projection::ProjectionErrorForm;
-use settings::solver_spec::SolverSpec;
-use simulation::runner::map_costliest_first;
+use settings::SolverSpec;
+use simulation::map_costliest_first;
 use solvers::neural::build_solver;
 use solvers::HotActiveSet;
 use spec::ids::SolverId;
-use spec::run::RunSpec;
-use spec::task_set::{Budget, TaskSet};
+use spec::RunSpec;
+use spec::{Budget, TaskSet};
 use store::results_dir;
 
 /// The method label of the continuous-time exact column in the many-cycles results.

@@ -27,7 +27,7 @@
 use crate::control_loop::Observer;
 use nalgebra::{DMatrix, Schur};
 use qp::Qp;
-use settings::solver_spec::SolverSpec;
+use settings::SolverSpec;
 use solvers::neural::NeuralSolver;
 
 /// Ticks between two states the Jacobian is evaluated at.

@@ -1,4 +1,4 @@
-//! The tasks of the control experiments: the standard task set (`spec::task_set::TaskSet`: one
+//! The tasks of the control experiments: the standard task set (`spec::TaskSet`: one
 //! run of each paper's scheme by experiment and variant ids, and the budget of their runs, which
 //! the orchestrator reads from `experiments/control/tasks.toml` with `catalog::task_set`)
 //! resolved against the experiment files' runs (robot, closed path, theta0, scheme and the
@@ -8,12 +8,12 @@
 use crate::error::ControlError;
 use robots::Robot;
 use schemes::paths::Path;
-use schemes::scheme::Scheme;
-use settings::solver_spec::SolverSpec;
-use simulation::run::{build_cyclic_parts, job_model, job_robot};
-use spec::run::RunSpec;
-use spec::run::SolverChoice;
-use spec::task_set::TaskRef;
+use schemes::Scheme;
+use settings::SolverSpec;
+use simulation::{build_cyclic_parts, job_model, job_robot};
+use spec::RunSpec;
+use spec::SolverChoice;
+use spec::TaskRef;
 
 /// A task resolved from the experiment files.
 #[derive(Clone, Debug)]
@@ -94,12 +94,12 @@ pub fn with_task<R>(
     f: impl FnOnce(&TaskArm<'_>) -> R,
 ) -> Result<R, ControlError> {
     let job = &task.job;
-    let setup = |e: spec::run::SetupError| ControlError::Setup {
+    let setup = |e: spec::SetupError| ControlError::Setup {
         task: task.id(),
         message: e.to_string(),
     };
     let model = job_model(job).map_err(|e| match e {
-        spec::run::SetupError::UnknownRobot(e) => {
+        spec::SetupError::UnknownRobot(e) => {
             ControlError::UnknownTask(format!("robot {}: {e}", job.robot))
         }
         e => setup(e),

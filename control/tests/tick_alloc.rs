@@ -6,7 +6,7 @@
 use alloc_count::count;
 use control::method::{Method, Numerical};
 use control::network_tick::Discretisation;
-use settings::solver_spec::SolverSpec;
+use settings::SolverSpec;
 use solvers::{random_qp, QpShape};
 
 fn methods() -> Vec<Method> {

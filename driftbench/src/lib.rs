@@ -167,10 +167,10 @@
 use catalog::error::ExperimentFileError;
 use catalog::experiment::{load_dir, PaperFile};
 use spec::ids::PaperId;
-use spec::run::RunSpec;
+use spec::RunSpec;
 use std::path::{Path, PathBuf};
 
-pub use store::runs::read_runs;
+pub use store::read_runs;
 
 /// What the front door's own helpers can fail with; each wraps the layer that failed.
 #[derive(Debug, thiserror::Error)]
@@ -244,7 +244,7 @@ fn files(root: &Path) -> Result<Vec<PaperFile>, Error> {
     let files = load_dir(&dir)?;
     for file in &files {
         file.declared_runs()
-            .try_for_each(|run| simulation::run::check_job(&run.spec).map_err(|e| run.at_fault(e)))
+            .try_for_each(|run| simulation::check_job(&run.spec).map_err(|e| run.at_fault(e)))
             .map_err(|error| ExperimentFileError::Invalid {
                 file: dir.join(&file.file_name),
                 error,
@@ -254,7 +254,7 @@ fn files(root: &Path) -> Result<Vec<PaperFile>, Error> {
 }
 
 /// The run of the experiment files keyed (experiment id, variant id, solver id), its
-/// [`RunKey`](spec::run_key::RunKey); the error lists the experiment's runs by their ids.
+/// [`RunKey`](spec::RunKey); the error lists the experiment's runs by their ids.
 pub fn job(root: &Path, experiment: &str, variant: &str, solver: &str) -> Result<RunSpec, Error> {
     let all = jobs(root)?;
     let of_experiment: Vec<&RunSpec> = all.iter().filter(|j| j.experiment == experiment).collect();
@@ -277,7 +277,7 @@ pub fn job(root: &Path, experiment: &str, variant: &str, solver: &str) -> Result
 /// Runs the task of `job` with the network `network` builds in place of the job's own solver
 /// (`simulation::run::run_job_with_network`).
 pub fn run_with_network(job: &RunSpec, network: run::NetworkBuilder<'_>) -> run::RunRecord {
-    simulation::run::run_job_with_network(job, network)
+    simulation::run_job_with_network(job, network)
 }
 
 /// The names the tour uses, in one import: `use driftbench::prelude::*;`. Load a paper's
@@ -299,7 +299,7 @@ pub mod prelude {
 /// Denavit-Hartenberg table, [`RobotSpec`], made a model by [`DataRobot`]; a URDF chain,
 /// [`ChainRobot`]) and the suite's built-in arms.
 pub mod robot {
-    pub use robots::robot_file::{RobotFileError, RobotSpec};
+    pub use robots::{RobotFileError, RobotSpec};
     pub use robots::{ChainRobot, DataRobot, Jaco2, JointLimits, Katana6m180, NLink, Panda, Robot};
 }
 
@@ -328,21 +328,21 @@ pub mod solver {
 /// ids), running it ([`run_job`]; with a network of your own, [`crate::run_with_network`]) and
 /// what it gives ([`RunRecord`]: the [`Run`] with its [`Outcome`]).
 pub mod run {
-    pub use settings::integrator::IntegratorSettings;
-    pub use settings::solver_spec::SolverSpec;
-    pub use simulation::run::{run_job, NetworkBuilder, RunRecord};
-    pub use simulation::simulate::{Outcome, Run};
+    pub use settings::IntegratorSettings;
+    pub use settings::SolverSpec;
+    pub use simulation::{run_job, NetworkBuilder, RunRecord};
+    pub use simulation::{Outcome, Run};
     pub use spec::ids::{ExperimentId, IdError, PaperId, SolverId, VariantId};
-    pub use spec::run::{RunSpec, SetupError, SolverChoice};
-    pub use spec::run_key::{RunKey, TaskKey};
-    pub use spec::solver_kind::SolverKind;
+    pub use spec::{RunSpec, SetupError, SolverChoice};
+    pub use spec::{RunKey, TaskKey};
+    pub use spec::SolverKind;
 }
 
 /// The rows of `results/`: a run's row of `runs.csv` ([`RunRow`]), read by [`read_runs`].
 pub mod results {
     pub use crate::read_runs;
-    pub use records::runs::RunRow;
-    pub use store::error::RunsError;
+    pub use records::RunRow;
+    pub use store::RunsError;
 }
 
 /// A trajectory made elsewhere (MATLAB, Python, a real arm): samples (t_k, theta_k)
@@ -350,7 +350,7 @@ pub mod results {
 /// ([`score_trajectory`]).
 pub mod score {
     pub use inputs::trajectory::{read, ReadError, Trajectory};
-    pub use simulation::score_trajectory::{score_trajectory, TrajectoryError};
+    pub use simulation::{score_trajectory, TrajectoryError};
 }
 
 #[cfg(test)]

@@ -34,13 +34,13 @@
 //! The sampling gap is what holding each instant's command over h adds (the loop's forward
 //! Euler step), the stopping rule what ending each instant's iteration at tol adds.
 
-use records::attribution::{AttributionRow, Component};
-use records::ladder::{LadderMethod, LadderRow};
-use records::runs::RunRow;
-use settings::solver_spec::SolverSpec;
-use spec::run::RunSpec;
-use spec::run::Scoring;
-use spec::run::SolverChoice;
+use records::RunRow;
+use records::{AttributionRow, Component};
+use records::{LadderMethod, LadderRow};
+use settings::SolverSpec;
+use spec::RunSpec;
+use spec::Scoring;
+use spec::SolverChoice;
 
 /// The largest RelTol whose rung may serve as a converged reference.
 pub const CONVERGED_RTOL: f64 = 1e-8;

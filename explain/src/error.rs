@@ -5,7 +5,7 @@
 //! wrong, [`FamilyError`], wrapped by [`InferenceError::Family`]).
 
 use records::table::TableError;
-use store::error::IoError;
+use store::IoError;
 
 /// Why a results file of the explanation layer could not be read or written.
 #[derive(Debug, thiserror::Error)]

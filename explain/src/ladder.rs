@@ -29,13 +29,13 @@
 //! the sampled scheme with the QP solved to 1e-10. Its rows carry the method
 //! [`LadderMethod::FixedStep`], the stopping tolerance in `rtol`, `atol` = 0 and h in `max_step`.
 
-use records::ladder::{LadderMethod, LadderRow};
-use records::runs::RunRow;
-use settings::integrator::{IntegratorSettings, Method};
-use settings::solver_spec::SolverSpec;
-use spec::run::RunSpec;
-use spec::run::Scoring;
-use spec::run::SolverChoice;
+use records::RunRow;
+use records::{LadderMethod, LadderRow};
+use settings::SolverSpec;
+use settings::{IntegratorSettings, Method};
+use spec::RunSpec;
+use spec::Scoring;
+use spec::SolverChoice;
 
 /// Accepted steps after which an implicit ladder rung is abandoned (every implicit run of the
 /// papers' experiments needs a few thousand; the finite-time network needed ~650,000 BDF steps
@@ -118,7 +118,7 @@ pub fn rungs(job: &RunSpec) -> Vec<IntegratorSettings> {
 }
 
 /// The jobs of `job`'s ladder (scoring off: only drift and position error are read): its
-/// [`rungs`], or for a numerical run the same loop stopped at each of
+/// `rungs`, or for a numerical run the same loop stopped at each of
 /// [`NUMERICAL_TOLERANCES`] (the run's own tolerance kept where it is not among them; a QP
 /// solver that takes no tolerance has the one rung, its own run).
 pub fn jobs(job: &RunSpec) -> Vec<RunSpec> {
@@ -137,7 +137,7 @@ pub fn jobs(job: &RunSpec) -> Vec<RunSpec> {
         return tolerances
             .into_iter()
             .map(|tolerance| RunSpec {
-                solver: SolverChoice::Numerical(spec::numerical::NumericalSpec {
+                solver: SolverChoice::Numerical(spec::NumericalSpec {
                     tolerance: Some(tolerance),
                     ..*spec
                 }),

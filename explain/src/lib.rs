@@ -1,11 +1,11 @@
 //! Why the published numbers differ: controlled re-runs around every run of a paper's solver.
 //!
-//! - [`ladder`]: each run re-integrated from RelTol 1e-3 to 1e-10 (BDF and Dormand-Prince; the
+//! - the ladder ([`ladder_jobs`]): each run re-integrated from RelTol 1e-3 to 1e-10 (BDF and Dormand-Prince; the
 //!   exact column to 1e-12; a numerical method's loop stopped at 1e-3 to 1e-10): which digits
 //!   are integration (or stopping-rule) noise, and the converged drifts.
-//! - [`attribution`]: each run's drift split into scheme + network lag + integration error
+//! - the attribution: each run's drift split into scheme + network lag + integration error
 //!   (a numerical method's: scheme + sampling gap + stopping rule; exact, telescoping), with
-//!   the effect of each switched ingredient beside it.
+//!   the effect of each switched ingredient ([`Switch`]) beside it.
 //! - [`inference`]: the setup the papers leave open (path pose and plane tilt, size, direction,
 //!   RMP reading; robot variant and MATLAB-default tolerances as discrete hypotheses) fitted to
 //!   a published table, jointly and column by column, always shown beside the declared setup,
@@ -17,30 +17,32 @@
 //! table, but the perturbation is an ingredient to attribute; the group-code experiments'
 //! "as coded" runs). Results: `results/ladder.csv`, `results/attribution.csv`
 //! (written by [`write()`]), `results/inference.csv` (by `reproduce infer`); their rows are
-//! [`records::ladder`], [`records::attribution`] and [`records::inference`]'s.
+//! [`records::LadderRow`], [`records::AttributionRow`] and [`records::inference`]'s.
 
-pub mod attribution;
-pub mod error;
+mod attribution;
+mod error;
 pub mod inference;
-pub mod ladder;
+mod ladder;
 
 use analysis::papers::Papers;
-use attribution::{attribution_rows, exact_counterpart, switch_jobs, Switch};
-use error::ExplainError;
-use records::attribution::AttributionRow;
+pub use attribution::Switch;
+use attribution::{attribution_rows, exact_counterpart, switch_jobs};
+pub use error::{ExplainError, InferenceError};
+pub use ladder::{jobs as ladder_jobs, NUMERICAL_TOLERANCES};
 use records::inference::{EntryRow, InferenceRow};
-use records::ladder::LadderRow;
-use records::runs::RunRow;
 use records::table::Row;
-use simulation::row::run_row;
-use simulation::runner::run_jobs;
-use spec::run::RunSpec;
-use spec::run::SolverChoice;
-use spec::run_key::RunKey;
+use records::AttributionRow;
+use records::LadderRow;
+use records::RunRow;
+use simulation::run_jobs;
+use simulation::run_row;
+use spec::RunKey;
+use spec::RunSpec;
+use spec::SolverChoice;
 use std::path::Path;
-use store::atomic::write_atomic;
-use store::error::{IoAction, IoError};
 use store::table::read_if_present;
+use store::write_atomic;
+use store::{IoAction, IoError};
 
 /// The runs to explain among `jobs`, in `jobs` order: the neural and numerical runs a
 /// published column maps onto and those of variants marked `explain = true`.

@@ -3,17 +3,17 @@
 //! inference recovers a known setup from a synthetic table made by the suite itself.
 
 use catalog::experiment::load_dir;
-use explain::attribution::Switch;
 use explain::inference::family::Family;
 use explain::inference::search::Target;
 use explain::inference::{evaluate, fit, Column, Setup, TableProblem};
-use explain::{explain, ladder};
-use records::attribution::Component;
-use records::ladder::LadderMethod;
-use settings::integrator::Method;
-use settings::solver_spec::SolverSpec;
-use spec::run::RunSpec;
-use spec::run::SolverChoice;
+use explain::Switch;
+use explain::{explain, ladder_jobs, NUMERICAL_TOLERANCES};
+use records::Component;
+use records::LadderMethod;
+use settings::Method;
+use settings::SolverSpec;
+use spec::RunSpec;
+use spec::SolverChoice;
 
 fn jobs() -> Vec<RunSpec> {
     let root = catalog::root::from_current_dir().unwrap();
@@ -26,7 +26,7 @@ fn jobs() -> Vec<RunSpec> {
 
 fn find(jobs: &[RunSpec], experiment: &str, variant: &str, solver: &str) -> RunSpec {
     jobs.iter()
-        .find(|j| j.key() == spec::run_key::RunKey::from_ids(experiment, variant, solver).unwrap())
+        .find(|j| j.key() == spec::RunKey::from_ids(experiment, variant, solver).unwrap())
         .unwrap_or_else(|| panic!("{experiment} / {variant} / {solver}"))
         .clone()
 }
@@ -112,7 +112,7 @@ fn numerical_runs_are_laddered_on_their_stopping_rule() {
     let target = find(&jobs, "robio2018-five-pointed-star", "rmp", "94lvi");
     let x = explain(std::slice::from_ref(&target), &jobs, false, "test");
     let rungs: Vec<_> = x.ladder.iter().filter(|r| r.solver_id == "94lvi").collect();
-    assert_eq!(rungs.len(), ladder::NUMERICAL_TOLERANCES.len());
+    assert_eq!(rungs.len(), NUMERICAL_TOLERANCES.len());
     assert!(rungs
         .iter()
         .all(|r| r.method == LadderMethod::FixedStep && r.max_step == Some(1e-3)));
@@ -199,12 +199,12 @@ fn switches_change_one_ingredient_only() {
     assert!(Switch::ClosedPath.apply(&znn_circle(&jobs)).is_none());
     assert!(Switch::FinerSmoothing.apply(&znn_circle(&jobs)).is_none());
     // Ladder rungs keep everything but the integrator.
-    for j in ladder::jobs(&perturbed) {
+    for j in ladder_jobs(&perturbed) {
         assert_eq!(
             (j.solver.clone(), j.path.clone()),
             (perturbed.solver.clone(), perturbed.path.clone())
         );
-        assert_eq!(j.scoring, spec::run::Scoring::Off);
+        assert_eq!(j.scoring, spec::Scoring::Off);
     }
 }
 
@@ -218,12 +218,12 @@ fn inference_recovers_a_known_setup() {
     let exact = find(&jobs, "kong2019-triangle", "znn-eq22", "exact");
     // Tight tolerances: the drift here is ~1e-5, so AbsTol 1e-8 would leave 1e-3 of noise.
     let run = RunSpec {
-        integrator: settings::integrator::IntegratorSettings {
+        integrator: settings::IntegratorSettings {
             rtol: 1e-10,
             atol: 1e-13,
             ..explain::inference::inference_integrator()
         },
-        scoring: spec::run::Scoring::Off,
+        scoring: spec::Scoring::Off,
         theta0: exact.theta_ref.clone(),
         ..exact
     };
@@ -299,8 +299,8 @@ fn inference_recovers_a_known_setup() {
 /// first scored distance to the optimum is at round-off, where the zero start's is |x*(0)|.
 #[test]
 fn network_can_start_at_the_exact_optimum() {
-    use simulation::run::run_job;
-    use spec::run::NetworkInit;
+    use simulation::run_job;
+    use spec::NetworkInit;
     let jobs = jobs();
     // The deviated start: x*(0) = -mu (theta0 - theta*0) + ... is not zero.
     let zero = find(&jobs, "kong2019-circle", "znn-eq22", "znn");

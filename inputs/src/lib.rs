@@ -6,35 +6,38 @@
 //!
 //! Every such file is read by [`read()`] (or [`read_text`], or as a stream by [`open()`]), which
 //! - opens without blocking (a FIFO or a device answers at once, and is refused),
-//! - reads regular files only, after following symbolic links ([`error::InputError::NotRegular`]),
+//! - reads regular files only, after following symbolic links ([`InputError::NotRegular`]),
 //! - refuses a file that, once its links are followed, lies outside the directory it was found
 //!   in ([`Origin::Under`], e.g. `experiments/`), or, for a file named on the command line
 //!   ([`Origin::Named`]), the directory it is named in; the error says whether a symbolic link
-//!   or the path itself (`../`) leads out ([`error::Via`]),
+//!   or the path itself (`../`) leads out ([`Via`]),
 //! - reads at most the cap of its [`Kind`] plus one byte, and refuses a larger file,
-//! - and says what is wrong without quoting the file: [`error::InputError`] names the path and
-//!   the rule, [`toml_error::TomlError`] a TOML error's message and line and column, without the
+//! - and says what is wrong without quoting the file: [`InputError`] names the path and
+//!   the rule, [`TomlError`] (from [`parse_toml`]) a TOML error's message and line and column, without the
 //!   source line that `toml`'s own message shows.
 //!
 //! The formats of trajectories made elsewhere (a CSV table, a MATLAB / Octave MAT-file) are
 //! read here too, in [`trajectory`]: they are outside files, not the suite's own.
 //!
 //! A directory the program keeps for itself outside a checkout (the Python package's data
-//! cache) is filled by [`private_dir::sync`]: owner-only, never through a link, never one it
+//! cache) is filled by [`sync_private_dir`]: owner-only, never through a link, never one it
 //! did not create, deleting nothing it did not write.
 //!
-//! What a build compiles into a binary is held to [`embed`]: regular files only, reached
+//! What a build compiles into a binary is held to [`embed`] (a public module: the build scripts
+//! include it by path): regular files only, reached
 //! without a symbolic link, inside the checkout.
 
 pub mod embed;
-pub mod error;
-pub mod kind;
-pub mod private_dir;
-pub mod read;
-pub mod toml_error;
+mod error;
+mod kind;
+mod private_dir;
+mod read;
+mod toml_error;
 pub mod trajectory;
 
 pub use error::{InputError, Via};
 pub use kind::Kind;
+pub use private_dir::{sync as sync_private_dir, PrivateDirError};
 pub use read::{open, read, read_text, Capped, Origin};
+pub use toml_error::from_str as parse_toml;
 pub use toml_error::TomlError;

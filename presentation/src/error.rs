@@ -4,8 +4,8 @@
 
 use records::table::TableError;
 use std::path::PathBuf;
-use store::error::{ControlFileError, IoError, RunsError};
-use store::tracked_dir::TrackedError;
+use store::TrackedError;
+use store::{ControlFileError, IoError, RunsError};
 
 /// Why a figure could not be drawn or encoded.
 #[derive(Debug, thiserror::Error)]
@@ -76,5 +76,5 @@ pub enum ReportError {
     Papers(#[from] analysis::papers::PapersError),
     /// `records::dof_cost` could not read its file.
     #[error(transparent)]
-    DofCost(#[from] store::error::DofCostError),
+    DofCost(#[from] store::DofCostError),
 }

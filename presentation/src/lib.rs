@@ -5,7 +5,8 @@
 //! orchestrator's (`reproduce::score`), and so are the task cards' numbers
 //! (`reproduce::task_card` builds each card's model; [`task_card`] renders it).
 
-pub mod error;
+mod error;
 pub mod figures;
 pub mod report;
 pub mod task_card;
+pub use error::{FigureError, ReportError};

@@ -8,8 +8,8 @@
 //!
 //! [`render`] gives every card and the index ([`INDEX`]) by file name.
 
-use spec::path::PathSample;
-use spec::scheme::Level;
+use spec::Level;
+use spec::PathSample;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 

@@ -7,7 +7,7 @@
 
 use analysis::misprints::rounding;
 use records::index::{metric, Runs};
-use store::runs::read_runs;
+use store::read_runs;
 
 /// Which of a selection's values a number states.
 #[derive(Clone, Copy, Debug)]
@@ -220,7 +220,7 @@ fn every_number_of_results_in_the_deviations_is_the_results() {
                 .runs
                 .iter()
                 .map(|k| {
-                    let k = spec::run_key::RunKey::parse(k).unwrap();
+                    let k = spec::RunKey::parse(k).unwrap();
                     let r = runs
                         .find(&k.experiment, &k.variant, &k.solver)
                         .unwrap_or_else(|| panic!("no run {k}"));

@@ -4,10 +4,10 @@
 //! the committed results give.
 
 use presentation::figures::render_all;
-use records::failure_kind::FailureKind;
-use records::runs::{runs_csv, RunRow, Status};
+use records::FailureKind;
+use records::{runs_csv, RunRow, Status};
 use std::path::{Path, PathBuf};
-use store::atomic::write_atomic;
+use store::write_atomic;
 
 /// A run row with the identity and outcome given and every metric empty; the ids are the
 /// labels' slugs, and a solver labelled `exact ...` is the exact column.
@@ -29,16 +29,11 @@ fn row(experiment: &str, variant: &str, solver: &str, failed_at: Option<f64>) ->
         failure_kind: failed_at.map(|_| FailureKind::Integrator),
         failed_at,
         ..RunRow::blank(
-            &spec::run_key::RunKey::from_ids(
-                experiment,
-                &spec::naming::slug(variant),
-                &spec::naming::slug(solver),
-            )
-            .unwrap(),
+            &spec::RunKey::from_ids(experiment, &spec::slug(variant), &spec::slug(solver)).unwrap(),
             if solver.starts_with("exact") {
-                spec::solver_kind::SolverKind::Exact
+                spec::SolverKind::Exact
             } else {
-                spec::solver_kind::SolverKind::Network(settings::network_kind::NetworkKind::LviPdnn)
+                spec::SolverKind::Network(settings::NetworkKind::LviPdnn)
             },
         )
     }
@@ -352,7 +347,7 @@ fn rendering_twice_gives_identical_bytes_and_removes_stale_figures() {
     synthetic_results(&root);
     // Figures of a run that is gone, as an earlier rendering wrote them (recorded in
     // report/manifest.toml).
-    let report = store::tracked_dir::TrackedDir::open_within(&root, "report").unwrap();
+    let report = store::TrackedDir::open_within(&root, "report").unwrap();
     report
         .write(
             Path::new("figures/exp-old__gone__solver.svg"),
@@ -573,7 +568,7 @@ fn one_papers_figures_are_drawn_alone_and_the_others_kept() {
     let root = scratch("one-paper");
     synthetic_results(&root);
     let runs_csv_path = root.join("results/runs.csv");
-    let mut runs = store::runs::read_runs(&runs_csv_path).unwrap();
+    let mut runs = store::read_runs(&runs_csv_path).unwrap();
     for r in runs.iter_mut().filter(|r| r.experiment == "exp-acc") {
         r.paper = "other".into();
     }

@@ -8,9 +8,9 @@ use analysis::claim_verdict::{self as claims, Verdict};
 use analysis::papers::Resolution;
 use presentation::report::{pages, paper_page, render, Inputs, Page, FRONT};
 use records::index::Runs;
-use records::runs::RunRow;
+use records::RunRow;
 use std::path::{Path, PathBuf};
-use store::runs::read_runs;
+use store::read_runs;
 
 /// How to bring a stale committed report or figure up to date.
 const REGENERATE: &str = "regenerate with `cargo run --release -p reproduce -- report`";
@@ -202,9 +202,9 @@ fn every_mapped_published_number_finds_its_run() {
 /// ids.
 fn row(experiment: &str, variant: &str, solver: &str, drift: f64) -> RunRow {
     let kind = if solver == records::index::EXACT {
-        spec::solver_kind::SolverKind::Exact
+        spec::SolverKind::Exact
     } else {
-        spec::solver_kind::SolverKind::Network(settings::network_kind::NetworkKind::LviPdnn)
+        spec::SolverKind::Network(settings::NetworkKind::LviPdnn)
     };
     RunRow {
         paper: "jia2019".into(),
@@ -225,7 +225,7 @@ fn row(experiment: &str, variant: &str, solver: &str, drift: f64) -> RunRow {
         wall_s: 0.1,
         sim_s: 0.1,
         ..RunRow::blank(
-            &spec::run_key::RunKey::from_ids(experiment, variant, solver).unwrap(),
+            &spec::RunKey::from_ids(experiment, variant, solver).unwrap(),
             kind,
         )
     }
@@ -541,7 +541,7 @@ fn a_sweep_with_its_declared_setup_states_the_share_of_the_gap_from_the_runs() {
 #[test]
 fn a_large_sweeps_tables_are_bounded() {
     use presentation::figures::sweep::MAX_RUN_FIGURES;
-    use presentation::report::tables::runs_table;
+    use presentation::report::runs_table;
     let mut rows: Vec<RunRow> = (0..1000)
         .map(|i| row("jia2019-sweep", &format!("v-{i}"), "exact", 1e-3 * i as f64))
         .collect();

@@ -22,7 +22,7 @@ pub enum TaskError {
     #[error("task \"{task}\": {source}")]
     Shape {
         task: String,
-        source: spec::run::SetupError,
+        source: spec::SetupError,
     },
 }
 
@@ -117,5 +117,5 @@ pub enum IntoResultsError {
     #[error(transparent)]
     Results(#[from] store::results_dir::ResultsError),
     #[error(transparent)]
-    Tracked(#[from] store::tracked_dir::TrackedError),
+    Tracked(#[from] store::TrackedError),
 }

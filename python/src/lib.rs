@@ -9,7 +9,7 @@
 //! - `simulate`: one run of a task with a Python network (`network`) or one of the suite's
 //!   own solvers (by id). Arm, scheme, integrator and the score against the exact optimum are
 //!   `simulation::run`'s; the result is the run's `results/runs.csv` row
-//!   (`records::runs::RunRow`) as a dict, with the drift and the trace as numpy arrays and the
+//!   (`records::RunRow`) as a dict, with the drift and the trace as numpy arrays and the
 //!   cost of the Python calls.
 //! - `leaderboard`: Python networks on the standard task set, ranked with the suite's own runs
 //!   by `analysis::leaderboard::leaderboard`, rows in `results/leaderboard.csv`'s schema. A
@@ -38,18 +38,18 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use records::failure_kind::FailureKind;
-use records::runs::{RunRow, Status};
-use records::trace::TracePoint;
-use records::trajectory::score_row;
-use simulation::error::RunError;
-use simulation::row::run_row;
-use simulation::run::{run_job, run_job_with_network, RunRecord};
-use simulation::score_trajectory::score_trajectory;
-use simulation::simulate::Outcome;
+use records::score_row;
+use records::FailureKind;
+use records::TracePoint;
+use records::{RunRow, Status};
+use simulation::run_row;
+use simulation::score_trajectory;
+use simulation::Outcome;
+use simulation::RunError;
+use simulation::{run_job, run_job_with_network, RunRecord};
 use solvers::neural::NeuralSolver;
-use spec::run::Scoring;
-use spec::run::SetupError;
+use spec::Scoring;
+use spec::SetupError;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 use task_set::{load_tasks, PyTask};
@@ -89,7 +89,7 @@ fn lib_err(e: impl std::fmt::Display) -> PyErr {
 /// The solver id of a Python network called `name`: `python-<slug(name)>`, an error when that
 /// is no valid id (a name without a letter or digit, or too long).
 fn python_solver_id(name: &str) -> Result<spec::ids::SolverId, spec::ids::IdError> {
-    spec::ids::SolverId::new(format!("{PYTHON_KIND}-{}", settings::slug::slug(name)))
+    spec::ids::SolverId::new(format!("{PYTHON_KIND}-{}", settings::slug(name)))
 }
 
 /// Runs the body of one of the module's functions, a panic of the library (a bug: no input
@@ -159,7 +159,7 @@ fn task(id: &str, root: Option<PathBuf>) -> PyResult<PyTask> {
 
 /// The task of `all` whose id is `id`; the error lists the ids of `all` (`set` names it).
 fn find_task<'a>(all: &'a [PyTask], id: &str, set: &'static str) -> PyResult<&'a PyTask> {
-    let key = spec::run_key::TaskKey::parse(id).ok();
+    let key = spec::TaskKey::parse(id).ok();
     all.iter()
         .find(|t| Some(t.job.task()) == key)
         .ok_or_else(|| {
@@ -173,7 +173,7 @@ fn find_task<'a>(all: &'a [PyTask], id: &str, set: &'static str) -> PyResult<&'a
 
 /// The rows of `<root>/results/runs.csv`.
 fn stored_runs(root: &Path) -> PyResult<Vec<RunRow>> {
-    store::runs::read_runs(
+    store::read_runs(
         &root
             .join(store::results_dir::DIR)
             .join(store::results_dir::RUNS),
@@ -239,7 +239,7 @@ fn result_dict<'py>(
     row: &RunRow,
     calls: &Callbacks,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let bytes = records::runs::runs_csv(std::slice::from_ref(row)).map_err(lib_err)?;
+    let bytes = records::runs_csv(std::slice::from_ref(row)).map_err(lib_err)?;
     let d = csv_dicts(py, &bytes)?
         .pop()
         .ok_or_else(|| lib_err("no row"))?;
@@ -304,7 +304,7 @@ struct PythonRun {
 fn run_python(
     py: Python<'_>,
     task: &PyTask,
-    job: &spec::run::RunSpec,
+    job: &spec::RunSpec,
     network: &Bound<'_, PyAny>,
     budget: Option<f64>,
 ) -> PyResult<PythonRun> {
@@ -316,7 +316,7 @@ fn run_python(
 fn run_python_unnamed(
     py: Python<'_>,
     task: &PyTask,
-    job: &spec::run::RunSpec,
+    job: &spec::RunSpec,
     network: &Bound<'_, PyAny>,
     budget: Option<f64>,
 ) -> PyResult<PythonRun> {
@@ -365,7 +365,7 @@ fn run_python_unnamed(
     let mut row = run_row(&record, reproduce::revision::REVISION);
     row.solver_id = python_solver_id(&name).map_err(lib_err)?;
     row.solver = name;
-    row.solver_kind = spec::solver_kind::SolverKind::Python;
+    row.solver_kind = spec::SolverKind::Python;
     Ok(PythonRun {
         record,
         row,
@@ -634,7 +634,7 @@ fn leaderboard<'py>(
         let timings = store::timing::read(&root.join(store::results_dir::DIR)).map_err(lib_err)?;
         let board = analysis::leaderboard::leaderboard(&all, &timings);
         let board_csv = analysis::leaderboard::leaderboard_csv(&board).map_err(lib_err)?;
-        let runs_csv = records::runs::runs_csv(&fresh).map_err(lib_err)?;
+        let runs_csv = records::runs_csv(&fresh).map_err(lib_err)?;
         if let Some(dir) = &out_dir {
             write_leaderboard_tables(dir, &board_csv, &runs_csv)?;
         }
@@ -727,7 +727,7 @@ fn run_entries<'py>(
     let failed = PyList::empty(py);
     for (name, network) in named {
         // The name is shown in the report's tables as it is: no markup, no line break.
-        spec::naming::check_name(name, spec::naming::MAX_SOLVER_LABEL)
+        spec::check_name(name, spec::MAX_SOLVER_LABEL)
             .map_err(|e| lib_err(format!("leaderboard's entry name: {e}")))?;
         let id = python_solver_id(name).map_err(lib_err)?;
         if stored
@@ -783,13 +783,13 @@ fn run_entries<'py>(
 /// Writes [`leaderboard`]'s tables into `dir` (atomically, each resolved inside it): the
 /// leaderboard and the networks' rows, under `results/`'s names.
 fn write_leaderboard_tables(dir: &Path, board_csv: &[u8], runs_csv: &[u8]) -> PyResult<()> {
-    let owned = store::owned_dir::OwnedDir::open(dir).map_err(lib_err)?;
+    let owned = store::OwnedDir::open(dir).map_err(lib_err)?;
     for (name, bytes) in [
         (store::results_dir::LEADERBOARD, board_csv),
         (store::results_dir::RUNS, runs_csv),
     ] {
         let path = owned.resolve(Path::new(name)).map_err(lib_err)?;
-        store::atomic::write_atomic(&path, bytes)
+        store::write_atomic(&path, bytes)
             .map_err(|e| lib_err(format!("{}: {e}", path.display())))?;
     }
     Ok(())
@@ -875,7 +875,7 @@ fn seal_into_results(file: &Path, root: &Path) -> Result<PathBuf, IntoResultsErr
     let (results, _) = store::results_dir::ResultsDir::open(
         &root.join(store::results_dir::DIR),
         reproduce::revision::REVISION,
-        store::tracked_dir::Edits::Refuse,
+        store::Edits::Refuse,
     )?;
     results.tracked().write(Path::new(name), &bytes)?;
     results.save()?;
@@ -883,13 +883,13 @@ fn seal_into_results(file: &Path, root: &Path) -> Result<PathBuf, IntoResultsErr
 }
 
 /// That no text of `rows` (a table's rows, each its (column, text) pairs; the header is line 1)
-/// holds markup or a line break (`spec::naming::has_markup`): the report shows them as they
+/// holds markup or a line break (`spec::has_markup`): the report shows them as they
 /// are, and a sealed table is trusted.
 fn check_plain(file: &Path, rows: &[Vec<(&'static str, String)>]) -> Result<(), IntoResultsError> {
     for (k, row) in rows.iter().enumerate() {
         if let Some((column, _)) = row
             .iter()
-            .find(|(_, t)| spec::naming::has_markup(t) || t.contains(char::is_control))
+            .find(|(_, t)| spec::has_markup(t) || t.contains(char::is_control))
         {
             return Err(IntoResultsError::Markup {
                 file: file.to_path_buf(),
@@ -905,12 +905,12 @@ fn check_plain(file: &Path, rows: &[Vec<(&'static str, String)>]) -> Result<(), 
 /// runs: one registered from Python, `register_qp_solver`, or any other of the registry) at
 /// its defaults, at every instant of the fixed-step numerical loop; None when `id` is not
 /// registered.
-fn registered_qp_run(task: &PyTask, id: &str) -> Option<spec::run::RunSpec> {
+fn registered_qp_run(task: &PyTask, id: &str) -> Option<spec::RunSpec> {
     settings::qp_solver::lookup(id).ok()?;
-    let spec: spec::numerical::NumericalSpec =
+    let spec: spec::NumericalSpec =
         serde_json::from_value(serde_json::json!({ "method": id })).ok()?;
-    Some(spec::run::RunSpec {
-        solver: spec::run::SolverChoice::Numerical(spec),
+    Some(spec::RunSpec {
+        solver: spec::SolverChoice::Numerical(spec),
         ..task.job.clone()
     })
 }
@@ -991,7 +991,7 @@ fn score<'py>(
             let row = score_row(
                 run_row(&record, git_rev),
                 "arrays",
-                &records::trajectory::trajectory_id(),
+                &records::trajectory_id(),
             );
             (record, row)
         };
@@ -1009,7 +1009,7 @@ fn score_file(task: &PyTask, file: &Path, out_dir: Option<&Path>) -> PyResult<(R
                 &task.job,
                 file,
                 None,
-                records::trajectory::TRAJECTORY_KIND,
+                records::TRAJECTORY_KIND,
                 out,
                 git_rev,
             )
@@ -1025,7 +1025,7 @@ fn score_file(task: &PyTask, file: &Path, out_dir: Option<&Path>) -> PyResult<(R
             let row = score_row(
                 run_row(&record, git_rev),
                 &file.display().to_string(),
-                &records::trajectory::trajectory_id(),
+                &records::trajectory_id(),
             );
             Ok((record, row))
         }

@@ -8,7 +8,7 @@
 //! `$XDG_CACHE_HOME/driftbench/data-<digest>` (else `~/.cache/...`, else the system's
 //! temporary directory), and that directory is the root. Each process checks the unpacked
 //! files against the embedded ones on first use and rewrites any that differ, so an edit in
-//! the cache never reaches a run. The directory is kept by `inputs::private_dir::sync`:
+//! the cache never reaches a run. The directory is kept by `inputs::sync_private_dir`:
 //! created owner-only, refused when it (or a directory or file in it) is a symbolic link, is
 //! another user's or writable by others, or was not created by the package, and never
 //! cleaned: a file the package did not write is an error naming it (a shared temporary
@@ -24,7 +24,7 @@ mod embedded {
 /// The packaged data could not be unpacked.
 #[derive(Debug, thiserror::Error)]
 #[error("the packaged project data could not be unpacked: {0}; pass root= a driftbench checkout instead")]
-pub struct UnpackError(#[from] inputs::private_dir::PrivateDirError);
+pub struct UnpackError(#[from] inputs::PrivateDirError);
 
 /// The directory the data is unpacked into (module docs).
 fn directory() -> PathBuf {
@@ -46,6 +46,6 @@ pub fn root() -> Result<PathBuf, UnpackError> {
         return Ok(r.clone());
     }
     let dir = directory();
-    inputs::private_dir::sync(&dir, embedded::FILES)?;
+    inputs::sync_private_dir(&dir, embedded::FILES)?;
     Ok(ROOT.get_or_init(|| dir).clone())
 }

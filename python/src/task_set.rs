@@ -8,10 +8,10 @@ use crate::network::PyQpDims;
 use pyo3::prelude::*;
 use reproduce::experiments::load_dir;
 use serde::Serialize;
-use simulation::run::qp_shape;
-use spec::run::RunSpec;
-use spec::run::SolverChoice;
-use spec::scheme::Level;
+use simulation::qp_shape;
+use spec::RunSpec;
+use spec::SolverChoice;
+use spec::Level;
 use std::path::Path;
 
 /// One task of the suite: a scheme on a path with a robot, as an experiment file's variant

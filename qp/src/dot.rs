@@ -1,27 +1,5 @@
-//! Time derivative of a scheme's QP along the current motion, by central difference.
-//!
-//! With s the time offset, the motion is
-//! `t + s`, `theta + s thetadot` and (acceleration level) `thetadot + s thetaddot`, and
-//!
-//! ```text
-//! dQP/dt ~ (QP(+h) - QP(-h)) / (2h)          (error O(h^2) where the data are smooth)
-//! ```
-//!
-//! for every field of [`Qp`] entrywise. The step is `h = FD_STEP / max(1, |thetadot|_inf)` at the
-//! velocity level and `h = FD_STEP / max(1, |thetadot|_inf, |thetaddot|_inf)` at the
-//! acceleration level, so neither t nor any joint coordinate moves by more than
-//! `FD_STEP = 6e-6` (about eps^(1/3), which balances the O(h^2) truncation against the
-//! O(eps/h) rounding error: ~1e-10 relative). Entries equal at both ends (constants, and
-//! infinite bounds such as varpi = +inf, where the difference would be inf - inf = NaN) get
-//! derivative exactly 0; an entry that is infinite at only one end also gets 0. Where the data
-//! have a kink (the min/max of the merged joint bounds) the central difference returns the mean
-//! of the two one-sided slopes — schemes with such kinks (jia2019, zhong2021) override
-//! `build_dot` analytically.
-//!
-//! This module holds the arithmetic on QPs (the quotient and its scratch space); the step and
-//! the difference along a scheme's motion are the scheme's (`schemes::scheme::default_step`,
-//! `schemes::scheme::central_difference`), the default of `Scheme::build_dot`. Nothing here
-//! allocates after [`QpDotScratch::new`].
+//! dQP/dt by central difference: the quotient and its scratch space ([`difference_quotient`]
+//! states the mathematics).
 
 use crate::{Qp, QpDims};
 use nalgebra::{Dim, Matrix, RawStorage, RawStorageMut};
@@ -56,8 +34,29 @@ impl QpDotScratch {
     }
 }
 
-/// out = (plus - minus) / denom entrywise over every field, with the infinite-entry rule of
-/// the module docs.
+/// out = (plus - minus) / denom entrywise over every field, the quotient of dQP/dt:
+///
+/// With s the time offset, the motion is
+/// `t + s`, `theta + s thetadot` and (acceleration level) `thetadot + s thetaddot`, and
+///
+/// ```text
+/// dQP/dt ~ (QP(+h) - QP(-h)) / (2h)          (error O(h^2) where the data are smooth)
+/// ```
+///
+/// for every field of [`Qp`] entrywise. The step is `h = FD_STEP / max(1, |thetadot|_inf)` at the
+/// velocity level and `h = FD_STEP / max(1, |thetadot|_inf, |thetaddot|_inf)` at the
+/// acceleration level, so neither t nor any joint coordinate moves by more than
+/// `FD_STEP = 6e-6` (about eps^(1/3), which balances the O(h^2) truncation against the
+/// O(eps/h) rounding error: ~1e-10 relative). Entries equal at both ends (constants, and
+/// infinite bounds such as varpi = +inf, where the difference would be inf - inf = NaN) get
+/// derivative exactly 0; an entry that is infinite at only one end also gets 0. Where the data
+/// have a kink (the min/max of the merged joint bounds) the central difference returns the mean
+/// of the two one-sided slopes — schemes with such kinks (jia2019, zhong2021) override
+/// `build_dot` analytically.
+///
+/// The step and the difference along a scheme's motion are the scheme's (`schemes::default_step`,
+/// `schemes::central_difference`), the default of `Scheme::build_dot`. Nothing here
+/// allocates after [`QpDotScratch::new`].
 pub fn difference_quotient(plus: &Qp, minus: &Qp, denom: f64, out: &mut Qp) {
     let inv = 1.0 / denom;
     dq(&plus.p, &minus.p, inv, &mut out.p);

@@ -5,19 +5,21 @@
 //! - [`Qp`], [`QpDims`], [`QpDuals`], [`KktResiduals`]: the dense convex QP
 //!   min x'Px/2 + q'x s.t. A x = b, G x <= h, l <= x <= u, its sizes, its multipliers and the
 //!   infinity-norm KKT residuals of a primal-dual pair (the form and the sign conventions are
-//!   in [`problem`]'s docs);
+//!   in [`Qp`]'s docs);
 //! - [`QpError`]: why a QP's data is malformed ([`Qp::validate`]);
-//! - [`dot`]: dQP/dt by central difference, for the networks that need the QP's motion;
-//! - [`solver`]: the one solver seam, [`QpSolver`], with its [`QpStatus`], [`QpSolve`], open
+//! - [`difference_quotient`], [`QpDotScratch`], [`FD_STEP`]: dQP/dt by central difference, for
+//!   the networks that need the QP's motion;
+//! - the one solver seam, [`QpSolver`], with its [`QpStatus`], [`QpSolve`], open
 //!   [`QpSolverError`] and [`SolverId`].
 
 #![deny(missing_docs)]
 
-pub mod dot;
+mod dot;
 mod error;
-pub mod problem;
-pub mod solver;
+mod problem;
+mod solver;
 
+pub use dot::{difference_quotient, QpDotScratch, FD_STEP};
 pub use error::QpError;
 pub use problem::{KktResiduals, Qp, QpDims, QpDuals};
 pub use solver::{QpSolve, QpSolver, QpSolverError, QpStatus, SolverId};

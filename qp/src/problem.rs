@@ -1,20 +1,5 @@
-//! The quadratic program every scheme produces at every instant:
-//!
-//! ```text
-//! minimise    x'Px/2 + q'x
-//! subject to  A x  = b          (m_eq rows)
-//!             G x <= h          (m_in rows)
-//!             l <= x <= u       (elementwise; +-inf where a bound is absent)
-//! ```
-//!
-//! P is symmetric positive semidefinite. The storage is dense (the papers' QPs have at most
-//! ~10 variables) and allocated once per run: schemes overwrite it in place at every step.
-//!
-//! KKT conditions with multipliers (lambda for A x = b, mu >= 0 for G x <= h,
-//! z_l, z_u >= 0 for the bounds):
-//! stationarity  P x + q + A'lambda + G'mu - z_l + z_u = 0,
-//! primal        A x = b, G x <= h, l <= x <= u,
-//! complementarity mu_i (h - Gx)_i = 0, z_l (x - l) = 0, z_u (u - x) = 0.
+//! The quadratic program every scheme produces at every instant ([`Qp`]: the form and the KKT
+//! conventions are on the type), its sizes, multipliers and KKT residuals.
 
 use crate::error::QpError;
 use nalgebra::{DMatrix, DVector};
@@ -30,7 +15,23 @@ pub struct QpDims {
     pub n_in: usize,
 }
 
-/// A dense convex QP (see the module docs for the form).
+/// A dense convex QP, the quadratic program every scheme produces at every instant:
+///
+/// ```text
+/// minimise    x'Px/2 + q'x
+/// subject to  A x  = b          (m_eq rows)
+///             G x <= h          (m_in rows)
+///             l <= x <= u       (elementwise; +-inf where a bound is absent)
+/// ```
+///
+/// P is symmetric positive semidefinite. The storage is dense (the papers' QPs have at most
+/// ~10 variables) and allocated once per run: schemes overwrite it in place at every step.
+///
+/// KKT conditions with multipliers (lambda for A x = b, mu >= 0 for G x <= h,
+/// z_l, z_u >= 0 for the bounds):
+/// stationarity  P x + q + A'lambda + G'mu - z_l + z_u = 0,
+/// primal        A x = b, G x <= h, l <= x <= u,
+/// complementarity mu_i (h - Gx)_i = 0, z_l (x - l) = 0, z_u (u - x) = 0.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Qp {
     /// P: the objective's Hessian (nx x nx, symmetric positive semidefinite).
@@ -51,7 +52,7 @@ pub struct Qp {
     pub upper: DVector<f64>,
 }
 
-/// Multipliers of a QP solution (sign conventions as in the module docs).
+/// Multipliers of a QP solution (sign conventions as in [`Qp`]'s docs).
 #[derive(Clone, Debug, PartialEq)]
 pub struct QpDuals {
     /// lambda: multipliers of A x = b, one per equality row (either sign).
@@ -212,7 +213,7 @@ impl Qp {
         v
     }
 
-    /// KKT residuals of (x, duals) (see the module docs). Allocates nothing (the certification
+    /// KKT residuals of (x, duals) (see [`Qp`]'s docs). Allocates nothing (the certification
     /// of every hot-started exact solve calls it).
     pub fn kkt_residuals(&self, x: &DVector<f64>, d: &QpDuals) -> KktResiduals {
         let nx = x.len();

@@ -148,7 +148,7 @@ impl QpSolverError {
     }
 }
 
-/// A per-instant QP method (module docs).
+/// A per-instant QP method (the [`crate`] docs: a solve, its status and its multipliers).
 pub trait QpSolver {
     /// The solver's id.
     fn id(&self) -> SolverId;

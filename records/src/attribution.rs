@@ -130,8 +130,8 @@ pub struct AttributionRow {
 
 impl AttributionRow {
     /// The key of the run the row explains.
-    pub fn key(&self) -> spec::run_key::RunKey {
-        spec::run_key::RunKey::new(
+    pub fn key(&self) -> spec::RunKey {
+        spec::RunKey::new(
             self.experiment.clone(),
             self.variant_id.clone(),
             self.solver_id.clone(),

@@ -265,7 +265,7 @@ pub struct ClaimRow {
     pub variant_id: VariantId,
     /// The network's solver id.
     pub solver_id: SolverId,
-    /// The control period h (ms): [`spec::task_set::MAIN_H`].
+    /// The control period h (ms): [`spec::MAIN_H`].
     pub h_ms: f64,
     /// The accuracy asked for: |x - x*|_inf / max(1, |x*|_inf) at every tick
     /// (`analysis::control_claim::ACCURACY`).

@@ -139,7 +139,7 @@ pub struct Summary {
 }
 
 impl Summary {
-    /// The summary of `samples_us` ([`crate::percentile::percentile`]; `None` when empty or
+    /// The summary of `samples_us` ([`crate::percentile()`]; `None` when empty or
     /// not finite).
     pub fn of(samples_us: &[f64]) -> Option<Self> {
         if samples_us.is_empty() || samples_us.iter().any(|v| !v.is_finite()) {

@@ -1,11 +1,11 @@
 //! The row schemas' errors shared across modules: rows that parse but are not usable
 //! ([`RowsError`]: a name that cannot name a file, a run listed twice, rows out of key order)
 //! and a run an index does not hold ([`MissingRun`]). They wrap the catalog's naming errors
-//! ([`spec::naming::NameError`]). A table that does not read as its schema is a
+//! ([`spec::NameError`]). A table that does not read as its schema is a
 //! [`crate::table::TableError`]; reading and writing the files is crate `store`'s, whose errors
 //! wrap these.
 
-use spec::naming::NameError;
+use spec::NameError;
 
 /// Why the rows of a results file (`runs.csv`, a journal) are not usable.
 #[derive(Debug, thiserror::Error)]

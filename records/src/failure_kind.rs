@@ -1,7 +1,7 @@
 //! The `failure_kind` column of `results/runs.csv`: what stopped a run, as a category a table
 //! can be grouped by (kebab-case in the file: `setup`, `exact-qp`, `diverged`, `non-finite`,
 //! `integrator`, `step-limit`, `wall-time`, `eval-budget`, `numerical-method`, `network`; empty for a
-//! completed run). The engine (`simulation::error::RunError::kind`) says which category each of its
+//! completed run). The engine (`simulation::RunError::kind`) says which category each of its
 //! errors is; `network` is the Python package's (`python/`), for a network whose own code failed.
 
 use serde::{Deserialize, Serialize};

@@ -5,7 +5,7 @@ use crate::error::MissingRun;
 use crate::runs::RunRow;
 
 /// The solver id of the exact column.
-pub use spec::run::EXACT_ID as EXACT;
+pub use spec::EXACT_ID as EXACT;
 
 /// All rows of `results/runs.csv`, sorted by (experiment, variant, solver).
 #[derive(Clone, Debug)]

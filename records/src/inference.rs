@@ -12,7 +12,7 @@
 //! setup.
 
 use serde::{Deserialize, Serialize};
-use settings::integrator::{IntegratorSettings, Method};
+use settings::{IntegratorSettings, Method};
 
 /// Penalty residual of a setup whose run fails (an unreachable pose, an infeasible QP); the
 /// report prints such points as failed, and crate `analysis`'s `inference_verdict` leaves them out.
@@ -111,7 +111,7 @@ pub struct InferenceRow {
     /// Whether the paths are travelled backwards.
     pub reverse: bool,
     /// How the RMP term's coefficient was read (stored by its serde name: `printed`, ...).
-    pub rmp: spec::rmp::RmpReading,
+    pub rmp: spec::RmpReading,
     /// The row's objective at this setup: r, or the column's r_c ([`FAILED`] when a run failed).
     pub rel_residual: f64,
     /// r of the whole table at this setup.

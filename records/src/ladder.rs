@@ -11,7 +11,7 @@
 
 use crate::runs::Status;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
-use settings::integrator::Method;
+use settings::Method;
 use spec::ids::{ExperimentId, SolverId, VariantId};
 
 /// How a rung integrated (the `method` column): an integrator, stored by its id (`bdf`,
@@ -112,8 +112,8 @@ pub struct LadderRow {
 
 impl LadderRow {
     /// The key of the run the row explains.
-    pub fn key(&self) -> spec::run_key::RunKey {
-        spec::run_key::RunKey::new(
+    pub fn key(&self) -> spec::RunKey {
+        spec::RunKey::new(
             self.experiment.clone(),
             self.variant_id.clone(),
             self.solver_id.clone(),

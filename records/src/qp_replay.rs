@@ -1,7 +1,7 @@
 //! `results/qp-replay.csv`: the exact reference per tick against DAQP, on the same QPs.
 //!
 //! `benches/qp_replay/replay.sh` records, through the Python package, the QPs a network is
-//! handed along a run (one per distinct instant, the first [`QPS`] of each task), then replays
+//! handed along a run (one per distinct instant, the first 2000 of each task, `benches/qp_replay/replay.sh`), then replays
 //! the same sequence to the suite's active set (`benches/src/bin/qp_replay.rs`, timed in Rust)
 //! and to DAQP (installed from PyPI in the script's own environment, timed by DAQP's own C
 //! timers). Warm means each solve starts from the previous QP's answer (the suite's working
@@ -15,8 +15,6 @@ use serde::{Deserialize, Serialize};
 pub const FILE: &str = "qp-replay.csv";
 /// [`QpReplayRow::solver`] of the suite's active set (the other rows are DAQP's).
 pub const SUITE: &str = "active-set";
-/// QPs recorded per task.
-pub const QPS: usize = 2000;
 
 /// One row of `results/qp-replay.csv` (module docs).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -16,12 +16,12 @@ use crate::failure_kind::FailureKind;
 use crate::table;
 use serde::{Deserialize, Serialize};
 use spec::ids::{ExperimentId, SolverId, VariantId};
-use spec::naming::{check_name, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
-use spec::run_key::RunKey;
-use spec::solver_kind::SolverKind;
+use spec::RunKey;
+use spec::SolverKind;
+use spec::{check_name, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
 
 /// One run, as stored in `results/runs.csv` (the engine makes it from a run's record:
-/// `simulation::row::run_row`).
+/// `simulation::run_row`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RunRow {
     /// The paper id of the run's experiment file (e.g. `jia2019`).
@@ -102,7 +102,7 @@ pub struct RunRow {
     /// RMS of |x − x*|_inf over the run, time-weighted (rad/s at the velocity level, rad/s^2 at
     /// the acceleration level).
     pub score_rms_dx: Option<f64>,
-    /// The same over t >= 1 s only (`simulation::metrics::SETTLE_TIME`): after the start-up
+    /// The same over t >= 1 s only (`simulation::SETTLE_TIME`): after the start-up
     /// transient of a network started from zero. The leaderboard's success test.
     pub score_rms_dx_after_1s: Option<f64>,
     /// Largest relative objective gap (f(x) - f(x*)) / max(1, |f(x*)|) at the scored instants;

@@ -15,7 +15,7 @@
 use crate::table::Row;
 use serde::{Deserialize, Serialize};
 use spec::ids::{ExperimentId, SolverId, VariantId};
-use spec::run_key::RunKey;
+use spec::RunKey;
 use std::collections::BTreeMap;
 
 /// The file name inside `results/`.

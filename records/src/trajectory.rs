@@ -18,13 +18,13 @@ pub fn trajectory_id() -> SolverId {
 }
 
 /// The row of a scored trajectory (module docs) from the row of its score's record (the
-/// engine's `simulation::row::run_row`); `source` names the file it came from, `name` (a slug,
+/// engine's `simulation::run_row`); `source` names the file it came from, `name` (a slug,
 /// [`TRAJECTORY_KIND`] by default) is its solver id: the row's key is the task and the name,
 /// never the exact column's.
 pub fn score_row(mut row: RunRow, source: &str, name: &SolverId) -> RunRow {
     row.solver_id = name.clone();
     row.solver = format!("{TRAJECTORY_KIND} {source}");
-    row.solver_kind = spec::solver_kind::SolverKind::Trajectory;
+    row.solver_kind = spec::SolverKind::Trajectory;
     row.integrator = TRAJECTORY_KIND.to_string();
     row.rtol = 0.0;
     row.atol = 0.0;

@@ -6,9 +6,9 @@
 use crate::error::{BaselineError, Exit, ReproduceError};
 use analysis::leaderboard::LeaderboardRow;
 use records::control::ControlRow;
-use records::runs::{check_rows, RunRow};
-use records::timing::Timings;
-use spec::run::RunSpec;
+use records::Timings;
+use records::{check_run_rows, RunRow};
+use spec::RunSpec;
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -231,7 +231,7 @@ fn read(
 /// (by the labels of `all`, every run of the experiment files).
 fn parse(bytes: Vec<u8>, name: &str, all: &[RunSpec]) -> Result<Vec<RunRow>, BaselineError> {
     let name = || name.to_string();
-    let bytes = match store::migrate::add_ids(&bytes, || store::migrate::LabelIndex::new(all)) {
+    let bytes = match store::add_ids(&bytes, || store::LabelIndex::new(all)) {
         Ok(Some((migrated, _))) => migrated,
         Ok(None) => bytes,
         Err(source) => {
@@ -246,7 +246,7 @@ fn parse(bytes: Vec<u8>, name: &str, all: &[RunSpec]) -> Result<Vec<RunRow>, Bas
             name: name(),
             source,
         })?;
-    check_rows(&rows).map_err(|source| BaselineError::Rows {
+    check_run_rows(&rows).map_err(|source| BaselineError::Rows {
         name: name(),
         source,
     })?;

@@ -163,7 +163,7 @@ mod tests {
             },
             Mode::Score(ScoreOptions {
                 file: PathBuf::from("f.csv"),
-                task: spec::run_key::TaskKey::parse("e/v").unwrap(),
+                task: spec::TaskKey::parse("e/v").unwrap(),
                 columns: None,
                 name: "trajectory".into(),
                 out: PathBuf::from("scores"),

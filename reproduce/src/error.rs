@@ -6,13 +6,13 @@
 
 use std::path::PathBuf;
 use std::process::ExitCode;
-use store::error::{IoAction, IoError, RunsError};
 use store::integrity::IntegrityError;
 use store::journal::JournalError;
-use store::owned_dir::PathError;
 use store::results_dir::ResultsError;
 use store::shard::ShardError;
-use store::tracked_dir::TrackedError;
+use store::PathError;
+use store::TrackedError;
+use store::{IoAction, IoError, RunsError};
 
 /// How `reproduce` ended: one exit code per outcome (docs/reference/exit-codes.md).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -117,11 +117,11 @@ pub enum ReproduceError {
     #[error(transparent)]
     Papers(#[from] analysis::papers::PapersError),
     #[error(transparent)]
-    Explain(#[from] explain::error::ExplainError),
+    Explain(#[from] explain::ExplainError),
     #[error(transparent)]
-    Inference(#[from] explain::error::InferenceError),
+    Inference(#[from] explain::InferenceError),
     #[error(transparent)]
-    Report(#[from] presentation::error::ReportError),
+    Report(#[from] presentation::ReportError),
     #[error(transparent)]
     TaskCard(#[from] crate::task_card::TaskCardError),
     #[error(transparent)]
@@ -136,7 +136,7 @@ pub enum ReproduceError {
     #[error(transparent)]
     ThreadPool(#[from] rayon::ThreadPoolBuildError),
     #[error(transparent)]
-    DofCost(#[from] store::error::DofCostError),
+    DofCost(#[from] store::DofCostError),
 }
 
 impl ReproduceError {
@@ -210,8 +210,8 @@ fn tracked(e: &TrackedError) -> Exit {
     }
 }
 
-fn report(e: &presentation::error::ReportError) -> Exit {
-    use presentation::error::ReportError;
+fn report(e: &presentation::ReportError) -> Exit {
+    use presentation::ReportError;
     match e {
         ReportError::Io(e) => io(e),
         ReportError::Runs(e) => runs(e),
@@ -236,7 +236,7 @@ pub enum ScoreError {
     Score {
         file: std::path::PathBuf,
         task: String,
-        error: Box<simulation::score_trajectory::TrajectoryError>,
+        error: Box<simulation::TrajectoryError>,
     },
     #[error(transparent)]
     Table(#[from] records::table::TableError),
@@ -246,11 +246,11 @@ pub enum ScoreError {
         source: csv::Error,
     },
     #[error(transparent)]
-    Io(#[from] store::error::IoError),
+    Io(#[from] store::IoError),
     #[error(transparent)]
-    Figure(#[from] presentation::error::FigureError),
+    Figure(#[from] presentation::FigureError),
     #[error(transparent)]
-    Path(#[from] store::owned_dir::PathError),
+    Path(#[from] store::PathError),
     #[error("--name {name:?}: a scored trajectory's name is its solver id, a slug (lower-case letters, digits, `.` and `-`, at most {max} bytes), e.g. {suggestion:?}")]
     Name {
         name: String,
@@ -283,7 +283,7 @@ pub enum BaselineError {
     #[error("{name}: {source}")]
     Migrate {
         name: String,
-        source: store::migrate::MigrateError,
+        source: store::MigrateError,
     },
     #[error("{name}: {source}")]
     Table {
@@ -293,6 +293,6 @@ pub enum BaselineError {
     #[error("{name}: {source}")]
     Rows {
         name: String,
-        source: records::error::RowsError,
+        source: records::RowsError,
     },
 }

@@ -8,7 +8,7 @@
 
 use catalog::error::{ExperimentError, ExperimentFileError};
 use catalog::experiment::PaperFile;
-use simulation::run::check_job;
+use simulation::check_job;
 use std::path::Path;
 
 /// Every experiment file of `dir` ([`catalog::experiment::load_dir`]), each of its runs

@@ -8,7 +8,7 @@ use crate::papers::load_papers;
 use crate::project::Project;
 use crate::report::{precheck_report, render_report, report_root};
 use crate::results::{open_results, Described};
-use spec::run::RunSpec;
+use spec::RunSpec;
 use store::results_dir::ResultsDir;
 
 /// The tables of `ids` (paper, table) that `which` selects; none is an error listing the

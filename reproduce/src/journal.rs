@@ -8,15 +8,15 @@
 
 use crate::error::ReproduceError;
 use crate::results::{Described, Keys};
-use records::runs::{merge, RunRow};
-use simulation::row::run_row;
-use simulation::run::RunRecord;
-use simulation::runner::run_jobs_with;
-use spec::run::RunSpec;
-use spec::run_key::RunKey;
+use records::{merge_runs, RunRow};
+use simulation::run_jobs_with;
+use simulation::run_row;
+use simulation::RunRecord;
+use spec::RunKey;
+use spec::RunSpec;
 use std::collections::HashSet;
 use store::journal::Recovered;
-use store::keys::KeySet;
+use store::KeySet;
 use store::results_dir::ResultsDir;
 use store::sorted::{latest, read_key_ordered, KeyMerge};
 
@@ -72,7 +72,7 @@ pub fn resume(
     if !recovered.current.is_empty() {
         let fold: Vec<RunRow> = recovered.rows(results.path())?.collect::<Result<_, _>>()?;
         let done: HashSet<RunKey> = fold.iter().map(RunRow::key).collect();
-        *kept = merge(std::mem::take(kept), fold);
+        *kept = merge_runs(std::mem::take(kept), fold);
         results.write_runs(kept)?;
         results.save()?;
         let before = to_run.len();
@@ -168,7 +168,7 @@ pub fn fold(
 }
 
 /// The trace of a finished run, if its job keeps one (`RunSpec::keep_trace`).
-pub fn kept_trace(r: &RunRecord) -> Option<&[records::trace::TracePoint]> {
+pub fn kept_trace(r: &RunRecord) -> Option<&[records::TracePoint]> {
     r.job.keep_trace.then_some(&r.run.trace[..])
 }
 
@@ -177,7 +177,7 @@ pub fn kept_trace(r: &RunRecord) -> Option<&[records::trace::TracePoint]> {
 /// keep no trace by choice (`described`). An earlier start of the shard finished them,
 /// whether its journal was folded by this start or by one before: a shard's resume is
 /// cumulative over every attempt, and a finished shard started again runs nothing. Held as
-/// their keys' prints, 16 bytes a run ([`store::keys::KeySet`]).
+/// their keys' prints, 16 bytes a run ([`store::KeySet`]).
 pub fn finished(
     results: &ResultsDir,
     git_rev: &str,
@@ -202,7 +202,7 @@ pub fn finished(
 /// The joints of the arm of `job` (0 for a robot the registry does not know: the run fails
 /// at its start, with a row of no per-joint values).
 pub fn joint_count(job: &RunSpec) -> usize {
-    robots::registry::robot_by_name(&job.robot).map_or(0, |r| r.dof())
+    robots::robot_by_name(&job.robot).map_or(0, |r| r.dof())
 }
 
 /// The most joints among the arms of `jobs` (the per-joint columns of their rows).

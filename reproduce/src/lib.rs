@@ -48,7 +48,7 @@ use options::SelectionOptions;
 use project::{resolve_shard, set_threads, Project};
 use results::{experiment_files, Described};
 use run::{Output, Plan};
-use spec::run::RunSpec;
+use spec::RunSpec;
 use std::process::ExitCode;
 use store::shard::Shard;
 use summary::emit;

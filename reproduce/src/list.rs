@@ -68,8 +68,8 @@ pub fn shard_plan(total: usize, n: usize) -> String {
 /// Every robot of the registry with its joint count and check values at its stated pose (the
 /// n-link family by two of its members); a robot whose file is invalid shows its error instead.
 pub fn robots() -> String {
-    use robots::nlink::{NLINK_MAX, NLINK_MIN};
-    use robots::registry::{nlink_name, robot_by_name, robot_names};
+    use robots::{nlink_name, robot_by_name, robot_names};
+    use robots::{NLINK_MAX, NLINK_MIN};
     let mut out = String::new();
     for name in robot_names()
         .into_iter()
@@ -113,7 +113,7 @@ mod tests {
     use super::*;
     use std::path::Path;
 
-    use spec::run::RunSpec;
+    use spec::RunSpec;
     use store::shard::{Selection, Shard};
     /// The fixture paper of tests/fixtures/fifth-paper (one experiment, two variants).
     fn fixture() -> (Vec<PaperFile>, Vec<RunSpec>) {
@@ -201,7 +201,7 @@ mod tests {
 
     #[test]
     fn every_robot_is_listed_with_its_joint_count() {
-        use robots::registry::{robot_by_name, robot_names};
+        use robots::{robot_by_name, robot_names};
         let text = robots();
         let names: Vec<String> = robot_names()
             .into_iter()

@@ -4,10 +4,10 @@
 
 use clap::{Args, Subcommand};
 use spec::ids::{ExperimentId, PaperId};
-use spec::run_key::TaskKey;
+use spec::TaskKey;
 use std::path::PathBuf;
 use store::shard::{Selection, Shard, ShardError};
-use store::tracked_dir::Edits;
+use store::Edits;
 
 /// The options of every mode, given before or after the subcommand: where the project and its
 /// directories are, the worker threads, and how the results store treats edited or pruned files.
@@ -350,7 +350,7 @@ pub struct ScoreOptions {
     pub columns: Option<inputs::trajectory::Columns>,
     /// The scored trajectory's solver id, a slug (its row's key is the task and this name, so
     /// trajectories of one task scored under different names keep their own rows).
-    #[arg(long, value_name = "ID", default_value = records::trajectory::TRAJECTORY_KIND)]
+    #[arg(long, value_name = "ID", default_value = records::TRAJECTORY_KIND)]
     pub name: String,
     /// Where the score, its trace and figure are written (default: scores/ in the working
     /// directory; never a directory this program seals, such as results/ or report/).

@@ -6,7 +6,7 @@
 use crate::error::ReproduceError;
 use crate::project::Project;
 use crate::results::Described;
-use spec::run::RunSpec;
+use spec::RunSpec;
 
 /// The papers as data (`papers/` under the project root). Their published numbers that
 /// contradict the paper's own are warned on stderr, once per process, with file and line.
@@ -26,7 +26,7 @@ pub fn load_papers(project: &Project) -> Result<analysis::papers::Papers, Reprod
 /// The papers as data ([`load_papers`]), with what they name checked against every run of the
 /// experiment files (`all`), before anything runs: a mapping that names no run of a defined
 /// experiment, or a claim that selects none, is refused; what names an experiment the files do
-/// not define is said on stderr, once per process ([`analysis::paper_runs::check_runs`]).
+/// not define is said on stderr, once per process ([`analysis::check_paper_runs`]).
 pub fn load_checked_papers(
     project: &Project,
     all: &Described,
@@ -34,14 +34,14 @@ pub fn load_checked_papers(
     static NOTED: std::sync::Once = std::sync::Once::new();
     let papers = load_papers(project)?;
     let keys: Vec<_> = all.jobs().iter().map(RunSpec::key).collect();
-    let absent = analysis::paper_runs::check_runs(&papers, &project.root.join("papers"), &keys)?;
+    let absent = analysis::check_paper_runs(&papers, &project.root.join("papers"), &keys)?;
     NOTED.call_once(|| {
         if let Some(first) = absent.first() {
             let file = first
                 .file
                 .strip_prefix(&project.root)
                 .unwrap_or(&first.file);
-            let first = analysis::paper_runs::Absent {
+            let first = analysis::AbsentRun {
                 file: file.to_path_buf(),
                 ..first.clone()
             };

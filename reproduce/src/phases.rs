@@ -24,7 +24,7 @@ use records::table::Row;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::time::Instant;
-use store::error::{IoAction, IoError, RunsError};
+use store::{IoAction, IoError, RunsError};
 
 /// The file name the benches keep it under (`benches/results/phases.csv`).
 pub const FILE: &str = "phases.csv";
@@ -198,7 +198,7 @@ pub fn write(path: &Path, rows: &[PhaseRow]) -> Result<(), RunsError> {
         path: path.to_path_buf(),
         source,
     })?;
-    store::atomic::write_atomic(path, &bytes).map_err(IoError::at(path, IoAction::Write))?;
+    store::write_atomic(path, &bytes).map_err(IoError::at(path, IoAction::Write))?;
     Ok(())
 }
 

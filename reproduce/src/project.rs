@@ -7,7 +7,7 @@ use crate::error::ReproduceError;
 use crate::options::{GlobalOptions, ShardSpec};
 use std::path::PathBuf;
 use store::shard::Shard;
-use store::tracked_dir::Edits;
+use store::Edits;
 
 /// `--threads` may ask for at most this many worker threads per core: more only adds
 /// contention, and a mistyped count (100000) must not stall the machine before it says so.

@@ -7,7 +7,7 @@ use crate::error::ReproduceError;
 use crate::papers::load_checked_papers;
 use crate::project::Project;
 use crate::results::{experiment_files, open_results, Described};
-use spec::run_key::RunKey;
+use spec::RunKey;
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use store::results_dir::ResultsDir;
@@ -40,9 +40,9 @@ pub fn report_root(project: &Project) -> Result<PathBuf, ReproduceError> {
 /// Checks, before anything runs, that `root/report` and its figures directory lie inside the
 /// project (no symbolic link leading elsewhere) and that the report can be written there.
 pub fn check_report_dir(root: &Path) -> Result<(), ReproduceError> {
-    let report = store::tracked_dir::TrackedDir::open_within(root, "report")?;
+    let report = store::TrackedDir::open_within(root, "report")?;
     report.resolve(Path::new(presentation::figures::FIGURES))?;
-    Ok(store::runs::check_writable(report.path())?)
+    Ok(store::check_writable(report.path())?)
 }
 
 /// Before anything runs in a mode that renders the report: its directory lies inside the
@@ -88,7 +88,7 @@ pub fn render_figures(
     paper: Option<&str>,
     untraced: &HashSet<RunKey>,
 ) -> Result<usize, ReproduceError> {
-    let report = store::tracked_dir::TrackedDir::open_within(root, "report")?;
+    let report = store::TrackedDir::open_within(root, "report")?;
     let removed = store::results_dir::remove_own_tmp(report.owned());
     if !removed.is_empty() {
         eprintln!(

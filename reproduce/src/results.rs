@@ -5,14 +5,14 @@
 use crate::error::ReproduceError;
 use crate::project::Project;
 use catalog::experiment::PaperFile;
-use records::runs::{merge, RunRow};
-use simulation::run::RunRecord;
-use spec::run::RunSpec;
-use spec::run_key::RunKey;
+use records::{merge_runs, RunRow};
+use simulation::RunRecord;
+use spec::RunSpec;
+use spec::RunKey;
 use std::cell::OnceCell;
 use std::collections::HashSet;
-use store::keys::KeySet;
-use store::migrate::LabelIndex;
+use store::KeySet;
+use store::LabelIndex;
 use store::results_dir::ResultsDir;
 
 /// The experiment files of the project, loaded and validated, every run checked
@@ -51,7 +51,7 @@ impl<'a> Described<'a> {
     }
 
     /// The run keys (`experiment / variant / solver`), and which of them keep no trace, as
-    /// sets of their prints (16 bytes a run: [`store::keys::KeySet`]).
+    /// sets of their prints (16 bytes a run: [`store::KeySet`]).
     pub fn keys(&self) -> Keys {
         Keys {
             described: self.runs().map(|j| j.key().to_string()).collect(),
@@ -170,7 +170,7 @@ pub fn write_results(
             pruned.len()
         );
     }
-    let merged = merge(kept, rows);
+    let merged = merge_runs(kept, rows);
     for r in untraced {
         if let Some(trace) = crate::journal::kept_trace(r) {
             results.write_trace(&r.job.key(), trace)?;

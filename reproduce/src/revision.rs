@@ -15,7 +15,7 @@ mod tests {
     use super::REVISION;
     use std::path::Path;
     use std::process::Command;
-    use store::fnv::fnv1a64;
+    use store::fnv1a64;
 
     fn hex(s: &str, n: usize) -> bool {
         s.len() == n && s.bytes().all(|b| b.is_ascii_hexdigit())

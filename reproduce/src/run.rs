@@ -19,10 +19,10 @@ use crate::project::Project;
 use crate::report::{precheck_report, render_figures, render_pages, report_root};
 use crate::results::{open_results, plan_pruning, write_results, Described};
 use crate::summary::{emit, summary};
-use records::runs::RunRow;
-use simulation::row::run_row;
-use simulation::run::RunRecord;
-use spec::run::RunSpec;
+use records::RunRow;
+use simulation::run_row;
+use simulation::RunRecord;
+use spec::RunSpec;
 use std::process::ExitCode;
 use std::time::Instant;
 use store::results_dir::ResultsDir;
@@ -144,10 +144,8 @@ fn fresh_control(
 ) -> Result<Vec<records::control::ControlRow>, ReproduceError> {
     let scratch =
         std::env::temp_dir().join(format!("driftbench-check-control-{}", std::process::id()));
-    std::fs::create_dir_all(&scratch).map_err(store::error::IoError::at(
-        &scratch,
-        store::error::IoAction::Write,
-    ))?;
+    std::fs::create_dir_all(&scratch)
+        .map_err(store::IoError::at(&scratch, store::IoAction::Write))?;
     eprintln!("re-running the control experiments for the gate");
     let ran = catalog::task_set::load(&project.experiments_dir)
         .map_err(ReproduceError::from)

@@ -17,19 +17,19 @@ use catalog::experiment::PaperFile;
 use inputs::trajectory::read;
 use inputs::trajectory::Columns;
 use presentation::figures::run_figure;
-use records::runs::{merge, RunRow};
-use records::trace::trace_csv;
-use records::trajectory::score_row;
-use simulation::row::run_row;
-use simulation::run::RunRecord;
-use simulation::score_trajectory::score_trajectory;
+use records::{merge_runs, RunRow};
+use records::trace_csv;
+use records::score_row;
+use simulation::run_row;
+use simulation::RunRecord;
+use simulation::score_trajectory;
 use spec::ids::SolverId;
-use spec::run::RunSpec;
-use spec::run_key::TaskKey;
+use spec::RunSpec;
+use spec::TaskKey;
 use std::path::{Path, PathBuf};
-use store::atomic::write_atomic;
-use store::error::{IoAction, IoError};
-use store::owned_dir::OwnedDir;
+use store::write_atomic;
+use store::OwnedDir;
+use store::{IoAction, IoError};
 
 /// Scores `options.file` on `options.task` (an id `experiment / variant`) into `options.out`.
 pub fn score(
@@ -184,7 +184,7 @@ pub fn score_file(
             holder: other.solver.clone(),
         });
     }
-    let rows = merge(stored, vec![row.clone()]);
+    let rows = merge_runs(stored, vec![row.clone()]);
     let stem = row.key().stem();
     let rel_trace = Path::new(store::results_dir::TRACES)
         .join(&row.experiment)
@@ -211,7 +211,7 @@ pub fn score_file(
     };
     let scores = io(
         Path::new(SCORES),
-        &records::runs::runs_csv(&rows).map_err(csv_error(&scores))?,
+        &records::runs_csv(&rows).map_err(csv_error(&scores))?,
     )?;
     let trace = io(
         &rel_trace,
@@ -235,21 +235,21 @@ pub const SCORES: &str = "scores.csv";
 
 /// A scored trajectory's name: a slug that can name its files, and not the exact column's id.
 fn check_name(name: &str) -> Result<SolverId, ScoreError> {
-    if name == spec::run::EXACT_ID {
+    if name == spec::EXACT_ID {
         return Err(ScoreError::ReservedName {
             name: name.to_string(),
         });
     }
-    let max = spec::naming::MAX_SOLVER_LABEL;
+    let max = spec::MAX_SOLVER_LABEL;
     if let Ok(id) = SolverId::new(name) {
         return Ok(id);
     }
-    let mut suggestion = settings::slug::slug(name);
+    let mut suggestion = settings::slug(name);
     suggestion.truncate(max);
     Err(ScoreError::Name {
         name: name.to_string(),
         suggestion: if suggestion.is_empty() {
-            records::trajectory::TRAJECTORY_KIND.to_string()
+            records::TRAJECTORY_KIND.to_string()
         } else {
             suggestion
         },
@@ -296,8 +296,8 @@ mod tests {
             max_pos_err: Some(max_pos_err),
             path_scale: Some(0.2),
             ..RunRow::blank(
-                &spec::run_key::RunKey::from_ids("e", "v", "trajectory").unwrap(),
-                spec::solver_kind::SolverKind::Trajectory,
+                &spec::RunKey::from_ids("e", "v", "trajectory").unwrap(),
+                spec::SolverKind::Trajectory,
             )
         };
         let exact = trajectory(vec![vec![std::f64::consts::PI, 0.0], vec![1.0 / 3.0, 0.5]]);

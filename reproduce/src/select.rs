@@ -7,7 +7,7 @@
 
 use crate::error::ReproduceError;
 use catalog::experiment::{Experiment, PaperFile, Variant};
-use spec::run::{RunSpec, SolverChoice};
+use spec::{RunSpec, SolverChoice};
 use std::collections::HashSet;
 use store::shard::{Selection, Shard};
 

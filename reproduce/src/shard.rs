@@ -8,7 +8,7 @@
 //! the journal is folded into `runs.csv` by streaming ([`crate::journal::fold`]: the journal
 //! and its index never hold more than a chunk's rows), the summary printed row by row as it
 //! is folded; and the shard's manifest is written last, with the count and the key sum of the
-//! runs assigned to it (store::keys::KeySum), not their list.
+//! runs assigned to it (store::KeySum), not their list.
 
 use crate::error::ReproduceError;
 use crate::journal::{finished, fold, joint_count, kept_trace, FoldAt};
@@ -18,13 +18,13 @@ use crate::results::{open_results, Described};
 use crate::run::{failure, summarise_failures};
 use crate::select::{selection_files, Kept};
 use crate::summary::{emit, Summary};
-use records::runs::RunRow;
-use simulation::row::run_row;
-use simulation::run::RunRecord;
-use simulation::runner::run_jobs_into;
-use spec::run::RunSpec;
+use records::RunRow;
+use simulation::run_jobs_into;
+use simulation::run_row;
+use simulation::RunRecord;
+use spec::RunSpec;
 use std::process::ExitCode;
-use store::keys::KeySum;
+use store::KeySum;
 use store::shard::{Binding, Shard};
 
 /// How many runs a shard makes and runs at a time: what it holds of its runs is this many

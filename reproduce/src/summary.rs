@@ -2,8 +2,8 @@
 //! errors, distance to the exact optimum, peak joint speed, steps, wall time), failed runs with
 //! their reason.
 
-use records::runs::RunRow;
-use settings::network_kind::NetworkKind;
+use records::RunRow;
+use settings::NetworkKind;
 use std::fmt::Write as _;
 use std::io::Write as _;
 

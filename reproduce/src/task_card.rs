@@ -20,15 +20,15 @@ use presentation::task_card::{
     RunSettings, SchemeCard, SchemeForm, StartCard, TaskCard,
 };
 use qp::Qp;
-use robots::registry::{robot_by_name, Kinematics, Model};
-use simulation::task_numbers::{task_numbers, TaskNumbers};
-use spec::run::RunSpec;
-use spec::run::SetupError;
-use spec::run::SolverChoice;
-use spec::scheme::SchemeSpec;
+use robots::{robot_by_name, Kinematics, Model};
+use simulation::{task_numbers, TaskNumbers};
+use spec::RunSpec;
+use spec::SetupError;
+use spec::SolverChoice;
+use spec::SchemeSpec;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use store::tracked_dir::{Removal, TrackedDir, TrackedError};
+use store::{Removal, TrackedDir, TrackedError};
 
 pub use presentation::task_card::INDEX;
 
@@ -171,7 +171,7 @@ fn task_card(jobs: &[RunSpec], n: TaskNumbers, robot: &Model) -> Result<TaskCard
             })
         })
         .collect::<Result<Vec<CardRun>, TaskCardError>>()?;
-    let mount = simulation::run::job_mount(job)
+    let mount = simulation::job_mount(job)
         .map_err(|source| TaskCardError::Setup {
             task: job.task().to_string(),
             source,
@@ -212,7 +212,7 @@ fn task_card(jobs: &[RunSpec], n: TaskNumbers, robot: &Model) -> Result<TaskCard
             size: job
                 .path
                 .scale
-                .or_else(|| spec::path::default_scale(&job.path.name)),
+                .or_else(|| spec::default_scale(&job.path.name)),
             duration: job.path.duration,
             start: n.path_start,
             samples: n.path,

@@ -1,8 +1,8 @@
 //! The timing pass: after the parallel reproduction, the runs whose times are compared — the
 //! leaderboard's (every non-exact run on a standard task, [`analysis::leaderboard`]) and the
 //! runs the report sets beside the papers' MATLAB times ([`Papers::timed_runs`]) — run again
-//! [`records::timing::REPETITIONS`] times each, one run at a time on this (one) thread, into
-//! `results/leaderboard-timing.csv` ([`records::timing`]), which the leaderboard ranks by and
+//! [`records::TIMING_REPETITIONS`] times each, one run at a time on this (one) thread, into
+//! `results/leaderboard-timing.csv` ([`records::Timings`]), which the leaderboard ranks by and
 //! the report's MATLAB comparison shows. No other run is timed: no table shows its time.
 //!
 //! Only the times are kept: a repetition recomputes the same run, and `results/runs.csv` keeps
@@ -11,12 +11,12 @@
 use analysis::leaderboard::standard_tasks;
 use analysis::papers::{Papers, PapersError};
 use records::index::Runs;
-use records::runs::RunRow;
-use records::timing::{TimingRow, Timings, REPETITIONS};
-use simulation::row::run_row;
-use simulation::run::run_job;
-use spec::run::RunSpec;
-use spec::run_key::RunKey;
+use records::RunRow;
+use records::{TimingRow, Timings, TIMING_REPETITIONS};
+use simulation::run_job;
+use simulation::run_row;
+use spec::RunKey;
+use spec::RunSpec;
 use std::collections::BTreeSet;
 use std::path::Path;
 use store::results_dir::{ResultsDir, ResultsError};
@@ -27,7 +27,7 @@ pub enum TimingError {
     #[error(transparent)]
     Results(#[from] ResultsError),
     #[error(transparent)]
-    Runs(#[from] store::error::RunsError),
+    Runs(#[from] store::RunsError),
     #[error(transparent)]
     Papers(#[from] PapersError),
     #[error("{0}: a stored run no experiment file describes cannot be timed")]
@@ -72,7 +72,7 @@ pub fn time_alone(
     let (machine, cores) = crate::cost::machine();
     let mut rows = Vec::with_capacity(keys.len());
     eprintln!(
-        "timing {} runs alone, {REPETITIONS} times each, one at a time",
+        "timing {} runs alone, {TIMING_REPETITIONS} times each, one at a time",
         keys.len()
     );
     for key in keys {
@@ -80,7 +80,7 @@ pub fn time_alone(
             .iter()
             .find(|j| j.key() == key)
             .ok_or_else(|| TimingError::Undescribed(key.clone()))?;
-        let samples: Vec<(f64, f64)> = (0..REPETITIONS)
+        let samples: Vec<(f64, f64)> = (0..TIMING_REPETITIONS)
             .map(|_| {
                 let row = run_row(&run_job(job), git_rev);
                 (row.sim_s, row.wall_s)
@@ -100,11 +100,11 @@ pub fn time_alone(
 mod tests {
     use super::*;
     use analysis::papers::{Mapping, PaperValue};
-    use settings::network_kind::NetworkKind;
-    use spec::solver_kind::SolverKind;
+    use settings::NetworkKind;
+    use spec::SolverKind;
 
     fn row(paper: &str, experiment: &str, variant: &str, solver: &str) -> RunRow {
-        let kind = if solver == spec::run::EXACT_ID {
+        let kind = if solver == spec::EXACT_ID {
             SolverKind::Exact
         } else {
             SolverKind::Network(NetworkKind::ALL[0])

@@ -5,8 +5,8 @@
 use crate::common;
 
 use common::reproduce;
-use records::runs::runs_csv;
-use store::runs::read_runs;
+use records::runs_csv;
+use store::read_runs;
 /// Ids are typed at the command line: a malformed paper, experiment, table, shard or task is
 /// clap's usage error (exit 2, naming the valid form and pointing to `--help`) before any file is read; a well-formed one
 /// that no file knows is refused once the files are read (exit 2, naming the known ones).

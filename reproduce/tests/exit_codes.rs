@@ -7,11 +7,11 @@
 use crate::common;
 
 use common::reproduce;
-use records::runs::runs_csv;
+use records::runs_csv;
 use reproduce::error::Exit;
 use reproduce::ReproduceError;
 use std::os::unix::ffi::OsStrExt;
-use store::runs::read_runs;
+use store::read_runs;
 
 fn stderr(out: &std::process::Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()

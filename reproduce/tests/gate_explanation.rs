@@ -4,12 +4,12 @@
 
 use crate::common;
 use common::{copy_tree, ok, reproduce};
-use records::attribution::AttributionRow;
 use records::control::ControlRow;
-use records::ladder::LadderRow;
+use records::AttributionRow;
+use records::LadderRow;
 use std::path::Path;
 use store::results_dir::ResultsDir;
-use store::tracked_dir::Edits;
+use store::Edits;
 
 /// Rewrites the results table `file` of `results` by `edit` and re-seals the manifest, as a
 /// deliberate edit (`--accept-edited`) would.

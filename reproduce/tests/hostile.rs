@@ -8,10 +8,10 @@
 use crate::common;
 
 use common::{ok, reproduce};
-use records::runs::{runs_csv, RunRow};
+use records::{runs_csv, RunRow};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use store::runs::read_runs;
+use store::read_runs;
 
 /// [`common::CHEAP_EXPERIMENT`] with a second variant.
 fn cheap() -> String {

@@ -16,6 +16,7 @@ mod layering;
 mod octave;
 mod paper_literals;
 mod presentation_renders;
+mod public_modules;
 mod regression;
 mod robot_files;
 mod run_ids;

@@ -22,7 +22,7 @@
 //! - the control experiments read no file: control links neither catalog nor the reader of
 //!   files from outside (`inputs`) directly, and no source of it opens or reads a file; their
 //!   task set is read by catalog (`catalog::task_set`) and handed over as data
-//!   (`spec::task_set::TaskSet`);
+//!   (`spec::TaskSet`);
 //! - the engine (simulation, control) links no verdict crate (analysis): it runs and writes
 //!   rows, and the papers' claims are decided from the rows (zhong2021's efficiency claim in
 //!   `analysis::control_claim`, called by the orchestrator and the report);
@@ -290,7 +290,7 @@ fn the_control_experiments_read_no_file() {
     assert!(
         direct.is_empty(),
         "control links a reader of files {direct:?} (its task set is catalog::task_set's to \
-         read, and comes as spec::task_set::TaskSet)"
+         read, and comes as spec::TaskSet)"
     );
     let src = root().join("control/src");
     let mut found = Vec::new();

@@ -21,11 +21,11 @@
 //! vacuously.
 
 use catalog::experiment::PaperFile;
-use records::runs::RunRow;
+use records::RunRow;
 use reproduce::experiments::load_dir;
-use simulation::row::run_row;
-use simulation::run::run_job;
-use spec::run::SolverChoice;
+use simulation::run_row;
+use simulation::run_job;
+use spec::SolverChoice;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 

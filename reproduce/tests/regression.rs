@@ -3,11 +3,11 @@
 //! timing columns aside.
 
 use analysis::gate::compare;
-use records::runs::RunRow;
+use records::RunRow;
 use reproduce::experiments::load_dir;
-use simulation::row::run_row;
-use simulation::runner::run_jobs;
-use store::runs::read_runs;
+use simulation::run_row;
+use simulation::run_jobs;
+use store::read_runs;
 
 #[test]
 fn fresh_run_matches_the_committed_results() {
@@ -52,7 +52,7 @@ fn the_gate_catches_changes() {
         "a drift change"
     );
     let mut failed = committed.clone();
-    failed[ok].status = records::runs::Status::Failed;
+    failed[ok].status = records::Status::Failed;
     assert!(
         !compare(&committed, &failed, "test baseline").is_empty(),
         "a status change"

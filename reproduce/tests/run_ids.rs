@@ -4,7 +4,7 @@
 use crate::common;
 use common::{ok, reproduce};
 use std::path::{Path, PathBuf};
-use store::runs::read_runs;
+use store::read_runs;
 
 /// kong2019's experiment file with every `label = "..."` (variant labels, sweep templates)
 /// rewritten.

@@ -4,9 +4,9 @@
 
 use catalog::experiment::PaperFile;
 use reproduce::experiments::load_dir;
-use simulation::run::run_job;
-use simulation::simulate::Outcome;
-use spec::run::SolverChoice;
+use simulation::run_job;
+use simulation::Outcome;
+use spec::SolverChoice;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -63,7 +63,7 @@ fn a_trajectory_file_is_scored_on_its_task() {
         "{}",
         String::from_utf8_lossy(&ok.stderr)
     );
-    let rows: Vec<records::runs::RunRow> = store::table::read(&out.join("scores.csv")).unwrap();
+    let rows: Vec<records::RunRow> = store::table::read(&out.join("scores.csv")).unwrap();
     assert_eq!(rows.len(), 1);
     assert_eq!(rows[0].drift, metrics.drift);
     assert_eq!(rows[0].solver, "trajectory znn.csv");
@@ -202,7 +202,7 @@ fn a_trajectory_file_is_scored_on_its_task() {
         "{}",
         String::from_utf8_lossy(&named.stderr)
     );
-    let rows: Vec<records::runs::RunRow> = store::table::read(&out.join("scores.csv")).unwrap();
+    let rows: Vec<records::RunRow> = store::table::read(&out.join("scores.csv")).unwrap();
     let ids: Vec<&str> = rows
         .iter()
         .filter(|r| r.experiment == job.experiment)

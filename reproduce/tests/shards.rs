@@ -7,7 +7,7 @@ use crate::common;
 
 use common::{ok, reproduce};
 use std::path::PathBuf;
-use store::runs::read_runs;
+use store::read_runs;
 
 fn temp(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("driftbench-shards-{name}-{}", std::process::id()));
@@ -386,7 +386,7 @@ fn a_shard_killed_after_any_durable_step_resumes_and_merges_equal_to_one_process
             .arg(dir)
             .env(reproduce::shard::CHUNK_VAR, "2");
         if let Some(n) = kill_after {
-            c.env(store::kill_point::VAR, n.to_string());
+            c.env(store::KILL_POINT_VAR, n.to_string());
         }
         c.output().unwrap()
     };
@@ -467,7 +467,7 @@ fn a_shard_killed_every_few_steps_finishes_after_a_bounded_number_of_starts() {
             .arg(&experiments)
             .arg("--results-dir")
             .arg(&dir)
-            .env(store::kill_point::VAR, "10")
+            .env(store::KILL_POINT_VAR, "10")
             .output()
             .unwrap();
         if !String::from_utf8_lossy(&out.stderr).contains("killed after durable step") {

@@ -5,6 +5,7 @@
 use catalog::experiment::PaperFile;
 use reproduce::experiments::load_dir;
 use reproduce::task_card::{cards, INDEX, TASKS};
+
 use std::collections::BTreeSet;
 
 const REGENERATE: &str = "regenerate with `cargo run --release -p reproduce -- report`";

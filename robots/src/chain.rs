@@ -264,7 +264,7 @@ fn carry(body: RigidBody, x: &Frame) -> RigidBody {
 
 impl Chain {
     /// A chain of `joints` from the base (identity) to the tool frame `tool` (in the last body's
-    /// frame), with gravity [`DEFAULT_GRAVITY`]. Axes are normalised; refused: no joint,
+    /// frame), with gravity `DEFAULT_GRAVITY`. Axes are normalised; refused: no joint,
     /// non-finite numbers, a zero axis, empty position ranges or non-positive velocity,
     /// acceleration or effort limits, a negative mass, an inertia that is not symmetric
     /// positive semi-definite (to 1e-12 relative), a continuous joint with position limits.

@@ -216,7 +216,7 @@ impl Robot for DataRobot {
 
 /// The tool frame is classical frame n (the task point is fixed in it; a modified table's
 /// flange frame has its axes): R = T_n's rotation, J_w's columns z_{j-1}
-/// ([`crate::geometric_jacobian`]).
+/// (`geometric_jacobian`).
 impl Orientation for DataRobot {
     fn tool_rotation(&self, theta: &[f64]) -> nalgebra::Matrix3<f64> {
         let n = self.dof();
@@ -255,7 +255,7 @@ pub type BuiltinModel = (&'static str, Result<DataRobot, Arc<RobotFileError>>);
 
 /// The built-in robot files, each with its model or why it was refused, in [`builtin_files`]
 /// order, parsed once per process. A refused file fails only the lookups of its own name
-/// ([`crate::registry`]).
+/// ([`crate::robot_by_name`]).
 pub fn builtin_models() -> &'static [BuiltinModel] {
     static MODELS: OnceLock<Vec<BuiltinModel>> = OnceLock::new();
     MODELS.get_or_init(|| {

@@ -170,7 +170,7 @@ pub enum RuleError {
         /// The file's size (bytes).
         bytes: u64,
     },
-    /// The model name is not a slug or is longer than [`MAX_NAME_LEN`].
+    /// The model name is not a slug or is longer than `MAX_NAME_LEN`.
     #[error(
         "field `name` is not a slug (lowercase ASCII letters and digits in words joined by \
          single '-', at most {MAX_NAME_LEN} characters)"
@@ -241,7 +241,7 @@ pub enum RuleError {
     )]
     TwoRotations,
     /// A link's inertia is not physical: a non-positive mass, or (checked by
-    /// [`crate::robot_file`]) an inertia tensor that is not positive semi-definite.
+    /// [`crate::RobotSpec`]) an inertia tensor that is not positive semi-definite.
     #[error("joint {joint}: link.{field} is {problem}")]
     Link {
         /// The joint.

@@ -104,9 +104,6 @@ pub const EXP2_WRIST: Wrist = Wrist {
     half_angle: 11.0 * PI / 72.0,
 };
 
-/// Kinova's actuator effort limits (N m), joints 1-6.
-pub const EFFORT_LIMITS: [f64; 6] = [40.0, 80.0, 40.0, 20.0, 20.0, 20.0];
-
 /// The Jaco2 DH table for a given D6 (D4 = D5 = 0.0741, aa = pi/6).
 pub fn jaco2_dh(d6: f64) -> Vec<DhParam> {
     jaco2_dh_wrist(Wrist { d6, ..PEN_WRIST })
@@ -159,7 +156,7 @@ pub const PAPERS_THETA0: [f64; 6] = [1.675, 2.79, -3.216, 4.187, -1.71, -2.95];
 pub const EXP2_THETA0: [f64; 6] = [1.670, 2.845, -3.218, 4.182, -1.715, -2.655];
 
 /// A Jaco2 model: kinematic chain to the task point, joint limits (a [`DataRobot`] built in
-/// code), and the physical arm's rigid-body model (see [`crate::jaco2_dynamics`]).
+/// code), and the physical arm's rigid-body model (see `jaco2_dynamics`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Jaco2 {
     arm: DataRobot,

@@ -1,6 +1,6 @@
 //! The inertial parameters of the Jaco2's links, for its rigid-body dynamics (zhang2018's
 //! torque-level criterion; [`crate::jaco2::jaco2_rigid_chain`] builds the arm's rigid chain from
-//! them, and [`crate::jaco2::Jaco2`] implements [`crate::Dynamics`] on it).
+//! them, and [`crate::Jaco2`] implements [`crate::Dynamics`] on it).
 //!
 //! Inertial parameters: Kinova's URDF cylinder approximations (`kinova_inertial.xacro`),
 //! re-expressed in the DH frames of the **D6 = 0.16** chain (`docs/robots.md`). Because

@@ -14,59 +14,81 @@
 //! - [`Katana6m180`] — kong2019's eq. (2), 5 joints.
 //! - [`Panda::model`] — Franka Emika Panda (`panda`), 7 joints, Franka's modified-DH table, flange
 //!   centre.
-//! - [`NLink`] — the synthetic n-link family (`nlink-<n>`, any n from 2 to [`nlink::NLINK_MAX`]): a yaw joint and a planar
+//! - [`NLink`] — the synthetic n-link family (`nlink-<n>`, any n from 2 to [`NLINK_MAX`]): a yaw joint and a planar
 //!   pitch chain, for cost scaling.
-//! - [`DataRobot`] — any serial arm declared by a robot file ([`robot_file`], TOML): the
+//! - [`DataRobot`] — any serial arm declared by a robot file ([`RobotSpec`], TOML): the
 //!   built-in files `robots/data/*.toml` (e.g. `puma560`, and data twins of the DH models above)
-//!   are embedded in the library ([`data_robot::builtin_models`]).
-//! - [`ChainRobot`] — a [`chain::Chain`] as a model: the URDF form of a paper's robot file
-//!   ([`robot_file::UrdfRobotSpec`], a URDF read at run time by [`urdf`]), with [`Dynamics`]
+//!   are embedded in the library ([`builtin_models`]).
+//! - [`ChainRobot`] — a [`Chain`] as a model: the URDF form of a paper's robot file
+//!   (a URDF read at run time by [`read_urdf`]), with [`Dynamics`]
 //!   where every moving joint carries an inertial.
-//! - [`mounted::Mounted`] — any of these with a tool offset and a base transform of an
+//! - [`Mounted`] — any of these with a tool offset and a base transform of an
 //!   experiment's own (needs [`Orientation`] for a tool offset).
 //!
 //! Capabilities beyond the position task: [`Dynamics`] (H, c, g) and [`Orientation`] (the tool
 //! frame's rotation and angular Jacobian), asked of a model by [`Robot::orientation`] and the
-//! registry's [`registry::Model::dynamics`].
+//! registry's [`Model::dynamics`].
 //!
-//! Modules: [`dh`] (classical DH forward kinematics), [`geometric_jacobian`] (point and body
-//! Jacobians and their time derivatives), [`rigid_body`] (recursive Newton–Euler, inertia and
-//! Coriolis matrices), [`jaco2`] (Jaco2 kinematics and its [`Dynamics`] implementation),
-//! [`jaco2_dynamics`] (the Jaco2's inertial table), [`katana`] (Katana 6M180), [`panda`] (Franka
-//! Emika Panda), [`nlink`] (the n-link family), [`robot_file`] (the robot file format and its
-//! validation), [`data_robot`] (the model of a robot file, the built-in files), [`limited`] (a
-//! robot with an experiment's limits), [`mounted`] (a robot with an experiment's tool offset
-//! and base transform), [`registry`] (the one map from the robot names of
-//! experiment files to models).
+//! The modules are private; what other crates use is re-exported here: the models above, the
+//! registry ([`robot_by_name`], [`register_file`], [`Model`]: the one map from the robot names
+//! of experiment files to models), the robot file format ([`RobotSpec`], [`RobotFileError`]),
+//! serial chains and URDFs ([`Chain`], [`read_urdf`], [`parse_urdf`]), the Jaco2's inertial
+//! table ([`jaco2_bodies`]), recursive Newton–Euler's bodies ([`RigidBody`]), DH frames
+//! ([`Frame`]), and a robot with an experiment's limits or mount ([`Limited`], [`Mounted`]).
 
 #![deny(missing_docs)]
 
 use nalgebra::{DMatrix, DVector, Matrix3, Matrix3xX, Vector3};
 
-pub mod chain;
-pub mod chain_robot;
-pub mod data_robot;
-pub mod dh;
+mod chain;
+mod chain_robot;
+mod data_robot;
+mod dh;
 mod file_rules;
-pub mod geometric_jacobian;
-pub mod jaco2;
-pub mod jaco2_dynamics;
-pub mod katana;
-pub mod limited;
-pub mod mounted;
-pub mod nlink;
-pub mod panda;
-pub mod registry;
-pub mod rigid_body;
-pub mod robot_file;
-pub mod urdf;
+mod geometric_jacobian;
+mod jaco2;
+mod jaco2_dynamics;
+mod katana;
+mod limited;
+mod mounted;
+mod nlink;
+mod panda;
+mod registry;
+mod rigid_body;
+mod robot_file;
+mod urdf;
 
+pub use chain::{Chain, ChainJoint, ChainWorkspace, JointKind, JointRange};
 pub use chain_robot::ChainRobot;
 pub use data_robot::DataRobot;
+pub use data_robot::{builtin_files, builtin_model, builtin_models, parse_builtin};
+pub use dh::Frame;
 pub use jaco2::{Jaco2, JACO2, JACO2_HAND, JACO2_PEN, JACO2_PEN_EXP2};
+pub use jaco2::{
+    EXP2_WRIST as JACO2_EXP2_WRIST, PAPERS_THETA0 as JACO2_PAPERS_THETA0,
+    PEN_WRIST as JACO2_PEN_WRIST,
+};
+pub use jaco2_dynamics::jaco2_bodies;
 pub use katana::{Katana6m180, KATANA6M180};
+pub use limited::Limited;
+pub use mounted::{Mount, Mounted, MAX_OFFSET};
 pub use nlink::NLink;
+pub use nlink::{H0 as NLINK_H0, NLINK_MAX, NLINK_MIN, REACH as NLINK_REACH};
+pub use panda::QDOT_MAX as PANDA_QDOT_MAX;
 pub use panda::{Panda, PANDA};
+pub use registry::{
+    nlink_name, register_file, robot_by_name, robot_names, robots_with_dynamics, Kinematics, Model,
+    RegistryError,
+};
+pub use rigid_body::RigidBody;
+pub use robot_file::{
+    RobotFileError, RobotForm, RobotSpec, RuleError, UrdfRobotSpec,
+    MAX_FILE_BYTES as ROBOT_FILE_MAX_BYTES,
+};
+pub use urdf::{
+    parse as parse_urdf, read as read_urdf, ChainEnds, UrdfChainError,
+    MAX_JOINTS as URDF_MAX_JOINTS, MAX_LISTED_LINKS as URDF_MAX_LISTED_LINKS,
+};
 
 /// Number of task-space coordinates (end-effector position only) in every paper.
 pub const M: usize = 3;

@@ -41,7 +41,7 @@ use nalgebra::{Matrix3, Vector3};
 
 use crate::dh::Frame;
 use crate::{Dynamics, JointLimits, Orientation, Robot};
-use spec::mount::MountError;
+use spec::MountError;
 
 /// The largest tool offset or base translation, per coordinate (m): an arm's reach is metres,
 /// so a larger value is a typing error (millimetres written as metres), not a mount.
@@ -64,7 +64,7 @@ impl Mount {
     /// The mount of tool offset `tool` (m, in the model's tool frame) and base
     /// `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)` (`rpy = [roll, pitch, yaw]`, rad; the URDF
     /// convention, [`Frame::from_xyz_rpy`]); every entry finite, offsets within
-    /// [`MAX_OFFSET`], angles within [`MAX_ANGLE`].
+    /// [`MAX_OFFSET`], angles within `MAX_ANGLE`.
     pub fn new(tool: [f64; 3], xyz: [f64; 3], rpy: [f64; 3]) -> Result<Self, MountError> {
         for (field, values, max, unit) in [
             ("tool", tool, MAX_OFFSET, "m"),

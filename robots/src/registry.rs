@@ -92,7 +92,7 @@ pub enum Kinematics {
     },
     /// kong2019's closed form of the Katana 6M180.
     Katana(Katana6m180),
-    /// The n-link arm with this many joints ([`crate::nlink`]).
+    /// The n-link arm with this many joints ([`crate::NLink`]).
     NLink(usize),
     /// The chain of a URDF between two links, declared by a robot file's URDF form
     /// ([`crate::robot_file::UrdfRobotSpec`]).

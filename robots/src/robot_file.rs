@@ -46,7 +46,7 @@
 //!   the given matrix (rows), which must be a rotation (orthonormal to 1e-9, determinant +1).
 //!
 //! The Jacobian and its derivative are those of [`crate::geometric_jacobian`]
-//! (`J_j = z_{j-1} x (f - o_{j-1})`); the model is [`crate::data_robot::DataRobot`].
+//! (`J_j = z_{j-1} x (f - o_{j-1})`); the model is [`crate::DataRobot`].
 //!
 //! # Validation
 //!
@@ -74,7 +74,6 @@ use crate::dh::Frame;
 use crate::file_rules::{self, all_finite, RawBase, RawFile};
 pub use crate::file_rules::{
     Axis, Convention, DhRow, ElementaryRotation, JointSpec, LinkInertia, RuleError, MAX_FILE_BYTES,
-    MAX_JOINTS, MAX_NAME_LEN, MIN_JOINTS,
 };
 use crate::urdf::ChainEnds;
 
@@ -136,7 +135,7 @@ pub enum RobotFileError {
         #[source]
         source: inputs::TomlError,
     },
-    /// The model name is not a slug or is longer than [`MAX_NAME_LEN`].
+    /// The model name is not a slug or is longer than `MAX_NAME_LEN`.
     /// A rule of the shared checks (`file_rules`: a number, a range, a limit, the joint
     /// count, the name, the flange, ...), naming the field.
     #[error("{file}: {source}")]
@@ -228,11 +227,10 @@ impl RobotSpec {
 
     fn parse_with(file: &str, stem: Option<&str>, text: &str) -> Result<Self, RobotFileError> {
         file_rules::check_size(text).map_err(rule(file))?;
-        let raw: RawFile =
-            inputs::toml_error::from_str(text).map_err(|source| RobotFileError::Syntax {
-                file: file.to_string(),
-                source,
-            })?;
+        let raw: RawFile = inputs::parse_toml(text).map_err(|source| RobotFileError::Syntax {
+            file: file.to_string(),
+            source,
+        })?;
         let joints = file_rules::check(&raw, stem).map_err(rule(file))?;
         for (i, joint) in joints.iter().enumerate() {
             if let Some(link) = &joint.link {
@@ -346,7 +344,7 @@ impl RobotSpec {
 ///
 /// [`RobotForm::parse_named`] refuses unknown and missing fields, non-finite numbers and a name
 /// that is not a slug; [`UrdfRobotSpec::build`] reads the URDF (through the `inputs` reader,
-/// inside the robot file's directory) and refuses its errors ([`crate::urdf`]), joint vectors
+/// inside the robot file's directory) and refuses its errors ([`crate::read_urdf`]), joint vectors
 /// of the wrong length and non-positive velocity limits, each naming the robot file and field.
 #[derive(Clone, Debug, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -380,7 +378,7 @@ impl RobotForm {
             return RobotSpec::parse_named(file, stem, text).map(RobotForm::Dh);
         }
         let spec: UrdfRobotSpec =
-            inputs::toml_error::from_str(text).map_err(|source| RobotFileError::Syntax {
+            inputs::parse_toml(text).map_err(|source| RobotFileError::Syntax {
                 file: file.to_string(),
                 source,
             })?;

@@ -76,14 +76,14 @@ pub enum UrdfChainError {
     /// too large, not UTF-8).
     #[error(transparent)]
     Input(#[from] inputs::InputError),
-    /// The text is larger than [`MAX_FILE_BYTES`].
+    /// The text is larger than `MAX_FILE_BYTES`.
     #[error("{file}: {bytes} bytes; a URDF may have at most {limit} bytes")]
     TooLarge {
         /// The URDF.
         file: String,
         /// Its size (bytes).
         bytes: u64,
-        /// [`MAX_FILE_BYTES`].
+        /// `MAX_FILE_BYTES`.
         limit: u64,
     },
     /// urdf-rs could not read the file.
@@ -113,7 +113,7 @@ pub enum UrdfChainError {
         file: String,
         /// `base` or `tip`.
         end: &'static str,
-        /// The name asked for (cut to [`MAX_NAME_CHARS`]).
+        /// The name asked for (cut to `MAX_NAME_CHARS`).
         name: String,
         /// The file's link names, at most [`MAX_LISTED_LINKS`], escaped and cut.
         valid: String,
@@ -133,7 +133,7 @@ pub enum UrdfChainError {
     TwoParents {
         /// The URDF.
         file: String,
-        /// The link (cut to [`MAX_NAME_CHARS`]).
+        /// The link (cut to `MAX_NAME_CHARS`).
         link: String,
     },
     /// Following parent links from `link` comes back to it.

@@ -15,7 +15,7 @@ const CANARY: &str = "CANARY_SECRET_41";
 
 /// The built-in PUMA 560 file with `source` replaced by [`CANARY`].
 fn puma_with_canary() -> String {
-    let text = robots::data_robot::builtin_files()
+    let text = robots::builtin_files()
         .iter()
         .find(|(f, _)| *f == "puma560.toml")
         .map(|(_, t)| *t)

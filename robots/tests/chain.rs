@@ -7,10 +7,10 @@
 use nalgebra::{DMatrix, DVector, Matrix3, Rotation3, SVector, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use robots::chain::{Chain, ChainJoint, ChainWorkspace, JointKind, JointRange};
-use robots::data_robot::{builtin_files, builtin_models, parse_builtin};
-use robots::dh::Frame;
-use robots::rigid_body::RigidBody;
+use robots::Frame;
+use robots::RigidBody;
+use robots::{builtin_files, builtin_models, parse_builtin};
+use robots::{Chain, ChainJoint, ChainWorkspace, JointKind, JointRange};
 use robots::{DataRobot, Dynamics, Jaco2, Robot};
 
 /// A random rotation (axis-angle with a random axis and angle).

@@ -6,7 +6,7 @@
 //! the robot file and the field.
 
 use nalgebra::{DMatrix, DVector};
-use robots::registry::{register_file, robot_by_name, Kinematics};
+use robots::{register_file, robot_by_name, Kinematics};
 use std::path::{Path, PathBuf};
 
 /// The fixture URDF's text.
@@ -63,7 +63,7 @@ fn a_urdf_robot_file_gives_a_robot_with_consistent_kinematics_and_dynamics() {
     assert_eq!(limits.theta_max[2], 6.0);
     let robot = model.robot.as_ref();
     let dynamics = model.dynamics.clone().expect("every link has an inertial");
-    assert!(robots::registry::robots_with_dynamics().contains(&"urdf-arm6".to_string()));
+    assert!(robots::robots_with_dynamics().contains(&"urdf-arm6".to_string()));
     let n = 6;
     let theta = model.stated_pose.clone();
     let thetadot = [0.7, -0.4, 0.9, 0.3, -1.1, 0.5];

@@ -5,7 +5,7 @@ use crate::common;
 
 use common::*;
 use nalgebra::{DVector, SMatrix, SVector, Vector3};
-use robots::data_robot::{builtin_files, builtin_model, builtin_models, parse_builtin};
+use robots::{builtin_files, builtin_model, builtin_models, parse_builtin};
 use robots::{DataRobot, Jaco2, NLink, Panda, Robot};
 
 const TOL: f64 = 1e-12;

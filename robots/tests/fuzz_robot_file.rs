@@ -10,9 +10,9 @@
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use robots::data_robot::builtin_files;
-use robots::robot_file::RobotForm;
+use robots::builtin_files;
 use robots::DataRobot;
+use robots::RobotForm;
 use std::time::{Duration, Instant};
 
 /// The stand-in for a secret.

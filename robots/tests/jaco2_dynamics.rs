@@ -7,7 +7,7 @@ use crate::common;
 
 use common::*;
 use nalgebra::{Matrix3, Matrix4, SMatrix, SVector, Vector3};
-use robots::jaco2_dynamics::jaco2_bodies;
+use robots::jaco2_bodies;
 use robots::Jaco2;
 
 type V6 = SVector<f64, 6>;

@@ -5,8 +5,8 @@ use crate::common;
 
 use common::*;
 use nalgebra::{Matrix4, Rotation3, SVector, Vector3};
-use robots::jaco2::{EXP2_WRIST, PEN_WRIST};
 use robots::{Jaco2, Robot, JACO2, JACO2_PEN, JACO2_PEN_EXP2};
+use robots::{JACO2_EXP2_WRIST, JACO2_PEN_WRIST};
 
 fn theta0() -> SVector<f64, 6> {
     SVector::from([1.675, 2.79, -3.216, 4.187, -1.71, -2.95])
@@ -182,9 +182,12 @@ fn exp2_independent(theta: &SVector<f64, 6>) -> Vector3<f64> {
 fn exp2_variant_is_the_groups_chain_and_pen_with_pens_wrist_is_jaco2_pen() {
     let exp2 = Jaco2::pen_exp2();
     let pen = Jaco2::pen();
-    let same = Jaco2::pen_with_wrist(JACO2_PEN, PEN_WRIST);
+    let same = Jaco2::pen_with_wrist(JACO2_PEN, JACO2_PEN_WRIST);
     assert_eq!(same, pen);
-    assert_eq!(Jaco2::pen_with_wrist(JACO2_PEN_EXP2, EXP2_WRIST), exp2);
+    assert_eq!(
+        Jaco2::pen_with_wrist(JACO2_PEN_EXP2, JACO2_EXP2_WRIST),
+        exp2
+    );
     for theta in random_vectors::<6>(6, 20, 4.0) {
         assert!((exp2.position_n(&theta) - exp2_independent(&theta)).norm() < 1e-12);
         assert_eq!(same.position_n(&theta), pen.position_n(&theta));

@@ -6,8 +6,8 @@ use crate::common;
 
 use common::*;
 use nalgebra::{Rotation3, SVector, Translation3, Vector3};
-use robots::nlink::{H0, REACH};
 use robots::{NLink, Robot};
+use robots::{NLINK_H0, NLINK_REACH};
 
 /// The arm as a product of 4 x 4 transforms: Rz(theta_1) Tz(h0), then for each pitch joint
 /// Ry(-theta_k) Tx(l) (a rotation about the horizontal y axis that raises x by theta_k).
@@ -53,7 +53,7 @@ fn check_family<const N: usize>(seed: u64) {
         assert!((skeleton[N] - p).norm() < 1e-14);
         // Reach.
         assert!(
-            p.norm() <= H0 + REACH + 1e-12,
+            p.norm() <= NLINK_H0 + NLINK_REACH + 1e-12,
             "N = {N}: |p| = {}",
             p.norm()
         );
@@ -123,7 +123,7 @@ fn home_positions() {
 macro_rules! sigma_table {
     ($($n:literal)*) => { [$((($n), sigma_min_home::<$n>(), {
         let p = NLink::new($n).unwrap().position_n(&nlink_home::<$n>());
-        (p - Vector3::new(0.0, 0.0, H0)).norm()
+        (p - Vector3::new(0.0, 0.0, NLINK_H0)).norm()
     })),*] };
 }
 

@@ -12,12 +12,12 @@ use std::sync::Arc;
 use nalgebra::{DMatrix, Matrix3, Matrix3xX, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use robots::chain::Chain;
-use robots::mounted::{Mount, Mounted};
-use robots::registry::robot_by_name;
-use robots::urdf::{read, ChainEnds};
+use robots::robot_by_name;
+use robots::Chain;
+use robots::{read_urdf, ChainEnds};
 use robots::{ChainRobot, Dynamics, Orientation, Robot};
-use spec::mount::MountError;
+use robots::{Mount, Mounted};
+use spec::MountError;
 
 const H: f64 = 1e-6;
 /// Central differences of step 1e-6 on functions of order 1: truncation ~1e-12, rounding
@@ -126,7 +126,7 @@ fn arm6() -> ChainRobot {
         tip: "tool0",
         tool: Vector3::zeros(),
     };
-    let chain: Chain = read(&path, inputs::Origin::Named, &ends).unwrap();
+    let chain: Chain = read_urdf(&path, inputs::Origin::Named, &ends).unwrap();
     ChainRobot::new("arm6", chain)
 }
 

@@ -116,7 +116,7 @@ fn jacobian_matches_finite_differences() {
 #[test]
 fn jacobian_dot_matches_finite_differences() {
     let robot = Panda::model();
-    let qdot_max = SVector::from(robots::panda::QDOT_MAX);
+    let qdot_max = SVector::from(robots::PANDA_QDOT_MAX);
     let rates = random_vectors::<7>(25, 20, 1.0);
     for (q, r) in in_limit_poses(24, 20).iter().zip(&rates) {
         let qdot = r.component_mul(&qdot_max);

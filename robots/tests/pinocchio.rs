@@ -2,7 +2,7 @@
 //! `example-robot-data` package (UR5, Panda to its hand and to its prismatic finger, Kinova
 //! Jaco2 with continuous joints, Unitree Z1, xArm7), at seeded random states. The script
 //! `tests/pinocchio_reference.py` prints Pinocchio's tool pose, LOCAL_WORLD_ALIGNED Jacobian
-//! and its time derivative, H, c and g; this test loads the same URDF through `robots::urdf::read` and compares, entry by
+//! and its time derivative, H, c and g; this test loads the same URDF through `robots::read_urdf` and compares, entry by
 //! entry, to 1e-12 relative to max(1, |value|). The same chain without its tool and base, as a
 //! `ChainRobot` with the tool offset and base as an experiment's mount (`robots::mounted`), is
 //! compared the same way through the `Robot` and `Orientation` traits: task point, position
@@ -19,11 +19,11 @@ use std::process::Command;
 use std::sync::Arc;
 
 use nalgebra::{Matrix3, Matrix3xX, Rotation3, Vector3};
-use robots::chain::Chain;
-use robots::dh::Frame;
-use robots::mounted::{Mount, Mounted};
-use robots::urdf::{read, ChainEnds};
+use robots::Chain;
+use robots::Frame;
+use robots::{read_urdf, ChainEnds};
 use robots::{ChainRobot, Robot};
+use robots::{Mount, Mounted};
 use serde::Deserialize;
 
 const TOL: f64 = 1e-12;
@@ -148,7 +148,7 @@ fn urdf_chains_match_pinocchio() {
             tip: &case.tip,
             tool: Vector3::from(case.tool),
         };
-        let chain: Chain = read(&case.urdf, inputs::Origin::Named, &ends)
+        let chain: Chain = read_urdf(&case.urdf, inputs::Origin::Named, &ends)
             .unwrap_or_else(|e| panic!("{}: {e}", case.name))
             .with_base(Frame {
                 rot: rows3(&case.base_rotation),
@@ -263,7 +263,7 @@ fn mounted_robot(case: &Case) -> Mounted<dyn Robot> {
         tip: &case.tip,
         tool: Vector3::zeros(),
     };
-    let bare = read(&case.urdf, inputs::Origin::Named, &ends)
+    let bare = read_urdf(&case.urdf, inputs::Origin::Named, &ends)
         .unwrap_or_else(|e| panic!("{}: {e}", case.name));
     let (roll, pitch, yaw) =
         Rotation3::from_matrix_unchecked(rows3(&case.base_rotation)).euler_angles();

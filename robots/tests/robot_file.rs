@@ -1,9 +1,9 @@
 //! Hostile robot files: each is refused with an error naming the file and the field, and no
 //! input panics.
 
-use robots::data_robot::builtin_files;
-use robots::robot_file::{RobotFileError, RobotSpec, RuleError, MAX_FILE_BYTES};
+use robots::builtin_files;
 use robots::DataRobot;
+use robots::{RobotFileError, RobotSpec, RuleError, ROBOT_FILE_MAX_BYTES};
 
 /// The built-in PUMA 560 file, the base of every mutation here.
 fn puma_text() -> &'static str {
@@ -124,7 +124,7 @@ fn oversized_files_are_refused_before_parsing() {
     let big = format!(
         "{}\n#{}\n",
         puma_text(),
-        "x".repeat(MAX_FILE_BYTES as usize)
+        "x".repeat(ROBOT_FILE_MAX_BYTES as usize)
     );
     let err = refuse(&big);
     assert!(
@@ -248,7 +248,7 @@ fn the_shared_rules_name_file_and_field_without_quoting_the_file() {
         ),
     ];
     for (text, field) in bad {
-        let err = robots::data_robot::parse_builtin("puma560.toml", &text).unwrap_err();
+        let err = robots::parse_builtin("puma560.toml", &text).unwrap_err();
         let message = err.to_string();
         assert!(matches!(err, RobotFileError::Rule { .. }), "{err:?}");
         assert!(

@@ -3,8 +3,10 @@
 //! checks the numbers on real arms (`tests/pinocchio.rs`).
 
 use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
-use robots::chain::JointKind;
-use robots::urdf::{parse, read, ChainEnds, UrdfChainError, MAX_JOINTS, MAX_LISTED_LINKS};
+use robots::JointKind;
+use robots::{
+    parse_urdf, read_urdf, ChainEnds, UrdfChainError, URDF_MAX_JOINTS, URDF_MAX_LISTED_LINKS,
+};
 
 /// A small arm: `world` -fixed-> `base` -revolute j1-> `l1` -fixed-> `l1b` -prismatic j2->
 /// `l2` -continuous j3-> `l3` -fixed-> `tcp`; off the path, `sensor` (fixed on `l1`) and
@@ -87,7 +89,7 @@ fn iso(xyz: [f64; 3], rpy: [f64; 3]) -> Isometry3<f64> {
 
 #[test]
 fn the_path_folds_fixed_joints_and_reads_limits() {
-    let chain = parse("arm.urdf", &arm(0.2), &ends("world", "tcp")).unwrap();
+    let chain = parse_urdf("arm.urdf", &arm(0.2), &ends("world", "tcp")).unwrap();
     let names: Vec<&str> = chain.joints().iter().map(|j| j.name.as_str()).collect();
     assert_eq!(names, ["j1", "j2", "j3"]);
     let kinds: Vec<JointKind> = chain.joints().iter().map(|j| j.kind).collect();
@@ -147,7 +149,7 @@ fn the_path_folds_fixed_joints_and_reads_limits() {
 
 #[test]
 fn a_body_carries_its_fixed_links_and_not_the_moving_branches() {
-    let chain = parse("arm.urdf", &arm(0.2), &ends("base", "l3")).unwrap();
+    let chain = parse_urdf("arm.urdf", &arm(0.2), &ends("base", "l3")).unwrap();
     // Body 1 is l1 with its sensor (and l1b, massless): masses add, centres average.
     let b1 = chain.joints()[0].body.unwrap();
     assert!((b1.mass - 3.0).abs() < 1e-15);
@@ -161,7 +163,7 @@ fn a_body_carries_its_fixed_links_and_not_the_moving_branches() {
     let trace = 0.09 + 0.03 + 2.0 * (2.0 * d1.norm_squared() + d2.norm_squared());
     assert!((b1.inertia.trace() - trace).abs() < 1e-15);
     // The finger hangs on l3 by a moving joint: its mass is not part of the chain.
-    let heavy = parse("arm.urdf", &arm(7.0), &ends("base", "l3")).unwrap();
+    let heavy = parse_urdf("arm.urdf", &arm(7.0), &ends("base", "l3")).unwrap();
     let (mut ws, mut ws_heavy) = (chain.workspace(), heavy.workspace());
     let q = [0.3, 0.1, 0.9];
     assert_eq!(chain.inertia(&mut ws, &q), heavy.inertia(&mut ws_heavy, &q));
@@ -172,7 +174,7 @@ fn a_body_carries_its_fixed_links_and_not_the_moving_branches() {
 }
 
 fn error(text: &str, base: &str, tip: &str) -> (UrdfChainError, String) {
-    let e = parse("robots/my-arm.urdf", text, &ends(base, tip)).unwrap_err();
+    let e = parse_urdf("robots/my-arm.urdf", text, &ends(base, tip)).unwrap_err();
     let m = e.to_string();
     assert!(m.starts_with("robots/my-arm.urdf: "), "{m}");
     (e, m)
@@ -198,7 +200,7 @@ fn unknown_links_are_named_with_a_bounded_list_of_the_valid_ones() {
         "link1",
     );
     assert!(
-        m.contains(&format!("and {} more", 50 - MAX_LISTED_LINKS)),
+        m.contains(&format!("and {} more", 50 - URDF_MAX_LISTED_LINKS)),
         "{m}"
     );
     assert!(!m.contains("link49"), "{m}");
@@ -246,7 +248,7 @@ fn unsupported_joints_and_non_trees_are_refused() {
         r#"name="finger_joint" type="revolute""#,
         r#"name="finger_joint" type="floating""#,
     );
-    assert!(parse("x.urdf", &off, &ends("base", "tcp")).is_ok());
+    assert!(parse_urdf("x.urdf", &off, &ends("base", "tcp")).is_ok());
     let mimic = arm(0.2).replace(
         r#"<axis xyz="0 1 0"/>"#,
         r#"<axis xyz="0 1 0"/><mimic joint="j1"/>"#,
@@ -314,7 +316,7 @@ fn parse_errors_and_oversized_files_quote_nothing() {
         assert!(matches!(e, UrdfChainError::Syntax { .. }), "{m}");
         assert!(!m.contains(secret), "{m}");
     }
-    let joints: String = (0..=MAX_JOINTS)
+    let joints: String = (0..=URDF_MAX_JOINTS)
         .map(|i| format!("<joint name=\"j{i}\" type=\"fixed\"><parent link=\"a\"/><child link=\"l{i}\"/></joint>"))
         .collect();
     let (e, _) = error(
@@ -332,17 +334,17 @@ fn read_goes_through_the_input_reader() {
     std::fs::create_dir_all(&inner).unwrap();
     let file = dir.join("arm.urdf");
     std::fs::write(&file, arm(0.2)).unwrap();
-    let chain = read(&file, inputs::Origin::Named, &ends("base", "tcp")).unwrap();
+    let chain = read_urdf(&file, inputs::Origin::Named, &ends("base", "tcp")).unwrap();
     assert_eq!(chain.dof(), 3);
     // A link that leads out of the directory it is found in is refused, naming the path.
     let link = inner.join("arm.urdf");
     std::os::unix::fs::symlink(&file, &link).unwrap();
-    let e = read(&link, inputs::Origin::Named, &ends("base", "tcp")).unwrap_err();
+    let e = read_urdf(&link, inputs::Origin::Named, &ends("base", "tcp")).unwrap_err();
     assert!(
         matches!(e, UrdfChainError::Input(_)) && e.to_string().contains("papers/arm.urdf"),
         "{e}"
     );
-    let missing = read(
+    let missing = read_urdf(
         &dir.join("none.urdf"),
         inputs::Origin::Named,
         &ends("base", "tcp"),
@@ -371,7 +373,7 @@ fn a_two_hundred_joint_urdf_is_one_chain() {
         })
         .collect();
     let text = format!("<robot name=\"long\">{links}{joints}</robot>");
-    let chain = parse("long.urdf", &text, &ends("l0", &format!("l{n}"))).unwrap();
+    let chain = parse_urdf("long.urdf", &text, &ends("l0", &format!("l{n}"))).unwrap();
     assert_eq!(chain.dof(), n);
     let mut ws = chain.workspace();
     let q: Vec<f64> = (0..n).map(|i| (i as f64 * 0.37).sin()).collect();

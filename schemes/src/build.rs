@@ -1,13 +1,13 @@
-//! Building a scheme from its specification (crate `spec`: [`spec::scheme::SchemeSpec`], the
-//! presets, and [`spec::terms::ComposedSpec`], the term lists they expand to): each term's
+//! Building a scheme from its specification (crate `spec`: [`spec::SchemeSpec`], the
+//! presets, and [`spec::ComposedSpec`], the term lists they expand to): each term's
 //! specification becomes its term ([`crate::terms`]) and the list one [`Composed`] scheme.
 
 use std::sync::Arc;
 
 use nalgebra::Vector3;
 use robots::{Dynamics, Robot};
-use spec::scheme::{Level, RepetitiveForm, SchemeError, SchemeSpec};
-use spec::terms::{tracking_axes, ComposedSpec, Penalty, Task, TermSpec};
+use spec::{tracking_axes, ComposedSpec, Penalty, Task, TermSpec};
+use spec::{Level, RepetitiveForm, SchemeError, SchemeSpec};
 
 use crate::composed::Composed;
 use crate::paths::Path;

@@ -1,7 +1,7 @@
 //! The one scheme: a level and a list of terms ([`crate::terms`]), x = [command; extra
 //! variables], the command x[..n] being thetadot (velocity level) or thetaddot (acceleration
 //! level). At every instant the QP is zeroed (bounds -inf, +inf), then each term writes its
-//! block in list order; the papers' schemes are presets, term lists ([`spec::scheme`], built by [`crate::build`]).
+//! block in list order; the papers' schemes are presets, term lists ([`spec::SchemeSpec`], built by [`crate::build`]).
 //!
 //! Where the bounds go ([`BoundPlacement`]): as the QP's variable bounds l <= x <= u, or as
 //! rows of G appended after every term's rows,
@@ -14,13 +14,13 @@
 //! norm and a bound conversion (the paper prints h's last block x-; the rows encode x >= x- only
 //! with -x-, which is used), so that VP-RNN-PF's penalty zhong2021 (2.19) sees every bound.
 
-use spec::terms::BoundPlacement;
+use spec::BoundPlacement;
 
 use crate::scheme::{central_difference, default_step, Scheme};
 use crate::terms::{DotOut, Footprint, Slot, State, Term};
-use qp::dot::QpDotScratch;
+use qp::QpDotScratch;
 use qp::{Qp, QpDims};
-use spec::scheme::Level;
+use spec::Level;
 
 /// A scheme composed of terms (module docs).
 pub struct Composed {
@@ -195,7 +195,7 @@ impl Scheme for Composed {
     }
 
     /// The sum of the terms' exact derivatives, or the central difference of the whole QP
-    /// when a term has none (module docs of [`crate::terms`]).
+    /// when a term has none (module docs of `terms`).
     fn build_dot(
         &self,
         t: f64,

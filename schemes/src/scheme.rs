@@ -15,13 +15,13 @@
 //! ```
 //!
 //! (at the velocity level the thetadot argument of `build` is unused, so only theta moves). Its
-//! default is the central difference of [`qp::dot`] along that motion
+//! default is the central difference of [`qp::difference_quotient`] along that motion
 //! ([`central_difference`] with the step [`default_step`]).
 
 use qp::{Qp, QpDims};
-use spec::scheme::Level;
+use spec::Level;
 
-use qp::dot::{difference_quotient, QpDotScratch, FD_STEP};
+use qp::{difference_quotient, QpDotScratch, FD_STEP};
 
 /// A redundancy-resolution scheme: QP(t, theta, thetadot).
 pub trait Scheme: Send + Sync {
@@ -93,7 +93,7 @@ fn amax(v: &[f64]) -> f64 {
     v.iter().fold(0.0, |m: f64, x| m.max(x.abs()))
 }
 
-/// The default central-difference step for a state (see [`qp::dot`]).
+/// The default central-difference step for a state (see [`qp::difference_quotient`]).
 pub fn default_step(level: Level, thetadot: &[f64], thetaddot: &[f64]) -> f64 {
     let mut scale = 1.0_f64.max(amax(thetadot));
     if level == Level::Acceleration {
@@ -105,7 +105,7 @@ pub fn default_step(level: Level, thetadot: &[f64], thetaddot: &[f64]) -> f64 {
     FD_STEP / scale
 }
 
-/// dQP/dt by central difference with step `h` along the motion (see [`qp::dot`]).
+/// dQP/dt by central difference with step `h` along the motion (see [`qp::difference_quotient`]).
 #[allow(clippy::too_many_arguments)]
 pub fn central_difference<S: Scheme + ?Sized>(
     scheme: &S,

@@ -9,9 +9,9 @@ use std::sync::Arc;
 use common::{paper_specs, Circle, PlanarZ};
 use qp::QpDims;
 use robots::Robot;
-use schemes::build::build_scheme;
-use spec::scheme::Level;
-use spec::scheme::SchemeSpec;
+use schemes::build_scheme;
+use spec::Level;
+use spec::SchemeSpec;
 
 const N: usize = 6;
 
@@ -19,7 +19,7 @@ fn theta0() -> Vec<f64> {
     vec![0.3, 1.2, -0.8, 0.5, -0.4, 0.2]
 }
 
-fn build(spec: &SchemeSpec) -> Box<dyn schemes::scheme::Scheme> {
+fn build(spec: &SchemeSpec) -> Box<dyn schemes::Scheme> {
     let robot = Arc::new(PlanarZ::new(N));
     let path = Arc::new(Circle {
         r0: robot.position(&theta0()),

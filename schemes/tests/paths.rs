@@ -5,9 +5,7 @@ use nalgebra::Vector3;
 use schemes::paths::{
     build_path, ClosedCurve, CurveShape, GlobalPolyline, Path, PathPoint, StrokePath, DAI, PING,
 };
-use spec::path::{
-    default_duration, default_scale, scale_provenance, PathError, PathSpec, PATH_NAMES,
-};
+use spec::{default_duration, default_scale, scale_provenance, PathError, PathSpec, PATH_NAMES};
 use std::f64::consts::PI;
 
 fn start() -> Vector3<f64> {

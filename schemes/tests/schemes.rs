@@ -9,16 +9,16 @@ use std::sync::Arc;
 
 use common::{admm, kkt_solve, paper_specs as specs, Circle, FixedRobot, PlanarZ};
 use nalgebra::{DMatrix, SVector, Vector3};
-use qp::dot::{self, QpDotScratch};
+use qp::QpDotScratch;
 use qp::{Qp, QpDims};
 use robots::{Dynamics, JointLimits, Robot};
-use schemes::build::build_scheme;
-use schemes::joint_limits::{merged_bound, piecewise_bound};
+use schemes::build_scheme;
 use schemes::paths::Path;
-use schemes::scheme::{central_difference, default_step, Scheme};
-use spec::rmp::RmpReading;
-use spec::scheme::Level;
-use spec::scheme::{hl_jdf_name, vltco_name, SchemeError, SchemeSpec};
+use schemes::{central_difference, default_step, Scheme};
+use schemes::{merged_bound, piecewise_bound};
+use spec::Level;
+use spec::RmpReading;
+use spec::{hl_jdf_name, vltco_name, SchemeError, SchemeSpec};
 
 const N: usize = 6;
 type V = SVector<f64, N>;
@@ -459,7 +459,7 @@ fn zhang2018_weight_is_spd_and_torque_is_the_dynamics() {
 /// kong2019's c = |e|^alpha sgn(e) elementwise, e = theta - theta*0, smoothed over |e| ~ delta:
 /// the sign-power term of the finite-time scheme.
 fn finite_time_c(theta: &V, star: &V, alpha: f64, delta: f64) -> V {
-    (theta - star).map(|e| settings::sign_power::sign_power(e, alpha, delta))
+    (theta - star).map(|e| settings::sign_power(e, alpha, delta))
 }
 
 #[test]
@@ -557,8 +557,8 @@ fn stencil_dot(s: &dyn Scheme, t: f64, th: &V, thd: &V, thdd: &V, h: f64) -> Qp 
     let mut out = s.new_qp();
     let mut tmp = s.new_qp();
     // (-f(2) + 8 f(1) - 8 f(-1) + f(-2)) / 12h = [8 (f1 - f-1)/2 - (f2 - f-2)/4 ] ... via two quotients.
-    dot::difference_quotient(&p1, &m1, 2.0 * h, &mut out);
-    dot::difference_quotient(&p2, &m2, 4.0 * h, &mut tmp);
+    qp::difference_quotient(&p1, &m1, 2.0 * h, &mut out);
+    qp::difference_quotient(&p2, &m2, 4.0 * h, &mut tmp);
     let comb = |o: &mut [f64], t: &[f64]| {
         for (a, b) in o.iter_mut().zip(t) {
             *a = (4.0 * *a - *b) / 3.0;

@@ -9,7 +9,7 @@ use alloc_count::count;
 use common::{Circle, PlanarZ};
 use nalgebra::SVector;
 use robots::Robot;
-use schemes::build::build_scheme;
+use schemes::build_scheme;
 
 #[test]
 fn build_and_build_dot_do_not_allocate() {
@@ -86,13 +86,13 @@ fn the_schemes_do_not_allocate_at_200_joints_nor_on_a_dh_chain() {
     let arm = robots::NLink::new(200).unwrap();
     let home = arm.home();
     velocity_schemes_do_not_allocate(Arc::new(arm), home.as_slice());
-    let puma = robots::registry::robot_by_name("puma560").unwrap();
+    let puma = robots::robot_by_name("puma560").unwrap();
     velocity_schemes_do_not_allocate(puma.robot, &puma.stated_pose);
 }
 
 #[test]
 fn hl_jdf_on_the_jaco2_does_not_allocate() {
-    let jaco2 = robots::registry::robot_by_name("jaco2-pen").unwrap();
+    let jaco2 = robots::robot_by_name("jaco2-pen").unwrap();
     let dynamics = jaco2.dynamics.clone().unwrap();
     let pose = jaco2.stated_pose.clone();
     let path = Arc::new(Circle {

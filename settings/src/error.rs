@@ -4,7 +4,7 @@
 //! the parameter and its valid range; the layers above (the experiment format, the engine)
 //! wrap them with the file and field.
 
-/// Integrator settings out of their range ([`crate::integrator::IntegratorSettings::validate`]);
+/// Integrator settings out of their range ([`crate::IntegratorSettings::validate`]);
 /// each message names the setting and its valid range.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum IntegratorError {

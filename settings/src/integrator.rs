@@ -55,11 +55,11 @@ pub struct IntegratorSettings {
     #[serde(default = "default_max_steps")]
     pub max_steps: usize,
     /// Wall-time budget of one integration in seconds: a run past it fails with that reason,
-    /// so no input can keep the binary busy for good (default [`DEFAULT_MAX_WALL_S`]).
+    /// so no input can keep the binary busy for good (default `DEFAULT_MAX_WALL_S`).
     #[serde(default = "default_max_wall_s")]
     pub max_wall_s: f64,
     /// Evaluation budget: right-hand-side evaluations (finite-difference Jacobian columns
-    /// included) after which the run fails with that reason (default [`DEFAULT_MAX_RHS_EVALS`];
+    /// included) after which the run fails with that reason (default `DEFAULT_MAX_RHS_EVALS`;
     /// never more than [`RHS_EVALS_PER_SECOND`] per second of the span integrated,
     /// [`IntegratorSettings::rhs_budget`]).
     #[serde(default = "default_max_rhs_evals")]

@@ -2,11 +2,10 @@
 //!
 //! What a solver is told before it runs, and nothing of how it runs:
 //!
-//! - [`solver_spec`]: a network and its parameters by the papers' names
-//!   ([`solver_spec::SolverSpec`]), with its stable id and display name, and the reference
-//!   perturbation of zhang2018 ([`solver_spec::ReferencePerturbation`]);
-//! - [`activation`]: an activation function and all of its parameters as one value
-//!   ([`activation::ActivationSpec`]; zhong2021 (2.29) and the group's power-sigmoid);
+//! - a network and its parameters by the papers' names ([`SolverSpec`]), with its stable id and
+//!   display name, and the reference perturbation of zhang2018 ([`ReferencePerturbation`]);
+//! - an activation function and all of its parameters as one value ([`ActivationSpec`];
+//!   zhong2021 (2.29) and the group's power-sigmoid);
 //! - [`zeroing`]: the zeroing family as a vocabulary (gain law, activation, growing gain,
 //!   perturbation), of which the papers' zeroing networks are presets;
 //! - [`projection`]: the projection family as a vocabulary (error form with its scaling or
@@ -14,14 +13,16 @@
 //! - [`qp_solver`]: the QP solvers' registry as data (id, name, settings with ranges and
 //!   defaults; [`qp_solver::QpSolverInfo`]) and their typed settings
 //!   ([`qp_solver::QpSolverSettings`]); crate `solvers`' `registry` holds the constructors;
-//! - [`network_kind`]: a network's kind ([`network_kind::NetworkKind`]), its identity in
-//!   experiment files and `runs.csv`;
-//! - [`integrator`]: the integration method and its tolerances and budgets;
-//! - [`linear_algebra`]: the system size from which dense LU runs on faer;
-//! - [`slug`]: the one rule for ids and file-name stems;
-//! - [`sign_power`]: the sign-power function shared by kong2019's finite-time scheme and the
-//!   finite-time activations;
-//! - [`error`]: the checks' errors ([`error::NetworkError`], [`error::IntegratorError`]).
+//! - a network's kind ([`NetworkKind`]), its identity in experiment files and `runs.csv`;
+//! - the integration method and its tolerances and budgets ([`IntegratorSettings`], [`Method`]);
+//! - the system size from which dense LU runs on faer ([`FAER_CROSSOVER`]);
+//! - the one rule for ids and file-name stems ([`slug()`], [`is_slug`]);
+//! - the sign-power function shared by kong2019's finite-time scheme and the finite-time
+//!   activations ([`sign_power()`]);
+//! - the checks' errors ([`NetworkError`], [`IntegratorError`]).
+//!
+//! The three vocabularies and the registry are the public modules; everything else is an item
+//! at the root.
 //!
 //! Crate `solvers` builds its networks and integrators from these values; crate `catalog` reads
 //! them from experiment files (every type here is serde-readable, and a misspelt field is an
@@ -29,7 +30,7 @@
 //! the results layer can state a setting without linking a solver.
 //!
 //! ```
-//! use settings::solver_spec::SolverSpec;
+//! use settings::SolverSpec;
 //!
 //! let spec: SolverSpec = parse("kind = \"vp-rnn-pf\"\np = 1e-4\nsigma = 400.0\ngamma = 2.0\nactivation = \"sinh\"");
 //! assert_eq!(spec.id(), "vp-rnn-pf-sinh");
@@ -39,14 +40,25 @@
 
 #![deny(missing_docs)]
 
-pub mod activation;
-pub mod error;
-pub mod integrator;
-pub mod linear_algebra;
-pub mod network_kind;
+mod activation;
+mod error;
+mod integrator;
+mod linear_algebra;
+mod network_kind;
 pub mod projection;
 pub mod qp_solver;
-pub mod sign_power;
-pub mod slug;
-pub mod solver_spec;
+mod sign_power;
+mod slug;
+mod solver_spec;
 pub mod zeroing;
+pub use activation::{
+    ActivationKind, ActivationSpec, GROUP_POWER_SIGMOID_P, GROUP_POWER_SIGMOID_XI,
+    POWER_SIGMOID_ALPHA, POWER_SIGMOID_CHI,
+};
+pub use error::{IntegratorError, NetworkError};
+pub use integrator::{IntegratorSettings, Method, RHS_EVALS_PER_SECOND};
+pub use linear_algebra::FAER_CROSSOVER;
+pub use network_kind::NetworkKind;
+pub use sign_power::{sign_power, sign_power_slope, SIGN_POWER_MIN_ABS};
+pub use slug::{is_slug, slug};
+pub use solver_spec::{ReferencePerturbation, SolverSpec};

@@ -1,4 +1,4 @@
-//! The kinds of network ([`NetworkKind`]): the identity of a [`crate::solver_spec::SolverSpec`]
+//! The kinds of network ([`NetworkKind`]): the identity of a [`crate::SolverSpec`]
 //! variant, as experiment files name it (`kind = "lvi-pdnn"`) and as `runs.csv` stores it in
 //! `solver_kind`. Code that treats one kind apart compares this enum, never a label or an id
 //! prefix.
@@ -32,7 +32,7 @@ pub enum NetworkKind {
 }
 
 impl NetworkKind {
-    /// Every kind, in the order of [`crate::solver_spec::SolverSpec`]'s variants.
+    /// Every kind, in the order of [`crate::SolverSpec`]'s variants.
     pub const ALL: [NetworkKind; 10] = [
         NetworkKind::LviPdnn,
         NetworkKind::SLviPdnn,

@@ -24,7 +24,7 @@
 //!
 //! # The presets
 //!
-//! The papers' networks of this family are presets ([`crate::solver_spec::SolverSpec::projection`]):
+//! The papers' networks of this family are presets ([`crate::SolverSpec::projection`]):
 //! `lvi-pdnn` = `lvi` with `i-plus-mt`, constant gain gamma, linear; `s-lvi-pdnn` = `lvi` with
 //! `identity`, constant gain beta, linear; `vp-rnn-pf` = `penalty` (p, sigma), exponential gain
 //! gamma exp(t), its activation.

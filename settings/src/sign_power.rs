@@ -17,7 +17,7 @@ pub fn sign_power(e: f64, r: f64, delta: f64) -> f64 {
     }
 }
 
-/// d/de of [`sign_power`].
+/// d/de of [`sign_power()`].
 #[inline]
 pub fn sign_power_slope(e: f64, r: f64, delta: f64) -> f64 {
     if delta > 0.0 {

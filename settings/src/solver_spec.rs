@@ -204,7 +204,7 @@ pub enum SolverSpec {
         beta: f64,
         /// The sign-power exponent alpha, 0 < alpha < 1.
         alpha: f64,
-        /// Half-width of the sign-power's linear zone (default [`FINITE_TIME_SMOOTHING`]).
+        /// Half-width of the sign-power's linear zone (default `FINITE_TIME_SMOOTHING`).
         smoothing: f64,
     },
     /// Linear ZNN (kong2019's comparison solver).
@@ -215,9 +215,9 @@ pub enum SolverSpec {
     /// The papers' group's own network (`docs/group-code.md`, `docs/networks.md`):
     /// Q ydot = -Qdot y - gamma Phi(E) + udot - nu t E + Delta_s(t).
     GroupZnn {
-        /// gamma (default [`GROUP_GAMMA`]).
+        /// gamma (default `GROUP_GAMMA`).
         gamma: f64,
-        /// nu of the growing-gain term (default [`GROUP_NU`]).
+        /// nu of the growing-gain term (default `GROUP_NU`).
         nu: f64,
         /// Phi (default: the group's power-sigmoid).
         activation: ActivationSpec,

@@ -36,7 +36,7 @@
 //! # The presets
 //!
 //! The papers' zeroing networks are presets of this vocabulary
-//! ([`crate::solver_spec::SolverSpec::zeroing`]): `fp-cdnn` = constant gain, `vp-cdnn` =
+//! ([`crate::SolverSpec::zeroing`]): `fp-cdnn` = constant gain, `vp-cdnn` =
 //! exponential gain, `znn` = constant gain and linear activation, `finite-time` = constant gain
 //! and the sign-power activation, `group-znn` = constant gain, nu > 0, the vector part of the
 //! perturbation only.

@@ -23,13 +23,13 @@
 //! Newton then failed on every other step (650,000 steps instead of ~3,000).
 
 use nalgebra::{DMatrix, DVector};
-use qp::dot::QpDotScratch;
-use schemes::scheme::Scheme;
-use solvers::exact_path::{ExactPath, ExactPathStats};
+use qp::QpDotScratch;
+use schemes::Scheme;
 use solvers::neural::NeuralSolver;
 use solvers::ode::OdeSystem;
 use solvers::{ExactError, Qp};
-use spec::scheme::Level;
+use solvers::{ExactPath, ExactPathStats};
+use spec::Level;
 
 /// Number of arm-state entries of an n-joint arm: n at the velocity level, 2n at the
 /// acceleration level.

@@ -1,12 +1,12 @@
 //! The simulation layer's errors: why a run failed, typed. The error of each layer a run passes
-//! through (building its parts: `spec::run::SetupError`; the exact QP; the integrator) is
+//! through (building its parts: `spec::SetupError`; the exact QP; the integrator) is
 //! wrapped by [`RunError`], and its [`FailureKind`] (records' type) is the `failure_kind`
 //! column of `results/runs.csv`. The message (the `failure` column) is the error's `Display`.
 
-use records::failure_kind::FailureKind;
+use records::FailureKind;
 use solvers::ode::OdeError;
 use solvers::ExactError;
-use spec::run::SetupError;
+use spec::SetupError;
 
 /// Why a run stopped before its path's end.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -34,7 +34,7 @@ pub enum RunError {
     #[error(transparent)]
     Integration(#[from] OdeError),
     /// A numerical run used up its iteration budget
-    /// ([`crate::numerical::ITERATIONS_PER_SECOND`] per second of the path's duration) by the
+    /// (`numerical::ITERATIONS_PER_SECOND` per second of the path's duration) by the
     /// instant t.
     #[error("numerical method at t = {t:.6}: iteration budget of {budget} iterations ({} per second of the path's duration) used up", crate::numerical::ITERATIONS_PER_SECOND)]
     IterationBudget {

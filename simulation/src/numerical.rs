@@ -26,13 +26,13 @@ use crate::error::RunError;
 use crate::observer::{score_instant, Observer};
 use nalgebra::DVector;
 use qp::QpStatus;
-use schemes::scheme::Scheme;
-use solvers::exact_path::ExactPathStats;
+use schemes::Scheme;
 use solvers::ode::OdeStats;
 use solvers::registry::BoxedQpSolver;
-use spec::numerical::NumericalSpec;
-use spec::run::Scoring;
-use spec::scheme::Level;
+use solvers::ExactPathStats;
+use spec::Level;
+use spec::NumericalSpec;
+use spec::Scoring;
 use std::time::Instant;
 
 /// The iteration budget of a numerical run per second of its path's duration (at least one
@@ -84,7 +84,7 @@ fn build_solver(
     budget: u64,
 ) -> Result<(BoxedQpSolver, Option<u32>), RunError> {
     let setup = |e: solvers::registry::RegistryError| {
-        RunError::Setup(spec::run::SetupError::QpSolver(e.to_string()))
+        RunError::Setup(spec::SetupError::QpSolver(e.to_string()))
     };
     let mut settings = spec.resolved().map_err(|e| setup(e.into()))?;
     let requested = settings.max_iterations;

@@ -8,12 +8,12 @@
 use crate::coupled::{arm_slices, ExactLoop};
 use crate::metrics::{MetricsAccumulator, Sample, ScoreSample};
 use nalgebra::{DVector, Matrix3xX};
-use records::trace::TracePoint;
+use records::TracePoint;
 use robots::Robot;
 use schemes::paths::Path;
-use schemes::scheme::Scheme;
-use spec::run::Scoring;
-use spec::scheme::Level;
+use schemes::Scheme;
+use spec::Level;
+use spec::Scoring;
 
 /// Samples kept per run for the figures (uniform in t, plus the last).
 const TRACE_POINTS: usize = 400;
@@ -71,7 +71,7 @@ pub(crate) fn score_instant(
 }
 
 /// Turns accepted steps into metrics and a thinned trace (also the samples of a trajectory
-/// scored by [`crate::score_trajectory`]).
+/// scored by [`crate::score_trajectory()`]).
 pub(crate) struct Observer<'a> {
     robot: &'a dyn Robot,
     scheme: &'a dyn Scheme,
@@ -90,7 +90,7 @@ pub(crate) struct Observer<'a> {
     last_dx: Option<f64>,
     last_network_error: Option<f64>,
     pub(crate) score_failures: usize,
-    /// Wall time spent in the observer (see [`crate::run::RunRecord::observe_seconds`]).
+    /// Wall time spent in the observer (see [`crate::RunRecord::observe_seconds`]).
     pub(crate) seconds: f64,
 }
 

@@ -1,4 +1,4 @@
-//! A run's record as a row of `results/runs.csv` ([`records::runs::RunRow`]): the job's identity
+//! A run's record as a row of `results/runs.csv` ([`records::RunRow`]): the job's identity
 //! and settings, the outcome (a failed run keeps its metrics up to the failure, but no drift),
 //! every metric and the score against the exact optimum, the integrator's counts, the exact
 //! QPs' counts and the wall times. The row's schema is records'; what goes in each column from
@@ -6,7 +6,7 @@
 
 use crate::run::RunRecord;
 use crate::simulate::Outcome;
-use records::runs::{RunRow, Status};
+use records::{RunRow, Status};
 
 /// The row of the run `r` (module docs), stamped with the code revision `git_rev`.
 pub fn run_row(r: &RunRecord, git_rev: &str) -> RunRow {
@@ -36,10 +36,7 @@ pub fn run_row(r: &RunRecord, git_rev: &str) -> RunRow {
         solver_kind: j.solver.kind(),
         robot: j.robot.clone(),
         path: j.path.name.clone(),
-        path_scale: j
-            .path
-            .scale
-            .or_else(|| spec::path::default_scale(&j.path.name)),
+        path_scale: j.path.scale.or_else(|| spec::default_scale(&j.path.name)),
         duration: j.path.duration,
         status,
         failure,

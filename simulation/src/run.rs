@@ -5,20 +5,20 @@ use crate::error::RunError;
 use crate::simulate::{simulate, Outcome, Run, Settings, Solver};
 use nalgebra::DVector;
 use qp::QpDims;
-use robots::mounted::{Mount, Mounted};
-use robots::registry::{robot_by_name, Model};
+use robots::{robot_by_name, Model};
 use robots::{Dynamics, Robot};
-use schemes::build::build_scheme;
+use robots::{Mount, Mounted};
+use schemes::build_scheme;
 use schemes::paths::{build_path, Cyclic, Path};
-use schemes::scheme::Scheme;
-use settings::solver_spec::SolverSpec;
-use solvers::exact_path::ExactPathStats;
+use schemes::Scheme;
+use settings::SolverSpec;
 use solvers::neural::NeuralSolver;
 use solvers::ode::OdeStats;
-use spec::run::JobPart;
-use spec::run::RunSpec;
-use spec::run::SetupError;
-use spec::run::SolverChoice;
+use solvers::ExactPathStats;
+use spec::JobPart;
+use spec::RunSpec;
+use spec::SetupError;
+use spec::SolverChoice;
 use std::sync::Arc;
 
 /// A job and what its simulation produced.
@@ -157,10 +157,10 @@ fn honours_constraints(
 }
 
 /// The registry's model of the job's robot, with the job's tool offset and base where it gives
-/// them ([`robots::mounted`]); the error names the valid choices, or the robot's invalid file
+/// them ([`robots::Mounted`]); the error names the valid choices, or the robot's invalid file
 /// and field, or why the mount does not fit the robot. A mounted model keeps its dynamics only
 /// for a scheme that needs them, where a base that tilts gravity is refused
-/// ([`spec::mount::MountError::TiltedGravity`]).
+/// ([`spec::MountError::TiltedGravity`]).
 pub fn job_model(job: &RunSpec) -> Result<Model, SetupError> {
     let model = robot_by_name(&job.robot).map_err(|e| SetupError::UnknownRobot(e.to_string()))?;
     let Some(mount) = job_mount(job)? else {
@@ -189,9 +189,9 @@ pub fn job_mount(job: &RunSpec) -> Result<Option<Mount>, SetupError> {
 }
 
 /// The shape of the QP the job's scheme poses at every instant: its sizes and whether its
-/// decision variable starts with thetadot or thetaddot ([`spec::scheme::Level`]). Built as
+/// decision variable starts with thetadot or thetaddot ([`spec::Level`]). Built as
 /// [`check_job`] builds the scheme (robot, path from f(theta_ref), scheme), without running.
-pub fn qp_shape(job: &RunSpec) -> Result<(QpDims, spec::scheme::Level), SetupError> {
+pub fn qp_shape(job: &RunSpec) -> Result<(QpDims, spec::Level), SetupError> {
     let model = job_model(job)?;
     let robot = job_robot(job, model.robot, model.dynamics.is_some())?;
     let (_, scheme) = build_parts(job, robot, model.dynamics)?;
@@ -199,7 +199,7 @@ pub fn qp_shape(job: &RunSpec) -> Result<(QpDims, spec::scheme::Level), SetupErr
 }
 
 /// The job's robot: the registry's model `robot`, with the job's `joint_limits` and
-/// `velocity_limits` in place of its own where the job gives them ([`robots::limited`]).
+/// `velocity_limits` in place of its own where the job gives them ([`robots::Limited`]).
 /// A model that carries dynamics (`has_dynamics`: the acceleration-level scheme takes its
 /// kinematics and limits from the dynamics model) keeps its own limits: overriding them is an
 /// error rather than a silent half-override.
@@ -218,7 +218,7 @@ pub fn job_robot(
     }
     let joints = robot.dof();
     let mut limits = robot.limits().clone();
-    let set = |spec: &Option<spec::run::LimitsSpec>,
+    let set = |spec: &Option<spec::LimitsSpec>,
                lo: &mut DVector<f64>,
                hi: &mut DVector<f64>|
      -> Result<(), SetupError> {
@@ -245,7 +245,7 @@ pub fn job_robot(
         &mut limits.thetadot_min,
         &mut limits.thetadot_max,
     )?;
-    let limited = robots::limited::Limited::new(robot, limits).expect("limits checked per joint");
+    let limited = robots::Limited::new(robot, limits).expect("limits checked per joint");
     Ok(Arc::new(limited))
 }
 
@@ -292,10 +292,10 @@ pub fn build_cyclic_parts(
     )
     .map_err(|error| {
         let hint = match error {
-            spec::scheme::SchemeError::MissingDynamics { .. } => format!(
+            spec::SchemeError::MissingDynamics { .. } => format!(
                 " (robot \"{}\" is kinematic only; robots with dynamics: {})",
                 job.robot,
-                robots::registry::robots_with_dynamics().join(", ")
+                robots::robots_with_dynamics().join(", ")
             ),
             _ => String::new(),
         };

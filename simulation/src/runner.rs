@@ -5,9 +5,9 @@
 use crate::run::{run_job, RunRecord};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::iter::{ParallelBridge, ParallelIterator};
-use settings::network_kind::NetworkKind;
-use spec::run::RunSpec;
-use spec::run::SolverChoice;
+use settings::NetworkKind;
+use spec::RunSpec;
+use spec::SolverChoice;
 use std::collections::BTreeMap;
 use std::io::IsTerminal;
 use std::sync::Mutex;

@@ -31,10 +31,10 @@ use crate::run::{build_parts, RunRecord};
 use crate::simulate::{Outcome, Run};
 use inputs::trajectory::Trajectory;
 use nalgebra::DVector;
-use robots::registry::Model;
-use spec::run::RunSpec;
-use spec::run::SetupError;
-use spec::scheme::Level;
+use robots::Model;
+use spec::Level;
+use spec::RunSpec;
+use spec::SetupError;
 
 use solvers::ode::OdeStats;
 use std::time::Instant;
@@ -80,10 +80,10 @@ pub enum TrajectoryError {
         /// The sample's index (from 0).
         row: usize,
     },
-    /// The first sample is not at t = 0 (to [`TIME_TOLERANCE`] T): its time (s).
+    /// The first sample is not at t = 0 (to `TIME_TOLERANCE` T): its time (s).
     #[error("the trajectory starts at t = {0}, the task at t = 0")]
     Start(f64),
-    /// The last sample is not at the task's duration (to [`TIME_TOLERANCE`] T).
+    /// The last sample is not at the task's duration (to `TIME_TOLERANCE` T).
     #[error("the trajectory ends at t = {t}, the task at its duration T = {duration} s")]
     End {
         /// The last sample's time (s).
@@ -92,7 +92,7 @@ pub enum TrajectoryError {
         duration: f64,
     },
     /// The first sample's angles differ from the task's theta0 by more than
-    /// [`START_TOLERANCE`].
+    /// `START_TOLERANCE`.
     #[error(
         "theta at t = 0 differs from the task's theta0 by {diff:.3e} rad at joint {joint} (tolerance {START_TOLERANCE:e})"
     )]

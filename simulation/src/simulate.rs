@@ -15,21 +15,21 @@ use crate::metrics::RunMetrics;
 use crate::numerical::{run_numerical, IterationStats};
 use crate::observer::{score_instant, Observer};
 use nalgebra::DVector;
-use records::trace::TracePoint;
+use records::TracePoint;
 use robots::Robot;
 use schemes::paths::Path;
-use schemes::scheme::Scheme;
-use spec::numerical::NumericalSpec;
-use spec::run::JobPart;
-use spec::run::SetupError;
-use spec::run::{NetworkInit, Scoring};
-use spec::scheme::Level;
+use schemes::Scheme;
+use spec::JobPart;
+use spec::Level;
+use spec::NumericalSpec;
+use spec::SetupError;
+use spec::{NetworkInit, Scoring};
 
-use settings::integrator::IntegratorSettings;
-use solvers::exact_path::ExactPathStats;
+use settings::IntegratorSettings;
 use solvers::neural::NeuralSolver;
 use solvers::ode::{integrate, Control, OdeError, OdeFailure, OdeStats, OdeSystem};
 use solvers::ExactError;
+use solvers::ExactPathStats;
 use std::time::Instant;
 
 /// What solves the scheme's QP along a run.
@@ -42,7 +42,7 @@ pub enum Solver<'a> {
     /// that reads the network's own error at accepted states).
     Network(&'a dyn Fn() -> Result<Box<dyn NeuralSolver>, SetupError>),
     /// A numerical QP method iterated at every instant of a fixed-step loop
-    /// ([`crate::numerical`]), scored like a network.
+    /// (`numerical`), scored like a network.
     Numerical(&'a NumericalSpec),
 }
 
@@ -196,7 +196,7 @@ fn run_exact(
     )
 }
 
-/// A network integrated together with the arm (the coupled ODE of [`crate::coupled`]), its
+/// A network integrated together with the arm (the coupled ODE of [`crate::NeuralLoop`]), its
 /// state started at zero or at x*(0) ([`NetworkInit`]), scored against the exact optimum where
 /// `settings.scoring` says and its own error read at those states by a second instance of the
 /// network. Errors when the network cannot be built or x*(0) cannot be solved.

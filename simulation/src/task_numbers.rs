@@ -7,11 +7,11 @@
 use crate::run::build_parts;
 use crate::run::job_model;
 use qp::Qp;
-use spec::path::PathSample;
-use spec::run::JobPart;
-use spec::run::RunSpec;
-use spec::run::SetupError;
-use spec::scheme::Level;
+use spec::JobPart;
+use spec::Level;
+use spec::PathSample;
+use spec::RunSpec;
+use spec::SetupError;
 
 /// Instants of the path samples, as fractions of the duration T.
 pub const PATH_FRACTIONS: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
@@ -35,13 +35,13 @@ pub struct TaskNumbers {
     pub jacobian0: Vec<Vec<f64>>,
     /// f(theta_ref), where the path starts.
     pub path_start: [f64; 3],
-    /// The path at [`PATH_FRACTIONS`] of T.
+    /// The path at `PATH_FRACTIONS` of T.
     pub path: Vec<PathSample>,
     /// The scheme's name, level and QP at t = 0.
     pub scheme: String,
     /// The scheme's level.
     pub level: Level,
-    /// The scheme's terms, one line each ([`schemes::scheme::Scheme::terms`]).
+    /// The scheme's terms, one line each ([`schemes::Scheme::terms`]).
     pub terms: Vec<String>,
     /// The scheme's QP at t = 0 (at theta0, with thetadot = 0 at the acceleration level).
     pub qp0: Qp,

@@ -4,8 +4,8 @@
 //! checks every job, and run with kong2019's ZNN scheme (eq. 22) on a circle, the exact optimum
 //! in the loop: every run completes and tracks the circle.
 
-use simulation::run::run_job;
-use simulation::simulate::Outcome;
+use simulation::run_job;
+use simulation::Outcome;
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -135,7 +135,7 @@ fn a_urdf_arm_runs_from_files() {
         &format!("paper = \"zhang2018\"\ntitle = \"a URDF arm, torques\"\n{dynamic}"),
     );
     catalog::robot_files::register_paper_robots(&root.join("papers"));
-    let model = robots::registry::robot_by_name("sim-urdf-arm").unwrap();
+    let model = robots::robot_by_name("sim-urdf-arm").unwrap();
     assert!(model.has_dynamics());
     let files = crate::checked::load_dir(&root.join("experiments")).expect("the experiment loads");
     let jobs: Vec<_> = files.iter().flat_map(|f| f.jobs()).collect();
@@ -180,12 +180,12 @@ fn an_experiment_mounts_its_robot_with_a_tool_offset_and_a_base() {
     let file = crate::checked::from_toml(&mounted("jaco2-pen", mount, "kong2019"))
         .expect("a mounted experiment loads");
     let job = &file.jobs()[0];
-    let pen = robots::registry::robot_by_name("jaco2-pen").unwrap().robot;
+    let pen = robots::robot_by_name("jaco2-pen").unwrap().robot;
     let theta: Vec<f64> = vec![1.675, 2.79, -3.216, 4.187, -1.71, -2.95];
     let tip = pen.position(&theta)
         + pen.orientation().unwrap().tool_rotation(&theta) * nalgebra::Vector3::new(0.0, 0.0, 0.1);
-    let base = robots::dh::Frame::from_xyz_rpy([0.2, 0.0, 0.0], [0.3, 0.0, 0.5]);
-    let model = simulation::run::job_model(job).unwrap();
+    let base = robots::Frame::from_xyz_rpy([0.2, 0.0, 0.0], [0.3, 0.0, 0.5]);
+    let model = simulation::job_model(job).unwrap();
     assert!((model.robot.position(&theta) - base.transform_point(&tip)).norm() < 1e-14);
     let record = run_job(job);
     let Outcome::Completed(m) = &record.run.outcome else {
@@ -312,7 +312,7 @@ fn an_example_robot_data_ur5_runs_from_a_robot_file() {
         &format!("paper = \"zhang2018\"\ntitle = \"UR5, torques\"\n{dynamic}"),
     );
     catalog::robot_files::register_paper_robots(&root.join("papers"));
-    let model = robots::registry::robot_by_name("erd-ur5").unwrap();
+    let model = robots::robot_by_name("erd-ur5").unwrap();
     assert_eq!(model.dof(), 6);
     assert!(model.has_dynamics(), "the UR5's links carry inertials");
     let files = crate::checked::load_dir(&root.join("experiments")).expect("the experiments load");

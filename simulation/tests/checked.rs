@@ -4,7 +4,7 @@
 
 use catalog::error::{ExperimentError, ExperimentFileError};
 use catalog::experiment::PaperFile;
-use simulation::run::check_job;
+use simulation::check_job;
 use std::path::Path;
 
 /// That every run of `file` can be built.

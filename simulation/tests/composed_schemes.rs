@@ -13,13 +13,13 @@
 //!   is Clarabel's, its dQP/dt is the central difference of its QP; on a robot without a tool
 //!   frame, or in a preset scheme, the file is refused naming the file and the field.
 
-use robots::registry::robot_by_name;
-use schemes::terms::tracking::orientation_error;
-use simulation::run::{build_cyclic_parts, job_robot, run_job};
-use simulation::simulate::Outcome;
-use solvers::exact::ExactSolver;
-use solvers::exact_path::ExactPath;
-use spec::run::RunSpec;
+use robots::robot_by_name;
+use schemes::orientation_error;
+use simulation::{build_cyclic_parts, job_robot, run_job};
+use simulation::Outcome;
+use solvers::ExactSolver;
+use solvers::ExactPath;
+use spec::RunSpec;
 use std::path::Path;
 
 fn write(path: &Path, text: &str) {
@@ -431,9 +431,9 @@ fn a_given_orientation_is_reached_at_the_rate_of_k_p() {
     let model = robot_by_name(&job.robot).unwrap();
     let robot = job_robot(job, model.robot, model.dynamics.is_some()).unwrap();
     let o = robot.orientation().unwrap();
-    let target = schemes::terms::tracking::rotation_exp(&nalgebra::Vector3::new(0.0, 0.0, 0.1))
+    let target = schemes::rotation_exp(&nalgebra::Vector3::new(0.0, 0.0, 0.1))
         * o.tool_rotation(&job.theta0);
-    let phi = schemes::terms::tracking::rotation_log(&target);
+    let phi = schemes::rotation_log(&target);
     let text = pose_experiment(
         "panda",
         PANDA_READY,

@@ -5,16 +5,16 @@
 //! sqrt(eps) (what the Jacobian used to do) gave columns up to ~1000x too small there.
 
 use nalgebra::{DMatrix, SVector};
-use robots::katana::Katana6m180;
+use robots::Katana6m180;
 use robots::Robot;
-use schemes::build::build_scheme;
+use schemes::build_scheme;
 use schemes::paths::{build_path, Path};
-use spec::path::PathSpec;
-use spec::scheme::SchemeSpec;
+use spec::PathSpec;
+use spec::SchemeSpec;
 
-use settings::integrator::IntegratorSettings;
-use settings::solver_spec::SolverSpec;
-use simulation::coupled::NeuralLoop;
+use settings::IntegratorSettings;
+use settings::SolverSpec;
+use simulation::NeuralLoop;
 use solvers::neural::build_solver;
 use solvers::ode::{integrate, Control, OdeSystem};
 use std::sync::Arc;

@@ -4,6 +4,7 @@
 
 use proptest::prelude::*;
 
+
 fn committed_files() -> Vec<(String, String)> {
     let dir = catalog::root::from_current_dir()
         .unwrap()
@@ -166,7 +167,7 @@ proptest! {
             Ok(f) => {
                 // A file that loads expands into runs, each with a unique key.
                 let jobs = f.jobs();
-                let mut keys: Vec<spec::run_key::RunKey> = jobs.iter().map(|j| j.key()).collect();
+                let mut keys: Vec<spec::RunKey> = jobs.iter().map(|j| j.key()).collect();
                 keys.sort();
                 keys.dedup();
                 prop_assert_eq!(keys.len(), jobs.len(), "{}: duplicate run keys", name);

@@ -3,10 +3,10 @@
 //! the methods' error shrinks with their tolerance, joint 6 (which cannot move the tool point on
 //! its axis) does not drift, and the experiment's limits are the ones the run respects.
 
-use simulation::row::run_row;
-use simulation::run::run_job;
-use spec::run::RunSpec;
-use spec::run::SolverChoice;
+use simulation::run_row;
+use simulation::run_job;
+use spec::RunSpec;
+use spec::SolverChoice;
 
 fn robio_jobs() -> Vec<RunSpec> {
     let root = catalog::root::from_current_dir().unwrap();

@@ -6,11 +6,11 @@
 //! file.
 
 use catalog::experiment::PaperFile;
-use simulation::metrics::Score;
-use simulation::run::run_job;
-use simulation::simulate::Outcome;
-use spec::run::RunSpec;
-use spec::run::SolverChoice;
+use simulation::Score;
+use simulation::run_job;
+use simulation::Outcome;
+use spec::RunSpec;
+use spec::SolverChoice;
 
 /// The network runs of kong2019's circle.
 fn circle_jobs() -> Vec<RunSpec> {

@@ -4,11 +4,11 @@
 
 use catalog::experiment::PaperFile;
 use inputs::trajectory::Trajectory;
-use simulation::run::run_job;
-use simulation::score_trajectory::{score_trajectory, TrajectoryError};
-use simulation::simulate::{Outcome, Run};
-use spec::run::RunSpec;
-use spec::run::SolverChoice;
+use simulation::run_job;
+use simulation::{score_trajectory, TrajectoryError};
+use simulation::{Outcome, Run};
+use spec::RunSpec;
+use spec::SolverChoice;
 
 fn job(experiment: &str, variant: &str, neural: bool) -> RunSpec {
     let root = catalog::root::from_current_dir().unwrap();
@@ -32,7 +32,7 @@ fn trace_of(run: &Run, with_velocities: bool) -> Trajectory {
     }
 }
 
-fn metrics(run: &Run) -> &simulation::metrics::RunMetrics {
+fn metrics(run: &Run) -> &simulation::RunMetrics {
     match &run.outcome {
         Outcome::Completed(m) => m,
         other => panic!("{other:?}"),

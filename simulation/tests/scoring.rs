@@ -2,11 +2,11 @@
 //! instants, or not at all, as the experiment file's `scoring` says.
 
 use catalog::experiment::PaperFile;
-use simulation::run::run_job;
-use simulation::simulate::Outcome;
-use spec::run::RunSpec;
-use spec::run::Scoring;
-use spec::run::SolverChoice;
+use simulation::run_job;
+use simulation::Outcome;
+use spec::RunSpec;
+use spec::Scoring;
+use spec::SolverChoice;
 
 fn znn_job() -> RunSpec {
     let root = catalog::root::from_current_dir().unwrap();

@@ -436,7 +436,7 @@ pub struct ActiveSetSolver {
     p_row: Vec<f64>,
     p_pd: bool,
     pmax: f64,
-    /// The Schur-complement factors ([`crate::kkt_schur`]), and whether they factorise the
+    /// The Schur-complement factors (`kkt_schur`), and whether they factorise the
     /// current working set's KKT matrix (else `lu` does).
     schur: SchurKkt,
     schur_ok: bool,
@@ -503,7 +503,7 @@ struct Ctx {
 
 impl ActiveSetSolver {
     /// A solver with buffers for QPs up to `max_dims`, certification on at [`DEFAULT_CERT_TOL`],
-    /// at most [`DEFAULT_MAX_ITERATIONS`] working-set changes.
+    /// at most `DEFAULT_MAX_ITERATIONS` working-set changes.
     pub fn new(max_dims: QpDims) -> Self {
         let mut s = Self {
             max_iterations: DEFAULT_MAX_ITERATIONS,

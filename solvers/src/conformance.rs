@@ -49,7 +49,7 @@ use crate::neural::NeuralSolver;
 use crate::ode::{integrate, Control, OdeSystem};
 use crate::random_qp::{random_feasible, random_qp, QpShape};
 use qp::{Qp, QpDims, QpDuals, QpSolver, QpStatus};
-use settings::integrator::{IntegratorSettings, Method};
+use settings::{IntegratorSettings, Method};
 use std::fmt;
 
 #[cfg(doc)]

@@ -28,7 +28,7 @@ use faer::linalg::lu::partial_pivoting::{factor, solve};
 use faer::{MatMut, MatRef, Par};
 use nalgebra::DMatrix;
 
-use settings::linear_algebra::FAER_CROSSOVER;
+use settings::FAER_CROSSOVER;
 
 /// Which library factorises.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]

@@ -247,7 +247,7 @@ impl Default for ExactSolver {
 }
 
 impl ExactSolver {
-    /// Clarabel silent, tolerances [`CLARABEL_TOLS`], KKT acceptance tolerance [`DEFAULT_KKT_TOL`].
+    /// Clarabel silent, tolerances `CLARABEL_TOLS`, KKT acceptance tolerance `DEFAULT_KKT_TOL`.
     pub fn new() -> Self {
         let settings = DefaultSettingsBuilder::default()
             .verbose(false)
@@ -294,7 +294,7 @@ impl ExactSolver {
     }
 
     /// Solves `qp`; success means Clarabel reports Solved or AlmostSolved (at the tightest
-    /// tolerance of [`CLARABEL_TOLS`] it reaches) and our KKT residuals are within tolerance
+    /// tolerance of `CLARABEL_TOLS` it reaches) and our KKT residuals are within tolerance
     /// (see the module docs).
     pub fn solve(&mut self, qp: &Qp) -> Result<ExactSolution, ExactError> {
         let form = ConicForm::new(qp)?;
@@ -377,7 +377,7 @@ pub fn cone_sizes(qp: &Qp) -> Result<ConeSizes, ExactError> {
 /// On nalgebra at every size: the matrix's zero blocks (and P's, identity or diagonal in the
 /// papers' schemes) are skipped by the in-place elimination, and faer's dense LU was slower at
 /// every measured size up to nx + n_eq = 203 (`kkt-floor` of `results/dof-cost.csv`;
-/// [`crate::dense_lu`]).
+/// `dense_lu`).
 ///
 /// Independent of Clarabel, as a check. `None` when the QP has inequalities or finite bounds,
 /// or when the KKT matrix is singular (P not positive definite on the null space of A, or A

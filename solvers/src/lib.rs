@@ -9,32 +9,41 @@
 #![allow(clippy::nonminimal_bool, clippy::neg_cmp_op_on_partial_ord)]
 #![deny(missing_docs)]
 
-pub mod active_set;
-pub mod auxiliary;
+mod active_set;
+mod auxiliary;
 pub mod conformance;
-pub mod dense_lu;
-pub mod exact;
-pub mod exact_path;
-pub mod kkt_schur;
-pub mod lvi_numerical;
+mod dense_lu;
+mod exact;
+mod exact_path;
+mod kkt_schur;
+mod lvi_numerical;
 pub mod neural;
 pub mod ode;
 #[cfg(feature = "osqp")]
-pub mod osqp_qp;
-pub mod qp_solver;
+mod osqp_qp;
+mod qp_solver;
 pub mod random_qp;
 pub mod registry;
 
+pub use active_set::DEFAULT_CERT_TOL;
 pub use active_set::{
     ActiveSetError, ActiveSetSolution, ActiveSetSolver, ActiveSetStart, Constraint, WorkingSet,
 };
 pub use auxiliary::AuxiliaryElimination;
 pub use dense_lu::{Backend, DenseLu};
+pub use exact::{cone_sizes, ConeSizes};
 pub use exact::{
     solve_equality_kkt, solve_equality_kkt_with, ExactError, ExactSolution, ExactSolver,
     ExactStatus,
 };
 pub use exact_path::{ExactPath, ExactPathStats, CHECK_EVERY};
+pub use lvi_numerical::{
+    LviError, LviMethod, LviSettings, LviSolver,
+    DEFAULT_MAX_ITERATIONS as LVI_DEFAULT_MAX_ITERATIONS,
+    DEFAULT_TOLERANCE as LVI_DEFAULT_TOLERANCE,
+};
+#[cfg(feature = "osqp")]
+pub use osqp_qp::{OsqpQp, OsqpSettings};
 pub use qp::{KktResiduals, Qp, QpDims, QpDuals};
 pub use qp::{QpSolve, QpSolver, QpSolverError, QpStatus, SolverId};
 pub use qp_solver::{ActiveSetFailure, HotActiveSet};

@@ -72,7 +72,7 @@
 //! # Stopping rule
 //!
 //! robio2018's Algorithm 1, step 3: stop at the first k with |e(U^k)|_2 <= `tolerance`
-//! ([`LviSettings`]; the paper's value is [`ROBIO2018_TOLERANCE`] = 1e-3, the suite's default
+//! ([`LviSettings`]; the paper's value is 1e-3 (`experiments/robio2018.toml`), the suite's default
 //! [`DEFAULT_TOLERANCE`] = 1e-10, tight enough to compare with Clarabel), or fail with
 //! [`LviError::NotConverged`] after `max_iterations`. Near a non-degenerate solution
 //! |U - U*| <= c |e(U)| for a constant c of the QP, so the rule bounds the error in x.
@@ -101,8 +101,6 @@ use qp::{Qp, QpDims};
 
 /// The suite's default stopping tolerance on |e(U)|_2.
 pub const DEFAULT_TOLERANCE: f64 = 1e-10;
-/// robio2018's stopping tolerance on |e(U)|_2 (its Algorithm 1, step 3).
-pub const ROBIO2018_TOLERANCE: f64 = 1e-3;
 /// Default iteration limit of one solve.
 pub const DEFAULT_MAX_ITERATIONS: u32 = 200_000;
 /// Below this pivot ratio min|u_kk| / max|u_kk| the factorised matrix is taken as singular.

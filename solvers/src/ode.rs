@@ -30,7 +30,7 @@ use diffsol::{
     OdeSolverStopReason, Tableau, TableauMat, TableauVec, VectorCommon,
 };
 use nalgebra::{DMatrix, DVector};
-use settings::integrator::{IntegratorSettings, Method};
+use settings::{IntegratorSettings, Method};
 use std::cell::RefCell;
 use std::time::Instant;
 
@@ -132,7 +132,7 @@ impl std::fmt::Display for OdeError {
                 f,
                 "stopped at t = {t:.6}: evaluation budget of {evals} right-hand-side evaluations \
                  used up (max_rhs_evals, at most {} per second of the span)",
-                settings::integrator::RHS_EVALS_PER_SECOND
+                settings::RHS_EVALS_PER_SECOND
             ),
         }
     }

@@ -5,8 +5,8 @@
 
 use nalgebra::{DMatrix, DVector};
 use rand::Rng;
-use solvers::active_set::DEFAULT_CERT_TOL;
 use solvers::random_qp::rng_from_seed;
+use solvers::DEFAULT_CERT_TOL;
 use solvers::{
     random_feasible, random_qp, solve_equality_kkt, ActiveSetError, ActiveSetSolution,
     ActiveSetSolver, ActiveSetStart, Constraint, ExactError, ExactSolution, ExactSolver,

@@ -4,8 +4,8 @@
 //! methods that promise none per solve.
 
 use solvers::conformance::{check_qp_solver, AllocationCounter, Conformance};
-use solvers::lvi_numerical::{LviMethod, LviSettings, LviSolver};
 use solvers::{ExactSolver, HotActiveSet, QpDims, QpShape, QpSolver};
+use solvers::{LviMethod, LviSettings, LviSolver};
 
 /// The test binary's counting allocator.
 struct Counter;
@@ -85,7 +85,7 @@ fn clarabel_conforms() {
 #[cfg(feature = "osqp")]
 #[test]
 fn osqp_conforms() {
-    use solvers::osqp_qp::{OsqpQp, OsqpSettings};
+    use solvers::{OsqpQp, OsqpSettings};
     // ADMM checks termination every 25 iterations and adapts rho: a repeat may take longer.
     let spec = Conformance {
         x_tolerance: 1e-4,
@@ -144,7 +144,7 @@ fn the_kit_catches_a_wrong_solver() {
 #[test]
 fn every_network_reaches_the_optimum_without_allocating() {
     use settings::projection::ProjectionErrorForm;
-    use settings::solver_spec::SolverSpec;
+    use settings::SolverSpec;
     use solvers::conformance::{check_network, NetworkConformance};
     let networks: [(&str, f64); 15] = [
         ("kind = \"lvi-pdnn\"\ngamma = 1e7", 1e-3),
@@ -190,11 +190,7 @@ fn every_network_reaches_the_optimum_without_allocating() {
                 .map(|v| format!("{}: {v}", text.replace('\n', " "))),
         );
     }
-    assert_eq!(
-        kinds.len(),
-        settings::network_kind::NetworkKind::ALL.len(),
-        "{kinds:?}"
-    );
+    assert_eq!(kinds.len(), settings::NetworkKind::ALL.len(), "{kinds:?}");
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 

@@ -67,13 +67,10 @@ fn a_singular_matrix_is_reported_by_both_backends() {
 #[test]
 fn backends_are_chosen_by_the_crossover_and_named() {
     assert_eq!(
-        Backend::for_size(settings::linear_algebra::FAER_CROSSOVER - 1),
+        Backend::for_size(settings::FAER_CROSSOVER - 1),
         Backend::Nalgebra
     );
-    assert_eq!(
-        Backend::for_size(settings::linear_algebra::FAER_CROSSOVER),
-        Backend::Faer
-    );
+    assert_eq!(Backend::for_size(settings::FAER_CROSSOVER), Backend::Faer);
     assert_eq!(DenseLu::for_size(3).backend(), Backend::Nalgebra);
     for backend in Backend::ALL {
         assert_eq!(Backend::from_id(backend.id()), Some(backend));

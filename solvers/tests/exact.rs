@@ -1,8 +1,8 @@
 //! The exact reference solver (Clarabel) and the seeded random QPs.
 
 use nalgebra::{dmatrix, dvector, DMatrix, DVector};
-use solvers::exact::{cone_sizes, ConeSizes};
 use solvers::random_qp::{jia2019, rng_from_seed, zhong2021, VARPI};
+use solvers::{cone_sizes, ConeSizes};
 use solvers::{
     random_feasible, random_qp, solve_equality_kkt, ExactError, ExactSolver, ExactStatus, Qp,
     QpDims, QpShape,

@@ -4,10 +4,10 @@
 //! kong2019) and the shapes with inequality rows (jia2019, zhong2021: M singular). Warm starts,
 //! the typed errors, the [`QpSolver`] view of every per-instant method, and OSQP warm-started.
 
-use solvers::lvi_numerical::{LviError, LviMethod, LviSettings, LviSolver};
-#[cfg(feature = "osqp")]
-use solvers::osqp_qp::{OsqpQp, OsqpSettings};
 use solvers::{random_feasible, random_qp, ExactSolver, Qp, QpDims, QpShape, QpSolver};
+use solvers::{LviError, LviMethod, LviSettings, LviSolver};
+#[cfg(feature = "osqp")]
+use solvers::{OsqpQp, OsqpSettings};
 
 /// Random QPs per shape and method.
 const N_PER_SHAPE: u64 = 50;

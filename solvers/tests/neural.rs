@@ -5,13 +5,13 @@
 use nalgebra::{DMatrix, DVector};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use settings::activation::{ActivationKind, ActivationSpec};
-use settings::integrator::{IntegratorSettings, Method};
 use settings::projection::{ProjectionErrorForm, ProjectionSpec, Scaling};
-use settings::sign_power::SIGN_POWER_MIN_ABS;
-use settings::solver_spec::ReferencePerturbation;
-use settings::solver_spec::SolverSpec;
 use settings::zeroing::GainLaw;
+use settings::ReferencePerturbation;
+use settings::SolverSpec;
+use settings::SIGN_POWER_MIN_ABS;
+use settings::{ActivationKind, ActivationSpec};
+use settings::{IntegratorSettings, Method};
 use solvers::neural::activation::Activation;
 use solvers::neural::projection::{primal_dual_dim, LviCore};
 use solvers::neural::{build_solver, NeuralSolver, PerturbationTerms, ProjectionNetwork};

@@ -5,7 +5,7 @@
 
 use alloc_count::count;
 use nalgebra::DMatrix;
-use settings::solver_spec::SolverSpec;
+use settings::SolverSpec;
 use solvers::neural::build_solver;
 use solvers::{random_qp, Qp, QpShape};
 

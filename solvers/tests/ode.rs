@@ -2,7 +2,7 @@
 //! finite-difference Jacobians, on a non-stiff and a stiff (gamma = 1e7) problem.
 
 use nalgebra::DMatrix;
-use settings::integrator::{IntegratorSettings, Method};
+use settings::{IntegratorSettings, Method};
 use solvers::ode::{integrate, Control, OdeSystem};
 
 /// Harmonic oscillator y'' = -y: y(t) = (cos t, -sin t).

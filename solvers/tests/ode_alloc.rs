@@ -8,7 +8,7 @@
 
 use alloc_count::count;
 use nalgebra::DMatrix;
-use settings::integrator::{IntegratorSettings, Method};
+use settings::{IntegratorSettings, Method};
 use solvers::ode::{integrate, Control, OdeStats, OdeSystem};
 
 /// Allocations of one dense Jacobian evaluation inside diffsol (module docs).

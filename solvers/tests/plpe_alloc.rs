@@ -4,8 +4,8 @@
 //! path that ends the run).
 
 use alloc_count::count;
-use solvers::lvi_numerical::{LviMethod, LviSettings, LviSolver};
 use solvers::{random_feasible, random_qp, QpDims, QpShape, QpSolver};
+use solvers::{LviMethod, LviSettings, LviSolver};
 
 #[test]
 fn plpe_solves_do_not_allocate() {

@@ -9,14 +9,14 @@ use std::sync::Arc;
 use nalgebra::{DVector, Vector3};
 use qp::Qp;
 use robots::{Dynamics, Jaco2, Katana6m180, Robot};
-use schemes::build::build_scheme;
+use schemes::build_scheme;
 use schemes::paths::{build_path, Path};
-use schemes::scheme::{central_difference, Scheme};
+use schemes::{central_difference, Scheme};
 use solvers::ExactSolver;
-use spec::path::PathSpec;
-use spec::rmp::RmpReading;
-use spec::scheme::Level;
-use spec::scheme::SchemeSpec;
+use spec::Level;
+use spec::PathSpec;
+use spec::RmpReading;
+use spec::SchemeSpec;
 
 fn path(name: &str, duration: f64, start: Vector3<f64>) -> Arc<dyn Path> {
     Arc::from(build_path(&PathSpec::new(name, duration), start).unwrap())

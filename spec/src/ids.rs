@@ -1,15 +1,15 @@
 //! Validated ids: [`ExperimentId`], [`VariantId`] and [`SolverId`], the three parts of a run's
-//! key ([`crate::run_key::RunKey`]), and [`PaperId`], the paper an experiment file belongs to
+//! key ([`crate::RunKey`]), and [`PaperId`], the paper an experiment file belongs to
 //! (what the command line's `--paper` names).
 //!
-//! An id is a *slug* ([`settings::slug::is_slug`]: lower-case ASCII letters, digits and `.`,
+//! An id is a *slug* ([`settings::is_slug`]: lower-case ASCII letters, digits and `.`,
 //! single `-` between them, none leading or trailing) that begins with a letter or digit and
 //! holds no `..` (so that no id is `.` or `..` as a path component), of at most its kind's
 //! length in bytes
-//! ([`crate::naming::MAX_EXPERIMENT_ID`], [`crate::naming::MAX_VARIANT_LABEL`],
-//! [`crate::naming::MAX_SOLVER_LABEL`]). A slug has no `/`, `\`, `..`, markup or control
+//! ([`crate::MAX_EXPERIMENT_ID`], [`crate::MAX_VARIANT_LABEL`],
+//! [`crate::MAX_SOLVER_LABEL`]). A slug has no `/`, `\`, `..`, markup or control
 //! character, so an id can name a file under results/ and report/ and be shown as it is: the
-//! checks of [`crate::naming::check_name`] hold for every id by construction.
+//! checks of [`crate::check_name`] hold for every id by construction.
 //!
 //! The only ways to make an id are [`ExperimentId::new`] (and its siblings), which check, and
 //! serde, which reads through the same check: a value of these types is valid, so the code that
@@ -17,7 +17,7 @@
 //! and lookups.
 
 use crate::naming::{MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
-use settings::slug::{is_slug, slug};
+use settings::{is_slug, slug};
 use std::fmt;
 
 /// Which kind of id an [`IdError`] is about.
@@ -246,7 +246,7 @@ id_type!(
     IdKind::Paper
 );
 id_type!(
-    /// A solver's id (`exact`, a network's [`settings::solver_spec::SolverSpec::id`], a
+    /// A solver's id (`exact`, a network's [`settings::SolverSpec::id`], a
     /// numerical method's or a scored trajectory's), e.g. `lvi-pdnn`.
     SolverId,
     IdKind::Solver

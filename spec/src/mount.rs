@@ -1,6 +1,6 @@
 //! A robot's mount as data: a tool offset and a base transform ([`MountSpec`], as an
 //! experiment's `tool` and `base` give them) and why one is invalid or does not fit its robot
-//! ([`MountError`]). Crate `robots` builds the mount (`robots::mounted::Mount::new`: the base
+//! ([`MountError`]). Crate `robots` builds the mount (`robots::Mount::new`: the base
 //! `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)` with `rpy = [roll, pitch, yaw]`, the URDF
 //! convention) and returns these errors.
 
@@ -36,7 +36,7 @@ pub enum MountError {
         index: usize,
         /// The value given.
         value: f64,
-        /// The bound (`robots::mounted::MAX_OFFSET` or `MAX_ANGLE`).
+        /// The bound (`robots::MAX_OFFSET` or `MAX_ANGLE`).
         max: f64,
         /// `m` or `rad`.
         unit: &'static str,

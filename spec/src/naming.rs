@@ -1,7 +1,7 @@
 //! File-safe names: a run's slugs, shared by the experiment files' validation (two labels that
 //! would share a file are an error), the traces and the figures.
 
-pub use settings::slug::slug;
+pub use settings::slug;
 
 /// Longest experiment id (and paper id), in bytes.
 pub const MAX_EXPERIMENT_ID: usize = 64;

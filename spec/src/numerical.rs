@@ -63,7 +63,7 @@ pub enum NumericalSpecError {
         /// The path's duration (s).
         duration: f64,
     },
-    /// The run would take more than [`MAX_STEPS`] sampling instants.
+    /// The run would take more than `MAX_STEPS` sampling instants.
     #[error("numerical {method}: {steps} steps of {step} s exceed the cap of {cap} per run")]
     TooManySteps {
         /// The solver's id.
@@ -72,7 +72,7 @@ pub enum NumericalSpecError {
         step: f64,
         /// The instants it needs: ceil(duration / step).
         steps: f64,
-        /// The cap, [`MAX_STEPS`].
+        /// The cap, `MAX_STEPS`.
         cap: f64,
     },
 }

@@ -15,9 +15,9 @@ use crate::scheme::SchemeError;
 use crate::scheme::SchemeSpec;
 use crate::solver_kind::SolverKind;
 use serde::{Deserialize, Serialize};
-use settings::error::NetworkError;
-use settings::integrator::IntegratorSettings;
-use settings::solver_spec::SolverSpec;
+use settings::IntegratorSettings;
+use settings::NetworkError;
+use settings::SolverSpec;
 
 /// Elementwise limits `lower <= value <= upper`, one entry per joint (an experiment's
 /// `joint_limits` in rad, `velocity_limits` in rad/s), replacing the robot model's.

@@ -3,7 +3,7 @@
 //! Every id is a validated slug ([`crate::ids`]): the experiment's `id` and the variant's `id` as the
 //! experiment file declares them (a variant without one gets `slug(label)` once, when the file is
 //! read), and the solver's id derived from its specification (`exact`, or
-//! [`settings::solver_spec::SolverSpec::id`]). The key names the run everywhere it is stored or
+//! [`settings::SolverSpec::id`]). The key names the run everywhere it is stored or
 //! looked up: results rows, the journal, shard assignment (a hash of [`RunKey`]'s text),
 //! baselines, trace and figure file names, the published-value mappings and claims of
 //! `papers/`. Labels (`variant`, `solver` in results) are for display only: renaming one moves

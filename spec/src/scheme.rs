@@ -1,5 +1,5 @@
 //! Schemes as data: the serde form experiment files use, its checks and the term lists it
-//! expands to (the engine builds the scheme: `schemes::build::build_scheme`).
+//! expands to (the engine builds the scheme: `schemes::build_scheme`).
 //!
 //! ```toml
 //! [scheme]
@@ -17,8 +17,8 @@
 //! k_p). Unknown fields are rejected.
 //!
 //! Every kind is a preset: it expands to a list of terms ([`SchemeSpec::expand`],
-//! [`crate::terms`]) and every scheme is the one composed scheme (`schemes::composed`);
-//! `kind = "composed"` lists the terms itself ([`ComposedSpec`], [`crate::terms`]).
+//! [`crate::TermSpec`]) and every scheme is the one composed scheme (`schemes::composed`);
+//! `kind = "composed"` lists the terms itself ([`ComposedSpec`], [`crate::TermSpec`]).
 //!
 //! `velocity-rmp` is the velocity-level template (docs/schemes.md): `weight` (w of the velocity norm, default 1),
 //! `repetitive = "linear"` (default; g = lambda (theta - theta_ref)) or `"sign-power"` (g =
@@ -198,7 +198,7 @@ pub enum SchemeSpec {
     Composed(ComposedSpec),
 }
 
-/// The form of the repetitive term ([`crate::terms::TermSpec::Repetitive`]; the engine's term
+/// The form of the repetitive term ([`crate::TermSpec::Repetitive`]; the engine's term
 /// is `schemes::terms::repetitive`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]

@@ -8,8 +8,8 @@
 //! scored) or `python` (a network written in Python and run through the Python package).
 
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
-use settings::network_kind::NetworkKind;
 use settings::qp_solver::{QpSolverInfo, QpSolverKey};
+use settings::NetworkKind;
 use std::fmt;
 use std::str::FromStr;
 

@@ -1,5 +1,5 @@
 //! Terms as data: the serde form of a composed scheme in an experiment file and its checks
-//! (the engine builds the terms: `schemes::build::build_composed`).
+//! (the engine builds the terms: `schemes::build_composed`).
 //!
 //! ```toml
 //! [scheme]

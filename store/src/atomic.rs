@@ -12,7 +12,7 @@ use std::path::Path;
 /// ([`crate::results_dir::is_own_tmp`]); a user's `notes.2024.12.tmp` never is.
 pub const TMP_PREFIX: &str = ".driftbench-tmp.";
 
-/// Writes `bytes` to `path` atomically: to a temporary file unique to this call ([`TMP_PREFIX`],
+/// Writes `bytes` to `path` atomically: to a temporary file unique to this call (`TMP_PREFIX`,
 /// the process id and a counter, so concurrent writers of the same file never share one), then
 /// renamed over `path`.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {

@@ -13,7 +13,7 @@ pub fn write<T: Serialize>(dir: &Path, name: &str, rows: &[T]) -> Result<(), Con
     records::control::to_writer(file, rows).map_err(|source| ControlFileError::Csv { path, source })
 }
 
-/// Reads `dir/name` through the one reader ([`crate::owned_dir::open_file`],
+/// Reads `dir/name` through the one reader (`owned_dir::open_file`,
 /// [`records::control::from_reader`]); empty when the file does not exist.
 pub fn read<T: DeserializeOwned>(dir: &Path, name: &str) -> Result<Vec<T>, ControlFileError> {
     let path = dir.join(name);

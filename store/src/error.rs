@@ -2,13 +2,13 @@
 //! (`runs.csv`, `dof-cost.csv`, `leaderboard-timing.csv`, the control experiments' files) and
 //! the I/O error every file operation reports ([`IoError`]). Where the store reads rows they
 //! wrap the schemas' errors (crate `records`: [`records::table::TableError`],
-//! [`records::error::RowsError`]). Each names the file and, where it applies, the line. A
+//! [`records::RowsError`]). Each names the file and, where it applies, the line. A
 //! module whose errors wrap the results directory's own keeps them beside its code: the
 //! journal's ([`crate::journal::JournalError`]), the shards' ([`crate::shard::ShardError`]),
 //! the results directory's ([`crate::results_dir::ResultsError`]).
 
-use records::error::RowsError;
 use records::table::TableError;
+use records::RowsError;
 use std::path::PathBuf;
 
 /// What was being done to a file when the system refused.

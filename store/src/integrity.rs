@@ -3,7 +3,7 @@
 //! that wrote them.
 //!
 //! The manifest is updated whenever the program writes or removes a file through a
-//! [`crate::tracked_dir::TrackedDir`] and saved (atomically) at the end of each step that
+//! [`crate::TrackedDir`] and saved (atomically) at the end of each step that
 //! changes the directory, so it always describes what the program left there. Reading it back
 //! tells two things:
 //!
@@ -186,7 +186,7 @@ impl std::fmt::Display for Mismatch {
 enum ManifestTextError {
     /// A table or the keys before the first do not parse (line and column in the whole text).
     #[error(transparent)]
-    Toml(inputs::toml_error::TomlError),
+    Toml(inputs::TomlError),
     /// A file is listed twice (TOML refuses a table defined twice).
     #[error("line {line}: it lists {file:?} twice")]
     Twice {
@@ -247,7 +247,7 @@ impl Manifest {
             text: &str,
             first: usize,
         ) -> Result<T, ManifestTextError> {
-            inputs::toml_error::from_str(text).map_err(|mut e| {
+            inputs::parse_toml(text).map_err(|mut e| {
                 e.at = e.at.map(|(line, column)| (line + first - 1, column));
                 ManifestTextError::Toml(e)
             })

@@ -20,11 +20,11 @@ use crate::error::{IoAction, IoError};
 use crate::owned_dir::PathError;
 use crate::results_dir::{ResultsDir, JOURNAL};
 use crate::tracked_dir::TrackedError;
-use records::error::RowsError;
-use records::runs::{check_names, RunRow};
 use records::table::{self, TableError};
-use records::trace::TracePoint;
-use spec::run_key::RunKey;
+use records::RowsError;
+use records::TracePoint;
+use records::{check_run_names, RunRow};
+use spec::RunKey;
 use std::collections::HashMap;
 use std::fs::{File, OpenOptions};
 use std::io::Write;
@@ -300,7 +300,7 @@ pub fn recover(
             path: journal.clone(),
             error,
         };
-        check_names(&row, line).map_err(rows_error)?;
+        check_run_names(&row, line).map_err(rows_error)?;
         let key = row.key();
         if let Some(first) = seen.insert(key.clone(), line) {
             return Err(rows_error(RowsError::Twice {
@@ -423,10 +423,10 @@ mod tests {
     fn a_run_without_a_trace_by_choice_is_folded_without_one() {
         let dir = std::env::temp_dir().join(format!("driftbench-untraced-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
-        let key = spec::run_key::RunKey::from_ids("exp", "a", "exact").unwrap();
+        let key = spec::RunKey::from_ids("exp", "a", "exact").unwrap();
         let row = RunRow {
             git_rev: "r1".into(),
-            ..RunRow::blank(&key, spec::solver_kind::SolverKind::Exact)
+            ..RunRow::blank(&key, spec::SolverKind::Exact)
         };
         {
             let (results, _) = ResultsDir::open(&dir, "r1", Edits::Refuse).unwrap();
@@ -460,8 +460,8 @@ mod tests {
             .map(|v| RunRow {
                 git_rev: if *v == "e" { "r0" } else { "r1" }.into(),
                 ..RunRow::blank(
-                    &spec::run_key::RunKey::from_ids("exp", v, "exact").unwrap(),
-                    spec::solver_kind::SolverKind::Exact,
+                    &spec::RunKey::from_ids("exp", v, "exact").unwrap(),
+                    spec::SolverKind::Exact,
                 )
             })
             .collect();
@@ -544,8 +544,8 @@ mod tests {
                 git_rev: "r1".into(),
                 drift: vec![0.5, -0.25],
                 ..RunRow::blank(
-                    &spec::run_key::RunKey::from_ids("exp", v, "exact").unwrap(),
-                    spec::solver_kind::SolverKind::Exact,
+                    &spec::RunKey::from_ids("exp", v, "exact").unwrap(),
+                    spec::SolverKind::Exact,
                 )
             };
             journal.record(&row, Some(&[point(0.0)])).unwrap();

@@ -1,7 +1,7 @@
 //! A test hook for kill safety. With `DRIFTBENCH_KILL_AFTER=N` (a whole number) in the
 //! environment, the process aborts right after its N-th durable step, as a SIGKILL would stop it
 //! there (no destructor runs, nothing more is written): a file renamed into place
-//! ([`crate::atomic::write_atomic`], which every table, trace and manifest goes through), a line
+//! ([`crate::write_atomic`], which every table, trace and manifest goes through), a line
 //! appended to the journal or to its seal, a file of the journal or the shard removed. Without
 //! the variable (or with a value that is not a whole number) nothing changes but a count.
 //! `reproduce/tests/shards.rs` kills a shard at every such step in turn and checks that the

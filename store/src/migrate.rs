@@ -10,11 +10,11 @@
 //! (it is then pruned as any undescribed run is). `ResultsDir::migrate_ids` applies this to a
 //! results directory and renames the traces.
 
-use settings::slug::slug;
+use settings::slug;
 use spec::ids::IdError;
-use spec::run::RunSpec;
-use spec::run::EXACT_ID;
-use spec::run_key::RunKey;
+use spec::RunKey;
+use spec::RunSpec;
+use spec::EXACT_ID;
 use std::collections::HashMap;
 
 /// The exact column's label before run ids.

@@ -13,7 +13,7 @@
 //! So `../../x`, `/etc/x` and a `traces/<experiment>` that is a symbolic link to a directory
 //! elsewhere are refused with a message naming the path and where it leads; a symbolic link
 //! that stays inside the directory is followed. Files are replaced by renaming a temporary file
-//! over them (`crate::atomic::write_atomic`), which replaces a symbolic link itself rather than
+//! over them (`crate::write_atomic`), which replaces a symbolic link itself rather than
 //! writing through it, and a removal removes a link, never its target.
 
 use std::path::{Component, Path, PathBuf};
@@ -229,7 +229,7 @@ mod tests {
                 .iter()
                 .map(|n| read_file(&dir.join(n)).unwrap_err())
                 .collect();
-            let table = crate::table::read::<records::runs::RunRow>(&dir.join("runs.csv"));
+            let table = crate::table::read::<records::RunRow>(&dir.join("runs.csv"));
             let listed = crate::integrity::Fingerprint::of(b"a\n1\n");
             let manifest = crate::integrity::Manifest {
                 git_rev: "x".into(),

@@ -27,9 +27,9 @@ use crate::integrity::Fingerprint;
 use crate::owned_dir::{OwnedDir, PathError};
 use crate::runs::read_runs;
 use crate::tracked_dir::{Edits, Removal, TrackedDir, TrackedError};
-use records::runs::{runs_csv, RunRow};
-use records::trace::{trace_csv, TracePoint};
-use spec::run_key::RunKey;
+use records::{runs_csv, RunRow};
+use records::{trace_csv, TracePoint};
+use spec::RunKey;
 use std::path::{Path, PathBuf};
 
 /// The results directory's name under the project root.
@@ -253,7 +253,7 @@ impl ResultsDir {
         read_runs(&path).map_err(ResultsError::Read)
     }
 
-    /// Brings tables written before run ids up to date (see [`crate::migrate`]): `runs.csv`,
+    /// Brings tables written before run ids up to date (see `migrate`): `runs.csv`,
     /// `ladder.csv` and `attribution.csv` get their id columns, and each run's trace moves to
     /// its id-named file, by the index `index()` makes of the experiment files' runs (made
     /// only for a table that lacks ids). Returns what was done, for a message; nothing when
@@ -365,7 +365,7 @@ impl ResultsDir {
             .join(format!("{}.csv", key.stem()))
     }
 
-    /// Writes the trace of the run `key` ([`records::trace`]); returns its fingerprint.
+    /// Writes the trace of the run `key` ([`records::TracePoint`]); returns its fingerprint.
     pub fn write_trace(
         &self,
         key: &RunKey,
@@ -502,7 +502,7 @@ fn lock(dir: &OwnedDir) -> Result<std::fs::File, ResultsError> {
 }
 
 /// Whether `name` is a temporary file of the program's own (module docs of
-/// [`crate::atomic::TMP_PREFIX`]): `.driftbench-tmp.<pid>.<counter>.<name>` of an atomic write, or
+/// `atomic::TMP_PREFIX`): `.driftbench-tmp.<pid>.<counter>.<name>` of an atomic write, or
 /// `.driftbench-tmp.<pid>.probe` of a writability probe, pid and counter decimal.
 pub fn is_own_tmp(name: &str) -> bool {
     let Some(rest) = name.strip_prefix(crate::atomic::TMP_PREFIX) else {

@@ -1,22 +1,22 @@
 //! `results/runs.csv` read from its file (the rows' schema and checks are
-//! [`records::runs`]'s) and the writability probe of a results directory.
+//! [`records::RunRow`]'s) and the writability probe of a results directory.
 
 use crate::atomic::TMP_PREFIX;
 use crate::error::RunsError;
-use records::runs::{check_rows, RunRow};
+use records::{check_run_rows, RunRow};
 use std::path::Path;
 
 /// Reads `results/runs.csv`. Any problem is an error naming the file, the line and how to
 /// recover, never a silently shorter list: an unreadable file, a header that is not this
 /// version's columns (an old schema: a missing or an unknown column), a row that does not
-/// parse, a name that cannot name a file ([`check_rows`]) or a run listed twice. An empty file
+/// parse, a name that cannot name a file ([`check_run_rows`]) or a run listed twice. An empty file
 /// has no rows.
 pub fn read_runs(path: &Path) -> Result<Vec<RunRow>, RunsError> {
     let rows = crate::table::read(path).map_err(|error| RunsError::Table {
         path: path.to_path_buf(),
         error,
     })?;
-    check_rows(&rows).map_err(|error| RunsError::Rows {
+    check_run_rows(&rows).map_err(|error| RunsError::Rows {
         path: path.to_path_buf(),
         error,
     })?;

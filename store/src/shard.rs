@@ -43,7 +43,7 @@ use crate::keys::KeySum;
 use crate::owned_dir::PathError;
 use crate::sorted::{read_key_ordered, KeyMerge};
 use crate::tracked_dir::TrackedError;
-use records::runs::RunRow;
+use records::RunRow;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -221,6 +221,7 @@ pub enum ShardError {
         problems: Vec<String>,
     },
 }
+
 
 /// Shard K of N (K in 1..=N).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -407,7 +408,7 @@ impl Binding {
             inputs::Origin::Under(dir),
         ) {
             Ok(text) => {
-                let found: Binding = inputs::toml_error::from_str(&text)
+                let found: Binding = inputs::parse_toml(&text)
                     .map_err(|source| ShardError::ReadBinding { path, source })?;
                 if found == *self {
                     return Ok(());
@@ -530,7 +531,7 @@ impl Manifest {
             }
         })?;
         let manifest: Self =
-            inputs::toml_error::from_str(&text).map_err(|source| ShardError::ReadManifest {
+            inputs::parse_toml(&text).map_err(|source| ShardError::ReadManifest {
                 path: path.clone(),
                 source,
             })?;
@@ -621,7 +622,7 @@ pub struct ShardDir {
 pub fn read_shard(
     dir: &Path,
     edits: crate::tracked_dir::Edits,
-    traced: impl Fn(&spec::run_key::RunKey) -> bool,
+    traced: impl Fn(&spec::RunKey) -> bool,
 ) -> Result<ShardDir, ShardError> {
     if !dir.is_dir() {
         return Err(ShardError::NoDirectory {
@@ -712,6 +713,7 @@ pub fn check_shards<I: Iterator<Item = String>>(
     shards: &[ShardDir],
     expected: impl Fn() -> I,
     hash: &str,
+
 ) -> Result<(), ShardError> {
     let Some(first) = shards.first() else {
         return Err(ShardError::NoShardDirectories);
@@ -746,7 +748,7 @@ pub fn check_shards<I: Iterator<Item = String>>(
     // What each shard holds, and whether a run comes twice.
     let mut held = vec![KeySum::default(); shards.len()];
     let mut twice = false;
-    let mut last: Option<spec::run_key::RunKey> = None;
+    let mut last: Option<spec::RunKey> = None;
     for item in KeyMerge::new(runs_files(shards)?)? {
         let (i, r) = item?;
         let key = r.key();

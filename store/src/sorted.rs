@@ -10,10 +10,10 @@
 //! than the one above it is an error naming the file and the line.
 
 use crate::error::RunsError;
-use records::error::RowsError;
-use records::runs::{check_names, RunRow};
 use records::table::{self, Rows};
-use spec::run_key::RunKey;
+use records::RowsError;
+use records::{check_run_names, RunRow};
+use spec::RunKey;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 use std::path::{Path, PathBuf};
@@ -30,7 +30,7 @@ pub struct KeyOrdered {
 }
 
 /// Opens `path` (a `runs.csv`; absent: no rows) to be read row by row, through the one reader
-/// ([`crate::owned_dir::open_file`]): each row is checked as [`crate::runs::read_runs`] checks
+/// (`owned_dir::open_file`): each row is checked as `read_runs` checks
 /// it (the schema, the names) and for coming after the row above it in key order.
 pub fn read_key_ordered(path: &Path) -> Result<KeyOrdered, RunsError> {
     let table_error = |error| RunsError::Table {
@@ -88,7 +88,7 @@ impl Iterator for KeyOrdered {
         let line = self.line;
         self.line += 1;
         let key = row.key();
-        let checked = check_names(&row, line).and_then(|()| match &self.last {
+        let checked = check_run_names(&row, line).and_then(|()| match &self.last {
             Some(before) if *before == key => Err(RowsError::Twice {
                 line,
                 key: key.to_string(),
@@ -203,7 +203,7 @@ pub fn latest<E>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use spec::solver_kind::SolverKind;
+    use spec::SolverKind;
 
     fn row(variant: &str, git_rev: &str) -> RunRow {
         RunRow {

@@ -1,12 +1,12 @@
 //! Tables of rows read from the store's files: the bytes through the one reader
-//! ([`crate::owned_dir::read_file`]), the rows parsed by their schema ([`records::table`]), any
+//! ([`crate::read_owned_file`]), the rows parsed by their schema ([`records::table`]), any
 //! problem a [`TableError`] naming the file.
 
 use records::table::{from_reader, Row, TableError};
 use std::path::Path;
 
 /// Reads a table of `T` from `path` (errors name it), through the one reader
-/// ([`crate::owned_dir::read_file`]).
+/// ([`crate::read_owned_file`]).
 pub fn read<T: Row>(path: &Path) -> Result<Vec<T>, TableError> {
     read_with(path, |bytes| from_reader(bytes))
 }

@@ -1,12 +1,12 @@
-//! `results/leaderboard-timing.csv` (its rows are [`records::timing`]'s) written and read back.
+//! `results/leaderboard-timing.csv` (its rows are [`records::Timings`]'s) written and read back.
 
 use crate::error::{IoAction, IoError, RunsError};
-use records::timing::{TimingRow, Timings, FILE};
+use records::{TimingRow, Timings, TIMING_FILE};
 use std::path::{Path, PathBuf};
 
 /// Writes `results_dir/leaderboard-timing.csv` (atomically, replacing it), rows sorted by key.
 pub fn write(results_dir: &Path, timings: &Timings) -> Result<PathBuf, RunsError> {
-    let path = results_dir.join(FILE);
+    let path = results_dir.join(TIMING_FILE);
     let rows: Vec<TimingRow> = timings.rows().cloned().collect();
     let bytes = records::table::to_csv(&rows).map_err(|source| RunsError::Write {
         path: path.clone(),
@@ -18,7 +18,7 @@ pub fn write(results_dir: &Path, timings: &Timings) -> Result<PathBuf, RunsError
 
 /// Reads `results_dir/leaderboard-timing.csv`; an absent file is no timings.
 pub fn read(results_dir: &Path) -> Result<Timings, RunsError> {
-    let path = results_dir.join(FILE);
+    let path = results_dir.join(TIMING_FILE);
     if !path.exists() {
         return Ok(Timings::default());
     }
@@ -32,7 +32,7 @@ pub fn read(results_dir: &Path) -> Result<Timings, RunsError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use spec::run_key::RunKey;
+    use spec::RunKey;
 
     #[test]
     fn written_and_read_back() {

@@ -294,7 +294,7 @@ impl TrackedDir {
 
     /// Writes `bytes` to the top-level file `name` and saves the manifest, so that the file
     /// and the saved manifest agree whatever instant the process is killed at: the bytes go to
-    /// [`pending`]`(name)` (atomically), the manifest is saved with `name`'s new fingerprint
+    /// `pending(name)` (atomically), the manifest is saved with `name`'s new fingerprint
     /// (the commit point), and the pending file is renamed over `name`. A kill before the save
     /// leaves the old file and the old manifest; a kill after it, the new manifest and the
     /// new file pending, which the next [`TrackedDir::open`] renames into place.
@@ -302,7 +302,7 @@ impl TrackedDir {
         self.commit_with(name, |w| w.write_all(bytes))
     }
 
-    /// [`TrackedDir::commit`] of what `write` writes, streamed ([`crate::atomic::write_atomic_with`])
+    /// [`TrackedDir::commit`] of what `write` writes, streamed (`atomic::write_atomic_with`)
     /// and fingerprinted block by block: a table far larger than memory is committed row by row.
     pub fn commit_with(
         &self,

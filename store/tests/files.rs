@@ -10,7 +10,7 @@ fn read_edited_runs(
     name: &str,
     lines: usize,
     edit: impl Fn(Vec<String>) -> Vec<String>,
-) -> (PathBuf, Result<Vec<records::runs::RunRow>, String>) {
+) -> (PathBuf, Result<Vec<records::RunRow>, String>) {
     let committed = catalog::root::from_current_dir()
         .unwrap()
         .join("results")
@@ -21,13 +21,13 @@ fn read_edited_runs(
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join(format!("{name}.csv"));
     std::fs::write(&path, edit(head).join("\n") + "\n").unwrap();
-    let result = store::runs::read_runs(&path).map_err(|e| e.to_string());
+    let result = store::read_runs(&path).map_err(|e| e.to_string());
     (path, result)
 }
 
 #[test]
 fn a_corrupt_runs_csv_is_an_error_never_an_empty_list() {
-    use store::runs::read_runs;
+    use store::read_runs;
     let (_, good) = read_edited_runs("good", 4, |l| l);
     assert_eq!(good.unwrap().len(), 3);
     // A row that does not parse (a number column, observe_s, holding text) on line 3.
@@ -88,10 +88,10 @@ fn a_corrupt_runs_csv_is_an_error_never_an_empty_list() {
 
 #[test]
 fn stale_temporary_files_are_removed_and_nothing_else() {
-    use store::atomic::write_atomic;
-    use store::owned_dir::OwnedDir;
+    use store::check_writable;
     use store::results_dir::remove_own_tmp;
-    use store::runs::check_writable;
+    use store::write_atomic;
+    use store::OwnedDir;
     let dir = std::env::temp_dir().join(format!("driftbench-test-{}-tmp", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let nested = dir.join("traces").join("x");

@@ -5,7 +5,7 @@
 //! safe to use as a file name; nothing panics. Bounded (200 cases each) to run in seconds.
 
 use proptest::prelude::*;
-use store::runs::read_runs;
+use store::read_runs;
 
 use std::path::PathBuf;
 
@@ -71,7 +71,7 @@ proptest! {
         if let Ok(rows) = read_runs(&path) {
             for r in &rows {
                 // The ids of every row read can name files (their types checked them).
-                use spec::naming::{check_name, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
+                use spec::{check_name, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
                 prop_assert!(check_name(&r.experiment, MAX_EXPERIMENT_ID).is_ok());
                 prop_assert!(check_name(&r.variant_id, MAX_VARIANT_LABEL).is_ok());
                 prop_assert!(check_name(&r.solver_id, MAX_SOLVER_LABEL).is_ok());

@@ -2,7 +2,7 @@
 //! active set and DAQP on the same recorded QPs, warm and cold, and each time as a multiple of
 //! DAQP's; the target is the suite at or below DAQP's time, warm and cold.
 
-use records::qp_replay::{QpReplayRow, SUITE};
+use records::{QpReplayRow, QP_REPLAY_SUITE};
 
 /// One solver on one task: its mean time per solve warm and cold (us), and each over DAQP's
 /// on the same task and start.
@@ -26,7 +26,7 @@ fn mean_us(rows: &[QpReplayRow], task: &str, solver: &str, start: &str) -> Optio
 /// DAQP's mean time per solve on `task` from `start`.
 fn daqp_us(rows: &[QpReplayRow], task: &str, start: &str) -> Option<f64> {
     rows.iter()
-        .find(|r| r.task == task && r.solver != SUITE && r.start == start)
+        .find(|r| r.task == task && r.solver != QP_REPLAY_SUITE && r.start == start)
         .map(|r| r.mean_us)
 }
 
@@ -69,7 +69,7 @@ pub fn target(rows: &[QpReplayRow]) -> Option<ReplayTarget> {
     let span = |start: &str| -> Option<(f64, f64)> {
         let ratios: Vec<f64> = rows
             .iter()
-            .filter(|r| r.solver == SUITE && r.start == start)
+            .filter(|r| r.solver == QP_REPLAY_SUITE && r.start == start)
             .filter_map(|r| daqp_us(rows, &r.task, start).map(|d| r.mean_us / d))
             .collect();
         let lo = ratios.iter().copied().reduce(f64::min)?;
@@ -96,8 +96,8 @@ mod tests {
             task(
                 "a",
                 &[
-                    (SUITE, "warm", 1.5),
-                    (SUITE, "cold", 3.0),
+                    (QP_REPLAY_SUITE, "warm", 1.5),
+                    (QP_REPLAY_SUITE, "cold", 3.0),
                     ("daqp 9", "warm", 1.0),
                     ("daqp 9", "cold", 1.5),
                 ],
@@ -105,8 +105,8 @@ mod tests {
             task(
                 "b",
                 &[
-                    (SUITE, "warm", 0.5),
-                    (SUITE, "cold", 1.0),
+                    (QP_REPLAY_SUITE, "warm", 0.5),
+                    (QP_REPLAY_SUITE, "cold", 1.0),
                     ("daqp 9", "warm", 1.0),
                     ("daqp 9", "cold", 1.0),
                 ],

@@ -1,12 +1,12 @@
 //! Whole runs: the reproduction's own runs per step by solver kind (`results/runs.csv`), and the
 //! runs against the papers' MATLAB compute times, each timed alone where it was
-//! ([`records::timing`]), with the smallest speed-ups against the targets.
+//! ([`records::Timings`]), with the smallest speed-ups against the targets.
 
 use crate::papers::Papers;
 use records::dof_cost::Summary;
 use records::index::{completed, Runs};
-use records::runs::RunRow;
-use records::timing::{TimingRow, Timings};
+use records::RunRow;
+use records::{TimingRow, Timings};
 use std::collections::BTreeMap;
 
 /// The targets: every zhong2021 simulation this many times faster than the paper's
@@ -158,8 +158,8 @@ mod tests {
     #[test]
     fn runs_are_priced_per_step_by_kind() {
         let mut a = RunRow::blank(
-            &spec::run_key::RunKey::from_ids("e", "v", "s").unwrap(),
-            spec::solver_kind::SolverKind::Exact,
+            &spec::RunKey::from_ids("e", "v", "s").unwrap(),
+            spec::SolverKind::Exact,
         );
         (a.steps, a.rhs_evals, a.wall_s, a.sim_s) = (100, 400, 0.01, 0.004);
         let mut b = a.clone();

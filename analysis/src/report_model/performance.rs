@@ -19,8 +19,8 @@ use crate::performance::whole_runs::{
 };
 use records::dof_cost::{DofCostRow, Quantity};
 use records::index::Runs;
-use records::qp_replay::QpReplayRow;
-use records::timing::Timings;
+use records::QpReplayRow;
+use records::Timings;
 
 /// The measurements the Performance page reads besides the runs (absent files: empty).
 #[derive(Clone, Copy, Debug, Default)]

@@ -14,8 +14,8 @@ use crate::drift_attribution::{
     MatlabTolerances, RunIds, SolverSpread,
 };
 use crate::papers::Papers;
-use records::attribution::{AttributionRow, Component};
-use records::ladder::{LadderMethod, LadderRow};
+use records::{AttributionRow, Component};
+use records::{LadderMethod, LadderRow};
 
 /// One paper's "why": its drift attribution and its tolerance ladder, each absent where the
 /// paper has no row of it.

@@ -11,7 +11,7 @@
 
 use nalgebra::{DMatrix, DVector};
 use qp::Qp;
-use solvers::active_set::{ActiveSetSolution, ActiveSetSolver, WorkingSet};
+use solvers::{ActiveSetSolution, ActiveSetSolver, WorkingSet};
 use std::io::Write;
 use std::time::Instant;
 

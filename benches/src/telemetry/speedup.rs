@@ -100,7 +100,7 @@ pub fn by_paper(rows: &[SpeedupRow]) -> Vec<PaperSpeedup> {
                 old_wall_s: sum(|r| r.old_wall_s),
                 new_wall_s: sum(|r| r.new_wall_s),
                 min_sim_speedup: ratios.first().copied().unwrap_or(f64::NAN),
-                median_sim_speedup: records::percentile::percentile(&ratios, 0.5),
+                median_sim_speedup: records::percentile(&ratios, 0.5),
                 max_sim_speedup: ratios.last().copied().unwrap_or(f64::NAN),
                 status_changes: runs.iter().filter(|r| r.old_status != r.new_status).count(),
                 max_drift_change: runs

@@ -6,11 +6,11 @@ use catalog::experiment::PaperFile;
 use outside_solver::{EqualityKkt, ID};
 use qp::QpSolver;
 use settings::qp_solver::{Limits, QpSolverInfo};
-use simulation::row::run_row;
-use simulation::run::{check_job, run_job};
+use simulation::run_row;
+use simulation::{check_job, run_job};
 use solvers::conformance::{check_qp_solver, AllocationCounter, Conformance};
 use solvers::QpShape;
-use spec::run::SolverChoice;
+use spec::SolverChoice;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Once};
 

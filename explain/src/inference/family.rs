@@ -88,7 +88,7 @@ impl Family {
         };
         let origin = inputs::Origin::Under(experiments);
         let family: Family = match inputs::read_text(&path, inputs::Kind::InferenceFamily, origin) {
-            Ok(text) => inputs::toml_error::from_str(&text).map_err(|e| err(e.into()))?,
+            Ok(text) => inputs::parse_toml(&text).map_err(|e| err(e.into()))?,
             Err(e) if e.is_not_found() => Family::default(),
             Err(e) => return Err(e.into()),
         };
@@ -100,7 +100,7 @@ impl Family {
     fn check(&self) -> Result<(), FamilyError> {
         for (declared, variants) in &self.robot_variants {
             let dof = |name: &str| {
-                robots::registry::robot_by_name(name)
+                robots::robot_by_name(name)
                     .map(|r| r.dof())
                     .map_err(|e| FamilyError::UnknownRobot(e.to_string()))
             };

@@ -49,17 +49,17 @@ use records::inference::{
     EntryRow, InferenceRow, Integration, BEST, COLUMN_FIT, DECLARED, FAILED, HYPOTHESIS, LOCAL,
     PHASE, PROFILE, ROTATION, SCALE, TABLE, TILT_X, TILT_Y,
 };
-use records::runs::RunRow;
+use records::RunRow;
 use search::{Coordinate, Objective, Outcome, Point, Scores, Target};
-use settings::integrator::{IntegratorSettings, Method};
-use simulation::row::run_row;
-use simulation::run::run_job;
-use spec::rmp::RmpReading;
-use spec::run::RunSpec;
-use spec::run::Scoring;
-use spec::run::SolverChoice;
-use spec::run_key::RunKey;
-use spec::scheme::SchemeSpec;
+use settings::{IntegratorSettings, Method};
+use simulation::run_job;
+use simulation::run_row;
+use spec::RmpReading;
+use spec::RunKey;
+use spec::RunSpec;
+use spec::SchemeSpec;
+use spec::Scoring;
+use spec::SolverChoice;
 use std::f64::consts::PI;
 use std::time::Instant;
 
@@ -147,7 +147,7 @@ impl Setup {
             let base = j
                 .path
                 .scale
-                .or_else(|| spec::path::default_scale(&j.path.name))
+                .or_else(|| spec::default_scale(&j.path.name))
                 .unwrap_or(1.0);
             j.path.scale = Some(base * self.scale_factor);
         }
@@ -264,7 +264,7 @@ impl TableProblem {
             scoring: Scoring::Off,
             ..network.clone()
         });
-        if spec::path::scale_provenance(&exact.path.name) == Some("paper") {
+        if spec::scale_provenance(&exact.path.name) == Some("paper") {
             self.fit_scale = false;
         }
         if matches!(exact.scheme, SchemeSpec::Vltco { tau, .. } if tau > 0.0)
@@ -485,7 +485,7 @@ impl<'a> TableObjective<'a> {
         let phase = problem
             .exact
             .iter()
-            .all(|j| spec::path::phase_supported(&j.path.name));
+            .all(|j| spec::phase_supported(&j.path.name));
         let mut coordinates = Vec::new();
         // Profile grids: every 45 degrees of rotation, every sixth of the cycle, seven sizes
         // (geometric) and seven tilts, 30 degrees apart.

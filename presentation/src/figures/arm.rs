@@ -3,8 +3,8 @@
 //! plane, as the papers draw it under the end-effector path.
 
 use super::trace::Trace;
-use records::runs::RunRow;
-use robots::registry::robot_by_name;
+use records::RunRow;
+use robots::robot_by_name;
 
 /// Number of poses drawn, the first at t = 0 and the last at the end of the trace.
 pub const POSES: usize = 12;

@@ -16,7 +16,7 @@ use super::style::{colour, LEGEND_LINE_WIDTH};
 use crate::error::FigureError;
 use plotters::prelude::*;
 use records::control::{ControlRow, ControlStatus, CycleRow, Family};
-use spec::naming::slug;
+use spec::slug;
 
 /// Width of the legend column on the right (px).
 const LEGEND_WIDTH: u32 = 420;

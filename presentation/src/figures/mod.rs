@@ -21,11 +21,11 @@
 //!   ([`sweep`]). A merged 10^4-run sweep writes 26 figures, not 10,001.
 //!
 //! - `inference-<paper>-<table>__profiles.svg`, one per table of `results/inference.csv`: the
-//!   setup inference's profiles ([`profile`]).
+//!   setup inference's profiles (`profile`).
 //! - `dof-cost__<scheme>.svg`, one per scheme of `results/dof-cost.csv`: the cost against the
-//!   number of joints ([`dof_cost`]).
+//!   number of joints (`dof_cost`).
 //! - `control__pareto__<task>.svg`, `control__stability.svg`, `control__cycles.svg`: the
-//!   control experiments ([`control`]).
+//!   control experiments (`control`).
 //!
 //! Each figure is drawn once against a generic plotters backend (`layout::Body`) and emitted
 //! both ways; figures are drawn in parallel. The output is a function of the inputs only (no
@@ -33,13 +33,13 @@
 //! byte-identical figures.
 
 mod arm;
-pub mod control;
-pub mod dof_cost;
+pub(crate) mod control;
+pub(crate) mod dof_cost;
 mod layout;
 mod legend;
 mod overview;
 mod panels;
-pub mod profile;
+pub(crate) mod profile;
 mod run_figure;
 mod scale;
 mod style;
@@ -52,19 +52,19 @@ use rayon::prelude::*;
 use records::control::{ControlRow, CycleRow};
 use records::dof_cost::DofCostRow;
 use records::inference::InferenceRow;
-use records::runs::RunRow;
-use spec::run_key::RunKey;
-use spec::task_set::MAIN_H;
+use records::RunRow;
+use spec::RunKey;
+use spec::MAIN_H;
 use std::collections::{BTreeMap, HashSet};
 use std::path::{Path, PathBuf};
-use store::runs::read_runs;
-use store::tracked_dir::{Removal, TrackedDir, TrackedError};
+use store::read_runs;
+use store::{Removal, TrackedDir, TrackedError};
 use trace::Trace;
 
 /// The figures' directory inside `report/`.
 pub const FIGURES: &str = "figures";
 
-/// The run's file stem (see [`spec::naming::run_stem`]).
+/// The run's file stem (the stem rule is [`spec::slug`]'s).
 fn run_stem(run: &RunRow) -> String {
     run.key().stem()
 }

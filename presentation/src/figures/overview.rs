@@ -13,7 +13,7 @@ use super::style::{colour, LEGEND_LINE_WIDTH};
 use super::trace::Trace;
 use crate::error::FigureError;
 use plotters::prelude::*;
-use records::runs::RunRow;
+use records::RunRow;
 
 /// Width of the legend column on the right (px).
 const LEGEND_WIDTH: u32 = 360;

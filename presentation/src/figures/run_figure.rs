@@ -14,7 +14,7 @@ use super::style::{
 use super::trace::Trace;
 use crate::error::FigureError;
 use plotters::prelude::*;
-use records::runs::RunRow;
+use records::RunRow;
 
 /// Height of the legend strip under the title (px).
 const LEGEND_HEIGHT: u32 = 28;

@@ -25,7 +25,7 @@ use super::style::{colour, font, GRID_COLOUR, LABEL_SIZE};
 use crate::error::FigureError;
 use analysis::sweep_summary::{extreme, Extreme};
 use plotters::prelude::*;
-use records::runs::RunRow;
+use records::RunRow;
 use std::collections::BTreeMap;
 
 /// The most per-run figures one experiment draws; an experiment with more runs is a large
@@ -454,8 +454,8 @@ pub fn figure(experiment: &str, runs: &[&RunRow]) -> Figure<SweepBody> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use spec::run_key::RunKey;
-    use spec::solver_kind::SolverKind;
+    use spec::RunKey;
+    use spec::SolverKind;
 
     /// `n` runs of one experiment sweeping mu (n / 100 values) and scale (100 values), every
     /// 97th failed.
@@ -468,7 +468,7 @@ mod tests {
                 let mut r = RunRow::blank(&key, SolverKind::Exact);
                 r.variant = label;
                 if i % 97 == 5 {
-                    r.status = records::runs::Status::Failed;
+                    r.status = records::Status::Failed;
                     r.failed_at = Some(1.0);
                 } else {
                     r.drift_norm = Some(1e-6 * (1.0 + mu as f64) * (1.0 + scale as f64));

@@ -1,5 +1,5 @@
 //! Reading one run's trace CSV (`results/traces/<experiment>/<variant>__<solver>.csv`, written by
-//! [`records::trace::trace_csv`]) into columns the panels can plot.
+//! [`records::trace_csv`]) into columns the panels can plot.
 
 use crate::error::{TraceError, TraceProblem};
 use std::path::Path;
@@ -39,7 +39,7 @@ impl Trace {
             path: path.to_path_buf(),
             problem,
         };
-        let bytes = store::owned_dir::read_file(path).map_err(|e| fail(e.into()))?;
+        let bytes = store::read_owned_file(path).map_err(|e| fail(e.into()))?;
         if bytes.is_empty() {
             return Ok(Trace::default());
         }

@@ -12,8 +12,8 @@ use records::control::Verdict;
 use records::control::{ClaimRow, ControlRow, ControlStatus, Family, StabilityRow, TrendRow};
 use std::path::Path;
 use store::control::read;
-use store::error::ControlFileError;
 use store::results_dir;
+use store::ControlFileError;
 
 /// The control experiments' results (each file empty when absent).
 #[derive(Clone, Debug, Default)]

@@ -10,7 +10,7 @@
 use super::markdown::{sci, Table, MISSING};
 use analysis::cross_best::{Best, ColumnBest, MEASURES};
 use records::index::{completed, failed_at, metric, Runs, EXACT};
-use records::runs::RunRow;
+use records::RunRow;
 
 /// The matrices' titles, in the order of [`MEASURES`].
 const TITLES: [&str; MEASURES.len()] = [

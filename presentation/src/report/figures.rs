@@ -6,9 +6,9 @@
 use super::markdown::{sci, sci_opt, text, Table};
 use analysis::sweep_summary::SweepSummary;
 use records::index::Runs;
-use spec::run_key::RunKey;
+use spec::RunKey;
 use std::path::Path;
-use store::error::{IoAction, IoError};
+use store::{IoAction, IoError};
 
 /// The `.svg` file names in `dir`, sorted; none when the folder does not exist.
 pub fn list(dir: &Path) -> Result<Vec<String>, IoError> {

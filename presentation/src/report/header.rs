@@ -18,7 +18,7 @@ fn count_word(n: usize) -> String {
 /// The header as Markdown.
 pub fn header(runs: &Runs, papers: &Papers, figures: usize) -> String {
     let published = papers.values.len();
-    let distinct = |f: fn(&records::runs::RunRow) -> &str| {
+    let distinct = |f: fn(&records::RunRow) -> &str| {
         let mut v: Vec<&str> = runs.all().iter().map(f).collect();
         v.sort();
         v.dedup();
@@ -46,7 +46,7 @@ and {figures} figures in `report/figures/`. Runs produced at git revision {} by 
     ));
     let mut t = Table::new(["integrator", "rtol", "atol", "runs", "solvers"]);
     // A numerical loop has no tolerances: its rows group by the loop alone.
-    let tolerances = |r: &records::runs::RunRow| match numerical_loop(r) {
+    let tolerances = |r: &records::RunRow| match numerical_loop(r) {
         Some(_) => (f64::NAN, f64::NAN),
         None => (r.rtol, r.atol),
     };
@@ -66,7 +66,7 @@ and {figures} figures in `report/figures/`. Runs produced at git revision {} by 
     settings
         .dedup_by(|a, b| a.0 == b.0 && a.1.total_cmp(&b.1).is_eq() && a.2.total_cmp(&b.2).is_eq());
     for (method, rtol, atol) in settings {
-        let of: Vec<&records::runs::RunRow> = runs
+        let of: Vec<&records::RunRow> = runs
             .all()
             .iter()
             .filter(|r| {
@@ -109,7 +109,7 @@ in the loop: it separates what the scheme does from what the neural solver adds.
 
 /// The integrator of a row, with ode15s's MaxStep where the run sets one; for a numerical
 /// method, its fixed-step loop ([`numerical_loop`]).
-fn method_label(r: &records::runs::RunRow) -> String {
+fn method_label(r: &records::RunRow) -> String {
     if let Some(l) = numerical_loop(r) {
         return l;
     }
@@ -122,8 +122,8 @@ fn method_label(r: &records::runs::RunRow) -> String {
 /// How a numerical method's run steps (none for any other run): a fixed-step loop of step
 /// h = duration / steps, each instant's iteration stopped by the rule its solver's name states
 /// (robio2018 Algorithm 1); the row's integrator tolerances do not apply to it.
-pub fn numerical_loop(r: &records::runs::RunRow) -> Option<String> {
-    matches!(r.solver_kind, spec::solver_kind::SolverKind::Numerical(_)).then(|| {
+pub fn numerical_loop(r: &records::RunRow) -> Option<String> {
+    matches!(r.solver_kind, spec::SolverKind::Numerical(_)).then(|| {
         format!(
             "fixed-step loop, h = {} s, stopped per instant as the solver's name says",
             sci(r.fixed_step())
@@ -132,7 +132,7 @@ pub fn numerical_loop(r: &records::runs::RunRow) -> Option<String> {
 }
 
 /// A row's tolerance `v` as a cell: "n/a" for a numerical method's loop, which has none.
-pub fn tolerance_cell(r: &records::runs::RunRow, v: f64) -> String {
+pub fn tolerance_cell(r: &records::RunRow, v: f64) -> String {
     match numerical_loop(r) {
         Some(_) => "n/a".to_string(),
         None => sci(v),

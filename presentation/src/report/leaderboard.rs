@@ -2,7 +2,7 @@
 //! qpbenchmark scores QP solvers ([`analysis::leaderboard`], also `results/leaderboard.csv`):
 //! the ranking, the distributions, a reading generated from the numbers
 //! ([`analysis::leaderboard_reading`]), how the times were measured (alone, repeated:
-//! [`records::timing`]) and the definitions.
+//! [`records::Timings`]) and the definitions.
 
 use super::markdown::{percent, sci, times, Table, MISSING};
 use analysis::leaderboard::{
@@ -11,7 +11,7 @@ use analysis::leaderboard::{
 };
 use analysis::leaderboard_reading::{Best, StandardReading, TimingReading};
 use analysis::report_model::Leaderboard;
-use records::timing::{Timings, REPETITIONS};
+use records::{Timings, TIMING_REPETITIONS};
 
 /// The whole section (`## Leaderboard`) of the leaderboard `model` (timed in `timings`), empty
 /// when there is no standard task.
@@ -319,7 +319,7 @@ fn other_set_sentence(rows: &[LeaderboardRow], set: &str, standard_tasks: usize)
     )
 }
 
-/// How the times the ranking uses were measured: alone, repeated ([`records::timing`]), on
+/// How the times the ranking uses were measured: alone, repeated ([`records::Timings`]), on
 /// which machine and revision (the first of `timings`; `reading`: how); or that they come
 /// from the parallel reproduction.
 fn timing(timings: &Timings, reading: Option<&TimingReading>) -> String {
@@ -327,12 +327,12 @@ fn timing(timings: &Timings, reading: Option<&TimingReading>) -> String {
         return format!(
             "**Times.** `results/{}` is absent: the times are the parallel reproduction's \
              `sim_s`, where a run shares the cores with its neighbours.\n\n",
-            records::timing::FILE
+            records::TIMING_FILE
         );
     };
     format!(
         "**Times.** After the parallel reproduction, every run of the leaderboard (and every run \
-         the papers publish a MATLAB time for) was run again {REPETITIONS} times, one run at a \
+         the papers publish a MATLAB time for) was run again {TIMING_REPETITIONS} times, one run at a \
          time on one thread, on {} ({} logical cores available) at revision `{}`; the ranking \
          uses the median of the repetitions' `sim_s` ({} of the {} standard-set runs \
          timed so; any other counts its parallel `sim_s`). The repetitions' spread, \
@@ -347,7 +347,7 @@ fn timing(timings: &Timings, reading: Option<&TimingReading>) -> String {
         percent(t.median_spread, 0),
         t.timed,
         percent(t.max_spread, 0),
-        records::timing::FILE
+        records::TIMING_FILE
     )
 }
 

@@ -10,7 +10,7 @@
 /// The placeholder for a number that does not exist (not measured, not printed by the paper).
 pub const MISSING: &str = "—";
 
-pub use analysis::number::sci;
+pub use analysis::sci;
 
 /// [`sci`] of an optional number, [`MISSING`] when absent.
 pub fn sci_opt(v: Option<f64>) -> String {
@@ -197,7 +197,7 @@ fn has_scheme(target: &str) -> bool {
 }
 
 /// A cell for `metric` of `r`: the number, or why there is none (a failed run has no drift).
-pub fn metric_cell(r: &records::runs::RunRow, name: &str) -> String {
+pub fn metric_cell(r: &records::RunRow, name: &str) -> String {
     match records::index::metric(r, name) {
         Some(v) => sci(v),
         None if !records::index::completed(r) => records::index::failed_at(r),

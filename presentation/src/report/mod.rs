@@ -10,58 +10,59 @@
 //! names in `report/figures/`. Nothing is re-run and nothing depends on the clock, so
 //! identical inputs give a byte-identical report ([`render`] writes it atomically).
 //!
-//! Every text of `papers/` reaches the report through [`shown`] (escaped by
+//! Every text of `papers/` reaches the report through `shown` (escaped by
 //! [`markdown::text`]): an input shows as text, never as Markdown structure or HTML.
 //!
 //! Layout (one concept per module):
-//! - [`header`]: what this is, provenance (git revision, integrators, tolerances), how to regenerate;
-//! - per paper (its page): the [`verdict`] paragraph, the published [`tables`] side by side with ours,
-//!   the [`claims`] checklist, the suite's table of every run, and the [`figures`];
-//! - the [`score`] of every neural run against the exact optimum;
-//! - the [`leaderboard`]: every velocity-level solver on the standard task set, qpbenchmark-style;
-//! - the [`cost`] of every run, and zhong2021's MATLAB comparison as ratios;
-//! - [`control`]: every solver at a robot's control rate, zhong2021's efficiency claim, and
+//! - `header`: what this is, provenance (git revision, integrators, tolerances), how to regenerate;
+//! - per paper (its page): the `verdict` paragraph, the published `tables` side by side with ours,
+//!   the `claims` checklist, the suite's table of every run, and the [`figures`];
+//! - the `score` of every neural run against the exact optimum;
+//! - the `leaderboard`: every velocity-level solver on the standard task set, qpbenchmark-style;
+//! - the `cost` of every run, and zhong2021's MATLAB comparison as ratios;
+//! - `control`: every solver at a robot's control rate, zhong2021's efficiency claim, and
 //!   many cycles (`results/control*.csv`, `results/cycles*.csv`);
-//! - [`performance`]: per-instant costs against the exact solvers and the KKT floor, the exact
+//! - `performance`: per-instant costs against the exact solvers and the KKT floor, the exact
 //!   reference per recorded QP against DAQP, the cost against the number of joints, whole runs
 //!   against the MATLAB times, and the machine (the suite's measurements of itself, its build,
 //!   clock, phases, profiles and speed-up, are the benches', `benches/REPORT.md`);
 //! - [`python`]: the Python package's numpy entry on the leaderboard and the cost of a Python
 //!   call (`results/leaderboard-python.csv`, `results/python-call-cost.csv`);
-//! - the [`cross`] experiment matrices;
+//! - the `cross` experiment matrices;
 //! - the published numbers without a run (`records::paper_values`) and those the papers
 //!   contradict.
 
-pub mod claims;
-pub mod control;
-pub mod cost;
-pub mod cross;
+mod claims;
+mod control;
+mod cost;
+mod cross;
 pub mod figures;
-pub mod header;
-pub mod leaderboard;
+mod header;
+mod leaderboard;
 pub mod markdown;
-pub mod performance;
+mod performance;
 pub mod python;
-pub mod score;
-pub mod shown;
-pub mod sweep;
-pub mod tables;
-pub mod verdict;
-pub mod why;
+mod score;
+mod shown;
+mod sweep;
+mod tables;
+pub use tables::runs_table;
+mod verdict;
+mod why;
 
 use crate::error::ReportError;
 use analysis::cost_ratio::TimeRow;
 use analysis::cross_best::ColumnBest;
-use analysis::paper_rules::GROUP;
 use analysis::papers::{PaperValue, Papers};
 use analysis::report_model::performance::Measured;
 use analysis::report_model::why::Why as WhyModel;
 use analysis::report_model::{ControlInputs, Explained, Inference, PaperModel, ReportModel};
 use analysis::sweep_summary::SweepSummary;
+use analysis::GROUP_PAPER;
 use markdown::{sci, Table};
 use records::index::Runs;
 use std::path::{Path, PathBuf};
-use store::runs::read_runs;
+use store::read_runs;
 use store::table::read_if_present;
 
 /// The figures' names in `report/figures/` and every experiment's sweep summary (the report
@@ -92,11 +93,11 @@ pub struct Inputs {
     /// Ladders, attribution and inference (`results/*.csv` beside runs.csv; absent = empty).
     pub explanations: why::Explanations,
     /// `results/leaderboard-timing.csv`: the compared runs timed alone (absent = empty).
-    pub timings: records::timing::Timings,
+    pub timings: records::Timings,
     /// `results/dof-cost.csv` (absent = empty).
     pub dof_cost: Vec<records::dof_cost::DofCostRow>,
     /// `results/qp-replay.csv` (absent = empty).
-    pub qp_replay: Vec<records::qp_replay::QpReplayRow>,
+    pub qp_replay: Vec<records::QpReplayRow>,
     /// The control experiments' result files (absent = empty).
     pub control: control::ControlResults,
     /// The Python package's result files (absent = empty).
@@ -122,7 +123,7 @@ impl Inputs {
             },
             timings: store::timing::read(&results)?,
             dof_cost: store::dof_cost::read(&results)?,
-            qp_replay: read_if_present(&results.join(records::qp_replay::FILE))?,
+            qp_replay: read_if_present(&results.join(records::QP_REPLAY_FILE))?,
             control: control::ControlResults::load(&results)?,
             python: python::PythonResults::load(&results)?,
         })
@@ -154,11 +155,11 @@ pub fn paper_page(paper: &str) -> String {
 /// returns the front page's path.
 pub fn render(root: &Path, papers: &Path) -> Result<PathBuf, ReportError> {
     let inputs = Inputs::load(root, papers)?;
-    let report = store::tracked_dir::TrackedDir::open_within(root, "report")?;
+    let report = store::TrackedDir::open_within(root, "report")?;
     let pages = pages(&inputs);
     for listed in report.listed(PAPER_PAGE) {
         if !pages.iter().any(|p| p.file == listed) {
-            if let store::tracked_dir::Removal::Kept(why) = report.remove(Path::new(&listed))? {
+            if let store::Removal::Kept(why) = report.remove(Path::new(&listed))? {
                 eprintln!("note: {why}");
             }
         }
@@ -241,7 +242,7 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
         .collect();
     let group = group_section(
         runs,
-        (model.why_of(GROUP), (explanations, inferred)),
+        (model.why_of(GROUP_PAPER), (explanations, inferred)),
         papers,
         (figures, summaries),
     );
@@ -541,7 +542,7 @@ fn group_section(
     papers: &Papers,
     (figures, summaries): Figures,
 ) -> String {
-    let group = GROUP;
+    let group = GROUP_PAPER;
     let experiments = runs.experiments(group);
     if experiments.is_empty() {
         return String::new();

@@ -9,7 +9,7 @@
 //!   growth exponents, and the whole runs on the n-link arms;
 //! - the whole-run times against the papers' MATLAB times (the published compute times that
 //!   [`super::cost`] maps), simulation and total, each run timed alone
-//!   (`results/leaderboard-timing.csv`, [`records::timing`]);
+//!   (`results/leaderboard-timing.csv`, [`records::Timings`]);
 //! - the machine the DOF measurement ran on;
 //! - the exact reference per recorded QP against its peer DAQP (`results/qp-replay.csv`).
 //!
@@ -31,8 +31,8 @@ use analysis::performance::whole_runs::{TARGET_SIMULATION_SPEEDUP, TARGET_TOTAL_
 use analysis::report_model::performance::{Measured, Performance};
 use records::dof_cost::{DofCostRow, Quantity};
 use records::index::Runs;
-use records::qp_replay::QpReplayRow;
-use records::timing::REPETITIONS;
+use records::QpReplayRow;
+use records::TIMING_REPETITIONS;
 
 /// The `## Performance` section: the model's content `p`, with the measurements it was built
 /// on (`measured`, empty where absent: the machine, the networks' names, the replay's
@@ -165,7 +165,7 @@ fn per_instant(p: &Performance) -> String {
 }
 
 /// `### The exact reference per tick against DAQP` (`results/qp-replay.csv`,
-/// [`records::qp_replay`]): per task, the suite's active set and DAQP, warm and cold, on the
+/// [`records::QpReplayRow`]): per task, the suite's active set and DAQP, warm and cold, on the
 /// same recorded QPs, and how far their answers are apart; then the target's verdict from the
 /// ratios. Every text read is escaped.
 fn replay_table(p: &Performance, rows: &[QpReplayRow]) -> String {
@@ -174,7 +174,7 @@ fn replay_table(p: &Performance, rows: &[QpReplayRow]) -> String {
         out.push_str(&format!(
             "`results/{}` is absent: `benches/qp_replay/replay.sh` records the QPs along runs \
              and replays them to the suite's active set and to DAQP.\n\n",
-            records::qp_replay::FILE
+            records::QP_REPLAY_FILE
         ));
         return out;
     };
@@ -376,7 +376,7 @@ fn crossovers(p: &Performance, dof: &[DofCostRow]) -> String {
          network Jacobian's LU above, and on nalgebra below; the KKT solve stays on nalgebra at \
          every size, since its zero and identity blocks are skipped by the in-place \
          elimination and faer's dense LU was slower there at every measured N.\n\n{}\n",
-        settings::linear_algebra::FAER_CROSSOVER,
+        settings::FAER_CROSSOVER,
         t.render()
     )
 }
@@ -477,7 +477,7 @@ fn large_n_sentence(p: &Performance) -> String {
 
 /// The whole runs against the papers' MATLAB compute times: simulation (`sim_s`) and total
 /// (`wall_s`, scoring and observation included), the medians of the runs timed alone
-/// ([`records::timing`]; the parallel reproduction's times for a run without), with the
+/// ([`records::Timings`]; the parallel reproduction's times for a run without), with the
 /// smallest speedups.
 fn matlab(p: &Performance, runs: &Runs, papers: &Papers) -> String {
     let mut t = Table::new([
@@ -516,7 +516,7 @@ fn matlab(p: &Performance, runs: &Runs, papers: &Papers) -> String {
         "### Whole runs against the papers' MATLAB times\n\nThe published compute times \
          ({}) beside our runs: the simulation alone (`sim_s`: arm, network, integrator) \
          and the whole run (`wall_s`: with the observation at every accepted step, i.e. metrics \
-         and the exact solves that score the run). Each run was timed alone: run {REPETITIONS} \
+         and the exact solves that score the run). Each run was timed alone: run {TIMING_REPETITIONS} \
          times, one run at a time on one thread, after the parallel reproduction; the median is \
          shown, with the spread (max − min) / median of the repetitions ({} of the {} \
          runs so timed, `results/{}`; any other shows the parallel reproduction's time, where it \
@@ -525,7 +525,7 @@ fn matlab(p: &Performance, runs: &Runs, papers: &Papers) -> String {
         timed_papers(papers),
         comparison.alone,
         comparison.shown,
-        records::timing::FILE
+        records::TIMING_FILE
     );
     out.push_str(&t.render());
     out.push('\n');
@@ -548,8 +548,8 @@ fn matlab(p: &Performance, runs: &Runs, papers: &Papers) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use records::qp_replay::SUITE;
-    use records::timing::Timings;
+    use records::QP_REPLAY_SUITE;
+    use records::Timings;
 
     /// The section on the measurements `dof` and `qp_replay`, without runs, papers or
     /// timings, its model built as the report builds it.
@@ -575,8 +575,8 @@ mod tests {
         let replay = fixtures::replay_rows(
             "t / v",
             &[
-                (SUITE, "warm", 1.5),
-                (SUITE, "cold", 3.0),
+                (QP_REPLAY_SUITE, "warm", 1.5),
+                (QP_REPLAY_SUITE, "cold", 3.0),
                 ("daqp 9", "warm", 1.0),
                 ("daqp 9", "cold", 1.5),
             ],
@@ -654,8 +654,8 @@ mod tests {
         let rows = fixtures::replay_rows(
             "t / v",
             &[
-                (SUITE, "warm", 0.5),
-                (SUITE, "cold", 0.8),
+                (QP_REPLAY_SUITE, "warm", 0.5),
+                (QP_REPLAY_SUITE, "cold", 0.8),
                 ("daqp 9", "warm", 1.0),
                 ("daqp 9", "cold", 1.0),
             ],

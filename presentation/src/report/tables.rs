@@ -14,7 +14,7 @@ use crate::figures::sweep::{drawn, MAX_RUN_FIGURES};
 use analysis::papers::{Mapping, Papers};
 use analysis::published_table::{Row, SideBySide};
 use records::index::{metric, status_text, Runs, EXACT};
-use records::runs::RunRow;
+use records::RunRow;
 
 /// A quantity's row label.
 pub fn quantity_label(metric: &str) -> String {

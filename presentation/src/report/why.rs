@@ -9,13 +9,13 @@
 use super::markdown::{percent, sci, sci_opt, Table, MISSING};
 use analysis::drift_attribution::RunIds;
 use analysis::inference_verdict::{FLAT, REPRODUCED, WEAK};
-use analysis::paper_rules::GROUP;
 use analysis::papers::Papers;
 use analysis::report_model::why::{AttributedRun, Attribution, Ladder, Why};
 use analysis::report_model::Inference;
-use records::attribution::{AttributionRow, Component};
+use analysis::GROUP_PAPER;
 use records::inference::{self, EntryRow, InferenceRow, Integration, FAILED as FAILED_RESIDUAL};
-use records::ladder::{LadderMethod, LadderRow};
+use records::{AttributionRow, Component};
+use records::{LadderMethod, LadderRow};
 use std::fmt::Write as _;
 
 /// The stored explanation results.
@@ -523,7 +523,7 @@ pub fn section(why: &Why, (x, inferred): (&Explanations, &[Inference]), papers: 
         return String::new();
     }
     let mut out = String::from("\n### Why the numbers differ\n\n");
-    if paper == GROUP {
+    if paper == GROUP_PAPER {
         out.push_str(&summary(why, inferred));
     }
     if !attribution.is_empty() {
@@ -589,7 +589,7 @@ pub fn summary(why: &Why, inferred: &[Inference]) -> String {
     let mut out = format!(
         "\n**Why** (see \"Why the numbers differ\" below). Over {} runs of {}, {} carries {scheme} of the drift (|d_exact| / |d_run|), {}.",
         a.runs.len(),
-        if paper == GROUP {
+        if paper == GROUP_PAPER {
             "the group's network"
         } else {
             "the paper's solver"

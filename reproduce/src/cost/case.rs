@@ -3,9 +3,9 @@
 
 use qp::QpDims;
 use records::dof_cost::{Quantity, RunCounts, SchemeKind};
-use settings::solver_spec::SolverSpec;
+use settings::SolverSpec;
 use solvers::Backend;
-use spec::path::PathSpec;
+use spec::PathSpec;
 
 /// Size a of the four-leaf clover (m): 0.1, inside the n-link arms' workspace around
 /// `NLink::home` for every N (the suite's default 0.15 m is the Jaco2's).

@@ -1,9 +1,9 @@
 //! Why a case could not be prepared for timing.
 
-use settings::error::NetworkError;
-use simulation::error::RunError;
-use spec::path::PathError;
-use spec::scheme::SchemeError;
+use settings::NetworkError;
+use simulation::RunError;
+use spec::PathError;
+use spec::SchemeError;
 
 #[derive(Debug, thiserror::Error)]
 pub enum CostError {

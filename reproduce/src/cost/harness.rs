@@ -23,19 +23,19 @@ use catalog::experiment::default_exact_integrator;
 use qp::{Qp, QpDims};
 pub use records::dof_cost::SWEEP_SIZES;
 use records::dof_cost::{Quantity, RunCounts, SchemeKind};
-use robots::registry::{nlink_name, robot_by_name};
 use robots::Robot;
-use schemes::build::build_scheme;
+use robots::{nlink_name, robot_by_name};
+use schemes::build_scheme;
 use schemes::paths::{build_path, Path};
-use schemes::scheme::Scheme;
-use settings::integrator::IntegratorSettings;
-use settings::solver_spec::SolverSpec;
-use simulation::simulate::{simulate, Outcome, Run, Settings, Solver};
+use schemes::Scheme;
+use settings::IntegratorSettings;
+use settings::SolverSpec;
+use simulation::{simulate, Outcome, Run, Settings, Solver};
 use solvers::Backend;
-use spec::rmp::RmpReading;
-use spec::run::NetworkInit;
-use spec::run::Scoring;
-use spec::scheme::SchemeSpec;
+use spec::NetworkInit;
+use spec::RmpReading;
+use spec::SchemeSpec;
+use spec::Scoring;
 use std::sync::Arc;
 
 /// The joint counts measured with kong2019's scheme alone, past [`SWEEP_SIZES`].
@@ -250,7 +250,7 @@ impl PreparedCase for Prepared {
             Quantity::RunNetwork => {
                 let spec = self.network_spec.clone();
                 let (dims, scheme) = (self.scheme.dims(), self.scheme.name());
-                let build = move || simulation::run::build_network(&spec, dims, &scheme);
+                let build = move || simulation::build_network(&spec, dims, &scheme);
                 self.run(Solver::Network(&build), &network_settings());
             }
             _ => self.instants.call(quantity, backend, i),

@@ -22,7 +22,7 @@ use super::error::CostError;
 use nalgebra::{DMatrix, DVector};
 use qp::{Qp, QpDims};
 use records::dof_cost::Quantity;
-use settings::solver_spec::SolverSpec;
+use settings::SolverSpec;
 use solvers::neural::{build_solver, NeuralSolver};
 use solvers::{
     solve_equality_kkt_with, ActiveSetSolution, ActiveSetSolver, Backend, DenseLu, ExactSolver,

@@ -20,7 +20,7 @@
 //! one exact run. Both schemes at N = 3 ... 30 ([`records::dof_cost::SWEEP_SIZES`]),
 //! kong2019's alone at N = 40 ... 200. The dense LU quantities (`network-lu`, `kkt-floor`) are
 //! timed on both [`solvers::Backend`]s ([`backends`]), from which the report reads the
-//! crossover that [`settings::linear_algebra::FAER_CROSSOVER`] records. The `measure` module
+//! crossover that [`settings::FAER_CROSSOVER`] records. The `measure` module
 //! holds the timing (how samples are taken and summarised).
 
 mod case;

@@ -4,11 +4,11 @@
 // Compiled into each test crate of the binary; each uses a part of it.
 #![allow(dead_code)]
 
-use records::runs::RunRow;
+use records::RunRow;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use store::runs::read_runs;
+use store::read_runs;
 
 /// An experiment file with one slow run first (the finite-time network integrated by
 /// Dormand-Prince, held to steps of ~1e-5 s by the sign-power band's eigenvalues near -2.5e5:

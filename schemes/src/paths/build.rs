@@ -1,4 +1,4 @@
-//! Building a path from its description ([`spec::path::PathSpec`], whose module lists the
+//! Building a path from its description ([`spec::PathSpec`], whose module lists the
 //! names, each figure's size and its pose fields).
 //!
 //! | name | built as |
@@ -28,7 +28,7 @@ use super::reversed::Reversed;
 use super::stroke::StrokePath;
 use super::Path;
 use nalgebra::Vector3;
-use spec::path::{PathError, PathSpec};
+use spec::{PathError, PathSpec};
 
 /// Builds the path `spec` describes, starting (and ending) at `start`.
 ///

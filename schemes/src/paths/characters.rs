@@ -8,7 +8,7 @@
 
 use super::stroke::StrokePath;
 use nalgebra::Vector3;
-use spec::path::PathError;
+use spec::PathError;
 
 /// A character: named points in the unit box and a closed tour through them by name.
 #[derive(Clone, Copy, Debug, PartialEq)]

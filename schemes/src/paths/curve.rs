@@ -32,7 +32,7 @@
 use super::time_law::RestToRest;
 use super::{Path, PathPoint};
 use nalgebra::Vector3;
-use spec::path::PathError;
+use spec::PathError;
 use std::f64::consts::{E, PI};
 
 /// The shape of a closed curve dr(phi), phi in [0, 2 pi].

@@ -63,7 +63,7 @@ mod tests {
     use super::*;
     use crate::paths::build_path;
     use nalgebra::Vector3;
-    use spec::path::PathSpec;
+    use spec::PathSpec;
 
     #[test]
     fn the_cycles_repeat_the_path() {

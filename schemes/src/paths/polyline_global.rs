@@ -22,7 +22,7 @@ use super::stroke::{polyline_segments, RawSegment};
 use super::time_law::RestToRest;
 use super::{Path, PathPoint};
 use nalgebra::Vector3;
-use spec::path::PathError;
+use spec::PathError;
 use std::f64::consts::PI;
 
 /// One straight piece of a [`GlobalPolyline`].

@@ -11,7 +11,7 @@
 use super::time_law::RestToRest;
 use super::{Path, PathPoint};
 use nalgebra::Vector3;
-use spec::path::PathError;
+use spec::PathError;
 
 /// Relative length below which a segment counts as zero-length (a repeated point) and is dropped.
 pub(crate) const ZERO_LENGTH: f64 = 1e-12;

@@ -11,7 +11,7 @@
 //! ([`crate::joint_limits`]; zhong2021's piecewise form is the same law, tested). As theta_i
 //! nears theta+_i, zeta+_i falls linearly to 0 and below 0 beyond the limit. Where the papers
 //! write these bounds as rows of G (zhong2021 (2.18)), the scheme's `bounds = "rows"` writes
-//! every bound so ([`spec::terms::BoundPlacement`]). Time derivative: -gain thetadot_i on
+//! every bound so ([`spec::BoundPlacement`]). Time derivative: -gain thetadot_i on
 //! the joint-angle branch, 0 on the velocity branch, right-hand at the kink.
 
 use std::sync::Arc;

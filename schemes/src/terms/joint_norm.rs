@@ -10,7 +10,7 @@
 use qp::Qp;
 
 use super::{DotOut, Slot, State, Term};
-use spec::scheme::Level;
+use spec::Level;
 
 /// w |x[..n]|^2 / 2 (module docs).
 pub struct JointNorm {

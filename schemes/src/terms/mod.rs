@@ -17,7 +17,7 @@
 //! The time derivative dQP/dt along the motion (the zeroing networks' Qdot, udot) is summed the
 //! same way from each term's exact derivative ([`Term::write_dot`]); if any term of a scheme has
 //! none ([`Term::has_dot`] false), the scheme takes the central difference of the whole QP
-//! ([`crate::scheme::central_difference`]). Where several limit terms bound one variable the
+//! ([`crate::central_difference`]). Where several limit terms bound one variable the
 //! derivative is that of the active one, and at a tie the right-hand derivative (the larger
 //! slope for a lower bound, the smaller for an upper bound; [`DotOut::merge_lower`]).
 //!
@@ -39,15 +39,15 @@
 
 use qp::Qp;
 
-pub mod acceleration_limits;
-pub mod bound_conversion;
-pub mod drift_damping;
-pub mod infinity_norm;
-pub mod joint_norm;
-pub mod repetitive;
-pub mod torque_norm;
-pub mod tracking;
-pub mod velocity_limits;
+pub(crate) mod acceleration_limits;
+pub(crate) mod bound_conversion;
+pub(crate) mod drift_damping;
+pub(crate) mod infinity_norm;
+pub(crate) mod joint_norm;
+pub(crate) mod repetitive;
+pub(crate) mod torque_norm;
+pub(crate) mod tracking;
+pub(crate) mod velocity_limits;
 
 /// What a term adds to the QP's sizes.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -145,7 +145,7 @@ pub trait Term: Send + Sync {
     }
 
     /// Adds the time derivative of the term's block along the motion (see
-    /// [`crate::scheme`]) into `out`, which the scheme zeroed. Called only if
+    /// `scheme`) into `out`, which the scheme zeroed. Called only if
     /// [`Term::has_dot`]. Must not allocate.
     fn write_dot(&self, _state: &State<'_>, _slot: Slot, _out: &mut DotOut<'_>) {}
 

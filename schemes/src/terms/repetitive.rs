@@ -3,7 +3,7 @@
 //!
 //! - `linear`: g = lambda e (robio2018 (4) C = lambda (theta - theta(0)); kong2019 (22) with
 //!   lambda = mu; jia2019 (2.17) and zhong2021 (2.16) with lambda their coefficient k of
-//!   [`spec::rmp`]). lambda = 0 drops the term: robio2018's baseline of Fig. 2(a);
+//!   [`spec::RmpReading`]). lambda = 0 drops the term: robio2018's baseline of Fig. 2(a);
 //! - `sign-power`: g_i = lambda c(e_i), c(e) ~ |e|^alpha sgn(e) (kong2019 (14), lambda =
 //!   beta_theta, 0 < alpha < 1), smoothed as below.
 //!
@@ -20,13 +20,13 @@
 //! thetadot_i = -beta_theta |e_i|^alpha sgn(e_i) chatters around e_i = 0 and no integrator can
 //! step there (explicit steps shrink to ~1e-8 s, Newton iterations of implicit ones diverge).
 //! We use the smoothed sign-power of the finite-time network, c(e) = e (e^2 +
-//! delta^2)^((alpha - 1)/2) (`settings::sign_power::sign_power`, delta = [`SMOOTHING`]): odd,
+//! delta^2)^((alpha - 1)/2) (`settings::sign_power`, delta = [`SMOOTHING`]): odd,
 //! increasing, smooth, equal to |e|^alpha sgn(e) to 0.5 % for |e| >= 10 delta, and with slope
 //! delta^(alpha - 1) at 0 (so e decays exponentially with time constant
 //! delta^(1 - alpha) / beta_theta ~ 4e-6 s once inside the band).
 
 use qp::Qp;
-use settings::sign_power::{sign_power, sign_power_slope};
+use settings::{sign_power, sign_power_slope};
 
 use super::{DotOut, Slot, State, Term};
 

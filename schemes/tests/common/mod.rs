@@ -10,8 +10,8 @@ use nalgebra::{DMatrix, DVector, SMatrix, SVector, Vector3};
 use qp::{Qp, QpDuals};
 use robots::{Dynamics, JointLimits, Robot};
 use schemes::paths::{Path, PathPoint};
-use spec::rmp::RmpReading;
-use spec::scheme::SchemeSpec;
+use spec::RmpReading;
+use spec::SchemeSpec;
 
 /// Planar arm: joints 1..N-1 rotate in the x-y plane (links `LEN`), joint N moves the tip in z
 /// by `Z_GAIN * theta_N`. Joint 2 has finite angle limits [-1, 2.5]; the others [-3, 3];
@@ -358,7 +358,7 @@ pub fn paper_specs() -> Vec<SchemeSpec> {
         // feedback), and its sign-power form.
         SchemeSpec::VelocityRmp {
             weight: 2.0,
-            repetitive: spec::scheme::RepetitiveForm::Linear,
+            repetitive: spec::RepetitiveForm::Linear,
             lambda: 4.0,
             alpha: None,
             k_p: 1.0,
@@ -366,7 +366,7 @@ pub fn paper_specs() -> Vec<SchemeSpec> {
         },
         SchemeSpec::VelocityRmp {
             weight: 1.0,
-            repetitive: spec::scheme::RepetitiveForm::SignPower,
+            repetitive: spec::RepetitiveForm::SignPower,
             lambda: 1.0,
             alpha: Some(0.5),
             k_p: 0.0,

@@ -23,8 +23,8 @@
 //! elementwise, phi(e) = e^p where abs(e) >= 1 and
 //! ((1 + exp(-xi)) / (1 - exp(-xi))) (1 - exp(-xi e)) / (1 + exp(-xi e)) otherwise; called with
 //! one argument it uses xi = 1, p = 1, with two p = 3
-//! ([`settings::activation::GROUP_POWER_SIGMOID_XI`],
-//! [`settings::activation::GROUP_POWER_SIGMOID_P`] are the one-argument defaults, the ones its
+//! ([`settings::GROUP_POWER_SIGMOID_XI`],
+//! [`settings::GROUP_POWER_SIGMOID_P`] are the one-argument defaults, the ones its
 //! network uses).
 //! This is zhong2021's eq. 2.29 with **alpha = xi and chi = p**: the same sigmoid branch
 //! (= coth(xi/2) tanh(xi e/2)) inside, the same power outside. The two differ only at
@@ -43,20 +43,18 @@
 //!
 //! Sign-power with r < 1 has an infinite slope at e = 0 (that is what makes the convergence
 //! finite-time, and what makes every integrator fail once e reaches 0: explicit steps collapse,
-//! Newton iterations of implicit ones diverge). [`settings::sign_power::sign_power`] therefore takes a smoothing width
+//! Newton iterations of implicit ones diverge). [`settings::sign_power()`] therefore takes a smoothing width
 //! delta: phi(e) = e (e^2 + delta^2)^((r - 1)/2), which is odd, strictly increasing (slope
 //! (e^2 + delta^2)^((r-3)/2) (r e^2 + delta^2) > 0), smooth, equal to abs(e)^r sgn(e) up to a
 //! relative (1 + delta^2/e^2)^((r-1)/2) - 1 (< 0.5 % at abs(e) = 10 delta for r = 0.1), and has the
 //! finite slope delta^(r-1) at 0: the finite-time phase is kept down to abs(e) ~ delta and then
 //! turns into an exponential decay with rate delta^(r-1). delta = 0 gives the exact form (its
-//! slope then evaluated at max(abs(e), [`SIGN_POWER_MIN_ABS`](settings::sign_power::SIGN_POWER_MIN_ABS)) so Jacobians stay finite). The same
+//! slope then evaluated at max(abs(e), [`SIGN_POWER_MIN_ABS`](settings::SIGN_POWER_MIN_ABS)) so Jacobians stay finite). The same
 //! function is kong2019's c in its finite-time scheme (`schemes::kong2019`).
 
-use settings::activation::{
-    ActivationKind, ActivationSpec, POWER_SIGMOID_ALPHA, POWER_SIGMOID_CHI,
-};
-use settings::error::NetworkError;
-use settings::sign_power::{sign_power, sign_power_slope};
+use settings::NetworkError;
+use settings::{sign_power, sign_power_slope};
+use settings::{ActivationKind, ActivationSpec, POWER_SIGMOID_ALPHA, POWER_SIGMOID_CHI};
 
 /// The sigmoid branch shared by both power-sigmoids at a = abs(e) <= 1, steepness `s` (zhong2021's
 /// alpha, the group's xi): (1 + exp(-s)) (1 - exp(-s a)) / ((1 - exp(-s)) (1 + exp(-s a))).

@@ -21,7 +21,7 @@
 //!
 //! Activation functions: [`activation`]. The factory that builds a network from its
 //! experiment-file specification (`settings::solver_spec`): [`spec`]. A network's parameter
-//! errors: `settings::error::NetworkError`. Every network starts from y = 0 (none of the papers
+//! errors: `settings::NetworkError`. Every network starts from y = 0 (none of the papers
 //! says otherwise).
 
 pub mod activation;

@@ -38,7 +38,7 @@
 //!
 //! (W is dphi/dy; pσ² e^{-σN} in the paper = sigma c_i here.) The data derivatives come from
 //! `qp_dot` (P, q, A, b, G, h, and the bounds' derivatives for the bound rows); with no `qp_dot`
-//! the QP is frozen. ydot is solved for with a preallocated LU ([`crate::dense_lu`]: the in-place
+//! the QP is frozen. ydot is solved for with a preallocated LU (`dense_lu`: the in-place
 //! elimination of [`super::lu`] at the papers' sizes, faer's past its measured crossover).
 //! Activation: linear (2.27), sinh (2.28) or power-sigmoid (2.29), see [`Activation`].
 //!
@@ -81,7 +81,7 @@ use super::activation::Activation;
 use crate::dense_lu::DenseLu;
 use nalgebra::DMatrix;
 use qp::{Qp, QpDims};
-use settings::error::NetworkError;
+use settings::NetworkError;
 
 /// Cap on the penalty exponent -sigma N_i (exp(700) ~ 1e304).
 pub const EXPONENT_CAP: f64 = 700.0;

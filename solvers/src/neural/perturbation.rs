@@ -14,7 +14,7 @@
 //! (the robustness claim is about how the networks degrade as they grow).
 
 use nalgebra::DMatrix;
-use settings::solver_spec::ReferencePerturbation;
+use settings::ReferencePerturbation;
 use std::f64::consts::PI;
 
 /// One entry of D0: sign * (sin | cos)(k w).

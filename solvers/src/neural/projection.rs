@@ -52,9 +52,9 @@ use super::penalty::PenaltyCore;
 use super::{euclidean_norm, NeuralSolver};
 use nalgebra::DMatrix;
 use qp::{Qp, QpDims};
-use settings::error::NetworkError;
 use settings::projection::{ProjectionErrorForm, ProjectionSpec, Scaling};
 use settings::zeroing::GainLaw;
+use settings::NetworkError;
 
 /// Dimension of the primal-dual vector y = [x; u; v] for a QP of these sizes.
 pub fn primal_dual_dim(dims: QpDims) -> usize {

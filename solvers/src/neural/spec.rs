@@ -6,8 +6,8 @@ use super::projection::ProjectionNetwork;
 use super::zeroing::ZeroingNetwork;
 use super::NeuralSolver;
 use qp::QpDims;
-use settings::error::NetworkError;
-use settings::solver_spec::SolverSpec;
+use settings::NetworkError;
+use settings::SolverSpec;
 
 fn check_gain(network: &'static str, symbol: &'static str, v: f64) -> Result<(), NetworkError> {
     if v > 0.0 && v.is_finite() {

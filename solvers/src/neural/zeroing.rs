@@ -42,7 +42,7 @@
 //! preallocated matrix ([`super::lu`]; compiled for the papers' orders, bit for bit the
 //! textbook loop); Qdot and udot come from `qp_dot` (P, A, q, b differentiated); with no
 //! `qp_dot` the QP is taken as frozen (Qdot = 0, udot = 0). (Solving through the Schur
-//! complement of P instead, [`crate::kkt_schur`], was measured no faster on kong2019's 8 x 8
+//! complement of P instead, `kkt_schur`, was measured no faster on kong2019's 8 x 8
 //! system, and it changes the last bits of every run: `benches/REPORT.md`.)
 //!
 //! Inequality rows and bounds are outside this structure: a network is built only for
@@ -62,9 +62,9 @@ use super::perturbation::PerturbationTerms;
 use super::{euclidean_norm, NeuralSolver};
 use nalgebra::DMatrix;
 use qp::{Qp, QpDims};
-use settings::error::NetworkError;
-use settings::solver_spec::ReferencePerturbation;
 use settings::zeroing::{GainLaw, ZeroingSpec};
+use settings::NetworkError;
+use settings::ReferencePerturbation;
 
 /// Q ydot = -Qdot y + udot - g(t) Phi(Q y - u) (+ perturbation): see the module docs.
 #[derive(Clone, Debug)]

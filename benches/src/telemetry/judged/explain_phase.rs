@@ -1,5 +1,5 @@
 //! Where the explain phase of a reproduction spends its time: the tolerance ladders' rungs
-//! (`results/ladder.csv`, [`records::ladder`]), each timed by the wall clock as it ran
+//! (`results/ladder.csv`, [`records::LadderRow`]), each timed by the wall clock as it ran
 //! (`wall_s`), against the phase's wall time (`benches/results/phases.csv`, [`reproduce::phases`]).
 //!
 //! The rungs run in parallel, one per core at a time, so their times add up to core-seconds:
@@ -8,8 +8,8 @@
 //! attribution's switch runs together fill the phase; the rungs alone are what the ladder file
 //! times.
 
-use records::ladder::{LadderMethod, LadderRow};
-use records::runs::Status;
+use records::Status;
+use records::{LadderMethod, LadderRow};
 use reproduce::phases::{Phase, PhaseRow};
 
 /// The rungs of one paper integrated one way that ended one way.

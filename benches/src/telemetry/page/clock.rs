@@ -20,8 +20,8 @@ use crate::telemetry::judged::clock::{by_commit, phases_seconds};
 use crate::telemetry::judged::targets::{targets, BASELINE};
 use crate::telemetry::judged::{build, explain_phase};
 use presentation::report::markdown::{minutes, percent, text, Table, MISSING};
-use records::ladder::LadderRow;
-use records::runs::Status;
+use records::LadderRow;
+use records::Status;
 use reproduce::phases::{PhaseRow, PhaseStatus};
 
 /// The files the newcomer's clock reads, each empty where absent.

@@ -24,7 +24,7 @@ use super::throughput::{ThroughputProfileRow, ThroughputRow};
 use analysis::papers::Papers;
 use analysis::performance::{dof, instant};
 use records::dof_cost::DofCostRow;
-use records::ladder::LadderRow;
+use records::LadderRow;
 use reproduce::phases::PhaseRow;
 use std::path::{Path, PathBuf};
 use store::table::read_if_present;
@@ -41,9 +41,9 @@ pub enum PageError {
     #[error(transparent)]
     Table(#[from] records::table::TableError),
     #[error(transparent)]
-    Runs(#[from] store::error::RunsError),
+    Runs(#[from] store::RunsError),
     #[error(transparent)]
-    DofCost(#[from] store::error::DofCostError),
+    DofCost(#[from] store::DofCostError),
     #[error(transparent)]
     Papers(#[from] analysis::papers::PapersError),
     #[error("{}: cannot write: {source}", path.display())]

@@ -6,7 +6,7 @@ use crate::telemetry::throughput::{
     floor_and_total, side, speedup, ThroughputProfileRow, ThroughputRow, FILE, PROFILE_FILE,
     TARGET_SPEEDUP,
 };
-use analysis::number::sci;
+use analysis::sci;
 use presentation::report::markdown::{percent, Table};
 
 /// The `### Runs per core` subsection.
