@@ -107,7 +107,6 @@ fn committed(rel: &str) -> String {
     std::fs::read_to_string(repo().join(rel)).unwrap()
 }
 
-
 proptest! {
     #![proptest_config(ProptestConfig { cases: 150, ..ProptestConfig::default() })]
 

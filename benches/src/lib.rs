@@ -24,7 +24,6 @@
 
 pub mod telemetry;
 
-
 use std::sync::Arc;
 use std::time::Duration;
 

@@ -256,7 +256,6 @@ const CHECKED_IDS: &str =
 /// experiment's and variant's mount before any run is made.
 const CHECKED_MOUNT: &str = "the experiment file's check refuses an invalid tool or base";
 
-
 impl PaperFile {
     /// Reads (with the input reader, crate `inputs`: a regular file that does not lead out of
     /// its directory, at most [`inputs::Kind::Experiment`]'s cap) and validates one experiment

@@ -78,11 +78,10 @@ pub fn load(experiments: &Path) -> Result<TaskSet, TaskSetError> {
         Err(e) if e.is_not_found() => return Err(TaskSetError::Missing(shown)),
         Err(e) => return Err(e.into()),
     };
-    let file: TaskSetFile =
-        inputs::parse_toml(&text).map_err(|source| TaskSetError::Toml {
-            path: shown.clone(),
-            source,
-        })?;
+    let file: TaskSetFile = inputs::parse_toml(&text).map_err(|source| TaskSetError::Toml {
+        path: shown.clone(),
+        source,
+    })?;
     if file.task.is_empty() {
         return Err(TaskSetError::Empty(shown));
     }

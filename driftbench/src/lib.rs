@@ -299,8 +299,8 @@ pub mod prelude {
 /// Denavit-Hartenberg table, [`RobotSpec`], made a model by [`DataRobot`]; a URDF chain,
 /// [`ChainRobot`]) and the suite's built-in arms.
 pub mod robot {
-    pub use robots::{RobotFileError, RobotSpec};
     pub use robots::{ChainRobot, DataRobot, Jaco2, JointLimits, Katana6m180, NLink, Panda, Robot};
+    pub use robots::{RobotFileError, RobotSpec};
 }
 
 /// The QP of every instant, min x'Px/2 + q'x s.t. A x = b, G x <= h, l <= x <= u ([`Qp`], its
@@ -333,9 +333,9 @@ pub mod run {
     pub use simulation::{run_job, NetworkBuilder, RunRecord};
     pub use simulation::{Outcome, Run};
     pub use spec::ids::{ExperimentId, IdError, PaperId, SolverId, VariantId};
-    pub use spec::{RunSpec, SetupError, SolverChoice};
-    pub use spec::{RunKey, TaskKey};
     pub use spec::SolverKind;
+    pub use spec::{RunKey, TaskKey};
+    pub use spec::{RunSpec, SetupError, SolverChoice};
 }
 
 /// The rows of `results/`: a run's row of `runs.csv` ([`RunRow`]), read by [`read_runs`].

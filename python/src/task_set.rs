@@ -9,9 +9,9 @@ use pyo3::prelude::*;
 use reproduce::experiments::load_dir;
 use serde::Serialize;
 use simulation::qp_shape;
+use spec::Level;
 use spec::RunSpec;
 use spec::SolverChoice;
-use spec::Level;
 use std::path::Path;
 
 /// One task of the suite: a scheme on a path with a robot, as an experiment file's variant

@@ -16,9 +16,9 @@ use spec::RunKey;
 use spec::RunSpec;
 use std::collections::HashSet;
 use store::journal::Recovered;
-use store::KeySet;
 use store::results_dir::ResultsDir;
 use store::sorted::{latest, read_key_ordered, KeyMerge};
+use store::KeySet;
 
 /// The journal of `results` recovered (store::journal::recover) and said: rows of another
 /// revision, whose trace does not match its seal, or that no experiment file describes

@@ -7,13 +7,13 @@ use crate::project::Project;
 use catalog::experiment::PaperFile;
 use records::{merge_runs, RunRow};
 use simulation::RunRecord;
-use spec::RunSpec;
 use spec::RunKey;
+use spec::RunSpec;
 use std::cell::OnceCell;
 use std::collections::HashSet;
+use store::results_dir::ResultsDir;
 use store::KeySet;
 use store::LabelIndex;
-use store::results_dir::ResultsDir;
 
 /// The experiment files of the project, loaded and validated, every run checked
 /// ([`crate::experiments`]).

@@ -24,8 +24,8 @@ use simulation::run_row;
 use simulation::RunRecord;
 use spec::RunSpec;
 use std::process::ExitCode;
-use store::KeySum;
 use store::shard::{Binding, Shard};
+use store::KeySum;
 
 /// How many runs a shard makes and runs at a time: what it holds of its runs is this many
 /// [`RunSpec`]s (~1 KB each) and the records of the runs in flight, whatever their number. A

@@ -23,8 +23,8 @@
 use catalog::experiment::PaperFile;
 use records::RunRow;
 use reproduce::experiments::load_dir;
-use simulation::run_row;
 use simulation::run_job;
+use simulation::run_row;
 use spec::SolverChoice;
 use std::path::{Path, PathBuf};
 use std::process::Command;

@@ -5,8 +5,8 @@
 use analysis::gate::compare;
 use records::RunRow;
 use reproduce::experiments::load_dir;
-use simulation::run_row;
 use simulation::run_jobs;
+use simulation::run_row;
 use store::read_runs;
 
 #[test]

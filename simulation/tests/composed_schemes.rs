@@ -15,10 +15,10 @@
 
 use robots::robot_by_name;
 use schemes::orientation_error;
-use simulation::{build_cyclic_parts, job_robot, run_job};
 use simulation::Outcome;
-use solvers::ExactSolver;
+use simulation::{build_cyclic_parts, job_robot, run_job};
 use solvers::ExactPath;
+use solvers::ExactSolver;
 use spec::RunSpec;
 use std::path::Path;
 

@@ -4,7 +4,6 @@
 
 use proptest::prelude::*;
 
-
 fn committed_files() -> Vec<(String, String)> {
     let dir = catalog::root::from_current_dir()
         .unwrap()

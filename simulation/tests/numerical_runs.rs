@@ -3,8 +3,8 @@
 //! the methods' error shrinks with their tolerance, joint 6 (which cannot move the tool point on
 //! its axis) does not drift, and the experiment's limits are the ones the run respects.
 
-use simulation::run_row;
 use simulation::run_job;
+use simulation::run_row;
 use spec::RunSpec;
 use spec::SolverChoice;
 

@@ -6,9 +6,9 @@
 //! file.
 
 use catalog::experiment::PaperFile;
-use simulation::Score;
 use simulation::run_job;
 use simulation::Outcome;
+use simulation::Score;
 use spec::RunSpec;
 use spec::SolverChoice;
 

@@ -3,7 +3,6 @@
 //! written before the grammar; kept in tests/fixtures/) described: same keys, same order, every
 //! field of every Job equal.
 
-
 #[test]
 fn sweep_experiments_expand_to_the_hand_written_runs() {
     let root = catalog::root::from_current_dir().unwrap();

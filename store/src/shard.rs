@@ -222,7 +222,6 @@ pub enum ShardError {
     },
 }
 
-
 /// Shard K of N (K in 1..=N).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Shard {
@@ -713,7 +712,6 @@ pub fn check_shards<I: Iterator<Item = String>>(
     shards: &[ShardDir],
     expected: impl Fn() -> I,
     hash: &str,
-
 ) -> Result<(), ShardError> {
     let Some(first) = shards.first() else {
         return Err(ShardError::NoShardDirectories);

@@ -548,8 +548,8 @@ fn matlab(p: &Performance, runs: &Runs, papers: &Papers) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use records::QP_REPLAY_SUITE;
     use records::Timings;
+    use records::QP_REPLAY_SUITE;
 
     /// The section on the measurements `dof` and `qp_replay`, without runs, papers or
     /// timings, its model built as the report builds it.
