@@ -295,27 +295,30 @@ pub mod prelude {
     pub use spec::ids::PaperId;
 }
 
-/// Robots: the model every run drives ([`Robot`]), arms stated as data (a robot file's
-/// Denavit-Hartenberg table, [`RobotSpec`], made a model by [`DataRobot`]; a URDF chain,
-/// [`ChainRobot`]) and the suite's built-in arms.
 pub mod robot {
+    //! Robots: the model every run drives ([`Robot`]), arms stated as data (a robot file's
+    //! Denavit-Hartenberg table, [`RobotSpec`], made a model by [`DataRobot`]; a URDF chain,
+    //! [`ChainRobot`]) and the suite's built-in arms.
+
     pub use robots::{ChainRobot, DataRobot, Jaco2, JointLimits, Katana6m180, NLink, Panda, Robot};
     pub use robots::{RobotFileError, RobotSpec};
 }
 
-/// The QP of every instant, min x'Px/2 + q'x s.t. A x = b, G x <= h, l <= x <= u ([`Qp`], its
-/// sizes [`QpDims`], multipliers and KKT residuals), and the one seam a QP solver implements
-/// ([`QpSolver`]).
 pub mod qp {
+    //! The QP of every instant, min x'Px/2 + q'x s.t. A x = b, G x <= h, l <= x <= u ([`Qp`], its
+    //! sizes [`QpDims`], multipliers and KKT residuals), and the one seam a QP solver implements
+    //! ([`QpSolver`]).
+
     pub use ::qp::{
         KktResiduals, Qp, QpDims, QpDuals, QpSolve, QpSolver, QpSolverError, QpStatus, SolverId,
     };
 }
 
-/// Solvers of your own: a QP solver registered by id ([`register`], after which experiment
-/// files may name it), a recurrent network ([`NeuralSolver`]), and the conformance kit both
-/// are held to ([`conformance`]).
 pub mod solver {
+    //! Solvers of your own: a QP solver registered by id ([`register`], after which experiment
+    //! files may name it), a recurrent network ([`NeuralSolver`]), and the conformance kit both
+    //! are held to ([`conformance`]).
+
     pub use solvers::conformance;
     pub use solvers::neural::NeuralSolver;
     pub use solvers::registry::{
@@ -324,10 +327,11 @@ pub mod solver {
     pub use solvers::{random_qp, QpShape};
 }
 
-/// A run: its description ([`RunSpec`], keyed by [`RunKey`]: experiment, variant and solver
-/// ids), running it ([`run_job`]; with a network of your own, [`crate::run_with_network`]) and
-/// what it gives ([`RunRecord`]: the [`Run`] with its [`Outcome`]).
 pub mod run {
+    //! A run: its description ([`RunSpec`], keyed by [`RunKey`]: experiment, variant and solver
+    //! ids), running it ([`run_job`]; with a network of your own, [`crate::run_with_network`]) and
+    //! what it gives ([`RunRecord`]: the [`Run`] with its [`Outcome`]).
+
     pub use settings::IntegratorSettings;
     pub use settings::SolverSpec;
     pub use simulation::{run_job, NetworkBuilder, RunRecord};
@@ -338,17 +342,19 @@ pub mod run {
     pub use spec::{RunSpec, SetupError, SolverChoice};
 }
 
-/// The rows of `results/`: a run's row of `runs.csv` ([`RunRow`]), read by [`read_runs`].
 pub mod results {
+    //! The rows of `results/`: a run's row of `runs.csv` ([`RunRow`]), read by [`read_runs`].
+
     pub use crate::read_runs;
     pub use records::RunRow;
     pub use store::RunsError;
 }
 
-/// A trajectory made elsewhere (MATLAB, Python, a real arm): samples (t_k, theta_k)
-/// ([`Trajectory`], read from CSV or a MAT-file by [`read`]) scored as a run is
-/// ([`score_trajectory`]).
 pub mod score {
+    //! A trajectory made elsewhere (MATLAB, Python, a real arm): samples (t_k, theta_k)
+    //! ([`Trajectory`], read from CSV or a MAT-file by [`read`]) scored as a run is
+    //! ([`score_trajectory`]).
+
     pub use inputs::trajectory::{read, ReadError, Trajectory};
     pub use simulation::{score_trajectory, TrajectoryError};
 }

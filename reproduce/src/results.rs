@@ -85,7 +85,7 @@ impl<'a> Described<'a> {
 
 /// The keys of the runs the experiment files describe ([`Described::keys`]), by their prints:
 /// 16 bytes a run, where a set of the keys themselves is ~200 (a sweep of 10^5 runs: 1.6 MB,
-/// not 20 MB). Two keys share a print with probability ~2^-128 ([`store::keys`]).
+/// not 20 MB). Two keys share a print with probability ~2^-128 ([`store::KeySet`]).
 #[derive(Default)]
 pub struct Keys {
     described: KeySet,

@@ -56,7 +56,7 @@ pub enum TaskCardError {
 /// The most cards one sweep gets (as many as an experiment's per-run figures,
 /// presentation::figures::sweep::MAX_RUN_FIGURES): a sweep that expands into more variants
 /// gets cards for this many of them, evenly spaced, its first and last among them
-/// ([`carded`]), so the cards of a sweep of 10^5 variants are 24 files, not 10^5.
+/// (`carded`), so the cards of a sweep of 10^5 variants are 24 files, not 10^5.
 pub const MAX_SWEEP_CARDS: usize = presentation::figures::sweep::MAX_RUN_FIGURES;
 
 /// The variants of `e` that get a card, in file order: every variant that no sweep expanded,
@@ -88,7 +88,7 @@ fn carded(e: &Experiment) -> impl Iterator<Item = &Variant> {
 }
 
 /// The cards of the tasks of the experiment files in `experiments_dir` (every variant, each
-/// sweep's capped: [`carded`]): file name -> Markdown, the index ([`INDEX`]) included. Each
+/// sweep's capped: `carded`): file name -> Markdown, the index ([`INDEX`]) included. Each
 /// task's runs are made from its variant alone, so what is held is the cards.
 pub fn cards(experiments_dir: &Path) -> Result<BTreeMap<String, String>, TaskCardError> {
     let files = load_dir(experiments_dir)?;

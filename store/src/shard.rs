@@ -703,7 +703,7 @@ pub fn copy_trace(
 /// ([`KeySum`]) in one pass over `expected()`, each shard's rows (streamed in key order,
 /// [`runs_files`] merged k-way, so a run in two shards comes as two rows in a row) summed
 /// likewise, and both compared with the sum its manifest records. Only when they differ is
-/// each run placed ([`coverage_problems`]: the selection's keys and the shards holding each,
+/// each run placed (`coverage_problems`: the selection's keys and the shards holding each,
 /// O(runs), the error path alone) to say which runs are missing, and which shard should have
 /// produced them, duplicated, in the wrong shard or foreign. The rows whose trace the shard did
 /// not write ([`read_shard`]) are listed after these. The error lists every problem of the

@@ -193,7 +193,7 @@ pub fn left_out_note(left_out: usize) -> String {
     )
 }
 
-/// The suite's table of the runs of one experiment ([`shown`]: a large sweep's drawn runs):
+/// The suite's table of the runs of one experiment (`shown`: a large sweep's drawn runs):
 /// status, drift, position error, peaks and joint-limit margins (columns that no run measures
 /// are left out).
 pub fn runs_table(runs: &Runs, experiment: &str) -> String {
