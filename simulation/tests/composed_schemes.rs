@@ -314,6 +314,40 @@ fn a_pose_task_on_the_panda_holds_the_orientation_and_its_answer_is_clarabels() 
     assert!(checked >= 15, "{checked} instants");
 }
 
+/// The tracking term caches the position Jacobian between a QP and its derivative at the same
+/// instant; a pose task's rows overwrite that buffer with the angular Jacobian, so dQP/dt
+/// asked twice at one instant (or after a QP at another) must be what a fresh evaluation gives.
+#[test]
+fn the_pose_tasks_derivative_asked_again_at_one_instant_is_the_same() {
+    let jobs = jobs(
+        "pose-again",
+        &[],
+        &pose_experiment("panda", PANDA_READY, ""),
+    );
+    let job = &jobs[0];
+    let model = robot_by_name(&job.robot).unwrap();
+    let robot = job_robot(job, model.robot, model.dynamics.is_some()).unwrap();
+    let (_, scheme) = build_cyclic_parts(job, robot, None, 1).unwrap();
+    let theta: Vec<f64> = job.theta0.iter().map(|a| a + 0.2).collect();
+    let thetadot = [0.3, -0.2, 0.25, 0.1, -0.15, 0.05, 0.2];
+    let t = 0.4;
+    let dot_at = |scratch: &mut _| {
+        let mut dot = scheme.new_qp();
+        scheme.build_dot(t, &theta, &thetadot, &[], &mut dot, scratch);
+        dot
+    };
+    let mut scratch = scheme.new_dot_scratch();
+    let first = dot_at(&mut scratch);
+    let again = dot_at(&mut scratch);
+    let mut qp = scheme.new_qp();
+    scheme.build(t + 0.1, &theta, &thetadot, &mut qp);
+    let after_another = dot_at(&mut scratch);
+    for (name, other) in [("again", &again), ("after another instant", &after_another)] {
+        assert_eq!(first.a, other.a, "Adot {name}");
+        assert_eq!(first.b, other.b, "bdot {name}");
+    }
+}
+
 #[test]
 fn the_pose_tasks_derivative_is_the_central_difference_of_its_qp() {
     let jobs = jobs("pose-dot", &[], &pose_experiment("panda", PANDA_READY, ""));

@@ -307,9 +307,11 @@ impl Term for Tracking {
         }
         match &self.target {
             // The cache holds the position Jacobian; a pose task's rows overwrite `jac` with
-            // the angular one, so its instant is never remembered.
+            // the angular one, so its instant is never remembered, and an instant remembered
+            // before no longer holds.
             None => scratch.remember(state.t, state.theta, pp),
             Some(target) => {
+                scratch.valid = false;
                 let o = self.orientation();
                 let row = slot.equality + self.axes.len();
                 let e = orientation_error(o, target, state.theta);
@@ -364,6 +366,8 @@ impl Term for Tracking {
             o.angular_jacobian_dot(state.theta, state.thetadot, &mut scratch.jdot);
             self.write_block(&scratch.jdot, row, &mut out.qp.a);
             o.angular_jacobian(state.theta, &mut scratch.jac);
+            // `jac` holds the angular Jacobian now, not the position one the cache stands for.
+            scratch.valid = false;
             let e = orientation_error(o, target, state.theta);
             let bdot = -(inverse_right_jacobian(&e) * times(&scratch.jac, state.thetadot)) * k_p;
             for k in 0..3 {
