@@ -164,8 +164,8 @@
 //! store, inputs) are not re-exported whole: the command line (`reproduce`) and the
 //! report are built on them, and what a user of the library needs is named here.
 
-use catalog::error::ExperimentFileError;
-use catalog::experiment::{load_dir, PaperFile};
+use catalog::experiment::PaperFile;
+use reproduce::experiments::load_dir;
 use spec::ids::PaperId;
 use spec::RunSpec;
 use std::path::{Path, PathBuf};
@@ -212,8 +212,8 @@ pub fn project_root() -> Result<PathBuf, Error> {
 
 /// Every run (job) of the experiment files in `root/experiments/`, each file checked as the
 /// command line checks it before anything runs: read and validated as data by crate
-/// `catalog`, then every run built by the engine's setup (`simulation::run::check_job`), a
-/// failure placed at its field (`catalog::experiment::DeclaredRun::at_fault`). The papers' own
+/// `catalog`, then every run built by the engine's setup, a failure placed at its field (the
+/// command line's own loader, `reproduce::experiments::load_dir`). The papers' own
 /// robot files, `root/papers/<paper>/robots/*.toml`, are registered first.
 pub fn jobs(root: &Path) -> Result<Vec<RunSpec>, Error> {
     Ok(files(root)?.iter().flat_map(PaperFile::jobs).collect())
@@ -240,17 +240,7 @@ pub fn paper(root: &Path, paper: &PaperId) -> Result<Vec<RunSpec>, Error> {
 /// the papers' own robot files registered first.
 fn files(root: &Path) -> Result<Vec<PaperFile>, Error> {
     catalog::robot_files::register_paper_robots(&root.join("papers"));
-    let dir = root.join("experiments");
-    let files = load_dir(&dir)?;
-    for file in &files {
-        file.declared_runs()
-            .try_for_each(|run| simulation::check_job(&run.spec).map_err(|e| run.at_fault(e)))
-            .map_err(|error| ExperimentFileError::Invalid {
-                file: dir.join(&file.file_name),
-                error,
-            })?;
-    }
-    Ok(files)
+    Ok(load_dir(&root.join("experiments"))?)
 }
 
 /// The run of the experiment files keyed (experiment id, variant id, solver id), its
