@@ -2,12 +2,12 @@
 //! experiment file whose numerical solver is the outside one, registered at run time through
 //! the library API (`solvers::registry::register`), next to the same run by Clarabel.
 
-use catalog::experiment::PaperFile;
 use outside_solver::{EqualityKkt, ID};
 use qp::QpSolver;
+use reproduce::experiments::from_toml as checked;
 use settings::qp_solver::{Limits, QpSolverInfo};
+use simulation::run_job;
 use simulation::run_row;
-use simulation::{check_job, run_job};
 use solvers::conformance::{check_qp_solver, AllocationCounter, Conformance};
 use solvers::QpShape;
 use spec::SolverChoice;
@@ -93,15 +93,6 @@ scheme = { kind = "znn-rmp", mu = 1.0, k_p = 1.0 }
 exact = false
 numerical = [{ method = "equality-kkt", tolerance = 1e-8 }, { method = "clarabel" }]
 "#;
-
-/// The file of `text` as the orchestrator takes it: read by catalog, then every run built by
-/// the engine's setup, a failure placed at its field.
-fn checked(text: &str) -> Result<PaperFile, catalog::error::ExperimentError> {
-    let file = PaperFile::from_toml(text)?;
-    file.declared_runs()
-        .try_for_each(|run| check_job(&run.spec).map_err(|e| run.at_fault(e)))?;
-    Ok(file)
-}
 
 #[test]
 fn a_run_uses_the_registered_outside_solver() {
