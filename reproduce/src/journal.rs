@@ -3,8 +3,9 @@
 //! are not run again, and their traces are recorded in the results directory's manifest), and
 //! each run checkpointed, with its trace and its seal, as it finishes. A run into `results/`
 //! folds into the rows it holds ([`resume`]); a shard folds by streaming ([`fold`]: the
-//! journal's rows read back one at a time in key order and merged with `runs.csv` row by row),
-//! so that it holds nothing per run but its key.
+//! journal's rows read back one at a time in key order, appended to `runs.csv` as a part after
+//! each chunk, and merged with `runs.csv` and its parts row by row at its start and end), so
+//! that it holds nothing per run but its key and writes each row a bounded number of times.
 
 use crate::error::ReproduceError;
 use crate::results::{Described, Keys};
@@ -90,24 +91,30 @@ pub fn resume(
 /// When a shard folds its journal ([`fold`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FoldAt {
-    /// At its start: an interrupted start's journal, folded and said; with nothing to fold
-    /// or prune nothing is written.
+    /// At its start: an interrupted start's journal and parts, merged into `runs.csv` and
+    /// said; with nothing to fold or prune nothing is written.
     Start,
     /// After each chunk of its runs but the last (crate::shard::CHUNK): what the chunk
-    /// checkpointed, so that the journal, and its index at the fold, never hold more than a
-    /// chunk's rows; with nothing to fold nothing is written.
+    /// checkpointed, appended to `runs.csv` as a part (`ResultsDir::append_part`), so that
+    /// the journal, and its index at the fold, never hold more than a chunk's rows and no row
+    /// is written twice; with nothing to fold nothing is written.
     Chunk,
-    /// At its end: `runs.csv` is always written.
+    /// At its end: `runs.csv` is always written, its parts merged into it.
     End,
 }
 
 /// Folds the journal of `results` and `unjournaled` (rows whose traces are written, in key
-/// order) into its `runs.csv` by streaming, leaving out the stored rows `pruned` (their traces
-/// removed); `fresh` is told each row folded from the journal or `unjournaled`. `runs.csv` is
-/// read, merged and written row by row ([`store::sorted`]) and the journal's rows are read
-/// back one at a time: what is held per run is its key (the journal's index, the described
-/// keys), never its row or trace. `at` says when ([`FoldAt`]). The journal is removed once
-/// `runs.csv` is committed. Returns how many rows were folded from the journal.
+/// order) by streaming; `fresh` is told each row folded from the journal or `unjournaled`.
+/// After a chunk ([`FoldAt::Chunk`]) they are appended to `runs.csv` as its next part, written
+/// row by row: each run's row is written once, so a shard of R runs writes ~R rows in its
+/// parts, where rewriting `runs.csv` after every chunk wrote ~R^2 / 8,192. At the start and
+/// the end `runs.csv`, its parts (in order: a later row of a key replaces an earlier one), the
+/// journal and `unjournaled` are merged in key order into a new `runs.csv` (a k-way merge,
+/// [`store::sorted`]: one row per source in memory), leaving out the stored rows `pruned`
+/// (their traces removed), and the parts are removed once it is committed. The journal's
+/// rows are read back one at a time: what is held per run is its key (the journal's index,
+/// the described keys), never its row or trace. The journal is removed once its rows are
+/// committed. Returns how many rows were folded from the journal.
 pub fn fold(
     results: &ResultsDir,
     git_rev: &str,
@@ -117,45 +124,67 @@ pub fn fold(
     at: FoldAt,
     mut fresh: impl FnMut(&RunRow),
 ) -> Result<usize, ReproduceError> {
+    type Rows<'a> = Box<dyn Iterator<Item = Result<RunRow, ReproduceError>> + 'a>;
     let recovered = recover(results, git_rev, described)?;
     let folded = recovered.current.len();
-    if at == FoldAt::End || folded > 0 || !pruned.is_empty() || !unjournaled.is_empty() {
+    let news = folded > 0 || !unjournaled.is_empty();
+    let fresh_joints = recovered
+        .joints
+        .max(unjournaled.iter().map(|r| r.drift.len()).max().unwrap_or(0));
+    let journaled: Rows = if folded > 0 {
+        Box::new(
+            recovered
+                .rows(results.path())?
+                .map(|r| r.map_err(ReproduceError::from)),
+        )
+    } else {
+        Box::new(std::iter::empty())
+    };
+    let fresh_rows: [Rows; 2] = [journaled, Box::new(unjournaled.into_iter().map(Ok))];
+    if at == FoldAt::Chunk {
+        if news {
+            let rows = latest(KeyMerge::new(fresh_rows.into())?, |_| {}).map(|r| {
+                r.map(|(_, row)| {
+                    fresh(&row);
+                    row
+                })
+            });
+            results.append_part(fresh_joints, rows)?;
+        }
+        store::journal::remove(results.path())?;
+        return Ok(folded);
+    }
+    let parts = results.parts();
+    if at == FoldAt::End || news || !pruned.is_empty() || !parts.is_empty() {
         for line in results.prune(pruned)? {
             eprintln!("{line}");
         }
         let gone: HashSet<RunKey> = pruned.iter().map(RunRow::key).collect();
         let stored = read_key_ordered(&results.runs_path())?;
-        let joints = [
-            stored.joints(),
-            recovered.joints,
-            unjournaled.iter().map(|r| r.drift.len()).max().unwrap_or(0),
-        ]
-        .into_iter()
-        .max()
-        .unwrap_or(0);
-        type Rows<'a> = Box<dyn Iterator<Item = Result<RunRow, ReproduceError>> + 'a>;
-        let sources: Vec<Rows> = vec![
-            Box::new(
-                stored
-                    .filter(|r| r.as_ref().map_or(true, |r| !gone.contains(&r.key())))
-                    .map(|r| r.map_err(ReproduceError::from)),
-            ),
-            Box::new(
-                recovered
-                    .rows(results.path())?
-                    .map(|r| r.map_err(ReproduceError::from)),
-            ),
-            Box::new(unjournaled.into_iter().map(Ok)),
-        ];
+        let mut joints = stored.joints().max(fresh_joints);
+        let mut sources: Vec<Rows> = vec![Box::new(
+            stored
+                .filter(move |r| r.as_ref().map_or(true, |r| !gone.contains(&r.key())))
+                .map(|r| r.map_err(ReproduceError::from)),
+        )];
+        for part in &parts {
+            let part = read_key_ordered(part)?;
+            joints = joints.max(part.joints());
+            sources.push(Box::new(part.map(|r| r.map_err(ReproduceError::from))));
+        }
+        // Rows from the sources after the stored ones (runs.csv and its parts) are fresh.
+        let stored_sources = sources.len();
+        sources.extend(fresh_rows);
         let rows = latest(KeyMerge::new(sources)?, |_| {}).map(|r| {
             r.map(|(source, row)| {
-                if source > 0 {
+                if source >= stored_sources {
                     fresh(&row);
                 }
                 row
             })
         });
         results.commit_runs(joints, rows)?;
+        results.remove_parts()?;
         if folded > 0 && at == FoldAt::Start {
             eprintln!(
                 "folded {folded} run(s) of an interrupted run into {}",

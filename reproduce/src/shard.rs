@@ -5,10 +5,11 @@
 //! (their keys held as 16-byte prints, [`crate::journal::finished`]); the shard's runs are made
 //! from the experiment files as they are taken ([`Kept::runs`]) and run [`CHUNK`] at a time,
 //! each checkpointed (trace, seal, journal row) and dropped as it finishes; after each chunk
-//! the journal is folded into `runs.csv` by streaming ([`crate::journal::fold`]: the journal
-//! and its index never hold more than a chunk's rows), the summary printed row by row as it
-//! is folded; and the shard's manifest is written last, with the count and the key sum of the
-//! runs assigned to it (store::KeySum), not their list.
+//! the journal is appended to `runs.csv` as a part by streaming ([`crate::journal::fold`]:
+//! the journal and its index never hold more than a chunk's rows, and each row is written
+//! once), the summary printed row by row as it is folded; at the end the parts are merged
+//! into `runs.csv` once; and the shard's manifest is written last, with the count and the key
+//! sum of the runs assigned to it (store::KeySum), not their list.
 
 use crate::error::ReproduceError;
 use crate::journal::{finished, fold, joint_count, kept_trace, FoldAt};

@@ -408,6 +408,13 @@ fn a_shard_killed_after_any_durable_step_resumes_and_merges_equal_to_one_process
             ok(second);
         }
         ok(shard(&dir, None));
+        // A finished shard holds one runs.csv: its parts were merged into it and removed.
+        let parts: Vec<String> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n.contains("runs.part-"))
+            .collect();
+        assert!(parts.is_empty(), "step {step}: {parts:?}");
         let merged = base.join(format!("merged-{step}"));
         ok(reproduce()
             .arg("merge")

@@ -8,6 +8,8 @@
 //!   .lock                     advisory lock: one writer at a time
 //!   manifest.toml             what the program wrote (crate::integrity), saved last
 //!   runs.csv                  one row per run (records::runs)
+//!   runs.part-<n>.csv         a shard's rows appended since runs.csv was last written
+//!                             (ResultsDir::append_part), merged into it at its end
 //!   journal.csv               the checkpoint of an interrupted run (crate::journal)
 //!   journal-traces.sha256     the seal of the journal's traces (crate::journal)
 //!   traces/<experiment>/<variant>__<solver>.csv
@@ -38,6 +40,22 @@ pub const DIR: &str = "results";
 pub const RUNS: &str = "runs.csv";
 /// `traces/`.
 pub const TRACES: &str = "traces";
+/// The start of the name of a part of `runs.csv` ([`ResultsDir::append_part`]).
+const PART_PREFIX: &str = "runs.part-";
+
+/// The name of the `n`-th part of `runs.csv` (from 1): `runs.part-<n>.csv`.
+fn part_name(n: usize) -> String {
+    format!("{PART_PREFIX}{n}.csv")
+}
+
+/// The number of a part's name ([`part_name`]), `None` for any other name.
+fn part_number(name: &str) -> Option<usize> {
+    let n = name.strip_prefix(PART_PREFIX)?.strip_suffix(".csv")?;
+    (!n.starts_with('0') && n.bytes().all(|b| b.is_ascii_digit()))
+        .then(|| n.parse().ok())
+        .flatten()
+}
+
 /// The checkpoint journal of an interrupted run ([`crate::journal`]).
 pub const JOURNAL: &str = "journal.csv";
 /// The explanation layer's tolerance ladder.
@@ -159,7 +177,32 @@ impl ResultsDir {
         let removed = remove_own_tmp(&owned);
         // Tables are checked at every start; traces only when a shard is merged (a killed run
         // may have rewritten some before it could save the manifest).
-        let tracked = TrackedDir::open(dir, git_rev, edits, Some(RUNS), |f| !f.contains('/'))?;
+        // A listed part of runs.csv that is missing was being removed when a kill came, after
+        // its rows were committed into runs.csv (ResultsDir::remove_parts): not an edit; it is
+        // dropped from the manifest below.
+        let missing_part = |f: &str| part_number(f).is_some() && !dir.join(f).exists();
+        let tracked = TrackedDir::open(dir, git_rev, edits, Some(RUNS), |f| {
+            !f.contains('/') && !missing_part(f)
+        })?;
+        for name in tracked.listed(PART_PREFIX) {
+            if missing_part(&name) {
+                tracked.adopt(Path::new(&name))?;
+            }
+        }
+        // The staged copy of a part the manifest does not list: its commit was cut before its
+        // commit point (TrackedDir::commit), so its rows are still in the journal.
+        for e in std::fs::read_dir(dir).into_iter().flatten().flatten() {
+            let name = e.file_name().to_string_lossy().into_owned();
+            let staged_part = name
+                .strip_prefix(&crate::tracked_dir::pending(""))
+                .filter(|p| part_number(p).is_some() && !tracked.lists(Path::new(p)));
+            if staged_part.is_some() {
+                std::fs::remove_file(e.path()).map_err(crate::error::IoError::at(
+                    e.path(),
+                    crate::error::IoAction::Remove,
+                ))?;
+            }
+        }
         let results = Self {
             tracked,
             _lock: lock,
@@ -324,13 +367,82 @@ impl ResultsDir {
         joints: usize,
         rows: impl Iterator<Item = Result<RunRow, E>>,
     ) -> Result<usize, E> {
+        self.commit_table(RUNS, joints, rows)
+    }
+
+    /// Appends a part to `runs.csv`: `rows` (in key order, each with at most `joints`
+    /// per-joint values) written as the next part `runs.part-<n>.csv` ([`part_name`], n one
+    /// more than the parts listed) and committed with the manifest as `runs.csv` is
+    /// ([`TrackedDir::commit_with`]). A shard appends each chunk's rows so, writing each row
+    /// once, where rewriting `runs.csv` after every chunk wrote R^2 / (2 x chunk) rows for R
+    /// runs; its parts are merged into `runs.csv` once, at its end or its next start
+    /// ([`ResultsDir::parts`], [`ResultsDir::remove_parts`]). Returns how many rows were
+    /// written.
+    pub fn append_part<E: From<ResultsError>>(
+        &self,
+        joints: usize,
+        rows: impl Iterator<Item = Result<RunRow, E>>,
+    ) -> Result<usize, E> {
+        let name = part_name(self.parts().len() + 1);
+        self.commit_table(&name, joints, rows)
+    }
+
+    /// The parts of `runs.csv` the manifest lists ([`ResultsDir::append_part`]), in the order
+    /// they were appended. Only the program's own: a part is listed when it is committed.
+    pub fn parts(&self) -> Vec<PathBuf> {
+        let mut parts: Vec<(usize, String)> = self
+            .tracked
+            .listed(PART_PREFIX)
+            .into_iter()
+            .filter_map(|name| part_number(&name).map(|n| (n, name)))
+            .collect();
+        parts.sort_unstable();
+        parts
+            .into_iter()
+            .map(|(_, name)| self.path().join(name))
+            .collect()
+    }
+
+    /// Removes the parts of `runs.csv` (once their rows are committed into it): each file,
+    /// then the manifest saved without them. A kill between the two leaves listed parts
+    /// missing, which [`ResultsDir::open`] drops from the manifest (a part is removed only
+    /// after its rows are in `runs.csv`; one lost otherwise costs its runs, run again).
+    pub fn remove_parts(&self) -> Result<(), ResultsError> {
+        let parts = self.tracked.listed(PART_PREFIX);
+        for name in &parts {
+            let path = self.tracked.resolve(Path::new(name))?;
+            match std::fs::remove_file(&path) {
+                Ok(()) => crate::kill_point::passed(),
+                Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+                Err(e) => {
+                    return Err(
+                        crate::error::IoError::at(&path, crate::error::IoAction::Remove)(e).into(),
+                    )
+                }
+            }
+            self.tracked.adopt(Path::new(name))?;
+        }
+        if !parts.is_empty() {
+            self.tracked.save()?;
+        }
+        Ok(())
+    }
+
+    /// [`ResultsDir::commit_runs`] into the top-level table `name`.
+    fn commit_table<E: From<ResultsError>>(
+        &self,
+        name: &str,
+        joints: usize,
+        rows: impl Iterator<Item = Result<RunRow, E>>,
+    ) -> Result<usize, E> {
         let mut failed = None;
         let mut written = 0;
+        let path = self.path().join(name);
         let csv_error = |source| ResultsError::Write {
-            path: self.runs_path(),
+            path: path.clone(),
             source,
         };
-        let committed = self.tracked.commit_with(RUNS, |out| {
+        let committed = self.tracked.commit_with(name, |out| {
             let mut w = csv::Writer::from_writer(out);
             w.write_record(records::table::header::<RunRow>(joints))?;
             for row in rows {
@@ -547,6 +659,96 @@ pub fn remove_own_tmp(dir: &OwnedDir) -> Vec<PathBuf> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn row(variant: &str) -> RunRow {
+        RunRow::blank(
+            &RunKey::from_ids("exp", variant, "exact").unwrap(),
+            spec::SolverKind::Exact,
+        )
+    }
+
+    fn rows(names: &[&str]) -> impl Iterator<Item = Result<RunRow, ResultsError>> {
+        names
+            .iter()
+            .map(|v| Ok(row(v)))
+            .collect::<Vec<_>>()
+            .into_iter()
+    }
+
+    fn variants(path: &Path) -> Vec<String> {
+        crate::sorted::read_key_ordered(path)
+            .unwrap()
+            .map(|r| r.unwrap().variant_id.to_string())
+            .collect()
+    }
+
+    #[test]
+    fn part_names_are_numbered_from_one() {
+        assert_eq!(part_name(12), "runs.part-12.csv");
+        assert_eq!(part_number("runs.part-12.csv"), Some(12));
+        for other in [
+            "runs.csv",
+            "runs.part-.csv",
+            "runs.part-01.csv",
+            "runs.part-1.csv.bak",
+            "runs.part-x.csv",
+            "runs.part--1.csv",
+        ] {
+            assert_eq!(part_number(other), None, "{other}");
+        }
+    }
+
+    /// Parts are appended in order, each committed with the manifest, and each row written
+    /// once; removing them leaves `runs.csv` alone; a kill inside the removal (a listed part
+    /// gone, the manifest not saved yet) or inside a part's first commit (its staged copy,
+    /// unlisted) leaves a directory the next open takes as it is, without the part.
+    #[test]
+    fn parts_are_appended_once_each_and_a_cut_removal_or_commit_is_cleared_on_open() {
+        let base = std::env::temp_dir().join(format!("driftbench-parts-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&base);
+        let open = || ResultsDir::open(&base, "r", Edits::Refuse).map(|(r, _)| r);
+        let results = open().unwrap();
+        results.commit_runs(0, rows(&["a", "d"])).unwrap();
+        assert!(results.parts().is_empty());
+        assert_eq!(results.append_part(0, rows(&["b", "e"])).unwrap(), 2);
+        assert_eq!(results.append_part(0, rows(&["c"])).unwrap(), 1);
+        let parts = results.parts();
+        assert_eq!(
+            parts,
+            [base.join("runs.part-1.csv"), base.join("runs.part-2.csv")]
+        );
+        assert_eq!(variants(&parts[0]), ["b", "e"]);
+        assert_eq!(variants(&parts[1]), ["c"]);
+        assert_eq!(variants(&results.runs_path()), ["a", "d"]);
+        drop(results);
+        // Committed: a new open finds the parts listed and as written.
+        let results = open().unwrap();
+        assert_eq!(results.parts().len(), 2);
+        // A kill after the first part's removal, before the manifest is saved.
+        std::fs::remove_file(base.join("runs.part-1.csv")).unwrap();
+        drop(results);
+        let results = open().unwrap();
+        assert_eq!(results.parts(), [base.join("runs.part-2.csv")]);
+        results.remove_parts().unwrap();
+        assert!(results.parts().is_empty() && !base.join("runs.part-2.csv").exists());
+        assert_eq!(variants(&results.runs_path()), ["a", "d"]);
+        // A part's staged copy left by a kill before its commit point, unlisted: removed;
+        // another program's file of that shape is not the manifest's either, and is kept.
+        let staged = base.join(crate::tracked_dir::pending("runs.part-1.csv"));
+        std::fs::write(&staged, b"cut").unwrap();
+        std::fs::write(base.join("notes.part-1.csv"), b"mine").unwrap();
+        drop(results);
+        let results = open().unwrap();
+        assert!(!staged.exists());
+        assert!(base.join("notes.part-1.csv").exists());
+        // An edited part is refused as any edited table is.
+        results.append_part(0, rows(&["f"])).unwrap();
+        drop(results);
+        std::fs::write(base.join("runs.part-1.csv"), b"edited").unwrap();
+        let e = open().unwrap_err().to_string();
+        assert!(e.contains("runs.part-1.csv") && e.contains("edited"), "{e}");
+        let _ = std::fs::remove_dir_all(&base);
+    }
 
     #[test]
     fn only_the_programs_own_temporary_files_are_recognised() {
