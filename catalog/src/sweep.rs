@@ -1194,3 +1194,78 @@ sweep = {{ "scheme.mu" = [0.5, 1, 2] }}
         assert!(e.contains("unknown field `traces`"), "{e}");
     }
 }
+
+/// What the ids of a sweep's product depend on, as the load decides it by expanding every
+/// variant: the facts a check of the ids from the axes' raw values alone (shard planning by
+/// index, issue 43 item 2) must reproduce. An expanded id is the slug of the whole text
+/// `id k1=v1 k2=v2 ...` (module docs), not the per-axis slugs joined.
+#[cfg(test)]
+mod id_tests {
+    use crate::experiment::PaperFile;
+
+    /// A kong2019 file whose one variant, `id = "z"`, sweeps `sweep` (over fields the file's
+    /// own check reads as free text: the path's name, built by the engine later, and the
+    /// expected failure's reason).
+    fn file(sweep: &str) -> String {
+        format!(
+            r#"paper = "kong2019"
+title = "t"
+[[experiment]]
+id = "kong2019-t"
+paper_output = "-"
+robot = "katana6m180"
+path = {{ name = "circle", duration = 1.0 }}
+theta0 = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.0471975511965976]
+[[experiment.variant]]
+id = "z"
+label = "Z"
+scheme = {{ kind = "znn-rmp", mu = 1.0, k_p = 1.0 }}
+path = {{ name = "circle", duration = 1.0 }}
+expected_failure = {{ why = "w" }}
+sweep = {{ {sweep} }}
+"#
+        )
+    }
+
+    fn ids(sweep: &str) -> Result<Vec<String>, String> {
+        PaperFile::from_toml(&file(sweep))
+            .map(|f| f.experiments[0].variants.iter().map(|v| v.id()).collect())
+            .map_err(|e| e.to_string())
+    }
+
+    /// Two values of one axis with the same slug (0.5 and -0.5: the sign is a separator) give
+    /// every pair of variants that differ only there the same id: refused. So distinct slugs
+    /// per axis are necessary.
+    #[test]
+    fn values_of_one_axis_with_one_slug_clash() {
+        let e = ids(r#""scheme.mu" = [0.5, -0.5]"#).unwrap_err();
+        assert!(e.contains("z-mu-0.5"), "{e}");
+        assert_eq!(
+            ids(r#""scheme.mu" = [0.5, 1.5]"#).unwrap(),
+            ["z-mu-0.5", "z-mu-1.5"]
+        );
+    }
+
+    /// Distinct slugs per axis are not sufficient: a value whose slug holds `-<next key>-`
+    /// shifts the text between the axes, and two tuples of distinct per-axis slugs give one
+    /// id ("z-name-x-why-y-why-w" for (name "x why y", why "w") and (name "x", why "y why w")),
+    /// which the load refuses. A check from the axes' values must also show that the joined
+    /// text splits back into the axes one way only (e.g. every value's slug one token, without
+    /// `-`), or enumerate the ids.
+    #[test]
+    fn distinct_slugs_per_axis_can_still_give_one_id() {
+        let e = ids(r#""path.name" = ["x why y", "x"], "expected_failure.why" = ["w", "y why w"]"#)
+            .unwrap_err();
+        assert!(e.contains("z-name-x-why-y-why-w"), "{e}");
+        // With one-token slugs, distinct per axis, the ids are distinct.
+        assert_eq!(
+            ids(r#""path.name" = ["a", "b"], "expected_failure.why" = ["w", "v"]"#).unwrap(),
+            [
+                "z-name-a-why-w",
+                "z-name-a-why-v",
+                "z-name-b-why-w",
+                "z-name-b-why-v"
+            ]
+        );
+    }
+}

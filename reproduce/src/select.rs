@@ -287,28 +287,66 @@ mod tests {
     #[test]
     fn a_shard_is_every_nth_selected_run() {
         let (files, _) = project();
-        for (paper, exact_only) in [(None, false), (Some("kong2019"), false), (None, true)] {
+        every_nth(
+            &files,
+            &[(None, false), (Some("kong2019"), false), (None, true)],
+        );
+    }
+
+    /// The same of a sweep whose variants make different numbers of runs (it sweeps `exact`
+    /// and the list of `solvers`): a shard found by index from the sweep's axes cannot take
+    /// the runs per variant for a constant.
+    #[test]
+    fn a_shard_of_a_sweep_of_uneven_variants_is_every_nth_selected_run() {
+        let text = r#"paper = "kong2019"
+title = "t"
+[[experiment]]
+id = "kong2019-uneven"
+paper_output = "-"
+robot = "katana6m180"
+path = { name = "circle", duration = 1.0 }
+theta0 = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.0471975511965976]
+[[experiment.variant]]
+label = "S"
+scheme = { kind = "znn-rmp", k_p = 1.0 }
+solvers = [{ kind = "znn", gamma = 1.0 }]
+sweep = { "exact" = [true, false], "solvers" = [{ value = [{ kind = "znn", gamma = 1.0 }], label = "one" }, { value = [{ kind = "znn", gamma = 1.0 }, { kind = "zeroing", gain = { law = "power", gamma = 10.0, p = 2.0 }, activation = "sign-bi-power", exponent = 0.5 }], label = "two" }], "scheme.mu" = [1, 2, 3] }
+"#;
+        let files = [crate::experiments::from_toml(text).unwrap()];
+        let runs: Vec<usize> = files[0].experiments[0]
+            .variants
+            .iter()
+            .map(Variant::run_count)
+            .collect();
+        assert_eq!(runs, [2, 2, 2, 3, 3, 3, 1, 1, 1, 2, 2, 2]);
+        every_nth(&files, &[(None, false), (None, true)]);
+    }
+
+    /// [`a_shard_is_every_nth_selected_run`] for `files` and each (paper, exact only) of
+    /// `selections`, in 1, 3, 5 and 64 shards.
+    fn every_nth(files: &[PaperFile], selections: &[(Option<&str>, bool)]) {
+        for &(paper, exact_only) in selections {
             let selection = Selection {
                 paper: paper.map(String::from),
                 experiments: vec![],
                 exact_only,
             };
-            let keys: Vec<String> = selected(&files, &selection)
+            let keys: Vec<String> = selected(files, &selection)
                 .map(|j| j.key().to_string())
                 .collect();
             let all = Kept {
                 selection: &selection,
                 shard: None,
             };
-            assert_eq!(all.total(&files), keys.len());
-            for n in [1, 3, 64] {
+            assert_eq!(all.total(files), keys.len());
+            for n in [1, 3, 5, 64] {
                 let mut seen = 0;
                 for k in 1..=n {
                     let kept = Kept {
                         selection: &selection,
                         shard: Some(Shard::new(k, n).unwrap()),
                     };
-                    let got: Vec<String> = kept.runs(&files).map(|j| j.key().to_string()).collect();
+                    let got: Vec<String> = kept.runs(files).map(|j| j.key().to_string()).collect();
                     let want: Vec<String> = keys.iter().skip(k - 1).step_by(n).cloned().collect();
                     assert_eq!(
                         got, want,
