@@ -1227,10 +1227,19 @@ sweep = {{ {sweep} }}
         )
     }
 
-    fn ids(sweep: &str) -> Result<Vec<String>, String> {
-        PaperFile::from_toml(&file(sweep))
-            .map(|f| f.experiments[0].variants.iter().map(|v| v.id()).collect())
-            .map_err(|e| e.to_string())
+    /// The ids of the sweep's variants.
+    fn ids(sweep: &str) -> Vec<String> {
+        let file = PaperFile::from_toml(&file(sweep)).unwrap();
+        file.experiments[0]
+            .variants
+            .iter()
+            .map(|v| v.id())
+            .collect()
+    }
+
+    /// Why the file of the sweep is refused.
+    fn refused(sweep: &str) -> String {
+        PaperFile::from_toml(&file(sweep)).unwrap_err().to_string()
     }
 
     /// Two values of one axis with the same slug (0.5 and -0.5: the sign is a separator) give
@@ -1238,12 +1247,9 @@ sweep = {{ {sweep} }}
     /// per axis are necessary.
     #[test]
     fn values_of_one_axis_with_one_slug_clash() {
-        let e = ids(r#""scheme.mu" = [0.5, -0.5]"#).unwrap_err();
+        let e = refused(r#""scheme.mu" = [0.5, -0.5]"#);
         assert!(e.contains("z-mu-0.5"), "{e}");
-        assert_eq!(
-            ids(r#""scheme.mu" = [0.5, 1.5]"#).unwrap(),
-            ["z-mu-0.5", "z-mu-1.5"]
-        );
+        assert_eq!(ids(r#""scheme.mu" = [0.5, 1.5]"#), ["z-mu-0.5", "z-mu-1.5"]);
     }
 
     /// Distinct slugs per axis are not sufficient: a value whose slug holds `-<next key>-`
@@ -1254,12 +1260,12 @@ sweep = {{ {sweep} }}
     /// `-`), or enumerate the ids.
     #[test]
     fn distinct_slugs_per_axis_can_still_give_one_id() {
-        let e = ids(r#""path.name" = ["x why y", "x"], "expected_failure.why" = ["w", "y why w"]"#)
-            .unwrap_err();
+        let e =
+            refused(r#""path.name" = ["x why y", "x"], "expected_failure.why" = ["w", "y why w"]"#);
         assert!(e.contains("z-name-x-why-y-why-w"), "{e}");
         // With one-token slugs, distinct per axis, the ids are distinct.
         assert_eq!(
-            ids(r#""path.name" = ["a", "b"], "expected_failure.why" = ["w", "v"]"#).unwrap(),
+            ids(r#""path.name" = ["a", "b"], "expected_failure.why" = ["w", "v"]"#),
             [
                 "z-name-a-why-w",
                 "z-name-a-why-v",

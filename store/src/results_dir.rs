@@ -372,7 +372,7 @@ impl ResultsDir {
 
     /// Appends a part to `runs.csv`: `rows` (in key order, each with at most `joints`
     /// per-joint values) written as the next part `runs.part-<n>.csv` ([`part_name`], n one
-    /// more than the parts listed) and committed with the manifest as `runs.csv` is
+    /// more than the last part listed) and committed with the manifest as `runs.csv` is
     /// ([`TrackedDir::commit_with`]). A shard appends each chunk's rows so, writing each row
     /// once, where rewriting `runs.csv` after every chunk wrote R^2 / (2 x chunk) rows for R
     /// runs; its parts are merged into `runs.csv` once, at its end or its next start
@@ -383,7 +383,13 @@ impl ResultsDir {
         joints: usize,
         rows: impl Iterator<Item = Result<RunRow, E>>,
     ) -> Result<usize, E> {
-        let name = part_name(self.parts().len() + 1);
+        let last = self
+            .tracked
+            .listed(PART_PREFIX)
+            .iter()
+            .filter_map(|name| part_number(name))
+            .max();
+        let name = part_name(last.unwrap_or(0) + 1);
         self.commit_table(&name, joints, rows)
     }
 
