@@ -106,15 +106,17 @@ pub fn render_figures(
 }
 
 /// The report's pages, its task cards, then the leaderboard table (recorded in the results
-/// directory's manifest).
+/// directory's manifest), from the runs the report holds (`presentation::report::Inputs`:
+/// `results/runs.csv` read row by row, a large sweep held as its sample and its summary).
 pub fn render_pages(
     project: &Project,
     root: &Path,
     results: &ResultsDir,
 ) -> Result<(), ReproduceError> {
-    let report = presentation::report::render(root, &project.root.join("papers"))?;
+    let inputs = presentation::report::Inputs::load(root, &project.root.join("papers"))?;
+    let report = presentation::report::render(root, &inputs)?;
     crate::task_card::write_all(&project.experiments_dir, root)?;
-    analysis::leaderboard::write(results.path(), &results.read_runs()?)?;
+    analysis::leaderboard::write(results.path(), inputs.runs.all())?;
     results.save()?;
     eprintln!("wrote {}", report.display());
     Ok(())
