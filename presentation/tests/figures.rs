@@ -89,11 +89,13 @@ fn scratch(name: &str) -> PathBuf {
 /// Three runs in two experiments: a velocity-level exact and neural run, and a failed
 /// acceleration-level run.
 fn synthetic_results(root: &Path) {
-    let runs = [
+    // In key order, as every writer of runs.csv writes it (the report's reader checks it).
+    let mut runs = [
         row("exp-vel", "VLTCO", "exact (Clarabel)", None),
         row("exp-vel", "VLTCO", "LVI-PDNN", None),
         row("exp-acc", "MTN (zeta=0)", "FP-CDNN", Some(0.5)),
     ];
+    runs.sort_by_key(RunRow::key);
     write_atomic(&root.join("results/runs.csv"), &runs_csv(&runs).unwrap()).unwrap();
     let traces = root.join("results/traces");
     write_atomic(
@@ -326,11 +328,12 @@ fn panel_a_draws_the_arm_where_the_robot_is_known_and_fits_the_trace() {
     katana.robot = "katana6m180".into();
     let mut unknown = row("exp-vel", "VLTCO", "LVI-PDNN", None);
     unknown.robot = "no-such-arm".into();
-    let runs = [
+    let mut runs = [
         row("exp-vel", "VLTCO", "exact (Clarabel)", None),
         unknown,
         katana,
     ];
+    runs.sort_by_key(RunRow::key);
     write_atomic(&root.join("results/runs.csv"), &runs_csv(&runs).unwrap()).unwrap();
     render_all(&root, &Default::default()).unwrap();
     let katana = figure("exp-acc__mtn-zeta-0__fp-cdnn.svg");
