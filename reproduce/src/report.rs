@@ -12,14 +12,18 @@ use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use store::results_dir::ResultsDir;
 
-/// `reproduce report`: re-renders report/ from the stored results.
+/// `reproduce report`: re-renders report/ from the stored results. The experiment files
+/// loaded to check the papers and open the results are dropped before the render, which
+/// loads what it needs itself, so they are not held twice.
 pub fn report_only(project: &Project, git_rev: &str) -> Result<(), ReproduceError> {
     let root = report_root(project)?;
     check_report_dir(&root)?;
-    let files = experiment_files(project)?;
-    let all = Described::new(&files);
-    load_checked_papers(project, &all)?;
-    let results = open_results(project, git_rev, &all)?;
+    let results = {
+        let files = experiment_files(project)?;
+        let all = Described::new(&files);
+        load_checked_papers(project, &all)?;
+        open_results(project, git_rev, &all)?
+    };
     render_report(project, &root, &results)
 }
 
