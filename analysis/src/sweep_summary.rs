@@ -446,6 +446,8 @@ pub struct SweepSummary {
     pub versions: BTreeSet<String>,
     /// How many of its runs the report holds (its sample).
     pub sampled: usize,
+    /// How many of them are runs of a neural solver.
+    pub sampled_neural: usize,
     /// Per extreme of [`Extreme::ALL`], its value and run so far.
     best: [Option<(f64, RunRow)>; 4],
     drift_range: Range,
@@ -504,6 +506,7 @@ impl SweepSummary {
             revisions: BTreeSet::new(),
             versions: BTreeSet::new(),
             sampled: 0,
+            sampled_neural: 0,
             best: [None, None, None, None],
             drift_range: c.drift,
         }
@@ -584,6 +587,16 @@ impl SweepSummary {
             .filter_map(|(e, b)| Some((e, &b.as_ref()?.1)))
     }
 
+    /// How many of its runs the report does not hold (beyond its sample).
+    pub fn left_out(&self) -> usize {
+        self.runs - self.sampled
+    }
+
+    /// How many of its neural runs the report does not hold.
+    pub fn neural_left_out(&self) -> usize {
+        self.neural - self.sampled_neural
+    }
+
     /// The number of completed runs with a positive drift norm (the histogram's).
     pub fn drawn_drift(&self) -> usize {
         self.histogram.iter().map(|b| b.2).sum()
@@ -649,6 +662,7 @@ impl Held {
             if traced(&row) {
                 if sample.binary_search(next).is_ok() {
                     sweep.sampled += 1;
+                    sweep.sampled_neural += usize::from(!row.is_exact());
                     held.push(row);
                 }
                 *next += 1;
@@ -785,6 +799,7 @@ mod tests {
             panic!("{:?}", held.sweeps.len())
         };
         assert_eq!((s.runs, s.failed, s.neural, s.sampled), (5000, 16, 0, 24));
+        assert_eq!((s.left_out(), s.neural_left_out()), (5000 - 24, 0));
         assert_eq!(s.failures.len(), LISTED_FAILURES);
         assert_eq!(s.failures[0].variant_id.as_str(), "v00007");
         let at = |e: Extreme| s.extremes().find(|(x, _)| *x == e).unwrap().1;

@@ -31,7 +31,7 @@ pub fn cost_table(runs: &Runs, sweeps: &[SweepSummary], paper: &str) -> String {
     let (rows, left_out) = super::tables::shown(
         runs.of_paper(paper),
         sweeps.iter().filter(|s| s.paper == paper),
-        |s| s.runs,
+        SweepSummary::left_out,
     );
     for r in rows {
         // Runs that failed before their first step have no statistics.

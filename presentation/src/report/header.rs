@@ -21,7 +21,10 @@ fn count_word(n: usize) -> String {
 /// the large sweeps, whose runs beyond their samples are counted and their revisions named.
 pub fn header(runs: &Runs, sweeps: &[SweepSummary], papers: &Papers, figures: usize) -> String {
     let published = papers.values.len();
-    let left_out: usize = sweeps.iter().map(|s| s.runs - s.sampled).sum();
+    let mut left_out = 0;
+    for s in sweeps {
+        left_out += s.left_out();
+    }
     let distinct = |f: fn(&records::RunRow) -> &str, of: fn(&SweepSummary) -> &BTreeSet<String>| {
         let mut v: Vec<&str> = runs.all().iter().map(f).collect();
         v.extend(sweeps.iter().flat_map(|s| of(s).iter().map(String::as_str)));

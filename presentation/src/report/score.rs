@@ -33,7 +33,7 @@ pub fn score_table(runs: &Runs, sweeps: &[SweepSummary], paper: &str) -> String 
     let (rows, left_out) = super::tables::shown(
         runs.of_paper(paper).filter(|r| is_neural(r)),
         sweeps.iter().filter(|s| s.paper == paper),
-        |s| s.neural,
+        SweepSummary::neural_left_out,
     );
     for r in rows {
         t.push([

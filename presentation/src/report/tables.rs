@@ -166,22 +166,17 @@ fn caption(table: &str, columns: &[&Mapping], runs: &Runs, one_variant: bool) ->
 /// its sample: its failures, its extremes, runs evenly spaced; `analysis::sweep_summary`), so
 /// that a table has at most that many rows per experiment whatever the sweep's size; and how
 /// many runs it leaves out: of each large sweep of `sweeps` (those in the table's scope),
-/// `of` it (its runs, or its runs of the kind the table shows) less those shown.
+/// `left_out` of it (its runs beyond its sample, or its runs of the kind the table shows).
 pub fn shown<'a, 's>(
     rows: impl Iterator<Item = &'a RunRow>,
     sweeps: impl Iterator<Item = &'s SweepSummary>,
-    of: fn(&SweepSummary) -> usize,
+    left_out: fn(&SweepSummary) -> usize,
 ) -> (Vec<&'a RunRow>, usize) {
-    let rows: Vec<&RunRow> = rows.collect();
-    let left_out = sweeps
-        .map(|s| {
-            let held = rows
-                .iter()
-                .filter(|r| r.experiment.as_str() == s.experiment);
-            of(s).saturating_sub(held.count())
-        })
-        .sum();
-    (rows, left_out)
+    let mut count = 0;
+    for s in sweeps {
+        count += left_out(s);
+    }
+    (rows.collect(), count)
 }
 
 /// The line below a per-run table that left `left_out` runs out ([`shown`]); none when it
@@ -202,7 +197,7 @@ pub fn runs_table(runs: &Runs, sweeps: &[SweepSummary], experiment: &str) -> Str
     let (rows, left_out) = shown(
         runs.of_experiment(experiment),
         sweeps.iter().filter(|s| s.experiment == experiment),
-        |s| s.runs,
+        SweepSummary::left_out,
     );
     let off_reference = rows.iter().any(|r| r.drift_norm != r.drift_ref_norm);
     let mut quantities = vec!["drift_norm"];
