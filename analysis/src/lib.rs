@@ -29,7 +29,9 @@
 //! - [`drift_attribution`]: what the drift attribution and the tolerance ladder say (the share
 //!   of each term, the runs at MATLAB's default tolerances).
 //! - [`cross_best`]: the best solver of each column of the cross experiment.
-//! - [`sweep_summary`]: a large sweep's extremes and failures, for its page.
+//! - [`sweep_summary`]: the runs the report holds, read in bounded memory, and a large
+//!   sweep's summary aggregated row by row (counts, extremes, failures, per-parameter ranges,
+//!   heat map, distribution), for its page and figure.
 //! - [`performance`]: what the measurements of the solvers' cost and the runs' times say,
 //!   against their targets (the suite's measurements of itself are crate
 //!   `driftbench-benches`'s).

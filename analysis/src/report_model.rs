@@ -13,7 +13,8 @@
 //! ([`crate::control_claim::overall`]) and the control-rate track
 //! ([`crate::control_track`]); the compute times against the papers' MATLAB times
 //! ([`crate::cost_ratio`]); the cross experiment's best per column ([`crate::cross_best`]);
-//! every experiment's sweep summary ([`crate::sweep_summary`]); and the setup inference's
+//! every large sweep's summary ([`crate::sweep_summary`], aggregated as the rows were
+//! read); and the setup inference's
 //! verdicts ([`crate::inference_verdict`]); every paper's "why" (its drift attribution and
 //! tolerance ladder, [`why`]); and the Performance page's costs, fits and targets
 //! ([`performance`]).
@@ -44,7 +45,7 @@ use crate::papers::Papers;
 use crate::published_table::{published_tables, side_by_side, SideBySide};
 use crate::sweep_check::SweepCheck;
 use crate::sweep_comparison::{setup_share, swept_runs, SetupShare, SweptRun};
-use crate::sweep_summary::{summary, SweepSummary};
+use crate::sweep_summary::SweepSummary;
 use records::control::{ClaimRow, ControlRow, StabilityRow, Verdict};
 use records::index::completed;
 use records::index::Runs;
@@ -70,9 +71,9 @@ pub struct ReportModel<'a> {
     pub control_claim: Verdict,
     /// The control-rate track ([`crate::control_track`]).
     pub control: Control<'a>,
-    /// Every experiment of the runs (sorted) with its summary as a sweep: its extremes and
-    /// first failures ([`crate::sweep_summary`]).
-    pub sweep_summaries: Vec<(&'a str, SweepSummary<'a>)>,
+    /// Every large sweep's summary, by experiment ([`crate::sweep_summary::Held`]: aggregated
+    /// as `runs.csv` was read; the runs hold a large sweep's sample only).
+    pub sweep_summaries: &'a [SweepSummary],
     /// Every inferred published table, decided ([`crate::inference_verdict`]), by paper in
     /// the order of `results/inference.csv`.
     pub inference: Vec<Inference<'a>>,
@@ -148,17 +149,6 @@ fn inferences(rows: &[InferenceRow]) -> Vec<Inference<'_>> {
         }
     }
     out
-}
-
-/// Every experiment of `runs`, sorted, with its sweep summary.
-fn sweep_summaries(runs: &Runs) -> Vec<(&str, SweepSummary<'_>)> {
-    let mut experiments: Vec<&str> = runs.all().iter().map(|r| r.experiment.as_str()).collect();
-    experiments.sort_unstable();
-    experiments.dedup();
-    experiments
-        .into_iter()
-        .map(|e| (e, summary(&runs.of_experiment(e).collect::<Vec<_>>())))
-        .collect()
 }
 
 /// The control experiments' result rows the model is built on (`results/control*.csv`).
@@ -359,6 +349,7 @@ impl<'a> ReportModel<'a> {
         control: ControlInputs<'a>,
         explained: Explained<'a>,
         measured: performance::Measured<'a>,
+        sweeps: &'a [SweepSummary],
     ) -> Self {
         let verdicts: Vec<Verdict> = control.claims.iter().map(|c| c.verdict).collect();
         ReportModel {
@@ -370,7 +361,7 @@ impl<'a> ReportModel<'a> {
             leaderboard: Leaderboard::build(runs, timings),
             control_claim: overall(&verdicts),
             control: Control::build(control, runs),
-            sweep_summaries: sweep_summaries(runs),
+            sweep_summaries: sweeps,
             inference: inferences(explained.inference),
             why: papers
                 .papers
@@ -452,6 +443,7 @@ mod tests {
                 control,
                 Explained::default(),
                 performance::Measured::default(),
+                &[],
             )
             .control_claim
         };
@@ -463,6 +455,7 @@ mod tests {
             ControlInputs::default(),
             Explained::default(),
             performance::Measured::default(),
+            &[],
         );
         assert!(empty.papers.is_empty() && empty.leaderboard.rows.is_empty());
         assert!(empty.leaderboard.tasks.is_empty() && empty.control.track.is_empty());

@@ -89,11 +89,13 @@ fn scratch(name: &str) -> PathBuf {
 /// Three runs in two experiments: a velocity-level exact and neural run, and a failed
 /// acceleration-level run.
 fn synthetic_results(root: &Path) {
-    let runs = [
+    // In key order, as every writer of runs.csv writes it (the report's reader checks it).
+    let mut runs = [
         row("exp-vel", "VLTCO", "exact (Clarabel)", None),
         row("exp-vel", "VLTCO", "LVI-PDNN", None),
         row("exp-acc", "MTN (zeta=0)", "FP-CDNN", Some(0.5)),
     ];
+    runs.sort_by_key(RunRow::key);
     write_atomic(&root.join("results/runs.csv"), &runs_csv(&runs).unwrap()).unwrap();
     let traces = root.join("results/traces");
     write_atomic(
@@ -326,11 +328,12 @@ fn panel_a_draws_the_arm_where_the_robot_is_known_and_fits_the_trace() {
     katana.robot = "katana6m180".into();
     let mut unknown = row("exp-vel", "VLTCO", "LVI-PDNN", None);
     unknown.robot = "no-such-arm".into();
-    let runs = [
+    let mut runs = [
         row("exp-vel", "VLTCO", "exact (Clarabel)", None),
         unknown,
         katana,
     ];
+    runs.sort_by_key(RunRow::key);
     write_atomic(&root.join("results/runs.csv"), &runs_csv(&runs).unwrap()).unwrap();
     render_all(&root, &Default::default()).unwrap();
     let katana = figure("exp-acc__mtn-zeta-0__fp-cdnn.svg");
@@ -597,10 +600,11 @@ fn one_papers_figures_are_drawn_alone_and_the_others_kept() {
 /// A merged 10^4-run sweep renders a bounded number of figures: a run figure for
 /// `MAX_RUN_FIGURES` runs only (their traces alone are written: the others' are not read), the
 /// overview and the sweep figure over its parameters; its page shows the sweep figure, its
-/// extremes and failures, and links only the drawn runs.
+/// extremes and failures, and links only the drawn runs (the sample the report holds).
 #[test]
 fn a_large_sweep_renders_a_bounded_number_of_figures() {
-    use presentation::figures::sweep::{drawn, MAX_RUN_FIGURES};
+    use analysis::sweep_summary::Held;
+    use presentation::figures::sweep::MAX_RUN_FIGURES;
     let root = scratch("large-sweep");
     let mut runs: Vec<RunRow> = (0..10_000)
         .map(|i| {
@@ -617,11 +621,10 @@ fn a_large_sweep_renders_a_bounded_number_of_figures() {
         .collect();
     runs.sort_by_key(RunRow::key);
     write_atomic(&root.join("results/runs.csv"), &runs_csv(&runs).unwrap()).unwrap();
-    let members: Vec<&RunRow> = runs.iter().collect();
-    let chosen = drawn(&members);
-    assert_eq!(chosen.len(), MAX_RUN_FIGURES);
-    for &i in &chosen {
-        let key = runs[i].key();
+    let held = Held::read(&root.join("results/runs.csv"), &Default::default()).unwrap();
+    assert_eq!(held.runs.all().len(), MAX_RUN_FIGURES);
+    for r in held.runs.all() {
+        let key = r.key();
         write_atomic(
             &root.join(format!("results/traces/big-sweep/{}.csv", key.stem())),
             trace(5, 20, 2.0, false, false).as_bytes(),
@@ -633,19 +636,15 @@ fn a_large_sweep_renders_a_bounded_number_of_figures() {
     let dir = root.join("report/figures");
     let sweep = read(&dir.join("big-sweep__sweep.svg"));
     assert!(sweep.contains("big-sweep: 10000 runs over mu, scale (31 failed)"));
-    assert!(sweep.contains("drift norm against mu"));
+    assert!(sweep.contains("drift norm against mu: min, median, max"));
     assert!(sweep.contains("median log10 drift norm over mu and scale"));
+    assert!(sweep.contains("mu (40 intervals)"), "100 values of mu, cut");
     assert!(read(&dir.join("big-sweep__overview.svg")).contains("overview of 24 runs"));
     assert_eq!(stems(&dir, "svg").len(), MAX_RUN_FIGURES + 2);
 
     let figures = presentation::report::figures::list(&dir).unwrap();
-    let summary = analysis::sweep_summary::summary(&members);
-    let page = presentation::report::figures::links(
-        &figures,
-        &records::index::Runs::new(runs.clone()),
-        "big-sweep",
-        &[("big-sweep", summary)],
-    );
+    let page =
+        presentation::report::figures::links(&figures, &held.runs, "big-sweep", &held.sweeps);
     assert!(page.contains("(figures/big-sweep__sweep.svg)"), "{page}");
     assert!(
         page.contains("10000 runs, 31 failed (the first 10 listed)"),

@@ -127,7 +127,8 @@ fn scratch_copy_of_the_inputs(committed: &Path) -> PathBuf {
 fn the_committed_report_is_the_one_the_committed_results_give() {
     let committed_root = catalog::root::from_current_dir().unwrap();
     let scratch = scratch_copy_of_the_inputs(&committed_root);
-    let path = render(&scratch, &committed_root.join("papers")).expect("report renders");
+    let inputs = Inputs::load(&scratch, &committed_root.join("papers")).expect("inputs load");
+    let path = render(&scratch, &inputs).expect("report renders");
     assert!(
         path.starts_with(&scratch),
         "rendered outside the scratch root"
@@ -535,20 +536,32 @@ fn a_sweep_with_its_declared_setup_states_the_share_of_the_gap_from_the_runs() {
     assert!(stated >= 1, "no sweep check names its declared setup");
 }
 
-/// A per-run table of a large sweep shows the runs its figures draw, at most
-/// MAX_RUN_FIGURES, and says how many it left out; a small experiment's shows every run and
-/// says nothing.
+/// A per-run table of a large sweep shows the runs its figures draw (the sample the report
+/// holds of it), at most MAX_RUN_FIGURES, and says how many it left out; a small
+/// experiment's shows every run and says nothing.
 #[test]
 fn a_large_sweeps_tables_are_bounded() {
+    use analysis::sweep_summary::Held;
     use presentation::figures::sweep::MAX_RUN_FIGURES;
     use presentation::report::runs_table;
     let mut rows: Vec<RunRow> = (0..1000)
         .map(|i| row("jia2019-sweep", &format!("v-{i}"), "exact", 1e-3 * i as f64))
         .collect();
     rows.extend((0..5).map(|i| row("jia2019-small", &format!("v-{i}"), "exact", 0.1)));
-    let runs = Runs::new(rows);
+    rows.sort_by_key(RunRow::key);
+    let dir = std::env::temp_dir().join(format!("driftbench-large-tables-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("runs.csv");
+    std::fs::write(&path, records::runs_csv(&rows).unwrap()).unwrap();
+    let Held { runs, sweeps } = Held::read(&path, &Default::default()).unwrap();
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert_eq!(
+        runs.all().len(),
+        MAX_RUN_FIGURES + 5,
+        "the sample and the small one"
+    );
     let data_rows = |table: &str| table.lines().filter(|l| l.starts_with("| v-")).count();
-    let large = runs_table(&runs, "jia2019-sweep");
+    let large = runs_table(&runs, &sweeps, "jia2019-sweep");
     assert_eq!(data_rows(&large), MAX_RUN_FIGURES, "{large}");
     assert!(
         large.contains(&format!("{} more run(s)", 1000 - MAX_RUN_FIGURES)),
@@ -559,7 +572,7 @@ fn a_large_sweeps_tables_are_bounded() {
         large.contains("| v-0 |") && large.contains("| v-999 |"),
         "{large}"
     );
-    let small = runs_table(&runs, "jia2019-small");
+    let small = runs_table(&runs, &sweeps, "jia2019-small");
     assert_eq!(data_rows(&small), 5, "{small}");
     assert!(!small.contains("more run(s)"), "{small}");
 }

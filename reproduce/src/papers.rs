@@ -6,7 +6,6 @@
 use crate::error::ReproduceError;
 use crate::project::Project;
 use crate::results::Described;
-use spec::RunSpec;
 
 /// The papers as data (`papers/` under the project root). Their published numbers that
 /// contradict the paper's own are warned on stderr, once per process, with file and line.
@@ -33,8 +32,8 @@ pub fn load_checked_papers(
 ) -> Result<analysis::papers::Papers, ReproduceError> {
     static NOTED: std::sync::Once = std::sync::Once::new();
     let papers = load_papers(project)?;
-    let keys: Vec<_> = all.jobs().iter().map(RunSpec::key).collect();
-    let absent = analysis::check_paper_runs(&papers, &project.root.join("papers"), &keys)?;
+    let absent =
+        analysis::check_paper_runs(&papers, &project.root.join("papers"), &all.run_keys())?;
     NOTED.call_once(|| {
         if let Some(first) = absent.first() {
             let file = first

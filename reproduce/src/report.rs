@@ -12,14 +12,18 @@ use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use store::results_dir::ResultsDir;
 
-/// `reproduce report`: re-renders report/ from the stored results.
+/// `reproduce report`: re-renders report/ from the stored results. The experiment files
+/// loaded to check the papers and open the results are dropped before the render, which
+/// loads what it needs itself, so they are not held twice.
 pub fn report_only(project: &Project, git_rev: &str) -> Result<(), ReproduceError> {
     let root = report_root(project)?;
     check_report_dir(&root)?;
-    let files = experiment_files(project)?;
-    let all = Described::new(&files);
-    load_checked_papers(project, &all)?;
-    let results = open_results(project, git_rev, &all)?;
+    let results = {
+        let files = experiment_files(project)?;
+        let all = Described::new(&files);
+        load_checked_papers(project, &all)?;
+        open_results(project, git_rev, &all)?
+    };
     render_report(project, &root, &results)
 }
 
@@ -106,15 +110,17 @@ pub fn render_figures(
 }
 
 /// The report's pages, its task cards, then the leaderboard table (recorded in the results
-/// directory's manifest).
+/// directory's manifest), from the runs the report holds (`presentation::report::Inputs`:
+/// `results/runs.csv` read row by row, a large sweep held as its sample and its summary).
 pub fn render_pages(
     project: &Project,
     root: &Path,
     results: &ResultsDir,
 ) -> Result<(), ReproduceError> {
-    let report = presentation::report::render(root, &project.root.join("papers"))?;
+    let inputs = presentation::report::Inputs::load(root, &project.root.join("papers"))?;
+    let report = presentation::report::render(root, &inputs)?;
     crate::task_card::write_all(&project.experiments_dir, root)?;
-    analysis::leaderboard::write(results.path(), &results.read_runs()?)?;
+    analysis::leaderboard::write(results.path(), inputs.runs.all())?;
     results.save()?;
     eprintln!("wrote {}", report.display());
     Ok(())

@@ -77,6 +77,12 @@ impl<'a> Described<'a> {
         LabelIndex::new(self.runs())
     }
 
+    /// Every run's key, in file order, made as the runs are taken (no run is held: a key is
+    /// ~0.1 KB, a run's [`RunSpec`] ~0.7 KB).
+    pub fn run_keys(&self) -> Vec<RunKey> {
+        self.runs().map(|j| j.key()).collect()
+    }
+
     /// The runs, made one variant at a time.
     fn runs(&self) -> impl Iterator<Item = RunSpec> + '_ {
         self.files.iter().flat_map(PaperFile::iter_jobs)

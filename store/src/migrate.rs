@@ -16,6 +16,7 @@ use spec::RunKey;
 use spec::RunSpec;
 use spec::EXACT_ID;
 use std::collections::HashMap;
+use std::path::Path;
 
 /// The exact column's label before run ids.
 pub const LEGACY_EXACT_LABEL: &str = "exact (Clarabel)";
@@ -93,6 +94,24 @@ pub type LegacyKey = (String, String, String);
 /// A migrated table: its text, and each row's legacy key beside its run key.
 pub type Migrated = (Vec<u8>, Vec<(LegacyKey, RunKey)>);
 
+/// Whether the table at `path` has the id columns (`variant_id` in its header line), read
+/// no further than that line; false when it cannot be read (its reader then says why).
+pub fn has_ids(path: &Path) -> bool {
+    use std::io::{BufRead, Read};
+    let Ok(file) = crate::owned_dir::open_file(path) else {
+        return false;
+    };
+    let mut header = Vec::new();
+    std::io::BufReader::new(file)
+        .take(1 << 16)
+        .read_until(b'\n', &mut header)
+        .is_ok()
+        && csv::ReaderBuilder::new()
+            .from_reader(header.as_slice())
+            .headers()
+            .is_ok_and(|h| h.iter().any(|c| c == "variant_id"))
+}
+
 /// A legacy table's text with `variant_id, solver_id` after `experiment`, each row's ids from
 /// the index `index()` makes (only for a legacy table: building it costs a pass over every
 /// run of the experiment files); `None` when the table already has ids (or is empty).
@@ -153,6 +172,21 @@ pub fn legacy_trace_name(experiment: &str, variant: &str, solver: &str) -> std::
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A table's ids are read off its header line alone: a current header says yes, a legacy
+    /// one or a missing file no.
+    #[test]
+    fn ids_are_read_off_the_header_line() {
+        let dir = std::env::temp_dir().join(format!("driftbench-has-ids-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let (current, legacy) = (dir.join("current.csv"), dir.join("legacy.csv"));
+        std::fs::write(&current, "paper,experiment,variant_id,solver_id\np,e,v,s\n").unwrap();
+        std::fs::write(&legacy, "paper,experiment,variant,solver\np,e,v,s\n").unwrap();
+        assert!(has_ids(&current));
+        assert!(!has_ids(&legacy));
+        assert!(!has_ids(&dir.join("absent.csv")));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 
     #[test]
     fn legacy_tables_get_ids_and_current_ones_are_left_alone() {

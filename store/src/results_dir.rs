@@ -300,7 +300,8 @@ impl ResultsDir {
     /// `ladder.csv` and `attribution.csv` get their id columns, and each run's trace moves to
     /// its id-named file, by the index `index()` makes of the experiment files' runs (made
     /// only for a table that lacks ids). Returns what was done, for a message; nothing when
-    /// already current.
+    /// already current. A table whose header has the ids (every table this version writes) is
+    /// read no further than its header, so a current `runs.csv` of any size costs a line.
     pub fn migrate_ids(
         &self,
         index: impl Fn() -> crate::migrate::LabelIndex,
@@ -308,6 +309,9 @@ impl ResultsDir {
         let mut done = Vec::new();
         for table in [RUNS, LADDER, ATTRIBUTION] {
             let path = self.path().join(table);
+            if crate::migrate::has_ids(&path) {
+                continue;
+            }
             let Ok(text) = crate::owned_dir::read_file(&path) else {
                 continue;
             };

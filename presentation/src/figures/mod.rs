@@ -14,11 +14,13 @@
 //! - `<experiment>__overview.svg`, one per experiment: the position error of every run on one
 //!   log-scale plot and, where neural runs exist, their distance to the exact QP optimum.
 //! - A large sweep (an experiment of more than [`sweep::MAX_RUN_FIGURES`] runs) draws the two
-//!   figures above for [`sweep::MAX_RUN_FIGURES`] of its runs only (its failures, its extremes,
-//!   runs evenly spaced: [`sweep::drawn`]), reads only their traces, and draws
-//!   `<experiment>__sweep.svg` over all its runs from `runs.csv` alone: the drift norm and the
-//!   position error against each swept parameter, a heat map over two, the distribution
-//!   ([`sweep`]). A merged 10^4-run sweep writes 26 figures, not 10,001.
+//!   figures above for [`sweep::MAX_RUN_FIGURES`] of its runs only (its sample: its failures,
+//!   its extremes, runs evenly spaced, `analysis::sweep_summary`), reads only their traces,
+//!   and draws `<experiment>__sweep.svg` over all its runs from its summary, aggregated as
+//!   `runs.csv` was read: the drift norm and the position error against each swept parameter,
+//!   a heat map over two, the distribution ([`sweep`]). A merged 10^4-run sweep writes 26
+//!   figures, not 10,001, and `runs.csv` is read row by row: what is held of a large sweep is
+//!   its sample and its summary, whatever its number of runs.
 //!
 //! - `inference-<paper>-<table>__profiles.svg`, one per table of `results/inference.csv`: the
 //!   setup inference's profiles (`profile`).
@@ -47,6 +49,7 @@ pub mod sweep;
 mod trace;
 
 use crate::error::{FigureError, ReportError};
+use analysis::sweep_summary::{Held, SweepSummary};
 use layout::Rendered;
 use rayon::prelude::*;
 use records::control::{ControlRow, CycleRow};
@@ -57,7 +60,6 @@ use spec::RunKey;
 use spec::MAIN_H;
 use std::collections::{BTreeMap, HashSet};
 use std::path::{Path, PathBuf};
-use store::read_runs;
 use store::{Removal, TrackedDir, TrackedError};
 use trace::Trace;
 
@@ -104,7 +106,7 @@ fn figure_of(name: &str) -> Option<String> {
 enum Job<'a> {
     Run(&'a RunRow, &'a Trace),
     Overview(&'a str, Vec<(&'a RunRow, &'a Trace)>),
-    Sweep(&'a str, Vec<&'a RunRow>),
+    Sweep(&'a str, &'a SweepSummary),
     Profiles(&'a str, &'a str, Vec<&'a InferenceRow>),
     DofCost(&'a str, Vec<&'a DofCostRow>),
     Pareto(&'a str, f64, Vec<&'a ControlRow>),
@@ -118,7 +120,7 @@ impl Job<'_> {
         match self {
             Job::Run(run, trace) => run_figure::figure(run, trace).render(),
             Job::Overview(experiment, members) => overview::figure(experiment, members).render(),
-            Job::Sweep(experiment, runs) => sweep::figure(experiment, runs).render(),
+            Job::Sweep(experiment, summary) => sweep::figure(experiment, summary).render(),
             Job::Profiles(paper, table, rows) => profile::figure(paper, table, rows).render(),
             Job::DofCost(scheme, rows) => dof_cost::figure(scheme, rows).render(),
             Job::Pareto(task, h, rows) => control::pareto(task, *h, rows).render(),
@@ -161,7 +163,7 @@ fn render(
 ) -> Result<Vec<PathBuf>, ReportError> {
     let inputs = Inputs::read(&root.join(store::results_dir::DIR), paper, untraced)?;
     let mut jobs = Jobs::default();
-    jobs.add_runs(&inputs.runs, &inputs.traces)?;
+    jobs.add_runs(&inputs.runs, &inputs.traces, &inputs.sweeps)?;
     match paper {
         None => {
             jobs.add_profiles(&inputs.inference)?;
@@ -220,11 +222,14 @@ fn write_rendered(
 
 /// What the figures are drawn from: the files of the results directory.
 struct Inputs {
-    /// `runs.csv`, sorted by run key.
+    /// The runs held of `runs.csv` (every run of a small experiment, a large sweep's sample:
+    /// [`Held`]), sorted by run key.
     runs: Vec<RunRow>,
-    /// The trace of each run that gets a figure of its own ([`sweep::drawn`]), in the order
-    /// of `runs`; `None` for the others (their traces are not read).
+    /// The trace of each run that gets a figure of its own (every run held that keeps a
+    /// trace), in the order of `runs`; `None` for the others (their traces are not read).
     traces: Vec<Option<Trace>>,
+    /// Every large sweep's summary.
+    sweeps: Vec<SweepSummary>,
     /// `inference.csv` (absent = empty).
     inference: Vec<InferenceRow>,
     /// `dof-cost.csv` (absent = empty).
@@ -238,29 +243,23 @@ struct Inputs {
 impl Inputs {
     /// Reads the inputs from the results directory `results` (of `paper`'s runs only, when
     /// given: the others' traces are not read; nor are the traces of a large sweep's runs
-    /// that get no figure of their own, nor those of `untraced`, which keep none by choice).
+    /// outside its sample, nor those of `untraced`, which keep none by choice).
     fn read(
         results: &Path,
         paper: Option<&str>,
         untraced: &HashSet<RunKey>,
     ) -> Result<Self, ReportError> {
-        let mut runs = read_runs(&results.join(store::results_dir::RUNS))?;
+        let held = Held::read(&results.join(store::results_dir::RUNS), untraced)?;
+        let mut runs = held.runs.all().to_vec();
+        drop(held.runs);
         runs.retain(|r| paper.is_none_or(|p| r.paper == p));
-        runs.sort_by_key(RunRow::key);
-        let mut drawn = vec![false; runs.len()];
-        for mut indices in by_experiment(&runs).into_values() {
-            indices.retain(|&i| untraced.is_empty() || !untraced.contains(&runs[i].key()));
-            let members: Vec<&RunRow> = indices.iter().map(|&i| &runs[i]).collect();
-            for k in sweep::drawn(&members) {
-                drawn[indices[k]] = true;
-            }
-        }
+        let mut sweeps = held.sweeps;
+        sweeps.retain(|s| paper.is_none_or(|p| s.paper == p));
         let traces_dir = results.join(store::results_dir::TRACES);
         let traces = runs
             .iter()
-            .zip(drawn)
-            .map(|(run, drawn)| {
-                drawn
+            .map(|run| {
+                (untraced.is_empty() || !untraced.contains(&run.key()))
                     .then(|| {
                         Trace::read(
                             &traces_dir
@@ -274,6 +273,7 @@ impl Inputs {
         Ok(Inputs {
             runs,
             traces,
+            sweeps,
             inference: store::table::read_if_present(&results.join(store::results_dir::INFERENCE))?,
             dof_cost: store::dof_cost::read(results)?,
             control: store::control::read(results, store::results_dir::CONTROL)?,
@@ -304,15 +304,21 @@ impl<'a> Jobs<'a> {
         }
     }
 
-    /// A figure per run that has its trace read (each run of an experiment, or the drawn
-    /// runs of a large sweep), an overview per experiment of those runs, and a sweep figure
-    /// per large sweep over all its runs.
+    /// A figure per run that has its trace read (each run of an experiment, or the sample of
+    /// a large sweep), an overview per experiment of those runs, and a sweep figure per large
+    /// sweep from its summary (`sweeps`).
     fn add_runs(
         &mut self,
         runs: &'a [RunRow],
         traces: &'a [Option<Trace>],
+        sweeps: &'a [SweepSummary],
     ) -> Result<(), ReportError> {
-        for (experiment, indices) in by_experiment(runs) {
+        let mut experiments = by_experiment(runs);
+        // A large sweep none of whose runs keeps a trace holds no run: its overview is empty.
+        for s in sweeps {
+            experiments.entry(s.experiment.as_str()).or_default();
+        }
+        for (experiment, indices) in experiments {
             let mut members = Vec::new();
             for &i in &indices {
                 if let Some(trace) = &traces[i] {
@@ -325,12 +331,12 @@ impl<'a> Jobs<'a> {
                 overview_name(experiment),
                 Job::Overview(experiment, members),
             )?;
-            if indices.len() > sweep::MAX_RUN_FIGURES {
-                self.add(
-                    sweep::sweep_name(experiment),
-                    Job::Sweep(experiment, indices.iter().map(|&i| &runs[i]).collect()),
-                )?;
-            }
+        }
+        for s in sweeps {
+            self.add(
+                sweep::sweep_name(&s.experiment),
+                Job::Sweep(&s.experiment, s),
+            )?;
         }
         Ok(())
     }

@@ -8,11 +8,12 @@
 use super::markdown::{sci, sci_opt, Table, MISSING};
 use analysis::cost_ratio::TimeRow;
 use analysis::papers::Papers;
+use analysis::sweep_summary::SweepSummary;
 use records::index::{completed, Runs};
 
-/// One cost table per paper: every run's integrator, tolerances and effort (a large sweep's
-/// drawn runs only: [`super::tables::shown`]).
-pub fn cost_table(runs: &Runs, paper: &str) -> String {
+/// One cost table per paper: every run's integrator, tolerances and effort (of a large sweep
+/// of `sweeps`, its sample: [`super::tables::shown`]).
+pub fn cost_table(runs: &Runs, sweeps: &[SweepSummary], paper: &str) -> String {
     let mut t = Table::new([
         "experiment",
         "variant",
@@ -27,7 +28,11 @@ pub fn cost_table(runs: &Runs, paper: &str) -> String {
         "wall (s)",
         "simulation (s)",
     ]);
-    let (rows, left_out) = super::tables::shown(runs.of_paper(paper));
+    let (rows, left_out) = super::tables::shown(
+        runs.of_paper(paper),
+        sweeps.iter().filter(|s| s.paper == paper),
+        SweepSummary::left_out,
+    );
     for r in rows {
         // Runs that failed before their first step have no statistics.
         let lost = !completed(r) && r.steps == 0;

@@ -4,7 +4,7 @@
 //! of its extremes and failures (`crate::figures::sweep`).
 
 use super::markdown::{sci, sci_opt, text, Table};
-use analysis::sweep_summary::SweepSummary;
+use analysis::sweep_summary::{SweepSummary, SKETCH_BINS};
 use records::index::Runs;
 use spec::RunKey;
 use std::path::Path;
@@ -34,18 +34,18 @@ pub fn list(dir: &Path) -> Result<Vec<String>, IoError> {
 /// figure and its table of extremes and failures (`sweep_section`), then every run's figure
 /// linked (by its variant and solver ids, in file-name order), as a paragraph; only the
 /// figures present in `figures` (the names in `report/figures/`); nothing when there are none.
-/// `summaries`: every experiment's sweep summary (the report model's).
+/// `summaries`: every large sweep's summary (the report model's).
 pub fn links(
     figures: &[String],
     runs: &Runs,
     experiment: &str,
-    summaries: &[(&str, SweepSummary)],
+    summaries: &[SweepSummary],
 ) -> String {
     let present = |name: &String| figures.contains(name);
     let mut out = String::new();
     let sweep = crate::figures::sweep::sweep_name(experiment);
-    let summary = summaries.iter().find(|(e, _)| *e == experiment);
-    if let (true, Some((_, summary))) = (present(&sweep), summary) {
+    let summary = summaries.iter().find(|s| s.experiment == experiment);
+    if let (true, Some(summary)) = (present(&sweep), summary) {
         out.push_str(&sweep_section(summary, experiment, &sweep));
     }
     let overview = crate::figures::overview_name(experiment);
@@ -78,14 +78,14 @@ pub fn links(
 /// extremes and of its first failures (`s`, [`analysis::sweep_summary`]), and what the
 /// per-run figures show.
 fn sweep_section(s: &SweepSummary, experiment: &str, figure: &str) -> String {
-    use crate::figures::sweep::MAX_RUN_FIGURES;
+    use crate::figures::sweep::{MAX_RUN_FIGURES, MAX_VALUES};
     let mut t = Table::new([
         "",
         "run (variant / solver)",
         "drift norm (failed: when)",
         "max position error (failed: why)",
     ]);
-    for (extreme, r) in &s.extremes {
+    for (extreme, r) in s.extremes() {
         t.push([
             extreme.name().to_string(),
             format!("{} / {}", text(&r.variant), text(&r.solver)),
@@ -104,7 +104,7 @@ fn sweep_section(s: &SweepSummary, experiment: &str, figure: &str) -> String {
         ]);
     }
     format!(
-        "![{experiment}: the sweep over its parameters](figures/{figure})\n\n{} runs, {} failed{}. A sweep of more than {MAX_RUN_FIGURES} runs draws a figure of its own (and the overview) for {MAX_RUN_FIGURES} of its runs only: its failures, its extremes and runs evenly spaced in key order.\n\n{}\n",
+        "![{experiment}: the sweep over its parameters](figures/{figure})\n\n{} runs, {} failed{}. A sweep of more than {MAX_RUN_FIGURES} runs draws a figure of its own (and the overview) for {MAX_RUN_FIGURES} of its runs only: its failures, its extremes and runs evenly spaced in key order. The sweep figure is drawn from aggregates of every run: per value of a parameter (or per interval of its range, where it takes more than {MAX_VALUES} values) the smallest, median and largest drift norm and position error, the heat map's median per cell and the distribution; each median is read from a histogram of {SKETCH_BINS} bins of log10 over the sweep's range of the quantity, so it lies within half a bin of the exact median.\n\n{}\n",
         s.runs,
         s.failed,
         if s.failed > s.failures.len() {

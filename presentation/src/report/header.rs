@@ -3,7 +3,9 @@
 
 use super::markdown::{sci, Table};
 use analysis::papers::Papers;
+use analysis::sweep_summary::SweepSummary;
 use records::index::Runs;
+use std::collections::BTreeSet;
 
 /// A count as an English word below ten (`four papers`), digits above.
 fn count_word(n: usize) -> String {
@@ -15,11 +17,17 @@ fn count_word(n: usize) -> String {
         .map_or_else(|| n.to_string(), |w| w.to_string())
 }
 
-/// The header as Markdown.
-pub fn header(runs: &Runs, papers: &Papers, figures: usize) -> String {
+/// The header as Markdown: `runs`, the runs the report holds, and `sweeps`, the summaries of
+/// the large sweeps, whose runs beyond their samples are counted and their revisions named.
+pub fn header(runs: &Runs, sweeps: &[SweepSummary], papers: &Papers, figures: usize) -> String {
     let published = papers.values.len();
-    let distinct = |f: fn(&records::RunRow) -> &str| {
+    let mut left_out = 0;
+    for s in sweeps {
+        left_out += s.left_out();
+    }
+    let distinct = |f: fn(&records::RunRow) -> &str, of: fn(&SweepSummary) -> &BTreeSet<String>| {
         let mut v: Vec<&str> = runs.all().iter().map(f).collect();
+        v.extend(sweeps.iter().flat_map(|s| of(s).iter().map(String::as_str)));
         v.sort();
         v.dedup();
         v.iter()
@@ -40,9 +48,9 @@ computational cost, a cross experiment (every solver on every scheme and path), 
     out.push_str(&format!(
         "**Provenance.** Generated from `results/runs.csv` ({} runs), `papers/*/values.csv` ({published} published numbers), \
 and {figures} figures in `report/figures/`. Runs produced at git revision {} by reproduce {}.\n\n",
-        runs.all().len(),
-        distinct(|r| &r.git_rev),
-        distinct(|r| &r.crate_version),
+        runs.all().len() + left_out,
+        distinct(|r| &r.git_rev, |s| &s.revisions),
+        distinct(|r| &r.crate_version, |s| &s.versions),
     ));
     let mut t = Table::new(["integrator", "rtol", "atol", "runs", "solvers"]);
     // A numerical loop has no tolerances: its rows group by the loop alone.
@@ -94,7 +102,11 @@ and {figures} figures in `report/figures/`. Runs produced at git revision {} by 
             solvers.join(", "),
         ]);
     }
-    out.push_str("**Integrators and tolerances** (from the rows):\n\n");
+    if left_out > 0 {
+        out.push_str(&format!("**Integrators and tolerances** (from the rows the report holds: every run but {left_out} of large sweeps, each held as the {} runs of its sample):\n\n", crate::figures::sweep::MAX_RUN_FIGURES));
+    } else {
+        out.push_str("**Integrators and tolerances** (from the rows):\n\n");
+    }
     out.push_str(&t.render());
     out.push_str(
         "\n**Regenerate.** `cargo run --release -p reproduce` re-runs every experiment and rewrites `results/` and this \

@@ -4,7 +4,9 @@
 //! topic (`group.md`, `score.md`, `leaderboard.md`, `cost.md`, `performance.md`, `control.md`,
 //! `cross.md`, `published.md`); the hand-written `report/deviations.md` is linked, not copied.
 //!
-//! Inputs: `results/runs.csv` (one row per run), `results/dof-cost.csv` (the cost against the
+//! Inputs: `results/runs.csv` (one row per run, read row by row into the runs the report
+//! holds: every run of an experiment of at most 24 runs, of a larger one, a large sweep, its
+//! sample of 24 and its summary; `analysis::sweep_summary`), `results/dof-cost.csv` (the cost against the
 //! number of joints, when measured), `papers/<paper>/` (the papers'
 //! published numbers), whether `report/deviations.md` (hand-written) is there, and the SVG
 //! names in `report/figures/`. Nothing is re-run and nothing depends on the clock, so
@@ -57,17 +59,16 @@ use analysis::papers::{PaperValue, Papers};
 use analysis::report_model::performance::Measured;
 use analysis::report_model::why::Why as WhyModel;
 use analysis::report_model::{ControlInputs, Explained, Inference, PaperModel, ReportModel};
-use analysis::sweep_summary::SweepSummary;
+use analysis::sweep_summary::{Held, SweepSummary};
 use analysis::GROUP_PAPER;
 use markdown::{sci, Table};
 use records::index::Runs;
 use std::path::{Path, PathBuf};
-use store::read_runs;
 use store::table::read_if_present;
 
-/// The figures' names in `report/figures/` and every experiment's sweep summary (the report
+/// The figures' names in `report/figures/` and every large sweep's summary (the report
 /// model's), what a page's figure links are made from.
-type Figures<'a, 'm> = (&'a [String], &'a [(&'m str, SweepSummary<'m>)]);
+type Figures<'a> = (&'a [String], &'a [SweepSummary]);
 
 /// A paper's "why" (the report model's, none for a paper outside it), the stored explanations
 /// and every inferred table, decided (the report model's): what the "why" sections are made
@@ -83,7 +84,11 @@ pub const CROSS: &str = "cross";
 /// Everything the report is rendered from.
 #[derive(Clone, Debug)]
 pub struct Inputs {
+    /// The runs held of `results/runs.csv`: every run of an experiment of at most 24 runs, a
+    /// large sweep's sample ([`Held`]).
     pub runs: Runs,
+    /// Every large sweep's summary, aggregated as `results/runs.csv` was read.
+    pub sweeps: Vec<SweepSummary>,
     /// `papers/`: each paper's metadata, published values and mappings.
     pub papers: Papers,
     /// Whether `report/deviations.md` (hand-written) is there: the front page links it.
@@ -110,8 +115,10 @@ impl Inputs {
     pub fn load(root: &Path, papers: &Path) -> Result<Self, ReportError> {
         let report = root.join("report");
         let results = root.join(store::results_dir::DIR);
+        let held = Held::read(&results.join(store::results_dir::RUNS), &Default::default())?;
         Ok(Inputs {
-            runs: Runs::new(read_runs(&results.join(store::results_dir::RUNS))?),
+            runs: held.runs,
+            sweeps: held.sweeps,
             papers: Papers::load(papers)?,
             deviations: report.join(DEVIATIONS).is_file(),
             figures: figures::list(&report.join("figures"))?,
@@ -150,13 +157,12 @@ pub fn paper_page(paper: &str) -> String {
     format!("{PAPER_PAGE}{paper}.md")
 }
 
-/// Renders the report's pages under `root/report/` from the stored results (a paper's page
-/// that no paper has any more is removed, if this program wrote it and nobody edited it) and
-/// returns the front page's path.
-pub fn render(root: &Path, papers: &Path) -> Result<PathBuf, ReportError> {
-    let inputs = Inputs::load(root, papers)?;
+/// Renders the report's pages under `root/report/` from `inputs`, the stored results loaded
+/// ([`Inputs::load`]; a paper's page that no paper has any more is removed, if this program
+/// wrote it and nobody edited it) and returns the front page's path.
+pub fn render(root: &Path, inputs: &Inputs) -> Result<PathBuf, ReportError> {
     let report = store::TrackedDir::open_within(root, "report")?;
-    let pages = pages(&inputs);
+    let pages = pages(inputs);
     for listed in report.listed(PAPER_PAGE) {
         if !pages.iter().any(|p| p.file == listed) {
             if let store::Removal::Kept(why) = report.remove(Path::new(&listed))? {
@@ -190,6 +196,7 @@ fn topic(file: &str, markdown: String) -> Page {
 pub fn pages(inputs: &Inputs) -> Vec<Page> {
     let Inputs {
         runs,
+        sweeps,
         papers,
         deviations,
         figures,
@@ -222,11 +229,12 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
             inference: &explanations.inference,
         },
         measured,
+        sweeps,
     );
     let inferred = &model.inference;
     let evaluated = &model.papers;
-    let summaries = &model.sweep_summaries;
-    let mut head = header::header(runs, papers, figures.len());
+    let summaries = model.sweep_summaries;
+    let mut head = header::header(runs, sweeps, papers, figures.len());
     head.push_str(&summary_section(evaluated, &model));
     let mut pages: Vec<Page> = evaluated
         .iter()
@@ -249,7 +257,7 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
     if !group.is_empty() {
         pages.push(topic("group.md", group));
     }
-    pages.push(topic("score.md", score_page(runs, papers)));
+    pages.push(topic("score.md", score_page(runs, sweeps, papers)));
     let top = leaderboard::top(&model.leaderboard, FRONT_TOP);
     let board = leaderboard::section(&model.leaderboard, timings);
     if !board.is_empty() {
@@ -260,7 +268,7 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
     }
     pages.push(topic(
         "cost.md",
-        cost_page(runs, papers, &model.matlab_times),
+        cost_page(runs, sweeps, papers, &model.matlab_times),
     ));
     let mut out = performance::section(&model.performance, measured, runs, papers, figures);
     out.push_str(&python::call_cost(&python.call_cost));
@@ -370,7 +378,7 @@ fn paper_page_of(
     for exp in runs.experiments(paper) {
         out.push_str(&format!(
             "#### `{exp}`\n\n{}",
-            tables::runs_table(runs, &exp)
+            tables::runs_table(runs, summaries, &exp)
         ));
         out.push('\n');
         out.push_str(&figures::links(figures, runs, &exp, summaries));
@@ -383,10 +391,10 @@ fn paper_page_of(
 
 /// `## Score against the exact optimum`: per paper (and the cross experiment), every neural
 /// run's score.
-fn score_page(runs: &Runs, papers: &Papers) -> String {
+fn score_page(runs: &Runs, sweeps: &[SweepSummary], papers: &Papers) -> String {
     let mut out = format!("## Score against the exact optimum\n\n{}\n\n", score::NOTE);
     for paper in papers.papers.iter().map(|p| p.id.as_str()).chain([CROSS]) {
-        let t = score::score_table(runs, paper);
+        let t = score::score_table(runs, sweeps, paper);
         if !t.is_empty() {
             out.push_str(&format!("### {paper}\n\n{t}\n"));
         }
@@ -396,12 +404,12 @@ fn score_page(runs: &Runs, papers: &Papers) -> String {
 
 /// `## Cost`: per paper (and the cross experiment), every run's effort, then the compute time
 /// against the papers' MATLAB times (`times`).
-fn cost_page(runs: &Runs, papers: &Papers, times: &[TimeRow]) -> String {
+fn cost_page(runs: &Runs, sweeps: &[SweepSummary], papers: &Papers, times: &[TimeRow]) -> String {
     let mut out = String::from("## Cost\n\nSteps, evaluations and QP solves are counted by the integrator and the scorer (the exact QP is solved at every RHS evaluation of the exact column and at every accepted step of a neural run). Wall times come from runs executed in parallel: compare them within one table, not across machines.\n\n");
     for paper in papers.papers.iter().map(|p| p.id.as_str()).chain([CROSS]) {
         out.push_str(&format!(
             "### {paper}\n\n{}\n",
-            cost::cost_table(runs, paper)
+            cost::cost_table(runs, sweeps, paper)
         ));
     }
     out.push_str(&format!(
@@ -553,7 +561,7 @@ fn group_section(
     for exp in &experiments {
         out.push_str(&format!(
             "#### `{exp}`\n\n{}",
-            tables::runs_table(runs, exp)
+            tables::runs_table(runs, summaries, exp)
         ));
         out.push('\n');
         out.push_str(&figures::links(figures, runs, exp, summaries));

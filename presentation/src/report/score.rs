@@ -5,6 +5,7 @@
 //! the joint command, the largest objective gap and the largest constraint violation.
 
 use super::markdown::{sci_opt, Table};
+use analysis::sweep_summary::SweepSummary;
 use records::index::{is_neural, status_text, Runs};
 
 /// What the score means, printed once above the tables.
@@ -14,9 +15,9 @@ pub const NOTE: &str =
 dynamics are fast. VP-RNN-PF's equilibrium is the exponential-penalty optimum, not x*: its score \
 measures the penalty approximation (p, sigma), not a fault of the network.";
 
-/// The score table of one paper's neural runs (empty when it has none; a large sweep's drawn
-/// runs only: [`super::tables::shown`]).
-pub fn score_table(runs: &Runs, paper: &str) -> String {
+/// The score table of one paper's neural runs (empty when it has none; of a large sweep of
+/// `sweeps`, the neural runs of its sample: [`super::tables::shown`]).
+pub fn score_table(runs: &Runs, sweeps: &[SweepSummary], paper: &str) -> String {
     let mut t = Table::new([
         "experiment",
         "variant",
@@ -29,7 +30,11 @@ pub fn score_table(runs: &Runs, paper: &str) -> String {
         "exact solves failed",
         "status",
     ]);
-    let (rows, left_out) = super::tables::shown(runs.of_paper(paper).filter(|r| is_neural(r)));
+    let (rows, left_out) = super::tables::shown(
+        runs.of_paper(paper).filter(|r| is_neural(r)),
+        sweeps.iter().filter(|s| s.paper == paper),
+        SweepSummary::neural_left_out,
+    );
     for r in rows {
         t.push([
             r.experiment.to_string(),

@@ -10,9 +10,10 @@
 
 use super::markdown::metric_cell;
 use super::markdown::{sci, sci_opt, Table, MISSING};
-use crate::figures::sweep::{drawn, MAX_RUN_FIGURES};
+use crate::figures::sweep::MAX_RUN_FIGURES;
 use analysis::papers::{Mapping, Papers};
 use analysis::published_table::{Row, SideBySide};
+use analysis::sweep_summary::SweepSummary;
 use records::index::{metric, status_text, Runs, EXACT};
 use records::RunRow;
 
@@ -160,26 +161,22 @@ fn caption(table: &str, columns: &[&Mapping], runs: &Runs, one_variant: bool) ->
     out
 }
 
-/// The rows a per-run table shows, in their order (`rows` sorted by key, so that each
-/// experiment's are together): every run of an experiment of at most
-/// [`MAX_RUN_FIGURES`] runs, and of a larger one (a large sweep) the runs it draws a figure of
-/// ([`crate::figures::sweep::drawn`]: its failures, its extremes, runs evenly spaced), so
+/// The rows a per-run table shows, in their order: `rows`, runs the report holds (every run
+/// of an experiment of at most [`MAX_RUN_FIGURES`] runs, and of a larger one, a large sweep,
+/// its sample: its failures, its extremes, runs evenly spaced; `analysis::sweep_summary`), so
 /// that a table has at most that many rows per experiment whatever the sweep's size; and how
-/// many runs it leaves out.
-pub fn shown<'a>(rows: impl Iterator<Item = &'a RunRow>) -> (Vec<&'a RunRow>, usize) {
-    let rows: Vec<&RunRow> = rows.collect();
-    let mut out = Vec::new();
-    for group in rows.chunk_by(|a, b| a.experiment == b.experiment) {
-        if group.len() <= MAX_RUN_FIGURES {
-            out.extend_from_slice(group);
-        } else {
-            let mut picks = drawn(group);
-            picks.sort_unstable();
-            out.extend(picks.into_iter().map(|i| group[i]));
-        }
+/// many runs it leaves out: of each large sweep of `sweeps` (those in the table's scope),
+/// `left_out` of it (its runs beyond its sample, or its runs of the kind the table shows).
+pub fn shown<'a, 's>(
+    rows: impl Iterator<Item = &'a RunRow>,
+    sweeps: impl Iterator<Item = &'s SweepSummary>,
+    left_out: fn(&SweepSummary) -> usize,
+) -> (Vec<&'a RunRow>, usize) {
+    let mut count = 0;
+    for s in sweeps {
+        count += left_out(s);
     }
-    let left_out = rows.len() - out.len();
-    (out, left_out)
+    (rows.collect(), count)
 }
 
 /// The line below a per-run table that left `left_out` runs out ([`shown`]); none when it
@@ -193,11 +190,15 @@ pub fn left_out_note(left_out: usize) -> String {
     )
 }
 
-/// The suite's table of the runs of one experiment (`shown`: a large sweep's drawn runs):
-/// status, drift, position error, peaks and joint-limit margins (columns that no run measures
-/// are left out).
-pub fn runs_table(runs: &Runs, experiment: &str) -> String {
-    let (rows, left_out) = shown(runs.of_experiment(experiment));
+/// The suite's table of the runs of one experiment (`shown`: a large sweep's sample, the
+/// others of `sweeps` counted as left out): status, drift, position error, peaks and
+/// joint-limit margins (columns that no run measures are left out).
+pub fn runs_table(runs: &Runs, sweeps: &[SweepSummary], experiment: &str) -> String {
+    let (rows, left_out) = shown(
+        runs.of_experiment(experiment),
+        sweeps.iter().filter(|s| s.experiment == experiment),
+        SweepSummary::left_out,
+    );
     let off_reference = rows.iter().any(|r| r.drift_norm != r.drift_ref_norm);
     let mut quantities = vec!["drift_norm"];
     if off_reference {
