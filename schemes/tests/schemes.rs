@@ -665,6 +665,57 @@ fn infinite_entries_have_zero_derivative() {
     assert!(fd.h.iter().all(|v| v.is_finite()));
 }
 
+/// The tracking term keeps f(theta), J and the path point of its last evaluation with their
+/// instant (an observer asks for the QP again at the instant a right-hand side just built it):
+/// a QP asked again at one instant, after its derivative there and after another instant, is
+/// bit for bit the QP of a scheme that never saw the instant.
+#[test]
+fn a_qp_asked_again_at_one_instant_is_a_fresh_ones() {
+    let (th, thd, thdd) = state();
+    let t = 1.3;
+    for spec in specs() {
+        let name = spec.display_name();
+        let fresh = {
+            let s = make(&spec);
+            let mut qp = s.new_qp();
+            s.build(t, th.as_slice(), thd.as_slice(), &mut qp);
+            qp
+        };
+        let s = make(&spec);
+        let mut scratch = s.new_dot_scratch();
+        let (mut qp, mut dot) = (s.new_qp(), s.new_qp());
+        s.build(t, th.as_slice(), thd.as_slice(), &mut qp);
+        let again = |qp: &mut Qp| s.build(t, th.as_slice(), thd.as_slice(), qp);
+        let mut after_dot = s.new_qp();
+        s.build_dot(
+            t,
+            th.as_slice(),
+            thd.as_slice(),
+            thdd.as_slice(),
+            &mut dot,
+            &mut scratch,
+        );
+        again(&mut after_dot);
+        let mut after_another = s.new_qp();
+        s.build(t + 0.1, (th * 1.01).as_slice(), thd.as_slice(), &mut qp);
+        again(&mut after_another);
+        for (when, other) in [
+            ("after its derivative", &after_dot),
+            ("after another instant", &after_another),
+        ] {
+            for (what, a, b) in [
+                ("P", fresh.p.as_slice(), other.p.as_slice()),
+                ("q", fresh.q.as_slice(), other.q.as_slice()),
+                ("A", fresh.a.as_slice(), other.a.as_slice()),
+                ("b", fresh.b.as_slice(), other.b.as_slice()),
+            ] {
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(a), bits(b), "{name}: {what} {when}");
+            }
+        }
+    }
+}
+
 #[test]
 fn dims_constant_along_a_run() {
     let (_, thd, _) = state();

@@ -94,15 +94,17 @@ impl<'a> ExactLoop<'a> {
         }
     }
 
-    /// x*(t, theta, thetadot), or the solver's error.
+    /// x*(t, theta, thetadot) with the QP it solves (both in the loop's buffers: nothing is
+    /// allocated), or the solver's error.
     pub fn optimum(
         &mut self,
         t: f64,
         theta: &[f64],
         thetadot: &[f64],
-    ) -> Result<DVector<f64>, ExactError> {
+    ) -> Result<(&DVector<f64>, &Qp), ExactError> {
         self.scheme.build(t, theta, thetadot, &mut self.qp);
-        self.solver.solve(&self.qp).cloned()
+        let x = self.solver.solve(&self.qp)?;
+        Ok((x, &self.qp))
     }
 
     /// QPs solved, fallbacks and the Clarabel sample so far.
@@ -121,16 +123,19 @@ impl OdeSystem for ExactLoop<'_> {
         let n = self.scheme.joints();
         let zeros = std::mem::take(&mut self.zeros);
         let (theta, thetadot) = arm_slices(n, level, y, &zeros);
-        let optimum = self.optimum(t, theta, thetadot);
-        self.zeros = zeros;
-        match optimum {
-            Ok(x) => arm_rhs(n, level, y, x.as_slice(), dy),
-            Err(e) => {
-                if self.failure.is_none() {
-                    self.failure = Some((t, e));
-                }
-                dy.fill(f64::NAN);
+        let failure = match self.optimum(t, theta, thetadot) {
+            Ok((x, _)) => {
+                arm_rhs(n, level, y, x.as_slice(), dy);
+                None
             }
+            Err(e) => {
+                dy.fill(f64::NAN);
+                Some(e)
+            }
+        };
+        self.zeros = zeros;
+        if let (Some(e), None) = (failure, &self.failure) {
+            self.failure = Some((t, e));
         }
     }
 }

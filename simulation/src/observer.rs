@@ -52,11 +52,10 @@ pub(crate) fn score_instant(
     if !due {
         return None;
     }
-    let Ok(x_star) = scorer.optimum(t, theta, thetadot) else {
+    let Ok((x_star, qp)) = scorer.optimum(t, theta, thetadot) else {
         return Some(false);
     };
-    let qp = &scorer.qp;
-    let f_star = qp.objective(&x_star);
+    let f_star = qp.objective(x_star);
     let n = theta.len();
     let dx = (x.rows(0, n) - x_star.rows(0, n)).amax();
     observer.score(

@@ -245,11 +245,10 @@ fn score_with(
         let command = DVector::from_column_slice(thetadot);
         let mut x = DVector::zeros(nx);
         match scorer.optimum(t, theta, thetadot) {
-            Ok(x_star) => {
-                x.copy_from(&x_star);
+            Ok((x_star, qp)) => {
+                x.copy_from(x_star);
                 x.rows_mut(0, n).copy_from(&command);
-                let qp = &scorer.qp;
-                let f_star = qp.objective(&x_star);
+                let f_star = qp.objective(x_star);
                 observer.score(
                     t,
                     &ScoreSample {

@@ -171,8 +171,8 @@ fn run_exact(
         let started = Instant::now();
         let (theta, thetadot) = arm_slices(n, level, y, y);
         let control = match probe.optimum(t, theta, thetadot) {
-            Ok(x) => {
-                observer.sample(t, y, &x, level);
+            Ok((x, _)) => {
+                observer.sample(t, y, x, level);
                 observer
                     .divergence(y)
                     .map_or(Control::Continue, Control::Stop)
@@ -223,7 +223,7 @@ fn run_network(
             Level::Velocity => vec![0.0; n],
             Level::Acceleration => y0[n..2 * n].to_vec(),
         };
-        let x0 = scorer
+        let (x0, _) = scorer
             .optimum(0.0, theta0, &thetadot0)
             .map_err(|error| RunError::ExactQp { t: 0.0, error })?;
         y0[k..k + x0.len()].copy_from_slice(x0.as_slice());
@@ -232,9 +232,11 @@ fn run_network(
     let mut probe = build()?;
     let mut failures = 0usize;
     let mut next_score_t = 0.0;
+    // The network's estimate at the accepted step (allocated once).
+    let mut x_nn = DVector::zeros(scheme.dims().nx);
     let result = integrate(&mut sys, &y0, 0.0, t1, &settings.integrator, |t, y| {
         let started = Instant::now();
-        let x_nn = DVector::from_column_slice(&y[k..k + scheme.dims().nx]);
+        x_nn.copy_from_slice(&y[k..k + x_nn.len()]);
         let (theta, thetadot) = arm_slices(n, level, y, &y[k..]);
         let scored = score_instant(
             observer,

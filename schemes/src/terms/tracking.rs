@@ -78,11 +78,13 @@ pub struct Tracking {
 }
 
 /// The term's buffers: J and Jdot (3 x n column-major each) and, from the last
-/// [`Term::write`], the instant (t, theta) with its J and path point r*(t), rdot*(t),
-/// rddot*(t). A network's right-hand side asks for the QP and then for its time derivative at
-/// the same instant; [`Term::write_dot`] reuses J and the path point when (t, theta) are the
-/// same bit for bit, so each is evaluated once per right-hand side, and the numbers are those
-/// a fresh evaluation gives.
+/// evaluation, the instant (t, theta) with its J, path point r*(t), rdot*(t), rddot*(t) and
+/// (after a [`Term::write`]) f(theta). A network's right-hand side asks for the QP and then for
+/// its time derivative at the same instant, and the run's observer asks for the QP again at an
+/// accepted step, where an explicit Runge-Kutta method's last stage has just evaluated it:
+/// [`Term::write_dot`] and [`Term::write`] reuse what they need when (t, theta) are the same bit
+/// for bit, so each is evaluated once there, and the numbers are those a fresh evaluation
+/// gives. A pose task overwrites `jac` with the angular Jacobian, so it is never kept valid.
 struct Scratch {
     jac: Vec<f64>,
     jdot: Vec<f64>,
@@ -91,6 +93,8 @@ struct Scratch {
     t: f64,
     theta: Vec<f64>,
     point: PathPoint,
+    /// f(theta) at (`t`, `theta`), when the last evaluation there was a [`Term::write`].
+    position: Option<Vector3<f64>>,
 }
 
 impl Scratch {
@@ -107,11 +111,19 @@ impl Scratch {
                 .all(|(a, b)| a.to_bits() == b.to_bits())
     }
 
-    /// Records that `jac` and `point` are the values at (t, theta).
-    fn remember(&mut self, t: f64, theta: &[f64], point: PathPoint) {
+    /// Records that `jac` and `point` (and `position`, where given) are the values at
+    /// (t, theta).
+    fn remember(
+        &mut self,
+        t: f64,
+        theta: &[f64],
+        point: PathPoint,
+        position: Option<Vector3<f64>>,
+    ) {
         self.t = t;
         self.theta.copy_from_slice(theta);
         self.point = point;
+        self.position = position;
         self.valid = true;
     }
 }
@@ -197,6 +209,7 @@ impl Tracking {
                     rdot: Vector3::zeros(),
                     rddot: Vector3::zeros(),
                 },
+                position: None,
             }),
         }
     }
@@ -288,10 +301,21 @@ impl Term for Tracking {
             .lock()
             .unwrap_or_else(|poisoned| poisoned.into_inner());
         let scratch = &mut *scratch;
-        let f = self.robot.position_jacobian(state.theta, &mut scratch.jac);
+        let cached = match scratch.position {
+            Some(f) if self.target.is_none() && scratch.holds(state.t, state.theta) => {
+                Some((f, scratch.point))
+            }
+            _ => None,
+        };
+        let (f, pp) = match cached {
+            Some(fp) => fp,
+            None => (
+                self.robot.position_jacobian(state.theta, &mut scratch.jac),
+                self.path.at(state.t),
+            ),
+        };
         let (jac, jdot) = (&scratch.jac, &mut scratch.jdot);
         self.write_rows(jac, slot.equality, &mut qp.a);
-        let pp = self.path.at(state.t);
         let b = match self.feedback {
             Feedback::Velocity { k_p } => pp.rdot + (pp.r - f) * k_p,
             Feedback::Acceleration { rho_v, rho_p } => {
@@ -309,7 +333,7 @@ impl Term for Tracking {
             // The cache holds the position Jacobian; a pose task's rows overwrite `jac` with
             // the angular one, so its instant is never remembered, and an instant remembered
             // before no longer holds.
-            None => scratch.remember(state.t, state.theta, pp),
+            None => scratch.remember(state.t, state.theta, pp, Some(f)),
             Some(target) => {
                 scratch.valid = false;
                 let o = self.orientation();
@@ -349,7 +373,7 @@ impl Term for Tracking {
         if !scratch.holds(state.t, state.theta) {
             self.robot.jacobian(state.theta, &mut scratch.jac);
             let point = self.path.at(state.t);
-            scratch.remember(state.t, state.theta, point);
+            scratch.remember(state.t, state.theta, point, None);
         }
         self.robot
             .jacobian_dot(state.theta, state.thetadot, &mut scratch.jdot);

@@ -3,15 +3,17 @@
 //! side evaluation without allocating (nalgebra's `DMatrix::lu` returns a new matrix).
 //!
 //! The orders the papers' networks use (n = nx + n_eq = 6 to 12, e.g. kong2019's 5 joints and
-//! 3 task rows: n = 8) are compiled with n a constant, so the loops have fixed trip counts and
-//! no bounds checks; every other order runs the same code with n read at run time. Either way
+//! 3 task rows: n = 8), and 3 (the bottom block of three task rows that
+//! `solvers/src/neural/kkt_lu.rs` factorises), are compiled with n a constant, so the loops
+//! have fixed trip counts and no bounds checks; every other order runs the same code with n
+//! read at run time. Either way
 //! the operations and their order are those of the textbook loop, so the factors and the
 //! solution are the same bit for bit.
 
 use nalgebra::DMatrix;
 
 /// Relative pivot threshold below which the matrix is reported singular.
-const SINGULAR_PIVOT: f64 = 1e-300;
+pub(crate) const SINGULAR_PIVOT: f64 = 1e-300;
 
 /// The order n of the matrix (or a block size): a compile-time constant (`Fixed`) or a
 /// run-time `usize`.
@@ -42,6 +44,7 @@ impl Order for usize {
 macro_rules! by_order {
     ($n:expr, $f:ident ( $($arg:expr),* )) => {
         match $n {
+            3 => $f(Fixed::<3>, $($arg),*),
             6 => $f(Fixed::<6>, $($arg),*),
             7 => $f(Fixed::<7>, $($arg),*),
             8 => $f(Fixed::<8>, $($arg),*),
@@ -142,15 +145,6 @@ fn solve_in(n: impl Order, m: &[f64], piv: &[usize], b: &mut [f64]) {
             s -= m[i + j * n] * b[j];
         }
         b[i] = s / m[i + i * n];
-    }
-}
-
-/// Solve A X = B in place for every column of `b` (same factors).
-pub fn solve_columns(lu: &DMatrix<f64>, piv: &[usize], b: &mut DMatrix<f64>) {
-    let n = b.nrows();
-    for j in 0..b.ncols() {
-        // A DMatrix is stored column-major: column j is one contiguous slice.
-        solve(lu, piv, &mut b.as_mut_slice()[j * n..(j + 1) * n]);
     }
 }
 

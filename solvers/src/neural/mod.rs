@@ -25,6 +25,7 @@
 //! says otherwise).
 
 pub mod activation;
+mod kkt_lu;
 pub mod lu;
 mod penalty;
 pub mod perturbation;

@@ -38,12 +38,14 @@
 //! derivations of each preset are in `docs/networks.md`).
 //!
 //! Q is small and invertible (P positive definite on the null space of A, A of full row rank),
-//! so ydot is solved for at each evaluation with an in-place LU with partial pivoting on a
-//! preallocated matrix ([`super::lu`]; compiled for the papers' orders, bit for bit the
-//! textbook loop); Qdot and udot come from `qp_dot` (P, A, q, b differentiated); with no
-//! `qp_dot` the QP is taken as frozen (Qdot = 0, udot = 0). (Solving through the Schur
-//! complement of P instead, `kkt_schur`, was measured no faster on kong2019's 8 x 8
-//! system, and it changes the last bits of every run: `benches/REPORT.md`.)
+//! so ydot is solved for at each evaluation with an in-place LU with partial pivoting on
+//! preallocated buffers ([`super::lu`]; compiled for the papers' orders, bit for bit the
+//! textbook loop), without the operations that leave a value unchanged where P is diagonal
+//! (`solvers/src/neural/kkt_lu.rs`: the same factors and answers, bit for bit); Qdot and udot
+//! come from `qp_dot` (P, A, q, b differentiated); with no `qp_dot` the QP is taken as frozen
+//! (Qdot = 0, udot = 0). (Solving through the Schur complement of P instead changes the last
+//! bits of every run, and with them drifts that are integration noise and a cycles-trend
+//! class: `benches/throughput/README.md`.)
 //!
 //! Inequality rows and bounds are outside this structure: a network is built only for
 //! `n_in = 0`, and the bounds `lower`/`upper` of the QP are ignored (the schemes that use these
@@ -57,7 +59,8 @@
 //! Q dF = dr - dQ F with dr = -(g(t) diag(Phi'(E)) + nu t I)(dQ y - du) - dQdot y + dudot.
 
 use super::activation::Activation;
-use super::lu::{self, Fixed, Order};
+use super::kkt_lu::{assemble_q, KktLu};
+use super::lu::{Fixed, Order};
 use super::perturbation::PerturbationTerms;
 use super::{euclidean_norm, NeuralSolver};
 use nalgebra::DMatrix;
@@ -74,9 +77,8 @@ pub struct ZeroingNetwork {
     activation: Activation,
     perturbation: Option<ReferencePerturbation>,
     dims: QpDims,
-    /// Q, then its LU factors.
-    lu: DMatrix<f64>,
-    piv: Vec<usize>,
+    /// The LU factors of Q.
+    kkt: KktLu,
     /// E = Q y - u.
     e: Vec<f64>,
     /// DeltaD(t) scratch (perturbed networks).
@@ -123,8 +125,7 @@ impl ZeroingNetwork {
             activation,
             perturbation,
             dims,
-            lu: DMatrix::zeros(n, n),
-            piv: vec![0; n],
+            kkt: KktLu::new(dims),
             e: vec![0.0; n],
             delta_d: DMatrix::zeros(n, n),
             delta_s: vec![0.0; n],
@@ -190,33 +191,6 @@ impl ZeroingNetwork {
     /// The reference perturbation of zhang2018 (3.1)-(3.2), if the network is perturbed.
     pub fn perturbation(&self) -> Option<&ReferencePerturbation> {
         self.perturbation.as_ref()
-    }
-
-    /// Write Q (module docs) into `self.lu`.
-    fn assemble_q(&mut self, qp: &Qp) {
-        let QpDims { nx, n_eq, .. } = self.dims;
-        debug_assert_eq!(
-            qp.dims(),
-            self.dims,
-            "QP sizes differ from the sizes the network was built for"
-        );
-        // Column-major storage: Q's column j is `q[j n..(j + 1) n]`, A's column j is
-        // `a[j n_eq..(j + 1) n_eq]`.
-        let n = nx + n_eq;
-        let q = self.lu.as_mut_slice();
-        let (p, a) = (qp.p.as_slice(), qp.a.as_slice());
-        for j in 0..nx {
-            let column = &mut q[j * n..(j + 1) * n];
-            column[..nx].copy_from_slice(&p[j * nx..(j + 1) * nx]);
-            column[nx..].copy_from_slice(&a[j * n_eq..(j + 1) * n_eq]);
-        }
-        for k in 0..n_eq {
-            let column = &mut q[(nx + k) * n..(nx + k + 1) * n];
-            for (j, v) in column[..nx].iter_mut().enumerate() {
-                *v = a[k + j * n_eq];
-            }
-            column[nx..].fill(0.0);
-        }
     }
 
     /// E = Q y - u into `self.e`, Q y summed as `qdot_times` sums Qdot y (Q has the
@@ -344,12 +318,11 @@ impl NeuralSolver for ZeroingNetwork {
             }
             ydot[i] = r;
         }
-        self.assemble_q(qp);
-        if !lu::factor(&mut self.lu, &mut self.piv) {
+        if !self.kkt.factor(qp) {
             ydot.fill(f64::NAN);
             return;
         }
-        lu::solve(&self.lu, &self.piv, ydot);
+        self.kkt.solve(ydot);
     }
     fn data_derivative(
         &mut self,
@@ -372,7 +345,7 @@ impl NeuralSolver for ZeroingNetwork {
         }
         let nx = self.dims.nx;
         let n = y.len();
-        // F at the base point; leaves E in `self.e` and the LU factors of Q in `self.lu`.
+        // F at the base point; leaves E in `self.e` and the LU factors of Q in `self.kkt`.
         let mut f = std::mem::take(&mut self.f_base);
         self.rhs(t, y, qp, qp_dot, &mut f);
         if f.iter().any(|v| !v.is_finite()) {
@@ -410,7 +383,7 @@ impl NeuralSolver for ZeroingNetwork {
             out[i] = r;
         }
         self.f_base = f;
-        lu::solve(&self.lu, &self.piv, out);
+        self.kkt.solve(out);
         true
     }
     fn jacobian(
@@ -423,7 +396,7 @@ impl NeuralSolver for ZeroingNetwork {
     ) -> bool {
         let QpDims { nx, n_eq, .. } = self.dims;
         let n = y.len();
-        self.assemble_q(qp);
+        assemble_q(self.dims, qp, jac);
         self.compute_error(qp, y);
         self.fill_perturbation(t);
         let g = self.gain.at(t);
@@ -434,7 +407,7 @@ impl NeuralSolver for ZeroingNetwork {
                 s += self.nu * t;
             }
             for j in 0..n {
-                jac[(i, j)] = -s * self.lu[(i, j)];
+                jac[(i, j)] *= -s;
             }
         }
         if let Some(d) = qp_dot {
@@ -457,10 +430,10 @@ impl NeuralSolver for ZeroingNetwork {
                 }
             }
         }
-        if !lu::factor(&mut self.lu, &mut self.piv) {
+        if !self.kkt.factor(qp) {
             return false;
         }
-        lu::solve_columns(&self.lu, &self.piv, jac);
+        self.kkt.solve_columns(jac);
         true
     }
 }
