@@ -67,7 +67,7 @@ fn main() {
     for &n in sizes {
         let text = sweep_file(n);
         let file = timed("expand + validate (load)", n, || {
-            reproduce::experiments::from_toml(&text).expect("a valid sweep")
+            reproduce::experiments_from_toml(&text).expect("a valid sweep")
         });
         // What `list` and `list --shards` do: the runs made as they are taken, none held.
         timed("jobs + keys, streamed (list)", n, || {

@@ -130,7 +130,7 @@ impl KeptTraces {
 
 /// Most variants one variant may expand into (a typo in a range should not eat the memory),
 /// and most the sweeps of a whole experiments directory may expand into together (twenty
-/// variants of 999,999 each must not either): [`Sweeps::expand_into`] takes what is left of it.
+/// variants of 999,999 each must not either): the expansion of a file's sweeps takes what is left of it.
 pub const MAX_EXPANSION: usize = 1_000_000;
 
 /// Whether any variant of the parsed file gives a `sweep`.
@@ -292,8 +292,10 @@ struct Axis {
 
 /// Expands one variant table (with its `sweep`) into the variants of the product (at most
 /// [`MAX_EXPANSION`]). Errors start with the field (`field `sweep` key `...``), the caller
-/// prefixes experiment and variant.
-pub fn expand_variant(variant: &Table) -> Result<Vec<Table>, SweepError> {
+/// prefixes experiment and variant. The tests' view of one variant; a file's variants expand
+/// through [`Sweeps::expand_into`].
+#[cfg(test)]
+fn expand_variant(variant: &Table) -> Result<Vec<Table>, SweepError> {
     if !variant.contains_key("sweep") {
         return Ok(vec![variant.clone()]);
     }

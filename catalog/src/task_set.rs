@@ -69,7 +69,7 @@ impl BudgetFile {
 /// (`inputs::Kind::TaskSet`: a regular file inside `experiments`, at most 1 MiB, never quoted
 /// in an error): every paper's scheme once, in the file's order, and the budget of their runs.
 /// A project without the file has no control experiments ([`TaskSetError::Missing`]).
-pub fn load(experiments: &Path) -> Result<TaskSet, TaskSetError> {
+pub fn load_task_set(experiments: &Path) -> Result<TaskSet, TaskSetError> {
     let path = experiments.join(TASK_SET_FILE);
     let shown = path.display().to_string();
     let origin = inputs::Origin::Under(experiments);
@@ -119,7 +119,7 @@ mod tests {
         let dir = experiments.to_path_buf();
         let (tx, rx) = std::sync::mpsc::channel();
         std::thread::spawn(move || {
-            let _ = tx.send(load(&dir).err().map(|e| e.to_string()));
+            let _ = tx.send(load_task_set(&dir).err().map(|e| e.to_string()));
         });
         rx.recv_timeout(Duration::from_secs(5))
             .expect("the task set was read or refused within 5 s (a FIFO must not block)")
@@ -128,8 +128,8 @@ mod tests {
 
     #[test]
     fn the_committed_task_set_reads() {
-        let experiments = crate::root::from_current_dir().unwrap().join("experiments");
-        let set = load(&experiments).unwrap();
+        let experiments = crate::root_from_current_dir().unwrap().join("experiments");
+        let set = load_task_set(&experiments).unwrap();
         assert!(set.tasks.len() >= 4, "{set:?}");
         assert_eq!(set.budget.h, MAIN_H);
     }
@@ -146,7 +146,7 @@ mod tests {
             )
         };
         std::fs::write(&file, budget("0.5, 2.0", 3, 5, 2)).unwrap();
-        let set = load(&experiments).unwrap();
+        let set = load_task_set(&experiments).unwrap();
         assert_eq!(set.budget.sweep, vec![0.5e-3, 2e-3]);
         assert_eq!((set.budget.cycles, set.budget.check_ticks), (3, 5));
         assert_eq!(set.budget.check_steps_factor, 2);
@@ -157,7 +157,7 @@ mod tests {
             (budget("0.5", 3, 5, 0), "check_steps_factor"),
         ] {
             std::fs::write(&file, &text).unwrap();
-            let e = load(&experiments).unwrap_err();
+            let e = load_task_set(&experiments).unwrap_err();
             assert!(
                 matches!(&e, TaskSetError::Budget { field: f, .. } if *f == field),
                 "{e:?}"
@@ -169,7 +169,7 @@ mod tests {
         }
         // A task set without its budget is refused too.
         std::fs::write(&file, task).unwrap();
-        let e = load(&experiments).unwrap_err();
+        let e = load_task_set(&experiments).unwrap_err();
         assert!(e.to_string().contains("budget"), "{e}");
         std::fs::remove_dir_all(&base).unwrap();
     }
@@ -179,7 +179,7 @@ mod tests {
         let (experiments, base) = scratch("hostile");
         let file = experiments.join(TASK_SET_FILE);
         // Missing: no control experiments.
-        let e = load(&experiments).unwrap_err();
+        let e = load_task_set(&experiments).unwrap_err();
         assert!(matches!(e, TaskSetError::Missing(_)), "{e:?}");
         // A symbolic link out of the experiments directory (to a secret, to the environment).
         for target in [

@@ -59,8 +59,8 @@ struct Names {
 }
 
 fn names(root: &Path) -> Names {
-    let files = reproduce::experiments::load_dir(&root.join("experiments"))
-        .expect("the experiment files load");
+    let files =
+        reproduce::load_experiments(&root.join("experiments")).expect("the experiment files load");
     let mut inside = BTreeSet::new();
     let mut whole = BTreeSet::new();
     let mut code_names = BTreeSet::new();

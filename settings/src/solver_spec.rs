@@ -36,10 +36,14 @@
 //! CDNNs, the group's network) takes all four, written beside the network's own fields and held
 //! in code as one [`ActivationSpec`]. The CDNNs' runs in the paper are linear.
 //!
-//! The file form is a flat table (serde's `flatten` cannot be combined with
-//! `deny_unknown_fields`, and a misspelt field must stay an error): a private mirror of
-//! [`SolverSpec`] with the activation's fields inline is what serde reads and writes, converted
-//! to and from [`SolverSpec`] without loss.
+//! The file form is a flat table: a private mirror of [`SolverSpec`] with the activation's
+//! fields inline is what serde reads and writes, converted to and from [`SolverSpec`] without
+//! loss. The two vocabularies' kinds (`zeroing`, `projection`), which take all seven fields
+//! (`activation`, `alpha`, `chi`, `xi`, `power`, `exponent`, `smoothing`), declare them once: one
+//! struct flattened into both (serde checks the keys the two leave over, so a misspelt field
+//! stays an error that names it). The presets take five (no `exponent`, no `smoothing`) and
+//! `group-znn` has its own default activation, so they keep theirs inline: a file may not give a
+//! preset a field it does not use.
 //!
 //! `group-znn` (the group's network, `docs/networks.md`): `gamma` (default 500), `nu`
 //! (default 2500), `activation`, `perturbation` (optional, as the CDNNs; only `a_s` and `task_duration`
@@ -337,23 +341,13 @@ impl From<FileSolverSpec> for SolverSpec {
             FileSolverSpec::Zeroing {
                 gain,
                 activation,
-                alpha,
-                chi,
-                xi,
-                power,
-                exponent,
-                smoothing,
                 nu,
                 perturbation,
                 perturbation_matrix,
                 udot_rmp,
             } => SolverSpec::Zeroing {
                 gain,
-                activation: ActivationSpec {
-                    exponent,
-                    smoothing,
-                    ..act(activation, alpha, chi, xi, power)
-                },
+                activation: activation.into(),
                 nu,
                 perturbation,
                 perturbation_matrix,
@@ -363,20 +357,10 @@ impl From<FileSolverSpec> for SolverSpec {
                 error,
                 gain,
                 activation,
-                alpha,
-                chi,
-                xi,
-                power,
-                exponent,
-                smoothing,
             } => SolverSpec::Projection {
                 error,
                 gain,
-                activation: ActivationSpec {
-                    exponent,
-                    smoothing,
-                    ..act(activation, alpha, chi, xi, power)
-                },
+                activation: activation.into(),
             },
         }
     }
@@ -464,13 +448,7 @@ impl From<SolverSpec> for FileSolverSpec {
                 udot_rmp,
             } => FileSolverSpec::Zeroing {
                 gain,
-                activation: a.kind,
-                alpha: a.alpha,
-                chi: a.chi,
-                xi: a.xi,
-                power: a.power,
-                exponent: a.exponent,
-                smoothing: a.smoothing,
+                activation: a.into(),
                 nu,
                 perturbation,
                 perturbation_matrix,
@@ -483,13 +461,7 @@ impl From<SolverSpec> for FileSolverSpec {
             } => FileSolverSpec::Projection {
                 error,
                 gain,
-                activation: a.kind,
-                alpha: a.alpha,
-                chi: a.chi,
-                xi: a.xi,
-                power: a.power,
-                exponent: a.exponent,
-                smoothing: a.smoothing,
+                activation: a.into(),
             },
         }
     }
@@ -592,20 +564,8 @@ enum FileSolverSpec {
     /// The zeroing family as data ([`crate::zeroing`]).
     Zeroing {
         gain: GainLaw,
-        #[serde(default)]
-        activation: ActivationKind,
-        #[serde(default = "default_alpha")]
-        alpha: f64,
-        #[serde(default = "default_chi")]
-        chi: f64,
-        #[serde(default = "default_xi")]
-        xi: f64,
-        #[serde(default = "default_power")]
-        power: f64,
-        #[serde(default = "default_exponent")]
-        exponent: f64,
-        #[serde(default = "default_sign_smoothing")]
-        smoothing: f64,
+        #[serde(flatten)]
+        activation: FileActivation,
         #[serde(default)]
         nu: f64,
         #[serde(default)]
@@ -619,21 +579,64 @@ enum FileSolverSpec {
     Projection {
         error: ProjectionErrorForm,
         gain: GainLaw,
-        #[serde(default)]
-        activation: ActivationKind,
-        #[serde(default = "default_alpha")]
-        alpha: f64,
-        #[serde(default = "default_chi")]
-        chi: f64,
-        #[serde(default = "default_xi")]
-        xi: f64,
-        #[serde(default = "default_power")]
-        power: f64,
-        #[serde(default = "default_exponent")]
-        exponent: f64,
-        #[serde(default = "default_sign_smoothing")]
-        smoothing: f64,
+        #[serde(flatten)]
+        activation: FileActivation,
     },
+}
+
+/// The activation of the two vocabularies' networks (`zeroing`, `projection`) as their files
+/// write it: every [`ActivationSpec`] field inline, each with its default, flattened into both
+/// variants of [`FileSolverSpec`] so that they declare it once (module docs).
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+struct FileActivation {
+    #[serde(default)]
+    activation: ActivationKind,
+    /// Power-sigmoid alpha (zhong2021 eq. 2.29).
+    #[serde(default = "default_alpha")]
+    alpha: f64,
+    /// Power-sigmoid chi (zhong2021 eq. 2.29).
+    #[serde(default = "default_chi")]
+    chi: f64,
+    /// The group's power-sigmoid xi.
+    #[serde(default = "default_xi")]
+    xi: f64,
+    /// The group's power-sigmoid p.
+    #[serde(default = "default_power")]
+    power: f64,
+    /// The sign-power's exponent.
+    #[serde(default = "default_exponent")]
+    exponent: f64,
+    /// Half-width of the sign-power's linear zone.
+    #[serde(default = "default_sign_smoothing")]
+    smoothing: f64,
+}
+
+impl From<FileActivation> for ActivationSpec {
+    fn from(f: FileActivation) -> Self {
+        ActivationSpec {
+            kind: f.activation,
+            alpha: f.alpha,
+            chi: f.chi,
+            xi: f.xi,
+            power: f.power,
+            exponent: f.exponent,
+            smoothing: f.smoothing,
+        }
+    }
+}
+
+impl From<ActivationSpec> for FileActivation {
+    fn from(a: ActivationSpec) -> Self {
+        FileActivation {
+            activation: a.kind,
+            alpha: a.alpha,
+            chi: a.chi,
+            xi: a.xi,
+            power: a.power,
+            exponent: a.exponent,
+            smoothing: a.smoothing,
+        }
+    }
 }
 
 impl SolverSpec {
@@ -1056,6 +1059,85 @@ mod tests {
             "solver = { kind = \"projection\", error = { form = \"lvi\", scaling = \"identity\" }, gain = { law = \"constant\", gamma = 1.0 }, nu = 1.0 }",
         ] {
             assert!(parse(bad).is_err(), "accepted: {bad}");
+        }
+    }
+
+    #[test]
+    fn the_vocabularies_write_their_activation_inline_and_refuse_a_misspelt_field() {
+        let zeroing = "solver = { kind = \"zeroing\", gain = { law = \"power\", gamma = 1.0, p = 2.0 }, activation = \"sign-bi-power\", exponent = 0.5, nu = 3.0 }";
+        let spec = parse(zeroing).unwrap();
+        let SolverSpec::Zeroing { activation, nu, .. } = &spec else {
+            panic!("{spec:?}")
+        };
+        assert_eq!(activation.kind, ActivationKind::SignBiPower);
+        assert_eq!((activation.exponent, *nu), (0.5, 3.0));
+        assert_eq!(activation.smoothing, SIGN_POWER_SMOOTHING);
+        for (text, keys) in [
+            (
+                zeroing,
+                &[
+                    "activation",
+                    "alpha",
+                    "chi",
+                    "exponent",
+                    "gain",
+                    "kind",
+                    "nu",
+                    "perturbation_matrix",
+                    "power",
+                    "smoothing",
+                    "udot_rmp",
+                    "xi",
+                ][..],
+            ),
+            (
+                EVERY_KIND[10],
+                &[
+                    "activation",
+                    "alpha",
+                    "chi",
+                    "error",
+                    "exponent",
+                    "gain",
+                    "kind",
+                    "power",
+                    "smoothing",
+                    "xi",
+                ][..],
+            ),
+        ] {
+            let spec = parse(text).unwrap();
+            let written = toml::to_string(&Holder {
+                solver: spec.clone(),
+            })
+            .unwrap();
+            let table: toml::Table = toml::from_str(&written).unwrap();
+            let mut got: Vec<&str> = table["solver"]
+                .as_table()
+                .unwrap()
+                .keys()
+                .map(String::as_str)
+                .collect();
+            got.sort_unstable();
+            assert_eq!(got, keys, "{written}");
+            assert_eq!(parse(&written).unwrap(), spec, "{written}");
+        }
+        for (bad, field) in [
+            (zeroing.replace("exponent", "exponnent"), "exponnent"),
+            (
+                EVERY_KIND[10].replace("activation", "activaton"),
+                "activaton",
+            ),
+            (
+                EVERY_KIND[9].replace("gain =", "sigma = 1.0, gain ="),
+                "sigma",
+            ),
+        ] {
+            let e = parse(&bad).unwrap_err().to_string();
+            assert!(
+                e.contains(&format!("unknown field `{field}`")),
+                "{bad}: {e}"
+            );
         }
     }
 

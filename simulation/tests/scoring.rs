@@ -1,7 +1,7 @@
 //! The scoring grid: a network run scored at every accepted step, at a bounded number of
 //! instants, or not at all, as the experiment file's `scoring` says.
 
-use catalog::experiment::PaperFile;
+use catalog::PaperFile;
 use simulation::run_job;
 use simulation::Outcome;
 use spec::RunSpec;
@@ -9,8 +9,8 @@ use spec::Scoring;
 use spec::SolverChoice;
 
 fn znn_job() -> RunSpec {
-    let root = catalog::root::from_current_dir().unwrap();
-    crate::checked::load_dir(&root.join("experiments"))
+    let root = catalog::root_from_current_dir().unwrap();
+    catalog::load_dir(&root.join("experiments"))
         .unwrap()
         .iter()
         .flat_map(PaperFile::jobs)
@@ -78,7 +78,7 @@ solvers = [{{ kind = "znn", gamma = 1.0 }}]
         )
     };
     let scoring_of = |text: &str| {
-        crate::checked::from_toml(text)
+        catalog::PaperFile::from_toml(text)
             .map(|f| f.jobs()[1].scoring)
             .map_err(|e| e.to_string())
     };
