@@ -1129,22 +1129,15 @@ mod trace_tests {
     /// A sweep of three variants of two runs each (exact column and one network), with `traces`.
     fn file(traces: &str) -> String {
         format!(
-            r#"paper = "kong2019"
-title = "t"
-[[experiment]]
-id = "kong2019-t"
-paper_output = "-"
-robot = "katana6m180"
-path = {{ name = "circle", duration = 1.0 }}
-theta0 = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.0471975511965976]
-[[experiment.variant]]
+            r#"{}[[experiment.variant]]
 id = "znn"
 label = "ZNN"
 scheme = {{ kind = "znn-rmp", k_p = 1.0 }}
 solvers = [{{ kind = "znn", gamma = 1.0 }}]
 {traces}
 sweep = {{ "scheme.mu" = [0.5, 1, 2] }}
-"#
+"#,
+            fixtures::katana_circle("t", "kong2019-t", 1.0, "")
         )
     }
 

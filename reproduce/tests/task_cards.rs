@@ -73,22 +73,15 @@ fn a_large_sweep_gets_capped_cards() {
         std::fs::write(
             dir.join("kong2019.toml"),
             format!(
-                r#"paper = "kong2019"
-title = "a sweep's cards"
-[[experiment]]
-id = "kong2019-cards"
-paper_output = "none"
-robot = "katana6m180"
-path = {{ name = "circle", duration = 0.05 }}
-theta0 = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.0471975511965976]
-[[experiment.variant]]
+                r#"{}[[experiment.variant]]
 label = "ZNN"
 scheme = {{ kind = "znn-rmp", mu = 1.0, k_p = 1.0 }}
 sweep = {{ "scheme.mu" = {{ from = 1.0, to = 2.0, step = {step} }} }}
 [[experiment.variant]]
 label = "alone"
 scheme = {{ kind = "znn-rmp", mu = 3.0, k_p = 1.0 }}
-"#
+"#,
+                fixtures::katana_circle("a sweep's cards", "kong2019-cards", 0.05, "")
             ),
         )
         .unwrap();

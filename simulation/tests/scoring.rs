@@ -61,20 +61,12 @@ fn a_grid_bounds_the_exact_solves_and_every_step_sees_them_all() {
 fn the_scoring_setting_is_read_from_the_experiment_file() {
     let file = |scoring: &str| {
         format!(
-            r#"paper = "kong2019"
-title = "t"
-[[experiment]]
-id = "kong2019-e"
-paper_output = "none"
-robot = "katana6m180"
-path = {{ name = "circle", duration = 9.0 }}
-theta0 = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.0471975511965976]
-{scoring}
-[[experiment.variant]]
+            r#"{}[[experiment.variant]]
 label = "ZNN"
 scheme = {{ kind = "kong2019-znn", mu = 1.0, k_p = 1.0 }}
 solvers = [{{ kind = "znn", gamma = 1.0 }}]
-"#
+"#,
+            fixtures::katana_circle("t", "kong2019-e", 9.0, scoring)
         )
     };
     let scoring_of = |text: &str| {
