@@ -44,6 +44,12 @@ const EXEMPT: &[(&str, &str)] = &[
          speed, not data about the paper",
     ),
     (
+        "fixtures/src/lib.rs",
+        "test fixtures shared by several crates' tests (a dev-dependency only, never linked into \
+         a program): its experiment-file template is a test's file, and tests may name the data \
+         they test",
+    ),
+    (
         "solvers/src/random_qp.rs",
         "the random QP shapes are the papers' schemes' QP forms, named after them (the benches \
          group by that name)",
