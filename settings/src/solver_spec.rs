@@ -41,9 +41,10 @@
 //! loss. The two vocabularies' kinds (`zeroing`, `projection`), which take all seven fields
 //! (`activation`, `alpha`, `chi`, `xi`, `power`, `exponent`, `smoothing`), declare them once: one
 //! struct flattened into both (serde checks the keys the two leave over, so a misspelt field
-//! stays an error that names it). The presets take five (no `exponent`, no `smoothing`) and
-//! `group-znn` has its own default activation, so they keep theirs inline: a file may not give a
-//! preset a field it does not use.
+//! stays an error that names it). The presets `vp-rnn-pf`, `fp-cdnn` and `vp-cdnn` take five (no
+//! `exponent`, no `smoothing`: a file may not give a preset a field it does not use), one struct
+//! of those flattened into the three; `group-znn`, whose default activation is its own, keeps
+//! its five inline.
 //!
 //! `group-znn` (the group's network, `docs/networks.md`): `gamma` (default 500), `nu`
 //! (default 2500), `activation`, `perturbation` (optional, as the CDNNs; only `a_s` and `task_duration`
@@ -275,40 +276,28 @@ impl From<FileSolverSpec> for SolverSpec {
                 sigma,
                 gamma,
                 activation,
-                alpha,
-                chi,
-                xi,
-                power,
             } => SolverSpec::VpRnnPf {
                 p,
                 sigma,
                 gamma,
-                activation: act(activation, alpha, chi, xi, power),
+                activation: activation.into(),
             },
             FileSolverSpec::FpCdnn {
                 gamma,
                 activation,
-                alpha,
-                chi,
-                xi,
-                power,
                 perturbation,
             } => SolverSpec::FpCdnn {
                 gamma,
-                activation: act(activation, alpha, chi, xi, power),
+                activation: activation.into(),
                 perturbation,
             },
             FileSolverSpec::VpCdnn {
                 gamma,
                 activation,
-                alpha,
-                chi,
-                xi,
-                power,
                 perturbation,
             } => SolverSpec::VpCdnn {
                 gamma,
-                activation: act(activation, alpha, chi, xi, power),
+                activation: activation.into(),
                 perturbation,
             },
             FileSolverSpec::FiniteTime {
@@ -380,11 +369,7 @@ impl From<SolverSpec> for FileSolverSpec {
                 p,
                 sigma,
                 gamma,
-                activation: a.kind,
-                alpha: a.alpha,
-                chi: a.chi,
-                xi: a.xi,
-                power: a.power,
+                activation: a.into(),
             },
             SolverSpec::FpCdnn {
                 gamma,
@@ -392,11 +377,7 @@ impl From<SolverSpec> for FileSolverSpec {
                 perturbation,
             } => FileSolverSpec::FpCdnn {
                 gamma,
-                activation: a.kind,
-                alpha: a.alpha,
-                chi: a.chi,
-                xi: a.xi,
-                power: a.power,
+                activation: a.into(),
                 perturbation,
             },
             SolverSpec::VpCdnn {
@@ -405,11 +386,7 @@ impl From<SolverSpec> for FileSolverSpec {
                 perturbation,
             } => FileSolverSpec::VpCdnn {
                 gamma,
-                activation: a.kind,
-                alpha: a.alpha,
-                chi: a.chi,
-                xi: a.xi,
-                power: a.power,
+                activation: a.into(),
                 perturbation,
             },
             SolverSpec::FiniteTime {
@@ -480,50 +457,22 @@ enum FileSolverSpec {
         p: f64,
         sigma: f64,
         gamma: f64,
-        #[serde(default)]
-        activation: ActivationKind,
-        /// Power-sigmoid alpha (eq. 2.29).
-        #[serde(default = "default_alpha")]
-        alpha: f64,
-        /// Power-sigmoid chi (eq. 2.29).
-        #[serde(default = "default_chi")]
-        chi: f64,
-        /// The group's power-sigmoid xi.
-        #[serde(default = "default_xi")]
-        xi: f64,
-        /// The group's power-sigmoid p.
-        #[serde(default = "default_power")]
-        power: f64,
+        #[serde(flatten)]
+        activation: FilePresetActivation,
     },
     /// zhang2018 eq. 2.15 (eq. 3.2 when perturbed).
     FpCdnn {
         gamma: f64,
-        #[serde(default)]
-        activation: ActivationKind,
-        #[serde(default = "default_alpha")]
-        alpha: f64,
-        #[serde(default = "default_chi")]
-        chi: f64,
-        #[serde(default = "default_xi")]
-        xi: f64,
-        #[serde(default = "default_power")]
-        power: f64,
+        #[serde(flatten)]
+        activation: FilePresetActivation,
         #[serde(default)]
         perturbation: Option<ReferencePerturbation>,
     },
     /// zhang2018 eq. 2.11 (eq. 3.1 when perturbed).
     VpCdnn {
         gamma: f64,
-        #[serde(default)]
-        activation: ActivationKind,
-        #[serde(default = "default_alpha")]
-        alpha: f64,
-        #[serde(default = "default_chi")]
-        chi: f64,
-        #[serde(default = "default_xi")]
-        xi: f64,
-        #[serde(default = "default_power")]
-        power: f64,
+        #[serde(flatten)]
+        activation: FilePresetActivation,
         #[serde(default)]
         perturbation: Option<ReferencePerturbation>,
     },
@@ -609,6 +558,53 @@ struct FileActivation {
     /// Half-width of the sign-power's linear zone.
     #[serde(default = "default_sign_smoothing")]
     smoothing: f64,
+}
+
+/// The activation of the presets that take one (`vp-rnn-pf`, `fp-cdnn`, `vp-cdnn`) as their
+/// files write it: the power-sigmoids' four parameters beside the kind (default linear), no
+/// sign-power parameters, flattened into each of their variants of [`FileSolverSpec`].
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+struct FilePresetActivation {
+    #[serde(default)]
+    activation: ActivationKind,
+    /// Power-sigmoid alpha (zhong2021 eq. 2.29).
+    #[serde(default = "default_alpha")]
+    alpha: f64,
+    /// Power-sigmoid chi (zhong2021 eq. 2.29).
+    #[serde(default = "default_chi")]
+    chi: f64,
+    /// The group's power-sigmoid xi.
+    #[serde(default = "default_xi")]
+    xi: f64,
+    /// The group's power-sigmoid p.
+    #[serde(default = "default_power")]
+    power: f64,
+}
+
+impl From<FilePresetActivation> for ActivationSpec {
+    fn from(f: FilePresetActivation) -> Self {
+        ActivationSpec {
+            alpha: f.alpha,
+            chi: f.chi,
+            xi: f.xi,
+            power: f.power,
+            ..ActivationSpec::of(f.activation)
+        }
+    }
+}
+
+/// The preset's file form keeps the four parameters; the sign-power's, which a preset's file
+/// cannot set, are their defaults.
+impl From<ActivationSpec> for FilePresetActivation {
+    fn from(a: ActivationSpec) -> Self {
+        FilePresetActivation {
+            activation: a.kind,
+            alpha: a.alpha,
+            chi: a.chi,
+            xi: a.xi,
+            power: a.power,
+        }
+    }
 }
 
 impl From<FileActivation> for ActivationSpec {
@@ -1063,7 +1059,7 @@ mod tests {
     }
 
     #[test]
-    fn the_vocabularies_write_their_activation_inline_and_refuse_a_misspelt_field() {
+    fn flattened_activations_are_written_inline_and_a_misspelt_field_is_refused() {
         let zeroing = "solver = { kind = \"zeroing\", gain = { law = \"power\", gamma = 1.0, p = 2.0 }, activation = \"sign-bi-power\", exponent = 0.5, nu = 3.0 }";
         let spec = parse(zeroing).unwrap();
         let SolverSpec::Zeroing { activation, nu, .. } = &spec else {
@@ -1132,6 +1128,11 @@ mod tests {
                 EVERY_KIND[9].replace("gain =", "sigma = 1.0, gain ="),
                 "sigma",
             ),
+            (
+                EVERY_KIND[3].replace("gamma", "exponent = 0.5, gamma"),
+                "exponent",
+            ),
+            (EVERY_KIND[2].replace("chi", "chii"), "chii"),
         ] {
             let e = parse(&bad).unwrap_err().to_string();
             assert!(
