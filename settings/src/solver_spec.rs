@@ -44,7 +44,9 @@
 //! stays an error that names it). The presets `vp-rnn-pf`, `fp-cdnn` and `vp-cdnn` take five (no
 //! `exponent`, no `smoothing`: a file may not give a preset a field it does not use), one struct
 //! of those flattened into the three; `group-znn`, whose default activation is its own, keeps
-//! its five inline.
+//! its five inline. The vocabularies' struct repeats the presets' five fields rather than
+//! flattening their struct into its own: under `deny_unknown_fields` serde refuses the keys of a
+//! struct flattened inside a flattened one as unknown.
 //!
 //! `group-znn` (the group's network, `docs/networks.md`): `gamma` (default 500), `nu`
 //! (default 2500), `activation`, `perturbation` (optional, as the CDNNs; only `a_s` and `task_duration`
