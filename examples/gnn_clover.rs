@@ -20,7 +20,7 @@
 //!
 //! `cargo run --release --example gnn_clover`
 
-use catalog::experiment::default_exact_integrator;
+use catalog::default_exact_integrator;
 use nalgebra::{DMatrix, DVector};
 use qp::{Qp, QpDims};
 use robots::{Jaco2, Robot};

@@ -19,7 +19,7 @@
 //!
 //! `cargo run --release --example user_robot`
 
-use catalog::experiment::default_exact_integrator;
+use catalog::default_exact_integrator;
 use nalgebra::{DVector, Vector3};
 use robots::{JointLimits, Robot};
 use schemes::build_scheme;

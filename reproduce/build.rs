@@ -1,4 +1,4 @@
-//! Embeds the code revision in the binary (`reproduce::revision::REVISION`, from the
+//! Embeds the code revision in the binary (`reproduce::REVISION`, from the
 //! environment variable `DRIFTBENCH_REVISION` set here): the commit of a clean checkout, with a
 //! hash of the sources when the tree is dirty, or the hash alone without git
 //! (`src/revision/source.rs` states the rules). Runs again whenever a source or the checked-out

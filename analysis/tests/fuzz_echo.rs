@@ -18,7 +18,7 @@ const MARKER: &str = "SECRET_MARKER_7f3a";
 const HANG: Duration = Duration::from_secs(10);
 
 fn repo() -> PathBuf {
-    catalog::root::from_current_dir().unwrap()
+    catalog::root_from_current_dir().unwrap()
 }
 
 fn scratch(name: &str) -> PathBuf {
@@ -116,7 +116,7 @@ proptest! {
         let path = dir.join("kong2019.toml");
         std::fs::write(&path, edited(&committed("experiments/kong2019.toml"), &edits)).unwrap();
         no_echo("an experiment file", || {
-            catalog::experiment::PaperFile::load(&path)
+            catalog::PaperFile::load(&path)
                 .map(drop)
                 .map_err(|e| e.to_string())
         })?;
@@ -200,7 +200,7 @@ fn the_seeds_read_unedited() {
     let dir = scratch("seeds");
     let path = dir.join("kong2019.toml");
     std::fs::write(&path, committed("experiments/kong2019.toml")).unwrap();
-    catalog::experiment::PaperFile::load(&path).unwrap();
+    catalog::PaperFile::load(&path).unwrap();
     let path = dir.join("t.csv");
     std::fs::write(&path, "t,theta_1,theta_2\n0,1,2\n0.5,1.5,2.5\n1,2,3\n").unwrap();
     inputs::trajectory::read(&path, 2, None).unwrap();

@@ -17,7 +17,7 @@ use std::time::{Duration, Instant};
 const HANG: Duration = Duration::from_secs(20);
 
 fn repo() -> PathBuf {
-    catalog::root::from_current_dir().unwrap()
+    catalog::root_from_current_dir().unwrap()
 }
 
 fn fixture(name: &str) -> Vec<u8> {

@@ -3,7 +3,7 @@
 
 #[test]
 fn the_committed_leaderboard_is_the_one_the_committed_runs_give() {
-    let root = catalog::root::from_current_dir().unwrap();
+    let root = catalog::root_from_current_dir().unwrap();
     let runs = store::read_runs(&root.join("results/runs.csv")).unwrap();
     let path = root.join("results/leaderboard.csv");
     let committed =

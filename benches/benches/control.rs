@@ -1,5 +1,5 @@
 //! One control tick of every method on every task of the control experiments' standard task
-//! set (`catalog::task_set::load`) at h = 1 ms: the QPs of the first [`TICKS`] ticks of the exact
+//! set (`catalog::load_task_set`) at h = 1 ms: the QPs of the first [`TICKS`] ticks of the exact
 //! discrete run are collected once, then each id times one `TickSolver::tick` on them in turn
 //! (the solver keeps its state from tick to tick, as in the loop: warm starts, network state).
 //!
@@ -13,10 +13,10 @@ use driftbench_benches::fast_config;
 use qp::Qp;
 use spec::slug;
 
-use control::control_loop::{run_loop, LoopSettings, Observer};
-use control::method::{Method, Numerical};
-use control::network_tick::Discretisation;
-use control::task::{load_tasks, with_task, TaskArm};
+use control::{
+    load_tasks, run_loop, with_task, Discretisation, LoopSettings, Method, Numerical, Observer,
+    TaskArm,
+};
 
 /// Ticks collected per task.
 const TICKS: usize = 200;
@@ -61,10 +61,10 @@ fn sample(arm: &TaskArm<'_>) -> Vec<(Qp, Qp)> {
 }
 
 fn per_tick(c: &mut Criterion) {
-    let root = catalog::root::from_current_dir().expect("run inside the workspace");
+    let root = catalog::root_from_current_dir().expect("run inside the workspace");
     let experiments = root.join("experiments");
-    let set = catalog::task_set::load(&experiments).expect("the standard task set");
-    let jobs: Vec<_> = reproduce::experiments::load_dir(&experiments)
+    let set = catalog::load_task_set(&experiments).expect("the standard task set");
+    let jobs: Vec<_> = reproduce::load_experiments(&experiments)
         .expect("the experiment files")
         .iter()
         .flat_map(|f| f.jobs())

@@ -16,19 +16,12 @@ use std::time::Instant;
 /// only: one run per value).
 fn sweep_file(n: usize) -> String {
     format!(
-        r#"paper = "kong2019"
-title = "sweep at scale"
-[[experiment]]
-id = "kong2019-scale"
-paper_output = "none"
-robot = "katana6m180"
-path = {{ name = "circle", duration = 9.0 }}
-theta0 = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.0471975511965976]
-[[experiment.variant]]
+        r#"{}[[experiment.variant]]
 label = "ZNN"
 scheme = {{ kind = "znn-rmp", mu = 1.0, k_p = 1.0 }}
 sweep = {{ "scheme.mu" = {{ from = 1, to = {n}, step = 1 }} }}
-"#
+"#,
+        fixtures::katana_circle("sweep at scale", "kong2019-scale", 9.0, "")
     )
 }
 
@@ -67,7 +60,7 @@ fn main() {
     for &n in sizes {
         let text = sweep_file(n);
         let file = timed("expand + validate (load)", n, || {
-            reproduce::experiments::from_toml(&text).expect("a valid sweep")
+            reproduce::experiments_from_toml(&text).expect("a valid sweep")
         });
         // What `list` and `list --shards` do: the runs made as they are taken, none held.
         timed("jobs + keys, streamed (list)", n, || {

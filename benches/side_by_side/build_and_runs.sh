@@ -19,7 +19,7 @@
 # Writes only into its temporary directory (removed on exit) and OUT_DIR (default
 # benches/results/side-by-side): build.csv (revision, commit, round, wall_s, user_s, sys_s,
 # load1) and, without --build-only, runs-<revision>.csv; then benches/side_by_side/compare.py
-# prints the ratios.
+# prints each build and the sim_s ratios (the build ratio is benches/REPORT.md's, from build.csv).
 #
 # Usage: benches/side_by_side/build_and_runs.sh [--out DIR] [--rounds N] [--build-only] BASELINE CANDIDATE
 set -euo pipefail

@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
-"""Ratios of the side-by-side measurement (build_and_runs.sh): the candidate's cold build over
-the baseline's (wall and CPU seconds; with several rounds, the medians over the rounds and each
-round's own ratio), and per run present in both, the candidate's sim_s over the baseline's
-(median and worst), runs matched by paper, experiment, variant and solver (skipped, and said so,
-when the measurement was --build-only)."""
+"""The side-by-side measurement (build_and_runs.sh): each cold build as measured (wall and CPU
+seconds, the load before it), and per run present in both, the candidate's sim_s over the
+baseline's (median and worst), runs matched by paper, experiment, variant and solver (skipped,
+and said so, when the measurement was --build-only). The build ratio and its verdict are not
+computed here: benches/REPORT.md has them ("The cold build against f5570fd", from build.csv;
+`cargo run --release -p driftbench-benches --bin telemetry`)."""
 import csv, statistics, sys
 from pathlib import Path
 
@@ -19,12 +20,8 @@ for rev, builds in ((base, b), (cand, c)):
     each = "; ".join(f"round {r.get('round', '1')}: {wall(r):.0f} s wall, {cpu(r):.0f} CPU s "
                      f"(load {r['load1']})" for r in builds)
     print(f"cold build {rev}: {each}")
-mw = lambda rs: statistics.median(wall(r) for r in rs)
-mc = lambda rs: statistics.median(cpu(r) for r in rs)
-print(f"build ratio (medians over {len(b)} and {len(c)} builds): wall {mw(c) / mw(b):.3f}, "
-      f"CPU {mc(c) / mc(b):.3f}")
-for rb, rc in zip(b, c):
-    print(f"  round {rb.get('round', '1')}: wall {wall(rc) / wall(rb):.3f}, CPU {cpu(rc) / cpu(rb):.3f}")
+print("build ratio: benches/REPORT.md, \"The cold build against f5570fd\" "
+      "(cargo run --release -p driftbench-benches --bin telemetry)")
 
 def runs(rev):
     key = lambda r: (r["paper"], r["experiment"], r.get("variant_id", ""), r.get("solver_id", ""))

@@ -29,7 +29,7 @@ use std::time::Duration;
 
 use criterion::Criterion;
 use nalgebra::DVector;
-use reproduce::experiments::load_dir;
+use reproduce::load_experiments;
 use robots::{Dynamics, Jaco2, Katana6m180, Robot};
 use schemes::build_scheme;
 use schemes::paths::{build_path, Path};
@@ -151,10 +151,10 @@ impl RepresentativeQp {
 /// Every job of every file in `experiments/` (panics on an unreadable file: the reproduction's
 /// own tests report those).
 pub fn experiment_jobs() -> Vec<RunSpec> {
-    let dir = catalog::root::from_current_dir()
+    let dir = catalog::root_from_current_dir()
         .unwrap()
         .join("experiments");
-    load_dir(&dir)
+    load_experiments(&dir)
         .unwrap_or_else(|e| panic!("loading {}: {e}", dir.display()))
         .iter()
         .flat_map(|f| f.jobs())
@@ -227,7 +227,7 @@ pub const CASES_FILE: &str = "benches/cases.toml";
 /// The cases of [`CASES_FILE`] (panics with the file's name when it is missing or malformed:
 /// benches have no user to report to).
 pub fn bench_cases() -> BenchCases {
-    let path = catalog::root::from_current_dir().unwrap().join(CASES_FILE);
+    let path = catalog::root_from_current_dir().unwrap().join(CASES_FILE);
     let text = std::fs::read_to_string(&path)
         .unwrap_or_else(|e| panic!("reading {}: {e}", path.display()));
     toml::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()))

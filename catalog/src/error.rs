@@ -22,7 +22,7 @@ use std::path::PathBuf;
 /// source line (the input reader's, crate `inputs`).
 pub use inputs::TomlError;
 
-/// Why a `sweep` of an experiment file does not expand (see [`crate::sweep`]); each variant
+/// Why a `sweep` of an experiment file does not expand (the sweep grammar, `catalog/src/sweep.rs`); each variant
 /// names the field, and [`SweepError::In`] the experiment and variant.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum SweepError {
@@ -512,7 +512,7 @@ pub enum ExperimentFileError {
 }
 
 /// Why the control experiments' standard task set (`experiments/control/tasks.toml`,
-/// [`crate::task_set`]) cannot be read; each names the file (`path`), and a budget field its
+/// [`crate::load_task_set`]) cannot be read; each names the file (`path`), and a budget field its
 /// valid values.
 #[derive(Debug, thiserror::Error)]
 pub enum TaskSetError {

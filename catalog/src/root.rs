@@ -18,7 +18,7 @@ pub struct RootNotFound {
 }
 
 /// The nearest directory at or above `start` that has an `experiments/` folder.
-pub fn find(start: &Path) -> Result<PathBuf, RootNotFound> {
+pub fn find_root(start: &Path) -> Result<PathBuf, RootNotFound> {
     start
         .ancestors()
         .find(|dir| dir.join("experiments").is_dir())
@@ -28,13 +28,13 @@ pub fn find(start: &Path) -> Result<PathBuf, RootNotFound> {
         })
 }
 
-/// [`find`] from the process's working directory (tests run in their crate's directory, inside
+/// [`find_root`] from the process's working directory (tests run in their crate's directory, inside
 /// the workspace, so they find the workspace root).
-pub fn from_current_dir() -> Result<PathBuf, RootNotFound> {
+pub fn root_from_current_dir() -> Result<PathBuf, RootNotFound> {
     let cwd = std::env::current_dir().map_err(|_| RootNotFound {
         start: PathBuf::from("."),
     })?;
-    find(&cwd)
+    find_root(&cwd)
 }
 
 #[cfg(test)]
@@ -46,12 +46,12 @@ mod tests {
         let base = std::env::temp_dir().join(format!("driftbench-root-{}", std::process::id()));
         let deep = base.join("experiments").join("a").join("b");
         std::fs::create_dir_all(&deep).unwrap();
-        assert_eq!(find(&deep).unwrap(), base);
-        assert_eq!(find(&base).unwrap(), base);
+        assert_eq!(find_root(&deep).unwrap(), base);
+        assert_eq!(find_root(&base).unwrap(), base);
         let outside = std::env::temp_dir().join(format!("driftbench-none-{}", std::process::id()));
         std::fs::create_dir_all(&outside).unwrap();
         if outside.ancestors().all(|d| !d.join("experiments").is_dir()) {
-            let e = find(&outside).unwrap_err().to_string();
+            let e = find_root(&outside).unwrap_err().to_string();
             assert!(e.contains("--root") && e.contains("experiments/"), "{e}");
         }
         std::fs::remove_dir_all(&base).unwrap();

@@ -130,7 +130,7 @@ impl KeptTraces {
 
 /// Most variants one variant may expand into (a typo in a range should not eat the memory),
 /// and most the sweeps of a whole experiments directory may expand into together (twenty
-/// variants of 999,999 each must not either): [`Sweeps::expand_into`] takes what is left of it.
+/// variants of 999,999 each must not either): the expansion of a file's sweeps takes what is left of it.
 pub const MAX_EXPANSION: usize = 1_000_000;
 
 /// Whether any variant of the parsed file gives a `sweep`.
@@ -292,8 +292,10 @@ struct Axis {
 
 /// Expands one variant table (with its `sweep`) into the variants of the product (at most
 /// [`MAX_EXPANSION`]). Errors start with the field (`field `sweep` key `...``), the caller
-/// prefixes experiment and variant.
-pub fn expand_variant(variant: &Table) -> Result<Vec<Table>, SweepError> {
+/// prefixes experiment and variant. The tests' view of one variant; a file's variants expand
+/// through [`Sweeps::expand_into`].
+#[cfg(test)]
+fn expand_variant(variant: &Table) -> Result<Vec<Table>, SweepError> {
     if !variant.contains_key("sweep") {
         return Ok(vec![variant.clone()]);
     }
@@ -1127,22 +1129,15 @@ mod trace_tests {
     /// A sweep of three variants of two runs each (exact column and one network), with `traces`.
     fn file(traces: &str) -> String {
         format!(
-            r#"paper = "kong2019"
-title = "t"
-[[experiment]]
-id = "kong2019-t"
-paper_output = "-"
-robot = "katana6m180"
-path = {{ name = "circle", duration = 1.0 }}
-theta0 = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.0471975511965976]
-[[experiment.variant]]
+            r#"{}[[experiment.variant]]
 id = "znn"
 label = "ZNN"
 scheme = {{ kind = "znn-rmp", k_p = 1.0 }}
 solvers = [{{ kind = "znn", gamma = 1.0 }}]
 {traces}
 sweep = {{ "scheme.mu" = [0.5, 1, 2] }}
-"#
+"#,
+            fixtures::katana_circle("t", "kong2019-t", 1.0, "")
         )
     }
 

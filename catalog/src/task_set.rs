@@ -69,7 +69,7 @@ impl BudgetFile {
 /// (`inputs::Kind::TaskSet`: a regular file inside `experiments`, at most 1 MiB, never quoted
 /// in an error): every paper's scheme once, in the file's order, and the budget of their runs.
 /// A project without the file has no control experiments ([`TaskSetError::Missing`]).
-pub fn load(experiments: &Path) -> Result<TaskSet, TaskSetError> {
+pub fn load_task_set(experiments: &Path) -> Result<TaskSet, TaskSetError> {
     let path = experiments.join(TASK_SET_FILE);
     let shown = path.display().to_string();
     let origin = inputs::Origin::Under(experiments);
@@ -94,13 +94,10 @@ pub fn load(experiments: &Path) -> Result<TaskSet, TaskSetError> {
 #[cfg(all(test, unix))]
 mod tests {
     use super::*;
+    use inputs::HOSTILE_MARKER;
     use std::path::PathBuf;
-    use std::time::Duration;
 
-    /// The stand-in for a secret a hostile file would hold.
-    const MARKER: &str = "SECRET_MARKER_c0n7";
-
-    /// A scratch `experiments/` (with `control/`) beside an `outside/secret`.
+    /// A scratch `experiments/` (with `control/`) and the directory that holds it.
     fn scratch(tag: &str) -> (PathBuf, PathBuf) {
         let base = std::env::temp_dir().join(format!(
             "driftbench-control-tasks-{tag}-{}",
@@ -108,28 +105,13 @@ mod tests {
         ));
         let _ = std::fs::remove_dir_all(&base);
         std::fs::create_dir_all(base.join("experiments/control")).unwrap();
-        std::fs::create_dir_all(base.join("outside")).unwrap();
-        std::fs::write(base.join("outside/secret"), format!("{MARKER}\n")).unwrap();
         (base.join("experiments"), base)
-    }
-
-    /// The message of [`load`]'s refusal, called in a thread: the test fails if
-    /// it has not returned within 5 s or read the file.
-    fn refusal(experiments: &std::path::Path) -> String {
-        let dir = experiments.to_path_buf();
-        let (tx, rx) = std::sync::mpsc::channel();
-        std::thread::spawn(move || {
-            let _ = tx.send(load(&dir).err().map(|e| e.to_string()));
-        });
-        rx.recv_timeout(Duration::from_secs(5))
-            .expect("the task set was read or refused within 5 s (a FIFO must not block)")
-            .expect("the task set is refused")
     }
 
     #[test]
     fn the_committed_task_set_reads() {
-        let experiments = crate::root::from_current_dir().unwrap().join("experiments");
-        let set = load(&experiments).unwrap();
+        let experiments = crate::root_from_current_dir().unwrap().join("experiments");
+        let set = load_task_set(&experiments).unwrap();
         assert!(set.tasks.len() >= 4, "{set:?}");
         assert_eq!(set.budget.h, MAIN_H);
     }
@@ -146,7 +128,7 @@ mod tests {
             )
         };
         std::fs::write(&file, budget("0.5, 2.0", 3, 5, 2)).unwrap();
-        let set = load(&experiments).unwrap();
+        let set = load_task_set(&experiments).unwrap();
         assert_eq!(set.budget.sweep, vec![0.5e-3, 2e-3]);
         assert_eq!((set.budget.cycles, set.budget.check_ticks), (3, 5));
         assert_eq!(set.budget.check_steps_factor, 2);
@@ -157,7 +139,7 @@ mod tests {
             (budget("0.5", 3, 5, 0), "check_steps_factor"),
         ] {
             std::fs::write(&file, &text).unwrap();
-            let e = load(&experiments).unwrap_err();
+            let e = load_task_set(&experiments).unwrap_err();
             assert!(
                 matches!(&e, TaskSetError::Budget { field: f, .. } if *f == field),
                 "{e:?}"
@@ -169,7 +151,7 @@ mod tests {
         }
         // A task set without its budget is refused too.
         std::fs::write(&file, task).unwrap();
-        let e = load(&experiments).unwrap_err();
+        let e = load_task_set(&experiments).unwrap_err();
         assert!(e.to_string().contains("budget"), "{e}");
         std::fs::remove_dir_all(&base).unwrap();
     }
@@ -177,50 +159,21 @@ mod tests {
     #[test]
     fn a_hostile_task_set_is_refused_without_its_content() {
         let (experiments, base) = scratch("hostile");
-        let file = experiments.join(TASK_SET_FILE);
         // Missing: no control experiments.
-        let e = load(&experiments).unwrap_err();
+        let e = load_task_set(&experiments).unwrap_err();
         assert!(matches!(e, TaskSetError::Missing(_)), "{e:?}");
-        // A symbolic link out of the experiments directory (to a secret, to the environment).
-        for target in [
-            base.join("outside/secret"),
-            PathBuf::from("/proc/self/environ"),
-        ] {
-            std::os::unix::fs::symlink(&target, &file).unwrap();
-            let e = refusal(&experiments);
-            assert!(e.contains("leads outside") && !e.contains(MARKER), "{e}");
-            std::fs::remove_file(&file).unwrap();
-        }
-        // A FIFO: refused at once, not waited on.
-        let made = std::process::Command::new("mkfifo")
-            .arg(&file)
-            .status()
-            .unwrap();
-        assert!(made.success());
-        let e = refusal(&experiments);
-        assert!(e.contains("a FIFO, not a regular file"), "{e}");
-        std::fs::remove_file(&file).unwrap();
-        // Over its cap of 1 MiB: refused before it is parsed.
-        let mut big = "[[task]]\nexperiment = \"e\"\nvariant = \"v\"\n".to_string();
-        big.push_str(&format!("# {MARKER}\n").repeat((1 << 20) / 20));
-        std::fs::write(&file, &big).unwrap();
-        let e = refusal(&experiments);
-        assert!(
-            e.contains("larger than its cap") && !e.contains(MARKER),
-            "{e}"
+        let dir = experiments.clone();
+        inputs::assert_refuses_hostile_files(
+            &experiments.join(TASK_SET_FILE),
+            inputs::Kind::TaskSet,
+            "[[task]]\nexperiment = \"e\"\nvariant = \"v\"\n[budget]\nsweep_ms = [0.5]\n\
+             cycles = 3\ncheck_ticks = 5\ncheck_steps_factor = 2\n",
+            // An invalid id is named, as the offending value; the lines around it are not.
+            &[format!(
+                "# {HOSTILE_MARKER}\n[[task]]\nexperiment = \"e\"\nvariant = \"Not-A-Slug\"\n"
+            )],
+            move || load_task_set(&dir).err().map(|e| e.to_string()),
         );
-        // TOML errors give the line and column, never the file's lines (an invalid id is
-        // named, as the offending value; the lines around it are not).
-        for text in [
-            format!("[[task]]\nexperiment = \"e\"\nvariant = \"v\"\n# {MARKER}\nnot toml\n"),
-            format!("[[task]]\nexperiment = \"e\" {MARKER}\n"),
-            format!("# {MARKER}\n[[task]]\nexperiment = \"e\"\nvariant = \"Not-A-Slug\"\n"),
-            format!("[[task]]\nexperiment = \"e\"\n\"{MARKER}\n"),
-        ] {
-            std::fs::write(&file, &text).unwrap();
-            let e = refusal(&experiments);
-            assert!(!e.contains(MARKER) && e.contains("line "), "{text:?}: {e}");
-        }
         std::fs::remove_dir_all(&base).unwrap();
     }
 }

@@ -22,7 +22,6 @@
 //! (the discretised network is unstable at this h): it stops there.
 
 use crate::arm::advance;
-use crate::error::ControlError;
 use crate::tick::TickSolver;
 use nalgebra::DVector;
 use qp::QpDotScratch;
@@ -108,7 +107,7 @@ pub struct LoopOutcome {
     pub rms_track_err: f64,
     pub max_dx: f64,
     pub rms_dx: f64,
-    /// max |x - x*| over the ticks at t >= [`SETTLE`].
+    /// max |x - x*| over the ticks at t >= `SETTLE` (module `control_loop`).
     pub max_dx_settled: f64,
     /// |theta(c T) - theta_0|_2 after each completed cycle c = 1, 2, ...
     pub drift: Vec<f64>,
@@ -407,13 +406,5 @@ impl Tally {
             out.products_max = Some(self.max_products);
         }
         self.out
-    }
-}
-
-/// A failed setup as a [`ControlError`] for the task `task`.
-pub fn setup_error(task: &str, message: impl ToString) -> ControlError {
-    ControlError::Setup {
-        task: task.to_string(),
-        message: message.to_string(),
     }
 }

@@ -4,15 +4,15 @@
 //! variable-step ODE solver, as the papers simulate. A robot runs its redundancy resolution as a
 //! discrete loop at a fixed rate and repeats its task. Here:
 //!
-//! - [`control_loop`]: a scheme run at a fixed control period h (default 1 ms), the command
+//! - [`run_loop`] (module `control_loop`): a scheme run at a fixed control period h (default 1 ms), the command
 //!   held over each tick and the arm integrated exactly between ticks (`arm`), with the
-//!   per-tick solver ([`method`], called through one interface: [`tick`]) either a network
-//!   stepped in discrete time ([`network_tick`]: forward Euler; for the zeroing networks also
+//!   per-tick solver (a [`Method`], called through one interface: [`TickSolver`]) either a
+//!   network stepped in discrete time ([`Discretisation`]: forward Euler; for the zeroing networks also
 //!   the Taylor-type discrete-time ZNN) or any QP solver of the one seam (`qp::QpSolver`, from
 //!   the registry: E47, 94LVI, the hot-started active set, Clarabel, OSQP, or one registered
 //!   from outside), a tick solver with no adapter; latency per tick (`latency`),
 //!   tracking error, |x - x*| and drift;
-//! - [`stability`]: each network's largest stable step, from the spectrum of its Jacobian
+//! - `stability`: each network's largest stable step, from the spectrum of its Jacobian
 //!   (forward Euler is stable iff |1 + s lambda| <= 1 for every eigenvalue lambda), beside the
 //!   papers' gains;
 //! - zhong2021's claim that the networks are more efficient than E47 and 94LVI: its check runs,
@@ -24,24 +24,29 @@
 //!   `results/cycles.csv` (the rows: [`records::control`]).
 //!
 //! The standard task set and the budget of its runs are declared in
-//! `experiments/control/tasks.toml`; the orchestrator reads it (`catalog::task_set`) and hands
+//! `experiments/control/tasks.toml`; the orchestrator reads it (`catalog::load_task_set`) and hands
 //! it over as data (`spec::TaskSet`), with every run of the experiment files: this
 //! crate reads no file.
 
-// The modules used only inside the crate; what other crates use is re-exported below or lives
-// in the public modules.
+// Every module is private; what other crates (the orchestrator, the benches) and the tests use
+// is re-exported below.
 mod arm;
 mod continuous;
-pub mod control_loop;
+mod control_loop;
 mod error;
 mod latency;
-pub mod method;
-pub mod network_tick;
+mod method;
+mod network_tick;
 mod reproduce;
-pub mod stability;
-pub mod task;
-pub mod tick;
+mod stability;
+mod task;
+mod tick;
 mod trend;
 
+pub use control_loop::{run_loop, LoopOutcome, LoopSettings, Observer, Status as LoopStatus};
 pub use error::ControlError;
+pub use method::{Method, Numerical};
+pub use network_tick::Discretisation;
 pub use reproduce::{reproduce, Summary};
+pub use task::{load_tasks, with_task, Task, TaskArm};
+pub use tick::TickSolver;

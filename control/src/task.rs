@@ -1,6 +1,6 @@
 //! The tasks of the control experiments: the standard task set (`spec::TaskSet`: one
 //! run of each paper's scheme by experiment and variant ids, and the budget of their runs, which
-//! the orchestrator reads from `experiments/control/tasks.toml` with `catalog::task_set`)
+//! the orchestrator reads from `experiments/control/tasks.toml` with `catalog::load_task_set`)
 //! resolved against the experiment files' runs (robot, closed path, theta0, scheme and the
 //! paper's networks, [`load_tasks`]), and the way to build a task's arm, path and scheme
 //! ([`with_task`]). This crate reads no file.

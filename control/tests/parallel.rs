@@ -24,9 +24,9 @@ fn scratch(name: &str) -> PathBuf {
 /// the claim's check runs without their latencies (wall-clock).
 fn run_on(threads: usize, experiments: &Path) -> (PathBuf, Vec<ClaimCheck>) {
     let out = scratch(&format!("out-{threads}"));
-    let mut set = catalog::task_set::load(experiments).unwrap();
+    let mut set = catalog::load_task_set(experiments).unwrap();
     set.budget.h = 1e-2;
-    let jobs: Vec<_> = catalog::experiment::load_dir(experiments)
+    let jobs: Vec<_> = catalog::load_dir(experiments)
         .unwrap()
         .iter()
         .flat_map(|f| f.jobs())
@@ -72,7 +72,7 @@ fn two_threads_give_the_rows_of_one() {
         experiments.join("kong2019.toml"),
     )
     .unwrap();
-    let tasks = experiments.join(catalog::task_set::TASK_SET_FILE);
+    let tasks = experiments.join(catalog::TASK_SET_FILE);
     std::fs::create_dir_all(tasks.parent().unwrap()).unwrap();
     std::fs::write(
         &tasks,
@@ -85,7 +85,7 @@ fn two_threads_give_the_rows_of_one() {
     let rows = control_rows(&one);
     // Two tasks, each: every numerical method of this build (OSQP only with the `osqp`
     // feature) and 2 network forms at h, 3 methods swept.
-    let numerical = control::method::Numerical::all().len();
+    let numerical = control::Numerical::all().len();
     assert_eq!(rows.len(), 2 * (numerical + 2 + 3), "{rows:#?}");
     assert_eq!(rows, control_rows(&two));
     assert_eq!(checks_one, checks_two);

@@ -3,9 +3,7 @@
 //! control loop as a `Method::Numerical` and gives what the built-in Clarabel gives, tick for
 //! tick.
 
-use control::control_loop::{run_loop, LoopOutcome, LoopSettings};
-use control::method::{Method, Numerical};
-use control::task::{load_tasks, with_task};
+use control::{load_tasks, run_loop, with_task, LoopOutcome, LoopSettings, Method, Numerical};
 use settings::qp_solver::{QpSolverInfo, QpSolverSettings};
 use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -16,8 +14,8 @@ static BUILT: AtomicUsize = AtomicUsize::new(0);
 /// 300 ticks of the first standard task with `method`.
 fn run(method: &Method) -> LoopOutcome {
     let experiments = Path::new(env!("CARGO_MANIFEST_DIR")).join("../experiments");
-    let set = catalog::task_set::load(&experiments).unwrap();
-    let jobs: Vec<_> = catalog::experiment::load_dir(&experiments)
+    let set = catalog::load_task_set(&experiments).unwrap();
+    let jobs: Vec<_> = catalog::load_dir(&experiments)
         .unwrap()
         .iter()
         .flat_map(|f| f.jobs())

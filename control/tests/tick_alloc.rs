@@ -4,8 +4,7 @@
 //! (crate `alloc-count`). Clarabel is left out: it allocates per solve by design.
 
 use alloc_count::count;
-use control::method::{Method, Numerical};
-use control::network_tick::Discretisation;
+use control::{Discretisation, Method, Numerical};
 use settings::SolverSpec;
 use solvers::{random_qp, QpShape};
 

@@ -164,8 +164,8 @@
 //! store, inputs) are not re-exported whole: the command line (`reproduce`) and the
 //! report are built on them, and what a user of the library needs is named here.
 
-use catalog::experiment::PaperFile;
-use reproduce::experiments::load_dir;
+use catalog::PaperFile;
+use reproduce::load_experiments;
 use spec::ids::PaperId;
 use spec::RunSpec;
 use std::path::{Path, PathBuf};
@@ -177,10 +177,10 @@ pub use store::read_runs;
 pub enum Error {
     /// No project (a directory with `experiments/`) above the current directory.
     #[error(transparent)]
-    Root(#[from] catalog::root::RootNotFound),
+    Root(#[from] catalog::RootNotFound),
     /// An experiment file did not load.
     #[error(transparent)]
-    Experiments(#[from] catalog::error::ExperimentFileError),
+    Experiments(#[from] catalog::ExperimentFileError),
     /// No experiment file belongs to this paper.
     #[error("no experiment file of paper {paper} in experiments/ (the papers: {known})")]
     UnknownPaper {
@@ -207,13 +207,13 @@ pub enum Error {
 /// The project root above the current directory: the directory holding `experiments/`,
 /// `results/` and `report/`.
 pub fn project_root() -> Result<PathBuf, Error> {
-    Ok(catalog::root::from_current_dir()?)
+    Ok(catalog::root_from_current_dir()?)
 }
 
 /// Every run (job) of the experiment files in `root/experiments/`, each file checked as the
 /// command line checks it before anything runs: read and validated as data by crate
 /// `catalog`, then every run built by the engine's setup, a failure placed at its field (the
-/// command line's own loader, `reproduce::experiments::load_dir`). The papers' own
+/// command line's own loader, `reproduce::load_experiments`). The papers' own
 /// robot files, `root/papers/<paper>/robots/*.toml`, are registered first.
 pub fn jobs(root: &Path) -> Result<Vec<RunSpec>, Error> {
     Ok(files(root)?.iter().flat_map(PaperFile::jobs).collect())
@@ -239,8 +239,8 @@ pub fn paper(root: &Path, paper: &PaperId) -> Result<Vec<RunSpec>, Error> {
 /// The experiment files of `root/experiments/`, each checked as the command line checks it,
 /// the papers' own robot files registered first.
 fn files(root: &Path) -> Result<Vec<PaperFile>, Error> {
-    catalog::robot_files::register_paper_robots(&root.join("papers"));
-    Ok(load_dir(&root.join("experiments"))?)
+    catalog::register_paper_robots(&root.join("papers"));
+    Ok(load_experiments(&root.join("experiments"))?)
 }
 
 /// The run of the experiment files keyed (experiment id, variant id, solver id), its

@@ -2,7 +2,7 @@
 //! attribution adds up joint by joint, switches switch exactly one ingredient, and setup
 //! inference recovers a known setup from a synthetic table made by the suite itself.
 
-use catalog::experiment::load_dir;
+use catalog::load_dir;
 use explain::inference::family::Family;
 use explain::inference::search::Target;
 use explain::inference::{evaluate, fit, Column, Setup, TableProblem};
@@ -16,7 +16,7 @@ use spec::RunSpec;
 use spec::SolverChoice;
 
 fn jobs() -> Vec<RunSpec> {
-    let root = catalog::root::from_current_dir().unwrap();
+    let root = catalog::root_from_current_dir().unwrap();
     load_dir(&root.join("experiments"))
         .unwrap()
         .iter()

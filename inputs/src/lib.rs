@@ -23,12 +23,18 @@
 //! cache) is filled by [`sync_private_dir`]: owner-only, never through a link, never one it
 //! did not create, deleting nothing it did not write.
 //!
+//! Every reader's tests hold it to these rules with one kit, [`assert_refuses_hostile_files`]
+//! (a symbolic link out, a FIFO, a file over its cap, TOML errors that must not quote the file;
+//! Unix only).
+//!
 //! What a build compiles into a binary is held to [`embed`] (a public module: the build scripts
 //! include it by path): regular files only, reached
 //! without a symbolic link, inside the checkout.
 
 pub mod embed;
 mod error;
+#[cfg(unix)]
+mod hostile;
 mod kind;
 mod private_dir;
 mod read;
@@ -36,6 +42,8 @@ mod toml_error;
 pub mod trajectory;
 
 pub use error::{InputError, Via};
+#[cfg(unix)]
+pub use hostile::{assert_refuses_hostile_files, HOSTILE_MARKER, HOSTILE_TIMEOUT};
 pub use kind::Kind;
 pub use private_dir::{sync as sync_private_dir, PrivateDirError};
 pub use read::{open, read, read_text, Capped, Origin};

@@ -170,7 +170,7 @@ const NOT_RESULTS: &[(&str, &str)] = &[
 ];
 
 fn deviations() -> String {
-    let root = catalog::root::from_current_dir().unwrap();
+    let root = catalog::root_from_current_dir().unwrap();
     std::fs::read_to_string(root.join("report").join("deviations.md")).expect("deviations.md")
 }
 
@@ -207,7 +207,7 @@ fn occurrences(doc: &str, passage: &str) -> Vec<std::ops::Range<usize>> {
 #[test]
 fn every_number_of_results_in_the_deviations_is_the_results() {
     let doc = deviations();
-    let root = catalog::root::from_current_dir().unwrap();
+    let root = catalog::root_from_current_dir().unwrap();
     let runs = Runs::new(read_runs(&root.join("results").join("runs.csv")).unwrap());
     for (passage, numbers) in STATED {
         assert!(

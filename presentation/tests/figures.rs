@@ -466,7 +466,7 @@ fn extreme_finite_values_in_a_trace_are_drawn_without_hanging() {
 /// with the PNG signature and a header of non-zero size, and decodes.
 #[test]
 fn every_committed_figure_has_its_png() {
-    let dir = catalog::root::from_current_dir()
+    let dir = catalog::root_from_current_dir()
         .unwrap()
         .join("report/figures");
     let (svgs, pngs) = (stems(&dir, "svg"), stems(&dir, "png"));
@@ -511,7 +511,7 @@ fn copy_tree(from: &Path, to: &Path) {
 /// a copy of `results/` in a scratch directory, so nothing in the repository is written.
 #[test]
 fn the_committed_figures_are_those_the_committed_results_give() {
-    let committed = catalog::root::from_current_dir().unwrap();
+    let committed = catalog::root_from_current_dir().unwrap();
     let root = scratch("committed");
     std::fs::create_dir_all(root.join("results")).unwrap();
     for file in ["runs.csv", "inference.csv"] {
@@ -543,7 +543,7 @@ fn the_committed_figures_are_those_the_committed_results_give() {
     );
     // The arm figures draw each run's robot, which may be a paper's robot file
     // (papers/<paper>/robots/): registered as `reproduce` registers them.
-    catalog::robot_files::register_paper_robots(&committed.join("papers"));
+    catalog::register_paper_robots(&committed.join("papers"));
     render_all(&root, &Default::default()).unwrap();
     let (ours, theirs) = (
         root.join("report/figures"),

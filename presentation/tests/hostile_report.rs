@@ -15,7 +15,7 @@ fn whole(inputs: &Inputs) -> String {
 const SCRIPT: &str = "<script>alert(1)</script>";
 
 fn hostile() -> (Inputs, String) {
-    let root = catalog::root::from_current_dir().unwrap();
+    let root = catalog::root_from_current_dir().unwrap();
     let clean = Inputs::load(&root, &root.join("papers")).expect("committed inputs load");
     let before = whole(&clean);
     let mut inputs = clean;

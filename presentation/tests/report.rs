@@ -16,7 +16,7 @@ use store::read_runs;
 const REGENERATE: &str = "regenerate with `cargo run --release -p reproduce -- report`";
 
 fn committed() -> Inputs {
-    let root = catalog::root::from_current_dir().unwrap();
+    let root = catalog::root_from_current_dir().unwrap();
     Inputs::load(&root, &root.join("papers")).expect("committed inputs load")
 }
 
@@ -36,7 +36,7 @@ fn whole(pages: &[Page]) -> String {
 
 #[test]
 fn renders_every_paper_and_experiment_from_the_committed_results() {
-    let root = catalog::root::from_current_dir().unwrap();
+    let root = catalog::root_from_current_dir().unwrap();
     let inputs = committed();
     let pages = pages(&inputs);
     let md = whole(&pages);
@@ -125,7 +125,7 @@ fn scratch_copy_of_the_inputs(committed: &Path) -> PathBuf {
 /// the committed files).
 #[test]
 fn the_committed_report_is_the_one_the_committed_results_give() {
-    let committed_root = catalog::root::from_current_dir().unwrap();
+    let committed_root = catalog::root_from_current_dir().unwrap();
     let scratch = scratch_copy_of_the_inputs(&committed_root);
     let inputs = Inputs::load(&scratch, &committed_root.join("papers")).expect("inputs load");
     let path = render(&scratch, &inputs).expect("report renders");
@@ -244,7 +244,7 @@ fn synthetic() -> Vec<RunRow> {
 
 /// jia2019's claims (`papers/jia2019/paper.toml`) on `rows`.
 fn verdicts(rows: Vec<RunRow>) -> Vec<(String, Verdict)> {
-    let root = catalog::root::from_current_dir().unwrap();
+    let root = catalog::root_from_current_dir().unwrap();
     let papers = analysis::papers::Papers::load(&root.join("papers")).unwrap();
     claims::evaluate("jia2019", &Runs::new(rows), &papers)
         .into_iter()
@@ -301,7 +301,7 @@ fn claims_pass_on_synthetic_rows_and_fail_when_a_number_changes() {
 #[test]
 fn a_claim_over_too_many_pairs_of_runs_is_not_applicable() {
     use analysis::claims::{Check, Selection, Test};
-    let root = catalog::root::from_current_dir().unwrap();
+    let root = catalog::root_from_current_dir().unwrap();
     let mut papers = analysis::papers::Papers::load(&root.join("papers")).unwrap();
     let every = Selection::parse("* / * / *").unwrap();
     let jia = papers
@@ -471,7 +471,7 @@ fn columns(line: &str) -> usize {
 fn no_table_of_any_page_is_wider_than_twelve_columns() {
     use presentation::report::markdown::MAX_COLUMNS;
     assert_eq!(MAX_COLUMNS, 12);
-    let root = catalog::root::from_current_dir().unwrap();
+    let root = catalog::root_from_current_dir().unwrap();
     let mut pages: Vec<(String, String)> = pages(&committed())
         .into_iter()
         .map(|p| (p.file, p.markdown))

@@ -17,7 +17,7 @@ pub struct NoSolver {
 pub enum TaskError {
     /// An experiment file is missing, unreadable or refused.
     #[error(transparent)]
-    File(#[from] catalog::error::ExperimentFileError),
+    File(#[from] catalog::ExperimentFileError),
     /// A task's scheme could not be built to read its QP's sizes.
     #[error("task \"{task}\": {source}")]
     Shape {

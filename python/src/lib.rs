@@ -136,7 +136,7 @@ fn data_root() -> PyResult<PathBuf> {
 /// the field.
 #[pyfunction]
 fn add_robots(path: PathBuf) -> PyResult<Vec<String>> {
-    guarded(|| catalog::robot_files::register_path(&path).map_err(lib_err))
+    guarded(|| catalog::register_path(&path).map_err(lib_err))
 }
 
 /// Every task of the experiment files (`<root>/experiments`; without `root`, the packaged
@@ -362,7 +362,7 @@ fn run_python_unnamed(
         }
         raised => raised,
     };
-    let mut row = run_row(&record, reproduce::revision::REVISION);
+    let mut row = run_row(&record, reproduce::REVISION);
     row.solver_id = python_solver_id(&name).map_err(lib_err)?;
     row.solver = name;
     row.solver_kind = spec::SolverKind::Python;
@@ -528,7 +528,7 @@ fn simulate<'py>(
         let (record, row, calls) = if builtin.is_some() {
             let record = run_job(&job);
             check_setup(&record)?;
-            let row = run_row(&record, reproduce::revision::REVISION);
+            let row = run_row(&record, reproduce::REVISION);
             (record, row, Callbacks::default())
         } else {
             let mut run = run_python(py, task, &job, network, wall_budget)?;
@@ -874,7 +874,7 @@ fn seal_into_results(file: &Path, root: &Path) -> Result<PathBuf, IntoResultsErr
     check_plain(file, &texts)?;
     let (results, _) = store::results_dir::ResultsDir::open(
         &root.join(store::results_dir::DIR),
-        reproduce::revision::REVISION,
+        reproduce::REVISION,
         store::Edits::Refuse,
     )?;
     results.tracked().write(Path::new(name), &bytes)?;
@@ -973,7 +973,7 @@ fn score<'py>(
     out_dir: Option<PathBuf>,
 ) -> PyResult<Bound<'py, PyDict>> {
     guarded(|| {
-        let git_rev = reproduce::revision::REVISION;
+        let git_rev = reproduce::REVISION;
         let (record, row) = if let Ok(file) = trajectory.extract::<PathBuf>() {
             score_file(task, &file, out_dir.as_deref())?
         } else {
@@ -1002,10 +1002,10 @@ fn score<'py>(
 /// [`score`] of a trajectory file: with `out_dir`, as `reproduce score` scores it (the row,
 /// trace and figure written there); without, scored in memory.
 fn score_file(task: &PyTask, file: &Path, out_dir: Option<&Path>) -> PyResult<(RunRecord, RunRow)> {
-    let git_rev = reproduce::revision::REVISION;
+    let git_rev = reproduce::REVISION;
     match out_dir {
         Some(out) => {
-            let s = reproduce::score::score_file(
+            let s = reproduce::score_file(
                 &task.job,
                 file,
                 None,

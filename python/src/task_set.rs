@@ -6,7 +6,7 @@
 use crate::error::{NoSolver, TaskError};
 use crate::network::PyQpDims;
 use pyo3::prelude::*;
-use reproduce::experiments::load_dir;
+use reproduce::load_experiments;
 use serde::Serialize;
 use simulation::qp_shape;
 use spec::Level;
@@ -191,8 +191,8 @@ impl PyTask {
 /// Every task of the experiment files under `root/experiments`, in file order (the papers' own
 /// robot files, `root/papers/<paper>/robots/*.toml`, registered first).
 pub fn load_tasks(root: &Path) -> Result<Vec<PyTask>, TaskError> {
-    catalog::robot_files::register_paper_robots(&root.join("papers"));
-    let files = load_dir(&root.join("experiments"))?;
+    catalog::register_paper_robots(&root.join("papers"));
+    let files = load_experiments(&root.join("experiments"))?;
     let mut tasks = Vec::new();
     for file in &files {
         let jobs = file.jobs();

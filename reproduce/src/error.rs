@@ -97,9 +97,9 @@ pub enum ReproduceError {
     #[error(transparent)]
     Baseline(#[from] BaselineError),
     #[error(transparent)]
-    Root(#[from] catalog::root::RootNotFound),
+    Root(#[from] catalog::RootNotFound),
     #[error(transparent)]
-    Experiments(#[from] catalog::error::ExperimentFileError),
+    Experiments(#[from] catalog::ExperimentFileError),
     #[error(transparent)]
     Shard(#[from] ShardError),
     #[error(transparent)]
@@ -128,9 +128,9 @@ pub enum ReproduceError {
     Score(#[from] ScoreError),
     #[error(transparent)]
     Control(#[from] control::ControlError),
-    /// The control experiments' standard task set cannot be read (`catalog::task_set`).
+    /// The control experiments' standard task set cannot be read (`catalog::load_task_set`).
     #[error(transparent)]
-    TaskSet(#[from] catalog::error::TaskSetError),
+    TaskSet(#[from] catalog::TaskSetError),
     #[error(transparent)]
     Timing(#[from] crate::timing::TimingError),
     #[error(transparent)]
@@ -224,7 +224,7 @@ fn report(e: &presentation::ReportError) -> Exit {
 #[derive(Debug, thiserror::Error)]
 pub enum ScoreError {
     #[error(transparent)]
-    Experiments(#[from] catalog::error::ExperimentFileError),
+    Experiments(#[from] catalog::ExperimentFileError),
     #[error(
         "no task \"{0}\" (a task is \"<experiment> / <variant>\", ids; `reproduce list` lists them)"
     )]

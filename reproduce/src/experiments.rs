@@ -3,18 +3,18 @@
 //! checked with the engine's setup (`simulation::run::check_job`: the robot, the path from
 //! f(theta_ref), the scheme and the network built as the run builds them, nothing integrated),
 //! after loading and before anything runs, and a failure is placed at the field at fault of
-//! the file that declares the run (`catalog::experiment::DeclaredRun::at_fault`): a file is
+//! the file that declares the run (`catalog::DeclaredRun::at_fault`): a file is
 //! rejected for exactly what would make one of its runs fail at t = 0.
 
-use catalog::error::{ExperimentError, ExperimentFileError};
-use catalog::experiment::PaperFile;
+use catalog::PaperFile;
+use catalog::{ExperimentError, ExperimentFileError};
 use simulation::check_job;
 use std::path::Path;
 
-/// Every experiment file of `dir` ([`catalog::experiment::load_dir`]), each of its runs
-/// checked ([`check`]); the error names the file.
+/// Every experiment file of `dir` ([`catalog::load_dir`]), each of its runs
+/// checked (`check`); the error names the file.
 pub fn load_dir(dir: &Path) -> Result<Vec<PaperFile>, ExperimentFileError> {
-    let files = catalog::experiment::load_dir(dir)?;
+    let files = catalog::load_dir(dir)?;
     for file in &files {
         check(file).map_err(|error| ExperimentFileError::Invalid {
             file: dir.join(&file.file_name),
@@ -25,7 +25,7 @@ pub fn load_dir(dir: &Path) -> Result<Vec<PaperFile>, ExperimentFileError> {
 }
 
 /// The experiment file of `text` ([`PaperFile::from_toml`]), each of its runs checked
-/// ([`check`]).
+/// (`check`).
 pub fn from_toml(text: &str) -> Result<PaperFile, ExperimentError> {
     let file = PaperFile::from_toml(text)?;
     check(&file)?;

@@ -1,49 +1,60 @@
 //! The logic of the `reproduce` binary: runs driftbench's experiments and writes `results/` and
 //! `report/`. The binary (`main.rs`) parses the command line ([`Cli`]) into the global options
 //! and a [`Mode`] with its options ([`options`]), calls [`run`](fn@run) and prints the
-//! [`ReproduceError`] it may return. A program may call [`run`](fn@run) with options it built
-//! itself: the library never sees the command line.
+//! [`ReproduceError`] it may return (its exit code: [`Exit`]). A program may call
+//! [`run`](fn@run) with options it built itself: the library never sees the command line.
 //!
-//! One module per mode: [`run`](mod@run) (the default, the gate against a [`baseline`], with its
-//! [`journal`] and its [`phases`] clock), [`shard`](mod@shard) (a shard in flat memory), [`report`], [`explanation`], [`inference`], [`merge`], [`list`] (and robots),
-//! [`cost`], [`score`] (a trajectory made elsewhere, also `driftbench.score` in Python); the
-//! task cards the report mode writes ([`task_card`]); beside them what the modes share: the
-//! options ([`options`]), the command line ([`cli`]), the project's directories
-//! ([`project`]), the experiment files with every run checked ([`experiments`]), the papers as
-//! data ([`papers`]), the selection of runs ([`select`]), the
-//! results directory ([`results`]), the summary printed ([`summary`]) and the code revision
-//! embedded at build time ([`revision`]).
+//! One module per mode, each private: `run` (the default, the gate against a baseline, with
+//! its journal and its [`phases`] clock), `shard` (a shard in flat memory), `report`,
+//! `explanation`, `inference`, `merge`, `list` (and robots), [`cost`], `score` (a trajectory
+//! made elsewhere, [`score_file`], also `driftbench.score` in Python); the task cards the report
+//! mode writes (`task_card`, [`task_cards`]); beside them what the modes share: the options
+//! ([`options`]), the command line (`cli`), the project's directories (`project`), the
+//! experiment files with every run checked ([`load_experiments`], [`experiments_from_toml`]),
+//! the papers as data (`papers`), the selection of runs (`select`), the results directory
+//! (`results`), the summary printed (`summary`) and the code revision embedded at build time
+//! ([`REVISION`]).
+//!
+//! Three modules are public, each a vocabulary of its own: [`options`] (what a program builds
+//! to call [`run`](fn@run)), [`cost`] (the cost harness, which the benches time) and [`phases`]
+//! (the phase table's schema, which the benches read); everything else other crates and the
+//! tests use is re-exported here.
 
-pub mod baseline;
-pub mod cli;
+mod baseline;
+mod cli;
 pub mod cost;
-pub mod error;
-pub mod experiments;
-pub mod explanation;
-pub mod inference;
-pub mod journal;
-pub mod list;
-pub mod merge;
+mod error;
+mod experiments;
+mod explanation;
+mod inference;
+mod journal;
+mod list;
+mod merge;
 pub mod options;
-pub mod papers;
+mod papers;
 pub mod phases;
-pub mod project;
-pub mod report;
-pub mod results;
-pub mod revision;
-pub mod run;
-pub mod score;
-pub mod select;
-pub mod shard;
-pub mod summary;
-pub mod task_card;
-pub mod timing;
+mod project;
+mod report;
+mod results;
+mod revision;
+mod run;
+mod score;
+mod select;
+mod shard;
+mod summary;
+mod task_card;
+mod timing;
 
 pub use cli::Cli;
-pub use error::ReproduceError;
+pub use error::{Exit, ReproduceError, ScoreError};
+pub use experiments::{from_toml as experiments_from_toml, load_dir as load_experiments};
 pub use options::{GlobalOptions, Mode};
+pub use revision::REVISION;
+pub use score::{score_file, Scored, Warning as ScoreWarning};
+pub use shard::CHUNK_VAR as SHARD_CHUNK_VAR;
+pub use task_card::{cards as task_cards, MAX_SWEEP_CARDS, TASKS as TASK_CARDS};
 
-use catalog::experiment::PaperFile;
+use catalog::PaperFile;
 use options::SelectionOptions;
 use project::{resolve_shard, set_threads, Project};
 use results::{experiment_files, Described};

@@ -4,7 +4,7 @@
 //! singular values of J at the stated pose).
 
 use crate::select::Kept;
-use catalog::experiment::PaperFile;
+use catalog::PaperFile;
 use std::fmt::Write as _;
 use std::io::Write;
 

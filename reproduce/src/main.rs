@@ -1,6 +1,6 @@
 //! `cargo run --release -p reproduce`: runs driftbench's experiments and writes `results/`.
 //! Wiring only: the logic is the library (`reproduce::run`); the exit code is the outcome's
-//! (`reproduce::error::Exit`, docs/reference/exit-codes.md).
+//! (`reproduce::Exit`, docs/reference/exit-codes.md).
 
 use reproduce::Cli;
 use std::process::ExitCode;

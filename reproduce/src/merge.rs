@@ -18,7 +18,7 @@ use crate::report::render_report_if_named;
 use crate::results::{open_results, Described};
 use crate::run::report_unexpected;
 use crate::select::{check_selection, selected, selection_files};
-use catalog::experiment::PaperFile;
+use catalog::PaperFile;
 use records::RunRow;
 use spec::RunKey;
 use std::collections::HashSet;

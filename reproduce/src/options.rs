@@ -1,5 +1,5 @@
 //! The options of every mode, one struct per mode ([`Mode`]), and the options every mode shares
-//! ([`GlobalOptions`]). They are what the library takes: the command line ([`crate::cli`])
+//! ([`GlobalOptions`]). They are what the library takes: the command line ([`crate::Cli`])
 //! parses into them, and a program calling the library fills them in itself.
 
 use clap::{Args, Subcommand};

@@ -7,7 +7,7 @@
 //! the checks before anything runs, the results directory opened and the journal resumed),
 //! `runs` (the selected runs, their summary and `runs.csv` with the traces), `explain` (the
 //! explanation layer), `control` (the control experiments), `timing` (the timing pass,
-//! [`crate::timing`]), `figures` and `report` (the report's pages, its task cards and the
+//! module `timing`), `figures` and `report` (the report's pages, its task cards and the
 //! leaderboard table). The phases follow one another without gaps: each one's time runs from
 //! the end of the one before, so the shares (`share_pct`, of the sum) add up to 100.
 //!

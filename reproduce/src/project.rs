@@ -35,9 +35,9 @@ impl Project {
     pub fn resolve(global: &GlobalOptions, shard: Option<Shard>) -> Result<Self, ReproduceError> {
         let root = match &global.root {
             Some(r) => r.clone(),
-            None => catalog::root::from_current_dir()?,
+            None => catalog::root_from_current_dir()?,
         };
-        catalog::robot_files::register_paper_robots(&root.join("papers"));
+        catalog::register_paper_robots(&root.join("papers"));
         Ok(Self::under(root, global, shard))
     }
 

@@ -4,7 +4,7 @@
 
 use crate::error::ReproduceError;
 use crate::project::Project;
-use catalog::experiment::PaperFile;
+use catalog::PaperFile;
 use records::{merge_runs, RunRow};
 use simulation::RunRecord;
 use spec::RunKey;

@@ -1,17 +1,19 @@
 //! The code revision the binary was built from ([`REVISION`]), embedded at build time by
-//! `build.rs` by the rules of [`source`]: it needs no git checkout at run time, so a binary in
+//! `build.rs` by the rules of `source` (the build script's module, compiled into the library
+//! for its tests alone): it needs no git checkout at run time, so a binary in
 //! a container image or a copied tree still knows it, and two different trees never share
 //! one. Rows, journals, shard manifests and result manifests carry it; resume and merge
 //! compare it.
 
-pub mod source;
+#[cfg(test)]
+mod source;
 
 /// The revision of the sources this binary was built from.
 pub const REVISION: &str = env!("DRIFTBENCH_REVISION");
 
 #[cfg(test)]
 mod tests {
-    use super::source::{revision, sources, sources_hash};
+    use super::source::{git_files, revision, sources, sources_hash};
     use super::REVISION;
     use std::path::Path;
     use std::process::Command;
@@ -58,16 +60,35 @@ mod tests {
         root
     }
 
-    #[test]
-    fn without_git_the_revision_is_the_hash_of_the_sources() {
-        let root = tree("nogit");
-        if Command::new("git")
+    /// Whether `root` lies inside a git checkout.
+    fn in_git(root: &Path) -> bool {
+        Command::new("git")
             .arg("-C")
-            .arg(&root)
+            .arg(root)
             .args(["rev-parse", "HEAD"])
             .output()
             .is_ok_and(|o| o.status.success())
-        {
+    }
+
+    #[test]
+    fn the_build_script_watches_head_in_a_checkout_and_nothing_without_git() {
+        let root = tree("git-files");
+        if !in_git(&root) {
+            assert_eq!(git_files(&root), Vec::<std::path::PathBuf>::new());
+        }
+        std::fs::remove_dir_all(&root).unwrap();
+        let workspace = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+        if in_git(&workspace) {
+            let files = git_files(&workspace);
+            assert!(files.iter().any(|p| p.ends_with("HEAD")), "{files:?}");
+            assert!(files.iter().all(|p| p.exists()), "{files:?}");
+        }
+    }
+
+    #[test]
+    fn without_git_the_revision_is_the_hash_of_the_sources() {
+        let root = tree("nogit");
+        if in_git(&root) {
             eprintln!("skipped: the temporary directory lies inside a git checkout");
             return;
         }

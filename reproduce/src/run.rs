@@ -147,7 +147,7 @@ fn fresh_control(
     std::fs::create_dir_all(&scratch)
         .map_err(store::IoError::at(&scratch, store::IoAction::Write))?;
     eprintln!("re-running the control experiments for the gate");
-    let ran = catalog::task_set::load(&project.experiments_dir)
+    let ran = catalog::load_task_set(&project.experiments_dir)
         .map_err(ReproduceError::from)
         .and_then(|set| {
             control::reproduce(&set, jobs, &scratch, |m| eprintln!("{m}"))
@@ -205,10 +205,10 @@ fn publish(
     }
     // The control experiments (control crate) with a whole, unselected reproduction.
     if plan.selection.is_whole() {
-        // The task set is the orchestrator's to read (catalog::task_set); the control crate
+        // The task set is the orchestrator's to read (catalog::load_task_set); the control crate
         // takes it as data. A project without one, or whose tasks are not among its runs,
         // has no control experiments.
-        let ran = catalog::task_set::load(&project.experiments_dir)
+        let ran = catalog::load_task_set(&project.experiments_dir)
             .map_err(ReproduceError::from)
             .and_then(|set| {
                 control::reproduce(&set, all.jobs(), &project.results_dir, |m| eprintln!("{m}"))
@@ -227,7 +227,7 @@ fn publish(
             }
             Err(
                 e @ (ReproduceError::Control(control::ControlError::UnknownTask(_))
-                | ReproduceError::TaskSet(catalog::error::TaskSetError::Missing(_))),
+                | ReproduceError::TaskSet(catalog::TaskSetError::Missing(_))),
             ) => {
                 eprintln!("control experiments skipped: {e}");
                 clock.skip(Phase::Control, e.to_string());

@@ -13,7 +13,7 @@ use crate::error::{ReproduceError, ScoreError};
 use crate::options::ScoreOptions;
 use crate::project::Project;
 use crate::summary::{emit, summary};
-use catalog::experiment::PaperFile;
+use catalog::PaperFile;
 use inputs::trajectory::read;
 use inputs::trajectory::Columns;
 use presentation::figures::run_figure;
@@ -140,7 +140,7 @@ pub fn find_task(experiments_dir: &Path, task: &TaskKey) -> Result<RunSpec, Scor
 /// Scores the trajectory file `file` (CSV, or a MAT-file: `inputs::trajectory::read`) on
 /// `task` (a MAT-file's `columns` when given) under the solver id `name` (a slug), and writes
 /// the row, trace and figure (SVG and PNG) under `out`: a directory of its own, never one this
-/// program seals ([`check_out`]), every path inside it checked (`store::owned_dir`: a
+/// program seals (`check_out`), every path inside it checked (`store::owned_dir`: a
 /// `traces/<experiment>` that is a symbolic link elsewhere is refused).
 pub fn score_file(
     task: &RunSpec,

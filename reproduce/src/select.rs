@@ -2,11 +2,11 @@
 //! narrow the runs the experiment files describe; a paper or experiment no file names is an
 //! error that lists the known ones. A shard K/N keeps, of the selected runs in their order,
 //! those whose index i (from 0) has i mod N = K - 1 (`store::shard`): [`Kept`] finds them by
-//! counting each variant's runs ([`catalog::experiment::Variant::run_count`]) and makes only
+//! counting each variant's runs ([`catalog::Variant::run_count`]) and makes only
 //! the variants that hold one, so a shard of a 10^6-run sweep makes its own runs alone.
 
 use crate::error::ReproduceError;
-use catalog::experiment::{Experiment, PaperFile, Variant};
+use catalog::{Experiment, PaperFile, Variant};
 use spec::{RunSpec, SolverChoice};
 use std::collections::HashSet;
 use store::shard::{Selection, Shard};

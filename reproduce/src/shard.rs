@@ -35,7 +35,7 @@ use store::KeySum;
 pub const CHUNK: usize = 4096;
 
 /// A test hook: with `DRIFTBENCH_SHARD_CHUNK=n` (a whole number, at least 1) in the
-/// environment a shard runs `n` runs at a time instead of [`CHUNK`], so that a test of a few
+/// environment a shard runs `n` runs at a time instead of `CHUNK`, so that a test of a few
 /// runs folds between chunks (`reproduce/tests/shards.rs` kills such a shard at every durable
 /// step). Any other value is ignored.
 pub const CHUNK_VAR: &str = "DRIFTBENCH_SHARD_CHUNK";

@@ -13,8 +13,8 @@
 //! nobody edited is removed). [`cards`] renders them in memory.
 
 use crate::experiments::load_dir;
-use catalog::error::ExperimentFileError;
-use catalog::experiment::{Experiment, Variant};
+use catalog::ExperimentFileError;
+use catalog::{Experiment, Variant};
 use presentation::task_card::{
     self as card, CardRun, Kinematics as CardKinematics, MountCard, PathCard, QpCard, RobotCard,
     RunSettings, SchemeCard, SchemeForm, StartCard, TaskCard,
@@ -29,8 +29,6 @@ use spec::SolverChoice;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use store::{Removal, TrackedDir, TrackedError};
-
-pub use presentation::task_card::INDEX;
 
 /// The cards' directory under `report/`.
 pub const TASKS: &str = "tasks";
@@ -61,7 +59,7 @@ pub const MAX_SWEEP_CARDS: usize = presentation::figures::sweep::MAX_RUN_FIGURES
 
 /// The variants of `e` that get a card, in file order: every variant that no sweep expanded,
 /// and of each sweep's variants (a variant whose runs begin the sweep's runs, and the variants
-/// that follow it with runs further along: catalog::sweep::KeptTraces::first_run) all of them
+/// that follow it with runs further along: catalog::KeptTraces::first_run) all of them
 /// up to [`MAX_SWEEP_CARDS`], else that many evenly spaced: the k-th of m at
 /// round(k (n - 1) / (m - 1)).
 fn carded(e: &Experiment) -> impl Iterator<Item = &Variant> {
@@ -88,7 +86,7 @@ fn carded(e: &Experiment) -> impl Iterator<Item = &Variant> {
 }
 
 /// The cards of the tasks of the experiment files in `experiments_dir` (every variant, each
-/// sweep's capped: `carded`): file name -> Markdown, the index ([`INDEX`]) included. Each
+/// sweep's capped: `carded`): file name -> Markdown, the index (`presentation::task_card::INDEX`) included. Each
 /// task's runs are made from its variant alone, so what is held is the cards.
 pub fn cards(experiments_dir: &Path) -> Result<BTreeMap<String, String>, TaskCardError> {
     let files = load_dir(experiments_dir)?;

@@ -111,7 +111,7 @@ fn runs_of_deleted_experiments_are_pruned() {
     )
     .unwrap();
     let committed = read_runs(
-        &catalog::root::from_current_dir()
+        &catalog::root_from_current_dir()
             .unwrap()
             .join("results/runs.csv"),
     )

@@ -8,8 +8,7 @@ use crate::common;
 
 use common::reproduce;
 use records::runs_csv;
-use reproduce::error::Exit;
-use reproduce::ReproduceError;
+use reproduce::{Exit, ReproduceError};
 use std::os::unix::ffi::OsStrExt;
 use store::read_runs;
 
@@ -108,7 +107,7 @@ fn an_old_mode_flag_is_a_usage_error_and_its_subcommand_succeeds() {
 
 #[test]
 fn the_gate_compares_with_the_stated_baseline() {
-    let root = catalog::root::from_current_dir().unwrap();
+    let root = catalog::root_from_current_dir().unwrap();
     let committed = read_runs(&root.join("results/runs.csv")).unwrap();
     let dir = std::env::temp_dir().join(format!("driftbench-cli-gate-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -202,7 +201,7 @@ scheme = { kind = "jia2019", phi = 0.2, tau = 0.4, kappa = 20.0, lambda = 20.0 }
 /// workspace crate as that crate's `src/module.rs` or `src/module/mod.rs`.
 #[test]
 fn the_exit_code_page_cites_only_what_exists() {
-    let root = catalog::root::from_current_dir().unwrap();
+    let root = catalog::root_from_current_dir().unwrap();
     let page = std::fs::read_to_string(root.join("docs/reference/exit-codes.md")).unwrap();
     let cited: Vec<&str> = page.split('`').skip(1).step_by(2).collect();
     let mut checked = 0;

@@ -37,7 +37,7 @@ impl Project {
         std::fs::create_dir_all(base.join("outside")).unwrap();
         std::fs::write(base.join("experiments/kong2019.toml"), cheap()).unwrap();
         // What the report reads besides results/: the papers and the deviations.
-        let repo = catalog::root::from_current_dir().unwrap();
+        let repo = catalog::root_from_current_dir().unwrap();
         std::fs::create_dir_all(base.join("report")).unwrap();
         std::fs::copy(
             repo.join("report/deviations.md"),
@@ -343,7 +343,7 @@ fn a_journal_row_of_another_revision_is_not_folded() {
     );
 
     // A journal with one run twice is not one this program wrote.
-    let rev = reproduce::revision::REVISION.to_string();
+    let rev = reproduce::REVISION.to_string();
     let mut twice = honest[0].clone();
     twice.git_rev = rev;
     write_journal(&p, &[twice.clone(), twice]);

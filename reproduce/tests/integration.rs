@@ -4,10 +4,14 @@
 
 mod common;
 
+mod any_arm;
 mod cli;
+mod composed_schemes;
 mod cost_paths;
 mod exit_codes;
+mod experiment_files;
 mod fifth_paper;
+mod fuzz_experiment_files;
 mod gate_explanation;
 mod hostile;
 mod hostile_inputs;

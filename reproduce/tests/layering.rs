@@ -21,7 +21,7 @@
 //!   run from spec's `RunSpec`, and the orchestrator (reproduce) loads the files;
 //! - the control experiments read no file: control links neither catalog nor the reader of
 //!   files from outside (`inputs`) directly, and no source of it opens or reads a file; their
-//!   task set is read by catalog (`catalog::task_set`) and handed over as data
+//!   task set is read by catalog (`catalog::load_task_set`) and handed over as data
 //!   (`spec::TaskSet`);
 //! - the engine (simulation, control) links no verdict crate (analysis): it runs and writes
 //!   rows, and the papers' claims are decided from the rows (zhong2021's efficiency claim in
@@ -289,7 +289,7 @@ fn the_control_experiments_read_no_file() {
         .collect();
     assert!(
         direct.is_empty(),
-        "control links a reader of files {direct:?} (its task set is catalog::task_set's to \
+        "control links a reader of files {direct:?} (its task set is catalog::load_task_set's to \
          read, and comes as spec::TaskSet)"
     );
     let src = root().join("control/src");

@@ -20,9 +20,9 @@
 //! is set (`.ci/run` sets it): there a missing Octave fails the test, so CI cannot pass
 //! vacuously.
 
-use catalog::experiment::PaperFile;
+use catalog::PaperFile;
 use records::RunRow;
-use reproduce::experiments::load_dir;
+use reproduce::load_experiments;
 use simulation::run_job;
 use simulation::run_row;
 use spec::SolverChoice;
@@ -84,7 +84,7 @@ fn score(root: &Path, file: &Path, out: &Path) -> RunRow {
 
 /// driftbench's own run of the task's `ZNN` at tight tolerances.
 fn own_run(root: &Path) -> RunRow {
-    let mut job = load_dir(&root.join("experiments"))
+    let mut job = load_experiments(&root.join("experiments"))
         .unwrap()
         .iter()
         .flat_map(PaperFile::jobs)
@@ -107,7 +107,7 @@ fn an_octave_trajectory_scores_as_driftbench_own_run() {
         );
         return;
     };
-    let root = catalog::root::from_current_dir().unwrap();
+    let root = catalog::root_from_current_dir().unwrap();
     let dir = std::env::temp_dir().join(format!("driftbench-octave-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("znn_circle.csv");

@@ -44,6 +44,12 @@ const EXEMPT: &[(&str, &str)] = &[
          speed, not data about the paper",
     ),
     (
+        "fixtures/src/lib.rs",
+        "test fixtures shared by several crates' tests (a dev-dependency only, never linked into \
+         a program): its experiment-file template is a test's file, and tests may name the data \
+         they test",
+    ),
+    (
         "solvers/src/random_qp.rs",
         "the random QP shapes are the papers' schemes' QP forms, named after them (the benches \
          group by that name)",
@@ -59,8 +65,8 @@ struct Names {
 }
 
 fn names(root: &Path) -> Names {
-    let files = reproduce::experiments::load_dir(&root.join("experiments"))
-        .expect("the experiment files load");
+    let files =
+        reproduce::load_experiments(&root.join("experiments")).expect("the experiment files load");
     let mut inside = BTreeSet::new();
     let mut whole = BTreeSet::new();
     let mut code_names = BTreeSet::new();

@@ -19,11 +19,10 @@ const CEILINGS: [(&str, usize); 22] = [
     ("schemes", 1),
     ("settings", 3),
     ("spec", 1),
-    // + task_set: the control task set's reader, beside the experiment files' (catalog::task_set::load).
-    ("catalog", 6),
+    ("catalog", 0),
     ("solvers", 11),
     ("simulation", 0),
-    ("control", 6),
+    ("control", 0),
     ("records", 5),
     ("store", 9),
     // + report_model::{why, performance}: two sections of the report model, each a vocabulary
@@ -31,7 +30,9 @@ const CEILINGS: [(&str, usize); 22] = [
     ("analysis", 26),
     ("explain", 3),
     ("presentation", 7),
-    ("reproduce", 25),
+    // options (what a program builds to call `reproduce::run`), cost (the cost harness the
+    // benches time), phases (the phase table's schema the benches read).
+    ("reproduce", 3),
     ("benches", 21),
     ("python", 0),
     // The facade's designed front door: a prelude and one module per task (robot, qp, solver,
@@ -161,8 +162,9 @@ fn no_crate_has_more_public_modules_than_its_ceiling() {
          other crates use at the crate root, or raise the ceiling with a reason):\n{}",
         over.join("\n")
     );
-    // The engine's bottom crates keep every module private.
-    for member in ["qp", "robots", "simulation"] {
+    // The engine's bottom crates, the catalog and the control experiments keep every module
+    // private.
+    for member in ["qp", "robots", "simulation", "catalog", "control"] {
         assert_eq!(found[member].len(), 0, "{member}: {:?}", found[member]);
     }
 }

@@ -1,20 +1,20 @@
-//! The regression gate ([`analysis::gate`], its baseline [`reproduce::baseline`]): a fresh run of every experiment against the
+//! The regression gate ([`analysis::gate`], its baseline, module `baseline` of crate `reproduce`): a fresh run of every experiment against the
 //! committed `results/runs.csv`; and two fresh runs of the same jobs give identical rows,
 //! timing columns aside.
 
 use analysis::gate::compare;
 use records::RunRow;
-use reproduce::experiments::load_dir;
+use reproduce::load_experiments;
 use simulation::run_jobs;
 use simulation::run_row;
 use store::read_runs;
 
 #[test]
 fn fresh_run_matches_the_committed_results() {
-    let root = catalog::root::from_current_dir().unwrap();
+    let root = catalog::root_from_current_dir().unwrap();
     let committed =
         read_runs(&root.join("results/runs.csv")).expect("results/runs.csv is committed");
-    let files = load_dir(&root.join("experiments")).unwrap();
+    let files = load_experiments(&root.join("experiments")).unwrap();
     let jobs: Vec<_> = files.iter().flat_map(|f| f.jobs()).collect();
     let fresh: Vec<RunRow> = run_jobs(&jobs, false)
         .iter()
@@ -34,7 +34,7 @@ fn fresh_run_matches_the_committed_results() {
 #[test]
 fn the_gate_catches_changes() {
     let committed = read_runs(
-        &catalog::root::from_current_dir()
+        &catalog::root_from_current_dir()
             .unwrap()
             .join("results/runs.csv"),
     )
@@ -73,8 +73,8 @@ fn the_gate_catches_changes() {
 
 #[test]
 fn two_runs_give_identical_rows() {
-    let root = catalog::root::from_current_dir().unwrap();
-    let files = load_dir(&root.join("experiments")).unwrap();
+    let root = catalog::root_from_current_dir().unwrap();
+    let files = load_experiments(&root.join("experiments")).unwrap();
     let jobs: Vec<_> = files
         .iter()
         .flat_map(|f| f.jobs())

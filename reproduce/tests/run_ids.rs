@@ -33,7 +33,7 @@ fn files_under(dir: &Path) -> Vec<PathBuf> {
 
 #[test]
 fn renaming_every_label_orphans_nothing_and_moves_no_result() {
-    let root = catalog::root::from_current_dir().unwrap();
+    let root = catalog::root_from_current_dir().unwrap();
     let base = std::env::temp_dir().join(format!("driftbench-run-ids-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&base);
     let experiments = base.join("experiments");

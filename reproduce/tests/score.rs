@@ -2,8 +2,8 @@
 //! suite's own ZNN run) is scored with the run's drift, and its row, trace and figure are
 //! written under --score-out; a task that does not exist is refused with the library's message.
 
-use catalog::experiment::PaperFile;
-use reproduce::experiments::load_dir;
+use catalog::PaperFile;
+use reproduce::load_experiments;
 use simulation::run_job;
 use simulation::Outcome;
 use spec::SolverChoice;
@@ -13,14 +13,14 @@ use std::process::Command;
 /// The binary, in the workspace root.
 fn reproduce() -> Command {
     let mut c = Command::new(env!("CARGO_BIN_EXE_reproduce"));
-    c.current_dir(catalog::root::from_current_dir().unwrap());
+    c.current_dir(catalog::root_from_current_dir().unwrap());
     c
 }
 
 #[test]
 fn a_trajectory_file_is_scored_on_its_task() {
-    let root = catalog::root::from_current_dir().unwrap();
-    let job = load_dir(&root.join("experiments"))
+    let root = catalog::root_from_current_dir().unwrap();
+    let job = load_experiments(&root.join("experiments"))
         .unwrap()
         .iter()
         .flat_map(PaperFile::jobs)

@@ -145,7 +145,7 @@ sweep = { "scheme.mu" = [1, 2, 4] }
     common::resume_completes(run, &results, 3, 4);
     let manifest = store::shard::Manifest::read(&results).unwrap();
     assert_eq!((manifest.shard, manifest.shards, manifest.runs), (1, 1, 4));
-    assert_eq!(manifest.git_rev, reproduce::revision::REVISION);
+    assert_eq!(manifest.git_rev, reproduce::REVISION);
 
     // The resumed shard merges (its manifest covers the folded runs' traces) ...
     let merged = base.join("merged");
@@ -314,7 +314,7 @@ fn the_binary_knows_its_revision() {
     let out = ok(reproduce().arg("--version").output().unwrap());
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(
-        text.contains(&format!("(revision {})", reproduce::revision::REVISION)),
+        text.contains(&format!("(revision {})", reproduce::REVISION)),
         "{text}"
     );
     assert!(!text.contains("unknown"), "{text}");
@@ -361,7 +361,7 @@ fn shard_lists_partition_the_selection() {
 /// step of the resume: the fold's runs.csv and manifest, the journal's removal, ...), then
 /// started a third time without the hook. That start must finish without `--accept-edited`,
 /// and the merge must equal one unsharded process. The shard runs two runs at a time
-/// (`reproduce::shard::CHUNK_VAR`), so the fold between its chunks is killed at each of its
+/// (`reproduce::SHARD_CHUNK_VAR`), so the fold between its chunks is killed at each of its
 /// steps too. An experiment file added beside the selection's (another paper's) blocks neither
 /// the shard's start nor its merge.
 #[test]
@@ -384,7 +384,7 @@ fn a_shard_killed_after_any_durable_step_resumes_and_merges_equal_to_one_process
             .arg(&experiments)
             .arg("--results-dir")
             .arg(dir)
-            .env(reproduce::shard::CHUNK_VAR, "2");
+            .env(reproduce::SHARD_CHUNK_VAR, "2");
         if let Some(n) = kill_after {
             c.env(store::KILL_POINT_VAR, n.to_string());
         }

@@ -342,7 +342,7 @@ sweep = {{ "scheme.mu" = [{}] }}
 
 /// The shard of the slow run, and how many quick runs it holds.
 fn slow_shard(root: &Path) -> (usize, usize) {
-    let files = reproduce::experiments::load_dir(&root.join("experiments")).unwrap();
+    let files = reproduce::load_experiments(&root.join("experiments")).unwrap();
     let keys: Vec<String> = files
         .iter()
         .flat_map(|f| f.jobs())

@@ -2,9 +2,9 @@
 //! in memory, never over the committed files), one card per task, and a card carries the
 //! suite's own check values.
 
-use catalog::experiment::PaperFile;
-use reproduce::experiments::load_dir;
-use reproduce::task_card::{cards, INDEX, TASKS};
+use catalog::PaperFile;
+use presentation::task_card::INDEX;
+use reproduce::{load_experiments, task_cards, TASK_CARDS};
 
 use std::collections::BTreeSet;
 
@@ -12,9 +12,9 @@ const REGENERATE: &str = "regenerate with `cargo run --release -p reproduce -- r
 
 #[test]
 fn the_committed_cards_are_the_generated_ones() {
-    let root = catalog::root::from_current_dir().unwrap();
-    let generated = cards(&root.join("experiments")).unwrap();
-    let dir = root.join("report").join(TASKS);
+    let root = catalog::root_from_current_dir().unwrap();
+    let generated = task_cards(&root.join("experiments")).unwrap();
+    let dir = root.join("report").join(TASK_CARDS);
     let committed: BTreeSet<String> = std::fs::read_dir(&dir)
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
@@ -32,9 +32,9 @@ fn the_committed_cards_are_the_generated_ones() {
 
 #[test]
 fn every_task_has_a_card_with_its_check_values() {
-    let root = catalog::root::from_current_dir().unwrap();
-    let generated = cards(&root.join("experiments")).unwrap();
-    let tasks: BTreeSet<String> = load_dir(&root.join("experiments"))
+    let root = catalog::root_from_current_dir().unwrap();
+    let generated = task_cards(&root.join("experiments")).unwrap();
+    let tasks: BTreeSet<String> = load_experiments(&root.join("experiments"))
         .unwrap()
         .iter()
         .flat_map(PaperFile::jobs)
@@ -64,7 +64,7 @@ fn every_task_has_a_card_with_its_check_values() {
 /// cards written.
 #[test]
 fn a_large_sweep_gets_capped_cards() {
-    use reproduce::task_card::MAX_SWEEP_CARDS;
+    use reproduce::MAX_SWEEP_CARDS;
     let dir = std::env::temp_dir().join(format!("driftbench-sweep-cards-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
@@ -73,31 +73,24 @@ fn a_large_sweep_gets_capped_cards() {
         std::fs::write(
             dir.join("kong2019.toml"),
             format!(
-                r#"paper = "kong2019"
-title = "a sweep's cards"
-[[experiment]]
-id = "kong2019-cards"
-paper_output = "none"
-robot = "katana6m180"
-path = {{ name = "circle", duration = 0.05 }}
-theta0 = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.0471975511965976]
-[[experiment.variant]]
+                r#"{}[[experiment.variant]]
 label = "ZNN"
 scheme = {{ kind = "znn-rmp", mu = 1.0, k_p = 1.0 }}
 sweep = {{ "scheme.mu" = {{ from = 1.0, to = 2.0, step = {step} }} }}
 [[experiment.variant]]
 label = "alone"
 scheme = {{ kind = "znn-rmp", mu = 3.0, k_p = 1.0 }}
-"#
+"#,
+                fixtures::katana_circle("a sweep's cards", "kong2019-cards", 0.05, "")
             ),
         )
         .unwrap();
-        let files = load_dir(&dir).unwrap();
+        let files = load_experiments(&dir).unwrap();
         let variants_of_sweep: Vec<String> = files[0].experiments[0].variants[..variants]
             .iter()
             .map(|v| format!("kong2019-cards--{}.md", v.id()))
             .collect();
-        let generated = cards(&dir).unwrap();
+        let generated = task_cards(&dir).unwrap();
         let of_sweep: Vec<&String> = generated
             .keys()
             .filter(|k| variants_of_sweep.contains(k))

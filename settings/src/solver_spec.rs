@@ -36,10 +36,17 @@
 //! CDNNs, the group's network) takes all four, written beside the network's own fields and held
 //! in code as one [`ActivationSpec`]. The CDNNs' runs in the paper are linear.
 //!
-//! The file form is a flat table (serde's `flatten` cannot be combined with
-//! `deny_unknown_fields`, and a misspelt field must stay an error): a private mirror of
-//! [`SolverSpec`] with the activation's fields inline is what serde reads and writes, converted
-//! to and from [`SolverSpec`] without loss.
+//! The file form is a flat table: a private mirror of [`SolverSpec`] with the activation's
+//! fields inline is what serde reads and writes, converted to and from [`SolverSpec`] without
+//! loss. The two vocabularies' kinds (`zeroing`, `projection`), which take all seven fields
+//! (`activation`, `alpha`, `chi`, `xi`, `power`, `exponent`, `smoothing`), declare them once: one
+//! struct flattened into both (serde checks the keys the two leave over, so a misspelt field
+//! stays an error that names it). The presets `vp-rnn-pf`, `fp-cdnn` and `vp-cdnn` take five (no
+//! `exponent`, no `smoothing`: a file may not give a preset a field it does not use), one struct
+//! of those flattened into the three; `group-znn`, whose default activation is its own, keeps
+//! its five inline. The vocabularies' struct repeats the presets' five fields rather than
+//! flattening their struct into its own: under `deny_unknown_fields` serde refuses the keys of a
+//! struct flattened inside a flattened one as unknown.
 //!
 //! `group-znn` (the group's network, `docs/networks.md`): `gamma` (default 500), `nu`
 //! (default 2500), `activation`, `perturbation` (optional, as the CDNNs; only `a_s` and `task_duration`
@@ -271,40 +278,28 @@ impl From<FileSolverSpec> for SolverSpec {
                 sigma,
                 gamma,
                 activation,
-                alpha,
-                chi,
-                xi,
-                power,
             } => SolverSpec::VpRnnPf {
                 p,
                 sigma,
                 gamma,
-                activation: act(activation, alpha, chi, xi, power),
+                activation: activation.into(),
             },
             FileSolverSpec::FpCdnn {
                 gamma,
                 activation,
-                alpha,
-                chi,
-                xi,
-                power,
                 perturbation,
             } => SolverSpec::FpCdnn {
                 gamma,
-                activation: act(activation, alpha, chi, xi, power),
+                activation: activation.into(),
                 perturbation,
             },
             FileSolverSpec::VpCdnn {
                 gamma,
                 activation,
-                alpha,
-                chi,
-                xi,
-                power,
                 perturbation,
             } => SolverSpec::VpCdnn {
                 gamma,
-                activation: act(activation, alpha, chi, xi, power),
+                activation: activation.into(),
                 perturbation,
             },
             FileSolverSpec::FiniteTime {
@@ -337,23 +332,13 @@ impl From<FileSolverSpec> for SolverSpec {
             FileSolverSpec::Zeroing {
                 gain,
                 activation,
-                alpha,
-                chi,
-                xi,
-                power,
-                exponent,
-                smoothing,
                 nu,
                 perturbation,
                 perturbation_matrix,
                 udot_rmp,
             } => SolverSpec::Zeroing {
                 gain,
-                activation: ActivationSpec {
-                    exponent,
-                    smoothing,
-                    ..act(activation, alpha, chi, xi, power)
-                },
+                activation: activation.into(),
                 nu,
                 perturbation,
                 perturbation_matrix,
@@ -363,20 +348,10 @@ impl From<FileSolverSpec> for SolverSpec {
                 error,
                 gain,
                 activation,
-                alpha,
-                chi,
-                xi,
-                power,
-                exponent,
-                smoothing,
             } => SolverSpec::Projection {
                 error,
                 gain,
-                activation: ActivationSpec {
-                    exponent,
-                    smoothing,
-                    ..act(activation, alpha, chi, xi, power)
-                },
+                activation: activation.into(),
             },
         }
     }
@@ -396,11 +371,7 @@ impl From<SolverSpec> for FileSolverSpec {
                 p,
                 sigma,
                 gamma,
-                activation: a.kind,
-                alpha: a.alpha,
-                chi: a.chi,
-                xi: a.xi,
-                power: a.power,
+                activation: a.into(),
             },
             SolverSpec::FpCdnn {
                 gamma,
@@ -408,11 +379,7 @@ impl From<SolverSpec> for FileSolverSpec {
                 perturbation,
             } => FileSolverSpec::FpCdnn {
                 gamma,
-                activation: a.kind,
-                alpha: a.alpha,
-                chi: a.chi,
-                xi: a.xi,
-                power: a.power,
+                activation: a.into(),
                 perturbation,
             },
             SolverSpec::VpCdnn {
@@ -421,11 +388,7 @@ impl From<SolverSpec> for FileSolverSpec {
                 perturbation,
             } => FileSolverSpec::VpCdnn {
                 gamma,
-                activation: a.kind,
-                alpha: a.alpha,
-                chi: a.chi,
-                xi: a.xi,
-                power: a.power,
+                activation: a.into(),
                 perturbation,
             },
             SolverSpec::FiniteTime {
@@ -464,13 +427,7 @@ impl From<SolverSpec> for FileSolverSpec {
                 udot_rmp,
             } => FileSolverSpec::Zeroing {
                 gain,
-                activation: a.kind,
-                alpha: a.alpha,
-                chi: a.chi,
-                xi: a.xi,
-                power: a.power,
-                exponent: a.exponent,
-                smoothing: a.smoothing,
+                activation: a.into(),
                 nu,
                 perturbation,
                 perturbation_matrix,
@@ -483,13 +440,7 @@ impl From<SolverSpec> for FileSolverSpec {
             } => FileSolverSpec::Projection {
                 error,
                 gain,
-                activation: a.kind,
-                alpha: a.alpha,
-                chi: a.chi,
-                xi: a.xi,
-                power: a.power,
-                exponent: a.exponent,
-                smoothing: a.smoothing,
+                activation: a.into(),
             },
         }
     }
@@ -508,50 +459,22 @@ enum FileSolverSpec {
         p: f64,
         sigma: f64,
         gamma: f64,
-        #[serde(default)]
-        activation: ActivationKind,
-        /// Power-sigmoid alpha (eq. 2.29).
-        #[serde(default = "default_alpha")]
-        alpha: f64,
-        /// Power-sigmoid chi (eq. 2.29).
-        #[serde(default = "default_chi")]
-        chi: f64,
-        /// The group's power-sigmoid xi.
-        #[serde(default = "default_xi")]
-        xi: f64,
-        /// The group's power-sigmoid p.
-        #[serde(default = "default_power")]
-        power: f64,
+        #[serde(flatten)]
+        activation: FilePresetActivation,
     },
     /// zhang2018 eq. 2.15 (eq. 3.2 when perturbed).
     FpCdnn {
         gamma: f64,
-        #[serde(default)]
-        activation: ActivationKind,
-        #[serde(default = "default_alpha")]
-        alpha: f64,
-        #[serde(default = "default_chi")]
-        chi: f64,
-        #[serde(default = "default_xi")]
-        xi: f64,
-        #[serde(default = "default_power")]
-        power: f64,
+        #[serde(flatten)]
+        activation: FilePresetActivation,
         #[serde(default)]
         perturbation: Option<ReferencePerturbation>,
     },
     /// zhang2018 eq. 2.11 (eq. 3.1 when perturbed).
     VpCdnn {
         gamma: f64,
-        #[serde(default)]
-        activation: ActivationKind,
-        #[serde(default = "default_alpha")]
-        alpha: f64,
-        #[serde(default = "default_chi")]
-        chi: f64,
-        #[serde(default = "default_xi")]
-        xi: f64,
-        #[serde(default = "default_power")]
-        power: f64,
+        #[serde(flatten)]
+        activation: FilePresetActivation,
         #[serde(default)]
         perturbation: Option<ReferencePerturbation>,
     },
@@ -592,20 +515,8 @@ enum FileSolverSpec {
     /// The zeroing family as data ([`crate::zeroing`]).
     Zeroing {
         gain: GainLaw,
-        #[serde(default)]
-        activation: ActivationKind,
-        #[serde(default = "default_alpha")]
-        alpha: f64,
-        #[serde(default = "default_chi")]
-        chi: f64,
-        #[serde(default = "default_xi")]
-        xi: f64,
-        #[serde(default = "default_power")]
-        power: f64,
-        #[serde(default = "default_exponent")]
-        exponent: f64,
-        #[serde(default = "default_sign_smoothing")]
-        smoothing: f64,
+        #[serde(flatten)]
+        activation: FileActivation,
         #[serde(default)]
         nu: f64,
         #[serde(default)]
@@ -619,21 +530,111 @@ enum FileSolverSpec {
     Projection {
         error: ProjectionErrorForm,
         gain: GainLaw,
-        #[serde(default)]
-        activation: ActivationKind,
-        #[serde(default = "default_alpha")]
-        alpha: f64,
-        #[serde(default = "default_chi")]
-        chi: f64,
-        #[serde(default = "default_xi")]
-        xi: f64,
-        #[serde(default = "default_power")]
-        power: f64,
-        #[serde(default = "default_exponent")]
-        exponent: f64,
-        #[serde(default = "default_sign_smoothing")]
-        smoothing: f64,
+        #[serde(flatten)]
+        activation: FileActivation,
     },
+}
+
+/// The activation of the two vocabularies' networks (`zeroing`, `projection`) as their files
+/// write it: every [`ActivationSpec`] field inline, each with its default, flattened into both
+/// variants of [`FileSolverSpec`] so that they declare it once (module docs).
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+struct FileActivation {
+    #[serde(default)]
+    activation: ActivationKind,
+    /// Power-sigmoid alpha (zhong2021 eq. 2.29).
+    #[serde(default = "default_alpha")]
+    alpha: f64,
+    /// Power-sigmoid chi (zhong2021 eq. 2.29).
+    #[serde(default = "default_chi")]
+    chi: f64,
+    /// The group's power-sigmoid xi.
+    #[serde(default = "default_xi")]
+    xi: f64,
+    /// The group's power-sigmoid p.
+    #[serde(default = "default_power")]
+    power: f64,
+    /// The sign-power's exponent.
+    #[serde(default = "default_exponent")]
+    exponent: f64,
+    /// Half-width of the sign-power's linear zone.
+    #[serde(default = "default_sign_smoothing")]
+    smoothing: f64,
+}
+
+/// The activation of the presets that take one (`vp-rnn-pf`, `fp-cdnn`, `vp-cdnn`) as their
+/// files write it: the power-sigmoids' four parameters beside the kind (default linear), no
+/// sign-power parameters, flattened into each of their variants of [`FileSolverSpec`].
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+struct FilePresetActivation {
+    #[serde(default)]
+    activation: ActivationKind,
+    /// Power-sigmoid alpha (zhong2021 eq. 2.29).
+    #[serde(default = "default_alpha")]
+    alpha: f64,
+    /// Power-sigmoid chi (zhong2021 eq. 2.29).
+    #[serde(default = "default_chi")]
+    chi: f64,
+    /// The group's power-sigmoid xi.
+    #[serde(default = "default_xi")]
+    xi: f64,
+    /// The group's power-sigmoid p.
+    #[serde(default = "default_power")]
+    power: f64,
+}
+
+impl From<FilePresetActivation> for ActivationSpec {
+    fn from(f: FilePresetActivation) -> Self {
+        ActivationSpec {
+            alpha: f.alpha,
+            chi: f.chi,
+            xi: f.xi,
+            power: f.power,
+            ..ActivationSpec::of(f.activation)
+        }
+    }
+}
+
+/// The preset's file form keeps the four parameters; the sign-power's, which a preset's file
+/// cannot set, are their defaults.
+impl From<ActivationSpec> for FilePresetActivation {
+    fn from(a: ActivationSpec) -> Self {
+        FilePresetActivation {
+            activation: a.kind,
+            alpha: a.alpha,
+            chi: a.chi,
+            xi: a.xi,
+            power: a.power,
+        }
+    }
+}
+
+impl From<FileActivation> for ActivationSpec {
+    fn from(f: FileActivation) -> Self {
+        ActivationSpec {
+            kind: f.activation,
+            alpha: f.alpha,
+            chi: f.chi,
+            xi: f.xi,
+            power: f.power,
+            exponent: f.exponent,
+            smoothing: f.smoothing,
+        }
+    }
+}
+
+impl From<ActivationSpec> for FileActivation {
+    fn from(a: ActivationSpec) -> Self {
+        FileActivation {
+            activation: a.kind,
+            alpha: a.alpha,
+            chi: a.chi,
+            xi: a.xi,
+            power: a.power,
+            exponent: a.exponent,
+            smoothing: a.smoothing,
+        }
+    }
 }
 
 impl SolverSpec {
@@ -1056,6 +1057,90 @@ mod tests {
             "solver = { kind = \"projection\", error = { form = \"lvi\", scaling = \"identity\" }, gain = { law = \"constant\", gamma = 1.0 }, nu = 1.0 }",
         ] {
             assert!(parse(bad).is_err(), "accepted: {bad}");
+        }
+    }
+
+    #[test]
+    fn flattened_activations_are_written_inline_and_a_misspelt_field_is_refused() {
+        let zeroing = "solver = { kind = \"zeroing\", gain = { law = \"power\", gamma = 1.0, p = 2.0 }, activation = \"sign-bi-power\", exponent = 0.5, nu = 3.0 }";
+        let spec = parse(zeroing).unwrap();
+        let SolverSpec::Zeroing { activation, nu, .. } = &spec else {
+            panic!("{spec:?}")
+        };
+        assert_eq!(activation.kind, ActivationKind::SignBiPower);
+        assert_eq!((activation.exponent, *nu), (0.5, 3.0));
+        assert_eq!(activation.smoothing, SIGN_POWER_SMOOTHING);
+        for (text, keys) in [
+            (
+                zeroing,
+                &[
+                    "activation",
+                    "alpha",
+                    "chi",
+                    "exponent",
+                    "gain",
+                    "kind",
+                    "nu",
+                    "perturbation_matrix",
+                    "power",
+                    "smoothing",
+                    "udot_rmp",
+                    "xi",
+                ][..],
+            ),
+            (
+                EVERY_KIND[10],
+                &[
+                    "activation",
+                    "alpha",
+                    "chi",
+                    "error",
+                    "exponent",
+                    "gain",
+                    "kind",
+                    "power",
+                    "smoothing",
+                    "xi",
+                ][..],
+            ),
+        ] {
+            let spec = parse(text).unwrap();
+            let written = toml::to_string(&Holder {
+                solver: spec.clone(),
+            })
+            .unwrap();
+            let table: toml::Table = toml::from_str(&written).unwrap();
+            let mut got: Vec<&str> = table["solver"]
+                .as_table()
+                .unwrap()
+                .keys()
+                .map(String::as_str)
+                .collect();
+            got.sort_unstable();
+            assert_eq!(got, keys, "{written}");
+            assert_eq!(parse(&written).unwrap(), spec, "{written}");
+        }
+        for (bad, field) in [
+            (zeroing.replace("exponent", "exponnent"), "exponnent"),
+            (
+                EVERY_KIND[10].replace("activation", "activaton"),
+                "activaton",
+            ),
+            (
+                EVERY_KIND[9].replace("gain =", "sigma = 1.0, gain ="),
+                "sigma",
+            ),
+            (
+                EVERY_KIND[3].replace("gamma", "exponent = 0.5, gamma"),
+                "exponent",
+            ),
+            (EVERY_KIND[2].replace("chi", "chii"), "chii"),
+        ] {
+            let e = parse(&bad).unwrap_err().to_string();
+            assert!(
+                e.contains(&format!("unknown field `{field}`")),
+                "{bad}: {e}"
+            );
         }
     }
 

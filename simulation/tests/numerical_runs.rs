@@ -9,8 +9,8 @@ use spec::RunSpec;
 use spec::SolverChoice;
 
 fn robio_jobs() -> Vec<RunSpec> {
-    let root = catalog::root::from_current_dir().unwrap();
-    let file = crate::checked::load(&root.join("experiments/robio2018.toml")).unwrap();
+    let root = catalog::root_from_current_dir().unwrap();
+    let file = catalog::PaperFile::load(&root.join("experiments/robio2018.toml")).unwrap();
     file.jobs()
 }
 
@@ -57,7 +57,7 @@ fn every_method_runs_and_its_error_follows_its_tolerance() {
 
 #[test]
 fn a_numerical_solver_with_bad_settings_is_refused_naming_the_field() {
-    let root = catalog::root::from_current_dir().unwrap();
+    let root = catalog::root_from_current_dir().unwrap();
     let text = std::fs::read_to_string(root.join("experiments/robio2018.toml")).unwrap();
     for (from, to, expect) in [
         (
@@ -98,11 +98,11 @@ fn a_numerical_solver_with_bad_settings_is_refused_naming_the_field() {
     ] {
         assert!(text.contains(from), "{from}");
         let bad = text.replacen(from, to, 1);
-        let err = crate::checked::from_toml(&bad).unwrap_err().to_string();
+        let err = catalog::PaperFile::from_toml(&bad).unwrap_err().to_string();
         assert!(err.contains(expect), "{to}: {err}");
     }
     // lambda = 0 is allowed (the paper's baseline has no repetitive term); a negative one not.
     let bad = text.replacen("lambda = 4.0", "lambda = -1.0", 1);
-    let err = crate::checked::from_toml(&bad).unwrap_err().to_string();
+    let err = catalog::PaperFile::from_toml(&bad).unwrap_err().to_string();
     assert!(err.contains("lambda") && err.contains(">= 0"), "{err}");
 }

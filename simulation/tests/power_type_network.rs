@@ -5,7 +5,7 @@
 //! accepted step) and keeps the tool on the path; faster than the constant-gain ZNN of the same
 //! file.
 
-use catalog::experiment::PaperFile;
+use catalog::PaperFile;
 use simulation::run_job;
 use simulation::Outcome;
 use simulation::Score;
@@ -14,8 +14,8 @@ use spec::SolverChoice;
 
 /// The network runs of kong2019's circle.
 fn circle_jobs() -> Vec<RunSpec> {
-    let root = catalog::root::from_current_dir().unwrap();
-    crate::checked::load_dir(&root.join("experiments"))
+    let root = catalog::root_from_current_dir().unwrap();
+    catalog::load_dir(&root.join("experiments"))
         .unwrap()
         .iter()
         .flat_map(PaperFile::jobs)

@@ -2,7 +2,7 @@
 //! trace (theta, thetadot at ~400 instants), scored as an external trajectory, has the run's
 //! drift exactly and its error and score to the resolution of the thinned samples.
 
-use catalog::experiment::PaperFile;
+use catalog::PaperFile;
 use inputs::trajectory::Trajectory;
 use simulation::run_job;
 use simulation::{score_trajectory, TrajectoryError};
@@ -11,8 +11,8 @@ use spec::RunSpec;
 use spec::SolverChoice;
 
 fn job(experiment: &str, variant: &str, neural: bool) -> RunSpec {
-    let root = catalog::root::from_current_dir().unwrap();
-    crate::checked::load_dir(&root.join("experiments"))
+    let root = catalog::root_from_current_dir().unwrap();
+    catalog::load_dir(&root.join("experiments"))
         .unwrap()
         .iter()
         .flat_map(PaperFile::jobs)

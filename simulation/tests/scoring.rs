@@ -1,7 +1,7 @@
 //! The scoring grid: a network run scored at every accepted step, at a bounded number of
 //! instants, or not at all, as the experiment file's `scoring` says.
 
-use catalog::experiment::PaperFile;
+use catalog::PaperFile;
 use simulation::run_job;
 use simulation::Outcome;
 use spec::RunSpec;
@@ -9,8 +9,8 @@ use spec::Scoring;
 use spec::SolverChoice;
 
 fn znn_job() -> RunSpec {
-    let root = catalog::root::from_current_dir().unwrap();
-    crate::checked::load_dir(&root.join("experiments"))
+    let root = catalog::root_from_current_dir().unwrap();
+    catalog::load_dir(&root.join("experiments"))
         .unwrap()
         .iter()
         .flat_map(PaperFile::jobs)
@@ -61,24 +61,16 @@ fn a_grid_bounds_the_exact_solves_and_every_step_sees_them_all() {
 fn the_scoring_setting_is_read_from_the_experiment_file() {
     let file = |scoring: &str| {
         format!(
-            r#"paper = "kong2019"
-title = "t"
-[[experiment]]
-id = "kong2019-e"
-paper_output = "none"
-robot = "katana6m180"
-path = {{ name = "circle", duration = 9.0 }}
-theta0 = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.0471975511965976]
-{scoring}
-[[experiment.variant]]
+            r#"{}[[experiment.variant]]
 label = "ZNN"
 scheme = {{ kind = "kong2019-znn", mu = 1.0, k_p = 1.0 }}
 solvers = [{{ kind = "znn", gamma = 1.0 }}]
-"#
+"#,
+            fixtures::katana_circle("t", "kong2019-e", 9.0, scoring)
         )
     };
     let scoring_of = |text: &str| {
-        crate::checked::from_toml(text)
+        catalog::PaperFile::from_toml(text)
             .map(|f| f.jobs()[1].scoring)
             .map_err(|e| e.to_string())
     };

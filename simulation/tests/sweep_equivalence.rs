@@ -5,8 +5,8 @@
 
 #[test]
 fn sweep_experiments_expand_to_the_hand_written_runs() {
-    let root = catalog::root::from_current_dir().unwrap();
-    let files = crate::checked::load_dir(&root.join("experiments")).unwrap();
+    let root = catalog::root_from_current_dir().unwrap();
+    let files = catalog::load_dir(&root.join("experiments")).unwrap();
     let committed: Vec<String> = files
         .iter()
         .flat_map(|f| f.jobs())
@@ -20,7 +20,7 @@ fn sweep_experiments_expand_to_the_hand_written_runs() {
     ];
     let mut hand: Vec<String> = Vec::new();
     for text in fixtures {
-        let file = crate::checked::from_toml(text).unwrap();
+        let file = catalog::PaperFile::from_toml(text).unwrap();
         hand.extend(file.jobs().iter().map(|j| format!("{j:?}")));
     }
     // The committed files order papers by file name, as the fixtures are listed.

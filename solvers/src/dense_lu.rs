@@ -5,9 +5,10 @@
 //!   [`crate::neural::lu`] on a nalgebra `DMatrix` (what the networks and the KKT solve used
 //!   alone before), cheapest for the papers' small systems (n <= 20 or so);
 //! - [`Backend::Faer`]: faer's blocked, SIMD partial-pivoting LU
-//!   (`faer::linalg::lu::partial_pivoting`), single-threaded (faer's `rayon` feature is off: the
-//!   reproduction runs one simulation per core), on the same column-major storage viewed as a
-//!   `faer::MatMut`, so no copy between the two.
+//!   (`faer::linalg::lu::partial_pivoting`), single-threaded (called with `Par::Seq`: the
+//!   reproduction runs one simulation per core; faer's `rayon` feature is compiled in all the
+//!   same, since diffsol-la enables it, but nothing here asks for threads), on the same
+//!   column-major storage viewed as a `faer::MatMut`, so no copy between the two.
 //!
 //! [`Backend::for_size`] takes faer for n >= [`FAER_CROSSOVER`] = 64, read from the network
 //! Jacobian's LU (`network-lu`) of `results/dof-cost.csv` (see the report's "Cost against the

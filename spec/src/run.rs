@@ -373,7 +373,7 @@ impl RunSpec {
 
     /// The run's identity: experiment / variant / solver ids.
     ///
-    /// Every run of an experiment file that was read (`catalog::experiment::PaperFile::from_toml`) has a valid
+    /// Every run of an experiment file that was read (`catalog::PaperFile::from_toml`) has a valid
     /// solver id: the file's check refuses a solver whose id is not one (a parameter that
     /// prints as no slug, or too long an id). A key asked of a job whose solver was changed
     /// to such a specification in code panics; [`RunSpec::solver_id`] is the checked form.

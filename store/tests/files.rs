@@ -11,7 +11,7 @@ fn read_edited_runs(
     lines: usize,
     edit: impl Fn(Vec<String>) -> Vec<String>,
 ) -> (PathBuf, Result<Vec<records::RunRow>, String>) {
-    let committed = catalog::root::from_current_dir()
+    let committed = catalog::root_from_current_dir()
         .unwrap()
         .join("results")
         .join("runs.csv");

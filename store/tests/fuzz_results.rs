@@ -10,7 +10,7 @@ use store::read_runs;
 use std::path::PathBuf;
 
 fn committed_runs() -> Vec<String> {
-    let path = catalog::root::from_current_dir()
+    let path = catalog::root_from_current_dir()
         .unwrap()
         .join("results/runs.csv");
     std::fs::read_to_string(path)

@@ -5,7 +5,7 @@
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
-    let root = match catalog::root::from_current_dir() {
+    let root = match catalog::root_from_current_dir() {
         Ok(root) => root,
         Err(e) => {
             eprintln!("error: {e}");

@@ -1,8 +1,8 @@
 //! `benches/results/side-by-side/build.csv`: the cold release build of `reproduce` at two
 //! revisions on one machine, one after the other (written by
-//! `benches/side_by_side/build_and_runs.sh BASELINE CANDIDATE`, which also prints the ratios
-//! and, without `--build-only`, the papers' runs' `sim_s` ratios with
-//! `benches/side_by_side/compare.py`).
+//! `benches/side_by_side/build_and_runs.sh BASELINE CANDIDATE`, which prints each build and,
+//! without `--build-only`, the papers' runs' `sim_s` ratios with
+//! `benches/side_by_side/compare.py`). The build ratio is computed here only ([`compare`]).
 //!
 //! A build's CPU time is the user plus system seconds of cargo and every process it starts; a
 //! revision's, the median over its rounds (its wall time likewise). The ratio is the

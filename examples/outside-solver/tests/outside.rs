@@ -4,7 +4,7 @@
 
 use outside_solver::{EqualityKkt, ID};
 use qp::QpSolver;
-use reproduce::experiments::from_toml as checked;
+use reproduce::experiments_from_toml as checked;
 use settings::qp_solver::{Limits, QpSolverInfo};
 use simulation::run_job;
 use simulation::run_row;

@@ -146,19 +146,14 @@ mod tests {
     use super::*;
     use std::path::PathBuf;
 
-    /// A scratch `experiments/` (with `inference/`) beside an `outside/secret`.
+    /// A scratch `experiments/` (with `inference/`) and the directory that holds it.
     fn scratch(tag: &str) -> (PathBuf, PathBuf) {
         let base =
             std::env::temp_dir().join(format!("driftbench-family-{tag}-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&base);
         std::fs::create_dir_all(base.join("experiments/inference")).unwrap();
-        std::fs::create_dir_all(base.join("outside")).unwrap();
-        std::fs::write(base.join("outside/secret"), format!("{MARKER}\n")).unwrap();
         (base.join("experiments"), base)
     }
-
-    /// The stand-in for a secret a hostile file would hold.
-    const MARKER: &str = "SECRET_MARKER_fam1";
 
     #[test]
     fn the_committed_family_file_reads_and_names_known_robots() {
@@ -190,40 +185,17 @@ mod tests {
     #[test]
     fn a_hostile_family_file_is_refused_without_its_content() {
         let (experiments, base) = scratch("hostile");
-        let file = experiments.join(FAMILY_FILE);
-        let shown = |e: InferenceError| e.to_string();
-        // A symbolic link out of the experiments directory: refused, not read.
-        std::os::unix::fs::symlink(base.join("outside/secret"), &file).unwrap();
-        let e = shown(Family::load(&experiments).unwrap_err());
-        assert!(e.contains("leads outside") && !e.contains(MARKER), "{e}");
-        std::fs::remove_file(&file).unwrap();
-        // A FIFO: refused at once (the reader opens without blocking).
-        let made = std::process::Command::new("mkfifo")
-            .arg(&file)
-            .status()
-            .unwrap();
-        assert!(made.success());
-        let e = shown(Family::load(&experiments).unwrap_err());
-        assert!(e.contains("a FIFO, not a regular file"), "{e}");
-        std::fs::remove_file(&file).unwrap();
-        // Over its cap of 1 MiB.
-        std::fs::write(&file, format!("# {MARKER}\n").repeat((1 << 20) / 20)).unwrap();
-        let e = shown(Family::load(&experiments).unwrap_err());
-        assert!(
-            e.contains("larger than its cap") && !e.contains(MARKER),
-            "{e}"
+        let dir = experiments.clone();
+        inputs::assert_refuses_hostile_files(
+            &experiments.join(FAMILY_FILE),
+            inputs::Kind::InferenceFamily,
+            "tilt = true\n",
+            &[format!(
+                "# {}\niterations = \"many\"\n",
+                inputs::HOSTILE_MARKER
+            )],
+            move || Family::load(&dir).err().map(|e| e.to_string()),
         );
-        // TOML errors give the line and column, never the file's lines.
-        for text in [
-            format!("tilt = true\n# {MARKER}\nnot toml\n"),
-            format!("tilt = true {MARKER}\n"),
-            format!("# {MARKER}\niterations = \"many\"\n"),
-            format!("rotation = true\n\"{MARKER}\n"),
-        ] {
-            std::fs::write(&file, &text).unwrap();
-            let e = shown(Family::load(&experiments).unwrap_err());
-            assert!(!e.contains(MARKER) && e.contains("line "), "{text:?}: {e}");
-        }
         std::fs::remove_dir_all(&base).unwrap();
     }
 }

@@ -19,7 +19,7 @@
 use super::case::{path_of, Case, PreparedCase, KONG2019_KP, KONG2019_MU};
 use super::error::CostError;
 use super::instants::Instants;
-use catalog::experiment::default_exact_integrator;
+use catalog::default_exact_integrator;
 use qp::{Qp, QpDims};
 pub use records::dof_cost::SWEEP_SIZES;
 use records::dof_cost::{Quantity, RunCounts, SchemeKind};

@@ -60,7 +60,7 @@ pub fn ok(out: std::process::Output) -> std::process::Output {
 /// The `reproduce` binary, started in the workspace root.
 pub fn reproduce() -> Command {
     let mut c = Command::new(env!("CARGO_BIN_EXE_reproduce"));
-    c.current_dir(catalog::root::from_current_dir().unwrap());
+    c.current_dir(catalog::root_from_current_dir().unwrap());
     c
 }
 

@@ -5,7 +5,7 @@
 use proptest::prelude::*;
 
 fn committed_files() -> Vec<(String, String)> {
-    let dir = catalog::root::from_current_dir()
+    let dir = catalog::root_from_current_dir()
         .unwrap()
         .join("experiments");
     let mut files: Vec<(String, String)> = std::fs::read_dir(&dir)
@@ -162,7 +162,7 @@ proptest! {
         let files = committed_files();
         let (name, text) = &files[file % files.len()];
         let mutated = mutations.iter().fold(text.clone(), |t, m| apply(&t, m));
-        match crate::checked::from_toml(&mutated) {
+        match reproduce::experiments_from_toml(&mutated) {
             Ok(f) => {
                 // A file that loads expands into runs, each with a unique key.
                 let jobs = f.jobs();
@@ -184,6 +184,6 @@ fn the_mutators_find_what_they_mutate() {
     let s: Vec<&str> = strings(text).iter().map(|&(a, b)| &text[a..b]).collect();
     assert_eq!(s, ["\"x-1\""]);
     for (_, t) in committed_files() {
-        crate::checked::from_toml(&t).unwrap();
+        reproduce::experiments_from_toml(&t).unwrap();
     }
 }

@@ -44,8 +44,8 @@ fn load(tag: &str, robots: &[(&str, String)], experiments: &str) -> Result<Vec<R
         );
     }
     write(&root.join("experiments/composed.toml"), experiments);
-    catalog::robot_files::register_paper_robots(&root.join("papers"));
-    let files = crate::checked::load_dir(&root.join("experiments"));
+    catalog::register_paper_robots(&root.join("papers"));
+    let files = reproduce::load_experiments(&root.join("experiments"));
     std::fs::remove_dir_all(&root).unwrap();
     files
         .map(|files| files.iter().flat_map(|f| f.jobs()).collect())

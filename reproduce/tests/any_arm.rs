@@ -76,8 +76,9 @@ fn arms_of_4_8_9_and_150_joints_run_from_files() {
     toml.push_str(&experiment("nlink-150", 150, 0.5));
     write(&root.join("experiments/any-arm.toml"), &toml);
 
-    catalog::robot_files::register_paper_robots(&root.join("papers"));
-    let files = crate::checked::load_dir(&root.join("experiments")).expect("the experiments load");
+    catalog::register_paper_robots(&root.join("papers"));
+    let files =
+        reproduce::load_experiments(&root.join("experiments")).expect("the experiments load");
     let jobs: Vec<_> = files.iter().flat_map(|f| f.jobs()).collect();
     assert_eq!(jobs.len(), 4);
     for job in &jobs {
@@ -134,10 +135,11 @@ fn a_urdf_arm_runs_from_files() {
         &root.join("experiments/urdf-arm-dynamics.toml"),
         &format!("paper = \"zhang2018\"\ntitle = \"a URDF arm, torques\"\n{dynamic}"),
     );
-    catalog::robot_files::register_paper_robots(&root.join("papers"));
+    catalog::register_paper_robots(&root.join("papers"));
     let model = robots::robot_by_name("sim-urdf-arm").unwrap();
     assert!(model.has_dynamics());
-    let files = crate::checked::load_dir(&root.join("experiments")).expect("the experiment loads");
+    let files =
+        reproduce::load_experiments(&root.join("experiments")).expect("the experiment loads");
     let jobs: Vec<_> = files.iter().flat_map(|f| f.jobs()).collect();
     assert_eq!(jobs.len(), 2);
     for job in &jobs {
@@ -177,7 +179,7 @@ fn an_experiment_mounts_its_robot_with_a_tool_offset_and_a_base() {
         format!("paper = \"{paper}\"\ntitle = \"mounted\"\n{text}")
     };
     let mount = "tool = [0.0, 0.0, 0.1]\nbase = { xyz = [0.2, 0.0, 0.0], rpy = [0.3, 0.0, 0.5] }";
-    let file = crate::checked::from_toml(&mounted("jaco2-pen", mount, "kong2019"))
+    let file = reproduce::experiments_from_toml(&mounted("jaco2-pen", mount, "kong2019"))
         .expect("a mounted experiment loads");
     let job = &file.jobs()[0];
     let pen = robots::robot_by_name("jaco2-pen").unwrap().robot;
@@ -198,7 +200,7 @@ fn an_experiment_mounts_its_robot_with_a_tool_offset_and_a_base() {
         "label = \"ZNN (eq. 22)\"",
         "label = \"ZNN (eq. 22)\"\ntool = [0.0, 0.05, 0.0]",
     );
-    let file = crate::checked::from_toml(&text).unwrap();
+    let file = reproduce::experiments_from_toml(&text).unwrap();
     assert_eq!(file.jobs()[0].mount.unwrap().tool, [0.0, 0.05, 0.0]);
 
     // Dynamics: a yaw keeps gravity vertical, a tilt does not.
@@ -211,14 +213,14 @@ fn an_experiment_mounts_its_robot_with_a_tool_offset_and_a_base() {
             )
     };
     let yaw = "tool = [0.0, 0.0, 0.05]\nbase = { xyz = [0.1, 0.1, 0.0], rpy = [0.0, 0.0, 1.0] }";
-    let file = crate::checked::from_toml(&dynamic(yaw)).expect("a yaw loads");
+    let file = reproduce::experiments_from_toml(&dynamic(yaw)).expect("a yaw loads");
     let record = run_job(&file.jobs()[0]);
     assert!(
         matches!(record.run.outcome, Outcome::Completed(_)),
         "{:?}",
         record.run.outcome
     );
-    let err = crate::checked::from_toml(&dynamic(mount))
+    let err = reproduce::experiments_from_toml(&dynamic(mount))
         .unwrap_err()
         .to_string();
     assert!(err.contains("base") && err.contains("gravity"), "{err}");
@@ -230,15 +232,18 @@ fn an_experiment_mounts_its_robot_with_a_tool_offset_and_a_base() {
         "robot = \"katana6m180\"\n",
         "robot = \"katana6m180\"\ntool = [0.0, 0.0, 0.1]\n",
     );
-    let err = crate::checked::from_toml(&format!("paper = \"kong2019\"\ntitle = \"t\"\n{katana}"))
-        .unwrap_err()
-        .to_string();
+    let err =
+        reproduce::experiments_from_toml(&format!("paper = \"kong2019\"\ntitle = \"t\"\n{katana}"))
+            .unwrap_err()
+            .to_string();
     assert!(
         err.contains("`tool`") && err.contains("katana6m180"),
         "{err}"
     );
     let far = mounted("jaco2-pen", "base = { xyz = [0.0, 0.0, 20.0] }", "kong2019");
-    let err = crate::checked::from_toml(&far).unwrap_err().to_string();
+    let err = reproduce::experiments_from_toml(&far)
+        .unwrap_err()
+        .to_string();
     assert!(
         err.contains("field `base`") || err.contains("base.xyz[2]"),
         "{err}"
@@ -311,11 +316,12 @@ fn an_example_robot_data_ur5_runs_from_a_robot_file() {
         &root.join("experiments/ur5-dynamics.toml"),
         &format!("paper = \"zhang2018\"\ntitle = \"UR5, torques\"\n{dynamic}"),
     );
-    catalog::robot_files::register_paper_robots(&root.join("papers"));
+    catalog::register_paper_robots(&root.join("papers"));
     let model = robots::robot_by_name("erd-ur5").unwrap();
     assert_eq!(model.dof(), 6);
     assert!(model.has_dynamics(), "the UR5's links carry inertials");
-    let files = crate::checked::load_dir(&root.join("experiments")).expect("the experiments load");
+    let files =
+        reproduce::load_experiments(&root.join("experiments")).expect("the experiments load");
     let jobs: Vec<_> = files.iter().flat_map(|f| f.jobs()).collect();
     assert_eq!(jobs.len(), 2);
     for job in &jobs {

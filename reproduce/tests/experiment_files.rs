@@ -1,11 +1,11 @@
 //! The experiment files: every committed file loads, every experiment of docs/experiments.md is
 //! there, and a malformed file is rejected with an error naming the file and the field.
 
-use catalog::experiment::PaperFile;
+use catalog::PaperFile;
 use std::path::PathBuf;
 
 fn experiments_dir() -> PathBuf {
-    catalog::root::from_current_dir()
+    catalog::root_from_current_dir()
         .unwrap()
         .join("experiments")
 }
@@ -13,7 +13,7 @@ fn experiments_dir() -> PathBuf {
 #[test]
 fn every_experiment_of_the_spec_is_in_the_files() {
     let files =
-        crate::checked::load_dir(&experiments_dir()).expect("committed experiment files load");
+        reproduce::load_experiments(&experiments_dir()).expect("committed experiment files load");
     let ids: Vec<String> = files
         .iter()
         .flat_map(|f| f.experiments.iter().map(|e| e.id.clone()))
@@ -43,13 +43,16 @@ fn every_experiment_of_the_spec_is_in_the_files() {
     }
 }
 
-/// Writes `text` to a fresh file and loads it.
+/// Writes `text` to a fresh file, alone in its directory, and loads it as the orchestrator
+/// loads a directory of them.
 fn load_text(name: &str, text: &str) -> Result<PaperFile, String> {
     let dir = std::env::temp_dir().join(format!("driftbench-test-{}-{name}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join(format!("{name}.toml"));
     std::fs::write(&path, text).unwrap();
-    crate::checked::load(&path).map_err(|e| e.to_string())
+    reproduce::load_experiments(&dir)
+        .map(|mut files| files.remove(0))
+        .map_err(|e| e.to_string())
 }
 
 const GOOD: &str = r#"
@@ -551,7 +554,7 @@ fn experiment_ids_are_unique_across_files() {
         GOOD.replace("label = \"VLTCO\"", "label = \"other\""),
     )
     .unwrap();
-    let err = crate::checked::load_dir(&dir)
+    let err = reproduce::load_experiments(&dir)
         .expect_err("an id defined in two files")
         .to_string();
     assert!(err.contains("b.toml") && err.contains("a.toml"), "{err}");
@@ -565,7 +568,7 @@ fn experiment_ids_are_unique_across_files() {
         GOOD.replace("id = \"jia2019-x\"", "id = \"jia2019-X\""),
     )
     .unwrap();
-    let err = crate::checked::load_dir(&dir)
+    let err = reproduce::load_experiments(&dir)
         .expect_err("an id that is not a slug")
         .to_string();
     assert!(
@@ -573,6 +576,6 @@ fn experiment_ids_are_unique_across_files() {
         "{err}"
     );
     std::fs::remove_file(dir.join("b.toml")).unwrap();
-    assert_eq!(crate::checked::load_dir(&dir).unwrap().len(), 1);
+    assert_eq!(reproduce::load_experiments(&dir).unwrap().len(), 1);
     let _ = std::fs::remove_dir_all(&dir);
 }
