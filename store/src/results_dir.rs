@@ -375,7 +375,7 @@ impl ResultsDir {
     }
 
     /// Appends a part to `runs.csv`: `rows` (in key order, each with at most `joints`
-    /// per-joint values) written as the next part `runs.part-<n>.csv` ([`part_name`], n one
+    /// per-joint values) written as the next part `runs.part-<n>.csv` (n one
     /// more than the last part listed) and committed with the manifest as `runs.csv` is
     /// ([`TrackedDir::commit_with`]). A shard appends each chunk's rows so, writing each row
     /// once, where rewriting `runs.csv` after every chunk wrote R^2 / (2 x chunk) rows for R
