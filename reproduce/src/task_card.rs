@@ -234,7 +234,7 @@ fn kinematics(robot: &Model) -> CardKinematics {
             let (o, t) = (chain.base.origin, arm.tool());
             CardKinematics::Dh {
                 file: file.clone(),
-                links: chain.params.iter().map(|p| [p.a, p.alpha, p.d]).collect(),
+                links: chain.params().iter().map(|p| [p.a, p.alpha, p.d]).collect(),
                 base_rotation: chain
                     .base
                     .rot

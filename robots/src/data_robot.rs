@@ -79,10 +79,8 @@ impl DataRobot {
                 (chain, spec.tool() + flange)
             }
         };
-        let chain = DhChain {
-            base: spec.base().compose(&chain.base),
-            ..chain
-        };
+        let base = spec.base().compose(&chain.base);
+        let chain = chain.with_base(base);
         let vector = |f: fn(&JointSpec) -> f64| DVector::from_vec(column(f));
         DataRobot {
             name: spec.name().to_string(),

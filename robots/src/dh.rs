@@ -119,10 +119,10 @@ impl DhParam {
         DhParam { a, alpha, d }
     }
 
-    /// The link transform `A(theta) = Rz(theta) Tz(d) Tx(a) Rx(alpha)`.
-    pub fn transform(&self, theta: f64) -> Frame {
+    /// The link transform `A(theta) = Rz(theta) Tz(d) Tx(a) Rx(alpha)`, with
+    /// `(sin alpha, cos alpha)` given (a chain computes them once).
+    fn transform(&self, theta: f64, (sa, ca): (f64, f64)) -> Frame {
         let (st, ct) = theta.sin_cos();
-        let (sa, ca) = self.alpha.sin_cos();
         Frame {
             rot: Matrix3::new(ct, -st * ca, st * sa, st, ct * ca, -ct * sa, 0.0, sa, ca),
             origin: Vector3::new(self.a * ct, self.a * st, self.d),
@@ -164,7 +164,10 @@ pub struct DhChain {
     /// Fixed transform from the world to DH frame 0.
     pub base: Frame,
     /// DH parameters of links 1..=n.
-    pub params: Vec<DhParam>,
+    params: Vec<DhParam>,
+    /// `(sin alpha_i, cos alpha_i)` of each link, computed once with `params` (the twists are
+    /// constant, so an evaluation takes the sines and cosines of the joint angles alone).
+    twists: Vec<(f64, f64)>,
 }
 
 thread_local! {
@@ -175,10 +178,17 @@ thread_local! {
 impl DhChain {
     /// A chain whose DH frame 0 is the world frame.
     pub fn new(params: Vec<DhParam>) -> Self {
+        let twists = params.iter().map(|p| p.alpha.sin_cos()).collect();
         DhChain {
             base: Frame::identity(),
             params,
+            twists,
         }
+    }
+
+    /// The DH parameters of links 1..=n.
+    pub fn params(&self) -> &[DhParam] {
+        &self.params
     }
 
     /// The same chain premultiplied by a fixed base transform.
@@ -207,7 +217,10 @@ impl DhChain {
             })
             .collect();
         let base = rows.first().unwrap_or(&flange).prefix();
-        (DhChain { base, params }, Vector3::new(0.0, 0.0, flange.d))
+        (
+            DhChain::new(params).with_base(base),
+            Vector3::new(0.0, 0.0, flange.d),
+        )
     }
 
     /// World-frame transforms `T_0 .. T_n` at the DH angles `q(0), ..., q(n - 1)`, written into
@@ -215,8 +228,9 @@ impl DhChain {
     pub fn frames<'a>(&self, q: impl Fn(usize) -> f64, links: &'a mut [Frame]) -> ChainFrames<'a> {
         assert_eq!(links.len(), self.params.len(), "dh: one frame per link");
         let mut t = self.base;
-        for (i, (link, p)) in links.iter_mut().zip(self.params.iter()).enumerate() {
-            t = t.compose(&p.transform(q(i)));
+        let links_params = self.params.iter().zip(self.twists.iter());
+        for (i, (link, (p, twist))) in links.iter_mut().zip(links_params).enumerate() {
+            t = t.compose(&p.transform(q(i), *twist));
             *link = t;
         }
         ChainFrames {

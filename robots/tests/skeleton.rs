@@ -16,7 +16,7 @@ fn close(a: &Vector3<f64>, b: &Vector3<f64>) -> bool {
 #[test]
 fn jaco2_skeleton_runs_from_the_base_through_the_frame_origins_to_the_task_point() {
     for robot in [Jaco2::pen(), Jaco2::kinova(), Jaco2::hand()] {
-        let params = &robot.chain().params;
+        let params = robot.chain().params();
         for theta in random_vectors::<6>(11, 50, 3.0) {
             let points = robot.skeleton_n(&theta);
             assert_eq!(
