@@ -9,7 +9,8 @@
 #   build      cargo build --release -p reproduce      (timed: wall, user and system CPU seconds
 #                                                       of cargo and every process it starts)
 # into an empty CARGO_TARGET_DIR of its own, removed after the round unless the reproduction
-# needs it; after the last round, unless --build-only,
+# needs it; after the last round, unless --build-only, per pass (--passes N, default 1; the
+# revisions taking turns, as the builds do)
 #   reproduce  cargo run --release -p reproduce         (its results/runs.csv is kept)
 # Cargo's registry is shared with the user's, so downloads are not timed.
 # Wall time needs an otherwise idle machine; the script cannot check that nothing else runs, so
@@ -21,11 +22,12 @@
 # load1) and, without --build-only, runs-<revision>.csv; then benches/side_by_side/compare.py
 # prints each build and the sim_s ratios (the build ratio is benches/REPORT.md's, from build.csv).
 #
-# Usage: benches/side_by_side/build_and_runs.sh [--out DIR] [--rounds N] [--build-only] BASELINE CANDIDATE
+# Usage: benches/side_by_side/build_and_runs.sh [--out DIR] [--rounds N] [--passes N] [--build-only] BASELINE CANDIDATE
 set -euo pipefail
 repo=$(git -C "$(dirname "$0")" rev-parse --show-toplevel)
 out="$repo/benches/results/side-by-side"
 rounds=1
+passes=1
 build_only=false
 usage() { sed -n '/^# Usage/p' "$0" | sed 's/^# //' >&2; exit 2; }
 while [ $# -gt 0 ]; do
@@ -34,8 +36,11 @@ while [ $# -gt 0 ]; do
         --rounds)
             rounds="${2:?--rounds needs a count}"; shift 2
             case "$rounds" in ''|*[!0-9]*|0) echo "--rounds: a whole number from 1, not $rounds" >&2; exit 2 ;; esac ;;
+        --passes)
+            passes="${2:?--passes needs a count}"; shift 2
+            case "$passes" in ''|*[!0-9]*|0) echo "--passes: a whole number from 1, not $passes" >&2; exit 2 ;; esac ;;
         --build-only) build_only=true; shift ;;
-        -*) echo "unknown option $1 (choices: --out DIR, --rounds N, --build-only)" >&2; usage ;;
+        -*) echo "unknown option $1 (choices: --out DIR, --rounds N, --passes N, --build-only)" >&2; usage ;;
         *) break ;;
     esac
 done
@@ -67,13 +72,16 @@ for round in $(seq 1 "$rounds"); do
     done
 done
 if ! $build_only; then
-    for rev in "$@"; do
-        clone=$(clone_of "$rev")
-        echo "[$rev] reproduction" >&2
-        ( cd "$clone" && CARGO_TARGET_DIR="$clone/target" cargo run --release --quiet -p reproduce >/dev/null 2>&1 ) || \
-            echo "[$rev] the reproduction exited non-zero; its runs.csv is kept as written" >&2
-        cp "$clone/results/runs.csv" "$out/runs-$rev.csv"
-        rm -rf "$clone/target"
+    for pass in $(seq 1 "$passes"); do
+        for rev in "$@"; do
+            clone=$(clone_of "$rev")
+            echo "[$rev] reproduction, pass $pass of $passes" >&2
+            ( cd "$clone" && CARGO_TARGET_DIR="$clone/target" cargo run --release --quiet -p reproduce >/dev/null 2>&1 ) || \
+                echo "[$rev] the reproduction exited non-zero; its runs.csv is kept as written" >&2
+            if [ "$passes" -eq 1 ]; then name="runs-$rev.csv"; else name="runs-$rev-p$pass.csv"; fi
+            cp "$clone/results/runs.csv" "$out/$name"
+            if [ "$pass" -eq "$passes" ]; then rm -rf "$clone/target"; fi
+        done
     done
 fi
 mv "$tmp/build.csv" "$out/build.csv"

@@ -23,12 +23,22 @@ for rev, builds in ((base, b), (cand, c)):
 print("build ratio: benches/REPORT.md, \"The cold build against f5570fd\" "
       "(cargo run --release -p driftbench-benches --bin telemetry)")
 
-def runs(rev):
-    key = lambda r: (r["paper"], r["experiment"], r.get("variant_id", ""), r.get("solver_id", ""))
-    return {key(r): float(r["sim_s"]) for r in csv.DictReader(open(out / f"runs-{rev}.csv"))
-            if r.get("sim_s") not in (None, "") and float(r["sim_s"]) > 0}
+def passes(rev):
+    """runs-REV.csv (one pass) or runs-REV-p1.csv, runs-REV-p2.csv, ... (several)."""
+    one = out / f"runs-{rev}.csv"
+    return [one] if one.exists() else sorted(out.glob(f"runs-{rev}-p*.csv"))
 
-if not all((out / f"runs-{rev}.csv").exists() for rev in (base, cand)):
+def runs(rev):
+    """Each run's sim_s, the median over the passes that timed it."""
+    key = lambda r: (r["paper"], r["experiment"], r.get("variant_id", ""), r.get("solver_id", ""))
+    times = {}
+    for path in passes(rev):
+        for r in csv.DictReader(open(path)):
+            if r.get("sim_s") not in (None, "") and float(r["sim_s"]) > 0:
+                times.setdefault(key(r), []).append(float(r["sim_s"]))
+    return {k: statistics.median(v) for k, v in times.items()}
+
+if not all(passes(rev) for rev in (base, cand)):
     print("sim_s: not measured (no runs-<revision>.csv for both: a --build-only measurement)")
     sys.exit(0)
 rb, rc = runs(base), runs(cand)
@@ -37,6 +47,7 @@ ratios = [rc[k] / rb[k] for k in common]
 if not ratios:
     sys.exit("no run with a sim_s in both revisions")
 worst = max(zip(ratios, common))
-print(f"sim_s over {len(common)} runs in both: median ratio {statistics.median(ratios):.3f}, "
+print(f"sim_s over {len(common)} runs in both ({len(passes(base))} and {len(passes(cand))} passes, "
+      f"a run's sim_s the median over them): median ratio {statistics.median(ratios):.3f}, "
       f"worst {worst[0]:.3f} ({'/'.join(worst[1])}); total {sum(rc[k] for k in common):.1f} s "
       f"against {sum(rb[k] for k in common):.1f} s")
