@@ -566,6 +566,17 @@ impl Chain {
         self.jacobian(ws, theta).fixed_rows::<3>(0)
     }
 
+    /// The tool point `p(theta)` and the geometric Jacobian (6 x n) from one evaluation of the
+    /// kinematics (what [`Chain::tool_position`] and [`Chain::jacobian`] give).
+    pub fn tool_position_and_jacobian<'w>(
+        &self,
+        ws: &'w mut ChainWorkspace,
+        theta: &[f64],
+    ) -> (Vector3<f64>, &'w DMatrix<f64>) {
+        self.jacobian(ws, theta);
+        (ws.tool.origin, &ws.jacobian)
+    }
+
     /// The time derivative `dJ/dt` (6 x n) along `thetadot` (module documentation).
     pub fn jacobian_dot<'w>(
         &self,

@@ -131,6 +131,15 @@ impl Robot for ChainRobot {
         self.with_scratch(|ws, _| three_rows(self.chain.jacobian_dot(ws, theta, thetadot), 0, jdot))
     }
 
+    /// p and J from one evaluation of the chain's kinematics.
+    fn position_jacobian(&self, theta: &[f64], jac: &mut [f64]) -> Vector3<f64> {
+        self.with_scratch(|ws, _| {
+            let (p, j) = self.chain.tool_position_and_jacobian(ws, theta);
+            three_rows(j, 0, jac);
+            p
+        })
+    }
+
     fn limits(&self) -> &JointLimits {
         &self.limits
     }

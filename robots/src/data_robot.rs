@@ -192,6 +192,16 @@ impl Robot for DataRobot {
         })
     }
 
+    /// p and J from one evaluation of the chain's frames.
+    fn position_jacobian(&self, theta: &[f64], jac: &mut [f64]) -> Vector3<f64> {
+        let n = self.dof();
+        self.with_frames(theta, |frames| {
+            let p = frames.frame(n).transform_point(&self.tool);
+            frames.point_jacobian(n, &p, jac);
+            p
+        })
+    }
+
     fn limits(&self) -> &JointLimits {
         &self.limits
     }

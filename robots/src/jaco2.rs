@@ -269,6 +269,10 @@ impl Robot for Jaco2 {
         self.arm.jacobian_dot(theta, thetadot, jdot)
     }
 
+    fn position_jacobian(&self, theta: &[f64], jac: &mut [f64]) -> Vector3<f64> {
+        self.arm.position_jacobian(theta, jac)
+    }
+
     fn limits(&self) -> &JointLimits {
         self.arm.limits()
     }

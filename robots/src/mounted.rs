@@ -159,6 +159,28 @@ impl<R: Robot + ?Sized> Mounted<R> {
     fn offset(&self, o: &dyn Orientation, theta: &[f64]) -> Vector3<f64> {
         o.tool_rotation(theta) * self.mount.tool
     }
+
+    /// Turns the inner arm's J (in `jac`) into the mounted arm's: adds the tool offset's
+    /// columns J_w,j x r, then rotates every column by the base. Returns r (zero without an
+    /// offset), which the mounted position adds to the inner one.
+    fn mount_jacobian(&self, theta: &[f64], jac: &mut [f64]) -> Vector3<f64> {
+        let r = match self.offset_orientation() {
+            Some(o) => {
+                let r = self.offset(o, theta);
+                with_scratch(jac.len(), |jw| {
+                    o.angular_jacobian(theta, jw);
+                    for (j, c) in jac.chunks_exact_mut(3).enumerate() {
+                        let v = Vector3::new(c[0], c[1], c[2]) + column(jw, j).cross(&r);
+                        c.copy_from_slice(v.as_slice());
+                    }
+                });
+                r
+            }
+            None => Vector3::zeros(),
+        };
+        rotate_columns(&self.mount.base.rot, jac);
+        r
+    }
 }
 
 thread_local! {
@@ -210,17 +232,14 @@ impl<R: Robot + ?Sized> Robot for Mounted<R> {
 
     fn jacobian(&self, theta: &[f64], jac: &mut [f64]) {
         self.inner.jacobian(theta, jac);
-        if let Some(o) = self.offset_orientation() {
-            let r = self.offset(o, theta);
-            with_scratch(jac.len(), |jw| {
-                o.angular_jacobian(theta, jw);
-                for (j, c) in jac.chunks_exact_mut(3).enumerate() {
-                    let v = Vector3::new(c[0], c[1], c[2]) + column(jw, j).cross(&r);
-                    c.copy_from_slice(v.as_slice());
-                }
-            });
-        }
-        rotate_columns(&self.mount.base.rot, jac);
+        self.mount_jacobian(theta, jac);
+    }
+
+    /// The inner arm's p and J from its one evaluation, then the mount's offset and base.
+    fn position_jacobian(&self, theta: &[f64], jac: &mut [f64]) -> Vector3<f64> {
+        let p = self.inner.position_jacobian(theta, jac);
+        let r = self.mount_jacobian(theta, jac);
+        self.mount.base.transform_point(&(p + r))
     }
 
     fn jacobian_dot(&self, theta: &[f64], thetadot: &[f64], jdot: &mut [f64]) {

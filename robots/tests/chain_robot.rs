@@ -193,3 +193,19 @@ fn a_broken_urdf_robot_file_is_refused_naming_the_file_and_field() {
     std::fs::remove_dir_all(dir.parent().unwrap().parent().unwrap()).unwrap();
     std::fs::remove_file(&outside).unwrap();
 }
+
+/// A URDF arm's shared p and J evaluation is its separate ones, bit for bit.
+#[test]
+fn a_urdf_robot_shares_its_position_and_jacobian_bit_for_bit() {
+    let dir = register(
+        "shared",
+        &[(
+            "urdf-arm6-shared",
+            robot_file("urdf-arm6-shared", "arm6.urdf", ""),
+        )],
+    );
+    let model = robot_by_name("urdf-arm6-shared").unwrap();
+    assert!(matches!(&model.kinematics, Kinematics::Urdf { .. }));
+    crate::position_jacobian::assert_shared_is_separate(model.robot.as_ref());
+    let _ = std::fs::remove_dir_all(dir.parent().unwrap().parent().unwrap().parent().unwrap());
+}

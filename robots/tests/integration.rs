@@ -18,6 +18,7 @@ mod nlink_dyn;
 mod orientation;
 mod panda;
 mod pinocchio;
+mod position_jacobian;
 mod robot_file;
 mod skeleton;
 mod urdf;

@@ -25,6 +25,7 @@ use robots::JointLimits;
 
 /// (zeta-_i, zeta+_i) of jia2019 (2.15)–(2.16) for joint `i` at angle `theta` with gain kappa
 /// (or zhong2021's upsilon).
+#[inline]
 pub fn merged_bound(limits: &JointLimits, i: usize, theta: f64, gain: f64) -> (f64, f64) {
     (
         (gain * (limits.theta_min[i] - theta)).max(limits.thetadot_min[i]),

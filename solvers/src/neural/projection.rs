@@ -235,13 +235,12 @@ impl LviCore {
         }
     }
 
-    /// de/dy = Dz (I - M) - I into `self.de` (module docs); needs z at y.
-    fn residual_jacobian(&mut self, qp: &Qp, y: &[f64]) {
-        self.check(qp, y);
-        self.compute_z(qp, y);
+    /// de/dy = Dz (I - M) - I into `self.de` (module docs), at the y of the last
+    /// [`LviCore::residual`] (it computed z there).
+    fn residual_jacobian(&mut self, qp: &Qp) {
         lvi_matrix_into(qp, &mut self.m);
         let QpDims { nx, n_eq, .. } = self.dims;
-        let n = y.len();
+        let n = self.z.len();
         for i in 0..n {
             let (lo, hi) = omega(qp, nx, n_eq, i);
             let inside = self.z[i] > lo && self.z[i] < hi;
@@ -367,24 +366,28 @@ impl NeuralSolver for ProjectionNetwork {
             Form::Penalty(core) => return core.jacobian(g, &self.activation, y, qp, qp_dot, jac),
         };
         core.residual(qp, y);
-        core.residual_jacobian(qp, y);
-        // diag(Phi'(e)) de, row by row (exact for the linear activation: Phi' = 1).
+        core.residual_jacobian(qp);
+        // diag(Phi'(e)) de, row by row; the linear activation's Phi' = 1 leaves de as it is.
         let n = y.len();
-        for k in 0..n {
-            let slope = self.activation.derivative(core.e[k]);
-            for j in 0..n {
-                core.de[(k, j)] *= slope;
+        if self.activation != Activation::Linear {
+            for k in 0..n {
+                let slope = self.activation.derivative(core.e[k]);
+                for j in 0..n {
+                    core.de[(k, j)] *= slope;
+                }
             }
         }
         let (m, de) = (&core.m, &core.de);
         match scaling {
-            // jac = g (I + M') diag(Phi') de.
+            // jac = g (I + M') diag(Phi') de: entry (i, j) is de_ij + (column i of M) . (column
+            // j of de), summed over k in order (the matrices are column-major).
             Scaling::IPlusMt => {
-                for i in 0..n {
-                    for j in 0..n {
-                        let mut s = de[(i, j)];
-                        for k in 0..n {
-                            s += m[(k, i)] * de[(k, j)];
+                let (m, de) = (m.as_slice(), de.as_slice());
+                for (i, m_i) in m.chunks_exact(n).enumerate() {
+                    for (j, de_j) in de.chunks_exact(n).enumerate() {
+                        let mut s = de_j[i];
+                        for (a, b) in m_i.iter().zip(de_j) {
+                            s += a * b;
                         }
                         jac[(i, j)] = g * s;
                     }
