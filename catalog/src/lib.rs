@@ -41,9 +41,9 @@ pub use error::{
 };
 pub use experiment::{
     default_exact_integrator, load_dir, BaseSpec, DeclaredRun, ExpectedFailure, Experiment,
-    PaperFile, Variant,
+    PaperFile, Variant, Variants,
 };
 pub use robot_files::{register_paper_robots, register_path, RobotPathError};
 pub use root::{find_root, root_from_current_dir, RootNotFound};
-pub use sweep::{KeptTraces, Traces, MAX_EXPANSION};
+pub use sweep::{KeptTraces, Traces, CHECKED_WHOLE, MAX_EXPANSION, NAMES_COMPARED};
 pub use task_set::{load_task_set, TASK_SET_FILE};
