@@ -10,6 +10,8 @@
 //! Every run an experiment file describes is a [`RunSpec`].
 
 use crate::error::{ExperimentError, ExperimentFileError, FieldAt, FieldError, TomlError};
+use crate::sweep::{Prefixes, Sweep, CHECKED_WHOLE, NAMES_COMPARED};
+use crate::SweepError;
 use robots::Mount;
 use serde::{Deserialize, Serialize};
 use settings::SolverSpec;
@@ -23,8 +25,6 @@ use spec::RunKey;
 use spec::SchemeSpec;
 use spec::{slug, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
 use spec::{JobPart, LimitsSpec, NetworkInit, RunSpec, Scoring, SetupError, SolverChoice};
-use crate::sweep::{Prefixes, Sweep, CHECKED_WHOLE, NAMES_COMPARED};
-use crate::SweepError;
 use std::borrow::Cow;
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
@@ -107,7 +107,7 @@ pub struct Variants(Vec<Entry>);
 #[derive(Clone, Debug)]
 enum Entry {
     Written(Variant),
-    Swept(Box<Sweep>),
+    Swept(Sweep),
 }
 
 impl Entry {
@@ -397,7 +397,7 @@ impl PaperFile {
                 file.experiments[slot.experiment]
                     .variants
                     .0
-                    .insert(slot.variant, Entry::Swept(Box::new(sweep)));
+                    .insert(slot.variant, Entry::Swept(sweep));
             }
             file
         } else {
@@ -982,7 +982,13 @@ fn variant_at(
 
 /// The field `name` of the variant labelled `label`, the `index`-th of experiment `e` (the
 /// `experiment`-th of its file).
-fn variant_field(experiment: usize, e: &Experiment, index: usize, label: &str, name: &str) -> FieldAt {
+fn variant_field(
+    experiment: usize,
+    e: &Experiment,
+    index: usize,
+    label: &str,
+    name: &str,
+) -> FieldAt {
     FieldAt::Variant {
         experiment,
         id: e.id.clone(),

@@ -274,7 +274,8 @@ impl Sweeps {
         self.0
             .into_iter()
             .map(|(place, table)| {
-                let sweep = Sweep::new(&table, *budget, place.clone()).map_err(|e| place.wrap(e))?;
+                let sweep =
+                    Sweep::new(&table, *budget, place.clone()).map_err(|e| place.wrap(e))?;
                 *budget -= sweep.total;
                 let slot = SweepSlot {
                     experiment: place.experiment,
@@ -388,7 +389,10 @@ impl RunCounts {
         for field in fields {
             // The last axis whose path is the field itself sets it.
             let setter = axes.iter().enumerate().rev().find_map(|(a, axis)| {
-                let p = axis.paths.iter().position(|p| p.len() == 1 && p[0] == *field)?;
+                let p = axis
+                    .paths
+                    .iter()
+                    .position(|p| p.len() == 1 && p[0] == *field)?;
                 Some((a, p))
             });
             match setter {
@@ -1022,7 +1026,6 @@ fn check_template(template: &str, names: &[(String, usize, usize)]) -> Result<()
     Ok(())
 }
 
-
 /// The label of the variant whose values (axis by axis) are `values`.
 fn make_label(
     template: &str,
@@ -1258,7 +1261,6 @@ fn decimal(x: f64) -> Option<(i128, u32)> {
     Some((if neg { -m } else { m }, frac.len() as u32))
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1438,10 +1440,7 @@ sweep = { "solvers.0.gamma" = [20.0, 2000.0], "theta0.1" = [{ value = 3.0, label
     #[test]
     fn ranges_are_decimal_safe() {
         assert_eq!(floats(0.1, 0.3, 0.1).unwrap(), [0.1, 0.2, 0.3]);
-        assert_eq!(
-            floats(0.0, 1.0, 0.25).unwrap(),
-            [0.0, 0.25, 0.5, 0.75, 1.0]
-        );
+        assert_eq!(floats(0.0, 1.0, 0.25).unwrap(), [0.0, 0.25, 0.5, 0.75, 1.0]);
         assert_eq!(floats(1.0, 0.7, -0.1).unwrap(), [1.0, 0.9, 0.8, 0.7]);
         assert_eq!(floats(2.5, 2.5, 1.0).unwrap(), [2.5]);
         assert!(floats(0.0, 1.0, 0.3).is_err());
@@ -1803,8 +1802,11 @@ mod plan_tests {
 
     /// How many runs a variant table makes: the exact column (default true) and its solvers.
     fn runs(t: &Table, exact_only: bool) -> usize {
-        let exact = t.get("exact").map_or(true, |v| v.as_bool() == Some(true));
-        let solvers = t.get("solvers").and_then(Value::as_array).map_or(0, Vec::len);
+        let exact = t.get("exact").is_none_or(|v| v.as_bool() == Some(true));
+        let solvers = t
+            .get("solvers")
+            .and_then(Value::as_array)
+            .map_or(0, Vec::len);
         usize::from(exact) + if exact_only { 0 } else { solvers }
     }
 
@@ -1840,7 +1842,11 @@ mod plan_tests {
             )),
             n.clone().prop_map(|n| (
                 "exact, scheme.q".to_string(),
-                list(&(0..n).map(|k| format!("[{}, {k}]", k % 2 == 0)).collect::<Vec<_>>())
+                list(
+                    &(0..n)
+                        .map(|k| format!("[{}, {k}]", k % 2 == 0))
+                        .collect::<Vec<_>>()
+                )
             )),
             n.prop_map(|n| (
                 "path.scale".to_string(),
@@ -1937,18 +1943,29 @@ mod plan_tests {
     #[test]
     fn names_that_could_clash_are_not_decided_from_the_axes() {
         let s = |axes: &[(&str, &str)]| {
-            let axes: Vec<(String, String)> =
-                axes.iter().map(|(k, v)| (k.to_string(), v.to_string())).collect();
+            let axes: Vec<(String, String)> = axes
+                .iter()
+                .map(|(k, v)| (k.to_string(), v.to_string()))
+                .collect();
             sweep(&axes, true).unwrap().prefixes()
         };
         assert_eq!(
-            s(&[("path.name", "[\"x why y\", \"x\"]"), ("expected_failure.why", "[\"w\", \"y why w\"]")]),
+            s(&[
+                ("path.name", "[\"x why y\", \"x\"]"),
+                ("expected_failure.why", "[\"w\", \"y why w\"]")
+            ]),
             None
         );
         assert_eq!(s(&[("scheme.mu", "[0.5, -0.5]")]), None);
-        assert_eq!(s(&[("scheme.mu", "{ from = -1.0, to = 1.0, step = 0.5 }")]), None);
         assert_eq!(
-            s(&[("scheme.mu", "{ from = 1.0, to = 2.0, step = 0.5 }"), ("path.name", "[\"a\", \"b\"]")]),
+            s(&[("scheme.mu", "{ from = -1.0, to = 1.0, step = 0.5 }")]),
+            None
+        );
+        assert_eq!(
+            s(&[
+                ("scheme.mu", "{ from = 1.0, to = 2.0, step = 0.5 }"),
+                ("path.name", "[\"a\", \"b\"]")
+            ]),
             Some(Prefixes {
                 id: "z-mu-".to_string(),
                 label: "L [mu=".to_string()

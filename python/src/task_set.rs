@@ -197,7 +197,9 @@ pub fn load_tasks(root: &Path) -> Result<Vec<PyTask>, TaskError> {
     for file in &files {
         for (index, e) in file.experiments.iter().enumerate() {
             for i in 0..e.variants.len() {
-                let v = file.variant(index, i).map_err(|error| file.in_file(error))?;
+                let v = file
+                    .variant(index, i)
+                    .map_err(|error| file.in_file(error))?;
                 let runs: Vec<RunSpec> = file.variant_jobs(e, &v);
                 let Some(first) = runs.first() else {
                     continue;

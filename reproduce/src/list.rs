@@ -18,7 +18,7 @@ use std::io::Write;
 pub fn list(out: &mut impl Write, files: &[PaperFile], kept: Kept) -> Result<(), ReproduceError> {
     match write(out, files, kept) {
         Ok(()) | Err(Stop::Closed) => Ok(()),
-        Err(Stop::Made(e)) => Err(e),
+        Err(Stop::Made(e)) => Err(*e),
     }
 }
 
@@ -27,7 +27,7 @@ enum Stop {
     /// The output is closed.
     Closed,
     /// A run could not be made.
-    Made(ReproduceError),
+    Made(Box<ReproduceError>),
 }
 
 impl From<std::io::Error> for Stop {
@@ -66,7 +66,7 @@ fn write(out: &mut impl Write, files: &[PaperFile], kept: Kept) -> Result<(), St
             )?;
             // The key (ids: what --task, papers/ and the results use), then the labels.
             for j in kept.experiment_runs(f, i, first) {
-                let j = j.map_err(Stop::Made)?;
+                let j = j.map_err(|e| Stop::Made(Box::new(e)))?;
                 let k = j.key();
                 writeln!(
                     out,

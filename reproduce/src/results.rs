@@ -84,9 +84,10 @@ impl<'a> Described<'a> {
     /// made before the first variant that does not make (kept in `failed`, which the caller
     /// reports: [`open_results`]).
     fn label_index(&self, failed: &RefCell<Option<ReproduceError>>) -> LabelIndex {
-        LabelIndex::new(self.runs().map_while(|j| {
-            j.map_err(|e| *failed.borrow_mut() = Some(e)).ok()
-        }))
+        LabelIndex::new(
+            self.runs()
+                .map_while(|j| j.map_err(|e| *failed.borrow_mut() = Some(e)).ok()),
+        )
     }
 
     /// Every run's key, in file order, made as the runs are taken (no run is held: a key is

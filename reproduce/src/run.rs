@@ -211,8 +211,10 @@ fn publish(
         let ran = catalog::load_task_set(&project.experiments_dir)
             .map_err(ReproduceError::from)
             .and_then(|set| {
-                control::reproduce(&set, all.jobs()?, &project.results_dir, |m| eprintln!("{m}"))
-                    .map_err(ReproduceError::from)
+                control::reproduce(&set, all.jobs()?, &project.results_dir, |m| {
+                    eprintln!("{m}")
+                })
+                .map_err(ReproduceError::from)
             });
         match ran {
             Ok(s) => {

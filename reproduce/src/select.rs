@@ -94,7 +94,10 @@ impl<'a> Kept<'a> {
             self.selection.exact_only,
             (first..count).step_by(step),
         )
-        .map(|r| r.map(|d| d.spec).map_err(|e| ReproduceError::from(f.in_file(e))))
+        .map(|r| {
+            r.map(|d| d.spec)
+                .map_err(|e| ReproduceError::from(f.in_file(e)))
+        })
     }
 
     /// The kept runs of `files`, in order, made as they are taken.
@@ -167,8 +170,8 @@ pub fn check_selection(files: &[PaperFile], selection: &Selection) -> Result<(),
 #[cfg(test)]
 mod tests {
     use super::*;
-    use spec::SolverChoice;
     use crate::experiments::load_dir;
+    use spec::SolverChoice;
     use std::path::Path;
 
     /// The project's experiment files and their runs.

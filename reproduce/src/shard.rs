@@ -128,9 +128,10 @@ pub fn run_shard(
         summary.push(row, &mut line);
         emit(&line);
     };
-    let mut jobs = kept
-        .runs(all.files())
-        .filter(|j| j.as_ref().map_or(true, |j| !done.contains(&j.key().to_string())));
+    let mut jobs = kept.runs(all.files()).filter(|j| {
+        j.as_ref()
+            .map_or(true, |j| !done.contains(&j.key().to_string()))
+    });
     let (size, mut ran) = (chunk_size(), 0);
     loop {
         let chunk: Vec<RunSpec> = jobs.by_ref().take(size).collect::<Result<_, _>>()?;

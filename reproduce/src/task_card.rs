@@ -13,8 +13,8 @@
 //! nobody edited is removed). [`cards`] renders them in memory.
 
 use crate::experiments::load_dir;
-use catalog::ExperimentFileError;
 use catalog::Experiment;
+use catalog::ExperimentFileError;
 use presentation::task_card::{
     self as card, CardRun, Kinematics as CardKinematics, MountCard, PathCard, QpCard, RobotCard,
     RunSettings, SchemeCard, SchemeForm, StartCard, TaskCard,
@@ -83,12 +83,15 @@ pub fn cards(experiments_dir: &Path) -> Result<BTreeMap<String, String>, TaskCar
     let models = files
         .iter()
         .flat_map(|f| {
-            f.experiments.iter().enumerate().flat_map(move |(index, e)| {
-                carded(e).map(move |i| {
-                    let v = f.variant(index, i).map_err(|error| f.in_file(error))?;
-                    Ok::<_, TaskCardError>(f.variant_jobs(e, &v))
+            f.experiments
+                .iter()
+                .enumerate()
+                .flat_map(move |(index, e)| {
+                    carded(e).map(move |i| {
+                        let v = f.variant(index, i).map_err(|error| f.in_file(error))?;
+                        Ok::<_, TaskCardError>(f.variant_jobs(e, &v))
+                    })
                 })
-            })
         })
         .map(|jobs| {
             let jobs = jobs?;

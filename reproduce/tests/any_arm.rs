@@ -201,7 +201,10 @@ fn an_experiment_mounts_its_robot_with_a_tool_offset_and_a_base() {
         "label = \"ZNN (eq. 22)\"\ntool = [0.0, 0.05, 0.0]",
     );
     let file = reproduce::experiments_from_toml(&text).unwrap();
-    assert_eq!(file.jobs().unwrap()[0].mount.unwrap().tool, [0.0, 0.05, 0.0]);
+    assert_eq!(
+        file.jobs().unwrap()[0].mount.unwrap().tool,
+        [0.0, 0.05, 0.0]
+    );
 
     // Dynamics: a yaw keeps gravity vertical, a tilt does not.
     let dynamic = |mount: &str| {

@@ -86,7 +86,12 @@ scheme = {{ kind = "znn-rmp", mu = 3.0, k_p = 1.0 }}
         .unwrap();
         let files = load_experiments(&dir).unwrap();
         let variants_of_sweep: Vec<String> = (0..variants)
-            .map(|i| format!("kong2019-cards--{}.md", files[0].variant(0, i).unwrap().id()))
+            .map(|i| {
+                format!(
+                    "kong2019-cards--{}.md",
+                    files[0].variant(0, i).unwrap().id()
+                )
+            })
             .collect();
         let generated = task_cards(&dir).unwrap();
         let of_sweep: Vec<&String> = generated
