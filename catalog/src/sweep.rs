@@ -1631,6 +1631,28 @@ sweep = {{ "scheme.mu" = [0.5, 1, 2] }}
         );
     }
 
+    /// A sweep larger than [`super::CHECKED_WHOLE`] whose lines are valid loads; a variant off
+    /// its lines is checked as it is made, and one that fails (here a label past 100 bytes:
+    /// the range's ends are short, its inner values long) is refused then, naming the variant
+    /// and the field.
+    #[test]
+    fn a_variant_off_the_lines_is_checked_as_it_is_made() {
+        let text = format!(
+            "{}[[experiment.variant]]\nlabel = \"{}\"\nscheme = {{ kind = \"znn-rmp\", mu = 1.0, k_p = 1.0 }}\nsweep = {{ \"scheme.mu\" = {{ from = 1.0, to = 2.0, step = 0.00001 }} }}\n",
+            fixtures::katana_circle("t", "kong2019-t", 1.0, ""),
+            "L".repeat(90)
+        );
+        let file = PaperFile::from_toml(&text).unwrap();
+        assert_eq!(file.experiments[0].variants.len(), 100_001);
+        assert!(file.variant(0, 0).is_ok() && file.variant(0, 100_000).is_ok());
+        let e = file.variant(0, 1).unwrap_err().to_string();
+        assert!(
+            e.starts_with("experiment[0] (id \"kong2019-t\") variant[1] (")
+                && e.contains("[mu=1.00001]\") field `label`"),
+            "{e}"
+        );
+    }
+
     #[test]
     fn a_bad_traces_value_is_refused_naming_the_field_and_choices_not_the_value() {
         for bad in [

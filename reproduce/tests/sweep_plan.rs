@@ -80,3 +80,39 @@ fn list_shard_of_a_sweep_of_ten_million_runs_is_fast() {
     assert!(took < Duration::from_secs(60), "{took:?}");
     let _ = std::fs::remove_dir_all(&root);
 }
+
+/// A shard of a sweep with variants that fail their checks when made (a label past 100 bytes,
+/// off the lines the load checks) stops with exit 2 naming the first of them, before it runs
+/// anything: it makes the described runs (its pruning's keys) and then its own in passes
+/// before the first run.
+#[test]
+fn a_shard_stops_before_running_at_a_variant_that_fails_when_made() {
+    let root = std::env::temp_dir().join(format!("driftbench-sweep-made-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&root);
+    std::fs::create_dir_all(root.join("experiments")).unwrap();
+    let text = sweep(100_001).replace(
+        "label = \"ZNN\"",
+        &format!("label = \"{}\"", "L".repeat(90)),
+    );
+    std::fs::write(root.join("experiments/kong2019.toml"), text).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_reproduce"))
+        .current_dir(&root)
+        .args(["shard", "1/50000", "--threads", "1"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("kong2019.toml")
+            && err.contains("variant[1] (")
+            && err.contains("field `label`"),
+        "{err}"
+    );
+    // Nothing ran: no run was checkpointed.
+    let journal = root.join("results-shard-1-of-50000/journal.csv");
+    assert!(
+        !journal.exists() || std::fs::read_to_string(&journal).unwrap().lines().count() <= 1,
+        "a run was checkpointed"
+    );
+    let _ = std::fs::remove_dir_all(&root);
+}
