@@ -67,7 +67,7 @@ fn per_tick(c: &mut Criterion) {
     let jobs: Vec<_> = reproduce::load_experiments(&experiments)
         .expect("the experiment files")
         .iter()
-        .flat_map(|f| f.jobs())
+        .flat_map(|f| f.jobs().unwrap())
         .collect();
     let tasks = load_tasks(&jobs, &set.tasks).expect("the tasks");
     for task in &tasks {

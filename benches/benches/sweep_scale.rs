@@ -64,20 +64,24 @@ fn main() {
         });
         // What `list` and `list --shards` do: the runs made as they are taken, none held.
         timed("jobs + keys, streamed (list)", n, || {
-            let keys: usize = file.iter_jobs().map(|j| j.key().to_string().len()).sum();
+            let keys: usize = file
+                .iter_jobs()
+                .map(|j| j.expect("a valid sweep").key().to_string().len())
+                .sum();
             assert!(keys > 0);
         });
         timed("shard plan (8 shards), counted", n, || {
             let total = file
                 .experiments
                 .iter()
-                .flat_map(|e| &e.variants)
-                .map(|v| v.run_count())
+                .map(|e| e.variants.run_count(false))
                 .sum();
             store::shard::plan(total, 8)
         });
         // What a run (and a shard) holds: every run of the selection as a `RunSpec`.
-        let jobs: Vec<RunSpec> = timed("jobs collected (a run's)", n, || file.jobs());
+        let jobs: Vec<RunSpec> = timed("jobs collected (a run's)", n, || {
+            file.jobs().expect("a valid sweep")
+        });
         if n <= 100_000 {
             let rows: Vec<RunRow> = jobs
                 .iter()

@@ -157,7 +157,7 @@ pub fn experiment_jobs() -> Vec<RunSpec> {
     load_experiments(&dir)
         .unwrap_or_else(|e| panic!("loading {}: {e}", dir.display()))
         .iter()
-        .flat_map(|f| f.jobs())
+        .flat_map(|f| f.jobs().expect("the runs of the experiment files"))
         .collect()
 }
 

@@ -96,6 +96,26 @@ pub enum SweepError {
         /// The swept keys, each in backquotes.
         keys: Vec<String>,
     },
+    /// The sweep is larger than [`crate::sweep::CHECKED_WHOLE`] and its axes do not show its
+    /// labels and ids distinct, and it is too large to compare them one by one.
+    #[error("field `sweep`: its {variants} variants are more than {max} to compare their labels and ids one by one, and its axes do not show them distinct (for that the label must be no template, and every value of every key give a text without \", \" and a slug of one token, distinct within its key: docs/reference/sweeps.md); split it into smaller sweeps or change its values")]
+    NamesUndecided {
+        /// The sweep's variants.
+        variants: usize,
+        /// The most compared one by one, [`crate::sweep::NAMES_COMPARED`].
+        max: usize,
+    },
+    /// Another variant's name begins as every label or id of a large sweep does: they might be
+    /// the same.
+    #[error("field `sweep`: every {what} of its variants begins with \"{prefix}\", and so does \"{name}\" of another variant of the experiment: give one of them another {what}")]
+    MayClash {
+        /// `label` or `id`.
+        what: &'static str,
+        /// What the sweep's names begin with.
+        prefix: String,
+        /// The other name.
+        name: String,
+    },
     /// The label template has a placeholder that names no swept key.
     #[error("field `label`: placeholder {{{placeholder}}} names no swept key (known: {})", known.join(", "))]
     Placeholder {

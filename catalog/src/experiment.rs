@@ -10,6 +10,8 @@
 //! Every run an experiment file describes is a [`RunSpec`].
 
 use crate::error::{ExperimentError, ExperimentFileError, FieldAt, FieldError, TomlError};
+use crate::sweep::{Prefixes, Sweep, CHECKED_WHOLE, NAMES_COMPARED};
+use crate::SweepError;
 use robots::Mount;
 use serde::{Deserialize, Serialize};
 use settings::SolverSpec;
@@ -23,8 +25,10 @@ use spec::RunKey;
 use spec::SchemeSpec;
 use spec::{slug, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL};
 use spec::{JobPart, LimitsSpec, NetworkInit, RunSpec, Scoring, SetupError, SolverChoice};
+use std::borrow::Cow;
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
+use std::rc::Rc;
 
 /// One paper's experiment file.
 #[derive(Clone, Debug, Deserialize)]
@@ -86,9 +90,92 @@ pub struct Experiment {
     /// `{ max-instants = 2000 }` (a bounded number of exact solves per run) or `"off"`.
     #[serde(default)]
     pub scoring: Scoring,
-    /// The variants (`[[experiment.variant]]`), in file order, sweeps expanded in place.
+    /// The variants (`[[experiment.variant]]`), in file order, each sweep kept as its plan in
+    /// its place.
     #[serde(rename = "variant")]
-    pub variants: Vec<Variant>,
+    pub variants: Variants,
+}
+
+/// The variants of an experiment, in file order: each written variant as read, and each sweep
+/// kept as its plan ([`crate::sweep::Sweep`]: the base variant and the axes, no variant held),
+/// standing for its variants in its place. Variant i of the experiment is the i-th in this
+/// order; a swept one is made when asked for, by index ([`PaperFile::variant`]).
+#[derive(Clone, Debug)]
+pub struct Variants(Vec<Entry>);
+
+/// A written variant, or a sweep.
+#[derive(Clone, Debug)]
+enum Entry {
+    Written(Variant),
+    Swept(Sweep),
+}
+
+impl Entry {
+    /// How many variants it stands for.
+    fn len(&self) -> usize {
+        match self {
+            Entry::Written(_) => 1,
+            Entry::Swept(s) => s.len(),
+        }
+    }
+
+    /// How many runs its variants make (every run, or the exact column alone), none made.
+    fn runs(&self, exact_only: bool) -> usize {
+        match self {
+            Entry::Written(v) if exact_only => usize::from(v.exact),
+            Entry::Written(v) => v.run_count(),
+            Entry::Swept(s) => s.runs_before(s.len(), exact_only),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for Variants {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let written = Vec::<Variant>::deserialize(d)?;
+        Ok(Variants(written.into_iter().map(Entry::Written).collect()))
+    }
+}
+
+impl Variants {
+    /// How many variants there are, each sweep's counted.
+    pub fn len(&self) -> usize {
+        self.0.iter().map(Entry::len).sum()
+    }
+
+    /// Whether there are none.
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+
+    /// How many runs the variants make (every run, or with `exact_only` the exact column
+    /// alone), none made.
+    pub fn run_count(&self, exact_only: bool) -> usize {
+        self.0.iter().map(|e| e.runs(exact_only)).sum()
+    }
+
+    /// The variants by where they come from, in order: the indices of each written variant
+    /// (one) and of each sweep's variants.
+    pub fn groups(&self) -> impl Iterator<Item = std::ops::Range<usize>> + '_ {
+        let mut start = 0;
+        self.0.iter().map(move |e| {
+            let r = start..start + e.len();
+            start = r.end;
+            r
+        })
+    }
+
+    /// The entry that holds variant `i`, and i's index in it (panics past [`Variants::len`],
+    /// as indexing does).
+    fn locate(&self, i: usize) -> (&Entry, usize) {
+        let mut start = 0;
+        for e in &self.0 {
+            if i < start + e.len() {
+                return (e, i - start);
+            }
+            start += e.len();
+        }
+        panic!("variant {i} of {} variants", self.len())
+    }
 }
 
 /// Dormand-Prince 5(4) at RelTol 1e-11, AbsTol 1e-13: x*(t, theta) has kinks where the active
@@ -265,8 +352,8 @@ impl PaperFile {
         Self::load_within(path, &mut crate::sweep::MAX_EXPANSION.clone())
     }
 
-    /// [`PaperFile::load`], its sweeps expanding into at most `budget` variants (reduced by
-    /// what they take; [`crate::sweep::Sweeps::expand_into`]).
+    /// [`PaperFile::load`], its sweeps standing for at most `budget` variants (reduced by
+    /// what they take; [`crate::sweep::Sweeps::plan`]).
     fn load_within(path: &Path, budget: &mut usize) -> Result<Self, ExperimentFileError> {
         let dir = path
             .parent()
@@ -299,20 +386,19 @@ impl PaperFile {
     fn from_toml_within(text: &str, budget: &mut usize) -> Result<Self, ExperimentError> {
         let mut doc: toml::Table = inputs::parse_toml(text)?;
         // Sweeps (crate::sweep) are taken out of the parsed TOML, the rest is read, and each
-        // expanded variant is read into its place as it is made; a file without one is read
-        // from its text, so serde's errors keep their line numbers.
+        // sweep's plan goes into its place; a file without one is read from its text, so
+        // serde's errors keep their line numbers.
         let file: PaperFile = if crate::sweep::has_sweeps(&doc) {
             let sweeps = crate::sweep::take_sweeps(&mut doc);
             let mut file =
                 PaperFile::deserialize(toml::Value::Table(doc)).map_err(TomlError::from)?;
-            sweeps.expand_into(
-                file.experiments.iter_mut().map(|e| &mut e.variants),
-                |v, traces| {
-                    Variant::deserialize(toml::Value::Table(v)).map(|v| Variant { traces, ..v })
-                },
-                Variant::run_count,
-                budget,
-            )?;
+            // In file order, so each goes where it was written.
+            for (slot, sweep) in sweeps.plan(budget)? {
+                file.experiments[slot.experiment]
+                    .variants
+                    .0
+                    .insert(slot.variant, Entry::Swept(sweep));
+            }
             file
         } else {
             inputs::parse_toml(text)?
@@ -385,13 +471,136 @@ impl PaperFile {
         if e.variants.is_empty() {
             return Err(field(at("variant"), FieldError::NoVariants));
         }
-        let mut names = VariantNames::default();
-        for (j, v) in e.variants.iter().enumerate() {
-            let vat = |field: &str| variant_at((index, e), (j, v), field);
-            check_variant_names(v, &vat, &mut names)?;
-            self.validate_variant(e, v, n, &vat)?;
+        self.check_names(index, e)?;
+        for (range, entry) in e.variants.groups().zip(&e.variants.0) {
+            match entry {
+                Entry::Written(v) => {
+                    let vat = |field: &str| variant_at((index, e), (range.start, v), field);
+                    self.validate_variant(e, v, n, &vat)?;
+                }
+                Entry::Swept(s) => {
+                    for local in s.checked() {
+                        self.make(index, s, range.start + local, local)?;
+                    }
+                }
+            }
         }
         Ok(())
+    }
+
+    /// That the labels and ids of experiment `e`'s variants (the `index`-th of the file) are
+    /// names, each once in the experiment. The names of the written variants and of every
+    /// sweep of at most [`CHECKED_WHOLE`] variants are compared one by one, as 16-byte prints
+    /// (made from the axes, no variant read). A larger sweep's are decided from its axes
+    /// ([`Sweep::prefixes`]: distinct among themselves), and no other name of the experiment
+    /// may begin as all of them do (nor may two such sweeps' beginnings begin one another);
+    /// a larger sweep whose axes do not decide them is compared one by one up to
+    /// [`NAMES_COMPARED`] variants, and refused past that.
+    fn check_names(&self, index: usize, e: &Experiment) -> Result<(), ExperimentError> {
+        let mut decided: Vec<(usize, &Sweep, Prefixes)> = Vec::new();
+        for (range, entry) in e.variants.groups().zip(&e.variants.0) {
+            let Entry::Swept(s) = entry else { continue };
+            if s.len() <= CHECKED_WHOLE {
+                continue;
+            }
+            match s.prefixes() {
+                Some(p) => decided.push((range.start, s, p)),
+                None if s.len() > NAMES_COMPARED => {
+                    return Err(s
+                        .error(SweepError::NamesUndecided {
+                            variants: s.len(),
+                            max: NAMES_COMPARED,
+                        })
+                        .into())
+                }
+                None => {}
+            }
+        }
+        for (k, (_, s, p)) in decided.iter().enumerate() {
+            for (_, _, q) in &decided[k + 1..] {
+                for (what, a, b) in [("id", &p.id, &q.id), ("label", &p.label, &q.label)] {
+                    if a.starts_with(b.as_str()) || b.starts_with(a.as_str()) {
+                        let (prefix, name) = (a.clone(), b.clone());
+                        return Err(s.error(SweepError::MayClash { what, prefix, name }).into());
+                    }
+                }
+            }
+        }
+        let mut names = Names::default();
+        for (range, entry) in e.variants.groups().zip(&e.variants.0) {
+            match entry {
+                Entry::Written(v) => {
+                    let name = Name {
+                        index: range.start,
+                        label: v.label.clone(),
+                        id: v.id(),
+                        declared: v.id.is_some(),
+                    };
+                    names.add(index, e, name, &decided)?;
+                }
+                Entry::Swept(s) if !decided.iter().any(|(start, ..)| *start == range.start) => {
+                    for local in 0..s.len() {
+                        let (label, id) = s.names(local);
+                        let name = Name {
+                            index: range.start + local,
+                            declared: id.is_some(),
+                            id: id.unwrap_or_else(|| slug(&label)),
+                            label,
+                        };
+                        names.add(index, e, name, &decided)?;
+                    }
+                }
+                Entry::Swept(_) => {}
+            }
+        }
+        Ok(())
+    }
+
+    /// Variant `i` of experiment `index` of the file (panics past [`Variants::len`], as
+    /// indexing does): a written one as read; a swept one made from its sweep's plan, read,
+    /// and checked as data as the load checks a written one (its label and id, its fields and
+    /// runs), so that a variant a shard makes is held to the file's rules. Its distinctness
+    /// from the others was decided at load.
+    pub fn variant(&self, index: usize, i: usize) -> Result<Cow<'_, Variant>, ExperimentError> {
+        match self.experiments[index].variants.locate(i) {
+            (Entry::Written(v), _) => Ok(Cow::Borrowed(v)),
+            (Entry::Swept(s), local) => self.make(index, s, i, local).map(Cow::Owned),
+        }
+    }
+
+    /// Variant `i` of experiment `index`, the `local`-th of its sweep `s`, made and checked
+    /// ([`PaperFile::variant`]).
+    fn make(
+        &self,
+        index: usize,
+        s: &Sweep,
+        i: usize,
+        local: usize,
+    ) -> Result<Variant, ExperimentError> {
+        let e = &self.experiments[index];
+        let (table, traces) = s.table(local);
+        let v = Variant::deserialize(toml::Value::Table(table))
+            .map_err(|error| s.does_not_read(local, error))?;
+        let v = Variant { traces, ..v };
+        let n = robot_dof(&e.robot).map_err(|err| field(experiment_at(index, e, "robot"), err))?;
+        {
+            let vat = |name: &str| variant_at((index, e), (i, &v), name);
+            check_name(&v.label, MAX_VARIANT_LABEL, vat("label"))?;
+            if let Some(id) = &v.id {
+                check_name(id, MAX_VARIANT_LABEL, vat("id"))?;
+                check_id(id, vat("id"))?;
+            }
+            self.validate_variant(e, &v, n, &vat)?;
+        }
+        Ok(v)
+    }
+
+    /// The label of variant `i` of `e`, made from the axes for a swept one.
+    fn label_of(e: &Experiment, i: usize) -> String {
+        match e.variants.locate(i) {
+            (Entry::Written(v), _) => v.label.clone(),
+            (Entry::Swept(s), local) => s.names(local).0,
+        }
     }
 
     /// The checks of variant `v` of experiment `e` (whose robot has `n` joints) but its names:
@@ -585,39 +794,152 @@ impl PaperFile {
         jobs
     }
 
-    /// Every run of the file, in file order (variant by variant, exact column first).
-    pub fn jobs(&self) -> Vec<RunSpec> {
+    /// Every run of the file, in file order (variant by variant, exact column first), or the
+    /// first swept variant that does not make.
+    pub fn jobs(&self) -> Result<Vec<RunSpec>, ExperimentFileError> {
         self.iter_jobs().collect()
     }
 
     /// [`PaperFile::jobs`] made one variant at a time as they are taken: a caller that
-    /// filters, counts or prints them (listing a sweep of 10^6 runs) holds none of them.
-    pub fn iter_jobs(&self) -> impl Iterator<Item = RunSpec> + '_ {
-        self.experiments
-            .iter()
-            .flat_map(|e| self.experiment_jobs(e))
+    /// filters, counts or prints them holds none of them.
+    pub fn iter_jobs(&self) -> impl Iterator<Item = Result<RunSpec, ExperimentFileError>> + '_ {
+        (0..self.experiments.len()).flat_map(move |i| {
+            let n = self.experiments[i].variants.run_count(false);
+            self.runs_at(i, false, 0..n)
+                .map(|r| r.map(|d| d.spec).map_err(|error| self.in_file(error)))
+        })
     }
 
-    /// The runs of `e`, one of this file's experiments, as [`PaperFile::iter_jobs`] makes them.
-    pub fn experiment_jobs<'a>(&'a self, e: &'a Experiment) -> impl Iterator<Item = RunSpec> + 'a {
-        e.variants.iter().flat_map(move |v| self.variant_jobs(e, v))
+    /// `error`, of this file (named as it was read).
+    pub fn in_file(&self, error: ExperimentError) -> ExperimentFileError {
+        ExperimentFileError::Invalid {
+            file: PathBuf::from(&self.file_name),
+            error,
+        }
+    }
+
+    /// The runs of experiment `index` of the file whose indices among its runs are `at`
+    /// (increasing; below its [`Variants::run_count`] with `exact_only`), each with the place
+    /// that declares it. The runs are numbered variant by variant, each one's exact column
+    /// first (with `exact_only`, its exact column alone). Only the variants that hold one of
+    /// them are made ([`PaperFile::variant`]), each once: the entry by its first run, and in a
+    /// sweep the variant by bisection over its runs' prefix sums
+    /// ([`crate::sweep::Sweep::variant_of_run`]), so a shard of a sweep of 10^7 runs makes
+    /// its own variants alone.
+    pub fn runs_at<'a>(
+        &'a self,
+        index: usize,
+        exact_only: bool,
+        at: impl IntoIterator<Item = usize> + 'a,
+    ) -> impl Iterator<Item = Result<DeclaredRun<'a>, ExperimentError>> + 'a {
+        let e = &self.experiments[index];
+        // Per entry: the index of its first run and of its first variant.
+        let mut bounds = Vec::with_capacity(e.variants.0.len());
+        let (mut runs, mut variants) = (0, 0);
+        for entry in &e.variants.0 {
+            bounds.push((runs, variants));
+            runs += entry.runs(exact_only);
+            variants += entry.len();
+        }
+        // The variant made last: the index of its first run, and its runs.
+        let mut current: Option<(usize, Vec<DeclaredRun<'a>>)> = None;
+        at.into_iter().map(move |r| {
+            let held = current
+                .as_ref()
+                .is_some_and(|(first, runs)| (*first..first + runs.len()).contains(&r));
+            if !held {
+                let k = bounds.partition_point(|&(first, _)| first <= r) - 1;
+                let (first, variant) = bounds[k];
+                let (i, first) = match &e.variants.0[k] {
+                    Entry::Written(_) => (variant, first),
+                    Entry::Swept(s) => {
+                        let v = s.variant_of_run(r - first, exact_only);
+                        (variant + v, first + s.runs_before(v, exact_only))
+                    }
+                };
+                current = Some((first, self.declared(index, i, exact_only)?));
+            }
+            let (first, runs) = current.as_ref().expect("made above");
+            Ok(runs[r - first].clone())
+        })
+    }
+
+    /// The runs of variant `i` of experiment `index` (every run, or its exact column alone),
+    /// each with its place.
+    fn declared(
+        &self,
+        index: usize,
+        i: usize,
+        exact_only: bool,
+    ) -> Result<Vec<DeclaredRun<'_>>, ExperimentError> {
+        let e = &self.experiments[index];
+        let v = self.variant(index, i)?;
+        let jobs = self.variant_jobs(e, &v);
+        let v = Rc::new(v);
+        Ok(jobs
+            .into_iter()
+            .enumerate()
+            .filter(|(_, j)| !exact_only || j.solver == SolverChoice::Exact)
+            .map(|(run, spec)| DeclaredRun {
+                spec,
+                experiment: (index, e),
+                variant: (i, v.clone()),
+                run,
+            })
+            .collect())
+    }
+
+    /// The runs the orchestrator checks with the engine at load, in file order: every run of
+    /// every written variant and of each sweep's variants checked at load
+    /// ([`crate::sweep::Sweep::checked`]: all of a sweep of at most
+    /// [`crate::sweep::CHECKED_WHOLE`], the lines of a larger one). A swept variant made later
+    /// is read and checked as data as it is made ([`PaperFile::variant`]); what only the
+    /// engine can tell of it (a path or gain the engine cannot build) is its runs' failure,
+    /// with its reason, as for any run.
+    pub fn checked_runs(
+        &self,
+    ) -> impl Iterator<Item = Result<DeclaredRun<'_>, ExperimentError>> + '_ {
+        self.experiments
+            .iter()
+            .enumerate()
+            .flat_map(move |(index, e)| {
+                e.variants
+                    .groups()
+                    .zip(&e.variants.0)
+                    .flat_map(move |(range, entry)| {
+                        let picks: Vec<usize> = match entry {
+                            Entry::Written(_) => vec![range.start],
+                            Entry::Swept(s) => {
+                                s.checked().into_iter().map(|l| range.start + l).collect()
+                            }
+                        };
+                        picks
+                            .into_iter()
+                            .map(move |i| self.declared(index, i, false))
+                    })
+            })
+            .flat_map(|runs| match runs {
+                Ok(runs) => runs.into_iter().map(Ok).collect::<Vec<_>>(),
+                Err(e) => vec![Err(e)],
+            })
     }
 }
 
 /// A run of a file with the place that declares it. This crate reads and validates the files
-/// as data and cannot build a run; the orchestrator checks each declared run with the engine's
+/// as data and cannot build a run; the orchestrator checks declared runs with the engine's
 /// setup (`simulation::run::check_job`: robot, path from f(theta_ref), scheme and network
-/// built as the run builds them, nothing integrated) after loading, before anything runs, and
-/// places a failure with [`DeclaredRun::at_fault`]: a file is so rejected for exactly what
-/// would make one of its runs fail at t = 0, the error naming the file and the field.
+/// built as the run builds them, nothing integrated) after loading, before anything runs
+/// ([`PaperFile::checked_runs`]), and places a failure with [`DeclaredRun::at_fault`]: a file
+/// is so rejected for exactly what would make one of its runs fail at t = 0, the error naming
+/// the file and the field.
 #[derive(Clone, Debug)]
 pub struct DeclaredRun<'a> {
     /// The run.
     pub spec: RunSpec,
     /// Its experiment, with its index in the file.
     experiment: (usize, &'a Experiment),
-    /// Its variant, with its index in the experiment.
-    variant: (usize, &'a Variant),
+    /// Its variant (made, for a swept one), with its index in the experiment.
+    variant: (usize, Rc<Cow<'a, Variant>>),
     /// Its index among the variant's runs ([`PaperFile::variant_jobs`]).
     run: usize,
 }
@@ -628,8 +950,8 @@ impl DeclaredRun<'_> {
     /// for the solver, the variant's path where it has one or else the experiment's, and the
     /// variant's field of any other part.
     pub fn at_fault(&self, error: SetupError) -> ExperimentError {
-        let (_, v) = self.variant;
-        let vat = |name: &str| variant_at(self.experiment, self.variant, name);
+        let (j, v) = (self.variant.0, &**self.variant.1);
+        let vat = |name: &str| variant_at(self.experiment, (j, v), name);
         let place = match error.part() {
             JobPart::Solver => vat(&run_field(v, self.run)),
             JobPart::Path if v.path.is_some() => vat("path"),
@@ -637,26 +959,6 @@ impl DeclaredRun<'_> {
             part => vat(part.field()),
         };
         field(place, error)
-    }
-}
-
-impl PaperFile {
-    /// Every run of the file, in the order of [`PaperFile::iter_jobs`], with the place that
-    /// declares it, made one variant at a time as they are taken.
-    pub fn declared_runs(&self) -> impl Iterator<Item = DeclaredRun<'_>> + '_ {
-        self.experiments.iter().enumerate().flat_map(move |(i, e)| {
-            e.variants.iter().enumerate().flat_map(move |(j, v)| {
-                self.variant_jobs(e, v)
-                    .into_iter()
-                    .enumerate()
-                    .map(move |(run, spec)| DeclaredRun {
-                        spec,
-                        experiment: (i, e),
-                        variant: (j, v),
-                        run,
-                    })
-            })
-        })
     }
 }
 
@@ -675,11 +977,23 @@ fn variant_at(
     (index, v): (usize, &Variant),
     name: &str,
 ) -> FieldAt {
+    variant_field(experiment, e, index, &v.label, name)
+}
+
+/// The field `name` of the variant labelled `label`, the `index`-th of experiment `e` (the
+/// `experiment`-th of its file).
+fn variant_field(
+    experiment: usize,
+    e: &Experiment,
+    index: usize,
+    label: &str,
+    name: &str,
+) -> FieldAt {
     FieldAt::Variant {
         experiment,
         id: e.id.clone(),
         index,
-        label: v.label.clone(),
+        label: label.to_string(),
         field: name.to_string(),
     }
 }
@@ -694,49 +1008,101 @@ fn run_field(v: &Variant, k: usize) -> String {
     }
 }
 
-/// The labels and ids of an experiment's variants seen so far (each label and each id once).
-#[derive(Default)]
-struct VariantNames<'a> {
-    labels: HashSet<&'a str>,
-    /// Each id with the label of the variant that has it.
-    ids: HashMap<String, &'a str>,
+/// One variant's names, for [`Names::add`].
+struct Name {
+    /// The variant's index in its experiment.
+    index: usize,
+    label: String,
+    /// Its id, declared or its label's slug.
+    id: String,
+    declared: bool,
 }
 
-/// The names of variant `v` (fields placed by `vat`): its label and declared id are names, and
-/// neither its label nor its id (declared or derived from the label) is one an earlier variant
-/// of the experiment has (`names`, which then holds them).
-fn check_variant_names<'a>(
-    v: &'a Variant,
-    vat: &dyn Fn(&str) -> FieldAt,
-    names: &mut VariantNames<'a>,
-) -> Result<(), ExperimentError> {
-    check_name(&v.label, MAX_VARIANT_LABEL, vat("label"))?;
-    if !names.labels.insert(&v.label) {
-        return Err(field(
-            vat("label"),
-            FieldError::LabelTwice {
-                label: v.label.clone(),
-            },
-        ));
+/// The labels and ids of an experiment's variants seen so far, as 16-byte prints ([`print`]),
+/// each with the index of the variant that has it.
+#[derive(Default)]
+struct Names {
+    labels: HashMap<u128, usize>,
+    ids: HashMap<u128, usize>,
+}
+
+impl Names {
+    /// That `name` of a variant of experiment `e` (the `index`-th of its file) is a label and,
+    /// declared, an id; that neither its label nor its id is one an earlier variant has, nor
+    /// begins as every name of a sweep of `decided` does ([`PaperFile::check_names`]).
+    fn add(
+        &mut self,
+        index: usize,
+        e: &Experiment,
+        name: Name,
+        decided: &[(usize, &Sweep, Prefixes)],
+    ) -> Result<(), ExperimentError> {
+        let vat = |f: &str| variant_field(index, e, name.index, &name.label, f);
+        check_name(&name.label, MAX_VARIANT_LABEL, vat("label"))?;
+        if name.declared {
+            check_name(&name.id, MAX_VARIANT_LABEL, vat("id"))?;
+            check_id(&name.id, vat("id"))?;
+        }
+        for (_, s, p) in decided {
+            for (what, prefix, own) in [("label", &p.label, &name.label), ("id", &p.id, &name.id)] {
+                if own.starts_with(prefix.as_str()) {
+                    let (prefix, name) = (prefix.clone(), own.clone());
+                    return Err(s.error(SweepError::MayClash { what, prefix, name }).into());
+                }
+            }
+        }
+        if let Some(&first) = self.labels.get(&print(&name.label)) {
+            // Two of one sweep: the sweep's error, with their places in it.
+            let (range, entry) = e
+                .variants
+                .groups()
+                .zip(&e.variants.0)
+                .find(|(r, _)| r.contains(&name.index))
+                .expect("the variant's own group");
+            if let (Entry::Swept(s), true) = (entry, range.contains(&first)) {
+                return Err(s
+                    .error(SweepError::SameLabel {
+                        first: first - range.start,
+                        second: name.index - range.start,
+                        label: name.label.clone(),
+                        keys: s.keys(),
+                    })
+                    .into());
+            }
+            return Err(field(
+                vat("label"),
+                FieldError::LabelTwice {
+                    label: name.label.clone(),
+                },
+            ));
+        }
+        if let Some(&other) = self.ids.get(&print(&name.id)) {
+            return Err(field(
+                vat("id"),
+                FieldError::IdClash {
+                    label: name.label.clone(),
+                    other: PaperFile::label_of(e, other),
+                    id: name.id.clone(),
+                    derived: !name.declared,
+                },
+            ));
+        }
+        self.labels.insert(print(&name.label), name.index);
+        self.ids.insert(print(&name.id), name.index);
+        Ok(())
     }
-    if let Some(id) = &v.id {
-        check_name(id, MAX_VARIANT_LABEL, vat("id"))?;
-        check_id(id, vat("id"))?;
-    }
-    let id = v.id();
-    if let Some(other) = names.ids.get(&id) {
-        return Err(field(
-            vat("id"),
-            FieldError::IdClash {
-                label: v.label.clone(),
-                other: other.to_string(),
-                id,
-                derived: v.id.is_none(),
-            },
-        ));
-    }
-    names.ids.insert(id, &v.label);
-    Ok(())
+}
+
+/// A 16-byte print of `text`: two SipHashes of it, told apart by a leading byte. Two names
+/// share one with probability ~2^-128.
+fn print(text: &str) -> u128 {
+    use std::hash::{DefaultHasher, Hash, Hasher};
+    let half = |k: u8| {
+        let mut h = DefaultHasher::new();
+        (k, text).hash(&mut h);
+        h.finish()
+    };
+    (u128::from(half(0)) << 64) | u128::from(half(1))
 }
 
 /// An id or label becomes a directory or file name (results/traces/<id>/<label>__<solver>.csv,

@@ -29,7 +29,7 @@ fn run_on(threads: usize, experiments: &Path) -> (PathBuf, Vec<ClaimCheck>) {
     let jobs: Vec<_> = catalog::load_dir(experiments)
         .unwrap()
         .iter()
-        .flat_map(|f| f.jobs())
+        .flat_map(|f| f.jobs().unwrap())
         .collect();
     let summary = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)

@@ -18,7 +18,7 @@ fn run(method: &Method) -> LoopOutcome {
     let jobs: Vec<_> = catalog::load_dir(&experiments)
         .unwrap()
         .iter()
-        .flat_map(|f| f.jobs())
+        .flat_map(|f| f.jobs().unwrap())
         .collect();
     let tasks = load_tasks(&jobs, &set.tasks[..1]).unwrap();
     with_task(&tasks[0], 1, |arm| {

@@ -216,7 +216,10 @@ pub fn project_root() -> Result<PathBuf, Error> {
 /// command line's own loader, `reproduce::load_experiments`). The papers' own
 /// robot files, `root/papers/<paper>/robots/*.toml`, are registered first.
 pub fn jobs(root: &Path) -> Result<Vec<RunSpec>, Error> {
-    Ok(files(root)?.iter().flat_map(PaperFile::jobs).collect())
+    Ok(files(root)?
+        .iter()
+        .flat_map(PaperFile::iter_jobs)
+        .collect::<Result<_, _>>()?)
 }
 
 /// The runs of the experiment files of `paper` (as [`jobs`] reads them); a paper that no file
@@ -233,7 +236,10 @@ pub fn paper(root: &Path, paper: &PaperId) -> Result<Vec<RunSpec>, Error> {
             known: known.join(", "),
         });
     }
-    Ok(of_paper.into_iter().flat_map(PaperFile::jobs).collect())
+    Ok(of_paper
+        .into_iter()
+        .flat_map(PaperFile::iter_jobs)
+        .collect::<Result<_, _>>()?)
 }
 
 /// The experiment files of `root/experiments/`, each checked as the command line checks it,

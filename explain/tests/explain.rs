@@ -20,7 +20,7 @@ fn jobs() -> Vec<RunSpec> {
     load_dir(&root.join("experiments"))
         .unwrap()
         .iter()
-        .flat_map(|f| f.jobs())
+        .flat_map(|f| f.jobs().unwrap())
         .collect()
 }
 

@@ -195,14 +195,12 @@ pub fn load_tasks(root: &Path) -> Result<Vec<PyTask>, TaskError> {
     let files = load_experiments(&root.join("experiments"))?;
     let mut tasks = Vec::new();
     for file in &files {
-        let jobs = file.jobs();
-        for e in &file.experiments {
-            for v in &e.variants {
-                let runs: Vec<RunSpec> = jobs
-                    .iter()
-                    .filter(|j| j.experiment == e.id && j.variant_id == v.id())
-                    .cloned()
-                    .collect();
+        for (index, e) in file.experiments.iter().enumerate() {
+            for i in 0..e.variants.len() {
+                let v = file
+                    .variant(index, i)
+                    .map_err(|error| file.in_file(error))?;
+                let runs: Vec<RunSpec> = file.variant_jobs(e, &v);
                 let Some(first) = runs.first() else {
                     continue;
                 };

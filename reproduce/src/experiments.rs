@@ -1,6 +1,7 @@
 //! The experiment files as the modes take them. Crate `catalog` reads and validates a file as
-//! data; it links no engine, so it cannot build a run. Here every run of a loaded file is then
-//! checked with the engine's setup (`simulation::run::check_job`: the robot, the path from
+//! data; it links no engine, so it cannot build a run. Here the runs a loaded file checks at
+//! load (every run but those of a large sweep's variants off its lines) are then checked with
+//! the engine's setup (`simulation::run::check_job`: the robot, the path from
 //! f(theta_ref), the scheme and the network built as the run builds them, nothing integrated),
 //! after loading and before anything runs, and a failure is placed at the field at fault of
 //! the file that declares the run (`catalog::DeclaredRun::at_fault`): a file is
@@ -32,8 +33,13 @@ pub fn from_toml(text: &str) -> Result<PaperFile, ExperimentError> {
     Ok(file)
 }
 
-/// That every run of `file` can be built: the first that cannot, placed at its field.
+/// That every run `file` checks at load can be built (every run of a written variant and of
+/// a sweep's checked variants, `catalog::PaperFile::checked_runs`: all of a sweep of at most
+/// `catalog::CHECKED_WHOLE` variants, the lines of a larger one): the first that cannot,
+/// placed at its field.
 pub fn check(file: &PaperFile) -> Result<(), ExperimentError> {
-    file.declared_runs()
-        .try_for_each(|run| check_job(&run.spec).map_err(|e| run.at_fault(e)))
+    file.checked_runs().try_for_each(|run| {
+        let run = run?;
+        check_job(&run.spec).map_err(|e| run.at_fault(e))
+    })
 }

@@ -71,10 +71,10 @@ pub fn explain_mode(
     git_rev: &str,
 ) -> Result<(), ReproduceError> {
     if options.dry_run {
-        return explain(project, jobs, all.jobs(), git_rev, None).map(drop);
+        return explain(project, jobs, all.jobs()?, git_rev, None).map(drop);
     }
     precheck_report(project, all)?;
     let results = open_results(project, git_rev, all)?;
-    explain(project, jobs, all.jobs(), git_rev, Some(&results))?;
+    explain(project, jobs, all.jobs()?, git_rev, Some(&results))?;
     render_report(project, &report_root(project)?, &results)
 }

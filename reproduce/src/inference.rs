@@ -37,11 +37,11 @@ pub fn infer_mode(
     git_rev: &str,
 ) -> Result<(), ReproduceError> {
     if options.dry_run {
-        return infer(project, &options.table, all.jobs(), None);
+        return infer(project, &options.table, all.jobs()?, None);
     }
     precheck_report(project, all)?;
     let results = open_results(project, git_rev, all)?;
-    infer(project, &options.table, all.jobs(), Some(&results))
+    infer(project, &options.table, all.jobs()?, Some(&results))
 }
 
 /// Fits the tables `which` selects over the runs `jobs`; writes each to `results` when given.

@@ -69,7 +69,7 @@ pub fn resume(
     kept: &mut Vec<RunRow>,
     to_run: &mut Vec<RunSpec>,
 ) -> Result<(), ReproduceError> {
-    let recovered = recover(results, git_rev, &all.keys())?;
+    let recovered = recover(results, git_rev, &all.keys()?)?;
     if !recovered.current.is_empty() {
         let fold: Vec<RunRow> = recovered.rows(results.path())?.collect::<Result<_, _>>()?;
         let done: HashSet<RunKey> = fold.iter().map(RunRow::key).collect();

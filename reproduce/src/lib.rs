@@ -175,7 +175,7 @@ fn check_against_baseline(
         &project.root,
         &project.results_dir,
         o.baseline.as_deref(),
-        all.jobs(),
+        all.jobs()?,
     )?;
     let plan = Plan {
         selection: &o.selection,
@@ -222,7 +222,7 @@ fn selected(
 ) -> Result<Vec<RunSpec>, ReproduceError> {
     let selection = selection.selection();
     select::check_selection(files, &selection)?;
-    Ok(select::selected(files, &selection).collect())
+    select::selected(files, &selection).collect()
 }
 
 /// `list` (with a shard: the shard's runs; with `shards`: the count per shard), the runs made
@@ -249,7 +249,8 @@ fn list_runs(
     // As `summary::emit`: a closed standard output (`reproduce list | head`) ends the list and
     // is no error.
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
-    let _ = list::list(&mut out, files, kept).and_then(|()| std::io::Write::flush(&mut out));
+    list::list(&mut out, files, kept)?;
+    let _ = std::io::Write::flush(&mut out);
     if let (Some(n), None) = (shards, shard) {
         emit(&list::shard_plan(total, n));
     }

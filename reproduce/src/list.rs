@@ -3,6 +3,7 @@
 //! shard gets) and the robots they can name, with the check values of each (tip position and
 //! singular values of J at the stated pose).
 
+use crate::error::ReproduceError;
 use crate::select::Kept;
 use catalog::PaperFile;
 use std::fmt::Write as _;
@@ -10,10 +11,33 @@ use std::io::Write;
 
 /// Writes to `out` the experiments of `files` that have runs `kept` keeps, each with those
 /// runs, under its paper's header (a paper with no run kept is left out, header and all). The
-/// runs are counted without being made, and only the kept ones are made, as they are written:
-/// listing a sweep of 10^6 runs costs the memory of its experiment files alone, and listing
-/// one shard makes that shard's runs alone.
-pub fn list(out: &mut impl Write, files: &[PaperFile], kept: Kept) -> std::io::Result<()> {
+/// runs are counted without being made (from each experiment's plan), and only the kept ones
+/// are made, as they are written: listing a sweep of 10^7 runs holds none of them, and
+/// listing one shard makes that shard's runs alone. A closed output (`reproduce list |
+/// head`) ends the list and is no error; a variant that does not make is.
+pub fn list(out: &mut impl Write, files: &[PaperFile], kept: Kept) -> Result<(), ReproduceError> {
+    match write(out, files, kept) {
+        Ok(()) | Err(Stop::Closed) => Ok(()),
+        Err(Stop::Made(e)) => Err(*e),
+    }
+}
+
+/// Why a list stops early.
+enum Stop {
+    /// The output is closed.
+    Closed,
+    /// A run could not be made.
+    Made(Box<ReproduceError>),
+}
+
+impl From<std::io::Error> for Stop {
+    fn from(_: std::io::Error) -> Self {
+        Stop::Closed
+    }
+}
+
+/// [`list`]'s writing.
+fn write(out: &mut impl Write, files: &[PaperFile], kept: Kept) -> Result<(), Stop> {
     let mut start = 0;
     for f in files {
         // Per experiment: the index of its first selected run, and how many of its runs are kept.
@@ -31,7 +55,7 @@ pub fn list(out: &mut impl Write, files: &[PaperFile], kept: Kept) -> std::io::R
             continue;
         }
         writeln!(out, "{} — {}", f.paper, f.title)?;
-        for (e, (first, n)) in f.experiments.iter().zip(counts) {
+        for (i, (e, (first, n))) in f.experiments.iter().zip(counts).enumerate() {
             if n == 0 {
                 continue;
             }
@@ -41,7 +65,8 @@ pub fn list(out: &mut impl Write, files: &[PaperFile], kept: Kept) -> std::io::R
                 e.id, e.robot, e.path.name, e.path.duration, e.paper_output
             )?;
             // The key (ids: what --task, papers/ and the results use), then the labels.
-            for j in kept.experiment_runs(f, e, first) {
+            for j in kept.experiment_runs(f, i, first) {
+                let j = j.map_err(|e| Stop::Made(Box::new(e)))?;
                 let k = j.key();
                 writeln!(
                     out,
@@ -120,7 +145,7 @@ mod tests {
         let dir =
             Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/fifth-paper/experiments");
         let files = crate::experiments::load_dir(&dir).unwrap();
-        let jobs = files.iter().flat_map(|f| f.jobs()).collect();
+        let jobs = files.iter().flat_map(|f| f.jobs().unwrap()).collect();
         (files, jobs)
     }
 

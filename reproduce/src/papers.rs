@@ -33,7 +33,7 @@ pub fn load_checked_papers(
     static NOTED: std::sync::Once = std::sync::Once::new();
     let papers = load_papers(project)?;
     let absent =
-        analysis::check_paper_runs(&papers, &project.root.join("papers"), &all.run_keys())?;
+        analysis::check_paper_runs(&papers, &project.root.join("papers"), &all.run_keys()?)?;
     NOTED.call_once(|| {
         if let Some(first) = absent.first() {
             let file = first

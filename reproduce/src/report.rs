@@ -74,7 +74,7 @@ pub fn render_report(
     results: &ResultsDir,
 ) -> Result<(), ReproduceError> {
     let files = experiment_files(project)?;
-    let untraced = Described::new(&files).untraced();
+    let untraced = Described::new(&files).untraced()?;
     drop(files);
     render_figures(root, None, &untraced)?;
     render_pages(project, root, results)

@@ -9,7 +9,7 @@ use records::{merge_runs, RunRow};
 use simulation::RunRecord;
 use spec::RunKey;
 use spec::RunSpec;
-use std::cell::OnceCell;
+use std::cell::{OnceCell, RefCell};
 use std::collections::HashSet;
 use store::results_dir::ResultsDir;
 use store::KeySet;
@@ -45,47 +45,63 @@ impl<'a> Described<'a> {
     }
 
     /// Every run, in file order, collected on the first call.
-    pub fn jobs(&self) -> &[RunSpec] {
-        self.jobs
-            .get_or_init(|| self.files.iter().flat_map(PaperFile::jobs).collect())
+    pub fn jobs(&self) -> Result<&[RunSpec], ReproduceError> {
+        if let Some(jobs) = self.jobs.get() {
+            return Ok(jobs);
+        }
+        let jobs = self.runs().collect::<Result<Vec<_>, _>>()?;
+        Ok(self.jobs.get_or_init(|| jobs))
     }
 
     /// The run keys (`experiment / variant / solver`), and which of them keep no trace, as
     /// sets of their prints (16 bytes a run: [`store::KeySet`]).
-    pub fn keys(&self) -> Keys {
-        Keys {
-            described: self.runs().map(|j| j.key().to_string()).collect(),
-            untraced: self
+    pub fn keys(&self) -> Result<Keys, ReproduceError> {
+        Ok(Keys {
+            described: self
                 .runs()
-                .filter(|j| !j.keep_trace)
-                .map(|j| j.key().to_string())
-                .collect(),
-        }
+                .map(|j| j.map(|j| j.key().to_string()))
+                .collect::<Result<_, _>>()?,
+            untraced: self
+                .untraced_runs()
+                .map(|j| j.map(|j| j.key().to_string()))
+                .collect::<Result<_, _>>()?,
+        })
     }
 
     /// The run keys that keep no trace by choice (their sweep's `traces`), what the figures
     /// leave out.
-    pub fn untraced(&self) -> HashSet<RunKey> {
-        self.runs()
-            .filter(|j| !j.keep_trace)
-            .map(|j| j.key())
-            .collect()
+    pub fn untraced(&self) -> Result<HashSet<RunKey>, ReproduceError> {
+        self.untraced_runs().map(|j| j.map(|j| j.key())).collect()
     }
 
-    /// The index by labels by which results written before run ids are migrated.
-    fn label_index(&self) -> LabelIndex {
-        LabelIndex::new(self.runs())
+    /// The runs that keep no trace by choice.
+    fn untraced_runs(&self) -> impl Iterator<Item = Result<RunSpec, ReproduceError>> + '_ {
+        self.runs()
+            .filter(|j| j.as_ref().map_or(true, |j| !j.keep_trace))
+    }
+
+    /// The index by labels by which results written before run ids are migrated, of the runs
+    /// made before the first variant that does not make (kept in `failed`, which the caller
+    /// reports: [`open_results`]).
+    fn label_index(&self, failed: &RefCell<Option<ReproduceError>>) -> LabelIndex {
+        LabelIndex::new(
+            self.runs()
+                .map_while(|j| j.map_err(|e| *failed.borrow_mut() = Some(e)).ok()),
+        )
     }
 
     /// Every run's key, in file order, made as the runs are taken (no run is held: a key is
     /// ~0.1 KB, a run's [`RunSpec`] ~0.7 KB).
-    pub fn run_keys(&self) -> Vec<RunKey> {
-        self.runs().map(|j| j.key()).collect()
+    pub fn run_keys(&self) -> Result<Vec<RunKey>, ReproduceError> {
+        self.runs().map(|j| j.map(|j| j.key())).collect()
     }
 
     /// The runs, made one variant at a time.
-    fn runs(&self) -> impl Iterator<Item = RunSpec> + '_ {
-        self.files.iter().flat_map(PaperFile::iter_jobs)
+    fn runs(&self) -> impl Iterator<Item = Result<RunSpec, ReproduceError>> + '_ {
+        self.files
+            .iter()
+            .flat_map(PaperFile::iter_jobs)
+            .map(|j| j.map_err(ReproduceError::from))
     }
 }
 
@@ -130,13 +146,17 @@ pub fn open_results(
         );
     }
     // Results written before run ids are migrated once (store::migrate).
-    for done in results.migrate_ids(|| all.label_index())? {
+    let failed = RefCell::new(None);
+    for done in results.migrate_ids(|| all.label_index(&failed))? {
         eprintln!(
             "migrated to run ids under {}: {done}",
             project.results_dir.display()
         );
     }
-    Ok(results)
+    match failed.into_inner() {
+        Some(e) => Err(e),
+        None => Ok(results),
+    }
 }
 
 /// The stored rows split into those an experiment file still describes (kept) and those it
@@ -147,7 +167,7 @@ pub fn plan_pruning(
     results: &ResultsDir,
     all: &Described,
 ) -> Result<(Vec<RunRow>, Vec<RunRow>), ReproduceError> {
-    let described = all.keys();
+    let described = all.keys()?;
     Ok(results.plan_pruning(
         results.read_runs()?,
         |row| described.contains(&row.key()),

@@ -95,11 +95,11 @@ pub fn run(
             // The explanation the pages show, re-derived for the selected runs and compared
             // (the ladder and the attribution), where the baseline holds one.
             let explained = (!plan.selection.exact_only && baseline.explains(jobs))
-                .then(|| crate::explanation::fresh(project, jobs, all.jobs(), git_rev))
+                .then(|| crate::explanation::fresh(project, jobs, all.jobs()?, git_rev))
                 .transpose()?;
             // The control experiments, re-run by a whole check where their runs are committed.
             let control = (plan.selection.is_whole() && !baseline.control.is_empty())
-                .then(|| fresh_control(project, all.jobs()))
+                .then(|| fresh_control(project, all.jobs()?))
                 .transpose()?;
             return Ok(baseline.verdict(
                 &rows,
@@ -200,7 +200,7 @@ fn publish(
             "--exact-only: no solver runs to explain".to_string(),
         );
     } else {
-        let explained = explain(project, jobs, all.jobs(), git_rev, Some(results))?;
+        let explained = explain(project, jobs, all.jobs()?, git_rev, Some(results))?;
         clock.lap(Phase::Explain, Some(explained));
     }
     // The control experiments (control crate) with a whole, unselected reproduction.
@@ -211,8 +211,10 @@ fn publish(
         let ran = catalog::load_task_set(&project.experiments_dir)
             .map_err(ReproduceError::from)
             .and_then(|set| {
-                control::reproduce(&set, all.jobs(), &project.results_dir, |m| eprintln!("{m}"))
-                    .map_err(ReproduceError::from)
+                control::reproduce(&set, all.jobs()?, &project.results_dir, |m| {
+                    eprintln!("{m}")
+                })
+                .map_err(ReproduceError::from)
             });
         match ran {
             Ok(s) => {
@@ -235,7 +237,7 @@ fn publish(
             Err(e) => return Err(e),
         }
         let timed =
-            crate::timing::time_alone(all.jobs(), results, &project.root.join("papers"), git_rev)?;
+            crate::timing::time_alone(all.jobs()?, results, &project.root.join("papers"), git_rev)?;
         // Its tables are recorded before the report (which may fail) is rendered.
         results.save()?;
         clock.lap(Phase::Timing, Some(timed));
@@ -248,7 +250,7 @@ fn publish(
         Ok(root) => {
             // `run --paper X` draws X's figures only (the pages are all re-rendered: they
             // are cheap, and the front page summarises every paper).
-            let untraced = all.untraced();
+            let untraced = all.untraced()?;
             let figures = render_figures(&root, plan.selection.paper.as_deref(), &untraced)?;
             clock.lap(Phase::Figures, Some(figures));
             render_pages(project, &root, results)?;

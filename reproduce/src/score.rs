@@ -13,7 +13,6 @@ use crate::error::{ReproduceError, ScoreError};
 use crate::options::ScoreOptions;
 use crate::project::Project;
 use crate::summary::{emit, summary};
-use catalog::PaperFile;
 use inputs::trajectory::read;
 use inputs::trajectory::Columns;
 use presentation::figures::run_figure;
@@ -130,11 +129,15 @@ pub fn significant_digits(v: f64) -> usize {
 /// The task `"<experiment> / <variant>"` (ids) of the experiment files in `experiments_dir`, as
 /// its first run (a trajectory is scored on its robot, path, scheme and poses only).
 pub fn find_task(experiments_dir: &Path, task: &TaskKey) -> Result<RunSpec, ScoreError> {
-    crate::experiments::load_dir(experiments_dir)?
-        .iter()
-        .flat_map(PaperFile::jobs)
-        .find(|j| j.task() == *task)
-        .ok_or_else(|| ScoreError::NoTask(task.to_string()))
+    for file in crate::experiments::load_dir(experiments_dir)? {
+        for j in file.iter_jobs() {
+            let j = j?;
+            if j.task() == *task {
+                return Ok(j);
+            }
+        }
+    }
+    Err(ScoreError::NoTask(task.to_string()))
 }
 
 /// Scores the trajectory file `file` (CSV, or a MAT-file: `inputs::trajectory::read`) on

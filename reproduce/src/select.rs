@@ -1,22 +1,24 @@
 //! The runs a command line selects: `--paper`, `--experiment` (repeatable) and `--exact-only`
 //! narrow the runs the experiment files describe; a paper or experiment no file names is an
 //! error that lists the known ones. A shard K/N keeps, of the selected runs in their order,
-//! those whose index i (from 0) has i mod N = K - 1 (`store::shard`): [`Kept`] finds them by
-//! counting each variant's runs ([`catalog::Variant::run_count`]) and makes only
-//! the variants that hold one, so a shard of a 10^6-run sweep makes its own runs alone.
+//! those whose index i (from 0) has i mod N = K - 1 (`store::shard`): [`Kept`] counts each
+//! experiment's runs from its plan (`catalog::Variants::run_count`: a sweep's by prefix sums
+//! over its axes) and finds each of its indices' variant by bisection, making only the
+//! variants that hold one, so a shard of a sweep of 10^7 runs makes its own runs alone.
 
 use crate::error::ReproduceError;
-use catalog::{Experiment, PaperFile, Variant};
-use spec::{RunSpec, SolverChoice};
+use catalog::{Experiment, PaperFile};
+use spec::RunSpec;
 use std::collections::HashSet;
 use store::shard::{Selection, Shard};
 
 /// The runs of `files` that `selection` keeps, in file order, made as they are taken (a
-/// caller collects what it needs). [`check_selection`] first.
+/// caller collects what it needs), or the first variant that does not make
+/// (catalog::PaperFile::variant). [`check_selection`] first.
 pub fn selected<'a>(
     files: &'a [PaperFile],
     selection: &'a Selection,
-) -> impl Iterator<Item = RunSpec> + 'a {
+) -> impl Iterator<Item = Result<RunSpec, ReproduceError>> + 'a {
     Kept {
         selection,
         shard: None,
@@ -41,22 +43,13 @@ impl<'a> Kept<'a> {
             && (self.selection.experiments.is_empty() || self.selection.experiments.contains(&e.id))
     }
 
-    /// How many of variant `v`'s runs the selection keeps, none made (`--exact-only`: the
-    /// exact column alone).
-    fn of_variant(&self, v: &Variant) -> usize {
-        if self.selection.exact_only {
-            usize::from(v.exact)
-        } else {
-            v.run_count()
-        }
-    }
-
-    /// How many runs of experiment `e` of `f` the selection keeps (the shard aside).
+    /// How many runs of experiment `e` of `f` the selection keeps (the shard aside), none
+    /// made (`--exact-only`: the exact columns alone).
     pub fn selected_in(&self, f: &PaperFile, e: &Experiment) -> usize {
         if !self.takes(f, e) {
             return 0;
         }
-        e.variants.iter().map(|v| self.of_variant(v)).sum()
+        e.variants.run_count(self.selection.exact_only)
     }
 
     /// How many of the selected runs with indices `start..start + count` are the shard's
@@ -80,47 +73,46 @@ impl<'a> Kept<'a> {
             .sum()
     }
 
-    /// The kept runs of experiment `e` of `f`, whose first selected run has index `start`, in
-    /// order; only the variants holding a kept run are made into runs.
+    /// The kept runs of experiment `index` of `f`, whose first selected run has index
+    /// `start`, in order: the shard's indices among them, i = K - 1 mod N, each run found
+    /// from the experiment's plan (catalog::PaperFile::runs_at), so only the variants holding
+    /// a kept run are made.
     pub fn experiment_runs(
         self,
         f: &'a PaperFile,
-        e: &'a Experiment,
+        index: usize,
         start: usize,
-    ) -> impl Iterator<Item = RunSpec> + 'a {
-        let variants = if self.takes(f, e) {
-            &e.variants[..]
-        } else {
-            &[]
+    ) -> impl Iterator<Item = Result<RunSpec, ReproduceError>> + 'a {
+        let count = self.selected_in(f, &f.experiments[index]);
+        let (first, step) = match self.shard {
+            None => (0, 1),
+            // The first i >= start with i mod N = K - 1, as an index in the experiment.
+            Some(s) => ((s.k - 1 + s.n - start % s.n) % s.n, s.n),
         };
-        let mut at = start;
-        variants.iter().flat_map(move |v| {
-            let first = at;
-            let count = self.of_variant(v);
-            at += count;
-            let jobs = if self.owned_in(first, count) == 0 {
-                Vec::new()
-            } else {
-                f.variant_jobs(e, v)
-            };
-            jobs.into_iter()
-                .filter(move |j| !self.selection.exact_only || j.solver == SolverChoice::Exact)
-                .enumerate()
-                .filter(move |(i, _)| self.owned_in(first + i, 1) == 1)
-                .map(|(_, j)| j)
+        f.runs_at(
+            index,
+            self.selection.exact_only,
+            (first..count).step_by(step),
+        )
+        .map(|r| {
+            r.map(|d| d.spec)
+                .map_err(|e| ReproduceError::from(f.in_file(e)))
         })
     }
 
     /// The kept runs of `files`, in order, made as they are taken.
-    pub fn runs(self, files: &'a [PaperFile]) -> impl Iterator<Item = RunSpec> + 'a {
+    pub fn runs(
+        self,
+        files: &'a [PaperFile],
+    ) -> impl Iterator<Item = Result<RunSpec, ReproduceError>> + 'a {
         let mut start = 0;
         files
             .iter()
-            .flat_map(|f| f.experiments.iter().map(move |e| (f, e)))
-            .flat_map(move |(f, e)| {
+            .flat_map(|f| (0..f.experiments.len()).map(move |i| (f, i)))
+            .flat_map(move |(f, i)| {
                 let first = start;
-                start += self.selected_in(f, e);
-                self.experiment_runs(f, e, first)
+                start += self.selected_in(f, &f.experiments[i]);
+                self.experiment_runs(f, i, first)
             })
     }
 }
@@ -179,13 +171,14 @@ pub fn check_selection(files: &[PaperFile], selection: &Selection) -> Result<(),
 mod tests {
     use super::*;
     use crate::experiments::load_dir;
+    use spec::SolverChoice;
     use std::path::Path;
 
     /// The project's experiment files and their runs.
     fn project() -> (Vec<PaperFile>, Vec<RunSpec>) {
         let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../experiments");
         let files = load_dir(&dir).expect("the project's experiment files");
-        let all = files.iter().flat_map(|f| f.jobs()).collect();
+        let all = files.iter().flat_map(|f| f.jobs().unwrap()).collect();
         (files, all)
     }
 
@@ -201,7 +194,7 @@ mod tests {
             exact_only,
         };
         check_selection(&files, &selection)?;
-        Ok(selected(&files, &selection).collect())
+        selected(&files, &selection).collect()
     }
 
     #[test]
@@ -313,10 +306,8 @@ solvers = [{ kind = "znn", gamma = 1.0 }]
 sweep = { "exact" = [true, false], "solvers" = [{ value = [{ kind = "znn", gamma = 1.0 }], label = "one" }, { value = [{ kind = "znn", gamma = 1.0 }, { kind = "zeroing", gain = { law = "power", gamma = 10.0, p = 2.0 }, activation = "sign-bi-power", exponent = 0.5 }], label = "two" }], "scheme.mu" = [1, 2, 3] }
 "#;
         let files = [crate::experiments::from_toml(text).unwrap()];
-        let runs: Vec<usize> = files[0].experiments[0]
-            .variants
-            .iter()
-            .map(Variant::run_count)
+        let runs: Vec<usize> = (0..files[0].experiments[0].variants.len())
+            .map(|i| files[0].variant(0, i).unwrap().run_count())
             .collect();
         assert_eq!(runs, [2, 2, 2, 3, 3, 3, 1, 1, 1, 2, 2, 2]);
         every_nth(&files, &[(None, false), (None, true)]);
@@ -332,7 +323,7 @@ sweep = { "exact" = [true, false], "solvers" = [{ value = [{ kind = "znn", gamma
                 exact_only,
             };
             let keys: Vec<String> = selected(files, &selection)
-                .map(|j| j.key().to_string())
+                .map(|j| j.unwrap().key().to_string())
                 .collect();
             let all = Kept {
                 selection: &selection,
@@ -346,7 +337,10 @@ sweep = { "exact" = [true, false], "solvers" = [{ value = [{ kind = "znn", gamma
                         selection: &selection,
                         shard: Some(Shard::new(k, n).unwrap()),
                     };
-                    let got: Vec<String> = kept.runs(files).map(|j| j.key().to_string()).collect();
+                    let got: Vec<String> = kept
+                        .runs(files)
+                        .map(|j| j.unwrap().key().to_string())
+                        .collect();
                     let want: Vec<String> = keys.iter().skip(k - 1).step_by(n).cloned().collect();
                     assert_eq!(
                         got, want,

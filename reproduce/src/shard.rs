@@ -71,7 +71,7 @@ pub fn run_shard(
 ) -> Result<ExitCode, ReproduceError> {
     // One writer at a time: the lock is held until the process ends.
     let results = open_results(project, git_rev, all)?;
-    let described = all.keys();
+    let described = all.keys()?;
     let pruned = results.plan_pruning_streamed(
         |row| described.contains(&row.key()),
         project.prune,
@@ -105,7 +105,9 @@ pub fn run_shard(
     // count and key sum), the most joints among them (the journal's columns), how many are
     // done.
     let (mut assigned, mut joints, mut skipped) = (KeySum::default(), 0, 0);
+    // A variant that does not make stops the shard here, before anything runs.
     for job in kept.runs(all.files()) {
+        let job = job?;
         let key = job.key().to_string();
         skipped += usize::from(done.contains(&key));
         assigned.add(&key);
@@ -126,12 +128,13 @@ pub fn run_shard(
         summary.push(row, &mut line);
         emit(&line);
     };
-    let mut jobs = kept
-        .runs(all.files())
-        .filter(|j| !done.contains(&j.key().to_string()));
+    let mut jobs = kept.runs(all.files()).filter(|j| {
+        j.as_ref()
+            .map_or(true, |j| !done.contains(&j.key().to_string()))
+    });
     let (size, mut ran) = (chunk_size(), 0);
     loop {
-        let chunk: Vec<RunSpec> = jobs.by_ref().take(size).collect();
+        let chunk: Vec<RunSpec> = jobs.by_ref().take(size).collect::<Result<_, _>>()?;
         ran += chunk.len();
         // The last chunk is folded at the end, with the runs the journal could not take.
         let at = if chunk.len() < size || ran == to_run {

@@ -13,8 +13,8 @@
 //! nobody edited is removed). [`cards`] renders them in memory.
 
 use crate::experiments::load_dir;
+use catalog::Experiment;
 use catalog::ExperimentFileError;
-use catalog::{Experiment, Variant};
 use presentation::task_card::{
     self as card, CardRun, Kinematics as CardKinematics, MountCard, PathCard, QpCard, RobotCard,
     RunSettings, SchemeCard, SchemeForm, StartCard, TaskCard,
@@ -57,22 +57,12 @@ pub enum TaskCardError {
 /// (`carded`), so the cards of a sweep of 10^5 variants are 24 files, not 10^5.
 pub const MAX_SWEEP_CARDS: usize = presentation::figures::sweep::MAX_RUN_FIGURES;
 
-/// The variants of `e` that get a card, in file order: every variant that no sweep expanded,
-/// and of each sweep's variants (a variant whose runs begin the sweep's runs, and the variants
-/// that follow it with runs further along: catalog::KeptTraces::first_run) all of them
-/// up to [`MAX_SWEEP_CARDS`], else that many evenly spaced: the k-th of m at
+/// The indices of the variants of `e` that get a card, in file order: every written variant,
+/// and of each sweep's variants (catalog::Variants::groups) all of them up to
+/// [`MAX_SWEEP_CARDS`], else that many evenly spaced: the k-th of m at
 /// round(k (n - 1) / (m - 1)).
-fn carded(e: &Experiment) -> impl Iterator<Item = &Variant> {
-    let mut groups: Vec<&[Variant]> = Vec::new();
-    let mut start = 0;
-    for (i, v) in e.variants.iter().enumerate() {
-        if i > 0 && v.traces.first_run == 0 {
-            groups.push(&e.variants[start..i]);
-            start = i;
-        }
-    }
-    groups.push(&e.variants[start..]);
-    groups.into_iter().flat_map(|group| {
+fn carded(e: &Experiment) -> impl Iterator<Item = usize> + '_ {
+    e.variants.groups().flat_map(|group| {
         let (n, m) = (group.len(), MAX_SWEEP_CARDS);
         let picks: Vec<usize> = if n <= m {
             (0..n).collect()
@@ -81,7 +71,7 @@ fn carded(e: &Experiment) -> impl Iterator<Item = &Variant> {
                 .map(|k| (k * (n - 1) + (m - 1) / 2) / (m - 1))
                 .collect()
         };
-        picks.into_iter().map(move |i| &group[i])
+        picks.into_iter().map(move |i| group.start + i)
     })
 }
 
@@ -95,9 +85,16 @@ pub fn cards(experiments_dir: &Path) -> Result<BTreeMap<String, String>, TaskCar
         .flat_map(|f| {
             f.experiments
                 .iter()
-                .flat_map(move |e| carded(e).map(move |v| f.variant_jobs(e, v)))
+                .enumerate()
+                .flat_map(move |(index, e)| {
+                    carded(e).map(move |i| {
+                        let v = f.variant(index, i).map_err(|error| f.in_file(error))?;
+                        Ok::<_, TaskCardError>(f.variant_jobs(e, &v))
+                    })
+                })
         })
         .map(|jobs| {
+            let jobs = jobs?;
             let job = &jobs[0];
             let id = job.task().to_string();
             let numbers = task_numbers(job).map_err(|source| TaskCardError::Setup {

@@ -79,7 +79,7 @@ fn arms_of_4_8_9_and_150_joints_run_from_files() {
     catalog::register_paper_robots(&root.join("papers"));
     let files =
         reproduce::load_experiments(&root.join("experiments")).expect("the experiments load");
-    let jobs: Vec<_> = files.iter().flat_map(|f| f.jobs()).collect();
+    let jobs: Vec<_> = files.iter().flat_map(|f| f.jobs().unwrap()).collect();
     assert_eq!(jobs.len(), 4);
     for job in &jobs {
         let n = job.theta0.len();
@@ -140,7 +140,7 @@ fn a_urdf_arm_runs_from_files() {
     assert!(model.has_dynamics());
     let files =
         reproduce::load_experiments(&root.join("experiments")).expect("the experiment loads");
-    let jobs: Vec<_> = files.iter().flat_map(|f| f.jobs()).collect();
+    let jobs: Vec<_> = files.iter().flat_map(|f| f.jobs().unwrap()).collect();
     assert_eq!(jobs.len(), 2);
     for job in &jobs {
         let record = run_job(job);
@@ -181,7 +181,7 @@ fn an_experiment_mounts_its_robot_with_a_tool_offset_and_a_base() {
     let mount = "tool = [0.0, 0.0, 0.1]\nbase = { xyz = [0.2, 0.0, 0.0], rpy = [0.3, 0.0, 0.5] }";
     let file = reproduce::experiments_from_toml(&mounted("jaco2-pen", mount, "kong2019"))
         .expect("a mounted experiment loads");
-    let job = &file.jobs()[0];
+    let job = &file.jobs().unwrap()[0];
     let pen = robots::robot_by_name("jaco2-pen").unwrap().robot;
     let theta: Vec<f64> = vec![1.675, 2.79, -3.216, 4.187, -1.71, -2.95];
     let tip = pen.position(&theta)
@@ -201,7 +201,10 @@ fn an_experiment_mounts_its_robot_with_a_tool_offset_and_a_base() {
         "label = \"ZNN (eq. 22)\"\ntool = [0.0, 0.05, 0.0]",
     );
     let file = reproduce::experiments_from_toml(&text).unwrap();
-    assert_eq!(file.jobs()[0].mount.unwrap().tool, [0.0, 0.05, 0.0]);
+    assert_eq!(
+        file.jobs().unwrap()[0].mount.unwrap().tool,
+        [0.0, 0.05, 0.0]
+    );
 
     // Dynamics: a yaw keeps gravity vertical, a tilt does not.
     let dynamic = |mount: &str| {
@@ -214,7 +217,7 @@ fn an_experiment_mounts_its_robot_with_a_tool_offset_and_a_base() {
     };
     let yaw = "tool = [0.0, 0.0, 0.05]\nbase = { xyz = [0.1, 0.1, 0.0], rpy = [0.0, 0.0, 1.0] }";
     let file = reproduce::experiments_from_toml(&dynamic(yaw)).expect("a yaw loads");
-    let record = run_job(&file.jobs()[0]);
+    let record = run_job(&file.jobs().unwrap()[0]);
     assert!(
         matches!(record.run.outcome, Outcome::Completed(_)),
         "{:?}",
@@ -322,7 +325,7 @@ fn an_example_robot_data_ur5_runs_from_a_robot_file() {
     assert!(model.has_dynamics(), "the UR5's links carry inertials");
     let files =
         reproduce::load_experiments(&root.join("experiments")).expect("the experiments load");
-    let jobs: Vec<_> = files.iter().flat_map(|f| f.jobs()).collect();
+    let jobs: Vec<_> = files.iter().flat_map(|f| f.jobs().unwrap()).collect();
     assert_eq!(jobs.len(), 2);
     for job in &jobs {
         let record = run_job(job);

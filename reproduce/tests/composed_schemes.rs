@@ -48,7 +48,7 @@ fn load(tag: &str, robots: &[(&str, String)], experiments: &str) -> Result<Vec<R
     let files = reproduce::load_experiments(&root.join("experiments"));
     std::fs::remove_dir_all(&root).unwrap();
     files
-        .map(|files| files.iter().flat_map(|f| f.jobs()).collect())
+        .map(|files| files.iter().flat_map(|f| f.jobs().unwrap()).collect())
         .map_err(|e| e.to_string())
 }
 

@@ -84,7 +84,7 @@ fn assert_rejected(name: &str, text: &str, must_mention: &[&str]) {
 #[test]
 fn a_good_file_loads_and_expands_into_runs() {
     let f = load_text("good", GOOD).unwrap();
-    let jobs = f.jobs();
+    let jobs = f.jobs().unwrap();
     assert_eq!(jobs.len(), 2, "exact column + one neural solver");
     assert_eq!(
         jobs[0].theta_ref, jobs[0].theta0,

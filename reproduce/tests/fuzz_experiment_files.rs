@@ -165,7 +165,7 @@ proptest! {
         match reproduce::experiments_from_toml(&mutated) {
             Ok(f) => {
                 // A file that loads expands into runs, each with a unique key.
-                let jobs = f.jobs();
+                let jobs = f.jobs().unwrap();
                 let mut keys: Vec<spec::RunKey> = jobs.iter().map(|j| j.key()).collect();
                 keys.sort();
                 keys.dedup();

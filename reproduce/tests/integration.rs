@@ -28,6 +28,7 @@ mod score;
 mod self_contained;
 mod shards;
 mod slurm;
+mod sweep_plan;
 mod task_cards;
 mod test_targets;
 mod typed_errors;

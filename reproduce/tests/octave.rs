@@ -20,7 +20,6 @@
 //! is set (`.ci/run` sets it): there a missing Octave fails the test, so CI cannot pass
 //! vacuously.
 
-use catalog::PaperFile;
 use records::RunRow;
 use reproduce::load_experiments;
 use simulation::run_job;
@@ -87,7 +86,7 @@ fn own_run(root: &Path) -> RunRow {
     let mut job = load_experiments(&root.join("experiments"))
         .unwrap()
         .iter()
-        .flat_map(PaperFile::jobs)
+        .flat_map(|f| f.jobs().unwrap())
         .find(|j| j.task().to_string() == TASK && j.solver != SolverChoice::Exact)
         .unwrap();
     job.integrator.rtol = 1e-10;

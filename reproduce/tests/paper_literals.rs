@@ -71,7 +71,7 @@ fn names(root: &Path) -> Names {
     let mut whole = BTreeSet::new();
     let mut code_names = BTreeSet::new();
     for f in &files {
-        for job in f.jobs() {
+        for job in f.jobs().unwrap() {
             inside.insert(job.paper.clone());
             inside.insert(job.experiment.to_string());
             whole.insert(job.variant_id.to_string());

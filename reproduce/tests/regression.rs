@@ -15,7 +15,7 @@ fn fresh_run_matches_the_committed_results() {
     let committed =
         read_runs(&root.join("results/runs.csv")).expect("results/runs.csv is committed");
     let files = load_experiments(&root.join("experiments")).unwrap();
-    let jobs: Vec<_> = files.iter().flat_map(|f| f.jobs()).collect();
+    let jobs: Vec<_> = files.iter().flat_map(|f| f.jobs().unwrap()).collect();
     let fresh: Vec<RunRow> = run_jobs(&jobs, false)
         .iter()
         .map(|r| run_row(r, "test"))
@@ -77,7 +77,7 @@ fn two_runs_give_identical_rows() {
     let files = load_experiments(&root.join("experiments")).unwrap();
     let jobs: Vec<_> = files
         .iter()
-        .flat_map(|f| f.jobs())
+        .flat_map(|f| f.jobs().unwrap())
         .filter(|j| {
             [
                 "jia2019-star",

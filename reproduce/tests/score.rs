@@ -2,7 +2,6 @@
 //! suite's own ZNN run) is scored with the run's drift, and its row, trace and figure are
 //! written under --score-out; a task that does not exist is refused with the library's message.
 
-use catalog::PaperFile;
 use reproduce::load_experiments;
 use simulation::run_job;
 use simulation::Outcome;
@@ -23,7 +22,7 @@ fn a_trajectory_file_is_scored_on_its_task() {
     let job = load_experiments(&root.join("experiments"))
         .unwrap()
         .iter()
-        .flat_map(PaperFile::jobs)
+        .flat_map(|f| f.jobs().unwrap())
         .find(|j| {
             j.task().to_string() == "kong2019-circle / znn-eq22" && j.solver != SolverChoice::Exact
         })

@@ -345,7 +345,7 @@ fn slow_shard(root: &Path) -> (usize, usize) {
     let files = reproduce::load_experiments(&root.join("experiments")).unwrap();
     let keys: Vec<String> = files
         .iter()
-        .flat_map(|f| f.jobs())
+        .flat_map(|f| f.jobs().unwrap())
         .map(|j| j.key().to_string())
         .collect();
     assert_eq!(keys.len(), 1 + QUICK_MU.len());

@@ -2,7 +2,6 @@
 //! in memory, never over the committed files), one card per task, and a card carries the
 //! suite's own check values.
 
-use catalog::PaperFile;
 use presentation::task_card::INDEX;
 use reproduce::{load_experiments, task_cards, TASK_CARDS};
 
@@ -37,7 +36,7 @@ fn every_task_has_a_card_with_its_check_values() {
     let tasks: BTreeSet<String> = load_experiments(&root.join("experiments"))
         .unwrap()
         .iter()
-        .flat_map(PaperFile::jobs)
+        .flat_map(|f| f.jobs().unwrap())
         .map(|j| j.task().to_string())
         .collect();
     assert_eq!(generated.len(), tasks.len() + 1);
@@ -86,9 +85,13 @@ scheme = {{ kind = "znn-rmp", mu = 3.0, k_p = 1.0 }}
         )
         .unwrap();
         let files = load_experiments(&dir).unwrap();
-        let variants_of_sweep: Vec<String> = files[0].experiments[0].variants[..variants]
-            .iter()
-            .map(|v| format!("kong2019-cards--{}.md", v.id()))
+        let variants_of_sweep: Vec<String> = (0..variants)
+            .map(|i| {
+                format!(
+                    "kong2019-cards--{}.md",
+                    files[0].variant(0, i).unwrap().id()
+                )
+            })
             .collect();
         let generated = task_cards(&dir).unwrap();
         let of_sweep: Vec<&String> = generated

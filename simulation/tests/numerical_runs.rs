@@ -11,7 +11,7 @@ use spec::SolverChoice;
 fn robio_jobs() -> Vec<RunSpec> {
     let root = catalog::root_from_current_dir().unwrap();
     let file = catalog::PaperFile::load(&root.join("experiments/robio2018.toml")).unwrap();
-    file.jobs()
+    file.jobs().unwrap()
 }
 
 #[test]

@@ -5,7 +5,6 @@
 //! accepted step) and keeps the tool on the path; faster than the constant-gain ZNN of the same
 //! file.
 
-use catalog::PaperFile;
 use simulation::run_job;
 use simulation::Outcome;
 use simulation::Score;
@@ -18,7 +17,7 @@ fn circle_jobs() -> Vec<RunSpec> {
     catalog::load_dir(&root.join("experiments"))
         .unwrap()
         .iter()
-        .flat_map(PaperFile::jobs)
+        .flat_map(|f| f.jobs().unwrap())
         .filter(|j| {
             j.experiment == "kong2019-circle" && matches!(j.solver, SolverChoice::Neural(_))
         })

@@ -2,7 +2,6 @@
 //! trace (theta, thetadot at ~400 instants), scored as an external trajectory, has the run's
 //! drift exactly and its error and score to the resolution of the thinned samples.
 
-use catalog::PaperFile;
 use inputs::trajectory::Trajectory;
 use simulation::run_job;
 use simulation::{score_trajectory, TrajectoryError};
@@ -15,7 +14,7 @@ fn job(experiment: &str, variant: &str, neural: bool) -> RunSpec {
     catalog::load_dir(&root.join("experiments"))
         .unwrap()
         .iter()
-        .flat_map(PaperFile::jobs)
+        .flat_map(|f| f.jobs().unwrap())
         .find(|j| {
             j.experiment == experiment
                 && j.variant == variant

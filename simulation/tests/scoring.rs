@@ -1,7 +1,6 @@
 //! The scoring grid: a network run scored at every accepted step, at a bounded number of
 //! instants, or not at all, as the experiment file's `scoring` says.
 
-use catalog::PaperFile;
 use simulation::run_job;
 use simulation::Outcome;
 use spec::RunSpec;
@@ -13,7 +12,7 @@ fn znn_job() -> RunSpec {
     catalog::load_dir(&root.join("experiments"))
         .unwrap()
         .iter()
-        .flat_map(PaperFile::jobs)
+        .flat_map(|f| f.jobs().unwrap())
         .find(|j| {
             j.experiment == "kong2019-circle"
                 && j.variant == "ZNN (eq. 22)"
@@ -71,7 +70,7 @@ solvers = [{{ kind = "znn", gamma = 1.0 }}]
     };
     let scoring_of = |text: &str| {
         catalog::PaperFile::from_toml(text)
-            .map(|f| f.jobs()[1].scoring)
+            .map(|f| f.jobs().unwrap()[1].scoring)
             .map_err(|e| e.to_string())
     };
     assert_eq!(scoring_of(&file("")), Ok(Scoring::EveryStep));

@@ -9,7 +9,7 @@ fn sweep_experiments_expand_to_the_hand_written_runs() {
     let files = catalog::load_dir(&root.join("experiments")).unwrap();
     let committed: Vec<String> = files
         .iter()
-        .flat_map(|f| f.jobs())
+        .flat_map(|f| f.jobs().unwrap())
         .filter(|j| j.experiment.ends_with("-sweep"))
         .map(|j| format!("{j:?}"))
         .collect();
@@ -21,7 +21,7 @@ fn sweep_experiments_expand_to_the_hand_written_runs() {
     let mut hand: Vec<String> = Vec::new();
     for text in fixtures {
         let file = catalog::PaperFile::from_toml(text).unwrap();
-        hand.extend(file.jobs().iter().map(|j| format!("{j:?}")));
+        hand.extend(file.jobs().unwrap().iter().map(|j| format!("{j:?}")));
     }
     // The committed files order papers by file name, as the fixtures are listed.
     assert_eq!(committed.len(), 18 + 10 + 8 + 3, "runs of the four sweeps");

@@ -109,7 +109,7 @@ fn a_run_uses_the_registered_outside_solver() {
         "{e}"
     );
     let file = checked(FILE).unwrap();
-    let jobs = file.jobs();
+    let jobs = file.jobs().unwrap();
     assert_eq!(jobs.len(), 2);
     let before = BUILT.load(Ordering::SeqCst);
     let rows: Vec<_> = jobs.iter().map(|j| run_row(&run_job(j), "test")).collect();
