@@ -199,10 +199,10 @@ impl ZeroingNetwork {
         let QpDims { nx, .. } = self.dims;
         let e = &mut self.e[..y.len()];
         Self::qdot_times(self.dims, qp, y, e);
-        for (ei, qi) in e[..nx].iter_mut().zip(qp.q.iter()) {
+        for (ei, qi) in e[..nx].iter_mut().zip(qp.q.as_slice()) {
             *ei -= -qi;
         }
-        for (ei, bi) in e[nx..].iter_mut().zip(qp.b.iter()) {
+        for (ei, bi) in e[nx..].iter_mut().zip(qp.b.as_slice()) {
             *ei -= bi;
         }
     }
@@ -292,20 +292,26 @@ impl NeuralSolver for ZeroingNetwork {
         if let Some(d) = qp_dot {
             Self::qdot_times(self.dims, d, y, &mut self.products[..n]);
         }
+        // The fields and buffers read once, as slices of n entries (no bounds checks in the
+        // loop, no reload through `self` after each store into `ydot`).
+        let (activation, nu, udot_q) = (self.activation, self.nu, self.udot_q);
+        let (e, products, ydot) = (&self.e[..n], &self.products[..n], &mut ydot[..n]);
+        let vector_perturbation = self.perturbation.is_some();
+        let dot = qp_dot.map(|d| (d.q.as_slice(), d.b.as_slice()));
         for i in 0..n {
-            let mut r = -g * self.activation.value(self.e[i]);
-            if self.nu != 0.0 {
-                r -= self.nu * t * self.e[i];
+            let mut r = -g * activation.value(e[i]);
+            if nu != 0.0 {
+                r -= nu * t * e[i];
             }
-            if let Some(d) = qp_dot {
+            if let Some((q_dot, b_dot)) = dot {
                 let udot = if i >= nx {
-                    d.b[i - nx]
-                } else if self.udot_q {
-                    -d.q[i]
+                    b_dot[i - nx]
+                } else if udot_q {
+                    -q_dot[i]
                 } else {
                     0.0
                 };
-                r += udot - self.products[i];
+                r += udot - products[i];
             }
             if matrix_perturbation {
                 let mut dy = 0.0;
@@ -313,7 +319,7 @@ impl NeuralSolver for ZeroingNetwork {
                     dy += self.delta_d[(i, j)] * y[j];
                 }
                 r += self.delta_s[i] - dy;
-            } else if self.perturbation.is_some() {
+            } else if vector_perturbation {
                 r += self.delta_s[i];
             }
             ydot[i] = r;
