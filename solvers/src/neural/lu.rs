@@ -260,7 +260,11 @@ mod tests {
                 assert_eq!(ok_fixed, ok_dynamic, "n = {n}, seed {seed}: verdict");
                 assert_eq!(pf, pd, "n = {n}, seed {seed}: pivots");
                 let bits = |m: &DMatrix<f64>| m.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
-                assert_eq!(bits(&fixed), bits(&dynamic), "n = {n}, seed {seed}: factors");
+                assert_eq!(
+                    bits(&fixed),
+                    bits(&dynamic),
+                    "n = {n}, seed {seed}: factors"
+                );
             }
         }
     }
