@@ -71,7 +71,7 @@ pub fn factor(a: &mut DMatrix<f64>, piv: &mut [usize]) -> bool {
     debug_assert_eq!(a.ncols(), n);
     let s = a.as_mut_slice();
     match n {
-        3 => factor_fixed::<3>(s, piv),
+        3 => factor_3(s, piv),
         6 => factor_fixed::<6>(s, piv),
         7 => factor_fixed::<7>(s, piv),
         8 => factor_fixed::<8>(s, piv),
@@ -132,48 +132,74 @@ fn factor_in(n: usize, s: &mut [f64], piv: &mut [usize]) -> bool {
 /// every loop has a constant bound).
 #[inline(always)]
 fn factor_fixed<const N: usize>(s: &mut [f64], piv: &mut [usize]) -> bool {
-    let piv = &mut piv[..N];
-    let (columns, _) = s[..N * N].as_chunks_mut::<N>();
-    let c: &mut [[f64; N]; N] = columns
-        .try_into()
-        .expect("N * N entries are N columns of N");
+    let (c, piv) = as_columns::<N>(s, piv);
     let mut ok = true;
     for k in 0..N {
-        let mut p = k;
-        let mut best = c[k][k].abs();
-        for (i, v) in c[k].iter().enumerate().skip(k + 1) {
-            if v.abs() > best {
-                best = v.abs();
-                p = i;
-            }
+        ok &= stage(c, piv, k);
+    }
+    ok
+}
+
+/// Order 3 (the bottom block that `kkt_lu` factorises at every right-hand side): the three
+/// stages written out, so each is compiled with k a constant.
+fn factor_3(s: &mut [f64], piv: &mut [usize]) -> bool {
+    let (c, piv) = as_columns::<3>(s, piv);
+    // `&`, not `&&`: as in the loop, a failed pivot does not stop the later stages.
+    stage(c, piv, 0) & stage(c, piv, 1) & stage(c, piv, 2)
+}
+
+/// The first N * N entries of `s` as N columns of N, and the first N pivots.
+#[inline(always)]
+fn as_columns<'a, const N: usize>(
+    s: &'a mut [f64],
+    piv: &'a mut [usize],
+) -> (&'a mut [[f64; N]; N], &'a mut [usize; N]) {
+    let (columns, _) = s[..N * N].as_chunks_mut::<N>();
+    let c = columns
+        .try_into()
+        .expect("N * N entries are N columns of N");
+    let piv = (&mut piv[..N]).try_into().expect("N pivots");
+    (c, piv)
+}
+
+/// Stage k of the textbook loop ([`factor_in`]'s loop body): the pivot of column k, the row
+/// swap, the multipliers and the update of the columns after k; false (and only `piv[k]`
+/// written) when the pivot is zero or not finite.
+#[inline(always)]
+fn stage<const N: usize>(c: &mut [[f64; N]; N], piv: &mut [usize; N], k: usize) -> bool {
+    let mut p = k;
+    let mut best = c[k][k].abs();
+    for (i, v) in c[k].iter().enumerate().skip(k + 1) {
+        if v.abs() > best {
+            best = v.abs();
+            p = i;
         }
-        piv[k] = p;
-        if !(best > SINGULAR_PIVOT) || !best.is_finite() {
-            ok = false;
-            continue;
+    }
+    piv[k] = p;
+    if !(best > SINGULAR_PIVOT) || !best.is_finite() {
+        return false;
+    }
+    if p != k {
+        for column in c.iter_mut() {
+            column.swap(k, p);
         }
-        if p != k {
-            for column in c.iter_mut() {
-                column.swap(k, p);
-            }
-        }
-        let (left, right) = c.split_at_mut(k + 1);
-        let column = &mut left[k];
-        let pivot = column[k];
-        for v in &mut column[k + 1..] {
-            *v /= pivot;
-        }
-        let l = &column[k + 1..];
-        for col in right.iter_mut() {
-            let akj = col[k];
-            if akj != 0.0 {
-                for (v, lik) in col[k + 1..].iter_mut().zip(l) {
-                    *v -= lik * akj;
-                }
+    }
+    let (left, right) = c.split_at_mut(k + 1);
+    let column = &mut left[k];
+    let pivot = column[k];
+    for v in &mut column[k + 1..] {
+        *v /= pivot;
+    }
+    let l = &column[k + 1..];
+    for col in right.iter_mut() {
+        let akj = col[k];
+        if akj != 0.0 {
+            for (v, lik) in col[k + 1..].iter_mut().zip(l) {
+                *v -= lik * akj;
             }
         }
     }
-    ok
+    true
 }
 
 /// Solve A x = b in place (`b` becomes x) with the factors from [`factor`].
