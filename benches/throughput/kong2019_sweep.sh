@@ -8,7 +8,10 @@
 # linear ZNN, no exact column, integrated by Tsitouras 5(4) at RelTol 1e-10, AbsTol 1e-12 (an
 # explicit method at tight tolerances: the right-hand side dominates), swept over
 # mu (SIDE values, geometric from 0.25 to 8) x gamma (SIDE values, geometric from 1 to 1000):
-# SIDE^2 runs, 1024 at the default SIDE = 32. Each pass runs the whole sweep as one shard
+# SIDE^2 runs, 1024 at the default SIDE = 32. The sweep keeps every run's trace (it sets no
+# `traces`: the default, and the only form an older revision such as f5570fd reads, so both
+# revisions run the same file), so a pass also formats, seals and folds SIDE^2 traces. Each pass
+# runs the whole sweep as one shard
 #   reproduce shard 1/1 --threads 1 --experiments-dir SWEEP --results-dir DIR
 # (no explanation runs, no report) pinned to the last CPU, the two revisions alternating pass by
 # pass so that both see the same machine.

@@ -171,15 +171,36 @@ pub fn orientation_error(
     rotation_log(&(target * o.tool_rotation(theta).transpose()))
 }
 
-/// y = a x for a 3 x n column-major `a`, summed column by column in joint order.
+/// y = a x for a 3 x n column-major `a` (n = x's length), summed column by column in joint
+/// order.
 fn times(a: &[f64], x: &[f64]) -> Vector3<f64> {
-    let mut y = Vector3::zeros();
-    for (j, v) in x.iter().enumerate() {
-        for i in 0..3 {
-            y[i] += a[3 * j + i] * v;
-        }
+    let mut y = [0.0; 3];
+    for (column, v) in a[..3 * x.len()].chunks_exact(3).zip(x) {
+        y[0] += column[0] * v;
+        y[1] += column[1] * v;
+        y[2] += column[2] * v;
     }
-    y
+    Vector3::from(y)
+}
+
+/// The first `n` columns of the column-major matrix `a` (A or Adot), each a slice of its
+/// rows (a tracking term has at least one row).
+fn a_columns(a: &mut nalgebra::DMatrix<f64>, n: usize) -> impl Iterator<Item = &mut [f64]> {
+    let rows = a.nrows();
+    a.as_mut_slice().chunks_exact_mut(rows).take(n)
+}
+
+/// Writes a 3 x n column-major matrix `m` into three rows of A (or Adot) from `row`: one copy
+/// where A has those three rows only (kong2019's task), else three entries a column.
+fn write_block(m: &[f64], row: usize, a: &mut nalgebra::DMatrix<f64>) {
+    if a.nrows() == 3 {
+        debug_assert_eq!(row, 0);
+        a.as_mut_slice()[..m.len()].copy_from_slice(m);
+        return;
+    }
+    for (column, mj) in a_columns(a, m.len() / 3).zip(m.chunks_exact(3)) {
+        column[row..row + 3].copy_from_slice(mj);
+    }
 }
 
 impl Tracking {
@@ -239,21 +260,15 @@ impl Tracking {
             .expect("a pose task is built only on a robot with orientation")
     }
 
-    /// Writes a 3 x n column-major matrix into the three rows of A (or Adot) from `row`.
-    fn write_block(&self, m: &[f64], row: usize, a: &mut nalgebra::DMatrix<f64>) {
-        for j in 0..self.robot.dof() {
-            for k in 0..3 {
-                a[(row + k, j)] = m[3 * j + k];
-            }
-        }
-    }
-
     /// Writes the selected rows of a 3 x n column-major matrix into A (or Adot) from `row`.
     fn write_rows(&self, m: &[f64], row: usize, a: &mut nalgebra::DMatrix<f64>) {
-        let n = self.robot.dof();
-        for (k, &axis) in self.axes.iter().enumerate() {
-            for j in 0..n {
-                a[(row + k, j)] = m[3 * j + axis];
+        if self.axes == [0, 1, 2] {
+            write_block(m, row, a);
+            return;
+        }
+        for (column, mj) in a_columns(a, m.len() / 3).zip(m.chunks_exact(3)) {
+            for (k, &axis) in self.axes.iter().enumerate() {
+                column[row + k] = mj[axis];
             }
         }
     }
@@ -340,7 +355,7 @@ impl Term for Tracking {
                 let row = slot.equality + self.axes.len();
                 let e = orientation_error(o, target, state.theta);
                 o.angular_jacobian(state.theta, &mut scratch.jac);
-                self.write_block(&scratch.jac, row, &mut qp.a);
+                write_block(&scratch.jac, row, &mut qp.a);
                 let b = match self.feedback {
                     Feedback::Velocity { k_p } => e * k_p,
                     Feedback::Acceleration { rho_v, rho_p } => {
@@ -388,7 +403,7 @@ impl Term for Tracking {
             let o = self.orientation();
             let row = slot.equality + self.axes.len();
             o.angular_jacobian_dot(state.theta, state.thetadot, &mut scratch.jdot);
-            self.write_block(&scratch.jdot, row, &mut out.qp.a);
+            write_block(&scratch.jdot, row, &mut out.qp.a);
             o.angular_jacobian(state.theta, &mut scratch.jac);
             // `jac` holds the angular Jacobian now, not the position one the cache stands for.
             scratch.valid = false;

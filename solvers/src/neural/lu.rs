@@ -5,10 +5,12 @@
 //! The orders the papers' networks use (n = nx + n_eq = 6 to 12, e.g. kong2019's 5 joints and
 //! 3 task rows: n = 8), and 3 (the bottom block of three task rows that
 //! `solvers/src/neural/kkt_lu.rs` factorises), are compiled with n a constant, so the loops
-//! have fixed trip counts and no bounds checks; every other order runs the same code with n
-//! read at run time. Either way
+//! have fixed trip counts and no bounds checks (the factorisation holds the matrix as n
+//! columns of n entries, `[[f64; N]; N]`, so every index is checked against n when it is
+//! compiled); every other order runs the textbook loop with n read at run time. Either way
 //! the operations and their order are those of the textbook loop, so the factors and the
-//! solution are the same bit for bit.
+//! solution are the same bit for bit (a test compares the compiled orders with the run-time
+//! loop, pivots, factors and solutions, on random matrices with ties, zeros and NaN).
 
 use nalgebra::DMatrix;
 
@@ -67,12 +69,22 @@ macro_rules! by_order {
 pub fn factor(a: &mut DMatrix<f64>, piv: &mut [usize]) -> bool {
     let n = a.nrows();
     debug_assert_eq!(a.ncols(), n);
-    by_order!(n, factor_in(a.as_mut_slice(), piv))
+    let s = a.as_mut_slice();
+    match n {
+        3 => factor_3(s, piv),
+        6 => factor_fixed::<6>(s, piv),
+        7 => factor_fixed::<7>(s, piv),
+        8 => factor_fixed::<8>(s, piv),
+        9 => factor_fixed::<9>(s, piv),
+        10 => factor_fixed::<10>(s, piv),
+        11 => factor_fixed::<11>(s, piv),
+        12 => factor_fixed::<12>(s, piv),
+        n => factor_in(n, s, piv),
+    }
 }
 
-#[inline(always)]
-fn factor_in(n: impl Order, s: &mut [f64], piv: &mut [usize]) -> bool {
-    let n = n.get();
+/// The textbook loop with n read at run time (see [`factor`]).
+fn factor_in(n: usize, s: &mut [f64], piv: &mut [usize]) -> bool {
     let piv = &mut piv[..n];
     let s = &mut s[..n * n];
     let mut ok = true;
@@ -113,6 +125,81 @@ fn factor_in(n: impl Order, s: &mut [f64], piv: &mut [usize]) -> bool {
         }
     }
     ok
+}
+
+/// [`factor_in`]'s loop for a compiled order N, its operations in the same order, on the
+/// matrix held as N columns of N entries (every index below N, so no bounds check is left and
+/// every loop has a constant bound).
+#[inline(always)]
+fn factor_fixed<const N: usize>(s: &mut [f64], piv: &mut [usize]) -> bool {
+    let (c, piv) = as_columns::<N>(s, piv);
+    let mut ok = true;
+    for k in 0..N {
+        ok &= stage(c, piv, k);
+    }
+    ok
+}
+
+/// Order 3 (the bottom block that `kkt_lu` factorises at every right-hand side): the three
+/// stages written out, so each is compiled with k a constant.
+fn factor_3(s: &mut [f64], piv: &mut [usize]) -> bool {
+    let (c, piv) = as_columns::<3>(s, piv);
+    // `&`, not `&&`: as in the loop, a failed pivot does not stop the later stages.
+    stage(c, piv, 0) & stage(c, piv, 1) & stage(c, piv, 2)
+}
+
+/// The first N * N entries of `s` as N columns of N, and the first N pivots.
+#[inline(always)]
+fn as_columns<'a, const N: usize>(
+    s: &'a mut [f64],
+    piv: &'a mut [usize],
+) -> (&'a mut [[f64; N]; N], &'a mut [usize; N]) {
+    let (columns, _) = s[..N * N].as_chunks_mut::<N>();
+    let c = columns
+        .try_into()
+        .expect("N * N entries are N columns of N");
+    let piv = (&mut piv[..N]).try_into().expect("N pivots");
+    (c, piv)
+}
+
+/// Stage k of the textbook loop ([`factor_in`]'s loop body): the pivot of column k, the row
+/// swap, the multipliers and the update of the columns after k; false (and only `piv[k]`
+/// written) when the pivot is zero or not finite.
+#[inline(always)]
+fn stage<const N: usize>(c: &mut [[f64; N]; N], piv: &mut [usize; N], k: usize) -> bool {
+    let mut p = k;
+    let mut best = c[k][k].abs();
+    for (i, v) in c[k].iter().enumerate().skip(k + 1) {
+        if v.abs() > best {
+            best = v.abs();
+            p = i;
+        }
+    }
+    piv[k] = p;
+    if !(best > SINGULAR_PIVOT) || !best.is_finite() {
+        return false;
+    }
+    if p != k {
+        for column in c.iter_mut() {
+            column.swap(k, p);
+        }
+    }
+    let (left, right) = c.split_at_mut(k + 1);
+    let column = &mut left[k];
+    let pivot = column[k];
+    for v in &mut column[k + 1..] {
+        *v /= pivot;
+    }
+    let l = &column[k + 1..];
+    for col in right.iter_mut() {
+        let akj = col[k];
+        if akj != 0.0 {
+            for (v, lik) in col[k + 1..].iter_mut().zip(l) {
+                *v -= lik * akj;
+            }
+        }
+    }
+    true
 }
 
 /// Solve A x = b in place (`b` becomes x) with the factors from [`factor`].
@@ -171,6 +258,41 @@ mod tests {
             }
         }
         a
+    }
+
+    /// Where pivoting meets ties (entries of equal magnitude), zeros (a zero column: a failed
+    /// pivot, after which the loop goes on), a negative zero and NaN, the compiled orders give
+    /// the run-time loop's verdict, pivots and factors bit for bit.
+    #[test]
+    fn compiled_orders_match_on_ties_zeros_and_nan() {
+        for n in [3usize, 6, 7, 8, 9, 10, 11, 12] {
+            for seed in 0..60u64 {
+                let mut a = kkt_like(n, seed);
+                if seed % 2 == 0 {
+                    // Quarters in [-0.5, 0.5]: many ties and zeros.
+                    a.iter_mut().for_each(|v| *v = (*v * 4.0).round() / 4.0);
+                }
+                let j = (seed as usize / 6) % n;
+                match seed % 6 {
+                    1 => a.column_mut(j).fill(0.0),
+                    3 => a[(n - 1, j)] = f64::NAN,
+                    5 => a[(0, 0)] = -0.0,
+                    _ => {}
+                }
+                let (mut fixed, mut dynamic) = (a.clone(), a.clone());
+                let (mut pf, mut pd) = (vec![0; n], vec![0; n]);
+                let ok_fixed = factor(&mut fixed, &mut pf);
+                let ok_dynamic = factor_in(n, dynamic.as_mut_slice(), &mut pd);
+                assert_eq!(ok_fixed, ok_dynamic, "n = {n}, seed {seed}: verdict");
+                assert_eq!(pf, pd, "n = {n}, seed {seed}: pivots");
+                let bits = |m: &DMatrix<f64>| m.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+                assert_eq!(
+                    bits(&fixed),
+                    bits(&dynamic),
+                    "n = {n}, seed {seed}: factors"
+                );
+            }
+        }
     }
 
     #[test]

@@ -60,7 +60,6 @@
 
 use super::activation::Activation;
 use super::kkt_lu::{assemble_q, KktLu};
-use super::lu::{Fixed, Order};
 use super::perturbation::PerturbationTerms;
 use super::{euclidean_norm, NeuralSolver};
 use nalgebra::DMatrix;
@@ -199,10 +198,10 @@ impl ZeroingNetwork {
         let QpDims { nx, .. } = self.dims;
         let e = &mut self.e[..y.len()];
         Self::qdot_times(self.dims, qp, y, e);
-        for (ei, qi) in e[..nx].iter_mut().zip(qp.q.iter()) {
+        for (ei, qi) in e[..nx].iter_mut().zip(qp.q.as_slice()) {
             *ei -= -qi;
         }
-        for (ei, bi) in e[nx..].iter_mut().zip(qp.b.iter()) {
+        for (ei, bi) in e[nx..].iter_mut().zip(qp.b.as_slice()) {
             *ei -= bi;
         }
     }
@@ -220,11 +219,12 @@ impl ZeroingNetwork {
     fn qdot_times(dims: QpDims, d: &Qp, y: &[f64], out: &mut [f64]) {
         let QpDims { nx, n_eq, .. } = dims;
         let (p, a) = (d.p.as_slice(), d.a.as_slice());
-        // kong2019's 5 joints and 3 task rows compiled with constant sizes; the same code.
+        // kong2019's 5 joints and 3 task rows (and 6, 7 joints) compiled with constant sizes:
+        // the same operations in the same order.
         match (nx, n_eq) {
-            (5, 3) => block_times(Fixed::<5>, Fixed::<3>, p, a, y, out),
-            (6, 3) => block_times(Fixed::<6>, Fixed::<3>, p, a, y, out),
-            (7, 3) => block_times(Fixed::<7>, Fixed::<3>, p, a, y, out),
+            (5, 3) => block_times_fixed::<5, 3>(p, a, y, out),
+            (6, 3) => block_times_fixed::<6, 3>(p, a, y, out),
+            (7, 3) => block_times_fixed::<7, 3>(p, a, y, out),
             _ => block_times(nx, n_eq, p, a, y, out),
         }
     }
@@ -241,9 +241,7 @@ impl ZeroingNetwork {
 
 /// out = [P A'; A 0] y for column-major P (nx x nx) and A (n_eq x nx): see
 /// `ZeroingNetwork::qdot_times`.
-#[inline(always)]
-fn block_times(nx: impl Order, n_eq: impl Order, p: &[f64], a: &[f64], y: &[f64], out: &mut [f64]) {
-    let (nx, n_eq) = (nx.get(), n_eq.get());
+fn block_times(nx: usize, n_eq: usize, p: &[f64], a: &[f64], y: &[f64], out: &mut [f64]) {
     // Column-major: P[i, j] at `i + j nx`, A[k, j] at `k + j n_eq`.
     let (p, a) = (&p[..nx * nx], &a[..n_eq * nx]);
     let (top, bottom) = out[..nx + n_eq].split_at_mut(nx);
@@ -266,6 +264,48 @@ fn block_times(nx: impl Order, n_eq: impl Order, p: &[f64], a: &[f64], y: &[f64]
         }
         *o = s;
     }
+}
+
+/// [`block_times`] for nx = NX and n_eq = M known when it is compiled: P as NX columns of NX
+/// entries and A as NX columns of M (so no index is checked at run time), the sums in the
+/// same order.
+#[inline(always)]
+fn block_times_fixed<const NX: usize, const M: usize>(
+    p: &[f64],
+    a: &[f64],
+    y: &[f64],
+    out: &mut [f64],
+) {
+    let p: &[[f64; NX]; NX] = p[..NX * NX]
+        .as_chunks::<NX>()
+        .0
+        .try_into()
+        .expect("NX * NX entries are NX columns of NX");
+    let a: &[[f64; M]; NX] = a[..M * NX]
+        .as_chunks::<M>()
+        .0
+        .try_into()
+        .expect("M * NX entries are NX columns of M");
+    let (yx, ylambda) = y[..NX + M].split_at(NX);
+    let mut top = [0.0; NX];
+    let mut bottom = [0.0; M];
+    for ((pj, aj), yj) in p.iter().zip(a).zip(yx) {
+        for (o, pij) in top.iter_mut().zip(pj) {
+            *o += pij * yj;
+        }
+        for (o, akj) in bottom.iter_mut().zip(aj) {
+            *o += akj * yj;
+        }
+    }
+    for (o, ai) in top.iter_mut().zip(a) {
+        let mut s = *o;
+        for (aki, yk) in ai.iter().zip(ylambda) {
+            s += aki * yk;
+        }
+        *o = s;
+    }
+    out[..NX].copy_from_slice(&top);
+    out[NX..NX + M].copy_from_slice(&bottom);
 }
 
 impl NeuralSolver for ZeroingNetwork {
@@ -292,20 +332,26 @@ impl NeuralSolver for ZeroingNetwork {
         if let Some(d) = qp_dot {
             Self::qdot_times(self.dims, d, y, &mut self.products[..n]);
         }
+        // The fields and buffers read once, as slices of n entries (no bounds checks in the
+        // loop, no reload through `self` after each store into `ydot`).
+        let (activation, nu, udot_q) = (self.activation, self.nu, self.udot_q);
+        let (e, products, ydot) = (&self.e[..n], &self.products[..n], &mut ydot[..n]);
+        let vector_perturbation = self.perturbation.is_some();
+        let dot = qp_dot.map(|d| (d.q.as_slice(), d.b.as_slice()));
         for i in 0..n {
-            let mut r = -g * self.activation.value(self.e[i]);
-            if self.nu != 0.0 {
-                r -= self.nu * t * self.e[i];
+            let mut r = -g * activation.value(e[i]);
+            if nu != 0.0 {
+                r -= nu * t * e[i];
             }
-            if let Some(d) = qp_dot {
+            if let Some((q_dot, b_dot)) = dot {
                 let udot = if i >= nx {
-                    d.b[i - nx]
-                } else if self.udot_q {
-                    -d.q[i]
+                    b_dot[i - nx]
+                } else if udot_q {
+                    -q_dot[i]
                 } else {
                     0.0
                 };
-                r += udot - self.products[i];
+                r += udot - products[i];
             }
             if matrix_perturbation {
                 let mut dy = 0.0;
@@ -313,7 +359,7 @@ impl NeuralSolver for ZeroingNetwork {
                     dy += self.delta_d[(i, j)] * y[j];
                 }
                 r += self.delta_s[i] - dy;
-            } else if self.perturbation.is_some() {
+            } else if vector_perturbation {
                 r += self.delta_s[i];
             }
             ydot[i] = r;
@@ -435,5 +481,48 @@ impl NeuralSolver for ZeroingNetwork {
         }
         self.kkt.solve_columns(jac);
         true
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{block_times, block_times_fixed};
+
+    /// The compiled sizes give the run-time loop's products bit for bit (zeros and a NaN among
+    /// the entries included).
+    #[test]
+    fn compiled_block_products_match_the_run_time_loop() {
+        let mut state = 7u64;
+        let mut next = move || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let v = (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
+            // About one entry in eight is zero, as in a QP's blocks.
+            if state >> 61 == 0 {
+                0.0
+            } else {
+                v
+            }
+        };
+        for (nx, m) in [(5usize, 3usize), (6, 3), (7, 3)] {
+            for case in 0..200 {
+                let p: Vec<f64> = (0..nx * nx).map(|_| next()).collect();
+                let mut a: Vec<f64> = (0..m * nx).map(|_| next()).collect();
+                let y: Vec<f64> = (0..nx + m).map(|_| next()).collect();
+                if case == 0 {
+                    a[1] = f64::NAN;
+                }
+                let (mut fixed, mut dynamic) = (vec![0.0; nx + m], vec![0.0; nx + m]);
+                match nx {
+                    5 => block_times_fixed::<5, 3>(&p, &a, &y, &mut fixed),
+                    6 => block_times_fixed::<6, 3>(&p, &a, &y, &mut fixed),
+                    _ => block_times_fixed::<7, 3>(&p, &a, &y, &mut fixed),
+                }
+                block_times(nx, m, &p, &a, &y, &mut dynamic);
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&fixed), bits(&dynamic), "nx = {nx}, case {case}");
+            }
+        }
     }
 }
