@@ -805,8 +805,8 @@ pub(crate) fn write_to(
                 )));
                 return Err(std::io::Error::other("out of order"));
             }
-            if let Err(message) = write_entry(w, &file, &fingerprint)? {
-                failed = Some(error(message));
+            if let Err(e) = write_entry(w, &file, &fingerprint)? {
+                failed = Some(error(e.to_string()));
                 return Err(std::io::Error::other("serialisation failed"));
             }
             last = Some(file);
@@ -830,7 +830,7 @@ fn write_entry(
     w: &mut dyn Write,
     file: &str,
     fingerprint: &Fingerprint,
-) -> std::io::Result<Result<(), String>> {
+) -> std::io::Result<Result<(), toml::ser::Error>> {
     if quoted_as_is(file)
         && fingerprint
             .sha256
@@ -857,7 +857,7 @@ fn write_entry(
             w.write_all(text.as_bytes())?;
             Ok(Ok(()))
         }
-        Err(e) => Ok(Err(e.to_string())),
+        Err(e) => Ok(Err(e)),
     }
 }
 
