@@ -1062,6 +1062,70 @@ mod tests {
         assert!(Shard::from_env(env(&[]), Some(3)).is_err());
     }
 
+    /// A shard whose traced rows each have their trace listed reads with none noted, also
+    /// when its manifest lists a trace of no row (the sums differ, and each row is looked up);
+    /// a row whose trace is not listed is noted, naming the run; a run that keeps no trace by
+    /// choice needs none.
+    #[test]
+    fn a_row_without_its_listed_trace_is_noted() {
+        use crate::results_dir::ResultsDir;
+        use crate::tracked_dir::Edits;
+        let dir = std::env::temp_dir().join(format!("driftbench-traceless-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let key = |v: &str| spec::RunKey::from_ids("exp", v, "exact").unwrap();
+        let rows: Vec<RunRow> = ["a", "b", "c"]
+            .iter()
+            .map(|v| RunRow::blank(&key(v), spec::SolverKind::Exact))
+            .collect();
+        let trace: [records::TracePoint; 0] = [];
+        {
+            let (results, _) = ResultsDir::open(&dir, "r", Edits::Refuse).unwrap();
+            results
+                .commit_runs::<crate::results_dir::ResultsError>(0, rows.into_iter().map(Ok))
+                .unwrap();
+            for v in ["a", "b", "c", "orphan"] {
+                results.write_trace(&key(v), &trace).unwrap();
+            }
+            results.save().unwrap();
+        }
+        Manifest {
+            shard: 1,
+            shards: 1,
+            git_rev: "r".into(),
+            experiments_hash: "0".into(),
+            runs: 3,
+            key_sum: format!("{:032x}", 0),
+            selection: Selection::default(),
+        }
+        .write(&dir)
+        .unwrap();
+        let traceless = |traced: fn(&spec::RunKey) -> bool| {
+            read_shard(&dir, Edits::Refuse, traced).unwrap().traceless
+        };
+        assert!(traceless(|_| true).is_empty());
+        // b's trace removed, as the program removes a file (and its entry).
+        {
+            let (results, _) = ResultsDir::open(&dir, "r", Edits::Refuse).unwrap();
+            let rel = ResultsDir::trace_rel(&key("b"));
+            results.tracked().remove(&rel).unwrap();
+            results.save().unwrap();
+        }
+        let noted = traceless(|_| true);
+        assert_eq!(noted.len(), 1, "{noted:?}");
+        assert!(noted[0].contains("exp / b / exact"), "{noted:?}");
+        assert!(traceless(|k| k.variant.as_str() != "b").is_empty());
+        // The orphan removed: the listed traces are the traced rows' (equal sums).
+        {
+            let (results, _) = ResultsDir::open(&dir, "r", Edits::Refuse).unwrap();
+            let rel = ResultsDir::trace_rel(&key("orphan"));
+            results.tracked().remove(&rel).unwrap();
+            results.save().unwrap();
+        }
+        assert!(traceless(|k| k.variant.as_str() != "b").is_empty());
+        assert_eq!(traceless(|_| true).len(), 1);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
     #[test]
     fn manifest_round_trips() {
         let m = Manifest {
