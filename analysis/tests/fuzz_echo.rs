@@ -143,7 +143,7 @@ proptest! {
         let seed = "git_rev = \"abc\"\n\n[files.\"runs.csv\"]\nlines = 3\nbytes = 10\nsha256 = \"00\"\n";
         std::fs::write(dir.join(store::integrity::FILE), edited(seed, &edits)).unwrap();
         no_echo("an integrity manifest", || {
-            store::integrity::Manifest::read(&dir).map(drop).map_err(|e| e.to_string())
+            store::integrity::Manifest::open(&dir).map(drop).map_err(|e| e.to_string())
         })?;
     }
 
@@ -207,5 +207,5 @@ fn the_seeds_read_unedited() {
     let seed =
         "git_rev = \"abc\"\n\n[files.\"runs.csv\"]\nlines = 3\nbytes = 10\nsha256 = \"00\"\n";
     std::fs::write(dir.join(store::integrity::FILE), seed).unwrap();
-    assert!(store::integrity::Manifest::read(&dir).unwrap().is_some());
+    assert!(store::integrity::Manifest::open(&dir).unwrap().is_some());
 }

@@ -3,11 +3,21 @@
 //! name the bad file; and the committed figures: a PNG beside every SVG, and the SVGs are those
 //! the committed results give.
 
-use presentation::figures::render_all;
+use analysis::sweep_summary::Held;
+use presentation::ReportError;
 use records::FailureKind;
 use records::{runs_csv, RunRow, Status};
+use spec::RunKey;
+use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use store::write_atomic;
+
+/// Every figure of the results under `root`, drawn from the runs the report holds, read as
+/// `reproduce` reads them (`Held`, with `untraced`).
+fn render_all(root: &Path, untraced: &HashSet<RunKey>) -> Result<Vec<PathBuf>, ReportError> {
+    let held = Held::read(&root.join("results/runs.csv"), untraced)?;
+    presentation::figures::render_all(root, &held, untraced)
+}
 
 /// A run row with the identity and outcome given and every metric empty; the ids are the
 /// labels' slugs, and a solver labelled `exact ...` is the exact column.
@@ -580,7 +590,9 @@ fn one_papers_figures_are_drawn_alone_and_the_others_kept() {
     let dir = root.join("report/figures");
     let kept = std::fs::read(dir.join("exp-vel__overview.png")).unwrap();
     // A figure the other paper's runs no longer give would be removed; exp-vel's are not its.
-    let written = presentation::figures::render_paper(&root, "other", &Default::default()).unwrap();
+    let held = Held::read(&runs_csv_path, &HashSet::new()).unwrap();
+    let written =
+        presentation::figures::render_paper(&root, "other", &held, &HashSet::new()).unwrap();
     let names: Vec<String> = written
         .iter()
         .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())

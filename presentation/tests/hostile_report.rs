@@ -5,6 +5,7 @@
 //! most of them), and the rendered Markdown is checked for its structure: the report's own
 //! headings only, every table row as wide as its header, no link to `javascript:`, no raw tag.
 
+use analysis::sweep_summary::Held;
 use presentation::report::{pages, Inputs};
 
 /// Every page of the report, one after the other.
@@ -16,7 +17,8 @@ const SCRIPT: &str = "<script>alert(1)</script>";
 
 fn hostile() -> (Inputs, String) {
     let root = catalog::root_from_current_dir().unwrap();
-    let clean = Inputs::load(&root, &root.join("papers")).expect("committed inputs load");
+    let held = Held::read(&root.join("results/runs.csv"), &Default::default()).unwrap();
+    let clean = Inputs::load(&root, &root.join("papers"), held).expect("committed inputs load");
     let before = whole(&clean);
     let mut inputs = clean;
     let papers = &mut inputs.papers;

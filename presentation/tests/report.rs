@@ -6,6 +6,7 @@
 
 use analysis::claim_verdict::{self as claims, Verdict};
 use analysis::papers::Resolution;
+use analysis::sweep_summary::Held;
 use presentation::report::{pages, paper_page, render, Inputs, Page, FRONT};
 use records::index::Runs;
 use records::RunRow;
@@ -17,7 +18,8 @@ const REGENERATE: &str = "regenerate with `cargo run --release -p reproduce -- r
 
 fn committed() -> Inputs {
     let root = catalog::root_from_current_dir().unwrap();
-    Inputs::load(&root, &root.join("papers")).expect("committed inputs load")
+    let held = Held::read(&root.join("results/runs.csv"), &Default::default()).unwrap();
+    Inputs::load(&root, &root.join("papers"), held).expect("committed inputs load")
 }
 
 /// The page `file` of `pages`.
@@ -127,7 +129,8 @@ fn scratch_copy_of_the_inputs(committed: &Path) -> PathBuf {
 fn the_committed_report_is_the_one_the_committed_results_give() {
     let committed_root = catalog::root_from_current_dir().unwrap();
     let scratch = scratch_copy_of_the_inputs(&committed_root);
-    let inputs = Inputs::load(&scratch, &committed_root.join("papers")).expect("inputs load");
+    let held = Held::read(&scratch.join("results/runs.csv"), &Default::default()).unwrap();
+    let inputs = Inputs::load(&scratch, &committed_root.join("papers"), held).expect("inputs load");
     let path = render(&scratch, &inputs).expect("report renders");
     assert!(
         path.starts_with(&scratch),

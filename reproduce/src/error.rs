@@ -204,7 +204,10 @@ fn path(e: &PathError) -> Exit {
 
 fn tracked(e: &TrackedError) -> Exit {
     match e {
-        TrackedError::Io { .. } | TrackedError::Integrity(IntegrityError::Write { .. }) => Exit::Io,
+        TrackedError::Io { .. }
+        | TrackedError::Integrity(IntegrityError::Write { .. } | IntegrityError::Stream { .. }) => {
+            Exit::Io
+        }
         TrackedError::Path(e) => path(e),
         _ => Exit::Input,
     }

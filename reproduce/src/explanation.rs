@@ -76,5 +76,5 @@ pub fn explain_mode(
     precheck_report(project, all)?;
     let results = open_results(project, git_rev, all)?;
     explain(project, jobs, all.jobs()?, git_rev, Some(&results))?;
-    render_report(project, &report_root(project)?, &results)
+    render_report(project, &report_root(project)?, &results, all)
 }

@@ -8,7 +8,6 @@ use crate::papers::load_papers;
 use crate::project::Project;
 use crate::report::{precheck_report, render_report, report_root};
 use crate::results::{open_results, Described};
-use spec::RunSpec;
 use store::results_dir::ResultsDir;
 
 /// The tables of `ids` (paper, table) that `which` selects; none is an error listing the
@@ -37,20 +36,22 @@ pub fn infer_mode(
     git_rev: &str,
 ) -> Result<(), ReproduceError> {
     if options.dry_run {
-        return infer(project, &options.table, all.jobs()?, None);
+        return infer(project, &options.table, all, None);
     }
     precheck_report(project, all)?;
     let results = open_results(project, git_rev, all)?;
-    infer(project, &options.table, all.jobs()?, Some(&results))
+    infer(project, &options.table, all, Some(&results))
 }
 
-/// Fits the tables `which` selects over the runs `jobs`; writes each to `results` when given.
+/// Fits the tables `which` selects over the runs of `all` (every run of the experiment files);
+/// writes each to `results` when given, then renders the report.
 pub fn infer(
     project: &Project,
     which: &Tables,
-    jobs: &[RunSpec],
+    all: &Described,
     results: Option<&ResultsDir>,
 ) -> Result<(), ReproduceError> {
+    let jobs = all.jobs()?;
     use analysis::papers::table_ids;
     use explain::inference::{family::Family, fit, problem, rows, search::Target};
     let root = report_root(project)?;
@@ -84,7 +85,7 @@ pub fn infer(
         }
     }
     match results {
-        Some(results) => render_report(project, &root, results),
+        Some(results) => render_report(project, &root, results, all),
         None => Ok(()),
     }
 }

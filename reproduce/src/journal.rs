@@ -154,7 +154,7 @@ pub fn fold(
         store::journal::remove(results.path())?;
         return Ok(folded);
     }
-    let parts = results.parts();
+    let parts = results.parts()?;
     if at == FoldAt::End || news || !pruned.is_empty() || !parts.is_empty() {
         for line in results.prune(pruned)? {
             eprintln!("{line}");
@@ -214,16 +214,19 @@ pub fn finished(
 ) -> Result<KeySet, ReproduceError> {
     let mut failed = None;
     let done: KeySet = read_key_ordered(&results.runs_path())?
-        .map_while(|row| row.map_err(|e| failed = Some(e)).ok())
-        .filter(|row| row.git_rev == git_rev)
-        .map(|row| row.key())
-        .filter(|key| {
-            !described.traced(key) || results.tracked().lists(&ResultsDir::trace_rel(key))
+        .map(|row| -> Result<Option<String>, ReproduceError> {
+            let row = row?;
+            let key = row.key();
+            let finished = row.git_rev == git_rev
+                && (!described.traced(&key)
+                    || results.tracked().lists(&ResultsDir::trace_rel(&key))?);
+            Ok(finished.then(|| key.to_string()))
         })
-        .map(|key| key.to_string())
+        .map_while(|r| r.map_err(|e| failed = Some(e)).ok())
+        .flatten()
         .collect();
     match failed {
-        Some(e) => Err(e.into()),
+        Some(e) => Err(e),
         None => Ok(done),
     }
 }

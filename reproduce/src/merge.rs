@@ -108,7 +108,7 @@ pub fn merge_shards(
         results.runs_path().display()
     );
     if report {
-        render_report_if_named(project, &results)?;
+        render_report_if_named(project, &results, all)?;
     } else {
         eprintln!("report not rendered (--no-report): render it with `reproduce report`");
     }

@@ -7,24 +7,24 @@ use crate::error::ReproduceError;
 use crate::papers::load_checked_papers;
 use crate::project::Project;
 use crate::results::{experiment_files, open_results, Described};
+use analysis::sweep_summary::Held;
+use catalog::PaperFile;
 use spec::RunKey;
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use store::results_dir::ResultsDir;
 
-/// `reproduce report`: re-renders report/ from the stored results. The experiment files
-/// loaded to check the papers and open the results are dropped before the render, which
-/// loads what it needs itself, so they are not held twice.
+/// `reproduce report`: re-renders report/ from the stored results. The experiment files are
+/// loaded (and every run checked) once: to check the papers, to open the results, and for the
+/// render (the runs that keep no trace, the task cards).
 pub fn report_only(project: &Project, git_rev: &str) -> Result<(), ReproduceError> {
     let root = report_root(project)?;
     check_report_dir(&root)?;
-    let results = {
-        let files = experiment_files(project)?;
-        let all = Described::new(&files);
-        load_checked_papers(project, &all)?;
-        open_results(project, git_rev, &all)?
-    };
-    render_report(project, &root, &results)
+    let files = experiment_files(project)?;
+    let all = Described::new(&files);
+    load_checked_papers(project, &all)?;
+    let results = open_results(project, git_rev, &all)?;
+    render_report(project, &root, &results, &all)
 }
 
 /// The report is rendered beside the results directory: `<root>/results` -> `<root>/report`.
@@ -67,17 +67,27 @@ pub fn precheck_report(project: &Project, all: &Described) -> Result<(), Reprodu
     Ok(())
 }
 
-/// Figures first (the report links them), then the report's pages ([`render_pages`]).
+/// Figures first (the report links them), then the report's pages ([`render_pages`]), both
+/// from the runs the report holds ([`held_runs`]: `runs.csv` read twice, row by row, once for
+/// both); `all`: the experiment files (the runs that keep no trace, the task cards).
 pub fn render_report(
     project: &Project,
     root: &Path,
     results: &ResultsDir,
+    all: &Described,
 ) -> Result<(), ReproduceError> {
-    let files = experiment_files(project)?;
-    let untraced = Described::new(&files).untraced()?;
-    drop(files);
-    render_figures(root, None, &untraced)?;
-    render_pages(project, root, results)
+    let untraced = all.untraced()?;
+    let held = held_runs(results, &untraced)?;
+    render_figures(root, None, &held, &untraced)?;
+    render_pages(project, root, results, all.files(), held)
+}
+
+/// The runs the report holds (`analysis::sweep_summary::Held`): every run of an experiment of
+/// at most 24 runs, a large sweep's sample among the runs that keep a trace (not `untraced`)
+/// and its summary; `results/runs.csv` is read twice, row by row. The figures and the pages
+/// are drawn from the same runs.
+pub fn held_runs(results: &ResultsDir, untraced: &HashSet<RunKey>) -> Result<Held, ReproduceError> {
+    Ok(Held::read(&results.runs_path(), untraced)?)
 }
 
 /// The report's figures under `root/report/figures/`; how many, said on stderr. First removes
@@ -90,6 +100,7 @@ pub fn render_report(
 pub fn render_figures(
     root: &Path,
     paper: Option<&str>,
+    held: &Held,
     untraced: &HashSet<RunKey>,
 ) -> Result<usize, ReproduceError> {
     let report = store::TrackedDir::open_within(root, "report")?;
@@ -102,24 +113,26 @@ pub fn render_figures(
         );
     }
     let figures = match paper {
-        Some(p) => presentation::figures::render_paper(root, p, untraced)?.len(),
-        None => presentation::figures::render_all(root, untraced)?.len(),
+        Some(p) => presentation::figures::render_paper(root, p, held, untraced)?.len(),
+        None => presentation::figures::render_all(root, held, untraced)?.len(),
     };
     eprintln!("wrote {figures} figures");
     Ok(figures)
 }
 
-/// The report's pages, its task cards, then the leaderboard table (recorded in the results
-/// directory's manifest), from the runs the report holds (`presentation::report::Inputs`:
-/// `results/runs.csv` read row by row, a large sweep held as its sample and its summary).
+/// The report's pages, its task cards (of the experiment files `files`), then the leaderboard
+/// table (recorded in the results directory's manifest), from the runs the report holds
+/// (`held`, [`held_runs`]).
 pub fn render_pages(
     project: &Project,
     root: &Path,
     results: &ResultsDir,
+    files: &[PaperFile],
+    held: Held,
 ) -> Result<(), ReproduceError> {
-    let inputs = presentation::report::Inputs::load(root, &project.root.join("papers"))?;
+    let inputs = presentation::report::Inputs::load(root, &project.root.join("papers"), held)?;
     let report = presentation::report::render(root, &inputs)?;
-    crate::task_card::write_all(&project.experiments_dir, root)?;
+    crate::task_card::write_all(files, root)?;
     analysis::leaderboard::write(results.path(), inputs.runs.all())?;
     results.save()?;
     eprintln!("wrote {}", report.display());
@@ -130,9 +143,10 @@ pub fn render_pages(
 pub fn render_report_if_named(
     project: &Project,
     results: &ResultsDir,
+    all: &Described,
 ) -> Result<(), ReproduceError> {
     match report_root(project) {
-        Ok(root) => render_report(project, &root, results),
+        Ok(root) => render_report(project, &root, results, all),
         Err(why) => {
             eprintln!("report not rendered: {why}");
             Ok(())

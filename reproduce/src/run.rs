@@ -16,7 +16,7 @@ use crate::journal::{resume, run_journaled};
 use crate::options::SelectionOptions;
 use crate::phases::{Phase, PhaseClock};
 use crate::project::Project;
-use crate::report::{precheck_report, render_figures, render_pages, report_root};
+use crate::report::{held_runs, precheck_report, render_figures, render_pages, report_root};
 use crate::results::{open_results, plan_pruning, write_results, Described};
 use crate::summary::{emit, summary};
 use records::RunRow;
@@ -251,9 +251,11 @@ fn publish(
             // `run --paper X` draws X's figures only (the pages are all re-rendered: they
             // are cheap, and the front page summarises every paper).
             let untraced = all.untraced()?;
-            let figures = render_figures(&root, plan.selection.paper.as_deref(), &untraced)?;
+            let held = held_runs(results, &untraced)?;
+            let paper = plan.selection.paper.as_deref();
+            let figures = render_figures(&root, paper, &held, &untraced)?;
             clock.lap(Phase::Figures, Some(figures));
-            render_pages(project, &root, results)?;
+            render_pages(project, &root, results, all.files(), held)?;
             clock.lap(Phase::Report, None);
         }
         Err(why) => {

@@ -12,9 +12,7 @@
 //! recorded in `report/manifest.toml` like the figures (a stale card that the program wrote and
 //! nobody edited is removed). [`cards`] renders them in memory.
 
-use crate::experiments::load_dir;
-use catalog::Experiment;
-use catalog::ExperimentFileError;
+use catalog::{Experiment, ExperimentFileError, PaperFile};
 use presentation::task_card::{
     self as card, CardRun, Kinematics as CardKinematics, MountCard, PathCard, QpCard, RobotCard,
     RunSettings, SchemeCard, SchemeForm, StartCard, TaskCard,
@@ -39,12 +37,12 @@ const CROSS: &str = "cross";
 /// Why the cards could not be written.
 #[derive(Debug, thiserror::Error)]
 pub enum TaskCardError {
-    #[error(transparent)]
-    Experiments(#[from] ExperimentFileError),
     #[error("task \"{task}\": {source}")]
     Setup { task: String, source: SetupError },
     #[error("task \"{task}\": robot \"{robot}\" is not in the registry")]
     Robot { task: String, robot: String },
+    #[error(transparent)]
+    Experiments(#[from] ExperimentFileError),
     #[error(transparent)]
     Serialize(#[from] toml::ser::Error),
     #[error(transparent)]
@@ -75,11 +73,11 @@ fn carded(e: &Experiment) -> impl Iterator<Item = usize> + '_ {
     })
 }
 
-/// The cards of the tasks of the experiment files in `experiments_dir` (every variant, each
-/// sweep's capped: `carded`): file name -> Markdown, the index (`presentation::task_card::INDEX`) included. Each
-/// task's runs are made from its variant alone, so what is held is the cards.
-pub fn cards(experiments_dir: &Path) -> Result<BTreeMap<String, String>, TaskCardError> {
-    let files = load_dir(experiments_dir)?;
+/// The cards of the tasks of the experiment files `files` (loaded and checked:
+/// [`crate::load_experiments`]; every variant, each sweep's capped: `carded`): file name ->
+/// Markdown, the index (`presentation::task_card::INDEX`) included. Each task's runs are made
+/// from its variant alone, so what is held is the cards.
+pub fn cards(files: &[PaperFile]) -> Result<BTreeMap<String, String>, TaskCardError> {
     let models = files
         .iter()
         .flat_map(|f| {
@@ -111,15 +109,15 @@ pub fn cards(experiments_dir: &Path) -> Result<BTreeMap<String, String>, TaskCar
     Ok(card::render(&models))
 }
 
-/// Writes the card of every task of the experiment files in `experiments` and the index under
+/// Writes the card of every task of the experiment files `files` and the index under
 /// `root/report/tasks/` (module docs), removing stale cards this program wrote; returns the
 /// directory.
-pub fn write_all(experiments: &Path, root: &Path) -> Result<PathBuf, TaskCardError> {
-    let cards = cards(experiments)?;
+pub fn write_all(files: &[PaperFile], root: &Path) -> Result<PathBuf, TaskCardError> {
+    let cards = cards(files)?;
     let report = TrackedDir::open_within(root, "report")?;
     let rel = |name: &str| Path::new(TASKS).join(name);
     let prefix = format!("{TASKS}/");
-    for listed in report.listed(&prefix) {
+    for listed in report.listed(&prefix)? {
         let name = listed.trim_start_matches(&prefix);
         if !cards.contains_key(name) {
             if let Removal::Kept(why) = report.remove(&rel(name))? {

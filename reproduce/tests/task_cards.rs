@@ -12,7 +12,7 @@ const REGENERATE: &str = "regenerate with `cargo run --release -p reproduce -- r
 #[test]
 fn the_committed_cards_are_the_generated_ones() {
     let root = catalog::root_from_current_dir().unwrap();
-    let generated = task_cards(&root.join("experiments")).unwrap();
+    let generated = task_cards(&load_experiments(&root.join("experiments")).unwrap()).unwrap();
     let dir = root.join("report").join(TASK_CARDS);
     let committed: BTreeSet<String> = std::fs::read_dir(&dir)
         .unwrap()
@@ -32,7 +32,7 @@ fn the_committed_cards_are_the_generated_ones() {
 #[test]
 fn every_task_has_a_card_with_its_check_values() {
     let root = catalog::root_from_current_dir().unwrap();
-    let generated = task_cards(&root.join("experiments")).unwrap();
+    let generated = task_cards(&load_experiments(&root.join("experiments")).unwrap()).unwrap();
     let tasks: BTreeSet<String> = load_experiments(&root.join("experiments"))
         .unwrap()
         .iter()
@@ -93,7 +93,7 @@ scheme = {{ kind = "znn-rmp", mu = 3.0, k_p = 1.0 }}
                 )
             })
             .collect();
-        let generated = task_cards(&dir).unwrap();
+        let generated = task_cards(&files).unwrap();
         let of_sweep: Vec<&String> = generated
             .keys()
             .filter(|k| variants_of_sweep.contains(k))

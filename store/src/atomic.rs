@@ -27,18 +27,10 @@ pub fn write_atomic_with(
     write: impl FnOnce(&mut dyn std::io::Write) -> std::io::Result<()>,
 ) -> std::io::Result<()> {
     use std::io::Write as _;
-    use std::sync::atomic::{AtomicUsize, Ordering};
-    static COUNTER: AtomicUsize = AtomicUsize::new(0);
     if let Some(dir) = path.parent() {
         std::fs::create_dir_all(dir)?;
     }
-    let mut name = std::ffi::OsString::from(format!(
-        "{TMP_PREFIX}{}.{}.",
-        std::process::id(),
-        COUNTER.fetch_add(1, Ordering::Relaxed)
-    ));
-    name.push(path.file_name().unwrap_or_default());
-    let tmp = path.with_file_name(name);
+    let tmp = tmp_path(path);
     let written = std::fs::File::create(&tmp).and_then(|file| {
         let mut out = std::io::BufWriter::with_capacity(64 * 1024, file);
         write(&mut out)?;
@@ -51,4 +43,19 @@ pub fn write_atomic_with(
         })?;
     crate::kill_point::passed();
     Ok(())
+}
+
+/// A temporary file's path for `path`, unique to this call: `.driftbench-tmp.<pid>.<counter>.
+/// <name>` beside it ([`TMP_PREFIX`]). An atomic write writes there before its rename; the
+/// manifest's spills (`crate::tracked_dir`) stay there until dropped.
+pub fn tmp_path(path: &Path) -> std::path::PathBuf {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    static COUNTER: AtomicUsize = AtomicUsize::new(0);
+    let mut name = std::ffi::OsString::from(format!(
+        "{TMP_PREFIX}{}.{}.",
+        std::process::id(),
+        COUNTER.fetch_add(1, Ordering::Relaxed)
+    ));
+    name.push(path.file_name().unwrap_or_default());
+    path.with_file_name(name)
 }

@@ -444,7 +444,7 @@ mod tests {
         assert!(chosen.unsealed.is_empty());
         assert_eq!(chosen.current.len(), 1);
         assert_eq!(chosen.current[0].key, key);
-        assert!(results.tracked().listed("traces/").is_empty());
+        assert!(results.tracked().listed("traces/").unwrap().is_empty());
         let _ = std::fs::remove_dir_all(&dir);
     }
 
@@ -517,7 +517,7 @@ mod tests {
         assert_eq!(back[0].key(), rows[0].key());
         assert_eq!(back[0].git_rev, "r1");
         results.save().unwrap();
-        let listed = results.tracked().listed("traces/");
+        let listed = results.tracked().listed("traces/").unwrap();
         assert_eq!(listed, [trace("a")]);
 
         // A whole line that is not `<sha256>  <path>` is not a seal this program wrote.

@@ -231,15 +231,20 @@ mod tests {
                 .collect();
             let table = crate::table::read::<records::RunRow>(&dir.join("runs.csv"));
             let listed = crate::integrity::Fingerprint::of(b"a\n1\n");
-            let manifest = crate::integrity::Manifest {
-                git_rev: "x".into(),
-                files: names
-                    .iter()
-                    .chain(&["ok.csv"])
-                    .map(|n| (n.to_string(), listed.clone()))
-                    .collect(),
-            };
-            let mismatches = manifest.mismatches(&dir, |_| true).len();
+            let mut files: Vec<&str> = names.iter().chain(&["ok.csv"]).copied().collect();
+            files.sort_unstable();
+            crate::integrity::write(
+                &dir,
+                "x",
+                files.iter().map(|n| Ok((n.to_string(), listed.clone()))),
+            )
+            .unwrap();
+            let mismatches = crate::integrity::Manifest::open(&dir)
+                .unwrap()
+                .unwrap()
+                .mismatches(&dir, |_| true)
+                .unwrap()
+                .len();
             let missing = read_file(&dir.join("none.csv")).unwrap_err().kind();
             let _ = tx.send((errors, table.is_err(), mismatches, missing));
         });

@@ -184,7 +184,7 @@ impl ResultsDir {
         let tracked = TrackedDir::open(dir, git_rev, edits, Some(RUNS), |f| {
             !f.contains('/') && !missing_part(f)
         })?;
-        for name in tracked.listed(PART_PREFIX) {
+        for name in tracked.listed(PART_PREFIX)? {
             if missing_part(&name) {
                 tracked.adopt(Path::new(&name))?;
             }
@@ -195,8 +195,11 @@ impl ResultsDir {
             let name = e.file_name().to_string_lossy().into_owned();
             let staged_part = name
                 .strip_prefix(&crate::tracked_dir::pending(""))
-                .filter(|p| part_number(p).is_some() && !tracked.lists(Path::new(p)));
-            if staged_part.is_some() {
+                .filter(|p| part_number(p).is_some());
+            if let Some(part) = staged_part {
+                if tracked.lists(Path::new(part))? {
+                    continue;
+                }
                 std::fs::remove_file(e.path()).map_err(crate::error::IoError::at(
                     e.path(),
                     crate::error::IoAction::Remove,
@@ -390,6 +393,7 @@ impl ResultsDir {
         let last = self
             .tracked
             .listed(PART_PREFIX)
+            .map_err(ResultsError::from)?
             .iter()
             .filter_map(|name| part_number(name))
             .max();
@@ -399,18 +403,18 @@ impl ResultsDir {
 
     /// The parts of `runs.csv` the manifest lists ([`ResultsDir::append_part`]), in the order
     /// they were appended. Only the program's own: a part is listed when it is committed.
-    pub fn parts(&self) -> Vec<PathBuf> {
+    pub fn parts(&self) -> Result<Vec<PathBuf>, ResultsError> {
         let mut parts: Vec<(usize, String)> = self
             .tracked
-            .listed(PART_PREFIX)
+            .listed(PART_PREFIX)?
             .into_iter()
             .filter_map(|name| part_number(&name).map(|n| (n, name)))
             .collect();
         parts.sort_unstable();
-        parts
+        Ok(parts
             .into_iter()
             .map(|(_, name)| self.path().join(name))
-            .collect()
+            .collect())
     }
 
     /// Removes the parts of `runs.csv` (once their rows are committed into it): each file,
@@ -418,7 +422,7 @@ impl ResultsDir {
     /// missing, which [`ResultsDir::open`] drops from the manifest (a part is removed only
     /// after its rows are in `runs.csv`; one lost otherwise costs its runs, run again).
     pub fn remove_parts(&self) -> Result<(), ResultsError> {
-        let parts = self.tracked.listed(PART_PREFIX);
+        let parts = self.tracked.listed(PART_PREFIX)?;
         for name in &parts {
             let path = self.tracked.resolve(Path::new(name))?;
             match std::fs::remove_file(&path) {
@@ -719,10 +723,10 @@ mod tests {
         let open = || ResultsDir::open(&base, "r", Edits::Refuse).map(|(r, _)| r);
         let results = open().unwrap();
         results.commit_runs(0, rows(&["a", "d"])).unwrap();
-        assert!(results.parts().is_empty());
+        assert!(results.parts().unwrap().is_empty());
         assert_eq!(results.append_part(0, rows(&["b", "e"])).unwrap(), 2);
         assert_eq!(results.append_part(0, rows(&["c"])).unwrap(), 1);
-        let parts = results.parts();
+        let parts = results.parts().unwrap();
         assert_eq!(
             parts,
             [base.join("runs.part-1.csv"), base.join("runs.part-2.csv")]
@@ -733,14 +737,14 @@ mod tests {
         drop(results);
         // Committed: a new open finds the parts listed and as written.
         let results = open().unwrap();
-        assert_eq!(results.parts().len(), 2);
+        assert_eq!(results.parts().unwrap().len(), 2);
         // A kill after the first part's removal, before the manifest is saved.
         std::fs::remove_file(base.join("runs.part-1.csv")).unwrap();
         drop(results);
         let results = open().unwrap();
-        assert_eq!(results.parts(), [base.join("runs.part-2.csv")]);
+        assert_eq!(results.parts().unwrap(), [base.join("runs.part-2.csv")]);
         results.remove_parts().unwrap();
-        assert!(results.parts().is_empty() && !base.join("runs.part-2.csv").exists());
+        assert!(results.parts().unwrap().is_empty() && !base.join("runs.part-2.csv").exists());
         assert_eq!(variants(&results.runs_path()), ["a", "d"]);
         // A part's staged copy left by a kill before its commit point, unlisted: removed;
         // another program's file of that shape is not the manifest's either, and is kept.

@@ -596,8 +596,7 @@ pub fn experiments_hash<'a>(
 }
 
 /// One finished shard directory (its rows are not held: [`runs_files`] streams them; nor is
-/// its integrity manifest, one entry per trace: [`read_shard`] checks the files against it
-/// and drops it).
+/// its integrity manifest, one entry per trace: [`read_shard`] reads it by streaming).
 #[derive(Debug)]
 pub struct ShardDir {
     /// The shard directory.
@@ -616,8 +615,8 @@ pub struct ShardDir {
 /// unless `edits` accepts edits (each file is hashed as a stream); a directory that does not
 /// exist, or a shard without an integrity manifest, is an error saying so. The rows whose
 /// trace is not among those files (unless their run keeps none by choice: `traced` false for
-/// its key) are noted for [`check_shards`]. The integrity manifest is dropped once read, so a
-/// merge holds one shard's at a time.
+/// its key) are noted for [`check_shards`]. The integrity manifest is read by streaming
+/// (`crate::integrity::Manifest`), never held: a merge holds nothing per trace of a shard.
 pub fn read_shard(
     dir: &Path,
     edits: crate::tracked_dir::Edits,
@@ -629,11 +628,12 @@ pub fn read_shard(
         });
     }
     let manifest = Manifest::read(dir)?;
-    let files = crate::integrity::Manifest::read(dir)?.ok_or_else(|| ShardError::NoIntegrity {
-        dir: dir.to_path_buf(),
-    })?;
+    let mut files =
+        crate::integrity::Manifest::open(dir)?.ok_or_else(|| ShardError::NoIntegrity {
+            dir: dir.to_path_buf(),
+        })?;
     if edits == crate::tracked_dir::Edits::Refuse {
-        let mismatches = files.mismatches(dir, |_| true);
+        let mismatches = files.mismatches(dir, |_| true)?;
         if !mismatches.is_empty() {
             return Err(ShardError::Edited {
                 dir: dir.to_path_buf(),
@@ -641,20 +641,42 @@ pub fn read_shard(
             });
         }
     }
-    let mut traceless = Vec::new();
-    for row in read_key_ordered(&dir.join(crate::results_dir::RUNS))? {
+    // Whether every traced row's trace is listed: the listed traces and the traced rows'
+    // traces, each summed as a multiset of paths (crate::keys::KeySum); equal sums are the
+    // same set (but with probability ~2^-128), so no row is looked up. Otherwise (a row
+    // without its trace, or a trace listed without its row) each row's trace is looked up.
+    let trace_name = |key: &spec::RunKey| {
+        crate::results_dir::ResultsDir::trace_rel(key)
+            .to_string_lossy()
+            .replace('\\', "/")
+    };
+    let traces = format!("{}/", crate::results_dir::TRACES);
+    let mut listed = KeySum::default();
+    for entry in files.entries()? {
+        let (file, _) = entry?;
+        if file.starts_with(&traces) {
+            listed.add(&file);
+        }
+    }
+    let runs = dir.join(crate::results_dir::RUNS);
+    let mut held = KeySum::default();
+    for row in read_key_ordered(&runs)? {
         let key = row?.key();
-        let rel = crate::results_dir::ResultsDir::trace_rel(&key);
-        if traced(&key)
-            && !files
-                .files
-                .contains_key(&rel.to_string_lossy().replace('\\', "/"))
-        {
-            traceless.push(format!(
-                "{}: the trace of {key} ({}) is not among the files the shard wrote",
-                dir.display(),
-                rel.display()
-            ));
+        if traced(&key) {
+            held.add(&trace_name(&key));
+        }
+    }
+    let mut traceless = Vec::new();
+    if listed != held {
+        for row in read_key_ordered(&runs)? {
+            let key = row?.key();
+            if traced(&key) && files.get(&trace_name(&key))?.is_none() {
+                traceless.push(format!(
+                    "{}: the trace of {key} ({}) is not among the files the shard wrote",
+                    dir.display(),
+                    crate::results_dir::ResultsDir::trace_rel(&key).display()
+                ));
+            }
         }
     }
     Ok(ShardDir {
@@ -1038,6 +1060,70 @@ mod tests {
         assert!(e.to_string().contains("JOB_COMPLETION_INDEX=0"), "{e}");
         assert!(Shard::from_env(env(&[("JOB_COMPLETION_INDEX", "3")]), Some(3)).is_err());
         assert!(Shard::from_env(env(&[]), Some(3)).is_err());
+    }
+
+    /// A shard whose traced rows each have their trace listed reads with none noted, also
+    /// when its manifest lists a trace of no row (the sums differ, and each row is looked up);
+    /// a row whose trace is not listed is noted, naming the run; a run that keeps no trace by
+    /// choice needs none.
+    #[test]
+    fn a_row_without_its_listed_trace_is_noted() {
+        use crate::results_dir::ResultsDir;
+        use crate::tracked_dir::Edits;
+        let dir = std::env::temp_dir().join(format!("driftbench-traceless-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let key = |v: &str| spec::RunKey::from_ids("exp", v, "exact").unwrap();
+        let rows: Vec<RunRow> = ["a", "b", "c"]
+            .iter()
+            .map(|v| RunRow::blank(&key(v), spec::SolverKind::Exact))
+            .collect();
+        let trace: [records::TracePoint; 0] = [];
+        {
+            let (results, _) = ResultsDir::open(&dir, "r", Edits::Refuse).unwrap();
+            results
+                .commit_runs::<crate::results_dir::ResultsError>(0, rows.into_iter().map(Ok))
+                .unwrap();
+            for v in ["a", "b", "c", "orphan"] {
+                results.write_trace(&key(v), &trace).unwrap();
+            }
+            results.save().unwrap();
+        }
+        Manifest {
+            shard: 1,
+            shards: 1,
+            git_rev: "r".into(),
+            experiments_hash: "0".into(),
+            runs: 3,
+            key_sum: format!("{:032x}", 0),
+            selection: Selection::default(),
+        }
+        .write(&dir)
+        .unwrap();
+        let traceless = |traced: fn(&spec::RunKey) -> bool| {
+            read_shard(&dir, Edits::Refuse, traced).unwrap().traceless
+        };
+        assert!(traceless(|_| true).is_empty());
+        // b's trace removed, as the program removes a file (and its entry).
+        {
+            let (results, _) = ResultsDir::open(&dir, "r", Edits::Refuse).unwrap();
+            let rel = ResultsDir::trace_rel(&key("b"));
+            results.tracked().remove(&rel).unwrap();
+            results.save().unwrap();
+        }
+        let noted = traceless(|_| true);
+        assert_eq!(noted.len(), 1, "{noted:?}");
+        assert!(noted[0].contains("exp / b / exact"), "{noted:?}");
+        assert!(traceless(|k| k.variant.as_str() != "b").is_empty());
+        // The orphan removed: the listed traces are the traced rows' (equal sums).
+        {
+            let (results, _) = ResultsDir::open(&dir, "r", Edits::Refuse).unwrap();
+            let rel = ResultsDir::trace_rel(&key("orphan"));
+            results.tracked().remove(&rel).unwrap();
+            results.save().unwrap();
+        }
+        assert!(traceless(|k| k.variant.as_str() != "b").is_empty());
+        assert_eq!(traceless(|_| true).len(), 1);
+        let _ = std::fs::remove_dir_all(&dir);
     }
 
     #[test]

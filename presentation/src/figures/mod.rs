@@ -136,11 +136,17 @@ impl Job<'_> {
 /// program wrote them and nobody edited them since (`report/manifest.toml`); a `report/` or
 /// `report/figures/` that is a symbolic link leading out of the project is refused. Fails,
 /// naming the file, on an unreadable `runs.csv`, a missing or malformed trace, or two runs whose
-/// names give the same file name. The runs of `untraced` keep no trace by choice (their
-/// sweep's `traces`): they get no figure of their own, and a large sweep's figures of its own
-/// runs are chosen among those that keep one (its sweep figure still has every row).
-pub fn render_all(root: &Path, untraced: &HashSet<RunKey>) -> Result<Vec<PathBuf>, ReportError> {
-    render(root, None, untraced)
+/// names give the same file name. The runs drawn are those the report holds, `held`
+/// (`analysis::sweep_summary::Held`, read with `untraced`). The runs of `untraced` keep no
+/// trace by choice (their sweep's `traces`): they get no figure of their own, and a large
+/// sweep's figures of its own runs are chosen among those that keep one (its sweep figure
+/// still has every row).
+pub fn render_all(
+    root: &Path,
+    held: &Held,
+    untraced: &HashSet<RunKey>,
+) -> Result<Vec<PathBuf>, ReportError> {
+    render(root, None, held, untraced)
 }
 
 /// [`render_all`] for one paper only (`reproduce run --paper X`): the figures of `paper`'s runs
@@ -150,18 +156,20 @@ pub fn render_all(root: &Path, untraced: &HashSet<RunKey>) -> Result<Vec<PathBuf
 pub fn render_paper(
     root: &Path,
     paper: &str,
+    held: &Held,
     untraced: &HashSet<RunKey>,
 ) -> Result<Vec<PathBuf>, ReportError> {
-    render(root, Some(paper), untraced)
+    render(root, Some(paper), held, untraced)
 }
 
 /// Renders the figures of every paper, or of `paper` alone ([`render_paper`]).
 fn render(
     root: &Path,
     paper: Option<&str>,
+    held: &Held,
     untraced: &HashSet<RunKey>,
 ) -> Result<Vec<PathBuf>, ReportError> {
-    let inputs = Inputs::read(&root.join(store::results_dir::DIR), paper, untraced)?;
+    let inputs = Inputs::read(&root.join(store::results_dir::DIR), paper, held, untraced)?;
     let mut jobs = Jobs::default();
     jobs.add_runs(&inputs.runs, &inputs.traces, &inputs.sweeps)?;
     match paper {
@@ -241,20 +249,30 @@ struct Inputs {
 }
 
 impl Inputs {
-    /// Reads the inputs from the results directory `results` (of `paper`'s runs only, when
-    /// given: the others' traces are not read; nor are the traces of a large sweep's runs
-    /// outside its sample, nor those of `untraced`, which keep none by choice).
+    /// Reads the inputs from the results directory `results` and the runs it holds, `held`
+    /// (of `paper`'s runs only, when given: the others' traces are not read; nor are the
+    /// traces of a large sweep's runs outside its sample, nor those of `untraced`, which keep
+    /// none by choice).
     fn read(
         results: &Path,
         paper: Option<&str>,
+        held: &Held,
         untraced: &HashSet<RunKey>,
     ) -> Result<Self, ReportError> {
-        let held = Held::read(&results.join(store::results_dir::RUNS), untraced)?;
-        let mut runs = held.runs.all().to_vec();
-        drop(held.runs);
-        runs.retain(|r| paper.is_none_or(|p| r.paper == p));
-        let mut sweeps = held.sweeps;
-        sweeps.retain(|s| paper.is_none_or(|p| s.paper == p));
+        let in_paper = |p: &str| paper.is_none_or(|paper| p == paper);
+        let runs: Vec<RunRow> = held
+            .runs
+            .all()
+            .iter()
+            .filter(|r| in_paper(&r.paper))
+            .cloned()
+            .collect();
+        let sweeps: Vec<SweepSummary> = held
+            .sweeps
+            .iter()
+            .filter(|s| in_paper(&s.paper))
+            .cloned()
+            .collect();
         let traces_dir = results.join(store::results_dir::TRACES);
         let traces = runs
             .iter()
@@ -413,7 +431,7 @@ fn write_figures(
 ) -> Result<Vec<PathBuf>, ReportError> {
     let report = TrackedDir::open_within(root, "report")?;
     let rel = |name: &str| Path::new(FIGURES).join(name);
-    for listed in report.listed(&format!("{FIGURES}/")) {
+    for listed in report.listed(&format!("{FIGURES}/"))? {
         let name = listed.trim_start_matches(&format!("{FIGURES}/"));
         if figure_of(name).is_some_and(|svg| in_scope(&svg) && !figures.contains_key(&svg)) {
             if let Removal::Kept(why) = report.remove(&rel(name))? {

@@ -110,12 +110,12 @@ pub struct Inputs {
 }
 
 impl Inputs {
-    /// Reads the inputs under the workspace root `root` (results/, report/), and the papers of
-    /// `papers` (the project's `papers/`).
-    pub fn load(root: &Path, papers: &Path) -> Result<Self, ReportError> {
+    /// Reads the inputs under the workspace root `root` (results/, report/) beside the runs
+    /// the report holds, `held` (`analysis::sweep_summary::Held`, the figures' too), and the
+    /// papers of `papers` (the project's `papers/`).
+    pub fn load(root: &Path, papers: &Path, held: Held) -> Result<Self, ReportError> {
         let report = root.join("report");
         let results = root.join(store::results_dir::DIR);
-        let held = Held::read(&results.join(store::results_dir::RUNS), &Default::default())?;
         Ok(Inputs {
             runs: held.runs,
             sweeps: held.sweeps,
@@ -163,7 +163,7 @@ pub fn paper_page(paper: &str) -> String {
 pub fn render(root: &Path, inputs: &Inputs) -> Result<PathBuf, ReportError> {
     let report = store::TrackedDir::open_within(root, "report")?;
     let pages = pages(inputs);
-    for listed in report.listed(PAPER_PAGE) {
+    for listed in report.listed(PAPER_PAGE)? {
         if !pages.iter().any(|p| p.file == listed) {
             if let store::Removal::Kept(why) = report.remove(Path::new(&listed))? {
                 eprintln!("note: {why}");

@@ -44,14 +44,14 @@ pub fn dof_cost(project: &Project, dry_run: bool, git_rev: &str) -> Result<(), R
     use measure::{measure_all, Budget};
     let (cpu, cores) = machine();
     let root = report_root(project)?;
+    let files = if dry_run {
+        Vec::new()
+    } else {
+        experiment_files(project)?
+    };
+    let all = Described::new(&files);
     let results = (!dry_run)
-        .then(|| {
-            open_results(
-                project,
-                git_rev,
-                &Described::new(&experiment_files(project)?),
-            )
-        })
+        .then(|| open_results(project, git_rev, &all))
         .transpose()?;
     eprintln!("measuring the cost against the number of joints on {cpu} ({cores} cores)");
     let started = std::time::Instant::now();
@@ -79,5 +79,5 @@ pub fn dof_cost(project: &Project, dry_run: bool, git_rev: &str) -> Result<(), R
     let path = store::dof_cost::write(results.path(), &rows)?;
     results.save()?;
     eprintln!("wrote {} ({} rows)", path.display(), rows.len());
-    render_report(project, &root, &results)
+    render_report(project, &root, &results, &all)
 }
