@@ -97,7 +97,7 @@ pub struct Experiment {
 }
 
 /// The variants of an experiment, in file order: each written variant as read, and each sweep
-/// kept as its plan ([`crate::sweep::Sweep`]: the base variant and the axes, no variant held),
+/// kept as its plan (`catalog::sweep::Sweep`: the base variant and the axes, no variant held),
 /// standing for its variants in its place. Variant i of the experiment is the i-th in this
 /// order; a swept one is made when asked for, by index ([`PaperFile::variant`]).
 #[derive(Clone, Debug)]
@@ -824,7 +824,7 @@ impl PaperFile {
     /// first (with `exact_only`, its exact column alone). Only the variants that hold one of
     /// them are made ([`PaperFile::variant`]), each once: the entry by its first run, and in a
     /// sweep the variant by bisection over its runs' prefix sums
-    /// ([`crate::sweep::Sweep::variant_of_run`]), so a shard of a sweep of 10^7 runs makes
+    /// (`Sweep::variant_of_run`), so a shard of a sweep of 10^7 runs makes
     /// its own variants alone.
     pub fn runs_at<'a>(
         &'a self,
@@ -891,7 +891,7 @@ impl PaperFile {
 
     /// The runs the orchestrator checks with the engine at load, in file order: every run of
     /// every written variant and of each sweep's variants checked at load
-    /// ([`crate::sweep::Sweep::checked`]: all of a sweep of at most
+    /// (`Sweep::checked`: all of a sweep of at most
     /// [`crate::sweep::CHECKED_WHOLE`], the lines of a larger one). A swept variant made later
     /// is read and checked as data as it is made ([`PaperFile::variant`]); what only the
     /// engine can tell of it (a path or gain the engine cannot build) is its runs' failure,

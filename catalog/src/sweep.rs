@@ -154,8 +154,8 @@ pub const MAX_EXPANSION: usize = 1_000_000_000;
 
 /// A sweep of at most this many variants is checked whole at load, as before plans: every
 /// variant made, read, checked and dropped, and the labels and ids of all compared. A larger
-/// one is checked by its lines ([`Sweep::checked`]) and its names decided from its axes
-/// ([`Sweep::prefixes`]); every variant made later is checked again as it is made.
+/// one is checked by its lines (`Sweep::checked`) and its names decided from its axes
+/// (`Sweep::prefixes`); every variant made later is checked again as it is made.
 pub const CHECKED_WHOLE: usize = 1 << 16;
 
 /// Most variants of one sweep whose labels and ids are compared one by one (as 16-byte

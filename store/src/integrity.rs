@@ -28,7 +28,7 @@
 //! once, so a manifest that does not parse is refused before anything relies on it; memory is
 //! one part (at most [`MAX_PART`] bytes), whatever the number of files. A file is looked up by
 //! bisection over the bytes ([`Manifest::get`]): for n entries, about log2(n x 160 bytes /
-//! 2 KiB) parts are read, then at most 2 KiB in order. [`write`] writes a manifest from
+//! 2 KiB) parts are read, then at most 2 KiB in order. [`write()`] writes a manifest from
 //! entries given in order, one at a time: the text is the TOML document of the whole map,
 //! byte for byte (`the_streamed_manifest_is_the_whole_document`), so a committed manifest does
 //! not change with the way it is written.
