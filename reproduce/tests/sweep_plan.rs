@@ -57,7 +57,7 @@ fn list_shard_of_a_sweep_of_ten_million_runs_is_fast() {
     std::fs::create_dir_all(root.join("experiments")).unwrap();
     std::fs::write(root.join("experiments/kong2019.toml"), sweep(RUNS)).unwrap();
     let started = Instant::now();
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_reproduce"))
+    let out = crate::common::reproduce()
         .current_dir(&root)
         .args(["list", "--shard", "5/10000"])
         .output()
@@ -95,7 +95,7 @@ fn a_shard_stops_before_running_at_a_variant_that_fails_when_made() {
         &format!("label = \"{}\"", "L".repeat(90)),
     );
     std::fs::write(root.join("experiments/kong2019.toml"), text).unwrap();
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_reproduce"))
+    let out = crate::common::reproduce()
         .current_dir(&root)
         .args(["shard", "1/50000", "--threads", "1"])
         .output()
