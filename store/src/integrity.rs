@@ -115,7 +115,7 @@ struct Hasher {
 impl Hasher {
     fn update(&mut self, block: &[u8]) {
         self.sha.update(block);
-        self.lines += block.iter().filter(|&&b| b == b'\n').count();
+        self.lines += memchr::memchr_iter(b'\n', block).count();
         self.bytes += block.len() as u64;
     }
 
