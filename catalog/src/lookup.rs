@@ -58,8 +58,12 @@ pub struct RunLookup<'a> {
     experiments: HashMap<&'a str, ExperimentIds<'a>>,
     /// Solver ids of variants by (file, experiment, the entry's first variant, the digits on
     /// its run axes), at most [`SOLVER_CACHE`].
-    solvers: RefCell<HashMap<(usize, usize, usize, Vec<usize>), Rc<[String]>>>,
+    solvers: RefCell<HashMap<SolversOf, Rc<[String]>>>,
 }
+
+/// Which variants share their runs' solvers: (file, experiment, the entry's first variant, the
+/// digits on the entry's run axes; none for a written variant).
+type SolversOf = (usize, usize, usize, Vec<usize>);
 
 /// How the variant ids of one experiment are found.
 struct ExperimentIds<'a> {
