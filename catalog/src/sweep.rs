@@ -23,7 +23,9 @@
 //! distinct, compared one by one for a sweep of at most [`CHECKED_WHOLE`] (or, when its axes
 //! do not decide them, [`NAMES_COMPARED`]) variants, else decided from the axes
 //! ([`Sweep::prefixes`], with its proof). Every variant made later is read and checked again
-//! as it is made.
+//! as it is made. Where the names are decided from the axes, an id is read back into its
+//! variant's index from its tokens ([`IdReader`]), so whether a run key is described is
+//! decided without making the sweep (`crate::RunLookup`).
 //!
 //! ```toml
 //! [[experiment.variant]]
