@@ -8,8 +8,8 @@
 //! one), written row by row, each trace copied file by file as its row passes. The checks
 //! compare sums of the runs' keys (store::shard::check_shards), and whether a row's run is
 //! described, and keeps its trace, is decided from its key's names (crate::results::Keys:
-//! nothing held per run of the sweep). Memory is then one row per shard, independent of the
-//! number of runs, and time linear in the runs (the selection's runs made once for the sums,
+//! nothing held per run of the sweep). Memory is then one row per shard (and the stored rows
+//! it prunes), independent of the number of runs, and time linear in the runs (the selection's runs made once for the sums,
 //! two passes over the rows: the checks, then the writing).
 
 use crate::error::ReproduceError;
