@@ -101,18 +101,18 @@ pub struct Experiment {
 /// standing for its variants in its place. Variant i of the experiment is the i-th in this
 /// order; a swept one is made when asked for, by index ([`PaperFile::variant`]).
 #[derive(Clone, Debug)]
-pub struct Variants(Vec<Entry>);
+pub struct Variants(pub(crate) Vec<Entry>);
 
 /// A written variant, or a sweep.
 #[derive(Clone, Debug)]
-enum Entry {
+pub(crate) enum Entry {
     Written(Variant),
     Swept(Sweep),
 }
 
 impl Entry {
     /// How many variants it stands for.
-    fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         match self {
             Entry::Written(_) => 1,
             Entry::Swept(s) => s.len(),
@@ -120,7 +120,7 @@ impl Entry {
     }
 
     /// How many runs its variants make (every run, or the exact column alone), none made.
-    fn runs(&self, exact_only: bool) -> usize {
+    pub(crate) fn runs(&self, exact_only: bool) -> usize {
         match self {
             Entry::Written(v) if exact_only => usize::from(v.exact),
             Entry::Written(v) => v.run_count(),

@@ -7,7 +7,8 @@
 //! a `spec::SolverKind`), an integrator (`settings::integrator`) and where the run is scored
 //! (`spec::Scoring`). A variant may stand for many through a `sweep` table (the sweep grammar,
 //! module `sweep`: a sweep is kept as its plan, [`Variants`], and a variant made by index
-//! with [`PaperFile::variant`]; which of a sweep's runs keep traces: [`KeptTraces`]). Every run is identified by ids, not labels (`spec::run_key`, `spec::ids`),
+//! with [`PaperFile::variant`]; which of a sweep's runs keep traces: [`KeptTraces`]; whether the
+//! files describe a run key, decided from the names without making every run: [`RunLookup`]). Every run is identified by ids, not labels (`spec::run_key`, `spec::ids`),
 //! and every id or label that becomes a file name obeys `spec::naming`. The errors of all of it
 //! are re-exported here ([`ExperimentFileError`] wraps the rest). [`find_root`] finds the
 //! project (the directory of `experiments/`, `results/` and `report/`); [`load_task_set`] reads
@@ -30,6 +31,7 @@
 mod error;
 mod experiment;
 mod fields;
+mod lookup;
 mod robot_files;
 mod root;
 mod sweep;
@@ -43,6 +45,7 @@ pub use experiment::{
     default_exact_integrator, load_dir, BaseSpec, DeclaredRun, ExpectedFailure, Experiment,
     PaperFile, Variant, Variants,
 };
+pub use lookup::{Found, RunLookup};
 pub use robot_files::{register_paper_robots, register_path, RobotPathError};
 pub use root::{find_root, root_from_current_dir, RootNotFound};
 pub use sweep::{KeptTraces, Traces, CHECKED_WHOLE, MAX_EXPANSION, NAMES_COMPARED};

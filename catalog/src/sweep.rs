@@ -23,7 +23,9 @@
 //! distinct, compared one by one for a sweep of at most [`CHECKED_WHOLE`] (or, when its axes
 //! do not decide them, [`NAMES_COMPARED`]) variants, else decided from the axes
 //! ([`Sweep::prefixes`], with its proof). Every variant made later is read and checked again
-//! as it is made.
+//! as it is made. Where the names are decided from the axes, an id is read back into its
+//! variant's index from its tokens ([`IdReader`]), so whether a run key is described is
+//! decided without making the sweep (`crate::RunLookup`).
 //!
 //! ```toml
 //! [[experiment.variant]]
@@ -614,11 +616,102 @@ impl Sweep {
         }
         let label = make_label(&self.template, &self.axes, &values, &self.names);
         t.insert("label".to_string(), Value::String(label));
-        let kept = KeptTraces {
+        (t, self.traces(v))
+    }
+
+    /// The trace choice of variant `v`'s runs: the sweep's, and the index of its first run
+    /// among the sweep's runs (from the axes, no variant made).
+    pub fn traces(&self, v: usize) -> KeptTraces {
+        KeptTraces {
             traces: self.traces,
             first_run: self.all.before(v),
+        }
+    }
+
+    /// The id of variant `v` (the declared id's expansion, or the label's slug), made from the
+    /// axes alone.
+    pub fn id(&self, v: usize) -> String {
+        let values = self.values(v);
+        match &self.id_template {
+            Some(id) => make_id(id, &self.axes, &values),
+            None => settings::slug(&make_label(
+                &self.template,
+                &self.axes,
+                &values,
+                &self.names,
+            )),
+        }
+    }
+
+    /// The digits of variant `v` on the axes that set a field counted in its runs (`exact`,
+    /// `solvers`, `numerical`: a path of the axis begins with one), in axis order. The runs
+    /// of a variant, and their solvers' ids, are its fields `exact`, `solvers` and
+    /// `numerical`, which the base variant and these axes alone set: two variants with the
+    /// same such digits make runs of the same solvers, in the same order.
+    pub fn run_digits(&self, v: usize) -> Vec<usize> {
+        self.axes
+            .iter()
+            .zip(self.digits(v))
+            .filter(|(a, _)| a.paths.iter().any(|p| RUN_FIELDS.contains(&p[0].as_str())))
+            .map(|(_, d)| d)
+            .collect()
+    }
+
+    /// The reader of the sweep's ids back into variant indices ([`IdReader`]), when its
+    /// names are decided from its axes ([`Sweep::prefixes`]); `None` otherwise (its ids are
+    /// then compared as they are made).
+    pub fn id_reader(&self) -> Option<IdReader<'_>> {
+        self.prefixes()?;
+        let by_label = self.id_template.is_none();
+        let tokens = |text: &str| {
+            let s = settings::slug(text);
+            if s.is_empty() {
+                0
+            } else {
+                s.split('-').count()
+            }
         };
-        (t, kept)
+        let mut at = tokens(self.id_template.as_deref().unwrap_or(&self.template));
+        let mut axes = Vec::with_capacity(self.axes.len());
+        for a in &self.axes {
+            let labelled = by_label && matches!(&a.values, Values::List(l) if l[0].1.is_some());
+            let mut places = Vec::with_capacity(a.paths.len());
+            if labelled {
+                places.push(at);
+                at += 1;
+            } else {
+                for p in &a.paths {
+                    at += tokens(p.last().expect("non-empty path"));
+                    places.push(at);
+                    at += 1;
+                }
+            }
+            let values = match &a.values {
+                Values::Range(r) => ValueTokens::Range(r),
+                Values::List(l) => ValueTokens::List(
+                    l.iter()
+                        .enumerate()
+                        .map(|(k, (vals, label))| {
+                            let token = match label {
+                                Some(text) if labelled => settings::slug(text),
+                                _ => vals
+                                    .iter()
+                                    .map(|v| settings::slug(&display(v)))
+                                    .collect::<Vec<_>>()
+                                    .join("-"),
+                            };
+                            (token, k)
+                        })
+                        .collect(),
+                ),
+            };
+            axes.push(AxisTokens { places, values });
+        }
+        Some(IdReader {
+            sweep: self,
+            tokens: at,
+            axes,
+        })
     }
 
     /// The error that variant `v` does not read (`error`), placed at the sweep.
@@ -805,6 +898,67 @@ impl Sweep {
             id: format!("{id}-"),
             label,
         })
+    }
+}
+
+/// A sweep's ids read back into its variants' indices, for a sweep whose names are decided
+/// from its axes ([`Sweep::prefixes`]): every value's slug in an id is then one token (a raw
+/// value's, or a labelled value's text's when the ids are the labels' slugs), so an id has a
+/// fixed number of tokens (the slug's runs of `[a-z0-9.]`, joined by `-`) and the value of
+/// axis a stands at fixed places: after the declared id's (or the label's) tokens, per axis
+/// and path the key's tokens and then the value's one token (a labelled value of a label's
+/// slug: its text's one token alone). Those tokens name one value of the axis (slugs
+/// distinct per axis): a list's by a map from its values' slugs, a range's by arithmetic (its
+/// values do not cross zero, so the sign the slug drops is the range's). The digits give the
+/// variant `v = sum_a d_a s_a`, and `v` is the answer only when its id, made again from the
+/// axes, is the id read: a text that is no id of the sweep (a wrong digit, an extra token, a
+/// value of another axis) is no variant of it. So a shard or a merge decides whether a run
+/// key is described without making the sweep (docs/cluster.md, "What is still per run").
+#[derive(Debug)]
+pub struct IdReader<'a> {
+    sweep: &'a Sweep,
+    /// How many tokens every id of the sweep has.
+    tokens: usize,
+    /// Per axis, where its value stands and how its tokens name it.
+    axes: Vec<AxisTokens<'a>>,
+}
+
+/// Where one axis's value stands in an id ([`IdReader`]) and how its tokens name it.
+#[derive(Debug)]
+struct AxisTokens<'a> {
+    /// The places of its value's tokens (one per path; one for a labelled value's text).
+    places: Vec<usize>,
+    values: ValueTokens<'a>,
+}
+
+/// How an axis's tokens in an id name its value.
+#[derive(Debug)]
+enum ValueTokens<'a> {
+    /// A list: each value's tokens (joined by `-`) and its index.
+    List(std::collections::HashMap<String, usize>),
+    /// A range: computed back from the number.
+    Range(&'a Range),
+}
+
+impl IdReader<'_> {
+    /// The variant of the sweep whose id is `id`, if one is ([`IdReader`]).
+    pub fn variant(&self, id: &str) -> Option<usize> {
+        let tokens: Vec<&str> = id.split('-').collect();
+        if tokens.len() != self.tokens {
+            return None;
+        }
+        let mut v = 0;
+        for (a, s) in self.axes.iter().zip(&self.sweep.strides) {
+            let d = match &a.values {
+                ValueTokens::List(map) => {
+                    let t: Vec<&str> = a.places.iter().map(|&p| tokens[p]).collect();
+                    *map.get(&t.join("-"))?
+                }
+                ValueTokens::Range(r) => r.index_of(tokens[a.places[0]])?,
+            };
+            v += d * s;
+        }
+        (self.sweep.id(v) == id).then_some(v)
     }
 }
 
@@ -1194,6 +1348,47 @@ impl Range {
             }
             _ => false,
         }
+    }
+
+    /// The index of the value whose slug is `token`, if one is: a range's values do not cross
+    /// zero (a range whose slugs are distinct, [`Range::distinct_slugs`]), so the sign the slug
+    /// drops is the range's. Integers exactly; decimals and floats by the nearest index to the
+    /// number and its two neighbours, the one whose slug is `token` (the estimate is within
+    /// 0.7 of the index when the step is more than 4 epsilon of the larger end).
+    fn index_of(&self, token: &str) -> Option<usize> {
+        let negative = |v: Value| match v {
+            Value::Integer(i) => i < 0,
+            Value::Float(f) => f < 0.0,
+            _ => false,
+        };
+        let minus = negative(self.value(0)) || negative(self.value(self.n));
+        if let Arithmetic::Integer { a, s } = self.arithmetic {
+            if !token.bytes().all(|b| b.is_ascii_digit()) {
+                return None;
+            }
+            let t = token.parse::<i128>().ok()?;
+            let d = (if minus { -t } else { t }) - a;
+            let k = usize::try_from(d / s).ok()?;
+            return (d % s == 0 && k <= self.n).then_some(k);
+        }
+        let t = token.parse::<f64>().ok()?;
+        let x = if minus { -t } else { t };
+        let number = |k: usize| match self.value(k) {
+            Value::Float(f) => f,
+            _ => f64::NAN,
+        };
+        let (a, b) = (number(0), number(self.n));
+        let k = if self.n == 0 {
+            0.0
+        } else {
+            ((x - a) / (b - a) * self.n as f64).round()
+        };
+        if k.is_nan() || k < -1.0 || k > self.n as f64 + 1.0 {
+            return None;
+        }
+        let k = (k.max(0.0) as usize).min(self.n);
+        (k.saturating_sub(1)..=(k + 1).min(self.n))
+            .find(|&k| settings::slug(&display(&self.value(k))) == token)
     }
 
     /// Every value (the tests' view).
@@ -1763,6 +1958,48 @@ sweep = {{ {sweep} }}
 /// from its digits is the i-th of an odometer over the axes (first outermost, last fastest),
 /// the runs' prefix sums and the bisection agree with the runs counted variant by variant, and
 /// whenever [`Sweep::prefixes`] decides the names, they are distinct and begin as it says.
+/// Texts near the id `id` (the tests of [`IdReader`] and of `crate::RunLookup`): each digit
+/// changed, a token added or dropped, each token replaced by another of its tokens (a value
+/// slug at another axis's place, a key's token at a value's) and by the token at its place in
+/// each of `others` (ids of other variants).
+#[cfg(test)]
+pub(crate) fn near_misses(id: &str, others: &[String]) -> Vec<String> {
+    let mut out = Vec::new();
+    for (i, c) in id.char_indices() {
+        if let Some(d) = c.to_digit(10) {
+            let mut m = id.to_string();
+            m.replace_range(i..=i, &((d + 1) % 10).to_string());
+            out.push(m);
+        }
+    }
+    out.push(format!("{id}-0.5"));
+    out.push(format!("{id}-x"));
+    out.push(format!("x-{id}"));
+    let tokens: Vec<&str> = id.split('-').collect();
+    if tokens.len() > 1 {
+        out.push(tokens[..tokens.len() - 1].join("-"));
+    }
+    for i in 0..tokens.len() {
+        let mut put = |t: &str| {
+            let mut m = tokens.clone();
+            m[i] = t;
+            out.push(m.join("-"));
+        };
+        for j in 0..tokens.len() {
+            if tokens[j] != tokens[i] {
+                put(tokens[j]);
+            }
+        }
+        for other in others {
+            if let Some(t) = other.split('-').nth(i) {
+                put(t);
+            }
+        }
+    }
+    out.retain(|m| m != id);
+    out
+}
+
 #[cfg(test)]
 mod plan_tests {
     use super::*;
@@ -1945,16 +2182,89 @@ mod plan_tests {
             let axes: Vec<(String, String)> =
                 axes.into_iter().map(|(k, v)| (k.to_string(), list(&v))).collect();
             let Some(s) = sweep(&axes, id) else { return Ok(()) };
-            let Some(p) = s.prefixes() else { return Ok(()) };
+            let Some(p) = s.prefixes() else {
+                prop_assert!(s.id_reader().is_none());
+                return Ok(());
+            };
             let (mut labels, mut ids) = (HashSet::new(), HashSet::new());
             for v in 0..s.len() {
                 let (label, made) = s.names(v);
                 let id = made.unwrap_or_else(|| settings::slug(&label));
+                prop_assert_eq!(&s.id(v), &id);
                 prop_assert!(label.starts_with(&p.label), "{} {:?}", label, p);
                 prop_assert!(id.starts_with(&p.id), "{} {:?}", id, p);
                 prop_assert!(labels.insert(label.clone()), "label {} twice", label);
                 prop_assert!(ids.insert(id.clone()), "id {} twice", id);
             }
+            reads_back(&s)?;
+        }
+
+        /// Where the names are decided from the axes, every id is read back into its variant,
+        /// and a text near one (a wrong digit, an extra or a missing token, a value slug of
+        /// another axis, another variant's token) into the variant that has it, or none.
+        #[test]
+        fn ids_are_read_back_into_their_variants(
+            axes in proptest::collection::vec(axis(), 1..4),
+            id in any::<bool>(),
+        ) {
+            let Some(s) = sweep(&axes, id) else { return Ok(()) };
+            prop_assert_eq!(s.id_reader().is_some(), s.prefixes().is_some());
+            reads_back(&s)?;
+        }
+    }
+
+    /// That the ids of `s` are read back into their variants, and the texts near them into
+    /// the variant whose id they are, or none ([`IdReader`]); nothing when its names are not
+    /// decided from its axes.
+    fn reads_back(s: &Sweep) -> Result<(), TestCaseError> {
+        let Some(r) = s.id_reader() else {
+            return Ok(());
+        };
+        let ids: Vec<String> = (0..s.len()).map(|v| s.id(v)).collect();
+        for (v, id) in ids.iter().enumerate() {
+            prop_assert_eq!(r.variant(id), Some(v), "{}", id);
+            let others: Vec<String> = ids.iter().skip(v + 1).take(3).cloned().collect();
+            for near in near_misses(id, &others) {
+                let want = ids.iter().position(|i| *i == near);
+                prop_assert_eq!(r.variant(&near), want, "{} near {}", near, id);
+            }
+        }
+        Ok(())
+    }
+
+    /// A range's values are read back from their slugs, across zero on either side, in
+    /// integers, decimals and floats too fine for decimals.
+    #[test]
+    fn a_range_reads_its_values_back_from_their_slugs() {
+        for t in [
+            "{ from = 3, to = 30, step = 3 }",
+            "{ from = -30, to = 0, step = 3 }",
+            "{ from = 0, to = -12, step = -4 }",
+            "{ from = 1.0, to = 2.0, step = 0.01 }",
+            "{ from = -2.5, to = -0.5, step = 0.25 }",
+            "{ from = 1e-300, to = 1.1e-299, step = 1e-300 }",
+            "{ from = 1e200, to = 1.5e201, step = 1e200 }",
+        ] {
+            let table: Table = toml::from_str(&format!("r = {t}")).unwrap();
+            let r = Range::parse(table["r"].as_table().unwrap()).unwrap();
+            assert!(r.distinct_slugs(), "{t}");
+            for (k, v) in r.values().iter().enumerate() {
+                let slug = settings::slug(&display(v));
+                assert_eq!(r.index_of(&slug), Some(k), "{t}: {slug}");
+                for near in [
+                    format!("{slug}1"),
+                    format!("1{slug}"),
+                    slug.replace('.', ""),
+                ] {
+                    let want = r
+                        .values()
+                        .iter()
+                        .position(|v| settings::slug(&display(v)) == near);
+                    assert_eq!(r.index_of(&near), want, "{t}: {near}");
+                }
+            }
+            assert_eq!(r.index_of("x"), None);
+            assert_eq!(r.index_of(""), None);
         }
     }
 

@@ -29,7 +29,9 @@ fn recover(
     git_rev: &str,
     described: &Keys,
 ) -> Result<Recovered, ReproduceError> {
-    let mut recovered = store::journal::recover(results, git_rev, |k| described.traced(k))?;
+    let recovered = store::journal::recover(results, git_rev, |k| described.traced(k));
+    described.check()?;
+    let mut recovered = recovered?;
     let journal = store::journal::path(results.path());
     for (key, rev) in &recovered.other_revision {
         eprintln!(
@@ -44,17 +46,21 @@ fn recover(
             store::journal::seal_path(results.path()).display()
         );
     }
-    recovered.current.retain(|e| {
+    let mut kept = Vec::with_capacity(recovered.current.len());
+    for e in std::mem::take(&mut recovered.current) {
         let keep = described.contains(&e.key);
-        if !keep {
+        described.check()?;
+        if keep {
+            kept.push(e);
+        } else {
             eprintln!(
                 "not folded from {}: {} (no experiment file describes it)",
                 journal.display(),
                 e.key
             );
         }
-        keep
-    });
+    }
+    recovered.current = kept;
     Ok(recovered)
 }
 
@@ -220,6 +226,7 @@ pub fn finished(
             let finished = row.git_rev == git_rev
                 && (!described.traced(&key)
                     || results.tracked().lists(&ResultsDir::trace_rel(&key))?);
+            described.check()?;
             Ok(finished.then(|| key.to_string()))
         })
         .map_while(|r| r.map_err(|e| failed = Some(e)).ok())

@@ -6,11 +6,11 @@
 //! The merge streams: the shards' `runs.csv` are read row by row and merged in key order
 //! with the stored `runs.csv` (store::sorted, a k-way merge: a shard's row replaces a stored
 //! one), written row by row, each trace copied file by file as its row passes. The checks
-//! compare sums of the runs' keys (store::shard::check_shards), and the described runs are
-//! held as 16-byte prints (crate::results::Keys). Memory is then one row per shard plus what
-//! docs/cluster.md lists as still O(runs) (the loaded experiment files, the prints, the
-//! integrity manifests' entries), and time linear in the runs (two passes over the rows: the
-//! checks, then the writing).
+//! compare sums of the runs' keys (store::shard::check_shards), and whether a row's run is
+//! described, and keeps its trace, is decided from its key's names (crate::results::Keys:
+//! nothing held per run of the sweep). Memory is then one row per shard (and the stored rows
+//! it prunes), independent of the number of runs, and time linear in the runs (the selection's runs made once for the sums,
+//! two passes over the rows: the checks, then the writing).
 
 use crate::error::ReproduceError;
 use crate::project::Project;
@@ -21,6 +21,7 @@ use crate::select::{check_selection, selected, selection_files};
 use catalog::PaperFile;
 use records::RunRow;
 use spec::RunKey;
+use std::cell::RefCell;
 use std::collections::HashSet;
 use std::process::ExitCode;
 use store::sorted::{latest, read_key_ordered, KeyMerge};
@@ -39,7 +40,9 @@ pub fn merge_shards(
     let shards = dirs
         .iter()
         .map(|d| store::shard::read_shard(d, project.edits, |k| described.traced(k)))
-        .collect::<Result<Vec<_>, _>>()?;
+        .collect::<Result<Vec<_>, _>>();
+    described.check()?;
+    let shards = shards?;
     let sel = shards
         .first()
         .map(|s| s.manifest.selection.clone())
@@ -47,19 +50,31 @@ pub fn merge_shards(
     check_selection(files, &sel)?;
     let hash =
         store::shard::experiments_hash(&project.experiments_dir, selection_files(files, &sel))?;
-    store::shard::check_shards(
+    // The selection's runs, made and dropped; the first variant that does not make stops
+    // the merge with its error (it stopped the shard that holds it before any run).
+    let unmade = RefCell::new(None);
+    let checked = store::shard::check_shards(
         &shards,
-        // Every run was made for `described` above: none fails to make here.
-        || selected(files, &sel).filter_map(|j| j.ok().map(|j| j.key().to_string())),
+        || {
+            selected(files, &sel)
+                .map_while(|j| j.map_err(|e| *unmade.borrow_mut() = Some(e)).ok())
+                .map(|j| j.key().to_string())
+        },
         &hash,
-    )?;
+    );
+    if let Some(e) = unmade.into_inner() {
+        return Err(e);
+    }
+    checked?;
 
     let results = open_results(project, git_rev, all)?;
     let pruned = results.plan_pruning_streamed(
         |row| described.contains(&row.key()),
         project.prune,
         &project.experiments_dir,
-    )?;
+    );
+    described.check()?;
+    let pruned = pruned?;
     for line in results.prune(&pruned)? {
         eprintln!("{line}");
     }
@@ -91,7 +106,9 @@ pub fn merge_shards(
     let rows = latest(KeyMerge::new(sources)?, |_| {}).map(|r| {
         let (source, row) = r?;
         if source > 0 {
-            if described.traced(&row.key()) {
+            let traced = described.traced(&row.key());
+            described.check()?;
+            if traced {
                 store::shard::copy_trace(&shards[source - 1], &row, &results)?;
             }
             runs += 1;

@@ -4,7 +4,7 @@
 
 use crate::error::ReproduceError;
 use crate::project::Project;
-use catalog::PaperFile;
+use catalog::{Found, PaperFile, RunLookup};
 use records::{merge_runs, RunRow};
 use simulation::RunRecord;
 use spec::RunKey;
@@ -22,10 +22,13 @@ pub fn experiment_files(project: &Project) -> Result<Vec<PaperFile>, ReproduceEr
 }
 
 /// Every run the experiment files describe (what migration and pruning compare the stored
-/// runs with), made from the files when asked: as keys or a label index, taken as the runs
-/// are made (what a shard needs), or as jobs, collected once on first use (what the gate, the
-/// explanation layer, inference and the timing pass need). A shard of a 10^6-run sweep so never
-/// holds every run as a [`RunSpec`] (docs/cluster.md).
+/// runs with), made from the files when asked: as a lookup of run keys decided from their
+/// names ([`Described::keys`], what a shard and a merge need: no run made but those of the
+/// sweeps whose names are not decided from their axes), as a label index taken as the runs are
+/// made (the migration of results written before run ids), or as jobs, collected once on first
+/// use (what the gate, the explanation layer, inference and the timing pass need). A shard of a
+/// 10^7-run sweep so never makes every run, nor holds anything per run of the sweep
+/// (docs/cluster.md).
 pub struct Described<'a> {
     files: &'a [PaperFile],
     jobs: OnceCell<Vec<RunSpec>>,
@@ -53,18 +56,23 @@ impl<'a> Described<'a> {
         Ok(self.jobs.get_or_init(|| jobs))
     }
 
-    /// The run keys (`experiment / variant / solver`), and which of them keep no trace, as
-    /// sets of their prints (16 bytes a run: [`store::KeySet`]).
-    pub fn keys(&self) -> Result<Keys, ReproduceError> {
+    /// Whether the experiment files describe a run key, and whether it keeps its trace,
+    /// decided from the names ([`Keys`]): the runs of the sweeps whose names are not decided
+    /// from their axes are made once and held as prints, no other run is made.
+    pub fn keys(&self) -> Result<Keys<'a>, ReproduceError> {
+        let lookup = RunLookup::new(self.files);
+        let undecided = |untraced: bool| -> Result<KeySet, ReproduceError> {
+            lookup
+                .undecided_runs()
+                .filter(|j| j.as_ref().map_or(true, |j| !untraced || !j.keep_trace))
+                .map(|j| j.map(|j| j.key().to_string()).map_err(ReproduceError::from))
+                .collect()
+        };
         Ok(Keys {
-            described: self
-                .runs()
-                .map(|j| j.map(|j| j.key().to_string()))
-                .collect::<Result<_, _>>()?,
-            untraced: self
-                .untraced_runs()
-                .map(|j| j.map(|j| j.key().to_string()))
-                .collect::<Result<_, _>>()?,
+            described: undecided(false)?,
+            untraced: undecided(true)?,
+            lookup,
+            unmade: RefCell::new(None),
         })
     }
 
@@ -105,26 +113,65 @@ impl<'a> Described<'a> {
     }
 }
 
-/// The keys of the runs the experiment files describe ([`Described::keys`]), by their prints:
-/// 16 bytes a run, where a set of the keys themselves is ~200 (a sweep of 10^5 runs: 1.6 MB,
-/// not 20 MB). Two keys share a print with probability ~2^-128 ([`store::KeySet`]).
-#[derive(Default)]
-pub struct Keys {
+/// Whether the experiment files describe a run key ([`Described::keys`]), in memory and time
+/// independent of the number of runs they describe: a key is looked up from its names
+/// ([`catalog::RunLookup`]: its experiment by id, its variant by id, a swept one's read back
+/// from the id's tokens where the sweep's names are decided from its axes, its solver among
+/// that variant's), so a shard's pruning and resume cost in proportion to the rows they check
+/// and a merge holds nothing per run of the sweep. Only the runs of the sweeps whose names are
+/// not decided from their axes (each of at most `catalog::NAMES_COMPARED` variants) are held,
+/// as prints: 16 bytes a run, where a set of the keys themselves is ~200. Two keys share a
+/// print with probability ~2^-128 ([`store::KeySet`]).
+///
+/// The answers are plain yes or no, for the store's callbacks; a variant made to learn its
+/// solvers that does not make (a swept one off the lines that fails its checks) answers no and
+/// keeps its error, the first one: [`Keys::check`] returns it, and every caller checks it
+/// before acting on the answers.
+pub struct Keys<'a> {
+    lookup: RunLookup<'a>,
+    /// The runs of the sweeps whose names are not decided from their axes.
     described: KeySet,
-    /// The described runs that keep no trace by choice (their sweep's `traces`).
+    /// Those of them that keep no trace by choice (their sweep's `traces`).
     untraced: KeySet,
+    /// The first variant that did not make while answering.
+    unmade: RefCell<Option<ReproduceError>>,
 }
 
-impl Keys {
+impl Keys<'_> {
+    /// What the files say of `key`; a variant that does not make is kept ([`Keys::check`])
+    /// and answers [`Found::NoRun`].
+    fn find(&self, key: &RunKey) -> Found {
+        self.lookup.find(key).unwrap_or_else(|e| {
+            self.unmade.borrow_mut().get_or_insert(e.into());
+            Found::NoRun
+        })
+    }
+
     /// Whether an experiment file describes the run `key`.
     pub fn contains(&self, key: &RunKey) -> bool {
-        self.described.contains(&key.to_string())
+        match self.find(key) {
+            Found::Run { .. } => true,
+            Found::NoRun => false,
+            Found::Undecided => self.described.contains(&key.to_string()),
+        }
     }
 
     /// Whether the run `key` keeps its trace: every run but those whose sweep chose not to
     /// (a run no file describes included: its trace, if any, is its own).
     pub fn traced(&self, key: &RunKey) -> bool {
-        self.untraced.is_empty() || !self.untraced.contains(&key.to_string())
+        match self.find(key) {
+            Found::Run { keeps_trace } => keeps_trace,
+            Found::NoRun => true,
+            Found::Undecided => !self.untraced.contains(&key.to_string()),
+        }
+    }
+
+    /// The first error met while answering (a variant that does not make), if any.
+    pub fn check(&self) -> Result<(), ReproduceError> {
+        match self.unmade.borrow_mut().take() {
+            Some(e) => Err(e),
+            None => Ok(()),
+        }
     }
 }
 
@@ -168,12 +215,14 @@ pub fn plan_pruning(
     all: &Described,
 ) -> Result<(Vec<RunRow>, Vec<RunRow>), ReproduceError> {
     let described = all.keys()?;
-    Ok(results.plan_pruning(
+    let planned = results.plan_pruning(
         results.read_runs()?,
         |row| described.contains(&row.key()),
         project.prune,
         &project.experiments_dir,
-    )?)
+    );
+    described.check()?;
+    Ok(planned?)
 }
 
 /// Prunes the stored rows no experiment file describes (said run by run; their traces only if

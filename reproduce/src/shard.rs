@@ -1,6 +1,9 @@
 //! `reproduce shard K/N`: the shard's runs into its own directory in memory flat in
 //! the number of runs (docs/cluster.md, "What a shard and a merge hold"). The directory is
-//! bound to the shard (store::shard::Binding) before anything runs; an interrupted start's
+//! bound to the shard (store::shard::Binding) before anything runs; whether a stored or
+//! journaled run is still described is decided from its key's names
+//! ([`crate::results::Keys`]: no run of the sweep made but the shard's own, so its pruning
+//! and resume cost in proportion to the shard); an interrupted start's
 //! journal is folded into `runs.csv`, and the runs any earlier start finished are skipped
 //! (their keys held as 16-byte prints, [`crate::journal::finished`]); the shard's runs are made
 //! from the experiment files as they are taken ([`Kept::runs`]) and run [`CHUNK`] at a time,
@@ -76,7 +79,9 @@ pub fn run_shard(
         |row| described.contains(&row.key()),
         project.prune,
         &project.experiments_dir,
-    )?;
+    );
+    described.check()?;
+    let pruned = pruned?;
     // The directory is finished only once its manifest is written again, at the end.
     let binding = Binding {
         shard: shard.k,
@@ -103,9 +108,9 @@ pub fn run_shard(
 
     // One pass over the shard's runs, made and dropped: what it was assigned (the manifest's
     // count and key sum), the most joints among them (the journal's columns), how many are
-    // done.
+    // done. A variant of the shard's that does not make stops it here, before anything runs
+    // (another shard's is that shard's to refuse, and the merge refuses it too).
     let (mut assigned, mut joints, mut skipped) = (KeySum::default(), 0, 0);
-    // A variant that does not make stops the shard here, before anything runs.
     for job in kept.runs(all.files()) {
         let job = job?;
         let key = job.key().to_string();
