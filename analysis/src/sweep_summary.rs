@@ -40,7 +40,7 @@
 use records::index::Runs;
 use records::RunRow;
 use spec::RunKey;
-use std::collections::{BTreeMap, BTreeSet, HashSet};
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 use store::sorted::read_key_ordered;
 use store::RunsError;
@@ -624,12 +624,12 @@ pub struct Held {
 
 impl Held {
     /// Reads `path` (a `runs.csv`; absent: no rows) twice, row by row (module docs); the runs
-    /// of `untraced` keep no trace by choice and are left out of the samples (a sweep's
+    /// whose key `traced` says no to keep no trace by choice and are left out of the samples (a sweep's
     /// summary still counts them). Any problem is the reader's error naming the file and the
     /// line (`store::sorted::read_key_ordered`: the schema, the names, a run listed twice or
     /// out of key order).
-    pub fn read(path: &Path, untraced: &HashSet<RunKey>) -> Result<Held, RunsError> {
-        let traced = |r: &RunRow| untraced.is_empty() || !untraced.contains(&r.key());
+    pub fn read(path: &Path, traced: &dyn Fn(&RunKey) -> bool) -> Result<Held, RunsError> {
+        let traced = |r: &RunRow| traced(&r.key());
         let mut census: BTreeMap<String, Census> = BTreeMap::new();
         for row in read_key_ordered(path)? {
             let row = row?;
@@ -792,7 +792,7 @@ mod tests {
         let small_key = RunKey::parse("t / only / exact").unwrap();
         rows.push(RunRow::blank(&small_key, SolverKind::Exact));
         let path = scratch("large", &rows);
-        let held = Held::read(&path, &HashSet::new()).unwrap();
+        let held = Held::read(&path, &|_| true).unwrap();
         assert_eq!(held.runs.all().len(), MAX_RUN_FIGURES + 1);
         assert_eq!(held.runs.of_experiment("t").count(), 1);
         let [s] = &held.sweeps[..] else {
@@ -830,7 +830,7 @@ mod tests {
             run(1, "x", None, None, false),
         ];
         let path = scratch("unordered", &rows);
-        let err = Held::read(&path, &HashSet::new()).unwrap_err().to_string();
+        let err = Held::read(&path, &|_| true).unwrap_err().to_string();
         assert!(err.contains("line 3"), "{err}");
         std::fs::remove_dir_all(path.parent().unwrap()).unwrap();
     }

@@ -13,10 +13,11 @@ use std::path::{Path, PathBuf};
 use store::write_atomic;
 
 /// Every figure of the results under `root`, drawn from the runs the report holds, read as
-/// `reproduce` reads them (`Held`, with `untraced`).
+/// `reproduce` reads them (`Held`, with the runs that keep no trace by choice, `untraced`).
 fn render_all(root: &Path, untraced: &HashSet<RunKey>) -> Result<Vec<PathBuf>, ReportError> {
-    let held = Held::read(&root.join("results/runs.csv"), untraced)?;
-    presentation::figures::render_all(root, &held, untraced)
+    let traced = |key: &RunKey| !untraced.contains(key);
+    let held = Held::read(&root.join("results/runs.csv"), &traced)?;
+    presentation::figures::render_all(root, &held, &traced)
 }
 
 /// A run row with the identity and outcome given and every metric empty; the ids are the
@@ -590,9 +591,9 @@ fn one_papers_figures_are_drawn_alone_and_the_others_kept() {
     let dir = root.join("report/figures");
     let kept = std::fs::read(dir.join("exp-vel__overview.png")).unwrap();
     // A figure the other paper's runs no longer give would be removed; exp-vel's are not its.
-    let held = Held::read(&runs_csv_path, &HashSet::new()).unwrap();
+    let held = Held::read(&runs_csv_path, &|_| true).unwrap();
     let written =
-        presentation::figures::render_paper(&root, "other", &held, &HashSet::new()).unwrap();
+        presentation::figures::render_paper(&root, "other", &held, &|_| true).unwrap();
     let names: Vec<String> = written
         .iter()
         .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
@@ -633,7 +634,7 @@ fn a_large_sweep_renders_a_bounded_number_of_figures() {
         .collect();
     runs.sort_by_key(RunRow::key);
     write_atomic(&root.join("results/runs.csv"), &runs_csv(&runs).unwrap()).unwrap();
-    let held = Held::read(&root.join("results/runs.csv"), &Default::default()).unwrap();
+    let held = Held::read(&root.join("results/runs.csv"), &|_| true).unwrap();
     assert_eq!(held.runs.all().len(), MAX_RUN_FIGURES);
     for r in held.runs.all() {
         let key = r.key();

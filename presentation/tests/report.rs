@@ -18,7 +18,7 @@ const REGENERATE: &str = "regenerate with `cargo run --release -p reproduce -- r
 
 fn committed() -> Inputs {
     let root = catalog::root_from_current_dir().unwrap();
-    let held = Held::read(&root.join("results/runs.csv"), &Default::default()).unwrap();
+    let held = Held::read(&root.join("results/runs.csv"), &|_| true).unwrap();
     Inputs::load(&root, &root.join("papers"), held).expect("committed inputs load")
 }
 
@@ -129,7 +129,7 @@ fn scratch_copy_of_the_inputs(committed: &Path) -> PathBuf {
 fn the_committed_report_is_the_one_the_committed_results_give() {
     let committed_root = catalog::root_from_current_dir().unwrap();
     let scratch = scratch_copy_of_the_inputs(&committed_root);
-    let held = Held::read(&scratch.join("results/runs.csv"), &Default::default()).unwrap();
+    let held = Held::read(&scratch.join("results/runs.csv"), &|_| true).unwrap();
     let inputs = Inputs::load(&scratch, &committed_root.join("papers"), held).expect("inputs load");
     let path = render(&scratch, &inputs).expect("report renders");
     assert!(
@@ -556,7 +556,7 @@ fn a_large_sweeps_tables_are_bounded() {
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("runs.csv");
     std::fs::write(&path, records::runs_csv(&rows).unwrap()).unwrap();
-    let Held { runs, sweeps } = Held::read(&path, &Default::default()).unwrap();
+    let Held { runs, sweeps } = Held::read(&path, &|_| true).unwrap();
     std::fs::remove_dir_all(&dir).unwrap();
     assert_eq!(
         runs.all().len(),

@@ -10,7 +10,6 @@ use crate::results::{experiment_files, open_results, Described};
 use analysis::sweep_summary::Held;
 use catalog::PaperFile;
 use spec::RunKey;
-use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use store::results_dir::ResultsDir;
 
@@ -76,18 +75,23 @@ pub fn render_report(
     results: &ResultsDir,
     all: &Described,
 ) -> Result<(), ReproduceError> {
-    let untraced = all.untraced()?;
-    let held = held_runs(results, &untraced)?;
-    render_figures(root, None, &held, &untraced)?;
+    let keys = all.keys()?;
+    let traced = |key: &RunKey| keys.traced(key);
+    let held = held_runs(results, &traced)?;
+    render_figures(root, None, &held, &traced)?;
+    keys.check()?;
     render_pages(project, root, results, all.files(), held)
 }
 
 /// The runs the report holds (`analysis::sweep_summary::Held`): every run of an experiment of
-/// at most 24 runs, a large sweep's sample among the runs that keep a trace (not `untraced`)
+/// at most 24 runs, a large sweep's sample among the runs that keep a trace (`traced`)
 /// and its summary; `results/runs.csv` is read twice, row by row. The figures and the pages
 /// are drawn from the same runs.
-pub fn held_runs(results: &ResultsDir, untraced: &HashSet<RunKey>) -> Result<Held, ReproduceError> {
-    Ok(Held::read(&results.runs_path(), untraced)?)
+pub fn held_runs(
+    results: &ResultsDir,
+    traced: &dyn Fn(&RunKey) -> bool,
+) -> Result<Held, ReproduceError> {
+    Ok(Held::read(&results.runs_path(), traced)?)
 }
 
 /// The report's figures under `root/report/figures/`; how many, said on stderr. First removes
@@ -95,13 +99,13 @@ pub fn held_runs(results: &ResultsDir, untraced: &HashSet<RunKey>) -> Result<Hel
 /// sub-directories (a kill while a page or figure was written, e.g. on a full disk;
 /// `store::results_dir::remove_own_tmp`). Called with the results directory's lock held,
 /// which guards report/ too, so no other process's temporary file is in flight. With `paper`,
-/// only that paper's figures are drawn (`presentation::figures::render_paper`); the runs of
-/// `untraced` keep no trace by choice and get no figure of their own.
+/// only that paper's figures are drawn (`presentation::figures::render_paper`); the runs
+/// `traced` says no to keep no trace by choice and get no figure of their own.
 pub fn render_figures(
     root: &Path,
     paper: Option<&str>,
     held: &Held,
-    untraced: &HashSet<RunKey>,
+    traced: &dyn Fn(&RunKey) -> bool,
 ) -> Result<usize, ReproduceError> {
     let report = store::TrackedDir::open_within(root, "report")?;
     let removed = store::results_dir::remove_own_tmp(report.owned());
@@ -113,8 +117,8 @@ pub fn render_figures(
         );
     }
     let figures = match paper {
-        Some(p) => presentation::figures::render_paper(root, p, held, untraced)?.len(),
-        None => presentation::figures::render_all(root, held, untraced)?.len(),
+        Some(p) => presentation::figures::render_paper(root, p, held, traced)?.len(),
+        None => presentation::figures::render_all(root, held, traced)?.len(),
     };
     eprintln!("wrote {figures} figures");
     Ok(figures)

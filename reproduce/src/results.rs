@@ -10,7 +10,6 @@ use simulation::RunRecord;
 use spec::RunKey;
 use spec::RunSpec;
 use std::cell::{OnceCell, RefCell};
-use std::collections::HashSet;
 use store::results_dir::ResultsDir;
 use store::KeySet;
 use store::LabelIndex;
@@ -74,18 +73,6 @@ impl<'a> Described<'a> {
             lookup,
             unmade: RefCell::new(None),
         })
-    }
-
-    /// The run keys that keep no trace by choice (their sweep's `traces`), what the figures
-    /// leave out.
-    pub fn untraced(&self) -> Result<HashSet<RunKey>, ReproduceError> {
-        self.untraced_runs().map(|j| j.map(|j| j.key())).collect()
-    }
-
-    /// The runs that keep no trace by choice.
-    fn untraced_runs(&self) -> impl Iterator<Item = Result<RunSpec, ReproduceError>> + '_ {
-        self.runs()
-            .filter(|j| j.as_ref().map_or(true, |j| !j.keep_trace))
     }
 
     /// The index by labels by which results written before run ids are migrated, of the runs

@@ -22,7 +22,7 @@ use crate::summary::{emit, summary};
 use records::RunRow;
 use simulation::run_row;
 use simulation::RunRecord;
-use spec::RunSpec;
+use spec::{RunKey, RunSpec};
 use std::process::ExitCode;
 use std::time::Instant;
 use store::results_dir::ResultsDir;
@@ -250,10 +250,12 @@ fn publish(
         Ok(root) => {
             // `run --paper X` draws X's figures only (the pages are all re-rendered: they
             // are cheap, and the front page summarises every paper).
-            let untraced = all.untraced()?;
-            let held = held_runs(results, &untraced)?;
+            let keys = all.keys()?;
+            let traced = |key: &RunKey| keys.traced(key);
+            let held = held_runs(results, &traced)?;
             let paper = plan.selection.paper.as_deref();
-            let figures = render_figures(&root, paper, &held, &untraced)?;
+            let figures = render_figures(&root, paper, &held, &traced)?;
+            keys.check()?;
             clock.lap(Phase::Figures, Some(figures));
             render_pages(project, &root, results, all.files(), held)?;
             clock.lap(Phase::Report, None);

@@ -58,7 +58,7 @@ use records::inference::InferenceRow;
 use records::RunRow;
 use spec::RunKey;
 use spec::MAIN_H;
-use std::collections::{BTreeMap, HashSet};
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use store::{Removal, TrackedDir, TrackedError};
 use trace::Trace;
@@ -137,16 +137,16 @@ impl Job<'_> {
 /// `report/figures/` that is a symbolic link leading out of the project is refused. Fails,
 /// naming the file, on an unreadable `runs.csv`, a missing or malformed trace, or two runs whose
 /// names give the same file name. The runs drawn are those the report holds, `held`
-/// (`analysis::sweep_summary::Held`, read with `untraced`). The runs of `untraced` keep no
+/// (`analysis::sweep_summary::Held`, read with `traced`). The runs `traced` says no to keep no
 /// trace by choice (their sweep's `traces`): they get no figure of their own, and a large
 /// sweep's figures of its own runs are chosen among those that keep one (its sweep figure
 /// still has every row).
 pub fn render_all(
     root: &Path,
     held: &Held,
-    untraced: &HashSet<RunKey>,
+    traced: &dyn Fn(&RunKey) -> bool,
 ) -> Result<Vec<PathBuf>, ReportError> {
-    render(root, None, held, untraced)
+    render(root, None, held, traced)
 }
 
 /// [`render_all`] for one paper only (`reproduce run --paper X`): the figures of `paper`'s runs
@@ -157,9 +157,9 @@ pub fn render_paper(
     root: &Path,
     paper: &str,
     held: &Held,
-    untraced: &HashSet<RunKey>,
+    traced: &dyn Fn(&RunKey) -> bool,
 ) -> Result<Vec<PathBuf>, ReportError> {
-    render(root, Some(paper), held, untraced)
+    render(root, Some(paper), held, traced)
 }
 
 /// Renders the figures of every paper, or of `paper` alone ([`render_paper`]).
@@ -167,9 +167,9 @@ fn render(
     root: &Path,
     paper: Option<&str>,
     held: &Held,
-    untraced: &HashSet<RunKey>,
+    traced: &dyn Fn(&RunKey) -> bool,
 ) -> Result<Vec<PathBuf>, ReportError> {
-    let inputs = Inputs::read(&root.join(store::results_dir::DIR), paper, held, untraced)?;
+    let inputs = Inputs::read(&root.join(store::results_dir::DIR), paper, held, traced)?;
     let mut jobs = Jobs::default();
     jobs.add_runs(&inputs.runs, &inputs.traces, &inputs.sweeps)?;
     match paper {
@@ -251,13 +251,13 @@ struct Inputs {
 impl Inputs {
     /// Reads the inputs from the results directory `results` and the runs it holds, `held`
     /// (of `paper`'s runs only, when given: the others' traces are not read; nor are the
-    /// traces of a large sweep's runs outside its sample, nor those of `untraced`, which keep
+    /// traces of a large sweep's runs outside its sample, nor those `traced` says no to, which keep
     /// none by choice).
     fn read(
         results: &Path,
         paper: Option<&str>,
         held: &Held,
-        untraced: &HashSet<RunKey>,
+        traced: &dyn Fn(&RunKey) -> bool,
     ) -> Result<Self, ReportError> {
         let in_paper = |p: &str| paper.is_none_or(|paper| p == paper);
         let runs: Vec<RunRow> = held
@@ -277,7 +277,7 @@ impl Inputs {
         let traces = runs
             .iter()
             .map(|run| {
-                (untraced.is_empty() || !untraced.contains(&run.key()))
+                traced(&run.key())
                     .then(|| {
                         Trace::read(
                             &traces_dir
