@@ -537,7 +537,7 @@ mod tests {
             match state >> 60 {
                 0 => 0.0,
                 1 => -0.0,
-                2 if state % 7 == 0 => f64::NAN,
+                2 if state.is_multiple_of(7) => f64::NAN,
                 _ => (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5,
             }
         };
