@@ -201,8 +201,7 @@ impl Qp {
 
     /// Largest violation of any constraint at x (0 when x is feasible), allocating nothing:
     /// |A x - b|_inf (folded from its first entry as nalgebra's `amax` folds, m >= v ? m : v),
-    /// then G x - h and the
-    /// bounds, each product's entries summed as [`row_times`] sums them.
+    /// then G x - h and the bounds, each product's entries summed as [`row_times`] sums them.
     pub fn constraint_violation(&self, x: &DVector<f64>) -> f64 {
         let xs = x.as_slice();
         let mut v: f64 = 0.0;
