@@ -190,22 +190,37 @@ impl Qp {
         }
     }
 
-    /// Objective x'Px/2 + q'x.
+    /// Objective x'Px/2 + q'x, allocating nothing (the score of every observed step calls it),
+    /// with the roundings of nalgebra's `0.5 * x.dot(&(&p * x)) + q.dot(x)`: each (P x)_i
+    /// summed as [`row_times`] sums it, x'(P x) in the order of nalgebra's dot product
+    /// ([`dot_order_sum`]).
     pub fn objective(&self, x: &DVector<f64>) -> f64 {
-        0.5 * x.dot(&(&self.p * x)) + self.q.dot(x)
+        let (p, nx, xs) = (self.p.as_slice(), self.p.nrows(), x.as_slice());
+        0.5 * dot_order_sum(xs.len(), |i| xs[i] * row_times(p, nx, i, xs)) + self.q.dot(x)
     }
 
-    /// Largest violation of any constraint at x (0 when x is feasible).
+    /// Largest violation of any constraint at x (0 when x is feasible), allocating nothing:
+    /// |A x - b|_inf (folded from its first entry as nalgebra's `amax` folds, m >= v ? m : v),
+    /// then G x - h and the bounds, each product's entries summed as [`row_times`] sums them.
     pub fn constraint_violation(&self, x: &DVector<f64>) -> f64 {
+        let xs = x.as_slice();
         let mut v: f64 = 0.0;
         if !self.b.is_empty() {
-            v = v.max((&self.a * x - &self.b).amax());
+            let (a, rows) = (self.a.as_slice(), self.a.nrows());
+            let residual = |r: usize| (row_times(a, rows, r, xs) - self.b[r]).abs();
+            let amax = (1..self.b.len()).fold(residual(0), |m, r| {
+                let v = residual(r);
+                if m >= v {
+                    m
+                } else {
+                    v
+                }
+            });
+            v = v.max(amax);
         }
-        if !self.h.is_empty() {
-            let gx = &self.g * x;
-            for i in 0..self.h.len() {
-                v = v.max(gx[i] - self.h[i]);
-            }
+        let (g, rows) = (self.g.as_slice(), self.g.nrows());
+        for (i, h) in self.h.iter().enumerate() {
+            v = v.max(row_times(g, rows, i, xs) - h);
         }
         for i in 0..x.len() {
             v = v.max(self.lower[i] - x[i]).max(x[i] - self.upper[i]);
@@ -255,6 +270,100 @@ impl Qp {
             primal,
             dual,
             complementarity: comp,
+        }
+    }
+}
+
+/// Row i of M x for a column-major M with `rows` rows and x's length columns, rounded as
+/// nalgebra's matrix-vector product (`gemv`, column by column) rounds it: M_i0 x_0, then
+/// M_ij x_j + the sum so far for j = 1, 2, ... (0 for an empty x).
+fn row_times(m: &[f64], rows: usize, i: usize, x: &[f64]) -> f64 {
+    let mut terms = x.iter().enumerate().map(|(j, xj)| m[i + j * rows] * xj);
+    let first = terms.next().unwrap_or(0.0);
+    terms.fold(first, |s, v| v + s)
+}
+
+/// The sum of `term(i)` for i < n in the order nalgebra's dot product of two dynamic vectors
+/// adds its products: eight running sums (from 0) over each whole block of eight, added to
+/// the result (from 0) in the pairs (0, 4), (1, 5), (2, 6), (3, 7), then the rest one by one.
+fn dot_order_sum(n: usize, term: impl Fn(usize) -> f64) -> f64 {
+    let mut acc = [0.0f64; 8];
+    let mut i = 0;
+    while n - i >= 8 {
+        for (k, a) in acc.iter_mut().enumerate() {
+            *a += term(i + k);
+        }
+        i += 8;
+    }
+    let mut res = 0.0;
+    for k in 0..4 {
+        res += acc[k] + acc[k + 4];
+    }
+    for k in i..n {
+        res += term(k);
+    }
+    res
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Uniform in [-1, 1), with a zero of either sign, a tie and a NaN now and then.
+    fn entries(state: &mut u64, n: usize) -> Vec<f64> {
+        (0..n)
+            .map(|_| {
+                *state = state
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                let u = (*state >> 11) as f64 / (1u64 << 53) as f64;
+                match *state % 41 {
+                    0 => 0.0,
+                    1 => -0.0,
+                    2 => 0.5,
+                    3 => f64::NAN,
+                    _ => 2.0 * u - 1.0,
+                }
+            })
+            .collect()
+    }
+
+    /// The objective and the violation carry the bits of the nalgebra expressions they
+    /// replace (which allocate), for every size up to 20 variables and 19 rows (the dot
+    /// product's blocks of eight included), zeros of either sign and NaN among the data.
+    #[test]
+    fn objective_and_violation_round_as_nalgebra_does() {
+        let mut state = 3u64;
+        for nx in 0usize..=20 {
+            for (n_eq, n_in) in [(0, 0), (1, 2), (3, 0), (nx.saturating_sub(1), 19)] {
+                for _ in 0..20 {
+                    let mut qp = Qp::zeros(QpDims { nx, n_eq, n_in });
+                    qp.p.copy_from_slice(&entries(&mut state, nx * nx));
+                    qp.q.copy_from_slice(&entries(&mut state, nx));
+                    qp.a.copy_from_slice(&entries(&mut state, n_eq * nx));
+                    qp.b.copy_from_slice(&entries(&mut state, n_eq));
+                    qp.g.copy_from_slice(&entries(&mut state, n_in * nx));
+                    qp.h.copy_from_slice(&entries(&mut state, n_in));
+                    qp.lower.fill(-0.75);
+                    let x = DVector::from_vec(entries(&mut state, nx));
+                    let objective = 0.5 * x.dot(&(&qp.p * &x)) + qp.q.dot(&x);
+                    assert_eq!(qp.objective(&x).to_bits(), objective.to_bits(), "nx {nx}");
+                    let mut v: f64 = 0.0;
+                    if n_eq > 0 {
+                        v = v.max((&qp.a * &x - &qp.b).amax());
+                    }
+                    if n_in > 0 {
+                        let gx = &qp.g * &x;
+                        for i in 0..n_in {
+                            v = v.max(gx[i] - qp.h[i]);
+                        }
+                    }
+                    for i in 0..nx {
+                        v = v.max(qp.lower[i] - x[i]).max(x[i] - qp.upper[i]);
+                    }
+                    assert_eq!(qp.constraint_violation(&x).to_bits(), v.to_bits());
+                }
+            }
         }
     }
 }

@@ -13,6 +13,8 @@
 //! pos_err = |r_des - r| in m, score_dx = |x_nn - x*|_inf (neural runs; empty otherwise) and
 //! the network's own error norm net_error (where it has one; empty otherwise).
 
+use std::fmt::Write as _;
+
 /// One row of a run's trace (module docs).
 #[derive(Clone, Debug, PartialEq)]
 pub struct TracePoint {
@@ -67,24 +69,108 @@ pub fn trace_csv(trace: &[TracePoint]) -> Result<Vec<u8>, csv::Error> {
         .map(String::from),
     );
     w.write_record(&header)?;
+    let mut out = w
+        .into_inner()
+        .map_err(|e| csv::Error::from(e.into_error()))?;
+    // The rows hold numbers (Display, as `to_string` writes them) and empty cells only, which
+    // CSV never quotes: they are written directly, each row formatted into one reused String.
+    let mut row = String::new();
     for p in trace {
-        let mut rec: Vec<String> = vec![p.t.to_string()];
-        rec.extend(p.theta.iter().chain(&p.thetadot).map(f64::to_string));
-        if let Some(a) = &p.thetaddot {
-            rec.extend(a.iter().map(f64::to_string));
+        row.clear();
+        write!(row, "{}", p.t).expect("formatting into a String does not fail");
+        let joints = [
+            Some(&p.theta),
+            Some(&p.thetadot),
+            p.thetaddot.as_ref(),
+            p.torque.as_ref(),
+        ];
+        let mut fields = 1 + 6 + 3;
+        for values in joints.into_iter().flatten() {
+            fields += values.len();
+            for v in values {
+                write!(row, ",{v}").expect("formatting into a String does not fail");
+            }
         }
-        if let Some(a) = &p.torque {
-            rec.extend(a.iter().map(f64::to_string));
+        if fields != header.len() {
+            // As the CSV writer refuses a record whose length differs from the header's.
+            return Err(csv::Error::from(std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                format!(
+                    "trace point at t = {}: {fields} fields, the header has {}",
+                    p.t,
+                    header.len()
+                ),
+            )));
         }
-        rec.extend(p.desired.iter().chain(&p.actual).map(f64::to_string));
         let err = ((p.desired[0] - p.actual[0]).powi(2)
             + (p.desired[1] - p.actual[1]).powi(2)
             + (p.desired[2] - p.actual[2]).powi(2))
         .sqrt();
-        rec.push(err.to_string());
-        rec.push(p.score_dx.map(|v| v.to_string()).unwrap_or_default());
-        rec.push(p.network_error.map(|v| v.to_string()).unwrap_or_default());
-        w.write_record(&rec)?;
+        for v in p.desired.iter().chain(&p.actual).chain([&err]) {
+            write!(row, ",{v}").expect("formatting into a String does not fail");
+        }
+        for v in [p.score_dx, p.network_error] {
+            row.push(',');
+            if let Some(v) = v {
+                write!(row, "{v}").expect("formatting into a String does not fail");
+            }
+        }
+        row.push('\n');
+        out.extend_from_slice(row.as_bytes());
     }
-    w.into_inner().map_err(|e| csv::Error::from(e.into_error()))
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The columns of both levels, numbers as Rust's Display writes them (no exponent, -0 for
+    /// a negative zero), empty cells for an absent score and network error.
+    #[test]
+    fn a_trace_is_written_column_by_column() {
+        let velocity = TracePoint {
+            t: 0.5,
+            theta: vec![1.0, -0.25],
+            thetadot: vec![0.0, -0.0],
+            thetaddot: None,
+            torque: None,
+            desired: [1.0, 0.0, 0.0],
+            actual: [0.0; 3],
+            score_dx: None,
+            network_error: Some(1e-7),
+        };
+        let csv = String::from_utf8(trace_csv(std::slice::from_ref(&velocity)).unwrap()).unwrap();
+        assert_eq!(
+            csv,
+            "t,theta_1,theta_2,thetadot_1,thetadot_2,rx_des,ry_des,rz_des,rx,ry,rz,pos_err,\
+             score_dx,net_error\n0.5,1,-0.25,0,-0,1,0,0,0,0,0,1,,0.0000001\n"
+        );
+        let acceleration = TracePoint {
+            theta: vec![2.0],
+            thetadot: vec![3.0],
+            thetaddot: Some(vec![4.0]),
+            torque: Some(vec![5.5]),
+            desired: [0.0, 3.0, 0.0],
+            actual: [0.0, 0.0, 4.0],
+            score_dx: Some(2.5e-3),
+            network_error: None,
+            ..velocity
+        };
+        let csv = String::from_utf8(trace_csv(&[acceleration.clone(), acceleration]).unwrap());
+        let row = "0.5,2,3,4,5.5,0,3,0,0,0,4,5,0.0025,\n";
+        assert_eq!(
+            csv.unwrap(),
+            format!(
+                "t,theta_1,thetadot_1,thetaddot_1,tau_1,rx_des,ry_des,rz_des,rx,ry,rz,pos_err,\
+                 score_dx,net_error\n{row}{row}"
+            )
+        );
+        assert!(trace_csv(&[]).unwrap().is_empty());
+        // A point with another shape than the first is refused, not written ragged.
+        let mut ragged = vec![velocity.clone(), velocity];
+        ragged[1].thetaddot = Some(vec![0.0, 0.0]);
+        let e = trace_csv(&ragged).unwrap_err().to_string();
+        assert!(e.contains("t = 0.5: 16 fields, the header has 14"), "{e}");
+    }
 }

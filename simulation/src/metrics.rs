@@ -15,7 +15,7 @@
 //!   projection residual for LVI-PDNN and S-LVI-PDNN): final value and largest value after
 //!   t = 1 s (kong2019's "settles within ~1 s").
 
-use nalgebra::{DVector, Matrix3xX, Vector3};
+use nalgebra::{DVector, Matrix3, Matrix3xX, Vector3};
 use robots::JointLimits;
 
 /// One sample of the arm's motion at an accepted step (joint vectors borrowed from the
@@ -251,8 +251,9 @@ impl MetricsAccumulator {
         if let Some(tau) = s.torque {
             self.peak_torque = self.peak_torque.max(amax(tau));
         }
-        if !exceeds(s.jacobian, self.min_sigma) {
-            self.min_sigma = self.min_sigma.min(sigma_min(s.jacobian));
+        let m = jjt(s.jacobian);
+        if !exceeds(&m, self.min_sigma) {
+            self.min_sigma = self.min_sigma.min(least_singular_value(&m));
         }
         self.last_error = e;
         self.last_t = Some(s.t);
@@ -340,36 +341,46 @@ impl MetricsAccumulator {
     }
 }
 
-/// Smallest singular value of a 3 x n Jacobian: sqrt of the least eigenvalue of J J'.
-pub fn sigma_min(j: &Matrix3xX<f64>) -> f64 {
-    let jjt: nalgebra::Matrix3<f64> = j * j.transpose();
-    jjt.symmetric_eigenvalues().min().max(0.0).sqrt()
+/// sigma_min(J), the smallest singular value of a 3 x n Jacobian J: sqrt of the least
+/// eigenvalue of M = J J' ([`jjt`]; 0 where rounding makes it negative).
+fn least_singular_value(m: &Matrix3<f64>) -> f64 {
+    m.symmetric_eigenvalues().min().max(0.0).sqrt()
+}
+
+/// M = J J' of a 3 x n Jacobian with the roundings of nalgebra's `j * j.transpose()` (entry
+/// (r, c) is J_r0 J_c0, then J_rk J_ck + the sum so far for k = 1, 2, ...), without the
+/// transpose's allocation; the skip bound ([`exceeds`]) and sigma_min read the same M.
+fn jjt(j: &Matrix3xX<f64>) -> Matrix3<f64> {
+    let mut m = Matrix3::zeros();
+    for (k, column) in j.as_slice().chunks_exact(3).enumerate() {
+        for r in 0..3 {
+            for c in 0..3 {
+                let p = column[r] * column[c];
+                m[(r, c)] = if k == 0 { p } else { p + m[(r, c)] };
+            }
+        }
+    }
+    m
 }
 
 /// Whether sigma_min(J) certainly exceeds `sigma` (so the running minimum stays `sigma`
 /// without an eigenvalue decomposition), by a lower bound of the least eigenvalue of
-/// M = J J' (symmetric, eigenvalues l1 <= l2 <= l3, all >= 0): with c2 = l1 l2 + l1 l3 + l2 l3
-/// (the sum of M's principal 2 x 2 minors) >= l2 l3, l1 = det M / (l2 l3) >= det M / c2, a
-/// bound within a fraction l1 (l2 + l3) / (l2 l3) of l1. It is taken to exceed sigma^2 only
-/// with a margin of 1 % and 1e-10 tr M, far above the rounding of det M and c2 (a few eps of
-/// (tr M)^3 and (tr M)^2) and of the eigenvalue sigma_min computes (a few eps tr M), so
-/// skipping never changes the minimum. False for an infinite `sigma` (the first sample) and
-/// for NaN.
-fn exceeds(j: &Matrix3xX<f64>, sigma: f64) -> bool {
-    let mut m = [[0.0; 3]; 3];
-    for c in j.column_iter() {
-        for (r, row) in m.iter_mut().enumerate() {
-            for (k, v) in row.iter_mut().enumerate() {
-                *v += c[r] * c[k];
-            }
-        }
-    }
-    let tr = m[0][0] + m[1][1] + m[2][2];
-    let minor = |a: usize, b: usize| m[a][a] * m[b][b] - m[a][b] * m[b][a];
+/// M = J J' ([`jjt`]; symmetric, eigenvalues l1 <= l2 <= l3, all >= 0): with
+/// c2 = l1 l2 + l1 l3 + l2 l3 (the sum of M's principal 2 x 2 minors) >= l2 l3,
+/// l1 = det M / (l2 l3) >= det M / c2, a bound within a fraction l1 (l2 + l3) / (l2 l3) of l1.
+/// It is taken to exceed sigma^2 only with a margin of 1 % and 1e-10 tr M, far above the
+/// rounding of det M and c2 (a few eps of (tr M)^3 and (tr M)^2) and of the eigenvalue
+/// sigma_min computes (a few eps tr M), so skipping never changes the minimum. False for an
+/// infinite `sigma` (the first sample) and for NaN. (Summed from 0 instead, as before M was
+/// shared with sigma_min, an entry of M could differ only in the sign of an exact zero, which
+/// moves det M and c2 only in the sign of a zero result: the same answer.)
+fn exceeds(m: &Matrix3<f64>, sigma: f64) -> bool {
+    let tr = m[(0, 0)] + m[(1, 1)] + m[(2, 2)];
+    let minor = |a: usize, b: usize| m[(a, a)] * m[(b, b)] - m[(a, b)] * m[(b, a)];
     let c2 = minor(0, 1) + minor(0, 2) + minor(1, 2);
-    let det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-        - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    let det = m[(0, 0)] * (m[(1, 1)] * m[(2, 2)] - m[(1, 2)] * m[(2, 1)])
+        - m[(0, 1)] * (m[(1, 0)] * m[(2, 2)] - m[(1, 2)] * m[(2, 0)])
+        + m[(0, 2)] * (m[(1, 0)] * m[(2, 1)] - m[(1, 1)] * m[(2, 0)]);
     c2 > 0.0 && det / c2 > 1.01 * sigma * sigma + 1e-10 * tr
 }
 
@@ -381,6 +392,10 @@ fn margin(v: f64, lo: f64, hi: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn sigma_min(j: &Matrix3xX<f64>) -> f64 {
+        least_singular_value(&jjt(j))
+    }
 
     fn limits() -> JointLimits {
         JointLimits {
@@ -512,6 +527,30 @@ mod tests {
         assert!((sigma_min(&rotated) - 0.5).abs() < 1e-12);
     }
 
+    /// J J' carries the bits of nalgebra's `j * j.transpose()` (zeros of either sign and NaN
+    /// among the entries, 0 to 9 columns).
+    #[test]
+    fn jjt_rounds_as_the_nalgebra_product() {
+        let mut state = 11u64;
+        let mut next = move || {
+            state = state.wrapping_mul(6364136223846793005).wrapping_add(1);
+            match state >> 60 {
+                0 => 0.0,
+                1 => -0.0,
+                2 if state.is_multiple_of(7) => f64::NAN,
+                _ => (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5,
+            }
+        };
+        for n in 0..10 {
+            for _ in 0..200 {
+                let j = Matrix3xX::from_fn(n, |_, _| next());
+                let reference: Matrix3<f64> = &j * j.transpose();
+                let bits = |m: &Matrix3<f64>| m.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&jjt(&j)), bits(&reference), "{j}");
+            }
+        }
+    }
+
     #[test]
     fn the_skip_bound_is_a_lower_bound_of_sigma_min() {
         // sigma = (3, 2, 0.5), M = diag(9, 4, 0.25): det M / c2 = 9 / (36 + 2.25 + 1) =
@@ -520,7 +559,8 @@ mod tests {
         let j = Matrix3xX::from_row_slice(&[
             0.0, 3.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.5, 0.0,
         ]);
-        assert!(exceeds(&j, 0.47) && !exceeds(&j, 0.48) && !exceeds(&j, f64::INFINITY));
+        let m = jjt(&j);
+        assert!(exceeds(&m, 0.47) && !exceeds(&m, 0.48) && !exceeds(&m, f64::INFINITY));
         // Over many Jacobians: whenever the bound says sigma_min(J) exceeds s, it does.
         let mut state = 7u64;
         let mut next = move || {
@@ -532,7 +572,7 @@ mod tests {
             let j = Matrix3xX::from_fn(5, |_, _| next());
             let exact = sigma_min(&j);
             for s in [0.5 * exact, 0.9 * exact, 0.999 * exact, exact, 1.1 * exact] {
-                if exceeds(&j, s) {
+                if exceeds(&jjt(&j), s) {
                     skipped += 1;
                     assert!(
                         exact > s,
@@ -546,7 +586,7 @@ mod tests {
             "the bound skipped only {skipped} of 10000 cases"
         );
         let nan = Matrix3xX::from_element(5, f64::NAN);
-        assert!(!exceeds(&nan, 0.1));
+        assert!(!exceeds(&jjt(&nan), 0.1));
     }
 
     #[test]

@@ -56,8 +56,16 @@ pub(crate) fn score_instant(
         return Some(false);
     };
     let f_star = qp.objective(x_star);
-    let n = theta.len();
-    let dx = (x.rows(0, n) - x_star.rows(0, n)).amax();
+    // |x - x*|_inf over the joint command without a vector of differences, folded as
+    // nalgebra's `amax` folds (from the first entry, m >= v ? m : v, so a NaN is kept as
+    // nalgebra keeps it).
+    let mut diffs = x
+        .iter()
+        .zip(x_star.iter())
+        .take(theta.len())
+        .map(|(a, b)| (a - b).abs());
+    let first = diffs.next().unwrap_or(0.0);
+    let dx = diffs.fold(first, |m, v| if m >= v { m } else { v });
     observer.score(
         t,
         &ScoreSample {

@@ -84,15 +84,30 @@ impl Term for Repetitive {
     }
 
     fn write(&self, state: &State<'_>, _slot: Slot, qp: &mut Qp) {
+        // One loop per part, the form chosen once (the entries' sums are those of a loop over
+        // the joints writing both).
         let c = self.coefficient();
-        for (i, (th, r)) in state.theta.iter().zip(&self.theta_ref).enumerate() {
-            if self.squared {
-                qp.p[(i, i)] += self.weight;
+        let n = state.theta.len().min(self.theta_ref.len());
+        if self.squared {
+            let rows = qp.p.nrows();
+            let p = qp.p.as_mut_slice();
+            for i in 0..n {
+                p[i + i * rows] += self.weight;
             }
-            qp.q[i] += match self.form {
-                Form::Linear => c * (th - r),
-                Form::SignPower { alpha } => sign_power(th - r, alpha, SMOOTHING) * c,
-            };
+        }
+        let q = &mut qp.q.as_mut_slice()[..n];
+        let pairs = state.theta.iter().zip(&self.theta_ref);
+        match self.form {
+            Form::Linear => {
+                for (qi, (th, r)) in q.iter_mut().zip(pairs) {
+                    *qi += c * (th - r);
+                }
+            }
+            Form::SignPower { alpha } => {
+                for (qi, (th, r)) in q.iter_mut().zip(pairs) {
+                    *qi += sign_power(th - r, alpha, SMOOTHING) * c;
+                }
+            }
         }
     }
 
@@ -102,14 +117,19 @@ impl Term for Repetitive {
 
     fn write_dot(&self, state: &State<'_>, _slot: Slot, out: &mut DotOut<'_>) {
         let c = self.coefficient();
-        for (i, v) in state.thetadot.iter().enumerate() {
-            out.qp.q[i] += match self.form {
-                Form::Linear => c * v,
-                Form::SignPower { alpha } => {
-                    let e = state.theta[i] - self.theta_ref[i];
-                    c * sign_power_slope(e, alpha, SMOOTHING) * v
+        let q = &mut out.qp.q.as_mut_slice()[..state.thetadot.len()];
+        match self.form {
+            Form::Linear => {
+                for (qi, v) in q.iter_mut().zip(state.thetadot) {
+                    *qi += c * v;
                 }
-            };
+            }
+            Form::SignPower { alpha } => {
+                for (i, (qi, v)) in q.iter_mut().zip(state.thetadot).enumerate() {
+                    let e = state.theta[i] - self.theta_ref[i];
+                    *qi += c * sign_power_slope(e, alpha, SMOOTHING) * v;
+                }
+            }
         }
     }
 }

