@@ -592,8 +592,7 @@ fn one_papers_figures_are_drawn_alone_and_the_others_kept() {
     let kept = std::fs::read(dir.join("exp-vel__overview.png")).unwrap();
     // A figure the other paper's runs no longer give would be removed; exp-vel's are not its.
     let held = Held::read(&runs_csv_path, &|_| true).unwrap();
-    let written =
-        presentation::figures::render_paper(&root, "other", &held, &|_| true).unwrap();
+    let written = presentation::figures::render_paper(&root, "other", &held, &|_| true).unwrap();
     let names: Vec<String> = written
         .iter()
         .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
