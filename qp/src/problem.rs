@@ -192,8 +192,8 @@ impl Qp {
 
     /// Objective x'Px/2 + q'x, allocating nothing (the score of every observed step calls it),
     /// with the roundings of nalgebra's `0.5 * x.dot(&(&p * x)) + q.dot(x)`: each (P x)_i
-    /// summed as [`row_times`] sums it, x'(P x) in the order of nalgebra's dot product
-    /// ([`dot_order_sum`]).
+    /// summed as `row_times` sums it, x'(P x) in the order of nalgebra's dot product
+    /// (`dot_order_sum`).
     pub fn objective(&self, x: &DVector<f64>) -> f64 {
         let (p, nx, xs) = (self.p.as_slice(), self.p.nrows(), x.as_slice());
         0.5 * dot_order_sum(xs.len(), |i| xs[i] * row_times(p, nx, i, xs)) + self.q.dot(x)
@@ -201,7 +201,7 @@ impl Qp {
 
     /// Largest violation of any constraint at x (0 when x is feasible), allocating nothing:
     /// |A x - b|_inf (folded from its first entry as nalgebra's `amax` folds, m >= v ? m : v),
-    /// then G x - h and the bounds, each product's entries summed as [`row_times`] sums them.
+    /// then G x - h and the bounds, each product's entries summed as `row_times` sums them.
     pub fn constraint_violation(&self, x: &DVector<f64>) -> f64 {
         let xs = x.as_slice();
         let mut v: f64 = 0.0;
