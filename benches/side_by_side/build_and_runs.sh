@@ -13,6 +13,8 @@
 # revisions taking turns, as the builds do)
 #   reproduce  cargo run --release -p reproduce         (its results/runs.csv is kept)
 # Cargo's registry is shared with the user's, so downloads are not timed.
+# f5570fd, the baseline of issue 38, builds OSQP's C code with CMake: the machine needs `cmake`
+# (apt-get install cmake) to build it; driftbench's own default build needs none.
 # Wall time needs an otherwise idle machine; the script cannot check that nothing else runs, so
 # it records the load average before each build beside the times. CPU seconds (user + system)
 # are less disturbed by other work than wall time, but not immune (shared caches, frequency).
