@@ -477,6 +477,43 @@ fn solve(
     }
 }
 
+/// When [`drive`] reads the clock for the wall-time budget: at the first accepted step, then
+/// after as many steps as the steps so far took on average to fill [`WallCheck::INTERVAL`]
+/// (at least 1, at most [`WallCheck::MAX_STRIDE`]). A clock read costs about a tenth of a small
+/// arm's step, so reading it at every step was 1 to 2 % of a short run; the budget is overrun by
+/// at most about one interval plus one step, the same for slow steps as for fast ones.
+#[derive(Default)]
+struct WallCheck {
+    /// The accepted step at which the clock is read next.
+    next: usize,
+}
+
+impl WallCheck {
+    /// The wall time aimed at between two reads (s).
+    const INTERVAL: f64 = 1e-3;
+    /// The most steps between two reads.
+    const MAX_STRIDE: usize = 64;
+
+    /// Whether the clock is read after `steps` accepted steps.
+    fn due(&self, steps: usize) -> bool {
+        steps >= self.next
+    }
+
+    /// The wall time since `started` (s), scheduling the next read.
+    fn read(&mut self, started: std::time::Instant, steps: usize) -> f64 {
+        let elapsed = started.elapsed().as_secs_f64();
+        self.schedule(elapsed, steps);
+        elapsed
+    }
+
+    /// Schedules the next read from `elapsed` seconds over `steps` accepted steps.
+    fn schedule(&mut self, elapsed: f64, steps: usize) {
+        let per_step = elapsed / steps.max(1) as f64;
+        let stride = (Self::INTERVAL / per_step).clamp(1.0, Self::MAX_STRIDE as f64);
+        self.next = steps + stride as usize;
+    }
+}
+
 /// What [`drive`] returns: the last state, the step counts, and the error that stopped it early.
 struct Driven {
     y: Vec<f64>,
@@ -520,6 +557,7 @@ where
 {
     let max_steps = settings.max_steps;
     let started = std::time::Instant::now();
+    let mut wall = WallCheck::default();
     // The stop time in force (t1 unless a maximal step is enforced).
     let mut stop_at = match settings.max_step {
         Some(h) => next_stop(solver.state().t, t1, h),
@@ -577,11 +615,35 @@ where
             _ if steps >= max_steps => {
                 return Ok(stop(&solver, steps, OdeError::TooManySteps { t, steps }))
             }
-            _ if started.elapsed().as_secs_f64() > settings.max_wall_s => {
+            _ if wall.due(steps) && wall.read(started, steps) > settings.max_wall_s => {
                 let seconds = settings.max_wall_s;
                 return Ok(stop(&solver, steps, OdeError::WallBudget { t, seconds }));
             }
             _ => {}
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::WallCheck;
+
+    #[test]
+    fn the_clock_is_read_about_once_a_millisecond_of_steps() {
+        let mut w = WallCheck::default();
+        assert!(w.due(1));
+        // 4 us a step: every 64th step (250 would fill the interval).
+        w.schedule(4e-3, 1000);
+        assert_eq!(w.next, 1064);
+        assert!(!w.due(1063) && w.due(1064));
+        // 0.1 ms a step: every 10th.
+        w.schedule(1.0, 10_000);
+        assert_eq!(w.next, 10_010);
+        // Slower than the interval, or no time measured at all: every step, and the largest
+        // stride.
+        w.schedule(5.0, 100);
+        assert_eq!(w.next, 101);
+        w.schedule(0.0, 7);
+        assert_eq!(w.next, 71);
     }
 }
