@@ -379,18 +379,14 @@ fn exceeds(m: &Matrix3<f64>, sigma: f64) -> bool {
     let tr = m[(0, 0)] + m[(1, 1)] + m[(2, 2)];
     let s = 1.01 * sigma * sigma + 1e-10 * tr;
     let floor = 1e-12 * tr;
+    // Each pivot is tested after all are formed: a pivot at or below the floor (or NaN) makes
+    // the later ones meaningless (infinite or NaN), but never a panic, and the answer false.
     let d1 = m[(0, 0)] - s;
-    if !(d1 > floor) {
-        return false;
-    }
     let (l1, l2) = (m[(1, 0)] / d1, m[(2, 0)] / d1);
     let d2 = m[(1, 1)] - s - l1 * m[(1, 0)];
-    if !(d2 > floor) {
-        return false;
-    }
     let x = m[(2, 1)] - l2 * m[(1, 0)];
     let d3 = m[(2, 2)] - s - l2 * m[(2, 0)] - x * x / d2;
-    d3 > floor
+    d1 > floor && d2 > floor && d3 > floor
 }
 
 /// Distance of v inside [lo, hi] (negative when outside); infinite limits never bind.
