@@ -479,9 +479,11 @@ fn solve(
 
 /// When [`drive`] reads the clock for the wall-time budget: at the first accepted step, then
 /// after as many steps as the steps so far took on average to fill [`WallCheck::INTERVAL`]
-/// (at least 1, at most [`WallCheck::MAX_STRIDE`]). A clock read costs about a tenth of a small
-/// arm's step, so reading it at every step was 1 to 2 % of a short run; the budget is overrun by
-/// at most about one interval plus one step, the same for slow steps as for fast ones.
+/// (at least 1, at most [`WallCheck::MAX_STRIDE`]). A clock read (some 40 ns) costs about a
+/// hundredth of a small arm's step, so reading it at every step was about 1 % of a short run.
+/// While the steps keep the pace of the steps so far, the budget is overrun by about one
+/// interval plus one step, for slow steps as for fast ones; where they slow down, by at most
+/// [`WallCheck::MAX_STRIDE`] steps.
 #[derive(Default)]
 struct WallCheck {
     /// The accepted step at which the clock is read next.
