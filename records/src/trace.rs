@@ -13,8 +13,6 @@
 //! pos_err = |r_des - r| in m, score_dx = |x_nn - x*|_inf (neural runs; empty otherwise) and
 //! the network's own error norm net_error (where it has one; empty otherwise).
 
-use std::fmt::Write as _;
-
 /// One row of a run's trace (module docs).
 #[derive(Clone, Debug, PartialEq)]
 pub struct TracePoint {
@@ -72,12 +70,13 @@ pub fn trace_csv(trace: &[TracePoint]) -> Result<Vec<u8>, csv::Error> {
     let mut out = w
         .into_inner()
         .map_err(|e| csv::Error::from(e.into_error()))?;
-    // The rows hold numbers (Display, as `to_string` writes them) and empty cells only, which
-    // CSV never quotes: they are written directly, each row formatted into one reused String.
+    // The rows hold numbers (Display's text, as `to_string` writes them, by `decimal::push`)
+    // and empty cells only, which CSV never quotes: they are written directly, each row
+    // formatted into one reused String.
     let mut row = String::new();
     for p in trace {
         row.clear();
-        write!(row, "{}", p.t).expect("formatting into a String does not fail");
+        decimal::push(&mut row, p.t);
         let joints = [
             Some(&p.theta),
             Some(&p.thetadot),
@@ -87,8 +86,9 @@ pub fn trace_csv(trace: &[TracePoint]) -> Result<Vec<u8>, csv::Error> {
         let mut fields = 1 + 6 + 3;
         for values in joints.into_iter().flatten() {
             fields += values.len();
-            for v in values {
-                write!(row, ",{v}").expect("formatting into a String does not fail");
+            for &v in values {
+                row.push(',');
+                decimal::push(&mut row, v);
             }
         }
         if fields != header.len() {
@@ -106,13 +106,14 @@ pub fn trace_csv(trace: &[TracePoint]) -> Result<Vec<u8>, csv::Error> {
             + (p.desired[1] - p.actual[1]).powi(2)
             + (p.desired[2] - p.actual[2]).powi(2))
         .sqrt();
-        for v in p.desired.iter().chain(&p.actual).chain([&err]) {
-            write!(row, ",{v}").expect("formatting into a String does not fail");
+        for &v in p.desired.iter().chain(&p.actual).chain([&err]) {
+            row.push(',');
+            decimal::push(&mut row, v);
         }
         for v in [p.score_dx, p.network_error] {
             row.push(',');
             if let Some(v) = v {
-                write!(row, "{v}").expect("formatting into a String does not fail");
+                decimal::push(&mut row, v);
             }
         }
         row.push('\n');
