@@ -70,7 +70,8 @@ pub struct PathPoint {
 pub trait Path: Send + Sync {
     /// Task duration T.
     fn duration(&self) -> f64;
-    /// r*(t), rdot*(t), rddot*(t).
+    /// r*(t), rdot*(t), rddot*(t): a function of t alone (the tracking term asks once per
+    /// instant and reuses the answer).
     fn at(&self, t: f64) -> PathPoint;
     /// Interior instants in (0, T), ascending, where rdot or rddot is discontinuous (corners of
     /// polylines). Integrators should stop there; the smooth curves have none.

@@ -95,6 +95,10 @@ struct Scratch {
     t: f64,
     theta: Vec<f64>,
     point: PathPoint,
+    /// The instant (its bits) `point` is the path's point at, whether or not `valid`: the
+    /// point depends on t alone, so the stages of a Runge-Kutta step at one instant (the last
+    /// two of Tsitouras 5(4), and the observer after them) ask the path once.
+    point_t: Option<u64>,
     /// f(theta) at (`t`, `theta`), when the last evaluation there was a [`Term::write`].
     position: Option<Vector3<f64>>,
 }
@@ -125,8 +129,19 @@ impl Scratch {
         self.t = t;
         self.theta.copy_from_slice(theta);
         self.point = point;
+        self.point_t = Some(t.to_bits());
         self.position = position;
         self.valid = true;
+    }
+
+    /// The path's point at t: the one held where it is t's (bit for bit), else asked of `path`
+    /// and held.
+    fn path_point(&mut self, path: &dyn Path, t: f64) -> PathPoint {
+        if self.point_t != Some(t.to_bits()) {
+            self.point = path.at(t);
+            self.point_t = Some(t.to_bits());
+        }
+        self.point
     }
 }
 
@@ -233,6 +248,7 @@ impl Tracking {
                     rdot: Vector3::zeros(),
                     rddot: Vector3::zeros(),
                 },
+                point_t: None,
                 position: None,
             }),
         }
@@ -327,10 +343,10 @@ impl Term for Tracking {
         };
         let (f, pp) = match cached {
             Some(fp) => fp,
-            None => (
-                self.robot.position_jacobian(state.theta, &mut scratch.jac),
-                self.path.at(state.t),
-            ),
+            None => {
+                let f = self.robot.position_jacobian(state.theta, &mut scratch.jac);
+                (f, scratch.path_point(&*self.path, state.t))
+            }
         };
         let (jac, jdot) = (&scratch.jac, &mut scratch.jdot);
         self.write_rows(jac, slot.equality, &mut qp.a);
@@ -390,7 +406,7 @@ impl Term for Tracking {
         let scratch = &mut *scratch;
         if !scratch.holds(state.t, state.theta) {
             self.robot.jacobian(state.theta, &mut scratch.jac);
-            let point = self.path.at(state.t);
+            let point = scratch.path_point(&*self.path, state.t);
             scratch.remember(state.t, state.theta, point, None);
         }
         self.robot
