@@ -12,8 +12,9 @@ use std::path::{Path, PathBuf};
 /// The most `pub mod` declarations each member's `src/` may hold (`pub(crate) mod` and `mod`
 /// are not counted). Counted when the rule was applied; lower a ceiling when a module goes
 /// private.
-const CEILINGS: [(&str, usize); 22] = [
+const CEILINGS: [(&str, usize); 23] = [
     ("qp", 0),
+    ("decimal", 0),
     ("inputs", 4),
     ("robots", 0),
     ("schemes", 1),
