@@ -181,7 +181,8 @@ mod tests {
             f64::EPSILON,
             5e-324,
             -5e-324,
-            2.2250738585072009e-308,
+            // The largest subnormal number.
+            f64::from_bits(0x000f_ffff_ffff_ffff),
             f64::NAN,
             f64::INFINITY,
             f64::NEG_INFINITY,
@@ -211,7 +212,7 @@ mod tests {
         // k 2^j and k 2^-j for odd k: the numbers whose exact value can end in a 5 one digit
         // past the shortest (2^-25 and 1658206780088562.25 are two).
         check(2f64.powi(-25));
-        check(1658206780088562.25);
+        check(f64::from_bits(0x4317_9085_685d_83c9)); // 1658206780088562.25
         for j in 0..=120 {
             for k in (1..4000u32).step_by(2) {
                 let k = f64::from(k);
