@@ -24,13 +24,11 @@
 //! The tests compare [`push`] with `Display` on a million random bit patterns and on the
 //! boundaries (subnormals, powers of ten and two, the largest and smallest numbers).
 
-use std::fmt::Write;
-
-/// Appends `v` to `out` exactly as `write!(out, "{v}")` would.
-pub fn push(out: &mut String, v: f64) {
+/// Appends `v` to `out` as the bytes of `format!("{v}")` (ASCII).
+pub fn push(out: &mut Vec<u8>, v: f64) {
     if !v.is_finite() {
         // NaN, inf, -inf: rare; Display's own words.
-        write!(out, "{v}").expect("formatting into a String does not fail");
+        out.extend_from_slice(v.to_string().as_bytes());
         return;
     }
     let mut buffer = ryu::Buffer::new();
@@ -66,7 +64,7 @@ pub fn push(out: &mut String, v: f64) {
         len -= 1;
     }
     if negative {
-        out.push('-');
+        out.push(b'-');
     }
     let digits = &mut digits[start..len];
     let q = point - digits.len() as i32;
@@ -79,24 +77,22 @@ pub fn push(out: &mut String, v: f64) {
     }
     let digits = &*digits;
     if digits.is_empty() {
-        out.push('0');
+        out.push(b'0');
         return;
     }
     let k = digits.len() as i32;
-    // ASCII digits only: each byte is a char.
-    let push_digits = |out: &mut String, d: &[u8]| out.extend(d.iter().map(|&b| b as char));
     if point <= 0 {
-        out.push_str("0.");
-        out.extend(std::iter::repeat_n('0', (-point) as usize));
-        push_digits(out, digits);
+        out.extend_from_slice(b"0.");
+        out.resize(out.len() + (-point) as usize, b'0');
+        out.extend_from_slice(digits);
     } else if point < k {
         let (whole, fraction) = digits.split_at(point as usize);
-        push_digits(out, whole);
-        out.push('.');
-        push_digits(out, fraction);
+        out.extend_from_slice(whole);
+        out.push(b'.');
+        out.extend_from_slice(fraction);
     } else {
-        push_digits(out, digits);
-        out.extend(std::iter::repeat_n('0', (point - k) as usize));
+        out.extend_from_slice(digits);
+        out.resize(out.len() + (point - k) as usize, b'0');
     }
 }
 
@@ -150,9 +146,14 @@ mod tests {
     use super::push;
 
     fn check(v: f64) {
-        let mut ours = String::new();
+        let mut ours = Vec::new();
         push(&mut ours, v);
-        assert_eq!(ours, format!("{v}"), "bits {:#018x}", v.to_bits());
+        assert_eq!(
+            String::from_utf8(ours).unwrap(),
+            format!("{v}"),
+            "bits {:#018x}",
+            v.to_bits()
+        );
     }
 
     #[test]

@@ -71,12 +71,9 @@ pub fn trace_csv(trace: &[TracePoint]) -> Result<Vec<u8>, csv::Error> {
         .into_inner()
         .map_err(|e| csv::Error::from(e.into_error()))?;
     // The rows hold numbers (Display's text, as `to_string` writes them, by `decimal::push`)
-    // and empty cells only, which CSV never quotes: they are written directly, each row
-    // formatted into one reused String.
-    let mut row = String::new();
+    // and empty cells only, which CSV never quotes: they are written directly after the header.
     for p in trace {
-        row.clear();
-        decimal::push(&mut row, p.t);
+        decimal::push(&mut out, p.t);
         let joints = [
             Some(&p.theta),
             Some(&p.thetadot),
@@ -87,8 +84,8 @@ pub fn trace_csv(trace: &[TracePoint]) -> Result<Vec<u8>, csv::Error> {
         for values in joints.into_iter().flatten() {
             fields += values.len();
             for &v in values {
-                row.push(',');
-                decimal::push(&mut row, v);
+                out.push(b',');
+                decimal::push(&mut out, v);
             }
         }
         if fields != header.len() {
@@ -107,17 +104,16 @@ pub fn trace_csv(trace: &[TracePoint]) -> Result<Vec<u8>, csv::Error> {
             + (p.desired[2] - p.actual[2]).powi(2))
         .sqrt();
         for &v in p.desired.iter().chain(&p.actual).chain([&err]) {
-            row.push(',');
-            decimal::push(&mut row, v);
+            out.push(b',');
+            decimal::push(&mut out, v);
         }
         for v in [p.score_dx, p.network_error] {
-            row.push(',');
+            out.push(b',');
             if let Some(v) = v {
-                decimal::push(&mut row, v);
+                decimal::push(&mut out, v);
             }
         }
-        row.push('\n');
-        out.extend_from_slice(row.as_bytes());
+        out.push(b'\n');
     }
     Ok(out)
 }
