@@ -199,8 +199,8 @@ mod tests {
             cases.extend([
                 p,
                 p * 3.0,
-                f64::from_bits(p.to_bits() - 1),
-                f64::from_bits(p.to_bits() + 1),
+                f64::from_bits(p.to_bits().saturating_sub(1)),
+                f64::from_bits(p.to_bits().saturating_add(1)),
             ]);
         }
         for v in cases {
