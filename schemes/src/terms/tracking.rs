@@ -117,19 +117,12 @@ impl Scratch {
                 .all(|(a, b)| a.to_bits() == b.to_bits())
     }
 
-    /// Records that `jac` and `point` (and `position`, where given) are the values at
-    /// (t, theta).
-    fn remember(
-        &mut self,
-        t: f64,
-        theta: &[f64],
-        point: PathPoint,
-        position: Option<Vector3<f64>>,
-    ) {
+    /// Records that `jac` (and `position`, where given) are the values at (t, theta); `point`
+    /// is t's already ([`Self::path_point`] was asked at t).
+    fn remember(&mut self, t: f64, theta: &[f64], position: Option<Vector3<f64>>) {
+        debug_assert_eq!(self.point_t, Some(t.to_bits()));
         self.t = t;
         self.theta.copy_from_slice(theta);
-        self.point = point;
-        self.point_t = Some(t.to_bits());
         self.position = position;
         self.valid = true;
     }
@@ -367,7 +360,7 @@ impl Term for Tracking {
             // The cache holds the position Jacobian; a pose task's rows overwrite `jac` with
             // the angular one, so its instant is never remembered, and an instant remembered
             // before no longer holds.
-            None => scratch.remember(state.t, state.theta, pp, Some(f)),
+            None => scratch.remember(state.t, state.theta, Some(f)),
             Some(target) => {
                 scratch.valid = false;
                 let o = self.orientation();
@@ -406,8 +399,8 @@ impl Term for Tracking {
         let scratch = &mut *scratch;
         if !scratch.holds(state.t, state.theta) {
             self.robot.jacobian(state.theta, &mut scratch.jac);
-            let point = scratch.path_point(&*self.path, state.t);
-            scratch.remember(state.t, state.theta, point, None);
+            scratch.path_point(&*self.path, state.t);
+            scratch.remember(state.t, state.theta, None);
         }
         self.robot
             .jacobian_dot(state.theta, state.thetadot, &mut scratch.jdot);
