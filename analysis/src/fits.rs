@@ -241,12 +241,10 @@ mod tests {
         let back: Vec<DofCostRow> = records::table::from_reader(bytes.as_slice()).unwrap();
         assert_eq!(back, rows);
 
-        let dir = std::env::temp_dir().join(format!("driftbench-dof-cost-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = inputs::Scratch::dir("dof-cost");
         assert!(read(&dir).unwrap().is_empty());
         write(&dir, &rows).unwrap();
         assert_eq!(read(&dir).unwrap(), rows);
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

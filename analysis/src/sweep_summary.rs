@@ -693,16 +693,12 @@ mod tests {
         r
     }
 
-    fn scratch(name: &str, rows: &[RunRow]) -> std::path::PathBuf {
-        let dir = std::env::temp_dir().join(format!(
-            "driftbench-sweep-summary-{name}-{}",
-            std::process::id()
-        ));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
+    /// `rows` as the runs.csv of a scratch directory (removed when dropped), and its path.
+    fn scratch(name: &str, rows: &[RunRow]) -> (inputs::Scratch, std::path::PathBuf) {
+        let dir = inputs::Scratch::dir(&format!("sweep-summary-{name}"));
         let path = dir.join("runs.csv");
         std::fs::write(&path, records::runs_csv(rows).unwrap()).unwrap();
-        path
+        (dir, path)
     }
 
     #[test]
@@ -791,7 +787,7 @@ mod tests {
             .collect();
         let small_key = RunKey::parse("t / only / exact").unwrap();
         rows.push(RunRow::blank(&small_key, SolverKind::Exact));
-        let path = scratch("large", &rows);
+        let (_dir, path) = scratch("large", &rows);
         let held = Held::read(&path, &|_| true).unwrap();
         assert_eq!(held.runs.all().len(), MAX_RUN_FIGURES + 1);
         assert_eq!(held.runs.of_experiment("t").count(), 1);
@@ -819,7 +815,6 @@ mod tests {
         // The first interval of mu (width 49 / 40) holds mu = 0 and 1: its smallest drift is
         // the sweep's.
         assert_eq!(s.against[0][0].0.min, 1e-6);
-        std::fs::remove_dir_all(path.parent().unwrap()).unwrap();
     }
 
     /// Out of key order, the file is refused naming its line, as every reader of runs does.
@@ -829,9 +824,8 @@ mod tests {
             run(2, "x", None, None, false),
             run(1, "x", None, None, false),
         ];
-        let path = scratch("unordered", &rows);
+        let (_dir, path) = scratch("unordered", &rows);
         let err = Held::read(&path, &|_| true).unwrap_err().to_string();
         assert!(err.contains("line 3"), "{err}");
-        std::fs::remove_dir_all(path.parent().unwrap()).unwrap();
     }
 }

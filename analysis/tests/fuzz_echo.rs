@@ -21,14 +21,9 @@ fn repo() -> PathBuf {
     catalog::root_from_current_dir().unwrap()
 }
 
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "driftbench-fuzz-echo-{}/{name}",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A fresh scratch directory of one test (a case of it at a time), removed when dropped.
+fn scratch(name: &str) -> inputs::Scratch {
+    inputs::Scratch::dir(&format!("fuzz-echo-{name}"))
 }
 
 /// Lines that carry the marker where a secret would be: as a comment, as a line that is not

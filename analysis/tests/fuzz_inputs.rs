@@ -24,10 +24,10 @@ fn fixture(name: &str) -> Vec<u8> {
     std::fs::read(repo().join("inputs/tests/fixtures").join(name)).unwrap()
 }
 
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("driftbench-fuzz-inputs-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
+/// A fresh scratch directory of one test (a case of it at a time), named for the file `name`
+/// it holds; removed when dropped.
+fn scratch(name: &str) -> inputs::Scratch {
+    inputs::Scratch::dir(&format!("fuzz-inputs-{name}"))
 }
 
 /// One mutation of a byte string.
@@ -135,7 +135,8 @@ fn well_formed(tr: &Trajectory) {
 }
 
 fn read_mat_bytes(bytes: &[u8], name: &str) {
-    let path = scratch(name);
+    let dir = scratch(name);
+    let path = dir.join(name);
     std::fs::write(&path, bytes).unwrap();
     let started = Instant::now();
     if let Ok(tr) = read(&path, 2, None) {
@@ -224,7 +225,6 @@ fn load_paper(
     values: &str,
 ) -> Result<analysis::papers::Papers, String> {
     let dir = scratch(name);
-    let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(dir.join("kong2019")).unwrap();
     std::fs::write(dir.join("kong2019/paper.toml"), toml_text).unwrap();
     std::fs::write(dir.join("kong2019/values.csv"), values).unwrap();
@@ -348,12 +348,14 @@ proptest! {
 #[test]
 fn the_fuzzed_inputs_are_read_when_unmutated() {
     for name in ["trajectory-v6.mat", "trajectory-v7.mat"] {
-        let path = scratch(name);
+        let dir = scratch(name);
+        let path = dir.join(name);
         std::fs::write(&path, fixture(name)).unwrap();
         well_formed(&read(&path, 2, None).unwrap());
     }
     let (header, payload) = inflated_v7();
-    let path = scratch("recompressed.mat");
+    let dir = scratch("recompressed.mat");
+    let path = dir.join("recompressed.mat");
     std::fs::write(&path, compressed_v7(&header, &payload)).unwrap();
     let tr = read(&path, 2, None).unwrap();
     assert_eq!(tr.t, [0.0, 0.5, 1.0]);

@@ -3,15 +3,11 @@
 //! negative norm), and numbers that cannot be compared are refused before anything runs.
 
 use analysis::papers::Papers;
-use std::path::PathBuf;
+use inputs::Scratch;
 
-/// A scratch `papers/` with one paper `demo` whose values.csv is `values`.
-fn papers_dir(name: &str, values: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "driftbench-paper-values-{name}-{}",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
+/// A scratch `papers/` with one paper `demo` whose values.csv is `values` (removed when dropped).
+fn papers_dir(name: &str, values: &str) -> Scratch {
+    let dir = Scratch::dir(&format!("paper-values-{name}"));
     let paper = dir.join("demo");
     std::fs::create_dir_all(&paper).unwrap();
     std::fs::write(
@@ -55,7 +51,6 @@ fn contradictions_are_marked_with_their_line_and_not_used() {
         .iter()
         .filter(|v| v.column == "C")
         .all(|v| v.inconsistent.is_none()));
-    std::fs::remove_dir_all(dir).unwrap();
 }
 
 #[test]
@@ -81,7 +76,6 @@ fn non_finite_values_and_unknown_metrics_are_refused_naming_the_line() {
         );
         let err = Papers::load(&dir).unwrap_err().to_string();
         assert!(err.contains(expect) && err.contains("values.csv"), "{err}");
-        std::fs::remove_dir_all(dir).unwrap();
     }
 }
 
@@ -109,7 +103,6 @@ fn companions_name_variants_or_runs() {
         let err = Papers::load(&dir).expect_err(bad).to_string();
         assert!(err.contains("companions"), "{bad}: {err}");
     }
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// A published compute time is set beside the first run of its solver in its experiment (by
@@ -152,5 +145,4 @@ fn a_published_time_is_compared_with_the_first_run_of_its_solver() {
     );
     let none = Runs::new(vec![blank("v", "m3")]);
     assert_eq!(papers.timed_runs(&none).next().unwrap().run, None);
-    let _ = std::fs::remove_dir_all(&dir);
 }

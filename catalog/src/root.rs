@@ -43,18 +43,15 @@ mod tests {
 
     #[test]
     fn the_root_is_found_from_any_directory_below_it() {
-        let base = std::env::temp_dir().join(format!("driftbench-root-{}", std::process::id()));
+        let base = inputs::Scratch::dir("root");
         let deep = base.join("experiments").join("a").join("b");
         std::fs::create_dir_all(&deep).unwrap();
-        assert_eq!(find_root(&deep).unwrap(), base);
-        assert_eq!(find_root(&base).unwrap(), base);
-        let outside = std::env::temp_dir().join(format!("driftbench-none-{}", std::process::id()));
-        std::fs::create_dir_all(&outside).unwrap();
+        assert_eq!(find_root(&deep).unwrap(), base.path());
+        assert_eq!(find_root(&base).unwrap(), base.path());
+        let outside = inputs::Scratch::dir("none");
         if outside.ancestors().all(|d| !d.join("experiments").is_dir()) {
             let e = find_root(&outside).unwrap_err().to_string();
             assert!(e.contains("--root") && e.contains("experiments/"), "{e}");
         }
-        std::fs::remove_dir_all(&base).unwrap();
-        std::fs::remove_dir_all(&outside).unwrap();
     }
 }

@@ -97,13 +97,10 @@ mod tests {
     use inputs::HOSTILE_MARKER;
     use std::path::PathBuf;
 
-    /// A scratch `experiments/` (with `control/`) and the directory that holds it.
-    fn scratch(tag: &str) -> (PathBuf, PathBuf) {
-        let base = std::env::temp_dir().join(format!(
-            "driftbench-control-tasks-{tag}-{}",
-            std::process::id()
-        ));
-        let _ = std::fs::remove_dir_all(&base);
+    /// A scratch `experiments/` (with `control/`) and the directory that holds it (removed
+    /// when dropped).
+    fn scratch(tag: &str) -> (PathBuf, inputs::Scratch) {
+        let base = inputs::Scratch::dir(&format!("control-tasks-{tag}"));
         std::fs::create_dir_all(base.join("experiments/control")).unwrap();
         (base.join("experiments"), base)
     }
@@ -118,7 +115,7 @@ mod tests {
 
     #[test]
     fn a_budget_out_of_range_is_named_with_its_valid_values() {
-        let (experiments, base) = scratch("budget");
+        let (experiments, _base) = scratch("budget");
         let file = experiments.join(TASK_SET_FILE);
         let task = "[[task]]\nexperiment = \"e\"\nvariant = \"v\"\n";
         let budget = |sweep: &str, cycles: u32, ticks: u32, factor: u32| {
@@ -153,12 +150,11 @@ mod tests {
         std::fs::write(&file, task).unwrap();
         let e = load_task_set(&experiments).unwrap_err();
         assert!(e.to_string().contains("budget"), "{e}");
-        std::fs::remove_dir_all(&base).unwrap();
     }
 
     #[test]
     fn a_hostile_task_set_is_refused_without_its_content() {
-        let (experiments, base) = scratch("hostile");
+        let (experiments, _base) = scratch("hostile");
         // Missing: no control experiments.
         let e = load_task_set(&experiments).unwrap_err();
         assert!(matches!(e, TaskSetError::Missing(_)), "{e:?}");
@@ -174,6 +170,5 @@ mod tests {
             )],
             move || load_task_set(&dir).err().map(|e| e.to_string()),
         );
-        std::fs::remove_dir_all(&base).unwrap();
     }
 }

@@ -4,25 +4,20 @@
 //! directory with their file and a task set of its own).
 
 use control::reproduce;
+use inputs::Scratch;
 use records::control::{ClaimCheck, ControlRow};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use store::results_dir;
 
-/// A scratch directory `name` under the system's temporary one, emptied.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "driftbench-control-parallel-{name}-{}",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A scratch directory `name` under the system's temporary one, emptied, removed when dropped.
+fn scratch(name: &str) -> Scratch {
+    Scratch::dir(&format!("control-parallel-{name}"))
 }
 
 /// Runs the control experiments of `experiments` (its task set, at h = 10 ms instead of the
 /// main period) on a pool of `threads` threads into a fresh directory, which is returned beside
 /// the claim's check runs without their latencies (wall-clock).
-fn run_on(threads: usize, experiments: &Path) -> (PathBuf, Vec<ClaimCheck>) {
+fn run_on(threads: usize, experiments: &Path) -> (Scratch, Vec<ClaimCheck>) {
     let out = scratch(&format!("out-{threads}"));
     let mut set = catalog::load_task_set(experiments).unwrap();
     set.budget.h = 1e-2;
@@ -99,8 +94,5 @@ fn two_threads_give_the_rows_of_one() {
             std::fs::read(two.join(file)).unwrap(),
         );
         assert!(!a.is_empty() && a == b, "{file} differs");
-    }
-    for dir in [experiments, one, two] {
-        let _ = std::fs::remove_dir_all(dir);
     }
 }

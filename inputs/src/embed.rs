@@ -182,14 +182,13 @@ mod tests {
     use super::*;
     use std::os::unix::fs::symlink;
 
-    /// A scratch checkout `root/` (with `root/data/`) beside `outside/`.
-    struct Scratch(PathBuf);
+    /// A scratch checkout `root/` (with `root/data/`) beside `outside/`. (`inputs::`, not
+    /// `crate::`: robots' test of its build script compiles this module too.)
+    struct Scratch(inputs::Scratch);
 
     impl Scratch {
         fn new(tag: &str) -> Self {
-            let base =
-                std::env::temp_dir().join(format!("driftbench-embed-{tag}-{}", std::process::id()));
-            let _ = std::fs::remove_dir_all(&base);
+            let base = inputs::Scratch::dir(&format!("embed-{tag}"));
             std::fs::create_dir_all(base.join("root/data/sub")).unwrap();
             std::fs::create_dir_all(base.join("outside")).unwrap();
             std::fs::write(base.join("outside/secret.toml"), "SECRET").unwrap();
@@ -205,12 +204,6 @@ mod tests {
         }
         fn data(&self, name: &str) -> PathBuf {
             self.0.join("root/data").join(name)
-        }
-    }
-
-    impl Drop for Scratch {
-        fn drop(&mut self) {
-            let _ = std::fs::remove_dir_all(&self.0);
         }
     }
 

@@ -20,7 +20,7 @@
 //! once, with the same features. A failed case panics, as an assertion does: the kit is called
 //! from tests only.
 
-use crate::Kind;
+use crate::{Kind, Scratch};
 use std::os::unix::ffi::OsStrExt;
 use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -79,12 +79,11 @@ pub fn assert_refuses_hostile_files<F>(
     }
     std::fs::remove_file(file).unwrap();
 
-    let outside = std::env::temp_dir().join(format!(
-        "driftbench-hostile-secret-{}-{}",
-        std::process::id(),
+    // Removed when the kit returns or panics (a failed case).
+    let outside = Scratch::dir(&format!(
+        "hostile-secret-{}",
         CALLS.fetch_add(1, Ordering::Relaxed)
     ));
-    std::fs::create_dir_all(&outside).unwrap();
     let secret = outside.join("secret");
     std::fs::write(&secret, format!("{HOSTILE_MARKER}\n")).unwrap();
     let environ = Path::new("/proc/self/environ");
@@ -98,7 +97,7 @@ pub fn assert_refuses_hostile_files<F>(
             std::fs::remove_file(file).unwrap();
         }
     }
-    std::fs::remove_dir_all(&outside).unwrap();
+    drop(outside);
 
     let path = std::ffi::CString::new(file.as_os_str().as_bytes()).unwrap();
     // SAFETY: `path` is a NUL-terminated string that outlives the call.
@@ -130,14 +129,8 @@ mod tests {
     use crate::{parse_toml, read_text, Origin};
     use std::path::PathBuf;
 
-    fn scratch(tag: &str) -> PathBuf {
-        let dir = std::env::temp_dir().join(format!(
-            "driftbench-hostile-kit-{tag}-{}",
-            std::process::id()
-        ));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        dir
+    fn scratch(tag: &str) -> Scratch {
+        Scratch::dir(&format!("hostile-kit-{tag}"))
     }
 
     /// This crate's reader and TOML parser, as every reader of a TOML file uses them.
@@ -159,10 +152,9 @@ mod tests {
             Kind::TaskSet,
             "a = 1\n",
             &[],
-            through_inputs(dir.clone()),
+            through_inputs(dir.to_path_buf()),
         );
         assert!(!dir.join("x.toml").exists());
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
@@ -197,13 +189,12 @@ mod tests {
                 Kind::TaskSet,
                 "a = 1\n",
                 &["b = \n".to_string()],
-                through_inputs(dir.clone()),
+                through_inputs(dir.to_path_buf()),
             )
         });
         assert!(
             kit.is_err(),
             "the kit took a malformed text without its marker"
         );
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -27,9 +27,17 @@
 //! (a symbolic link out, a FIFO, a file over its cap, TOML errors that must not quote the file;
 //! Unix only).
 //!
+//! Every test of the workspace that writes outside the checkout writes into a [`Scratch`]: a
+//! path under the system's temporary directory, unique per process and test, removed when the
+//! test ends, also when it panics.
+//!
 //! What a build compiles into a binary is held to [`embed`] (a public module: the build scripts
 //! include it by path): regular files only, reached
 //! without a symbolic link, inside the checkout.
+
+// `inputs::` names this crate inside it too: the tests of `embed` (which build scripts and
+// robots' test of its build script compile by path) reach `inputs::Scratch` in either crate.
+extern crate self as inputs;
 
 pub mod embed;
 mod error;
@@ -38,6 +46,7 @@ mod hostile;
 mod kind;
 mod private_dir;
 mod read;
+mod scratch;
 mod toml_error;
 pub mod trajectory;
 
@@ -47,5 +56,6 @@ pub use hostile::{assert_refuses_hostile_files, HOSTILE_MARKER, HOSTILE_TIMEOUT}
 pub use kind::Kind;
 pub use private_dir::{sync as sync_private_dir, PrivateDirError};
 pub use read::{open, read, read_text, Capped, Origin};
+pub use scratch::Scratch;
 pub use toml_error::from_str as parse_toml;
 pub use toml_error::TomlError;

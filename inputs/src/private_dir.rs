@@ -264,22 +264,8 @@ mod tests {
     use std::os::unix::fs::PermissionsExt;
 
     /// A scratch base directory, removed at the end.
-    struct Scratch(PathBuf);
-
-    impl Scratch {
-        fn new(name: &str) -> Self {
-            let p = std::env::temp_dir()
-                .join(format!("driftbench-private-{name}-{}", std::process::id()));
-            let _ = std::fs::remove_dir_all(&p);
-            std::fs::create_dir_all(&p).unwrap();
-            Scratch(p)
-        }
-    }
-
-    impl Drop for Scratch {
-        fn drop(&mut self) {
-            let _ = std::fs::remove_dir_all(&self.0);
-        }
+    fn scratch(name: &str) -> crate::Scratch {
+        crate::Scratch::dir(&format!("private-{name}"))
     }
 
     const FILES: [(&str, &[u8]); 2] = [("a.toml", b"a = 1\n"), ("sub/b.csv", b"x\n1\n")];
@@ -290,8 +276,8 @@ mod tests {
 
     #[test]
     fn a_new_directory_is_owner_only_and_an_edit_is_undone() {
-        let s = Scratch::new("new");
-        let dir = s.0.join("cache/driftbench/data-1");
+        let s = scratch("new");
+        let dir = s.join("cache/driftbench/data-1");
         sync(&dir, &FILES).unwrap();
         assert_eq!(std::fs::read(dir.join("sub/b.csv")).unwrap(), b"x\n1\n");
         for d in [dir.parent().unwrap(), &dir, &dir.join("sub")] {
@@ -305,12 +291,12 @@ mod tests {
     /// The cache linked to another directory: nothing is written there or deleted from it.
     #[test]
     fn a_linked_directory_is_refused_and_left_as_it_is() {
-        let s = Scratch::new("linked");
-        let elsewhere = s.0.join("elsewhere");
+        let s = scratch("linked");
+        let elsewhere = s.join("elsewhere");
         std::fs::create_dir_all(elsewhere.join("sub")).unwrap();
         std::fs::write(elsewhere.join("precious"), "keep").unwrap();
         std::fs::write(elsewhere.join(MARKER), "").unwrap();
-        let parent = s.0.join("cache/driftbench");
+        let parent = s.join("cache/driftbench");
         std::fs::create_dir_all(&parent).unwrap();
         std::fs::set_permissions(&parent, std::fs::Permissions::from_mode(0o700)).unwrap();
         let dir = parent.join("data-1");
@@ -343,8 +329,8 @@ mod tests {
 
     #[test]
     fn a_directory_it_did_not_create_or_others_may_write_is_refused() {
-        let s = Scratch::new("foreign");
-        let dir = s.0.join("cache/driftbench/data-1");
+        let s = scratch("foreign");
+        let dir = s.join("cache/driftbench/data-1");
         std::fs::create_dir_all(&dir).unwrap();
         std::fs::set_permissions(
             dir.parent().unwrap(),
@@ -365,8 +351,8 @@ mod tests {
 
     #[test]
     fn a_file_it_did_not_write_is_named_not_deleted() {
-        let s = Scratch::new("unknown");
-        let dir = s.0.join("cache/driftbench/data-1");
+        let s = scratch("unknown");
+        let dir = s.join("cache/driftbench/data-1");
         sync(&dir, &FILES).unwrap();
         std::fs::write(dir.join("sub/extra.toml"), "mine").unwrap();
         let e = sync(&dir, &FILES).unwrap_err();

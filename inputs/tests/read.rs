@@ -11,13 +11,11 @@ use std::time::Duration;
 const CANARY: &str = "CANARY_TOKEN_b7f3e1";
 
 /// A scratch directory `project/` (the confining directory) beside `outside/`.
-struct Scratch(PathBuf);
+struct Scratch(inputs::Scratch);
 
 impl Scratch {
     fn new(name: &str) -> Self {
-        let base =
-            std::env::temp_dir().join(format!("driftbench-inputs-{name}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&base);
+        let base = inputs::Scratch::dir(&format!("inputs-{name}"));
         std::fs::create_dir_all(base.join("project")).unwrap();
         std::fs::create_dir_all(base.join("outside")).unwrap();
         std::fs::write(base.join("outside/secret"), format!("{CANARY}\n")).unwrap();
@@ -28,12 +26,6 @@ impl Scratch {
     }
     fn file(&self, name: &str) -> PathBuf {
         self.project().join(name)
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
     }
 }
 

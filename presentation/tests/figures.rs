@@ -88,13 +88,9 @@ fn trace(n: usize, rows: usize, t_end: f64, acceleration: bool, scored: bool) ->
     csv
 }
 
-/// A fresh directory under the system's temporary directory.
-fn scratch(name: &str) -> PathBuf {
-    let dir =
-        std::env::temp_dir().join(format!("driftbench-figures-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A fresh directory under the system's temporary directory, removed when dropped.
+fn scratch(name: &str) -> inputs::Scratch {
+    inputs::Scratch::dir(&format!("figures-{name}"))
 }
 
 /// Three runs in two experiments: a velocity-level exact and neural run, and a failed
@@ -231,7 +227,6 @@ fn writes_one_figure_per_run_and_one_overview_per_experiment() {
         assert!(distinct > 2, "{} has a blank PNG", path.display());
     }
     assert_eq!(stems(&dir, "svg"), stems(&dir, "png"));
-    std::fs::remove_dir_all(&root).unwrap();
 }
 
 #[test]
@@ -305,7 +300,6 @@ fn panels_follow_the_level_and_the_overview_scores_neural_runs() {
     }
     // The exact run is listed by its variant under its heading, not with its solver's label.
     assert!(overview.contains("exact column") && !overview.contains("VLTCO / exact"));
-    std::fs::remove_dir_all(&root).unwrap();
 }
 
 /// The number of polylines of exactly `points` points.
@@ -352,7 +346,6 @@ fn panel_a_draws_the_arm_where_the_robot_is_known_and_fits_the_trace() {
     let unknown = figure("exp-vel__vltco__lvi-pdnn.svg");
     assert!(!unknown.contains("arm at t = 0"));
     assert_eq!(polylines_of(&unknown, 8), 0);
-    std::fs::remove_dir_all(&root).unwrap();
 }
 
 #[test]
@@ -401,7 +394,6 @@ fn rendering_twice_gives_identical_bytes_and_removes_stale_figures() {
     );
     let second = bytes(render_all(&root, &Default::default()).unwrap());
     assert_eq!(first, second);
-    std::fs::remove_dir_all(&root).unwrap();
 }
 
 #[test]
@@ -433,7 +425,6 @@ fn a_malformed_trace_is_an_error_naming_the_file() {
         .unwrap_err()
         .to_string();
     assert!(err.contains("vltco__lvi-pdnn.csv"), "{err}");
-    std::fs::remove_dir_all(&root).unwrap();
 }
 
 /// A trace with finite extreme values (theta = 9e307 and -9e307, velocities near f64::MAX, a
@@ -456,7 +447,7 @@ fn extreme_finite_values_in_a_trace_are_drawn_without_hanging() {
     }
     std::fs::write(&path, lines.join("\n") + "\n").unwrap();
     let (tx, rx) = std::sync::mpsc::channel();
-    let dir = root.clone();
+    let dir = root.to_path_buf();
     std::thread::spawn(move || {
         let _ = tx.send(
             render_all(&dir, &Default::default())
@@ -470,7 +461,6 @@ fn extreme_finite_values_in_a_trace_are_drawn_without_hanging() {
     assert_eq!(rendered, Ok(()));
     let svg = read(&root.join("report/figures/exp-vel__vltco__lvi-pdnn.svg"));
     assert!(svg.contains("<svg") && !svg.contains("inf") && !svg.contains("NaN"));
-    std::fs::remove_dir_all(&root).unwrap();
 }
 
 /// Every committed SVG figure has its PNG (same stem) and every PNG its SVG; every PNG starts
@@ -573,7 +563,6 @@ fn the_committed_figures_are_those_the_committed_results_give() {
             "report/figures/{name} is stale: {regenerate}"
         );
     }
-    std::fs::remove_dir_all(&root).unwrap();
 }
 
 /// `run --paper X` draws X's figures only: the others are neither redrawn nor removed.
@@ -606,7 +595,6 @@ fn one_papers_figures_are_drawn_alone_and_the_others_kept() {
         kept
     );
     assert!(dir.join("exp-vel__vltco__lvi-pdnn.svg").is_file());
-    std::fs::remove_dir_all(&root).unwrap();
 }
 
 /// A merged 10^4-run sweep renders a bounded number of figures: a run figure for
@@ -672,7 +660,6 @@ fn a_large_sweep_renders_a_bounded_number_of_figures() {
         MAX_RUN_FIGURES,
         "{page}"
     );
-    std::fs::remove_dir_all(&root).unwrap();
 }
 
 /// A sweep whose runs keep no trace by choice (`traces` of the experiment file): those runs get
@@ -726,5 +713,4 @@ fn runs_without_a_trace_by_choice_get_no_figure_of_their_own() {
         .unwrap_err()
         .to_string();
     assert!(err.contains("part-sweep"), "{err}");
-    std::fs::remove_dir_all(&root).unwrap();
 }

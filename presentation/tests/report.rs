@@ -10,7 +10,7 @@ use analysis::sweep_summary::Held;
 use presentation::report::{pages, paper_page, render, Inputs, Page, FRONT};
 use records::index::Runs;
 use records::RunRow;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use store::read_runs;
 
 /// How to bring a stale committed report or figure up to date.
@@ -100,9 +100,8 @@ fn renders_every_paper_and_experiment_from_the_committed_results() {
 /// A scratch project root holding copies of what the report is rendered from: the files directly
 /// in `results/` and in `report/` (but `REPORT.md`), and in `report/figures/` an empty file of
 /// each SVG's name (the report lists the names only).
-fn scratch_copy_of_the_inputs(committed: &Path) -> PathBuf {
-    let root = std::env::temp_dir().join(format!("driftbench-report-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&root);
+fn scratch_copy_of_the_inputs(committed: &Path) -> inputs::Scratch {
+    let root = inputs::Scratch::dir("report");
     for dir in ["results", "report"] {
         std::fs::create_dir_all(root.join(dir)).unwrap();
         for entry in std::fs::read_dir(committed.join(dir)).unwrap() {
@@ -145,7 +144,7 @@ fn the_committed_report_is_the_one_the_committed_results_give() {
             (read(&scratch, &file).unwrap(), committed, file)
         })
         .collect();
-    std::fs::remove_dir_all(&scratch).unwrap();
+    drop(scratch);
     for (rendered, committed, file) in compared {
         check_page(&file, &rendered, &committed);
     }
@@ -552,12 +551,11 @@ fn a_large_sweeps_tables_are_bounded() {
         .collect();
     rows.extend((0..5).map(|i| row("jia2019-small", &format!("v-{i}"), "exact", 0.1)));
     rows.sort_by_key(RunRow::key);
-    let dir = std::env::temp_dir().join(format!("driftbench-large-tables-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = inputs::Scratch::dir("large-tables");
     let path = dir.join("runs.csv");
     std::fs::write(&path, records::runs_csv(&rows).unwrap()).unwrap();
     let Held { runs, sweeps } = Held::read(&path, &|_| true).unwrap();
-    std::fs::remove_dir_all(&dir).unwrap();
+    drop(dir);
     assert_eq!(
         runs.all().len(),
         MAX_RUN_FIGURES + 5,

@@ -342,8 +342,7 @@ mod tests {
 
     #[test]
     fn written_and_read_back_with_ids() {
-        let dir = std::env::temp_dir().join(format!("driftbench-phases-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = inputs::Scratch::dir("phases");
         let phases: Vec<Measured> = Phase::ALL
             .iter()
             .map(|&p| Measured {
@@ -357,7 +356,7 @@ mod tests {
         write(&path, &rows).unwrap();
         let text = std::fs::read_to_string(&path).unwrap();
         let back = read(&path).unwrap();
-        std::fs::remove_dir_all(&dir).unwrap();
+        drop(dir);
         assert_eq!(back, rows);
         assert!(
             text.starts_with("phase,status,seconds,share_pct,items,note,"),

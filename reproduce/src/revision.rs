@@ -45,11 +45,10 @@ mod tests {
         std::fs::write(p, text).unwrap();
     }
 
-    /// A small workspace: a root manifest and lock, one member, and files that are not sources.
-    fn tree(name: &str) -> std::path::PathBuf {
-        let root =
-            std::env::temp_dir().join(format!("driftbench-revision-{name}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&root);
+    /// A small workspace: a root manifest and lock, one member, and files that are not sources;
+    /// removed when dropped.
+    fn tree(name: &str) -> inputs::Scratch {
+        let root = inputs::Scratch::unmade(&format!("revision-{name}"));
         write(&root, "Cargo.toml", "[workspace]\nmembers = [\"a\"]\n");
         write(&root, "Cargo.lock", "version = 4\n");
         write(&root, "a/Cargo.toml", "[package]\nname = \"a\"\n");
@@ -76,7 +75,7 @@ mod tests {
         if !in_git(&root) {
             assert_eq!(git_files(&root), Vec::<std::path::PathBuf>::new());
         }
-        std::fs::remove_dir_all(&root).unwrap();
+        drop(root);
         let workspace = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
         if in_git(&workspace) {
             let files = git_files(&workspace);
@@ -129,7 +128,7 @@ mod tests {
                 .unwrap();
             assert!(made.success());
             let (tx, rx) = std::sync::mpsc::channel();
-            let at = root.clone();
+            let at = root.to_path_buf();
             std::thread::spawn(move || {
                 let _ = tx.send((sources(&at), revision(&at, fnv1a64)));
             });
@@ -147,7 +146,6 @@ mod tests {
             std::os::unix::fs::symlink("/dev/null", src.join("zero.rs")).unwrap();
             assert_ne!(revision(&root, fnv1a64), linked);
         }
-        let _ = std::fs::remove_dir_all(&root);
     }
 
     #[test]
@@ -184,6 +182,5 @@ mod tests {
         write(&root, "a/src/new.rs", "// other\n");
         let other = revision(&root, fnv1a64);
         assert!(other.starts_with(&format!("{clean}-dirty-")) && other != dirty);
-        let _ = std::fs::remove_dir_all(&root);
     }
 }

@@ -64,8 +64,7 @@ fn write(path: &Path, text: &str) {
 
 #[test]
 fn arms_of_4_8_9_and_150_joints_run_from_files() {
-    let root = std::env::temp_dir().join(format!("driftbench-any-arm-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&root);
+    let root = inputs::Scratch::unmade("any-arm");
     let robots = root.join("papers/anyarm2026/robots");
     let mut toml = String::from("paper = \"kong2019\"\ntitle = \"any arm\"\n");
     for n in [4, 8, 9] {
@@ -101,7 +100,6 @@ fn arms_of_4_8_9_and_150_joints_run_from_files() {
         );
         assert_eq!(record.run.trace.last().unwrap().theta.len(), n);
     }
-    std::fs::remove_dir_all(&root).unwrap();
 }
 
 /// A URDF arm, no rebuild: a handwritten six-joint URDF (`robots/tests/fixtures/arm6.urdf`,
@@ -111,8 +109,7 @@ fn arms_of_4_8_9_and_150_joints_run_from_files() {
 /// circle; both runs complete and track the circle.
 #[test]
 fn a_urdf_arm_runs_from_files() {
-    let root = std::env::temp_dir().join(format!("driftbench-urdf-arm-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&root);
+    let root = inputs::Scratch::unmade("urdf-arm");
     let robots = root.join("papers/urdfarm2026/robots");
     let urdf = Path::new(env!("CARGO_MANIFEST_DIR")).join("../robots/tests/fixtures/arm6.urdf");
     write(
@@ -156,7 +153,6 @@ fn a_urdf_arm_runs_from_files() {
         );
         assert!(m.drift_norm.is_finite() && m.min_sigma_j > 0.0);
     }
-    std::fs::remove_dir_all(&root).unwrap();
 }
 
 /// A tool offset and a base per experiment (`tool`, `base`; `robots::mounted`): the Jaco2 of
@@ -293,8 +289,7 @@ fn an_example_robot_data_ur5_runs_from_a_robot_file() {
     let Some(erd) = example_robot_data() else {
         return;
     };
-    let root = std::env::temp_dir().join(format!("driftbench-ur5-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&root);
+    let root = inputs::Scratch::unmade("ur5");
     let robots = root.join("papers/ur5paper/robots");
     let urdf = std::fs::read_to_string(erd.join("ur_description/urdf/ur5_robot.urdf")).unwrap();
     write(&robots.join("ur5_robot.urdf"), &urdf);
@@ -340,7 +335,6 @@ fn an_example_robot_data_ur5_runs_from_a_robot_file() {
         );
         assert!(m.drift_norm.is_finite() && m.min_sigma_j > 0.0);
     }
-    std::fs::remove_dir_all(&root).unwrap();
 }
 
 /// The ZNN experiment `znn` (kong2019 (22)) as zhang2018's HL-JDF, a torque scheme that needs the

@@ -74,9 +74,8 @@ fn malformed_ids_are_refused_by_clap_and_unknown_ones_by_the_files() {
 /// refuses at once (exit 2), naming the directory, and writes nothing.
 #[test]
 fn a_second_writer_refuses() {
-    let dir = std::env::temp_dir()
-        .join(format!("driftbench-cli-lock-{}", std::process::id()))
-        .join("results");
+    let base = inputs::Scratch::unmade("cli-lock");
+    let dir = base.join("results");
     std::fs::create_dir_all(&dir).unwrap();
     let lock = std::fs::OpenOptions::new()
         .create(true)
@@ -94,14 +93,13 @@ fn a_second_writer_refuses() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("another reproduce is writing"));
     assert!(!dir.join("runs.csv").exists());
     drop(lock);
-    let _ = std::fs::remove_dir_all(dir.parent().unwrap());
 }
 
 /// Results reflect the experiment files: a stored run that no file describes any more is
 /// pruned, with its trace, and the run says so.
 #[test]
 fn runs_of_deleted_experiments_are_pruned() {
-    let base = std::env::temp_dir().join(format!("driftbench-cli-prune-{}", std::process::id()));
+    let base = inputs::Scratch::unmade("cli-prune");
     let (experiments, results) = (base.join("experiments"), base.join("res"));
     std::fs::create_dir_all(&experiments).unwrap();
     std::fs::create_dir_all(&results).unwrap();
@@ -156,14 +154,13 @@ fn runs_of_deleted_experiments_are_pruned() {
     assert_eq!(rows.len(), 1);
     assert_eq!(rows[0].experiment, "kong2019-kept");
     assert!(!trace.exists());
-    let _ = std::fs::remove_dir_all(&base);
 }
 
 /// A run killed (SIGKILL) half-way loses only what was running: the next start folds the
 /// journal into runs.csv, does not redo the finished runs, and writes no duplicate row.
 #[test]
 fn a_killed_run_resumes_without_redoing_finished_runs() {
-    let base = std::env::temp_dir().join(format!("driftbench-cli-resume-{}", std::process::id()));
+    let base = inputs::Scratch::unmade("cli-resume");
     let (experiments, results) = (base.join("experiments"), base.join("res"));
     std::fs::create_dir_all(&experiments).unwrap();
     std::fs::create_dir_all(&results).unwrap();
@@ -187,7 +184,6 @@ fn a_killed_run_resumes_without_redoing_finished_runs() {
     };
     common::kill_after_checkpoints(run, &results, 3);
     common::resume_completes(run, &results, 3, 4);
-    let _ = std::fs::remove_dir_all(&base);
 }
 
 /// The audit's case: `--results-dir` outside the project runs, and its report is rendered
@@ -195,8 +191,7 @@ fn a_killed_run_resumes_without_redoing_finished_runs() {
 /// beside the results that is not there.
 #[test]
 fn a_results_directory_outside_the_project_gets_its_report() {
-    let base = std::env::temp_dir().join(format!("driftbench-elsewhere-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&base);
+    let base = inputs::Scratch::unmade("elsewhere");
     let out = reproduce()
         .args([
             "run",
@@ -217,5 +212,4 @@ fn a_results_directory_outside_the_project_gets_its_report() {
     let front = std::fs::read_to_string(base.join("report/REPORT.md")).unwrap();
     assert!(front.contains("kong2019"), "{front}");
     assert!(base.join("report/tasks/README.md").is_file());
-    std::fs::remove_dir_all(&base).unwrap();
 }

@@ -35,8 +35,7 @@ fn jobs(tag: &str, robots: &[(&str, String)], experiments: &str) -> Vec<RunSpec>
 
 /// The jobs of `experiments` or the load's error message, as [`jobs`].
 fn load(tag: &str, robots: &[(&str, String)], experiments: &str) -> Result<Vec<RunSpec>, String> {
-    let root = std::env::temp_dir().join(format!("driftbench-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&root);
+    let root = inputs::Scratch::unmade(tag);
     for (name, text) in robots {
         write(
             &root.join(format!("papers/composed2026/robots/{name}.toml")),
@@ -46,7 +45,7 @@ fn load(tag: &str, robots: &[(&str, String)], experiments: &str) -> Result<Vec<R
     write(&root.join("experiments/composed.toml"), experiments);
     catalog::register_paper_robots(&root.join("papers"));
     let files = reproduce::load_experiments(&root.join("experiments"));
-    std::fs::remove_dir_all(&root).unwrap();
+    drop(root);
     files
         .map(|files| files.iter().flat_map(|f| f.jobs().unwrap()).collect())
         .map_err(|e| e.to_string())

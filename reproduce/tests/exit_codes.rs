@@ -60,8 +60,7 @@ fn an_argument_that_is_not_utf8_is_an_input_error_not_a_panic() {
 
 #[test]
 fn a_results_directory_the_system_will_not_create_is_an_io_failure() {
-    let dir = std::env::temp_dir().join(format!("driftbench-exit-io-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = inputs::Scratch::dir("exit-io");
     std::fs::write(dir.join("kong2019.toml"), common::CHEAP_EXPERIMENT).unwrap();
     // sysfs refuses new entries to every user, root included.
     let out = reproduce()
@@ -73,7 +72,6 @@ fn a_results_directory_the_system_will_not_create_is_an_io_failure() {
     let err = stderr(&out);
     assert_eq!(out.status.code(), Some(4), "{err}");
     assert!(err.contains("/sys/driftbench-exit-codes"), "{err}");
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -109,8 +107,7 @@ fn an_old_mode_flag_is_a_usage_error_and_its_subcommand_succeeds() {
 fn the_gate_compares_with_the_stated_baseline() {
     let root = catalog::root_from_current_dir().unwrap();
     let committed = read_runs(&root.join("results/runs.csv")).unwrap();
-    let dir = std::env::temp_dir().join(format!("driftbench-cli-gate-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = inputs::Scratch::dir("cli-gate");
     let exp = "kong2019-circle-mu-sweep";
 
     let same = dir.join("same.csv");
@@ -141,13 +138,11 @@ fn the_gate_compares_with_the_stated_baseline() {
         .unwrap();
     assert_eq!(fail.status.code(), Some(3), "a gate difference exits 3");
     assert!(String::from_utf8_lossy(&fail.stdout).contains("drift_norm"));
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
 fn an_unexpected_failure_exits_non_zero() {
-    let dir = std::env::temp_dir().join(format!("driftbench-cli-exit-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = inputs::Scratch::dir("cli-exit");
     // The clover in 0.5 s asks for ten times the joint-speed limit: the exact QP is infeasible.
     std::fs::write(
         dir.join("jia2019.toml"),
@@ -193,7 +188,6 @@ scheme = { kind = "jia2019", phi = 0.2, tau = 0.4, kappa = 20.0, lambda = 20.0 }
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// docs/reference/exit-codes.md cites only what exists: every backticked path of the

@@ -43,11 +43,10 @@ fn every_experiment_of_the_spec_is_in_the_files() {
     }
 }
 
-/// Writes `text` to a fresh file, alone in its directory, and loads it as the orchestrator
-/// loads a directory of them.
+/// Writes `text` to a fresh file, alone in its directory (removed on return), and loads it as
+/// the orchestrator loads a directory of them.
 fn load_text(name: &str, text: &str) -> Result<PaperFile, String> {
-    let dir = std::env::temp_dir().join(format!("driftbench-test-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = inputs::Scratch::dir(&format!("test-{name}"));
     let path = dir.join(format!("{name}.toml"));
     std::fs::write(&path, text).unwrap();
     reproduce::load_experiments(&dir)
@@ -545,9 +544,7 @@ fn names_must_be_unique_and_file_safe() {
 
 #[test]
 fn experiment_ids_are_unique_across_files() {
-    let dir = std::env::temp_dir().join(format!("driftbench-test-{}-dupdir", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = inputs::Scratch::dir("test-dupdir");
     std::fs::write(dir.join("a.toml"), GOOD).unwrap();
     std::fs::write(
         dir.join("b.toml"),
@@ -577,5 +574,4 @@ fn experiment_ids_are_unique_across_files() {
     );
     std::fs::remove_file(dir.join("b.toml")).unwrap();
     assert_eq!(reproduce::load_experiments(&dir).unwrap().len(), 1);
-    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -10,8 +10,7 @@ use std::path::Path;
 #[test]
 fn a_paper_added_as_data_gets_its_report_section() {
     let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/fifth-paper");
-    let root = std::env::temp_dir().join(format!("driftbench-fifth-paper-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&root);
+    let root = inputs::Scratch::unmade("fifth-paper");
     copy_tree(&fixture, &root);
     ok(reproduce()
         .arg("--root")
@@ -64,5 +63,4 @@ fn a_paper_added_as_data_gets_its_report_section() {
                 && l.contains(" | 2 / 1 / 0 | ")),
         "{md}"
     );
-    std::fs::remove_dir_all(&root).unwrap();
 }

@@ -34,8 +34,7 @@ fn check(root: &Path) -> std::process::Output {
 #[test]
 fn a_doctored_and_resealed_ladder_or_attribution_number_fails_the_gate() {
     let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/fifth-paper");
-    let root = std::env::temp_dir().join(format!("driftbench-gate-x-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&root);
+    let root = inputs::Scratch::unmade("gate-x");
     copy_tree(&fixture, &root);
     ok(reproduce()
         .arg("--root")
@@ -75,7 +74,6 @@ fn a_doctored_and_resealed_ladder_or_attribution_number_fails_the_gate() {
     let stdout = String::from_utf8_lossy(&failed.stdout);
     assert_eq!(failed.status.code(), Some(3), "{stdout}");
     assert!(stdout.contains(": share "), "{stdout}");
-    std::fs::remove_dir_all(&root).unwrap();
 }
 
 /// The gate guards the control experiments' runs the control page shows: a control number
@@ -85,8 +83,7 @@ fn a_doctored_and_resealed_ladder_or_attribution_number_fails_the_gate() {
 #[test]
 fn a_doctored_and_resealed_control_number_fails_the_gate() {
     let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/fifth-paper");
-    let root = std::env::temp_dir().join(format!("driftbench-gate-c-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&root);
+    let root = inputs::Scratch::unmade("gate-c");
     copy_tree(&fixture, &root);
     std::fs::create_dir_all(root.join("experiments/control")).unwrap();
     std::fs::write(
@@ -124,5 +121,4 @@ fn a_doctored_and_resealed_control_number_fails_the_gate() {
         !stdout.contains("Some(") && !stdout.contains("RunKey {"),
         "{stdout}"
     );
-    std::fs::remove_dir_all(&root).unwrap();
 }

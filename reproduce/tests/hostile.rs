@@ -23,16 +23,14 @@ fn cheap() -> String {
 }
 
 /// A scratch project: `experiments/` with [`cheap`], `results/`, `report/`, and an
-/// `outside/` directory that stands for the rest of the user's disk.
+/// `outside/` directory that stands for the rest of the user's disk; removed when dropped.
 struct Project {
-    base: PathBuf,
+    base: inputs::Scratch,
 }
 
 impl Project {
     fn new(name: &str) -> Self {
-        let base =
-            std::env::temp_dir().join(format!("driftbench-hostile-{name}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&base);
+        let base = inputs::Scratch::dir(&format!("hostile-{name}"));
         std::fs::create_dir_all(base.join("experiments")).unwrap();
         std::fs::create_dir_all(base.join("outside")).unwrap();
         std::fs::write(base.join("experiments/kong2019.toml"), cheap()).unwrap();
@@ -100,12 +98,6 @@ impl Project {
     }
     fn rows(&self) -> Vec<RunRow> {
         read_runs(&self.results().join("runs.csv")).unwrap()
-    }
-}
-
-impl Drop for Project {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.base);
     }
 }
 

@@ -24,19 +24,16 @@ const TASK: &str = "kong2019-cheap / znn";
 
 /// A scratch project (`experiments/` with [`common::CHEAP_EXPERIMENT`], its variant given the
 /// id `znn`; `papers/` copied from the workspace; `report/`) beside `outside/secret`, which
-/// stands for a secret elsewhere on the disk.
+/// stands for a secret elsewhere on the disk; removed when dropped.
 struct Project {
-    base: PathBuf,
+    base: inputs::Scratch,
 }
 
 impl Project {
     fn new(name: &str) -> Self {
-        let base = std::env::temp_dir().join(format!(
-            "driftbench-hostile-inputs-{name}-{}",
-            std::process::id()
-        ));
-        let _ = std::fs::remove_dir_all(&base);
-        let p = Project { base };
+        let p = Project {
+            base: inputs::Scratch::dir(&format!("hostile-inputs-{name}")),
+        };
         std::fs::create_dir_all(p.root().join("experiments")).unwrap();
         std::fs::create_dir_all(p.root().join("report")).unwrap();
         std::fs::create_dir_all(p.base.join("outside")).unwrap();
@@ -73,12 +70,6 @@ impl Project {
             .arg(self.results())
             .env("DRIFTBENCH_TEST_CANARY", CANARY);
         c
-    }
-}
-
-impl Drop for Project {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.base);
     }
 }
 

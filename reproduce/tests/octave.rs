@@ -107,8 +107,7 @@ fn an_octave_trajectory_scores_as_driftbench_own_run() {
         return;
     };
     let root = catalog::root_from_current_dir().unwrap();
-    let dir = std::env::temp_dir().join(format!("driftbench-octave-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = inputs::Scratch::dir("octave");
     let file = dir.join("znn_circle.csv");
     run_octave(&octave, &root, &file);
     let scored = score(&root, &file, &dir.join("out"));
@@ -119,7 +118,7 @@ fn an_octave_trajectory_scores_as_driftbench_own_run() {
     assert_eq!(scored_mat.score_max_dx, scored.score_max_dx);
     assert_eq!(scored_mat.solver, "trajectory znn_circle.mat");
     let own = own_run(&root);
-    std::fs::remove_dir_all(&dir).unwrap();
+    drop(dir);
 
     assert_eq!(scored.drift.len(), own.drift.len());
     for (i, (a, b)) in scored.drift.iter().zip(&own.drift).enumerate() {

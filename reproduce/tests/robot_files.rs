@@ -6,16 +6,13 @@
 
 use crate::common;
 use common::{copy_tree, reproduce};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// A project root with the workspace's experiments and papers, the robot files `robots` in
-/// `papers/kong2019/robots/`, and `experiments/own.toml` of one run per robot of `uses`.
-fn project(tag: &str, robots: &[(&str, String)], uses: &[&str]) -> PathBuf {
-    let root = std::env::temp_dir().join(format!(
-        "driftbench-robot-files-{tag}-{}",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&root);
+/// `papers/kong2019/robots/`, and `experiments/own.toml` of one run per robot of `uses`;
+/// removed when dropped.
+fn project(tag: &str, robots: &[(&str, String)], uses: &[&str]) -> inputs::Scratch {
+    let root = inputs::Scratch::unmade(&format!("robot-files-{tag}"));
     let repo = common::repo_root();
     copy_tree(&repo.join("papers"), &root.join("papers"));
     std::fs::create_dir_all(root.join("experiments")).unwrap();
@@ -90,7 +87,7 @@ fn an_invalid_robot_file_fails_only_the_commands_that_use_it() {
         line.contains("papers/kong2019/robots/bad-arm.toml") && line.contains("theta"),
         "{line}"
     );
-    std::fs::remove_dir_all(&root).unwrap();
+    drop(root);
     // A run of the invalid file's robot: exit 2 naming the file and the field, no panic.
     let root = project("bad", &robots, &["bad-arm"]);
     let (code, _, err) = run(&root, &["list"]);
@@ -98,13 +95,12 @@ fn an_invalid_robot_file_fails_only_the_commands_that_use_it() {
     assert!(err.contains("papers/kong2019/robots/bad-arm.toml"), "{err}");
     assert!(err.contains("theta_m"), "{err}");
     assert!(!err.contains("panicked"), "{err}");
-    std::fs::remove_dir_all(&root).unwrap();
 }
 
 #[test]
 fn a_linked_or_shadowing_robot_file_is_refused_naming_it() {
-    let outside =
-        std::env::temp_dir().join(format!("driftbench-secret-{}.toml", std::process::id()));
+    let secret = inputs::Scratch::dir("robot-files-secret");
+    let outside = secret.join("secret.toml");
     std::fs::write(
         &outside,
         puma("linked-arm", |t| format!("# SECRET-TOKEN-42\n{t}")),
@@ -142,8 +138,6 @@ fn a_linked_or_shadowing_robot_file_is_refused_naming_it() {
         err.contains("papers/kong2019/robots/katana6m180.toml"),
         "{err}"
     );
-    std::fs::remove_dir_all(&root).unwrap();
-    std::fs::remove_file(&outside).unwrap();
 }
 
 #[test]
@@ -179,7 +173,7 @@ fn a_urdf_robot_file_is_listed_and_a_broken_urdf_reference_exits_2() {
     let (code, out, err) = run(&root, &["list"]);
     assert_eq!(code, Some(0), "{err}");
     assert!(out.contains("kong2019-own-urdf-arm"), "{out}");
-    std::fs::remove_dir_all(&root).unwrap();
+    drop(root);
     // A run of the robot whose URDF is missing: exit 2 naming the robot file, the field and
     // the URDF, no panic.
     let root = project("urdf-gone", &robots, &["urdf-gone"]);
@@ -192,7 +186,6 @@ fn a_urdf_robot_file_is_listed_and_a_broken_urdf_reference_exits_2() {
         "{err}"
     );
     assert!(!err.contains("panicked"), "{err}");
-    std::fs::remove_dir_all(&root).unwrap();
 }
 
 /// A robot file of `n` joints (DH form): a yaw joint 0.3 m high, then `n - 1` pitch links of
@@ -268,5 +261,4 @@ scheme = {{ kind = "kong2019-znn", mu = 1.0, k_p = 1.0 }}
     for (name, _) in &arms {
         assert!(out.contains(&format!("kong2019-own-{name}")), "{out}");
     }
-    std::fs::remove_dir_all(&root).unwrap();
 }

@@ -34,8 +34,7 @@ fn files_under(dir: &Path) -> Vec<PathBuf> {
 #[test]
 fn renaming_every_label_orphans_nothing_and_moves_no_result() {
     let root = catalog::root_from_current_dir().unwrap();
-    let base = std::env::temp_dir().join(format!("driftbench-run-ids-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&base);
+    let base = inputs::Scratch::unmade("run-ids");
     let experiments = base.join("experiments");
     let results = base.join("results");
     std::fs::create_dir_all(&experiments).unwrap();
@@ -96,5 +95,4 @@ fn renaming_every_label_orphans_nothing_and_moves_no_result() {
         assert_eq!(a.variant, format!("renamed: {}", b.variant));
     }
     assert_eq!(files_under(&results.join("traces")), traces_before);
-    std::fs::remove_dir_all(&base).unwrap();
 }

@@ -31,8 +31,7 @@ fn a_trajectory_file_is_scored_on_its_task() {
     let Outcome::Completed(metrics) = &run.outcome else {
         panic!("{:?}", run.outcome)
     };
-    let dir = std::env::temp_dir().join(format!("driftbench-score-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = inputs::Scratch::dir("score");
     let n = job.theta0.len();
     let mut csv = String::from("t");
     for i in 1..=n {
@@ -268,5 +267,4 @@ fn a_trajectory_file_is_scored_on_its_task() {
             "{link:?}: scores.csv written"
         );
     }
-    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -9,11 +9,9 @@ use common::{ok, reproduce};
 use std::path::PathBuf;
 use store::read_runs;
 
-fn temp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("driftbench-shards-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A fresh scratch directory, removed when dropped.
+fn temp(name: &str) -> inputs::Scratch {
+    inputs::Scratch::dir(&format!("shards-{name}"))
 }
 
 /// A cheap selection: kong2019's exact columns (12 runs, well under a second each).
@@ -98,7 +96,6 @@ fn three_shards_merged_equal_one_unsharded_run_and_a_missing_shard_is_named() {
         .output()
         .unwrap());
     common::assert_same_results(&merged, &whole, 12);
-    let _ = std::fs::remove_dir_all(&base);
 }
 
 /// Pre-emption that saves work: a shard killed (SIGKILL) once it has checkpointed some runs,
@@ -168,7 +165,6 @@ sweep = { "scheme.mu" = [1, 2, 4] }
         .output()
         .unwrap());
     common::assert_same_results(&merged, &whole, 4);
-    let _ = std::fs::remove_dir_all(&base);
 }
 
 /// A shard directory serves one shard of one selection: started for another selection, or
@@ -260,7 +256,6 @@ sweep = { "scheme.mu" = [1, 2] }
         "{err}"
     );
     assert!(!base.join("merged").join("runs.csv").exists());
-    let _ = std::fs::remove_dir_all(&base);
 }
 
 /// `--shard auto` in a resubmitted Slurm task (`sbatch --array=2`: one task, MIN = MAX = 2)
@@ -453,7 +448,6 @@ fn a_shard_killed_after_any_durable_step_resumes_and_merges_equal_to_one_process
         .output()
         .unwrap());
     common::assert_same_results(&merged, &whole, 3);
-    let _ = std::fs::remove_dir_all(&base);
 }
 
 /// Resume is cumulative: a shard whose every start is killed after a few durable steps (fewer
@@ -486,7 +480,6 @@ fn a_shard_killed_every_few_steps_finishes_after_a_bounded_number_of_starts() {
     let manifest = store::shard::Manifest::read(&dir).unwrap();
     assert_eq!(manifest.runs, 3);
     assert_eq!(read_runs(&dir.join("runs.csv")).unwrap().len(), 3);
-    let _ = std::fs::remove_dir_all(&base);
 }
 
 /// `common::CHEAP_EXPERIMENT` with two more variants (a sweep of mu): three cheap runs.
@@ -587,7 +580,6 @@ fn a_sweep_keeps_the_traces_it_chooses_unsharded_and_merged() {
             again.status.success() && err.contains("already done"),
             "{err}"
         );
-        let _ = std::fs::remove_dir_all(&base);
     }
     let base = temp("traces-bad");
     let experiments = base.join("experiments");
@@ -614,5 +606,4 @@ fn a_sweep_keeps_the_traces_it_chooses_unsharded_and_merged() {
             ),
         "{err}"
     );
-    let _ = std::fs::remove_dir_all(&base);
 }

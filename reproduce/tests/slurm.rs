@@ -385,8 +385,7 @@ fn a_slurm_array_with_a_requeued_task_merges_equal_to_one_process() {
         Ok(bin) => bin,
         Err(why) => return skip(why),
     };
-    let base = std::env::temp_dir().join(format!("driftbench-slurm-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&base);
+    let base = inputs::Scratch::unmade("slurm");
     let (root, cluster_dir) = (base.join("project"), base.join("cluster"));
     std::fs::create_dir_all(root.join("experiments")).unwrap();
     std::fs::write(root.join("experiments/kong2019.toml"), sweep_experiment()).unwrap();
@@ -512,5 +511,4 @@ fn a_slurm_array_with_a_requeued_task_merges_equal_to_one_process() {
         "merged and compared after {:.1} s",
         started.elapsed().as_secs_f64()
     );
-    let _ = std::fs::remove_dir_all(&base);
 }

@@ -53,8 +53,7 @@ fn a_shard_of_a_sweep_of_ten_million_runs_is_planned_from_its_axes() {
 /// runs, each line its key and label, in well under a minute.
 #[test]
 fn list_shard_of_a_sweep_of_ten_million_runs_is_fast() {
-    let root = std::env::temp_dir().join(format!("driftbench-sweep-plan-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&root);
+    let root = inputs::Scratch::unmade("sweep-plan");
     std::fs::create_dir_all(root.join("experiments")).unwrap();
     std::fs::write(root.join("experiments/kong2019.toml"), sweep(RUNS)).unwrap();
     let started = Instant::now();
@@ -79,7 +78,6 @@ fn list_shard_of_a_sweep_of_ten_million_runs_is_fast() {
         lines[2]
     );
     assert!(took < Duration::from_secs(60), "{took:?}");
-    let _ = std::fs::remove_dir_all(&root);
 }
 
 /// Whether a run key of the 10^7-run sweep is described is decided from its names
@@ -130,8 +128,7 @@ fn the_keys_of_a_sweep_of_ten_million_runs_are_decided_from_its_axes() {
 /// again it runs none of them.
 #[test]
 fn a_shard_of_a_sweep_of_ten_million_runs_runs_in_proportion_to_the_shard() {
-    let root = std::env::temp_dir().join(format!("driftbench-sweep-shard-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&root);
+    let root = inputs::Scratch::unmade("sweep-shard");
     std::fs::create_dir_all(root.join("experiments")).unwrap();
     let text = sweep(RUNS).replace("sweep = ", "traces = \"none\"\nsweep = ");
     std::fs::write(root.join("experiments/kong2019.toml"), text).unwrap();
@@ -153,7 +150,6 @@ fn a_shard_of_a_sweep_of_ten_million_runs_runs_in_proportion_to_the_shard() {
     }
     let rows = std::fs::read_to_string(root.join("results-shard-5-of-10000/runs.csv")).unwrap();
     assert_eq!(rows.lines().count(), 1 + 1000);
-    let _ = std::fs::remove_dir_all(&root);
 }
 
 /// A shard of a sweep with variants that fail their checks when made (a label past 100 bytes,
@@ -162,8 +158,7 @@ fn a_shard_of_a_sweep_of_ten_million_runs_runs_in_proportion_to_the_shard() {
 /// is that shard's to refuse: a shard makes no variant but its own.)
 #[test]
 fn a_shard_stops_before_running_at_a_variant_that_fails_when_made() {
-    let root = std::env::temp_dir().join(format!("driftbench-sweep-made-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&root);
+    let root = inputs::Scratch::unmade("sweep-made");
     std::fs::create_dir_all(root.join("experiments")).unwrap();
     let text = sweep(100_001).replace(
         "label = \"ZNN\"",
@@ -189,5 +184,4 @@ fn a_shard_stops_before_running_at_a_variant_that_fails_when_made() {
         !journal.exists() || std::fs::read_to_string(&journal).unwrap().lines().count() <= 1,
         "a run was checkpointed"
     );
-    let _ = std::fs::remove_dir_all(&root);
 }

@@ -64,9 +64,7 @@ fn every_task_has_a_card_with_its_check_values() {
 #[test]
 fn a_large_sweep_gets_capped_cards() {
     use reproduce::MAX_SWEEP_CARDS;
-    let dir = std::env::temp_dir().join(format!("driftbench-sweep-cards-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = inputs::Scratch::dir("sweep-cards");
     for (variants, cards_wanted) in [(10, 10), (101, MAX_SWEEP_CARDS)] {
         let step = 1.0 / (variants - 1) as f64;
         std::fs::write(
@@ -112,5 +110,4 @@ scheme = {{ kind = "znn-rmp", mu = 3.0, k_p = 1.0 }}
             );
         }
     }
-    let _ = std::fs::remove_dir_all(&dir);
 }

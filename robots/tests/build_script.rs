@@ -8,8 +8,6 @@
 #[path = "../build.rs"]
 mod build;
 
-use std::path::PathBuf;
-
 /// Text no error may contain: the file's `source`, a free-text field.
 const CANARY: &str = "CANARY_SECRET_41";
 
@@ -27,15 +25,11 @@ fn puma_with_canary() -> String {
 
 /// A scratch crate `root/` with `root/data/puma560.toml` holding `text`, and an output
 /// directory.
-struct Scratch(PathBuf);
+struct Scratch(inputs::Scratch);
 
 impl Scratch {
     fn new(tag: &str, text: &str) -> Self {
-        let base = std::env::temp_dir().join(format!(
-            "driftbench-robots-build-{tag}-{}",
-            std::process::id()
-        ));
-        let _ = std::fs::remove_dir_all(&base);
+        let base = inputs::Scratch::dir(&format!("robots-build-{tag}"));
         std::fs::create_dir_all(base.join("root/data")).unwrap();
         std::fs::create_dir_all(base.join("out")).unwrap();
         std::fs::write(base.join("root/data/puma560.toml"), text).unwrap();
@@ -47,12 +41,6 @@ impl Scratch {
         build::embed_robots(&self.0.join("root"), &self.0.join("out"))
             .map_err(|e| e.to_string())?;
         Ok(std::fs::read_to_string(self.0.join("out/builtin_robots.rs")).unwrap())
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
     }
 }
 

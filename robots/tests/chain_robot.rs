@@ -5,6 +5,7 @@
 //! Christoffel symbols of finite differences of H); and the URDF form's refusals, each naming
 //! the robot file and the field.
 
+use inputs::Scratch;
 use nalgebra::{DMatrix, DVector};
 use robots::{register_file, robot_by_name, Kinematics};
 use std::path::{Path, PathBuf};
@@ -23,13 +24,11 @@ fn robot_file(name: &str, urdf: &str, extra: &str) -> String {
     )
 }
 
-/// A temporary robots folder holding `arm6.urdf` and the robot files `files`; registers them.
-fn register(tag: &str, files: &[(&str, String)]) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "driftbench-chain-robot-{tag}-{}/papers/x/robots",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
+/// A temporary robots folder `<scratch>/papers/x/robots` holding `arm6.urdf` and the robot
+/// files `files`; registers them. The scratch directory is removed when dropped.
+fn register(tag: &str, files: &[(&str, String)]) -> (Scratch, PathBuf) {
+    let base = Scratch::dir(&format!("chain-robot-{tag}"));
+    let dir = base.join("papers/x/robots");
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("arm6.urdf"), arm6()).unwrap();
     for (name, text) in files {
@@ -37,7 +36,7 @@ fn register(tag: &str, files: &[(&str, String)]) -> PathBuf {
         std::fs::write(&path, text).unwrap();
         register_file::<&str>(&path, Ok(text));
     }
-    dir
+    (base, dir)
 }
 
 fn matrix(n: usize, f: impl Fn(&mut [f64])) -> DMatrix<f64> {
@@ -49,7 +48,7 @@ fn matrix(n: usize, f: impl Fn(&mut [f64])) -> DMatrix<f64> {
 #[test]
 fn a_urdf_robot_file_gives_a_robot_with_consistent_kinematics_and_dynamics() {
     let pose = "stated_pose = [0.2, -0.6, 1.2, -0.8, 0.5, 0.3]\nvelocity_max = [2.0, 2.0, 2.0, 3.0, 3.0, 3.0]\n";
-    let dir = register(
+    let (_base, _dir) = register(
         "good",
         &[("urdf-arm6", robot_file("urdf-arm6", "arm6.urdf", pose))],
     );
@@ -122,16 +121,18 @@ fn a_urdf_robot_file_gives_a_robot_with_consistent_kinematics_and_dynamics() {
     let mut g = DVector::zeros(n);
     dynamics.gravity(&theta, g.as_mut_slice());
     assert!(g.amax() > 1.0, "gravity loads the shoulder");
-    std::fs::remove_dir_all(dir.parent().unwrap().parent().unwrap()).unwrap();
 }
 
 #[test]
 fn a_broken_urdf_robot_file_is_refused_naming_the_file_and_field() {
-    let outside =
-        std::env::temp_dir().join(format!("driftbench-outside-{}.urdf", std::process::id()));
-    std::fs::write(&outside, arm6()).unwrap();
-    // From `<tmp>/driftbench-chain-robot-bad-<pid>/papers/x/robots` up to `<tmp>`.
-    let escape = format!("../../../../driftbench-outside-{}.urdf", std::process::id());
+    let outside = Scratch::dir("chain-robot-outside");
+    std::fs::write(outside.join("arm6.urdf"), arm6()).unwrap();
+    // From `<tmp>/driftbench-chain-robot-bad-<pid>/papers/x/robots` up to `<tmp>`, and into
+    // `<tmp>/driftbench-chain-robot-outside-<pid>`.
+    let escape = format!(
+        "../../../../{}/arm6.urdf",
+        outside.file_name().unwrap().to_str().unwrap()
+    );
     let files = [
         (
             "urdf-missing",
@@ -160,7 +161,7 @@ fn a_broken_urdf_robot_file_is_refused_naming_the_file_and_field() {
         ),
         ("urdf-other", robot_file("urdf-named", "arm6.urdf", "")),
     ];
-    let dir = register("bad", &files);
+    let (_base, dir) = register("bad", &files);
     let expect = [
         ("urdf-missing", "`urdf`"),
         ("urdf-escape", "`urdf`"),
@@ -190,14 +191,12 @@ fn a_broken_urdf_robot_file_is_refused_naming_the_file_and_field() {
         "refused as out of the folder: {escape}"
     );
     eprintln!("{missing}\n{escape}");
-    std::fs::remove_dir_all(dir.parent().unwrap().parent().unwrap()).unwrap();
-    std::fs::remove_file(&outside).unwrap();
 }
 
 /// A URDF arm's shared p and J evaluation is its separate ones, bit for bit.
 #[test]
 fn a_urdf_robot_shares_its_position_and_jacobian_bit_for_bit() {
-    let dir = register(
+    let _scratch = register(
         "shared",
         &[(
             "urdf-arm6-shared",
@@ -207,5 +206,4 @@ fn a_urdf_robot_shares_its_position_and_jacobian_bit_for_bit() {
     let model = robot_by_name("urdf-arm6-shared").unwrap();
     assert!(matches!(&model.kinematics, Kinematics::Urdf { .. }));
     crate::position_jacobian::assert_shared_is_separate(model.robot.as_ref());
-    let _ = std::fs::remove_dir_all(dir.parent().unwrap().parent().unwrap().parent().unwrap());
 }

@@ -329,7 +329,7 @@ fn parse_errors_and_oversized_files_quote_nothing() {
 
 #[test]
 fn read_goes_through_the_input_reader() {
-    let dir = std::env::temp_dir().join(format!("robots-urdf-test-{}", std::process::id()));
+    let dir = inputs::Scratch::dir("robots-urdf-test");
     let inner = dir.join("papers");
     std::fs::create_dir_all(&inner).unwrap();
     let file = dir.join("arm.urdf");
@@ -351,7 +351,6 @@ fn read_goes_through_the_input_reader() {
     )
     .unwrap_err();
     assert!(missing.to_string().contains("none.urdf"), "{missing}");
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]

@@ -873,14 +873,8 @@ fn is_plain(p: &str) -> bool {
 mod tests {
     use super::*;
 
-    fn scratch(name: &str) -> PathBuf {
-        let dir = std::env::temp_dir().join(format!(
-            "driftbench-integrity-{name}-{}",
-            std::process::id()
-        ));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
-        dir
+    fn scratch(name: &str) -> inputs::Scratch {
+        inputs::Scratch::dir(&format!("integrity-{name}"))
     }
 
     /// The whole manifest as one TOML document (what the manifest was written as before it
@@ -958,7 +952,6 @@ mod tests {
         );
         assert!(refused.unwrap_err().to_string().contains("out of order"));
         assert_eq!(std::fs::read(dir.join(FILE)).unwrap(), before);
-        let _ = std::fs::remove_dir_all(&dir);
     }
 
     /// Looked up by bisection, every listed file is found with its entry and no other is, and
@@ -1016,7 +1009,6 @@ mod tests {
             assert_eq!(m.get(&format!("{n}x")).unwrap(), None);
         }
         assert_eq!(m.entries_from("f0390").unwrap().count(), 10);
-        let _ = std::fs::remove_dir_all(&dir);
     }
 
     #[test]
@@ -1069,7 +1061,6 @@ mod tests {
         )
         .unwrap();
         assert!(Manifest::open(&dir).is_err());
-        let _ = std::fs::remove_dir_all(&dir);
     }
 
     /// Read part by part, the manifest is what TOML reads of the whole text, and a text TOML
@@ -1124,6 +1115,5 @@ mod tests {
         );
         let e = open(&long).unwrap_err().to_string();
         assert!(e.contains("longer than") && e.contains("line 5"), "{e}");
-        let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -421,8 +421,7 @@ mod tests {
     /// seal line) and folded without one; the same row where a trace is asked for is not.
     #[test]
     fn a_run_without_a_trace_by_choice_is_folded_without_one() {
-        let dir = std::env::temp_dir().join(format!("driftbench-untraced-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
+        let dir = inputs::Scratch::unmade("untraced");
         let key = spec::RunKey::from_ids("exp", "a", "exact").unwrap();
         let row = RunRow {
             git_rev: "r1".into(),
@@ -445,7 +444,6 @@ mod tests {
         assert_eq!(chosen.current.len(), 1);
         assert_eq!(chosen.current[0].key, key);
         assert!(results.tracked().listed("traces/").unwrap().is_empty());
-        let _ = std::fs::remove_dir_all(&dir);
     }
 
     /// A run killed after checkpointing four runs saved no manifest; the seal names each trace
@@ -453,8 +451,7 @@ mod tests {
     /// their seal are folded, their traces then recorded in the manifest.
     #[test]
     fn only_runs_whose_trace_matches_its_seal_are_folded() {
-        let dir = std::env::temp_dir().join(format!("driftbench-seal-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
+        let dir = inputs::Scratch::unmade("seal");
         let rows: Vec<RunRow> = ["a", "b", "c", "d", "e"]
             .iter()
             .map(|v| RunRow {
@@ -527,7 +524,6 @@ mod tests {
         assert!(e.to_string().contains(SEAL), "{e}");
         remove(&dir).unwrap();
         assert!(!path(&dir).exists() && !seal_path(&dir).exists());
-        let _ = std::fs::remove_dir_all(&dir);
     }
 
     /// The fold's rows come back from the journal in key order, whatever order the runs
@@ -535,8 +531,7 @@ mod tests {
     /// place): a journal cut after the first row is read makes the next read fail.
     #[test]
     fn folded_rows_are_read_back_in_key_order_one_at_a_time() {
-        let dir = std::env::temp_dir().join(format!("driftbench-fold-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
+        let dir = inputs::Scratch::unmade("fold");
         let (results, _) = ResultsDir::open(&dir, "r1", Edits::Refuse).unwrap();
         let journal = Journal::open(&results, 2).unwrap();
         for v in ["m", "c", "x", "a"] {
@@ -572,6 +567,5 @@ mod tests {
             rows.next().unwrap().is_err(),
             "the next row is read from the file"
         );
-        let _ = std::fs::remove_dir_all(&dir);
     }
 }

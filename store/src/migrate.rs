@@ -177,15 +177,13 @@ mod tests {
     /// one or a missing file no.
     #[test]
     fn ids_are_read_off_the_header_line() {
-        let dir = std::env::temp_dir().join(format!("driftbench-has-ids-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = inputs::Scratch::dir("has-ids");
         let (current, legacy) = (dir.join("current.csv"), dir.join("legacy.csv"));
         std::fs::write(&current, "paper,experiment,variant_id,solver_id\np,e,v,s\n").unwrap();
         std::fs::write(&legacy, "paper,experiment,variant,solver\np,e,v,s\n").unwrap();
         assert!(has_ids(&current));
         assert!(!has_ids(&legacy));
         assert!(!has_ids(&dir.join("absent.csv")));
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

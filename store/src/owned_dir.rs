@@ -178,11 +178,9 @@ impl OwnedDir {
 mod tests {
     use super::*;
 
-    fn scratch(name: &str) -> PathBuf {
-        let d =
-            std::env::temp_dir().join(format!("driftbench-owned-{name}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&d);
-        d
+    /// A scratch path with nothing at it, removed (a directory or a file) when dropped.
+    fn scratch(name: &str) -> inputs::Scratch {
+        inputs::Scratch::unmade(&format!("owned-{name}"))
     }
 
     #[test]
@@ -196,7 +194,6 @@ mod tests {
                 "{bad}"
             );
         }
-        let _ = std::fs::remove_dir_all(&base);
     }
 
     /// A FIFO, a link to `/dev/zero` and a link to a secret put in place of a file the
@@ -222,7 +219,7 @@ mod tests {
         std::os::unix::fs::symlink(&secret, base.join("secret.csv")).unwrap();
         std::fs::write(base.join("ok.csv"), "a\n1\n").unwrap();
         let (tx, rx) = std::sync::mpsc::channel();
-        let dir = base.clone();
+        let dir = base.to_path_buf();
         std::thread::spawn(move || {
             let names = ["runs.csv", "zero.csv", "secret.csv"];
             let errors: Vec<std::io::Error> = names
@@ -269,8 +266,6 @@ mod tests {
         assert!(table_refused);
         assert_eq!(mismatches, 3, "the three planted files, not ok.csv");
         assert_eq!(missing, std::io::ErrorKind::NotFound);
-        let _ = std::fs::remove_dir_all(&base);
-        let _ = std::fs::remove_file(&secret);
     }
 
     #[cfg(unix)]
@@ -296,7 +291,5 @@ mod tests {
             OwnedDir::open_within(&root, Path::new("report")),
             Err(PathError::Escapes { .. })
         ));
-        let _ = std::fs::remove_dir_all(&base);
-        let _ = std::fs::remove_dir_all(&outside);
     }
 }

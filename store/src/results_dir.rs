@@ -718,8 +718,7 @@ mod tests {
     /// unlisted) leaves a directory the next open takes as it is, without the part.
     #[test]
     fn parts_are_appended_once_each_and_a_cut_removal_or_commit_is_cleared_on_open() {
-        let base = std::env::temp_dir().join(format!("driftbench-parts-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&base);
+        let base = inputs::Scratch::unmade("parts");
         let open = || ResultsDir::open(&base, "r", Edits::Refuse).map(|(r, _)| r);
         let results = open().unwrap();
         results.commit_runs(0, rows(&["a", "d"])).unwrap();
@@ -761,7 +760,6 @@ mod tests {
         std::fs::write(base.join("runs.part-1.csv"), b"edited").unwrap();
         let e = open().unwrap_err().to_string();
         assert!(e.contains("runs.part-1.csv") && e.contains("edited"), "{e}");
-        let _ = std::fs::remove_dir_all(&base);
     }
 
     #[test]
@@ -791,8 +789,7 @@ mod tests {
 
     #[test]
     fn stale_temporary_files_are_removed_only_near_the_top_and_only_ours() {
-        let base = std::env::temp_dir().join(format!("driftbench-tmp-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&base);
+        let base = inputs::Scratch::unmade("tmp");
         for f in [
             ".driftbench-tmp.1.0.runs.csv",
             "traces/e/.driftbench-tmp.1.2.v__s.csv",
@@ -836,6 +833,5 @@ mod tests {
             base.join("a/b/c/.driftbench-tmp.1.0.x.csv").exists(),
             "deeper than two levels is not ours"
         );
-        let _ = std::fs::remove_dir_all(&base);
     }
 }

@@ -1070,8 +1070,7 @@ mod tests {
     fn a_row_without_its_listed_trace_is_noted() {
         use crate::results_dir::ResultsDir;
         use crate::tracked_dir::Edits;
-        let dir = std::env::temp_dir().join(format!("driftbench-traceless-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
+        let dir = inputs::Scratch::unmade("traceless");
         let key = |v: &str| spec::RunKey::from_ids("exp", v, "exact").unwrap();
         let rows: Vec<RunRow> = ["a", "b", "c"]
             .iter()
@@ -1123,7 +1122,6 @@ mod tests {
         }
         assert!(traceless(|k| k.variant.as_str() != "b").is_empty());
         assert_eq!(traceless(|_| true).len(), 1);
-        let _ = std::fs::remove_dir_all(&dir);
     }
 
     #[test]
@@ -1141,8 +1139,7 @@ mod tests {
                 exact_only: true,
             },
         };
-        let dir = std::env::temp_dir().join(format!("driftbench-manifest-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = inputs::Scratch::dir("manifest");
         m.write(&dir).unwrap();
         assert_eq!(Manifest::read(&dir).unwrap(), m);
         Manifest::remove(&dir).unwrap();
@@ -1150,16 +1147,13 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("has not finished"));
-        let _ = std::fs::remove_dir_all(&dir);
     }
 
     /// A manifest that no shard could have written is refused as it is read, naming the file
     /// and the field: never a panic.
     #[test]
     fn impossible_manifests_are_refused_naming_the_field() {
-        let dir =
-            std::env::temp_dir().join(format!("driftbench-bad-manifest-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = inputs::Scratch::dir("bad-manifest");
         let good = Manifest {
             shard: 1,
             shards: 2,
@@ -1216,6 +1210,5 @@ mod tests {
         }
         good.write(&dir).unwrap();
         assert_eq!(Manifest::read(&dir).unwrap(), good);
-        let _ = std::fs::remove_dir_all(&dir);
     }
 }

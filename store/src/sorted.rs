@@ -247,9 +247,7 @@ mod tests {
     /// A runs.csv out of key order, or with a run twice, is refused naming the line.
     #[test]
     fn a_file_out_of_order_or_with_a_run_twice_is_refused() {
-        let dir = std::env::temp_dir().join(format!("driftbench-sorted-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = inputs::Scratch::dir("sorted");
         let path = dir.join("runs.csv");
         let write = |rows: &[RunRow]| {
             let mut w = csv::Writer::from_writer(Vec::new());
@@ -287,6 +285,5 @@ mod tests {
             read_key_ordered(&dir.join("absent.csv")).unwrap().count(),
             0
         );
-        let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -36,8 +36,7 @@ mod tests {
 
     #[test]
     fn written_and_read_back() {
-        let dir = std::env::temp_dir().join(format!("driftbench-timing-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = inputs::Scratch::dir("timing");
         let rows = vec![
             TimingRow::from_samples(
                 &RunKey::from_ids("b", "v", "s").unwrap(),
@@ -57,7 +56,7 @@ mod tests {
         let timings = Timings::new(rows);
         write(&dir, &timings).unwrap();
         let back = read(&dir).unwrap();
-        std::fs::remove_dir_all(&dir).unwrap();
+        drop(dir);
         assert_eq!(back, timings);
         assert_eq!(
             back.sim_s(&RunKey::from_ids("b", "v", "s").unwrap()),

@@ -691,9 +691,7 @@ mod tests {
     /// saved manifest lists exactly the files not removed, and no spill is left behind.
     #[test]
     fn spilled_changes_read_as_the_map_of_their_latest() {
-        let base = std::env::temp_dir().join(format!("driftbench-spills-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&base);
-        std::fs::create_dir_all(&base).unwrap();
+        let base = inputs::Scratch::dir("spills");
         let mut state = State {
             git_rev: "r".into(),
             saved: None,
@@ -757,13 +755,11 @@ mod tests {
             .filter(|name| name != FILE)
             .collect();
         assert!(left.is_empty(), "{left:?}");
-        let _ = std::fs::remove_dir_all(&base);
     }
 
     #[test]
     fn removes_only_what_it_wrote_unchanged() {
-        let base = std::env::temp_dir().join(format!("driftbench-tracked-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&base);
+        let base = inputs::Scratch::unmade("tracked");
         let t = TrackedDir::open(&base, "r1", Edits::Refuse, Some("runs.csv"), |_| true).unwrap();
         t.write(Path::new("traces/e/a.csv"), b"x\n").unwrap();
         t.write(Path::new("traces/e/b.csv"), b"y\n").unwrap();
@@ -803,7 +799,6 @@ mod tests {
         let err =
             TrackedDir::open(&base, "r3", Edits::Refuse, Some("runs.csv"), |_| true).unwrap_err();
         assert!(matches!(err, TrackedError::Unsealed { .. }), "{err}");
-        let _ = std::fs::remove_dir_all(&base);
     }
 
     /// A commit cut by a kill at each of its intermediate states, rebuilt on disk: the next
@@ -812,7 +807,7 @@ mod tests {
     /// not list is left alone.
     #[test]
     fn a_commit_cut_at_any_state_is_finished_or_undone_on_open() {
-        let base = std::env::temp_dir().join(format!("driftbench-commit-{}", std::process::id()));
+        let base = inputs::Scratch::unmade("commit");
         let open = || TrackedDir::open(&base, "r", Edits::Refuse, Some("runs.csv"), |_| true);
         let (old, new) = (b"h\n1\n".as_slice(), b"h\n1\n2\n".as_slice());
         let staged = base.join(pending("runs.csv"));
@@ -846,6 +841,5 @@ mod tests {
         std::fs::write(base.join(pending("notes.txt")), b"a user's").unwrap();
         open().unwrap();
         assert!(base.join(pending("notes.txt")).exists());
-        let _ = std::fs::remove_dir_all(&base);
     }
 }

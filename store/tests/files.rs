@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 /// The first `lines` lines of the committed results/runs.csv, rewritten by `edit`, in a temp
-/// file; the result of reading it.
+/// file (removed on return); its path and the result of reading it.
 fn read_edited_runs(
     name: &str,
     lines: usize,
@@ -17,8 +17,7 @@ fn read_edited_runs(
         .join("runs.csv");
     let text = std::fs::read_to_string(committed).unwrap();
     let head: Vec<String> = text.lines().take(lines).map(String::from).collect();
-    let dir = std::env::temp_dir().join(format!("driftbench-test-{}-runs", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = inputs::Scratch::dir(&format!("test-runs-{name}"));
     let path = dir.join(format!("{name}.csv"));
     std::fs::write(&path, edit(head).join("\n") + "\n").unwrap();
     let result = store::read_runs(&path).map_err(|e| e.to_string());
@@ -92,8 +91,7 @@ fn stale_temporary_files_are_removed_and_nothing_else() {
     use store::results_dir::remove_own_tmp;
     use store::write_atomic;
     use store::OwnedDir;
-    let dir = std::env::temp_dir().join(format!("driftbench-test-{}-tmp", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
+    let dir = inputs::Scratch::unmade("test-tmp");
     let nested = dir.join("traces").join("x");
     std::fs::create_dir_all(&nested).unwrap();
     std::fs::write(dir.join(".driftbench-tmp.123.0.runs.csv"), "half").unwrap();
@@ -111,5 +109,4 @@ fn stale_temporary_files_are_removed_and_nothing_else() {
     check_writable(&dir.join("new")).unwrap();
     assert!(dir.join("new").is_dir());
     assert!(std::fs::read_dir(dir.join("new")).unwrap().next().is_none());
-    let _ = std::fs::remove_dir_all(&dir);
 }

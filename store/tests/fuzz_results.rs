@@ -7,7 +7,7 @@
 use proptest::prelude::*;
 use store::read_runs;
 
-use std::path::PathBuf;
+use inputs::Scratch;
 
 fn committed_runs() -> Vec<String> {
     let path = catalog::root_from_current_dir()
@@ -21,10 +21,9 @@ fn committed_runs() -> Vec<String> {
         .collect()
 }
 
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("driftbench-fuzz-results-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
+/// A scratch directory of the test `test` (one case of it at a time), removed when dropped.
+fn scratch(test: &str) -> Scratch {
+    Scratch::dir(&format!("fuzz-results-{test}"))
 }
 
 /// Names an attacker would put in a row.
@@ -66,7 +65,8 @@ proptest! {
             lines.push(copy);
         }
         lines.truncate(keep.max(1));
-        let path = scratch(&format!("runs-{line}-{column}-{keep}.csv"));
+        let base = scratch("hostile-rows");
+        let path = base.join(format!("runs-{line}-{column}-{keep}.csv"));
         std::fs::write(&path, lines.join("\n") + "\n").unwrap();
         if let Ok(rows) = read_runs(&path) {
             for r in &rows {
@@ -85,7 +85,8 @@ proptest! {
 
     #[test]
     fn arbitrary_shard_manifests_never_panic(text in "(shard|shards|git_rev|runs|selection|experiments_hash|paper|=|\\[|\\]|\"|[0-9]|\n| |\\.\\./x|[a-z]){0,120}") {
-        let dir = scratch("shard-manifest");
+        let base = scratch("shard-manifests");
+        let dir = base.join("shard-manifest");
         std::fs::create_dir_all(&dir).unwrap();
         std::fs::write(dir.join(store::shard::MANIFEST), &text).unwrap();
         let _ = store::shard::Manifest::read(&dir);
@@ -103,7 +104,8 @@ proptest! {
         ],
         lines in 0usize..5,
     ) {
-        let dir = scratch("integrity-manifest");
+        let base = scratch("integrity-manifests");
+        let dir = base.join("integrity-manifest");
         std::fs::create_dir_all(&dir).unwrap();
         let text = format!(
             "git_rev = \"x\"\n[files.\"{key}\"]\nlines = {lines}\nbytes = 1\nsha256 = \"00\"\n"
@@ -123,12 +125,13 @@ proptest! {
 #[test]
 fn the_fuzzed_readers_accept_well_formed_files() {
     let lines = committed_runs();
-    let path = scratch("runs-unmutated.csv");
+    let base = scratch("well-formed");
+    let path = base.join("runs-unmutated.csv");
     std::fs::write(&path, lines.join("\n") + "\n").unwrap();
     let rows = read_runs(&path).expect("the committed runs.csv reads");
     assert_eq!(rows.len(), lines.len() - 1);
 
-    let dir = scratch("integrity-manifest-plain");
+    let dir = base.join("integrity-manifest-plain");
     std::fs::create_dir_all(&dir).unwrap();
     let text =
         "git_rev = \"x\"\n[files.\"traces/e/v__s.csv\"]\nlines = 1\nbytes = 1\nsha256 = \"00\"\n";
@@ -145,12 +148,13 @@ fn the_fuzzed_readers_accept_well_formed_files() {
 #[test]
 fn the_unmutated_inputs_read() {
     let lines = committed_runs();
-    let path = scratch("runs-unmutated.csv");
+    let base = scratch("unmutated");
+    let path = base.join("runs-unmutated.csv");
     std::fs::write(&path, lines.join("\n") + "\n").unwrap();
     let rows = read_runs(&path).expect("the committed rows read");
     assert_eq!(rows.len(), lines.len() - 1);
 
-    let dir = scratch("integrity-manifest-plain");
+    let dir = base.join("integrity-manifest-plain");
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(
         dir.join(store::integrity::FILE),

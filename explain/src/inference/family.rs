@@ -146,11 +146,10 @@ mod tests {
     use super::*;
     use std::path::PathBuf;
 
-    /// A scratch `experiments/` (with `inference/`) and the directory that holds it.
-    fn scratch(tag: &str) -> (PathBuf, PathBuf) {
-        let base =
-            std::env::temp_dir().join(format!("driftbench-family-{tag}-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&base);
+    /// A scratch `experiments/` (with `inference/`) and the directory that holds it (removed
+    /// when dropped).
+    fn scratch(tag: &str) -> (PathBuf, inputs::Scratch) {
+        let base = inputs::Scratch::dir(&format!("family-{tag}"));
         std::fs::create_dir_all(base.join("experiments/inference")).unwrap();
         (base.join("experiments"), base)
     }
@@ -171,20 +170,19 @@ mod tests {
             "network = [\"exact\"]",
             "tilts = true",
         ];
-        let (experiments, base) = scratch("bad");
+        let (experiments, _base) = scratch("bad");
         for text in bad {
             std::fs::write(experiments.join(FAMILY_FILE), text).unwrap();
             assert!(Family::load(&experiments).is_err(), "{text}");
         }
         std::fs::remove_file(experiments.join(FAMILY_FILE)).unwrap();
         assert_eq!(Family::load(&experiments).unwrap(), Family::default());
-        std::fs::remove_dir_all(&base).unwrap();
     }
 
     #[cfg(unix)]
     #[test]
     fn a_hostile_family_file_is_refused_without_its_content() {
-        let (experiments, base) = scratch("hostile");
+        let (experiments, _base) = scratch("hostile");
         let dir = experiments.clone();
         inputs::assert_refuses_hostile_files(
             &experiments.join(FAMILY_FILE),
@@ -196,6 +194,5 @@ mod tests {
             )],
             move || Family::load(&dir).err().map(|e| e.to_string()),
         );
-        std::fs::remove_dir_all(&base).unwrap();
     }
 }

@@ -342,13 +342,11 @@ mod tests {
                 r
             })
             .collect();
-        let dir =
-            std::env::temp_dir().join(format!("driftbench-sweep-fig-{n}-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = inputs::Scratch::dir(&format!("sweep-fig-{n}"));
         let path = dir.join("runs.csv");
         std::fs::write(&path, records::runs_csv(&rows).unwrap()).unwrap();
         let held = Held::read(&path, &|_| true).unwrap();
-        std::fs::remove_dir_all(&dir).unwrap();
+        drop(dir);
         held.sweeps.into_iter().next().unwrap()
     }
 
