@@ -50,8 +50,12 @@ pub enum MatError {
         /// What the parser found wrong.
         reason: String,
     },
-    /// A variable the trajectory needs is absent.
-    #[error("{}: no variable \"{name}\" (a trajectory MAT-file holds t and y)", path.display())]
+    /// A variable the trajectory needs is absent, or not readable by `matfile`, which skips a
+    /// char, cell or struct variable and everything stored after it.
+    #[error(
+        "{}: no variable \"{name}\" (a trajectory MAT-file holds t and y as real double matrices; the reader skips char, cell and struct variables and everything stored after them: save t and y alone, as `save -v7 FILE t y` does)",
+        path.display()
+    )]
     Missing {
         /// The MAT-file.
         path: PathBuf,
@@ -65,6 +69,14 @@ pub enum MatError {
         path: PathBuf,
         /// The variable: `t` or `y`.
         name: &'static str,
+    },
+    /// `y` is not a matrix: more than two dimensions besides trailing singleton ones.
+    #[error("{}: y has {dims} dimensions; it must be a matrix with one row per instant of t", path.display())]
+    NotMatrix {
+        /// The MAT-file.
+        path: PathBuf,
+        /// The number of dimensions of `y`.
+        dims: usize,
     },
     /// `t` is not a vector.
     #[error("{}: t has size {t:?}, it must be a vector", path.display())]
@@ -286,9 +298,22 @@ pub fn read_mat(
         });
     }
     let (y_size, y) = matrix("y")?;
+    // Trailing singleton dimensions (21 x 5 x 1) are a matrix's, as MATLAB reads them.
+    let mut y_size = y_size;
+    while let [head @ .., 1] = y_size {
+        if head.len() < 2 {
+            break;
+        }
+        y_size = head;
+    }
     let (rows, cols) = match y_size {
         [rows, cols] => (*rows, *cols),
-        _ => (0, 0),
+        _ => {
+            return Err(MatError::NotMatrix {
+                path: path.to_path_buf(),
+                dims: y_size.len(),
+            })
+        }
     };
     let whole = Columns {
         theta: (1, joints),
@@ -333,8 +358,10 @@ pub fn read_mat(
 /// The MAT-file `bytes` with every top-level compressed element replaced by the element it
 /// inflates to (a v6 file, which `matfile` parses without inflating anything), at most
 /// `max` bytes ([`MAX_INFLATED_BYTES`]) inflated in all. A compressed element must hold a matrix (MATLAB
-/// never nests them; a nested one would inflate unbounded inside `matfile`). Bytes that do not
-/// read as elements are left as they are, for `matfile` to refuse.
+/// never nests them; a nested one would inflate unbounded inside `matfile`). An element that
+/// claims more bytes than the file has left is a truncated file, refused here (`matfile` would
+/// drop it and report its variable missing); bytes that do not read as elements are left as
+/// they are, for `matfile` to refuse.
 fn inflate(bytes: Vec<u8>, path: &Path, max: u64) -> Result<Vec<u8>, MatError> {
     let little = match bytes.get(126..128) {
         Some(b"IM") => true,
@@ -351,15 +378,20 @@ fn inflate(bytes: Vec<u8>, path: &Path, max: u64) -> Result<Vec<u8>, MatError> {
     let mut budget = max;
     while let (Some(kind), Some(size)) = (word(at), word(at + 4)) {
         let end = (at + 8).saturating_add(size as usize);
+        if end > bytes.len() {
+            // A variable that claims more bytes than the file has left: a truncated file.
+            return Err(parse_error(if kind == MI_COMPRESSED {
+                "a compressed variable is cut off"
+            } else {
+                "a variable is cut off: the file is truncated"
+            }));
+        }
         if kind != MI_COMPRESSED {
-            // An uncompressed element with its padding to 8 bytes (or a truncated one): as is.
-            let next = end.min(bytes.len()).next_multiple_of(8).min(bytes.len());
+            // An uncompressed element with its padding to 8 bytes: as is.
+            let next = end.next_multiple_of(8).min(bytes.len());
             out.extend_from_slice(&bytes[at..next]);
             at = next;
             continue;
-        }
-        if end > bytes.len() {
-            return Err(parse_error("a compressed variable is cut off"));
         }
         let mut inflated = Vec::new();
         libflate::zlib::Decoder::new(&bytes[at + 8..end])

@@ -129,6 +129,28 @@ mod tests {
         );
     }
 
+    /// Uncompressed (v6) files of t (21 x 1) and y (21 x 5), written byte by byte:
+    /// `y-trailing-ones.mat` stores y's size as 21 x 5 x 1 x 1 x 1, `y-3d.mat` the same bytes
+    /// with the size 21 x 1 x 5 x 1 x 1, `truncated.mat` a copy of such a file cut 40 bytes
+    /// short, inside y.
+    #[test]
+    fn mat_files_with_more_dimensions_or_cut_short_are_named_so() {
+        let tr = read(&fixture("y-trailing-ones.mat"), 5, None).unwrap();
+        assert_eq!((tr.t.len(), tr.theta.len(), tr.theta[0].len()), (21, 21, 5));
+        let e = read(&fixture("y-3d.mat"), 5, None).unwrap_err();
+        assert!(
+            matches!(e, ReadError::Mat(MatError::NotMatrix { dims: 3, .. })),
+            "{e}"
+        );
+        let e = read(&fixture("truncated.mat"), 5, None)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("truncated.mat") && e.contains("the file is truncated"),
+            "{e}"
+        );
+    }
+
     /// The Octave fixture's y is 3 x 4: a selection reads theta from any of its columns, and
     /// thetadot beside it or not at all.
     #[test]
