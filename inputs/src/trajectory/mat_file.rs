@@ -50,10 +50,10 @@ pub enum MatError {
         /// What the parser found wrong.
         reason: String,
     },
-    /// A variable the trajectory needs is absent, or not readable by `matfile`, which skips a
-    /// char, cell or struct variable and everything stored after it.
+    /// A variable the trajectory needs is absent, or of a class `matfile` skips (char, cell,
+    /// struct).
     #[error(
-        "{}: no variable \"{name}\" (a trajectory MAT-file holds t and y as real double matrices; the reader skips char, cell and struct variables and everything stored after them: save t and y alone, as `save -v7 FILE t y` does)",
+        "{}: no numeric variable \"{name}\" (a trajectory MAT-file holds t and y as real double matrices; a char, cell or struct variable is skipped)",
         path.display()
     )]
     Missing {
