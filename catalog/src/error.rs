@@ -124,8 +124,35 @@ pub enum SweepError {
         /// The names the template may use.
         known: Vec<String>,
     },
+    /// Two keys of the sweep set the same field of the variant: the same path, two paths
+    /// that meet through `*` (`solvers.*.gamma` and `solvers.0.gamma`), or a path and one
+    /// under it (`scheme` and `scheme.mu`). Each would overwrite the other's value while the
+    /// labels name both.
+    #[error("field `sweep`: keys {} and {} both set {} of the variant, and the later would overwrite the earlier's values; a field may be set by one key of a sweep only", shown_key(first), shown_key(second), shown_key(field))]
+    SameField {
+        /// The first key (in the sweep table's order), as written.
+        first: String,
+        /// The second key, as written.
+        second: String,
+        /// The field both set (the deeper of the two, resolved against the variant: `*` as
+        /// the entry it stands for), dotted.
+        field: String,
+    },
+    /// Two paths of one zipped group set the same field of the variant (the same path twice,
+    /// or paths that meet as in [`SweepError::SameField`]).
+    #[error("field `sweep` key {}: its paths {} and {} both set {} of the variant; a zipped group sets each field once", shown_key(key), shown_key(first), shown_key(second), shown_key(field))]
+    SameFieldInGroup {
+        /// The group's key, as written.
+        key: String,
+        /// The first path (in the group's order), as written.
+        first: String,
+        /// The second path, as written.
+        second: String,
+        /// The field both set (as in [`SweepError::SameField`]), dotted.
+        field: String,
+    },
     /// A problem with one key of the sweep.
-    #[error("field `sweep` key `{key}`: {error}")]
+    #[error("field `sweep` key {}: {error}", shown_key(key))]
     Key {
         /// The key as written (several paths, comma-separated, for a zipped group).
         key: String,
@@ -134,9 +161,32 @@ pub enum SweepError {
     },
 }
 
+/// A swept key (or a path or field made of its text) as the errors show it: in backquotes,
+/// with every control character and every whitespace character other than a plain space
+/// escaped (`\t`, `\n`, `\r`, else `\u{..}`), so a key shows as written, a space at its
+/// end included, and nothing in it acts on the terminal.
+pub(crate) fn shown_key(key: &str) -> String {
+    let mut out = String::with_capacity(key.len() + 2);
+    out.push('`');
+    for c in key.chars() {
+        match c {
+            '\t' | '\n' | '\r' => out.extend(c.escape_debug()),
+            ' ' => out.push(' '),
+            c if c.is_control() || c.is_whitespace() => out.extend(c.escape_unicode()),
+            c => out.push(c),
+        }
+    }
+    out.push('`');
+    out
+}
+
 /// What is wrong with one key of a `sweep` table (its dotted path or its values).
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum SweepKeyError {
+    /// The key has whitespace where the grammar has none: around it, inside a path, or before
+    /// a comma (only spaces after a comma, between the paths of a zipped group, are allowed).
+    #[error("whitespace in a key: a key is a dotted path without spaces (several joined by commas, a comma followed by spaces if wished: \"path.scale, path.reverse\")")]
+    Whitespace,
     /// A dotted path of the key leads nowhere in the variant.
     #[error("unknown key path: {0}")]
     Path(KeyPathError),

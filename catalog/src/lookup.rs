@@ -263,10 +263,8 @@ mod tests {
     /// An experiment file of two experiments: one with a written variant and the sweep of
     /// `axes` (a declared id when `id`, `traces` when given), one with a written variant alone.
     fn file(axes: &[(String, String)], id: bool, traces: &str) -> Option<PaperFile> {
-        let mut seen = HashSet::new();
-        let entries: Vec<String> = axes
+        let entries: Vec<String> = crate::sweep::apart(axes)
             .iter()
-            .filter(|(k, _)| seen.insert(k.clone()))
             .map(|(k, v)| format!("\"{k}\" = {v}"))
             .collect();
         let written = "[[experiment.variant]]\nlabel = \"Written\"\n\

@@ -575,3 +575,111 @@ fn experiment_ids_are_unique_across_files() {
     std::fs::remove_file(dir.join("b.toml")).unwrap();
     assert_eq!(reproduce::load_experiments(&dir).unwrap().len(), 1);
 }
+
+/// The red team's file (`/tmp/redteam/cases`): the Katana on the circle, ZNN-RMP, one ZNN run,
+/// with `path` and `sweep` of its variant replaced.
+fn red_team_file(path: &str, sweep: &str) -> String {
+    format!(
+        r#"paper = "rt"
+title = "redteam"
+[[experiment]]
+id = "rt-a"
+paper_output = "none"
+robot = "katana6m180"
+path = {path}
+theta0 = [1.2566370614359172, 1.5707963267948966, 0.0, -0.5235987755982988, 1.5471975511965976]
+
+[[experiment.variant]]
+id = "v"
+label = "V"
+scheme = {{ kind = "znn-rmp", mu = 1.0, k_p = 1.0 }}
+solvers = [{{ kind = "znn", gamma = 1.0 }}]
+{sweep}
+"#
+    )
+}
+
+/// The red team's inputs that hung a run inside one BDF step for minutes (a path of 1e-300 s,
+/// or 1e308 m) and its sweeps whose keys set one field twice (labels gamma=0.1 and gamma=0.2
+/// both ran gamma = 5): the binary refuses each at load with exit 2, naming the file, the field
+/// and the range, or the experiment, the variant and both keys.
+#[test]
+fn hanging_paths_and_sweeps_that_set_one_field_twice_exit_2() {
+    let circle = r#"{ name = "circle", duration = 0.1 }"#;
+    let cases: [(&str, String, &[&str]); 7] = [
+        (
+            "hang-dur-tiny",
+            red_team_file(r#"{ name = "circle", duration = 1e-300 }"#, ""),
+            &[
+                "field `path`",
+                "path `duration` must be within [0.001, 100000] s, got 1e-300",
+            ],
+        ),
+        (
+            "dur-long",
+            red_team_file(r#"{ name = "circle", duration = 1e6 }"#, ""),
+            &["field `path`", "[0.001, 100000] s"],
+        ),
+        (
+            "hang-scale-huge",
+            red_team_file(r#"{ name = "circle", duration = 0.1, scale = 1e308 }"#, ""),
+            &["field `path`", "path `scale`", "(0, 10] m, got 1e308"],
+        ),
+        (
+            "sweep-samefield",
+            red_team_file(
+                circle,
+                r#"sweep = { "solvers.0.gamma" = [0.1, 0.2], "solvers.*.gamma" = [5.0] }"#,
+            ),
+            &[
+                "experiment[0] (id \"rt-a\") variant[0] (\"V\")",
+                "keys `solvers.0.gamma` and `solvers.*.gamma` both set `solvers.0.gamma`",
+            ],
+        ),
+        (
+            "sweep-zipdup",
+            red_team_file(
+                circle,
+                r#"sweep = { "solvers.0.gamma, solvers.0.gamma" = [[1.0, 2.0], [3.0, 4.0]] }"#,
+            ),
+            &[
+                "variant[0] (\"V\")",
+                "its paths `solvers.0.gamma` and `solvers.0.gamma` both set",
+            ],
+        ),
+        (
+            "sweep-star",
+            red_team_file(
+                circle,
+                r#"sweep = { "solvers.*.gamma" = [0.1, 0.2], "solvers.*.gamma " = [1] }"#,
+            ),
+            &["variant[0] (\"V\")", "key `solvers.*.gamma `: whitespace"],
+        ),
+        (
+            "sweep-prefix",
+            red_team_file(
+                circle,
+                r#"sweep = { "scheme" = [{ kind = "znn-rmp", mu = 2.0, k_p = 1.0 }], "scheme.mu" = [0.5, 1.0] }"#,
+            ),
+            &[
+                "variant[0] (\"V\")",
+                "keys `scheme` and `scheme.mu` both set `scheme.mu`",
+            ],
+        ),
+    ];
+    for (name, text, must) in cases {
+        let dir = inputs::Scratch::dir(&format!("red-team-{name}"));
+        std::fs::write(dir.join("rt.toml"), text).unwrap();
+        let out = crate::common::reproduce()
+            .args(["list", "--experiments-dir"])
+            .arg(&dir)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{name}: {err}");
+        assert!(err.contains("rt.toml"), "{name}: no file named: {err}");
+        for m in must {
+            assert!(err.contains(m), "{name}: does not mention `{m}`: {err}");
+        }
+    }
+}

@@ -44,8 +44,9 @@ use crate::{Dynamics, JointLimits, Orientation, Robot};
 use spec::MountError;
 
 /// The largest tool offset or base translation, per coordinate (m): an arm's reach is metres,
-/// so a larger value is a typing error (millimetres written as metres), not a mount.
-pub const MAX_OFFSET: f64 = 10.0;
+/// so a larger value is a typing error (millimetres written as metres), not a mount. The one
+/// bound of an experiment's lengths, crate `spec`'s (a path's size is held to it too).
+pub use spec::MAX_OFFSET;
 
 /// The largest base angle, per coordinate (rad): 2 pi, every rotation once.
 pub const MAX_ANGLE: f64 = 2.0 * std::f64::consts::PI;

@@ -39,14 +39,14 @@ mod solver_kind;
 mod task_set;
 mod terms;
 
-pub use mount::{MountError, MountSpec};
+pub use mount::{MountError, MountSpec, MAX_OFFSET};
 pub use naming::{
     check_name, has_markup, slug, NameError, MAX_EXPERIMENT_ID, MAX_SOLVER_LABEL, MAX_VARIANT_LABEL,
 };
 pub use numerical::{NumericalSpec, NumericalSpecError};
 pub use path::{
     default_duration, default_scale, phase_supported, scale_provenance, PathError, PathSample,
-    PathSpec, PATH_NAMES,
+    PathSpec, MAX_DURATION, MIN_DURATION, PATH_NAMES,
 };
 pub use rmp::RmpReading;
 pub use run::{

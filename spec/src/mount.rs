@@ -4,6 +4,12 @@
 //! `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)` with `rpy = [roll, pitch, yaw]`, the URDF
 //! convention) and returns these errors.
 
+/// The largest length an experiment file may give, per coordinate (m): a tool offset and a
+/// base translation (crate `robots` bounds the mount with it when it is built), and a path's
+/// size (`scale`, [`crate::PathSpec::validate`]). An arm's reach is metres, so a larger value
+/// is a typing error (millimetres written as metres), not a mount or a figure.
+pub const MAX_OFFSET: f64 = 10.0;
+
 /// A tool offset and a base transform (module docs), each entry as given: the robot's mount
 /// is built, and its entries bounded, when a run is built.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -36,7 +42,7 @@ pub enum MountError {
         index: usize,
         /// The value given.
         value: f64,
-        /// The bound (`robots::MAX_OFFSET` or `MAX_ANGLE`).
+        /// The bound ([`MAX_OFFSET`] or `robots::MAX_ANGLE`).
         max: f64,
         /// `m` or `rad`.
         unit: &'static str,

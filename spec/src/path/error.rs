@@ -7,10 +7,16 @@ use std::fmt;
 pub enum PathError {
     /// `name` is not one of [`super::PATH_NAMES`].
     UnknownName(String),
-    /// `duration` is not a positive finite number.
+    /// `duration` is outside [[`super::MIN_DURATION`], [`super::MAX_DURATION`]] s (NaN
+    /// included; [`super::PathSpec::validate`]).
+    DurationOutOfRange(f64),
+    /// The size (`scale`, or the name's default) is outside (0, [`crate::MAX_OFFSET`]] m (NaN
+    /// included; [`super::PathSpec::validate`]).
+    ScaleOutOfRange(f64),
+    /// A path piece's own duration is not a positive finite number (the stroke and polyline
+    /// constructors' check; a path described in a file meets [`PathError::DurationOutOfRange`]
+    /// first).
     NonPositiveDuration(f64),
-    /// `scale` is not a positive finite number.
-    NonPositiveScale(f64),
     /// The start point (or a polyline point) has a non-finite coordinate.
     NonFinitePoint,
     /// A polyline has no segment of positive length (all its points coincide).
@@ -37,11 +43,25 @@ impl fmt::Display for PathError {
                 "path `name`: unknown path {name:?}; valid names: {}",
                 super::PATH_NAMES.join(", ")
             ),
+            Self::DurationOutOfRange(d) => write!(
+                f,
+                "path `duration` must be within [{}, {}] s, got {}",
+                super::MIN_DURATION,
+                super::MAX_DURATION,
+                shown(*d)
+            ),
+            Self::ScaleOutOfRange(s) => write!(
+                f,
+                "path `scale` (the figure's size) must be within (0, {}] m, got {}",
+                crate::MAX_OFFSET,
+                shown(*s)
+            ),
             Self::NonPositiveDuration(d) => {
-                write!(f, "path `duration` must be positive and finite, got {d}")
-            }
-            Self::NonPositiveScale(s) => {
-                write!(f, "path `scale` must be positive and finite, got {s}")
+                write!(
+                    f,
+                    "path `duration` must be positive and finite, got {}",
+                    shown(*d)
+                )
             }
             Self::NonFinitePoint => write!(
                 f,
@@ -69,3 +89,14 @@ impl fmt::Display for PathError {
 }
 
 impl std::error::Error for PathError {}
+
+/// A number as the errors show it: as Rust writes it where that is short (0.001, -1, 100000),
+/// with an exponent where it would run to many digits (1e-300, not three hundred of them).
+fn shown(x: f64) -> String {
+    let a = x.abs();
+    if x == 0.0 || !x.is_finite() || (1e-4..1e7).contains(&a) {
+        x.to_string()
+    } else {
+        format!("{x:e}")
+    }
+}

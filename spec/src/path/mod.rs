@@ -17,6 +17,14 @@
 //!
 //! `scale`, when given, replaces the default size (a, R, s, side or r).
 //!
+//! **Bounds** ([`PathSpec::validate`]): `duration` within [[`MIN_DURATION`], [`MAX_DURATION`]]
+//! = [1e-3, 1e5] s and the size (the default or `scale`, the figure's only length: every
+//! point of it is a multiple of the size from the start point) within (0, [`crate::MAX_OFFSET`]]
+//! = (0, 10] m, the bound of an experiment's tool and base offsets. Every experiment of the
+//! papers is well inside (5 to 15 s; 0.035 to 0.2 m); past them the path's velocity and
+//! acceleration (r*/T, r*/T^2) overflow or dwarf the arm's, and an implicit integrator can
+//! spend its time in one step, where its step limit and budgets are not checked.
+//!
 //! **Pose** (the papers do not state where or how the figure is drawn; these make it a sweepable
 //! parameter). With every field at its default the figure lies in the base x-y plane through
 //! the start point, starts where its definition starts, and the path is built exactly as
@@ -38,6 +46,13 @@ mod names;
 
 pub use error::PathError;
 pub use names::PATH_NAMES;
+
+/// The shortest path duration accepted (s): a millisecond, a step of the papers' fixed-step
+/// loops.
+pub const MIN_DURATION: f64 = 1e-3;
+
+/// The longest path duration accepted (s): about a day.
+pub const MAX_DURATION: f64 = 1e5;
 
 /// A path as experiment files describe it.
 #[derive(Clone, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
@@ -88,19 +103,21 @@ impl PathSpec {
         }
     }
 
-    /// Checks the fields (errors name the offending one): a known `name`, a positive finite
-    /// `duration` and `scale`, finite `rotation`, `tilt_x` and `tilt_y`, a `phase` in [0, 1)
-    /// and zero for a path without a cycle to shift ([`phase_supported`]).
+    /// Checks the fields (errors name the offending one and its range): a known `name`, a
+    /// `duration` within [[`MIN_DURATION`], [`MAX_DURATION`]] s, a size (`scale`, or the
+    /// name's default) within (0, [`crate::MAX_OFFSET`]] m, finite `rotation`, `tilt_x` and
+    /// `tilt_y`, a `phase` in [0, 1) and zero for a path without a cycle to shift
+    /// ([`phase_supported`]).
     pub fn validate(&self) -> Result<(), PathError> {
         if default_scale(&self.name).is_none() {
             return Err(PathError::UnknownName(self.name.clone()));
         }
-        if !(self.duration.is_finite() && self.duration > 0.0) {
-            return Err(PathError::NonPositiveDuration(self.duration));
+        if !(MIN_DURATION..=MAX_DURATION).contains(&self.duration) {
+            return Err(PathError::DurationOutOfRange(self.duration));
         }
         let size = self.size();
-        if !(size.is_finite() && size > 0.0) {
-            return Err(PathError::NonPositiveScale(size));
+        if !(size > 0.0 && size <= crate::MAX_OFFSET) {
+            return Err(PathError::ScaleOutOfRange(size));
         }
         for (field, value) in [
             ("rotation", self.rotation),
@@ -216,11 +233,11 @@ mod tests {
         ));
         assert!(matches!(
             with(&|s| s.duration = 0.0),
-            PathError::NonPositiveDuration(_)
+            PathError::DurationOutOfRange(_)
         ));
         assert!(matches!(
             with(&|s| s.scale = Some(f64::NAN)),
-            PathError::NonPositiveScale(_)
+            PathError::ScaleOutOfRange(_)
         ));
         assert!(matches!(
             with(&|s| s.tilt_x = f64::INFINITY),
@@ -248,5 +265,68 @@ mod tests {
             Ok(()),
             "a closed curve may start elsewhere"
         );
+    }
+
+    #[test]
+    fn duration_and_size_are_bounded_at_both_ends() {
+        let ok = PathSpec::new("circle", 9.0);
+        let with = |f: &dyn Fn(&mut PathSpec)| {
+            let mut s = ok.clone();
+            f(&mut s);
+            s.validate()
+        };
+        // The ends are accepted.
+        for d in [MIN_DURATION, MAX_DURATION] {
+            assert_eq!(with(&|s| s.duration = d), Ok(()), "{d}");
+        }
+        assert_eq!(with(&|s| s.scale = Some(crate::MAX_OFFSET)), Ok(()));
+        assert_eq!(with(&|s| s.scale = Some(1e-9)), Ok(()));
+        // Past them (the red team's 1e-300 s and 1e308 m hung a run inside one BDF step).
+        for d in [
+            1e-300,
+            0.999e-3,
+            1.0001e5,
+            1e300,
+            0.0,
+            -1.0,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ] {
+            let err = with(&|s| s.duration = d).unwrap_err();
+            assert!(
+                matches!(err, PathError::DurationOutOfRange(x) if x.to_bits() == d.to_bits()),
+                "{d}: {err:?}"
+            );
+            let msg = err.to_string();
+            assert!(
+                msg.contains("path `duration`") && msg.contains("[0.001, 100000] s"),
+                "{msg}"
+            );
+        }
+        for sc in [1e308, 10.000001, 0.0, -0.1, f64::NAN, f64::INFINITY] {
+            let err = with(&|s| s.scale = Some(sc)).unwrap_err();
+            assert!(
+                matches!(err, PathError::ScaleOutOfRange(x) if x.to_bits() == sc.to_bits()),
+                "{sc}: {err:?}"
+            );
+            let msg = err.to_string();
+            assert!(
+                msg.contains("path `scale`") && msg.contains("(0, 10] m"),
+                "{msg}"
+            );
+        }
+        // Extreme values are written with an exponent, not 300 digits.
+        let msg = with(&|s| s.duration = 1e-300).unwrap_err().to_string();
+        assert!(msg.ends_with("got 1e-300"), "{msg}");
+        let msg = with(&|s| s.scale = Some(1e308)).unwrap_err().to_string();
+        assert!(msg.ends_with("got 1e308"), "{msg}");
+        // Every default duration and size is inside.
+        for name in PATH_NAMES {
+            let d = default_duration(name).expect("listed");
+            let sc = default_scale(name).expect("listed");
+            assert!((MIN_DURATION..=MAX_DURATION).contains(&d), "{name}");
+            assert!(sc > 0.0 && sc <= crate::MAX_OFFSET, "{name}");
+        }
     }
 }
