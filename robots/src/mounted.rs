@@ -44,8 +44,10 @@ use crate::{Dynamics, JointLimits, Orientation, Robot};
 use spec::MountError;
 
 /// The largest tool offset or base translation, per coordinate (m): an arm's reach is metres,
-/// so a larger value is a typing error (millimetres written as metres), not a mount.
-pub const MAX_OFFSET: f64 = 10.0;
+/// so a larger value is a typing error (millimetres written as metres), not a mount. The bound
+/// of every length a robot file or URDF states ([`crate::MAX_LENGTH`]), so that one number
+/// holds an arm's geometry wherever it is read.
+pub const MAX_OFFSET: f64 = crate::file_rules::MAX_LENGTH;
 
 /// The largest base angle, per coordinate (rad): 2 pi, every rotation once.
 pub const MAX_ANGLE: f64 = 2.0 * std::f64::consts::PI;
