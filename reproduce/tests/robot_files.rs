@@ -262,3 +262,78 @@ scheme = {{ kind = "kong2019-znn", mu = 1.0, k_p = 1.0 }}
         assert!(out.contains(&format!("kong2019-own-{name}")), "{out}");
     }
 }
+
+/// Robot geometry no run could use is refused when its file is read, as any invalid file is:
+/// a URDF nested 10,000 elements deep inside an ignored `<gazebo>` (it overflowed the stack and
+/// aborted every command, whether or not a run used the robot) and a robot file whose tool is
+/// 1e308 m away (it passed as finite and failed the run late, exit 1). Unused, they leave every
+/// command working and `robots` lists their errors; used, the run fails to load with exit 2,
+/// naming the file and the bound, without the file's content.
+#[test]
+fn a_deep_urdf_or_a_huge_length_is_refused_when_read() {
+    let levels = 10_000;
+    let deep = std::fs::read_to_string(common::repo_root().join("robots/tests/fixtures/arm6.urdf"))
+        .unwrap()
+        .replace(
+            "</robot>",
+            &format!(
+                "<gazebo>{}SECRET-D33P{}</gazebo></robot>",
+                "<a>".repeat(levels),
+                "</a>".repeat(levels)
+            ),
+        );
+    let deep_arm = "name = \"deep-arm\"\nsource = \"a deep URDF\"\nurdf = \"deep.urdf\"\n\
+                    base = \"base_link\"\ntip = \"tool0\"\n"
+        .to_string();
+    let huge_arm = puma("huge-arm", |t| {
+        t.replacen("tool = [0.0, 0.0, 0.05625]", "tool = [1e308, 0.0, 0.0]", 1)
+    });
+    let robots = [("deep-arm", deep_arm), ("huge-arm", huge_arm)];
+    let with_deep_urdf = |root: &inputs::Scratch| {
+        std::fs::write(root.join("papers/kong2019/robots/deep.urdf"), &deep).unwrap();
+    };
+    let root = project("geometry-unused", &robots, &["puma560"]);
+    with_deep_urdf(&root);
+    let (code, out, err) = run(&root, &["list"]);
+    assert_eq!(code, Some(0), "{err}");
+    assert!(out.contains("kong2019-own-puma560"), "{out}");
+    let (code, out, err) = run(&root, &["robots"]);
+    assert_eq!(code, Some(0), "{err}");
+    let line = |name: &str| {
+        out.lines()
+            .find(|l| l.starts_with(name))
+            .unwrap_or_else(|| panic!("{name} listed: {out}"))
+            .to_string()
+    };
+    let deep_line = line("deep-arm");
+    assert!(
+        deep_line.contains("deep.urdf") && deep_line.contains("nested more than 64 levels"),
+        "{deep_line}"
+    );
+    let huge_line = line("huge-arm");
+    assert!(
+        huge_line.contains("huge-arm.toml")
+            && huge_line.contains("tool[0]")
+            && huge_line.contains("[-10, 10] m"),
+        "{huge_line}"
+    );
+    assert!(
+        !out.contains("SECRET") && !huge_line.contains("0000000000"),
+        "{out}"
+    );
+    drop(root);
+    for (robot, expected) in [("deep-arm", "nested more than 64"), ("huge-arm", "tool[0]")] {
+        let root = project(&format!("geometry-{robot}"), &robots, &[robot]);
+        with_deep_urdf(&root);
+        let (code, _, err) = run(&root, &["list"]);
+        assert_eq!(code, Some(2), "{robot}: {err}");
+        assert!(
+            err.contains(&format!("papers/kong2019/robots/{robot}.toml")) && err.contains(expected),
+            "{err}"
+        );
+        assert!(
+            !err.contains("SECRET") && !err.contains("panicked"),
+            "{err}"
+        );
+    }
+}

@@ -264,7 +264,8 @@ fn carry(body: RigidBody, x: &Frame) -> RigidBody {
 
 impl Chain {
     /// A chain of `joints` from the base (identity) to the tool frame `tool` (in the last body's
-    /// frame), with gravity `DEFAULT_GRAVITY`. Axes are normalised; refused: no joint,
+    /// frame), with gravity `DEFAULT_GRAVITY`. Axes are normalised (divided by their largest
+    /// entry, then by their length, so that no finite axis overflows); refused: no joint,
     /// non-finite numbers, a zero axis, empty position ranges or non-positive velocity,
     /// acceleration or effort limits, a negative mass, an inertia that is not symmetric
     /// positive semi-definite (to 1e-12 relative), a continuous joint with position limits.
@@ -288,14 +289,18 @@ impl Chain {
             if !j.axis.iter().all(|x| x.is_finite()) {
                 return Err(not_finite("axis"));
             }
-            let norm = j.axis.norm();
-            if norm == 0.0 {
+            // Scaled by its largest entry before squaring, so that neither a huge axis
+            // (`1e308 1e308 0`, whose squares overflow) nor a tiny one (whose squares
+            // underflow) loses its direction.
+            let largest = j.axis.amax();
+            if largest == 0.0 {
                 return Err(ChainError::ZeroAxis {
                     index,
                     name: j.name.clone(),
                 });
             }
-            j.axis /= norm;
+            let scaled = j.axis / largest;
+            j.axis = scaled / scaled.norm();
             let r = &j.limits;
             let limit_problem = if r.position_min.is_nan() || r.position_max.is_nan() {
                 Some("a position limit is NaN")

@@ -13,7 +13,9 @@
 //!
 //! A file has at most [`MAX_FILE_BYTES`] bytes; `name` is a slug of at most [`MAX_NAME_LEN`]
 //! characters; it has [`MIN_JOINTS`] to [`MAX_JOINTS`] joints; every number is finite (an
-//! unlimited bound is written by omitting it); `stated_pose` has one angle per joint; a
+//! unlimited bound is written by omitting it); every length (`tool`, `base.translation`, a
+//! joint's or the flange row's `a` and `d`, a link's `center_of_mass`) is within
+//! [`MAX_LENGTH`] of zero; `stated_pose` has one angle per joint; a
 //! `modified` table has a flange row and a `standard` one none; a base gives `rotation` or
 //! `matrix`, not both; per joint `theta_min < theta_max`, `velocity_max > 0`,
 //! `velocity_min < 0` (default `-velocity_max`), `acceleration_max > 0`, and a link's
@@ -31,6 +33,16 @@ pub const MAX_JOINTS: usize = 1000;
 
 /// Longest model name accepted (characters).
 pub const MAX_NAME_LEN: usize = 64;
+
+/// The largest length a robot file or a URDF may state, per coordinate (m): a DH row's `a` and
+/// `d`, a tool point, a base translation, a link's centre of mass, a URDF joint's or inertial's
+/// `<origin xyz>`. An arm's links are metres long, so a larger value is a typing error
+/// (millimetres written as metres, a stray exponent), not an arm: `1e308` would pass as finite
+/// and only fail the run (an infinite Jacobian, an infeasible QP). The same bound holds an
+/// experiment's own tool offset and base translation and a path's size (`spec::MAX_OFFSET`,
+/// which `robots` holds equal to this one at compile time: the build script that includes this
+/// file links no `spec`).
+pub const MAX_LENGTH: f64 = 10.0;
 
 /// The DH convention a table is written in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
@@ -190,6 +202,17 @@ pub enum RuleError {
         /// The number.
         value: f64,
     },
+    /// A length is finite but beyond [`MAX_LENGTH`] (m).
+    #[error(
+        "{field} = {value:e} m is outside [-{MAX_LENGTH}, {MAX_LENGTH}] m (a length in a robot \
+         file is at most {MAX_LENGTH} m per coordinate)"
+    )]
+    TooLong {
+        /// Where the length is, e.g. `tool[0]` or `joint 3: d`.
+        field: String,
+        /// The length (m).
+        value: f64,
+    },
     /// A joint's `theta_min` is not below its `theta_max`.
     #[error("joint {joint}: theta_min = {min} is not below theta_max = {max}")]
     EmptyRange {
@@ -306,6 +329,27 @@ pub fn all_finite(field: &str, values: &[f64]) -> Result<(), RuleError> {
     Ok(())
 }
 
+/// `value` if it is a length: finite (else [`RuleError::NotFinite`]) and within
+/// [`MAX_LENGTH`] of zero (else [`RuleError::TooLong`]); `field()` names it.
+pub fn length(field: impl Fn() -> String, value: f64) -> Result<f64, RuleError> {
+    finite(&field, value)?;
+    if value.abs() > MAX_LENGTH {
+        return Err(RuleError::TooLong {
+            field: field(),
+            value,
+        });
+    }
+    Ok(value)
+}
+
+/// Refuses the first entry of `values` that is not a length ([`length`]), named `field[k]`.
+pub fn all_lengths(field: &str, values: &[f64]) -> Result<(), RuleError> {
+    for (k, &v) in values.iter().enumerate() {
+        length(|| format!("{field}[{k}]"), v)?;
+    }
+    Ok(())
+}
+
 /// Every rule of the module documentation on `raw`, stem unchecked (with `stem`, the name must
 /// be it); the joints with their limits resolved (infinite where unlimited, `velocity_min`
 /// defaulting to `-velocity_max`).
@@ -315,7 +359,7 @@ pub fn check(raw: &RawFile, stem: Option<&str>) -> Result<Vec<JointSpec>, RuleEr
     if !(MIN_JOINTS..=MAX_JOINTS).contains(&n) {
         return Err(RuleError::JointCount { joints: n });
     }
-    all_finite("tool", &raw.tool)?;
+    all_lengths("tool", &raw.tool)?;
     if let Some(pose) = &raw.stated_pose {
         if pose.len() != n {
             return Err(RuleError::StatedPose {
@@ -326,7 +370,11 @@ pub fn check(raw: &RawFile, stem: Option<&str>) -> Result<Vec<JointSpec>, RuleEr
         all_finite("stated_pose", pose)?;
     }
     match (raw.convention, raw.flange) {
-        (Convention::Modified, Some(f)) => all_finite("flange", &[f.a, f.alpha, f.d])?,
+        (Convention::Modified, Some(f)) => {
+            length(|| "flange.a".to_string(), f.a)?;
+            finite(|| "flange.alpha".to_string(), f.alpha)?;
+            length(|| "flange.d".to_string(), f.d)?;
+        }
         (Convention::Standard, None) => {}
         (convention, _) => return Err(RuleError::Flange { convention }),
     }
@@ -341,7 +389,7 @@ pub fn check(raw: &RawFile, stem: Option<&str>) -> Result<Vec<JointSpec>, RuleEr
 }
 
 fn check_base(base: &RawBase) -> Result<(), RuleError> {
-    all_finite("base.translation", &base.translation.unwrap_or_default())?;
+    all_lengths("base.translation", &base.translation.unwrap_or_default())?;
     match (&base.rotation, &base.matrix) {
         (Some(_), Some(_)) => return Err(RuleError::TwoRotations),
         (Some(list), None) => {
@@ -378,10 +426,11 @@ fn check_joint(joint: usize, j: &RawJoint) -> Result<JointSpec, RuleError> {
         }
     };
     let inf = f64::INFINITY;
+    let metres = |name: &str, v: f64| length(|| format!("joint {joint}: {name}"), v);
     let row = DhRow {
-        a: number("a", j.a)?,
+        a: metres("a", j.a)?,
         alpha: number("alpha", j.alpha)?,
-        d: number("d", j.d)?,
+        d: metres("d", j.d)?,
     };
     let offset = optional("offset", j.offset, 0.0)?;
     let theta_min = optional("theta_min", j.theta_min, -inf)?;
@@ -406,7 +455,7 @@ fn check_joint(joint: usize, j: &RawJoint) -> Result<JointSpec, RuleError> {
     )?;
     if let Some(link) = &j.link {
         finite(|| format!("joint {joint}: link.mass"), link.mass)?;
-        all_finite(
+        all_lengths(
             &format!("joint {joint}: link.center_of_mass"),
             &link.center_of_mass,
         )?;

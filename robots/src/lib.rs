@@ -83,10 +83,10 @@ pub use registry::{
 pub use rigid_body::RigidBody;
 pub use robot_file::{
     RobotFileError, RobotForm, RobotSpec, RuleError, UrdfRobotSpec,
-    MAX_FILE_BYTES as ROBOT_FILE_MAX_BYTES,
+    MAX_FILE_BYTES as ROBOT_FILE_MAX_BYTES, MAX_LENGTH,
 };
 pub use urdf::{
-    parse as parse_urdf, read as read_urdf, ChainEnds, UrdfChainError,
+    parse as parse_urdf, read as read_urdf, ChainEnds, UrdfChainError, MAX_DEPTH as URDF_MAX_DEPTH,
     MAX_JOINTS as URDF_MAX_JOINTS, MAX_LISTED_LINKS as URDF_MAX_LISTED_LINKS,
 };
 

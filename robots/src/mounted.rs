@@ -45,8 +45,12 @@ use spec::MountError;
 
 /// The largest tool offset or base translation, per coordinate (m): an arm's reach is metres,
 /// so a larger value is a typing error (millimetres written as metres), not a mount. The one
-/// bound of an experiment's lengths, crate `spec`'s (a path's size is held to it too).
+/// bound of an experiment's lengths, crate `spec`'s (a path's size is held to it too), and of
+/// every length a robot file or URDF states ([`crate::MAX_LENGTH`], written out in
+/// `file_rules.rs` for the build script, which links no `spec`; held equal below).
 pub use spec::MAX_OFFSET;
+
+const _: () = assert!(crate::file_rules::MAX_LENGTH == MAX_OFFSET);
 
 /// The largest base angle, per coordinate (rad): 2 pi, every rotation once.
 pub const MAX_ANGLE: f64 = 2.0 * std::f64::consts::PI;

@@ -7,7 +7,10 @@
 //! names are, in this order of precedence:
 //!
 //! 1. the Rust models: the Jaco2 variants (with dynamics), the Katana 6M180, the Panda;
-//! 2. the n-link family `nlink-<n>`, any n from [`NLINK_MIN`] to [`NLINK_MAX`];
+//! 2. the n-link family `nlink-<n>`, any n from [`NLINK_MIN`] to [`NLINK_MAX`], written in
+//!    decimal digits without leading zeros: a name has one spelling, so `nlink-02` is not
+//!    `nlink-2` ([`RegistryError::NLinkSpelling`]; a robot file may not take such a name,
+//!    [`RobotFileError::Shadows`]) and `nlink-+2` is no robot;
 //! 3. the robot files: the built-in `robots/data/*.toml` (embedded in the library; see
 //!    [`crate::robot_file`]), registered by file name, e.g. `puma560`, then the files registered
 //!    at run time ([`register_file`]: a paper's own `papers/<id>/robots/*.toml`, of the DH
@@ -57,6 +60,15 @@ pub enum RegistryError {
         name: String,
         /// The names the registry knows (the n-link family aside).
         choices: Vec<String>,
+    },
+    /// Another spelling of an n-link arm's name: `nlink-` and n with leading zeros.
+    #[error(
+        "robot names have one spelling: the n-link arm of {n} joints is \"nlink-{n}\" \
+         (nlink-<n>, n = {NLINK_MIN}..={NLINK_MAX} in decimal digits without leading zeros)"
+    )]
+    NLinkSpelling {
+        /// The joint count the name spells.
+        n: usize,
     },
     /// The robot's file is invalid (the error names the file and field).
     #[error("{0}")]
@@ -161,9 +173,32 @@ fn rust_model(name: &str) -> Option<Model> {
     })
 }
 
-/// The n-link arm `nlink-<n>`, if `name` is one with n in the family's range.
+/// The digits of `name` if it is `nlink-` and decimal digits (any, leading zeros too).
+fn nlink_digits(name: &str) -> Option<&str> {
+    let digits = name.strip_prefix("nlink-")?;
+    (!digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit())).then_some(digits)
+}
+
+/// The n of an n-link arm in the family's range that `name` spells otherwise than
+/// `nlink-<n>` (with leading zeros), if it is one.
+fn nlink_respelled(name: &str) -> Option<usize> {
+    let digits = nlink_digits(name)?;
+    let significant = digits.trim_start_matches('0');
+    if significant.len() == digits.len() {
+        return None;
+    }
+    let n: usize = significant.parse().ok()?;
+    (NLINK_MIN..=NLINK_MAX).contains(&n).then_some(n)
+}
+
+/// The n-link arm `nlink-<n>`, if `name` is one with n in the family's range, written in
+/// decimal digits without leading zeros.
 fn nlink(name: &str) -> Option<Model> {
-    let n: usize = name.strip_prefix("nlink-")?.parse().ok()?;
+    let digits = nlink_digits(name)?;
+    if digits.starts_with('0') {
+        return None;
+    }
+    let n: usize = digits.parse().ok()?;
     let arm = NLink::new(n)?;
     Some(Model {
         stated_pose: arm.home().as_slice().to_vec(),
@@ -197,6 +232,15 @@ fn is_rust_model(name: &str) -> bool {
     RUST_MODELS.contains(&name) || nlink(name).is_some()
 }
 
+/// Whether a robot file may not take `name`: a Rust model's, an n-link arm's or another
+/// spelling of one (`nlink-02`), a built-in file's, or a file's registered before.
+fn is_taken(name: &str) -> bool {
+    is_rust_model(name)
+        || nlink_respelled(name).is_some()
+        || builtin_models().iter().any(|(s, _)| *s == name)
+        || runtime_files().iter().any(|(s, _, _)| *s == name)
+}
+
 /// The model of a robot file registered at run time, built when it is registered.
 #[derive(Clone)]
 enum FileArm {
@@ -219,17 +263,15 @@ static RUNTIME_FILES: RwLock<Vec<FileModel>> = RwLock::new(Vec::new());
 /// invalid file is kept with its error, which a lookup of its name returns, so that it fails
 /// only the commands that use it. A file whose name the suite already has (a built-in model, a
 /// built-in or already registered file) is such an error, [`RobotFileError::Shadows`], and
-/// takes precedence over the model it shadows.
+/// takes precedence over the model it shadows; so is a file that takes another spelling of an
+/// n-link arm's name (`nlink-02`).
 pub fn register_file<E: std::fmt::Display>(path: &std::path::Path, text: Result<&str, E>) {
     let file = &path.display().to_string();
     let stem = path
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let taken = is_rust_model(&stem)
-        || builtin_models().iter().any(|(s, _)| *s == stem)
-        || runtime_files().iter().any(|(s, _, _)| *s == stem);
-    let model = if taken {
+    let model = if is_taken(&stem) {
         Err(RobotFileError::Shadows {
             file: file.to_string(),
             name: stem.clone(),
@@ -293,6 +335,9 @@ pub fn robot_by_name(name: &str) -> Result<Model, RegistryError> {
     }
     if let Some(model) = rust_model(name).or_else(|| nlink(name)) {
         return Ok(model);
+    }
+    if let Some(n) = nlink_respelled(name) {
+        return Err(RegistryError::NLinkSpelling { n });
     }
     match file_model(name) {
         Some((file, Ok(FileArm::Dh(arm)))) => Ok(data_model(arm, Some(file))),
@@ -424,6 +469,57 @@ mod tests {
         }
         let unique: std::collections::BTreeSet<&String> = names.iter().collect();
         assert_eq!(unique.len(), names.len(), "names are unique");
+    }
+
+    #[test]
+    fn an_nlink_name_has_one_spelling() {
+        assert_eq!(robot_by_name("nlink-2").unwrap().dof(), 2);
+        assert_eq!(robot_by_name("nlink-1000").unwrap().dof(), 1000);
+        for (name, n) in [("nlink-02", 2), ("nlink-007", 7), ("nlink-0100", 100)] {
+            let error = robot_by_name(name).unwrap_err();
+            assert!(
+                matches!(error, RegistryError::NLinkSpelling { n: m } if m == n),
+                "{name}: {error}"
+            );
+            let message = error.to_string();
+            assert!(
+                message.contains(&format!("\"nlink-{n}\""))
+                    && message.contains("without leading zeros")
+                    && !message.contains(name),
+                "{message}"
+            );
+        }
+        // A sign, or a spelling of no arm of the family, is no robot.
+        for name in [
+            "nlink-+2",
+            "nlink- 2",
+            "nlink-00",
+            "nlink-01",
+            "nlink-01001",
+            "nlink-",
+        ] {
+            assert!(
+                matches!(robot_by_name(name), Err(RegistryError::Unknown { .. })),
+                "{name}"
+            );
+        }
+        // Nor may a robot file take another spelling of an arm's name.
+        let puma = crate::data_robot::builtin_files()
+            .iter()
+            .find(|(f, _)| *f == "puma560.toml")
+            .unwrap()
+            .1
+            .replace("name = \"puma560\"", "name = \"nlink-03\"");
+        register_file::<&str>(
+            std::path::Path::new("papers/x/robots/nlink-03.toml"),
+            Ok(&puma),
+        );
+        let error = robot_by_name("nlink-03").unwrap_err().to_string();
+        assert!(
+            error.contains("papers/x/robots/nlink-03.toml") && error.contains("another spelling"),
+            "{error}"
+        );
+        assert_eq!(robot_by_name("nlink-3").unwrap().dof(), 3);
     }
 
     #[test]

@@ -56,7 +56,8 @@
 //! inertia) run here only. [`RobotSpec::parse`] refuses, with a [`RobotFileError`] naming the file and the field:
 //! unknown fields and unknown choices (`convention`, `axis`: the message lists the valid ones),
 //! missing required fields, non-finite numbers (TOML's `nan` and `inf`; an unlimited bound is
-//! written by omitting it), `theta_min >= theta_max`, `velocity_max <= 0`, `velocity_min >= 0`,
+//! written by omitting it), lengths (`tool`, `base.translation`, `a`, `d`, the flange's `a` and
+//! `d`, a link's `center_of_mass`) beyond [`MAX_LENGTH`] of zero, `theta_min >= theta_max`, `velocity_max <= 0`, `velocity_min >= 0`,
 //! `acceleration_max <= 0`, fewer than [`MIN_JOINTS`] or more than [`MAX_JOINTS`] joints, a name that is not a slug, a flange row missing from a
 //! modified table or given with a standard one, a `stated_pose` of the wrong length, a base with
 //! both `rotation` and `matrix` or a matrix that is not a rotation, and link inertias with a
@@ -71,9 +72,10 @@ use serde::Deserialize;
 
 use crate::chain_robot::ChainRobot;
 use crate::dh::Frame;
-use crate::file_rules::{self, all_finite, RawBase, RawFile};
+use crate::file_rules::{self, all_finite, all_lengths, RawBase, RawFile};
 pub use crate::file_rules::{
     Axis, Convention, DhRow, ElementaryRotation, JointSpec, LinkInertia, RuleError, MAX_FILE_BYTES,
+    MAX_LENGTH,
 };
 use crate::urdf::ChainEnds;
 
@@ -117,8 +119,9 @@ pub enum RobotFileError {
     },
     /// A robot file read at run time declares a name the suite already has.
     #[error(
-        "{file}: declares robot \"{name}\", a name the suite already has (a built-in model or \
-         another robot file); rename the file and its `name`"
+        "{file}: declares robot \"{name}\", a name the suite already has (a built-in model, \
+         another spelling of an n-link arm's name, or another robot file); rename the file and \
+         its `name`"
     )]
     Shadows {
         /// The robot file.
@@ -342,8 +345,8 @@ impl RobotSpec {
 /// velocity_max = [3.15, ...]           # optional: overrides the URDF's velocity limits
 /// ```
 ///
-/// [`RobotForm::parse_named`] refuses unknown and missing fields, non-finite numbers and a name
-/// that is not a slug; [`UrdfRobotSpec::build`] reads the URDF (through the `inputs` reader,
+/// [`RobotForm::parse_named`] refuses unknown and missing fields, non-finite numbers, a `tool`
+/// entry beyond [`MAX_LENGTH`] of zero and a name that is not a slug; [`UrdfRobotSpec::build`] reads the URDF (through the `inputs` reader,
 /// inside the robot file's directory) and refuses its errors ([`crate::read_urdf`]), joint vectors
 /// of the wrong length and non-positive velocity limits, each naming the robot file and field.
 #[derive(Clone, Debug, PartialEq, Deserialize)]
@@ -391,7 +394,7 @@ impl UrdfRobotSpec {
     /// Checks the fields that need no URDF (module documentation).
     fn validate(&self, file: &str, stem: &str) -> Result<(), RobotFileError> {
         file_rules::check_name(&self.name, Some(stem)).map_err(rule(file))?;
-        all_finite("tool", &self.tool.unwrap_or_default()).map_err(rule(file))?;
+        all_lengths("tool", &self.tool.unwrap_or_default()).map_err(rule(file))?;
         all_finite(
             "stated_pose",
             self.stated_pose.as_deref().unwrap_or_default(),

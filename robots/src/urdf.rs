@@ -31,11 +31,21 @@
 //! # Hostile files
 //!
 //! The bytes are read through the `inputs` crate ([`inputs::Kind::Urdf`]: a regular file,
-//! inside its directory, at most its cap); [`parse`] refuses text above [`MAX_FILE_BYTES`] and
-//! more than [`MAX_JOINTS`] `<joint>` elements. No error quotes the file: a parse error says
-//! that urdf-rs could not read it (its message, which may quote the file, is not shown); a
-//! missing link lists at most [`MAX_LISTED_LINKS`] of the file's link names, each cut to
-//! [`MAX_NAME_CHARS`] characters and escaped.
+//! inside its directory, at most its cap); [`parse`] refuses text above [`MAX_FILE_BYTES`], and
+//! elements nested deeper than [`MAX_DEPTH`] before urdf-rs sees the text (its XML reader
+//! recurses once per level, so ten thousand nested elements, even inside an ignored
+//! `<gazebo>`, would overflow the stack): a linear scan that allocates nothing and skips
+//! comments, CDATA sections, processing instructions, declarations such as `<!DOCTYPE ...>`
+//! and quoted attribute values, and counts a self-closing `<x/>` as a level. After parsing it
+//! refuses more than [`MAX_JOINTS`] `<joint>` elements, two `<link>` or two `<joint>` elements
+//! of one name, and, on every joint and every link's `<inertial>` (on the path or not), an
+//! `<origin>` whose `xyz` or `rpy` is not finite or whose `xyz` is beyond
+//! [`crate::MAX_LENGTH`] of zero (the bound of a robot file's lengths). An axis is normalised
+//! by its largest entry first, so that `1e308 1e308 0` is the unit `(1, 1, 0) / sqrt 2`
+//! ([`Chain::new`]). No error quotes the file: a parse error says that urdf-rs could not read
+//! it (its message, which may quote the file, is not shown); a missing link lists at most
+//! [`MAX_LISTED_LINKS`] of the file's link names, each cut to [`MAX_NAME_CHARS`] characters
+//! and escaped, as is the name of a duplicated link or joint or of an origin's owner.
 
 use std::collections::HashMap;
 use std::path::Path;
@@ -44,6 +54,7 @@ use nalgebra::{Matrix3, Vector3};
 
 use crate::chain::{Chain, ChainError, ChainJoint, JointKind, JointRange};
 use crate::dh::Frame;
+use crate::file_rules::MAX_LENGTH;
 use crate::rigid_body::RigidBody;
 
 /// The largest URDF text parsed (bytes), the cap of [`inputs::Kind::Urdf`].
@@ -51,6 +62,10 @@ pub const MAX_FILE_BYTES: u64 = 16 << 20;
 
 /// The most `<joint>` elements a URDF may have (the whole file, not only the path).
 pub const MAX_JOINTS: usize = 1000;
+
+/// The deepest element nesting a URDF may have (`<robot>` is level 1). A robot's own elements
+/// nest five deep (`<robot><link><visual><geometry><mesh/>`); simulator extensions a few more.
+pub const MAX_DEPTH: usize = 64;
 
 /// The most link names an error lists.
 pub const MAX_LISTED_LINKS: usize = 20;
@@ -86,6 +101,17 @@ pub enum UrdfChainError {
         /// `MAX_FILE_BYTES`.
         limit: u64,
     },
+    /// Elements nested deeper than [`MAX_DEPTH`] (refused before parsing).
+    #[error(
+        "{file}: elements nested more than {limit} levels deep; a URDF may nest at most {limit} \
+         (a robot's own elements nest about 5)"
+    )]
+    TooDeep {
+        /// The URDF.
+        file: String,
+        /// [`MAX_DEPTH`].
+        limit: usize,
+    },
     /// urdf-rs could not read the file.
     #[error(
         "{file}: not a URDF that urdf-rs can read (malformed XML, a missing required element \
@@ -105,6 +131,54 @@ pub enum UrdfChainError {
         joints: usize,
         /// [`MAX_JOINTS`].
         limit: usize,
+    },
+    /// Two `<link>` or two `<joint>` elements have the same name.
+    #[error(
+        "{file}: <{element}> elements {first} and {second} (counted from 1 in file order) are \
+         both named {name:?}; each {element} name must be unique"
+    )]
+    Duplicate {
+        /// The URDF.
+        file: String,
+        /// `link` or `joint`.
+        element: &'static str,
+        /// The name (cut to `MAX_NAME_CHARS`).
+        name: String,
+        /// The first element of that name, from 1 among the file's elements of its kind.
+        first: usize,
+        /// The second.
+        second: usize,
+    },
+    /// An `<origin>` entry is NaN or infinite.
+    #[error("{file}: {owner}: <origin {field}> entry {index} = {value} is not a finite number")]
+    OriginNotFinite {
+        /// The URDF.
+        file: String,
+        /// `joint "<name>"` or `link "<name>" <inertial>` (the name cut and escaped).
+        owner: String,
+        /// `xyz` or `rpy`.
+        field: &'static str,
+        /// The entry, from 0.
+        index: usize,
+        /// Its value.
+        value: f64,
+    },
+    /// An `<origin xyz>` entry is beyond [`crate::MAX_LENGTH`].
+    #[error(
+        "{file}: {owner}: <origin xyz> entry {index} = {value:e} m is outside [-{limit}, \
+         {limit}] m (a length in a robot is at most {limit} m per coordinate)"
+    )]
+    TooLong {
+        /// The URDF.
+        file: String,
+        /// `joint "<name>"` or `link "<name>" <inertial>` (the name cut and escaped).
+        owner: String,
+        /// The entry, from 0.
+        index: usize,
+        /// Its value (m).
+        value: f64,
+        /// [`crate::MAX_LENGTH`].
+        limit: f64,
     },
     /// The base or tip link is not a link of the file.
     #[error("{file}: no link {name:?} (the {end} link); the file's links are: {valid}")]
@@ -210,6 +284,159 @@ fn listed<'a>(names: impl ExactSizeIterator<Item = &'a str>) -> String {
     out.join(", ")
 }
 
+/// Whether the elements of the XML `text` nest deeper than `limit` (`<robot>` is level 1): one
+/// pass over the bytes that allocates nothing. It reads markup as urdf-rs's XML reader
+/// (RustyXML) does, so that nothing it skips can hide an element from the reader: a comment
+/// ends at its first `-->`, a CDATA section at its first `]]>`, a processing instruction at
+/// the first `>` after a `?`, a declaration such as `<!DOCTYPE ...>` at its first `>`, an end
+/// tag at its `>`; in a start tag a quote opens an attribute value only after a name and `=`
+/// (the value may hold `>`), and `/>` closes the element at once (a level, left again). Where
+/// the reader would stop at an error inside a start tag, the scan counts the element as opened
+/// and goes on from there, so it may count more levels than the reader builds, never fewer.
+fn nests_deeper_than(text: &str, limit: usize) -> bool {
+    /// Where in a start tag the scan is (the reader's states).
+    #[derive(Clone, Copy)]
+    enum Tag {
+        Name,
+        Between,
+        Attribute { spaced: bool },
+        Delimiter,
+        Value(u8),
+        Close,
+    }
+    let b = text.as_bytes();
+    let n = b.len();
+    // The first index at or after `from` holding `byte` (`n` if none).
+    let find = |from: usize, byte: u8| {
+        b.get(from..)
+            .and_then(|rest| rest.iter().position(|&c| c == byte))
+            .map_or(n, |k| from + k)
+    };
+    // The index just past the first `end` at or after `from` (`n` if none).
+    let past = |from: usize, end: &[u8]| {
+        b.get(from..)
+            .and_then(|rest| rest.windows(end.len()).position(|w| w == end))
+            .map_or(n, |k| from + k + end.len())
+    };
+    let space = |c: u8| matches!(c, b' ' | b'\t' | b'\r' | b'\n');
+    let mut depth = 0usize;
+    let mut i = find(0, b'<');
+    while i < n {
+        let rest = &b[i..];
+        if rest.starts_with(b"<!--") {
+            i = past(i + 4, b"-->");
+        } else if rest.starts_with(b"<![CDATA[") {
+            i = past(i + 9, b"]]>");
+        } else if rest.starts_with(b"<!") {
+            i = find(i + 2, b'>').saturating_add(1);
+        } else if rest.starts_with(b"<?") {
+            i = find(find(i + 2, b'?'), b'>').saturating_add(1);
+        } else if rest.starts_with(b"</") {
+            depth = depth.saturating_sub(1);
+            i = find(i + 2, b'>').saturating_add(1);
+        } else {
+            // A start tag; its first character (whatever it is) begins the name.
+            let mut state = Tag::Name;
+            let mut j = i + 2;
+            let mut opens = true;
+            while j < n {
+                let c = b[j];
+                state = match (state, c) {
+                    (Tag::Name | Tag::Between, b'>') => break,
+                    (Tag::Name | Tag::Between, b'/') => Tag::Close,
+                    (Tag::Name, c) if space(c) => Tag::Between,
+                    (Tag::Name, _) => Tag::Name,
+                    (Tag::Between, c) if space(c) => Tag::Between,
+                    (Tag::Between, _) => Tag::Attribute { spaced: false },
+                    (Tag::Attribute { .. }, b'=') => Tag::Delimiter,
+                    (Tag::Attribute { .. }, c) if space(c) => Tag::Attribute { spaced: true },
+                    (Tag::Attribute { spaced: false }, _) => Tag::Attribute { spaced: false },
+                    (Tag::Delimiter, c) if space(c) => Tag::Delimiter,
+                    (Tag::Delimiter, b'"' | b'\'') => Tag::Value(c),
+                    (Tag::Value(q), c) if c == q => Tag::Between,
+                    (Tag::Value(q), _) => Tag::Value(q),
+                    (Tag::Close, b'>') => {
+                        opens = false;
+                        break;
+                    }
+                    // The reader stops here with an error: count the element, read on from
+                    // this character.
+                    (Tag::Attribute { spaced: true } | Tag::Delimiter | Tag::Close, _) => {
+                        j -= 1;
+                        break;
+                    }
+                };
+                j += 1;
+            }
+            // A self-closing element is a level too, closed at once.
+            if depth + 1 > limit {
+                return true;
+            }
+            if opens {
+                depth += 1;
+            }
+            i = j.saturating_add(1);
+        }
+        i = find(i, b'<');
+    }
+    false
+}
+
+/// Refuses two elements of one name among `names` (in file order; `element` is `link` or
+/// `joint`), naming both by their position.
+fn unique_names<'a>(
+    file: &str,
+    element: &'static str,
+    names: impl Iterator<Item = &'a str>,
+) -> Result<(), UrdfChainError> {
+    let mut seen: HashMap<&str, usize> = HashMap::new();
+    for (k, name) in names.enumerate() {
+        if let Some(&first) = seen.get(name) {
+            return Err(UrdfChainError::Duplicate {
+                file: file.to_string(),
+                element,
+                name: shown(name),
+                first: first + 1,
+                second: k + 1,
+            });
+        }
+        seen.insert(name, k);
+    }
+    Ok(())
+}
+
+/// Refuses an `<origin>` of `owner` (`joint "<name>"`, ...) with an entry that is not finite,
+/// or an `xyz` entry beyond [`MAX_LENGTH`].
+fn check_origin(
+    file: &str,
+    owner: impl Fn() -> String,
+    origin: &urdf_rs::Pose,
+) -> Result<(), UrdfChainError> {
+    for (field, values) in [("xyz", *origin.xyz), ("rpy", *origin.rpy)] {
+        for (index, &value) in values.iter().enumerate() {
+            if !value.is_finite() {
+                return Err(UrdfChainError::OriginNotFinite {
+                    file: file.to_string(),
+                    owner: owner(),
+                    field,
+                    index,
+                    value,
+                });
+            }
+            if field == "xyz" && value.abs() > MAX_LENGTH {
+                return Err(UrdfChainError::TooLong {
+                    file: file.to_string(),
+                    owner: owner(),
+                    index,
+                    value,
+                    limit: MAX_LENGTH,
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
 /// The URDF pose `Trans(xyz) Rz(yaw) Ry(pitch) Rx(roll)` ([`Frame::from_xyz_rpy`]).
 fn pose(p: &urdf_rs::Pose) -> Frame {
     Frame::from_xyz_rpy(*p.xyz, *p.rpy)
@@ -237,6 +464,12 @@ pub fn parse(file: &str, text: &str, ends: &ChainEnds) -> Result<Chain, UrdfChai
             limit: MAX_FILE_BYTES,
         });
     }
+    if nests_deeper_than(text, MAX_DEPTH) {
+        return Err(UrdfChainError::TooDeep {
+            file: file.to_string(),
+            limit: MAX_DEPTH,
+        });
+    }
     let robot = urdf_rs::read_from_string(text).map_err(|_| UrdfChainError::Syntax {
         file: file.to_string(),
     })?;
@@ -246,6 +479,18 @@ pub fn parse(file: &str, text: &str, ends: &ChainEnds) -> Result<Chain, UrdfChai
             joints: robot.joints.len(),
             limit: MAX_JOINTS,
         });
+    }
+    unique_names(file, "link", robot.links.iter().map(|l| l.name.as_str()))?;
+    unique_names(file, "joint", robot.joints.iter().map(|j| j.name.as_str()))?;
+    for j in &robot.joints {
+        check_origin(file, || format!("joint {:?}", shown(&j.name)), &j.origin)?;
+    }
+    for l in &robot.links {
+        check_origin(
+            file,
+            || format!("link {:?} <inertial>", shown(&l.name)),
+            &l.inertial.origin,
+        )?;
     }
     let links: HashMap<&str, &urdf_rs::Link> =
         robot.links.iter().map(|l| (l.name.as_str(), l)).collect();

@@ -3,7 +3,7 @@
 
 use robots::builtin_files;
 use robots::DataRobot;
-use robots::{RobotFileError, RobotSpec, RuleError, ROBOT_FILE_MAX_BYTES};
+use robots::{RobotFileError, RobotForm, RobotSpec, RuleError, MAX_LENGTH, ROBOT_FILE_MAX_BYTES};
 
 /// The built-in PUMA 560 file, the base of every mutation here.
 fn puma_text() -> &'static str {
@@ -258,4 +258,77 @@ fn the_shared_rules_name_file_and_field_without_quoting_the_file() {
         assert!(message.contains(field), "{message}");
         assert!(!message.contains(canary), "{message}");
     }
+}
+
+/// Lengths are finite and within `MAX_LENGTH`: a huge finite number (`1e308`) passed as finite
+/// and only failed the run (an infeasible QP, `sigma(J) = inf`); it is refused when the file is
+/// read, naming the file, the field and the bound, without printing 300 digits.
+#[test]
+fn lengths_beyond_the_bound_are_refused_naming_the_field() {
+    assert_eq!(MAX_LENGTH, robots::MAX_OFFSET, "one bound for every length");
+    let with_base = |base: &str| mutated("\n[[joint]]", &format!("\n[base]\n{base}\n\n[[joint]]"));
+    let link = "velocity_max = 1.5\nlink = { mass = 1.0, center_of_mass = [0.0, 0.0, -20.0], \
+                inertia = [1.0, 1.0, 1.0, 0.0, 0.0, 0.0] }";
+    let cases = [
+        (
+            with_base("translation = [1e308, 1e308, 1e308]"),
+            "base.translation[0]",
+        ),
+        (
+            mutated("tool = [0.0, 0.0, 0.05625]", "tool = [1e308, 0, 0]"),
+            "tool[0]",
+        ),
+        (
+            mutated("tool = [0.0, 0.0, 0.05625]", "tool = [0.0, 0.0, -10.5]"),
+            "tool[2]",
+        ),
+        (mutated("a = 0.4318", "a = 431.8"), "joint 2: a"),
+        (mutated("d = 0.15005", "d = -1e300"), "joint 3: d"),
+        (
+            mutated("velocity_max = 1.5", link),
+            "joint 1: link.center_of_mass[2]",
+        ),
+    ];
+    for (text, field) in cases {
+        let err = refuse(&text);
+        assert!(
+            matches!(&err, RobotFileError::Rule { source: RuleError::TooLong { field: f, .. }, .. } if f == field),
+            "{field}: {err:?}"
+        );
+        let message = err.to_string();
+        assert!(
+            message.contains("[-10, 10] m") && message.len() < 200,
+            "{message}"
+        );
+    }
+    // The bound itself is a length; NaN is still refused as not finite.
+    RobotSpec::parse("edge.toml", &with_base("translation = [10.0, -10.0, 0.0]")).unwrap();
+    let err = refuse(&with_base("translation = [nan, 0.0, 0.0]"));
+    assert!(matches!(
+        err,
+        RobotFileError::Rule {
+            source: RuleError::NotFinite { .. },
+            ..
+        }
+    ));
+    // A modified table's flange row, and the URDF form's tool.
+    let panda = builtin_files()
+        .iter()
+        .find(|(f, _)| *f == "panda.toml")
+        .unwrap()
+        .1
+        .replace("d = 0.107 }", "d = 1e308 }");
+    let err = RobotSpec::parse("panda.toml", &panda).unwrap_err();
+    assert!(
+        matches!(&err, RobotFileError::Rule { source: RuleError::TooLong { field, .. }, .. } if field == "flange.d"),
+        "{err:?}"
+    );
+    let urdf_form =
+        "name = \"arm\"\nsource = \"s\"\nurdf = \"arm.urdf\"\nbase = \"b\"\ntip = \"t\"\n\
+                     tool = [0.0, 1e308, 0.0]\n";
+    let err = RobotForm::parse_named("arm.toml", "arm", urdf_form).unwrap_err();
+    assert!(
+        matches!(&err, RobotFileError::Rule { source: RuleError::TooLong { field, .. }, .. } if field == "tool[1]"),
+        "{err:?}"
+    );
 }

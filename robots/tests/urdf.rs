@@ -5,8 +5,10 @@
 use nalgebra::{Isometry3, Matrix3, Rotation3, Translation3, UnitQuaternion, Vector3};
 use robots::JointKind;
 use robots::{
-    parse_urdf, read_urdf, ChainEnds, UrdfChainError, URDF_MAX_JOINTS, URDF_MAX_LISTED_LINKS,
+    parse_urdf, read_urdf, ChainEnds, UrdfChainError, MAX_LENGTH, URDF_MAX_DEPTH, URDF_MAX_JOINTS,
+    URDF_MAX_LISTED_LINKS,
 };
+use std::time::{Duration, Instant};
 
 /// A small arm: `world` -fixed-> `base` -revolute j1-> `l1` -fixed-> `l1b` -prismatic j2->
 /// `l2` -continuous j3-> `l3` -fixed-> `tcp`; off the path, `sensor` (fixed on `l1`) and
@@ -383,4 +385,207 @@ fn a_two_hundred_joint_urdf_is_one_chain() {
         "H positive definite at 200 joints"
     );
     assert_eq!(chain.jacobian(&mut ws, &q).ncols(), n);
+}
+
+/// The test arm with `extra` just before `</robot>`.
+fn arm_with(extra: &str) -> String {
+    arm(0.2).replace("</robot>", &format!("{extra}\n</robot>"))
+}
+
+/// `levels` nested `<a>` elements (self-closing innermost none), with `inner` in the deepest.
+fn nested(levels: usize, inner: &str) -> String {
+    format!("{}{inner}{}", "<a>".repeat(levels), "</a>".repeat(levels))
+}
+
+#[test]
+fn deep_nesting_is_refused_before_the_parser_sees_it() {
+    // Ten thousand levels inside an ignored <gazebo> (the parser recursed per level and
+    // overflowed the stack, aborting the process, whether or not the robot was used); two
+    // hundred thousand must end as fast.
+    for levels in [10_000, 200_000] {
+        let text = arm_with(&format!(
+            "<gazebo>{}</gazebo>",
+            nested(levels, "SECRET-d33p")
+        ));
+        let started = Instant::now();
+        let (e, m) = error(&text, "base", "tcp");
+        assert!(
+            started.elapsed() < Duration::from_secs(2),
+            "{levels} levels"
+        );
+        assert!(
+            matches!(e, UrdfChainError::TooDeep { limit, .. } if limit == URDF_MAX_DEPTH),
+            "{m}"
+        );
+        assert!(m.contains(&URDF_MAX_DEPTH.to_string()), "{m}");
+        assert!(!m.contains("SECRET"), "{m}");
+    }
+    // <robot> is level 1 and <gazebo> level 2, a self-closing leaf a level too: the limit
+    // itself is read, one more is not.
+    let at_limit = |extra: usize| {
+        arm_with(&format!(
+            "<gazebo>{}</gazebo>",
+            nested(URDF_MAX_DEPTH - 3 + extra, "<leaf/>")
+        ))
+    };
+    assert_eq!(
+        parse_urdf("x.urdf", &at_limit(0), &ends("base", "tcp"))
+            .unwrap()
+            .dof(),
+        3
+    );
+    let (e, _) = error(&at_limit(1), "base", "tcp");
+    assert!(matches!(e, UrdfChainError::TooDeep { .. }));
+    // What is not an element opens no level: comments, CDATA, processing instructions, a
+    // DOCTYPE, quoted attribute values (which may hold `>` and `<`); self-closing elements side
+    // by side are one level.
+    let deep_text = "<a>".repeat(3 * URDF_MAX_DEPTH);
+    let not_elements = format!(
+        "<!-- {deep_text} --><![CDATA[{deep_text}]]><?pi {deep_text} ?>\
+         <note text=\"a > b {deep_text}\" other='{deep_text}>'/>{}",
+        "<leaf/>".repeat(3 * URDF_MAX_DEPTH)
+    );
+    let text = arm_with(&format!(
+        "<gazebo>{}</gazebo>",
+        nested(URDF_MAX_DEPTH - 3, &not_elements)
+    ))
+    .replace(
+        "<?xml version=\"1.0\"?>",
+        "<?xml version=\"1.0\"?>\n<!DOCTYPE robot>",
+    );
+    assert_eq!(
+        parse_urdf("x.urdf", &text, &ends("base", "tcp"))
+            .map_err(|e| e.to_string())
+            .unwrap()
+            .dof(),
+        3
+    );
+}
+
+#[test]
+fn two_links_or_joints_of_one_name_are_refused_by_position() {
+    // <link> elements: world 1, base 2, l1 3, l1b 4, sensor 5, l2 6, ..., finger 9; a second
+    // "l2" is the tenth.
+    let (e, m) = error(&arm_with("<link name=\"l2\"/>"), "base", "tcp");
+    assert!(
+        matches!(
+            e,
+            UrdfChainError::Duplicate {
+                element: "link",
+                first: 6,
+                second: 10,
+                ..
+            }
+        ),
+        "{m}"
+    );
+    assert!(m.contains("\"l2\"") && m.contains("unique"), "{m}");
+    // <joint> elements: mount 1, j1 2, ..., finger_joint 8; a second "j1" is the ninth.
+    let (e, m) = error(
+        &arm_with(
+            "<link name=\"extra\"/><joint name=\"j1\" type=\"fixed\"><parent link=\"tcp\"/>\
+             <child link=\"extra\"/></joint>",
+        ),
+        "base",
+        "tcp",
+    );
+    assert!(
+        matches!(
+            e,
+            UrdfChainError::Duplicate {
+                element: "joint",
+                first: 2,
+                second: 9,
+                ..
+            }
+        ),
+        "{m}"
+    );
+    // A long name is shown cut.
+    let long = "n".repeat(500);
+    let (_, m) = error(
+        &arm_with(&format!("<link name=\"{long}\"/><link name=\"{long}\"/>")),
+        "base",
+        "tcp",
+    );
+    assert!(m.len() < 400 && m.contains("..."), "{m}");
+}
+
+#[test]
+fn huge_or_non_finite_origins_are_refused_and_huge_axes_normalised() {
+    let on_j1 = r#"<origin xyz="0 0 0.3" rpy="0.1 0.2 0.3"/>"#;
+    // On the path, off it (the finger, a moving branch), in an inertial.
+    for (from, to, owner) in [
+        (
+            on_j1,
+            r#"<origin xyz="1e308 0 0.3" rpy="0.1 0.2 0.3"/>"#,
+            "joint \"j1\"",
+        ),
+        (
+            r#"<origin xyz="0.05 0 0"/>
+    <axis xyz="1 0 0"/>"#,
+            r#"<origin xyz="0.05 0 -11"/>
+    <axis xyz="1 0 0"/>"#,
+            "joint \"finger_joint\"",
+        ),
+        (
+            r#"<origin xyz="0.1 0 0" rpy="0 0 0"/><mass value="2.0"/>"#,
+            r#"<origin xyz="0.1 -1e300 0" rpy="0 0 0"/><mass value="2.0"/>"#,
+            "link \"l1\" <inertial>",
+        ),
+    ] {
+        let text = arm(0.2);
+        assert!(text.contains(from), "{from}");
+        let (e, m) = error(&text.replacen(from, to, 1), "base", "tcp");
+        assert!(
+            matches!(e, UrdfChainError::TooLong { limit, .. } if limit == MAX_LENGTH),
+            "{m}"
+        );
+        assert!(
+            m.contains(owner) && m.contains("<origin xyz>") && m.contains("[-10, 10] m"),
+            "{m}"
+        );
+        assert!(m.len() < 300, "no 300-digit number: {m}");
+    }
+    let nan_rpy = arm(0.2).replacen(on_j1, r#"<origin xyz="0 0 0.3" rpy="0.1 nan 0.3"/>"#, 1);
+    let (e, m) = error(&nan_rpy, "base", "tcp");
+    assert!(
+        matches!(
+            e,
+            UrdfChainError::OriginNotFinite {
+                field: "rpy",
+                index: 1,
+                ..
+            }
+        ),
+        "{m}"
+    );
+    let inf_xyz = arm(0.2).replacen(on_j1, r#"<origin xyz="0 1e999 0.3"/>"#, 1);
+    assert!(matches!(
+        error(&inf_xyz, "base", "tcp").0,
+        UrdfChainError::OriginNotFinite { field: "xyz", .. }
+    ));
+    // The bound itself is a length.
+    let at_bound = arm(0.2).replacen(on_j1, r#"<origin xyz="10 -10 0.3"/>"#, 1);
+    assert!(parse_urdf("x.urdf", &at_bound, &ends("base", "tcp")).is_ok());
+    // An axis is scaled by its largest entry before it is normalised: a huge one (whose
+    // squares overflow) and a tiny one (whose squares underflow) keep their direction.
+    for (axis, unit) in [
+        ("1e308 1e308 0", Vector3::new(1.0, 1.0, 0.0) / 2f64.sqrt()),
+        ("0 -1e-200 0", -Vector3::y()),
+    ] {
+        let text = arm(0.2).replacen(
+            r#"<axis xyz="0 1 0"/>"#,
+            &format!(r#"<axis xyz="{axis}"/>"#),
+            1,
+        );
+        let chain = parse_urdf("x.urdf", &text, &ends("base", "tcp")).unwrap();
+        let a = chain.joints()[2].axis;
+        assert!((a - unit).amax() < 1e-15, "{axis}: {a}");
+        let mut ws = chain.workspace();
+        assert!(chain
+            .jacobian(&mut ws, &[0.1, 0.1, 0.1])
+            .iter()
+            .all(|x| x.is_finite()));
+    }
 }
