@@ -728,9 +728,12 @@ impl Sweep {
         self.place.wrap(error)
     }
 
-    /// The swept keys, quoted (for errors).
+    /// The swept keys, quoted (for errors) as errors show a text ([`settings::shown`]).
     pub fn keys(&self) -> Vec<String> {
-        self.axes.iter().map(|a| format!("`{}`", a.key)).collect()
+        self.axes
+            .iter()
+            .map(|a| settings::shown(&a.key).to_string())
+            .collect()
     }
 
     /// The variants checked at load, in order: every one of a sweep of at most
@@ -1663,36 +1666,39 @@ sweep = { "scheme.mu" = { from = 0.1, to = 0.3, step = 0.1 }, "scheme.n" = { fro
         };
         let e = err(r#"{ "schem.mu" = [1.0] }"#);
         assert!(
-            e.contains("key `schem.mu`") && e.contains("unknown key path"),
+            e.contains("key \"schem.mu\"") && e.contains("unknown key path"),
             "{e}"
         );
         let e = err(r#"{ "path.scale" = [1.0] }"#);
         assert!(
-            e.contains("key `path.scale`") && e.contains("gives no `path`"),
+            e.contains("key \"path.scale\"") && e.contains("gives no `path`"),
             "{e}"
         );
         let e = err(r#"{ "scheme.mu.x" = [1.0] }"#);
         assert!(
-            e.contains("key `scheme.mu.x`") && e.contains("not a table"),
+            e.contains("key \"scheme.mu.x\"") && e.contains("not a table"),
             "{e}"
         );
         let e = err(r#"{ "solvers.3.gamma" = [1.0] }"#);
         assert!(e.contains("no [3]"), "{e}");
         let e = err(r#"{ "scheme.mu" = [] }"#);
-        assert!(e.contains("key `scheme.mu`") && e.contains("empty"), "{e}");
+        assert!(
+            e.contains("key \"scheme.mu\"") && e.contains("empty"),
+            "{e}"
+        );
         let e = err(r#"{ "scheme.mu" = 1.0 }"#);
         assert!(
-            e.contains("key `scheme.mu`") && e.contains("must be a list"),
+            e.contains("key \"scheme.mu\"") && e.contains("must be a list"),
             "{e}"
         );
         let e = err(r#"{ "scheme.mu" = { from = 0, to = 1, step = 0.3 } }"#);
         assert!(
-            e.contains("key `scheme.mu`") && e.contains("does not divide"),
+            e.contains("key \"scheme.mu\"") && e.contains("does not divide"),
             "{e}"
         );
         let e = err(r#"{ "scheme.mu" = { from = 0, to = 1 } }"#);
         assert!(
-            e.contains("key `scheme.mu`") && e.contains("a range is"),
+            e.contains("key \"scheme.mu\"") && e.contains("a range is"),
             "{e}"
         );
         let e = err(r#"{ "scheme.mu, scheme.nu" = [[1.0]] }"#);
@@ -1703,7 +1709,7 @@ sweep = { "scheme.mu" = { from = 0.1, to = 0.3, step = 0.1 }, "scheme.n" = { fro
             "label = \"L {nu}\"\nscheme = { kind = \"x\" }\nsweep = { \"scheme.mu\" = [1] }",
         );
         let e = expand_variant(&v).unwrap_err().to_string();
-        assert!(e.contains("placeholder {nu}"), "{e}");
+        assert!(e.contains("placeholder \"{nu}\""), "{e}");
     }
 
     #[test]
@@ -1757,7 +1763,7 @@ label = "last"
         .to_string();
         assert!(
             e.starts_with(
-                "experiment[0] (id \"p-e\") variant[0] (\"S\") field `sweep` key `scheme.mu`"
+                "experiment[0] (id \"p-e\") variant[0] (\"S\") field `sweep` key \"scheme.mu\""
             ),
             "{e}"
         );

@@ -117,8 +117,9 @@ pub enum RobotFileError {
     },
     /// A robot file read at run time declares a name the suite already has.
     #[error(
-        "{file}: declares robot \"{name}\", a name the suite already has (a built-in model or \
-         another robot file); rename the file and its `name`"
+        "{file}: declares robot {}, a name the suite already has (a built-in model or \
+         another robot file); rename the file and its `name`",
+        settings::shown(name)
     )]
     Shadows {
         /// The robot file.
