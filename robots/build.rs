@@ -28,6 +28,13 @@ mod file_rules;
 #[allow(dead_code)]
 #[path = "../inputs/src/toml_error.rs"]
 mod toml_error;
+// The TOML error shows the keys and values it quotes as every error does (crate settings'
+// `shown`, which it reaches through its parent module, as in crate inputs), without a build
+// dependency on settings.
+#[allow(dead_code)]
+#[path = "../settings/src/shown.rs"]
+mod shown_text;
+use shown_text::{is_control_or_format, shown, SHOWN_MAX_CHARS};
 
 use std::error::Error;
 use std::fmt::Write as _;

@@ -223,15 +223,15 @@ pub const RUST_CLAIMS: &[&str] = &[
 /// What is wrong with a `[[claim]]` (the field and the valid choices).
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum ClaimError {
-    #[error("field `metric`: unknown metric \"{metric}\" (valid: drift_k for joint k, {})", records::index::metrics().map(|(n, _)| *n).collect::<Vec<_>>().join(", "))]
+    #[error("field `metric`: unknown metric {} (valid: drift_k for joint k, {})", settings::shown(metric), records::index::metrics().map(|(n, _)| *n).collect::<Vec<_>>().join(", "))]
     UnknownMetric { metric: String },
-    #[error("field `rust`: no Rust claim \"{id}\" (known: {})", RUST_CLAIMS.join(", "))]
+    #[error("field `rust`: no Rust claim {} (known: {})", settings::shown(id), RUST_CLAIMS.join(", "))]
     UnknownRust { id: String },
     #[error("field `{field}`: must be a finite number")]
     NotFinite { field: &'static str },
     #[error("field `{field}`: must be one line of text (no line breaks or control characters)")]
     NotOneLine { field: &'static str },
-    #[error("field `{field}`: \"{text}\" is not \"<experiment> / <variant> / <solver>\" (id patterns, `*` for any text)")]
+    #[error("field `{field}`: {} is not \"<experiment> / <variant> / <solver>\" (id patterns, `*` for any text)", settings::shown(text))]
     Selection { field: &'static str, text: String },
     #[error("needs `metric` and `runs` and exactly one of `below`, `at_most`, `at_least`, `above`, `than` (or `rust` and `why` for a claim in Rust)")]
     Shape,

@@ -54,19 +54,26 @@ pub const SWEEP_METRICS: [&str; 6] = [
 pub enum PaperProblem {
     #[error("the folder's name is not UTF-8; a paper id is lower-case ASCII letters, digits, `.` and single `-`")]
     FolderNotUtf8,
-    #[error("the folder's name \"{id}\" is not a paper id: use lower-case ASCII letters, digits, `.` and single `-`, at most {MAX_EXPERIMENT_ID} bytes (e.g. \"{suggestion}\")")]
+    #[error("the folder's name {} is not a paper id: use lower-case ASCII letters, digits, `.` and single `-`, at most {MAX_EXPERIMENT_ID} bytes (e.g. {})", settings::shown(id), settings::shown(suggestion))]
     NotAnId { id: String, suggestion: String },
-    #[error("the folder's name \"{id}\" is reserved (the suite's own: {})", RESERVED_PAPER_IDS.join(", "))]
+    #[error("the folder's name {} is reserved (the suite's own: {})", settings::shown(id), RESERVED_PAPER_IDS.join(", "))]
     Reserved { id: String },
-    #[error("field `paper`: \"{paper}\" must be the folder's name \"{folder}\"")]
+    #[error(
+        "field `paper`: {} must be the folder's name {}",
+        settings::shown(paper),
+        settings::shown(folder)
+    )]
     NotTheFolder { paper: String, folder: String },
     #[error("field `{field}`: must be one line of text (no line breaks or control characters)")]
     NotOneLine { field: &'static str },
-    #[error("mapping[{index}] field `run`: \"{run}\" is not \"<experiment> / <variant> / <solver>\" (ids)")]
+    #[error(
+        "mapping[{index}] field `run`: {} is not \"<experiment> / <variant> / <solver>\" (ids)",
+        settings::shown(run)
+    )]
     Run { index: usize, run: String },
-    #[error("mapping[{index}] field `companions`: \"{companion}\" is not \"<variant>\" or \"<variant> / <solver>\" (ids)")]
+    #[error("mapping[{index}] field `companions`: {} is not \"<variant>\" or \"<variant> / <solver>\" (ids)", settings::shown(companion))]
     Companion { index: usize, companion: String },
-    #[error("mapping[{index}]: published experiment \"{experiment}\" column \"{column}\" is already mapped by mapping[{first}] (one run per published column)")]
+    #[error("mapping[{index}]: published experiment {} column {} is already mapped by mapping[{first}] (one run per published column)", settings::shown(experiment), settings::shown(column))]
     MappingTwice {
         index: usize,
         first: usize,
@@ -90,14 +97,15 @@ pub enum PaperProblem {
     #[error("sweep_check[{index}] field `metrics`: {found} (valid: each of {} at most once, at least one)", SWEEP_METRICS.join(", "))]
     SweepMetric { index: usize, found: String },
     #[error(
-        "sweep_check[{index}] field `table`: values.csv has no table \"{table}\" (valid: {valid})"
+        "sweep_check[{index}] field `table`: values.csv has no table {} (valid: {valid})",
+        settings::shown(table)
     )]
     SweepTable {
         index: usize,
         table: String,
         valid: String,
     },
-    #[error("sweep_check[{index}] columns[{column}] field `published_experiment`: table {table} of values.csv has no \"{experiment}\" with every metric of the check (valid: {valid})")]
+    #[error("sweep_check[{index}] columns[{column}] field `published_experiment`: table {table} of values.csv has no {} with every metric of the check (valid: {valid})", settings::shown(experiment))]
     SweepColumn {
         index: usize,
         column: usize,
@@ -112,14 +120,17 @@ pub enum PaperProblem {
         experiment: String,
         valid: String,
     },
-    #[error("sweep_check[{index}] field `declared`: \"{variant}\" is no variant of {experiment} (valid: {valid})")]
+    #[error(
+        "sweep_check[{index}] field `declared`: {} is no variant of {experiment} (valid: {valid})",
+        settings::shown(variant)
+    )]
     SweepDeclared {
         index: usize,
         variant: String,
         experiment: String,
         valid: String,
     },
-    #[error("sweep_check[{index}] columns[{column}] field `variants`: \"{pattern}\" matches no variant of {experiment} (valid: {valid})")]
+    #[error("sweep_check[{index}] columns[{column}] field `variants`: {} matches no variant of {experiment} (valid: {valid})", settings::shown(pattern))]
     SweepSelectsNothing {
         index: usize,
         column: usize,
@@ -127,7 +138,10 @@ pub enum PaperProblem {
         experiment: String,
         valid: String,
     },
-    #[error("mapping[{index}] field `{field}`: no run \"{run}\" in the experiment files (valid {valid})")]
+    #[error(
+        "mapping[{index}] field `{field}`: no run {} in the experiment files (valid {valid})",
+        settings::shown(run)
+    )]
     NoSuchRun {
         index: usize,
         field: &'static str,
@@ -138,9 +152,13 @@ pub enum PaperProblem {
     SelectsNothing { index: usize, field: &'static str },
     #[error("line {line}: value {value} is not a finite number")]
     ValueNotFinite { line: usize, value: f64 },
-    #[error("line {line}: unknown metric \"{metric}\" (valid: {})", PUBLISHED_METRICS.join(", "))]
+    #[error("line {line}: unknown metric {} (valid: {})", settings::shown(metric), PUBLISHED_METRICS.join(", "))]
     UnknownMetric { line: usize, metric: String },
-    #[error("line {line}: a value of paper \"{paper}\" in the folder of \"{folder}\"")]
+    #[error(
+        "line {line}: a value of paper {} in the folder of {}",
+        settings::shown(paper),
+        settings::shown(folder)
+    )]
     OtherPaper {
         line: usize,
         paper: String,

@@ -2,10 +2,9 @@
 //! citations and claims into headings, table cells and list items, which a line break or other
 //! control character would end (a claim's text would become a heading of its own).
 
-/// Whether `text` is one line: no line break or other control character.
-pub fn is_one_line(text: &str) -> bool {
-    !text.contains(char::is_control)
-}
+/// Whether `text` is one line: no line break or other control character. The rule is crate
+/// settings', which the experiment files' `title` and `paper_output` follow too.
+pub use settings::is_one_line;
 
 #[cfg(test)]
 mod tests {

@@ -114,10 +114,16 @@ impl SweepCheckFile {
         let mut seen = BTreeSet::new();
         for m in &self.metrics {
             if !SWEEP_METRICS.contains(&m.as_str()) {
-                return Err(metric_problem(format!("unknown metric {m:?}")));
+                return Err(metric_problem(format!(
+                    "unknown metric {}",
+                    settings::shown(m)
+                )));
             }
             if !seen.insert(m.as_str()) {
-                return Err(metric_problem(format!("{m:?} is given twice")));
+                return Err(metric_problem(format!(
+                    "{} is given twice",
+                    settings::shown(m)
+                )));
             }
         }
         if self.columns.len() > MAX_SWEEP_COLUMNS {

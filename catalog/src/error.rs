@@ -13,7 +13,7 @@
 //! (`settings::IntegratorError`) are crate `settings`', below both this crate and the
 //! solvers.
 
-use settings::IntegratorError;
+use settings::{shown, IntegratorError};
 use spec::NameError;
 use spec::SchemeError;
 use std::path::PathBuf;
@@ -27,7 +27,11 @@ pub use inputs::TomlError;
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum SweepError {
     /// The error of the variant `variant` (its label) of experiment `experiment` (its id).
-    #[error("experiment[{experiment}] (id \"{id}\") variant[{variant}] (\"{label}\") {error}")]
+    #[error(
+        "experiment[{experiment}] (id {}) variant[{variant}] ({}) {error}",
+        shown(id),
+        shown(label)
+    )]
     In {
         /// The experiment's index in the file (from 0).
         experiment: usize,
@@ -41,13 +45,13 @@ pub enum SweepError {
         error: Box<SweepError>,
     },
     /// The first expanded variant does not read as a variant (a misspelt swept field).
-    #[error("field `sweep`: the expanded variant \"{expanded}\" does not read: {error} (check the swept keys: {})", keys.join(", "))]
+    #[error("field `sweep`: the expanded variant {} does not read: {error} (check the swept keys: {})", shown(expanded), keys.join(", "))]
     DoesNotRead {
         /// The expanded variant's label.
         expanded: String,
         /// Why it does not read (serde's error).
         error: TomlError,
-        /// The swept keys, each in backquotes.
+        /// The swept keys, each as errors show a text ([`settings::shown`]).
         keys: Vec<String>,
     },
     /// `sweep` is not a table.
@@ -85,7 +89,7 @@ pub enum SweepError {
         max: usize,
     },
     /// Two expanded variants get the same label.
-    #[error("field `sweep`: expanded variants {first} and {second} both get the label \"{label}\"; the label template must tell every value of every key apart (keys: {})", keys.join(", "))]
+    #[error("field `sweep`: expanded variants {first} and {second} both get the label {}; the label template must tell every value of every key apart (keys: {})", shown(label), keys.join(", "))]
     SameLabel {
         /// The first one's index in the expansion (from 0).
         first: usize,
@@ -93,7 +97,7 @@ pub enum SweepError {
         second: usize,
         /// The label they share.
         label: String,
-        /// The swept keys, each in backquotes.
+        /// The swept keys, each as errors show a text ([`settings::shown`]).
         keys: Vec<String>,
     },
     /// The sweep is larger than [`crate::sweep::CHECKED_WHOLE`] and its axes do not show its
@@ -107,7 +111,7 @@ pub enum SweepError {
     },
     /// Another variant's name begins as every label or id of a large sweep does: they might be
     /// the same.
-    #[error("field `sweep`: every {what} of its variants begins with \"{prefix}\", and so does \"{name}\" of another variant of the experiment: give one of them another {what}")]
+    #[error("field `sweep`: every {what} of its variants begins with {}, and so does {} of another variant of the experiment: give one of them another {what}", shown(prefix), shown(name))]
     MayClash {
         /// `label` or `id`.
         what: &'static str,
@@ -117,7 +121,7 @@ pub enum SweepError {
         name: String,
     },
     /// The label template has a placeholder that names no swept key.
-    #[error("field `label`: placeholder {{{placeholder}}} names no swept key (known: {})", known.join(", "))]
+    #[error("field `label`: placeholder {} names no swept key (known: {})", shown(&format!("{{{placeholder}}}")), shown_list(known))]
     Placeholder {
         /// The placeholder's name (without braces).
         placeholder: String,
@@ -128,7 +132,7 @@ pub enum SweepError {
     /// that meet through `*` (`solvers.*.gamma` and `solvers.0.gamma`), or a path and one
     /// under it (`scheme` and `scheme.mu`). Each would overwrite the other's value while the
     /// labels name both.
-    #[error("field `sweep`: keys {} and {} both set {} of the variant, and the later would overwrite the earlier's values; a field may be set by one key of a sweep only", shown_key(first), shown_key(second), shown_key(field))]
+    #[error("field `sweep`: keys {} and {} both set {} of the variant, and the later would overwrite the earlier's values; a field may be set by one key of a sweep only", shown(first), shown(second), shown(field))]
     SameField {
         /// The first key (in the sweep table's order), as written.
         first: String,
@@ -140,7 +144,7 @@ pub enum SweepError {
     },
     /// Two paths of one zipped group set the same field of the variant (the same path twice,
     /// or paths that meet as in [`SweepError::SameField`]).
-    #[error("field `sweep` key {}: its paths {} and {} both set {} of the variant; a zipped group sets each field once", shown_key(key), shown_key(first), shown_key(second), shown_key(field))]
+    #[error("field `sweep` key {}: its paths {} and {} both set {} of the variant; a zipped group sets each field once", shown(key), shown(first), shown(second), shown(field))]
     SameFieldInGroup {
         /// The group's key, as written.
         key: String,
@@ -152,32 +156,13 @@ pub enum SweepError {
         field: String,
     },
     /// A problem with one key of the sweep.
-    #[error("field `sweep` key {}: {error}", shown_key(key))]
+    #[error("field `sweep` key {}: {error}", shown(key))]
     Key {
         /// The key as written (several paths, comma-separated, for a zipped group).
         key: String,
         /// What is wrong with it.
         error: SweepKeyError,
     },
-}
-
-/// A swept key (or a path or field made of its text) as the errors show it: in backquotes,
-/// with every control character and every whitespace character other than a plain space
-/// escaped (`\t`, `\n`, `\r`, else `\u{..}`), so a key shows as written, a space at its
-/// end included, and nothing in it acts on the terminal.
-pub(crate) fn shown_key(key: &str) -> String {
-    let mut out = String::with_capacity(key.len() + 2);
-    out.push('`');
-    for c in key.chars() {
-        match c {
-            '\t' | '\n' | '\r' => out.extend(c.escape_debug()),
-            ' ' => out.push(' '),
-            c if c.is_control() || c.is_whitespace() => out.extend(c.escape_unicode()),
-            c => out.push(c),
-        }
-    }
-    out.push('`');
-    out
 }
 
 /// What is wrong with one key of a `sweep` table (its dotted path or its values).
@@ -212,7 +197,8 @@ pub enum SweepKeyError {
     },
     /// A value of a zipped group is not a list with one entry per path.
     #[error(
-        "value [{index}] must be a list of {paths} entries, one per path of the group (got {got})"
+        "value [{index}] must be a list of {paths} entries, one per path of the group (got {})",
+        shown(got)
     )]
     GroupValue {
         /// The value's index in the list (from 0).
@@ -231,13 +217,17 @@ pub enum KeyPathError {
     #[error("an empty segment")]
     EmptySegment,
     /// The first segment is not a field a sweep may set.
-    #[error("`{first}` is not a field of a variant (fields: {})", crate::fields::VARIANT_FIELDS.join(", "))]
+    #[error("{} is not a field of a variant (fields: {})", shown(first), crate::fields::VARIANT_FIELDS.join(", "))]
     NotAField {
         /// The first segment.
         first: String,
     },
     /// A table on the way lacks the next segment (only the last segment may be new).
-    #[error("`{done}` has no `{segment}` (give it on the variant to sweep inside it)")]
+    #[error(
+        "{} has no {} (give it on the variant to sweep inside it)",
+        shown(done),
+        shown(segment)
+    )]
     NoKey {
         /// The path to the table, dotted.
         done: String,
@@ -245,13 +235,17 @@ pub enum KeyPathError {
         segment: String,
     },
     /// `*` stands for every element of a list that has none.
-    #[error("`{done}` is an empty list")]
+    #[error("{} is an empty list", shown(done))]
     EmptyList {
         /// The path to the list, dotted.
         done: String,
     },
     /// A list is indexed by something that is neither a number nor `*`.
-    #[error("`{done}` is a list: index it with 0, 1, ... or `*`, not `{segment}`")]
+    #[error(
+        "{} is a list: index it with 0, 1, ... or `*`, not {}",
+        shown(done),
+        shown(segment)
+    )]
     BadIndex {
         /// The path to the list, dotted.
         done: String,
@@ -259,7 +253,7 @@ pub enum KeyPathError {
         segment: String,
     },
     /// A list index is past the list's end.
-    #[error("`{done}` has {len} entries, no [{index}]")]
+    #[error("{} has {len} entries, no [{index}]", shown(done))]
     NoEntry {
         /// The path to the list, dotted.
         done: String,
@@ -269,7 +263,7 @@ pub enum KeyPathError {
         index: usize,
     },
     /// The path goes on inside a value that is neither a table nor a list.
-    #[error("`{done}` is a {kind}, not a table or a list")]
+    #[error("{} is a {kind}, not a table or a list", shown(done))]
     NotContainer {
         /// The path to the value, dotted.
         done: String,
@@ -288,7 +282,10 @@ pub enum KeyPathError {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum RangeError {
     /// The range table's keys are not exactly `from`, `to` and `step`.
-    #[error("a range is {{ from = a, to = b, step = s }} (got keys: {})", keys.join(", "))]
+    #[error(
+        "a range is {{ from = a, to = b, step = s }} (got keys: {})",
+        shown_list(keys)
+    )]
     Keys {
         /// The keys given.
         keys: Vec<String>,
@@ -342,12 +339,14 @@ pub enum RangeError {
     },
 }
 
-/// Where in an experiment file a field is: the file's `paper`, an experiment's field, or a
-/// variant's field.
+/// Where in an experiment file a field is: the file's `paper` or `title`, an experiment's
+/// field, or a variant's field.
 #[derive(Clone, Debug, PartialEq)]
 pub enum FieldAt {
     /// The file's `paper` field.
     Paper,
+    /// The file's `title` field.
+    Title,
     /// A field of an experiment.
     Experiment {
         /// The experiment's index in the file (from 0).
@@ -376,8 +375,9 @@ impl std::fmt::Display for FieldAt {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             FieldAt::Paper => write!(f, "field `paper`"),
+            FieldAt::Title => write!(f, "field `title`"),
             FieldAt::Experiment { index, id, field } => {
-                write!(f, "experiment[{index}] (id \"{id}\") field `{field}`")
+                write!(f, "experiment[{index}] (id {}) field `{field}`", shown(id))
             }
             FieldAt::Variant {
                 experiment,
@@ -387,7 +387,9 @@ impl std::fmt::Display for FieldAt {
                 field,
             } => write!(
                 f,
-                "experiment[{experiment}] (id \"{id}\") variant[{index}] (\"{label}\") field `{field}`"
+                "experiment[{experiment}] (id {}) variant[{index}] ({}) field `{field}`",
+                shown(id),
+                shown(label)
             ),
         }
     }
@@ -403,13 +405,21 @@ pub enum FieldError {
     #[error(transparent)]
     Id(#[from] spec::ids::IdError),
     /// An experiment id does not start with the file's paper id and `-`.
-    #[error("must start with the paper id \"{paper}-\"")]
+    #[error("must start with the paper id {}", shown(&format!("{paper}-")))]
     PaperPrefix {
         /// The file's paper id.
         paper: String,
     },
+    /// A text shown in listings and the report (the file's `title`, an experiment's
+    /// `paper_output`) is not one line ([`settings::is_one_line`], the rule of a paper's title
+    /// and citation).
+    #[error("must be one line of text (no line breaks or control characters; it holds {found:?})")]
+    NotOneLine {
+        /// The first control character.
+        found: char,
+    },
     /// An experiment id is used twice in the file.
-    #[error("experiment id \"{id}\" is used twice")]
+    #[error("experiment id {} is used twice", shown(id))]
     IdTwice {
         /// The id.
         id: String,
@@ -444,13 +454,17 @@ pub enum FieldError {
     #[error("at least one [[experiment.variant]] is needed")]
     NoVariants,
     /// Two variants of the experiment have the same label.
-    #[error("label \"{label}\" is used by two variants of the experiment")]
+    #[error("label {} is used by two variants of the experiment", shown(label))]
     LabelTwice {
         /// The label.
         label: String,
     },
     /// A paper, experiment or variant id is not in id form ([`spec::ids`]).
-    #[error("\"{id}\" is not an id: use lower-case ASCII letters, digits, `.` and single `-` (e.g. \"{suggestion}\")")]
+    #[error(
+        "{} is not an id: use lower-case ASCII letters, digits, `.` and single `-` (e.g. {})",
+        shown(id),
+        shown(suggestion)
+    )]
     NotAnId {
         /// The id as written.
         id: String,
@@ -458,7 +472,7 @@ pub enum FieldError {
         suggestion: String,
     },
     /// Two variants of the experiment have the same id.
-    #[error("variants \"{label}\" and \"{other}\" both have the id \"{id}\"{}; give one an `id`", if *derived { " (derived from the label)" } else { "" })]
+    #[error("variants {} and {} both have the id {}{}; give one an `id`", shown(label), shown(other), shown(id), if *derived { " (derived from the label)" } else { "" })]
     IdClash {
         /// The label of the variant found second.
         label: String,
@@ -470,7 +484,10 @@ pub enum FieldError {
         derived: bool,
     },
     /// `expected_failure` names a solver kind none of the variant's runs has.
-    #[error("\"{kind}\" is not a solver kind of this variant (its runs: {kinds})")]
+    #[error(
+        "{} is not a solver kind of this variant (its runs: {kinds})",
+        shown(kind)
+    )]
     UnknownFailureKind {
         /// The kind named.
         kind: String,
@@ -479,7 +496,10 @@ pub enum FieldError {
     },
     /// A variant's robot has another joint count than the experiment's, and the variant gives
     /// no theta0 of its own (or no theta_ref, where the experiment gives one).
-    #[error("robot \"{robot}\" has {joints} joints; give theta0/theta_ref for it")]
+    #[error(
+        "robot {} has {joints} joints; give theta0/theta_ref for it",
+        shown(robot)
+    )]
     RobotJoints {
         /// The variant's robot.
         robot: String,
@@ -502,7 +522,10 @@ pub enum FieldError {
     #[error(transparent)]
     Setup(#[from] spec::SetupError),
     /// Two runs of the variant have the same run key.
-    #[error("run \"{key}\" is listed twice (experiment / variant / solver ids must be unique)")]
+    #[error(
+        "run {} is listed twice (experiment / variant / solver ids must be unique)",
+        shown(key)
+    )]
     RunTwice {
         /// The run key, `experiment / variant / solver`.
         key: String,
@@ -568,7 +591,7 @@ pub enum ExperimentFileError {
         dir: PathBuf,
     },
     /// An experiment id defined in two files.
-    #[error("{}: experiment[{index}] (id \"{id}\") field `id`: \"{id}\" is also defined in {}", file.display(), other_file.display())]
+    #[error("{}: experiment[{index}] (id {}) field `id`: {} is also defined in {}", file.display(), shown(id), shown(id), other_file.display())]
     DefinedTwice {
         /// The file read second (files are read in name order).
         file: PathBuf,
@@ -616,4 +639,14 @@ pub enum TaskSetError {
         /// Its valid values.
         valid: &'static str,
     },
+}
+
+/// Texts (swept keys, placeholder names) as errors show them ([`settings::shown`]),
+/// comma-separated.
+fn shown_list(texts: &[String]) -> String {
+    texts
+        .iter()
+        .map(|t| shown(t).to_string())
+        .collect::<Vec<_>>()
+        .join(", ")
 }

@@ -418,6 +418,7 @@ impl PaperFile {
     fn validate(&self) -> Result<(), ExperimentError> {
         check_name(&self.paper, MAX_EXPERIMENT_ID, FieldAt::Paper)?;
         check_id(&self.paper, FieldAt::Paper)?;
+        check_one_line(&self.title, FieldAt::Title)?;
         // Hash sets, not lists: a sweep of 10^6 variants is validated in linear time. (An
         // experiment id is its own slug, so two ids share a file name only when they are equal.)
         let mut ids_seen: HashSet<&str> = HashSet::new();
@@ -448,6 +449,7 @@ impl PaperFile {
             let id = e.id.clone();
             return Err(field(at("id"), FieldError::IdTwice { id }));
         }
+        check_one_line(&e.paper_output, at("paper_output"))?;
         let n = robot_dof(&e.robot).map_err(|e| field(at("robot"), e))?;
         mount_of(e.tool.as_ref(), e.base.as_ref())
             .map_err(|err| field(at(err.field()), SetupError::Mount(err)))?;
@@ -1122,6 +1124,19 @@ fn check_id(id: &str, at: FieldAt) -> Result<(), ExperimentError> {
 }
 
 /// The error `error` at the field `at`.
+/// Checks that `text` (the file's `title`, an experiment's `paper_output`: shown by `list` and in
+/// the report) is one line, as a paper's title and citation must be ([`settings::is_one_line`]).
+fn check_one_line(text: &str, at: FieldAt) -> Result<(), ExperimentError> {
+    if settings::is_one_line(text) {
+        return Ok(());
+    }
+    let found = text
+        .chars()
+        .find(|c| !settings::is_one_line(c.encode_utf8(&mut [0; 4])))
+        .unwrap_or(char::REPLACEMENT_CHARACTER);
+    Err(field(at, FieldError::NotOneLine { found }))
+}
+
 fn field(at: FieldAt, error: impl Into<FieldError>) -> ExperimentError {
     ExperimentError::Field {
         at: Box::new(at),

@@ -91,8 +91,8 @@
 //! field of an expanded variant (a variant without a sweep refuses it as an unknown field).
 //!
 //! **Errors** name the experiment, the variant and the key (the file is added by
-//! [`crate::experiment::PaperFile::load`]; a key is shown in backquotes with its control
-//! characters and whitespace other than a space escaped, `crate::error::shown_key`): an
+//! [`crate::experiment::PaperFile::load`]; a key is shown as every error shows a user's text,
+//! quoted with its control and formatting characters escaped, [`settings::shown`]): an
 //! unknown key path, whitespace in a key, two keys (or two paths of a group) that set one
 //! field, an empty list, a swept key that is neither a list nor a range, a bad range, a zipped
 //! value of the wrong length, a placeholder that names no swept key, a variant that does not
@@ -746,11 +746,11 @@ impl Sweep {
         self.place.wrap(error)
     }
 
-    /// The swept keys, quoted (for errors, [`crate::error::shown_key`]).
+    /// The swept keys, quoted (for errors) as errors show a text ([`settings::shown`]).
     pub fn keys(&self) -> Vec<String> {
         self.axes
             .iter()
-            .map(|a| crate::error::shown_key(&a.key))
+            .map(|a| settings::shown(&a.key).to_string())
             .collect()
     }
 
@@ -1815,36 +1815,39 @@ sweep = { "scheme.mu" = { from = 0.1, to = 0.3, step = 0.1 }, "scheme.n" = { fro
         };
         let e = err(r#"{ "schem.mu" = [1.0] }"#);
         assert!(
-            e.contains("key `schem.mu`") && e.contains("unknown key path"),
+            e.contains("key \"schem.mu\"") && e.contains("unknown key path"),
             "{e}"
         );
         let e = err(r#"{ "path.scale" = [1.0] }"#);
         assert!(
-            e.contains("key `path.scale`") && e.contains("gives no `path`"),
+            e.contains("key \"path.scale\"") && e.contains("gives no `path`"),
             "{e}"
         );
         let e = err(r#"{ "scheme.mu.x" = [1.0] }"#);
         assert!(
-            e.contains("key `scheme.mu.x`") && e.contains("not a table"),
+            e.contains("key \"scheme.mu.x\"") && e.contains("not a table"),
             "{e}"
         );
         let e = err(r#"{ "solvers.3.gamma" = [1.0] }"#);
         assert!(e.contains("no [3]"), "{e}");
         let e = err(r#"{ "scheme.mu" = [] }"#);
-        assert!(e.contains("key `scheme.mu`") && e.contains("empty"), "{e}");
+        assert!(
+            e.contains("key \"scheme.mu\"") && e.contains("empty"),
+            "{e}"
+        );
         let e = err(r#"{ "scheme.mu" = 1.0 }"#);
         assert!(
-            e.contains("key `scheme.mu`") && e.contains("must be a list"),
+            e.contains("key \"scheme.mu\"") && e.contains("must be a list"),
             "{e}"
         );
         let e = err(r#"{ "scheme.mu" = { from = 0, to = 1, step = 0.3 } }"#);
         assert!(
-            e.contains("key `scheme.mu`") && e.contains("does not divide"),
+            e.contains("key \"scheme.mu\"") && e.contains("does not divide"),
             "{e}"
         );
         let e = err(r#"{ "scheme.mu" = { from = 0, to = 1 } }"#);
         assert!(
-            e.contains("key `scheme.mu`") && e.contains("a range is"),
+            e.contains("key \"scheme.mu\"") && e.contains("a range is"),
             "{e}"
         );
         let e = err(r#"{ "scheme.mu, scheme.nu" = [[1.0]] }"#);
@@ -1855,7 +1858,7 @@ sweep = { "scheme.mu" = { from = 0.1, to = 0.3, step = 0.1 }, "scheme.n" = { fro
             "label = \"L {nu}\"\nscheme = { kind = \"x\" }\nsweep = { \"scheme.mu\" = [1] }",
         );
         let e = expand_variant(&v).unwrap_err().to_string();
-        assert!(e.contains("placeholder {nu}"), "{e}");
+        assert!(e.contains("placeholder \"{nu}\""), "{e}");
     }
 
     /// The sweep of `sweep` (the TOML of its table) on a variant with a scheme, two solvers,
@@ -1904,7 +1907,7 @@ sweep = { "scheme.mu" = { from = 0.1, to = 0.3, step = 0.1 }, "scheme.n" = { fro
         );
         assert!(
             text.contains(
-                "keys `solvers.0.gamma` and `solvers.*.gamma` both set `solvers.0.gamma`"
+                "keys \"solvers.0.gamma\" and \"solvers.*.gamma\" both set \"solvers.0.gamma\""
             ),
             "{text}"
         );
@@ -1932,7 +1935,7 @@ sweep = { "scheme.mu" = { from = 0.1, to = 0.3, step = 0.1 }, "scheme.n" = { fro
             r#"{ "scheme" = [{ kind = "znn-rmp", mu = 2.0, k_p = 1.0 }], "scheme.mu" = [1.0, 4.0] }"#,
         ));
         assert_eq!(e, same("scheme", "scheme.mu", "scheme.mu"));
-        assert!(text.contains("keys `scheme` and `scheme.mu`"), "{text}");
+        assert!(text.contains("keys \"scheme\" and \"scheme.mu\""), "{text}");
         let (e, _) = inner(refused_in_file(
             r#"{ "solvers.*.gamma" = [1.0, 4.0], "solvers" = [[{ kind = "znn", gamma = 3.0 }]] }"#,
         ));
@@ -1963,7 +1966,7 @@ sweep = { "scheme.mu" = { from = 0.1, to = 0.3, step = 0.1 }, "scheme.n" = { fro
             }
         );
         assert!(
-            text.contains("key `solvers.0.gamma, solvers.0.gamma`: its paths `solvers.0.gamma` and `solvers.0.gamma` both set"),
+            text.contains("key \"solvers.0.gamma, solvers.0.gamma\": its paths \"solvers.0.gamma\" and \"solvers.0.gamma\" both set"),
             "{text}"
         );
         let (e, _) = inner(refused_in_file(
@@ -2032,16 +2035,16 @@ sweep = { "scheme.kind" = ["x", "y"], "scheme.mu" = [1.0], "scheme.m" = [2.0], "
         }
         let (_, text) = inner(refused_in_file(r#"{ "solvers.*.gamma " = [1.0] }"#));
         assert!(
-            text.contains("key `solvers.*.gamma `: whitespace"),
+            text.contains("key \"solvers.*.gamma \": whitespace"),
             "{text}"
         );
         let (_, text) = inner(refused_in_file(
             "{ \"scheme.mu,\\tpath.scale\" = [[1.0, 0.1]] }",
         ));
-        assert!(text.contains("key `scheme.mu,\\tpath.scale`"), "{text}");
+        assert!(text.contains("key \"scheme.mu,\\tpath.scale\""), "{text}");
         // A control character in a key is shown escaped wherever the key is named.
         let (_, text) = inner(refused_in_file("{ \"sch\\u001bem.mu\" = [1.0] }"));
-        assert!(text.contains("key `sch\\u{1b}em.mu`"), "{text}");
+        assert!(text.contains("key \"sch\\u{1b}em.mu\""), "{text}");
         // After a comma, spaces (any number) or none.
         for key in [
             "path.scale,path.reverse",
@@ -2108,7 +2111,7 @@ label = "last"
         .to_string();
         assert!(
             e.starts_with(
-                "experiment[0] (id \"p-e\") variant[0] (\"S\") field `sweep` key `scheme.mu`"
+                "experiment[0] (id \"p-e\") variant[0] (\"S\") field `sweep` key \"scheme.mu\""
             ),
             "{e}"
         );

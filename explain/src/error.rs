@@ -27,7 +27,11 @@ pub enum FamilyError {
     /// The registry's error: an unknown robot (with the valid choices) or its invalid file.
     #[error("{0}")]
     UnknownRobot(String),
-    #[error("robot variant \"{variant}\" has another joint count than \"{declared}\"")]
+    #[error(
+        "robot variant {} has another joint count than {}",
+        settings::shown(variant),
+        settings::shown(declared)
+    )]
     JointCount { variant: String, declared: String },
     #[error("`network` lists \"exact\": the exact column is always tried")]
     ExactNetwork,

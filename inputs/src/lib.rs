@@ -59,3 +59,6 @@ pub use read::{open, read, read_text, Capped, Origin};
 pub use scratch::Scratch;
 pub use toml_error::from_str as parse_toml;
 pub use toml_error::TomlError;
+// The one way an error shows a text it was given (crate settings), for this crate's errors; a
+// TOML error's message follows it ([`TomlError`]).
+use settings::{is_control_or_format, shown, SHOWN_MAX_CHARS};

@@ -40,7 +40,7 @@ pub enum TraceProblem {
     NoColumn(&'static str),
     #[error("expected theta_1..n and thetadot_1..n, found {theta} and {thetadot}")]
     Joints { theta: usize, thetadot: usize },
-    #[error("row {row}: `{column}` = {text:?} is not a number")]
+    #[error("row {row}: `{column}` = {} is not a number", settings::shown(text))]
     NotANumber {
         row: usize,
         column: String,

@@ -66,6 +66,42 @@ impl Cli {
         }
     }
 
+    /// A clap error of [`Cli::parse_from_args`] as the program prints it (`--help` and
+    /// `--version` aside, which clap prints itself): clap quotes the argument at fault as it was
+    /// given (in single quotes, its escape sequences taken out, its line breaks and other
+    /// control characters left in), so each argument it quotes is shown as every error shows a
+    /// text instead ([`settings::shown`]: escaped, cut), and any other control or format
+    /// character is escaped; clap's own lines are kept, without its colours.
+    pub fn shown_error(e: &clap::Error) -> String {
+        use clap::builder::StyledStr;
+        use clap::error::ContextValue;
+        // Plain text: clap's styles and the escape sequences of the arguments taken out.
+        let mut text = e.render().to_string();
+        for (_, value) in e.context() {
+            let given: Vec<&str> = match value {
+                ContextValue::String(s) => vec![s.as_str()],
+                ContextValue::Strings(v) => v.iter().map(String::as_str).collect(),
+                _ => Vec::new(),
+            };
+            for raw in given {
+                let shown = settings::shown(raw).to_string();
+                if raw.is_empty() || shown == format!("\"{raw}\"") {
+                    continue;
+                }
+                // The argument as the plain text quotes it.
+                let plain = StyledStr::from(raw.to_owned()).to_string();
+                text = text.replace(&format!("'{plain}'"), &shown);
+            }
+        }
+        text.chars()
+            .map(|c| match c {
+                '\n' => c.to_string(),
+                c if settings::is_control_or_format(c) => c.escape_debug().collect(),
+                c => c.to_string(),
+            })
+            .collect()
+    }
+
     /// The global options and the mode (`run` with the top-level options when none was named).
     pub fn into_parts(self) -> (GlobalOptions, Mode) {
         (self.global, self.mode.unwrap_or(Mode::Run(self.run)))

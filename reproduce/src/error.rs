@@ -4,6 +4,7 @@
 //! the report cannot go beside. Each error is of one kind ([`ReproduceError::exit`]), and each
 //! kind has its exit code ([`Exit`], docs/reference/exit-codes.md).
 
+use settings::shown;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use store::integrity::IntegrityError;
@@ -66,16 +67,16 @@ pub enum ReproduceError {
         cores: usize,
     },
     /// `--paper` names no experiment file's paper.
-    #[error("unknown paper \"{paper}\" (known: {})", known.join(", "))]
+    #[error("unknown paper {} (known: {})", shown(paper), known.join(", "))]
     UnknownPaper { paper: String, known: Vec<String> },
     /// `--experiment` names no experiment.
-    #[error("unknown experiment \"{experiment}\" (known: {})", known.join(", "))]
+    #[error("unknown experiment {} (known: {})", shown(experiment), known.join(", "))]
     UnknownExperiment {
         experiment: String,
         known: Vec<String>,
     },
     /// `infer` selects no published table.
-    #[error("infer {which}: no such table (known: all, a paper, or one of {})", known.join(", "))]
+    #[error("infer {}: no such table (known: all, a paper, or one of {})", shown(which), known.join(", "))]
     UnknownTable { which: String, known: Vec<String> },
     /// The report is written beside a results directory named `results` only.
     #[error(
@@ -229,13 +230,14 @@ pub enum ScoreError {
     #[error(transparent)]
     Experiments(#[from] catalog::ExperimentFileError),
     #[error(
-        "no task \"{0}\" (a task is \"<experiment> / <variant>\", ids; `reproduce list` lists them)"
+        "no task {} (a task is \"<experiment> / <variant>\", ids; `reproduce list` lists them)",
+        shown(.0)
     )]
     NoTask(String),
     #[error(transparent)]
     Trajectory(#[from] inputs::trajectory::ReadError),
     /// (The scoring error boxed: it is large.)
-    #[error("{}: {error} (task \"{task}\")", file.display())]
+    #[error("{}: {error} (task {})", file.display(), shown(task))]
     Score {
         file: std::path::PathBuf,
         task: String,
@@ -254,16 +256,16 @@ pub enum ScoreError {
     Figure(#[from] presentation::FigureError),
     #[error(transparent)]
     Path(#[from] store::PathError),
-    #[error("--name {name:?}: a scored trajectory's name is its solver id, a slug (lower-case letters, digits, `.` and `-`, at most {max} bytes), e.g. {suggestion:?}")]
+    #[error("--name {}: a scored trajectory's name is its solver id, a slug (lower-case letters, digits, `.` and `-`, at most {max} bytes), e.g. {}", shown(name), shown(suggestion))]
     Name {
         name: String,
         suggestion: String,
         max: usize,
     },
-    #[error("--name {name:?}: the exact column's solver id is reserved (a scored trajectory would pass for the exact optimum); use another name, e.g. \"trajectory\"")]
+    #[error("--name {}: the exact column's solver id is reserved (a scored trajectory would pass for the exact optimum); use another name, e.g. \"trajectory\"", shown(name))]
     ReservedName { name: String },
     /// The task's row under this name holds another file's score.
-    #[error("{}: the row of task \"{task}\" named {name:?} holds the score of another file ({holder}); give this one its own --name, or another --out", scores.display())]
+    #[error("{}: the row of task {} named {} holds the score of another file ({}); give this one its own --name, or another --out", scores.display(), shown(task), shown(name), shown(holder))]
     Taken {
         scores: std::path::PathBuf,
         task: String,

@@ -124,7 +124,7 @@ mod tests {
         let err = select_tables(&ids, &"a:T3".parse().unwrap()).unwrap_err();
         assert_eq!(
             err.to_string(),
-            "infer a:T3: no such table (known: all, a paper, or one of a:T1, a:T2, b:T1)"
+            "infer \"a:T3\": no such table (known: all, a paper, or one of a:T1, a:T2, b:T1)"
         );
     }
 }

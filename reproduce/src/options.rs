@@ -193,7 +193,7 @@ impl std::fmt::Display for Tables {
 #[derive(Debug, thiserror::Error)]
 pub enum TablesError {
     /// The paper part is not a paper id.
-    #[error("table {text:?}: {source}")]
+    #[error("table {}: {source}", settings::shown(text))]
     Paper {
         /// The choice given.
         text: String,
@@ -203,7 +203,8 @@ pub enum TablesError {
     },
     /// An empty choice, or an empty table after `paper:`.
     #[error(
-        "table {text:?}: expected `all`, a paper id (`PAPER`) or `PAPER:TABLE`, comma-separated"
+        "table {}: expected `all`, a paper id (`PAPER`) or `PAPER:TABLE`, comma-separated",
+        settings::shown(text)
     )]
     Empty {
         /// The choice given.

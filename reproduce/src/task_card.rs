@@ -37,9 +37,13 @@ const CROSS: &str = "cross";
 /// Why the cards could not be written.
 #[derive(Debug, thiserror::Error)]
 pub enum TaskCardError {
-    #[error("task \"{task}\": {source}")]
+    #[error("task {}: {source}", settings::shown(task))]
     Setup { task: String, source: SetupError },
-    #[error("task \"{task}\": robot \"{robot}\" is not in the registry")]
+    #[error(
+        "task {}: robot {} is not in the registry",
+        settings::shown(task),
+        settings::shown(robot)
+    )]
     Robot { task: String, robot: String },
     #[error(transparent)]
     Experiments(#[from] ExperimentFileError),

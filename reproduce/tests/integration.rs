@@ -15,6 +15,7 @@ mod fuzz_experiment_files;
 mod gate_explanation;
 mod hostile;
 mod hostile_inputs;
+mod hostile_text;
 mod kubernetes;
 mod layering;
 mod octave;

@@ -149,7 +149,7 @@ fn a_trajectory_file_is_scored_on_its_task() {
     assert_eq!(taken.status.code(), Some(2), "{err}");
     assert!(
         err.contains(
-            "holds the score of another file (trajectory znn.csv); give this one its own --name"
+            "holds the score of another file (\"trajectory znn.csv\"); give this one its own --name"
         ),
         "{err}"
     );

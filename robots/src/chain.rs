@@ -184,7 +184,7 @@ pub enum ChainError {
     #[error("a chain needs at least one moving joint")]
     NoJoints,
     /// A number of the chain is NaN or infinite where it must be finite.
-    #[error("joint {index} ({name}): {field} is not finite")]
+    #[error("joint {index} ({}): {field} is not finite", settings::shown(name))]
     NotFinite {
         /// The joint, from 1.
         index: usize,
@@ -194,7 +194,7 @@ pub enum ChainError {
         field: &'static str,
     },
     /// A joint's axis has zero length.
-    #[error("joint {index} ({name}): the axis has zero length")]
+    #[error("joint {index} ({}): the axis has zero length", settings::shown(name))]
     ZeroAxis {
         /// The joint, from 1.
         index: usize,
@@ -202,7 +202,7 @@ pub enum ChainError {
         name: String,
     },
     /// A joint's limits are inconsistent.
-    #[error("joint {index} ({name}): {problem}")]
+    #[error("joint {index} ({}): {problem}", settings::shown(name))]
     Limits {
         /// The joint, from 1.
         index: usize,
@@ -212,7 +212,7 @@ pub enum ChainError {
         problem: &'static str,
     },
     /// A body's inertial is not physical.
-    #[error("joint {index} ({name}): the body's {problem}")]
+    #[error("joint {index} ({}): the body's {problem}", settings::shown(name))]
     Inertial {
         /// The joint, from 1.
         index: usize,

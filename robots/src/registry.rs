@@ -52,7 +52,8 @@ pub struct JointCountError {
 pub enum RegistryError {
     /// No robot has this name.
     #[error(
-        "unknown robot \"{name}\"; the robots are: {}, and nlink-<n> for n = {NLINK_MIN}..={NLINK_MAX}",
+        "unknown robot {}; the robots are: {}, and nlink-<n> for n = {NLINK_MIN}..={NLINK_MAX}",
+        settings::shown(name),
         choices.join(", ")
     )]
     Unknown {

@@ -119,9 +119,10 @@ pub enum RobotFileError {
     },
     /// A robot file read at run time declares a name the suite already has.
     #[error(
-        "{file}: declares robot \"{name}\", a name the suite already has (a built-in model, \
+        "{file}: declares robot {}, a name the suite already has (a built-in model, \
          another spelling of an n-link arm's name, or another robot file); rename the file and \
-         its `name`"
+         its `name`",
+        settings::shown(name)
     )]
     Shadows {
         /// The robot file.

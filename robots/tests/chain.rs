@@ -400,7 +400,7 @@ fn invalid_chains_are_refused_with_the_joint_named() {
         .unwrap_err()
         .to_string();
     assert!(
-        err.contains("joint 1 (elbow)") && err.contains("positive semi-definite"),
+        err.contains("joint 1 (\"elbow\")") && err.contains("positive semi-definite"),
         "{err}"
     );
 }

@@ -292,14 +292,14 @@ fn bad_limits_and_inertials_name_the_joint() {
     let (e, m) = error(&empty, "base", "tcp");
     assert!(
         matches!(e, UrdfChainError::Chain { .. })
-            && m.contains("joint 1 (j1)")
+            && m.contains("joint 1 (\"j1\")")
             && m.contains("lower position limit"),
         "{m}"
     );
     let negative = arm(-1.0);
     let (_, m) = error(&negative, "base", "finger");
     assert!(
-        m.contains("(finger_joint)") && m.contains("mass is negative"),
+        m.contains("(\"finger_joint\")") && m.contains("mass is negative"),
         "{m}"
     );
     let zero_axis = arm(0.2).replace(r#"<axis xyz="0 1 0"/>"#, r#"<axis xyz="0 0 0"/>"#);

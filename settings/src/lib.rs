@@ -17,6 +17,10 @@
 //! - the integration method and its tolerances and budgets ([`IntegratorSettings`], [`Method`]);
 //! - the system size from which dense LU runs on faer ([`FAER_CROSSOVER`]);
 //! - the one rule for ids and file-name stems ([`slug()`], [`is_slug`]);
+//! - the one way an error shows a text it was given, from a user's file or the command line
+//!   ([`shown()`]: escaped, cut to [`SHOWN_MAX_CHARS`] characters), and what a label or id
+//!   ([`is_control_or_format`]) and a text shown in listings and the report ([`is_one_line`])
+//!   may hold; every crate that quotes such a text in an error reaches this one, the lowest;
 //! - the sign-power function shared by kong2019's finite-time scheme and the finite-time
 //!   activations ([`sign_power()`]);
 //! - the checks' errors ([`NetworkError`], [`IntegratorError`]).
@@ -47,6 +51,7 @@ mod linear_algebra;
 mod network_kind;
 pub mod projection;
 pub mod qp_solver;
+mod shown;
 mod sign_power;
 mod slug;
 mod solver_spec;
@@ -59,6 +64,7 @@ pub use error::{IntegratorError, NetworkError};
 pub use integrator::{IntegratorSettings, Method, RHS_EVALS_PER_SECOND};
 pub use linear_algebra::FAER_CROSSOVER;
 pub use network_kind::NetworkKind;
+pub use shown::{is_control_or_format, is_one_line, shown, Shown, SHOWN_MAX_CHARS};
 pub use sign_power::{sign_power, sign_power_slope, SIGN_POWER_MIN_ABS};
 pub use slug::{is_slug, slug};
 pub use solver_spec::{ReferencePerturbation, SolverSpec};

@@ -72,7 +72,7 @@ impl fmt::Display for NetworkKind {
 /// A `solver_kind` that is not a network's (the exact column, a numerical method, a scored
 /// trajectory, or an unknown id).
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("\"{0}\" is not a network kind")]
+#[error("{} is not a network kind", crate::shown(.0))]
 pub struct NotANetwork(pub String);
 
 impl FromStr for NetworkKind {

@@ -107,9 +107,9 @@ pub struct QpSolverSettings {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum QpSolverError {
     /// No solver is registered under the id.
-    #[error("unknown QP solver \"{given}\" (known: {known})")]
+    #[error("unknown QP solver {} (known: {known})", crate::shown(given))]
     Unknown {
-        /// The id given (at most 64 characters of it).
+        /// The id given.
         given: String,
         /// The registered ids, comma-separated.
         known: String,
@@ -140,7 +140,7 @@ pub enum QpSolverError {
     },
     /// An id that is not a slug, or is taken (by a solver, a network kind or a solver kind of
     /// `runs.csv` that is not a QP solver: `exact`, `trajectory`, `python`).
-    #[error("cannot register QP solver \"{id}\": {reason}")]
+    #[error("cannot register QP solver {}: {reason}", crate::shown(id))]
     Register {
         /// The id offered.
         id: String,
@@ -217,7 +217,7 @@ pub fn lookup(id: &str) -> Result<&'static QpSolverInfo, QpSolverError> {
         .copied()
         .find(|i| i.id == id)
         .ok_or_else(|| QpSolverError::Unknown {
-            given: id.chars().take(64).collect(),
+            given: id.to_string(),
             known: all.iter().map(|i| i.id).collect::<Vec<_>>().join(", "),
         })
 }
@@ -233,7 +233,7 @@ pub fn all() -> Vec<&'static QpSolverInfo> {
 /// solver that files may name but no run can build.
 pub fn register(info: QpSolverInfo) -> Result<&'static QpSolverInfo, QpSolverError> {
     let refuse = |reason| QpSolverError::Register {
-        id: info.id.chars().take(64).collect(),
+        id: info.id.to_string(),
         reason,
     };
     if !(crate::slug::is_slug(info.id) && info.id.len() <= 64 && !info.id.contains('.')) {

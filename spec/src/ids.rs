@@ -59,7 +59,7 @@ impl IdKind {
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum IdError {
     /// Not a slug, or one that begins with `.` or holds `..`.
-    #[error("{} \"{text}\" is not a slug (lower-case ASCII letters, digits and `.`, single `-` between them, beginning with a letter or digit, without `..`){}", kind.name(), suggest(text))]
+    #[error("{} {} is not a slug (lower-case ASCII letters, digits and `.`, single `-` between them, beginning with a letter or digit, without `..`){}", kind.name(), settings::shown(text), suggest(text))]
     NotASlug {
         /// The id's kind.
         kind: IdKind,
@@ -67,7 +67,7 @@ pub enum IdError {
         text: String,
     },
     /// Longer than its kind allows.
-    #[error("{} \"{}...\" is {len} bytes long; at most {} are allowed (ids name files under results/ and report/)", kind.name(), text.chars().take(40).collect::<String>(), kind.max_len())]
+    #[error("{} {} is {len} bytes long; at most {} are allowed (ids name files under results/ and report/)", kind.name(), settings::shown(text), kind.max_len())]
     TooLong {
         /// The id's kind.
         kind: IdKind,
@@ -84,7 +84,7 @@ fn suggest(text: &str) -> String {
     if s.is_empty() {
         String::new()
     } else {
-        format!("; did you mean \"{s}\"?")
+        format!("; did you mean {}?", settings::shown(s))
     }
 }
 

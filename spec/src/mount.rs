@@ -49,9 +49,10 @@ pub enum MountError {
     },
     /// A tool offset on a robot whose tool frame is not modelled.
     #[error(
-        "`tool`: robot \"{robot}\" has no tool frame to offset its task point in (no \
+        "`tool`: robot {} has no tool frame to offset its task point in (no \
          orientation: the DH robots and URDF robots have one, the Katana's closed form and the \
-         n-link family do not)"
+         n-link family do not)",
+        settings::shown(robot)
     )]
     NoOrientation {
         /// The robot's name.
@@ -59,9 +60,10 @@ pub enum MountError {
     },
     /// A base that turns the vertical under a robot whose dynamics a scheme needs.
     #[error(
-        "`base.rpy`: a roll or pitch turns gravity in robot \"{robot}\"'s frame, whose \
+        "`base.rpy`: a roll or pitch turns gravity in robot {}'s frame, whose \
          dynamics take it along their base's -z; with a scheme that needs dynamics only a \
-         rotation about z (yaw) is allowed"
+         rotation about z (yaw) is allowed",
+        settings::shown(robot)
     )]
     TiltedGravity {
         /// The robot's name.

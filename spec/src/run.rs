@@ -280,7 +280,7 @@ pub enum SetupError {
     #[error(transparent)]
     Mount(#[from] MountError),
     /// Limits were given for a robot whose dynamics model the scheme reads its limits from.
-    #[error("joint_limits / velocity_limits cannot replace the limits of \"{robot}\" for the acceleration-level scheme, which reads them from the robot's dynamics model")]
+    #[error("joint_limits / velocity_limits cannot replace the limits of {} for the acceleration-level scheme, which reads them from the robot's dynamics model", settings::shown(robot))]
     LimitsWithDynamics {
         /// The robot's name.
         robot: String,

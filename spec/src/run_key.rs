@@ -16,7 +16,7 @@ use std::fmt;
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum KeyError {
     /// Not of the form `<experiment> / <variant> / <solver>` (or `<experiment> / <variant>`).
-    #[error("\"{text}\" is not of the form `{form}`")]
+    #[error("{} is not of the form `{form}`", settings::shown(text))]
     Shape {
         /// The text given.
         text: String,

@@ -71,9 +71,9 @@ impl fmt::Display for SolverKind {
 
 /// A `solver_kind` that names no kind.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("unknown solver kind \"{given}\" (known: {known})")]
+#[error("unknown solver kind {} (known: {known})", settings::shown(given))]
 pub struct UnknownSolverKind {
-    /// The text read (at most 64 characters of it).
+    /// The text read.
     pub given: String,
     /// The valid ids, comma-separated.
     pub known: String,
@@ -85,7 +85,7 @@ impl FromStr for SolverKind {
         SolverKind::all()
             .find(|k| k.id() == s)
             .ok_or_else(|| UnknownSolverKind {
-                given: s.chars().take(64).collect(),
+                given: s.to_string(),
                 known: SolverKind::all()
                     .map(SolverKind::id)
                     .collect::<Vec<_>>()

@@ -245,7 +245,7 @@ enum ManifestTextError {
         error: inputs::TomlError,
     },
     /// A file is listed twice (TOML refuses a table defined twice).
-    #[error("{place}: it lists {file:?} twice")]
+    #[error("{place}: it lists {} twice", settings::shown(file))]
     Twice {
         /// The part of the second listing.
         place: Place,
@@ -259,7 +259,10 @@ enum ManifestTextError {
         place: Place,
     },
     /// A listed path is not plain and relative.
-    #[error("{place}: it lists {file:?}, which is not a plain relative path")]
+    #[error(
+        "{place}: it lists {}, which is not a plain relative path",
+        settings::shown(file)
+    )]
     NotPlain {
         /// Its part.
         place: Place,

@@ -69,7 +69,7 @@ pub enum PathError {
     },
     /// The relative path is empty or has a component that is not a plain name (`..`, `.`, a
     /// root or a prefix).
-    #[error("{dir}: refusing the name {name:?}: only plain names are allowed under a directory the program owns (no `..`, no absolute path, no `.`)")]
+    #[error("{dir}: refusing the name {}: only plain names are allowed under a directory the program owns (no `..`, no absolute path, no `.`)", settings::shown(&name.to_string_lossy()))]
     NotPlain {
         /// The owned directory, as given.
         dir: PathBuf,

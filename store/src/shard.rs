@@ -67,13 +67,16 @@ pub enum ShardError {
         n: usize,
     },
     /// `--shard` has no `/` (the text given).
-    #[error("--shard {0}: expected K/N, e.g. 2/8")]
+    #[error("--shard {}: expected K/N, e.g. 2/8", settings::shown(.0))]
     Syntax(String),
     /// K or N of `--shard` is not a whole number (the text given).
-    #[error("--shard {0}: expected K/N with whole numbers, e.g. 2/8")]
+    #[error("--shard {}: expected K/N with whole numbers, e.g. 2/8", settings::shown(.0))]
     NotWhole(String),
     /// A scheduler's or driftbench's environment variable is not a whole number.
-    #[error("environment variable {name}={value} is not a whole number")]
+    #[error(
+        "environment variable {name}={} is not a whole number",
+        settings::shown(value)
+    )]
     Environment {
         /// The variable.
         name: String,
@@ -139,7 +142,7 @@ pub enum ShardError {
         source: Box<ShardError>,
     },
     /// `shard.toml`'s `key_sum` is not 32 lower-case hex digits.
-    #[error("{}: `key_sum = \"{value}\"`: expected 32 lower-case hex digits (the sum of the prints of the shard's run keys, store::keys)", path.display())]
+    #[error("{}: `key_sum = {}`: expected 32 lower-case hex digits (the sum of the prints of the shard's run keys, store::keys)", path.display(), settings::shown(value))]
     ManifestKeySum {
         /// The file.
         path: PathBuf,

@@ -16,6 +16,7 @@
 //! that inflates to gigabytes is refused after at most that many bytes, not parsed.
 
 use super::Trajectory;
+use crate::shown;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 
@@ -141,13 +142,16 @@ pub struct Columns {
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum ColumnsError {
     /// The text is not `name=A:B` entries joined by commas, A and B numbers.
-    #[error("{given:?}: a column selection is `theta=A:B` or `theta=A:B,thetadot=C:D` (1-based, inclusive)")]
+    #[error(
+        "{}: a column selection is `theta=A:B` or `theta=A:B,thetadot=C:D` (1-based, inclusive)",
+        shown(given)
+    )]
     Syntax {
         /// The selection as given.
         given: String,
     },
     /// A quantity is given twice.
-    #[error("{given:?}: {name} is given twice")]
+    #[error("{}: {} is given twice", shown(given), shown(name))]
     Twice {
         /// The selection as given.
         given: String,
@@ -155,7 +159,11 @@ pub enum ColumnsError {
         name: String,
     },
     /// A name is neither `theta` nor `thetadot`.
-    #[error("{given:?}: {name} is not a quantity of a trajectory (theta, thetadot)")]
+    #[error(
+        "{}: {} is not a quantity of a trajectory (theta, thetadot)",
+        shown(given),
+        shown(name)
+    )]
     Unknown {
         /// The selection as given.
         given: String,
@@ -163,13 +171,13 @@ pub enum ColumnsError {
         name: String,
     },
     /// The selection has no `theta` range.
-    #[error("{given:?}: no theta range")]
+    #[error("{}: no theta range", shown(given))]
     NoTheta {
         /// The selection as given.
         given: String,
     },
     /// A range is not 1 <= A <= B.
-    #[error("{given:?}: the range {from}:{to} must satisfy 1 <= A <= B")]
+    #[error("{}: the range {from}:{to} must satisfy 1 <= A <= B", shown(given))]
     Range {
         /// The selection as given.
         given: String,

@@ -40,7 +40,8 @@ impl fmt::Display for PathError {
         match self {
             Self::UnknownName(name) => write!(
                 f,
-                "path `name`: unknown path {name:?}; valid names: {}",
+                "path `name`: unknown path {}; valid names: {}",
+                settings::shown(name),
                 super::PATH_NAMES.join(", ")
             ),
             Self::DurationOutOfRange(d) => write!(
