@@ -633,7 +633,7 @@ fn hanging_paths_and_sweeps_that_set_one_field_twice_exit_2() {
             ),
             &[
                 "experiment[0] (id \"rt-a\") variant[0] (\"V\")",
-                "keys `solvers.0.gamma` and `solvers.*.gamma` both set `solvers.0.gamma`",
+                "keys \"solvers.0.gamma\" and \"solvers.*.gamma\" both set \"solvers.0.gamma\"",
             ],
         ),
         (
@@ -644,7 +644,7 @@ fn hanging_paths_and_sweeps_that_set_one_field_twice_exit_2() {
             ),
             &[
                 "variant[0] (\"V\")",
-                "its paths `solvers.0.gamma` and `solvers.0.gamma` both set",
+                "its paths \"solvers.0.gamma\" and \"solvers.0.gamma\" both set",
             ],
         ),
         (
@@ -653,7 +653,7 @@ fn hanging_paths_and_sweeps_that_set_one_field_twice_exit_2() {
                 circle,
                 r#"sweep = { "solvers.*.gamma" = [0.1, 0.2], "solvers.*.gamma " = [1] }"#,
             ),
-            &["variant[0] (\"V\")", "key `solvers.*.gamma `: whitespace"],
+            &["variant[0] (\"V\")", "key \"solvers.*.gamma \": whitespace"],
         ),
         (
             "sweep-prefix",
@@ -663,7 +663,7 @@ fn hanging_paths_and_sweeps_that_set_one_field_twice_exit_2() {
             ),
             &[
                 "variant[0] (\"V\")",
-                "keys `scheme` and `scheme.mu` both set `scheme.mu`",
+                "keys \"scheme\" and \"scheme.mu\" both set \"scheme.mu\"",
             ],
         ),
     ];

@@ -163,7 +163,8 @@ fn a_hostile_robot_kind_method_or_key_is_shown_escaped_with_the_choices() {
                 "kong2019.toml",
                 "field `sweep` key ",
                 SHOWN,
-                "is not a field of a variant (fields: scheme",
+                // Its line breaks and formatting characters are whitespace in a key.
+                "whitespace in a key",
             ],
         ),
         (
