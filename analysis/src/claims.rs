@@ -229,7 +229,7 @@ pub enum ClaimError {
     UnknownRust { id: String },
     #[error("field `{field}`: must be a finite number")]
     NotFinite { field: &'static str },
-    #[error("field `{field}`: must be one line of text (no line breaks or control characters)")]
+    #[error("field `{field}`: must be one line of text (no line breaks, control or formatting characters)")]
     NotOneLine { field: &'static str },
     #[error("field `{field}`: {} is not \"<experiment> / <variant> / <solver>\" (id patterns, `*` for any text)", settings::shown(text))]
     Selection { field: &'static str, text: String },

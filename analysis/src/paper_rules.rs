@@ -64,7 +64,7 @@ pub enum PaperProblem {
         settings::shown(folder)
     )]
     NotTheFolder { paper: String, folder: String },
-    #[error("field `{field}`: must be one line of text (no line breaks or control characters)")]
+    #[error("field `{field}`: must be one line of text (no line breaks, control or formatting characters)")]
     NotOneLine { field: &'static str },
     #[error(
         "mapping[{index}] field `run`: {} is not \"<experiment> / <variant> / <solver>\" (ids)",
@@ -92,7 +92,7 @@ pub enum PaperProblem {
     TooManySweepChecks { count: usize },
     #[error("sweep_check[{index}] field `columns`: {count} entries, at most {MAX_SWEEP_COLUMNS}")]
     TooManySweepColumns { index: usize, count: usize },
-    #[error("sweep_check[{index}] field `{field}`: must be one line of text (no line breaks or control characters)")]
+    #[error("sweep_check[{index}] field `{field}`: must be one line of text (no line breaks, control or formatting characters)")]
     SweepNotOneLine { index: usize, field: &'static str },
     #[error("sweep_check[{index}] field `metrics`: {found} (valid: each of {} at most once, at least one)", SWEEP_METRICS.join(", "))]
     SweepMetric { index: usize, found: String },
@@ -171,7 +171,7 @@ pub enum PaperProblem {
         first: usize,
         value: String,
     },
-    #[error("line {line}: field `{field}` must be one line of text (no line breaks or control characters)")]
+    #[error("line {line}: field `{field}` must be one line of text (no line breaks, control or formatting characters)")]
     ValueNotOneLine { line: usize, field: &'static str },
 }
 

@@ -413,9 +413,9 @@ pub enum FieldError {
     /// A text shown in listings and the report (the file's `title`, an experiment's
     /// `paper_output`) is not one line ([`settings::is_one_line`], the rule of a paper's title
     /// and citation).
-    #[error("must be one line of text (no line breaks or control characters; it holds {found:?})")]
+    #[error("must be one line of text (no line breaks, control or formatting characters; it holds {found:?})")]
     NotOneLine {
-        /// The first control character.
+        /// The first control or formatting character.
         found: char,
     },
     /// An experiment id is used twice in the file.

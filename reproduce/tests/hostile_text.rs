@@ -297,7 +297,7 @@ fn a_title_or_paper_output_that_is_not_one_line_is_refused_naming_the_field() {
             &[
                 "kong2019.toml",
                 field,
-                "must be one line of text (no line breaks or control characters",
+                "must be one line of text (no line breaks, control or formatting characters",
             ],
         );
     }

@@ -98,10 +98,11 @@ pub fn is_control_or_format(c: char) -> bool {
 
 /// Whether `text` is one line, what a text shown in listings and the report must be (a
 /// paper's title and citation, a claim, an experiment file's `title` and `paper_output`): no
-/// line break or other control character (a line break would end the heading, table cell or
-/// list item it is put in, an escape sequence would drive the terminal `list` prints it on).
+/// line break, control or formatting character ([`is_control_or_format`]: a line break would
+/// end the heading, table cell or list item it is put in, an escape sequence would drive the
+/// terminal `list` prints it on, a bidi override would reverse the text after it).
 pub fn is_one_line(text: &str) -> bool {
-    !text.contains(char::is_control)
+    !text.chars().any(is_control_or_format)
 }
 
 #[cfg(test)]

@@ -366,7 +366,9 @@ pub fn read_mat(
 /// The MAT-file `bytes` with every top-level compressed element replaced by the element it
 /// inflates to (a v6 file, which `matfile` parses without inflating anything), at most
 /// `max` bytes ([`MAX_INFLATED_BYTES`]) inflated in all. A compressed element must hold a matrix (MATLAB
-/// never nests them; a nested one would inflate unbounded inside `matfile`). An element that
+/// never nests them; a nested one would inflate unbounded inside `matfile`), and every
+/// top-level element must be a matrix or a compressed one (what MATLAB and Octave write;
+/// `matfile` prints a line to standard output for any other and skips it). An element that
 /// claims more bytes than the file has left is a truncated file, refused here (`matfile` would
 /// drop it and report its variable missing); bytes that do not read as elements are left as
 /// they are, for `matfile` to refuse.
@@ -393,6 +395,13 @@ fn inflate(bytes: Vec<u8>, path: &Path, max: u64) -> Result<Vec<u8>, MatError> {
             } else {
                 "a variable is cut off: the file is truncated"
             }));
+        }
+        if kind != MI_COMPRESSED && kind != MI_MATRIX {
+            // Not a variable: `matfile` would print a line of its own to standard output and
+            // skip it.
+            return Err(parse_error(
+                "a top-level element is neither a matrix nor compressed",
+            ));
         }
         if kind != MI_COMPRESSED {
             // An uncompressed element with its padding to 8 bytes: as is.
@@ -483,6 +492,16 @@ mod tests {
         cut.truncate(cut.len() - 1);
         let e = inflate(cut, path, max).unwrap_err();
         assert!(e.to_string().contains("cut off"), "{e}");
+        // A top-level element that is not a variable (miINT8, 8 bytes).
+        let mut odd = v7(&inflated)[..128].to_vec();
+        odd.extend_from_slice(&1u32.to_le_bytes());
+        odd.extend_from_slice(&8u32.to_le_bytes());
+        odd.extend_from_slice(&[0; 8]);
+        let e = inflate(odd, path, max).unwrap_err();
+        assert!(
+            e.to_string().contains("neither a matrix nor compressed"),
+            "{e}"
+        );
         // Not a MAT-file: left for matfile to refuse.
         assert_eq!(
             inflate(b"t,theta_1".to_vec(), path, max).unwrap(),
