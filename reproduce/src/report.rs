@@ -48,15 +48,16 @@ pub fn check_report_dir(root: &Path) -> Result<(), ReproduceError> {
     Ok(store::check_writable(report.path())?)
 }
 
-/// Before anything runs in a mode that renders the report: its directory lies inside the
-/// project and can be written, and papers/ loads and names only runs of the experiment files
-/// `all` (the report reads it after the runs, so a malformed paper is refused now). A results
+/// Before anything runs in a mode that renders the report: papers/ loads and names only runs
+/// of the experiment files `all` (the report reads it after the runs, so a malformed paper is
+/// refused now), then the report's directory lies inside the project and can be written
+/// (created only then: a run refused for its papers leaves no empty `report/`). A results
 /// directory not named `results` gets no report, which is said.
 pub fn precheck_report(project: &Project, all: &Described) -> Result<(), ReproduceError> {
     match report_root(project) {
         Ok(root) => {
-            check_report_dir(&root)?;
             load_checked_papers(project, all)?;
+            check_report_dir(&root)?;
         }
         Err(why) => eprintln!(
             "note: results go to {}, but {why}",

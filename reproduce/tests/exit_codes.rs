@@ -224,3 +224,26 @@ fn the_exit_code_page_cites_only_what_exists() {
     }
     assert!(checked >= 6, "only {checked} citations checked");
 }
+
+/// A run refused before anything runs leaves nothing behind: a project whose papers/ is
+/// missing gets no empty report/ (the report's directory is checked, and so created, only
+/// after the papers load).
+#[test]
+fn a_run_refused_for_its_papers_leaves_no_report_directory() {
+    let root = inputs::Scratch::dir("exit-no-papers");
+    std::fs::create_dir(root.join("experiments")).unwrap();
+    std::fs::copy(
+        common::repo_root().join("experiments/kong2019.toml"),
+        root.join("experiments/kong2019.toml"),
+    )
+    .unwrap();
+    let out = reproduce()
+        .args(["run", "--skip-explain", "--root"])
+        .arg(&root)
+        .output()
+        .unwrap();
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("papers"), "{err}");
+    assert!(!root.join("report").exists(), "report/ was created: {err}");
+}
