@@ -520,9 +520,9 @@ impl Sweep {
         let mut total = 1usize;
         let mut fields = FieldsSet::default();
         for (key, val) in &sweep {
-            let axis = parse_axis(&base, key, val)?;
-            for p in 0..axis.paths.len() {
-                fields.add(&base, &axes, &axis, p)?;
+            let (axis, axis_fields) = parse_axis(&base, key, val)?;
+            for (p, set) in axis_fields.into_iter().enumerate() {
+                fields.add(&axes, &axis, p, set)?;
             }
             total = total
                 .checked_mul(axis.len())
@@ -988,24 +988,29 @@ fn one_token(slug: &str) -> bool {
     !slug.is_empty() && !slug.contains('-')
 }
 
-fn parse_axis(base: &Table, key: &str, val: &Value) -> Result<Axis, SweepError> {
+/// The fields each path of an axis sets, resolved against the base variant ([`check_path`]).
+type AxisFields = Vec<Vec<Vec<Step>>>;
+
+fn parse_axis(base: &Table, key: &str, val: &Value) -> Result<(Axis, AxisFields), SweepError> {
     let at = |error| SweepError::Key {
         key: key.to_string(),
         error,
     };
     let paths = split_key(key).map_err(at)?;
-    for path in &paths {
-        check_path(base, path).map_err(|e| at(SweepKeyError::Path(e)))?;
-    }
+    let fields = paths
+        .iter()
+        .map(|path| check_path(base, path).map_err(|e| at(SweepKeyError::Path(e))))
+        .collect::<Result<Vec<_>, _>>()?;
     let raw: Vec<Value> = match val {
         Value::Array(a) if a.is_empty() => return Err(at(SweepKeyError::NoValues)),
         Value::Array(a) => a.clone(),
         Value::Table(t) if paths.len() == 1 => {
-            return Ok(Axis {
+            let axis = Axis {
                 key: key.to_string(),
                 paths,
                 values: Values::Range(Range::parse(t).map_err(|e| at(e.into()))?),
-            })
+            };
+            return Ok((axis, fields));
         }
         other => {
             return Err(at(SweepKeyError::NotAList {
@@ -1044,11 +1049,12 @@ fn parse_axis(base: &Table, key: &str, val: &Value) -> Result<Axis, SweepError> 
         };
         values.push((per_path, text));
     }
-    Ok(Axis {
+    let axis = Axis {
         key: key.to_string(),
         paths,
         values: Values::List(values),
-    })
+    };
+    Ok((axis, fields))
 }
 
 /// The dotted paths of a key, split at its commas and dots. Whitespace is allowed only after
@@ -1076,47 +1082,6 @@ enum Step {
     Entry(usize),
 }
 
-/// The fields of the variant a checked path sets, one per entry a `*` stands for (the base's
-/// lists: the path's tables and lists are the base variant's own, [`check_path`]).
-fn resolve(base: &Table, path: &[String]) -> Vec<Vec<Step>> {
-    fn go(v: Option<&Value>, rest: &[String], at: &mut Vec<Step>, out: &mut Vec<Vec<Step>>) {
-        let Some((seg, rest)) = rest.split_first() else {
-            out.push(at.clone());
-            return;
-        };
-        match v {
-            Some(Value::Array(a)) if seg == "*" => {
-                for (i, x) in a.iter().enumerate() {
-                    at.push(Step::Entry(i));
-                    go(Some(x), rest, at, out);
-                    at.pop();
-                }
-            }
-            Some(Value::Array(a)) => {
-                let i: usize = seg.parse().expect("a checked index");
-                at.push(Step::Entry(i));
-                go(a.get(i), rest, at, out);
-                at.pop();
-            }
-            Some(Value::Table(t)) => {
-                at.push(Step::Key(seg.clone()));
-                go(t.get(seg.as_str()), rest, at, out);
-                at.pop();
-            }
-            // The last segment of a table may be new (checked): nothing below it.
-            _ => {
-                at.push(Step::Key(seg.clone()));
-                go(None, rest, at, out);
-                at.pop();
-            }
-        }
-    }
-    let mut out = Vec::new();
-    let mut at = vec![Step::Key(path[0].clone())];
-    go(base.get(path[0].as_str()), &path[1..], &mut at, &mut out);
-    out
-}
-
 /// A resolved field, dotted (for errors).
 fn dotted(field: &[Step]) -> String {
     field
@@ -1138,18 +1103,18 @@ fn dotted(field: &[Step]) -> String {
 struct FieldsSet(std::collections::BTreeMap<Vec<Step>, (usize, usize)>);
 
 impl FieldsSet {
-    /// Records the fields path `p` of `axis` sets (the axis after `axes`, the axes read so
-    /// far), or the error of the first one another path sets.
+    /// Records `set`, the fields path `p` of `axis` sets ([`check_path`]; the axis after
+    /// `axes`, the axes read so far), or the error of the first one another path sets.
     fn add(
         &mut self,
-        base: &Table,
         axes: &[Axis],
         axis: &Axis,
         p: usize,
+        set: Vec<Vec<Step>>,
     ) -> Result<(), SweepError> {
         let a = axes.len();
         let axis_at = |b: usize| if b == a { axis } else { &axes[b] };
-        for field in resolve(base, &axis.paths[p]) {
+        for field in set {
             let under = (1..=field.len())
                 .find_map(|k| self.0.get(&field[..k]).map(|&other| (other, field.clone())));
             let over = || {
@@ -1186,8 +1151,9 @@ impl FieldsSet {
 }
 
 /// A path is known when its first segment is a variant field and every table or array on the
-/// way is there (the last segment may be new in a table).
-fn check_path(base: &Table, path: &[String]) -> Result<(), KeyPathError> {
+/// way is there (the last segment may be new in a table). Returns the fields of the variant it
+/// sets, one per entry a `*` stands for.
+fn check_path(base: &Table, path: &[String]) -> Result<Vec<Vec<Step>>, KeyPathError> {
     let first = &path[0];
     if path.iter().any(String::is_empty) {
         return Err(KeyPathError::EmptySegment);
@@ -1197,25 +1163,35 @@ fn check_path(base: &Table, path: &[String]) -> Result<(), KeyPathError> {
             first: first.clone(),
         });
     }
-    fn walk(v: Option<&Value>, rest: &[String], done: &str) -> Result<(), KeyPathError> {
+    /// Walks `rest` below `v` (reached by `at`, shown as `done`), pushing every field it
+    /// reaches onto `out`.
+    fn walk(
+        v: Option<&Value>,
+        rest: &[String],
+        done: &str,
+        at: &mut Vec<Step>,
+        out: &mut Vec<Vec<Step>>,
+    ) -> Result<(), KeyPathError> {
         let Some((seg, rest)) = rest.split_first() else {
+            out.push(at.clone());
             return Ok(());
         };
         let here = format!("{done}.{seg}");
+        let mut enter = |x: Option<&Value>, step: Step, at: &mut Vec<Step>| {
+            at.push(step);
+            let walked = walk(x, rest, &here, at, out);
+            at.pop();
+            walked
+        };
         match v {
-            Some(Value::Table(t)) => {
-                if rest.is_empty() {
-                    Ok(())
-                } else {
-                    match t.get(seg.as_str()) {
-                        Some(x) => walk(Some(x), rest, &here),
-                        None => Err(KeyPathError::NoKey {
-                            done: done.to_string(),
-                            segment: seg.clone(),
-                        }),
-                    }
-                }
-            }
+            Some(Value::Table(t)) => match t.get(seg.as_str()) {
+                // The last segment of a table may be new.
+                x if rest.is_empty() || x.is_some() => enter(x, Step::Key(seg.clone()), at),
+                _ => Err(KeyPathError::NoKey {
+                    done: done.to_string(),
+                    segment: seg.clone(),
+                }),
+            },
             Some(Value::Array(a)) => {
                 if seg == "*" {
                     if a.is_empty() {
@@ -1223,14 +1199,16 @@ fn check_path(base: &Table, path: &[String]) -> Result<(), KeyPathError> {
                             done: done.to_string(),
                         });
                     }
-                    a.iter().try_for_each(|x| walk(Some(x), rest, &here))
+                    a.iter()
+                        .enumerate()
+                        .try_for_each(|(i, x)| enter(Some(x), Step::Entry(i), at))
                 } else {
                     let i: usize = seg.parse().map_err(|_| KeyPathError::BadIndex {
                         done: done.to_string(),
                         segment: seg.clone(),
                     })?;
                     match a.get(i) {
-                        Some(x) => walk(Some(x), rest, &here),
+                        Some(x) => enter(Some(x), Step::Entry(i), at),
                         None => Err(KeyPathError::NoEntry {
                             done: done.to_string(),
                             len: a.len(),
@@ -1248,7 +1226,16 @@ fn check_path(base: &Table, path: &[String]) -> Result<(), KeyPathError> {
             }),
         }
     }
-    walk(base.get(first.as_str()), &path[1..], first)
+    let mut out = Vec::new();
+    let mut at = vec![Step::Key(first.clone())];
+    walk(
+        base.get(first.as_str()),
+        &path[1..],
+        first,
+        &mut at,
+        &mut out,
+    )?;
+    Ok(out)
 }
 
 /// Sets `path` of `t` to `v` (`*` sets every element of a list). The path was checked.
