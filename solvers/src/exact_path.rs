@@ -31,11 +31,21 @@
 //! Along a trajectory the active set rarely changes between two evaluations, so the previous
 //! answer's working set is tried first: usually one dense KKT solve. After a fallback the next
 //! solve starts cold.
+//!
+//! # Equality-only QPs
+//!
+//! A QP without inequality rows and with every bound infinite (kong2019's schemes, the group's)
+//! has an empty active set: its optimum is the solution of the KKT system
+//! [P A'; A 0] [x; lambda] = [-q; b], solved directly (`solvers/src/equality_kkt.rs`: through
+//! the Schur complement of a diagonal P, by LU otherwise) and certified by the same KKT
+//! residuals and tolerance as the active-set solver's answers; a QP it cannot factorise or
+//! certify goes to the active-set solver, then Clarabel, as any other.
 
 use crate::active_set::{
     ActiveSetError, ActiveSetSolution, ActiveSetSolver, WorkingSet, DEFAULT_CERT_TOL,
 };
 use crate::auxiliary::AuxiliaryElimination;
+use crate::equality_kkt::Kkt;
 use crate::exact::{ExactError, ExactSolver};
 use nalgebra::DVector;
 use qp::{Qp, QpDuals};
@@ -80,6 +90,9 @@ pub struct ExactPath {
     /// The lifted multipliers of a reduced solve (certified on the original QP).
     duals: QpDuals,
     clarabel: ExactSolver,
+    /// The KKT factors of an equality-only QP, and the solution [x; lambda] (module docs).
+    kkt: Kkt,
+    z: Vec<f64>,
     x: DVector<f64>,
     /// What the path has done so far, summed over every solve since [`ExactPath::new`].
     pub stats: ExactPathStats,
@@ -98,6 +111,8 @@ impl ExactPath {
             warm_reduced: false,
             duals: QpDuals::zeros(dims),
             clarabel: ExactSolver::new(),
+            kkt: Kkt::new(dims),
+            z: vec![0.0; dims.nx + dims.n_eq],
             x: DVector::zeros(dims.nx),
             stats: ExactPathStats::default(),
         }
@@ -140,6 +155,12 @@ impl ExactPath {
     /// The certified active-set answer into `x`, in reduced form when `qp` has an eliminable
     /// variable (module docs), hot-started from the previous answer of the same form.
     fn solve_fast(&mut self, qp: &Qp) -> Result<(), ActiveSetError> {
+        if self.solve_equality(qp) {
+            self.warm.clear();
+            self.has_warm = true;
+            self.warm_reduced = false;
+            return Ok(());
+        }
         let still = self.elimination.as_mut().is_some_and(|e| e.reduce(qp));
         if !still {
             self.elimination = AuxiliaryElimination::recognise(qp);
@@ -166,5 +187,35 @@ impl ExactPath {
         self.has_warm = true;
         self.warm_reduced = reduced;
         Ok(())
+    }
+
+    /// The optimum of an equality-only QP into `x` from its KKT system, certified (module
+    /// docs); false (nothing written but scratch) when `qp` has inequality rows or a finite
+    /// bound, or its KKT system is singular or its answer not certified.
+    fn solve_equality(&mut self, qp: &Qp) -> bool {
+        let equality_only = qp.h.is_empty()
+            && qp.lower.iter().all(|l| *l == f64::NEG_INFINITY)
+            && qp.upper.iter().all(|u| *u == f64::INFINITY);
+        if !equality_only || qp.dims() != self.kkt.dims() || !self.kkt.factor(qp) {
+            return false;
+        }
+        let nx = qp.q.len();
+        let (top, bottom) = self.z.split_at_mut(nx);
+        for (z, q) in top.iter_mut().zip(qp.q.iter()) {
+            *z = -q;
+        }
+        bottom.copy_from_slice(qp.b.as_slice());
+        self.kkt.solve(&mut self.z);
+        self.x.as_mut_slice().copy_from_slice(&self.z[..nx]);
+        self.duals
+            .lambda
+            .as_mut_slice()
+            .copy_from_slice(&self.z[nx..]);
+        self.duals.mu.fill(0.0);
+        self.duals.z_lower.fill(0.0);
+        self.duals.z_upper.fill(0.0);
+        let kkt = qp.kkt_residuals(&self.x, &self.duals);
+        let tolerance = DEFAULT_CERT_TOL * (1.0 + qp.q.amax().max(qp.b.amax()));
+        kkt.max() <= tolerance
     }
 }

@@ -13,6 +13,7 @@ mod active_set;
 mod auxiliary;
 pub mod conformance;
 mod dense_lu;
+mod equality_kkt;
 mod exact;
 mod exact_path;
 mod kkt_schur;

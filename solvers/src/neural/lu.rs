@@ -3,8 +3,7 @@
 //! side evaluation without allocating (nalgebra's `DMatrix::lu` returns a new matrix).
 //!
 //! The orders the papers' networks use (n = nx + n_eq = 6 to 12, e.g. kong2019's 5 joints and
-//! 3 task rows: n = 8), and 3 (the bottom block of three task rows that
-//! `solvers/src/neural/kkt_lu.rs` factorises), are compiled with n a constant, so the loops
+//! 3 task rows: n = 8) are compiled with n a constant, so the loops
 //! have fixed trip counts and no bounds checks (the factorisation holds the matrix as n
 //! columns of n entries, `[[f64; N]; N]`, so every index is checked against n when it is
 //! compiled); every other order runs the textbook loop with n read at run time. Either way
@@ -46,7 +45,6 @@ impl Order for usize {
 macro_rules! by_order {
     ($n:expr, $f:ident ( $($arg:expr),* )) => {
         match $n {
-            3 => $f(Fixed::<3>, $($arg),*),
             6 => $f(Fixed::<6>, $($arg),*),
             7 => $f(Fixed::<7>, $($arg),*),
             8 => $f(Fixed::<8>, $($arg),*),
@@ -71,7 +69,6 @@ pub fn factor(a: &mut DMatrix<f64>, piv: &mut [usize]) -> bool {
     debug_assert_eq!(a.ncols(), n);
     let s = a.as_mut_slice();
     match n {
-        3 => factor_3(s, piv),
         6 => factor_fixed::<6>(s, piv),
         7 => factor_fixed::<7>(s, piv),
         8 => factor_fixed::<8>(s, piv),
@@ -138,14 +135,6 @@ fn factor_fixed<const N: usize>(s: &mut [f64], piv: &mut [usize]) -> bool {
         ok &= stage(c, piv, k);
     }
     ok
-}
-
-/// Order 3 (the bottom block that `kkt_lu` factorises at every right-hand side): the three
-/// stages written out, so each is compiled with k a constant.
-fn factor_3(s: &mut [f64], piv: &mut [usize]) -> bool {
-    let (c, piv) = as_columns::<3>(s, piv);
-    // `&`, not `&&`: as in the loop, a failed pivot does not stop the later stages.
-    stage(c, piv, 0) & stage(c, piv, 1) & stage(c, piv, 2)
 }
 
 /// The first N * N entries of `s` as N columns of N, and the first N pivots.

@@ -25,7 +25,6 @@
 //! says otherwise).
 
 pub mod activation;
-mod kkt_lu;
 pub mod lu;
 mod penalty;
 pub mod perturbation;

@@ -38,14 +38,12 @@
 //! derivations of each preset are in `docs/networks.md`).
 //!
 //! Q is small and invertible (P positive definite on the null space of A, A of full row rank),
-//! so ydot is solved for at each evaluation with an in-place LU with partial pivoting on
-//! preallocated buffers ([`super::lu`]; compiled for the papers' orders, bit for bit the
-//! textbook loop), without the operations that leave a value unchanged where P is diagonal
-//! (`solvers/src/neural/kkt_lu.rs`: the same factors and answers, bit for bit); Qdot and udot
-//! come from `qp_dot` (P, A, q, b differentiated); with no `qp_dot` the QP is taken as frozen
-//! (Qdot = 0, udot = 0). (Solving through the Schur complement of P instead changes the last
-//! bits of every run, and with them drifts that are integration noise and a cycles-trend
-//! class: `benches/throughput/README.md`.)
+//! so ydot is solved for at each evaluation on preallocated buffers
+//! (`solvers/src/equality_kkt.rs`): through the Schur complement of P where P is diagonal
+//! (kong2019's and the group's schemes, P = I: about 150 flops for kong2019's 8 x 8 system), by
+//! an LU with partial pivoting otherwise (zhang2018's dense P). Qdot and udot come from `qp_dot`
+//! (P, A, q, b differentiated); with no `qp_dot` the QP is taken as frozen (Qdot = 0,
+//! udot = 0).
 //!
 //! Inequality rows and bounds are outside this structure: a network is built only for
 //! `n_in = 0`, and the bounds `lower`/`upper` of the QP are ignored (the schemes that use these
@@ -59,7 +57,7 @@
 //! Q dF = dr - dQ F with dr = -(g(t) diag(Phi'(E)) + nu t I)(dQ y - du) - dQdot y + dudot.
 
 use super::activation::Activation;
-use super::kkt_lu::{assemble_q, KktLu};
+use crate::equality_kkt::{assemble_q, Kkt};
 use super::perturbation::PerturbationTerms;
 use super::{euclidean_norm, NeuralSolver};
 use nalgebra::DMatrix;
@@ -76,8 +74,8 @@ pub struct ZeroingNetwork {
     activation: Activation,
     perturbation: Option<ReferencePerturbation>,
     dims: QpDims,
-    /// The LU factors of Q.
-    kkt: KktLu,
+    /// The factors of Q.
+    kkt: Kkt,
     /// E = Q y - u.
     e: Vec<f64>,
     /// DeltaD(t) scratch (perturbed networks).
@@ -124,7 +122,7 @@ impl ZeroingNetwork {
             activation,
             perturbation,
             dims,
-            kkt: KktLu::new(dims),
+            kkt: Kkt::new(dims),
             e: vec![0.0; n],
             delta_d: DMatrix::zeros(n, n),
             delta_s: vec![0.0; n],
@@ -403,7 +401,7 @@ impl NeuralSolver for ZeroingNetwork {
         }
         let nx = self.dims.nx;
         let n = y.len();
-        // F at the base point; leaves E in `self.e` and the LU factors of Q in `self.kkt`.
+        // F at the base point; leaves E in `self.e` and the factors of Q in `self.kkt`.
         let mut f = std::mem::take(&mut self.f_base);
         self.rhs(t, y, qp, qp_dot, &mut f);
         if f.iter().any(|v| !v.is_finite()) {
