@@ -5,8 +5,8 @@ evaluation (share x the pass's user CPU seconds / its RHS evaluations).
 
 Categories, by the stack (the innermost frame that names one decides within a part):
 - rhs (under `NeuralLoop::eval`, the coupled right-hand side): kinematics (`robots::`: f, J,
-  Jdot), the path (`schemes::paths`: r*, rdot*, rddot*), the network's KKT LU (`lu::factor`,
-  `lu::solve`, `kkt_lu::`: Q ydot = r), the network's other work (Q, E = Q y - u, Qdot y, the activation),
+  Jdot), the path (`schemes::paths`: r*, rdot*, rddot*), the network's KKT solve (`equality_kkt::`, the
+  Schur complement of a diagonal P, and `lu::factor`, `lu::solve` otherwise: Q ydot = r), the network's other work (Q, E = Q y - u, Qdot y, the activation),
   QP assembly (the scheme and its terms writing P, q, A, b and their time derivatives), and the
   loop's own glue;
 - integrator: the rest of `solvers::ode` (diffsol's Runge-Kutta stages, error control);
@@ -23,7 +23,7 @@ import sys
 RHS = [  # (category, pattern), matched leaf first
     ("kinematics (f, J, Jdot)", re.compile(r"\brobots::")),
     ("path (r*, rdot*, rddot*)", re.compile(r"schemes::paths")),
-    ("network: KKT LU (factor, solve)", re.compile(r"neural::(lu::(factor|solve)|kkt_lu::)")),
+    ("network: KKT solve (factor, solve)", re.compile(r"equality_kkt::|neural::lu::(factor|solve)")),
     ("network: Q, E, Qdot y, activation", re.compile(r"neural::")),
     ("QP assembly (terms, dQP/dt)", re.compile(r"\bschemes::|qp_data_at")),
 ]
