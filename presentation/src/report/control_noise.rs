@@ -1,0 +1,297 @@
+//! The control page's noise floor (`results/control-noise.csv`, the `class_under_noise` column
+//! of `results/cycles-trend.csv`; crate `control`'s rounding-noise probe): which digits of the
+//! control table's |x - x*| are reproducible, and which trend classes change under the probe.
+//! Every number of the prose is counted or read from those rows here.
+
+use super::control::ControlResults;
+use super::markdown::{sci, sci_opt, text, Table, MISSING};
+use records::control::{ControlRow, NoiseRow, TrendRow};
+
+/// A noise floor of at least this much is listed row by row: the report shows three
+/// significant digits (`sci`), and a noise floor of 1e-3 or more reaches them.
+const LISTED: f64 = 1e-3;
+
+/// The control-table row `n` is the noise floor of (the same key).
+fn row_of<'a>(results: &'a ControlResults, n: &NoiseRow) -> Option<&'a ControlRow> {
+    results.runs.iter().find(|r| {
+        r.task == n.task && r.method == n.method && r.h_ms == n.h_ms && r.substeps == n.substeps
+    })
+}
+
+/// The probe's definition, as the page states it.
+const PROBE: &str = "Each run of the control table and of the many-cycles table below runs a \
+second time as a rounding-noise probe: after every tick each joint angle is moved by one unit \
+in the last place (to the next floating-point number up or down, the direction drawn per joint \
+and tick from splitmix64 with a fixed seed, the same in every reproduction; a continuous-time \
+run moves theta0 once, the same way), a model of what another order of the same floating-point \
+operations does to the state. The relative change |m' - m| / |m| of a metric m under the probe \
+is its noise floor: a metric with a noise floor of 1e-p is reproducible to about p significant \
+digits, and a change of a result below its noise floor is not evidence of anything. \
+`results/control-noise.csv` holds it for every deterministic column of every row (0: bit for \
+bit; empty: undefined, where one value is missing or m = 0 differs from m').";
+
+/// "Rounding noise": the probe, a summary of max |x - x*|'s noise floor over the rows, and the
+/// rows where it is at least [`LISTED`] or the probe ended otherwise. Empty without a noise
+/// floor.
+pub fn section(results: &ControlResults) -> String {
+    if results.noise.is_empty() {
+        return String::new();
+    }
+    let noise = &results.noise;
+    let exact = noise.iter().filter(|n| n.max_dx_noise == Some(0.0)).count();
+    let undefined = noise.iter().filter(|n| n.max_dx_noise.is_none()).count();
+    let below = noise
+        .iter()
+        .filter(|n| n.max_dx_noise.is_some_and(|r| r > 0.0 && r < LISTED))
+        .count();
+    let listed: Vec<(&NoiseRow, Option<&ControlRow>)> = {
+        let mut l: Vec<&NoiseRow> = noise
+            .iter()
+            .filter(|n| {
+                n.max_dx_noise.is_some_and(|r| r >= LISTED)
+                    || row_of(results, n).is_some_and(|r| r.status != n.status_under_noise)
+            })
+            .collect();
+        l.sort_by(|a, b| {
+            let key = |n: &NoiseRow| n.max_dx_noise.unwrap_or(f64::INFINITY);
+            key(b).total_cmp(&key(a))
+        });
+        l.into_iter().map(|n| (n, row_of(results, n))).collect()
+    };
+    let status_changes = listed
+        .iter()
+        .filter(|(n, r)| r.is_some_and(|r| r.status != n.status_under_noise))
+        .count();
+    let mut out = format!("### Rounding noise\n\n{PROBE}\n\n");
+    out.push_str(&format!(
+        "Of the {} rows, max |x - x*| is the same bit for bit under the probe in {exact}, moves \
+         by less than {} in {below}, by {} or more in {}, and has no defined relative change \
+         in {undefined}; under the probe, {status_changes} runs end with another status.",
+        noise.len(),
+        sci(LISTED),
+        sci(LISTED),
+        listed
+            .iter()
+            .filter(|(n, _)| n.max_dx_noise.is_some_and(|r| r >= LISTED))
+            .count(),
+    ));
+    if listed.is_empty() {
+        out.push_str("\n\n");
+        return out;
+    }
+    out.push_str(" Those rows, largest noise floor first:\n\n");
+    let mut t = Table::new([
+        "task",
+        "method",
+        "h (ms)",
+        "status (under the probe)",
+        "max |x - x*|",
+        "its noise floor",
+        "drift's noise floor",
+        "max tracking error's noise floor",
+    ]);
+    for (n, r) in &listed {
+        t.push([
+            n.task.clone(),
+            n.method.clone(),
+            n.h_ms.to_string(),
+            match r {
+                Some(r) if r.status != n.status_under_noise => {
+                    format!("{} ({})", r.status, n.status_under_noise)
+                }
+                Some(r) => r.status.to_string(),
+                None => format!("{MISSING} ({})", n.status_under_noise),
+            },
+            r.map_or_else(|| MISSING.to_string(), |r| sci(r.max_dx)),
+            sci_opt(n.max_dx_noise),
+            sci_opt(n.drift_noise),
+            sci_opt(n.max_track_err_noise),
+        ]);
+    }
+    out.push_str(&t.render());
+    out.push('\n');
+    out
+}
+
+/// The trend column under the probe: its class, or [`MISSING`].
+pub fn class_under_noise(r: &TrendRow) -> String {
+    r.class_under_noise
+        .map_or_else(|| MISSING.to_string(), |c| c.label().to_string())
+}
+
+/// Which many-cycles runs change class under the probe, in a paragraph (none: it says so).
+pub fn trend_changes(trends: &[TrendRow]) -> String {
+    let changed: Vec<String> = trends
+        .iter()
+        .filter(|r| r.class != r.class_under_noise)
+        .map(|r| {
+            let class = |c: Option<records::control::TrendClass>| c.map_or(MISSING, |c| c.label());
+            format!(
+                "{}, {} ({}): {} -> {}",
+                text(&r.task),
+                text(&r.method),
+                r.h_ms
+                    .map(|h| format!("{h} ms"))
+                    .unwrap_or_else(|| "continuous".to_string()),
+                class(r.class),
+                class(r.class_under_noise)
+            )
+        })
+        .collect();
+    let probed = trends
+        .iter()
+        .filter(|r| r.class.is_some() || r.class_under_noise.is_some())
+        .count();
+    if changed.is_empty() {
+        format!(
+            "Under the rounding-noise probe (\"At a robot's control rate\", *Rounding noise*) \
+             every one of the {probed} classes stays as it is (last column).\n\n"
+        )
+    } else {
+        format!(
+            "Under the rounding-noise probe (\"At a robot's control rate\", *Rounding noise*) \
+             {} of the {probed} classes change (last column), so those classes are not \
+             reproducible: {}.\n\n",
+            changed.len(),
+            changed.join("; ")
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use records::control::{ControlStatus, Family, TrendClass};
+
+    fn row(method: &str, max_dx: f64) -> ControlRow {
+        ControlRow {
+            task: "e / v".to_string(),
+            paper: "p".to_string(),
+            scheme: "s".to_string(),
+            method: method.to_string(),
+            family: Family::Network,
+            h_ms: 1.0,
+            substeps: 1,
+            status: ControlStatus::Ok,
+            stopped_at: None,
+            ticks: 10,
+            solve_p50_us: 1.0,
+            solve_p99_us: 1.0,
+            solve_max_us: 1.0,
+            tick_p50_us: 1.0,
+            tick_p99_us: 1.0,
+            tick_max_us: 1.0,
+            max_track_err: 1e-3,
+            rms_track_err: 1e-3,
+            max_dx,
+            rms_dx: max_dx,
+            max_dx_settled: max_dx,
+            drift: Some(0.1),
+            products_mean: None,
+            products_max: None,
+            iterations_mean: 1.0,
+            iterations_max: 1,
+        }
+    }
+
+    fn noise(r: &ControlRow, max_dx_noise: Option<f64>, status: ControlStatus) -> NoiseRow {
+        NoiseRow {
+            task: r.task.clone(),
+            paper: r.paper.clone(),
+            scheme: r.scheme.clone(),
+            method: r.method.clone(),
+            family: r.family,
+            h_ms: r.h_ms,
+            substeps: r.substeps,
+            status_under_noise: status,
+            stopped_at_noise: Some(0.0),
+            ticks_noise: Some(0.0),
+            max_track_err_noise: Some(0.0),
+            rms_track_err_noise: Some(0.0),
+            max_dx_noise,
+            rms_dx_noise: Some(0.0),
+            max_dx_settled_noise: Some(0.0),
+            drift_noise: Some(2e-9),
+            products_mean_noise: Some(0.0),
+            products_max_noise: Some(0.0),
+            iterations_mean_noise: Some(0.0),
+            iterations_max_noise: Some(0.0),
+        }
+    }
+
+    #[test]
+    fn the_section_counts_the_rows_and_lists_the_noisy_ones_largest_first() {
+        // A bit for bit, B and E listed, C undefined, D below the listing's bound but listed for
+        // its status.
+        let runs = vec![
+            row("A", 1e-9),
+            row("B", 1e-3),
+            row("C", 0.0),
+            row("D", 0.5),
+            row("E", 1e-2),
+        ];
+        let ok = ControlStatus::Ok;
+        let noise = vec![
+            noise(&runs[0], Some(0.0), ok),
+            noise(&runs[1], Some(0.09), ok),
+            noise(&runs[2], None, ok),
+            noise(&runs[3], Some(3e-5), ControlStatus::Diverged),
+            noise(&runs[4], Some(2e-3), ok),
+        ];
+        let results = ControlResults {
+            runs,
+            noise,
+            ..ControlResults::default()
+        };
+        let s = section(&results);
+        assert!(
+            s.contains(
+                "Of the 5 rows, max |x - x*| is the same bit for bit under the probe in 1, \
+                 moves by less than 1.00e-3 in 1, by 1.00e-3 or more in 2, and has no defined \
+                 relative change in 1; under the probe, 1 runs end with another status."
+            ),
+            "{s}"
+        );
+        let (b, e, d) = (
+            s.find("| B |").unwrap(),
+            s.find("| E |").unwrap(),
+            s.find("| D |").unwrap(),
+        );
+        assert!(b < e && e < d, "{s}");
+        assert!(s.contains("ok (diverged)"), "{s}");
+        assert!(!s.contains("| A |") && !s.contains("| C |"), "{s}");
+        assert!(section(&ControlResults::default()).is_empty());
+    }
+
+    #[test]
+    fn the_trend_paragraph_names_the_classes_that_change() {
+        let trend = |method: &str, class, under| TrendRow {
+            task: "e / v".to_string(),
+            scheme: "s".to_string(),
+            method: method.to_string(),
+            h_ms: Some(1.0),
+            status: ControlStatus::Ok,
+            failure: None,
+            cycles: 20,
+            drift_first: Some(0.1),
+            drift_last: Some(0.2),
+            rate: Some(0.01),
+            class,
+            class_under_noise: under,
+            rate_noise: Some(0.0),
+        };
+        let same = trend("A", Some(TrendClass::Bounded), Some(TrendClass::Bounded));
+        let flip = trend(
+            "B",
+            Some(TrendClass::Bounded),
+            Some(TrendClass::Accumulating),
+        );
+        let s = trend_changes(&[same.clone(), flip]);
+        assert!(
+            s.contains("1 of the 2 classes change")
+                && s.contains("e / v, B (1 ms): bounded -> accumulating"),
+            "{s}"
+        );
+        assert!(trend_changes(&[same]).contains("every one of the 1 classes stays"));
+    }
+}
