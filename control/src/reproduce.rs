@@ -10,9 +10,9 @@
 //!
 //! Cost on 2 cores of a 2020s server CPU at the standard task set's budget
 //! (`experiments/control/tasks.toml`): see the report's section
-//! "At a robot's control rate" (about a minute of CPU, half a minute with the runs in parallel
-//! on both cores; most of it robio2018's methods iterating to 1e-10 at every tick of the runs
-//! at 1 ms, and the 20-cycle runs).
+//! "At a robot's control rate" (about two minutes of CPU, a minute with the runs in parallel
+//! on both cores, half of it the rounding-noise probes; most of it robio2018's methods
+//! iterating to 1e-10 at every tick of the runs at 1 ms, and the 20-cycle runs).
 
 use crate::continuous::{ContinuousCycles, ExactCycles};
 use crate::control_loop::{run_loop, LoopOutcome, LoopSettings, Observer, Status};

@@ -102,7 +102,8 @@ pub fn section(
          (under whatever load it had: compare within a table, not across machines); the work \
          columns count products with the LVI matrix M and do not depend on the machine. The \
          runs are independent and run in parallel, one per core, so each latency is measured \
-         beside another run. This part of the reproduction adds about half a minute on 2 cores \
+         beside another run. This part of the reproduction adds about a minute on 2 cores, half \
+         of it the rounding-noise probes below \
          (tasks: {}).\n\n",
         numerical_methods(results),
         task_list(results)
