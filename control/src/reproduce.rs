@@ -560,13 +560,16 @@ impl<'a> FirstRound<'a> {
     }
 }
 
+/// Controller runs' rows, each beside its method.
+type MethodRows = Vec<(Method, ControlRow)>;
+
 /// Each controller run's row beside its method (`runs` and their outcomes `outs`, in order):
 /// later passes select runs by method (an identity), never by the row's label; and each row's
 /// noise floor, from its probe's outcome (module `noise_floor`).
 fn control_rows(
     runs: &[LoopRun],
     outs: Vec<Probed<LoopOutcome>>,
-) -> Result<(Vec<(Method, ControlRow)>, Vec<NoiseRow>), ControlError> {
+) -> Result<(MethodRows, Vec<NoiseRow>), ControlError> {
     let mut control = Vec::with_capacity(runs.len());
     let mut noise = Vec::with_capacity(runs.len());
     for (run, out) in runs.iter().zip(outs) {
