@@ -17,7 +17,8 @@
 //!   text says (the best per measure, the spread of the timings).
 //! - [`gate`]: the regression gate (fresh rows against committed ones).
 //! - [`control_claim`]: zhong2021's efficiency claim decided from the control experiments'
-//!   numbers; [`control_track`]: the control-rate track (success, its leaderboard).
+//!   numbers; [`control_track`]: the control-rate track (success, its leaderboard);
+//!   [`control_noise`]: what their noise floor under the rounding-noise probe says.
 //! - [`inference_verdict`]: the setup inference's verdicts in words.
 //! - [`claim_verdict`]: each paper's claims evaluated from the stored runs (PASS, FAIL or N/A,
 //!   with the numbers as evidence); [`cost_ratio`]: zhong2021's compute-time ratios, one of
@@ -52,6 +53,7 @@
 pub mod claim_verdict;
 pub mod claims;
 pub mod control_claim;
+pub mod control_noise;
 pub mod control_track;
 pub mod cost_ratio;
 pub mod cross_best;

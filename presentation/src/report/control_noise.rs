@@ -1,22 +1,13 @@
 //! The control page's noise floor (`results/control-noise.csv`, the `class_under_noise` column
 //! of `results/cycles-trend.csv`; crate `control`'s rounding-noise probe): which digits of the
 //! control table's |x - x*| are reproducible, and which trend classes change under the probe.
-//! Every number of the prose is counted or read from those rows here.
+//! Every number of the prose is counted or read from those rows by `analysis::control_noise`;
+//! this module formats it.
 
 use super::control::ControlResults;
 use super::markdown::{sci, sci_opt, text, Table, MISSING};
-use records::control::{ControlRow, NoiseRow, TrendRow};
-
-/// A noise floor of at least this much is listed row by row: the report shows three
-/// significant digits (`sci`), and a noise floor of 1e-3 or more reaches them.
-const LISTED: f64 = 1e-3;
-
-/// The control-table row `n` is the noise floor of (the same key).
-fn row_of<'a>(results: &'a ControlResults, n: &NoiseRow) -> Option<&'a ControlRow> {
-    results.runs.iter().find(|r| {
-        r.task == n.task && r.method == n.method && r.h_ms == n.h_ms && r.substeps == n.substeps
-    })
-}
+use analysis::control_noise::{summarise, trend_changes as changed_classes, LISTED};
+use records::control::{TrendClass, TrendRow};
 
 /// The probe's definition, as the page states it.
 const PROBE: &str = "Each run of the control table and of the many-cycles table below runs a \
@@ -30,52 +21,29 @@ digits, and a change of a result below its noise floor is not evidence of anythi
 `results/control-noise.csv` holds it for every deterministic column of every row (0: bit for \
 bit; empty: undefined, where one value is missing or m = 0 differs from m').";
 
-/// "Rounding noise": the probe, a summary of max |x - x*|'s noise floor over the rows, and the
-/// rows where it is at least [`LISTED`] or the probe ended otherwise. Empty without a noise
-/// floor.
+/// "Rounding noise": the probe, the summary of max |x - x*|'s noise floor over the rows
+/// (`analysis::control_noise`), and the rows where it is at least its listing bound or the
+/// probe ended otherwise. Empty without a noise floor.
 pub fn section(results: &ControlResults) -> String {
     if results.noise.is_empty() {
         return String::new();
     }
-    let noise = &results.noise;
-    let exact = noise.iter().filter(|n| n.max_dx_noise == Some(0.0)).count();
-    let undefined = noise.iter().filter(|n| n.max_dx_noise.is_none()).count();
-    let below = noise
-        .iter()
-        .filter(|n| n.max_dx_noise.is_some_and(|r| r > 0.0 && r < LISTED))
-        .count();
-    let listed: Vec<(&NoiseRow, Option<&ControlRow>)> = {
-        let mut l: Vec<&NoiseRow> = noise
-            .iter()
-            .filter(|n| {
-                n.max_dx_noise.is_some_and(|r| r >= LISTED)
-                    || row_of(results, n).is_some_and(|r| r.status != n.status_under_noise)
-            })
-            .collect();
-        l.sort_by(|a, b| {
-            let key = |n: &NoiseRow| n.max_dx_noise.unwrap_or(f64::INFINITY);
-            key(b).total_cmp(&key(a))
-        });
-        l.into_iter().map(|n| (n, row_of(results, n))).collect()
-    };
-    let status_changes = listed
-        .iter()
-        .filter(|(n, r)| r.is_some_and(|r| r.status != n.status_under_noise))
-        .count();
+    let s = summarise(&results.runs, &results.noise);
     let mut out = format!("### Rounding noise\n\n{PROBE}\n\n");
     out.push_str(&format!(
-        "Of the {} rows, max |x - x*| is the same bit for bit under the probe in {exact}, moves \
-         by less than {} in {below}, by {} or more in {}, and has no defined relative change \
-         in {undefined}; under the probe, {status_changes} runs end with another status.",
-        noise.len(),
+        "Of the {} rows, max |x - x*| is the same bit for bit under the probe in {}, moves \
+         by less than {} in {}, by {} or more in {}, and has no defined relative change \
+         in {}; under the probe, {} runs end with another status.",
+        s.rows,
+        s.exact,
         sci(LISTED),
+        s.below,
         sci(LISTED),
-        listed
-            .iter()
-            .filter(|(n, _)| n.max_dx_noise.is_some_and(|r| r >= LISTED))
-            .count(),
+        s.at_least,
+        s.undefined,
+        s.status_changes,
     ));
-    if listed.is_empty() {
+    if s.listed.is_empty() {
         out.push_str("\n\n");
         return out;
     }
@@ -90,7 +58,7 @@ pub fn section(results: &ControlResults) -> String {
         "drift's noise floor",
         "max tracking error's noise floor",
     ]);
-    for (n, r) in &listed {
+    for (n, r) in &s.listed {
         t.push([
             n.task.clone(),
             n.method.clone(),
@@ -113,19 +81,23 @@ pub fn section(results: &ControlResults) -> String {
     out
 }
 
-/// The trend column under the probe: its class, or [`MISSING`].
-pub fn class_under_noise(r: &TrendRow) -> String {
-    r.class_under_noise
-        .map_or_else(|| MISSING.to_string(), |c| c.label().to_string())
+/// A class in words, or [`MISSING`].
+fn class(c: Option<TrendClass>) -> &'static str {
+    c.map_or(MISSING, |c| c.label())
 }
 
-/// Which many-cycles runs change class under the probe, in a paragraph (none: it says so).
+/// The trend column under the probe: its class, or [`MISSING`].
+pub fn class_under_noise(r: &TrendRow) -> String {
+    class(r.class_under_noise).to_string()
+}
+
+/// Which many-cycles runs change class under the probe (`analysis::control_noise`), in a
+/// paragraph (none: it says so).
 pub fn trend_changes(trends: &[TrendRow]) -> String {
-    let changed: Vec<String> = trends
+    let (changed, classed) = changed_classes(trends);
+    let changed: Vec<String> = changed
         .iter()
-        .filter(|r| r.class != r.class_under_noise)
         .map(|r| {
-            let class = |c: Option<records::control::TrendClass>| c.map_or(MISSING, |c| c.label());
             format!(
                 "{}, {} ({}): {} -> {}",
                 text(&r.task),
@@ -138,19 +110,15 @@ pub fn trend_changes(trends: &[TrendRow]) -> String {
             )
         })
         .collect();
-    let probed = trends
-        .iter()
-        .filter(|r| r.class.is_some() || r.class_under_noise.is_some())
-        .count();
     if changed.is_empty() {
         format!(
             "Under the rounding-noise probe (\"At a robot's control rate\", *Rounding noise*) \
-             every one of the {probed} classes stays as it is (last column).\n\n"
+             every one of the {classed} classes stays as it is (last column).\n\n"
         )
     } else {
         format!(
             "Under the rounding-noise probe (\"At a robot's control rate\", *Rounding noise*) \
-             {} of the {probed} classes change (last column), so those classes are not \
+             {} of the {classed} classes change (last column), so those classes are not \
              reproducible: {}.\n\n",
             changed.len(),
             changed.join("; ")
@@ -161,7 +129,7 @@ pub fn trend_changes(trends: &[TrendRow]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use records::control::{ControlStatus, Family, TrendClass};
+    use records::control::{ControlRow, ControlStatus, Family, NoiseRow};
 
     fn row(method: &str, max_dx: f64) -> ControlRow {
         ControlRow {
