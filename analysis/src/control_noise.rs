@@ -2,8 +2,8 @@
 //! `class_under_noise` column of `results/cycles-trend.csv`, written by crate `control`, whose
 //! `noise_floor` module defines the relative change r = |m' - m| / |m| under its rounding-noise
 //! probe): how many rows keep max |x - x*| bit for bit, how many move it below [`LISTED`] or
-//! at least by it, which rows those are, and which many-cycles runs change class. The report's
-//! control page formats it.
+//! at least by it, which rows those are, and which many-cycles runs change class, built into
+//! the report model ([`crate::report_model::Control`]); the report's control page formats it.
 
 use records::control::{ControlRow, NoiseRow, TrendRow};
 
@@ -45,7 +45,7 @@ fn status_changed(runs: &[ControlRow], n: &NoiseRow) -> bool {
 }
 
 /// The summary of the noise floor `noise` of the control table's rows `runs`.
-pub fn summarise<'a>(runs: &'a [ControlRow], noise: &'a [NoiseRow]) -> NoiseSummary<'a> {
+pub(crate) fn summarise<'a>(runs: &'a [ControlRow], noise: &'a [NoiseRow]) -> NoiseSummary<'a> {
     let count =
         |f: &dyn Fn(Option<f64>) -> bool| noise.iter().filter(|n| f(n.max_dx_noise)).count();
     let mut listed: Vec<&NoiseRow> = noise
@@ -67,7 +67,7 @@ pub fn summarise<'a>(runs: &'a [ControlRow], noise: &'a [NoiseRow]) -> NoiseSumm
 
 /// The many-cycles runs of `trends` whose class changes under the probe, and how many runs
 /// have a class as run or under the probe.
-pub fn trend_changes(trends: &[TrendRow]) -> (Vec<&TrendRow>, usize) {
+pub(crate) fn trend_changes(trends: &[TrendRow]) -> (Vec<&TrendRow>, usize) {
     let changed = trends
         .iter()
         .filter(|r| r.class != r.class_under_noise)

@@ -162,7 +162,7 @@ pub fn section(
     out.push_str(&claim_section(results, claim, model));
     out.push_str(&stability_section(results, model, figures));
     out.push_str(&leaderboard(model));
-    out.push_str(&control_noise::section(results));
+    out.push_str(&control_noise::section(&model.noise));
 
     out.push_str("### Latency against accuracy\n\n");
     let mut tasks: Vec<&str> = results.runs.iter().map(|r| r.task.as_str()).collect();
@@ -354,9 +354,9 @@ fn leaderboard(model: &Control) -> String {
     )
 }
 
-/// "Many cycles": each run's trend over K cycles and under the rounding-noise probe, and the
-/// figure.
-pub fn cycles_section(results: &ControlResults, figures: &[String]) -> String {
+/// "Many cycles": each run's trend over K cycles and under the rounding-noise probe (the classes
+/// it changes: `model`'s), and the figure.
+pub fn cycles_section(results: &ControlResults, model: &Control, figures: &[String]) -> String {
     if results.trends.is_empty() {
         return String::new();
     }
@@ -404,7 +404,7 @@ pub fn cycles_section(results: &ControlResults, figures: &[String]) -> String {
     }
     out.push_str(&t.render());
     out.push('\n');
-    out.push_str(&control_noise::trend_changes(&results.trends));
+    out.push_str(&control_noise::trend_changes(model));
     out.push_str(&figure(figures, CYCLES_NAME, "drift against cycle"));
     out
 }

@@ -4,9 +4,9 @@
 //! Every number of the prose is counted or read from those rows by `analysis::control_noise`;
 //! this module formats it.
 
-use super::control::ControlResults;
 use super::markdown::{sci, sci_opt, text, Table, MISSING};
-use analysis::control_noise::{summarise, trend_changes as changed_classes, LISTED};
+use analysis::report_model::Control;
+use analysis::{NoiseSummary, NOISE_LISTED as LISTED};
 use records::control::{TrendClass, TrendRow};
 
 /// The probe's definition, as the page states it.
@@ -21,14 +21,13 @@ digits, and a change of a result below its noise floor is not evidence of anythi
 `results/control-noise.csv` holds it for every deterministic column of every row (0: bit for \
 bit; empty: undefined, where one value is missing or m = 0 differs from m').";
 
-/// "Rounding noise": the probe, the summary of max |x - x*|'s noise floor over the rows
-/// (`analysis::control_noise`), and the rows where it is at least its listing bound or the
-/// probe ended otherwise. Empty without a noise floor.
-pub fn section(results: &ControlResults) -> String {
-    if results.noise.is_empty() {
+/// "Rounding noise": the probe, the summary `s` of max |x - x*|'s noise floor over the rows
+/// (the report model's), and the rows where it is at least its listing bound or the probe
+/// ended otherwise. Empty without a noise floor.
+pub fn section(s: &NoiseSummary) -> String {
+    if s.rows == 0 {
         return String::new();
     }
-    let s = summarise(&results.runs, &results.noise);
     let mut out = format!("### Rounding noise\n\n{PROBE}\n\n");
     out.push_str(&format!(
         "Of the {} rows, max |x - x*| is the same bit for bit under the probe in {}, moves \
@@ -91,11 +90,12 @@ pub fn class_under_noise(r: &TrendRow) -> String {
     class(r.class_under_noise).to_string()
 }
 
-/// Which many-cycles runs change class under the probe (`analysis::control_noise`), in a
-/// paragraph (none: it says so).
-pub fn trend_changes(trends: &[TrendRow]) -> String {
-    let (changed, classed) = changed_classes(trends);
-    let changed: Vec<String> = changed
+/// Which many-cycles runs change class under the probe (the report model's), in a paragraph
+/// (none: it says so).
+pub fn trend_changes(model: &Control) -> String {
+    let classed = model.classed;
+    let changed: Vec<String> = model
+        .changed_classes
         .iter()
         .map(|r| {
             format!(
@@ -162,7 +162,7 @@ mod tests {
         }
     }
 
-    fn noise(r: &ControlRow, max_dx_noise: Option<f64>, status: ControlStatus) -> NoiseRow {
+    fn noise(r: &ControlRow, max_dx_noise: f64, status: ControlStatus) -> NoiseRow {
         NoiseRow {
             task: r.task.clone(),
             paper: r.paper.clone(),
@@ -176,7 +176,7 @@ mod tests {
             ticks_noise: Some(0.0),
             max_track_err_noise: Some(0.0),
             rms_track_err_noise: Some(0.0),
-            max_dx_noise,
+            max_dx_noise: Some(max_dx_noise),
             rms_dx_noise: Some(0.0),
             max_dx_settled_noise: Some(0.0),
             drift_noise: Some(2e-9),
@@ -188,78 +188,43 @@ mod tests {
     }
 
     #[test]
-    fn the_section_counts_the_rows_and_lists_the_noisy_ones_largest_first() {
-        // A bit for bit, B and E listed, C undefined, D below the listing's bound but listed for
-        // its status.
-        let runs = vec![
-            row("A", 1e-9),
-            row("B", 1e-3),
-            row("C", 0.0),
-            row("D", 0.5),
-            row("E", 1e-2),
+    fn the_section_states_the_summary_and_lists_its_rows() {
+        let runs = [row("B", 1e-3), row("D", 0.5)];
+        let rows = [
+            noise(&runs[0], 0.09, ControlStatus::Ok),
+            noise(&runs[1], 3e-5, ControlStatus::Diverged),
         ];
-        let ok = ControlStatus::Ok;
-        let noise = vec![
-            noise(&runs[0], Some(0.0), ok),
-            noise(&runs[1], Some(0.09), ok),
-            noise(&runs[2], None, ok),
-            noise(&runs[3], Some(3e-5), ControlStatus::Diverged),
-            noise(&runs[4], Some(2e-3), ok),
-        ];
-        let results = ControlResults {
-            runs,
-            noise,
-            ..ControlResults::default()
+        let s = NoiseSummary {
+            rows: 5,
+            exact: 1,
+            below: 1,
+            at_least: 2,
+            undefined: 1,
+            status_changes: 1,
+            listed: vec![(&rows[0], Some(&runs[0])), (&rows[1], Some(&runs[1]))],
         };
-        let s = section(&results);
+        let page = section(&s);
         assert!(
-            s.contains(
+            page.contains(
                 "Of the 5 rows, max |x - x*| is the same bit for bit under the probe in 1, \
                  moves by less than 1.00e-3 in 1, by 1.00e-3 or more in 2, and has no defined \
                  relative change in 1; under the probe, 1 runs end with another status."
             ),
-            "{s}"
+            "{page}"
         );
-        let (b, e, d) = (
-            s.find("| B |").unwrap(),
-            s.find("| E |").unwrap(),
-            s.find("| D |").unwrap(),
-        );
-        assert!(b < e && e < d, "{s}");
-        assert!(s.contains("ok (diverged)"), "{s}");
-        assert!(!s.contains("| A |") && !s.contains("| C |"), "{s}");
-        assert!(section(&ControlResults::default()).is_empty());
-    }
-
-    #[test]
-    fn the_trend_paragraph_names_the_classes_that_change() {
-        let trend = |method: &str, class, under| TrendRow {
-            task: "e / v".to_string(),
-            scheme: "s".to_string(),
-            method: method.to_string(),
-            h_ms: Some(1.0),
-            status: ControlStatus::Ok,
-            failure: None,
-            cycles: 20,
-            drift_first: Some(0.1),
-            drift_last: Some(0.2),
-            rate: Some(0.01),
-            class,
-            class_under_noise: under,
-            rate_noise: Some(0.0),
-        };
-        let same = trend("A", Some(TrendClass::Bounded), Some(TrendClass::Bounded));
-        let flip = trend(
-            "B",
-            Some(TrendClass::Bounded),
-            Some(TrendClass::Accumulating),
-        );
-        let s = trend_changes(&[same.clone(), flip]);
         assert!(
-            s.contains("1 of the 2 classes change")
-                && s.contains("e / v, B (1 ms): bounded -> accumulating"),
-            "{s}"
+            page.contains("| e / v | B | 1 | ok | 1.00e-3 | 9.00e-2 |"),
+            "{page}"
         );
-        assert!(trend_changes(&[same]).contains("every one of the 1 classes stays"));
+        assert!(
+            page.contains("| e / v | D | 1 | ok (diverged) | 5.00e-1 | 3.00e-5 |"),
+            "{page}"
+        );
+        let none = NoiseSummary {
+            rows: 0,
+            listed: Vec::new(),
+            ..s
+        };
+        assert!(section(&none).is_empty());
     }
 }

@@ -224,6 +224,8 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
             runs: &control.runs,
             claims: &control.claims,
             stability: &control.stability,
+            noise: &control.noise,
+            trends: &control.trends,
         },
         Explained {
             attribution: &explanations.attribution,
@@ -276,7 +278,7 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
     out.push_str(&python::call_cost(&python.call_cost));
     pages.push(topic("performance.md", out));
     let mut out = control::section(control, model.control_claim, &model.control, figures);
-    out.push_str(&control::cycles_section(control, figures));
+    out.push_str(&control::cycles_section(control, &model.control, figures));
     pages.push(topic("control.md", out));
     pages.push(topic(
         "cross.md",
