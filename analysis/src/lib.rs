@@ -17,7 +17,9 @@
 //!   text says (the best per measure, the spread of the timings).
 //! - [`gate`]: the regression gate (fresh rows against committed ones).
 //! - [`control_claim`]: zhong2021's efficiency claim decided from the control experiments'
-//!   numbers; [`control_track`]: the control-rate track (success, its leaderboard).
+//!   numbers; [`control_track`]: the control-rate track (success, its leaderboard); what their
+//!   noise floor under the rounding-noise probe says ([`NoiseSummary`], module
+//!   `control_noise`, built into the report model).
 //! - [`inference_verdict`]: the setup inference's verdicts in words.
 //! - [`claim_verdict`]: each paper's claims evaluated from the stored runs (PASS, FAIL or N/A,
 //!   with the numbers as evidence); [`cost_ratio`]: zhong2021's compute-time ratios, one of
@@ -52,6 +54,7 @@
 pub mod claim_verdict;
 pub mod claims;
 pub mod control_claim;
+mod control_noise;
 pub mod control_track;
 pub mod cost_ratio;
 pub mod cross_best;
@@ -75,6 +78,7 @@ mod report_text;
 mod sweep_check;
 pub mod sweep_comparison;
 pub mod sweep_summary;
+pub use control_noise::{NoiseSummary, LISTED as NOISE_LISTED};
 pub use number::sci;
 pub use paper_rules::{GROUP as GROUP_PAPER, MAX_CLAIMS};
 pub use paper_runs::{check_runs as check_paper_runs, Absent as AbsentRun};

@@ -46,7 +46,7 @@ use crate::published_table::{published_tables, side_by_side, SideBySide};
 use crate::sweep_check::SweepCheck;
 use crate::sweep_comparison::{setup_share, swept_runs, SetupShare, SweptRun};
 use crate::sweep_summary::SweepSummary;
-use records::control::{ClaimRow, ControlRow, StabilityRow, Verdict};
+use records::control::{ClaimRow, ControlRow, NoiseRow, StabilityRow, TrendRow, Verdict};
 use records::index::completed;
 use records::index::Runs;
 use records::inference::InferenceRow;
@@ -160,6 +160,10 @@ pub struct ControlInputs<'a> {
     pub claims: &'a [ClaimRow],
     /// `results/control-stability.csv`: the networks' Euler stability limits.
     pub stability: &'a [StabilityRow],
+    /// `results/control-noise.csv`: the noise floor of each of `runs`.
+    pub noise: &'a [NoiseRow],
+    /// `results/cycles-trend.csv`: the many-cycles runs' trends, as run and under the probe.
+    pub trends: &'a [TrendRow],
 }
 
 /// The control-rate track, decided ([`crate::control_track`]).
@@ -178,6 +182,12 @@ pub struct Control<'a> {
     pub steps_per_tick: Vec<Option<u64>>,
     /// The control-rate leaderboard.
     pub track: Vec<TrackRow<'a>>,
+    /// The noise floor of max |x - x*| over the runs ([`crate::NoiseSummary`]).
+    pub noise: crate::NoiseSummary<'a>,
+    /// The many-cycles runs whose class changes under the rounding-noise probe, in file order.
+    pub changed_classes: Vec<&'a TrendRow>,
+    /// The many-cycles runs with a class, as run or under the probe.
+    pub classed: usize,
 }
 
 /// A run at the main period with its verdicts.
@@ -194,6 +204,7 @@ impl<'a> Control<'a> {
     /// The track of `control` on the stored `runs`.
     fn build(control: ControlInputs<'a>, runs: &'a Runs) -> Self {
         let h = main_h_ms();
+        let (changed_classes, classed) = crate::control_noise::trend_changes(control.trends);
         Control {
             main_h_ms: h,
             verdicts: control
@@ -225,6 +236,9 @@ impl<'a> Control<'a> {
                 .map(|s| s.euler_limit_s.map(steps_per_main_tick))
                 .collect(),
             track: track(control.runs),
+            noise: crate::control_noise::summarise(control.runs, control.noise),
+            changed_classes,
+            classed,
         }
     }
 }

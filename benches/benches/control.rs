@@ -15,7 +15,7 @@ use spec::slug;
 
 use control::{
     load_tasks, run_loop, with_task, Discretisation, LoopSettings, Method, Numerical, Observer,
-    TaskArm,
+    Rounding, TaskArm,
 };
 
 /// Ticks collected per task.
@@ -47,6 +47,7 @@ fn sample(arm: &TaskArm<'_>) -> Vec<(Qp, Qp)> {
         period: arm.period,
         cycles: 1,
         max_ticks: Some(TICKS),
+        rounding: Rounding::AsComputed,
     };
     run_loop(
         arm.robot,

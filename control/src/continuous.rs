@@ -8,7 +8,12 @@
 //! theta alone, that is exactly the K-cycle motion; at the acceleration level each cycle
 //! starts from rest, dropping the arm's residual speed at c T (the path itself rests there).
 //! The drift after cycle c is |theta(c T) - theta_0|.
+//!
+//! With [`Rounding::OneUlp`] (the rounding-noise probe; a continuous run has no ticks) the first
+//! cycle starts from theta_0 with each joint angle moved by one ulp (module `rounding`), and the
+//! drift is still measured from the task's theta_0.
 
+use crate::rounding::Rounding;
 use crate::task::{Task, TaskArm};
 use records::control::ControlStatus;
 use simulation::{simulate, Outcome, Settings, Solver};
@@ -48,6 +53,8 @@ fn distance(a: &[f64], b: &[f64]) -> f64 {
 pub struct ExactCycles<'a> {
     pub task: &'a Task,
     pub cycles: usize,
+    /// theta_0 as the task gives it, or moved by one ulp (module docs).
+    pub rounding: Rounding,
 }
 
 impl ExactCycles<'_> {
@@ -67,6 +74,9 @@ impl ExactCycles<'_> {
             change: Vec::new(),
         };
         let mut start = theta0.to_vec();
+        if let Some(mut moves) = self.rounding.moves() {
+            moves.apply(&mut start);
+        }
         for _ in 0..self.cycles {
             let run = simulate(
                 robot,

@@ -20,8 +20,13 @@
 //!
 //! A run whose command stops being finite or exceeds [`DIVERGED`] in magnitude has diverged
 //! (the discretised network is unstable at this h): it stops there.
+//!
+//! With [`Rounding::OneUlp`] ([`LoopSettings::rounding`]) the run is the rounding-noise probe:
+//! after step 3 of every tick each joint angle of theta_{k+1} is moved by one ulp (module
+//! `rounding`), outside the timed part; with [`Rounding::AsComputed`] nothing is moved.
 
 use crate::arm::advance;
+use crate::rounding::Rounding;
 use crate::tick::TickSolver;
 use nalgebra::DVector;
 use qp::QpDotScratch;
@@ -86,6 +91,8 @@ pub struct LoopSettings {
     pub cycles: usize,
     /// Stop after this many ticks (a short check run); all ticks of the K cycles when `None`.
     pub max_ticks: Option<usize>,
+    /// The state as computed, or moved by one ulp after every tick (the rounding-noise probe).
+    pub rounding: Rounding,
 }
 
 impl LoopSettings {
@@ -151,6 +158,7 @@ pub fn run_loop(
     let mut reference = ExactPath::new(&state.qp);
     let mut tally = Tally::new(total, settings.cycles);
     let mut cycle_start = theta0.clone();
+    let mut moves = settings.rounding.moves();
 
     for k in 0..total {
         let t = k as f64 * h;
@@ -162,6 +170,9 @@ pub fn run_loop(
             }
         };
         tally.timed(&timed);
+        if let Some(moves) = moves.as_mut() {
+            moves.apply(state.theta.as_mut_slice());
+        }
 
         // Scoring (not timed).
         tally.track((robot.position(state.theta_k.as_slice()) - path.at(t).r).norm());

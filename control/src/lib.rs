@@ -11,7 +11,8 @@
 //!   the Taylor-type discrete-time ZNN) or any QP solver of the one seam (`qp::QpSolver`, from
 //!   the registry: E47, 94LVI, the hot-started active set, Clarabel, OSQP, or one registered
 //!   from outside), a tick solver with no adapter; latency per tick (`latency`),
-//!   tracking error, |x - x*| and drift;
+//!   tracking error, |x - x*| and drift; with [`Rounding::OneUlp`] the same run with its joint
+//!   angles moved by one ulp after every tick (`rounding`: the rounding-noise probe);
 //! - `stability`: each network's largest stable step, from the spectrum of its Jacobian
 //!   (forward Euler is stable iff |1 + s lambda| <= 1 for every eigenvalue lambda), beside the
 //!   papers' gains;
@@ -37,7 +38,9 @@ mod error;
 mod latency;
 mod method;
 mod network_tick;
+mod noise_floor;
 mod reproduce;
+mod rounding;
 mod stability;
 mod task;
 mod tick;
@@ -48,5 +51,6 @@ pub use error::ControlError;
 pub use method::{Method, Numerical};
 pub use network_tick::Discretisation;
 pub use reproduce::{reproduce, Summary};
+pub use rounding::Rounding;
 pub use task::{load_tasks, with_task, Task, TaskArm};
 pub use tick::TickSolver;

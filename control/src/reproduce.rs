@@ -3,11 +3,16 @@
 //! `results/` ([`records::control`]); and the efficiency claim's check runs, returned as
 //! measurements for crate `analysis` to judge (this crate decides no claim).
 //!
+//! Every run of a row of `results/control.csv` and of `results/cycles-trend.csv` runs twice: as
+//! computed, and as the rounding-noise probe ([`Rounding::OneUlp`], module `rounding`), whose
+//! outcome gives the row's noise floor (`results/control-noise.csv`, module `noise_floor`; the
+//! trend's `class_under_noise` and `rate_noise`). The probes double those runs' cost.
+//!
 //! Cost on 2 cores of a 2020s server CPU at the standard task set's budget
 //! (`experiments/control/tasks.toml`): see the report's section
-//! "At a robot's control rate" (about a minute of CPU, half a minute with the runs in parallel
-//! on both cores; most of it robio2018's methods iterating to 1e-10 at every tick of the runs
-//! at 1 ms, and the 20-cycle runs).
+//! "At a robot's control rate" (about two minutes of CPU, a minute with the runs in parallel
+//! on both cores, half of it the rounding-noise probes; most of it robio2018's methods
+//! iterating to 1e-10 at every tick of the runs at 1 ms, and the 20-cycle runs).
 
 use crate::continuous::{ContinuousCycles, ExactCycles};
 use crate::control_loop::{run_loop, LoopOutcome, LoopSettings, Observer, Status};
@@ -15,12 +20,14 @@ use crate::error::ControlError;
 use crate::latency::Latency;
 use crate::method::{Method, Numerical};
 use crate::network_tick::{products_per_evaluation, Discretisation};
+use crate::noise_floor::{noise_row, relative_change};
+use crate::rounding::Rounding;
 use crate::stability::{gain, LimitProbe};
 use crate::task::{load_tasks, with_task, Task, TaskArm};
 use crate::tick::TickSolver;
 use crate::trend::classify;
 use records::control::{steps_needed, ClaimCheck};
-use records::control::{ControlRow, ControlStatus, CycleRow, StabilityRow, TrendRow};
+use records::control::{ControlRow, ControlStatus, CycleRow, NoiseRow, StabilityRow, TrendRow};
 use settings::projection::ProjectionErrorForm;
 use settings::SolverSpec;
 use simulation::map_costliest_first;
@@ -78,6 +85,7 @@ struct RunMethod<'a> {
     h: f64,
     cycles: usize,
     max_ticks: Option<usize>,
+    rounding: Rounding,
 }
 
 impl RunMethod<'_> {
@@ -95,6 +103,7 @@ impl RunMethod<'_> {
             period,
             cycles: self.cycles,
             max_ticks: self.max_ticks,
+            rounding: self.rounding,
         };
         Ok(run_loop(
             robot,
@@ -137,6 +146,7 @@ impl ProbeLimit<'_> {
             period,
             cycles: 1,
             max_ticks: None,
+            rounding: Rounding::AsComputed,
         };
         run_loop(
             robot,
@@ -193,7 +203,8 @@ fn control_row(task: &Task, method: &Method, h: f64, mut out: LoopOutcome) -> Co
 }
 
 /// One controller run of the reproduction: `method` on `task` at the period `h` over `cycles`
-/// cycles, stopped after `max_ticks` ticks when given.
+/// cycles, stopped after `max_ticks` ticks when given, with the state as computed or moved by
+/// one ulp after every tick (`rounding`).
 #[derive(Clone, Debug)]
 struct LoopRun<'a> {
     task: &'a Task,
@@ -201,10 +212,11 @@ struct LoopRun<'a> {
     h: f64,
     cycles: usize,
     max_ticks: Option<usize>,
+    rounding: Rounding,
 }
 
 impl<'a> LoopRun<'a> {
-    /// A run over whole cycles.
+    /// A run over whole cycles, as computed.
     fn cycles(task: &'a Task, method: Method, h: f64, cycles: usize) -> Self {
         LoopRun {
             task,
@@ -212,6 +224,15 @@ impl<'a> LoopRun<'a> {
             h,
             cycles,
             max_ticks: None,
+            rounding: Rounding::AsComputed,
+        }
+    }
+
+    /// The same run as the rounding-noise probe.
+    fn probe(&self) -> Self {
+        LoopRun {
+            rounding: Rounding::OneUlp,
+            ..self.clone()
         }
     }
 
@@ -221,6 +242,7 @@ impl<'a> LoopRun<'a> {
             h: self.h,
             cycles: self.cycles,
             max_ticks: self.max_ticks,
+            rounding: self.rounding,
         };
         with_task(self.task, self.cycles, |arm| method.run_on(arm))?
     }
@@ -346,7 +368,7 @@ pub fn reproduce(
     let first = FirstRound::plan(&tasks, budget);
     progress(&first.describe());
     let first_out = first.run();
-    let control = control_rows(&first.loops[..first.rows], first_out.rows)?;
+    let (control, noise) = control_rows(&first.loops[..first.rows], first_out.rows)?;
     let stability = stability_rows(&first.probes, first_out.limits, &control)?;
 
     // Round 2, selected by those rows, then the rows of both rounds' many cycles.
@@ -370,6 +392,7 @@ pub fn reproduce(
 
     let control: Vec<ControlRow> = control.into_iter().map(|(_, r)| r).collect();
     store::control::write(results, results_dir::CONTROL, &control)?;
+    store::control::write(results, results_dir::CONTROL_NOISE, &noise)?;
     store::control::write(results, results_dir::CONTROL_STABILITY, &stability)?;
     store::control::write(results, results_dir::CYCLES, &cycles.cycles)?;
     store::control::write(results, results_dir::CYCLES_TREND, &cycles.trends)?;
@@ -380,30 +403,49 @@ pub fn reproduce(
     })
 }
 
+/// What a run and its rounding-noise probe returned.
+struct Probed<T> {
+    /// The run as computed.
+    computed: Result<T, ControlError>,
+    /// The same run with its state moved by one ulp ([`Rounding::OneUlp`]).
+    probe: Result<T, ControlError>,
+}
+
+/// The outcomes of runs (`outs`: the runs as computed, then their probes in the same order)
+/// paired with their probes'.
+fn probed<T>(mut outs: Vec<Result<T, ControlError>>) -> Vec<Probed<T>> {
+    let probes = outs.split_off(outs.len() / 2);
+    outs.into_iter()
+        .zip(probes)
+        .map(|(computed, probe)| Probed { computed, probe })
+        .collect()
+}
+
 /// The first round of [`reproduce`]: every run that needs no other's result.
 struct FirstRound<'a> {
     tasks: &'a [Task],
     budget: &'a Budget,
     /// The controller runs: first those of the rows of results/control.csv (per task, every
     /// method at h, then the period sweep), then the exact optimum's many cycles at h (the
-    /// active set), per task.
+    /// active set), per task; each as computed, then all of them again as their rounding-noise
+    /// probes, in the same order.
     loops: Vec<LoopRun<'a>>,
-    /// How many of `loops` are rows of results/control.csv.
+    /// How many of `loops` are rows of results/control.csv (as computed).
     rows: usize,
     /// Each network on its task, for its Euler limit.
     probes: Vec<(&'a Task, &'a SolverSpec)>,
 }
 
-/// What the first round's runs returned, in the order of its runs.
+/// What the first round's runs returned, in the order of its runs, each with its probe's.
 struct FirstRoundOut {
     /// The runs of the rows of results/control.csv.
-    rows: Vec<Result<LoopOutcome, ControlError>>,
+    rows: Vec<Probed<LoopOutcome>>,
     /// The exact optimum's many cycles at h, per task.
-    exact_cycles: Vec<Result<LoopOutcome, ControlError>>,
+    exact_cycles: Vec<Probed<LoopOutcome>>,
     /// Each probe's Euler limit: (limit, instant), or `None`.
     limits: Vec<Result<Option<(f64, f64)>, ControlError>>,
     /// The exact column's many cycles in continuous time, per task.
-    continuous: Vec<Result<ContinuousCycles, ControlError>>,
+    continuous: Vec<Probed<ContinuousCycles>>,
 }
 
 impl<'a> FirstRound<'a> {
@@ -441,6 +483,8 @@ impl<'a> FirstRound<'a> {
                 budget.cycles,
             )
         }));
+        let noisy: Vec<LoopRun> = loops.iter().map(LoopRun::probe).collect();
+        loops.extend(noisy);
         let probes = tasks
             .iter()
             .flat_map(|task| task.networks.iter().map(move |spec| (task, spec)))
@@ -467,11 +511,15 @@ impl<'a> FirstRound<'a> {
         )
     }
 
-    /// Runs the round in parallel: the controller runs beside the probes and the
-    /// continuous-time cycles.
+    /// Runs the round in parallel: the controller runs beside the stability probes and the
+    /// continuous-time cycles (as computed, then their rounding-noise probes).
     fn run(&self) -> FirstRoundOut {
         let h = self.budget.h;
-        let (mut rows, (limits, continuous)) = rayon::join(
+        let continuous_runs: Vec<(&Task, Rounding)> = [Rounding::AsComputed, Rounding::OneUlp]
+            .into_iter()
+            .flat_map(|rounding| self.tasks.iter().map(move |task| (task, rounding)))
+            .collect();
+        let (loops, (limits, continuous)) = rayon::join(
             || map_costliest_first(&self.loops, LoopRun::cost, LoopRun::run),
             || {
                 rayon::join(
@@ -486,12 +534,13 @@ impl<'a> FirstRound<'a> {
                     },
                     || {
                         map_costliest_first(
-                            self.tasks,
-                            |task| task.job.path.duration,
-                            |task| {
+                            &continuous_runs,
+                            |(task, _)| task.job.path.duration,
+                            |&(task, rounding)| {
                                 let cycles = ExactCycles {
                                     task,
                                     cycles: self.budget.cycles,
+                                    rounding,
                                 };
                                 with_task(task, 1, |arm| cycles.run_on(arm))
                             },
@@ -500,28 +549,36 @@ impl<'a> FirstRound<'a> {
                 )
             },
         );
+        let mut rows = probed(loops);
         let exact_cycles = rows.split_off(self.rows);
         FirstRoundOut {
             rows,
             exact_cycles,
             limits,
-            continuous,
+            continuous: probed(continuous),
         }
     }
 }
 
+/// Controller runs' rows, each beside its method.
+type MethodRows = Vec<(Method, ControlRow)>;
+
 /// Each controller run's row beside its method (`runs` and their outcomes `outs`, in order):
-/// later passes select runs by method (an identity), never by the row's label.
+/// later passes select runs by method (an identity), never by the row's label; and each row's
+/// noise floor, from its probe's outcome (module `noise_floor`).
 fn control_rows(
     runs: &[LoopRun],
-    outs: Vec<Result<LoopOutcome, ControlError>>,
-) -> Result<Vec<(Method, ControlRow)>, ControlError> {
+    outs: Vec<Probed<LoopOutcome>>,
+) -> Result<(MethodRows, Vec<NoiseRow>), ControlError> {
     let mut control = Vec::with_capacity(runs.len());
+    let mut noise = Vec::with_capacity(runs.len());
     for (run, out) in runs.iter().zip(outs) {
-        let row = control_row(run.task, &run.method, run.h, out?);
+        let row = control_row(run.task, &run.method, run.h, out.computed?);
+        let probe = control_row(run.task, &run.method, run.h, out.probe?);
+        noise.push(noise_row(&row, &probe));
         control.push((run.method.clone(), row));
     }
-    Ok(control)
+    Ok((control, noise))
 }
 
 /// Each probed network's row (`probes` and their Euler `limits`, in order): its limit beside its
@@ -606,16 +663,19 @@ impl<'a> SecondRound<'a> {
         )
     }
 
-    /// Runs the round in parallel: the check runs beside the many cycles.
+    /// Runs the round in parallel: the check runs beside the many cycles (as computed, then
+    /// their rounding-noise probes).
     fn run(&self) -> SecondRoundOut {
-        let flat_cycle_runs: Vec<&LoopRun> = self.network_cycles.iter().flatten().collect();
+        let computed = self.network_cycles.iter().flatten();
+        let noisy: Vec<LoopRun> = computed.clone().map(LoopRun::probe).collect();
+        let flat_cycle_runs: Vec<&LoopRun> = computed.chain(&noisy).collect();
         let (checks, network_cycles) = rayon::join(
             || map_costliest_first(&self.checks, |c| c.run.cost(), |c| c.run.run()),
             || map_costliest_first(&flat_cycle_runs, |r| r.cost(), |r| r.run()),
         );
         SecondRoundOut {
             checks,
-            network_cycles,
+            network_cycles: probed(network_cycles),
         }
     }
 }
@@ -624,8 +684,8 @@ impl<'a> SecondRound<'a> {
 struct SecondRoundOut {
     /// The claim's check runs.
     checks: Vec<Result<LoopOutcome, ControlError>>,
-    /// The networks' many cycles, task by task.
-    network_cycles: Vec<Result<LoopOutcome, ControlError>>,
+    /// The networks' many cycles, task by task, each with its probe's.
+    network_cycles: Vec<Probed<LoopOutcome>>,
 }
 
 /// The efficiency claim's check runs, on the tasks run by a network built on the LVI whose
@@ -684,7 +744,7 @@ fn comparator<'a>(
 }
 
 /// The many-cycles rows: per cycle (results/cycles.csv) and per run, its trend
-/// (results/cycles-trend.csv).
+/// (results/cycles-trend.csv) and its probe's.
 struct CycleTables {
     cycles: Vec<CycleRow>,
     trends: Vec<TrendRow>,
@@ -693,14 +753,15 @@ struct CycleTables {
 impl CycleTables {
     /// The rows per task: the exact optimum at `h` (the first round's `exact_cycles`, per
     /// task), every network form stable at `h` (the second round's `runs` per task, their
-    /// outcomes `outs` in order), the exact column in continuous time (`continuous`, per task).
+    /// outcomes `outs` in order), the exact column in continuous time (`continuous`, per task);
+    /// each run's trend beside its probe's.
     fn of(
         tasks: &[Task],
         h: f64,
-        exact_cycles: Vec<Result<LoopOutcome, ControlError>>,
-        continuous: Vec<Result<ContinuousCycles, ControlError>>,
+        exact_cycles: Vec<Probed<LoopOutcome>>,
+        continuous: Vec<Probed<ContinuousCycles>>,
         runs: &[Vec<LoopRun>],
-        outs: Vec<Result<LoopOutcome, ControlError>>,
+        outs: Vec<Probed<LoopOutcome>>,
     ) -> Result<Self, ControlError> {
         let mut tables = CycleTables {
             cycles: Vec::new(),
@@ -712,29 +773,30 @@ impl CycleTables {
         {
             let mut at_h = vec![(
                 Method::Numerical(Numerical::active_set()).label(),
-                exact_at_h?,
+                exact_at_h,
             )];
             for (run, out) in runs.iter().zip(network_cycles.by_ref()) {
-                at_h.push((run.method.label(), out?));
+                at_h.push((run.method.label(), out));
             }
             for (label, out) in at_h {
+                let (out, probe) = (out.computed?, out.probe?);
                 tables.record(
                     task,
                     label,
                     Some(h * 1e3),
                     (out.status.column(), out.status.failure()),
-                    &out.drift,
-                    &out.cycle_change,
+                    (&out.drift, &out.cycle_change),
+                    (&probe.drift, &probe.cycle_change),
                 );
             }
-            let continuous = continuous?;
+            let (continuous, probe) = (continuous.computed?, continuous.probe?);
             tables.record(
                 task,
                 CONTINUOUS_EXACT.to_string(),
                 None,
                 continuous.end(),
-                &continuous.drift,
-                &continuous.change,
+                (&continuous.drift, &continuous.change),
+                (&probe.drift, &probe.change),
             );
         }
         Ok(tables)
@@ -742,15 +804,15 @@ impl CycleTables {
 
     /// The rows of one many-cycles run of `method` on `task` (at the period `h_ms`, none in
     /// continuous time) that ended with `end` (status, failure): its (drift, change) after each
-    /// cycle and their trend.
+    /// cycle and their trend, beside the trend of its rounding-noise probe's `(drift, change)`.
     fn record(
         &mut self,
         task: &Task,
         method: String,
         h_ms: Option<f64>,
         end: (ControlStatus, Option<String>),
-        drift: &[f64],
-        change: &[f64],
+        (drift, change): (&[f64], &[f64]),
+        probe: (&[f64], &[f64]),
     ) {
         for (c, (d, ch)) in drift.iter().zip(change).enumerate() {
             self.cycles.push(CycleRow {
@@ -764,6 +826,7 @@ impl CycleTables {
             });
         }
         let trend = classify(drift, change);
+        let probe = classify(probe.0, probe.1);
         self.trends.push(TrendRow {
             task: task.id(),
             scheme: task.scheme(),
@@ -776,6 +839,8 @@ impl CycleTables {
             drift_last: drift.last().copied(),
             rate: trend.map(|t| t.rate),
             class: trend.map(|t| t.class),
+            class_under_noise: probe.map(|t| t.class),
+            rate_noise: relative_change(trend.map(|t| t.rate), probe.map(|t| t.rate)),
         });
     }
 }

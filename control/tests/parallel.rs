@@ -1,5 +1,6 @@
 //! The control experiments run in parallel (rayon's pool) and give what one thread gives: the
-//! same rows in the same order, every column but the measured latencies. On a small budget
+//! same rows in the same order, every column but the measured latencies, and the same noise
+//! floor (the rounding-noise probes are deterministic, continuous time included). On a small budget
 //! (10 ms, one swept period, three cycles) and kong2019's two tasks (a scratch experiments
 //! directory with their file and a task set of its own).
 
@@ -84,7 +85,23 @@ fn two_threads_give_the_rows_of_one() {
     assert_eq!(rows.len(), 2 * (numerical + 2 + 3), "{rows:#?}");
     assert_eq!(rows, control_rows(&two));
     assert_eq!(checks_one, checks_two);
+    // A noise floor per row of control.csv, keyed as it is; a probe's class per trend.
+    let noise: Vec<records::control::NoiseRow> =
+        store::control::read(&one, results_dir::CONTROL_NOISE).unwrap();
+    assert_eq!(noise.len(), rows.len());
+    for (n, r) in noise.iter().zip(&rows) {
+        assert_eq!(
+            (&n.task, &n.method, n.h_ms, n.substeps),
+            (&r.task, &r.method, r.h_ms, r.substeps)
+        );
+    }
+    let trends: Vec<records::control::TrendRow> =
+        store::control::read(&one, results_dir::CYCLES_TREND).unwrap();
+    assert!(trends
+        .iter()
+        .any(|t| t.method == "exact (continuous)" && t.class_under_noise.is_some()));
     for file in [
+        results_dir::CONTROL_NOISE,
         results_dir::CONTROL_STABILITY,
         results_dir::CYCLES,
         results_dir::CYCLES_TREND,

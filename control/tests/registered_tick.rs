@@ -3,7 +3,9 @@
 //! control loop as a `Method::Numerical` and gives what the built-in Clarabel gives, tick for
 //! tick.
 
-use control::{load_tasks, run_loop, with_task, LoopOutcome, LoopSettings, Method, Numerical};
+use control::{
+    load_tasks, run_loop, with_task, LoopOutcome, LoopSettings, Method, Numerical, Rounding,
+};
 use settings::qp_solver::{QpSolverInfo, QpSolverSettings};
 use std::path::Path;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -28,6 +30,7 @@ fn run(method: &Method) -> LoopOutcome {
             period: arm.period,
             cycles: 1,
             max_ticks: Some(300),
+            rounding: Rounding::AsComputed,
         };
         run_loop(
             arm.robot,

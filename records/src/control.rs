@@ -8,13 +8,14 @@
 //! - `results/control-claim.csv` ([`ClaimRow`]): zhong2021's efficiency claim, per task
 //!   (crate `analysis`, `control_claim`);
 //! - `results/cycles.csv` ([`CycleRow`]): the drift after every cycle of the many-cycles runs,
-//!   and `results/cycles-trend.csv` ([`TrendRow`]): each run's trend.
+//!   and `results/cycles-trend.csv` ([`TrendRow`]): each run's trend, and its trend under the
+//!   rounding-noise probe.
 //!
 //! The rows are serialised here ([`to_writer`], [`from_reader`]); crate `store` writes the
 //! files for the control experiments and reads them back for the report (`store::control`),
 //! with the same types, without linking the solvers that made them. The file names are the
-//! store's (`store::results_dir`: `CONTROL`, `CONTROL_STABILITY`, `CONTROL_CLAIM`, `CYCLES`,
-//! `CYCLES_TREND`).
+//! store's (`store::results_dir`: `CONTROL`, `CONTROL_NOISE`, `CONTROL_STABILITY`,
+//! `CONTROL_CLAIM`, `CYCLES`, `CYCLES_TREND`).
 
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
@@ -172,6 +173,56 @@ pub struct ControlRow {
 
 /// Read and written as any results table too (the regression gate reads git HEAD's copy).
 impl crate::table::Row for ControlRow {}
+
+/// The noise floor of one controller run: the run of the [`ControlRow`] with the same key
+/// (task, paper, scheme, method, family, h_ms, substeps) repeated with its joint angles moved by
+/// one ulp after every tick (crate `control`'s `rounding` module), and for each deterministic
+/// metric m of the row (those that are not wall-clock) the relative change |m' - m| / |m| of the
+/// probe's value m' (crate `control`'s `noise_floor` module): 0 when the two are equal (both
+/// empty included); empty when only one is empty, either is not a number, or m = 0 != m'.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct NoiseRow {
+    /// The task's label, `<experiment> / <variant>` (display only), as in `control.csv`.
+    pub task: String,
+    /// The paper id.
+    pub paper: String,
+    /// The scheme's display name with its parameters, as in `control.csv`.
+    pub scheme: String,
+    /// The method's label, as in `control.csv`.
+    pub method: String,
+    /// Whether the method is a network or a numerical QP method.
+    pub family: Family,
+    /// The control period h (ms).
+    pub h_ms: f64,
+    /// Steps of the network's discrete form per tick, as in `control.csv`.
+    pub substeps: u32,
+    /// How the probe ended.
+    pub status_under_noise: ControlStatus,
+    /// Relative change of `stopped_at`.
+    pub stopped_at_noise: Option<f64>,
+    /// Relative change of `ticks`.
+    pub ticks_noise: Option<f64>,
+    /// Relative change of `max_track_err`.
+    pub max_track_err_noise: Option<f64>,
+    /// Relative change of `rms_track_err`.
+    pub rms_track_err_noise: Option<f64>,
+    /// Relative change of `max_dx`.
+    pub max_dx_noise: Option<f64>,
+    /// Relative change of `rms_dx`.
+    pub rms_dx_noise: Option<f64>,
+    /// Relative change of `max_dx_settled`.
+    pub max_dx_settled_noise: Option<f64>,
+    /// Relative change of `drift`.
+    pub drift_noise: Option<f64>,
+    /// Relative change of `products_mean`.
+    pub products_mean_noise: Option<f64>,
+    /// Relative change of `products_max`.
+    pub products_max_noise: Option<f64>,
+    /// Relative change of `iterations_mean`.
+    pub iterations_mean_noise: Option<f64>,
+    /// Relative change of `iterations_max`.
+    pub iterations_max_noise: Option<f64>,
+}
 
 /// A network's Euler stability limit on a task.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -350,6 +401,13 @@ pub struct TrendRow {
     pub rate: Option<f64>,
     /// Empty with fewer than three cycles.
     pub class: Option<TrendClass>,
+    /// The class of the same run with its joint angles moved by one ulp after every tick (in
+    /// continuous time: theta_0 moved once; crate `control`'s `rounding` module); empty with
+    /// fewer than three cycles of that run.
+    pub class_under_noise: Option<TrendClass>,
+    /// The relative change |b' - b| / |b| of `rate` under the same probe (as the columns of
+    /// [`NoiseRow`]: 0 when equal, empty when undefined).
+    pub rate_noise: Option<f64>,
 }
 
 /// Serialises `rows` to `out` as CSV: a header of the row type's fields, then a line per row.

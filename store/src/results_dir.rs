@@ -68,6 +68,8 @@ pub const INFERENCE: &str = "inference.csv";
 pub const INFERENCE_ENTRIES: &str = "inference-entries.csv";
 /// The control experiments' runs ([`records::control::ControlRow`]).
 pub const CONTROL: &str = "control.csv";
+/// The noise floor of the control experiments' runs ([`records::control::NoiseRow`]).
+pub const CONTROL_NOISE: &str = "control-noise.csv";
 /// The networks' Euler stability limits ([`records::control::StabilityRow`]).
 pub const CONTROL_STABILITY: &str = "control-stability.csv";
 /// zhong2021's efficiency claim per task ([`records::control::ClaimRow`]).

@@ -1,15 +1,19 @@
 //! The report's sections "At a robot's control rate" and "Many cycles", from the control
 //! experiments' result files (`results/control*.csv`, `results/cycles*.csv`, written by the
-//! `control` crate) and, for the networks as the papers integrate them, `results/runs.csv`.
+//! `control` crate; their noise floor: `control_noise`) and, for the networks as the papers
+//! integrate them, `results/runs.csv`.
 //! What is decided or computed from them (success, the leaderboard of the track, products per
 //! millisecond) is [`analysis::control_track`]'s.
 
+use super::control_noise;
 use super::markdown::{sci, sci_opt, text, Table, MISSING};
 use crate::figures::control::{pareto_name, CYCLES_NAME, STABILITY_NAME};
 use analysis::control_claim::ACCURACY;
 use analysis::report_model::Control;
 use records::control::Verdict;
-use records::control::{ClaimRow, ControlRow, ControlStatus, Family, StabilityRow, TrendRow};
+use records::control::{
+    ClaimRow, ControlRow, ControlStatus, Family, NoiseRow, StabilityRow, TrendRow,
+};
 use std::path::Path;
 use store::control::read;
 use store::results_dir;
@@ -19,6 +23,8 @@ use store::ControlFileError;
 #[derive(Clone, Debug, Default)]
 pub struct ControlResults {
     pub runs: Vec<ControlRow>,
+    /// The noise floor of each of `runs` (`results/control-noise.csv`).
+    pub noise: Vec<NoiseRow>,
     pub stability: Vec<StabilityRow>,
     pub claims: Vec<ClaimRow>,
     pub trends: Vec<TrendRow>,
@@ -29,6 +35,7 @@ impl ControlResults {
     pub fn load(results: &Path) -> Result<Self, ControlFileError> {
         Ok(ControlResults {
             runs: read(results, results_dir::CONTROL)?,
+            noise: read(results, results_dir::CONTROL_NOISE)?,
             stability: read(results, results_dir::CONTROL_STABILITY)?,
             claims: read(results, results_dir::CONTROL_CLAIM)?,
             trends: read(results, results_dir::CYCLES_TREND)?,
@@ -62,7 +69,8 @@ fn figure(figures: &[String], name: &str, alt: &str) -> String {
 }
 
 /// "At a robot's control rate": the verdict per solver at 1 kHz, the efficiency claim, the
-/// stability limits, the leaderboard track and the figures. Empty without results.
+/// stability limits, the leaderboard track, the rounding noise and the figures. Empty without
+/// results.
 pub fn section(
     results: &ControlResults,
     claim: Verdict,
@@ -94,7 +102,8 @@ pub fn section(
          (under whatever load it had: compare within a table, not across machines); the work \
          columns count products with the LVI matrix M and do not depend on the machine. The \
          runs are independent and run in parallel, one per core, so each latency is measured \
-         beside another run. This part of the reproduction adds about half a minute on 2 cores \
+         beside another run. This part of the reproduction adds about a minute on 2 cores, half \
+         of it the rounding-noise probes below \
          (tasks: {}).\n\n",
         numerical_methods(results),
         task_list(results)
@@ -153,6 +162,7 @@ pub fn section(
     out.push_str(&claim_section(results, claim, model));
     out.push_str(&stability_section(results, model, figures));
     out.push_str(&leaderboard(model));
+    out.push_str(&control_noise::section(&model.noise));
 
     out.push_str("### Latency against accuracy\n\n");
     let mut tasks: Vec<&str> = results.runs.iter().map(|r| r.task.as_str()).collect();
@@ -344,8 +354,9 @@ fn leaderboard(model: &Control) -> String {
     )
 }
 
-/// "Many cycles": each run's trend over K cycles, and the figure.
-pub fn cycles_section(results: &ControlResults, figures: &[String]) -> String {
+/// "Many cycles": each run's trend over K cycles and under the rounding-noise probe (the classes
+/// it changes: `model`'s), and the figure.
+pub fn cycles_section(results: &ControlResults, model: &Control, figures: &[String]) -> String {
     if results.trends.is_empty() {
         return String::new();
     }
@@ -372,6 +383,7 @@ pub fn cycles_section(results: &ControlResults, figures: &[String]) -> String {
         "after the last (rad)",
         "rate (rad/cycle)",
         "trend",
+        "trend under the probe",
     ]);
     for r in &results.trends {
         t.push([
@@ -387,10 +399,12 @@ pub fn cycles_section(results: &ControlResults, figures: &[String]) -> String {
             sci_opt(r.rate),
             r.class
                 .map_or_else(|| MISSING.to_string(), |c| c.label().to_string()),
+            control_noise::class_under_noise(r),
         ]);
     }
     out.push_str(&t.render());
     out.push('\n');
+    out.push_str(&control_noise::trend_changes(model));
     out.push_str(&figure(figures, CYCLES_NAME, "drift against cycle"));
     out
 }

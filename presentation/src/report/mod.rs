@@ -23,7 +23,8 @@
 //! - the `leaderboard`: every velocity-level solver on the standard task set, qpbenchmark-style;
 //! - the `cost` of every run, and zhong2021's MATLAB comparison as ratios;
 //! - `control`: every solver at a robot's control rate, zhong2021's efficiency claim, and
-//!   many cycles (`results/control*.csv`, `results/cycles*.csv`);
+//!   many cycles (`results/control*.csv`, `results/cycles*.csv`), with their noise floor under
+//!   the rounding-noise probe (`control_noise`);
 //! - `performance`: per-instant costs against the exact solvers and the KKT floor, the exact
 //!   reference per recorded QP against DAQP, the cost against the number of joints, whole runs
 //!   against the MATLAB times, and the machine (the suite's measurements of itself, its build,
@@ -36,6 +37,7 @@
 
 mod claims;
 mod control;
+mod control_noise;
 mod cost;
 mod cross;
 pub mod figures;
@@ -222,6 +224,8 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
             runs: &control.runs,
             claims: &control.claims,
             stability: &control.stability,
+            noise: &control.noise,
+            trends: &control.trends,
         },
         Explained {
             attribution: &explanations.attribution,
@@ -274,7 +278,7 @@ pub fn pages(inputs: &Inputs) -> Vec<Page> {
     out.push_str(&python::call_cost(&python.call_cost));
     pages.push(topic("performance.md", out));
     let mut out = control::section(control, model.control_claim, &model.control, figures);
-    out.push_str(&control::cycles_section(control, figures));
+    out.push_str(&control::cycles_section(control, &model.control, figures));
     pages.push(topic("control.md", out));
     pages.push(topic(
         "cross.md",
