@@ -14,11 +14,16 @@ by cell (rows matched by position, the tables' row counts and key columns requir
   of noise estimate its size only to within an order of magnitude, the 1e-12 for quantities
   that are zero to rounding in one order and not in another (the distance between two exact
   solvers);
+- the components of a drift vector (`drift_1` ... `drift_7`) share one floor, the largest
+  change a perturbed run makes to any of them (the vector is one quantity, as the tolerance
+  ladder judges it);
+- a count (both values integers) may move by one, its smallest change;
 - a number whose noise floor is half its magnitude or more has no reproducible digit: any value
   is within;
 - a row whose headline number (`drift_norm`, else `drift`) has no reproducible digit is noise
   as a whole (the run's, rung's or cycle's trajectory is not reproducible under rounding):
-  every cell of it is within, its status and failure message included;
+  every cell of it is within, its status and failure message included; so are all the rows of
+  one loop (the rows that differ only from their `cycle` column on) once one of them is;
 - any other cell (a status, a class, a failure message, a number appearing or vanishing) may
   change only where a perturbed run changes it too.
 
@@ -37,8 +42,10 @@ TIMING = re.compile(
     r"(_us$|^wall_s|^sim_s|^observe_s|^time_|^machine$|^cores$|^git_rev$|^crate_version$"
     r"|^python$|^numpy$)"
 )
-# Tables that are measurements of time, or written only by other subcommands (cost, infer).
+# Tables that are measurements of time, or written by something else than `reproduce run`
+# (the cost and infer subcommands, the Python package's leaderboard).
 TIMING_TABLES = {
+    "leaderboard-python.csv",
     "leaderboard-timing.csv",
     "python-call-cost.csv",
     "qp-replay.csv",
@@ -51,6 +58,9 @@ RELATIVE = 1e-12
 # A number with a noise floor of at least this fraction of its magnitude has no stable digit.
 NO_DIGIT = 0.5
 HEADLINE = ("drift_norm", "drift")
+COMPONENT = re.compile(r"^drift_[0-9]+$")
+LOOP_INDEX = "cycle"
+COUNT = re.compile(r"^-?[0-9]+$")
 
 
 def number(text: str):
@@ -93,12 +103,27 @@ def judge(name: str, base: Path, cand: Path, perturbed: list[Path], out) -> tupl
     pis = [index(h) for h, _ in pert]
     changed = beyond = 0
     headline = next((c for c in HEADLINE if c in bi), None)
+    noisy = [
+        headline is not None
+        and no_digit(row[bi[headline]], [p[1][k][pi[headline]] for p, pi in zip(pert, pis)])
+        for k, row in enumerate(rows)
+    ]
+    if LOOP_INDEX in bi:
+        loop = lambda row: tuple(row[: bi[LOOP_INDEX]])
+        noisy_loops = {loop(row) for row, n in zip(rows, noisy) if n}
+        noisy = [loop(row) in noisy_loops for row in rows]
+    components = [c for c in header if COMPONENT.match(c) and c in ci]
     for k, row in enumerate(rows):
         key = " | ".join(row[:4])
         crow = crows[k]
-        noise_row = headline is not None and no_digit(
-            row[bi[headline]], [p[1][k][pi[headline]] for p, pi in zip(pert, pis)]
-        )
+        noise_row = noisy[k]
+        vector_floor = 0.0
+        for col in components:
+            b = number(row[bi[col]])
+            for p, pi in zip(pert, pis):
+                v = number(p[1][k][pi[col]]) if col in pi else None
+                if b is not None and v is not None:
+                    vector_floor = max(vector_floor, abs(v - b))
         for col in cols:
             b, c = row[bi[col]], crow[ci[col]]
             if b == c:
@@ -110,7 +135,11 @@ def judge(name: str, base: Path, cand: Path, perturbed: list[Path], out) -> tupl
                 ok, shown = True, f"{headline} has no stable digit"
             elif bn is not None and cn is not None and all(p is not None for p in pn):
                 floor = max(abs(p - bn) for p in pn) if pn else 0.0
+                if col in components:
+                    floor = max(floor, vector_floor)
                 allowed = max(FACTOR * floor, RELATIVE * max(1.0, abs(bn)))
+                if COUNT.match(b) and COUNT.match(c):
+                    allowed = max(allowed, 1.0)
                 ok = (
                     abs(cn - bn) <= allowed
                     or floor >= NO_DIGIT * abs(bn)
