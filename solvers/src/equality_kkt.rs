@@ -301,7 +301,12 @@ mod tests {
         let mut next = numbers(seed);
         let mut qp = Qp::zeros(QpDims { nx, n_eq, n_in: 0 });
         for j in 0..nx {
-            qp.p[(j, j)] = 0.5 + next().abs() * 4.0;
+            // P = I on every other seed (the papers' schemes), a positive diagonal otherwise.
+            qp.p[(j, j)] = if seed % 2 == 0 {
+                1.0
+            } else {
+                0.5 + next().abs() * 4.0
+            };
             if dense {
                 for i in 0..j {
                     let v = 0.1 * next();

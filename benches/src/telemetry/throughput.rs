@@ -9,7 +9,7 @@
 //! is at least [`TARGET_SPEEDUP`]. Instruction counts are kept where the machine exposes them.
 //!
 //! The profile splits the new revision's samples into parts: `rhs` (the coupled right-hand
-//! side: kinematics, path, QP assembly, the network and its KKT LU), `integrator`, `observer`
+//! side: kinematics, path, QP assembly, the network and its KKT solve), `integrator`, `observer`
 //! and `other`; each category's CPU time per RHS is its share times the pass's user CPU seconds
 //! over its RHS evaluations. The RHS part is the floor a run's RHS count requires; the rest is
 //! what a run spends beyond it.

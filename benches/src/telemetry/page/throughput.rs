@@ -73,8 +73,8 @@ pub fn section(rows: &[ThroughputRow], profile: &[ThroughputProfileRow]) -> Stri
     out.push_str(&format!(
         "Where a right-hand side's time goes: one more pass of revision `{}` on a smaller sweep, \
          sampled by `perf record` and sorted by `benches/throughput/classify.py`. The \
-         right-hand side itself (kinematics, path, QP assembly, the network and its 8 x 8 KKT \
-         LU) is the floor, {} us of CPU per evaluation; the run spends {} us per evaluation in \
+         right-hand side itself (kinematics, path, QP assembly, the network and the solve of its \
+         8 x 8 KKT system) is the floor, {} us of CPU per evaluation; the run spends {} us per evaluation in \
          all, the rest in the integrator, the observer (metrics and the exact QP that scores \
          every accepted step) and start-up.\n\n",
         profile[0].git_rev,
