@@ -441,9 +441,8 @@ mod tests {
                         dual = dual.max(-m);
                     }
                     let ours = qp.kkt_residuals(&x, &d);
-                    let bits = |k: &KktResiduals| {
-                        [k.primal, k.dual, k.complementarity].map(f64::to_bits)
-                    };
+                    let bits =
+                        |k: &KktResiduals| [k.primal, k.dual, k.complementarity].map(f64::to_bits);
                     let expected = KktResiduals {
                         primal,
                         dual,

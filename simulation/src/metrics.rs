@@ -369,14 +369,12 @@ fn least_singular_value(m: &Matrix3<f64>) -> f64 {
     for _ in 0..100 {
         let p = ((l - tr) * l + c2) * l - det;
         slope = (3.0 * l - 2.0 * tr) * l + c2;
-        if !(slope > 0.0) {
-            break;
-        }
         let next = l - p / slope;
-        if !(next > l) {
+        if slope > 0.0 && next > l {
+            l = next;
+        } else {
             break;
         }
-        l = next;
     }
     let l1 = if slope > 1e-2 * tr * tr {
         l

@@ -302,7 +302,7 @@ mod tests {
         let mut qp = Qp::zeros(QpDims { nx, n_eq, n_in: 0 });
         for j in 0..nx {
             // P = I on every other seed (the papers' schemes), a positive diagonal otherwise.
-            qp.p[(j, j)] = if seed % 2 == 0 {
+            qp.p[(j, j)] = if seed.is_multiple_of(2) {
                 1.0
             } else {
                 0.5 + next().abs() * 4.0

@@ -57,9 +57,9 @@
 //! Q dF = dr - dQ F with dr = -(g(t) diag(Phi'(E)) + nu t I)(dQ y - du) - dQdot y + dudot.
 
 use super::activation::Activation;
-use crate::equality_kkt::{assemble_q, Kkt};
 use super::perturbation::PerturbationTerms;
 use super::{euclidean_norm, NeuralSolver};
+use crate::equality_kkt::{assemble_q, Kkt};
 use nalgebra::DMatrix;
 use qp::{Qp, QpDims};
 use settings::zeroing::{GainLaw, ZeroingSpec};
