@@ -82,62 +82,11 @@ pub(crate) fn trend_changes(trends: &[TrendRow]) -> (Vec<&TrendRow>, usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use records::control::{ControlStatus, Family, TrendClass};
+    use fixtures::{control_row, noise_row as noise};
+    use records::control::{ControlStatus, TrendClass};
 
     fn row(method: &str) -> ControlRow {
-        ControlRow {
-            task: "e / v".to_string(),
-            paper: "p".to_string(),
-            scheme: "s".to_string(),
-            method: method.to_string(),
-            family: Family::Network,
-            h_ms: 1.0,
-            substeps: 1,
-            status: ControlStatus::Ok,
-            stopped_at: None,
-            ticks: 10,
-            solve_p50_us: 1.0,
-            solve_p99_us: 1.0,
-            solve_max_us: 1.0,
-            tick_p50_us: 1.0,
-            tick_p99_us: 1.0,
-            tick_max_us: 1.0,
-            max_track_err: 1e-3,
-            rms_track_err: 1e-3,
-            max_dx: 1e-3,
-            rms_dx: 1e-3,
-            max_dx_settled: 1e-3,
-            drift: Some(0.1),
-            products_mean: None,
-            products_max: None,
-            iterations_mean: 1.0,
-            iterations_max: 1,
-        }
-    }
-
-    fn noise(r: &ControlRow, max_dx_noise: Option<f64>, status: ControlStatus) -> NoiseRow {
-        NoiseRow {
-            task: r.task.clone(),
-            paper: r.paper.clone(),
-            scheme: r.scheme.clone(),
-            method: r.method.clone(),
-            family: r.family,
-            h_ms: r.h_ms,
-            substeps: r.substeps,
-            status_under_noise: status,
-            stopped_at_noise: Some(0.0),
-            ticks_noise: Some(0.0),
-            max_track_err_noise: Some(0.0),
-            rms_track_err_noise: Some(0.0),
-            max_dx_noise,
-            rms_dx_noise: Some(0.0),
-            max_dx_settled_noise: Some(0.0),
-            drift_noise: Some(2e-9),
-            products_mean_noise: Some(0.0),
-            products_max_noise: Some(0.0),
-            iterations_mean_noise: Some(0.0),
-            iterations_max_noise: Some(0.0),
-        }
+        control_row(method, 1e-3)
     }
 
     #[test]

@@ -344,6 +344,20 @@ mod tests {
             .collect()
     }
 
+    /// A QP of sizes `dims` with every entry of P, q, A, b, G and h from [`entries`] (bounds
+    /// infinite).
+    fn random_qp(state: &mut u64, dims: QpDims) -> Qp {
+        let QpDims { nx, n_eq, n_in } = dims;
+        let mut qp = Qp::zeros(dims);
+        qp.p.copy_from_slice(&entries(state, nx * nx));
+        qp.q.copy_from_slice(&entries(state, nx));
+        qp.a.copy_from_slice(&entries(state, n_eq * nx));
+        qp.b.copy_from_slice(&entries(state, n_eq));
+        qp.g.copy_from_slice(&entries(state, n_in * nx));
+        qp.h.copy_from_slice(&entries(state, n_in));
+        qp
+    }
+
     /// The objective and the violation carry the bits of the nalgebra expressions they
     /// replace (which allocate), for every size up to 20 variables and 19 rows (the dot
     /// product's blocks of eight included), zeros of either sign and NaN among the data.
@@ -353,13 +367,7 @@ mod tests {
         for nx in 0usize..=20 {
             for (n_eq, n_in) in [(0, 0), (1, 2), (3, 0), (nx.saturating_sub(1), 19)] {
                 for _ in 0..20 {
-                    let mut qp = Qp::zeros(QpDims { nx, n_eq, n_in });
-                    qp.p.copy_from_slice(&entries(&mut state, nx * nx));
-                    qp.q.copy_from_slice(&entries(&mut state, nx));
-                    qp.a.copy_from_slice(&entries(&mut state, n_eq * nx));
-                    qp.b.copy_from_slice(&entries(&mut state, n_eq));
-                    qp.g.copy_from_slice(&entries(&mut state, n_in * nx));
-                    qp.h.copy_from_slice(&entries(&mut state, n_in));
+                    let mut qp = random_qp(&mut state, QpDims { nx, n_eq, n_in });
                     qp.lower.fill(-0.75);
                     let x = DVector::from_vec(entries(&mut state, nx));
                     let objective = 0.5 * x.dot(&(&qp.p * &x)) + qp.q.dot(&x);
@@ -393,13 +401,7 @@ mod tests {
             for (n_eq, n_in) in [(0, 0), (1, 2), (3, 0), (nx.saturating_sub(1), 19)] {
                 for case in 0..20 {
                     let dims = QpDims { nx, n_eq, n_in };
-                    let mut qp = Qp::zeros(dims);
-                    qp.p.copy_from_slice(&entries(&mut state, nx * nx));
-                    qp.q.copy_from_slice(&entries(&mut state, nx));
-                    qp.a.copy_from_slice(&entries(&mut state, n_eq * nx));
-                    qp.b.copy_from_slice(&entries(&mut state, n_eq));
-                    qp.g.copy_from_slice(&entries(&mut state, n_in * nx));
-                    qp.h.copy_from_slice(&entries(&mut state, n_in));
+                    let mut qp = random_qp(&mut state, dims);
                     if case % 2 == 0 {
                         qp.lower.fill(-0.75);
                         qp.upper.fill(0.5);
