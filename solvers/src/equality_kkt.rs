@@ -21,7 +21,9 @@
 //! triangular solves of order 3 and a diagonal one, A' lambda, D^-1), against about 470 for the
 //! LU of the 8 x 8 Q. The answer is the same solution of the same system, by a
 //! different order of operations: it agrees with the LU's to rounding (a test checks both on
-//! random KKT systems), not bit for bit.
+//! random KKT systems), not bit for bit. The runs integrate those last bits; what they move in
+//! the results was judged against the results' own rounding noise (`benches/noise/`), cell by
+//! cell, and stayed within it.
 //!
 //! A pivot E_ii = S_ii - sum_k L_ik^2 E_kk at or below [`PIVOT_TOL`] times the largest S_ii
 //! (A rank deficient, or nearly) refuses the Schur form, and Q is then factorised by LU.
