@@ -4,10 +4,11 @@ rounding noise of that result?
 
 A change such as solving a linear system by another factorisation gives the same answers to
 rounding, and the runs integrate and accumulate those last bits. How far a reported number can
-move that way is measured, not assumed: the baseline revision runs again with every initial
-configuration moved by one unit in the last place (perturb.py), once per direction, and for each
-cell of each results table the noise floor is the largest change such a run makes. The rule, cell
-by cell (rows matched by position, the tables' row counts and key columns required equal):
+move that way is measured, not assumed: the baseline revision runs again with its inputs moved
+by one unit in the last place (perturb.py: every initial configuration and every path's
+duration, four patterns; run.sh), and for each cell of each results table the noise floor is
+the largest change such a run makes. The rule, cell by cell (rows matched by position; the
+tables' row counts and each row's first four cells, its key, must agree, or the judgement stops):
 
 - a number may move by at most 10 times its noise floor, or by 1e-12 relative (1e-12 absolute
   for a value below 1 in magnitude), whichever is larger: the factor 10 because a few samples
@@ -116,6 +117,9 @@ def judge(name: str, base: Path, cand: Path, perturbed: list[Path], out) -> tupl
     for k, row in enumerate(rows):
         key = " | ".join(row[:4])
         crow = crows[k]
+        for other in [crow] + [p[1][k] for p in pert]:
+            if other[:4] != row[:4]:
+                raise SystemExit(f"{name}, line {k + 2}: the rows differ in their key ({key})")
         noise_row = noisy[k]
         vector_floor = 0.0
         for col in components:
