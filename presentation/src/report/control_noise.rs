@@ -116,10 +116,15 @@ pub fn trend_changes(model: &Control) -> String {
              every one of the {classed} classes stays as it is (last column).\n\n"
         )
     } else {
+        let (verb, those) = if changed.len() == 1 {
+            ("changes", "that class is")
+        } else {
+            ("change", "those classes are")
+        };
         format!(
             "Under the rounding-noise probe (\"At a robot's control rate\", *Rounding noise*) \
-             {} of the {classed} classes change (last column), so those classes are not \
-             reproducible: {}.\n\n",
+             {} of the {classed} classes {verb} (last column), so {those} not reproducible: \
+             {}.\n\n",
             changed.len(),
             changed.join("; ")
         )
