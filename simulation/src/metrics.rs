@@ -363,6 +363,13 @@ fn least_singular_value(m: &Matrix3<f64>) -> f64 {
     let det = m[(0, 0)] * (m[(1, 1)] * m[(2, 2)] - m[(1, 2)] * m[(2, 1)])
         - m[(0, 1)] * (m[(1, 0)] * m[(2, 2)] - m[(1, 2)] * m[(2, 0)])
         + m[(0, 2)] * (m[(1, 0)] * m[(2, 1)] - m[(1, 1)] * m[(2, 0)]);
+    // p'(l1) = (l2 - l1)(l3 - l1) <= l2 l3 <= c2: where c2 is at most tr^2 / 100 Newton's answer
+    // would be refused below anyway, and det / c2 may be rounding over rounding there (M of
+    // rank one or nearly), no lower bound at all; so the decomposition answers at once.
+    let bounded = c2 > 1e-2 * tr * tr;
+    if !bounded {
+        return m.symmetric_eigenvalues().min().max(0.0).sqrt();
+    }
     let mut l = (det / c2).max(0.0);
     let mut slope = f64::NAN;
     // Quadratic convergence from the bound: a handful of steps; the bound is a guard.
@@ -599,6 +606,17 @@ mod tests {
                 (ours - eigen).abs() <= 1e-13 * m.trace(),
                 "case {case}: l1 {ours} by Newton, {eigen} by the decomposition"
             );
+        }
+        // Rank one, and rank one with rounding in c2 and det (a lower bound of rounding over
+        // rounding): the decomposition's answer, about 0, never a large value.
+        for j in [
+            Matrix3xX::from_fn(5, |r, c| [0.3, -0.7, 1.1][r] * (c as f64 - 1.7)),
+            Matrix3xX::from_fn(5, |r, c| [0.1, 0.2, 0.3][r] * (0.1 * c as f64 + 0.3)),
+        ] {
+            let m = jjt(&j);
+            let eigen = m.symmetric_eigenvalues().min().max(0.0).sqrt();
+            assert_eq!(least_singular_value(&m).to_bits(), eigen.to_bits());
+            assert!(eigen < 1e-7 * m.trace().sqrt(), "{eigen}");
         }
         // Not finite: the decomposition's answer, not a loop.
         let mut m = Matrix3::identity();
